@@ -1,0 +1,1 @@
+"""Wakeline desktop application (PySide6 + pyqtgraph) over the core engine."""

@@ -1,0 +1,232 @@
+"""The ``wakeline`` command line (SPEC §8): the same engine as the GUI, for batch work.
+
+Every subcommand returns 0 on success and 2 on bad input with one clear line on stderr;
+output files are written atomically, so a failed run leaves none half-written. No
+Python traceback reaches the user unless ``--debug`` is given.
+"""
+
+import argparse
+import sys
+import traceback
+from pathlib import Path
+
+from wakeline.core import __version__
+from wakeline.core.errors import InputError
+
+EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
+
+
+def _cmd_import(args: argparse.Namespace) -> int:
+    from wakeline.core.io import read_points, write_csv, write_json, write_points
+
+    result = read_points(
+        args.input,
+        fmt=args.format,
+        mapping=args.map or [],
+        encoding=args.encoding,
+        delimiter=args.delimiter,
+        sensor=args.sensor,
+    )
+    write_points(result.points, args.output)
+    if args.quarantine:
+        write_csv(result.quarantine, args.quarantine)
+    if args.report:
+        write_json(result.report, args.report)
+    rep = result.report
+    msg = (
+        f"imported {rep['rows_imported']:,} rows in {rep['tracks']:,} tracks "
+        f"({rep['format']}, {rep['encoding']}); {rep['rows_quarantined']:,} quarantined"
+    )
+    if rep["rows_quarantined"] and not args.quarantine:
+        msg += " (write them with --quarantine FILE)"
+    print(msg, file=sys.stderr)
+    return 0
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+
+    if args.kind == "maneuver":
+        df = simulate.maneuver_tracks(args.tracks, args.length, args.sigma, seed=args.seed)
+    elif args.kind == "segments":
+        df = simulate.segments_scene(seed=args.seed, n_ships=args.ships, area_km=args.area_km)
+    elif args.kind == "multisensor":
+        df = simulate.multisensor_scene(seed=args.seed, n_ships=args.ships, area_km=args.area_km)
+    else:
+        df = simulate.demo_scene(seed=args.seed)
+    write_points(df, args.output)
+    print(
+        f"simulated {len(df):,} points, {df.groupby(['sensor', 'batch']).ngroups:,} tracks, "
+        f"{df['truth'].nunique():,} targets",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def _cmd_gui(args: argparse.Namespace) -> int:
+    try:
+        from wakeline.app.main import run
+    except ImportError as exc:
+        raise InputError(f"the desktop application cannot start: {exc}") from None
+    return run(args.files, screenshot=args.screenshot)
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be positive, got {value}")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from wakeline.core.io.formats import FAMILIES, FORMATS
+    from wakeline.core.simulate import KINDS, LENGTH_CLASSES
+
+    parser = argparse.ArgumentParser(
+        prog="wakeline",
+        description="Wakeline: a workbench for maritime radar and AIS tracks. "
+        "With no subcommand the desktop application starts.",
+        epilog=EPILOG,
+    )
+    parser.add_argument("--version", action="version", version=f"wakeline {__version__}")
+    parser.add_argument(
+        "--debug", action="store_true", help="show Python tracebacks on internal errors"
+    )
+    sub = parser.add_subparsers(dest="command", metavar="SUBCOMMAND")
+
+    formats = "; ".join(f"{f.family}: {f.label}" for f in FORMATS)
+    p = sub.add_parser(
+        "import",
+        help="read a track file (any supported layout) and write canonical CSV",
+        description="Read a CSV of tracks, detect its layout, encoding and delimiter, and write the "
+        f"canonical CSV. Layouts: {formats}. Rows that cannot be used are quarantined with their "
+        "line number and reason, never dropped silently.",
+        epilog=EPILOG,
+    )
+    p.add_argument("input", type=Path, help="input CSV (.csv or .csv.gz)")
+    p.add_argument("-o", "--output", type=Path, required=True, help="canonical CSV to write")
+    p.add_argument(
+        "--format", choices=FAMILIES, default="auto", help="input layout (default: auto-detect)"
+    )
+    p.add_argument(
+        "--map",
+        action="append",
+        metavar="FIELD=COLUMN",
+        help="take canonical FIELD (sensor, batch, time, lon, lat, speed, course, truth) "
+        "from COLUMN; repeatable",
+    )
+    p.add_argument("--encoding", help="text encoding (default: detect UTF-8 / GB18030)")
+    p.add_argument("--delimiter", help="field delimiter (default: detect , ; or tab)")
+    p.add_argument(
+        "--sensor", default="S1", help="sensor name when the file has no sensor column (default S1)"
+    )
+    p.add_argument(
+        "--quarantine",
+        type=Path,
+        metavar="Q.csv",
+        help="write quarantined rows (line, reason, text)",
+    )
+    p.add_argument("--report", type=Path, metavar="R.json", help="write the import report as JSON")
+    p.set_defaults(func=_cmd_import)
+
+    p = sub.add_parser(
+        "simulate",
+        help="write a simulated scene with known truth",
+        description="Seeded simulators writing canonical CSV with truth, true_lon and true_lat columns. "
+        "maneuver: seed 000's protocol (16 kn, a point every 5 min, random 15-45 deg turns); "
+        "segments: one radar breaking ships into several batches; multisensor: radar R1 and AIS "
+        "seeing the same ships; demo: the bundled demo scene.",
+        epilog=EPILOG,
+    )
+    p.add_argument("kind", choices=KINDS)
+    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("-o", "--output", type=Path, required=True, help="canonical CSV to write")
+    p.add_argument(
+        "--tracks", type=_positive_int, default=100, help="maneuver: number of tracks (default 100)"
+    )
+    p.add_argument(
+        "--length",
+        choices=tuple(LENGTH_CLASSES),
+        default="short",
+        help="maneuver: track class, short < 100, medium 100-200, long > 200 points",
+    )
+    p.add_argument(
+        "--sigma",
+        type=_positive_float,
+        default=300.0,
+        help="maneuver: position noise std per axis, metres (default 300)",
+    )
+    p.add_argument(
+        "--ships", type=_positive_int, default=20, help="segments/multisensor: ships (default 20)"
+    )
+    p.add_argument(
+        "--area-km",
+        type=_positive_float,
+        default=60.0,
+        help="segments/multisensor: side of the square area, km (default 60)",
+    )
+    p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser(
+        "gui",
+        help="start the desktop application (the default)",
+        description="Start the desktop application, optionally loading files.",
+        epilog=EPILOG,
+    )
+    p.add_argument(
+        "files", nargs="*", type=Path, help="track files to load (default: the bundled demo)"
+    )
+    p.add_argument(
+        "--screenshot",
+        type=Path,
+        metavar="PNG",
+        help="load, render the main window at 1400x900 to PNG and exit",
+    )
+    p.set_defaults(func=_cmd_gui)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``wakeline`` command; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        args = parser.parse_args(["gui", *(argv if argv is not None else sys.argv[1:])])
+    try:
+        return args.func(args)
+    except InputError as exc:
+        print(f"wakeline: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:
+        name = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
+        print(f"wakeline: error: {name}{exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("wakeline: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # noqa: BLE001 - the last line of defence for the user
+        if args.debug:
+            traceback.print_exc()
+        print(
+            f"wakeline: internal error: {type(exc).__name__}: {exc} (run with --debug for details)",
+            file=sys.stderr,
+        )
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,13 @@
+"""Error types shared by the engine, the command line and the GUI."""
+
+
+class InputError(Exception):
+    """Bad input the user can fix (missing column, empty file, bad parameter).
+
+    The message is written for the operator: one sentence, no traceback. The command
+    line prints it and exits with status 2; the GUI shows it in a dialog.
+    """
+
+
+class Cancelled(Exception):
+    """Raised by a progress callback to stop a running job."""

@@ -1,0 +1,96 @@
+"""Geodesy in metres: great-circle distances and bearings, and a local tangent plane.
+
+All functions are vectorized over numpy arrays and behave across the 180° meridian
+(longitude differences are wrapped to [-180°, 180°) before use).
+"""
+
+import numpy as np
+
+#: Mean Earth radius, metres (seed 001 Table 2: r = 6371 km).
+EARTH_RADIUS_M = 6_371_000.0
+#: Metres per nautical mile; 1 knot = 1852 m / 3600 s.
+NM_M = 1852.0
+KN_MS = NM_M / 3600.0
+
+
+def wrap180(deg: np.ndarray | float) -> np.ndarray:
+    """Wrap angles in degrees to [-180, 180)."""
+    return (np.asarray(deg, dtype="float64") + 180.0) % 360.0 - 180.0
+
+
+def wrap360(deg: np.ndarray | float) -> np.ndarray:
+    """Wrap angles in degrees to [0, 360)."""
+    out = np.asarray(deg, dtype="float64") % 360.0
+    # -1e-17 % 360 gives 360.0 in floating point; keep the half-open range.
+    return np.where(out >= 360.0, 0.0, out)
+
+
+def angle_diff(a_deg: np.ndarray | float, b_deg: np.ndarray | float) -> np.ndarray:
+    """Absolute difference of two directions in degrees, in [0, 180]."""
+    return np.abs(wrap180(np.asarray(a_deg) - np.asarray(b_deg)))
+
+
+def haversine_m(lon1, lat1, lon2, lat2) -> np.ndarray:
+    """Great-circle distance in metres between points given in degrees."""
+    lon1, lat1, lon2, lat2 = (
+        np.radians(np.asarray(v, dtype="float64")) for v in (lon1, lat1, lon2, lat2)
+    )
+    dlat = lat2 - lat1
+    dlon = lon2 - lon1
+    a = np.sin(dlat / 2.0) ** 2 + np.cos(lat1) * np.cos(lat2) * np.sin(dlon / 2.0) ** 2
+    return 2.0 * EARTH_RADIUS_M * np.arcsin(np.sqrt(np.clip(a, 0.0, 1.0)))
+
+
+def initial_bearing_deg(lon1, lat1, lon2, lat2) -> np.ndarray:
+    """Initial great-circle bearing from point 1 to point 2, degrees true in [0, 360)."""
+    lon1, lat1, lon2, lat2 = (
+        np.radians(np.asarray(v, dtype="float64")) for v in (lon1, lat1, lon2, lat2)
+    )
+    dlon = lon2 - lon1
+    y = np.sin(dlon) * np.cos(lat2)
+    x = np.cos(lat1) * np.sin(lat2) - np.sin(lat1) * np.cos(lat2) * np.cos(dlon)
+    return wrap360(np.degrees(np.arctan2(y, x)))
+
+
+def circular_mean_deg(deg: np.ndarray, weights: np.ndarray | None = None) -> float:
+    """Circular mean of directions (or longitudes) in degrees, in [-180, 180)."""
+    rad = np.radians(np.asarray(deg, dtype="float64"))
+    w = np.ones_like(rad) if weights is None else np.asarray(weights, dtype="float64")
+    return float(wrap180(np.degrees(np.arctan2(np.sum(w * np.sin(rad)), np.sum(w * np.cos(rad))))))
+
+
+def to_local(lon, lat, lon0, lat0) -> tuple[np.ndarray, np.ndarray]:
+    """Project degrees to a local plane about (lon0, lat0): x east, y north, metres.
+
+    Equirectangular about ``lat0``: good to well under 1 % within ~500 km of the origin,
+    which is what per-track window geometry needs. ``lon0``/``lat0`` may be arrays
+    broadcast against ``lon``/``lat`` (one origin per track, repeated per point).
+    """
+    dlon = wrap180(np.asarray(lon, dtype="float64") - lon0)
+    x = EARTH_RADIUS_M * np.radians(dlon) * np.cos(np.radians(lat0))
+    y = EARTH_RADIUS_M * np.radians(np.asarray(lat, dtype="float64") - lat0)
+    return x, y
+
+
+def from_local(x, y, lon0, lat0) -> tuple[np.ndarray, np.ndarray]:
+    """Inverse of :func:`to_local`: local metres back to lon/lat degrees."""
+    lat = np.asarray(lat0, dtype="float64") + np.degrees(
+        np.asarray(y, dtype="float64") / EARTH_RADIUS_M
+    )
+    lon = lon0 + np.degrees(
+        np.asarray(x, dtype="float64") / (EARTH_RADIUS_M * np.cos(np.radians(lat0)))
+    )
+    return wrap180(lon), lat
+
+
+def destination(lon, lat, bearing_deg, dist_m) -> tuple[np.ndarray, np.ndarray]:
+    """Point reached from (lon, lat) after ``dist_m`` metres on initial bearing (sphere)."""
+    lat1 = np.radians(np.asarray(lat, dtype="float64"))
+    lon1 = np.radians(np.asarray(lon, dtype="float64"))
+    brg = np.radians(np.asarray(bearing_deg, dtype="float64"))
+    d = np.asarray(dist_m, dtype="float64") / EARTH_RADIUS_M
+    lat2 = np.arcsin(np.sin(lat1) * np.cos(d) + np.cos(lat1) * np.sin(d) * np.cos(brg))
+    lon2 = lon1 + np.arctan2(
+        np.sin(brg) * np.sin(d) * np.cos(lat1), np.cos(d) - np.sin(lat1) * np.sin(lat2)
+    )
+    return wrap180(np.degrees(lon2)), np.degrees(lat2)

@@ -1,0 +1,24 @@
+"""Reading and writing track files (SPEC §1)."""
+
+from wakeline.core.io.formats import FAMILIES, FORMATS, parse_mapping, resolve
+from wakeline.core.io.mtad import label_points, read_association_table
+from wakeline.core.io.reader import ImportResult, read_points
+from wakeline.core.io.sniff import Sniff, sniff
+from wakeline.core.io.writer import atomic_path, write_csv, write_json, write_points
+
+__all__ = [
+    "FAMILIES",
+    "FORMATS",
+    "ImportResult",
+    "Sniff",
+    "atomic_path",
+    "label_points",
+    "parse_mapping",
+    "read_association_table",
+    "read_points",
+    "resolve",
+    "sniff",
+    "write_csv",
+    "write_json",
+    "write_points",
+]

@@ -1,0 +1,62 @@
+"""The canonical point table (SPEC §1).
+
+A pandas DataFrame with the columns below; extra columns are carried through untouched.
+A *track* is the rows of one ``(sensor, batch)`` sorted by time.
+"""
+
+import numpy as np
+import pandas as pd
+
+#: Column order of the canonical CSV.
+CANONICAL_COLUMNS: tuple[str, ...] = ("sensor", "batch", "time", "lon", "lat", "speed", "course")
+#: Columns an input must provide (``sensor`` defaults to ``DEFAULT_SENSOR``).
+REQUIRED_COLUMNS: tuple[str, ...] = ("batch", "time", "lon", "lat")
+#: Optional columns with a meaning of their own.
+OPTIONAL_COLUMNS: tuple[str, ...] = ("sensor", "speed", "course", "truth")
+DEFAULT_SENSOR = "S1"
+
+UNITS = {
+    "time": "UTC timestamp",
+    "lon": "degrees WGS84, [-180, 180]",
+    "lat": "degrees WGS84, [-90, 90]",
+    "speed": "knots",
+    "course": "degrees true, [0, 360)",
+}
+
+TIME_DTYPE = pd.DatetimeTZDtype("ns", "UTC")
+EPOCH = pd.Timestamp("1970-01-01", tz="UTC")
+
+
+def empty_points() -> pd.DataFrame:
+    """An empty canonical table with the right dtypes."""
+    return pd.DataFrame(
+        {
+            "sensor": pd.Series([], dtype="str"),
+            "batch": pd.Series([], dtype="str"),
+            "time": pd.Series([], dtype=TIME_DTYPE),
+            "lon": pd.Series([], dtype="float64"),
+            "lat": pd.Series([], dtype="float64"),
+            "speed": pd.Series([], dtype="float64"),
+            "course": pd.Series([], dtype="float64"),
+        }
+    )
+
+
+def time_seconds(times: pd.Series | pd.DatetimeIndex) -> np.ndarray:
+    """Seconds since 1970-01-01 UTC as float64, whatever the timestamp resolution."""
+    delta = pd.DatetimeIndex(times) - EPOCH
+    return np.asarray(delta.total_seconds(), dtype="float64")
+
+
+def seconds_to_time(seconds: np.ndarray) -> pd.Series:
+    """Inverse of :func:`time_seconds`: float seconds since epoch to UTC timestamps (ns)."""
+    ns = np.round(np.asarray(seconds, dtype="float64") * 1e9).astype("int64")
+    return pd.Series(pd.to_datetime(ns, unit="ns", utc=True)).astype(TIME_DTYPE)
+
+
+def ordered_columns(df: pd.DataFrame) -> list[str]:
+    """Canonical columns first (those present), then the extra columns in their order."""
+    head = [c for c in CANONICAL_COLUMNS if c in df.columns]
+    if "truth" in df.columns:
+        head.append("truth")
+    return head + [c for c in df.columns if c not in head]

@@ -1,0 +1,419 @@
+"""Seeded simulators with known truth (canonical tables with a ``truth`` column).
+
+- :func:`maneuver_tracks`: seed 000's evaluation protocol (SPEC §3).
+- :func:`segments_scene`: ships whose tracks one sensor broke into several batches
+  (SPEC §5).
+- :func:`multisensor_scene`: the same ships seen by two sensors with different noise,
+  periods, coverage and clock jitter (SPEC §6); optionally with interrupted batches.
+- :func:`demo_scene`: the small scene bundled with the application.
+
+Every table carries, besides the canonical columns, ``truth`` (ship id) and ``true_lon``
+/ ``true_lat`` (the noise-free position at the reported time). Motion is simulated in a
+local plane in metres (x east, y north) and converted to degrees with
+:func:`wakeline.core.geo.from_local` about the scene origin.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core import geo
+from wakeline.core.schema import seconds_to_time
+
+#: Scene origin for the realistic scenes (East China Sea), degrees lon, lat.
+SCENE_ORIGIN = (122.5, 30.5)
+#: Seed 000's protocol starts at (0 km, 0 km); we put that point at lon 0, lat 0 so the
+#: local plane is free of latitude distortion over the ~700 km a long track covers.
+PROTOCOL_ORIGIN = (0.0, 0.0)
+#: Scene start time (UTC).
+T0 = pd.Timestamp("2024-05-01T00:00:00Z")
+#: Points per track for seed 000's classes (short < 100, medium 100–200, long > 200).
+LENGTH_CLASSES = {"short": (50, 99), "medium": (100, 200), "long": (201, 300)}
+
+
+# --------------------------------------------------------------------------------------
+# seed 000 protocol
+
+
+@dataclass(frozen=True)
+class ProtocolTrack:
+    """One simulated track of the seed-000 protocol, in the local plane (metres)."""
+
+    t_s: np.ndarray  # sample times, seconds from start
+    true_xy: np.ndarray  # (M, 2) noise-free positions
+    xy: np.ndarray  # (M, 2) observed positions (true + Gaussian noise)
+    turn_index: np.ndarray  # sample indices where the course changes
+    turn_deg: np.ndarray  # signed course change at each turn, degrees (+ = starboard)
+
+
+def protocol_track(
+    rng: np.random.Generator,
+    n_points: int,
+    sigma_m: float,
+    period_s: float = 300.0,
+    speed_kn: float = 16.0,
+    course_deg: float = 15.0,
+    turn_every: tuple[int, int] = (6, 12),
+    turn_range_deg: tuple[float, float] = (15.0, 45.0),
+) -> ProtocolTrack:
+    """Seed 000 §3.1: constant speed; every 6–12 periods a random choice of straight on,
+    left or right (one third each), turns of 15°–45° taken at a sample instant."""
+    course = np.full(n_points, np.nan)
+    turns_i, turns_d = [], []
+    heading = course_deg
+    k = 0
+    while True:
+        k_next = k + int(rng.integers(turn_every[0], turn_every[1] + 1))
+        if k_next >= n_points - 1:
+            break
+        course[k:k_next] = heading
+        choice = int(rng.integers(0, 3))  # 0 straight on, 1 port, 2 starboard
+        if choice:
+            delta = float(rng.uniform(*turn_range_deg)) * (1 if choice == 2 else -1)
+            heading = heading + delta
+            turns_i.append(k_next)
+            turns_d.append(delta)
+        k = k_next
+    course[k:] = heading
+    step = speed_kn * geo.KN_MS * period_s
+    rad = np.radians(course[:-1])
+    true_xy = np.zeros((n_points, 2))
+    true_xy[1:, 0] = np.cumsum(step * np.sin(rad))
+    true_xy[1:, 1] = np.cumsum(step * np.cos(rad))
+    xy = true_xy + rng.normal(0.0, sigma_m, size=true_xy.shape)
+    t = np.arange(n_points) * period_s
+    return ProtocolTrack(t, true_xy, xy, np.asarray(turns_i, dtype="int64"), np.asarray(turns_d))
+
+
+def maneuver_tracks(
+    n_tracks: int = 100,
+    length: str = "short",
+    sigma_m: float = 300.0,
+    seed: int = 0,
+    period_s: float = 300.0,
+) -> pd.DataFrame:
+    """Seed 000's protocol as a canonical table.
+
+    Extra columns: ``true_lon``/``true_lat`` (noise-free path), ``true_turn`` (1 at the
+    sample where the course changes, else 0), ``turn_deg`` (signed change there).
+    """
+    if length not in LENGTH_CLASSES:
+        raise ValueError(f"length must be one of {', '.join(LENGTH_CLASSES)}")
+    rng = np.random.default_rng(seed)
+    lo, hi = LENGTH_CLASSES[length]
+    frames = []
+    for k in range(n_tracks):
+        tr = protocol_track(rng, int(rng.integers(lo, hi + 1)), sigma_m, period_s)
+        turn = np.zeros(len(tr.t_s), dtype="int64")
+        turn[tr.turn_index] = 1
+        turn_deg = np.zeros(len(tr.t_s))
+        turn_deg[tr.turn_index] = tr.turn_deg
+        frames.append(
+            _frame(
+                "SIM",
+                f"{length[0]}{k + 1:04d}",
+                tr.t_s,
+                tr.xy,
+                tr.true_xy,
+                f"{length[0]}{k + 1:04d}",
+                PROTOCOL_ORIGIN,
+                extra={"true_turn": turn, "turn_deg": turn_deg},
+            )
+        )
+    return pd.concat(frames, ignore_index=True)
+
+
+# --------------------------------------------------------------------------------------
+# ship motion for scenes
+
+
+@dataclass(frozen=True)
+class Ship:
+    """A simulated ship: constant speed, course changes at a finite turn rate."""
+
+    name: str
+    x0: float  # metres east of the scene origin at t_start
+    y0: float
+    speed_ms: float
+    course_deg: float
+    t_start: float  # seconds from scene start
+    t_end: float
+    turns: tuple[tuple[float, float, float], ...] = ()  # (t_s, delta_deg, rate_deg_s)
+
+    def heading(self, t: np.ndarray) -> np.ndarray:
+        h = np.full_like(t, self.course_deg, dtype="float64")
+        for t_turn, delta, rate in self.turns:
+            dur = abs(delta) / rate
+            h += delta * np.clip((t - t_turn) / dur, 0.0, 1.0)
+        return h
+
+    def position(self, t: np.ndarray, step_s: float = 1.0) -> np.ndarray:
+        """True (x, y) in metres at times ``t`` (seconds from scene start)."""
+        grid = np.arange(self.t_start, self.t_end + step_s, step_s)
+        mid = grid[:-1] + step_s / 2.0
+        rad = np.radians(self.heading(mid))
+        gx = np.concatenate([[self.x0], self.x0 + np.cumsum(self.speed_ms * step_s * np.sin(rad))])
+        gy = np.concatenate([[self.y0], self.y0 + np.cumsum(self.speed_ms * step_s * np.cos(rad))])
+        return np.column_stack([np.interp(t, grid, gx), np.interp(t, grid, gy)])
+
+    def velocity(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """True speed (kn) and course (deg) at times ``t``."""
+        return np.full_like(t, self.speed_ms / geo.KN_MS, dtype="float64"), geo.wrap360(
+            self.heading(t)
+        )
+
+
+def random_ships(
+    rng: np.random.Generator,
+    n_ships: int,
+    area_m: float,
+    duration_s: float,
+    speed_kn: tuple[float, float] = (8.0, 20.0),
+    max_turns: int = 2,
+    turn_deg: tuple[float, float] = (20.0, 90.0),
+    turn_rate_deg_s: tuple[float, float] = (0.3, 1.0),
+    min_life_s: float = 0.5,
+) -> list[Ship]:
+    """Ships placed uniformly in a square of side ``area_m`` centred on the origin,
+    each alive for at least ``min_life_s`` × duration."""
+    ships = []
+    for k in range(n_ships):
+        life = rng.uniform(min_life_s, 1.0) * duration_s
+        t_start = rng.uniform(0.0, duration_s - life)
+        n_turns = int(rng.integers(0, max_turns + 1))
+        turns = tuple(
+            (
+                float(t),
+                float(rng.uniform(*turn_deg) * rng.choice([-1, 1])),
+                float(rng.uniform(*turn_rate_deg_s)),
+            )
+            for t in np.sort(rng.uniform(t_start + 0.15 * life, t_start + 0.85 * life, n_turns))
+        )
+        ships.append(
+            Ship(
+                name=f"T{k + 1:03d}",
+                x0=float(rng.uniform(-area_m / 2, area_m / 2)),
+                y0=float(rng.uniform(-area_m / 2, area_m / 2)),
+                speed_ms=float(rng.uniform(*speed_kn)) * geo.KN_MS,
+                course_deg=float(rng.uniform(0, 360)),
+                t_start=float(t_start),
+                t_end=float(t_start + life),
+                turns=turns,
+            )
+        )
+    return ships
+
+
+@dataclass(frozen=True)
+class SensorSpec:
+    """How one sensor sees ships."""
+
+    name: str
+    period_s: float = 10.0
+    sigma_m: float = 50.0  # Gaussian position noise per axis
+    coverage: float = 0.9  # share of each ship's life the sensor sees (one contiguous span)
+    jitter_s: float = 0.0  # std of the time-stamp error (positions are taken at true time)
+    p_detect: float = 1.0  # probability that a scan reports the ship
+    reports_motion: bool = False  # AIS-like: speed and course columns (with noise)
+    interrupt: bool = False  # break tracks into several batches at random gaps
+    gap_s: tuple[float, float] = (20.0, 600.0)  # gap length range when interrupted
+    pieces: tuple[int, int] = (2, 4)  # number of batches per ship when interrupted
+
+
+@dataclass
+class _BatchCounter:
+    next_id: int
+    taken: set = field(default_factory=set)
+
+
+def _observe(
+    rng: np.random.Generator,
+    ship: Ship,
+    spec: SensorSpec,
+    counter: _BatchCounter,
+    origin: tuple[float, float],
+) -> list[pd.DataFrame]:
+    life = ship.t_end - ship.t_start
+    span = spec.coverage * life
+    a = ship.t_start + rng.uniform(0.0, life - span)
+    phase = rng.uniform(0.0, spec.period_s)
+    t = np.arange(a + phase, a + span, spec.period_s)
+    if len(t) < 2:
+        return []
+    if spec.p_detect < 1.0:
+        t = t[rng.random(len(t)) < spec.p_detect]
+    pieces = [np.ones(len(t), dtype=bool)]
+    if spec.interrupt:
+        pieces = _cut(rng, t, spec)
+    out = []
+    for keep in pieces:
+        tk = t[keep]
+        if len(tk) < 2:
+            continue
+        true_xy = ship.position(tk)
+        xy = true_xy + rng.normal(0.0, spec.sigma_m, size=true_xy.shape)
+        stamp = tk + (rng.normal(0.0, spec.jitter_s, len(tk)) if spec.jitter_s > 0 else 0.0)
+        extra = {}
+        if spec.reports_motion:
+            sog, cog = ship.velocity(tk)
+            extra_speed = np.round(np.maximum(sog + rng.normal(0, 0.2, len(tk)), 0.0), 1)
+            extra_course = np.round(geo.wrap360(cog + rng.normal(0, 1.0, len(tk))), 1)
+            extra = {"speed": extra_speed, "course": extra_course}
+        batch = str(counter.next_id)
+        counter.next_id += int(rng.integers(1, 7))
+        frame = _frame(spec.name, batch, stamp, xy, true_xy, ship.name, origin, motion=extra)
+        out.append(frame)
+    return out
+
+
+def _cut(rng: np.random.Generator, t: np.ndarray, spec: SensorSpec) -> list[np.ndarray]:
+    """Split sample times into pieces separated by gaps drawn from ``spec.gap_s``.
+
+    Pieces get random shares (at least a third of an equal share each) of the time left
+    after the gaps, so every piece holds points and gaps never run into each other.
+    """
+    n_pieces = int(rng.integers(spec.pieces[0], spec.pieces[1] + 1))
+    gaps = rng.uniform(*spec.gap_s, max(n_pieces - 1, 0))
+    span = t[-1] - t[0]
+    free = span - gaps.sum()
+    if n_pieces <= 1 or free < n_pieces * 6 * spec.period_s:
+        return [np.ones(len(t), dtype=bool)]
+    share = rng.dirichlet(np.ones(n_pieces))
+    share = (share + 1.0 / (2 * n_pieces)) / 1.5  # floor of 1/(3n) per piece, sums to 1
+    edges = [t[0]]
+    for k in range(n_pieces):
+        end = edges[-1] + share[k] * free
+        edges.append(end)
+        if k < n_pieces - 1:
+            edges.append(end + gaps[k])
+    edges[-1] = t[-1] + 1.0
+    return [(t >= edges[2 * k]) & (t < edges[2 * k + 1]) for k in range(n_pieces)]
+
+
+def _frame(
+    sensor: str,
+    batch: str,
+    t_s: np.ndarray,
+    xy: np.ndarray,
+    true_xy: np.ndarray,
+    truth: str,
+    origin: tuple[float, float],
+    motion: dict | None = None,
+    extra: dict | None = None,
+) -> pd.DataFrame:
+    lon, lat = geo.from_local(xy[:, 0], xy[:, 1], origin[0], origin[1])
+    tlon, tlat = geo.from_local(true_xy[:, 0], true_xy[:, 1], origin[0], origin[1])
+    n = len(t_s)
+    t0 = (T0 - pd.Timestamp(0, tz="UTC")).total_seconds()
+    motion = motion or {}
+    data = {
+        "sensor": np.full(n, sensor),
+        "batch": np.full(n, batch),
+        "time": seconds_to_time(t0 + np.asarray(t_s, dtype="float64")).dt.round("ms").to_numpy(),
+        "lon": np.round(lon, 6),
+        "lat": np.round(lat, 6),
+        "speed": motion.get("speed", np.full(n, np.nan)),
+        "course": motion.get("course", np.full(n, np.nan)),
+        "truth": np.full(n, truth),
+        "true_lon": np.round(tlon, 6),
+        "true_lat": np.round(tlat, 6),
+    }
+    data.update(extra or {})
+    df = pd.DataFrame(data)
+    df["time"] = (
+        df["time"].dt.tz_convert("UTC")
+        if df["time"].dt.tz is not None
+        else df["time"].dt.tz_localize("UTC")
+    )
+    return df
+
+
+def _scene(
+    rng: np.random.Generator,
+    ships: list[Ship],
+    sensors: list[SensorSpec],
+    origin: tuple[float, float],
+) -> pd.DataFrame:
+    frames = []
+    for spec in sensors:
+        counter = _BatchCounter(int(rng.integers(100, 900)))
+        for ship in ships:
+            frames.extend(_observe(rng, ship, spec, counter, origin))
+    df = pd.concat(frames, ignore_index=True)
+    for col in ("sensor", "batch", "truth"):
+        df[col] = df[col].astype("str")
+    return df.sort_values(["sensor", "time"], kind="stable").reset_index(drop=True)
+
+
+def segments_scene(
+    seed: int = 0,
+    n_ships: int = 20,
+    area_km: float = 60.0,
+    duration_s: float = 7200.0,
+    period_s: float = 10.0,
+    sigma_m: float = 30.0,
+    gap_s: tuple[float, float] = (20.0, 600.0),
+    pieces: tuple[int, int] = (2, 4),
+) -> pd.DataFrame:
+    """One radar (sensor ``R1``) whose tracks break into 2–4 batches with 20 s–10 min gaps.
+
+    ``truth`` is the ship; a dense scene is many ships in a small area.
+    """
+    rng = np.random.default_rng(seed)
+    ships = random_ships(rng, n_ships, area_km * 1000.0, duration_s)
+    spec = SensorSpec(
+        "R1",
+        period_s=period_s,
+        sigma_m=sigma_m,
+        coverage=1.0,
+        interrupt=True,
+        gap_s=gap_s,
+        pieces=pieces,
+    )
+    return _scene(rng, ships, [spec], SCENE_ORIGIN)
+
+
+DEFAULT_SENSORS = (
+    SensorSpec("R1", period_s=10.0, sigma_m=80.0, coverage=0.85, jitter_s=0.5, p_detect=0.95),
+    SensorSpec("AIS", period_s=6.0, sigma_m=15.0, coverage=0.75, jitter_s=0.2, reports_motion=True),
+)
+
+
+def multisensor_scene(
+    seed: int = 0,
+    n_ships: int = 10,
+    area_km: float = 60.0,
+    duration_s: float = 3600.0,
+    sensors: tuple[SensorSpec, ...] = DEFAULT_SENSORS,
+) -> pd.DataFrame:
+    """The same ships seen by several sensors (default: radar R1 and AIS)."""
+    rng = np.random.default_rng(seed)
+    ships = random_ships(rng, n_ships, area_km * 1000.0, duration_s)
+    return _scene(rng, ships, list(sensors), SCENE_ORIGIN)
+
+
+def demo_scene(seed: int = 7) -> pd.DataFrame:
+    """The bundled demo: 8 ships for 1 h, an interrupting radar and AIS, with maneuvers."""
+    sensors = (
+        SensorSpec(
+            "R1",
+            period_s=15.0,
+            sigma_m=60.0,
+            coverage=0.9,
+            jitter_s=0.5,
+            p_detect=0.95,
+            interrupt=True,
+            gap_s=(60.0, 300.0),
+            pieces=(1, 3),
+        ),
+        SensorSpec(
+            "AIS", period_s=20.0, sigma_m=10.0, coverage=0.7, jitter_s=0.2, reports_motion=True
+        ),
+    )
+    rng = np.random.default_rng(seed)
+    ships = random_ships(rng, 8, 40_000.0, 3600.0, max_turns=3, min_life_s=0.6)
+    return _scene(rng, ships, list(sensors), SCENE_ORIGIN)
+
+
+KINDS = ("maneuver", "segments", "multisensor", "demo")

@@ -1,0 +1,198 @@
+"""SPEC §1 bad input: clear messages, exit status 2, nothing lost, no half-written files."""
+
+import json
+import os
+
+import pandas as pd
+import pytest
+
+import wakeline.core.io.writer as writer_mod
+from wakeline.core.cli import main
+from wakeline.core.errors import InputError
+from wakeline.core.io import read_points, write_points
+
+GOOD = "S1,1,2024-01-01T00:00:{s:02d}Z,122.5,30.{s:02d}"
+
+
+def _file_with(write, bad_rows: dict[int, str], n: int = 10) -> tuple:
+    """A canonical file of n good rows with bad rows inserted at the given data positions."""
+    lines = ["sensor,batch,time,lon,lat"]
+    for k in range(n):
+        if k in bad_rows:
+            lines.append(bad_rows[k])
+        lines.append(GOOD.format(s=k))
+    return write("mixed.csv", "\n".join(lines) + "\n"), lines
+
+
+def _run(capsys, *args) -> tuple[int, str, str]:
+    code = main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize(
+    ("row", "reason"),
+    [
+        ("S1,1,2024-01-01T00:01:00Z,122.5", "short row: 4 of 5 fields"),
+        ("S1,1,2024-01-01T00:01:00Z,122.5,30,9", "too many fields: 6 of 5"),
+        ("S1,1,not a time,122.5,30", "unparsable time"),
+        ("S1,1,,122.5,30", "missing time"),
+        ("S1,1,2024-01-01T00:01:00Z,east,30", "unparsable lon"),
+        ("S1,1,2024-01-01T00:01:00Z,122.5,", "missing lat"),
+        ("S1,1,2024-01-01T00:01:00Z,190.5,30", "lon out of range"),
+        ("S1,1,2024-01-01T00:01:00Z,122.5,-91", "lat out of range"),
+        ("S1,,2024-01-01T00:01:00Z,122.5,30", "missing batch"),
+        ("S1,1,2024-01-01T00:01:00Z,122.5,30,", "too many fields: 6 of 5"),
+    ],
+)
+def test_bad_row_is_quarantined_with_line_and_reason(write, row, reason):
+    path, lines = _file_with(write, {3: row, 7: row})
+    r = read_points(path)
+    assert len(r.points) == 10  # every good row imported
+    q = r.quarantine
+    assert q.reason.tolist() == [reason, reason]
+    expected_lines = [i + 1 for i, line in enumerate(lines) if line == row]
+    assert q.line.tolist() == expected_lines
+    assert q.text.tolist() == [row, row]
+    assert r.report["rows_quarantined"] == 2
+    assert r.report["quarantine_reasons"] == {reason: 2}
+    assert r.report["rows_read"] == 12
+
+
+def test_line_numbers_survive_blank_lines_and_many_bad_rows(write):
+    rows = ["sensor,batch,time,lon,lat", ""]
+    expected = []
+    for k in range(200):
+        if k % 7 == 0:
+            rows.append("S1,1,2024-01-01T00:00:00Z,999,30")
+            expected.append(len(rows))
+        if k % 11 == 0:
+            rows.append("S1,1")
+            expected.append(len(rows))
+        if k % 13 == 0:
+            rows.append("")
+        rows.append(f"S1,1,2024-01-01T00:{k // 60:02d}:{k % 60:02d}Z,122.5,30")
+    r = read_points(write("many.csv", "\n".join(rows) + "\n"))
+    assert len(r.points) == 200
+    assert r.quarantine.line.tolist() == expected
+    assert r.report["blank_lines"] == 1 + len(range(0, 200, 13))
+
+
+def test_quarantine_and_report_files(write, tmp_path, capsys):
+    path, _ = _file_with(write, {2: "S1,1,2024-01-01T00:01:00Z,200,30"})
+    out, q, rep = tmp_path / "out.csv", tmp_path / "q.csv", tmp_path / "r.json"
+    code, _, err = _run(capsys, "import", path, "-o", out, "--quarantine", q, "--report", rep)
+    assert code == 0
+    assert "10 rows" in err and "1 quarantined" in err
+    assert len(pd.read_csv(out)) == 10
+    qdf = pd.read_csv(q)
+    assert qdf.line.tolist() == [4] and qdf.reason.tolist() == ["lon out of range"]
+    report = json.loads(rep.read_text())
+    assert report["rows_quarantined"] == 1 and report["rows_imported"] == 10
+
+
+def test_missing_column_names_it_and_lists_headers(write, tmp_path, capsys):
+    path = write("nolat.csv", "sensor,batch,time,lon,depth\nS1,1,2024-01-01T00:00:00Z,1,2\n")
+    out = tmp_path / "out.csv"
+    code, _, err = _run(capsys, "import", path, "-o", out)
+    assert code == 2
+    assert "missing required column lat" in err
+    assert "headers found: sensor, batch, time, lon, depth" in err
+    assert not out.exists()
+    assert "Traceback" not in err
+
+
+def test_explicit_format_missing_column(write, tmp_path, capsys):
+    path = write("r.csv", "SendShipNO,SendTime,lon,lat\n1,1664590563,1,2\n")
+    code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--format", "radar")
+    assert code == 2 and "missing column(s) nNO" in err and "headers found: SendShipNO" in err
+
+
+def test_mapping_to_absent_column(write, tmp_path, capsys):
+    path = write("c.csv", "sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n")
+    code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--map", "batch=MMSI")
+    assert code == 2 and "mapped column(s) not found: batch=MMSI" in err
+    code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--map", "vessel=MMSI")
+    assert code == 2 and "unknown field 'vessel'" in err
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        (b"", "the file is empty"),
+        (b"\n\n  \n", "the file is empty"),
+        (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(256)) * 4, "binary file"),
+        (b"PK\x03\x04" + bytes(200), "binary file"),
+        (b"\x1f\x8b\x08\x00garbage-not-gzip" * 10, "cannot be decompressed"),
+    ],
+)
+def test_unreadable_files_exit_2_with_one_line(write, tmp_path, capsys, content, message):
+    path = write("bad.csv", content)
+    out = tmp_path / "out.csv"
+    code, stdout, err = _run(capsys, "import", path, "-o", out)
+    assert code == 2
+    assert message in err
+    assert len(err.strip().splitlines()) == 1
+    assert not out.exists() and stdout == ""
+
+
+def test_wrong_encoding(write, tmp_path, capsys):
+    path = write(
+        "latin.csv",
+        b"sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n" + b"\xff\xfe\xff",
+    )
+    code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--encoding", "ascii")
+    assert code == 2 and "cannot decode" in err
+
+
+def test_missing_input_and_output_folder(tmp_path, capsys, write):
+    code, _, err = _run(capsys, "import", tmp_path / "nothere.csv", "-o", tmp_path / "o.csv")
+    assert code == 2 and "no such file" in err
+    good = write("c.csv", "sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n")
+    code, _, err = _run(capsys, "import", good, "-o", tmp_path / "no" / "o.csv")
+    assert code == 2 and "does not exist" in err
+
+
+def test_write_is_atomic(tmp_path, monkeypatch):
+    target = tmp_path / "out.csv"
+    target.write_text("old content\n")
+    df = read_points_df()
+
+    def boom(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(writer_mod.pacsv, "write_csv", boom)
+    with pytest.raises(OSError):
+        write_points(df, target)
+    assert target.read_text() == "old content\n"
+    assert os.listdir(tmp_path) == ["out.csv"]  # no temporary file left behind
+
+
+def test_internal_error_has_no_traceback(tmp_path, monkeypatch, capsys, write):
+    import wakeline.core.io as io_mod
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("something unexpected")
+
+    monkeypatch.setattr(io_mod, "read_points", broken)
+    good = write("c.csv", "sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n")
+    code, _, err = _run(capsys, "import", good, "-o", tmp_path / "o.csv")
+    assert code == 1
+    assert "internal error: RuntimeError: something unexpected" in err and "Traceback" not in err
+
+
+def test_input_error_type():
+    with pytest.raises(InputError):
+        read_points("/definitely/not/here.csv")
+
+
+def read_points_df() -> pd.DataFrame:
+    return pd.DataFrame(
+        {
+            "sensor": ["S1"],
+            "batch": ["1"],
+            "time": pd.to_datetime(["2024-01-01"], utc=True),
+            "lon": [1.0],
+            "lat": [2.0],
+        }
+    )

@@ -1,0 +1,60 @@
+import numpy as np
+import pytest
+
+from wakeline.core import geo
+
+
+def test_haversine_one_degree_of_latitude():
+    assert geo.haversine_m(0, 0, 0, 1) == pytest.approx(111_194.9, abs=0.5)
+
+
+def test_haversine_across_the_antimeridian_is_short():
+    # 0.2° of longitude at the equator, not 359.8°
+    assert geo.haversine_m(179.9, 0, -179.9, 0) == pytest.approx(22_239, rel=1e-3)
+
+
+@pytest.mark.parametrize(
+    ("lon2", "lat2", "expected"),
+    [(0, 1, 0.0), (1, 0, 90.0), (0, -1, 180.0), (-1, 0, 270.0)],
+)
+def test_bearing_cardinal(lon2, lat2, expected):
+    assert geo.initial_bearing_deg(0, 0, lon2, lat2) == pytest.approx(expected, abs=1e-9)
+
+
+def test_bearing_across_the_antimeridian():
+    assert geo.initial_bearing_deg(179.95, 10, -179.95, 10) == pytest.approx(90.0, abs=0.01)
+    assert geo.initial_bearing_deg(-179.95, 10, 179.95, 10) == pytest.approx(270.0, abs=0.01)
+
+
+def test_wrap_and_angle_diff():
+    assert geo.wrap360(-10) == pytest.approx(350)
+    assert geo.wrap360(-1e-17) == 0.0
+    assert geo.wrap180(190) == pytest.approx(-170)
+    assert geo.angle_diff(350, 10) == pytest.approx(20)
+    assert geo.angle_diff(10, 350) == pytest.approx(20)
+
+
+def test_local_plane_round_trip_across_the_antimeridian():
+    lon = np.array([179.8, 179.95, -179.9, -179.7])
+    lat = np.array([-16.0, -16.1, -16.2, -16.3])
+    x, y = geo.to_local(lon, lat, 180.0, -16.15)
+    assert np.all(np.diff(x) > 0)  # eastward, continuous
+    back_lon, back_lat = geo.from_local(x, y, 180.0, -16.15)
+    assert np.allclose(geo.wrap180(back_lon - lon), 0, atol=1e-9)
+    assert np.allclose(back_lat, lat)
+    # local distances agree with great-circle distances to well under 1 %
+    d_local = np.hypot(np.diff(x), np.diff(y))
+    d_gc = geo.haversine_m(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    assert np.allclose(d_local, d_gc, rtol=2e-3)
+
+
+def test_destination_inverts_distance_and_bearing():
+    lon, lat = geo.destination(179.99, 45.0, 75.0, 10_000.0)
+    assert geo.haversine_m(179.99, 45.0, lon, lat) == pytest.approx(10_000.0, rel=1e-9)
+    assert geo.initial_bearing_deg(179.99, 45.0, lon, lat) == pytest.approx(75.0, abs=1e-6)
+    assert lon < 0  # crossed to the western hemisphere
+
+
+def test_circular_mean():
+    assert geo.circular_mean_deg(np.array([350.0, 10.0])) == pytest.approx(0.0, abs=1e-9)
+    assert abs(geo.circular_mean_deg(np.array([179.0, -179.0]))) == pytest.approx(180.0)

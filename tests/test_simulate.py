@@ -1,0 +1,90 @@
+import numpy as np
+import pytest
+
+from wakeline.core import geo, simulate
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import sort_points, track_index
+
+
+def test_protocol_track_follows_seed_000():
+    rng = np.random.default_rng(1)
+    tr = simulate.protocol_track(rng, 300, sigma_m=300.0)
+    step = np.hypot(*np.diff(tr.true_xy, axis=0).T)
+    assert np.allclose(step, 16 * geo.KN_MS * 300)  # 16 kn, one point per 5 min
+    assert np.allclose(np.diff(tr.t_s), 300)
+    assert np.all((np.abs(tr.turn_deg) >= 15) & (np.abs(tr.turn_deg) <= 45))
+    assert np.all(np.diff(tr.turn_index) >= 6)
+    assert 10 <= len(tr.turn_index) <= 40
+    # the initial course is 15°
+    first = tr.true_xy[1] - tr.true_xy[0]
+    assert np.degrees(np.arctan2(first[0], first[1])) == pytest.approx(15.0)
+    # the course changes exactly at the turn samples and nowhere else
+    heading = np.degrees(np.arctan2(*np.diff(tr.true_xy, axis=0).T))
+    changes = np.flatnonzero(geo.angle_diff(heading[1:], heading[:-1]) > 1e-6) + 1
+    assert changes.tolist() == tr.turn_index.tolist()
+    noise = tr.xy - tr.true_xy
+    assert noise.std() == pytest.approx(300.0, rel=0.1)
+
+
+@pytest.mark.parametrize(
+    ("length", "lo", "hi"), [("short", 50, 99), ("medium", 100, 200), ("long", 201, 300)]
+)
+def test_maneuver_tracks_classes(length, lo, hi):
+    df = simulate.maneuver_tracks(20, length, 600.0, seed=2)
+    sizes = df.groupby("batch").size()
+    assert len(sizes) == 20 and sizes.min() >= lo and sizes.max() <= hi
+    err = geo.haversine_m(df.lon, df.lat, df.true_lon, df.true_lat)
+    assert np.sqrt(np.mean(err**2)) == pytest.approx(600 * np.sqrt(2), rel=0.1)
+    assert df.true_turn.sum() > 0
+
+
+def test_maneuver_tracks_are_seeded():
+    a = simulate.maneuver_tracks(3, "short", 300.0, seed=5)
+    b = simulate.maneuver_tracks(3, "short", 300.0, seed=5)
+    c = simulate.maneuver_tracks(3, "short", 300.0, seed=6)
+    assert a.equals(b) and not a.equals(c)
+
+
+def test_segments_scene_breaks_ships_into_batches():
+    df = simulate.segments_scene(seed=4, n_ships=15)
+    batches_per_ship = df.groupby("truth").batch.nunique()
+    assert batches_per_ship.max() >= 2 and (batches_per_ship >= 2).mean() > 0.7
+    assert df.groupby("batch").truth.nunique().max() == 1  # one ship per batch
+    # gaps between consecutive batches of a ship lie in 20 s .. 10 min (plus one period)
+    df = sort_points(df)
+    idx = track_index(df)
+    t = time_seconds(df.time)
+    spans = idx.keys.assign(
+        ship=df.truth.to_numpy()[idx.starts], t0=t[idx.starts], t1=t[idx.ends - 1]
+    )
+    gaps = []
+    for _, g in spans.sort_values("t0").groupby("ship"):
+        gaps.extend(g.t0.to_numpy()[1:] - g.t1.to_numpy()[:-1])
+    gaps = np.asarray(gaps)
+    assert gaps.min() >= 20 - 1e-6 and gaps.max() <= 600 + 2 * 10
+
+
+def test_multisensor_scene_two_views_of_the_same_ships():
+    df = simulate.multisensor_scene(seed=5, n_ships=8)
+    assert sorted(df.sensor.unique()) == ["AIS", "R1"]
+    by_sensor = df.groupby("sensor")
+    assert set(by_sensor.get_group("AIS").truth) & set(by_sensor.get_group("R1").truth)
+    assert by_sensor.get_group("AIS").speed.notna().all()
+    assert by_sensor.get_group("R1").speed.isna().all()
+    err = geo.haversine_m(df.lon, df.lat, df.true_lon, df.true_lat)
+    rms = {s: float(np.sqrt(np.mean(err[df.sensor == s] ** 2))) for s in ("AIS", "R1")}
+    assert rms["AIS"] == pytest.approx(15 * np.sqrt(2), rel=0.2)
+    assert rms["R1"] == pytest.approx(80 * np.sqrt(2), rel=0.2)
+    # clock jitter: radar time steps are not exactly the period
+    r1 = sort_points(df[df.sensor == "R1"])
+    dt = np.diff(time_seconds(r1.time))[np.diff(r1.batch.astype(int)) == 0]
+    assert np.std(dt[dt < 15]) > 0.1
+
+
+def test_demo_scene_is_small_and_has_both_sensors():
+    df = simulate.demo_scene()
+    assert 1000 < len(df) < 5000
+    assert sorted(df.sensor.unique()) == ["AIS", "R1"]
+    assert (
+        df[df.sensor == "R1"].groupby("truth").batch.nunique().max() >= 2
+    )  # interrupted radar tracks

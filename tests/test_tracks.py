@@ -1,0 +1,122 @@
+import numpy as np
+import pandas as pd
+import pytest
+
+from wakeline.core import geo
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import (
+    derive_motion,
+    fill_motion,
+    local_xy,
+    sort_points,
+    track_index,
+    track_summary,
+)
+
+
+def _points(rows):
+    df = pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"])
+    df["time"] = pd.to_datetime(df["time"], utc=True)
+    return df
+
+
+def test_sort_and_index_keep_batches_as_text():
+    df = _points(
+        [
+            ("S1", "7", "2024-01-01T00:00:10Z", 0, 0),
+            ("S1", "007", "2024-01-01T00:00:00Z", 0, 0),
+            ("S1", "7", "2024-01-01T00:00:00Z", 0, 0),
+            ("S0", "7", "2024-01-01T00:00:00Z", 0, 0),
+        ]
+    )
+    s = sort_points(df)
+    assert list(zip(s.sensor, s.batch, strict=True)) == [
+        ("S0", "7"),
+        ("S1", "007"),
+        ("S1", "7"),
+        ("S1", "7"),
+    ]
+    assert s.time.iloc[2] < s.time.iloc[3]
+    idx = track_index(s)
+    assert idx.n_tracks == 3
+    assert list(idx.sizes) == [1, 1, 2]
+    assert list(idx.track_of_row) == [0, 1, 2, 2]
+
+
+def test_sorted_table_is_returned_as_is():
+    df = _points(
+        [("S1", "1", "2024-01-01T00:00:00Z", 0, 0), ("S1", "1", "2024-01-01T00:00:01Z", 0, 0)]
+    )
+    assert sort_points(df) is df
+
+
+def test_derived_speed_and_course_northbound():
+    # 10 kn due north: 1852*10/3600 m/s, one point a minute
+    step_deg = np.degrees(10 * geo.KN_MS * 60 / geo.EARTH_RADIUS_M)
+    rows = [("S1", "1", f"2024-01-01T00:{k:02d}:00Z", 5.0, 40.0 + k * step_deg) for k in range(5)]
+    speed, course = derive_motion(_points(rows))
+    assert np.allclose(speed, 10.0, rtol=1e-6)
+    assert np.allclose(course, 0.0, atol=1e-6)
+
+
+def test_derived_course_across_the_antimeridian():
+    rows = [
+        ("S1", "1", f"2024-01-01T00:{k:02d}:00Z", lon, -17.0)
+        for k, lon in enumerate([179.96, 179.98, -180.0, -179.98, -179.96])
+    ]
+    speed, course = derive_motion(_points(rows))
+    assert np.allclose(course, 90.0, atol=0.01)
+    assert np.allclose(speed, speed[0], rtol=1e-6)
+    assert speed[0] == pytest.approx(geo.haversine_m(179.96, -17, 179.98, -17) / 60 / geo.KN_MS)
+
+
+def test_single_point_and_same_time_give_nan():
+    rows = [
+        ("S1", "a", "2024-01-01T00:00:00Z", 0, 0),
+        ("S1", "b", "2024-01-01T00:00:00Z", 0, 0),
+        ("S1", "b", "2024-01-01T00:00:00Z", 0, 0.01),
+    ]
+    speed, _ = derive_motion(_points(rows))
+    assert np.isnan(speed).all()
+
+
+def test_fill_motion_keeps_given_values():
+    rows = [("S1", "1", f"2024-01-01T00:{k:02d}:00Z", 0.0, k * 0.01) for k in range(3)]
+    df = _points(rows)
+    df["speed"] = [np.nan, 12.5, np.nan]
+    out = fill_motion(df)
+    assert out.speed.iloc[1] == 12.5
+    assert out.speed.iloc[0] == pytest.approx(out.speed.iloc[2])
+    assert out.course.notna().all()
+
+
+def test_local_xy_each_track_about_its_own_origin():
+    rows = [
+        ("S1", "a", "2024-01-01T00:00:00Z", 179.99, 0.0),
+        ("S1", "a", "2024-01-01T00:01:00Z", -179.99, 0.0),
+        ("S1", "b", "2024-01-01T00:00:00Z", 10.0, 50.0),
+        ("S1", "b", "2024-01-01T00:01:00Z", 10.0, 50.01),
+    ]
+    df = sort_points(_points(rows))
+    x, y = local_xy(df, track_index(df))
+    assert x[1] - x[0] == pytest.approx(geo.haversine_m(179.99, 0, -179.99, 0), rel=1e-6)
+    assert abs(x[0] + x[1]) < 1e-6  # centred on the track
+    assert y[3] - y[2] == pytest.approx(geo.haversine_m(10, 50, 10, 50.01), rel=1e-6)
+
+
+def test_track_summary():
+    rows = [("S1", "1", f"2024-01-01T00:{k:02d}:00Z", 0.0, k * 0.01) for k in range(4)]
+    rows.append(("S2", "x", "2024-01-01T00:00:00Z", 1.0, 1.0))
+    summary = track_summary(_points(rows))
+    assert list(summary.points) == [4, 1]
+    first = summary.iloc[0]
+    assert first.duration_s == 180
+    assert first.length_m == pytest.approx(geo.haversine_m(0, 0, 0, 0.03), rel=1e-9)
+    assert first.mean_speed_kn == pytest.approx(first.length_m / 180 / geo.KN_MS)
+    assert np.isnan(summary.iloc[1].mean_speed_kn)
+
+
+def test_time_seconds_independent_of_resolution():
+    t = pd.Series(pd.to_datetime(["2024-01-01T00:00:01.5Z"], utc=True)).dt.as_unit("us")
+    assert time_seconds(t)[0] == pytest.approx(1704067201.5)
+    assert time_seconds(t.dt.as_unit("ns"))[0] == pytest.approx(1704067201.5)
