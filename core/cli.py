@@ -64,6 +64,151 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _read_canonical(path: Path):
+    from wakeline.core.io import read_points
+
+    result = read_points(path)
+    if result.report["rows_quarantined"]:
+        print(
+            f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "
+            "(run `wakeline import` with --quarantine to see them)",
+            file=sys.stderr,
+        )
+    if len(result.points) == 0:
+        raise InputError(f"{path}: no usable points")
+    return result.points
+
+
+def _maneuver_params(args: argparse.Namespace):
+    from wakeline.core.maneuver import ManeuverParams
+
+    return ManeuverParams(
+        window_p=args.window,
+        radius_n=args.radius,
+        threshold_deg=args.threshold,
+        window_s=args.window_s,
+    ).checked()
+
+
+def _cmd_maneuvers(args: argparse.Namespace) -> int:
+    import numpy as np
+    import pandas as pd
+
+    from wakeline.core import baselines
+    from wakeline.core.io import write_csv
+    from wakeline.core.maneuver import MANEUVER_COLUMNS, detect
+    from wakeline.core.schema import time_seconds
+    from wakeline.core.tracks import local_xy
+
+    points = _read_canonical(args.input)
+    result = detect(points, _maneuver_params(args))
+    if args.method != "pca":
+        pts, index = result.points, result.index
+        if args.method == "entropy" and args.k is None and "true_turn" not in pts.columns:
+            raise InputError(
+                "--method entropy needs the number of maneuvers per track: give --k N "
+                "(or a true_turn column, as simulations have)"
+            )
+        x, y = local_xy(pts, index)
+        t = time_seconds(pts["time"])
+        turns = pd.to_numeric(
+            pts.get("true_turn", pd.Series(dtype=float)), errors="coerce"
+        ).to_numpy()
+        mask = np.zeros(len(pts), dtype=bool)
+        for a, b in zip(index.starts, index.ends, strict=True):
+            if args.method == "imm":
+                found = baselines.imm_detect(x[a:b], y[a:b], t[a:b], args.sigma)
+            else:
+                k = args.k if args.k is not None else int((turns[a:b] == 1).sum())
+                found = baselines.entropy_detect(x[a:b], y[a:b], k)
+            mask[a + found] = True
+        result = type(result)(pts, index, np.full(len(pts), np.nan), mask, result.window_p)
+    table = result.table()[list(MANEUVER_COLUMNS)]
+    write_csv(table, args.output)
+    print(
+        f"{len(table):,} maneuver points in {result.index.n_tracks:,} tracks ({args.method})",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def _cmd_compress(args: argparse.Namespace) -> int:
+    from wakeline.core.compress import compress_with, douglas_peucker_mask
+    from wakeline.core.io import write_json, write_points
+    from wakeline.core.maneuver import detect
+    from wakeline.core.tracks import local_xy, sort_points, track_index
+
+    points = sort_points(_read_canonical(args.input))
+    if args.method == "dp":
+        index = track_index(points)
+        x, y = local_xy(points, index)
+        keep = douglas_peucker_mask(x, y, index, args.tolerance)
+        refine = False
+    else:
+        keep = detect(points, _maneuver_params(args)).is_maneuver
+        refine = not args.raw_vertices
+    comp = compress_with(None, keep, refine=refine, sorted_points=points)
+    report = comp.report()
+    report["method"] = args.method
+    report["refined_vertices"] = refine
+    write_points(comp.kept_points(), args.output)
+    if args.report:
+        write_json(report, args.report)
+    o = report["overall"]
+    extra = f", Dis_e against truth {o['dis_e_true_m']:.1f} m" if "dis_e_true_m" in o else ""
+    print(
+        f"kept {o['kept']:,} of {o['points']:,} points ({o['ratio']:.1%}); Dis_e {o['dis_e_m']:.1f} m{extra}",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def _cmd_evaluate(args: argparse.Namespace) -> int:
+    from wakeline.core.evaluate import evaluate_maneuver
+    from wakeline.core.io import write_csv
+
+    ev = evaluate_maneuver(
+        args.tracks,
+        args.seed,
+        _maneuver_params(args),
+        progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+    )
+    print(ev.format())
+    if args.csv:
+        write_csv(ev.table, args.csv)
+    return 0
+
+
+def _add_detector_options(p: argparse.ArgumentParser) -> None:
+    from wakeline.core.maneuver import ManeuverParams
+
+    d = ManeuverParams()
+    p.add_argument(
+        "--window",
+        type=_positive_int,
+        default=d.window_p,
+        help=f"p: points per heading window (default {d.window_p})",
+    )
+    p.add_argument(
+        "--radius",
+        type=_positive_int,
+        default=d.radius_n,
+        help=f"n: maximum-filter radius, points (default {d.radius_n})",
+    )
+    p.add_argument(
+        "--threshold",
+        type=float,
+        default=d.threshold_deg,
+        help=f"t: smallest heading change counted, degrees (default {d.threshold_deg:g})",
+    )
+    p.add_argument(
+        "--window-s",
+        type=float,
+        default=d.window_s,
+        help="if > 0: p per track = this many seconds / the track's median sampling interval",
+    )
+
+
 def _cmd_gui(args: argparse.Namespace) -> int:
     try:
         from wakeline.app.main import run
@@ -180,6 +325,78 @@ def build_parser() -> argparse.ArgumentParser:
         help="segments/multisensor: side of the square area, km (default 60)",
     )
     p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser(
+        "maneuvers",
+        help="find maneuver (turning) points",
+        description="Seed 000's detector: heading of p points by PCA before and after each point, maneuver "
+        "factor = their difference (deg), kept where above the threshold and the maximum within +-n points. "
+        "Writes one row per maneuver point: sensor,batch,index,time,lon,lat,factor (index = 0-based "
+        "position in the time-sorted track). --method imm|entropy runs the seed-000 baselines.",
+        epilog=EPILOG,
+    )
+    p.add_argument("input", type=Path, help="track file (any layout import reads)")
+    p.add_argument("-o", "--output", type=Path, required=True, help="maneuver points CSV to write")
+    p.add_argument(
+        "--method", choices=("pca", "imm", "entropy"), default="pca", help="detector (default pca)"
+    )
+    _add_detector_options(p)
+    p.add_argument(
+        "--sigma",
+        type=_positive_float,
+        default=300.0,
+        help="imm: position noise std, metres (default 300)",
+    )
+    p.add_argument(
+        "--k", type=int, help="entropy: number of maneuvers per track (default: from true_turn)"
+    )
+    p.set_defaults(func=_cmd_maneuvers)
+
+    p = sub.add_parser(
+        "compress",
+        help="compress tracks to their turning points",
+        description="Keep each track's first and last point and its maneuver points (or Douglas-Peucker "
+        "points); vertices are placed by least squares on the track's points unless --raw-vertices. "
+        "The report gives Dis_e (mean synchronized distance, metres; also against the true path when the "
+        "input has true_lon/true_lat) and the share of points kept, per track and overall.",
+        epilog=EPILOG,
+    )
+    p.add_argument("input", type=Path, help="track file (any layout import reads)")
+    p.add_argument("-o", "--output", type=Path, required=True, help="kept points, canonical CSV")
+    p.add_argument(
+        "--method", choices=("maneuver", "dp"), default="maneuver", help="default maneuver"
+    )
+    p.add_argument("--report", type=Path, metavar="R.json", help="write Dis_e and ratios as JSON")
+    p.add_argument(
+        "--tolerance",
+        type=_positive_float,
+        default=600.0,
+        help="dp: Douglas-Peucker tolerance, metres (default 600)",
+    )
+    p.add_argument(
+        "--raw-vertices",
+        action="store_true",
+        help="keep the raw points as vertices (the paper's way)",
+    )
+    _add_detector_options(p)
+    p.set_defaults(func=_cmd_compress)
+
+    p = sub.add_parser(
+        "evaluate",
+        help="reproduce the papers' evaluation tables",
+        description="maneuver: seed 000's protocol (sigma 300/600 m x short/medium/long tracks) for our "
+        "detector and compression and the IMM, entropy and Douglas-Peucker baselines; prints Table 1's "
+        "layout with Dis_e against the true path and the observed points, and turn-point scores.",
+        epilog=EPILOG,
+    )
+    p.add_argument("kind", choices=("maneuver",))
+    p.add_argument(
+        "--tracks", type=_positive_int, default=100, help="tracks per class (default 100)"
+    )
+    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--csv", type=Path, help="also write the full table as CSV")
+    _add_detector_options(p)
+    p.set_defaults(func=_cmd_evaluate)
 
     p = sub.add_parser(
         "gui",

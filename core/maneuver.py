@@ -1,0 +1,246 @@
+"""Maneuver detection by PCA heading and a maximum filter (seed 000, SPEC §3).
+
+For every point ``o`` of a track (in its local plane, metres) the heading of the ``p``
+points ending at ``o`` and of the ``p`` points starting at ``o`` is the direction of the
+first principal component of their positions, oriented by the displacement from the
+window's first to its last point. The maneuver factor δ_o is the absolute difference of
+the two headings in [0°, 180°]. A maneuver point satisfies δ_o > t (condition 1) and
+δ_o = max(δ_{o-n} … δ_{o+n}) (condition 2, mirror padding at the ends, one point per
+plateau).
+
+Everything runs on all tracks at once: window sums are accumulated by a loop over the
+``p`` offsets (never over windows), the 2×2 PCA has a closed form, and the maximum
+filter runs over all tracks concatenated with −∞ separators.
+
+Sampling: ``p`` counts points. With irregular sampling a window still holds ``p`` points,
+whatever time they span; resample first (cleaning) when the period varies a lot, or set
+``window_s`` so that ``p`` is chosen per track from its median sampling interval.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from scipy.ndimage import maximum_filter1d
+
+from wakeline.core import geo
+from wakeline.core.params import Params, param
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import TrackIndex, local_xy, sort_points, track_index
+
+MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
+
+
+@dataclass(frozen=True)
+class ManeuverParams(Params):
+    """Parameters of the PCA + maximum-filter detector (seed 000 §3.1 defaults)."""
+
+    window_p: int = param(
+        5,
+        "points",
+        "points per heading window (p)",
+        lo=2,
+        hi=1000,
+        source="ours; seed 000 leaves p open",
+    )
+    radius_n: int = param(
+        5, "points", "maximum-filter radius (n)", lo=1, hi=1000, source="seed 000 §3.1"
+    )
+    threshold_deg: float = param(
+        15.0,
+        "deg",
+        "smallest heading change that counts (t)",
+        lo=0.0,
+        hi=180.0,
+        source="seed 000 §3.1",
+    )
+    window_s: float = param(
+        0.0,
+        "s",
+        "if > 0: choose p per track as window_s / median sampling interval",
+        lo=0.0,
+        hi=1e7,
+    )
+
+
+def window_headings(x: np.ndarray, y: np.ndarray, p: int) -> np.ndarray:
+    """Heading (deg, [0, 360)) of the ``p`` points ending at each index; NaN for the first p-1.
+
+    ``x``/``y`` are one track (or tracks concatenated: windows that straddle two tracks
+    are the caller's to mask). Sums are taken relative to the window's last point, so
+    large coordinates lose no precision.
+    """
+    n = len(x)
+    out = np.full(n, np.nan)
+    if n < p:
+        return out
+    end = slice(p - 1, n)
+    x0, y0 = x[end], y[end]
+    su = np.zeros(n - p + 1)
+    sv = np.zeros_like(su)
+    suu = np.zeros_like(su)
+    svv = np.zeros_like(su)
+    suv = np.zeros_like(su)
+    for k in range(p):  # loop over window offsets, vectorized over all windows
+        u = x[k : n - p + 1 + k] - x0
+        v = y[k : n - p + 1 + k] - y0
+        su += u
+        sv += v
+        suu += u * u
+        svv += v * v
+        suv += u * v
+    cxx = suu / p - (su / p) ** 2
+    cyy = svv / p - (sv / p) ** 2
+    cxy = suv / p - (su / p) * (sv / p)
+    theta = 0.5 * np.arctan2(2.0 * cxy, cxx - cyy)  # major axis, radians from +x
+    ax, ay = np.cos(theta), np.sin(theta)
+    dx = x0 - x[: n - p + 1]  # travel: first point to last point of the window
+    dy = y0 - y[: n - p + 1]
+    flip = ax * dx + ay * dy < 0
+    ax = np.where(flip, -ax, ax)
+    ay = np.where(flip, -ay, ay)
+    out[end] = geo.wrap360(np.degrees(np.arctan2(ax, ay)))
+    return out
+
+
+def maneuver_factor(x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int) -> np.ndarray:
+    """δ per point (deg in [0, 180]); NaN where a window would leave its track."""
+    h = window_headings(x, y, p)  # backward window ending at i
+    n = len(x)
+    delta = np.full(n, np.nan)
+    if n < 2 * p - 1:
+        return delta
+    # The forward window starting at o is the backward window ending at o + p - 1.
+    back = h[: n - p + 1]
+    fwd = h[p - 1 :]
+    d = geo.angle_diff(back, fwd)
+    pos = np.arange(n) - index.starts[index.track_of_row]
+    size = index.sizes[index.track_of_row]
+    valid = (pos >= p - 1) & (pos <= size - p)
+    delta[: n - p + 1] = d
+    delta[~valid] = np.nan
+    return delta
+
+
+def local_maxima(delta: np.ndarray, index: TrackIndex, radius: int) -> np.ndarray:
+    """Mask of points whose δ equals the maximum over ±radius within its track's valid span.
+
+    Mirror padding and clipping give the same maximum (a mirrored value lies inside the
+    window anyway), so tracks are concatenated with ``radius`` −∞ separators and one
+    maximum filter runs over all of them. On a plateau only the first point is kept.
+    """
+    finite = np.isfinite(delta)
+    if not finite.any():
+        return np.zeros(len(delta), dtype=bool)
+    vals = np.where(finite, delta, -np.inf)
+    # -inf gaps of `radius` between tracks keep windows from reaching a neighbour track.
+    n = len(vals)
+    slots = np.arange(n) + index.track_of_row * radius
+    padded = np.full(n + index.n_tracks * radius, -np.inf)
+    padded[slots] = vals
+    filtered = maximum_filter1d(padded, size=2 * radius + 1, mode="constant", cval=-np.inf)[slots]
+    peak = finite & (vals == filtered)
+    # One point per plateau: drop a peak when an equal peak precedes it within the radius.
+    track = index.track_of_row
+    for k in range(1, radius + 1):
+        earlier = np.zeros(n, dtype=bool)
+        earlier[k:] = peak[:-k] & (vals[:-k] == vals[k:]) & (track[:-k] == track[k:])
+        peak &= ~earlier
+    return peak
+
+
+@dataclass(frozen=True)
+class ManeuverResult:
+    """Detector output over a sorted point table."""
+
+    points: pd.DataFrame  # the sorted input
+    index: TrackIndex
+    factor: np.ndarray  # δ per point, deg (NaN where undefined)
+    is_maneuver: np.ndarray  # bool per point
+    window_p: np.ndarray  # p used for each track
+
+    def table(self) -> pd.DataFrame:
+        """One row per maneuver point: sensor, batch, index, time, lon, lat, factor."""
+        rows = np.flatnonzero(self.is_maneuver)
+        pts = self.points
+        return pd.DataFrame(
+            {
+                "sensor": pts["sensor"].to_numpy()[rows],
+                "batch": pts["batch"].to_numpy()[rows],
+                "index": (rows - self.index.starts[self.index.track_of_row[rows]]).astype("int64"),
+                "time": pts["time"].iloc[rows].to_numpy(),
+                "lon": pts["lon"].to_numpy()[rows],
+                "lat": pts["lat"].to_numpy()[rows],
+                "factor": self.factor[rows],
+            }
+        ).astype({"sensor": "str", "batch": "str"})
+
+
+def _p_per_track(t: np.ndarray, index: TrackIndex, params: ManeuverParams) -> np.ndarray:
+    p = np.full(index.n_tracks, int(params.window_p), dtype="int64")
+    if params.window_s > 0:
+        dt = np.diff(t, prepend=np.nan)
+        dt[index.starts] = np.nan
+        med = (
+            pd.Series(dt)
+            .groupby(index.track_of_row)
+            .median()
+            .reindex(range(index.n_tracks))
+            .to_numpy()
+        )
+        with np.errstate(invalid="ignore", divide="ignore"):
+            chosen = np.where(
+                np.isfinite(med) & (med > 0), np.round(params.window_s / med), params.window_p
+            )
+        p = np.clip(chosen, 2, 1000).astype("int64")
+    return p
+
+
+def detect(
+    points: pd.DataFrame, params: ManeuverParams | None = None, progress=None
+) -> ManeuverResult:
+    """Run the detector on every track of a canonical table."""
+    params = (params or ManeuverParams()).checked()
+    pts = sort_points(points)
+    index = track_index(pts)
+    x, y = local_xy(pts, index)
+    t = time_seconds(pts["time"])
+    p_track = _p_per_track(t, index, params)
+    factor = np.full(len(pts), np.nan)
+    for k, p in enumerate(np.unique(p_track)):  # one pass per distinct p (usually one)
+        if progress:
+            progress(k / max(len(np.unique(p_track)), 1), f"maneuver factor, p = {p}")
+        rows = np.flatnonzero(p_track[index.track_of_row] == p)
+        sub = TrackIndex(*_sub_index(index, p_track == p))
+        factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p))
+    peaks = local_maxima(factor, index, int(params.radius_n))
+    is_maneuver = peaks & (factor > params.threshold_deg)
+    return ManeuverResult(pts, index, factor, is_maneuver, p_track)
+
+
+def _sub_index(index: TrackIndex, selected: np.ndarray):
+    sizes = index.sizes[selected]
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype("int64")
+    ends = starts + sizes
+    track_of_row = np.repeat(np.arange(len(sizes)), sizes)
+    return starts, ends, track_of_row, index.keys[selected].reset_index(drop=True)
+
+
+def smallest_detectable_turn_deg(
+    eps_m: float, speed_kn: float, t1_s: float, t2_s: float | None = None
+) -> float:
+    """Seed 000 eq. 10: the smallest turn (deg) that position errors of at most ``eps_m``
+    cannot fake, for legs of ``t1_s`` and ``t2_s`` seconds at ``speed_kn``."""
+    t2_s = t1_s if t2_s is None else t2_s
+    v = speed_kn * geo.KN_MS
+    return 180.0 - math.degrees(
+        math.atan(v * t1_s / (2 * eps_m)) + math.atan(v * t2_s / (2 * eps_m))
+    )
+
+
+def largest_tolerable_error_m(threshold_deg: float, speed_kn: float, leg_s: float) -> float:
+    """Seed 000 eq. 12 (equal legs): the largest position error (m) for which a turn of
+    ``threshold_deg`` stays above the noise; 16 kn, 30 min legs, 15° → ≈ 975 m."""
+    v = speed_kn * geo.KN_MS
+    return v * leg_s / (2.0 * math.tan(math.radians(180.0 - threshold_deg) / 2.0))

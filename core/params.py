@@ -1,0 +1,109 @@
+"""Algorithm parameters: dataclasses whose fields carry unit, meaning, range and source.
+
+A parameter set validates itself into readable problems (a list of sentences, empty when
+all is well); the GUI's parameter panel and the command line's help are generated from
+the same field metadata.
+"""
+
+import dataclasses
+import math
+from typing import Any
+
+from wakeline.core.errors import InputError
+
+
+def param(
+    default: Any,
+    unit: str,
+    doc: str,
+    lo: float | None = None,
+    hi: float | None = None,
+    source: str = "",
+) -> Any:
+    """A dataclass field with its unit, one-line meaning, allowed range and source."""
+    return dataclasses.field(
+        default=default, metadata={"unit": unit, "doc": doc, "lo": lo, "hi": hi, "source": source}
+    )
+
+
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Base of all parameter sets."""
+
+    def problems(self) -> list[str]:
+        """Readable problems with the values; empty when they are valid."""
+        out = []
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            meta = f.metadata
+            if isinstance(f.default, bool):
+                if not isinstance(value, bool):
+                    out.append(f"{f.name} must be true or false, got {value!r}")
+                continue
+            if isinstance(f.default, (int, float)):
+                if isinstance(value, bool) or not isinstance(value, (int, float)):
+                    out.append(f"{f.name} must be a number, got {value!r}")
+                    continue
+                if (
+                    isinstance(f.default, int)
+                    and not isinstance(f.default, bool)
+                    and value != int(value)
+                ):
+                    out.append(f"{f.name} must be a whole number, got {value!r}")
+                    continue
+                if not math.isfinite(value):
+                    out.append(f"{f.name} must be finite, got {value!r}")
+                    continue
+                unit = f" {meta.get('unit')}" if meta.get("unit") else ""
+                if meta.get("lo") is not None and value < meta["lo"]:
+                    out.append(f"{f.name} must be at least {meta['lo']}{unit}, got {value}")
+                if meta.get("hi") is not None and value > meta["hi"]:
+                    out.append(f"{f.name} must be at most {meta['hi']}{unit}, got {value}")
+        return out
+
+    def checked(self):
+        """Self, or :class:`InputError` listing every problem."""
+        problems = self.problems()
+        if problems:
+            raise InputError("invalid parameters: " + "; ".join(problems))
+        return self
+
+    def replace(self, **changes: Any):
+        """A copy with some values changed (text values are converted to the field's type)."""
+        types = {f.name: type(f.default) for f in dataclasses.fields(self)}
+        unknown = [k for k in changes if k not in types]
+        if unknown:
+            raise InputError(
+                f"unknown parameter(s) {', '.join(unknown)}; known: {', '.join(types)}"
+            )
+        converted = {}
+        for key, value in changes.items():
+            if isinstance(value, str) and types[key] is not str:
+                try:
+                    value = _parse(value, types[key])
+                except ValueError:
+                    raise InputError(
+                        f"{key}: cannot read {value!r} as {types[key].__name__}"
+                    ) from None
+            converted[key] = value
+        return dataclasses.replace(self, **converted)
+
+    @classmethod
+    def describe(cls) -> list[dict]:
+        """Field descriptions for help texts and the parameter panel."""
+        return [
+            {"name": f.name, "default": f.default, **f.metadata} for f in dataclasses.fields(cls)
+        ]
+
+
+def _parse(text: str, kind: type) -> Any:
+    if kind is bool:
+        if text.lower() in ("1", "true", "yes", "on"):
+            return True
+        if text.lower() in ("0", "false", "no", "off"):
+            return False
+        raise ValueError(text)
+    if kind is int:
+        value = float(text)
+        return int(value) if value == int(value) else value
+    return kind(text)

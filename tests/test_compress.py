@@ -1,0 +1,159 @@
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from test_maneuver import legs, track_from_xy
+
+from wakeline.core import simulate
+from wakeline.core.cli import main
+from wakeline.core.compress import compress_with, douglas_peucker_mask
+from wakeline.core.evaluate import SEED000_TABLE1, evaluate_maneuver, match_turns
+from wakeline.core.maneuver import detect
+from wakeline.core.tracks import local_xy, sort_points, track_index
+
+
+def test_keeping_every_point_gives_zero_error():
+    df = simulate.maneuver_tracks(3, "short", 300.0, seed=1)
+    pts = sort_points(df)
+    comp = compress_with(None, np.ones(len(pts), bool), refine=False, sorted_points=pts)
+    assert comp.report()["overall"]["dis_e_m"] == pytest.approx(0.0, abs=1e-6)
+
+
+def test_noise_free_polyline_is_exact_with_its_vertices():
+    x, y = legs([10.0, 70.0, 20.0], [10, 12, 9])
+    df = track_from_xy(x, y)
+    keep = np.zeros(len(df), bool)
+    keep[[10, 22]] = True
+    for refine in (False, True):
+        comp = compress_with(df, keep, refine=refine)
+        assert comp.report()["overall"]["dis_e_m"] < 1e-3
+        assert len(comp.kept_points()) == 4
+
+
+def test_least_squares_vertices_beat_raw_vertices_on_simulation():
+    df = simulate.maneuver_tracks(30, "medium", 300.0, seed=2)
+    result = detect(df)
+    raw = compress_with(
+        None, result.is_maneuver, refine=False, sorted_points=result.points
+    ).report()
+    ls = compress_with(None, result.is_maneuver, refine=True, sorted_points=result.points).report()
+    assert ls["overall"]["dis_e_true_m"] < 0.75 * raw["overall"]["dis_e_true_m"]
+    assert ls["overall"]["dis_e_m"] < raw["overall"]["dis_e_m"]
+    assert ls["overall"]["ratio"] == raw["overall"]["ratio"] < 0.15
+
+
+def test_single_point_and_two_point_tracks():
+    df = pd.concat(
+        [
+            track_from_xy([0.0], [0.0], batch="one"),
+            track_from_xy([0.0, 10.0], [0.0, 0.0], batch="two"),
+        ]
+    )
+    comp = compress_with(df, None)
+    rep = comp.report()
+    assert rep["overall"]["kept"] == 3 and rep["overall"]["dis_e_m"] == pytest.approx(0.0, abs=1e-9)
+
+
+def _dp_reference(x, y, a, b, tol, keep):
+    if b - a < 2:
+        return
+    dx, dy = x[b] - x[a], y[b] - y[a]
+    norm = np.hypot(dx, dy)
+    i = np.arange(a + 1, b)
+    d = (
+        np.abs(dx * (y[i] - y[a]) - dy * (x[i] - x[a])) / norm
+        if norm > 0
+        else np.hypot(x[i] - x[a], y[i] - y[a])
+    )
+    m = int(i[np.argmax(d)])
+    if d.max() > tol:
+        keep[m] = True
+        _dp_reference(x, y, a, m, tol, keep)
+        _dp_reference(x, y, m, b, tol, keep)
+
+
+def test_douglas_peucker_matches_recursive_reference():
+    df = simulate.maneuver_tracks(8, "short", 300.0, seed=5)
+    pts = sort_points(df)
+    index = track_index(pts)
+    x, y = local_xy(pts, index)
+    for tol in (100.0, 600.0, 3000.0):
+        got = douglas_peucker_mask(x, y, index, tol)
+        ref = np.zeros(len(x), bool)
+        for a, b in zip(index.starts, index.ends, strict=True):
+            ref[a] = ref[b - 1] = True
+            _dp_reference(x, y, a, b - 1, tol, ref)
+        assert np.array_equal(got, ref)
+
+
+def test_douglas_peucker_straight_and_corner():
+    x, y = legs([30.0], [20])
+    df = track_from_xy(x, y)
+    pts = sort_points(df)
+    idx = track_index(pts)
+    assert douglas_peucker_mask(*local_xy(pts, idx), idx, 10.0).sum() == 2
+    x, y = legs([0.0, 90.0], [10, 10])
+    pts = sort_points(track_from_xy(x, y))
+    assert np.flatnonzero(douglas_peucker_mask(*local_xy(pts, idx), idx, 10.0)).tolist() == [
+        0,
+        10,
+        20,
+    ]
+
+
+def test_match_turns():
+    tr = np.zeros(20, int)
+    truth = np.zeros(20, bool)
+    truth[[5, 15]] = True
+    pred = np.zeros(20, bool)
+    pred[[7, 12]] = True
+    s = match_turns(pred, truth, tr, tol=2)
+    assert s["precision"] == 0.5 and s["recall"] == 0.5
+
+
+def test_evaluation_beats_seed_000_table_1():
+    ev = evaluate_maneuver(n_tracks=15, seed=1)
+    t = ev.table
+    assert set(t.method) == {
+        "IMM",
+        "entropy",
+        "PCA (paper)",
+        "PCA + LS vertices",
+        "Douglas-Peucker",
+    }
+    ours = t[t.method == "PCA + LS vertices"].set_index(["sigma", "class"])["dis_e_true_m"]
+    for key, paper in SEED000_TABLE1.items():
+        assert ours.loc[key] < paper[2], key
+    text = ev.format()
+    assert "Mean Dis_e against the TRUE path" in text and "(   1005)" in text
+
+
+def test_cli_maneuvers_compress_and_evaluate(tmp_path, capsys):
+    src = tmp_path / "m.csv"
+    assert (
+        main(["simulate", "maneuver", "--tracks", "4", "--length", "medium", "-o", str(src)]) == 0
+    )
+    out = tmp_path / "mp.csv"
+    assert main(["maneuvers", str(src), "-o", str(out)]) == 0
+    mp = pd.read_csv(out)
+    assert list(mp.columns) == ["sensor", "batch", "index", "time", "lon", "lat", "factor"]
+    assert (mp.factor > 15).all() and len(mp) > 4
+    for method in ("imm", "entropy"):
+        assert (
+            main(["maneuvers", str(src), "-o", str(tmp_path / f"{method}.csv"), "--method", method])
+            == 0
+        )
+    comp, rep = tmp_path / "c.csv", tmp_path / "r.json"
+    assert main(["compress", str(src), "-o", str(comp), "--report", str(rep)]) == 0
+    report = json.loads(rep.read_text())
+    assert report["overall"]["dis_e_true_m"] < 600 and len(report["tracks"]) == 4
+    assert len(pd.read_csv(comp)) == report["overall"]["kept"]
+    assert (
+        main(["compress", str(src), "-o", str(comp), "--method", "dp", "--tolerance", "500"]) == 0
+    )
+    capsys.readouterr()
+    assert main(["evaluate", "maneuver", "--tracks", "2"]) == 0
+    assert "PCA + LS vertices" in capsys.readouterr().out
+    assert main(["maneuvers", str(src), "-o", str(out), "--threshold", "200"]) == 2
+    assert "threshold_deg must be at most 180" in capsys.readouterr().err

@@ -1,0 +1,183 @@
+import numpy as np
+import pandas as pd
+import pytest
+
+from wakeline.core import baselines, geo, simulate
+from wakeline.core.errors import InputError
+from wakeline.core.maneuver import (
+    ManeuverParams,
+    detect,
+    largest_tolerable_error_m,
+    local_maxima,
+    smallest_detectable_turn_deg,
+    window_headings,
+)
+from wakeline.core.tracks import TrackIndex, local_xy, track_index
+
+
+def track_from_xy(x, y, period_s=300.0, batch="t1", lat0=10.0, lon0=120.0):
+    lon, lat = geo.from_local(np.asarray(x, float), np.asarray(y, float), lon0, lat0)
+    n = len(x)
+    return pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": batch,
+            "time": pd.to_datetime(np.arange(n) * period_s, unit="s", utc=True),
+            "lon": lon,
+            "lat": lat,
+        }
+    )
+
+
+def legs(courses_deg, points_per_leg, step_m=2500.0):
+    """A polyline of legs with the given courses; the turns are at the leg joints."""
+    xs, ys = [0.0], [0.0]
+    for c, n in zip(courses_deg, points_per_leg, strict=True):
+        for _ in range(n):
+            xs.append(xs[-1] + step_m * np.sin(np.radians(c)))
+            ys.append(ys[-1] + step_m * np.cos(np.radians(c)))
+    return np.array(xs), np.array(ys)
+
+
+def test_straight_track_has_no_maneuver():
+    rng = np.random.default_rng(0)
+    x, y = legs([40.0], [80])
+    df = track_from_xy(x + rng.normal(0, 100, len(x)), y + rng.normal(0, 100, len(y)))
+    assert detect(df).table().empty
+
+
+def test_single_30_degree_turn_found_at_its_index():
+    x, y = legs([15.0, 45.0], [20, 20])  # the turn is at point 20
+    table = detect(track_from_xy(x, y)).table()
+    assert table["index"].tolist() == [20]
+    assert table["factor"].iloc[0] == pytest.approx(30.0, abs=0.1)
+
+
+def test_wraparound_350_to_10_is_a_20_degree_turn():
+    x, y = legs([350.0, 10.0], [15, 15])
+    result = detect(track_from_xy(x, y))
+    table = result.table()
+    assert table["index"].tolist() == [15]
+    assert table["factor"].iloc[0] == pytest.approx(20.0, abs=0.1)
+    assert np.nanmax(result.factor) == pytest.approx(20.0, abs=0.1)
+
+
+def test_heading_is_oriented_by_travel():
+    x, y = legs([200.0], [10])
+    h = window_headings(x, y, 5)
+    assert np.allclose(h[4:], 200.0)  # in the generating plane itself: exact
+
+
+def _reference_factor(x, y, p):
+    """Per-window loop with numpy.linalg.eigh: the straightforward implementation."""
+    n = len(x)
+    out = np.full(n, np.nan)
+
+    def heading(ix):
+        pts = np.column_stack([x[ix], y[ix]])
+        w, v = np.linalg.eigh(np.cov(pts.T, bias=True))
+        axis = v[:, np.argmax(w)]
+        d = pts[-1] - pts[0]
+        if axis @ d < 0:
+            axis = -axis
+        return np.degrees(np.arctan2(axis[0], axis[1])) % 360
+
+    for o in range(p - 1, n - p + 1):
+        hb = heading(np.arange(o - p + 1, o + 1))
+        hf = heading(np.arange(o, o + p))
+        out[o] = abs((hb - hf + 180) % 360 - 180)
+    return out
+
+
+@pytest.mark.parametrize("p", [3, 5, 8])
+def test_vectorized_factor_matches_the_per_window_loop(p):
+    rng = np.random.default_rng(p)
+    frames = []
+    for k in range(4):
+        tr = simulate.protocol_track(rng, int(rng.integers(30, 60)), sigma_m=300.0)
+        frames.append(track_from_xy(tr.xy[:, 0], tr.xy[:, 1], batch=f"b{k}"))
+    df = pd.concat(frames, ignore_index=True)
+    result = detect(df, ManeuverParams(window_p=p))
+    x, y = local_xy(result.points, result.index)
+    for a, b in zip(result.index.starts, result.index.ends, strict=True):
+        ref = _reference_factor(x[a:b], y[a:b], p)
+        got = result.factor[a:b]
+        assert np.array_equal(np.isnan(ref), np.isnan(got))
+        assert np.allclose(got[~np.isnan(got)], ref[~np.isnan(ref)], atol=1e-6)
+
+
+def test_maxima_keep_one_point_per_plateau_and_respect_tracks():
+    delta = np.array([np.nan, 1, 5, 5, 5, 2, 1, np.nan, np.nan, 9, 1, 1, 1, 1])
+    index = TrackIndex(
+        np.array([0, 8]),
+        np.array([8, 14]),
+        np.repeat([0, 1], [8, 6]),
+        pd.DataFrame({"sensor": ["a", "b"], "batch": ["1", "1"]}),
+    )
+    peaks = local_maxima(delta, index, radius=3)
+    # 2: first of the 5-5-5 plateau; 9: the 9 (the NaN gap and track 0 do not mask it);
+    # 13: the flat tail is beyond 9's radius, so its own window's maximum (condition 1's
+    # threshold is what removes such points).
+    assert np.flatnonzero(peaks).tolist() == [2, 9, 13]
+
+
+def test_tracks_do_not_leak_into_each_other():
+    x1, y1 = legs([0.0, 40.0], [12, 12])
+    x2, y2 = legs([90.0], [24])
+    df = pd.concat(
+        [track_from_xy(x1, y1, batch="a"), track_from_xy(x2, y2, batch="b")], ignore_index=True
+    )
+    table = detect(df).table()
+    assert table[["batch", "index"]].values.tolist() == [["a", 12]]
+
+
+def test_window_in_seconds_sets_p_per_track():
+    x, y = legs([0.0, 40.0], [30, 30], step_m=100.0)
+    fast = track_from_xy(x, y, period_s=10.0, batch="fast")
+    slow = track_from_xy(x, y, period_s=60.0, batch="slow")
+    result = detect(pd.concat([fast, slow]), ManeuverParams(window_s=60.0))
+    assert result.window_p.tolist() == [6, 2]
+    assert result.table()["index"].tolist() == [30, 30]
+
+
+def test_parameters_are_validated():
+    with pytest.raises(InputError, match="window_p must be at least 2"):
+        detect(track_from_xy(*legs([0.0], [10])), ManeuverParams(window_p=1))
+    problems = ManeuverParams(threshold_deg=200, radius_n=0).problems()
+    assert any("threshold_deg must be at most 180" in p for p in problems)
+    assert any("radius_n must be at least 1" in p for p in problems)
+    assert ManeuverParams().replace(threshold_deg="20").threshold_deg == 20.0
+
+
+def test_detection_limit_matches_seed_000_example():
+    # 16 kn, 30 min legs, 15 deg -> about 975 m (seed 000 §3.1)
+    assert largest_tolerable_error_m(15.0, 16.0, 1800.0) == pytest.approx(975.3, abs=0.5)
+    assert smallest_detectable_turn_deg(975.28, 16.0, 1800.0) == pytest.approx(15.0, abs=0.01)
+    assert smallest_detectable_turn_deg(300.0, 16.0, 1800.0) < smallest_detectable_turn_deg(
+        600.0, 16.0, 1800.0
+    )
+
+
+def test_imm_detects_a_large_turn_after_it_happens():
+    rng = np.random.default_rng(3)
+    x, y = legs([0.0, 90.0], [50, 50])
+    x, y = x + rng.normal(0, 50, len(x)), y + rng.normal(0, 50, len(y))
+    found = baselines.imm_detect(x, y, np.arange(len(x)) * 300.0, 50.0)
+    assert len(found) >= 1 and 50 <= found[0] <= 58
+
+
+def test_entropy_splits_two_legs_at_the_turn():
+    rng = np.random.default_rng(4)
+    x, y = legs([0.0, 60.0], [30, 30])
+    found = baselines.entropy_detect(
+        x + rng.normal(0, 30, len(x)), y + rng.normal(0, 30, len(y)), 1
+    )
+    assert len(found) == 1 and abs(found[0] - 30) <= 2
+    assert len(baselines.entropy_detect(x, y, 0)) == 0
+
+
+def test_real_index_is_position_in_time_sorted_track():
+    x, y = legs([15.0, 45.0], [20, 20])
+    df = track_from_xy(x, y).sample(frac=1.0, random_state=1)  # shuffled rows
+    assert detect(df).table()["index"].tolist() == [20]
+    assert track_index(detect(df).points).n_tracks == 1
