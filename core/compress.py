@@ -21,7 +21,7 @@ from scipy.linalg import solve_banded
 from wakeline.core import geo
 from wakeline.core.params import Params, param
 from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sort_points, track_index, track_origins
+from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_origins
 
 
 @dataclass(frozen=True)
@@ -152,8 +152,7 @@ def compress_with(
 ) -> Compressed:
     """Compress to the rows marked in ``keep`` (aligned with ``sort_points(points)``)
     plus each track's first and last point."""
-    pts = sorted_points if sorted_points is not None else sort_points(points)
-    index = track_index(pts)
+    pts, index = sorted_with_index(sorted_points if sorted_points is not None else points)
     n = len(pts)
     kept = np.zeros(n, dtype=bool) if keep is None else np.asarray(keep, dtype=bool).copy()
     kept[index.starts] = True

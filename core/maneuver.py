@@ -27,7 +27,7 @@ from scipy.ndimage import maximum_filter1d
 from wakeline.core import geo
 from wakeline.core.params import Params, param
 from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sort_points, track_index
+from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index
 
 MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
 
@@ -64,49 +64,44 @@ class ManeuverParams(Params):
     )
 
 
-def window_headings(x: np.ndarray, y: np.ndarray, p: int) -> np.ndarray:
+def window_headings(
+    x: np.ndarray, y: np.ndarray, p: int, anchor: np.ndarray | None = None
+) -> np.ndarray:
     """Heading (deg, [0, 360)) of the ``p`` points ending at each index; NaN for the first p-1.
 
-    ``x``/``y`` are one track (or tracks concatenated: windows that straddle two tracks
-    are the caller's to mask). Sums are taken relative to the window's last point, so
-    large coordinates lose no precision.
+    ``x``/``y`` are one track, or tracks concatenated (windows that straddle two tracks
+    are the caller's to mask). Window sums are short convolutions, so nothing accumulates
+    along the array; ``anchor`` (row numbers) says which point each row's coordinates are
+    taken relative to — its track's first point keeps the numbers small, so E[u²] − E[u]²
+    loses no precision.
     """
     n = len(x)
     out = np.full(n, np.nan)
     if n < p:
         return out
-    end = slice(p - 1, n)
-    x0, y0 = x[end], y[end]
-    su = np.zeros(n - p + 1)
-    sv = np.zeros_like(su)
-    suu = np.zeros_like(su)
-    svv = np.zeros_like(su)
-    suv = np.zeros_like(su)
-    for k in range(p):  # loop over window offsets, vectorized over all windows
-        u = x[k : n - p + 1 + k] - x0
-        v = y[k : n - p + 1 + k] - y0
-        su += u
-        sv += v
-        suu += u * u
-        svv += v * v
-        suv += u * v
-    cxx = suu / p - (su / p) ** 2
-    cyy = svv / p - (sv / p) ** 2
-    cxy = suv / p - (su / p) * (sv / p)
+    if anchor is None:
+        u, v = x - x[0], y - y[0]
+    else:
+        u, v = x - x[anchor], y - y[anchor]
+    ones = np.ones(p)
+    mu = np.convolve(u, ones, "valid") / p
+    mv = np.convolve(v, ones, "valid") / p
+    cxx = np.convolve(u * u, ones, "valid") / p - mu * mu
+    cyy = np.convolve(v * v, ones, "valid") / p - mv * mv
+    cxy = np.convolve(u * v, ones, "valid") / p - mu * mv
     theta = 0.5 * np.arctan2(2.0 * cxy, cxx - cyy)  # major axis, radians from +x
     ax, ay = np.cos(theta), np.sin(theta)
-    dx = x0 - x[: n - p + 1]  # travel: first point to last point of the window
-    dy = y0 - y[: n - p + 1]
-    flip = ax * dx + ay * dy < 0
-    ax = np.where(flip, -ax, ax)
-    ay = np.where(flip, -ay, ay)
-    out[end] = geo.wrap360(np.degrees(np.arctan2(ax, ay)))
+    # Orient by travel: from the window's first point to its last.
+    flip = ax * (u[p - 1 :] - u[: n - p + 1]) + ay * (v[p - 1 :] - v[: n - p + 1]) < 0
+    heading = np.degrees(np.arctan2(ax, ay)) + np.where(flip, 180.0, 0.0)
+    out[p - 1 :] = heading % 360.0
     return out
 
 
 def maneuver_factor(x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int) -> np.ndarray:
     """δ per point (deg in [0, 180]); NaN where a window would leave its track."""
-    h = window_headings(x, y, p)  # backward window ending at i
+    anchor = index.starts[index.track_of_row]
+    h = window_headings(x, y, p, anchor)  # backward window ending at i
     n = len(x)
     delta = np.full(n, np.nan)
     if n < 2 * p - 1:
@@ -115,7 +110,7 @@ def maneuver_factor(x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int) -> 
     back = h[: n - p + 1]
     fwd = h[p - 1 :]
     d = geo.angle_diff(back, fwd)
-    pos = np.arange(n) - index.starts[index.track_of_row]
+    pos = np.arange(n) - anchor
     size = index.sizes[index.track_of_row]
     valid = (pos >= p - 1) & (pos <= size - p)
     delta[: n - p + 1] = d
@@ -202,8 +197,7 @@ def detect(
 ) -> ManeuverResult:
     """Run the detector on every track of a canonical table."""
     params = (params or ManeuverParams()).checked()
-    pts = sort_points(points)
-    index = track_index(pts)
+    pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
     t = time_seconds(pts["time"])
     p_track = _p_per_track(t, index, params)

@@ -42,10 +42,45 @@ class TrackIndex:
         return mask
 
 
-def _key_codes(df: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
-    sensor_codes, _ = pd.factorize(df["sensor"], sort=True, use_na_sentinel=False)
-    batch_codes, _ = pd.factorize(df["batch"], sort=True, use_na_sentinel=False)
+def _key_codes(df: pd.DataFrame, sort: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    sensor_codes, _ = pd.factorize(df["sensor"], sort=sort, use_na_sentinel=False)
+    batch_codes, _ = pd.factorize(df["batch"], sort=sort, use_na_sentinel=False)
     return sensor_codes.astype("int64"), batch_codes.astype("int64")
+
+
+def sorted_with_index(df: pd.DataFrame) -> tuple[pd.DataFrame, "TrackIndex"]:
+    """Rows ordered by sensor, batch (as text) and time, and their :class:`TrackIndex`,
+    from one factorization. The table is returned as is when already in order."""
+    n = len(df)
+    if n == 0:
+        out = df.reset_index(drop=True)
+        return out, track_index(out)
+    sensor, batch = _key_codes(df)
+    t = time_seconds(df["time"])
+    track = sensor * (int(batch.max()) + 1) + batch
+    if _is_sorted(track, t):
+        fresh = isinstance(df.index, pd.RangeIndex) and df.index.start == 0
+        out = df if fresh else df.reset_index(drop=True)
+        return out, _index_from_codes(out, sensor, batch)
+    order = _sort_order(track, t)
+    out = df.iloc[order].reset_index(drop=True)
+    return out, _index_from_codes(out, sensor[order], batch[order])
+
+
+def _is_sorted(track: np.ndarray, t: np.ndarray) -> bool:
+    d_track = np.diff(track)
+    return bool(np.all(d_track >= 0) and np.all((d_track > 0) | (np.diff(t) >= 0)))
+
+
+def _sort_order(track: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Stable order by (track, time): one int64 key (ms) when it fits, else a lexsort."""
+    t_ms = np.round((t - t.min()) * 1000.0)
+    span = float(t_ms.max()) + 1.0
+    if float(track.max() + 1) * span < 2**62:
+        order = np.argsort(track.astype("int64") * int(span) + t_ms.astype("int64"), kind="stable")
+        if _is_sorted(track[order], t[order]):  # sub-millisecond ties could leave disorder
+            return order
+    return np.lexsort((t, track))
 
 
 def sort_points(df: pd.DataFrame) -> pd.DataFrame:
@@ -53,37 +88,36 @@ def sort_points(df: pd.DataFrame) -> pd.DataFrame:
 
     Returns ``df`` itself (not a copy) when it is already in that order.
     """
-    if len(df) == 0:
-        return df.reset_index(drop=True)
-    sensor, batch = _key_codes(df)
-    t = time_seconds(df["time"])
-    order = np.lexsort((t, batch, sensor))
-    if np.all(order[1:] > order[:-1]):
-        return (
-            df
-            if isinstance(df.index, pd.RangeIndex) and df.index.start == 0
-            else df.reset_index(drop=True)
-        )
-    return df.iloc[order].reset_index(drop=True)
+    return sorted_with_index(df)[0]
 
 
 def track_index(df: pd.DataFrame) -> TrackIndex:
     """The :class:`TrackIndex` of a table sorted by :func:`sort_points`."""
-    n = len(df)
-    if n == 0:
+    if len(df) == 0:
         empty = np.zeros(0, dtype="int64")
         return TrackIndex(
             empty, empty, empty, pd.DataFrame({"sensor": [], "batch": []}, dtype="str")
         )
-    sensor = df["sensor"].to_numpy()
-    batch = df["batch"].to_numpy()
+    sensor_codes, batch_codes = _key_codes(df, sort=False)
+    return _index_from_codes(df, sensor_codes, batch_codes)
+
+
+def _index_from_codes(
+    df: pd.DataFrame, sensor_codes: np.ndarray, batch_codes: np.ndarray
+) -> TrackIndex:
+    n = len(df)
     change = np.empty(n, dtype=bool)
     change[0] = True
-    change[1:] = (sensor[1:] != sensor[:-1]) | (batch[1:] != batch[:-1])
+    change[1:] = (sensor_codes[1:] != sensor_codes[:-1]) | (batch_codes[1:] != batch_codes[:-1])
     starts = np.flatnonzero(change).astype("int64")
     ends = np.append(starts[1:], n).astype("int64")
     track_of_row = np.cumsum(change).astype("int64") - 1
-    keys = pd.DataFrame({"sensor": sensor[starts], "batch": batch[starts]}).astype("str")
+    keys = pd.DataFrame(
+        {
+            "sensor": df["sensor"].iloc[starts].to_numpy(),
+            "batch": df["batch"].iloc[starts].to_numpy(),
+        }
+    ).astype("str")
     return TrackIndex(starts, ends, track_of_row, keys)
 
 

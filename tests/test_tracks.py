@@ -120,3 +120,27 @@ def test_time_seconds_independent_of_resolution():
     t = pd.Series(pd.to_datetime(["2024-01-01T00:00:01.5Z"], utc=True)).dt.as_unit("us")
     assert time_seconds(t)[0] == pytest.approx(1704067201.5)
     assert time_seconds(t.dt.as_unit("ns"))[0] == pytest.approx(1704067201.5)
+
+
+def test_sort_keeps_sub_millisecond_order():
+    rows = [
+        ("S1", "1", "2024-01-01T00:00:00.0004Z", 0, 1),
+        ("S1", "1", "2024-01-01T00:00:00.0001Z", 0, 0),
+        ("S0", "2", "2024-01-01T00:00:00Z", 0, 0),
+    ]
+    s = sort_points(_points(rows))
+    assert list(s.lat) == [0, 0, 1]
+    rng = np.random.default_rng(0)
+    n = 2000
+    df = pd.DataFrame(
+        {
+            "sensor": rng.choice(["A", "B"], n),
+            "batch": rng.choice(["1", "10", "2"], n),
+            "time": pd.to_datetime(rng.integers(0, 10**12, n), unit="ns", utc=True),
+            "lon": 0.0,
+            "lat": 0.0,
+        }
+    )
+    s = sort_points(df)
+    ref = df.sort_values(["sensor", "batch", "time"], kind="stable").reset_index(drop=True)
+    pd.testing.assert_frame_equal(s, ref)

@@ -1,0 +1,41 @@
+"""Real AIS (Saronic Gulf, GPL, read from ../shared): our detector against the annotator's
+CHANGE_IN_HEADING labels. The labels are another algorithm's output (5-10 deg thresholds),
+not truth: we report agreement with default parameters and check it is sane, no tuning."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import real_file
+from wakeline.core.evaluate import match_turns
+from wakeline.core.io import read_points
+from wakeline.core.maneuver import detect
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import sort_points
+
+pytestmark = pytest.mark.real
+
+
+@pytest.mark.parametrize("vessel", [1, 3])
+def test_agreement_with_annotated_heading_changes(vessel):
+    pts = sort_points(
+        read_points(real_file("greece-ais-annotated", f"vessel_{vessel}_id_annotated.csv")).points
+    )
+    t = time_seconds(pts["time"])
+    # cut the track at its real gaps (the annotator's GAP_PERIOD, 600 s)
+    pts["batch"] = pts["batch"] + "/" + np.cumsum(np.r_[0, np.diff(t) > 600]).astype(str)
+    result = detect(pts)
+    p = result.points
+    labelled = p["annotation"].str.contains("CHANGE_IN_HEADING").to_numpy()
+    moving = (
+        pd.to_numeric(p["speed"], errors="coerce").to_numpy() >= 2.0
+    )  # headings at rest are noise
+    scores = match_turns(
+        result.is_maneuver & moving, labelled & moving, result.index.track_of_row, tol=2
+    )
+    print(
+        f"vessel {vessel}: {int((result.is_maneuver & moving).sum())} detections, "
+        f"{int((labelled & moving).sum())} labels, {scores}"
+    )
+    assert scores["precision"] >= 0.9  # what we call a turn, the annotator calls one too
+    assert scores["recall"] >= 0.3  # it labels every 5-10 deg change; we look for >= 15 deg
