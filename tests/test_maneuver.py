@@ -181,3 +181,15 @@ def test_real_index_is_position_in_time_sorted_track():
     df = track_from_xy(x, y).sample(frac=1.0, random_state=1)  # shuffled rows
     assert detect(df).table()["index"].tolist() == [20]
     assert track_index(detect(df).points).n_tracks == 1
+
+
+def test_block_boundaries_do_not_change_the_factor(monkeypatch):
+    import wakeline.core.maneuver as mod
+
+    rng = np.random.default_rng(9)
+    tr = simulate.protocol_track(rng, 90, sigma_m=300.0)
+    df = track_from_xy(tr.xy[:, 0], tr.xy[:, 1])
+    whole = detect(df).factor
+    monkeypatch.setattr(mod, "BLOCK", 7)
+    blocked = detect(df).factor
+    assert np.allclose(np.nan_to_num(whole), np.nan_to_num(blocked), atol=1e-9)

@@ -16,7 +16,7 @@ from wakeline.core.tracks import (
 
 def _points(rows):
     df = pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"])
-    df["time"] = pd.to_datetime(df["time"], utc=True)
+    df["time"] = pd.to_datetime(df["time"], utc=True, format="ISO8601")
     return df
 
 
