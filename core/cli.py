@@ -209,6 +209,11 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
     )
 
 
+def _io_args(p: argparse.ArgumentParser, output_help: str) -> None:
+    p.add_argument("input", type=Path, help="track file (any layout `wakeline import` reads)")
+    p.add_argument("-o", "--output", type=Path, required=True, help=output_help)
+
+
 def _cmd_gui(args: argparse.Namespace) -> int:
     try:
         from wakeline.app.main import run
@@ -335,8 +340,7 @@ def build_parser() -> argparse.ArgumentParser:
         "position in the time-sorted track). --method imm|entropy runs the seed-000 baselines.",
         epilog=EPILOG,
     )
-    p.add_argument("input", type=Path, help="track file (any layout import reads)")
-    p.add_argument("-o", "--output", type=Path, required=True, help="maneuver points CSV to write")
+    _io_args(p, "maneuver points CSV to write")
     p.add_argument(
         "--method", choices=("pca", "imm", "entropy"), default="pca", help="detector (default pca)"
     )
@@ -361,8 +365,7 @@ def build_parser() -> argparse.ArgumentParser:
         "input has true_lon/true_lat) and the share of points kept, per track and overall.",
         epilog=EPILOG,
     )
-    p.add_argument("input", type=Path, help="track file (any layout import reads)")
-    p.add_argument("-o", "--output", type=Path, required=True, help="kept points, canonical CSV")
+    _io_args(p, "kept points, canonical CSV")
     p.add_argument(
         "--method", choices=("maneuver", "dp"), default="maneuver", help="default maneuver"
     )
