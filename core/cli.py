@@ -209,6 +209,44 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
     )
 
 
+def _cmd_clean(args: argparse.Namespace) -> int:
+    from wakeline.core.clean import CleanParams, clean
+    from wakeline.core.io import write_csv, write_json, write_points
+
+    params = CleanParams().with_settings(args.set or [])
+    if args.off:
+        params = params.with_settings([f"{rule}.enabled=false" for rule in args.off])
+    result = clean(_read_canonical(args.input), params)
+    write_points(result.points, args.output)
+    if args.rejected:
+        write_csv(result.rejected, args.rejected)
+    if args.report:
+        write_json(result.report, args.report)
+    rep = result.report
+    counts = ", ".join(
+        f"{rule} {v['removed'] + v['changed']:,}"
+        for rule, v in rep["rules"].items()
+        if v["removed"] + v["changed"]
+    )
+    print(
+        f"kept {rep['points_out']:,} of {rep['points_in']:,} points in {rep['tracks_out']:,} tracks"
+        + (f"; {counts}" if counts else ""),
+        file=sys.stderr,
+    )
+    return 0
+
+
+def _clean_help() -> str:
+    from wakeline.core.clean import CleanParams
+
+    lines = []
+    for d in CleanParams.describe():
+        unit = f" [{d['unit']}]" if d.get("unit") else ""
+        source = f" ({d['source']})" if d.get("source") else ""
+        lines.append(f"{d['rule']}.{d['name']}={d['default']}{unit}: {d['doc']}{source}")
+    return "Rules and parameters (--set rule.param=value):\n  " + "\n  ".join(lines)
+
+
 def _io_args(p: argparse.ArgumentParser, output_help: str) -> None:
     p.add_argument("input", type=Path, help="track file (any layout `wakeline import` reads)")
     p.add_argument("-o", "--output", type=Path, required=True, help=output_help)
@@ -330,6 +368,36 @@ def build_parser() -> argparse.ArgumentParser:
         help="segments/multisensor: side of the square area, km (default 60)",
     )
     p.set_defaults(func=_cmd_simulate)
+
+    from wakeline.core.clean import RULES
+
+    p = sub.add_parser(
+        "clean",
+        help="remove duplicates, stationary points, jumps and outliers, with a reject trail",
+        description="Apply the cleaning rules in order: duplicates, stationary, speed, turn, "
+        "speed_outliers, isolated, short_tracks (seed 001 §4.1, seed 003 §2.2). Every removed or "
+        "changed point goes to the rejected table with the rule, the action and the parameters.",
+        epilog=_clean_help() + "\n\n" + EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    _io_args(p, "cleaned points, canonical CSV")
+    p.add_argument(
+        "--rejected", type=Path, metavar="REJ.csv", help="write every removed or changed point"
+    )
+    p.add_argument(
+        "--report", type=Path, metavar="R.json", help="counts per rule and per track, as JSON"
+    )
+    p.add_argument(
+        "--set", action="append", metavar="RULE.PARAM=VALUE", help="change a parameter; repeatable"
+    )
+    p.add_argument(
+        "--off",
+        action="append",
+        choices=RULES,
+        metavar="RULE",
+        help="switch a rule off; repeatable",
+    )
+    p.set_defaults(func=_cmd_clean)
 
     p = sub.add_parser(
         "maneuvers",

@@ -94,3 +94,25 @@ def destination(lon, lat, bearing_deg, dist_m) -> tuple[np.ndarray, np.ndarray]:
         np.sin(brg) * np.sin(d) * np.cos(lat1), np.cos(d) - np.sin(lat1) * np.sin(lat2)
     )
     return wrap180(np.degrees(lon2)), np.degrees(lat2)
+
+
+def short_legs(lon1, lat1, lon2, lat2) -> tuple[np.ndarray, np.ndarray]:
+    """Distance (m) and course (deg, [0, 360)) of short legs, by the equirectangular
+    approximation at each leg's mid-latitude.
+
+    One cosine per leg instead of the haversine's trigonometry; the error is below 0.1 %
+    for legs under ~100 km (consecutive points of a track), away from the poles.
+    Longitude differences are wrapped, so legs across 180° are short, as they should be.
+    """
+    lat1 = np.asarray(lat1, dtype="float64")
+    lat2 = np.asarray(lat2, dtype="float64")
+    k = np.pi / 180.0
+    dx = (
+        EARTH_RADIUS_M
+        * k
+        * wrap180(np.asarray(lon2, dtype="float64") - lon1)
+        * np.cos(k * 0.5 * (lat1 + lat2))
+    )
+    dy = EARTH_RADIUS_M * k * (lat2 - lat1)
+    course = np.degrees(np.arctan2(dx, dy)) % 360.0
+    return np.hypot(dx, dy), course

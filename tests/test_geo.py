@@ -58,3 +58,17 @@ def test_destination_inverts_distance_and_bearing():
 def test_circular_mean():
     assert geo.circular_mean_deg(np.array([350.0, 10.0])) == pytest.approx(0.0, abs=1e-9)
     assert abs(geo.circular_mean_deg(np.array([179.0, -179.0]))) == pytest.approx(180.0)
+
+
+def test_short_legs_agree_with_great_circle():
+    rng = np.random.default_rng(0)
+    lon1 = rng.uniform(-180, 180, 1000)
+    lat1 = rng.uniform(-70, 70, 1000)
+    lon2, lat2 = geo.destination(
+        lon1, lat1, rng.uniform(0, 360, 1000), rng.uniform(1, 50_000, 1000)
+    )
+    dist, course = geo.short_legs(lon1, lat1, lon2, lat2)
+    assert np.allclose(dist, geo.haversine_m(lon1, lat1, lon2, lat2), rtol=1e-3)
+    assert np.all(geo.angle_diff(course, geo.initial_bearing_deg(lon1, lat1, lon2, lat2)) < 0.5)
+    d, c = geo.short_legs(179.99, 0.0, -179.99, 0.0)
+    assert d == pytest.approx(2224, rel=1e-3) and c == pytest.approx(90.0)
