@@ -46,6 +46,7 @@ ship at 10 kn may turn 80° in 10 s, so the rule would never fire at radar rates
 
 import dataclasses
 import json
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -170,6 +171,8 @@ class ShortTracksParams(Params):
 
 #: Column that keys points between the cleaned and the rejected table.
 ID = "wl_id"
+#: Rows per block when cleaning large tables (whole tracks per block).
+BLOCK_ROWS = 1_000_000
 
 RULES = ("duplicates", "stationary", "speed", "turn", "speed_outliers", "isolated", "short_tracks")
 
@@ -253,21 +256,42 @@ def _runs(index_of_row: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return first, last
 
 
-def _legs(lon, lat, t, rows, track):
-    """Distance (m), time (s), course (deg) of the leg arriving at each of ``rows``
-    from the previous one of the same track (NaN for a track's first)."""
-    first, _ = _runs(track[rows])
-    lo, la, tt = lon[rows], lat[rows], t[rows]
-    dist = np.full(len(rows), np.nan)
-    dt = np.full(len(rows), np.nan)
-    course = np.full(len(rows), np.nan)
-    if len(rows) > 1:
-        dist[1:], course[1:] = geo.short_legs(lo[:-1], la[:-1], lo[1:], la[1:])
-        dt[1:] = tt[1:] - tt[:-1]
-    dist[first] = np.nan
-    dt[first] = np.nan
-    course[first] = np.nan
-    return dist, dt, course
+class _Legs:
+    """Legs between consecutive rows of a block, computed once; a subset of rows reuses
+    them wherever its rows are still adjacent, and computes only the legs that bridge
+    removed points."""
+
+    def __init__(self, lon: np.ndarray, lat: np.ndarray, t: np.ndarray, track: np.ndarray) -> None:
+        self.lon, self.lat, self.t, self.track = lon, lat, t, track
+        n = len(lon)
+        self.dist = np.full(n, np.nan)
+        self.course = np.full(n, np.nan)
+        if n > 1:
+            self.dist[1:], self.course[1:] = geo.short_legs(lon[:-1], lat[:-1], lon[1:], lat[1:])
+
+    def __call__(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Distance (m), time (s), course (deg) of the leg arriving at each of ``rows``
+        from the previous one of the same track (NaN for a track's first)."""
+        first, _ = _runs(self.track[rows])
+        dist = np.full(len(rows), np.nan)
+        course = np.full(len(rows), np.nan)
+        dt = np.full(len(rows), np.nan)
+        if len(rows) > 1:
+            cur, prev = rows[1:], rows[:-1]
+            adjacent = cur - prev == 1
+            dist[1:] = np.where(adjacent, self.dist[cur], np.nan)
+            course[1:] = np.where(adjacent, self.course[cur], np.nan)
+            gap = np.flatnonzero(~adjacent) + 1
+            if len(gap):
+                a, b = rows[gap - 1], rows[gap]
+                dist[gap], course[gap] = geo.short_legs(
+                    self.lon[a], self.lat[a], self.lon[b], self.lat[b]
+                )
+            dt[1:] = self.t[cur] - self.t[prev]
+        dist[first] = np.nan
+        dt[first] = np.nan
+        course[first] = np.nan
+        return dist, dt, course
 
 
 def _tukey_upper(values: np.ndarray, group: np.ndarray, factor: float) -> np.ndarray:
@@ -280,7 +304,7 @@ def _tukey_upper(values: np.ndarray, group: np.ndarray, factor: float) -> np.nda
 
 
 def _speed_rule(
-    lon, lat, t, alive, track, v_max_ms: float, tolerance_m: float, max_rounds: int = 64
+    legs: "_Legs", alive, track, v_max_ms: float, tolerance_m: float, max_rounds: int = 64
 ) -> np.ndarray:
     """Rows removed by the impossible-speed rule (compared with the last kept point): the
     leg is impossible when it is longer than v_max · dt + tolerance."""
@@ -289,7 +313,7 @@ def _speed_rule(
         rows = np.flatnonzero(alive & ~removed)
         if len(rows) < 2:
             break
-        dist, dt, _ = _legs(lon, lat, t, rows, track)
+        dist, dt, _ = legs(rows)
         with np.errstate(invalid="ignore"):
             bad = dist > v_max_ms * dt + tolerance_m  # the leg arriving at this row is impossible
         first, _ = _runs(track[rows])
@@ -324,6 +348,68 @@ def clean(
     else:
         src[ID] = given.astype("int64")
     pts, index = sorted_with_index(src)
+    blocks = _blocks(index, BLOCK_ROWS)
+    if len(blocks) == 1:
+        return _clean_block(pts, index, params, progress)
+    # Rules are per track: clean blocks of whole tracks on two threads (numpy releases the
+    # GIL) and keep every temporary small enough for the allocator to reuse.
+    done = [0]
+
+    def run(bounds: tuple[int, int]) -> CleanResult:
+        block, block_index = sorted_with_index(
+            pts.iloc[bounds[0] : bounds[1]].reset_index(drop=True)
+        )
+        result = _clean_block(block, block_index, params, None)
+        done[0] += 1
+        return result
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        futures = [pool.submit(run, b) for b in blocks]
+        results = []
+        for k, future in enumerate(futures):
+            progress(k / len(futures), f"cleaning block {k + 1} of {len(futures)}")
+            results.append(future.result())
+    progress(1.0, "cleaned")
+    return _merge(results)
+
+
+def _blocks(index: TrackIndex, rows: int) -> list[tuple[int, int]]:
+    """Row ranges of about ``rows`` rows each, cut at track boundaries."""
+    if index.n_tracks == 0:
+        return [(0, 0)]
+    cuts = [0]
+    ends = index.ends
+    while cuts[-1] < ends[-1]:
+        k = int(np.searchsorted(ends, cuts[-1] + rows, side="left"))
+        cuts.append(int(ends[min(k, len(ends) - 1)]))
+    return list(zip(cuts[:-1], cuts[1:], strict=True))
+
+
+def _merge(results: list[CleanResult]) -> CleanResult:
+    points = pd.concat([r.points for r in results], ignore_index=True)
+    rejected = pd.concat([r.rejected for r in results], ignore_index=True)
+    rejected = rejected.sort_values([ID, "action"], kind="stable").reset_index(drop=True)
+    first = results[0].report
+    report = {
+        key: sum(r.report[key] for r in results)
+        for key in ("points_in", "points_out", "tracks_in", "tracks_out")
+    }
+    report["rules"] = {
+        rule: {
+            **info,
+            "removed": sum(r.report["rules"][rule]["removed"] for r in results),
+            "changed": sum(r.report["rules"][rule]["changed"] for r in results),
+        }
+        for rule, info in first["rules"].items()
+    }
+    report["tracks"] = [row for r in results for row in r.report["tracks"]]
+    return CleanResult(points, rejected, report)
+
+
+def _clean_block(
+    pts: pd.DataFrame, index: TrackIndex, params: CleanParams, progress: Progress | None
+) -> CleanResult:
+    progress = progress or null_progress
     n = len(pts)
     lon = pts["lon"].to_numpy(dtype="float64").copy()
     lat = pts["lat"].to_numpy(dtype="float64").copy()
@@ -364,11 +450,13 @@ def clean(
             changed_by["duplicates"] = mask
         alive &= ~same
 
+    legs = _Legs(lon, lat, t, track)  # positions are final from here on
+
     # 2. stationary
     step(1, "stationary")
     if params.stationary.enabled:
         rows = np.flatnonzero(alive)
-        dist, dt, _ = _legs(lon, lat, t, rows, track)
+        dist, dt, _ = legs(rows)
         with np.errstate(invalid="ignore", divide="ignore"):
             arriving = dist / dt / geo.KN_MS
         first_rows, _ = _runs(track[rows])
@@ -388,7 +476,7 @@ def clean(
     step(2, "speed")
     if params.speed.enabled:
         mask = _speed_rule(
-            lon, lat, t, alive, track, params.speed.v_max_kn * geo.KN_MS, params.speed.tolerance_m
+            legs, alive, track, params.speed.v_max_kn * geo.KN_MS, params.speed.tolerance_m
         )
         removed_by["speed"] = mask
         alive &= ~mask
@@ -397,7 +485,7 @@ def clean(
     step(3, "turn")
     if params.turn.enabled:
         rows = np.flatnonzero(alive)
-        dist, dt, course = _legs(lon, lat, t, rows, track)
+        dist, dt, course = legs(rows)
         first, last = _runs(track[rows])
         nxt = lambda a: np.append(a[1:], np.nan)  # noqa: E731 - the leg leaving each row
         d_out, dt_out, c_out = nxt(dist), nxt(dt), nxt(course)
@@ -428,7 +516,7 @@ def clean(
         rows = np.flatnonzero(alive)
         s = speed_col[rows]
         upper = _tukey_upper(s, track[rows], params.speed_outliers.iqr_factor)
-        dist, dt, _ = _legs(lon, lat, t, rows, track)
+        dist, dt, _ = legs(rows)
         with np.errstate(invalid="ignore", divide="ignore"):
             derived = dist / dt / geo.KN_MS
         derived_next = np.append(derived[1:], np.nan)
@@ -455,7 +543,7 @@ def clean(
     step(5, "isolated")
     if params.isolated.enabled:
         rows = np.flatnonzero(alive)
-        dist, _, _ = _legs(lon, lat, t, rows, track)
+        dist, _, _ = legs(rows)
         upper = _tukey_upper(dist, track[rows], params.isolated.iqr_factor)
         out_in = np.isfinite(dist) & (dist > upper)
         out_out = np.append(out_in[1:], False)
@@ -480,12 +568,11 @@ def clean(
         alive &= ~short
     progress(1.0, "cleaned")
 
-    out = pts.copy()
-    out["lon"] = lon
-    out["lat"] = lat
-    if "speed" in out.columns or np.isfinite(speed_col).any():
-        out["speed"] = speed_col
-    cleaned = out[alive].reset_index(drop=True)
+    cleaned = pts[alive].reset_index(drop=True)  # one copy of the surviving rows
+    cleaned["lon"] = lon[alive]
+    cleaned["lat"] = lat[alive]
+    if "speed" in cleaned.columns or np.isfinite(speed_col).any():
+        cleaned["speed"] = speed_col[alive]
 
     param_text = {rule: json.dumps(dataclasses.asdict(getattr(params, rule))) for rule in RULES}
     parts = [
@@ -501,7 +588,10 @@ def clean(
     else:
         rejected = pts.iloc[:0].assign(rule="", action="", params="")
     report = _report(index, track, removed_by, changed_by, alive, params)
-    return CleanResult(cleaned[ordered_columns(cleaned)], rejected, report)
+    order = ordered_columns(cleaned)
+    return CleanResult(
+        cleaned if order == list(cleaned.columns) else cleaned[order], rejected, report
+    )
 
 
 def _report(

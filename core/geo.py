@@ -107,12 +107,9 @@ def short_legs(lon1, lat1, lon2, lat2) -> tuple[np.ndarray, np.ndarray]:
     lat1 = np.asarray(lat1, dtype="float64")
     lat2 = np.asarray(lat2, dtype="float64")
     k = np.pi / 180.0
-    dx = (
-        EARTH_RADIUS_M
-        * k
-        * wrap180(np.asarray(lon2, dtype="float64") - lon1)
-        * np.cos(k * 0.5 * (lat1 + lat2))
-    )
+    dlon = np.asarray(lon2, dtype="float64") - lon1  # in (-360, 360): wrap without fmod
+    dlon = np.where(dlon > 180.0, dlon - 360.0, np.where(dlon < -180.0, dlon + 360.0, dlon))
+    dx = EARTH_RADIUS_M * k * dlon * np.cos(k * 0.5 * (lat1 + lat2))
     dy = EARTH_RADIUS_M * k * (lat2 - lat1)
     course = np.degrees(np.arctan2(dx, dy)) % 360.0
     return np.hypot(dx, dy), course

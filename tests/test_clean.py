@@ -258,3 +258,17 @@ def test_real_greece_cleans_plausibly(vessel):
     )  # vessel 3 idles in port a third of the time
     assert rep["rules"]["stationary"]["removed"] > 0
     assert rep["rules"]["isolated"]["removed"] <= 0.01 * rep["points_in"]
+
+
+def test_blocks_give_the_same_result(monkeypatch):
+    import wakeline.core.clean as mod
+
+    df = faulty_scene(seed=5)
+    whole = clean(df)
+    monkeypatch.setattr(mod, "BLOCK_ROWS", 700)
+    blocked = clean(df)
+    pd.testing.assert_frame_equal(whole.points, blocked.points)
+    pd.testing.assert_frame_equal(whole.rejected, blocked.rejected)
+    for key in ("points_in", "points_out", "tracks_in", "tracks_out", "rules"):
+        assert whole.report[key] == blocked.report[key]
+    assert len(blocked.report["tracks"]) == len(whole.report["tracks"])
