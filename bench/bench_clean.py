@@ -41,7 +41,8 @@ def main() -> None:
     result = clean(df)
     sec = time.perf_counter() - t
     rules = ", ".join(
-        f"{k} {v['removed'] + v['changed']:,}" for k, v in result.report["rules"].items()
+        f"{k} {v.get('removed', 0) + v.get('changed', 0):,}"
+        for k, v in result.report["rules"].items()
     )
     print(f"baseline: pandas sort_values by sensor, batch, time: {base:.2f} s")
     print(

@@ -37,6 +37,10 @@ Rules, in the order they run (each can be switched off):
 7. ``short_tracks`` — tracks with fewer than ``min_points`` points are set aside (in
    the rejected table, restorable), not deleted.
 
+Then the transforming steps, off by default (:mod:`wakeline.core.transform`), in the order
+``bspline`` (seed 001's sampling–segmentation–spline–interpolation), ``resample``,
+``smooth``; the points each replaces go to the rejected table with action ``replaced``.
+
 Units we chose where the paper states none (seed 001 Table 2: L = 12, V_max = 12): V_max
 read as 12 m/s = 23.3 kn, but we default to 30 kn — at 23.3 kn a passenger ferry of the
 Saronic Gulf data (26 kn) loses whole legs, since every point is compared with the last
@@ -58,6 +62,14 @@ from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import ordered_columns, time_seconds
 from wakeline.core.tracks import TrackIndex, sorted_with_index
+from wakeline.core.transform import (
+    BsplineParams,
+    ResampleParams,
+    SmoothParams,
+    bspline_segments,
+    resample,
+    smooth,
+)
 
 
 @dataclass(frozen=True)
@@ -100,6 +112,14 @@ class SpeedParams(Params):
         "position error allowed on top of v_max * dt (noise alone fakes high speeds over short intervals)",
         lo=0,
         hi=1e6,
+    )
+    break_run: int = param(
+        3,
+        "points",
+        "an impossible leg followed by this many plausible ones is a break (another ship), "
+        "not an outlier",
+        lo=1,
+        hi=1000,
     )
 
 
@@ -175,6 +195,9 @@ ID = "wl_id"
 BLOCK_ROWS = 1_000_000
 
 RULES = ("duplicates", "stationary", "speed", "turn", "speed_outliers", "isolated", "short_tracks")
+#: Transforming steps, off by default, run after the rules in this order.
+TRANSFORMS = ("bspline", "resample", "smooth")
+STEPS = RULES + TRANSFORMS
 
 
 @dataclass(frozen=True)
@@ -188,9 +211,12 @@ class CleanParams:
     speed_outliers: SpeedOutliersParams = field(default_factory=SpeedOutliersParams)
     isolated: IsolatedParams = field(default_factory=IsolatedParams)
     short_tracks: ShortTracksParams = field(default_factory=ShortTracksParams)
+    bspline: BsplineParams = field(default_factory=BsplineParams)
+    resample: ResampleParams = field(default_factory=ResampleParams)
+    smooth: SmoothParams = field(default_factory=SmoothParams)
 
     def problems(self) -> list[str]:
-        return [f"{rule}.{p}" for rule in RULES for p in getattr(self, rule).problems()]
+        return [f"{rule}.{p}" for rule in STEPS for p in getattr(self, rule).problems()]
 
     def checked(self) -> "CleanParams":
         problems = self.problems()
@@ -208,9 +234,9 @@ class CleanParams:
         changes: dict[str, dict[str, str]] = {}
         for key, value in items:
             rule, _, name = key.partition(".")
-            if rule not in RULES or not name:
+            if rule not in STEPS or not name:
                 raise InputError(
-                    f"--set {key}={value}: expected rule.param with rule one of {', '.join(RULES)}"
+                    f"--set {key}={value}: expected rule.param with rule one of {', '.join(STEPS)}"
                 )
             changes.setdefault(rule, {})[name] = value
         out = self
@@ -221,7 +247,7 @@ class CleanParams:
     @classmethod
     def describe(cls) -> list[dict]:
         return [
-            {"rule": rule, **d} for rule in RULES for d in type(getattr(cls(), rule)).describe()
+            {"rule": rule, **d} for rule in STEPS for d in type(getattr(cls(), rule)).describe()
         ]
 
 
@@ -269,10 +295,13 @@ class _Legs:
         if n > 1:
             self.dist[1:], self.course[1:] = geo.short_legs(lon[:-1], lat[:-1], lon[1:], lat[1:])
 
-    def __call__(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def __call__(
+        self, rows: np.ndarray, group: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Distance (m), time (s), course (deg) of the leg arriving at each of ``rows``
-        from the previous one of the same track (NaN for a track's first)."""
-        first, _ = _runs(self.track[rows])
+        from the previous one of the same track — or of the same ``group`` when given
+        (NaN for a track's or group's first)."""
+        first, _ = _runs((self.track if group is None else group)[rows])
         dist = np.full(len(rows), np.nan)
         course = np.full(len(rows), np.nan)
         dt = np.full(len(rows), np.nan)
@@ -304,19 +333,26 @@ def _tukey_upper(values: np.ndarray, group: np.ndarray, factor: float) -> np.nda
 
 
 def _speed_rule(
-    legs: "_Legs", alive, track, v_max_ms: float, tolerance_m: float, max_rounds: int = 64
-) -> np.ndarray:
-    """Rows removed by the impossible-speed rule (compared with the last kept point): the
-    leg is impossible when it is longer than v_max · dt + tolerance."""
+    legs: "_Legs", alive, track, v_max_ms: float, tolerance_m: float, run: int, max_rounds: int = 64
+) -> tuple[np.ndarray, np.ndarray]:
+    """Rows removed by the impossible-speed rule (compared with the last kept point: the
+    leg is impossible when longer than v_max · dt + tolerance), and rows where the batch
+    *breaks*: an impossible leg followed by ``run`` plausible ones is another ship (or
+    the same one re-acquired elsewhere), not an outlier — the points after it are kept
+    and the comparison starts afresh there."""
     removed = np.zeros(len(alive), dtype=bool)
+    breaks = np.zeros(len(alive), dtype=bool)
+    track_start = np.ones(len(alive), dtype=bool)
+    track_start[1:] = track[1:] != track[:-1]
     for _ in range(max_rounds):
         rows = np.flatnonzero(alive & ~removed)
         if len(rows) < 2:
             break
-        dist, dt, _ = legs(rows)
+        group = np.cumsum(track_start | breaks)
+        dist, dt, _ = legs(rows, group)
         with np.errstate(invalid="ignore"):
             bad = dist > v_max_ms * dt + tolerance_m  # the leg arriving at this row is impossible
-        first, _ = _runs(track[rows])
+        first, _ = _runs(group[rows])
         prev_bad = np.zeros_like(bad)
         prev_bad[1:] = bad[:-1] & ~first[1:]
         flag = bad & ~prev_bad
@@ -329,18 +365,78 @@ def _speed_rule(
         flag_first = np.zeros_like(bad)
         flag_first[:-1] = first_is_outlier[1:]
         flag = np.where(first_is_outlier, False, flag) | flag_first
-        if not flag.any():
+        # A flagged row followed by `run` plausible legs within its group starts a new piece.
+        calm = flag & ~first_is_outlier
+        for k in range(1, run + 1):
+            ok = np.zeros_like(bad)
+            ok[:-k] = ~bad[k:] & (group[rows][k:] == group[rows][:-k]) & ~first[k:]
+            calm &= ok
+        breaks[rows[calm]] = True
+        flag &= ~calm
+        if not flag.any() and not calm.any():
             break
         removed[rows[flag]] = True
-    return removed
+    return removed, breaks
 
 
 def clean(
     points: pd.DataFrame, params: CleanParams | None = None, progress: Progress | None = None
 ) -> CleanResult:
-    """Apply the enabled rules; return cleaned points, the rejected trail and the report."""
+    """Apply the enabled rules, then the enabled transforming steps; return cleaned points,
+    the rejected trail and the report."""
     params = (params or CleanParams()).checked()
     progress = progress or null_progress
+    enabled = [name for name in TRANSFORMS if getattr(params, name).enabled]
+    share = 1.0 / (1 + len(enabled))
+    result = _remove(points, params, lambda f, text: progress(f * share, text))
+    for k, name in enumerate(enabled):
+        progress((k + 1) * share, name)
+        result = _transform(result, name, getattr(params, name))
+    progress(1.0, "cleaned")
+    return result
+
+
+def _transform(result: CleanResult, name: str, step_params) -> CleanResult:
+    before = result.points
+    ids = np.concatenate(
+        [before[ID].to_numpy(dtype="int64"), result.rejected[ID].to_numpy(dtype="int64")]
+    )
+    next_id = int(ids.max()) + 1 if len(ids) else 0
+    if name == "bspline":
+        after = bspline_segments(before, step_params, next_id)
+    elif name == "resample":
+        after = resample(before, step_params, next_id)
+    else:
+        after = smooth(before, step_params)
+    if name == "smooth":
+        moved = (before["lon"].to_numpy() != after["lon"].to_numpy()) | (
+            before["lat"].to_numpy() != after["lat"].to_numpy()
+        )
+        replaced = before[moved]
+    else:
+        replaced = before
+    trail = replaced.assign(
+        rule=name, action="replaced", params=json.dumps(dataclasses.asdict(step_params))
+    )
+    rejected = pd.concat([result.rejected, trail], ignore_index=True)
+    report = dict(result.report)
+    report["points_out"] = int(len(after))
+    report["tracks_out"] = int(after.groupby(["sensor", "batch"]).ngroups) if len(after) else 0
+    report["rules"] = {
+        **report["rules"],
+        name: {
+            "enabled": True,
+            "replaced": int(len(replaced)),
+            "points_out": int(len(after)),
+            "params": dataclasses.asdict(step_params),
+        },
+    }
+    order = ordered_columns(after)
+    return CleanResult(after[order].reset_index(drop=True), rejected, report)
+
+
+def _remove(points: pd.DataFrame, params: CleanParams, progress: Progress) -> CleanResult:
+    """The removal rules (see the module docstring)."""
     src = points.copy()
     given = pd.to_numeric(src[ID], errors="coerce") if ID in src.columns else None
     if given is None or given.isna().any() or given.duplicated().any():
@@ -396,9 +492,12 @@ def _merge(results: list[CleanResult]) -> CleanResult:
     }
     report["rules"] = {
         rule: {
-            **info,
-            "removed": sum(r.report["rules"][rule]["removed"] for r in results),
-            "changed": sum(r.report["rules"][rule]["changed"] for r in results),
+            key: (
+                sum(r.report["rules"][rule][key] for r in results)
+                if key in ("removed", "changed", "breaks")
+                else value
+            )
+            for key, value in info.items()
         }
         for rule, info in first["rules"].items()
     }
@@ -475,8 +574,13 @@ def _clean_block(
     # 3. impossible speed
     step(2, "speed")
     if params.speed.enabled:
-        mask = _speed_rule(
-            legs, alive, track, params.speed.v_max_kn * geo.KN_MS, params.speed.tolerance_m
+        mask, speed_breaks = _speed_rule(
+            legs,
+            alive,
+            track,
+            params.speed.v_max_kn * geo.KN_MS,
+            params.speed.tolerance_m,
+            params.speed.break_run,
         )
         removed_by["speed"] = mask
         alive &= ~mask
@@ -501,6 +605,11 @@ def _clean_block(
             slow = params.turn.min_speed_kn * geo.KN_MS
             judged = (dist >= params.turn.min_leg_m) & (d_out >= params.turn.min_leg_m)
             judged &= (v >= slow) & (v_out >= slow)
+            # a leg the speed rule let through as a break (another ship) is not a turn
+            v_cap = params.speed.v_max_kn * geo.KN_MS
+            judged &= (dist <= v_cap * dt + params.speed.tolerance_m) & (
+                d_out <= v_cap * dt_out + params.speed.tolerance_m
+            )
             over = judged & (turn > limit)
         tn = np.where(np.isfinite(turn), turn, -1.0)
         prev_t = np.append(-1.0, tn[:-1])
@@ -588,6 +697,8 @@ def _clean_block(
     else:
         rejected = pts.iloc[:0].assign(rule="", action="", params="")
     report = _report(index, track, removed_by, changed_by, alive, params)
+    if params.speed.enabled:
+        report["rules"]["speed"]["breaks"] = int(speed_breaks[alive].sum())
     order = ordered_columns(cleaned)
     return CleanResult(
         cleaned if order == list(cleaned.columns) else cleaned[order], rejected, report
@@ -641,6 +752,11 @@ def restore(
     if len(unknown):
         raise InputError(f"not in the rejected table: {ID} {', '.join(map(str, unknown[:10]))}")
     chosen = rejected[ID].isin(ids).to_numpy()
+    if (rejected["action"].to_numpy()[chosen] == "replaced").any():
+        raise InputError(
+            "points replaced by a transforming step (bspline, resample, smooth) come back by "
+            "cleaning again without that step, not one by one"
+        )
     back = rejected[chosen]
     # A changed row's original values win over its current (changed) row.
     originals = back.drop_duplicates(ID, keep="first").drop(columns=["rule", "action", "params"])

@@ -213,9 +213,17 @@ def _cmd_clean(args: argparse.Namespace) -> int:
     from wakeline.core.clean import CleanParams, clean
     from wakeline.core.io import write_csv, write_json, write_points
 
-    params = CleanParams().with_settings(args.set or [])
-    if args.off:
-        params = params.with_settings([f"{rule}.enabled=false" for rule in args.off])
+    settings = list(args.set or [])
+    settings += [f"{rule}.enabled=false" for rule in args.off or []]
+    if args.resample is not None:
+        settings += ["resample.enabled=true", f"resample.period_s={args.resample}"]
+    if args.max_gap is not None:
+        settings += [f"resample.max_gap_s={args.max_gap}"]
+    if args.smooth is not None:
+        settings += ["smooth.enabled=true", f"smooth.window={args.smooth}"]
+    if args.bspline:
+        settings += ["bspline.enabled=true"]
+    params = CleanParams().with_settings(settings)
     result = clean(_read_canonical(args.input), params)
     write_points(result.points, args.output)
     if args.rejected:
@@ -223,11 +231,11 @@ def _cmd_clean(args: argparse.Namespace) -> int:
     if args.report:
         write_json(result.report, args.report)
     rep = result.report
-    counts = ", ".join(
-        f"{rule} {v['removed'] + v['changed']:,}"
+    touched = {
+        rule: sum(v.get(k, 0) for k in ("removed", "changed", "replaced"))
         for rule, v in rep["rules"].items()
-        if v["removed"] + v["changed"]
-    )
+    }
+    counts = ", ".join(f"{rule} {n:,}" for rule, n in touched.items() if n)
     print(
         f"kept {rep['points_out']:,} of {rep['points_in']:,} points in {rep['tracks_out']:,} tracks"
         + (f"; {counts}" if counts else ""),
@@ -375,8 +383,9 @@ def build_parser() -> argparse.ArgumentParser:
         "clean",
         help="remove duplicates, stationary points, jumps and outliers, with a reject trail",
         description="Apply the cleaning rules in order: duplicates, stationary, speed, turn, "
-        "speed_outliers, isolated, short_tracks (seed 001 §4.1, seed 003 §2.2). Every removed or "
-        "changed point goes to the rejected table with the rule, the action and the parameters.",
+        "speed_outliers, isolated, short_tracks (seed 001 §4.1, seed 003 §2.2), then the opt-in "
+        "transforming steps bspline, resample, smooth. Every removed, changed or replaced point goes "
+        "to the rejected table with the rule, the action and the parameters.",
         epilog=_clean_help() + "\n\n" + EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -396,6 +405,31 @@ def build_parser() -> argparse.ArgumentParser:
         choices=RULES,
         metavar="RULE",
         help="switch a rule off; repeatable",
+    )
+    p.add_argument(
+        "--resample",
+        type=_positive_float,
+        metavar="SECONDS",
+        help="resample every track to this period (seed 003 uses 20 s)",
+    )
+    p.add_argument(
+        "--max-gap",
+        type=_positive_float,
+        metavar="SECONDS",
+        help="resample: never interpolate across longer gaps (default 60 s)",
+    )
+    p.add_argument(
+        "--smooth",
+        type=int,
+        nargs="?",
+        const=5,
+        metavar="WINDOW",
+        help="moving weighted average of positions over WINDOW points (default 5)",
+    )
+    p.add_argument(
+        "--bspline",
+        action="store_true",
+        help="seed 001 sampling-segmentation-B-spline-interpolation (splits batches holding two ships)",
     )
     p.set_defaults(func=_cmd_clean)
 

@@ -1,0 +1,303 @@
+"""Transforming cleaning steps (SPEC §2 items 8–10), off by default.
+
+- :func:`resample` — every track on a fixed time grid (seed 003: 20 s) by linear
+  interpolation, never across a gap longer than ``max_gap_s``.
+- :func:`smooth` — moving weighted average (triangular weights) of positions within
+  each track (seed 003 §2.2).
+- :func:`bspline_segments` — seed 001 §4.2: sampling at Δt, segmentation by the quality
+  ratio (multi-target rule: split at long or sharply turning legs; single-target rule:
+  split at long legs), a cubic smoothing spline per segment, and linear interpolation at
+  0.5·Δt where the gap is short and the implied speed plausible. Ours: Δd applies per
+  sampling interval, so a leg across a missed detection is not taken for a jump. Segments of one batch
+  get batch ids ``<batch>/1``, ``<batch>/2`` … with the parent in ``parent_batch`` —
+  this is what splits a batch that holds two ships.
+
+Each returns new points (fresh ``wl_id`` values, extra columns taken from the point
+before) and leaves the choice of what to record to :func:`wakeline.core.clean.clean`,
+which puts every replaced original in the rejected table.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from scipy.interpolate import make_smoothing_spline
+
+from wakeline.core import geo
+from wakeline.core.params import Params, param
+from wakeline.core.schema import seconds_to_time, time_seconds
+from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_origins
+
+
+@dataclass(frozen=True)
+class ResampleParams(Params):
+    enabled: bool = param(False, "", "resample every track to a fixed period (seed 003)")
+    period_s: float = param(
+        20.0, "s", "resampling period", lo=0.001, hi=1e6, source="seed 003 §2.2: 20 s"
+    )
+    max_gap_s: float = param(
+        60.0, "s", "never interpolate across a gap longer than this", lo=0, hi=1e7
+    )
+
+
+@dataclass(frozen=True)
+class SmoothParams(Params):
+    enabled: bool = param(False, "", "moving weighted average of positions (seed 003 §2.2)")
+    window: int = param(5, "points", "window length (odd; triangular weights)", lo=3, hi=1001)
+
+
+@dataclass(frozen=True)
+class BsplineParams(Params):
+    enabled: bool = param(False, "", "seed 001 sampling-segmentation-B-spline-interpolation")
+    sample_s: float = param(
+        21.0, "s", "sampling interval Δt = k·λ", lo=0.001, hi=1e6, source="seed 001 Table 2"
+    )
+    scan_period_s: float = param(
+        10.0, "s", "radar scan period λ (no interpolation below it)", lo=0, hi=1e6
+    )
+    quality_ratio: float = param(
+        0.1,
+        "",
+        "γ: share of abnormal angles below which the multi-target rule applies",
+        lo=0,
+        hi=1,
+        source="seed 001 Table 2",
+    )
+    split_distance_m: float = param(
+        450.0, "m", "Δd: a longer leg starts a new segment", lo=0, hi=1e7, source="seed 001 Table 2"
+    )
+    split_angle_deg: float = param(
+        50.0,
+        "deg",
+        "Δangle: a sharper turn is abnormal (and splits, multi-target rule)",
+        lo=0,
+        hi=180,
+        source="seed 001 Table 2",
+    )
+    interp_max_gap_s: float = param(60.0, "s", "interpolate only across shorter gaps", lo=0, hi=1e7)
+    v_max_kn: float = param(
+        30.0, "kn", "interpolate only where the implied speed is below this", lo=0.1, hi=200
+    )
+
+
+def _new_ids(start: int, n: int) -> np.ndarray:
+    return np.arange(start, start + n, dtype="int64")
+
+
+def _assemble(
+    pts: pd.DataFrame,
+    src_rows: np.ndarray,
+    t: np.ndarray,
+    lon: np.ndarray,
+    lat: np.ndarray,
+    next_id: int,
+    extra: dict | None = None,
+) -> pd.DataFrame:
+    """New points: columns of ``pts`` taken from ``src_rows`` (the point before), with new
+    time and position; speed and course left to be derived."""
+    out = pts.iloc[src_rows].reset_index(drop=True).copy()
+    out["time"] = seconds_to_time(t).to_numpy()
+    out["lon"] = np.round(geo.wrap180(lon), 7)
+    out["lat"] = np.round(lat, 7)
+    if "speed" in out.columns:
+        out["speed"] = np.nan
+    if "course" in out.columns:
+        out["course"] = np.nan
+    if "wl_id" in out.columns:
+        out["wl_id"] = _new_ids(next_id, len(out))
+    for name, values in (extra or {}).items():
+        out[name] = values
+    return out
+
+
+def resample(points: pd.DataFrame, params: ResampleParams, next_id: int = 0) -> pd.DataFrame:
+    """Every track at multiples of ``period_s`` inside its time span, skipping long gaps."""
+    pts, index = sorted_with_index(points)
+    if index.n_tracks == 0:
+        return pts
+    t = time_seconds(pts["time"])
+    period = params.period_s
+    t0 = np.ceil(t[index.starts] / period)
+    t1 = np.floor(t[index.ends - 1] / period)
+    count = np.maximum(t1 - t0 + 1, 0).astype("int64")
+    grid_track = np.repeat(np.arange(index.n_tracks), count)
+    first = np.concatenate([[0], np.cumsum(count)[:-1]])
+    grid_t = (t0[grid_track] + (np.arange(count.sum()) - first[grid_track])) * period
+    # Right neighbour of each grid time within its own track: search in (track, time).
+    base = t.min()
+    span = float(t.max() - base) + 2.0 * period + 1.0
+    key = index.track_of_row * span + (t - base)
+    right = np.searchsorted(key, grid_track * span + (grid_t - base), side="left")
+    right = np.minimum(right, index.ends[grid_track] - 1)
+    exact = t[right] == grid_t
+    left = np.where(exact, right, np.maximum(right - 1, index.starts[grid_track]))
+    gap = t[right] - t[left]
+    keep = exact | ((gap > 0) & (gap <= params.max_gap_s))
+    left, right, grid_t = left[keep], right[keep], grid_t[keep]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        w = np.where(right > left, (grid_t - t[left]) / (t[right] - t[left]), 0.0)
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    new_lon = lon[left] + w * geo.wrap180(lon[right] - lon[left])
+    new_lat = lat[left] + w * (lat[right] - lat[left])
+    return _assemble(pts, left, grid_t, new_lon, new_lat, next_id)
+
+
+def smooth(points: pd.DataFrame, params: SmoothParams) -> pd.DataFrame:
+    """Positions replaced by a triangular-weighted moving average within each track
+    (windows shrink at the track ends). Same rows, same ids."""
+    pts, index = sorted_with_index(points)
+    x, y = local_xy(pts, index)
+    h = int(params.window) // 2
+    track = index.track_of_row
+    n = len(pts)
+    sx = np.zeros(n)
+    sy = np.zeros(n)
+    sw = np.zeros(n)
+    for k in range(-h, h + 1):  # loop over window offsets, vectorized over all points
+        weight = float(h + 1 - abs(k))
+        src = np.arange(n) + k
+        ok = (src >= 0) & (src < n)
+        src = np.clip(src, 0, n - 1)
+        ok &= track[src] == track
+        sx += np.where(ok, weight * x[src], 0.0)
+        sy += np.where(ok, weight * y[src], 0.0)
+        sw += np.where(ok, weight, 0.0)
+    lon0, lat0 = track_origins(pts, index)
+    lon, lat = geo.from_local(sx / sw, sy / sw, lon0[track], lat0[track])
+    out = pts.copy()
+    out["lon"] = np.round(lon, 7)
+    out["lat"] = np.round(lat, 7)
+    return out
+
+
+def greedy_sample(t: np.ndarray, index: TrackIndex, dt: float) -> np.ndarray:
+    """Seed 001's sampling: keep a track's first point, then each point at least ``dt``
+    after the last kept one. Exact, without a loop per point: the kept points are the
+    chain start → next(start) → …, collected by pointer doubling (log₂ n rounds)."""
+    n = len(t)
+    if n == 0:
+        return np.zeros(0, dtype=bool)
+    base = t.min()
+    span = float(t.max() - base) + 2.0 * dt + 1.0
+    key = index.track_of_row * span + (t - base)
+    nxt = np.searchsorted(key, key + dt, side="left")
+    nxt = np.where(nxt < index.ends[index.track_of_row], nxt, n)  # n = end of chain
+    jump = np.append(nxt, n)
+    chain = index.starts.copy()
+    steps = 1
+    while steps < n:
+        chain = np.union1d(chain, jump[chain])
+        jump = jump[jump]
+        steps *= 2
+        if jump[index.starts].min(initial=n) >= n and np.all(jump[chain] == n):
+            break
+    kept = np.zeros(n, dtype=bool)
+    kept[chain[chain < n]] = True
+    return kept
+
+
+def bspline_segments(points: pd.DataFrame, params: BsplineParams, next_id: int = 0) -> pd.DataFrame:
+    """Seed 001 §4.2 on every track; returns the new points (see module docstring)."""
+    pts, index = sorted_with_index(points)
+    if index.n_tracks == 0:
+        return pts.assign(
+            parent_batch=pd.Series(dtype="str"), interpolated=pd.Series(dtype="int64")
+        )
+    t = time_seconds(pts["time"])
+    sampled = np.flatnonzero(greedy_sample(t, index, params.sample_s))
+    s_track = index.track_of_row[sampled]
+    lon = pts["lon"].to_numpy(dtype="float64")[sampled]
+    lat = pts["lat"].to_numpy(dtype="float64")[sampled]
+    ts = t[sampled]
+    m = len(sampled)
+    first = np.ones(m, dtype=bool)
+    first[1:] = s_track[1:] != s_track[:-1]
+    dist = np.full(m, np.nan)
+    course = np.full(m, np.nan)
+    if m > 1:
+        dist[1:], course[1:] = geo.short_legs(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    dist[first] = np.nan
+    course[first] = np.nan
+    # Δd is per sampling interval: a leg spanning several intervals (a missed detection)
+    # may be that many times longer before it counts as a jump (ours; the paper's data
+    # had no gaps inside a batch).
+    leg_dt = np.full(m, np.nan)
+    leg_dt[1:] = ts[1:] - ts[:-1]
+    allowed = params.split_distance_m * np.maximum(1.0, np.nan_to_num(leg_dt) / params.sample_s)
+    jump = np.nan_to_num(dist) > allowed
+    # turn between the leg into the previous point and the leg into this one
+    turn = np.full(m, np.nan)
+    if m > 2:
+        turn[1:] = geo.angle_diff(course[1:], course[:-1])
+    turn[first] = np.nan
+    turn[np.append(False, first[:-1])] = np.nan
+    turn[np.append(False, jump[:-1])] = np.nan  # a turn out of a jump means nothing
+    abnormal = np.nan_to_num(turn) > params.split_angle_deg
+    judged = np.isfinite(turn)
+    ratio = np.bincount(s_track, abnormal, minlength=index.n_tracks) / np.maximum(
+        np.bincount(s_track, judged, minlength=index.n_tracks), 1
+    )
+    multi = ratio[s_track] < params.quality_ratio
+    split = (jump | (multi & abnormal)) & ~first
+    segment = np.cumsum(first | split) - 1  # global segment number
+    seg_first = np.flatnonzero(first | split)
+    seg_no_in_track = segment - segment[np.flatnonzero(first)][s_track]  # 0, 1, 2 … within track
+    n_segments = np.bincount(s_track, first | split, minlength=index.n_tracks)
+
+    # Cubic smoothing spline per segment (GCV-chosen smoothing), in the track's plane.
+    lon0, lat0 = track_origins(pts, index)
+    x, y = geo.to_local(lon, lat, lon0[s_track], lat0[s_track])
+    seg_end = np.append(seg_first[1:], m)
+    for a, b in zip(seg_first, seg_end, strict=True):  # one fit per segment, not per point
+        if b - a >= 5 and np.all(np.diff(ts[a:b]) > 0):
+            tt = ts[a:b] - ts[a]
+            x[a:b] = make_smoothing_spline(tt, x[a:b])(tt)
+            y[a:b] = make_smoothing_spline(tt, y[a:b])(tt)
+    slon, slat = geo.from_local(x, y, lon0[s_track], lat0[s_track])
+
+    # Linear interpolation at 0.5·Δt inside segments, over short gaps at plausible speed.
+    same_seg = np.zeros(m, dtype=bool)
+    same_seg[1:] = segment[1:] == segment[:-1]
+    gap = np.full(m, np.nan)
+    gap[1:] = ts[1:] - ts[:-1]
+    step = 0.5 * params.sample_s
+    with np.errstate(invalid="ignore", divide="ignore"):
+        speed_ok = np.nan_to_num(dist) / gap <= params.v_max_kn * geo.KN_MS
+    fill = same_seg & (gap > params.scan_period_s) & (gap <= params.interp_max_gap_s) & speed_ok
+    fill &= gap > step
+    k_count = np.where(fill, np.ceil(gap / step) - 1, 0).astype("int64")
+    into = np.repeat(np.arange(m), k_count)  # the sampled point each new point leads up to
+    k_first = np.concatenate([[0], np.cumsum(k_count)[:-1]])
+    kk = np.arange(k_count.sum()) - k_first[into] + 1
+    new_t = ts[into - 1] + kk * step
+    w = (new_t - ts[into - 1]) / gap[into]
+    new_lon = slon[into - 1] + w * geo.wrap180(slon[into] - slon[into - 1])
+    new_lat = slat[into - 1] + w * (slat[into] - slat[into - 1])
+
+    rows = np.concatenate([sampled, sampled[into - 1]])
+    seg_all = np.concatenate([segment, segment[into - 1]])
+    track_all = index.track_of_row[rows]
+    parent = pts["batch"].to_numpy()[rows].astype(str)
+    seg_label = np.concatenate([seg_no_in_track, seg_no_in_track[into - 1]]) + 1
+    batch = np.where(
+        n_segments[track_all] > 1,
+        np.char.add(np.char.add(parent, "/"), seg_label.astype(str)),
+        parent,
+    )
+    out = _assemble(
+        pts,
+        rows,
+        np.concatenate([ts, new_t]),
+        np.concatenate([slon, new_lon]),
+        np.concatenate([slat, new_lat]),
+        next_id,
+        extra={
+            "parent_batch": parent,
+            "interpolated": np.concatenate([np.zeros(m, "int64"), np.ones(len(into), "int64")]),
+            "segment": seg_all,
+        },
+    )
+    out["batch"] = batch
+    out, _ = sorted_with_index(out.drop(columns=["segment"]))
+    return out

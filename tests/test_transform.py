@@ -1,0 +1,160 @@
+import numpy as np
+import pandas as pd
+import pytest
+from test_clean import move, straight
+
+from wakeline.core import geo
+from wakeline.core.clean import CleanParams, clean, restore
+from wakeline.core.cli import main
+from wakeline.core.errors import InputError
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import sorted_with_index
+from wakeline.core.transform import (
+    BsplineParams,
+    ResampleParams,
+    SmoothParams,
+    bspline_segments,
+    greedy_sample,
+    resample,
+    smooth,
+)
+
+
+def test_resample_on_a_grid_without_bridging_gaps():
+    df = straight(40, period_s=7.0)
+    df = df.drop(index=range(15, 25)).reset_index(drop=True)  # a 77 s gap
+    df["wl_id"] = np.arange(len(df))
+    out = resample(df, ResampleParams(enabled=True, period_s=10.0, max_gap_s=60.0), next_id=100)
+    t = time_seconds(out["time"]) - time_seconds(df["time"])[0]
+    assert np.allclose(t % 10.0, 0.0)
+    gap_start, gap_end = 14 * 7.0, 25 * 7.0
+    assert not np.any((t > gap_start) & (t < gap_end))
+    # straight line at constant speed: interpolated positions lie on it
+    full = straight(400, period_s=1.0)
+    truth = full.set_index(time_seconds(full["time"]).round(3))
+    for _, row in out.iterrows():
+        ref = truth.loc[round(time_seconds(pd.Series([row.time]))[0], 3)]
+        assert geo.haversine_m(row.lon, row.lat, ref.lon, ref.lat) < 0.05
+    assert out.wl_id.min() == 100
+
+
+def test_smooth_reduces_noise_and_keeps_tracks_apart():
+    rng = np.random.default_rng(0)
+    a = straight(100, batch="a")
+    b = straight(100, batch="b", lon0=123.0)
+    clean_a = a.copy()
+    noisy = pd.concat([a, b], ignore_index=True)
+    noisy[["lon", "lat"]] += rng.normal(0, 2e-4, (200, 2))
+    out = smooth(noisy, SmoothParams(enabled=True, window=5))
+    err_before = geo.haversine_m(noisy.lon[:100], noisy.lat[:100], clean_a.lon, clean_a.lat).mean()
+    err_after = geo.haversine_m(out.lon[:100], out.lat[:100], clean_a.lon, clean_a.lat).mean()
+    assert err_after < 0.65 * err_before
+    assert (
+        geo.haversine_m(out.lon[100], out.lat[100], b.lon[0], b.lat[0]) < 100
+    )  # b is not pulled to a
+    line = smooth(straight(30), SmoothParams(enabled=True, window=7))
+    assert np.allclose(line.lat[3:27], straight(30).lat[3:27], atol=1e-7)
+
+
+def test_greedy_sampling_matches_the_sequential_rule():
+    rng = np.random.default_rng(3)
+    frames = []
+    for k in range(6):
+        t = np.cumsum(rng.exponential(8.0, int(rng.integers(1, 80))))
+        frames.append(
+            pd.DataFrame(
+                {
+                    "sensor": "S",
+                    "batch": str(k),
+                    "time": pd.to_datetime(t, unit="s", utc=True),
+                    "lon": 0.0,
+                    "lat": 0.0,
+                }
+            )
+        )
+    pts, index = sorted_with_index(pd.concat(frames, ignore_index=True))
+    t = time_seconds(pts["time"])
+    got = greedy_sample(t, index, 21.0)
+    ref = np.zeros(len(t), dtype=bool)
+    for a, b in zip(index.starts, index.ends, strict=True):
+        last = None
+        for i in range(a, b):
+            if last is None or t[i] - last >= 21.0:
+                ref[i] = True
+                last = t[i]
+    assert np.array_equal(got, ref)
+
+
+def two_ship_batch():
+    """Batch 77 follows ship A for 20 min, then (radar confusion) ship B 6 km away."""
+    a = straight(120, speed_kn=12, batch="77", course=40.0).assign(truth="A")
+    b = straight(120, speed_kn=14, batch="77", course=300.0, lon0=122.06, lat0=30.01).assign(
+        truth="B"
+    )
+    b["time"] = b["time"] + pd.Timedelta(seconds=1200)
+    return pd.concat([a, b], ignore_index=True)
+
+
+def test_two_ship_batch_is_split_into_two_segments():
+    result = clean(two_ship_batch(), CleanParams().with_settings(["bspline.enabled=true"]))
+    pts = result.points
+    assert sorted(pts.batch.unique()) == ["77/1", "77/2"]
+    assert set(pts.parent_batch) == {"77"}
+    assert pts.groupby("batch").truth.agg(set).to_dict() == {"77/1": {"A"}, "77/2": {"B"}}
+    assert result.report["rules"]["speed"]["breaks"] == 1  # ship B was not thrown away as outliers
+    assert result.report["rules"]["bspline"]["replaced"] == 240
+
+
+def test_bspline_interpolates_at_half_the_sampling_interval():
+    df = straight(60, period_s=10.0)
+    out = bspline_segments(df.drop(index=range(20, 24)), BsplineParams(enabled=True, sample_s=21.0))
+    assert out.batch.unique().tolist() == ["1"]  # one ship, one segment
+    t = time_seconds(out["time"])
+    new = out.interpolated.to_numpy() == 1
+    assert new.any()
+    assert np.allclose(np.diff(t)[np.flatnonzero(new) - 1], 10.5)
+    truth = straight(1200, period_s=0.5)
+    tt = time_seconds(truth["time"])
+    for lon, lat, ti in zip(out.lon[new], out.lat[new], t[new], strict=True):
+        j = np.argmin(np.abs(tt - ti))
+        assert geo.haversine_m(lon, lat, truth.lon[j], truth.lat[j]) < 5.0
+
+
+def test_replaced_points_are_in_the_trail_and_not_restorable_one_by_one():
+    df = straight(50)
+    move(df, 10, 30)
+    result = clean(df, CleanParams().with_settings(["smooth.enabled=true"]))
+    trail = result.rejected[result.rejected.action == "replaced"]
+    assert len(trail) > 0 and set(trail.rule) == {"smooth"}
+    with pytest.raises(InputError, match="cleaning again without that step"):
+        restore(result.points, result.rejected, trail.wl_id[:1])
+
+
+def test_cli_transform_flags(tmp_path, capsys):
+    src = tmp_path / "two.csv"
+    two_ship_batch().to_csv(src, index=False)
+    out = tmp_path / "out.csv"
+    assert main(["clean", str(src), "-o", str(out), "--bspline"]) == 0
+    assert sorted(pd.read_csv(out, dtype={"batch": str}).batch.unique()) == ["77/1", "77/2"]
+    assert (
+        main(
+            [
+                "clean",
+                str(src),
+                "-o",
+                str(out),
+                "--resample",
+                "20",
+                "--max-gap",
+                "30",
+                "--smooth",
+                "3",
+            ]
+        )
+        == 0
+    )
+    res = pd.read_csv(out)
+    assert len(res) < 240
+    assert "resample" in capsys.readouterr().err
+    assert main(["clean", str(src), "-o", str(out), "--smooth", "2"]) == 2
+    assert "smooth.window must be at least 3" in capsys.readouterr().err
