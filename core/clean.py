@@ -262,8 +262,8 @@ def _split_setting(text: str) -> tuple[str, str]:
 class CleanResult:
     """Cleaned points, the reject trail and the report."""
 
-    points: pd.DataFrame  # cleaned, sorted, with point_id
-    rejected: pd.DataFrame  # original rows + point_id, rule, action, params
+    points: pd.DataFrame  # cleaned, sorted, with wl_id
+    rejected: pd.DataFrame  # original rows + wl_id, rule, action, params
     report: dict
 
 
@@ -449,15 +449,17 @@ def _remove(points: pd.DataFrame, params: CleanParams, progress: Progress) -> Cl
         return _clean_block(pts, index, params, progress)
     # Rules are per track: clean blocks of whole tracks on two threads (numpy releases the
     # GIL) and keep every temporary small enough for the allocator to reuse.
-    done = [0]
 
     def run(bounds: tuple[int, int]) -> CleanResult:
-        block, block_index = sorted_with_index(
-            pts.iloc[bounds[0] : bounds[1]].reset_index(drop=True)
+        a, b = bounds
+        k0, k1 = np.searchsorted(index.starts, [a, b])
+        block_index = TrackIndex(
+            index.starts[k0:k1] - a,
+            index.ends[k0:k1] - a,
+            index.track_of_row[a:b] - k0,
+            index.keys.iloc[k0:k1].reset_index(drop=True),
         )
-        result = _clean_block(block, block_index, params, None)
-        done[0] += 1
-        return result
+        return _clean_block(pts.iloc[a:b].reset_index(drop=True), block_index, params, None)
 
     with ThreadPoolExecutor(max_workers=2) as pool:
         futures = [pool.submit(run, b) for b in blocks]
