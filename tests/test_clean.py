@@ -205,7 +205,7 @@ def test_parameter_settings_are_validated():
 def test_cli_clean(tmp_path, capsys):
     src = tmp_path / "f.csv"
     df = faulty_scene(seed=4)
-    df.drop(columns=["fault"]).assign(time=df.time).to_csv(src, index=False)
+    df.drop(columns=["fault"]).to_csv(src, index=False)
     out, rej, rep = tmp_path / "c.csv", tmp_path / "r.csv", tmp_path / "r.json"
     assert (
         main(

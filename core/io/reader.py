@@ -49,6 +49,7 @@ class ImportResult:
 
 
 def empty_quarantine() -> pd.DataFrame:
+    """A quarantine table with no rows (columns ``QUARANTINE_COLUMNS``)."""
     return pd.DataFrame(
         {
             "line": pd.Series([], dtype="int64"),
