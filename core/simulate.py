@@ -416,4 +416,4 @@ def demo_scene(seed: int = 7) -> pd.DataFrame:
     return _scene(rng, ships, list(sensors), SCENE_ORIGIN)
 
 
-KINDS = ("maneuver", "segments", "multisensor", "demo")
+KINDS = ("maneuver", "segments", "multisensor", "bearing", "demo")
