@@ -55,8 +55,12 @@ class BearingParams(Params):
     trend_order: int = param(
         2, "", "polynomial order of the trend fitted on X (1: a line)", lo=0, hi=3
     )
-    observer_turn_deg: float = param(
-        5.0, "deg", "observer course change that marks its own maneuver", lo=0, hi=180
+    observer_dv_ms: float = param(
+        1.0,
+        "m/s",
+        "observer velocity change within 60 s that marks its own maneuver",
+        lo=0,
+        hi=1000,
     )
 
     @property
@@ -151,23 +155,27 @@ def detect_sequence(
 
 
 def observer_maneuvering(
-    t: np.ndarray, obs_lon: np.ndarray, obs_lat: np.ndarray, turn_deg: float, span_s: float = 60.0
+    t: np.ndarray,
+    obs_lon: np.ndarray,
+    obs_lat: np.ndarray,
+    dv_ms: float,
+    span_s: float = 60.0,
+    lag_s: float = 5.0,
 ) -> np.ndarray:
-    """Samples where the observer's course changes by more than ``turn_deg`` within
-    ``span_s`` seconds (its own maneuver)."""
+    """Samples where the observer's velocity vector changed by more than ``dv_ms`` (m/s)
+    within ``span_s`` seconds: its own turns and speed changes. Velocities are taken over
+    ``lag_s`` so position jitter of a slow or docked observer does not count."""
     n = len(t)
     if n < 3 or np.all(np.isnan(obs_lon)):
         return np.zeros(n, dtype=bool)
-    _, course = geo.short_legs(obs_lon[:-1], obs_lat[:-1], obs_lon[1:], obs_lat[1:])
-    dist, _ = geo.short_legs(obs_lon[:-1], obs_lat[:-1], obs_lon[1:], obs_lat[1:])
-    course = np.where(dist > 0.01, course, np.nan)
-    course = pd.Series(course).ffill().bfill().to_numpy()
-    c = np.concatenate([[course[0]], course])
-    # compare with the course span_s earlier
-    back = np.searchsorted(t, t - span_s)
-    change = geo.angle_diff(c, c[back])
-    moving = np.isfinite(change) & (change > turn_deg)
-    return moving
+    x, y = geo.to_local(obs_lon, obs_lat, float(np.nanmean(obs_lon)), float(np.nanmean(obs_lat)))
+    back = np.searchsorted(t, t - lag_s)
+    dt = np.maximum(t - t[back], 1e-9)
+    vx, vy = (x - x[back]) / dt, (y - y[back]) / dt
+    vx[t - t[0] < lag_s] = np.nan  # no velocity before a full lag
+    earlier = np.searchsorted(t, t - span_s)
+    dv = np.hypot(vx - vx[earlier], vy - vy[earlier])
+    return np.isfinite(dv) & (dv > dv_ms)
 
 
 def read_bearings(path) -> pd.DataFrame:
@@ -223,7 +231,7 @@ def detect(bearings: pd.DataFrame, params: BearingParams | None = None) -> pd.Da
                 t,
                 g["obs_lon"].to_numpy(float),
                 g["obs_lat"].to_numpy(float),
-                params.observer_turn_deg,
+                params.observer_dv_ms,
             )
         for d in detect_sequence(t, g["bearing"].to_numpy(float), params, excluded):
             rows.append((str(batch), d.detect_time_s, d.maneuver_time_s, d.z))
@@ -304,7 +312,7 @@ def _metrics(rng, sc, params, runs, turn_deg, sigma_deg, t_m, max_delay_s):
     detected, reaction, error, false_alarm = 0, [], [], 0
     for _ in range(runs):  # Monte Carlo runs; each run is vectorized over boundaries
         t, b, olon, olat = simulate_bearings(rng, sc, turn_deg, t_m, sigma_deg)
-        excl = observer_maneuvering(t, olon, olat, params.observer_turn_deg)
+        excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
         hits = [
             d
             for d in detect_sequence(t, b, params, excl)
@@ -315,7 +323,7 @@ def _metrics(rng, sc, params, runs, turn_deg, sigma_deg, t_m, max_delay_s):
             reaction.append(hits[0].detect_time_s - t_m)
             error.append(abs(hits[0].maneuver_time_s - t_m))
         t, b, olon, olat = simulate_bearings(rng, sc, 0.0, t_m, sigma_deg)
-        excl = observer_maneuvering(t, olon, olat, params.observer_turn_deg)
+        excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
         false_alarm += bool(detect_sequence(t, b, params, excl))
     return {
         "detection": detected / runs,

@@ -32,7 +32,7 @@ def test_auc_matches_brute_force_with_ties():
 def _run(sc: Scenario, turn: float, sigma: float = 0.6, seed: int = 1):
     rng = np.random.default_rng(seed)
     t, b, olon, olat = simulate_bearings(rng, sc, turn, 450.0, sigma)
-    excl = observer_maneuvering(t, olon, olat, BearingParams().observer_turn_deg)
+    excl = observer_maneuvering(t, olon, olat, BearingParams().observer_dv_ms)
     return detect_sequence(t, b, BearingParams(), excl)
 
 
@@ -67,7 +67,7 @@ def test_observer_maneuver_is_excluded():
     sc = SCENARIOS[4]  # the observer turns 60 deg at 120 s
     rng = np.random.default_rng(3)
     t, b, olon, olat = simulate_bearings(rng, sc, 0.0, 450.0, 0.3)
-    excl = observer_maneuvering(t, olon, olat, 5.0)
+    excl = observer_maneuvering(t, olon, olat, 1.0)
     assert excl[122:170].all() and not excl[:100].any() and not excl[300:].any()
     assert detect_sequence(t, b, BearingParams(), excl) == []
 
