@@ -6,7 +6,7 @@ import pytest
 
 from wakeline.core.cli import build_parser, main
 
-SUBCOMMANDS = ("import", "simulate", "maneuvers", "compress", "evaluate", "gui")
+SUBCOMMANDS = ("import", "simulate", "clean", "maneuvers", "compress", "bearing", "evaluate", "gui")
 
 
 @pytest.mark.parametrize("sub", SUBCOMMANDS)
