@@ -180,7 +180,7 @@ def observer_maneuvering(
 
 def read_bearings(path) -> pd.DataFrame:
     """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads)."""
-    from wakeline.core.io.reader import _times
+    from wakeline.core.io.reader import parse_times
     from wakeline.core.io.sniff import sniff
 
     sn = sniff(path)
@@ -205,7 +205,7 @@ def read_bearings(path) -> pd.DataFrame:
         )
     import pyarrow as pa
 
-    ns, ok = _times(pa.chunked_array([pa.array(df["time"].astype(str))]), "auto")
+    ns, ok = parse_times(pa.chunked_array([pa.array(df["time"].astype(str))]), "auto")
     if not ok.all():
         raise InputError(
             f"{path}: unreadable time on line(s) "

@@ -166,7 +166,7 @@ def _epoch_ns(seconds: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return ns, ok
 
 
-def _times(arr: pa.ChunkedArray, kind: str) -> tuple[np.ndarray, np.ndarray]:
+def parse_times(arr: pa.ChunkedArray, kind: str) -> tuple[np.ndarray, np.ndarray]:
     """int64 ns since epoch (UTC) and a validity mask."""
     if pa.types.is_timestamp(arr.type):
         ns = pc.cast(arr, pa.timestamp("ns", arr.type.tz)).cast(pa.int64())
@@ -375,7 +375,7 @@ def _to_canonical(table: pa.Table, sn: Sniff, res: Resolved, bad: _BadRows, sens
         if name in text:
             flag(text[name].codes < 0, f"missing {name}")
     time_col = table[cols["time"]]
-    ns, time_ok = _times(time_col, res.format.time_kind)
+    ns, time_ok = parse_times(time_col, res.format.time_kind)
     if not time_ok.all():
         flag(_trimmed(time_col)[1], "missing time")
         flag(~time_ok, "unparsable time")
