@@ -181,22 +181,9 @@ def observer_maneuvering(
 def read_bearings(path) -> pd.DataFrame:
     """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads)."""
     from wakeline.core.io.reader import parse_times
-    from wakeline.core.io.sniff import sniff
+    from wakeline.core.io.sniff import read_small_table
 
-    sn = sniff(path)
-    missing = [c for c in ("batch", "time", "bearing") if c not in sn.columns]
-    if missing:
-        raise InputError(
-            f"{path}: missing required column {', '.join(missing)}; "
-            f"headers found: {', '.join(sn.columns)}"
-        )
-    df = pd.read_csv(
-        path,
-        sep=sn.delimiter,
-        encoding=sn.encoding,
-        dtype={"batch": "str"},
-        compression="gzip" if sn.compression else None,
-    )
+    df = read_small_table(path, ("batch", "time", "bearing"), "bearings", text_columns=("batch",))
     bearing = pd.to_numeric(df["bearing"], errors="coerce")
     bad = df.index[bearing.isna()]
     if len(bad):

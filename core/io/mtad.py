@@ -10,8 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from wakeline.core.errors import InputError
-from wakeline.core.io.sniff import sniff
+from wakeline.core.io.sniff import read_small_table
 from wakeline.core.schema import time_seconds
 
 ASSOCIATION_COLUMNS = ("t_s", "t_e", "mmsi", "source", "batch")
@@ -19,18 +18,11 @@ ASSOCIATION_COLUMNS = ("t_s", "t_e", "mmsi", "source", "batch")
 
 def read_association_table(path: str | Path) -> pd.DataFrame:
     """Read an MTAD association table; columns as in ``ASSOCIATION_COLUMNS``."""
-    sn = sniff(path)
-    missing = [c for c in ASSOCIATION_COLUMNS if c not in sn.columns]
-    if missing:
-        raise InputError(
-            f"{path}: not an MTAD association table: missing column(s) {', '.join(missing)}; "
-            f"headers found: {', '.join(sn.columns)}"
-        )
-    df = pd.read_csv(
+    df = read_small_table(
         path,
-        sep=sn.delimiter,
-        encoding=sn.encoding,
-        dtype={"mmsi": "str", "source": "str", "batch": "str"},
+        ASSOCIATION_COLUMNS,
+        "an MTAD association table",
+        text_columns=("mmsi", "source", "batch"),
     )
     return df[list(ASSOCIATION_COLUMNS)]
 

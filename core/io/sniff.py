@@ -128,3 +128,27 @@ def sniff(path: str | Path, encoding: str | None = None, delimiter: str | None =
     preview = tuple(tuple(f.strip('"') for f in line.split(delim)) for line in data_lines)
     skip_rows = leading_blank + (1 if has_header else 0)
     return Sniff(path, compression, enc, delim, has_header, skip_rows, columns, preview)
+
+
+def read_small_table(
+    path: str | Path, required: tuple[str, ...], what: str, text_columns: tuple[str, ...] = ()
+):
+    """A small CSV of another layout (bearings, association tables), read with the same
+    detection of encoding, delimiter and compression as track files. Raises
+    :class:`InputError` naming the missing columns and listing the headers found."""
+    import pandas as pd
+
+    sn = sniff(path)
+    missing = [c for c in required if c not in sn.columns]
+    if missing:
+        raise InputError(
+            f"{path}: missing required column {', '.join(missing)} ({what}); "
+            f"headers found: {', '.join(sn.columns)}"
+        )
+    return pd.read_csv(
+        path,
+        sep=sn.delimiter,
+        encoding=sn.encoding,
+        dtype={c: "str" for c in text_columns},
+        compression="gzip" if sn.compression else None,
+    )
