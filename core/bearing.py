@@ -339,30 +339,35 @@ def evaluate_bearing(
         main.append(
             {"scenario": sc.name, **_metrics(rng, sc, params, runs, 50.0, 0.6, t_m, max_delay_s)}
         )
-    noise = []
-    for sigma in (0.1, 0.3, 0.6, 1.0, 1.5, 2.0):
-        for sc in SCENARIOS:
-            noise.append(
+
+    def sweep(label: str, values, turn_of, sigma_of) -> pd.DataFrame:
+        return pd.DataFrame(
+            [
                 {
-                    "sigma_deg": sigma,
+                    label: value,
                     "scenario": sc.name[:1],
-                    **_metrics(rng, sc, params, sweep_runs, 60.0, sigma, t_m, max_delay_s),
+                    **_metrics(
+                        rng,
+                        sc,
+                        params,
+                        sweep_runs,
+                        turn_of(value),
+                        sigma_of(value),
+                        t_m,
+                        max_delay_s,
+                    ),
                 }
-            )
-    turn = []
-    for dc in (10, 30, 50, 70, 90, 110):
-        for sc in SCENARIOS:
-            turn.append(
-                {
-                    "turn_deg": dc,
-                    "scenario": sc.name[:1],
-                    **_metrics(rng, sc, params, sweep_runs, float(dc), 0.6, t_m, max_delay_s),
-                }
-            )
+                for value in values
+                for sc in SCENARIOS
+            ]
+        )
+
+    noise = sweep("sigma_deg", (0.1, 0.3, 0.6, 1.0, 1.5, 2.0), lambda v: 60.0, lambda v: v)
+    turn = sweep("turn_deg", (10, 30, 50, 70, 90, 110), lambda v: float(v), lambda v: 0.6)
     return {
         "main": pd.DataFrame(main),
-        "noise": pd.DataFrame(noise),
-        "turn": pd.DataFrame(turn),
+        "noise": noise,
+        "turn": turn,
         "runs": runs,
         "sweep_runs": sweep_runs,
         "params": params,

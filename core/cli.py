@@ -173,7 +173,7 @@ def _cmd_compress(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_evaluate(args: argparse.Namespace) -> int:  # noqa: C901 - one branch per kind
+def _cmd_evaluate(args: argparse.Namespace) -> int:
     import pandas as pd
 
     from wakeline.core.evaluate import evaluate_maneuver

@@ -214,9 +214,10 @@ def detect(
     t = time_seconds(pts["time"])
     p_track = _p_per_track(t, index, params)
     factor = np.full(len(pts), np.nan)
-    for k, p in enumerate(np.unique(p_track)):  # one pass per distinct p (usually one)
+    distinct = np.unique(p_track)
+    for k, p in enumerate(distinct):  # one pass per distinct p (usually one)
         if progress:
-            progress(k / max(len(np.unique(p_track)), 1), f"maneuver factor, p = {p}")
+            progress(k / len(distinct), f"maneuver factor, p = {p}")
         rows = np.flatnonzero(p_track[index.track_of_row] == p)
         sub = TrackIndex(*_sub_index(index, p_track == p))
         factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p))

@@ -190,7 +190,7 @@ def greedy_sample(t: np.ndarray, index: TrackIndex, dt: float) -> np.ndarray:
         chain = np.union1d(chain, jump[chain])
         jump = jump[jump]
         steps *= 2
-        if jump[index.starts].min(initial=n) >= n and np.all(jump[chain] == n):
+        if np.all(jump[chain] == n):  # every chain member now jumps past its track
             break
     kept = np.zeros(n, dtype=bool)
     kept[chain[chain < n]] = True
