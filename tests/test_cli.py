@@ -6,7 +6,17 @@ import pytest
 
 from wakeline.core.cli import build_parser, main
 
-SUBCOMMANDS = ("import", "simulate", "clean", "maneuvers", "compress", "bearing", "evaluate", "gui")
+SUBCOMMANDS = (
+    "import",
+    "simulate",
+    "clean",
+    "maneuvers",
+    "compress",
+    "bearing",
+    "associate",
+    "evaluate",
+    "gui",
+)
 
 
 @pytest.mark.parametrize("sub", SUBCOMMANDS)

@@ -1,0 +1,596 @@
+"""Single-sensor track association (SPEC §5): segments of one ship, interrupted tracks.
+
+Two problems, one set of building blocks:
+
+- *Segment association* (seed 001 §5): agglomerative clustering of track segments under a
+  combined distance D = (w₁·S′ + w₂·l′)·σ, where S is the area of the polygon made by two
+  segments, l the difference of their linear directional means and σ = −1 when their
+  time spans overlap (such clusters never merge).
+- *Interrupted-track association* (seed 003 §3.1–3.2): old track i ended, new track j of
+  the same sensor started within T_gap; distance from i's end to j's start by position,
+  course and speed, and a one-to-one assignment (greedy as in the paper, or optimal).
+
+Candidate pairs are never a dense n×n matrix: they come from a k-d tree over (position,
+scaled time) of track ends and starts, filtered by the gap and the speed needed to cover
+it. Everything per pair is vectorized; only the final assignment walks the sorted pairs.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from scipy import sparse
+from scipy.sparse.csgraph import min_weight_full_bipartite_matching
+from scipy.spatial import cKDTree
+
+from wakeline.core import geo
+from wakeline.core.errors import InputError
+from wakeline.core.params import Params, param
+from wakeline.core.progress import Progress, null_progress
+from wakeline.core.schema import seconds_to_time
+from wakeline.core.segments import Segments, ecef, segment_stats
+
+SEGMENT_METHODS = ("motion", "area", "dtw", "hausdorff")
+INTERRUPT_METHODS = ("optimal", "greedy")
+
+
+@dataclass(frozen=True)
+class LinkParams(Params):
+    """Which pairs of tracks may be the same ship, and how they are scored."""
+
+    max_gap_s: float = param(
+        720.0,
+        "s",
+        "T_gap: longest gap between an old track's end and a new track's start",
+        1.0,
+        86400.0 * 7,
+        "seed 003 tuned 70 s / 90 s on MTAD; 720 s covers 10 min gaps plus a sampling period",
+    )
+    v_max_kn: float = param(
+        30.0, "kn", "fastest plausible ship: the gap must be coverable at this speed", 1.0, 100.0
+    )
+    position_tol_m: float = param(
+        200.0, "m", "position error allowed on top of v_max when checking reachability", 0.0
+    )
+    end_points: int = param(10, "points", "points of each end fitted for position and motion", 1)
+    alpha: float = param(
+        0.5, "", "α: weight of the position distance", 0.0, 1.0, "seed 003 eq. (position)"
+    )
+    beta: float = param(0.25, "", "β: weight of the course difference", 0.0, 1.0, "seed 003")
+    gamma: float = param(0.25, "", "γ: weight of the speed difference", 0.0, 1.0, "seed 003")
+    predict: bool = param(
+        True,
+        "",
+        "measure position distance to the dead-reckoned end (either end's velocity, one course change in the gap)",
+    )
+    gate: float = param(
+        1.5,
+        "",
+        "largest combined distance accepted (scaled units: 1 = one tolerance on every term)",
+        0.0,
+    )
+    drift_ms: float = param(
+        1.0,
+        "m/s",
+        "growth of the position tolerance with the gap (turns and speed changes unseen)",
+        0.0,
+    )
+    course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
+    speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
+    w1: float = param(
+        0.5, "", "w₁: weight of the area S (segment association)", 0.0, 1.0, "seed 001 Table 2"
+    )
+    w2: float = param(
+        0.5,
+        "",
+        "w₂: weight of the direction term l (segment association)",
+        0.0,
+        1.0,
+        "seed 001 Table 2",
+    )
+    limit: float = param(
+        1.0,
+        "",
+        "segment association (area/dtw/hausdorff): largest min-max normalized D merged; "
+        "with w₁ + w₂ = 1 the default merges while any D > 0 is left, as seed 001 does",
+        0.0,
+        source="seed 001 §5",
+    )
+
+
+@dataclass(frozen=True)
+class Pairs:
+    """Candidate pairs (old ``i`` → new ``j``) with their features, arrays of length m."""
+
+    i: np.ndarray
+    j: np.ndarray
+    gap_s: np.ndarray
+    dist_m: np.ndarray
+    miss_m: np.ndarray
+    dcourse_deg: np.ndarray
+    dspeed_kn: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.i)
+
+    def take(self, keep: np.ndarray) -> "Pairs":
+        return Pairs(*(getattr(self, f)[keep] for f in self.__dataclass_fields__))
+
+
+def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
+    """Pairs of one sensor with ``0 < start(j) − end(i) ≤ max_gap_s`` and reachable at
+    ``v_max_kn`` (+ ``position_tol_m``), found with a k-d tree; features per pair."""
+    n = len(seg)
+    if n < 2:
+        e = np.zeros(0)
+        return Pairs(e.astype("int64"), e.astype("int64"), e, e, e, e, e)
+    v = params.v_max_kn * geo.KN_MS
+    t_ref = float(min(seg.t0.min(), seg.t1.min()))
+    # (x, y, z, v·t, sensor): a reachable pair is within √2·v·T_gap + tol of each other.
+    sensor_far = 4.0 * geo.EARTH_RADIUS_M
+    ends = np.column_stack(
+        [ecef(seg.lon1, seg.lat1), v * (seg.t1 - t_ref), sensor_far * seg.sensor_code]
+    )
+    starts = np.column_stack(
+        [ecef(seg.lon0, seg.lat0), v * (seg.t0 - t_ref), sensor_far * seg.sensor_code]
+    )
+    radius = np.sqrt(2.0) * v * params.max_gap_s + params.position_tol_m
+    near = cKDTree(ends).query_ball_tree(cKDTree(starts), radius)
+    lens = np.fromiter((len(x) for x in near), dtype="int64", count=n)
+    i = np.repeat(np.arange(n), lens)
+    j = (
+        np.fromiter((k for x in near for k in x), dtype="int64", count=int(lens.sum()))
+        if lens.sum()
+        else np.zeros(0, dtype="int64")
+    )
+    gap = seg.t0[j] - seg.t1[i]
+    keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
+    i, j, gap = i[keep], j[keep], gap[keep]
+    dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
+    keep = dist <= v * gap + params.position_tol_m
+    i, j, gap, dist = i[keep], j[keep], gap[keep], dist[keep]
+    px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
+    miss = _miss_one_turn(
+        px, py, seg.vx1[i] * gap, seg.vy1[i] * gap, seg.vx0[j] * gap, seg.vy0[j] * gap
+    )
+    # Course over ground means nothing for a ship at rest: the difference counts in full
+    # only when both ends move at 2 kn or more.
+    slow = np.minimum(seg.speed1_kn[i], seg.speed0_kn[j])
+    dcourse = geo.angle_diff(seg.course1_deg[i], seg.course0_deg[j]) * np.clip(slow / 2.0, 0, 1)
+    dspeed = np.abs(seg.speed1_kn[i] - seg.speed0_kn[j])
+    return Pairs(i, j, gap, dist, miss, dcourse, dspeed)
+
+
+def _miss_one_turn(
+    px: np.ndarray, py: np.ndarray, ax: np.ndarray, ay: np.ndarray, bx: np.ndarray, by: np.ndarray
+) -> np.ndarray:
+    """Distance (m) from the observed displacement p to the displacements possible with one
+    course change in the gap: old velocity for τ, new velocity for the rest, τ ∈ [0, gap].
+
+    Those form the segment from ``b`` (new velocity × gap) to ``a`` (old velocity × gap);
+    a ship that kept its course gives a = b and the plain dead-reckoning miss.
+    """
+    dx, dy = ax - bx, ay - by
+    den = dx * dx + dy * dy
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u = np.where(den > 0, ((px - bx) * dx + (py - by) * dy) / den, 0.0)
+    u = np.clip(np.nan_to_num(u), 0.0, 1.0)
+    return np.hypot(px - (bx + u * dx), py - (by + u * dy))
+
+
+def _minmax(x: np.ndarray) -> np.ndarray:
+    if len(x) == 0:
+        return x
+    lo, hi = float(np.min(x)), float(np.max(x))
+    return (x - lo) / (hi - lo) if hi > lo else np.zeros_like(x)
+
+
+def pair_cost(pairs: Pairs, params: LinkParams, normalize: str = "scaled") -> np.ndarray:
+    """Combined distance α·d′ + β·c′ + γ·v′ of every pair.
+
+    ``normalize="minmax"`` is seed 003's min-max over the candidate set; ``"scaled"``
+    divides each term by a tolerance (position: ``position_tol_m + drift_ms·gap``; course:
+    ``course_tol_deg``; speed: ``speed_tol_kn``), so a cost means the same in every scene
+    and a gate can be absolute. Weights are renormalized to sum to 1.
+    """
+    d = pairs.miss_m if params.predict else pairs.dist_m
+    wsum = params.alpha + params.beta + params.gamma
+    if wsum <= 0:
+        raise InputError("alpha + beta + gamma must be positive")
+    a, b, g = params.alpha / wsum, params.beta / wsum, params.gamma / wsum
+    if normalize == "minmax":
+        terms = (_minmax(d), _minmax(pairs.dcourse_deg), _minmax(pairs.dspeed_kn))
+    else:
+        terms = (
+            d / (params.position_tol_m + params.drift_ms * pairs.gap_s),
+            pairs.dcourse_deg / params.course_tol_deg,
+            pairs.dspeed_kn / params.speed_tol_kn,
+        )
+    # A term that is unknown (no motion at a 1-point end) contributes nothing.
+    return a * terms[0] + b * np.nan_to_num(terms[1]) + g * np.nan_to_num(terms[2])
+
+
+def greedy_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) -> np.ndarray:
+    """Seed 003's greedy minimum: take the smallest cost, blank its row and column, repeat.
+
+    Returns the indices of the chosen pairs (cost ≤ ``gate``)."""
+    order = np.argsort(cost, kind="stable")
+    order = order[cost[order] <= gate]
+    used_i: set[int] = set()
+    used_j: set[int] = set()
+    chosen = []
+    for k, a, b in zip(order.tolist(), i[order].tolist(), j[order].tolist(), strict=True):
+        if a in used_i or b in used_j:
+            continue
+        used_i.add(a)
+        used_j.add(b)
+        chosen.append(k)
+    return np.asarray(chosen, dtype="int64")
+
+
+def optimal_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) -> np.ndarray:
+    """One-to-one assignment of least total cost, leaving a row or column unmatched at the
+    price ``gate``; sparse, so thousands of tracks never build a dense matrix.
+
+    Rows are the old tracks plus one dummy per new track, columns the new tracks plus one
+    dummy per old track: (old i, new j) costs c_ij, (old i, its dummy) and (dummy of j, new j)
+    cost ``gate``/2 each, and (dummy of j, dummy of i) is free for every candidate (i, j),
+    so a pair is worth using when its cost is below the ``gate`` paid by leaving both
+    unmatched.
+    A constant is added to every edge (the matching is full, so it does not change the
+    optimum) to keep zero costs as edges.
+    """
+    ok = cost <= gate
+    idx = np.flatnonzero(ok)
+    if len(idx) == 0:
+        return np.zeros(0, dtype="int64")
+    ui, ri = np.unique(i[idx], return_inverse=True)
+    uj, rj = np.unique(j[idx], return_inverse=True)
+    n_old, n_new = len(ui), len(uj)
+    shift = 1.0
+    half = gate / 2.0  # each side's unmatched price: together a pair is worth keeping if c < gate
+    rows = np.concatenate([ri, np.arange(n_old), n_old + np.arange(n_new), n_old + rj])
+    cols = np.concatenate([rj, n_new + np.arange(n_old), np.arange(n_new), n_new + ri])
+    vals = np.concatenate(
+        [
+            cost[idx] + shift,
+            np.full(n_old, half + shift),
+            np.full(n_new, half + shift),
+            np.full(len(idx), shift),
+        ]
+    )
+    size = n_old + n_new
+    graph = sparse.csr_matrix((vals, (rows, cols)), shape=(size, size))
+    r, c = min_weight_full_bipartite_matching(graph)
+    # Chosen real edges: row r < n_old matched to a column c < n_new.
+    real = (r < n_old) & (c < n_new)
+    lookup = pd.Series(np.arange(len(idx)), index=pd.MultiIndex.from_arrays([ri, rj]))
+    lookup = lookup[~lookup.index.duplicated()]
+    picked = lookup.reindex(pd.MultiIndex.from_arrays([r[real], c[real]])).to_numpy()
+    return idx[picked.astype("int64")]
+
+
+def _components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    from scipy.sparse.csgraph import connected_components
+
+    g = sparse.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
+    return connected_components(g, directed=False)[1]
+
+
+@dataclass(frozen=True)
+class Association:
+    """Result: the pairs chosen, the target of every track and of every point."""
+
+    segments: Segments
+    pairs: Pairs  # all candidates
+    cost: np.ndarray  # per candidate
+    chosen: np.ndarray  # indices into ``pairs``
+    target_of_track: np.ndarray  # per track: target label (str)
+    method: str
+
+    def points(self) -> pd.DataFrame:
+        """Every input row (sorted by track and time) with a ``target`` column."""
+        pts = self.segments.points.copy()
+        pts["target"] = self.target_of_track[self.segments.index.track_of_row]
+        return pts
+
+    def pair_table(self) -> pd.DataFrame:
+        """The chosen pairs: sensor, batch_a (old), batch_b (new), gap_s, distance_m, cost."""
+        keys = self.segments.index.keys
+        p = self.pairs
+        k = self.chosen
+        return pd.DataFrame(
+            {
+                "sensor": keys["sensor"].to_numpy()[p.i[k]],
+                "batch_a": keys["batch"].to_numpy()[p.i[k]],
+                "batch_b": keys["batch"].to_numpy()[p.j[k]],
+                "gap_s": np.round(p.gap_s[k], 3),
+                "distance_m": np.round(p.dist_m[k], 1),
+                "miss_m": np.round(p.miss_m[k], 1),
+                "cost": np.round(self.cost[k], 4),
+            }
+        )
+
+    def report(self) -> dict:
+        n_targets = len(np.unique(self.target_of_track))
+        return {
+            "method": self.method,
+            "tracks": len(self.segments),
+            "candidate_pairs": len(self.pairs),
+            "pairs_chosen": len(self.chosen),
+            "targets": n_targets,
+        }
+
+
+def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndarray:
+    """Target label per track: the batch of the earliest track of its linked group."""
+    comp = _components(len(seg), links_i, links_j)
+    order = np.lexsort((seg.t0, comp))
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = comp[order][1:] != comp[order][:-1]
+    leader = np.empty(comp.max() + 1 if len(comp) else 0, dtype="int64")
+    leader[comp[order][first]] = order[first]
+    return seg.index.keys["batch"].to_numpy().astype(str)[leader[comp]]
+
+
+def associate_interrupted(
+    points: pd.DataFrame,
+    params: LinkParams | None = None,
+    method: str = "optimal",
+    normalize: str = "scaled",
+    progress: Progress | None = None,
+) -> Association:
+    """Join interrupted tracks of each sensor (SPEC §5b).
+
+    ``method``: ``optimal`` (least total cost, sparse) or ``greedy`` (seed 003).
+    ``normalize``: ``scaled`` (absolute tolerances) or ``minmax`` (seed 003).
+    """
+    params = (params or LinkParams()).checked()
+    if method not in INTERRUPT_METHODS:
+        raise InputError(f"unknown method {method!r}; choose one of {', '.join(INTERRUPT_METHODS)}")
+    progress = progress or null_progress
+    progress(0.0, "summarizing tracks")
+    seg = segment_stats(points, params.end_points)
+    progress(0.3, "finding candidate pairs")
+    pairs = candidate_pairs(seg, params)
+    cost = pair_cost(pairs, params, normalize)
+    progress(0.6, f"assigning {len(pairs):,} candidate pairs")
+    assign = optimal_assign if method == "optimal" else greedy_assign
+    chosen = assign(pairs.i, pairs.j, cost, params.gate)
+    targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
+    progress(1.0, f"{len(chosen):,} pairs joined")
+    return Association(seg, pairs, cost, chosen, targets, method)
+
+
+# --------------------------------------------------------------------------------------
+# seed 001: segment association by clustering
+
+
+def polygon_area(seg: Segments, pairs: Pairs) -> np.ndarray:
+    """S_ij (m²): area of the polygon made by the points of i followed by those of j
+    (seed 001 eq. 8), from each track's open shoelace sum, in a frame at i's origin."""
+    i, j = pairs.i, pairs.j
+    lon_o, lat_o = seg.origin_lon[i], seg.origin_lat[i]
+    # j's own frame → i's frame: shift by j's origin seen from i's origin.
+    ojx, ojy = geo.to_local(seg.origin_lon[j], seg.origin_lat[j], lon_o, lat_o)
+    fj = seg.first_xy[j] + np.column_stack([ojx, ojy])
+    lj = seg.last_xy[j] + np.column_stack([ojx, ojy])
+    cross_j = seg.cross[j] + ojx * (lj[:, 1] - fj[:, 1]) - ojy * (lj[:, 0] - fj[:, 0])
+    fi, li = seg.first_xy[i], seg.last_xy[i]
+    total = (
+        seg.cross[i]
+        + (li[:, 0] * fj[:, 1] - li[:, 1] * fj[:, 0])
+        + cross_j
+        + (lj[:, 0] * fi[:, 1] - lj[:, 1] * fi[:, 0])
+    )
+    return 0.5 * np.abs(total)
+
+
+def _resampled(seg: Segments, tracks: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Each listed track as ``m`` points evenly spaced in index (lon, lat), (tracks × m)."""
+    pts = seg.points
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    s = seg.index.starts[tracks]
+    size = seg.index.sizes[tracks]
+    pos = np.round(np.linspace(0.0, 1.0, m)[None, :] * (size - 1)[:, None]).astype("int64")
+    rows = s[:, None] + pos
+    return lon[rows], lat[rows]
+
+
+def shape_distance(seg: Segments, pairs: Pairs, kind: str, m: int = 32) -> np.ndarray:
+    """DTW (mean matched distance) or Hausdorff distance, metres, between i and j of each
+    pair, on ``m`` points of each; vectorized over pairs in blocks."""
+    out = np.empty(len(pairs))
+    block = max(1, 200_000 // (m * m))
+    for a in range(0, len(pairs), block):
+        i = pairs.i[a : a + block]
+        j = pairs.j[a : a + block]
+        lon_i, lat_i = _resampled(seg, i, m)
+        lon_j, lat_j = _resampled(seg, j, m)
+        d = geo.haversine_m(
+            lon_i[:, :, None], lat_i[:, :, None], lon_j[:, None, :], lat_j[:, None, :]
+        )
+        if kind == "hausdorff":
+            out[a : a + block] = np.maximum(d.min(axis=2).max(axis=1), d.min(axis=1).max(axis=1))
+        else:
+            out[a : a + block] = dtw_batch(d) / (2 * m)
+    return out
+
+
+def dtw_batch(cost: np.ndarray) -> np.ndarray:
+    """Dynamic time warping total cost of a batch of cost matrices (b × n × m).
+
+    Anti-diagonal recursion: each diagonal depends only on the two before it, so one
+    numpy step per diagonal serves the whole batch (n + m − 1 steps, no loop per cell).
+    """
+    b, n, m = cost.shape
+    inf = np.inf
+    acc = np.full((b, n + 1, m + 1), inf)
+    acc[:, 0, 0] = 0.0
+    for k in range(2, n + m + 1):  # k = i + j with 1-based i, j
+        i = np.arange(max(1, k - m), min(n, k - 1) + 1)
+        j = k - i
+        best = np.minimum(np.minimum(acc[:, i - 1, j], acc[:, i, j - 1]), acc[:, i - 1, j - 1])
+        acc[:, i, j] = cost[:, i - 1, j - 1] + best
+    return acc[:, n, m]
+
+
+def _cluster(
+    seg: Segments,
+    pairs: Pairs,
+    dist: np.ndarray,
+    limit: float,
+    params: LinkParams,
+) -> np.ndarray:
+    """Agglomerative single-linkage clustering over candidate links with ``dist ≤ limit``,
+    smallest first; clusters whose members overlap in time never merge, and each member
+    must be reachable from the one before it. Returns the chosen link indices."""
+    n = len(seg)
+    parent = np.arange(n)
+    members: dict[int, list[int]] = {}
+    v = params.v_max_kn * geo.KN_MS
+
+    def find(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    order = np.argsort(dist, kind="stable")
+    order = order[dist[order] <= limit]
+    chosen = []
+    t0, t1 = seg.t0, seg.t1
+    for k in order.tolist():
+        ra, rb = find(int(pairs.i[k])), find(int(pairs.j[k]))
+        if ra == rb:
+            continue
+        ma = members.get(ra, [ra])
+        mb = members.get(rb, [rb])
+        merged = sorted(ma + mb, key=lambda s: t0[s])
+        ok = True
+        for p, q in zip(merged[:-1], merged[1:], strict=True):
+            gap = t0[q] - t1[p]
+            if gap <= 0:
+                ok = False
+                break
+            d = float(geo.haversine_m(seg.lon1[p], seg.lat1[p], seg.lon0[q], seg.lat0[q]))
+            if d > v * gap + params.position_tol_m:
+                ok = False
+                break
+        if not ok:
+            continue
+        parent[rb] = ra
+        members[ra] = merged
+        members.pop(rb, None)
+        chosen.append(k)
+    return np.asarray(chosen, dtype="int64")
+
+
+def associate_segments(
+    points: pd.DataFrame,
+    params: LinkParams | None = None,
+    method: str = "motion",
+    progress: Progress | None = None,
+) -> Association:
+    """Cluster the segments of each sensor into targets (SPEC §5a).
+
+    ``method``: ``area`` — seed 001's D = (w₁·S′ + w₂·l′)·σ; ``dtw`` / ``hausdorff`` — its
+    baselines, the shape distance in place of l; ``motion`` — ours: the interrupted-track
+    distance (dead-reckoned position, course, speed; scaled) as D. All share the candidate
+    pairs (non-overlapping, within T_gap, reachable) and the clustering.
+    """
+    params = (params or LinkParams()).checked()
+    if method not in SEGMENT_METHODS:
+        raise InputError(f"unknown method {method!r}; choose one of {', '.join(SEGMENT_METHODS)}")
+    progress = progress or null_progress
+    progress(0.0, "summarizing segments")
+    seg = segment_stats(points, params.end_points)
+    progress(0.2, "finding candidate pairs")
+    pairs = candidate_pairs(seg, params)
+    progress(0.4, f"scoring {len(pairs):,} candidate pairs")
+    if method == "motion":
+        dist = pair_cost(pairs, params, "scaled")
+        limit = params.gate
+    else:
+        area = polygon_area(seg, pairs)
+        if method == "area":
+            second = geo.angle_diff(seg.ldm_deg[pairs.i], seg.ldm_deg[pairs.j])
+        else:
+            second = shape_distance(seg, pairs, method)
+        dist = params.w1 * _minmax(area) + params.w2 * _minmax(second)
+        limit = params.limit
+    progress(0.7, "clustering")
+    chosen = _cluster(seg, pairs, dist, limit, params)
+    targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
+    progress(1.0, f"{len(np.unique(targets)):,} targets from {len(seg):,} segments")
+    return Association(seg, pairs, dist, chosen, targets, method)
+
+
+# --------------------------------------------------------------------------------------
+# seed 003 §4.1: stitching
+
+
+def stitch(assoc: Association, period_s: float | None = None) -> pd.DataFrame:
+    """Join every associated pair into one track and fill its gap (seed 003 §4.1).
+
+    The gap is filled at the sensor's period (the old track's median sampling interval,
+    or ``period_s``) by a cubic Hermite curve between the position and velocity fitted to
+    the old track's last points and the new track's first points (``end_points``, 10 by
+    default), so the filled points leave and join both tracks smoothly. Returns all input
+    rows plus the filled ones: ``batch`` is the target (one id per stitched track), the
+    original batch is kept in ``source_batch``, and ``interpolated`` marks filled rows.
+    """
+    seg = assoc.segments
+    pts = assoc.points()
+    pts["source_batch"] = pts["batch"]
+    pts["batch"] = pts["target"]
+    pts["interpolated"] = False
+    k = assoc.chosen
+    i, j = assoc.pairs.i[k], assoc.pairs.j[k]
+    if len(k) == 0:
+        return pts
+    gap = seg.t0[j] - seg.t1[i]
+    period = np.full(len(k), float(period_s)) if period_s else seg.period_s[i]
+    period = np.where(np.isfinite(period) & (period > 0), period, seg.period_s[j])
+    period = np.where(np.isfinite(period) & (period > 0), period, gap)
+    count = np.maximum(np.ceil(gap / period - 0.5).astype("int64") - 1, 0)
+    owner = np.repeat(np.arange(len(k)), count)
+    step = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count) + 1
+    tau = step * period[owner]  # seconds after the old track's end
+    g = gap[owner]
+    s = tau / g
+    h10 = s**3 - 2 * s**2 + s
+    h01 = -2 * s**3 + 3 * s**2
+    h11 = s**3 - s**2
+    ii, jj = i[owner], j[owner]
+    ex, ey = geo.to_local(seg.lon0[jj], seg.lat0[jj], seg.lon1[ii], seg.lat1[ii])
+    x = h10 * g * seg.vx1[ii] + h01 * ex + h11 * g * seg.vx0[jj]
+    y = h10 * g * seg.vy1[ii] + h01 * ey + h11 * g * seg.vy0[jj]
+    # The old track's end is the frame's origin, so its basis term h00 vanishes.
+    # Velocity from the derivative of the Hermite basis (per second).
+    d10 = (3 * s**2 - 4 * s + 1) * seg.vx1[ii], (3 * s**2 - 4 * s + 1) * seg.vy1[ii]
+    d01 = (-6 * s**2 + 6 * s) / g
+    d11 = 3 * s**2 - 2 * s
+    vx = d10[0] + d01 * ex + d11 * seg.vx0[jj]
+    vy = d10[1] + d01 * ey + d11 * seg.vy0[jj]
+    lon, lat = geo.from_local(x, y, seg.lon1[ii], seg.lat1[ii])
+    keys = seg.index.keys
+    fill = pd.DataFrame(
+        {
+            "sensor": keys["sensor"].to_numpy()[ii],
+            "batch": assoc.target_of_track[ii],
+            "time": seconds_to_time(seg.t1[ii] + tau).dt.round("ms").to_numpy(),
+            "lon": np.round(lon, 6),
+            "lat": np.round(lat, 6),
+            "speed": np.round(np.hypot(vx, vy) / geo.KN_MS, 2),
+            "course": np.round(geo.wrap360(np.degrees(np.arctan2(vx, vy))), 1),
+            "target": assoc.target_of_track[ii],
+            "source_batch": "",
+            "interpolated": True,
+        }
+    )
+    fill["time"] = pd.to_datetime(fill["time"], utc=True).astype(pts["time"].dtype)
+    out = pd.concat([pts, fill], ignore_index=True)
+    out["interpolated"] = out["interpolated"].astype(bool)
+    return out.sort_values(["sensor", "batch", "time"], kind="stable").reset_index(drop=True)

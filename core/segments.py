@@ -1,0 +1,207 @@
+"""Per-track summaries for association: where and how each track starts and ends.
+
+Everything is vectorized over tracks: the first and last ``k`` points of every track are
+gathered into a (tracks × k) block and fitted by a straight line in time at once.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core import geo
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_origins
+
+
+@dataclass(frozen=True)
+class Segments:
+    """One entry per track (``index.keys`` gives sensor and batch), arrays of length n.
+
+    Times in seconds since the epoch; positions in degrees; velocities ``v*`` in m/s east
+    and north from a least-squares line over the first / last ``k`` points; speed in knots
+    and course in degrees at both ends; ``ldm_deg`` the linear directional mean of the
+    legs (seed 001 eq. 11); ``cross`` the open shoelace sum of the track in its own local
+    frame (m², for seed 001's area S).
+    """
+
+    points: pd.DataFrame
+    index: TrackIndex
+    sensor_code: np.ndarray
+    n: np.ndarray
+    t0: np.ndarray
+    t1: np.ndarray
+    lon0: np.ndarray
+    lat0: np.ndarray
+    lon1: np.ndarray
+    lat1: np.ndarray
+    vx0: np.ndarray
+    vy0: np.ndarray
+    vx1: np.ndarray
+    vy1: np.ndarray
+    ldm_deg: np.ndarray
+    cross: np.ndarray
+    origin_lon: np.ndarray
+    origin_lat: np.ndarray
+    first_xy: np.ndarray
+    last_xy: np.ndarray
+    period_s: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.t0)
+
+    @property
+    def speed0_kn(self) -> np.ndarray:
+        return np.hypot(self.vx0, self.vy0) / geo.KN_MS
+
+    @property
+    def speed1_kn(self) -> np.ndarray:
+        return np.hypot(self.vx1, self.vy1) / geo.KN_MS
+
+    @property
+    def course0_deg(self) -> np.ndarray:
+        return geo.wrap360(np.degrees(np.arctan2(self.vx0, self.vy0)))
+
+    @property
+    def course1_deg(self) -> np.ndarray:
+        return geo.wrap360(np.degrees(np.arctan2(self.vx1, self.vy1)))
+
+
+def _end_fit(
+    lon: np.ndarray,
+    lat: np.ndarray,
+    t: np.ndarray,
+    rows: np.ndarray,
+    valid: np.ndarray,
+    anchor: np.ndarray,
+) -> tuple[np.ndarray, ...]:
+    """Line fit x(t), y(t) over ``rows`` (tracks × k, ``valid`` mask) about the anchor row.
+
+    Returns the fitted lon/lat at the anchor's time and the velocity (m/s east, north).
+    """
+    w = valid.astype("float64")
+    x, y = geo.to_local(lon[rows], lat[rows], lon[anchor][:, None], lat[anchor][:, None])
+    tt = t[rows] - t[anchor][:, None]
+    sw = w.sum(axis=1)
+    mt = (w * tt).sum(axis=1) / sw
+    mx = (w * x).sum(axis=1) / sw
+    my = (w * y).sum(axis=1) / sw
+    dt = (tt - mt[:, None]) * w
+    var = (dt * dt).sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        bx = np.where(var > 0, (dt * (x - mx[:, None])).sum(axis=1) / var, 0.0)
+        by = np.where(var > 0, (dt * (y - my[:, None])).sum(axis=1) / var, 0.0)
+    ax = mx - bx * mt
+    ay = my - by * mt
+    flon, flat = geo.from_local(ax, ay, lon[anchor], lat[anchor])
+    return flon, flat, bx, by
+
+
+def _reported_velocity(
+    pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Velocity (m/s east, north) from reported speed/course over ``rows``; NaN where none."""
+    if "speed" not in pts.columns or "course" not in pts.columns:
+        return None
+    sog = pts["speed"].to_numpy(dtype="float64")[rows]
+    cog = pts["course"].to_numpy(dtype="float64")[rows]
+    ok = valid & np.isfinite(sog) & np.isfinite(cog)
+    if not ok.any():
+        return None
+    rad = np.radians(cog)
+    w = ok.astype("float64")
+    sog = np.where(ok, sog, 0.0) * geo.KN_MS
+    with np.errstate(invalid="ignore", divide="ignore"):
+        vx = (w * sog * np.sin(np.where(ok, rad, 0.0))).sum(axis=1) / w.sum(axis=1)
+        vy = (w * sog * np.cos(np.where(ok, rad, 0.0))).sum(axis=1) / w.sum(axis=1)
+    return vx, vy
+
+
+def segment_stats(
+    points: pd.DataFrame, end_points: int = 10, use_reported_motion: bool = True
+) -> Segments:
+    """Summaries of every track of ``points`` (any order) for association.
+
+    ``end_points``: points per end fit. With ``use_reported_motion`` the end velocities
+    come from the reported speed and course (AIS) over the last three points where present.
+    """
+    pts, index = sorted_with_index(points)
+    n_tr = index.n_tracks
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    t = time_seconds(pts["time"])
+    sizes = index.sizes
+    k = max(int(end_points), 1)
+    offs = np.arange(k)
+    valid = offs[None, :] < np.minimum(sizes, k)[:, None]
+    head = np.minimum(index.starts[:, None] + offs, index.ends[:, None] - 1)
+    tail = np.maximum(index.ends[:, None] - 1 - offs, index.starts[:, None])
+    lon0, lat0, vx0, vy0 = _end_fit(lon, lat, t, head, valid, index.starts)
+    lon1, lat1, vx1, vy1 = _end_fit(lon, lat, t, tail, valid, index.ends - 1)
+    if use_reported_motion:
+        few = valid & (offs[None, :] < 3)
+        for rows, (vx, vy) in ((head, (vx0, vy0)), (tail, (vx1, vy1))):
+            rep = _reported_velocity(pts, rows, few)
+            if rep is not None:
+                have = np.isfinite(rep[0])
+                vx[have] = rep[0][have]
+                vy[have] = rep[1][have]
+
+    sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
+    # Legs within tracks: bearing and shoelace terms.
+    same = np.zeros(len(pts), dtype=bool)
+    if len(pts) > 1:
+        same[1:] = index.track_of_row[1:] == index.track_of_row[:-1]
+    legs = np.flatnonzero(same)
+    _, brg = geo.short_legs(lon[legs - 1], lat[legs - 1], lon[legs], lat[legs])
+    moved = (lon[legs] != lon[legs - 1]) | (lat[legs] != lat[legs - 1])
+    rad = np.radians(brg[moved])
+    owner = index.track_of_row[legs[moved]]
+    ldm = geo.wrap360(
+        np.degrees(
+            np.arctan2(np.bincount(owner, np.sin(rad), n_tr), np.bincount(owner, np.cos(rad), n_tr))
+        )
+    )
+    ox, oy = track_origins(pts, index)
+    x, y = local_xy(pts, index)
+    cross = np.bincount(
+        index.track_of_row[legs],
+        x[legs - 1] * y[legs] - y[legs - 1] * x[legs],
+        n_tr,
+    )
+    dt = np.diff(t)[legs - 1] if len(legs) else np.zeros(0)
+    period = (
+        pd.Series(dt).groupby(index.track_of_row[legs]).median().reindex(range(n_tr)).to_numpy()
+    )
+    return Segments(
+        points=pts,
+        index=index,
+        sensor_code=sensor_code,
+        n=sizes,
+        t0=t[index.starts],
+        t1=t[index.ends - 1],
+        lon0=lon0,
+        lat0=lat0,
+        lon1=lon1,
+        lat1=lat1,
+        vx0=vx0,
+        vy0=vy0,
+        vx1=vx1,
+        vy1=vy1,
+        ldm_deg=ldm,
+        cross=cross,
+        origin_lon=ox,
+        origin_lat=oy,
+        first_xy=np.column_stack([x[index.starts], y[index.starts]]),
+        last_xy=np.column_stack([x[index.ends - 1], y[index.ends - 1]]),
+        period_s=period,
+    )
+
+
+def ecef(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
+    """Earth-centred coordinates in metres on the sphere (for spatial indexing)."""
+    lo = np.radians(lon)
+    la = np.radians(lat)
+    return geo.EARTH_RADIUS_M * np.column_stack(
+        [np.cos(la) * np.cos(lo), np.cos(la) * np.sin(lo), np.sin(la)]
+    )

@@ -1,0 +1,269 @@
+"""Single-sensor association (SPEC §5): joining, refusing, clustering, stitching."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from wakeline.core import geo, simulate
+from wakeline.core.associate import (
+    LinkParams,
+    associate_interrupted,
+    associate_segments,
+    candidate_pairs,
+    dtw_batch,
+    greedy_assign,
+    optimal_assign,
+    polygon_area,
+    stitch,
+)
+from wakeline.core.cli import main
+from wakeline.core.errors import InputError
+from wakeline.core.evaluate_association import cluster_scores, score_association
+from wakeline.core.segments import segment_stats
+
+T0 = pd.Timestamp("2024-05-01T00:00:00Z")
+
+
+def track(batch, t_s, x_m, y_m, truth=None, sensor="R1", origin=(122.5, 30.5)):
+    lon, lat = geo.from_local(np.asarray(x_m, float), np.asarray(y_m, float), *origin)
+    return pd.DataFrame(
+        {
+            "sensor": sensor,
+            "batch": batch,
+            "time": T0 + pd.to_timedelta(np.asarray(t_s, float), unit="s"),
+            "lon": lon,
+            "lat": lat,
+            "speed": np.nan,
+            "course": np.nan,
+            "truth": truth or batch,
+        }
+    )
+
+
+def straight(batch, t0, t1, speed=6.0, course=45.0, start=(0.0, 0.0), period=10.0, truth=None):
+    t = np.arange(t0, t1 + 1e-9, period)
+    rad = np.radians(course)
+    return track(
+        batch,
+        t,
+        start[0] + speed * np.sin(rad) * t,
+        start[1] + speed * np.cos(rad) * t,
+        truth=truth,
+    )
+
+
+def test_two_halves_of_one_straight_track_are_joined_by_every_method():
+    df = pd.concat([straight("1", 0, 600, truth="A"), straight("2", 900, 1500, truth="A")])
+    for method in ("optimal", "greedy"):
+        a = associate_interrupted(df, method=method)
+        assert set(a.target_of_track) == {"1"}
+        assert a.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["1", "2"]]
+    for method in ("motion", "area", "dtw", "hausdorff"):
+        a = associate_segments(df, method=method)
+        assert len(set(a.target_of_track)) == 1, method
+
+
+def test_parallel_tracks_side_by_side_are_not_joined():
+    # Same course and speed, 2 km apart: at the same time (overlap) and one after the other.
+    a1 = straight("1", 0, 1200, course=90.0, truth="A")
+    b1 = straight("2", 0, 1200, course=90.0, start=(0.0, 2000.0), truth="B")
+    assert len(set(associate_interrupted(pd.concat([a1, b1])).target_of_track)) == 2
+    a2 = straight("1", 0, 600, course=90.0, truth="A")
+    b2 = straight("2", 900, 1500, course=90.0, start=(0.0, 2000.0), truth="B")
+    both = pd.concat([a2, b2])
+    assert len(set(associate_interrupted(both).target_of_track)) == 2
+    assert len(set(associate_segments(both, method="motion").target_of_track)) == 2
+
+
+def test_time_overlapping_segments_never_merge():
+    # Three pieces of one line; the second overlaps the first by 60 s.
+    df = pd.concat(
+        [
+            straight("1", 0, 600, truth="A"),
+            straight("2", 540, 1000, truth="A"),
+            straight("3", 1300, 1800, truth="A"),
+        ]
+    )
+    seg = segment_stats(df)
+    for method in ("motion", "area", "dtw", "hausdorff"):
+        a = associate_segments(df, method=method)
+        for target in set(a.target_of_track):
+            members = np.flatnonzero(a.target_of_track == target)
+            spans = sorted((seg.t0[m], seg.t1[m]) for m in members)
+            assert all(s1[1] < s2[0] for s1, s2 in zip(spans[:-1], spans[1:], strict=True))
+    pairs = candidate_pairs(seg, LinkParams())
+    assert all(seg.t0[j] > seg.t1[i] for i, j in zip(pairs.i, pairs.j, strict=True))
+
+
+def test_unreachable_gap_is_never_a_candidate():
+    # 20 km in 60 s would need 650 kn.
+    df = pd.concat(
+        [straight("1", 0, 600, truth="A"), straight("2", 660, 1200, start=(20_000.0, 0.0))]
+    )
+    assert len(candidate_pairs(segment_stats(df), LinkParams())) == 0
+    assert len(set(associate_interrupted(df).target_of_track)) == 2
+
+
+def test_greedy_and_optimal_agree_on_easy_cases():
+    i = np.array([0, 1, 2])
+    j = np.array([10, 11, 12])
+    cost = np.array([0.1, 0.2, 0.3])
+    assert sorted(greedy_assign(i, j, cost, 1.0)) == sorted(optimal_assign(i, j, cost, 1.0))
+    df = simulate.segments_scene(seed=1)
+    a = associate_interrupted(df, method="greedy")
+    b = associate_interrupted(df, method="optimal")
+    assert sorted(a.chosen) == sorted(b.chosen)
+
+
+def test_optimal_wins_where_greedy_fails():
+    # old a, b; new x, y. Greedy takes a-x (cheapest) and strands b; optimal pairs a-y, b-x.
+    i = np.array([0, 0, 1])
+    j = np.array([0, 1, 0])
+    cost = np.array([1.0, 1.1, 1.2])
+    assert greedy_assign(i, j, cost, 3.0).tolist() == [0]
+    assert sorted(optimal_assign(i, j, cost, 3.0).tolist()) == [1, 2]
+    # Leaving both unmatched costs the gate: a pair costing more than it is never used.
+    assert optimal_assign(np.array([0]), np.array([0]), np.array([2.0]), 1.5).tolist() == []
+
+
+def test_optimal_beats_greedy_on_a_very_dense_scene():
+    df = simulate.segments_scene(seed=0, n_ships=250, area_km=20.0, sigma_m=60.0)
+    g = score_association(associate_interrupted(df, method="greedy"))
+    o = score_association(associate_interrupted(df, method="optimal"))
+    assert o["p_ca"] >= g["p_ca"] and o["p_fa"] <= g["p_fa"]
+    assert o["p_ca"] >= 0.95 and o["p_fa"] <= 0.05
+
+
+@pytest.mark.parametrize(("ships", "area", "f1"), [(20, 60.0, 0.9), (80, 20.0, 0.76)])
+def test_segment_association_meets_the_issue_targets(ships, area, f1):
+    for seed in range(2):
+        df = simulate.segments_scene(seed=seed, n_ships=ships, area_km=area)
+        sc = score_association(associate_segments(df))
+        assert sc["f1"] >= f1
+        sc = score_association(associate_interrupted(df))
+        assert sc["p_ca"] >= 0.95 and sc["p_fa"] <= 0.05
+
+
+def test_polygon_area_is_zero_on_a_line_and_right_for_a_box():
+    line = pd.concat([straight("1", 0, 300), straight("2", 400, 700)])
+    seg = segment_stats(line)
+    pairs = candidate_pairs(seg, LinkParams())
+    # 4.2 km of line: the frames of the two tracks differ by under a metre there.
+    assert polygon_area(seg, pairs)[0] < 1000.0
+    # i goes east 1 km, j (later) goes west 1 km, 500 m further north: a 1 km × 500 m box.
+    box = pd.concat(
+        [
+            track("1", [0, 100], [0, 1000], [0, 0]),
+            track("2", [200, 300], [1000, 0], [500, 500]),
+        ]
+    )
+    seg = segment_stats(box)
+    from wakeline.core.associate import Pairs
+
+    p = Pairs(*(np.array([v]) for v in (0, 1, 100.0, 0.0, 0.0, 0.0, 0.0)))
+    assert polygon_area(seg, p)[0] == pytest.approx(500_000.0, rel=1e-3)
+
+
+def test_dtw_batch_matches_the_textbook_recursion():
+    rng = np.random.default_rng(0)
+    cost = rng.random((3, 5, 7))
+
+    def slow(c):
+        n, m = c.shape
+        acc = np.full((n + 1, m + 1), np.inf)
+        acc[0, 0] = 0
+        for a in range(1, n + 1):
+            for b in range(1, m + 1):
+                acc[a, b] = c[a - 1, b - 1] + min(acc[a - 1, b], acc[a, b - 1], acc[a - 1, b - 1])
+        return acc[n, m]
+
+    np.testing.assert_allclose(dtw_batch(cost), [slow(c) for c in cost])
+
+
+def test_stitching_fills_the_gap_at_the_sensor_period():
+    df = pd.concat([straight("7", 0, 600, truth="A"), straight("9", 900, 1500, truth="A")])
+    out = stitch(associate_interrupted(df))
+    assert set(out["batch"]) == {"7"}
+    assert set(out.loc[~out["interpolated"], "source_batch"]) == {"7", "9"}
+    filled = out[out["interpolated"]]
+    t = (filled["time"] - T0).dt.total_seconds().to_numpy()
+    np.testing.assert_allclose(t, np.arange(610, 900, 10.0))
+    # On the straight line, at the true position of each time.
+    lon, lat = geo.from_local(6 * np.sin(np.pi / 4) * t, 6 * np.cos(np.pi / 4) * t, 122.5, 30.5)
+    err = geo.haversine_m(filled["lon"], filled["lat"], lon, lat)
+    assert err.max() < 5.0
+    assert np.allclose(filled["speed"], 6 / geo.KN_MS, atol=0.1)
+    assert (out["time"].diff().dt.total_seconds().iloc[1:] > 0).all()
+
+
+def test_cluster_scores_follow_seed001_definitions():
+    labels = np.array(["a", "a", "b", "c", "c"])
+    truth = np.array(["x", "x", "y", "y", "z"])
+    sc = cluster_scores(labels, truth)
+    # Cluster a = ship x exactly; b is part of y; c mixes y and z.
+    assert sc["precision"] == pytest.approx(1 / 3)
+    assert sc["recall"] == pytest.approx(1 / 3)
+    assert sc["pair_precision"] == pytest.approx(1 / 2)
+    assert sc["pair_recall"] == pytest.approx(1 / 2)
+
+
+def test_degenerate_inputs():
+    one = straight("1", 0, 600)
+    assert associate_interrupted(one).target_of_track.tolist() == ["1"]
+    single_points = pd.concat([straight(str(k), 100 * k, 100 * k) for k in range(4)])
+    a = associate_interrupted(single_points)
+    assert len(a.target_of_track) == 4
+    with pytest.raises(InputError, match="unknown method"):
+        associate_interrupted(one, method="magic")
+    with pytest.raises(InputError, match="max_gap_s"):
+        associate_interrupted(one, LinkParams(max_gap_s=-1))
+
+
+def test_sensors_are_never_joined_to_each_other():
+    df = pd.concat([straight("1", 0, 600), straight("2", 900, 1500).assign(sensor="R2")])
+    out = associate_interrupted(df).points()
+    assert len(out.groupby(["sensor", "target"])) == 2
+
+
+def test_cli_associate_round_trip(tmp_path, capsys):
+    src = tmp_path / "seg.csv"
+    assert main(["simulate", "segments", "-o", str(src), "--seed", "2"]) == 0
+    out, pairs = tmp_path / "out.csv", tmp_path / "pairs.csv"
+    assert main(["associate", str(src), "-o", str(out), "--pairs", str(pairs)]) == 0
+    res = pd.read_csv(out, dtype={"batch": str, "target": str})
+    assert len(res) == len(pd.read_csv(src))
+    assert res.groupby("target")["truth"].nunique().max() == 1
+    assert list(pd.read_csv(pairs).columns[:3]) == ["sensor", "batch_a", "batch_b"]
+    assert "targets" in capsys.readouterr().err
+    out2 = tmp_path / "stitched.csv"
+    assert main(["associate", str(src), "-o", str(out2), "--stitch", "--set", "max_gap_s=900"]) == 0
+    st = pd.read_csv(out2)
+    assert st["interpolated"].any() and len(st) > len(res)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--set", "gate=abc"], "cannot read 'abc'"),
+        (["--set", "nonsense=1"], "unknown parameter"),
+        (["--set", "gate"], "NAME=VALUE"),
+        (["--set", "v_max_kn=0"], "v_max_kn must be at least"),
+        (["--mode", "segments", "--method", "greedy"], "--mode segments takes"),
+        (["--method", "area"], "--mode interrupted takes"),
+    ],
+)
+def test_cli_associate_bad_input(tmp_path, capsys, args, message):
+    src = tmp_path / "seg.csv"
+    straight("1", 0, 600).to_csv(src, index=False)
+    out = tmp_path / "out.csv"
+    assert main(["associate", str(src), "-o", str(out), *args]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_cli_associate_missing_and_empty_files(tmp_path, capsys):
+    assert main(["associate", str(tmp_path / "nope.csv"), "-o", str(tmp_path / "o.csv")]) == 2
+    empty = tmp_path / "empty.csv"
+    empty.write_text("")
+    assert main(["associate", str(empty), "-o", str(tmp_path / "o.csv")]) == 2
+    assert capsys.readouterr().err.count("wakeline: error") == 2
