@@ -380,16 +380,64 @@ DEFAULT_SENSORS = (
 )
 
 
+def lane_ships(
+    rng: np.random.Generator,
+    n_ships: int,
+    n_lanes: int,
+    area_m: float,
+    duration_s: float,
+    width_m: float = 600.0,
+    speed_kn: tuple[float, float] = (8.0, 20.0),
+) -> list[Ship]:
+    """Ships in traffic lanes: each lane a straight line through the area; ships on it
+    within ``width_m`` of its axis, its course ± 1°, at their own speeds (so they overtake
+    and follow each other), both directions."""
+    lanes = [
+        (float(rng.uniform(0, 180)), float(rng.uniform(-area_m / 4, area_m / 4)))
+        for _ in range(n_lanes)
+    ]
+    ships = []
+    for k in range(n_ships):
+        course, offset = lanes[int(rng.integers(n_lanes))]
+        if rng.random() < 0.5:
+            course += 180.0
+        life = rng.uniform(0.5, 1.0) * duration_s
+        t_start = rng.uniform(0.0, duration_s - life)
+        along = rng.uniform(-area_m / 2, area_m / 2)
+        across = offset + rng.uniform(-width_m / 2, width_m / 2)
+        rad = np.radians(course)
+        ships.append(
+            Ship(
+                name=f"T{k + 1:03d}",
+                x0=float(along * np.sin(rad) + across * np.cos(rad)),
+                y0=float(along * np.cos(rad) - across * np.sin(rad)),
+                speed_ms=float(rng.uniform(*speed_kn)) * geo.KN_MS,
+                course_deg=float(geo.wrap360(course + rng.normal(0.0, 1.0))),
+                t_start=float(t_start),
+                t_end=float(t_start + life),
+            )
+        )
+    return ships
+
+
 def multisensor_scene(
     seed: int = 0,
     n_ships: int = 10,
     area_km: float = 60.0,
     duration_s: float = 3600.0,
     sensors: tuple[SensorSpec, ...] = DEFAULT_SENSORS,
+    lanes: int = 0,
 ) -> pd.DataFrame:
-    """The same ships seen by several sensors (default: radar R1 and AIS)."""
+    """The same ships seen by several sensors (default: radar R1 and AIS).
+
+    With ``lanes`` > 0 the ships sail in that many traffic lanes (600 m wide) instead of
+    anywhere: many ships then follow one another closely, the hard case for association.
+    """
     rng = np.random.default_rng(seed)
-    ships = random_ships(rng, n_ships, area_km * 1000.0, duration_s)
+    if lanes > 0:
+        ships = lane_ships(rng, n_ships, lanes, area_km * 1000.0, duration_s)
+    else:
+        ships = random_ships(rng, n_ships, area_km * 1000.0, duration_s)
     return _scene(rng, ships, list(sensors), SCENE_ORIGIN)
 
 

@@ -243,3 +243,45 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     out["length_m"] = length
     out["mean_speed_kn"] = mean_speed
     return out
+
+
+def interp_positions(
+    df: pd.DataFrame,
+    index: TrackIndex,
+    track: np.ndarray,
+    times_s: np.ndarray,
+    max_gap_s: float | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Positions of tracks ``track[k]`` at times ``times_s[k]`` (seconds), linear in time.
+
+    ``df`` is sorted with ``index``. Returns lon, lat (degrees; longitude differences are
+    wrapped, so tracks across 180° interpolate the short way) and a mask of queries inside
+    their track's time span (outside, the nearest end is returned) and, with ``max_gap_s``,
+    between two points at most that far apart in time. Vectorized over all
+    queries: one ``searchsorted`` on a (track, time) key.
+    """
+    track = np.asarray(track, dtype="int64")
+    times_s = np.asarray(times_s, dtype="float64")
+    t = time_seconds(df["time"])
+    lon = df["lon"].to_numpy(dtype="float64")
+    lat = df["lat"].to_numpy(dtype="float64")
+    if len(track) == 0:
+        e = np.zeros(0)
+        return e, e, e.astype(bool)
+    base = float(min(t.min(), times_s.min()))
+    span = float(max(t.max(), times_s.max()) - base) + 1.0
+    key = index.track_of_row * span + (t - base)
+    q = track * span + (times_s - base)
+    hi = np.searchsorted(key, q, side="left")
+    hi = np.clip(hi, index.starts[track], index.ends[track] - 1)
+    lo = np.maximum(hi - 1, index.starts[track])
+    dt = t[hi] - t[lo]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = np.where(dt > 0, (times_s - t[lo]) / dt, 0.0)
+    f = np.clip(f, 0.0, 1.0)
+    out_lon = geo.wrap180(lon[lo] + geo.wrap180(lon[hi] - lon[lo]) * f)
+    out_lat = lat[lo] + (lat[hi] - lat[lo]) * f
+    inside = (times_s >= t[index.starts[track]]) & (times_s <= t[index.ends[track] - 1])
+    if max_gap_s is not None:
+        inside &= dt <= max_gap_s
+    return out_lon, out_lat, inside

@@ -1,0 +1,565 @@
+"""Multi-sensor association and weighted fusion (SPEC §6; seed 003 §3.3, §4.2).
+
+Association pairs the tracks of different sensors that saw one ship. Candidates come from
+*probes*: every track's position on a shared time grid (``probe_s``), put in a k-d tree
+over (position, grid time), so only tracks that were near each other at some moment are
+ever compared — no n₁×n₂ matrix. Candidates must overlap in time and have comparable point
+counts over the common span (seed 003's ratio gate); their distance is either the mean
+*synchronized* distance (one track interpolated at the other's times over the common
+span) or *DTW* over positions (seed 003), and a one-to-one assignment (optimal or greedy)
+with a maximum distance decides.
+
+Fusion turns each target's member tracks into one track:
+
+- weights (seed 003's formulas are garbled in the text; this is our derivation): member k
+  gets F1_k ∝ 1 / var(sampling intervals) and F2_k ∝ 1 / noise², where noise is the RMS
+  distance between the raw and the smoothed track; each is normalized to sum to 1 over
+  the members and w_k = α·F1_k + β·F2_k (α + β = 1). F2 alone is the inverse-variance
+  weighting that minimizes the variance of an average of independent errors; F1 lets an
+  operator favour a sensor that reports regularly. Lower variance and lower noise → larger
+  weight, and the weights always sum to 1;
+- where several members cover a time: the time base is the highest-weight member's
+  timestamps, the others are interpolated there, and the positions averaged with their
+  weights (renormalized over the members covering that time);
+- where one member covers it: that member's points;
+- at each junction between the two: seed 003's linear-extrapolation blend — the fused
+  part's last 3 points are extrapolated to the next 3 single-sensor times, and the 6
+  points are blended with fused weights 5/5 … 0/5 against the single sensor's 0/5 … 5/5
+  (mirrored where a fused part begins), so the fused track has no jump.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from scipy.spatial import cKDTree
+
+from wakeline.core import geo
+from wakeline.core.associate import dtw_batch, greedy_assign, optimal_assign
+from wakeline.core.errors import InputError
+from wakeline.core.params import Params, param
+from wakeline.core.progress import Progress, null_progress
+from wakeline.core.schema import time_seconds
+from wakeline.core.segments import ecef
+from wakeline.core.tracks import (
+    TrackIndex,
+    derive_motion,
+    interp_positions,
+    sorted_with_index,
+    track_index,
+)
+
+DISTANCES = ("sync", "dtw")
+ASSIGNMENTS = ("optimal", "greedy")
+
+
+@dataclass(frozen=True)
+class FuseParams(Params):
+    """Multi-sensor association and fusion."""
+
+    max_distance_m: float = param(
+        1000.0, "m", "largest track distance accepted as one ship (the assignment gate)", 1.0
+    )
+    min_overlap_s: float = param(
+        60.0, "s", "shortest common time span of two tracks to compare them", 0.0
+    )
+    count_ratio_max: float = param(
+        4.0,
+        "",
+        "largest ratio of point counts (larger / smaller) over the common span",
+        1.0,
+        source="seed 003 §3.3 (its threshold value is in a lost table)",
+    )
+    probe_s: float = param(
+        60.0, "s", "spacing of the probe grid that finds tracks near each other", 1.0
+    )
+    dtw_points: int = param(48, "points", "points per track compared by DTW", 4, 512)
+    max_interp_s: float = param(
+        600.0,
+        "s",
+        "longest time between two points of a track across which it is interpolated "
+        "(a longer gap says nothing about where the ship was)",
+        1.0,
+    )
+    alpha: float = param(
+        0.2,
+        "",
+        "α: weight of sampling regularity (1/variance of intervals) in the fusion weight",
+        0.0,
+        1.0,
+        "seed 003 §4.2",
+    )
+    beta: float = param(
+        0.8,
+        "",
+        "β: weight of low noise (1/noise², noise = RMS raw − smoothed) in the fusion weight",
+        0.0,
+        1.0,
+        "seed 003 §4.2",
+    )
+    smooth_window: int = param(5, "points", "moving-average window of the noise estimate", 3, 51)
+    blend_points: int = param(
+        3, "points", "points extrapolated and blended at each junction", 0, 20, "seed 003 §4.2"
+    )
+    blend_straddle: bool = param(
+        False,
+        "",
+        "blend window across the junction (seed 003) instead of on the single-sensor side",
+    )
+
+
+@dataclass(frozen=True)
+class SensorAssociation:
+    """Candidate pairs of tracks of different sensors, the chosen ones and the targets."""
+
+    points: pd.DataFrame
+    index: TrackIndex
+    a: np.ndarray  # track numbers (rows of index.keys)
+    b: np.ndarray
+    distance_m: np.ndarray
+    overlap_s: np.ndarray
+    count_ratio: np.ndarray
+    chosen: np.ndarray
+    target_of_track: np.ndarray
+    distance: str
+    method: str
+
+    def pair_table(self) -> pd.DataFrame:
+        """Chosen pairs: sensor_a, batch_a, sensor_b, batch_b, distance (m), overlap (s)."""
+        keys = self.index.keys
+        k = self.chosen
+        sa, ba = keys["sensor"].to_numpy(), keys["batch"].to_numpy()
+        return pd.DataFrame(
+            {
+                "sensor_a": sa[self.a[k]],
+                "batch_a": ba[self.a[k]],
+                "sensor_b": sa[self.b[k]],
+                "batch_b": ba[self.b[k]],
+                "distance": np.round(self.distance_m[k], 1),
+                "overlap_s": np.round(self.overlap_s[k], 1),
+            }
+        )
+
+    def report(self) -> dict:
+        return {
+            "distance": self.distance,
+            "method": self.method,
+            "tracks": self.index.n_tracks,
+            "sensors": int(self.index.keys["sensor"].nunique()),
+            "candidate_pairs": len(self.a),
+            "pairs_chosen": len(self.chosen),
+            "targets": len(np.unique(self.target_of_track)),
+        }
+
+
+def _spans(pts: pd.DataFrame, index: TrackIndex) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    t = time_seconds(pts["time"])
+    return t, t[index.starts], t[index.ends - 1]
+
+
+def _probe_pairs(
+    pts: pd.DataFrame, index: TrackIndex, t0: np.ndarray, t1: np.ndarray, params: FuseParams
+) -> tuple[np.ndarray, np.ndarray]:
+    """Track pairs of different sensors within ``max_distance_m`` at some probe time."""
+    p = params.probe_s
+    g0 = np.ceil((t0 - p / 2) / p).astype("int64")
+    g1 = np.floor((t1 + p / 2) / p).astype("int64")
+    count = np.maximum(g1 - g0 + 1, 1)
+    track = np.repeat(np.arange(index.n_tracks), count)
+    grid = np.repeat(g0, count) + (
+        np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+    )
+    lon, lat, ok = interp_positions(pts, index, track, grid * p, params.max_interp_s)
+    # A probe just outside the span (within half a grid step) stands for the track's end.
+    near_end = (grid * p >= t0[track] - p) & (grid * p <= t1[track] + p)
+    ok |= near_end & ((grid * p < t0[track]) | (grid * p > t1[track]))
+    track, grid, lon, lat = track[ok], grid[ok], lon[ok], lat[ok]
+    sensor = pd.factorize(index.keys["sensor"])[0][track]
+    # Grid times far apart in the 4th coordinate: only equal times can be within the radius.
+    far = 10.0 * (params.max_distance_m + 1.0)
+    coords = np.column_stack([ecef(lon, lat), (grid - grid.min()) * far])
+    pairs = []
+    for s in np.unique(sensor):
+        for r in np.unique(sensor):
+            if r <= s:
+                continue
+            ia, ib = np.flatnonzero(sensor == s), np.flatnonzero(sensor == r)
+            near = cKDTree(coords[ia]).query_ball_tree(cKDTree(coords[ib]), params.max_distance_m)
+            lens = np.fromiter((len(x) for x in near), dtype="int64", count=len(ia))
+            if lens.sum() == 0:
+                continue
+            pa = np.repeat(ia, lens)
+            pb = ib[np.fromiter((k for x in near for k in x), dtype="int64", count=int(lens.sum()))]
+            pairs.append(np.column_stack([track[pa], track[pb]]))
+    if not pairs:
+        e = np.zeros(0, dtype="int64")
+        return e, e
+    both = np.unique(np.concatenate(pairs), axis=0)
+    return both[:, 0], both[:, 1]
+
+
+def _count_in(t: np.ndarray, index: TrackIndex, track: np.ndarray, lo: np.ndarray, hi: np.ndarray):
+    """Points of each listed track with time in [lo, hi]."""
+    base = float(t.min())
+    span = float(t.max() - base) + 1.0
+    key = index.track_of_row * span + (t - base)
+    a = np.searchsorted(key, track * span + (lo - base), side="left")
+    b = np.searchsorted(key, track * span + (hi - base), side="right")
+    return b - a, a
+
+
+def _sync_distance(pts, index, t, base, other, first_row, count, max_gap_s: float) -> np.ndarray:
+    """Mean distance (m) from the base track's points in the common span to the other track
+    interpolated at their times; points in a gap longer than ``max_gap_s`` of the other
+    track do not count, and a pair with fewer than two usable points gets infinity."""
+    owner = np.repeat(np.arange(len(base)), count)
+    rows = np.repeat(first_row, count) + (
+        np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+    )
+    lon, lat, ok = interp_positions(pts, index, other[owner], t[rows], max_gap_s)
+    d = geo.haversine_m(pts["lon"].to_numpy()[rows], pts["lat"].to_numpy()[rows], lon, lat)
+    used = np.bincount(owner[ok], minlength=len(base))
+    total = np.bincount(owner[ok], d[ok], len(base))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(used >= 2, total / np.maximum(used, 1), np.inf)
+
+
+def _dtw_distance(pts, index, a, b, na, ra, nb, rb, m: int) -> np.ndarray:
+    """DTW over the positions of both tracks' own points within the common span (seed
+    003: the order of the points, not their times), each thinned to at most ``m`` points
+    evenly by index; mean matched distance in metres; blocks of pairs at a time."""
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    out = np.empty(len(a))
+    frac = np.linspace(0.0, 1.0, m)
+    block = max(1, 400_000 // (m * m))
+    for s in range(0, len(a), block):
+        sl = slice(s, s + block)
+        rows_a = ra[sl, None] + np.round(frac[None, :] * (na[sl] - 1)[:, None]).astype("int64")
+        rows_b = rb[sl, None] + np.round(frac[None, :] * (nb[sl] - 1)[:, None]).astype("int64")
+        cost = geo.haversine_m(
+            lon[rows_a][:, :, None],
+            lat[rows_a][:, :, None],
+            lon[rows_b][:, None, :],
+            lat[rows_b][:, None, :],
+        )
+        out[sl] = dtw_batch(cost) / m
+    return out
+
+
+def associate_sensors(
+    points: pd.DataFrame,
+    params: FuseParams | None = None,
+    distance: str = "sync",
+    method: str = "optimal",
+    progress: Progress | None = None,
+) -> SensorAssociation:
+    """Pair the tracks of different sensors that saw the same ship (SPEC §6).
+
+    ``distance``: ``sync`` (mean synchronized distance) or ``dtw``; ``method``:
+    ``optimal`` or ``greedy`` (seed 003). Returns the pairs and a target per track
+    (unpaired tracks are targets of their own).
+    """
+    params = (params or FuseParams()).checked()
+    if distance not in DISTANCES:
+        raise InputError(f"unknown distance {distance!r}; choose one of {', '.join(DISTANCES)}")
+    if method not in ASSIGNMENTS:
+        raise InputError(f"unknown method {method!r}; choose one of {', '.join(ASSIGNMENTS)}")
+    progress = progress or null_progress
+    pts, index = sorted_with_index(points)
+    sensors = sorted(index.keys["sensor"].unique())
+    if len(sensors) < 2:
+        raise InputError(
+            "multi-sensor association needs tracks of at least two sensors; "
+            f"found {', '.join(sensors) or 'none'}"
+        )
+    progress(0.0, "probing tracks")
+    t, t0, t1 = _spans(pts, index)
+    a, b = _probe_pairs(pts, index, t0, t1, params)
+    lo = np.maximum(t0[a], t0[b])
+    hi = np.minimum(t1[a], t1[b])
+    overlap = hi - lo
+    keep = overlap >= max(params.min_overlap_s, 0.0)
+    keep &= overlap > 0
+    a, b, lo, hi, overlap = a[keep], b[keep], lo[keep], hi[keep], overlap[keep]
+    na, ra = _count_in(t, index, a, lo, hi)
+    nb, rb = _count_in(t, index, b, lo, hi)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.maximum(na, nb) / np.minimum(na, nb)
+    keep = (np.minimum(na, nb) >= 2) & (ratio <= params.count_ratio_max)
+    a, b, lo, hi, overlap, ratio = a[keep], b[keep], lo[keep], hi[keep], overlap[keep], ratio[keep]
+    na, ra, nb, rb = na[keep], ra[keep], nb[keep], rb[keep]
+    progress(0.4, f"measuring {len(a):,} candidate pairs ({distance})")
+    if distance == "sync":
+        # The sparser track's times are the base: the denser one interpolates better.
+        a_base = na <= nb
+        base = np.where(a_base, a, b)
+        other = np.where(a_base, b, a)
+        dist = _sync_distance(
+            pts,
+            index,
+            t,
+            base,
+            other,
+            np.where(a_base, ra, rb),
+            np.minimum(na, nb),
+            params.max_interp_s,
+        )
+    else:
+        dist = _dtw_distance(pts, index, a, b, na, ra, nb, rb, params.dtw_points, params.dtw_band_s)
+    progress(0.8, "assigning")
+    assign = optimal_assign if method == "optimal" else greedy_assign
+    sensor_of = pd.factorize(index.keys["sensor"])[0]
+    chosen = []
+    # One-to-one per pair of sensors.
+    for sa in np.unique(sensor_of[a]) if len(a) else []:
+        for sb in np.unique(sensor_of[b]):
+            sel = np.flatnonzero((sensor_of[a] == sa) & (sensor_of[b] == sb))
+            if len(sel):
+                chosen.append(sel[assign(a[sel], b[sel], dist[sel], params.max_distance_m)])
+    chosen = np.concatenate(chosen) if chosen else np.zeros(0, dtype="int64")
+    target = _target_labels(index, t0, a[chosen], b[chosen])
+    progress(1.0, f"{len(chosen):,} pairs")
+    return SensorAssociation(
+        pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method
+    )
+
+
+def _target_labels(index: TrackIndex, t0: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Targets T0001, T0002, … numbered by their earliest start; linked tracks share one."""
+    from scipy import sparse
+    from scipy.sparse.csgraph import connected_components
+
+    n = index.n_tracks
+    g = sparse.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
+    comp = connected_components(g, directed=False)[1]
+    first = pd.Series(t0).groupby(comp).min()
+    rank = first.rank(method="first").astype("int64").to_numpy()
+    width = max(4, len(str(len(first))))
+    labels = np.array([f"T{r:0{width}d}" for r in rank])
+    return labels[comp]
+
+
+# --------------------------------------------------------------------------------------
+# fusion
+
+
+def track_quality(points: pd.DataFrame, index: TrackIndex, window: int) -> pd.DataFrame:
+    """Per track: variance of the sampling intervals (s²) and noise (m): RMS distance
+    between the raw and the smoothed positions (triangular moving average)."""
+    from wakeline.core.transform import SmoothParams, smooth
+
+    t = time_seconds(points["time"])
+    dt = np.diff(t, prepend=np.nan)
+    dt[index.starts] = np.nan
+    var = pd.Series(dt).groupby(index.track_of_row).var().reindex(range(index.n_tracks))
+    sm = smooth(points, SmoothParams(window=window))
+    d = geo.haversine_m(points["lon"], points["lat"], sm["lon"], sm["lat"])
+    noise = np.sqrt(np.bincount(index.track_of_row, d**2, index.n_tracks) / index.sizes)
+    return pd.DataFrame({"interval_var_s2": var.fillna(0.0).to_numpy(), "noise_m": noise})
+
+
+def member_weights(
+    quality: pd.DataFrame, target: np.ndarray, alpha: float, beta: float
+) -> np.ndarray:
+    """w_k = α·F1_k + β·F2_k with F1 ∝ 1/interval variance and F2 ∝ 1/noise², each summing
+    to 1 over the members of a target (floors: 0.01 s², 1 m keep perfect sensors finite)."""
+    inv_var = 1.0 / np.maximum(quality["interval_var_s2"].to_numpy(), 0.01)
+    inv_noise = 1.0 / np.maximum(quality["noise_m"].to_numpy(), 1.0) ** 2
+    f1 = inv_var / pd.Series(inv_var).groupby(target).transform("sum").to_numpy()
+    f2 = inv_noise / pd.Series(inv_noise).groupby(target).transform("sum").to_numpy()
+    s = alpha + beta
+    if s <= 0:
+        raise InputError("alpha + beta must be positive")
+    return (alpha * f1 + beta * f2) / s
+
+
+def fuse(
+    assoc: SensorAssociation, params: FuseParams | None = None, progress: Progress | None = None
+) -> pd.DataFrame:
+    """One fused track per target (SPEC §6): sensor ``fused``, batch = target, ``members``
+    lists the member tracks (``sensor:batch`` joined by ``+``), ``source`` the sensors
+    covering each point, ``weight_base`` the weight of the point's own sensor. Tracks
+    without a partner come out as single-member targets, so nothing is lost."""
+    params = (params or FuseParams()).checked()
+    progress = progress or null_progress
+    pts, index = assoc.points, assoc.index
+    target = assoc.target_of_track
+    n_tr = index.n_tracks
+    progress(0.0, "weighing sensors")
+    quality = track_quality(pts, index, params.smooth_window)
+    w = member_weights(quality, target, params.alpha, params.beta)
+    t, t0, t1 = _spans(pts, index)
+    keys = index.keys
+    sensor = keys["sensor"].to_numpy().astype(str)
+    label = np.char.add(np.char.add(sensor, ":"), keys["batch"].to_numpy().astype(str))
+
+    # Ordered pairs (m, k) of different members of one target.
+    tcode = pd.factorize(target)[0]
+    order = np.argsort(tcode, kind="stable")
+    size = np.bincount(tcode)
+    first = np.cumsum(size) - size
+    rep = size[tcode[order]]
+    m_of = np.repeat(order, rep)
+    k_of = order[first[tcode[m_of]] + (np.arange(len(m_of)) - np.repeat(np.cumsum(rep) - rep, rep))]
+    other = m_of != k_of
+    m_of, k_of = m_of[other], k_of[other]
+
+    # Each row against every other member of its target that covers its time.
+    row_track = index.track_of_row
+    cnt = np.bincount(m_of, minlength=n_tr)  # other members per track
+    n_rows = len(pts)
+    per_row = cnt[row_track]
+    r_idx = np.repeat(np.arange(n_rows), per_row)
+    start_of = np.zeros(n_tr + 1, dtype="int64")
+    pair_order = np.argsort(m_of, kind="stable")
+    m_sorted, k_sorted = m_of[pair_order], k_of[pair_order]
+    start_of[1:] = np.cumsum(np.bincount(m_sorted, minlength=n_tr))
+    offs = np.arange(len(r_idx)) - np.repeat(np.cumsum(per_row) - per_row, per_row)
+    k_idx = k_sorted[start_of[row_track[r_idx]] + offs]
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    # Member k covers row r when r's time lies between two of k's points close enough in time.
+    kl, ka, covers = interp_positions(pts, index, k_idx, t[r_idx], params.max_interp_s)
+    r_idx, k_idx, kl, ka = r_idx[covers], k_idx[covers], kl[covers], ka[covers]
+    own_w = w[row_track]
+    # A row is on the time base when no covering member outweighs its own track
+    # (ties: the lower track number).
+    beats = (w[k_idx] > own_w[r_idx]) | ((w[k_idx] == own_w[r_idx]) & (k_idx < row_track[r_idx]))
+    keep_row = np.ones(n_rows, dtype=bool)
+    keep_row[r_idx[beats]] = False
+    progress(0.3, "averaging where sensors overlap")
+    dx, dy = geo.to_local(kl, ka, lon[r_idx], lat[r_idx])
+    sum_w = own_w + np.bincount(r_idx, w[k_idx], n_rows)
+    sx = np.bincount(r_idx, w[k_idx] * dx, n_rows) / sum_w
+    sy = np.bincount(r_idx, w[k_idx] * dy, n_rows) / sum_w
+    flon, flat = geo.from_local(sx, sy, lon, lat)
+    n_cover = 1 + np.bincount(r_idx, minlength=n_rows)
+    # Sensors covering each row, as a bit mask, then as text ("AIS+R1").
+    names, scode = np.unique(sensor, return_inverse=True)
+    mask = np.left_shift(1, scode[row_track]).astype("int64")
+    np.bitwise_or.at(mask, r_idx, np.left_shift(1, scode[k_idx]).astype("int64"))
+    masks, inverse = np.unique(mask, return_inverse=True)
+    text = np.array(["+".join(names[(m >> np.arange(len(names))) & 1 == 1]) for m in masks])
+    source = text[inverse]
+
+    rows = np.flatnonzero(keep_row)
+    out = pd.DataFrame(
+        {
+            "sensor": "fused",
+            "batch": target[row_track[rows]],
+            "time": pts["time"].to_numpy()[rows],
+            "lon": flon[rows],
+            "lat": flat[rows],
+            "speed": np.nan,
+            "course": np.nan,
+            "source": source[rows],
+            "n_sources": n_cover[rows],
+            "base_track": row_track[rows],
+            "weight_base": np.round(own_w[rows] / sum_w[rows], 4),
+        }
+    )
+    for col in ("truth", "true_lon", "true_lat"):
+        if col in pts.columns:
+            out[col] = pts[col].to_numpy()[rows]
+    members = pd.Series(label).groupby(target).agg(lambda s: "+".join(sorted(s)))
+    out["members"] = members.reindex(out["batch"]).to_numpy()
+    out["time"] = pd.to_datetime(out["time"], utc=True)
+    out = out.sort_values(["batch", "time"], kind="stable").reset_index(drop=True)
+    progress(0.7, "blending junctions")
+    if params.blend_points > 0:
+        _blend_junctions(out, pts, index, params.blend_points, params.blend_straddle)
+    out["lon"] = np.round(out["lon"], 7)
+    out["lat"] = np.round(out["lat"], 7)
+    out = out.drop(columns=["base_track", "speed", "course"])
+    speed, course = derive_motion(out, track_index(out))
+    out.insert(5, "speed", np.round(speed, 2))
+    out.insert(6, "course", np.round(course, 1))
+    progress(1.0, f"{out['batch'].nunique():,} fused tracks")
+    return out
+
+
+def _blend_junctions(
+    out: pd.DataFrame, pts: pd.DataFrame, index: TrackIndex, k: int, straddle: bool
+) -> None:
+    """The linear-extrapolation weight-gradient blend (seed 003 §4.2) at every junction
+    between a fused part (several sources) and a single-sensor part, in place on ``out``.
+
+    A line fitted to the ``k`` fused points next to the junction is extrapolated; over a
+    window of 2k points the fused weight falls 1 → 0 going away from the fused part
+    (5/5 … 0/5 for k = 3) against the single sensor's 0 → 1. ``straddle`` places the
+    window across the junction (k fused + k single points, seed 003); otherwise it lies
+    on the single-sensor side, so the fused part keeps its full accuracy.
+    """
+    n = len(out)
+    if n < 2:
+        return
+    tgt = pd.factorize(out["batch"])[0]
+    fused = out["n_sources"].to_numpy() >= 2
+    t = time_seconds(out["time"])
+    lon = out["lon"].to_numpy(dtype="float64")
+    lat = out["lat"].to_numpy(dtype="float64")
+    base = out["base_track"].to_numpy()
+    same = tgt[1:] == tgt[:-1]
+    step = np.arange(k)
+    new_lon, new_lat = lon.copy(), lat.copy()
+    w_away = np.linspace(1.0, 0.0, 2 * k)  # fused weight, from the fused side outwards
+    for forward in (True, False):
+        # forward: fused row e, single row e + 1; backward: single row s − 1, fused row s.
+        if forward:
+            last_fused = np.flatnonzero(same & fused[:-1] & ~fused[1:])
+            first_single = last_fused + 1
+            fit_rows = last_fused[:, None] - step[None, ::-1]
+            sign = 1
+        else:
+            first_single = np.flatnonzero(same & ~fused[:-1] & fused[1:])
+            last_fused = first_single + 1
+            fit_rows = last_fused[:, None] + step[None, :]
+            sign = -1
+        if len(last_fused) == 0:
+            continue
+        start = (last_fused - sign * (k - 1)) if straddle else first_single
+        rows = start[:, None] + sign * np.arange(2 * k)[None, :]  # ordered away from fused
+        lo = np.searchsorted(tgt, tgt[last_fused], side="left")[:, None]
+        hi = np.searchsorted(tgt, tgt[last_fused], side="right")[:, None]
+        fit_ok = (fit_rows >= lo) & (fit_rows < hi)
+        fit_rows = np.clip(fit_rows, 0, n - 1)
+        fit_ok &= fused[fit_rows]
+        ok = (rows >= lo) & (rows < hi)
+        rows = np.clip(rows, 0, n - 1)
+        want_fused = np.zeros_like(ok)
+        if straddle:
+            want_fused[:, :k] = True
+        ok &= fused[rows] == want_fused
+        a_lon, a_lat = lon[last_fused][:, None], lat[last_fused][:, None]
+        fx, fy = geo.to_local(lon[fit_rows], lat[fit_rows], a_lon, a_lat)
+        ft = t[fit_rows] - t[last_fused][:, None]
+        wgt = fit_ok.astype("float64")
+        sw = np.maximum(wgt.sum(axis=1), 1.0)[:, None]
+        mt = (wgt * ft).sum(axis=1)[:, None] / sw
+        dtm = (ft - mt) * wgt
+        var = (dtm * dtm).sum(axis=1)[:, None]
+        safe = np.where(var > 0, var, 1.0)
+        rt = t[rows] - t[last_fused][:, None] - mt
+        ext = []
+        for v in (fx, fy):
+            mv = (wgt * v).sum(axis=1)[:, None] / sw
+            slope = np.where(var > 0, (dtm * (v - mv)).sum(axis=1)[:, None] / safe, 0.0)
+            ext.append(mv + slope * rt)
+        own_x, own_y = geo.to_local(lon[rows], lat[rows], a_lon, a_lat)
+        # Fused side: own position on fused rows, the extrapolation on single rows.
+        f_x = np.where(fused[rows], own_x, ext[0])
+        f_y = np.where(fused[rows], own_y, ext[1])
+        # Single side: own position on single rows, the single track interpolated on fused rows.
+        single_track = base[first_single]
+        il, ia, _ = interp_positions(pts, index, np.repeat(single_track, 2 * k), t[rows].ravel())
+        ix, iy = geo.to_local(il.reshape(rows.shape), ia.reshape(rows.shape), a_lon, a_lat)
+        s_x = np.where(fused[rows], ix, own_x)
+        s_y = np.where(fused[rows], iy, own_y)
+        bx = w_away * f_x + (1 - w_away) * s_x
+        by = w_away * f_y + (1 - w_away) * s_y
+        blon, blat = geo.from_local(bx, by, a_lon, a_lat)
+        new_lon[rows[ok]] = blon[ok]
+        new_lat[rows[ok]] = blat[ok]
+    out["lon"] = new_lon
+    out["lat"] = new_lat
