@@ -306,7 +306,7 @@ def associate_sensors(
             params.max_interp_s,
         )
     else:
-        dist = _dtw_distance(pts, index, a, b, na, ra, nb, rb, params.dtw_points, params.dtw_band_s)
+        dist = _dtw_distance(pts, index, a, b, na, ra, nb, rb, params.dtw_points)
     progress(0.8, "assigning")
     assign = optimal_assign if method == "optimal" else greedy_assign
     sensor_of = pd.factorize(index.keys["sensor"])[0]
