@@ -1,0 +1,185 @@
+"""Multi-sensor association and fusion (SPEC §6)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from wakeline.core import geo, simulate
+from wakeline.core.cli import main
+from wakeline.core.errors import InputError
+from wakeline.core.evaluate_association import fusion_errors, sensor_pair_scores
+from wakeline.core.fuse import FuseParams, associate_sensors, fuse, member_weights
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import interp_positions, sorted_with_index
+
+T0 = pd.Timestamp("2024-05-01T00:00:00Z")
+
+
+def observe(sensor, batch, t0, t1, period, sigma, seed, truth="A", bias=(0.0, 0.0), course=60.0):
+    """A ship at 6 m/s on ``course`` seen from t0 to t1 every ``period`` s with noise."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(t0, t1 + 1e-9, period)
+    rad = np.radians(course)
+    x, y = 6.0 * np.sin(rad) * t, 6.0 * np.cos(rad) * t
+    lon, lat = geo.from_local(
+        x + bias[0] + rng.normal(0, sigma, len(t)),
+        y + bias[1] + rng.normal(0, sigma, len(t)),
+        122.5,
+        30.5,
+    )
+    tlon, tlat = geo.from_local(x, y, 122.5, 30.5)
+    return pd.DataFrame(
+        {
+            "sensor": sensor,
+            "batch": batch,
+            "time": T0 + pd.to_timedelta(t, unit="s"),
+            "lon": lon,
+            "lat": lat,
+            "truth": truth,
+            "true_lon": tlon,
+            "true_lat": tlat,
+        }
+    )
+
+
+def test_a_ship_seen_by_two_sensors_is_paired_and_fused_between_them():
+    ais = observe("AIS", "7", 0, 1800, 6.0, 10.0, 1)
+    radar = observe("R1", "300", 0, 1800, 10.0, 100.0, 2)
+    a = associate_sensors(pd.concat([ais, radar]))
+    assert a.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["7", "300"]]
+    f = fuse(a)
+    assert set(f["batch"]) == {"T0001"} and f["members"].iloc[0] == "AIS:7+R1:300"
+    both = f[f["n_sources"] == 2]
+    assert len(both) > 200
+    # Each fused point lies on the segment between the AIS point and the radar track
+    # at that time, much closer to the AIS (less noisy) end.
+    pts, index = sorted_with_index(pd.concat([ais, radar]))
+    radar_track = int(np.flatnonzero(index.keys["sensor"] == "R1")[0])
+    t = time_seconds(both["time"])
+    rl, ra, _ = interp_positions(pts, index, np.full(len(t), radar_track), t)
+    ais_at = ais.set_index("time").loc[both["time"]]
+    d_ais = geo.haversine_m(both["lon"], both["lat"], ais_at["lon"], ais_at["lat"])
+    d_rad = geo.haversine_m(both["lon"], both["lat"], rl, ra)
+    d_ar = geo.haversine_m(ais_at["lon"], ais_at["lat"], rl, ra)
+    np.testing.assert_allclose(d_ais + d_rad, d_ar, atol=0.5)
+    assert np.all(d_ais <= d_rad)
+    assert both["weight_base"].min() > 0.85  # 0.2 x regularity (equal) + 0.8 x noise (99 %)
+
+
+def test_non_overlapping_tracks_are_never_paired():
+    ais = observe("AIS", "1", 0, 900, 6.0, 10.0, 1)
+    radar = observe("R1", "2", 1000, 1800, 10.0, 50.0, 2)
+    a = associate_sensors(pd.concat([ais, radar]))
+    assert len(a.chosen) == 0 and len(a.a) == 0
+    f = fuse(a)
+    assert f["batch"].nunique() == 2 and set(f["n_sources"]) == {1}
+
+
+def test_point_count_ratio_gate():
+    ais = observe("AIS", "1", 0, 1800, 2.0, 10.0, 1)
+    radar = observe("R1", "2", 0, 1800, 30.0, 10.0, 2)  # 15x fewer points
+    assert len(associate_sensors(pd.concat([ais, radar])).chosen) == 0
+    loose = FuseParams(count_ratio_max=20.0)
+    assert len(associate_sensors(pd.concat([ais, radar]), loose).chosen) == 1
+
+
+def _steps(f: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    st = geo.haversine_m(
+        f["lon"].values[:-1], f["lat"].values[:-1], f["lon"].values[1:], f["lat"].values[1:]
+    )
+    junction = (f["n_sources"].values[:-1] >= 2) != (f["n_sources"].values[1:] >= 2)
+    return st, junction
+
+
+@pytest.mark.parametrize("straddle", [False, True])
+def test_junction_blend_leaves_no_jump(straddle):
+    # AIS covers the first half; the radar, 250 m off to the side, goes on alone.
+    ais = observe("AIS", "1", 0, 1200, 10.0, 2.0, 1)
+    radar = observe(
+        "R1",
+        "2",
+        0,
+        2400,
+        10.0,
+        3.0,
+        2,
+        bias=(250.0 * np.cos(np.radians(60)), -250.0 * np.sin(np.radians(60))),
+    )
+    a = associate_sensors(pd.concat([ais, radar]))
+    raw, junction = _steps(fuse(a, FuseParams(blend_points=0)))
+    sampling = np.median(raw)  # 6 m/s × 10 s = 60 m
+    assert raw[junction].max() > 2.0 * sampling
+    blended = fuse(a, FuseParams(blend_straddle=straddle))
+    st, _ = _steps(blended)
+    assert st.max() <= 1.25 * sampling
+
+
+def test_weights_favour_regular_and_quiet_sensors_and_sum_to_one():
+    q = pd.DataFrame({"interval_var_s2": [0.1, 4.0, 0.1, 0.1], "noise_m": [10.0, 10.0, 10.0, 40.0]})
+    target = np.array(["A", "A", "B", "B"])
+    w = member_weights(q, target, 0.5, 0.5)
+    np.testing.assert_allclose([w[0] + w[1], w[2] + w[3]], 1.0)
+    assert w[0] > w[1] and w[2] > w[3]
+    # Noise only: inverse-variance weights, 16:1 for a 4x noisier sensor.
+    w = member_weights(q, target, 0.0, 1.0)
+    assert w[2] / w[3] == pytest.approx(16.0)
+
+
+@pytest.mark.parametrize(("ships", "area", "lanes"), [(40, 30.0, 0), (300, 30.0, 3)])
+def test_simulated_scenes_meet_the_issue_targets(ships, area, lanes):
+    df = simulate.multisensor_scene(seed=3, n_ships=ships, area_km=area, lanes=lanes)
+    a = associate_sensors(df)
+    sc = sensor_pair_scores(a)
+    assert sc["p_ca"] >= 0.95 and sc["p_fa"] <= 0.05
+    err = fusion_errors(a, fuse(a))
+    assert err["fused_m"] <= min(err["AIS_m"], err["R1_m"])
+
+
+def test_dtw_and_greedy_run_and_agree_on_an_easy_scene():
+    df = simulate.multisensor_scene(seed=4, n_ships=20)
+    ref = sorted(associate_sensors(df).pair_table()["batch_a"])
+    for distance in ("sync", "dtw"):
+        for method in ("optimal", "greedy"):
+            a = associate_sensors(df, distance=distance, method=method)
+            assert sorted(a.pair_table()["batch_a"]) == ref
+
+
+def test_bad_requests():
+    one = observe("AIS", "1", 0, 600, 6.0, 10.0, 1)
+    with pytest.raises(InputError, match="at least two sensors"):
+        associate_sensors(one)
+    two = pd.concat([one, observe("R1", "2", 0, 600, 10.0, 10.0, 2)])
+    with pytest.raises(InputError, match="unknown distance"):
+        associate_sensors(two, distance="euclid")
+    with pytest.raises(InputError, match="max_distance_m must be at least"):
+        associate_sensors(two, FuseParams(max_distance_m=0.0))
+
+
+def test_cli_fuse_round_trip_and_errors(tmp_path, capsys):
+    src = tmp_path / "ms.csv"
+    assert main(["simulate", "multisensor", "-o", str(src), "--seed", "5"]) == 0
+    out, pairs = tmp_path / "fused.csv", tmp_path / "pairs.csv"
+    assert main(["fuse", str(src), "-o", str(out), "--pairs", str(pairs)]) == 0
+    f = pd.read_csv(out)
+    assert set(f["sensor"]) == {"fused"} and f["members"].str.contains(r"\+").any()
+    assert list(pd.read_csv(pairs).columns[:5]) == [
+        "sensor_a",
+        "batch_a",
+        "sensor_b",
+        "batch_b",
+        "distance",
+    ]
+    # Every fused track holds one ship.
+    assert f.groupby("batch")["truth"].nunique().max() == 1
+    # Re-import: a valid canonical file.
+    assert main(["import", str(out), "-o", str(tmp_path / "again.csv")]) == 0
+    capsys.readouterr()
+    single = tmp_path / "one.csv"
+    observe("AIS", "1", 0, 600, 6.0, 10.0, 1).to_csv(single, index=False)
+    bad = tmp_path / "bad.csv"
+    assert main(["fuse", str(single), "-o", str(bad)]) == 2
+    assert main(["fuse", str(src), "-o", str(bad), "--set", "alpha=2"]) == 2
+    assert main(["fuse", str(tmp_path / "missing.csv"), "-o", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "at least two sensors" in err and "alpha must be at most 1" in err
+    assert not bad.exists()
