@@ -1,0 +1,105 @@
+"""Export of results: canonical CSV safe for spreadsheets, and GeoJSON.
+
+CSV cells holding text that starts with ``=``, ``+``, ``-``, ``@`` (or a tab / carriage
+return) would run as formulas when a spreadsheet opens the file; such text cells get a
+leading apostrophe. Numbers are never touched (a longitude of −122.5 stays a number).
+"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core.io.writer import atomic_path, write_csv
+from wakeline.core.schema import ordered_columns, time_seconds
+from wakeline.core.tracks import sorted_with_index
+
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+
+
+def spreadsheet_safe(df: pd.DataFrame) -> pd.DataFrame:
+    """A copy whose text cells cannot start a spreadsheet formula (prefix ``'``)."""
+    out = df.copy()
+    for name in out.columns:
+        col = out[name]
+        if pd.api.types.is_numeric_dtype(col.dtype) or pd.api.types.is_datetime64_any_dtype(
+            col.dtype
+        ):
+            continue
+        if isinstance(col.dtype, pd.DatetimeTZDtype) or pd.api.types.is_bool_dtype(col.dtype):
+            continue
+        text = col.astype("str")
+        risky = text.str.startswith(_FORMULA_START) & col.notna()
+        if risky.any():
+            out[name] = np.where(risky, "'" + text, col.astype(object))
+    return out
+
+
+def export_csv(points: pd.DataFrame, path: str | Path) -> None:
+    """Canonical CSV (canonical columns first), spreadsheet-safe, written atomically."""
+    write_csv(spreadsheet_safe(points[ordered_columns(points)]), path)
+
+
+def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict:
+    """A FeatureCollection: one LineString per track (Point for one-point tracks) with
+    sensor, batch, points, start, end and any per-track text columns (target, members,
+    source...), plus one Point per maneuver when given. Coordinates are [lon, lat]."""
+    pts, index = sorted_with_index(points)
+    lon = np.round(pts["lon"].to_numpy(dtype="float64"), 7)
+    lat = np.round(pts["lat"].to_numpy(dtype="float64"), 7)
+    times = pts["time"]
+    extra = [
+        c
+        for c in ("target", "members", "truth")
+        if c in pts.columns and c not in ("sensor", "batch")
+    ]
+    features = []
+    t = time_seconds(times) if len(pts) else np.zeros(0)
+    for k in range(index.n_tracks):  # one feature per track; the coordinates are sliced
+        s, e = int(index.starts[k]), int(index.ends[k])
+        coords = np.column_stack([lon[s:e], lat[s:e]]).tolist()
+        props = {
+            "sensor": str(index.keys["sensor"].iloc[k]),
+            "batch": str(index.keys["batch"].iloc[k]),
+            "points": e - s,
+            "start": times.iloc[s].isoformat(),
+            "end": times.iloc[e - 1].isoformat(),
+            "duration_s": float(t[e - 1] - t[s]),
+        }
+        for c in extra:
+            props[c] = str(pts[c].iloc[s])
+        geom = (
+            {"type": "Point", "coordinates": coords[0]}
+            if e - s == 1
+            else {"type": "LineString", "coordinates": coords}
+        )
+        features.append({"type": "Feature", "geometry": geom, "properties": props})
+    if maneuvers is not None:
+        for row in maneuvers.itertuples(index=False):
+            features.append(
+                {
+                    "type": "Feature",
+                    "geometry": {
+                        "type": "Point",
+                        "coordinates": [round(float(row.lon), 7), round(float(row.lat), 7)],
+                    },
+                    "properties": {
+                        "kind": "maneuver",
+                        "sensor": str(row.sensor),
+                        "batch": str(row.batch),
+                        "time": pd.Timestamp(row.time).isoformat(),
+                        "factor_deg": round(float(row.factor), 3),
+                    },
+                }
+            )
+    return {"type": "FeatureCollection", "features": features}
+
+
+def export_geojson(
+    points: pd.DataFrame, path: str | Path, maneuvers: pd.DataFrame | None = None
+) -> None:
+    """Write :func:`geojson` atomically (UTF-8)."""
+    text = json.dumps(geojson(points, maneuvers), ensure_ascii=False)
+    with atomic_path(path) as tmp:
+        Path(tmp).write_text(text, encoding="utf-8")
