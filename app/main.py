@@ -9,24 +9,59 @@ from wakeline.app.main_window import MainWindow
 from wakeline.resources import demo_path
 
 
+def wait_for_jobs(window: MainWindow, timeout_ms: int = 120_000) -> None:
+    """Process events until the window's worker has no job left (tests, screenshots)."""
+    app = QtWidgets.QApplication.instance()
+    timer = QtCore.QElapsedTimer()
+    timer.start()
+    while (window.runner.busy or window._job_context) and timer.elapsed() < timeout_ms:
+        app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
+        QtCore.QThread.msleep(5)
+    app.processEvents()
+
+
 def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
     """Open the main window on ``files`` (default: the demo scene).
 
-    With ``screenshot``, render the window at 1400×900 to that PNG and return at once.
+    With ``screenshot``: load, run the default pipeline (clean, maneuvers, compress) on
+    the first file, render the window at 1400×900 to that PNG and return.
     """
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
     app.setApplicationName("Wakeline")
-    window = MainWindow()
+    settings = None
+    if screenshot is not None:
+        # A screenshot must not depend on (or change) the user's saved window layout.
+        settings = QtCore.QSettings(
+            str(Path(screenshot).with_suffix(".ini")), QtCore.QSettings.Format.IniFormat
+        )
+        settings.clear()
+        settings.setValue("language", "en")
+    window = MainWindow(settings)
     window.resize(1400, 900)
-    for path in files or [demo_path()]:
-        window.load_file(Path(path))
+    loaded = [window.load_file(Path(p)) for p in (files or [demo_path()])]
     if screenshot is not None:
         window.show()
-        for _ in range(5):
+        if any(loaded):
+            first = next(n for n, lay in window.layers.items() if lay.kind == "source")
+            window.set_active(first)
+            window.run_step("pipeline")
+            wait_for_jobs(window)
+            comp = [n for n, lay in window.layers.items() if lay.kind == "compressed"]
+            if comp:
+                window.set_active(comp[0])
+                for row in range(window.layer_list.count()):
+                    if window.layer_list.item(row).data(QtCore.Qt.ItemDataRole.UserRole) == comp[0]:
+                        window.layer_list.setCurrentRow(row)
+                keys = window.batch_model.frame.sort_values("points", ascending=False)
+                if len(keys):
+                    window.select_tracks([(str(keys["sensor"].iat[0]), str(keys["batch"].iat[0]))])
+            window.canvas.fit()
+        for _ in range(10):
             app.processEvents()
             QtCore.QThread.msleep(20)
         ok = window.grab().save(str(screenshot))
         window.close()
-        return 0 if ok else 2
+        Path(screenshot).with_suffix(".ini").unlink(missing_ok=True)
+        return 0 if ok and all(loaded) else 2
     window.show()
     return app.exec()

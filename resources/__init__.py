@@ -1,4 +1,4 @@
-"""Bundled data: the demo scene (and later icons, coastline, translations)."""
+"""Bundled data: the demo scene, a coarse world coastline, UI translations."""
 
 from importlib import resources
 from pathlib import Path
@@ -12,3 +12,13 @@ def resource_path(*parts: str) -> Path:
 def demo_path() -> Path:
     """The bundled demo scene (canonical CSV: radar R1 with interrupted batches, AIS)."""
     return resource_path("demo", "demo.csv")
+
+
+def coastline_path() -> Path:
+    """A coarse world coastline (lon/lat arrays, NaN-separated; see coastline/NOTICE.md)."""
+    return resource_path("coastline", "world_coarse.npz")
+
+
+def translations_dir() -> Path:
+    """Folder of the Qt Linguist ``.ts`` translation files."""
+    return resource_path("translations")

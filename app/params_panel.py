@@ -1,0 +1,268 @@
+"""The parameter panel, generated from the core's parameter dataclasses.
+
+Every field of a :class:`~wakeline.core.params.Params` becomes an editable row with its
+unit, range and tooltip (meaning and source). A value the core refuses is put back and the
+reason shown. Presets are the values as JSON.
+"""
+
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from pyqtgraph.parametertree import Parameter, ParameterTree
+from PySide6 import QtCore, QtWidgets
+
+from wakeline.core.associate import LinkParams
+from wakeline.core.bearing import BearingParams
+from wakeline.core.clean import STEPS, CleanParams
+from wakeline.core.compress import CompressParams
+from wakeline.core.errors import InputError
+from wakeline.core.fuse import FuseParams
+from wakeline.core.maneuver import (
+    ManeuverParams,
+    largest_tolerable_error_m,
+    smallest_detectable_turn_deg,
+)
+from wakeline.core.params import Params
+
+#: Pipeline steps in order: key, title, parameter class.
+GROUPS = (
+    ("maneuver", "Maneuvers (seed 000)", ManeuverParams),
+    ("compress", "Compression (seed 000)", CompressParams),
+    ("associate", "Association, one sensor (seeds 001, 003)", LinkParams),
+    ("fuse", "Association and fusion, several sensors (seed 003)", FuseParams),
+    ("bearing", "Bearing-only (seed 002)", BearingParams),
+)
+
+
+def _field_param(f: dataclasses.Field, value) -> dict:
+    meta = f.metadata
+    kind = "bool" if isinstance(f.default, bool) else type(f.default).__name__
+    unit = meta.get("unit", "")
+    tip = meta.get("doc", "")
+    if unit:
+        tip += f" [{unit}]"
+    if meta.get("source"):
+        tip += f"\nsource: {meta['source']}"
+    tip += f"\ndefault: {f.default}"
+    opts = {"name": f.name, "type": kind, "value": value, "tip": tip, "default": f.default}
+    if kind in ("int", "float"):
+        # No spin-box limits: an out-of-range value reaches the core's validation, which
+        # refuses it with the reason (a clamped value would hide the mistake).
+        lo, hi = meta.get("lo"), meta.get("hi")
+        if lo is not None or hi is not None:
+            opts["tip"] += f"\nrange: {'' if lo is None else lo} … {'' if hi is None else hi}"
+        if unit:
+            opts["suffix"] = f" {unit}"
+        if kind == "float":
+            opts["decimals"] = 6
+    return opts
+
+
+def _group(name: str, title: str, params: Params) -> dict:
+    return {
+        "name": name,
+        "title": title,
+        "type": "group",
+        "children": [_field_param(f, getattr(params, f.name)) for f in dataclasses.fields(params)],
+    }
+
+
+class ParamsPanel(QtWidgets.QWidget):
+    """Tree of every pipeline parameter; emits ``changed`` with the step name."""
+
+    changed = QtCore.Signal(str)
+    refused = QtCore.Signal(str)
+
+    def __init__(self, parent: QtWidgets.QWidget | None = None) -> None:
+        super().__init__(parent)
+        self._values: dict[str, Params] = {}
+        self._clean = CleanParams()
+        self._guard = False
+        children = [
+            {
+                "name": "clean",
+                "title": "Cleaning (seeds 001, 003)",
+                "type": "group",
+                "children": [
+                    _group(step, step.replace("_", " "), getattr(self._clean, step))
+                    for step in STEPS
+                ],
+            }
+        ]
+        for key, title, cls in GROUPS:
+            self._values[key] = cls()
+            children.append(_group(key, title, self._values[key]))
+        self.root = Parameter.create(name="params", type="group", children=children)
+        for grp in self.root.children():
+            for sub in grp.children():
+                if sub.hasChildren():
+                    sub.setOpts(expanded=False)
+            grp.setOpts(expanded=grp.name() in ("clean", "maneuver"))
+        self.tree = ParameterTree(showHeader=False)
+        self.tree.setParameters(self.root, showTop=False)
+        self.root.sigTreeStateChanged.connect(self._tree_changed)
+
+        self.guidance = QtWidgets.QLabel(wordWrap=True)
+        self.guidance.setTextFormat(QtCore.Qt.TextFormat.PlainText)
+        self.problem = QtWidgets.QLabel(wordWrap=True)
+        self.problem.setStyleSheet("color: #b00020")
+        save = QtWidgets.QPushButton(self.tr("Save preset…"))
+        load = QtWidgets.QPushButton(self.tr("Load preset…"))
+        reset = QtWidgets.QPushButton(self.tr("Defaults"))
+        save.clicked.connect(self._save_dialog)
+        load.clicked.connect(self._load_dialog)
+        reset.clicked.connect(self.reset)
+        buttons = QtWidgets.QHBoxLayout()
+        for b in (save, load, reset):
+            buttons.addWidget(b)
+        lay = QtWidgets.QVBoxLayout(self)
+        lay.setContentsMargins(2, 2, 2, 2)
+        lay.addWidget(self.tree, 1)
+        lay.addWidget(self.problem)
+        lay.addWidget(self.guidance)
+        lay.addLayout(buttons)
+
+    # -- values --------------------------------------------------------------------
+
+    def clean_params(self) -> CleanParams:
+        return self._clean
+
+    def params(self, key: str) -> Params:
+        return self._values[key]
+
+    def to_dict(self) -> dict[str, dict]:
+        out = {"clean": {s: dataclasses.asdict(getattr(self._clean, s)) for s in STEPS}}
+        for key, value in self._values.items():
+            out[key] = dataclasses.asdict(value)
+        return out
+
+    def from_dict(self, data: dict) -> list[str]:
+        """Apply values (e.g. a preset); returns the problems with values not applied."""
+        problems = []
+        for key, values in data.items():
+            if key == "clean":
+                for step, vals in values.items():
+                    for name, v in vals.items():
+                        problems += self._set_value(("clean", step, name), v)
+            elif key in self._values:
+                for name, v in values.items():
+                    problems += self._set_value((key, name), v)
+            else:
+                problems.append(f"unknown parameter group {key!r}")
+        return problems
+
+    def reset(self) -> None:
+        self.from_dict(
+            {
+                "clean": {s: dataclasses.asdict(getattr(CleanParams(), s)) for s in STEPS},
+                **{k: dataclasses.asdict(c()) for k, _, c in GROUPS},
+            }
+        )
+
+    def _set_value(self, path: tuple[str, ...], value) -> list[str]:
+        try:
+            p = self.root.child(*path)
+        except KeyError:
+            return [f"unknown parameter {'.'.join(path)}"]
+        p.setValue(value)  # goes through _tree_changed, which validates
+        return [] if p.value() == value else [f"{'.'.join(path)}: {value!r} refused"]
+
+    def _tree_changed(self, _param, changes) -> None:
+        if self._guard:
+            return
+        for param, change, value in changes:
+            if change != "value":
+                continue
+            path = self.root.childPath(param)
+            try:
+                self._apply(path, value)
+            except InputError as exc:
+                self._guard = True
+                param.setValue(self._current(path))
+                self._guard = False
+                self.problem.setText(str(exc))
+                self.refused.emit(str(exc))
+            else:
+                self.problem.setText("")
+                self.changed.emit(path[0])
+
+    def _current(self, path: list[str]):
+        if path[0] == "clean":
+            return getattr(getattr(self._clean, path[1]), path[2])
+        return getattr(self._values[path[0]], path[1])
+
+    def _apply(self, path: list[str], value) -> None:
+        if path[0] == "clean":
+            step = getattr(self._clean, path[1]).replace(**{path[2]: value})
+            new = dataclasses.replace(self._clean, **{path[1]: step})
+            new.checked()
+            self._clean = new
+        else:
+            new = self._values[path[0]].replace(**{path[1]: value})
+            new.checked()
+            self._values[path[0]] = new
+
+    # -- presets -------------------------------------------------------------------
+
+    def save_preset(self, path: str | Path) -> None:
+        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n", encoding="utf-8")
+
+    def load_preset(self, path: str | Path) -> list[str]:
+        try:
+            data = json.loads(Path(path).read_text(encoding="utf-8"))
+        except (OSError, ValueError) as exc:
+            raise InputError(f"{path}: not a parameter preset ({exc})") from None
+        if not isinstance(data, dict):
+            raise InputError(f"{path}: not a parameter preset")
+        return self.from_dict(data)
+
+    def _save_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(
+            self, self.tr("Save preset"), "", "JSON (*.json)"
+        )
+        if path:
+            self.save_preset(path)
+
+    def _load_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(
+            self, self.tr("Load preset"), "", "JSON (*.json)"
+        )
+        if not path:
+            return
+        try:
+            problems = self.load_preset(path)
+        except InputError as exc:
+            QtWidgets.QMessageBox.warning(self, self.tr("Cannot load preset"), str(exc))
+            return
+        if problems:
+            QtWidgets.QMessageBox.warning(
+                self, self.tr("Preset loaded with problems"), "\n".join(problems)
+            )
+
+    # -- guidance ------------------------------------------------------------------
+
+    def show_guidance(self, summary: pd.DataFrame) -> None:
+        """Seed 000's detection limit for the loaded data: typical speed and interval."""
+        if summary.empty:
+            self.guidance.setText("")
+            return
+        speed = float(np.nanmedian(summary["mean_speed_kn"])) if len(summary) else float("nan")
+        interval = float(np.nanmedian(summary["duration_s"] / np.maximum(summary["points"] - 1, 1)))
+        mp = self._values["maneuver"]
+        if not np.isfinite(speed) or speed <= 0:
+            self.guidance.setText("")
+            return
+        leg = interval * mp.window_p
+        eps = largest_tolerable_error_m(mp.threshold_deg, speed, leg)
+        turn = smallest_detectable_turn_deg(100.0, speed, leg)
+        self.guidance.setText(
+            self.tr(
+                "Detection limit (seed 000) for this data: median speed {0:.1f} kn, "
+                "interval {1:.0f} s, legs of p = {2} points ({3:.0f} s). A {4:.0f}° turn "
+                "stands out from position errors up to {5:.0f} m; with 100 m errors the "
+                "smallest turn found is {6:.1f}°."
+            ).format(speed, interval, mp.window_p, leg, mp.threshold_deg, eps, turn)
+        )

@@ -1,0 +1,392 @@
+<?xml version="1.0" encoding="utf-8"?>
+<!DOCTYPE TS>
+<TS version="2.1" language="zh_CN">
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>Wakeline</source>
+        <translation>Wakeline 航迹工作台</translation>
+    </message>
+    <message>
+        <source>&amp;Open tracks…</source>
+        <translation>打开航迹(&amp;O)…</translation>
+    </message>
+    <message>
+        <source>Open &amp;project…</source>
+        <translation>打开工程(&amp;P)…</translation>
+    </message>
+    <message>
+        <source>&amp;Save project as…</source>
+        <translation>工程另存为(&amp;S)…</translation>
+    </message>
+    <message>
+        <source>Active layer as &amp;CSV…</source>
+        <translation>当前图层导出为 &amp;CSV…</translation>
+    </message>
+    <message>
+        <source>Active layer as &amp;GeoJSON…</source>
+        <translation>当前图层导出为 &amp;GeoJSON…</translation>
+    </message>
+    <message>
+        <source>&amp;Maneuver points as CSV…</source>
+        <translation>机动点导出为 CSV(&amp;M)…</translation>
+    </message>
+    <message>
+        <source>&amp;Quit</source>
+        <translation>退出(&amp;Q)</translation>
+    </message>
+    <message>
+        <source>Run &amp;pipeline (clean, maneuvers, compress)</source>
+        <translation>运行流程(&amp;P)（清洗、机动检测、压缩）</translation>
+    </message>
+    <message>
+        <source>&amp;Clean</source>
+        <translation>清洗(&amp;C)</translation>
+    </message>
+    <message>
+        <source>&amp;Maneuvers</source>
+        <translation>机动检测(&amp;M)</translation>
+    </message>
+    <message>
+        <source>C&amp;ompress</source>
+        <translation>压缩(&amp;O)</translation>
+    </message>
+    <message>
+        <source>&amp;Associate (one sensor)</source>
+        <translation>单源关联(&amp;A)</translation>
+    </message>
+    <message>
+        <source>&amp;Fuse (several sensors)</source>
+        <translation>多源融合(&amp;F)</translation>
+    </message>
+    <message>
+        <source>Cancel the running job</source>
+        <translation>取消正在运行的任务</translation>
+    </message>
+    <message>
+        <source>&amp;Fit to data</source>
+        <translation>缩放到数据(&amp;F)</translation>
+    </message>
+    <message>
+        <source>&amp;Box zoom</source>
+        <translation>框选缩放(&amp;B)</translation>
+    </message>
+    <message>
+        <source>&amp;Remove active layer</source>
+        <translation>移除当前图层(&amp;R)</translation>
+    </message>
+    <message>
+        <source>&amp;File</source>
+        <translation>文件(&amp;F)</translation>
+    </message>
+    <message>
+        <source>&amp;Export</source>
+        <translation>导出(&amp;E)</translation>
+    </message>
+    <message>
+        <source>&amp;Run</source>
+        <translation>运行(&amp;R)</translation>
+    </message>
+    <message>
+        <source>&amp;View</source>
+        <translation>视图(&amp;V)</translation>
+    </message>
+    <message>
+        <source>&amp;Language</source>
+        <translation>语言(&amp;L)</translation>
+    </message>
+    <message>
+        <source>Layers</source>
+        <translation>图层</translation>
+    </message>
+    <message>
+        <source>Parameters</source>
+        <translation>参数</translation>
+    </message>
+    <message>
+        <source>Batch table</source>
+        <translation>批次表</translation>
+    </message>
+    <message>
+        <source>Detail</source>
+        <translation>详情</translation>
+    </message>
+    <message>
+        <source>Statistics</source>
+        <translation>统计</translation>
+    </message>
+    <message>
+        <source>Log</source>
+        <translation>日志</translation>
+    </message>
+    <message>
+        <source>Filter batches (any column)…</source>
+        <translation>筛选批次（任意列）…</translation>
+    </message>
+    <message>
+        <source>Cancel</source>
+        <translation>取消</translation>
+    </message>
+    <message>
+        <source>Sensor</source>
+        <translation>传感器</translation>
+    </message>
+    <message>
+        <source>Batch</source>
+        <translation>批号</translation>
+    </message>
+    <message>
+        <source>Points</source>
+        <translation>点数</translation>
+    </message>
+    <message>
+        <source>Start (UTC)</source>
+        <translation>开始 (UTC)</translation>
+    </message>
+    <message>
+        <source>End (UTC)</source>
+        <translation>结束 (UTC)</translation>
+    </message>
+    <message>
+        <source>Duration (min)</source>
+        <translation>时长 (分钟)</translation>
+    </message>
+    <message>
+        <source>Length (km)</source>
+        <translation>长度 (千米)</translation>
+    </message>
+    <message>
+        <source>Speed (kn)</source>
+        <translation>航速 (节)</translation>
+    </message>
+    <message>
+        <source>Maneuvers</source>
+        <translation>机动点</translation>
+    </message>
+    <message>
+        <source>Target</source>
+        <translation>目标</translation>
+    </message>
+    <message>
+        <source>Status</source>
+        <translation>状态</translation>
+    </message>
+    <message>
+        <source>longitude</source>
+        <translation>经度</translation>
+    </message>
+    <message>
+        <source>latitude</source>
+        <translation>纬度</translation>
+    </message>
+    <message>
+        <source>Error</source>
+        <translation>错误</translation>
+    </message>
+    <message>
+        <source>Warning</source>
+        <translation>警告</translation>
+    </message>
+    <message>
+        <source>Refused</source>
+        <translation>拒绝</translation>
+    </message>
+    <message>
+        <source>Cannot open file</source>
+        <translation>无法打开文件</translation>
+    </message>
+    <message>
+        <source>Nothing to run on</source>
+        <translation>没有可处理的数据</translation>
+    </message>
+    <message>
+        <source>Open a track file first.</source>
+        <translation>请先打开航迹文件。</translation>
+    </message>
+    <message>
+        <source>Running {0}…</source>
+        <translation>正在运行 {0}…</translation>
+    </message>
+    <message>
+        <source>{0} done in {1:.1f} s</source>
+        <translation>{0} 完成，用时 {1:.1f} 秒</translation>
+    </message>
+    <message>
+        <source>{0} failed</source>
+        <translation>{0} 失败</translation>
+    </message>
+    <message>
+        <source>{0} cancelled</source>
+        <translation>{0} 已取消</translation>
+    </message>
+    <message>
+        <source>Export</source>
+        <translation>导出</translation>
+    </message>
+    <message>
+        <source>Export failed</source>
+        <translation>导出失败</translation>
+    </message>
+    <message>
+        <source>exported {0} to {1}</source>
+        <translation>已将 {0} 导出到 {1}</translation>
+    </message>
+    <message>
+        <source>this layer has no maneuver points: run Maneuvers or Compress</source>
+        <translation>该图层没有机动点：请先运行机动检测或压缩</translation>
+    </message>
+    <message>
+        <source>Autosave failed</source>
+        <translation>自动保存失败</translation>
+    </message>
+    <message>
+        <source>Cannot open project</source>
+        <translation>无法打开工程</translation>
+    </message>
+    <message>
+        <source>Project opened with warnings</source>
+        <translation>工程已打开（有警告）</translation>
+    </message>
+    <message>
+        <source>Open project</source>
+        <translation>打开工程</translation>
+    </message>
+    <message>
+        <source>Save project</source>
+        <translation>保存工程</translation>
+    </message>
+    <message>
+        <source>No layer. File ▸ Open tracks… (Ctrl+O)</source>
+        <translation>没有图层。文件 ▸ 打开航迹…（Ctrl+O）</translation>
+    </message>
+    <message>
+        <source>Layer</source>
+        <translation>图层</translation>
+    </message>
+    <message>
+        <source>Tracks</source>
+        <translation>航迹数</translation>
+    </message>
+    <message>
+        <source>Sensors</source>
+        <translation>传感器</translation>
+    </message>
+    <message>
+        <source>Time</source>
+        <translation>时间</translation>
+    </message>
+    <message>
+        <source>points</source>
+        <translation>点</translation>
+    </message>
+    <message>
+        <source>tracks</source>
+        <translation>条航迹</translation>
+    </message>
+</context>
+<context>
+    <name>ParamsPanel</name>
+    <message>
+        <source>Save preset…</source>
+        <translation>保存预设…</translation>
+    </message>
+    <message>
+        <source>Load preset…</source>
+        <translation>载入预设…</translation>
+    </message>
+    <message>
+        <source>Defaults</source>
+        <translation>恢复默认</translation>
+    </message>
+    <message>
+        <source>Save preset</source>
+        <translation>保存预设</translation>
+    </message>
+    <message>
+        <source>Load preset</source>
+        <translation>载入预设</translation>
+    </message>
+    <message>
+        <source>Cannot load preset</source>
+        <translation>无法载入预设</translation>
+    </message>
+    <message>
+        <source>Preset loaded with problems</source>
+        <translation>预设已载入（有问题）</translation>
+    </message>
+    <message>
+        <source>Detection limit (seed 000) for this data: median speed {0:.1f} kn, interval {1:.0f} s, legs of p = {2} points ({3:.0f} s). A {4:.0f}° turn stands out from position errors up to {5:.0f} m; with 100 m errors the smallest turn found is {6:.1f}°.</source>
+        <translation>本数据的检测极限（种子文献 000）：航速中位数 {0:.1f} 节，采样间隔 {1:.0f} 秒，窗口 p = {2} 点（{3:.0f} 秒）。位置误差不超过 {5:.0f} 米时，{4:.0f}° 的转向可被检出；误差为 100 米时，可检出的最小转向为 {6:.1f}°。</translation>
+    </message>
+</context>
+<context>
+    <name>DetailPanel</name>
+    <message>
+        <source>Maneuver factor</source>
+        <translation>机动因子</translation>
+    </message>
+    <message>
+        <source>Compressed over original</source>
+        <translation>压缩与原始对比</translation>
+    </message>
+    <message>
+        <source>{0} maneuvers; threshold {1:g}°</source>
+        <translation>{0} 个机动点；阈值 {1:g}°</translation>
+    </message>
+    <message>
+        <source>run Maneuvers or Compress to see δ</source>
+        <translation>运行机动检测或压缩以查看 δ</translation>
+    </message>
+    <message>
+        <source>{0} of {1} points kept, Dis_e {2:.0f} m</source>
+        <translation>保留 {0}/{1} 点，Dis_e {2:.0f} 米</translation>
+    </message>
+    <message>
+        <source>run Compress to compare</source>
+        <translation>运行压缩以对比</translation>
+    </message>
+</context>
+<context>
+    <name>ImportDialog</name>
+    <message>
+        <source>Import tracks</source>
+        <translation>导入航迹</translation>
+    </message>
+    <message>
+        <source>Browse…</source>
+        <translation>浏览…</translation>
+    </message>
+    <message>
+        <source>sensor name when the file has none</source>
+        <translation>文件中没有传感器时使用的名称</translation>
+    </message>
+    <message>
+        <source>File</source>
+        <translation>文件</translation>
+    </message>
+    <message>
+        <source>Layout</source>
+        <translation>格式</translation>
+    </message>
+    <message>
+        <source>Encoding</source>
+        <translation>编码</translation>
+    </message>
+    <message>
+        <source>Column mapping</source>
+        <translation>列映射</translation>
+    </message>
+    <message>
+        <source>Sensor</source>
+        <translation>传感器</translation>
+    </message>
+    <message>
+        <source>First rows of the file:</source>
+        <translation>文件前几行：</translation>
+    </message>
+    <message>
+        <source>Open track file</source>
+        <translation>打开航迹文件</translation>
+    </message>
+</context>
+</TS>
