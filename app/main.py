@@ -52,7 +52,10 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
                 for row in range(window.layer_list.count()):
                     if window.layer_list.item(row).data(QtCore.Qt.ItemDataRole.UserRole) == comp[0]:
                         window.layer_list.setCurrentRow(row)
-                keys = window.batch_model.frame.sort_values("points", ascending=False)
+                frame = window.batch_model.frame
+                # Show the longest track of the most accurate sensor (AIS when present).
+                ais = frame[frame["sensor"].astype(str) == "AIS"]
+                keys = (ais if len(ais) else frame).sort_values("duration_s", ascending=False)
                 if len(keys):
                     window.select_tracks([(str(keys["sensor"].iat[0]), str(keys["batch"].iat[0]))])
             window.canvas.fit()

@@ -6,7 +6,6 @@ are :mod:`wakeline.core.pipeline` functions, export and the project file are cor
 """
 
 import gzip
-import json
 from pathlib import Path
 
 import numpy as np
@@ -70,6 +69,25 @@ def preview_lines(path: Path, n: int = 12) -> str:
         except UnicodeDecodeError:
             continue
     return raw.decode("latin-1")
+
+
+def summarize(report: dict) -> str:
+    """A step's report as one readable line (key figures only; nested reports flattened)."""
+    parts = []
+    for key, value in report.items():
+        if isinstance(value, dict):
+            if key in ("rules", "params", "tracks_report"):
+                continue
+            parts.append(f"{key}: [{summarize(value)}]")
+        elif isinstance(value, bool):
+            continue
+        elif isinstance(value, float):
+            parts.append(f"{key} {value:,.3g}" if abs(value) < 1 else f"{key} {value:,.1f}")
+        elif isinstance(value, int):
+            parts.append(f"{key} {value:,}")
+        elif isinstance(value, str):
+            parts.append(f"{key} {value}")
+    return ", ".join(parts)
 
 
 class ImportDialog(QtWidgets.QDialog):
@@ -721,9 +739,7 @@ class MainWindow(QtWidgets.QMainWindow):
                 self.statusBar().showMessage(
                     self.tr("{0} done in {1:.1f} s").format(step, msg.seconds), 8000
                 )
-                self.log_message(
-                    f"{step} on {base}: {json.dumps(msg.result.report, default=str)[:600]}"
-                )
+                self.log_message(f"{step} on {base}: {summarize(msg.result.report)}")
             elif isinstance(msg, Failed):
                 self.log_message(f"{self.tr('Error')} ({step}): {msg.message}")
                 if msg.detail:

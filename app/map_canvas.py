@@ -90,12 +90,14 @@ class MapCanvas(pg.PlotWidget):
         self.coastline = pg.PlotDataItem(pen=pg.mkPen("#8a8a8a", width=1), connect="finite")
         self.coastline.setZValue(-10)
         self.addItem(self.coastline)
+        # The selection is a wide translucent halo under the tracks, so the selected
+        # track itself stays visible on top of it.
         self.selection = pg.PlotDataItem(
-            pen=pg.mkPen("#ffb000", width=4), connect="finite", name=None
+            pen=pg.mkPen(QtGui.QColor(255, 170, 0, 170), width=9), connect="finite", name=None
         )
-        self.selection.setZValue(50)
+        self.selection.setZValue(-1)
         self.addItem(self.selection)
-        self.marks = pg.ScatterPlotItem(size=9, pen=pg.mkPen("k"), brush=pg.mkBrush("#ffd400"))
+        self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
         self.marks.setZValue(60)
         self.addItem(self.marks)
         self.scale_bar = pg.ScaleBar(size=0.1, suffix="")
