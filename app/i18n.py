@@ -31,7 +31,9 @@ class TsTranslator(QtCore.QTranslator):
                     self._table[(name, src)] = tr.text
 
     def translate(self, context, source, disambiguation=None, n=-1):  # noqa: D102 - Qt API
-        return self._table.get((context, source), "")
+        # None becomes a null QString, which tells Qt "not here, ask the next translator /
+        # keep the source"; an empty string would blank Qt's own texts (OK, Cancel, ...).
+        return self._table.get((context, source))
 
     def isEmpty(self) -> bool:  # noqa: N802 - Qt API
         return not self._table

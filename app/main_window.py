@@ -437,6 +437,7 @@ class MainWindow(QtWidgets.QMainWindow):
             ]
         )
         self.detail.retranslate()
+        self.params.retranslate()
         self.canvas.setLabel("bottom", self.tr("longitude"), units="°")
         self.canvas.setLabel("left", self.tr("latitude"), units="°")
         self._update_stats()

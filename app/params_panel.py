@@ -109,9 +109,8 @@ class ParamsPanel(QtWidgets.QWidget):
         self.guidance.setTextFormat(QtCore.Qt.TextFormat.PlainText)
         self.problem = QtWidgets.QLabel(wordWrap=True)
         self.problem.setStyleSheet("color: #b00020")
-        save = QtWidgets.QPushButton(self.tr("Save preset…"))
-        load = QtWidgets.QPushButton(self.tr("Load preset…"))
-        reset = QtWidgets.QPushButton(self.tr("Defaults"))
+        self.buttons = [QtWidgets.QPushButton() for _ in range(3)]
+        save, load, reset = self.buttons
         save.clicked.connect(self._save_dialog)
         load.clicked.connect(self._load_dialog)
         reset.clicked.connect(self.reset)
@@ -124,6 +123,14 @@ class ParamsPanel(QtWidgets.QWidget):
         lay.addWidget(self.problem)
         lay.addWidget(self.guidance)
         lay.addLayout(buttons)
+
+    def retranslate(self) -> None:
+        for button, text in zip(
+            self.buttons,
+            (self.tr("Save preset…"), self.tr("Load preset…"), self.tr("Defaults")),
+            strict=True,
+        ):
+            button.setText(text)
 
     # -- values --------------------------------------------------------------------
 
