@@ -1,10 +1,12 @@
-"""Detail views of the selected track: maneuver factor over time, compression."""
+"""Detail views: the selected track's maneuver factor and compression; bearing-only data
+with the AUC statistic and its threshold band."""
 
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtWidgets
 
+from wakeline.core.bearing import BearingParams, auc_statistic
 from wakeline.core.schema import time_seconds
 
 
@@ -39,11 +41,80 @@ class DetailPanel(QtWidgets.QTabWidget):
         )
         self.addTab(self.factor_plot, "δ")
         self.addTab(self.comp_plot, "Compression")
+        # Bearing-only: bearing over time above the AUC z statistic with its ±z band.
+        self.bearing_box = QtWidgets.QWidget()
+        self.bearing_batch = QtWidgets.QComboBox()
+        self.bearing_batch.currentTextChanged.connect(self._draw_bearing)
+        self.bearing_plots = pg.GraphicsLayoutWidget()
+        self.bearing_plots.setBackground("w")
+        self.b_plot = self.bearing_plots.addPlot(row=0, col=0)
+        self.z_plot = self.bearing_plots.addPlot(row=1, col=0)
+        self.z_plot.setXLink(self.b_plot)
+        self.b_plot.setLabel("left", "bearing", units="°")
+        self.z_plot.setLabel("left", "z (AUC)")
+        self.z_plot.setLabel("bottom", "time", units="min")
+        self.b_curve = self.b_plot.plot(
+            pen=None, symbol="o", symbolSize=3, symbolBrush="#1f77b4", symbolPen=None
+        )
+        self.z_curve = self.z_plot.plot(pen=pg.mkPen("#1f77b4", width=1.2))
+        self.z_band = pg.LinearRegionItem(
+            orientation="horizontal", movable=False, brush=(0, 0, 0, 25)
+        )
+        self.z_plot.addItem(self.z_band)
+        self.detect_lines: list = []
+        lay = QtWidgets.QVBoxLayout(self.bearing_box)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(self.bearing_batch)
+        lay.addWidget(self.bearing_plots)
+        self.addTab(self.bearing_box, "Bearing")
+        self._bearings = pd.DataFrame()
+        self._detections = pd.DataFrame()
+        self._bparams = BearingParams()
         self.message = ""
 
     def retranslate(self) -> None:
         self.setTabText(0, self.tr("Maneuver factor"))
         self.setTabText(1, self.tr("Compressed over original"))
+        self.setTabText(2, self.tr("Bearing-only"))
+
+    def show_bearings(
+        self, bearings: pd.DataFrame, detections: pd.DataFrame, params: BearingParams
+    ) -> None:
+        """Bearing sequences and their detections; the combo picks the sequence."""
+        self._bearings, self._detections, self._bparams = bearings, detections, params
+        self.bearing_batch.blockSignals(True)
+        self.bearing_batch.clear()
+        self.bearing_batch.addItems(sorted(bearings["batch"].astype(str).unique()))
+        self.bearing_batch.blockSignals(False)
+        self._draw_bearing(self.bearing_batch.currentText())
+        self.setCurrentWidget(self.bearing_box)
+
+    def _draw_bearing(self, batch: str) -> None:
+        for line in self.detect_lines:
+            for plot in (self.b_plot, self.z_plot):
+                if line in plot.items:
+                    plot.removeItem(line)
+        self.detect_lines = []
+        if self._bearings.empty or not batch:
+            return
+        g = self._bearings[self._bearings["batch"].astype(str) == batch].sort_values("time")
+        t = time_seconds(g["time"])
+        b = g["bearing"].to_numpy(dtype="float64")
+        t0 = t[0]
+        self.b_curve.setData((t - t0) / 60.0, np.degrees(np.unwrap(np.radians(b))))
+        p = self._bparams
+        bt, z = auc_statistic(t, b, int(p.window_x), int(p.window_y), int(p.trend_order))
+        self.z_curve.setData((bt - t0) / 60.0, z)
+        self.z_band.setRegion((-p.z_crit, p.z_crit))
+        det = self._detections[self._detections["batch"].astype(str) == batch]
+        for when in time_seconds(det["maneuver_time"]) if len(det) else []:
+            for plot in (self.b_plot, self.z_plot):
+                line = pg.InfiniteLine((when - t0) / 60.0, pen=pg.mkPen("#d62728", width=1.5))
+                plot.addItem(line)
+                self.detect_lines.append(line)
+        self.b_plot.setTitle(
+            self.tr("{0}: {1} maneuvers detected; band ±{2:.2f}").format(batch, len(det), p.z_crit)
+        )
 
     def clear(self) -> None:
         self.factor_curve.setData([], [])

@@ -296,6 +296,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a["open"] = QtGui.QAction(style.standardIcon(sp.SP_DialogOpenButton), "", self)
         a["open"].setShortcut(QtGui.QKeySequence.StandardKey.Open)
         a["open"].triggered.connect(self.open_dialog)
+        a["open_bearings"] = QtGui.QAction("", self, triggered=self.open_bearings_dialog)
         a["open_project"] = QtGui.QAction("", self, triggered=self.open_project_dialog)
         a["save_project"] = QtGui.QAction(style.standardIcon(sp.SP_DialogSaveButton), "", self)
         a["save_project"].setShortcut(QtGui.QKeySequence.StandardKey.Save)
@@ -325,6 +326,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self.menus = {k: QtWidgets.QMenu(self) for k in ("file", "export", "run", "view", "lang")}
         m = self.menus
         m["file"].addAction(a["open"])
+        m["file"].addAction(a["open_bearings"])
         m["file"].addAction(a["open_project"])
         m["file"].addAction(a["save_project"])
         m["file"].addMenu(m["export"])
@@ -386,6 +388,7 @@ class MainWindow(QtWidgets.QMainWindow):
         texts = {
             "open": self.tr("&Open tracks…"),
             "open_project": self.tr("Open &project…"),
+            "open_bearings": self.tr("Open &bearings (bearing-only detection)…"),
             "save_project": self.tr("&Save project as…"),
             "export_csv": self.tr("Active layer as &CSV…"),
             "export_geojson": self.tr("Active layer as &GeoJSON…"),
@@ -494,6 +497,33 @@ class MainWindow(QtWidgets.QMainWindow):
         self.add_layer(path.name, "source", result.points, {"file": str(path), "report": rep})
         self.canvas.fit()
         return True
+
+    def open_bearings_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(
+            self, self.tr("Open bearings"), "", "CSV (*.csv *.txt);;All files (*)"
+        )
+        if path:
+            self.load_bearings(Path(path))
+
+    def load_bearings(self, path: Path) -> int | None:
+        """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it
+        in the worker; the Detail panel shows the sequences, z and the detections."""
+        from wakeline.core.bearing import read_bearings
+
+        try:
+            bearings = read_bearings(path)
+        except (InputError, OSError) as exc:
+            self.log_message(f"{self.tr('Error')}: {exc}")
+            QtWidgets.QMessageBox.warning(self, self.tr("Cannot open file"), str(exc))
+            return None
+        self.bearings = bearings
+        self.log_message(
+            f"{Path(path).name}: {len(bearings):,} bearings in {bearings['batch'].nunique()} sequences"
+        )
+        params = self.params.params("bearing")
+        job = self.runner.run("bearing", lambda prog: pipeline.step_bearing(bearings, params, prog))
+        self._job_context = {job: ("bearing", Path(path).name)}
+        return job
 
     # -- layers --------------------------------------------------------------------
 
@@ -751,6 +781,13 @@ class MainWindow(QtWidgets.QMainWindow):
                 self.statusBar().showMessage(self.tr("{0} cancelled").format(step), 5000)
 
     def _apply_result(self, base: str, result: pipeline.StepResult) -> None:
+        if result.step == "bearing":
+            self.bearing_detections = result.report["table"]
+            self.detail.show_bearings(
+                self.bearings, self.bearing_detections, self.params.params("bearing")
+            )
+            self.docks["detail"].raise_()
+            return
         root = base.split(" · ")[0]
         for new in result.layers:
             name = f"{root} · {new.suffix}"

@@ -11,6 +11,8 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.associate import LinkParams, associate_interrupted
+from wakeline.core.bearing import BearingParams
+from wakeline.core.bearing import detect as detect_bearings
 from wakeline.core.clean import CleanParams, clean
 from wakeline.core.compress import CompressParams, compress_with
 from wakeline.core.fuse import FuseParams, associate_sensors, fuse
@@ -132,4 +134,21 @@ def default_pipeline(
         "pipeline",
         [cleaned.layers[0], *comp.layers],
         {"clean": cleaned.report, "compress": comp.report},
+    )
+
+
+def step_bearing(
+    bearings: pd.DataFrame, params: BearingParams, progress: Progress | None = None
+) -> StepResult:
+    """Bearing-only maneuver detection (seed 002) on every sequence; no new layer."""
+    (progress or null_progress)(0.0, "AUC detection")
+    detections = detect_bearings(bearings, params)
+    return StepResult(
+        "bearing",
+        [],
+        {
+            "sequences": int(bearings["batch"].nunique()),
+            "detections": int(len(detections)),
+            "table": detections,
+        },
     )

@@ -32,3 +32,15 @@ def write(tmp_path):
         return path
 
     return _write
+
+
+@pytest.fixture(autouse=True)
+def _no_blocking_dialogs(monkeypatch):
+    """A modal message box would wait forever offscreen: record instead (tests that check
+    dialogs patch QMessageBox themselves)."""
+    try:
+        from PySide6 import QtWidgets
+    except ImportError:
+        return
+    for name in ("warning", "information", "critical", "question"):
+        monkeypatch.setattr(QtWidgets.QMessageBox, name, lambda *a, **k: None)

@@ -267,3 +267,26 @@ def test_qt_binding_keeps_reference_counts():
     for k in range(100):
         e.sig.emit(k)
     assert sys.getrefcount(True) - before > -50, "this PySide6 leaks references on emit()"
+
+
+def test_bearing_only_data_shows_the_statistic_and_detections(window, tmp_path, monkeypatch):
+    shown = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+    from wakeline.core.bearing import simulate_table
+
+    path = tmp_path / "bearings.csv"
+    simulate_table(seed=1).to_csv(path, index=False)
+    assert window.load_bearings(path) is not None
+    wait_for_jobs(window)
+    det = window.bearing_detections
+    assert len(det) > 0
+    window.detail.bearing_batch.setCurrentText(str(det["batch"].iloc[0]))
+    x, z = window.detail.z_curve.getData()
+    assert len(x) > 100 and np.nanmax(np.abs(z)) > window.params.params("bearing").z_crit
+    assert len(window.detail.detect_lines) == 2 * int(
+        (det["batch"] == window.detail.bearing_batch.currentText()).sum()
+    )
+    bad = tmp_path / "bad_bearings.csv"
+    bad.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,abc\n")
+    assert window.load_bearings(bad) is None
+    assert shown and "not a number" in shown[-1]

@@ -16,6 +16,14 @@
         <translation>打开工程(&amp;P)…</translation>
     </message>
     <message>
+        <source>Open &amp;bearings (bearing-only detection)…</source>
+        <translation>打开方位数据(&amp;B)（纯方位机动检测）…</translation>
+    </message>
+    <message>
+        <source>Open bearings</source>
+        <translation>打开方位数据</translation>
+    </message>
+    <message>
         <source>&amp;Save project as…</source>
         <translation>工程另存为(&amp;S)…</translation>
     </message>
@@ -344,6 +352,14 @@
     <message>
         <source>run Compress to compare</source>
         <translation>运行压缩以对比</translation>
+    </message>
+    <message>
+        <source>Bearing-only</source>
+        <translation>纯方位</translation>
+    </message>
+    <message>
+        <source>{0}: {1} maneuvers detected; band ±{2:.2f}</source>
+        <translation>{0}：检测到 {1} 次机动；阈值带 ±{2:.2f}</translation>
     </message>
 </context>
 <context>
