@@ -48,10 +48,7 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
             wait_for_jobs(window)
             comp = [n for n, lay in window.layers.items() if lay.kind == "compressed"]
             if comp:
-                window.set_active(comp[0])
-                for row in range(window.layer_list.count()):
-                    if window.layer_list.item(row).data(QtCore.Qt.ItemDataRole.UserRole) == comp[0]:
-                        window.layer_list.setCurrentRow(row)
+                window.select_layer(comp[0])
                 frame = window.batch_model.frame
                 # Show the longest track of the most accurate sensor (AIS when present).
                 ais = frame[frame["sensor"].astype(str) == "AIS"]

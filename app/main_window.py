@@ -591,16 +591,24 @@ class MainWindow(QtWidgets.QMainWindow):
             )
         self.canvas.set_visible(layer.name, layer.visible)
 
+    def layer_row(self, name: str) -> int:
+        """Row of layer ``name`` in the Layers list (-1 when absent)."""
+        names = self._layer_order()
+        return names.index(name) if name in names else -1
+
+    def select_layer(self, name: str) -> None:
+        """Make ``name`` the active layer, as a click in the Layers list does."""
+        row = self.layer_row(name)
+        if row >= 0:
+            self.layer_list.setCurrentRow(row)
+
     def remove_active_layer(self) -> None:
         if self.active is None:
             return
         name = self.active
         self.canvas.remove_layer(name)
         del self.layers[name]
-        for row in range(self.layer_list.count()):
-            if self.layer_list.item(row).data(QtCore.Qt.ItemDataRole.UserRole) == name:
-                self.layer_list.takeItem(row)
-                break
+        self.layer_list.takeItem(self.layer_row(name))
         if not self.layers:
             self.set_active(None)
         self.autosave()
@@ -716,9 +724,7 @@ class MainWindow(QtWidgets.QMainWindow):
 
     def _track_clicked(self, layer: str, sensor: str, batch: str, add: bool) -> None:
         if layer != self.active:
-            for row in range(self.layer_list.count()):
-                if self.layer_list.item(row).data(QtCore.Qt.ItemDataRole.UserRole) == layer:
-                    self.layer_list.setCurrentRow(row)
+            self.select_layer(layer)
         self.select_tracks([(sensor, batch)], add=add)
 
     # -- running steps -------------------------------------------------------------
@@ -794,10 +800,7 @@ class MainWindow(QtWidgets.QMainWindow):
             if name in self.layers:  # a re-run replaces the old result
                 self.canvas.remove_layer(name)
                 del self.layers[name]
-                for row in range(self.layer_list.count()):
-                    if self.layer_list.item(row).data(QtCore.Qt.ItemDataRole.UserRole) == name:
-                        self.layer_list.takeItem(row)
-                        break
+                self.layer_list.takeItem(self.layer_row(name))
             self.add_layer(name, new.kind, new.points, {**new.meta, "from": base}, autosave=False)
         self.autosave()
 
@@ -894,9 +897,7 @@ class MainWindow(QtWidgets.QMainWindow):
             )
         sel = [r for r in proj.selection if r[0]]
         if sel:
-            for row in range(self.layer_list.count()):
-                if self.layer_list.item(row).data(QtCore.Qt.ItemDataRole.UserRole) == sel[0][0]:
-                    self.layer_list.setCurrentRow(row)
+            self.select_layer(sel[0][0])
             self._selecting = True
             self.select_tracks([(s, b) for _, s, b in sel])
             self._selecting = False
