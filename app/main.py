@@ -1,6 +1,8 @@
 """Start the desktop application."""
 
+import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
@@ -31,8 +33,10 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
     settings = None
     if screenshot is not None:
         # A screenshot must not depend on (or change) the user's saved window layout.
+        # ...so its settings live in a throw-away folder.
+        scratch = tempfile.mkdtemp(prefix="wakeline-shot-")
         settings = QtCore.QSettings(
-            str(Path(screenshot).with_suffix(".ini")), QtCore.QSettings.Format.IniFormat
+            str(Path(scratch) / "settings.ini"), QtCore.QSettings.Format.IniFormat
         )
         settings.clear()
         settings.setValue("language", "en")
@@ -61,7 +65,8 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
             QtCore.QThread.msleep(20)
         ok = window.grab().save(str(screenshot))
         window.close()
-        Path(screenshot).with_suffix(".ini").unlink(missing_ok=True)
+        del window, settings
+        shutil.rmtree(scratch, ignore_errors=True)
         return 0 if ok and all(loaded) else 2
     window.show()
     return app.exec()
