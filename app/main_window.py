@@ -6,6 +6,7 @@ are :mod:`wakeline.core.pipeline` functions, export and the project file are cor
 """
 
 import gzip
+import json
 from pathlib import Path
 
 import numpy as np
@@ -15,7 +16,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from wakeline.app import i18n
 from wakeline.app.detail import DetailPanel
 from wakeline.app.map_canvas import PALETTE, MapCanvas, color_icon
-from wakeline.app.models import BatchFilterModel, BatchTableModel, batch_summary
+from wakeline.app.models import BatchFilterModel, BatchTableModel, FrameModel, batch_summary
 from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.worker import Cancelled, Failed, Finished, JobRunner, Progress, Started
 from wakeline.core import pipeline
@@ -25,6 +26,9 @@ from wakeline.core.io import FAMILIES, read_points
 from wakeline.core.project import Layer, Project, Source, file_hash, load_project, save_project
 from wakeline.core.tracks import sort_points
 from wakeline.resources import coastline_path
+
+#: Quarantined rows kept with a source layer (and in the project) for viewing.
+QUARANTINE_KEPT = 10_000
 
 KIND_COLORS = {
     "cleaned": "#2ca02c",
@@ -160,6 +164,34 @@ class ImportDialog(QtWidgets.QDialog):
             "mapping": mapping,
             "sensor": self.sensor_edit.text().strip() or None,
         }
+
+
+class ImportReportDialog(QtWidgets.QDialog):
+    """A source layer's import report and its quarantined rows (line, reason, raw text)."""
+
+    def __init__(self, layer: Layer, parent=None) -> None:
+        super().__init__(parent)
+        self.setWindowTitle(self.tr("Import report: {0}").format(layer.name))
+        rep = layer.meta.get("report", {})
+        text = QtWidgets.QPlainTextEdit(readOnly=True)
+        text.setPlainText(json.dumps(rep, indent=2, ensure_ascii=False, default=str))
+        self.table = QtWidgets.QTableView()
+        self.table.setModel(FrameModel(pd.DataFrame(layer.meta.get("quarantine", [])), self))
+        self.table.horizontalHeader().setStretchLastSection(True)
+        lay = QtWidgets.QVBoxLayout(self)
+        lay.addWidget(text, 1)
+        lay.addWidget(
+            QtWidgets.QLabel(
+                self.tr("Quarantined rows ({0:,}; the first {1:,} are kept):").format(
+                    int(rep.get("rows_quarantined", 0)), QUARANTINE_KEPT
+                )
+            )
+        )
+        lay.addWidget(self.table, 2)
+        close = QtWidgets.QDialogButtonBox(QtWidgets.QDialogButtonBox.StandardButton.Close)
+        close.rejected.connect(self.reject)
+        lay.addWidget(close)
+        self.resize(900, 600)
 
 
 class MainWindow(QtWidgets.QMainWindow):
@@ -321,6 +353,7 @@ class MainWindow(QtWidgets.QMainWindow):
         a["box"] = QtGui.QAction("", self, checkable=True)
         a["box"].toggled.connect(self.canvas.set_box_zoom)
         a["remove_layer"] = QtGui.QAction("", self, triggered=self.remove_active_layer)
+        a["import_report"] = QtGui.QAction("", self, triggered=self.show_import_report)
         self.actions_ = a
 
         self.menus = {k: QtWidgets.QMenu(self) for k in ("file", "export", "run", "view", "lang")}
@@ -344,6 +377,7 @@ class MainWindow(QtWidgets.QMainWindow):
         m["view"].addAction(a["fit"])
         m["view"].addAction(a["box"])
         m["view"].addAction(a["remove_layer"])
+        m["view"].addAction(a["import_report"])
         m["view"].addSeparator()
         for dock in self.docks.values():
             m["view"].addAction(dock.toggleViewAction())
@@ -404,6 +438,7 @@ class MainWindow(QtWidgets.QMainWindow):
             "fit": self.tr("&Fit to data"),
             "box": self.tr("&Box zoom"),
             "remove_layer": self.tr("&Remove active layer"),
+            "import_report": self.tr("&Import report and quarantined rows…"),
         }
         for key, text in texts.items():
             a[key].setText(text)
@@ -494,7 +529,13 @@ class MainWindow(QtWidgets.QMainWindow):
                 f"    first quarantined rows:\n{result.quarantine.head(5).to_string()}"
             )
         self.sources.append(Source(str(path.resolve()), file_hash(path)))
-        self.add_layer(path.name, "source", result.points, {"file": str(path), "report": rep})
+        quarantine = result.quarantine.head(QUARANTINE_KEPT).astype(str).to_dict("records")
+        self.add_layer(
+            path.name,
+            "source",
+            result.points,
+            {"file": str(path), "report": rep, "quarantine": quarantine},
+        )
         self.canvas.fit()
         return True
 
@@ -601,6 +642,16 @@ class MainWindow(QtWidgets.QMainWindow):
         row = self.layer_row(name)
         if row >= 0:
             self.layer_list.setCurrentRow(row)
+
+    def show_import_report(self) -> QtWidgets.QDialog | None:
+        """The import report of the active layer's source file."""
+        layer = self.active_layer()
+        if layer is None:
+            return None
+        source = self.layers.get(layer.name.split(" · ")[0], layer)
+        dialog = ImportReportDialog(source, self)
+        dialog.show()
+        return dialog
 
     def remove_active_layer(self) -> None:
         if self.active is None:

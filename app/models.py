@@ -145,3 +145,30 @@ class BatchFilterModel(QtCore.QSortFilterProxyModel):
         self.setSortRole(SORT_ROLE)
         self.setFilterKeyColumn(-1)
         self.setFilterCaseSensitivity(QtCore.Qt.CaseSensitivity.CaseInsensitive)
+
+
+class FrameModel(QtCore.QAbstractTableModel):
+    """Any small DataFrame as a read-only table (the quarantine, reports)."""
+
+    def __init__(self, df: pd.DataFrame, parent=None) -> None:
+        super().__init__(parent)
+        self._df = df.reset_index(drop=True)
+
+    def rowCount(self, parent=None) -> int:  # noqa: N802 - Qt API
+        return 0 if parent is not None and parent.isValid() else len(self._df)
+
+    def columnCount(self, parent=None) -> int:  # noqa: N802 - Qt API
+        return 0 if parent is not None and parent.isValid() else len(self._df.columns)
+
+    def headerData(self, section, orientation, role=QtCore.Qt.ItemDataRole.DisplayRole):  # noqa: N802
+        if role != QtCore.Qt.ItemDataRole.DisplayRole:
+            return None
+        if orientation == QtCore.Qt.Orientation.Horizontal:
+            return str(self._df.columns[section])
+        return str(section + 1)
+
+    def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
+        if not index.isValid() or role != QtCore.Qt.ItemDataRole.DisplayRole:
+            return None
+        value = self._df.iat[index.row(), index.column()]
+        return "" if value is None or (isinstance(value, float) and np.isnan(value)) else str(value)

@@ -198,6 +198,22 @@ def test_parameters_panel_refuses_bad_values_and_round_trips_presets(window, tmp
     assert "[s]" in leaf.opts["tip"] and "seed 003" in leaf.opts["tip"]
 
 
+def test_quarantined_rows_are_viewable(window, tmp_path):
+    src = tmp_path / "with_bad_rows.csv"
+    write_points(simulate.demo_scene().head(50), src)
+    with open(src, "a") as fh:
+        fh.write("AIS,9,not-a-time,122.5,30.5,,,,,\nAIS,9,2024-05-01T00:00:00Z,999,30.5,,,,,\n")
+    assert window.load_file(src)
+    dialog = window.show_import_report()
+    model = dialog.table.model()
+    assert model.rowCount() == 2
+    headers = [
+        model.headerData(c, QtCore.Qt.Orientation.Horizontal) for c in range(model.columnCount())
+    ]
+    assert "reason" in headers
+    dialog.close()
+
+
 def test_bad_file_shows_a_dialog_not_a_crash(window, tmp_path, monkeypatch):
     shown = []
     monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))

@@ -84,6 +84,10 @@
         <translation>移除当前图层(&amp;R)</translation>
     </message>
     <message>
+        <source>&amp;Import report and quarantined rows…</source>
+        <translation>导入报告与隔离行(&amp;I)…</translation>
+    </message>
+    <message>
         <source>&amp;File</source>
         <translation>文件(&amp;F)</translation>
     </message>
@@ -360,6 +364,17 @@
     <message>
         <source>{0}: {1} maneuvers detected; band ±{2:.2f}</source>
         <translation>{0}：检测到 {1} 次机动；阈值带 ±{2:.2f}</translation>
+    </message>
+</context>
+<context>
+    <name>ImportReportDialog</name>
+    <message>
+        <source>Import report: {0}</source>
+        <translation>导入报告：{0}</translation>
+    </message>
+    <message>
+        <source>Quarantined rows ({0:,}; the first {1:,} are kept):</source>
+        <translation>隔离行（{0:,} 行；保留前 {1:,} 行）：</translation>
     </message>
 </context>
 <context>
