@@ -10,6 +10,7 @@ late messages are dropped.
 """
 
 import threading
+import time
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -72,8 +73,6 @@ class _Thread(QtCore.QThread):
         self.message.emit(Progress(self.job, float(fraction), text))
 
     def run(self) -> None:
-        import time
-
         t0 = time.perf_counter()
         self.message.emit(Started(self.job, self.name))
         try:

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 from scipy import sparse
-from scipy.sparse.csgraph import min_weight_full_bipartite_matching
+from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
 from scipy.spatial import cKDTree
 
 from wakeline.core import geo
@@ -29,6 +29,7 @@ from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import seconds_to_time
 from wakeline.core.segments import Segments, ecef, segment_stats
+from wakeline.core.tracks import concat_ranges
 
 SEGMENT_METHODS = ("motion", "area", "dtw", "hausdorff")
 INTERRUPT_METHODS = ("optimal", "greedy")
@@ -270,9 +271,8 @@ def optimal_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) 
     return idx[picked.astype("int64")]
 
 
-def _components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    from scipy.sparse.csgraph import connected_components
-
+def components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Connected-component label of each of ``n`` tracks linked by pairs (a, b)."""
     g = sparse.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
     return connected_components(g, directed=False)[1]
 
@@ -324,7 +324,7 @@ class Association:
 
 def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndarray:
     """Target label per track: the batch of the earliest track of its linked group."""
-    comp = _components(len(seg), links_i, links_j)
+    comp = components(len(seg), links_i, links_j)
     order = np.lexsort((seg.t0, comp))
     first = np.ones(len(order), dtype=bool)
     first[1:] = comp[order][1:] != comp[order][:-1]
@@ -556,7 +556,7 @@ def stitch(assoc: Association, period_s: float | None = None) -> pd.DataFrame:
     period = np.where(np.isfinite(period) & (period > 0), period, gap)
     count = np.maximum(np.ceil(gap / period - 0.5).astype("int64") - 1, 0)
     owner = np.repeat(np.arange(len(k)), count)
-    step = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count) + 1
+    step = concat_ranges(np.ones(len(count)), count)
     tau = step * period[owner]  # seconds after the old track's end
     g = gap[owner]
     s = tau / g

@@ -328,6 +328,15 @@ def _cmd_bearing(args: argparse.Namespace) -> int:
     return 0
 
 
+def _params_epilog(cls) -> str:
+    """Help text listing a parameter class's fields with unit, default and meaning."""
+    fields = "; ".join(
+        f"{d['name']} ({d['unit'] or '-'}, default {d['default']}): {d['doc']}"
+        for d in cls.describe()
+    )
+    return f"Parameters (--set NAME=VALUE): {fields}. {EPILOG}"
+
+
 def _link_params(settings: list[str] | None):
     from wakeline.core.associate import LinkParams
 
@@ -695,13 +704,7 @@ def build_parser() -> argparse.ArgumentParser:
         "assignment (or seed 003's greedy). segments: seed 001's clustering of segments (area S and "
         "directional mean, or DTW/Hausdorff baselines; 'motion' = our distance). Writes every input row "
         "with a 'target' column; --stitch joins each target into one batch and fills the gaps.",
-        epilog="Parameters (--set NAME=VALUE): "
-        + "; ".join(
-            f"{d['name']} ({d['unit'] or '-'}, default {d['default']}): {d['doc']}"
-            for d in LinkParams.describe()
-        )
-        + ". "
-        + EPILOG,
+        epilog=_params_epilog(LinkParams),
     )
     _io_args(p, "points with a target column, canonical CSV")
     p.add_argument("--mode", choices=("interrupted", "segments"), default="interrupted")
@@ -744,13 +747,7 @@ def build_parser() -> argparse.ArgumentParser:
         "several sensors cover the time, the positions are averaged with weights from each track's "
         "sampling regularity and noise; elsewhere the single sensor's points; junctions blended. "
         "Columns added: source (sensors covering the point), n_sources, weight_base, members.",
-        epilog="Parameters (--set NAME=VALUE): "
-        + "; ".join(
-            f"{d['name']} ({d['unit'] or '-'}, default {d['default']}): {d['doc']}"
-            for d in FuseParams.describe()
-        )
-        + ". "
-        + EPILOG,
+        epilog=_params_epilog(FuseParams),
     )
     _io_args(p, "fused tracks, canonical CSV")
     p.add_argument("--distance", choices=("sync", "dtw"), default="sync", help="default sync")

@@ -35,7 +35,7 @@ import pandas as pd
 from scipy.spatial import cKDTree
 
 from wakeline.core import geo
-from wakeline.core.associate import dtw_batch, greedy_assign, optimal_assign
+from wakeline.core.associate import components, dtw_batch, greedy_assign, optimal_assign
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
@@ -43,6 +43,7 @@ from wakeline.core.schema import time_seconds
 from wakeline.core.segments import ecef
 from wakeline.core.tracks import (
     TrackIndex,
+    concat_ranges,
     derive_motion,
     interp_positions,
     sorted_with_index,
@@ -166,9 +167,7 @@ def _probe_pairs(
     g1 = np.floor((t1 + p / 2) / p).astype("int64")
     count = np.maximum(g1 - g0 + 1, 1)
     track = np.repeat(np.arange(index.n_tracks), count)
-    grid = np.repeat(g0, count) + (
-        np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
-    )
+    grid = concat_ranges(g0, count)
     lon, lat, ok = interp_positions(pts, index, track, grid * p, params.max_interp_s)
     # A probe just outside the span (within half a grid step) stands for the track's end.
     near_end = (grid * p >= t0[track] - p) & (grid * p <= t1[track] + p)
@@ -213,9 +212,7 @@ def _sync_distance(pts, index, t, base, other, first_row, count, max_gap_s: floa
     interpolated at their times; points in a gap longer than ``max_gap_s`` of the other
     track do not count, and a pair with fewer than two usable points gets infinity."""
     owner = np.repeat(np.arange(len(base)), count)
-    rows = np.repeat(first_row, count) + (
-        np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
-    )
+    rows = concat_ranges(first_row, count)
     lon, lat, ok = interp_positions(pts, index, other[owner], t[rows], max_gap_s)
     d = geo.haversine_m(pts["lon"].to_numpy()[rows], pts["lat"].to_numpy()[rows], lon, lat)
     used = np.bincount(owner[ok], minlength=len(base))
@@ -327,12 +324,7 @@ def associate_sensors(
 
 def _target_labels(index: TrackIndex, t0: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Targets T0001, T0002, … numbered by their earliest start; linked tracks share one."""
-    from scipy import sparse
-    from scipy.sparse.csgraph import connected_components
-
-    n = index.n_tracks
-    g = sparse.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
-    comp = connected_components(g, directed=False)[1]
+    comp = components(index.n_tracks, a, b)
     first = pd.Series(t0).groupby(comp).min()
     rank = first.rank(method="first").astype("int64").to_numpy()
     width = max(4, len(str(len(first))))
@@ -394,29 +386,15 @@ def fuse(
     sensor = keys["sensor"].to_numpy().astype(str)
     label = np.char.add(np.char.add(sensor, ":"), keys["batch"].to_numpy().astype(str))
 
-    # Ordered pairs (m, k) of different members of one target.
-    tcode = pd.factorize(target)[0]
-    order = np.argsort(tcode, kind="stable")
-    size = np.bincount(tcode)
-    first = np.cumsum(size) - size
-    rep = size[tcode[order]]
-    m_of = np.repeat(order, rep)
-    k_of = order[first[tcode[m_of]] + (np.arange(len(m_of)) - np.repeat(np.cumsum(rep) - rep, rep))]
-    other = m_of != k_of
-    m_of, k_of = m_of[other], k_of[other]
-
-    # Each row against every other member of its target that covers its time.
+    # Each row against every other member of its target: (row r, member k) pairs.
     row_track = index.track_of_row
-    cnt = np.bincount(m_of, minlength=n_tr)  # other members per track
     n_rows = len(pts)
-    per_row = cnt[row_track]
-    r_idx = np.repeat(np.arange(n_rows), per_row)
-    start_of = np.zeros(n_tr + 1, dtype="int64")
-    pair_order = np.argsort(m_of, kind="stable")
-    m_sorted, k_sorted = m_of[pair_order], k_of[pair_order]
-    start_of[1:] = np.cumsum(np.bincount(m_sorted, minlength=n_tr))
-    offs = np.arange(len(r_idx)) - np.repeat(np.cumsum(per_row) - per_row, per_row)
-    k_idx = k_sorted[start_of[row_track[r_idx]] + offs]
+    members = pd.DataFrame({"k": np.arange(n_tr), "target": pd.factorize(target)[0]})
+    rows = pd.DataFrame({"r": np.arange(n_rows), "m": row_track})
+    rows["target"] = members["target"].to_numpy()[row_track]
+    pairs = rows.merge(members, on="target")
+    pairs = pairs[pairs["k"].to_numpy() != pairs["m"].to_numpy()]
+    r_idx, k_idx = pairs["r"].to_numpy(), pairs["k"].to_numpy()
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
     # Member k covers row r when r's time lies between two of k's points close enough in time.

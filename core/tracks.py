@@ -245,6 +245,13 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
+def concat_ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``starts[k], starts[k] + 1, …`` (``counts[k]`` values) for every k, concatenated."""
+    counts = np.asarray(counts, dtype="int64")
+    offsets = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
+    return np.repeat(np.asarray(starts, dtype="int64"), counts) + offsets
+
+
 def interp_positions(
     df: pd.DataFrame,
     index: TrackIndex,
