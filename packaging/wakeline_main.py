@@ -2,7 +2,7 @@
 
 import sys
 
-from wakeline.core.cli import main
+from wakeline.app.cli import main
 
 if __name__ == "__main__":
     sys.exit(main())

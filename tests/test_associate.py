@@ -4,6 +4,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from wakeline.app.cli import main
 from wakeline.core import geo, simulate
 from wakeline.core.associate import (
     LinkParams,
@@ -16,7 +17,6 @@ from wakeline.core.associate import (
     polygon_area,
     stitch,
 )
-from wakeline.core.cli import main
 from wakeline.core.errors import InputError
 from wakeline.core.evaluate_association import cluster_scores, score_association
 from wakeline.core.segments import segment_stats

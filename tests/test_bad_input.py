@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 import wakeline.core.io.writer as writer_mod
-from wakeline.core.cli import main
+from wakeline.app.cli import main
 from wakeline.core.errors import InputError
 from wakeline.core.io import read_points, write_points
 

@@ -2,6 +2,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from wakeline.app.cli import main
 from wakeline.core.bearing import (
     SCENARIOS,
     BearingParams,
@@ -14,7 +15,6 @@ from wakeline.core.bearing import (
     simulate_bearings,
     simulate_table,
 )
-from wakeline.core.cli import main
 from wakeline.core.errors import InputError
 
 

@@ -5,9 +5,9 @@ import pandas as pd
 import pytest
 
 from conftest import DATA, real_file
+from wakeline.app.cli import main
 from wakeline.core import geo, simulate
 from wakeline.core.clean import CleanParams, clean, restore
-from wakeline.core.cli import main
 from wakeline.core.errors import InputError
 from wakeline.core.io import read_points
 from wakeline.core.tracks import sort_points

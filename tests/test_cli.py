@@ -4,7 +4,7 @@ import sys
 import pandas as pd
 import pytest
 
-from wakeline.core.cli import build_parser, main
+from wakeline.app.cli import build_parser, main
 
 SUBCOMMANDS = (
     "import",
@@ -88,7 +88,7 @@ def test_console_script_runs_as_a_process(tmp_path):
         [
             sys.executable,
             "-m",
-            "wakeline.core.cli",
+            "wakeline.app.cli",
             "simulate",
             "maneuver",
             "--tracks",

@@ -5,8 +5,8 @@ import pandas as pd
 import pytest
 from test_maneuver import legs, track_from_xy
 
+from wakeline.app.cli import main
 from wakeline.core import simulate
-from wakeline.core.cli import main
 from wakeline.core.compress import compress_with, douglas_peucker_mask
 from wakeline.core.evaluate import SEED000_TABLE1, evaluate_maneuver, match_turns
 from wakeline.core.maneuver import detect

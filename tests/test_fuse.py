@@ -4,8 +4,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from wakeline.app.cli import main
 from wakeline.core import geo, simulate
-from wakeline.core.cli import main
 from wakeline.core.errors import InputError
 from wakeline.core.evaluate_association import fusion_errors, sensor_pair_scores
 from wakeline.core.fuse import FuseParams, associate_sensors, fuse, member_weights

@@ -3,9 +3,9 @@ import pandas as pd
 import pytest
 from test_clean import move, straight
 
+from wakeline.app.cli import main
 from wakeline.core import geo
 from wakeline.core.clean import CleanParams, clean, restore
-from wakeline.core.cli import main
 from wakeline.core.errors import InputError
 from wakeline.core.schema import time_seconds
 from wakeline.core.tracks import sorted_with_index

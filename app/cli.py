@@ -1,5 +1,8 @@
 """The ``wakeline`` command line (SPEC §8): the same engine as the GUI, for batch work.
 
+It lives in the application package so that the engine (``wakeline.core``) never
+reaches Qt; Qt is imported only when the ``gui`` subcommand runs.
+
 Every subcommand returns 0 on success and 2 on bad input with one clear line on stderr;
 output files are written atomically, so a failed run leaves none half-written. No
 Python traceback reaches the user unless ``--debug`` is given.
@@ -830,12 +833,26 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _with_default_command(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
+    """``argv`` with ``gui`` inserted when no subcommand is named (``wakeline FILE…``).
+
+    Global options (``--debug``) stay in front; ``--help``/``--version`` are left alone.
+    """
+    commands = next(a.choices for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    globals_ = [a for a in argv if a == "--debug"]
+    rest = [a for a in argv if a != "--debug"]
+    if any(a in ("-h", "--help", "--version") for a in rest[:1]):
+        return argv
+    if rest and rest[0] in commands:
+        return globals_ + rest
+    return [*globals_, "gui", *rest]
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``wakeline`` command; returns the exit status."""
     parser = build_parser()
-    args = parser.parse_args(argv)
-    if args.command is None:
-        args = parser.parse_args(["gui", *(argv if argv is not None else sys.argv[1:])])
+    argv = list(sys.argv[1:] if argv is None else argv)
+    args = parser.parse_args(_with_default_command(parser, argv))
     try:
         return args.func(args)
     except InputError as exc:
