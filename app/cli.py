@@ -103,79 +103,6 @@ def _maneuver_params(args: argparse.Namespace):
     ).checked()
 
 
-def _cmd_maneuvers(args: argparse.Namespace) -> int:
-    import numpy as np
-    import pandas as pd
-
-    from wakeline.core import baselines
-    from wakeline.core.io import write_csv
-    from wakeline.core.maneuver import MANEUVER_COLUMNS, detect
-    from wakeline.core.schema import time_seconds
-    from wakeline.core.tracks import local_xy
-
-    points = _read_canonical(args.input)
-    result = detect(points, _maneuver_params(args))
-    if args.method != "pca":
-        pts, index = result.points, result.index
-        if args.method == "entropy" and args.k is None and "true_turn" not in pts.columns:
-            raise InputError(
-                "--method entropy needs the number of maneuvers per track: give --k N "
-                "(or a true_turn column, as simulations have)"
-            )
-        x, y = local_xy(pts, index)
-        t = time_seconds(pts["time"])
-        turns = pd.to_numeric(
-            pts.get("true_turn", pd.Series(dtype=float)), errors="coerce"
-        ).to_numpy()
-        mask = np.zeros(len(pts), dtype=bool)
-        for a, b in zip(index.starts, index.ends, strict=True):
-            if args.method == "imm":
-                found = baselines.imm_detect(x[a:b], y[a:b], t[a:b], args.sigma)
-            else:
-                k = args.k if args.k is not None else int((turns[a:b] == 1).sum())
-                found = baselines.entropy_detect(x[a:b], y[a:b], k)
-            mask[a + found] = True
-        result = type(result)(pts, index, np.full(len(pts), np.nan), mask, result.window_p)
-    table = result.table()[list(MANEUVER_COLUMNS)]
-    write_csv(table, args.output)
-    print(
-        f"{len(table):,} maneuver points in {result.index.n_tracks:,} tracks ({args.method})",
-        file=sys.stderr,
-    )
-    return 0
-
-
-def _cmd_compress(args: argparse.Namespace) -> int:
-    from wakeline.core.compress import compress_with, douglas_peucker_mask
-    from wakeline.core.io import write_json, write_points
-    from wakeline.core.maneuver import detect
-    from wakeline.core.tracks import local_xy, sort_points, track_index
-
-    points = sort_points(_read_canonical(args.input))
-    if args.method == "dp":
-        index = track_index(points)
-        x, y = local_xy(points, index)
-        keep = douglas_peucker_mask(x, y, index, args.tolerance)
-        refine = False
-    else:
-        keep = detect(points, _maneuver_params(args)).is_maneuver
-        refine = not args.raw_vertices
-    comp = compress_with(None, keep, refine=refine, sorted_points=points)
-    report = comp.report()
-    report["method"] = args.method
-    report["refined_vertices"] = refine
-    write_points(comp.kept_points(), args.output)
-    if args.report:
-        write_json(report, args.report)
-    o = report["overall"]
-    extra = f", Dis_e against truth {o['dis_e_true_m']:.1f} m" if "dis_e_true_m" in o else ""
-    print(
-        f"kept {o['kept']:,} of {o['points']:,} points ({o['ratio']:.1%}); Dis_e {o['dis_e_m']:.1f} m{extra}",
-        file=sys.stderr,
-    )
-    return 0
-
-
 def _cmd_evaluate(args: argparse.Namespace) -> int:
     import pandas as pd
 
@@ -267,52 +194,6 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-def _cmd_clean(args: argparse.Namespace) -> int:
-    from wakeline.core.clean import CleanParams, clean
-    from wakeline.core.io import write_csv, write_json, write_points
-
-    settings = list(args.set or [])
-    settings += [f"{rule}.enabled=false" for rule in args.off or []]
-    if args.resample is not None:
-        settings += ["resample.enabled=true", f"resample.period_s={args.resample}"]
-    if args.max_gap is not None:
-        settings += [f"resample.max_gap_s={args.max_gap}"]
-    if args.smooth is not None:
-        settings += ["smooth.enabled=true", f"smooth.window={args.smooth}"]
-    if args.bspline:
-        settings += ["bspline.enabled=true"]
-    params = CleanParams().with_settings(settings)
-    result = clean(_read_canonical(args.input), params)
-    write_points(result.points, args.output)
-    if args.rejected:
-        write_csv(result.rejected, args.rejected)
-    if args.report:
-        write_json(result.report, args.report)
-    rep = result.report
-    touched = {
-        rule: sum(v.get(k, 0) for k in ("removed", "changed", "replaced"))
-        for rule, v in rep["rules"].items()
-    }
-    counts = ", ".join(f"{rule} {n:,}" for rule, n in touched.items() if n)
-    print(
-        f"kept {rep['points_out']:,} of {rep['points_in']:,} points in {rep['tracks_out']:,} tracks"
-        + (f"; {counts}" if counts else ""),
-        file=sys.stderr,
-    )
-    return 0
-
-
-def _clean_help() -> str:
-    from wakeline.core.clean import CleanParams
-
-    lines = []
-    for d in CleanParams.describe():
-        unit = f" [{d['unit']}]" if d.get("unit") else ""
-        source = f" ({d['source']})" if d.get("source") else ""
-        lines.append(f"{d['rule']}.{d['name']}={d['default']}{unit}: {d['doc']}{source}")
-    return "Rules and parameters (--set rule.param=value):\n  " + "\n  ".join(lines)
-
-
 def _bearing_params(args: argparse.Namespace):
     from wakeline.core.bearing import BearingParams
 
@@ -346,41 +227,6 @@ def _link_params(settings: list[str] | None):
     return LinkParams().replace(**_settings(settings)).checked()
 
 
-def _cmd_associate(args: argparse.Namespace) -> int:
-    from wakeline.core.associate import associate_interrupted, associate_segments, stitch
-    from wakeline.core.io import write_csv, write_json, write_points
-
-    params = _link_params(args.set)
-    points = _read_canonical(args.input)
-    if args.mode == "segments":
-        method = args.method or "motion"
-        if method not in ("motion", "area", "dtw", "hausdorff"):
-            raise InputError(
-                f"--mode segments takes --method motion|area|dtw|hausdorff, not {method}"
-            )
-        assoc = associate_segments(points, params, method=method)
-    else:
-        method = args.method or "optimal"
-        if method not in ("optimal", "greedy"):
-            raise InputError(f"--mode interrupted takes --method optimal|greedy, not {method}")
-        assoc = associate_interrupted(points, params, method=method, normalize=args.normalize)
-    out = stitch(assoc) if args.stitch else assoc.points()
-    write_points(out, args.output)
-    if args.pairs:
-        write_csv(assoc.pair_table(), args.pairs)
-    if args.report:
-        write_json({**assoc.report(), "params": dict(vars(params))}, args.report)
-    rep = assoc.report()
-    msg = (
-        f"{rep['tracks']:,} tracks -> {rep['targets']:,} targets "
-        f"({rep['pairs_chosen']:,} joins of {rep['candidate_pairs']:,} candidate pairs, {method})"
-    )
-    if args.stitch:
-        msg += f"; {int(out['interpolated'].sum()):,} points filled"
-    print(msg, file=sys.stderr)
-    return 0
-
-
 def _settings(settings: list[str] | None) -> dict[str, str]:
     changes = {}
     for text in settings or []:
@@ -395,30 +241,6 @@ def _fuse_params(settings: list[str] | None):
     from wakeline.core.fuse import FuseParams
 
     return FuseParams().replace(**_settings(settings)).checked()
-
-
-def _cmd_fuse(args: argparse.Namespace) -> int:
-    from wakeline.core.fuse import associate_sensors, fuse
-    from wakeline.core.io import write_csv, write_json, write_points
-
-    params = _fuse_params(args.set)
-    assoc = associate_sensors(
-        _read_canonical(args.input), params, distance=args.distance, method=args.method
-    )
-    fused = fuse(assoc, params)
-    write_points(fused, args.output)
-    if args.pairs:
-        write_csv(assoc.pair_table(), args.pairs)
-    rep = assoc.report()
-    if args.report:
-        write_json({**rep, "fused_points": len(fused), "params": dict(vars(params))}, args.report)
-    print(
-        f"{rep['tracks']:,} tracks of {rep['sensors']} sensors -> {rep['targets']:,} targets "
-        f"({rep['pairs_chosen']:,} pairs of {rep['candidate_pairs']:,} candidates, "
-        f"{args.distance}, {args.method}); {len(fused):,} fused points",
-        file=sys.stderr,
-    )
-    return 0
 
 
 def _add_bearing_options(p: argparse.ArgumentParser) -> None:
@@ -573,114 +395,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.set_defaults(func=_cmd_simulate)
 
-    from wakeline.core.clean import RULES
+    from wakeline.app.cli_steps import add_step_parsers
 
-    p = sub.add_parser(
-        "clean",
-        help="remove duplicates, stationary points, jumps and outliers, with a reject trail",
-        description="Apply the cleaning rules in order: duplicates, stationary, speed, turn, "
-        "speed_outliers, isolated, short_tracks (seed 001 §4.1, seed 003 §2.2), then the opt-in "
-        "transforming steps bspline, resample, smooth. Every removed, changed or replaced point goes "
-        "to the rejected table with the rule, the action and the parameters.",
-        epilog=_clean_help() + "\n\n" + EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    _io_args(p, "cleaned points, canonical CSV")
-    p.add_argument(
-        "--rejected", type=Path, metavar="REJ.csv", help="write every removed or changed point"
-    )
-    p.add_argument(
-        "--report", type=Path, metavar="R.json", help="counts per rule and per track, as JSON"
-    )
-    p.add_argument(
-        "--set", action="append", metavar="RULE.PARAM=VALUE", help="change a parameter; repeatable"
-    )
-    p.add_argument(
-        "--off",
-        action="append",
-        choices=RULES,
-        metavar="RULE",
-        help="switch a rule off; repeatable",
-    )
-    p.add_argument(
-        "--resample",
-        type=_positive_float,
-        metavar="SECONDS",
-        help="resample every track to this period (seed 003 uses 20 s)",
-    )
-    p.add_argument(
-        "--max-gap",
-        type=_positive_float,
-        metavar="SECONDS",
-        help="resample: never interpolate across longer gaps (default 60 s)",
-    )
-    p.add_argument(
-        "--smooth",
-        type=int,
-        nargs="?",
-        const=5,
-        metavar="WINDOW",
-        help="moving weighted average of positions over WINDOW points (default 5)",
-    )
-    p.add_argument(
-        "--bspline",
-        action="store_true",
-        help="seed 001 sampling-segmentation-B-spline-interpolation (splits batches holding two ships)",
-    )
-    p.set_defaults(func=_cmd_clean)
-
-    p = sub.add_parser(
-        "maneuvers",
-        help="find maneuver (turning) points",
-        description="Seed 000's detector: heading of p points by PCA before and after each point, maneuver "
-        "factor = their difference (deg), kept where above the threshold and the maximum within +-n points. "
-        "Writes one row per maneuver point: sensor,batch,index,time,lon,lat,factor (index = 0-based "
-        "position in the time-sorted track). --method imm|entropy runs the seed-000 baselines.",
-        epilog=EPILOG,
-    )
-    _io_args(p, "maneuver points CSV to write")
-    p.add_argument(
-        "--method", choices=("pca", "imm", "entropy"), default="pca", help="detector (default pca)"
-    )
-    _add_detector_options(p)
-    p.add_argument(
-        "--sigma",
-        type=_positive_float,
-        default=300.0,
-        help="imm: position noise std, metres (default 300)",
-    )
-    p.add_argument(
-        "--k", type=int, help="entropy: number of maneuvers per track (default: from true_turn)"
-    )
-    p.set_defaults(func=_cmd_maneuvers)
-
-    p = sub.add_parser(
-        "compress",
-        help="compress tracks to their turning points",
-        description="Keep each track's first and last point and its maneuver points (or Douglas-Peucker "
-        "points); vertices are placed by least squares on the track's points unless --raw-vertices. "
-        "The report gives Dis_e (mean synchronized distance, metres; also against the true path when the "
-        "input has true_lon/true_lat) and the share of points kept, per track and overall.",
-        epilog=EPILOG,
-    )
-    _io_args(p, "kept points, canonical CSV")
-    p.add_argument(
-        "--method", choices=("maneuver", "dp"), default="maneuver", help="default maneuver"
-    )
-    p.add_argument("--report", type=Path, metavar="R.json", help="write Dis_e and ratios as JSON")
-    p.add_argument(
-        "--tolerance",
-        type=_positive_float,
-        default=600.0,
-        help="dp: Douglas-Peucker tolerance, metres (default 600)",
-    )
-    p.add_argument(
-        "--raw-vertices",
-        action="store_true",
-        help="keep the raw points as vertices (the paper's way)",
-    )
-    _add_detector_options(p)
-    p.set_defaults(func=_cmd_compress)
+    add_step_parsers(sub)
 
     p = sub.add_parser(
         "bearing",
@@ -695,79 +412,6 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", type=Path, required=True, help="detections CSV to write")
     _add_bearing_options(p)
     p.set_defaults(func=_cmd_bearing)
-
-    from wakeline.core.associate import LinkParams
-
-    p = sub.add_parser(
-        "associate",
-        help="join the tracks of one sensor that belong to one ship",
-        description="interrupted (default): old track i and new track j of one sensor with j starting "
-        "within max_gap_s after i ends and reachable at v_max_kn; distance from i's end to j's start by "
-        "position (dead-reckoned, allowing one course change), course and speed; optimal one-to-one "
-        "assignment (or seed 003's greedy). segments: seed 001's clustering of segments (area S and "
-        "directional mean, or DTW/Hausdorff baselines; 'motion' = our distance). Writes every input row "
-        "with a 'target' column; --stitch joins each target into one batch and fills the gaps.",
-        epilog=_params_epilog(LinkParams),
-    )
-    _io_args(p, "points with a target column, canonical CSV")
-    p.add_argument("--mode", choices=("interrupted", "segments"), default="interrupted")
-    p.add_argument(
-        "--method",
-        help="interrupted: optimal (default) | greedy; segments: motion (default) | area | dtw | hausdorff",
-    )
-    p.add_argument(
-        "--normalize",
-        choices=("scaled", "minmax"),
-        default="scaled",
-        help="interrupted: divide each term by its tolerance (default) or seed 003's min-max",
-    )
-    p.add_argument(
-        "--pairs",
-        type=Path,
-        metavar="PAIRS.csv",
-        help="write the joined pairs with their distances",
-    )
-    p.add_argument(
-        "--report", type=Path, metavar="R.json", help="write counts and parameters as JSON"
-    )
-    p.add_argument(
-        "--stitch",
-        action="store_true",
-        help="one batch per target, gaps filled at the sensor period (column interpolated)",
-    )
-    p.add_argument("--set", action="append", metavar="NAME=VALUE", help="change a parameter")
-    p.set_defaults(func=_cmd_associate)
-
-    from wakeline.core.fuse import FuseParams
-
-    p = sub.add_parser(
-        "fuse",
-        help="pair the tracks of two or more sensors and fuse each pair into one track",
-        description="Tracks of different sensors that overlap in time, were near each other at some "
-        "moment and have comparable point counts are compared by their mean synchronized distance "
-        "(or DTW over positions) and paired one-to-one (optimal, or seed 003's greedy) up to "
-        "max_distance_m. Each target becomes one track: sensor 'fused', batch = target id; where "
-        "several sensors cover the time, the positions are averaged with weights from each track's "
-        "sampling regularity and noise; elsewhere the single sensor's points; junctions blended. "
-        "Columns added: source (sensors covering the point), n_sources, weight_base, members.",
-        epilog=_params_epilog(FuseParams),
-    )
-    _io_args(p, "fused tracks, canonical CSV")
-    p.add_argument("--distance", choices=("sync", "dtw"), default="sync", help="default sync")
-    p.add_argument(
-        "--method", choices=("optimal", "greedy"), default="optimal", help="default optimal"
-    )
-    p.add_argument(
-        "--pairs",
-        type=Path,
-        metavar="PAIRS.csv",
-        help="write the pairs: sensor_a,batch_a,sensor_b,batch_b,distance,overlap_s",
-    )
-    p.add_argument(
-        "--report", type=Path, metavar="R.json", help="write counts and parameters as JSON"
-    )
-    p.add_argument("--set", action="append", metavar="NAME=VALUE", help="change a parameter")
-    p.set_defaults(func=_cmd_fuse)
 
     p = sub.add_parser(
         "evaluate",

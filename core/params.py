@@ -19,10 +19,25 @@ def param(
     lo: float | None = None,
     hi: float | None = None,
     source: str = "",
+    choices: tuple[str, ...] | None = None,
+    flags: tuple[str, ...] = (),
 ) -> Any:
-    """A dataclass field with its unit, one-line meaning, allowed range and source."""
+    """A dataclass field with its unit, one-line meaning, allowed range and source.
+
+    ``choices`` lists the allowed values of a text field; ``flags`` are extra command-line
+    spellings (``--window``) beside the generated ``--field-name``.
+    """
     return dataclasses.field(
-        default=default, metadata={"unit": unit, "doc": doc, "lo": lo, "hi": hi, "source": source}
+        default=default,
+        metadata={
+            "unit": unit,
+            "doc": doc,
+            "lo": lo,
+            "hi": hi,
+            "source": source,
+            "choices": choices,
+            "flags": flags,
+        },
     )
 
 
@@ -39,6 +54,13 @@ class Params:
             if isinstance(f.default, bool):
                 if not isinstance(value, bool):
                     out.append(f"{f.name} must be true or false, got {value!r}")
+                continue
+            if isinstance(f.default, str):
+                choices = meta.get("choices")
+                if not isinstance(value, str):
+                    out.append(f"{f.name} must be text, got {value!r}")
+                elif choices and value not in choices:
+                    out.append(f"{f.name} must be one of {', '.join(choices)}, got {value!r}")
                 continue
             if isinstance(f.default, (int, float)):
                 if isinstance(value, bool) or not isinstance(value, (int, float)):

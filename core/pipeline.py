@@ -1,31 +1,41 @@
-"""Pipeline steps as the application runs them: core calls bundled with their outputs.
+"""The step registry: every pipeline step is ONE core function with its parameters.
 
-Each step takes a point table and parameters and returns a :class:`StepResult`: new
-layers (name suffix, kind, points), an optional maneuver table and a report. The GUI runs
-these in its worker thread; the command line and tests call them directly.
+The command line (``wakeline clean|maneuvers|compress|associate|fuse``), the desktop
+application (through :class:`wakeline.core.session.Session`) and saved pipeline presets
+(:class:`Pipeline`, JSON) all run the steps of :data:`STEPS`, so the same input and
+parameters give the same tables everywhere. A step's command-line flags are generated
+from its parameter dataclasses (``core/params.py``).
+
+A step takes a point table, a dict of parameter sets keyed as in :attr:`Step.params`, and
+a progress callback; it returns a :class:`StepResult` holding new layers (for the
+session and the map), named tables (what the command line writes: ``points`` with ``-o``,
+``rejected``, ``pairs``, ``maneuvers`` …) and a report.
 """
 
+import dataclasses
+import json
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from wakeline.core.associate import LinkParams, associate_interrupted
-from wakeline.core.bearing import BearingParams
-from wakeline.core.bearing import detect as detect_bearings
-from wakeline.core.clean import CleanParams, clean
-from wakeline.core.compress import CompressParams, compress_with
-from wakeline.core.fuse import FuseParams, associate_sensors, fuse
-from wakeline.core.maneuver import ManeuverParams, detect
+from wakeline.core.errors import InputError
+from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress, sub_progress
 
 
 @dataclass(frozen=True)
 class NewLayer:
+    """A layer a step makes: ``suffix`` is its role (``cleaned``, ``compressed`` …)."""
+
     suffix: str
     kind: str
     points: pd.DataFrame
     meta: dict = field(default_factory=dict)
+    #: side tables that belong to the layer (``maneuvers``, ``rejected``, ``pairs``)
+    tables: dict[str, pd.DataFrame] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -33,122 +43,586 @@ class StepResult:
     step: str
     layers: list[NewLayer]
     report: dict
+    tables: dict[str, pd.DataFrame] = field(default_factory=dict)
+    #: for a pipeline: each stage's result, in order (its layers are the stages' layers)
+    stages: list["StepResult"] = field(default_factory=list)
 
 
-def _with_factor(points: pd.DataFrame, params: ManeuverParams, progress: Progress):
-    res = detect(points, params, progress)
-    pts = res.points.copy()
-    pts["maneuver_factor"] = np.round(res.factor, 3)
-    pts["is_maneuver"] = res.is_maneuver
-    return res, pts
+# -- step options (choices beside the algorithms' parameters) --------------------------
 
 
-def step_clean(points: pd.DataFrame, params: CleanParams, progress: Progress | None = None):
-    res = clean(points, params, progress=progress)
+@dataclass(frozen=True)
+class ManeuverOptions(Params):
+    """Which detector ``maneuvers`` runs."""
+
+    method: str = param(
+        "pca",
+        "",
+        "detector: pca (seed 000) or the baselines imm, entropy",
+        choices=("pca", "imm", "entropy"),
+    )
+    sigma: float = param(300.0, "m", "imm: position noise std", 0.001)
+    k: int = param(0, "", "entropy: maneuvers per track (0: from the true_turn column)", 0)
+
+
+@dataclass(frozen=True)
+class CompressOptions(Params):
+    """Which points ``compress`` keeps."""
+
+    method: str = param(
+        "maneuver",
+        "",
+        "keep maneuver points (seed 000) or Douglas-Peucker points",
+        choices=("maneuver", "dp"),
+    )
+
+
+@dataclass(frozen=True)
+class AssociateOptions(Params):
+    """Which association ``associate`` runs and what it writes."""
+
+    mode: str = param(
+        "interrupted",
+        "",
+        "interrupted tracks (seed 003) or segment clustering (seed 001)",
+        choices=("interrupted", "segments"),
+    )
+    method: str = param(
+        "",
+        "",
+        "interrupted: optimal (default) | greedy; segments: motion (default) | area | dtw | hausdorff",
+        choices=("", "optimal", "greedy", "motion", "area", "dtw", "hausdorff"),
+    )
+    normalize: str = param(
+        "scaled",
+        "",
+        "interrupted: divide each term by its tolerance, or seed 003's min-max",
+        choices=("scaled", "minmax"),
+    )
+    stitch: bool = param(False, "", "one batch per target, gaps filled at the sensor period")
+
+
+@dataclass(frozen=True)
+class FuseOptions(Params):
+    """Distance and assignment of ``fuse``."""
+
+    distance: str = param(
+        "sync", "", "synchronized distance or DTW over positions", choices=("sync", "dtw")
+    )
+    method: str = param(
+        "optimal",
+        "",
+        "one-to-one assignment: optimal or seed 003's greedy",
+        choices=("optimal", "greedy"),
+    )
+
+
+# -- the steps -------------------------------------------------------------------------
+
+
+def _p(params: dict[str, Any], key: str, default_cls: type) -> Any:
+    value = params.get(key)
+    return (value if value is not None else default_cls()).checked()
+
+
+def run_clean(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
+    from wakeline.core.clean import CleanParams, clean
+
+    res = clean(points, _p(params, "clean", CleanParams), progress=progress)
+    rep = res.report
     return StepResult(
         "clean",
-        [NewLayer("cleaned", "cleaned", res.points, {"rejected": int(len(res.rejected))})],
-        res.report,
+        [
+            NewLayer(
+                "cleaned",
+                "cleaned",
+                res.points,
+                {"rejected": int(len(res.rejected))},
+                {"rejected": res.rejected},
+            )
+        ],
+        rep,
+        {"points": res.points, "rejected": res.rejected},
     )
 
 
-def step_maneuvers(
-    points: pd.DataFrame, params: ManeuverParams, progress: Progress | None = None
-) -> StepResult:
-    res, pts = _with_factor(points, params, progress or null_progress)
-    table = res.table()
+def _summary_clean(res: StepResult) -> str:
+    rep = res.report
+    touched = {
+        rule: sum(v.get(k, 0) for k in ("removed", "changed", "replaced"))
+        for rule, v in rep["rules"].items()
+    }
+    counts = ", ".join(f"{rule} {n:,}" for rule, n in touched.items() if n)
+    return (
+        f"kept {rep['points_out']:,} of {rep['points_in']:,} points in {rep['tracks_out']:,} tracks"
+        + (f"; {counts}" if counts else "")
+    )
+
+
+def _detect(points: pd.DataFrame, params: dict, progress: Progress):
+    """The maneuver detector (or a baseline) → ManeuverResult over the sorted points."""
+    from wakeline.core.maneuver import ManeuverParams, ManeuverResult, detect
+
+    opts = _p(params, "maneuver_options", ManeuverOptions)
+    result = detect(points, _p(params, "maneuver", ManeuverParams), progress)
+    if opts.method == "pca":
+        return result
+    from wakeline.core import baselines
+    from wakeline.core.schema import time_seconds
+    from wakeline.core.tracks import local_xy
+
+    pts, index = result.points, result.index
+    if opts.method == "entropy" and opts.k == 0 and "true_turn" not in pts.columns:
+        raise InputError(
+            "--method entropy needs the number of maneuvers per track: give --k N "
+            "(or a true_turn column, as simulations have)"
+        )
+    x, y = local_xy(pts, index)
+    t = time_seconds(pts["time"])
+    turns = pd.to_numeric(pts.get("true_turn", pd.Series(dtype=float)), errors="coerce").to_numpy()
+    mask = np.zeros(len(pts), dtype=bool)
+    # The baselines are per-track recursions (IMM) or clusterings (entropy): one call per track.
+    for a, b in zip(index.starts, index.ends, strict=True):
+        if opts.method == "imm":
+            found = baselines.imm_detect(x[a:b], y[a:b], t[a:b], opts.sigma)
+        else:
+            k = opts.k if opts.k else int((turns[a:b] == 1).sum())
+            found = baselines.entropy_detect(x[a:b], y[a:b], k)
+        mask[a + found] = True
+    return ManeuverResult(pts, index, np.full(len(pts), np.nan), mask, result.window_p)
+
+
+def _factor_layer(res) -> pd.DataFrame:
+    pts = res.points.copy()
+    pts["maneuver_factor"] = res.factor
+    pts["is_maneuver"] = res.is_maneuver
+    return pts
+
+
+def run_maneuvers(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
+    from wakeline.core.maneuver import MANEUVER_COLUMNS, ManeuverParams
+
+    res = _detect(points, params, progress)
+    table = res.table()[list(MANEUVER_COLUMNS)]
+    mp = _p(params, "maneuver", ManeuverParams)
+    method = _p(params, "maneuver_options", ManeuverOptions).method
     return StepResult(
         "maneuvers",
-        [NewLayer("maneuvers", "maneuvers", pts, {"threshold_deg": params.threshold_deg})],
-        {"maneuvers": int(len(table)), "tracks": int(res.index.n_tracks)},
+        [
+            NewLayer(
+                "maneuvers",
+                "maneuvers",
+                _factor_layer(res),
+                {"threshold_deg": mp.threshold_deg},
+                {"maneuvers": table},
+            )
+        ],
+        {"maneuvers": int(len(table)), "tracks": int(res.index.n_tracks), "method": method},
+        {"maneuvers": table},
     )
+
+
+def _summary_maneuvers(res: StepResult) -> str:
+    r = res.report
+    return f"{r['maneuvers']:,} maneuver points in {r['tracks']:,} tracks ({r['method']})"
+
+
+def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
+    from wakeline.core.compress import CompressParams, compress_with, douglas_peucker_mask
+    from wakeline.core.maneuver import MANEUVER_COLUMNS, ManeuverParams
+    from wakeline.core.tracks import local_xy, sort_points, track_index
+
+    cp = _p(params, "compress", CompressParams)
+    opts = _p(params, "compress_options", CompressOptions)
+    layers = []
+    if opts.method == "dp":
+        pts = sort_points(points)
+        index = track_index(pts)
+        x, y = local_xy(pts, index)
+        keep = douglas_peucker_mask(x, y, index, cp.dp_tolerance_m)
+        refine = False
+    else:
+        res = _detect(points, params, sub_progress(progress, 0.0, 0.7))
+        pts, keep, refine = res.points, res.is_maneuver, cp.refine
+        mp = _p(params, "maneuver", ManeuverParams)
+        table = res.table()[list(MANEUVER_COLUMNS)]
+        layers.append(
+            NewLayer(
+                "maneuvers",
+                "maneuvers",
+                _factor_layer(res),
+                {"threshold_deg": mp.threshold_deg},
+                {"maneuvers": table},
+            )
+        )
+    progress(0.7, "compressing")
+    comp = compress_with(None, keep, refine=refine, sorted_points=pts)
+    report = comp.report()
+    report["method"] = opts.method
+    report["refined_vertices"] = refine
+    kept = comp.kept_points()
+    per_track = {f"{t['sensor']}\x1f{t['batch']}": t["dis_e_m"] for t in report["tracks"]}
+    layers.append(
+        NewLayer(
+            "compressed",
+            "compressed",
+            kept,
+            {"dis_e_m": report["overall"]["dis_e_m"], "dis_e_by_track": per_track},
+        )
+    )
+    progress(1.0, "compressed")
+    return StepResult("compress", layers, report, {"points": kept})
+
+
+def _summary_compress(res: StepResult) -> str:
+    o = res.report["overall"]
+    extra = f", Dis_e against truth {o['dis_e_true_m']:.1f} m" if "dis_e_true_m" in o else ""
+    return (
+        f"kept {o['kept']:,} of {o['points']:,} points ({o['ratio']:.1%}); "
+        f"Dis_e {o['dis_e_m']:.1f} m{extra}"
+    )
+
+
+def run_associate(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
+    from wakeline.core.associate import (
+        LinkParams,
+        associate_interrupted,
+        associate_segments,
+        stitch,
+    )
+
+    lp = _p(params, "associate", LinkParams)
+    opts = _p(params, "associate_options", AssociateOptions)
+    if opts.mode == "segments":
+        method = opts.method or "motion"
+        if method not in ("motion", "area", "dtw", "hausdorff"):
+            raise InputError(
+                f"--mode segments takes --method motion|area|dtw|hausdorff, not {method}"
+            )
+        assoc = associate_segments(points, lp, method=method)
+    else:
+        method = opts.method or "optimal"
+        if method not in ("optimal", "greedy"):
+            raise InputError(f"--mode interrupted takes --method optimal|greedy, not {method}")
+        assoc = associate_interrupted(
+            points, lp, method=method, normalize=opts.normalize, progress=progress
+        )
+    out = stitch(assoc) if opts.stitch else assoc.points()
+    pairs = assoc.pair_table()
+    report = {**assoc.report(), "method": method}
+    if opts.stitch:
+        report["points_filled"] = int(out["interpolated"].sum())
+    role = "stitched" if opts.stitch else "associated"
+    return StepResult(
+        "associate",
+        [NewLayer(role, "associated", out, {"pairs": int(len(pairs))}, {"pairs": pairs})],
+        report,
+        {"points": out, "pairs": pairs},
+    )
+
+
+def _summary_associate(res: StepResult) -> str:
+    rep = res.report
+    msg = (
+        f"{rep['tracks']:,} tracks -> {rep['targets']:,} targets "
+        f"({rep['pairs_chosen']:,} joins of {rep['candidate_pairs']:,} candidate pairs, "
+        f"{rep['method']})"
+    )
+    if "points_filled" in rep:
+        msg += f"; {rep['points_filled']:,} points filled"
+    return msg
+
+
+def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
+    from wakeline.core.fuse import FuseParams, associate_sensors, fuse
+
+    fp = _p(params, "fuse", FuseParams)
+    opts = _p(params, "fuse_options", FuseOptions)
+    assoc = associate_sensors(
+        points,
+        fp,
+        distance=opts.distance,
+        method=opts.method,
+        progress=sub_progress(progress, 0.0, 0.6),
+    )
+    fused = fuse(assoc, fp, sub_progress(progress, 0.6, 1.0))
+    pairs = assoc.pair_table()
+    report = {
+        **assoc.report(),
+        "fused_points": int(len(fused)),
+        "distance": opts.distance,
+        "method": opts.method,
+    }
+    return StepResult(
+        "fuse",
+        [NewLayer("fused", "fused", fused, {"pairs": int(len(pairs))}, {"pairs": pairs})],
+        report,
+        {"points": fused, "pairs": pairs},
+    )
+
+
+def _summary_fuse(res: StepResult) -> str:
+    rep = res.report
+    return (
+        f"{rep['tracks']:,} tracks of {rep['sensors']} sensors -> {rep['targets']:,} targets "
+        f"({rep['pairs_chosen']:,} pairs of {rep['candidate_pairs']:,} candidates, "
+        f"{rep['distance']}, {rep['method']}); {rep['fused_points']:,} fused points"
+    )
+
+
+@dataclass(frozen=True)
+class Step:
+    """One pipeline step: its function, parameter sets and command-line outputs."""
+
+    name: str  # the CLI subcommand and the session's step name
+    title: str
+    params: tuple[tuple[str, type], ...]  # (key, parameter class), as run() reads them
+    run: Callable[[pd.DataFrame, dict, Progress], StepResult]
+    summary: Callable[[StepResult], str]
+    output: str = "points"  # the table written with -o
+    outputs: tuple[tuple[str, str], ...] = ()  # (table, flag) written on request
+    primary: str = ""  # the role of the layer the next pipeline stage reads
+
+    def defaults(self) -> dict[str, Any]:
+        return {key: cls() for key, cls in self.params}
+
+    def __call__(
+        self, points: pd.DataFrame, params: dict | None = None, progress: Progress | None = None
+    ) -> StepResult:
+        return self.run(points, {**self.defaults(), **(params or {})}, progress or null_progress)
+
+
+def _clean_cls():
+    from wakeline.core.clean import CleanParams
+
+    return CleanParams
+
+
+def _steps() -> dict[str, Step]:
+    from wakeline.core.associate import LinkParams
+    from wakeline.core.compress import CompressParams
+    from wakeline.core.fuse import FuseParams
+    from wakeline.core.maneuver import ManeuverParams
+
+    maneuver = (("maneuver", ManeuverParams), ("maneuver_options", ManeuverOptions))
+    return {
+        s.name: s
+        for s in (
+            Step(
+                "clean",
+                "Clean",
+                (("clean", _clean_cls()),),
+                run_clean,
+                _summary_clean,
+                outputs=(("rejected", "--rejected"),),
+                primary="cleaned",
+            ),
+            Step(
+                "maneuvers",
+                "Maneuvers",
+                maneuver,
+                run_maneuvers,
+                _summary_maneuvers,
+                output="maneuvers",
+                primary="maneuvers",
+            ),
+            Step(
+                "compress",
+                "Compress",
+                (*maneuver, ("compress", CompressParams), ("compress_options", CompressOptions)),
+                run_compress,
+                _summary_compress,
+                primary="compressed",
+            ),
+            Step(
+                "associate",
+                "Associate",
+                (("associate", LinkParams), ("associate_options", AssociateOptions)),
+                run_associate,
+                _summary_associate,
+                outputs=(("pairs", "--pairs"),),
+                primary="associated",
+            ),
+            Step(
+                "fuse",
+                "Fuse",
+                (("fuse", FuseParams), ("fuse_options", FuseOptions)),
+                run_fuse,
+                _summary_fuse,
+                outputs=(("pairs", "--pairs"),),
+                primary="fused",
+            ),
+        )
+    }
+
+
+class _Registry(dict):
+    """``STEPS``: filled on first use so that importing this module stays light."""
+
+    def _fill(self) -> None:
+        if not dict.__len__(self):
+            self.update(_steps())
+
+    def __getitem__(self, key: str) -> Step:
+        self._fill()
+        if not dict.__contains__(self, key):
+            raise InputError(f"unknown step {key!r}; steps: {', '.join(self)}")
+        return dict.__getitem__(self, key)
+
+    def __iter__(self):
+        self._fill()
+        return dict.__iter__(self)
+
+    def __len__(self) -> int:
+        self._fill()
+        return dict.__len__(self)
+
+    def __contains__(self, key: object) -> bool:
+        self._fill()
+        return dict.__contains__(self, key)
+
+    def items(self):
+        self._fill()
+        return dict.items(self)
+
+    def values(self):
+        self._fill()
+        return dict.values(self)
+
+    def keys(self):
+        self._fill()
+        return dict.keys(self)
+
+
+#: Every step by name (the CLI's subcommand names).
+STEPS: dict[str, Step] = _Registry()
+
+
+# -- parameters as JSON (presets, project, pipeline files) -------------------------------
+
+
+def params_to_json(params: dict[str, Any]) -> dict[str, dict]:
+    """Parameter sets as plain dicts (CleanParams nests one dict per rule)."""
+    return {key: dataclasses.asdict(value) for key, value in params.items()}
+
+
+def params_from_json(step: str, data: dict[str, dict]) -> dict[str, Any]:
+    """The parameter sets of ``step`` from :func:`params_to_json` output (checked)."""
+    out = STEPS[step].defaults()
+    for key, value in (data or {}).items():
+        if key not in out:
+            raise InputError(f"step {step}: unknown parameter set {key!r}; known: {', '.join(out)}")
+        default = out[key]
+        if hasattr(default, "with_settings"):  # CleanParams: rule -> {param: value}
+            settings = {
+                f"{rule}.{name}": str(v).lower() if isinstance(v, bool) else str(v)
+                for rule, values in value.items()
+                for name, v in values.items()
+            }
+            out[key] = default.with_settings(settings).checked()
+        else:
+            out[key] = dataclasses.replace(default, **value).checked()
+    return out
+
+
+@dataclass(frozen=True)
+class Pipeline:
+    """A saved sequence of steps with their parameters (the GUI's presets, ``batch``)."""
+
+    stages: tuple[tuple[str, dict[str, Any]], ...]
+
+    @classmethod
+    def default(cls) -> "Pipeline":
+        """Clean, then find maneuvers and compress."""
+        return cls(
+            (("clean", STEPS["clean"].defaults()), ("compress", STEPS["compress"].defaults()))
+        )
+
+    def to_json(self) -> str:
+        return json.dumps(
+            {
+                "wakeline_pipeline": 1,
+                "steps": [
+                    {"step": name, "params": params_to_json(params)} for name, params in self.stages
+                ],
+            },
+            indent=2,
+        )
+
+    @classmethod
+    def from_json(cls, text: str) -> "Pipeline":
+        try:
+            data = json.loads(text)
+            stages = tuple(
+                (s["step"], params_from_json(s["step"], s.get("params", {}))) for s in data["steps"]
+            )
+        except (ValueError, KeyError, TypeError) as exc:
+            raise InputError(f"not a Wakeline pipeline: {exc}") from None
+        return cls(stages)
+
+    def run(self, points: pd.DataFrame, progress: Progress | None = None) -> StepResult:
+        """Run the stages in order, each on the previous stage's primary output."""
+        progress = progress or null_progress
+        stages, current = [], points
+        n = len(self.stages)
+        for k, (name, params) in enumerate(self.stages):
+            step = STEPS[name]
+            res = step(current, params, sub_progress(progress, k / n, (k + 1) / n))
+            stages.append(res)
+            nxt = [lay for lay in res.layers if lay.suffix == step.primary]
+            current = nxt[0].points if nxt else res.tables.get("points", current)
+        return StepResult(
+            "pipeline",
+            [lay for res in stages for lay in res.layers],
+            {res.step: res.report for res in stages},
+            stages[-1].tables if stages else {},
+            stages,
+        )
+
+
+# -- the old names (kept for callers that take one parameter set each) -------------------
+
+
+def step_clean(points: pd.DataFrame, params, progress: Progress | None = None) -> StepResult:
+    return STEPS["clean"](points, {"clean": params}, progress)
+
+
+def step_maneuvers(points: pd.DataFrame, params, progress: Progress | None = None) -> StepResult:
+    return STEPS["maneuvers"](points, {"maneuver": params}, progress)
 
 
 def step_compress(
-    points: pd.DataFrame,
-    mparams: ManeuverParams,
-    cparams: CompressParams,
-    progress: Progress | None = None,
+    points: pd.DataFrame, mparams, cparams, progress: Progress | None = None
 ) -> StepResult:
-    progress = progress or null_progress
-    res, pts = _with_factor(points, mparams, sub_progress(progress, 0.0, 0.7))
-    progress(0.7, "compressing")
-    comp = compress_with(pts, res.is_maneuver, refine=cparams.refine, sorted_points=pts)
-    rep = comp.report()
-    kept = comp.kept_points()
-    kept["dis_e_m"] = np.repeat(
-        [t["dis_e_m"] for t in rep["tracks"]], np.add.reduceat(comp.kept, comp.index.starts)
-    )
-    progress(1.0, "compressed")
-    return StepResult(
-        "compress",
-        [
-            NewLayer("maneuvers", "maneuvers", pts, {"threshold_deg": mparams.threshold_deg}),
-            NewLayer("compressed", "compressed", kept, {"dis_e_m": rep["overall"]["dis_e_m"]}),
-        ],
-        rep["overall"],
-    )
+    return STEPS["compress"](points, {"maneuver": mparams, "compress": cparams}, progress)
 
 
-def step_associate(
-    points: pd.DataFrame, params: LinkParams, progress: Progress | None = None
-) -> StepResult:
-    assoc = associate_interrupted(points, params, progress=progress)
-    out = assoc.points()
-    return StepResult(
-        "associate",
-        [
-            NewLayer(
-                "associated", "associated", out, {"pairs": assoc.pair_table().to_dict("records")}
-            )
-        ],
-        assoc.report(),
-    )
+def step_associate(points: pd.DataFrame, params, progress: Progress | None = None) -> StepResult:
+    return STEPS["associate"](points, {"associate": params}, progress)
 
 
-def step_fuse(points: pd.DataFrame, params: FuseParams, progress: Progress | None = None):
-    progress = progress or null_progress
-    assoc = associate_sensors(points, params, progress=sub_progress(progress, 0.0, 0.6))
-    fused = fuse(assoc, params, sub_progress(progress, 0.6, 1.0))
-    return StepResult(
-        "fuse",
-        [NewLayer("fused", "fused", fused, {"pairs": assoc.pair_table().to_dict("records")})],
-        assoc.report(),
-    )
+def step_fuse(points: pd.DataFrame, params, progress: Progress | None = None) -> StepResult:
+    return STEPS["fuse"](points, {"fuse": params}, progress)
 
 
-def default_pipeline(
-    points: pd.DataFrame,
-    cleaning: CleanParams,
-    mparams: ManeuverParams,
-    cparams: CompressParams,
-    progress: Progress | None = None,
-) -> StepResult:
+def default_pipeline(points, cleaning, mparams, cparams, progress=None) -> StepResult:
     """Clean, then find maneuvers and compress (what ``wakeline gui --screenshot`` runs)."""
-    progress = progress or null_progress
-    cleaned = step_clean(points, cleaning, sub_progress(progress, 0.0, 0.5))
-    comp = step_compress(
-        cleaned.layers[0].points, mparams, cparams, sub_progress(progress, 0.5, 1.0)
+    pipe = Pipeline(
+        (("clean", {"clean": cleaning}), ("compress", {"maneuver": mparams, "compress": cparams}))
     )
-    return StepResult(
-        "pipeline",
-        [cleaned.layers[0], *comp.layers],
-        {"clean": cleaned.report, "compress": comp.report},
-    )
+    full = {name: {**STEPS[name].defaults(), **params} for name, params in pipe.stages}
+    return Pipeline(tuple(full.items())).run(points, progress)
 
 
-def step_bearing(
-    bearings: pd.DataFrame, params: BearingParams, progress: Progress | None = None
-) -> StepResult:
+def step_bearing(bearings: pd.DataFrame, params, progress: Progress | None = None) -> StepResult:
     """Bearing-only maneuver detection (seed 002) on every sequence; no new layer."""
+    from wakeline.core.bearing import detect as detect_bearings
+
     (progress or null_progress)(0.0, "AUC detection")
     detections = detect_bearings(bearings, params)
     return StepResult(
         "bearing",
         [],
-        {
-            "sequences": int(bearings["batch"].nunique()),
-            "detections": int(len(detections)),
-            "table": detections,
-        },
+        {"sequences": int(bearings["batch"].nunique()), "detections": int(len(detections))},
+        {"detections": detections},
     )

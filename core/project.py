@@ -1,16 +1,26 @@
-"""The project file (``.wakeline``): one SQLite database holding the sources (path and
-content hash), the parameters, the result layers and the selection.
+"""The project file (``.wakeline``): one SQLite database (WAL) written as the operator works.
 
-Layers are stored as Parquet blobs, so times, text and numbers come back exactly. Saving
-writes a new database beside the target and renames it over, so a crash never leaves a
-half-written project. Opening checks every source: a missing or changed file is reported,
-never fatal — the stored layers are still there.
+What it holds: the sources (path and content hash), the parameters, every layer with its
+lineage (Parquet blobs, so times, text and numbers come back exactly), the layers' side
+tables, small state rows (selection, view, active layer) and the review decisions.
+
+It is written incrementally: a layer's Parquet once, when the layer is made (or
+replaced); a visibility, selection or parameter change is one small row, each in its own
+transaction — never the whole file again. :class:`ProjectWriter` does the writing on a
+background thread and reports failures through a callback. "Save as" writes a complete
+new file beside the target and renames it over, so a crash never leaves a half-written
+project. Opening checks everything before anything is returned: a damaged or newer file
+raises one :class:`InputError` and the caller's session stays untouched.
 """
 
 import hashlib
 import io
 import json
+import os
+import queue
 import sqlite3
+import threading
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,8 +31,20 @@ import pyarrow.parquet as pq
 from wakeline.core import __version__
 from wakeline.core.errors import InputError
 from wakeline.core.io.writer import atomic_path
+from wakeline.core.session import Layer, Session, Source
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
+
+__all__ = [
+    "Layer",
+    "Project",
+    "ProjectStore",
+    "ProjectWriter",
+    "Source",
+    "file_hash",
+    "load_project",
+    "save_project",
+]
 
 
 def file_hash(path: str | Path) -> str:
@@ -35,30 +57,16 @@ def file_hash(path: str | Path) -> str:
 
 
 @dataclass
-class Source:
-    path: str
-    sha256: str
-
-
-@dataclass
-class Layer:
-    """A named table of points shown on the map (input data or a result)."""
-
-    name: str
-    kind: str  # "source", "cleaned", "maneuvers", "compressed", "associated", "fused", ...
-    points: pd.DataFrame
-    visible: bool = True
-    color: str = "#1f77b4"
-    meta: dict = field(default_factory=dict)
-
-
-@dataclass
 class Project:
+    """What a project file holds, read back (see :func:`load_project`)."""
+
     sources: list[Source] = field(default_factory=list)
     params: dict[str, dict] = field(default_factory=dict)
     layers: list[Layer] = field(default_factory=list)
-    selection: list[tuple[str, str, str]] = field(default_factory=list)  # layer, sensor, batch
+    selection: list[tuple[str, str, str]] = field(default_factory=list)  # layer id, sensor, batch
     decisions: list[dict] = field(default_factory=list)
+    state: dict[str, object] = field(default_factory=dict)
+    read_only: bool = False
 
     def source_problems(self) -> list[str]:
         """One sentence per source that is missing or whose content changed."""
@@ -71,6 +79,27 @@ class Project:
                 out.append(f"source file changed since it was loaded: {s.path}")
         return out
 
+    def to_session(self, session: Session | None = None) -> Session:
+        """Fill ``session`` (cleared first) or a new one with this project's content."""
+        session = session or Session()
+        session.clear()
+        session.sources[:] = self.sources
+        session.params = dict(self.params)
+        for lay in self.layers:
+            session.add_layer(
+                lay.name,
+                lay.kind,
+                lay.points,
+                lay.meta,
+                color=lay.color,
+                visible=lay.visible,
+                layer_id=lay.id,
+                **{**lay.lineage(), "tables": lay.tables},
+            )
+        session.selection = list(self.selection)
+        session.decisions = list(self.decisions)
+        return session
+
 
 def _to_parquet(df: pd.DataFrame) -> bytes:
     buf = io.BytesIO()
@@ -82,82 +111,272 @@ def _from_parquet(blob: bytes) -> pd.DataFrame:
     return pq.read_table(io.BytesIO(blob)).to_pandas()
 
 
-def save_project(project: Project, path: str | Path) -> None:
-    """Write the whole project to ``path`` atomically."""
-    with atomic_path(path) as tmp:
-        con = sqlite3.connect(tmp)
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT);
+CREATE TABLE IF NOT EXISTS sources (path TEXT PRIMARY KEY, sha256 TEXT);
+CREATE TABLE IF NOT EXISTS params (name TEXT PRIMARY KEY, json TEXT);
+CREATE TABLE IF NOT EXISTS layers (id TEXT PRIMARY KEY, pos INTEGER, name TEXT, kind TEXT,
+    visible INTEGER, color TEXT, meta TEXT, lineage TEXT, data BLOB);
+CREATE TABLE IF NOT EXISTS layer_tables (layer TEXT, name TEXT, data BLOB,
+    PRIMARY KEY (layer, name));
+CREATE TABLE IF NOT EXISTS state (key TEXT PRIMARY KEY, json TEXT);
+CREATE TABLE IF NOT EXISTS decisions (seq INTEGER PRIMARY KEY AUTOINCREMENT, json TEXT);
+"""
+
+
+class ProjectStore:
+    """An open project file; every method is one short transaction.
+
+    Use it from one thread (SQLite connections are per thread): :class:`ProjectWriter`
+    owns one on its own thread.
+    """
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        self.con = sqlite3.connect(self.path, timeout=10)
         try:
-            con.executescript(
-                """
-                CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT);
-                CREATE TABLE sources (path TEXT, sha256 TEXT);
-                CREATE TABLE params (name TEXT PRIMARY KEY, json TEXT);
-                CREATE TABLE layers (pos INTEGER, name TEXT, kind TEXT, visible INTEGER,
-                                     color TEXT, meta TEXT, data BLOB);
-                CREATE TABLE selection (layer TEXT, sensor TEXT, batch TEXT);
-                CREATE TABLE decisions (json TEXT);
-                """
+            self.con.execute("PRAGMA journal_mode=WAL")
+            self.con.execute("PRAGMA synchronous=NORMAL")
+            with self.con:
+                self.con.executescript(_SCHEMA)
+                self.con.executemany(
+                    "INSERT OR REPLACE INTO meta VALUES (?, ?)",
+                    [("schema", str(SCHEMA_VERSION)), ("wakeline", __version__)],
+                )
+        except sqlite3.DatabaseError as exc:
+            self.con.close()
+            raise InputError(f"{self.path}: not a Wakeline project ({exc})") from None
+
+    def close(self) -> None:
+        self.con.close()
+
+    # -- writes --------------------------------------------------------------------
+
+    def put_layer(self, layer: Layer, pos: int, with_data: bool = True) -> None:
+        """Write a layer: its attributes always, its data (and side tables) when asked."""
+        attrs = (
+            layer.name,
+            layer.kind,
+            int(layer.visible),
+            layer.color,
+            json.dumps(layer.meta, default=str),
+            json.dumps(layer.lineage(), default=str),
+        )
+        blobs = {name: _to_parquet(t) for name, t in layer.tables.items()} if with_data else {}
+        data = _to_parquet(layer.points) if with_data else None
+        with self.con:
+            if with_data:
+                self.con.execute(
+                    "INSERT OR REPLACE INTO layers VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                    (layer.id, pos, *attrs, data),
+                )
+                self.con.execute("DELETE FROM layer_tables WHERE layer = ?", (layer.id,))
+                self.con.executemany(
+                    "INSERT INTO layer_tables VALUES (?, ?, ?)",
+                    [(layer.id, n, b) for n, b in blobs.items()],
+                )
+            else:
+                self.con.execute(
+                    "UPDATE layers SET pos=?, name=?, kind=?, visible=?, color=?, meta=?, "
+                    "lineage=? WHERE id=?",
+                    (pos, *attrs, layer.id),
+                )
+
+    def delete_layer(self, layer_id: str) -> None:
+        with self.con:
+            self.con.execute("DELETE FROM layers WHERE id = ?", (layer_id,))
+            self.con.execute("DELETE FROM layer_tables WHERE layer = ?", (layer_id,))
+
+    def put_order(self, order: list[str]) -> None:
+        with self.con:
+            self.con.executemany(
+                "UPDATE layers SET pos = ? WHERE id = ?", [(k, i) for k, i in enumerate(order)]
             )
-            con.executemany(
-                "INSERT INTO meta VALUES (?, ?)",
-                [("schema", str(SCHEMA_VERSION)), ("wakeline", __version__)],
+
+    def put_sources(self, sources: list[Source]) -> None:
+        with self.con:
+            self.con.execute("DELETE FROM sources")
+            self.con.executemany(
+                "INSERT OR REPLACE INTO sources VALUES (?, ?)",
+                [(s.path, s.sha256) for s in sources],
             )
-            con.executemany(
-                "INSERT INTO sources VALUES (?, ?)", [(s.path, s.sha256) for s in project.sources]
-            )
-            con.executemany(
+
+    def put_params(self, params: dict[str, dict]) -> None:
+        with self.con:
+            self.con.execute("DELETE FROM params")
+            self.con.executemany(
                 "INSERT INTO params VALUES (?, ?)",
-                [(k, json.dumps(v)) for k, v in project.params.items()],
+                [(k, json.dumps(v, default=str)) for k, v in params.items()],
             )
-            con.executemany(
-                "INSERT INTO layers VALUES (?, ?, ?, ?, ?, ?, ?)",
-                [
-                    (
-                        k,
-                        lay.name,
-                        lay.kind,
-                        int(lay.visible),
-                        lay.color,
-                        json.dumps(lay.meta, default=str),
-                        _to_parquet(lay.points),
-                    )
-                    for k, lay in enumerate(project.layers)
-                ],
+
+    def put_state(self, key: str, value: object) -> None:
+        with self.con:
+            self.con.execute(
+                "INSERT OR REPLACE INTO state VALUES (?, ?)", (key, json.dumps(value, default=str))
             )
-            con.executemany("INSERT INTO selection VALUES (?, ?, ?)", project.selection)
-            con.executemany(
-                "INSERT INTO decisions VALUES (?)", [(json.dumps(d),) for d in project.decisions]
-            )
-            con.commit()
+
+    def add_decision(self, decision: dict) -> None:
+        with self.con:
+            self.con.execute("INSERT INTO decisions (json) VALUES (?)", (json.dumps(decision),))
+
+    def put_all(self, session: Session, state: dict | None = None) -> None:
+        """Everything in ``session`` (used by Save as, on a new file)."""
+        for pos, layer in enumerate(session.layers.values()):
+            self.put_layer(layer, pos)
+        self.put_sources(session.sources)
+        self.put_params(session.params)
+        self.put_state("selection", session.selection)
+        for key, value in (state or {}).items():
+            self.put_state(key, value)
+        for d in session.decisions:
+            self.add_decision(d)
+
+
+def save_project(session: Session | Project, path: str | Path, state: dict | None = None) -> None:
+    """Write a complete project to ``path`` atomically (Save as)."""
+    if isinstance(session, Project):
+        session = session.to_session()
+    with atomic_path(path) as tmp:
+        store = ProjectStore(tmp)
+        try:
+            store.put_all(session, state)
+            store.con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+            store.con.execute("PRAGMA journal_mode=DELETE")
         finally:
-            con.close()
+            store.close()
+
+
+def _load_layers_v1(con: sqlite3.Connection) -> list[Layer]:
+    return [
+        Layer(f"L{k + 1}", name, kind, _from_parquet(blob), bool(vis), color, json.loads(meta))
+        for k, (name, kind, vis, color, meta, blob) in enumerate(
+            con.execute("SELECT name, kind, visible, color, meta, data FROM layers ORDER BY pos")
+        )
+    ]
+
+
+def _load_layers(con: sqlite3.Connection) -> list[Layer]:
+    tables: dict[str, dict[str, pd.DataFrame]] = {}
+    for lid, name, blob in con.execute("SELECT layer, name, data FROM layer_tables"):
+        tables.setdefault(lid, {})[name] = _from_parquet(blob)
+    out = []
+    rows = con.execute(
+        "SELECT id, name, kind, visible, color, meta, lineage, data FROM layers ORDER BY pos"
+    )
+    for lid, name, kind, vis, color, meta, lineage, blob in rows:
+        lin = json.loads(lineage or "{}")
+        out.append(
+            Layer(
+                lid,
+                name,
+                kind,
+                _from_parquet(blob),
+                bool(vis),
+                color,
+                json.loads(meta or "{}"),
+                lin.get("parent"),
+                lin.get("step"),
+                lin.get("role"),
+                lin.get("params") or {},
+                lin.get("created") or "",
+                tables.get(lid, {}),
+            )
+        )
+    return out
 
 
 def load_project(path: str | Path) -> Project:
-    """Read a project; :class:`InputError` when the file is not a Wakeline project."""
+    """Read a whole project; one :class:`InputError` when it cannot be used (missing, not
+    a project, damaged, made by a newer Wakeline). ``read_only`` says the file (or its
+    folder) cannot be written."""
     path = Path(path)
     if not path.exists():
         raise InputError(f"{path}: no such project file")
+    writable = os.access(path, os.W_OK) and os.access(path.parent, os.W_OK)
     try:
         con = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
         try:
             meta = dict(con.execute("SELECT key, value FROM meta").fetchall())
-            if int(meta.get("schema", "0")) > SCHEMA_VERSION:
-                raise InputError(f"{path}: made by a newer Wakeline (schema {meta['schema']})")
+            schema = int(meta.get("schema", "0"))
+            if schema > SCHEMA_VERSION:
+                raise InputError(
+                    f"{path}: made by a newer Wakeline ({meta.get('wakeline', '?')}, "
+                    f"project schema {schema}); this is {__version__} (schema {SCHEMA_VERSION})"
+                )
+            if schema < 1:
+                raise InputError(f"{path}: not a Wakeline project (no schema version)")
             sources = [Source(p, h) for p, h in con.execute("SELECT path, sha256 FROM sources")]
             params = {k: json.loads(v) for k, v in con.execute("SELECT name, json FROM params")}
-            layers = [
-                Layer(name, kind, _from_parquet(blob), bool(vis), color, json.loads(meta_json))
-                for name, kind, vis, color, meta_json, blob in con.execute(
-                    "SELECT name, kind, visible, color, meta, data FROM layers ORDER BY pos"
-                )
-            ]
-            selection = [
-                tuple(r) for r in con.execute("SELECT layer, sensor, batch FROM selection")
-            ]
+            layers = _load_layers(con) if schema >= 2 else _load_layers_v1(con)
             decisions = [json.loads(r[0]) for r in con.execute("SELECT json FROM decisions")]
+            if schema >= 2:
+                state = {k: json.loads(v) for k, v in con.execute("SELECT key, json FROM state")}
+                selection = [tuple(r) for r in state.pop("selection", [])]
+            else:
+                state = {}
+                names = {lay.name: lay.id for lay in layers}
+                selection = [
+                    (names.get(lay, ""), s, b)
+                    for lay, s, b in con.execute("SELECT layer, sensor, batch FROM selection")
+                ]
         finally:
             con.close()
+    except InputError:
+        raise
     except sqlite3.DatabaseError as exc:
         raise InputError(f"{path}: not a Wakeline project ({exc})") from None
-    return Project(sources, params, layers, selection, decisions)
+    except (ValueError, TypeError, KeyError, OSError, pa.ArrowException) as exc:
+        raise InputError(f"{path}: the project is damaged ({type(exc).__name__}: {exc})") from None
+    if not isinstance(params, dict) or not all(isinstance(v, dict) for v in params.values()):
+        raise InputError(f"{path}: the project is damaged (parameters are not a table)")
+    return Project(sources, params, layers, selection, decisions, state, not writable)
+
+
+class ProjectWriter:
+    """Writes to a project file on a background thread, one task at a time, in order.
+
+    ``submit(fn)`` queues ``fn(store)``; a failure is passed to ``on_error(exc)`` (called
+    on the writer thread: a GUI must hand it to its own thread) and the writer goes on
+    with the next task. ``flush()`` waits until the queue is empty.
+    """
+
+    def __init__(self, path: str | Path, on_error: Callable[[Exception], None]) -> None:
+        self.path = Path(path)
+        self.on_error = on_error
+        self._queue: queue.Queue = queue.Queue()
+        self._thread = threading.Thread(target=self._run, name="wakeline-project", daemon=True)
+        self._thread.start()
+
+    def submit(self, task: Callable[[ProjectStore], None]) -> None:
+        self._queue.put(task)
+
+    def flush(self, timeout: float | None = None) -> bool:
+        """Wait until every task queued so far has run (True) or ``timeout`` s passed."""
+        done = threading.Event()
+        self._queue.put(done)
+        return done.wait(timeout)
+
+    def close(self, timeout: float | None = 30.0) -> None:
+        self._queue.put(None)
+        self._thread.join(timeout)
+
+    def _run(self) -> None:
+        store: ProjectStore | None = None
+        while True:
+            task = self._queue.get()
+            if task is None:
+                break
+            if isinstance(task, threading.Event):
+                task.set()
+                continue
+            try:
+                if store is None:
+                    store = ProjectStore(self.path)
+                task(store)
+            except Exception as exc:  # noqa: BLE001 - reported to the caller, never lost
+                if store is not None:
+                    store.close()
+                    store = None
+                self.on_error(exc)
+        if store is not None:
+            store.close()

@@ -60,13 +60,14 @@ def test_project_round_trip_and_source_checks(tmp_path):
     proj = Project(
         sources=[Source(str(src), file_hash(src))],
         params={"maneuver": {"window_p": 7}},
-        layers=[Layer("demo", "source", points, True, "#123456", {"file": str(src)})],
-        selection=[("demo", "R1", str(points["batch"].iloc[0]))],
+        layers=[Layer("L1", "demo", "source", points, True, "#123456", {"file": str(src)})],
+        selection=[("L1", "R1", str(points["batch"].iloc[0]))],
     )
     path = tmp_path / "p.wakeline"
     save_project(proj, path)
     back = load_project(path)
     assert back.params == proj.params and back.selection == proj.selection
+    assert back.layers[0].id == "L1" and back.layers[0].name == "demo"
     pd.testing.assert_frame_equal(back.layers[0].points, points)
     assert back.layers[0].color == "#123456" and back.source_problems() == []
     src.write_text(src.read_text() + "\n")

@@ -1,0 +1,330 @@
+"""The pipeline steps on the command line, generated from the core's step registry.
+
+Every step of :data:`wakeline.core.pipeline.STEPS` becomes a subcommand
+(``wakeline clean|maneuvers|compress|associate|fuse IN -o OUT``) whose flags are made from
+the step's parameter dataclasses: each field is ``--field-name`` (type, unit, range and
+meaning in the help), ``--set NAME=VALUE`` changes any of them, and a few older spellings
+(``--window``, ``--tolerance`` …) stay. The command runs the same function the desktop
+application runs and writes the step's tables with the same writers.
+"""
+
+import argparse
+import dataclasses
+import sys
+from pathlib import Path
+
+from wakeline.core.errors import InputError
+
+EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
+
+#: Older flag spellings kept beside the generated ones: (parameter set, field) -> flags.
+ALIASES = {
+    ("maneuver", "window_p"): ("--window",),
+    ("maneuver", "radius_n"): ("--radius",),
+    ("maneuver", "threshold_deg"): ("--threshold",),
+    ("compress", "dp_tolerance_m"): ("--tolerance",),
+}
+RESERVED = {"input", "output", "report", "set", "help"}
+
+TEXTS = {
+    "clean": (
+        "remove duplicates, stationary points, jumps and outliers, with a reject trail",
+        "Apply the cleaning rules in order: duplicates, stationary, speed, turn, speed_outliers, "
+        "isolated, short_tracks (seed 001 §4.1, seed 003 §2.2), then the opt-in transforming "
+        "steps bspline, resample, smooth. Every removed, changed or replaced point goes to the "
+        "rejected table with the rule, the action and the parameters.",
+    ),
+    "maneuvers": (
+        "find maneuver (turning) points",
+        "Seed 000's detector: heading of p points by PCA before and after each point, maneuver "
+        "factor = their difference (deg), kept where above the threshold and the maximum within "
+        "+-n points. Writes one row per maneuver point: sensor,batch,index,time,lon,lat,factor "
+        "(index = 0-based position in the time-sorted track). --method imm|entropy runs the "
+        "seed-000 baselines.",
+    ),
+    "compress": (
+        "compress tracks to their turning points",
+        "Keep each track's first and last point and its maneuver points (or Douglas-Peucker "
+        "points); vertices are placed by least squares on the track's points unless "
+        "--raw-vertices. The report gives Dis_e (mean synchronized distance, metres; also "
+        "against the true path when the input has true_lon/true_lat) and the share of points "
+        "kept, per track and overall.",
+    ),
+    "associate": (
+        "join the tracks of one sensor that belong to one ship",
+        "interrupted (default): old track i and new track j of one sensor with j starting "
+        "within max_gap_s after i ends and reachable at v_max_kn; distance from i's end to j's "
+        "start by position (dead-reckoned, allowing one course change), course and speed; "
+        "optimal one-to-one assignment (or seed 003's greedy). segments: seed 001's clustering "
+        "of segments (area S and directional mean, or DTW/Hausdorff baselines; 'motion' = our "
+        "distance). Writes every input row with a 'target' column; --stitch joins each target "
+        "into one batch and fills the gaps.",
+    ),
+    "fuse": (
+        "pair the tracks of two or more sensors and fuse each pair into one track",
+        "Tracks of different sensors that overlap in time, were near each other at some moment "
+        "and have comparable point counts are compared by their mean synchronized distance (or "
+        "DTW over positions) and paired one-to-one (optimal, or seed 003's greedy) up to "
+        "max_distance_m. Each target becomes one track: sensor 'fused', batch = target id; "
+        "where several sensors cover the time, the positions are averaged with weights from "
+        "each track's sampling regularity and noise; elsewhere the single sensor's points; "
+        "junctions blended. Columns added: source, n_sources, weight_base, members.",
+    ),
+}
+OUTPUT_HELP = {
+    "points": "points, canonical CSV",
+    "maneuvers": "maneuver points CSV to write",
+}
+EXTRA_HELP = {
+    "rejected": "write every removed or changed point",
+    "pairs": "write the joined pairs with their distances",
+}
+
+
+def _is_flat(cls: type) -> bool:
+    return dataclasses.is_dataclass(cls) and not hasattr(cls, "with_settings")
+
+
+def _flag_table(step) -> list[tuple[str, dataclasses.Field, list[str]]]:
+    """(parameter set, field, flags) for every flat field of the step's parameter sets."""
+    sets = [(key, cls) for key, cls in step.params if _is_flat(cls)]
+    owner: dict[str, str] = {}
+    for key, cls in reversed(sets):  # later sets (the step's options) keep the plain name
+        for f in dataclasses.fields(cls):
+            owner.setdefault(f.name, key)
+    out = []
+    for key, cls in sets:
+        for f in dataclasses.fields(cls):
+            plain = f.name.replace("_", "-")
+            if owner[f.name] == key and f.name not in RESERVED:
+                flags = [f"--{plain}"]
+            else:
+                flags = [f"--{key.replace('_', '-')}-{plain}"]
+            flags += [a for a in ALIASES.get((key, f.name), ()) if a not in flags]
+            out.append((key, f, flags))
+    return out
+
+
+def _field_help(f: dataclasses.Field) -> str:
+    m = f.metadata
+    unit = f" [{m['unit']}]" if m.get("unit") else ""
+    rng = ""
+    if m.get("lo") is not None or m.get("hi") is not None:
+        rng = (
+            f", {'' if m.get('lo') is None else m['lo']}..{'' if m.get('hi') is None else m['hi']}"
+        )
+    src = f"; {m['source']}" if m.get("source") else ""
+    default = f.default if f.default != "" else "auto"
+    return f"{m.get('doc', '')}{unit} (default {default}{rng}{src})".replace("%", "%%")
+
+
+def _clean_help() -> str:
+    from wakeline.core.clean import CleanParams
+
+    lines = []
+    for d in CleanParams.describe():
+        unit = f" [{d['unit']}]" if d.get("unit") else ""
+        source = f" ({d['source']})" if d.get("source") else ""
+        lines.append(f"{d['rule']}.{d['name']}={d['default']}{unit}: {d['doc']}{source}")
+    return "Rules and parameters (--set rule.param=value):\n  " + "\n  ".join(lines)
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be positive, got {value}")
+    return value
+
+
+def add_step_parsers(sub) -> None:
+    """One subcommand per registered step."""
+    from wakeline.core.pipeline import STEPS
+
+    for name, step in STEPS.items():
+        help_, description = TEXTS.get(name, (step.title, step.title))
+        epilog = EPILOG
+        formatter = argparse.HelpFormatter
+        if name == "clean":
+            epilog = _clean_help() + "\n\n" + EPILOG
+            formatter = argparse.RawDescriptionHelpFormatter
+        p = sub.add_parser(
+            name, help=help_, description=description, epilog=epilog, formatter_class=formatter
+        )
+        p.add_argument("input", type=Path, help="track file (any layout `wakeline import` reads)")
+        p.add_argument(
+            "-o", "--output", type=Path, required=True, help=OUTPUT_HELP.get(step.output, "")
+        )
+        for table, flag in step.outputs:
+            p.add_argument(
+                flag,
+                type=Path,
+                dest=f"out__{table}",
+                metavar="FILE.csv",
+                help=EXTRA_HELP.get(table),
+            )
+        p.add_argument(
+            "--report", type=Path, metavar="R.json", help="write the report and parameters as JSON"
+        )
+        p.add_argument(
+            "--set",
+            action="append",
+            metavar="NAME=VALUE",
+            help="change a parameter (clean: RULE.PARAM=VALUE); repeatable",
+        )
+        for key, f, flags in _flag_table(step):
+            kw = {
+                "dest": f"p__{key}__{f.name}",
+                "default": argparse.SUPPRESS,
+                "help": _field_help(f),
+            }
+            if isinstance(f.default, bool):
+                kw["action"] = argparse.BooleanOptionalAction
+            else:
+                kw["metavar"] = f.metadata.get("unit") or type(f.default).__name__
+                if f.metadata.get("choices"):
+                    kw["choices"] = [c for c in f.metadata["choices"] if c]
+                    kw["metavar"] = None
+            p.add_argument(*flags, **kw)
+        if name == "compress":
+            p.add_argument(
+                "--raw-vertices",
+                dest="p__compress__refine",
+                action="store_false",
+                default=argparse.SUPPRESS,
+                help="keep the raw points as vertices (the paper's way; = --no-refine)",
+            )
+        if name == "clean":
+            _add_clean_flags(p)
+        p.set_defaults(func=run_step_command, step=name)
+
+
+def _add_clean_flags(p: argparse.ArgumentParser) -> None:
+    from wakeline.core.clean import RULES
+
+    p.add_argument(
+        "--off",
+        action="append",
+        choices=RULES,
+        metavar="RULE",
+        help="switch a rule off; repeatable",
+    )
+    p.add_argument(
+        "--resample",
+        type=_positive_float,
+        metavar="SECONDS",
+        help="resample every track to this period (seed 003 uses 20 s)",
+    )
+    p.add_argument(
+        "--max-gap",
+        type=_positive_float,
+        metavar="SECONDS",
+        help="resample: never interpolate across longer gaps (default 60 s)",
+    )
+    p.add_argument(
+        "--smooth",
+        type=int,
+        nargs="?",
+        const=5,
+        metavar="WINDOW",
+        help="moving weighted average of positions over WINDOW points (default 5)",
+    )
+    p.add_argument(
+        "--bspline",
+        action="store_true",
+        help="seed 001 sampling-segmentation-B-spline-interpolation (splits batches holding two ships)",
+    )
+
+
+def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:
+    out = []
+    for text in settings or []:
+        name, sep, value = text.partition("=")
+        if not sep or not name.strip():
+            raise InputError(f"--set expects NAME=VALUE, got {text!r}")
+        out.append((name.strip(), value.strip()))
+    return out
+
+
+def step_params(step, args: argparse.Namespace) -> dict:
+    """The step's parameter sets from the generated flags, ``--set`` and clean's extras."""
+    values: dict[str, dict[str, object]] = {key: {} for key, _ in step.params}
+    for key, f, _flags in _flag_table(step):
+        dest = f"p__{key}__{f.name}"
+        if hasattr(args, dest):
+            values[key][f.name] = getattr(args, dest)
+    if hasattr(args, "p__compress__refine"):
+        values["compress"]["refine"] = args.p__compress__refine
+    flat = [(key, cls) for key, cls in step.params if _is_flat(cls)]
+    nested = [(key, cls) for key, cls in step.params if not _is_flat(cls)]
+    settings: list[str] = []
+    for name, value in _split_settings(getattr(args, "set", None)):
+        owner = next(
+            (key for key, cls in flat if name in {f.name for f in dataclasses.fields(cls)}), None
+        )
+        if owner is not None:
+            values[owner][name] = value
+        elif nested:
+            settings.append(f"{name}={value}")
+        else:
+            known = sorted({f.name for _, cls in flat for f in dataclasses.fields(cls)})
+            raise InputError(f"unknown parameter {name!r}; known: {', '.join(known)}")
+    if step.name == "clean":
+        settings += [f"{rule}.enabled=false" for rule in args.off or []]
+        if args.resample is not None:
+            settings += ["resample.enabled=true", f"resample.period_s={args.resample}"]
+        if args.max_gap is not None:
+            settings += [f"resample.max_gap_s={args.max_gap}"]
+        if args.smooth is not None:
+            settings += ["smooth.enabled=true", f"smooth.window={args.smooth}"]
+        if args.bspline:
+            settings += ["bspline.enabled=true"]
+    out = {}
+    for key, cls in flat:
+        out[key] = cls().replace(**values[key]).checked()
+    for key, cls in nested:
+        out[key] = cls().with_settings(settings).checked()
+    return out
+
+
+def read_input(path: Path):
+    """Points of any layout ``import`` reads; quarantined rows are counted on stderr."""
+    from wakeline.core.io import read_points
+
+    result = read_points(path)
+    if result.report["rows_quarantined"]:
+        print(
+            f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "
+            "(run `wakeline import` with --quarantine to see them)",
+            file=sys.stderr,
+        )
+    if len(result.points) == 0:
+        raise InputError(f"{path}: no usable points")
+    return result.points
+
+
+def write_table(name: str, table, path: Path) -> None:
+    """How every step table is written (the GUI's export uses the same function)."""
+    from wakeline.core.io import write_csv, write_points
+
+    (write_points if name == "points" else write_csv)(table, path)
+
+
+def run_step_command(args: argparse.Namespace) -> int:
+    from wakeline.core.io import write_json
+    from wakeline.core.pipeline import STEPS, params_to_json
+
+    step = STEPS[args.step]
+    params = step_params(step, args)
+    result = step(read_input(args.input), params)
+    write_table(step.output, result.tables[step.output], args.output)
+    for table, _flag in step.outputs:
+        path = getattr(args, f"out__{table}", None)
+        if path:
+            write_table(table, result.tables[table], path)
+    if args.report:
+        write_json({**result.report, "params": params_to_json(params)}, args.report)
+    print(step.summary(result), file=sys.stderr)
+    return 0

@@ -1,0 +1,272 @@
+"""The session model: the operator's layers with stable ids and lineage (Qt-free).
+
+A :class:`Session` holds every layer — imported files and step results — by a stable id
+(``L1``, ``L2`` …), never by display name. A result layer records its lineage: the input
+layer's id, the step, the role it plays in the step's output (``cleaned``,
+``compressed`` …), the parameters and the time it was made. Re-running a step on the same
+input replaces only the layers of that (input, step, role); results of other inputs
+coexist. The GUI is a view over a session: it subscribes to its events
+(``added``, ``changed``, ``removed``, ``visibility``) and never keeps layers of its own.
+"""
+
+import dataclasses
+import datetime as dt
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.pipeline import STEPS, StepResult, params_to_json
+from wakeline.core.progress import Progress
+
+#: Colours per result kind (the map's defaults); sources take the palette in turn.
+KIND_COLORS = {
+    "cleaned": "#2ca02c",
+    "maneuvers": "#9467bd",
+    "compressed": "#d62728",
+    "associated": "#ff7f0e",
+    "fused": "#17becf",
+}
+PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
+
+Listener = Callable[[str, str], None]  # (event, layer id)
+
+
+@dataclass(frozen=True)
+class Source:
+    path: str
+    sha256: str
+
+
+@dataclass
+class Layer:
+    """A table of points (an imported file or a step result) and where it came from."""
+
+    id: str
+    name: str  # display name; may repeat, never used to find a layer
+    kind: str  # "source", "cleaned", "maneuvers", "compressed", "associated", "fused", …
+    points: pd.DataFrame
+    visible: bool = True
+    color: str = "#1f77b4"
+    meta: dict = field(default_factory=dict)
+    parent: str | None = None  # id of the input layer
+    step: str | None = None  # the step that made it
+    role: str | None = None  # its role in the step's output
+    params: dict = field(default_factory=dict)  # the step's parameters, as JSON
+    created: str = ""  # ISO time, UTC
+    tables: dict[str, pd.DataFrame] = field(default_factory=dict)  # side tables
+
+    def lineage(self) -> dict[str, Any]:
+        return {
+            "parent": self.parent,
+            "step": self.step,
+            "role": self.role,
+            "params": self.params,
+            "created": self.created,
+        }
+
+
+def _now() -> str:
+    return dt.datetime.now(dt.UTC).isoformat(timespec="seconds").replace("+00:00", "Z")
+
+
+class Session:
+    """Layers, sources, parameters and selection of one piece of work."""
+
+    def __init__(self) -> None:
+        self.layers: dict[str, Layer] = {}  # in display order
+        self.sources: list[Source] = []
+        self.params: dict[str, dict] = {}
+        self.selection: list[tuple[str, str, str]] = []  # layer id, sensor, batch
+        self.decisions: list[dict] = []
+        self._ids = itertools.count(1)
+        self._listeners: list[Listener] = []
+
+    # -- events --------------------------------------------------------------------
+
+    def subscribe(self, listener: Listener) -> None:
+        """Call ``listener(event, layer_id)`` after every change."""
+        self._listeners.append(listener)
+
+    def _emit(self, event: str, layer_id: str) -> None:
+        for listener in list(self._listeners):
+            listener(event, layer_id)
+
+    # -- layers --------------------------------------------------------------------
+
+    def new_id(self) -> str:
+        while True:
+            lid = f"L{next(self._ids)}"
+            if lid not in self.layers:
+                return lid
+
+    def add_layer(
+        self,
+        name: str,
+        kind: str,
+        points: pd.DataFrame,
+        meta: dict | None = None,
+        *,
+        color: str | None = None,
+        visible: bool = True,
+        layer_id: str | None = None,
+        **lineage: Any,
+    ) -> Layer:
+        """Add a layer (``lineage``: parent, step, role, params, created, tables)."""
+        if color is None:
+            color = KIND_COLORS.get(kind, PALETTE[len(self.layers) % len(PALETTE)])
+        lid = layer_id or self.new_id()
+        if lid in self.layers:
+            raise InputError(f"layer id {lid} is taken")
+        lineage.setdefault("created", _now())
+        layer = Layer(lid, name, kind, points, visible, color, dict(meta or {}), **lineage)
+        self.layers[lid] = layer
+        self._emit("added", lid)
+        return layer
+
+    def remove_layer(self, layer_id: str) -> None:
+        if self.layers.pop(layer_id, None) is not None:
+            self.selection = [s for s in self.selection if s[0] != layer_id]
+            self._emit("removed", layer_id)
+
+    def set_visible(self, layer_id: str, visible: bool) -> None:
+        layer = self.layers[layer_id]
+        if layer.visible != visible:
+            layer.visible = visible
+            self._emit("visibility", layer_id)
+
+    def get(self, layer_id: str | None) -> Layer | None:
+        return self.layers.get(layer_id) if layer_id else None
+
+    def root(self, layer_id: str) -> Layer:
+        """The imported layer a result descends from (itself for a source)."""
+        layer = self.layers[layer_id]
+        seen = {layer.id}
+        while layer.parent in self.layers and layer.parent not in seen:
+            layer = self.layers[layer.parent]
+            seen.add(layer.id)
+        return layer
+
+    def children(self, layer_id: str) -> list[Layer]:
+        return [lay for lay in self.layers.values() if lay.parent == layer_id]
+
+    def find(self, parent: str, step: str | None = None, role: str | None = None) -> Layer | None:
+        """The result of ``step`` (role ``role``) made from layer ``parent``, if any."""
+        for lay in self.layers.values():
+            if (
+                lay.parent == parent
+                and (step is None or lay.step == step)
+                and (role is None or lay.role == role)
+            ):
+                return lay
+        return None
+
+    def related(self, layer_id: str, role: str) -> Layer | None:
+        """The layer of ``role`` nearest in lineage: itself, a sibling, a child or a
+        descendant of its ancestors (the maneuver layer that goes with a compressed one)."""
+        layer = self.layers[layer_id]
+        if layer.role == role or layer.kind == role:
+            return layer
+        if layer.parent is not None:
+            sib = self.find(layer.parent, layer.step, role)
+            if sib is not None:
+                return sib
+        return self.find(layer_id, None, role)
+
+    # -- running steps ------------------------------------------------------------
+
+    def run_step(
+        self,
+        layer_ids: str | list[str],
+        step: str,
+        params: dict | None = None,
+        progress: Progress | None = None,
+    ) -> StepResult:
+        """Run a registered step on one layer (or several, concatenated); pure: nothing
+        changes until :meth:`apply_result`. Safe to call from a worker thread."""
+        ids = [layer_ids] if isinstance(layer_ids, str) else list(layer_ids)
+        points = self.input_points(ids)
+        return STEPS[step](points, params, progress)
+
+    def input_points(self, layer_ids: list[str]) -> pd.DataFrame:
+        frames = [self.layers[i].points for i in layer_ids]
+        if len(frames) == 1:
+            return frames[0]
+        return pd.concat(frames, ignore_index=True)
+
+    def apply_result(
+        self, input_id: str, result: StepResult, params: dict | None = None
+    ) -> list[Layer]:
+        """Add a step's layers as children of ``input_id``; a re-run of the same step on
+        the same input replaces (in place, same id) the layer of the same role. A pipeline
+        result is applied stage by stage, each stage a child of the previous output."""
+        if result.stages:
+            out: list[Layer] = []
+            current = input_id
+            for stage in result.stages:
+                made = self.apply_result(current, stage, None)
+                out += made
+                primary = STEPS[stage.step].primary
+                nxt = [lay for lay in made if lay.role == primary]
+                current = nxt[0].id if nxt else current
+            return out
+        base = self.root(input_id).name if input_id in self.layers else ""
+        parent_name = self.layers[input_id].name if input_id in self.layers else base
+        pjson = _params_json(params)
+        made = []
+        for new in result.layers:
+            old = self.find(input_id, result.step, new.suffix)
+            lineage = {
+                "parent": input_id,
+                "step": result.step,
+                "role": new.suffix,
+                "params": pjson,
+                "created": _now(),
+                "tables": dict(new.tables),
+            }
+            if old is not None:
+                old.points, old.meta, old.kind = new.points, dict(new.meta), new.kind
+                for key, value in lineage.items():
+                    setattr(old, key, value)
+                self._emit("changed", old.id)
+                made.append(old)
+            else:
+                made.append(
+                    self.add_layer(
+                        f"{parent_name} · {new.suffix}", new.kind, new.points, new.meta, **lineage
+                    )
+                )
+        return made
+
+    # -- persistence helpers -------------------------------------------------------
+
+    def layer_order(self) -> list[str]:
+        return list(self.layers)
+
+    def reorder(self, order: list[str]) -> None:
+        if sorted(order) != sorted(self.layers):
+            raise InputError("a layer order must name every layer once")
+        self.layers = {i: self.layers[i] for i in order}
+        self._emit("reordered", "")
+
+    def clear(self) -> None:
+        for lid in list(self.layers):
+            self.remove_layer(lid)
+        self.sources.clear()
+        self.selection.clear()
+        self.decisions.clear()
+
+
+def _params_json(params: dict | None) -> dict:
+    if not params:
+        return {}
+    try:
+        return params_to_json(params)
+    except TypeError:  # already plain values
+        return {
+            k: (dataclasses.asdict(v) if dataclasses.is_dataclass(v) else v)
+            for k, v in params.items()
+        }

@@ -1,0 +1,215 @@
+"""The session model (layers by id with lineage), the step registry shared by the CLI and
+the session, and the incremental project file."""
+
+import os
+import sqlite3
+import subprocess
+import sys
+import time
+
+import pytest
+
+from wakeline.app.cli import main
+from wakeline.core import simulate
+from wakeline.core.errors import InputError
+from wakeline.core.io import read_points, write_points
+from wakeline.core.pipeline import STEPS, Pipeline, params_from_json, params_to_json
+from wakeline.core.project import ProjectWriter, load_project, save_project
+from wakeline.core.session import Session
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    """A small two-sensor scene written as canonical CSV, and its points as read back."""
+    path = tmp_path_factory.mktemp("scene") / "scene.csv"
+    write_points(simulate.multisensor_scene(seed=3, n_ships=6, area_km=30.0), path)
+    return path, read_points(path).points
+
+
+def test_layers_by_id_with_lineage_and_rerun_replaces_only_its_own(scene):
+    _, points = scene
+    s = Session()
+    events = []
+    s.subscribe(lambda e, lid: events.append((e, lid)))
+    a = s.add_layer("scene.csv", "source", points)
+    b = s.add_layer("scene.csv", "source", points.head(500))  # same display name
+    assert a.id != b.id and [e for e, _ in events] == ["added", "added"]
+
+    cleaned = s.apply_result(a.id, s.run_step(a.id, "clean"), STEPS["clean"].defaults())[0]
+    assert (cleaned.parent, cleaned.step, cleaned.role) == (a.id, "clean", "cleaned")
+    assert cleaned.params["clean"]["speed"]["v_max_kn"] > 0
+    comp_src = s.apply_result(a.id, s.run_step(a.id, "compress"))
+    comp_cln = s.apply_result(cleaned.id, s.run_step(cleaned.id, "compress"))
+    # Compress of the cleaned layer did not replace the one compressed from the source.
+    assert {lay.id for lay in comp_src}.isdisjoint({lay.id for lay in comp_cln})
+    assert s.root(comp_cln[-1].id).id == a.id
+    n = len(s.layers)
+    again = s.apply_result(a.id, s.run_step(a.id, "compress"))
+    assert [lay.id for lay in again] == [lay.id for lay in comp_src] and len(s.layers) == n
+    assert ("changed", comp_src[0].id) in events
+    # The maneuver layer that goes with a compressed layer is its sibling.
+    assert s.related(comp_cln[-1].id, "maneuvers").id == comp_cln[0].id
+    # Results of a second input coexist.
+    s.apply_result(b.id, s.run_step(b.id, "clean"))
+    assert (
+        s.find(b.id, "clean", "cleaned") is not None and s.find(a.id, "clean", "cleaned") is cleaned
+    )
+
+
+def test_pipeline_applies_stage_by_stage(scene):
+    _, points = scene
+    s = Session()
+    src = s.add_layer("scene", "source", points)
+    pipe = Pipeline.default()
+    made = s.apply_result(src.id, pipe.run(points))
+    roles = [(lay.role, s.get(lay.parent).role or "source") for lay in made]
+    assert roles == [("cleaned", "source"), ("maneuvers", "cleaned"), ("compressed", "cleaned")]
+    back = Pipeline.from_json(pipe.to_json())
+    assert params_to_json(back.stages[0][1]) == params_to_json(pipe.stages[0][1])
+    with pytest.raises(InputError, match="not a Wakeline pipeline"):
+        Pipeline.from_json("{}")
+
+
+def test_params_json_round_trip_and_refusal():
+    for name, step in STEPS.items():
+        data = params_to_json(step.defaults())
+        assert params_to_json(params_from_json(name, data)) == data
+    with pytest.raises(InputError, match="threshold_deg"):
+        params_from_json("maneuvers", {"maneuver": {"threshold_deg": 500.0}})
+
+
+STEP_ARGS = {
+    "clean": (["--rejected", "{extra}"], "rejected"),
+    "maneuvers": ([], None),
+    "compress": ([], None),
+    "associate": (["--pairs", "{extra}"], "pairs"),
+    "fuse": (["--pairs", "{extra}"], "pairs"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(STEP_ARGS))
+def test_every_step_cli_equals_session_byte_for_byte(scene, tmp_path, name):
+    """One implementation per step: the CLI's files equal the session's tables written by
+    the same writers (the GUI's export)."""
+    from wakeline.app.cli_steps import write_table
+
+    path, points = scene
+    extra_args, extra_table = STEP_ARGS[name]
+    out, extra = tmp_path / "cli.csv", tmp_path / "cli_extra.csv"
+    args = [a.replace("{extra}", str(extra)) for a in extra_args]
+    assert main([name, str(path), "-o", str(out), *args]) == 0
+
+    s = Session()
+    src = s.add_layer(path.name, "source", points)
+    step = STEPS[name]
+    made = s.apply_result(src.id, s.run_step(src.id, name))
+    layer = next(lay for lay in made if lay.role == step.primary)
+    mine = tmp_path / "session.csv"
+    table = layer.points if step.output == "points" else layer.tables[step.output]
+    write_table(step.output, table, mine)
+    assert mine.read_bytes() == out.read_bytes()
+    if extra_table:
+        write_table(extra_table, layer.tables[extra_table], tmp_path / "s_extra.csv")
+        assert (tmp_path / "s_extra.csv").read_bytes() == extra.read_bytes()
+
+
+def test_generated_flags_reach_the_parameters(scene, tmp_path):
+    path, _ = scene
+    out = tmp_path / "m.csv"
+    rep = tmp_path / "r.json"
+    assert (
+        main(["maneuvers", str(path), "-o", str(out), "--threshold", "30", "--report", str(rep)])
+        == 0
+    )
+    assert '"threshold_deg": 30.0' in rep.read_text()
+    assert main(["maneuvers", str(path), "-o", str(out), "--threshold-deg", "999"]) == 2
+    assert main(["associate", str(path), "-o", str(out), "--set", "nope=1"]) == 2
+
+
+def test_incremental_project_writes_small_rows_and_reopens(scene, tmp_path):
+    _, points = scene
+    s = Session()
+    src = s.add_layer("scene", "source", points)
+    s.apply_result(src.id, s.run_step(src.id, "clean"))
+    path = tmp_path / "p.wakeline"
+    save_project(s, path, {"view": [1, 2, 3, 4]})
+    errors = []
+    writer = ProjectWriter(path, errors.append)
+    cleaned = s.find(src.id, "clean", "cleaned")
+    cleaned.visible = False
+    writer.submit(lambda st: st.put_layer(cleaned, 1, with_data=False))
+    writer.submit(lambda st: st.put_state("selection", [(cleaned.id, "R1", "3")]))
+    writer.submit(lambda st: st.add_decision({"action": "accept", "proposal": 1}))
+    assert writer.flush(10)
+    writer.close()
+    assert errors == []
+    back = load_project(path)
+    assert [lay.id for lay in back.layers] == [src.id, cleaned.id]
+    assert back.layers[1].visible is False and back.layers[1].parent == src.id
+    assert back.selection == [(cleaned.id, "R1", "3")] and back.state["view"] == [1, 2, 3, 4]
+    assert back.decisions == [{"action": "accept", "proposal": 1}]
+    assert "rejected" in back.layers[1].tables
+    s2 = back.to_session()
+    assert s2.root(cleaned.id).id == src.id and s2.new_id() not in s2.layers
+
+
+def test_writer_reports_failures(tmp_path):
+    errors = []
+    writer = ProjectWriter(tmp_path / "gone" / "p.wakeline", errors.append)
+    writer.submit(lambda st: st.put_state("x", 1))
+    assert writer.flush(10)
+    writer.close()
+    assert len(errors) == 1
+
+
+def test_damaged_and_newer_projects_give_one_message(scene, tmp_path):
+    _, points = scene
+    s = Session()
+    s.add_layer("scene", "source", points)
+    good = tmp_path / "good.wakeline"
+    save_project(s, good)
+    truncated = tmp_path / "truncated.wakeline"
+    truncated.write_bytes(good.read_bytes()[: good.stat().st_size // 3])
+    with pytest.raises(InputError):
+        load_project(truncated)
+    for name, sql in {
+        "badlayer": "UPDATE layers SET data = x'00112233'",
+        "badparams": "INSERT INTO params VALUES ('maneuver', '{not json')",
+        "newer": "UPDATE meta SET value = '99' WHERE key = 'schema'",
+    }.items():
+        p = tmp_path / f"{name}.wakeline"
+        p.write_bytes(good.read_bytes())
+        con = sqlite3.connect(p)
+        con.execute(sql)
+        con.commit()
+        con.close()
+        with pytest.raises(InputError, match="newer" if name == "newer" else "damaged"):
+            load_project(p)
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root can write read-only files")
+def test_read_only_project_is_flagged(scene, tmp_path):
+    _, points = scene
+    s = Session()
+    s.add_layer("scene", "source", points)
+    p = tmp_path / "ro.wakeline"
+    save_project(s, p)
+    p.chmod(0o444)
+    assert load_project(p).read_only
+
+
+def test_killed_writer_loses_at_most_the_task_in_flight(tmp_path):
+    """Each write is its own transaction: a process killed after a write keeps it."""
+    path = tmp_path / "k.wakeline"
+    code = (
+        "import os, sys\n"
+        "from wakeline.core.project import ProjectWriter\n"
+        f"w = ProjectWriter({str(path)!r}, print)\n"
+        "w.submit(lambda st: st.add_decision({'action': 'reject', 'proposal': 7}))\n"
+        "w.flush(10)\n"
+        "os.kill(os.getpid(), 9)\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, timeout=60)
+    assert proc.returncode != 0
+    time.sleep(0.1)
+    assert load_project(path).decisions == [{"action": "reject", "proposal": 7}]
