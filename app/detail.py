@@ -130,8 +130,10 @@ class DetailPanel(QtWidgets.QTabWidget):
         threshold_deg: float | None = None,
         compressed: pd.DataFrame | None = None,
         original: pd.DataFrame | None = None,
+        dis_e_m: float | None = None,
     ) -> None:
-        """Plot one track (points of one sensor/batch, time-sorted)."""
+        """Plot one track (points of one sensor/batch, time-sorted); ``dis_e_m`` is the
+        compressed track's Dis_e, metres."""
         self.clear()
         if "maneuver_factor" in track.columns and len(track):
             t = time_seconds(track["time"])
@@ -156,7 +158,7 @@ class DetailPanel(QtWidgets.QTabWidget):
             self.comp_plot.getPlotItem().getViewBox().setAspectLocked(
                 True, ratio=max(np.cos(np.radians(lat)), 0.05)
             )
-            dis = compressed["dis_e_m"].iloc[0] if "dis_e_m" in compressed.columns else np.nan
+            dis = np.nan if dis_e_m is None else dis_e_m
             self.comp_plot.setTitle(
                 self.tr("{0} of {1} points kept, Dis_e {2:.0f} m").format(
                     len(compressed), len(original), dis

@@ -3,6 +3,7 @@
 import shutil
 import sys
 import tempfile
+import traceback
 from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
@@ -20,6 +21,25 @@ def wait_for_jobs(window: MainWindow, timeout_ms: int = 120_000) -> None:
         app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
         QtCore.QThread.msleep(5)
     app.processEvents()
+
+
+def install_excepthook(window: MainWindow) -> None:
+    """No exception escapes unseen: log it (stderr and the window's log) and show it."""
+
+    def hook(kind, exc, tb) -> None:
+        text = "".join(traceback.format_exception(kind, exc, tb))
+        print(text, file=sys.stderr)
+        try:
+            window.log_message(text)
+            QtWidgets.QMessageBox.critical(
+                window,
+                window.tr("Unexpected error"),
+                f"{kind.__name__}: {exc}\n\n" + window.tr("The details are in the log."),
+            )
+        except Exception:  # noqa: BLE001 - the hook itself must never raise
+            pass
+
+    sys.excepthook = hook
 
 
 def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
@@ -42,15 +62,22 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
         settings.setValue("language", "en")
     window = MainWindow(settings)
     window.resize(1400, 900)
-    loaded = [window.load_file(Path(p)) for p in (files or [demo_path()])]
+    if screenshot is None:
+        install_excepthook(window)
+    paths = [Path(p) for p in files or [demo_path()]]
+    window.load_files(paths)
+    loaded = [True]
+    if screenshot is not None:
+        wait_for_jobs(window)
+        loaded = [window.layer_id(p.name) is not None for p in paths]
     if screenshot is not None:
         window.show()
-        if any(loaded):
-            first = next(n for n, lay in window.layers.items() if lay.kind == "source")
-            window.set_active(first)
+        sources = [i for i, lay in window.layers.items() if lay.kind == "source"]
+        if sources:
+            window.select_layer(sources[0])
             window.run_step("pipeline")
             wait_for_jobs(window)
-            comp = [n for n, lay in window.layers.items() if lay.kind == "compressed"]
+            comp = [i for i, lay in window.layers.items() if lay.kind == "compressed"]
             if comp:
                 window.select_layer(comp[0])
                 frame = window.batch_model.frame

@@ -256,3 +256,43 @@ def color_icon(color: str) -> QtGui.QIcon:
     pix = QtGui.QPixmap(14, 14)
     pix.fill(QtGui.QColor(color))
     return QtGui.QIcon(pix)
+
+
+def prepare_draw(
+    points: pd.DataFrame,
+    color: str,
+    by_sensor: bool = False,
+    symbols: bool = True,
+    width: float = 1.5,
+) -> dict:
+    """The arrays :meth:`MapCanvas.set_draw_data` shows; pure numpy, for a worker thread."""
+    groups = list(points.groupby("sensor", sort=True)) if by_sensor else [(None, points)]
+    start = PALETTE.index(color) if color in PALETTE else 0
+    curves = []
+    for k, (sensor, group) in enumerate(groups):
+        c = PALETTE[(start + k) % len(PALETTE)] if by_sensor else color
+        lon, lat = nan_separated(group)
+        curves.append((sensor, c, lon, lat))
+    return {"curves": curves, "symbols": symbols, "width": width, "pick": _Pickable(points)}
+
+
+def _set_draw_data(self: "MapCanvas", name: str, data: dict) -> None:
+    """Show prepared arrays as layer ``name`` (GUI thread; no computation here)."""
+    self.remove_layer(name)
+    items = []
+    for sensor, c, lon, lat in data["curves"]:
+        label = name if sensor is None else f"{name} · {sensor}"
+        kw = {}
+        if data["symbols"]:
+            size = 8 if data["width"] == 0 else 3
+            kw = {"symbol": "o", "symbolSize": size, "symbolPen": None, "symbolBrush": c}
+        pen = pg.mkPen(c, width=data["width"]) if data["width"] > 0 else None
+        item = pg.PlotDataItem(lon, lat, pen=pen, connect="finite", name=label, **kw)
+        self.addItem(item)
+        items.append(item)
+    self._items[name] = items
+    self._pick[name] = data["pick"]
+    self._visible[name] = True
+
+
+MapCanvas.set_draw_data = _set_draw_data

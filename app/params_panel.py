@@ -26,6 +26,7 @@ from wakeline.core.maneuver import (
     smallest_detectable_turn_deg,
 )
 from wakeline.core.params import Params
+from wakeline.core.pipeline import AssociateOptions, CompressOptions, FuseOptions, ManeuverOptions
 
 #: Pipeline steps in order: key, title, parameter class.
 GROUPS = (
@@ -34,6 +35,10 @@ GROUPS = (
     ("associate", "Association, one sensor (seeds 001, 003)", LinkParams),
     ("fuse", "Association and fusion, several sensors (seed 003)", FuseParams),
     ("bearing", "Bearing-only (seed 002)", BearingParams),
+    ("maneuver_options", "Maneuver detector", ManeuverOptions),
+    ("compress_options", "Compression method", CompressOptions),
+    ("associate_options", "Association mode", AssociateOptions),
+    ("fuse_options", "Fusion distance and assignment", FuseOptions),
 )
 
 
@@ -48,6 +53,9 @@ def _field_param(f: dataclasses.Field, value) -> dict:
         tip += f"\nsource: {meta['source']}"
     tip += f"\ndefault: {f.default}"
     opts = {"name": f.name, "type": kind, "value": value, "tip": tip, "default": f.default}
+    if meta.get("choices"):
+        opts["type"] = "list"
+        opts["limits"] = list(meta["choices"])
     if kind in ("int", "float"):
         # No spin-box limits: an out-of-range value reaches the core's validation, which
         # refuses it with the reason (a clamped value would hide the mistake).
@@ -139,6 +147,10 @@ class ParamsPanel(QtWidgets.QWidget):
 
     def params(self, key: str) -> Params:
         return self._values[key]
+
+    def keys(self) -> list[str]:
+        """The parameter sets the panel holds (besides ``clean``)."""
+        return list(self._values)
 
     def to_dict(self) -> dict[str, dict]:
         out = {"clean": {s: dataclasses.asdict(getattr(self._clean, s)) for s in STEPS}}

@@ -50,14 +50,15 @@ ship at 10 kn may turn 80° in 10 s, so the rule would never fire at radar rates
 
 import dataclasses
 import json
-from concurrent.futures import ThreadPoolExecutor
+import threading
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from wakeline.core import geo
-from wakeline.core.errors import InputError
+from wakeline.core.errors import Cancelled, InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import ordered_columns, time_seconds
@@ -459,14 +460,31 @@ def _remove(points: pd.DataFrame, params: CleanParams, progress: Progress) -> Cl
             index.track_of_row[a:b] - k0,
             index.keys.iloc[k0:k1].reset_index(drop=True),
         )
-        return _clean_block(pts.iloc[a:b].reset_index(drop=True), block_index, params, None)
+        return _clean_block(pts.iloc[a:b].reset_index(drop=True), block_index, params, check)
 
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        futures = [pool.submit(run, b) for b in blocks]
-        results = []
-        for k, future in enumerate(futures):
-            progress(k / len(futures), f"cleaning block {k + 1} of {len(futures)}")
-            results.append(future.result())
+    # Cancel stops within a rule's time: the caller's progress (which raises to cancel) is
+    # polled every 0.1 s while blocks run, and blocks stop between rules once told to.
+    stop = threading.Event()
+
+    def check(_fraction: float = 0.0, _text: str = "") -> None:
+        if stop.is_set():
+            raise Cancelled()
+
+    pool = ThreadPoolExecutor(max_workers=2)
+    futures = [pool.submit(run, b) for b in blocks]
+    try:
+        while True:
+            done = sum(f.done() for f in futures)
+            progress(done / len(futures), f"cleaning: {done} of {len(futures)} blocks done")
+            if done == len(futures):
+                break
+            wait(futures, timeout=0.1, return_when=FIRST_EXCEPTION)
+        results = [f.result() for f in futures]
+    except BaseException:
+        stop.set()
+        pool.shutdown(wait=True, cancel_futures=True)
+        raise
+    pool.shutdown(wait=True)
     progress(1.0, "cleaned")
     return _merge(results)
 

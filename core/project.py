@@ -348,7 +348,12 @@ class ProjectWriter:
         self._thread.start()
 
     def submit(self, task: Callable[[ProjectStore], None]) -> None:
-        self._queue.put(task)
+        """Queue ``task(store)``."""
+        self._queue.put((task, True))
+
+    def submit_file(self, task: Callable[[Path], None]) -> None:
+        """Queue ``task(path)`` with the file closed (e.g. writing it anew)."""
+        self._queue.put((task, False))
 
     def flush(self, timeout: float | None = None) -> bool:
         """Wait until every task queued so far has run (True) or ``timeout`` s passed."""
@@ -369,10 +374,17 @@ class ProjectWriter:
             if isinstance(task, threading.Event):
                 task.set()
                 continue
+            fn, needs_store = task
             try:
+                if not needs_store:
+                    if store is not None:
+                        store.close()
+                        store = None
+                    fn(self.path)
+                    continue
                 if store is None:
                     store = ProjectStore(self.path)
-                task(store)
+                fn(store)
             except Exception as exc:  # noqa: BLE001 - reported to the caller, never lost
                 if store is not None:
                     store.close()

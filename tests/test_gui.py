@@ -34,12 +34,19 @@ def window(qtbot, tmp_path):
     w.runner.wait()
 
 
+def load(window, path) -> str | None:
+    """Open a file in the window's worker, wait, and return the new layer's id."""
+    window.load_file(path)
+    wait_for_jobs(window)
+    return window.layer_id(path.name)
+
+
 def test_demo_draws_one_curve_per_sensor(window):
-    assert window.load_file(demo_path())
-    assert window.canvas.layer_names() == ["demo.csv"]
-    items = window.canvas.layer_items("demo.csv")
+    lid = load(window, demo_path())
+    assert lid is not None and window.canvas.layer_names() == [lid]
+    items = window.canvas.layer_items(lid)
     assert len(items) == 2  # AIS and R1
-    points = window.layers["demo.csv"].points
+    points = window.layers[lid].points
     n_tracks = points.groupby(["sensor", "batch"]).ngroups
     assert window.batch_model.rowCount() == n_tracks
     nan_gaps = sum(int(np.isnan(i.getOriginalDataset()[0]).sum()) for i in items)
@@ -49,7 +56,7 @@ def test_demo_draws_one_curve_per_sensor(window):
 
 
 def test_pipeline_adds_layers_and_selection_follows_both_ways(window, qtbot):
-    window.load_file(demo_path())
+    load(window, demo_path())
     window.run_step("pipeline")
     wait_for_jobs(window)
     kinds = [lay.kind for lay in window.layers.values()]
@@ -93,8 +100,9 @@ def test_event_loop_keeps_turning_and_cancel_stops_a_long_job(qtbot):
     timer.timeout.connect(lambda: ticks.append(time.perf_counter()))
     timer.start(10)
     runner.run("long", long_job)
-    qtbot.wait(400)
-    assert len(ticks) >= 15  # the GUI thread kept processing events
+    # The GUI thread keeps processing events while the job runs (4 s in all).
+    qtbot.waitUntil(lambda: len(ticks) >= 15, timeout=3500)
+    assert runner.busy
     runner.cancel()
     qtbot.waitUntil(lambda: any(isinstance(m, Cancelled) for m in messages), timeout=5000)
     assert not any(isinstance(m, Finished) for m in messages)
@@ -110,13 +118,13 @@ def test_event_loop_keeps_turning_and_cancel_stops_a_long_job(qtbot):
 def test_errors_in_a_job_reach_a_dialog_and_the_log(window, monkeypatch):
     shown = []
     monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
-    window.load_file(demo_path())
+    lid = load(window, demo_path())
     window.run_step("fuse")
     wait_for_jobs(window)
     assert any(lay.kind == "fused" for lay in window.layers.values())
-    single = tmp_single = window.layers["demo.csv"].points
-    tmp_single = single[single["sensor"] == "R1"]
-    window.add_layer("radar only", "source", tmp_single)
+    single = window.layers[lid].points
+    radar = window.session.add_layer("radar only", "source", single[single["sensor"] == "R1"])
+    assert window.active == radar.id
     window.run_step("fuse")
     wait_for_jobs(window)
     assert shown and "at least two sensors" in shown[-1]
@@ -124,21 +132,36 @@ def test_errors_in_a_job_reach_a_dialog_and_the_log(window, monkeypatch):
 
 
 def test_export_and_reimport(window, tmp_path):
-    window.load_file(demo_path())
+    lid = load(window, demo_path())
     window.run_step("compress")
     wait_for_jobs(window)
     comp = next(n for n, lay in window.layers.items() if lay.kind == "compressed")
     window.set_active(comp)
     out = tmp_path / "compressed.csv"
     assert window.export("csv", out)
+    wait_for_jobs(window)
     back = read_points(out).points
     assert len(back) == len(window.layers[comp].points)
     gj = tmp_path / "compressed.geojson"
     assert window.export("geojson", gj)
+    wait_for_jobs(window)
     assert json.loads(gj.read_text())["type"] == "FeatureCollection"
     man = tmp_path / "maneuvers.csv"
     assert window.export("maneuvers", man)
-    assert len(pd.read_csv(man)) == int(window.layers[comp].points["is_maneuver"].sum())
+    wait_for_jobs(window)
+    maneuvers = window.session.related(comp, "maneuvers")
+    assert len(pd.read_csv(man)) == int(maneuvers.points["is_maneuver"].sum())
+    # The GUI writes the same maneuver table as `wakeline maneuvers`-style output (index kept).
+    assert list(pd.read_csv(man).columns) == [
+        "sensor",
+        "batch",
+        "index",
+        "time",
+        "lon",
+        "lat",
+        "factor",
+    ]
+    assert window.session.root(comp).id == lid
 
 
 def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
@@ -149,7 +172,7 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
     w = MainWindow(settings)
     qtbot.addWidget(w)
-    w.load_file(src)
+    load(w, src)
     proj = tmp_path / "work.wakeline"
     w.save_project(proj)
     w.params.from_dict({"maneuver": {"threshold_deg": 20.0}})
@@ -157,13 +180,14 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     wait_for_jobs(w)
     w.select_tracks([w.batch_model.key_of_row(1)])
     keys = w.selected_keys()
-    layers = list(w.layers)
+    layers = [(i, lay.name, lay.parent) for i, lay in w.layers.items()]
     w.close()  # autosaved after every change: nothing else to do
 
     w2 = MainWindow(settings)
     qtbot.addWidget(w2)
-    assert w2.open_project(proj)
-    assert list(w2.layers) == layers
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    assert [(i, lay.name, lay.parent) for i, lay in w2.layers.items()] == layers
     assert w2.params.params("maneuver").threshold_deg == 20.0
     assert w2.selected_keys() == keys
     assert not shown
@@ -171,13 +195,19 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     src.write_text(src.read_text() + "\n")
     w3 = MainWindow(settings)
     qtbot.addWidget(w3)
-    assert w3.open_project(proj)
+    w3.open_project(proj)
+    wait_for_jobs(w3)
     assert shown and "changed" in shown[-1]
-    # Not a project: a dialog.
+    # Not a project: a dialog, and the open session is left as it was.
+    before = list(w3.layers)
     junk = tmp_path / "junk.wakeline"
     junk.write_text("nope" * 100)
-    assert not w3.open_project(junk)
+    w3.open_project(junk)
+    wait_for_jobs(w3)
     assert "not a Wakeline project" in shown[-1]
+    assert list(w3.layers) == before and w3.project.path == proj
+    w2.close()
+    w3.close()
 
 
 def test_parameters_panel_refuses_bad_values_and_round_trips_presets(window, tmp_path):
@@ -203,7 +233,7 @@ def test_quarantined_rows_are_viewable(window, tmp_path):
     write_points(simulate.demo_scene().head(50), src)
     with open(src, "a") as fh:
         fh.write("AIS,9,not-a-time,122.5,30.5,,,,,\nAIS,9,2024-05-01T00:00:00Z,999,30.5,,,,,\n")
-    assert window.load_file(src)
+    assert load(window, src)
     dialog = window.show_import_report()
     model = dialog.table.model()
     assert model.rowCount() == 2
@@ -219,10 +249,10 @@ def test_bad_file_shows_a_dialog_not_a_crash(window, tmp_path, monkeypatch):
     monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
     bad = tmp_path / "bad.csv"
     bad.write_text("a,b\n1,2\n")
-    assert not window.load_file(bad)
-    assert not window.load_file(tmp_path / "missing.csv")
+    assert not load(window, bad)
+    assert not load(window, tmp_path / "missing.csv")
     assert shown and "missing required column" in shown[0]
-    assert "Error:" in window.log.toPlainText()
+    assert "Error" in window.log.toPlainText() and "no such file" in window.log.toPlainText()
     assert window.layers == {}
 
 
@@ -304,5 +334,43 @@ def test_bearing_only_data_shows_the_statistic_and_detections(window, tmp_path, 
     )
     bad = tmp_path / "bad_bearings.csv"
     bad.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,abc\n")
-    assert window.load_bearings(bad) is None
+    window.load_bearings(bad)
+    wait_for_jobs(window)
     assert shown and "not a number" in shown[-1]
+
+
+def test_failed_save_shows_a_dialog_and_marks_the_title(window, tmp_path, monkeypatch):
+    shown = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+    folder = tmp_path / "work"
+    folder.mkdir()
+    load(window, demo_path())
+    proj = folder / "p.wakeline"
+    window.save_project(proj)
+    assert window.project.flush(30)
+    QtWidgets.QApplication.processEvents()
+    assert not shown and proj.exists()
+    for p in folder.iterdir():
+        p.unlink()
+    folder.rmdir()
+    (tmp_path / "work").write_text("a file where the folder was")
+    window.session.set_visible(window.layer_id("demo.csv"), False)
+    window.run_step("clean")
+    wait_for_jobs(window)
+    assert window.project.flush(30)
+    QtCore.QCoreApplication.processEvents()
+    assert shown and "Saving the project failed" in shown[0]
+    assert "[not saved]" in window.windowTitle()
+    assert "Saving the project failed" in window.log.toPlainText()
+
+
+def test_command_line_opens_files_in_the_application(monkeypatch, tmp_path):
+    from wakeline.app import cli
+
+    seen = {}
+    monkeypatch.setattr(
+        "wakeline.app.main.run", lambda files, screenshot=None: seen.update(files=files) or 0
+    )
+    assert cli.main(["a.csv", "b.csv"]) == 0
+    assert [p.name for p in seen["files"]] == ["a.csv", "b.csv"]
+    assert cli.main(["--debug"]) == 0 and seen["files"] == []

@@ -7,6 +7,7 @@ import subprocess
 import sys
 import time
 
+import pandas as pd
 import pytest
 
 from wakeline.app.cli import main
@@ -213,3 +214,26 @@ def test_killed_writer_loses_at_most_the_task_in_flight(tmp_path):
     assert proc.returncode != 0
     time.sleep(0.1)
     assert load_project(path).decisions == [{"action": "reject", "proposal": 7}]
+
+
+def test_cancel_stops_cleaning_between_blocks(monkeypatch, scene):
+    """The cleaning thread pool does not run every queued block after a cancel."""
+    from wakeline.core import clean as clean_mod
+    from wakeline.core.errors import Cancelled
+
+    _, points = scene
+    big = pd.concat([points.assign(batch=points["batch"] + f"_{k}") for k in range(20)])
+    monkeypatch.setattr(clean_mod, "BLOCK_ROWS", len(points) // 4)
+    calls = []
+
+    def progress(fraction, text=""):
+        calls.append(text)
+        if len(calls) > 2:
+            raise Cancelled()
+
+    t0 = time.perf_counter()
+    with pytest.raises(Cancelled):
+        clean_mod.clean(big, progress=progress)
+    assert time.perf_counter() - t0 < 5
+    _, index = clean_mod.sorted_with_index(big)
+    assert len(clean_mod._blocks(index, len(points) // 4)) > 10

@@ -1,0 +1,144 @@
+"""The main window's actions, menus and toolbar, and their texts in the current language."""
+
+from PySide6 import QtGui, QtWidgets
+
+from wakeline.app import i18n
+
+STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
+
+
+def build_actions(w) -> None:
+    """Create ``w.actions_``, ``w.menus``, ``w.lang_actions`` and the toolbar."""
+    style = w.style()
+    sp = QtWidgets.QStyle.StandardPixmap
+    a = {}
+
+    def act(key, slot, icon=None, shortcut=None, checkable=False):
+        a[key] = QtGui.QAction(style.standardIcon(icon), "", w) if icon else QtGui.QAction("", w)
+        a[key].setCheckable(checkable)
+        if shortcut is not None:
+            a[key].setShortcut(shortcut)
+        (a[key].toggled if checkable else a[key].triggered).connect(slot)
+
+    keys = QtGui.QKeySequence.StandardKey
+    act("open", w.open_dialog, sp.SP_DialogOpenButton, keys.Open)
+    act("open_bearings", w.open_bearings_dialog)
+    act("open_project", w.open_project_dialog)
+    act("save_project", w.save_project_dialog, sp.SP_DialogSaveButton, keys.Save)
+    act("export_csv", lambda: w.export_dialog("csv"))
+    act("export_geojson", lambda: w.export_dialog("geojson"))
+    act("export_maneuvers", lambda: w.export_dialog("maneuvers"))
+    act("quit", w.close, None, keys.Quit)
+    act("pipeline", lambda: w.run_step("pipeline"), sp.SP_MediaPlay)
+    for step in STEPS:
+        act(step, lambda _=False, s=step: w.run_step(s))
+    act("cancel", w.runner.cancel, sp.SP_BrowserStop)
+    act("fit", lambda: w.canvas.fit(), sp.SP_TitleBarMaxButton)
+    act("zoom_selection", w.zoom_to_selection)
+    act("box", w.canvas.set_box_zoom, checkable=True)
+    act("remove_layer", w.remove_active_layer)
+    act("import_report", w.show_import_report)
+    w.actions_ = a
+
+    m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "view", "lang")}
+    w.menus = m
+    for key in ("open", "open_bearings", "open_project", "save_project"):
+        m["file"].addAction(a[key])
+    m["file"].addMenu(m["export"])
+    for key in ("export_csv", "export_geojson", "export_maneuvers"):
+        m["export"].addAction(a[key])
+    m["file"].addSeparator()
+    m["file"].addAction(a["quit"])
+    m["run"].addAction(a["pipeline"])
+    m["run"].addSeparator()
+    for step in STEPS:
+        m["run"].addAction(a[step])
+    m["run"].addSeparator()
+    m["run"].addAction(a["cancel"])
+    for key in ("fit", "zoom_selection", "box", "remove_layer", "import_report"):
+        m["view"].addAction(a[key])
+    m["view"].addSeparator()
+    for dock in w.docks.values():
+        m["view"].addAction(dock.toggleViewAction())
+    group = QtGui.QActionGroup(w)
+    w.lang_actions = {}
+    for code, label in i18n.LANGUAGES.items():
+        lang = QtGui.QAction(label, w, checkable=True)
+        lang.triggered.connect(lambda _=False, c=code: w.set_language(c))
+        group.addAction(lang)
+        m["lang"].addAction(lang)
+        w.lang_actions[code] = lang
+    for key in ("file", "run", "view", "lang"):
+        w.menuBar().addMenu(m[key])
+    w.toolbar = w.addToolBar("main")
+    w.toolbar.setObjectName("toolbar")
+    for key in ("open", "save_project", None, "pipeline", *STEPS, "cancel", None, "fit", "box"):
+        if key is None:
+            w.toolbar.addSeparator()
+        else:
+            w.toolbar.addAction(a[key])
+
+
+def retranslate(w) -> None:
+    """Set every action, menu and dock text (called again when the language changes)."""
+    tr = w.tr
+    texts = {
+        "open": tr("&Open tracks…"),
+        "open_project": tr("Open &project…"),
+        "open_bearings": tr("Open &bearings (bearing-only detection)…"),
+        "save_project": tr("&Save project as…"),
+        "export_csv": tr("Active layer as &CSV…"),
+        "export_geojson": tr("Active layer as &GeoJSON…"),
+        "export_maneuvers": tr("&Maneuver points as CSV…"),
+        "quit": tr("&Quit"),
+        "pipeline": tr("Run &pipeline (clean, maneuvers, compress)"),
+        "clean": tr("&Clean"),
+        "maneuvers": tr("&Maneuvers"),
+        "compress": tr("C&ompress"),
+        "associate": tr("&Associate (one sensor)"),
+        "fuse": tr("&Fuse (several sensors)"),
+        "cancel": tr("Cancel the running job"),
+        "fit": tr("&Fit to data"),
+        "zoom_selection": tr("&Zoom to selection"),
+        "box": tr("&Box zoom"),
+        "remove_layer": tr("&Remove active layer"),
+        "import_report": tr("&Import report and quarantined rows…"),
+    }
+    for key, text in texts.items():
+        w.actions_[key].setText(text)
+    menus = {
+        "file": tr("&File"),
+        "export": tr("&Export"),
+        "run": tr("&Run"),
+        "view": tr("&View"),
+        "lang": tr("&Language"),
+    }
+    for key, text in menus.items():
+        w.menus[key].setTitle(text)
+    titles = {
+        "layers": tr("Layers"),
+        "params": tr("Parameters"),
+        "batches": tr("Batch table"),
+        "detail": tr("Detail"),
+        "stats": tr("Statistics"),
+        "log": tr("Log"),
+    }
+    for key, title in titles.items():
+        w.docks[key].setWindowTitle(title)
+    w.filter_edit.setPlaceholderText(tr("Filter batches (any column)…"))
+    w.cancel_button.setText(tr("Cancel"))
+    w.batch_model.set_titles(
+        [
+            tr("Sensor"),
+            tr("Batch"),
+            tr("Points"),
+            tr("Start (UTC)"),
+            tr("End (UTC)"),
+            tr("Duration (min)"),
+            tr("Length (km)"),
+            tr("Speed (kn)"),
+            tr("Maneuvers"),
+            tr("Target"),
+            tr("Status"),
+        ]
+    )

@@ -1,0 +1,115 @@
+"""Keeps the project file in step with the session, off the GUI thread.
+
+Once the work has a project file, every session event becomes one small write queued on
+the core's :class:`~wakeline.core.project.ProjectWriter` thread: a new or replaced layer
+writes its Parquet once; visibility, order, selection, view and parameters are small rows.
+A failed write is never silent: :attr:`failed` carries the message to the window (a
+dialog, the log, and the title marked unsaved).
+"""
+
+from pathlib import Path
+
+from PySide6 import QtCore
+
+from wakeline.core.project import ProjectWriter, save_project
+from wakeline.core.session import Session
+
+
+class ProjectController(QtCore.QObject):
+    failed = QtCore.Signal(str)  # a write failed: the message
+    _error = QtCore.Signal(str)  # from the writer thread
+
+    def __init__(self, session: Session, parent: QtCore.QObject | None = None) -> None:
+        super().__init__(parent)
+        self.session = session
+        self.path: Path | None = None
+        self.read_only = False
+        self.dirty = False
+        self.writer: ProjectWriter | None = None
+        self._error.connect(self._on_error)
+        session.subscribe(self._on_event)
+
+    # -- attaching ----------------------------------------------------------------
+
+    def save_as(self, path: Path, state: dict | None = None) -> None:
+        """Write the whole session to ``path`` (in the writer thread), then follow it."""
+        self.detach()
+        snapshot = Session()
+        snapshot.layers = dict(self.session.layers)
+        snapshot.sources = list(self.session.sources)
+        snapshot.params = dict(self.session.params)
+        snapshot.selection = list(self.session.selection)
+        snapshot.decisions = list(self.session.decisions)
+        self._attach(Path(path), read_only=False)
+        self.writer.submit_file(lambda p: save_project(snapshot, p, state))
+
+    def follow(self, path: Path, read_only: bool) -> None:
+        """Continue writing to an opened project (nothing when it is read-only)."""
+        self.detach()
+        self.path, self.read_only, self.dirty = Path(path), read_only, False
+        if not read_only:
+            self._attach(Path(path), read_only=False)
+
+    def _attach(self, path: Path, read_only: bool) -> None:
+        self.path, self.read_only, self.dirty = path, read_only, False
+        self.writer = ProjectWriter(path, lambda exc: self._error.emit(_describe(exc)))
+
+    def detach(self, timeout: float = 30.0) -> None:
+        if self.writer is not None:
+            self.writer.close(timeout)
+            self.writer = None
+        self.path, self.read_only = None, False
+
+    def flush(self, timeout: float = 30.0) -> bool:
+        return self.writer.flush(timeout) if self.writer is not None else True
+
+    # -- writes -------------------------------------------------------------------
+
+    def _submit(self, task) -> None:
+        if self.writer is not None:
+            self.writer.submit(task)
+
+    def _pos(self, layer_id: str) -> int:
+        order = list(self.session.layers)
+        return order.index(layer_id) if layer_id in order else len(order)
+
+    def _on_event(self, event: str, layer_id: str) -> None:
+        if self.writer is None:
+            return
+        layer = self.session.layers.get(layer_id)
+        if event in ("added", "changed") and layer is not None:
+            pos = self._pos(layer_id)
+            self._submit(lambda st: st.put_layer(layer, pos))
+            if event == "added" and layer.kind == "source":
+                sources = list(self.session.sources)
+                self._submit(lambda st: st.put_sources(sources))
+        elif event == "visibility" and layer is not None:
+            pos = self._pos(layer_id)
+            self._submit(lambda st: st.put_layer(layer, pos, with_data=False))
+        elif event == "removed":
+            self._submit(lambda st: st.delete_layer(layer_id))
+        elif event == "reordered":
+            order = list(self.session.layers)
+            self._submit(lambda st: st.put_order(order))
+
+    def put_state(self, key: str, value: object) -> None:
+        """A small state row (selection, view, active layer)."""
+        self._submit(lambda st: st.put_state(key, value))
+
+    def put_params(self, params: dict) -> None:
+        params = dict(params)
+        self._submit(lambda st: st.put_params(params))
+
+    def add_decision(self, decision: dict) -> None:
+        self._submit(lambda st: st.add_decision(decision))
+
+    def _on_error(self, message: str) -> None:
+        self.dirty = True
+        self.failed.emit(message)
+
+
+def _describe(exc: Exception) -> str:
+    if isinstance(exc, OSError):
+        name = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
+        return f"{name}{exc.strerror or exc}"
+    return f"{type(exc).__name__}: {exc}"
