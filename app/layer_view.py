@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from wakeline.app.models import batch_summary
+from wakeline.app.models import batch_summary, display_text
 from wakeline.core.tracks import sort_points, track_index
 
 DRAW_STYLE = {  # kind -> (symbols, line width); maneuver layers draw their turning points
@@ -41,6 +41,7 @@ class LayerView:
     ranges: dict[tuple[str, str], tuple[int, int]]  # (sensor, batch) -> [start, end) rows
     maneuvers: pd.DataFrame | None
     draw: object = None  # the map's prepared arrays (see map_canvas)
+    text: dict = field(default_factory=dict)  # the batch table's display columns
     extra: dict = field(default_factory=dict)
 
     def track_rows(self, keys: list[tuple[str, str]]) -> np.ndarray:
@@ -58,8 +59,10 @@ def prepare_view(points: pd.DataFrame, kind: str, color: str) -> LayerView:
 
     pts = sort_points(points)
     index = track_index(pts)
-    sensors = pts["sensor"].astype(str).to_numpy()[index.starts]
-    batches = pts["batch"].astype(str).to_numpy()[index.starts]
+    # Only the first row of each track becomes Python text (a million-row column turned
+    # into objects would hold the GIL, and so the GUI thread, for a second).
+    sensors = pts["sensor"].iloc[index.starts].astype(str).to_numpy()
+    batches = pts["batch"].iloc[index.starts].astype(str).to_numpy()
     ranges = {
         (s, b): (int(a), int(e))
         for s, b, a, e in zip(sensors, batches, index.starts, index.ends, strict=True)
@@ -69,4 +72,4 @@ def prepare_view(points: pd.DataFrame, kind: str, color: str) -> LayerView:
     symbols, width = DRAW_STYLE.get(kind, (False, 1.3))
     drawn = marks if kind == "maneuvers" and marks is not None else pts
     draw = prepare_draw(drawn, color, by_sensor=kind == "source", symbols=symbols, width=width)
-    return LayerView(pts, summary, ranges, marks, draw)
+    return LayerView(pts, summary, ranges, marks, draw, display_text(summary))

@@ -22,7 +22,7 @@ from wakeline.app.dialogs import ImportDialog, ImportReportDialog
 from wakeline.app.jobs import JobsMixin
 from wakeline.app.layer_view import LayerView, maneuver_table, prepare_view
 from wakeline.app.map_canvas import MapCanvas, color_icon
-from wakeline.app.models import BatchFilterModel, BatchTableModel, batch_summary
+from wakeline.app.models import BatchTableModel, batch_summary
 from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
 from wakeline.app.worker import JobRunner
@@ -83,21 +83,21 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self.params.changed.connect(lambda _k: self.project.put_params(self.params.to_dict()))
         self.params.refused.connect(lambda text: self.log_message(f"{self.tr('Refused')}: {text}"))
         self.batch_model = BatchTableModel(self)
-        self.batch_proxy = BatchFilterModel(self)
-        self.batch_proxy.setSourceModel(self.batch_model)
         self.batch_view = QtWidgets.QTableView()
-        self.batch_view.setModel(self.batch_proxy)
+        self.batch_view.setModel(self.batch_model)
         self.batch_view.setSortingEnabled(True)
         behavior = QtWidgets.QAbstractItemView
         self.batch_view.setSelectionBehavior(behavior.SelectionBehavior.SelectRows)
         self.batch_view.setSelectionMode(behavior.SelectionMode.ExtendedSelection)
         self.batch_view.verticalHeader().setVisible(False)
         self.batch_view.setAlternatingRowColors(True)
-        self.batch_view.horizontalHeader().setStretchLastSection(True)
+        header = self.batch_view.horizontalHeader()
+        header.setStretchLastSection(True)
+        header.setResizeContentsPrecision(50)  # size columns from 50 rows, not all
         self.batch_view.selectionModel().selectionChanged.connect(self._table_selection_changed)
         self.filter_edit = QtWidgets.QLineEdit()
         self.filter_edit.setClearButtonEnabled(True)
-        self.filter_edit.textChanged.connect(self.batch_proxy.setFilterFixedString)
+        self.filter_edit.textChanged.connect(self.batch_model.set_filter)
         batch_box = QtWidgets.QWidget()
         bl = QtWidgets.QVBoxLayout(batch_box)
         bl.setContentsMargins(2, 2, 2, 2)
@@ -278,11 +278,13 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         """Make ``lid`` the layer the batch table, statistics and steps work on."""
         self.active = lid if lid in self.session.layers else None
         view = self.views.get(self.active) if self.active else None
-        self.batch_model.set_summary(view.summary if view is not None else batch_summary(EMPTY))
+        if view is not None:
+            self.batch_model.set_summary(view.summary, view.text)
+        else:
+            self.batch_model.set_summary(batch_summary(EMPTY))
         self.canvas.show_selection(EMPTY)
         self.detail.clear()
         if view is not None:
-            self.batch_view.resizeColumnsToContents()
             # The detection limit depends on the raw sampling: take it from the source layer.
             root = self.views.get(self.session.root(self.active).id, view)
             self.params.show_guidance(root.summary)
@@ -295,10 +297,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
     # -- selection -----------------------------------------------------------------
 
     def selected_keys(self) -> list[tuple[str, str]]:
-        rows = {
-            self.batch_proxy.mapToSource(i).row()
-            for i in self.batch_view.selectionModel().selectedRows()
-        }
+        rows = {i.row() for i in self.batch_view.selectionModel().selectedRows()}
         return [self.batch_model.key_of_row(r) for r in sorted(rows)]
 
     def select_tracks(self, keys: list[tuple[str, str]], add: bool = False) -> None:
@@ -311,7 +310,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             row = self.batch_model.row_of_key(sensor, batch)
             if row is None:
                 continue
-            idx = self.batch_proxy.mapFromSource(self.batch_model.index(row, 0))
+            idx = self.batch_model.index(row, 0)
             if idx.isValid():
                 selection.select(idx, idx)
                 last = idx

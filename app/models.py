@@ -6,8 +6,6 @@ from PySide6 import QtCore
 
 from wakeline.core.tracks import track_summary
 
-SORT_ROLE = QtCore.Qt.ItemDataRole.UserRole + 1
-
 
 def batch_summary(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> pd.DataFrame:
     """The core's track summary plus maneuvers per track, target and status."""
@@ -40,8 +38,41 @@ def batch_summary(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -
     return summary
 
 
+def display_text(df: pd.DataFrame) -> dict[str, np.ndarray]:
+    """Every column's display text, formatted once for all rows (vectorized)."""
+    out = {}
+    for key in ("sensor", "batch", "target", "status"):
+        col = df[key] if key in df.columns else pd.Series([""] * len(df))
+        out[key] = col.astype(object).where(col.notna(), "").astype(str).to_numpy()
+    out["points"] = (
+        df["points"].astype("int64").astype(str).to_numpy() if len(df) else np.zeros(0, str)
+    )
+    for key in ("start", "end"):
+        out[key] = (
+            pd.to_datetime(df[key]).dt.strftime("%Y-%m-%d %H:%M:%S").fillna("").to_numpy()
+            if len(df)
+            else np.zeros(0, str)
+        )
+
+    def num(values, fmt: str) -> np.ndarray:
+        v = pd.to_numeric(pd.Series(values), errors="coerce")
+        return (
+            v.map(lambda x: "" if pd.isna(x) else fmt.format(x)).to_numpy(dtype=object).astype(str)
+        )
+
+    out["duration_s"] = num(df["duration_s"] / 60 if len(df) else [], "{:.1f}")
+    out["length_m"] = num(df["length_m"] / 1000 if len(df) else [], "{:.2f}")
+    out["mean_speed_kn"] = num(df["mean_speed_kn"] if len(df) else [], "{:.1f}")
+    out["maneuvers"] = num(
+        df["maneuvers"] if "maneuvers" in df.columns else [np.nan] * len(df), "{:.0f}"
+    )
+    return out
+
+
 class BatchTableModel(QtCore.QAbstractTableModel):
-    """Read-only table over :func:`batch_summary`; ``SORT_ROLE`` gives raw values."""
+    """The batch table over :func:`batch_summary`, with sorting and a text filter done by
+    numpy over whole columns (no per-cell Python calls while sorting or filtering): the
+    visible rows are a permutation ``order`` of the summary's rows."""
 
     COLUMNS = (
         ("sensor", "Sensor"),
@@ -60,8 +91,12 @@ class BatchTableModel(QtCore.QAbstractTableModel):
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)
-        self._df = pd.DataFrame(columns=[c for c, _ in self.COLUMNS])
         self._titles = [t for _, t in self.COLUMNS]
+        self._filter = ""
+        self._sort: tuple[int, QtCore.Qt.SortOrder] | None = None
+        self.set_summary(
+            batch_summary(pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"]))
+        )
 
     @property
     def frame(self) -> pd.DataFrame:
@@ -71,27 +106,71 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         self._titles = titles
         self.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(titles) - 1)
 
-    def set_summary(self, df: pd.DataFrame) -> None:
+    def set_summary(self, df: pd.DataFrame, text: dict | None = None) -> None:
+        """Show a summary (``text``: its display columns, when prepared in a worker)."""
         self.beginResetModel()
         self._df = df.reset_index(drop=True)
-        self._cache = {
-            key: self._df[key].to_numpy() if key in self._df.columns else None
-            for key, _ in self.COLUMNS
+        self._text = text if text is not None else display_text(self._df)
+        self._keys = {
+            (s, b): k
+            for k, (s, b) in enumerate(zip(self._text["sensor"], self._text["batch"], strict=True))
         }
+        self._order = self._visible_rows()
+        self.endResetModel()
+
+    def _visible_rows(self) -> np.ndarray:
+        n = len(self._df)
+        rows = np.arange(n)
+        if self._sort is not None and n:
+            key = self.COLUMNS[self._sort[0]][0]
+            raw = self._df[key] if key in self._df.columns else pd.Series([""] * n)
+            if key in self.TEXT:
+                values = raw.astype(str).to_numpy()
+            else:
+                values = (
+                    pd.to_numeric(raw, errors="coerce").to_numpy(dtype="float64")
+                    if key not in ("start", "end")
+                    else pd.to_datetime(raw).to_numpy()
+                )
+            rows = np.argsort(values, kind="stable")
+            if self._sort[1] == QtCore.Qt.SortOrder.DescendingOrder:
+                rows = rows[::-1]
+        if self._filter and n:
+            needle = self._filter.lower()
+            hit = np.zeros(n, dtype=bool)
+            for col in self._text.values():
+                hit |= np.char.find(np.char.lower(col.astype(str)), needle) >= 0
+            rows = rows[hit[rows]]
+        return rows
+
+    def sort(self, column: int, order=QtCore.Qt.SortOrder.AscendingOrder) -> None:
+        self.layoutAboutToBeChanged.emit()
+        self._sort = (column, order)
+        self._order = self._visible_rows()
+        self.layoutChanged.emit()
+
+    def set_filter(self, text: str) -> None:
+        """Show only rows with ``text`` in any column (case-insensitive)."""
+        self.beginResetModel()
+        self._filter = text.strip()
+        self._order = self._visible_rows()
         self.endResetModel()
 
     def key_of_row(self, row: int) -> tuple[str, str]:
-        return str(self._df["sensor"].iat[row]), str(self._df["batch"].iat[row])
+        """(sensor, batch) of visible row ``row``."""
+        r = self._order[row]
+        return str(self._text["sensor"][r]), str(self._text["batch"][r])
 
     def row_of_key(self, sensor: str, batch: str) -> int | None:
-        hit = np.flatnonzero(
-            (self._df["sensor"].astype(str).to_numpy() == sensor)
-            & (self._df["batch"].astype(str).to_numpy() == batch)
-        )
+        """Visible row of a track (None when unknown or filtered out)."""
+        r = self._keys.get((sensor, batch))
+        if r is None:
+            return None
+        hit = np.flatnonzero(self._order == r)
         return int(hit[0]) if len(hit) else None
 
     def rowCount(self, parent=None) -> int:  # noqa: N802 - Qt API
-        return 0 if parent is not None and parent.isValid() else len(self._df)
+        return 0 if parent is not None and parent.isValid() else len(self._order)
 
     def columnCount(self, parent=None) -> int:  # noqa: N802 - Qt API
         return 0 if parent is not None and parent.isValid() else len(self.COLUMNS)
@@ -105,46 +184,14 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         return None
 
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
-        if not index.isValid():
-            return None
-        key = self.COLUMNS[index.column()][0]
-        col = self._cache.get(key)
-        if col is None:
-            return None
-        value = col[index.row()]
-        if role == SORT_ROLE:
-            if isinstance(value, pd.Timestamp):
-                return value.value
-            if isinstance(value, (float, np.floating)) and np.isnan(value):
-                return -1.0
-            return value.item() if hasattr(value, "item") else value
+        if role == QtCore.Qt.ItemDataRole.DisplayRole:
+            key = self.COLUMNS[index.column()][0]
+            return self._text[key][self._order[index.row()]]
         if role == QtCore.Qt.ItemDataRole.TextAlignmentRole:
-            if key in self.TEXT:
+            if self.COLUMNS[index.column()][0] in self.TEXT:
                 return None
             return int(QtCore.Qt.AlignmentFlag.AlignRight | QtCore.Qt.AlignmentFlag.AlignVCenter)
-        if role != QtCore.Qt.ItemDataRole.DisplayRole:
-            return None
-        if key in ("start", "end"):
-            return pd.Timestamp(value).strftime("%Y-%m-%d %H:%M:%S")
-        if key == "duration_s":
-            return f"{value / 60:.1f}"
-        if key == "length_m":
-            return f"{value / 1000:.2f}"
-        if key in ("mean_speed_kn",):
-            return "" if pd.isna(value) else f"{value:.1f}"
-        if key == "maneuvers":
-            return "" if pd.isna(value) else str(int(value))
-        return "" if value is None or (isinstance(value, float) and np.isnan(value)) else str(value)
-
-
-class BatchFilterModel(QtCore.QSortFilterProxyModel):
-    """Sorting by raw values; a text filter over every column, case-insensitive."""
-
-    def __init__(self, parent=None) -> None:
-        super().__init__(parent)
-        self.setSortRole(SORT_ROLE)
-        self.setFilterKeyColumn(-1)
-        self.setFilterCaseSensitivity(QtCore.Qt.CaseSensitivity.CaseInsensitive)
+        return None
 
 
 class FrameModel(QtCore.QAbstractTableModel):

@@ -80,7 +80,8 @@ def test_pipeline_adds_layers_and_selection_follows_both_ways(window, qtbot):
     assert window.selected_keys() == [(str(other["sensor"]), str(other["batch"]))]
     # Text filter narrows the table.
     window.filter_edit.setText("AIS")
-    shown = {window.batch_proxy.index(r, 0).data() for r in range(window.batch_proxy.rowCount())}
+    model = window.batch_model
+    shown = {model.index(r, 0).data() for r in range(model.rowCount())}
     assert shown == {"AIS"}
 
 
