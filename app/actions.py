@@ -32,6 +32,8 @@ def build_actions(w) -> None:
     act("pipeline", lambda: w.run_step("pipeline"), sp.SP_MediaPlay)
     for step in STEPS:
         act(step, lambda _=False, s=step: w.run_step(s))
+    act("save_pipeline", lambda: w._pipeline_dialog(True))
+    act("load_pipeline", lambda: w._pipeline_dialog(False))
     act("cancel", w.runner.cancel, sp.SP_BrowserStop)
     act("fit", lambda: w.canvas.fit(), sp.SP_TitleBarMaxButton)
     act("zoom_selection", w.zoom_to_selection)
@@ -53,6 +55,9 @@ def build_actions(w) -> None:
     m["run"].addSeparator()
     for step in STEPS:
         m["run"].addAction(a[step])
+    m["run"].addSeparator()
+    m["run"].addAction(a["save_pipeline"])
+    m["run"].addAction(a["load_pipeline"])
     m["run"].addSeparator()
     m["run"].addAction(a["cancel"])
     for key in ("fit", "zoom_selection", "box", "remove_layer", "import_report"):
@@ -98,6 +103,8 @@ def retranslate(w) -> None:
         "associate": tr("&Associate (one sensor)"),
         "fuse": tr("&Fuse (several sensors)"),
         "cancel": tr("Cancel the running job"),
+        "save_pipeline": tr("&Save pipeline as…"),
+        "load_pipeline": tr("&Load pipeline…"),
         "fit": tr("&Fit to data"),
         "zoom_selection": tr("&Zoom to selection"),
         "box": tr("&Box zoom"),

@@ -149,7 +149,7 @@ class JobsMixin:
             return None
         lid = layer.id
         if step == "pipeline":
-            pipe = Pipeline(tuple((s, self.step_params(s)) for s in ("clean", "compress")))
+            pipe = self.pipeline()
 
             def run(progress):
                 return pipe.run(self.session.layers[lid].points, progress)
@@ -179,6 +179,42 @@ class JobsMixin:
             self.session.apply_result(lid, result, params)
         finally:
             self._pending_views = {}
+
+    def pipeline(self) -> Pipeline:
+        """The pipeline Run ▸ pipeline runs: clean, then maneuvers and compress."""
+        return Pipeline(tuple((s, self.step_params(s)) for s in ("clean", "compress")))
+
+    def save_pipeline(self, path: Path) -> None:
+        """Write the pipeline with the panel's parameters as JSON (``wakeline batch`` and
+        Run ▸ Load pipeline read it)."""
+        Path(path).write_text(self.pipeline().to_json(), encoding="utf-8")
+        self.log_message(self.tr("pipeline saved to {0}").format(path))
+
+    def load_pipeline(self, path: Path) -> list[str]:
+        """Put a saved pipeline's parameters into the panel; returns the problems."""
+        from wakeline.core.pipeline import params_to_json
+
+        try:
+            pipe = Pipeline.from_json(Path(path).read_text(encoding="utf-8"))
+        except (InputError, OSError) as exc:
+            QtWidgets.QMessageBox.warning(self, self.tr("Cannot load pipeline"), str(exc))
+            return [str(exc)]
+        keys = {"clean", *self.params.keys()}
+        problems = []
+        for _name, params in pipe.stages:
+            data = params_to_json(params)
+            problems += self.params.from_dict({k: v for k, v in data.items() if k in keys})
+        for text in problems:
+            self.log_message(f"{self.tr('Warning')}: {text}")
+        return problems
+
+    def _pipeline_dialog(self, save: bool) -> None:
+        dialog = (
+            QtWidgets.QFileDialog.getSaveFileName if save else QtWidgets.QFileDialog.getOpenFileName
+        )
+        path, _ = dialog(self, self.tr("Pipeline"), "", "Wakeline pipeline (*.json)")
+        if path:
+            (self.save_pipeline if save else self.load_pipeline)(Path(path))
 
     # -- messages ------------------------------------------------------------------
 
@@ -327,8 +363,8 @@ class JobsMixin:
         self.retranslate()
         self.canvas.fit()
         if proj.read_only:
-            warnings = [self.tr("the project file is read-only: changes will not be saved")]
-            warnings += warnings
+            ro = self.tr("the project file is read-only: it opens read-only, changes are not saved")
+            warnings = [ro, *warnings]
         for w in warnings + problems:
             self.log_message(f"{self.tr('Warning')}: {w}")
         if warnings or problems:

@@ -375,3 +375,17 @@ def test_command_line_opens_files_in_the_application(monkeypatch, tmp_path):
     assert cli.main(["a.csv", "b.csv"]) == 0
     assert [p.name for p in seen["files"]] == ["a.csv", "b.csv"]
     assert cli.main(["--debug"]) == 0 and seen["files"] == []
+
+
+def test_pipeline_presets_are_the_cli_json(window, tmp_path):
+    from wakeline.core.pipeline import Pipeline
+
+    window.params.from_dict({"maneuver": {"threshold_deg": 22.0}})
+    path = tmp_path / "pipe.json"
+    window.save_pipeline(path)
+    pipe = Pipeline.from_json(path.read_text())
+    assert [name for name, _ in pipe.stages] == ["clean", "compress"]
+    assert pipe.stages[1][1]["maneuver"].threshold_deg == 22.0
+    window.params.reset()
+    assert window.load_pipeline(path) == []
+    assert window.params.params("maneuver").threshold_deg == 22.0
