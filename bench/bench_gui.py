@@ -123,7 +123,9 @@ def main() -> int:
         results: dict[str, tuple[float, float]] = {}
         measure("open file", lambda: window.load_file(path), window, results)
         src = window.layer_id(path.name)
-        measure("save project (first)", lambda: window.save_project(tmp / "p.wakeline"), window, results)
+        measure(
+            "save project (first)", lambda: window.save_project(tmp / "p.wakeline"), window, results
+        )
         measure("run pipeline", lambda: window.run_step("pipeline"), window, results)
         comp = next(i for i, lay in window.layers.items() if lay.kind == "compressed")
         measure("switch layer", lambda: window.select_layer(comp), window, results)
