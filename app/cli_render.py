@@ -95,7 +95,10 @@ def _read(paths: list[Path]):
 
     frames = []
     for path in paths:
-        result = read_points(path)
+        # Several files without a sensor column (one MTAD scene's AIS and radar files):
+        # each file is its own sensor, named after the file, so batches never merge.
+        kw = {"sensor": path.stem} if len(paths) > 1 else {}
+        result = read_points(path, **kw)
         if result.report["rows_quarantined"]:
             print(
                 f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "

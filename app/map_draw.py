@@ -24,8 +24,9 @@ import numpy as np
 import pandas as pd
 from scipy.spatial import cKDTree
 
+from wakeline.core import geo
 from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import derive_motion, sorted_with_index
+from wakeline.core.tracks import sorted_with_index
 
 #: Layer colours (one per sensor of a source layer, one per derived layer).
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
@@ -119,7 +120,8 @@ class LayerGeometry:
     def tree(self) -> cKDTree:
         """k-d tree over (lon·cos lat0, lat), built on first use (call it in a worker)."""
         if self._tree is None:
-            self._tree = cKDTree(np.column_stack([self.lon * self.x_scale, self.lat]))
+            xy = np.column_stack([self.lon * self.x_scale, self.lat])
+            self._tree = cKDTree(xy, balanced_tree=False, compact_nodes=False)
         return self._tree
 
     def nearest(self, lon: float, lat: float) -> tuple[float, int]:
@@ -227,6 +229,26 @@ def unwrap_tracks(lon: np.ndarray, starts: np.ndarray, sizes: np.ndarray) -> np.
     return lon + cum
 
 
+def leg_speed_kn(
+    lon: np.ndarray, lat: np.ndarray, time_s: np.ndarray, starts: np.ndarray
+) -> np.ndarray:
+    """Speed (kn) of the leg arriving at each point; a track's first point takes the leg
+    leaving it; NaN for single points and zero time steps."""
+    n = len(lon)
+    speed = np.full(n, np.nan)
+    if n < 2:
+        return speed
+    dist = geo.haversine_m(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    dt = np.diff(time_s)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        speed[1:] = np.where(dt > 0, dist / dt / geo.KN_MS, np.nan)
+    speed[starts] = np.nan
+    second = starts + 1
+    ok = second < np.append(starts[1:], n)
+    speed[starts[ok]] = speed[second[ok]]
+    return speed
+
+
 def layer_geometry(
     points: pd.DataFrame,
     color: str = PALETTE[0],
@@ -246,20 +268,17 @@ def layer_geometry(
         color_by = "sensor"
     if color_by not in ("layer", "sensor", "batch"):
         raise ValueError(f"color_by must be layer, sensor or batch, not {color_by!r}")
-    df, index = sorted_with_index(points)
+    cols = [c for c in ("sensor", "batch", "time", "lon", "lat", "speed") if c in points.columns]
+    df, index = sorted_with_index(points[cols])
     lon = df["lon"].to_numpy(dtype="float64")
     lat = df["lat"].to_numpy(dtype="float64")
-    lon = unwrap_tracks(lon, index.starts, index.sizes)
     t = time_seconds(df["time"]) if len(df) else np.zeros(0)
-    if "speed" in df.columns and len(df):
+    speed = np.full(len(df), np.nan)
+    if "speed" in df.columns:
         speed = df["speed"].to_numpy(dtype="float64", na_value=np.nan)
-        if np.isnan(speed).any():
-            derived, _ = derive_motion(df, index)
-            speed = np.where(np.isnan(speed), derived, speed)
-    elif len(df):
-        speed, _ = derive_motion(df, index)
-    else:
-        speed = np.zeros(0)
+    if np.isnan(speed).any():
+        speed = np.where(np.isnan(speed), leg_speed_kn(lon, lat, t, index.starts), speed)
+    lon = unwrap_tracks(lon, index.starts, index.sizes)
     sensor = index.keys["sensor"].to_numpy(dtype=object)
     batch = index.keys["batch"].to_numpy(dtype=object)
     start = PALETTE.index(color) if color in PALETTE else 0
