@@ -38,6 +38,8 @@ __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
 KM_PER_DEG = 111.195
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
+#: Colours of selected batches: the batch palette without the oranges of the halo.
+SELECTION_PALETTE = tuple(c for c in BATCH_PALETTE if c not in ("#ff7f0e", "#e6550d"))
 #: At most this many batches of a selection get their own legend line.
 LEGEND_BATCHES = 12
 
@@ -307,12 +309,15 @@ class MapCanvas(pg.PlotWidget):
         if len(points):
             keys = points[["sensor", "batch"]].astype(str).drop_duplicates()
             keys = keys.sort_values(["sensor", "batch"]).reset_index(drop=True)
+            # Colours of the layers drawn are left out, so a selected batch stands out.
+            used = {c.color for d in self.visible_draw_data() for c in d.curves}
+            palette = [c for c in SELECTION_PALETTE if c not in used] or list(SELECTION_PALETTE)
             for k, (sensor, batch) in enumerate(keys.itertuples(index=False)):
-                if k >= len(BATCH_PALETTE):
+                if k >= len(palette):
                     break
-                color = BATCH_PALETTE[k]
+                color = palette[k]
                 # Batches sharing a colour (beyond the palette) go in one curve.
-                batches = keys.iloc[k :: len(BATCH_PALETTE)]
+                batches = keys.iloc[k :: len(palette)]
                 mask = (
                     pd.MultiIndex.from_frame(points[["sensor", "batch"]].astype(str))
                     .isin(pd.MultiIndex.from_frame(batches))

@@ -291,7 +291,9 @@ def layer_geometry(
         group = np.arange(index.n_tracks) % k
         used = min(k, index.n_tracks)
         colors = BATCH_PALETTE[:used]
-        labels = tuple(f"{label} · batches {g + 1}/{used}" for g in range(used))
+        # One legend line for the layer; the other colours carry no legend entry.
+        head = f"{label} · " if label else ""
+        labels = (f"{head}{index.n_tracks} batches, a colour each",) + ("",) * (used - 1)
     else:
         group = np.zeros(index.n_tracks, dtype="int64")
         colors, labels = (color,), (label,)
