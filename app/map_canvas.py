@@ -23,7 +23,6 @@ import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
 from wakeline.app.map_draw import (
-    BATCH_PALETTE,
     PALETTE,
     DrawData,
     LayerStyle,
@@ -33,41 +32,17 @@ from wakeline.app.map_draw import (
     prepare_layer,
     relod,
 )
+from wakeline.app.map_legend import SideLegend
+from wakeline.app.map_selection import selection_curves
 
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
 KM_PER_DEG = 111.195
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
-#: Colours of selected batches: the batch palette without the oranges of the halo.
-SELECTION_PALETTE = tuple(c for c in BATCH_PALETTE if c not in ("#ff7f0e", "#e6550d"))
-#: At most this many batches of a selection get their own legend line.
-LEGEND_BATCHES = 12
 
 #: ``executor(job, done)``: run ``job()`` (pure, returns DrawData) somewhere and call
 #: ``done(result)`` on the GUI thread.
 LodExecutor = Callable[[Callable[[], DrawData], Callable[[DrawData], None]], None]
-
-
-class SideLegend(pg.LegendItem):
-    """A legend that lives in the plot's layout (a column right of the view box)."""
-
-    def updateSize(self) -> None:  # noqa: N802 - pyqtgraph's name
-        width = height = 0.0
-        for row in range(self.layout.rowCount()):
-            row_w = row_h = 0.0
-            for col in range(self.layout.columnCount()):
-                item = self.layout.itemAt(row, col)
-                if item:
-                    row_w += item.width() + 3
-                    row_h = max(row_h, item.height())
-            width, height = max(width, row_w), height + row_h
-        w = width + 6 if self.items else 0
-        self.setMinimumWidth(w)
-        self.setMaximumWidth(w)
-        self.setMinimumHeight(height)
-        self.setMaximumHeight(height)
-        self.setVisible(bool(self.items))
-        self.updateGeometry()
 
 
 class MapCanvas(pg.PlotWidget):
@@ -225,6 +200,7 @@ class MapCanvas(pg.PlotWidget):
             self._items[name] = items
             self._visible[name] = was_visible
         self._data[name] = data
+        self._lod_pending.discard(name)  # a result for the old data is ignored on arrival
         if visible is not None:
             self._visible[name] = visible
         self._swap_curves(data)
@@ -260,6 +236,8 @@ class MapCanvas(pg.PlotWidget):
             return  # the layer was replaced or removed meanwhile
         self._data[data.name] = data
         self._swap_curves(data)
+        if self.lod_executor is not None:
+            self._lod_timer.start()  # the view may have moved on while the job ran
 
     def remove_layer(self, name: str) -> None:
         for item in self._items.pop(name, []):
@@ -267,6 +245,7 @@ class MapCanvas(pg.PlotWidget):
             self.legend.removeItem(item)
         self._data.pop(name, None)
         self._visible.pop(name, None)
+        self._lod_pending.discard(name)
 
     def set_visible(self, name: str, visible: bool) -> None:
         for item in self._items.get(name, []):
@@ -304,37 +283,29 @@ class MapCanvas(pg.PlotWidget):
             self.legend.removeItem(item)
         self._selection_items = []
         self._selected = points
-        lon, lat = nan_separated(points) if len(points) else (np.zeros(0), np.zeros(0))
-        self.selection.setData(lon, lat, connect="finite")
-        if len(points):
-            keys = points[["sensor", "batch"]].astype(str).drop_duplicates()
-            keys = keys.sort_values(["sensor", "batch"]).reset_index(drop=True)
-            # Colours of the layers drawn are left out, so a selected batch stands out.
+        if len(points) == 0:
+            self.selection.setData([], [])
+        else:
             used = {c.color for d in self.visible_draw_data() for c in d.curves}
-            palette = [c for c in SELECTION_PALETTE if c not in used] or list(SELECTION_PALETTE)
-            for k, (sensor, batch) in enumerate(keys.itertuples(index=False)):
-                if k >= len(palette):
-                    break
-                color = palette[k]
-                # Batches sharing a colour (beyond the palette) go in one curve.
-                batches = keys.iloc[k :: len(palette)]
-                mask = (
-                    pd.MultiIndex.from_frame(points[["sensor", "batch"]].astype(str))
-                    .isin(pd.MultiIndex.from_frame(batches))
-                )  # fmt: skip
-                x, y = nan_separated(points[mask])
-                item = pg.PlotDataItem(x, y, pen=pg.mkPen(color, width=2.5), connect="finite")
+            halo, curves = selection_curves(points, used)
+            self.selection.setData(halo.lon, halo.lat, connect="finite")
+            for curve in curves:
+                item = pg.PlotDataItem(
+                    curve.lon, curve.lat, pen=pg.mkPen(curve.color, width=2.5), connect="finite"
+                )
                 item.setZValue(50)
                 self.addItem(item)
-                if k < LEGEND_BATCHES:
-                    more = len(batches) - 1
-                    label = f"{sensor} · {batch}" + (f" (+{more})" if more else "")
-                    self.legend.addItem(item, label)
+                if curve.label:
+                    self.legend.addItem(item, curve.label)
                 self._selection_items.append(item)
         if marks is not None and len(marks):
             self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
         else:
             self.marks.setData([], [])
+
+    def selected_points(self) -> pd.DataFrame:
+        """The points last passed to :meth:`show_selection`."""
+        return self._selected
 
     def selection_items(self) -> list[pg.PlotDataItem]:
         """The per-batch coloured curves of the selection."""

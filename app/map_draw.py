@@ -24,6 +24,8 @@ import numpy as np
 import pandas as pd
 from scipy.spatial import cKDTree
 
+from wakeline.app.map_lod import decimate, lod_box, nan_join
+from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core import geo
 from wakeline.core.schema import time_seconds
 from wakeline.core.tracks import sorted_with_index
@@ -54,9 +56,6 @@ BATCH_PALETTE = (
     "#756bb1",
     "#636363",
 )
-#: Times below this many seconds since 1970 (i.e. before 1980) are read as elapsed time
-#: from a scene start (MTAD, Øresund), not as dates: no radar/AIS export is that old.
-RELATIVE_LIMIT_S = 10 * 365.25 * 86400.0
 
 
 @dataclass(frozen=True)
@@ -178,42 +177,6 @@ class DrawData:
         return sum(c.n_vertices for c in self.curves)
 
 
-# -- time ------------------------------------------------------------------------------
-
-
-def is_relative_time(time_s: np.ndarray) -> bool:
-    """True when times (s since 1970) are small: elapsed time from a scene start."""
-    finite = time_s[np.isfinite(time_s)]
-    return bool(len(finite)) and float(finite.max()) < RELATIVE_LIMIT_S
-
-
-def format_elapsed(seconds: float) -> str:
-    """``T+h:mm:ss`` (``T+2 d 03:04:05`` beyond a day; tenths when not whole)."""
-    if not math.isfinite(seconds):
-        return "—"
-    sign = "-" if seconds < 0 else "+"
-    s = abs(seconds)
-    days, rest = divmod(s, 86400.0)
-    h, rest = divmod(rest, 3600.0)
-    m, sec = divmod(rest, 60.0)
-    sec_text = f"{sec:04.1f}" if abs(sec - round(sec)) > 0.05 else f"{round(sec) % 60:02d}"
-    clock = f"{int(h):d}:{int(m):02d}:{sec_text}"
-    if days:
-        clock = f"{int(days)} d {int(h):02d}:{int(m):02d}:{sec_text}"
-    return f"T{sign}{clock}"
-
-
-def format_time(seconds: float, relative: bool) -> str:
-    """A time for the operator: elapsed (``T+…``) when ``relative``, else a UTC date."""
-    if not math.isfinite(seconds):
-        return "—"
-    if relative:
-        return format_elapsed(seconds)
-    ts = pd.Timestamp(round(seconds * 1000.0), unit="ms", tz="UTC")
-    text = ts.strftime("%Y-%m-%d %H:%M:%S")
-    return text + (f".{ts.microsecond // 1000:03d}" if ts.microsecond else "") + " UTC"
-
-
 # -- geometry --------------------------------------------------------------------------
 
 
@@ -312,95 +275,6 @@ def layer_geometry(
         colors=colors,
         relative=is_relative_time(t) if relative is None else bool(relative),
     )
-
-
-# -- level of detail -------------------------------------------------------------------
-
-
-def _outcode(lon: np.ndarray, lat: np.ndarray, box: tuple[float, float, float, float]):
-    x0, x1, y0, y1 = box
-    return (
-        (lon < x0).astype(np.uint8)
-        | ((lon > x1).astype(np.uint8) << 1)
-        | ((lat < y0).astype(np.uint8) << 2)
-        | ((lat > y1).astype(np.uint8) << 3)
-    )
-
-
-def decimate(
-    lon: np.ndarray,
-    lat: np.ndarray,
-    starts: np.ndarray,
-    ends: np.ndarray,
-    px: tuple[float, float] | None,
-    box: tuple[float, float, float, float] | None = None,
-    origin: tuple[float, float] = (0.0, 0.0),
-) -> tuple[np.ndarray, np.ndarray]:
-    """Which points to draw, and where a curve must break: ``(keep, brk)``, bool per point.
-
-    ``px`` is the pixel size (degrees lon, lat), None for no pixel decimation; ``box``
-    ``(x0, x1, y0, y1)`` the region to draw, None for everything; pixels are counted from
-    ``origin`` (the view's corner, so cells match screen pixels). ``brk[i]``: a kept point
-    that must not be joined to the previous kept point (track start or clipped gap).
-    Vectorized over all tracks; every track keeps its first and last point in ``box``.
-    """
-    n = len(lon)
-    first = np.zeros(n, dtype=bool)
-    first[starts] = True
-    last = np.zeros(n, dtype=bool)
-    last[ends - 1] = True
-    keep = np.ones(n, dtype=bool)
-    if px is not None and n:
-        ix = np.floor((lon - origin[0]) / px[0])
-        iy = np.floor((lat - origin[1]) / px[1])
-        same = np.zeros(n, dtype=bool)
-        same[1:] = (ix[1:] == ix[:-1]) & (iy[1:] == iy[:-1])
-        keep = ~same | first | last
-    brk = first.copy()
-    if box is not None and n:
-        code = _outcode(lon, lat, box)
-        # Leg i joins point i-1 to point i; it may cross the box unless both ends lie
-        # beyond the same edge.
-        leg = np.zeros(n + 1, dtype=bool)
-        leg[1:n] = (code[1:] & code[:-1]) == 0
-        leg[starts] = False
-        near = (code == 0) | leg[:n] | leg[1:]
-        clipped = ~near
-        keep &= near
-        # Break before a kept point when points were clipped since the previous kept one.
-        c = np.cumsum(clipped)
-        kept_idx = np.flatnonzero(keep)
-        gap = np.zeros(len(kept_idx), dtype=bool)
-        gap[1:] = c[kept_idx[1:]] != c[kept_idx[:-1]]
-        brk[kept_idx[gap]] = True
-    return keep, brk
-
-
-def nan_join(
-    lon: np.ndarray, lat: np.ndarray, keep: np.ndarray, brk: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Kept points as one pair of arrays, a NaN before every break but the first."""
-    idx = np.flatnonzero(keep)
-    if len(idx) == 0:
-        return np.zeros(0), np.zeros(0)
-    b = brk[idx]
-    b[0] = False
-    pieces = np.cumsum(b)
-    out_lon = np.full(len(idx) + int(pieces[-1]), np.nan)
-    out_lat = np.full(len(out_lon), np.nan)
-    dest = np.arange(len(idx)) + pieces
-    out_lon[dest] = lon[idx]
-    out_lat[dest] = lat[idx]
-    return out_lon, out_lat
-
-
-def lod_box(
-    view: tuple[float, float, float, float], margin: float = 1.0
-) -> tuple[float, float, float, float]:
-    """``view`` (x0, x1, y0, y1) grown by ``margin`` view sizes on every side."""
-    x0, x1, y0, y1 = view
-    w, h = (x1 - x0) * margin, (y1 - y0) * margin
-    return (x0 - w, x1 + w, y0 - h, y1 + h)
 
 
 def curves_for(

@@ -107,8 +107,8 @@ def render_png(
             pass
     for data in layers:
         canvas.set_draw_data(data, visible=True)
-    if live is not None and len(live._selected):
-        canvas.show_selection(live._selected, _marks_of(live))
+    if live is not None and len(live.selected_points()):
+        canvas.show_selection(live.selected_points(), _marks_of(live))
     canvas.set_true_aspect((south + north) / 2)
     canvas.set_bare(bare)
     if bare:

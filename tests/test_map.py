@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
-from PySide6 import QtGui  # noqa: E402
+from PySide6 import QtGui, QtWidgets  # noqa: E402
 
 from wakeline.app.cli import main  # noqa: E402
 from wakeline.app.map_canvas import MapCanvas  # noqa: E402
@@ -290,3 +290,47 @@ def test_render_bad_arguments_exit_2(tmp_path, args, capsys):
 def test_render_refuses_a_non_png_output(tmp_path, capsys):
     assert main(["render", "x.csv", "-o", str(tmp_path / "x.jpg")]) == 2
     assert ".png" in capsys.readouterr().err
+
+
+def test_render_png_from_the_window_canvas_leaves_it_untouched(qtbot, tmp_path):
+    from wakeline.app.map_render import render_png
+
+    df = star_scene(n_tracks=4, n_points=40)
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(700, 500)
+    canvas.set_layer("star", df, "#1f77b4")
+    canvas.set_true_aspect(LAT0)
+    canvas.fit()
+    canvas.show_selection(df[df["batch"] == "101"])
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    view, size = canvas.current_view(), canvas.size()
+    info = render_png(canvas, tmp_path / "map.png", size=(300, 200))
+    assert info["size"] == (300, 200) and info["points"] == len(df)
+    assert canvas.current_view() == view and canvas.size() == size
+    assert coloured(image_array(tmp_path / "map.png")).sum() > 100
+
+
+def test_render_runs_steps_first(qapp, tmp_path, capsys):
+    csv = tmp_path / "star.csv"
+    star_scene(n_tracks=4, n_points=60).to_csv(csv, index=False)
+    png = tmp_path / "steps.png"
+    assert (
+        main(
+            ["render", str(csv), "-o", str(png), "--size", "300x200", "--step", "clean", "compress"]
+        )
+        == 0
+    )
+    out = capsys.readouterr().out
+    assert "rendered 4 layer(s)" in out  # source, cleaned, maneuvers, compressed
+    assert png.stat().st_size > 0
+
+
+def test_render_help(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["render", "--help"])
+    assert exc.value.code == 0
+    assert "usage: wakeline render" in capsys.readouterr().out
