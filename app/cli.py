@@ -13,6 +13,7 @@ import sys
 import traceback
 from pathlib import Path
 
+from wakeline.app import cli_render
 from wakeline.core import __version__
 from wakeline.core.errors import InputError
 
@@ -474,6 +475,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="load, render the main window at 1400x900 to PNG and exit",
     )
     p.set_defaults(func=_cmd_gui)
+    cli_render.register(sub)
     return parser
 
 

@@ -21,16 +21,17 @@ from wakeline.core.project import Project, file_hash, load_project
 from wakeline.core.session import KIND_COLORS, PALETTE, Source
 
 
-def _prepared(result: StepResult, progress) -> tuple[StepResult, dict]:
-    """The result with every layer's points sorted, and each layer's prepared view."""
+def _prepared(result: StepResult, progress, map_view, size_px) -> tuple[StepResult, dict]:
+    """The result with every layer's points sorted, and each layer's prepared view (map
+    level of detail for the canvas' ``map_view`` and ``size_px``)."""
     views, stages = {}, []
     for stage in result.stages or [result]:
         layers = []
         for new in stage.layers:
             color = KIND_COLORS.get(new.kind, PALETTE[0])
-            view = prepare_view(new.points, new.kind, color)
-            views[(stage.step, new.suffix)] = (view, color)
-            layers.append(dataclasses.replace(new, points=view.points))
+            lv = prepare_view(new.points, new.kind, color, new.suffix, map_view, size_px)
+            views[(stage.step, new.suffix)] = (lv, color)
+            layers.append(dataclasses.replace(new, points=lv.points))
         stages.append(dataclasses.replace(stage, layers=layers))
         progress(1.0, "prepared for drawing")
     if result.stages:
@@ -64,6 +65,7 @@ class JobsMixin:
         options = options or {}
         first = len(self.session.layers)
         colors = [PALETTE[(first + k) % len(PALETTE)] for k in range(len(paths))]
+        size_px = self.canvas.plot_size_px()
 
         def job(progress):
             done, errors = [], []
@@ -81,9 +83,8 @@ class JobsMixin:
                 sub(0.7, f"hashing {path.name}")
                 sha = file_hash(path)
                 sub(0.8, "preparing the map")
-                done.append(
-                    (path, result, sha, prepare_view(result.points, "source", color), color)
-                )
+                view = prepare_view(result.points, "source", color, path.name, None, size_px)
+                done.append((path, result, sha, view, color))
             return ("import", done, errors)
 
         name = paths[0].name if len(paths) == 1 else f"{len(paths)} files"
@@ -161,9 +162,13 @@ class JobsMixin:
             def run(progress):
                 return self.session.run_step(lid, step, params, progress)
 
+        canvas_view, size_px = self.canvas.current_view(), self.canvas.plot_size_px()
+
         def job(progress):
             result = run(sub_progress(progress, 0.0, 0.85))
-            prepared, views = _prepared(result, sub_progress(progress, 0.85, 1.0))
+            prepared, views = _prepared(
+                result, sub_progress(progress, 0.85, 1.0), canvas_view, size_px
+            )
             return ("step", lid, prepared, views, params)
 
         return self._start(step, job, (step, layer.name))
@@ -334,6 +339,7 @@ class JobsMixin:
         """Open a project in the worker; the current session stays as it is unless the
         whole project reads well."""
         path = Path(path)
+        size_px = self.canvas.plot_size_px()
 
         def job(progress):
             proj = load_project(path)
@@ -341,7 +347,9 @@ class JobsMixin:
             views = {}
             for k, lay in enumerate(proj.layers):
                 progress(k / max(len(proj.layers), 1), f"preparing {lay.name}")
-                views[lay.id] = prepare_view(lay.points, lay.kind, lay.color)
+                views[lay.id] = prepare_view(
+                    lay.points, lay.kind, lay.color, lay.name, None, size_px
+                )
                 lay.points = views[lay.id].points
             return ("project", path, proj, views, warnings)
 

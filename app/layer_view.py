@@ -14,11 +14,11 @@ import pandas as pd
 from wakeline.app.models import batch_summary, display_text
 from wakeline.core.tracks import sort_points, track_index
 
-DRAW_STYLE = {  # kind -> (symbols, line width); maneuver layers draw their turning points
-    "source": (True, 1.3),
-    "compressed": (True, 2.5),
-    "fused": (False, 2.5),
-    "maneuvers": (True, 0.0),
+DRAW_STYLE = {  # kind -> (symbol size px, line width px); maneuver layers draw their turns
+    "source": (3, 1.3),
+    "compressed": (3, 2.5),
+    "fused": (0, 2.5),
+    "maneuvers": (8, 0.0),
 }
 
 
@@ -53,9 +53,27 @@ class LayerView:
         return self.points.iloc[self.track_rows(keys)]
 
 
-def prepare_view(points: pd.DataFrame, kind: str, color: str) -> LayerView:
-    """Everything the window shows of a layer; pure, for a worker thread."""
-    from wakeline.app.map_canvas import prepare_draw
+def fit_view(points: pd.DataFrame) -> tuple[float, float, float, float] | None:
+    """The view (x0, x1, y0, y1, degrees) that :meth:`MapCanvas.fit` would show."""
+    if len(points) == 0:
+        return None
+    lon, lat = points["lon"].to_numpy(), points["lat"].to_numpy()
+    pad_x = max(float(np.ptp(lon)) * 0.05, 0.01)
+    pad_y = max(float(np.ptp(lat)) * 0.05, 0.01)
+    return (lon.min() - pad_x, lon.max() + pad_x, lat.min() - pad_y, lat.max() + pad_y)
+
+
+def prepare_view(
+    points: pd.DataFrame,
+    kind: str,
+    color: str,
+    label: str = "",
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+) -> LayerView:
+    """Everything the window shows of a layer; pure, for a worker thread. ``view`` and
+    ``size_px`` (the map's, or None for the data's extent) set the first level of detail."""
+    from wakeline.app.map_draw import LayerStyle, prepare_layer
 
     pts = sort_points(points)
     index = track_index(pts)
@@ -69,7 +87,36 @@ def prepare_view(points: pd.DataFrame, kind: str, color: str) -> LayerView:
     }
     marks = maneuver_table(pts)
     summary = batch_summary(pts, marks if kind == "maneuvers" else None)
-    symbols, width = DRAW_STYLE.get(kind, (False, 1.3))
+    symbol, width = DRAW_STYLE.get(kind, (0, 1.3))
     drawn = marks if kind == "maneuvers" and marks is not None else pts
-    draw = prepare_draw(drawn, color, by_sensor=kind == "source", symbols=symbols, width=width)
+    if size_px is not None and view is None:
+        view = fit_view(drawn)
+    draw = prepare_layer(
+        drawn,
+        label or kind,
+        color,
+        by_sensor=kind == "source",
+        style=LayerStyle(width=width, symbol_size=symbol),
+        view=view if size_px is not None else None,
+        size_px=size_px,
+    )
     return LayerView(pts, summary, ranges, marks, draw, display_text(summary))
+
+
+def draw_as(view: LayerView, layer_id: str, label: str):
+    """The prepared map data keyed by the layer's id and labelled with its display name
+    (the worker did not know either)."""
+    import dataclasses
+
+    data = view.draw
+
+    def relabel(text: str) -> str:
+        if not text:
+            return text
+        return text.replace(data.name, label, 1) if data.name else f"{label} · {text}"
+
+    geometry = dataclasses.replace(
+        data.geometry, labels=tuple(relabel(t) for t in data.geometry.labels)
+    )
+    curves = tuple(dataclasses.replace(c, label=relabel(c.label)) for c in data.curves)
+    return dataclasses.replace(data, name=layer_id, geometry=geometry, curves=curves)

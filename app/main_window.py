@@ -20,7 +20,8 @@ from wakeline.app.actions import build_actions, retranslate
 from wakeline.app.detail import DetailPanel
 from wakeline.app.dialogs import ImportDialog, ImportReportDialog
 from wakeline.app.jobs import JobsMixin
-from wakeline.app.layer_view import LayerView, maneuver_table, prepare_view
+from wakeline.app.layer_view import LayerView, draw_as, maneuver_table, prepare_view
+from wakeline.app.lod_worker import LodWorker
 from wakeline.app.map_canvas import MapCanvas, color_icon
 from wakeline.app.models import BatchTableModel, batch_summary
 from wakeline.app.params_panel import ParamsPanel
@@ -65,6 +66,8 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self.session.subscribe(self._on_session_event)
 
         self.canvas = MapCanvas(self)
+        self.lod_worker = LodWorker(self)
+        self.canvas.lod_executor = self.lod_worker
         self.setCentralWidget(self.canvas)
         try:
             coast = np.load(coastline_path())
@@ -204,8 +207,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
                 self.views[lid] = prepare_view(layer.points, layer.kind, layer.color)
                 layer.points = self.views[lid].points
         if event == "added":
-            self.canvas.set_draw_data(lid, self.views[lid].draw)
-            self.canvas.set_visible(lid, layer.visible)
+            self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
             item = QtWidgets.QListWidgetItem(
                 color_icon(layer.color), f"{layer.name}  [{layer.kind}]"
             )
@@ -220,8 +222,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             if len(self.session.layers) == 1 and len(layer.points):
                 self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
         elif event == "changed":
-            self.canvas.set_draw_data(lid, self.views[lid].draw)
-            self.canvas.set_visible(lid, layer.visible)
+            self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
             if lid == self.active:
                 self.set_active(lid)
         elif event == "removed":
@@ -413,6 +414,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self.settings.setValue("state", self.saveState())
         self.runner.cancel()
         self.runner.wait(5000)
+        self.lod_worker.wait(5000)
         self.project.detach()
         super().closeEvent(event)
 

@@ -1,116 +1,130 @@
 """The map: lon/lat with a true aspect at the data's latitude, tracks drawn per layer.
 
-Each layer (per sensor) is ONE pyqtgraph curve whose tracks are separated by NaN
-(``connect="finite"``), so thousands of tracks cost a handful of items. The selection is
-one more curve drawn on top. A click picks the nearest track point within a few pixels
-(k-d tree per layer, built on first use).
+Each layer is a few pyqtgraph curves (one per colour) whose tracks are separated by NaN
+(``connect="finite"``), so thousands of tracks cost a handful of items. What is drawn is
+prepared by the pure functions of :mod:`wakeline.app.map_draw` (sorting, unwrapping,
+per-pixel level of detail, k-d tree) and only swapped in here (:meth:`set_draw_data`);
+pyqtgraph's clip-to-view and auto-downsampling are never used (they assume x sorted and
+drop most of a NaN-separated curve of many tracks). On zoom and pan the level of detail
+is redone for layers whose decimation no longer fits the view: synchronously by default,
+or through :attr:`MapCanvas.lod_executor` (e.g. a worker thread).
+
+The legend sits in its own column right of the plot, so it never covers data. The
+selection colours each batch differently. Hovering shows sensor, batch, time (elapsed
+``T+…`` for scene-relative times) and speed of the nearest point.
 """
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
-from scipy.spatial import cKDTree
 
-from wakeline.core.tracks import sort_points, track_index
+from wakeline.app.map_draw import (
+    PALETTE,
+    DrawData,
+    LayerStyle,
+    coastline_draw,
+    lod_is_stale,
+    nan_separated,
+    prepare_layer,
+    relod,
+)
+from wakeline.app.map_legend import SideLegend
+from wakeline.app.map_selection import selection_curves
 
-PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
+__all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
+
 KM_PER_DEG = 111.195
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
 
-
-def nan_separated(points: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
-    """lon, lat of all tracks in one pair of arrays, a NaN between consecutive tracks.
-
-    Longitudes are unwrapped along each track so a track crossing 180° stays continuous.
-    """
-    df = sort_points(points)
-    index = track_index(df)
-    n, k = len(df), index.n_tracks
-    lon = df["lon"].to_numpy(dtype="float64")
-    lat = df["lat"].to_numpy(dtype="float64")
-    if n == 0:
-        return np.zeros(0), np.zeros(0)
-    step = np.diff(lon, prepend=lon[0])
-    step[index.starts] = 0.0
-    jumps = np.where(step > 180.0, -360.0, np.where(step < -180.0, 360.0, 0.0))
-    # Accumulate the ±360° corrections within each track only.
-    cum = np.cumsum(jumps)
-    cum -= np.repeat(cum[index.starts], index.sizes)
-    lon = lon + cum
-    out_lon = np.full(n + k - 1, np.nan)
-    out_lat = np.full(n + k - 1, np.nan)
-    dest = np.arange(n) + index.track_of_row  # one slot more per track before
-    out_lon[dest] = lon
-    out_lat[dest] = lat
-    return out_lon, out_lat
-
-
-class _Pickable:
-    """Points of one drawn layer with their (sensor, batch), for picking by click."""
-
-    def __init__(self, points: pd.DataFrame) -> None:
-        self.lon = points["lon"].to_numpy(dtype="float64")
-        self.lat = points["lat"].to_numpy(dtype="float64")
-        self.sensor = points["sensor"].astype(str).to_numpy()
-        self.batch = points["batch"].astype(str).to_numpy()
-        self._tree: cKDTree | None = None
-        self._scale = math.cos(math.radians(float(np.nanmean(self.lat)))) if len(self.lat) else 1
-
-    def nearest(self, lon: float, lat: float) -> tuple[float, int]:
-        if self._tree is None:
-            self._tree = cKDTree(np.column_stack([self.lon * self._scale, self.lat]))
-        d, i = self._tree.query([lon * self._scale, lat])
-        return float(d), int(i)
+#: ``executor(job, done)``: run ``job()`` (pure, returns DrawData) somewhere and call
+#: ``done(result)`` on the GUI thread.
+LodExecutor = Callable[[Callable[[], DrawData], Callable[[DrawData], None]], None]
 
 
 class MapCanvas(pg.PlotWidget):
-    """A pyqtgraph plot set up as a lon/lat chart with layers, selection and picking."""
+    """A pyqtgraph plot set up as a lon/lat chart with layers, selection, hover, picking."""
 
     cursorMoved = QtCore.Signal(float, float)  # lon, lat in degrees
     trackClicked = QtCore.Signal(str, str, str, bool)  # layer, sensor, batch, add to selection
+    pointHovered = QtCore.Signal(object)  # dict (layer, sensor, batch, time, speed_kn) or None
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent=parent, background="w")
+        self.plot_item = self.getPlotItem()
         self.setLabel("bottom", "longitude", units="°")
         self.setLabel("left", "latitude", units="°")
         self.showGrid(x=True, y=True, alpha=0.25)
-        self.vb = self.getPlotItem().getViewBox()
+        self.vb = self.plot_item.getViewBox()
         self.vb.setAspectLocked(True, ratio=1.0)
-        # The view is set by fit() from the data; pyqtgraph's auto range would ask every
-        # item for bounds (and a clipped NaN-separated curve may have none).
+        # The view is set by fit() from the data, never by pyqtgraph's auto range.
         self.vb.disableAutoRange()
         self._items: dict[str, list[pg.PlotDataItem]] = {}
-        self._pick: dict[str, _Pickable] = {}
+        self._data: dict[str, DrawData] = {}
         self._visible: dict[str, bool] = {}
         self._lat0 = 0.0
-        self.legend = self.addLegend(offset=(10, 10))
+        self.lod_executor: LodExecutor | None = None
+        self._lod_pending: set[str] = set()
+        self.legend = SideLegend(offset=None, verSpacing=-4)
+        self.plot_item.layout.addItem(self.legend, 2, 3)
+        self.plot_item.layout.setAlignment(self.legend, QtCore.Qt.AlignmentFlag.AlignTop)
+        self.plot_item.legend = None
         self.coastline = pg.PlotDataItem(pen=pg.mkPen("#8a8a8a", width=1), connect="finite")
         self.coastline.setZValue(-10)
         self.addItem(self.coastline)
-        # The selection is a wide translucent halo under the tracks, so the selected
-        # track itself stays visible on top of it.
+        self._coast: DrawData | None = None
+        # The selection: a wide translucent halo under the tracks, and every selected
+        # batch drawn on top in its own colour.
         self.selection = pg.PlotDataItem(
-            pen=pg.mkPen(QtGui.QColor(255, 170, 0, 170), width=9), connect="finite", name=None
+            pen=pg.mkPen(QtGui.QColor(255, 170, 0, 150), width=9), connect="finite"
         )
         self.selection.setZValue(-1)
         self.addItem(self.selection)
+        self._selection_items: list[pg.PlotDataItem] = []
+        self._selected = pd.DataFrame()
         self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
         self.marks.setZValue(60)
         self.addItem(self.marks)
+        self.hover_label = pg.TextItem(
+            color="k", fill=pg.mkBrush(255, 255, 255, 225), border=pg.mkPen("#777"), anchor=(0, 1)
+        )
+        self.hover_label.setZValue(100)
+        self.hover_label.hide()
+        self.addItem(self.hover_label, ignoreBounds=True)
+        self.hover_dot = pg.ScatterPlotItem(size=9, pen=pg.mkPen("k", width=1.5), brush=None)
+        self.hover_dot.setZValue(99)
+        self.addItem(self.hover_dot, ignoreBounds=True)
         self.scale_bar = pg.ScaleBar(size=0.1, suffix="")
         self.scale_bar.setParentItem(self.vb)
         self.scale_bar.anchor((1, 1), (1, 1), offset=(-20, -20))
+        self._lod_timer = QtCore.QTimer(self)
+        self._lod_timer.setSingleShot(True)
+        self._lod_timer.setInterval(60)
+        self._lod_timer.timeout.connect(self.refresh_lod)
         self.vb.sigRangeChanged.connect(self._update_scale_bar)
+        self.vb.sigRangeChanged.connect(lambda *_: self._lod_timer.start())
+        self.vb.sigResized.connect(lambda *_: self._lod_timer.start())
         self.scene().sigMouseMoved.connect(self._mouse_moved)
         self.scene().sigMouseClicked.connect(self._mouse_clicked)
+        menu = self.vb.menu
+        menu.addSeparator()
+        menu.addAction("Zoom to selection", self.zoom_to_selection)
+        menu.addAction("Zoom to all", self.fit)
 
-    # -- layers --------------------------------------------------------------------
+    # -- view ------------------------------------------------------------------------
 
-    def set_coastline(self, lon: np.ndarray, lat: np.ndarray) -> None:
-        self.coastline.setData(lon, lat, connect="finite")
+    def current_view(self) -> tuple[float, float, float, float]:
+        """The view box range ``(x0, x1, y0, y1)`` in degrees."""
+        (x0, x1), (y0, y1) = self.vb.viewRange()
+        return (float(x0), float(x1), float(y0), float(y1))
+
+    def plot_size_px(self) -> tuple[int, int]:
+        """Width and height of the plot area in device pixels."""
+        r = self.vb.sceneBoundingRect()
+        return (max(int(round(r.width())), 1), max(int(round(r.height())), 1))
 
     def set_true_aspect(self, lat_deg: float) -> None:
         """Lock the aspect so one km is as long east-west as north-south at ``lat_deg``."""
@@ -118,6 +132,25 @@ class MapCanvas(pg.PlotWidget):
         # longitude is cos(lat) times as long as a degree of latitude.
         self._lat0 = lat_deg
         self.vb.setAspectLocked(True, ratio=max(math.cos(math.radians(lat_deg)), 0.05))
+
+    def set_bare(self, bare: bool) -> None:
+        """Plot area only: no axes, grid, legend, scale bar or margins (for images)."""
+        for side in ("left", "bottom"):
+            self.plot_item.showAxis(side, not bare)
+        self.showGrid(x=not bare, y=not bare, alpha=0.25)
+        self.legend.setVisible(not bare and bool(self.legend.items))
+        self.legend.setMaximumWidth(0 if bare else 1e6)
+        self.scale_bar.setVisible(not bare)
+        m = 0 if bare else 1
+        self.plot_item.layout.setContentsMargins(m, m, m, m)
+
+    # -- layers ----------------------------------------------------------------------
+
+    def set_coastline(self, lon: np.ndarray, lat: np.ndarray) -> None:
+        """The background coastline (NaN-separated lines, degrees); decimated like layers."""
+        geom = coastline_draw(np.asarray(lon), np.asarray(lat))
+        self._coast = prepare_layer(geom, "coast", build_index=False)
+        self.coastline.setData(self._coast.curves[0].lon, self._coast.curves[0].lat)
 
     def set_layer(
         self,
@@ -128,37 +161,91 @@ class MapCanvas(pg.PlotWidget):
         symbols: bool = True,
         width: float = 1.5,
     ) -> None:
-        """Draw (or redraw) a layer: its tracks as one NaN-separated curve (one per sensor
-        with ``by_sensor``, in palette colours starting at ``color``)."""
-        self.remove_layer(name)
-        groups = list(points.groupby("sensor", sort=True)) if by_sensor else [(None, points)]
-        start = PALETTE.index(color) if color in PALETTE else 0
-        items = []
-        for k, (sensor, group) in enumerate(groups):
-            c = PALETTE[(start + k) % len(PALETTE)] if by_sensor else color
-            lon, lat = nan_separated(group)
-            label = name if sensor is None else f"{name} · {sensor}"
-            kw = {}
-            if symbols:
-                kw = {"symbol": "o", "symbolSize": 3, "symbolPen": None, "symbolBrush": c}
-            item = pg.PlotDataItem(
-                lon, lat, pen=pg.mkPen(c, width=width), connect="finite", name=label, **kw
-            )
-            self.addItem(item)
-            # After addItem: clipping asks the item's view box, which it has only now.
-            item.setDownsampling(auto=True, method="peak")
-            item.setClipToView(True)
-            items.append(item)
-        self._items[name] = items
-        self._pick[name] = _Pickable(points)
-        self._visible[name] = True
+        """Prepare and draw a layer on the GUI thread (see :meth:`set_draw_data` for the
+        worker way): its tracks NaN-separated, one curve per sensor with ``by_sensor``."""
+        style = LayerStyle(width=width, symbol_size=3 if symbols else 0)
+        data = prepare_layer(
+            points, name, color, by_sensor=by_sensor, style=style, build_index=False
+        )
+        self.set_draw_data(data)
+
+    def set_draw_data(self, data: DrawData, visible: bool | None = None) -> None:
+        """Swap in a prepared layer (from :func:`~wakeline.app.map_draw.prepare_layer`).
+
+        Replaces the layer's curves in place when their number is unchanged (visibility
+        and pen kept), else rebuilds them. The level of detail follows on the next view
+        change, or now when the view is known.
+        """
+        name = data.name
+        items = self._items.get(name, [])
+        if len(items) != len(data.curves):
+            was_visible = self._visible.get(name, True)
+            self.remove_layer(name)
+            items = []
+            for curve in data.curves:
+                kw = {}
+                if data.style.symbol_size:
+                    kw = {
+                        "symbol": "o",
+                        "symbolSize": data.style.symbol_size,
+                        "symbolPen": None,
+                        "symbolBrush": curve.color,
+                    }
+                pen = pg.mkPen(curve.color, width=data.style.width) if data.style.width else None
+                item = pg.PlotDataItem(pen=pen, connect="finite", **kw)
+                self.addItem(item)
+                if curve.label:
+                    self.legend.addItem(item, curve.label)
+                items.append(item)
+            self._items[name] = items
+            self._visible[name] = was_visible
+        self._data[name] = data
+        self._lod_pending.discard(name)  # a result for the old data is ignored on arrival
+        if visible is not None:
+            self._visible[name] = visible
+        self._swap_curves(data)
+        for item in items:
+            item.setVisible(self._visible[name])
+        if data.px is None and data.geometry.n_points > 50_000:
+            self._lod_timer.start()
+
+    def _swap_curves(self, data: DrawData) -> None:
+        for item, curve in zip(self._items.get(data.name, []), data.curves, strict=False):
+            item.setData(curve.lon, curve.lat, connect="finite")
+
+    def refresh_lod(self, names: list[str] | None = None) -> None:
+        """Redo the level of detail of layers (default all) whose decimation is stale."""
+        view, size = self.current_view(), self.plot_size_px()
+        if self._coast is not None and lod_is_stale(self._coast, view, size):
+            self._coast = relod(self._coast, view, size)
+            self.coastline.setData(self._coast.curves[0].lon, self._coast.curves[0].lat)
+        for name in list(names or self._data):
+            data = self._data.get(name)
+            if data is None or name in self._lod_pending or not lod_is_stale(data, view, size):
+                continue
+            if self.lod_executor is None:
+                self._apply_lod(relod(data, view, size))
+            else:
+                self._lod_pending.add(name)
+                self.lod_executor(lambda d=data: relod(d, view, size), self._apply_lod)
+
+    def _apply_lod(self, data: DrawData) -> None:
+        self._lod_pending.discard(data.name)
+        current = self._data.get(data.name)
+        if current is None or current.geometry is not data.geometry:
+            return  # the layer was replaced or removed meanwhile
+        self._data[data.name] = data
+        self._swap_curves(data)
+        if self.lod_executor is not None:
+            self._lod_timer.start()  # the view may have moved on while the job ran
 
     def remove_layer(self, name: str) -> None:
         for item in self._items.pop(name, []):
             self.removeItem(item)
             self.legend.removeItem(item)
-        self._pick.pop(name, None)
+        self._data.pop(name, None)
         self._visible.pop(name, None)
+        self._lod_pending.discard(name)
 
     def set_visible(self, name: str, visible: bool) -> None:
         for item in self._items.get(name, []):
@@ -172,42 +259,88 @@ class MapCanvas(pg.PlotWidget):
     def layer_items(self, name: str) -> list[pg.PlotDataItem]:
         return self._items[name]
 
+    def draw_data(self, name: str) -> DrawData:
+        """The prepared data of layer ``name`` as drawn now."""
+        return self._data[name]
+
+    def visible_draw_data(self) -> list[DrawData]:
+        return [d for n, d in self._data.items() if self._visible.get(n)]
+
     def n_items(self) -> int:
         return sum(len(v) for v in self._items.values())
 
-    # -- selection -----------------------------------------------------------------
+    def n_vertices(self) -> int:
+        """Vertices in the drawn paths of the visible layers (after level of detail)."""
+        return sum(d.n_vertices for d in self.visible_draw_data())
+
+    # -- selection -------------------------------------------------------------------
 
     def show_selection(self, points: pd.DataFrame, marks: pd.DataFrame | None = None) -> None:
-        """Highlight ``points`` (the selected tracks) and optional marked points."""
-        lon, lat = nan_separated(points) if len(points) else (np.zeros(0), np.zeros(0))
-        self.selection.setData(lon, lat, connect="finite")
+        """Highlight ``points`` (the selected tracks, each batch in its own colour) and
+        optional marked points."""
+        for item in self._selection_items:
+            self.removeItem(item)
+            self.legend.removeItem(item)
+        self._selection_items = []
+        self._selected = points
+        if len(points) == 0:
+            self.selection.setData([], [])
+        else:
+            used = {c.color for d in self.visible_draw_data() for c in d.curves}
+            halo, curves = selection_curves(points, used)
+            self.selection.setData(halo.lon, halo.lat, connect="finite")
+            for curve in curves:
+                item = pg.PlotDataItem(
+                    curve.lon, curve.lat, pen=pg.mkPen(curve.color, width=2.5), connect="finite"
+                )
+                item.setZValue(50)
+                self.addItem(item)
+                if curve.label:
+                    self.legend.addItem(item, curve.label)
+                self._selection_items.append(item)
         if marks is not None and len(marks):
             self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
         else:
             self.marks.setData([], [])
 
+    def selected_points(self) -> pd.DataFrame:
+        """The points last passed to :meth:`show_selection`."""
+        return self._selected
+
+    def selection_items(self) -> list[pg.PlotDataItem]:
+        """The per-batch coloured curves of the selection."""
+        return list(self._selection_items)
+
+    def zoom_to_selection(self) -> bool:
+        """Fit the view to the selected tracks; False when nothing is selected."""
+        if len(self._selected) == 0:
+            return False
+        self.fit(self._selected)
+        return True
+
     def fit(self, points: pd.DataFrame | None = None) -> None:
         """Show ``points`` (default: every visible layer) with a margin."""
         if points is not None:
-            lon, lat = points["lon"].to_numpy(), points["lat"].to_numpy()
+            lon, lat = nan_separated(points)
+            boxes = [(np.nanmin(lon), np.nanmin(lat), np.nanmax(lon), np.nanmax(lat))]
         else:
-            shown = [p for n, p in self._pick.items() if self._visible.get(n)]
-            lon = np.concatenate([p.lon for p in shown]) if shown else np.zeros(0)
-            lat = np.concatenate([p.lat for p in shown]) if shown else np.zeros(0)
-        if len(lon) == 0:
+            boxes = [d.geometry.bounds() for d in self.visible_draw_data()]
+            boxes = [b for b in boxes if b is not None]
+        if not boxes:
             return
-        pad_x = max(float(np.ptp(lon)) * 0.05, 0.01)
-        pad_y = max(float(np.ptp(lat)) * 0.05, 0.01)
-        self.vb.setRange(
-            xRange=(float(lon.min()) - pad_x, float(lon.max()) + pad_x),
-            yRange=(float(lat.min()) - pad_y, float(lat.max()) + pad_y),
-            padding=0,
-        )
+        w = min(b[0] for b in boxes)
+        s = min(b[1] for b in boxes)
+        e = max(b[2] for b in boxes)
+        n = max(b[3] for b in boxes)
+        pad_x = max((e - w) * 0.05, 0.01)
+        pad_y = max((n - s) * 0.05, 0.01)
+        self.vb.setRange(xRange=(w - pad_x, e + pad_x), yRange=(s - pad_y, n + pad_y), padding=0)
+        self.refresh_lod()
 
     def set_box_zoom(self, on: bool) -> None:
         self.vb.setMouseMode(pg.ViewBox.RectMode if on else pg.ViewBox.PanMode)
 
-    # -- events --------------------------------------------------------------------
+    # -- events ----------------------------------------------------------------------
 
     def _update_scale_bar(self) -> None:
         (x0, x1), _ = self.vb.viewRange()
@@ -220,9 +353,12 @@ class MapCanvas(pg.PlotWidget):
         self.scale_bar.updateBar()
 
     def _mouse_moved(self, pos) -> None:
-        if self.sceneBoundingRect().contains(pos):
+        if self.vb.sceneBoundingRect().contains(pos):
             p = self.vb.mapSceneToView(pos)
             self.cursorMoved.emit(p.x(), p.y())
+            self.hover(p.x(), p.y())
+        else:
+            self.hover(math.nan, math.nan)
 
     def _mouse_clicked(self, event) -> None:
         if event.button() != QtCore.Qt.MouseButton.LeftButton or event.double():
@@ -231,21 +367,51 @@ class MapCanvas(pg.PlotWidget):
         add = bool(event.modifiers() & QtCore.Qt.KeyboardModifier.ControlModifier)
         self.pick(p.x(), p.y(), add)
 
+    def nearest(self, lon: float, lat: float, pixels: float = 8.0) -> dict | None:
+        """The visible track point nearest ``lon, lat`` within ``pixels`` on screen:
+        layer, sensor, batch, time (text), time_s, speed_kn, lon, lat; None if none."""
+        if not (math.isfinite(lon) and math.isfinite(lat)):
+            return None
+        px_x, px_y = self.vb.viewPixelSize()
+        best = None
+        for name, data in self._data.items():
+            geom = data.geometry
+            if not self._visible.get(name) or geom.n_points == 0:
+                continue
+            _, i = geom.nearest(lon, lat)
+            d_px = math.hypot((geom.lon[i] - lon) / px_x, (geom.lat[i] - lat) / px_y)
+            if d_px <= pixels and (best is None or d_px < best[0]):
+                best = (d_px, name, i)
+        if best is None:
+            return None
+        info = self._data[best[1]].geometry.describe(best[2])
+        info["layer"] = best[1]
+        return info
+
+    def hover(self, lon: float, lat: float) -> dict | None:
+        """Show the label of the point under ``lon, lat`` (hidden when none)."""
+        info = self.nearest(lon, lat)
+        if info is None:
+            self.hover_label.hide()
+            self.hover_dot.setData([], [])
+        else:
+            speed = info["speed_kn"]
+            self.hover_label.setText(
+                f"{info['sensor']} · batch {info['batch']}\n{info['time']}\n"
+                + (f"{speed:.1f} kn" if math.isfinite(speed) else "speed —")
+            )
+            self.hover_label.setPos(info["lon"], info["lat"])
+            self.hover_label.show()
+            self.hover_dot.setData([info["lon"]], [info["lat"]])
+        self.pointHovered.emit(info)
+        return info
+
     def pick(self, lon: float, lat: float, add: bool = False, pixels: float = 8.0) -> bool:
         """Emit ``trackClicked`` for the nearest visible track point within ``pixels``."""
-        px = self.vb.viewPixelSize()
-        scale = math.cos(math.radians(self._lat0))
-        limit = pixels * max(px[0] * scale, px[1])
-        best = None
-        for name, pickable in self._pick.items():
-            if not self._visible.get(name) or len(pickable.lon) == 0:
-                continue
-            d, i = pickable.nearest(lon, lat)
-            if d <= limit and (best is None or d < best[0]):
-                best = (d, name, pickable.sensor[i], pickable.batch[i])
-        if best is None:
+        info = self.nearest(lon, lat, pixels)
+        if info is None:
             return False
-        self.trackClicked.emit(best[1], best[2], best[3], add)
+        self.trackClicked.emit(info["layer"], info["sensor"], info["batch"], add)
         return True
 
     def render_png(self, path: str) -> bool:
@@ -256,43 +422,3 @@ def color_icon(color: str) -> QtGui.QIcon:
     pix = QtGui.QPixmap(14, 14)
     pix.fill(QtGui.QColor(color))
     return QtGui.QIcon(pix)
-
-
-def prepare_draw(
-    points: pd.DataFrame,
-    color: str,
-    by_sensor: bool = False,
-    symbols: bool = True,
-    width: float = 1.5,
-) -> dict:
-    """The arrays :meth:`MapCanvas.set_draw_data` shows; pure numpy, for a worker thread."""
-    groups = list(points.groupby("sensor", sort=True)) if by_sensor else [(None, points)]
-    start = PALETTE.index(color) if color in PALETTE else 0
-    curves = []
-    for k, (sensor, group) in enumerate(groups):
-        c = PALETTE[(start + k) % len(PALETTE)] if by_sensor else color
-        lon, lat = nan_separated(group)
-        curves.append((sensor, c, lon, lat))
-    return {"curves": curves, "symbols": symbols, "width": width, "pick": _Pickable(points)}
-
-
-def _set_draw_data(self: "MapCanvas", name: str, data: dict) -> None:
-    """Show prepared arrays as layer ``name`` (GUI thread; no computation here)."""
-    self.remove_layer(name)
-    items = []
-    for sensor, c, lon, lat in data["curves"]:
-        label = name if sensor is None else f"{name} · {sensor}"
-        kw = {}
-        if data["symbols"]:
-            size = 8 if data["width"] == 0 else 3
-            kw = {"symbol": "o", "symbolSize": size, "symbolPen": None, "symbolBrush": c}
-        pen = pg.mkPen(c, width=data["width"]) if data["width"] > 0 else None
-        item = pg.PlotDataItem(lon, lat, pen=pen, connect="finite", name=label, **kw)
-        self.addItem(item)
-        items.append(item)
-    self._items[name] = items
-    self._pick[name] = data["pick"]
-    self._visible[name] = True
-
-
-MapCanvas.set_draw_data = _set_draw_data

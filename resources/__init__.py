@@ -1,4 +1,4 @@
-"""Bundled data: the demo scene, a coarse world coastline, UI translations."""
+"""Bundled data: the demo scene, the 1:50m world coastline, UI translations."""
 
 from importlib import resources
 from pathlib import Path
@@ -15,8 +15,9 @@ def demo_path() -> Path:
 
 
 def coastline_path() -> Path:
-    """A coarse world coastline (lon/lat arrays, NaN-separated; see coastline/NOTICE.md)."""
-    return resource_path("coastline", "world_coarse.npz")
+    """The Natural Earth 1:50m world coastline (float32 lon/lat arrays, NaN-separated;
+    see coastline/NOTICE.md)."""
+    return resource_path("coastline", "ne_50m_coastline.npz")
 
 
 def translations_dir() -> Path:

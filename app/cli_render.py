@@ -1,0 +1,204 @@
+"""``wakeline render IN… -o OUT.png``: draw track files with the map canvas, offscreen.
+
+Registered by :func:`register` from ``build_parser()``; Qt is imported only when the
+command runs (offscreen unless a platform is set).
+"""
+
+import argparse
+import os
+import re
+import sys
+from pathlib import Path
+
+from wakeline.core.errors import InputError
+
+#: Steps ``--step`` runs, in the order given, each on the last layer of the one before.
+STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
+#: Colours of derived layers (as in the window).
+KIND_COLORS = {
+    "cleaned": "#2ca02c",
+    "maneuvers": "#9467bd",
+    "compressed": "#d62728",
+    "associated": "#ff7f0e",
+    "fused": "#17becf",
+}
+EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """``WxH`` in pixels (16..20000 each)."""
+    parts = text.lower().replace("×", "x").split("x")
+    try:
+        w, h = (int(p) for p in parts)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"size must be WxH in pixels, e.g. 1200x800: {text!r}"
+        ) from None
+    if not (16 <= w <= 20000 and 16 <= h <= 20000):
+        raise argparse.ArgumentTypeError(f"width and height must be 16..20000 pixels: {text!r}")
+    return w, h
+
+
+def parse_bounds(text: str) -> tuple[float, float, float, float]:
+    """``W,S,E,N`` in degrees: west < east (east may pass 180), -90 <= south < north <= 90."""
+    try:
+        w, s, e, n = (float(p) for p in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"bounds must be W,S,E,N in degrees, e.g. 121.5,30,123,31: {text!r}"
+        ) from None
+    if not (w < e and s < n and -90 <= s and n <= 90 and -360 <= w and e <= 360):
+        raise argparse.ArgumentTypeError(
+            f"bounds need west < east, south < north, latitudes within ±90°: {text!r}"
+        )
+    return w, s, e, n
+
+
+def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
+    """Run ``steps`` with default parameters: ``[(name, kind, points), …]`` of every new
+    layer, each step on the last layer the one before made."""
+    from wakeline.core.associate import LinkParams
+    from wakeline.core.clean import CleanParams
+    from wakeline.core.compress import CompressParams
+    from wakeline.core.fuse import FuseParams
+    from wakeline.core.maneuver import ManeuverParams
+    from wakeline.core.pipeline import (
+        step_associate,
+        step_clean,
+        step_compress,
+        step_fuse,
+        step_maneuvers,
+    )
+
+    run = {
+        "clean": lambda p: step_clean(p, CleanParams()),
+        "maneuvers": lambda p: step_maneuvers(p, ManeuverParams()),
+        "compress": lambda p: step_compress(p, ManeuverParams(), CompressParams()),
+        "associate": lambda p: step_associate(p, LinkParams()),
+        "fuse": lambda p: step_fuse(p, FuseParams()),
+    }
+    out = []
+    current = points
+    for name in steps:
+        result = run[name](current)
+        for layer in result.layers:
+            out.append((layer.suffix, layer.kind, layer.points))
+        if result.layers:
+            current = result.layers[-1].points
+    return out
+
+
+def _read(paths: list[Path]):
+    import pandas as pd
+
+    from wakeline.core.io import read_points
+
+    frames = []
+    for path in paths:
+        # Several files without a sensor column (one MTAD scene's AIS and radar files):
+        # each file is its own sensor, named after the file, so batches never merge.
+        kw = {"sensor": path.stem} if len(paths) > 1 else {}
+        result = read_points(path, **kw)
+        if result.report["rows_quarantined"]:
+            print(
+                f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "
+                "(run `wakeline import` with --quarantine to see them)",
+                file=sys.stderr,
+            )
+        if len(result.points) == 0:
+            raise InputError(f"{path}: no usable points")
+        frames.append(result.points)
+    return pd.concat(frames, ignore_index=True) if len(frames) > 1 else frames[0]
+
+
+def _cmd_render(args: argparse.Namespace) -> int:
+    if args.output.suffix.lower() != ".png":
+        raise InputError(f"{args.output}: the output must be a .png file")
+    points = _read(args.input)
+    derived = run_steps(points, args.step or [])
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    try:
+        from PySide6 import QtWidgets
+
+        from wakeline.app.map_draw import PALETTE, LayerStyle, prepare_layer
+        from wakeline.app.map_render import render_png
+    except ImportError as exc:
+        raise InputError(f"rendering needs the desktop libraries (Qt): {exc}") from None
+    _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(["wakeline"])
+    source_name = args.input[0].name if len(args.input) == 1 else "input"
+    layers = [
+        prepare_layer(
+            points,
+            source_name,
+            PALETTE[0],
+            color_by=args.color_by,
+            style=LayerStyle(width=1.3, symbol_size=3),
+            build_index=False,
+        )
+    ]
+    for suffix, kind, pts in derived:
+        if kind == "maneuvers":
+            pts = pts[pts["is_maneuver"].to_numpy(dtype=bool)] if "is_maneuver" in pts else pts
+            style = LayerStyle(width=0, symbol_size=8)
+        else:
+            style = LayerStyle(width=2.5 if kind in ("compressed", "fused") else 1.3)
+        layers.append(
+            prepare_layer(
+                pts,
+                f"{source_name} · {suffix}",
+                KIND_COLORS.get(kind, PALETTE[len(layers) % len(PALETTE)]),
+                style=style,
+                build_index=False,
+            )
+        )
+    info = render_png(layers, args.output, size=args.size, bounds=args.bounds, bare=args.bare)
+    w, s, e, n = info["bounds"]
+    print(
+        f"rendered {info['layers']} layer(s), {info['points']:,} points as "
+        f"{info['vertices']:,} drawn vertices, to {args.output} "
+        f"({info['size'][0]}x{info['size'][1]} px, bounds {w:.5f},{s:.5f},{e:.5f},{n:.5f})"
+    )
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``render`` subcommand to the ``wakeline`` parser."""
+    p = sub.add_parser(
+        "render",
+        help="draw track files (and step results) on the map into a PNG",
+        description="Draw track files with the application's map canvas, offscreen, into a "
+        "PNG: every point of every track, the 1:50m coastline, a legend. Several inputs are "
+        "drawn as one table (e.g. the AIS and radar files of one scene).",
+        epilog=EPILOG,
+    )
+    # "--bounds -135,5,-134,6": a value starting with a minus and a digit is a value here,
+    # not an option (argparse's own test only knows single numbers); --bounds=… works too.
+    p._negative_number_matcher = re.compile(r"^-\d*\.?\d+([eE][-+]?\d+)?(,[-+\d.eE]+)*$")
+    p.add_argument("input", nargs="+", type=Path, help="track files (any layout import reads)")
+    p.add_argument("-o", "--output", type=Path, required=True, help="PNG to write")
+    p.add_argument("--size", type=parse_size, metavar="WxH", help="image size in pixels")
+    p.add_argument(
+        "--bounds",
+        type=parse_bounds,
+        metavar="W,S,E,N",
+        help="area to show in degrees (default: the data with a 5%% margin)",
+    )
+    p.add_argument(
+        "--bare",
+        action="store_true",
+        help="the plot area alone, its edges exactly at the bounds (no axes, legend, margins)",
+    )
+    p.add_argument(
+        "--step",
+        nargs="+",
+        choices=STEPS,
+        metavar="NAME",
+        help=f"run steps with default parameters before drawing, in order ({', '.join(STEPS)})",
+    )
+    p.add_argument(
+        "--color-by",
+        choices=("sensor", "batch"),
+        default="sensor",
+        help="colour the input's tracks per sensor (default) or per batch",
+    )
+    p.set_defaults(func=_cmd_render)

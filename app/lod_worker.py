@@ -1,0 +1,40 @@
+"""Runs the map's level-of-detail jobs (pure functions) on a Qt thread pool and hands
+the results back on the GUI thread, so a zoom on a million points never blocks."""
+
+from collections.abc import Callable
+
+from PySide6 import QtCore
+
+
+class _Signals(QtCore.QObject):
+    done = QtCore.Signal(object, object)  # callback, result
+
+
+class _Task(QtCore.QRunnable):
+    def __init__(self, job: Callable, done: Callable, signals: _Signals) -> None:
+        super().__init__()
+        self.job, self.done, self.signals = job, done, signals
+
+    def run(self) -> None:
+        try:
+            result = self.job()
+        except Exception:  # noqa: BLE001 - a failed decimation keeps the old drawing
+            return
+        self.signals.done.emit(self.done, result)
+
+
+class LodWorker(QtCore.QObject):
+    """``worker(job, done)``: the :data:`~wakeline.app.map_canvas.LodExecutor` protocol."""
+
+    def __init__(self, parent: QtCore.QObject | None = None) -> None:
+        super().__init__(parent)
+        self.pool = QtCore.QThreadPool(self)
+        self.pool.setMaxThreadCount(1)
+        self.signals = _Signals(self)
+        self.signals.done.connect(lambda callback, result: callback(result))
+
+    def __call__(self, job: Callable, done: Callable) -> None:
+        self.pool.start(_Task(job, done, self.signals))
+
+    def wait(self, ms: int = 30_000) -> bool:
+        return self.pool.waitForDone(ms)

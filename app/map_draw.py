@@ -1,0 +1,409 @@
+"""Drawing preparation for the map, pure numpy (no Qt): safe to run in a worker thread.
+
+A layer is prepared in two stages:
+
+1. :func:`layer_geometry` (the slow part, once per layer): rows sorted per track,
+   longitudes unwrapped across 180°, per-point time (s) and speed (kn), the track of
+   every point, and a k-d tree for hover/pick built on demand.
+2. :func:`decimate` / :func:`prepare_layer` (cheap, again on every zoom): the
+   level of detail. Per track, a point is dropped when it falls in the same screen pixel
+   as the previous point of its track (so the previous *kept* point too, since a run of
+   points in one pixel keeps its first); the first and last point of every track are
+   always kept. A turn therefore survives down to the pixel, and every input point lies
+   in the pixel of a drawn vertex. With a view box, points whose both legs lie wholly on
+   one side outside the box are dropped too, and the curve is broken (NaN) there, so no
+   false straight line joins the two sides of a gap.
+
+The canvas only swaps in finished :class:`DrawData`.
+"""
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import pandas as pd
+from scipy.spatial import cKDTree
+
+from wakeline.app.map_lod import decimate, lod_box, nan_join
+from wakeline.app.time_text import format_time, is_relative_time
+from wakeline.core import geo
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import sorted_with_index
+
+#: Layer colours (one per sensor of a source layer, one per derived layer).
+PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
+#: Distinct colours for batches of a selection (or a layer coloured by batch): tab10 and
+#: darker companions, all readable on white; consecutive entries differ in hue.
+BATCH_PALETTE = (
+    "#1f77b4",
+    "#d62728",
+    "#2ca02c",
+    "#ff7f0e",
+    "#9467bd",
+    "#8c564b",
+    "#e377c2",
+    "#17becf",
+    "#bcbd22",
+    "#7f7f7f",
+    "#393b79",
+    "#ad494a",
+    "#637939",
+    "#8c6d31",
+    "#7b4173",
+    "#3182bd",
+    "#e6550d",
+    "#31a354",
+    "#756bb1",
+    "#636363",
+)
+
+
+@dataclass(frozen=True)
+class LayerStyle:
+    """How a layer is drawn: line width (px, 0 = no line), symbol size (px, 0 = none)."""
+
+    width: float = 1.5
+    symbol_size: float = 0.0
+
+
+@dataclass
+class LayerGeometry:
+    """Full-resolution points of one layer, sorted per track, ready for drawing.
+
+    ``lon`` is unwrapped along each track (a track crossing 180° stays continuous);
+    ``starts``/``ends`` delimit the tracks; ``track`` is the track of every point;
+    ``sensor``/``batch`` are per track; ``time_s`` and ``speed_kn`` per point;
+    ``group`` is the curve (colour) of each track.
+    """
+
+    lon: np.ndarray
+    lat: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+    track: np.ndarray
+    sensor: np.ndarray
+    batch: np.ndarray
+    time_s: np.ndarray
+    speed_kn: np.ndarray
+    group: np.ndarray
+    labels: tuple[str, ...]
+    colors: tuple[str, ...]
+    relative: bool
+    _tree: cKDTree | None = field(default=None, repr=False)
+
+    @property
+    def n_points(self) -> int:
+        return len(self.lon)
+
+    @property
+    def n_tracks(self) -> int:
+        return len(self.starts)
+
+    def bounds(self) -> tuple[float, float, float, float] | None:
+        """``(west, south, east, north)`` in degrees, None when empty."""
+        if len(self.lon) == 0:
+            return None
+        return (
+            float(self.lon.min()),
+            float(self.lat.min()),
+            float(self.lon.max()),
+            float(self.lat.max()),
+        )
+
+    @property
+    def x_scale(self) -> float:
+        """cos(mean latitude): degrees of longitude to degrees of latitude."""
+        lat0 = float(np.mean(self.lat)) if len(self.lat) else 0.0
+        return max(math.cos(math.radians(lat0)), 0.05)
+
+    def tree(self) -> cKDTree:
+        """k-d tree over (lon·cos lat0, lat), built on first use (call it in a worker)."""
+        if self._tree is None:
+            xy = np.column_stack([self.lon * self.x_scale, self.lat])
+            self._tree = cKDTree(xy, balanced_tree=False, compact_nodes=False)
+        return self._tree
+
+    def nearest(self, lon: float, lat: float) -> tuple[float, int]:
+        """Distance (degrees of latitude) and index of the point nearest ``lon, lat``."""
+        d, i = self.tree().query([lon * self.x_scale, lat])
+        return float(d), int(i)
+
+    def describe(self, i: int) -> dict:
+        """Sensor, batch, time (text), speed (kn) of point ``i``."""
+        k = int(self.track[i])
+        return {
+            "sensor": str(self.sensor[k]),
+            "batch": str(self.batch[k]),
+            "time": format_time(float(self.time_s[i]), self.relative),
+            "time_s": float(self.time_s[i]),
+            "speed_kn": float(self.speed_kn[i]),
+            "lon": float(self.lon[i]),
+            "lat": float(self.lat[i]),
+        }
+
+
+@dataclass(frozen=True)
+class Curve:
+    """One drawn curve: tracks NaN-separated, after the level of detail."""
+
+    label: str
+    color: str
+    lon: np.ndarray
+    lat: np.ndarray
+
+    @property
+    def n_vertices(self) -> int:
+        return int(np.count_nonzero(np.isfinite(self.lon)))
+
+
+@dataclass(frozen=True)
+class DrawData:
+    """A layer ready to swap into the canvas: geometry, curves, the view they were made for.
+
+    ``lod_box`` is ``(x0, x1, y0, y1)`` (degrees) the curves are valid in and ``px`` the
+    pixel size (degrees) they were decimated for; both None for full resolution.
+    """
+
+    name: str
+    geometry: LayerGeometry
+    curves: tuple[Curve, ...]
+    style: LayerStyle
+    lod_box: tuple[float, float, float, float] | None = None
+    px: tuple[float, float] | None = None
+
+    @property
+    def n_vertices(self) -> int:
+        """Vertices actually in the drawn paths (NaN separators not counted)."""
+        return sum(c.n_vertices for c in self.curves)
+
+
+# -- geometry --------------------------------------------------------------------------
+
+
+def unwrap_tracks(lon: np.ndarray, starts: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """Longitudes made continuous along each track (±360° steps removed), degrees."""
+    if len(lon) == 0:
+        return lon.astype("float64")
+    step = np.diff(lon, prepend=lon[0])
+    step[starts] = 0.0
+    jumps = np.where(step > 180.0, -360.0, np.where(step < -180.0, 360.0, 0.0))
+    cum = np.cumsum(jumps)
+    cum -= np.repeat(cum[starts], sizes)
+    return lon + cum
+
+
+def leg_speed_kn(
+    lon: np.ndarray, lat: np.ndarray, time_s: np.ndarray, starts: np.ndarray
+) -> np.ndarray:
+    """Speed (kn) of the leg arriving at each point; a track's first point takes the leg
+    leaving it; NaN for single points and zero time steps."""
+    n = len(lon)
+    speed = np.full(n, np.nan)
+    if n < 2:
+        return speed
+    dist = geo.haversine_m(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    dt = np.diff(time_s)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        speed[1:] = np.where(dt > 0, dist / dt / geo.KN_MS, np.nan)
+    speed[starts] = np.nan
+    second = starts + 1
+    ok = second < np.append(starts[1:], n)
+    speed[starts[ok]] = speed[second[ok]]
+    return speed
+
+
+def layer_geometry(
+    points: pd.DataFrame,
+    color: str = PALETTE[0],
+    by_sensor: bool = False,
+    color_by: str = "layer",
+    relative: bool | None = None,
+    label: str = "",
+) -> LayerGeometry:
+    """Sort, unwrap and describe ``points`` (canonical table) for drawing.
+
+    ``color_by``: "layer" (one curve in ``color``), "sensor" (one curve per sensor in
+    palette colours from ``color``; ``by_sensor=True`` means the same) or "batch" (every
+    track in one of :data:`BATCH_PALETTE`, neighbours in the table differing).
+    ``relative`` forces elapsed-time display; None decides from the time values.
+    """
+    if by_sensor and color_by == "layer":
+        color_by = "sensor"
+    if color_by not in ("layer", "sensor", "batch"):
+        raise ValueError(f"color_by must be layer, sensor or batch, not {color_by!r}")
+    cols = [c for c in ("sensor", "batch", "time", "lon", "lat", "speed") if c in points.columns]
+    df, index = sorted_with_index(points[cols])
+    lon = df["lon"].to_numpy(dtype="float64")
+    lat = df["lat"].to_numpy(dtype="float64")
+    t = time_seconds(df["time"]) if len(df) else np.zeros(0)
+    speed = np.full(len(df), np.nan)
+    if "speed" in df.columns:
+        speed = df["speed"].to_numpy(dtype="float64", na_value=np.nan)
+    if np.isnan(speed).any():
+        speed = np.where(np.isnan(speed), leg_speed_kn(lon, lat, t, index.starts), speed)
+    lon = unwrap_tracks(lon, index.starts, index.sizes)
+    sensor = index.keys["sensor"].to_numpy(dtype=object)
+    batch = index.keys["batch"].to_numpy(dtype=object)
+    start = PALETTE.index(color) if color in PALETTE else 0
+    if color_by == "sensor":
+        names, group = np.unique(sensor.astype(str), return_inverse=True)
+        colors = tuple(PALETTE[(start + k) % len(PALETTE)] for k in range(len(names)))
+        labels = tuple(f"{label} · {s}" if label else str(s) for s in names)
+    elif color_by == "batch":
+        k = len(BATCH_PALETTE)
+        group = np.arange(index.n_tracks) % k
+        used = min(k, index.n_tracks)
+        colors = BATCH_PALETTE[:used]
+        # One legend line for the layer; the other colours carry no legend entry.
+        head = f"{label} · " if label else ""
+        labels = (f"{head}{index.n_tracks} batches, a colour each",) + ("",) * (used - 1)
+    else:
+        group = np.zeros(index.n_tracks, dtype="int64")
+        colors, labels = (color,), (label,)
+    return LayerGeometry(
+        lon=lon,
+        lat=lat,
+        starts=index.starts,
+        ends=index.ends,
+        track=index.track_of_row,
+        sensor=sensor,
+        batch=batch,
+        time_s=t,
+        speed_kn=np.asarray(speed, dtype="float64"),
+        group=np.asarray(group, dtype="int64"),
+        labels=labels,
+        colors=colors,
+        relative=is_relative_time(t) if relative is None else bool(relative),
+    )
+
+
+def curves_for(
+    geom: LayerGeometry,
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+    margin: float = 1.0,
+) -> tuple[tuple[Curve, ...], tuple | None, tuple | None]:
+    """The curves of ``geom`` decimated for ``view`` (x0, x1, y0, y1, degrees) shown on
+    ``size_px`` (w, h) pixels; full resolution when either is None. Returns the curves,
+    the box they are valid in and the pixel size used."""
+    px = box = None
+    if view is not None and size_px is not None and size_px[0] > 0 and size_px[1] > 0:
+        x0, x1, y0, y1 = view
+        px = ((x1 - x0) / size_px[0], (y1 - y0) / size_px[1])
+        if not (px[0] > 0 and px[1] > 0):
+            px = None
+        else:
+            box = lod_box(view, margin)
+    origin = (view[0], view[2]) if view is not None else (0.0, 0.0)
+    keep, brk = decimate(geom.lon, geom.lat, geom.starts, geom.ends, px, box, origin)
+    group_of_point = geom.group[geom.track] if geom.n_points else np.zeros(0, dtype="int64")
+    curves = []
+    for g, (label, color) in enumerate(zip(geom.labels, geom.colors, strict=True)):
+        sel = keep & (group_of_point == g) if len(geom.labels) > 1 else keep
+        # Tracks of one group are not contiguous when coloured by batch: a break at every
+        # track start keeps them apart.
+        lon, lat = nan_join(geom.lon, geom.lat, sel, brk)
+        curves.append(Curve(label, color, lon, lat))
+    return tuple(curves), box, px
+
+
+def prepare_layer(
+    points: pd.DataFrame | LayerGeometry,
+    name: str = "",
+    color: str = PALETTE[0],
+    by_sensor: bool = False,
+    color_by: str = "layer",
+    style: LayerStyle | None = None,
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+    relative: bool | None = None,
+    build_index: bool = True,
+) -> DrawData:
+    """Everything the canvas needs to draw a layer, computed off the GUI thread.
+
+    ``points`` is a canonical point table (or a geometry from an earlier call, to redo
+    only the level of detail). ``view``/``size_px``: the canvas' view (x0, x1, y0, y1,
+    degrees) and plot size in pixels, for the level of detail; None draws every point.
+    ``build_index`` builds the hover/pick k-d tree now (else on first hover).
+    """
+    if isinstance(points, LayerGeometry):
+        geom = points
+    else:
+        geom = layer_geometry(points, color, by_sensor, color_by, relative, label=name)
+    if build_index and geom.n_points:
+        geom.tree()
+    curves, box, px = curves_for(geom, view, size_px)
+    return DrawData(name, geom, curves, style or LayerStyle(), box, px)
+
+
+def relod(
+    data: DrawData, view: tuple[float, float, float, float], size_px: tuple[int, int]
+) -> DrawData:
+    """``data`` with its curves decimated again for a new view (pure; for a worker)."""
+    curves, box, px = curves_for(data.geometry, view, size_px)
+    return replace(data, curves=curves, lod_box=box, px=px)
+
+
+def lod_is_stale(
+    data: DrawData, view: tuple[float, float, float, float], size_px: tuple[int, int]
+) -> bool:
+    """True when the view left the region ``data`` was decimated for, or the pixel size
+    changed by more than a quarter (zoom)."""
+    if data.geometry.n_points == 0:
+        return False
+    if data.px is None or data.lod_box is None:
+        return True
+    x0, x1, y0, y1 = view
+    bx0, bx1, by0, by1 = data.lod_box
+    if x0 < bx0 or x1 > bx1 or y0 < by0 or y1 > by1:
+        return True
+    px = ((x1 - x0) / max(size_px[0], 1), (y1 - y0) / max(size_px[1], 1))
+    ratio = px[0] / data.px[0] if data.px[0] > 0 else 0.0
+    # Coarser than decimated for: merge more; finer: detail would be missing.
+    return not (0.99 <= ratio <= 1.25)
+
+
+def nan_separated(points: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """lon, lat of all tracks (full resolution), a NaN between consecutive tracks.
+
+    Longitudes are unwrapped along each track so a track crossing 180° stays continuous.
+    """
+    geom = layer_geometry(points)
+    keep = np.ones(geom.n_points, dtype=bool)
+    brk = np.zeros(geom.n_points, dtype=bool)
+    brk[geom.starts] = True
+    return nan_join(geom.lon, geom.lat, keep, brk)
+
+
+def coastline_draw(lon: np.ndarray, lat: np.ndarray) -> LayerGeometry:
+    """A NaN-separated coastline as a geometry (each line a track) for the same LOD."""
+    finite = np.isfinite(lon) & np.isfinite(lat)
+    idx = np.flatnonzero(finite)
+    if len(idx) == 0:
+        empty = np.zeros(0)
+        ei = np.zeros(0, dtype="int64")
+        return LayerGeometry(
+            empty, empty, ei, ei, ei, np.zeros(0, object), np.zeros(0, object), empty, empty,
+            ei, ("coast",), ("#8a8a8a",), False,
+        )  # fmt: skip
+    start = np.ones(len(idx), dtype=bool)
+    start[1:] = np.diff(idx) > 1
+    starts = np.flatnonzero(start)
+    ends = np.append(starts[1:], len(idx))
+    track = np.cumsum(start) - 1
+    zeros = np.zeros(len(idx))
+    return LayerGeometry(
+        lon=lon[idx].astype("float64"),
+        lat=lat[idx].astype("float64"),
+        starts=starts,
+        ends=ends,
+        track=track,
+        sensor=np.full(len(starts), "coast", dtype=object),
+        batch=np.arange(len(starts)).astype(str).astype(object),
+        time_s=zeros,
+        speed_kn=zeros,
+        group=np.zeros(len(starts), dtype="int64"),
+        labels=("coast",),
+        colors=("#8a8a8a",),
+        relative=False,
+    )

@@ -1,0 +1,25 @@
+"""A legend that lives in the plot's layout, beside the view box: it never covers data."""
+
+import pyqtgraph as pg
+
+
+class SideLegend(pg.LegendItem):
+    """A legend that lives in the plot's layout (a column right of the view box)."""
+
+    def updateSize(self) -> None:  # noqa: N802 - pyqtgraph's name
+        width = height = 0.0
+        for row in range(self.layout.rowCount()):
+            row_w = row_h = 0.0
+            for col in range(self.layout.columnCount()):
+                item = self.layout.itemAt(row, col)
+                if item:
+                    row_w += item.width() + 3
+                    row_h = max(row_h, item.height())
+            width, height = max(width, row_w), height + row_h
+        w = width + 6 if self.items else 0
+        self.setMinimumWidth(w)
+        self.setMaximumWidth(w)
+        self.setMinimumHeight(height)
+        self.setMaximumHeight(height)
+        self.setVisible(bool(self.items))
+        self.updateGeometry()

@@ -1,0 +1,97 @@
+"""Level of detail for NaN-separated track curves, pure numpy (worker-safe).
+
+Per track, a point is dropped when it falls in the same screen pixel as the previous
+point of its track (a run of points in one pixel keeps its first, so that is the previous
+*kept* point too); the first and last point of every track are kept. Every input point
+thus lies in the pixel of a drawn vertex of its own track, and turns survive down to the
+pixel. With a box, points whose two legs both lie beyond one edge are dropped and the
+curve is broken there, so no false straight line joins the two sides of a gap.
+"""
+
+import numpy as np
+
+
+def _outcode(lon: np.ndarray, lat: np.ndarray, box: tuple[float, float, float, float]):
+    x0, x1, y0, y1 = box
+    return (
+        (lon < x0).astype(np.uint8)
+        | ((lon > x1).astype(np.uint8) << 1)
+        | ((lat < y0).astype(np.uint8) << 2)
+        | ((lat > y1).astype(np.uint8) << 3)
+    )
+
+
+def decimate(
+    lon: np.ndarray,
+    lat: np.ndarray,
+    starts: np.ndarray,
+    ends: np.ndarray,
+    px: tuple[float, float] | None,
+    box: tuple[float, float, float, float] | None = None,
+    origin: tuple[float, float] = (0.0, 0.0),
+) -> tuple[np.ndarray, np.ndarray]:
+    """Which points to draw, and where a curve must break: ``(keep, brk)``, bool per point.
+
+    ``px`` is the pixel size (degrees lon, lat), None for no pixel decimation; ``box``
+    ``(x0, x1, y0, y1)`` the region to draw, None for everything; pixels are counted from
+    ``origin`` (the view's corner, so cells match screen pixels). ``brk[i]``: a kept point
+    that must not be joined to the previous kept point (track start or clipped gap).
+    Vectorized over all tracks; every track keeps its first and last point in ``box``.
+    """
+    n = len(lon)
+    first = np.zeros(n, dtype=bool)
+    first[starts] = True
+    last = np.zeros(n, dtype=bool)
+    last[ends - 1] = True
+    keep = np.ones(n, dtype=bool)
+    if px is not None and n:
+        ix = np.floor((lon - origin[0]) / px[0])
+        iy = np.floor((lat - origin[1]) / px[1])
+        same = np.zeros(n, dtype=bool)
+        same[1:] = (ix[1:] == ix[:-1]) & (iy[1:] == iy[:-1])
+        keep = ~same | first | last
+    brk = first.copy()
+    if box is not None and n:
+        code = _outcode(lon, lat, box)
+        # Leg i joins point i-1 to point i; it may cross the box unless both ends lie
+        # beyond the same edge.
+        leg = np.zeros(n + 1, dtype=bool)
+        leg[1:n] = (code[1:] & code[:-1]) == 0
+        leg[starts] = False
+        near = (code == 0) | leg[:n] | leg[1:]
+        clipped = ~near
+        keep &= near
+        # Break before a kept point when points were clipped since the previous kept one.
+        c = np.cumsum(clipped)
+        kept_idx = np.flatnonzero(keep)
+        gap = np.zeros(len(kept_idx), dtype=bool)
+        gap[1:] = c[kept_idx[1:]] != c[kept_idx[:-1]]
+        brk[kept_idx[gap]] = True
+    return keep, brk
+
+
+def nan_join(
+    lon: np.ndarray, lat: np.ndarray, keep: np.ndarray, brk: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Kept points as one pair of arrays, a NaN before every break but the first."""
+    idx = np.flatnonzero(keep)
+    if len(idx) == 0:
+        return np.zeros(0), np.zeros(0)
+    b = brk[idx]
+    b[0] = False
+    pieces = np.cumsum(b)
+    out_lon = np.full(len(idx) + int(pieces[-1]), np.nan)
+    out_lat = np.full(len(out_lon), np.nan)
+    dest = np.arange(len(idx)) + pieces
+    out_lon[dest] = lon[idx]
+    out_lat[dest] = lat[idx]
+    return out_lon, out_lat
+
+
+def lod_box(
+    view: tuple[float, float, float, float], margin: float = 1.0
+) -> tuple[float, float, float, float]:
+    """``view`` (x0, x1, y0, y1) grown by ``margin`` view sizes on every side."""
+    x0, x1, y0, y1 = view
+    w, h = (x1 - x0) * margin, (y1 - y0) * margin
+    return (x0 - w, x1 + w, y0 - h, y1 + h)

@@ -1,0 +1,46 @@
+"""The selection's curves, pure numpy (worker-safe): every selected batch in its own colour.
+
+Colours come from the batch palette without the colours of the layers shown (and without
+the oranges of the selection halo), so a selected batch stands out from its layer; beyond
+the palette, batches share colours (one curve per colour).
+"""
+
+import numpy as np
+import pandas as pd
+
+from wakeline.app.map_draw import BATCH_PALETTE, Curve, layer_geometry
+from wakeline.app.map_lod import nan_join
+
+#: Colours of selected batches: the batch palette without the oranges of the halo.
+SELECTION_PALETTE = tuple(c for c in BATCH_PALETTE if c not in ("#ff7f0e", "#e6550d"))
+#: At most this many batches of a selection get their own legend line.
+LEGEND_BATCHES = 12
+
+
+def selection_curves(
+    points: pd.DataFrame, avoid: set[str] | frozenset[str] = frozenset()
+) -> tuple[Curve, tuple[Curve, ...]]:
+    """The halo (every selected track, full resolution) and one curve per colour.
+
+    A curve's label is ``sensor · batch`` of its first batch (``(+k)`` when k more share
+    the colour); empty (no legend line) beyond :data:`LEGEND_BATCHES` colours.
+    """
+    geom = layer_geometry(points)
+    keep = np.ones(geom.n_points, dtype=bool)
+    brk = np.zeros(geom.n_points, dtype=bool)
+    brk[geom.starts] = True
+    lon, lat = nan_join(geom.lon, geom.lat, keep, brk)
+    halo = Curve("", "#ffaa00", lon, lat)
+    palette = [c for c in SELECTION_PALETTE if c not in avoid] or list(SELECTION_PALETTE)
+    k = len(palette)
+    color_of_track = np.arange(geom.n_tracks) % k
+    color_of_point = color_of_track[geom.track] if geom.n_points else np.zeros(0, "int64")
+    curves = []
+    for g in range(min(k, geom.n_tracks)):
+        x, y = nan_join(geom.lon, geom.lat, color_of_point == g, brk)
+        more = int(np.count_nonzero(color_of_track == g)) - 1
+        label = ""
+        if g < LEGEND_BATCHES:
+            label = f"{geom.sensor[g]} · {geom.batch[g]}" + (f" (+{more})" if more else "")
+        curves.append(Curve(label, palette[g], x, y))
+    return halo, tuple(curves)

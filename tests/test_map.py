@@ -1,0 +1,336 @@
+"""The map draws every point: level of detail, rendering, hover, legend, times, coastline."""
+
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+pytest.importorskip("pytestqt")
+from PySide6 import QtGui, QtWidgets  # noqa: E402
+
+from wakeline.app.cli import main  # noqa: E402
+from wakeline.app.map_canvas import MapCanvas  # noqa: E402
+from wakeline.app.map_draw import (  # noqa: E402
+    LayerStyle,
+    decimate,
+    format_time,
+    layer_geometry,
+    lod_is_stale,
+    prepare_layer,
+    relod,
+)
+from wakeline.core import geo  # noqa: E402
+from wakeline.resources import coastline_path  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+#: Open Pacific, no land: every coloured pixel is a track.
+LON0, LAT0 = -135.0, 5.0
+
+
+def star_scene(seed: int = 3, n_tracks: int = 24, n_points: int = 120) -> pd.DataFrame:
+    """Tracks leaving a common area in every direction, zig-zagging, rows shuffled."""
+    rng = np.random.default_rng(seed)
+    rows = []
+    for k in range(n_tracks):
+        heading = 360.0 * k / n_tracks + rng.uniform(-5, 5)
+        # Zig-zag: ±35° legs of 15 points, 150 m steps.
+        legs = np.where((np.arange(n_points) // 15) % 2 == 0, 35.0, -35.0)
+        h = np.radians(heading + legs)
+        x = np.cumsum(150.0 * np.sin(h)) + 3000.0 * np.sin(np.radians(heading))
+        y = np.cumsum(150.0 * np.cos(h)) + 3000.0 * np.cos(np.radians(heading))
+        lon, lat = geo.from_local(x, y, LON0, LAT0)
+        t = pd.Timestamp("2024-05-01", tz="UTC") + pd.to_timedelta(np.arange(n_points) * 10, "s")
+        rows.append(
+            pd.DataFrame({"sensor": "R1", "batch": str(100 + k), "time": t, "lon": lon, "lat": lat})
+        )
+    df = pd.concat(rows, ignore_index=True)
+    return df.sample(frac=1.0, random_state=seed).reset_index(drop=True)
+
+
+def image_array(path) -> np.ndarray:
+    """RGB array (h, w, 3) of a PNG."""
+    img = QtGui.QImage(str(path)).convertToFormat(QtGui.QImage.Format.Format_RGB888)
+    w, h = img.width(), img.height()
+    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
+    return raw[:, : w * 3].reshape(h, w, 3).copy()
+
+
+def to_pixel(lon, lat, bounds, size):
+    w, s, e, n = bounds
+    col = (np.asarray(lon) - w) / (e - w) * size[0]
+    row = (n - np.asarray(lat)) / (n - s) * size[1]
+    return col, row
+
+
+def coloured(rgb: np.ndarray) -> np.ndarray:
+    """Saturated pixels (tracks; not white, grey coastline or grid)."""
+    a = rgb.astype(int)
+    return (a.max(axis=2) - a.min(axis=2)) > 60
+
+
+def test_render_bare_draws_every_point_of_every_track(qapp, tmp_path, capsys):
+    df = star_scene()
+    csv = tmp_path / "star.csv"
+    df.to_csv(csv, index=False)
+    png = tmp_path / "star.png"
+    pad = 0.01
+    bounds = (
+        df["lon"].min() - pad,
+        df["lat"].min() - pad,
+        df["lon"].max() + pad,
+        df["lat"].max() + pad,
+    )
+    size = (400, 400)
+    arg = ",".join(f"{v:.6f}" for v in bounds)
+    code = main(
+        ["render", str(csv), "-o", str(png), "--bare", "--size", "400x400", "--bounds", arg]
+    )
+    assert code == 0, capsys.readouterr().err
+    assert "drawn vertices" in capsys.readouterr().out
+    rgb = image_array(png)
+    assert rgb.shape[:2] == (size[1], size[0])
+    hit = coloured(rgb)
+    bounds = tuple(float(f"{v:.6f}") for v in bounds)
+    col, row = to_pixel(df["lon"], df["lat"], bounds, size)
+    # Each point: a coloured pixel within 1 px of where it falls.
+    c, r = np.floor(col).astype(int), np.floor(row).astype(int)
+    near = np.zeros(len(df), dtype=bool)
+    for dc in (-1, 0, 1):
+        for dr in (-1, 0, 1):
+            cc, rr = np.clip(c + dc, 0, size[0] - 1), np.clip(r + dr, 0, size[1] - 1)
+            near |= hit[rr, cc]
+    missing = df.loc[~near, "batch"].unique()
+    assert near.all(), f"{(~near).sum()} points of tracks {missing} not drawn"
+
+
+def test_bare_render_edges_are_exactly_the_bounds(qapp, tmp_path):
+    lon, lat = LON0 + 2.55, LAT0 + 2.05
+    df = pd.DataFrame(
+        {
+            "sensor": ["S"],
+            "batch": ["1"],
+            "time": pd.to_datetime([0], unit="s", utc=True) + pd.Timedelta("20000D"),
+            "lon": [lon],
+            "lat": [lat],
+        }
+    )
+    csv = tmp_path / "one.csv"
+    df.to_csv(csv, index=False)
+    png = tmp_path / "one.png"
+    bounds = (LON0, LAT0, LON0 + 10.0, LAT0 + 10.0)
+    arg = ",".join(str(v) for v in bounds)
+    assert (
+        main(["render", str(csv), "-o", str(png), "--bare", "--size", "200x100", "--bounds", arg])
+        == 0
+    )
+    hit = coloured(image_array(png))
+    rows, cols = np.nonzero(hit)
+    assert len(rows) > 0
+    col, row = to_pixel(lon, lat, bounds, (200, 100))
+    # The symbol is centred on the point: its pixel centroid within half a pixel.
+    assert abs((cols.mean() + 0.5) - col) <= 0.6
+    assert abs((rows.mean() + 0.5) - row) <= 0.6
+
+
+def test_lod_keeps_every_track_and_every_turn_to_the_pixel():
+    df = star_scene(n_tracks=12, n_points=400)
+    geom = layer_geometry(df)
+    px = (0.01, 0.01)  # about 1.1 km: several 150 m steps per pixel
+    keep, brk = decimate(geom.lon, geom.lat, geom.starts, geom.ends, px)
+    assert keep.sum() < 0.5 * len(keep)  # it does decimate
+    assert keep[geom.starts].all() and keep[geom.ends - 1].all()
+    # Every point lies in the pixel of a kept point of its own track (turns included).
+    ix = np.floor(geom.lon / px[0]).astype(int)
+    iy = np.floor(geom.lat / px[1]).astype(int)
+    cells = set(zip(geom.track, ix, iy, strict=True))
+    kept = set(zip(geom.track[keep], ix[keep], iy[keep], strict=True))
+    assert cells == kept
+    # And each point's pixel is the one of the last kept point before it (or itself).
+    last_kept = np.maximum.accumulate(np.where(keep, np.arange(len(keep)), 0))
+    assert np.array_equal(ix[last_kept], ix) and np.array_equal(iy[last_kept], iy)
+    assert brk[geom.starts].all()
+
+
+def test_lod_clips_to_the_view_and_breaks_the_curve_there():
+    # One track going out of the box and coming back: no line may join the two sides.
+    x = np.concatenate([np.linspace(0, 1, 11), np.full(10, 5.0), np.linspace(1, 0, 11)])
+    y = np.concatenate([np.zeros(11), np.linspace(0, 1, 10), np.ones(11)])
+    starts, ends = np.array([0]), np.array([len(x)])
+    keep, brk = decimate(x, y, starts, ends, (0.01, 0.01), box=(-0.5, 1.5, -0.5, 1.5))
+    assert not keep[12:20].any()  # the excursion far outside is dropped
+    assert keep[:12].all() and keep[20:].all()  # ... but not the legs into the box
+    assert brk[20] and not brk[1:20].any()  # the curve restarts after the gap
+    data = prepare_layer(
+        pd.DataFrame(
+            {
+                "sensor": "S",
+                "batch": "a",
+                "time": pd.to_datetime(np.arange(len(x)), unit="s", utc=True),
+                "lon": x,
+                "lat": y,
+            }
+        ),
+        "t",
+        view=(-0.5, 1.5, -0.5, 1.5),
+        size_px=(200, 200),
+    )
+    curve = data.curves[0]
+    assert np.isnan(curve.lon).sum() == 1  # one break, at the gap
+    assert data.n_vertices == curve.n_vertices
+
+
+def test_relod_when_zooming_in(qtbot):
+    df = star_scene(n_tracks=6, n_points=300)
+    coarse = prepare_layer(
+        df, "s", view=(LON0 - 1, LON0 + 1, LAT0 - 1, LAT0 + 1), size_px=(100, 100)
+    )
+    fine_view = (LON0 - 0.05, LON0 + 0.05, LAT0 - 0.05, LAT0 + 0.05)
+    assert lod_is_stale(coarse, fine_view, (100, 100))
+    fine = relod(coarse, fine_view, (100, 100))
+    assert fine.geometry is coarse.geometry
+    assert not lod_is_stale(fine, fine_view, (100, 100))
+    # Canvas: the layer is decimated again when the view changes (synchronous default).
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(500, 400)
+    canvas.set_draw_data(prepare_layer(df, "s", style=LayerStyle(width=1)))
+    full = canvas.draw_data("s").n_vertices
+    assert full == len(df)  # no view yet: every point
+    canvas.set_true_aspect(LAT0)
+    canvas.fit()
+    zoomed_out = canvas.n_vertices()
+    assert 6 <= zoomed_out <= full
+    # A worker-style executor: the job is pure and its result swapped in afterwards.
+    jobs = []
+    canvas.lod_executor = lambda job, done: jobs.append((job, done))
+    canvas.vb.setRange(xRange=fine_view[:2], yRange=fine_view[2:], padding=0)
+    canvas.refresh_lod()
+    assert len(jobs) == 1
+    job, done = jobs[0]
+    done(job())
+    assert canvas.draw_data("s").px[0] < 0.01
+
+
+def test_hover_shows_sensor_batch_time_speed_and_elapsed_time(qtbot):
+    t = pd.to_datetime([0.0, 100.0, 200.0], unit="s", utc=True)  # MTAD: seconds from start
+    df = pd.DataFrame(
+        {"sensor": "AIS", "batch": "412", "time": t, "lon": [120.0, 120.01, 120.02], "lat": 30.0}
+    )
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(600, 400)
+    canvas.set_layer("mtad", df, "#1f77b4")
+    canvas.set_true_aspect(30.0)
+    canvas.fit()
+    info = canvas.hover(120.0101, 30.0001)
+    assert info["sensor"] == "AIS" and info["batch"] == "412" and info["layer"] == "mtad"
+    assert info["time"] == "T+0:01:40"
+    # 0.01° of longitude at 30°N in 100 s: 964 m / 100 s = 18.7 kn.
+    assert info["speed_kn"] == pytest.approx(18.74, abs=0.05)
+    text = canvas.hover_label.toPlainText()
+    assert "T+0:01:40" in text and "1970" not in text and "18.7 kn" in text
+    assert canvas.hover(121.0, 31.0) is None and not canvas.hover_label.isVisible()
+    assert format_time(1714521600.0, relative=False) == "2024-05-01 00:00:00 UTC"
+    assert format_time(90061.0, relative=True) == "T+1 d 01:01:01"
+
+
+def test_legend_beside_the_map_and_selection_in_distinct_colours(qtbot):
+    df = star_scene(n_tracks=5, n_points=30)
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(800, 500)
+    canvas.show()
+    canvas.set_layer("star", df, "#1f77b4", by_sensor=True)
+    canvas.set_true_aspect(LAT0)
+    canvas.fit()
+    chosen = df[df["batch"].isin(["100", "101", "102"])]
+    (fx0, fx1), (fy0, fy1) = canvas.vb.viewRange()
+    canvas.show_selection(chosen)
+    qtbot.wait(10)
+    legend = canvas.legend.sceneBoundingRect()
+    assert legend.width() > 0
+    assert legend.left() >= canvas.vb.sceneBoundingRect().right() - 1.0
+    colours = {item.opts["pen"].color().name() for item in canvas.selection_items()}
+    assert len(colours) == 3
+    chosen = df[df["batch"] == "101"]
+    canvas.show_selection(chosen)
+    assert canvas.zoom_to_selection()
+    (x0, x1), (y0, y1) = canvas.vb.viewRange()
+    assert x0 <= chosen["lon"].min() and chosen["lon"].max() <= x1
+    assert y0 <= chosen["lat"].min() and chosen["lat"].max() <= y1
+    assert (x1 - x0) * (y1 - y0) < 0.8 * (fx1 - fx0) * (fy1 - fy0)
+
+
+def test_coastline_is_full_resolution_and_loads_fast():
+    t = time.perf_counter()
+    coast = np.load(coastline_path())
+    lon = coast["lon"]
+    assert time.perf_counter() - t < 1.0
+    assert lon.dtype == np.float32 and int(np.isfinite(lon).sum()) == 60_416
+    assert int(np.isnan(lon).sum()) == 1_428  # 1,429 lines
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--bounds", "10,5,9,6"],
+        ["--bounds", "a,b,c,d"],
+        ["--size", "12"],
+    ],
+)
+def test_render_bad_arguments_exit_2(tmp_path, args, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["render", "x.csv", "-o", str(tmp_path / "x.png"), *args])
+    assert exc.value.code == 2
+    assert "render" in capsys.readouterr().err
+
+
+def test_render_refuses_a_non_png_output(tmp_path, capsys):
+    assert main(["render", "x.csv", "-o", str(tmp_path / "x.jpg")]) == 2
+    assert ".png" in capsys.readouterr().err
+
+
+def test_render_png_from_the_window_canvas_leaves_it_untouched(qtbot, tmp_path):
+    from wakeline.app.map_render import render_png
+
+    df = star_scene(n_tracks=4, n_points=40)
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(700, 500)
+    canvas.set_layer("star", df, "#1f77b4")
+    canvas.set_true_aspect(LAT0)
+    canvas.fit()
+    canvas.show_selection(df[df["batch"] == "101"])
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    view, size = canvas.current_view(), canvas.size()
+    info = render_png(canvas, tmp_path / "map.png", size=(300, 200))
+    assert info["size"] == (300, 200) and info["points"] == len(df)
+    assert canvas.current_view() == view and canvas.size() == size
+    assert coloured(image_array(tmp_path / "map.png")).sum() > 100
+
+
+def test_render_runs_steps_first(qapp, tmp_path, capsys):
+    csv = tmp_path / "star.csv"
+    star_scene(n_tracks=4, n_points=60).to_csv(csv, index=False)
+    png = tmp_path / "steps.png"
+    assert (
+        main(
+            ["render", str(csv), "-o", str(png), "--size", "300x200", "--step", "clean", "compress"]
+        )
+        == 0
+    )
+    out = capsys.readouterr().out
+    assert "rendered 4 layer(s)" in out  # source, cleaned, maneuvers, compressed
+    assert png.stat().st_size > 0
+
+
+def test_render_help(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["render", "--help"])
+    assert exc.value.code == 0
+    assert "usage: wakeline render" in capsys.readouterr().out
