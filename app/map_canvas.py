@@ -38,6 +38,9 @@ from wakeline.app.map_selection import selection_curves
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
 KM_PER_DEG = 111.195
+#: Symbols are drawn on a layer's lines when its curve has at most this many vertices
+#: after the level of detail (zoomed in); marker-only layers always show them.
+SYMBOLS_MAX = 20_000
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
 
 #: ``executor(job, done)``: run ``job()`` (pure, returns DrawData) somewhere and call
@@ -193,6 +196,9 @@ class MapCanvas(pg.PlotWidget):
                     }
                 pen = pg.mkPen(curve.color, width=data.style.width) if data.style.width else None
                 item = pg.PlotDataItem(pen=pen, connect="finite", **kw)
+                # No re-plot on every view change (pyqtgraph's dynamic range limit would
+                # rebuild the symbols of every curve at each pan and zoom step).
+                item.setDynamicRangeLimit(None)
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)
@@ -211,6 +217,12 @@ class MapCanvas(pg.PlotWidget):
 
     def _swap_curves(self, data: DrawData) -> None:
         for item, curve in zip(self._items.get(data.name, []), data.curves, strict=False):
+            if data.style.symbol_size and data.style.width:
+                # Symbols on a line only where they can be told apart: pyqtgraph builds
+                # them point by point in Python, which would block a million-point view.
+                few = curve.n_vertices <= SYMBOLS_MAX
+                if (item.opts["symbol"] is not None) != few:
+                    item.setSymbol("o" if few else None)
             item.setData(curve.lon, curve.lat, connect="finite")
 
     def refresh_lod(self, names: list[str] | None = None) -> None:
