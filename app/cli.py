@@ -13,6 +13,7 @@ import sys
 import traceback
 from pathlib import Path
 
+from wakeline.app import cli_export
 from wakeline.core import __version__
 from wakeline.core.errors import InputError
 
@@ -830,6 +831,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="load, render the main window at 1400x900 to PNG and exit",
     )
     p.set_defaults(func=_cmd_gui)
+    cli_export.register(sub)
     return parser
 
 
