@@ -66,7 +66,7 @@ def format_numbers(values: np.ndarray, fmt: NumberFormat) -> pa.Array:
     finite = np.isfinite(x)
     with np.errstate(invalid="ignore", over="ignore"):
         big = np.abs(np.where(finite, x, 0.0)) * 10.0**fmt.decimals
-    if fmt.trim == "repr" or (big > 4e15).any():
+    if fmt.trim in ("repr", "repr1") or (big > 4e15).any():
         text = pc.cast(pa.array(np.where(finite, x, 0.0)), pa.string())
         sci = np.flatnonzero(np.asarray(pc.match_substring(text, "e")))
         if len(sci):  # rare: very small or large values, written without an exponent
@@ -74,6 +74,8 @@ def format_numbers(values: np.ndarray, fmt: NumberFormat) -> pa.Array:
             text = pc.replace_with_mask(
                 text, pa.array(np.isin(np.arange(len(x)), sci)), pa.array(fixed, pa.string())
             )
+        if fmt.trim == "repr1":
+            text = pc.if_else(pc.match_substring(text, "."), text, _join(text, ".0"))
     else:
         scaled = np.rint(big).astype("int64")
         text = _digits(scaled, (x < 0) & (scaled != 0), fmt.decimals, fmt.trim)
@@ -110,7 +112,7 @@ def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
     if tf.kind == "unix":
         unit_ns = 1_000_000_000 // tf.scale
         d = tf.number.decimals
-        if tf.number.trim != "repr" and 10**d <= unit_ns:
+        if not tf.number.trim.startswith("repr") and 10**d <= unit_ns:
             scaled, neg = _round_div(ns, unit_ns // 10**d)
             text = _digits(scaled, neg & (scaled != 0), d, tf.number.trim)
         else:

@@ -76,7 +76,8 @@ class NumberFormat:
     ``trim``: ``none`` — always ``decimals`` digits (``57.100``); ``zeros`` — at most
     ``decimals`` digits, trailing zeros and a bare point dropped (``57.1``, ``12``);
     ``keep1`` — as ``zeros`` but at least one digit (``12.0``); ``repr`` — the shortest
-    text that reads back to the same float (for 16–17 significant digits).
+    text that reads back to the same float (for 16–17 significant digits), ``12`` for
+    whole numbers; ``repr1`` — the same with ``12.0`` (Python's way).
     ``na`` is the text of a missing value.
     """
 
@@ -102,7 +103,7 @@ class NumberFormat:
         digits = frac.fillna("").str.len()
         decimals = int(digits.max()) if len(digits) else 0
         if int(whole.str.len().max()) + decimals > 15:
-            return NumberFormat(decimals, "repr", na)
+            return NumberFormat(decimals, "repr" if (~has_point).any() else "repr1", na)
         if not has_point.any():
             return NumberFormat(0, "none", na)
         if has_point.all() and (digits == decimals).all():
