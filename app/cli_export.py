@@ -17,8 +17,8 @@ def _split(items: list[str] | None) -> list[str]:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from wakeline.core.io import read_points, write_csv
-    from wakeline.core.io.export_like import assign_target_ids, write_layout
+    from wakeline.core.io import read_points
+    from wakeline.core.io.export_like import export_like
     from wakeline.core.io.layout import load_layout, preset_layout
 
     if args.like and args.layout:
@@ -30,6 +30,11 @@ def _cmd_export(args: argparse.Namespace) -> int:
     if args.tz:
         from dataclasses import replace
 
+        if layout.time.kind == "text" and layout.time.suffix:
+            raise InputError(
+                f"the layout's times carry their zone ({layout.time.suffix}); "
+                "--tz applies to naive times only"
+            )
         layout = replace(layout, time=replace(layout.time, tz=args.tz))
     layout = layout.with_encoding(args.encoding)
     result = read_points(args.input)
@@ -39,18 +44,22 @@ def _cmd_export(args: argparse.Namespace) -> int:
             "(run `wakeline import` with --quarantine to see them)",
             file=sys.stderr,
         )
-    points, members = assign_target_ids(result.points, renumber=args.renumber)
-    rep = write_layout(points, layout, args.output, columns=_split(args.columns))
+    rep = export_like(
+        result.points,
+        layout,
+        args.output,
+        columns=_split(args.columns),
+        renumber=args.renumber,
+        members_path=args.members,
+    )
     msg = (
         f"exported {rep['rows']:,} rows as {rep['layout']} ({rep['encoding']}, "
         f"{len(rep['columns'])} columns)"
     )
     if rep["rows_made"]:
         msg += f"; {rep['rows_made']:,} rows made by Wakeline (operator columns left empty)"
-    if members is not None:
-        side = args.members or args.output.with_name(args.output.stem + ".members.csv")
-        write_csv(members, side)
-        msg += f"; {members['batch'].nunique():,} targets, members in {side}"
+    if rep["members"]:
+        msg += f"; {rep['targets']:,} targets, members in {rep['members']}"
     print(msg, file=sys.stderr)
     return 0
 

@@ -379,3 +379,26 @@ def test_real_files_round_trip_byte_for_byte(parts, tmp_path):
     out = tmp_path / "out.csv"
     write_layout(res.points, describe_layout(original, res.report), out)
     assert out.read_bytes() == original.read_bytes()
+
+
+def test_export_help(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["export", "--help"])
+    assert exc.value.code == 0
+    out = capsys.readouterr().out
+    for option in ("--like", "--layout", "--encoding", "--columns", "--renumber", "--tz"):
+        assert option in out
+
+
+def test_tz_refused_when_times_carry_their_zone(tmp_path, capsys):
+    src = LAYOUTS / "canonical.csv"
+    assert _run("export", src, "-o", tmp_path / "o.csv", "--like", src, "--tz", "+08:00") == 2
+    assert "naive times only" in capsys.readouterr().err
+
+
+def test_file_without_header_stays_without(write, tmp_path):
+    src = write("nohead.csv", "7;1664590563;122.5;30.25\n7;1664590593;122.5;30.5\n")
+    res = read_points(src, mapping=["batch=col1", "time=col2", "lon=col3", "lat=col4"])
+    out = tmp_path / "out.csv"
+    write_layout(res.points, describe_layout(src, res.report), out)
+    assert out.read_bytes() == src.read_bytes()

@@ -354,7 +354,8 @@ def write_layout(
         try:
             if layout.bom and layout.encoding.replace("-", "").lower() in ("utf8", "utf_8"):
                 fh.write(codecs.BOM_UTF8)
-            fh.write(encoder.encode(header_line + (layout.line_end if n else "")))
+            if layout.header:
+                fh.write(encoder.encode(header_line + (layout.line_end if n else "")))
             for start in range(0, n, CHUNK_ROWS):
                 part = points.iloc[start : start + CHUNK_ROWS]
                 cells = _quote(_cells(part, layout, extra), layout)
@@ -364,7 +365,7 @@ def write_layout(
                 if not last or layout.final_newline:
                     text += layout.line_end
                 fh.write(encoder.encode(text, final=last))
-            if not n and layout.final_newline:
+            if not n and layout.header and layout.final_newline:
                 fh.write(encoder.encode(layout.line_end, final=True))
         except UnicodeEncodeError as exc:
             raise InputError(
@@ -379,3 +380,66 @@ def write_layout(
         "columns": names,
         "rows_made": int(made_mask(points).sum()),
     }
+
+
+def export_like(
+    points: pd.DataFrame,
+    layout: Layout,
+    path,
+    columns: list[str] | None = None,
+    renumber: bool = False,
+    members_path=None,
+) -> dict:
+    """Give merged/fused targets their ids (:func:`assign_target_ids`), write ``points`` in
+    ``layout`` and, for merged or fused input, the members table beside (``members_path``,
+    default ``<path stem>.members.csv``). Returns the report of :func:`write_layout` plus
+    ``members`` (the sidecar's path, or None) and ``targets``."""
+    from pathlib import Path
+
+    from wakeline.core.io.writer import write_csv
+
+    ids, members = assign_target_ids(points, renumber=renumber)
+    report = write_layout(ids, layout, path, columns=columns)
+    report["members"] = None
+    report["targets"] = None
+    if members is not None:
+        path = Path(path)
+        side = Path(members_path) if members_path else path.with_name(path.stem + ".members.csv")
+        write_csv(members, side)
+        report["members"] = str(side)
+        report["targets"] = int(members["target"].nunique())
+    return report
+
+
+def layout_meta(path, report: dict | None = None) -> dict:
+    """The layout of an imported file as JSON-able data, for ``layer.meta["layout"]``
+    (stored in the project with the layer). ``report`` is the import report."""
+    from wakeline.core.io.layout import describe_layout
+
+    return describe_layout(path, report).to_dict()
+
+
+def layer_layout(layers, name: str) -> Layout:
+    """The layout a layer came in: its own ``meta["layout"]``, or that of the layer it was
+    made from (``meta["from"]``, followed up to the imported source). ``layers`` maps
+    layer names to objects with ``meta`` (:class:`wakeline.core.project.Layer`). Falls
+    back to describing the source file again (``meta["file"]``) when it is still there.
+    Raises :class:`InputError` when no layout can be found."""
+    from pathlib import Path
+
+    from wakeline.core.io.layout import describe_layout
+
+    seen = set()
+    current = name
+    while current in layers and current not in seen:
+        seen.add(current)
+        meta = layers[current].meta or {}
+        if meta.get("layout"):
+            return Layout.from_dict(meta["layout"])
+        if meta.get("file") and Path(meta["file"]).exists():
+            return describe_layout(meta["file"], meta.get("report"))
+        current = meta.get("from")
+    raise InputError(
+        f"{name}: no imported file behind this layer, so there is no layout to copy; "
+        "export as canonical CSV or choose a layout"
+    )

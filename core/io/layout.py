@@ -190,7 +190,8 @@ class Column:
 @dataclass(frozen=True)
 class Layout:
     """A file layout. ``quoting``: ``minimal`` (quote cells holding the delimiter, a quote
-    or a line break) or ``all``."""
+    or a line break) or ``all``; ``header``: whether the file starts with a header line;
+    ``source``: the file it was learnt from (empty for a preset)."""
 
     name: str
     columns: tuple[Column, ...]
@@ -202,6 +203,7 @@ class Layout:
     quoting: str = "minimal"
     final_newline: bool = True
     source: str = ""
+    header: bool = True
 
     def field_column(self, name: str) -> Column | None:
         """The column that carries canonical field ``name``, if any."""
@@ -322,6 +324,7 @@ def describe_layout(
         quoting=quoting,
         final_newline=final_newline,
         source=str(path),
+        header=sn.has_header,
     )
 
 
