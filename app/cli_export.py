@@ -50,6 +50,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
         args.output,
         columns=_split(args.columns),
         renumber=args.renumber,
+        prefer_sensor=args.id_sensor,
         members_path=args.members,
     )
     msg = (
@@ -112,6 +113,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         action="store_true",
         help="give merged/fused targets fresh batch numbers 1, 2, ... (default: the first "
         "member's batch)",
+    )
+    p.add_argument(
+        "--id-sensor",
+        metavar="SENSOR",
+        help="a fused target takes the batch of its member from this sensor when it has "
+        "one (the sensor whose system reads the file); default: the first member",
     )
     p.add_argument(
         "--members",

@@ -220,6 +220,9 @@ def test_fused_members_give_the_first_member_id():
         ["12", "R2", "7", "F1"],
         ["9", "R2", "9", "F2"],
     ]
+    ids, members = assign_target_ids(pts, prefer_sensor="R2")
+    assert ids["batch"].tolist() == ["7", "7", "9"]
+    assert members["batch"].tolist() == ["7", "7", "9"]
 
 
 def test_canonical_export_leaves_internal_columns_out(tmp_path):
@@ -369,8 +372,12 @@ def test_describe_layout_reports_unreadable_time(write):
     "parts",
     [
         ("dma-single-ship", "sample_ship.csv"),
+        ("dma-single-ship", "processed_dp.csv"),
         ("mtad-dtwcm", "original", "Scene-0.csv"),
+        ("mtad-dtwcm", "original", "Scene-100.csv"),
         ("mtad-v2-stats", "demo_pairs", "negative_track1.csv"),
+        ("greece-ais-annotated", "vessel_5_id_annotated.csv"),
+        ("oresund-encounters", "encounters.csv"),
     ],
 )
 def test_real_files_round_trip_byte_for_byte(parts, tmp_path):

@@ -226,16 +226,25 @@ def _first_member_order(points: pd.DataFrame, target: pd.Series) -> pd.DataFrame
     return first.reset_index().sort_values(["target", "time"], kind="stable")
 
 
+def _first(members: pd.DataFrame, by: str, prefer_sensor: str | None) -> pd.DataFrame:
+    """The first member row of every ``by`` group (a member of ``prefer_sensor`` first)."""
+    if prefer_sensor:
+        other = (members["member_sensor"] != prefer_sensor).to_numpy()
+        members = members.assign(_other=other).sort_values([by, "_other"], kind="stable")
+    return members.drop_duplicates(by).set_index(by)
+
+
 def assign_target_ids(
-    points: pd.DataFrame, renumber: bool = False
+    points: pd.DataFrame, renumber: bool = False, prefer_sensor: str | None = None
 ) -> tuple[pd.DataFrame, pd.DataFrame | None]:
     """Points whose ``sensor``/``batch`` carry one usable id per merged or fused target.
 
     Associated tables (a ``target`` column) and fused tables (a ``members`` column,
     ``sensor:batch+sensor:batch``) get, by default, the sensor and batch of the target's
     first member (the member track that starts first; for fused tables the first
-    listed); with ``renumber`` fresh batch numbers 1, 2, … in order of the targets'
-    start. Returns the new table and the members table (``MEMBER_COLUMNS``: the id
+    listed); a member of ``prefer_sensor`` comes first when the target has one (the
+    sensor whose system gets the file); with ``renumber`` fresh batch numbers 1, 2, … in
+    order of the targets' start. Returns the new table and the members table (``MEMBER_COLUMNS``: the id
     written, each member's sensor and batch, the target); None for other tables.
     """
     if "members" in points.columns:
@@ -247,7 +256,7 @@ def assign_target_ids(
                 s, _, b = label.partition(":")
                 rows.append((k, s, b))
         mem = pd.DataFrame(rows, columns=["k", "member_sensor", "member_batch"])
-        first = mem.drop_duplicates("k").set_index("k")
+        first = _first(mem, "k", prefer_sensor)
         code = pd.Index(uniq).get_indexer(labels)
         target = points["batch"].astype("str")
         new_sensor = first["member_sensor"].to_numpy()[code]
@@ -261,7 +270,7 @@ def assign_target_ids(
     elif "target" in points.columns:
         target = points["target"].astype("str")
         members = _first_member_order(points, target)
-        first = members.drop_duplicates("target").set_index("target")
+        first = _first(members, "target", prefer_sensor)
         new_sensor = first["member_sensor"].reindex(target).to_numpy()
         new_batch = first["member_batch"].reindex(target).to_numpy()
         code = pd.Index(first.index).get_indexer(target)
@@ -427,6 +436,7 @@ def export_like(
     columns: list[str] | None = None,
     renumber: bool = False,
     members_path=None,
+    prefer_sensor: str | None = None,
 ) -> dict:
     """Give merged/fused targets their ids (:func:`assign_target_ids`), write ``points`` in
     ``layout`` and, for merged or fused input, the members table beside (``members_path``,
@@ -436,7 +446,7 @@ def export_like(
 
     from wakeline.core.io.writer import write_csv
 
-    ids, members = assign_target_ids(points, renumber=renumber)
+    ids, members = assign_target_ids(points, renumber=renumber, prefer_sensor=prefer_sensor)
     report = write_layout(ids, layout, path, columns=columns)
     report["members"] = None
     report["targets"] = None
