@@ -459,12 +459,18 @@ def export_like(
     return report
 
 
-def layout_meta(path, report: dict | None = None) -> dict:
+def layout_meta(path, report: dict | None = None) -> dict | None:
     """The layout of an imported file as JSON-able data, for ``layer.meta["layout"]``
-    (stored in the project with the layer). ``report`` is the import report."""
+    (stored in the project with the layer). ``report`` is the import report. None when
+    the layout cannot be learnt (e.g. a time format only the importer's fallback parser
+    reads): the import must not fail for it, and the layer can still be exported in a
+    preset layout."""
     from wakeline.core.io.layout import describe_layout
 
-    return describe_layout(path, report).to_dict()
+    try:
+        return describe_layout(path, report).to_dict()
+    except (InputError, OSError, ValueError, KeyError):
+        return None
 
 
 def layer_layout(layers, name: str) -> Layout:
