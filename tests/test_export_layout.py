@@ -410,3 +410,19 @@ def test_file_without_header_stays_without(write, tmp_path):
     out = tmp_path / "out.csv"
     write_layout(res.points, describe_layout(src, res.report), out)
     assert out.read_bytes() == src.read_bytes()
+
+
+def test_semicolons_quoted_cells_and_no_final_newline_come_back(write, tmp_path):
+    src = write(
+        "quoted.csv",
+        '"track_id";"timestamp";"lat";"lon";"note"\r\n'
+        '"A7";"2022-10-01 02:16:03.5";"30.25";"122.5";"say ""hi"""\r\n'
+        '"A7";"2022-10-01 02:16:04";"30.5";"122.75";""',
+    )
+    res = read_points(src)
+    layout = describe_layout(src, res.report)
+    assert (layout.delimiter, layout.quoting, layout.final_newline) == (";", "all", False)
+    assert layout.time.pattern == "%Y-%m-%d %H:%M:%S" and layout.time.frac_trim == "zeros"
+    out = tmp_path / "out.csv"
+    write_layout(res.points, layout, out)
+    assert out.read_bytes() == src.read_bytes()

@@ -149,7 +149,8 @@ def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
         return pc.if_else(pa.array(ok), text, tf.number.na)
     if tf.tz not in ("UTC", "Z", "+00:00", ""):
         wall = pd.to_datetime(pd.Series(times), utc=True).dt.tz_convert(_zone(tf.tz))
-        ns = np.where(ok, (wall.dt.tz_localize(None) - pd.Timestamp(0)).to_numpy().view("int64"), 0)
+        local = (wall.dt.tz_localize(None) - pd.Timestamp(0)).dt.as_unit("ns")
+        ns = np.where(ok, local.to_numpy().view("int64"), 0)
     d = min(tf.frac_digits, 9)
     q = 10 ** (9 - d)
     ns = np.floor_divide(ns + q // 2, q) * q

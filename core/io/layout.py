@@ -277,7 +277,8 @@ def describe_layout(
     head = _raw_head(path, sn.compression)
     bom = head.startswith(b"\xef\xbb\xbf")
     cut = head.rfind(b"\n")
-    text = head[: cut + 1] if cut > 0 else head
+    whole = len(head) < (1 << 20)  # the whole file: keep a last line without newline
+    text = head if whole or cut <= 0 else head[: cut + 1]
     decoded = text.decode(sn.encoding, errors="replace").removeprefix("\ufeff")
     line_end = "\r\n" if "\r\n" in decoded else ("\r" if "\r" in decoded else "\n")
     lines = [ln for ln in re.split(r"\r\n|\r|\n", decoded) if ln.strip()]
@@ -288,9 +289,14 @@ def describe_layout(
     if len(raw_names) != len(sn.columns):
         raw_names = list(sn.columns)
     quoting = "all" if header_line and header_line.startswith('"') else "minimal"
-    final_newline = True
-    if len(head) < (1 << 20):
+    if whole:
         final_newline = head.endswith((b"\n", b"\r"))
+    elif sn.compression is None:
+        with open(path, "rb") as fh:
+            fh.seek(-1, 2)
+            final_newline = fh.read(1) in (b"\n", b"\r")
+    else:
+        final_newline = True  # not worth decompressing a large file to its end
 
     sample = pd.read_csv(
         io.StringIO("\n".join(lines[1 if sn.has_header else 0 : SAMPLE_ROWS + 1])),
