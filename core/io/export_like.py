@@ -12,6 +12,7 @@ its member batches.
 import codecs
 import datetime as dt
 import re
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -364,8 +365,6 @@ def layout_columns(points: pd.DataFrame, layout: Layout, columns: list[str] | No
         for c in points.columns
         if c not in names and c != "truth" and c not in INTERNAL_COLUMNS and c not in asked
     ]
-    from dataclasses import replace
-
     return replace(layout, columns=tuple(head + extras))
 
 

@@ -51,6 +51,8 @@ INTERNAL_COLUMNS = frozenset(
         "true_lat",
         "true_turn",
         "factor",
+        "maneuver_factor",
+        "is_maneuver",
         "rule",
         "action",
         "params",
