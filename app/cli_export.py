@@ -30,6 +30,10 @@ def _cmd_export(args: argparse.Namespace) -> int:
     if args.tz:
         from dataclasses import replace
 
+        from wakeline.core.io.export_like import check_zone
+
+        check_zone(args.tz)
+
         if layout.time.kind == "text" and layout.time.suffix:
             raise InputError(
                 f"the layout's times carry their zone ({layout.time.suffix}); "
@@ -37,6 +41,10 @@ def _cmd_export(args: argparse.Namespace) -> int:
             )
         layout = replace(layout, time=replace(layout.time, tz=args.tz))
     layout = layout.with_encoding(args.encoding)
+    if args.save_layout:
+        from wakeline.core.io import write_json
+
+        write_json(layout.to_dict(), args.save_layout)
     result = read_points(args.input)
     if result.report["rows_quarantined"]:
         print(
@@ -126,5 +134,11 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="M.csv",
         help="where to write the id → member batches table (default OUT.members.csv; only "
         "for merged or fused input)",
+    )
+    p.add_argument(
+        "--save-layout",
+        type=Path,
+        metavar="L.json",
+        help="also write the layout used as JSON (give it to --like later)",
     )
     p.set_defaults(func=_cmd_export)

@@ -274,8 +274,9 @@ def test_layout_survives_json_and_like_accepts_it(tmp_path):
     data = json.loads(json.dumps(layout.to_dict()))
     assert Layout.from_dict(data) == layout
     path = tmp_path / "dma.layout.json"
-    path.write_text(json.dumps(data))
     out = tmp_path / "out.csv"
+    assert _run("export", original, "-o", out, "--like", original, "--save-layout", path) == 0
+    assert Layout.from_dict(json.loads(path.read_text())) == layout
     assert _run("export", original, "-o", out, "--like", path) == 0
     assert out.read_bytes() == original.read_bytes()
 
@@ -300,6 +301,8 @@ def test_bad_arguments_exit_2_with_one_message(tmp_path, capsys):
     assert "not both" in capsys.readouterr().err
     assert _run("export", src, "-o", out, "--columns", "nosuch") == 2
     assert "no column nosuch" in capsys.readouterr().err
+    assert _run("export", src, "-o", out, "--layout", "dma", "--tz", "Mars/Base") == 2
+    assert "unknown time zone" in capsys.readouterr().err
     assert _run("export", src, "-o", out, "--like", tmp_path / "missing.csv") == 2
     assert "no such file" in capsys.readouterr().err
     bad_json = tmp_path / "x.json"

@@ -91,6 +91,17 @@ def _zone(name: str):
     return name
 
 
+def check_zone(name: str) -> None:
+    """Raise :class:`InputError` unless ``name`` is a time zone (IANA name, ``UTC`` or an
+    offset like ``+08:00``)."""
+    try:
+        pd.Timestamp(0, tz="UTC").tz_convert(_zone(name))
+    except Exception:  # noqa: BLE001 - pandas raises several kinds for a bad zone
+        raise InputError(
+            f"unknown time zone {name!r}; give an IANA name (Asia/Shanghai), UTC or +08:00"
+        ) from None
+
+
 def _epoch_ns(times: pd.Series) -> tuple[np.ndarray, np.ndarray]:
     """int64 ns since 1970 UTC (0 where missing) and a mask of present times."""
     t = pd.to_datetime(pd.Series(times), utc=True)
