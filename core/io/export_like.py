@@ -470,16 +470,17 @@ def export_like(
     return report
 
 
-def layout_meta(path, report: dict | None = None) -> dict | None:
+def layout_meta(path, report: dict | None = None, tz: str | None = None) -> dict | None:
     """The layout of an imported file as JSON-able data, for ``layer.meta["layout"]``
     (stored in the project with the layer). ``report`` is the import report. None when
     the layout cannot be learnt (e.g. a time format only the importer's fallback parser
     reads): the import must not fail for it, and the layer can still be exported in a
-    preset layout."""
+    preset layout. ``tz``: the zone naive times were read in (default: ``report["tz"]``,
+    else UTC)."""
     from wakeline.core.io.layout import describe_layout
 
     try:
-        return describe_layout(path, report).to_dict()
+        return describe_layout(path, report, tz=tz).to_dict()
     except (InputError, OSError, ValueError, KeyError):
         return None
 
