@@ -429,3 +429,14 @@ def test_semicolons_quoted_cells_and_no_final_newline_come_back(write, tmp_path)
     out = tmp_path / "out.csv"
     write_layout(res.points, layout, out)
     assert out.read_bytes() == src.read_bytes()
+
+
+def test_operator_column_named_target_is_not_taken_for_a_merge(write, tmp_path):
+    src = write(
+        "own.csv",
+        "batch,time,lon,lat,target\n7,1664590563,122.5,30.25,harbour\n8,1664590563,122.5,30.5,harbour\n",
+    )
+    out = tmp_path / "out.csv"
+    assert _run("export", src, "-o", out, "--like", src) == 0
+    assert out.read_bytes() == src.read_bytes()
+    assert not (tmp_path / "out.members.csv").exists()

@@ -457,7 +457,11 @@ def export_like(
 
     from wakeline.core.io.writer import write_csv
 
-    ids, members = assign_target_ids(points, renumber=renumber, prefer_sensor=prefer_sensor)
+    own = {c.key or c.name for c in layout.columns if c.field is None}
+    if own & {"target", "members"}:  # the operator's own columns, not a merge result
+        ids, members = points, None
+    else:
+        ids, members = assign_target_ids(points, renumber=renumber, prefer_sensor=prefer_sensor)
     report = write_layout(ids, layout, path, columns=columns)
     report["members"] = None
     report["targets"] = None
