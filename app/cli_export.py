@@ -24,7 +24,11 @@ def _cmd_export(args: argparse.Namespace) -> int:
     if args.like and args.layout:
         raise InputError("give either --like ORIGINAL or --layout NAME, not both")
     if args.like:
-        layout = load_layout(args.like, tz=args.tz)
+        from wakeline.core.io.formats import parse_mapping
+
+        layout = load_layout(
+            args.like, tz=args.tz, fmt=args.format, mapping=parse_mapping(args.map)
+        )
     else:
         layout = preset_layout(args.layout or "canonical")
     if args.tz:
@@ -75,6 +79,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``export`` subcommand to the ``wakeline`` parser."""
+    from wakeline.core.io.formats import FAMILIES
     from wakeline.core.io.layout import PRESETS
 
     p = sub.add_parser(
@@ -97,6 +102,18 @@ def register(sub: argparse._SubParsersAction) -> None:
         type=Path,
         metavar="ORIGINAL",
         help="copy the layout of this file (the file the data came from), or of a layout JSON",
+    )
+    p.add_argument(
+        "--format",
+        choices=FAMILIES,
+        default="auto",
+        help="the layout family of ORIGINAL, as given to import (default: auto-detect)",
+    )
+    p.add_argument(
+        "--map",
+        action="append",
+        metavar="FIELD=COLUMN",
+        help="ORIGINAL's column for canonical FIELD, as given to import; repeatable",
     )
     p.add_argument(
         "--layout",

@@ -440,3 +440,15 @@ def test_operator_column_named_target_is_not_taken_for_a_merge(write, tmp_path):
     assert _run("export", src, "-o", out, "--like", src) == 0
     assert out.read_bytes() == src.read_bytes()
     assert not (tmp_path / "out.members.csv").exists()
+
+
+def test_like_takes_the_mapping_the_import_was_given(write, tmp_path):
+    src = write("odd.csv", "boat,when,x,y\nA,1664590563,122.5,30.25\nA,1664590573,122.5,30.5\n")
+    mapping = ["batch=boat", "time=when", "lon=x", "lat=y"]
+    canonical, out = tmp_path / "c.csv", tmp_path / "out.csv"
+    assert _run("import", src, "-o", canonical, *(f"--map={m}" for m in mapping)) == 0
+    assert _run("export", canonical, "-o", out, "--like", src) == 2  # cannot tell the layout
+    assert (
+        _run("export", canonical, "-o", out, "--like", src, *(f"--map={m}" for m in mapping)) == 0
+    )
+    assert out.read_bytes() == src.read_bytes()

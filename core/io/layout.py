@@ -25,7 +25,7 @@ from pathlib import Path
 import pandas as pd
 
 from wakeline.core.errors import InputError
-from wakeline.core.io.formats import FIELDS, resolve
+from wakeline.core.io.formats import resolve
 from wakeline.core.io.sniff import sniff
 from wakeline.core.schema import CANONICAL_COLUMNS
 
@@ -436,8 +436,14 @@ def preset_layout(name: str) -> Layout:
         raise InputError(f"unknown layout {name!r}; choose one of {', '.join(PRESETS)}") from None
 
 
-def load_layout(path: str | Path, tz: str | None = None) -> Layout:
-    """A layout from a file: a layout JSON (``Layout.to_dict``) or the original data file."""
+def load_layout(
+    path: str | Path,
+    tz: str | None = None,
+    fmt: str = "auto",
+    mapping: dict[str, str] | None = None,
+) -> Layout:
+    """A layout from a file: a layout JSON (``Layout.to_dict``) or the original data file
+    (read as an import with ``fmt`` and ``mapping`` would read it)."""
     import json
 
     path = Path(path)
@@ -448,12 +454,10 @@ def load_layout(path: str | Path, tz: str | None = None) -> Layout:
             raise InputError(f"{path}: no such file") from None
         except (ValueError, KeyError, TypeError) as exc:
             raise InputError(f"{path}: not a Wakeline layout file ({exc})") from None
-    layout = describe_layout(path, tz=tz)
-    return layout
+    return describe_layout(path, fmt=fmt, mapping=mapping, tz=tz)
 
 
 __all__ = [
-    "FIELDS",
     "INTERNAL_COLUMNS",
     "PRESETS",
     "Column",
