@@ -61,6 +61,7 @@ class JobsMixin:
     def load_files(self, paths: list[Path], options: dict | None = None) -> int:
         """Import files (one job, one after the other); each becomes a source layer."""
         from wakeline.core.io import read_points
+        from wakeline.core.io.export_like import layout_meta
 
         options = options or {}
         first = len(self.session.layers)
@@ -82,15 +83,17 @@ class JobsMixin:
                     continue
                 sub(0.7, f"hashing {path.name}")
                 sha = file_hash(path)
+                sub(0.75, "learning the layout for export")
+                layout = layout_meta(path, result.report)
                 sub(0.8, "preparing the map")
                 view = prepare_view(result.points, "source", color, path.name, None, size_px)
-                done.append((path, result, sha, view, color))
+                done.append((path, result, sha, view, color, layout))
             return ("import", done, errors)
 
         name = paths[0].name if len(paths) == 1 else f"{len(paths)} files"
         return self._start(f"open {name}", job, ("import", name))
 
-    def _apply_import(self, path: Path, result, sha: str, view, color: str) -> None:
+    def _apply_import(self, path: Path, result, sha: str, view, color: str, layout) -> None:
         rep = result.report
         self.log_message(
             f"{path.name}: {rep['rows_imported']:,} rows in {rep['tracks']:,} tracks "
@@ -100,7 +103,7 @@ class JobsMixin:
             self.log_message(f"    quarantined {count:,}: {reason}")
         self.session.sources.append(Source(str(path.resolve()), sha))
         quarantine = result.quarantine.head(QUARANTINE_KEPT).astype(str).to_dict("records")
-        meta = {"file": str(path), "report": rep, "quarantine": quarantine}
+        meta = {"file": str(path), "report": rep, "quarantine": quarantine, "layout": layout}
         lid = self.session.new_id()
         self.views[lid] = view
         self.session.add_layer(path.name, "source", view.points, meta, color=color, layer_id=lid)
@@ -293,6 +296,9 @@ class JobsMixin:
         layer = self.active_layer()
         if layer is None:
             return
+        if kind == "as_came_in":
+            self.export_as_came_in()
+            return
         filt = "GeoJSON (*.geojson)" if kind == "geojson" else "CSV (*.csv)"
         suffix = ".geojson" if kind == "geojson" else ".csv"
         name = layer.name.replace(" · ", "_") + suffix
@@ -324,6 +330,40 @@ class JobsMixin:
                 export_geojson(points, path, view.maneuvers)
             else:  # the same table and writer as `wakeline maneuvers`
                 write_table("maneuvers", table, path)
+            return ("export", layer.name, path)
+
+        return self._start("export", job, ("export", layer.name))
+
+    def export_as_came_in(self, path: Path | None = None) -> int | None:
+        """Export ▸ As it came in: the active layer in its import's layout (issue 19),
+        written in the worker."""
+        from wakeline.core.io.export_like import export_like, layer_layout
+
+        layer = self.active_layer()
+        if layer is None:
+            return None
+        try:
+            layout = layer_layout(self.session.layers, layer.id)
+        except InputError as exc:
+            QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), str(exc))
+            self.log_message(f"{self.tr('Error')}: {exc}")
+            return None
+        if path is None:
+            src = Path(layout.source) if layout.source else Path("tracks.csv")
+            suggestion = f"{layer.name.replace(' · ', '_')}{src.suffix or '.csv'}"
+            chosen, _ = QtWidgets.QFileDialog.getSaveFileName(
+                self,
+                self.tr("Export as it came in"),
+                suggestion,
+                f"{layout.name} (*{src.suffix or '.csv'})",
+            )
+            if not chosen:
+                return None
+            path = Path(chosen)
+        points = layer.points
+
+        def job(_progress):
+            export_like(points, layout, path)
             return ("export", layer.name, path)
 
         return self._start("export", job, ("export", layer.name))

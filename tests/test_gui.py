@@ -389,3 +389,26 @@ def test_pipeline_presets_are_the_cli_json(window, tmp_path):
     window.params.reset()
     assert window.load_pipeline(path) == []
     assert window.params.params("maneuver").threshold_deg == 22.0
+
+
+def test_export_as_it_came_in_follows_lineage(window, tmp_path):
+    """A result layer is written in the layout of the file its source came from."""
+    src = tmp_path / "radar.csv"
+    df = simulate.demo_scene().head(300)
+    lines = ["SendShipNO,SendTime,nNO,lon,lat"]
+    secs = (df["time"] - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds().astype(int)
+    for s, t, b, lon, lat in zip(
+        df["sensor"], secs, df["batch"], df["lon"], df["lat"], strict=True
+    ):
+        lines.append(f"{s},{t},{b},{lon:.6f},{lat:.6f}")
+    src.write_text("\n".join(lines) + "\n")
+    lid = load(window, src)
+    assert window.layers[lid].meta.get("layout")
+    window.run_step("clean")
+    wait_for_jobs(window)
+    cleaned = window.session.find(lid, "clean", "cleaned")
+    window.select_layer(cleaned.id)
+    out = tmp_path / "back.csv"
+    assert window.export_as_came_in(out) is not None
+    wait_for_jobs(window)
+    assert out.read_text().splitlines()[0] == "SendShipNO,SendTime,nNO,lon,lat"

@@ -1,0 +1,161 @@
+"""``wakeline export``: points back in the operator's own layout (SPEC §8, issue 19).
+
+``build_parser`` calls :func:`register` once.
+"""
+
+import argparse
+import sys
+from pathlib import Path
+
+from wakeline.core.errors import InputError
+
+EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
+
+
+def _split(items: list[str] | None) -> list[str]:
+    return [c.strip() for item in items or () for c in item.split(",") if c.strip()]
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from wakeline.core.io import read_points
+    from wakeline.core.io.export_like import export_like
+    from wakeline.core.io.layout import load_layout, preset_layout
+
+    if args.like and args.layout:
+        raise InputError("give either --like ORIGINAL or --layout NAME, not both")
+    if args.like:
+        from wakeline.core.io.formats import parse_mapping
+
+        layout = load_layout(
+            args.like, tz=args.tz, fmt=args.format, mapping=parse_mapping(args.map)
+        )
+    else:
+        layout = preset_layout(args.layout or "canonical")
+    if args.tz:
+        from dataclasses import replace
+
+        from wakeline.core.io.export_like import check_zone
+
+        check_zone(args.tz)
+
+        if layout.time.kind == "text" and layout.time.suffix:
+            raise InputError(
+                f"the layout's times carry their zone ({layout.time.suffix}); "
+                "--tz applies to naive times only"
+            )
+        layout = replace(layout, time=replace(layout.time, tz=args.tz))
+    layout = layout.with_encoding(args.encoding)
+    if args.save_layout:
+        from wakeline.core.io import write_json
+
+        write_json(layout.to_dict(), args.save_layout)
+    result = read_points(args.input)
+    if result.report["rows_quarantined"]:
+        print(
+            f"{args.input}: {result.report['rows_quarantined']:,} rows quarantined on reading "
+            "(run `wakeline import` with --quarantine to see them)",
+            file=sys.stderr,
+        )
+    rep = export_like(
+        result.points,
+        layout,
+        args.output,
+        columns=_split(args.columns),
+        renumber=args.renumber,
+        prefer_sensor=args.id_sensor,
+        members_path=args.members,
+    )
+    msg = (
+        f"exported {rep['rows']:,} rows as {rep['layout']} ({rep['encoding']}, "
+        f"{len(rep['columns'])} columns)"
+    )
+    if rep["rows_made"]:
+        msg += f"; {rep['rows_made']:,} rows made by Wakeline (operator columns left empty)"
+    if rep["members"]:
+        msg += f"; {rep['targets']:,} targets, members in {rep['members']}"
+    print(msg, file=sys.stderr)
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``export`` subcommand to the ``wakeline`` parser."""
+    from wakeline.core.io.formats import FAMILIES
+    from wakeline.core.io.layout import PRESETS
+
+    p = sub.add_parser(
+        "export",
+        help="write points back in the operator's own layout, encoding and time format",
+        description="Write the points of IN (any file Wakeline reads: cleaned, compressed, "
+        "merged, fused) in a chosen layout. With --like ORIGINAL the original file's column "
+        "names and order, delimiter, encoding, time format, number precision and the columns "
+        "Wakeline did not use are copied (the latter from the columns the import carried "
+        "through; left empty for points Wakeline made, e.g. gap fills). Merged and fused "
+        "tracks carry one id per target in the batch column (the first member's batch, or "
+        "fresh numbers with --renumber), with a members CSV beside. Wakeline's internal "
+        "columns are left out unless named in --columns.",
+        epilog=EPILOG,
+    )
+    p.add_argument("input", type=Path, help="points to export (canonical CSV or any layout)")
+    p.add_argument("-o", "--output", type=Path, required=True, help="file to write")
+    p.add_argument(
+        "--like",
+        type=Path,
+        metavar="ORIGINAL",
+        help="copy the layout of this file (the file the data came from), or of a layout JSON",
+    )
+    p.add_argument(
+        "--format",
+        choices=FAMILIES,
+        default="auto",
+        help="the layout family of ORIGINAL, as given to import (default: auto-detect)",
+    )
+    p.add_argument(
+        "--map",
+        action="append",
+        metavar="FIELD=COLUMN",
+        help="ORIGINAL's column for canonical FIELD, as given to import; repeatable",
+    )
+    p.add_argument(
+        "--layout",
+        choices=tuple(PRESETS),
+        help="a built-in layout (default canonical when --like is not given)",
+    )
+    p.add_argument("--encoding", help="text encoding to write (default: the layout's)")
+    p.add_argument(
+        "--tz",
+        metavar="ZONE",
+        help="write naive times in this zone (IANA name or +08:00; default: the zone "
+        "the original was read in, UTC)",
+    )
+    p.add_argument(
+        "--columns",
+        action="append",
+        metavar="COL[,COL...]",
+        help="more columns of IN to append (internal ones included, e.g. target,interpolated)",
+    )
+    p.add_argument(
+        "--renumber",
+        action="store_true",
+        help="give merged/fused targets fresh batch numbers 1, 2, ... (default: the first "
+        "member's batch)",
+    )
+    p.add_argument(
+        "--id-sensor",
+        metavar="SENSOR",
+        help="a fused target takes the batch of its member from this sensor when it has "
+        "one (the sensor whose system reads the file); default: the first member",
+    )
+    p.add_argument(
+        "--members",
+        type=Path,
+        metavar="M.csv",
+        help="where to write the id → member batches table (default OUT.members.csv; only "
+        "for merged or fused input)",
+    )
+    p.add_argument(
+        "--save-layout",
+        type=Path,
+        metavar="L.json",
+        help="also write the layout used as JSON (give it to --like later)",
+    )
+    p.set_defaults(func=_cmd_export)

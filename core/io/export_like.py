@@ -1,0 +1,516 @@
+"""Write points in a file layout (:mod:`wakeline.core.io.layout`): the operator's own
+columns, encoding, delimiter, time format and number precision.
+
+Every column is formatted as a whole (Arrow string kernels on integer-scaled values),
+never per row in Python. Columns Wakeline did not read are written from the extra
+columns the import carried through; points Wakeline made (``interpolated`` rows: gap
+fills) leave them empty. Merged and fused tracks get one id per target in the layout's
+batch column (see :func:`assign_target_ids`) and a members table mapping each new id to
+its member batches.
+"""
+
+import codecs
+import datetime as dt
+import re
+from dataclasses import replace
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.compute as pc
+
+from wakeline.core.errors import InputError
+from wakeline.core.io.layout import (
+    INTERNAL_COLUMNS,
+    NUMBER_FIELDS,
+    Column,
+    Layout,
+    NumberFormat,
+    TimeFormat,
+)
+from wakeline.core.io.writer import atomic_path
+from wakeline.core.schema import CANONICAL_COLUMNS, EPOCH
+
+#: Rows formatted and encoded at a time (bounds the memory of an export).
+CHUNK_ROWS = 500_000
+MEMBER_COLUMNS = ("sensor", "batch", "member_sensor", "member_batch", "target")
+_CANONICAL = frozenset((*CANONICAL_COLUMNS, "truth"))
+
+
+def _join(*parts) -> pa.Array:
+    return pc.binary_join_element_wise(*parts, "")
+
+
+def _digits(scaled: np.ndarray, neg: np.ndarray, decimals: int, trim: str) -> pa.Array:
+    """Text of ``±scaled / 10**decimals`` (``scaled`` ≥ 0, int64) with ``decimals`` digits."""
+    unit = 10**decimals
+    whole = pc.cast(pa.array(scaled // unit), pa.string())
+    if decimals > 0:
+        frac = pc.utf8_lpad(pc.cast(pa.array(scaled % unit), pa.string()), decimals, "0")
+        if trim == "none":
+            text = _join(whole, ".", frac)
+        else:
+            short = pc.utf8_rtrim(frac, "0")
+            empty = pc.equal(pc.utf8_length(short), 0)
+            if trim == "keep1":
+                text = _join(whole, ".", pc.if_else(empty, "0", short))
+            else:
+                text = pc.if_else(empty, whole, _join(whole, ".", short))
+    else:
+        text = whole
+    return pc.if_else(pa.array(neg), _join("-", text), text)
+
+
+def format_numbers(values: np.ndarray, fmt: NumberFormat) -> pa.Array:
+    """Numbers as text in ``fmt``; NaN as ``fmt.na``."""
+    x = np.asarray(values, dtype="float64")
+    finite = np.isfinite(x)
+    with np.errstate(invalid="ignore", over="ignore"):
+        big = np.abs(np.where(finite, x, 0.0)) * 10.0**fmt.decimals
+    if fmt.trim in ("repr", "repr1") or (big > 4e15).any():
+        text = pc.cast(pa.array(np.where(finite, x, 0.0)), pa.string())
+        sci = np.flatnonzero(np.asarray(pc.match_substring(text, "e")))
+        if len(sci):  # rare: very small or large values, written without an exponent
+            fixed = [np.format_float_positional(v, trim="-") for v in x[sci]]
+            text = pc.replace_with_mask(
+                text, pa.array(np.isin(np.arange(len(x)), sci)), pa.array(fixed, pa.string())
+            )
+        if fmt.trim == "repr1":
+            text = pc.if_else(pc.match_substring(text, "."), text, _join(text, ".0"))
+    else:
+        scaled = np.rint(big).astype("int64")
+        text = _digits(scaled, (x < 0) & (scaled != 0), fmt.decimals, fmt.trim)
+    return pc.if_else(pa.array(finite), text, fmt.na)
+
+
+def _zone(name: str):
+    m = re.match(r"^([+-])(\d{2}):?(\d{2})$", name)
+    if m:
+        sign = 1 if m[1] == "+" else -1
+        return dt.timezone(sign * dt.timedelta(hours=int(m[2]), minutes=int(m[3])))
+    return name
+
+
+def check_zone(name: str) -> None:
+    """Raise :class:`InputError` unless ``name`` is a time zone (IANA name, ``UTC`` or an
+    offset like ``+08:00``)."""
+    try:
+        pd.Timestamp(0, tz="UTC").tz_convert(_zone(name))
+    except Exception:  # noqa: BLE001 - pandas raises several kinds for a bad zone
+        raise InputError(
+            f"unknown time zone {name!r}; give an IANA name (Asia/Shanghai), UTC or +08:00"
+        ) from None
+
+
+def _epoch_ns(times: pd.Series) -> tuple[np.ndarray, np.ndarray]:
+    """int64 ns since 1970 UTC (0 where missing) and a mask of present times."""
+    t = pd.to_datetime(pd.Series(times), utc=True)
+    ok = t.notna().to_numpy()
+    delta = (t - EPOCH).dt.as_unit("ns").to_numpy()
+    ns = np.where(ok, delta.view("int64"), 0)
+    return ns, ok
+
+
+def _round_div(ns: np.ndarray, q: int) -> tuple[np.ndarray, np.ndarray]:
+    """|ns| / q rounded half up (int64), and the sign mask."""
+    neg = ns < 0
+    a = np.abs(ns)
+    return (a + q // 2) // q, neg
+
+
+_ISO_SLICES = {"Y": (0, 4), "m": (5, 7), "d": (8, 10), "H": (11, 13), "M": (14, 16), "S": (17, 19)}
+#: Seconds since 1970 of years 1000 and 10000: the span where the ISO text has fixed width.
+_FIXED_WIDTH = (-30610224000, 253402300800)
+
+
+def _strftime(seconds: np.ndarray, pattern: str) -> pa.Array:
+    """``pattern`` (``%Y %m %d %H %M %S`` and literal text) for whole seconds since 1970.
+
+    Cuts the fields out of Arrow's ISO text of the timestamps (a fast cast), which is
+    several times faster than Arrow's strftime; other patterns use strftime."""
+    arr = pa.array(seconds, pa.timestamp("s"))
+    tokens = re.split(r"(%.)", pattern)
+    codes = [t[1] for t in tokens if t.startswith("%") and len(t) == 2]
+    in_range = len(seconds) == 0 or (
+        seconds.min() >= _FIXED_WIDTH[0] and seconds.max() < _FIXED_WIDTH[1]
+    )
+    if not in_range or any(c not in _ISO_SLICES for c in codes) or not codes:
+        return pc.strftime(arr, format=pattern)
+    iso = pc.cast(arr, pa.string())
+    parts = []
+    for tok in tokens:
+        if tok.startswith("%") and len(tok) == 2:
+            a, b = _ISO_SLICES[tok[1]]
+            parts.append(pc.utf8_slice_codeunits(iso, a, b))
+        elif tok:
+            parts.append(tok)
+    return _join(*parts) if len(parts) > 1 else parts[0]
+
+
+def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
+    """Times as text in ``tf``; missing times as empty cells."""
+    ns, ok = _epoch_ns(times)
+    if tf.kind == "unix":
+        unit_ns = 1_000_000_000 // tf.scale
+        d = tf.number.decimals
+        if not tf.number.trim.startswith("repr") and 10**d <= unit_ns:
+            scaled, neg = _round_div(ns, unit_ns // 10**d)
+            text = _digits(scaled, neg & (scaled != 0), d, tf.number.trim)
+        else:
+            text = format_numbers(ns / unit_ns, tf.number)
+        return pc.if_else(pa.array(ok), text, tf.number.na)
+    if tf.tz not in ("UTC", "Z", "+00:00", ""):
+        wall = pd.to_datetime(pd.Series(times), utc=True).dt.tz_convert(_zone(tf.tz))
+        local = (wall.dt.tz_localize(None) - pd.Timestamp(0)).dt.as_unit("ns")
+        ns = np.where(ok, local.to_numpy().view("int64"), 0)
+    d = min(tf.frac_digits, 9)
+    q = 10 ** (9 - d)
+    ns = np.floor_divide(ns + q // 2, q) * q
+    seconds = np.floor_divide(ns, 1_000_000_000)
+    base = _strftime(seconds, tf.pattern)
+    if d > 0:
+        frac = (ns - seconds * 1_000_000_000) // q
+        digits = _digits(frac, np.zeros(len(frac), bool), d, tf.frac_trim)
+        # _digits writes "0.123": keep what follows "0".
+        text = pc.if_else(
+            pc.match_substring(digits, "."),
+            _join(base, pc.utf8_slice_codeunits(digits, 1)),
+            base,
+        )
+    else:
+        text = base
+    if tf.suffix:
+        text = _join(text, tf.suffix)
+    return pc.if_else(pa.array(ok), text, "")
+
+
+def _text(series: pd.Series) -> pa.Array:
+    """Any column as text; missing values as empty cells."""
+    if isinstance(series.dtype, pd.DatetimeTZDtype) or pd.api.types.is_datetime64_any_dtype(
+        series.dtype
+    ):
+        return format_times(series, TimeFormat())
+    if pd.api.types.is_float_dtype(series.dtype):
+        return format_numbers(series.to_numpy(dtype="float64"), NumberFormat(17, "repr"))
+    arr = pa.array(series.astype("str").to_numpy(dtype=object), pa.string(), from_pandas=True)
+    return pc.fill_null(arr, "")
+
+
+def _blank(n: int) -> pa.Array:
+    return pa.repeat(pa.scalar("", pa.string()), n)
+
+
+def made_mask(points: pd.DataFrame) -> np.ndarray:
+    """Rows Wakeline made (``interpolated`` true): gap fills and spline points."""
+    if "interpolated" not in points.columns:
+        return np.zeros(len(points), dtype=bool)
+    col = points["interpolated"]
+    if pd.api.types.is_bool_dtype(col.dtype) or pd.api.types.is_numeric_dtype(col.dtype):
+        return col.fillna(0).astype(bool).to_numpy()
+    return col.astype("str").str.lower().isin(["true", "1", "yes"]).to_numpy()
+
+
+def _extra_key(points: pd.DataFrame, column: Column) -> str | None:
+    key = column.key or column.name
+    for name in (f"{key}_src", key) if key in _CANONICAL else (key, f"{key}_src"):
+        if name in points.columns:
+            return name
+    return None
+
+
+def _first_member_order(points: pd.DataFrame, target: pd.Series) -> pd.DataFrame:
+    """Member tracks of every target, each target's members ordered by first time."""
+    batch = points["batch"].astype("str")
+    if "source_batch" in points.columns:
+        src = points["source_batch"].astype("str").fillna("")
+        batch = batch.where((src == "") | (src == "nan"), src)
+        made = made_mask(points)
+    else:
+        made = np.zeros(len(points), dtype=bool)
+    df = pd.DataFrame(
+        {
+            "target": target.astype("str").to_numpy(),
+            "member_sensor": points["sensor"].astype("str").to_numpy(),
+            "member_batch": batch.to_numpy(),
+            "time": pd.to_datetime(points["time"], utc=True).to_numpy(),
+        }
+    )[~made]
+    first = df.groupby(["target", "member_sensor", "member_batch"], sort=False)["time"].min()
+    return first.reset_index().sort_values(["target", "time"], kind="stable")
+
+
+def _first(members: pd.DataFrame, by: str, prefer_sensor: str | None) -> pd.DataFrame:
+    """The first member row of every ``by`` group (a member of ``prefer_sensor`` first)."""
+    if prefer_sensor:
+        other = (members["member_sensor"] != prefer_sensor).to_numpy()
+        members = members.assign(_other=other).sort_values([by, "_other"], kind="stable")
+    return members.drop_duplicates(by).set_index(by)
+
+
+def assign_target_ids(
+    points: pd.DataFrame, renumber: bool = False, prefer_sensor: str | None = None
+) -> tuple[pd.DataFrame, pd.DataFrame | None]:
+    """Points whose ``sensor``/``batch`` carry one usable id per merged or fused target.
+
+    Associated tables (a ``target`` column) and fused tables (a ``members`` column,
+    ``sensor:batch+sensor:batch``) get, by default, the sensor and batch of the target's
+    first member (the member track that starts first; for fused tables the first
+    listed); a member of ``prefer_sensor`` comes first when the target has one (the
+    sensor whose system gets the file); with ``renumber`` fresh batch numbers 1, 2, … in
+    order of the targets' start. Returns the new table and the members table (``MEMBER_COLUMNS``: the id
+    written, each member's sensor and batch, the target); None for other tables.
+    """
+    if "members" in points.columns:
+        labels = points["members"].astype("str")
+        uniq = pd.unique(labels)
+        rows = []
+        for k, text in enumerate(uniq):  # one per target, not per point
+            for label in str(text).split("+"):
+                s, _, b = label.partition(":")
+                rows.append((k, s, b))
+        mem = pd.DataFrame(rows, columns=["k", "member_sensor", "member_batch"])
+        first = _first(mem, "k", prefer_sensor)
+        code = pd.Index(uniq).get_indexer(labels)
+        target = points["batch"].astype("str")
+        new_sensor = first["member_sensor"].to_numpy()[code]
+        new_batch = first["member_batch"].to_numpy()[code]
+        order_time = pd.to_datetime(points["time"], utc=True)
+        mem["target"] = (
+            target.groupby(code).first().reindex(mem["k"]).to_numpy()
+            if len(points)
+            else np.zeros(0, dtype=object)
+        )
+    elif "target" in points.columns:
+        target = points["target"].astype("str")
+        members = _first_member_order(points, target)
+        first = _first(members, "target", prefer_sensor)
+        new_sensor = first["member_sensor"].reindex(target).to_numpy()
+        new_batch = first["member_batch"].reindex(target).to_numpy()
+        code = pd.Index(first.index).get_indexer(target)
+        order_time = pd.to_datetime(points["time"], utc=True)
+        mem = members.rename(columns={"time": "_t"})
+        mem["k"] = pd.Index(first.index).get_indexer(mem["target"])
+    else:
+        return points, None
+    out = points.copy()
+    if renumber:
+        start = pd.Series(order_time.to_numpy()).groupby(code).min().sort_values(kind="stable")
+        number = pd.Series(np.arange(1, len(start) + 1), index=start.index)
+        new_batch = number.reindex(code).astype("str").to_numpy()
+        mem_batch = number.reindex(mem["k"]).astype("str").to_numpy()
+    else:
+        mem_batch = pd.Series(new_batch).groupby(code).first().reindex(mem["k"]).to_numpy()
+    mem_sensor = pd.Series(new_sensor).groupby(code).first().reindex(mem["k"]).to_numpy()
+    out["sensor"] = pd.Series(new_sensor, index=out.index, dtype="str")
+    out["batch"] = pd.Series(new_batch, index=out.index, dtype="str")
+    table = pd.DataFrame(
+        {
+            "sensor": mem_sensor,
+            "batch": mem_batch,
+            "member_sensor": mem["member_sensor"].to_numpy(),
+            "member_batch": mem["member_batch"].to_numpy(),
+            "target": mem["target"].to_numpy(),
+        }
+    ).astype("str")
+    return out, table
+
+
+def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Array]:
+    made = made_mask(points)
+    any_made = bool(made.any())
+    cells = []
+    for col in layout.columns:
+        if col.field == "time":
+            cells.append(format_times(points["time"], layout.time))
+        elif col.field in NUMBER_FIELDS:
+            values = (
+                points[col.field].to_numpy(dtype="float64")
+                if col.field in points.columns
+                else np.full(len(points), np.nan)
+            )
+            cells.append(format_numbers(values, col.number or NumberFormat()))
+        elif col.field is not None:
+            cells.append(
+                _text(points[col.field]) if col.field in points.columns else _blank(len(points))
+            )
+        else:
+            key = _extra_key(points, col)
+            arr = _text(points[key]) if key else _blank(len(points))
+            if any_made:
+                arr = pc.if_else(pa.array(made), "", arr)
+            cells.append(arr)
+    cells.extend(_text(points[name]) for name in extra)
+    return cells
+
+
+def _quote(cells: list[pa.Array], layout: Layout, text: list[bool] | None = None) -> list[pa.Array]:
+    """Cells quoted as the layout does; ``text`` marks the cells that may need it (numbers
+    and times never hold a quote, a line break or a delimiter other than ``.``)."""
+    if layout.quoting == "all":
+        return [_join('"', pc.replace_substring(c, '"', '""'), '"') for c in cells]
+    pattern = "[" + re.escape(layout.delimiter) + '"\r\n]'
+    out = []
+    for k, c in enumerate(cells):
+        if text is not None and not text[k] and layout.delimiter not in ".:-/+ ":
+            out.append(c)
+            continue
+        risky = pc.match_substring_regex(c, pattern)
+        if pc.any(risky).as_py():
+            c = pc.if_else(risky, _join('"', pc.replace_substring(c, '"', '""'), '"'), c)
+        out.append(c)
+    return out
+
+
+def layout_columns(points: pd.DataFrame, layout: Layout, columns: list[str] | None) -> Layout:
+    """For the canonical layout: the operator's extra columns present in ``points`` (not
+    Wakeline's internal ones) after the canonical ones. Other layouts are unchanged."""
+    if layout.name != "canonical" or layout.source:
+        return layout
+    names = [c.name for c in layout.columns]
+    head = [c for c in layout.columns if c.field in points.columns or c.field == "time"]
+    if "truth" in points.columns:
+        head.append(Column("truth", "truth", key="truth"))
+    asked = set(columns or ())
+    extras = [
+        Column(c, None, key=c)
+        for c in points.columns
+        if c not in names and c != "truth" and c not in INTERNAL_COLUMNS and c not in asked
+    ]
+    return replace(layout, columns=tuple(head + extras))
+
+
+def write_layout(
+    points: pd.DataFrame,
+    layout: Layout,
+    path,
+    columns: list[str] | None = None,
+) -> dict:
+    """Write ``points`` (in their row order) in ``layout``, atomically.
+
+    ``columns`` names more columns of ``points`` to append (internal ones included).
+    Returns a small report: rows written, columns, encoding, rows Wakeline made.
+    Raises :class:`InputError` for an unknown column or text the encoding cannot hold.
+    """
+    extra = list(columns or ())
+    missing = [c for c in extra if c not in points.columns]
+    if missing:
+        raise InputError(
+            f"--columns: no column {', '.join(missing)}; columns are {', '.join(points.columns)}"
+        )
+    layout = layout_columns(points, layout, extra)
+    names = [c.name for c in layout.columns] + extra
+    header = _quote([pa.array([n], pa.string()) for n in names], layout)
+    header_line = layout.delimiter.join(h[0].as_py() for h in header)
+    try:
+        encoder = codecs.getincrementalencoder(layout.encoding)()
+    except LookupError:
+        raise InputError(f"unknown encoding {layout.encoding!r}") from None
+    n = len(points)
+    is_text = [c.field not in (*NUMBER_FIELDS, "time") for c in layout.columns]
+    is_text += [True] * len(extra)
+    with atomic_path(path) as tmp, open(tmp, "wb") as fh:
+        try:
+            if layout.bom and layout.encoding.replace("-", "").lower() in ("utf8", "utf_8"):
+                fh.write(codecs.BOM_UTF8)
+            if layout.header:
+                fh.write(encoder.encode(header_line + (layout.line_end if n else "")))
+            for start in range(0, n, CHUNK_ROWS):
+                part = points.iloc[start : start + CHUNK_ROWS]
+                cells = _quote(_cells(part, layout, extra), layout, is_text)
+                rows = pc.binary_join_element_wise(*cells, layout.delimiter)
+                last = start + CHUNK_ROWS >= n
+                text = layout.line_end.join(rows.to_pylist())
+                if not last or layout.final_newline:
+                    text += layout.line_end
+                fh.write(encoder.encode(text, final=last))
+            if not n and layout.header and layout.final_newline:
+                fh.write(encoder.encode(layout.line_end, final=True))
+        except UnicodeEncodeError as exc:
+            raise InputError(
+                f"{path}: {exc.object[exc.start : exc.end]!r} cannot be written in "
+                f"{layout.encoding}; choose another --encoding (utf-8, gb18030)"
+            ) from None
+    return {
+        "output": str(path),
+        "layout": layout.name,
+        "encoding": layout.encoding,
+        "rows": n,
+        "columns": names,
+        "rows_made": int(made_mask(points).sum()),
+    }
+
+
+def export_like(
+    points: pd.DataFrame,
+    layout: Layout,
+    path,
+    columns: list[str] | None = None,
+    renumber: bool = False,
+    members_path=None,
+    prefer_sensor: str | None = None,
+) -> dict:
+    """Give merged/fused targets their ids (:func:`assign_target_ids`), write ``points`` in
+    ``layout`` and, for merged or fused input, the members table beside (``members_path``,
+    default ``<path stem>.members.csv``). Returns the report of :func:`write_layout` plus
+    ``members`` (the sidecar's path, or None) and ``targets``."""
+    from pathlib import Path
+
+    from wakeline.core.io.writer import write_csv
+
+    own = {c.key or c.name for c in layout.columns if c.field is None}
+    if own & {"target", "members"}:  # the operator's own columns, not a merge result
+        ids, members = points, None
+    else:
+        ids, members = assign_target_ids(points, renumber=renumber, prefer_sensor=prefer_sensor)
+    report = write_layout(ids, layout, path, columns=columns)
+    report["members"] = None
+    report["targets"] = None
+    if members is not None:
+        path = Path(path)
+        side = Path(members_path) if members_path else path.with_name(path.stem + ".members.csv")
+        write_csv(members, side)
+        report["members"] = str(side)
+        report["targets"] = int(members["target"].nunique())
+    return report
+
+
+def layout_meta(path, report: dict | None = None, tz: str | None = None) -> dict | None:
+    """The layout of an imported file as JSON-able data, for ``layer.meta["layout"]``
+    (stored in the project with the layer). ``report`` is the import report. None when
+    the layout cannot be learnt (e.g. a time format only the importer's fallback parser
+    reads): the import must not fail for it, and the layer can still be exported in a
+    preset layout. ``tz``: the zone naive times were read in (default: ``report["tz"]``,
+    else UTC)."""
+    from wakeline.core.io.layout import describe_layout
+
+    try:
+        return describe_layout(path, report, tz=tz).to_dict()
+    except (InputError, OSError, ValueError, KeyError):
+        return None
+
+
+def layer_layout(layers, name: str) -> Layout:
+    """The layout a layer came in: its own ``meta["layout"]``, or that of the layer it was
+    made from (``meta["from"]``, followed up to the imported source). ``layers`` maps
+    layer names to objects with ``meta`` (:class:`wakeline.core.project.Layer`). Falls
+    back to describing the source file again (``meta["file"]``) when it is still there.
+    Raises :class:`InputError` when no layout can be found."""
+    from pathlib import Path
+
+    from wakeline.core.io.layout import describe_layout
+
+    seen = set()
+    current = name
+    while current in layers and current not in seen:
+        seen.add(current)
+        meta = layers[current].meta or {}
+        if meta.get("layout"):
+            return Layout.from_dict(meta["layout"])
+        if meta.get("file") and Path(meta["file"]).exists():
+            return describe_layout(meta["file"], meta.get("report"))
+        # A session layer knows its input layer by id (wakeline.core.session.Layer.parent).
+        current = meta.get("from") or getattr(layers[current], "parent", None)
+    raise InputError(
+        f"{name}: no imported file behind this layer, so there is no layout to copy; "
+        "export as canonical CSV or choose a layout"
+    )

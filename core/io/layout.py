@@ -1,0 +1,470 @@
+"""A file's layout: everything needed to write points back the way a file came in.
+
+:func:`describe_layout` reads the start of an imported file and records its encoding
+(and byte-order mark), delimiter, line ends, quoting, header names in their order, which
+canonical field each column carries (the import's detected or chosen mapping), the time
+format (unix seconds or milliseconds, ISO with or without ``Z`` or an offset, day-first
+dates; the zone naive times were read in) and the number format of every numeric column
+(decimals, trailing zeros kept or trimmed). Columns Wakeline does not use are listed too:
+the importer carries them through as text, and the export writes them back.
+
+:func:`preset_layout` gives the layouts of the formats Wakeline imports (canonical, radar,
+marinecadastre, dma) for data that did not come from such a file.
+
+A :class:`Layout` is plain data: ``to_dict``/``from_dict`` make it JSON for a layer's
+``meta`` and the project file, so the GUI's Export ▸ "As it came in" needs no questions.
+Number and time formats are learnt from the first ``SAMPLE_ROWS`` data rows.
+"""
+
+import csv
+import io
+import re
+from dataclasses import asdict, dataclass, field, replace
+from pathlib import Path
+
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.io.formats import resolve
+from wakeline.core.io.sniff import sniff
+from wakeline.core.schema import CANONICAL_COLUMNS
+
+#: Data rows read to learn number and time formats.
+SAMPLE_ROWS = 5000
+#: Canonical fields written as numbers.
+NUMBER_FIELDS = ("lon", "lat", "speed", "course")
+#: Columns Wakeline adds while it works; never exported unless asked for (``--columns``).
+INTERNAL_COLUMNS = frozenset(
+    (
+        "wl_id",
+        "target",
+        "members",
+        "source_batch",
+        "parent_batch",
+        "interpolated",
+        "segment",
+        "source",
+        "n_sources",
+        "base_track",
+        "weight_base",
+        "true_lon",
+        "true_lat",
+        "true_turn",
+        "factor",
+        "maneuver_factor",
+        "is_maneuver",
+        "rule",
+        "action",
+        "params",
+    )
+)
+
+_NUMBER = re.compile(r"^[+-]?(\d*)(?:\.(\d*))?$")
+_ISO = re.compile(
+    r"^\d{4}(?P<ds>[-/])\d{2}(?P=ds)\d{2}(?P<sep>[T ])\d{2}:\d{2}(?P<sec>:\d{2})?"
+    r"(?:\.(?P<frac>\d+))?(?P<suffix>Z|[+-]\d{2}:?\d{2})?$"
+)
+_DAYFIRST = re.compile(
+    r"^\d{2}(?P<ds>[/.-])\d{2}(?P=ds)\d{4}(?P<sep>[T ])\d{2}:\d{2}(?P<sec>:\d{2})?"
+    r"(?:\.(?P<frac>\d+))?$"
+)
+_OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
+
+
+@dataclass(frozen=True)
+class NumberFormat:
+    """How one numeric column is written.
+
+    ``trim``: ``none`` — always ``decimals`` digits (``57.100``); ``zeros`` — at most
+    ``decimals`` digits, trailing zeros and a bare point dropped (``57.1``, ``12``);
+    ``keep1`` — as ``zeros`` but at least one digit (``12.0``); ``repr`` — the shortest
+    text that reads back to the same float (for 16–17 significant digits), ``12`` for
+    whole numbers; ``repr1`` — the same with ``12.0`` (Python's way).
+    ``na`` is the text of a missing value.
+    """
+
+    decimals: int = 6
+    trim: str = "zeros"
+    na: str = ""
+
+    @staticmethod
+    def detect(values: pd.Series) -> "NumberFormat | None":
+        """The format of a column of number texts; None when they are not numbers."""
+        text = values.astype("str").str.strip()
+        present = text[text != ""]
+        m = present.str.extract(_NUMBER)
+        numeric = m[0].notna() & ((m[0].str.len() > 0) | (m[1].str.len() > 0))
+        if len(present) == 0 or numeric.mean() < 0.9:
+            return None
+        na_words = present[~numeric]
+        na = "" if len(na_words) == 0 else str(na_words.iloc[0])
+        if na.lower() not in ("", "nan", "na", "n/a", "null", "none"):
+            return None
+        whole, frac = m[0][numeric], m[1][numeric]
+        has_point = frac.notna()
+        digits = frac.fillna("").str.len()
+        decimals = int(digits.max()) if len(digits) else 0
+        if int(whole.str.len().max()) + decimals > 15:
+            return NumberFormat(decimals, "repr" if (~has_point).any() else "repr1", na)
+        if not has_point.any():
+            return NumberFormat(0, "none", na)
+        if has_point.all() and (digits == decimals).all():
+            return NumberFormat(decimals, "none", na)
+        if (~has_point).any():
+            return NumberFormat(decimals, "zeros", na)
+        return NumberFormat(decimals, "keep1", na)
+
+
+@dataclass(frozen=True)
+class TimeFormat:
+    """How times are written.
+
+    ``kind``: ``unix`` — a number of seconds (``scale`` 1) or milliseconds (``scale``
+    1000) since 1970 (or since a scene start), formatted by ``number``; ``text`` —
+    ``pattern`` (strftime, up to whole seconds) then ``frac_digits`` fraction digits
+    (``frac_trim`` as in :class:`NumberFormat`) then ``suffix`` (``Z``, ``+08:00`` or
+    nothing). ``tz``: the zone whose wall-clock time is written (an IANA name or
+    ``UTC``; a fixed offset suffix fixes it).
+    """
+
+    kind: str = "text"
+    pattern: str = "%Y-%m-%dT%H:%M:%S"
+    frac_digits: int = 3
+    frac_trim: str = "none"
+    suffix: str = "Z"
+    tz: str = "UTC"
+    scale: int = 1
+    number: NumberFormat = field(default_factory=lambda: NumberFormat(0, "none"))
+
+    @staticmethod
+    def detect(values: pd.Series, tz: str | None = None) -> "TimeFormat":
+        """The format of a column of time texts (ISO, day-first or unix numbers)."""
+        text = values.astype("str").str.strip()
+        present = text[text != ""]
+        if len(present) == 0:
+            return TimeFormat(tz=tz or "UTC")
+        number = NumberFormat.detect(present)
+        if number is not None:
+            numbers = pd.to_numeric(present, errors="coerce").abs()
+            scale = 1000 if numbers.median() > 1e11 else 1
+            return TimeFormat(kind="unix", scale=scale, number=number, tz=tz or "UTC")
+        first = present.iloc[0]
+        for regex, date in ((_ISO, "%Y{ds}%m{ds}%d"), (_DAYFIRST, "%d{ds}%m{ds}%Y")):
+            m = regex.match(first)
+            if m is None:
+                continue
+            parts = present.str.extract(regex)
+            frac = parts["frac"].fillna("").str.len()
+            digits = int(frac.max())
+            if digits == 0:
+                trim = "none"
+            elif (frac == digits).all():
+                trim = "none"
+            else:
+                trim = "zeros"
+            pattern = date.format(ds=m["ds"]) + m["sep"] + "%H:%M" + (":%S" if m["sec"] else "")
+            suffix = (m.groupdict().get("suffix") or "") if regex is _ISO else ""
+            zone = tz or "UTC"
+            off = _OFFSET.match(suffix)
+            if off:
+                zone = f"{off[1]}{off[2]}:{off[3]}"
+            elif suffix == "Z":
+                zone = "UTC"
+            return TimeFormat("text", pattern, digits, trim, suffix, zone)
+        raise InputError(
+            f"cannot tell the time format from {first!r}; "
+            "expected unix seconds, ISO 8601 or dd/mm/yyyy HH:MM:SS"
+        )
+
+
+@dataclass(frozen=True)
+class Column:
+    """One column of a layout: the header text, the canonical ``field`` it carries (None
+    for a column Wakeline carries through unread), and its number format."""
+
+    name: str
+    field: str | None = None
+    number: NumberFormat | None = None
+    #: the name the importer gave the column in the point table (its header, made unique)
+    key: str = ""
+
+
+@dataclass(frozen=True)
+class Layout:
+    """A file layout. ``quoting``: ``minimal`` (quote cells holding the delimiter, a quote
+    or a line break) or ``all``; ``header``: whether the file starts with a header line;
+    ``source``: the file it was learnt from (empty for a preset)."""
+
+    name: str
+    columns: tuple[Column, ...]
+    time: TimeFormat = field(default_factory=TimeFormat)
+    encoding: str = "utf-8"
+    bom: bool = False
+    delimiter: str = ","
+    line_end: str = "\n"
+    quoting: str = "minimal"
+    final_newline: bool = True
+    source: str = ""
+    header: bool = True
+
+    def field_column(self, name: str) -> Column | None:
+        """The column that carries canonical field ``name``, if any."""
+        return next((c for c in self.columns if c.field == name), None)
+
+    def to_dict(self) -> dict:
+        """Plain JSON-able data (for a layer's meta and the project file)."""
+        return asdict(self)
+
+    @staticmethod
+    def from_dict(data: dict) -> "Layout":
+        """Inverse of :meth:`to_dict`."""
+        time = dict(data.get("time") or {})
+        if "number" in time:
+            time["number"] = NumberFormat(**time["number"])
+        columns = tuple(
+            Column(
+                c["name"],
+                c.get("field"),
+                NumberFormat(**c["number"]) if c.get("number") else None,
+                c.get("key", c["name"]),
+            )
+            for c in data["columns"]
+        )
+        rest = {k: v for k, v in data.items() if k not in ("columns", "time")}
+        return Layout(columns=columns, time=TimeFormat(**time), **rest)
+
+    def with_encoding(self, encoding: str | None) -> "Layout":
+        """The same layout in another text encoding (None: unchanged)."""
+        if not encoding:
+            return self
+        try:
+            "".encode(encoding)
+        except LookupError:
+            raise InputError(f"unknown encoding {encoding!r}") from None
+        return replace(self, encoding=encoding, bom=self.bom and encoding.startswith("utf"))
+
+
+def _raw_head(path: Path, compression: str | None, n_bytes: int = 1 << 20) -> bytes:
+    import gzip
+
+    opener = gzip.open if compression == "gzip" else open
+    with opener(path, "rb") as fh:
+        return fh.read(n_bytes)
+
+
+def describe_layout(
+    path: str | Path,
+    report: dict | None = None,
+    fmt: str = "auto",
+    mapping: dict[str, str] | None = None,
+    tz: str | None = None,
+) -> Layout:
+    """The layout of a track file, as its import saw it.
+
+    ``report`` is the import report (:func:`read_points`): its encoding, delimiter and
+    column mapping are used when given, so the layout matches what the import did.
+    Otherwise the layout is detected as an import would (``fmt``, ``mapping``).
+    ``tz`` names the zone naive times were read in (default UTC).
+    """
+    path = Path(path)
+    report = report or {}
+    sn = sniff(path, report.get("encoding"), report.get("delimiter"))
+    if report.get("columns"):
+        columns_of = dict(report["columns"])
+        name = str(report.get("format", "generic"))
+    else:
+        res = resolve(sn.columns, fmt, mapping, source=str(path))
+        columns_of, name = res.columns, res.format.name
+    tz = tz or report.get("tz")
+    head = _raw_head(path, sn.compression)
+    bom = head.startswith(b"\xef\xbb\xbf")
+    cut = head.rfind(b"\n")
+    whole = len(head) < (1 << 20)  # the whole file: keep a last line without newline
+    text = head if whole or cut <= 0 else head[: cut + 1]
+    decoded = text.decode(sn.encoding, errors="replace").removeprefix("\ufeff")
+    line_end = "\r\n" if "\r\n" in decoded else ("\r" if "\r" in decoded else "\n")
+    lines = [ln for ln in re.split(r"\r\n|\r|\n", decoded) if ln.strip()]
+    header_line = lines[0] if sn.has_header and lines else ""
+    raw_names = (
+        next(csv.reader([header_line], delimiter=sn.delimiter)) if header_line else list(sn.columns)
+    )
+    if len(raw_names) != len(sn.columns):
+        raw_names = list(sn.columns)
+    quoting = "all" if header_line and header_line.startswith('"') else "minimal"
+    if whole:
+        final_newline = head.endswith((b"\n", b"\r"))
+    elif sn.compression is None:
+        with open(path, "rb") as fh:
+            fh.seek(-1, 2)
+            final_newline = fh.read(1) in (b"\n", b"\r")
+    else:
+        final_newline = True  # not worth decompressing a large file to its end
+
+    sample = pd.read_csv(
+        io.StringIO("\n".join(lines[1 if sn.has_header else 0 : SAMPLE_ROWS + 1])),
+        sep=sn.delimiter,
+        header=None,
+        names=list(sn.columns),
+        dtype="str",
+        keep_default_na=False,
+        skipinitialspace=False,
+        on_bad_lines="skip",
+        engine="python",
+    )
+    field_of = {src: f for f, src in columns_of.items()}
+    cols = []
+    for raw, key in zip(raw_names, sn.columns, strict=True):
+        f = field_of.get(key)
+        number = NumberFormat.detect(sample[key]) if f in NUMBER_FIELDS else None
+        if f in NUMBER_FIELDS and number is None:
+            number = NumberFormat()
+        cols.append(Column(raw, f, number, key))
+    time_key = columns_of.get("time")
+    time = TimeFormat.detect(sample[time_key], tz) if time_key else TimeFormat(tz=tz or "UTC")
+    return Layout(
+        name=name,
+        columns=tuple(cols),
+        time=time,
+        encoding=sn.encoding,
+        bom=bom,
+        delimiter=sn.delimiter,
+        line_end=line_end,
+        quoting=quoting,
+        final_newline=final_newline,
+        source=str(path),
+        header=sn.has_header,
+    )
+
+
+_DEG = NumberFormat(6, "none")
+_ONE = NumberFormat(1, "none")
+
+#: Layouts of the formats Wakeline imports, for data that did not come from such a file.
+PRESETS: dict[str, Layout] = {
+    "canonical": Layout(
+        "canonical",
+        tuple(
+            Column(c, c, NumberFormat(17, "repr") if c in NUMBER_FIELDS else None, c)
+            for c in CANONICAL_COLUMNS
+        ),
+        TimeFormat("text", "%Y-%m-%dT%H:%M:%S", 3, "none", "Z"),
+    ),
+    "radar": Layout(
+        "radar",
+        (
+            Column("SendShipNO", "sensor", key="SendShipNO"),
+            Column("SendTime", "time", key="SendTime"),
+            Column("nNO", "batch", key="nNO"),
+            Column("lon", "lon", _DEG, "lon"),
+            Column("lat", "lat", _DEG, "lat"),
+            Column("speed", "speed", _ONE, "speed"),
+            Column("course", "course", _ONE, "course"),
+        ),
+        TimeFormat("unix", suffix="", number=NumberFormat(0, "none")),
+        encoding="gb18030",
+    ),
+    "marinecadastre": Layout(
+        "marinecadastre",
+        tuple(
+            Column(n, f, nf, n)
+            for n, f, nf in (
+                ("MMSI", "batch", None),
+                ("BaseDateTime", "time", None),
+                ("LAT", "lat", NumberFormat(5, "none")),
+                ("LON", "lon", NumberFormat(5, "none")),
+                ("SOG", "speed", _ONE),
+                ("COG", "course", _ONE),
+                *(
+                    (n, None, None)
+                    for n in (
+                        "Heading VesselName IMO CallSign VesselType Status Length Width "
+                        "Draft Cargo TransceiverClass"
+                    ).split()
+                ),
+            )
+        ),
+        TimeFormat("text", "%Y-%m-%dT%H:%M:%S", 0, "none", ""),
+    ),
+    "dma": Layout(
+        "dma",
+        tuple(
+            Column(n, f, nf, n)
+            for n, f, nf in (
+                ("# Timestamp", "time", None),
+                ("Type of mobile", None, None),
+                ("MMSI", "batch", None),
+                ("Latitude", "lat", _DEG),
+                ("Longitude", "lon", _DEG),
+                ("Navigational status", None, None),
+                ("ROT", None, None),
+                ("SOG", "speed", _ONE),
+                ("COG", "course", _ONE),
+                *(
+                    (n, None, None)
+                    for n in (
+                        "Heading",
+                        "IMO",
+                        "Callsign",
+                        "Name",
+                        "Ship type",
+                        "Cargo type",
+                        "Width",
+                        "Length",
+                        "Type of position fixing device",
+                        "Draught",
+                        "Destination",
+                        "ETA",
+                        "Data source type",
+                        "A",
+                        "B",
+                        "C",
+                        "D",
+                    )
+                ),
+            )
+        ),
+        TimeFormat("text", "%d/%m/%Y %H:%M:%S", 0, "none", ""),
+    ),
+}
+
+
+def preset_layout(name: str) -> Layout:
+    """One of :data:`PRESETS`; :class:`InputError` naming the choices otherwise."""
+    try:
+        return PRESETS[name]
+    except KeyError:
+        raise InputError(f"unknown layout {name!r}; choose one of {', '.join(PRESETS)}") from None
+
+
+def load_layout(
+    path: str | Path,
+    tz: str | None = None,
+    fmt: str = "auto",
+    mapping: dict[str, str] | None = None,
+) -> Layout:
+    """A layout from a file: a layout JSON (``Layout.to_dict``) or the original data file
+    (read as an import with ``fmt`` and ``mapping`` would read it)."""
+    import json
+
+    path = Path(path)
+    if path.suffix.lower() == ".json":
+        try:
+            return Layout.from_dict(json.loads(path.read_text(encoding="utf-8")))
+        except FileNotFoundError:
+            raise InputError(f"{path}: no such file") from None
+        except (ValueError, KeyError, TypeError) as exc:
+            raise InputError(f"{path}: not a Wakeline layout file ({exc})") from None
+    return describe_layout(path, fmt=fmt, mapping=mapping, tz=tz)
+
+
+__all__ = [
+    "INTERNAL_COLUMNS",
+    "PRESETS",
+    "Column",
+    "Layout",
+    "NumberFormat",
+    "TimeFormat",
+    "describe_layout",
+    "load_layout",
+    "preset_layout",
+]

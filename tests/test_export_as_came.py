@@ -1,0 +1,50 @@
+"""Export ▸ "As it came in" (issue 19): the layout travels with the layer, the project and
+the session's lineage (the GUI's action is tested in tests/test_gui.py)."""
+
+import pytest
+
+from tests.conftest import DATA
+from wakeline.core.errors import InputError
+from wakeline.core.io import read_points
+from wakeline.core.io.export_like import export_like, layer_layout, layout_meta
+from wakeline.core.io.layout import Layout
+from wakeline.core.project import load_project, save_project
+from wakeline.core.session import Session
+
+RADAR = DATA / "layouts" / "radar_gb18030.csv"
+
+
+def _session(tmp_path) -> dict:
+    """A source layer with its layout (as the import stores it) and a result layer made
+    from it, saved to a project and opened again."""
+    result = read_points(RADAR)
+    meta = {"file": str(tmp_path / "gone.csv"), "layout": layout_meta(RADAR, result.report)}
+    merged = result.points.assign(
+        target=result.points["batch"].where(result.points["batch"] != "102", "101")
+    )
+    s = Session()
+    src = s.add_layer("radar.csv", "source", result.points, meta)
+    s.add_layer("radar.csv · merged", "associated", merged, parent=src.id, step="associate")
+    save_project(s, tmp_path / "p.wakeline")
+    return {lay.id: lay for lay in load_project(tmp_path / "p.wakeline").layers}
+
+
+def test_layout_is_kept_in_the_project_and_used_for_a_result_layer(tmp_path):
+    layers = _session(tmp_path)
+    assert Layout.from_dict(layers["L1"].meta["layout"]).encoding == "gb18030"
+    out = tmp_path / "back.csv"
+    export_like(layers["L1"].points, layer_layout(layers, "L1"), out)
+    assert out.read_bytes() == RADAR.read_bytes()
+    out2 = tmp_path / "merged.csv"
+    rep = export_like(layers["L2"].points, layer_layout(layers, "L2"), out2)
+    assert rep["members"] == str(tmp_path / "merged.members.csv")
+    back = read_points(out2)
+    assert back.report["encoding"] == "gb18030"
+    assert sorted(back.points["batch"].unique()) == ["101", "103"]
+
+
+def test_layer_without_a_source_file_gives_a_clear_message():
+    s = Session()
+    s.add_layer("sim", "source", read_points(RADAR).points, {})
+    with pytest.raises(InputError, match="no imported file behind this layer"):
+        layer_layout(s.layers, "L1")

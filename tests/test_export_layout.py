@@ -1,0 +1,454 @@
+"""Export in the operator's own layout (issue 19): layout detection, formatting, round trips."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from tests.conftest import DATA, real_file
+from wakeline.app.cli import main
+from wakeline.core.errors import InputError
+from wakeline.core.io import read_points
+from wakeline.core.io.export_like import (
+    assign_target_ids,
+    format_numbers,
+    format_times,
+    layout_meta,
+    write_layout,
+)
+from wakeline.core.io.layout import (
+    Layout,
+    NumberFormat,
+    TimeFormat,
+    describe_layout,
+    preset_layout,
+)
+
+LAYOUTS = DATA / "layouts"
+#: Every import layout with a sample: file -> the format the import detects.
+SAMPLES = {
+    "canonical.csv": "canonical",
+    "radar_gb18030.csv": "radar",
+    "marinecadastre.csv": "ais-marinecadastre",
+    "dma.csv": "ais-dma",
+    "mtad_scene.csv": "mtad-scene",
+    "mtad_measurement.csv": "mtad-measurement",
+}
+KEY = ["sensor", "batch", "time"]
+
+
+def _run(*argv) -> int:
+    return main([str(a) for a in argv])
+
+
+@pytest.mark.parametrize("name", SAMPLES)
+def test_unchanged_table_exports_like_the_original_byte_for_byte(name, tmp_path):
+    original = LAYOUTS / name
+    result = read_points(original)
+    assert result.report["format"] == SAMPLES[name]
+    assert result.report["rows_quarantined"] == 0
+    out = tmp_path / name
+    write_layout(result.points, describe_layout(original, result.report), out)
+    assert out.read_bytes() == original.read_bytes()
+
+
+@pytest.mark.parametrize("name", SAMPLES)
+def test_cli_import_then_export_like_gives_the_original_bytes(name, tmp_path):
+    original = LAYOUTS / name
+    canonical, out = tmp_path / "c.csv", tmp_path / name
+    assert _run("import", original, "-o", canonical) == 0
+    assert _run("export", canonical, "-o", out, "--like", original) == 0
+    assert out.read_bytes() == original.read_bytes()
+
+
+def _same_points(a: pd.DataFrame, b: pd.DataFrame, decimals: dict[str, int]) -> None:
+    a = a.sort_values(KEY, kind="stable").reset_index(drop=True)
+    b = b.sort_values(KEY, kind="stable").reset_index(drop=True)
+    assert len(a) == len(b)
+    for col in ("sensor", "batch"):
+        assert a[col].astype(str).tolist() == b[col].astype(str).tolist()
+    assert (a["time"] == b["time"]).all()
+    for col, d in decimals.items():
+        x, y = a[col].to_numpy(dtype=float), b[col].to_numpy(dtype=float)
+        both = np.isfinite(x) & np.isfinite(y)
+        assert (np.isfinite(x) == np.isfinite(y)).all(), col
+        assert np.all(np.abs(x[both] - y[both]) <= 0.51 * 10.0**-d + 1e-12), col
+
+
+@pytest.mark.parametrize("name", SAMPLES)
+def test_compressed_table_exported_like_reimports_to_the_same_points(name, tmp_path):
+    original = LAYOUTS / name
+    comp, out = tmp_path / "comp.csv", tmp_path / f"out_{name}"
+    assert _run("compress", original, "-o", comp, "--window", 3, "--radius", 2) == 0
+    assert _run("export", comp, "-o", out, "--like", original) == 0
+    layout = describe_layout(original)
+    again = read_points(out)
+    assert again.report["format"] == SAMPLES[name]
+    assert again.report["encoding"] == layout.encoding
+    kept = read_points(comp).points
+    assert 0 < len(kept) < len(read_points(original).points)
+    precision = {
+        c.field: (c.number.decimals if c.number.trim in ("none", "zeros", "keep1") else 12)
+        for c in layout.columns
+        if c.number is not None
+    }
+    _same_points(kept, again.points, precision)
+    # The operator's columns come back as they were.
+    extras = [c.key for c in layout.columns if c.field is None]
+    a = kept.sort_values(KEY, kind="stable").reset_index(drop=True)
+    b = again.points.sort_values(KEY, kind="stable").reset_index(drop=True)
+    for col in extras:
+        assert a[col].tolist() == b[col].tolist(), col
+
+
+def test_compressed_radar_export_is_gb18030_with_header_and_unix_seconds(tmp_path):
+    original = LAYOUTS / "radar_gb18030.csv"
+    comp, out = tmp_path / "comp.csv", tmp_path / "radar_out.csv"
+    assert _run("compress", original, "-o", comp, "--window", 3, "--radius", 2) == 0
+    assert _run("export", comp, "-o", out, "--like", original) == 0
+    raw = out.read_bytes()
+    with pytest.raises(UnicodeDecodeError):
+        raw.decode("utf-8")  # the Chinese columns are GB18030 bytes
+    text = raw.decode("gb18030")
+    lines = text.split("\r\n")
+    assert lines[0] == original.read_bytes().decode("gb18030").split("\r\n")[0]
+    assert lines[0] == "SendShipNO,SendTime,nNO,lon,lat,speed,course,目标类型,备注"
+    rows = [ln.split(",") for ln in lines[1:] if ln]
+    assert all(r[1].isdigit() and len(r[1]) == 10 for r in rows)  # unix seconds
+    assert all(len(r[3].split(".")[1]) == 6 for r in rows)  # lon precision kept
+    assert {r[7] for r in rows} == {"货船", "渔船", "油轮"}
+
+
+def test_iso_times_with_an_offset_are_written_in_that_offset(write, tmp_path):
+    src = write(
+        "offset.csv",
+        "batch,time,lon,lat\n"
+        "7,2022-10-01T10:16:03+08:00,122.5,30.25\n"
+        "7,2022-10-01T10:16:33+08:00,122.5,30.5\n",
+    )
+    res = read_points(src)
+    assert res.points["time"].iloc[0] == pd.Timestamp("2022-10-01T02:16:03Z")
+    layout = describe_layout(src, res.report)
+    assert layout.time.tz == "+08:00"
+    out = tmp_path / "out.csv"
+    write_layout(res.points, layout, out)
+    assert out.read_bytes() == src.read_bytes()
+
+
+def test_tz_option_writes_naive_local_times(tmp_path):
+    out = tmp_path / "local.csv"
+    src = LAYOUTS / "marinecadastre.csv"
+    assert _run("export", src, "-o", out, "--like", src, "--tz", "Asia/Shanghai") == 0
+    first = out.read_text().splitlines()[1].split(",")
+    assert first[1] == "2022-10-01T10:16:03"  # 02:16:03 UTC
+
+
+def test_gap_fills_are_written_with_operator_columns_left_empty(tmp_path):
+    original = LAYOUTS / "radar_gb18030.csv"
+    pts = read_points(original).points
+    fill = pts.iloc[[3]].copy()  # a made point copies its neighbour's columns ...
+    fill["time"] = fill["time"] + pd.Timedelta(seconds=10)
+    pts = pd.concat([pts.assign(interpolated=False), fill.assign(interpolated=True)])
+    out = tmp_path / "out.csv"
+    rep = write_layout(pts, describe_layout(original), out)
+    assert rep["rows_made"] == 1
+    last = out.read_bytes().decode("gb18030").split("\r\n")[-2].split(",")
+    assert last[7:] == ["", ""]  # ... but not the operator's columns
+    assert last[2] == "101" and last[0] == "1043"
+    assert "interpolated" not in out.read_bytes().decode("gb18030").split("\r\n")[0]
+
+
+def _merged(pts: pd.DataFrame) -> pd.DataFrame:
+    # Batches 102 and 103 are one target (T2); 101 is alone (T1). 103 starts first.
+    out = pts.copy()
+    out["target"] = np.where(out["batch"] == "101", "T1", "T2")
+    out.loc[out["batch"] == "103", "time"] -= pd.Timedelta(hours=1)
+    return out
+
+
+def test_merged_targets_take_the_first_member_batch_and_list_members(tmp_path):
+    pts = _merged(read_points(LAYOUTS / "radar_gb18030.csv").points)
+    ids, members = assign_target_ids(pts)
+    assert set(ids.loc[pts["target"] == "T2", "batch"]) == {"103"}
+    assert set(ids.loc[pts["target"] == "T1", "batch"]) == {"101"}
+    table = members.sort_values(["batch", "member_batch"]).reset_index(drop=True)
+    assert table[["batch", "member_batch", "target"]].values.tolist() == [
+        ["101", "101", "T1"],
+        ["103", "102", "T2"],
+        ["103", "103", "T2"],
+    ]
+    renumbered, members = assign_target_ids(pts, renumber=True)
+    assert set(renumbered.loc[pts["target"] == "T2", "batch"]) == {"1"}  # T2 starts first
+    assert set(renumbered.loc[pts["target"] == "T1", "batch"]) == {"2"}
+    assert sorted(members["batch"]) == ["1", "1", "2"]
+
+
+def test_cli_export_of_merged_table_writes_members_sidecar(tmp_path):
+    original = LAYOUTS / "radar_gb18030.csv"
+    merged = tmp_path / "merged.csv"
+    from wakeline.core.io import write_points
+
+    write_points(_merged(read_points(original).points), merged)
+    out = tmp_path / "out.csv"
+    assert _run("export", merged, "-o", out, "--like", original) == 0
+    side = pd.read_csv(tmp_path / "out.members.csv", dtype=str)
+    assert list(side.columns) == ["sensor", "batch", "member_sensor", "member_batch", "target"]
+    assert len(side) == 3
+    back = read_points(out).points
+    assert sorted(back["batch"].unique()) == ["101", "103"]
+    assert "target" not in back.columns  # internal column left out
+    assert _run("export", merged, "-o", out, "--like", original, "--columns", "target") == 0
+    assert "target" in read_points(out).points.columns
+
+
+def test_fused_members_give_the_first_member_id():
+    pts = pd.DataFrame(
+        {
+            "sensor": "fused",
+            "batch": ["F1", "F1", "F2"],
+            "time": pd.to_datetime([0, 10, 0], unit="s", utc=True),
+            "lon": [1.0, 1.1, 2.0],
+            "lat": [3.0, 3.1, 4.0],
+            "members": ["R1:12+R2:7", "R1:12+R2:7", "R2:9"],
+        }
+    )
+    ids, members = assign_target_ids(pts)
+    assert ids["sensor"].tolist() == ["R1", "R1", "R2"]
+    assert ids["batch"].tolist() == ["12", "12", "9"]
+    assert members[["batch", "member_sensor", "member_batch", "target"]].values.tolist() == [
+        ["12", "R1", "12", "F1"],
+        ["12", "R2", "7", "F1"],
+        ["9", "R2", "9", "F2"],
+    ]
+    ids, members = assign_target_ids(pts, prefer_sensor="R2")
+    assert ids["batch"].tolist() == ["7", "7", "9"]
+    assert members["batch"].tolist() == ["7", "7", "9"]
+
+
+def test_canonical_export_leaves_internal_columns_out(tmp_path):
+    pts = read_points(LAYOUTS / "mtad_scene.csv").points
+    pts["wl_id"] = np.arange(len(pts))
+    pts["interpolated"] = False
+    out = tmp_path / "out.csv"
+    write_layout(pts, preset_layout("canonical"), out)
+    header = out.read_text().splitlines()[0].split(",")
+    assert header == ["sensor", "batch", "time", "lon", "lat", "speed", "course", "vel"]
+    write_layout(pts, preset_layout("canonical"), out, columns=["wl_id"])
+    assert out.read_text().splitlines()[0].endswith(",wl_id")
+
+
+@pytest.mark.parametrize(
+    ("preset", "family", "encoding"),
+    [
+        ("radar", "radar", "gb18030"),
+        ("marinecadastre", "ais-marinecadastre", "utf-8"),
+        ("dma", "ais-dma", "utf-8"),
+        ("canonical", "canonical", "utf-8"),
+    ],
+)
+def test_presets_reimport_as_their_format(preset, family, encoding, tmp_path):
+    src = LAYOUTS / "canonical.csv"
+    out = tmp_path / f"{preset}.csv"
+    assert _run("export", src, "-o", out, "--layout", preset) == 0
+    again = read_points(out)
+    assert again.report["format"] == family
+    out.read_bytes().decode(encoding)  # ASCII-only here, so any of the two would read it
+    before = read_points(src).points
+    layout = preset_layout(preset)
+    if layout.field_column("sensor") is None:
+        before = before.assign(sensor="S1")
+    if preset != "canonical":  # these write whole seconds
+        before = before.assign(time=before["time"].dt.round("s"))
+    decimals = {
+        c.field: c.number.decimals if c.number.trim != "repr" else 12
+        for c in layout.columns
+        if c.number is not None
+    }
+    _same_points(before, again.points, decimals)
+
+
+def test_layout_survives_json_and_like_accepts_it(tmp_path):
+    original = LAYOUTS / "dma.csv"
+    layout = describe_layout(original)
+    data = json.loads(json.dumps(layout.to_dict()))
+    assert Layout.from_dict(data) == layout
+    path = tmp_path / "dma.layout.json"
+    out = tmp_path / "out.csv"
+    assert _run("export", original, "-o", out, "--like", original, "--save-layout", path) == 0
+    assert Layout.from_dict(json.loads(path.read_text())) == layout
+    assert _run("export", original, "-o", out, "--like", path) == 0
+    assert out.read_bytes() == original.read_bytes()
+
+
+def test_encoding_option_and_encoding_errors(tmp_path, capsys):
+    original = LAYOUTS / "radar_gb18030.csv"
+    out = tmp_path / "out.csv"
+    assert _run("export", original, "-o", out, "--like", original, "--encoding", "utf-8") == 0
+    assert "目标类型" in out.read_text(encoding="utf-8")
+    bad = tmp_path / "bad.csv"
+    assert _run("export", original, "-o", bad, "--like", original, "--encoding", "latin-1") == 2
+    assert "cannot be written in latin-1" in capsys.readouterr().err
+    assert not bad.exists()
+    assert _run("export", original, "-o", bad, "--like", original, "--encoding", "nope") == 2
+    assert "unknown encoding" in capsys.readouterr().err
+
+
+def test_bad_arguments_exit_2_with_one_message(tmp_path, capsys):
+    src = LAYOUTS / "canonical.csv"
+    out = tmp_path / "out.csv"
+    assert _run("export", src, "-o", out, "--like", src, "--layout", "radar") == 2
+    assert "not both" in capsys.readouterr().err
+    assert _run("export", src, "-o", out, "--columns", "nosuch") == 2
+    assert "no column nosuch" in capsys.readouterr().err
+    assert _run("export", src, "-o", out, "--layout", "dma", "--tz", "Mars/Base") == 2
+    assert "unknown time zone" in capsys.readouterr().err
+    assert _run("export", src, "-o", out, "--like", tmp_path / "missing.csv") == 2
+    assert "no such file" in capsys.readouterr().err
+    bad_json = tmp_path / "x.json"
+    bad_json.write_text("{}")
+    assert _run("export", src, "-o", out, "--like", bad_json) == 2
+    assert "not a Wakeline layout" in capsys.readouterr().err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("texts", "expected"),
+    [
+        (["1", "22", "333"], NumberFormat(0, "none")),
+        (["1.50", "2.25", "3.00"], NumberFormat(2, "none")),
+        (["1.5", "2.25", "3"], NumberFormat(2, "zeros")),
+        (["1.5", "2.25", "3.0"], NumberFormat(2, "keep1")),
+        (["20.149536268409268", "337.0"], NumberFormat(15, "repr1")),
+        (["a", "b"], None),
+    ],
+)
+def test_number_format_detection(texts, expected):
+    assert NumberFormat.detect(pd.Series(texts)) == expected
+
+
+def test_number_formatting_round_trips_each_style():
+    x = np.array([1.5, -2.25, 3.0, -0.0001, np.nan, 0.30000000000000004])
+    assert format_numbers(x, NumberFormat(2, "none")).to_pylist() == [
+        "1.50",
+        "-2.25",
+        "3.00",
+        "0.00",
+        "",
+        "0.30",
+    ]
+    assert format_numbers(x, NumberFormat(3, "zeros")).to_pylist()[:4] == ["1.5", "-2.25", "3", "0"]
+    assert format_numbers(x, NumberFormat(3, "keep1", "NaN")).to_pylist()[2:5] == [
+        "3.0",
+        "0.0",
+        "NaN",
+    ]
+    reprs = format_numbers(x, NumberFormat(17, "repr1")).to_pylist()
+    assert reprs[2] == "3.0" and reprs[3] == "-0.0001" and reprs[5] == "0.30000000000000004"
+
+
+def test_time_formatting():
+    t = pd.Series(
+        pd.to_datetime(["2023-03-01T00:01:46.5Z", None, "1969-12-31T23:59:59Z"], format="ISO8601")
+    )
+    day_first = TimeFormat("text", "%d/%m/%Y %H:%M:%S", 1, "zeros", "")
+    assert format_times(t, day_first).to_pylist() == [
+        "01/03/2023 00:01:46.5",
+        "",
+        "31/12/1969 23:59:59",
+    ]
+    unix = TimeFormat("unix", number=NumberFormat(0, "none"))
+    assert format_times(t, unix).to_pylist() == ["1677628907", "", "-1"]
+    millis = TimeFormat("unix", scale=1000, number=NumberFormat(0, "none"))
+    assert format_times(t, millis).to_pylist()[0] == "1677628906500"
+
+
+def test_describe_layout_reports_unreadable_time(write):
+    src = write("odd.csv", "batch,time,lon,lat\n1,yesterday noon,1,2\n")
+    report = {"columns": {"batch": "batch", "time": "time", "lon": "lon", "lat": "lat"}}
+    with pytest.raises(InputError, match="time format"):
+        describe_layout(src, report)
+    assert layout_meta(src, report) is None  # the import hook never fails for it
+
+
+@pytest.mark.real
+@pytest.mark.parametrize(
+    "parts",
+    [
+        ("dma-single-ship", "sample_ship.csv"),
+        ("dma-single-ship", "processed_dp.csv"),
+        ("mtad-dtwcm", "original", "Scene-0.csv"),
+        ("mtad-dtwcm", "original", "Scene-100.csv"),
+        ("mtad-v2-stats", "demo_pairs", "negative_track1.csv"),
+        ("greece-ais-annotated", "vessel_5_id_annotated.csv"),
+        ("oresund-encounters", "encounters.csv"),
+    ],
+)
+def test_real_files_round_trip_byte_for_byte(parts, tmp_path):
+    original = real_file(*parts)
+    res = read_points(original)
+    out = tmp_path / "out.csv"
+    write_layout(res.points, describe_layout(original, res.report), out)
+    assert out.read_bytes() == original.read_bytes()
+
+
+def test_export_help(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["export", "--help"])
+    assert exc.value.code == 0
+    out = capsys.readouterr().out
+    for option in ("--like", "--layout", "--encoding", "--columns", "--renumber", "--tz"):
+        assert option in out
+
+
+def test_tz_refused_when_times_carry_their_zone(tmp_path, capsys):
+    src = LAYOUTS / "canonical.csv"
+    assert _run("export", src, "-o", tmp_path / "o.csv", "--like", src, "--tz", "+08:00") == 2
+    assert "naive times only" in capsys.readouterr().err
+
+
+def test_file_without_header_stays_without(write, tmp_path):
+    src = write("nohead.csv", "7;1664590563;122.5;30.25\n7;1664590593;122.5;30.5\n")
+    res = read_points(src, mapping=["batch=col1", "time=col2", "lon=col3", "lat=col4"])
+    out = tmp_path / "out.csv"
+    write_layout(res.points, describe_layout(src, res.report), out)
+    assert out.read_bytes() == src.read_bytes()
+
+
+def test_semicolons_quoted_cells_and_no_final_newline_come_back(write, tmp_path):
+    src = write(
+        "quoted.csv",
+        '"track_id";"timestamp";"lat";"lon";"note"\r\n'
+        '"A7";"2022-10-01 02:16:03.5";"30.25";"122.5";"say ""hi"""\r\n'
+        '"A7";"2022-10-01 02:16:04";"30.5";"122.75";""',
+    )
+    res = read_points(src)
+    layout = describe_layout(src, res.report)
+    assert (layout.delimiter, layout.quoting, layout.final_newline) == (";", "all", False)
+    assert layout.time.pattern == "%Y-%m-%d %H:%M:%S" and layout.time.frac_trim == "zeros"
+    out = tmp_path / "out.csv"
+    write_layout(res.points, layout, out)
+    assert out.read_bytes() == src.read_bytes()
+
+
+def test_operator_column_named_target_is_not_taken_for_a_merge(write, tmp_path):
+    src = write(
+        "own.csv",
+        "batch,time,lon,lat,target\n7,1664590563,122.5,30.25,harbour\n8,1664590563,122.5,30.5,harbour\n",
+    )
+    out = tmp_path / "out.csv"
+    assert _run("export", src, "-o", out, "--like", src) == 0
+    assert out.read_bytes() == src.read_bytes()
+    assert not (tmp_path / "out.members.csv").exists()
+
+
+def test_like_takes_the_mapping_the_import_was_given(write, tmp_path):
+    src = write("odd.csv", "boat,when,x,y\nA,1664590563,122.5,30.25\nA,1664590573,122.5,30.5\n")
+    mapping = ["batch=boat", "time=when", "lon=x", "lat=y"]
+    canonical, out = tmp_path / "c.csv", tmp_path / "out.csv"
+    assert _run("import", src, "-o", canonical, *(f"--map={m}" for m in mapping)) == 0
+    assert _run("export", canonical, "-o", out, "--like", src) == 2  # cannot tell the layout
+    assert (
+        _run("export", canonical, "-o", out, "--like", src, *(f"--map={m}" for m in mapping)) == 0
+    )
+    assert out.read_bytes() == src.read_bytes()
