@@ -368,6 +368,10 @@ def _cmd_associate(args: argparse.Namespace) -> int:
     write_points(out, args.output)
     if args.pairs:
         write_csv(assoc.pair_table(), args.pairs)
+    if args.proposals:
+        from wakeline.core.review import association_proposals
+
+        write_csv(association_proposals(assoc, params)[0], args.proposals)
     if args.report:
         write_json({**assoc.report(), "params": dict(vars(params))}, args.report)
     rep = assoc.report()
@@ -398,17 +402,22 @@ def _fuse_params(settings: list[str] | None):
 
 
 def _cmd_fuse(args: argparse.Namespace) -> int:
+    from wakeline.app.cli_review import read_inputs
     from wakeline.core.fuse import associate_sensors, fuse
     from wakeline.core.io import write_csv, write_json, write_points
 
     params = _fuse_params(args.set)
     assoc = associate_sensors(
-        _read_canonical(args.input), params, distance=args.distance, method=args.method
+        read_inputs(args.input), params, distance=args.distance, method=args.method
     )
     fused = fuse(assoc, params)
     write_points(fused, args.output)
     if args.pairs:
         write_csv(assoc.pair_table(), args.pairs)
+    if args.proposals:
+        from wakeline.core.review import fusion_proposals
+
+        write_csv(fusion_proposals(assoc, params)[0], args.proposals)
     rep = assoc.report()
     if args.report:
         write_json({**rep, "fused_points": len(fused), "params": dict(vars(params))}, args.report)
@@ -731,6 +740,13 @@ def build_parser() -> argparse.ArgumentParser:
         "--report", type=Path, metavar="R.json", help="write counts and parameters as JSON"
     )
     p.add_argument(
+        "--proposals",
+        type=Path,
+        metavar="P.csv",
+        help="write one row per proposed join with its evidence (cost and parts, runner-up, "
+        "margin) for `wakeline review`",
+    )
+    p.add_argument(
         "--stitch",
         action="store_true",
         help="one batch per target, gaps filled at the sensor period (column interpolated)",
@@ -752,7 +768,21 @@ def build_parser() -> argparse.ArgumentParser:
         "Columns added: source (sensors covering the point), n_sources, weight_base, members.",
         epilog=_params_epilog(FuseParams),
     )
-    _io_args(p, "fused tracks, canonical CSV")
+    p.add_argument(
+        "input",
+        type=Path,
+        nargs="+",
+        help="track file(s): one with several sensors, or one per sensor (radar and AIS); "
+        "files that each hold one sensor of the same name get the differing part of their "
+        "file names as sensor",
+    )
+    p.add_argument("-o", "--output", type=Path, required=True, help="fused tracks, canonical CSV")
+    p.add_argument(
+        "--proposals",
+        type=Path,
+        metavar="P.csv",
+        help="write one row per proposed pair with its evidence for `wakeline review`",
+    )
     p.add_argument("--distance", choices=("sync", "dtw"), default="sync", help="default sync")
     p.add_argument(
         "--method", choices=("optimal", "greedy"), default="optimal", help="default optimal"
@@ -768,6 +798,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--set", action="append", metavar="NAME=VALUE", help="change a parameter")
     p.set_defaults(func=_cmd_fuse)
+
+    from wakeline.app import cli_review
+
+    cli_review.register(sub)
 
     p = sub.add_parser(
         "evaluate",
