@@ -3,8 +3,9 @@ decisions as pure commands with an inverse, and the targets that follow from the
 
 A *proposal* is one join the engine chose: two tracks (``sensor:batch`` labels), the
 method, the cost and its parts, and the runner-up — the best competing candidate of
-either track, or "leave unmatched" at the gate's price when there is none — with the
-margin between the two (runner-up cost − cost; small = uncertain, review first).
+either track (``runner_up``, ``runner_up_cost``) — and the margin: the cheaper of the
+runner-up and "leave both unmatched" (the gate's price) minus the cost; a small margin
+is an uncertain join, to be reviewed first.
 
 Costs are in the method's own units: single-sensor association (``kind`` ``associate``)
 uses the scaled combined distance (1 = one tolerance on every term), cross-sensor
@@ -103,11 +104,10 @@ def _runner_up(
 
 
 def _finish(df: pd.DataFrame, prefix: str, gate: float) -> pd.DataFrame:
-    """Runner-up cost defaults to the gate (leaving both unmatched); margins; ids; order."""
+    """Margins (against the runner-up or the gate), ids, column order."""
     df["gate"] = float(gate)
-    no_rival = df["runner_up"] == ""
-    df.loc[no_rival, "runner_up_cost"] = float(gate)
-    df["margin"] = df["runner_up_cost"] - df["cost"]
+    # A rival dearer than the gate is no alternative: leaving both unmatched costs the gate.
+    df["margin"] = np.fmin(df["runner_up_cost"], float(gate)) - df["cost"]
     df["margin_rel"] = df["margin"] / gate if gate > 0 else np.nan
     df = df.sort_values(["sensor_a", "batch_a", "sensor_b", "batch_b"], kind="stable")
     df.insert(0, "proposal", [f"{prefix}{k + 1:04d}" for k in range(len(df))])
