@@ -9,7 +9,17 @@ import pandas as pd
 
 from wakeline.core.errors import InputError
 
-_TEXT = ("proposal", "kind", "method", "sensor_a", "batch_a", "sensor_b", "batch_b", "runner_up")
+_TEXT = (
+    "proposal",
+    "kind",
+    "method",
+    "sensor_a",
+    "batch_a",
+    "sensor_b",
+    "batch_b",
+    "runner_up",
+    "runner_up_side",
+)
 
 
 def read_inputs(paths: list[Path]) -> pd.DataFrame:

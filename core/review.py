@@ -54,6 +54,7 @@ PROPOSAL_COLUMNS = (
     "overlap_s",
     "runner_up",
     "runner_up_cost",
+    "runner_up_side",
     "margin",
     "margin_rel",
     "gate",
@@ -80,7 +81,8 @@ def _runner_up(
     a: np.ndarray, b: np.ndarray, cost: np.ndarray, chosen: np.ndarray, labels: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """For each chosen candidate: the cheapest other candidate sharing its ``a`` or its
-    ``b`` track (label of the competing track, its cost); ``""``/NaN when there is none."""
+    ``b`` track — label of the competing track, its cost, and which side it competes for
+    (``a``: it pairs with the proposal's ``a`` track); ``""``/NaN when there is none."""
     m = len(a)
     cand = pd.DataFrame({"k": np.arange(m), "a": a, "b": b, "cost": cost})
     cand = cand[np.isfinite(cand["cost"].to_numpy())]
@@ -100,7 +102,8 @@ def _runner_up(
     lab = np.full(len(chosen), "", dtype=object)
     ok = ~np.isnan(c)
     lab[ok] = labels[other[ok].astype("int64")]
-    return lab, c
+    side = np.where(ok, np.where(use_b, "b", "a"), "")
+    return lab, c, side
 
 
 def _finish(df: pd.DataFrame, prefix: str, gate: float) -> pd.DataFrame:
@@ -163,7 +166,7 @@ def association_proposals(
     gate = params.gate if assoc.method in ("optimal", "greedy", "motion") else params.limit
     k = np.asarray(assoc.chosen, dtype="int64")
     keys = seg.index.keys
-    rival, rival_cost = _runner_up(p.i, p.j, cost, k, labels)
+    rival, rival_cost, rival_side = _runner_up(p.i, p.j, cost, k, labels)
     df = pd.DataFrame(
         {
             "kind": "associate",
@@ -181,6 +184,7 @@ def association_proposals(
             "overlap_s": np.nan,
             "runner_up": rival,
             "runner_up_cost": rival_cost,
+            "runner_up_side": rival_side,
         }
     )
     return _finish(df, "A", gate), assoc
@@ -222,7 +226,7 @@ def fusion_proposals(
         sassoc = dataclasses.replace(sassoc, distance_m=dist, chosen=chosen, target_of_track=target)
     k = np.asarray(sassoc.chosen, dtype="int64")
     keys = index.keys
-    rival, rival_cost = _runner_up(a, b, dist, k, labels)
+    rival, rival_cost, rival_side = _runner_up(a, b, dist, k, labels)
     df = pd.DataFrame(
         {
             "kind": "fuse",
@@ -237,6 +241,7 @@ def fusion_proposals(
             "overlap_s": sassoc.overlap_s[k],
             "runner_up": rival,
             "runner_up_cost": rival_cost,
+            "runner_up_side": rival_side,
         }
     )
     return _finish(df, "F", gate), sassoc
@@ -270,11 +275,12 @@ def read_proposals(df: pd.DataFrame) -> pd.DataFrame:
     for c in ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "kind", "method"):
         if c in out.columns:
             out[c] = out[c].astype(str)
-    if "runner_up" in out.columns:
-        out["runner_up"] = out["runner_up"].fillna("").astype(str)
+    for c in ("runner_up", "runner_up_side"):
+        if c in out.columns:
+            out[c] = out[c].fillna("").astype(str)
     for c in PROPOSAL_COLUMNS:
         if c not in out.columns:
-            out[c] = "" if c in ("kind", "method", "runner_up") else np.nan
+            out[c] = "" if c in ("kind", "method", "runner_up", "runner_up_side") else np.nan
     dup = out["proposal"].duplicated()
     if dup.any():
         raise InputError(f"proposal id {out['proposal'][dup].iloc[0]!r} appears twice")

@@ -69,7 +69,7 @@ def test_association_proposals_carry_evidence(scene):
     cand = set(zip(keys[assoc.pairs.i].tolist(), keys[assoc.pairs.j].tolist(), strict=True))
     for row in ap[ap["runner_up"] != ""].itertuples():
         a, b, r = f"{row.sensor_a}:{row.batch_a}", f"{row.sensor_b}:{row.batch_b}", row.runner_up
-        assert (a, r) in cand or (r, b) in cand
+        assert (a, r) in cand if row.runner_up_side == "a" else (r, b) in cand
 
 
 def test_targets_of_untouched_state_match_the_engine(scene):
@@ -184,7 +184,7 @@ import sys, time
 import pandas as pd
 from wakeline.core import review as R
 from wakeline.core.review_store import ReviewStore
-props = pd.read_csv(sys.argv[2], dtype={c: str for c in ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "runner_up")}, keep_default_na=False)
+props = pd.read_csv(sys.argv[2], dtype={c: str for c in ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "runner_up", "runner_up_side")}, keep_default_na=False)
 tracks = pd.read_csv(sys.argv[3], dtype={"sensor": str, "batch": str})
 st = R.ReviewState(tracks, props)
 store = ReviewStore(sys.argv[1])
