@@ -379,6 +379,10 @@ class ReviewState:
             )
         self.proposals["track_a"] = a
         self.proposals["track_b"] = b
+        self.track_a = a.astype(object)  # numpy copies for fast lookups
+        self.track_b = b.astype(object)
+        self._labels_arr = self.tracks["track"].to_numpy().astype(str)
+        self._t0_arr = self.tracks["t0"].to_numpy(dtype="float64")
         self._pa = np.array([self._track_no[x] for x in a.tolist()], dtype="int64")
         self._pb = np.array([self._track_no[x] for x in b.tolist()], dtype="int64")
         self._row = {p: k for k, p in enumerate(self.proposals["proposal"].tolist())}
@@ -386,6 +390,7 @@ class ReviewState:
         self.links: set[tuple[str, str]] = set()
         self.log: list[LogEntry] = []
         self._targets: np.ndarray | None = None
+        self.version = 0  # counts applied changes (views cache per version)
 
     # -- queries ------------------------------------------------------------------------
 
@@ -424,12 +429,12 @@ class ReviewState:
         b = np.concatenate([self._pb[active], np.asarray(lb, dtype="int64")])
         n = len(self.tracks)
         comp = components(n, a, b)
-        order = np.lexsort((self.tracks["track"].to_numpy(), self.tracks["t0"].to_numpy(), comp))
+        order = np.lexsort((self._labels_arr, self._t0_arr, comp))
         first = np.ones(n, dtype=bool)
         first[1:] = comp[order][1:] != comp[order][:-1]
         leader = np.empty(comp.max() + 1 if n else 0, dtype="int64")
         leader[comp[order][first]] = order[first]
-        return self.tracks["track"].to_numpy().astype(str)[leader[comp]] if n else np.zeros(0)
+        return self._labels_arr[leader[comp]] if n else np.zeros(0)
 
     def target(self, label: str) -> str:
         return str(self.target_of_track()[self._track(label)])
@@ -438,8 +443,8 @@ class ReviewState:
         """Track labels of one target, earliest first."""
         tg = self.target_of_track()
         sel = np.flatnonzero(tg == target)
-        sel = sel[np.argsort(self.tracks["t0"].to_numpy()[sel], kind="stable")]
-        return self.tracks["track"].to_numpy()[sel].tolist()
+        sel = sel[np.argsort(self._t0_arr[sel], kind="stable")]
+        return self._labels_arr[sel].tolist()
 
     def targets(self) -> pd.DataFrame:
         """Per track: ``track``, sensor, batch, ``target``."""
@@ -465,9 +470,8 @@ class ReviewState:
         }
 
     def proposals_of_track(self, label: str) -> list[str]:
-        p = self.proposals
-        sel = (p["track_a"] == label) | (p["track_b"] == label)
-        return p["proposal"][sel].tolist()
+        sel = (self.track_a == label) | (self.track_b == label)
+        return self.proposals["proposal"].to_numpy()[sel].tolist()
 
     # -- decisions ----------------------------------------------------------------------
 
@@ -485,6 +489,7 @@ class ReviewState:
         self.links -= set(change.links_removed)
         self.links |= set(change.links_added)
         self._targets = None
+        self.version += 1
         after = self._targets_of(change.tracks)
         self.log.append(
             LogEntry(
