@@ -315,3 +315,55 @@ def test_workspace_renders(scene, tmp_path, qtbot):
     qtbot.addWidget(w)
     w.network.proposal_clicked.emit("A0002")
     assert w.panel.current() == "A0002"
+
+
+@pytest.mark.real
+def test_operator_reviews_an_mtad_pair_end_to_end(qtbot, tmp_path):
+    """Two files (radar, AIS) → associate + fuse proposals → every proposal decided by
+    keyboard → one fixed by hand and undone → close → reopen → export."""
+    from conftest import real_file
+
+    from wakeline.app.review_demo import build
+    from wakeline.core.export_review import export_decision_log, export_tracks, merged_tracks
+
+    radar = real_file("mtad-dtwcm", "two_sensor", "scene-6_error_0_radar.csv")
+    ais = real_file("mtad-dtwcm", "two_sensor", "scene-6_error_0_AIS.csv")
+    ctl, points = build([radar, ais])
+    st = ctl.state
+    assert set(st.tracks["sensor"]) == {"AIS", "radar"} and len(st.proposals) >= 10
+    db = tmp_path / "review.wakeline"
+    ctl.store = ReviewStore(db)
+    ctl.store.save_queue(st)
+    panel = ReviewPanel(ctl)
+    qtbot.addWidget(panel)
+    panel.show()
+    panel.activateWindow()
+    panel.view.setFocus()
+    qtbot.waitUntil(panel.view.hasFocus, timeout=2000)
+    panel.sort_box.setCurrentIndex(2)
+    for k in range(len(st.proposals)):  # reject every fifth, accept the rest
+        key = QtCore.Qt.Key.Key_R if k % 5 == 0 else QtCore.Qt.Key.Key_A
+        qtbot.keyClick(panel.view, key)
+    assert "pending" not in set(st.status)
+    rejected = st.proposals["proposal"][st.status == "rejected"].tolist()
+    # Fix one by hand: the first rejected pair merged again, then undone.
+    panel.set_current(rejected[0])
+    qtbot.keyClick(panel.view, QtCore.Qt.Key.Key_M)
+    a, b = st.proposals.set_index("proposal").loc[rejected[0], ["track_a", "track_b"]]
+    assert st.target(a) == st.target(b)
+    panel.act_undo.trigger()
+    assert st.target(a) != st.target(b)
+    want = st.target_of_track().copy()
+    n_decisions = ctl.store.decision_count()
+    assert n_decisions == len(st.proposals) + 2
+    ctl.store.close()
+    with ReviewStore(db) as store:
+        again = store.load()
+    assert (again.target_of_track() == want).all()
+    assert list(again.status) == list(st.status)
+    export_tracks(merged_tracks(again, points), tmp_path / "out.gpx")
+    export_tracks(again.label_points(points), tmp_path / "out.csv", bom=True)
+    export_decision_log(again, tmp_path / "log.csv")
+    log = pd.read_csv(tmp_path / "log.csv")
+    assert len(log) == n_decisions and log["action"].iloc[-1] == "undo merge"
+    assert (tmp_path / "out.gpx").read_text(encoding="utf-8").count("<trk>") == len(set(want))
