@@ -91,9 +91,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("files", nargs="+", type=Path)
     ap.add_argument("-o", "--output", type=Path, required=True, help="PNG to write")
     ap.add_argument("--proposal", help="proposal to show (default: the first in the queue)")
+    ap.add_argument("--decisions", type=Path, help="decisions to apply first (as `review`)")
     args = ap.parse_args(argv)
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
     controller, points = build(args.files)
+    if args.decisions:
+        from wakeline.app.cli_review import read_table
+
+        R.apply_decisions(controller.state, read_table(args.decisions, "decisions"))
     w = ReviewWorkspace(controller, points)
     w.resize(1400, 850)
     if args.proposal and not w.panel.set_current(args.proposal):

@@ -42,7 +42,8 @@ class Piece:
 
 @dataclass
 class ProposalGeometry:
-    """What to draw for one proposal; ``bounds`` = (lon0, lat0, lon1, lat1) to zoom to."""
+    """What to draw for one proposal; ``bounds`` = (lon0, lat0, lon1, lat1) of its two
+    tracks, to zoom to."""
 
     proposal: str
     pieces: list[Piece] = field(default_factory=list)
@@ -110,9 +111,13 @@ def proposal_geometry(state: ReviewState, points: pd.DataFrame, proposal: str) -
         idx = idx[np.argsort(t[idx], kind="stable")]
         tracks[m] = (t[idx], lon[idx], lat[idx])
         geom.pieces.append(Piece(m, lon[idx], lat[idx], PALETTE[k % len(PALETTE)]))
-    if len(lon):
-        geom.bounds = (float(lon.min()), float(lat.min()), float(lon.max()), float(lat.max()))
     ta, tb = tracks.get(p["track_a"]), tracks.get(p["track_b"])
+    # Zoom to the proposal's two tracks (the other members are drawn, maybe off view).
+    both = [x for x in (ta, tb) if x is not None and len(x[0])]
+    if both:
+        blon = np.concatenate([x[1] for x in both])
+        blat = np.concatenate([x[2] for x in both])
+        geom.bounds = (float(blon.min()), float(blat.min()), float(blon.max()), float(blat.max()))
     if ta is not None and tb is not None and len(ta[0]) and len(tb[0]):
         if ta[0][-1] > tb[0][0]:  # make a the earlier-ending track
             ta, tb = tb, ta

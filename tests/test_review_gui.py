@@ -322,7 +322,6 @@ def test_operator_reviews_an_mtad_pair_end_to_end(qtbot, tmp_path):
     """Two files (radar, AIS) → associate + fuse proposals → every proposal decided by
     keyboard → one fixed by hand and undone → close → reopen → export."""
     from conftest import real_file
-
     from wakeline.app.review_demo import build
     from wakeline.core.export_review import export_decision_log, export_tracks, merged_tracks
 
