@@ -146,6 +146,34 @@ class ReviewStore:
         return _Transaction(self._db)
 
 
+REVIEW_TABLES = ("review_tracks", "review_proposals", "review_decisions", "review_meta")
+
+
+def copy_review(src: str | Path, dst: str | Path) -> int:
+    """Copy the review tables of the project file ``src`` into ``dst`` (replacing any
+    there), in one transaction; returns the decisions copied. For a project save that
+    writes a new file and renames it over the old one: call it on the new file before
+    the rename, so the decisions survive the save."""
+    if not Path(src).exists():
+        return 0
+    ReviewStore(dst).close()  # make the tables
+    db = sqlite3.connect(dst, isolation_level=None)
+    try:
+        db.execute("ATTACH DATABASE ? AS src", (str(src),))
+        have = {r[0] for r in db.execute("SELECT name FROM src.sqlite_master WHERE type='table'")}
+        if "review_decisions" not in have:
+            return 0
+        db.execute("BEGIN IMMEDIATE")
+        for t in REVIEW_TABLES:
+            db.execute(f"DELETE FROM main.{t}")  # noqa: S608 - fixed table names
+            if t in have:
+                db.execute(f"INSERT INTO main.{t} SELECT * FROM src.{t}")  # noqa: S608
+        db.execute("COMMIT")
+        return int(db.execute("SELECT COUNT(*) FROM main.review_decisions").fetchone()[0])
+    finally:
+        db.close()
+
+
 class _Transaction:
     """BEGIN IMMEDIATE … COMMIT (ROLLBACK on error) on an autocommit connection."""
 

@@ -231,6 +231,19 @@ def test_decisions_survive_a_killed_process(scene, tmp_path):
     assert st.status_of(ap["proposal"][0]) == "rejected"
 
 
+def test_review_tables_survive_a_project_save_by_rename(state, tmp_path):
+    from wakeline.core.review_store import copy_review
+
+    old, new = tmp_path / "p.wakeline", tmp_path / "p.new"
+    with ReviewStore(old) as store:
+        store.save_queue(state)
+        store.apply(state, R.reject(state, state.proposals["proposal"][0]))
+    assert copy_review(old, new) == 1
+    with ReviewStore(new) as store:
+        assert store.load().status_of(state.proposals["proposal"][0]) == "rejected"
+    assert copy_review(tmp_path / "absent", new) == 0
+
+
 def test_store_reports_a_bad_file(tmp_path):
     bad = tmp_path / "x.wakeline"
     bad.write_bytes(b"not a database at all" * 100)
