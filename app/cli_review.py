@@ -60,7 +60,8 @@ def _cmd_review(args: argparse.Namespace) -> int:
     from wakeline.core.review import ReviewState, apply_decisions, track_table
 
     points = read_inputs(args.input)
-    state = ReviewState(track_table(points), _proposals(args.proposals))
+    props = pd.concat([_proposals(p) for p in args.proposals], ignore_index=True)
+    state = ReviewState(track_table(points), props)
     if args.decisions:
         apply_decisions(state, read_table(args.decisions, "decisions"))
     if args.fused:
@@ -103,7 +104,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "review",
         help="apply accept/reject/merge/split decisions to the proposals and export",
         description="Reads the points (one or several files, as `fuse` does), the proposals written "
-        "by `associate --proposals` / `fuse --proposals` (several tables may be concatenated) and "
+        "by `associate --proposals` / `fuse --proposals` (several tables may be given) and "
         "the decisions: rows proposal,decision with decision = accept | reject | reset, or "
         "decision = merge with sensor_a,batch_a,sensor_b,batch_b, or decision = split with "
         "sensor_a,batch_a (that track leaves its target); applied in order. Proposals without a "
@@ -117,7 +118,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "-o", "--output", type=Path, required=True, help="result: .csv, .geojson or .gpx"
     )
-    p.add_argument("--proposals", type=Path, required=True, metavar="P.csv", help="proposals table")
+    p.add_argument(
+        "--proposals",
+        type=Path,
+        nargs="+",
+        required=True,
+        metavar="P.csv",
+        help="proposals table(s): e.g. one from associate and one from fuse",
+    )
     p.add_argument(
         "--decisions", type=Path, metavar="D.csv", help="decisions table (none: accept all)"
     )

@@ -378,6 +378,9 @@ def test_cli_review_matches_the_core_session(scene, tmp_path, capsys):
         == 2
     )
     assert "line 2" in capsys.readouterr().err
+    ap_csv = str(tmp_path / "ap.csv")
+    assert main(["review", str(radar), "-o", str(out), "--proposals", ap_csv, ap_csv]) == 2
+    assert "appears twice" in capsys.readouterr().err
 
 
 def test_fuse_takes_one_file_per_sensor(scene, tmp_path, capsys):
