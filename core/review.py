@@ -26,14 +26,16 @@ import dataclasses
 import datetime as _dt
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
 
-from wakeline.core import associate as _assoc
-from wakeline.core.associate import components
 from wakeline.core.errors import InputError
 from wakeline.core.schema import time_seconds
+
+if TYPE_CHECKING:  # the engine's modules load only when proposals are made
+    from wakeline.core import associate as _assoc
 
 STATUSES = ("pending", "accepted", "rejected", "split")
 ACTIVE = ("pending", "accepted")  # statuses whose link counts in the targets
@@ -146,6 +148,8 @@ def association_proposals(
     table (columns :data:`PROPOSAL_COLUMNS`, ``kind`` = ``associate``) and the association
     with the rejected pairs removed (unchanged when nothing was rejected).
     """
+    from wakeline.core import associate as _assoc
+
     params = (params or _assoc.LinkParams()).checked()
     seg = assoc.segments
     labels = _labels(seg.index.keys)
@@ -202,6 +206,7 @@ def fusion_proposals(
     the track distance (m, synchronized or DTW), ``gap_s`` is 0 and ``overlap_s`` the
     common time span; the gate is ``max_distance_m``.
     """
+    from wakeline.core import associate as _assoc
     from wakeline.core.fuse import FuseParams, _spans, _target_labels
 
     params = (params or FuseParams()).checked()
@@ -422,6 +427,8 @@ class ReviewState:
         return self._targets
 
     def _compute_targets(self) -> np.ndarray:
+        from wakeline.core.associate import components
+
         active = np.isin(self.status, ACTIVE)
         la = [self._track_no[x] for x, _ in self.links]
         lb = [self._track_no[y] for _, y in self.links]
