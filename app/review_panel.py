@@ -203,20 +203,36 @@ class ReviewPanel(QtWidgets.QWidget):
             a.triggered.connect(slot)
             return a
 
-        self.act_next = act("Next proposal", "J", self.next, "next proposal in the queue")
-        self.act_prev = act("Previous proposal", "K", self.previous, "previous proposal")
-        self.act_accept = act("Accept", "A", self.accept, "accept: the two tracks are one ship")
+        self.act_next = act(
+            self.tr("Next proposal"), "J", self.next, self.tr("next proposal in the queue")
+        )
+        self.act_prev = act(
+            self.tr("Previous proposal"), "K", self.previous, self.tr("previous proposal")
+        )
+        self.act_accept = act(
+            self.tr("Accept"), "A", self.accept, self.tr("accept: the two tracks are one ship")
+        )
         self.act_reject = act(
-            "Reject", "R", self.reject, "reject: not one ship; never proposed again"
+            self.tr("Reject"),
+            "R",
+            self.reject,
+            self.tr("reject: not one ship; never proposed again"),
         )
-        self.act_split = act("Split track", "S", self.split, "track B leaves its target")
+        self.act_split = act(
+            self.tr("Split track"), "S", self.split, self.tr("track B leaves its target")
+        )
         self.act_split_target = act(
-            "Split target", "Shift+S", self.split_target, "the target falls back into its tracks"
+            self.tr("Split target"),
+            "Shift+S",
+            self.split_target,
+            self.tr("the target falls back into its tracks"),
         )
-        self.act_merge = act("Merge", "M", self.merge, "merge the tracks of the selected rows")
-        self.act_undo = self.controller.stack.createUndoAction(self, "Undo")
+        self.act_merge = act(
+            self.tr("Merge"), "M", self.merge, self.tr("merge the tracks of the selected rows")
+        )
+        self.act_undo = self.controller.stack.createUndoAction(self, self.tr("Undo"))
         self.act_undo.setShortcut(QtGui.QKeySequence.StandardKey.Undo)
-        self.act_redo = self.controller.stack.createRedoAction(self, "Redo")
+        self.act_redo = self.controller.stack.createRedoAction(self, self.tr("Redo"))
         self.act_redo.setShortcut(QtGui.QKeySequence.StandardKey.Redo)
         for a in (self.act_undo, self.act_redo):
             a.setShortcutContext(QtCore.Qt.ShortcutContext.WidgetWithChildrenShortcut)
