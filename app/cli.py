@@ -477,6 +477,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_gui)
     cli_render.register(sub)
     cli_export.register(sub)
+    from wakeline.app import cli_review
+
+    cli_review.register(sub)
     return parser
 
 

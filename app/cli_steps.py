@@ -78,6 +78,8 @@ OUTPUT_HELP = {
 EXTRA_HELP = {
     "rejected": "write every removed or changed point",
     "pairs": "write the joined pairs with their distances",
+    "proposals": "write one row per proposed join with its evidence (cost and its parts, "
+    "runner-up, margin) for `wakeline review`",
 }
 
 
@@ -153,7 +155,19 @@ def add_step_parsers(sub) -> None:
         p = sub.add_parser(
             name, help=help_, description=description, epilog=epilog, formatter_class=formatter
         )
-        p.add_argument("input", type=Path, help="track file (any layout `wakeline import` reads)")
+        if step.many_inputs:
+            p.add_argument(
+                "input",
+                type=Path,
+                nargs="+",
+                help="track files (any layout `wakeline import` reads): one of several "
+                "sensors, or one per sensor (files of one sensor each take the differing "
+                "part of their names as sensor)",
+            )
+        else:
+            p.add_argument(
+                "input", type=Path, help="track file (any layout `wakeline import` reads)"
+            )
         p.add_argument(
             "-o", "--output", type=Path, required=True, help=OUTPUT_HELP.get(step.output, "")
         )
@@ -318,7 +332,13 @@ def run_step_command(args: argparse.Namespace) -> int:
 
     step = STEPS[args.step]
     params = step_params(step, args)
-    result = step(read_input(args.input), params)
+    if step.many_inputs:
+        from wakeline.app.cli_review import read_inputs
+
+        points = read_inputs(args.input)
+    else:
+        points = read_input(args.input)
+    result = step(points, params)
     write_table(step.output, result.tables[step.output], args.output)
     for table, _flag in step.outputs:
         path = getattr(args, f"out__{table}", None)

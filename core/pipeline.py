@@ -307,17 +307,28 @@ def run_associate(points: pd.DataFrame, params: dict, progress: Progress = null_
         assoc = associate_interrupted(
             points, lp, method=method, normalize=opts.normalize, progress=progress
         )
+    from wakeline.core.review import association_proposals
+
     out = stitch(assoc) if opts.stitch else assoc.points()
     pairs = assoc.pair_table()
+    proposals = association_proposals(assoc, lp)[0]
     report = {**assoc.report(), "method": method}
     if opts.stitch:
         report["points_filled"] = int(out["interpolated"].sum())
     role = "stitched" if opts.stitch else "associated"
     return StepResult(
         "associate",
-        [NewLayer(role, "associated", out, {"pairs": int(len(pairs))}, {"pairs": pairs})],
+        [
+            NewLayer(
+                role,
+                "associated",
+                out,
+                {"pairs": int(len(pairs))},
+                {"pairs": pairs, "proposals": proposals},
+            )
+        ],
         report,
-        {"points": out, "pairs": pairs},
+        {"points": out, "pairs": pairs, "proposals": proposals},
     )
 
 
@@ -345,8 +356,11 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
         method=opts.method,
         progress=sub_progress(progress, 0.0, 0.6),
     )
+    from wakeline.core.review import fusion_proposals
+
     fused = fuse(assoc, fp, sub_progress(progress, 0.6, 1.0))
     pairs = assoc.pair_table()
+    proposals = fusion_proposals(assoc, fp)[0]
     report = {
         **assoc.report(),
         "fused_points": int(len(fused)),
@@ -355,9 +369,17 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
     }
     return StepResult(
         "fuse",
-        [NewLayer("fused", "fused", fused, {"pairs": int(len(pairs))}, {"pairs": pairs})],
+        [
+            NewLayer(
+                "fused",
+                "fused",
+                fused,
+                {"pairs": int(len(pairs))},
+                {"pairs": pairs, "proposals": proposals},
+            )
+        ],
         report,
-        {"points": fused, "pairs": pairs},
+        {"points": fused, "pairs": pairs, "proposals": proposals},
     )
 
 
@@ -382,6 +404,7 @@ class Step:
     output: str = "points"  # the table written with -o
     outputs: tuple[tuple[str, str], ...] = ()  # (table, flag) written on request
     primary: str = ""  # the role of the layer the next pipeline stage reads
+    many_inputs: bool = False  # takes several files (one per sensor) on the command line
 
     def defaults(self) -> dict[str, Any]:
         return {key: cls() for key, cls in self.params}
@@ -440,7 +463,7 @@ def _steps() -> dict[str, Step]:
                 (("associate", LinkParams), ("associate_options", AssociateOptions)),
                 run_associate,
                 _summary_associate,
-                outputs=(("pairs", "--pairs"),),
+                outputs=(("pairs", "--pairs"), ("proposals", "--proposals")),
                 primary="associated",
             ),
             Step(
@@ -449,8 +472,9 @@ def _steps() -> dict[str, Step]:
                 (("fuse", FuseParams), ("fuse_options", FuseOptions)),
                 run_fuse,
                 _summary_fuse,
-                outputs=(("pairs", "--pairs"),),
+                outputs=(("pairs", "--pairs"), ("proposals", "--proposals")),
                 primary="fused",
+                many_inputs=True,
             ),
         )
     }

@@ -1,0 +1,148 @@
+"""``wakeline review``: apply the operator's decisions to the engine's proposals, as the
+review panel would, and export the result (SPEC §7, issue 13)."""
+
+import argparse
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+from wakeline.core.errors import InputError
+
+_TEXT = (
+    "proposal",
+    "kind",
+    "method",
+    "sensor_a",
+    "batch_a",
+    "sensor_b",
+    "batch_b",
+    "runner_up",
+    "runner_up_side",
+)
+
+
+def read_inputs(paths: list[Path]) -> pd.DataFrame:
+    """Read one or several track files as one point table; files that each hold one
+    sensor of the same name get the differing part of their names as sensor."""
+    from wakeline.app.cli_steps import read_input
+    from wakeline.core.review import combine_sources
+
+    paths = list(paths) if isinstance(paths, list | tuple) else [paths]
+    return combine_sources([(p.stem, read_input(p)) for p in paths])
+
+
+def read_table(path: Path, what: str) -> pd.DataFrame:
+    """A small CSV (proposals or decisions) with every column as text, blanks kept."""
+    try:
+        return pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig")
+    except pd.errors.EmptyDataError:
+        raise InputError(f"{path}: the {what} file is empty") from None
+    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read the {what} table ({exc})") from None
+
+
+def _proposals(path: Path) -> pd.DataFrame:
+    df = read_table(path, "proposals")
+    for c in df.columns:
+        if c not in _TEXT:
+            df[c] = pd.to_numeric(df[c].replace("", None), errors="coerce")
+    return df
+
+
+def _cmd_review(args: argparse.Namespace) -> int:
+    from wakeline.core.export_review import (
+        export_decision_log,
+        export_tracks,
+        fused_tracks,
+        merged_tracks,
+    )
+    from wakeline.core.review import ReviewState, apply_decisions, track_table
+
+    points = read_inputs(args.input)
+    props = pd.concat([_proposals(p) for p in args.proposals], ignore_index=True)
+    state = ReviewState(track_table(points), props)
+    if args.decisions:
+        apply_decisions(state, read_table(args.decisions, "decisions"))
+    if args.fused:
+        from wakeline.app.cli import _fuse_params
+        from wakeline.core.fuse import associate_sensors
+
+        params = _fuse_params(args.set)
+        if points["sensor"].nunique() >= 2:
+            sassoc = associate_sensors(points, params)
+        else:
+            raise InputError("--fused needs tracks of at least two sensors")
+        out = fused_tracks(state, sassoc, params)
+    elif Path(args.output).suffix.lower() in (".gpx", ".geojson", ".json"):
+        out = merged_tracks(state, points)
+    else:
+        out = state.label_points(points)
+    fmt = export_tracks(out, args.output, bom=args.bom)
+    if args.log:
+        export_decision_log(state, args.log, bom=args.bom)
+    tab = state.table()
+    counts = tab["status"].value_counts().to_dict()
+    n_targets = state.targets()["target"].nunique()
+    print(
+        f"{len(tab):,} proposals ("
+        + ", ".join(
+            f"{counts.get(s, 0):,} {s}" for s in ("accepted", "rejected", "split", "pending")
+        )
+        + f"), {len(state.log):,} decisions, {len(state.tracks):,} tracks -> "
+        f"{n_targets:,} targets; wrote {fmt}",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``review`` subcommand to the ``wakeline`` parser."""
+    from wakeline.app.cli import EPILOG
+
+    p = sub.add_parser(
+        "review",
+        help="apply accept/reject/merge/split decisions to the proposals and export",
+        description="Reads the points (one or several files, as `fuse` does), the proposals written "
+        "by `associate --proposals` / `fuse --proposals` (several tables may be given) and "
+        "the decisions: rows proposal,decision with decision = accept | reject | reset, or "
+        "decision = merge with sensor_a,batch_a,sensor_b,batch_b, or decision = split with "
+        "sensor_a,batch_a (that track leaves its target); applied in order. Proposals without a "
+        "decision count as accepted. Targets are the connected components of the proposals not "
+        "rejected plus the manual merges minus the splits, named after the sensor:batch of their "
+        "earliest track. OUT by its suffix: .csv every input row with a target column (or the "
+        "fused tracks with --fused), .geojson / .gpx one track per target.",
+        epilog=EPILOG,
+    )
+    p.add_argument("input", type=Path, nargs="+", help="track file(s) the proposals were made on")
+    p.add_argument(
+        "-o", "--output", type=Path, required=True, help="result: .csv, .geojson or .gpx"
+    )
+    p.add_argument(
+        "--proposals",
+        type=Path,
+        nargs="+",
+        required=True,
+        metavar="P.csv",
+        help="proposals table(s): e.g. one from associate and one from fuse",
+    )
+    p.add_argument(
+        "--decisions", type=Path, metavar="D.csv", help="decisions table (none: accept all)"
+    )
+    p.add_argument(
+        "--log", type=Path, metavar="LOG.csv", help="write the decision log (time, action, …)"
+    )
+    p.add_argument(
+        "--fused",
+        action="store_true",
+        help="write one fused track per decided target (sensor 'fused', members, source)",
+    )
+    p.add_argument(
+        "--bom",
+        action="store_true",
+        help="start CSV files with a UTF-8 byte-order mark (spreadsheets then read Chinese)",
+    )
+    p.add_argument(
+        "--set", action="append", metavar="NAME=VALUE", help="--fused: change a fuse parameter"
+    )
+    p.set_defaults(func=_cmd_review)

@@ -1,0 +1,415 @@
+"""The review panel (issue 13): the queue of proposals with their evidence, sortable by
+margin or cost and filtered by status and sensor, and the keyboard flow as ``QAction``s
+(next, previous, accept, reject, split, merge, undo, redo) for the window's menu.
+
+A thin table model over the core's :class:`~wakeline.core.review.ReviewState`; every
+decision goes through a :class:`~wakeline.app.review_undo.ReviewController`.
+"""
+
+import numpy as np
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from wakeline.app.review_undo import ReviewController
+
+COLUMNS = (
+    ("proposal", "proposal"),
+    ("status", "status"),
+    ("track_a", "track A"),
+    ("track_b", "track B"),
+    ("margin", "margin"),
+    ("cost", "cost"),
+    ("gap_s", "gap s"),
+    ("distance_m", "distance m"),
+    ("runner_up", "runner-up"),
+    ("method", "method"),
+)
+_STATUS_COLORS = {
+    "pending": None,
+    "accepted": "#dff3df",
+    "rejected": "#f8dcdc",
+    "split": "#fbe9d0",
+}
+SORT_ROLE = QtCore.Qt.ItemDataRole.UserRole + 1
+
+
+class ProposalModel(QtCore.QAbstractTableModel):
+    """One row per proposal; reads the state, never copies decisions."""
+
+    def __init__(self, controller: ReviewController, parent=None) -> None:
+        super().__init__(parent)
+        self.controller = controller
+        self._refresh()
+        controller.changed.connect(self._on_changed)
+
+    def _refresh(self) -> None:
+        st = self.controller.state
+        p = st.proposals
+        self.ids = p["proposal"].tolist()
+        self.row_of = {pid: k for k, pid in enumerate(self.ids)}
+        self.cols = {name: p[name].to_numpy() for name, _ in COLUMNS if name != "status"}
+
+    def _on_changed(self, proposals: list) -> None:
+        col = [n for n, _ in COLUMNS].index("status")
+        rows = [self.row_of[p] for p in proposals if p in self.row_of]
+        if rows:
+            self.dataChanged.emit(self.index(min(rows), 0), self.index(max(rows), len(COLUMNS) - 1))
+        else:  # manual links change no status, but the targets around them
+            self.dataChanged.emit(self.index(0, col), self.index(self.rowCount() - 1, col))
+
+    def rowCount(self, parent=None) -> int:  # noqa: N802 - Qt API
+        return 0 if parent is not None and parent.isValid() else len(self.ids)
+
+    def columnCount(self, parent=None) -> int:  # noqa: N802 - Qt API
+        return 0 if parent is not None and parent.isValid() else len(COLUMNS)
+
+    def headerData(self, section, orientation, role=QtCore.Qt.ItemDataRole.DisplayRole):  # noqa: N802
+        if (
+            role == QtCore.Qt.ItemDataRole.DisplayRole
+            and orientation == QtCore.Qt.Orientation.Horizontal
+        ):
+            return COLUMNS[section][1]
+        return None
+
+    def value(self, row: int, name: str):
+        if name == "status":
+            return str(self.controller.state.status[row])
+        return self.cols[name][row]
+
+    def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
+        if not index.isValid():
+            return None
+        name = COLUMNS[index.column()][0]
+        v = self.value(index.row(), name)
+        if role == QtCore.Qt.ItemDataRole.DisplayRole:
+            if isinstance(v, float | np.floating):
+                return "" if np.isnan(v) else f"{v:.3g}" if abs(v) < 10 else f"{v:.0f}"
+            return str(v)
+        if role == SORT_ROLE:
+            if isinstance(v, float | np.floating):
+                return float(np.inf) if np.isnan(v) else float(v)
+            return str(v)
+        if role == QtCore.Qt.ItemDataRole.BackgroundRole:
+            color = _STATUS_COLORS.get(str(self.controller.state.status[index.row()]))
+            return QtGui.QBrush(QtGui.QColor(color)) if color else None
+        if role == QtCore.Qt.ItemDataRole.ToolTipRole and name == "margin":
+            return "runner-up (or the gate) cost minus this cost: small = uncertain"
+        return None
+
+
+class ProposalFilter(QtCore.QSortFilterProxyModel):
+    """Filter by status and by sensor (either track's)."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.status = ""
+        self.sensor = ""
+        self.setSortRole(SORT_ROLE)
+
+    def set_filter(self, status: str = "", sensor: str = "") -> None:
+        if hasattr(self, "beginFilterChange"):  # Qt ≥ 6.10: invalidateFilter is deprecated
+            self.beginFilterChange()
+            self.status, self.sensor = status, sensor
+            self.endFilterChange(QtCore.QSortFilterProxyModel.Direction.Rows)
+        else:
+            self.status, self.sensor = status, sensor
+            self.invalidateRowsFilter()
+
+    def filterAcceptsRow(self, row: int, parent) -> bool:  # noqa: N802 - Qt API
+        m: ProposalModel = self.sourceModel()
+        if self.status and m.value(row, "status") != self.status:
+            return False
+        if self.sensor:
+            a, b = str(m.value(row, "track_a")), str(m.value(row, "track_b"))
+            if not (a.startswith(self.sensor + ":") or b.startswith(self.sensor + ":")):
+                return False
+        return True
+
+
+class ReviewPanel(QtWidgets.QWidget):
+    """Queue, filters, evidence of the current proposal and the review actions.
+
+    ``current_changed(proposal)`` is emitted when the current proposal changes;
+    ``current_settled(proposal)`` when it has stayed for :attr:`settle_ms` (the map, Gantt
+    and network follow that one, so holding a key down never waits for redraws).
+    :attr:`actions` lists the ``QAction``s for the menu.
+    """
+
+    current_changed = QtCore.Signal(str)
+    current_settled = QtCore.Signal(str)  # the same, once the keys rest (for heavy views)
+
+    def __init__(self, controller: ReviewController, parent=None) -> None:
+        super().__init__(parent)
+        self.controller = controller
+        self.advance = True  # move to the next proposal after accept / reject
+        self.settle_ms = 80
+        self._settle = QtCore.QTimer(self)
+        self._settle.setSingleShot(True)
+        self._settle.timeout.connect(lambda: self.current_settled.emit(self.current()))
+        self.model = ProposalModel(controller, self)
+        self.proxy = ProposalFilter(self)
+        self.proxy.setSourceModel(self.model)
+        self.view = QtWidgets.QTableView()
+        self.view.setModel(self.proxy)
+        self.view.setSortingEnabled(True)
+        self.view.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectionBehavior.SelectRows)
+        self.view.verticalHeader().setVisible(False)
+        self.view.verticalHeader().setDefaultSectionSize(20)
+        self.view.horizontalHeader().setStretchLastSection(True)
+        self.view.selectionModel().currentRowChanged.connect(self._row_changed)
+
+        self.status_box = QtWidgets.QComboBox()
+        self.status_box.addItems(["all", "pending", "accepted", "rejected", "split"])
+        sensors = sorted(set(controller.state.tracks["sensor"].astype(str)))
+        self.sensor_box = QtWidgets.QComboBox()
+        self.sensor_box.addItems(["all sensors", *sensors])
+        self.sort_box = QtWidgets.QComboBox()
+        self.sort_box.addItems(["least margin first", "highest cost first", "id"])
+        for box in (self.status_box, self.sensor_box):
+            box.currentIndexChanged.connect(self._filter_changed)
+        self.sort_box.currentIndexChanged.connect(self._sort_changed)
+        self.evidence = QtWidgets.QLabel()
+        self.evidence.setWordWrap(True)
+        self.evidence.setTextInteractionFlags(QtCore.Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.counts = QtWidgets.QLabel()
+
+        top = QtWidgets.QHBoxLayout()
+        for w in (self.status_box, self.sensor_box, self.sort_box):
+            top.addWidget(w)
+        top.addStretch(1)
+        top.addWidget(self.counts)
+        lay = QtWidgets.QVBoxLayout(self)
+        lay.setContentsMargins(2, 2, 2, 2)
+        lay.addLayout(top)
+        lay.addWidget(self.view, 1)
+        lay.addWidget(self.evidence)
+
+        self.actions = self._make_actions()
+        self.addActions(self.actions)
+        controller.changed.connect(self._after_change)
+        self._sort_changed()
+        self._update_counts()
+        if self.proxy.rowCount():
+            self.view.selectRow(0)
+            self.view.setCurrentIndex(self.proxy.index(0, 0))
+
+    # -- actions ------------------------------------------------------------------------
+
+    def _make_actions(self) -> list[QtGui.QAction]:
+        def act(text: str, key: str, slot, tip: str) -> QtGui.QAction:
+            a = QtGui.QAction(text, self)
+            a.setShortcut(QtGui.QKeySequence(key))
+            a.setShortcutContext(QtCore.Qt.ShortcutContext.WidgetWithChildrenShortcut)
+            a.setToolTip(tip)
+            a.triggered.connect(slot)
+            return a
+
+        self.act_next = act(
+            self.tr("Next proposal"), "J", self.next, self.tr("next proposal in the queue")
+        )
+        self.act_prev = act(
+            self.tr("Previous proposal"), "K", self.previous, self.tr("previous proposal")
+        )
+        self.act_accept = act(
+            self.tr("Accept"), "A", self.accept, self.tr("accept: the two tracks are one ship")
+        )
+        self.act_reject = act(
+            self.tr("Reject"),
+            "R",
+            self.reject,
+            self.tr("reject: not one ship; never proposed again"),
+        )
+        self.act_split = act(
+            self.tr("Split track"), "S", self.split, self.tr("track B leaves its target")
+        )
+        self.act_split_target = act(
+            self.tr("Split target"),
+            "Shift+S",
+            self.split_target,
+            self.tr("the target falls back into its tracks"),
+        )
+        self.act_merge = act(
+            self.tr("Merge"), "M", self.merge, self.tr("merge the tracks of the selected rows")
+        )
+        self.act_undo = self.controller.stack.createUndoAction(self, self.tr("Undo"))
+        self.act_undo.setShortcut(QtGui.QKeySequence.StandardKey.Undo)
+        self.act_redo = self.controller.stack.createRedoAction(self, self.tr("Redo"))
+        self.act_redo.setShortcut(QtGui.QKeySequence.StandardKey.Redo)
+        for a in (self.act_undo, self.act_redo):
+            a.setShortcutContext(QtCore.Qt.ShortcutContext.WidgetWithChildrenShortcut)
+        return [
+            self.act_next,
+            self.act_prev,
+            self.act_accept,
+            self.act_reject,
+            self.act_split,
+            self.act_split_target,
+            self.act_merge,
+            self.act_undo,
+            self.act_redo,
+        ]
+
+    def current(self) -> str:
+        """The current proposal id ("" when the queue is empty)."""
+        idx = self.view.currentIndex()
+        if not idx.isValid():
+            return ""
+        return self.model.ids[self.proxy.mapToSource(idx).row()]
+
+    def set_current(self, proposal: str) -> bool:
+        """Make ``proposal`` current (clearing filters that hide it)."""
+        row = self.model.row_of.get(proposal)
+        if row is None:
+            return False
+        pidx = self.proxy.mapFromSource(self.model.index(row, 0))
+        if not pidx.isValid():
+            self.status_box.setCurrentIndex(0)
+            self.sensor_box.setCurrentIndex(0)
+            pidx = self.proxy.mapFromSource(self.model.index(row, 0))
+        self.view.setCurrentIndex(pidx)
+        self.view.selectRow(pidx.row())
+        self.view.scrollTo(pidx)
+        return True
+
+    def _step(self, d: int) -> None:
+        n = self.proxy.rowCount()
+        if n == 0:
+            return
+        r = self.view.currentIndex().row()
+        r = min(max(r + d, 0), n - 1) if r >= 0 else 0
+        self.view.setCurrentIndex(self.proxy.index(r, 0))
+        self.view.selectRow(r)
+
+    def next(self) -> None:
+        self._step(1)
+
+    def previous(self) -> None:
+        self._step(-1)
+
+    def _decide(self, fn) -> None:
+        pid = self.current()
+        if not pid:
+            return
+        row = self.view.currentIndex().row()
+        fn(pid)
+        if self.advance:
+            # The filter may have hidden the decided row: stay at the same position.
+            n = self.proxy.rowCount()
+            if n:
+                r = min(row + (1 if self._row_of_current_is(pid) else 0), n - 1)
+                self.view.setCurrentIndex(self.proxy.index(r, 0))
+                self.view.selectRow(r)
+
+    def _row_of_current_is(self, pid: str) -> bool:
+        return self.current() == pid
+
+    def accept(self) -> None:
+        self._decide(self.controller.accept)
+
+    def reject(self) -> None:
+        self._decide(self.controller.reject)
+
+    def split(self) -> None:
+        pid = self.current()
+        if pid:
+            self.controller.split_track(self._tracks(pid)[1])
+
+    def split_target(self) -> None:
+        pid = self.current()
+        if pid:
+            st = self.controller.state
+            self.controller.split_target(st.target(self._tracks(pid)[0]))
+
+    def merge(self) -> None:
+        """Merge the tracks of every selected row (two tracks of one row, or more)."""
+        rows = sorted(
+            {self.proxy.mapToSource(i).row() for i in self.view.selectionModel().selectedRows()}
+        )
+        tracks = []
+        for r in rows:
+            tracks += self._tracks(self.model.ids[r])
+        tracks = list(dict.fromkeys(tracks))
+        if len(tracks) >= 2:
+            self.controller.merge(tracks)
+
+    def _tracks(self, pid: str) -> tuple[str, str]:
+        r = self.model.row_of[pid]
+        return str(self.model.cols["track_a"][r]), str(self.model.cols["track_b"][r])
+
+    # -- view state ---------------------------------------------------------------------
+
+    def _filter_changed(self) -> None:
+        status = self.status_box.currentText()
+        sensor = self.sensor_box.currentText()
+        self.proxy.set_filter(
+            "" if status == "all" else status, "" if self.sensor_box.currentIndex() == 0 else sensor
+        )
+        if self.proxy.rowCount() and not self.view.currentIndex().isValid():
+            self._step(0)
+
+    def _sort_changed(self) -> None:
+        names = [n for n, _ in COLUMNS]
+        k = self.sort_box.currentIndex()
+        col, order = (
+            (names.index("margin"), QtCore.Qt.SortOrder.AscendingOrder)
+            if k == 0
+            else (names.index("cost"), QtCore.Qt.SortOrder.DescendingOrder)
+            if k == 1
+            else (names.index("proposal"), QtCore.Qt.SortOrder.AscendingOrder)
+        )
+        self.view.sortByColumn(col, order)
+        if self.proxy.rowCount():  # a new order starts at the top of the queue
+            self.view.setCurrentIndex(self.proxy.index(0, 0))
+            self.view.selectRow(0)
+
+    def _row_changed(self, current, _previous) -> None:
+        pid = self.current()
+        self._show_evidence(pid)
+        self.current_changed.emit(pid)
+        self._settle.start(self.settle_ms)
+
+    def _after_change(self, _proposals: list) -> None:
+        self._update_counts()
+        self._show_evidence(self.current())
+        self._settle.start(self.settle_ms)
+
+    def _update_counts(self) -> None:
+        st = self.controller.state.status
+        vals, n = np.unique(st.astype(str), return_counts=True) if len(st) else ([], [])
+        c = dict(zip(vals, n, strict=True))
+        self.counts.setText(
+            f"{len(st)} proposals: {c.get('pending', 0)} pending, {c.get('accepted', 0)} accepted, "
+            f"{c.get('rejected', 0)} rejected, {c.get('split', 0)} split"
+        )
+
+    def _show_evidence(self, pid: str) -> None:
+        if not pid:
+            self.evidence.setText("")
+            return
+        st = self.controller.state
+        p = st.proposals.iloc[self.model.row_of[pid]]
+        unit = "m" if p["kind"] == "fuse" else "(scaled)"
+        parts = []
+        for name, label, fmt in (
+            ("gap_s", "gap", "{:.0f} s"),
+            ("distance_m", "distance", "{:.0f} m"),
+            ("miss_m", "position misfit", "{:.0f} m"),
+            ("dcourse_deg", "Δcourse", "{:.1f}°"),
+            ("dspeed_kn", "Δspeed", "{:.1f} kn"),
+            ("overlap_s", "overlap", "{:.0f} s"),
+        ):
+            v = p[name]
+            if v == v and v is not None:  # not NaN
+                parts.append(f"{label} {fmt.format(float(v))}")
+        rival = (
+            f"runner-up {p['runner_up']} at {float(p['runner_up_cost']):.3g}"
+            if p["runner_up"]
+            else "no runner-up (the alternative is leaving both unmatched)"
+        )
+        target = st.target(p["track_a"])
+        self.evidence.setText(
+            f"<b>{pid}</b> ({st.status_of(pid)}) {p['track_a']} → {p['track_b']}, {p['method']}: "
+            f"cost {float(p['cost']):.3g} {unit} (gate {float(p['gate']):.3g}); "
+            + ", ".join(parts)
+            + f"; {rival}; margin {float(p['margin']):.3g}. Target {target}: "
+            + " + ".join(st.members(target))
+        )

@@ -1,0 +1,72 @@
+"""Undo and redo of review decisions: a thin ``QUndoCommand`` over the core's pure
+:class:`~wakeline.core.review.Change`, and a controller that owns the ``QUndoStack``, the
+:class:`~wakeline.core.review.ReviewState` and (optionally) the project's decision store.
+
+Every do, undo and redo is applied to the state and written to the store at once (undo
+is stored as the inverse change it is), so a reopened project replays to the same state.
+"""
+
+from PySide6 import QtCore, QtGui
+
+from wakeline.core import review as R
+from wakeline.core.review_store import ReviewStore
+
+
+class ReviewCommand(QtGui.QUndoCommand):
+    """One decision on the undo stack."""
+
+    def __init__(self, controller: "ReviewController", change: R.Change) -> None:
+        tracks = ", ".join(change.tracks[:3]) + ("…" if len(change.tracks) > 3 else "")
+        super().__init__(f"{change.action} {change.proposal or tracks}".strip())
+        self.controller = controller
+        self.change = change
+
+    def redo(self) -> None:
+        self.controller._apply(self.change)
+
+    def undo(self) -> None:
+        self.controller._apply(self.change.inverse())
+
+
+class ReviewController(QtCore.QObject):
+    """The review session of the GUI: state + undo stack (+ store).
+
+    ``changed`` is emitted after every applied change with the proposals it touched.
+    """
+
+    changed = QtCore.Signal(list)
+
+    def __init__(self, state: R.ReviewState, store: ReviewStore | None = None, parent=None) -> None:
+        super().__init__(parent)
+        self.state = state
+        self.store = store
+        self.stack = QtGui.QUndoStack(self)
+
+    def _apply(self, change: R.Change) -> None:
+        if self.store is not None:
+            self.store.apply(self.state, change)
+        else:
+            self.state.apply(change)
+        self.changed.emit(sorted(change.status_after))
+
+    def do(self, change: R.Change) -> None:
+        """Apply a decision through the undo stack."""
+        self.stack.push(ReviewCommand(self, change))
+
+    def accept(self, proposal: str) -> None:
+        self.do(R.accept(self.state, proposal))
+
+    def reject(self, proposal: str) -> None:
+        self.do(R.reject(self.state, proposal))
+
+    def reset(self, proposal: str) -> None:
+        self.do(R.reset(self.state, proposal))
+
+    def merge(self, tracks: list[str]) -> None:
+        self.do(R.merge(self.state, tracks))
+
+    def split_track(self, track: str) -> None:
+        self.do(R.split_track(self.state, track))
+
+    def split_target(self, target: str) -> None:
+        self.do(R.split_target(self.state, target))

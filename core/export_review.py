@@ -1,0 +1,121 @@
+"""Export that honours the review's decisions: merged or fused tracks as CSV (optionally
+with a UTF-8 byte-order mark, so spreadsheets read Chinese names), GeoJSON and GPX (for
+OpenCPN), and the decision log as CSV.
+
+"Merged" tracks are the reviewed points with their ``target``, one track per target
+(``batch`` = target, the original ``sensor:batch`` kept in ``source_track``); "fused"
+tracks come from :func:`wakeline.core.fuse.fuse` run on the decided targets.
+"""
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.export import export_geojson, spreadsheet_safe
+from wakeline.core.io.writer import atomic_path, write_csv
+from wakeline.core.review import ReviewState, _labels
+from wakeline.core.schema import ordered_columns
+
+EXPORT_FORMATS = ("csv", "geojson", "gpx")
+
+
+def merged_tracks(state: ReviewState, points: pd.DataFrame) -> pd.DataFrame:
+    """One track per target: every input row with ``sensor`` = ``merged``, ``batch`` =
+    target, ``members`` = the target's tracks (``sensor:batch`` joined by ``+``, as
+    fusion writes it) and ``source_track`` = the row's own ``sensor:batch``."""
+    pts = state.label_points(points)
+    pts["source_track"] = _labels(pts[["sensor", "batch"]].astype(str))
+    members = pts.groupby("target")["source_track"].agg(lambda s: "+".join(sorted(set(s))))
+    pts["members"] = members.reindex(pts["target"]).to_numpy()
+    pts["sensor"] = "merged"
+    pts["batch"] = pts["target"]
+    return pts.sort_values(["batch", "time"], kind="stable").reset_index(drop=True)
+
+
+def fused_tracks(state: ReviewState, sassoc: object, params: object | None = None) -> pd.DataFrame:
+    """:func:`wakeline.core.fuse.fuse` with the targets the decisions give (members of a
+    target may be of one sensor or several)."""
+    from wakeline.core.fuse import fuse
+
+    tt = state.targets().set_index("track")["target"]
+    labels = _labels(sassoc.index.keys)
+    target = tt.reindex(labels).to_numpy()
+    if pd.isna(target).any():
+        raise InputError("the fused points hold tracks the review does not know")
+    return fuse(dataclasses.replace(sassoc, target_of_track=target.astype(str)), params)
+
+
+def export_tracks_csv(points: pd.DataFrame, path: str | Path, bom: bool = False) -> None:
+    """Spreadsheet-safe CSV, canonical columns first; ``bom`` prefixes a UTF-8 BOM."""
+    export_table_csv(points[ordered_columns(points)], path, bom)
+
+
+def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline") -> None:
+    """GPX 1.1: one ``<trk>`` per track (name ``sensor:batch``, description its members
+    when known), one segment, points with time; written atomically (UTF-8)."""
+    import gpxpy.gpx
+
+    gpx = gpxpy.gpx.GPX()
+    gpx.creator = creator
+    pts = points.sort_values(["sensor", "batch", "time"], kind="stable")
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    times = pd.to_datetime(pts["time"], utc=True).dt.to_pydatetime()
+    # Merged and fused tracks are named by their target; others by sensor:batch.
+    own = ~pts["sensor"].astype(str).isin(["merged", "fused"])
+    keys = (
+        pts["batch"]
+        .astype(str)
+        .where(~own, pts["sensor"].astype(str) + ":" + pts["batch"].astype(str))
+    )
+    codes, names = pd.factorize(keys, sort=False)
+    bounds = np.flatnonzero(np.diff(codes, prepend=-1, append=-1))
+    members = pts["members"].astype(str).to_numpy() if "members" in pts.columns else None
+    for s, e in zip(bounds[:-1], bounds[1:], strict=True):  # one object per track, not per point
+        trk = gpxpy.gpx.GPXTrack(name=str(names[codes[s]]))
+        if members is not None:
+            trk.description = members[s]
+        seg = gpxpy.gpx.GPXTrackSegment()
+        seg.points = [
+            gpxpy.gpx.GPXTrackPoint(la, lo, time=tm)
+            for lo, la, tm in zip(lon[s:e], lat[s:e], times[s:e], strict=True)
+        ]
+        trk.segments.append(seg)
+        gpx.tracks.append(trk)
+    text = gpx.to_xml(version="1.1")
+    with atomic_path(path) as tmp:
+        Path(tmp).write_text(text, encoding="utf-8")
+
+
+def export_tracks(points: pd.DataFrame, path: str | Path, bom: bool = False) -> str:
+    """Write tracks in the format named by the suffix (.csv, .geojson/.json, .gpx);
+    returns the format used."""
+    suffix = Path(path).suffix.lower()
+    if suffix in (".geojson", ".json"):
+        export_geojson(points, path)
+        return "geojson"
+    if suffix == ".gpx":
+        export_gpx(points, path)
+        return "gpx"
+    if suffix in (".csv", ".txt", ""):
+        export_tracks_csv(points, path, bom)
+        return "csv"
+    raise InputError(f"{path}: unknown export format {suffix!r} (use .csv, .geojson or .gpx)")
+
+
+def export_decision_log(state: ReviewState, path: str | Path, bom: bool = False) -> None:
+    """The decision log as CSV: time, action, proposal, tracks, before, after."""
+    export_table_csv(state.log_table(), path, bom)
+
+
+def export_table_csv(df: pd.DataFrame, path: str | Path, bom: bool = False) -> None:
+    """Any table as spreadsheet-safe CSV with an optional BOM."""
+    write_csv(spreadsheet_safe(df), path)
+    if bom:
+        p = Path(path)
+        data = p.read_bytes()
+        with atomic_path(p) as tmp:
+            Path(tmp).write_bytes(b"\xef\xbb\xbf" + data)

@@ -1,0 +1,685 @@
+"""Review of the engine's joins (SPEC §7, seed 003 §5.3): proposals with their evidence,
+decisions as pure commands with an inverse, and the targets that follow from them.
+
+A *proposal* is one join the engine chose: two tracks (``sensor:batch`` labels), the
+method, the cost and its parts, and the runner-up — the best competing candidate of
+either track (``runner_up``, ``runner_up_cost``) — and the margin: the cheaper of the
+runner-up and "leave both unmatched" (the gate's price) minus the cost; a small margin
+is an uncertain join, to be reviewed first.
+
+Costs are in the method's own units: single-sensor association (``kind`` ``associate``)
+uses the scaled combined distance (1 = one tolerance on every term), cross-sensor
+association (``fuse``) the track distance in metres. ``margin_rel`` = margin / gate puts
+both on one scale for a mixed queue.
+
+The decisions live in a :class:`ReviewState`: a status per proposal (pending, accepted,
+rejected, split) and the manual links. Every decision is a :class:`Change` computed from
+the state by :func:`accept`, :func:`reject`, :func:`merge`, :func:`split_track` or
+:func:`split_target`; a change carries the before and after values of what it touches,
+so :meth:`Change.inverse` undoes it exactly. Targets are the connected components of the
+tracks linked by proposals that are pending or accepted, plus the manual links; a target
+is named after the ``sensor:batch`` of its earliest track, so names are unique across
+sensors and do not change when an unrelated decision is made.
+"""
+
+import dataclasses
+import datetime as _dt
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.schema import time_seconds
+
+if TYPE_CHECKING:  # the engine's modules load only when proposals are made
+    from wakeline.core import associate as _assoc
+
+STATUSES = ("pending", "accepted", "rejected", "split")
+ACTIVE = ("pending", "accepted")  # statuses whose link counts in the targets
+PROPOSAL_COLUMNS = (
+    "proposal",
+    "kind",
+    "sensor_a",
+    "batch_a",
+    "sensor_b",
+    "batch_b",
+    "method",
+    "cost",
+    "gap_s",
+    "distance_m",
+    "miss_m",
+    "dcourse_deg",
+    "dspeed_kn",
+    "overlap_s",
+    "runner_up",
+    "runner_up_cost",
+    "runner_up_side",
+    "margin",
+    "margin_rel",
+    "gate",
+)
+
+
+def track_label(sensor: object, batch: object) -> str:
+    """``sensor:batch`` — the name of a track in proposals, links and targets."""
+    return f"{sensor}:{batch}"
+
+
+def pair_key(a: str, b: str) -> tuple[str, str]:
+    """Order-free key of a pair of track labels."""
+    return (a, b) if a <= b else (b, a)
+
+
+def _labels(keys: pd.DataFrame) -> np.ndarray:
+    s = keys["sensor"].to_numpy().astype(str)
+    b = keys["batch"].to_numpy().astype(str)
+    return np.char.add(np.char.add(s, ":"), b)
+
+
+def _runner_up(
+    a: np.ndarray, b: np.ndarray, cost: np.ndarray, chosen: np.ndarray, labels: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """For each chosen candidate: the cheapest other candidate sharing its ``a`` or its
+    ``b`` track — label of the competing track, its cost, and which side it competes for
+    (``a``: it pairs with the proposal's ``a`` track); ``""``/NaN when there is none."""
+    m = len(a)
+    cand = pd.DataFrame({"k": np.arange(m), "a": a, "b": b, "cost": cost})
+    cand = cand[np.isfinite(cand["cost"].to_numpy())]
+    best = []
+    for own, other in (("a", "b"), ("b", "a")):
+        # The two cheapest candidates of every track on this side.
+        two = cand.sort_values(["cost", "k"], kind="stable").groupby(own, sort=False).head(2)
+        sel = pd.DataFrame({"k": chosen, own: a[chosen] if own == "a" else b[chosen]})
+        j = sel.merge(two, on=own, how="left", suffixes=("", "_c"))
+        j = j[j["k"] != j["k_c"]].drop_duplicates("k")
+        j = sel[["k"]].merge(j, on="k", how="left")
+        best.append((j["cost"].to_numpy(dtype="float64"), j[other].to_numpy()))
+    (ca, oa), (cb, ob) = best
+    use_b = np.isnan(ca) | (cb < ca)
+    c = np.where(use_b, cb, ca)
+    other = np.where(use_b, ob, oa)
+    lab = np.full(len(chosen), "", dtype=object)
+    ok = ~np.isnan(c)
+    lab[ok] = labels[other[ok].astype("int64")]
+    side = np.where(ok, np.where(use_b, "b", "a"), "")
+    return lab, c, side
+
+
+def _finish(df: pd.DataFrame, prefix: str, gate: float) -> pd.DataFrame:
+    """Margins (against the runner-up or the gate), ids, column order."""
+    df["gate"] = float(gate)
+    # A rival dearer than the gate is no alternative: leaving both unmatched costs the gate.
+    df["margin"] = np.fmin(df["runner_up_cost"], float(gate)) - df["cost"]
+    df["margin_rel"] = df["margin"] / gate if gate > 0 else np.nan
+    df = df.sort_values(["sensor_a", "batch_a", "sensor_b", "batch_b"], kind="stable")
+    df.insert(0, "proposal", [f"{prefix}{k + 1:04d}" for k in range(len(df))])
+    for c in PROPOSAL_COLUMNS:
+        if c not in df.columns:
+            df[c] = np.nan
+    return df[list(PROPOSAL_COLUMNS)].reset_index(drop=True)
+
+
+def _excluded(labels: np.ndarray, a: np.ndarray, b: np.ndarray, rejected: Iterable) -> np.ndarray:
+    """Mask of candidates whose pair of labels is in ``rejected``."""
+    rej = {pair_key(*p) for p in rejected}
+    if not rej or len(a) == 0:
+        return np.zeros(len(a), dtype=bool)
+    la, lb = labels[a], labels[b]
+    return np.fromiter(
+        (pair_key(x, y) in rej for x, y in zip(la.tolist(), lb.tolist(), strict=True)),
+        dtype=bool,
+        count=len(a),
+    )
+
+
+def association_proposals(
+    assoc: "_assoc.Association",
+    params: "_assoc.LinkParams | None" = None,
+    rejected: Iterable[tuple[str, str]] = (),
+) -> tuple[pd.DataFrame, "_assoc.Association"]:
+    """Proposals of a single-sensor association, and the association they come from.
+
+    Pairs in ``rejected`` (track labels) are taken out of the candidates and the
+    assignment is run again on the rest (same method, same gate), so a rejected pair is
+    never proposed again and its tracks may find another partner. Returns the proposal
+    table (columns :data:`PROPOSAL_COLUMNS`, ``kind`` = ``associate``) and the association
+    with the rejected pairs removed (unchanged when nothing was rejected).
+    """
+    from wakeline.core import associate as _assoc
+
+    params = (params or _assoc.LinkParams()).checked()
+    seg = assoc.segments
+    labels = _labels(seg.index.keys)
+    p = assoc.pairs
+    cost = np.asarray(assoc.cost, dtype="float64").copy()
+    out = _excluded(labels, p.i, p.j, rejected)
+    if out.any():
+        cost[out] = np.inf
+        gate = params.gate if assoc.method in ("optimal", "greedy", "motion") else params.limit
+        if assoc.method == "optimal":
+            chosen = _assoc.optimal_assign(p.i, p.j, cost, gate)
+        elif assoc.method == "greedy":
+            chosen = _assoc.greedy_assign(p.i, p.j, cost, gate)
+        else:
+            chosen = _assoc._cluster(seg, p, cost, gate, params)
+        targets = _assoc._targets(seg, p.i[chosen], p.j[chosen])
+        assoc = dataclasses.replace(assoc, cost=cost, chosen=chosen, target_of_track=targets)
+    gate = params.gate if assoc.method in ("optimal", "greedy", "motion") else params.limit
+    k = np.asarray(assoc.chosen, dtype="int64")
+    keys = seg.index.keys
+    rival, rival_cost, rival_side = _runner_up(p.i, p.j, cost, k, labels)
+    df = pd.DataFrame(
+        {
+            "kind": "associate",
+            "sensor_a": keys["sensor"].to_numpy().astype(str)[p.i[k]],
+            "batch_a": keys["batch"].to_numpy().astype(str)[p.i[k]],
+            "sensor_b": keys["sensor"].to_numpy().astype(str)[p.j[k]],
+            "batch_b": keys["batch"].to_numpy().astype(str)[p.j[k]],
+            "method": assoc.method,
+            "cost": cost[k],
+            "gap_s": p.gap_s[k],
+            "distance_m": p.dist_m[k],
+            "miss_m": p.miss_m[k],
+            "dcourse_deg": p.dcourse_deg[k],
+            "dspeed_kn": p.dspeed_kn[k],
+            "overlap_s": np.nan,
+            "runner_up": rival,
+            "runner_up_cost": rival_cost,
+            "runner_up_side": rival_side,
+        }
+    )
+    return _finish(df, "A", gate), assoc
+
+
+def fusion_proposals(
+    sassoc: "object",
+    params: "object | None" = None,
+    rejected: Iterable[tuple[str, str]] = (),
+) -> tuple[pd.DataFrame, "object"]:
+    """Proposals of a cross-sensor association (:class:`wakeline.core.fuse.SensorAssociation`).
+
+    As :func:`association_proposals`: rejected pairs leave the candidates and the
+    one-to-one assignment per pair of sensors runs again. ``cost`` and ``distance_m`` are
+    the track distance (m, synchronized or DTW), ``gap_s`` is 0 and ``overlap_s`` the
+    common time span; the gate is ``max_distance_m``.
+    """
+    from wakeline.core import associate as _assoc
+    from wakeline.core.fuse import FuseParams, _spans, _target_labels
+
+    params = (params or FuseParams()).checked()
+    index = sassoc.index
+    labels = _labels(index.keys)
+    a, b = sassoc.a, sassoc.b
+    dist = np.asarray(sassoc.distance_m, dtype="float64").copy()
+    out = _excluded(labels, a, b, rejected)
+    gate = float(params.max_distance_m)
+    if out.any():
+        dist[out] = np.inf
+        assign = _assoc.optimal_assign if sassoc.method == "optimal" else _assoc.greedy_assign
+        sensor_of = pd.factorize(index.keys["sensor"])[0]
+        chosen = []
+        pair = sensor_of[a] * (sensor_of.max() + 1) + sensor_of[b] if len(a) else a
+        for code in np.unique(pair):
+            sel = np.flatnonzero(pair == code)
+            chosen.append(sel[assign(a[sel], b[sel], dist[sel], gate)])
+        chosen = np.concatenate(chosen) if chosen else np.zeros(0, dtype="int64")
+        _, t0, _ = _spans(sassoc.points, index)
+        target = _target_labels(index, t0, a[chosen], b[chosen])
+        sassoc = dataclasses.replace(sassoc, distance_m=dist, chosen=chosen, target_of_track=target)
+    k = np.asarray(sassoc.chosen, dtype="int64")
+    keys = index.keys
+    rival, rival_cost, rival_side = _runner_up(a, b, dist, k, labels)
+    df = pd.DataFrame(
+        {
+            "kind": "fuse",
+            "sensor_a": keys["sensor"].to_numpy().astype(str)[a[k]],
+            "batch_a": keys["batch"].to_numpy().astype(str)[a[k]],
+            "sensor_b": keys["sensor"].to_numpy().astype(str)[b[k]],
+            "batch_b": keys["batch"].to_numpy().astype(str)[b[k]],
+            "method": f"{sassoc.distance}/{sassoc.method}",
+            "cost": dist[k],
+            "gap_s": 0.0,
+            "distance_m": dist[k],
+            "overlap_s": sassoc.overlap_s[k],
+            "runner_up": rival,
+            "runner_up_cost": rival_cost,
+            "runner_up_side": rival_side,
+        }
+    )
+    return _finish(df, "F", gate), sassoc
+
+
+def track_table(points: pd.DataFrame) -> pd.DataFrame:
+    """One row per track: ``track`` label, sensor, batch, ``t0``/``t1`` (s since epoch)."""
+    if len(points) == 0:
+        return pd.DataFrame(columns=["track", "sensor", "batch", "t0", "t1"])
+    t = time_seconds(points["time"])
+    g = pd.DataFrame(
+        {
+            "sensor": points["sensor"].astype(str).to_numpy(),
+            "batch": points["batch"].astype(str).to_numpy(),
+            "t": t,
+        }
+    )
+    span = g.groupby(["sensor", "batch"], sort=True)["t"].agg(["min", "max"]).reset_index()
+    span.columns = ["sensor", "batch", "t0", "t1"]
+    span.insert(0, "track", _labels(span))
+    return span
+
+
+def read_proposals(df: pd.DataFrame) -> pd.DataFrame:
+    """A proposals table read back from CSV: types fixed, required columns checked."""
+    need = ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b")
+    missing = [c for c in need if c not in df.columns]
+    if missing:
+        raise InputError(f"proposals table lacks the column(s) {', '.join(missing)}")
+    out = df.copy()
+    for c in ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "kind", "method"):
+        if c in out.columns:
+            out[c] = out[c].astype(str)
+    for c in ("runner_up", "runner_up_side"):
+        if c in out.columns:
+            out[c] = out[c].fillna("").astype(str)
+    for c in PROPOSAL_COLUMNS:
+        if c not in out.columns:
+            out[c] = "" if c in ("kind", "method", "runner_up", "runner_up_side") else np.nan
+    dup = out["proposal"].duplicated()
+    if dup.any():
+        raise InputError(f"proposal id {out['proposal'][dup].iloc[0]!r} appears twice")
+    return out[list(PROPOSAL_COLUMNS)].reset_index(drop=True)
+
+
+# --------------------------------------------------------------------------------------
+# decisions
+
+
+@dataclass(frozen=True)
+class Change:
+    """What one decision changes: proposal statuses (before → after) and manual links
+    added or removed. Pure data; :meth:`inverse` swaps the two sides."""
+
+    action: str
+    proposal: str = ""
+    tracks: tuple[str, ...] = ()
+    status_before: Mapping[str, str] = field(default_factory=dict)
+    status_after: Mapping[str, str] = field(default_factory=dict)
+    links_added: frozenset = frozenset()
+    links_removed: frozenset = frozenset()
+
+    def inverse(self) -> "Change":
+        """The change that undoes this one (its action is ``undo <action>``, and the
+        inverse of that is the original again)."""
+        action = self.action[5:] if self.action.startswith("undo ") else f"undo {self.action}"
+        return Change(
+            action,
+            self.proposal,
+            self.tracks,
+            dict(self.status_after),
+            dict(self.status_before),
+            self.links_removed,
+            self.links_added,
+        )
+
+    def to_dict(self) -> dict:
+        """JSON-ready form (for the project's decision store)."""
+        return {
+            "action": self.action,
+            "proposal": self.proposal,
+            "tracks": list(self.tracks),
+            "status_before": dict(self.status_before),
+            "status_after": dict(self.status_after),
+            "links_added": sorted(list(x) for x in self.links_added),
+            "links_removed": sorted(list(x) for x in self.links_removed),
+        }
+
+    @staticmethod
+    def from_dict(d: Mapping) -> "Change":
+        return Change(
+            d["action"],
+            d.get("proposal", ""),
+            tuple(d.get("tracks", ())),
+            dict(d.get("status_before", {})),
+            dict(d.get("status_after", {})),
+            frozenset(tuple(x) for x in d.get("links_added", ())),
+            frozenset(tuple(x) for x in d.get("links_removed", ())),
+        )
+
+
+@dataclass(frozen=True)
+class LogEntry:
+    """One line of the decision log: time (UTC), action, proposal, tracks, the targets of
+    those tracks before → after."""
+
+    time: str
+    action: str
+    proposal: str
+    tracks: str
+    before: str
+    after: str
+
+
+class ReviewState:
+    """Proposals, their statuses and the manual links; targets follow from them.
+
+    ``tracks`` is :func:`track_table` of the reviewed points (every track, linked or not);
+    ``proposals`` the table of :func:`association_proposals` / :func:`fusion_proposals`
+    (several may be concatenated: ids must be unique). Apply decisions with
+    :meth:`apply`; each returns the change applied, whose inverse undoes it.
+    """
+
+    def __init__(self, tracks: pd.DataFrame, proposals: pd.DataFrame) -> None:
+        self.tracks = tracks.reset_index(drop=True)
+        self.proposals = read_proposals(proposals)
+        self._track_no = {t: k for k, t in enumerate(self.tracks["track"].tolist())}
+        a = _labels(self.proposals[["sensor_a", "batch_a"]].set_axis(["sensor", "batch"], axis=1))
+        b = _labels(self.proposals[["sensor_b", "batch_b"]].set_axis(["sensor", "batch"], axis=1))
+        unknown = [x for x in np.concatenate([a, b]).tolist() if x not in self._track_no]
+        if unknown:
+            raise InputError(
+                f"proposal names the track {unknown[0]} that is not in the points "
+                f"({len(set(unknown))} unknown track(s))"
+            )
+        self.proposals["track_a"] = a
+        self.proposals["track_b"] = b
+        self.track_a = a.astype(object)  # numpy copies for fast lookups
+        self.track_b = b.astype(object)
+        self._labels_arr = self.tracks["track"].to_numpy().astype(str)
+        self._t0_arr = self.tracks["t0"].to_numpy(dtype="float64")
+        self._pa = np.array([self._track_no[x] for x in a.tolist()], dtype="int64")
+        self._pb = np.array([self._track_no[x] for x in b.tolist()], dtype="int64")
+        self._row = {p: k for k, p in enumerate(self.proposals["proposal"].tolist())}
+        self.status = np.array(["pending"] * len(self.proposals), dtype=object)
+        self.links: set[tuple[str, str]] = set()
+        self.log: list[LogEntry] = []
+        self._targets: np.ndarray | None = None
+        self.version = 0  # counts applied changes (views cache per version)
+
+    # -- queries ------------------------------------------------------------------------
+
+    def status_of(self, proposal: str) -> str:
+        return str(self.status[self._proposal_row(proposal)])
+
+    def _proposal_row(self, proposal: str) -> int:
+        try:
+            return self._row[proposal]
+        except KeyError:
+            raise InputError(f"no proposal {proposal!r}") from None
+
+    def _track(self, label: str) -> int:
+        try:
+            return self._track_no[label]
+        except KeyError:
+            raise InputError(f"no track {label!r}") from None
+
+    def table(self) -> pd.DataFrame:
+        """The proposals with their current ``status``."""
+        out = self.proposals.copy()
+        out["status"] = self.status
+        return out
+
+    def target_of_track(self) -> np.ndarray:
+        """Target label per row of :attr:`tracks` (cached until the next change)."""
+        if self._targets is None:
+            self._targets = self._compute_targets()
+        return self._targets
+
+    def _compute_targets(self) -> np.ndarray:
+        from wakeline.core.associate import components
+
+        active = np.isin(self.status, ACTIVE)
+        la = [self._track_no[x] for x, _ in self.links]
+        lb = [self._track_no[y] for _, y in self.links]
+        a = np.concatenate([self._pa[active], np.asarray(la, dtype="int64")])
+        b = np.concatenate([self._pb[active], np.asarray(lb, dtype="int64")])
+        n = len(self.tracks)
+        comp = components(n, a, b)
+        order = np.lexsort((self._labels_arr, self._t0_arr, comp))
+        first = np.ones(n, dtype=bool)
+        first[1:] = comp[order][1:] != comp[order][:-1]
+        leader = np.empty(comp.max() + 1 if n else 0, dtype="int64")
+        leader[comp[order][first]] = order[first]
+        return self._labels_arr[leader[comp]] if n else np.zeros(0)
+
+    def target(self, label: str) -> str:
+        return str(self.target_of_track()[self._track(label)])
+
+    def members(self, target: str) -> list[str]:
+        """Track labels of one target, earliest first."""
+        tg = self.target_of_track()
+        sel = np.flatnonzero(tg == target)
+        sel = sel[np.argsort(self._t0_arr[sel], kind="stable")]
+        return self._labels_arr[sel].tolist()
+
+    def targets(self) -> pd.DataFrame:
+        """Per track: ``track``, sensor, batch, ``target``."""
+        out = self.tracks[["track", "sensor", "batch"]].copy()
+        out["target"] = self.target_of_track()
+        return out
+
+    def label_points(self, points: pd.DataFrame) -> pd.DataFrame:
+        """``points`` with a ``target`` column as the decisions make it."""
+        tt = self.targets()
+        lab = _labels(points[["sensor", "batch"]].astype(str))
+        out = points.copy()
+        out["target"] = tt.set_index("track")["target"].reindex(lab).to_numpy()
+        return out
+
+    def rejected_pairs(self) -> set[tuple[str, str]]:
+        """Pairs of track labels rejected by the operator (to keep out of re-runs)."""
+        rej = self.status == "rejected"
+        p = self.proposals
+        return {
+            pair_key(x, y)
+            for x, y in zip(p["track_a"][rej].tolist(), p["track_b"][rej].tolist(), strict=True)
+        }
+
+    def proposals_of_track(self, label: str) -> list[str]:
+        sel = (self.track_a == label) | (self.track_b == label)
+        return self.proposals["proposal"].to_numpy()[sel].tolist()
+
+    # -- decisions ----------------------------------------------------------------------
+
+    def apply(self, change: Change, when: str | None = None) -> Change:
+        """Apply a change (checked against the current state), log it, return it."""
+        for pid, before in change.status_before.items():
+            now = self.status[self._proposal_row(pid)]
+            if now != before:
+                raise InputError(f"{pid} is {now}, not {before}: the change no longer applies")
+        before = self._targets_of(change.tracks)
+        for pid, after in change.status_after.items():
+            if after not in STATUSES:
+                raise InputError(f"unknown status {after!r}")
+            self.status[self._row[pid]] = after
+        self.links -= set(change.links_removed)
+        self.links |= set(change.links_added)
+        self._targets = None
+        self.version += 1
+        after = self._targets_of(change.tracks)
+        self.log.append(
+            LogEntry(
+                when or _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+                change.action,
+                change.proposal,
+                " ".join(change.tracks),
+                " ".join(before),
+                " ".join(after),
+            )
+        )
+        return change
+
+    def _targets_of(self, tracks: Iterable[str]) -> list[str]:
+        """The targets of ``tracks`` as ``target=member+member…`` (each target once)."""
+        tg = self.target_of_track()
+        names = dict.fromkeys(str(tg[self._track(t)]) for t in tracks)
+        return [f"{t}={'+'.join(self.members(t))}" for t in names]
+
+    def log_table(self) -> pd.DataFrame:
+        """The decision log: time, action, proposal, tracks, before, after."""
+        cols = ["time", "action", "proposal", "tracks", "before", "after"]
+        return pd.DataFrame([dataclasses.astuple(e) for e in self.log], columns=cols)
+
+
+def _set(state: ReviewState, action: str, proposal: str, status: str) -> Change:
+    row = state._proposal_row(proposal)
+    p = state.proposals.iloc[row]
+    return Change(
+        action,
+        proposal,
+        (p["track_a"], p["track_b"]),
+        {proposal: str(state.status[row])},
+        {proposal: status},
+    )
+
+
+def accept(state: ReviewState, proposal: str) -> Change:
+    """Accept a proposal: its two tracks are one ship."""
+    return _set(state, "accept", proposal, "accepted")
+
+
+def reject(state: ReviewState, proposal: str) -> Change:
+    """Reject a proposal: its link no longer counts, and re-runs leave the pair out."""
+    return _set(state, "reject", proposal, "rejected")
+
+
+def reset(state: ReviewState, proposal: str) -> Change:
+    """Put a proposal back to pending."""
+    return _set(state, "reset", proposal, "pending")
+
+
+def merge(state: ReviewState, tracks: Iterable[str]) -> Change:
+    """Merge two or more tracks by hand into one target (manual links in a chain)."""
+    tracks = list(dict.fromkeys(tracks))
+    if len(tracks) < 2:
+        raise InputError("merge needs at least two different tracks")
+    for t in tracks:
+        state._track(t)
+    links = {pair_key(x, y) for x, y in zip(tracks[:-1], tracks[1:], strict=True)}
+    return Change("merge", "", tuple(tracks), links_added=frozenset(links - state.links))
+
+
+def split_track(state: ReviewState, label: str) -> Change:
+    """One track leaves its target: every active proposal and manual link touching it is
+    cut (proposals get the status ``split``, which re-runs may propose again)."""
+    return _cut(state, "split track", [label], lambda a, b: (a == label) | (b == label))
+
+
+def split_target(state: ReviewState, target: str) -> Change:
+    """A target falls back into its tracks: every active link among its members is cut."""
+    members = state.members(target)
+    if not members:
+        raise InputError(f"no target {target!r}")
+    inside = set(members)
+    return _cut(
+        state,
+        "split target",
+        members,
+        lambda a, b: np.isin(a, list(inside)) & np.isin(b, list(inside)),
+    )
+
+
+def _cut(state: ReviewState, action: str, tracks: list[str], touches) -> Change:
+    for t in tracks:
+        state._track(t)
+    p = state.proposals
+    sel = np.flatnonzero(
+        touches(p["track_a"].to_numpy(), p["track_b"].to_numpy()) & np.isin(state.status, ACTIVE)
+    )
+    ids = p["proposal"].to_numpy()[sel].tolist()
+    gone = {lk for lk in state.links if bool(touches(np.array([lk[0]]), np.array([lk[1]]))[0])}
+    return Change(
+        action,
+        ids[0] if len(ids) == 1 else "",
+        tuple(tracks),
+        {pid: str(state.status[state._row[pid]]) for pid in ids},
+        dict.fromkeys(ids, "split"),
+        links_removed=frozenset(gone),
+    )
+
+
+def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:
+    """Apply a decisions table in order (the CLI's ``--decisions``): rows
+    ``proposal,decision`` with accept | reject | reset, ``decision`` = merge with
+    ``sensor_a,batch_a,sensor_b,batch_b``, or split with ``sensor_a,batch_a`` (that track
+    leaves its target). A bad row raises :class:`InputError` naming its line."""
+    if "decision" not in decisions.columns:
+        raise InputError("decisions table lacks the column 'decision'")
+    d = decisions.astype(object).where(decisions.notna(), "")
+    for line, row in enumerate(d.to_dict("records"), start=2):
+        what = str(row.get("decision", "")).strip().lower()
+        try:
+            if what in ("accept", "reject", "reset"):
+                pid = str(row.get("proposal", "")).strip()
+                if not pid:
+                    raise InputError(f"{what} needs a proposal id")
+                fn = {"accept": accept, "reject": reject, "reset": reset}[what]
+                state.apply(fn(state, pid))
+            elif what == "merge":
+                a = track_label(row.get("sensor_a", ""), _batch(row.get("batch_a", "")))
+                b = track_label(row.get("sensor_b", ""), _batch(row.get("batch_b", "")))
+                state.apply(merge(state, [a, b]))
+            elif what == "split":
+                a = track_label(row.get("sensor_a", ""), _batch(row.get("batch_a", "")))
+                state.apply(split_track(state, a))
+            else:
+                raise InputError(
+                    f"unknown decision {what!r} (accept, reject, reset, merge or split)"
+                )
+        except InputError as exc:
+            raise InputError(f"decisions line {line}: {exc}") from None
+    return state
+
+
+def _batch(v: object) -> str:
+    """A batch cell as text; pandas reads ``7`` as 7.0 when the column has blanks."""
+    if isinstance(v, float) and v.is_integer():
+        return str(int(v))
+    return str(v).strip()
+
+
+def combine_sources(named: list[tuple[str, pd.DataFrame]]) -> pd.DataFrame:
+    """Point tables of several files or layers as one table for cross-sensor work.
+
+    Two sources that each hold one sensor of the same name (two files imported with the
+    default sensor name, e.g. MTAD's radar and AIS samplings) would merge into one sensor;
+    such a source's sensor is renamed after the part of its name that differs from the
+    others (``scene-0_error_0_AIS`` / ``…_radar`` → ``AIS`` / ``radar``). Sources that
+    already carry distinct sensors are kept as they are.
+    """
+    if not named:
+        raise InputError("no input to combine")
+    sensors = [set(df["sensor"].astype(str).unique()) for _, df in named]
+    seen: dict[str, int] = {}
+    for s in sensors:
+        for x in s:
+            seen[x] = seen.get(x, 0) + 1
+    clash = [len(s) == 1 and seen[next(iter(s))] > 1 for s in sensors]
+    names = _distinct_parts([n for n, _ in named])
+    out = []
+    for (_, df), bad, new in zip(named, clash, names, strict=True):
+        if bad:
+            df = df.copy()
+            df["sensor"] = new
+        out.append(df)
+    both = pd.concat(out, ignore_index=True)
+    return both
+
+
+def _distinct_parts(names: list[str]) -> list[str]:
+    """Each name without the prefix and suffix all names share (``_``/``-`` trimmed);
+    the whole name when that leaves nothing or two would be equal."""
+    if len(names) < 2:
+        return list(names)
+    import os
+
+    pre = os.path.commonprefix(names)
+    suf = os.path.commonprefix([n[::-1] for n in names])[::-1]
+    parts = []
+    for n in names:
+        core = n[len(pre) : len(n) - len(suf) if suf else len(n)].strip("_- .")
+        parts.append(core or n)
+    if len(set(parts)) < len(parts):
+        return list(names)
+    return parts

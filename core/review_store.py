@@ -1,0 +1,187 @@
+"""The review's proposals and decisions in the project file (SQLite, WAL).
+
+Two tables beside the project's own (``review_proposals``, ``review_decisions``); every
+decision is one row written in its own transaction the moment it is made, so killing
+the application loses at most the decision in flight. Reopening replays the stored
+changes in order (undo and redo are stored as the changes they are), which restores the
+statuses, the manual links and the decision log exactly.
+"""
+
+import json
+import sqlite3
+from pathlib import Path
+
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.review import PROPOSAL_COLUMNS, Change, LogEntry, ReviewState
+
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS review_proposals (
+    seq INTEGER PRIMARY KEY,
+    proposal TEXT UNIQUE NOT NULL,
+    row_json TEXT NOT NULL
+);
+CREATE TABLE IF NOT EXISTS review_tracks (
+    track TEXT PRIMARY KEY,
+    sensor TEXT NOT NULL,
+    batch TEXT NOT NULL,
+    t0 REAL,
+    t1 REAL
+);
+CREATE TABLE IF NOT EXISTS review_decisions (
+    seq INTEGER PRIMARY KEY AUTOINCREMENT,
+    time TEXT NOT NULL,
+    action TEXT NOT NULL,
+    proposal TEXT NOT NULL,
+    tracks TEXT NOT NULL,
+    before TEXT NOT NULL,
+    after TEXT NOT NULL,
+    change_json TEXT NOT NULL
+);
+CREATE TABLE IF NOT EXISTS review_meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+"""
+
+
+class ReviewStore:
+    """An open review store in the SQLite file at ``path`` (created when absent)."""
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        try:
+            self._db = sqlite3.connect(self.path, isolation_level=None)
+            self._db.execute("PRAGMA journal_mode=WAL")
+            self._db.execute("PRAGMA synchronous=FULL")
+            self._db.executescript(_SCHEMA)
+        except sqlite3.DatabaseError as exc:
+            raise InputError(f"{self.path}: not a usable project file ({exc})") from None
+
+    def close(self) -> None:
+        self._db.close()
+
+    def __enter__(self) -> "ReviewStore":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def save_queue(self, state: ReviewState, params: dict | None = None) -> None:
+        """Replace the stored tracks and proposals (a new run) and clear the decisions, in
+        one transaction; ``params`` (JSON-ready) records what produced the proposals."""
+        rows = state.proposals[list(PROPOSAL_COLUMNS)]
+        recs = json.loads(rows.to_json(orient="records"))
+        tr = state.tracks
+        with self._tx():
+            self._db.execute("DELETE FROM review_proposals")
+            self._db.execute("DELETE FROM review_tracks")
+            self._db.execute("DELETE FROM review_decisions")
+            self._db.executemany(
+                "INSERT INTO review_proposals (seq, proposal, row_json) VALUES (?, ?, ?)",
+                [(k, r["proposal"], json.dumps(r)) for k, r in enumerate(recs)],
+            )
+            self._db.executemany(
+                "INSERT INTO review_tracks VALUES (?, ?, ?, ?, ?)",
+                zip(
+                    tr["track"].tolist(),
+                    tr["sensor"].astype(str).tolist(),
+                    tr["batch"].astype(str).tolist(),
+                    tr["t0"].astype(float).tolist(),
+                    tr["t1"].astype(float).tolist(),
+                    strict=True,
+                ),
+            )
+            self._db.execute(
+                "INSERT OR REPLACE INTO review_meta VALUES ('params', ?)",
+                (json.dumps(params or {}),),
+            )
+
+    def record(self, change: Change, entry: LogEntry) -> None:
+        """Append one decision (the change applied and its log line), committed at once."""
+        with self._tx():
+            self._db.execute(
+                "INSERT INTO review_decisions (time, action, proposal, tracks, before, after, "
+                "change_json) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                (
+                    entry.time,
+                    entry.action,
+                    entry.proposal,
+                    entry.tracks,
+                    entry.before,
+                    entry.after,
+                    json.dumps(change.to_dict()),
+                ),
+            )
+
+    def apply(self, state: ReviewState, change: Change) -> Change:
+        """Apply ``change`` to ``state`` and record it: the usual way to decide."""
+        state.apply(change)
+        self.record(change, state.log[-1])
+        return change
+
+    def load(self) -> ReviewState:
+        """The stored queue with every stored decision replayed (log times kept)."""
+        tracks = pd.read_sql_query(
+            "SELECT track, sensor, batch, t0, t1 FROM review_tracks ORDER BY track", self._db
+        )
+        rows = [
+            json.loads(r[0])
+            for r in self._db.execute("SELECT row_json FROM review_proposals ORDER BY seq")
+        ]
+        props = pd.DataFrame(rows, columns=list(PROPOSAL_COLUMNS))
+        state = ReviewState(tracks, props)
+        for when, text in self._db.execute(
+            "SELECT time, change_json FROM review_decisions ORDER BY seq"
+        ):
+            state.apply(Change.from_dict(json.loads(text)), when=when)
+        return state
+
+    def params(self) -> dict:
+        row = self._db.execute("SELECT value FROM review_meta WHERE key = 'params'").fetchone()
+        return json.loads(row[0]) if row else {}
+
+    def decision_count(self) -> int:
+        return int(self._db.execute("SELECT COUNT(*) FROM review_decisions").fetchone()[0])
+
+    def _tx(self):
+        return _Transaction(self._db)
+
+
+REVIEW_TABLES = ("review_tracks", "review_proposals", "review_decisions", "review_meta")
+
+
+def copy_review(src: str | Path, dst: str | Path) -> int:
+    """Copy the review tables of the project file ``src`` into ``dst`` (replacing any
+    there), in one transaction; returns the decisions copied. For a project save that
+    writes a new file and renames it over the old one: call it on the new file before
+    the rename, so the decisions survive the save."""
+    if not Path(src).exists():
+        return 0
+    ReviewStore(dst).close()  # make the tables
+    db = sqlite3.connect(dst, isolation_level=None)
+    try:
+        db.execute("ATTACH DATABASE ? AS src", (str(src),))
+        have = {r[0] for r in db.execute("SELECT name FROM src.sqlite_master WHERE type='table'")}
+        if "review_decisions" not in have:
+            return 0
+        db.execute("BEGIN IMMEDIATE")
+        for t in REVIEW_TABLES:
+            db.execute(f"DELETE FROM main.{t}")  # noqa: S608 - fixed table names
+            if t in have:
+                db.execute(f"INSERT INTO main.{t} SELECT * FROM src.{t}")  # noqa: S608
+        db.execute("COMMIT")
+        return int(db.execute("SELECT COUNT(*) FROM main.review_decisions").fetchone()[0])
+    finally:
+        db.close()
+
+
+class _Transaction:
+    """BEGIN IMMEDIATE … COMMIT (ROLLBACK on error) on an autocommit connection."""
+
+    def __init__(self, db: sqlite3.Connection) -> None:
+        self.db = db
+
+    def __enter__(self) -> None:
+        self.db.execute("BEGIN IMMEDIATE")
+
+    def __exit__(self, exc_type, *rest) -> None:
+        self.db.execute("ROLLBACK" if exc_type else "COMMIT")

@@ -1,0 +1,455 @@
+"""Review of proposals (issue 13): evidence, decisions and their inverses, targets, the
+decision store surviving a killed process, export and the `review` command."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import real_file
+from wakeline.app.cli import main
+from wakeline.core import review as R
+from wakeline.core.associate import LinkParams, associate_interrupted
+from wakeline.core.errors import InputError
+from wakeline.core.export_review import (
+    export_decision_log,
+    export_tracks,
+    fused_tracks,
+    merged_tracks,
+)
+from wakeline.core.fuse import associate_sensors
+from wakeline.core.io import write_points
+from wakeline.core.review_store import ReviewStore
+from wakeline.core.simulate import multisensor_scene, segments_scene
+
+
+@pytest.fixture(scope="module")
+def scene():
+    """One radar breaking 8 ships into segments, and the same ships by radar and AIS."""
+    seg = segments_scene(seed=2, n_ships=8, area_km=15)
+    multi = multisensor_scene(seed=3, n_ships=6, area_km=20)
+    return seg, multi
+
+
+@pytest.fixture
+def state(scene):
+    seg, multi = scene
+    ap, _ = R.association_proposals(associate_interrupted(seg))
+    return R.ReviewState(R.track_table(seg), ap)
+
+
+def _snapshot(st: R.ReviewState):
+    return (list(st.status), sorted(st.links), list(st.target_of_track()))
+
+
+def test_association_proposals_carry_evidence(scene):
+    seg, _ = scene
+    params = LinkParams()
+    assoc = associate_interrupted(seg, params)
+    ap, same = R.association_proposals(assoc, params)
+    assert same is assoc
+    assert len(ap) == len(assoc.chosen) > 5
+    assert list(ap.columns) == list(R.PROPOSAL_COLUMNS)
+    assert ap["proposal"].is_unique and (ap["kind"] == "associate").all()
+    assert (ap["cost"] <= params.gate).all() and (ap["gap_s"] > 0).all()
+    assert ap[["distance_m", "miss_m", "dcourse_deg", "dspeed_kn"]].notna().all().all()
+    # The margin is the cheaper of runner-up and gate minus the cost.
+    alt = np.fmin(ap["runner_up_cost"].to_numpy(), params.gate)
+    np.testing.assert_allclose(ap["margin"], alt - ap["cost"])
+    labels = set(R.track_table(seg)["track"])
+    rivals = ap.loc[ap["runner_up"] != "", "runner_up"]
+    assert len(rivals) and set(rivals) <= labels
+    # The runner-up of a proposal is a candidate sharing one of its tracks.
+    keys = R._labels(assoc.segments.index.keys)
+    cand = set(zip(keys[assoc.pairs.i].tolist(), keys[assoc.pairs.j].tolist(), strict=True))
+    for row in ap[ap["runner_up"] != ""].itertuples():
+        a, b, r = f"{row.sensor_a}:{row.batch_a}", f"{row.sensor_b}:{row.batch_b}", row.runner_up
+        assert (a, r) in cand if row.runner_up_side == "a" else (r, b) in cand
+
+
+def test_targets_of_untouched_state_match_the_engine(scene):
+    seg, _ = scene
+    assoc = associate_interrupted(seg)
+    ap, _ = R.association_proposals(assoc)
+    st = R.ReviewState(R.track_table(seg), ap)
+    mine = st.targets()["target"].to_numpy()
+    theirs = pd.Series(assoc.target_of_track, index=R._labels(assoc.segments.index.keys))
+    theirs = theirs.reindex(st.tracks["track"]).to_numpy()
+    # Same partition (the names differ: ours carry the sensor).
+    assert len(set(zip(mine, theirs, strict=True))) == len(set(mine)) == len(set(theirs))
+
+
+def test_every_command_and_its_inverse_round_trip(state):
+    st = state
+    p = st.proposals
+    tr = st.tracks["track"].tolist()
+    before = _snapshot(st)
+    cmds = [
+        lambda: R.accept(st, p["proposal"][0]),
+        lambda: R.reject(st, p["proposal"][1]),
+        lambda: R.merge(st, [tr[0], tr[3], tr[7]]),
+        lambda: R.split_track(st, p["track_b"][2]),
+        lambda: R.split_target(st, st.target(p["track_a"][0])),
+    ]
+    done = []
+    for make in cmds:
+        start = _snapshot(st)
+        change = st.apply(make())
+        assert _snapshot(st) != start or change.action == "accept"
+        st.apply(change.inverse())
+        assert _snapshot(st) == start
+        assert change.inverse().inverse() == change
+        done.append(st.apply(change))  # redo
+    assert len(st.log) == 3 * len(cmds)
+    assert _snapshot(st) != before
+    # Undo every change in reverse order: back to the start.
+    for change in reversed(done):
+        st.apply(change.inverse())
+    assert _snapshot(st) == before
+
+
+def test_targets_follow_decisions(state):
+    st = state
+    p = st.proposals
+    a, b = p["track_a"][0], p["track_b"][0]
+    assert st.target(a) == st.target(b)
+    st.apply(R.reject(st, p["proposal"][0]))
+    assert st.target(a) != st.target(b)
+    assert st.status_of(p["proposal"][0]) == "rejected"
+    st.apply(R.merge(st, [a, b]))
+    assert st.target(a) == st.target(b)
+    st.apply(R.split_track(st, b))
+    assert st.members(st.target(b)) == [b]
+    # Targets are named after their earliest track, sensor included.
+    t0 = st.tracks.set_index("track")["t0"]
+    for tg in set(st.target_of_track()):
+        first = min(st.members(tg), key=lambda x: t0[x])
+        assert tg == first
+    log = st.log_table()
+    assert list(log.columns) == ["time", "action", "proposal", "tracks", "before", "after"]
+    assert log["action"].tolist() == ["reject", "merge", "split track"]
+    assert "=" in log["before"][0] and "+" in log["before"][0]
+    with pytest.raises(InputError, match="no proposal"):
+        R.accept(st, "X9999")
+    with pytest.raises(InputError, match="at least two"):
+        R.merge(st, [a, a])
+    stale = R.reject(st, p["proposal"][1])
+    st.apply(stale)
+    with pytest.raises(InputError, match="no longer applies"):
+        st.apply(stale)
+
+
+def test_rejected_pairs_are_never_proposed_again(scene):
+    seg, multi = scene
+    params = LinkParams()
+    assoc = associate_interrupted(seg, params)
+    ap, _ = R.association_proposals(assoc, params)
+    st = R.ReviewState(R.track_table(seg), ap)
+    for pid in ap["proposal"][:3]:
+        st.apply(R.reject(st, pid))
+    again, re_assoc = R.association_proposals(
+        associate_interrupted(seg, params), params, st.rejected_pairs()
+    )
+    pairs = {
+        R.pair_key(f"{r.sensor_a}:{r.batch_a}", f"{r.sensor_b}:{r.batch_b}")
+        for r in again.itertuples()
+    }
+    assert not pairs & st.rejected_pairs()
+    assert len(again) >= len(ap) - 3
+    # Cross-sensor: the same.
+    sa = associate_sensors(multi)
+    fp, _ = R.fusion_proposals(sa)
+    assert (fp["kind"] == "fuse").all() and fp["overlap_s"].gt(0).all()
+    rej = {
+        R.pair_key(
+            fp["sensor_a"][0] + ":" + fp["batch_a"][0], fp["sensor_b"][0] + ":" + fp["batch_b"][0]
+        )
+    }
+    fp2, sa2 = R.fusion_proposals(associate_sensors(multi), rejected=rej)
+    pairs2 = {
+        R.pair_key(f"{r.sensor_a}:{r.batch_a}", f"{r.sensor_b}:{r.batch_b}")
+        for r in fp2.itertuples()
+    }
+    assert not pairs2 & rej and len(fp2) == len(fp) - 1
+    assert len(set(sa2.target_of_track)) == len(set(sa.target_of_track)) + 1
+
+
+_CHILD = r"""
+import sys, time
+import pandas as pd
+from wakeline.core import review as R
+from wakeline.core.review_store import ReviewStore
+props = pd.read_csv(sys.argv[2], dtype={c: str for c in ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "runner_up", "runner_up_side")}, keep_default_na=False)
+tracks = pd.read_csv(sys.argv[3], dtype={"sensor": str, "batch": str})
+st = R.ReviewState(tracks, props)
+store = ReviewStore(sys.argv[1])
+store.save_queue(st, {"run": "test"})
+store.apply(st, R.reject(st, props["proposal"][0]))
+store.apply(st, R.merge(st, [tracks["track"][0], tracks["track"][1]]))
+ch = store.apply(st, R.accept(st, props["proposal"][1]))
+store.apply(st, ch.inverse())  # undo
+print("decided", flush=True)
+time.sleep(60)
+"""
+
+
+def test_decisions_survive_a_killed_process(scene, tmp_path):
+    seg, _ = scene
+    ap, _ = R.association_proposals(associate_interrupted(seg))
+    tracks = R.track_table(seg)
+    ap.to_csv(tmp_path / "p.csv", index=False)
+    tracks.to_csv(tmp_path / "t.csv", index=False)
+    db = tmp_path / "project.wakeline"
+    proc = subprocess.Popen(
+        [sys.executable, "-c", _CHILD, str(db), str(tmp_path / "p.csv"), str(tmp_path / "t.csv")],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert proc.stdout.readline().strip() == "decided"
+    finally:
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait(10)
+        proc.stdout.close()
+    with ReviewStore(db) as store:
+        assert store.decision_count() == 4
+        assert store.params() == {"run": "test"}
+        st = store.load()
+    # The same decisions made here give the same state.
+    mine = R.ReviewState(tracks, ap)
+    mine.apply(R.reject(mine, ap["proposal"][0]))
+    mine.apply(R.merge(mine, [tracks["track"][0], tracks["track"][1]]))
+    ch = mine.apply(R.accept(mine, ap["proposal"][1]))
+    mine.apply(ch.inverse())
+    assert _snapshot(st) == _snapshot(mine)
+    assert st.log_table()["action"].tolist() == ["reject", "merge", "accept", "undo accept"]
+    assert st.status_of(ap["proposal"][0]) == "rejected"
+
+
+def test_review_tables_survive_a_project_save_by_rename(state, tmp_path):
+    from wakeline.core.review_store import copy_review
+
+    old, new = tmp_path / "p.wakeline", tmp_path / "p.new"
+    with ReviewStore(old) as store:
+        store.save_queue(state)
+        store.apply(state, R.reject(state, state.proposals["proposal"][0]))
+    assert copy_review(old, new) == 1
+    with ReviewStore(new) as store:
+        assert store.load().status_of(state.proposals["proposal"][0]) == "rejected"
+    assert copy_review(tmp_path / "absent", new) == 0
+
+
+def test_store_reports_a_bad_file(tmp_path):
+    bad = tmp_path / "x.wakeline"
+    bad.write_bytes(b"not a database at all" * 100)
+    with pytest.raises(InputError, match="not a usable project"):
+        ReviewStore(bad)
+
+
+def test_export_honours_decisions(scene, tmp_path):
+    gpxpy = pytest.importorskip("gpxpy")
+    _, multi = scene
+    sa = associate_sensors(multi)
+    fp, _ = R.fusion_proposals(sa)
+    st = R.ReviewState(R.track_table(multi), fp)
+    st.apply(R.reject(st, fp["proposal"][0]))
+    fused = fused_tracks(st, sa)
+    assert fused["batch"].nunique() == st.targets()["target"].nunique()
+    assert set(fused["batch"]) == set(st.target_of_track())
+    merged = merged_tracks(st, multi)
+    assert len(merged) == len(multi) and (merged["sensor"] == "merged").all()
+    export_tracks(fused, tmp_path / "f.gpx")
+    g = gpxpy.parse((tmp_path / "f.gpx").read_text(encoding="utf-8"))
+    assert len(g.tracks) == fused["batch"].nunique()
+    assert sum(len(t.segments[0].points) for t in g.tracks) == len(fused)
+    export_tracks(merged, tmp_path / "m.geojson")
+    gj = json.loads((tmp_path / "m.geojson").read_text(encoding="utf-8"))
+    assert {f["properties"]["batch"] for f in gj["features"]} == set(st.target_of_track())
+    named = merged.assign(members="船" + merged["members"])
+    export_tracks(named, tmp_path / "m.csv", bom=True)
+    raw = (tmp_path / "m.csv").read_bytes()
+    assert raw.startswith(b"\xef\xbb\xbf") and "船".encode() in raw
+    export_decision_log(st, tmp_path / "log.csv")
+    log = pd.read_csv(tmp_path / "log.csv")
+    assert log["action"].tolist() == ["reject"] and log["proposal"][0] == fp["proposal"][0]
+    with pytest.raises(InputError, match="unknown export format"):
+        export_tracks(merged, tmp_path / "m.kml")
+
+
+def test_cli_review_matches_the_core_session(scene, tmp_path, capsys):
+    seg, multi = scene
+    radar = tmp_path / "seg.csv"
+    write_points(seg, radar)
+    assert (
+        main(
+            [
+                "associate",
+                str(radar),
+                "-o",
+                str(tmp_path / "a.csv"),
+                "--proposals",
+                str(tmp_path / "ap.csv"),
+            ]
+        )
+        == 0
+    )
+    ap = pd.read_csv(tmp_path / "ap.csv", dtype=str, keep_default_na=False)
+    for col in (
+        "proposal",
+        "sensor_a",
+        "batch_a",
+        "sensor_b",
+        "batch_b",
+        "cost",
+        "gap_s",
+        "distance_m",
+        "margin",
+    ):
+        assert col in ap.columns
+    tr = R.track_table(seg)["track"].tolist()
+    sa, ba = tr[0].split(":")
+    sb, bb = tr[5].split(":")
+    sc, bc = ap["sensor_b"][3], ap["batch_b"][3]
+    (tmp_path / "d.csv").write_text(
+        "proposal,decision,sensor_a,batch_a,sensor_b,batch_b\n"
+        f"{ap['proposal'][0]},reject,,,,\n{ap['proposal'][1]},accept,,,,\n"
+        f",merge,{sa},{ba},{sb},{bb}\n,split,{sc},{bc},,\n",
+        encoding="utf-8",
+    )
+    out = tmp_path / "out.csv"
+    assert (
+        main(
+            [
+                "review",
+                str(radar),
+                "-o",
+                str(out),
+                "--proposals",
+                str(tmp_path / "ap.csv"),
+                "--decisions",
+                str(tmp_path / "d.csv"),
+                "--log",
+                str(tmp_path / "log.csv"),
+            ]
+        )
+        == 0
+    )
+    assert "decisions" in capsys.readouterr().err
+    got = pd.read_csv(out, dtype={"batch": str, "target": str})
+    # The same decisions as commands in a session.
+    st = R.ReviewState(
+        R.track_table(seg),
+        R.read_proposals(
+            pd.read_csv(
+                tmp_path / "ap.csv",
+                dtype={"batch_a": str, "batch_b": str, "runner_up": str},
+                keep_default_na=False,
+            )
+        ),
+    )
+    st.apply(R.reject(st, ap["proposal"][0]))
+    st.apply(R.accept(st, ap["proposal"][1]))
+    st.apply(R.merge(st, [tr[0], tr[5]]))
+    st.apply(R.split_track(st, f"{sc}:{bc}"))
+    want = st.targets().set_index("track")["target"]
+    lab = got["sensor"].astype(str) + ":" + got["batch"]
+    assert (got["target"].to_numpy() == want.reindex(lab).to_numpy()).all()
+    assert len(pd.read_csv(tmp_path / "log.csv")) == 4
+    # Bad decisions: exit 2 with the line.
+    (tmp_path / "bad.csv").write_text("proposal,decision\nA0001,maybe\n", encoding="utf-8")
+    assert (
+        main(
+            [
+                "review",
+                str(radar),
+                "-o",
+                str(out),
+                "--proposals",
+                str(tmp_path / "ap.csv"),
+                "--decisions",
+                str(tmp_path / "bad.csv"),
+            ]
+        )
+        == 2
+    )
+    assert "line 2" in capsys.readouterr().err
+    ap_csv = str(tmp_path / "ap.csv")
+    assert main(["review", str(radar), "-o", str(out), "--proposals", ap_csv, ap_csv]) == 2
+    assert "appears twice" in capsys.readouterr().err
+
+
+def test_fuse_takes_one_file_per_sensor(scene, tmp_path, capsys):
+    _, multi = scene
+    files = []
+    for name, part in multi.groupby("sensor"):
+        f = tmp_path / f"scene_{name}.csv"
+        write_points(part.assign(sensor="S1"), f)  # both files name their sensor S1
+        files.append(str(f))
+    out = tmp_path / "fused.csv"
+    assert main(["fuse", *files, "-o", str(out), "--proposals", str(tmp_path / "fp.csv")]) == 0
+    fp = pd.read_csv(tmp_path / "fp.csv", dtype=str)
+    assert set(fp["sensor_a"]) | set(fp["sensor_b"]) == {"AIS", "R1"}
+    assert len(fp) >= 4
+    fused = pd.read_csv(out)
+    assert fused["members"].str.contains(r"\+").any()
+    assert main(["fuse", files[0], "-o", str(out)]) == 2
+    assert "two sensors" in capsys.readouterr().err
+
+
+def test_combine_sources_names():
+    assert R._distinct_parts(["scene-0_error_0_AIS", "scene-0_error_0_radar"]) == ["AIS", "radar"]
+    assert R._distinct_parts(["a", "a"]) == ["a", "a"]
+    a = pd.DataFrame({"sensor": ["X"], "batch": ["1"]})
+    b = pd.DataFrame({"sensor": ["Y"], "batch": ["1"]})
+    assert R.combine_sources([("f1", a), ("f2", b)])["sensor"].tolist() == ["X", "Y"]
+
+
+@pytest.mark.real
+def test_mtad_two_files_fuse_review_export(tmp_path, capsys):
+    ais = real_file("mtad-dtwcm", "two_sensor", "scene-7_error_0_AIS.csv")
+    radar = real_file("mtad-dtwcm", "two_sensor", "scene-7_error_0_radar.csv")
+    fp_csv = tmp_path / "fp.csv"
+    assert (
+        main(
+            [
+                "fuse",
+                str(ais),
+                str(radar),
+                "-o",
+                str(tmp_path / "f.csv"),
+                "--proposals",
+                str(fp_csv),
+            ]
+        )
+        == 0
+    )
+    fp = pd.read_csv(fp_csv, dtype=str)
+    assert len(fp) == 6 and set(fp["sensor_a"]) == {"AIS"} and set(fp["sensor_b"]) == {"radar"}
+    (tmp_path / "d.csv").write_text(
+        f"proposal,decision\n{fp['proposal'][0]},reject\n", encoding="utf-8"
+    )
+    gpx = tmp_path / "out.gpx"
+    assert (
+        main(
+            [
+                "review",
+                str(ais),
+                str(radar),
+                "-o",
+                str(gpx),
+                "--fused",
+                "--proposals",
+                str(fp_csv),
+                "--decisions",
+                str(tmp_path / "d.csv"),
+            ]
+        )
+        == 0
+    )
+    assert "7 targets" in capsys.readouterr().err
+    assert gpx.read_text(encoding="utf-8").count("<trk>") == 7

