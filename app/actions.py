@@ -29,6 +29,7 @@ def build_actions(w) -> None:
     act("export_geojson", lambda: w.export_dialog("geojson"))
     act("export_maneuvers", lambda: w.export_dialog("maneuvers"))
     act("export_as_came_in", lambda: w.export_dialog("as_came_in"))
+    act("export_map", lambda: w.export_map_image())
     act("quit", w.close, None, keys.Quit)
     act("pipeline", lambda: w.run_step("pipeline"), sp.SP_MediaPlay)
     for step in STEPS:
@@ -48,7 +49,13 @@ def build_actions(w) -> None:
     for key in ("open", "open_bearings", "open_project", "save_project"):
         m["file"].addAction(a[key])
     m["file"].addMenu(m["export"])
-    for key in ("export_as_came_in", "export_csv", "export_geojson", "export_maneuvers"):
+    for key in (
+        "export_as_came_in",
+        "export_csv",
+        "export_geojson",
+        "export_maneuvers",
+        "export_map",
+    ):
         m["export"].addAction(a[key])
     m["file"].addSeparator()
     m["file"].addAction(a["quit"])
@@ -96,6 +103,7 @@ def retranslate(w) -> None:
         "export_csv": tr("Active layer as &CSV…"),
         "export_geojson": tr("Active layer as &GeoJSON…"),
         "export_maneuvers": tr("&Maneuver points as CSV…"),
+        "export_map": tr("Map &image (PNG)…"),
         "export_as_came_in": tr("Active layer &as it came in (layout, encoding, times)…"),
         "quit": tr("&Quit"),
         "pipeline": tr("Run &pipeline (clean, maneuvers, compress)"),

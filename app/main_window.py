@@ -78,6 +78,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             pass
         self.canvas.cursorMoved.connect(self._show_cursor)
         self.canvas.trackClicked.connect(self._track_clicked)
+        self.canvas.pointHovered.connect(self._show_hover)
 
         self.layer_list = QtWidgets.QListWidget()
         self.layer_list.itemChanged.connect(self._layer_item_changed)
@@ -336,9 +337,31 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             self.project.put_state("selection", self.session.selection)
 
     def zoom_to_selection(self) -> None:
-        view = self.views.get(self.active) if self.active else None
-        if view is not None and self.selected_keys():
-            self.canvas.fit(view.tracks(self.selected_keys()))
+        self.canvas.zoom_to_selection()
+
+    def export_map_image(self, path: Path | None = None) -> bool:
+        """File ▸ Export map image: the map as drawn, offscreen, to PNG."""
+        from wakeline.app.map_render import render_png
+
+        if path is None:
+            chosen, _ = QtWidgets.QFileDialog.getSaveFileName(
+                self, self.tr("Export map image"), "map.png", "PNG (*.png)"
+            )
+            if not chosen:
+                return False
+            path = Path(chosen)
+        ok = bool(render_png(self.canvas, path))
+        text = self.tr("map image written to {0}") if ok else self.tr("map image not written: {0}")
+        self.log_message(text.format(path))
+        return ok
+
+    def _show_hover(self, info) -> None:
+        if info:
+            speed = info.get("speed_kn")
+            speed_text = "" if speed is None or speed != speed else f", {speed:.1f} kn"
+            self.statusBar().showMessage(
+                f"{info.get('sensor')} / {info.get('batch')}: {info.get('time')}{speed_text}", 4000
+            )
 
     def _show_detail(self, lid: str, key: tuple[str, str]) -> None:
         view = self.views[lid]
@@ -379,11 +402,10 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             parent = self.session.get(layer.parent)
             made = f"{layer.step} ← {parent.name if parent else layer.parent}"
             lines.append(f"{self.tr('Made by')}: {made}, {layer.created}")
-        if tracks:
-            start, end = summary["start"].min(), summary["end"].max()
-            lines.append(
-                f"{self.tr('Time')}: {start:%Y-%m-%d %H:%M:%S} – {end:%Y-%m-%d %H:%M:%S} UTC"
-            )
+        if tracks and view is not None and len(view.text.get("start", [])):
+            first = view.text["start"][int(np.argmin(summary["start"].to_numpy()))]
+            last = view.text["end"][int(np.argmax(summary["end"].to_numpy()))]
+            lines.append(f"{self.tr('Time')}: {first} – {last}")
         for key in ("dis_e_m", "rejected", "threshold_deg"):
             value = layer.meta.get(key)
             if value is not None:

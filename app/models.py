@@ -47,12 +47,24 @@ def display_text(df: pd.DataFrame) -> dict[str, np.ndarray]:
     out["points"] = (
         df["points"].astype("int64").astype(str).to_numpy() if len(df) else np.zeros(0, str)
     )
+    from wakeline.app.time_text import format_times, is_relative_time
+
+    if len(df):
+        epoch = pd.Timestamp("1970-01-01", tz="UTC")
+        secs = {
+            key: (pd.to_datetime(df[key], utc=True) - epoch).dt.total_seconds().to_numpy()
+            for key in ("start", "end")
+        }
+        relative = is_relative_time(np.concatenate(list(secs.values())))
     for key in ("start", "end"):
-        out[key] = (
-            pd.to_datetime(df[key]).dt.strftime("%Y-%m-%d %H:%M:%S").fillna("").to_numpy()
-            if len(df)
-            else np.zeros(0, str)
-        )
+        if not len(df):
+            out[key] = np.zeros(0, str)
+        elif relative:  # seconds from a scene start (MTAD, Øresund): elapsed, not 1970 dates
+            out[key] = np.asarray(format_times(secs[key], True), dtype=str)
+        else:
+            out[key] = (
+                pd.to_datetime(df[key]).dt.strftime("%Y-%m-%d %H:%M:%S").fillna("").to_numpy()
+            )
 
     def num(values, fmt: str) -> np.ndarray:
         v = pd.to_numeric(pd.Series(values), errors="coerce")

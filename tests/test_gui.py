@@ -412,3 +412,17 @@ def test_export_as_it_came_in_follows_lineage(window, tmp_path):
     assert window.export_as_came_in(out) is not None
     wait_for_jobs(window)
     assert out.read_text().splitlines()[0] == "SendShipNO,SendTime,nNO,lon,lat"
+
+
+def test_map_image_and_relative_times(window, tmp_path):
+    src = tmp_path / "scene.csv"
+    df = simulate.demo_scene().head(400)
+    df["time"] = pd.to_datetime(
+        (df["time"] - df["time"].min()).dt.total_seconds(), unit="s", utc=True
+    )  # seconds from a scene start, as MTAD has them
+    write_points(df, src)
+    load(window, src)
+    assert window.batch_model.index(0, 3).data().startswith("T+")
+    png = tmp_path / "map.png"
+    assert window.export_map_image(png)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
