@@ -583,7 +583,8 @@ def at_rest(
     Tolerates position jitter, unlike an identical-position test. ``x``/``y`` are metres in
     each track's frame, ``t`` seconds, rows sorted by track then time. Runs as time-based
     rolling extrema over all tracks at once (tracks are set apart in time so no window
-    reaches a neighbour): a window ending at each point, then spread back over the window.
+    reaches a neighbour): a window ending at each point, reaching back to the last fix at or
+    before ``t - window_s``; every point of a window that fits is at rest.
     """
     n = len(x)
     if n == 0:
@@ -603,16 +604,25 @@ def at_rest(
         r = pd.Series(values, index=when).rolling(win, closed="both")
         return getattr(r, how)().to_numpy()
 
-    ext = np.hypot(rolling(x, "max") - rolling(x, "min"), rolling(y, "max") - rolling(y, "min"))
-    stay = ts - rolling(ts, "min")
-    count = rolling(np.ones(n), "sum")
-    # a window ending here is a stay: long enough, at least two fixes, small enough
-    ends_rest = (ext <= 2.0 * radius_m) & (stay >= 0.5 * window_s) & (count >= 2)
-    # every point of such a window is at rest: look forward one window for a rest end
-    back = pd.DatetimeIndex(pd.to_datetime(ts[-1] - ts[::-1], unit="s"))
-    spread = pd.Series(ends_rest[::-1].astype(float), index=back).rolling(win, closed="both")
-    covered = spread.max().to_numpy()[::-1] > 0
-    return covered
+    count = rolling(np.ones(n), "sum").astype("int64")
+    row = np.arange(n)
+    # the window reaches back to the last fix at or before t - window_s (sparse reports of
+    # a moored ship, every 3 min for AIS class A), if that fix is of the same track and
+    # no more than four windows back
+    prev = row - count
+    ok_prev = (prev >= first) & (ts - ts[np.maximum(prev, 0)] <= 4.0 * window_s)
+    prev = np.where(ok_prev, prev, row - count + 1)
+    px, py = x[prev], y[prev]
+    dx = np.fmax(rolling(x, "max"), px) - np.fmin(rolling(x, "min"), px)
+    dy = np.fmax(rolling(y, "max"), py) - np.fmin(rolling(y, "min"), py)
+    stay = ts - ts[prev]
+    # a stay: at least window_s long, two fixes or more, small enough
+    ends_rest = (np.hypot(dx, dy) <= 2.0 * radius_m) & (stay >= window_s) & (row > prev)
+    # every point of such a window is at rest
+    mark = np.zeros(n + 1, dtype="int64")
+    np.add.at(mark, prev[ends_rest], 1)
+    np.add.at(mark, row[ends_rest] + 1, -1)
+    return np.cumsum(mark[:-1]) > 0
 
 
 def rest_spans(rest: np.ndarray, index: TrackIndex) -> np.ndarray:

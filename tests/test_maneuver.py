@@ -135,7 +135,7 @@ def test_window_in_seconds_sets_p_per_track():
     x, y = legs([0.0, 40.0], [30, 30], step_m=100.0)
     fast = track_from_xy(x, y, period_s=10.0, batch="fast")
     slow = track_from_xy(x, y, period_s=60.0, batch="slow")
-    result = detect(pd.concat([fast, slow]), ManeuverParams(window_s=60.0))
+    result = detect(pd.concat([fast, slow]), ManeuverParams(window_s=60.0, window_p=2))
     assert result.window_p.tolist() == [6, 2]
     assert result.table()["index"].tolist() == [30, 30]
 
