@@ -213,6 +213,7 @@ class ManeuverResult:
     is_maneuver: np.ndarray  # bool per point
     window_p: np.ndarray  # p used for each track (first scale)
     at_rest: np.ndarray | None = None  # bool per point: in an at-rest span
+    params: ManeuverParams | None = None  # the parameters used
 
     def table(self) -> pd.DataFrame:
         """One row per maneuver point: sensor, batch, index, time, lon, lat, factor."""
@@ -348,8 +349,10 @@ def detect(
             grew = p_track > prev_p
             if not grew.any():
                 break
-        radius = np.maximum(p_track, params.radius_n) if k > 0 else np.full_like(
-            p_track, params.radius_n
+        radius = (
+            np.maximum(p_track, params.radius_n)
+            if k > 0
+            else np.full_like(p_track, params.radius_n)
         )
         f_k, peaks = _one_scale(x, y, index, p_track, radius)
         p_row = p_track[index.track_of_row]
@@ -369,7 +372,7 @@ def detect(
         prev_p = p_track
     if progress:
         progress(1.0, "maneuvers found")
-    return ManeuverResult(pts, index, factor, found, p_first, rest)
+    return ManeuverResult(pts, index, factor, found, p_first, rest, params)
 
 
 def _sub_index(index: TrackIndex, selected: np.ndarray):
