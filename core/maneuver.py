@@ -68,7 +68,7 @@ class ManeuverParams(Params):
         source="seed 000 §3.1",
     )
     window_s: float = param(
-        20.0,
+        10.0,
         "s",
         "heading window in seconds: p per track = window_s / its median sampling interval "
         "(never fewer than window_p points); 0 = p points whatever time they span (paper)",
@@ -93,6 +93,15 @@ class ManeuverParams(Params):
         hi=100.0,
         source="ours; seed 001 eq. 1's 1 kn",
     )
+    noise_k: float = param(
+        3.0,
+        "",
+        "a turn must also exceed this many standard deviations of the heading change that the "
+        "track's own position noise gives its two windows (noise estimated per track); 0 = off",
+        lo=0.0,
+        hi=100.0,
+        source="ours; seed 000 eq. 10-12 make the same point with a fixed error",
+    )
     rest_radius_m: float = param(
         50.0,
         "m",
@@ -107,7 +116,7 @@ class ManeuverParams(Params):
     @classmethod
     def paper(cls) -> "ManeuverParams":
         """Seed 000 as written: p points per window, one scale, no speed or rest rule."""
-        return cls(window_s=0.0, max_window_s=0.0, min_speed_kn=0.0, rest_radius_m=0.0)
+        return cls(window_s=0.0, max_window_s=0.0, min_speed_kn=0.0, rest_radius_m=0.0, noise_k=0.0)
 
 
 #: Windows per block: temporaries of ~8 MB stay in the allocator's reusable heap, where
@@ -277,6 +286,51 @@ def _near(mask: np.ndarray, index: TrackIndex, reach: np.ndarray) -> np.ndarray:
     return cs[hi] - cs[lo] > 0
 
 
+def position_noise_m(
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, lag: np.ndarray | int = 1
+) -> np.ndarray:
+    """Per track: position noise std per axis (m), robust: the median distance of each point
+    from the time interpolation of the points ``lag`` before and after it (``lag`` per
+    track; a lag of a window also catches error that wanders over the window, as a radar's
+    reflection centre does along a hull), scaled for Gaussian noise."""
+    n = len(x)
+    tr = index.track_of_row
+    out = np.zeros(index.n_tracks)
+    lag_row = np.broadcast_to(np.asarray(lag, dtype="int64"), (index.n_tracks,))[tr] if n else tr
+    row = np.arange(n)
+    a, b = row - lag_row, row + lag_row
+    ok = (a >= index.starts[tr]) & (b < index.ends[tr])
+    i, a, b = row[ok], a[ok], b[ok]
+    if not len(i):
+        return out
+    span = t[b] - t[a]
+    w = np.where(span > 0, (t[i] - t[a]) / np.where(span > 0, span, 1.0), 0.5)
+    ex = x[i] - ((1 - w) * x[a] + w * x[b])
+    ey = y[i] - ((1 - w) * y[a] + w * y[b])
+    # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
+    # noise has median sigma * sqrt(2 ln 2)
+    r = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
+    med = pd.Series(r).groupby(tr[i]).median()
+    out[med.index.to_numpy()] = med.to_numpy()
+    return out
+
+
+def _heading_noise_deg(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, p_row: np.ndarray, sigma: np.ndarray
+) -> np.ndarray:
+    """Std (deg) of δ from position noise: each window's PCA heading errs by about
+    σ / L · sqrt(12 / p) rad for p points spread over L metres (a line fit's slope)."""
+    n = len(x)
+    row = np.arange(n)
+    a = np.clip(row - p_row + 1, 0, n - 1)
+    b = np.clip(row + p_row - 1, 0, n - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        lb = np.hypot(x - x[a], y - y[a])
+        lf = np.hypot(x[b] - x, y[b] - y)
+        s = sigma[index.track_of_row] * np.sqrt(12.0 / p_row)
+        return np.degrees(np.hypot(s / lb, s / lf))
+
+
 def _window_speed_ms(
     x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, p_row: np.ndarray
 ) -> np.ndarray:
@@ -333,6 +387,7 @@ def detect(
     pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
     t = time_seconds(pts["time"])
+    sigma = None
     rest = np.zeros(len(pts), dtype=bool)
     if params.rest_radius_m > 0 and len(pts):
         rest = at_rest(x, y, t, index, params.rest_radius_m, params.rest_window_s)
@@ -340,6 +395,7 @@ def detect(
     found = np.zeros(len(pts), dtype=bool)
     factor = None
     p_first = None
+    prev_p = np.zeros(index.n_tracks, dtype="int64")
     for k, duration in enumerate(scales):
         if progress:
             progress(k / len(scales), f"maneuver factor, {duration:g} s windows")
@@ -357,6 +413,11 @@ def detect(
         f_k, peaks = _one_scale(x, y, index, p_track, radius)
         p_row = p_track[index.track_of_row]
         ok = peaks & (f_k > params.threshold_deg)
+        if params.noise_k > 0:
+            if sigma is None:  # at the first window's lag
+                sigma = position_noise_m(x, y, t, index)
+            with np.errstate(invalid="ignore"):
+                ok &= f_k > params.noise_k * _heading_noise_deg(x, y, index, p_row, sigma)
         if params.min_speed_kn > 0:
             v = _window_speed_ms(x, y, t, index, p_row)
             ok &= v >= params.min_speed_kn * geo.KN_MS
