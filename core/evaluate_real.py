@@ -168,7 +168,7 @@ def _speed_either_side_kn(pts: pd.DataFrame, index) -> np.ndarray:
 
 
 def compression_against_dp(
-    result, cparams: CompressParams | None = None, iterations: int = 30
+    result, cparams: CompressParams | None = None, iterations: int = 20
 ) -> dict:
     """Our compression (kept, Dis_e) and Douglas–Peucker's kept points at the same Dis_e."""
     pts, index = result.points, result.index

@@ -94,7 +94,7 @@ class ManeuverParams(Params):
         source="ours; seed 001 eq. 1's 1 kn",
     )
     noise_k: float = param(
-        3.0,
+        2.0,
         "",
         "a turn must also exceed this many standard deviations of the heading change that the "
         "track's own position noise gives its two windows (noise estimated per track); 0 = off",
@@ -404,7 +404,7 @@ def detect(
             # tracks whose window did not grow at this duration have nothing new to find
             grew = p_track > prev_p
             if not grew.any():
-                break
+                continue
         radius = (
             np.maximum(p_track, params.radius_n)
             if k > 0

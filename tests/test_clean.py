@@ -280,3 +280,21 @@ def test_blocks_give_the_same_result(monkeypatch):
     for key in ("points_in", "points_out", "tracks_in", "tracks_out", "rules"):
         assert whole.report[key] == blocked.report[key]
     assert len(blocked.report["tracks"]) == len(whole.report["tracks"])
+
+
+def test_moored_ship_with_gps_jitter_is_at_rest():
+    # 2 h alongside with 1-6 m of jitter, then 30 min under way: seed 001 eq. 1 (identical
+    # position) keeps nearly every moored point; the radius rule takes the span's inside out
+    rng = np.random.default_rng(7)
+    moored = straight(720, period_s=10.0, speed_kn=0.0, batch="m")
+    moored[["lon", "lat"]] += rng.uniform(-5e-5, 5e-5, (720, 2))  # up to ~5 m
+    moving = straight(180, period_s=10.0, speed_kn=10.0, batch="m", lon0=moored.lon.iloc[-1])
+    moving["time"] += pd.Timedelta(seconds=7200)
+    df = pd.concat([moored, moving], ignore_index=True)
+    ours = clean(df)
+    paper = clean(df, CleanParams().with_settings(["stationary.paper_rule=true"]))
+    assert paper.report["rules"]["stationary"]["removed"] <= 10
+    assert ours.report["rules"]["stationary"]["removed"] >= 700
+    (span,) = ours.report["at_rest_spans"]
+    assert span["duration_s"] >= 7000 and span["batch"] == "m"
+    assert len(ours.points) >= 180  # the voyage is untouched
