@@ -14,7 +14,7 @@ from wakeline.core.associate import LinkParams, associate_interrupted
 from wakeline.core.bearing import BearingParams
 from wakeline.core.bearing import detect as detect_bearings
 from wakeline.core.clean import CleanParams, clean
-from wakeline.core.compress import CompressParams, compress_with
+from wakeline.core.compress import CompressParams, compress_with, turning_keep
 from wakeline.core.fuse import FuseParams, associate_sensors, fuse
 from wakeline.core.maneuver import ManeuverParams, detect
 from wakeline.core.progress import Progress, null_progress, sub_progress
@@ -73,7 +73,7 @@ def step_compress(
     progress = progress or null_progress
     res, pts = _with_factor(points, mparams, sub_progress(progress, 0.0, 0.7))
     progress(0.7, "compressing")
-    comp = compress_with(pts, res.is_maneuver, refine=cparams.refine, sorted_points=pts)
+    comp = compress_with(pts, turning_keep(res, cparams), refine=cparams.refine, sorted_points=pts)
     rep = comp.report()
     kept = comp.kept_points()
     kept["dis_e_m"] = np.repeat(
