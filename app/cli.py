@@ -96,11 +96,19 @@ def _read_canonical(path: Path):
 def _maneuver_params(args: argparse.Namespace):
     from wakeline.core.maneuver import ManeuverParams
 
+    if getattr(args, "paper", False):
+        return (
+            ManeuverParams.paper()
+            .replace(window_p=args.window, radius_n=args.radius, threshold_deg=args.threshold)
+            .checked()
+        )
     return ManeuverParams(
         window_p=args.window,
         radius_n=args.radius,
         threshold_deg=args.threshold,
         window_s=args.window_s,
+        max_window_s=args.max_window_s,
+        min_speed_kn=args.min_speed,
     ).checked()
 
 
@@ -153,6 +161,19 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             write_csv(pd.concat([ev["main"], ev["noise"], ev["turn"]], ignore_index=True), args.csv)
         return 0
 
+    if args.real is not None:
+        from wakeline.core.evaluate_real import evaluate_real
+
+        ev = evaluate_real(
+            args.real,
+            _maneuver_params(args),
+            progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+        )
+        print(ev.format())
+        if args.csv:
+            write_csv(ev.rows, args.csv)
+        return 0
+
     ev = evaluate_maneuver(
         args.tracks,
         args.seed,
@@ -191,7 +212,27 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         "--window-s",
         type=float,
         default=d.window_s,
-        help="if > 0: p per track = this many seconds / the track's median sampling interval",
+        help=f"heading window, seconds: p per track = this / its median sampling interval, at "
+        f"least --window points; 0 = --window points whatever they span (default {d.window_s:g})",
+    )
+    p.add_argument(
+        "--max-window-s",
+        type=float,
+        default=d.max_window_s,
+        help=f"gradual turns: windows double up to this many seconds; 0 = one window "
+        f"(default {d.max_window_s:g})",
+    )
+    p.add_argument(
+        "--min-speed",
+        type=float,
+        default=d.min_speed_kn,
+        help=f"kn: no maneuver where the ship is slower over a window (default {d.min_speed_kn:g})",
+    )
+    p.add_argument(
+        "--paper",
+        action="store_true",
+        help="seed 000 as written: --window points per window, one scale, no speed, noise or "
+        "at-rest rule (compress: maneuver points only, raw vertices)",
     )
 
 
@@ -429,6 +470,13 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=EPILOG,
     )
     p.add_argument("kind", choices=("maneuver", "bearing", "associate", "fuse"))
+    p.add_argument(
+        "--real",
+        type=Path,
+        metavar="DIR",
+        help="maneuver: score on a real set instead (a folder of shared/data/real: "
+        "autoferry-fusion, greece-ais-annotated, dma-single-ship, oresund-encounters)",
+    )
     p.add_argument(
         "--scenes",
         type=_positive_int,

@@ -23,6 +23,7 @@ ALIASES = {
     ("maneuver", "radius_n"): ("--radius",),
     ("maneuver", "threshold_deg"): ("--threshold",),
     ("compress", "dp_tolerance_m"): ("--tolerance",),
+    ("maneuver", "min_speed_kn"): ("--min-speed",),
 }
 RESERVED = {"input", "output", "report", "set", "help"}
 
@@ -210,6 +211,14 @@ def add_step_parsers(sub) -> None:
                 default=argparse.SUPPRESS,
                 help="keep the raw points as vertices (the paper's way; = --no-refine)",
             )
+        if any(hasattr(cls, "paper") for _key, cls in step.params):
+            p.add_argument(
+                "--paper",
+                action="store_true",
+                help="start from the paper's parameters (e.g. seed 000 as written: windows "
+                "in points, one scale, no speed, noise or rest rules, raw vertices); "
+                "flags given still apply",
+            )
         if name == "clean":
             _add_clean_flags(p)
         p.set_defaults(func=run_step_command, step=name)
@@ -296,8 +305,10 @@ def step_params(step, args: argparse.Namespace) -> dict:
         if args.bspline:
             settings += ["bspline.enabled=true"]
     out = {}
+    paper = getattr(args, "paper", False)
     for key, cls in flat:
-        out[key] = cls().replace(**values[key]).checked()
+        base = cls.paper() if paper and hasattr(cls, "paper") else cls()
+        out[key] = base.replace(**values[key]).checked()
     for key, cls in nested:
         out[key] = cls().with_settings(settings).checked()
     return out

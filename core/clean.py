@@ -12,8 +12,12 @@ Rules, in the order they run (each can be switched off):
 
 1. ``duplicates`` — several rows of one track at one timestamp: keep the first, or
    the first with the mean position (``keep="mean"``; the kept row is then *changed*).
-2. ``stationary`` — speed below ``speed_kn`` and the same lon/lat as the next point
-   (seed 001 eq. 1). Speed is the reported one, else derived from positions.
+2. ``stationary`` — at-rest spans: every position over ``window_s`` seconds stays within
+   ``radius_m`` metres (:func:`at_rest`; tolerant of GPS jitter and a ship swinging at its
+   berth). The inside of each span is removed; its first and last point stay (where and when
+   the ship stopped and left); the report lists the spans (``at_rest_spans``). Seed 001
+   eq. 1 (speed below ``speed_kn`` and the identical lon/lat at the next point — 1–6 m of
+   jitter defeats it) is ``paper_rule``.
 3. ``speed`` — the distance from the last *kept* point is longer than ``v_max_kn`` · Δt
    plus ``tolerance_m`` (seed 001 eq. 2–3; the tolerance is ours: position noise alone
    fakes high speeds over short intervals). Rounds of vectorized passes, each removing the first point of every run of
@@ -83,11 +87,34 @@ class DuplicatesParams(Params):
 
 @dataclass(frozen=True)
 class StationaryParams(Params):
-    enabled: bool = param(True, "", "remove stationary points (seed 001 eq. 1)")
+    enabled: bool = param(True, "", "take out the inside of at-rest spans (moored or anchored)")
+    radius_m: float = param(
+        50.0,
+        "m",
+        "at rest: every position over window_s stays within this radius (GPS jitter, a ship "
+        "swinging at its berth)",
+        lo=0,
+        hi=1e5,
+        source="ours; seed 001 eq. 1 asks for the identical position",
+    )
+    window_s: float = param(
+        180.0,
+        "s",
+        "at rest: the shortest stay that counts (2 * radius_m / window_s = 0.56 m/s, about "
+        "seed 001's 1 kn: a ship slower than that over the window is at rest)",
+        lo=1,
+        hi=1e7,
+        source="ours, from seed 001 eq. 1's 1 kn",
+    )
+    paper_rule: bool = param(
+        False,
+        "",
+        "seed 001 eq. 1 instead: speed below speed_kn and the same lon/lat as the next point",
+    )
     speed_kn: float = param(
         1.0,
         "kn",
-        "below this speed a point that does not move is stationary",
+        "paper rule: below this speed a point that does not move is stationary",
         lo=0,
         hi=100,
         source="seed 001 eq. 1",
@@ -514,7 +541,7 @@ def _merge(results: list[CleanResult]) -> CleanResult:
         rule: {
             key: (
                 sum(r.report["rules"][rule][key] for r in results)
-                if key in ("removed", "changed", "breaks")
+                if key in ("removed", "changed", "breaks", "spans", "at_rest_s")
                 else value
             )
             for key, value in info.items()
@@ -522,7 +549,129 @@ def _merge(results: list[CleanResult]) -> CleanResult:
         for rule, info in first["rules"].items()
     }
     report["tracks"] = [row for r in results for row in r.report["tracks"]]
+    report["at_rest_spans"] = [row for r in results for row in r.report["at_rest_spans"]]
     return CleanResult(points, rejected, report)
+
+
+def _paper_stationary(legs, rows, lon, lat, track, speed_col, speed_kn, n) -> np.ndarray:
+    """Seed 001 eq. 1: speed below ``speed_kn`` and the same lon/lat as the next point."""
+    dist, dt, _ = legs(rows)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        arriving = dist / dt / geo.KN_MS
+    first_rows, last = _runs(track[rows])
+    leaving = np.append(arriving[1:], np.nan)
+    derived = np.where(first_rows, leaving, arriving)  # as tracks.derive_motion does
+    v = np.where(np.isnan(speed_col[rows]), derived, speed_col[rows])
+    same_next = np.zeros(len(rows), dtype=bool)
+    same_next[:-1] = (lon[rows][:-1] == lon[rows][1:]) & (lat[rows][:-1] == lat[rows][1:])
+    same_next &= ~last
+    mask = np.zeros(n, dtype=bool)
+    mask[rows[(v < speed_kn) & same_next]] = True
+    return mask
+
+
+def _sub_index_rows(track_of_row: np.ndarray, n_tracks: int):
+    """A TrackIndex's arrays for sorted rows given their track numbers (empty tracks kept)."""
+    sizes = np.bincount(track_of_row, minlength=n_tracks).astype("int64")
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype("int64")
+    return starts, starts + sizes, track_of_row.astype("int64"), pd.DataFrame(index=range(n_tracks))
+
+
+def _local_xy_rows(lon: np.ndarray, lat: np.ndarray, index: TrackIndex):
+    """Local metres about each track's first point."""
+    has = index.sizes > 0
+    first = np.where(has, index.starts, 0)
+    lon0 = lon[first] if len(lon) else np.zeros(index.n_tracks)
+    lat0 = lat[first] if len(lat) else np.zeros(index.n_tracks)
+    tr = index.track_of_row
+    return geo.to_local(lon, lat, lon0[tr], lat0[tr])
+
+
+def at_rest(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    radius_m: float,
+    window_s: float,
+) -> np.ndarray:
+    """Per point: does it lie in a stay of at least ``window_s`` seconds whose positions
+    all fit in a circle of ``radius_m`` metres (their bounding box's diagonal ≤ 2·radius)?
+
+    Tolerates position jitter, unlike an identical-position test. ``x``/``y`` are metres in
+    each track's frame, ``t`` seconds, rows sorted by track then time. Runs as time-based
+    rolling extrema over all tracks at once (tracks are set apart in time so no window
+    reaches a neighbour): a window ending at each point, reaching back to the last fix at or
+    before ``t - window_s``; every point of a window that fits is at rest.
+    """
+    n = len(x)
+    if n == 0:
+        return np.zeros(0, dtype=bool)
+    tr = index.track_of_row
+    first = index.starts[tr]
+    rel = t - t[first]
+    span = np.zeros(index.n_tracks)
+    has = index.sizes > 0
+    span[has] = rel[index.ends[has] - 1]
+    offset = np.concatenate([[0.0], np.cumsum(span + 2.0 * window_s + 1.0)[:-1]])
+    ts = rel + offset[tr]
+    when = pd.DatetimeIndex(pd.to_datetime(ts, unit="s"))
+    win = f"{int(round(window_s * 1e6))}us"
+
+    def rolling(values: np.ndarray, how: str) -> np.ndarray:
+        r = pd.Series(values, index=when).rolling(win, closed="both")
+        return getattr(r, how)().to_numpy()
+
+    count = rolling(np.ones(n), "sum").astype("int64")
+    row = np.arange(n)
+    # the window reaches back to the last fix at or before t - window_s (sparse reports of
+    # a moored ship, every 3 min for AIS class A), if that fix is of the same track and
+    # no more than four windows back
+    prev = row - count
+    ok_prev = (prev >= first) & (ts - ts[np.maximum(prev, 0)] <= 4.0 * window_s)
+    prev = np.where(ok_prev, prev, row - count + 1)
+    px, py = x[prev], y[prev]
+    dx = np.fmax(rolling(x, "max"), px) - np.fmin(rolling(x, "min"), px)
+    dy = np.fmax(rolling(y, "max"), py) - np.fmin(rolling(y, "min"), py)
+    stay = ts - ts[prev]
+    # a stay: at least window_s long, two fixes or more, small enough
+    ends_rest = (np.hypot(dx, dy) <= 2.0 * radius_m) & (stay >= window_s) & (row > prev)
+    # every point of such a window is at rest
+    mark = np.zeros(n + 1, dtype="int64")
+    np.add.at(mark, prev[ends_rest], 1)
+    np.add.at(mark, row[ends_rest] + 1, -1)
+    return np.cumsum(mark[:-1]) > 0
+
+
+def rest_spans(rest: np.ndarray, index: TrackIndex) -> np.ndarray:
+    """(k, 2) first and last row of every run of at-rest points within a track."""
+    if not rest.any():
+        return np.zeros((0, 2), dtype="int64")
+    tr = index.track_of_row
+    prev = np.zeros(len(rest), dtype=bool)
+    prev[1:] = rest[:-1] & (tr[1:] == tr[:-1])
+    nxt = np.zeros(len(rest), dtype=bool)
+    nxt[:-1] = rest[1:] & (tr[1:] == tr[:-1])
+    return np.column_stack([np.flatnonzero(rest & ~prev), np.flatnonzero(rest & ~nxt)])
+
+
+def _span_table(
+    pts: pd.DataFrame, rows: np.ndarray, spans: np.ndarray, t: np.ndarray
+) -> pd.DataFrame:
+    """One row per at-rest span: sensor, batch, start, end, duration_s, points, lon, lat."""
+    a, b = rows[spans[:, 0]], rows[spans[:, 1]]
+    return pd.DataFrame(
+        {
+            "sensor": pts["sensor"].to_numpy()[a].astype(str),
+            "batch": pts["batch"].to_numpy()[a].astype(str),
+            "start": pts["time"].iloc[a].astype(str).to_numpy(),
+            "end": pts["time"].iloc[b].astype(str).to_numpy(),
+            "duration_s": t[b] - t[a],
+            "points": spans[:, 1] - spans[:, 0] + 1,
+            "lon": pts["lon"].to_numpy()[a],
+            "lat": pts["lat"].to_numpy()[a],
+        }
+    )
 
 
 def _clean_block(
@@ -573,21 +722,23 @@ def _clean_block(
 
     # 2. stationary
     step(1, "stationary")
+    rest_table = None
     if params.stationary.enabled:
         rows = np.flatnonzero(alive)
-        dist, dt, _ = legs(rows)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            arriving = dist / dt / geo.KN_MS
-        first_rows, _ = _runs(track[rows])
-        leaving = np.append(arriving[1:], np.nan)
-        derived = np.where(first_rows, leaving, arriving)  # as tracks.derive_motion does
-        v = np.where(np.isnan(speed_col[rows]), derived, speed_col[rows])
-        _, last = _runs(track[rows])
-        same_next = np.zeros(len(rows), dtype=bool)
-        same_next[:-1] = (lon[rows][:-1] == lon[rows][1:]) & (lat[rows][:-1] == lat[rows][1:])
-        same_next &= ~last
-        mask = np.zeros(n, dtype=bool)
-        mask[rows[(v < params.stationary.speed_kn) & same_next]] = True
+        sp = params.stationary
+        if sp.paper_rule:
+            mask = _paper_stationary(legs, rows, lon, lat, track, speed_col, sp.speed_kn, n)
+        else:
+            sub = TrackIndex(*_sub_index_rows(track[rows], index.n_tracks))
+            x, y = _local_xy_rows(lon[rows], lat[rows], sub)
+            rest = at_rest(x, y, t[rows], sub, sp.radius_m, sp.window_s)
+            spans = rest_spans(rest, sub)
+            inside = rest.copy()
+            inside[spans[:, 0]] = False  # a span's first and last point stay: where and
+            inside[spans[:, 1]] = False  # when the ship stopped and left
+            mask = np.zeros(n, dtype=bool)
+            mask[rows[inside]] = True
+            rest_table = _span_table(pts, rows, spans, t)
         removed_by["stationary"] = mask
         alive &= ~mask
 
@@ -717,6 +868,10 @@ def _clean_block(
     else:
         rejected = pts.iloc[:0].assign(rule="", action="", params="")
     report = _report(index, track, removed_by, changed_by, alive, params)
+    report["at_rest_spans"] = rest_table.to_dict(orient="records") if rest_table is not None else []
+    if rest_table is not None:
+        report["rules"]["stationary"]["spans"] = int(len(rest_table))
+        report["rules"]["stationary"]["at_rest_s"] = float(rest_table["duration_s"].sum())
     if params.speed.enabled:
         report["rules"]["speed"]["breaks"] = int(speed_breaks[alive].sum())
     order = ordered_columns(cleaned)

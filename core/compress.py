@@ -21,7 +21,13 @@ from scipy.linalg import solve_banded
 from wakeline.core import geo
 from wakeline.core.params import Params, param
 from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_origins
+from wakeline.core.tracks import (
+    TrackIndex,
+    concat_ranges,
+    local_xy,
+    sorted_with_index,
+    track_origins,
+)
 
 
 @dataclass(frozen=True)
@@ -34,6 +40,36 @@ class CompressParams(Params):
     dp_tolerance_m: float = param(
         600.0, "m", "Douglas–Peucker tolerance (method dp)", lo=0.0, hi=1e7
     )
+    keep_rest: bool = param(
+        True,
+        "",
+        "keep where each at-rest span starts and ends, and inside it what Douglas–Peucker "
+        "needs at the rest radius (a moored ship's drift over hours)",
+    )
+    gap_factor: float = param(
+        10.0,
+        "",
+        "keep both ends of an interval longer than this many times the track's median "
+        "interval (outside at-rest spans); 0 = off",
+        lo=0.0,
+        hi=1e6,
+    )
+    speed_change_kn: float = param(
+        2.0,
+        "kn",
+        "keep where the speed over the window after a point differs from the one before by "
+        "more than this and by more than speed_change_ratio (a local maximum); 0 = off",
+        lo=0.0,
+        hi=100.0,
+    )
+    speed_change_ratio: float = param(
+        0.25, "", "relative speed change that counts (of the faster window)", lo=0.0, hi=10.0
+    )
+
+    @classmethod
+    def paper(cls) -> "CompressParams":
+        """Seed 000 as written: the maneuver points only, raw vertices."""
+        return cls(refine=False, keep_rest=False, gap_factor=0.0, speed_change_kn=0.0)
 
 
 def _segments(kept: np.ndarray, index: TrackIndex, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -181,6 +217,67 @@ def compress_with(
         )
         true_xy = np.column_stack([tx, ty])
     return Compressed(pts, index, kept, knot_xy, recon, xy, true_xy)
+
+
+def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
+    """Rows a maneuver compression keeps, over ``result.points`` (a :class:`ManeuverResult`):
+    the maneuver points, and — ours, for time-synchronized Dis_e on real traffic — at-rest
+    span ends (plus Douglas–Peucker inside a span at the rest radius), both ends of long
+    gaps and speed changes. Track ends are added by :func:`compress_with`."""
+    from wakeline.core.clean import rest_spans
+    from wakeline.core.maneuver import _near, _sub_index, local_maxima, median_interval_s
+
+    params = params or CompressParams()
+    pts, index = result.points, result.index
+    keep = np.asarray(result.is_maneuver, dtype=bool).copy()
+    if not len(keep):
+        return keep
+    rest = np.zeros(len(keep), dtype=bool) if result.at_rest is None else np.asarray(result.at_rest)
+    x, y = local_xy(pts, index)
+    t = time_seconds(pts["time"])
+    tr = index.track_of_row
+    radius_m = result.params.rest_radius_m if result.params is not None else 50.0
+    if params.keep_rest and rest.any():
+        spans = rest_spans(rest, index)
+        keep[spans[:, 0]] = True
+        keep[spans[:, 1]] = True
+        sizes = spans[:, 1] - spans[:, 0] + 1
+        starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype("int64")
+        rows = concat_ranges(spans[:, 0], sizes)
+        span_of_row = np.repeat(np.arange(len(sizes)), sizes)
+        sub = TrackIndex(starts, starts + sizes, span_of_row, pd.DataFrame(index=range(len(sizes))))
+        keep[rows[douglas_peucker_mask(x[rows], y[rows], sub, radius_m)]] = True
+    p_row = np.asarray(result.window_p)[tr]
+    if params.gap_factor > 0 and len(t) > 1:
+        med = median_interval_s(t, index)[tr]
+        big = (np.diff(t) > params.gap_factor * med[1:]) & (tr[1:] == tr[:-1])
+        gap = np.zeros(len(t), dtype=bool)
+        gap[1:] |= big
+        gap[:-1] |= big
+        keep |= gap & ~rest
+    if params.speed_change_kn > 0:
+        n = len(x)
+        row = np.arange(n)
+        a = np.clip(row - p_row + 1, 0, n - 1)
+        b = np.clip(row + p_row - 1, 0, n - 1)
+        inside = (row - p_row + 1 >= index.starts[tr]) & (row + p_row - 1 < index.ends[tr])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            v_back = np.hypot(x - x[a], y - y[a]) / (t - t[a])
+            v_fwd = np.hypot(x[b] - x, y[b] - y) / (t[b] - t)
+            dv = np.where(inside, np.abs(v_fwd - v_back), np.nan)
+            big = dv > np.maximum(
+                params.speed_change_kn * geo.KN_MS,
+                params.speed_change_ratio * np.fmax(v_back, v_fwd),
+            )
+        peaks = np.zeros(n, dtype=bool)
+        p_track = np.asarray(result.window_p)
+        for p in np.unique(p_track):  # one pass per distinct window (usually one)
+            chosen = p_track == p
+            rows = np.flatnonzero(chosen[tr])
+            sub = TrackIndex(*_sub_index(index, chosen))
+            peaks[rows] = local_maxima(dv[rows], sub, int(p))
+        keep |= big & peaks & ~_near(rest, index, p_row - 1)
+    return keep
 
 
 def douglas_peucker_mask(

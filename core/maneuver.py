@@ -12,9 +12,15 @@ Everything runs on all tracks at once: window sums are accumulated by a loop ove
 ``p`` offsets (never over windows), the 2×2 PCA has a closed form, and the maximum
 filter runs over all tracks concatenated with −∞ separators.
 
-Sampling: ``p`` counts points. With irregular sampling a window still holds ``p`` points,
-whatever time they span; resample first (cleaning) when the period varies a lot, or set
-``window_s`` so that ``p`` is chosen per track from its median sampling interval.
+Time, not points (ours, docs/evaluation.md "Departures: cleaning, maneuvers, compression"):
+the window is ``window_s`` seconds, turned into ``p`` points per track from its median
+sampling interval (never fewer than ``window_p``), so one default serves 1 s radar and
+5 min plots alike; ``window_s = 0`` is the paper's fixed ``p``. Gradual turns: the window
+doubles up to ``max_window_s`` and a turn seen only at a longer window is added where no
+turn lies within one window of it. No maneuver where the ship covers either window slower
+than ``min_speed_kn`` or where a window touches an at-rest span (cleaning's stationary
+rule: positions within ``rest_radius_m`` for ``rest_window_s``). ``ManeuverParams.paper()``
+switches all of these off.
 """
 
 import math
@@ -34,18 +40,24 @@ MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
 
 @dataclass(frozen=True)
 class ManeuverParams(Params):
-    """Parameters of the PCA + maximum-filter detector (seed 000 §3.1 defaults)."""
+    """Parameters of the PCA + maximum-filter detector (seed 000 §3.1 defaults for p, n, t;
+    windows in seconds, gradual turns, minimum speed and at-rest spans are ours)."""
 
     window_p: int = param(
         5,
         "points",
-        "points per heading window (p)",
+        "points per heading window (p); with window_s > 0 the fewest points per window",
         lo=2,
         hi=1000,
         source="ours; seed 000 leaves p open",
     )
     radius_n: int = param(
-        5, "points", "maximum-filter radius (n)", lo=1, hi=1000, source="seed 000 §3.1"
+        5,
+        "points",
+        "maximum-filter radius (n); at least one window at each scale",
+        lo=1,
+        hi=1000,
+        source="seed 000 §3.1",
     )
     threshold_deg: float = param(
         15.0,
@@ -56,12 +68,55 @@ class ManeuverParams(Params):
         source="seed 000 §3.1",
     )
     window_s: float = param(
-        0.0,
+        10.0,
         "s",
-        "if > 0: choose p per track as window_s / median sampling interval",
+        "heading window in seconds: p per track = window_s / its median sampling interval "
+        "(never fewer than window_p points); 0 = p points whatever time they span (paper)",
         lo=0.0,
         hi=1e7,
+        source="ours",
     )
+    max_window_s: float = param(
+        600.0,
+        "s",
+        "gradual turns: windows double up to this duration; a turn found only at a longer "
+        "window counts where no shorter-window turn lies within that window; 0 = one scale",
+        lo=0.0,
+        hi=1e7,
+        source="ours",
+    )
+    min_speed_kn: float = param(
+        1.0,
+        "kn",
+        "no maneuver where the ship covers its window before or after slower than this",
+        lo=0.0,
+        hi=100.0,
+        source="ours; seed 001 eq. 1's 1 kn",
+    )
+    noise_k: float = param(
+        2.0,
+        "",
+        "a turn must also exceed this many standard deviations of the heading change that the "
+        "track's own position noise gives its two windows (noise estimated per track); 0 = off",
+        lo=0.0,
+        hi=100.0,
+        source="ours; seed 000 eq. 10-12 make the same point with a fixed error",
+    )
+    rest_radius_m: float = param(
+        50.0,
+        "m",
+        "at-rest spans (cleaning's stationary rule) are no maneuvers; 0 = off",
+        lo=0.0,
+        hi=1e5,
+    )
+    rest_window_s: float = param(
+        180.0, "s", "at rest: the shortest stay that counts", lo=1.0, hi=1e7
+    )
+
+    @classmethod
+    def paper(cls) -> "ManeuverParams":
+        """Seed 000 as written: p points per window, one scale, no speed or rest rule."""
+        return cls(window_s=0.0, max_window_s=0.0, min_speed_kn=0.0, rest_radius_m=0.0, noise_k=0.0)
 
 
 #: Windows per block: temporaries of ~8 MB stay in the allocator's reusable heap, where
@@ -165,7 +220,9 @@ class ManeuverResult:
     index: TrackIndex
     factor: np.ndarray  # δ per point, deg (NaN where undefined)
     is_maneuver: np.ndarray  # bool per point
-    window_p: np.ndarray  # p used for each track
+    window_p: np.ndarray  # p used for each track (first scale)
+    at_rest: np.ndarray | None = None  # bool per point: in an at-rest span
+    params: ManeuverParams | None = None  # the parameters used
 
     def table(self) -> pd.DataFrame:
         """One row per maneuver point: sensor, batch, index, time, lon, lat, factor."""
@@ -184,46 +241,199 @@ class ManeuverResult:
         ).astype({"sensor": "str", "batch": "str"})
 
 
-def _p_per_track(t: np.ndarray, index: TrackIndex, params: ManeuverParams) -> np.ndarray:
+def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
+    """Median sampling interval (s) of each track; NaN for one-point tracks."""
+    dt = np.diff(t, prepend=np.nan)
+    dt[index.starts] = np.nan
+    return (
+        pd.Series(dt).groupby(index.track_of_row).median().reindex(range(index.n_tracks)).to_numpy()
+    )
+
+
+def _p_per_track(
+    t: np.ndarray, index: TrackIndex, params: ManeuverParams, window_s: float | None = None
+) -> np.ndarray:
+    """Points per window for each track: ``window_s`` over the track's median interval, never
+    fewer than ``window_p``; ``window_p`` itself when no duration is given."""
+    window_s = params.window_s if window_s is None else window_s
     p = np.full(index.n_tracks, int(params.window_p), dtype="int64")
-    if params.window_s > 0:
-        dt = np.diff(t, prepend=np.nan)
-        dt[index.starts] = np.nan
-        med = (
-            pd.Series(dt)
-            .groupby(index.track_of_row)
-            .median()
-            .reindex(range(index.n_tracks))
-            .to_numpy()
-        )
+    if window_s > 0:
+        med = median_interval_s(t, index)
         with np.errstate(invalid="ignore", divide="ignore"):
-            chosen = np.where(
-                np.isfinite(med) & (med > 0), np.round(params.window_s / med), params.window_p
-            )
-        p = np.clip(chosen, 2, 1000).astype("int64")
+            chosen = np.where(np.isfinite(med) & (med > 0), np.round(window_s / med), 0)
+        p = np.clip(np.maximum(chosen, params.window_p), 2, 1000).astype("int64")
     return p
+
+
+def _scales(params: ManeuverParams) -> list[float]:
+    """Window durations (s): window_s doubled up to max_window_s; [0] = points only."""
+    if params.window_s <= 0:
+        return [0.0]
+    out = [params.window_s]
+    while params.max_window_s > 0 and out[-1] * 2 <= params.max_window_s:
+        out.append(out[-1] * 2)
+    return out
+
+
+def _near(mask: np.ndarray, index: TrackIndex, reach: np.ndarray) -> np.ndarray:
+    """Per row: is a ``mask`` row of the same track within ±``reach`` rows (per row)?"""
+    cs = np.concatenate([[0], np.cumsum(mask)])
+    row = np.arange(len(mask))
+    start = index.starts[index.track_of_row]
+    end = index.ends[index.track_of_row]
+    lo = np.maximum(row - reach, start)
+    hi = np.minimum(row + reach + 1, end)
+    return cs[hi] - cs[lo] > 0
+
+
+def position_noise_m(
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, lag: np.ndarray | int = 1
+) -> np.ndarray:
+    """Per track: position noise std per axis (m), robust: the median distance of each point
+    from the time interpolation of the points ``lag`` before and after it (``lag`` per
+    track; a lag of a window also catches error that wanders over the window, as a radar's
+    reflection centre does along a hull), scaled for Gaussian noise."""
+    n = len(x)
+    tr = index.track_of_row
+    out = np.zeros(index.n_tracks)
+    lag_row = np.broadcast_to(np.asarray(lag, dtype="int64"), (index.n_tracks,))[tr] if n else tr
+    row = np.arange(n)
+    a, b = row - lag_row, row + lag_row
+    ok = (a >= index.starts[tr]) & (b < index.ends[tr])
+    i, a, b = row[ok], a[ok], b[ok]
+    if not len(i):
+        return out
+    span = t[b] - t[a]
+    w = np.where(span > 0, (t[i] - t[a]) / np.where(span > 0, span, 1.0), 0.5)
+    ex = x[i] - ((1 - w) * x[a] + w * x[b])
+    ey = y[i] - ((1 - w) * y[a] + w * y[b])
+    # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
+    # noise has median sigma * sqrt(2 ln 2)
+    r = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
+    med = pd.Series(r).groupby(tr[i]).median()
+    out[med.index.to_numpy()] = med.to_numpy()
+    return out
+
+
+def _heading_noise_deg(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, p_row: np.ndarray, sigma: np.ndarray
+) -> np.ndarray:
+    """Std (deg) of δ from position noise: each window's PCA heading errs by about
+    σ / L · sqrt(12 / p) rad for p points spread over L metres (a line fit's slope)."""
+    n = len(x)
+    row = np.arange(n)
+    a = np.clip(row - p_row + 1, 0, n - 1)
+    b = np.clip(row + p_row - 1, 0, n - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        lb = np.hypot(x - x[a], y - y[a])
+        lf = np.hypot(x[b] - x, y[b] - y)
+        s = sigma[index.track_of_row] * np.sqrt(12.0 / p_row)
+        return np.degrees(np.hypot(s / lb, s / lf))
+
+
+def _window_speed_ms(
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, p_row: np.ndarray
+) -> np.ndarray:
+    """The slower of the straight-line speeds (m/s) over the window ending at each point
+    and the one starting there (p points each); NaN where a window leaves the track."""
+    n = len(x)
+    row = np.arange(n)
+    start = index.starts[index.track_of_row]
+    end = index.ends[index.track_of_row]
+    a = row - p_row + 1
+    b = row + p_row - 1
+    ok = (a >= start) & (b < end)
+    a = np.clip(a, 0, n - 1)
+    b = np.clip(b, 0, n - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        v_back = np.hypot(x - x[a], y - y[a]) / (t - t[a])
+        v_fwd = np.hypot(x[b] - x, y[b] - y) / (t[b] - t)
+    return np.where(ok, np.fmin(v_back, v_fwd), np.nan)
+
+
+def _one_scale(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, p_track: np.ndarray, radius: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """δ per point and its local maxima (radius per track), one pass per distinct p."""
+    factor = np.full(len(x), np.nan)
+    peaks = np.zeros(len(x), dtype=bool)
+    for p in np.unique(p_track):  # usually one or a few
+        chosen = p_track == p
+        rows = np.flatnonzero(chosen[index.track_of_row])
+        sub = TrackIndex(*_sub_index(index, chosen))
+        factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p))
+        for r in np.unique(radius[chosen]):
+            same_r = chosen & (radius == r)
+            rr = np.flatnonzero(same_r[index.track_of_row])
+            sub_r = TrackIndex(*_sub_index(index, same_r))
+            peaks[rr] = local_maxima(factor[rr], sub_r, int(r))
+    return factor, peaks
 
 
 def detect(
     points: pd.DataFrame, params: ManeuverParams | None = None, progress=None
 ) -> ManeuverResult:
-    """Run the detector on every track of a canonical table."""
+    """Run the detector on every track of a canonical table.
+
+    At the first window duration the paper's rule runs as written (δ > t and the maximum
+    within ±n points). Gradual turns: at each doubled duration up to ``max_window_s`` a peak
+    above t counts where no turn already found lies within one window of it. No maneuver
+    inside an at-rest span, on a window touching one, or where the ship covers a window
+    slower than ``min_speed_kn``.
+    """
+    from wakeline.core.clean import at_rest  # the same rule cleaning uses
+
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
     t = time_seconds(pts["time"])
-    p_track = _p_per_track(t, index, params)
-    factor = np.full(len(pts), np.nan)
-    distinct = np.unique(p_track)
-    for k, p in enumerate(distinct):  # one pass per distinct p (usually one)
+    sigma = None
+    rest = np.zeros(len(pts), dtype=bool)
+    if params.rest_radius_m > 0 and len(pts):
+        rest = at_rest(x, y, t, index, params.rest_radius_m, params.rest_window_s)
+    scales = _scales(params)
+    found = np.zeros(len(pts), dtype=bool)
+    factor = None
+    p_first = None
+    prev_p = np.zeros(index.n_tracks, dtype="int64")
+    for k, duration in enumerate(scales):
         if progress:
-            progress(k / len(distinct), f"maneuver factor, p = {p}")
-        rows = np.flatnonzero(p_track[index.track_of_row] == p)
-        sub = TrackIndex(*_sub_index(index, p_track == p))
-        factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p))
-    peaks = local_maxima(factor, index, int(params.radius_n))
-    is_maneuver = peaks & (factor > params.threshold_deg)
-    return ManeuverResult(pts, index, factor, is_maneuver, p_track)
+            progress(k / len(scales), f"maneuver factor, {duration:g} s windows")
+        p_track = _p_per_track(t, index, params, duration)
+        if k > 0:
+            # tracks whose window did not grow at this duration have nothing new to find
+            grew = p_track > prev_p
+            if not grew.any():
+                continue
+        radius = (
+            np.maximum(p_track, params.radius_n)
+            if k > 0
+            else np.full_like(p_track, params.radius_n)
+        )
+        f_k, peaks = _one_scale(x, y, index, p_track, radius)
+        p_row = p_track[index.track_of_row]
+        ok = peaks & (f_k > params.threshold_deg)
+        if params.noise_k > 0:
+            if sigma is None:  # at the first window's lag
+                sigma = position_noise_m(x, y, t, index)
+            with np.errstate(invalid="ignore"):
+                ok &= f_k > params.noise_k * _heading_noise_deg(x, y, index, p_row, sigma)
+        if params.min_speed_kn > 0:
+            v = _window_speed_ms(x, y, t, index, p_row)
+            ok &= v >= params.min_speed_kn * geo.KN_MS
+        if rest.any():
+            ok &= ~_near(rest, index, p_row - 1)
+        if k == 0:
+            factor, p_first = f_k, p_track
+            found = ok
+        else:
+            new = ok & grew[index.track_of_row] & ~_near(found, index, p_row)
+            factor = np.where(new, f_k, factor)
+            found = found | new
+        prev_p = p_track
+    if progress:
+        progress(1.0, "maneuvers found")
+    return ManeuverResult(pts, index, factor, found, p_first, rest, params)
 
 
 def _sub_index(index: TrackIndex, selected: np.ndarray):

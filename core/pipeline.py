@@ -242,8 +242,10 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
         keep = douglas_peucker_mask(x, y, index, cp.dp_tolerance_m)
         refine = False
     else:
+        from wakeline.core.compress import turning_keep
+
         res = _detect(points, params, sub_progress(progress, 0.0, 0.7))
-        pts, keep, refine = res.points, res.is_maneuver, cp.refine
+        pts, keep, refine = res.points, turning_keep(res, cp), cp.refine
         mp = _p(params, "maneuver", ManeuverParams)
         table = res.table()[list(MANEUVER_COLUMNS)]
         layers.append(

@@ -106,3 +106,16 @@ def test_console_script_runs_as_a_process(tmp_path):
 
 def test_parser_is_built_without_qt():
     assert build_parser().prog == "wakeline"
+
+
+def test_evaluate_maneuver_on_a_real_folder(tmp_path, capsys):
+    from conftest import real_file
+
+    folder = real_file("oresund-encounters")
+    out = tmp_path / "real.csv"
+    assert main(["evaluate", "maneuver", "--real", str(folder), "--csv", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "oresund" in text and "GW_with_turn" in text
+    assert set(pd.read_csv(out)["method"]) == {"ours", "paper"}
+    assert main(["evaluate", "maneuver", "--real", str(tmp_path)]) == 2
+    assert "no known real set" in capsys.readouterr().err

@@ -157,3 +157,35 @@ def test_cli_maneuvers_compress_and_evaluate(tmp_path, capsys):
     assert "PCA + LS vertices" in capsys.readouterr().out
     assert main(["maneuvers", str(src), "-o", str(out), "--threshold", "200"]) == 2
     assert "threshold_deg must be at most 180" in capsys.readouterr().err
+
+
+def test_stops_and_speed_changes_are_kept_for_time_synchronized_dis_e():
+    # sail 20 min at 12 kn, moor 1 h (4 m jitter), sail on at 6 kn: one course, no turn
+    from wakeline.core.compress import CompressParams, turning_keep
+
+    rng = np.random.default_rng(0)
+    period = 10.0
+    v1, v2 = 12 * 0.5144, 6 * 0.5144
+    y = np.concatenate(
+        [
+            np.arange(120) * v1 * period,
+            np.full(360, 120 * v1 * period),
+            120 * v1 * period + np.arange(1, 121) * v2 * period,
+        ]
+    )
+    x = rng.normal(0, 4.0, len(y))
+    y = y + rng.normal(0, 4.0, len(y))
+    result = detect(track_from_xy(x, y, period_s=period))
+    assert result.is_maneuver.sum() == 0
+    assert result.at_rest[130:470].all()
+    ours = compress_with(None, turning_keep(result), sorted_points=result.points).report()
+    paper = compress_with(
+        None,
+        turning_keep(result, CompressParams.paper()),
+        refine=False,
+        sorted_points=result.points,
+    ).report()
+    assert paper["overall"]["kept"] == 2  # the ends only: the stop is smeared over 2 h
+    assert paper["overall"]["dis_e_m"] > 1000
+    assert ours["overall"]["dis_e_m"] < 20
+    assert ours["overall"]["kept"] <= 8

@@ -135,7 +135,7 @@ def test_window_in_seconds_sets_p_per_track():
     x, y = legs([0.0, 40.0], [30, 30], step_m=100.0)
     fast = track_from_xy(x, y, period_s=10.0, batch="fast")
     slow = track_from_xy(x, y, period_s=60.0, batch="slow")
-    result = detect(pd.concat([fast, slow]), ManeuverParams(window_s=60.0))
+    result = detect(pd.concat([fast, slow]), ManeuverParams(window_s=60.0, window_p=2))
     assert result.window_p.tolist() == [6, 2]
     assert result.table()["index"].tolist() == [30, 30]
 
@@ -193,3 +193,67 @@ def test_block_boundaries_do_not_change_the_factor(monkeypatch):
     monkeypatch.setattr(mod, "BLOCK", 7)
     blocked = detect(df).factor
     assert np.allclose(np.nan_to_num(whole), np.nan_to_num(blocked), atol=1e-9)
+
+
+# --- time, not points; gradual turns; ships at rest or drifting (issue 15) -----------------
+
+
+def _path(course_of_t, speed_kn, duration_s, period_s, noise_m, seed, batch="s"):
+    """A track sampled every period_s: course (deg) as a function of time, constant speed,
+    Gaussian position noise per axis."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, duration_s, period_s)
+    course = np.radians(course_of_t(t))
+    v = speed_kn * geo.KN_MS * period_s
+    x = np.concatenate([[0.0], np.cumsum(v * np.sin(course[:-1]))])
+    y = np.concatenate([[0.0], np.cumsum(v * np.cos(course[:-1]))])
+    x += rng.normal(0, noise_m, len(t))
+    y += rng.normal(0, noise_m, len(t))
+    return track_from_xy(x, y, period_s=period_s, batch=batch), t
+
+
+def _moored(duration_s, period_s, jitter_m, seed, batch="m"):
+    rng = np.random.default_rng(seed)
+    n = int(duration_s / period_s)
+    return track_from_xy(
+        rng.normal(0, jitter_m, n), rng.normal(0, jitter_m, n), period_s=period_s, batch=batch
+    )
+
+
+def test_moored_and_drifting_ships_make_no_maneuvers():
+    moored = _moored(3 * 3600, 10.0, 4.0, seed=1)  # GPS jitter of a few metres
+    drifting, _ = _path(lambda t: 90 + 40 * np.sin(t / 300), 0.5, 3 * 3600, 10.0, 3.0, seed=2)
+    df = pd.concat([moored, drifting.assign(batch="d")], ignore_index=True)
+    ours = detect(df)
+    paper = detect(df, ManeuverParams.paper())
+    assert ours.is_maneuver.sum() == 0
+    assert paper.is_maneuver.sum() > 50  # what the paper's detector makes of jitter
+    assert ours.at_rest[ours.points["batch"].to_numpy() == "m"].all()
+
+
+def test_gradual_turn_is_found_with_the_default_windows():
+    # 283 deg to 8 deg (85 deg) over 12 minutes at 8 kn, AIS every 10 s, 5 m noise
+    def course(t):
+        return 283 + 85 * np.clip((t - 1800) / 720, 0, 1)
+
+    df, t = _path(course, 8.0, 4200, 10.0, 5.0, seed=3)
+    found = detect(df).table()
+    during = (found["index"] * 10.0 >= 1800 - 120) & (found["index"] * 10.0 <= 2520 + 120)
+    assert during.sum() >= 1 and (~during).sum() == 0
+    single_scale = detect(df, ManeuverParams(max_window_s=0.0)).table()
+    assert len(single_scale) == 0  # 10 s windows alone see ~1 deg per window
+
+
+def test_one_default_serves_radar_and_ais_rates():
+    # one 40 deg turn, at 1.5 s radar and at 30 s AIS sampling: the same window in seconds
+    for period, noise in ((1.5, 1.0), (30.0, 10.0)):  # white noise of the real radar: ~1 m
+        df, t = _path(lambda t: np.where(t < 600, 20.0, 60.0), 8.0, 1200, period, noise, seed=4)
+        table = detect(df).table()
+        assert len(table) == 1, period
+        assert abs(table["index"].iloc[0] * period - 600) <= max(3 * period, 10), period
+
+
+def test_minimum_speed():
+    slow, _ = _path(lambda t: np.where(t < 600, 0.0, 90.0), 0.8, 1200, 10.0, 0.5, seed=5)
+    assert detect(slow).table().empty  # 0.8 kn: below the 1 kn default
+    assert len(detect(slow, ManeuverParams(min_speed_kn=0.5, rest_radius_m=0)).table()) == 1

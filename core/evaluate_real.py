@@ -1,0 +1,276 @@
+"""Maneuver detection, cleaning and compression scored on real data
+(``wakeline evaluate maneuver --real DIR``; sets described in shared/data/real/*/SOURCE.md).
+
+What each set can say:
+
+- **autoferry** (radar plots + GNSS truth): radar turns against GNSS turns. Truth turns are
+  found on the GNSS track alone, not by our detector: course over ground from positions
+  2 s apart (1 s resampling), below ``min_speed_kn`` none; the course-against-time curve is
+  simplified to within ``course_tol_deg`` (Douglas–Peucker on the vertical distance);
+  consecutive pieces turning the same way by more than that tolerance each form one turn,
+  which counts when its total change reaches the detector's threshold. Only turns the
+  radar track covers from ``match_s`` before to ``match_s`` after are scored. A detection
+  is right when it lies within ``match_s`` of a turn span; a turn is found when a detection
+  does.
+- **greece**, **dma** (raw AIS with moored and drifting spells): the share of maneuver
+  points where the ship is slower than 1 kn (speed over the legs either side).
+- **oresund** (encounters, give-way ship turns, stand-on ship holds course): tracks with a
+  maneuver by role.
+- every set: the compressor's points kept and Dis_e against Douglas–Peucker's points kept
+  at the same Dis_e (tolerance found by bisection).
+"""
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core import geo, real_sets
+from wakeline.core.clean import clean
+from wakeline.core.compress import (
+    CompressParams,
+    compress_with,
+    douglas_peucker_mask,
+    turning_keep,
+)
+from wakeline.core.maneuver import ManeuverParams, detect
+from wakeline.core.schema import time_seconds
+from wakeline.core.tracks import local_xy, sorted_with_index
+
+
+def _vertical_dp(t: np.ndarray, c: np.ndarray, tol: float) -> np.ndarray:
+    """Douglas–Peucker on a curve c(t) with the vertical distance (one short curve)."""
+    keep = np.zeros(len(t), dtype=bool)
+    keep[[0, -1]] = True
+    stack = [(0, len(t) - 1)]
+    while stack:  # depth of the recursion, on a curve of a few hundred samples
+        a, b = stack.pop()
+        if b - a < 2:
+            continue
+        w = (t[a + 1 : b] - t[a]) / (t[b] - t[a])
+        d = np.abs(c[a + 1 : b] - (c[a] + w * (c[b] - c[a])))
+        k = int(np.argmax(d))
+        if d[k] > tol:
+            m = a + 1 + k
+            keep[m] = True
+            stack += [(a, m), (m, b)]
+    return keep
+
+
+def truth_turns(
+    truth: pd.DataFrame,
+    threshold_deg: float = 15.0,
+    min_speed_kn: float = 1.0,
+    course_tol_deg: float = 5.0,
+    step_s: float = 1.0,
+) -> pd.DataFrame:
+    """Turn spans of accurate (GNSS) tracks: batch, start_s, end_s, change_deg."""
+    pts, index = sorted_with_index(truth)
+    x, y = local_xy(pts, index)
+    t = time_seconds(pts["time"])
+    rows = []
+    for k, (a, b) in enumerate(zip(index.starts, index.ends, strict=True)):  # per track
+        if b - a < 3:
+            continue
+        grid = np.arange(t[a], t[b - 1], step_s)
+        gx, gy = np.interp(grid, t[a:b], x[a:b]), np.interp(grid, t[a:b], y[a:b])
+        if len(grid) < 5:
+            continue
+        dx, dy = gx[2:] - gx[:-2], gy[2:] - gy[:-2]
+        speed = np.hypot(dx, dy) / (2 * step_s)
+        course = np.degrees(np.arctan2(dx, dy))
+        tg = grid[1:-1]
+        moving = speed >= min_speed_kn * geo.KN_MS
+        piece = np.cumsum(np.r_[True, moving[1:] != moving[:-1]])
+        batch = str(index.keys.iloc[k]["batch"])
+        for pid in np.unique(piece[moving]):
+            sel = piece == pid
+            if sel.sum() < 3:
+                continue
+            ts, cs = tg[sel], np.degrees(np.unwrap(np.radians(course[sel])))
+            knots = np.flatnonzero(_vertical_dp(ts, cs, course_tol_deg))
+            dc = np.diff(cs[knots])
+            turning = np.abs(dc) > course_tol_deg
+            run_start = None
+            for i in range(len(dc) + 1):  # pieces of one simplified curve (a handful)
+                same = (
+                    i < len(dc)
+                    and turning[i]
+                    and (run_start is None or np.sign(dc[i]) == np.sign(dc[run_start]))
+                )
+                if same and run_start is None:
+                    run_start = i
+                    continue
+                if same:
+                    continue
+                if run_start is not None:
+                    change = float(cs[knots[i]] - cs[knots[run_start]])
+                    if abs(change) >= threshold_deg:
+                        rows.append((batch, ts[knots[run_start]], ts[knots[i]], change))
+                    run_start = i if i < len(dc) and turning[i] else None
+    return pd.DataFrame(rows, columns=["batch", "start_s", "end_s", "change_deg"])
+
+
+def covered_turns(turns: pd.DataFrame, observed: pd.DataFrame, margin_s: float) -> pd.DataFrame:
+    """The turns an observed track can show: its batch has points from ``margin_s`` before
+    the turn to ``margin_s`` after it (a detector cannot see a turn at a track's very end)."""
+    t = time_seconds(observed["time"])
+    span = pd.DataFrame({"batch": observed["batch"].astype(str).to_numpy(), "t": t})
+    span = span.groupby("batch")["t"].agg(["min", "max"])
+    lo = turns["batch"].map(span["min"])
+    hi = turns["batch"].map(span["max"])
+    ok = (lo <= turns["start_s"] - margin_s) & (hi >= turns["end_s"] + margin_s)
+    return turns[ok.fillna(False).to_numpy()].reset_index(drop=True)
+
+
+def score_turns(
+    detections: pd.DataFrame,
+    turns: pd.DataFrame,
+    match_s: float,
+    scored: pd.DataFrame | None = None,
+) -> dict:
+    """Event scores: a detection (batch, t_s) is right within ``match_s`` of any turn span
+    of its batch; a turn of ``scored`` (default all) is found when a detection is."""
+    det = detections.reset_index(drop=True)
+    scored = turns if scored is None else scored
+
+    def hits(tab: pd.DataFrame) -> pd.DataFrame:
+        pairs = det.reset_index().merge(tab.reset_index(), on="batch", suffixes=("_d", "_t"))
+        inside = (pairs["t_s"] >= pairs["start_s"] - match_s) & (
+            pairs["t_s"] <= pairs["end_s"] + match_s
+        )
+        return pairs[inside]
+
+    right = hits(turns)["index_d"].nunique()
+    found = hits(scored)["index_t"].nunique()
+    return {
+        "detections": int(len(det)),
+        "turns": int(len(scored)),
+        "precision": float(right / len(det)) if len(det) else 1.0,
+        "recall": float(found / len(scored)) if len(scored) else 1.0,
+    }
+
+
+def _speed_either_side_kn(pts: pd.DataFrame, index) -> np.ndarray:
+    """Speed over the legs before and after each point (from positions), knots."""
+    x, y = local_xy(pts, index)
+    t = time_seconds(pts["time"])
+    tr = index.track_of_row
+    v = np.full(len(pts), np.nan)
+    if len(pts) > 2:
+        same = (tr[2:] == tr[:-2]) & (t[2:] > t[:-2])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            v[1:-1] = np.where(
+                same, np.hypot(x[2:] - x[:-2], y[2:] - y[:-2]) / (t[2:] - t[:-2]), np.nan
+            )
+    return v / geo.KN_MS
+
+
+def compression_against_dp(
+    result, cparams: CompressParams | None = None, iterations: int = 20
+) -> dict:
+    """Our compression (kept, Dis_e) and Douglas–Peucker's kept points at the same Dis_e."""
+    pts, index = result.points, result.index
+    ours = compress_with(
+        None,
+        turning_keep(result, cparams),
+        refine=(cparams or CompressParams()).refine,
+        sorted_points=pts,
+    ).report()["overall"]
+    x, y = local_xy(pts, index)
+    lo, hi = 0.01, 1e6
+    for _ in range(iterations):  # bisection on the tolerance (Dis_e grows with it, roughly)
+        mid = float(np.sqrt(lo * hi))
+        d = compress_with(
+            None, douglas_peucker_mask(x, y, index, mid), refine=False, sorted_points=pts
+        )
+        if d.report()["overall"]["dis_e_m"] > ours["dis_e_m"]:
+            hi = mid
+        else:
+            lo = mid
+    dp = compress_with(None, douglas_peucker_mask(x, y, index, lo), refine=False, sorted_points=pts)
+    dp = dp.report()["overall"]
+    return {
+        "points": ours["points"],
+        "ours_kept": ours["kept"],
+        "ours_dis_e_m": ours["dis_e_m"],
+        "dp_kept": dp["kept"],
+        "dp_dis_e_m": dp["dis_e_m"],
+        "dp_tolerance_m": lo,
+    }
+
+
+@dataclass(frozen=True)
+class RealEvaluation:
+    """Scores of one real set, for our defaults and for the paper's way."""
+
+    name: str
+    folder: Path
+    rows: pd.DataFrame  # one row per method: the scores this set supports
+
+    def format(self) -> str:
+        lines = [f"Real set {self.name} ({self.folder})"]
+        lines += [self.rows.to_string(index=False, float_format=lambda v: f"{v:.3f}")]
+        return "\n".join(lines)
+
+
+def evaluate_real(
+    folder: str | Path,
+    params: ManeuverParams | None = None,
+    match_s: float = 10.0,
+    progress=None,
+) -> RealEvaluation:
+    """Score maneuver detection and compression on a real set (see the module docstring),
+    with ``params`` (default: ours) and with seed 000's detector as written."""
+    folder = Path(folder)
+    name = real_sets.recognise(folder)
+    params = (params or ManeuverParams()).checked()
+    truth = None
+    if name == "autoferry":
+        points, truth = real_sets.read_autoferry(folder)
+    else:
+        points = {
+            "greece": real_sets.read_greece,
+            "dma": real_sets.read_dma,
+            "oresund": real_sets.read_oresund,
+        }[name](folder)
+    methods = {
+        "ours": (params, CompressParams()),
+        "paper": (ManeuverParams.paper(), CompressParams.paper()),
+    }
+    rows = []
+    for k, (label, (mp, cp)) in enumerate(methods.items()):
+        if progress:
+            progress(k / len(methods), f"{name}: {label}")
+        res = detect(points, mp)
+        row: dict = {"method": label, "points": int(len(res.points))}
+        is_m = res.is_maneuver
+        row["maneuvers"] = int(is_m.sum())
+        v = _speed_either_side_kn(res.points, res.index)
+        row["slow_share"] = float((is_m & (v < 1.0)).sum() / max(is_m.sum(), 1))
+        if truth is not None:
+            turns = truth_turns(truth, mp.threshold_deg, max(mp.min_speed_kn, 1.0))
+            scored = covered_turns(turns, points, match_s)
+            tab = res.table()
+            det = pd.DataFrame({"batch": tab["batch"], "t_s": time_seconds(tab["time"])})
+            row.update(score_turns(det, turns, match_s, scored))
+        if "role" in res.points.columns:
+            role = res.points.drop_duplicates("batch").set_index("batch")["role"]
+            with_turn = set(res.table()["batch"])
+            for r in ("GW", "SO"):
+                names = role.index[role == r]
+                row[f"{r}_with_turn"] = f"{sum(b in with_turn for b in names)}/{len(names)}"
+        comp = compression_against_dp(res, cp)
+        row.update(
+            {key: comp[key] for key in ("ours_kept", "ours_dis_e_m", "dp_kept", "dp_dis_e_m")}
+        )
+        rows.append(row)
+    if name in ("greece", "dma"):
+        rep = clean(points).report
+        rest = rep["rules"]["stationary"]
+        for row in rows:
+            row["at_rest_spans"] = rest.get("spans", 0)
+    if progress:
+        progress(1.0, "done")
+    return RealEvaluation(name, folder, pd.DataFrame(rows))

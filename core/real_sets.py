@@ -1,0 +1,147 @@
+"""Readers for the real data sets the maneuver evaluation scores against (SOURCE.md in each
+folder of ``shared/data/real``): each returns canonical points (sensor, batch, time, lon,
+lat[, speed]) plus, where the set has it, a truth table.
+
+A folder is recognised by the files it holds, so ``evaluate maneuver --real DIR`` works on a
+copy of any of these sets wherever it lives.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core import geo
+from wakeline.core.errors import InputError
+
+#: Autoferry's local "Piren" NED frame origin (SOURCE.md).
+PIREN_LON, PIREN_LAT = 10.39908278, 63.4389029083
+
+
+def _times(seconds: np.ndarray) -> pd.Series:
+    return pd.Series(pd.to_datetime(np.asarray(seconds, dtype="float64"), unit="s", utc=True))
+
+
+def read_greece(folder: Path) -> pd.DataFrame:
+    """Saronic Gulf AIS, raw input (``vessels.csv``: id lon lat t, no header); positions only."""
+    raw = pd.read_csv(
+        folder / "vessels.csv", sep=r"\s+", header=None, names=["id", "lon", "lat", "t"]
+    )
+    return pd.DataFrame(
+        {
+            "sensor": "AIS",
+            "batch": raw["id"].astype(str),
+            "time": _times(raw["t"].to_numpy()),
+            "lon": raw["lon"].astype("float64"),
+            "lat": raw["lat"].astype("float64"),
+        }
+    )
+
+
+def read_dma(folder: Path) -> pd.DataFrame:
+    """One DMA ship, one day (``sample_ship.csv``; day-first timestamps)."""
+    raw = pd.read_csv(folder / "sample_ship.csv")
+    return pd.DataFrame(
+        {
+            "sensor": "AIS",
+            "batch": raw["mmsi"].astype(str),
+            "time": pd.to_datetime(raw["position_timestamp"], dayfirst=True, utc=True),
+            "lon": raw["longitude"].astype("float64"),
+            "lat": raw["latitude"].astype("float64"),
+        }
+    )
+
+
+def read_oresund(folder: Path) -> pd.DataFrame:
+    """Øresund encounters: one batch per (encounter, ship); ``role`` GW manoeuvres, SO not."""
+    raw = pd.read_csv(folder / "encounters.csv")
+    return pd.DataFrame(
+        {
+            "sensor": "AIS",
+            "batch": raw["encounter_id"].astype(str) + "/" + raw["mmsi"].astype(str),
+            "time": _times(raw["timestamp"].to_numpy()),
+            "lon": raw["lon"].astype("float64"),
+            "lat": raw["lat"].astype("float64"),
+            "speed": raw["sog"].astype("float64"),
+            "role": raw["ship_role"].astype(str),
+        }
+    )
+
+
+def read_autoferry(folder: Path, gate_m: float = 15.0) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Autoferry radar plots turned into one radar track per (scenario, target), and the
+    targets' GNSS truth.
+
+    A radar plot belongs to a target when it lies within ``gate_m`` of the target's GNSS
+    position at the plot's time (the radar also sees quays and buildings); per scan the
+    nearest such plot is kept. Returns (radar points, truth points), both canonical with
+    batch ``scenario/target``.
+    """
+    det = pd.read_csv(folder / "detections.csv.gz")
+    truth = pd.read_csv(folder / "ground_truth.csv.gz")
+    truth = truth.drop_duplicates(["scenario", "target_id", "time"]).sort_values(
+        ["scenario", "target_id", "time"]
+    )
+    radar = det[(det["sensor"] == "radar") & det["meas_north"].notna()].copy()
+    radar["north"] = radar["own_north"] + radar["meas_north"]
+    radar["east"] = radar["own_east"] + radar["meas_east"]
+    parts = []
+    for (scen, target), tr in truth.groupby(["scenario", "target_id"]):  # 18 small groups
+        r = radar[radar["scenario"] == scen]
+        if r.empty:
+            continue
+        tn = np.interp(r["time"], tr["time"], tr["north"])
+        te = np.interp(r["time"], tr["time"], tr["east"])
+        d = np.hypot(r["north"].to_numpy() - tn, r["east"].to_numpy() - te)
+        inside = (
+            (d <= gate_m)
+            & (r["time"].to_numpy() >= tr["time"].min())
+            & (r["time"].to_numpy() <= tr["time"].max())
+        )
+        hit = r[inside].assign(d=d[inside])
+        hit = hit.sort_values("d").drop_duplicates("scan").sort_values("time")
+        hit = hit.drop_duplicates("time")
+        parts.append(hit.assign(batch=f"{scen}/{target}"))
+    if not parts:
+        raise InputError(f"{folder}: no radar plot lies near a GNSS target")
+    radar_pts = pd.concat(parts, ignore_index=True)
+    truth["batch"] = truth["scenario"].astype(str) + "/" + truth["target_id"].astype(str)
+    return _ned_points(radar_pts, "radar"), _ned_points(truth, "gnss")
+
+
+def _ned_points(df: pd.DataFrame, sensor: str) -> pd.DataFrame:
+    lon, lat = geo.from_local(
+        df["east"].to_numpy(dtype="float64"),
+        df["north"].to_numpy(dtype="float64"),
+        PIREN_LON,
+        PIREN_LAT,
+    )
+    return pd.DataFrame(
+        {
+            "sensor": sensor,
+            "batch": df["batch"].to_numpy(),
+            "time": _times(df["time"].to_numpy()).to_numpy(),
+            "lon": lon,
+            "lat": lat,
+        }
+    )
+
+
+def recognise(folder: Path) -> str:
+    """Which real set a folder holds: greece, dma, oresund or autoferry."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise InputError(f"{folder}: not a folder")
+    checks = {
+        "greece": "vessels.csv",
+        "dma": "sample_ship.csv",
+        "oresund": "encounters.csv",
+        "autoferry": "ground_truth.csv.gz",
+    }
+    for name, file in checks.items():
+        if (folder / file).exists():
+            return name
+    raise InputError(
+        f"{folder}: no known real set (expected one of {', '.join(checks.values())}); "
+        "see shared/data/real/*/SOURCE.md"
+    )
