@@ -386,7 +386,7 @@ def _cmd_associate(args: argparse.Namespace) -> int:
         if method not in ("optimal", "greedy"):
             raise InputError(f"--mode interrupted takes --method optimal|greedy, not {method}")
         assoc = associate_interrupted(points, params, method=method, normalize=args.normalize)
-    out = stitch(assoc) if args.stitch else assoc.points()
+    out = stitch(assoc, fill=args.fill) if args.stitch else assoc.points()
     write_points(out, args.output)
     if args.pairs:
         write_csv(assoc.pair_table(), args.pairs)
@@ -763,6 +763,14 @@ def build_parser() -> argparse.ArgumentParser:
         "--stitch",
         action="store_true",
         help="one batch per target, gaps filled at the sensor period (column interpolated)",
+    )
+    p.add_argument(
+        "--fill",
+        choices=("line", "hermite"),
+        default="line",
+        help="--stitch gap fill: line (seed 003: a straight line fitted to 10 points each "
+        "side; default, the better one on our scenes) or hermite (a cubic curve joining both "
+        "ends' positions and velocities)",
     )
     p.add_argument("--set", action="append", metavar="NAME=VALUE", help="change a parameter")
     p.set_defaults(func=_cmd_associate)

@@ -27,7 +27,7 @@ from wakeline.core import geo
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
-from wakeline.core.schema import seconds_to_time
+from wakeline.core.schema import seconds_to_time, time_seconds
 from wakeline.core.segments import Segments, ecef, segment_stats
 from wakeline.core.tracks import concat_ranges
 
@@ -710,16 +710,56 @@ def associate_segments(
 # seed 003 §4.1: stitching
 
 
-def stitch(assoc: Association, period_s: float | None = None) -> pd.DataFrame:
+FILLS = ("line", "hermite")
+
+
+def _line_fill(
+    seg: Segments, i: np.ndarray, j: np.ndarray, owner: np.ndarray, tau: np.ndarray, k: int
+) -> tuple[np.ndarray, ...]:
+    """Seed 003 §4.1's gap fill: a straight line x(t), y(t) fitted by least squares to
+    the last ``k`` points of old track i and the first ``k`` of new track j together,
+    evaluated ``tau`` seconds after i's end. Returns x, y (m, in the frame of i's last
+    fix, as fitted by :func:`segment_stats`) and vx, vy (m/s)."""
+    idx = seg.index
+    pts = seg.points
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    t = time_seconds(pts["time"])
+    offs = np.arange(k)
+    tail = np.maximum(idx.ends[i][:, None] - 1 - offs, idx.starts[i][:, None])
+    head = np.minimum(idx.starts[j][:, None] + offs, idx.ends[j][:, None] - 1)
+    rows = np.concatenate([tail, head], axis=1)
+    valid = np.concatenate(
+        [offs[None, :] < idx.sizes[i][:, None], offs[None, :] < idx.sizes[j][:, None]], axis=1
+    ).astype("float64")
+    x, y = geo.to_local(lon[rows], lat[rows], seg.lon1[i][:, None], seg.lat1[i][:, None])
+    tt = t[rows] - seg.t1[i][:, None]
+    sw = valid.sum(axis=1)
+    mt, mx, my = ((valid * v).sum(axis=1) / sw for v in (tt, x, y))
+    dt = (tt - mt[:, None]) * valid
+    var = (dt * dt).sum(axis=1)
+    bx = np.where(var > 0, (dt * (x - mx[:, None])).sum(axis=1) / np.maximum(var, 1e-9), 0.0)
+    by = np.where(var > 0, (dt * (y - my[:, None])).sum(axis=1) / np.maximum(var, 1e-9), 0.0)
+    ax, ay = mx - bx * mt, my - by * mt
+    return ax[owner] + bx[owner] * tau, ay[owner] + by[owner] * tau, bx[owner], by[owner]
+
+
+def stitch(
+    assoc: Association, period_s: float | None = None, fill: str = "line", fit_points: int = 10
+) -> pd.DataFrame:
     """Join every associated pair into one track and fill its gap (seed 003 §4.1).
 
     The gap is filled at the sensor's period (the old track's median sampling interval,
-    or ``period_s``) by a cubic Hermite curve between the position and velocity fitted to
-    the old track's last points and the new track's first points (``end_points``, 10 by
-    default), so the filled points leave and join both tracks smoothly. Returns all input
-    rows plus the filled ones: ``batch`` is the target (one id per stitched track), the
-    original batch is kept in ``source_batch``, and ``interpolated`` marks filled rows.
+    or ``period_s``). ``fill="line"`` (seed 003, the default: the better of the two on
+    our scenes, docs/evaluation.md): a straight line fitted to ``fit_points`` points on
+    each side; ``"hermite"``: a cubic Hermite curve between the position and velocity
+    fitted to the old track's last points and the new track's first points, leaving and
+    joining both tracks smoothly. Returns all input rows plus the filled ones: ``batch``
+    is the target (one id per stitched track), the original batch is kept in
+    ``source_batch``, and ``interpolated`` marks filled rows.
     """
+    if fill not in FILLS:
+        raise InputError(f"unknown gap fill {fill!r}; choose one of {', '.join(FILLS)}")
     seg = assoc.segments
     pts = assoc.points()
     pts["source_batch"] = pts["batch"]
@@ -753,6 +793,8 @@ def stitch(assoc: Association, period_s: float | None = None) -> pd.DataFrame:
     d11 = 3 * s**2 - 2 * s
     vx = d10[0] + d01 * ex + d11 * seg.vx0[jj]
     vy = d10[1] + d01 * ey + d11 * seg.vy0[jj]
+    if fill == "line":
+        x, y, vx, vy = _line_fill(seg, i, j, owner, tau, max(int(fit_points), 1))
     lon, lat = geo.from_local(x, y, seg.lon1[ii], seg.lat1[ii])
     keys = seg.index.keys
     fill = pd.DataFrame(
