@@ -209,6 +209,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             cut_s=args.cut_s,
             params=_link_params(args.set),
             truth_sep=args.truth_sep,
+            mapping=args.map,
             seed=args.seed,
             progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
         )
@@ -872,6 +873,12 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="CHAR",
         help="associate --real: the truth is the track id up to this character "
         "(MTAD: '-', so MMSI-k sub-tracks are one ship)",
+    )
+    p.add_argument(
+        "--map",
+        action="append",
+        metavar="FIELD=COLUMN",
+        help="associate --real: map a canonical field to a column of the files (as in import)",
     )
     _add_detector_options(p)
     _add_bearing_options(p)
