@@ -73,7 +73,8 @@ class LinkParams(Params):
     drift_ms: float = param(
         1.0,
         "m/s",
-        "growth of the position tolerance with the gap (turns and speed changes unseen)",
+        "growth of the position tolerance with the gap (turns and speed changes unseen); "
+        "with uncertainty_gate, the velocity change that bounds ½·accel·gap²",
         0.0,
     )
     uncertainty_gate: bool = param(
@@ -87,7 +88,7 @@ class LinkParams(Params):
         0.003,
         "m/s²",
         "unknown acceleration during a gap (speed changes, turns beyond the one allowed): "
-        "adds ½·a·gap² to the position uncertainty",
+        "adds ½·a·gap² to the position uncertainty, at most drift_ms × gap",
         0.0,
         5.0,
     )
@@ -225,7 +226,9 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
 
     An end without motion (one fix, or fixes at one instant) borrows the other end's
     velocity; the standard deviation combines both ends' fitted-position errors, the
-    velocity error over the gap and ½·``accel_ms2``·gap² (all per axis, added in squares).
+    velocity error over the gap and the unseen manoeuvres: ½·``accel_ms2``·gap², which
+    for long gaps becomes ``drift_ms``·gap (an acceleration does not last for hours; a
+    velocity change of ``drift_ms`` does) — all per axis, added in squares.
     """
     i, j, gap = pairs.i, pairs.j, pairs.gap_s
     known_i, known_j = seg.motion1[i], seg.motion0[j]
@@ -244,7 +247,7 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
         seg.pos_sd1[i] ** 2
         + seg.pos_sd0[j] ** 2
         + (vsd * gap) ** 2
-        + (0.5 * params.accel_ms2 * gap**2) ** 2
+        + np.minimum(0.5 * params.accel_ms2 * gap**2, params.drift_ms * gap) ** 2
     )
     # Never below a sampling-grid metre: exact synthetic positions still carry rounding.
     sigma = np.sqrt(np.maximum(var, 1.0))
