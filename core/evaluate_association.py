@@ -103,7 +103,7 @@ SCENES = {
 #: ships in a 4 km square (3.75 ships/km², the nearest ship a few hundred metres away).
 HARD_SCENES = {**SCENES, "harbour": (60, 4.0, 20.0)}
 
-_OPEN = {"gate": 1e9, "no_join": 1e9, "margin": 0.0}
+_OPEN = {"gate": 50.0, "no_join": 50.0, "margin": 0.0}  # 50 tolerances: open
 
 #: Method label -> (mode, method, normalize, params changes)
 METHODS = {
