@@ -85,7 +85,7 @@ class LinkParams(Params):
         "position_tol_m + drift_ms × gap of earlier versions",
     )
     accel_ms2: float = param(
-        0.003,
+        0.001,
         "m/s²",
         "unknown acceleration during a gap (speed changes, turns beyond the one allowed): "
         "adds ½·a·gap² to the position uncertainty, at most drift_ms × gap",
