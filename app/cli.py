@@ -64,9 +64,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.kind == "maneuver":
         df = simulate.maneuver_tracks(args.tracks, args.length, args.sigma, seed=args.seed)
     elif args.kind == "segments":
-        df = simulate.segments_scene(seed=args.seed, n_ships=args.ships, area_km=args.area_km)
+        df = simulate.segments_scene(
+            seed=args.seed, n_ships=args.ships, area_km=args.area_km, hard=args.hard
+        )
     elif args.kind == "multisensor":
-        df = simulate.multisensor_scene(seed=args.seed, n_ships=args.ships, area_km=args.area_km)
+        df = simulate.multisensor_scene(
+            seed=args.seed, n_ships=args.ships, area_km=args.area_km, hard=args.hard
+        )
     else:
         df = simulate.demo_scene(seed=args.seed)
     write_points(df, args.output)
@@ -126,10 +130,28 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             args.seed,
             _fuse_params(args.set),
             progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+            hard=args.hard,
         )
         print(ev.format())
         if args.csv:
             write_csv(ev.table.merge(ev.errors, on="scene"), args.csv)
+        return 0
+
+    if args.kind == "associate" and args.real:
+        from wakeline.core.evaluate_association import evaluate_real_association
+
+        ev = evaluate_real_association(
+            args.real,
+            cut_s=args.cut_s,
+            params=_link_params(args.set),
+            truth_sep=args.truth_sep,
+            mapping=args.map,
+            seed=args.seed,
+            progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+        )
+        print(ev.format())
+        if args.csv:
+            write_csv(ev.table, args.csv)
         return 0
 
     if args.kind == "associate":
@@ -140,6 +162,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             args.seed,
             _link_params(args.set),
             progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+            hard=args.hard,
         )
         print(ev.format())
         if args.csv:
@@ -435,6 +458,13 @@ def build_parser() -> argparse.ArgumentParser:
         default=60.0,
         help="segments/multisensor: side of the square area, km (default 60)",
     )
+    p.add_argument(
+        "--hard",
+        action="store_true",
+        help="segments/multisensor: the hard variant (speed changes, curved paths, missed scans, "
+        "long gaps, loose ends, clutter; multisensor: split radar tracks, ships without AIS, "
+        "partial overlap)",
+    )
     p.set_defaults(func=_cmd_simulate)
 
     from wakeline.app.cli_steps import add_step_parsers
@@ -474,8 +504,10 @@ def build_parser() -> argparse.ArgumentParser:
         "--real",
         type=Path,
         metavar="DIR",
-        help="maneuver: score on a real set instead (a folder of shared/data/real: "
-        "autoferry-fusion, greece-ais-annotated, dma-single-ship, oresund-encounters)",
+        help="score on a real set instead. maneuver: a folder of shared/data/real "
+        "(autoferry-fusion, greece-ais-annotated, dma-single-ship, oresund-encounters); "
+        "associate: a file, or every .csv/.csv.gz in DIR (each track's id is the truth; "
+        "tracks are cut at their gaps, pieces renumbered)",
     )
     p.add_argument(
         "--scenes",
@@ -503,6 +535,31 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--csv", type=Path, help="also write the full table as CSV")
+    p.add_argument(
+        "--hard",
+        action="store_true",
+        help="associate, fuse: the hard simulated scenes (see 'simulate --hard')",
+    )
+    p.add_argument(
+        "--cut-s",
+        type=_positive_float,
+        default=120.0,
+        help="associate --real: cut where a step exceeds this (s) and 4x the track's median "
+        "step (default 120)",
+    )
+    p.add_argument(
+        "--truth-sep",
+        default="",
+        metavar="CHAR",
+        help="associate --real: the truth is the track id up to this character "
+        "(MTAD: '-', so MMSI-k sub-tracks are one ship)",
+    )
+    p.add_argument(
+        "--map",
+        action="append",
+        metavar="FIELD=COLUMN",
+        help="associate --real: map a canonical field to a column of the files (as in import)",
+    )
     _add_detector_options(p)
     _add_bearing_options(p)
     p.set_defaults(func=_cmd_evaluate)

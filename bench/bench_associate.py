@@ -48,7 +48,7 @@ def dense_baseline(points, params: LinkParams) -> tuple[float, int]:
     )
     dc = geo.angle_diff(seg.course1_deg[i], seg.course0_deg[j])
     dv = np.abs(seg.speed1_kn[i] - seg.speed0_kn[j])
-    cost = pair_cost(Pairs(i, j, gap, dist, miss, dc, dv), params)
+    cost = pair_cost(Pairs(i, j, gap, dist, miss, dc, dv), params, seg=seg)
     ok = (gap > 0) & (gap <= params.max_gap_s) & (cost <= params.gate)
     big = 1e6
     matrix = np.where(ok, cost, big).reshape(n, n)

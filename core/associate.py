@@ -27,7 +27,7 @@ from wakeline.core import geo
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
-from wakeline.core.schema import seconds_to_time
+from wakeline.core.schema import seconds_to_time, time_seconds
 from wakeline.core.segments import Segments, ecef, segment_stats
 from wakeline.core.tracks import concat_ranges
 
@@ -73,7 +73,41 @@ class LinkParams(Params):
     drift_ms: float = param(
         1.0,
         "m/s",
-        "growth of the position tolerance with the gap (turns and speed changes unseen)",
+        "growth of the position tolerance with the gap (turns and speed changes unseen); "
+        "with uncertainty_gate, the velocity change that bounds ½·accel·gap²",
+        0.0,
+    )
+    uncertainty_gate: bool = param(
+        True,
+        "",
+        "position tolerance from the prediction's uncertainty (each end's own noise and "
+        "velocity error, unknown acceleration over the gap); false: the fixed "
+        "position_tol_m + drift_ms × gap of earlier versions",
+    )
+    accel_ms2: float = param(
+        0.001,
+        "m/s²",
+        "unknown acceleration during a gap (speed changes, turns beyond the one allowed): "
+        "adds ½·a·gap² to the position uncertainty, at most drift_ms × gap",
+        0.0,
+        5.0,
+    )
+    sigmas: float = param(
+        3.0, "σ", "position miss worth one unit of distance, in standard deviations", 0.5, 20.0
+    )
+    no_join: float = param(
+        1.5,
+        "",
+        "cost of leaving an old end and a new start loose: a pair is joined only when it "
+        "costs less (at most the gate)",
+        0.0,
+    )
+    margin: float = param(
+        0.25,
+        "",
+        "margin test: a join is dropped when a rival that overlaps it in time (another "
+        "start for the old end, another end for the new start), not claimed more cheaply "
+        "by someone else, costs less than this much more",
         0.0,
     )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
@@ -186,37 +220,108 @@ def _minmax(x: np.ndarray) -> np.ndarray:
     return (x - lo) / (hi - lo) if hi > lo else np.zeros_like(x)
 
 
-def pair_cost(pairs: Pairs, params: LinkParams, normalize: str = "scaled") -> np.ndarray:
+def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np.ndarray, ...]:
+    """Position miss (m) of each pair against the one-course-change prediction, its
+    standard deviation (m), and whether neither end shows its motion (``blind``).
+
+    An end without motion (one fix, or fixes at one instant) borrows the other end's
+    velocity; the standard deviation combines both ends' fitted-position errors, the
+    velocity error over the gap and the unseen manoeuvres: ½·``accel_ms2``·gap², which
+    for long gaps becomes ``drift_ms``·gap (an acceleration does not last for hours; a
+    velocity change of ``drift_ms`` does) — all per axis, added in squares.
+    """
+    i, j, gap = pairs.i, pairs.j, pairs.gap_s
+    known_i, known_j = seg.motion1[i], seg.motion0[j]
+    vxi = np.where(known_i, seg.vx1[i], seg.vx0[j])
+    vyi = np.where(known_i, seg.vy1[i], seg.vy0[j])
+    vxj = np.where(known_j, seg.vx0[j], vxi)
+    vyj = np.where(known_j, seg.vy0[j], vyi)
+    px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
+    miss = _miss_one_turn(px, py, vxi * gap, vyi * gap, vxj * gap, vyj * gap)
+    vsd_i = np.where(known_i, seg.vel_sd1[i], np.nan)
+    vsd_j = np.where(known_j, seg.vel_sd0[j], np.nan)
+    blind = ~known_i & ~known_j
+    vsd = np.sqrt(np.where(known_i & known_j, (vsd_i**2 + vsd_j**2) / 2, 0.0))
+    vsd = np.where(known_i & ~known_j, vsd_i, np.where(known_j & ~known_i, vsd_j, vsd))
+    var = (
+        seg.pos_sd1[i] ** 2
+        + seg.pos_sd0[j] ** 2
+        + (vsd * gap) ** 2
+        + np.minimum(0.5 * params.accel_ms2 * gap**2, params.drift_ms * gap) ** 2
+    )
+    # Never below a sampling-grid metre: exact synthetic positions still carry rounding.
+    sigma = np.sqrt(np.maximum(var, 1.0))
+    return miss, sigma, blind
+
+
+def pair_cost(
+    pairs: Pairs, params: LinkParams, normalize: str = "scaled", seg: Segments | None = None
+) -> np.ndarray:
     """Combined distance α·d′ + β·c′ + γ·v′ of every pair.
 
     ``normalize="minmax"`` is seed 003's min-max over the candidate set; ``"scaled"``
-    divides each term by a tolerance (position: ``position_tol_m + drift_ms·gap``; course:
-    ``course_tol_deg``; speed: ``speed_tol_kn``), so a cost means the same in every scene
-    and a gate can be absolute. Weights are renormalized to sum to 1.
+    divides each term by a tolerance (course: ``course_tol_deg``; speed: ``speed_tol_kn``;
+    position: ``sigmas`` standard deviations of the predicted end when ``uncertainty_gate``
+    and ``seg`` are given, else ``position_tol_m + drift_ms·gap``), so a cost means the
+    same in every scene and a gate can be absolute. Weights are renormalized to sum to 1
+    over the terms that are known for the pair (course and speed mean nothing at an end
+    without motion). A pair of which neither end shows its motion has only reachability
+    as evidence and costs ``no_join`` less the margin: it is taken only when nothing else
+    claims either piece.
     """
-    d = pairs.miss_m if params.predict else pairs.dist_m
     wsum = params.alpha + params.beta + params.gamma
     if wsum <= 0:
         raise InputError("alpha + beta + gamma must be positive")
-    a, b, g = params.alpha / wsum, params.beta / wsum, params.gamma / wsum
     if normalize == "minmax":
+        d = pairs.miss_m if params.predict else pairs.dist_m
+        a, b, g = params.alpha / wsum, params.beta / wsum, params.gamma / wsum
         terms = (_minmax(d), _minmax(pairs.dcourse_deg), _minmax(pairs.dspeed_kn))
+        return a * terms[0] + b * np.nan_to_num(terms[1]) + g * np.nan_to_num(terms[2])
+    blind = np.zeros(len(pairs), dtype=bool)
+    dcourse, dspeed = pairs.dcourse_deg, pairs.dspeed_kn
+    if params.uncertainty_gate and seg is not None:
+        miss, sigma, blind = prediction_miss(seg, pairs, params)
+        d = (miss if params.predict else pairs.dist_m) / (params.sigmas * sigma)
+        i, j = pairs.i, pairs.j
+        known = seg.motion1[i] & seg.motion0[j]
+        # Course and speed tolerances grow with the ends' velocity errors (noisy tracks
+        # give noisy velocities): the error in knots, and in degrees as seen at the speed.
+        vi, vj = seg.vel_sd1[i], seg.vel_sd0[j]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            v_kn2 = np.where(known, vi**2 + vj**2, 0.0) / geo.KN_MS**2
+            c_deg2 = np.where(
+                known,
+                np.degrees(np.arctan2(vi, seg.speed1_kn[i] * geo.KN_MS)) ** 2
+                + np.degrees(np.arctan2(vj, seg.speed0_kn[j] * geo.KN_MS)) ** 2,
+                0.0,
+            )
+        course_tol = np.sqrt(params.course_tol_deg**2 + c_deg2)
+        speed_tol = np.sqrt(params.speed_tol_kn**2 + v_kn2)
+        dcourse = np.where(known, dcourse, np.nan)
+        dspeed = np.where(known, dspeed, np.nan)
     else:
-        terms = (
-            d / (params.position_tol_m + params.drift_ms * pairs.gap_s),
-            pairs.dcourse_deg / params.course_tol_deg,
-            pairs.dspeed_kn / params.speed_tol_kn,
+        d = (pairs.miss_m if params.predict else pairs.dist_m) / (
+            params.position_tol_m + params.drift_ms * pairs.gap_s
         )
-    # A term that is unknown (no motion at a 1-point end) contributes nothing.
-    return a * terms[0] + b * np.nan_to_num(terms[1]) + g * np.nan_to_num(terms[2])
+        course_tol, speed_tol = params.course_tol_deg, params.speed_tol_kn
+    terms = np.column_stack([d, dcourse / course_tol, dspeed / speed_tol])
+    w = np.array([params.alpha, params.beta, params.gamma]) * np.isfinite(terms)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cost = (w * np.nan_to_num(terms)).sum(axis=1) / w.sum(axis=1)
+    cost = np.where(w.sum(axis=1) > 0, cost, np.inf)
+    return np.where(blind, max(params.no_join - params.margin, 0.0), cost)
 
 
-def greedy_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) -> np.ndarray:
+def greedy_assign(
+    i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float, unmatched: float | None = None
+) -> np.ndarray:
     """Seed 003's greedy minimum: take the smallest cost, blank its row and column, repeat.
 
-    Returns the indices of the chosen pairs (cost ≤ ``gate``)."""
+    Returns the indices of the chosen pairs (cost ≤ ``gate`` and below ``unmatched``, the
+    price of leaving both loose, when given)."""
+    limit = gate if unmatched is None else min(gate, unmatched)
     order = np.argsort(cost, kind="stable")
-    order = order[cost[order] <= gate]
+    order = order[cost[order] <= limit]
     used_i: set[int] = set()
     used_j: set[int] = set()
     chosen = []
@@ -229,9 +334,12 @@ def greedy_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) -
     return np.asarray(chosen, dtype="int64")
 
 
-def optimal_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) -> np.ndarray:
-    """One-to-one assignment of least total cost, leaving a row or column unmatched at the
-    price ``gate``; sparse, so thousands of tracks never build a dense matrix.
+def optimal_assign(
+    i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float, unmatched: float | None = None
+) -> np.ndarray:
+    """One-to-one assignment of least total cost over the pairs with cost ≤ ``gate``,
+    leaving a row and a column unmatched at the price ``unmatched`` (default ``gate``);
+    sparse, so thousands of tracks never build a dense matrix.
 
     Rows are the old tracks plus one dummy per new track, columns the new tracks plus one
     dummy per old track: (old i, new j) costs c_ij, (old i, its dummy) and (dummy of j, new j)
@@ -249,7 +357,9 @@ def optimal_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) 
     uj, rj = np.unique(j[idx], return_inverse=True)
     n_old, n_new = len(ui), len(uj)
     shift = 1.0
-    half = gate / 2.0  # each side's unmatched price: together a pair is worth keeping if c < gate
+    half = (
+        gate if unmatched is None else unmatched
+    ) / 2.0  # each side's unmatched price: together a pair is worth keeping if c < gate
     rows = np.concatenate([ri, np.arange(n_old), n_old + np.arange(n_new), n_old + rj])
     cols = np.concatenate([rj, n_new + np.arange(n_old), np.arange(n_new), n_new + ri])
     vals = np.concatenate(
@@ -269,6 +379,73 @@ def optimal_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) 
     lookup = lookup[~lookup.index.duplicated()]
     picked = lookup.reindex(pd.MultiIndex.from_arrays([r[real], c[real]])).to_numpy()
     return idx[picked.astype("int64")]
+
+
+def margin_test(
+    seg: Segments, pairs: Pairs, cost: np.ndarray, chosen: np.ndarray, margin: float
+) -> np.ndarray:
+    """The chosen pairs that pass the margin test (indices into ``pairs``).
+
+    A rival of a chosen pair (i, j) is another candidate (i, j′) whose j′ overlaps j in
+    time — the two cannot both be this ship's continuation — or (i′, j) with i′
+    overlapping i, that is not claimed by a chosen pair of lower cost. A join whose rival
+    costs less than ``margin`` more is ambiguous and dropped: both ends stay loose.
+    """
+    if len(chosen) == 0 or margin <= 0:
+        return chosen
+    # Cheapest chosen claim on each new start and each old end (inf where unclaimed).
+    claim_j = np.full(len(seg), np.inf)
+    claim_i = np.full(len(seg), np.inf)
+    claim_j[pairs.j[chosen]] = cost[chosen]
+    claim_i[pairs.i[chosen]] = cost[chosen]
+    ch = pd.DataFrame({"k": chosen, "i": pairs.i[chosen], "j": pairs.j[chosen], "c": cost[chosen]})
+    cand = pd.DataFrame({"i": pairs.i, "j": pairs.j, "c": cost})
+    bad = np.zeros(len(chosen), dtype=bool)
+    pos = pd.Series(np.arange(len(chosen)), index=chosen)
+    for own, other, claim in (("i", "j", claim_j), ("j", "i", claim_i)):
+        m = ch.merge(cand, on=own, suffixes=("", "_r"))
+        r, o = m[f"{other}_r"].to_numpy(), m[other].to_numpy()
+        lo = np.maximum(seg.t0[r], seg.t0[o])
+        hi = np.minimum(seg.t1[r], seg.t1[o])
+        rival = (
+            (r != o)
+            & (hi >= lo)
+            & (m["c_r"].to_numpy() < m["c"].to_numpy() + margin)
+            & ~(claim[r] < m["c_r"].to_numpy())
+        )
+        bad[pos.loc[m["k"].to_numpy()[rival]].to_numpy()] = True
+    return chosen[~bad]
+
+
+def insert_skipped(
+    seg: Segments, pairs: Pairs, cost: np.ndarray, chosen: np.ndarray, limit: float
+) -> np.ndarray:
+    """Route a chosen join (i, j) through a loose piece p that lies in its gap when both
+    (i, p) and (p, j) are candidates cheaper than ``limit``: a short piece between two
+    ends of one ship is that ship's, and leaving it out would leave a loose piece and a
+    join that skips a step. The cheapest such p (by c(i, p) + c(p, j)) is taken."""
+    if len(chosen) == 0:
+        return chosen
+    used_old = np.zeros(len(seg), dtype=bool)
+    used_new = np.zeros(len(seg), dtype=bool)
+    used_old[pairs.i[chosen]] = True
+    used_new[pairs.j[chosen]] = True
+    ok = cost < limit
+    cand = pd.DataFrame(
+        {"k": np.flatnonzero(ok), "i": pairs.i[ok], "j": pairs.j[ok], "c": cost[ok]}
+    )
+    free = ~used_old & ~used_new
+    first = cand[free[cand["j"].to_numpy()]].rename(columns={"j": "p", "k": "k1", "c": "c1"})
+    second = cand[free[cand["i"].to_numpy()]].rename(columns={"i": "p", "k": "k2", "c": "c2"})
+    ch = pd.DataFrame({"k": chosen, "i": pairs.i[chosen], "j": pairs.j[chosen]})
+    m = ch.merge(first, on="i").merge(second, on=["p", "j"])
+    if m.empty:
+        return chosen
+    m["s"] = m["c1"] + m["c2"]
+    m = m.sort_values("s", kind="stable")
+    m = m.drop_duplicates("k").drop_duplicates("p")
+    keep = np.setdiff1d(chosen, m["k"].to_numpy())
+    return np.concatenate([keep, m["k1"].to_numpy(), m["k2"].to_numpy()]).astype("int64")
 
 
 def components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -353,10 +530,15 @@ def associate_interrupted(
     seg = segment_stats(points, params.end_points)
     progress(0.3, "finding candidate pairs")
     pairs = candidate_pairs(seg, params)
-    cost = pair_cost(pairs, params, normalize)
+    cost = pair_cost(pairs, params, normalize, seg)
     progress(0.6, f"assigning {len(pairs):,} candidate pairs")
     assign = optimal_assign if method == "optimal" else greedy_assign
-    chosen = assign(pairs.i, pairs.j, cost, params.gate)
+    if normalize == "minmax":  # seed 003 as written: a gate, no loose-end price, no margin
+        chosen = assign(pairs.i, pairs.j, cost, params.gate)
+    else:
+        chosen = assign(pairs.i, pairs.j, cost, params.gate, params.no_join)
+        chosen = insert_skipped(seg, pairs, cost, chosen, min(params.gate, params.no_join))
+        chosen = margin_test(seg, pairs, cost, chosen, params.margin)
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
     progress(1.0, f"{len(chosen):,} pairs joined")
     return Association(seg, pairs, cost, chosen, targets, method)
@@ -531,16 +713,56 @@ def associate_segments(
 # seed 003 §4.1: stitching
 
 
-def stitch(assoc: Association, period_s: float | None = None) -> pd.DataFrame:
+FILLS = ("line", "hermite")
+
+
+def _line_fill(
+    seg: Segments, i: np.ndarray, j: np.ndarray, owner: np.ndarray, tau: np.ndarray, k: int
+) -> tuple[np.ndarray, ...]:
+    """Seed 003 §4.1's gap fill: a straight line x(t), y(t) fitted by least squares to
+    the last ``k`` points of old track i and the first ``k`` of new track j together,
+    evaluated ``tau`` seconds after i's end. Returns x, y (m, in the frame of i's last
+    fix, as fitted by :func:`segment_stats`) and vx, vy (m/s)."""
+    idx = seg.index
+    pts = seg.points
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    t = time_seconds(pts["time"])
+    offs = np.arange(k)
+    tail = np.maximum(idx.ends[i][:, None] - 1 - offs, idx.starts[i][:, None])
+    head = np.minimum(idx.starts[j][:, None] + offs, idx.ends[j][:, None] - 1)
+    rows = np.concatenate([tail, head], axis=1)
+    valid = np.concatenate(
+        [offs[None, :] < idx.sizes[i][:, None], offs[None, :] < idx.sizes[j][:, None]], axis=1
+    ).astype("float64")
+    x, y = geo.to_local(lon[rows], lat[rows], seg.lon1[i][:, None], seg.lat1[i][:, None])
+    tt = t[rows] - seg.t1[i][:, None]
+    sw = valid.sum(axis=1)
+    mt, mx, my = ((valid * v).sum(axis=1) / sw for v in (tt, x, y))
+    dt = (tt - mt[:, None]) * valid
+    var = (dt * dt).sum(axis=1)
+    bx = np.where(var > 0, (dt * (x - mx[:, None])).sum(axis=1) / np.maximum(var, 1e-9), 0.0)
+    by = np.where(var > 0, (dt * (y - my[:, None])).sum(axis=1) / np.maximum(var, 1e-9), 0.0)
+    ax, ay = mx - bx * mt, my - by * mt
+    return ax[owner] + bx[owner] * tau, ay[owner] + by[owner] * tau, bx[owner], by[owner]
+
+
+def stitch(
+    assoc: Association, period_s: float | None = None, fill: str = "line", fit_points: int = 10
+) -> pd.DataFrame:
     """Join every associated pair into one track and fill its gap (seed 003 §4.1).
 
     The gap is filled at the sensor's period (the old track's median sampling interval,
-    or ``period_s``) by a cubic Hermite curve between the position and velocity fitted to
-    the old track's last points and the new track's first points (``end_points``, 10 by
-    default), so the filled points leave and join both tracks smoothly. Returns all input
-    rows plus the filled ones: ``batch`` is the target (one id per stitched track), the
-    original batch is kept in ``source_batch``, and ``interpolated`` marks filled rows.
+    or ``period_s``). ``fill="line"`` (seed 003, the default: the better of the two on
+    our scenes, docs/evaluation.md): a straight line fitted to ``fit_points`` points on
+    each side; ``"hermite"``: a cubic Hermite curve between the position and velocity
+    fitted to the old track's last points and the new track's first points, leaving and
+    joining both tracks smoothly. Returns all input rows plus the filled ones: ``batch``
+    is the target (one id per stitched track), the original batch is kept in
+    ``source_batch``, and ``interpolated`` marks filled rows.
     """
+    if fill not in FILLS:
+        raise InputError(f"unknown gap fill {fill!r}; choose one of {', '.join(FILLS)}")
     seg = assoc.segments
     pts = assoc.points()
     pts["source_batch"] = pts["batch"]
@@ -574,6 +796,8 @@ def stitch(assoc: Association, period_s: float | None = None) -> pd.DataFrame:
     d11 = 3 * s**2 - 2 * s
     vx = d10[0] + d01 * ex + d11 * seg.vx0[jj]
     vy = d10[1] + d01 * ey + d11 * seg.vy0[jj]
+    if fill == "line":
+        x, y, vx, vy = _line_fill(seg, i, j, owner, tau, max(int(fit_points), 1))
     lon, lat = geo.from_local(x, y, seg.lon1[ii], seg.lat1[ii])
     keys = seg.index.keys
     fill = pd.DataFrame(

@@ -50,7 +50,7 @@ from wakeline.core.tracks import (
     track_index,
 )
 
-DISTANCES = ("sync", "dtw")
+DISTANCES = ("sync", "dtw", "dtw_whole")
 ASSIGNMENTS = ("optimal", "greedy")
 
 
@@ -75,6 +75,13 @@ class FuseParams(Params):
         60.0, "s", "spacing of the probe grid that finds tracks near each other", 1.0
     )
     dtw_points: int = param(48, "points", "points per track compared by DTW", 4, 512)
+    pieces: bool = param(
+        True,
+        "",
+        "a track may pair with several tracks of the other sensor that follow one another "
+        "in time (a radar that split one ship into batches); false: strictly one-to-one "
+        "(seed 003)",
+    )
     max_interp_s: float = param(
         600.0,
         "s",
@@ -253,7 +260,8 @@ def associate_sensors(
 ) -> SensorAssociation:
     """Pair the tracks of different sensors that saw the same ship (SPEC §6).
 
-    ``distance``: ``sync`` (mean synchronized distance) or ``dtw``; ``method``:
+    ``distance``: ``sync`` (mean synchronized distance), ``dtw`` (over the common time
+    span) or ``dtw_whole`` (seed 003 as written: over both whole tracks); ``method``:
     ``optimal`` or ``greedy`` (seed 003). Returns the pairs and a target per track
     (unpaired tracks are targets of their own).
     """
@@ -302,24 +310,66 @@ def associate_sensors(
             np.minimum(na, nb),
             params.max_interp_s,
         )
-    else:
+    elif distance == "dtw":
         dist = _dtw_distance(pts, index, a, b, na, ra, nb, rb, params.dtw_points)
+    else:  # seed 003 as written: DTW over both whole tracks, not only the common span
+        sz, st = index.sizes, index.starts
+        dist = _dtw_distance(pts, index, a, b, sz[a], st[a], sz[b], st[b], params.dtw_points)
     progress(0.8, "assigning")
     assign = optimal_assign if method == "optimal" else greedy_assign
     sensor_of = pd.factorize(index.keys["sensor"])[0]
     chosen = []
-    # One-to-one per pair of sensors.
+    # One-to-one per pair of sensors (in rounds when pieces are allowed).
     for sa in np.unique(sensor_of[a]) if len(a) else []:
         for sb in np.unique(sensor_of[b]):
             sel = np.flatnonzero((sensor_of[a] == sa) & (sensor_of[b] == sb))
             if len(sel):
-                chosen.append(sel[assign(a[sel], b[sel], dist[sel], params.max_distance_m)])
+                rounds = 6 if params.pieces else 1
+                chosen.append(
+                    sel[_assign_rounds(a[sel], b[sel], dist[sel], t0, t1, params, assign, rounds)]
+                )
     chosen = np.concatenate(chosen) if chosen else np.zeros(0, dtype="int64")
     target = _target_labels(index, t0, a[chosen], b[chosen])
     progress(1.0, f"{len(chosen):,} pairs")
     return SensorAssociation(
         pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method
     )
+
+
+def _assign_rounds(
+    a: np.ndarray,
+    b: np.ndarray,
+    dist: np.ndarray,
+    t0: np.ndarray,
+    t1: np.ndarray,
+    params: FuseParams,
+    assign,
+    rounds: int,
+) -> np.ndarray:
+    """One-to-one assignment repeated: each round may give a track one more partner of
+    the other sensor, provided the new partner does not overlap in time any partner it
+    already has (pieces of one ship follow one another). Indices into the pairs."""
+    chosen = np.zeros(0, dtype="int64")
+    n = int(max(a.max(), b.max())) + 1 if len(a) else 0
+    lo = np.full((n, rounds), np.inf)  # partners' time spans, one slot per round
+    hi = np.full((n, rounds), -np.inf)
+    free = np.ones(len(a), dtype=bool)
+    for r in range(rounds):
+        idx = np.flatnonzero(free)
+        if len(idx) == 0:
+            break
+        pick = idx[assign(a[idx], b[idx], dist[idx], params.max_distance_m)]
+        if len(pick) == 0:
+            break
+        chosen = np.concatenate([chosen, pick])
+        free[pick] = False
+        lo[a[pick], r], hi[a[pick], r] = t0[b[pick]], t1[b[pick]]
+        lo[b[pick], r], hi[b[pick], r] = t0[a[pick]], t1[a[pick]]
+        # A pair stays a candidate only if neither track has a partner overlapping the other.
+        for own, other in ((a, b), (b, a)):
+            ov = np.minimum(hi[own], t1[other][:, None]) > np.maximum(lo[own], t0[other][:, None])
+            free &= ~ov.any(axis=1)
+    return chosen
 
 
 def _target_labels(index: TrackIndex, t0: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:

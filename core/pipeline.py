@@ -100,6 +100,13 @@ class AssociateOptions(Params):
         choices=("scaled", "minmax"),
     )
     stitch: bool = param(False, "", "one batch per target, gaps filled at the sensor period")
+    fill: str = param(
+        "line",
+        "",
+        "stitch gap fill: line (seed 003: a straight line fitted to 10 points each side; "
+        "better on our scenes) or hermite (a cubic joining both ends' positions and velocities)",
+        choices=("line", "hermite"),
+    )
 
 
 @dataclass(frozen=True)
@@ -107,7 +114,10 @@ class FuseOptions(Params):
     """Distance and assignment of ``fuse``."""
 
     distance: str = param(
-        "sync", "", "synchronized distance or DTW over positions", choices=("sync", "dtw")
+        "sync",
+        "",
+        "synchronized distance, DTW over the common span, or seed 003's whole-track DTW",
+        choices=("sync", "dtw", "dtw_whole"),
     )
     method: str = param(
         "optimal",
@@ -311,7 +321,7 @@ def run_associate(points: pd.DataFrame, params: dict, progress: Progress = null_
         )
     from wakeline.core.review import association_proposals
 
-    out = stitch(assoc) if opts.stitch else assoc.points()
+    out = stitch(assoc, fill=opts.fill) if opts.stitch else assoc.points()
     pairs = assoc.pair_table()
     proposals = association_proposals(assoc, lp)[0]
     report = {**assoc.report(), "method": method}

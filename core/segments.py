@@ -46,6 +46,16 @@ class Segments:
     first_xy: np.ndarray
     last_xy: np.ndarray
     period_s: np.ndarray
+    #: Standard error (m, per axis) of the fitted start / end position and (m/s) of the
+    #: fitted start / end velocity; a piece too short to show its own noise takes its
+    #: sensor's median residual. ``moving0`` / ``moving1``: the end's motion is known
+    #: (at least two fixes spanning time, or a reported speed and course).
+    pos_sd0: np.ndarray = None  # type: ignore[assignment]
+    pos_sd1: np.ndarray = None  # type: ignore[assignment]
+    vel_sd0: np.ndarray = None  # type: ignore[assignment]
+    vel_sd1: np.ndarray = None  # type: ignore[assignment]
+    motion0: np.ndarray = None  # type: ignore[assignment]
+    motion1: np.ndarray = None  # type: ignore[assignment]
 
     def __len__(self) -> int:
         return len(self.t0)
@@ -77,7 +87,10 @@ def _end_fit(
 ) -> tuple[np.ndarray, ...]:
     """Line fit x(t), y(t) over ``rows`` (tracks × k, ``valid`` mask) about the anchor row.
 
-    Returns the fitted lon/lat at the anchor's time and the velocity (m/s east, north).
+    Returns the fitted lon/lat at the anchor's time, the velocity (m/s east, north), the
+    residual standard deviation per axis (m; NaN with fewer than 3 points), the standard
+    error factors of the anchor position (× residual sd) and of the velocity (× residual
+    sd, 1/s; infinite without a time span).
     """
     w = valid.astype("float64")
     x, y = geo.to_local(lon[rows], lat[rows], lon[anchor][:, None], lat[anchor][:, None])
@@ -94,7 +107,15 @@ def _end_fit(
     ax = mx - bx * mt
     ay = my - by * mt
     flon, flat = geo.from_local(ax, ay, lon[anchor], lat[anchor])
-    return flon, flat, bx, by
+    rx = (x - ax[:, None] - bx[:, None] * tt) * w
+    ry = (y - ay[:, None] - by[:, None] * tt) * w
+    with np.errstate(invalid="ignore", divide="ignore"):
+        resid = np.where(
+            sw > 2, np.sqrt(((rx * rx + ry * ry).sum(axis=1)) / (2 * (sw - 2))), np.nan
+        )
+        pos_f = np.sqrt(1.0 / sw + np.where(var > 0, mt * mt / var, 0.0))
+        vel_f = np.where(var > 0, 1.0 / np.sqrt(var), np.inf)
+    return flon, flat, bx, by, resid, pos_f, vel_f
 
 
 def _reported_velocity(
@@ -136,18 +157,37 @@ def segment_stats(
     valid = offs[None, :] < np.minimum(sizes, k)[:, None]
     head = np.minimum(index.starts[:, None] + offs, index.ends[:, None] - 1)
     tail = np.maximum(index.ends[:, None] - 1 - offs, index.starts[:, None])
-    lon0, lat0, vx0, vy0 = _end_fit(lon, lat, t, head, valid, index.starts)
-    lon1, lat1, vx1, vy1 = _end_fit(lon, lat, t, tail, valid, index.ends - 1)
+    lon0, lat0, vx0, vy0, res0, pf0, vf0 = _end_fit(lon, lat, t, head, valid, index.starts)
+    lon1, lat1, vx1, vy1, res1, pf1, vf1 = _end_fit(lon, lat, t, tail, valid, index.ends - 1)
+    motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
     if use_reported_motion:
         few = valid & (offs[None, :] < 3)
-        for rows, (vx, vy) in ((head, (vx0, vy0)), (tail, (vx1, vy1))):
+        for rows, (vx, vy), known, vf in (
+            (head, (vx0, vy0), motion0, vf0),
+            (tail, (vx1, vy1), motion1, vf1),
+        ):
             rep = _reported_velocity(pts, rows, few)
             if rep is not None:
                 have = np.isfinite(rep[0])
                 vx[have] = rep[0][have]
                 vy[have] = rep[1][have]
+                known |= have
+                # A reported velocity is good to a few tenths of a knot.
+                vf[have] = np.minimum(vf[have], 0.0)
 
     sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
+    # Noise per axis: each end's own residuals, or its sensor's median where it has too
+    # few points (the whole table's median if no track of the sensor shows any).
+    res = np.where(np.isfinite(res0), res0, res1)
+    per_sensor = pd.Series(res).groupby(sensor_code).median()
+    overall = float(np.nanmedian(res)) if np.isfinite(res).any() else 0.0
+    fallback = per_sensor.reindex(sensor_code).fillna(overall).to_numpy()
+    res0 = np.where(np.isfinite(res0), res0, fallback)
+    res1 = np.where(np.isfinite(res1), res1, fallback)
+    rep_sd = 0.3 * geo.KN_MS
+    with np.errstate(invalid="ignore"):
+        vel_sd0 = np.where(vf0 == 0.0, rep_sd, np.where(np.isfinite(vf0), res0 * vf0, np.inf))
+        vel_sd1 = np.where(vf1 == 0.0, rep_sd, np.where(np.isfinite(vf1), res1 * vf1, np.inf))
     # Legs within tracks: bearing and shoelace terms.
     same = np.zeros(len(pts), dtype=bool)
     if len(pts) > 1:
@@ -195,6 +235,12 @@ def segment_stats(
         first_xy=np.column_stack([x[index.starts], y[index.starts]]),
         last_xy=np.column_stack([x[index.ends - 1], y[index.ends - 1]]),
         period_s=period,
+        pos_sd0=res0 * pf0,
+        pos_sd1=res1 * pf1,
+        vel_sd0=vel_sd0,
+        vel_sd1=vel_sd1,
+        motion0=motion0,
+        motion1=motion1,
     )
 
 

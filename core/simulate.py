@@ -13,6 +13,7 @@ local plane in metres (x east, y north) and converted to degrees with
 :func:`wakeline.core.geo.from_local` about the scene origin.
 """
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -130,7 +131,8 @@ def maneuver_tracks(
 
 @dataclass(frozen=True)
 class Ship:
-    """A simulated ship: constant speed, course changes at a finite turn rate."""
+    """A simulated ship: course changes at a finite turn rate, speed changes at a finite
+    acceleration (constant speed when there are none)."""
 
     name: str
     x0: float  # metres east of the scene origin at t_start
@@ -140,6 +142,14 @@ class Ship:
     t_start: float  # seconds from scene start
     t_end: float
     turns: tuple[tuple[float, float, float], ...] = ()  # (t_s, delta_deg, rate_deg_s)
+    speed_changes: tuple[tuple[float, float, float], ...] = ()  # (t_s, delta_ms, accel_ms2)
+
+    def speed(self, t: np.ndarray) -> np.ndarray:
+        """True speed (m/s) at times ``t``."""
+        v = np.full_like(t, self.speed_ms, dtype="float64")
+        for t_change, delta, accel in self.speed_changes:
+            v += delta * np.clip((t - t_change) / (abs(delta) / accel), 0.0, 1.0)
+        return v
 
     def heading(self, t: np.ndarray) -> np.ndarray:
         h = np.full_like(t, self.course_deg, dtype="float64")
@@ -153,15 +163,14 @@ class Ship:
         grid = np.arange(self.t_start, self.t_end + step_s, step_s)
         mid = grid[:-1] + step_s / 2.0
         rad = np.radians(self.heading(mid))
-        gx = np.concatenate([[self.x0], self.x0 + np.cumsum(self.speed_ms * step_s * np.sin(rad))])
-        gy = np.concatenate([[self.y0], self.y0 + np.cumsum(self.speed_ms * step_s * np.cos(rad))])
+        v = self.speed(mid)
+        gx = np.concatenate([[self.x0], self.x0 + np.cumsum(v * step_s * np.sin(rad))])
+        gy = np.concatenate([[self.y0], self.y0 + np.cumsum(v * step_s * np.cos(rad))])
         return np.column_stack([np.interp(t, grid, gx), np.interp(t, grid, gy)])
 
     def velocity(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """True speed (kn) and course (deg) at times ``t``."""
-        return np.full_like(t, self.speed_ms / geo.KN_MS, dtype="float64"), geo.wrap360(
-            self.heading(t)
-        )
+        return self.speed(t) / geo.KN_MS, geo.wrap360(self.heading(t))
 
 
 def random_ships(
@@ -355,23 +364,119 @@ def segments_scene(
     sigma_m: float = 30.0,
     gap_s: tuple[float, float] = (20.0, 600.0),
     pieces: tuple[int, int] = (2, 4),
+    hard: bool = False,
 ) -> pd.DataFrame:
     """One radar (sensor ``R1``) whose tracks break into 2–4 batches with 20 s–10 min gaps.
 
-    ``truth`` is the ship; a dense scene is many ships in a small area.
+    ``truth`` is the ship; a dense scene is many ships in a small area. ``hard`` (see
+    :data:`HARD`): slower ships with speed changes and curved paths, missed scans, gaps of
+    10 s–20 min, a dropped piece on 30 % of the ships (loose ends without partners) and
+    short clutter tracks (truth ``clutter<k>``, one each).
     """
     rng = np.random.default_rng(seed)
-    ships = random_ships(rng, n_ships, area_km * 1000.0, duration_s)
+    if not hard:
+        ships = random_ships(rng, n_ships, area_km * 1000.0, duration_s)
+        spec = SensorSpec(
+            "R1",
+            period_s=period_s,
+            sigma_m=sigma_m,
+            coverage=1.0,
+            interrupt=True,
+            gap_s=gap_s,
+            pieces=pieces,
+        )
+        return _scene(rng, ships, [spec], SCENE_ORIGIN)
+    area_m = area_km * 1000.0
+    ships = hard_ships(rng, n_ships, area_m, duration_s)
     spec = SensorSpec(
         "R1",
         period_s=period_s,
         sigma_m=sigma_m,
         coverage=1.0,
+        p_detect=HARD["p_detect"],
         interrupt=True,
-        gap_s=gap_s,
-        pieces=pieces,
+        gap_s=HARD["gap_s"],
+        pieces=(pieces[0], pieces[1] + 1),
     )
-    return _scene(rng, ships, [spec], SCENE_ORIGIN)
+    counter = _BatchCounter(int(rng.integers(100, 900)))
+    frames = []
+    for ship in ships:
+        got = _observe(rng, ship, spec, counter, SCENE_ORIGIN)
+        if len(got) > 2 and rng.random() < HARD["p_drop_piece"]:
+            got.pop(int(rng.integers(1, len(got) - 1)))
+        frames.extend(got)
+    n_clutter = int(round(HARD["clutter_per_ship"] * n_ships))
+    frames += clutter_tracks(
+        rng, n_clutter, area_m, duration_s, "R1", period_s, sigma_m, SCENE_ORIGIN, counter.next_id
+    )
+    df = pd.concat(frames, ignore_index=True)
+    for col in ("sensor", "batch", "truth"):
+        df[col] = df[col].astype("str")
+    return df.sort_values(["sensor", "time"], kind="stable").reset_index(drop=True)
+
+
+#: Hard scenes (``hard=True``): what the easy ones leave out.
+HARD = {
+    "speed_kn": (2.0, 20.0),  # harbour traffic down to 2 kn
+    "max_turns": 4,
+    "turn_rate_deg_s": (0.03, 1.0),  # down to 0.03 °/s: a 60° bend spread over half an hour
+    "p_speed_change": 0.5,  # share of ships that change speed (by 30–70 %, at 0.01–0.05 m/s²)
+    "p_detect": 0.85,  # missed scans
+    "gap_s": (10.0, 1200.0),  # some gaps beyond the 720 s limit: those pieces stay loose
+    "p_drop_piece": 0.3,  # ships one of whose pieces the sensor never reports
+    "clutter_per_ship": 0.3,  # short false tracks (3–15 fixes) per ship
+}
+
+
+def hard_ships(rng: np.random.Generator, n_ships: int, area_m: float, duration_s: float) -> list:
+    """:func:`random_ships` with slower ships, more and gentler turns (curved paths) and
+    speed changes."""
+    ships = random_ships(
+        rng,
+        n_ships,
+        area_m,
+        duration_s,
+        speed_kn=HARD["speed_kn"],
+        max_turns=HARD["max_turns"],
+        turn_rate_deg_s=HARD["turn_rate_deg_s"],
+    )
+    out = []
+    for ship in ships:
+        changes = ()
+        if rng.random() < HARD["p_speed_change"]:
+            t = float(rng.uniform(ship.t_start, ship.t_end))
+            delta = ship.speed_ms * float(rng.uniform(0.3, 0.7)) * float(rng.choice([-1, 1]))
+            changes = ((t, delta, float(rng.uniform(0.01, 0.05))),)
+        out.append(dataclasses.replace(ship, speed_changes=changes))
+    return out
+
+
+def clutter_tracks(
+    rng: np.random.Generator,
+    n: int,
+    area_m: float,
+    duration_s: float,
+    sensor: str,
+    period_s: float,
+    sigma_m: float,
+    origin: tuple[float, float],
+    first_batch: int,
+) -> list[pd.DataFrame]:
+    """Short false tracks (3–15 fixes, wandering at 0–15 kn), each its own ``truth``."""
+    frames = []
+    for k in range(n):
+        m = int(rng.integers(3, 16))
+        t = rng.uniform(0.0, duration_s - m * period_s) + period_s * np.arange(m)
+        v = rng.uniform(0.0, 15.0) * geo.KN_MS
+        head = np.radians(rng.uniform(0, 360) + np.cumsum(rng.normal(0, 20.0, m)))
+        xy0 = rng.uniform(-area_m / 2, area_m / 2, 2)
+        step = np.column_stack([np.sin(head), np.cos(head)]) * v * period_s
+        true_xy = xy0 + np.cumsum(step, axis=0) - step[0]
+        xy = true_xy + rng.normal(0.0, sigma_m, true_xy.shape)
+        frames.append(
+            _frame(sensor, str(first_batch + 7 * k), t, xy, true_xy, f"clutter{k}", origin)
+        )
+    return frames
 
 
 DEFAULT_SENSORS = (
@@ -427,18 +532,59 @@ def multisensor_scene(
     duration_s: float = 3600.0,
     sensors: tuple[SensorSpec, ...] = DEFAULT_SENSORS,
     lanes: int = 0,
+    hard: bool = False,
 ) -> pd.DataFrame:
     """The same ships seen by several sensors (default: radar R1 and AIS).
 
     With ``lanes`` > 0 the ships sail in that many traffic lanes (600 m wide) instead of
     anywhere: many ships then follow one another closely, the hard case for association.
+    ``hard``: ships as in :func:`hard_ships` (off the lanes), every sensor but the first
+    misses 30 % of the ships (no AIS fitted) and sees only 40–100 % of each life (partial
+    overlap), the first sensor splits its tracks into 1–3 batches (gaps 10–120 s) and
+    reports short clutter tracks.
     """
     rng = np.random.default_rng(seed)
-    if lanes > 0:
-        ships = lane_ships(rng, n_ships, lanes, area_km * 1000.0, duration_s)
-    else:
-        ships = random_ships(rng, n_ships, area_km * 1000.0, duration_s)
-    return _scene(rng, ships, list(sensors), SCENE_ORIGIN)
+    area_m = area_km * 1000.0
+    if not hard:
+        if lanes > 0:
+            ships = lane_ships(rng, n_ships, lanes, area_m, duration_s)
+        else:
+            ships = random_ships(rng, n_ships, area_m, duration_s)
+        return _scene(rng, ships, list(sensors), SCENE_ORIGIN)
+    ships = (
+        lane_ships(rng, n_ships, lanes, area_m, duration_s)
+        if lanes > 0
+        else hard_ships(rng, n_ships, area_m, duration_s)
+    )
+    frames = []
+    for k, spec in enumerate(sensors):
+        counter = _BatchCounter(int(rng.integers(100, 900)))
+        if k == 0:
+            spec = dataclasses.replace(spec, interrupt=True, gap_s=(10.0, 120.0), pieces=(1, 3))
+        for ship in ships:
+            if k > 0 and rng.random() < 0.3:
+                continue
+            cov = spec.coverage if k == 0 else float(rng.uniform(0.4, 1.0))
+            frames.extend(
+                _observe(rng, ship, dataclasses.replace(spec, coverage=cov), counter, SCENE_ORIGIN)
+            )
+        if k == 0:
+            n_clutter = int(round(HARD["clutter_per_ship"] * n_ships))
+            frames += clutter_tracks(
+                rng,
+                n_clutter,
+                area_m,
+                duration_s,
+                spec.name,
+                spec.period_s,
+                spec.sigma_m,
+                SCENE_ORIGIN,
+                counter.next_id,
+            )
+    df = pd.concat(frames, ignore_index=True)
+    for col in ("sensor", "batch", "truth"):
+        df[col] = df[col].astype("str")
+    return df.sort_values(["sensor", "time"], kind="stable").reset_index(drop=True)
 
 
 def demo_scene(seed: int = 7) -> pd.DataFrame:

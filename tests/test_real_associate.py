@@ -4,7 +4,6 @@ Tracks are cut at their real gaps and the pieces renumbered at random, so the ba
 leak nothing; the old ids are the truth.
 """
 
-import numpy as np
 import pandas as pd
 
 from conftest import real_file
@@ -15,24 +14,50 @@ from wakeline.core.io import read_points
 MTAD_SCENES = (0, 3, 6, 7, 35, 37, 44, 78, 85, 100)
 
 
-def mtad_scores(method: str) -> pd.DataFrame:
+def mtad_scores(method: str, params: LinkParams | None = None) -> pd.DataFrame:
     rows = []
     for k in MTAD_SCENES:
         df = read_points(real_file("mtad-dtwcm", "original", f"Scene-{k}.csv")).points
         df["truth"] = df["batch"].str.split("-").str[0]  # vessel id without the sub-track
         df = cut_at_gaps(df, min_gap_s=120.0)
-        # MTAD's noisy tracks: ~460 m median position error (SOURCE.md) — tolerance to match.
-        assoc = associate_interrupted(df, LinkParams(position_tol_m=1000.0), method=method)
-        rows.append(score_association(assoc))
+        rows.append(score_association(associate_interrupted(df, params, method=method)))
     return pd.DataFrame(rows)
 
 
 def test_mtad_scenes_cut_at_their_gaps_are_rejoined():
+    # Defaults: each end's noise is measured (MTAD's noisy tracks carry ~460 m), no
+    # hand-set tolerance. Measured: P_CA 0.804, P_FA 0.060 (greedy 0.77 / 0.08); the
+    # fixed tolerance of v1 with position_tol_m = 1000 m: 0.788 / 0.074.
     opt = mtad_scores("optimal").mean(numeric_only=True)
-    greedy = mtad_scores("greedy").mean(numeric_only=True)
-    # Measured: optimal P_CA 0.79, P_FA 0.07; greedy 0.71 / 0.13.
-    assert opt["p_ca"] >= 0.75 and opt["p_fa"] <= 0.10
-    assert opt["p_ca"] > greedy["p_ca"] and opt["p_fa"] < greedy["p_fa"]
+    v1 = mtad_scores(
+        "optimal",
+        LinkParams(uncertainty_gate=False, position_tol_m=1000.0, no_join=1.5, margin=0.0),
+    ).mean(numeric_only=True)
+    assert opt["p_ca"] >= 0.78 and opt["p_fa"] <= 0.07
+    assert opt["p_ca"] > v1["p_ca"] and opt["p_fa"] < v1["p_fa"]
+
+
+def test_greece_ais_cut_at_600_s_gaps_makes_no_wrong_join():
+    raw = pd.read_csv(
+        real_file("greece-ais-annotated", "vessels.csv"),
+        sep=" ",
+        header=None,
+        names=["batch", "lon", "lat", "t"],
+    )
+    df = pd.DataFrame(
+        {
+            "sensor": "AIS",
+            "batch": raw["batch"].astype(str),
+            "time": pd.to_datetime(raw["t"], unit="s", utc=True),
+            "lon": raw["lon"],
+            "lat": raw["lat"],
+        }
+    )
+    df = cut_at_gaps(df, min_gap_s=600.0)
+    sc = score_association(associate_interrupted(df, LinkParams(max_gap_s=3600.0)))
+    # Measured: 110 pieces of 5 vessels, P_CA 0.667 (0.921 of the 76 true pairs within
+    # the hour; the others are gaps of hours to days), P_FA 0.000.
+    assert sc["p_fa"] <= 0.05 and sc["p_ca"] >= 0.6
 
 
 def test_atd_tracks_cut_at_real_gaps():
@@ -42,6 +67,6 @@ def test_atd_tracks_cut_at_real_gaps():
     params = LinkParams(max_gap_s=6 * 3600.0, end_points=3, drift_ms=0.1)
     sc = score_association(associate_interrupted(df, params))
     # 30-min sampling, gaps of hours, half the posits moored in ports: far outside the
-    # design (see docs/evaluation.md). Measured P_CA 0.23, P_FA 0.78 (greedy 0.28 / 0.70); kept as a guard.
-    assert sc["p_ca"] > 0.15
-    assert np.isfinite(sc["p_fa"])
+    # design (see docs/evaluation.md). Measured P_CA 0.10, P_FA 0.68 (v1's fixed
+    # tolerance: 0.23 / 0.78): most ends are left loose rather than joined wrongly.
+    assert sc["p_ca"] > 0.05 and sc["p_fa"] < 0.75

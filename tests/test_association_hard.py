@@ -1,0 +1,151 @@
+"""Issue 15: association that says "no partner", hard scenes, the papers' own options."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from test_associate import straight, track
+
+from wakeline.app.cli import main
+from wakeline.core import geo, simulate
+from wakeline.core.associate import LinkParams, associate_interrupted, stitch
+from wakeline.core.errors import InputError
+from wakeline.core.evaluate_association import evaluate_real_association, score_association
+from wakeline.core.fuse import FuseParams, associate_sensors
+from wakeline.core.segments import segment_stats
+from wakeline.core.transform import BsplineParams, bspline_segments, knot_vector
+
+
+def noisy(df, sigma, seed):
+    rng = np.random.default_rng(seed)
+    x, y = geo.to_local(df["lon"].to_numpy(), df["lat"].to_numpy(), 122.5, 30.5)
+    lon, lat = geo.from_local(
+        x + rng.normal(0, sigma, len(df)), y + rng.normal(0, sigma, len(df)), 122.5, 30.5
+    )
+    return df.assign(lon=lon, lat=lat)
+
+
+def test_end_noise_is_measured_per_track_and_short_pieces_have_no_motion():
+    quiet = noisy(straight("1", 0, 600), 5.0, 0)
+    loud = noisy(straight("2", 0, 600, start=(0, 5000)), 200.0, 1)
+    single = straight("3", 0, 0, start=(0, 9000))
+    seg = segment_stats(pd.concat([quiet, loud, single]))
+    order = seg.index.keys["batch"].tolist()
+    sd = dict(zip(order, seg.pos_sd1, strict=True))
+    assert sd["1"] < 10 < 50 < sd["2"]
+    motion = dict(zip(order, seg.motion1, strict=True))
+    assert motion["1"] and motion["2"] and not motion["3"]
+    assert np.isfinite(sd["3"])  # the sensor's median noise stands in
+
+
+def test_a_loose_end_stays_loose_next_to_another_ship():
+    # Ship A ends heading east; 300 s later ship B appears 500 m north of where A would be,
+    # sailing the opposite way. Reachable, and near; not the same ship.
+    a = straight("1", 0, 600, speed=6.0, course=90.0, truth="A")
+    t = np.arange(900, 1501, 10.0)
+    b = track("2", t, 6.0 * 900 - 6.0 * (t - 900), np.full(len(t), 500.0), truth="B")
+    assoc = associate_interrupted(pd.concat([a, b]))
+    assert len(assoc.pairs) == 1 and len(assoc.chosen) == 0
+    # ... while its true continuation, 1 m/s faster after the gap, is joined.
+    c = straight("3", 900, 1500, speed=6.5, course=90.0, truth="A")
+    assoc = associate_interrupted(pd.concat([a, c]))
+    assert assoc.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["1", "3"]]
+
+
+def test_margin_test_refuses_a_coin_toss():
+    # One end, two simultaneous starts equally far either side of the prediction.
+    a = straight("1", 0, 600, speed=6.0, course=90.0, truth="A")
+    x0 = 6.0 * 900
+    left = straight("2", 900, 1500, speed=6.0, course=90.0, start=(x0 - 5400, 150.0), truth="B")
+    right = straight("3", 900, 1500, speed=6.0, course=90.0, start=(x0 - 5400, -150.0), truth="C")
+    df = pd.concat([a, left, right])
+    assert len(associate_interrupted(df).chosen) == 0
+    assert len(associate_interrupted(df, LinkParams(margin=0.0)).chosen) == 1
+
+
+def test_one_point_piece_between_two_pieces_is_threaded_in():
+    a = straight("1", 0, 600, truth="A")
+    p = straight("2", 800, 800, truth="A")
+    b = straight("3", 1000, 1600, truth="A")
+    sc = score_association(associate_interrupted(pd.concat([a, p, b])))
+    assert sc["p_ca"] == 1.0 and sc["p_fa"] == 0.0
+
+
+def test_hard_scene_has_what_the_easy_one_lacks():
+    easy = simulate.segments_scene(seed=3, n_ships=15, area_km=10.0)
+    hard = simulate.segments_scene(seed=3, n_ships=15, area_km=10.0, hard=True)
+    assert not easy["truth"].str.startswith("clutter").any()
+    clutter = hard[hard["truth"].str.startswith("clutter")]
+    assert clutter["batch"].nunique() == round(0.3 * 15)
+    assert clutter.groupby("batch").size().between(3, 15).all()
+    ships = hard[~hard["truth"].str.startswith("clutter")]
+    t = (ships["time"] - ships["time"].min()).dt.total_seconds().to_numpy()
+    steps = ships.assign(t=t).sort_values(["batch", "t"]).groupby("batch")["t"].diff().dropna()
+    assert (steps > 15).mean() > 0.05  # missed scans (10 s period)
+    # Gaps between pieces of one ship reach beyond the 720 s default limit.
+    spans = ships.assign(t=t).groupby(["truth", "batch"])["t"].agg(["min", "max"]).reset_index()
+    spans = spans.sort_values(["truth", "min"])
+    gaps = spans.groupby("truth")["min"].shift(-1) - spans["max"]
+    assert (gaps > 720).any()
+    # Speed changes: the true path is not at constant speed for some ship.
+    assert easy["truth"].nunique() == 15
+
+
+def test_hard_multisensor_scene_and_split_radar_tracks_pair_with_one_ais_track():
+    df = simulate.multisensor_scene(seed=2, n_ships=12, area_km=20.0, hard=True)
+    per_ship = df.groupby("truth")["sensor"].unique()
+    assert (per_ship.map(len) == 1).any()  # ships without AIS (and clutter)
+    # One ship, AIS whole, radar split into two batches with a 60 s gap.
+    ais = straight("A1", 0, 1200, period=6.0, truth="S").assign(sensor="AIS")
+    r1 = straight("R1a", 0, 500, truth="S").assign(sensor="R1")
+    r2 = straight("R1b", 560, 1200, truth="S").assign(sensor="R1")
+    assoc = associate_sensors(pd.concat([ais, r1, r2]))
+    assert len(assoc.chosen) == 2 and len(set(assoc.target_of_track)) == 1
+    strict = associate_sensors(pd.concat([ais, r1, r2]), FuseParams(pieces=False))
+    assert len(strict.chosen) == 1
+    whole = associate_sensors(pd.concat([ais, r1, r2]), distance="dtw_whole")
+    assert len(whole.chosen) >= 1
+
+
+def test_line_fill_follows_a_straight_track_and_bad_fill_is_refused():
+    df = noisy(
+        pd.concat([straight("1", 0, 600, truth="A"), straight("2", 900, 1500, truth="A")]), 20.0, 4
+    )
+    assoc = associate_interrupted(df)
+    for fill in ("line", "hermite"):
+        out = stitch(assoc, fill=fill)
+        f = out[out["interpolated"]]
+        t = (f["time"] - pd.Timestamp("2024-05-01T00:00:00Z")).dt.total_seconds().to_numpy()
+        x, y = geo.to_local(f["lon"].to_numpy(), f["lat"].to_numpy(), 122.5, 30.5)
+        err = np.hypot(x - 6.0 * np.sin(np.radians(45)) * t, y - 6.0 * np.cos(np.radians(45)) * t)
+        assert len(f) == 29 and err.mean() < 40, fill
+    with pytest.raises(InputError, match="unknown gap fill"):
+        stitch(assoc, fill="spline")
+
+
+def test_knot_vector_is_clamped_and_beats_raw_noise():
+    t = np.arange(20.0)
+    k = knot_vector(t)
+    assert (k[:4] == 0).all() and (k[-4:] == 19).all() and len(k) == 8 + 20 // 4 - 1
+    df = simulate.segments_scene(seed=5, n_ships=4, area_km=10.0, sigma_m=40.0)
+    out = bspline_segments(df, BsplineParams(enabled=True))
+    o = out[out["interpolated"] == 0]
+    fit = geo.haversine_m(o["lon"], o["lat"], o["true_lon"], o["true_lat"]).mean()
+    raw = geo.haversine_m(df["lon"], df["lat"], df["true_lon"], df["true_lat"]).mean()
+    assert fit < 0.8 * raw
+
+
+def test_real_evaluation_on_a_folder_and_its_errors(tmp_path, capsys):
+    df = simulate.segments_scene(seed=1, n_ships=6, area_km=20.0, pieces=(1, 1))
+    df.drop(columns=["truth", "true_lon", "true_lat"]).to_csv(tmp_path / "a.csv", index=False)
+    (tmp_path / "notes.txt").write_text("not a track file")
+    ev = evaluate_real_association(tmp_path, cut_s=60.0, methods=("ours, optimal",))
+    assert ev.table["pieces"].iloc[0] == df["batch"].nunique()  # no gaps: nothing cut
+    assert "ours, optimal" in ev.format()
+    assert main(["evaluate", "associate", "--real", str(tmp_path), "--cut-s", "60"]) == 0
+    assert "P_CA" in capsys.readouterr().out
+    assert main(["evaluate", "associate", "--real", str(tmp_path / "none")]) == 2
+    assert "no such file or folder" in capsys.readouterr().err
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert main(["evaluate", "associate", "--real", str(empty)]) == 2
+    assert "no .csv" in capsys.readouterr().err
