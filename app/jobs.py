@@ -107,7 +107,7 @@ class JobsMixin:
         lid = self.session.new_id()
         self.views[lid] = view
         self.session.add_layer(path.name, "source", view.points, meta, color=color, layer_id=lid)
-        self.canvas.fit()
+        self._fit_after_draw = True
 
     def load_bearings(self, path: Path) -> int | None:
         """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it
@@ -403,13 +403,11 @@ class JobsMixin:
         proj.to_session(self.session)
         self.project.follow(path, proj.read_only)
         sel = [r for r in proj.selection if r[0] in self.session.layers]
-        if sel:
-            self.select_layer(sel[0][0])
-            self._selecting = True
-            self.select_tracks([(s, b) for _, s, b in sel])
-            self._selecting = False
+        if sel:  # applied once the layers are drawn (one per event-loop turn)
+            self._make_current = sel[0][0]
+            self._restore_selection = [(s, b) for _, s, b in sel]
         self.retranslate()
-        self.canvas.fit()
+        self._fit_after_draw = True
         if proj.read_only:
             ro = self.tr("the project file is read-only: it opens read-only, changes are not saved")
             warnings = [ro, *warnings]

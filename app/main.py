@@ -17,7 +17,9 @@ def wait_for_jobs(window: MainWindow, timeout_ms: int = 120_000) -> None:
     app = QtWidgets.QApplication.instance()
     timer = QtCore.QElapsedTimer()
     timer.start()
-    while (window.runner.busy or window._job_context) and timer.elapsed() < timeout_ms:
+    while (
+        window.runner.busy or window._job_context or window.drawing
+    ) and timer.elapsed() < timeout_ms:
         app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
         QtCore.QThread.msleep(5)
     app.processEvents()

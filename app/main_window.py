@@ -61,6 +61,10 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self._job_context: dict[int, tuple] = {}
         self._selecting = False
         self._pending_views: dict = {}
+        self._draw_queue: list[str] = []
+        self._make_current: str | None = None
+        self._restore_selection: list | None = None
+        self._fit_after_draw = False
         self.project = ProjectController(self.session, self)
         self.project.failed.connect(self._save_failed)
         self.session.subscribe(self._on_session_event)
@@ -208,7 +212,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
                 self.views[lid] = prepare_view(layer.points, layer.kind, layer.color)
                 layer.points = self.views[lid].points
         if event == "added":
-            self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
+            self._queue_draw(lid)
             item = QtWidgets.QListWidgetItem(
                 color_icon(layer.color), f"{layer.name}  [{layer.kind}]"
             )
@@ -219,13 +223,13 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             )
             item.setCheckState(checked)
             self.layer_list.addItem(item)
-            self.layer_list.setCurrentItem(item)
+            self._make_current = lid  # once the drawing queue is through (one per turn)
             if len(self.session.layers) == 1 and len(layer.points):
                 self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
         elif event == "changed":
-            self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
+            self._queue_draw(lid)
             if lid == self.active:
-                self.set_active(lid)
+                self._make_current = lid
         elif event == "removed":
             self.canvas.remove_layer(lid)
             self.views.pop(lid, None)
@@ -237,6 +241,48 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         elif event == "visibility":
             self.canvas.set_visible(lid, layer.visible)
         self.layersChanged.emit()
+
+    def _queue_draw(self, lid: str) -> None:
+        """Swap a layer's prepared arrays into the map on a later event-loop turn, one
+        layer per turn, so a result of several layers never blocks in one piece."""
+        if lid not in self._draw_queue:
+            self._draw_queue.append(lid)
+        if len(self._draw_queue) == 1:
+            QtCore.QTimer.singleShot(0, self._draw_next)
+
+    def _draw_next(self) -> None:
+        if self._draw_queue:
+            lid = self._draw_queue.pop(0)
+            layer = self.session.layers.get(lid)
+            if layer is not None and lid in self.views:
+                self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
+        if self._draw_queue:
+            QtCore.QTimer.singleShot(0, self._draw_next)
+            return
+        if self._fit_after_draw:
+            self._fit_after_draw = False
+            self.canvas.fit()
+        if self._make_current is not None:
+            lid, self._make_current = self._make_current, None
+            if lid in self.session.layers:
+                if lid == self.active:
+                    self.set_active(lid)
+                else:
+                    self.select_layer(lid)
+            self._after_drawn()
+
+    def _after_drawn(self) -> None:
+        """Hook run when the queued layers are drawn (a restored selection)."""
+        pending, self._restore_selection = self._restore_selection, None
+        if pending:
+            self._selecting = True
+            self.select_tracks(pending)
+            self._selecting = False
+
+    @property
+    def drawing(self) -> bool:
+        """Layers are still waiting to be swapped into the map."""
+        return bool(self._draw_queue) or self._make_current is not None
 
     def layer_row(self, lid: str) -> int:
         """Row of layer ``lid`` in the Layers list (-1 when absent)."""
@@ -284,7 +330,8 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             self.batch_model.set_summary(view.summary, view.text)
         else:
             self.batch_model.set_summary(batch_summary(EMPTY))
-        self.canvas.show_selection(EMPTY)
+        if self.canvas.selected_points() is not None and len(self.canvas.selected_points()):
+            self.canvas.show_selection(EMPTY)
         self.detail.clear()
         if view is not None:
             # The detection limit depends on the raw sampling: take it from the source layer.

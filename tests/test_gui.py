@@ -125,6 +125,7 @@ def test_errors_in_a_job_reach_a_dialog_and_the_log(window, monkeypatch):
     assert any(lay.kind == "fused" for lay in window.layers.values())
     single = window.layers[lid].points
     radar = window.session.add_layer("radar only", "source", single[single["sensor"] == "R1"])
+    wait_for_jobs(window)  # the new layer is drawn and made active on later turns
     assert window.active == radar.id
     window.run_step("fuse")
     wait_for_jobs(window)
