@@ -186,6 +186,8 @@ class ParamsPanel(QtWidgets.QWidget):
             p = self.root.child(*path)
         except KeyError:
             return [f"unknown parameter {'.'.join(path)}"]
+        if p.value() == value:
+            return []  # unchanged: no widget update (a project opens with ~100 values)
         p.setValue(value)  # goes through _tree_changed, which validates
         return [] if p.value() == value else [f"{'.'.join(path)}: {value!r} refused"]
 
