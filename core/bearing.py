@@ -394,7 +394,8 @@ def observer_maneuvering(
     vx, vy = (x - x[back]) / dt, (y - y[back]) / dt
     vx[np.arange(n) == back] = np.nan
     vx[t - t[0] < lag_s] = np.nan  # no velocity before a full lag
-    earlier = np.searchsorted(t, t - span_s)
+    first = int(np.argmax(np.isfinite(vx))) if np.isfinite(vx).any() else n - 1
+    earlier = np.maximum(np.searchsorted(t, t - span_s), first)  # the first velocity early on
     dv = np.hypot(vx - vx[earlier], vy - vy[earlier])
     return np.isfinite(dv) & (dv > dv_ms)
 

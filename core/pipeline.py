@@ -11,8 +11,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.associate import LinkParams, associate_interrupted
-from wakeline.core.bearing import BearingParams
-from wakeline.core.bearing import detect as detect_bearings
+from wakeline.core.bearing import BearingParams, detect_with_report, report_lines
 from wakeline.core.clean import CleanParams, clean
 from wakeline.core.compress import CompressParams, compress_with
 from wakeline.core.fuse import FuseParams, associate_sensors, fuse
@@ -140,9 +139,11 @@ def default_pipeline(
 def step_bearing(
     bearings: pd.DataFrame, params: BearingParams, progress: Progress | None = None
 ) -> StepResult:
-    """Bearing-only maneuver detection (seed 002) on every sequence; no new layer."""
+    """Bearing-only maneuver detection (seed 002) on every sequence; no new layer. The
+    summary's ``report`` says per batch what was tested and why windows were skipped;
+    ``why`` holds it as log lines."""
     (progress or null_progress)(0.0, "AUC detection")
-    detections = detect_bearings(bearings, params)
+    detections, report = detect_with_report(bearings, params)
     return StepResult(
         "bearing",
         [],
@@ -150,5 +151,7 @@ def step_bearing(
             "sequences": int(bearings["batch"].nunique()),
             "detections": int(len(detections)),
             "table": detections,
+            "report": report,
+            "why": report_lines(report),
         },
     )
