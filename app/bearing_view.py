@@ -48,7 +48,9 @@ def bearing_line_points(
     sizes = np.diff(np.r_[starts, len(df)])
     if at_times is None:
         per = np.minimum(sizes, max_lines)
-        within = np.concatenate([np.linspace(0, s - 1, p).round() for s, p in zip(sizes, per)])
+        within = np.concatenate(
+            [np.linspace(0, s - 1, p).round() for s, p in zip(sizes, per, strict=True)]
+        )
         rows = (np.repeat(starts, per) + within).astype(int)
     else:
         t = time_seconds(df["time"])
@@ -101,11 +103,11 @@ class DetectionsModel(QtCore.QAbstractTableModel):
         self.table = table.reset_index(drop=True)
         self.endResetModel()
 
-    def rowCount(self, parent=QtCore.QModelIndex()) -> int:  # noqa: N802 (Qt API)
-        return 0 if parent.isValid() else len(self.table)
+    def rowCount(self, parent=None) -> int:  # noqa: N802 (Qt API)
+        return 0 if parent is not None and parent.isValid() else len(self.table)
 
-    def columnCount(self, parent=QtCore.QModelIndex()) -> int:  # noqa: N802 (Qt API)
-        return 0 if parent.isValid() else len(self.table.columns)
+    def columnCount(self, parent=None) -> int:  # noqa: N802 (Qt API)
+        return 0 if parent is not None and parent.isValid() else len(self.table.columns)
 
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
         if role not in (QtCore.Qt.ItemDataRole.DisplayRole, QtCore.Qt.ItemDataRole.UserRole):

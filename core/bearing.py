@@ -28,8 +28,9 @@ Var(AUC) = (m+n+1)/(12mn) + h̄ᵀ(JᵀJ)⁻¹h̄ / (4π). We reject "no maneuve
 in the last ``mean_span_s`` are averaged and tested as |AUC̄ − ½| / (sd/√N) > z_{α/2}.
 
 Detection time is the last sample of the first rejecting boundary's Y window (causal);
-the estimated maneuver time is the boundary with the largest |z| in that run of
-rejections. Later rejections count as a new detection only once X no longer holds the
+the estimated maneuver time is where a bearing-rate change best explains the residuals
+of that boundary's fit (:func:`maneuver_time`; seed 002's largest |z| of the run comes
+late here). Later rejections count as a new detection only once X no longer holds the
 previous estimated maneuver time. Bearings are unwrapped, so 359° → 1° is a 2° step.
 """
 
@@ -57,7 +58,7 @@ class BearingParams(Params):
         600.0, "s", "window X before the boundary (the motion fit), at most", lo=5, hi=86_400
     )
     min_window_x_s: float = param(
-        150.0,
+        240.0,
         "s",
         "shortest X: X starts after the observer's last maneuver or gap, if not shorter",
         lo=5,
@@ -81,6 +82,14 @@ class BearingParams(Params):
     step_s: float = param(2.0, "s", "spacing of the tested boundaries", lo=0.01, hi=600)
     max_gap_s: float = param(
         45.0, "s", "windows holding a longer interval without bearings are skipped", lo=0.1
+    )
+    y_scales: int = param(
+        3,
+        "",
+        "Y is also tested over its first 1/k, 2/k, … of its span (k = this): strong turns "
+        "are reported sooner",
+        lo=1,
+        hi=10,
     )
     min_samples: int = param(6, "samples", "fewest samples in X and in Y", lo=4, hi=100_000)
     observer_dv_ms: float = param(
@@ -124,14 +133,16 @@ class Windows:
     too_short: str = ""  # why there is no window at all
 
 
-def _windows(
-    t: np.ndarray, params: BearingParams, excluded: np.ndarray | None = None
-) -> Windows:
+def _windows(t: np.ndarray, params: BearingParams, excluded: np.ndarray | None = None) -> Windows:
     """Boundaries every ``step_s`` from ``min_window_x_s`` after the start to ``window_y_s``
     before the end. X reaches back ``window_x_s`` but starts after the observer's last
     maneuvering sample and the last gap; a boundary is skipped when its Y holds either,
     when X is then shorter than ``min_window_x_s``, or when a window has too few samples."""
-    x_s, x_min, y_s = float(params.window_x_s), float(params.min_window_x_s), float(params.window_y_s)
+    x_s, x_min, y_s = (
+        float(params.window_x_s),
+        float(params.min_window_x_s),
+        float(params.window_y_s),
+    )
     x_min = min(x_min, x_s)
     empty = np.zeros(0, dtype=int)
     if len(t) < 2 or t[-1] - t[0] < x_min + y_s:
@@ -258,6 +269,9 @@ class Statistic:
     rms_deg: np.ndarray
     coef: np.ndarray  # (p, q, r) per X span (see _fit_relative), or the quadratic's
     windows: Windows = field(repr=False)
+    t: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    u: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # unwrapped, rad
+    params: "BearingParams | None" = field(default=None, repr=False)
 
 
 def statistic(
@@ -277,7 +291,7 @@ def statistic(
     }
     coef = np.zeros((nb, 3))
     if nb == 0:
-        return Statistic(*(out[c] for c in out), coef, win)
+        return Statistic(*(out[c] for c in out), coef, win, t, np.zeros(0), params)
     u = np.unwrap(np.radians(bearing_deg))
     x_s, y_s = float(params.window_x_s), float(params.window_y_s)
     chunk = max(1, int(4e6 // max(int((ye - xs).max()), 1)))
@@ -288,22 +302,40 @@ def statistic(
             f, jac, gram, c = _fit_relative(tau, w, mx, y_s / x_s)
         else:
             f, jac, gram, c = _fit_poly(tau, w, mx)
-        resid = np.where(mx | my, w - f, np.nan)
-        m, n = mx.sum(axis=1), my.sum(axis=1)
-        hbar = np.stack([np.where(my, c, 0.0).sum(axis=1) for c in jac], axis=1) / n[:, None]
-        lever = np.einsum("bj,bj->b", hbar, _solve(gram, hbar))
-        var = (m + n + 1) / (12.0 * m * n) + lever / (4.0 * math.pi)
-        auc = auc_windows(resid, m)
-        out["auc"][sl] = auc
-        out["sd"][sl] = np.sqrt(var)
-        out["z"][sl] = (auc - 0.5) / np.sqrt(var)
+        m = mx.sum(axis=1)
+        scales = (1.0,) if params.auc_mean or params.y_scales < 2 else None
+        scales = scales or tuple(np.arange(1, params.y_scales + 1) / params.y_scales)
+        best_z = np.zeros(len(m))
+        best_t = np.full(len(m), np.inf)
+        for frac in scales[::-1]:  # a few nested Y spans: the shorter ones react sooner
+            myf = my & (tau * x_s < frac * y_s - 1e-9) if frac < 1 else my
+            n = myf.sum(axis=1)
+            resid = np.where(mx | myf, w - f, np.nan)
+            hbar = np.stack([np.where(myf, c, 0.0).sum(axis=1) for c in jac], axis=1)
+            hbar /= np.maximum(n, 1)[:, None]
+            lever = np.einsum("bj,bj->b", hbar, _solve(gram, hbar))
+            var = (m + n + 1) / (12.0 * m * np.maximum(n, 1)) + lever / (4.0 * math.pi)
+            auc = auc_windows(resid, m)
+            z = np.where(n >= params.min_samples, (auc - 0.5) / np.sqrt(var), 0.0)
+            y_end = t[np.minimum(xs[sl] + m + n - 1, len(t) - 1)]
+            if frac == 1.0:
+                out["auc"][sl], out["sd"][sl] = auc, np.sqrt(var)
+                best_z, full_t = z, y_end
+                resid_x = resid
+            hit = np.abs(z) > params.z_crit
+            best_t = np.where(hit, y_end, best_t)  # shortest rejecting span wins
+            best_z = np.where(hit, z, best_z)
+        out["z"][sl] = best_z
+        out["detect_t"][sl] = np.where(np.isfinite(best_t), best_t, full_t)
         dof = np.maximum(m - c.shape[1], 1)
-        out["rms"][sl] = np.degrees(np.sqrt(np.nansum(np.where(mx, resid, 0.0) ** 2, 1) / dof))
+        out["rms"][sl] = np.degrees(np.sqrt(np.nansum(np.where(mx, resid_x, 0.0) ** 2, 1) / dof))
         coef[sl] = c
-    out["boundary_t"], out["detect_t"], out["x_start_t"] = t[k], t[ye - 1], t[xs]
+    out["boundary_t"], out["x_start_t"] = t[k], t[xs]
+    if params.auc_mean:
+        out["detect_t"] = t[ye - 1]
     if params.auc_mean:
         out["z"] = _auc_mean_z(out["boundary_t"], out["auc"], out["sd"], params.mean_span_s)
-    return Statistic(*(out[c] for c in out), coef, win)
+    return Statistic(*(out[c] for c in out), coef, win, t, u, params)
 
 
 def _auc_mean_z(bt: np.ndarray, auc: np.ndarray, sd: np.ndarray, span_s: float) -> np.ndarray:
@@ -358,8 +390,38 @@ def detections_from(st: Statistic, z_crit: float) -> list[Detection]:
                 continue
             a = a + int(clear[0])
         kk = a + int(np.argmax(np.abs(st.z[a:b])))
-        out.append(Detection(float(st.detect_t[a]), float(st.boundary_t[kk]), float(st.z[kk])))
+        when = maneuver_time(st, a) if len(st.u) else float(st.boundary_t[kk])
+        first = float(st.detect_t[a:b][np.abs(st.z[a:b]) > z_crit].min())
+        out.append(Detection(first, when, float(st.z[kk])))
     return out
+
+
+def maneuver_time(st: Statistic, i: int) -> float:
+    """Estimated turn time (s) for a detection at tested boundary ``i``: X's motion fit
+    plus a bearing-rate change (a ramp) starting at t_c, the t_c over the last Y span of X
+    and Y that explains most of the residuals. (The largest |z| of the run, seed 002's
+    estimate, comes late here: once X holds the turn its misfit keeps |z| growing.)"""
+    p = st.params
+    pos = np.flatnonzero(st.windows.reason == "")[i]
+    k, xs, ye = (
+        st.windows.k[pos : pos + 1],
+        st.windows.xs[pos : pos + 1],
+        st.windows.ye[pos : pos + 1],
+    )
+    tau, w, mx, my = _padded(st.t, st.u, k, xs, ye, float(p.window_x_s))
+    if p.relative_motion:
+        f = _fit_relative(tau, w, mx, p.window_y_s / p.window_x_s)[0]
+    else:
+        f = _fit_poly(tau, w, mx)[0]
+    tt = st.t[xs[0] : ye[0]]
+    r = (w - f)[0][: len(tt)]
+    cand = tt[tt >= tt[-1] - 2.0 * p.window_y_s][:-2]
+    if len(cand) == 0:
+        return float(st.boundary_t[i])
+    ramp = np.maximum(tt[None, :] - cand[:, None], 0.0)  # (candidates, samples)
+    ramp -= ramp.mean(axis=1, keepdims=True)
+    score = (ramp @ r) ** 2 / np.maximum((ramp**2).sum(axis=1), 1e-12)
+    return float(cand[int(np.argmax(score))])
 
 
 def detect_sequence(
@@ -550,7 +612,8 @@ def report_lines(report: list[dict]) -> list[str]:
         see = f"smallest bearing-rate change ≈ {rate:.2f}°/min" if rate else "nothing detectable"
         lines.append(
             f"batch {r['batch']}: {r['detections']} detection(s); {r['tested']} of "
-            f"{r['windows']} windows tested" + (f" (skipped: {skipped})" if skipped else "")
+            f"{r['windows']} windows tested"
+            + (f" (skipped: {skipped})" if skipped else "")
             + f"; noise ≈ {r['noise_deg']}°, {see}{turn}"
         )
     return lines
