@@ -804,7 +804,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="associate, fuse: change a parameter",
     )
     p.add_argument(
-        "--runs", type=_positive_int, default=60, help="bearing: runs per scenario (default 60)"
+        "--runs", type=_positive_int, default=20, help="bearing: runs per scenario (default 20)"
     )
     p.add_argument(
         "--geometries",

@@ -198,7 +198,7 @@ def methods(params: BearingParams) -> dict[str, BearingParams]:
 
 
 def evaluate_bearing(
-    runs: int = 30,
+    runs: int = 20,
     seed: int = 0,
     params: BearingParams | None = None,
     geometries: int = 6,
