@@ -48,6 +48,8 @@ from wakeline.core.schema import seconds_to_time, time_seconds
 
 DETECTION_COLUMNS = ("batch", "detect_time", "maneuver_time", "z")
 EXCLUSION_REASONS = ("gap", "sparse", "observer_maneuvering")
+RANGE_FLOOR = 0.9
+R_PRIOR = 1e-6  # weight of the prior r ~ 0, per sample of X
 
 
 @dataclass(frozen=True)
@@ -234,11 +236,15 @@ def _fit_relative(tau, w, mx, y_over_x, polish=1):
     is linear in p, q, r; the regressor τ·tan β takes the quadratic fit's smooth bearings
     (an instrument: the noisy ones bias r) — then ``polish`` Gauss–Newton steps. Returns
     the fitted curve, the Jacobian's columns, JᵀJ on X and (p, q, r)."""
-    lo, hi = -0.9 / y_over_x, 0.9  # the range stays positive over X and Y
+    lo, hi = -RANGE_FLOOR / y_over_x, RANGE_FLOOR  # the range stays > 1 - RANGE_FLOOR of now
     tan = np.tan(np.clip(w, -1.4, 1.4))
     smooth = np.tan(np.clip(_fit_poly(tau, w, mx)[0], -1.4, 1.4))
     cols = [np.ones_like(tau), tau, -tau * smooth]
-    theta = _solve(_gram(cols, mx), _rhs(cols, mx, tan))
+    # r is unobservable when the bearing hardly moves (a target running along the line of
+    # sight): a weak prior r ~ 0 keeps it from bending the curve to fit X's noise
+    prior = np.zeros((3, 3))
+    prior[2, 2] = R_PRIOR * mx.sum(axis=1).mean()
+    theta = _solve(_gram(cols, mx) + prior, _rhs(cols, mx, tan))
     theta[:, 2] = np.clip(theta[:, 2], lo, hi)
 
     def curve(theta):
@@ -250,10 +256,12 @@ def _fit_relative(tau, w, mx, y_over_x, polish=1):
 
     f, jac = curve(theta)
     for _ in range(polish):
-        theta = theta + _solve(_gram(jac, mx), _rhs(jac, mx, w - f))
+        g = _rhs(jac, mx, w - f)
+        g[:, 2] -= prior[2, 2] * theta[:, 2]
+        theta = theta + _solve(_gram(jac, mx) + prior, g)
         theta[:, 2] = np.clip(theta[:, 2], lo, hi)
         f, jac = curve(theta)
-    return f, jac, _gram(jac, mx), theta
+    return f, jac, _gram(jac, mx) + prior, theta
 
 
 @dataclass
