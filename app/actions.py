@@ -137,6 +137,7 @@ def retranslate(w) -> None:
         "params": tr("Parameters"),
         "batches": tr("Batch table"),
         "detail": tr("Detail"),
+        "bearing": tr("Bearing-only"),
         "stats": tr("Statistics"),
         "log": tr("Log"),
     }

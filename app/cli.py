@@ -52,7 +52,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from wakeline.core.io import write_points
 
     if args.kind == "bearing":
-        from wakeline.core.bearing import simulate_table
+        from wakeline.core.bearing_eval import simulate_table
         from wakeline.core.io import write_csv
 
         df = simulate_table(seed=args.seed)
@@ -117,7 +117,6 @@ def _maneuver_params(args: argparse.Namespace):
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
-    import pandas as pd
 
     from wakeline.core.evaluate import evaluate_maneuver
     from wakeline.core.io import write_csv
@@ -170,18 +169,19 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         return 0
 
     if args.kind == "bearing":
-        from wakeline.core.bearing import evaluate_bearing, format_evaluation
+        from wakeline.core.bearing_eval import evaluate_bearing, format_evaluation
 
         ev = evaluate_bearing(
             args.runs,
             args.seed,
             _bearing_params(args),
-            sweep_runs=args.sweep_runs,
+            geometries=args.geometries,
+            compare=not args.ours_only,
             progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
         )
         print(format_evaluation(ev))
         if args.csv:
-            write_csv(pd.concat([ev["main"], ev["noise"], ev["turn"]], ignore_index=True), args.csv)
+            write_csv(ev["table"], args.csv)
         return 0
 
     if args.real is not None:
@@ -263,16 +263,21 @@ def _bearing_params(args: argparse.Namespace):
     from wakeline.core.bearing import BearingParams
 
     return BearingParams(
-        window_x=args.window_x, window_y=args.window_y, alpha=args.alpha, trend_order=args.order
+        **{d["name"]: getattr(args, d["name"]) for d in BearingParams.describe()}
     ).checked()
 
 
 def _cmd_bearing(args: argparse.Namespace) -> int:
-    from wakeline.core.bearing import detect, read_bearings
-    from wakeline.core.io import write_csv
+    from wakeline.core.bearing import detect_with_report, read_bearings, report_lines
+    from wakeline.core.io import write_csv, write_json
 
-    table = detect(read_bearings(args.input), _bearing_params(args))
+    params = _bearing_params(args)
+    table, report = detect_with_report(read_bearings(args.input), params)
     write_csv(table, args.output)
+    if args.report:
+        write_json({"batches": report, "params": dict(vars(params))}, args.report)
+    for line in report_lines(report):
+        print(line, file=sys.stderr)
     print(f"{len(table):,} maneuver detections", file=sys.stderr)
     return 0
 
@@ -309,33 +314,29 @@ def _fuse_params(settings: list[str] | None):
 
 
 def _add_bearing_options(p: argparse.ArgumentParser) -> None:
+    """Bearing detector flags, one per BearingParams field (spans in seconds)."""
     from wakeline.core.bearing import BearingParams
 
-    d = BearingParams()
-    p.add_argument(
-        "--window-x",
-        type=_positive_int,
-        default=d.window_x,
-        help=f"m: samples in window X, the trend reference (default {d.window_x})",
-    )
-    p.add_argument(
-        "--window-y",
-        type=_positive_int,
-        default=d.window_y,
-        help=f"n: samples in window Y (default {d.window_y})",
-    )
-    p.add_argument(
-        "--alpha",
-        type=_positive_float,
-        default=d.alpha,
-        help=f"significance level per boundary (default {d.alpha:g}, z = {d.z_crit:.2f})",
-    )
-    p.add_argument(
-        "--order",
-        type=int,
-        default=d.trend_order,
-        help=f"polynomial order of the trend fitted on X (default {d.trend_order})",
-    )
+    for d in BearingParams.describe():
+        flag = "--" + d["name"].removesuffix("_s").replace("_", "-")
+        unit = f" {d['unit']}" if d["unit"] and d["unit"] != "samples" else ""
+        if isinstance(d["default"], bool):
+            p.add_argument(
+                flag,
+                dest=d["name"],
+                action=argparse.BooleanOptionalAction,
+                default=d["default"],
+                help=f"{d['doc']} (default {'on' if d['default'] else 'off'})",
+            )
+            continue
+        kind = _positive_int if isinstance(d["default"], int) else _positive_float
+        p.add_argument(
+            flag,
+            dest=d["name"],
+            type=kind,
+            default=d["default"],
+            help=f"{d['doc']} (default {d['default']:g}{unit})",
+        )
 
 
 def _io_args(p: argparse.ArgumentParser, output_help: str) -> None:
@@ -482,6 +483,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("input", type=Path, help="bearing CSV")
     p.add_argument("-o", "--output", type=Path, required=True, help="detections CSV to write")
+    p.add_argument(
+        "--report",
+        type=Path,
+        metavar="R.json",
+        help="per batch: windows tested, skipped and why, noise and the smallest visible turn",
+    )
     _add_bearing_options(p)
     p.set_defaults(func=_cmd_bearing)
 
@@ -492,7 +499,7 @@ def build_parser() -> argparse.ArgumentParser:
         "detector and compression and the IMM, entropy and Douglas-Peucker baselines; prints Table 1's "
         "layout with Dis_e against the true path and the observed points, and turn-point scores. "
         "bearing: seed 002's metrics (detection rate, reaction time, maneuver-time error, false alarms) "
-        "on five scenarios and the noise and turn sweeps. associate: single-sensor association on "
+        "on random held-out geometries (1 s, 2 s and jittered sampling; mean and worst) and five named scenarios, next to seed 002's eq. 15 AUC-mean test. associate: single-sensor association on "
         "sparse, dense and very dense simulated scenes (target-level and pairwise P/R/F1, P_CA, P_FA) "
         "for our methods and the seed 001 / seed 003 ones. fuse: multi-sensor P_CA/P_FA for "
         "synchronized and DTW distances with optimal and greedy assignment, and the fused position "
@@ -522,13 +529,18 @@ def build_parser() -> argparse.ArgumentParser:
         help="associate, fuse: change a parameter",
     )
     p.add_argument(
-        "--runs", type=_positive_int, default=1000, help="bearing: runs per scenario (default 1000)"
+        "--runs", type=_positive_int, default=20, help="bearing: runs per scenario (default 20)"
     )
     p.add_argument(
-        "--sweep-runs",
+        "--geometries",
         type=_positive_int,
-        default=200,
-        help="bearing: runs per sweep cell (default 200)",
+        default=8,
+        help="bearing: random held-out geometries, each at 1 s, 2 s and jittered sampling (default 8)",
+    )
+    p.add_argument(
+        "--ours-only",
+        action="store_true",
+        help="bearing: skip the eq. 15 AUC-mean and quadratic-trend comparisons",
     )
     p.add_argument(
         "--tracks", type=_positive_int, default=100, help="tracks per class (default 100)"

@@ -103,7 +103,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         t0 = t[0]
         self.b_curve.setData((t - t0) / 60.0, np.degrees(np.unwrap(np.radians(b))))
         p = self._bparams
-        bt, z = auc_statistic(t, b, int(p.window_x), int(p.window_y), int(p.trend_order))
+        bt, z = auc_statistic(t, b, p)
         self.z_curve.setData((bt - t0) / 60.0, z)
         self.z_band.setRegion((-p.z_crit, p.z_crit))
         det = self._detections[self._detections["batch"].astype(str) == batch]

@@ -281,6 +281,11 @@ class JobsMixin:
             _, bearings, result = done
             self.bearings, self.bearing_detections = bearings, result.tables["detections"]
             self.log_message(f"bearing: {summarize(result.report)}")
+            for line in result.report.get("why", []):
+                self.log_message(f"    {line}")
+            self.bearing_view.show_result(
+                bearings, self.bearing_detections, result.report["report"]
+            )
             self.detail.show_bearings(
                 bearings, self.bearing_detections, self.params.params("bearing")
             )

@@ -17,6 +17,7 @@ from PySide6 import QtCore, QtWidgets
 
 from wakeline.app import i18n
 from wakeline.app.actions import build_actions, retranslate
+from wakeline.app.bearing_view import BearingView
 from wakeline.app.detail import DetailPanel
 from wakeline.app.dialogs import ImportDialog, ImportReportDialog
 from wakeline.app.jobs import JobsMixin
@@ -113,6 +114,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         bl.addWidget(self.batch_view)
         self.stats = QtWidgets.QPlainTextEdit(readOnly=True)
         self.detail = DetailPanel()
+        self.bearing_view = BearingView()
         self.log = QtWidgets.QPlainTextEdit(readOnly=True)
         self.log.setMaximumBlockCount(5000)
         self._build_docks(batch_box)
@@ -143,6 +145,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             ("params", self.params, area.LeftDockWidgetArea),
             ("batches", batch_box, area.RightDockWidgetArea),
             ("detail", self.detail, area.RightDockWidgetArea),
+            ("bearing", self.bearing_view, area.RightDockWidgetArea),
             ("stats", self.stats, area.BottomDockWidgetArea),
             ("log", self.log, area.BottomDockWidgetArea),
         ):
@@ -152,6 +155,8 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             self.addDockWidget(where, dock)
             self.docks[key] = dock
         self.tabifyDockWidget(self.docks["stats"], self.docks["log"])
+        self.tabifyDockWidget(self.docks["detail"], self.docks["bearing"])
+        self.docks["detail"].raise_()
         self.docks["log"].raise_()
         d = self.docks
         horizontal, vertical = QtCore.Qt.Orientation.Horizontal, QtCore.Qt.Orientation.Vertical

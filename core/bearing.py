@@ -1,38 +1,44 @@
-"""Bearing-only maneuver detection by AUC (seed 002, SPEC §4).
+"""Bearing-only maneuver detection by AUC (seed 002, SPEC §4), in seconds.
 
-Two adjacent windows slide over a target's bearing sequence: X (``m`` samples) and Y
-(``n`` samples) meeting at a boundary. The Mann–Whitney statistic
-AUC = (1/mn)·Σᵢ Σⱼ I(Xᵢ > Yⱼ) (ties ½) is computed from ranks for every boundary at once.
+Two adjacent windows slide over a target's bearing sequence: X (the ``window_x_s``
+seconds before a boundary) and Y (the ``window_y_s`` seconds after it). Every span is in
+seconds, so the detector runs unchanged at any sampling rate and on irregular sampling
+(jitter, dropped samples): a window holds whatever samples fall in its span.
 
-**The feature.** A raw bearing sequence trends even without a maneuver, so the AUC of
-raw bearings is near 0 or 1 everywhere (measured: 100 % false alarms). The bearing rate
-(first differences) is stationary but, at 1 s sampling and 0.6° noise, a 50° turn
-changes the mean rate by ~0.013°/s against a differencing noise of 0.85°/s: no power
-(measured: 0 % detection). We use **residuals from the trend fitted on X**: a straight
-line is fitted to X's bearings against time; X's residuals and Y's residuals from that
-line (Y: extrapolated) are compared. Without a maneuver both centre on zero; after a
-change of bearing rate Y's residuals drift to one side.
+**The feature: residuals from the target's relative motion fitted on X.** A target at
+constant velocity seen from an observer at constant velocity (static, or on a steady
+leg) moves at constant velocity *relative* to the observer, and its bearing follows
 
-**The null.** Y's residuals share the extrapolation error of X's line, so the textbook
-null AUC ~ N(½, (m+n+1)/(12mn)) is too narrow (measured: 100 % false alarms). Near H0 a
-common offset δ moves the AUC by δ / (σ√(4π)) and the offset's variance is
-σ²·(1/m + (t̄_Y − t̄_X)²/Sxx), so σ cancels:
-Var(AUC) = (m+n+1)/(12mn) + (1/m + (t̄_Y − t̄_X)²/Sxx) / (4π). We reject "no maneuver"
-when |AUC − ½| / sd > z_{α/2}.
+    β(τ) = β₀ + atan2(w_c·τ, 1 + w_r·τ)
 
-Detection time is when the first rejecting boundary's Y window is complete (causal);
-the estimated maneuver time is the boundary with the largest |z| in that run of
-rejections. Later rejections count as a new detection only once X no longer holds the
-previous estimated maneuver time (X would misfit its trend until then). Bearings are unwrapped, so 359° → 1° is a 2° step. Boundaries whose windows
-overlap a span where the observer itself maneuvers are skipped.
+(τ: time from the boundary; w_c and w_r: cross-bearing and range rate over range, 1/s).
+The three parameters are fitted on X by Gauss–Newton (vectorized over all boundaries);
+X's and Y's residuals from that curve (Y: extrapolated) are compared by the
+Mann–Whitney AUC. Without a maneuver both centre on zero whatever the geometry and the
+observer's speed; after a turn Y's residuals drift to one side. The observer's own turns
+break the relative constant velocity: windows touching them are excluded (and counted).
+The previous feature, a quadratic in time fitted on X, is kept (``relative_motion`` off).
+
+**The null.** Y's residuals share the extrapolation error of X's fit, so the textbook
+null AUC ~ N(½, (m+n+1)/(12mn)) is too narrow. Near H0 a common offset δ moves the AUC
+by δ / (σ√(4π)) and the offset's variance is σ²·h̄ᵀ(JᵀJ)⁻¹h̄ (J: the fit's Jacobian on X,
+h̄: its rows averaged over Y), so σ cancels:
+Var(AUC) = (m+n+1)/(12mn) + h̄ᵀ(JᵀJ)⁻¹h̄ / (4π). We reject "no maneuver" when
+|AUC − ½| / sd > z_{α/2}. With ``auc_mean`` (seed 002 eq. 15) the AUCs of the boundaries
+in the last ``mean_span_s`` are averaged and tested as |AUC̄ − ½| / (sd/√N) > z_{α/2}.
+
+Detection time is the last sample of the first rejecting boundary's Y window (causal);
+the estimated maneuver time is where a bearing-rate change best explains the residuals
+of that boundary's fit (:func:`maneuver_time`; seed 002's largest |z| of the run comes
+late here). Later rejections count as a new detection only once X no longer holds the
+previous estimated maneuver time. Bearings are unwrapped, so 359° → 1° is a 2° step.
 """
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
-from numpy.lib.stride_tricks import sliding_window_view
 from scipy.stats import norm, rankdata
 
 from wakeline.core import geo
@@ -41,20 +47,53 @@ from wakeline.core.params import Params, param
 from wakeline.core.schema import seconds_to_time, time_seconds
 
 DETECTION_COLUMNS = ("batch", "detect_time", "maneuver_time", "z")
+EXCLUSION_REASONS = ("gap", "sparse", "observer_maneuvering")
+RANGE_FLOOR = 0.9
+R_PRIOR = 1e-6  # weight of the prior r ~ 0, per sample of X
 
 
 @dataclass(frozen=True)
 class BearingParams(Params):
-    """AUC detector settings (ours; seed 002 leaves window sizes and α open)."""
+    """AUC detector settings (ours; seed 002 leaves window sizes and α open). Spans in s."""
 
-    window_x: int = param(
-        300, "samples", "m: samples in window X (trend reference)", lo=5, hi=100_000
+    window_x_s: float = param(
+        600.0, "s", "window X before the boundary (the motion fit), at most", lo=5, hi=86_400
     )
-    window_y: int = param(90, "samples", "n: samples in window Y", lo=2, hi=100_000)
-    alpha: float = param(0.00097, "", "significance level per boundary (z = 3.3)", lo=1e-12, hi=0.5)
-    trend_order: int = param(
-        2, "", "polynomial order of the trend fitted on X (1: a line)", lo=0, hi=3
+    min_window_x_s: float = param(
+        240.0,
+        "s",
+        "shortest X: X starts after the observer's last maneuver or gap, if not shorter",
+        lo=5,
+        hi=86_400,
     )
+    window_y_s: float = param(90.0, "s", "window Y after the boundary", lo=2, hi=86_400)
+    alpha: float = param(
+        0.00027, "", "significance level per boundary (z = 3.64)", lo=1e-12, hi=0.5
+    )
+    relative_motion: bool = param(
+        True,
+        "",
+        "fit the target's constant relative velocity on X (off: a quadratic in time)",
+    )
+    auc_mean: bool = param(
+        False, "", "seed 002 eq. 15: test the mean AUC over mean_span_s", source="seed 002 eq. 15"
+    )
+    mean_span_s: float = param(
+        20.0, "s", "span of boundaries averaged by the AUC-mean test", lo=0, hi=3600
+    )
+    step_s: float = param(2.0, "s", "spacing of the tested boundaries", lo=0.01, hi=600)
+    max_gap_s: float = param(
+        45.0, "s", "windows holding a longer interval without bearings are skipped", lo=0.1
+    )
+    y_scales: int = param(
+        3,
+        "",
+        "Y is also tested over its first 1/k, 2/k, … of its span (k = this): strong turns "
+        "are reported sooner",
+        lo=1,
+        hi=10,
+    )
+    min_samples: int = param(6, "samples", "fewest samples in X and in Y", lo=4, hi=100_000)
     observer_dv_ms: float = param(
         1.0,
         "m/s",
@@ -68,47 +107,264 @@ class BearingParams(Params):
         return float(norm.ppf(1.0 - self.alpha / 2.0))
 
 
-def auc_windows(values: np.ndarray, m: int) -> np.ndarray:
-    """AUC of the first ``m`` columns against the rest, for every row (ranks, ties ½)."""
+def auc_windows(values: np.ndarray, m: np.ndarray | int) -> np.ndarray:
+    """AUC of the first ``m`` columns against the rest, for every row (ranks, ties ½).
+
+    ``m`` may differ per row; NaN columns (padding) are left out."""
+    values = np.where(np.isnan(values), np.inf, values)
+    n_valid = np.isfinite(values).sum(axis=1)
+    m = np.broadcast_to(np.asarray(m), (values.shape[0],))
     ranks = rankdata(values, axis=1)
-    n = values.shape[1] - m
-    return (ranks[:, :m].sum(axis=1) - m * (m + 1) / 2.0) / (m * n)
+    in_x = np.arange(values.shape[1])[None, :] < m[:, None]
+    n = n_valid - m
+    return (np.where(in_x, ranks, 0.0).sum(axis=1) - m * (m + 1) / 2.0) / (m * n)
 
 
-def _trend_fit(tau: np.ndarray, w: np.ndarray, m: int, order: int):
-    """Least-squares polynomial trend on the first m columns; residuals of all columns,
-    the extrapolation lever h̄ᵀ(XᵀX)⁻¹h̄ over the rest, the coefficients and (XᵀX)⁻¹."""
-    powers = np.stack([tau**k for k in range(order + 1)], axis=-1)  # (B, m+n, q+1)
-    px = powers[:, :m, :]
-    gram_inv = np.linalg.inv(np.einsum("bij,bik->bjk", px, px))
-    coef = np.einsum("bjk,bk->bj", gram_inv, np.einsum("bij,bi->bj", px, w[:, :m]))
-    resid = w - np.einsum("bij,bj->bi", powers, coef)
-    hbar = powers[:, m:, :].mean(axis=1)
-    lever = np.einsum("bj,bjk,bk->b", hbar, gram_inv, hbar)
-    return resid, lever, coef, gram_inv
+# --------------------------------------------------------------------------------------
+# windows
+
+
+@dataclass
+class Windows:
+    """Candidate boundaries of one sequence and why some are not tested."""
+
+    k: np.ndarray  # boundary sample index (first sample of Y)
+    xs: np.ndarray  # first sample of X
+    ye: np.ndarray  # one past the last sample of Y
+    reason: np.ndarray  # "" when tested, else one of EXCLUSION_REASONS
+    too_short: str = ""  # why there is no window at all
+
+
+def _windows(t: np.ndarray, params: BearingParams, excluded: np.ndarray | None = None) -> Windows:
+    """Boundaries every ``step_s`` from ``min_window_x_s`` after the start to ``window_y_s``
+    before the end. X reaches back ``window_x_s`` but starts after the observer's last
+    maneuvering sample and the last gap; a boundary is skipped when its Y holds either,
+    when X is then shorter than ``min_window_x_s``, or when a window has too few samples."""
+    x_s, x_min, y_s = (
+        float(params.window_x_s),
+        float(params.min_window_x_s),
+        float(params.window_y_s),
+    )
+    x_min = min(x_min, x_s)
+    empty = np.zeros(0, dtype=int)
+    if len(t) < 2 or t[-1] - t[0] < x_min + y_s:
+        span = t[-1] - t[0] if len(t) else 0.0
+        return Windows(
+            empty,
+            empty,
+            empty,
+            np.zeros(0, dtype=object),
+            f"series too short for the windows: {len(t)} samples over {span:.0f} s "
+            f"< X + Y = {x_min:.0f} + {y_s:.0f} s",
+        )
+    n = len(t)
+    grid = np.arange(t[0] + x_min, t[-1] - y_s + 1e-9, float(params.step_s))
+    k = np.unique(np.searchsorted(t, grid))
+    k = k[(k > 0) & (k < n)]
+    k = k[t[k] + y_s <= t[-1] + 1e-9]
+    tk = t[k]
+    ye = np.searchsorted(t, tk + y_s)
+    idx = np.arange(n)
+    gap_after = np.append(np.diff(t) > params.max_gap_s, False)  # gap between i and i+1
+    # first sample after the last gap / observer-maneuvering sample at or before i
+    after_gap = np.maximum.accumulate(np.where(gap_after, idx + 1, 0))
+    excl = excluded if excluded is not None else np.zeros(n, dtype=bool)
+    after_excl = np.maximum.accumulate(np.where(excl, idx + 1, 0))
+    xs_full = np.maximum(np.searchsorted(t, tk - x_s), 0)
+    xs = np.maximum.reduce([xs_full, after_gap[k - 1], after_excl[k - 1]])
+    reason = np.full(len(k), "", dtype=object)
+    gaps = np.concatenate([[0], np.cumsum(gap_after)])
+    exc = np.concatenate([[0], np.cumsum(excl)])
+    short_x = (tk - t[np.minimum(xs, n - 1)]) < x_min - max(float(np.median(np.diff(t))), 0)
+    y_gap = (gaps[ye - 1] - gaps[k - 1]) > 0
+    y_gap |= (tk + y_s) - t[ye - 1] > params.max_gap_s
+    reason[y_gap | (short_x & (after_gap[k - 1] >= after_excl[k - 1]) & (xs > xs_full))] = "gap"
+    y_exc = (exc[ye] - exc[k]) > 0
+    x_exc = short_x & (after_excl[k - 1] > after_gap[k - 1]) & (xs > xs_full)
+    reason[(reason == "") & (y_exc | x_exc)] = "observer_maneuvering"
+    few = ((k - xs) < params.min_samples) | ((ye - k) < params.min_samples) | short_x
+    reason[(reason == "") & few] = "sparse"
+    return Windows(k, xs, ye, reason)
+
+
+def _padded(t, u, k, xs, ye, x_s):
+    """Per boundary: τ (units of X), bearings relative to the last X sample, masks."""
+    length = int((ye - xs).max())
+    idx = xs[:, None] + np.arange(length)[None, :]
+    valid = idx < ye[:, None]
+    idx = np.minimum(idx, len(t) - 1)
+    tau = (t[idx] - t[k][:, None]) / x_s
+    ref = u[np.maximum(k - 1, 0)]
+    w = u[idx] - ref[:, None]
+    in_x = idx < k[:, None]
+    return tau, w, valid & in_x, valid & ~in_x
+
+
+def _solve(gram: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    ridge = 1e-9 * (np.trace(gram, axis1=1, axis2=2)[:, None, None] + 1e-12)
+    return np.linalg.solve(gram + ridge * np.eye(gram.shape[1]), rhs[..., None])[..., 0]
+
+
+def _gram(cols: list[np.ndarray], mask: np.ndarray) -> np.ndarray:
+    """JᵀJ over the masked samples, per boundary, from J's columns (each (B, L))."""
+    q = len(cols)
+    masked = [np.where(mask, c, 0.0) for c in cols]
+    gram = np.empty((mask.shape[0], q, q))
+    for i in range(q):  # q ≤ 3 columns: a handful of row-wise dot products
+        for j in range(i, q):
+            gram[:, i, j] = gram[:, j, i] = np.einsum("bl,bl->b", masked[i], cols[j])
+    return gram
+
+
+def _rhs(cols: list[np.ndarray], mask: np.ndarray, y: np.ndarray) -> np.ndarray:
+    ym = np.where(mask, y, 0.0)
+    return np.stack([np.einsum("bl,bl->b", ym, c) for c in cols], axis=1)
+
+
+def _fit_poly(tau, w, mx, order=2):
+    """Least-squares polynomial in τ on X: fitted curve, columns, XᵀX and coefficients."""
+    cols = [np.ones_like(tau)] + [tau**p for p in range(1, order + 1)]
+    gram = _gram(cols, mx)
+    coef = _solve(gram, _rhs(cols, mx, w))
+    return sum(c * coef[:, i : i + 1] for i, c in enumerate(cols)), cols, gram, coef
+
+
+def _fit_relative(tau, w, mx, y_over_x, polish=1):
+    """Fit of β(τ) = atan2(p + q τ, 1 + r τ) on X (bearings relative to X's last sample):
+    a constant relative velocity (p ≈ bearing offset, q = cross-bearing and r = range
+    rate over range, per X span). Pseudo-linear least squares — tan β (1 + r τ) = p + q τ
+    is linear in p, q, r; the regressor τ·tan β takes the quadratic fit's smooth bearings
+    (an instrument: the noisy ones bias r) — then ``polish`` Gauss–Newton steps. Returns
+    the fitted curve, the Jacobian's columns, JᵀJ on X and (p, q, r)."""
+    lo, hi = -RANGE_FLOOR / y_over_x, RANGE_FLOOR  # the range stays > 1 - RANGE_FLOOR of now
+    tan = np.tan(np.clip(w, -1.4, 1.4))
+    smooth = np.tan(np.clip(_fit_poly(tau, w, mx)[0], -1.4, 1.4))
+    cols = [np.ones_like(tau), tau, -tau * smooth]
+    # r is unobservable when the bearing hardly moves (a target running along the line of
+    # sight): a weak prior r ~ 0 keeps it from bending the curve to fit X's noise
+    prior = np.zeros((3, 3))
+    prior[2, 2] = R_PRIOR * mx.sum(axis=1).mean()
+    theta = _solve(_gram(cols, mx) + prior, _rhs(cols, mx, tan))
+    theta[:, 2] = np.clip(theta[:, 2], lo, hi)
+
+    def curve(theta):
+        num = theta[:, 0:1] + theta[:, 1:2] * tau
+        den = 1.0 + theta[:, 2:3] * tau
+        d = num * num + den * den
+        j0 = den / d
+        return np.arctan2(num, den), [j0, tau * j0, -num * tau / d]
+
+    f, jac = curve(theta)
+    for _ in range(polish):
+        g = _rhs(jac, mx, w - f)
+        g[:, 2] -= prior[2, 2] * theta[:, 2]
+        theta = theta + _solve(_gram(jac, mx) + prior, g)
+        theta[:, 2] = np.clip(theta[:, 2], lo, hi)
+        f, jac = curve(theta)
+    return f, jac, _gram(jac, mx) + prior, theta
+
+
+@dataclass
+class Statistic:
+    """Per tested boundary: time (s), z, AUC, its null sd, X's residual rms (deg), fit."""
+
+    boundary_t: np.ndarray
+    detect_t: np.ndarray  # last sample of Y
+    x_start_t: np.ndarray
+    z: np.ndarray
+    auc: np.ndarray
+    sd: np.ndarray
+    rms_deg: np.ndarray
+    coef: np.ndarray  # (p, q, r) per X span (see _fit_relative), or the quadratic's
+    windows: Windows = field(repr=False)
+    t: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    u: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # unwrapped, rad
+    params: "BearingParams | None" = field(default=None, repr=False)
+
+
+def statistic(
+    t: np.ndarray,
+    bearing_deg: np.ndarray,
+    params: BearingParams,
+    excluded: np.ndarray | None = None,
+) -> Statistic:
+    """z (and its parts) for every tested boundary; see the module docstring."""
+    win = _windows(t, params, excluded)
+    ok = win.reason == ""
+    k, xs, ye = win.k[ok], win.xs[ok], win.ye[ok]
+    nb = len(k)
+    out = {
+        key: np.zeros(nb)
+        for key in ("boundary_t", "detect_t", "x_start_t", "z", "auc", "sd", "rms")
+    }
+    coef = np.zeros((nb, 3))
+    if nb == 0:
+        return Statistic(*(out[c] for c in out), coef, win, t, np.zeros(0), params)
+    u = np.unwrap(np.radians(bearing_deg))
+    x_s, y_s = float(params.window_x_s), float(params.window_y_s)
+    chunk = max(1, int(4e6 // max(int((ye - xs).max()), 1)))
+    for a in range(0, nb, chunk):  # blocks of boundaries bound the memory, not a per-window loop
+        sl = slice(a, a + chunk)
+        tau, w, mx, my = _padded(t, u, k[sl], xs[sl], ye[sl], x_s)
+        if params.relative_motion:
+            f, jac, gram, c = _fit_relative(tau, w, mx, y_s / x_s)
+        else:
+            f, jac, gram, c = _fit_poly(tau, w, mx)
+        m = mx.sum(axis=1)
+        scales = (1.0,) if params.auc_mean or params.y_scales < 2 else None
+        scales = scales or tuple(np.arange(1, params.y_scales + 1) / params.y_scales)
+        best_z = np.zeros(len(m))
+        best_t = np.full(len(m), np.inf)
+        for frac in scales[::-1]:  # a few nested Y spans: the shorter ones react sooner
+            myf = my & (tau * x_s < frac * y_s - 1e-9) if frac < 1 else my
+            n = myf.sum(axis=1)
+            resid = np.where(mx | myf, w - f, np.nan)
+            hbar = np.stack([np.where(myf, c, 0.0).sum(axis=1) for c in jac], axis=1)
+            hbar /= np.maximum(n, 1)[:, None]
+            lever = np.einsum("bj,bj->b", hbar, _solve(gram, hbar))
+            var = (m + n + 1) / (12.0 * m * np.maximum(n, 1)) + lever / (4.0 * math.pi)
+            auc = auc_windows(resid, m)
+            z = np.where(n >= params.min_samples, (auc - 0.5) / np.sqrt(var), 0.0)
+            y_end = t[np.minimum(xs[sl] + m + n - 1, len(t) - 1)]
+            if frac == 1.0:
+                out["auc"][sl], out["sd"][sl] = auc, np.sqrt(var)
+                best_z, full_t = z, y_end
+                resid_x = resid
+            hit = np.abs(z) > params.z_crit
+            best_t = np.where(hit, y_end, best_t)  # shortest rejecting span wins
+            best_z = np.where(hit, z, best_z)
+        out["z"][sl] = best_z
+        out["detect_t"][sl] = np.where(np.isfinite(best_t), best_t, full_t)
+        dof = np.maximum(m - c.shape[1], 1)
+        out["rms"][sl] = np.degrees(np.sqrt(np.nansum(np.where(mx, resid_x, 0.0) ** 2, 1) / dof))
+        coef[sl] = c
+    out["boundary_t"], out["x_start_t"] = t[k], t[xs]
+    if params.auc_mean:
+        out["detect_t"] = t[ye - 1]
+    if params.auc_mean:
+        out["z"] = _auc_mean_z(out["boundary_t"], out["auc"], out["sd"], params.mean_span_s)
+    return Statistic(*(out[c] for c in out), coef, win, t, u, params)
+
+
+def _auc_mean_z(bt: np.ndarray, auc: np.ndarray, sd: np.ndarray, span_s: float) -> np.ndarray:
+    """Seed 002 eq. 15: |mean of the last N AUCs − ½| / (σ/√N), N the boundaries within
+    ``span_s`` before each one (causal)."""
+    start = np.searchsorted(bt, bt - span_s)
+    ca = np.concatenate([[0.0], np.cumsum(auc)])
+    cs = np.concatenate([[0.0], np.cumsum(sd)])
+    end = np.arange(1, len(bt) + 1)
+    n = end - start
+    mean = (ca[end] - ca[start]) / n
+    sigma = (cs[end] - cs[start]) / n
+    return (mean - 0.5) / (sigma / np.sqrt(n))
 
 
 def auc_statistic(
-    t: np.ndarray, bearing_deg: np.ndarray, m: int, n: int, order: int = 2
+    t: np.ndarray, bearing_deg: np.ndarray, params: BearingParams | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Boundary times (s) and z for every boundary where both windows fit.
-
-    The trend on X is a polynomial of ``order`` in time; the null variance adds
-    h̄ᵀ(XᵀX)⁻¹h̄ / (4π), the variance of the trend's mean extrapolation over Y in units
-    of σ² (h̄: the design row averaged over Y).
-    """
-    u = np.degrees(np.unwrap(np.radians(bearing_deg)))
-    if len(u) < m + n:
-        return np.zeros(0), np.zeros(0)
-    w = sliding_window_view(u, m + n)
-    tw = sliding_window_view(t, m + n)
-    # time relative to the boundary, in units of the X span: well conditioned powers
-    scale = max(float(np.median(tw[:, m - 1] - tw[:, 0])), 1e-9)
-    tau = (tw - tw[:, m : m + 1]) / scale
-    resid, lever, _, _ = _trend_fit(tau, w, m, order)
-    auc = auc_windows(resid, m)
-    var = (m + n + 1) / (12.0 * m * n) + lever / (4.0 * math.pi)
-    return tw[:, m], (auc - 0.5) / np.sqrt(var)
+    """Boundary times (s) and z for every tested boundary (for plots)."""
+    st = statistic(t, bearing_deg, (params or BearingParams()).checked())
+    return st.boundary_t, st.z
 
 
 @dataclass(frozen=True)
@@ -118,6 +374,64 @@ class Detection:
     z: float
 
 
+def detections_from(st: Statistic, z_crit: float) -> list[Detection]:
+    """One detection per run of rejecting boundaries (a skipped boundary ends a run)."""
+    if len(st.z) == 0:
+        return []
+    reject = np.abs(st.z) > z_crit
+    if not reject.any():
+        return []
+    # consecutive tested boundaries: a skipped boundary breaks a run
+    pos = np.flatnonzero(st.windows.reason == "")
+    brk = np.concatenate([[True], np.diff(pos) > 1])
+    prev = np.concatenate([[False], reject[:-1]])
+    starts = np.flatnonzero(reject & (brk | ~prev))
+    stops = np.flatnonzero(~reject | brk)
+    ends = np.append(stops, len(reject))[np.searchsorted(stops, starts, side="right")]
+    out: list[Detection] = []
+    for a, b in zip(starts, ends, strict=True):  # one entry per detection, not per sample
+        if out:
+            # A window X that still holds the last detected maneuver misfits its trend:
+            # those rejections are the same maneuver, not a new one.
+            clear = np.flatnonzero(st.x_start_t[a:b] > out[-1].maneuver_time_s)
+            if len(clear) == 0:
+                continue
+            a = a + int(clear[0])
+        kk = a + int(np.argmax(np.abs(st.z[a:b])))
+        when = maneuver_time(st, a) if len(st.u) else float(st.boundary_t[kk])
+        first = float(st.detect_t[a:b][np.abs(st.z[a:b]) > z_crit].min())
+        out.append(Detection(first, when, float(st.z[kk])))
+    return out
+
+
+def maneuver_time(st: Statistic, i: int) -> float:
+    """Estimated turn time (s) for a detection at tested boundary ``i``: X's motion fit
+    plus a bearing-rate change (a ramp) starting at t_c, the t_c over the last Y span of X
+    and Y that explains most of the residuals. (The largest |z| of the run, seed 002's
+    estimate, comes late here: once X holds the turn its misfit keeps |z| growing.)"""
+    p = st.params
+    pos = np.flatnonzero(st.windows.reason == "")[i]
+    k, xs, ye = (
+        st.windows.k[pos : pos + 1],
+        st.windows.xs[pos : pos + 1],
+        st.windows.ye[pos : pos + 1],
+    )
+    tau, w, mx, my = _padded(st.t, st.u, k, xs, ye, float(p.window_x_s))
+    if p.relative_motion:
+        f = _fit_relative(tau, w, mx, p.window_y_s / p.window_x_s)[0]
+    else:
+        f = _fit_poly(tau, w, mx)[0]
+    tt = st.t[xs[0] : ye[0]]
+    r = (w - f)[0][: len(tt)]
+    cand = tt[tt >= tt[-1] - 2.0 * p.window_y_s][:-2]
+    if len(cand) == 0:
+        return float(st.boundary_t[i])
+    ramp = np.maximum(tt[None, :] - cand[:, None], 0.0)  # (candidates, samples)
+    ramp -= ramp.mean(axis=1, keepdims=True)
+    score = (ramp @ r) ** 2 / np.maximum((ramp**2).sum(axis=1), 1e-12)
+    return float(cand[int(np.argmax(score))])
+
+
 def detect_sequence(
     t: np.ndarray,
     bearing_deg: np.ndarray,
@@ -125,33 +439,7 @@ def detect_sequence(
     excluded: np.ndarray | None = None,
 ) -> list[Detection]:
     """All detections in one sequence: one per run of rejecting boundaries."""
-    m, n = int(params.window_x), int(params.window_y)
-    boundary_t, z = auc_statistic(t, bearing_deg, m, n, int(params.trend_order))
-    if len(z) == 0:
-        return []
-    reject = np.abs(z) > params.z_crit
-    if excluded is not None and excluded.any():
-        # skip boundaries whose windows touch an excluded sample
-        touched = sliding_window_view(excluded.astype(np.int8), m + n).any(axis=1)
-        reject &= ~touched
-    if not reject.any():
-        return []
-    edges = np.diff(np.concatenate([[0], reject.astype(np.int8), [0]]))
-    starts = np.flatnonzero(edges == 1)
-    ends = np.flatnonzero(edges == -1)
-    out: list[Detection] = []
-    x_start = t[: len(z)]  # time of the first sample of X at each boundary
-    for a, b in zip(starts, ends, strict=True):  # one entry per detection, not per sample
-        if out:
-            # A window X that still holds the last detected maneuver misfits its trend:
-            # those rejections are the same maneuver, not a new one.
-            clear = np.flatnonzero(x_start[a:b] > out[-1].maneuver_time_s)
-            if len(clear) == 0:
-                continue
-            a = a + int(clear[0])
-        k = a + int(np.argmax(np.abs(z[a:b])))
-        out.append(Detection(float(t[a + m + n - 1]), float(boundary_t[k]), float(z[k])))
-    return out
+    return detections_from(statistic(t, bearing_deg, params, excluded), params.z_crit)
 
 
 def observer_maneuvering(
@@ -164,18 +452,70 @@ def observer_maneuvering(
 ) -> np.ndarray:
     """Samples where the observer's velocity vector changed by more than ``dv_ms`` (m/s)
     within ``span_s`` seconds: its own turns and speed changes. Velocities are taken over
-    ``lag_s`` so position jitter of a slow or docked observer does not count."""
+    ``lag_s`` (at least one sample) so position jitter of a slow or docked observer does
+    not count."""
     n = len(t)
     if n < 3 or np.all(np.isnan(obs_lon)):
         return np.zeros(n, dtype=bool)
     x, y = geo.to_local(obs_lon, obs_lat, float(np.nanmean(obs_lon)), float(np.nanmean(obs_lat)))
-    back = np.searchsorted(t, t - lag_s)
+    back = np.minimum(np.searchsorted(t, t - lag_s, side="right") - 1, np.arange(n) - 1)
+    back = np.maximum(back, 0)
     dt = np.maximum(t - t[back], 1e-9)
     vx, vy = (x - x[back]) / dt, (y - y[back]) / dt
+    vx[np.arange(n) == back] = np.nan
     vx[t - t[0] < lag_s] = np.nan  # no velocity before a full lag
-    earlier = np.searchsorted(t, t - span_s)
+    first = int(np.argmax(np.isfinite(vx))) if np.isfinite(vx).any() else n - 1
+    earlier = np.maximum(np.searchsorted(t, t - span_s), first)  # the first velocity early on
     dv = np.hypot(vx - vx[earlier], vy - vy[earlier])
     return np.isfinite(dv) & (dv > dv_ms)
+
+
+# --------------------------------------------------------------------------------------
+# what the data can show
+
+
+def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) -> dict:
+    """Smallest bearing-rate change (deg/min) and, for a static observer, smallest turn
+    (deg) the data can show at its noise and geometry (medians over the tested windows).
+
+    A bearing-rate change Δω at the boundary drifts Y's residuals by Δω·Y/2 on average;
+    a shift δ between two samples of noise σ gives AUC − ½ = Φ(δ/(σ√2)) − ½, so the
+    smallest Δω meets z_crit·sd. With a static observer the fit's relative velocity is
+    the target's, over range: a turn Δc rotates (w_r, w_c) and changes the bearing rate by
+    w_r·sin Δc + w_c·(cos Δc − 1); the smallest |Δc| reaching Δω is reported. With a
+    moving observer the range is unobservable on a steady leg, so only Δω is given."""
+    if len(st.z) == 0:
+        return {"noise_deg": None, "min_rate_change_deg_min": None, "min_turn_deg": None}
+    sigma = float(np.median(st.rms_deg))
+    need = params.z_crit * st.sd
+    frac = np.clip(0.5 + need, None, 1 - 1e-12)
+    delta = np.radians(sigma) * math.sqrt(2.0) * norm.ppf(frac)
+    rate = np.where(need < 0.5, delta / (params.window_y_s / 2.0), np.inf)  # rad/s
+    out = {
+        "noise_deg": round(sigma, 4),
+        "min_rate_change_deg_min": _finite(np.degrees(np.median(rate)) * 60.0),
+        "min_turn_deg": None,
+    }
+    if observer_static and params.relative_motion:
+        turns = np.radians(np.arange(1.0, 181.0))
+        wc, wr = st.coef[:, 1:2] / params.window_x_s, st.coef[:, 2:3] / params.window_x_s
+        wc = wc / (1.0 + st.coef[:, 0:1] ** 2)  # bearing rate at the boundary
+        change = np.maximum(
+            np.abs(wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
+            np.abs(-wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
+        )
+        ok = change >= rate[:, None]
+        first = np.where(ok.any(axis=1), np.argmax(ok, axis=1) + 1.0, np.inf)
+        out["min_turn_deg"] = _finite(np.median(first))
+    return out
+
+
+def _finite(x: float) -> float | None:
+    return round(float(x), 3) if math.isfinite(x) else None
+
+
+# --------------------------------------------------------------------------------------
+# tables
 
 
 def read_bearings(path) -> pd.DataFrame:
@@ -200,30 +540,58 @@ def read_bearings(path) -> pd.DataFrame:
         )
     df["time"] = pd.Series(ns.view("datetime64[ns]")).dt.tz_localize("UTC")
     df["bearing"] = bearing.to_numpy() % 360.0
+    for col in ("obs_lon", "obs_lat"):
+        if col in df.columns:
+            df[col] = pd.to_numeric(df[col], errors="coerce")
     return df
 
 
-def detect(bearings: pd.DataFrame, params: BearingParams | None = None) -> pd.DataFrame:
-    """Detections for every batch: ``batch, detect_time, maneuver_time, z``."""
+def detect_with_report(
+    bearings: pd.DataFrame, params: BearingParams | None = None
+) -> tuple[pd.DataFrame, list[dict]]:
+    """Detections for every batch (``batch, detect_time, maneuver_time, z``) and, per
+    batch, what was tested and why windows were skipped."""
     params = (params or BearingParams()).checked()
-    rows = []
+    rows, report = [], []
     for batch, g in bearings.groupby("batch", sort=True):  # one pass per target
         g = g.sort_values("time", kind="stable")
         t = time_seconds(g["time"])
         if np.any(np.diff(t) <= 0):
             raise InputError(f"batch {batch}: repeated time stamps; bearings must be one per time")
-        excluded = None
+        excluded, static, observer = None, True, "not given (taken as static)"
         if {"obs_lon", "obs_lat"} <= set(g.columns):
-            excluded = observer_maneuvering(
-                t,
-                g["obs_lon"].to_numpy(float),
-                g["obs_lat"].to_numpy(float),
-                params.observer_dv_ms,
-            )
-        for d in detect_sequence(t, g["bearing"].to_numpy(float), params, excluded):
+            olon, olat = g["obs_lon"].to_numpy(float), g["obs_lat"].to_numpy(float)
+            if np.isfinite(olon).all() and np.isfinite(olat).all():
+                excluded = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
+                x, y = geo.to_local(olon, olat, float(olon.mean()), float(olat.mean()))
+                speed = float(np.hypot(x[-1] - x[0], y[-1] - y[0]) / max(t[-1] - t[0], 1e-9))
+                static = speed < 0.5
+                observer = f"{speed / geo.KN_MS:.1f} kn mean" + (" (static)" if static else "")
+            else:
+                observer = "position missing on some rows: no observer exclusion"
+        st = statistic(t, g["bearing"].to_numpy(float), params, excluded)
+        found = detections_from(st, params.z_crit)
+        for d in found:
             rows.append((str(batch), d.detect_time_s, d.maneuver_time_s, d.z))
+        win = st.windows
+        counts = {r: int((win.reason == r).sum()) for r in EXCLUSION_REASONS}
+        report.append(
+            {
+                "batch": str(batch),
+                "samples": int(len(t)),
+                "duration_s": round(float(t[-1] - t[0]), 3) if len(t) else 0.0,
+                "median_interval_s": round(float(np.median(np.diff(t))), 3) if len(t) > 1 else None,
+                "observer": observer,
+                "windows": int(len(win.k)),
+                "tested": int((win.reason == "").sum()),
+                "excluded": counts,
+                "too_short": win.too_short or None,
+                "detections": len(found),
+                **min_detectable(st, params, static),
+            }
+        )
     out = pd.DataFrame(rows, columns=["batch", "detect_s", "maneuver_s", "z"])
-    return pd.DataFrame(
+    table = pd.DataFrame(
         {
             "batch": out["batch"].astype("str"),
             "detect_time": seconds_to_time(out["detect_s"].to_numpy()).to_numpy(),
@@ -231,213 +599,37 @@ def detect(bearings: pd.DataFrame, params: BearingParams | None = None) -> pd.Da
             "z": out["z"].to_numpy(),
         }
     )
+    return table, report
 
 
-# --------------------------------------------------------------------------------------
-# simulation and evaluation
+def detect(bearings: pd.DataFrame, params: BearingParams | None = None) -> pd.DataFrame:
+    """Detections for every batch: ``batch, detect_time, maneuver_time, z``."""
+    return detect_with_report(bearings, params)[0]
 
 
-@dataclass(frozen=True)
-class Scenario:
-    """A bearing-only engagement: observer and target, seed 002 style."""
-
-    name: str
-    range_m: float = 20_000.0
-    bearing_deg: float = 0.0  # initial bearing of the target from the observer
-    speed_kn: float = 18.0
-    course_deg: float = 30.0
-    observer_speed_kn: float = 0.0
-    observer_course_deg: float = 0.0
-    observer_turns: tuple[
-        tuple[float, float], ...
-    ] = ()  # (time s, course change deg), instantaneous
-    duration_s: float = 900.0
-    period_s: float = 1.0
-
-
-SCENARIOS = (
-    Scenario("1 paper: 20 km, 18 kn, course 30, static"),
-    Scenario("2 near: 10 km, 12 kn, course 200, static", 10_000, 45, 12, 200),
-    Scenario("3 far fast: 30 km, 25 kn, course 270, static", 30_000, 300, 25, 270),
-    Scenario("4 observer 10 kn on a leg", 20_000, 20, 18, 200, 10, 90),
-    Scenario("5 observer turns at 120 s", 15_000, 350, 15, 330, 8, 0, ((120.0, 60.0),)),
-)
-
-
-def simulate_bearings(
-    rng: np.random.Generator, sc: Scenario, turn_deg: float, t_m: float, sigma_deg: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Times (s), noisy bearings (deg), observer lon/lat for one run."""
-    t = np.arange(0.0, sc.duration_s + 1e-9, sc.period_s)
-    dt = sc.period_s
-
-    def path(speed_kn, course0, changes, x0, y0):
-        course = np.full(len(t), course0, dtype=float)
-        for when, delta in changes:
-            course[t >= when] += delta
-        v = speed_kn * geo.KN_MS
-        vx, vy = v * np.sin(np.radians(course)), v * np.cos(np.radians(course))
-        x = x0 + np.concatenate([[0.0], np.cumsum(vx[:-1] * dt)])
-        y = y0 + np.concatenate([[0.0], np.cumsum(vy[:-1] * dt)])
-        return x, y
-
-    ox, oy = path(sc.observer_speed_kn, sc.observer_course_deg, sc.observer_turns, 0.0, 0.0)
-    b0 = np.radians(sc.bearing_deg)
-    tx, ty = path(
-        sc.speed_kn,
-        sc.course_deg,
-        ((t_m, turn_deg),) if turn_deg else (),
-        sc.range_m * np.sin(b0),
-        sc.range_m * np.cos(b0),
-    )
-    bearing = np.degrees(np.arctan2(tx - ox, ty - oy)) + rng.normal(0.0, sigma_deg, len(t))
-    olon, olat = geo.from_local(ox, oy, 122.0, 30.0)
-    return t, bearing % 360.0, olon, olat
-
-
-def _metrics(rng, sc, params, runs, turn_deg, sigma_deg, t_m, max_delay_s):
-    detected, reaction, error, false_alarm = 0, [], [], 0
-    for _ in range(runs):  # Monte Carlo runs; each run is vectorized over boundaries
-        t, b, olon, olat = simulate_bearings(rng, sc, turn_deg, t_m, sigma_deg)
-        excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        hits = [
-            d
-            for d in detect_sequence(t, b, params, excl)
-            if t_m <= d.detect_time_s <= t_m + max_delay_s
-        ]
-        if hits:
-            detected += 1
-            reaction.append(hits[0].detect_time_s - t_m)
-            error.append(abs(hits[0].maneuver_time_s - t_m))
-        t, b, olon, olat = simulate_bearings(rng, sc, 0.0, t_m, sigma_deg)
-        excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        false_alarm += bool(detect_sequence(t, b, params, excl))
-    return {
-        "detection": detected / runs,
-        "reaction_min": float(np.mean(reaction)) / 60 if reaction else float("nan"),
-        "time_error_min": float(np.mean(error)) / 60 if error else float("nan"),
-        "false_alarm": false_alarm / runs,
-    }
-
-
-def evaluate_bearing(
-    runs: int = 1000,
-    seed: int = 0,
-    params: BearingParams | None = None,
-    sweep_runs: int = 200,
-    t_m: float = 450.0,
-    max_delay_s: float = 300.0,
-    progress=None,
-) -> dict:
-    """Seed 002's metrics on our five scenarios (σ 0.6°, 50° turn) and the noise/turn sweeps."""
-    params = (params or BearingParams()).checked()
-    rng = np.random.default_rng(seed)
-    main = []
-    for k, sc in enumerate(SCENARIOS):
-        if progress:
-            progress(k / (len(SCENARIOS) * 3), sc.name)
-        main.append(
-            {"scenario": sc.name, **_metrics(rng, sc, params, runs, 50.0, 0.6, t_m, max_delay_s)}
-        )
-
-    def sweep(label: str, values, turn_of, sigma_of) -> pd.DataFrame:
-        return pd.DataFrame(
-            [
-                {
-                    label: value,
-                    "scenario": sc.name[:1],
-                    **_metrics(
-                        rng,
-                        sc,
-                        params,
-                        sweep_runs,
-                        turn_of(value),
-                        sigma_of(value),
-                        t_m,
-                        max_delay_s,
-                    ),
-                }
-                for value in values
-                for sc in SCENARIOS
-            ]
-        )
-
-    noise = sweep("sigma_deg", (0.1, 0.3, 0.6, 1.0, 1.5, 2.0), lambda v: 60.0, lambda v: v)
-    turn = sweep("turn_deg", (10, 30, 50, 70, 90, 110), lambda v: float(v), lambda v: 0.6)
-    return {
-        "main": pd.DataFrame(main),
-        "noise": noise,
-        "turn": turn,
-        "runs": runs,
-        "sweep_runs": sweep_runs,
-        "params": params,
-    }
-
-
-def simulate_table(
-    seed: int = 0, turn_deg: float = 50.0, sigma_deg: float = 0.6, t_m: float = 450.0
-) -> pd.DataFrame:
-    """Every scenario twice — with a maneuver at ``t_m`` and without — as one table:
-    ``batch,time,bearing,obs_lon,obs_lat,true_maneuver_time,true_turn_deg``."""
-    rng = np.random.default_rng(seed)
-    t0 = pd.Timestamp("2024-05-01T00:00:00Z")
-    frames = []
-    for k, sc in enumerate(SCENARIOS, start=1):
-        for turn in (turn_deg, 0.0):
-            t, b, olon, olat = simulate_bearings(rng, sc, turn, t_m, sigma_deg)
-            frames.append(
-                pd.DataFrame(
-                    {
-                        "batch": f"s{k}-{'m' if turn else 'straight'}",
-                        "time": t0 + pd.to_timedelta(t, unit="s"),
-                        "bearing": np.round(b, 4),
-                        "obs_lon": np.round(olon, 7),
-                        "obs_lat": np.round(olat, 7),
-                        "true_maneuver_time": (t0 + pd.to_timedelta(t_m, unit="s"))
-                        if turn
-                        else pd.NaT,
-                        "true_turn_deg": turn,
-                    }
-                )
-            )
-    return pd.concat(frames, ignore_index=True)
-
-
-def format_evaluation(ev: dict) -> str:
-    """Seed 002's metrics as tables: the five scenarios, then the noise and turn sweeps."""
-    p: BearingParams = ev["params"]
-    lines = [
-        f"AUC detector: m = {p.window_x}, n = {p.window_y} samples, trend order {p.trend_order}, "
-        f"z > {p.z_crit:.2f}; 1 s sampling, maneuver at 450 s; detection = a detection within 5 min after it.",
-        "",
-        f"Scenarios, bearing noise 0.6 deg, 50 deg turn, {ev['runs']} runs each (+ {ev['runs']} without maneuver)",
-        f"{'scenario':<46} {'detect':>7} {'react min':>9} {'t err min':>9} {'false al':>8}",
-    ]
-    for _, r in ev["main"].iterrows():
+def report_lines(report: list[dict]) -> list[str]:
+    """One readable line per batch: windows tested, skipped and why, what can be seen."""
+    lines = []
+    for r in report:
+        if r["too_short"]:
+            lines.append(f"batch {r['batch']}: no window tested, {r['too_short']}")
+            continue
+        skipped = ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in r["excluded"].items() if v)
+        turn = f", smallest turn ≈ {r['min_turn_deg']:.0f}°" if r["min_turn_deg"] else ""
+        rate = r["min_rate_change_deg_min"]
+        see = f"smallest bearing-rate change ≈ {rate:.2f}°/min" if rate else "nothing detectable"
         lines.append(
-            f"{r.scenario:<46} {r.detection:7.1%} {r.reaction_min:9.2f} {r.time_error_min:9.2f} "
-            f"{r.false_alarm:8.1%}"
+            f"batch {r['batch']}: {r['detections']} detection(s); {r['tested']} of "
+            f"{r['windows']} windows tested"
+            + (f" (skipped: {skipped})" if skipped else "")
+            + f"; noise ≈ {r['noise_deg']}°, {see}{turn}"
         )
-    m = ev["main"]
-    lines.append(
-        f"{'mean':<46} {m.detection.mean():7.1%} {m.reaction_min.mean():9.2f} "
-        f"{m.time_error_min.mean():9.2f} {m.false_alarm.mean():8.1%}"
-    )
-    for key, label, unit in (
-        ("noise", "sigma_deg", "deg noise (60 deg turn)"),
-        ("turn", "turn_deg", "deg turn (0.6 deg noise)"),
-    ):
-        t = ev[key]
-        lines += [
-            "",
-            f"Sweep over {unit}, {ev['sweep_runs']} runs per cell: detection / reaction min / time error min",
-            f"{label:>9} "
-            + " ".join(f"{'scenario ' + s:>22}" for s in sorted(t.scenario.unique())),
-        ]
-        for value, g in t.groupby(label):
-            cells = [
-                f"{r.detection:5.1%} {r.reaction_min:5.2f} {r.time_error_min:5.2f}"
-                for _, r in g.iterrows()
-            ]
-            lines.append(f"{value:>9g} " + " ".join(f"{c:>22}" for c in cells))
-    return "\n".join(lines)
+    return lines
+
+
+def __getattr__(name: str):  # the simulator and evaluation live in bearing_eval
+    if name in ("simulate_table", "simulate_bearings", "Scenario", "SCENARIOS"):
+        from wakeline.core import bearing_eval
+
+        return getattr(bearing_eval, name)
+    raise AttributeError(name)

@@ -651,14 +651,21 @@ def default_pipeline(points, cleaning, mparams, cparams, progress=None) -> StepR
 
 
 def step_bearing(bearings: pd.DataFrame, params, progress: Progress | None = None) -> StepResult:
-    """Bearing-only maneuver detection (seed 002) on every sequence; no new layer."""
-    from wakeline.core.bearing import detect as detect_bearings
+    """Bearing-only maneuver detection (seed 002) on every sequence; no new layer. The
+    report's ``report`` says per batch what was tested and why windows were skipped;
+    ``why`` holds it as log lines."""
+    from wakeline.core.bearing import detect_with_report, report_lines
 
     (progress or null_progress)(0.0, "AUC detection")
-    detections = detect_bearings(bearings, params)
+    detections, report = detect_with_report(bearings, params)
     return StepResult(
         "bearing",
         [],
-        {"sequences": int(bearings["batch"].nunique()), "detections": int(len(detections))},
+        {
+            "sequences": int(bearings["batch"].nunique()),
+            "detections": int(len(detections)),
+            "report": report,
+            "why": report_lines(report),
+        },
         {"detections": detections},
     )

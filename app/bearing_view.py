@@ -1,0 +1,239 @@
+"""The bearing view: bearing lines from the observer on a map, the detections as a table.
+
+Self-contained: :class:`BearingView` takes the core's bearing table (``read_bearings``)
+and the detector's output (``detect_with_report``) and shows
+
+- a :class:`MapCanvas` with the observer's track and, per batch, lines from the observer
+  along the measured bearings (every few samples, one NaN-separated curve per batch);
+  the bearings at the estimated maneuver times are drawn thicker in red;
+- the detections (batch, detect_time, maneuver_time, z) in a sortable table, with
+  Export… writing them as CSV;
+- the per-batch report lines (windows tested, skipped and why, smallest visible turn).
+
+:func:`bearing_line_points` gives the same lines as a points table any map layer draws
+(``MapCanvas.set_layer(name, points, color, symbols=False)``).
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from PySide6 import QtCore, QtWidgets
+
+from wakeline.core import geo
+from wakeline.core.bearing import report_lines
+from wakeline.core.io import write_csv
+from wakeline.core.schema import time_seconds
+
+from .map_canvas import MapCanvas
+
+
+def bearing_line_points(
+    bearings: pd.DataFrame,
+    length_m: float = 20_000.0,
+    max_lines: int = 60,
+    at_times: pd.DataFrame | None = None,
+) -> pd.DataFrame:
+    """Bearing lines as two-point tracks: ``sensor, batch, time, lon, lat``.
+
+    Per batch, at most ``max_lines`` lines evenly spread over its samples (or, with
+    ``at_times`` holding ``batch, maneuver_time``, the samples nearest those times), each
+    from the observer (``obs_lon, obs_lat``) ``length_m`` metres along the bearing."""
+    cols = ["sensor", "batch", "time", "lon", "lat"]
+    if bearings.empty or not {"obs_lon", "obs_lat"} <= set(bearings.columns):
+        return pd.DataFrame(columns=cols)
+    df = bearings.sort_values(["batch", "time"], kind="stable").reset_index(drop=True)
+    batch = df["batch"].astype(str).to_numpy()
+    starts = np.flatnonzero(np.r_[True, batch[1:] != batch[:-1]])
+    sizes = np.diff(np.r_[starts, len(df)])
+    if at_times is None:
+        per = np.minimum(sizes, max_lines)
+        within = np.concatenate(
+            [np.linspace(0, s - 1, p).round() for s, p in zip(sizes, per, strict=True)]
+        )
+        rows = (np.repeat(starts, per) + within).astype(int)
+    else:
+        t = time_seconds(df["time"])
+        want = at_times.assign(batch=at_times["batch"].astype(str))
+        first = dict(zip(batch[starts], starts, strict=True))
+        last = dict(zip(batch[starts], starts + sizes, strict=True))
+        rows = np.array(
+            [
+                min(
+                    first[b] + int(np.searchsorted(t[first[b] : last[b]], s)),
+                    last[b] - 1,
+                )
+                for b, s in zip(want["batch"], time_seconds(want["maneuver_time"]), strict=True)
+                if b in first
+            ],
+            dtype=int,
+        )
+    sel = df.iloc[rows] if len(rows) else df.iloc[:0]
+    sel = sel[np.isfinite(sel["obs_lon"].to_numpy(float)) & np.isfinite(sel["obs_lat"])]
+    olon, olat = sel["obs_lon"].to_numpy(float), sel["obs_lat"].to_numpy(float)
+    b = np.radians(sel["bearing"].to_numpy(float))
+    x, y = length_m * np.sin(b), length_m * np.cos(b)
+    lat0 = float(np.mean(olat)) if len(olat) else 0.0
+    end_lon = olon + np.degrees(x / (geo.EARTH_RADIUS_M * np.cos(np.radians(lat0))))
+    end_lat = olat + np.degrees(y / geo.EARTH_RADIUS_M)
+    n = len(sel)
+    ids = np.char.add(sel["batch"].astype(str).to_numpy().astype(str), "#")
+    ids = np.char.add(ids, np.arange(n).astype(str))
+    t = sel["time"].to_numpy()
+    return pd.DataFrame(
+        {
+            "sensor": "bearing",
+            "batch": np.repeat(ids, 2),
+            "time": np.repeat(t, 2),
+            "lon": np.column_stack([olon, end_lon]).ravel(),
+            "lat": np.column_stack([olat, end_lat]).ravel(),
+        }
+    )
+
+
+class DetectionsModel(QtCore.QAbstractTableModel):
+    """A thin table model over the detections the core returned."""
+
+    def __init__(self, table: pd.DataFrame | None = None, parent=None) -> None:
+        super().__init__(parent)
+        self.table = table if table is not None else pd.DataFrame(columns=["batch"])
+
+    def set_table(self, table: pd.DataFrame) -> None:
+        self.beginResetModel()
+        self.table = table.reset_index(drop=True)
+        self.endResetModel()
+
+    def rowCount(self, parent=None) -> int:  # noqa: N802 (Qt API)
+        return 0 if parent is not None and parent.isValid() else len(self.table)
+
+    def columnCount(self, parent=None) -> int:  # noqa: N802 (Qt API)
+        return 0 if parent is not None and parent.isValid() else len(self.table.columns)
+
+    def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
+        if role not in (QtCore.Qt.ItemDataRole.DisplayRole, QtCore.Qt.ItemDataRole.UserRole):
+            return None
+        value = self.table.iat[index.row(), index.column()]
+        if role == QtCore.Qt.ItemDataRole.UserRole:
+            return value
+        if isinstance(value, pd.Timestamp):
+            return value.strftime("%Y-%m-%d %H:%M:%S")
+        if isinstance(value, float):
+            return f"{value:.2f}"
+        return str(value)
+
+    def headerData(self, section, orientation, role=QtCore.Qt.ItemDataRole.DisplayRole):  # noqa: N802
+        if role == QtCore.Qt.ItemDataRole.DisplayRole and (
+            orientation == QtCore.Qt.Orientation.Horizontal
+        ):
+            return str(self.table.columns[section])
+        return None
+
+    def sort(self, column: int, order=QtCore.Qt.SortOrder.AscendingOrder) -> None:
+        if not len(self.table.columns):
+            return
+        self.beginResetModel()
+        self.table = self.table.sort_values(
+            self.table.columns[column],
+            ascending=order == QtCore.Qt.SortOrder.AscendingOrder,
+            kind="stable",
+        ).reset_index(drop=True)
+        self.endResetModel()
+
+
+class BearingView(QtWidgets.QWidget):
+    """Map of bearing lines and the table of detections, with CSV export."""
+
+    def __init__(self, parent=None) -> None:
+        super().__init__(parent)
+        self.map = MapCanvas(self)
+        self.model = DetectionsModel(parent=self)
+        self.table = QtWidgets.QTableView(self)
+        self.table.setModel(self.model)
+        self.table.setSortingEnabled(True)
+        self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectionBehavior.SelectRows)
+        self.export_button = QtWidgets.QPushButton(self.tr("Export detections…"), self)
+        self.export_button.clicked.connect(self._export_dialog)
+        self.log = QtWidgets.QPlainTextEdit(self)
+        self.log.setReadOnly(True)
+        self.log.setMaximumBlockCount(2000)
+        side = QtWidgets.QWidget(self)
+        lay = QtWidgets.QVBoxLayout(side)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(self.table, 3)
+        lay.addWidget(self.export_button)
+        lay.addWidget(self.log, 1)
+        split = QtWidgets.QSplitter(QtCore.Qt.Orientation.Horizontal, self)
+        split.addWidget(self.map)
+        split.addWidget(side)
+        split.setStretchFactor(0, 3)
+        split.setStretchFactor(1, 2)
+        outer = QtWidgets.QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.addWidget(split)
+        self.bearings = pd.DataFrame()
+        self.detections = pd.DataFrame()
+        self._length = 20_000.0
+
+    def show_result(
+        self,
+        bearings: pd.DataFrame,
+        detections: pd.DataFrame,
+        report: list[dict] | None = None,
+        length_m: float | None = None,
+    ) -> None:
+        """Draw the observer, the bearing lines and the detections; list the report."""
+        self.bearings, self.detections = bearings, detections
+        self.model.set_table(detections)
+        self.log.setPlainText("\n".join(report_lines(report or [])))
+        for name in list(self.map.layer_names()):
+            self.map.remove_layer(name)
+        if bearings.empty or not {"obs_lon", "obs_lat"} <= set(bearings.columns):
+            self.log.appendPlainText(self.tr("No observer position: no bearing lines to draw."))
+            return
+        length = self._length = length_m or 20_000.0
+        obs = bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(
+            sensor="observer"
+        )
+        self.map.set_layer("observer", obs[["sensor", "batch", "time", "lon", "lat"]], "#555555")
+        self.map.set_layer(
+            "bearing lines",
+            bearing_line_points(bearings, length),
+            "#1f77b4",
+            symbols=False,
+            width=0.8,
+        )
+        if len(detections):
+            self.map.set_layer(
+                "maneuvers",
+                bearing_line_points(bearings, length, at_times=detections),
+                "#d62728",
+                symbols=False,
+                width=2.5,
+            )
+        lat = float(np.nanmean(bearings["obs_lat"].to_numpy(float)))
+        self.map.set_true_aspect(lat)
+        self.map.fit(self.map_points())
+
+    def map_points(self) -> pd.DataFrame:
+        """Every point drawn (for fitting the view)."""
+        parts = [
+            bearing_line_points(self.bearings, self._length),
+            self.bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(
+                sensor="observer"
+            )[["sensor", "batch", "time", "lon", "lat"]],
+        ]
+        return pd.concat([p for p in parts if len(p)], ignore_index=True)
+
+    def export(self, path: str | Path) -> None:
+        """Write the detections as CSV (``batch,detect_time,maneuver_time,z``)."""
+        write_csv(self.model.table, path)
+
+    def _export_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(
+            self, self.tr("Export detections"), "detections.csv", "CSV (*.csv)"
+        )
+        if path:
+            try:
+                self.export(path)
+            except OSError as exc:
+                QtWidgets.QMessageBox.warning(self, self.tr("Cannot export"), str(exc))
