@@ -848,12 +848,32 @@ def _with_default_command(parser: argparse.ArgumentParser, argv: list[str]) -> l
     return [*globals_, "gui", *rest]
 
 
+_OUTPUT_ARGS = ("output", "quarantine", "report", "rejected", "pairs", "csv", "screenshot")
+
+
+def _check_paths(args: argparse.Namespace) -> None:
+    """Before any work: no output may be an input or another output, or be read-only."""
+    from wakeline.core.io.writer import check_outputs
+
+    values = vars(args)
+    outputs = {f"--{k}": values.get(k) for k in _OUTPUT_ARGS if isinstance(values.get(k), Path)}
+    inputs = [
+        p
+        for k, v in values.items()
+        if k not in _OUTPUT_ARGS
+        for p in (v if isinstance(v, list) else [v])
+        if isinstance(p, Path)
+    ]
+    check_outputs(inputs, outputs)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``wakeline`` command; returns the exit status."""
     parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
     args = parser.parse_args(_with_default_command(parser, argv))
     try:
+        _check_paths(args)
         return args.func(args)
     except InputError as exc:
         print(f"wakeline: error: {exc}", file=sys.stderr)
