@@ -29,6 +29,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
         encoding=args.encoding,
         delimiter=args.delimiter,
         sensor=args.sensor,
+        tz=args.tz,
     )
     write_points(result.points, args.output)
     if args.quarantine:
@@ -42,6 +43,12 @@ def _cmd_import(args: argparse.Namespace) -> int:
     )
     if rep["rows_quarantined"] and not args.quarantine:
         msg += " (write them with --quarantine FILE)"
+    if rep.get("columns"):
+        msg += "\ncolumns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
+    if rep.get("extra_columns"):
+        msg += "\nextra columns (carried as they are): " + ", ".join(rep["extra_columns"])
+    for warning in rep.get("warnings", []):
+        msg += f"\nwarning: {warning}"
     print(msg, file=sys.stderr)
     return 0
 
@@ -521,8 +528,16 @@ def build_parser() -> argparse.ArgumentParser:
         help="take canonical FIELD (sensor, batch, time, lon, lat, speed, course, truth) "
         "from COLUMN; repeatable",
     )
-    p.add_argument("--encoding", help="text encoding (default: detect UTF-8 / GB18030)")
+    p.add_argument(
+        "--encoding", help="text encoding (default: detect UTF-8 / UTF-16 by BOM / GB18030)"
+    )
     p.add_argument("--delimiter", help="field delimiter (default: detect , ; or tab)")
+    p.add_argument(
+        "--tz",
+        metavar="ZONE",
+        help="zone of times written without one: IANA name (Asia/Shanghai) or ±HH:MM "
+        "(default UTC; unix times are absolute and not shifted)",
+    )
     p.add_argument(
         "--sensor", default="S1", help="sensor name when the file has no sensor column (default S1)"
     )

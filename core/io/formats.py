@@ -351,7 +351,11 @@ def resolve(
             f"headers found: {', '.join(headers)}"
         )
     # Auto detection failed: report against the generic names.
-    _, missing = _resolve(FORMATS[-1], headers, mapping)
+    columns, missing = _resolve(FORMATS[-1], headers, mapping)
+    if missing == ["batch"]:
+        # One ship's export (time and position, no id column): the reader names the one
+        # track after the file.
+        return Resolved(FORMATS[-1], columns)
     names = {
         "batch": "batch (or MMSI, track_id, nNO)",
         "time": "time (or timestamp, BaseDateTime)",

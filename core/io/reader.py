@@ -11,11 +11,14 @@ in the report.
 """
 
 import codecs
+import contextlib
 import csv
 import datetime
 import gzip
 import re
+import sys
 import zoneinfo
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -32,6 +35,8 @@ from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
 
 QUARANTINE_COLUMNS = ("line", "reason", "text")
+#: The batch "column" of a file without one: its one track is named after the file.
+FILE_BATCH = "(file name)"
 _TEXT_FIELDS = ("sensor", "batch", "truth")
 _FLOAT_FIELDS = ("lon", "lat", "speed", "course")
 #: Seconds since 1970 beyond which a number is read as milliseconds (year 5138 in seconds).
@@ -144,6 +149,24 @@ def _open(sn: Sniff, encoding: str, errors: str):
     return _Utf8Stream(sn, encoding, errors)
 
 
+@contextlib.contextmanager
+def _quiet_undecodable_rows() -> Iterator[None]:
+    """pyarrow decodes an invalid row's text as UTF-8 before calling the handler; when that
+    fails it prints "Exception ignored" and the read then fails with a parse error, which
+    the caller answers by reading again with replacement characters. Keep stderr clean."""
+    previous = sys.unraisablehook
+
+    def hook(unraisable) -> None:
+        if not isinstance(unraisable.exc_value, UnicodeDecodeError):
+            previous(unraisable)
+
+    sys.unraisablehook = hook
+    try:
+        yield
+    finally:
+        sys.unraisablehook = previous
+
+
 def _read_table(
     sn: Sniff,
     types: dict[str, pa.DataType],
@@ -167,7 +190,7 @@ def _read_table(
         ignore_empty_lines=False,
     )
     convert = pacsv.ConvertOptions(column_types=types, strings_can_be_null=False)
-    with _open(sn, encoding or sn.encoding, errors) as stream:
+    with _open(sn, encoding or sn.encoding, errors) as stream, _quiet_undecodable_rows():
         table = pacsv.read_csv(
             stream, read_options=read, parse_options=parse, convert_options=convert
         )
@@ -246,7 +269,8 @@ def _read_rows(sn: Sniff, res: Resolved) -> _Rows:
             )
         except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
             text = str(exc)
-            if _is_decode_error(exc):
+            # "CSV parse error": the invalid-row handler could not even decode the row.
+            if _is_decode_error(exc) or ("CSV parse error" in text and errors != "replace"):
                 if step + 1 < len(attempts):
                     step += 1
                     continue
@@ -259,7 +283,7 @@ def _read_rows(sn: Sniff, res: Resolved) -> _Rows:
                     block += 1
                     continue
                 raise InputError(f"{sn.path}: a line is longer than 512 MB") from None
-            if "out of sync" in text and quoting:
+            if ("out of sync" in text or "CSV parse error" in text) and quoting:
                 quoting, careful = False, True
                 continue
             if not careful:
@@ -576,12 +600,19 @@ def read_points(
         return read_nmea(sn, sensor=sensor, progress=progress)
     res = resolve(sn.columns, fmt, mapping, source=str(path))
     rows = _read_rows(sn, res)
+    notes = []
+    if "batch" not in res.columns:
+        n = rows.table.num_rows
+        batch = pa.repeat(pa.scalar(path.name.split(".")[0] or "1"), n).dictionary_encode()
+        rows.table = rows.table.append_column(FILE_BATCH, batch)
+        res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
+        notes.append("no batch column: the file is one track named after the file")
     progress(0.6, "checking values")
 
     time_info: dict = {}
     points, quarantine, counts = _to_canonical(rows, sn, res, sensor, zone, time_info)
     progress(1.0, "imported")
-    warnings = list(rows.notes)
+    warnings = list(rows.notes) + notes
     time_src = res.columns["time"]
     if time_info.get("naive") and zone is None and header_is_local(time_src):
         warnings.append(
@@ -594,7 +625,7 @@ def read_points(
             "such: shown from 1970-01-01T00:00:00Z"
         )
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
-    report = {
+    report: dict = {
         "input": str(path),
         "format": res.format.name,
         "format_label": res.format.label,

@@ -108,6 +108,15 @@ def _decode(sample: bytes, path: Path, encoding: str | None) -> tuple[str, str]:
         except LookupError:
             raise InputError(f"{path}: unknown encoding {enc!r}") from None
         return text.removeprefix("\ufeff"), enc
+    # A few bad bytes in otherwise good text (a damaged line): read it, the reader
+    # quarantines the rows that hold them.
+    enc = encoding or "utf-8"
+    try:
+        text = sample.decode(enc, errors="replace")
+    except LookupError:
+        raise InputError(f"{path}: unknown encoding {enc!r}") from None
+    if text.count("\ufffd") <= max(4, 0.001 * len(text)):
+        return text.removeprefix("\ufeff"), enc
     tried = " or ".join(candidates)
     raise InputError(
         f"{path}: cannot decode the text as {tried}; choose the file's encoding "
