@@ -912,3 +912,55 @@ def _count_tracks(
         "tracks": tracks,
         "sensors": {str(s): int(c) for s, c in zip(sensor_names, per_sensor, strict=True) if c},
     }
+
+
+def inspect_file(
+    path: str | Path,
+    fmt: str = "auto",
+    mapping: dict[str, str] | list[str] | None = None,
+    encoding: str | None = None,
+    delimiter: str | None = None,
+) -> dict:
+    """What an import of ``path`` would use, from its first 256 KiB (for the import dialog).
+
+    Returns a plain dict: ``kind`` (csv or nmea), ``columns`` (the file's header names, in
+    order), ``mapping`` (canonical field → column, as detected or as ``mapping`` forces
+    it), ``extra`` (columns no field takes: carried as extra columns), ``format`` and
+    ``format_label``, ``encoding``, ``delimiter``, ``header``, ``preview`` (first rows as
+    lists of cells), ``local_time`` (the time column's name says local time) and
+    ``problem`` (why an import would fail, or None). Raises :class:`InputError` only when
+    the file cannot be read at all (missing, empty, binary, undecodable)."""
+    if isinstance(mapping, list):
+        mapping = parse_mapping(mapping)
+    sn = sniff(path, encoding, delimiter)
+    out: dict = {
+        "kind": sn.kind,
+        "columns": list(sn.columns),
+        "mapping": {},
+        "extra": [],
+        "format": "ais-nmea" if sn.kind == "nmea" else None,
+        "format_label": "Raw AIS NMEA log (!AIVDM/!AIVDO)" if sn.kind == "nmea" else None,
+        "encoding": sn.encoding,
+        "delimiter": sn.delimiter,
+        "header": sn.has_header,
+        "preview": [list(r) for r in sn.preview],
+        "local_time": False,
+        "problem": None,
+    }
+    if sn.kind == "nmea":
+        return out
+    try:
+        res = resolve(sn.columns, fmt, mapping, source=str(path))
+    except InputError as exc:
+        out["problem"] = str(exc)
+        out["mapping"] = {k: v for k, v in (mapping or {}).items() if v in sn.columns}
+    else:
+        out["format"], out["format_label"] = res.format.name, res.format.label
+        out["mapping"] = dict(res.columns)
+        if "batch" not in res.columns:
+            out["mapping"]["batch"] = FILE_BATCH
+    used = set(out["mapping"].values())
+    out["extra"] = [c for c in sn.columns if c not in used]
+    time_col = out["mapping"].get("time")
+    out["local_time"] = bool(time_col) and header_is_local(time_col)
+    return out
