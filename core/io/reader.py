@@ -190,10 +190,13 @@ def _read_table(
         ignore_empty_lines=False,
     )
     convert = pacsv.ConvertOptions(column_types=types, strings_can_be_null=False)
+    # Streamed in record batches (not read_csv): read_csv holds the whole file's raw and
+    # parsed blocks at once, about twice the memory (bench/bench_memory.py).
     with _open(sn, encoding or sn.encoding, errors) as stream, _quiet_undecodable_rows():
-        table = pacsv.read_csv(
+        reader = pacsv.open_csv(
             stream, read_options=read, parse_options=parse, convert_options=convert
         )
+        table = pa.Table.from_batches(list(reader), schema=reader.schema)
     return table, bad
 
 
