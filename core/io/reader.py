@@ -825,6 +825,13 @@ def _to_canonical(
     out = pa.table(
         {k: pa.chunked_array([v]) if isinstance(v, pa.Array) else v for k, v in columns.items()}
     )
+    # Drop every other reference to the parsed columns, so that the conversion below
+    # (self_destruct) frees each column as it goes: the parsed table and the point
+    # table never both exist in full (peak memory, bench/bench_memory.py).
+    del columns, floats, time_col
+    rows.table = table = None
+    for t in text.values():
+        t.arrow = None
     if not all_kept:
         out = out.filter(pa.array(keep))
     # One multi-threaded conversion; split_blocks avoids a 2-D consolidation copy.
