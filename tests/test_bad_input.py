@@ -139,7 +139,7 @@ def test_unreadable_files_exit_2_with_one_line(write, tmp_path, capsys, content,
 def test_wrong_encoding(write, tmp_path, capsys):
     path = write(
         "latin.csv",
-        b"sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n" + b"\xff\xfe\xff" * 20,
+        b"sensor,batch,time,lon,lat\n" + b"S1,\xe9t\xe9,2024-01-01T00:00:00Z,1,2\n" * 3,
     )
     code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--encoding", "ascii")
     assert code == 2 and "cannot decode" in err

@@ -125,8 +125,15 @@ def test_count_identity_on_random_damage(tmp_path_factory, n, damage, ending, bo
         raw = b"\xef\xbb\xbf" + raw
     path = tmp_path_factory.mktemp("dmg") / "d.csv"
     path.write_bytes(raw)
-    expected = data_lines(raw.decode("utf-8", errors="replace"))
-    r = read_points(path)
+    decoded = raw.decode("utf-8", errors="replace")
+    expected = data_lines(decoded)
+    try:
+        r = read_points(path)
+    except InputError as exc:
+        # Refused only as "not this encoding": more damaged lines than good ones.
+        lines = [x for x in decoded.replace("\r", "\n").split("\n")[1:] if x.strip()]
+        assert sum("\ufffd" in x for x in lines) > 0.5 * len(lines), exc
+        return
     assert_all_accounted(r, expected)
 
 

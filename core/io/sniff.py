@@ -108,14 +108,17 @@ def _decode(sample: bytes, path: Path, encoding: str | None) -> tuple[str, str]:
         except LookupError:
             raise InputError(f"{path}: unknown encoding {enc!r}") from None
         return text.removeprefix("\ufeff"), enc
-    # A few bad bytes in otherwise good text (a damaged line): read it, the reader
-    # quarantines the rows that hold them.
+    # A few damaged lines in otherwise good text: read it, the reader quarantines the rows
+    # that hold bad bytes. A damaged header, or more damaged lines than good, means the
+    # encoding is wrong: refuse, naming --encoding.
     enc = encoding or "utf-8"
     try:
         text = sample.decode(enc, errors="replace")
     except LookupError:
         raise InputError(f"{path}: unknown encoding {enc!r}") from None
-    if text.count("\ufffd") <= max(4, 0.001 * len(text)):
+    lines = [x for x in text.replace("\r", "\n").split("\n") if x.strip()]
+    damaged = sum("\ufffd" in x for x in lines[1:])
+    if lines and "\ufffd" not in lines[0] and damaged <= 0.5 * (len(lines) - 1):
         return text.removeprefix("\ufeff"), enc
     tried = " or ".join(candidates)
     raise InputError(
