@@ -20,10 +20,12 @@ EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 interna
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
-    from wakeline.core.io import read_points, write_csv, write_json, write_points
+    from wakeline.core.io import import_to_csv, write_csv, write_json
 
-    result = read_points(
+    # Streamed: batch in, batch out (bounded memory); same output as read_points.
+    result = import_to_csv(
         args.input,
+        args.output,
         fmt=args.format,
         mapping=args.map or [],
         encoding=args.encoding,
@@ -31,7 +33,6 @@ def _cmd_import(args: argparse.Namespace) -> int:
         sensor=args.sensor,
         tz=args.tz,
     )
-    write_points(result.points, args.output)
     if args.quarantine:
         write_csv(result.quarantine, args.quarantine)
     if args.report:

@@ -188,6 +188,7 @@ def test_internal_error_has_no_traceback(tmp_path, monkeypatch, capsys, write):
         raise RuntimeError("something unexpected")
 
     monkeypatch.setattr(io_mod, "read_points", broken)
+    monkeypatch.setattr(io_mod, "import_to_csv", broken)
     good = write("c.csv", "sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n")
     code, _, err = _run(capsys, "import", good, "-o", tmp_path / "o.csv")
     assert code == 1

@@ -2,7 +2,13 @@
 
 from wakeline.core.io.formats import FAMILIES, FORMATS, parse_mapping, resolve
 from wakeline.core.io.mtad import label_points, read_association_table
-from wakeline.core.io.reader import ImportResult, inspect_file, parse_zone, read_points
+from wakeline.core.io.reader import (
+    ImportResult,
+    import_to_csv,
+    inspect_file,
+    parse_zone,
+    read_points,
+)
 from wakeline.core.io.sniff import Sniff, sniff
 from wakeline.core.io.writer import (
     atomic_path,
@@ -19,6 +25,7 @@ __all__ = [
     "Sniff",
     "atomic_path",
     "check_outputs",
+    "import_to_csv",
     "inspect_file",
     "label_points",
     "parse_mapping",

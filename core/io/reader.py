@@ -734,6 +734,7 @@ def _to_canonical(
     sensor: str,
     zone: datetime.tzinfo | None = None,
     time_info: dict | None = None,
+    fetch_texts: bool = True,
 ):
     table, bad = rows.table, rows.bad
     n = table.num_rows
@@ -850,7 +851,9 @@ def _to_canonical(
     bad_lines = rows.lines[bad_idx]
     q_lines = np.concatenate([bad_lines, np.asarray(bad.lines, dtype="int64")])
     q_reasons = [reason_names[c] for c in reasons[bad_idx]] + bad.reasons
-    q_texts = _raw_lines(sn, bad_lines, rows.encoding) + bad.texts
+    q_texts = (
+        _raw_lines(sn, bad_lines, rows.encoding) if fetch_texts else [""] * len(bad_lines)
+    ) + bad.texts
     if len(q_lines):
         order = np.argsort(q_lines, kind="stable")
         quarantine = pd.DataFrame(
@@ -974,3 +977,266 @@ def inspect_file(
     time_col = out["mapping"].get("time")
     out["local_time"] = bool(time_col) and header_is_local(time_col)
     return out
+
+
+class _Fallback(Exception):
+    """The streamed import met something only the whole-file reader handles."""
+
+
+#: Bytes of whole lines parsed, converted and written at a time by :func:`import_to_csv`.
+STREAM_BYTES = 16 << 20
+
+
+def import_to_csv(
+    path: str | Path,
+    output: str | Path,
+    fmt: str = "auto",
+    mapping: dict[str, str] | list[str] | None = None,
+    encoding: str | None = None,
+    delimiter: str | None = None,
+    sensor: str = DEFAULT_SENSOR,
+    tz: str | None = None,
+    progress: Progress | None = None,
+) -> ImportResult:
+    """Import ``path`` and write the canonical CSV ``output`` batch by batch, never
+    holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
+
+    The result has the quarantine, report and layout of :func:`read_points` but no points
+    (an empty table). Files that need the whole-file fallbacks (a value that does not
+    convert, another encoding, unbalanced quotes, unnumbered bad rows) are read with
+    :func:`read_points` instead, so the output is the same either way.
+    """
+    from wakeline.core.io.writer import atomic_path, write_points
+
+    path, output = Path(path), Path(output)
+    if isinstance(mapping, list):
+        mapping = parse_mapping(mapping)
+    zone = parse_zone(tz)
+    sn = sniff(path, encoding, delimiter)
+
+    def whole() -> ImportResult:
+        result = read_points(path, fmt, mapping, encoding, delimiter, sensor, progress, tz)
+        write_points(result.points, output)
+        return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
+
+    if sn.kind != "csv" or sn.has_quotes:
+        return whole()
+    res = resolve(sn.columns, fmt, mapping, source=str(path))
+    try:
+        with atomic_path(output) as tmp:
+            result = _stream(sn, res, tmp, sensor, zone, tz, progress or null_progress)
+    except _Fallback:
+        return whole()
+    return result
+
+
+def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress) -> ImportResult:
+    from wakeline.core.io.writer import write_points
+
+    bad = _BadRows()  # every refused or blank line of the file, numbered in the file
+    types = _column_types(sn, res, careful=False)
+    file_batch = "batch" not in res.columns
+    if file_batch:
+        res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
+    totals: dict = {"rows_read": 0, "rows_imported": 0, "blank_lines": 0}
+    blanked: dict[str, int] = {}
+    pairs: set[tuple[str, str]] = set()
+    per_sensor: dict[str, int] = {}
+    quarantines: list[pd.DataFrame] = []
+    starts, ends = [], []
+    time_info: dict = {}
+    chunk_file = tmp.with_name(tmp.name + ".chunk")
+    size = max(sn.path.stat().st_size, 1)
+
+    def parse(piece: bytes, skip: int, first_line: int) -> tuple[pa.Table, np.ndarray]:
+        """One piece of whole lines: the table and the file line of each row; refused
+        and blank lines go to ``bad`` with their file line numbers."""
+        for threads in (True, False):  # numbered refused rows need a single thread
+            local = _BadRows()
+            table = pacsv.read_csv(
+                pa.BufferReader(piece),
+                read_options=pacsv.ReadOptions(
+                    column_names=list(sn.columns),
+                    skip_rows=skip,
+                    use_threads=threads,
+                    block_size=max(1 << 20, len(piece) // 2 + 1),
+                ),
+                parse_options=pacsv.ParseOptions(
+                    delimiter=sn.delimiter,
+                    quote_char=False,
+                    invalid_row_handler=local.handler,
+                    ignore_empty_lines=False,
+                ),
+                convert_options=pacsv.ConvertOptions(column_types=types, strings_can_be_null=False),
+            )
+            if not local.unnumbered:
+                break
+        offset = first_line - 1
+        bad.lines += [n + offset for n in local.lines]
+        bad.reasons += local.reasons
+        bad.texts += local.texts
+        bad.blank += local.blank
+        bad.blank_lines += [n + offset for n in local.blank_lines]
+        skipped = sorted(local.lines + local.blank_lines)
+        return table, _line_numbers(np.arange(table.num_rows), skip, skipped) + offset
+
+    def flush(table: pa.Table, lines: np.ndarray, fh) -> None:
+        n = table.num_rows
+        if file_batch:
+            name = sn.path.name.split(".")[0] or "1"
+            table = table.append_column(
+                FILE_BATCH, pa.repeat(pa.scalar(name), n).dictionary_encode()
+            )
+        rows = _Rows(table, lines, _BadRows(), False, sn.encoding, False, False, [])
+        del table
+        info: dict = {}
+        points, quarantine, counts = _to_canonical(
+            rows, sn, res, sensor, zone, info, fetch_texts=False
+        )
+        time_info.setdefault("time_format", info.get("time_format"))
+        time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
+        time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
+        for key in totals:
+            totals[key] += counts[key]
+        for k, v in counts["values_blanked"].items():
+            blanked[k] = blanked.get(k, 0) + v
+        if len(quarantine):
+            quarantines.append(quarantine)
+        if len(points):
+            for s, c in points["sensor"].value_counts().items():
+                per_sensor[str(s)] = per_sensor.get(str(s), 0) + int(c)
+            keys = points[["sensor", "batch"]].drop_duplicates()
+            pairs.update(zip(keys["sensor"], keys["batch"], strict=True))
+            starts.append(points["time"].min())
+            ends.append(points["time"].max())
+            write_points(points, chunk_file)
+            with open(chunk_file, "rb") as src:
+                header = src.readline()
+                if fh.tell() == 0:
+                    fh.write(header)
+                while block := src.read(16 << 20):
+                    fh.write(block)
+        progress(min(0.95, fh.tell() / size), "importing")
+
+    try:
+        with (
+            open(tmp, "wb") as fh,
+            _open(sn, sn.encoding, "strict") as stream,
+            _quiet_undecodable_rows(),
+        ):
+            # Pieces of whole lines, parsed one at a time: memory stays one piece
+            # (the streaming reader would read ahead as far as the file goes).
+            carry, first_line, skip = b"", 1, sn.skip_rows
+            while True:
+                data = bytes(stream.read(STREAM_BYTES))
+                buf = carry + data
+                if data:
+                    cut = buf.rfind(b"\n")
+                    cut = buf.rfind(b"\r") if cut < 0 else cut
+                    if cut < 0:
+                        carry = buf
+                        continue
+                    piece, carry = buf[: cut + 1], buf[cut + 1 :]
+                else:
+                    piece, carry = buf, b""
+                if not piece:
+                    break
+                table, lines = parse(piece, skip, first_line)
+                if table.num_rows:
+                    flush(table, lines, fh)
+                del table
+                first_line += piece.count(b"\n") + piece.count(b"\r") - piece.count(b"\r\n")
+                skip = 0
+                if not data:
+                    break
+            if fh.tell() == 0:
+                raise _Fallback  # nothing imported: let the whole-file path say why
+    except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
+        raise _Fallback from exc
+    finally:
+        chunk_file.unlink(missing_ok=True)
+
+    # Rows the parser refused (field counts), blank lines, and the texts of the rest.
+    q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
+    if bad.lines:
+        q = pd.concat(
+            [
+                q,
+                pd.DataFrame(
+                    {
+                        "line": np.asarray(bad.lines, dtype="int64"),
+                        "reason": pd.Series(bad.reasons, dtype="str"),
+                        "text": pd.Series(bad.texts, dtype="str"),
+                    }
+                ),
+            ],
+            ignore_index=True,
+        )
+    q = q.sort_values("line", kind="stable", ignore_index=True)
+    missing = (q["text"] == "").to_numpy()
+    if missing.any():
+        texts = q["text"].to_numpy(dtype=object)
+        texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], sn.encoding)
+        q["text"] = pd.Series(texts, dtype="str")
+    by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
+    warnings = ["no batch column: the file is one track named after the file"] if file_batch else []
+    time_src = res.columns["time"]
+    if time_info.get("naive") and zone is None and header_is_local(time_src):
+        warnings.append(
+            f"the time column {time_src!r} says it holds local times but they were read as "
+            "UTC: give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)"
+        )
+    if time_info.get("relative"):
+        warnings.append(
+            f"times in {time_src!r} are seconds from a scene start (relative), kept as "
+            "such: shown from 1970-01-01T00:00:00Z"
+        )
+    extra = [c for c in sn.columns if c not in set(res.columns.values())]
+    report: dict = {
+        "input": str(sn.path),
+        "format": res.format.name,
+        "format_label": res.format.label,
+        "encoding": sn.encoding,
+        "delimiter": sn.delimiter,
+        "compression": sn.compression,
+        "header": sn.has_header,
+        "columns": res.columns,
+        "extra_columns": extra,
+        "careful_parse": False,
+        "streamed": True,
+        "time_format": time_info.get("time_format"),
+        "time_zone": tz if zone is not None else "UTC",
+        "time_relative": bool(time_info.get("relative")),
+        "rows_read": totals["rows_read"] + len(bad.lines),
+        "rows_imported": totals["rows_imported"],
+        "rows_quarantined": len(q),
+        "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
+        "blank_lines": totals["blank_lines"] + bad.blank,
+        "values_blanked": blanked,
+        "tracks": len(pairs),
+        "sensors": per_sensor,
+        "time_start": min(starts).isoformat() if starts else None,
+        "time_end": max(ends).isoformat() if ends else None,
+        "warnings": warnings,
+    }
+    layout = {
+        "delimiter": sn.delimiter,
+        "encoding": sn.encoding,
+        "bom": sn.bom,
+        "line_ending": sn.line_ending,
+        "compression": sn.compression,
+        "header": sn.has_header,
+        "header_names": list(sn.columns),
+        "column_order": list(sn.columns),
+        "skip_rows": sn.skip_rows,
+        "quoting": False,
+        "mapping": dict(res.columns),
+        "extra_columns": extra,
+        "time_column": time_src,
+        "time_format": time_info.get("time_format"),
+        "time_zone": report["time_zone"],
+        "time_relative": report["time_relative"],
+    }
+    progress(1.0, "imported")
+    empty = pd.DataFrame({c: pd.Series([], dtype="str") for c in ("sensor", "batch")})
+    return ImportResult(empty, q, report, layout)
