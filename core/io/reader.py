@@ -16,7 +16,9 @@ import csv
 import datetime
 import gzip
 import re
+import shutil
 import sys
+import tempfile
 import zoneinfo
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -1045,7 +1047,10 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
     quarantines: list[pd.DataFrame] = []
     starts, ends = [], []
     time_info: dict = {}
-    chunk_file = tmp.with_name(tmp.name + ".chunk")
+    # Each piece goes through write_points (the one canonical writer) into a scratch file
+    # in the system's temporary folder (nothing of ours is left beside the output).
+    scratch = Path(tempfile.mkdtemp(prefix="wakeline-import-"))
+    chunk_file = scratch / "piece.csv"
     size = max(sn.path.stat().st_size, 1)
 
     def parse(piece: bytes, skip: int, first_line: int) -> tuple[pa.Table, np.ndarray]:
@@ -1154,7 +1159,7 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
     except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
         raise _Fallback from exc
     finally:
-        chunk_file.unlink(missing_ok=True)
+        shutil.rmtree(scratch, ignore_errors=True)
 
     # Rows the parser refused (field counts), blank lines, and the texts of the rest.
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
