@@ -21,17 +21,19 @@ EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 interna
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
-    from wakeline.core.io import read_points, write_csv, write_json, write_points
+    from wakeline.core.io import import_to_csv, write_csv, write_json
 
-    result = read_points(
+    # Streamed: batch in, batch out (bounded memory); same output as read_points.
+    result = import_to_csv(
         args.input,
+        args.output,
         fmt=args.format,
         mapping=args.map or [],
         encoding=args.encoding,
         delimiter=args.delimiter,
         sensor=args.sensor,
+        tz=args.tz,
     )
-    write_points(result.points, args.output)
     if args.quarantine:
         write_csv(result.quarantine, args.quarantine)
     if args.report:
@@ -43,6 +45,12 @@ def _cmd_import(args: argparse.Namespace) -> int:
     )
     if rep["rows_quarantined"] and not args.quarantine:
         msg += " (write them with --quarantine FILE)"
+    if rep.get("columns"):
+        msg += "\ncolumns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
+    if rep.get("extra_columns"):
+        msg += "\nextra columns (carried as they are): " + ", ".join(rep["extra_columns"])
+    for warning in rep.get("warnings", []):
+        msg += f"\nwarning: {warning}"
     print(msg, file=sys.stderr)
     return 0
 
@@ -409,8 +417,16 @@ def build_parser() -> argparse.ArgumentParser:
         help="take canonical FIELD (sensor, batch, time, lon, lat, speed, course, truth) "
         "from COLUMN; repeatable",
     )
-    p.add_argument("--encoding", help="text encoding (default: detect UTF-8 / GB18030)")
+    p.add_argument(
+        "--encoding", help="text encoding (default: detect UTF-8 / UTF-16 by BOM / GB18030)"
+    )
     p.add_argument("--delimiter", help="field delimiter (default: detect , ; or tab)")
+    p.add_argument(
+        "--tz",
+        metavar="ZONE",
+        help="zone of times written without one: IANA name (Asia/Shanghai) or ±HH:MM "
+        "(default UTC; unix times are absolute and not shifted)",
+    )
     p.add_argument(
         "--sensor", default="S1", help="sensor name when the file has no sensor column (default S1)"
     )
@@ -615,12 +631,51 @@ def _with_default_command(parser: argparse.ArgumentParser, argv: list[str]) -> l
     return [*globals_, "gui", *rest]
 
 
+_OUTPUT_ARGS = (
+    "output",
+    "quarantine",
+    "report",
+    "rejected",
+    "pairs",
+    "csv",
+    "screenshot",
+    "members",
+    "save_layout",
+    "log",
+)
+
+
+def _check_paths(args: argparse.Namespace) -> None:
+    """Before any work: no output may be an input or another output, or be read-only."""
+    from wakeline.core.io.writer import check_outputs
+
+    values = vars(args)
+
+    def is_output(key: str) -> bool:  # the generated step commands name theirs out__TABLE
+        return key in _OUTPUT_ARGS or key.startswith("out__")
+
+    outputs = {
+        f"--{k.removeprefix('out__')}": v
+        for k, v in values.items()
+        if is_output(k) and isinstance(v, Path)
+    }
+    inputs = [
+        p
+        for k, v in values.items()
+        if not is_output(k)
+        for p in (v if isinstance(v, list) else [v])
+        if isinstance(p, Path)
+    ]
+    check_outputs(inputs, outputs)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``wakeline`` command; returns the exit status."""
     parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
     args = parser.parse_args(_with_default_command(parser, argv))
     try:
+        _check_paths(args)
         return args.func(args)
     except InputError as exc:
         print(f"wakeline: error: {exc}", file=sys.stderr)

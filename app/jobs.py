@@ -51,9 +51,11 @@ class JobsMixin:
         encoding: str | None = None,
         mapping: list[str] | None = None,
         sensor: str | None = None,
+        tz: str | None = None,
     ) -> int:
-        """Import a file as a new layer, in the worker; returns the job number."""
-        options = {"fmt": fmt, "mapping": mapping or [], "encoding": encoding}
+        """Import a file as a new layer, in the worker; returns the job number. ``tz``:
+        the zone of naive local times (IANA name or ±HH:MM)."""
+        options = {"fmt": fmt, "mapping": mapping or [], "encoding": encoding, "tz": tz}
         if sensor:
             options["sensor"] = sensor
         return self.load_files([Path(path)], options)
@@ -101,6 +103,8 @@ class JobsMixin:
         )
         for reason, count in rep["quarantine_reasons"].items():
             self.log_message(f"    quarantined {count:,}: {reason}")
+        for warning in rep.get("warnings", []):
+            self.log_message(f"    {self.tr('Warning')}: {warning}")
         self.session.sources.append(Source(str(path.resolve()), sha))
         quarantine = result.quarantine.head(QUARANTINE_KEPT).astype(str).to_dict("records")
         meta = {"file": str(path), "report": rep, "quarantine": quarantine, "layout": layout}

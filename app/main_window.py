@@ -19,7 +19,8 @@ from wakeline.app import i18n
 from wakeline.app.actions import build_actions, retranslate
 from wakeline.app.bearing_view import BearingView
 from wakeline.app.detail import DetailPanel
-from wakeline.app.dialogs import ImportDialog, ImportReportDialog
+from wakeline.app.dialogs import ImportReportDialog
+from wakeline.app.import_dialog import ImportDialog
 from wakeline.app.jobs import JobsMixin
 from wakeline.app.layer_view import LayerView, draw_as, maneuver_table, prepare_view
 from wakeline.app.lod_worker import LodWorker

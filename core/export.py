@@ -2,7 +2,10 @@
 
 CSV cells holding text that starts with ``=``, ``+``, ``-``, ``@`` (or a tab / carriage
 return) would run as formulas when a spreadsheet opens the file; such text cells get a
-leading apostrophe. Numbers are never touched (a longitude of −122.5 stays a number).
+leading apostrophe. Numbers are never touched (a longitude of −122.5 stays a number), nor
+is text that is a plain number (an extra column's ``-2.5`` read as text stays ``-2.5``).
+The command line's canonical CSV is exact data and is not defused; this module is the
+export for people who open files in a spreadsheet.
 """
 
 import json
@@ -16,6 +19,7 @@ from wakeline.core.schema import ordered_columns, time_seconds
 from wakeline.core.tracks import sorted_with_index
 
 _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+_NUMBER_TEXT = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 
 
 def spreadsheet_safe(df: pd.DataFrame) -> pd.DataFrame:
@@ -30,7 +34,11 @@ def spreadsheet_safe(df: pd.DataFrame) -> pd.DataFrame:
         if isinstance(col.dtype, pd.DatetimeTZDtype) or pd.api.types.is_bool_dtype(col.dtype):
             continue
         text = col.astype("str")
-        risky = text.str.startswith(_FORMULA_START) & col.notna()
+        # A number stored as text ("-2.5", "+3", "-1e-5") is data, not a formula: a
+        # spreadsheet reads it as the number it is, so it stays as it was.
+        risky = (
+            text.str.startswith(_FORMULA_START) & ~text.str.fullmatch(_NUMBER_TEXT) & col.notna()
+        )
         if risky.any():
             out[name] = np.where(risky, "'" + text, col.astype(object))
     return out

@@ -66,6 +66,11 @@ class Params:
                 if isinstance(value, bool) or not isinstance(value, (int, float)):
                     out.append(f"{f.name} must be a number, got {value!r}")
                     continue
+                # Finite first: int(inf) would raise, and 1e400 reads as inf.
+                if not math.isfinite(value):
+                    kind = "a whole number" if isinstance(f.default, int) else "finite"
+                    out.append(f"{f.name} must be {kind}, got {value!r}")
+                    continue
                 if (
                     isinstance(f.default, int)
                     and not isinstance(f.default, bool)
@@ -73,8 +78,8 @@ class Params:
                 ):
                     out.append(f"{f.name} must be a whole number, got {value!r}")
                     continue
-                if not math.isfinite(value):
-                    out.append(f"{f.name} must be finite, got {value!r}")
+                if isinstance(f.default, int) and abs(value) >= 2**63:
+                    out.append(f"{f.name} is outside the range of a whole number, got {value!r}")
                     continue
                 unit = f" {meta.get('unit')}" if meta.get("unit") else ""
                 if meta.get("lo") is not None and value < meta["lo"]:
@@ -103,7 +108,7 @@ class Params:
             if isinstance(value, str) and types[key] is not str:
                 try:
                     value = _parse(value, types[key])
-                except ValueError:
+                except (ValueError, OverflowError):
                     raise InputError(
                         f"{key}: cannot read {value!r} as {types[key].__name__}"
                     ) from None
@@ -126,6 +131,10 @@ def _parse(text: str, kind: type) -> Any:
             return False
         raise ValueError(text)
     if kind is int:
-        value = float(text)
-        return int(value) if value == int(value) else value
+        try:
+            return int(text)  # exact, however many digits
+        except ValueError:
+            value = float(text)  # "1e3", "2.0", "inf", "1e400" (= inf)
+        # Not finite or not whole: kept as a float so problems() names the parameter.
+        return int(value) if math.isfinite(value) and value == int(value) else value
     return kind(text)

@@ -139,10 +139,23 @@ def test_unreadable_files_exit_2_with_one_line(write, tmp_path, capsys, content,
 def test_wrong_encoding(write, tmp_path, capsys):
     path = write(
         "latin.csv",
-        b"sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n" + b"\xff\xfe\xff",
+        b"sensor,batch,time,lon,lat\n" + b"S1,\xe9t\xe9,2024-01-01T00:00:00Z,1,2\n" * 3,
     )
     code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--encoding", "ascii")
     assert code == 2 and "cannot decode" in err
+
+
+def test_a_few_undecodable_bytes_are_quarantined(write, tmp_path, capsys):
+    path = write(
+        "latin.csv",
+        b"sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n" + b"\xff\xfe\xff",
+    )
+    q = tmp_path / "q.csv"
+    code, _, err = _run(
+        capsys, "import", path, "-o", tmp_path / "o.csv", "--encoding", "ascii", "--quarantine", q
+    )
+    assert code == 0, err
+    assert "1 quarantined" in err and q.read_text().splitlines()[1].startswith("3,")
 
 
 def test_missing_input_and_output_folder(tmp_path, capsys, write):
@@ -175,6 +188,7 @@ def test_internal_error_has_no_traceback(tmp_path, monkeypatch, capsys, write):
         raise RuntimeError("something unexpected")
 
     monkeypatch.setattr(io_mod, "read_points", broken)
+    monkeypatch.setattr(io_mod, "import_to_csv", broken)
     good = write("c.csv", "sensor,batch,time,lon,lat\nS1,1,2024-01-01T00:00:00Z,1,2\n")
     code, _, err = _run(capsys, "import", good, "-o", tmp_path / "o.csv")
     assert code == 1

@@ -16,9 +16,11 @@ from wakeline.core.project import Layer, Project, Source, file_hash, load_projec
 
 def test_formula_cells_are_defused_and_numbers_untouched(tmp_path):
     df = simulate.demo_scene().head(4).copy()
-    df["batch"] = ["=HYPERLINK(1)", "+1", "-cmd", "@SUM(A1)"]
+    df["batch"] = ["=HYPERLINK(1)", "+cmd", "-cmd", "@SUM(A1)"]
+    df["note"] = ["-2.5", "+1", "1e-3", "=1+2"]  # numbers as text stay numbers (issue 14)
     safe = spreadsheet_safe(df)
-    assert safe["batch"].tolist() == ["'=HYPERLINK(1)", "'+1", "'-cmd", "'@SUM(A1)"]
+    assert safe["batch"].tolist() == ["'=HYPERLINK(1)", "'+cmd", "'-cmd", "'@SUM(A1)"]
+    assert safe["note"].tolist() == ["-2.5", "+1", "1e-3", "'=1+2"]
     assert (safe["lon"] == df["lon"]).all()
     path = tmp_path / "out.csv"
     export_csv(df, path)

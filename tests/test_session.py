@@ -237,3 +237,10 @@ def test_cancel_stops_cleaning_between_blocks(monkeypatch, scene):
     assert time.perf_counter() - t0 < 5
     _, index = clean_mod.sorted_with_index(big)
     assert len(clean_mod._blocks(index, len(points) // 4)) > 10
+
+
+def test_step_outputs_may_not_overwrite_the_input(scene, tmp_path):
+    path, _ = scene
+    assert main(["clean", str(path), "-o", str(tmp_path / "o.csv"), "--rejected", str(path)]) == 2
+    out = tmp_path / "same.csv"
+    assert main(["associate", str(path), "-o", str(out), "--pairs", str(out)]) == 2

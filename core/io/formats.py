@@ -6,6 +6,7 @@ it. Detection takes the first format, in the order of ``FORMATS``, whose signatu
 required fields are all present. ``--map field=column`` overrides any field.
 """
 
+import re
 from dataclasses import dataclass, field
 
 from wakeline.core.errors import InputError
@@ -27,10 +28,61 @@ class Format:
     time_kind: str = "auto"
 
 
-_GENERIC = {
-    "sensor": ("sensor", "source", "sendshipno", "sensor_id"),
-    "batch": ("batch", "nno", "track_id", "trackid", "track", "mmsi", "id", "target_id"),
+#: Synonyms of every canonical field, in order of preference, compared after
+#: :func:`normalize_header` (so ``Latitude_degrees``, ``LAT (deg)``, ``纬度（度）`` all match
+#: ``latitude``/``lat``/``纬度``). Times that say their zone (unix seconds) come first.
+SYNONYMS: dict[str, tuple[str, ...]] = {
+    "sensor": (
+        "sensor",
+        "source",
+        "sendshipno",
+        "sensor_id",
+        "sensorid",
+        "radar",
+        "radar_id",
+        "station",
+        "receiver",
+        "传感器",
+        "传感器号",
+        "雷达号",
+        "雷达编号",
+        "雷达",
+        "站号",
+        "来源",
+        "数据源",
+        "信源",
+    ),
+    "batch": (
+        "batch",
+        "nno",
+        "track_id",
+        "trackid",
+        "track",
+        "track_no",
+        "track_number",
+        "mmsi",
+        "id",
+        "target_id",
+        "targetid",
+        "target_no",
+        "vessel_id",
+        "ship_id",
+        "批号",
+        "目标号",
+        "目标批号",
+        "航迹号",
+        "航迹批号",
+        "目标编号",
+        "目标id",
+        "批次号",
+    ),
     "time": (
+        "unix时间戳",
+        "unix_time",
+        "unixtime",
+        "unix_timestamp",
+        "epoch",
+        "epoch_s",
         "time",
         "timestamp",
         "basedatetime",
@@ -40,13 +92,70 @@ _GENERIC = {
         "t",
         "position_timestamp",
         "date_time",
+        "utc",
+        "utc_time",
+        "时间戳",
+        "时间",
+        "日期时间",
+        "定位时间",
+        "接收时间",
+        "发送时间",
+        "采集时间",
+        "时刻",
+        "本地时间",
+        "北京时间",
     ),
-    "lon": ("lon", "longitude", "lng", "long", "x_lon"),
-    "lat": ("lat", "latitude", "y_lat"),
-    "speed": ("speed", "sog", "speed_kn"),
-    "course": ("course", "cog", "cou", "course_deg"),
-    "truth": ("truth",),
+    "lon": ("lon", "longitude", "lng", "long", "x_lon", "经度"),
+    "lat": ("lat", "latitude", "y_lat", "纬度"),
+    "speed": (
+        "speed",
+        "sog",
+        "speed_kn",
+        "speed_over_ground",
+        "velocity",
+        "航速",
+        "速度",
+        "对地航速",
+        "船速",
+    ),
+    "course": ("course", "cog", "cou", "course_deg", "course_over_ground", "航向", "对地航向"),
+    "truth": ("truth", "真值"),
 }
+_GENERIC = SYNONYMS
+
+#: Unit and zone suffixes dropped before comparing names: ``_degrees``, ``_knots``,
+#: ``(kn)``, ``（度）``, ``[deg]``, ``(UTC)``...
+_BRACKETED = re.compile(r"\s*[\(\[（【]([^\)\]）】]*)[\)\]）】]\s*$")
+_UNIT_WORD = re.compile(
+    r"[\s_\-.]+(degrees|degree|deg|knots|knot|kn|kts|kt|meters|metres|m|km|seconds|sec|s|ms"
+    r"|utc|°|度|节|秒)$"
+)
+_LOCAL_WORDS = ("local", "本地", "北京", "bj", "cst", "lt")
+_LOCAL_NAMES = ("本地时间", "北京时间", "localtime", "local_time", "time_local")
+
+
+def normalize_header(name: str) -> str:
+    """A header as compared with the synonyms: lower case, full-width brackets and a unit
+    or zone suffix dropped, then spaces, underscores, hyphens and dots removed
+    (``"Latitude_degrees"`` → ``"latitude"``, ``"航速(kn)"`` → ``"航速"``)."""
+    text = name.strip().lower().lstrip("\ufeff")
+    for _ in range(2):
+        text = _BRACKETED.sub("", text)
+        stripped = _UNIT_WORD.sub("", text)
+        if stripped:  # a bare "s" or "度" stays itself
+            text = stripped
+    squeezed = re.sub(r"[\s_\-.]+", "", text)
+    return squeezed or text
+
+
+def header_is_local(name: str) -> bool:
+    """True when a time column's name says it holds local times (``时间(Local)``, 本地时间)."""
+    text = name.strip().lower()
+    m = _BRACKETED.search(text)
+    if m and any(w in m.group(1) for w in _LOCAL_WORDS):
+        return True
+    return re.sub(r"[\s_\-.]+", "", text) in {n.replace("_", "") for n in _LOCAL_NAMES}
+
 
 FORMATS: tuple[Format, ...] = (
     Format(
@@ -151,7 +260,17 @@ class Resolved:
 
 
 def _lookup(headers: tuple[str, ...]) -> dict[str, str]:
-    return {h.strip().lower(): h for h in headers}
+    """Normalised name → header; an exact (case-insensitive) name wins over a normalised one."""
+    out: dict[str, str] = {}
+    for h in headers:
+        out.setdefault(normalize_header(h), h)
+    for h in headers:
+        out[h.strip().lower()] = h
+    return out
+
+
+def _key(name: str) -> str:
+    return normalize_header(name)
 
 
 def _resolve(
@@ -164,7 +283,7 @@ def _resolve(
         if name in columns:
             continue
         for cand in fmt.candidates.get(name, ()):
-            src = lookup.get(cand.lower())
+            src = lookup.get(cand.lower()) or lookup.get(_key(cand))
             if src is not None and src not in used:
                 columns[name] = src
                 used.add(src)
@@ -209,7 +328,7 @@ def resolve(
     candidates = [f for f in FORMATS if family in ("auto", f.family)]
     if family == "auto":
         for fmt in candidates:
-            if all(s.lower() in lookup for s in fmt.signature):
+            if all(s.lower() in lookup or _key(s) in lookup for s in fmt.signature):
                 columns, missing = _resolve(fmt, headers, mapping)
                 if not missing:
                     return Resolved(fmt, columns)
@@ -217,7 +336,7 @@ def resolve(
         best = None
         for fmt in candidates:
             columns, missing = _resolve(fmt, headers, mapping)
-            absent = [s for s in fmt.signature if s.lower() not in lookup]
+            absent = [s for s in fmt.signature if s.lower() not in lookup and _key(s) not in lookup]
             if not missing and not absent:
                 return Resolved(fmt, columns)
             if best is None:
@@ -232,7 +351,11 @@ def resolve(
             f"headers found: {', '.join(headers)}"
         )
     # Auto detection failed: report against the generic names.
-    _, missing = _resolve(FORMATS[-1], headers, mapping)
+    columns, missing = _resolve(FORMATS[-1], headers, mapping)
+    if missing == ["batch"]:
+        # One ship's export (time and position, no id column): the reader names the one
+        # track after the file.
+        return Resolved(FORMATS[-1], columns)
     names = {
         "batch": "batch (or MMSI, track_id, nNO)",
         "time": "time (or timestamp, BaseDateTime)",

@@ -10,7 +10,17 @@ its physical line number (1-based, header included) and the reason, and every co
 in the report.
 """
 
+import codecs
+import contextlib
+import csv
+import datetime
 import gzip
+import re
+import shutil
+import sys
+import tempfile
+import zoneinfo
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,12 +31,14 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
-from wakeline.core.io.formats import Resolved, parse_mapping, resolve
+from wakeline.core.io.formats import Resolved, header_is_local, parse_mapping, resolve
 from wakeline.core.io.sniff import Sniff, sniff
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
 
 QUARANTINE_COLUMNS = ("line", "reason", "text")
+#: The batch "column" of a file without one: its one track is named after the file.
+FILE_BATCH = "(file name)"
 _TEXT_FIELDS = ("sensor", "batch", "truth")
 _FLOAT_FIELDS = ("lon", "lat", "speed", "course")
 #: Seconds since 1970 beyond which a number is read as milliseconds (year 5138 in seconds).
@@ -46,6 +58,9 @@ class ImportResult:
     points: pd.DataFrame
     quarantine: pd.DataFrame
     report: dict = field(default_factory=dict)
+    #: How the file was written (delimiter, encoding, BOM, line ending, header names and
+    #: order, time column, format and zone, mapping): enough to write data back the same way.
+    layout: dict = field(default_factory=dict)
 
 
 def empty_quarantine() -> pd.DataFrame:
@@ -66,46 +81,301 @@ class _BadRows:
     texts: list[str] = field(default_factory=list)
     unnumbered: int = 0
     blank: int = 0
+    blank_lines: list[int] = field(default_factory=list)
+    quoted: list[tuple[int, str, int]] = field(default_factory=list)  # line, text, fields
 
     def handler(self, row) -> str:
+        if row.number is None or row.number < 0:
+            self.unnumbered += 1  # the caller reads again without threads
+            return "skip"
         if not row.text.strip():
             self.blank += 1
+            self.blank_lines.append(int(row.number))
             return "skip"
-        if row.number is None or row.number < 0:
-            self.unnumbered += 1
+        if '"' in row.text:
+            self.quoted.append((int(row.number), row.text, row.actual_columns))
+        self.lines.append(int(row.number))
+        if row.actual_columns < row.expected_columns:
+            self.reasons.append(f"short row: {row.actual_columns} of {row.expected_columns} fields")
         else:
-            self.lines.append(int(row.number))
-            if row.actual_columns < row.expected_columns:
-                self.reasons.append(
-                    f"short row: {row.actual_columns} of {row.expected_columns} fields"
-                )
-            else:
-                self.reasons.append(
-                    f"too many fields: {row.actual_columns} of {row.expected_columns}"
-                )
-            self.texts.append(row.text)
+            self.reasons.append(f"too many fields: {row.actual_columns} of {row.expected_columns}")
+        self.texts.append(row.text)
         return "skip"
 
 
+class _Utf8Stream:
+    """A file read as text in ``encoding`` and handed on as UTF-8 bytes, chunk by chunk
+    (for pyarrow, which reads UTF-8): undecodable bytes become U+FFFD when ``errors`` is
+    ``"replace"`` (those rows are then quarantined), and a byte order mark is dropped."""
+
+    CHUNK = 4 * 1024 * 1024
+
+    def __init__(self, sn: Sniff, encoding: str, errors: str = "strict") -> None:
+        opener = gzip.open if sn.compression == "gzip" else open
+        self._fh = opener(sn.path, "rb")
+        self._dec = codecs.getincrementaldecoder(encoding)(errors=errors)
+        self._buf = b""
+        self._eof = False
+        self._first = True
+        self.closed = False
+
+    def read(self, n: int = -1) -> bytes:
+        while not self._eof and (n < 0 or len(self._buf) < n):
+            raw = self._fh.read(self.CHUNK)
+            self._eof = not raw
+            text = self._dec.decode(raw, final=self._eof)
+            if self._first and text:
+                text = text.removeprefix("\ufeff")
+                self._first = False
+            self._buf += text.encode("utf-8")
+        if n < 0:
+            out, self._buf = self._buf, b""
+        else:
+            out, self._buf = self._buf[:n], self._buf[n:]
+        return out
+
+    def close(self) -> None:
+        self.closed = True
+        self._fh.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _open(sn: Sniff, encoding: str, errors: str):
+    if encoding in ("utf-8", "utf8") and errors == "strict":
+        return pa.input_stream(str(sn.path), compression=sn.compression)
+    return _Utf8Stream(sn, encoding, errors)
+
+
+@contextlib.contextmanager
+def _quiet_undecodable_rows() -> Iterator[None]:
+    """pyarrow decodes an invalid row's text as UTF-8 before calling the handler; when that
+    fails it prints "Exception ignored" and the read then fails with a parse error, which
+    the caller answers by reading again with replacement characters. Keep stderr clean."""
+    previous = sys.unraisablehook
+
+    def hook(unraisable) -> None:
+        if not isinstance(unraisable.exc_value, UnicodeDecodeError):
+            previous(unraisable)
+
+    sys.unraisablehook = hook
+    try:
+        yield
+    finally:
+        sys.unraisablehook = previous
+
+
 def _read_table(
-    sn: Sniff, types: dict[str, pa.DataType], threads: bool
+    sn: Sniff,
+    types: dict[str, pa.DataType],
+    threads: bool,
+    encoding: str | None = None,
+    errors: str = "strict",
+    quoting: bool = True,
+    block_size: int | None = None,
 ) -> tuple[pa.Table, _BadRows]:
     bad = _BadRows()
     read = pacsv.ReadOptions(
         column_names=list(sn.columns),
         skip_rows=sn.skip_rows,
         use_threads=threads,
-        encoding="utf8" if sn.encoding == "utf-8" else sn.encoding,
+        **({"block_size": block_size} if block_size else {}),
     )
     parse = pacsv.ParseOptions(
-        delimiter=sn.delimiter, invalid_row_handler=bad.handler, ignore_empty_lines=False
+        delimiter=sn.delimiter,
+        quote_char='"' if quoting else False,
+        invalid_row_handler=bad.handler,
+        ignore_empty_lines=False,
     )
     convert = pacsv.ConvertOptions(column_types=types, strings_can_be_null=False)
-    with pa.input_stream(str(sn.path), compression=sn.compression) as stream:
-        table = pacsv.read_csv(
+    # Streamed in record batches (not read_csv): read_csv holds the whole file's raw and
+    # parsed blocks at once, about twice the memory (bench/bench_memory.py).
+    with _open(sn, encoding or sn.encoding, errors) as stream, _quiet_undecodable_rows():
+        reader = pacsv.open_csv(
             stream, read_options=read, parse_options=parse, convert_options=convert
         )
+        table = pa.Table.from_batches(list(reader), schema=reader.schema)
     return table, bad
+
+
+def _count_lines(sn: Sniff, encoding: str) -> int:
+    """Physical lines of the file (LF, CRLF or CR), streamed in chunks."""
+    n_lf = n_cr = n_crlf = 0
+    last = b""
+    ends_open = False
+    with _open(sn, encoding, "replace") as stream:
+        while True:
+            chunk = stream.read(16 * 1024 * 1024)
+            if not chunk:
+                break
+            chunk = bytes(chunk)
+            n_lf += chunk.count(b"\n")
+            n_cr += chunk.count(b"\r")
+            n_crlf += chunk.count(b"\r\n") + (last == b"\r" and chunk[:1] == b"\n")
+            last = chunk[-1:]
+            ends_open = last not in (b"\n", b"\r")
+    return n_lf + n_cr - n_crlf + int(ends_open)
+
+
+#: pyarrow block sizes tried in turn: a line longer than a block (a 5 MB cell) needs more.
+_BLOCKS = (None, 64 << 20, 512 << 20)
+
+
+@dataclass
+class _Rows:
+    """The parsed table with the physical line of each of its rows."""
+
+    table: pa.Table
+    lines: np.ndarray  # int64, 1-based physical line per table row
+    bad: _BadRows
+    careful: bool
+    encoding: str
+    replaced: bool  # undecodable bytes were replaced by U+FFFD (those rows are quarantined)
+    line_by_line: bool  # quotes did not balance: read without quoting, quoted cells unquoted
+    notes: list[str]
+
+
+def _is_decode_error(exc: Exception) -> bool:
+    text = str(exc)
+    return isinstance(exc, UnicodeDecodeError) or "UTF8" in text or "UTF-8" in text
+
+
+def _read_rows(sn: Sniff, res: Resolved) -> _Rows:
+    """Parse the whole file, falling back (never failing for the file's sake) through:
+    the careful all-text parse when a value does not convert; GB18030 when UTF-8 breaks
+    after the sampled start; replacement characters (rows quarantined) when no encoding
+    reads every byte; bigger blocks for very long lines; and a line-by-line parse when a
+    stray quote swallowed lines (checked by counting the physical lines)."""
+    attempts = [(sn.encoding, "strict")]
+    if sn.encoding == "utf-8" and sn.ascii and not sn.encoding_given:
+        attempts.append(("gb18030", "strict"))
+    attempts.append((sn.encoding, "replace"))
+    notes: list[str] = []
+    careful = False
+    # No quote in the sampled start: a quote later on is text, and each line is one row.
+    quoting = sn.has_quotes
+    threads = True
+    step = block = 0
+    while True:
+        enc, errors = attempts[step]
+        try:
+            table, bad = _read_table(
+                sn,
+                _column_types(sn, res, careful),
+                threads,
+                enc,
+                errors,
+                quoting,
+                _BLOCKS[block],
+            )
+        except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
+            text = str(exc)
+            # "CSV parse error": the invalid-row handler could not even decode the row.
+            if _is_decode_error(exc) or ("CSV parse error" in text and errors != "replace"):
+                if step + 1 < len(attempts):
+                    step += 1
+                    continue
+                raise InputError(
+                    f"{sn.path}: cannot decode the text as {enc}; give the file's encoding "
+                    "with --encoding (e.g. gb18030, utf-16, latin-1)"
+                ) from None
+            if "straddl" in text or "block" in text:
+                if block + 1 < len(_BLOCKS):
+                    block += 1
+                    continue
+                raise InputError(f"{sn.path}: a line is longer than 512 MB") from None
+            if ("out of sync" in text or "CSV parse error" in text) and quoting:
+                quoting, careful = False, True
+                continue
+            if not careful:
+                careful = True
+                continue
+            raise InputError(f"{sn.path}: cannot read the file ({text})") from None
+        if bad.unnumbered and threads:
+            threads = False  # only a single-threaded parse numbers the skipped rows
+            continue
+        if quoting:
+            expected = _count_lines(sn, enc) - sn.skip_rows
+            if table.num_rows + len(bad.lines) + bad.blank != expected:
+                quoting, careful = False, True
+                notes.append(
+                    "quotes do not balance (a quoted cell ran over line ends): the file was "
+                    "read line by line, quoted cells unquoted"
+                )
+                continue
+        break
+    if enc != sn.encoding:
+        notes.append(
+            f"the start of the file reads as {sn.encoding} but a later line does not: read as {enc}"
+        )
+    if errors == "replace":
+        notes.append(
+            f"some bytes are not valid {enc}: their rows are quarantined "
+            "(give the right --encoding to read them)"
+        )
+    skipped = sorted(bad.lines + bad.blank_lines)
+    lines = _line_numbers(np.arange(table.num_rows), sn.skip_rows, skipped)
+    if not quoting:
+        table, lines = _recover_quoted(sn, table, lines, bad)
+        table = _unquote(table)
+    return _Rows(table, lines, bad, careful, enc, errors == "replace", not quoting, notes)
+
+
+def _recover_quoted(
+    sn: Sniff, table: pa.Table, lines: np.ndarray, bad: _BadRows
+) -> tuple[pa.Table, np.ndarray]:
+    """Rows read without quoting whose field count was wrong only because a quoted cell
+    held the delimiter: parse them as CSV on their own and add them back."""
+    n_cols = len(sn.columns)
+    rec_lines, rec_rows = [], []
+    for number, text, _ in bad.quoted:
+        try:
+            fields = next(csv.reader([text], delimiter=sn.delimiter))
+        except (csv.Error, StopIteration):
+            continue
+        if len(fields) == n_cols:
+            rec_lines.append(number)
+            rec_rows.append(fields)
+    if not rec_rows:
+        return table, lines
+    try:
+        extra = pa.table(
+            {
+                name: pa.array([row[j] for row in rec_rows], type=pa.string()).cast(
+                    table.schema.field(name).type
+                )
+                for j, name in enumerate(sn.columns)
+            }
+        )
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+        return table, lines  # a value does not convert: the rows stay quarantined
+    drop = set(rec_lines)
+    keep = [i for i, n in enumerate(bad.lines) if n not in drop]
+    bad.lines = [bad.lines[i] for i in keep]
+    bad.reasons = [bad.reasons[i] for i in keep]
+    bad.texts = [bad.texts[i] for i in keep]
+    lines = np.concatenate([lines, np.asarray(rec_lines, dtype="int64")])
+    order = np.argsort(lines, kind="stable")  # back in file order
+    return pa.concat_tables([table, extra]).take(pa.array(order)), lines[order]
+
+
+def _unquote(table: pa.Table) -> pa.Table:
+    """Cells read without quoting that are wholly quoted lose their quotes ("" becomes ")."""
+    cols = []
+    for col in table.columns:
+        if pa.types.is_string(col.type) and pc.any(pc.starts_with(col, '"')).as_py():
+            quoted = pc.and_(
+                pc.and_(pc.starts_with(col, '"'), pc.ends_with(col, '"')),
+                pc.greater_equal(pc.utf8_length(col), 2),
+            )
+            inner = pc.replace_substring(pc.utf8_slice_codeunits(col, 1, -1), '""', '"')
+            col = pc.if_else(quoted, inner, col)
+        cols.append(col)
+    return pa.table(cols, names=table.column_names)
 
 
 def _column_types(sn: Sniff, res: Resolved, careful: bool) -> dict[str, pa.DataType]:
@@ -152,12 +422,47 @@ def _numbers(arr: pa.ChunkedArray) -> tuple[np.ndarray, np.ndarray]:
     return values, present & np.isnan(values) & ~nan_words
 
 
-def _epoch_ns(seconds: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+#: Numeric times below this (seconds; 1973-03-03) are read as seconds from a scene start.
+RELATIVE_BELOW_S = 1e8
+_ZONE_SUFFIX = r"(?:[zZ]|[+-]\d\d:?\d\d|UTC|GMT)$"
+
+
+def parse_zone(text: str | None) -> datetime.tzinfo | None:
+    """``"Asia/Shanghai"``, ``"+08:00"``, ``"-0530"``, ``"UTC"`` → a tzinfo (None for None or
+    empty). Raises :class:`InputError` for anything else."""
+    if text is None or not str(text).strip():
+        return None
+    text = str(text).strip()
+    m = re.fullmatch(r"(?:UTC|GMT)?([+-])(\d{1,2}):?(\d{2})?", text, flags=re.IGNORECASE)
+    if m:
+        hours, minutes = int(m[2]), int(m[3] or 0)
+        if hours > 14 or minutes > 59:
+            raise InputError(f"time zone {text!r}: offsets run from -14:00 to +14:00")
+        sign = 1 if m[1] == "+" else -1
+        return datetime.timezone(sign * datetime.timedelta(hours=hours, minutes=minutes))
+    if text.upper() in ("UTC", "Z", "GMT"):
+        return datetime.UTC
+    try:
+        return zoneinfo.ZoneInfo(text)
+    except (zoneinfo.ZoneInfoNotFoundError, ValueError):
+        raise InputError(
+            f"unknown time zone {text!r}: give an IANA name (Asia/Shanghai, Europe/Oslo) "
+            "or an offset (+08:00)"
+        ) from None
+
+
+def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Unix seconds (or milliseconds, told apart by magnitude) to int64 ns, and validity."""
     finite = np.isfinite(seconds)
     scale = 1_000_000_000
-    if finite.any() and np.nanmedian(np.abs(seconds[finite])) > _MS_THRESHOLD:
+    median = float(np.nanmedian(np.abs(seconds[finite]))) if finite.any() else 0.0
+    if median > _MS_THRESHOLD:
         scale = 1_000_000
+    if info is not None:
+        info["time_format"] = "unix ms" if scale == 1_000_000 else "unix s"
+        if finite.any() and float(np.nanmax(np.abs(seconds[finite]))) < RELATIVE_BELOW_S:
+            info["time_format"] = "relative s"
+            info["relative"] = True
     ok = finite & (np.abs(seconds) < 9.2e18 / scale)
     x = np.where(ok, seconds, 0.0)
     # Whole and fractional parts apart: a float64 of ~1.7e18 ns cannot hold every ns.
@@ -166,33 +471,73 @@ def _epoch_ns(seconds: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return ns, ok
 
 
-def parse_times(arr: pa.ChunkedArray, kind: str) -> tuple[np.ndarray, np.ndarray]:
-    """int64 ns since epoch (UTC) and a validity mask."""
+def _localize(values: pd.Series, tz: datetime.tzinfo) -> pd.Series:
+    """Naive wall-clock times in ``tz`` → UTC (a time skipped or repeated by a clock
+    change becomes NaT: quarantined as unparsable)."""
+    return values.dt.tz_localize(tz, ambiguous="NaT", nonexistent="NaT").dt.tz_convert("UTC")
+
+
+def parse_times(
+    arr: pa.ChunkedArray,
+    kind: str,
+    tz: datetime.tzinfo | None = None,
+    info: dict | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """int64 ns since epoch (UTC) and a validity mask.
+
+    Times without a zone are UTC unless ``tz`` names their zone; numbers are unix seconds
+    or milliseconds (absolute: ``tz`` does not apply). ``info``, when given, receives
+    ``time_format``, ``naive`` (text without a zone seen) and ``relative`` (seconds from
+    a scene start rather than since 1970)."""
+    info = {} if info is None else info
+    info.setdefault("naive", False)
+    info.setdefault("relative", False)
     if pa.types.is_timestamp(arr.type):
+        info["time_format"] = "ISO 8601 text"
+        if arr.type.tz is None:
+            info["naive"] = True
+            if tz is not None:
+                values = pd.Series(arr.to_pandas()).dt.as_unit("ns")
+                utc = _localize(values, tz)
+                ok = utc.notna().to_numpy()
+                ns = np.zeros(len(utc), dtype="int64")
+                ns[ok] = utc[ok].dt.tz_convert(None).to_numpy().astype("int64")
+                return ns, ok
         ns = pc.cast(arr, pa.timestamp("ns", arr.type.tz)).cast(pa.int64())
         ok = np.asarray(pc.is_valid(ns))
         return ns.fill_null(0).to_numpy(), ok
     if pa.types.is_integer(arr.type) or pa.types.is_floating(arr.type):
         seconds = pc.cast(arr, pa.float64()).to_numpy(zero_copy_only=False)
-        return _epoch_ns(seconds)
+        return _epoch_ns(seconds, info)
     text = pd.Series(arr.to_pandas(), dtype="str").str.strip()
     present = ~(text.isna() | (text == ""))
     numeric = pd.to_numeric(text, errors="coerce")
     n_present = int(present.sum())
     if kind == "unix" or (n_present and numeric.notna().sum() >= 0.5 * n_present):
-        return _epoch_ns(numeric.to_numpy(dtype="float64"))
+        return _epoch_ns(numeric.to_numpy(dtype="float64"), info)
     sample = text[present].head(50)
     dayfirst = kind == "dayfirst" or bool(
         sample.str.match(r"^\d{1,2}[/-]\d{1,2}[/-]\d{4}").mean() > 0.5
     )
+    zoned = text.str.contains(_ZONE_SUFFIX, regex=True).fillna(False).to_numpy(dtype=bool)
+    info["naive"] = bool((present.to_numpy() & ~zoned).any())
+    info["time_format"] = "day-first text" if dayfirst else "ISO 8601 text"
     if dayfirst:
-        parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns, UTC]")
+        parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns]")
         for fmt in _DAYFIRST_FORMATS:
             todo = parsed.isna() & present
             if not todo.any():
                 break
-            parsed[todo] = pd.to_datetime(
-                text[todo], format=fmt, errors="coerce", utc=True
+            parsed[todo] = pd.to_datetime(text[todo], format=fmt, errors="coerce").dt.as_unit("ns")
+        parsed = _localize(parsed, tz) if tz is not None else parsed.dt.tz_localize("UTC")
+    elif tz is not None and info["naive"]:
+        parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns, UTC]")
+        naive = present.to_numpy() & ~zoned
+        local = pd.to_datetime(text[naive], format="ISO8601", errors="coerce")
+        parsed[naive] = _localize(pd.Series(local).dt.as_unit("ns"), tz)
+        if zoned.any():
+            parsed[zoned] = pd.to_datetime(
+                text[zoned], format="ISO8601", errors="coerce", utc=True
             ).dt.as_unit("ns")
     else:
         parsed = pd.to_datetime(text, format="ISO8601", errors="coerce", utc=True)
@@ -205,7 +550,7 @@ def parse_times(arr: pa.ChunkedArray, kind: str) -> tuple[np.ndarray, np.ndarray
     return ns, ok
 
 
-def _raw_lines(sn: Sniff, line_numbers: np.ndarray) -> list[str]:
+def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None) -> list[str]:
     """The text of the given physical lines (1-based), as in the file.
 
     One streaming pass, stopping after the last wanted line; used only for the
@@ -217,7 +562,8 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray) -> list[str]:
     last = max(wanted)
     found: dict[int, str] = {}
     opener = gzip.open if sn.compression == "gzip" else open
-    with opener(sn.path, "rt", encoding=sn.encoding, errors="replace", newline=None) as fh:
+    enc = encoding or sn.encoding
+    with opener(sn.path, "rt", encoding=enc, errors="replace", newline=None) as fh:
         for number, line in enumerate(fh, start=1):
             if number in wanted:
                 found[number] = line.rstrip("\n").removeprefix("\ufeff")
@@ -234,51 +580,92 @@ def read_points(
     delimiter: str | None = None,
     sensor: str = DEFAULT_SENSOR,
     progress: Progress | None = None,
+    tz: str | None = None,
 ) -> ImportResult:
-    """Read a track file into the canonical point table.
+    """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
+    canonical point table.
 
     ``fmt`` is ``auto`` or a format family (canonical, radar, ais, mtad, generic);
     ``mapping`` maps canonical fields to source columns (``{"batch": "MMSI"}`` or
-    ``["batch=MMSI"]``); ``sensor`` names the sensor when the file has no sensor column.
-    Raises :class:`InputError` for a file that cannot be read at all.
+    ``["batch=MMSI"]``); ``sensor`` names the sensor when the file has no sensor column;
+    ``tz`` (IANA name or ±HH:MM) is the zone of times written without one (default UTC).
+    Every data line ends up a point or a quarantined row. Raises :class:`InputError` for
+    a file that cannot be read at all.
     """
     progress = progress or null_progress
     path = Path(path)
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
+    zone = parse_zone(tz)
     progress(0.0, f"reading {path.name}")
     sn = sniff(path, encoding, delimiter)
-    res = resolve(sn.columns, fmt, mapping, source=str(path))
+    if sn.kind == "nmea":
+        from wakeline.core.io.nmea import read_nmea
 
-    careful = False
-    try:
-        table, bad = _read_table(sn, _column_types(sn, res, careful=False), threads=True)
-    except pa.ArrowInvalid:
-        careful = True
-        table, bad = _read_table(sn, _column_types(sn, res, careful=True), threads=True)
-    except UnicodeDecodeError as exc:
-        raise InputError(
-            f"{path}: cannot decode the text as {sn.encoding} ({exc.reason})"
-        ) from None
-    if bad.unnumbered:
-        table, bad = _read_table(sn, _column_types(sn, res, careful), threads=False)
+        return read_nmea(sn, sensor=sensor, progress=progress)
+    res = resolve(sn.columns, fmt, mapping, source=str(path))
+    rows = _read_rows(sn, res)
+    notes = []
+    if "batch" not in res.columns:
+        n = rows.table.num_rows
+        batch = pa.repeat(pa.scalar(path.name.split(".")[0] or "1"), n).dictionary_encode()
+        rows.table = rows.table.append_column(FILE_BATCH, batch)
+        res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
+        notes.append("no batch column: the file is one track named after the file")
     progress(0.6, "checking values")
 
-    points, quarantine, counts = _to_canonical(table, sn, res, bad, sensor)
+    time_info: dict = {}
+    points, quarantine, counts = _to_canonical(rows, sn, res, sensor, zone, time_info)
     progress(1.0, "imported")
-    report = {
+    warnings = list(rows.notes) + notes
+    time_src = res.columns["time"]
+    if time_info.get("naive") and zone is None and header_is_local(time_src):
+        warnings.append(
+            f"the time column {time_src!r} says it holds local times but they were read as "
+            "UTC: give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)"
+        )
+    if time_info.get("relative"):
+        warnings.append(
+            f"times in {time_src!r} are seconds from a scene start (relative), kept as "
+            "such: shown from 1970-01-01T00:00:00Z"
+        )
+    extra = [c for c in sn.columns if c not in set(res.columns.values())]
+    report: dict = {
         "input": str(path),
         "format": res.format.name,
         "format_label": res.format.label,
-        "encoding": sn.encoding,
+        "encoding": rows.encoding,
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
         "columns": res.columns,
-        "careful_parse": careful,
+        "extra_columns": extra,
+        "careful_parse": rows.careful,
+        "time_format": time_info.get("time_format"),
+        "time_zone": tz if zone is not None else "UTC",
+        "time_relative": bool(time_info.get("relative")),
         **counts,
+        "warnings": warnings,
     }
-    return ImportResult(points, quarantine, report)
+    layout = {
+        "delimiter": sn.delimiter,
+        "encoding": rows.encoding,
+        "bom": sn.bom,
+        "line_ending": sn.line_ending,
+        "compression": sn.compression,
+        "header": sn.has_header,
+        "header_names": list(sn.columns),
+        "column_order": list(sn.columns),
+        "skip_rows": sn.skip_rows,
+        "quoting": not rows.line_by_line and sn.has_quotes,
+        "mapping": dict(res.columns),
+        "extra_columns": extra,
+        "time_column": time_src,
+        "time_format": time_info.get("time_format"),
+        "time_zone": tz if zone is not None else "UTC",
+        "time_relative": bool(time_info.get("relative")),
+    }
+    return ImportResult(points, quarantine, report, layout)
 
 
 @dataclass
@@ -342,7 +729,16 @@ _RANGES = {
 }
 
 
-def _to_canonical(table: pa.Table, sn: Sniff, res: Resolved, bad: _BadRows, sensor: str):
+def _to_canonical(
+    rows: _Rows,
+    sn: Sniff,
+    res: Resolved,
+    sensor: str,
+    zone: datetime.tzinfo | None = None,
+    time_info: dict | None = None,
+    fetch_texts: bool = True,
+):
+    table, bad = rows.table, rows.bad
     n = table.num_rows
     cols = res.columns
     mapped = set(cols.values())
@@ -374,8 +770,15 @@ def _to_canonical(table: pa.Table, sn: Sniff, res: Resolved, bad: _BadRows, sens
     for name in ("sensor", "batch"):
         if name in text:
             flag(text[name].codes < 0, f"missing {name}")
+    if rows.replaced:
+        undecodable = np.zeros(n, dtype=bool)
+        for col in table.columns:
+            if pa.types.is_string(col.type) or pa.types.is_dictionary(col.type):
+                hit = pc.match_substring(pc.cast(col, pa.string()), "\ufffd")
+                undecodable |= np.asarray(pc.fill_null(hit, False), dtype=bool)
+        flag(undecodable, f"bytes not valid {rows.encoding}")
     time_col = table[cols["time"]]
-    ns, time_ok = parse_times(time_col, res.format.time_kind)
+    ns, time_ok = parse_times(time_col, res.format.time_kind, zone, time_info)
     if not time_ok.all():
         flag(_trimmed(time_col)[1], "missing time")
         flag(~time_ok, "unparsable time")
@@ -425,6 +828,13 @@ def _to_canonical(table: pa.Table, sn: Sniff, res: Resolved, bad: _BadRows, sens
     out = pa.table(
         {k: pa.chunked_array([v]) if isinstance(v, pa.Array) else v for k, v in columns.items()}
     )
+    # Drop every other reference to the parsed columns, so that the conversion below
+    # (self_destruct) frees each column as it goes: the parsed table and the point
+    # table never both exist in full (peak memory, bench/bench_memory.py).
+    del columns, floats, time_col
+    rows.table = table = None
+    for t in text.values():
+        t.arrow = None
     if not all_kept:
         out = out.filter(pa.array(keep))
     # One multi-threaded conversion; split_blocks avoids a 2-D consolidation copy.
@@ -440,10 +850,12 @@ def _to_canonical(table: pa.Table, sn: Sniff, res: Resolved, bad: _BadRows, sens
             points[name] = points[name].astype("str")
 
     bad_idx = np.flatnonzero(bad_rows)
-    bad_lines = _line_numbers(bad_idx, sn.skip_rows, bad.lines)
+    bad_lines = rows.lines[bad_idx]
     q_lines = np.concatenate([bad_lines, np.asarray(bad.lines, dtype="int64")])
     q_reasons = [reason_names[c] for c in reasons[bad_idx]] + bad.reasons
-    q_texts = _raw_lines(sn, bad_lines) + bad.texts
+    q_texts = (
+        _raw_lines(sn, bad_lines, rows.encoding) if fetch_texts else [""] * len(bad_lines)
+    ) + bad.texts
     if len(q_lines):
         order = np.argsort(q_lines, kind="stable")
         quarantine = pd.DataFrame(
@@ -515,3 +927,321 @@ def _count_tracks(
         "tracks": tracks,
         "sensors": {str(s): int(c) for s, c in zip(sensor_names, per_sensor, strict=True) if c},
     }
+
+
+def inspect_file(
+    path: str | Path,
+    fmt: str = "auto",
+    mapping: dict[str, str] | list[str] | None = None,
+    encoding: str | None = None,
+    delimiter: str | None = None,
+) -> dict:
+    """What an import of ``path`` would use, from its first 256 KiB (for the import dialog).
+
+    Returns a plain dict: ``kind`` (csv or nmea), ``columns`` (the file's header names, in
+    order), ``mapping`` (canonical field → column, as detected or as ``mapping`` forces
+    it), ``extra`` (columns no field takes: carried as extra columns), ``format`` and
+    ``format_label``, ``encoding``, ``delimiter``, ``header``, ``preview`` (first rows as
+    lists of cells), ``local_time`` (the time column's name says local time) and
+    ``problem`` (why an import would fail, or None). Raises :class:`InputError` only when
+    the file cannot be read at all (missing, empty, binary, undecodable)."""
+    if isinstance(mapping, list):
+        mapping = parse_mapping(mapping)
+    sn = sniff(path, encoding, delimiter)
+    out: dict = {
+        "kind": sn.kind,
+        "columns": list(sn.columns),
+        "mapping": {},
+        "extra": [],
+        "format": "ais-nmea" if sn.kind == "nmea" else None,
+        "format_label": "Raw AIS NMEA log (!AIVDM/!AIVDO)" if sn.kind == "nmea" else None,
+        "encoding": sn.encoding,
+        "delimiter": sn.delimiter,
+        "header": sn.has_header,
+        "preview": [list(r) for r in sn.preview],
+        "local_time": False,
+        "problem": None,
+    }
+    if sn.kind == "nmea":
+        return out
+    try:
+        res = resolve(sn.columns, fmt, mapping, source=str(path))
+    except InputError as exc:
+        out["problem"] = str(exc)
+        out["mapping"] = {k: v for k, v in (mapping or {}).items() if v in sn.columns}
+    else:
+        out["format"], out["format_label"] = res.format.name, res.format.label
+        out["mapping"] = dict(res.columns)
+        if "batch" not in res.columns:
+            out["mapping"]["batch"] = FILE_BATCH
+    used = set(out["mapping"].values())
+    out["extra"] = [c for c in sn.columns if c not in used]
+    time_col = out["mapping"].get("time")
+    out["local_time"] = bool(time_col) and header_is_local(time_col)
+    return out
+
+
+class _Fallback(Exception):
+    """The streamed import met something only the whole-file reader handles."""
+
+
+#: Bytes of whole lines parsed, converted and written at a time by :func:`import_to_csv`.
+STREAM_BYTES = 16 << 20
+
+
+def import_to_csv(
+    path: str | Path,
+    output: str | Path,
+    fmt: str = "auto",
+    mapping: dict[str, str] | list[str] | None = None,
+    encoding: str | None = None,
+    delimiter: str | None = None,
+    sensor: str = DEFAULT_SENSOR,
+    tz: str | None = None,
+    progress: Progress | None = None,
+) -> ImportResult:
+    """Import ``path`` and write the canonical CSV ``output`` batch by batch, never
+    holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
+
+    The result has the quarantine, report and layout of :func:`read_points` but no points
+    (an empty table). Files that need the whole-file fallbacks (a value that does not
+    convert, another encoding, unbalanced quotes, unnumbered bad rows) are read with
+    :func:`read_points` instead, so the output is the same either way.
+    """
+    from wakeline.core.io.writer import atomic_path, write_points
+
+    path, output = Path(path), Path(output)
+    if isinstance(mapping, list):
+        mapping = parse_mapping(mapping)
+    zone = parse_zone(tz)
+    sn = sniff(path, encoding, delimiter)
+
+    def whole() -> ImportResult:
+        result = read_points(path, fmt, mapping, encoding, delimiter, sensor, progress, tz)
+        write_points(result.points, output)
+        return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
+
+    if sn.kind != "csv" or sn.has_quotes:
+        return whole()
+    res = resolve(sn.columns, fmt, mapping, source=str(path))
+    try:
+        with atomic_path(output) as tmp:
+            result = _stream(sn, res, tmp, sensor, zone, tz, progress or null_progress)
+    except _Fallback:
+        return whole()
+    return result
+
+
+def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress) -> ImportResult:
+    from wakeline.core.io.writer import write_points
+
+    bad = _BadRows()  # every refused or blank line of the file, numbered in the file
+    types = _column_types(sn, res, careful=False)
+    file_batch = "batch" not in res.columns
+    if file_batch:
+        res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
+    totals: dict = {"rows_read": 0, "rows_imported": 0, "blank_lines": 0}
+    blanked: dict[str, int] = {}
+    pairs: set[tuple[str, str]] = set()
+    per_sensor: dict[str, int] = {}
+    quarantines: list[pd.DataFrame] = []
+    starts, ends = [], []
+    time_info: dict = {}
+    # Each piece goes through write_points (the one canonical writer) into a scratch file
+    # in the system's temporary folder (nothing of ours is left beside the output).
+    scratch = Path(tempfile.mkdtemp(prefix="wakeline-import-"))
+    chunk_file = scratch / "piece.csv"
+    size = max(sn.path.stat().st_size, 1)
+
+    def parse(piece: bytes, skip: int, first_line: int) -> tuple[pa.Table, np.ndarray]:
+        """One piece of whole lines: the table and the file line of each row; refused
+        and blank lines go to ``bad`` with their file line numbers."""
+        for threads in (True, False):  # numbered refused rows need a single thread
+            local = _BadRows()
+            table = pacsv.read_csv(
+                pa.BufferReader(piece),
+                read_options=pacsv.ReadOptions(
+                    column_names=list(sn.columns),
+                    skip_rows=skip,
+                    use_threads=threads,
+                    block_size=max(1 << 20, len(piece) // 2 + 1),
+                ),
+                parse_options=pacsv.ParseOptions(
+                    delimiter=sn.delimiter,
+                    quote_char=False,
+                    invalid_row_handler=local.handler,
+                    ignore_empty_lines=False,
+                ),
+                convert_options=pacsv.ConvertOptions(column_types=types, strings_can_be_null=False),
+            )
+            if not local.unnumbered:
+                break
+        offset = first_line - 1
+        bad.lines += [n + offset for n in local.lines]
+        bad.reasons += local.reasons
+        bad.texts += local.texts
+        bad.blank += local.blank
+        bad.blank_lines += [n + offset for n in local.blank_lines]
+        skipped = sorted(local.lines + local.blank_lines)
+        return table, _line_numbers(np.arange(table.num_rows), skip, skipped) + offset
+
+    def flush(table: pa.Table, lines: np.ndarray, fh) -> None:
+        n = table.num_rows
+        if file_batch:
+            name = sn.path.name.split(".")[0] or "1"
+            table = table.append_column(
+                FILE_BATCH, pa.repeat(pa.scalar(name), n).dictionary_encode()
+            )
+        rows = _Rows(table, lines, _BadRows(), False, sn.encoding, False, False, [])
+        del table
+        info: dict = {}
+        points, quarantine, counts = _to_canonical(
+            rows, sn, res, sensor, zone, info, fetch_texts=False
+        )
+        time_info.setdefault("time_format", info.get("time_format"))
+        time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
+        time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
+        for key in totals:
+            totals[key] += counts[key]
+        for k, v in counts["values_blanked"].items():
+            blanked[k] = blanked.get(k, 0) + v
+        if len(quarantine):
+            quarantines.append(quarantine)
+        if len(points):
+            for s, c in points["sensor"].value_counts().items():
+                per_sensor[str(s)] = per_sensor.get(str(s), 0) + int(c)
+            keys = points[["sensor", "batch"]].drop_duplicates()
+            pairs.update(zip(keys["sensor"], keys["batch"], strict=True))
+            starts.append(points["time"].min())
+            ends.append(points["time"].max())
+            write_points(points, chunk_file)
+            with open(chunk_file, "rb") as src:
+                header = src.readline()
+                if fh.tell() == 0:
+                    fh.write(header)
+                while block := src.read(16 << 20):
+                    fh.write(block)
+        progress(min(0.95, fh.tell() / size), "importing")
+
+    try:
+        with (
+            open(tmp, "wb") as fh,
+            _open(sn, sn.encoding, "strict") as stream,
+            _quiet_undecodable_rows(),
+        ):
+            # Pieces of whole lines, parsed one at a time: memory stays one piece
+            # (the streaming reader would read ahead as far as the file goes).
+            carry, first_line, skip = b"", 1, sn.skip_rows
+            while True:
+                data = bytes(stream.read(STREAM_BYTES))
+                buf = carry + data
+                if data:
+                    cut = buf.rfind(b"\n")
+                    cut = buf.rfind(b"\r") if cut < 0 else cut
+                    if cut < 0:
+                        carry = buf
+                        continue
+                    piece, carry = buf[: cut + 1], buf[cut + 1 :]
+                else:
+                    piece, carry = buf, b""
+                if not piece:
+                    break
+                table, lines = parse(piece, skip, first_line)
+                if table.num_rows:
+                    flush(table, lines, fh)
+                del table
+                first_line += piece.count(b"\n") + piece.count(b"\r") - piece.count(b"\r\n")
+                skip = 0
+                if not data:
+                    break
+            if fh.tell() == 0:
+                raise _Fallback  # nothing imported: let the whole-file path say why
+    except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
+        raise _Fallback from exc
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+    # Rows the parser refused (field counts), blank lines, and the texts of the rest.
+    q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
+    if bad.lines:
+        q = pd.concat(
+            [
+                q,
+                pd.DataFrame(
+                    {
+                        "line": np.asarray(bad.lines, dtype="int64"),
+                        "reason": pd.Series(bad.reasons, dtype="str"),
+                        "text": pd.Series(bad.texts, dtype="str"),
+                    }
+                ),
+            ],
+            ignore_index=True,
+        )
+    q = q.sort_values("line", kind="stable", ignore_index=True)
+    missing = (q["text"] == "").to_numpy()
+    if missing.any():
+        texts = q["text"].to_numpy(dtype=object)
+        texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], sn.encoding)
+        q["text"] = pd.Series(texts, dtype="str")
+    by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
+    warnings = ["no batch column: the file is one track named after the file"] if file_batch else []
+    time_src = res.columns["time"]
+    if time_info.get("naive") and zone is None and header_is_local(time_src):
+        warnings.append(
+            f"the time column {time_src!r} says it holds local times but they were read as "
+            "UTC: give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)"
+        )
+    if time_info.get("relative"):
+        warnings.append(
+            f"times in {time_src!r} are seconds from a scene start (relative), kept as "
+            "such: shown from 1970-01-01T00:00:00Z"
+        )
+    extra = [c for c in sn.columns if c not in set(res.columns.values())]
+    report: dict = {
+        "input": str(sn.path),
+        "format": res.format.name,
+        "format_label": res.format.label,
+        "encoding": sn.encoding,
+        "delimiter": sn.delimiter,
+        "compression": sn.compression,
+        "header": sn.has_header,
+        "columns": res.columns,
+        "extra_columns": extra,
+        "careful_parse": False,
+        "streamed": True,
+        "time_format": time_info.get("time_format"),
+        "time_zone": tz if zone is not None else "UTC",
+        "time_relative": bool(time_info.get("relative")),
+        "rows_read": totals["rows_read"] + len(bad.lines),
+        "rows_imported": totals["rows_imported"],
+        "rows_quarantined": len(q),
+        "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
+        "blank_lines": totals["blank_lines"] + bad.blank,
+        "values_blanked": blanked,
+        "tracks": len(pairs),
+        "sensors": per_sensor,
+        "time_start": min(starts).isoformat() if starts else None,
+        "time_end": max(ends).isoformat() if ends else None,
+        "warnings": warnings,
+    }
+    layout = {
+        "delimiter": sn.delimiter,
+        "encoding": sn.encoding,
+        "bom": sn.bom,
+        "line_ending": sn.line_ending,
+        "compression": sn.compression,
+        "header": sn.has_header,
+        "header_names": list(sn.columns),
+        "column_order": list(sn.columns),
+        "skip_rows": sn.skip_rows,
+        "quoting": False,
+        "mapping": dict(res.columns),
+        "extra_columns": extra,
+        "time_column": time_src,
+        "time_format": time_info.get("time_format"),
+        "time_zone": report["time_zone"],
+        "time_relative": report["time_relative"],
+    }
+    progress(1.0, "imported")
+    empty = pd.DataFrame({c: pd.Series([], dtype="str") for c in ("sensor", "batch")})
+    return ImportResult(empty, q, report, layout)

@@ -1,4 +1,5 @@
-"""Look at the first bytes of a file: compression, binary or text, encoding, delimiter, header."""
+"""Look at the first bytes of a file: compression, binary or text, encoding, line endings,
+delimiter, header, and whether it is a raw AIS NMEA log rather than a CSV."""
 
 import gzip
 import re
@@ -11,6 +12,7 @@ from wakeline.core.errors import InputError
 SAMPLE_BYTES = 256 * 1024
 ENCODINGS = ("utf-8", "gb18030")
 DELIMITERS = (",", ";", "\t")
+_NMEA = re.compile(r"[!$]AIVD[MO],")
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 
 
@@ -20,12 +22,18 @@ class Sniff:
 
     path: Path
     compression: str | None  # "gzip" or None
-    encoding: str  # a Python codec name: "utf-8" (BOM allowed) or "gb18030"
+    encoding: str  # a Python codec name: "utf-8" (BOM allowed), "gb18030", "utf-16"...
     delimiter: str  # ",", ";", "\t" or " " (runs of spaces are not merged)
     has_header: bool
     skip_rows: int  # physical lines before the first data row (blank lines and the header)
     columns: tuple[str, ...]  # header names, or col1..colN when the file has no header
     preview: tuple[tuple[str, ...], ...]  # first data rows split on the delimiter (for dialogs)
+    bom: bool = False  # the file starts with a byte order mark
+    line_ending: str = "\n"  # "\n", "\r\n" or "\r" (of the first line)
+    has_quotes: bool = False  # a '"' occurs in the sample
+    kind: str = "csv"  # "csv" or "nmea" (raw AIS sentences)
+    encoding_given: bool = False  # the caller named the encoding
+    ascii: bool = True  # the sample is plain ASCII (any ASCII-based encoding reads it)
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
@@ -49,6 +57,31 @@ def _read_sample(path: Path) -> tuple[bytes, str | None]:
     return head, None
 
 
+def _bom_encoding(sample: bytes) -> str | None:
+    if sample.startswith(b"\xef\xbb\xbf"):
+        return "utf-8"
+    if sample.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return "utf-16"
+    return None
+
+
+def _utf16_without_bom(sample: bytes) -> str | None:
+    """UTF-16 text with no BOM: ASCII characters leave every other byte zero."""
+    head = sample[:4096]
+    if len(head) < 8:
+        return None
+    even, odd = head[0::2], head[1::2]
+    if odd.count(0) > 0.4 * len(odd) and even.count(0) < 0.05 * len(even):
+        return "utf-16-le"
+    if even.count(0) > 0.4 * len(even) and odd.count(0) < 0.05 * len(odd):
+        return "utf-16-be"
+    return None
+
+
+def _is_wide(encoding: str | None) -> bool:
+    return bool(encoding) and encoding.lower().replace("_", "-").startswith(("utf-16", "utf-32"))
+
+
 def _looks_binary(sample: bytes) -> bool:
     if b"\x00" in sample:
         return True
@@ -57,18 +90,41 @@ def _looks_binary(sample: bytes) -> bool:
 
 
 def _decode(sample: bytes, path: Path, encoding: str | None) -> tuple[str, str]:
-    # The sample may end inside a multi-byte character: cut at the last newline.
-    cut = sample.rfind(b"\n")
-    body = sample if cut < 0 or len(sample) < SAMPLE_BYTES else sample[: cut + 1]
+    # The sample may end inside a multi-byte character: cut at the last line end.
+    full = len(sample) < SAMPLE_BYTES
     candidates = (encoding,) if encoding else ENCODINGS
     for enc in candidates:
+        body = sample
+        if not full:
+            if _is_wide(enc):
+                body = sample[: len(sample) - len(sample) % 4]
+            else:
+                cut = max(sample.rfind(b"\n"), sample.rfind(b"\r"))
+                body = sample if cut < 0 else sample[: cut + 1]
         try:
-            text = body.decode(enc)
-        except (UnicodeDecodeError, LookupError):
+            text = body.decode(enc, errors="strict" if full or not _is_wide(enc) else "ignore")
+        except UnicodeDecodeError:
             continue
+        except LookupError:
+            raise InputError(f"{path}: unknown encoding {enc!r}") from None
+        return text.removeprefix("\ufeff"), enc
+    # A few damaged lines in otherwise good text: read it, the reader quarantines the rows
+    # that hold bad bytes. A damaged header, or more damaged lines than good, means the
+    # encoding is wrong: refuse, naming --encoding.
+    enc = encoding or "utf-8"
+    try:
+        text = sample.decode(enc, errors="replace")
+    except LookupError:
+        raise InputError(f"{path}: unknown encoding {enc!r}") from None
+    lines = [x for x in text.replace("\r", "\n").split("\n") if x.strip()]
+    damaged = sum("\ufffd" in x for x in lines[1:])
+    if lines and "\ufffd" not in lines[0] and damaged <= 0.5 * (len(lines) - 1):
         return text.removeprefix("\ufeff"), enc
     tried = " or ".join(candidates)
-    raise InputError(f"{path}: cannot decode the text as {tried}; choose the file's encoding")
+    raise InputError(
+        f"{path}: cannot decode the text as {tried}; choose the file's encoding "
+        "(--encoding, e.g. gb18030, utf-16, latin-1)"
+    )
 
 
 def _pick_delimiter(lines: list[str]) -> str:
@@ -108,14 +164,36 @@ def sniff(path: str | Path, encoding: str | None = None, delimiter: str | None =
     sample, compression = _read_sample(path)
     if not sample.strip():
         raise InputError(f"{path}: the file is empty")
-    if _looks_binary(sample):
-        raise InputError(f"{path}: this is a binary file, not a CSV text file")
+    given = encoding is not None
+    bom_enc = _bom_encoding(sample)
+    if encoding is None:
+        encoding = _utf16_without_bom(sample) if bom_enc is None else bom_enc
+        if encoding == "utf-8":
+            encoding = None  # UTF-8 with BOM: the usual candidates (BOM removed below)
+    if not _is_wide(encoding) and _looks_binary(sample):
+        raise InputError(
+            f"{path}: this is a binary file, not a CSV text file "
+            "(for UTF-16 text without a byte order mark give --encoding utf-16)"
+        )
     text, enc = _decode(sample, path, encoding)
-    physical = text.split("\n")
+    if _is_wide(enc) and _looks_binary(text.encode("utf-8", errors="replace")):
+        raise InputError(f"{path}: this is a binary file, not a CSV text file")
+    first_end = re.search(r"\r\n|\n|\r", text)
+    line_ending = first_end.group(0) if first_end else "\n"
+    physical = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
     leading_blank = next((i for i, line in enumerate(physical) if line.strip()), len(physical))
-    lines = [line.rstrip("\r") for line in physical if line.strip()]
+    lines = [line for line in physical if line.strip()]
     if not lines:
         raise InputError(f"{path}: the file is empty")
+    extras = {
+        "bom": bom_enc is not None,
+        "line_ending": line_ending,
+        "has_quotes": '"' in text,
+        "ascii": text.isascii(),
+        "encoding_given": given,
+    }
+    if _NMEA.search(lines[0]) or sum(bool(_NMEA.search(x)) for x in lines[:20]) >= 2:
+        return Sniff(path, compression, enc, ",", False, 0, (), (), kind="nmea", **extras)
     delim = delimiter or _pick_delimiter(lines)
     first = [f.strip().strip('"') for f in lines[0].split(delim)]
     has_header = any(f and not _NUMBER.match(f) for f in first)
@@ -127,7 +205,7 @@ def sniff(path: str | Path, encoding: str | None = None, delimiter: str | None =
         data_lines = lines[:5]
     preview = tuple(tuple(f.strip('"') for f in line.split(delim)) for line in data_lines)
     skip_rows = leading_blank + (1 if has_header else 0)
-    return Sniff(path, compression, enc, delim, has_header, skip_rows, columns, preview)
+    return Sniff(path, compression, enc, delim, has_header, skip_rows, columns, preview, **extras)
 
 
 def read_small_table(

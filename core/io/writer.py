@@ -5,10 +5,13 @@ as it was.
 """
 
 import contextlib
+import glob
 import json
 import os
+import re
 import tempfile
-from collections.abc import Iterator
+import time
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
 import numpy as np
@@ -23,14 +26,120 @@ from wakeline.core.schema import ordered_columns
 _NEEDS_QUOTES = r'[,"\r\n]|^\s|\s$'
 
 
-@contextlib.contextmanager
-def atomic_path(path: str | Path) -> Iterator[Path]:
-    """Yield a temporary path in the target's folder; rename it onto ``path`` on success."""
+#: A temporary file of ours: ``.NAME.PID.XXXXXXXX.part`` (older versions: ``.NAME.XXXXXXXX.part``).
+_PART = re.compile(r"^\.(?P<name>.+?)\.(?:(?P<pid>\d+)\.)?[A-Za-z0-9_]{8}\.part$")
+#: A temporary file without a writer's process id is stale after this long (s).
+LEGACY_PART_AGE_S = 60.0
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        if a.exists() and b.exists():
+            return os.path.samefile(a, b)
+    except OSError:
+        pass
+    return a.resolve() == b.resolve()
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):
+        return True  # someone else's process: leave its file alone
+    return True
+
+
+def remove_stale_parts(path: str | Path) -> list[Path]:
+    """Remove temporary ``.part`` files that an interrupted write of ``path`` left beside it.
+
+    A file is ours when its name is ``.NAME.PID.XXXXXXXX.part`` (or the older
+    ``.NAME.XXXXXXXX.part``); it is stale when that process no longer runs (or, without a
+    process id, when it was last written more than ``LEGACY_PART_AGE_S`` ago). Returns the
+    files removed.
+    """
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    removed = []
+    try:
+        entries = list(folder.glob(f".{glob.escape(path.name)}.*.part"))
+    except OSError:
+        return removed
+    now = time.time()
+    for entry in entries:
+        m = _PART.match(entry.name)
+        if not m or m["name"] != path.name:
+            continue
+        try:
+            if m["pid"] is not None:
+                stale = not _alive(int(m["pid"]))
+            else:
+                stale = now - entry.stat().st_mtime > LEGACY_PART_AGE_S
+            if stale and entry.is_file():
+                entry.unlink()
+                removed.append(entry)
+        except OSError:
+            continue
+    return removed
+
+
+def check_writable(path: str | Path) -> None:
+    """Refuse (:class:`InputError`) an output that is a folder, read-only, or in a folder
+    that does not exist or cannot be written; an existing read-only file is never replaced."""
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise InputError(f"{path}: the folder {folder} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=folder)
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder; give a file name to write")
+    if path.exists():
+        mode = path.stat().st_mode
+        if not (mode & 0o222) or not os.access(path, os.W_OK):
+            raise InputError(f"{path}: the file is read-only; it is not replaced")
+    if not os.access(folder, os.W_OK):
+        raise InputError(f"{path}: cannot write in the folder {folder} (permission denied)")
+
+
+def check_outputs(
+    inputs: Iterable[str | Path | None], outputs: Mapping[str, str | Path | None]
+) -> None:
+    """Check a run's files before any work: raise :class:`InputError` when an output is
+    also an input, when two outputs are the same file, or when an output cannot be written
+    (see :func:`check_writable`). ``outputs`` maps a name for messages (``--quarantine``)
+    to a path; ``None`` entries are ignored."""
+    ins = [Path(p) for p in inputs if p is not None]
+    outs = [(name, Path(p)) for name, p in outputs.items() if p is not None]
+    for name, out in outs:
+        for src in ins:
+            if _same_file(out, src):
+                raise InputError(
+                    f"{name} {out}: is also an input; write the result to another file"
+                )
+    for i, (name, out) in enumerate(outs):
+        for other_name, other in outs[:i]:
+            if _same_file(out, other):
+                raise InputError(
+                    f"{name} {out}: is also given as {other_name}; each output needs its own file"
+                )
+    for _, out in outs:
+        check_writable(out)
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path in the target's folder; rename it onto ``path`` on success.
+
+    A read-only target is refused (never replaced), and ``.part`` files that an
+    interrupted earlier write of the same target left behind are removed first.
+    """
+    path = Path(path)
+    check_writable(path)
+    remove_stale_parts(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".part", dir=folder)
     os.close(fd)
     tmp_path = Path(tmp)
     try:

@@ -1,0 +1,253 @@
+"""The import dialog: pick a file, see its first rows, the detected layout and column
+mapping, change the mapping from the file's own columns, choose encoding and time zone.
+
+Self-contained (core objects only). ``options()`` returns the keyword arguments of
+:func:`wakeline.core.io.read_points`: ``read_points(**dialog.options())``.
+"""
+
+from pathlib import Path
+
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from wakeline.core.errors import InputError
+from wakeline.core.io import FAMILIES, inspect_file
+from wakeline.core.io.formats import FIELDS
+from wakeline.core.io.reader import FILE_BATCH
+
+NONE = "—"
+ENCODINGS = ("auto", "utf-8", "gb18030", "utf-16", "latin-1")
+#: Offered zones (the box is editable: any IANA name or ±HH:MM is accepted).
+ZONES = (
+    "UTC",
+    "Asia/Shanghai",
+    "+08:00",
+    "Asia/Tokyo",
+    "Europe/Oslo",
+    "Europe/Copenhagen",
+    "America/New_York",
+)
+
+
+class ImportDialog(QtWidgets.QDialog):
+    """Pick a file; see its first rows; choose layout, encoding, column mapping, zone."""
+
+    def __init__(self, parent=None, path: Path | None = None) -> None:
+        super().__init__(parent)
+        self.setWindowTitle(self.tr("Import tracks"))
+        self._info: dict = {}
+        self._updating = False
+        self.path_edit = QtWidgets.QLineEdit(str(path or ""))
+        browse = QtWidgets.QPushButton(self.tr("Browse…"))
+        browse.clicked.connect(self._browse)
+        self.format_box = QtWidgets.QComboBox()
+        self.format_box.addItems(list(FAMILIES))
+        self.encoding_box = QtWidgets.QComboBox()
+        self.encoding_box.addItems(list(ENCODINGS))
+        self.encoding_box.setEditable(True)
+        self.tz_box = QtWidgets.QComboBox()
+        self.tz_box.setEditable(True)
+        self.tz_box.addItems(list(ZONES))
+        self.tz_box.setToolTip(
+            self.tr(
+                "Zone of times written without one (IANA name or ±HH:MM). "
+                "Unix times are absolute and not shifted."
+            )
+        )
+        self.sensor_edit = QtWidgets.QLineEdit()
+        self.sensor_edit.setPlaceholderText(self.tr("sensor name when the file has none"))
+        self.layout_label = QtWidgets.QLabel()
+        self.layout_label.setWordWrap(True)
+
+        # One row per canonical field: a list of the file's columns (never free text).
+        self.mapping_boxes: dict[str, QtWidgets.QComboBox] = {}
+        mapping_form = QtWidgets.QFormLayout()
+        for name in FIELDS:
+            box = QtWidgets.QComboBox()
+            box.currentIndexChanged.connect(self._mapping_changed)
+            self.mapping_boxes[name] = box
+            mapping_form.addRow(name, box)
+        mapping_group = QtWidgets.QGroupBox(self.tr("Column mapping"))
+        mapping_group.setLayout(mapping_form)
+        self.extra_label = QtWidgets.QLabel()
+        self.extra_label.setWordWrap(True)
+        self.warning_label = QtWidgets.QLabel()
+        self.warning_label.setWordWrap(True)
+        self.warning_label.setStyleSheet("color: #b35900")
+
+        self.preview = QtWidgets.QPlainTextEdit(readOnly=True)
+        self.preview.setLineWrapMode(QtWidgets.QPlainTextEdit.LineWrapMode.NoWrap)
+        self.preview.setFont(
+            QtGui.QFontDatabase.systemFont(QtGui.QFontDatabase.SystemFont.FixedFont)
+        )
+
+        form = QtWidgets.QFormLayout()
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self.path_edit, 1)
+        row.addWidget(browse)
+        form.addRow(self.tr("File"), row)
+        form.addRow(self.tr("Layout"), self.format_box)
+        form.addRow(self.tr("Encoding"), self.encoding_box)
+        form.addRow(self.tr("Time zone"), self.tz_box)
+        form.addRow(self.tr("Sensor"), self.sensor_edit)
+        form.addRow(self.tr("Detected"), self.layout_label)
+        self.buttons = QtWidgets.QDialogButtonBox(
+            QtWidgets.QDialogButtonBox.StandardButton.Ok
+            | QtWidgets.QDialogButtonBox.StandardButton.Cancel
+        )
+        self.buttons.accepted.connect(self.accept)
+        self.buttons.rejected.connect(self.reject)
+        left = QtWidgets.QVBoxLayout()
+        left.addLayout(form)
+        left.addWidget(QtWidgets.QLabel(self.tr("First rows of the file:")))
+        left.addWidget(self.preview, 1)
+        right = QtWidgets.QVBoxLayout()
+        right.addWidget(mapping_group)
+        right.addWidget(self.extra_label)
+        right.addWidget(self.warning_label)
+        right.addStretch(1)
+        body = QtWidgets.QHBoxLayout()
+        body.addLayout(left, 3)
+        body.addLayout(right, 2)
+        lay = QtWidgets.QVBoxLayout(self)
+        lay.addLayout(body, 1)
+        lay.addWidget(self.buttons)
+        self.resize(1000, 560)
+
+        self.path_edit.textChanged.connect(self.refresh)
+        self.format_box.currentIndexChanged.connect(self.refresh)
+        self.encoding_box.currentTextChanged.connect(self.refresh)
+        self.tz_box.currentTextChanged.connect(self._update_warning)
+        self.refresh()
+
+    # -- detection ---------------------------------------------------------------------
+
+    def _browse(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(
+            self,
+            self.tr("Open track file"),
+            "",
+            "Track files (*.csv *.csv.gz *.txt *.nmea *.log);;All files (*)",
+        )
+        if path:
+            self.path_edit.setText(path)
+
+    def _encoding(self) -> str | None:
+        enc = self.encoding_box.currentText().strip()
+        return None if enc in ("", "auto") else enc
+
+    def refresh(self) -> None:
+        """Detect the layout and mapping again (file, layout or encoding changed); the
+        operator's own choices are dropped."""
+        path = Path(self.path_edit.text())
+        self._info = {}
+        text, problem = "", None
+        if path.is_file():
+            try:
+                self._info = inspect_file(
+                    path, fmt=self.format_box.currentText(), encoding=self._encoding()
+                )
+            except (InputError, OSError) as exc:
+                problem = str(exc)
+        info = self._info
+        if info:
+            sep = "\t" if info["delimiter"] == "\t" else info["delimiter"] + " "
+            rows = [info["columns"]] if info["header"] else []
+            text = "\n".join(sep.join(r) for r in rows + info["preview"])
+            problem = info["problem"]
+        self.preview.setPlainText(text)
+        self._fill_mapping()
+        if info:
+            delim = {"\t": "tab", " ": "space"}.get(info["delimiter"], info["delimiter"])
+            label = info["format_label"] or self.tr("no layout fits")
+            self.layout_label.setText(
+                f"{label}; {info['encoding']}; " + self.tr("delimiter") + f" {delim}"
+            )
+        else:
+            self.layout_label.setText("")
+        self._problem = problem
+        self._update_warning()
+
+    def _fill_mapping(self) -> None:
+        info = self._info
+        columns = info.get("columns", []) if info.get("kind") != "nmea" else []
+        mapping = info.get("mapping", {})
+        self._updating = True
+        for name, box in self.mapping_boxes.items():
+            box.clear()
+            box.addItem(NONE)
+            if name == "batch" and mapping.get("batch") == FILE_BATCH:
+                box.addItem(FILE_BATCH)
+            box.addItems(columns)
+            box.setEnabled(bool(columns))
+            chosen = mapping.get(name)
+            box.setCurrentIndex(max(box.findText(chosen), 0) if chosen else 0)
+        self._updating = False
+        self._update_extra()
+
+    def _mapping_changed(self) -> None:
+        if not self._updating:
+            self._update_extra()
+            self._update_warning()
+
+    def _update_extra(self) -> None:
+        columns = self._info.get("columns", []) if self._info.get("kind") != "nmea" else []
+        used = set(self.mapping().values())
+        extra = [c for c in columns if c not in used]
+        self.extra_label.setText(
+            self.tr("Unmapped columns (kept as extra columns): {0}").format(
+                ", ".join(extra) if extra else NONE
+            )
+        )
+
+    def _update_warning(self) -> None:
+        from wakeline.core.io.formats import header_is_local
+
+        problems = []
+        if getattr(self, "_problem", None):
+            problems.append(self._problem)
+        time_col = self.mapping().get("time")
+        zone = self.tz_box.currentText().strip()
+        if time_col and header_is_local(time_col) and zone.upper() in ("", "UTC"):
+            problems.append(
+                self.tr(
+                    "The time column {0} holds local times: choose their time zone, or they "
+                    "are read as UTC."
+                ).format(time_col)
+            )
+        if time_col is None and self._info.get("kind") == "csv":
+            problems.append(self.tr("Choose the time column."))
+        self.warning_label.setText("\n".join(problems))
+
+    # -- result ------------------------------------------------------------------------
+
+    def mapping(self) -> dict[str, str]:
+        """Canonical field → the file's column, as chosen in the boxes."""
+        out = {}
+        for name, box in self.mapping_boxes.items():
+            text = box.currentText()
+            if box.currentIndex() > 0 and text not in (NONE, FILE_BATCH):
+                out[name] = text
+        return out
+
+    def extra_columns(self) -> list[str]:
+        """The file's columns no field takes (they travel as extra columns)."""
+        used = set(self.mapping().values())
+        return [c for c in self._info.get("columns", []) if c not in used]
+
+    def options(self) -> dict:
+        """Keyword arguments of ``read_points`` (``sensor`` only when one is typed)."""
+        zone = self.tz_box.currentText().strip()
+        out = {
+            "path": Path(self.path_edit.text()),
+            "fmt": self.format_box.currentText(),
+            "encoding": self._encoding(),
+            "mapping": [f"{k}={v}" for k, v in self.mapping().items()],
+            "tz": None if zone.upper() in ("", "UTC") else zone,
+        }
+        sensor = self.sensor_edit.text().strip()
+        if sensor:
+            out["sensor"] = sensor
+        return out
+
+    def sizeHint(self) -> QtCore.QSize:  # noqa: N802 - Qt naming
+        return QtCore.QSize(1000, 560)

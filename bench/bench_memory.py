@@ -1,0 +1,112 @@
+"""Peak resident memory of ``wakeline import`` and ``wakeline clean`` against the file size.
+
+Generates a canonical CSV of about ``--size-gb`` GB in a temporary folder (in chunks, so
+the generator itself stays small), runs ``wakeline import`` and ``wakeline clean`` on it,
+each in its own process, and prints each run's peak RSS (``resource.getrusage``, the
+child's ``ru_maxrss``) divided by the file size. Goals (issue 14): import ≤ 1.5×,
+clean ≤ 2.5× on a 1 GB file. The folder is deleted afterwards unless ``--keep``.
+
+Run: ``python bench/bench_memory.py`` (1 GB, a few minutes on 2 cores) or
+``python bench/bench_memory.py --size-gb 0.1`` (quick).
+"""
+
+import argparse
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.compute as pc
+import pyarrow.csv as pacsv
+
+_RUN = (
+    "import resource, sys\n"
+    "from wakeline.app.cli import main\n"
+    "code = main(sys.argv[1:])\n"
+    "peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024\n"
+    "print(f'PEAK_RSS {peak}', file=sys.stderr)\n"
+    "sys.exit(code)\n"
+)
+
+
+def make_csv(path: Path, size_bytes: float, seed: int = 0, chunk_rows: int = 1_000_000) -> int:
+    """A canonical CSV of about ``size_bytes``; returns the rows written."""
+    rng = np.random.default_rng(seed)
+    path.write_text("sensor,batch,time,lon,lat,speed,course\n")
+    rows = 0
+    per_track = 1_000
+    with open(path, "ab") as fh:
+        while fh.tell() < size_bytes:
+            tracks = chunk_rows // per_track
+            first = rows // per_track
+            track = np.repeat(np.arange(first, first + tracks), per_track)
+            k = np.tile(np.arange(per_track), tracks)
+            t = np.datetime64("2024-05-01T00:00:00", "ms") + (k * 10_000).astype("timedelta64[ms]")
+            lon0 = rng.uniform(120, 125, tracks).repeat(per_track)
+            lat0 = rng.uniform(28, 33, tracks).repeat(per_track)
+            n = len(track)
+            table = pa.table(
+                {
+                    "sensor": pa.array(np.where(track % 3 == 0, "AIS", "R1")),
+                    "batch": pc.cast(pa.array(track), pa.string()),
+                    "time": pc.strftime(
+                        pa.array(t, pa.timestamp("ms", "UTC")), format="%Y-%m-%dT%H:%M:%SZ"
+                    ),
+                    "lon": np.round(lon0 + k * 1e-4 + rng.normal(0, 1e-4, n), 6),
+                    "lat": np.round(lat0 + k * 1e-4 + rng.normal(0, 1e-4, n), 6),
+                    "speed": np.round(rng.uniform(0, 20, n), 1),
+                    "course": np.round(rng.uniform(0, 360, n), 1),
+                }
+            )
+            pacsv.write_csv(
+                table, fh, pacsv.WriteOptions(include_header=False, quoting_style="none")
+            )
+            rows += n
+    return rows
+
+
+def peak_rss(args: list[str]) -> tuple[int, float]:
+    """Peak RSS (bytes) and wall time (s) of ``wakeline ARGS`` in a fresh process."""
+    t0 = time.perf_counter()
+    res = subprocess.run(
+        [sys.executable, "-c", _RUN, *args], capture_output=True, text=True, check=False
+    )
+    wall = time.perf_counter() - t0
+    if res.returncode != 0:
+        sys.exit(f"wakeline {' '.join(args)} failed:\n{res.stderr}")
+    line = next(x for x in res.stderr.splitlines() if x.startswith("PEAK_RSS"))
+    return int(line.split()[1]), wall
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--size-gb", type=float, default=1.0, help="file size (default 1 GB)")
+    ap.add_argument("--keep", action="store_true", help="keep the generated files")
+    ap.add_argument("--skip-clean", action="store_true", help="measure import only")
+    args = ap.parse_args()
+
+    folder = Path(tempfile.mkdtemp(prefix="wakeline-membench-"))
+    try:
+        src = folder / "points.csv"
+        t0 = time.perf_counter()
+        rows = make_csv(src, args.size_gb * 1e9)
+        size = src.stat().st_size
+        print(f"file: {size / 1e9:.3f} GB, {rows:,} rows ({time.perf_counter() - t0:.0f} s)")
+        peak, wall = peak_rss(["import", str(src), "-o", str(folder / "imported.csv")])
+        print(f"import: peak RSS {peak / 1e9:.3f} GB = {peak / size:.2f}x file ({wall:.0f} s)")
+        if not args.skip_clean:
+            peak, wall = peak_rss(["clean", str(src), "-o", str(folder / "cleaned.csv")])
+            print(f"clean:  peak RSS {peak / 1e9:.3f} GB = {peak / size:.2f}x file ({wall:.0f} s)")
+    finally:
+        if args.keep:
+            print(f"kept {folder}")
+        else:
+            shutil.rmtree(folder, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,70 @@
+"""The import dialog (app/import_dialog.py): detected mapping, choices from the file's
+columns, time zone; options() feeds read_points directly."""
+
+import pandas as pd
+import pytest
+
+pytest.importorskip("pytestqt")
+
+from conftest import DATA  # noqa: E402
+from wakeline.app.import_dialog import NONE, ImportDialog  # noqa: E402
+from wakeline.core.io import read_points  # noqa: E402
+
+pytestmark = pytest.mark.gui
+BATTERY = DATA / "battery"
+
+
+def test_shows_detected_mapping_and_extra_columns(qtbot):
+    dlg = ImportDialog(path=BATTERY / "chinese_gb18030.csv")
+    qtbot.addWidget(dlg)
+    assert dlg.mapping() == {
+        "batch": "MMSI",
+        "time": "Unix时间戳",
+        "lon": "经度",
+        "lat": "纬度",
+        "speed": "航速",
+        "course": "航向",
+    }
+    assert dlg.extra_columns() == ["时间(Local)", "船首向", "船名"]
+    assert "船名" in dlg.extra_label.text()
+    assert "gb18030" in dlg.layout_label.text()
+    box = dlg.mapping_boxes["time"]
+    items = [box.itemText(i) for i in range(box.count())]
+    assert items[0] == NONE and items[1:] == [
+        "时间(Local)",
+        "Unix时间戳",
+        "MMSI",
+        "纬度",
+        "经度",
+        "航速",
+        "航向",
+        "船首向",
+        "船名",
+    ]
+    assert not box.isEditable()  # a list of the file's columns, not free text
+
+
+def test_changing_the_mapping_and_zone_reaches_read_points(qtbot):
+    dlg = ImportDialog(path=BATTERY / "chinese_gb18030.csv")
+    qtbot.addWidget(dlg)
+    dlg.mapping_boxes["time"].setCurrentText("时间(Local)")
+    assert "local times" in dlg.warning_label.text()
+    assert "时间(Local)" not in dlg.extra_columns() and "Unix时间戳" in dlg.extra_columns()
+    dlg.tz_box.setCurrentText("Asia/Shanghai")
+    assert dlg.warning_label.text() == ""
+    opts = dlg.options()
+    assert opts["tz"] == "Asia/Shanghai" and "time=时间(Local)" in opts["mapping"]
+    result = read_points(**opts)
+    assert result.report["columns"]["time"] == "时间(Local)"
+    # 08:00 in Shanghai is 00:00 UTC, as the unix column says
+    assert result.points["time"].iloc[0] == pd.Timestamp("2024-01-01T00:00:00Z")
+
+
+def test_unreadable_file_and_nmea(qtbot, write):
+    dlg = ImportDialog(path=write("empty.csv", ""))
+    qtbot.addWidget(dlg)
+    assert "empty" in dlg.warning_label.text()
+    dlg.path_edit.setText(str(BATTERY / "ais_log.nmea"))
+    assert "NMEA" in dlg.layout_label.text()
+    assert dlg.mapping() == {}
+    assert len(read_points(**dlg.options()).points) == 2
