@@ -38,9 +38,10 @@ from wakeline.app.map_selection import selection_curves
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
 KM_PER_DEG = 111.195
-#: Symbols are drawn on a layer's lines when its curve has at most this many vertices
-#: after the level of detail (zoomed in); marker-only layers always show them.
-SYMBOLS_MAX = 20_000
+#: Symbols are drawn when a curve has at most this many vertices after the level of
+#: detail (zoomed in): pyqtgraph builds them point by point (~10 µs each). Lines show
+#: without them beyond; marker-only layers show 1-px crosses.
+SYMBOLS_MAX = 3_000
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
 
 #: ``executor(job, done)``: run ``job()`` (pure, returns DrawData) somewhere and call
@@ -218,6 +219,17 @@ class MapCanvas(pg.PlotWidget):
     def _swap_curves(self, data: DrawData) -> None:
         for item, curve in zip(self._items.get(data.name, []), data.curves, strict=False):
             few = curve.n_vertices <= SYMBOLS_MAX
+            if data.style.symbol_size and not data.style.width:
+                # Markers only (maneuver points): symbols while few, else small 1-px
+                # crosses drawn as one path (pyqtgraph builds symbols point by point).
+                if (item.opts["symbol"] is not None) != few:
+                    item.setSymbol("o" if few else None)
+                    item.setPen(None if few else pg.mkPen(curve.color, width=1))
+                if few:
+                    item.setData(curve.lon, curve.lat, connect="finite")
+                else:
+                    item.setData(*self._crosses(curve, data.style.symbol_size), connect="pairs")
+                continue
             if data.style.symbol_size and data.style.width:
                 # Symbols on a line only where they can be told apart: pyqtgraph builds
                 # them point by point in Python, which would block a million-point view.
@@ -230,6 +242,16 @@ class MapCanvas(pg.PlotWidget):
                 if item.opts["pen"] is None or item.opts["pen"].widthF() != width:
                     item.setPen(pg.mkPen(curve.color, width=width))
             item.setData(curve.lon, curve.lat, connect="finite")
+
+    def _crosses(self, curve, size_px: float) -> tuple[np.ndarray, np.ndarray]:
+        """A small cross (two segments, ``size_px`` wide) at every finite vertex."""
+        ok = np.isfinite(curve.lon) & np.isfinite(curve.lat)
+        x, y = curve.lon[ok], curve.lat[ok]
+        px = self.vb.viewPixelSize()
+        dx, dy = px[0] * size_px / 2, px[1] * size_px / 2
+        xs = np.stack([x - dx, x + dx, x, x], axis=1).ravel()
+        ys = np.stack([y, y, y - dy, y + dy], axis=1).ravel()
+        return xs, ys
 
     def refresh_lod(self, names: list[str] | None = None) -> None:
         """Redo the level of detail of layers (default all) whose decimation is stale."""
