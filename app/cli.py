@@ -422,9 +422,12 @@ def _cmd_fuse(args: argparse.Namespace) -> int:
 
 
 def _add_bearing_options(p: argparse.ArgumentParser) -> None:
+    from statistics import NormalDist  # scipy.stats (d.z_crit) is slow to import for a help text
+
     from wakeline.core.bearing import BearingParams
 
     d = BearingParams()
+    z = NormalDist().inv_cdf(1.0 - d.alpha / 2.0)
     p.add_argument(
         "--window-x",
         type=_positive_int,
@@ -441,7 +444,7 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
         "--alpha",
         type=_positive_float,
         default=d.alpha,
-        help=f"significance level per boundary (default {d.alpha:g}, z = {d.z_crit:.2f})",
+        help=f"significance level per boundary (default {d.alpha:g}, z = {z:.2f})",
     )
     p.add_argument(
         "--order",

@@ -19,9 +19,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy import sparse
-from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
-from scipy.spatial import cKDTree
 
 from wakeline.core import geo
 from wakeline.core.errors import InputError
@@ -241,6 +238,9 @@ def optimal_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) 
     A constant is added to every edge (the matching is full, so it does not change the
     optimum) to keep zero costs as edges.
     """
+    from scipy import sparse
+    from scipy.sparse.csgraph import min_weight_full_bipartite_matching
+
     ok = cost <= gate
     idx = np.flatnonzero(ok)
     if len(idx) == 0:
@@ -273,6 +273,9 @@ def optimal_assign(i: np.ndarray, j: np.ndarray, cost: np.ndarray, gate: float) 
 
 def components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Connected-component label of each of ``n`` tracks linked by pairs (a, b)."""
+    from scipy import sparse
+    from scipy.sparse.csgraph import connected_components
+
     g = sparse.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
     return connected_components(g, directed=False)[1]
 

@@ -33,7 +33,6 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 from numpy.lib.stride_tricks import sliding_window_view
-from scipy.stats import norm, rankdata
 
 from wakeline.core import geo
 from wakeline.core.errors import InputError
@@ -65,11 +64,15 @@ class BearingParams(Params):
 
     @property
     def z_crit(self) -> float:
+        from scipy.stats import norm  # lazy: scipy.stats is slow to import
+
         return float(norm.ppf(1.0 - self.alpha / 2.0))
 
 
 def auc_windows(values: np.ndarray, m: int) -> np.ndarray:
     """AUC of the first ``m`` columns against the rest, for every row (ranks, ties ½)."""
+    from scipy.stats import rankdata  # lazy: scipy.stats is slow to import
+
     ranks = rankdata(values, axis=1)
     n = values.shape[1] - m
     return (ranks[:, :m].sum(axis=1) - m * (m + 1) / 2.0) / (m * n)

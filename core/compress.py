@@ -16,7 +16,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.linalg import solve_banded
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
@@ -63,6 +62,8 @@ def _least_squares_knots(
     left: np.ndarray, w: np.ndarray, xy: np.ndarray, n_knots: int, single_knot: np.ndarray
 ) -> np.ndarray:
     """Knot positions minimizing Σ |(1-w) c_left + w c_left+1 - xy|² (all tracks at once)."""
+    from scipy.linalg import solve_banded  # lazy: keeps `wakeline --help` fast
+
     a = 1.0 - w
     diag = np.bincount(left, a * a, minlength=n_knots) + np.bincount(
         np.minimum(left + 1, n_knots - 1), w * w, minlength=n_knots

@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.ndimage import maximum_filter1d
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
@@ -137,6 +136,8 @@ def local_maxima(delta: np.ndarray, index: TrackIndex, radius: int) -> np.ndarra
     window anyway), so tracks are concatenated with ``radius`` −∞ separators and one
     maximum filter runs over all of them. On a plateau only the first point is kept.
     """
+    from scipy.ndimage import maximum_filter1d  # lazy: keeps `wakeline --help` fast
+
     finite = np.isfinite(delta)
     if not finite.any():
         return np.zeros(len(delta), dtype=bool)

@@ -21,7 +21,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.interpolate import make_smoothing_spline
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
@@ -244,6 +243,8 @@ def bspline_segments(points: pd.DataFrame, params: BsplineParams, next_id: int =
     seg_first = np.flatnonzero(first | split)
     seg_no_in_track = segment - segment[np.flatnonzero(first)][s_track]  # 0, 1, 2 … within track
     n_segments = np.bincount(s_track, first | split, minlength=index.n_tracks)
+
+    from scipy.interpolate import make_smoothing_spline  # lazy: slow to import
 
     # Cubic smoothing spline per segment (GCV-chosen smoothing), in the track's plane.
     lon0, lat0 = track_origins(pts, index)
