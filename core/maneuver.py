@@ -169,20 +169,25 @@ class ManeuverResult:
     window_p: np.ndarray  # p used for each track
 
     def table(self) -> pd.DataFrame:
-        """One row per maneuver point: sensor, batch, index, time, lon, lat, factor."""
+        """One row per maneuver point: sensor, batch, index, time, lon, lat, factor.
+
+        Rows are taken column by column (``take`` on the Arrow/numpy arrays), never by
+        converting a whole column to Python objects."""
         rows = np.flatnonzero(self.is_maneuver)
-        pts = self.points
-        return pd.DataFrame(
+        sub = self.points[["sensor", "batch", "time", "lon", "lat"]].iloc[rows]
+        sub = sub.reset_index(drop=True)
+        out = pd.DataFrame(
             {
-                "sensor": pts["sensor"].to_numpy()[rows],
-                "batch": pts["batch"].to_numpy()[rows],
+                "sensor": sub["sensor"],
+                "batch": sub["batch"],
                 "index": (rows - self.index.starts[self.index.track_of_row[rows]]).astype("int64"),
-                "time": pts["time"].iloc[rows].to_numpy(),
-                "lon": pts["lon"].to_numpy()[rows],
-                "lat": pts["lat"].to_numpy()[rows],
+                "time": sub["time"],
+                "lon": sub["lon"],
+                "lat": sub["lat"],
                 "factor": self.factor[rows],
             }
-        ).astype({"sensor": "str", "batch": "str"})
+        )
+        return out.astype({"sensor": "str", "batch": "str"})
 
 
 def _p_per_track(t: np.ndarray, index: TrackIndex, params: ManeuverParams) -> np.ndarray:
