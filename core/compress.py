@@ -19,8 +19,13 @@ import pandas as pd
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
-from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_origins
+from wakeline.core.tracks import (
+    TrackIndex,
+    local_xy,
+    sorted_with_index,
+    track_origins,
+    track_seconds,
+)
 
 
 @dataclass(frozen=True)
@@ -160,7 +165,7 @@ def compress_with(
     kept[index.ends - 1] = True
     x, y = local_xy(pts, index)
     xy = np.column_stack([x, y])
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     left, w = _segments(kept, index, t)
     knot_rows = np.flatnonzero(kept)
     if refine and n:

@@ -25,8 +25,7 @@ import pandas as pd
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
-from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index
+from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_seconds
 
 MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
 
@@ -217,7 +216,7 @@ def detect(
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     p_track = _p_per_track(t, index, params)
     factor = np.full(len(pts), np.nan)
     distinct = np.unique(p_track)

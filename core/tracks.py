@@ -5,10 +5,13 @@ one contiguous run, and per-track quantities come from ``np.*.reduceat`` over th
 starts. No Python loop per point or per track.
 """
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
+import pyarrow.compute as pc
 
 from wakeline.core import geo
 from wakeline.core.schema import ordered_columns, time_seconds
@@ -48,23 +51,120 @@ def _key_codes(df: pd.DataFrame, sort: bool = True) -> tuple[np.ndarray, np.ndar
     return sensor_codes.astype("int64"), batch_codes.astype("int64")
 
 
+#: Tables known to be in track order: id → (weak reference, fingerprint, index, seconds).
+#: "Sort once": every step asks :func:`sorted_with_index`, which answers from here for a
+#: table it has sorted or checked before, without sorting or re-deriving seconds.
+_IN_ORDER: dict[int, tuple[weakref.ref, tuple, "TrackIndex", np.ndarray]] = {}
+
+
+def _fingerprint(df: pd.DataFrame) -> tuple:
+    """Length and the buffers holding the key columns: replacing a column changes it."""
+    parts: list = [len(df)]
+    for name in ("sensor", "batch", "time"):
+        arr = df[name].array
+        if isinstance(arr, pd.arrays.DatetimeArray):
+            parts.append(arr.asi8.ctypes.data)
+        elif hasattr(arr, "_pa_array"):
+            parts.append(tuple(c.buffers()[-1].address for c in arr._pa_array.chunks))
+        else:
+            parts.append(id(arr))
+    return tuple(parts)
+
+
+def _remember(df: pd.DataFrame, index: "TrackIndex", t: np.ndarray) -> None:
+    key = id(df)
+    ref = weakref.ref(df, lambda _ref, key=key: _IN_ORDER.pop(key, None))
+    _IN_ORDER[key] = (ref, _fingerprint(df), index, t)
+
+
+def known_order(df: pd.DataFrame) -> tuple["TrackIndex", np.ndarray] | None:
+    """The :class:`TrackIndex` and time (s) of a table already sorted or checked, else None."""
+    entry = _IN_ORDER.get(id(df))
+    if entry is None or entry[0]() is not df:
+        return None
+    try:
+        if entry[1] != _fingerprint(df):
+            return None
+    except (KeyError, AttributeError):
+        return None
+    return entry[2], entry[3]
+
+
+def track_seconds(df: pd.DataFrame) -> np.ndarray:
+    """:func:`time_seconds` of ``df["time"]``, from the order registry when it is known.
+
+    The array is shared: do not modify it."""
+    known = known_order(df)
+    return known[1] if known is not None else time_seconds(df["time"])
+
+
+def _arrow_text(col: pd.Series) -> pa.ChunkedArray | None:
+    arr = col.array
+    if not hasattr(arr, "_pa_array") or col.hasnans:
+        return None
+    return arr._pa_array
+
+
+def _change_if_ordered(df: pd.DataFrame, t: np.ndarray) -> np.ndarray | None:
+    """Per row, True where a new track starts — when the table is already ordered by
+    sensor, batch (as text) and time; None when it is not (or keys are not plain text).
+
+    Arrow compares neighbouring texts byte-wise (UTF-8 order is code-point order, the
+    order of a sort by text), so no factorization of 10 M strings is needed."""
+    sensor, batch = _arrow_text(df["sensor"]), _arrow_text(df["batch"])
+    if sensor is None or batch is None:
+        return None
+    n = len(df)
+    s0, s1 = sensor.slice(0, n - 1), sensor.slice(1)
+    b0, b1 = batch.slice(0, n - 1), batch.slice(1)
+    s_lt = pc.less(s1, s0)
+    if pc.any(s_lt).as_py():
+        return None
+    s_eq = pc.equal(s1, s0).to_numpy()
+    b_eq = pc.equal(b1, b0).to_numpy()
+    b_lt = pc.less(b1, b0).to_numpy()
+    same = s_eq & b_eq
+    if np.any(s_eq & b_lt) or np.any(same & ~(np.diff(t) >= 0)):
+        return None
+    change = np.empty(n, dtype=bool)
+    change[0] = True
+    change[1:] = ~same
+    return change
+
+
 def sorted_with_index(df: pd.DataFrame) -> tuple[pd.DataFrame, "TrackIndex"]:
     """Rows ordered by sensor, batch (as text) and time, and their :class:`TrackIndex`,
-    from one factorization. The table is returned as is when already in order."""
+    from one factorization. The table is returned as is when already in order.
+
+    Sort once: the answer is remembered for the returned table (see :func:`known_order`),
+    so the next step that asks gets it back without sorting or checking again."""
+    known = known_order(df)
+    if known is not None:
+        return df, known[0]
     n = len(df)
     if n == 0:
         out = df.reset_index(drop=True)
         return out, track_index(out)
-    sensor, batch = _key_codes(df)
+    fresh = isinstance(df.index, pd.RangeIndex) and df.index.start == 0 and df.index.step == 1
     t = time_seconds(df["time"])
+    change = _change_if_ordered(df, t) if n > 1 else None
+    if change is not None:
+        out = df if fresh else df.reset_index(drop=True)
+        index = _index_from_change(out, change)
+        _remember(out, index, t)
+        return out, index
+    sensor, batch = _key_codes(df)
     track = sensor * (int(batch.max()) + 1) + batch
     if _is_sorted(track, t):
-        fresh = isinstance(df.index, pd.RangeIndex) and df.index.start == 0
         out = df if fresh else df.reset_index(drop=True)
-        return out, _index_from_codes(out, sensor, batch)
+        index = _index_from_codes(out, sensor, batch)
+        _remember(out, index, t)
+        return out, index
     order = _sort_order(track, t)
     out = df.iloc[order].reset_index(drop=True)
-    return out, _index_from_codes(out, sensor[order], batch[order])
+    index = _index_from_codes(out, sensor[order], batch[order])
+    _remember(out, index, t[order])
+    return out, index
 
 
 def _is_sorted(track: np.ndarray, t: np.ndarray) -> bool:
@@ -93,6 +193,9 @@ def sort_points(df: pd.DataFrame) -> pd.DataFrame:
 
 def track_index(df: pd.DataFrame) -> TrackIndex:
     """The :class:`TrackIndex` of a table sorted by :func:`sort_points`."""
+    known = known_order(df)
+    if known is not None:
+        return known[0]
     if len(df) == 0:
         empty = np.zeros(0, dtype="int64")
         return TrackIndex(
@@ -109,6 +212,11 @@ def _index_from_codes(
     change = np.empty(n, dtype=bool)
     change[0] = True
     change[1:] = (sensor_codes[1:] != sensor_codes[:-1]) | (batch_codes[1:] != batch_codes[:-1])
+    return _index_from_change(df, change)
+
+
+def _index_from_change(df: pd.DataFrame, change: np.ndarray) -> TrackIndex:
+    n = len(df)
     starts = np.flatnonzero(change).astype("int64")
     ends = np.append(starts[1:], n).astype("int64")
     track_of_row = np.cumsum(change).astype("int64") - 1
