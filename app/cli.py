@@ -155,7 +155,7 @@ def _cmd_compress(args: argparse.Namespace) -> int:
     if args.method == "dp":
         index = track_index(points)
         x, y = local_xy(points, index)
-        keep = douglas_peucker_mask(x, y, index, args.tolerance)
+        keep = douglas_peucker_mask(x, y, index, args.tolerance, args.dp_distance)
         refine = False
     else:
         keep = detect(points, _maneuver_params(args)).is_maneuver
@@ -676,6 +676,13 @@ def build_parser() -> argparse.ArgumentParser:
         type=_positive_float,
         default=600.0,
         help="dp: Douglas-Peucker tolerance, metres (default 600)",
+    )
+    p.add_argument(
+        "--dp-distance",
+        choices=("segment", "line"),
+        default="segment",
+        help="dp: distance to the chord segment (shapely/GEOS, default) or to its line "
+        "(textbook; the form before issue 17)",
     )
     p.add_argument(
         "--raw-vertices",

@@ -189,10 +189,46 @@ def compress_with(
     return Compressed(pts, index, kept, knot_xy, recon, xy, true_xy)
 
 
+DP_DISTANCES = ("segment", "line")
+
+
 def douglas_peucker_mask(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, tolerance_m: float, distance: str = "segment"
+) -> np.ndarray:
+    """Douglas–Peucker on all tracks at once: which points (metres, track plane) are kept.
+
+    ``distance="segment"`` (default): a point's distance to the chord *segment*, as GEOS
+    measures it; runs in ``shapely.simplify`` over all tracks at once (one linestring per
+    track, the row number carried as z so kept vertices map back to rows).
+    ``distance="line"``: perpendicular distance to the chord's infinite line (the
+    textbook form), our vectorized rounds (:func:`_dp_line_mask`). Both take the first
+    farthest point and split when it is beyond the tolerance; they differ only where a
+    point lies beyond a chord's ends (loops, U-turns). See docs/benchmarks.md.
+    """
+    if distance == "line":
+        return _dp_line_mask(x, y, index, tolerance_m)
+    if distance != "segment":
+        raise ValueError(f"distance must be one of {', '.join(DP_DISTANCES)}")
+    import shapely  # lazy: keeps `wakeline --help` fast
+
+    keep = np.zeros(len(x), dtype=bool)
+    keep[index.starts] = True
+    keep[index.ends - 1] = True
+    rows = np.flatnonzero((index.sizes >= 3)[index.track_of_row])
+    if len(rows) == 0:
+        return keep
+    coords = np.column_stack([x[rows], y[rows], rows.astype("float64")])
+    lines = shapely.linestrings(coords, indices=index.track_of_row[rows])
+    simple = shapely.simplify(lines, float(tolerance_m), preserve_topology=False)
+    kept_rows = shapely.get_coordinates(simple, include_z=True)[:, 2]
+    keep[kept_rows.astype("int64")] = True
+    return keep
+
+
+def _dp_line_mask(
     x: np.ndarray, y: np.ndarray, index: TrackIndex, tolerance_m: float
 ) -> np.ndarray:
-    """Douglas–Peucker on all tracks at once (spatial perpendicular distance, metres).
+    """Douglas–Peucker by perpendicular distance to the chord's line, all tracks at once.
 
     Each round takes every open segment of every track, finds its farthest interior point
     with one vectorized pass, and splits the segments whose farthest point is beyond the

@@ -28,6 +28,16 @@ RUNS: dict[str, tuple[str, list[str], list[str]]] = {
     "compress_maneuver": ("maneuver.csv", ["compress"], ["-o", "--report"]),
     "compress_raw": ("maneuver.csv", ["compress", "--raw-vertices"], ["-o"]),
     "compress_dp": ("maneuver.csv", ["compress", "--method", "dp"], ["-o", "--report"]),
+    "compress_dp_line": (
+        "maneuver.csv",
+        ["compress", "--method", "dp", "--dp-distance", "line"],
+        ["-o", "--report"],
+    ),
+    "compress_dp_line_tight": (
+        "segments.csv",
+        ["compress", "--method", "dp", "--tolerance", "50", "--dp-distance", "line"],
+        ["-o", "--report"],
+    ),
     "compress_dp_tight": (
         "segments.csv",
         ["compress", "--method", "dp", "--tolerance", "50"],
