@@ -73,6 +73,8 @@ def _fingerprint(df: pd.DataFrame) -> tuple:
 
 def _remember(df: pd.DataFrame, index: "TrackIndex", t: np.ndarray) -> None:
     key = id(df)
+    t = t.view()
+    t.flags.writeable = False  # shared by every step that asks: nobody may change it
     ref = weakref.ref(df, lambda _ref, key=key: _IN_ORDER.pop(key, None))
     _IN_ORDER[key] = (ref, _fingerprint(df), index, t)
 
@@ -91,9 +93,8 @@ def known_order(df: pd.DataFrame) -> tuple["TrackIndex", np.ndarray] | None:
 
 
 def track_seconds(df: pd.DataFrame) -> np.ndarray:
-    """:func:`time_seconds` of ``df["time"]``, from the order registry when it is known.
-
-    The array is shared: do not modify it."""
+    """:func:`time_seconds` of ``df["time"]``, from the order registry when it is known
+    (then a shared, read-only array)."""
     known = known_order(df)
     return known[1] if known is not None else time_seconds(df["time"])
 
@@ -264,7 +265,7 @@ def step_motion(
     n = len(df)
     lon = df["lon"].to_numpy(dtype="float64")
     lat = df["lat"].to_numpy(dtype="float64")
-    t = time_seconds(df["time"])
+    t = track_seconds(df)
     dist = np.full(n, np.nan)
     dt = np.full(n, np.nan)
     course = np.full(n, np.nan)
@@ -337,7 +338,7 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
         )
     dist, _, _, _ = step_motion(df, index)
     dist = np.nan_to_num(dist)
-    t = time_seconds(df["time"])
+    t = track_seconds(df)
     length = np.add.reduceat(dist, index.starts)
     duration = t[index.ends - 1] - t[index.starts]
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -377,7 +378,7 @@ def interp_positions(
     """
     track = np.asarray(track, dtype="int64")
     times_s = np.asarray(times_s, dtype="float64")
-    t = time_seconds(df["time"])
+    t = track_seconds(df)
     lon = df["lon"].to_numpy(dtype="float64")
     lat = df["lat"].to_numpy(dtype="float64")
     if len(track) == 0:
