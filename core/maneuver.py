@@ -220,6 +220,11 @@ def detect(
     p_track = _p_per_track(t, index, params)
     factor = np.full(len(pts), np.nan)
     distinct = np.unique(p_track)
+    if len(distinct) == 1:  # one p for all (usual): no row selection, no sub-index
+        if progress:
+            progress(0.0, f"maneuver factor, p = {distinct[0]}")
+        factor = maneuver_factor(x, y, index, int(distinct[0]))
+        distinct = distinct[:0]
     for k, p in enumerate(distinct):  # one pass per distinct p (usually one)
         if progress:
             progress(k / len(distinct), f"maneuver factor, p = {p}")
