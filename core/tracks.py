@@ -66,8 +66,8 @@ def _fingerprint(df: pd.DataFrame) -> tuple:
             parts.append(arr.asi8.ctypes.data)
         elif hasattr(arr, "_pa_array"):
             parts.append(tuple(c.buffers()[-1].address for c in arr._pa_array.chunks))
-        else:
-            parts.append(id(arr))
+        else:  # numpy-backed (object, numbers): the buffer, when no copy is made
+            parts.append(np.asarray(arr).__array_interface__["data"][0])
     return tuple(parts)
 
 

@@ -67,3 +67,11 @@ def test_derived_or_changed_tables_are_not_trusted():
     resorted, index = sorted_with_index(out)
     assert resorted is not out and _in_order(resorted)
     np.testing.assert_array_equal(index.starts, _codes_index(resorted).starts)
+
+
+def test_object_keys_are_remembered_too():
+    df = _table(3).astype({"sensor": object, "batch": object})
+    out, index = sorted_with_index(df)
+    assert known_order(out) is not None and sorted_with_index(out)[1] is index
+    out["batch"] = out["batch"].to_numpy()[::-1]
+    assert known_order(out) is None
