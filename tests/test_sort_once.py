@@ -75,3 +75,12 @@ def test_object_keys_are_remembered_too():
     assert known_order(out) is not None and sorted_with_index(out)[1] is index
     out["batch"] = out["batch"].to_numpy()[::-1]
     assert known_order(out) is None
+
+
+def test_sorting_rebuilds_text_keys_exactly():
+    df = _table(4)[["time", "batch", "lon", "sensor", "lat"]].assign(extra=np.arange(400))
+    out, _ = sorted_with_index(df)
+    sensor, batch = tracks._key_codes(df)
+    track = sensor * (int(batch.max()) + 1) + batch
+    order = tracks._sort_order(track, tracks.time_seconds(df["time"]))
+    pd.testing.assert_frame_equal(out, df.iloc[order].reset_index(drop=True), check_exact=True)
