@@ -148,14 +148,14 @@ def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
     )
     i = near["i"].astype("int64")
     j = near["j"].astype("int64")
-    order = np.lexsort((j, i))
-    i, j = i[order], j[order]
     gap = seg.t0[j] - seg.t1[i]
     keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
     i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     keep = dist <= v * gap + params.position_tol_m
     i, j, gap, dist = i[keep], j[keep], gap[keep], dist[keep]
+    order = np.argsort(i * n + j)  # (i, j) order; keys are unique
+    i, j, gap, dist = i[order], j[order], gap[order], dist[order]
     px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
     miss = _miss_one_turn(
         px, py, seg.vx1[i] * gap, seg.vy1[i] * gap, seg.vx0[j] * gap, seg.vy0[j] * gap
