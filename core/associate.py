@@ -19,9 +19,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy import sparse
-from scipy.sparse.csgraph import connected_components, min_weight_full_bipartite_matching
-from scipy.spatial import cKDTree
 
 from wakeline.core import geo
 from wakeline.core.errors import InputError
@@ -154,36 +151,45 @@ class Pairs:
 
 def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
     """Pairs of one sensor with ``0 < start(j) − end(i) ≤ max_gap_s`` and reachable at
-    ``v_max_kn`` (+ ``position_tol_m``), found with a k-d tree; features per pair."""
+    ``v_max_kn`` (+ ``position_tol_m``), found with a k-d tree; features per pair.
+
+    Pairs come out ordered by (i, j). Track ends and starts are points in
+    (x, y, z, scaled time, sensor) space, the starts shifted back by half the longest
+    gap: a reachable pair is at most ``reach = v·max_gap_s + position_tol_m`` apart in
+    space and, with time scaled so that half the gap window spans ``reach``, at most
+    ``reach`` apart in time, so within √2·reach. One k-d tree query
+    (``sparse_distance_matrix``, arrays out) finds them: the work grows with the number
+    of neighbours, with no Python list per segment and no pair with a negative gap.
+    """
+    from scipy.spatial import cKDTree  # lazy: keeps `wakeline --help` fast
+
     n = len(seg)
     if n < 2:
         e = np.zeros(0)
         return Pairs(e.astype("int64"), e.astype("int64"), e, e, e, e, e)
     v = params.v_max_kn * geo.KN_MS
     t_ref = float(min(seg.t0.min(), seg.t1.min()))
-    # (x, y, z, v·t, sensor): a reachable pair is within √2·v·T_gap + tol of each other.
-    sensor_far = 4.0 * geo.EARTH_RADIUS_M
+    reach = v * params.max_gap_s + params.position_tol_m
+    scale = 2.0 * reach / params.max_gap_s
+    sensor_far = 4.0 * geo.EARTH_RADIUS_M + 4.0 * reach
     ends = np.column_stack(
-        [ecef(seg.lon1, seg.lat1), v * (seg.t1 - t_ref), sensor_far * seg.sensor_code]
+        [ecef(seg.lon1, seg.lat1), scale * (seg.t1 - t_ref), sensor_far * seg.sensor_code]
     )
-    starts = np.column_stack(
-        [ecef(seg.lon0, seg.lat0), v * (seg.t0 - t_ref), sensor_far * seg.sensor_code]
+    mid = seg.t0 - t_ref - params.max_gap_s / 2.0
+    starts = np.column_stack([ecef(seg.lon0, seg.lat0), scale * mid, sensor_far * seg.sensor_code])
+    near = cKDTree(ends).sparse_distance_matrix(
+        cKDTree(starts), np.sqrt(2.0) * reach * (1.0 + 1e-9), output_type="ndarray"
     )
-    radius = np.sqrt(2.0) * v * params.max_gap_s + params.position_tol_m
-    near = cKDTree(ends).query_ball_tree(cKDTree(starts), radius)
-    lens = np.fromiter((len(x) for x in near), dtype="int64", count=n)
-    i = np.repeat(np.arange(n), lens)
-    j = (
-        np.fromiter((k for x in near for k in x), dtype="int64", count=int(lens.sum()))
-        if lens.sum()
-        else np.zeros(0, dtype="int64")
-    )
+    i = near["i"].astype("int64")
+    j = near["j"].astype("int64")
     gap = seg.t0[j] - seg.t1[i]
     keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
     i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     keep = dist <= v * gap + params.position_tol_m
     i, j, gap, dist = i[keep], j[keep], gap[keep], dist[keep]
+    order = np.argsort(i * n + j)  # (i, j) order; keys are unique
+    i, j, gap, dist = i[order], j[order], gap[order], dist[order]
     px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
     miss = _miss_one_turn(
         px, py, seg.vx1[i] * gap, seg.vy1[i] * gap, seg.vx0[j] * gap, seg.vy0[j] * gap
@@ -349,6 +355,9 @@ def optimal_assign(
     A constant is added to every edge (the matching is full, so it does not change the
     optimum) to keep zero costs as edges.
     """
+    from scipy import sparse
+    from scipy.sparse.csgraph import min_weight_full_bipartite_matching
+
     ok = cost <= gate
     idx = np.flatnonzero(ok)
     if len(idx) == 0:
@@ -450,6 +459,9 @@ def insert_skipped(
 
 def components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Connected-component label of each of ``n`` tracks linked by pairs (a, b)."""
+    from scipy import sparse
+    from scipy.sparse.csgraph import connected_components
+
     g = sparse.coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
     return connected_components(g, directed=False)[1]
 

@@ -39,7 +39,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
-from scipy.stats import norm, rankdata
 
 from wakeline.core import geo
 from wakeline.core.errors import InputError
@@ -104,7 +103,9 @@ class BearingParams(Params):
 
     @property
     def z_crit(self) -> float:
-        return float(norm.ppf(1.0 - self.alpha / 2.0))
+        from statistics import NormalDist  # scipy.stats is slow to import
+
+        return float(NormalDist().inv_cdf(1.0 - self.alpha / 2.0))
 
 
 def auc_windows(values: np.ndarray, m: np.ndarray | int) -> np.ndarray:
@@ -114,6 +115,8 @@ def auc_windows(values: np.ndarray, m: np.ndarray | int) -> np.ndarray:
     values = np.where(np.isnan(values), np.inf, values)
     n_valid = np.isfinite(values).sum(axis=1)
     m = np.broadcast_to(np.asarray(m), (values.shape[0],))
+    from scipy.stats import rankdata  # lazy: scipy.stats is slow to import
+
     ranks = rankdata(values, axis=1)
     in_x = np.arange(values.shape[1])[None, :] < m[:, None]
     n = n_valid - m
@@ -489,6 +492,8 @@ def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) 
     sigma = float(np.median(st.rms_deg))
     need = params.z_crit * st.sd
     frac = np.clip(0.5 + need, None, 1 - 1e-12)
+    from scipy.stats import norm  # lazy: scipy.stats is slow to import
+
     delta = np.radians(sigma) * math.sqrt(2.0) * norm.ppf(frac)
     rate = np.where(need < 0.5, delta / (params.window_y_s / 2.0), np.inf)  # rad/s
     out = {

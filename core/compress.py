@@ -16,7 +16,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.linalg import solve_banded
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
@@ -27,6 +26,7 @@ from wakeline.core.tracks import (
     local_xy,
     sorted_with_index,
     track_origins,
+    track_seconds,
 )
 
 
@@ -99,6 +99,8 @@ def _least_squares_knots(
     left: np.ndarray, w: np.ndarray, xy: np.ndarray, n_knots: int, single_knot: np.ndarray
 ) -> np.ndarray:
     """Knot positions minimizing Σ |(1-w) c_left + w c_left+1 - xy|² (all tracks at once)."""
+    from scipy.linalg import solve_banded  # lazy: keeps `wakeline --help` fast
+
     a = 1.0 - w
     diag = np.bincount(left, a * a, minlength=n_knots) + np.bincount(
         np.minimum(left + 1, n_knots - 1), w * w, minlength=n_knots
@@ -195,7 +197,7 @@ def compress_with(
     kept[index.ends - 1] = True
     x, y = local_xy(pts, index)
     xy = np.column_stack([x, y])
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     left, w = _segments(kept, index, t)
     knot_rows = np.flatnonzero(kept)
     if refine and n:
@@ -217,6 +219,9 @@ def compress_with(
         )
         true_xy = np.column_stack([tx, ty])
     return Compressed(pts, index, kept, knot_xy, recon, xy, true_xy)
+
+
+DP_DISTANCES = ("segment", "line")
 
 
 def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
@@ -281,9 +286,45 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
 
 
 def douglas_peucker_mask(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, tolerance_m: float, distance: str = "segment"
+) -> np.ndarray:
+    """Douglas–Peucker on all tracks at once: which points (metres, track plane) are kept.
+
+    ``distance="segment"`` (default): a point's distance to the chord *segment*, as GEOS
+    measures it; runs in ``shapely.simplify`` over all tracks at once (one linestring per
+    track, the row number carried as z so kept vertices map back to rows).
+    ``distance="line"``: perpendicular distance to the chord's infinite line (the
+    textbook form), our vectorized rounds (:func:`_dp_line_mask`). Both take the first
+    farthest point and split when it is beyond the tolerance; they differ only where a
+    point lies beyond a chord's ends (loops, U-turns). See docs/benchmarks.md.
+    """
+    if distance == "line":
+        return _dp_line_mask(x, y, index, tolerance_m)
+    if distance != "segment":
+        raise ValueError(f"distance must be one of {', '.join(DP_DISTANCES)}")
+    import shapely  # lazy: keeps `wakeline --help` fast
+
+    keep = np.zeros(len(x), dtype=bool)
+    keep[index.starts] = True
+    keep[index.ends - 1] = True
+    rows = np.flatnonzero((index.sizes >= 3)[index.track_of_row])
+    if len(rows) == 0:
+        return keep
+    coords = np.column_stack([x[rows], y[rows], rows.astype("float64")])
+    # shapely wants the line numbers 0, 1, 2 … without gaps (short tracks are left out).
+    track = index.track_of_row[rows]
+    line_no = np.concatenate([[0], np.cumsum(np.diff(track) != 0)]).astype("int64")
+    lines = shapely.linestrings(coords, indices=line_no)
+    simple = shapely.simplify(lines, float(tolerance_m), preserve_topology=False)
+    kept_rows = shapely.get_coordinates(simple, include_z=True)[:, 2]
+    keep[kept_rows.astype("int64")] = True
+    return keep
+
+
+def _dp_line_mask(
     x: np.ndarray, y: np.ndarray, index: TrackIndex, tolerance_m: float
 ) -> np.ndarray:
-    """Douglas–Peucker on all tracks at once (spatial perpendicular distance, metres).
+    """Douglas–Peucker by perpendicular distance to the chord's line, all tracks at once.
 
     Each round takes every open segment of every track, finds its farthest interior point
     with one vectorized pass, and splits the segments whose farthest point is beyond the

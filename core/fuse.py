@@ -32,7 +32,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.spatial import cKDTree
 
 from wakeline.core import geo
 from wakeline.core.associate import components, dtw_batch, greedy_assign, optimal_assign
@@ -169,6 +168,8 @@ def _probe_pairs(
     pts: pd.DataFrame, index: TrackIndex, t0: np.ndarray, t1: np.ndarray, params: FuseParams
 ) -> tuple[np.ndarray, np.ndarray]:
     """Track pairs of different sensors within ``max_distance_m`` at some probe time."""
+    from scipy.spatial import cKDTree  # lazy: keeps `wakeline --help` fast
+
     p = params.probe_s
     g0 = np.ceil((t0 - p / 2) / p).astype("int64")
     g1 = np.floor((t1 + p / 2) / p).astype("int64")

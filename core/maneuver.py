@@ -28,12 +28,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.ndimage import maximum_filter1d
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
-from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index
+from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_seconds
 
 MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
 
@@ -192,6 +190,8 @@ def local_maxima(delta: np.ndarray, index: TrackIndex, radius: int) -> np.ndarra
     window anyway), so tracks are concatenated with ``radius`` −∞ separators and one
     maximum filter runs over all of them. On a plateau only the first point is kept.
     """
+    from scipy.ndimage import maximum_filter1d  # lazy: keeps `wakeline --help` fast
+
     finite = np.isfinite(delta)
     if not finite.any():
         return np.zeros(len(delta), dtype=bool)
@@ -225,20 +225,25 @@ class ManeuverResult:
     params: ManeuverParams | None = None  # the parameters used
 
     def table(self) -> pd.DataFrame:
-        """One row per maneuver point: sensor, batch, index, time, lon, lat, factor."""
+        """One row per maneuver point: sensor, batch, index, time, lon, lat, factor.
+
+        Rows are taken column by column (``take`` on the Arrow/numpy arrays), never by
+        converting a whole column to Python objects."""
         rows = np.flatnonzero(self.is_maneuver)
-        pts = self.points
-        return pd.DataFrame(
+        sub = self.points[["sensor", "batch", "time", "lon", "lat"]].iloc[rows]
+        sub = sub.reset_index(drop=True)
+        out = pd.DataFrame(
             {
-                "sensor": pts["sensor"].to_numpy()[rows],
-                "batch": pts["batch"].to_numpy()[rows],
+                "sensor": sub["sensor"],
+                "batch": sub["batch"],
                 "index": (rows - self.index.starts[self.index.track_of_row[rows]]).astype("int64"),
-                "time": pts["time"].iloc[rows].to_numpy(),
-                "lon": pts["lon"].to_numpy()[rows],
-                "lat": pts["lat"].to_numpy()[rows],
+                "time": sub["time"],
+                "lon": sub["lon"],
+                "lat": sub["lat"],
                 "factor": self.factor[rows],
             }
-        ).astype({"sensor": "str", "batch": "str"})
+        )
+        return out.astype({"sensor": "str", "batch": "str"})
 
 
 def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
@@ -386,7 +391,7 @@ def detect(
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     sigma = None
     rest = np.zeros(len(pts), dtype=bool)
     if params.rest_radius_m > 0 and len(pts):

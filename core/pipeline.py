@@ -75,6 +75,13 @@ class CompressOptions(Params):
         "keep maneuver points (seed 000) or Douglas-Peucker points",
         choices=("maneuver", "dp"),
     )
+    dp_distance: str = param(
+        "segment",
+        "",
+        "dp: a point's distance to the chord segment (GEOS, shapely) or to its infinite "
+        "line (the classic textbook form)",
+        choices=("segment", "line"),
+    )
 
 
 @dataclass(frozen=True)
@@ -249,7 +256,7 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
         pts = sort_points(points)
         index = track_index(pts)
         x, y = local_xy(pts, index)
-        keep = douglas_peucker_mask(x, y, index, cp.dp_tolerance_m)
+        keep = douglas_peucker_mask(x, y, index, cp.dp_tolerance_m, distance=opts.dp_distance)
         refine = False
     else:
         from wakeline.core.compress import turning_keep

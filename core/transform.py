@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.interpolate import make_lsq_spline, make_smoothing_spline
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
@@ -263,6 +262,8 @@ def bspline_segments(points: pd.DataFrame, params: BsplineParams, next_id: int =
     seg_first = np.flatnonzero(first | split)
     seg_no_in_track = segment - segment[np.flatnonzero(first)][s_track]  # 0, 1, 2 … within track
     n_segments = np.bincount(s_track, first | split, minlength=index.n_tracks)
+
+    from scipy.interpolate import make_lsq_spline, make_smoothing_spline  # lazy: slow
 
     # Cubic spline per segment, in the track's plane: GCV smoothing spline (ours) or
     # seed 001's least-squares B-spline on a knot vector from the segment's length.

@@ -10,7 +10,7 @@ from wakeline.core import simulate
 from wakeline.core.compress import compress_with, douglas_peucker_mask
 from wakeline.core.evaluate import SEED000_TABLE1, evaluate_maneuver, match_turns
 from wakeline.core.maneuver import detect
-from wakeline.core.tracks import local_xy, sort_points, track_index
+from wakeline.core.tracks import TrackIndex, local_xy, sort_points, track_index
 
 
 def test_keeping_every_point_gives_zero_error():
@@ -73,18 +73,47 @@ def _dp_reference(x, y, a, b, tol, keep):
         _dp_reference(x, y, m, b, tol, keep)
 
 
-def test_douglas_peucker_matches_recursive_reference():
+def _dp_segment_reference(x, y, a, b, tol, keep):
+    """Recursive Douglas–Peucker, distance to the chord segment (as GEOS measures it)."""
+    if b - a < 2:
+        return
+    dx, dy = x[b] - x[a], y[b] - y[a]
+    i = np.arange(a + 1, b)
+    den = dx * dx + dy * dy
+    u = np.clip(((x[i] - x[a]) * dx + (y[i] - y[a]) * dy) / den, 0, 1) if den > 0 else 0.0
+    d = np.hypot(x[i] - (x[a] + u * dx), y[i] - (y[a] + u * dy))
+    m = int(i[np.argmax(d)])
+    if d.max() > tol:
+        keep[m] = True
+        _dp_segment_reference(x, y, a, m, tol, keep)
+        _dp_segment_reference(x, y, m, b, tol, keep)
+
+
+@pytest.mark.parametrize("distance", ["line", "segment"])
+def test_douglas_peucker_matches_recursive_reference(distance):
     df = simulate.maneuver_tracks(8, "short", 300.0, seed=5)
     pts = sort_points(df)
     index = track_index(pts)
     x, y = local_xy(pts, index)
+    reference = _dp_reference if distance == "line" else _dp_segment_reference
     for tol in (100.0, 600.0, 3000.0):
-        got = douglas_peucker_mask(x, y, index, tol)
+        got = douglas_peucker_mask(x, y, index, tol, distance)
         ref = np.zeros(len(x), bool)
         for a, b in zip(index.starts, index.ends, strict=True):
             ref[a] = ref[b - 1] = True
-            _dp_reference(x, y, a, b - 1, tol, ref)
+            reference(x, y, a, b - 1, tol, ref)
         assert np.array_equal(got, ref)
+
+
+def test_douglas_peucker_distances_differ_beyond_the_chord():
+    """A point behind the chord's start: 0 m from its line, 100 m from the segment."""
+    x = np.array([0.0, -100.0, 1000.0])
+    y = np.zeros(3)
+    idx = TrackIndex(np.array([0]), np.array([3]), np.zeros(3, dtype="int64"), None)
+    assert douglas_peucker_mask(x, y, idx, 50.0, "line").tolist() == [True, False, True]
+    assert douglas_peucker_mask(x, y, idx, 50.0, "segment").tolist() == [True, True, True]
+    with pytest.raises(ValueError, match="segment, line"):
+        douglas_peucker_mask(x, y, idx, 50.0, "chord")
 
 
 def test_douglas_peucker_straight_and_corner():

@@ -155,6 +155,96 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         raise
 
 
+#: One timestamp's text, ``YYYY-MM-DD`` ``T`` ``HH:MM:SS`` ``.`` ``mmmZ``, as fixed fields.
+_ISO_ROW = np.dtype([("date", "S10"), ("t", "S1"), ("hms", "S8"), ("dot", "S1"), ("ms", "S4")])
+
+
+def _digits(values: np.ndarray, width: int) -> np.ndarray:
+    """Zero-padded decimal text of small non-negative integers, as an (n, width) uint8 block."""
+    out = np.empty((len(values), width), dtype="uint8")
+    for k in range(width):  # a loop over digit places
+        out[:, width - 1 - k] = 48 + values // 10**k % 10
+    return out
+
+
+def _civil(days: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Year, month, day of days since 1970-01-01 (H. Hinnant's days_from_civil inverse)."""
+    z = days + 719_468
+    era = z // 146_097
+    doe = z - era * 146_097
+    yoe = (doe - doe // 1460 + doe // 36_524 - doe // 146_096) // 365
+    doy = doe - (365 * yoe + yoe // 4 - yoe // 100)
+    mp = (5 * doy + 2) // 153
+    day = doy - (153 * mp + 2) // 5 + 1
+    month = np.where(mp < 10, mp + 3, mp - 9)
+    return yoe + era * 400 + (month <= 2), month, day
+
+
+def _field_table(parts: list[tuple[np.ndarray, int] | bytes], size: int) -> np.ndarray:
+    """Fixed-width texts made of digit blocks and literal bytes, one per row."""
+    blocks = [
+        np.frombuffer(p * size, dtype="uint8").reshape(size, len(p))
+        if isinstance(p, bytes)
+        else _digits(*p)
+        for p in parts
+    ]
+    block = np.ascontiguousarray(np.hstack(blocks))
+    return block.view(f"S{block.shape[1]}").ravel()
+
+
+def _time_tables() -> tuple[np.ndarray, np.ndarray]:
+    sod = np.arange(86_400)
+    hms = _field_table([(sod // 3600, 2), b":", (sod // 60 % 60, 2), b":", (sod % 60, 2)], 86_400)
+    ms = _field_table([(np.arange(1000), 3), b"Z"], 1000)
+    return hms, ms
+
+
+_TIME_TABLES: list[tuple[np.ndarray, np.ndarray]] = []
+
+
+def iso_ms_from_ns(ns: np.ndarray, valid: np.ndarray | None = None) -> pa.StringArray:
+    """``YYYY-MM-DDTHH:MM:SS.mmmZ`` for nanoseconds since the epoch (int64), as Arrow text.
+
+    Integer arithmetic on the epoch and table look-ups: each row's text is four gathers
+    (its date among the dates present, its second of the day among 86,400, its
+    millisecond among 1,000) into one fixed-width record; no per-element formatting.
+    Times are cut to the millisecond toward zero, as Arrow's unsafe cast does; ``valid``
+    False gives a null. Years 1678–2261 (the datetime64[ns] range) have four digits.
+    """
+    if not _TIME_TABLES:
+        _TIME_TABLES.append(_time_tables())
+    hms_table, ms_table = _TIME_TABLES[0]
+    ns = np.asarray(ns, dtype="int64")
+    n = len(ns)
+    if valid is not None:
+        ns = np.where(valid, ns, 0)
+    ms = ns // 1_000_000
+    ms += (ns < 0) & (ns != ms * 1_000_000)  # toward zero
+    days, msd = np.divmod(ms, 86_400_000)
+    sec, milli = np.divmod(msd.astype("int32"), 1000)
+    out = np.empty(n, dtype=_ISO_ROW)
+    out["t"] = b"T"
+    out["dot"] = b"."
+    out["hms"] = hms_table[sec]
+    out["ms"] = ms_table[milli]
+    if n:
+        first = int(days.min())
+        span = int(days.max()) - first + 1
+        if span <= max(4 * n, 1024):
+            dates = first + np.arange(span)
+            pos = days - first
+        else:
+            dates, pos = np.unique(days, return_inverse=True)
+        y, m, d = _civil(dates)
+        out["date"] = _field_table([(y, 4), b"-", (m, 2), b"-", (d, 2)], len(dates))[pos]
+    offsets = np.arange(0, 24 * (n + 1), 24, dtype="int32")
+    bitmap, nulls = None, 0
+    if valid is not None and not valid.all():
+        bitmap = pa.py_buffer(np.packbits(valid, bitorder="little"))
+        nulls = int(n - valid.sum())
+    return pa.StringArray.from_buffers(n, pa.py_buffer(offsets), pa.py_buffer(out), bitmap, nulls)
+
+
 def _to_arrow(df: pd.DataFrame) -> pa.Table:
     arrays = []
     for name in df.columns:
@@ -167,9 +257,8 @@ def _to_arrow(df: pd.DataFrame) -> pa.Table:
                 if getattr(col.dt, "tz", None) is not None
                 else col.dt.tz_localize("UTC")
             )
-            arr = pa.array(ts.dt.as_unit("ns"), type=pa.timestamp("ns", "UTC"))
-            arr = pc.cast(arr, pa.timestamp("ms", "UTC"), safe=False)
-            arrays.append(pc.strftime(arr, format="%Y-%m-%dT%H:%M:%SZ"))
+            ns = ts.dt.as_unit("ns").array.asi8
+            arrays.append(iso_ms_from_ns(ns, ts.notna().to_numpy()))
         elif pd.api.types.is_float_dtype(col.dtype):
             arrays.append(pa.array(col.to_numpy(dtype="float64"), from_pandas=True))
         elif pd.api.types.is_integer_dtype(col.dtype) or pd.api.types.is_bool_dtype(col.dtype):
@@ -185,26 +274,47 @@ def _quote(name: str) -> str:
     return name
 
 
+def _needs_quotes(column: pa.ChunkedArray) -> bool:
+    return pa.types.is_string(column.type) and bool(
+        pc.any(pc.match_substring_regex(column, _NEEDS_QUOTES)).as_py()
+    )
+
+
+def _quoted_body(table: pa.Table, quoted: list[bool]) -> pa.Array:
+    """The CSV rows as one Arrow text array (each ending in a newline), quoting only the
+    columns that need it; numbers are rendered by the cast Arrow's CSV writer uses."""
+    cols = []
+    for col, q in zip(table.columns, quoted, strict=True):
+        text = col if pa.types.is_string(col.type) else pc.cast(col, pa.string())
+        if q:
+            text = pc.binary_join_element_wise('"', pc.replace_substring(text, '"', '""'), '"', "")
+        cols.append(text)
+    row = pc.binary_join_element_wise(*cols, ",", null_handling="replace", null_replacement="")
+    return pc.binary_join_element_wise(row, "", "\n").combine_chunks()
+
+
 def write_csv(df: pd.DataFrame, path: str | Path) -> None:
     """Write any table as UTF-8 CSV atomically.
 
     Timestamps are written as ISO 8601 UTC with milliseconds and ``Z``; floats in their
-    shortest round-trip form; missing values as empty cells; text quoted only when it
-    holds a delimiter, a quote, a line break or edge blanks.
+    shortest round-trip form; missing values as empty cells; text quoted only in the
+    columns where some value holds a delimiter, a quote, a line break or edge blanks.
     """
     table = _to_arrow(df)
-    needs_quotes = any(
-        (pa.types.is_string(c.type) and pc.any(pc.match_substring_regex(c, _NEEDS_QUOTES)).as_py())
-        for c in table.columns
-    )
-    options = pacsv.WriteOptions(
-        include_header=False, quoting_style="needed" if needs_quotes else "none"
-    )
+    quoted = [_needs_quotes(c) for c in table.columns]
     header = (",".join(_quote(str(c)) for c in df.columns) + "\n").encode("utf-8")
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as fh:
             fh.write(header)
-            if len(df):
+            if not len(df):
+                pass
+            elif any(quoted):
+                body = _quoted_body(table, quoted)
+                offsets = np.frombuffer(body.buffers()[1], dtype="int32")
+                start, end = offsets[body.offset], offsets[body.offset + len(body)]
+                fh.write(memoryview(body.buffers()[2])[start:end])
+            else:
+                options = pacsv.WriteOptions(include_header=False, quoting_style="none")
                 pacsv.write_csv(table, fh, options)
 
 

@@ -1,0 +1,193 @@
+"""Engine speed end to end (issue 17): every figure a ratio against a baseline measured in
+the same run, best of ``--repeat`` runs each.
+
+- ``wakeline maneuvers`` on N points against a process that only reads the file into pandas;
+- ``wakeline import``, ``clean``, ``compress`` on N points against a process that reads the
+  file with pyarrow and writes it back with pyarrow;
+- ``wakeline --help`` against ``python -c "import numpy, pandas"``;
+- Douglas–Peucker (``douglas_peucker_mask``) against ``shapely.simplify`` on the same
+  coordinates, and the textbook line-distance variant;
+- interrupted-track association at 1 k / 10 k / 100 k segments (growth per 10×);
+- ``detect()`` points/s at 10 M points.
+
+Run: ``python bench/bench_commands.py [--points 2000000] [--detect-points 10000000]
+[--segments 1000 10000 100000] [--repeat 3] [--only NAME ...]``.
+Goals: maneuvers ≤ 3×; import ≤ 2×, clean ≤ 3×, compress ≤ 3×; --help ≤ 1.5×;
+DP ≤ 1.5× shapely; association growth ≤ 11× per 10×; detect() ≥ 10 M points/s.
+"""
+
+import argparse
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+PY = sys.executable
+CLI = [PY, "-m", "wakeline.app.cli"]
+READ_ONLY = "import sys, pyarrow.csv as c; c.read_csv(sys.argv[1]).to_pandas()"
+READ_WRITE = "import sys, pyarrow.csv as c; c.write_csv(c.read_csv(sys.argv[1]), sys.argv[2])"
+#: The same with the time column kept as text: Arrow's own timestamp formatting (in the
+#: baseline above) is slow, so this is the I/O floor.
+READ_WRITE_TEXT = (
+    "import sys, pyarrow as pa, pyarrow.csv as c; "
+    "t = c.read_csv(sys.argv[1], convert_options=c.ConvertOptions(column_types={'time': pa.string()})); "
+    "c.write_csv(t, sys.argv[2], c.WriteOptions(quoting_style='none'))"
+)
+
+
+def best(fn, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return min(times)
+
+
+def run(cmd: list[str]) -> None:
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def report(name: str, ours: float, base: float, goal: float, what: str) -> None:
+    ratio = ours / base
+    mark = "met" if ratio <= goal else "NOT met"
+    print(
+        f"{name:<22} {ours:7.2f} s vs {base:6.2f} s ({what}): {ratio:5.2f}x  (goal <= {goal}x, {mark})"
+    )
+
+
+def commands(folder: Path, n_points: int, repeat: int, only: set[str]) -> None:
+    from bench_maneuver import make_points
+
+    from wakeline.core.io import write_points
+
+    src = folder / "points.csv"
+    df = make_points(n_points, max(n_points // 1000, 1))
+    write_points(df, src)
+    del df
+    out = folder / "out.csv"
+    print(f"{n_points:,} points in track order, {src.stat().st_size / 1e6:.0f} MB")
+    if "help" in only:
+        base = best(lambda: run([PY, "-c", "import numpy, pandas"]), repeat)
+        ours = best(lambda: run([*CLI, "--help"]), repeat)
+        report("wakeline --help", ours, base, 1.5, "import numpy, pandas")
+    if "maneuvers" in only:
+        base = best(lambda: run([PY, "-c", READ_ONLY, str(src)]), repeat)
+        ours = best(lambda: run([*CLI, "maneuvers", str(src), "-o", str(out)]), repeat)
+        report("wakeline maneuvers", ours, base, 3.0, "pyarrow read + to_pandas")
+    rw = rw_text = None
+    for name, goal, extra in (
+        ("import", 2.0, []),
+        ("clean", 3.0, []),
+        ("compress", 3.0, []),
+    ):
+        if name not in only:
+            continue
+        if rw is None:
+            rw = best(lambda: run([PY, "-c", READ_WRITE, str(src), str(out)]), repeat)
+            rw_text = best(lambda: run([PY, "-c", READ_WRITE_TEXT, str(src), str(out)]), repeat)
+        ours = best(
+            lambda name=name, extra=extra: run([*CLI, name, str(src), "-o", str(out), *extra]),
+            repeat,
+        )
+        report(f"wakeline {name}", ours, rw, goal, "pyarrow read + write")
+        print(
+            f"{'':<22} vs pyarrow read + write, time as text ({rw_text:.2f} s): {ours / rw_text:.2f}x"
+        )
+
+
+def douglas_peucker(n_points: int, repeat: int) -> None:
+    import shapely
+    from bench_maneuver import make_points
+
+    from wakeline.core.compress import douglas_peucker_mask
+    from wakeline.core.tracks import local_xy, sorted_with_index
+
+    pts, index = sorted_with_index(make_points(n_points, max(n_points // 1000, 1)))
+    x, y = local_xy(pts, index)
+    for tol in (10.0, 600.0):
+
+        def plain_shapely(tol=tol):
+            lines = shapely.linestrings(np.column_stack([x, y]), indices=index.track_of_row)
+            shapely.simplify(lines, tol, preserve_topology=False)
+
+        base = best(plain_shapely, repeat)
+        ours = best(lambda tol=tol: douglas_peucker_mask(x, y, index, tol), repeat)
+        report(f"DP {tol:g} m", ours, base, 1.5, f"shapely.simplify, {n_points:,} points")
+        line = best(lambda tol=tol: douglas_peucker_mask(x, y, index, tol, "line"), 1)
+        print(f"{'':<22} line-distance variant (ours, numpy): {line:.2f} s, {line / base:.1f}x")
+
+
+def association(sizes: list[int], repeat: int) -> None:
+    from bench_associate import scene
+
+    from wakeline.core.associate import LinkParams, associate_interrupted, candidate_pairs
+    from wakeline.core.segments import segment_stats
+
+    params = LinkParams()
+    prev = None
+    for n in sizes:
+        df = scene(n)
+        seg = segment_stats(df, params.end_points)
+        t_pairs = best(lambda seg=seg: candidate_pairs(seg, params), repeat)
+        t_all = best(lambda df=df: associate_interrupted(df, params), repeat)
+        grow = ""
+        if prev is not None:
+            f = np.log10(len(seg) / prev[0])
+            grow = (
+                f"; growth per 10x: pairs {(t_pairs / prev[1]) ** (1 / f):.1f}x, "
+                f"association {(t_all / prev[2]) ** (1 / f):.1f}x (goal <= 11x)"
+            )
+        print(
+            f"association {len(seg):>7,} segments: candidate pairs {t_pairs:.3f} s, "
+            f"associate_interrupted {t_all:.2f} s{grow}"
+        )
+        prev = (len(seg), t_pairs, t_all)
+
+
+def detect_rate(n_points: int, repeat: int) -> None:
+    from bench_maneuver import make_points
+
+    from wakeline.core.maneuver import detect
+    from wakeline.core.tracks import sorted_with_index
+
+    df = make_points(n_points, max(n_points // 1000, 1))
+    t = time.perf_counter()
+    pts, _ = sorted_with_index(
+        df
+    )  # once, as the step before would; batches "0".."9999" are not in text order
+    first = time.perf_counter() - t
+    el = best(lambda: detect(pts), repeat)
+    print(
+        f"detect() {n_points:,} points in track order: {el:.2f} s, {n_points / el / 1e6:.1f} M points/s "
+        f"(goal >= 10 M/s); sorted_with_index of the unsorted table before it: {first:.2f} s"
+    )
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--points", type=int, default=2_000_000)
+    ap.add_argument("--detect-points", type=int, default=10_000_000)
+    ap.add_argument("--dp-points", type=int, default=1_000_000)
+    ap.add_argument("--segments", type=int, nargs="+", default=[1000, 10_000, 100_000])
+    ap.add_argument("--repeat", type=int, default=3)
+    names = ("help", "maneuvers", "import", "clean", "compress", "dp", "associate", "detect")
+    ap.add_argument("--only", nargs="+", choices=names, default=list(names))
+    args = ap.parse_args()
+    only = set(args.only)
+    with tempfile.TemporaryDirectory() as tmp:
+        if only & {"help", "maneuvers", "import", "clean", "compress"}:
+            commands(Path(tmp), args.points, args.repeat, only)
+    if "dp" in only:
+        douglas_peucker(args.dp_points, args.repeat)
+    if "associate" in only:
+        association(args.segments, args.repeat)
+    if "detect" in only:
+        detect_rate(args.detect_points, args.repeat)
+
+
+if __name__ == "__main__":
+    main()
