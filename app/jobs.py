@@ -39,6 +39,34 @@ def _prepared(result: StepResult, progress, map_view, size_px) -> tuple[StepResu
     return stages[0], views
 
 
+def preload() -> None:
+    """Import, on the GUI thread, the modules that jobs would otherwise import lazily in
+    the worker: a first import in a worker thread while the GUI thread runs its event loop
+    (and the garbage collector) was seen to hang the GUI tests."""
+    import importlib
+
+    for name in (
+        "pyarrow.dataset",
+        "pyarrow.parquet",
+        "scipy.spatial",
+        "scipy.sparse.csgraph",
+        "scipy.interpolate",
+        "scipy.stats",
+        "shapely",
+        "wakeline.core.io.layout",
+        "wakeline.core.io.export_like",
+        "wakeline.core.clean",
+        "wakeline.core.maneuver",
+        "wakeline.core.compress",
+        "wakeline.core.associate",
+        "wakeline.core.fuse",
+        "wakeline.core.review",
+        "wakeline.core.bearing",
+        "wakeline.core.export",
+    ):
+        importlib.import_module(name)
+
+
 class JobsMixin:
     """Loading, running and saving for :class:`~wakeline.app.main_window.MainWindow`."""
 

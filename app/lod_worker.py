@@ -28,8 +28,10 @@ class LodWorker(QtCore.QObject):
 
     def __init__(self, parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
-        self.pool = QtCore.QThreadPool(self)
-        self.pool.setMaxThreadCount(1)
+        # The application's global pool, never a pool of our own: a QThreadPool destroyed
+        # by Python's garbage collector waits for its running task while holding the GIL,
+        # which that task needs — a deadlock (seen in the GUI tests).
+        self.pool = QtCore.QThreadPool.globalInstance()
         self.signals = _Signals(self)
         self.signals.done.connect(lambda callback, result: callback(result))
 

@@ -21,7 +21,7 @@ from wakeline.app.bearing_view import BearingView
 from wakeline.app.detail import DetailPanel
 from wakeline.app.dialogs import ImportReportDialog
 from wakeline.app.import_dialog import ImportDialog
-from wakeline.app.jobs import JobsMixin
+from wakeline.app.jobs import JobsMixin, preload
 from wakeline.app.layer_view import LayerView, draw_as, maneuver_table, prepare_view
 from wakeline.app.lod_worker import LodWorker
 from wakeline.app.map_canvas import MapCanvas, color_icon
@@ -53,6 +53,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
     def __init__(self, settings: QtCore.QSettings | None = None) -> None:
         super().__init__()
         self.settings = settings or QtCore.QSettings("Wakeline", "Wakeline")
+        preload()
         self.session = Session()
         self.views: dict[str, LayerView] = {}
         self.active: str | None = None

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import pandas as pd
 import pyarrow as pa
+import pyarrow.dataset  # noqa: F401 - imported here, on the main thread: see below
 import pyarrow.parquet as pq
 
 from wakeline.core import __version__
@@ -34,6 +35,10 @@ from wakeline.core.io.writer import atomic_path
 from wakeline.core.session import Layer, Session, Source
 
 SCHEMA_VERSION = 2
+
+# ``pq.read_table`` imports ``pyarrow.dataset`` on first use. Done first in a worker
+# thread while the GUI thread waits in its event loop, that import was seen to hang the
+# GUI tests; importing it with this module (on the main thread) avoids it.
 
 __all__ = [
     "Layer",
