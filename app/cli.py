@@ -90,21 +90,6 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _read_canonical(path: Path):
-    from wakeline.core.io import read_points
-
-    result = read_points(path)
-    if result.report["rows_quarantined"]:
-        print(
-            f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "
-            "(run `wakeline import` with --quarantine to see them)",
-            file=sys.stderr,
-        )
-    if len(result.points) == 0:
-        raise InputError(f"{path}: no usable points")
-    return result.points
-
-
 def _maneuver_params(args: argparse.Namespace):
     from wakeline.core.maneuver import ManeuverParams
 

@@ -7,21 +7,12 @@ command runs (offscreen unless a platform is set).
 import argparse
 import os
 import re
-import sys
 from pathlib import Path
 
 from wakeline.core.errors import InputError
 
 #: Steps ``--step`` runs, in the order given, each on the last layer of the one before.
 STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
-#: Colours of derived layers (as in the window).
-KIND_COLORS = {
-    "cleaned": "#2ca02c",
-    "maneuvers": "#9467bd",
-    "compressed": "#d62728",
-    "associated": "#ff7f0e",
-    "fused": "#17becf",
-}
 EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
 
 
@@ -55,59 +46,34 @@ def parse_bounds(text: str) -> tuple[float, float, float, float]:
 
 
 def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
-    """Run ``steps`` with default parameters: ``[(name, kind, points), …]`` of every new
-    layer, each step on the last layer the one before made."""
-    from wakeline.core.associate import LinkParams
-    from wakeline.core.clean import CleanParams
-    from wakeline.core.compress import CompressParams
-    from wakeline.core.fuse import FuseParams
-    from wakeline.core.maneuver import ManeuverParams
-    from wakeline.core.pipeline import (
-        step_associate,
-        step_clean,
-        step_compress,
-        step_fuse,
-        step_maneuvers,
-    )
+    """Run ``steps`` from the step registry with default parameters: ``[(name, kind,
+    points), …]`` of every new layer, each step on the primary layer of the one before."""
+    from wakeline.core.pipeline import STEPS
 
-    run = {
-        "clean": lambda p: step_clean(p, CleanParams()),
-        "maneuvers": lambda p: step_maneuvers(p, ManeuverParams()),
-        "compress": lambda p: step_compress(p, ManeuverParams(), CompressParams()),
-        "associate": lambda p: step_associate(p, LinkParams()),
-        "fuse": lambda p: step_fuse(p, FuseParams()),
-    }
     out = []
     current = points
     for name in steps:
-        result = run[name](current)
+        step = STEPS[name]
+        result = step(current)
         for layer in result.layers:
             out.append((layer.suffix, layer.kind, layer.points))
-        if result.layers:
-            current = result.layers[-1].points
+        primary = [lay for lay in result.layers if lay.suffix == step.primary]
+        if primary:
+            current = primary[0].points
     return out
 
 
 def _read(paths: list[Path]):
     import pandas as pd
 
-    from wakeline.core.io import read_points
+    from wakeline.app.cli_steps import read_input
 
     frames = []
     for path in paths:
         # Several files without a sensor column (one MTAD scene's AIS and radar files):
         # each file is its own sensor, named after the file, so batches never merge.
         kw = {"sensor": path.stem} if len(paths) > 1 else {}
-        result = read_points(path, **kw)
-        if result.report["rows_quarantined"]:
-            print(
-                f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "
-                "(run `wakeline import` with --quarantine to see them)",
-                file=sys.stderr,
-            )
-        if len(result.points) == 0:
-            raise InputError(f"{path}: no usable points")
-        frames.append(result.points)
+        frames.append(read_input(path, **kw))
     return pd.concat(frames, ignore_index=True) if len(frames) > 1 else frames[0]
 
 
@@ -122,6 +88,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
         from wakeline.app.map_draw import PALETTE, LayerStyle, prepare_layer
         from wakeline.app.map_render import render_png
+        from wakeline.core.session import KIND_COLORS
     except ImportError as exc:
         raise InputError(f"rendering needs the desktop libraries (Qt): {exc}") from None
     _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(["wakeline"])

@@ -314,11 +314,12 @@ def step_params(step, args: argparse.Namespace) -> dict:
     return out
 
 
-def read_input(path: Path):
-    """Points of any layout ``import`` reads; quarantined rows are counted on stderr."""
+def read_input(path: Path, **options):
+    """Points of any layout ``import`` reads (``options``: read_points keywords);
+    quarantined rows are counted on stderr."""
     from wakeline.core.io import read_points
 
-    result = read_points(path)
+    result = read_points(path, **options)
     if result.report["rows_quarantined"]:
         print(
             f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "
