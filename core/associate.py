@@ -512,14 +512,21 @@ class Association:
 
 
 def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndarray:
-    """Target label per track: the batch of the earliest track of its linked group."""
+    """Target label per track: the batch of the earliest track of its linked group —
+    ``sensor:batch`` when the table holds several sensors, so batch 7 of R1 and batch 7
+    of R2 never become one target."""
     comp = components(len(seg), links_i, links_j)
     order = np.lexsort((seg.t0, comp))
     first = np.ones(len(order), dtype=bool)
     first[1:] = comp[order][1:] != comp[order][:-1]
     leader = np.empty(comp.max() + 1 if len(comp) else 0, dtype="int64")
     leader[comp[order][first]] = order[first]
-    return seg.index.keys["batch"].to_numpy().astype(str)[leader[comp]]
+    keys = seg.index.keys
+    label = keys["batch"].to_numpy().astype(str)
+    sensors = keys["sensor"].to_numpy().astype(str)
+    if len(np.unique(sensors)) > 1:
+        label = np.char.add(np.char.add(sensors, ":"), label)
+    return label[leader[comp]]
 
 
 def associate_interrupted(

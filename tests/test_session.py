@@ -244,3 +244,15 @@ def test_step_outputs_may_not_overwrite_the_input(scene, tmp_path):
     assert main(["clean", str(path), "-o", str(tmp_path / "o.csv"), "--rejected", str(path)]) == 2
     out = tmp_path / "same.csv"
     assert main(["associate", str(path), "-o", str(out), "--pairs", str(out)]) == 2
+
+
+def test_target_ids_are_unique_across_sensors():
+    """Batch 7 of R1 and batch 7 of R2, 50 km apart, are two targets."""
+    t = pd.date_range("2024-05-01", periods=20, freq="10s", tz="UTC")
+    rows = []
+    for sensor, lon0 in (("R1", 122.0), ("R2", 122.5)):
+        for k, tt in enumerate(t):
+            rows.append((sensor, "7", tt, lon0 + 0.0005 * k, 30.0))
+    pts = pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"])
+    out = STEPS["associate"](pts).tables["points"]
+    assert out.groupby("sensor")["target"].first().to_dict() == {"R1": "R1:7", "R2": "R2:7"}
