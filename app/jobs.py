@@ -41,18 +41,27 @@ def _prepared(result: StepResult, progress, map_view, size_px) -> tuple[StepResu
 
 def preload() -> None:
     """Import, on the GUI thread, the modules that jobs would otherwise import lazily in
-    the worker: a first import in a worker thread while the GUI thread runs its event loop
-    (and the garbage collector) was seen to hang the GUI tests."""
+    the worker. Python loads an extension module (dlopen) holding the GIL; a first import
+    in a worker while the GUI thread itself loads a library whose start-up needs the GIL
+    (a Qt plugin) deadlocks — seen, intermittently, in the GUI tests."""
     import importlib
 
     for name in (
         "pyarrow.dataset",
         "pyarrow.parquet",
+        "pyarrow.compute",
+        "pyarrow.csv",
         "scipy.spatial",
+        "scipy.sparse",
         "scipy.sparse.csgraph",
         "scipy.interpolate",
+        "scipy.linalg",
+        "scipy.ndimage",
+        "scipy.optimize",
         "scipy.stats",
         "shapely",
+        "gpxpy.gpx",
+        "wakeline.core.io.nmea",
         "wakeline.core.io.layout",
         "wakeline.core.io.export_like",
         "wakeline.core.clean",
