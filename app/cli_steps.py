@@ -132,16 +132,6 @@ def _clean_help() -> str:
     return "Rules and parameters (--set rule.param=value):\n  " + "\n  ".join(lines)
 
 
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be positive, got {value}")
-    return value
-
-
 def add_step_parsers(sub) -> None:
     """One subcommand per registered step."""
     from wakeline.core.pipeline import STEPS
@@ -225,6 +215,7 @@ def add_step_parsers(sub) -> None:
 
 
 def _add_clean_flags(p: argparse.ArgumentParser) -> None:
+    from wakeline.app.cli import _positive_float
     from wakeline.core.clean import RULES
 
     p.add_argument(
