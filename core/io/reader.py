@@ -572,6 +572,22 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
+def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
+    """Warnings about how the time column was read (local read as UTC; relative times)."""
+    out = []
+    if time_info.get("naive") and zone is None and header_is_local(time_src):
+        out.append(
+            f"the time column {time_src!r} says it holds local times but they were read as "
+            "UTC: give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)"
+        )
+    if time_info.get("relative"):
+        out.append(
+            f"times in {time_src!r} are seconds from a scene start (relative), kept as "
+            "such: shown from 1970-01-01T00:00:00Z"
+        )
+    return out
+
+
 def read_points(
     path: str | Path,
     fmt: str = "auto",
@@ -618,17 +634,7 @@ def read_points(
     points, quarantine, counts = _to_canonical(rows, sn, res, sensor, zone, time_info)
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes
-    time_src = res.columns["time"]
-    if time_info.get("naive") and zone is None and header_is_local(time_src):
-        warnings.append(
-            f"the time column {time_src!r} says it holds local times but they were read as "
-            "UTC: give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)"
-        )
-    if time_info.get("relative"):
-        warnings.append(
-            f"times in {time_src!r} are seconds from a scene start (relative), kept as "
-            "such: shown from 1970-01-01T00:00:00Z"
-        )
+    warnings += _time_warnings(res.columns["time"], time_info, zone)
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(path),
@@ -660,7 +666,7 @@ def read_points(
         "quoting": not rows.line_by_line and sn.has_quotes,
         "mapping": dict(res.columns),
         "extra_columns": extra,
-        "time_column": time_src,
+        "time_column": res.columns["time"],
         "time_format": time_info.get("time_format"),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
@@ -1185,17 +1191,7 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
         q["text"] = pd.Series(texts, dtype="str")
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
     warnings = ["no batch column: the file is one track named after the file"] if file_batch else []
-    time_src = res.columns["time"]
-    if time_info.get("naive") and zone is None and header_is_local(time_src):
-        warnings.append(
-            f"the time column {time_src!r} says it holds local times but they were read as "
-            "UTC: give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)"
-        )
-    if time_info.get("relative"):
-        warnings.append(
-            f"times in {time_src!r} are seconds from a scene start (relative), kept as "
-            "such: shown from 1970-01-01T00:00:00Z"
-        )
+    warnings += _time_warnings(res.columns["time"], time_info, zone)
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(sn.path),
@@ -1237,7 +1233,7 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
         "quoting": False,
         "mapping": dict(res.columns),
         "extra_columns": extra,
-        "time_column": time_src,
+        "time_column": res.columns["time"],
         "time_format": time_info.get("time_format"),
         "time_zone": report["time_zone"],
         "time_relative": report["time_relative"],
