@@ -210,3 +210,28 @@ def read_points_df() -> pd.DataFrame:
             "lat": [2.0],
         }
     )
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes are POSIX")
+def test_output_into_a_pipe_is_written_in_place_never_replaced(tmp_path):
+    """``-o /dev/null`` or a named pipe: the data goes into it and it stays what it was
+    (an atomic rename once turned /dev/null into a regular file)."""
+    import stat
+    import threading
+
+    src = tmp_path / "in.csv"
+    src.write_text(
+        "sensor,batch,time,lat,lon\n"
+        "R1,1,2024-01-01T00:00:00Z,30.0,120.0\n"
+        "R1,1,2024-01-01T00:00:10Z,30.001,120.001\n"
+    )
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    got: list[bytes] = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_bytes()))
+    reader.start()
+    assert main(["import", str(src), "-o", str(fifo)]) == 0
+    reader.join(10)
+    assert stat.S_ISFIFO(fifo.stat().st_mode)
+    assert got and got[0].count(b"\n") == 3
+    assert not list(tmp_path.glob(".*.part"))

@@ -9,6 +9,7 @@ import glob
 import json
 import os
 import re
+import shutil
 import tempfile
 import time
 from collections.abc import Iterable, Iterator, Mapping
@@ -133,10 +134,24 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     """Yield a temporary path in the target's folder; rename it onto ``path`` on success.
 
     A read-only target is refused (never replaced), and ``.part`` files that an
-    interrupted earlier write of the same target left behind are removed first.
+    interrupted earlier write of the same target left behind are removed first. A target
+    that exists and is not a regular file (``/dev/null``, a named pipe) is written in place.
     """
     path = Path(path)
     check_writable(path)
+    if path.exists() and not path.is_file():
+        # A device or a pipe (``-o /dev/null``, a FIFO): never rename onto it; the file is
+        # made aside (writers may seek) and its bytes are copied in.
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".part")
+        os.close(fd)
+        try:
+            yield Path(tmp)
+            with open(tmp, "rb") as src, open(path, "wb") as dst:
+                shutil.copyfileobj(src, dst, 1 << 20)
+        finally:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        return
     remove_stale_parts(path)
     folder = path.parent if str(path.parent) else Path(".")
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".part", dir=folder)
