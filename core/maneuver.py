@@ -414,7 +414,8 @@ def _rest_mask(
     """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`), run only on the tracks
     that can hold a stay: a stay ending at a point covers every fix of the last
     ``window_s`` before it, so somewhere the point and the first fix of that window lie
-    within 2·``radius_m``. Tracks that never do are left out (same result, less work)."""
+    within 2·``radius_m``, at least ``window_s`` after the track's first fix. Tracks that
+    never do are left out (same result, less work)."""
     from wakeline.core.clean import at_rest  # the same rule cleaning uses
 
     n = len(x)
@@ -430,7 +431,9 @@ def _rest_mask(
     ts = rel + offset[tr]
     # first fix at or after t - window_s (a little later, so rounding never widens it)
     a = np.searchsorted(ts, ts - window_s + 1e-3)
-    close = np.hypot(x - x[a], y - y[a]) <= 2.0 * radius_m * (1 + 1e-9) + 1e-6
+    close = (np.hypot(x - x[a], y - y[a]) <= 2.0 * radius_m * (1 + 1e-9) + 1e-6) & (
+        rel >= window_s * (1 - 1e-9)
+    )
     possible = np.zeros(index.n_tracks, dtype=bool)
     possible[tr[close]] = True
     if not possible.any():
