@@ -148,19 +148,43 @@ def window_headings(
 
 
 def _block_headings(u: np.ndarray, v: np.ndarray, p: int) -> np.ndarray:
+    # The same arithmetic, operation for operation, as mean / covariance / closed-form PCA
+    # written plainly; done in place so a block allocates a handful of arrays, not twenty.
     n = len(u)
     ones = np.ones(p)
-    mu = np.convolve(u, ones, "valid") / p
-    mv = np.convolve(v, ones, "valid") / p
-    cxx = np.convolve(u * u, ones, "valid") / p - mu * mu
-    cyy = np.convolve(v * v, ones, "valid") / p - mv * mv
-    cxy = np.convolve(u * v, ones, "valid") / p - mu * mv
-    theta = 0.5 * np.arctan2(2.0 * cxy, cxx - cyy)  # major axis, radians from +x
-    ax, ay = np.cos(theta), np.sin(theta)
+    mu = np.convolve(u, ones, "valid")
+    mu /= p
+    mv = np.convolve(v, ones, "valid")
+    mv /= p
+    tmp = np.multiply(u, u)
+    cxx = np.convolve(tmp, ones, "valid")
+    cxx /= p
+    cxx -= np.multiply(mu, mu, out=tmp[: n - p + 1])
+    np.multiply(v, v, out=tmp)
+    cyy = np.convolve(tmp, ones, "valid")
+    cyy /= p
+    cyy -= np.multiply(mv, mv, out=tmp[: n - p + 1])
+    np.multiply(u, v, out=tmp)
+    cxy = np.convolve(tmp, ones, "valid")
+    cxy /= p
+    cxy -= np.multiply(mu, mv, out=tmp[: n - p + 1])
+    cxy *= 2.0
+    cxx -= cyy
+    theta = np.arctan2(cxy, cxx, out=cxy)
+    theta *= 0.5  # major axis, radians from +x
+    ax, ay = np.cos(theta, out=cxx), np.sin(theta, out=cyy)
     # Orient by travel: from the window's first point to its last.
-    flip = ax * (u[p - 1 :] - u[: n - p + 1]) + ay * (v[p - 1 :] - v[: n - p + 1]) < 0
-    heading = np.degrees(np.arctan2(ax, ay)) + np.where(flip, 180.0, 0.0)
-    return heading % 360.0
+    du = np.subtract(u[p - 1 :], u[: n - p + 1], out=mu)
+    du *= ax
+    dv = np.subtract(v[p - 1 :], v[: n - p + 1], out=mv)
+    dv *= ay
+    du += dv
+    flip = du < 0
+    heading = np.arctan2(ax, ay, out=theta)
+    np.degrees(heading, out=heading)
+    heading += 0.0  # as the plain form's "+ where(flip, 180, 0)": -0.0 becomes 0.0
+    heading[flip] += 180.0
+    return np.remainder(heading, 360.0, out=heading)
 
 
 def maneuver_factor(x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int) -> np.ndarray:
