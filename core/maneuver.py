@@ -414,13 +414,20 @@ def _window_speed_ms(
 
 
 def _one_scale(
-    x: np.ndarray, y: np.ndarray, index: TrackIndex, p_track: np.ndarray, radius: np.ndarray
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p_track: np.ndarray,
+    radius: np.ndarray,
+    active: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """δ per point and its local maxima (radius per track), one pass per distinct p."""
+    """δ per point and its local maxima (radius per track), one pass per distinct p; only
+    on the ``active`` tracks when given (NaN and no peak elsewhere)."""
     factor = np.full(len(x), np.nan)
     peaks = np.zeros(len(x), dtype=bool)
-    for p in np.unique(p_track):  # usually one or a few
-        chosen = p_track == p
+    active = np.ones(index.n_tracks, dtype=bool) if active is None else active
+    for p in np.unique(p_track[active]):  # usually one or a few
+        chosen = (p_track == p) & active
         rows = np.flatnonzero(chosen[index.track_of_row])
         sub = TrackIndex(*_sub_index(index, chosen))
         factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p))
@@ -511,11 +518,9 @@ def detect(
             if k > 0
             else np.full_like(p_track, params.radius_n)
         )
-        f_k, peaks = _one_scale(x, y, index, p_track, radius)
+        f_k, peaks = _one_scale(x, y, index, p_track, radius, grew if k > 0 else None)
         with np.errstate(invalid="ignore"):
             cand = np.flatnonzero(peaks & (f_k > params.threshold_deg))
-        if k > 0:
-            cand = cand[grew[tr[cand]]]
         p_c = p_track[tr[cand]]
         ok = np.ones(len(cand), dtype=bool)
         if params.noise_k > 0 and len(cand):
