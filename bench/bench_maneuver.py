@@ -2,7 +2,7 @@
 straightforward per-window loop (``numpy.linalg.eigh`` per window) on a subset.
 
 Run: ``python bench/bench_maneuver.py [--points 10000000] [--tracks 10000] [--loop-points 20000]``.
-Goals (issue 4): >= 10 M points/s and >= 300x the loop.
+Goals (issue 4, issue 17): detect() >= 10 M points/s at 10 M points and >= 300x the loop.
 """
 
 import argparse
@@ -57,13 +57,64 @@ def loop_factor(x: np.ndarray, y: np.ndarray, p: int) -> np.ndarray:
     return out
 
 
+def compare(rev: str, n_points: int, n_tracks: int, repeat: int) -> None:
+    """detect() of revision ``rev`` and of the working tree, interleaved, best of ``repeat``."""
+    import importlib.util
+    import subprocess
+    import tempfile
+    from pathlib import Path
+
+    from wakeline.core import maneuver as now
+
+    root = Path(__file__).resolve().parent.parent
+    src = subprocess.run(
+        ["git", "show", f"{rev}:core/maneuver.py"], cwd=root, check=True, capture_output=True
+    ).stdout
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "maneuver_before.py"
+        path.write_bytes(src)
+        spec = importlib.util.spec_from_file_location("maneuver_before", path)
+        before = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(before)
+    df = make_points(n_points, n_tracks)
+    with open("/proc/loadavg") as f:
+        print(f"{len(df):,} points in {n_tracks:,} tracks; load average {f.read().strip()}")
+    for label, params in (("defaults", ManeuverParams()), ("paper", ManeuverParams.paper())):
+        tb = tn = np.inf
+        for _ in range(repeat):
+            t = time.perf_counter()
+            a = before.detect(df, params)
+            tb = min(tb, time.perf_counter() - t)
+            t = time.perf_counter()
+            b = now.detect(df, params)
+            tn = min(tn, time.perf_counter() - t)
+        same = np.array_equal(a.is_maneuver, b.is_maneuver) and np.array_equal(
+            a.factor, b.factor, equal_nan=True
+        )
+        print(
+            f"{label}: {rev} {tb:.2f} s ({len(df) / tb / 1e6:.2f} M/s), now {tn:.2f} s "
+            f"({len(df) / tn / 1e6:.2f} M/s): {tb / tn:.2f}x, identical: {same}"
+        )
+    with open("/proc/loadavg") as f:
+        print(f"load average after: {f.read().strip()}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--points", type=int, default=10_000_000)
     ap.add_argument("--tracks", type=int, default=10_000)
     ap.add_argument("--loop-points", type=int, default=20_000)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument(
+        "--against",
+        metavar="REV",
+        help="also time core/maneuver.py of this git revision in the same process, and check "
+        "that both give the same maneuver points and factor bits (e.g. 85bebba)",
+    )
     args = ap.parse_args()
+    if args.against:
+        compare(args.against, args.points, args.tracks, args.repeat)
+        return
     params = ManeuverParams()
     df = make_points(args.points, args.tracks)
     print(
@@ -79,6 +130,20 @@ def main() -> None:
         f"detect() end to end (sort, projection, factor, max filter): {best_full:.2f} s, "
         f"{len(df) / best_full / 1e6:.1f} M points/s, {int(result.is_maneuver.sum()):,} maneuvers"
     )
+
+    paper = ManeuverParams.paper()
+    best_paper = np.inf
+    for _ in range(args.repeat):
+        t = time.perf_counter()
+        detect(df, paper)
+        best_paper = min(best_paper, time.perf_counter() - t)
+    print(
+        f"detect() with ManeuverParams.paper() (one scale, no speed/rest/noise tests): "
+        f"{best_paper:.2f} s, {len(df) / best_paper / 1e6:.1f} M points/s; defaults cost "
+        f"{best_full / best_paper:.1f}x the paper's rule"
+    )
+    with open("/proc/loadavg") as f:
+        print(f"load average: {f.read().strip()}")
 
     pts, index = result.points, result.index
     x, y = local_xy(pts, index)

@@ -55,21 +55,42 @@ class CompressParams(Params):
         hi=1e6,
     )
     speed_change_kn: float = param(
-        2.0,
+        0.0,
         "kn",
         "keep where the speed over the window after a point differs from the one before by "
-        "more than this and by more than speed_change_ratio (a local maximum); 0 = off",
+        "more than this and by more than speed_change_ratio (a local maximum); 0 = off (the "
+        "error bound keeps what a speed change costs in Dis_e)",
         lo=0.0,
         hi=100.0,
     )
     speed_change_ratio: float = param(
         0.25, "", "relative speed change that counts (of the faster window)", lo=0.0, hi=10.0
     )
+    error_sigmas: float = param(
+        10.0,
+        "",
+        "error bound between kept points: split (top-down, by the synchronized distance Dis_e "
+        "measures) wherever a point lies farther than this many times the track's own "
+        "position noise from the time interpolation of the kept points; 0 = off",
+        lo=0.0,
+        hi=1e4,
+        source="ours; top-down time-ratio Douglas–Peucker",
+    )
+    error_floor_m: float = param(
+        50.0,
+        "m",
+        "the error bound is never below this (default: the at-rest radius)",
+        lo=0.0,
+        hi=1e6,
+        source="ours",
+    )
 
     @classmethod
     def paper(cls) -> "CompressParams":
         """Seed 000 as written: the maneuver points only, raw vertices."""
-        return cls(refine=False, keep_rest=False, gap_factor=0.0, speed_change_kn=0.0)
+        return cls(
+            refine=False, keep_rest=False, gap_factor=0.0, speed_change_kn=0.0, error_sigmas=0.0
+        )
 
 
 def _segments(kept: np.ndarray, index: TrackIndex, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -282,6 +303,55 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
             sub = TrackIndex(*_sub_index(index, chosen))
             peaks[rows] = local_maxima(dv[rows], sub, int(p))
         keep |= big & peaks & ~_near(rest, index, p_row - 1)
+    if params.error_sigmas > 0:
+        from wakeline.core.maneuver import position_noise_m
+
+        sigma = position_noise_m(x, y, t, index)
+        tol = np.maximum(params.error_sigmas * sigma, params.error_floor_m)
+        keep = synchronized_split_mask(x, y, t, index, keep, tol)
+    return keep
+
+
+def synchronized_split_mask(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    keep: np.ndarray,
+    tolerance_m: np.ndarray | float,
+) -> np.ndarray:
+    """Top-down split by the synchronized distance (time-ratio Douglas–Peucker), all tracks
+    at once: starting from the ``keep`` rows and each track's ends, a segment whose farthest
+    point (distance to the time interpolation of its ends, metres) exceeds the tolerance
+    (``tolerance_m`` per track or one value) is split there, until none does."""
+    keep = np.asarray(keep, dtype=bool).copy()
+    keep[index.starts] = True
+    keep[index.ends - 1] = True
+    tol_track = np.broadcast_to(np.asarray(tolerance_m, dtype="float64"), (index.n_tracks,))
+    rows_k = np.flatnonzero(keep)
+    same = index.track_of_row[rows_k[1:]] == index.track_of_row[rows_k[:-1]]
+    seg_a, seg_b = rows_k[:-1][same], rows_k[1:][same]
+    wide = seg_b - seg_a >= 2
+    seg_a, seg_b = seg_a[wide], seg_b[wide]
+    while len(seg_a):  # rounds ≈ depth of the recursion
+        counts = seg_b - seg_a - 1
+        seg_of = np.repeat(np.arange(len(seg_a)), counts)
+        first = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        rows = seg_a[seg_of] + 1 + (np.arange(counts.sum()) - first[seg_of])
+        a, b = seg_a[seg_of], seg_b[seg_of]
+        span = t[b] - t[a]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            w = np.where(span > 0, (t[rows] - t[a]) / span, 0.5)
+        dist = np.hypot(x[rows] - (x[a] + w * (x[b] - x[a])), y[rows] - (y[a] + w * (y[b] - y[a])))
+        seg_max = np.maximum.reduceat(dist, first)
+        is_max = dist == seg_max[seg_of]
+        arg = np.minimum.reduceat(np.where(is_max, rows, np.iinfo(np.int64).max), first)
+        split = seg_max > tol_track[index.track_of_row[seg_a]]
+        keep[arg[split]] = True
+        seg_a, seg_b, arg = seg_a[split], seg_b[split], arg[split]
+        seg_a, seg_b = np.concatenate([seg_a, arg]), np.concatenate([arg, seg_b])
+        wide = seg_b - seg_a >= 2
+        seg_a, seg_b = seg_a[wide], seg_b[wide]
     return keep
 
 

@@ -148,19 +148,43 @@ def window_headings(
 
 
 def _block_headings(u: np.ndarray, v: np.ndarray, p: int) -> np.ndarray:
+    # The same arithmetic, operation for operation, as mean / covariance / closed-form PCA
+    # written plainly; done in place so a block allocates a handful of arrays, not twenty.
     n = len(u)
     ones = np.ones(p)
-    mu = np.convolve(u, ones, "valid") / p
-    mv = np.convolve(v, ones, "valid") / p
-    cxx = np.convolve(u * u, ones, "valid") / p - mu * mu
-    cyy = np.convolve(v * v, ones, "valid") / p - mv * mv
-    cxy = np.convolve(u * v, ones, "valid") / p - mu * mv
-    theta = 0.5 * np.arctan2(2.0 * cxy, cxx - cyy)  # major axis, radians from +x
-    ax, ay = np.cos(theta), np.sin(theta)
+    mu = np.convolve(u, ones, "valid")
+    mu /= p
+    mv = np.convolve(v, ones, "valid")
+    mv /= p
+    tmp = np.multiply(u, u)
+    cxx = np.convolve(tmp, ones, "valid")
+    cxx /= p
+    cxx -= np.multiply(mu, mu, out=tmp[: n - p + 1])
+    np.multiply(v, v, out=tmp)
+    cyy = np.convolve(tmp, ones, "valid")
+    cyy /= p
+    cyy -= np.multiply(mv, mv, out=tmp[: n - p + 1])
+    np.multiply(u, v, out=tmp)
+    cxy = np.convolve(tmp, ones, "valid")
+    cxy /= p
+    cxy -= np.multiply(mu, mv, out=tmp[: n - p + 1])
+    cxy *= 2.0
+    cxx -= cyy
+    theta = np.arctan2(cxy, cxx, out=cxy)
+    theta *= 0.5  # major axis, radians from +x
+    ax, ay = np.cos(theta, out=cxx), np.sin(theta, out=cyy)
     # Orient by travel: from the window's first point to its last.
-    flip = ax * (u[p - 1 :] - u[: n - p + 1]) + ay * (v[p - 1 :] - v[: n - p + 1]) < 0
-    heading = np.degrees(np.arctan2(ax, ay)) + np.where(flip, 180.0, 0.0)
-    return heading % 360.0
+    du = np.subtract(u[p - 1 :], u[: n - p + 1], out=mu)
+    du *= ax
+    dv = np.subtract(v[p - 1 :], v[: n - p + 1], out=mv)
+    dv *= ay
+    du += dv
+    flip = du < 0
+    heading = np.arctan2(ax, ay, out=theta)
+    np.degrees(heading, out=heading)
+    heading += 0.0  # as the plain form's "+ where(flip, 180, 0)": -0.0 becomes 0.0
+    heading[flip] += 180.0
+    return np.remainder(heading, 360.0, out=heading)
 
 
 def maneuver_factor(x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int) -> np.ndarray:
@@ -203,12 +227,25 @@ def local_maxima(delta: np.ndarray, index: TrackIndex, radius: int) -> np.ndarra
     padded[slots] = vals
     filtered = maximum_filter1d(padded, size=2 * radius + 1, mode="constant", cval=-np.inf)[slots]
     peak = finite & (vals == filtered)
-    # One point per plateau: drop a peak when an equal peak precedes it within the radius.
+    # One point per plateau: drop a peak when a peak (as it stands before offset k)
+    # precedes it by k rows in its track, for k = 1 … radius. Two peaks of one track within
+    # the radius are equal (each is the other's window maximum), so only such clustered
+    # peaks are touched, and the loop runs over them alone.
+    rows = np.flatnonzero(peak)
     track = index.track_of_row
-    for k in range(1, radius + 1):
-        earlier = np.zeros(n, dtype=bool)
-        earlier[k:] = peak[:-k] & (vals[:-k] == vals[k:]) & (track[:-k] == track[k:])
-        peak &= ~earlier
+    if len(rows) > 1:
+        close = (np.diff(rows) <= radius) & (track[rows[1:]] == track[rows[:-1]])
+        if close.any():
+            clustered = np.zeros(len(rows), dtype=bool)
+            clustered[1:] |= close
+            clustered[:-1] |= close
+            q = rows[clustered]
+            alive = np.ones(len(q), dtype=bool)
+            for k in range(1, radius + 1):  # a loop over offsets, on the clustered peaks only
+                pos = np.minimum(np.searchsorted(q, q - k), len(q) - 1)
+                hit = (q[pos] == q - k) & alive[pos] & (track[q[pos]] == track[q])
+                alive &= ~hit
+            peak[q[~alive]] = False
     return peak
 
 
@@ -256,14 +293,19 @@ def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
 
 
 def _p_per_track(
-    t: np.ndarray, index: TrackIndex, params: ManeuverParams, window_s: float | None = None
+    t: np.ndarray,
+    index: TrackIndex,
+    params: ManeuverParams,
+    window_s: float | None = None,
+    med: np.ndarray | None = None,
 ) -> np.ndarray:
-    """Points per window for each track: ``window_s`` over the track's median interval, never
-    fewer than ``window_p``; ``window_p`` itself when no duration is given."""
+    """Points per window for each track: ``window_s`` over the track's median interval
+    (``med``, computed when not given), never fewer than ``window_p``; ``window_p`` itself
+    when no duration is given."""
     window_s = params.window_s if window_s is None else window_s
     p = np.full(index.n_tracks, int(params.window_p), dtype="int64")
     if window_s > 0:
-        med = median_interval_s(t, index)
+        med = median_interval_s(t, index) if med is None else med
         with np.errstate(invalid="ignore", divide="ignore"):
             chosen = np.where(np.isfinite(med) & (med > 0), np.round(window_s / med), 0)
         p = np.clip(np.maximum(chosen, params.window_p), 2, 1000).astype("int64")
@@ -280,14 +322,16 @@ def _scales(params: ManeuverParams) -> list[float]:
     return out
 
 
-def _near(mask: np.ndarray, index: TrackIndex, reach: np.ndarray) -> np.ndarray:
-    """Per row: is a ``mask`` row of the same track within ±``reach`` rows (per row)?"""
+def _near(
+    mask: np.ndarray, index: TrackIndex, reach: np.ndarray, rows: np.ndarray | None = None
+) -> np.ndarray:
+    """Per row (or per row of ``rows``): is a ``mask`` row of the same track within
+    ±``reach`` rows (``reach`` per row, aligned with ``rows`` when given)?"""
     cs = np.concatenate([[0], np.cumsum(mask)])
-    row = np.arange(len(mask))
-    start = index.starts[index.track_of_row]
-    end = index.ends[index.track_of_row]
-    lo = np.maximum(row - reach, start)
-    hi = np.minimum(row + reach + 1, end)
+    row = np.arange(len(mask)) if rows is None else rows
+    tr = index.track_of_row[row]
+    lo = np.maximum(row - reach, index.starts[tr])
+    hi = np.minimum(row + reach + 1, index.ends[tr])
     return cs[hi] - cs[lo] > 0
 
 
@@ -321,49 +365,69 @@ def position_noise_m(
 
 
 def _heading_noise_deg(
-    x: np.ndarray, y: np.ndarray, index: TrackIndex, p_row: np.ndarray, sigma: np.ndarray
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p_row: np.ndarray,
+    sigma: np.ndarray,
+    rows: np.ndarray | None = None,
 ) -> np.ndarray:
     """Std (deg) of δ from position noise: each window's PCA heading errs by about
-    σ / L · sqrt(12 / p) rad for p points spread over L metres (a line fit's slope)."""
+    σ / L · sqrt(12 / p) rad for p points spread over L metres (a line fit's slope).
+    Per row, or per row of ``rows`` (``p_row`` aligned with them)."""
     n = len(x)
-    row = np.arange(n)
+    row = np.arange(n) if rows is None else rows
     a = np.clip(row - p_row + 1, 0, n - 1)
     b = np.clip(row + p_row - 1, 0, n - 1)
+    xo, yo = x[row], y[row]
     with np.errstate(invalid="ignore", divide="ignore"):
-        lb = np.hypot(x - x[a], y - y[a])
-        lf = np.hypot(x[b] - x, y[b] - y)
-        s = sigma[index.track_of_row] * np.sqrt(12.0 / p_row)
+        lb = np.hypot(xo - x[a], yo - y[a])
+        lf = np.hypot(x[b] - xo, y[b] - yo)
+        s = sigma[index.track_of_row[row]] * np.sqrt(12.0 / p_row)
         return np.degrees(np.hypot(s / lb, s / lf))
 
 
 def _window_speed_ms(
-    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, p_row: np.ndarray
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    p_row: np.ndarray,
+    rows: np.ndarray | None = None,
 ) -> np.ndarray:
     """The slower of the straight-line speeds (m/s) over the window ending at each point
-    and the one starting there (p points each); NaN where a window leaves the track."""
+    and the one starting there (p points each); NaN where a window leaves the track.
+    Per row, or per row of ``rows`` (``p_row`` aligned with them)."""
     n = len(x)
-    row = np.arange(n)
-    start = index.starts[index.track_of_row]
-    end = index.ends[index.track_of_row]
+    row = np.arange(n) if rows is None else rows
+    tr = index.track_of_row[row]
     a = row - p_row + 1
     b = row + p_row - 1
-    ok = (a >= start) & (b < end)
+    ok = (a >= index.starts[tr]) & (b < index.ends[tr])
     a = np.clip(a, 0, n - 1)
     b = np.clip(b, 0, n - 1)
+    xo, yo, to = x[row], y[row], t[row]
     with np.errstate(invalid="ignore", divide="ignore"):
-        v_back = np.hypot(x - x[a], y - y[a]) / (t - t[a])
-        v_fwd = np.hypot(x[b] - x, y[b] - y) / (t[b] - t)
+        v_back = np.hypot(xo - x[a], yo - y[a]) / (to - t[a])
+        v_fwd = np.hypot(x[b] - xo, y[b] - yo) / (t[b] - to)
     return np.where(ok, np.fmin(v_back, v_fwd), np.nan)
 
 
 def _one_scale(
-    x: np.ndarray, y: np.ndarray, index: TrackIndex, p_track: np.ndarray, radius: np.ndarray
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p_track: np.ndarray,
+    radius: np.ndarray,
+    active: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """δ per point and its local maxima (radius per track), one pass per distinct p."""
+    """δ per point and its local maxima (radius per track), one pass per distinct p; only
+    on the ``active`` tracks when given (NaN and no peak elsewhere)."""
     factor = np.full(len(x), np.nan)
     peaks = np.zeros(len(x), dtype=bool)
-    for p in np.unique(p_track):  # usually one or a few
-        chosen = p_track == p
+    active = np.ones(index.n_tracks, dtype=bool) if active is None else active
+    for p in np.unique(p_track[active]):  # usually one or a few
+        chosen = (p_track == p) & active
         rows = np.flatnonzero(chosen[index.track_of_row])
         sub = TrackIndex(*_sub_index(index, chosen))
         factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p))
@@ -375,6 +439,44 @@ def _one_scale(
     return factor, peaks
 
 
+def _rest_mask(
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m: float, window_s: float
+) -> np.ndarray:
+    """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`), run only on the tracks
+    that can hold a stay: a stay ending at a point covers every fix of the last
+    ``window_s`` before it, so somewhere the point and the first fix of that window lie
+    within 2·``radius_m``, at least ``window_s`` after the track's first fix. Tracks that
+    never do are left out (same result, less work)."""
+    from wakeline.core.clean import at_rest  # the same rule cleaning uses
+
+    n = len(x)
+    rest = np.zeros(n, dtype=bool)
+    if n == 0:
+        return rest
+    tr = index.track_of_row
+    rel = t - t[index.starts[tr]]
+    span = np.zeros(index.n_tracks)
+    has = index.sizes > 0
+    span[has] = rel[index.ends[has] - 1]
+    offset = np.concatenate([[0.0], np.cumsum(span + 2.0 * window_s + 1.0)[:-1]])
+    ts = rel + offset[tr]
+    # first fix at or after t - window_s (a little later, so rounding never widens it)
+    a = np.searchsorted(ts, ts - window_s + 1e-3)
+    close = (np.hypot(x - x[a], y - y[a]) <= 2.0 * radius_m * (1 + 1e-9) + 1e-6) & (
+        rel >= window_s * (1 - 1e-9)
+    )
+    possible = np.zeros(index.n_tracks, dtype=bool)
+    possible[tr[close]] = True
+    if not possible.any():
+        return rest
+    if possible.all():
+        return at_rest(x, y, t, index, radius_m, window_s)
+    rows = np.flatnonzero(possible[tr])
+    sub = TrackIndex(*_sub_index(index, possible))
+    rest[rows] = at_rest(x[rows], y[rows], t[rows], sub, radius_m, window_s)
+    return rest
+
+
 def detect(
     points: pd.DataFrame, params: ManeuverParams | None = None, progress=None
 ) -> ManeuverResult:
@@ -384,19 +486,20 @@ def detect(
     within ±n points). Gradual turns: at each doubled duration up to ``max_window_s`` a peak
     above t counts where no turn already found lies within one window of it. No maneuver
     inside an at-rest span, on a window touching one, or where the ship covers a window
-    slower than ``min_speed_kn``.
+    slower than ``min_speed_kn``. The extra tests run on the candidates (peaks above t) only.
     """
-    from wakeline.core.clean import at_rest  # the same rule cleaning uses
-
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
     t = track_seconds(pts)
+    tr = index.track_of_row
     sigma = None
     rest = np.zeros(len(pts), dtype=bool)
     if params.rest_radius_m > 0 and len(pts):
-        rest = at_rest(x, y, t, index, params.rest_radius_m, params.rest_window_s)
+        rest = _rest_mask(x, y, t, index, params.rest_radius_m, params.rest_window_s)
+    any_rest = bool(rest.any())
     scales = _scales(params)
+    med = median_interval_s(t, index) if params.window_s > 0 else None
     found = np.zeros(len(pts), dtype=bool)
     factor = None
     p_first = None
@@ -404,7 +507,7 @@ def detect(
     for k, duration in enumerate(scales):
         if progress:
             progress(k / len(scales), f"maneuver factor, {duration:g} s windows")
-        p_track = _p_per_track(t, index, params, duration)
+        p_track = _p_per_track(t, index, params, duration, med)
         if k > 0:
             # tracks whose window did not grow at this duration have nothing new to find
             grew = p_track > prev_p
@@ -415,26 +518,31 @@ def detect(
             if k > 0
             else np.full_like(p_track, params.radius_n)
         )
-        f_k, peaks = _one_scale(x, y, index, p_track, radius)
-        p_row = p_track[index.track_of_row]
-        ok = peaks & (f_k > params.threshold_deg)
-        if params.noise_k > 0:
+        f_k, peaks = _one_scale(x, y, index, p_track, radius, grew if k > 0 else None)
+        with np.errstate(invalid="ignore"):
+            cand = np.flatnonzero(peaks & (f_k > params.threshold_deg))
+        p_c = p_track[tr[cand]]
+        ok = np.ones(len(cand), dtype=bool)
+        if params.noise_k > 0 and len(cand):
             if sigma is None:  # at the first window's lag
                 sigma = position_noise_m(x, y, t, index)
             with np.errstate(invalid="ignore"):
-                ok &= f_k > params.noise_k * _heading_noise_deg(x, y, index, p_row, sigma)
-        if params.min_speed_kn > 0:
-            v = _window_speed_ms(x, y, t, index, p_row)
-            ok &= v >= params.min_speed_kn * geo.KN_MS
-        if rest.any():
-            ok &= ~_near(rest, index, p_row - 1)
+                ok &= f_k[cand] > params.noise_k * _heading_noise_deg(x, y, index, p_c, sigma, cand)
+        if params.min_speed_kn > 0 and len(cand):
+            with np.errstate(invalid="ignore"):
+                ok &= _window_speed_ms(x, y, t, index, p_c, cand) >= (
+                    params.min_speed_kn * geo.KN_MS
+                )
+        if any_rest and len(cand):
+            ok &= ~_near(rest, index, p_c - 1, cand)
         if k == 0:
             factor, p_first = f_k, p_track
-            found = ok
+            found[cand[ok]] = True
         else:
-            new = ok & grew[index.track_of_row] & ~_near(found, index, p_row)
-            factor = np.where(new, f_k, factor)
-            found = found | new
+            new = cand[ok]
+            new = new[~_near(found, index, p_track[tr[new]], new)]
+            factor[new] = f_k[new]
+            found[new] = True
         prev_p = p_track
     if progress:
         progress(1.0, "maneuvers found")

@@ -68,7 +68,9 @@ def read_oresund(folder: Path) -> pd.DataFrame:
     )
 
 
-def read_autoferry(folder: Path, gate_m: float = 15.0) -> tuple[pd.DataFrame, pd.DataFrame]:
+def read_autoferry(
+    folder: Path, gate_m: float = 15.0, exclusive: bool = False
+) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Autoferry radar plots turned into one radar track per (scenario, target), and the
     targets' GNSS truth.
 
@@ -76,6 +78,10 @@ def read_autoferry(folder: Path, gate_m: float = 15.0) -> tuple[pd.DataFrame, pd
     position at the plot's time (the radar also sees quays and buildings); per scan the
     nearest such plot is kept. Returns (radar points, truth points), both canonical with
     batch ``scenario/target``.
+
+    ``exclusive``: a plot serves one target at most — the one whose GNSS position is nearer
+    (a tracker never puts one plot in two tracks; when two targets pass within a gate, the
+    plain rule hands one merged plot to both, and each track then shows the other's motion).
     """
     det = pd.read_csv(folder / "detections.csv.gz")
     truth = pd.read_csv(folder / "ground_truth.csv.gz")
@@ -98,13 +104,18 @@ def read_autoferry(folder: Path, gate_m: float = 15.0) -> tuple[pd.DataFrame, pd
             & (r["time"].to_numpy() >= tr["time"].min())
             & (r["time"].to_numpy() <= tr["time"].max())
         )
-        hit = r[inside].assign(d=d[inside])
-        hit = hit.sort_values("d").drop_duplicates("scan").sort_values("time")
-        hit = hit.drop_duplicates("time")
-        parts.append(hit.assign(batch=f"{scen}/{target}"))
+        hit = r[inside].assign(d=d[inside], plot=r.index[inside], batch=f"{scen}/{target}")
+        if not exclusive:
+            hit = hit.sort_values("d").drop_duplicates("scan").sort_values("time")
+            hit = hit.drop_duplicates("time")
+        parts.append(hit)
     if not parts:
         raise InputError(f"{folder}: no radar plot lies near a GNSS target")
     radar_pts = pd.concat(parts, ignore_index=True)
+    if exclusive:  # each plot to its nearest target, then each target's nearest plot per scan
+        radar_pts = radar_pts.sort_values("d", kind="stable").drop_duplicates("plot")
+        radar_pts = radar_pts.drop_duplicates(["batch", "scan"]).sort_values(["batch", "time"])
+        radar_pts = radar_pts.drop_duplicates(["batch", "time"]).reset_index(drop=True)
     truth["batch"] = truth["scenario"].astype(str) + "/" + truth["target_id"].astype(str)
     return _ned_points(radar_pts, "radar"), _ned_points(truth, "gnss")
 

@@ -218,3 +218,38 @@ def test_stops_and_speed_changes_are_kept_for_time_synchronized_dis_e():
     assert paper["overall"]["dis_e_m"] > 1000
     assert ours["overall"]["dis_e_m"] < 20
     assert ours["overall"]["kept"] <= 8
+
+
+def test_synchronized_split_bounds_the_error_between_kept_points():
+    from wakeline.core.compress import synchronized_split_mask
+
+    rng = np.random.default_rng(3)
+    n = 400
+    t = np.cumsum(rng.uniform(5, 15, n))
+    speed = np.where(np.arange(n) < 200, 6.0, 2.0)  # a speed change and a turn
+    heading = np.where(np.arange(n) < 300, 0.0, 1.2)
+    x = np.cumsum(speed * np.sin(heading) * np.diff(t, prepend=0)) + rng.normal(0, 3, n)
+    y = np.cumsum(speed * np.cos(heading) * np.diff(t, prepend=0)) + rng.normal(0, 3, n)
+    x2, y2, t2 = (
+        np.concatenate([x, x[:50]]),
+        np.concatenate([y, y[:50]]),
+        np.concatenate([t, t[:50]]),
+    )
+    index = TrackIndex(
+        np.array([0, n]),
+        np.array([n, n + 50]),
+        np.repeat([0, 1], [n, 50]),
+        pd.DataFrame(index=[0, 1]),
+    )
+    start = np.zeros(n + 50, dtype=bool)
+    start[[120]] = True  # kept rows stay kept
+    for tol in (5.0, 25.0, 100.0):
+        keep = synchronized_split_mask(x2, y2, t2, index, start, np.array([tol, tol]))
+        assert keep[120] and keep[[0, n - 1, n, n + 49]].all()
+        # time interpolation between consecutive kept points of each track stays within tol
+        for a, b in zip(index.starts, index.ends, strict=True):
+            k = np.flatnonzero(keep[a:b]) + a
+            rx = np.interp(t2[a:b], t2[k], x2[k])
+            ry = np.interp(t2[a:b], t2[k], y2[k])
+            assert np.hypot(rx - x2[a:b], ry - y2[a:b]).max() <= tol + 1e-9
+    assert synchronized_split_mask(x2, y2, t2, index, start, 5.0).sum() > keep.sum()

@@ -257,3 +257,58 @@ def test_minimum_speed():
     slow, _ = _path(lambda t: np.where(t < 600, 0.0, 90.0), 0.8, 1200, 10.0, 0.5, seed=5)
     assert detect(slow).table().empty  # 0.8 kn: below the 1 kn default
     assert len(detect(slow, ManeuverParams(min_speed_kn=0.5, rest_radius_m=0)).table()) == 1
+
+
+def _plateau_reference(delta, index, radius):
+    """The plateau rule as first written: a full-length pass per offset k = 1 … radius."""
+    from scipy.ndimage import maximum_filter1d
+
+    finite = np.isfinite(delta)
+    vals = np.where(finite, delta, -np.inf)
+    n = len(vals)
+    slots = np.arange(n) + index.track_of_row * radius
+    padded = np.full(n + index.n_tracks * radius, -np.inf)
+    padded[slots] = vals
+    filtered = maximum_filter1d(padded, size=2 * radius + 1, mode="constant", cval=-np.inf)[slots]
+    peak = finite & (vals == filtered)
+    track = index.track_of_row
+    for k in range(1, radius + 1):
+        earlier = np.zeros(n, dtype=bool)
+        earlier[k:] = peak[:-k] & (vals[:-k] == vals[k:]) & (track[:-k] == track[k:])
+        peak &= ~earlier
+    return peak
+
+
+@pytest.mark.parametrize("radius", [1, 2, 3, 7])
+def test_plateau_rule_on_clustered_peaks_matches_the_full_passes(radius):
+    rng = np.random.default_rng(radius)
+    sizes = rng.integers(1, 40, 60)
+    n = int(sizes.sum())
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    index = TrackIndex(
+        starts, starts + sizes, np.repeat(np.arange(60), sizes), pd.DataFrame(index=range(60))
+    )
+    delta = rng.integers(0, 4, n).astype(float)  # many ties and plateaus
+    delta[rng.random(n) < 0.1] = np.nan
+    assert np.array_equal(
+        local_maxima(delta, index, radius), _plateau_reference(delta, index, radius)
+    )
+
+
+def test_rest_rule_on_candidate_tracks_equals_cleaning_rule():
+    from wakeline.core.clean import at_rest
+    from wakeline.core.maneuver import _rest_mask
+    from wakeline.core.schema import time_seconds
+    from wakeline.core.tracks import sorted_with_index
+
+    moored = _moored(3600, 10.0, 4.0, seed=3)
+    sailing, _ = _path(lambda t: 90 + 0 * t, 6.0, 3600, 10.0, 3.0, seed=4)
+    sparse = _moored(4 * 3600, 180.0, 4.0, seed=5)  # class-A AIS at anchor: every 3 min
+    df = pd.concat([moored, sailing.assign(batch="s"), sparse.assign(batch="a")], ignore_index=True)
+    pts, index = sorted_with_index(df)
+    x, y = local_xy(pts, index)
+    t = time_seconds(pts["time"])
+    for radius, window in ((50.0, 180.0), (5.0, 60.0), (500.0, 600.0)):
+        assert np.array_equal(
+            _rest_mask(x, y, t, index, radius, window), at_rest(x, y, t, index, radius, window)
+        )
