@@ -335,6 +335,8 @@ def run_step_command(args: argparse.Namespace) -> int:
 
     step = STEPS[args.step]
     params = step_params(step, args)
+    if step.name == "clean":
+        return _run_clean(step, params, args)
     if step.many_inputs:
         from wakeline.app.cli_review import read_inputs
 
@@ -350,4 +352,24 @@ def run_step_command(args: argparse.Namespace) -> int:
     if args.report:
         write_json({**result.report, "params": params_to_json(params)}, args.report)
     print(step.summary(result), file=sys.stderr)
+    return 0
+
+
+def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
+    """``wakeline clean``: by blocks of whole tracks, writing as it goes (bounded memory,
+    :func:`wakeline.core.clean_stream.clean_file`); the same outputs as the step."""
+    from wakeline.core.clean_stream import clean_file
+    from wakeline.core.io import write_json
+    from wakeline.core.pipeline import StepResult, params_to_json
+
+    out = clean_file(args.input, args.output, getattr(args, "out__rejected", None), params["clean"])
+    if out.read_report["rows_quarantined"]:
+        print(
+            f"{args.input}: {out.read_report['rows_quarantined']:,} rows quarantined on reading "
+            "(run `wakeline import` with --quarantine to see them)",
+            file=sys.stderr,
+        )
+    if args.report:
+        write_json({**out.report, "params": params_to_json(params)}, args.report)
+    print(step.summary(StepResult("clean", [], out.report)), file=sys.stderr)
     return 0
