@@ -250,6 +250,15 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="seed 001 sampling-segmentation-B-spline-interpolation (splits batches holding two ships)",
     )
+    from wakeline.core.io import FAMILIES
+
+    # How to read the input, as for `wakeline import`.
+    p.add_argument("--format", choices=FAMILIES, default="auto", help="input layout (default auto)")
+    p.add_argument("--map", action="append", metavar="FIELD=COLUMN", help="as for import")
+    p.add_argument("--encoding", help="text encoding (default: detect)")
+    p.add_argument("--delimiter", help="field delimiter (default: detect)")
+    p.add_argument("--tz", metavar="ZONE", help="zone of times written without one (as import)")
+    p.add_argument("--sensor", default="S1", help="sensor name when the file has none")
 
 
 def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:
@@ -362,7 +371,12 @@ def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
     from wakeline.core.io import write_json
     from wakeline.core.pipeline import StepResult, params_to_json
 
-    out = clean_file(args.input, args.output, getattr(args, "out__rejected", None), params["clean"])
+    read = {"fmt": args.format, "mapping": args.map, "encoding": args.encoding}
+    read |= {"delimiter": args.delimiter, "sensor": args.sensor, "tz": args.tz}
+    rejected = getattr(args, "out__rejected", None)
+    out = clean_file(args.input, args.output, rejected, params["clean"], **read)
+    for warning in out.read_report.get("warnings", []):
+        print(f"{args.input}: warning: {warning}", file=sys.stderr)
     if out.read_report["rows_quarantined"]:
         print(
             f"{args.input}: {out.read_report['rows_quarantined']:,} rows quarantined on reading "
