@@ -31,6 +31,9 @@ memory, with the same outputs (``streamed`` is False in the result).
 
 import shutil
 import tempfile
+import threading
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -40,8 +43,15 @@ import pyarrow as pa
 import pyarrow.ipc as ipc
 
 from wakeline.core import clean as clean_mod
-from wakeline.core.clean import ID, TRANSFORMS, CleanParams, block_cuts, merge_reports
-from wakeline.core.errors import InputError
+from wakeline.core.clean import (
+    ID,
+    TRANSFORMS,
+    CleanParams,
+    CleanResult,
+    block_cuts,
+    merge_reports,
+)
+from wakeline.core.errors import Cancelled, InputError
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
 from wakeline.core.tracks import sorted_with_index
@@ -147,7 +157,12 @@ class _Spill:
     def __init__(self, folder: Path) -> None:
         self.folder = folder
         self.paths: list[Path] = []
-        self.keys: list[pd.DataFrame] = []  # per run: sensor, batch, count (in key order)
+        # per run: each of its keys (in the run's order) as a number in the registry,
+        # and its rows
+        self.keys: list[tuple[np.ndarray, np.ndarray]] = []
+        self.registry = pd.Index([], dtype=object)  # "sensor\0batch" of every key seen
+        self.sensors: list[np.ndarray] = []  # the registry's sensors and batches
+        self.batches: list[np.ndarray] = []
         self.rows = 0
         self.given: list[np.ndarray] | None = None  # the file's own wl_id values
         self.given_ok = True
@@ -171,15 +186,18 @@ class _Spill:
         order = np.argsort(code, kind="stable")
         counts = np.bincount(code, minlength=len(s_names) * nb)
         present = np.flatnonzero(counts)
-        self.keys.append(
-            pd.DataFrame(
-                {
-                    "sensor": np.asarray(s_names, dtype=object)[present // nb],
-                    "batch": np.asarray(b_names, dtype=object)[present % nb],
-                    "count": counts[present].astype("int64"),
-                }
-            )
-        )
+        # the run's keys (in its order) as numbers in a registry of every key seen
+        sensors = np.asarray(s_names, dtype=object)[present // nb]
+        batches = np.asarray(b_names, dtype=object)[present % nb]
+        joined = pd.Index(sensors.astype(str)) + "\x00" + pd.Index(batches.astype(str))
+        known = self.registry.get_indexer(joined)
+        new = known < 0
+        if new.any():
+            self.registry = self.registry.append(joined[new])
+            self.sensors.append(sensors[new])
+            self.batches.append(batches[new])
+            known[new] = self.registry.get_indexer(joined[new])
+        self.keys.append((known.astype("int64"), counts[present].astype("int64")))
         table = pa.Table.from_pandas(points.take(order), preserve_index=False)
         path = self.folder / f"run{len(self.paths):05d}.arrow"
         with ipc.new_file(str(path), table.schema) as writer:
@@ -251,60 +269,88 @@ def _clean_runs(
     from wakeline.core.io.writer import atomic_path
 
     # The tracks' global order: sensor, then batch, as text (clean's sort order).
-    every = pd.concat(spill.keys, ignore_index=True)
-    totals = every.groupby(["sensor", "batch"], sort=False)["count"].sum().reset_index()
-    s_codes, _ = pd.factorize(totals["sensor"], sort=True)
-    b_codes, b_names = pd.factorize(totals["batch"], sort=True)
-    totals = totals.iloc[np.argsort(s_codes * len(b_names) + b_codes, kind="stable")]
-    where = pd.MultiIndex.from_frame(totals[["sensor", "batch"]])
-    sizes = totals["count"].to_numpy(dtype="int64")
+    sensors = pd.Series(np.concatenate(spill.sensors), dtype="str")
+    batches = pd.Series(np.concatenate(spill.batches), dtype="str")
+    s_codes, _ = pd.factorize(sensors, sort=True)
+    b_codes, b_names = pd.factorize(batches, sort=True)
+    order = np.argsort(s_codes.astype("int64") * len(b_names) + b_codes, kind="stable")
+    rank = np.empty(len(order), dtype="int64")
+    rank[order] = np.arange(len(order))
+    sizes = np.zeros(len(order), dtype="int64")
+    for known, counts in spill.keys:
+        np.add.at(sizes, rank[known], counts)
     ends = np.cumsum(sizes)
     starts = ends - sizes
-    # Per run: the global position of each of its keys (ascending) and row offsets.
-    run_pos = [
-        where.get_indexer(pd.MultiIndex.from_frame(k[["sensor", "batch"]])) for k in spill.keys
-    ]
-    run_cum = [np.concatenate([[0], np.cumsum(k["count"].to_numpy())]) for k in spill.keys]
+    # Per run: the global place of each of its keys (ascending) and row offsets.
+    run_pos = [rank[known] for known, _ in spill.keys]
+    run_cum = [np.concatenate([[0], np.cumsum(counts)]) for _, counts in spill.keys]
+    if any((np.diff(pos) < 0).any() for pos in run_pos):  # a run sorted otherwise
+        raise RuntimeError("streamed clean: a run's key order differs from the global order")
     blocks = block_cuts(ends, rows)
     given = spill.given is not None
+    stop = threading.Event()
+
+    def check(_fraction: float = 0.0, _text: str = "") -> None:
+        if stop.is_set():
+            raise Cancelled()
+
+    def work(k: int) -> tuple[CleanResult, Path | None]:
+        """Block ``k``: its rows from every run, in file order, cleaned."""
+        k0, k1 = np.searchsorted(starts, blocks[k])
+        ranges = []
+        for pos, cum in zip(run_pos, run_cum, strict=True):
+            i0, i1 = np.searchsorted(pos, [k0, k1])
+            ranges.append((int(cum[i0]), int(cum[i1])))
+        table = _open_slices(spill.paths, ranges)
+        src = _text_columns(table.to_pandas(split_blocks=True, self_destruct=True))
+        del table
+        order = np.argsort(src[ROW].to_numpy(), kind="stable")  # file order again
+        src = src.take(order).reset_index(drop=True)
+        row = src.pop(ROW).to_numpy()
+        src[ID] = pd.to_numeric(src[ID]).astype("int64") if given else row
+        pts, index = sorted_with_index(src)
+        del src
+        result = clean_mod._clean_block(pts, index, params, check)
+        path = None
+        if rejected is not None and len(result.rejected):
+            path = spill.folder / f"rejected{k:05d}.arrow"
+            table = pa.Table.from_pandas(result.rejected, preserve_index=False)
+            with ipc.new_file(str(path), table.schema) as writer:
+                writer.write_table(table)
+        return result, path
+
     reports: list[dict] = []
     reject_paths: list[Path] = []
     reject_template: pd.DataFrame | None = None
     scratch = spill.folder / "piece.csv"
-    with atomic_path(output) as tmp, open(tmp, "wb") as fh:
-        out = _Appender(fh, scratch, points=True)
-        for k, (a, b) in enumerate(blocks):
-            k0, k1 = np.searchsorted(starts, [a, b])
-            ranges = []
-            for pos, cum in zip(run_pos, run_cum, strict=True):
-                i0, i1 = np.searchsorted(pos, [k0, k1])
-                ranges.append((int(cum[i0]), int(cum[i1])))
-            table = _open_slices(spill.paths, ranges)
-            src = _text_columns(table.to_pandas(split_blocks=True, self_destruct=True))
-            del table
-            order = np.argsort(src[ROW].to_numpy(), kind="stable")  # file order again
-            src = src.take(order).reset_index(drop=True)
-            row = src.pop(ROW).to_numpy()
-            src[ID] = pd.to_numeric(src[ID]).astype("int64") if given else row
-
-            def sub(f: float, text: str, k: int = k) -> None:
-                progress(0.4 + 0.55 * (k + f) / len(blocks), text)
-
-            pts, index = sorted_with_index(src)
-            del src
-            result = clean_mod._clean_block(pts, index, params, sub)
-            del pts
-            out.add(result.points)
-            reports.append(result.report)
-            if reject_template is None:
-                reject_template = result.rejected.iloc[:0]
-            if len(result.rejected):
-                path = spill.folder / f"rejected{k:05d}.arrow"
-                table = pa.Table.from_pandas(result.rejected, preserve_index=False)
-                with ipc.new_file(str(path), table.schema) as writer:
-                    writer.write_table(table)
-                reject_paths.append(path)
-            del result
+    # Two blocks cleaned at a time on two threads (numpy releases the GIL), written in
+    # order on this thread; the caller's progress (which raises to cancel) is polled here.
+    pool = ThreadPoolExecutor(max_workers=2)
+    pending: deque[Future] = deque()
+    try:
+        with atomic_path(output) as tmp, open(tmp, "wb") as fh:
+            out = _Appender(fh, scratch, points=True)
+            for k in range(len(blocks)):
+                while len(pending) < 2 and k + len(pending) < len(blocks):
+                    pending.append(pool.submit(work, k + len(pending)))
+                future = pending.popleft()
+                while not future.done():
+                    text = f"cleaning: block {k + 1} of {len(blocks)}"
+                    progress(0.4 + 0.55 * k / len(blocks), text)
+                    wait([future], timeout=0.1)
+                result, path = future.result()
+                out.add(result.points)
+                reports.append(result.report)
+                if reject_template is None:
+                    reject_template = result.rejected.iloc[:0]
+                if path is not None:
+                    reject_paths.append(path)
+                del result, future
+    except BaseException:
+        stop.set()
+        pool.shutdown(wait=True, cancel_futures=True)
+        raise
+    pool.shutdown(wait=True)
     if rejected is not None:
         progress(0.95, "writing the rejected points")
         _merge_rejected(reject_paths, reject_template, rejected, scratch, rows)
