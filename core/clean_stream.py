@@ -18,9 +18,10 @@ row for row, without ever holding the whole table:
 3. **Reject trail.** The rejected runs (each sorted by ``wl_id``) are merged in ranges of
    ``wl_id`` into the rejected CSV, in the order :func:`clean` writes it.
 
-Memory: one piece while spilling, then one block and its cleaning temporaries (peaks in
-``bench/bench_memory.py``). Scratch space: about the file's size, in the system's
-temporary folder, removed at the end (also on error or cancel).
+Memory: one piece while spilling, then two blocks (cleaned on two threads) and their
+cleaning temporaries (peaks in ``bench/bench_memory.py``). Scratch space: about the file's
+size, in the system's temporary folder, removed at the end (also on error or cancel);
+what a killed run left is removed by the next run (:func:`remove_stale_scratch`).
 
 Files the streamed reader does not take (quotes in the sampled start, another encoding,
 an NMEA log, values that need the careful parse), tables whose ``wl_id`` column cannot be
@@ -29,6 +30,7 @@ used as ids, and cleanings with a transforming step (``bspline``, ``resample``,
 memory, with the same outputs (``streamed`` is False in the result).
 """
 
+import os
 import shutil
 import tempfile
 import threading
@@ -115,7 +117,8 @@ def clean_file(
     if sn.kind != "csv" or sn.has_quotes or transforms:
         return _clean_whole(path, output, rejected, params, progress, options)
     res = resolve(sn.columns, fmt, mapping, source=str(path))
-    folder = Path(tempfile.mkdtemp(prefix="wakeline-clean-"))
+    remove_stale_scratch()
+    folder = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
     try:
         spill = _Spill(folder)
         try:
@@ -131,6 +134,31 @@ def clean_file(
         return FileCleanResult(report, read.report, read.quarantine, True)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+
+
+#: Scratch folders of the streamed clean: ``wakeline-clean-PID-XXXXXXXX`` in the system's
+#: temporary folder.
+SCRATCH_PREFIX = "wakeline-clean-"
+
+
+def remove_stale_scratch(folder: str | Path | None = None) -> list[Path]:
+    """Remove scratch folders of ours (``wakeline-clean-PID-…``) that a killed run left
+    in ``folder`` (default: the system's temporary folder): those whose process is gone.
+    Returns the folders removed."""
+    from wakeline.core.io.writer import _alive
+
+    removed = []
+    base = Path(folder or tempfile.gettempdir())
+    try:
+        entries = list(base.glob(f"{SCRATCH_PREFIX}*-*"))
+    except OSError:
+        return removed
+    for entry in entries:
+        pid = entry.name[len(SCRATCH_PREFIX) :].split("-", 1)[0]
+        if pid.isdigit() and entry.is_dir() and not _alive(int(pid)):
+            shutil.rmtree(entry, ignore_errors=True)
+            removed.append(entry)
+    return removed
 
 
 def _clean_whole(path, output, rejected, params, progress, options) -> FileCleanResult:

@@ -170,3 +170,29 @@ def test_clean_file_falls_back_for_transforms_and_quotes(tmp_path):
 def read_points_of(points: pd.DataFrame, folder) -> pd.DataFrame:
     write_points(points, folder / "want.csv")
     return read_points(folder / "want.csv").points
+
+
+def test_scratch_of_a_killed_run_is_removed_by_the_next(tmp_path, monkeypatch):
+    import subprocess
+    import sys
+
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    )
+    stale = tmp_path / f"{clean_stream.SCRATCH_PREFIX}{int(dead.stdout)}-abc123"
+    stale.mkdir()
+    (stale / "run00000.arrow").write_bytes(b"x" * 100)
+    alive = tmp_path / f"{clean_stream.SCRATCH_PREFIX}{__import__('os').getpid()}-def456"
+    alive.mkdir()
+    other = tmp_path / "wakeline-clean-notapid"
+    other.mkdir()
+    monkeypatch.setattr("tempfile.tempdir", str(tmp_path))
+    src = tmp_path / "scattered.csv"
+    scattered_file(src, damaged=False)
+    clean_file(src, tmp_path / "out.csv")
+    assert not stale.exists() and alive.exists() and other.exists()
+    assert not [
+        p
+        for p in tmp_path.iterdir()
+        if p.name.startswith("wakeline-clean-") and p not in (alive, other)
+    ]
