@@ -54,6 +54,7 @@ from wakeline.core.clean import (
     merge_reports,
 )
 from wakeline.core.errors import Cancelled, InputError
+from wakeline.core.io.writer import needs_quotes
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
 from wakeline.core.tracks import sorted_with_index
@@ -194,6 +195,8 @@ class _Spill:
         self.rows = 0
         self.given: list[np.ndarray] | None = None  # the file's own wl_id values
         self.given_ok = True
+        # text columns the whole table's CSV would quote: quoted in every part written
+        self.quote: set[str] = set()
 
     def __call__(self, points: pd.DataFrame) -> None:
         n = len(points)
@@ -227,6 +230,11 @@ class _Spill:
             known[new] = self.registry.get_indexer(joined[new])
         self.keys.append((known.astype("int64"), counts[present].astype("int64")))
         table = pa.Table.from_pandas(points.take(order), preserve_index=False)
+        for name, column in zip(table.column_names, table.columns, strict=True):
+            if name in self.quote or not _is_text(column):
+                continue
+            if needs_quotes(column.cast(pa.string())):
+                self.quote.add(name)
         path = self.folder / f"run{len(self.paths):05d}.arrow"
         with ipc.new_file(str(path), table.schema) as writer:
             writer.write_table(table)
@@ -245,6 +253,10 @@ class _Spill:
         return not bool((ids[1:] == ids[:-1]).any())
 
 
+def _is_text(column: pa.ChunkedArray) -> bool:
+    return pa.types.is_string(column.type) or pa.types.is_large_string(column.type)
+
+
 def _text_columns(df: pd.DataFrame) -> pd.DataFrame:
     """Text columns back to the importer's ``str`` dtype after a trip through Arrow."""
     for name in df.columns:
@@ -257,13 +269,13 @@ def _text_columns(df: pd.DataFrame) -> pd.DataFrame:
 class _Appender:
     """Tables appended to one CSV written atomically: the header once, then bodies."""
 
-    def __init__(self, fh, scratch: Path, points: bool) -> None:
-        self.fh, self.scratch, self.points = fh, scratch, points
+    def __init__(self, fh, scratch: Path, points: bool, quote: frozenset[str]) -> None:
+        self.fh, self.scratch, self.points, self.quote = fh, scratch, points, quote
 
     def add(self, table: pd.DataFrame) -> None:
         from wakeline.core.io import write_csv, write_points
 
-        (write_points if self.points else write_csv)(table, self.scratch)
+        (write_points if self.points else write_csv)(table, self.scratch, self.quote)
         with open(self.scratch, "rb") as src:
             header = src.readline()
             if self.fh.tell() == 0:
@@ -357,7 +369,7 @@ def _clean_runs(
     pending: deque[Future] = deque()
     try:
         with atomic_path(output) as tmp, open(tmp, "wb") as fh:
-            out = _Appender(fh, scratch, points=True)
+            out = _Appender(fh, scratch, points=True, quote=frozenset(spill.quote))
             for k in range(len(blocks)):
                 while len(pending) < 2 and k + len(pending) < len(blocks):
                     pending.append(pool.submit(work, k + len(pending)))
@@ -387,22 +399,37 @@ def _clean_runs(
 
 
 def _merge_rejected(
-    paths: list[Path], template: pd.DataFrame | None, target, scratch: Path, rows: int
+    paths: list[Path],
+    template: pd.DataFrame | None,
+    target,
+    scratch: Path,
+    rows: int,
 ) -> None:
     """The blocks' rejected runs, each sorted by (wl_id, action), merged in ranges of
-    wl_id into one CSV sorted the same way (stable: a block's own order on ties)."""
+    wl_id into one CSV sorted the same way (stable: a block's own order on ties); text
+    columns quoted where the whole trail needs it."""
     from wakeline.core.io.writer import atomic_path
 
     ids = []
+    quote: set[str] = set()
     for path in paths:
         with pa.memory_map(str(path)) as src:
-            ids.append(np.array(ipc.open_file(src).read_all().column(ID), dtype="int64"))
+            table = ipc.open_file(src).read_all()
+            ids.append(np.array(table.column(ID), dtype="int64"))
+            for name, column in zip(table.column_names, table.columns, strict=True):
+                if (
+                    name not in quote
+                    and _is_text(column)
+                    and needs_quotes(column.cast(pa.string()))
+                ):
+                    quote.add(name)
+            del table
     step = 1024
     samples = np.sort(np.concatenate([x[::step] for x in ids])) if ids else np.zeros(0)
     cuts = samples[:: max(1, rows // step)][1:]
     bounds = [None, *cuts.tolist(), None]
     with atomic_path(target) as tmp, open(tmp, "wb") as fh:
-        out = _Appender(fh, scratch, points=False)
+        out = _Appender(fh, scratch, points=False, quote=frozenset(quote))
         if template is not None:
             out.add(template)
         for lo, hi in zip(bounds[:-1], bounds[1:], strict=True):

@@ -3,6 +3,7 @@ in memory: points, reject trail, report and quarantine, on files whose tracks ar
 scattered through the file, cut into several pieces and blocks."""
 
 import json
+import sys
 
 import numpy as np
 import pandas as pd
@@ -196,3 +197,24 @@ def test_scratch_of_a_killed_run_is_removed_by_the_next(tmp_path, monkeypatch):
         for p in tmp_path.iterdir()
         if p.name.startswith("wakeline-clean-") and p not in (alive, other)
     ]
+
+
+def test_a_late_stray_quote_is_quoted_as_the_whole_table_would(tmp_path, monkeypatch):
+    """A quote after the sampled start is plain text (no quoting, as read_points reads
+    it); the output quotes that column in every block, as the whole table's writer does."""
+    src = tmp_path / "scattered.csv"
+    scattered_file(src, damaged=False)
+    lines = src.read_text().splitlines()
+    lines = [lines[0] + ",remark"] + [line + ",ok" for line in lines[1:]]
+    lines[-10] = lines[-10][:-2] + '"unclosed remark'
+    src.write_text("\n".join(lines) + "\n")
+    monkeypatch.setattr(sys.modules["wakeline.core.io.sniff"], "SAMPLE_BYTES", 4096)
+    monkeypatch.setattr("wakeline.core.clean.BLOCK_ROWS", 200)
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)
+    want_report, _ = in_memory(src, tmp_path / "a.csv", tmp_path / "a_rej.csv")
+    got = clean_file(src, tmp_path / "b.csv", tmp_path / "b_rej.csv", block_rows=200)
+    assert got.streamed
+    assert '"""unclosed remark"' in (tmp_path / "a.csv").read_text()
+    assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
+    assert (tmp_path / "b_rej.csv").read_bytes() == (tmp_path / "a_rej.csv").read_bytes()
+    assert as_json(got.report) == as_json(want_report)
