@@ -68,7 +68,7 @@ def test_streamed_clean_equals_in_memory(tmp_path, monkeypatch, block_rows):
     scattered_file(src)
     monkeypatch.setattr("wakeline.core.clean.BLOCK_ROWS", block_rows)
     want_report, want_read = in_memory(src, tmp_path / "a.csv", tmp_path / "a_rej.csv")
-    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)  # about ten pieces
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)  # a dozen pieces
     cuts = []
 
     def spy(ends, rows):
