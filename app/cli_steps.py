@@ -250,6 +250,15 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="seed 001 sampling-segmentation-B-spline-interpolation (splits batches holding two ships)",
     )
+    from wakeline.core.io import FAMILIES
+
+    # How to read the input, as for `wakeline import`.
+    p.add_argument("--format", choices=FAMILIES, default="auto", help="input layout (default auto)")
+    p.add_argument("--map", action="append", metavar="FIELD=COLUMN", help="as for import")
+    p.add_argument("--encoding", help="text encoding (default: detect)")
+    p.add_argument("--delimiter", help="field delimiter (default: detect)")
+    p.add_argument("--tz", metavar="ZONE", help="zone of times written without one (as import)")
+    p.add_argument("--sensor", default="S1", help="sensor name when the file has none")
 
 
 def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:
@@ -335,6 +344,8 @@ def run_step_command(args: argparse.Namespace) -> int:
 
     step = STEPS[args.step]
     params = step_params(step, args)
+    if step.name == "clean":
+        return _run_clean(step, params, args)
     if step.many_inputs:
         from wakeline.app.cli_review import read_inputs
 
@@ -350,4 +361,29 @@ def run_step_command(args: argparse.Namespace) -> int:
     if args.report:
         write_json({**result.report, "params": params_to_json(params)}, args.report)
     print(step.summary(result), file=sys.stderr)
+    return 0
+
+
+def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
+    """``wakeline clean``: by blocks of whole tracks, writing as it goes (bounded memory,
+    :func:`wakeline.core.clean_stream.clean_file`); the same outputs as the step."""
+    from wakeline.core.clean_stream import clean_file
+    from wakeline.core.io import write_json
+    from wakeline.core.pipeline import StepResult, params_to_json
+
+    read = {"fmt": args.format, "mapping": args.map, "encoding": args.encoding}
+    read |= {"delimiter": args.delimiter, "sensor": args.sensor, "tz": args.tz}
+    rejected = getattr(args, "out__rejected", None)
+    out = clean_file(args.input, args.output, rejected, params["clean"], **read)
+    for warning in out.read_report.get("warnings", []):
+        print(f"{args.input}: warning: {warning}", file=sys.stderr)
+    if out.read_report["rows_quarantined"]:
+        print(
+            f"{args.input}: {out.read_report['rows_quarantined']:,} rows quarantined on reading "
+            "(run `wakeline import` with --quarantine to see them)",
+            file=sys.stderr,
+        )
+    if args.report:
+        write_json({**out.report, "params": params_to_json(params)}, args.report)
+    print(step.summary(StepResult("clean", [], out.report)), file=sys.stderr)
     return 0

@@ -518,10 +518,16 @@ def _remove(points: pd.DataFrame, params: CleanParams, progress: Progress) -> Cl
 
 def _blocks(index: TrackIndex, rows: int) -> list[tuple[int, int]]:
     """Row ranges of about ``rows`` rows each, cut at track boundaries."""
-    if index.n_tracks == 0:
+    return block_cuts(index.ends, rows)
+
+
+def block_cuts(ends: np.ndarray, rows: int) -> list[tuple[int, int]]:
+    """Row ranges of about ``rows`` rows each, cut at track boundaries, for tracks in
+    sorted order ending at rows ``ends`` (the blocks :func:`clean` cleans one at a time;
+    the streamed clean, :mod:`wakeline.core.clean_stream`, cuts the same blocks)."""
+    if len(ends) == 0:
         return [(0, 0)]
     cuts = [0]
-    ends = index.ends
     while cuts[-1] < ends[-1]:
         k = int(np.searchsorted(ends, cuts[-1] + rows, side="left"))
         cuts.append(int(ends[min(k, len(ends) - 1)]))
@@ -532,15 +538,20 @@ def _merge(results: list[CleanResult]) -> CleanResult:
     points = pd.concat([r.points for r in results], ignore_index=True)
     rejected = pd.concat([r.rejected for r in results], ignore_index=True)
     rejected = rejected.sort_values([ID, "action"], kind="stable").reset_index(drop=True)
-    first = results[0].report
+    return CleanResult(points, rejected, merge_reports([r.report for r in results]))
+
+
+def merge_reports(reports: list[dict]) -> dict:
+    """The report of several blocks of whole tracks cleaned one by one."""
+    first = reports[0]
     report = {
-        key: sum(r.report[key] for r in results)
+        key: sum(r[key] for r in reports)
         for key in ("points_in", "points_out", "tracks_in", "tracks_out")
     }
     report["rules"] = {
         rule: {
             key: (
-                sum(r.report["rules"][rule][key] for r in results)
+                sum(r["rules"][rule][key] for r in reports)
                 if key in ("removed", "changed", "breaks", "spans", "at_rest_s")
                 else value
             )
@@ -548,9 +559,9 @@ def _merge(results: list[CleanResult]) -> CleanResult:
         }
         for rule, info in first["rules"].items()
     }
-    report["tracks"] = [row for r in results for row in r.report["tracks"]]
-    report["at_rest_spans"] = [row for r in results for row in r.report["at_rest_spans"]]
-    return CleanResult(points, rejected, report)
+    report["tracks"] = [row for r in reports for row in r["tracks"]]
+    report["at_rest_spans"] = [row for r in reports for row in r["at_rest_spans"]]
+    return report
 
 
 def _paper_stationary(legs, rows, lon, lat, track, speed_col, speed_kn, n) -> np.ndarray:

@@ -20,7 +20,7 @@ import shutil
 import sys
 import tempfile
 import zoneinfo
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -987,8 +987,11 @@ def inspect_file(
     return out
 
 
-class _Fallback(Exception):
+class StreamFallback(Exception):
     """The streamed import met something only the whole-file reader handles."""
+
+
+_Fallback = StreamFallback
 
 
 #: Bytes of whole lines parsed, converted and written at a time by :func:`import_to_csv`.
@@ -1039,8 +1042,45 @@ def import_to_csv(
 
 
 def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress) -> ImportResult:
+    """Write the file's points to ``tmp`` piece by piece (see :func:`stream_points`)."""
     from wakeline.core.io.writer import write_points
 
+    # Each piece goes through write_points (the one canonical writer) into a scratch file
+    # in the system's temporary folder (nothing of ours is left beside the output).
+    scratch = Path(tempfile.mkdtemp(prefix="wakeline-import-"))
+    chunk_file = scratch / "piece.csv"
+    try:
+        with open(tmp, "wb") as fh:
+
+            def sink(points: pd.DataFrame) -> None:
+                write_points(points, chunk_file)
+                with open(chunk_file, "rb") as src:
+                    header = src.readline()
+                    if fh.tell() == 0:
+                        fh.write(header)
+                    while block := src.read(16 << 20):
+                        fh.write(block)
+
+            return stream_points(sn, res, sink, sensor, zone, tz, progress)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+def stream_points(
+    sn: Sniff,
+    res: Resolved,
+    sink: Callable[[pd.DataFrame], None],
+    sensor: str = DEFAULT_SENSOR,
+    zone: datetime.tzinfo | None = None,
+    tz: str | None = None,
+    progress: Progress | None = None,
+) -> ImportResult:
+    """Read a CSV without quotes in its sampled start piece by piece (``STREAM_BYTES`` of
+    whole lines at a time) and hand each piece's canonical points, in file order, to
+    ``sink``; memory stays about one piece. Returns the quarantine, report and layout of
+    :func:`read_points` (points empty). Raises :class:`StreamFallback` when the file needs the
+    whole-file reader (a value that does not convert, another encoding, no points)."""
+    progress = progress or null_progress
     bad = _BadRows()  # every refused or blank line of the file, numbered in the file
     types = _column_types(sn, res, careful=False)
     file_batch = "batch" not in res.columns
@@ -1053,11 +1093,8 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
     quarantines: list[pd.DataFrame] = []
     starts, ends = [], []
     time_info: dict = {}
-    # Each piece goes through write_points (the one canonical writer) into a scratch file
-    # in the system's temporary folder (nothing of ours is left beside the output).
-    scratch = Path(tempfile.mkdtemp(prefix="wakeline-import-"))
-    chunk_file = scratch / "piece.csv"
     size = max(sn.path.stat().st_size, 1)
+    consumed = [0]
 
     def parse(piece: bytes, skip: int, first_line: int) -> tuple[pa.Table, np.ndarray]:
         """One piece of whole lines: the table and the file line of each row; refused
@@ -1091,7 +1128,7 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
         skipped = sorted(local.lines + local.blank_lines)
         return table, _line_numbers(np.arange(table.num_rows), skip, skipped) + offset
 
-    def flush(table: pa.Table, lines: np.ndarray, fh) -> None:
+    def flush(table: pa.Table, lines: np.ndarray) -> None:
         n = table.num_rows
         if file_batch:
             name = sn.path.name.split(".")[0] or "1"
@@ -1120,26 +1157,17 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
             pairs.update(zip(keys["sensor"], keys["batch"], strict=True))
             starts.append(points["time"].min())
             ends.append(points["time"].max())
-            write_points(points, chunk_file)
-            with open(chunk_file, "rb") as src:
-                header = src.readline()
-                if fh.tell() == 0:
-                    fh.write(header)
-                while block := src.read(16 << 20):
-                    fh.write(block)
-        progress(min(0.95, fh.tell() / size), "importing")
+            sink(points)
+        progress(min(0.95, consumed[0] / size), "importing")
 
     try:
-        with (
-            open(tmp, "wb") as fh,
-            _open(sn, sn.encoding, "strict") as stream,
-            _quiet_undecodable_rows(),
-        ):
+        with _open(sn, sn.encoding, "strict") as stream, _quiet_undecodable_rows():
             # Pieces of whole lines, parsed one at a time: memory stays one piece
             # (the streaming reader would read ahead as far as the file goes).
             carry, first_line, skip = b"", 1, sn.skip_rows
             while True:
                 data = bytes(stream.read(STREAM_BYTES))
+                consumed[0] += len(data)
                 buf = carry + data
                 if data:
                     cut = buf.rfind(b"\n")
@@ -1154,18 +1182,16 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
                     break
                 table, lines = parse(piece, skip, first_line)
                 if table.num_rows:
-                    flush(table, lines, fh)
+                    flush(table, lines)
                 del table
                 first_line += piece.count(b"\n") + piece.count(b"\r") - piece.count(b"\r\n")
                 skip = 0
                 if not data:
                     break
-            if fh.tell() == 0:
+            if totals["rows_imported"] == 0:
                 raise _Fallback  # nothing imported: let the whole-file path say why
     except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
         raise _Fallback from exc
-    finally:
-        shutil.rmtree(scratch, ignore_errors=True)
 
     # Rows the parser refused (field counts), blank lines, and the texts of the rest.
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()

@@ -289,6 +289,12 @@ def _quote(name: str) -> str:
     return name
 
 
+def needs_quotes(column: pa.ChunkedArray | pa.Array) -> bool:
+    """Whether :func:`write_csv` quotes this text column (a value holds a delimiter, a
+    quote, a line break or edge blanks)."""
+    return _needs_quotes(column)
+
+
 def _needs_quotes(column: pa.ChunkedArray) -> bool:
     return pa.types.is_string(column.type) and bool(
         pc.any(pc.match_substring_regex(column, _NEEDS_QUOTES)).as_py()
@@ -308,15 +314,19 @@ def _quoted_body(table: pa.Table, quoted: list[bool]) -> pa.Array:
     return pc.binary_join_element_wise(row, "", "\n").combine_chunks()
 
 
-def write_csv(df: pd.DataFrame, path: str | Path) -> None:
+def write_csv(df: pd.DataFrame, path: str | Path, quote: frozenset[str] = frozenset()) -> None:
     """Write any table as UTF-8 CSV atomically.
 
     Timestamps are written as ISO 8601 UTC with milliseconds and ``Z``; floats in their
     shortest round-trip form; missing values as empty cells; text quoted only in the
-    columns where some value holds a delimiter, a quote, a line break or edge blanks.
+    columns where some value holds a delimiter, a quote, a line break or edge blanks, and
+    in the text columns named in ``quote`` (a table written in parts: the whole's choice).
     """
     table = _to_arrow(df)
-    quoted = [_needs_quotes(c) for c in table.columns]
+    quoted = [
+        (name in quote and pa.types.is_string(c.type)) or _needs_quotes(c)
+        for name, c in zip(table.column_names, table.columns, strict=True)
+    ]
     header = (",".join(_quote(str(c)) for c in df.columns) + "\n").encode("utf-8")
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as fh:
@@ -333,9 +343,12 @@ def write_csv(df: pd.DataFrame, path: str | Path) -> None:
                 pacsv.write_csv(table, fh, options)
 
 
-def write_points(points: pd.DataFrame, path: str | Path) -> None:
-    """Write the canonical point table (canonical columns first, extras after)."""
-    write_csv(points[ordered_columns(points)], path)
+def write_points(
+    points: pd.DataFrame, path: str | Path, quote: frozenset[str] = frozenset()
+) -> None:
+    """Write the canonical point table (canonical columns first, extras after);
+    ``quote`` as for :func:`write_csv`."""
+    write_csv(points[ordered_columns(points)], path, quote)
 
 
 def _json_default(obj):
