@@ -81,7 +81,7 @@ class BearingParams(Params):
         240.0, "s", "window Y after the boundary (the longest span tested)", lo=2, hi=86_400
     )
     alpha: float = param(
-        0.00027, "", "significance level per boundary (z = 3.64)", lo=1e-12, hi=0.5
+        4e-5, "", "significance level per boundary and span (z = 4.11)", lo=1e-12, hi=0.5
     )
     glr: bool = param(
         True,
@@ -105,11 +105,11 @@ class BearingParams(Params):
         45.0, "s", "windows holding a longer interval without bearings are skipped", lo=0.1
     )
     y_scales: int = param(
-        7,
+        10,
         "",
-        "spans of Y tested (k = this): the GLR's k spans from Y/8 to Y, geometric (240 s, 7: "
-        "30, 42, 60, 85, 120, 170, 240 s), the AUC's 1/k, 2/k, … of Y; short spans report "
-        "strong turns sooner",
+        "spans of Y tested (k = this): the GLR's k spans from Y/8 to Y, geometric (240 s, 10: "
+        "30, 38, 48, … 190, 240 s), the AUC's 1/k, 2/k, … of Y; short spans report strong "
+        "turns sooner",
         lo=1,
         hi=12,
     )
@@ -698,6 +698,8 @@ def detect_with_report(
         report.append(
             {
                 "batch": str(batch),
+                "test": "GLR" if params.glr else "AUC-mean (eq. 15)" if params.auc_mean else "AUC",
+                "y_spans_s": [round(float(v), 1) for v in y_spans(params)],
                 "samples": int(len(t)),
                 "duration_s": round(float(t[-1] - t[0]), 3) if len(t) else 0.0,
                 "median_interval_s": round(float(np.median(np.diff(t))), 3) if len(t) > 1 else None,
