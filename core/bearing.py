@@ -1,25 +1,37 @@
-"""Bearing-only maneuver detection by AUC (seed 002, SPEC §4), in seconds.
+"""Bearing-only maneuver detection (seed 002, SPEC §4), in seconds: a generalized
+likelihood ratio test by default, seed 002's AUC test and its eq. 15 as options.
 
 Two adjacent windows slide over a target's bearing sequence: X (the ``window_x_s``
-seconds before a boundary) and Y (the ``window_y_s`` seconds after it). Every span is in
-seconds, so the detector runs unchanged at any sampling rate and on irregular sampling
-(jitter, dropped samples): a window holds whatever samples fall in its span.
+seconds before a boundary) and Y (up to ``window_y_s`` seconds after it, tested over
+``y_scales`` nested spans). Every span is in seconds, so the detector runs unchanged at
+any sampling rate and on irregular sampling (jitter, dropped samples): a window holds
+whatever samples fall in its span. X starts after the last gap or observer maneuver; Y
+stops before the next one (its shorter spans are still tested).
 
-**The feature: residuals from the target's relative motion fitted on X.** A target at
-constant velocity seen from an observer at constant velocity (static, or on a steady
-leg) moves at constant velocity *relative* to the observer, and its bearing follows
+**The motion model: the target's relative motion fitted on X.** A target at constant
+velocity seen from an observer at constant velocity (static, or on a steady leg) moves
+at constant velocity *relative* to the observer, and its bearing follows
 
     β(τ) = β₀ + atan2(w_c·τ, 1 + w_r·τ)
 
 (τ: time from the boundary; w_c and w_r: cross-bearing and range rate over range, 1/s).
-The three parameters are fitted on X by Gauss–Newton (vectorized over all boundaries);
-X's and Y's residuals from that curve (Y: extrapolated) are compared by the
-Mann–Whitney AUC. Without a maneuver both centre on zero whatever the geometry and the
-observer's speed; after a turn Y's residuals drift to one side. The observer's own turns
-break the relative constant velocity: windows touching them are excluded (and counted).
-The previous feature, a quadratic in time fitted on X, is kept (``relative_motion`` off).
+The three parameters are fitted on X (pseudo-linear least squares, one Gauss–Newton
+step; vectorized over all boundaries). The observer's own turns break the relative
+constant velocity: windows touching them are excluded (and counted). A quadratic in time
+is kept as the alternative model (``relative_motion`` off).
 
-**The null.** Y's residuals share the extrapolation error of X's fit, so the textbook
+**The GLR test (default, ``glr``).** A turn changes the bearing rate at some time t_c:
+β = model + Δω·max(t − t_c, 0). For t_c at the boundary and each Y span, the ramp is
+fitted together with the motion model over X and the span (one Gauss–Newton step from
+X's fit, the ramp's column added); z = Δω̂ / se(Δω̂), se from the 4×4 normal matrix and
+σ from X's residuals. This is the likelihood-ratio test of "constant relative velocity"
+against "bearing-rate change at t_c" (Gaussian noise), linearized; it uses the ramp
+shape of a turn's residual, where the AUC only sees a shift of Y's median. Its null is
+N(0, 1) per test; the threshold covers the many boundaries and spans (alpha). The
+smallest rate change the data can show is z_crit·se (reported per batch).
+
+**The AUC test (``glr`` off; seed 002).** X's and Y's residuals from the X fit (Y:
+extrapolated) are compared by the Mann–Whitney AUC. **The null.** Y's residuals share the extrapolation error of X's fit, so the textbook
 null AUC ~ N(½, (m+n+1)/(12mn)) is too narrow. Near H0 a common offset δ moves the AUC
 by δ / (σ√(4π)) and the offset's variance is σ²·h̄ᵀ(JᵀJ)⁻¹h̄ (J: the fit's Jacobian on X,
 h̄: its rows averaged over Y), so σ cancels:
@@ -27,7 +39,7 @@ Var(AUC) = (m+n+1)/(12mn) + h̄ᵀ(JᵀJ)⁻¹h̄ / (4π). We reject "no maneuve
 |AUC − ½| / sd > z_{α/2}. With ``auc_mean`` (seed 002 eq. 15) the AUCs of the boundaries
 in the last ``mean_span_s`` are averaged and tested as |AUC̄ − ½| / (sd/√N) > z_{α/2}.
 
-Detection time is the last sample of the first rejecting boundary's Y window (causal);
+Detection time is the last sample of the shortest rejecting Y span (causal);
 the estimated maneuver time is where a bearing-rate change best explains the residuals
 of that boundary's fit (:func:`maneuver_time`; seed 002's largest |z| of the run comes
 late here). Later rejections count as a new detection only once X no longer holds the
@@ -65,9 +77,17 @@ class BearingParams(Params):
         lo=5,
         hi=86_400,
     )
-    window_y_s: float = param(90.0, "s", "window Y after the boundary", lo=2, hi=86_400)
+    window_y_s: float = param(
+        240.0, "s", "window Y after the boundary (the longest span tested)", lo=2, hi=86_400
+    )
     alpha: float = param(
-        0.00027, "", "significance level per boundary (z = 3.64)", lo=1e-12, hi=0.5
+        4e-5, "", "significance level per boundary and span (z = 4.11)", lo=1e-12, hi=0.5
+    )
+    glr: bool = param(
+        True,
+        "",
+        "test a bearing-rate change at the boundary by a generalized likelihood ratio, the "
+        "motion refitted over X and Y (off: seed 002's AUC of X's and Y's residuals)",
     )
     relative_motion: bool = param(
         True,
@@ -85,12 +105,13 @@ class BearingParams(Params):
         45.0, "s", "windows holding a longer interval without bearings are skipped", lo=0.1
     )
     y_scales: int = param(
-        3,
+        10,
         "",
-        "Y is also tested over its first 1/k, 2/k, … of its span (k = this): strong turns "
-        "are reported sooner",
+        "spans of Y tested (k = this): the GLR's k spans from Y/8 to Y, geometric (240 s, 10: "
+        "30, 38, 48, … 190, 240 s), the AUC's 1/k, 2/k, … of Y; short spans report strong "
+        "turns sooner",
         lo=1,
-        hi=10,
+        hi=12,
     )
     min_samples: int = param(6, "samples", "fewest samples in X and in Y", lo=4, hi=100_000)
     observer_dv_ms: float = param(
@@ -133,24 +154,38 @@ class Windows:
 
     k: np.ndarray  # boundary sample index (first sample of Y)
     xs: np.ndarray  # first sample of X
-    ye: np.ndarray  # one past the last sample of Y
+    ye: np.ndarray  # one past the last sample of Y (Y stops at a gap or observer maneuver)
     reason: np.ndarray  # "" when tested, else one of EXCLUSION_REASONS
     too_short: str = ""  # why there is no window at all
+    y_cover: np.ndarray = field(default_factory=lambda: np.zeros(0))  # s of Y with data
+
+
+def y_spans(params: BearingParams) -> np.ndarray:
+    """The spans of Y tested (s), shortest first: the GLR takes ``y_scales`` spans spaced
+    geometrically from ``window_y_s``/8 to ``window_y_s``, the AUC takes 1/k, 2/k, … of it (eq. 15: all of it)."""
+    k, y = int(params.y_scales), float(params.window_y_s)
+    if params.glr:
+        return y * (1.0 / 8.0) ** (np.arange(k - 1, -1, -1.0) / max(k - 1, 1))
+    if params.auc_mean:
+        return np.array([y])
+    return y * np.arange(1, k + 1) / k
 
 
 def _windows(t: np.ndarray, params: BearingParams, excluded: np.ndarray | None = None) -> Windows:
-    """Boundaries every ``step_s`` from ``min_window_x_s`` after the start to ``window_y_s``
-    before the end. X reaches back ``window_x_s`` but starts after the observer's last
-    maneuvering sample and the last gap; a boundary is skipped when its Y holds either,
-    when X is then shorter than ``min_window_x_s``, or when a window has too few samples."""
+    """Boundaries every ``step_s`` from ``min_window_x_s`` after the start to the shortest
+    Y span before the end. X reaches back ``window_x_s`` but starts after the observer's
+    last maneuvering sample and the last gap; Y stops before the next ones. A boundary is
+    skipped when its shortest Y span is cut so, when X is shorter than ``min_window_x_s``,
+    or when a window has too few samples."""
     x_s, x_min, y_s = (
         float(params.window_x_s),
         float(params.min_window_x_s),
         float(params.window_y_s),
     )
+    y_min = float(y_spans(params)[0])
     x_min = min(x_min, x_s)
     empty = np.zeros(0, dtype=int)
-    if len(t) < 2 or t[-1] - t[0] < x_min + y_s:
+    if len(t) < 2 or t[-1] - t[0] < x_min + y_min:
         span = t[-1] - t[0] if len(t) else 0.0
         return Windows(
             empty,
@@ -158,36 +193,42 @@ def _windows(t: np.ndarray, params: BearingParams, excluded: np.ndarray | None =
             empty,
             np.zeros(0, dtype=object),
             f"series too short for the windows: {len(t)} samples over {span:.0f} s "
-            f"< X + Y = {x_min:.0f} + {y_s:.0f} s",
+            f"< X + Y = {x_min:.0f} + {y_min:.0f} s",
         )
     n = len(t)
-    grid = np.arange(t[0] + x_min, t[-1] - y_s + 1e-9, float(params.step_s))
+    tol = float(np.median(np.diff(t)))
+    grid = np.arange(t[0] + x_min, t[-1] - y_min + 1e-9, float(params.step_s))
     k = np.unique(np.searchsorted(t, grid))
     k = k[(k > 0) & (k < n)]
-    k = k[t[k] + y_s <= t[-1] + 1e-9]
+    k = k[t[k] + y_min <= t[-1] + tol]
     tk = t[k]
-    ye = np.searchsorted(t, tk + y_s)
     idx = np.arange(n)
     gap_after = np.append(np.diff(t) > params.max_gap_s, False)  # gap between i and i+1
+    excl = excluded if excluded is not None else np.zeros(n, dtype=bool)
     # first sample after the last gap / observer-maneuvering sample at or before i
     after_gap = np.maximum.accumulate(np.where(gap_after, idx + 1, 0))
-    excl = excluded if excluded is not None else np.zeros(n, dtype=bool)
     after_excl = np.maximum.accumulate(np.where(excl, idx + 1, 0))
+    # the next gap / maneuvering sample at or after i (n: none)
+    next_gap = np.minimum.accumulate(np.where(gap_after, idx, n)[::-1])[::-1]
+    next_excl = np.minimum.accumulate(np.where(excl, idx, n)[::-1])[::-1]
     xs_full = np.maximum(np.searchsorted(t, tk - x_s), 0)
     xs = np.maximum.reduce([xs_full, after_gap[k - 1], after_excl[k - 1]])
+    ye_full = np.searchsorted(t, tk + y_s)
+    ye_gap = np.minimum(next_gap[k] + 1, n)
+    ye_exc = next_excl[k]
+    ye = np.minimum.reduce([ye_full, ye_gap, ye_exc])
+    cover = np.where(ye > k, t[np.maximum(ye - 1, 0)] - tk, 0.0)
+    cover = np.where((ye == ye_full) & (ye_full < n), y_s, cover + tol)
     reason = np.full(len(k), "", dtype=object)
-    gaps = np.concatenate([[0], np.cumsum(gap_after)])
-    exc = np.concatenate([[0], np.cumsum(excl)])
-    short_x = (tk - t[np.minimum(xs, n - 1)]) < x_min - max(float(np.median(np.diff(t))), 0)
-    y_gap = (gaps[ye - 1] - gaps[k - 1]) > 0
-    y_gap |= (tk + y_s) - t[ye - 1] > params.max_gap_s
-    reason[y_gap | (short_x & (after_gap[k - 1] >= after_excl[k - 1]) & (xs > xs_full))] = "gap"
-    y_exc = (exc[ye] - exc[k]) > 0
+    short_x = (tk - t[np.minimum(xs, n - 1)]) < x_min - max(tol, 0)
+    cut = cover < y_min - 1e-9
+    x_gap = short_x & (after_gap[k - 1] >= after_excl[k - 1]) & (xs > xs_full)
+    reason[(cut & (ye == ye_gap) & (ye < ye_exc)) | x_gap] = "gap"
     x_exc = short_x & (after_excl[k - 1] > after_gap[k - 1]) & (xs > xs_full)
-    reason[(reason == "") & (y_exc | x_exc)] = "observer_maneuvering"
-    few = ((k - xs) < params.min_samples) | ((ye - k) < params.min_samples) | short_x
+    reason[(reason == "") & ((cut & (ye == ye_exc)) | x_exc)] = "observer_maneuvering"
+    few = ((k - xs) < params.min_samples) | ((ye - k) < params.min_samples) | short_x | cut
     reason[(reason == "") & few] = "sparse"
-    return Windows(k, xs, ye, reason)
+    return Windows(k, xs, ye, reason, "", cover)
 
 
 def _padded(t, u, k, xs, ye, x_s):
@@ -272,10 +313,10 @@ class Statistic:
     """Per tested boundary: time (s), z, AUC, its null sd, X's residual rms (deg), fit."""
 
     boundary_t: np.ndarray
-    detect_t: np.ndarray  # last sample of Y
+    detect_t: np.ndarray  # last sample of the shortest rejecting Y span (else the longest)
     x_start_t: np.ndarray
     z: np.ndarray
-    auc: np.ndarray
+    auc: np.ndarray  # AUC test only (NaN for the GLR)
     sd: np.ndarray
     rms_deg: np.ndarray
     coef: np.ndarray  # (p, q, r) per X span (see _fit_relative), or the quadratic's
@@ -283,6 +324,9 @@ class Statistic:
     t: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     u: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # unwrapped, rad
     params: "BearingParams | None" = field(default=None, repr=False)
+    # GLR: smallest bearing-rate change (rad/s) reaching z_crit over the longest Y span
+    min_rate: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    z_peak: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # max |z|
 
 
 def statistic(
@@ -290,63 +334,125 @@ def statistic(
     bearing_deg: np.ndarray,
     params: BearingParams,
     excluded: np.ndarray | None = None,
+    sigma_deg: float | None = None,
 ) -> Statistic:
-    """z (and its parts) for every tested boundary; see the module docstring."""
+    """z (and its parts) for every tested boundary; see the module docstring.
+
+    ``sigma_deg`` replaces the noise estimated from X's residuals (GLR): with noise-free
+    bearings it gives the expected z of a maneuver (what the geometry lets be seen)."""
     win = _windows(t, params, excluded)
     ok = win.reason == ""
-    k, xs, ye = win.k[ok], win.xs[ok], win.ye[ok]
+    k, xs, ye, cover = win.k[ok], win.xs[ok], win.ye[ok], win.y_cover[ok]
     nb = len(k)
-    out = {
-        key: np.zeros(nb)
-        for key in ("boundary_t", "detect_t", "x_start_t", "z", "auc", "sd", "rms")
-    }
+    keys = ("boundary_t", "detect_t", "x_start_t", "z", "auc", "sd", "rms", "min_rate", "z_peak")
+    out = {key: np.zeros(nb) for key in keys}
     coef = np.zeros((nb, 3))
     if nb == 0:
-        return Statistic(*(out[c] for c in out), coef, win, t, np.zeros(0), params)
+        return Statistic(
+            *(out[c] for c in keys[:7]), coef, win, t, np.zeros(0), params, *keys_after(out)
+        )
     u = np.unwrap(np.radians(bearing_deg))
-    x_s, y_s = float(params.window_x_s), float(params.window_y_s)
-    chunk = max(1, int(4e6 // max(int((ye - xs).max()), 1)))
+    x_s = float(params.window_x_s)
+    spans = y_spans(params)
+    chunk = max(1, int(1.5e6 // max(int((ye - xs).max()), 1)))
     for a in range(0, nb, chunk):  # blocks of boundaries bound the memory, not a per-window loop
         sl = slice(a, a + chunk)
         tau, w, mx, my = _padded(t, u, k[sl], xs[sl], ye[sl], x_s)
         if params.relative_motion:
-            f, jac, gram, c = _fit_relative(tau, w, mx, y_s / x_s)
+            f, jac, gram, c = _fit_relative(tau, w, mx, spans[-1] / x_s)
+            prior = R_PRIOR * mx.sum(axis=1).mean()
         else:
             f, jac, gram, c = _fit_poly(tau, w, mx)
+            prior = 0.0
         m = mx.sum(axis=1)
-        scales = (1.0,) if params.auc_mean or params.y_scales < 2 else None
-        scales = scales or tuple(np.arange(1, params.y_scales + 1) / params.y_scales)
+        resid = w - f
+        dof = np.maximum(m - c.shape[1], 1)
+        rms = np.sqrt((np.where(mx, resid, 0.0) ** 2).sum(axis=1) / dof)
+        sigma = np.full(len(m), math.radians(sigma_deg)) if sigma_deg else np.maximum(rms, 1e-9)
         best_z = np.zeros(len(m))
         best_t = np.full(len(m), np.inf)
-        for frac in scales[::-1]:  # a few nested Y spans: the shorter ones react sooner
-            myf = my & (tau * x_s < frac * y_s - 1e-9) if frac < 1 else my
-            n = myf.sum(axis=1)
-            resid = np.where(mx | myf, w - f, np.nan)
-            hbar = np.stack([np.where(myf, c, 0.0).sum(axis=1) for c in jac], axis=1)
-            hbar /= np.maximum(n, 1)[:, None]
-            lever = np.einsum("bj,bj->b", hbar, _solve(gram, hbar))
-            var = (m + n + 1) / (12.0 * m * np.maximum(n, 1)) + lever / (4.0 * math.pi)
-            auc = auc_windows(resid, m)
-            z = np.where(n >= params.min_samples, (auc - 0.5) / np.sqrt(var), 0.0)
-            y_end = t[np.minimum(xs[sl] + m + n - 1, len(t) - 1)]
-            if frac == 1.0:
-                out["auc"][sl], out["sd"][sl] = auc, np.sqrt(var)
-                best_z, full_t = z, y_end
-                resid_x = resid
+        full_t = t[k[sl]]
+        last = np.full(len(m), False)
+        n_span = np.stack([(my & (tau * x_s < span - 1e-9)).sum(axis=1) for span in spans], 1)
+        if params.glr:
+            z_all, rate_all = _glr(tau, resid, mx, my, n_span, jac, c, prior, sigma, params.z_crit)
+        for si in range(len(spans) - 1, -1, -1):  # nested Y spans: shorter ones react sooner
+            span, n = spans[si], n_span[:, si]
+            valid = (cover[sl] >= span - 1e-9) & (n >= params.min_samples)
+            y_end = t[np.minimum(k[sl] + n - 1, len(t) - 1)]
+            if params.glr:
+                z, min_rate = z_all[:, si], rate_all[:, si]
+            else:
+                myf = my & (tau * x_s < span - 1e-9)
+                z, auc, sd = _auc_z(resid, mx, myf, m, n, jac, gram)
+            z = np.where(valid, z, 0.0)
+            first = valid & ~last  # the longest valid span of each boundary
+            full_t = np.where(first, y_end, full_t)
+            if params.glr:
+                out["min_rate"][sl] = np.where(first, min_rate / x_s, out["min_rate"][sl])
+                out["auc"][sl] = np.nan
+            else:
+                out["auc"][sl] = np.where(first, auc, out["auc"][sl])
+                out["sd"][sl] = np.where(first, sd, out["sd"][sl])
+            last |= valid
+            out["z_peak"][sl] = np.maximum(out["z_peak"][sl], np.abs(z))
             hit = np.abs(z) > params.z_crit
             best_t = np.where(hit, y_end, best_t)  # shortest rejecting span wins
-            best_z = np.where(hit, z, best_z)
+            best_z = np.where(hit | (first & (best_z == 0)), z, best_z)
         out["z"][sl] = best_z
         out["detect_t"][sl] = np.where(np.isfinite(best_t), best_t, full_t)
-        dof = np.maximum(m - c.shape[1], 1)
-        out["rms"][sl] = np.degrees(np.sqrt(np.nansum(np.where(mx, resid_x, 0.0) ** 2, 1) / dof))
+        out["rms"][sl] = np.degrees(rms)
         coef[sl] = c
     out["boundary_t"], out["x_start_t"] = t[k], t[xs]
-    if params.auc_mean:
-        out["detect_t"] = t[ye - 1]
-    if params.auc_mean:
+    if params.auc_mean and not params.glr:
         out["z"] = _auc_mean_z(out["boundary_t"], out["auc"], out["sd"], params.mean_span_s)
-    return Statistic(*(out[c] for c in out), coef, win, t, u, params)
+    return Statistic(*(out[c] for c in keys[:7]), coef, win, t, u, params, *keys_after(out))
+
+
+def keys_after(out: dict) -> tuple[np.ndarray, np.ndarray]:
+    return out["min_rate"], out["z_peak"]
+
+
+def _glr(tau, resid, mx, my, n_span, jac, theta, prior, sigma, z_crit):
+    """GLR z of a bearing-rate change at the boundary for every Y span (columns of
+    ``n_span``: Y samples in the span): a ramp max(τ, 0) added to the motion model and
+    fitted with it over X and the span (one Gauss–Newton step from X's fit). Sums over
+    the span come from cumulative sums along the samples, so all spans cost one pass.
+    Also the smallest ramp slope (rad per X span) reaching ``z_crit``."""
+    cols = [*jac, np.maximum(tau, 0.0)]
+    q = len(cols)
+    m = mx.sum(axis=1)
+    end = np.maximum(m[:, None] + n_span - 1, 0)  # (B, S): last column of X + span
+    gram = np.empty((*end.shape, q, q))
+    g = np.empty((*end.shape, q))
+    mall = mx | my
+    for i in range(q):  # q = 4 columns: a handful of cumulative sums over (B, L)
+        ci = np.where(mall, cols[i], 0.0)
+        for j in range(i, q):
+            cs = np.take_along_axis(np.cumsum(ci * cols[j], axis=1), end, axis=1)
+            gram[..., i, j] = gram[..., j, i] = cs
+        g[..., i] = np.take_along_axis(np.cumsum(ci * resid, axis=1), end, axis=1)
+    if prior:
+        gram[..., 2, 2] += prior
+        g[..., 2] -= prior * theta[:, 2:3]
+    ridge = 1e-9 * (np.trace(gram, axis1=-2, axis2=-1)[..., None, None] + 1e-12)
+    inv = np.linalg.inv(gram + ridge * np.eye(q))
+    slope = np.einsum("bsj,bsj->bs", inv[..., -1, :], g)
+    se = sigma[:, None] * np.sqrt(np.maximum(inv[..., -1, -1], 1e-300))
+    return slope / se, z_crit * se
+
+
+def _auc_z(resid, mx, myf, m, n, jac, gram):
+    """Seed 002's AUC of X's against Y's residuals, its null sd with the fit's
+    extrapolation (module docstring) and z."""
+    r = np.where(mx | myf, resid, np.nan)
+    hbar = np.stack([np.where(myf, c, 0.0).sum(axis=1) for c in jac], axis=1)
+    hbar /= np.maximum(n, 1)[:, None]
+    lever = np.einsum("bj,bj->b", hbar, _solve(gram, hbar))
+    var = (m + n + 1) / (12.0 * m * np.maximum(n, 1)) + lever / (4.0 * math.pi)
+    auc = auc_windows(r, m)
+    sd = np.sqrt(var)
+    return (auc - 0.5) / sd, auc, sd
 
 
 def _auc_mean_z(bt: np.ndarray, auc: np.ndarray, sd: np.ndarray, span_s: float) -> np.ndarray:
@@ -409,24 +515,24 @@ def detections_from(st: Statistic, z_crit: float) -> list[Detection]:
 
 def maneuver_time(st: Statistic, i: int) -> float:
     """Estimated turn time (s) for a detection at tested boundary ``i``: X's motion fit
-    plus a bearing-rate change (a ramp) starting at t_c, the t_c over the last Y span of X
-    and Y that explains most of the residuals. (The largest |z| of the run, seed 002's
-    estimate, comes late here: once X holds the turn its misfit keeps |z| growing.)"""
+    plus a bearing-rate change (a ramp) starting at t_c, the t_c over the last 2·Y' of the
+    samples up to the detection (Y' = detection − boundary) that explains most of the
+    residuals (causal). (The largest |z| of the run, seed 002's estimate, comes late here:
+    once X holds the turn its misfit keeps |z| growing.)"""
     p = st.params
     pos = np.flatnonzero(st.windows.reason == "")[i]
-    k, xs, ye = (
-        st.windows.k[pos : pos + 1],
-        st.windows.xs[pos : pos + 1],
-        st.windows.ye[pos : pos + 1],
-    )
+    k, xs = st.windows.k[pos : pos + 1], st.windows.xs[pos : pos + 1]
+    ye = np.minimum(st.windows.ye[pos : pos + 1], np.searchsorted(st.t, st.detect_t[i], "right"))
+    ye = np.maximum(ye, k + 1)
     tau, w, mx, my = _padded(st.t, st.u, k, xs, ye, float(p.window_x_s))
     if p.relative_motion:
-        f = _fit_relative(tau, w, mx, p.window_y_s / p.window_x_s)[0]
+        f = _fit_relative(tau, w, mx, y_spans(p)[-1] / p.window_x_s)[0]
     else:
         f = _fit_poly(tau, w, mx)[0]
     tt = st.t[xs[0] : ye[0]]
     r = (w - f)[0][: len(tt)]
-    cand = tt[tt >= tt[-1] - 2.0 * p.window_y_s][:-2]
+    y_eff = max(float(st.detect_t[i] - st.boundary_t[i]), float(y_spans(p)[0]))
+    cand = tt[tt >= tt[-1] - 2.0 * y_eff][:-2]
     if len(cand) == 0:
         return float(st.boundary_t[i])
     ramp = np.maximum(tt[None, :] - cand[:, None], 0.0)  # (candidates, samples)
@@ -481,7 +587,8 @@ def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) 
     """Smallest bearing-rate change (deg/min) and, for a static observer, smallest turn
     (deg) the data can show at its noise and geometry (medians over the tested windows).
 
-    A bearing-rate change Δω at the boundary drifts Y's residuals by Δω·Y/2 on average;
+    GLR: the rate change whose fitted ramp slope reaches z_crit standard errors over the
+    longest Y span (σ from X's residuals, the slope's variance from the fit). AUC: a bearing-rate change Δω at the boundary drifts Y's residuals by Δω·Y/2 on average;
     a shift δ between two samples of noise σ gives AUC − ½ = Φ(δ/(σ√2)) − ½, so the
     smallest Δω meets z_crit·sd. With a static observer the fit's relative velocity is
     the target's, over range: a turn Δc rotates (w_r, w_c) and changes the bearing rate by
@@ -490,12 +597,19 @@ def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) 
     if len(st.z) == 0:
         return {"noise_deg": None, "min_rate_change_deg_min": None, "min_turn_deg": None}
     sigma = float(np.median(st.rms_deg))
-    need = params.z_crit * st.sd
-    frac = np.clip(0.5 + need, None, 1 - 1e-12)
-    from scipy.stats import norm  # lazy: scipy.stats is slow to import
+    if params.glr:
+        # z_crit · σ · sd of the fitted ramp slope (rad/s), where Y has its full span
+        sel = st.windows.y_cover[st.windows.reason == ""] >= params.window_y_s - 1e-9
+        sel = sel if sel.any() else np.ones(len(sel), dtype=bool)
+        rate = st.min_rate[sel]
+    else:
+        need = params.z_crit * st.sd
+        frac = np.clip(0.5 + need, None, 1 - 1e-12)
+        sel = np.ones(len(need), dtype=bool)
+        from scipy.stats import norm  # lazy: scipy.stats is slow to import
 
-    delta = np.radians(sigma) * math.sqrt(2.0) * norm.ppf(frac)
-    rate = np.where(need < 0.5, delta / (params.window_y_s / 2.0), np.inf)  # rad/s
+        delta = np.radians(sigma) * math.sqrt(2.0) * norm.ppf(frac)
+        rate = np.where(need < 0.5, delta / (params.window_y_s / 2.0), np.inf)  # rad/s
     out = {
         "noise_deg": round(sigma, 4),
         "min_rate_change_deg_min": _finite(np.degrees(np.median(rate)) * 60.0),
@@ -503,8 +617,9 @@ def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) 
     }
     if observer_static and params.relative_motion:
         turns = np.radians(np.arange(1.0, 181.0))
-        wc, wr = st.coef[:, 1:2] / params.window_x_s, st.coef[:, 2:3] / params.window_x_s
-        wc = wc / (1.0 + st.coef[:, 0:1] ** 2)  # bearing rate at the boundary
+        coef = st.coef[sel]
+        wc, wr = coef[:, 1:2] / params.window_x_s, coef[:, 2:3] / params.window_x_s
+        wc = wc / (1.0 + coef[:, 0:1] ** 2)  # bearing rate at the boundary
         change = np.maximum(
             np.abs(wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
             np.abs(-wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
@@ -583,6 +698,8 @@ def detect_with_report(
         report.append(
             {
                 "batch": str(batch),
+                "test": "GLR" if params.glr else "AUC-mean (eq. 15)" if params.auc_mean else "AUC",
+                "y_spans_s": [round(float(v), 1) for v in y_spans(params)],
                 "samples": int(len(t)),
                 "duration_s": round(float(t[-1] - t[0]), 3) if len(t) else 0.0,
                 "median_interval_s": round(float(np.median(np.diff(t))), 3) if len(t) > 1 else None,

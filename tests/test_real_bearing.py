@@ -16,6 +16,7 @@ from wakeline.core.bearing import (
     detect_sequence,
     detect_with_report,
     observer_maneuvering,
+    statistic,
 )
 
 pytestmark = pytest.mark.real
@@ -39,23 +40,40 @@ def gated_sequences(gate_deg: float = 3.0):
         yield scenario, target, seq, tr
 
 
+def truth_turned(tr: pd.DataFrame, t0: float, t1: float, turn_deg: float = 20.0) -> bool:
+    """Whether the GNSS truth changes course by ``turn_deg`` within 10 s in [t0, t1]."""
+    tr = tr.drop_duplicates("time")
+    grid = np.arange(max(t0 - 10.0, tr.time.min()), min(t1, tr.time.max()), 1.0)
+    if len(grid) < 12:
+        return False
+    n, e = np.interp(grid, tr.time, tr.north), np.interp(grid, tr.time, tr.east)
+    course = np.degrees(np.unwrap(np.arctan2(np.gradient(e), np.gradient(n))))
+    return bool((np.abs(course[10:] - course[:-10]) >= turn_deg).any())
+
+
 def test_detector_runs_on_real_camera_bearings():
     rows = []
-    for scenario, target, seq, _ in gated_sequences():
+    for scenario, target, seq, tr in gated_sequences():
         if len(seq) < 100:
             continue
         t = seq.time.to_numpy()
-        params = BearingParams(window_x_s=40.0, min_window_x_s=40.0, window_y_s=12.0)
+        params = BearingParams(window_x_s=40.0, min_window_x_s=40.0, window_y_s=24.0)
         olon, olat = geo.from_local(seq.own_east.to_numpy(), seq.own_north.to_numpy(), *ORIGIN)
         excluded = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
+        st = statistic(t, seq.bearing.to_numpy(), params, excluded)
         hits = detect_sequence(t, seq.bearing.to_numpy(), params, excluded)
         for h in hits:
             # the maneuver time is refined over the whole run of rejections, which may
             # outlast the first alarm
             assert t[0] <= h.maneuver_time_s <= t[-1] and t[0] <= h.detect_time_s <= t[-1]
-        rows.append((scenario, target, len(seq), len(hits)))
+        turned = len(st.z) and truth_turned(
+            tr, st.boundary_t.min(), st.boundary_t.max() + params.window_y_s
+        )
+        rows.append((scenario, target, len(seq), len(st.z), bool(turned), len(hits)))
     print(rows)
     assert len(rows) >= 15  # 9 scenarios x 2 targets, bar the ones with too few gated bearings
+    # a boat that truly turns by 20 deg within 10 s while windows are tested is detected
+    assert all(hits > 0 for *_, turned, hits in rows if turned)
 
 
 def test_defaults_say_why_on_real_camera_bearings():
