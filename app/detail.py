@@ -1,5 +1,5 @@
 """Detail views: the selected track's maneuver factor and compression; bearing-only data
-with the AUC statistic and its threshold band."""
+with the detector's z statistic (GLR or AUC, as set) and its threshold band."""
 
 import numpy as np
 import pandas as pd
@@ -41,7 +41,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         )
         self.addTab(self.factor_plot, "δ")
         self.addTab(self.comp_plot, "Compression")
-        # Bearing-only: bearing over time above the AUC z statistic with its ±z band.
+        # Bearing-only: bearing over time above the detector's z statistic with its ±z band.
         self.bearing_box = QtWidgets.QWidget()
         self.bearing_batch = QtWidgets.QComboBox()
         self.bearing_batch.currentTextChanged.connect(self._draw_bearing)
@@ -105,6 +105,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         p = self._bparams
         bt, z = auc_statistic(t, b, p)
         self.z_curve.setData((bt - t0) / 60.0, z)
+        self.z_plot.setLabel("left", "z (GLR)" if p.glr else "z (AUC)")
         self.z_band.setRegion((-p.z_crit, p.z_crit))
         det = self._detections[self._detections["batch"].astype(str) == batch]
         for when in time_seconds(det["maneuver_time"]) if len(det) else []:
