@@ -120,6 +120,36 @@ def _input_kind(paths: Sequence[Path]) -> str:
 # -- pass 1: canonical blocks, hashed into buckets ----------------------------------------
 
 
+def _to_float(col: pd.Series) -> np.ndarray:
+    """float64 values of a text or numeric column; NaN where unreadable. Arrow's parser
+    (the one ``wakeline import`` reads with) on the fast path, pandas where it refuses."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    if pd.api.types.is_numeric_dtype(col.dtype):
+        return col.to_numpy(dtype="float64", na_value=np.nan)
+    try:
+        arr = pc.cast(pa.array(col, from_pandas=True), pa.float64())
+        return arr.to_numpy(zero_copy_only=False)
+    except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError):
+        return pd.to_numeric(col, errors="coerce").to_numpy(dtype="float64", na_value=np.nan)
+
+
+def _to_time(col: pd.Series) -> pd.Series:
+    """UTC timestamps (ns) of ISO 8601 text or of a timestamp column; NaT where unreadable."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    if isinstance(col.dtype, pd.DatetimeTZDtype):
+        return col.dt.tz_convert("UTC").astype(TIME_DTYPE)
+    try:
+        arr = pc.cast(pa.array(col, from_pandas=True), pa.timestamp("ns", "UTC"))
+        return pd.Series(arr.to_pandas(), index=col.index).astype(TIME_DTYPE)
+    except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError):
+        t = pd.to_datetime(col, utc=True, format="ISO8601", errors="coerce")
+        return t.dt.tz_convert("UTC").astype(TIME_DTYPE)
+
+
 def canonical_block(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
     """(points, quarantined rows) of one block of a canonical table read as text or typed.
 
@@ -132,13 +162,10 @@ def canonical_block(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
         out.insert(0, "sensor", DEFAULT_SENSOR)
     for col in ("sensor", "batch"):
         out[col] = out[col].astype("str").str.strip().where(out[col].notna())
-    t = out["time"]
-    if not isinstance(t.dtype, pd.DatetimeTZDtype):
-        t = pd.to_datetime(t, utc=True, format="ISO8601", errors="coerce")
-    out["time"] = t.dt.tz_convert("UTC").astype(TIME_DTYPE)
+    out["time"] = _to_time(out["time"])
     for col in ("lon", "lat", "speed", "course"):
         if col in out.columns:
-            out[col] = pd.to_numeric(out[col], errors="coerce").astype("float64")
+            out[col] = _to_float(out[col])
     lon, lat = out["lon"].to_numpy(), out["lat"].to_numpy()
     reason = np.full(len(out), "", dtype=object)
     reason[~((lat >= -90) & (lat <= 90))] = "latitude missing or out of range"
@@ -205,6 +232,7 @@ def _read_dask(paths: Sequence[Path], kind: str, blocksize_mb: float):
         return dd.read_csv(
             files,
             dtype="str",
+            engine="pyarrow",
             blocksize=int(blocksize_mb * 2**20),
             keep_default_na=False,
             na_values=[""],

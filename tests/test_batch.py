@@ -2,6 +2,7 @@
 track with Dask (docs/batch.md)."""
 
 import json
+import os
 from pathlib import Path
 
 import pandas as pd
@@ -122,6 +123,11 @@ def test_association_across_partitions_equals_single_process(tmp_path):
     )
 
 
+@pytest.mark.skipif(
+    not os.environ.get("WAKELINE_CI"),
+    reason="starts two worker processes (20-60 s on a busy machine): runs in CI (.ci/run "
+    "sets WAKELINE_CI=1)",
+)
 def test_batch_command_with_worker_processes(tmp_path, capsys):
     """The command line with a LocalCluster of two real worker processes."""
     df = simulate.maneuver_tracks(8, "short", 100.0, seed=5)
