@@ -22,8 +22,10 @@ address is given, or a ``LocalCluster`` of ``workers`` processes. Dask is import
 when a batch runs (``pip install wakeline[batch]``).
 """
 
+import contextlib
 import json
 import math
+import os
 import shutil
 import time
 from collections.abc import Sequence
@@ -56,6 +58,9 @@ class BatchOptions:
     scheduler: str = ""
     #: worker processes of a LocalCluster; 0: Dask's local threaded scheduler
     workers: int = 0
+    #: threads of the local scheduler (0: the cores, at most 4: each holds a partition
+    #: and its working copies, so this bounds the peak memory)
+    threads: int = 0
     #: LocalCluster with processes (False: threads in this process; tests)
     processes: bool = True
     #: also write OUTDIR/<step>.csv in canonical CSV
@@ -454,9 +459,13 @@ def run_batch(
     n = opts.buckets or max(1, math.ceil(in_bytes / (opts.partition_mb * 2**20)))
     timings: dict[str, float] = {}
     client = _client(opts)
-    try:
-        import dask
+    import dask
 
+    threads = opts.threads or min(os.cpu_count() or 1, 4)
+    local = contextlib.ExitStack()
+    if client is None:
+        local.enter_context(dask.config.set(scheduler="threads", num_workers=threads))
+    try:
         t = time.perf_counter()
         ddf = _read_dask(inputs, kind, opts.blocksize_mb)
         _check_columns(list(ddf.columns))
@@ -514,6 +523,7 @@ def run_batch(
             stages_rep["associate"] = _associate_pass(assoc, infos, stage, outdir, buckets)
             timings["associate_s"] = time.perf_counter() - t
     finally:
+        local.close()
         if client is not None:
             cluster = getattr(client, "cluster", None)
             client.close()
