@@ -549,7 +549,7 @@ def run_batch(
         "steps": stages_rep,
         "timings_s": {k: round(v, 3) for k, v in timings.items()},
         "scheduler": opts.scheduler
-        or (f"LocalCluster({opts.workers})" if opts.workers else "threads"),
+        or (f"LocalCluster({opts.workers})" if opts.workers else f"threads({threads})"),
         "pipeline": json.loads(pipeline.to_json()),
     }
     from wakeline.core.io import write_json
