@@ -90,8 +90,13 @@ def test_association_across_partitions_equals_single_process(tmp_path):
     pipe = Pipeline(
         (("clean", STEPS["clean"].defaults()), ("associate", STEPS["associate"].defaults()))
     )
-    opts = BatchOptions(workers=2, processes=False, csv=True, buckets=6)
-    run_batch(pipe, paths, tmp_path / "out", opts)
+    from distributed import LocalCluster
+
+    # A running cluster reached by its address, as `--scheduler ADDRESS` does.
+    with LocalCluster(n_workers=2, processes=False, dashboard_address=None) as cluster:
+        opts = BatchOptions(scheduler=cluster.scheduler_address, csv=True, buckets=6)
+        rep = run_batch(pipe, paths, tmp_path / "out", opts).report
+    assert rep["scheduler"].startswith(("tcp://", "inproc://"))
     assert main(["clean", str(whole), "-o", str(tmp_path / "c.csv")]) == 0
     assert (
         main(
