@@ -243,7 +243,16 @@ def _read_dask(paths: Sequence[Path], kind: str, blocksize_mb: float):
             na_values=[""],
         )
     except (ValueError, OSError) as exc:
-        raise InputError(f"batch: cannot read the inputs as CSV: {exc}") from None
+        raise InputError(f"batch: cannot read the inputs as CSV: {_reason(exc)}") from None
+
+
+def _reason(exc: Exception) -> str:
+    """One line of a reader's error (Dask wraps the reader's own message)."""
+    lines = [x.strip() for x in str(exc).splitlines() if x.strip()]
+    for x in lines:
+        if x.startswith("Original Message:"):
+            return x.removeprefix("Original Message:").strip()
+    return lines[0] if lines else type(exc).__name__
 
 
 def _check_columns(columns: Sequence[str]) -> None:
@@ -460,6 +469,7 @@ def run_batch(
     timings: dict[str, float] = {}
     client = _client(opts)
     import dask
+    import pyarrow as pa
 
     threads = opts.threads or min(os.cpu_count() or 1, 4)
     local = contextlib.ExitStack()
@@ -469,7 +479,7 @@ def run_batch(
         t = time.perf_counter()
         ddf = _read_dask(inputs, kind, opts.blocksize_mb)
         _check_columns(list(ddf.columns))
-        counts = ddf.map_partitions(
+        pass1 = ddf.map_partitions(
             _write_block,
             str(stage),
             n,
@@ -480,7 +490,11 @@ def run_batch(
                     "quarantined": pd.Series([], dtype="int64"),
                 }
             ),
-        ).compute()
+        )
+        try:
+            counts = pass1.compute()
+        except (ValueError, pa.ArrowException, pd.errors.ParserError) as exc:
+            raise InputError(f"batch: cannot read the inputs: {_reason(exc)}") from None
         timings["read_shuffle_s"] = time.perf_counter() - t
         counts = counts.sort_values("block")
         kept = (counts["rows"] - counts["quarantined"]).to_numpy()
