@@ -104,9 +104,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--partition-mb",
         type=_positive,
-        default=64.0,
+        default=32.0,
         metavar="MB",
-        help="input megabytes per partition of whole tracks (default 64)",
+        help="input megabytes per partition of whole tracks (default 32; a worker thread holds about 20x this)",
     )
     p.add_argument(
         "--blocksize-mb",

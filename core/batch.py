@@ -51,7 +51,7 @@ class BatchOptions:
     """How a batch is cut and where it runs."""
 
     #: input bytes per bucket (a bucket's tracks are processed in one call)
-    partition_mb: float = 64.0
+    partition_mb: float = 32.0
     #: bytes per block read from an input file
     blocksize_mb: float = 32.0
     #: ``dask.distributed`` scheduler address (``tcp://host:8786``); empty: local
