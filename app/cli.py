@@ -13,7 +13,7 @@ import sys
 import traceback
 from pathlib import Path
 
-from wakeline.app import cli_export, cli_render
+from wakeline.app import cli_batch, cli_export, cli_render
 from wakeline.core import __version__
 from wakeline.core.errors import InputError
 
@@ -594,6 +594,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.set_defaults(func=_cmd_gui)
     cli_render.register(sub)
+    cli_batch.register(sub)
     cli_export.register(sub)
     from wakeline.app import cli_review
 

@@ -6,10 +6,10 @@ import tempfile
 import traceback
 from pathlib import Path
 
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.main_window import MainWindow
-from wakeline.resources import demo_path
+from wakeline.resources import demo_path, resource_path
 
 
 def wait_for_jobs(window: MainWindow, timeout_ms: int = 120_000) -> None:
@@ -52,6 +52,7 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
     """
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
     app.setApplicationName("Wakeline")
+    app.setWindowIcon(QtGui.QIcon(str(resource_path("icons", "wakeline.png"))))
     settings = None
     if screenshot is not None:
         # A screenshot must not depend on (or change) the user's saved window layout.

@@ -1,0 +1,123 @@
+"""``wakeline batch``: a saved pipeline over inputs larger than memory, with Dask.
+
+Registered by :func:`register` from ``build_parser()``; the engine is
+:mod:`wakeline.core.batch` (docs/batch.md).
+"""
+
+import argparse
+import sys
+from pathlib import Path
+
+from wakeline.core.errors import InputError
+
+EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
+
+
+def _cmd_batch(args: argparse.Namespace) -> int:
+    from wakeline.core.pipeline import Pipeline
+
+    if args.print_pipeline:
+        print(Pipeline.default().to_json())
+        return 0
+    if args.pipeline is None or not args.input or args.outdir is None:
+        raise InputError("batch needs PIPELINE.json, at least one input and -o OUTDIR")
+    try:
+        import dask  # noqa: F401
+        import distributed  # noqa: F401
+    except ImportError:
+        raise InputError(
+            "batch needs Dask: pip install 'wakeline[batch]' (dask[dataframe], distributed)"
+        ) from None
+    from wakeline.core.batch import BatchOptions, run_batch
+
+    try:
+        text = args.pipeline.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise InputError(f"{args.pipeline}: not UTF-8 text") from None
+    pipe = Pipeline.from_json(text)
+    opts = BatchOptions(
+        partition_mb=args.partition_mb,
+        blocksize_mb=args.blocksize_mb,
+        scheduler=args.scheduler or "",
+        workers=args.workers or 0,
+        csv=args.csv,
+    )
+    result = run_batch(pipe, args.input, args.outdir, opts, log=lambda m: print(m, file=sys.stderr))
+    rep = result.report
+    steps = "; ".join(
+        f"{name} {s['rows_in']:,} -> {s['rows_out']:,}" for name, s in rep["steps"].items()
+    )
+    print(
+        f"batch: {rep['rows_read']:,} rows ({rep['quarantined']:,} quarantined) in "
+        f"{rep['buckets']} partitions; {steps}; wrote {args.outdir}",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def _positive(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"expected a positive number, got {text}")
+    return value
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    """Add the ``batch`` subcommand to the ``wakeline`` parser."""
+    from wakeline.app.cli import _positive_int
+
+    p = sub.add_parser(
+        "batch",
+        help="run a saved pipeline over large inputs with Dask (per-track partitions)",
+        description="Run a saved pipeline (Run > Save pipeline in the GUI, or "
+        "--print-pipeline) over canonical CSV or Parquet inputs larger than memory. Rows are "
+        "partitioned by (sensor, batch) so every track is processed whole by the same step "
+        "functions as `wakeline clean|maneuvers|compress`; interrupted association runs once "
+        "over every track's end points and maps the targets back (docs/batch.md). Writes "
+        "OUTDIR/<step>/ as Parquet partitions, OUTDIR/report.json, and with --csv "
+        "OUTDIR/<step>.csv in canonical CSV. Other layouts: convert with `wakeline import`.",
+        epilog=EPILOG,
+    )
+    p.add_argument("pipeline", type=Path, nargs="?", help="pipeline JSON")
+    p.add_argument("input", type=Path, nargs="*", help="canonical CSV files, or Parquet files")
+    # dest outdir: the command line's output check is for files, OUTDIR is a folder.
+    p.add_argument(
+        "-o",
+        "--output",
+        dest="outdir",
+        type=Path,
+        help="output folder (new, or an earlier batch's)",
+    )
+    p.add_argument(
+        "--scheduler", metavar="ADDRESS", help="dask.distributed scheduler (tcp://host:8786)"
+    )
+    p.add_argument(
+        "--workers",
+        type=_positive_int,
+        metavar="N",
+        help="start a local cluster of N worker processes (default: Dask's local threads)",
+    )
+    p.add_argument("--csv", action="store_true", help="also write OUTDIR/<step>.csv")
+    p.add_argument(
+        "--partition-mb",
+        type=_positive,
+        default=32.0,
+        metavar="MB",
+        help="input megabytes per partition of whole tracks (default 32; a worker thread holds about 20x this)",
+    )
+    p.add_argument(
+        "--blocksize-mb",
+        type=_positive,
+        default=32.0,
+        metavar="MB",
+        help="megabytes per block read from a CSV input (default 32)",
+    )
+    p.add_argument(
+        "--print-pipeline",
+        action="store_true",
+        help="print the default pipeline (clean, compress) as JSON and exit",
+    )
+    p.set_defaults(func=_cmd_batch)

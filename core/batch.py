@@ -1,0 +1,602 @@
+"""Saved pipelines over inputs larger than memory, partitioned by track with Dask.
+
+``wakeline batch PIPELINE.json IN… -o OUTDIR`` (``app/cli_batch.py``) runs
+:func:`run_batch`. Three passes (docs/batch.md):
+
+1. **Read and shuffle.** A Dask dataframe reads the CSV or Parquet inputs in blocks
+   (``blocksize_mb``); each block is made canonical (the types ``wakeline import``
+   gives; unusable rows go to ``OUTDIR/quarantine/``) and its rows are written to one of
+   ``n`` buckets on disk by a hash of (sensor, batch). Every track lands whole in one
+   bucket, so a bucket holds complete tracks and about ``partition_mb`` of input.
+2. **Per-track steps.** Each bucket runs the pipeline's stages with the core's own step
+   functions (:class:`wakeline.core.pipeline.Pipeline`, the same code as the command
+   line and the GUI) and writes every stage's table as ``OUTDIR/<step>/part-NNNNN.parquet``.
+3. **Association across buckets.** Interrupted-track association joins tracks of one
+   sensor that may sit in different buckets. It reads each track only through the first
+   and last ``end_points`` points (:func:`wakeline.core.segments.segment_stats`), so the
+   buckets hand back those few points per track; the core's ``associate`` step runs once
+   on them and the target of every track is mapped back onto its bucket's rows.
+
+The scheduler is Dask's local threads by default, a ``dask.distributed`` cluster when an
+address is given, or a ``LocalCluster`` of ``workers`` processes. Dask is imported only
+when a batch runs (``pip install wakeline[batch]``).
+"""
+
+import contextlib
+import json
+import math
+import os
+import shutil
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.pipeline import STEPS, Pipeline, params_to_json
+from wakeline.core.schema import DEFAULT_SENSOR, TIME_DTYPE, ordered_columns
+
+#: Steps that run bucket by bucket (each track on its own).
+PER_TRACK = ("clean", "maneuvers", "compress")
+STAGE = "_stage"
+ID = "wl_id"  # clean's row id (core/clean.py)
+BLOCK = "_block"
+
+
+@dataclass(frozen=True)
+class BatchOptions:
+    """How a batch is cut and where it runs."""
+
+    #: input bytes per bucket (a bucket's tracks are processed in one call)
+    partition_mb: float = 32.0
+    #: bytes per block read from an input file
+    blocksize_mb: float = 32.0
+    #: ``dask.distributed`` scheduler address (``tcp://host:8786``); empty: local
+    scheduler: str = ""
+    #: worker processes of a LocalCluster; 0: Dask's local threaded scheduler
+    workers: int = 0
+    #: threads of the local scheduler (0: the cores, at most 4: each holds a partition
+    #: and its working copies, so this bounds the peak memory)
+    threads: int = 0
+    #: LocalCluster with processes (False: threads in this process; tests)
+    processes: bool = True
+    #: also write OUTDIR/<step>.csv in canonical CSV
+    csv: bool = False
+    #: buckets (0: from the input size and ``partition_mb``)
+    buckets: int = 0
+
+
+@dataclass
+class BatchResult:
+    outdir: Path
+    report: dict
+    outputs: dict[str, Path] = field(default_factory=dict)
+
+
+# -- checks -------------------------------------------------------------------------------
+
+
+def check_pipeline(pipe: Pipeline) -> tuple[list, tuple | None]:
+    """Split the stages into the per-track ones and a final interrupted association;
+    raise InputError for what a batch cannot run."""
+    per_track, assoc = [], None
+    for k, (name, params) in enumerate(pipe.stages):
+        if name in PER_TRACK:
+            if assoc is not None:
+                raise InputError(f"batch: {name} after associate is not supported")
+            per_track.append((name, params))
+        elif name == "associate":
+            opts = params["associate_options"]
+            if opts.mode != "interrupted":
+                raise InputError(
+                    "batch: associate runs in mode interrupted only (segment clustering "
+                    "compares whole tracks of the entire table)"
+                )
+            if opts.stitch:
+                raise InputError("batch: associate --stitch is not supported; stitch the result")
+            if k != len(pipe.stages) - 1:
+                raise InputError("batch: associate must be the last stage")
+            assoc = (name, params)
+        else:
+            raise InputError(
+                f"batch: step {name} is not supported (batch runs {', '.join(PER_TRACK)}, "
+                "associate)"
+            )
+    if not pipe.stages:
+        raise InputError("batch: the pipeline has no steps")
+    return per_track, assoc
+
+
+def _input_kind(paths: Sequence[Path]) -> str:
+    kinds = {"parquet" if p.suffix.lower() in (".parquet", ".pq") else "csv" for p in paths}
+    if len(kinds) > 1:
+        raise InputError("batch: give either CSV or Parquet inputs, not both")
+    for p in paths:
+        if not p.exists():
+            raise InputError(f"{p}: no such file")
+        if p.is_dir() and kinds == {"csv"}:
+            raise InputError(f"{p}: is a folder; give the CSV files")
+    return kinds.pop()
+
+
+# -- pass 1: canonical blocks, hashed into buckets ----------------------------------------
+
+
+def _to_float(col: pd.Series) -> np.ndarray:
+    """float64 values of a text or numeric column; NaN where unreadable. Arrow's parser
+    (the one ``wakeline import`` reads with) on the fast path, pandas where it refuses."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    if pd.api.types.is_numeric_dtype(col.dtype):
+        return col.to_numpy(dtype="float64", na_value=np.nan)
+    try:
+        arr = pc.cast(pa.array(col, from_pandas=True), pa.float64())
+        return arr.to_numpy(zero_copy_only=False)
+    except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError):
+        return pd.to_numeric(col, errors="coerce").to_numpy(dtype="float64", na_value=np.nan)
+
+
+def _to_time(col: pd.Series) -> pd.Series:
+    """UTC timestamps (ns) of ISO 8601 text or of a timestamp column; NaT where unreadable."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    if isinstance(col.dtype, pd.DatetimeTZDtype):
+        return col.dt.tz_convert("UTC").astype(TIME_DTYPE)
+    try:
+        arr = pc.cast(pa.array(col, from_pandas=True), pa.timestamp("ns", "UTC"))
+        return pd.Series(arr.to_pandas(), index=col.index).astype(TIME_DTYPE)
+    except (pa.ArrowInvalid, pa.ArrowTypeError, pa.ArrowNotImplementedError):
+        t = pd.to_datetime(col, utc=True, format="ISO8601", errors="coerce")
+        return t.dt.tz_convert("UTC").astype(TIME_DTYPE)
+
+
+def canonical_block(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """(points, quarantined rows) of one block of a canonical table read as text or typed.
+
+    Types as ``wakeline import`` gives them: sensor and batch text (edge blanks trimmed),
+    time UTC, lon/lat/speed/course float64, extra columns as read. A row without sensor,
+    batch, time or a position in range is quarantined with its reason.
+    """
+    out = df.copy()
+    if "sensor" not in out.columns:
+        out.insert(0, "sensor", DEFAULT_SENSOR)
+    for col in ("sensor", "batch"):
+        out[col] = out[col].astype("str").str.strip().where(out[col].notna())
+    out["time"] = _to_time(out["time"])
+    for col in ("lon", "lat", "speed", "course"):
+        if col in out.columns:
+            out[col] = _to_float(out[col])
+    lon, lat = out["lon"].to_numpy(), out["lat"].to_numpy()
+    reason = np.full(len(out), "", dtype=object)
+    reason[~((lat >= -90) & (lat <= 90))] = "latitude missing or out of range"
+    reason[~((lon >= -180) & (lon <= 180))] = "longitude missing or out of range"
+    reason[out["time"].isna().to_numpy()] = "time missing or unreadable"
+    for col in ("batch", "sensor"):
+        bad = out[col].isna().to_numpy() | (out[col].fillna("") == "").to_numpy()
+        reason[bad] = f"{col} missing"
+    bad = reason != ""
+    quarantine = df[bad].astype("str").assign(reason=reason[bad])
+    good = out[~bad]
+    return good[ordered_columns(good)].reset_index(drop=True), quarantine
+
+
+def bucket_of(points: pd.DataFrame, n: int) -> np.ndarray:
+    """Bucket (0..n-1) of every row: a stable hash of (sensor, batch), the same in every
+    process and run."""
+    h = pd.util.hash_pandas_object(points[["sensor", "batch"]], index=False).to_numpy()
+    return (h % np.uint64(n)).astype("int64")
+
+
+def _write_block(df: pd.DataFrame, stage: str, n: int, partition_info=None) -> pd.DataFrame:
+    """Pass 1 on one block: canonical rows into bucket files, quarantine beside them.
+    Returns one row of counts (a small frame Dask gathers)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    part = partition_info["number"] if partition_info else 0
+    root = Path(stage)
+    good, quarantine = canonical_block(df)
+    if ID not in good.columns:
+        # The row's number in the concatenated inputs (what clean's reject trail keys on):
+        # block and position here; pass 2 adds the rows of the blocks before.
+        good[ID] = np.arange(len(good), dtype="int64")
+        good[BLOCK] = np.int64(part)
+    if len(quarantine):
+        qdir = root / "quarantine"
+        qdir.mkdir(parents=True, exist_ok=True)
+        pq.write_table(
+            pa.Table.from_pandas(quarantine, preserve_index=False),
+            qdir / f"block-{part:06d}.parquet",
+        )
+    bucket = bucket_of(good, n)
+    order = np.argsort(bucket, kind="stable")
+    good, bucket = good.iloc[order], bucket[order]
+    cuts = np.flatnonzero(np.diff(bucket)) + 1
+    for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, len(bucket)], strict=True):
+        if hi <= lo:
+            continue
+        d = root / f"bucket-{int(bucket[lo]):05d}"
+        d.mkdir(parents=True, exist_ok=True)
+        table = pa.Table.from_pandas(good.iloc[lo:hi], preserve_index=False)
+        pq.write_table(table, d / f"block-{part:06d}.parquet")
+    return pd.DataFrame({"block": [part], "rows": [len(df)], "quarantined": [len(quarantine)]})
+
+
+def _read_dask(paths: Sequence[Path], kind: str, blocksize_mb: float):
+    import dask.dataframe as dd
+
+    files = [str(p) for p in paths]
+    if kind == "parquet":
+        return dd.read_parquet(files)
+    try:
+        return dd.read_csv(
+            files,
+            dtype="str",
+            engine="pyarrow",
+            blocksize=int(blocksize_mb * 2**20),
+            keep_default_na=False,
+            na_values=[""],
+        )
+    except (ValueError, OSError) as exc:
+        raise InputError(f"batch: cannot read the inputs as CSV: {_reason(exc)}") from None
+
+
+def _reason(exc: Exception) -> str:
+    """One line of a reader's error (Dask wraps the reader's own message)."""
+    lines = [x.strip() for x in str(exc).splitlines() if x.strip()]
+    for x in lines:
+        if x.startswith("Original Message:"):
+            return x.removeprefix("Original Message:").strip()
+    return lines[0] if lines else type(exc).__name__
+
+
+def _check_columns(columns: Sequence[str]) -> None:
+    missing = [c for c in ("batch", "time", "lon", "lat") if c not in columns]
+    if missing:
+        raise InputError(
+            f"batch: the inputs lack column(s) {', '.join(missing)}; batch reads the canonical "
+            "layout (sensor,batch,time,lon,lat,…): convert other layouts with `wakeline import`"
+        )
+
+
+# -- pass 2: the per-track stages on each bucket --------------------------------------------
+
+
+def read_parts(folder: Path) -> pd.DataFrame:
+    """The Parquet files of one folder, concatenated in name order."""
+    import pyarrow.parquet as pq
+
+    files = sorted(folder.glob("*.parquet"))
+    if not files:
+        return pd.DataFrame()
+    return pd.concat([pq.read_table(f).to_pandas() for f in files], ignore_index=True)
+
+
+def _write_part(df: pd.DataFrame, folder: Path, name: str) -> None:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    folder.mkdir(parents=True, exist_ok=True)
+    pq.write_table(pa.Table.from_pandas(df, preserve_index=False), folder / name)
+
+
+def end_summary(points: pd.DataFrame, k: int) -> pd.DataFrame:
+    """The first and last ``k`` points of every track (all of a track with up to 2k):
+    everything interrupted association reads of a track."""
+    from wakeline.core.tracks import sorted_with_index
+
+    if not len(points):
+        return points
+    pts, index = sorted_with_index(points)
+    pos = np.arange(len(pts)) - index.starts[index.track_of_row]
+    size = index.sizes[index.track_of_row]
+    keep = (pos < k) | (pos >= size - k)
+    return pts[keep].reset_index(drop=True)
+
+
+def _add_counts(total: dict, rep: dict) -> dict:
+    """Sum the integer counts of per-bucket step reports (rules, points, tracks)."""
+    for key, value in rep.items():
+        if key == "params" or isinstance(value, bool):
+            continue
+        if isinstance(value, (int, np.integer)):
+            total[key] = int(total.get(key, 0)) + int(value)
+        elif isinstance(value, dict):
+            total[key] = _add_counts(dict(total.get(key, {})), value)
+    return total
+
+
+def _run_bucket(
+    bucket: int, stage: str, outdir: str, per_track: list, assoc_k: int, offsets: np.ndarray
+) -> dict:
+    """Pass 2 on one bucket: run the per-track stages, write their tables."""
+    t0 = time.perf_counter()
+    root, out = Path(stage), Path(outdir)
+    name = f"part-{bucket:05d}.parquet"
+    current = read_parts(root / f"bucket-{bucket:05d}")
+    if BLOCK in current.columns:
+        current[ID] += offsets[current[BLOCK].to_numpy()]
+        current = current.drop(columns=BLOCK)
+    rows_in = len(current)
+    info: dict = {"bucket": bucket, "rows_in": rows_in, "stages": [], "summary": None}
+    if per_track and rows_in:
+        res = Pipeline(tuple(per_track)).run(current)
+        for (step_name, _params), sres in zip(per_track, res.stages, strict=True):
+            step = STEPS[step_name]
+            table = sres.tables[step.output]
+            _write_part(table, out / step_name, name)
+            extra = {}
+            if step_name == "clean":
+                _write_part(sres.tables["rejected"], out / "clean_rejected", name)
+                extra["rejected"] = len(sres.tables["rejected"])
+            if step_name == "compress" and "maneuvers" not in dict(per_track):
+                man = [lay for lay in sres.layers if lay.suffix == "maneuvers"]
+                if man:
+                    _write_part(man[0].tables["maneuvers"], out / "maneuvers", name)
+            info["stages"].append(
+                {"step": step_name, "rows_out": len(table), "report": sres.report, **extra}
+            )
+            primary = [lay for lay in sres.layers if lay.suffix == step.primary]
+            current = primary[0].points if primary else sres.tables.get("points", current)
+    if assoc_k:
+        # The association's input, kept whole for pass 3, and its small end summary.
+        _write_part(current, root / "assoc_in", name)
+        info["summary"] = end_summary(current, assoc_k)
+        info["assoc_rows"] = len(current)
+    info["seconds"] = time.perf_counter() - t0
+    return info
+
+
+# -- pass 3: association across buckets ------------------------------------------------------
+
+
+def _apply_targets(bucket: int, stage: str, outdir: str, targets: pd.DataFrame) -> int:
+    """Pass 3 on one bucket: the association's rows (sorted by track and time) with the
+    target of their track."""
+    from wakeline.core.tracks import sort_points
+
+    name = f"part-{bucket:05d}.parquet"
+    pts = read_parts_file(Path(stage) / "assoc_in" / name)
+    if pts is None or not len(pts):
+        return 0
+    pts = sort_points(pts)
+    merged = pts.merge(targets, on=["sensor", "batch"], how="left", validate="many_to_one")
+    _write_part(merged, Path(outdir) / "associate", name)
+    return len(merged)
+
+
+def read_parts_file(path: Path) -> pd.DataFrame | None:
+    import pyarrow.parquet as pq
+
+    return pq.read_table(path).to_pandas() if path.exists() else None
+
+
+# -- canonical CSV of a step's partitions -------------------------------------------------
+
+
+def parts_to_csv(folder: Path, path: Path, points: bool = True) -> int:
+    """Write a step's partitions as one CSV, partition after partition (bounded memory),
+    with the writer the command line uses. Returns the rows written."""
+    from wakeline.core.io import write_csv, write_points
+    from wakeline.core.io.writer import atomic_path
+
+    files = sorted(folder.glob("*.parquet"))
+    rows, header, columns = 0, None, None
+    one = path.with_name(path.name + ".one.part")
+    with atomic_path(path) as tmp, open(tmp, "wb") as fh:
+        for f in files:
+            df = read_parts_file(f)
+            if columns is None:
+                columns = ordered_columns(df) if points else list(df.columns)
+            df = df.reindex(columns=columns)
+            (write_points if points else write_csv)(df, one)
+            with open(one, "rb") as src:
+                first = src.readline()
+                if header is None:
+                    header = first
+                    fh.write(first)
+                shutil.copyfileobj(src, fh)
+            rows += len(df)
+        one.unlink(missing_ok=True)
+    return rows
+
+
+# -- the whole run ----------------------------------------------------------------------------
+
+
+def _client(opts: BatchOptions):
+    """A dask.distributed client when asked for one, else None (local threads)."""
+    if opts.scheduler:
+        from distributed import Client
+
+        try:
+            return Client(opts.scheduler, timeout="20s")
+        except OSError as exc:
+            raise InputError(f"batch: cannot reach the scheduler {opts.scheduler}: {exc}") from None
+    if opts.workers:
+        from distributed import Client, LocalCluster
+
+        cluster = LocalCluster(
+            n_workers=opts.workers,
+            threads_per_worker=1,
+            processes=opts.processes,
+            dashboard_address=None,
+        )
+        return Client(cluster)
+    return None
+
+
+def run_batch(
+    pipeline: Pipeline,
+    inputs: Sequence[Path],
+    outdir: Path,
+    options: BatchOptions | None = None,
+    log=None,
+) -> BatchResult:
+    """Run ``pipeline`` over ``inputs`` (canonical CSV or Parquet) into ``outdir``.
+
+    Writes ``outdir/<step>/part-NNNNN.parquet`` per step (named after the CLI
+    subcommand; ``clean_rejected``, ``quarantine`` and, for a compress without a
+    maneuvers stage, its ``maneuvers``), ``<step>.csv`` with ``csv``, and ``report.json``.
+    """
+    opts = options or BatchOptions()
+    log = log or (lambda _msg: None)
+    inputs = [Path(p) for p in inputs]
+    if not inputs:
+        raise InputError("batch: give at least one input file")
+    per_track, assoc = check_pipeline(pipeline)
+    kind = _input_kind(inputs)
+    outdir = Path(outdir)
+    if outdir.exists() and not outdir.is_dir():
+        raise InputError(f"{outdir}: exists and is not a folder")
+    if outdir.exists() and any(outdir.iterdir()):
+        if not (outdir / "report.json").exists():
+            raise InputError(
+                f"{outdir}: is not empty and holds no earlier batch; choose a new folder"
+            )
+        shutil.rmtree(outdir)  # an earlier batch's output: replaced whole
+    outdir.mkdir(parents=True, exist_ok=True)
+    stage = outdir / STAGE
+    in_bytes = sum(p.stat().st_size for p in inputs if p.is_file()) or sum(
+        f.stat().st_size for p in inputs if p.is_dir() for f in p.rglob("*") if f.is_file()
+    )
+    n = opts.buckets or max(1, math.ceil(in_bytes / (opts.partition_mb * 2**20)))
+    timings: dict[str, float] = {}
+    client = _client(opts)
+    import dask
+    import pyarrow as pa
+
+    threads = opts.threads or min(os.cpu_count() or 1, 4)
+    local = contextlib.ExitStack()
+    if client is None:
+        local.enter_context(dask.config.set(scheduler="threads", num_workers=threads))
+    try:
+        t = time.perf_counter()
+        ddf = _read_dask(inputs, kind, opts.blocksize_mb)
+        _check_columns(list(ddf.columns))
+        pass1 = ddf.map_partitions(
+            _write_block,
+            str(stage),
+            n,
+            meta=pd.DataFrame(
+                {
+                    "block": pd.Series([], dtype="int64"),
+                    "rows": pd.Series([], dtype="int64"),
+                    "quarantined": pd.Series([], dtype="int64"),
+                }
+            ),
+        )
+        try:
+            counts = pass1.compute()
+        except (ValueError, pa.ArrowException, pd.errors.ParserError) as exc:
+            raise InputError(f"batch: cannot read the inputs: {_reason(exc)}") from None
+        timings["read_shuffle_s"] = time.perf_counter() - t
+        counts = counts.sort_values("block")
+        kept = (counts["rows"] - counts["quarantined"]).to_numpy()
+        offsets = np.zeros(int(counts["block"].max()) + 1 if len(counts) else 1, dtype="int64")
+        offsets[counts["block"].to_numpy()] = np.cumsum(kept) - kept
+        rows_read = int(counts["rows"].sum())
+        quarantined = int(counts["quarantined"].sum())
+        log(f"read {rows_read:,} rows into {n} buckets ({quarantined:,} quarantined)")
+        if (stage / "quarantine").exists():
+            shutil.move(str(stage / "quarantine"), str(outdir / "quarantine"))
+
+        t = time.perf_counter()
+        assoc_k = int(assoc[1]["associate"].end_points) if assoc else 0
+        buckets = sorted(int(d.name.split("-")[1]) for d in stage.glob("bucket-*"))
+        tasks = [
+            dask.delayed(_run_bucket, pure=False)(
+                b, str(stage), str(outdir), per_track, assoc_k, offsets
+            )
+            for b in buckets
+        ]
+        infos = list(dask.compute(*tasks))
+        timings["steps_s"] = time.perf_counter() - t
+        stages_rep: dict[str, dict] = {}
+        for name, _params in per_track:
+            stages_rep[name] = {"rows_in": 0, "rows_out": 0, "counts": {}}
+        prev = rows_read - quarantined
+        for name, _params in per_track:
+            rep = stages_rep[name]
+            rep["rows_in"] = prev
+            for info in infos:
+                for s in info["stages"]:
+                    if s["step"] == name:
+                        rep["rows_out"] += s["rows_out"]
+                        rep["counts"] = _add_counts(rep["counts"], s["report"])
+                        if "rejected" in s:
+                            rep["rejected"] = rep.get("rejected", 0) + s["rejected"]
+            prev = rep["rows_out"] if name != "maneuvers" else prev
+        if assoc:
+            t = time.perf_counter()
+            stages_rep["associate"] = _associate_pass(assoc, infos, stage, outdir, buckets)
+            timings["associate_s"] = time.perf_counter() - t
+    finally:
+        local.close()
+        if client is not None:
+            cluster = getattr(client, "cluster", None)
+            client.close()
+            if cluster is not None and not opts.scheduler:
+                cluster.close()
+    outputs = {p.name: p for p in sorted(outdir.iterdir()) if p.is_dir() and p.name != STAGE}
+    if opts.csv:
+        t = time.perf_counter()
+        for name, folder in list(outputs.items()):
+            if name == "quarantine":
+                continue
+            is_points = name in ("clean", "compress", "associate")
+            parts_to_csv(folder, outdir / f"{name}.csv", points=is_points)
+            outputs[f"{name}.csv"] = outdir / f"{name}.csv"
+        timings["csv_s"] = time.perf_counter() - t
+    shutil.rmtree(stage, ignore_errors=True)
+    report = {
+        "inputs": [str(p) for p in inputs],
+        "input_bytes": in_bytes,
+        "buckets": n,
+        "rows_read": rows_read,
+        "quarantined": quarantined,
+        "steps": stages_rep,
+        "timings_s": {k: round(v, 3) for k, v in timings.items()},
+        "scheduler": opts.scheduler
+        or (f"LocalCluster({opts.workers})" if opts.workers else f"threads({threads})"),
+        "pipeline": json.loads(pipeline.to_json()),
+    }
+    from wakeline.core.io import write_json
+
+    write_json(report, outdir / "report.json")
+    return BatchResult(outdir, report, outputs)
+
+
+def _associate_pass(assoc, infos, stage: Path, outdir: Path, buckets: list[int]) -> dict:
+    """Pass 3: the core's associate step on every track's end points, then each
+    bucket's rows get the target of their track."""
+    import dask
+
+    name, params = assoc
+    summaries = [i["summary"] for i in infos if i["summary"] is not None and len(i["summary"])]
+    if not summaries:
+        return {"rows_in": 0, "rows_out": 0}
+    ends = pd.concat(summaries, ignore_index=True)
+    res = STEPS[name](ends, params)
+    pts = res.tables["points"]
+    targets = pts[["sensor", "batch", "target"]].drop_duplicates(["sensor", "batch"])
+    for table in ("pairs", "proposals"):
+        _write_part(res.tables[table], outdir / f"associate_{table}", "part-00000.parquet")
+    tasks = [
+        dask.delayed(_apply_targets, pure=False)(b, str(stage), str(outdir), targets)
+        for b in buckets
+    ]
+    rows = sum(dask.compute(*tasks))
+    rows_in = sum(i.get("assoc_rows", 0) for i in infos)
+    return {
+        "rows_in": int(rows_in),
+        "rows_out": int(rows),
+        "end_points_read": int(len(ends)),
+        "report": {k: v for k, v in res.report.items()},
+        "params": params_to_json(params),
+    }
