@@ -333,6 +333,10 @@ class JobsMixin:
             self.docks["detail"].raise_()
         elif kind == "project":
             self._apply_project(*done[1:])
+        elif kind == "fuse_layers":
+            from wakeline.app.review_sync import apply_fused
+
+            apply_fused(self, *done[1:])
         elif kind == "export":
             self.log_message(self.tr("exported {0} to {1}").format(done[1], done[2]))
 

@@ -285,6 +285,7 @@ def _load_layers(con: sqlite3.Connection) -> list[Layer]:
                 lin.get("params") or {},
                 lin.get("created") or "",
                 tables.get(lid, {}),
+                list(lin.get("inputs") or []),
             )
         )
     return out
