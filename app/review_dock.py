@@ -101,20 +101,52 @@ class ReviewDock(QtCore.QObject):
         self.stack.addWidget(self.empty)
         area = QtCore.Qt.DockWidgetArea
         self.dock = self._dock("review", w.tr("Review"), self.stack, area.BottomDockWidgetArea)
+        # The before map sits beside the main map in the centre (View ▸ Before/after map).
         self.before = MapCanvas(w)
-        self.before.setXLink(w.canvas)
-        self.before.setYLink(w.canvas)
         self.before.lod_executor = w.lod_worker
-        self.before_dock = self._dock(
-            "before", w.tr("Before (input pieces)"), self.before, area.LeftDockWidgetArea
-        )
+        self.before.setTitle(w.tr("before: the input pieces"), size="9pt")
+        legend = self.before.legend  # no legend column: the narrow map keeps its width
+        legend.updateSize = lambda: (legend.setMaximumWidth(0), legend.setVisible(False))
+        self.split = QtWidgets.QSplitter()
+        w.takeCentralWidget()
+        self.split.addWidget(self.before)
+        self.split.addWidget(w.canvas)
+        w.setCentralWidget(self.split)
+        self.before.hide()
+        self._linking = False
+        w.canvas.vb.sigRangeChanged.connect(lambda *_: self._link(w.canvas, self.before))
+        self.before.vb.sigRangeChangedManually.connect(lambda *_: self._link(self.before, w.canvas))
+        self.act_before = QtGui.QAction(w.tr("&Before/after map (linked)"), w, checkable=True)
+        self.act_before.toggled.connect(self.show_before)
         self._before_layers: list[str] = []
         self._build_menus()
         w.layer_list.setSelectionMode(QtWidgets.QAbstractItemView.SelectionMode.ExtendedSelection)
         w.layer_list.currentItemChanged.connect(lambda *_: self.refresh())
         w.layersChanged.connect(self.refresh)
         w.batch_view.selectionModel().selectionChanged.connect(self._show_members)
+        w.batch_model.modelReset.connect(lambda: self._clear_items("members"))
         self.refresh()
+
+    def show_before(self, on: bool = True) -> None:
+        """Show (or hide) the before map beside the main map, on the same view."""
+        self.before.setVisible(on)
+        if on:
+            width = self.split.width()
+            self.split.setSizes([width * 2 // 5, width - width * 2 // 5])
+            self._link(self.w.canvas, self.before)
+        if self.act_before.isChecked() != on:
+            self.act_before.setChecked(on)
+
+    def _link(self, src: MapCanvas, dst: MapCanvas) -> None:
+        """The same view on both maps (each keeps its aspect; the other follows)."""
+        if self._linking or not dst.isVisible():
+            return
+        self._linking = True
+        try:
+            (x0, x1), (y0, y1) = src.vb.viewRange()
+            dst.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0)
+        finally:
+            self._linking = False
 
     def _dock(self, key: str, title: str, widget, where) -> QtWidgets.QDockWidget:
         dock = QtWidgets.QDockWidget(title, self.w)
@@ -153,8 +185,7 @@ class ReviewDock(QtCore.QObject):
         self.act_fuse = QtGui.QAction(tr("Fuse &selected layers (two or more)"), w)
         self.act_fuse.triggered.connect(lambda: fuse_selected(w))
         w.menus["run"].insertAction(w.actions_["save_pipeline"], self.act_fuse)
-        self.before_dock.toggleViewAction().setText(tr("&Before/after map (linked)"))
-        w.menus["view"].addAction(self.before_dock.toggleViewAction())
+        w.menus["view"].addAction(self.act_before)
         w.menus["export"].addSeparator()
         for text, slot in (
             (tr("&Reviewed tracks (decisions honoured)…"), self.sync.export_dialog),
@@ -237,8 +268,9 @@ class ReviewDock(QtCore.QObject):
         self.group.addStack(controller.stack)
         self.stack.addWidget(box)
         self.queues[key] = bound
-        if state.version:  # decisions replayed: the layer shows them
-            self.sync.schedule(bound)
+        layer = self.w.session.layers[lid]
+        if state.version and layer.meta.get("review_decisions") != len(state.log):
+            self.sync.schedule(bound)  # decisions replayed that the stored layer lacks
         active = self.w.active_layer()
         if active is not None and queue_key(active) == key:
             self._show(bound)
@@ -264,7 +296,11 @@ class ReviewDock(QtCore.QObject):
             return
         self.group.setActiveStack(bound.controller.stack)
         self.stack.setCurrentWidget(bound.widget)
-        self.dock.show()
+        if self.dock.isHidden():
+            self.dock.show()
+            if self.dock not in self.w.tabifiedDockWidgets(self.w.docks["log"]):
+                self.w.tabifyDockWidget(self.w.docks["log"], self.dock)
+            self.w.resizeDocks([self.dock], [360], QtCore.Qt.Orientation.Vertical)
         self.dock.raise_()
         self._draw_before(self.w.session.layers[bound.lid])
         self.show_proposal(bound.panel.current())

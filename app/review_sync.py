@@ -79,8 +79,9 @@ class ReviewSync(QtCore.QObject):
             progress(0.0, "applying the decisions to the layer")
             pts = decided_points(layer, snap, points, cache)
             if pts is None:
-                return key, None
-            return key, prepare_view(pts, layer.kind, layer.color, layer.name, canvas_view, size_px)
+                return key, None, 0
+            view = prepare_view(pts, layer.kind, layer.color, layer.name, canvas_view, size_px)
+            return key, view, len(snap.log)
 
         self.runner.run("review", job)
 
@@ -89,11 +90,12 @@ class ReviewSync(QtCore.QObject):
             self.w.log_message(f"{self.w.tr('Error')} (review): {msg.message}")
         if not isinstance(msg, Finished):
             return
-        key, view = msg.result
+        key, view, n_decisions = msg.result
         lid = key.split("@", 1)[0]
         layer = self.w.session.layers.get(lid)
         if view is None or layer is None or queue_key(layer) != key:
             return
+        layer.meta["review_decisions"] = n_decisions  # the points show this many
         self.w._pending_views = {(layer.step, layer.role): view}
         try:
             self.w.session.replace_points(lid, view.points)

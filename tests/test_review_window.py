@@ -46,7 +46,7 @@ def _window(qtbot, tmp_path) -> MainWindow:
     settings.setValue("language", "en")
     w = MainWindow(settings)
     qtbot.addWidget(w)
-    w.resize(1500, 950)
+    w.resize(1800, 1000)
     w.show()
     w.activateWindow()
     return w
@@ -55,9 +55,9 @@ def _window(qtbot, tmp_path) -> MainWindow:
 def _sim_pair(tmp_path: Path) -> list[Path]:
     """A small radar/AIS scene written as two files whose sensors are both ``S1`` (as
     MTAD's are): the window must tell them apart by their file names."""
-    pts = simulate.demo_scene(seed=3)
+    pts = simulate.demo_scene(seed=7)
     pts = pts[
-        pd.to_datetime(pts["time"]) < pd.to_datetime(pts["time"]).min() + pd.Timedelta("25min")
+        pd.to_datetime(pts["time"]) < pd.to_datetime(pts["time"]).min() + pd.Timedelta("30min")
     ]
     files = []
     for name, part in pts.groupby("sensor"):
@@ -115,6 +115,7 @@ def _shot(w, name: str, tmp_path: Path) -> Path:
 )
 def test_review_in_the_window(qtbot, tmp_path, pair):
     files = pair(tmp_path)
+    tag = pair.__name__.split("_")[1]  # sim | mtad
     w = _window(qtbot, tmp_path)
     w.load_files(files)
     _settle(w)
@@ -159,7 +160,7 @@ def test_review_in_the_window(qtbot, tmp_path, pair):
     assert not st.links and st.targets()["target"].nunique() == before
     assert w.review.act_redo.isEnabled()
     _settle(w)
-    _shot(w, "review-window.png", tmp_path)
+    _shot(w, f"review-window-{tag}.png", tmp_path)
 
     # The window's targets are `wakeline review`'s with the same decisions.
     cli = _cli_targets(tmp_path, files, fused.tables["proposals"], statuses)
@@ -173,11 +174,18 @@ def test_review_in_the_window(qtbot, tmp_path, pair):
 
     # A fused track selected: its members are drawn on both maps and named.
     key = next(k for k in (w.batch_model.key_of_row(r) for r in range(w.batch_model.rowCount())))
+    w.batch_view.clearSelection()
     w.select_tracks([key])
     assert w.review._items["members"]
-    w.review.before_dock.show()
+    w.review.act_before.trigger()  # View ▸ Before/after map
     _settle(w)
-    _shot(w, "review-before-after.png", tmp_path)
+    assert w.review.before.isVisible() and w.review.before.layer_names() == ids
+    (x0, x1), (y0, y1) = w.canvas.vb.viewRange()
+    (bx0, bx1), (by0, by1) = w.review.before.vb.viewRange()
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    assert abs((bx0 + bx1) / 2 - cx) < 1e-6 + 0.01 * (x1 - x0)
+    assert abs((by0 + by1) / 2 - cy) < 1e-6 + 0.01 * (y1 - y0)
+    _shot(w, f"review-before-after-{tag}.png", tmp_path)
 
     # Associate one layer (the radar) and review its queue too.
     w.select_layer(ids[1])
@@ -190,6 +198,10 @@ def test_review_in_the_window(qtbot, tmp_path, pair):
         w.select_layer(assoc.id)
         _settle(w)
         assert w.review.bound.lid == assoc.id
+        gaps = assoc.tables["proposals"].sort_values("gap_s", ascending=False)["proposal"]
+        w.review.bound.panel.set_current(gaps.iloc[0])  # the widest gap, for the picture
+        _settle(w)
+        _shot(w, f"review-associate-{tag}.png", tmp_path)
         a_statuses = _review_all_by_keyboard(qtbot, w)
         _settle(w)
         gui = w.layers[assoc.id].points
