@@ -236,7 +236,8 @@ class ReviewDock(QtCore.QObject):
     @property
     def busy(self) -> bool:
         """Binding or updating the layer is under way (tests wait on it)."""
-        return self.binder.busy or self._binding is not None or self.sync.busy
+        settling = self.bound is not None and self.bound.panel._settle.isActive()
+        return self.binder.busy or self._binding is not None or self.sync.busy or settling
 
     def _on_bind_message(self, msg) -> None:
         if isinstance(msg, Failed):
