@@ -295,6 +295,7 @@ class JobsMixin:
                 self.tr("{0} done in {1:.1f} s").format(msg.name, msg.seconds), 8000
             )
         elif isinstance(msg, Failed):
+            self.statusBar().showMessage(self.tr("{0} failed").format(msg.name), 8000)
             self.log_message(f"{self.tr('Error')} ({msg.name}): {msg.message}")
             if msg.detail:
                 self.log_message(msg.detail)

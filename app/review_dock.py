@@ -13,7 +13,6 @@ points follow through :class:`wakeline.app.review_sync.ReviewSync`.
 
 from dataclasses import dataclass, field
 
-import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtGui, QtWidgets
 
@@ -30,7 +29,7 @@ from wakeline.app.review_sync import ProjectDecisions, ReviewSync, fuse_selected
 from wakeline.app.review_undo import ReviewController
 from wakeline.app.review_views import GanttView, NetworkView
 from wakeline.app.worker import Failed, Finished
-from wakeline.core.review_session import proposals_of, queue_key
+from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
 
 REVIEW_KEYS = (  # (action, text, key, panel method)
     ("next", "&Next proposal", "J", "next"),
@@ -63,21 +62,6 @@ class Bound:
         """The points of the tracks ``labels`` (``sensor:batch``)."""
         parts = [self.points.iloc[slice(*self.ranges[t])] for t in labels if t in self.ranges]
         return pd.concat(parts) if parts else self.points.iloc[:0]
-
-
-def _sorted_with_ranges(points: pd.DataFrame) -> tuple[pd.DataFrame, dict]:
-    """Points sorted by track label (stable, time order kept) and each label's rows."""
-    from wakeline.core.review import _labels
-
-    lab = _labels(points[["sensor", "batch"]].astype(str))
-    order = np.argsort(lab, kind="stable")
-    lab = lab[order]
-    pts = points.iloc[order].reset_index(drop=True)
-    if not len(lab):
-        return pts, {}
-    starts = np.flatnonzero(np.r_[True, lab[1:] != lab[:-1]])
-    ends = np.r_[starts[1:], len(lab)]
-    return pts, {str(lab[s]): (int(s), int(e)) for s, e in zip(starts, ends, strict=True)}
 
 
 class ReviewDock(QtCore.QObject):
@@ -185,6 +169,9 @@ class ReviewDock(QtCore.QObject):
         self.act_fuse = QtGui.QAction(tr("Fuse &selected layers (two or more)"), w)
         self.act_fuse.triggered.connect(lambda: fuse_selected(w))
         w.menus["run"].insertAction(w.actions_["save_pipeline"], self.act_fuse)
+        # Run ▸ Fuse with two or more layers selected fuses those layers.
+        w.actions_["fuse"].triggered.disconnect()
+        w.actions_["fuse"].triggered.connect(self._fuse)
         w.menus["view"].addAction(self.act_before)
         w.menus["export"].addSeparator()
         for text, slot in (
@@ -195,6 +182,12 @@ class ReviewDock(QtCore.QObject):
             act.triggered.connect(slot)
             w.menus["export"].addAction(act)
         self._enable(False)
+
+    def _fuse(self) -> None:
+        if len(self.w.layer_list.selectedItems()) >= 2:
+            fuse_selected(self.w)
+        else:
+            self.w.run_step("fuse")
 
     def _enable(self, on: bool) -> None:
         for act in self.review_actions.values():
@@ -228,7 +221,7 @@ class ReviewDock(QtCore.QObject):
             def job(progress):
                 progress(0.0, "reading the proposals")
                 state, points = bind(session, session.layers[lid])
-                pts, ranges = _sorted_with_ranges(points)
+                pts, ranges = sorted_by_track(points)
                 return key, lid, state, pts, ranges
 
             self.binder.run("review", job)

@@ -12,6 +12,7 @@ of those layers named by their file stems, as the CLI names its input files.
 import copy
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from wakeline.core import review as R
@@ -124,3 +125,17 @@ def export_reviewed(
     else:
         out = state.label_points(points)
     return export_tracks(out, path, bom=bom)
+
+
+def sorted_by_track(points: pd.DataFrame) -> tuple[pd.DataFrame, dict[str, tuple[int, int]]]:
+    """Points sorted by track label (stable: the order within a track is kept) and each
+    label's rows."""
+    lab = R._labels(points[["sensor", "batch"]].astype(str))
+    order = np.argsort(lab, kind="stable")
+    lab = lab[order]
+    pts = points.iloc[order].reset_index(drop=True)
+    if not len(lab):
+        return pts, {}
+    starts = np.flatnonzero(np.r_[True, lab[1:] != lab[:-1]])
+    ends = np.r_[starts[1:], len(lab)]
+    return pts, {str(lab[s]): (int(s), int(e)) for s, e in zip(starts, ends, strict=True)}
