@@ -202,8 +202,13 @@ class ReviewDock(QtCore.QObject):
     def refresh(self) -> None:
         """Follow the active layer: bind its queue (in the worker) or hide the dock."""
         layer = self.w.active_layer()
-        for key in [k for k, b in self.queues.items() if b.lid not in self.w.session.layers]:
-            self._drop(key)
+        layers = self.w.session.layers
+        for key in [
+            k
+            for k, b in self.queues.items()
+            if b.lid not in layers or queue_key(layers[b.lid]) != k
+        ]:
+            self._drop(key)  # the layer was removed or its step run again: a new queue
         if proposals_of(layer) is None:
             self._show(None)
             return
