@@ -14,7 +14,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
 
-from wakeline.app.worker import Failed, Finished, JobRunner
+from wakeline.app.worker import Cancelled, Failed, Finished, JobRunner
 from wakeline.core import review as R
 from wakeline.core.review_session import decided_points, export_reviewed, queue_key, snapshot
 from wakeline.core.review_store import decision_row
@@ -54,10 +54,11 @@ class ReviewSync(QtCore.QObject):
         self.timer.setInterval(300)
         self.timer.timeout.connect(self._run)
         self._todo = None
+        self._job: int | None = None  # until its result is applied (or it failed)
 
     @property
     def busy(self) -> bool:
-        return self.timer.isActive() or self.runner.busy or self._todo is not None
+        return self.timer.isActive() or self._job is not None or self._todo is not None
 
     def schedule(self, bound) -> None:
         """Recompute ``bound``'s layer once no decision came for 300 ms."""
@@ -83,9 +84,11 @@ class ReviewSync(QtCore.QObject):
             view = prepare_view(pts, layer.kind, layer.color, layer.name, canvas_view, size_px)
             return key, view, len(snap.log)
 
-        self.runner.run("review", job)
+        self._job = self.runner.run("review", job)
 
     def _on_message(self, msg) -> None:
+        if isinstance(msg, Finished | Failed | Cancelled) and msg.job == self._job:
+            self._job = None
         if isinstance(msg, Failed):
             self.w.log_message(f"{self.w.tr('Error')} (review): {msg.message}")
         if not isinstance(msg, Finished):
@@ -97,6 +100,8 @@ class ReviewSync(QtCore.QObject):
             return
         layer.meta["review_decisions"] = n_decisions  # the points show this many
         self.w._pending_views = {(layer.step, layer.role): view}
+        if lid == self.w.active:  # the batch table is rebuilt: keep its selection
+            self.w._restore_selection = self.w.selected_keys() or None
         try:
             self.w.session.replace_points(lid, view.points)
         finally:

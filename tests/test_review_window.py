@@ -34,8 +34,8 @@ def _settle(w, timeout_s: float = 60.0) -> None:
     while timer.elapsed() < timeout_s * 1000:
         wait_for_jobs(w)
         if not (w.review.busy or w.drawing or w.runner.busy):
-            app.processEvents()
-            if not w.review.busy:
+            app.processEvents()  # a result may have been waiting in the queue
+            if not (w.review.busy or w.drawing or w.runner.busy or w._job_context):
                 return
         app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
     raise AssertionError("the window did not settle")
@@ -178,7 +178,13 @@ def test_review_in_the_window(qtbot, tmp_path, pair):
     w.batch_view.clearSelection()
     w.select_tracks([key])
     w.zoom_to_selection()
-    assert len(w.review._items["members"]) >= 2 * 2  # two members, a curve each, both maps
+    assert len(w.review._items["members"]) >= 2 * 2, (  # two members, a curve each, both maps
+        key,
+        w.selected_keys(),
+        w.active,
+        w.review.bound.lid,
+        w.batch_model.rowCount(),
+    )
     assert "+" in w.statusBar().currentMessage()
     w.review.act_before.trigger()  # View ▸ Before/after map
     _settle(w)
