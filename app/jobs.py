@@ -295,6 +295,7 @@ class JobsMixin:
                 self.tr("{0} done in {1:.1f} s").format(msg.name, msg.seconds), 8000
             )
         elif isinstance(msg, Failed):
+            self.statusBar().showMessage(self.tr("{0} failed").format(msg.name), 8000)
             self.log_message(f"{self.tr('Error')} ({msg.name}): {msg.message}")
             if msg.detail:
                 self.log_message(msg.detail)
@@ -333,6 +334,10 @@ class JobsMixin:
             self.docks["detail"].raise_()
         elif kind == "project":
             self._apply_project(*done[1:])
+        elif kind == "fuse_layers":
+            from wakeline.app.review_sync import apply_fused
+
+            apply_fused(self, *done[1:])
         elif kind == "export":
             self.log_message(self.tr("exported {0} to {1}").format(done[1], done[2]))
 

@@ -28,6 +28,7 @@ from wakeline.app.map_canvas import MapCanvas, color_icon
 from wakeline.app.models import BatchTableModel, batch_summary
 from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
+from wakeline.app.review_dock import ReviewDock
 from wakeline.app.worker import JobRunner
 from wakeline.core.session import Layer, Session
 from wakeline.resources import coastline_path
@@ -133,6 +134,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
             self.statusBar().addPermanentWidget(widget)
 
         build_actions(self)
+        self.review = ReviewDock(self)  # the review dock, its menus and the before map
         self.set_language(self.settings.value("language", i18n.system_language()))
         for key, restore in (("geometry", self.restoreGeometry), ("state", self.restoreState)):
             value = self.settings.value(key)
@@ -490,6 +492,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self.settings.setValue("state", self.saveState())
         self.runner.cancel()
         self.runner.wait(5000)
+        self.review.close()
         self.lod_worker.wait(5000)
         self.project.detach()
         super().closeEvent(event)

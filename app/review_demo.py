@@ -1,8 +1,8 @@
 """A review workspace assembled from the review widgets, for screenshots and tours:
 the queue panel, the map of the current proposal, its Gantt chart and its network.
 
-The main window will host these widgets itself; this composition exists so the widgets
-can be seen together (``python -m wakeline.app.review_demo RADAR AIS -o shot.png``).
+The main window hosts these widgets in its Review dock (:mod:`wakeline.app.review_dock`);
+this composition exists so the widgets can be seen together without a session (``python -m wakeline.app.review_demo RADAR AIS -o shot.png``).
 """
 
 import argparse

@@ -90,6 +90,9 @@ class Project:
         session.clear()
         session.sources[:] = self.sources
         session.params = dict(self.params)
+        # Decisions first: a listener binding a layer's review queue as the layer is
+        # added finds them (they are replayed per layer).
+        session.decisions = list(self.decisions)
         for lay in self.layers:
             session.add_layer(
                 lay.name,
@@ -102,7 +105,6 @@ class Project:
                 **{**lay.lineage(), "tables": lay.tables},
             )
         session.selection = list(self.selection)
-        session.decisions = list(self.decisions)
         return session
 
 
@@ -285,6 +287,7 @@ def _load_layers(con: sqlite3.Connection) -> list[Layer]:
                 lin.get("params") or {},
                 lin.get("created") or "",
                 tables.get(lid, {}),
+                list(lin.get("inputs") or []),
             )
         )
     return out

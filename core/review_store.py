@@ -174,6 +174,33 @@ def copy_review(src: str | Path, dst: str | Path) -> int:
         db.close()
 
 
+def decision_row(queue: str, change: Change, entry: LogEntry) -> dict:
+    """One decision as the project's ``decisions`` table stores it (JSON): the queue it
+    belongs to (:func:`wakeline.core.review_session.queue_key`), the change applied and
+    its log line. The window writes each one through the project's writer at once."""
+    return {
+        "queue": queue,
+        "time": entry.time,
+        "action": entry.action,
+        "proposal": entry.proposal,
+        "tracks": entry.tracks,
+        "before": entry.before,
+        "after": entry.after,
+        "change": change.to_dict(),
+    }
+
+
+def replay_decisions(state: ReviewState, rows: list[dict], queue: str) -> int:
+    """Apply, in order, the stored decisions of ``queue`` (rows of :func:`decision_row`);
+    returns how many. Rows of other queues (other layers, older runs) are skipped."""
+    n = 0
+    for row in rows:
+        if isinstance(row, dict) and row.get("queue") == queue and "change" in row:
+            state.apply(Change.from_dict(row["change"]), when=row.get("time"))
+            n += 1
+    return n
+
+
 class _Transaction:
     """BEGIN IMMEDIATE … COMMIT (ROLLBACK on error) on an autocommit connection."""
 

@@ -58,15 +58,19 @@ class Layer:
     params: dict = field(default_factory=dict)  # the step's parameters, as JSON
     created: str = ""  # ISO time, UTC
     tables: dict[str, pd.DataFrame] = field(default_factory=dict)  # side tables
+    inputs: list[str] = field(default_factory=list)  # every input layer id (several: fuse)
 
     def lineage(self) -> dict[str, Any]:
-        return {
+        out = {
             "parent": self.parent,
             "step": self.step,
             "role": self.role,
             "params": self.params,
             "created": self.created,
         }
+        if self.inputs:
+            out["inputs"] = list(self.inputs)
+        return out
 
 
 def _now() -> str:
@@ -198,11 +202,17 @@ class Session:
         return pd.concat(frames, ignore_index=True)
 
     def apply_result(
-        self, input_id: str, result: StepResult, params: dict | None = None
+        self,
+        input_id: str,
+        result: StepResult,
+        params: dict | None = None,
+        inputs: list[str] | None = None,
     ) -> list[Layer]:
         """Add a step's layers as children of ``input_id``; a re-run of the same step on
         the same input replaces (in place, same id) the layer of the same role. A pipeline
-        result is applied stage by stage, each stage a child of the previous output."""
+        result is applied stage by stage, each stage a child of the previous output.
+        ``inputs``: every input layer of a step run on several layers concatenated
+        (``input_id`` is the first); recorded in the lineage and in the layer's name."""
         if result.stages:
             out: list[Layer] = []
             current = input_id
@@ -215,10 +225,23 @@ class Session:
             return out
         base = self.root(input_id).name if input_id in self.layers else ""
         parent_name = self.layers[input_id].name if input_id in self.layers else base
+        inputs = list(inputs) if inputs and len(inputs) > 1 else []
+        if inputs:
+            parent_name = " + ".join(self.layers[i].name for i in inputs if i in self.layers)
         pjson = _params_json(params)
         made = []
         for new in result.layers:
-            old = self.find(input_id, result.step, new.suffix)
+            old = next(  # the same step on the same input(s), same role
+                (
+                    lay
+                    for lay in self.layers.values()
+                    if lay.parent == input_id
+                    and lay.step == result.step
+                    and lay.role == new.suffix
+                    and lay.inputs == inputs
+                ),
+                None,
+            )
             lineage = {
                 "parent": input_id,
                 "step": result.step,
@@ -226,6 +249,7 @@ class Session:
                 "params": pjson,
                 "created": _now(),
                 "tables": dict(new.tables),
+                "inputs": inputs,
             }
             if old is not None:
                 old.points, old.meta, old.kind = new.points, dict(new.meta), new.kind
@@ -240,6 +264,11 @@ class Session:
                     )
                 )
         return made
+
+    def replace_points(self, layer_id: str, points: pd.DataFrame) -> None:
+        """New points for a layer, lineage kept (a review decision relabels targets)."""
+        self.layers[layer_id].points = points
+        self._emit("changed", layer_id)
 
     # -- persistence helpers -------------------------------------------------------
 

@@ -1,0 +1,393 @@
+"""The review in the main window (issue 13): a Review dock (queue panel, Gantt chart,
+candidate network) shown while the active layer has proposals, the Review and Edit
+menus, the current proposal on the map and on a linked before/after map.
+
+:class:`ReviewDock` binds the core :class:`~wakeline.core.review.ReviewState` of a layer
+(:func:`wakeline.core.review_session.bind`, in a worker) to the widgets of
+:mod:`wakeline.app.review_panel` and :mod:`wakeline.app.review_views`; one
+:class:`~wakeline.app.review_undo.ReviewController` (and undo stack) per layer's queue,
+kept while the window lives so switching layers keeps the undo history. Decisions are
+applied and stored by :class:`wakeline.app.review_sync.ProjectDecisions`; the layer's
+points follow through :class:`wakeline.app.review_sync.ReviewSync`.
+"""
+
+from dataclasses import dataclass, field
+
+import pandas as pd
+from PySide6 import QtCore, QtGui, QtWidgets
+
+from wakeline.app.map_canvas import MapCanvas
+from wakeline.app.review_map import (
+    PALETTE,
+    Piece,
+    ProposalGeometry,
+    proposal_geometry,
+    proposal_items,
+)
+from wakeline.app.review_panel import ReviewPanel
+from wakeline.app.review_sync import ProjectDecisions, ReviewSync, fuse_selected
+from wakeline.app.review_undo import ReviewController
+from wakeline.app.review_views import GanttView, NetworkView
+from wakeline.app.worker import Failed, Finished
+from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
+
+REVIEW_KEYS = (  # (action, text, key, panel method)
+    ("next", "&Next proposal", "J", "next"),
+    ("previous", "&Previous proposal", "K", "previous"),
+    ("accept", "&Accept", "A", "accept"),
+    ("reject", "&Reject", "R", "reject"),
+    ("split", "&Split track", "S", "split"),
+    ("split_target", "Split &target", "Shift+S", "split_target"),
+    ("merge", "&Merge selected rows", "M", "merge"),
+)
+
+
+@dataclass
+class Bound:
+    """One layer's review: its state's controller, the points its proposals were made on
+    (sorted by track, with each track's row range) and its widgets."""
+
+    lid: str
+    key: str
+    controller: ReviewController
+    points: pd.DataFrame
+    ranges: dict[str, tuple[int, int]]
+    widget: QtWidgets.QWidget
+    panel: ReviewPanel
+    gantt: GanttView
+    network: NetworkView
+    cache: dict = field(default_factory=dict)
+
+    def track_points(self, labels: list[str]) -> pd.DataFrame:
+        """The points of the tracks ``labels`` (``sensor:batch``)."""
+        parts = [self.points.iloc[slice(*self.ranges[t])] for t in labels if t in self.ranges]
+        return pd.concat(parts) if parts else self.points.iloc[:0]
+
+
+class ReviewDock(QtCore.QObject):
+    """The review part of the main window ``w`` (created once, after its actions)."""
+
+    def __init__(self, w) -> None:
+        super().__init__(w)
+        self.w = w
+        self.bound: Bound | None = None
+        self.queues: dict[str, Bound] = {}
+        self._binding: str | None = None
+        self._items: dict[str, list] = {"proposal": [], "members": []}
+        self.group = QtGui.QUndoGroup(self)
+        self.sync = ReviewSync(self)
+        from wakeline.app.worker import JobRunner
+
+        self.binder = JobRunner(self)
+        self.binder.message.connect(self._on_bind_message)
+        self.stack = QtWidgets.QStackedWidget()
+        self.empty = QtWidgets.QLabel(w.tr("No proposals: run Associate or Fuse on a layer."))
+        self.stack.addWidget(self.empty)
+        area = QtCore.Qt.DockWidgetArea
+        self.dock = self._dock("review", w.tr("Review"), self.stack, area.BottomDockWidgetArea)
+        # The before map sits beside the main map in the centre (View ▸ Before/after map).
+        self.before = MapCanvas(w)
+        self.before.lod_executor = w.lod_worker
+        self.before.setTitle(w.tr("before: the input pieces"), size="9pt")
+        legend = self.before.legend  # no legend column: the narrow map keeps its width
+        legend.updateSize = lambda: (legend.setMaximumWidth(0), legend.setVisible(False))
+        self.split = QtWidgets.QSplitter()
+        w.takeCentralWidget()
+        self.split.addWidget(self.before)
+        self.split.addWidget(w.canvas)
+        w.setCentralWidget(self.split)
+        self.before.hide()
+        self._linking = False
+        w.canvas.vb.sigRangeChanged.connect(lambda *_: self._link(w.canvas, self.before))
+        self.before.vb.sigRangeChangedManually.connect(lambda *_: self._link(self.before, w.canvas))
+        self.act_before = QtGui.QAction(w.tr("&Before/after map (linked)"), w, checkable=True)
+        self.act_before.toggled.connect(self.show_before)
+        self._before_layers: list[str] = []
+        self._build_menus()
+        w.layer_list.setSelectionMode(QtWidgets.QAbstractItemView.SelectionMode.ExtendedSelection)
+        w.layer_list.currentItemChanged.connect(lambda *_: self.refresh())
+        w.layersChanged.connect(self.refresh)
+        w.batch_view.selectionModel().selectionChanged.connect(self._show_members)
+        w.batch_model.modelReset.connect(lambda: self._clear_items("members"))
+        self.refresh()
+
+    def show_before(self, on: bool = True) -> None:
+        """Show (or hide) the before map beside the main map, on the same view."""
+        self.before.setVisible(on)
+        if on:
+            width = self.split.width()
+            self.split.setSizes([width * 2 // 5, width - width * 2 // 5])
+            self._link(self.w.canvas, self.before)
+        if self.act_before.isChecked() != on:
+            self.act_before.setChecked(on)
+
+    def _link(self, src: MapCanvas, dst: MapCanvas) -> None:
+        """The same view on both maps (each keeps its aspect; the other follows)."""
+        if self._linking or not dst.isVisible():
+            return
+        self._linking = True
+        try:
+            (x0, x1), (y0, y1) = src.vb.viewRange()
+            dst.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0)
+        finally:
+            self._linking = False
+
+    def _dock(self, key: str, title: str, widget, where) -> QtWidgets.QDockWidget:
+        dock = QtWidgets.QDockWidget(title, self.w)
+        dock.setObjectName(key)
+        dock.setWidget(widget)
+        self.w.addDockWidget(where, dock)
+        dock.hide()
+        return dock
+
+    # -- menus ----------------------------------------------------------------------
+
+    def _build_menus(self) -> None:
+        w, tr = self.w, self.w.tr
+        bar = w.menuBar()
+        self.edit_menu = QtWidgets.QMenu(tr("&Edit"), w)
+        self.act_undo = self.group.createUndoAction(w, tr("&Undo"))
+        self.act_undo.setShortcut(QtGui.QKeySequence("Ctrl+Z"))
+        self.act_redo = self.group.createRedoAction(w, tr("&Redo"))
+        self.act_redo.setShortcuts(
+            [QtGui.QKeySequence("Ctrl+Shift+Z"), QtGui.QKeySequence("Ctrl+Y")]
+        )
+        self.edit_menu.addActions([self.act_undo, self.act_redo])
+        bar.insertMenu(w.menus["run"].menuAction(), self.edit_menu)
+        self.review_menu = QtWidgets.QMenu(tr("Re&view"), w)
+        self.review_actions: dict[str, QtGui.QAction] = {}
+        for name, text, key, method in REVIEW_KEYS:
+            act = QtGui.QAction(tr(text), w)
+            act.setShortcut(QtGui.QKeySequence(key))
+            act.triggered.connect(lambda _=False, m=method: self._panel_call(m))
+            self.review_menu.addAction(act)
+            self.review_actions[name] = act
+        self.review_menu.addSeparator()
+        self.review_menu.addAction(self.dock.toggleViewAction())
+        bar.insertMenu(w.menus["view"].menuAction(), self.review_menu)
+        w.addActions(list(self.review_actions.values()) + [self.act_undo, self.act_redo])
+        self.act_fuse = QtGui.QAction(tr("Fuse &selected layers (two or more)"), w)
+        self.act_fuse.triggered.connect(lambda: fuse_selected(w))
+        w.menus["run"].insertAction(w.actions_["save_pipeline"], self.act_fuse)
+        # Run ▸ Fuse with two or more layers selected fuses those layers.
+        w.actions_["fuse"].triggered.disconnect()
+        w.actions_["fuse"].triggered.connect(self._fuse)
+        w.menus["view"].addAction(self.act_before)
+        w.menus["export"].addSeparator()
+        for text, slot in (
+            (tr("&Reviewed tracks (decisions honoured)…"), self.sync.export_dialog),
+            (tr("&Decision log…"), self.sync.export_log_dialog),
+        ):
+            act = QtGui.QAction(text, w)
+            act.triggered.connect(slot)
+            w.menus["export"].addAction(act)
+        self._enable(False)
+
+    def _fuse(self) -> None:
+        if len(self.w.layer_list.selectedItems()) >= 2:
+            fuse_selected(self.w)
+        else:
+            self.w.run_step("fuse")
+
+    def _enable(self, on: bool) -> None:
+        for act in self.review_actions.values():
+            act.setEnabled(on)
+
+    def _panel_call(self, method: str) -> None:
+        if self.bound is not None:
+            getattr(self.bound.panel, method)()
+
+    # -- binding --------------------------------------------------------------------
+
+    def refresh(self) -> None:
+        """Follow the active layer: bind its queue (in the worker) or hide the dock."""
+        layer = self.w.active_layer()
+        layers = self.w.session.layers
+        for key in [
+            k
+            for k, b in self.queues.items()
+            if b.lid not in layers or queue_key(layers[b.lid]) != k
+        ]:
+            self._drop(key)  # the layer was removed or its step run again: a new queue
+        if proposals_of(layer) is None:
+            self._show(None)
+            return
+        key = queue_key(layer)
+        if self.bound is not None and self.bound.key == key:
+            return
+        if key in self.queues:
+            self._show(self.queues[key])
+        elif self._binding != key:
+            self._binding = key
+            from wakeline.core.review_session import bind
+
+            session, lid = self.w.session, layer.id
+
+            def job(progress):
+                progress(0.0, "reading the proposals")
+                state, points = bind(session, session.layers[lid])
+                pts, ranges = sorted_by_track(points)
+                return key, lid, state, pts, ranges
+
+            self.binder.run("review", job)
+
+    @property
+    def busy(self) -> bool:
+        """Binding or updating the layer is under way (tests wait on it)."""
+        settling = self.bound is not None and self.bound.panel._settle.isActive()
+        return self.binder.busy or self._binding is not None or self.sync.busy or settling
+
+    def _on_bind_message(self, msg) -> None:
+        if isinstance(msg, Failed):
+            self._binding = None
+            self.w.log_message(f"{self.w.tr('Error')} (review): {msg.message}")
+        if not isinstance(msg, Finished):
+            return
+        key, lid, state, pts, ranges = msg.result
+        self._binding = None
+        if lid not in self.w.session.layers or queue_key(self.w.session.layers[lid]) != key:
+            self.refresh()
+            return
+        controller = ReviewController(state, ProjectDecisions(self.w, key), self)
+        panel = ReviewPanel(controller)
+        for act in panel.actions:  # the window's Review and Edit menus hold the keys
+            panel.removeAction(act)
+        gantt, network = GanttView(state), NetworkView(state)
+        box = QtWidgets.QSplitter()
+        box.addWidget(panel)
+        views = QtWidgets.QSplitter()
+        views.addWidget(gantt)
+        views.addWidget(network)
+        box.addWidget(views)
+        box.setSizes([560, 700])
+        bound = Bound(lid, key, controller, pts, ranges, box, panel, gantt, network)
+        panel.current_settled.connect(self.show_proposal)
+        network.proposal_clicked.connect(panel.set_current)
+        controller.changed.connect(lambda _p, b=bound: self.sync.schedule(b))
+        self.group.addStack(controller.stack)
+        self.stack.addWidget(box)
+        self.queues[key] = bound
+        layer = self.w.session.layers[lid]
+        if state.version and layer.meta.get("review_decisions") != len(state.log):
+            self.sync.schedule(bound)  # decisions replayed that the stored layer lacks
+        active = self.w.active_layer()
+        if active is not None and queue_key(active) == key:
+            self._show(bound)
+
+    def _drop(self, key: str) -> None:
+        bound = self.queues.pop(key)
+        self.group.removeStack(bound.controller.stack)
+        self.stack.removeWidget(bound.widget)
+        bound.widget.deleteLater()
+        if self.bound is bound:
+            self.bound = None
+
+    def _show(self, bound: Bound | None) -> None:
+        if bound is self.bound and (bound is None) == self.dock.isHidden():
+            return
+        self.bound = bound
+        self._enable(bound is not None)
+        self._clear_items()
+        if bound is None:
+            self.group.setActiveStack(None)
+            self.stack.setCurrentWidget(self.empty)
+            self.dock.hide()
+            return
+        self.group.setActiveStack(bound.controller.stack)
+        self.stack.setCurrentWidget(bound.widget)
+        if self.dock.isHidden():
+            self.dock.show()
+            if self.dock not in self.w.tabifiedDockWidgets(self.w.docks["log"]):
+                self.w.tabifyDockWidget(self.w.docks["log"], self.dock)
+            self.w.resizeDocks([self.dock], [360], QtCore.Qt.Orientation.Vertical)
+        self.dock.raise_()
+        self._draw_before(self.w.session.layers[bound.lid])
+        self.show_proposal(bound.panel.current())
+
+    def _draw_before(self, layer) -> None:
+        from wakeline.app.layer_view import draw_as
+
+        for name in self._before_layers:
+            self.before.remove_layer(name)
+        self._before_layers = []
+        for iid in layer.inputs or [layer.parent]:
+            view = self.w.views.get(iid)
+            if view is not None:
+                src = self.w.session.layers[iid]
+                self.before.set_draw_data(draw_as(view, iid, src.name), True)
+                self._before_layers.append(iid)
+
+    # -- drawing --------------------------------------------------------------------
+
+    def _clear_items(self, group: str | None = None) -> None:
+        for g in [group] if group else list(self._items):
+            for canvas, item in self._items[g]:
+                canvas.removeItem(item)
+            self._items[g] = []
+
+    def _add_items(self, geom: ProposalGeometry, group: str) -> None:
+        for canvas in (self.w.canvas, self.before):
+            for item in proposal_items(geom):
+                item.setZValue(55)
+                canvas.addItem(item)
+                self._items[group].append((canvas, item))
+
+    def show_proposal(self, proposal: str) -> None:
+        """Zoom to the proposal, its pieces in their own colours, the gap's dashed
+        connector and predicted path (both maps), its tracks selected; Gantt, network."""
+        b = self.bound
+        self._clear_items("proposal")
+        if b is None or not proposal:
+            return
+        st = b.controller.state
+        row = st.proposals.iloc[b.panel.model.row_of[proposal]]
+        a, c = row["track_a"], row["track_b"]
+        members = list(dict.fromkeys([*st.members(st.target(a)), *st.members(st.target(c)), a, c]))
+        geom = proposal_geometry(st, b.track_points(members), proposal)
+        self._add_items(geom, "proposal")
+        if geom.bounds:
+            x0, y0, x1, y1 = geom.bounds
+            self.w.canvas.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0.15)
+        b.gantt.show_proposal(proposal)
+        b.network.show_proposal(proposal)
+        layer = self.w.session.layers.get(b.lid)
+        if layer is not None and layer.step == "fuse":
+            keys = [("fused", st.target(a))]
+        else:
+            keys = [tuple(t.split(":", 1)) for t in (a, c)]
+        self.w.select_tracks(keys)
+
+    def _show_members(self, *_args) -> None:
+        """A fused track selected: its member tracks drawn in their own colours on both
+        maps; the status bar lists them and the sensors behind its points."""
+        b, layer = self.bound, self.w.active_layer()
+        self._clear_items("members")
+        if b is None or layer is None or layer.id != b.lid or "members" not in layer.points:
+            return
+        view = self.w.views.get(layer.id)
+        chosen = view.tracks(self.w.selected_keys()) if view is not None else None
+        if chosen is None or not len(chosen):
+            return
+        members = sorted({m for text in chosen["members"].astype(str) for m in text.split("+")})
+        pts = b.track_points(members)
+        self.before.show_selection(pts)
+        geom = ProposalGeometry("")
+        for k, m in enumerate(members):
+            one = b.track_points([m])
+            geom.pieces.append(
+                Piece(m, one["lon"].to_numpy(), one["lat"].to_numpy(), PALETTE[k % len(PALETTE)])
+            )
+        self._add_items(geom, "members")
+        sensors = chosen["source"].astype(str).value_counts() if "source" in chosen else {}
+        text = ", ".join(f"{s}: {n}" for s, n in dict(sensors).items())
+        self.w.statusBar().showMessage(
+            f"{self.w.tr('members')}: {' + '.join(members)}; "
+            f"{self.w.tr('points by sensors')}: {text}",
+            15000,
+        )
+
+    def close(self) -> None:
+        """Stop the workers (the window is closing)."""
+        for runner in (self.binder, self.sync.runner):
+            runner.cancel()
+            runner.wait(5000)

@@ -1,0 +1,201 @@
+"""The review's effects outside the dock: every decision stored in the project at once,
+the layer's points following the decisions (in a worker), export that honours them,
+and Run ▸ Fuse selected layers.
+
+- :class:`ProjectDecisions` is the store of a :class:`~wakeline.app.review_undo.ReviewController`:
+  it applies a change to the state and queues the decision on the project's writer
+  (:meth:`ProjectStore.add_decision`: one row, its own transaction), and keeps it in the
+  session so "Save as" writes it too.
+- :class:`ReviewSync` recomputes the layer's points once the keys rest
+  (:func:`wakeline.core.review_session.decided_points`) and swaps them in.
+"""
+
+from pathlib import Path
+
+from PySide6 import QtCore, QtWidgets
+
+from wakeline.app.worker import Cancelled, Failed, Finished, JobRunner
+from wakeline.core import review as R
+from wakeline.core.review_session import decided_points, export_reviewed, queue_key, snapshot
+from wakeline.core.review_store import decision_row
+
+EXPORT_FILTERS = {
+    "CSV (*.csv)": (".csv", False),
+    "CSV with a byte-order mark, for spreadsheets (*.csv)": (".csv", True),
+    "GeoJSON (*.geojson)": (".geojson", False),
+    "GPX for OpenCPN (*.gpx)": (".gpx", False),
+}
+
+
+class ProjectDecisions:
+    """Applies a review change and writes it to the project (through its writer)."""
+
+    def __init__(self, w, key: str) -> None:
+        self.w, self.key = w, key
+
+    def apply(self, state: R.ReviewState, change: R.Change) -> R.Change:
+        state.apply(change)
+        row = decision_row(self.key, change, state.log[-1])
+        self.w.session.decisions.append(row)
+        self.w.project.add_decision(row)
+        return change
+
+
+class ReviewSync(QtCore.QObject):
+    """Keeps the reviewed layer's points in step with the decisions (debounced, worker)."""
+
+    def __init__(self, dock) -> None:
+        super().__init__(dock)
+        self.dock, self.w = dock, dock.w
+        self.runner = JobRunner(self)
+        self.runner.message.connect(self._on_message)
+        self.timer = QtCore.QTimer(self)
+        self.timer.setSingleShot(True)
+        self.timer.setInterval(300)
+        self.timer.timeout.connect(self._run)
+        self._todo = None
+        self._job: int | None = None  # until its result is applied (or it failed)
+
+    @property
+    def busy(self) -> bool:
+        return self.timer.isActive() or self._job is not None or self._todo is not None
+
+    def schedule(self, bound) -> None:
+        """Recompute ``bound``'s layer once no decision came for 300 ms."""
+        self._todo = bound
+        self.timer.start()
+
+    def _run(self) -> None:
+        bound, self._todo = self._todo, None
+        layer = self.w.session.layers.get(bound.lid) if bound is not None else None
+        if layer is None or queue_key(layer) != bound.key:
+            return
+        from wakeline.app.layer_view import prepare_view
+
+        snap = snapshot(bound.controller.state)
+        canvas_view, size_px = self.w.canvas.current_view(), self.w.canvas.plot_size_px()
+        key, points, cache = bound.key, bound.points, bound.cache
+
+        def job(progress):
+            progress(0.0, "applying the decisions to the layer")
+            pts = decided_points(layer, snap, points, cache)
+            if pts is None:
+                return key, None, 0
+            view = prepare_view(pts, layer.kind, layer.color, layer.name, canvas_view, size_px)
+            return key, view, len(snap.log)
+
+        self._job = self.runner.run("review", job)
+
+    def _on_message(self, msg) -> None:
+        if isinstance(msg, Finished | Failed | Cancelled) and msg.job == self._job:
+            self._job = None
+        if isinstance(msg, Failed):
+            self.w.log_message(f"{self.w.tr('Error')} (review): {msg.message}")
+        if not isinstance(msg, Finished):
+            return
+        key, view, n_decisions = msg.result
+        lid = key.split("@", 1)[0]
+        layer = self.w.session.layers.get(lid)
+        if view is None or layer is None or queue_key(layer) != key:
+            return
+        layer.meta["review_decisions"] = n_decisions  # the points show this many
+        self.w._pending_views = {(layer.step, layer.role): view}
+        if lid == self.w.active:  # the batch table is rebuilt: keep its selection
+            self.w._restore_selection = self.w.selected_keys() or None
+        try:
+            self.w.session.replace_points(lid, view.points)
+        finally:
+            self.w._pending_views = {}
+
+    # -- export ---------------------------------------------------------------------
+
+    def export(self, path: Path, bom: bool = False, log: bool = False) -> int | None:
+        """Write the active review's tracks (or its decision log) in the window's worker."""
+        bound = self.dock.bound
+        if bound is None:
+            QtWidgets.QMessageBox.information(
+                self.w, self.w.tr("Nothing to export"), self.w.tr("No layer under review.")
+            )
+            return None
+        layer = self.w.session.layers[bound.lid]
+        snap, points, cache = snapshot(bound.controller.state), bound.points, bound.cache
+        path = Path(path)
+
+        def job(progress):
+            progress(0.0, f"writing {path.name}")
+            if log:
+                from wakeline.core.export_review import export_decision_log
+
+                export_decision_log(snap, path, bom=bom)
+            else:
+                export_reviewed(layer, snap, points, path, bom=bom, cache=cache)
+            return ("export", f"{layer.name} (reviewed)", path)
+
+        return self.w._start("export", job, ("export", layer.name))
+
+    def export_dialog(self) -> None:
+        path, chosen = QtWidgets.QFileDialog.getSaveFileName(
+            self.w, self.w.tr("Export reviewed tracks"), "reviewed.csv", ";;".join(EXPORT_FILTERS)
+        )
+        if path:
+            suffix, bom = EXPORT_FILTERS.get(chosen, (".csv", False))
+            p = Path(path)
+            self.export(p if p.suffix else p.with_suffix(suffix), bom=bom)
+
+    def export_log_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(
+            self.w, self.w.tr("Export decision log"), "decisions.csv", "CSV (*.csv)"
+        )
+        if path:
+            self.export(Path(path), bom=True, log=True)
+
+
+def fuse_selected(w, ids: list[str] | None = None) -> int | None:
+    """Run ▸ Fuse selected layers: the registry's fuse step on the selected layers'
+    points combined (:func:`wakeline.core.review.combine_sources`, named by file stem as
+    the command line names its files), in the worker; the result's lineage lists every
+    input layer."""
+    from wakeline.app.jobs import _prepared
+    from wakeline.core.pipeline import STEPS
+    from wakeline.core.progress import sub_progress
+
+    if ids is None:
+        rows = sorted(w.layer_list.row(i) for i in w.layer_list.selectedItems())
+        ids = [w.layer_list.item(r).data(QtCore.Qt.ItemDataRole.UserRole) for r in rows]
+    ids = [i for i in ids if i in w.session.layers]
+    if len(ids) < 2:
+        QtWidgets.QMessageBox.information(
+            w,
+            w.tr("Fuse selected layers"),
+            w.tr("Select two or more layers in the Layers list (Ctrl+click), e.g. radar and AIS."),
+        )
+        return None
+    named = [(Path(w.session.layers[i].name).stem, w.session.layers[i].points) for i in ids]
+    params = w.step_params("fuse")
+    canvas_view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()
+
+    def job(progress):
+        points = R.combine_sources(named)
+        result = STEPS["fuse"](points, params, sub_progress(progress, 0.0, 0.85))
+        prepared, views = _prepared(result, sub_progress(progress, 0.85, 1.0), canvas_view, size_px)
+        return ("fuse_layers", ids, prepared, views, params)
+
+    names = " + ".join(n for n, _ in named)
+    return w._start("fuse", job, ("fuse", names))
+
+
+def apply_fused(w, ids: list[str], result, views: dict, params) -> None:
+    """Add a fuse-across-layers result (GUI thread: a swap of prepared data)."""
+    from wakeline.app.dialogs import summarize
+
+    missing = [i for i in ids if i not in w.session.layers]
+    if missing:
+        w.log_message(w.tr("an input layer was removed; result dropped"))
+        return
+    w._pending_views = {key: view for key, (view, _color) in views.items()}
+    try:
+        w.session.apply_result(ids[0], result, params, inputs=ids)
+    finally:
+        w._pending_views = {}
+    names = " + ".join(w.session.layers[i].name for i in ids)
+    w.log_message(f"fuse on {names}: {summarize(result.report)}")

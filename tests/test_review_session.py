@@ -1,0 +1,112 @@
+"""The review bound to session layers (core, no Qt): which points a layer's proposals
+were made on, decisions stored in the project's decisions table and replayed per queue,
+lineage of a fuse across layers, and decisions surviving a killed process."""
+
+import subprocess
+import sys
+import textwrap
+
+import pandas as pd
+import pytest
+
+from wakeline.core import review as R
+from wakeline.core import simulate
+from wakeline.core.pipeline import STEPS
+from wakeline.core.project import load_project, save_project
+from wakeline.core.review_session import bind, decided_points, input_points, queue_key
+from wakeline.core.review_store import decision_row, replay_decisions
+from wakeline.core.session import Session
+
+
+@pytest.fixture(scope="module")
+def pair():
+    pts = simulate.demo_scene(seed=7)
+    t = pd.to_datetime(pts["time"])
+    pts = pts[t < t.min() + pd.Timedelta("30min")]
+    files = {
+        s: part.assign(sensor="S1").reset_index(drop=True) for s, part in pts.groupby("sensor")
+    }
+    both = R.combine_sources([("x_AIS", files["AIS"]), ("x_radar", files["R1"])])
+    return files, STEPS["fuse"](both)  # the fuse step run once for the module
+
+
+def _fused_session(pair) -> tuple[Session, str]:
+    files, res = pair
+    s = Session()
+    a = s.add_layer("x_AIS.csv", "source", files["AIS"])
+    r = s.add_layer("x_radar.csv", "source", files["R1"])
+    (made,) = s.apply_result(a.id, res, STEPS["fuse"].defaults(), inputs=[a.id, r.id])
+    return s, made.id
+
+
+def test_fuse_across_layers_records_every_input_and_binds_to_them(pair, tmp_path):
+    s, lid = _fused_session(pair)
+    lay = s.layers[lid]
+    assert lay.inputs == ["L1", "L2"] and lay.parent == "L1"
+    assert lay.name == "x_AIS.csv + x_radar.csv · fused"
+    pts = input_points(s, lay)
+    assert set(pts["sensor"]) == {"AIS", "radar"}  # both files said S1
+    # A second run on one input alone is a layer of its own, not a replacement.
+    res = STEPS["associate"](s.layers["L1"].points)
+    s.apply_result("L1", res)
+    assert s.layers[lid].inputs == ["L1", "L2"]
+    # The lineage survives the project file.
+    save_project(s, tmp_path / "p.wakeline")
+    back = load_project(tmp_path / "p.wakeline").to_session()
+    assert back.layers[lid].inputs == ["L1", "L2"] and back.layers["L1"].inputs == []
+    s.remove_layer("L2")
+    with pytest.raises(Exception, match="input layer L2 was removed"):
+        input_points(s, lay)
+
+
+def test_decisions_replay_per_queue_and_relabel_the_layer(pair):
+    s, lid = _fused_session(pair)
+    lay = s.layers[lid]
+    st, pts = bind(s, lay)
+    first, second = st.proposals["proposal"][:2]
+    for change in (R.reject(st, first), R.accept(st, second)):
+        st.apply(change)
+        s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    s.decisions.append(decision_row("L9@old", R.accept(st, first), st.log[-1]))  # another queue
+    again, _ = bind(s, lay)
+    assert again.status_of(first) == "rejected" and again.status_of(second) == "accepted"
+    assert len(again.log) == 2
+    fused = decided_points(lay, again, pts)
+    assert set(fused["batch"]) == set(again.target_of_track())
+    # A re-run of the step is a new queue: nothing replayed on it.
+    lay.created = "2099-01-01T00:00:00Z"
+    fresh, _ = bind(s, lay)
+    assert (fresh.status == "pending").all()
+    assert replay_decisions(fresh, [{"queue": "x"}, "junk"], queue_key(lay)) == 0
+
+
+def test_project_decisions_survive_a_killed_process(pair, tmp_path):
+    s, lid = _fused_session(pair)
+    proj = tmp_path / "k.wakeline"
+    save_project(s, proj)
+    script = textwrap.dedent(
+        f"""
+        import os, signal, sys, time
+        from wakeline.core import review as R
+        from wakeline.core.project import ProjectWriter, load_project
+        from wakeline.core.review_session import bind, queue_key
+        from wakeline.core.review_store import decision_row
+        s = load_project({str(proj)!r}).to_session()
+        lay = s.layers[{lid!r}]
+        st, _ = bind(s, lay)
+        writer = ProjectWriter({str(proj)!r}, lambda exc: print(exc, file=sys.stderr))
+        for pid in st.proposals["proposal"][:3]:
+            change = R.reject(st, pid)
+            st.apply(change)
+            row = decision_row(queue_key(lay), change, st.log[-1])
+            writer.submit(lambda store, row=row: store.add_decision(row))
+        writer.flush(30)
+        print("decided", flush=True)
+        os.kill(os.getpid(), signal.SIGKILL)
+        """
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert "decided" in done.stdout and done.returncode == -9, done.stderr
+    back = load_project(proj).to_session()
+    st, _ = bind(back, back.layers[lid])
+    assert (st.status[:3] == "rejected").all() and (st.status[3:] == "pending").all()
