@@ -15,12 +15,37 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6 import QtCore, QtGui
+from PySide6 import QtCore
 
 from wakeline.app.map_draw import DrawData, LayerGeometry, prepare_layer
 from wakeline.core.timeline import TimeIndex, build_index, window_rows
 
-TRAIL_COLOR = QtGui.QColor(20, 20, 20, 170)
+TRAIL_COLOR = "#303030"
+MARKER_BRUSH = "#ffcc00"
+#: Trails wider than 1 px only up to this many vertices: Qt's raster engine draws a wide
+#: (or translucent) pen several times slower (see map_canvas).
+WIDE_MAX = 20_000
+
+
+def thin_to_pixels(
+    lon: np.ndarray, lat: np.ndarray, px: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray]:
+    """A NaN-separated curve without the vertices that fall in the pixel of the vertex
+    before them (``px`` = pixel size in degrees); the first and last vertex of every
+    piece are kept, so no piece gets shorter than a pixel."""
+    if len(lon) < 3 or not (px[0] > 0 and px[1] > 0):
+        return lon, lat
+    with np.errstate(invalid="ignore"):
+        ix = np.floor(lon / px[0])
+        iy = np.floor(lat / px[1])
+    gap = np.isnan(lon)
+    keep = np.ones(len(lon), dtype=bool)
+    keep[1:] = (ix[1:] != ix[:-1]) | (iy[1:] != iy[:-1])
+    keep |= gap
+    keep[1:] |= gap[:-1]  # first vertex of a piece
+    keep[:-1] |= gap[1:]  # last vertex of a piece
+    keep[-1] = True
+    return lon[keep], lat[keep]
 
 
 @dataclass(frozen=True)
@@ -82,47 +107,115 @@ def window_draw_data(
     return replace(out, name=data.name)
 
 
-class TimeOverlay:
-    """The markers at ``t`` (one scatter) and the trails (one curve) on a MapCanvas."""
+@dataclass(frozen=True)
+class Frame:
+    """What one time step draws: the tracks alive at ``t``, their positions, the trail."""
 
-    def __init__(self, canvas: pg.PlotWidget) -> None:
+    t: float
+    tracks: np.ndarray
+    lon: np.ndarray
+    lat: np.ndarray
+    trail_lon: np.ndarray
+    trail_lat: np.ndarray
+
+
+def frame_job(index: TimeIndex, t: float, trail_s: float, px: tuple[float, float]) -> Frame:
+    """Positions at ``t`` and the trails thinned to the pixel ``px`` (pure; a worker)."""
+    tracks, lon, lat = index.positions_at(t)
+    tl, ta = thin_to_pixels(*index.trail(t, trail_s), px)
+    return Frame(float(t), tracks, lon, lat, tl, ta)
+
+
+def guarded(job):
+    """``job`` returning None instead of raising (the worker would drop the callback,
+    and a waiting overlay or controller would wait for ever)."""
+
+    def run():
+        try:
+            return job()
+        except Exception:  # noqa: BLE001 - a failed frame or cut keeps the old drawing
+            return None
+
+    return run
+
+
+class TimeOverlay(QtCore.QObject):
+    """The markers at ``t`` (one scatter) and the trails (one curve) on a MapCanvas.
+
+    With an ``executor`` (the map's LOD worker protocol) frames are computed in a worker
+    and the latest wanted time wins: a slider dragged fast never queues frames; without
+    one, :meth:`show_at` draws at once. ``drawn(t)`` follows every swapped-in frame.
+    """
+
+    drawn = QtCore.Signal(float)
+
+    def __init__(self, canvas: pg.PlotWidget, executor=None) -> None:
+        super().__init__(canvas)
         self.canvas = canvas
+        self.executor = executor
         self.trail = pg.PlotDataItem(pen=pg.mkPen(TRAIL_COLOR, width=1.5), connect="finite")
         self.trail.setZValue(70)
-        self.markers = pg.ScatterPlotItem(size=7, pen=pg.mkPen("#111", width=1))
+        # One brush for all markers: per-point brushes cost pyqtgraph ~30 µs a point.
+        self.markers = pg.ScatterPlotItem(
+            size=7, pen=pg.mkPen("#111", width=1), brush=pg.mkBrush(MARKER_BRUSH)
+        )
         self.markers.setZValue(71)
         for item in (self.trail, self.markers):
             canvas.addItem(item, ignoreBounds=True)
         self.scene: TimeScene | None = None
-        self._brushes = np.zeros(0, dtype=object)
         self.shown_tracks = np.zeros(0, dtype="int64")
+        self._wanted: tuple | None = None
+        self._running = False
+
+    @property
+    def busy(self) -> bool:
+        return self._running or self._wanted is not None
 
     def set_scene(self, scene: TimeScene | None) -> None:
         self.scene = scene
         if scene is None:
             self.clear()
-            return
-        palette = np.array([pg.mkBrush(c) for c in scene.colors] or [None], dtype=object)
-        self._brushes = palette[scene.color_of_track] if len(scene.colors) else palette[:0]
 
     def clear(self) -> None:
         self.markers.setData([], [])
         self.trail.setData([], [])
         self.shown_tracks = np.zeros(0, dtype="int64")
 
-    def show_at(self, t: float, trail_s: float) -> int:
-        """Draw every track's position at ``t`` (s) and its last ``trail_s`` seconds;
-        returns the number of markers."""
+    def show_at(self, t: float, trail_s: float) -> None:
+        """Draw every track's position at ``t`` (s) and its last ``trail_s`` seconds."""
         if self.scene is None:
             self.clear()
-            return 0
-        ix = self.scene.index
-        tracks, lon, lat = ix.positions_at(t)
-        self.shown_tracks = tracks
-        self.markers.setData(lon, lat, brush=list(self._brushes[tracks]))
-        tl, ta = ix.trail(t, trail_s)
-        self.trail.setData(tl, ta, connect="finite")
-        return len(tracks)
+            return
+        self._wanted = (self.scene.index, float(t), float(trail_s), self.canvas.vb.viewPixelSize())
+        if self.executor is None:
+            self._apply(frame_job(*self._take()))
+        elif not self._running:
+            self._submit()
+
+    def _take(self) -> tuple:
+        wanted, self._wanted = self._wanted, None
+        return wanted
+
+    def _submit(self) -> None:
+        args = self._take()
+        self._running = True
+        self.executor(guarded(lambda: frame_job(*args)), self._done)
+
+    def _done(self, frame: Frame | None) -> None:
+        self._running = False
+        if self._wanted is not None:
+            self._submit()  # a newer time arrived meanwhile: draw that one next
+        if self.scene is not None and frame is not None:
+            self._apply(frame)
+
+    def _apply(self, frame: Frame) -> None:
+        self.shown_tracks = frame.tracks
+        self.markers.setData(frame.lon, frame.lat)
+        width = 1.5 if len(frame.trail_lon) <= WIDE_MAX else 1.0
+        if self.trail.opts["pen"].widthF() != width:
+            self.trail.setPen(pg.mkPen(TRAIL_COLOR, width=width))
+        self.trail.setData(frame.trail_lon, frame.trail_lat, connect="finite")
+        self.drawn.emit(frame.t)
 
     def set_visible(self, on: bool) -> None:
         self.markers.setVisible(on)
@@ -145,7 +238,7 @@ class TimeController(QtCore.QObject):
     def __init__(self, window, panel) -> None:
         super().__init__(window)
         self.window, self.panel = window, panel
-        self.overlay = TimeOverlay(window.canvas)
+        self.overlay = TimeOverlay(window.canvas, window.lod_worker)
         self._gen = 0
         self._filtered: dict[str, tuple] = {}  # layer id -> (window, geometry it was cut from)
         self._pending = 0
@@ -162,7 +255,7 @@ class TimeController(QtCore.QObject):
     @property
     def busy(self) -> bool:
         """A rebuild or a window cut is waiting or running."""
-        return self._timer.isActive() or self._pending > 0
+        return self._timer.isActive() or self._pending > 0 or self.overlay.busy
 
     def _originals(self) -> dict[str, tuple[DrawData, object]]:
         """Visible layers: (their full draw data, the prepared view it comes from)."""
@@ -191,9 +284,10 @@ class TimeController(QtCore.QObject):
 
         def finish(result) -> None:
             self._pending -= 1
-            done(result)
+            if result is not None:
+                done(result)
 
-        self.window.lod_worker(job, finish)
+        self.window.lod_worker(guarded(job), finish)
 
     def _scene_done(self, gen: int, scene: TimeScene) -> None:
         if gen != self._gen:
