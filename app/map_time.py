@@ -20,7 +20,7 @@ from PySide6 import QtCore
 from wakeline.app.map_draw import DrawData, LayerGeometry, prepare_layer
 from wakeline.core.timeline import TimeIndex, build_index, window_rows
 
-TRAIL_COLOR = "#303030"
+TRAIL_COLOR = "#202020"
 MARKER_BRUSH = "#ffcc00"
 #: Trails wider than 1 px only up to this many vertices: Qt's raster engine draws a wide
 #: (or translucent) pen several times slower (see map_canvas).
@@ -157,7 +157,7 @@ class TimeOverlay(QtCore.QObject):
         self.trail.setZValue(70)
         # One brush for all markers: per-point brushes cost pyqtgraph ~30 µs a point.
         self.markers = pg.ScatterPlotItem(
-            size=7, pen=pg.mkPen("#111", width=1), brush=pg.mkBrush(MARKER_BRUSH)
+            size=10, pen=pg.mkPen("#111", width=1.2), brush=pg.mkBrush(MARKER_BRUSH)
         )
         self.markers.setZValue(71)
         for item in (self.trail, self.markers):
@@ -211,7 +211,7 @@ class TimeOverlay(QtCore.QObject):
     def _apply(self, frame: Frame) -> None:
         self.shown_tracks = frame.tracks
         self.markers.setData(frame.lon, frame.lat)
-        width = 1.5 if len(frame.trail_lon) <= WIDE_MAX else 1.0
+        width = 3.0 if len(frame.trail_lon) <= WIDE_MAX else 1.0
         if self.trail.opts["pen"].widthF() != width:
             self.trail.setPen(pg.mkPen(TRAIL_COLOR, width=width))
         self.trail.setData(frame.trail_lon, frame.trail_lat, connect="finite")
