@@ -25,6 +25,8 @@ MARKER_BRUSH = "#ffcc00"
 #: Trails wider than 1 px only up to this many vertices: Qt's raster engine draws a wide
 #: (or translucent) pen several times slower (see map_canvas).
 WIDE_MAX = 20_000
+#: Beyond this many markers they are drawn smaller (a busy harbour stays readable).
+MANY_MARKERS = 500
 
 
 def thin_to_pixels(
@@ -210,6 +212,9 @@ class TimeOverlay(QtCore.QObject):
 
     def _apply(self, frame: Frame) -> None:
         self.shown_tracks = frame.tracks
+        size = 10 if len(frame.tracks) <= MANY_MARKERS else 6
+        if self.markers.opts["size"] != size:
+            self.markers.setSize(size)
         self.markers.setData(frame.lon, frame.lat)
         width = 3.0 if len(frame.trail_lon) <= WIDE_MAX else 1.0
         if self.trail.opts["pen"].widthF() != width:
