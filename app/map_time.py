@@ -313,6 +313,8 @@ class TimeController(QtCore.QObject):
     def _window_changed(self, window) -> None:
         self.window.batch_model.set_time_window(window)
         self._apply_window(self._originals())
+        if not self._pending:
+            self.window_applied.emit()
 
     def _apply_window(self, originals: dict[str, tuple[DrawData, object]]) -> None:
         """Cut every visible layer to the panel's window (or restore it) in a worker.
@@ -335,6 +337,11 @@ class TimeController(QtCore.QObject):
                 and (old["shown"] is None or old["shown"] is shown)
             ):
                 continue  # cut (or being cut) for this window already
+            if win is None:  # back to the full layer: its prepared data, LOD in a worker
+                self._filtered.pop(lid, None)
+                canvas.set_draw_data(data)
+                canvas.refresh_lod([lid])
+                continue
             state = {"win": win, "src": source, "shown": None}
             self._filtered[lid] = state
 
@@ -343,8 +350,6 @@ class TimeController(QtCore.QObject):
                     return  # a newer window or layer meanwhile
                 canvas.set_draw_data(result)
                 state["shown"] = result.geometry
-                if state["win"] is None:
-                    self._filtered.pop(lid, None)
                 if not self._pending:
                     self.window_applied.emit()
 
