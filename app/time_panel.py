@@ -57,7 +57,10 @@ class TimePanel(QtWidgets.QWidget):
         self.slider.setRange(0, SLIDER_STEPS)
         self.slider.valueChanged.connect(self._slider_moved)
         self.time_label = QtWidgets.QLabel("—")
-        self.time_label.setMinimumWidth(190)
+        # Fixed widths: a text that grows must never re-lay out the window (a resized map
+        # redoes its level of detail and repaints a million points).
+        wide = self.fontMetrics().horizontalAdvance("2024-01-01 00:00:00.000 UTC  ")
+        self.time_label.setFixedWidth(wide)
         self.speed = self._spin("speed", 0)
         self.trail = self._spin("trail_min", 1)
         self.step_size = self._spin("step_s", 1)
@@ -92,10 +95,11 @@ class TimePanel(QtWidgets.QWidget):
             self.window_button,
             self.from_button,
             self.to_button,
-            self.window_label,
         ):
             row2.addWidget(w)
-        row2.addStretch(1)
+        ignored = QtWidgets.QSizePolicy.Policy.Ignored
+        self.window_label.setSizePolicy(ignored, QtWidgets.QSizePolicy.Policy.Preferred)
+        row2.addWidget(self.window_label, 1)
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(4, 2, 4, 2)
         lay.setSpacing(2)
