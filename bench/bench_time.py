@@ -42,7 +42,9 @@ def measure(name: str, action, window, results: dict) -> None:
         wait_time(window)
         settle(300)
     results[name] = probe.block_ms
-    print(f"{name:<34} longest block {probe.block_ms:7.0f} ms   ({time.perf_counter() - t0:5.1f} s)")
+    print(
+        f"{name:<34} longest block {probe.block_ms:7.0f} ms   ({time.perf_counter() - t0:5.1f} s)"
+    )
 
 
 def main() -> int:
