@@ -29,6 +29,7 @@ from wakeline.app.models import BatchTableModel, batch_summary
 from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
 from wakeline.app.review_dock import ReviewDock
+from wakeline.app.time_panel import install_time
 from wakeline.app.worker import JobRunner
 from wakeline.core.session import Layer, Session
 from wakeline.resources import coastline_path
@@ -87,6 +88,7 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self.canvas.cursorMoved.connect(self._show_cursor)
         self.canvas.trackClicked.connect(self._track_clicked)
         self.canvas.pointHovered.connect(self._show_hover)
+        self.time_controller = install_time(self)  # slider under the map: self.time_panel
 
         self.layer_list = QtWidgets.QListWidget()
         self.layer_list.itemChanged.connect(self._layer_item_changed)

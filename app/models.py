@@ -4,6 +4,7 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtCore
 
+from wakeline.core.timeline import overlapping
 from wakeline.core.tracks import track_summary
 
 
@@ -81,6 +82,17 @@ def display_text(df: pd.DataFrame) -> dict[str, np.ndarray]:
     return out
 
 
+def track_span_s(df: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """First and last time (s since 1970) of every row of a batch summary."""
+    if not len(df) or "start" not in df.columns:
+        return np.zeros(len(df)), np.zeros(len(df))
+    epoch = pd.Timestamp("1970-01-01", tz="UTC")
+    return tuple(
+        (pd.to_datetime(df[k], utc=True) - epoch).dt.total_seconds().to_numpy(dtype="float64")
+        for k in ("start", "end")
+    )
+
+
 class BatchTableModel(QtCore.QAbstractTableModel):
     """The batch table over :func:`batch_summary`, with sorting and a text filter done by
     numpy over whole columns (no per-cell Python calls while sorting or filtering): the
@@ -105,6 +117,7 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         super().__init__(parent)
         self._titles = [t for _, t in self.COLUMNS]
         self._filter = ""
+        self._window: tuple[float, float] | None = None
         self._sort: tuple[int, QtCore.Qt.SortOrder] | None = None
         self.set_summary(
             batch_summary(pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"]))
@@ -127,6 +140,7 @@ class BatchTableModel(QtCore.QAbstractTableModel):
             (s, b): k
             for k, (s, b) in enumerate(zip(self._text["sensor"], self._text["batch"], strict=True))
         }
+        self._span_s = track_span_s(self._df)
         self._order = self._visible_rows()
         self.endResetModel()
 
@@ -153,6 +167,9 @@ class BatchTableModel(QtCore.QAbstractTableModel):
             for col in self._text.values():
                 hit |= np.char.find(np.char.lower(col.astype(str)), needle) >= 0
             rows = rows[hit[rows]]
+        if self._window is not None and n:
+            t0, t1 = self._span_s
+            rows = rows[overlapping(t0[rows], t1[rows], *self._window)]
         return rows
 
     def sort(self, column: int, order=QtCore.Qt.SortOrder.AscendingOrder) -> None:
@@ -167,6 +184,17 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         self._filter = text.strip()
         self._order = self._visible_rows()
         self.endResetModel()
+
+    def set_time_window(self, window: tuple[float, float] | None) -> None:
+        """Show only tracks whose time span overlaps ``window`` = (from, to) in seconds
+        since 1970 (None: no time filter)."""
+        self.beginResetModel()
+        self._window = None if window is None else (float(window[0]), float(window[1]))
+        self._order = self._visible_rows()
+        self.endResetModel()
+
+    def time_window(self) -> tuple[float, float] | None:
+        return self._window
 
     def key_of_row(self, row: int) -> tuple[str, str]:
         """(sensor, batch) of visible row ``row``."""

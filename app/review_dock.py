@@ -92,9 +92,9 @@ class ReviewDock(QtCore.QObject):
         legend = self.before.legend  # no legend column: the narrow map keeps its width
         legend.updateSize = lambda: (legend.setMaximumWidth(0), legend.setVisible(False))
         self.split = QtWidgets.QSplitter()
-        w.takeCentralWidget()
+        central = w.takeCentralWidget()  # the map, or the map with the time slider under it
         self.split.addWidget(self.before)
-        self.split.addWidget(w.canvas)
+        self.split.addWidget(central)
         w.setCentralWidget(self.split)
         self.before.hide()
         self._linking = False

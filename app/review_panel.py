@@ -9,6 +9,7 @@ decision goes through a :class:`~wakeline.app.review_undo.ReviewController`.
 import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app import review_text as T
 from wakeline.app.review_undo import ReviewController
 
 COLUMNS = (
@@ -67,7 +68,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
             role == QtCore.Qt.ItemDataRole.DisplayRole
             and orientation == QtCore.Qt.Orientation.Horizontal
         ):
-            return COLUMNS[section][1]
+            return T.column_titles()[COLUMNS[section][0]]
         return None
 
     def value(self, row: int, name: str):
@@ -81,6 +82,8 @@ class ProposalModel(QtCore.QAbstractTableModel):
         name = COLUMNS[index.column()][0]
         v = self.value(index.row(), name)
         if role == QtCore.Qt.ItemDataRole.DisplayRole:
+            if name == "status":
+                return T.status_name(v)
             if isinstance(v, float | np.floating):
                 return "" if np.isnan(v) else f"{v:.3g}" if abs(v) < 10 else f"{v:.0f}"
             return str(v)
@@ -92,7 +95,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
             color = _STATUS_COLORS.get(str(self.controller.state.status[index.row()]))
             return QtGui.QBrush(QtGui.QColor(color)) if color else None
         if role == QtCore.Qt.ItemDataRole.ToolTipRole and name == "margin":
-            return "runner-up (or the gate) cost minus this cost: small = uncertain"
+            return T.margin_tip()
         return None
 
 
@@ -158,12 +161,12 @@ class ReviewPanel(QtWidgets.QWidget):
         self.view.selectionModel().currentRowChanged.connect(self._row_changed)
 
         self.status_box = QtWidgets.QComboBox()
-        self.status_box.addItems(["all", "pending", "accepted", "rejected", "split"])
+        self.status_box.addItems(T.status_filter_items())
         sensors = sorted(set(controller.state.tracks["sensor"].astype(str)))
         self.sensor_box = QtWidgets.QComboBox()
-        self.sensor_box.addItems(["all sensors", *sensors])
+        self.sensor_box.addItems([T.all_sensors(), *sensors])
         self.sort_box = QtWidgets.QComboBox()
-        self.sort_box.addItems(["least margin first", "highest cost first", "id"])
+        self.sort_box.addItems(T.sort_items())
         for box in (self.status_box, self.sensor_box):
             box.currentIndexChanged.connect(self._filter_changed)
         self.sort_box.currentIndexChanged.connect(self._sort_changed)
@@ -203,33 +206,26 @@ class ReviewPanel(QtWidgets.QWidget):
             a.triggered.connect(slot)
             return a
 
-        self.act_next = act(
-            self.tr("Next proposal"), "J", self.next, self.tr("next proposal in the queue")
-        )
-        self.act_prev = act(
-            self.tr("Previous proposal"), "K", self.previous, self.tr("previous proposal")
-        )
-        self.act_accept = act(
-            self.tr("Accept"), "A", self.accept, self.tr("accept: the two tracks are one ship")
-        )
-        self.act_reject = act(
-            self.tr("Reject"),
-            "R",
+        texts = self._action_texts()
+        keys = ("J", "K", "A", "R", "S", "Shift+S", "M")
+        slots = (
+            self.next,
+            self.previous,
+            self.accept,
             self.reject,
-            self.tr("reject: not one ship; never proposed again"),
-        )
-        self.act_split = act(
-            self.tr("Split track"), "S", self.split, self.tr("track B leaves its target")
-        )
-        self.act_split_target = act(
-            self.tr("Split target"),
-            "Shift+S",
+            self.split,
             self.split_target,
-            self.tr("the target falls back into its tracks"),
+            self.merge,
         )
-        self.act_merge = act(
-            self.tr("Merge"), "M", self.merge, self.tr("merge the tracks of the selected rows")
-        )
+        (
+            self.act_next,
+            self.act_prev,
+            self.act_accept,
+            self.act_reject,
+            self.act_split,
+            self.act_split_target,
+            self.act_merge,
+        ) = (act(t, k, f, tip) for (t, tip), k, f in zip(texts, keys, slots, strict=True))
         self.act_undo = self.controller.stack.createUndoAction(self, self.tr("Undo"))
         self.act_undo.setShortcut(QtGui.QKeySequence.StandardKey.Undo)
         self.act_redo = self.controller.stack.createRedoAction(self, self.tr("Redo"))
@@ -246,6 +242,19 @@ class ReviewPanel(QtWidgets.QWidget):
             self.act_merge,
             self.act_undo,
             self.act_redo,
+        ]
+
+    def _action_texts(self) -> list[tuple[str, str]]:
+        """(text, tooltip) of next, previous, accept, reject, split, split target, merge."""
+        tr = self.tr
+        return [
+            (tr("Next proposal"), tr("next proposal in the queue")),
+            (tr("Previous proposal"), tr("previous proposal")),
+            (tr("Accept"), tr("accept: the two tracks are one ship")),
+            (tr("Reject"), tr("reject: not one ship; never proposed again")),
+            (tr("Split track"), tr("track B leaves its target")),
+            (tr("Split target"), tr("the target falls back into its tracks")),
+            (tr("Merge"), tr("merge the tracks of the selected rows")),
         ]
 
     def current(self) -> str:
@@ -338,11 +347,9 @@ class ReviewPanel(QtWidgets.QWidget):
     # -- view state ---------------------------------------------------------------------
 
     def _filter_changed(self) -> None:
-        status = self.status_box.currentText()
-        sensor = self.sensor_box.currentText()
-        self.proxy.set_filter(
-            "" if status == "all" else status, "" if self.sensor_box.currentIndex() == 0 else sensor
-        )
+        status = T.STATUS_FILTERS[max(self.status_box.currentIndex(), 0)]
+        sensor = self.sensor_box.currentText() if self.sensor_box.currentIndex() > 0 else ""
+        self.proxy.set_filter(status, sensor)
         if self.proxy.rowCount() and not self.view.currentIndex().isValid():
             self._step(0)
 
@@ -376,40 +383,31 @@ class ReviewPanel(QtWidgets.QWidget):
         st = self.controller.state.status
         vals, n = np.unique(st.astype(str), return_counts=True) if len(st) else ([], [])
         c = dict(zip(vals, n, strict=True))
-        self.counts.setText(
-            f"{len(st)} proposals: {c.get('pending', 0)} pending, {c.get('accepted', 0)} accepted, "
-            f"{c.get('rejected', 0)} rejected, {c.get('split', 0)} split"
-        )
+        self.counts.setText(T.counts_text(len(st), c))
 
     def _show_evidence(self, pid: str) -> None:
         if not pid:
             self.evidence.setText("")
             return
         st = self.controller.state
-        p = st.proposals.iloc[self.model.row_of[pid]]
-        unit = "m" if p["kind"] == "fuse" else "(scaled)"
-        parts = []
-        for name, label, fmt in (
-            ("gap_s", "gap", "{:.0f} s"),
-            ("distance_m", "distance", "{:.0f} m"),
-            ("miss_m", "position misfit", "{:.0f} m"),
-            ("dcourse_deg", "Δcourse", "{:.1f}°"),
-            ("dspeed_kn", "Δspeed", "{:.1f} kn"),
-            ("overlap_s", "overlap", "{:.0f} s"),
+        self.evidence.setText(T.evidence_text(st, pid, st.proposals.iloc[self.model.row_of[pid]]))
+
+    def changeEvent(self, event) -> None:  # noqa: N802 - Qt API
+        if event.type() == QtCore.QEvent.Type.LanguageChange:
+            self.retranslate()
+        super().changeEvent(event)
+
+    def retranslate(self) -> None:
+        """Texts again in the current language (filters, actions, counts, evidence)."""
+        for box, items in (
+            (self.status_box, T.status_filter_items()),
+            (self.sensor_box, [T.all_sensors()]),
+            (self.sort_box, T.sort_items()),
         ):
-            v = p[name]
-            if v == v and v is not None:  # not NaN
-                parts.append(f"{label} {fmt.format(float(v))}")
-        rival = (
-            f"runner-up {p['runner_up']} at {float(p['runner_up_cost']):.3g}"
-            if p["runner_up"]
-            else "no runner-up (the alternative is leaving both unmatched)"
-        )
-        target = st.target(p["track_a"])
-        self.evidence.setText(
-            f"<b>{pid}</b> ({st.status_of(pid)}) {p['track_a']} → {p['track_b']}, {p['method']}: "
-            f"cost {float(p['cost']):.3g} {unit} (gate {float(p['gate']):.3g}); "
-            + ", ".join(parts)
-            + f"; {rival}; margin {float(p['margin']):.3g}. Target {target}: "
-            + " + ".join(st.members(target))
-        )
+            for k, text in enumerate(items):
+                box.setItemText(k, text)
+        for action, (text, tip) in zip(self.actions, self._action_texts(), strict=False):
+            action.setText(text)
+            action.setToolTip(tip)
+        self.model.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(COLUMNS) - 1)
+        self._after_change([])

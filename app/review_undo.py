@@ -12,12 +12,29 @@ from wakeline.core import review as R
 from wakeline.core.review_store import ReviewStore
 
 
+def action_name(action: str) -> str:
+    """A decision's name in the current language (the Undo / Redo menu texts)."""
+    names = {
+        "accept": QtCore.QCoreApplication.translate("ReviewCommand", "accept"),
+        "reject": QtCore.QCoreApplication.translate("ReviewCommand", "reject"),
+        "reset": QtCore.QCoreApplication.translate("ReviewCommand", "reset"),
+        "merge": QtCore.QCoreApplication.translate("ReviewCommand", "merge"),
+        "split track": QtCore.QCoreApplication.translate("ReviewCommand", "split track"),
+        "split target": QtCore.QCoreApplication.translate("ReviewCommand", "split target"),
+    }
+    return names.get(action, action)
+
+
 class ReviewCommand(QtGui.QUndoCommand):
     """One decision on the undo stack."""
 
     def __init__(self, controller: "ReviewController", change: R.Change) -> None:
         tracks = ", ".join(change.tracks[:3]) + ("…" if len(change.tracks) > 3 else "")
-        super().__init__(f"{change.action} {change.proposal or tracks}".strip())
+        super().__init__(
+            QtCore.QCoreApplication.translate("ReviewCommand", "{0} {1}")
+            .format(action_name(change.action), change.proposal or tracks)
+            .strip()
+        )
         self.controller = controller
         self.change = change
 

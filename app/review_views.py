@@ -140,7 +140,7 @@ class GanttView(pg.PlotWidget):
     def __init__(self, state: ReviewState, parent=None) -> None:
         super().__init__(parent, background="w")
         self.state = state
-        self.setLabel("bottom", "time", units="min")
+        self.setLabel("bottom", self.tr("time"), units=self.tr("min"))
         self.getPlotItem().hideAxis("left")
         self.getPlotItem().setMenuEnabled(False)
         self.t_ref = float(state.tracks["t0"].min()) if len(state.tracks) else 0.0

@@ -420,4 +420,343 @@
         <translation>打开航迹文件</translation>
     </message>
 </context>
+<context>
+    <name>TimePanel</name>
+    <message>
+        <source>From here</source>
+        <translation>从此处开始</translation>
+    </message>
+    <message>
+        <source>Play / pause</source>
+        <translation>播放 / 暂停</translation>
+    </message>
+    <message>
+        <source>Positions</source>
+        <translation>显示位置</translation>
+    </message>
+    <message>
+        <source>Scene seconds per second of playback</source>
+        <translation>回放时每秒对应的场景秒数</translation>
+    </message>
+    <message>
+        <source>Show each track's position at the slider's time</source>
+        <translation>显示各航迹在滑块时刻的位置</translation>
+    </message>
+    <message>
+        <source>Show only points inside [from, to] on the map, and tracks overlapping it in the table</source>
+        <translation>地图只显示 [起, 止] 时间窗内的点，批次表只列出与其重叠的航迹</translation>
+    </message>
+    <message>
+        <source>Speed</source>
+        <translation>速度</translation>
+    </message>
+    <message>
+        <source>Step</source>
+        <translation>步长</translation>
+    </message>
+    <message>
+        <source>Step back</source>
+        <translation>后退一步</translation>
+    </message>
+    <message>
+        <source>Step forward</source>
+        <translation>前进一步</translation>
+    </message>
+    <message>
+        <source>The window ends at the slider's time</source>
+        <translation>时间窗在滑块时刻结束</translation>
+    </message>
+    <message>
+        <source>The window starts at the slider's time</source>
+        <translation>时间窗从滑块时刻开始</translation>
+    </message>
+    <message>
+        <source>Time moved by one step</source>
+        <translation>每步移动的时间</translation>
+    </message>
+    <message>
+        <source>Time window</source>
+        <translation>时间窗</translation>
+    </message>
+    <message>
+        <source>Time: every visible track is shown at its position then</source>
+        <translation>时间：每条可见航迹显示其在该时刻的位置</translation>
+    </message>
+    <message>
+        <source>To here</source>
+        <translation>到此处结束</translation>
+    </message>
+    <message>
+        <source>Trail</source>
+        <translation>尾迹</translation>
+    </message>
+    <message>
+        <source>Trail drawn behind each position (0: markers only)</source>
+        <translation>每个位置后绘制的尾迹长度（0：只显示标记）</translation>
+    </message>
+    <message>
+        <source>min</source>
+        <translation>分钟</translation>
+    </message>
+    <message>
+        <source>s</source>
+        <translation>秒</translation>
+    </message>
+    <message>
+        <source>{0} to {1}</source>
+        <translation>{0} 至 {1}</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewPanel</name>
+    <message>
+        <source>(scaled)</source>
+        <translation>（归一化）</translation>
+    </message>
+    <message>
+        <source>&lt;b&gt;{0}&lt;/b&gt; ({1}) {2} → {3}, {4}: cost {5:.3g} {6} (gate {7:.3g})</source>
+        <translation>&lt;b&gt;{0}&lt;/b&gt;（{1}）{2} → {3}，{4}：代价 {5:.3g} {6}（门限 {7:.3g}）</translation>
+    </message>
+    <message>
+        <source>Accept</source>
+        <translation>接受</translation>
+    </message>
+    <message>
+        <source>Merge</source>
+        <translation>合并</translation>
+    </message>
+    <message>
+        <source>Next proposal</source>
+        <translation>下一条建议</translation>
+    </message>
+    <message>
+        <source>Previous proposal</source>
+        <translation>上一条建议</translation>
+    </message>
+    <message>
+        <source>Redo</source>
+        <translation>重做</translation>
+    </message>
+    <message>
+        <source>Reject</source>
+        <translation>拒绝</translation>
+    </message>
+    <message>
+        <source>Split target</source>
+        <translation>拆分目标</translation>
+    </message>
+    <message>
+        <source>Split track</source>
+        <translation>拆出航迹</translation>
+    </message>
+    <message>
+        <source>Undo</source>
+        <translation>撤销</translation>
+    </message>
+    <message>
+        <source>accept: the two tracks are one ship</source>
+        <translation>接受：两条航迹属于同一艘船</translation>
+    </message>
+    <message>
+        <source>accepted</source>
+        <translation>已接受</translation>
+    </message>
+    <message>
+        <source>all</source>
+        <translation>全部</translation>
+    </message>
+    <message>
+        <source>all sensors</source>
+        <translation>全部传感器</translation>
+    </message>
+    <message>
+        <source>cost</source>
+        <translation>代价</translation>
+    </message>
+    <message>
+        <source>distance m</source>
+        <translation>距离 m</translation>
+    </message>
+    <message>
+        <source>distance {0:.0f} m</source>
+        <translation>距离 {0:.0f} m</translation>
+    </message>
+    <message>
+        <source>gap s</source>
+        <translation>间隔 s</translation>
+    </message>
+    <message>
+        <source>gap {0:.0f} s</source>
+        <translation>间隔 {0:.0f} s</translation>
+    </message>
+    <message>
+        <source>highest cost first</source>
+        <translation>代价最高优先</translation>
+    </message>
+    <message>
+        <source>id</source>
+        <translation>编号</translation>
+    </message>
+    <message>
+        <source>least margin first</source>
+        <translation>裕度最小优先</translation>
+    </message>
+    <message>
+        <source>m</source>
+        <translation>m</translation>
+    </message>
+    <message>
+        <source>margin</source>
+        <translation>裕度</translation>
+    </message>
+    <message>
+        <source>margin {0:.3g}. Target {1}: {2}</source>
+        <translation>裕度 {0:.3g}。目标 {1}：{2}</translation>
+    </message>
+    <message>
+        <source>merge the tracks of the selected rows</source>
+        <translation>合并所选行的航迹</translation>
+    </message>
+    <message>
+        <source>method</source>
+        <translation>方法</translation>
+    </message>
+    <message>
+        <source>next proposal in the queue</source>
+        <translation>队列中的下一条建议</translation>
+    </message>
+    <message>
+        <source>no runner-up (the alternative is leaving both unmatched)</source>
+        <translation>无次优候选（另一选择是两者都不关联）</translation>
+    </message>
+    <message>
+        <source>overlap {0:.0f} s</source>
+        <translation>重叠 {0:.0f} s</translation>
+    </message>
+    <message>
+        <source>pending</source>
+        <translation>待审</translation>
+    </message>
+    <message>
+        <source>position misfit {0:.0f} m</source>
+        <translation>位置偏差 {0:.0f} m</translation>
+    </message>
+    <message>
+        <source>previous proposal</source>
+        <translation>上一条建议</translation>
+    </message>
+    <message>
+        <source>proposal</source>
+        <translation>建议</translation>
+    </message>
+    <message>
+        <source>reject: not one ship; never proposed again</source>
+        <translation>拒绝：不是同一艘船；不再提出</translation>
+    </message>
+    <message>
+        <source>rejected</source>
+        <translation>已拒绝</translation>
+    </message>
+    <message>
+        <source>runner-up</source>
+        <translation>次优候选</translation>
+    </message>
+    <message>
+        <source>runner-up (or the gate) cost minus this cost: small = uncertain</source>
+        <translation>次优候选（或门限）代价减去本代价：越小越不确定</translation>
+    </message>
+    <message>
+        <source>runner-up {0} at {1:.3g}</source>
+        <translation>次优候选 {0}，代价 {1:.3g}</translation>
+    </message>
+    <message>
+        <source>split</source>
+        <translation>已拆分</translation>
+    </message>
+    <message>
+        <source>status</source>
+        <translation>状态</translation>
+    </message>
+    <message>
+        <source>the target falls back into its tracks</source>
+        <translation>目标拆回各条航迹</translation>
+    </message>
+    <message>
+        <source>track A</source>
+        <translation>航迹 A</translation>
+    </message>
+    <message>
+        <source>track B</source>
+        <translation>航迹 B</translation>
+    </message>
+    <message>
+        <source>track B leaves its target</source>
+        <translation>航迹 B 离开其目标</translation>
+    </message>
+    <message>
+        <source>{0} proposals: {1} pending, {2} accepted, {3} rejected, {4} split</source>
+        <translation>{0} 条建议：{1} 待审，{2} 已接受，{3} 已拒绝，{4} 已拆分</translation>
+    </message>
+    <message>
+        <source>Δcourse {0:.1f}°</source>
+        <translation>航向差 {0:.1f}°</translation>
+    </message>
+    <message>
+        <source>Δspeed {0:.1f} kn</source>
+        <translation>航速差 {0:.1f} kn</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewCommand</name>
+    <message>
+        <source>accept</source>
+        <translation>接受</translation>
+    </message>
+    <message>
+        <source>merge</source>
+        <translation>合并</translation>
+    </message>
+    <message>
+        <source>reject</source>
+        <translation>拒绝</translation>
+    </message>
+    <message>
+        <source>reset</source>
+        <translation>重置</translation>
+    </message>
+    <message>
+        <source>split target</source>
+        <translation>拆分目标</translation>
+    </message>
+    <message>
+        <source>split track</source>
+        <translation>拆出航迹</translation>
+    </message>
+    <message>
+        <source>{0} {1}</source>
+        <translation>{0} {1}</translation>
+    </message>
+</context>
+<context>
+    <name>GanttView</name>
+    <message>
+        <source>min</source>
+        <translation>分钟</translation>
+    </message>
+    <message>
+        <source>time</source>
+        <translation>时间</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewWorkspace</name>
+    <message>
+        <source>latitude</source>
+        <translation>纬度</translation>
+    </message>
+    <message>
+        <source>longitude</source>
+        <translation>经度</translation>
+    </message>
+</context>
 </TS>

@@ -1,0 +1,356 @@
+"""The time dimension on the map (issue 13): every visible track's position at the time
+slider's ``t`` (one scatter item) with a trail of the last minutes (one NaN-separated
+curve), and the time window that hides points outside [from, to].
+
+The pure functions here run in a worker: :func:`index_job` builds the
+:class:`~wakeline.core.timeline.TimeIndex` over the visible layers once, and
+:func:`window_draw_data` cuts a layer's geometry to the window and redoes its level of
+detail. A frame on the GUI thread is two ``searchsorted`` calls over the index
+(:meth:`TimeIndex.positions_at`, :meth:`TimeIndex.trail`) and two ``setData``.
+:class:`TimeController` joins the main window, the :class:`~wakeline.app.time_panel.TimePanel`
+and the map.
+"""
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6 import QtCore
+
+from wakeline.app.map_draw import DrawData, LayerGeometry, prepare_layer
+from wakeline.core.timeline import TimeIndex, build_index, window_rows
+
+TRAIL_COLOR = "#202020"
+MARKER_BRUSH = "#ffcc00"
+#: Trails wider than 1 px only up to this many vertices: Qt's raster engine draws a wide
+#: (or translucent) pen several times slower (see map_canvas).
+WIDE_MAX = 20_000
+#: Beyond this many markers they are drawn smaller (a busy harbour stays readable).
+MANY_MARKERS = 500
+
+
+def thin_to_pixels(
+    lon: np.ndarray, lat: np.ndarray, px: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray]:
+    """A NaN-separated curve without the vertices that fall in the pixel of the vertex
+    before them (``px`` = pixel size in degrees); the first and last vertex of every
+    piece are kept, so no piece gets shorter than a pixel."""
+    if len(lon) < 3 or not (px[0] > 0 and px[1] > 0):
+        return lon, lat
+    with np.errstate(invalid="ignore"):
+        ix = np.floor(lon / px[0])
+        iy = np.floor(lat / px[1])
+    gap = np.isnan(lon)
+    keep = np.ones(len(lon), dtype=bool)
+    keep[1:] = (ix[1:] != ix[:-1]) | (iy[1:] != iy[:-1])
+    keep |= gap
+    keep[1:] |= gap[:-1]  # first vertex of a piece
+    keep[:-1] |= gap[1:]  # last vertex of a piece
+    keep[-1] = True
+    return lon[keep], lat[keep]
+
+
+@dataclass(frozen=True)
+class TimeScene:
+    """What the overlay draws from: the index, a colour code per track and the colours,
+    and whether times are elapsed from a scene start (MTAD) rather than dates."""
+
+    index: TimeIndex
+    color_of_track: np.ndarray
+    colors: tuple[str, ...]
+    relative: bool
+
+
+def index_job(geometries: list[LayerGeometry]) -> TimeScene:
+    """The time index over the tracks of ``geometries`` (pure; for a worker)."""
+    colors: list[str] = []
+    codes = []
+    for g in geometries:
+        base = len(colors)
+        colors.extend(g.colors)
+        codes.append(base + np.asarray(g.group, dtype="int64")[np.asarray(g.ends) > g.starts])
+    index = build_index([(g.time_s, g.lon, g.lat, g.starts, g.ends) for g in geometries])
+    relative = bool(geometries) and all(g.relative for g in geometries)
+    code = np.concatenate(codes) if codes else np.zeros(0, dtype="int64")
+    return TimeScene(index, code, tuple(colors), relative)
+
+
+def window_geometry(g: LayerGeometry, t_from: float, t_to: float) -> LayerGeometry:
+    """``g`` with only the points whose time lies in [t_from, t_to] (s); tracks with no
+    such point drop out."""
+    rows, kept, starts, ends = window_rows(g.time_s, g.starts, g.ends, t_from, t_to)
+    return LayerGeometry(
+        lon=g.lon[rows],
+        lat=g.lat[rows],
+        starts=starts,
+        ends=ends,
+        track=np.repeat(np.arange(len(kept)), ends - starts),
+        sensor=g.sensor[kept],
+        batch=g.batch[kept],
+        time_s=g.time_s[rows],
+        speed_kn=g.speed_kn[rows],
+        group=g.group[kept],
+        labels=g.labels,
+        colors=g.colors,
+        relative=g.relative,
+    )
+
+
+def window_draw_data(
+    data: DrawData,
+    window: tuple[float, float] | None,
+    view: tuple[float, float, float, float] | None,
+    size_px: tuple[int, int] | None,
+) -> DrawData:
+    """A layer's draw data cut to ``window`` (None: the whole layer), its level of detail
+    done for ``view`` and its hover index built (pure; for a worker)."""
+    geom = data.geometry if window is None else window_geometry(data.geometry, *window)
+    out = prepare_layer(geom, data.name, style=data.style, view=view, size_px=size_px)
+    return replace(out, name=data.name)
+
+
+@dataclass(frozen=True)
+class Frame:
+    """What one time step draws: the tracks alive at ``t``, their positions, the trail."""
+
+    t: float
+    tracks: np.ndarray
+    lon: np.ndarray
+    lat: np.ndarray
+    trail_lon: np.ndarray
+    trail_lat: np.ndarray
+
+
+def frame_job(index: TimeIndex, t: float, trail_s: float, px: tuple[float, float]) -> Frame:
+    """Positions at ``t`` and the trails thinned to the pixel ``px`` (pure; a worker)."""
+    tracks, lon, lat = index.positions_at(t)
+    tl, ta = thin_to_pixels(*index.trail(t, trail_s), px)
+    return Frame(float(t), tracks, lon, lat, tl, ta)
+
+
+def guarded(job):
+    """``job`` returning None instead of raising (the worker would drop the callback,
+    and a waiting overlay or controller would wait for ever)."""
+
+    def run():
+        try:
+            return job()
+        except Exception:  # noqa: BLE001 - a failed frame or cut keeps the old drawing
+            return None
+
+    return run
+
+
+class TimeOverlay(QtCore.QObject):
+    """The markers at ``t`` (one scatter) and the trails (one curve) on a MapCanvas.
+
+    With an ``executor`` (the map's LOD worker protocol) frames are computed in a worker
+    and the latest wanted time wins: a slider dragged fast never queues frames; without
+    one, :meth:`show_at` draws at once. ``drawn(t)`` follows every swapped-in frame.
+    """
+
+    drawn = QtCore.Signal(float)
+
+    def __init__(self, canvas: pg.PlotWidget, executor=None) -> None:
+        super().__init__(canvas)
+        self.canvas = canvas
+        self.executor = executor
+        self.trail = pg.PlotDataItem(pen=pg.mkPen(TRAIL_COLOR, width=1.5), connect="finite")
+        self.trail.setZValue(70)
+        # One brush for all markers: per-point brushes cost pyqtgraph ~30 µs a point.
+        self.markers = pg.ScatterPlotItem(
+            size=10, pen=pg.mkPen("#111", width=1.2), brush=pg.mkBrush(MARKER_BRUSH)
+        )
+        self.markers.setZValue(71)
+        for item in (self.trail, self.markers):
+            canvas.addItem(item, ignoreBounds=True)
+        self.scene: TimeScene | None = None
+        self.shown_tracks = np.zeros(0, dtype="int64")
+        self._wanted: tuple | None = None
+        self._running = False
+
+    @property
+    def busy(self) -> bool:
+        return self._running or self._wanted is not None
+
+    def set_scene(self, scene: TimeScene | None) -> None:
+        self.scene = scene
+        if scene is None:
+            self.clear()
+
+    def clear(self) -> None:
+        self.markers.setData([], [])
+        self.trail.setData([], [])
+        self.shown_tracks = np.zeros(0, dtype="int64")
+
+    def show_at(self, t: float, trail_s: float) -> None:
+        """Draw every track's position at ``t`` (s) and its last ``trail_s`` seconds."""
+        if self.scene is None:
+            self.clear()
+            return
+        self._wanted = (self.scene.index, float(t), float(trail_s), self.canvas.vb.viewPixelSize())
+        if self.executor is None:
+            self._apply(frame_job(*self._take()))
+        elif not self._running:
+            self._submit()
+
+    def _take(self) -> tuple:
+        wanted, self._wanted = self._wanted, None
+        return wanted
+
+    def _submit(self) -> None:
+        args = self._take()
+        self._running = True
+        self.executor(guarded(lambda: frame_job(*args)), self._done)
+
+    def _done(self, frame: Frame | None) -> None:
+        self._running = False
+        if self._wanted is not None:
+            self._submit()  # a newer time arrived meanwhile: draw that one next
+        if self.scene is not None and frame is not None:
+            self._apply(frame)
+
+    def _apply(self, frame: Frame) -> None:
+        self.shown_tracks = frame.tracks
+        size = 10 if len(frame.tracks) <= MANY_MARKERS else 6
+        if self.markers.opts["size"] != size:
+            self.markers.setSize(size)
+        self.markers.setData(frame.lon, frame.lat)
+        width = 3.0 if len(frame.trail_lon) <= WIDE_MAX else 1.0
+        if self.trail.opts["pen"].widthF() != width:
+            self.trail.setPen(pg.mkPen(TRAIL_COLOR, width=width))
+        self.trail.setData(frame.trail_lon, frame.trail_lat, connect="finite")
+        self.drawn.emit(frame.t)
+
+    def set_visible(self, on: bool) -> None:
+        self.markers.setVisible(on)
+        self.trail.setVisible(on)
+
+
+class TimeController(QtCore.QObject):
+    """Keeps the time panel, the map overlay, the map's window filter and the batch
+    table's time filter in step with the main window's visible layers.
+
+    The index is rebuilt in a worker after the layers change (once their drawing is
+    through); a window change cuts every visible layer in a worker and swaps the results
+    in. ``window`` is the main window (its ``views``, ``session``, ``canvas``,
+    ``batch_model``, ``lod_worker``, ``drawing`` and ``layersChanged``).
+    """
+
+    scene_ready = QtCore.Signal()
+    window_applied = QtCore.Signal()
+
+    def __init__(self, window, panel) -> None:
+        super().__init__(window)
+        self.window, self.panel = window, panel
+        self.overlay = TimeOverlay(window.canvas, window.lod_worker)
+        self._gen = 0
+        self._filtered: dict[str, tuple] = {}  # layer id -> (window, geometry it was cut from)
+        self._pending = 0
+        self._timer = QtCore.QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(50)
+        self._timer.timeout.connect(self._rebuild)
+        window.layersChanged.connect(self._timer.start)
+        panel.time_changed.connect(self._draw)
+        panel.trail_changed.connect(lambda: self._draw(panel.time()))
+        panel.window_changed.connect(self._window_changed)
+        panel.overlay_toggled.connect(self._overlay_toggled)
+
+    @property
+    def busy(self) -> bool:
+        """A rebuild or a window cut is waiting or running."""
+        return self._timer.isActive() or self._pending > 0 or self.overlay.busy
+
+    def _originals(self) -> dict[str, tuple[DrawData, object]]:
+        """Visible layers: (their full draw data, the prepared view it comes from)."""
+        from wakeline.app.layer_view import draw_as
+
+        out = {}
+        for lid, layer in self.window.session.layers.items():
+            view = self.window.views.get(lid)
+            if layer.visible and view is not None and view.draw is not None:
+                out[lid] = (draw_as(view, lid, layer.name), view.draw)
+        return out
+
+    def _rebuild(self) -> None:
+        if self.window.drawing:
+            self._timer.start()
+            return
+        self._gen += 1
+        gen = self._gen
+        originals = self._originals()
+        lines = [d.geometry for d, _ in originals.values() if d.style.width > 0]
+        self._run(lambda: index_job(lines), lambda scene: self._scene_done(gen, scene))
+        self._apply_window(originals)
+
+    def _run(self, job, done) -> None:
+        self._pending += 1
+
+        def finish(result) -> None:
+            self._pending -= 1
+            if result is not None:
+                done(result)
+
+        self.window.lod_worker(guarded(job), finish)
+
+    def _scene_done(self, gen: int, scene: TimeScene) -> None:
+        if gen != self._gen:
+            return
+        self.overlay.set_scene(scene if scene.index.n_tracks else None)
+        self.panel.set_range(scene.index.bounds(), scene.relative)
+        self._draw(self.panel.time())
+        self.scene_ready.emit()
+
+    def _draw(self, t: float) -> None:
+        if self.panel.overlay_on():
+            self.overlay.show_at(t, self.panel.params().trail_min * 60.0)
+
+    def _overlay_toggled(self, on: bool) -> None:
+        self.overlay.set_visible(on)
+        self._draw(self.panel.time())
+
+    def _window_changed(self, window) -> None:
+        self.window.batch_model.set_time_window(window)
+        self._apply_window(self._originals())
+        if not self._pending:
+            self.window_applied.emit()
+
+    def _apply_window(self, originals: dict[str, tuple[DrawData, object]]) -> None:
+        """Cut every visible layer to the panel's window (or restore it) in a worker.
+        A layer is cut again when the window or its data changed, or when the window
+        redrew it from its full data meanwhile."""
+        win = self.panel.time_window()
+        canvas = self.window.canvas
+        view, size = canvas.current_view(), canvas.plot_size_px()
+        for lid, (data, source) in originals.items():
+            old = self._filtered.get(lid)
+            if lid not in canvas.layer_names():
+                continue
+            shown = canvas.draw_data(lid).geometry
+            if old is None and win is None:
+                continue  # never cut: the canvas shows the full layer
+            if (
+                old is not None
+                and old["win"] == win
+                and old["src"] is source
+                and (old["shown"] is None or old["shown"] is shown)
+            ):
+                continue  # cut (or being cut) for this window already
+            if win is None:  # back to the full layer: its prepared data, LOD in a worker
+                self._filtered.pop(lid, None)
+                canvas.set_draw_data(data)
+                canvas.refresh_lod([lid])
+                continue
+            state = {"win": win, "src": source, "shown": None}
+            self._filtered[lid] = state
+
+            def done(result: DrawData, lid=lid, state=state) -> None:
+                if self._filtered.get(lid) is not state or lid not in canvas.layer_names():
+                    return  # a newer window or layer meanwhile
+                canvas.set_draw_data(result)
+                state["shown"] = result.geometry
+                if not self._pending:
+                    self.window_applied.emit()
+
+            self._run(lambda d=data, w=win: window_draw_data(d, w, view, size), done)

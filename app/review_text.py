@@ -1,0 +1,111 @@
+"""The review panel's texts, translated (issue 13): column titles, statuses, filters,
+the counts line and the evidence of the current proposal.
+
+Everything goes through ``QCoreApplication.translate`` in the ``ReviewPanel`` context of
+``resources/translations/wakeline_<locale>.ts``; the texts are made when asked for, so a
+language switch shows at the next redraw.
+"""
+
+import pandas as pd
+from PySide6 import QtCore
+
+TR_CONTEXT = "ReviewPanel"
+#: Filter values of the status box, in its order ("" = all).
+STATUS_FILTERS = ("", "pending", "accepted", "rejected", "split")
+
+
+def tr(text: str) -> str:
+    """``text`` in the current language (context :data:`TR_CONTEXT`)."""
+    return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
+
+
+def column_titles() -> dict[str, str]:
+    return {
+        "proposal": tr("proposal"),
+        "status": tr("status"),
+        "track_a": tr("track A"),
+        "track_b": tr("track B"),
+        "margin": tr("margin"),
+        "cost": tr("cost"),
+        "gap_s": tr("gap s"),
+        "distance_m": tr("distance m"),
+        "runner_up": tr("runner-up"),
+        "method": tr("method"),
+    }
+
+
+def status_names() -> dict[str, str]:
+    return {
+        "pending": tr("pending"),
+        "accepted": tr("accepted"),
+        "rejected": tr("rejected"),
+        "split": tr("split"),
+    }
+
+
+def status_name(status: str) -> str:
+    return status_names().get(status, status)
+
+
+def status_filter_items() -> list[str]:
+    return [tr("all"), *(status_name(s) for s in STATUS_FILTERS[1:])]
+
+
+def all_sensors() -> str:
+    return tr("all sensors")
+
+
+def sort_items() -> list[str]:
+    return [tr("least margin first"), tr("highest cost first"), tr("id")]
+
+
+def margin_tip() -> str:
+    return tr("runner-up (or the gate) cost minus this cost: small = uncertain")
+
+
+def counts_text(total: int, counts: dict) -> str:
+    """ "N proposals: … pending, … accepted, … rejected, … split"."""
+    return tr("{0} proposals: {1} pending, {2} accepted, {3} rejected, {4} split").format(
+        total,
+        counts.get("pending", 0),
+        counts.get("accepted", 0),
+        counts.get("rejected", 0),
+        counts.get("split", 0),
+    )
+
+
+def evidence_text(state, pid: str, p: pd.Series) -> str:
+    """The evidence of proposal ``pid`` (row ``p`` of the proposals) as rich text."""
+    unit = tr("m") if p["kind"] == "fuse" else tr("(scaled)")
+    parts = []
+    for name, label in (
+        ("gap_s", tr("gap {0:.0f} s")),
+        ("distance_m", tr("distance {0:.0f} m")),
+        ("miss_m", tr("position misfit {0:.0f} m")),
+        ("dcourse_deg", tr("Δcourse {0:.1f}°")),
+        ("dspeed_kn", tr("Δspeed {0:.1f} kn")),
+        ("overlap_s", tr("overlap {0:.0f} s")),
+    ):
+        v = p[name]
+        if v == v and v is not None:  # not NaN
+            parts.append(label.format(float(v)))
+    rival = (
+        tr("runner-up {0} at {1:.3g}").format(p["runner_up"], float(p["runner_up_cost"]))
+        if p["runner_up"]
+        else tr("no runner-up (the alternative is leaving both unmatched)")
+    )
+    target = state.target(p["track_a"])
+    head = tr("<b>{0}</b> ({1}) {2} → {3}, {4}: cost {5:.3g} {6} (gate {7:.3g})").format(
+        pid,
+        status_name(state.status_of(pid)),
+        p["track_a"],
+        p["track_b"],
+        p["method"],
+        float(p["cost"]),
+        unit,
+        float(p["gate"]),
+    )
+    tail = tr("margin {0:.3g}. Target {1}: {2}").format(
+        float(p["margin"]), target, " + ".join(state.members(target))
+    )
+    return "; ".join([head, *parts, rival, tail])

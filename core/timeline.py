@@ -1,0 +1,227 @@
+"""The time dimension of the map (issue 13): every track's position at a time ``t`` and
+its trail, and the time-window predicates of the map and the batch table. Pure numpy.
+
+A :class:`TimeIndex` is built once (in a worker) over the visible layers' points, sorted
+per track by time. Each point gets a composite key ``track · span + (time − t_min)`` that
+increases through the whole array, so one :func:`numpy.searchsorted` answers "where is
+``t`` in track k" for every track at once: a frame costs O(tracks · log points), with no
+Python loop per track.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wakeline.core.params import Params, param
+
+
+@dataclass(frozen=True)
+class PlaybackParams(Params):
+    """How the time slider plays the scene (the panel's spin boxes are made from these)."""
+
+    trail_min: float = param(
+        10.0,
+        "min",
+        "trail drawn behind each track's position at t (0 = markers only)",
+        0.0,
+        10080.0,
+    )
+    speed: float = param(
+        60.0, "s/s", "playback speed: scene seconds per wall-clock second (×1 … ×1000)", 1.0, 1000.0
+    )
+    step_s: float = param(60.0, "s", "one step of the step buttons", 0.1, 86400.0)
+    fps: float = param(20.0, "1/s", "frames drawn per second while playing", 1.0, 60.0)
+
+
+def _empty_i() -> np.ndarray:
+    return np.zeros(0, dtype="int64")
+
+
+@dataclass(frozen=True)
+class TimeIndex:
+    """Points of many tracks, each track's rows ``starts[k]:ends[k]`` sorted by time (s).
+
+    ``group`` is an integer per track (the layer / colour it is drawn in).
+    """
+
+    time_s: np.ndarray
+    lon: np.ndarray
+    lat: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+    group: np.ndarray
+    t0: np.ndarray  # per track: first time (s)
+    t1: np.ndarray  # per track: last time (s)
+    key: np.ndarray  # per point: track · span + (time − t_min), increasing
+    t_min: float
+    span: float
+
+    @property
+    def n_tracks(self) -> int:
+        return len(self.starts)
+
+    @property
+    def n_points(self) -> int:
+        return len(self.time_s)
+
+    def bounds(self) -> tuple[float, float] | None:
+        """(first, last) time (s) of all tracks; None when empty."""
+        if not self.n_tracks:
+            return None
+        return float(self.t0.min()), float(self.t1.max())
+
+    # -- positions ---------------------------------------------------------------------
+
+    def _interp(self, tracks: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """lon, lat of ``tracks`` at times ``t`` (one per track, inside its span),
+        interpolated linearly between the two points around ``t``."""
+        if len(tracks) == 0:
+            return np.zeros(0), np.zeros(0)
+        s, e = self.starts[tracks], self.ends[tracks]
+        q = tracks * self.span + (t - self.t_min)
+        j = np.searchsorted(self.key, q, side="right")  # first point after t
+        i = np.clip(j - 1, s, e - 1)
+        j = np.minimum(i + 1, e - 1)
+        ti, tj = self.time_s[i], self.time_s[j]
+        dt = tj - ti
+        with np.errstate(invalid="ignore", divide="ignore"):
+            w = np.where(dt > 0, (t - ti) / dt, 0.0)
+        w = np.clip(w, 0.0, 1.0)
+        lon = self.lon[i] + w * (self.lon[j] - self.lon[i])
+        lat = self.lat[i] + w * (self.lat[j] - self.lat[i])
+        return lon, lat
+
+    def active(self, t: float) -> np.ndarray:
+        """Tracks alive at ``t`` (first time ≤ t ≤ last time)."""
+        return np.flatnonzero((self.t0 <= t) & (self.t1 >= t))
+
+    def positions_at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(tracks, lon, lat): every track alive at ``t`` and its interpolated position."""
+        tracks = self.active(t)
+        lon, lat = self._interp(tracks, np.full(len(tracks), float(t)))
+        return tracks, lon, lat
+
+    def trail(
+        self, t: float, trail_s: float, max_vertices: int = 400_000
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The last ``trail_s`` seconds before ``t`` of every track that has them, as one
+        NaN-separated curve (lon, lat): per track its position at the trail's start, the
+        points inside, its position at ``t`` (or its end), then NaN. When the points
+        inside exceed ``max_vertices``, every k-th is kept (the two ends always are)."""
+        if trail_s <= 0 or not self.n_tracks:
+            return np.zeros(0), np.zeros(0)
+        t = float(t)
+        a = t - float(trail_s)
+        tracks = np.flatnonzero((self.t0 <= t) & (self.t1 >= a))
+        if len(tracks) == 0:
+            return np.zeros(0), np.zeros(0)
+        base = tracks * self.span - self.t_min
+        lo = np.searchsorted(self.key, base + a, side="right")  # points after a
+        hi = np.searchsorted(self.key, base + t, side="right")  # … up to t
+        n = hi - lo
+        total = int(n.sum())
+        first = np.cumsum(n) - n
+        run = np.arange(total) - np.repeat(first, n)  # position inside each track's run
+        src = np.repeat(lo, n) + run
+        if total > max_vertices:
+            stride = -(-total // max_vertices)
+            keep = run % stride == 0
+            src = src[keep]
+            n = np.bincount(np.repeat(np.arange(len(tracks)), n)[keep], minlength=len(tracks))
+            first = np.cumsum(n) - n
+            run = np.arange(len(src)) - np.repeat(first, n)
+        tail_lon, tail_lat = self._interp(tracks, np.maximum(a, self.t0[tracks]))
+        head_lon, head_lat = self._interp(tracks, np.minimum(t, self.t1[tracks]))
+        seg = n + 3  # tail, points, head, NaN
+        off = np.cumsum(seg) - seg
+        lon = np.full(int(seg.sum()), np.nan)
+        lat = np.full(int(seg.sum()), np.nan)
+        lon[off], lat[off] = tail_lon, tail_lat
+        dest = np.repeat(off + 1, n) + run
+        lon[dest], lat[dest] = self.lon[src], self.lat[src]
+        lon[off + 1 + n], lat[off + 1 + n] = head_lon, head_lat
+        return lon, lat
+
+    # -- time window -------------------------------------------------------------------
+
+    def overlapping(self, t_from: float, t_to: float) -> np.ndarray:
+        """Per track: True when its time span overlaps [t_from, t_to]."""
+        return overlapping(self.t0, self.t1, t_from, t_to)
+
+
+def overlapping(t0: np.ndarray, t1: np.ndarray, t_from: float, t_to: float) -> np.ndarray:
+    """Tracks (first time ``t0``, last ``t1``, s) whose span meets [t_from, t_to]."""
+    return (np.asarray(t0) <= t_to) & (np.asarray(t1) >= t_from)
+
+
+def window_rows(
+    time_s: np.ndarray, starts: np.ndarray, ends: np.ndarray, t_from: float, t_to: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The points of tracks (rows ``starts[k]:ends[k]``) with time in [t_from, t_to]:
+    (kept rows, kept tracks, their new starts, their new ends) over the kept rows."""
+    keep = (time_s >= t_from) & (time_s <= t_to)
+    rows = np.flatnonzero(keep)
+    track = np.repeat(np.arange(len(starts)), ends - starts)
+    per = np.bincount(track[rows], minlength=len(starts)) if len(rows) else np.zeros(len(starts))
+    kept = np.flatnonzero(per > 0)
+    sizes = per[kept].astype("int64")
+    new_ends = np.cumsum(sizes)
+    return rows, kept, new_ends - sizes, new_ends
+
+
+def build_index(
+    parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]],
+) -> TimeIndex:
+    """One index over several layers: ``parts`` = (time_s, lon, lat, starts, ends) each,
+    tracks sorted by time inside; the part's number becomes the tracks' ``group``."""
+    times, lons, lats, starts, ends, groups = [], [], [], [], [], []
+    offset = 0
+    for g, (t, lon, lat, s, e) in enumerate(parts):
+        s = np.asarray(s, dtype="int64")
+        e = np.asarray(e, dtype="int64")
+        ok = e > s
+        times.append(np.asarray(t, dtype="float64"))
+        lons.append(np.asarray(lon, dtype="float64"))
+        lats.append(np.asarray(lat, dtype="float64"))
+        starts.append(s[ok] + offset)
+        ends.append(e[ok] + offset)
+        groups.append(np.full(int(ok.sum()), g, dtype="int64"))
+        offset += len(t)
+    cat = lambda xs, f: np.concatenate(xs) if xs else f()  # noqa: E731
+    time_s = cat(times, lambda: np.zeros(0))
+    s = cat(starts, _empty_i)
+    e = cat(ends, _empty_i)
+    if len(s) == 0:
+        z = np.zeros(0)
+        return TimeIndex(z, z, z, _empty_i(), _empty_i(), _empty_i(), z, z, z, 0.0, 1.0)
+    sizes = e - s
+    first = np.cumsum(sizes) - sizes
+    rows = np.repeat(s, sizes) + (np.arange(int(sizes.sum())) - np.repeat(first, sizes))
+    time_s = time_s[rows]
+    s, e = first, first + sizes
+    t0, t1 = time_s[s], time_s[e - 1]
+    t_min = float(t0.min())
+    span = float(t1.max()) - t_min + 1.0
+    key = np.repeat(np.arange(len(s)), sizes) * span + (time_s - t_min)
+    return TimeIndex(
+        time_s=time_s,
+        lon=cat(lons, lambda: np.zeros(0))[rows],
+        lat=cat(lats, lambda: np.zeros(0))[rows],
+        starts=s,
+        ends=e,
+        group=cat(groups, _empty_i),
+        t0=t0,
+        t1=t1,
+        key=key,
+        t_min=t_min,
+        span=span,
+    )
+
+
+__all__ = [
+    "PlaybackParams",
+    "TimeIndex",
+    "build_index",
+    "overlapping",
+    "window_rows",
+]

@@ -1,0 +1,162 @@
+"""Chinese translations of the review panel and the time slider (issue 13): every text of
+those modules goes through the translator, and every one has a zh_CN entry.
+
+The modules are read with :mod:`ast` (no Qt needed): a text is ``self.tr("…")`` (context:
+the enclosing class), ``QCoreApplication.translate("ctx", "…")``, or ``tr("…")`` of a
+module that sets ``TR_CONTEXT`` (else of a method that set ``tr = self.tr``). A literal with letters handed straight to a text setter
+(``setText``, ``setToolTip``, ``addItems``, ``QLabel(…)``, …) is a text that bypasses
+the translator.
+"""
+
+import ast
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from wakeline.resources import translations_dir
+
+APP = Path(__file__).resolve().parents[1] / "app"
+MODULES = sorted(APP.glob("review_*.py")) + [APP / "time_panel.py", APP / "map_time.py"]
+SETTERS = {
+    "setText",
+    "setToolTip",
+    "setStatusTip",
+    "setWindowTitle",
+    "setTitle",
+    "setPlaceholderText",
+    "setPrefix",
+    "setSuffix",
+    "addItem",
+    "addItems",
+    "setItemText",
+    "showMessage",
+    "QLabel",
+    "QPushButton",
+    "QToolButton",
+    "QCheckBox",
+    "QGroupBox",
+    "QAction",
+    "TextItem",
+}
+
+
+def _has_letters(node: ast.AST) -> bool:
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return any(c.isalpha() for c in node.value)
+    if isinstance(node, ast.JoinedStr):
+        return any(_has_letters(v) for v in node.values if isinstance(v, ast.Constant))
+    if isinstance(node, ast.List | ast.Tuple):
+        return any(_has_letters(e) for e in node.elts)
+    return False
+
+
+def _name(func: ast.AST) -> str:
+    return func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+
+
+def scan(path: Path) -> tuple[set[tuple[str, str]], list[str]]:
+    """(the (context, source) texts of a module, its texts that bypass the translator)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    module_ctx = next(
+        (
+            n.value.value
+            for n in tree.body
+            if isinstance(n, ast.Assign)
+            and any(getattr(t, "id", "") == "TR_CONTEXT" for t in n.targets)
+        ),
+        None,
+    )
+    texts, raw = set(), []
+
+    def visit(node: ast.AST, cls: str | None) -> None:
+        if isinstance(node, ast.ClassDef):
+            cls = node.name
+        if isinstance(node, ast.Call):
+            name, args = _name(node.func), node.args
+            lit = [
+                a.value for a in args if isinstance(a, ast.Constant) and isinstance(a.value, str)
+            ]
+            if name == "tr" and isinstance(node.func, ast.Attribute) and lit and cls:
+                texts.add((cls, lit[0]))
+            elif name == "tr" and isinstance(node.func, ast.Name) and lit and (module_ctx or cls):
+                texts.add((module_ctx or cls, lit[0]))  # ``tr = self.tr`` in a method
+            elif name == "translate" and len(lit) >= 2:
+                texts.add((lit[0], lit[1]))
+            elif name in SETTERS:
+                checked = list(args) + [k.value for k in node.keywords if k.arg == "text"]
+                if name == "setItemText":
+                    checked = args[1:]
+                raw.extend(f"{path.name}:{a.lineno} {name}" for a in checked if _has_letters(a))
+            elif name == "setLabel":  # pyqtgraph: setLabel(axis, text, units=…)
+                checked = args[1:] + [k.value for k in node.keywords if k.arg == "units"]
+                raw.extend(f"{path.name}:{a.lineno} setLabel" for a in checked if _has_letters(a))
+        for child in ast.iter_child_nodes(node):
+            visit(child, cls)
+
+    visit(tree, None)
+    return texts, raw
+
+
+def zh_table() -> dict[tuple[str, str], str]:
+    root = ET.parse(translations_dir() / "wakeline_zh_CN.ts").getroot()
+    out = {}
+    for ctx in root.iter("context"):
+        name = ctx.findtext("name", "")
+        for msg in ctx.iter("message"):
+            tr = msg.find("translation")
+            if tr is not None and tr.text and tr.get("type") != "unfinished":
+                out[(name, msg.findtext("source", ""))] = tr.text
+    return out
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: p.name)
+def test_every_text_goes_through_the_translator_and_has_a_zh_entry(path):
+    texts, raw = scan(path)
+    assert not raw, f"texts that bypass the translator: {raw}"
+    table = zh_table()
+    missing = sorted(t for t in texts if t not in table)
+    assert not missing, f"no zh_CN entry for {missing}"
+    # Placeholders survive the translation ({0} … in the source are in the entry).
+    for ctx, src in texts:
+        for k in range(10):
+            if f"{{{k}" in src:
+                assert f"{{{k}" in table[(ctx, src)], (ctx, src)
+
+
+def test_the_scan_sees_texts_and_catches_a_bypass(tmp_path):
+    sample = tmp_path / "sample.py"
+    sample.write_text(
+        "class P:\n"
+        "    def f(self):\n"
+        "        self.a.setText(self.tr('Play'))\n"
+        "        self.b.setToolTip('raw text')\n"
+        "        QtWidgets.QLabel(f'{n} tracks')\n"
+        "        self.c.setText('—')\n"
+    )
+    texts, raw = scan(sample)
+    assert texts == {("P", "Play")}
+    assert [r.split()[1] for r in raw] == ["setToolTip", "QLabel"]
+    assert len(scan(APP / "time_panel.py")[0]) > 15
+
+
+def test_panels_switch_to_chinese(qtbot):
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtWidgets
+
+    from wakeline.app import i18n
+    from wakeline.app.time_panel import TimePanel
+
+    app = QtWidgets.QApplication.instance()
+    panel = TimePanel()
+    qtbot.addWidget(panel)
+    translator = i18n.install(app, "zh_CN", None)
+    try:
+        zh = zh_table()[("TimePanel", "Time window")]
+        qtbot.waitUntil(lambda: panel.window_button.text() == zh, timeout=2000)
+        from wakeline.app import review_text
+
+        assert review_text.column_titles()["margin"] == zh_table()[("ReviewPanel", "margin")]
+    finally:
+        i18n.install(app, "en", translator)
+    qtbot.waitUntil(lambda: panel.window_button.text() == "Time window", timeout=2000)
