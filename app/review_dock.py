@@ -28,6 +28,7 @@ from wakeline.app.review_panel import ReviewPanel
 from wakeline.app.review_sync import ProjectDecisions, ReviewSync, fuse_selected
 from wakeline.app.review_undo import ReviewController
 from wakeline.app.review_views import GanttView, NetworkView
+from wakeline.app.time_panel import link_gantt
 from wakeline.app.worker import Failed, Finished
 from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
 
@@ -263,6 +264,8 @@ class ReviewDock(QtCore.QObject):
         bound = Bound(lid, key, controller, pts, ranges, box, panel, gantt, network)
         panel.current_settled.connect(self.show_proposal)
         network.proposal_clicked.connect(panel.set_current)
+        if getattr(self.w, "time_panel", None) is not None:  # the slider's cursor in the Gantt
+            link_gantt(self.w.time_panel, gantt)
         controller.changed.connect(lambda _p, b=bound: self.sync.schedule(b))
         self.group.addStack(controller.stack)
         self.stack.addWidget(box)

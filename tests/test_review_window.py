@@ -145,6 +145,12 @@ def test_review_in_the_window(qtbot, tmp_path, pair):
     assert {row["track_a"], row["track_b"]} <= set(b.gantt.members)
     assert {row["track_a"], row["track_b"]} <= set(b.network.pos)
     assert b.network.current == cur
+    # The time slider under the map moves the Gantt chart's cursor.
+    tp = w.time_panel
+    if tp._hi > tp._lo:
+        t_mid = (tp._lo + tp._hi) / 2
+        tp.set_time(t_mid)
+        assert b.gantt.cursor.value() == pytest.approx((tp.time() - b.gantt.t_ref) / 60.0)
 
     # Every proposal by keyboard; then a merge by hand (M on two rows) and its undo.
     statuses = _review_all_by_keyboard(qtbot, w)
