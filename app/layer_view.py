@@ -74,6 +74,7 @@ def prepare_view(
     """Everything the window shows of a layer; pure, for a worker thread. ``view`` and
     ``size_px`` (the map's, or None for the data's extent) set the first level of detail."""
     from wakeline.app.map_draw import LayerStyle, prepare_layer
+    from wakeline.app.map_paths import with_paths
 
     pts = sort_points(points)
     index = track_index(pts)
@@ -100,7 +101,7 @@ def prepare_view(
         view=view if size_px is not None else None,
         size_px=size_px,
     )
-    return LayerView(pts, summary, ranges, marks, draw, display_text(summary))
+    return LayerView(pts, summary, ranges, marks, with_paths(draw), display_text(summary))
 
 
 def draw_as(view: LayerView, layer_id: str, label: str):

@@ -20,7 +20,7 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
-from PySide6 import QtCore, QtGui
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.map_coast import coastline_draw
 from wakeline.app.map_draw import (
@@ -34,6 +34,7 @@ from wakeline.app.map_draw import (
 )
 from wakeline.app.map_interact import MapInteractMixin
 from wakeline.app.map_legend import SideLegend
+from wakeline.app.map_paths import with_paths
 
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
@@ -41,6 +42,9 @@ __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 #: detail (zoomed in): pyqtgraph builds them point by point (~10 µs each). Lines show
 #: without them beyond; marker-only layers show 1-px crosses.
 SYMBOLS_MAX = 3_000
+
+#: Cache mode of a layer's curves.
+CACHE = QtWidgets.QGraphicsItem.CacheMode.DeviceCoordinateCache
 
 #: ``executor(job, done)``: run ``job()`` (pure, returns DrawData) somewhere and call
 #: ``done(result)`` on the GUI thread.
@@ -86,6 +90,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.selection.setZValue(-1)
         self.addItem(self.selection)
         self._selection_items: list[pg.PlotDataItem] = []
+        self._selection_pool: list[pg.PlotDataItem] = []  # reused curve items
         self._selected = pd.DataFrame()
         self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
         self.marks.setZValue(60)
@@ -198,6 +203,9 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 # No re-plot on every view change (pyqtgraph's dynamic range limit would
                 # rebuild the symbols of every curve at each pan and zoom step).
                 item.setDynamicRangeLimit(None)
+                # Painted into a pixmap once per data or view change: a repaint for the
+                # selection, hover or another layer blits it instead of stroking again.
+                item.curve.setCacheMode(CACHE)
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)
@@ -240,6 +248,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 if item.opts["pen"] is None or item.opts["pen"].widthF() != width:
                     item.setPen(pg.mkPen(curve.color, width=width))
             item.setData(curve.lon, curve.lat, connect="finite")
+            if curve.path is not None:  # built in a worker (map_paths): paint only strokes
+                item.curve.path = curve.path
 
     def _crosses(self, curve, size_px: float) -> tuple[np.ndarray, np.ndarray]:
         """A small cross (two segments, ``size_px`` wide) at every finite vertex."""
@@ -265,7 +275,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 self._apply_lod(relod(data, view, size))
             else:
                 self._lod_pending.add(name)
-                self.lod_executor(lambda d=data: relod(d, view, size), self._apply_lod)
+                self.lod_executor(lambda d=data: with_paths(relod(d, view, size)), self._apply_lod)
 
     def _apply_lod(self, data: DrawData) -> None:
         self._lod_pending.discard(data.name)

@@ -125,6 +125,9 @@ class Curve:
     color: str
     lon: np.ndarray
     lat: np.ndarray
+    #: The curve's QPainterPath when a worker built it (:mod:`wakeline.app.map_paths`),
+    #: so the GUI thread's paint only strokes it; None: built on the first paint.
+    path: object = field(default=None, compare=False, repr=False)
 
     @property
     def n_vertices(self) -> int:

@@ -10,6 +10,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore
 
+from wakeline.app.map_legend import short_label
 from wakeline.app.map_selection import selection_curves
 
 KM_PER_DEG = 111.195
@@ -21,27 +22,48 @@ class MapInteractMixin:
 
     def show_selection(self, points: pd.DataFrame, marks: pd.DataFrame | None = None) -> None:
         """Highlight ``points`` (the selected tracks, each batch in its own colour) and
-        optional marked points."""
-        for item in self._selection_items:
-            self.removeItem(item)
-            self.legend.removeItem(item)
-        self._selection_items = []
+        optional marked points.
+
+        The curve items and their legend lines are kept and reused from one selection to
+        the next (making pyqtgraph items and legend labels is the slow part of a click).
+        """
         self._selected = points
+        curves: tuple = ()
         if len(points) == 0:
             self.selection.setData([], [])
         else:
             used = {c.color for d in self.visible_draw_data() for c in d.curves}
             halo, curves = selection_curves(points, used)
             self.selection.setData(halo.lon, halo.lat, connect="finite")
-            for curve in curves:
-                item = pg.PlotDataItem(
-                    curve.lon, curve.lat, pen=pg.mkPen(curve.color, width=2.5), connect="finite"
-                )
-                item.setZValue(50)
-                self.addItem(item)
-                if curve.label:
-                    self.legend.addItem(item, curve.label)
-                self._selection_items.append(item)
+        pool = self._selection_pool
+        while len(pool) < len(curves):
+            item = pg.PlotDataItem(connect="finite")
+            item.setZValue(50)
+            self.addItem(item)
+            pool.append(item)
+        labels = {id(sample.item): label for sample, label in self.legend.items}
+        for k, item in enumerate(pool):
+            curve = curves[k] if k < len(curves) else None
+            label = labels.get(id(item))
+            if curve is None:
+                item.setData([], [])
+                item.setVisible(False)
+                if label is not None:
+                    self.legend.removeItem(item)
+                continue
+            item.setPen(pg.mkPen(curve.color, width=2.5))
+            item.setData(curve.lon, curve.lat, connect="finite")
+            item.setVisible(True)
+            if not curve.label and label is not None:
+                self.legend.removeItem(item)
+            elif curve.label and label is None:
+                self.legend.addItem(item, curve.label)
+            elif curve.label and label.text != short_label(curve.label):
+                label.setText(short_label(curve.label))
+        self._selection_items = pool[: len(curves)]
+        for sample, _label in self.legend.items:
+            if sample.item in self._selection_items:
+                sample.update()  # its line takes the item's new pen
         if marks is not None and len(marks):
             self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
         else:
