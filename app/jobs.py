@@ -216,8 +216,12 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
     def _apply(self, done: tuple) -> None:
         kind = done[0]
         if kind == "import":
-            for item in done[1]:
-                self._apply_import(*item)
+            self._plan_view(done[3])  # the view the layers' level of detail was made for
+            try:
+                for item in done[1]:
+                    self._apply_import(*item)
+            finally:
+                self._view_planned = False
             for text in done[2]:
                 self.log_message(f"{self.tr('Error')}: {text}")
             if done[2]:

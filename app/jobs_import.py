@@ -6,10 +6,11 @@ Mixed into :class:`~wakeline.app.jobs.JobsMixin`; each job returns finished data
 
 from pathlib import Path
 
+import numpy as np
 from PySide6 import QtWidgets
 
 from wakeline.app.dialogs import QUARANTINE_KEPT
-from wakeline.app.layer_view import prepare_view
+from wakeline.app.layer_view import plan_view, points_box, prepare_view
 from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
@@ -44,13 +45,14 @@ class ImportJobsMixin:
         first = len(self.session.layers)
         colors = [PALETTE[(first + k) % len(PALETTE)] for k in range(len(paths))]
         size_px = self.canvas.plot_size_px()
+        state = self._view_state()
 
         def job(progress):
-            done, errors = [], []
+            read, errors = [], []
             for k, (path, color) in enumerate(zip(paths, colors, strict=True)):
-                sub = sub_progress(progress, k / len(paths), (k + 1) / len(paths))
+                sub = sub_progress(progress, 0.8 * k / len(paths), 0.8 * (k + 1) / len(paths))
                 try:
-                    result = read_points(path, progress=sub_progress(sub, 0.0, 0.7), **options)
+                    result = read_points(path, progress=sub_progress(sub, 0.0, 0.85), **options)
                     if len(result.points) == 0:
                         raise InputError(f"{path.name}: no usable points")
                 except (InputError, OSError) as exc:
@@ -58,14 +60,24 @@ class ImportJobsMixin:
                         raise
                     errors.append(str(exc))
                     continue
-                sub(0.7, f"hashing {path.name}")
+                sub(0.85, f"hashing {path.name}")
                 sha = file_hash(path)
-                sub(0.75, "learning the layout for export")
-                layout = layout_meta(path, result.report)
-                sub(0.8, "preparing the map")
-                view = prepare_view(result.points, "source", color, path.name, None, size_px)
+                sub(0.95, "learning the layout for export")
+                read.append((path, result, sha, color, layout_meta(path, result.report)))
+            # The view the map will show once these are added: each layer's level of
+            # detail is made for it here, so the map strokes each layer once.
+            plan = None
+            if read:
+                lat = read[0][1].points["lat"].to_numpy(dtype="float64")
+                lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
+                plan = plan_view(state, [points_box(r[1].points) for r in read], lat0)
+            done = []
+            for k, (path, result, sha, color, layout) in enumerate(read):
+                progress(0.8 + 0.2 * k / len(read), f"preparing the map for {path.name}")
+                shown = plan["shown"] if plan else None
+                view = prepare_view(result.points, "source", color, path.name, shown, size_px)
                 done.append((path, result, sha, view, color, layout))
-            return ("import", done, errors)
+            return ("import", done, errors, plan)
 
         name = paths[0].name if len(paths) == 1 else f"{len(paths)} files"
         return self._start(f"open {name}", job, ("import", name))
@@ -86,7 +98,6 @@ class ImportJobsMixin:
         lid = self.session.new_id()
         self.views[lid] = view
         self.session.add_layer(path.name, "source", view.points, meta, color=color, layer_id=lid)
-        self._fit_after_draw = True
 
     def load_bearings(self, path: Path) -> int | None:
         """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it

@@ -6,9 +6,10 @@ layers for drawing run in the worker, the GUI thread only swaps the result in.
 
 from pathlib import Path
 
+import numpy as np
 from PySide6 import QtWidgets
 
-from wakeline.app.layer_view import prepare_view
+from wakeline.app.layer_view import plan_view, points_box, prepare_view
 from wakeline.core.errors import InputError
 from wakeline.core.project import Project, load_project
 
@@ -102,34 +103,50 @@ class ProjectJobsMixin:
         whole project reads well."""
         path = Path(path)
         size_px = self.canvas.plot_size_px()
+        state = self._view_state(replace_all=True)
 
         def job(progress):
             proj = load_project(path)
             warnings = proj.source_problems()
+            # The view the map will show (fitted to the visible layers): each layer's level
+            # of detail is made for it here, so the map strokes each layer once.
+            boxes = [points_box(lay.points) for lay in proj.layers if lay.visible]
+            lat0 = None
+            if proj.layers and len(proj.layers[0].points):
+                lat = proj.layers[0].points["lat"].to_numpy(dtype="float64")
+                lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
+            plan = plan_view(state, boxes, lat0)
+            shown = plan["shown"] if plan else None
             views = {}
             for k, lay in enumerate(proj.layers):
                 progress(k / max(len(proj.layers), 1), f"preparing {lay.name}")
                 views[lay.id] = prepare_view(
-                    lay.points, lay.kind, lay.color, lay.name, None, size_px
+                    lay.points, lay.kind, lay.color, lay.name, shown, size_px
                 )
                 lay.points = views[lay.id].points
-            return ("project", path, proj, views, warnings)
+            return ("project", path, proj, views, warnings, plan)
 
         return self._start("open project", job, ("project", path.name))
 
-    def _apply_project(self, path: Path, proj: Project, views: dict, warnings: list) -> None:
+    def _apply_project(
+        self, path: Path, proj: Project, views: dict, warnings: list, plan: dict | None = None
+    ) -> None:
         self.project.detach()
         self.session.clear()
         self.views.update(views)
         problems = self.params.from_dict(proj.params)
-        proj.to_session(self.session)
+        self._plan_view(plan)  # the view the layers' level of detail was made for
+        try:
+            proj.to_session(self.session)
+        finally:
+            self._view_planned = False
         self.project.follow(path, proj.read_only)
         sel = [r for r in proj.selection if r[0] in self.session.layers]
         if sel:  # applied once the layers are drawn (one per event-loop turn)
             self._make_current = sel[0][0]
             self._restore_selection = [(s, b) for _, s, b in sel]
         self.retranslate()
-        self._fit_after_draw = True
+        self._fit_after_draw = plan is None
         if proj.read_only:
             ro = self.tr("the project file is read-only: it opens read-only, changes are not saved")
             warnings = [ro, *warnings]

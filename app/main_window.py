@@ -72,6 +72,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self._make_current: str | None = None
         self._restore_selection: list | None = None
         self._fit_after_draw = False
+        self._after_current = False  # the current layer is set; _after_drawn next
+        self._view_planned = False  # a job set the aspect and range for its layers
+        self._draw_scheduled = False  # a _draw_next is queued on the event loop
         self.project = ProjectController(self.session, self)
         self.project.failed.connect(self._save_failed)
         self.session.subscribe(self._on_session_event)

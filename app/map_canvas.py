@@ -22,6 +22,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app.layer_view import padded_range
 from wakeline.app.map_coast import coastline_draw
 from wakeline.app.map_draw import (
     PALETTE,
@@ -328,16 +329,15 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             boxes = [(np.nanmin(lon), np.nanmin(lat), np.nanmax(lon), np.nanmax(lat))]
         else:
             boxes = [d.geometry.bounds() for d in self.visible_draw_data()]
-            boxes = [b for b in boxes if b is not None]
-        if not boxes:
+        self.show_range(padded_range(boxes))
+
+    def show_range(self, target: tuple[float, float, float, float] | None) -> None:
+        """Ask for the range ``(x0, x1, y0, y1)`` (degrees; the aspect lock widens one
+        axis) and redo the level of detail of layers whose decimation no longer fits."""
+        if target is None:
             return
-        w = min(b[0] for b in boxes)
-        s = min(b[1] for b in boxes)
-        e = max(b[2] for b in boxes)
-        n = max(b[3] for b in boxes)
-        pad_x = max((e - w) * 0.05, 0.01)
-        pad_y = max((n - s) * 0.05, 0.01)
-        self.vb.setRange(xRange=(w - pad_x, e + pad_x), yRange=(s - pad_y, n + pad_y), padding=0)
+        x0, x1, y0, y1 = target
+        self.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0)
         self.refresh_lod()
 
     def set_box_zoom(self, on: bool) -> None:

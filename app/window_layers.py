@@ -47,7 +47,7 @@ class LayersMixin:
             item.setCheckState(checked)
             self.layer_list.addItem(item)
             self._make_current = lid  # once the drawing queue is through (one per turn)
-            if len(self.session.layers) == 1 and len(layer.points):
+            if len(self.session.layers) == 1 and len(layer.points) and not self._view_planned:
                 self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
         elif event == "changed":
             self._queue_draw(lid)
@@ -65,34 +65,59 @@ class LayersMixin:
             self.canvas.set_visible(lid, layer.visible)
         self.layersChanged.emit()
 
+    def _view_state(self, replace_all: bool = False) -> dict:
+        """What a job needs to plan the view its layers will be shown in (GUI thread):
+        the boxes of the visible layers (none when ``replace_all``), plot size, aspect."""
+        keep = not replace_all and bool(self.session.layers)
+        boxes = [d.geometry.bounds() for d in self.canvas.visible_draw_data()] if keep else []
+        lat0 = self.canvas._lat0 if keep else None
+        return {"boxes": boxes, "size_px": self.canvas.plot_size_px(), "lat0": lat0}
+
+    def _plan_view(self, plan: dict | None) -> None:
+        """Before a job's layers are added: the aspect and range it planned (the layers'
+        level of detail was computed for that view in the worker, so none is redone)."""
+        if plan is None:
+            return
+        if plan.get("lat0") is not None:
+            self.canvas.set_true_aspect(plan["lat0"])
+        self.canvas.show_range(plan["target"])
+        self._view_planned = True
+
     def _queue_draw(self, lid: str) -> None:
         """Swap a layer's prepared arrays into the map on a later event-loop turn, one
         layer per turn, so a result of several layers never blocks in one piece."""
         if lid not in self._draw_queue:
             self._draw_queue.append(lid)
-        if len(self._draw_queue) == 1:
+        if not self._draw_scheduled:
+            self._draw_scheduled = True
             QtCore.QTimer.singleShot(0, self._draw_next)
 
     def _draw_next(self) -> None:
+        """One piece of drawing work per event-loop turn (each may cost the map a paint):
+        a layer swapped in, then the fit, then the current layer, then the selection."""
+        self._draw_scheduled = False
         if self._draw_queue:
             lid = self._draw_queue.pop(0)
             layer = self.session.layers.get(lid)
             if layer is not None and lid in self.views:
                 self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
-        if self._draw_queue:
-            QtCore.QTimer.singleShot(0, self._draw_next)
-            return
-        if self._fit_after_draw:
+        elif self._fit_after_draw:
             self._fit_after_draw = False
             self.canvas.fit()
-        if self._make_current is not None:
+        elif self._make_current is not None:
             lid, self._make_current = self._make_current, None
             if lid in self.session.layers:
                 if lid == self.active:
                     self.set_active(lid)
                 else:
                     self.select_layer(lid)
+            self._after_current = True
+        elif self._after_current:
+            self._after_current = False
             self._after_drawn()
+        if self.drawing and not self._draw_scheduled:
+            self._draw_scheduled = True
+            QtCore.QTimer.singleShot(0, self._draw_next)
 
     def _after_drawn(self) -> None:
         """Hook run when the queued layers are drawn (a restored selection)."""
@@ -104,8 +129,13 @@ class LayersMixin:
 
     @property
     def drawing(self) -> bool:
-        """Layers are still waiting to be swapped into the map."""
-        return bool(self._draw_queue) or self._make_current is not None
+        """Layers are still waiting to be swapped into the map (or fitted, made current)."""
+        return (
+            bool(self._draw_queue)
+            or self._fit_after_draw
+            or self._make_current is not None
+            or self._after_current
+        )
 
     def layer_row(self, lid: str) -> int:
         """Row of layer ``lid`` in the Layers list (-1 when absent)."""
