@@ -44,6 +44,8 @@ __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 #: without them beyond; marker-only layers show 1-px crosses.
 SYMBOLS_MAX = 3_000
 
+#: Selection curve items made with the canvas (more are made when needed).
+SELECTION_POOL = 12
 #: Cache mode of a layer's curves.
 CACHE = QtWidgets.QGraphicsItem.CacheMode.DeviceCoordinateCache
 
@@ -65,6 +67,10 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.setLabel("bottom", "longitude", units="°")
         self.setLabel("left", "latitude", units="°")
         self.showGrid(x=True, y=True, alpha=0.25)
+        # Room for latitude labels from the start, never given back: an axis that widened
+        # or narrowed with its labels would resize the view box, and every layer would be
+        # decimated and stroked again.
+        self.getAxis("left").setStyle(tickTextWidth=44, autoReduceTextSpace=False)
         self.vb = self.plot_item.getViewBox()
         self.vb.setAspectLocked(True, ratio=1.0)
         # The view is set by fit() from the data, never by pyqtgraph's auto range.
@@ -91,7 +97,10 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.selection.setZValue(-1)
         self.addItem(self.selection)
         self._selection_items: list[pg.PlotDataItem] = []
-        self._selection_pool: list[pg.PlotDataItem] = []  # reused curve items
+        # Reused curve items of the selection, made now (a first click would pay for them).
+        self._selection_pool: list[pg.PlotDataItem] = []
+        for _ in range(SELECTION_POOL):
+            self._selection_pool.append(self._new_selection_item())
         self._selected = pd.DataFrame()
         self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
         self.marks.setZValue(60)
@@ -124,6 +133,13 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
 
     # -- view ------------------------------------------------------------------------
 
+    def _new_selection_item(self) -> pg.PlotDataItem:
+        item = pg.PlotDataItem(connect="finite")
+        item.setZValue(50)
+        item.setVisible(False)
+        self.addItem(item)
+        return item
+
     def current_view(self) -> tuple[float, float, float, float]:
         """The view box range ``(x0, x1, y0, y1)`` in degrees."""
         (x0, x1), (y0, y1) = self.vb.viewRange()
@@ -146,8 +162,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         for side in ("left", "bottom"):
             self.plot_item.showAxis(side, not bare)
         self.showGrid(x=not bare, y=not bare, alpha=0.25)
-        self.legend.setVisible(not bare and bool(self.legend.items))
-        self.legend.setMaximumWidth(0 if bare else 1e6)
+        self.legend.bare = bare
+        self.legend.updateSize()
         self.scale_bar.setVisible(not bare)
         m = 0 if bare else 1
         self.plot_item.layout.setContentsMargins(m, m, m, m)

@@ -37,10 +37,7 @@ class MapInteractMixin:
             self.selection.setData(halo.lon, halo.lat, connect="finite")
         pool = self._selection_pool
         while len(pool) < len(curves):
-            item = pg.PlotDataItem(connect="finite")
-            item.setZValue(50)
-            self.addItem(item)
-            pool.append(item)
+            pool.append(self._new_selection_item())
         labels = {id(sample.item): label for sample, label in self.legend.items}
         for k, item in enumerate(pool):
             curve = curves[k] if k < len(curves) else None
