@@ -75,6 +75,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self._after_current = False  # the current layer is set; _after_drawn next
         self._view_planned = False  # a job set the aspect and range for its layers
         self._draw_scheduled = False  # a _draw_next is queued on the event loop
+        self._detail_key = None  # (layer, track) the Detail panel shows next turn
         self.project = ProjectController(self.session, self)
         self.project.failed.connect(self._save_failed)
         self.session.subscribe(self._on_session_event)

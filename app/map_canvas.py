@@ -89,6 +89,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.coastline.setZValue(-10)
         self.addItem(self.coastline)
         self._coast: DrawData | None = None
+        self._coast_pending = False
         # The selection: a wide translucent halo under the tracks, and every selected
         # batch drawn on top in its own colour.
         self.selection = pg.PlotDataItem(
@@ -281,9 +282,13 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
     def refresh_lod(self, names: list[str] | None = None) -> None:
         """Redo the level of detail of layers (default all) whose decimation is stale."""
         view, size = self.current_view(), self.plot_size_px()
-        if self._coast is not None and lod_is_stale(self._coast, view, size):
-            self._coast = relod(self._coast, view, size)
-            self.coastline.setData(self._coast.curves[0].lon, self._coast.curves[0].lat)
+        coast = self._coast
+        if coast is not None and not self._coast_pending and lod_is_stale(coast, view, size):
+            if self.lod_executor is None:
+                self._apply_coast(relod(coast, view, size))
+            else:  # the full 1:50m coastline is decimated in the worker too
+                self._coast_pending = True
+                self.lod_executor(lambda c=coast: relod(c, view, size), self._apply_coast)
         for name in list(names or self._data):
             data = self._data.get(name)
             if data is None or name in self._lod_pending or not lod_is_stale(data, view, size):
@@ -293,6 +298,12 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             else:
                 self._lod_pending.add(name)
                 self.lod_executor(lambda d=data: with_paths(relod(d, view, size)), self._apply_lod)
+
+    def _apply_coast(self, data: DrawData) -> None:
+        self._coast, self._coast_pending = data, False
+        self.coastline.setData(data.curves[0].lon, data.curves[0].lat)
+        if self.lod_executor is not None:
+            self._lod_timer.start()  # the view may have moved on while the job ran
 
     def _apply_lod(self, data: DrawData) -> None:
         self._lod_pending.discard(data.name)

@@ -44,8 +44,10 @@ class SelectionMixin:
         keys = self.selected_keys()
         chosen = view.tracks(keys)
         self.canvas.show_selection(chosen, maneuver_table(chosen))
+        # The Detail panel's plots follow on the next event-loop turn (its own paint).
+        self._detail_key = (self.active, keys[0]) if keys else None
         if keys:
-            self._show_detail(self.active, keys[0])
+            QtCore.QTimer.singleShot(0, self._show_pending_detail)
         else:
             self.detail.clear()
         if not self._selecting:
@@ -78,6 +80,11 @@ class SelectionMixin:
             self.statusBar().showMessage(
                 f"{info.get('sensor')} / {info.get('batch')}: {info.get('time')}{speed_text}", 4000
             )
+
+    def _show_pending_detail(self) -> None:
+        pending, self._detail_key = self._detail_key, None
+        if pending is not None and pending[0] in self.views:
+            self._show_detail(*pending)
 
     def _show_detail(self, lid: str, key: tuple[str, str]) -> None:
         view = self.views[lid]
