@@ -14,6 +14,10 @@ from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
 from wakeline.core.session import Layer
 
+#: Between two pieces of drawing work: a real timer (not a zero-delay call), so the map's
+#: paint of one piece and the next piece fall in different event-loop turns.
+STEP_MS = 5
+
 EMPTY = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
 
 
@@ -90,7 +94,7 @@ class LayersMixin:
             self._draw_queue.append(lid)
         if not self._draw_scheduled:
             self._draw_scheduled = True
-            QtCore.QTimer.singleShot(0, self._draw_next)
+            QtCore.QTimer.singleShot(STEP_MS, self._draw_next)
 
     def _draw_next(self) -> None:
         """One piece of drawing work per event-loop turn (each may cost the map a paint):
@@ -117,7 +121,7 @@ class LayersMixin:
             self._after_drawn()
         if self.drawing and not self._draw_scheduled:
             self._draw_scheduled = True
-            QtCore.QTimer.singleShot(0, self._draw_next)
+            QtCore.QTimer.singleShot(STEP_MS, self._draw_next)
 
     def _after_drawn(self) -> None:
         """Hook run when the queued layers are drawn (a restored selection)."""

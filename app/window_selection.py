@@ -47,7 +47,7 @@ class SelectionMixin:
         # The Detail panel's plots follow on the next event-loop turn (its own paint).
         self._detail_key = (self.active, keys[0]) if keys else None
         if keys:
-            QtCore.QTimer.singleShot(0, self._show_pending_detail)
+            QtCore.QTimer.singleShot(5, self._show_pending_detail)
         else:
             self.detail.clear()
         if not self._selecting:
