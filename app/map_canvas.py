@@ -100,6 +100,11 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self._selection_items: list[pg.PlotDataItem] = []
         # Reused curve items of the selection, made now (a first click would pay for them).
         self._selection_pool: list[pg.PlotDataItem] = []
+        self._legend_wanted: list = []  # (item, legend text) to show on the next turn
+        self._legend_timer = QtCore.QTimer(self)  # owned: never fires on a deleted canvas
+        self._legend_timer.setSingleShot(True)
+        self._legend_timer.setInterval(5)
+        self._legend_timer.timeout.connect(self._sync_selection_legend)
         for _ in range(SELECTION_POOL):
             self._selection_pool.append(self._new_selection_item())
         self._selected = pd.DataFrame()

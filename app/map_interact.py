@@ -38,33 +38,43 @@ class MapInteractMixin:
         pool = self._selection_pool
         while len(pool) < len(curves):
             pool.append(self._new_selection_item())
-        labels = {id(sample.item): label for sample, label in self.legend.items}
+        wanted = []
         for k, item in enumerate(pool):
             curve = curves[k] if k < len(curves) else None
-            label = labels.get(id(item))
             if curve is None:
                 item.setData([], [])
                 item.setVisible(False)
-                if label is not None:
-                    self.legend.removeItem(item)
+                wanted.append((item, ""))
                 continue
             item.setPen(pg.mkPen(curve.color, width=2.5))
             item.setData(curve.lon, curve.lat, connect="finite")
             item.setVisible(True)
-            if not curve.label and label is not None:
-                self.legend.removeItem(item)
-            elif curve.label and label is None:
-                self.legend.addItem(item, curve.label)
-            elif curve.label and label.text != short_label(curve.label):
-                label.setText(short_label(curve.label))
+            wanted.append((item, curve.label))
         self._selection_items = pool[: len(curves)]
-        for sample, _label in self.legend.items:
-            if sample.item in self._selection_items:
-                sample.update()  # its line takes the item's new pen
+        # The legend lines follow on a later event-loop turn (a new legend label costs
+        # pyqtgraph ~9 ms of text layout; ten of them would double the click).
+        self._legend_wanted = wanted
+        self._legend_timer.start()
         if marks is not None and len(marks):
             self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
         else:
             self.marks.setData([], [])
+
+    def _sync_selection_legend(self) -> None:
+        """Legend lines for the selection's curves as :meth:`show_selection` left them."""
+        wanted, self._legend_wanted = self._legend_wanted, []
+        labels = {id(sample.item): label for sample, label in self.legend.items}
+        for item, text in wanted:
+            label = labels.get(id(item))
+            if not text and label is not None:
+                self.legend.removeItem(item)
+            elif text and label is None:
+                self.legend.addItem(item, text)
+            elif text and label.text != short_label(text):
+                label.setText(short_label(text))
+        for sample, _label in self.legend.items:
+            if sample.item in self._selection_items:
+                sample.update()  # its line takes the item's new pen
 
     def selected_points(self) -> pd.DataFrame:
         """The points last passed to :meth:`show_selection`."""
