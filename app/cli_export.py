@@ -7,9 +7,8 @@ import argparse
 import sys
 from pathlib import Path
 
+from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
-
-EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
 
 
 def _split(items: list[str] | None) -> list[str]:

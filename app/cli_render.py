@@ -9,11 +9,11 @@ import os
 import re
 from pathlib import Path
 
+from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
 
 #: Steps ``--step`` runs, in the order given, each on the last layer of the one before.
 STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
-EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
 
 
 def parse_size(text: str) -> tuple[int, int]:

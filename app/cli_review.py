@@ -65,10 +65,10 @@ def _cmd_review(args: argparse.Namespace) -> int:
     if args.decisions:
         apply_decisions(state, read_table(args.decisions, "decisions"))
     if args.fused:
-        from wakeline.app.cli import _fuse_params
+        from wakeline.app.cli_common import fuse_params
         from wakeline.core.fuse import associate_sensors
 
-        params = _fuse_params(args.set)
+        params = fuse_params(args.set)
         if points["sensor"].nunique() >= 2:
             sassoc = associate_sensors(points, params)
         else:
@@ -98,7 +98,7 @@ def _cmd_review(args: argparse.Namespace) -> int:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``review`` subcommand to the ``wakeline`` parser."""
-    from wakeline.app.cli import EPILOG
+    from wakeline.app.cli_common import EPILOG
 
     p = sub.add_parser(
         "review",

@@ -13,9 +13,8 @@ import dataclasses
 import sys
 from pathlib import Path
 
+from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
-
-EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
 
 #: Older flag spellings kept beside the generated ones: (parameter set, field) -> flags.
 ALIASES = {
@@ -215,7 +214,7 @@ def add_step_parsers(sub) -> None:
 
 
 def _add_clean_flags(p: argparse.ArgumentParser) -> None:
-    from wakeline.app.cli import _positive_float
+    from wakeline.app.cli_common import positive_float
     from wakeline.core.clean import RULES
 
     p.add_argument(
@@ -227,13 +226,13 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--resample",
-        type=_positive_float,
+        type=positive_float,
         metavar="SECONDS",
         help="resample every track to this period (seed 003 uses 20 s)",
     )
     p.add_argument(
         "--max-gap",
-        type=_positive_float,
+        type=positive_float,
         metavar="SECONDS",
         help="resample: never interpolate across longer gaps (default 60 s)",
     )

@@ -6,6 +6,7 @@ a track is a slice, not a scan of a million rows), the maneuver points, and the 
 the map draws. The GUI thread only swaps the finished :class:`LayerView` in.
 """
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -53,14 +54,70 @@ class LayerView:
         return self.points.iloc[self.track_rows(keys)]
 
 
-def fit_view(points: pd.DataFrame) -> tuple[float, float, float, float] | None:
-    """The view (x0, x1, y0, y1, degrees) that :meth:`MapCanvas.fit` would show."""
+def points_box(points: pd.DataFrame) -> tuple[float, float, float, float] | None:
+    """``(west, south, east, north)`` of the finite positions (degrees), None if none."""
     if len(points) == 0:
         return None
-    lon, lat = points["lon"].to_numpy(), points["lat"].to_numpy()
-    pad_x = max(float(np.ptp(lon)) * 0.05, 0.01)
-    pad_y = max(float(np.ptp(lat)) * 0.05, 0.01)
-    return (lon.min() - pad_x, lon.max() + pad_x, lat.min() - pad_y, lat.max() + pad_y)
+    lon, lat = points["lon"].to_numpy(dtype="float64"), points["lat"].to_numpy(dtype="float64")
+    ok = np.isfinite(lon) & np.isfinite(lat)
+    if not ok.any():
+        return None
+    lon, lat = lon[ok], lat[ok]
+    return (float(lon.min()), float(lat.min()), float(lon.max()), float(lat.max()))
+
+
+def padded_range(boxes: list) -> tuple[float, float, float, float] | None:
+    """The range (x0, x1, y0, y1, degrees) :meth:`MapCanvas.fit` asks for: the union of
+    ``boxes`` (west, south, east, north) with a 5 % margin (at least 0.01°)."""
+    boxes = [b for b in boxes if b is not None]
+    if not boxes:
+        return None
+    w, s = min(b[0] for b in boxes), min(b[1] for b in boxes)
+    e, n = max(b[2] for b in boxes), max(b[3] for b in boxes)
+    pad_x, pad_y = max((e - w) * 0.05, 0.01), max((n - s) * 0.05, 0.01)
+    return (w - pad_x, e + pad_x, s - pad_y, n + pad_y)
+
+
+def shown_range(
+    target: tuple[float, float, float, float], size_px: tuple[int, int], lat0: float
+) -> tuple[float, float, float, float]:
+    """The range the map shows when asked for ``target`` on ``size_px`` pixels with the
+    true aspect at ``lat0``: pyqtgraph's aspect lock widens one axis (its rule, repeated
+    here so a worker can decimate for the view the map will have)."""
+    x0, x1, y0, y1 = target
+    aspect = max(math.cos(math.radians(lat0)), 0.05)
+    tw, th = x1 - x0, y1 - y0
+    if th <= 0 or size_px[1] <= 0 or size_px[0] <= 0:
+        return target
+    target_ratio = tw / th
+    view_ratio = (size_px[0] / size_px[1]) / aspect or 1.0
+    if target_ratio > view_ratio:
+        dy = 0.5 * (tw / view_ratio - th)
+        return (x0, x1, y0 - dy, y1 + dy)
+    dx = 0.5 * (th * view_ratio - tw)
+    return (x0 - dx, x1 + dx, y0, y1)
+
+
+def plan_view(state: dict, boxes: list, lat0: float | None) -> dict | None:
+    """The view a job's new layers will be shown in (pure, for the worker): ``state``
+    from the window (boxes of the layers kept, plot size, aspect latitude or None),
+    ``boxes`` of the new layers, ``lat0`` the aspect latitude when none is set yet.
+    Returns ``target`` (the range asked for), ``shown`` (after the aspect lock) and
+    ``lat0`` (None: keep the map's), or None when nothing is to be shown."""
+    target = padded_range([*state["boxes"], *boxes])
+    if target is None:
+        return None
+    keep = state["lat0"] is not None
+    aspect_lat = state["lat0"] if keep else lat0
+    if aspect_lat is None or not math.isfinite(aspect_lat):
+        aspect_lat = 0.5 * (target[2] + target[3])
+    shown = shown_range(target, state["size_px"], aspect_lat)
+    return {"target": target, "shown": shown, "lat0": None if keep else aspect_lat}
+
+
+def fit_view(points: pd.DataFrame) -> tuple[float, float, float, float] | None:
+    """The view (x0, x1, y0, y1, degrees) that :meth:`MapCanvas.fit` would ask for."""
+    return padded_range([points_box(points)])
 
 
 def prepare_view(
@@ -74,6 +131,7 @@ def prepare_view(
     """Everything the window shows of a layer; pure, for a worker thread. ``view`` and
     ``size_px`` (the map's, or None for the data's extent) set the first level of detail."""
     from wakeline.app.map_draw import LayerStyle, prepare_layer
+    from wakeline.app.map_paths import with_paths
 
     pts = sort_points(points)
     index = track_index(pts)
@@ -100,7 +158,7 @@ def prepare_view(
         view=view if size_px is not None else None,
         size_px=size_px,
     )
-    return LayerView(pts, summary, ranges, marks, draw, display_text(summary))
+    return LayerView(pts, summary, ranges, marks, with_paths(draw), display_text(summary))
 
 
 def draw_as(view: LayerView, layer_id: str, label: str):

@@ -1,9 +1,13 @@
 """Runs the map's level-of-detail jobs (pure functions) on a Qt thread pool and hands
 the results back on the GUI thread, so a zoom on a million points never blocks."""
 
+import collections
 from collections.abc import Callable
 
 from PySide6 import QtCore
+
+#: Between two results handed over to the GUI thread (ms).
+STEP_MS = 5
 
 
 class _Signals(QtCore.QObject):
@@ -33,7 +37,31 @@ class LodWorker(QtCore.QObject):
         # which that task needs — a deadlock (seen in the GUI tests).
         self.pool = QtCore.QThreadPool.globalInstance()
         self.signals = _Signals(self)
-        self.signals.done.connect(lambda callback, result: callback(result))
+        self.signals.done.connect(self._arrived)
+        # Results are handed over one per timer turn: several layers re-decimated after a
+        # zoom would otherwise be swapped in, and stroked by one paint, all at once.
+        self._results: collections.deque = collections.deque()
+        self._timer = QtCore.QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(STEP_MS)
+        self._timer.timeout.connect(self._hand_over)
+
+    def _arrived(self, callback: Callable, result: object) -> None:
+        self._results.append((callback, result))
+        if not self._timer.isActive():
+            self._timer.start()
+
+    def _hand_over(self) -> None:
+        if self._results:
+            callback, result = self._results.popleft()
+            callback(result)
+        if self._results:
+            self._timer.start()
+
+    @property
+    def pending(self) -> int:
+        """Results waiting to be handed over."""
+        return len(self._results)
 
     def __call__(self, job: Callable, done: Callable) -> None:
         self.pool.start(_Task(job, done, self.signals))

@@ -7,12 +7,16 @@ Slow work never runs on the GUI thread: importing, hashing, steps, preparing the
 for drawing and the batch table (:mod:`wakeline.app.layer_view`) run in the worker
 (:mod:`wakeline.app.jobs`), and the project file is written by a background writer
 (:mod:`wakeline.app.project_controller`). The GUI thread swaps finished data in.
+
+The window is assembled from mixins: layers and the drawing queue
+(:mod:`wakeline.app.window_layers`), selection, detail and hover
+(:mod:`wakeline.app.window_selection`), jobs (:mod:`wakeline.app.jobs`, with
+:mod:`~wakeline.app.jobs_import` and :mod:`~wakeline.app.jobs_project`).
 """
 
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
 from wakeline.app import i18n
@@ -22,19 +26,19 @@ from wakeline.app.detail import DetailPanel
 from wakeline.app.dialogs import ImportReportDialog
 from wakeline.app.import_dialog import ImportDialog
 from wakeline.app.jobs import JobsMixin, preload
-from wakeline.app.layer_view import LayerView, draw_as, maneuver_table, prepare_view
+from wakeline.app.layer_view import LayerView, maneuver_table
 from wakeline.app.lod_worker import LodWorker
-from wakeline.app.map_canvas import MapCanvas, color_icon
+from wakeline.app.map_canvas import MapCanvas
 from wakeline.app.models import BatchTableModel, batch_summary
 from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
 from wakeline.app.review_dock import ReviewDock
 from wakeline.app.time_panel import install_time
+from wakeline.app.window_layers import EMPTY, LayersMixin
+from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.worker import JobRunner
-from wakeline.core.session import Layer, Session
+from wakeline.core.session import Session
 from wakeline.resources import coastline_path
-
-EMPTY = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
 
 
 def format_dms(value: float, positive: str, negative: str) -> str:
@@ -47,7 +51,7 @@ def format_dms(value: float, positive: str, negative: str) -> str:
     return f"{d}°{m:02d}'{s:04.1f}\"{hemi}"
 
 
-class MainWindow(JobsMixin, QtWidgets.QMainWindow):
+class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     """Wakeline's main window."""
 
     layersChanged = QtCore.Signal()
@@ -70,6 +74,10 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self._make_current: str | None = None
         self._restore_selection: list | None = None
         self._fit_after_draw = False
+        self._after_current = False  # the current layer is set; _after_drawn next
+        self._view_planned = False  # a job set the aspect and range for its layers
+        self._draw_scheduled = False  # a _draw_next is queued on the event loop
+        self._detail_key = None  # (layer, track) the Detail panel shows next turn
         self.project = ProjectController(self.session, self)
         self.project.failed.connect(self._save_failed)
         self.session.subscribe(self._on_session_event)
@@ -201,116 +209,12 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         self.settings.setValue("language", code)
         self.retranslate()
 
-    # -- layers (views over the session) -----------------------------------------------
-
-    @property
-    def layers(self) -> dict[str, Layer]:
-        return self.session.layers
+    # -- dialogs -------------------------------------------------------------------
 
     def open_dialog(self) -> None:
         dialog = ImportDialog(self)
         if dialog.exec() == QtWidgets.QDialog.DialogCode.Accepted:
             self.load_file(**dialog.options())
-
-    def _on_session_event(self, event: str, lid: str) -> None:
-        layer = self.session.layers.get(lid)
-        if event in ("added", "changed"):
-            pending = self._pending_views.pop((layer.step, layer.role), None)
-            if pending is not None:
-                self.views[lid] = pending
-            elif lid not in self.views or event == "changed":
-                # A layer added by a script or test: small, prepared here.
-                self.views[lid] = prepare_view(layer.points, layer.kind, layer.color)
-                layer.points = self.views[lid].points
-        if event == "added":
-            self._queue_draw(lid)
-            item = QtWidgets.QListWidgetItem(
-                color_icon(layer.color), f"{layer.name}  [{layer.kind}]"
-            )
-            item.setData(QtCore.Qt.ItemDataRole.UserRole, lid)
-            item.setFlags(item.flags() | QtCore.Qt.ItemFlag.ItemIsUserCheckable)
-            checked = (
-                QtCore.Qt.CheckState.Checked if layer.visible else QtCore.Qt.CheckState.Unchecked
-            )
-            item.setCheckState(checked)
-            self.layer_list.addItem(item)
-            self._make_current = lid  # once the drawing queue is through (one per turn)
-            if len(self.session.layers) == 1 and len(layer.points):
-                self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
-        elif event == "changed":
-            self._queue_draw(lid)
-            if lid == self.active:
-                self._make_current = lid
-        elif event == "removed":
-            self.canvas.remove_layer(lid)
-            self.views.pop(lid, None)
-            row = self.layer_row(lid)
-            if row >= 0:
-                self.layer_list.takeItem(row)
-            if not self.session.layers:
-                self.set_active(None)
-        elif event == "visibility":
-            self.canvas.set_visible(lid, layer.visible)
-        self.layersChanged.emit()
-
-    def _queue_draw(self, lid: str) -> None:
-        """Swap a layer's prepared arrays into the map on a later event-loop turn, one
-        layer per turn, so a result of several layers never blocks in one piece."""
-        if lid not in self._draw_queue:
-            self._draw_queue.append(lid)
-        if len(self._draw_queue) == 1:
-            QtCore.QTimer.singleShot(0, self._draw_next)
-
-    def _draw_next(self) -> None:
-        if self._draw_queue:
-            lid = self._draw_queue.pop(0)
-            layer = self.session.layers.get(lid)
-            if layer is not None and lid in self.views:
-                self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
-        if self._draw_queue:
-            QtCore.QTimer.singleShot(0, self._draw_next)
-            return
-        if self._fit_after_draw:
-            self._fit_after_draw = False
-            self.canvas.fit()
-        if self._make_current is not None:
-            lid, self._make_current = self._make_current, None
-            if lid in self.session.layers:
-                if lid == self.active:
-                    self.set_active(lid)
-                else:
-                    self.select_layer(lid)
-            self._after_drawn()
-
-    def _after_drawn(self) -> None:
-        """Hook run when the queued layers are drawn (a restored selection)."""
-        pending, self._restore_selection = self._restore_selection, None
-        if pending:
-            self._selecting = True
-            self.select_tracks(pending)
-            self._selecting = False
-
-    @property
-    def drawing(self) -> bool:
-        """Layers are still waiting to be swapped into the map."""
-        return bool(self._draw_queue) or self._make_current is not None
-
-    def layer_row(self, lid: str) -> int:
-        """Row of layer ``lid`` in the Layers list (-1 when absent)."""
-        for r in range(self.layer_list.count()):
-            if self.layer_list.item(r).data(QtCore.Qt.ItemDataRole.UserRole) == lid:
-                return r
-        return -1
-
-    def layer_id(self, name: str) -> str | None:
-        """The first layer with display name ``name`` (tests and scripts)."""
-        return next((i for i, lay in self.session.layers.items() if lay.name == name), None)
-
-    def select_layer(self, lid: str) -> None:
-        """Make ``lid`` the active layer, as a click in the Layers list does."""
-        row = self.layer_row(lid)
-        if row >= 0:
-            self.layer_list.setCurrentRow(row)
 
     def show_import_report(self) -> QtWidgets.QDialog | None:
         """The import report of the active layer's source file."""
@@ -319,126 +223,6 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         dialog = ImportReportDialog(self.session.root(self.active), self)
         dialog.show()
         return dialog
-
-    def remove_active_layer(self) -> None:
-        if self.active is not None:
-            self.session.remove_layer(self.active)
-
-    def _layer_item_changed(self, item: QtWidgets.QListWidgetItem) -> None:
-        lid = item.data(QtCore.Qt.ItemDataRole.UserRole)
-        if lid in self.session.layers:
-            visible = item.checkState() == QtCore.Qt.CheckState.Checked
-            self.session.set_visible(lid, visible)
-
-    def _layer_current_changed(self, current, _previous) -> None:
-        self.set_active(current.data(QtCore.Qt.ItemDataRole.UserRole) if current else None)
-
-    def set_active(self, lid: str | None) -> None:
-        """Make ``lid`` the layer the batch table, statistics and steps work on."""
-        self.active = lid if lid in self.session.layers else None
-        view = self.views.get(self.active) if self.active else None
-        if view is not None:
-            self.batch_model.set_summary(view.summary, view.text)
-        else:
-            self.batch_model.set_summary(batch_summary(EMPTY))
-        if self.canvas.selected_points() is not None and len(self.canvas.selected_points()):
-            self.canvas.show_selection(EMPTY)
-        self.detail.clear()
-        if view is not None:
-            # The detection limit depends on the raw sampling: take it from the source layer.
-            root = self.views.get(self.session.root(self.active).id, view)
-            self.params.show_guidance(root.summary)
-        self.project.put_state("active", self.active)
-        self._update_stats()
-
-    def active_layer(self) -> Layer | None:
-        return self.session.get(self.active)
-
-    # -- selection -----------------------------------------------------------------
-
-    def selected_keys(self) -> list[tuple[str, str]]:
-        rows = {i.row() for i in self.batch_view.selectionModel().selectedRows()}
-        return [self.batch_model.key_of_row(r) for r in sorted(rows)]
-
-    def select_tracks(self, keys: list[tuple[str, str]], add: bool = False) -> None:
-        """Select rows of the batch table by (sensor, batch); the map follows."""
-        sel = self.batch_view.selectionModel()
-        flags = QtCore.QItemSelectionModel.SelectionFlag
-        selection = QtCore.QItemSelection()
-        last = None
-        for sensor, batch in keys:
-            row = self.batch_model.row_of_key(sensor, batch)
-            if row is None:
-                continue
-            idx = self.batch_model.index(row, 0)
-            if idx.isValid():
-                selection.select(idx, idx)
-                last = idx
-        mode = flags.Select | flags.Rows
-        sel.select(selection, mode if add else mode | flags.Clear)
-        if last is not None:
-            self.batch_view.scrollTo(last)
-
-    def _table_selection_changed(self, *_args) -> None:
-        view = self.views.get(self.active) if self.active else None
-        if view is None:
-            return
-        keys = self.selected_keys()
-        chosen = view.tracks(keys)
-        self.canvas.show_selection(chosen, maneuver_table(chosen))
-        if keys:
-            self._show_detail(self.active, keys[0])
-        else:
-            self.detail.clear()
-        if not self._selecting:
-            self.session.selection = [(self.active, s, b) for s, b in keys]
-            self.project.put_state("selection", self.session.selection)
-
-    def zoom_to_selection(self) -> None:
-        self.canvas.zoom_to_selection()
-
-    def export_map_image(self, path: Path | None = None) -> bool:
-        """File ▸ Export map image: the map as drawn, offscreen, to PNG."""
-        from wakeline.app.map_render import render_png
-
-        if path is None:
-            chosen, _ = QtWidgets.QFileDialog.getSaveFileName(
-                self, self.tr("Export map image"), "map.png", "PNG (*.png)"
-            )
-            if not chosen:
-                return False
-            path = Path(chosen)
-        ok = bool(render_png(self.canvas, path))
-        text = self.tr("map image written to {0}") if ok else self.tr("map image not written: {0}")
-        self.log_message(text.format(path))
-        return ok
-
-    def _show_hover(self, info) -> None:
-        if info:
-            speed = info.get("speed_kn")
-            speed_text = "" if speed is None or speed != speed else f", {speed:.1f} kn"
-            self.statusBar().showMessage(
-                f"{info.get('sensor')} / {info.get('batch')}: {info.get('time')}{speed_text}", 4000
-            )
-
-    def _show_detail(self, lid: str, key: tuple[str, str]) -> None:
-        view = self.views[lid]
-        man = self.session.related(lid, "maneuvers")
-        comp = self.session.related(lid, "compressed")
-        man_view = self.views.get(man.id) if man is not None else None
-        comp_view = self.views.get(comp.id) if comp is not None else None
-        factor = (man_view or view).tracks([key])
-        threshold = man.meta.get("threshold_deg") if man is not None else None
-        compressed = comp_view.tracks([key]) if comp_view is not None else None
-        dis = None
-        if comp is not None:
-            dis = comp.meta.get("dis_e_by_track", {}).get(f"{key[0]}\x1f{key[1]}")
-        self.detail.show_track(factor, threshold, compressed, factor, dis_e_m=dis)
-
-    def _track_clicked(self, lid: str, sensor: str, batch: str, add: bool) -> None:
-        if lid != self.active:
-            self.select_layer(lid)
-        self.select_tracks([(sensor, batch)], add=add)
 
     # -- misc ----------------------------------------------------------------------
 
@@ -500,4 +284,4 @@ class MainWindow(JobsMixin, QtWidgets.QMainWindow):
         super().closeEvent(event)
 
 
-__all__ = ["MainWindow", "format_dms", "maneuver_table", "Path"]
+__all__ = ["MainWindow", "format_dms", "maneuver_table", "Path", "EMPTY"]

@@ -20,36 +20,41 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
-from PySide6 import QtCore, QtGui
+from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app.layer_view import padded_range
+from wakeline.app.map_coast import coastline_draw
 from wakeline.app.map_draw import (
     PALETTE,
     DrawData,
     LayerStyle,
-    coastline_draw,
     lod_is_stale,
     nan_separated,
     prepare_layer,
     relod,
 )
+from wakeline.app.map_interact import MapInteractMixin
 from wakeline.app.map_legend import SideLegend
-from wakeline.app.map_selection import selection_curves
+from wakeline.app.map_paths import with_paths
 
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
-KM_PER_DEG = 111.195
 #: Symbols are drawn when a curve has at most this many vertices after the level of
 #: detail (zoomed in): pyqtgraph builds them point by point (~10 µs each). Lines show
 #: without them beyond; marker-only layers show 1-px crosses.
 SYMBOLS_MAX = 3_000
-NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
+
+#: Selection curve items made with the canvas (more are made when needed).
+SELECTION_POOL = 12
+#: Cache mode of a layer's curves.
+CACHE = QtWidgets.QGraphicsItem.CacheMode.DeviceCoordinateCache
 
 #: ``executor(job, done)``: run ``job()`` (pure, returns DrawData) somewhere and call
 #: ``done(result)`` on the GUI thread.
 LodExecutor = Callable[[Callable[[], DrawData], Callable[[DrawData], None]], None]
 
 
-class MapCanvas(pg.PlotWidget):
+class MapCanvas(MapInteractMixin, pg.PlotWidget):
     """A pyqtgraph plot set up as a lon/lat chart with layers, selection, hover, picking."""
 
     cursorMoved = QtCore.Signal(float, float)  # lon, lat in degrees
@@ -62,6 +67,10 @@ class MapCanvas(pg.PlotWidget):
         self.setLabel("bottom", "longitude", units="°")
         self.setLabel("left", "latitude", units="°")
         self.showGrid(x=True, y=True, alpha=0.25)
+        # Room for latitude labels from the start, never given back: an axis that widened
+        # or narrowed with its labels would resize the view box, and every layer would be
+        # decimated and stroked again.
+        self.getAxis("left").setStyle(tickTextWidth=44, autoReduceTextSpace=False)
         self.vb = self.plot_item.getViewBox()
         self.vb.setAspectLocked(True, ratio=1.0)
         # The view is set by fit() from the data, never by pyqtgraph's auto range.
@@ -80,6 +89,7 @@ class MapCanvas(pg.PlotWidget):
         self.coastline.setZValue(-10)
         self.addItem(self.coastline)
         self._coast: DrawData | None = None
+        self._coast_pending = False
         # The selection: a wide translucent halo under the tracks, and every selected
         # batch drawn on top in its own colour.
         self.selection = pg.PlotDataItem(
@@ -88,6 +98,15 @@ class MapCanvas(pg.PlotWidget):
         self.selection.setZValue(-1)
         self.addItem(self.selection)
         self._selection_items: list[pg.PlotDataItem] = []
+        # Reused curve items of the selection, made now (a first click would pay for them).
+        self._selection_pool: list[pg.PlotDataItem] = []
+        self._legend_wanted: list = []  # (item, legend text) to show on the next turn
+        self._legend_timer = QtCore.QTimer(self)  # owned: never fires on a deleted canvas
+        self._legend_timer.setSingleShot(True)
+        self._legend_timer.setInterval(5)
+        self._legend_timer.timeout.connect(self._sync_selection_legend)
+        for _ in range(SELECTION_POOL):
+            self._selection_pool.append(self._new_selection_item())
         self._selected = pd.DataFrame()
         self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
         self.marks.setZValue(60)
@@ -120,6 +139,13 @@ class MapCanvas(pg.PlotWidget):
 
     # -- view ------------------------------------------------------------------------
 
+    def _new_selection_item(self) -> pg.PlotDataItem:
+        item = pg.PlotDataItem(connect="finite")
+        item.setZValue(50)
+        item.setVisible(False)
+        self.addItem(item)
+        return item
+
     def current_view(self) -> tuple[float, float, float, float]:
         """The view box range ``(x0, x1, y0, y1)`` in degrees."""
         (x0, x1), (y0, y1) = self.vb.viewRange()
@@ -142,8 +168,8 @@ class MapCanvas(pg.PlotWidget):
         for side in ("left", "bottom"):
             self.plot_item.showAxis(side, not bare)
         self.showGrid(x=not bare, y=not bare, alpha=0.25)
-        self.legend.setVisible(not bare and bool(self.legend.items))
-        self.legend.setMaximumWidth(0 if bare else 1e6)
+        self.legend.bare = bare
+        self.legend.updateSize()
         self.scale_bar.setVisible(not bare)
         m = 0 if bare else 1
         self.plot_item.layout.setContentsMargins(m, m, m, m)
@@ -200,6 +226,9 @@ class MapCanvas(pg.PlotWidget):
                 # No re-plot on every view change (pyqtgraph's dynamic range limit would
                 # rebuild the symbols of every curve at each pan and zoom step).
                 item.setDynamicRangeLimit(None)
+                # Painted into a pixmap once per data or view change: a repaint for the
+                # selection, hover or another layer blits it instead of stroking again.
+                item.curve.setCacheMode(CACHE)
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)
@@ -242,6 +271,8 @@ class MapCanvas(pg.PlotWidget):
                 if item.opts["pen"] is None or item.opts["pen"].widthF() != width:
                     item.setPen(pg.mkPen(curve.color, width=width))
             item.setData(curve.lon, curve.lat, connect="finite")
+            if curve.path is not None:  # built in a worker (map_paths): paint only strokes
+                item.curve.path = curve.path
 
     def _crosses(self, curve, size_px: float) -> tuple[np.ndarray, np.ndarray]:
         """A small cross (two segments, ``size_px`` wide) at every finite vertex."""
@@ -256,9 +287,13 @@ class MapCanvas(pg.PlotWidget):
     def refresh_lod(self, names: list[str] | None = None) -> None:
         """Redo the level of detail of layers (default all) whose decimation is stale."""
         view, size = self.current_view(), self.plot_size_px()
-        if self._coast is not None and lod_is_stale(self._coast, view, size):
-            self._coast = relod(self._coast, view, size)
-            self.coastline.setData(self._coast.curves[0].lon, self._coast.curves[0].lat)
+        coast = self._coast
+        if coast is not None and not self._coast_pending and lod_is_stale(coast, view, size):
+            if self.lod_executor is None:
+                self._apply_coast(relod(coast, view, size))
+            else:  # the full 1:50m coastline is decimated in the worker too
+                self._coast_pending = True
+                self.lod_executor(lambda c=coast: relod(c, view, size), self._apply_coast)
         for name in list(names or self._data):
             data = self._data.get(name)
             if data is None or name in self._lod_pending or not lod_is_stale(data, view, size):
@@ -267,7 +302,13 @@ class MapCanvas(pg.PlotWidget):
                 self._apply_lod(relod(data, view, size))
             else:
                 self._lod_pending.add(name)
-                self.lod_executor(lambda d=data: relod(d, view, size), self._apply_lod)
+                self.lod_executor(lambda d=data: with_paths(relod(d, view, size)), self._apply_lod)
+
+    def _apply_coast(self, data: DrawData) -> None:
+        self._coast, self._coast_pending = data, False
+        self.coastline.setData(data.curves[0].lon, data.curves[0].lat)
+        if self.lod_executor is not None:
+            self._lod_timer.start()  # the view may have moved on while the job ran
 
     def _apply_lod(self, data: DrawData) -> None:
         self._lod_pending.discard(data.name)
@@ -313,51 +354,6 @@ class MapCanvas(pg.PlotWidget):
         """Vertices in the drawn paths of the visible layers (after level of detail)."""
         return sum(d.n_vertices for d in self.visible_draw_data())
 
-    # -- selection -------------------------------------------------------------------
-
-    def show_selection(self, points: pd.DataFrame, marks: pd.DataFrame | None = None) -> None:
-        """Highlight ``points`` (the selected tracks, each batch in its own colour) and
-        optional marked points."""
-        for item in self._selection_items:
-            self.removeItem(item)
-            self.legend.removeItem(item)
-        self._selection_items = []
-        self._selected = points
-        if len(points) == 0:
-            self.selection.setData([], [])
-        else:
-            used = {c.color for d in self.visible_draw_data() for c in d.curves}
-            halo, curves = selection_curves(points, used)
-            self.selection.setData(halo.lon, halo.lat, connect="finite")
-            for curve in curves:
-                item = pg.PlotDataItem(
-                    curve.lon, curve.lat, pen=pg.mkPen(curve.color, width=2.5), connect="finite"
-                )
-                item.setZValue(50)
-                self.addItem(item)
-                if curve.label:
-                    self.legend.addItem(item, curve.label)
-                self._selection_items.append(item)
-        if marks is not None and len(marks):
-            self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
-        else:
-            self.marks.setData([], [])
-
-    def selected_points(self) -> pd.DataFrame:
-        """The points last passed to :meth:`show_selection`."""
-        return self._selected
-
-    def selection_items(self) -> list[pg.PlotDataItem]:
-        """The per-batch coloured curves of the selection."""
-        return list(self._selection_items)
-
-    def zoom_to_selection(self) -> bool:
-        """Fit the view to the selected tracks; False when nothing is selected."""
-        if len(self._selected) == 0:
-            return False
-        self.fit(self._selected)
-        return True
-
     def fit(self, points: pd.DataFrame | None = None) -> None:
         """Show ``points`` (default: every visible layer) with a margin."""
         if points is not None:
@@ -365,94 +361,19 @@ class MapCanvas(pg.PlotWidget):
             boxes = [(np.nanmin(lon), np.nanmin(lat), np.nanmax(lon), np.nanmax(lat))]
         else:
             boxes = [d.geometry.bounds() for d in self.visible_draw_data()]
-            boxes = [b for b in boxes if b is not None]
-        if not boxes:
+        self.show_range(padded_range(boxes))
+
+    def show_range(self, target: tuple[float, float, float, float] | None) -> None:
+        """Ask for the range ``(x0, x1, y0, y1)`` (degrees; the aspect lock widens one
+        axis) and redo the level of detail of layers whose decimation no longer fits."""
+        if target is None:
             return
-        w = min(b[0] for b in boxes)
-        s = min(b[1] for b in boxes)
-        e = max(b[2] for b in boxes)
-        n = max(b[3] for b in boxes)
-        pad_x = max((e - w) * 0.05, 0.01)
-        pad_y = max((n - s) * 0.05, 0.01)
-        self.vb.setRange(xRange=(w - pad_x, e + pad_x), yRange=(s - pad_y, n + pad_y), padding=0)
+        x0, x1, y0, y1 = target
+        self.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0)
         self.refresh_lod()
 
     def set_box_zoom(self, on: bool) -> None:
         self.vb.setMouseMode(pg.ViewBox.RectMode if on else pg.ViewBox.PanMode)
-
-    # -- events ----------------------------------------------------------------------
-
-    def _update_scale_bar(self) -> None:
-        (x0, x1), _ = self.vb.viewRange()
-        km_per_deg = KM_PER_DEG * max(math.cos(math.radians(self._lat0)), 0.05)
-        width_km = (x1 - x0) * km_per_deg
-        target = width_km / 5.0
-        km = max([k for k in NICE_KM if k <= target] or [NICE_KM[0]])
-        self.scale_bar.size = km / km_per_deg
-        self.scale_bar.text.setText(f"{km:g} km")
-        self.scale_bar.updateBar()
-
-    def _mouse_moved(self, pos) -> None:
-        if self.vb.sceneBoundingRect().contains(pos):
-            p = self.vb.mapSceneToView(pos)
-            self.cursorMoved.emit(p.x(), p.y())
-            self.hover(p.x(), p.y())
-        else:
-            self.hover(math.nan, math.nan)
-
-    def _mouse_clicked(self, event) -> None:
-        if event.button() != QtCore.Qt.MouseButton.LeftButton or event.double():
-            return
-        p = self.vb.mapSceneToView(event.scenePos())
-        add = bool(event.modifiers() & QtCore.Qt.KeyboardModifier.ControlModifier)
-        self.pick(p.x(), p.y(), add)
-
-    def nearest(self, lon: float, lat: float, pixels: float = 8.0) -> dict | None:
-        """The visible track point nearest ``lon, lat`` within ``pixels`` on screen:
-        layer, sensor, batch, time (text), time_s, speed_kn, lon, lat; None if none."""
-        if not (math.isfinite(lon) and math.isfinite(lat)):
-            return None
-        px_x, px_y = self.vb.viewPixelSize()
-        best = None
-        for name, data in self._data.items():
-            geom = data.geometry
-            if not self._visible.get(name) or geom.n_points == 0:
-                continue
-            _, i = geom.nearest(lon, lat)
-            d_px = math.hypot((geom.lon[i] - lon) / px_x, (geom.lat[i] - lat) / px_y)
-            if d_px <= pixels and (best is None or d_px < best[0]):
-                best = (d_px, name, i)
-        if best is None:
-            return None
-        info = self._data[best[1]].geometry.describe(best[2])
-        info["layer"] = best[1]
-        return info
-
-    def hover(self, lon: float, lat: float) -> dict | None:
-        """Show the label of the point under ``lon, lat`` (hidden when none)."""
-        info = self.nearest(lon, lat)
-        if info is None:
-            self.hover_label.hide()
-            self.hover_dot.setData([], [])
-        else:
-            speed = info["speed_kn"]
-            self.hover_label.setText(
-                f"{info['sensor']} · batch {info['batch']}\n{info['time']}\n"
-                + (f"{speed:.1f} kn" if math.isfinite(speed) else "speed —")
-            )
-            self.hover_label.setPos(info["lon"], info["lat"])
-            self.hover_label.show()
-            self.hover_dot.setData([info["lon"]], [info["lat"]])
-        self.pointHovered.emit(info)
-        return info
-
-    def pick(self, lon: float, lat: float, add: bool = False, pixels: float = 8.0) -> bool:
-        """Emit ``trackClicked`` for the nearest visible track point within ``pixels``."""
-        info = self.nearest(lon, lat, pixels)
-        if info is None:
-            return False
-        self.trackClicked.emit(info["layer"], info["sensor"], info["batch"], add)
-        return True
 
     def render_png(self, path: str) -> bool:
         return self.grab().save(path)

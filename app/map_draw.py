@@ -14,7 +14,8 @@ A layer is prepared in two stages:
    one side outside the box are dropped too, and the curve is broken (NaN) there, so no
    false straight line joins the two sides of a gap.
 
-The canvas only swaps in finished :class:`DrawData`.
+The canvas only swaps in finished :class:`DrawData`. Colours: :mod:`wakeline.app.map_colors`;
+the coastline's geometry: :mod:`wakeline.app.map_coast`.
 """
 
 import math
@@ -24,38 +25,12 @@ import numpy as np
 import pandas as pd
 from scipy.spatial import cKDTree
 
+from wakeline.app.map_colors import BATCH_PALETTE, PALETTE
 from wakeline.app.map_lod import decimate, lod_box, nan_join
 from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core import geo
 from wakeline.core.schema import time_seconds
 from wakeline.core.tracks import sorted_with_index
-
-#: Layer colours (one per sensor of a source layer, one per derived layer).
-PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
-#: Distinct colours for batches of a selection (or a layer coloured by batch): tab10 and
-#: darker companions, all readable on white; consecutive entries differ in hue.
-BATCH_PALETTE = (
-    "#1f77b4",
-    "#d62728",
-    "#2ca02c",
-    "#ff7f0e",
-    "#9467bd",
-    "#8c564b",
-    "#e377c2",
-    "#17becf",
-    "#bcbd22",
-    "#7f7f7f",
-    "#393b79",
-    "#ad494a",
-    "#637939",
-    "#8c6d31",
-    "#7b4173",
-    "#3182bd",
-    "#e6550d",
-    "#31a354",
-    "#756bb1",
-    "#636363",
-)
 
 
 @dataclass(frozen=True)
@@ -150,6 +125,9 @@ class Curve:
     color: str
     lon: np.ndarray
     lat: np.ndarray
+    #: The curve's QPainterPath when a worker built it (:mod:`wakeline.app.map_paths`),
+    #: so the GUI thread's paint only strokes it; None: built on the first paint.
+    path: object = field(default=None, compare=False, repr=False)
 
     @property
     def n_vertices(self) -> int:
@@ -373,37 +351,3 @@ def nan_separated(points: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True
     return nan_join(geom.lon, geom.lat, keep, brk)
-
-
-def coastline_draw(lon: np.ndarray, lat: np.ndarray) -> LayerGeometry:
-    """A NaN-separated coastline as a geometry (each line a track) for the same LOD."""
-    finite = np.isfinite(lon) & np.isfinite(lat)
-    idx = np.flatnonzero(finite)
-    if len(idx) == 0:
-        empty = np.zeros(0)
-        ei = np.zeros(0, dtype="int64")
-        return LayerGeometry(
-            empty, empty, ei, ei, ei, np.zeros(0, object), np.zeros(0, object), empty, empty,
-            ei, ("coast",), ("#8a8a8a",), False,
-        )  # fmt: skip
-    start = np.ones(len(idx), dtype=bool)
-    start[1:] = np.diff(idx) > 1
-    starts = np.flatnonzero(start)
-    ends = np.append(starts[1:], len(idx))
-    track = np.cumsum(start) - 1
-    zeros = np.zeros(len(idx))
-    return LayerGeometry(
-        lon=lon[idx].astype("float64"),
-        lat=lat[idx].astype("float64"),
-        starts=starts,
-        ends=ends,
-        track=track,
-        sensor=np.full(len(starts), "coast", dtype=object),
-        batch=np.arange(len(starts)).astype(str).astype(object),
-        time_s=zeros,
-        speed_kn=zeros,
-        group=np.zeros(len(starts), dtype="int64"),
-        labels=("coast",),
-        colors=("#8a8a8a",),
-        relative=False,
-    )

@@ -1,10 +1,13 @@
 """A legend that lives in the plot's layout, beside the view box: it never covers data."""
 
 import pyqtgraph as pg
+from PySide6 import QtGui
 
 #: Longest legend label (characters); longer ones are shortened in the middle, so the
 #: column beside the map stays narrow (the full names are in the Layers panel).
 LABEL_MAX = 32
+#: The legend column is reserved this many characters wide from the start.
+RESERVED_CHARS = 20
 
 
 def short_label(text: str, limit: int = LABEL_MAX) -> str:
@@ -16,7 +19,23 @@ def short_label(text: str, limit: int = LABEL_MAX) -> str:
 
 
 class SideLegend(pg.LegendItem):
-    """A legend that lives in the plot's layout (a column right of the view box)."""
+    """A legend that lives in the plot's layout (a column right of the view box).
+
+    Its column has a constant width: reserved from the start (:data:`RESERVED_CHARS`
+    characters) and never narrower later. A legend that appeared or changed width with
+    the first layer or a selection would resize the view box, and every layer would be
+    decimated and stroked again (a block of the GUI thread at a million points).
+    ``bare`` (images of the plot area alone) gives it no width at all.
+    """
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.bare = False
+        font = QtGui.QFont()
+        font.setPointSizeF(9.0)  # pyqtgraph's legend label size
+        text = QtGui.QFontMetricsF(font).horizontalAdvance("n" * RESERVED_CHARS)
+        self.widest = float(text) + 20 + 3 + 12  # the line sample, spacing, margins
+        self.updateSize()
 
     def addItem(self, item, name: str) -> None:  # noqa: N802 - pyqtgraph's name
         super().addItem(item, short_label(str(name)))
@@ -31,10 +50,12 @@ class SideLegend(pg.LegendItem):
                     row_w += item.width() + 3
                     row_h = max(row_h, item.height())
             width, height = max(width, row_w), height + row_h
-        w = width + 6 if self.items else 0
+        if self.items:
+            self.widest = max(self.widest, width + 6)
+        w = 0.0 if self.bare else self.widest
         self.setMinimumWidth(w)
         self.setMaximumWidth(w)
         self.setMinimumHeight(height)
         self.setMaximumHeight(height)
-        self.setVisible(bool(self.items))
+        self.setVisible(not self.bare)  # an empty legend draws nothing but keeps its column
         self.updateGeometry()

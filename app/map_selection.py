@@ -8,13 +8,42 @@ the palette, batches share colours (one curve per colour).
 import numpy as np
 import pandas as pd
 
-from wakeline.app.map_draw import BATCH_PALETTE, Curve, layer_geometry
+from wakeline.app.map_draw import BATCH_PALETTE, Curve, unwrap_tracks
 from wakeline.app.map_lod import nan_join
 
 #: Colours of selected batches: the batch palette without the oranges of the halo.
 SELECTION_PALETTE = tuple(c for c in BATCH_PALETTE if c not in ("#ff7f0e", "#e6550d"))
 #: At most this many batches of a selection get their own legend line.
 LEGEND_BATCHES = 12
+
+
+class _SelectedTracks:
+    """The few selected tracks sorted (sensor, batch, time) with numpy alone: the map's
+    full :func:`~wakeline.app.map_draw.layer_geometry` (pandas sort, times, speeds) costs
+    the GUI thread tens of ms for a click."""
+
+    def __init__(self, points: pd.DataFrame) -> None:
+        s_code, s_names = pd.factorize(points["sensor"].astype(str), sort=True)
+        b_code, b_names = pd.factorize(points["batch"].astype(str), sort=True)
+        t = points["time"]
+        if isinstance(t.dtype, pd.DatetimeTZDtype) or np.issubdtype(t.dtype, np.datetime64):
+            t = t.to_numpy(dtype="datetime64[ns]").view("int64").astype("float64")
+        else:
+            t = pd.to_numeric(t, errors="coerce").to_numpy(dtype="float64")
+        order = np.lexsort((t, b_code, s_code))
+        s_code, b_code = s_code[order], b_code[order]
+        n = len(order)
+        new = np.ones(n, dtype=bool)
+        new[1:] = (s_code[1:] != s_code[:-1]) | (b_code[1:] != b_code[:-1])
+        self.starts = np.flatnonzero(new)
+        sizes = np.diff(np.append(self.starts, n))
+        self.n_points, self.n_tracks = n, len(self.starts)
+        self.track = np.cumsum(new) - 1
+        lon = points["lon"].to_numpy(dtype="float64")[order]
+        self.lon = unwrap_tracks(lon, self.starts, sizes)
+        self.lat = points["lat"].to_numpy(dtype="float64")[order]
+        self.sensor = np.asarray(s_names, dtype=object)[s_code[self.starts]]
+        self.batch = np.asarray(b_names, dtype=object)[b_code[self.starts]]
 
 
 def selection_curves(
@@ -25,7 +54,7 @@ def selection_curves(
     A curve's label is ``sensor · batch`` of its first batch (``(+k)`` when k more share
     the colour); empty (no legend line) beyond :data:`LEGEND_BATCHES` colours.
     """
-    geom = layer_geometry(points)
+    geom = _SelectedTracks(points)
     keep = np.ones(geom.n_points, dtype=bool)
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True

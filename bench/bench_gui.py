@@ -9,10 +9,13 @@ window could not answer. The goal (SPEC §7) is < 100 ms for every action.
 """
 
 import argparse
+import collections
 import os
 import sys
 import tempfile
+import threading
 import time
+import traceback
 from pathlib import Path
 
 import numpy as np
@@ -56,7 +59,10 @@ def make_scene(n_points: int, seed: int = 0) -> pd.DataFrame:
 
 
 class Probe:
-    """Records the gaps between ticks of a 10 ms timer on the GUI thread."""
+    """Records the gaps between ticks of a 10 ms timer on the GUI thread: wall time, and
+    the GUI thread's own CPU time (``time.thread_time``) — the work done on it between two
+    ticks, which a busy machine does not inflate (waits for the CPU or the GIL are not in
+    it)."""
 
     def __init__(self) -> None:
         self.timer = QtCore.QTimer()
@@ -64,17 +70,29 @@ class Probe:
         self.timer.timeout.connect(self._tick)
         self.last = None
         self.worst = 0.0
+        self.last_cpu = 0.0
+        self.worst_cpu = 0.0
+        self.gaps: list[tuple[float, float, float]] = []  # (start, wall s, cpu s) > 50 ms
 
     def _tick(self) -> None:
-        now = time.perf_counter()
+        now, cpu = time.perf_counter(), time.thread_time()
         if self.last is not None:
             self.worst = max(self.worst, now - self.last)
-        self.last = now
+            self.worst_cpu = max(self.worst_cpu, cpu - self.last_cpu)
+            if now - self.last > 0.05:
+                self.gaps.append((self.last, now - self.last, cpu - self.last_cpu))
+        self.last, self.last_cpu = now, cpu
 
     def __enter__(self):
         self.last, self.worst = time.perf_counter(), 0.0
+        self.last_cpu, self.worst_cpu = time.thread_time(), 0.0
         self.timer.start()
         return self
+
+    @property
+    def cpu_ms(self) -> float:
+        """The most GUI-thread CPU time between two ticks, less the period's share."""
+        return max(self.worst_cpu * 1000, 0.0)
 
     def __exit__(self, *exc) -> None:
         self.timer.stop()
@@ -82,6 +100,52 @@ class Probe:
     @property
     def block_ms(self) -> float:
         return max(self.worst * 1000 - PERIOD_MS, 0.0)
+
+
+class Sampler:
+    """With ``--why``: while the GUI thread has not ticked the probe for over 25 ms, a
+    helper thread samples its Python stack every 3 ms; prints the commonest lines."""
+
+    def __init__(self, probe: Probe) -> None:
+        self.probe = probe
+        self.main = threading.main_thread().ident
+        self.counts: collections.Counter = collections.Counter()
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self) -> None:
+        while not self.stop.wait(0.003):
+            last = self.probe.last
+            if last is None or time.perf_counter() - last < 0.025:
+                continue
+            me = threading.get_ident()
+            for ident, frame in sys._current_frames().items():
+                if ident == me:
+                    continue
+                depth = 14 if ident == self.main else 5
+                stack = traceback.extract_stack(frame)[-depth:]
+                key = " < ".join(
+                    f"{Path(f.filename).stem}:{f.name}:{f.lineno}" for f in reversed(stack)
+                )
+                if ident == self.main:
+                    self.counts["GUI " + key] += 1
+                elif "wait" not in stack[-1].name and "get" != stack[-1].name:
+                    self.counts["other " + key] += 1
+
+    def __enter__(self):
+        self.thread.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.stop.set()
+        self.thread.join()
+
+    def report(self, top: int = 6) -> None:
+        total = sum(n for k, n in self.counts.items() if k.startswith("GUI"))
+        gui = [(k, n) for k, n in self.counts.most_common() if k.startswith("GUI")][:top]
+        other = [(k, n) for k, n in self.counts.most_common() if k.startswith("other")][:top]
+        for key, n in gui + other:
+            print(f"    {n:4d}/{total} x 3 ms  {key[:600]}")
 
 
 def settle(ms: int = 400) -> None:
@@ -92,23 +156,93 @@ def settle(ms: int = 400) -> None:
         QtCore.QThread.msleep(2)
 
 
-def measure(name: str, action, window: MainWindow, results: dict) -> None:
+WHY = False
+
+
+def measure(name: str, action, window: MainWindow | None, results: dict) -> None:
+    """Run ``action`` and wait until its jobs, drawing and project writes are done; record
+    the longest event-loop block. ``window`` None: the idle baseline (nothing to wait for)."""
     t0 = time.perf_counter()
     with Probe() as probe:
+        sampler = Sampler(probe) if WHY else None
+        if sampler is not None:
+            sampler.__enter__()
         action()
-        wait_for_jobs(window, 600_000)
-        if window.project.writer is not None:
-            while not window.project.flush(0.05):
-                settle(20)
+        if window is not None:
+            wait_for_jobs(window, 600_000)
+            writer = window.project.writer
+            if writer is not None:  # wait for the project writer without blocking
+                written = threading.Event()
+                writer.submit(lambda _store: written.set())
+                while not written.is_set():
+                    settle(20)
         settle()
-    results[name] = (probe.block_ms, time.perf_counter() - t0)
-    print(f"{name:<28} longest block {probe.block_ms:7.0f} ms   (action {results[name][1]:6.1f} s)")
+        if sampler is not None:
+            sampler.__exit__()
+    results[name] = (probe.block_ms, time.perf_counter() - t0, probe.cpu_ms)
+    print(
+        f"{name:<28} longest block {probe.block_ms:7.0f} ms wall, {probe.cpu_ms:5.0f} ms "
+        f"GUI-thread CPU   (action {results[name][1]:6.1f} s)"
+    )
+    if WHY:
+        for _start, wall, cpu in sorted(probe.gaps, key=lambda g: -g[1])[:3]:
+            print(f"    gap {wall * 1000:5.0f} ms wall, {cpu * 1000:4.0f} ms GUI CPU")
+    if sampler is not None:
+        sampler.report()
+
+
+def drawn_check(window: MainWindow) -> bool:
+    """At the end: every visible layer is in the map with every track drawn (a NaN-separated
+    piece per track at least), at the level of detail of the current view. Prints it."""
+    from wakeline.app.map_draw import lod_is_stale
+
+    canvas = window.canvas
+    view, size = canvas.current_view(), canvas.plot_size_px()
+    ok = True
+    for lid, layer in window.session.layers.items():
+        if not layer.visible:
+            continue
+        if lid not in canvas.layer_names():
+            print(f"  {lid} {layer.name}: NOT DRAWN")
+            ok = False
+            continue
+        data = canvas.draw_data(lid)
+        pieces = vertices = 0
+        for item, curve in zip(canvas.layer_items(lid), data.curves, strict=True):
+            x = item.xData if item.xData is not None else np.zeros(0)
+            if len(x) == len(curve.lon) and np.array_equal(x, curve.lon, equal_nan=True):
+                finite = np.isfinite(x)
+                vertices += int(finite.sum())
+                pieces += int(
+                    np.count_nonzero(finite[1:] & ~finite[:-1]) + bool(len(x) and finite[0])
+                )
+            elif item.opts.get("connect") == "pairs" or len(x) == 4 * curve.n_vertices:
+                vertices += curve.n_vertices  # marker crosses: four ends per point
+                pieces += curve.n_vertices
+            else:
+                print(f"  {lid}: an item does not hold its prepared curve")
+                ok = False
+        stale = lod_is_stale(data, view, size)
+        tracks = data.geometry.n_tracks
+        good = pieces >= tracks and not stale
+        ok &= good
+        print(
+            f"  {lid} {layer.name[:40]:<40} tracks {tracks:6,}  drawn pieces {pieces:6,}  "
+            f"vertices {vertices:8,}  of {data.geometry.n_points:9,} points  "
+            f"LOD {'stale' if stale else 'current'}  {'ok' if good else 'MISSING'}"
+        )
+    return ok
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--points", type=int, default=1_000_000)
+    ap.add_argument(
+        "--why", action="store_true", help="sample the GUI thread's stack during long blocks"
+    )
     args = ap.parse_args()
+    global WHY
+    WHY = args.why
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
@@ -118,9 +252,11 @@ def main() -> int:
         window = MainWindow(settings)
         window.resize(1400, 900)
         window.show()
-        settle(300)
+        settle(1500)  # start-up paints and layout done before the baseline
         print(f"{args.points:,} points, {args.points // 500:,} tracks; probe period {PERIOD_MS} ms")
-        results: dict[str, tuple[float, float]] = {}
+        results: dict[str, tuple[float, float, float]] = {}
+        idle: dict[str, tuple[float, float, float]] = {}
+        measure("idle loop (baseline)", lambda: settle(1500), None, idle)
         measure("open file", lambda: window.load_file(path), window, results)
         src = window.layer_id(path.name)
         measure(
@@ -133,14 +269,26 @@ def main() -> int:
         keys = [window.batch_model.key_of_row(r) for r in range(0, 200, 20)]
         measure("select 10 tracks", lambda: window.select_tracks(keys), window, results)
         measure("hide a layer", lambda: window.session.set_visible(comp, False), window, results)
+        print("drawn at the end (window 1):")
+        drawn = drawn_check(window)
         window.close()
         window2 = MainWindow(settings)
         window2.resize(1400, 900)
         window2.show()
         measure("open project", lambda: window2.open_project(tmp / "p.wakeline"), window2, results)
+        print("drawn at the end (window 2, the project opened):")
+        drawn &= drawn_check(window2)
+        measure("idle loop (again)", lambda: settle(1500), None, idle)
         window2.close()
-    worst = max(b for b, _ in results.values())
-    print(f"worst block {worst:.0f} ms (goal < 100 ms): {'OK' if worst < 100 else 'OVER'}")
+    worst = max(r[0] for r in results.values())
+    worst_cpu = max(r[2] for r in results.values())
+    base = max(max(r[0] for r in idle.values()), 1.0)
+    print(
+        f"worst block {worst:.0f} ms (goal < 100 ms): {'OK' if worst < 100 else 'OVER'}; "
+        f"most GUI-thread CPU between two ticks {worst_cpu:.0f} ms; "
+        f"idle-loop block {base:.0f} ms, ratio {worst / base:.1f}; "
+        f"every track drawn: {'yes' if drawn else 'NO'}; load {os.getloadavg()[0]:.1f}"
+    )
     del app
     return 0
 

@@ -1,6 +1,7 @@
 """Shared fixtures. GUI tests run offscreen; real data is read from ../shared when present."""
 
 import os
+import sys
 from pathlib import Path
 
 import pytest
@@ -44,3 +45,35 @@ def _no_blocking_dialogs(monkeypatch):
         return
     for name in ("warning", "information", "critical", "question"):
         monkeypatch.setattr(QtWidgets.QMessageBox, name, lambda *a, **k: None)
+
+
+@pytest.fixture(autouse=True)
+def _windows_end_with_their_test(request):
+    """After a GUI test: its main windows' jobs (worker, level-of-detail pool, project
+    writer) are finished and the windows deleted, within the test's own teardown.
+
+    Left to the garbage collector, windows were destroyed at some later collection —
+    mid-way through another test, or at the session's end (where a GUI run was seen stuck
+    in the collector with job threads still alive, and one crashed). Here a hang fails
+    this test after pytest-timeout's limit, with every thread's stack.
+    """
+    yield
+    if "qtbot" not in request.fixturenames or "wakeline.app.main_window" not in sys.modules:
+        return
+    import gc
+
+    from PySide6 import QtCore, QtWidgets
+
+    from wakeline.app.main_window import MainWindow
+
+    app = QtWidgets.QApplication.instance()
+    windows = [w for w in app.topLevelWidgets() if isinstance(w, MainWindow)]
+    for w in windows:
+        w.runner.cancel()
+        assert w.runner.wait(60_000), "a job did not end within 60 s of the test"
+        w.lod_worker.wait(60_000)
+        w.project.detach()
+        w.deleteLater()
+    if windows:
+        QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.Type.DeferredDelete)
+        gc.collect()

@@ -71,7 +71,8 @@ def test_pipeline_adds_layers_and_selection_follows_both_ways(window, qtbot):
     pts = window.layers[comp].points
     n = int(((pts["sensor"] == sensor) & (pts["batch"] == batch)).sum())
     assert len(x) == n and not np.isnan(x).any()
-    assert window.detail.comp_kept.getData()[0] is not None
+    # The Detail panel follows on a later event-loop turn.
+    qtbot.waitUntil(lambda: window.detail.comp_kept.getData()[0] is not None, timeout=5000)
     # Map -> table: a click on another track's point selects its row.
     other = pts[(pts["sensor"] != sensor) | (pts["batch"] != batch)].iloc[0]
     window.canvas.fit()

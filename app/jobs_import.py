@@ -1,0 +1,121 @@
+"""Import jobs of the window: track files and bearing sequences, read in the worker.
+
+Mixed into :class:`~wakeline.app.jobs.JobsMixin`; each job returns finished data that
+:meth:`JobsMixin._apply` swaps in on the GUI thread.
+"""
+
+from pathlib import Path
+
+import numpy as np
+from PySide6 import QtWidgets
+
+from wakeline.app.dialogs import QUARANTINE_KEPT
+from wakeline.app.layer_view import plan_view, points_box, prepare_view
+from wakeline.core.errors import InputError
+from wakeline.core.progress import sub_progress
+from wakeline.core.project import file_hash
+from wakeline.core.session import PALETTE, Source
+
+
+class ImportJobsMixin:
+    """File ▸ Open tracks and File ▸ Open bearings."""
+
+    def load_file(
+        self,
+        path: Path,
+        fmt: str = "auto",
+        encoding: str | None = None,
+        mapping: list[str] | None = None,
+        sensor: str | None = None,
+        tz: str | None = None,
+    ) -> int:
+        """Import a file as a new layer, in the worker; returns the job number. ``tz``:
+        the zone of naive local times (IANA name or ±HH:MM)."""
+        options = {"fmt": fmt, "mapping": mapping or [], "encoding": encoding, "tz": tz}
+        if sensor:
+            options["sensor"] = sensor
+        return self.load_files([Path(path)], options)
+
+    def load_files(self, paths: list[Path], options: dict | None = None) -> int:
+        """Import files (one job, one after the other); each becomes a source layer."""
+        from wakeline.core.io import read_points
+        from wakeline.core.io.export_like import layout_meta
+
+        options = options or {}
+        first = len(self.session.layers)
+        colors = [PALETTE[(first + k) % len(PALETTE)] for k in range(len(paths))]
+        size_px = self.canvas.plot_size_px()
+        state = self._view_state()
+
+        def job(progress):
+            read, errors = [], []
+            for k, (path, color) in enumerate(zip(paths, colors, strict=True)):
+                sub = sub_progress(progress, 0.8 * k / len(paths), 0.8 * (k + 1) / len(paths))
+                try:
+                    result = read_points(path, progress=sub_progress(sub, 0.0, 0.85), **options)
+                    if len(result.points) == 0:
+                        raise InputError(f"{path.name}: no usable points")
+                except (InputError, OSError) as exc:
+                    if len(paths) == 1:
+                        raise
+                    errors.append(str(exc))
+                    continue
+                sub(0.85, f"hashing {path.name}")
+                sha = file_hash(path)
+                sub(0.95, "learning the layout for export")
+                read.append((path, result, sha, color, layout_meta(path, result.report)))
+            # The view the map will show once these are added: each layer's level of
+            # detail is made for it here, so the map strokes each layer once.
+            plan = None
+            if read:
+                lat = read[0][1].points["lat"].to_numpy(dtype="float64")
+                lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
+                plan = plan_view(state, [points_box(r[1].points) for r in read], lat0)
+            done = []
+            for k, (path, result, sha, color, layout) in enumerate(read):
+                progress(0.8 + 0.2 * k / len(read), f"preparing the map for {path.name}")
+                shown = plan["shown"] if plan else None
+                view = prepare_view(result.points, "source", color, path.name, shown, size_px)
+                done.append((path, result, sha, view, color, layout))
+            return ("import", done, errors, plan)
+
+        name = paths[0].name if len(paths) == 1 else f"{len(paths)} files"
+        return self._start(f"open {name}", job, ("import", name))
+
+    def _apply_import(self, path: Path, result, sha: str, view, color: str, layout) -> None:
+        rep = result.report
+        self.log_message(
+            f"{path.name}: {rep['rows_imported']:,} rows in {rep['tracks']:,} tracks "
+            f"({rep['format_label']}, {rep['encoding']}); {rep['rows_quarantined']:,} quarantined"
+        )
+        for reason, count in rep["quarantine_reasons"].items():
+            self.log_message(f"    quarantined {count:,}: {reason}")
+        for warning in rep.get("warnings", []):
+            self.log_message(f"    {self.tr('Warning')}: {warning}")
+        self.session.sources.append(Source(str(path.resolve()), sha))
+        quarantine = result.quarantine.head(QUARANTINE_KEPT).astype(str).to_dict("records")
+        meta = {"file": str(path), "report": rep, "quarantine": quarantine, "layout": layout}
+        lid = self.session.new_id()
+        self.views[lid] = view
+        self.session.add_layer(path.name, "source", view.points, meta, color=color, layer_id=lid)
+
+    def load_bearings(self, path: Path) -> int | None:
+        """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it
+        in the worker; the Detail panel shows the sequences, z and the detections."""
+        from wakeline.core.bearing import read_bearings
+        from wakeline.core.pipeline import step_bearing
+
+        params = self.params.params("bearing")
+
+        def job(progress):
+            bearings = read_bearings(path)
+            return ("bearing", bearings, step_bearing(bearings, params, progress))
+
+        return self._start("bearing", job, ("bearing", Path(path).name))
+
+    def open_bearings_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(
+            self, self.tr("Open bearings"), "", "CSV (*.csv *.txt);;All files (*)"
+        )
+        if path:
+            self.load_bearings(Path(path))

@@ -1,0 +1,172 @@
+"""Export and project jobs of the window: writing layers, saving and opening projects.
+
+Mixed into :class:`~wakeline.app.jobs.JobsMixin`; reading a project and preparing its
+layers for drawing run in the worker, the GUI thread only swaps the result in.
+"""
+
+from pathlib import Path
+
+import numpy as np
+from PySide6 import QtWidgets
+
+from wakeline.app.layer_view import plan_view, points_box, prepare_view
+from wakeline.core.errors import InputError
+from wakeline.core.project import Project, load_project
+
+
+class ProjectJobsMixin:
+    """Export ▸ …, File ▸ Save project and File ▸ Open project."""
+
+    def export_dialog(self, kind: str) -> None:
+        layer = self.active_layer()
+        if layer is None:
+            return
+        if kind == "as_came_in":
+            self.export_as_came_in()
+            return
+        filt = "GeoJSON (*.geojson)" if kind == "geojson" else "CSV (*.csv)"
+        suffix = ".geojson" if kind == "geojson" else ".csv"
+        name = layer.name.replace(" · ", "_") + suffix
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(self, self.tr("Export"), name, filt)
+        if path:
+            self.export(kind, Path(path))
+
+    def export(self, kind: str, path: Path) -> int | None:
+        """Write the active layer (or its maneuver points) to ``path`` in the worker."""
+        from wakeline.app.cli_steps import write_table
+        from wakeline.core.export import export_csv, export_geojson
+
+        layer = self.active_layer()
+        if layer is None:
+            return None
+        view = self.views[layer.id]
+        man = self.session.related(layer.id, "maneuvers")
+        table = man.tables.get("maneuvers") if man is not None else None
+        if kind == "maneuvers" and table is None:
+            text = self.tr("this layer has no maneuver points: run Maneuvers or Compress")
+            QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), text)
+            return None
+        points = layer.points
+
+        def job(_progress):
+            if kind == "csv":
+                export_csv(points, path)
+            elif kind == "geojson":
+                export_geojson(points, path, view.maneuvers)
+            else:  # the same table and writer as `wakeline maneuvers`
+                write_table("maneuvers", table, path)
+            return ("export", layer.name, path)
+
+        return self._start("export", job, ("export", layer.name))
+
+    def export_as_came_in(self, path: Path | None = None) -> int | None:
+        """Export ▸ As it came in: the active layer in its import's layout (issue 19),
+        written in the worker."""
+        from wakeline.core.io.export_like import export_like, layer_layout
+
+        layer = self.active_layer()
+        if layer is None:
+            return None
+        try:
+            layout = layer_layout(self.session.layers, layer.id)
+        except InputError as exc:
+            QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), str(exc))
+            self.log_message(f"{self.tr('Error')}: {exc}")
+            return None
+        if path is None:
+            src = Path(layout.source) if layout.source else Path("tracks.csv")
+            suggestion = f"{layer.name.replace(' · ', '_')}{src.suffix or '.csv'}"
+            chosen, _ = QtWidgets.QFileDialog.getSaveFileName(
+                self,
+                self.tr("Export as it came in"),
+                suggestion,
+                f"{layout.name} (*{src.suffix or '.csv'})",
+            )
+            if not chosen:
+                return None
+            path = Path(chosen)
+        points = layer.points
+
+        def job(_progress):
+            export_like(points, layout, path)
+            return ("export", layer.name, path)
+
+        return self._start("export", job, ("export", layer.name))
+
+    def save_project(self, path: Path) -> None:
+        """Save the session to ``path`` (in the background) and keep it up to date."""
+        self.project.save_as(Path(path), {"view": self.canvas.vb.viewRange()})
+        self.retranslate()
+
+    def open_project(self, path: Path) -> int:
+        """Open a project in the worker; the current session stays as it is unless the
+        whole project reads well."""
+        path = Path(path)
+        size_px = self.canvas.plot_size_px()
+        state = self._view_state(replace_all=True)
+
+        def job(progress):
+            proj = load_project(path)
+            warnings = proj.source_problems()
+            # The view the map will show (fitted to the visible layers): each layer's level
+            # of detail is made for it here, so the map strokes each layer once.
+            boxes = [points_box(lay.points) for lay in proj.layers if lay.visible]
+            lat0 = None
+            if proj.layers and len(proj.layers[0].points):
+                lat = proj.layers[0].points["lat"].to_numpy(dtype="float64")
+                lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
+            plan = plan_view(state, boxes, lat0)
+            shown = plan["shown"] if plan else None
+            views = {}
+            for k, lay in enumerate(proj.layers):
+                progress(k / max(len(proj.layers), 1), f"preparing {lay.name}")
+                views[lay.id] = prepare_view(
+                    lay.points, lay.kind, lay.color, lay.name, shown, size_px
+                )
+                lay.points = views[lay.id].points
+            return ("project", path, proj, views, warnings, plan)
+
+        return self._start("open project", job, ("project", path.name))
+
+    def _apply_project(
+        self, path: Path, proj: Project, views: dict, warnings: list, plan: dict | None = None
+    ) -> None:
+        self.project.detach()
+        self.session.clear()
+        self.views.update(views)
+        problems = self.params.from_dict(proj.params)
+        self._plan_view(plan)  # the view the layers' level of detail was made for
+        try:
+            proj.to_session(self.session)
+        finally:
+            self._view_planned = False
+        self.project.follow(path, proj.read_only)
+        sel = [r for r in proj.selection if r[0] in self.session.layers]
+        if sel:  # applied once the layers are drawn (one per event-loop turn)
+            self._make_current = sel[0][0]
+            self._restore_selection = [(s, b) for _, s, b in sel]
+        self.retranslate()
+        self._fit_after_draw = plan is None
+        if proj.read_only:
+            ro = self.tr("the project file is read-only: it opens read-only, changes are not saved")
+            warnings = [ro, *warnings]
+        for w in warnings + problems:
+            self.log_message(f"{self.tr('Warning')}: {w}")
+        if warnings or problems:
+            QtWidgets.QMessageBox.warning(
+                self, self.tr("Project opened with warnings"), "\n".join(warnings + problems)
+            )
+
+    def open_project_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(
+            self, self.tr("Open project"), "", "Wakeline (*.wakeline)"
+        )
+        if path:
+            self.open_project(Path(path))
+
+    def save_project_dialog(self) -> None:
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(
+            self, self.tr("Save project"), "", "Wakeline (*.wakeline)"
+        )
+        if path:
+            self.save_project(Path(path if path.endswith(".wakeline") else path + ".wakeline"))

@@ -1,0 +1,164 @@
+"""The map's interaction: selection (each batch in its own colour), zoom to selection,
+hover (sensor, batch, time, speed of the nearest point), picking and the scale bar.
+
+Mixed into :class:`~wakeline.app.map_canvas.MapCanvas` (which owns the items and signals).
+"""
+
+import math
+
+import pandas as pd
+import pyqtgraph as pg
+from PySide6 import QtCore
+
+from wakeline.app.map_legend import short_label
+from wakeline.app.map_selection import selection_curves
+
+KM_PER_DEG = 111.195
+NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
+
+
+class MapInteractMixin:
+    """Selection, hover, picking and scale bar of the map canvas."""
+
+    def show_selection(self, points: pd.DataFrame, marks: pd.DataFrame | None = None) -> None:
+        """Highlight ``points`` (the selected tracks, each batch in its own colour) and
+        optional marked points.
+
+        The curve items and their legend lines are kept and reused from one selection to
+        the next (making pyqtgraph items and legend labels is the slow part of a click).
+        """
+        self._selected = points
+        curves: tuple = ()
+        if len(points) == 0:
+            self.selection.setData([], [])
+        else:
+            used = {c.color for d in self.visible_draw_data() for c in d.curves}
+            halo, curves = selection_curves(points, used)
+            self.selection.setData(halo.lon, halo.lat, connect="finite")
+        pool = self._selection_pool
+        while len(pool) < len(curves):
+            pool.append(self._new_selection_item())
+        wanted = []
+        for k, item in enumerate(pool):
+            curve = curves[k] if k < len(curves) else None
+            if curve is None:
+                item.setData([], [])
+                item.setVisible(False)
+                wanted.append((item, ""))
+                continue
+            item.setPen(pg.mkPen(curve.color, width=2.5))
+            item.setData(curve.lon, curve.lat, connect="finite")
+            item.setVisible(True)
+            wanted.append((item, curve.label))
+        self._selection_items = pool[: len(curves)]
+        # The legend lines follow on a later event-loop turn (a new legend label costs
+        # pyqtgraph ~9 ms of text layout; ten of them would double the click).
+        self._legend_wanted = wanted
+        self._legend_timer.start()
+        if marks is not None and len(marks):
+            self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
+        else:
+            self.marks.setData([], [])
+
+    def _sync_selection_legend(self) -> None:
+        """Legend lines for the selection's curves as :meth:`show_selection` left them."""
+        wanted, self._legend_wanted = self._legend_wanted, []
+        labels = {id(sample.item): label for sample, label in self.legend.items}
+        for item, text in wanted:
+            label = labels.get(id(item))
+            if not text and label is not None:
+                self.legend.removeItem(item)
+            elif text and label is None:
+                self.legend.addItem(item, text)
+            elif text and label.text != short_label(text):
+                label.setText(short_label(text))
+        for sample, _label in self.legend.items:
+            if sample.item in self._selection_items:
+                sample.update()  # its line takes the item's new pen
+
+    def selected_points(self) -> pd.DataFrame:
+        """The points last passed to :meth:`show_selection`."""
+        return self._selected
+
+    def selection_items(self) -> list[pg.PlotDataItem]:
+        """The per-batch coloured curves of the selection."""
+        return list(self._selection_items)
+
+    def zoom_to_selection(self) -> bool:
+        """Fit the view to the selected tracks; False when nothing is selected."""
+        if len(self._selected) == 0:
+            return False
+        self.fit(self._selected)
+        return True
+
+    def _update_scale_bar(self) -> None:
+        (x0, x1), _ = self.vb.viewRange()
+        km_per_deg = KM_PER_DEG * max(math.cos(math.radians(self._lat0)), 0.05)
+        width_km = (x1 - x0) * km_per_deg
+        target = width_km / 5.0
+        km = max([k for k in NICE_KM if k <= target] or [NICE_KM[0]])
+        self.scale_bar.size = km / km_per_deg
+        self.scale_bar.text.setText(f"{km:g} km")
+        self.scale_bar.updateBar()
+
+    def _mouse_moved(self, pos) -> None:
+        if self.vb.sceneBoundingRect().contains(pos):
+            p = self.vb.mapSceneToView(pos)
+            self.cursorMoved.emit(p.x(), p.y())
+            self.hover(p.x(), p.y())
+        else:
+            self.hover(math.nan, math.nan)
+
+    def _mouse_clicked(self, event) -> None:
+        if event.button() != QtCore.Qt.MouseButton.LeftButton or event.double():
+            return
+        p = self.vb.mapSceneToView(event.scenePos())
+        add = bool(event.modifiers() & QtCore.Qt.KeyboardModifier.ControlModifier)
+        self.pick(p.x(), p.y(), add)
+
+    def nearest(self, lon: float, lat: float, pixels: float = 8.0) -> dict | None:
+        """The visible track point nearest ``lon, lat`` within ``pixels`` on screen:
+        layer, sensor, batch, time (text), time_s, speed_kn, lon, lat; None if none."""
+        if not (math.isfinite(lon) and math.isfinite(lat)):
+            return None
+        px_x, px_y = self.vb.viewPixelSize()
+        best = None
+        for name, data in self._data.items():
+            geom = data.geometry
+            if not self._visible.get(name) or geom.n_points == 0:
+                continue
+            _, i = geom.nearest(lon, lat)
+            d_px = math.hypot((geom.lon[i] - lon) / px_x, (geom.lat[i] - lat) / px_y)
+            if d_px <= pixels and (best is None or d_px < best[0]):
+                best = (d_px, name, i)
+        if best is None:
+            return None
+        info = self._data[best[1]].geometry.describe(best[2])
+        info["layer"] = best[1]
+        return info
+
+    def hover(self, lon: float, lat: float) -> dict | None:
+        """Show the label of the point under ``lon, lat`` (hidden when none)."""
+        info = self.nearest(lon, lat)
+        if info is None:
+            self.hover_label.hide()
+            self.hover_dot.setData([], [])
+        else:
+            speed = info["speed_kn"]
+            self.hover_label.setText(
+                f"{info['sensor']} · batch {info['batch']}\n{info['time']}\n"
+                + (f"{speed:.1f} kn" if math.isfinite(speed) else "speed —")
+            )
+            self.hover_label.setPos(info["lon"], info["lat"])
+            self.hover_label.show()
+            self.hover_dot.setData([info["lon"]], [info["lat"]])
+        self.pointHovered.emit(info)
+        return info
+
+    def pick(self, lon: float, lat: float, add: bool = False, pixels: float = 8.0) -> bool:
+        """Emit ``trackClicked`` for the nearest visible track point within ``pixels``."""
+        info = self.nearest(lon, lat, pixels)
+        if info is None:
+            return False
+        self.trackClicked.emit(info["layer"], info["sensor"], info["batch"], add)
+        return True

@@ -1,0 +1,193 @@
+"""The window's layers: a view over the session's layers (by id), drawn one per turn.
+
+Mixed into :class:`~wakeline.app.main_window.MainWindow`. Session events add, redraw,
+hide or remove a layer; prepared arrays are swapped into the map one layer per
+event-loop turn so a result of several layers never blocks in one piece.
+"""
+
+import numpy as np
+import pandas as pd
+from PySide6 import QtCore, QtWidgets
+
+from wakeline.app.layer_view import draw_as, prepare_view
+from wakeline.app.map_canvas import color_icon
+from wakeline.app.models import batch_summary
+from wakeline.core.session import Layer
+
+#: Between two pieces of drawing work: a real timer (not a zero-delay call), so the map's
+#: paint of one piece and the next piece fall in different event-loop turns.
+STEP_MS = 5
+
+EMPTY = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
+
+
+class LayersMixin:
+    """Layers list, the active layer and the drawing queue."""
+
+    @property
+    def layers(self) -> dict[str, Layer]:
+        return self.session.layers
+
+    def _on_session_event(self, event: str, lid: str) -> None:
+        layer = self.session.layers.get(lid)
+        if event in ("added", "changed"):
+            pending = self._pending_views.pop((layer.step, layer.role), None)
+            if pending is not None:
+                self.views[lid] = pending
+            elif lid not in self.views or event == "changed":
+                # A layer added by a script or test: small, prepared here.
+                self.views[lid] = prepare_view(layer.points, layer.kind, layer.color)
+                layer.points = self.views[lid].points
+        if event == "added":
+            self._queue_draw(lid)
+            item = QtWidgets.QListWidgetItem(
+                color_icon(layer.color), f"{layer.name}  [{layer.kind}]"
+            )
+            item.setData(QtCore.Qt.ItemDataRole.UserRole, lid)
+            item.setFlags(item.flags() | QtCore.Qt.ItemFlag.ItemIsUserCheckable)
+            checked = (
+                QtCore.Qt.CheckState.Checked if layer.visible else QtCore.Qt.CheckState.Unchecked
+            )
+            item.setCheckState(checked)
+            self.layer_list.addItem(item)
+            self._make_current = lid  # once the drawing queue is through (one per turn)
+            if len(self.session.layers) == 1 and len(layer.points) and not self._view_planned:
+                self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
+        elif event == "changed":
+            self._queue_draw(lid)
+            if lid == self.active:
+                self._make_current = lid
+        elif event == "removed":
+            self.canvas.remove_layer(lid)
+            self.views.pop(lid, None)
+            row = self.layer_row(lid)
+            if row >= 0:
+                self.layer_list.takeItem(row)
+            if not self.session.layers:
+                self.set_active(None)
+        elif event == "visibility":
+            self.canvas.set_visible(lid, layer.visible)
+        self.layersChanged.emit()
+
+    def _view_state(self, replace_all: bool = False) -> dict:
+        """What a job needs to plan the view its layers will be shown in (GUI thread):
+        the boxes of the visible layers (none when ``replace_all``), plot size, aspect."""
+        keep = not replace_all and bool(self.session.layers)
+        boxes = [d.geometry.bounds() for d in self.canvas.visible_draw_data()] if keep else []
+        lat0 = self.canvas._lat0 if keep else None
+        return {"boxes": boxes, "size_px": self.canvas.plot_size_px(), "lat0": lat0}
+
+    def _plan_view(self, plan: dict | None) -> None:
+        """Before a job's layers are added: the aspect and range it planned (the layers'
+        level of detail was computed for that view in the worker, so none is redone)."""
+        if plan is None:
+            return
+        if plan.get("lat0") is not None:
+            self.canvas.set_true_aspect(plan["lat0"])
+        self.canvas.show_range(plan["target"])
+        self._view_planned = True
+
+    def _queue_draw(self, lid: str) -> None:
+        """Swap a layer's prepared arrays into the map on a later event-loop turn, one
+        layer per turn, so a result of several layers never blocks in one piece."""
+        if lid not in self._draw_queue:
+            self._draw_queue.append(lid)
+        if not self._draw_scheduled:
+            self._draw_scheduled = True
+            QtCore.QTimer.singleShot(STEP_MS, self._draw_next)
+
+    def _draw_next(self) -> None:
+        """One piece of drawing work per event-loop turn (each may cost the map a paint):
+        a layer swapped in, then the fit, then the current layer, then the selection."""
+        self._draw_scheduled = False
+        if self._draw_queue:
+            lid = self._draw_queue.pop(0)
+            layer = self.session.layers.get(lid)
+            if layer is not None and lid in self.views:
+                self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
+        elif self._fit_after_draw:
+            self._fit_after_draw = False
+            self.canvas.fit()
+        elif self._make_current is not None:
+            lid, self._make_current = self._make_current, None
+            if lid in self.session.layers:
+                if lid == self.active:
+                    self.set_active(lid)
+                else:
+                    self.select_layer(lid)
+            self._after_current = True
+        elif self._after_current:
+            self._after_current = False
+            self._after_drawn()
+        if self.drawing and not self._draw_scheduled:
+            self._draw_scheduled = True
+            QtCore.QTimer.singleShot(STEP_MS, self._draw_next)
+
+    def _after_drawn(self) -> None:
+        """Hook run when the queued layers are drawn (a restored selection)."""
+        pending, self._restore_selection = self._restore_selection, None
+        if pending:
+            self._selecting = True
+            self.select_tracks(pending)
+            self._selecting = False
+
+    @property
+    def drawing(self) -> bool:
+        """Layers are still waiting to be swapped into the map (or fitted, made current)."""
+        return (
+            bool(self._draw_queue)
+            or self._fit_after_draw
+            or self._make_current is not None
+            or self._after_current
+        )
+
+    def layer_row(self, lid: str) -> int:
+        """Row of layer ``lid`` in the Layers list (-1 when absent)."""
+        for r in range(self.layer_list.count()):
+            if self.layer_list.item(r).data(QtCore.Qt.ItemDataRole.UserRole) == lid:
+                return r
+        return -1
+
+    def layer_id(self, name: str) -> str | None:
+        """The first layer with display name ``name`` (tests and scripts)."""
+        return next((i for i, lay in self.session.layers.items() if lay.name == name), None)
+
+    def select_layer(self, lid: str) -> None:
+        """Make ``lid`` the active layer, as a click in the Layers list does."""
+        row = self.layer_row(lid)
+        if row >= 0:
+            self.layer_list.setCurrentRow(row)
+
+    def remove_active_layer(self) -> None:
+        if self.active is not None:
+            self.session.remove_layer(self.active)
+
+    def _layer_item_changed(self, item: QtWidgets.QListWidgetItem) -> None:
+        lid = item.data(QtCore.Qt.ItemDataRole.UserRole)
+        if lid in self.session.layers:
+            visible = item.checkState() == QtCore.Qt.CheckState.Checked
+            self.session.set_visible(lid, visible)
+
+    def _layer_current_changed(self, current, _previous) -> None:
+        self.set_active(current.data(QtCore.Qt.ItemDataRole.UserRole) if current else None)
+
+    def set_active(self, lid: str | None) -> None:
+        """Make ``lid`` the layer the batch table, statistics and steps work on."""
+        self.active = lid if lid in self.session.layers else None
+        view = self.views.get(self.active) if self.active else None
+        if view is not None:
+            self.batch_model.set_summary(view.summary, view.text)
+        else:
+            self.batch_model.set_summary(batch_summary(EMPTY))
+        if self.canvas.selected_points() is not None and len(self.canvas.selected_points()):
+            self.canvas.show_selection(EMPTY)
+        self.detail.clear()
+        if view is not None:
+            # The detection limit depends on the raw sampling: take it from the source layer.
+            root = self.views.get(self.session.root(self.active).id, view)
+            self.params.show_guidance(root.summary)
+        self.project.put_state("active", self.active)
+        self._update_stats()
+
+    def active_layer(self) -> Layer | None:
+        return self.session.get(self.active)

@@ -1,0 +1,106 @@
+"""The window's selection: batch-table rows and the map follow each other; the Detail
+panel shows the first selected track; hover and map-image export.
+
+Mixed into :class:`~wakeline.app.main_window.MainWindow`.
+"""
+
+from pathlib import Path
+
+from PySide6 import QtCore, QtWidgets
+
+from wakeline.app.layer_view import maneuver_table
+
+
+class SelectionMixin:
+    """Track selection, detail, hover and File ▸ Export map image."""
+
+    def selected_keys(self) -> list[tuple[str, str]]:
+        rows = {i.row() for i in self.batch_view.selectionModel().selectedRows()}
+        return [self.batch_model.key_of_row(r) for r in sorted(rows)]
+
+    def select_tracks(self, keys: list[tuple[str, str]], add: bool = False) -> None:
+        """Select rows of the batch table by (sensor, batch); the map follows."""
+        sel = self.batch_view.selectionModel()
+        flags = QtCore.QItemSelectionModel.SelectionFlag
+        selection = QtCore.QItemSelection()
+        last = None
+        for sensor, batch in keys:
+            row = self.batch_model.row_of_key(sensor, batch)
+            if row is None:
+                continue
+            idx = self.batch_model.index(row, 0)
+            if idx.isValid():
+                selection.select(idx, idx)
+                last = idx
+        mode = flags.Select | flags.Rows
+        sel.select(selection, mode if add else mode | flags.Clear)
+        if last is not None:
+            self.batch_view.scrollTo(last)
+
+    def _table_selection_changed(self, *_args) -> None:
+        view = self.views.get(self.active) if self.active else None
+        if view is None:
+            return
+        keys = self.selected_keys()
+        chosen = view.tracks(keys)
+        self.canvas.show_selection(chosen, maneuver_table(chosen))
+        # The Detail panel's plots follow on the next event-loop turn (its own paint).
+        self._detail_key = (self.active, keys[0]) if keys else None
+        if keys:
+            QtCore.QTimer.singleShot(5, self._show_pending_detail)
+        else:
+            self.detail.clear()
+        if not self._selecting:
+            self.session.selection = [(self.active, s, b) for s, b in keys]
+            self.project.put_state("selection", self.session.selection)
+
+    def zoom_to_selection(self) -> None:
+        self.canvas.zoom_to_selection()
+
+    def export_map_image(self, path: Path | None = None) -> bool:
+        """File ▸ Export map image: the map as drawn, offscreen, to PNG."""
+        from wakeline.app.map_render import render_png
+
+        if path is None:
+            chosen, _ = QtWidgets.QFileDialog.getSaveFileName(
+                self, self.tr("Export map image"), "map.png", "PNG (*.png)"
+            )
+            if not chosen:
+                return False
+            path = Path(chosen)
+        ok = bool(render_png(self.canvas, path))
+        text = self.tr("map image written to {0}") if ok else self.tr("map image not written: {0}")
+        self.log_message(text.format(path))
+        return ok
+
+    def _show_hover(self, info) -> None:
+        if info:
+            speed = info.get("speed_kn")
+            speed_text = "" if speed is None or speed != speed else f", {speed:.1f} kn"
+            self.statusBar().showMessage(
+                f"{info.get('sensor')} / {info.get('batch')}: {info.get('time')}{speed_text}", 4000
+            )
+
+    def _show_pending_detail(self) -> None:
+        pending, self._detail_key = self._detail_key, None
+        if pending is not None and pending[0] in self.views:
+            self._show_detail(*pending)
+
+    def _show_detail(self, lid: str, key: tuple[str, str]) -> None:
+        view = self.views[lid]
+        man = self.session.related(lid, "maneuvers")
+        comp = self.session.related(lid, "compressed")
+        man_view = self.views.get(man.id) if man is not None else None
+        comp_view = self.views.get(comp.id) if comp is not None else None
+        factor = (man_view or view).tracks([key])
+        threshold = man.meta.get("threshold_deg") if man is not None else None
+        compressed = comp_view.tracks([key]) if comp_view is not None else None
+        dis = None
+        if comp is not None:
+            dis = comp.meta.get("dis_e_by_track", {}).get(f"{key[0]}\x1f{key[1]}")
+        self.detail.show_track(factor, threshold, compressed, factor, dis_e_m=dis)
+
+    def _track_clicked(self, lid: str, sensor: str, batch: str, add: bool) -> None:
+        if lid != self.active:
+            self.select_layer(lid)
+        self.select_tracks([(sensor, batch)], add=add)
