@@ -8,6 +8,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from wakeline.app.cli_common import positive_float, positive_int
 from wakeline.core.errors import InputError
 
 EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
@@ -55,20 +56,8 @@ def _cmd_batch(args: argparse.Namespace) -> int:
     return 0
 
 
-def _positive(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text}")
-    return value
-
-
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``batch`` subcommand to the ``wakeline`` parser."""
-    from wakeline.app.cli import _positive_int
-
     p = sub.add_parser(
         "batch",
         help="run a saved pipeline over large inputs with Dask (per-track partitions)",
@@ -96,21 +85,21 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--workers",
-        type=_positive_int,
+        type=positive_int,
         metavar="N",
         help="start a local cluster of N worker processes (default: Dask's local threads)",
     )
     p.add_argument("--csv", action="store_true", help="also write OUTDIR/<step>.csv")
     p.add_argument(
         "--partition-mb",
-        type=_positive,
+        type=positive_float,
         default=32.0,
         metavar="MB",
         help="input megabytes per partition of whole tracks (default 32; a worker thread holds about 20x this)",
     )
     p.add_argument(
         "--blocksize-mb",
-        type=_positive,
+        type=positive_float,
         default=32.0,
         metavar="MB",
         help="megabytes per block read from a CSV input (default 32)",
