@@ -32,6 +32,14 @@ from wakeline.app.time_panel import link_gantt
 from wakeline.app.worker import Failed, Finished
 from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
 
+TR_CONTEXT = "ReviewDock"
+
+
+def tr(text: str) -> str:
+    """``text`` in the current language (context :data:`TR_CONTEXT`)."""
+    return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
+
+
 REVIEW_KEYS = (  # (action, text, key, panel method)
     ("next", "&Next proposal", "J", "next"),
     ("previous", "&Previous proposal", "K", "previous"),
@@ -82,14 +90,14 @@ class ReviewDock(QtCore.QObject):
         self.binder = JobRunner(self)
         self.binder.message.connect(self._on_bind_message)
         self.stack = QtWidgets.QStackedWidget()
-        self.empty = QtWidgets.QLabel(w.tr("No proposals: run Associate or Fuse on a layer."))
+        self.empty = QtWidgets.QLabel(tr("No proposals: run Associate or Fuse on a layer."))
         self.stack.addWidget(self.empty)
         area = QtCore.Qt.DockWidgetArea
-        self.dock = self._dock("review", w.tr("Review"), self.stack, area.BottomDockWidgetArea)
+        self.dock = self._dock("review", tr("Review"), self.stack, area.BottomDockWidgetArea)
         # The before map sits beside the main map in the centre (View ▸ Before/after map).
         self.before = MapCanvas(w)
         self.before.lod_executor = w.lod_worker
-        self.before.setTitle(w.tr("before: the input pieces"), size="9pt")
+        self.before.setTitle(tr("before: the input pieces"), size="9pt")
         legend = self.before.legend  # no legend column: the narrow map keeps its width
         legend.updateSize = lambda: (legend.setMaximumWidth(0), legend.setVisible(False))
         self.split = QtWidgets.QSplitter()
@@ -101,7 +109,7 @@ class ReviewDock(QtCore.QObject):
         self._linking = False
         w.canvas.vb.sigRangeChanged.connect(lambda *_: self._link(w.canvas, self.before))
         self.before.vb.sigRangeChangedManually.connect(lambda *_: self._link(self.before, w.canvas))
-        self.act_before = QtGui.QAction(w.tr("&Before/after map (linked)"), w, checkable=True)
+        self.act_before = QtGui.QAction(tr("&Before/after map (linked)"), w, checkable=True)
         self.act_before.toggled.connect(self.show_before)
         self._before_layers: list[str] = []
         self._build_menus()
@@ -144,7 +152,7 @@ class ReviewDock(QtCore.QObject):
     # -- menus ----------------------------------------------------------------------
 
     def _build_menus(self) -> None:
-        w, tr = self.w, self.w.tr
+        w = self.w
         bar = w.menuBar()
         self.edit_menu = QtWidgets.QMenu(tr("&Edit"), w)
         self.act_undo = self.group.createUndoAction(w, tr("&Undo"))
@@ -241,7 +249,7 @@ class ReviewDock(QtCore.QObject):
     def _on_bind_message(self, msg) -> None:
         if isinstance(msg, Failed):
             self._binding = None
-            self.w.log_message(f"{self.w.tr('Error')} (review): {msg.message}")
+            self.w.log_message(f"{tr('Error')} (review): {msg.message}")
         if not isinstance(msg, Finished):
             return
         key, lid, state, pts, ranges = msg.result
@@ -384,8 +392,7 @@ class ReviewDock(QtCore.QObject):
         sensors = chosen["source"].astype(str).value_counts() if "source" in chosen else {}
         text = ", ".join(f"{s}: {n}" for s, n in dict(sensors).items())
         self.w.statusBar().showMessage(
-            f"{self.w.tr('members')}: {' + '.join(members)}; "
-            f"{self.w.tr('points by sensors')}: {text}",
+            f"{tr('members')}: {' + '.join(members)}; {tr('points by sensors')}: {text}",
             15000,
         )
 

@@ -19,6 +19,14 @@ from wakeline.core import review as R
 from wakeline.core.review_session import decided_points, export_reviewed, queue_key, snapshot
 from wakeline.core.review_store import decision_row
 
+TR_CONTEXT = "ReviewSync"
+
+
+def tr(text: str) -> str:
+    """``text`` in the current language (context :data:`TR_CONTEXT`)."""
+    return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
+
+
 EXPORT_FILTERS = {
     "CSV (*.csv)": (".csv", False),
     "CSV with a byte-order mark, for spreadsheets (*.csv)": (".csv", True),
@@ -90,7 +98,7 @@ class ReviewSync(QtCore.QObject):
         if isinstance(msg, Finished | Failed | Cancelled) and msg.job == self._job:
             self._job = None
         if isinstance(msg, Failed):
-            self.w.log_message(f"{self.w.tr('Error')} (review): {msg.message}")
+            self.w.log_message(f"{tr('Error')} (review): {msg.message}")
         if not isinstance(msg, Finished):
             return
         key, view, n_decisions = msg.result
@@ -114,7 +122,7 @@ class ReviewSync(QtCore.QObject):
         bound = self.dock.bound
         if bound is None:
             QtWidgets.QMessageBox.information(
-                self.w, self.w.tr("Nothing to export"), self.w.tr("No layer under review.")
+                self.w, tr("Nothing to export"), tr("No layer under review.")
             )
             return None
         layer = self.w.session.layers[bound.lid]
@@ -135,7 +143,7 @@ class ReviewSync(QtCore.QObject):
 
     def export_dialog(self) -> None:
         path, chosen = QtWidgets.QFileDialog.getSaveFileName(
-            self.w, self.w.tr("Export reviewed tracks"), "reviewed.csv", ";;".join(EXPORT_FILTERS)
+            self.w, tr("Export reviewed tracks"), "reviewed.csv", ";;".join(EXPORT_FILTERS)
         )
         if path:
             suffix, bom = EXPORT_FILTERS.get(chosen, (".csv", False))
@@ -144,7 +152,7 @@ class ReviewSync(QtCore.QObject):
 
     def export_log_dialog(self) -> None:
         path, _ = QtWidgets.QFileDialog.getSaveFileName(
-            self.w, self.w.tr("Export decision log"), "decisions.csv", "CSV (*.csv)"
+            self.w, tr("Export decision log"), "decisions.csv", "CSV (*.csv)"
         )
         if path:
             self.export(Path(path), bom=True, log=True)
@@ -166,8 +174,8 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
     if len(ids) < 2:
         QtWidgets.QMessageBox.information(
             w,
-            w.tr("Fuse selected layers"),
-            w.tr("Select two or more layers in the Layers list (Ctrl+click), e.g. radar and AIS."),
+            tr("Fuse selected layers"),
+            tr("Select two or more layers in the Layers list (Ctrl+click), e.g. radar and AIS."),
         )
         return None
     named = [(Path(w.session.layers[i].name).stem, w.session.layers[i].points) for i in ids]
@@ -190,7 +198,7 @@ def apply_fused(w, ids: list[str], result, views: dict, params) -> None:
 
     missing = [i for i in ids if i not in w.session.layers]
     if missing:
-        w.log_message(w.tr("an input layer was removed; result dropped"))
+        w.log_message(tr("an input layer was removed; result dropped"))
         return
     w._pending_views = {key: view for key, (view, _color) in views.items()}
     try:

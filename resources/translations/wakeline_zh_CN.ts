@@ -759,4 +759,98 @@
         <translation>经度</translation>
     </message>
 </context>
+<context>
+    <name>ReviewDock</name>
+    <message>
+        <source>&amp;Before/after map (linked)</source>
+        <translation>前后对照地图（联动）(&amp;B)</translation>
+    </message>
+    <message>
+        <source>&amp;Decision log…</source>
+        <translation>决策日志(&amp;D)…</translation>
+    </message>
+    <message>
+        <source>&amp;Edit</source>
+        <translation>编辑(&amp;E)</translation>
+    </message>
+    <message>
+        <source>&amp;Redo</source>
+        <translation>重做(&amp;R)</translation>
+    </message>
+    <message>
+        <source>&amp;Reviewed tracks (decisions honoured)…</source>
+        <translation>审核后的航迹（按决策）(&amp;R)…</translation>
+    </message>
+    <message>
+        <source>&amp;Undo</source>
+        <translation>撤销(&amp;U)</translation>
+    </message>
+    <message>
+        <source>Error</source>
+        <translation>错误</translation>
+    </message>
+    <message>
+        <source>Fuse &amp;selected layers (two or more)</source>
+        <translation>融合所选图层（两个或以上）(&amp;S)</translation>
+    </message>
+    <message>
+        <source>No proposals: run Associate or Fuse on a layer.</source>
+        <translation>没有候选：请对图层运行关联或融合。</translation>
+    </message>
+    <message>
+        <source>Re&amp;view</source>
+        <translation>审核(&amp;V)</translation>
+    </message>
+    <message>
+        <source>Review</source>
+        <translation>审核</translation>
+    </message>
+    <message>
+        <source>before: the input pieces</source>
+        <translation>之前：输入的航迹段</translation>
+    </message>
+    <message>
+        <source>members</source>
+        <translation>成员</translation>
+    </message>
+    <message>
+        <source>points by sensors</source>
+        <translation>各传感器点数</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewSync</name>
+    <message>
+        <source>Error</source>
+        <translation>错误</translation>
+    </message>
+    <message>
+        <source>Export decision log</source>
+        <translation>导出决策日志</translation>
+    </message>
+    <message>
+        <source>Export reviewed tracks</source>
+        <translation>导出审核后的航迹</translation>
+    </message>
+    <message>
+        <source>Fuse selected layers</source>
+        <translation>融合所选图层</translation>
+    </message>
+    <message>
+        <source>No layer under review.</source>
+        <translation>没有正在审核的图层。</translation>
+    </message>
+    <message>
+        <source>Nothing to export</source>
+        <translation>没有可导出的内容</translation>
+    </message>
+    <message>
+        <source>Select two or more layers in the Layers list (Ctrl+click), e.g. radar and AIS.</source>
+        <translation>在图层列表中选择两个或更多图层（Ctrl+单击），例如雷达和 AIS。</translation>
+    </message>
+    <message>
+        <source>an input layer was removed; result dropped</source>
+        <translation>一个输入图层已被删除；结果已丢弃</translation>
+    </message>
+</context>
 </TS>
