@@ -10,9 +10,9 @@ Two problems, one set of building blocks:
   the same sensor started within T_gap; distance from i's end to j's start by position,
   course and speed, and a one-to-one assignment (greedy as in the paper, or optimal).
 
-Candidate pairs are never a dense n×n matrix: they come from a k-d tree over (position,
-scaled time) of track ends and starts, filtered by the gap and the speed needed to cover
-it. Everything per pair is vectorized; only the final assignment walks the sorted pairs.
+Candidate pairs are never a dense n×n matrix: they come from a grid of track ends and
+starts with a sweep on time (a k-d tree where the grid does not fit), filtered by the gap
+and the speed needed to cover it. Everything per pair is vectorized; only the final assignment walks the sorted pairs.
 """
 
 from dataclasses import dataclass
