@@ -168,6 +168,8 @@ def _grid_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarr
     side = v * gmax + tol
     pe = ecef(seg.lon1, seg.lat1)
     ps = ecef(seg.lon0, seg.lat0)
+    if not (np.isfinite(pe).all() and np.isfinite(ps).all() and side > 0):
+        return None  # the k-d tree path handles (or reports) what a grid cannot bin
     origin = np.floor(np.minimum(pe.min(axis=0), ps.min(axis=0)) / side) - 2
     cs = (np.floor(ps / side) - origin).astype("int64")
     ce = (np.floor(pe / side) - origin).astype("int64")
