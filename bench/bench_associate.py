@@ -1,9 +1,14 @@
-"""Interrupted-track association at scale: time and memory for 10 k and 100 k segments,
-and the speed-up over the dense way (an n×n cost matrix and linear_sum_assignment) on a
+"""Interrupted-track association at scale: time and memory for 1 k, 10 k and 100 k
+segments, the growth per 10× segments of the candidate pairs and of the whole association
+(wall and CPU time; the k-d tree way of earlier versions measured in the same run), and
+the speed-up over the dense way (an n×n cost matrix and linear_sum_assignment) on a
 subset both can run.
 
-Run: ``python bench/bench_associate.py [--segments 10000 100000] [--dense 2500]``.
-Goals (issue 6): 10 k segments in < 10 s; 100 k well below the machine's 24 GB.
+Run: ``python bench/bench_associate.py [--segments 1000 10000 100000] [--dense 2500]
+[--repeat 2]``.
+Goals: issue 6, 10 k segments in < 10 s and 100 k well below the machine's 24 GB;
+issue 17, association growth ≤ 11× per 10× segments. CPU time is printed beside wall
+time: on a shared machine it is the steadier of the two.
 """
 
 import argparse
@@ -13,16 +18,19 @@ import tracemalloc
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from wakeline.core import associate as assoc_mod
 from wakeline.core import geo, simulate
 from wakeline.core.associate import (
     LinkParams,
     Pairs,
     _miss_one_turn,
     associate_interrupted,
+    candidate_pairs,
     pair_cost,
 )
 from wakeline.core.evaluate_association import score_association
 from wakeline.core.segments import segment_stats
+from wakeline.core.tracks import sorted_with_index
 
 
 def scene(n_segments: int, seed: int = 0):
@@ -57,12 +65,74 @@ def dense_baseline(points, params: LinkParams) -> tuple[float, int]:
     return time.perf_counter() - t, chosen
 
 
+def timed(fn, repeat: int) -> tuple[float, float]:
+    """Best wall and best CPU time (s) of ``repeat`` runs."""
+    wall, cpu = [], []
+    for _ in range(repeat):
+        w, c = time.perf_counter(), time.process_time()
+        fn()
+        wall.append(time.perf_counter() - w)
+        cpu.append(time.process_time() - c)
+    return min(wall), min(cpu)
+
+
+def tree_pairs(seg, params: LinkParams) -> Pairs:
+    """Candidate pairs the way of earlier versions: the k-d tree only."""
+    grid = assoc_mod._grid_pairs
+    assoc_mod._grid_pairs = lambda s, p: None
+    try:
+        return candidate_pairs(seg, params)
+    finally:
+        assoc_mod._grid_pairs = grid
+
+
+def growth(sizes: list[int], repeat: int) -> None:
+    """Candidate pairs (grid and sweep; k-d tree) and the whole association per size, and
+    the growth per 10× segments of each."""
+    params = LinkParams()
+    prev = None
+    with open("/proc/loadavg") as f:
+        print(f"load before: {f.read().split()[0]}")
+    for n in sizes:
+        df = scene(n)
+        # Sorted once, as the step before hands it on (issue 17, "sort once"); the sort of
+        # the unsorted points is timed apart: it is n log n and not the association's.
+        w, c = time.perf_counter(), time.process_time()
+        df, _ = sorted_with_index(df)
+        sort_t = (time.perf_counter() - w, time.process_time() - c)
+        seg = segment_stats(df, params.end_points)
+        t = {
+            "pairs": timed(lambda seg=seg: candidate_pairs(seg, params), repeat),
+            "k-d tree pairs": timed(lambda seg=seg: tree_pairs(seg, params), repeat),
+            "association": timed(lambda df=df: associate_interrupted(df, params), repeat),
+        }
+        line = f"{len(seg):>7,} segments: " + ", ".join(
+            f"{k} {w:.3f} s wall / {c:.3f} s CPU" for k, (w, c) in t.items()
+        )
+        line += f" (sorting the {len(df):,} unsorted points before: {sort_t[1]:.2f} s CPU)"
+        if prev is not None:
+            f = np.log10(len(seg) / prev[0])
+            line += "; growth per 10x (wall/CPU): " + ", ".join(
+                f"{k} {(t[k][0] / prev[1][k][0]) ** (1 / f):.1f}x/"
+                f"{(t[k][1] / prev[1][k][1]) ** (1 / f):.1f}x"
+                for k in t
+            )
+        with open("/proc/loadavg") as fh:
+            print(line + f"  (goal <= 11x; load {fh.read().split()[0]})", flush=True)
+        prev = (len(seg), t)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--segments", type=int, nargs="+", default=[10_000, 100_000])
+    ap.add_argument("--segments", type=int, nargs="+", default=[1000, 10_000, 100_000])
     ap.add_argument("--dense", type=int, default=2500, help="segments for the dense comparison")
+    ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--growth-only", action="store_true", help="only the growth per 10x (issue 17)")
     args = ap.parse_args()
     params = LinkParams()
+    growth(args.segments, args.repeat)
+    if args.growth_only:
+        return
 
     df = scene(args.dense)
     t = time.perf_counter()

@@ -10,9 +10,9 @@ Two problems, one set of building blocks:
   the same sensor started within T_gap; distance from i's end to j's start by position,
   course and speed, and a one-to-one assignment (greedy as in the paper, or optimal).
 
-Candidate pairs are never a dense n×n matrix: they come from a k-d tree over (position,
-scaled time) of track ends and starts, filtered by the gap and the speed needed to cover
-it. Everything per pair is vectorized; only the final assignment walks the sorted pairs.
+Candidate pairs are never a dense n×n matrix: they come from a grid of track ends and
+starts with a sweep on time (a k-d tree where the grid does not fit), filtered by the gap
+and the speed needed to cover it. Everything per pair is vectorized; only the final assignment walks the sorted pairs.
 """
 
 from dataclasses import dataclass
@@ -149,27 +149,86 @@ class Pairs:
         return Pairs(*(getattr(self, f)[keep] for f in self.__dataclass_fields__))
 
 
-def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
-    """Pairs of one sensor with ``0 < start(j) − end(i) ≤ max_gap_s`` and reachable at
-    ``v_max_kn`` (+ ``position_tol_m``), found with a k-d tree; features per pair.
+def _grid_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarray] | None:
+    """(end i, start j) of one sensor with ``t0[j] − t1[i]`` in (0, ``max_gap_s``] and the
+    straight-line (chord) distance within ``v_max·gap + position_tol_m``, or None when the
+    grid's keys do not fit in 64 bits.
 
-    Pairs come out ordered by (i, j). Track ends and starts are points in
-    (x, y, z, scaled time, sensor) space, the starts shifted back by half the longest
-    gap: a reachable pair is at most ``reach = v·max_gap_s + position_tol_m`` apart in
-    space and, with time scaled so that half the gap window spans ``reach``, at most
-    ``reach`` apart in time, so within √2·reach. One k-d tree query
-    (``sparse_distance_matrix``, arrays out) finds them: the work grows with the number
-    of neighbours, with no Python list per segment and no pair with a negative gap.
+    Earth-centred positions are binned in cubes of side ``reach`` (the distance coverable
+    in the longest gap): the starts reachable from an end lie in the 3×3×3 cubes about
+    it, so 27 look-ups per end. Starts are sorted by (cube, start time); each look-up is a
+    ``searchsorted`` for the cube's starts in the end's time window, the ranges are
+    expanded into pairs with ``np.repeat`` and cut to the reachability cone at once —
+    no Python loop per track or per pair, work linear in the pairs looked at.
     """
+    n = len(seg)
+    gmax = float(params.max_gap_s)
+    v = params.v_max_kn * geo.KN_MS
+    tol = params.position_tol_m
+    side = v * gmax + tol
+    pe = ecef(seg.lon1, seg.lat1)
+    ps = ecef(seg.lon0, seg.lat0)
+    if not (np.isfinite(pe).all() and np.isfinite(ps).all() and side > 0):
+        return None  # the k-d tree path handles (or reports) what a grid cannot bin
+    origin = np.floor(np.minimum(pe.min(axis=0), ps.min(axis=0)) / side) - 2
+    cs = (np.floor(ps / side) - origin).astype("int64")
+    ce = (np.floor(pe / side) - origin).astype("int64")
+    bits = max(int(max(cs.max(), ce.max()) + 2).bit_length(), 1)
+    sens = seg.sensor_code.astype("int64")
+    if 3 * bits + max(int(sens.max()).bit_length(), 1) > 62:
+        return None
+
+    def key(c: np.ndarray) -> np.ndarray:
+        return (((sens << bits | c[:, 0]) << bits | c[:, 1]) << bits) | c[:, 2]
+
+    t0, t1 = seg.t0, seg.t1
+    tmin = float(min(t0.min(), t1.min()))
+    ks = key(cs)
+    order = np.lexsort((t0, ks))
+    cells, first = np.unique(ks[order], return_index=True)
+    width = float(max(t0.max(), t1.max()) - tmin) + gmax + 10.0
+    if len(cells) * width > 2.0**52 / 1e3:  # millisecond resolution of the sweep key
+        return None
+    sweep = np.repeat(np.arange(len(cells)), np.diff(np.append(first, n))) * width + (
+        t0[order] - tmin
+    )
+    # Ends in (cube, time) order too: the queries of each look-up come sorted and every
+    # gather below walks both tables forwards (the cache decides the speed at 100 k).
+    ke = key(ce)
+    e_order = np.lexsort((t1, ke))
+    ke, ce_s, tq = ke[e_order], ce[e_order], t1[e_order] - tmin
+    pe_s, ps_s, t0_s = pe[e_order], ps[order], t0[order]
+    slack = 2e-3  # s: the sweep key's rounding; the exact gap test follows
+    out_i, out_j = [], []
+    for off in np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 3):
+        kq = ((ke >> (3 * bits)) << bits | ce_s[:, 0] + off[0]) << bits | ce_s[:, 1] + off[1]
+        kq = kq << bits | ce_s[:, 2] + off[2]
+        c = np.searchsorted(cells, kq)
+        e = np.flatnonzero((c < len(cells)) & (cells[np.minimum(c, len(cells) - 1)] == kq))
+        base = c[e] * width + tq[e]
+        lo = np.searchsorted(sweep, base - slack, side="left")
+        cnt = np.searchsorted(sweep, base + gmax + slack, side="right") - lo
+        i = np.repeat(e, cnt)
+        j = concat_ranges(lo, cnt)
+        gap = t0_s[j] - (tq[i] + tmin)
+        d2 = ((pe_s[i] - ps_s[j]) ** 2).sum(axis=1)
+        ok = (gap > 0) & (gap <= gmax) & (d2 <= (v * gap + tol) ** 2)
+        i, j = e_order[i[ok]], order[j[ok]]
+        keep = i != j
+        out_i.append(i[keep])
+        out_j.append(j[keep])
+    return np.concatenate(out_i), np.concatenate(out_j)
+
+
+def _tree_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarray]:
+    """The same pairs as :func:`_grid_pairs` (a superset) from a k-d tree: ends and starts
+    as points in (x, y, z, scaled time, sensor) space, the starts shifted back by half the
+    longest gap, so that a reachable pair lies within √2·reach (one
+    ``sparse_distance_matrix`` query, arrays out)."""
     from scipy.spatial import cKDTree  # lazy: keeps `wakeline --help` fast
 
-    n = len(seg)
-    if n < 2:
-        e = np.zeros(0)
-        return Pairs(e.astype("int64"), e.astype("int64"), e, e, e, e, e)
-    v = params.v_max_kn * geo.KN_MS
     t_ref = float(min(seg.t0.min(), seg.t1.min()))
-    reach = v * params.max_gap_s + params.position_tol_m
+    reach = params.v_max_kn * geo.KN_MS * params.max_gap_s + params.position_tol_m
     scale = 2.0 * reach / params.max_gap_s
     sensor_far = 4.0 * geo.EARTH_RADIUS_M + 4.0 * reach
     ends = np.column_stack(
@@ -180,8 +239,26 @@ def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
     near = cKDTree(ends).sparse_distance_matrix(
         cKDTree(starts), np.sqrt(2.0) * reach * (1.0 + 1e-9), output_type="ndarray"
     )
-    i = near["i"].astype("int64")
-    j = near["j"].astype("int64")
+    return near["i"].astype("int64"), near["j"].astype("int64")
+
+
+def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
+    """Pairs of one sensor with ``0 < start(j) − end(i) ≤ max_gap_s`` and reachable at
+    ``v_max_kn`` (+ ``position_tol_m``); features per pair, ordered by (i, j).
+
+    A reachable pair is at most ``reach = v·max_gap_s + position_tol_m`` apart, so
+    :func:`_grid_pairs` finds them with a grid and a sweep on time (arrays end to end,
+    work linear in the pairs it looks at); a k-d tree over (position, scaled time)
+    stands in when the grid's cell keys would not fit in 64 bits (tracks spread over
+    the globe with a short reach).
+    """
+    n = len(seg)
+    if n < 2:
+        e = np.zeros(0)
+        return Pairs(e.astype("int64"), e.astype("int64"), e, e, e, e, e)
+    v = params.v_max_kn * geo.KN_MS
+    found = _grid_pairs(seg, params)
+    i, j = found if found is not None else _tree_pairs(seg, params)
     gap = seg.t0[j] - seg.t1[i]
     keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
     i, j, gap = i[keep], j[keep], gap[keep]

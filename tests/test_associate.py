@@ -267,3 +267,26 @@ def test_cli_associate_missing_and_empty_files(tmp_path, capsys):
     empty.write_text("")
     assert main(["associate", str(empty), "-o", str(tmp_path / "o.csv")]) == 2
     assert capsys.readouterr().err.count("wakeline: error") == 2
+
+
+@pytest.mark.parametrize(
+    "changes",
+    [{}, {"max_gap_s": 60.0, "v_max_kn": 5.0, "position_tol_m": 0.0}, {"max_gap_s": 7200.0}],
+)
+def test_grid_sweep_finds_exactly_the_k_d_tree_pairs(changes, monkeypatch):
+    # Two sensors (never paired with each other), 40 ships in 8 km: the grid and sweep on
+    # time (issue 17) must give the same candidates, in the same order, as the k-d tree.
+    from wakeline.core import associate as assoc_mod
+
+    a = simulate.segments_scene(seed=2, n_ships=40, area_km=8.0, period_s=30.0)
+    b = a.assign(sensor="R2", lon=a["lon"] + 0.01)
+    seg = segment_stats(pd.concat([a, b], ignore_index=True))
+    params = LinkParams().replace(**changes)
+    grid = candidate_pairs(seg, params)
+    assert assoc_mod._grid_pairs(seg, params) is not None
+    monkeypatch.setattr(assoc_mod, "_grid_pairs", lambda s, p: None)
+    tree = candidate_pairs(seg, params)
+    assert len(grid) == len(tree) > 0 or changes.get("max_gap_s") == 60.0
+    for f in grid.__dataclass_fields__:
+        np.testing.assert_array_equal(getattr(grid, f), getattr(tree, f))
+    assert (seg.sensor_code[grid.i] == seg.sensor_code[grid.j]).all()

@@ -9,7 +9,11 @@ from wakeline.app.cli import main
 from wakeline.core import geo, simulate
 from wakeline.core.associate import LinkParams, associate_interrupted, stitch
 from wakeline.core.errors import InputError
-from wakeline.core.evaluate_association import evaluate_real_association, score_association
+from wakeline.core.evaluate_association import (
+    error_breakdown,
+    evaluate_real_association,
+    score_association,
+)
 from wakeline.core.fuse import FuseParams, associate_sensors
 from wakeline.core.segments import segment_stats
 from wakeline.core.transform import BsplineParams, bspline_segments, knot_vector
@@ -149,3 +153,40 @@ def test_real_evaluation_on_a_folder_and_its_errors(tmp_path, capsys):
     empty.mkdir()
     assert main(["evaluate", "associate", "--real", str(empty)]) == 2
     assert "no .csv" in capsys.readouterr().err
+
+
+def test_error_breakdown_names_each_wrong_join_and_miss():
+    # A ends; its true continuation A2 starts 300 s later; a loose clutter piece C sits on
+    # A's path. Force every join through the open gates and read the breakdown.
+    a = straight("1", 0, 600, speed=6.0, course=90.0, truth="A")
+    a2 = straight("2", 900, 1500, speed=6.0, course=90.0, start=(5400.0, 0.0), truth="A")
+    c = straight("3", 700, 800, speed=6.0, course=90.0, start=(4200.0, 0.0), truth="C")
+    df = pd.concat([a, a2, c])
+    assoc = associate_interrupted(df)
+    counts = error_breakdown(assoc)
+    assert set(counts) == {
+        "wrong_skip",
+        "wrong_loose",
+        "wrong_swap",
+        "miss_not_candidate",
+        "miss_taken",
+        "miss_left_loose",
+    }
+    out = {tuple(r) for r in assoc.pair_table()[["batch_a", "batch_b"]].values.tolist()}
+    wrong = len(out - {("1", "2")})
+    assert counts["wrong_loose"] + counts["wrong_skip"] + counts["wrong_swap"] == wrong
+    assert counts["wrong_loose"] == len(out & {("1", "3"), ("3", "2")})
+    missed = int(("1", "2") not in out)
+    assert counts["miss_taken"] + counts["miss_left_loose"] + counts["miss_not_candidate"] == missed
+
+
+def test_real_evaluation_reports_the_mtad_halves_apart(tmp_path):
+    for name, seed in (("Scene-0.csv", 1), ("Scene-6.csv", 2), ("Scene-3.csv", 3)):
+        df = simulate.segments_scene(seed=seed, n_ships=4, area_km=10.0, pieces=(2, 2))
+        df = df.assign(batch=df["truth"])  # whole tracks with real gaps, cut by the test
+        df.drop(columns=["truth", "true_lon", "true_lat"]).to_csv(tmp_path / name, index=False)
+    ev = evaluate_real_association(tmp_path, cut_s=15.0, methods=("ours, optimal",))
+    text = ev.format()
+    assert "MTAD tuning half (Scene-0.csv, Scene-6.csv)" in text
+    assert "held-out half" not in text  # one file of that half: no mean printed
+    assert "wrong_skip" in text and "miss_left_loose" in text
