@@ -245,8 +245,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             made = f"{layer.step} ← {parent.name if parent else layer.parent}"
             lines.append(f"{self.tr('Made by')}: {made}, {layer.created}")
         if tracks and view is not None and len(view.text.get("start", [])):
-            first = view.text["start"][int(np.argmin(summary["start"].to_numpy()))]
-            last = view.text["end"][int(np.argmax(summary["end"].to_numpy()))]
+            # Series.argmin/argmax: no object array of Timestamps (0.1 s per 2,000 tracks).
+            first = view.text["start"][int(summary["start"].argmin())]
+            last = view.text["end"][int(summary["end"].argmax())]
             lines.append(f"{self.tr('Time')}: {first} – {last}")
         for key in ("dis_e_m", "rejected", "threshold_deg"):
             value = layer.meta.get(key)

@@ -48,6 +48,9 @@ SYMBOLS_MAX = 3_000
 SELECTION_POOL = 12
 #: Cache mode of a layer's curves.
 CACHE = QtWidgets.QGraphicsItem.CacheMode.DeviceCoordinateCache
+#: Qt's pixmap cache (KiB) that holds those pixmaps. Its default, 10 MiB, holds two
+#: window-sized ARGB pixmaps: with more curves every paint evicted and stroked them all.
+PIXMAP_CACHE_KIB = 256 * 1024
 
 #: ``executor(job, done)``: run ``job()`` (pure, returns DrawData) somewhere and call
 #: ``done(result)`` on the GUI thread.
@@ -63,6 +66,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent=parent, background="w")
+        if QtGui.QPixmapCache.cacheLimit() < PIXMAP_CACHE_KIB:
+            QtGui.QPixmapCache.setCacheLimit(PIXMAP_CACHE_KIB)
         self.plot_item = self.getPlotItem()
         self.setLabel("bottom", "longitude", units="°")
         self.setLabel("left", "latitude", units="°")

@@ -1,13 +1,15 @@
 """A legend that lives in the plot's layout, beside the view box: it never covers data."""
 
 import pyqtgraph as pg
-from PySide6 import QtGui
+from PySide6 import QtCore, QtGui
 
 #: Longest legend label (characters); longer ones are shortened in the middle, so the
 #: column beside the map stays narrow (the full names are in the Layers panel).
 LABEL_MAX = 32
-#: The legend column is reserved this many characters wide from the start.
-RESERVED_CHARS = 20
+#: The legend column is this many characters ("n") wide, from the start and for good;
+#: a label wider than that is shortened in the middle to fit it (by pixels, so wide
+#: glyphs such as Chinese fit too).
+RESERVED_CHARS = 26
 
 
 def short_label(text: str, limit: int = LABEL_MAX) -> str:
@@ -33,12 +35,16 @@ class SideLegend(pg.LegendItem):
         self.bare = False
         font = QtGui.QFont()
         font.setPointSizeF(9.0)  # pyqtgraph's legend label size
-        text = QtGui.QFontMetricsF(font).horizontalAdvance("n" * RESERVED_CHARS)
-        self.widest = float(text) + 20 + 3 + 12  # the line sample, spacing, margins
+        self._metrics = QtGui.QFontMetricsF(font)
+        self._text_px = float(self._metrics.horizontalAdvance("n" * RESERVED_CHARS))
+        self.widest = self._text_px + 20 + 3 + 12  # the line sample, spacing, margins
         self.updateSize()
 
     def addItem(self, item, name: str) -> None:  # noqa: N802 - pyqtgraph's name
-        super().addItem(item, short_label(str(name)))
+        text = self._metrics.elidedText(
+            short_label(str(name)), QtCore.Qt.TextElideMode.ElideMiddle, self._text_px
+        )
+        super().addItem(item, text)
 
     def updateSize(self) -> None:  # noqa: N802 - pyqtgraph's name
         width = height = 0.0

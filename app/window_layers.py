@@ -105,6 +105,10 @@ class LayersMixin:
             layer = self.session.layers.get(lid)
             if layer is not None and lid in self.views:
                 self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
+                if layer.visible and self.canvas.isVisible():
+                    # Paint now, in this turn: Qt would merge the paints of layers swapped in
+                    # on successive turns into one long paint of them all.
+                    self.canvas.viewport().repaint()
         elif self._fit_after_draw:
             self._fit_after_draw = False
             self.canvas.fit()
