@@ -101,10 +101,16 @@ class ReviewDock(QtCore.QObject):
         legend = self.before.legend  # no legend column: the narrow map keeps its width
         legend.updateSize = lambda: (legend.setMaximumWidth(0), legend.setVisible(False))
         self.split = QtWidgets.QSplitter()
-        central = w.takeCentralWidget()  # the map, or the map with the time slider under it
+        central = w.centralWidget()
+        if central is w.canvas:
+            w.takeCentralWidget()
+            w.setCentralWidget(self.split)
+        else:  # the map with the time slider under it: the slider stays under both maps
+            lay = central.layout()
+            lay.replaceWidget(w.canvas, self.split)
+            lay.setStretchFactor(self.split, 1)
         self.split.addWidget(self.before)
-        self.split.addWidget(central)
-        w.setCentralWidget(self.split)
+        self.split.addWidget(w.canvas)
         self.before.hide()
         self._linking = False
         w.canvas.vb.sigRangeChanged.connect(lambda *_: self._link(w.canvas, self.before))
