@@ -7,6 +7,11 @@ from pathlib import Path
 from wakeline.app.cli_common import EPILOG, fuse_params, link_params, positive_float, positive_int
 
 
+def _progress(fraction: float, text: str) -> None:
+    """An evaluation's progress on stderr."""
+    print(f"  {fraction:4.0%} {text}", file=sys.stderr)
+
+
 def _maneuver_params(args: argparse.Namespace):
     from wakeline.core.maneuver import ManeuverParams
 
@@ -38,7 +43,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             args.scenes,
             args.seed,
             fuse_params(args.set),
-            progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+            progress=_progress,
             hard=args.hard,
         )
         print(ev.format())
@@ -56,7 +61,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             truth_sep=args.truth_sep,
             mapping=args.map,
             seed=args.seed,
-            progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+            progress=_progress,
         )
         print(ev.format())
         if args.csv:
@@ -70,7 +75,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             args.scenes,
             args.seed,
             link_params(args.set),
-            progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+            progress=_progress,
             hard=args.hard,
         )
         print(ev.format())
@@ -87,7 +92,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             _bearing_params(args),
             geometries=args.geometries,
             compare=not args.ours_only,
-            progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+            progress=_progress,
         )
         print(format_evaluation(ev))
         if args.csv:
@@ -100,7 +105,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         ev = evaluate_real(
             args.real,
             _maneuver_params(args),
-            progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+            progress=_progress,
         )
         print(ev.format())
         if args.csv:
@@ -111,7 +116,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         args.tracks,
         args.seed,
         _maneuver_params(args),
-        progress=lambda f, text: print(f"  {f:4.0%} {text}", file=sys.stderr),
+        progress=_progress,
     )
     print(ev.format())
     if args.csv:
@@ -224,9 +229,10 @@ def register(sub) -> None:
         "bearing",
         help="detect target maneuvers in bearing-only sequences (seed 002)",
         description="Input: batch,time,bearing[,obs_lon,obs_lat] (degrees; the observer's position "
-        "excludes spans where it maneuvers itself). Two sliding windows X and Y; the Mann-Whitney AUC "
-        "of the residuals from the trend fitted on X, with its null variance corrected for the trend's "
-        "extrapolation. Writes one row per detection: batch,detect_time,maneuver_time,z.",
+        "excludes spans where it maneuvers itself). Two sliding windows X and Y (seconds); by default a "
+        "likelihood-ratio test of a bearing-rate change fitted with the target's relative motion "
+        "over X and nested Y spans (--no-glr: seed 002's Mann-Whitney AUC of the residuals from "
+        "the trend fitted on X). Writes one row per detection: batch,detect_time,maneuver_time,z.",
         epilog=EPILOG,
     )
     p.add_argument("input", type=Path, help="bearing CSV")
