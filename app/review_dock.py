@@ -11,6 +11,7 @@ applied and stored by :class:`wakeline.app.review_sync.ProjectDecisions`; the la
 points follow through :class:`wakeline.app.review_sync.ReviewSync`.
 """
 
+import contextlib
 from dataclasses import dataclass, field
 
 import pandas as pd
@@ -113,17 +114,23 @@ class ReviewDock(QtCore.QObject):
         self.split.addWidget(w.canvas)
         self.before.hide()
         self._linking = False
-        w.canvas.vb.sigRangeChanged.connect(lambda *_: self._link(w.canvas, self.before))
-        self.before.vb.sigRangeChangedManually.connect(lambda *_: self._link(self.before, w.canvas))
         self.act_before = QtGui.QAction(tr("&Before/after map (linked)"), w, checkable=True)
         self.act_before.toggled.connect(self.show_before)
         self._before_layers: list[str] = []
         self._build_menus()
         w.layer_list.setSelectionMode(QtWidgets.QAbstractItemView.SelectionMode.ExtendedSelection)
-        w.layer_list.currentItemChanged.connect(lambda *_: self.refresh())
-        w.layersChanged.connect(self.refresh)
-        w.batch_view.selectionModel().selectionChanged.connect(self._show_members)
-        w.batch_model.modelReset.connect(lambda: self._clear_items("members"))
+        # The window's signals this dock listens to; close() lets go of them, so that the
+        # widgets' destruction (which emits some of them) never calls into a half-gone dock.
+        self._listening = [
+            (w.canvas.vb.sigRangeChanged, lambda *_: self._link(w.canvas, self.before)),
+            (self.before.vb.sigRangeChangedManually, lambda *_: self._link(self.before, w.canvas)),
+            (w.layer_list.currentItemChanged, lambda *_: self.refresh()),
+            (w.layersChanged, self.refresh),
+            (w.batch_view.selectionModel().selectionChanged, self._show_members),
+            (w.batch_model.modelReset, lambda: self._clear_items("members")),
+        ]
+        for signal, slot in self._listening:
+            signal.connect(slot)
         self.refresh()
 
     def show_before(self, on: bool = True) -> None:
@@ -403,7 +410,11 @@ class ReviewDock(QtCore.QObject):
         )
 
     def close(self) -> None:
-        """Stop the workers (the window is closing)."""
+        """Stop listening to the window and stop the workers (the window is closing)."""
+        for signal, slot in self._listening:
+            with contextlib.suppress(RuntimeError, TypeError):  # already gone
+                signal.disconnect(slot)
+        self._listening = []
         for runner in (self.binder, self.sync.runner):
             runner.cancel()
             runner.wait(5000)

@@ -71,6 +71,7 @@ def _windows_end_with_their_test(request):
     for w in windows:
         w.runner.cancel()
         assert w.runner.wait(60_000), "a job did not end within 60 s of the test"
+        w.close()  # as the application does: closeEvent stops the jobs and the docks
         w.lod_worker.wait(60_000)
         w.project.detach()
         w.deleteLater()
