@@ -31,7 +31,13 @@ import pandas as pd
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
-from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_seconds
+from wakeline.core.tracks import (
+    TrackIndex,
+    concat_ranges,
+    local_xy,
+    sorted_with_index,
+    track_seconds,
+)
 
 MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
 
@@ -117,9 +123,10 @@ class ManeuverParams(Params):
         return cls(window_s=0.0, max_window_s=0.0, min_speed_kn=0.0, rest_radius_m=0.0, noise_k=0.0)
 
 
-#: Windows per block: temporaries of ~8 MB stay in the allocator's reusable heap, where
-#: row-sized ones (80 MB at 10 M points) would be fresh pages every time.
-BLOCK = 1 << 20
+#: Windows per block: temporaries of 256 kB stay in the processor's cache (and in the
+#: allocator's reusable heap), where row-sized ones (80 MB at 10 M points) would be fresh
+#: pages every time.
+BLOCK = 1 << 15
 
 
 def window_headings(
@@ -148,8 +155,14 @@ def window_headings(
 
 
 def _block_headings(u: np.ndarray, v: np.ndarray, p: int) -> np.ndarray:
-    # The same arithmetic, operation for operation, as mean / covariance / closed-form PCA
-    # written plainly; done in place so a block allocates a handful of arrays, not twenty.
+    return _axis_headings(*_block_moments(u, v, p))
+
+
+def _block_moments(u: np.ndarray, v: np.ndarray, p: int):
+    """Per window: cxx − cyy, 2·cxy and the displacement from its first point to its last.
+
+    The same arithmetic, operation for operation, as mean / covariance / closed-form PCA
+    written plainly; done in place so a block allocates a handful of arrays, not twenty."""
     n = len(u)
     ones = np.ones(p)
     mu = np.convolve(u, ones, "valid")
@@ -170,21 +183,48 @@ def _block_headings(u: np.ndarray, v: np.ndarray, p: int) -> np.ndarray:
     cxy -= np.multiply(mu, mv, out=tmp[: n - p + 1])
     cxy *= 2.0
     cxx -= cyy
-    theta = np.arctan2(cxy, cxx, out=cxy)
-    theta *= 0.5  # major axis, radians from +x
-    ax, ay = np.cos(theta, out=cxx), np.sin(theta, out=cyy)
-    # Orient by travel: from the window's first point to its last.
     du = np.subtract(u[p - 1 :], u[: n - p + 1], out=mu)
-    du *= ax
     dv = np.subtract(v[p - 1 :], v[: n - p + 1], out=mv)
+    return cxx, cxy, du, dv
+
+
+def _axis_headings(a: np.ndarray, b: np.ndarray, du: np.ndarray, dv: np.ndarray) -> np.ndarray:
+    """Heading (deg) of the major axis 0.5·atan2(b, a), oriented along (du, dv); overwrites
+    its arguments."""
+    theta = np.arctan2(b, a, out=b)
+    theta *= 0.5  # major axis, radians from +x
+    ax, ay = np.cos(theta, out=a), np.sin(theta, out=np.empty_like(a))
+    # Orient by travel: from the window's first point to its last.
+    du *= ax
     dv *= ay
     du += dv
-    flip = du < 0
+    flip = du < 0.0
     heading = np.arctan2(ax, ay, out=theta)
     np.degrees(heading, out=heading)
     heading += 0.0  # as the plain form's "+ where(flip, 180, 0)": -0.0 becomes 0.0
-    heading[flip] += 180.0
-    return np.remainder(heading, 360.0, out=heading)
+    heading += flip * 180.0  # + 0.0 where not flipped: no change
+    return _wrap360(heading)
+
+
+def _wrap360(h: np.ndarray) -> np.ndarray:
+    """``np.remainder(h, 360.0)`` for h in [-360, 720) (or NaN), in place and bit for bit:
+    there the floored remainder is h, h + 360 (rounded as the remainder rounds it) or
+    h − 360 (exact), and a zero comes out +0.0 — without the costly division."""
+    h += 0.0  # -0.0 -> +0.0, as the remainder gives
+    shift = (h < 0.0) * 360.0  # (-1e-17 + 360 rounds to 360, and stays there)
+    shift -= (h >= 360.0) * 360.0
+    h += shift  # adding +0.0 changes nothing
+    return h
+
+
+def _angle_diff(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """:func:`geo.angle_diff` of headings in [0, 360) (or NaN), bit for bit, without the
+    division of ``%``."""
+    w = np.subtract(a, b)
+    w += 180.0
+    _wrap360(w)
+    w -= 180.0
+    return np.abs(w, out=w)
 
 
 def maneuver_factor(x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int) -> np.ndarray:
@@ -477,6 +517,248 @@ def _rest_mask(
     return rest
 
 
+# --- the kernel of detect(): δ only where a maneuver can be, peaks only above t ------------
+#
+# The helpers below give detect() the same output, bit for bit, as running maneuver_factor,
+# local_maxima and the rules on every row (tests/test_maneuver_kernel.py pins it against a
+# frozen copy of that straightforward detector): every window sum is the same np.convolve
+# dot product of the same p numbers, and every elementwise step the same ufunc on the same
+# operands, only on fewer rows.
+
+
+def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """First and one-past-last row of every run of True in ``mask``."""
+    edge = np.diff(mask.view(np.int8), prepend=np.int8(0), append=np.int8(0))
+    return np.flatnonzero(edge == 1), np.flatnonzero(edge == -1)
+
+
+def _dilate(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray, index: TrackIndex, n: int):
+    """Mask of the rows within ``reach`` (per run) of the runs ``[lo, hi)``, in their track."""
+    if not len(lo):
+        return np.zeros(n, dtype=bool)
+    tr = index.track_of_row[lo]
+    a = np.maximum(lo - reach, index.starts[tr])
+    b = np.minimum(hi + reach, index.ends[tr])
+    ev = np.bincount(a, minlength=n + 1) - np.bincount(b, minlength=n + 1)
+    return np.cumsum(ev[:n]) > 0
+
+
+def _merge_runs(lo: np.ndarray, hi: np.ndarray, tr: np.ndarray):
+    """Union of sorted runs ``[lo, hi)`` of tracks ``tr`` (a run never spans two tracks)."""
+    if len(lo) < 2:
+        return lo, hi, tr
+    reach = np.maximum.accumulate(hi)
+    new = np.ones(len(lo), dtype=bool)
+    new[1:] = (lo[1:] > reach[:-1]) | (tr[1:] != tr[:-1])
+    first = np.flatnonzero(new)
+    last = np.append(first[1:], len(lo)) - 1
+    return lo[first], reach[last], tr[first]
+
+
+def _headings_of(u: np.ndarray, v: np.ndarray, p: int) -> np.ndarray:
+    """:func:`window_headings` of coordinates already taken relative to their anchor."""
+    n = len(u)
+    out = np.full(n, np.nan)
+    for first in range(p - 1, n, BLOCK):  # a loop over blocks, not over windows
+        last = min(n, first + BLOCK)
+        out[first:last] = _block_headings(u[first - p + 1 : last], v[first - p + 1 : last], p)
+    return out
+
+
+def _factor_on_runs(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int, lo: np.ndarray, hi: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Rows and δ of the runs ``[lo, hi)``, each inside its track's defined span
+    (``start + p - 1`` to ``end - p + 1``): their windows, ``p - 1`` rows either side, are
+    gathered run after run and the headings computed once per window."""
+    tr = index.track_of_row[lo]
+    raw_lo = lo - (p - 1)
+    raw_len = hi - lo + 2 * (p - 1)
+    n = len(x)
+    if len(lo) == index.n_tracks and int(raw_len.sum()) == n and (raw_lo == index.starts).all():
+        rows = None  # every row: no gather
+        u = x - x[index.starts][index.track_of_row]
+        v = y - y[index.starts][index.track_of_row]
+    else:
+        rows = concat_ranges(raw_lo, raw_len)
+        anchor = np.repeat(index.starts[tr], raw_len)
+        u = x[rows] - x[anchor]
+        v = y[rows] - y[anchor]
+    h = _headings_of(u, v, p)
+    # δ of row o: the window ending at o against the window ending at o + p - 1
+    seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
+    pos = concat_ranges(seg + (p - 1), hi - lo)
+    delta = _angle_diff(h[pos], h[pos + (p - 1)])
+    out_rows = pos + np.repeat(raw_lo - seg, hi - lo)
+    return out_rows, delta
+
+
+def _peaks_above(
+    rows: np.ndarray, delta: np.ndarray, track: np.ndarray, radius: np.ndarray, threshold: float
+) -> np.ndarray:
+    """Rows (sorted) above ``threshold`` that are the maximum of δ within ±``radius`` rows
+    of their track (``radius`` per track) — :func:`local_maxima`'s first condition on the
+    rows above the threshold only, which changes nothing there: a row at most t never beats
+    one above it. ``rows``/``delta`` must hold every row within the radius of the rows
+    asked about (a row left out counts as undefined)."""
+    with np.errstate(invalid="ignore"):
+        above = delta > threshold
+    q = rows[above]
+    w = delta[above]
+    tq = track[q]
+    rq = radius[tq]
+    peak = np.ones(len(q), dtype=bool)
+    for j in range(1, len(q)):  # a loop over offsets in the list of rows above t
+        close = (q[j:] - q[:-j] <= rq[j:]) & (tq[j:] == tq[:-j])
+        if not close.any():  # rows are sorted: no pair further apart can be closer
+            break
+        peak[:-j] &= ~close | (w[:-j] >= w[j:])
+        peak[j:] &= ~close | (w[j:] >= w[:-j])
+    return q[peak]
+
+
+def _clusters(q: np.ndarray, track: np.ndarray, radius: np.ndarray) -> np.ndarray:
+    """Per peak (sorted rows): its cluster number, or -1 when no other peak of its track lies
+    within the radius. Peaks within the radius of each other are equal (each is the other's
+    window maximum), so the plateau rule only ever touches clustered peaks."""
+    label = np.full(len(q), -1, dtype="int64")
+    if len(q) < 2:
+        return label
+    tq = track[q]
+    close = (np.diff(q) <= radius[tq[1:]]) & (tq[1:] == tq[:-1])
+    if not close.any():
+        return label
+    clustered = np.zeros(len(q), dtype=bool)
+    clustered[1:] |= close
+    clustered[:-1] |= close
+    starts = np.ones(len(q), dtype=bool)
+    starts[1:] = ~close
+    label[clustered] = (np.cumsum(starts) - 1)[clustered]
+    return label
+
+
+def _one_per_plateau(
+    q: np.ndarray, label: np.ndarray, track: np.ndarray, radius: np.ndarray
+) -> np.ndarray:
+    """Mask over the peaks ``q``: kept by :func:`local_maxima`'s plateau rule."""
+    keep = np.ones(len(q), dtype=bool)
+    clustered = label >= 0
+    if not clustered.any():
+        return keep
+    c = q[clustered]
+    tc = track[c]
+    rc = radius[tc]
+    alive = np.ones(len(c), dtype=bool)
+    for k in range(1, int(rc.max()) + 1):  # a loop over offsets, on the clustered peaks only
+        pos = np.minimum(np.searchsorted(c, c - k), len(c) - 1)
+        hit = (c[pos] == c - k) & alive[pos] & (tc[pos] == tc) & (k <= rc)
+        alive &= ~hit
+    keep[np.flatnonzero(clustered)[~alive]] = False
+    return keep
+
+
+def _span_mask(lo: np.ndarray, hi: np.ndarray, n: int) -> np.ndarray:
+    """Mask of the rows of the (disjoint) runs ``[lo, hi)``."""
+    ev = np.bincount(lo, minlength=n + 1) - np.bincount(hi, minlength=n + 1)
+    return np.cumsum(ev[:n]) > 0
+
+
+def _scale_candidates(
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p_track: np.ndarray,
+    radius: np.ndarray,
+    threshold: float,
+    active: np.ndarray,
+    interest: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Candidates of one window scale: rows where δ > ``threshold`` is the maximum within
+    ±radius (one per plateau), on the ``active`` tracks; their δ; and δ of every row
+    (NaN where undefined) when ``interest`` is None.
+
+    With ``interest`` (a row mask), only candidates among those rows are wanted: δ is then
+    computed on them and 2·radius rows around (their peak test needs δ within the radius,
+    whose own test needs the next radius); a plateau that reaches beyond that sends its
+    track back to the full computation."""
+    n = len(x)
+    tr = index.track_of_row
+    full = np.full(n, np.nan) if interest is None else None
+    cand_rows, cand_delta = [], []
+    for p in np.unique(p_track[active]):  # usually one or a few
+        p = int(p)
+        trk = np.flatnonzero((p_track == p) & active & (index.sizes >= 2 * p - 1))
+        if not len(trk):
+            continue
+        v_lo = index.starts[trk] + (p - 1)  # the rows where δ is defined
+        v_hi = index.ends[trk] - (p - 1)
+        if interest is None:
+            lo, hi, redo = v_lo, v_hi, None
+        else:
+            lo, hi = _runs(interest & _span_mask(v_lo, v_hi, n))
+            redo = np.zeros(index.n_tracks, dtype=bool)
+        while True:
+            if interest is not None:
+                rt = tr[lo]
+                reach = 2 * radius[rt]
+                vl = index.starts[rt] + (p - 1)
+                vh = index.ends[rt] - (p - 1)
+                d_lo, d_hi, d_tr = _merge_runs(
+                    np.maximum(lo - reach, vl), np.minimum(hi + reach, vh), rt
+                )
+                if redo.any():  # whole tracks, where a plateau reached too far
+                    whole = trk[redo[trk]]
+                    keep = ~redo[d_tr]
+                    order = np.argsort(np.concatenate([d_lo[keep], index.starts[whole]]))
+                    d_lo = np.concatenate([d_lo[keep], index.starts[whole] + (p - 1)])[order]
+                    d_hi = np.concatenate([d_hi[keep], index.ends[whole] - (p - 1)])[order]
+                    d_tr = np.concatenate([d_tr[keep], whole])[order]
+            else:
+                d_lo, d_hi = lo, hi
+            if not len(d_lo):
+                break
+            rows, delta = _factor_on_runs(x, y, index, p, d_lo, d_hi)
+            q = _peaks_above(rows, delta, tr, radius, threshold)
+            label = _clusters(q, tr, radius)
+            if interest is not None:
+                # a clustered peak counts only when its whole cluster was seen: every
+                # member's ±2·radius inside the rows computed (or the track's defined span)
+                clustered = np.flatnonzero(label >= 0)
+                if len(clustered):  # only clusters holding a row of interest matter
+                    seen = np.bincount(label[clustered], interest[q[clustered]])
+                    clustered = clustered[seen[label[clustered]] > 0]
+                if len(clustered):
+                    m = q[clustered]
+                    mt = tr[m]
+                    j = np.searchsorted(d_lo, m, side="right") - 1
+                    r2 = 2 * radius[mt]
+                    vl = index.starts[mt] + (p - 1)
+                    vh = index.ends[mt] - (p - 1)
+                    ok_lo = (m - r2 >= d_lo[j]) | (d_lo[j] == vl)
+                    ok_hi = (m + r2 < d_hi[j]) | (d_hi[j] == vh)
+                    bad = ~(ok_lo & ok_hi) & ~redo[mt]
+                    if bad.any():
+                        redo[mt[bad]] = True
+                        continue
+            break
+        if len(d_lo):
+            if full is not None:
+                full[rows] = delta
+            keep = _one_per_plateau(q, label, tr, radius)
+            q = q[keep]
+            if interest is not None:
+                q = q[interest[q]]
+            pos = np.searchsorted(rows, q)
+            cand_rows.append(q)
+            cand_delta.append(delta[pos])
+    if not cand_rows:
+        return np.zeros(0, dtype="int64"), np.zeros(0), full
+    cand = np.concatenate(cand_rows)
+    values = np.concatenate(cand_delta)
+    order = np.argsort(cand, kind="stable")
+    return cand[order], values[order], full
+
+
 def detect(
     points: pd.DataFrame, params: ManeuverParams | None = None, progress=None
 ) -> ManeuverResult:
@@ -487,21 +769,28 @@ def detect(
     above t counts where no turn already found lies within one window of it. No maneuver
     inside an at-rest span, on a window touching one, or where the ship covers a window
     slower than ``min_speed_kn``. The extra tests run on the candidates (peaks above t) only.
+
+    The first duration gives δ of every row (``ManeuverResult.factor``); the longer ones
+    compute δ only on the rows where a new turn may count (no turn within one window, no
+    at-rest span within it) and two radii around them, and every scale looks for peaks
+    among the rows above t only. Same output as running every rule on every row
+    (tests/test_maneuver_kernel.py).
     """
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
     t = track_seconds(pts)
+    n = len(pts)
     tr = index.track_of_row
     sigma = None
-    rest = np.zeros(len(pts), dtype=bool)
-    if params.rest_radius_m > 0 and len(pts):
+    rest = np.zeros(n, dtype=bool)
+    if params.rest_radius_m > 0 and n:
         rest = _rest_mask(x, y, t, index, params.rest_radius_m, params.rest_window_s)
-    any_rest = bool(rest.any())
+    rest_lo, rest_hi = _runs(rest)
     scales = _scales(params)
     med = median_interval_s(t, index) if params.window_s > 0 else None
-    found = np.zeros(len(pts), dtype=bool)
-    factor = None
+    found = np.zeros(n, dtype=bool)
+    factor = np.full(n, np.nan)
     p_first = None
     prev_p = np.zeros(index.n_tracks, dtype="int64")
     for k, duration in enumerate(scales):
@@ -513,36 +802,46 @@ def detect(
             grew = p_track > prev_p
             if not grew.any():
                 continue
-        radius = (
-            np.maximum(p_track, params.radius_n)
-            if k > 0
-            else np.full_like(p_track, params.radius_n)
-        )
-        f_k, peaks = _one_scale(x, y, index, p_track, radius, grew if k > 0 else None)
-        with np.errstate(invalid="ignore"):
-            cand = np.flatnonzero(peaks & (f_k > params.threshold_deg))
+            radius = np.maximum(p_track, params.radius_n)
+            # rows where a new turn may count: none found within one window, no at-rest
+            # span within one window less one (the tests below, as rows)
+            f_rows = np.flatnonzero(found)
+            interest = grew[tr]
+            if len(f_rows):
+                interest &= ~_dilate(f_rows, f_rows + 1, p_track[tr[f_rows]], index, n)
+            if len(rest_lo):
+                interest &= ~_dilate(rest_lo, rest_hi, p_track[tr[rest_lo]] - 1, index, n)
+            cand, f_c, _ = _scale_candidates(
+                x, y, index, p_track, radius, params.threshold_deg, grew, interest
+            )
+        else:
+            radius = np.full_like(p_track, params.radius_n)
+            active = np.ones(index.n_tracks, dtype=bool)
+            cand, f_c, factor = _scale_candidates(
+                x, y, index, p_track, radius, params.threshold_deg, active
+            )
+            p_first = p_track
         p_c = p_track[tr[cand]]
         ok = np.ones(len(cand), dtype=bool)
         if params.noise_k > 0 and len(cand):
             if sigma is None:  # at the first window's lag
                 sigma = position_noise_m(x, y, t, index)
             with np.errstate(invalid="ignore"):
-                ok &= f_k[cand] > params.noise_k * _heading_noise_deg(x, y, index, p_c, sigma, cand)
+                ok &= f_c > params.noise_k * _heading_noise_deg(x, y, index, p_c, sigma, cand)
         if params.min_speed_kn > 0 and len(cand):
             with np.errstate(invalid="ignore"):
                 ok &= _window_speed_ms(x, y, t, index, p_c, cand) >= (
                     params.min_speed_kn * geo.KN_MS
                 )
-        if any_rest and len(cand):
+        if len(rest_lo) and len(cand):
             ok &= ~_near(rest, index, p_c - 1, cand)
         if k == 0:
-            factor, p_first = f_k, p_track
             found[cand[ok]] = True
         else:
-            new = cand[ok]
-            new = new[~_near(found, index, p_track[tr[new]], new)]
-            factor[new] = f_k[new]
-            found[new] = True
+            new, f_new = cand[ok], f_c[ok]
+            far = ~_near(found, index, p_track[tr[new]], new)
+            factor[new[far]] = f_new[far]
+            found[new[far]] = True
         prev_p = p_track
     if progress:
         progress(1.0, "maneuvers found")

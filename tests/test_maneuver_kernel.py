@@ -1,0 +1,184 @@
+"""The fast maneuver kernel against the straightforward detector (issue 17).
+
+``tests/maneuver_reference.py`` is a frozen copy of ``core/maneuver.py`` as it was before
+the kernel was reworked: δ of every row at every window scale, a maximum filter over every
+row, the rules on the candidates. ``detect()`` must give the same maneuver points, the same
+δ bit for bit (NaN where undefined) and the same at-rest mask, on random scenes of several
+tracks with irregular sampling, gaps, at-rest spans, turns and plateaus of equal δ.
+"""
+
+import maneuver_reference as reference
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from wakeline.core import geo
+from wakeline.core.maneuver import ManeuverParams, _angle_diff, _wrap360, detect
+
+
+def _track(rng, n, batch, lattice):
+    """One track: legs with random turns, irregular time steps with gaps, an at-rest span
+    now and then; on ``lattice`` exact 100 m steps on the axes and no noise (ties)."""
+    if lattice:
+        step = rng.choice([[100.0, 0.0], [0.0, 100.0], [-100.0, 0.0], [0.0, -100.0]], n)
+        legs = np.repeat(step[:: max(n // 6, 1)], max(n // 6, 1), axis=0)[:n]
+        legs = np.vstack([legs, step[: n - len(legs)]])
+        xy = np.cumsum(legs, axis=0)
+        dt = np.full(n, 10.0)
+    else:
+        heading = np.cumsum(np.where(rng.random(n) < 0.05, rng.normal(0, 60, n), 0.0))
+        speed = rng.choice([0.3, 3.0, 8.0], n // 20 + 1).repeat(20)[:n]  # m/s, slow or not
+        dt = rng.choice([1.0, 2.0, 10.0, 30.0], p=[0.3, 0.3, 0.3, 0.1], size=n)
+        dt *= rng.uniform(0.5, 1.5, n)
+        dt[rng.random(n) < 0.02] *= 40  # gaps
+        step = speed * dt
+        rest = rng.random(n // 50 + 1) < 0.2  # at-rest spans of 50 fixes
+        step[rest.repeat(50)[:n]] = 0.0
+        xy = np.cumsum(
+            np.c_[step * np.sin(np.radians(heading)), step * np.cos(np.radians(heading))], axis=0
+        )
+        xy += rng.normal(0, rng.choice([0.5, 3.0, 20.0]), xy.shape)
+    t = np.cumsum(dt)
+    lon, lat = geo.from_local(xy[:, 0], xy[:, 1], 10.0, 55.0)
+    return pd.DataFrame(
+        {
+            "sensor": "S",
+            "batch": batch,
+            "time": pd.Timestamp("2024-01-01", tz="UTC") + pd.to_timedelta(t, unit="s"),
+            "lon": lon,
+            "lat": lat,
+        }
+    )
+
+
+def _scene(seed, n_tracks, lattice):
+    rng = np.random.default_rng(seed)
+    sizes = rng.integers(1, 700, n_tracks)
+    parts = [_track(rng, int(s), f"b{k}", lattice) for k, s in enumerate(sizes)]
+    return pd.concat(parts, ignore_index=True)
+
+
+PARAMS = [
+    ManeuverParams(),
+    ManeuverParams.paper(),
+    ManeuverParams(window_s=5.0, radius_n=2, threshold_deg=5.0),
+    ManeuverParams(window_s=30.0, max_window_s=2000.0, radius_n=9, noise_k=0.0),
+    ManeuverParams(threshold_deg=60.0, min_speed_kn=0.0, rest_radius_m=10.0),
+]
+
+
+def _same(df, params):
+    ours = detect(df, params)
+    ref = reference.detect(df, reference.ManeuverParams(**params.__dict__))
+    assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
+    assert np.array_equal(ours.factor, ref.factor, equal_nan=True)
+    assert np.array_equal(ours.factor.view("int64"), ref.factor.view("int64"))  # bits, -0.0
+    assert np.array_equal(ours.at_rest, ref.at_rest)
+    assert np.array_equal(ours.window_p, ref.window_p)
+    return int(ref.is_maneuver.sum())
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n_tracks=st.integers(1, 6),
+    lattice=st.booleans(),
+    which=st.integers(0, len(PARAMS) - 1),
+)
+def test_kernel_equals_the_straightforward_detector(seed, n_tracks, lattice, which):
+    _same(_scene(seed, n_tracks, lattice), PARAMS[which])
+
+
+@pytest.mark.parametrize("params", PARAMS)
+def test_kernel_equals_the_straightforward_detector_on_a_larger_scene(params):
+    found = _same(_scene(17, 30, False), params)
+    assert found > 0  # the comparison is about maneuvers, not only about nothing found
+
+
+def test_plateaus_of_equal_factor_are_resolved_as_before():
+    # exact axis-parallel legs without noise: runs of exactly equal δ at every scale
+    df = _scene(3, 8, True)
+    for params in PARAMS:
+        _same(df, params)
+
+
+def test_cheap_wraps_equal_the_remainder_bit_for_bit():
+    rng = np.random.default_rng(5)
+    edge = [-360.0, -180.0, -0.0, 0.0, 180.0, 360.0, -1e-17, -5e-324, 719.9999999999999]
+    h = np.concatenate([rng.uniform(-360, 720, 100_000), edge, [np.nan]])
+    want = np.remainder(h, 360.0)
+    assert np.array_equal(_wrap360(h.copy()).view("int64"), want.view("int64"))
+    a = np.concatenate([rng.uniform(0, 360, 100_000), [0.0, 180.0, 359.99999999999994, np.nan]])
+    b = np.concatenate([rng.uniform(0, 360, 100_000), [180.0, 0.0, 0.0, 1.0]])
+    b[:1000] = a[:1000]
+    assert np.array_equal(_angle_diff(a, b).view("int64"), geo.angle_diff(a, b).view("int64"))
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    lattice=st.booleans(),
+    density=st.sampled_from([0.002, 0.02, 0.2, 0.9]),
+    p=st.integers(2, 12),
+    radius_n=st.integers(1, 12),
+)
+def test_candidates_on_rows_of_interest_equal_those_of_all_rows(
+    seed, lattice, density, p, radius_n
+):
+    # δ computed only around the rows of interest (and whole tracks where a plateau
+    # reaches too far) gives the candidates of the full computation among those rows
+    from wakeline.core.maneuver import _scale_candidates
+    from wakeline.core.tracks import local_xy, sorted_with_index
+
+    pts, index = sorted_with_index(_scene(seed, 4, lattice))
+    x, y = local_xy(pts, index)
+    rng = np.random.default_rng(seed)
+    p_track = rng.integers(p, p + 3, index.n_tracks)
+    radius = np.maximum(p_track, radius_n)
+    active = rng.random(index.n_tracks) < 0.8
+    interest = rng.random(len(x)) < density
+    want, want_f, _ = _scale_candidates(x, y, index, p_track, radius, 10.0, active)
+    got, got_f, _ = _scale_candidates(x, y, index, p_track, radius, 10.0, active, interest)
+    keep = interest[want]
+    assert np.array_equal(got, want[keep])
+    assert np.array_equal(got_f, want_f[keep])
+
+
+def test_plateaus_reaching_beyond_the_rows_computed_send_the_track_back():
+    # δ with many ties (2 to 5 values per scene, per row): plateaus and clusters of peaks
+    # everywhere, and few rows of interest, so that a cluster often reaches beyond the rows
+    # computed around them; without the rule that such a track is computed whole, a few
+    # scenes in a thousand differ (the plateau rule then sees part of a cluster)
+    import wakeline.core.maneuver as mod
+    from wakeline.core.tracks import TrackIndex, concat_ranges
+
+    for seed in range(1500):
+        rng = np.random.default_rng(seed)
+        sizes = rng.integers(1, 80, 6)
+        n = int(sizes.sum())
+        starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        index = TrackIndex(
+            starts, starts + sizes, np.repeat(np.arange(6), sizes), pd.DataFrame(index=range(6))
+        )
+        values = rng.integers(0, rng.integers(2, 6), n) * 10.0
+        values[rng.random(n) < 0.02] = np.nan
+
+        def factor_on_runs(x, y, index, p, lo, hi, values=values):
+            rows = concat_ranges(lo, hi - lo)
+            return rows, values[rows]
+
+        p_track = rng.integers(2, 4, 6)
+        radius = np.maximum(p_track, rng.integers(1, 6))
+        active = np.ones(6, dtype=bool)
+        interest = rng.random(n) < rng.choice([0.005, 0.02, 0.05])
+        x = np.zeros(n)
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(mod, "_factor_on_runs", factor_on_runs)
+            want, want_f, _ = mod._scale_candidates(x, x, index, p_track, radius, 5.0, active)
+            got, got_f, _ = mod._scale_candidates(
+                x, x, index, p_track, radius, 5.0, active, interest
+            )
+        assert np.array_equal(got, want[interest[want]]), seed
+        assert np.array_equal(got_f, want_f[interest[want]]), seed
