@@ -566,11 +566,23 @@ def _headings_of(u: np.ndarray, v: np.ndarray, p: int) -> np.ndarray:
 
 
 def _factor_on_runs(
-    x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int, lo: np.ndarray, hi: np.ndarray
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p: int,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    above: float | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Rows and δ of the runs ``[lo, hi)``, each inside its track's defined span
     (``start + p - 1`` to ``end - p + 1``): their windows, ``p - 1`` rows either side, are
-    gathered run after run and the headings computed once per window."""
+    gathered run after run and the headings computed once per window.
+
+    With ``above`` (deg), only the rows whose δ may exceed it are returned: a screen
+    without trigonometry (the two oriented axes from the same window moments by half-angle
+    formulas, their dot product against cos(above) with a margin of 1e-9, orders of
+    magnitude above its rounding) leaves out rows whose δ is surely at most ``above``;
+    the others get δ exactly as everywhere else."""
     tr = index.track_of_row[lo]
     raw_lo = lo - (p - 1)
     raw_len = hi - lo + 2 * (p - 1)
@@ -584,13 +596,67 @@ def _factor_on_runs(
         anchor = np.repeat(index.starts[tr], raw_len)
         u = x[rows] - x[anchor]
         v = y[rows] - y[anchor]
-    h = _headings_of(u, v, p)
     # δ of row o: the window ending at o against the window ending at o + p - 1
     seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
     pos = concat_ranges(seg + (p - 1), hi - lo)
-    delta = _angle_diff(h[pos], h[pos + (p - 1)])
     out_rows = pos + np.repeat(raw_lo - seg, hi - lo)
-    return out_rows, delta
+    if above is None:
+        h = _headings_of(u, v, p)
+        return out_rows, _angle_diff(h[pos], h[pos + (p - 1)])
+    m = len(u)
+    is_pos = np.zeros(m, dtype=bool)
+    is_pos[pos] = True
+    limit = math.cos(math.radians(above)) + 1e-9
+    found_pos, found_delta = [], []
+    for first in range(p - 1, m - p + 1, BLOCK):  # a loop over blocks, not over windows
+        last = min(m - p + 1, first + BLOCK)  # δ positions first..last-1 need windows to
+        # last + p - 2: the block's moments overlap the next block's by p - 1 windows
+        block = _block_moments(u[first - p + 1 : last + p - 1], v[first - p + 1 : last + p - 1], p)
+        ex, ey = _oriented_axis(*block)
+        k = last - first
+        with np.errstate(invalid="ignore"):
+            dot = ex[:k] * ex[p - 1 :]
+            dot += ey[:k] * ey[p - 1 :]
+            j = np.flatnonzero(~(dot > limit) & is_pos[first:last])  # NaN: left in
+        if not len(j):
+            continue
+        need = np.zeros(len(ex), dtype=bool)
+        need[j] = True
+        need[j + (p - 1)] = True
+        w = np.flatnonzero(need)
+        h = np.full(len(ex), np.nan)
+        h[w] = _axis_headings(*(col[w] for col in block))
+        found_pos.append(j + first)
+        found_delta.append(_angle_diff(h[j], h[j + (p - 1)]))
+    if not found_pos:
+        return np.zeros(0, dtype="int64"), np.zeros(0)
+    j = np.concatenate(found_pos)
+    return (j if rows is None else rows[j]), np.concatenate(found_delta)
+
+
+def _oriented_axis(
+    a: np.ndarray, b: np.ndarray, du: np.ndarray, dv: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The unit vector that :func:`_axis_headings` points along — cos and sin of
+    0.5·atan2(b, a), flipped to agree with (du, dv) — by half-angle formulas, each in the
+    form that does not cancel; NaN where the axis is undefined or the orientation too
+    close to call (the screen then leaves the row in)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = np.sqrt(a * a + b * b)
+        c2 = a / r  # cos 2θ, θ in [-90°, 90°]
+        big = np.sqrt(0.5 * (1.0 + np.abs(c2)))  # the larger of |cos θ|, |sin θ|
+        small = np.abs(b) / r / (2.0 * big)  # |sin 2θ| / (2 · larger)
+        cos_first = c2 >= 0.0
+        c = np.where(cos_first, big, small)
+        s = np.copysign(np.where(cos_first, small, big), b)  # sin θ has the sign of b
+        d = du * c + dv * s
+        sign = np.where(d < 0.0, -1.0, 1.0)
+        unsure = ~(np.abs(d) > 1e-9 * (np.abs(du) + np.abs(dv))) | ~np.isfinite(r) | (r == 0)
+        c *= sign
+        s *= sign
+    c[unsure] = np.nan
+    s[unsure] = np.nan
+    return c, s
 
 
 def _peaks_above(
@@ -717,7 +783,8 @@ def _scale_candidates(
                 d_lo, d_hi = lo, hi
             if not len(d_lo):
                 break
-            rows, delta = _factor_on_runs(x, y, index, p, d_lo, d_hi)
+            screen = None if interest is None else threshold
+            rows, delta = _factor_on_runs(x, y, index, p, d_lo, d_hi, screen)
             q = _peaks_above(rows, delta, tr, radius, threshold)
             label = _clusters(q, tr, radius)
             if interest is not None:

@@ -165,7 +165,7 @@ def test_plateaus_reaching_beyond_the_rows_computed_send_the_track_back():
         values = rng.integers(0, rng.integers(2, 6), n) * 10.0
         values[rng.random(n) < 0.02] = np.nan
 
-        def factor_on_runs(x, y, index, p, lo, hi, values=values):
+        def factor_on_runs(x, y, index, p, lo, hi, above=None, values=values):
             rows = concat_ranges(lo, hi - lo)
             return rows, values[rows]
 
