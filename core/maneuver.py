@@ -385,21 +385,36 @@ def position_noise_m(
     n = len(x)
     tr = index.track_of_row
     out = np.zeros(index.n_tracks)
-    lag_row = np.broadcast_to(np.asarray(lag, dtype="int64"), (index.n_tracks,))[tr] if n else tr
-    row = np.arange(n)
-    a, b = row - lag_row, row + lag_row
-    ok = (a >= index.starts[tr]) & (b < index.ends[tr])
-    i, a, b = row[ok], a[ok], b[ok]
-    if not len(i):
-        return out
-    span = t[b] - t[a]
-    w = np.where(span > 0, (t[i] - t[a]) / np.where(span > 0, span, 1.0), 0.5)
-    ex = x[i] - ((1 - w) * x[a] + w * x[b])
-    ey = y[i] - ((1 - w) * y[a] + w * y[b])
+    if np.ndim(lag) == 0:  # one lag: neighbours are slices, no gathers
+        k = int(lag)
+        if n <= 2 * k:
+            return out
+        ok = tr[: n - 2 * k] == tr[2 * k :]  # the point before and after in its track
+        if not ok.any():
+            return out
+        ta, ti, tb = t[: n - 2 * k], t[k : n - k], t[2 * k :]
+        xa, xi, xb = x[: n - 2 * k], x[k : n - k], x[2 * k :]
+        ya, yi, yb = y[: n - 2 * k], y[k : n - k], y[2 * k :]
+        track_i = tr[k : n - k]
+    else:
+        lag_row = np.asarray(lag, dtype="int64")[tr] if n else tr
+        row = np.arange(n)
+        a, b = row - lag_row, row + lag_row
+        ok = (a >= index.starts[tr]) & (b < index.ends[tr])
+        i, a, b = row[ok], a[ok], b[ok]
+        if not len(i):
+            return out
+        ta, ti, tb, xa, xi, xb = t[a], t[i], t[b], x[a], x[i], x[b]
+        ya, yi, yb, track_i = y[a], y[i], y[b], tr[i]
+        ok = slice(None)
+    span = tb - ta
+    w = np.where(span > 0, (ti - ta) / np.where(span > 0, span, 1.0), 0.5)
+    ex = xi - ((1 - w) * xa + w * xb)
+    ey = yi - ((1 - w) * ya + w * yb)
     # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
     # noise has median sigma * sqrt(2 ln 2)
     r = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
-    med = pd.Series(r).groupby(tr[i]).median()
+    med = pd.Series(r[ok]).groupby(track_i[ok]).median()
     out[med.index.to_numpy()] = med.to_numpy()
     return out
 
@@ -479,6 +494,28 @@ def _one_scale(
     return factor, peaks
 
 
+def _search_sorted(
+    ts: np.ndarray, q: np.ndarray, index: TrackIndex, step: np.ndarray, window_s: float
+) -> np.ndarray:
+    """``np.searchsorted(ts, q)`` for ``q = ts - window_s + 1e-3`` (``ts`` sorted): guessed
+    from each track's mean step ``step``, checked, and searched only where the guess is
+    wrong (irregular sampling) — a regular track needs no search at all."""
+    n = len(ts)
+    if not np.isfinite(ts).all():
+        return np.searchsorted(ts, q)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        back = np.where(step > 0, np.floor((window_s - 1e-3) / step), 0.0)
+    back = np.clip(back, 0, n).astype("int64")
+    a = np.arange(n) - np.repeat(back, index.sizes)
+    np.maximum(a, np.repeat(index.starts, index.sizes), out=a)
+    below = ts[np.maximum(a - 1, 0)]
+    good = ((a == 0) | (below < q)) & (ts[a] >= q)
+    bad = np.flatnonzero(~good)
+    if len(bad):
+        a[bad] = np.searchsorted(ts, q[bad])
+    return a
+
+
 def _rest_mask(
     x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m: float, window_s: float
 ) -> np.ndarray:
@@ -494,17 +531,24 @@ def _rest_mask(
     if n == 0:
         return rest
     tr = index.track_of_row
-    rel = t - t[index.starts[tr]]
+    sizes = index.sizes
+    rel = t - np.repeat(t[index.starts], sizes)
     span = np.zeros(index.n_tracks)
-    has = index.sizes > 0
+    has = sizes > 0
     span[has] = rel[index.ends[has] - 1]
     offset = np.concatenate([[0.0], np.cumsum(span + 2.0 * window_s + 1.0)[:-1]])
-    ts = rel + offset[tr]
+    ts = rel + np.repeat(offset, sizes)
     # first fix at or after t - window_s (a little later, so rounding never widens it)
-    a = np.searchsorted(ts, ts - window_s + 1e-3)
-    close = (np.hypot(x - x[a], y - y[a]) <= 2.0 * radius_m * (1 + 1e-9) + 1e-6) & (
-        rel >= window_s * (1 - 1e-9)
-    )
+    q = ts - window_s + 1e-3
+    a = _search_sorted(ts, q, index, span / np.maximum(sizes - 1, 1), window_s)
+    dx = x - x[a]
+    dy = y - y[a]
+    d2 = dx * dx
+    d2 += dy * dy
+    reach = 2.0 * radius_m * (1 + 1e-9) + 1e-6
+    # squared distances with a margin far above their rounding: a screen keeps a track
+    # that may hold a stay, never drops one
+    close = (d2 <= reach * reach * (1 + 1e-9)) & (rel >= window_s * (1 - 1e-9))
     possible = np.zeros(index.n_tracks, dtype=bool)
     possible[tr[close]] = True
     if not possible.any():

@@ -182,3 +182,35 @@ def test_plateaus_reaching_beyond_the_rows_computed_send_the_track_back():
             )
         assert np.array_equal(got, want[interest[want]]), seed
         assert np.array_equal(got_f, want_f[interest[want]]), seed
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_position_noise_by_slices_equals_the_gathers(seed):
+    from wakeline.core.maneuver import position_noise_m
+    from wakeline.core.tracks import local_xy, sorted_with_index, track_seconds
+
+    pts, index = sorted_with_index(_scene(seed, 8, False))
+    x, y = local_xy(pts, index)
+    t = track_seconds(pts)
+    lags = np.random.default_rng(seed).integers(1, 6, index.n_tracks)
+    for lag in (1, 2, 5, lags):
+        want = reference.position_noise_m(x, y, t, index, lag)
+        got = position_noise_m(x, y, t, index, lag)
+        assert np.array_equal(got.view("int64"), want.view("int64"))
+        assert (want > 0).any()
+
+
+@pytest.mark.parametrize("window_s", [1.0, 7.5, 180.0, 3600.0])
+def test_guessed_search_equals_searchsorted(window_s):
+    from wakeline.core.maneuver import _search_sorted
+    from wakeline.core.tracks import sorted_with_index, track_seconds
+
+    for seed, lattice in ((0, True), (1, False), (2, False)):
+        pts, index = sorted_with_index(_scene(seed, 8, lattice))
+        t = track_seconds(pts)
+        ts = t - np.repeat(t[index.starts], index.sizes)
+        ts += np.repeat(np.arange(index.n_tracks) * 1e7, index.sizes)  # tracks apart
+        q = ts - window_s + 1e-3
+        span = ts[index.ends - 1] - ts[index.starts]
+        got = _search_sorted(ts, q, index, span / np.maximum(index.sizes - 1, 1), window_s)
+        assert np.array_equal(got, np.searchsorted(ts, q))
