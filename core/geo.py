@@ -18,6 +18,22 @@ def wrap180(deg: np.ndarray | float) -> np.ndarray:
     return (np.asarray(deg, dtype="float64") + 180.0) % 360.0 - 180.0
 
 
+def remainder360(h: np.ndarray) -> np.ndarray:
+    """``np.remainder(h, 360.0)`` bit for bit, in place for a float64 array: for values in
+    [-360, 720) (and NaN) the floored remainder is h, h + 360 (rounded as the remainder
+    rounds it) or h − 360 (exact), and a zero comes out +0.0 — without the costly division;
+    other values take ``np.remainder``."""
+    with np.errstate(invalid="ignore"):
+        far = (h < -360.0) | (h >= 720.0)  # infinities too; NaN stays NaN below
+    if far.any():
+        return np.remainder(h, 360.0, out=h)
+    h += 0.0  # -0.0 -> +0.0, as the remainder gives
+    shift = (h < 0.0) * 360.0  # (-1e-17 + 360 rounds to 360, and stays there)
+    shift -= (h >= 360.0) * 360.0
+    h += shift  # adding +0.0 changes nothing
+    return h
+
+
 def wrap360(deg: np.ndarray | float) -> np.ndarray:
     """Wrap angles in degrees to [0, 360)."""
     out = np.asarray(deg, dtype="float64") % 360.0

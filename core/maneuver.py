@@ -207,14 +207,8 @@ def _axis_headings(a: np.ndarray, b: np.ndarray, du: np.ndarray, dv: np.ndarray)
 
 
 def _wrap360(h: np.ndarray) -> np.ndarray:
-    """``np.remainder(h, 360.0)`` for h in [-360, 720) (or NaN), in place and bit for bit:
-    there the floored remainder is h, h + 360 (rounded as the remainder rounds it) or
-    h − 360 (exact), and a zero comes out +0.0 — without the costly division."""
-    h += 0.0  # -0.0 -> +0.0, as the remainder gives
-    shift = (h < 0.0) * 360.0  # (-1e-17 + 360 rounds to 360, and stays there)
-    shift -= (h >= 360.0) * 360.0
-    h += shift  # adding +0.0 changes nothing
-    return h
+    """``np.remainder(h, 360.0)`` bit for bit, in place (:func:`geo.remainder360`)."""
+    return geo.remainder360(h)
 
 
 def _angle_diff(a: np.ndarray, b: np.ndarray) -> np.ndarray:

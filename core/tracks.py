@@ -275,10 +275,15 @@ def local_xy(df: pd.DataFrame, index: TrackIndex) -> tuple[np.ndarray, np.ndarra
     The same arithmetic as :func:`geo.to_local`, with the cosine of each origin's latitude
     taken once per track rather than once per point (bit-identical)."""
     lon0, lat0 = track_origins(df, index)
-    row = index.track_of_row
-    dlon = geo.wrap180(df["lon"].to_numpy(dtype="float64") - lon0[row])
-    x = geo.EARTH_RADIUS_M * np.radians(dlon) * np.cos(np.radians(lat0))[row]
-    y = geo.EARTH_RADIUS_M * np.radians(df["lat"].to_numpy(dtype="float64") - lat0[row])
+    sizes = index.sizes  # per-track values spread by repeat, not by a gather per row
+    dlon = df["lon"].to_numpy(dtype="float64") - np.repeat(lon0, sizes)
+    dlon += 180.0
+    dlon = geo.remainder360(dlon)
+    dlon -= 180.0  # geo.wrap180, bit for bit
+    x = geo.EARTH_RADIUS_M * np.radians(dlon) * np.repeat(np.cos(np.radians(lat0)), sizes)
+    y = geo.EARTH_RADIUS_M * np.radians(
+        df["lat"].to_numpy(dtype="float64") - np.repeat(lat0, sizes)
+    )
     return x, y
 
 

@@ -214,3 +214,24 @@ def test_guessed_search_equals_searchsorted(window_s):
         span = ts[index.ends - 1] - ts[index.starts]
         got = _search_sorted(ts, q, index, span / np.maximum(index.sizes - 1, 1), window_s)
         assert np.array_equal(got, np.searchsorted(ts, q))
+
+
+def test_projection_by_repeat_equals_the_gathers():
+    from wakeline.core.tracks import local_xy, sorted_with_index, track_origins
+
+    df = _scene(4, 8, False)
+    lon = df["lon"].to_numpy()
+    df["lon"] = np.where(np.arange(len(df)) % 3 == 0, lon + 170.0, lon - 190.0)  # across 180°
+    df["lon"] = geo.wrap180(df["lon"].to_numpy())
+    pts, index = sorted_with_index(df)
+    x, y = local_xy(pts, index)
+    lon0, lat0 = track_origins(pts, index)
+    row = index.track_of_row
+    dlon = geo.wrap180(pts["lon"].to_numpy() - lon0[row])
+    want_x = geo.EARTH_RADIUS_M * np.radians(dlon) * np.cos(np.radians(lat0))[row]
+    want_y = geo.EARTH_RADIUS_M * np.radians(pts["lat"].to_numpy() - lat0[row])
+    assert np.array_equal(x.view("int64"), want_x.view("int64"))
+    assert np.array_equal(y.view("int64"), want_y.view("int64"))
+    h = np.array([-1e4, -360.0, 719.0, 720.0, np.inf, -np.inf, np.nan, -0.0, 5.0])
+    with np.errstate(invalid="ignore"):  # the remainder of an infinity is NaN
+        assert np.array_equal(geo.remainder360(h.copy()), np.remainder(h, 360.0), equal_nan=True)
