@@ -649,14 +649,26 @@ def _factor_on_runs(
     for first in range(p - 1, m - p + 1, BLOCK):  # a loop over blocks, not over windows
         last = min(m - p + 1, first + BLOCK)  # δ positions first..last-1 need windows to
         # last + p - 2: the block's moments overlap the next block's by p - 1 windows
-        block = _block_moments(u[first - p + 1 : last + p - 1], v[first - p + 1 : last + p - 1], p)
-        ex, ey = _oriented_axis(*block)
+        ub, vb = u[first - p + 1 : last + p - 1], v[first - p + 1 : last + p - 1]
         k = last - first
+        if p > SMALL_KERNEL:  # long windows: the screen on sums of short convolutions
+            block = None
+            ex, ey, err = _oriented_axis(*_sums_of_short(ub, vb, p))
+            err = err[:k] + err[p - 1 :]
+        else:
+            block = _block_moments(ub, vb, p)
+            ex, ey = _oriented_axis(*block)
+            err = 0.0
         with np.errstate(invalid="ignore"):
             dot = ex[:k] * ex[p - 1 :]
             dot += ey[:k] * ey[p - 1 :]
+            dot -= 2.0 * err
             j = np.flatnonzero(~(dot > limit) & is_pos[first:last])  # NaN: left in
         if not len(j):
+            continue
+        if block is None:
+            found_pos.append(j + first)
+            found_delta.append(_exact_at(ub, vb, p, j + (p - 1)))
             continue
         need = np.zeros(len(ex), dtype=bool)
         need[j] = True
@@ -672,13 +684,74 @@ def _factor_on_runs(
     return (j if rows is None else rows[j]), np.concatenate(found_delta)
 
 
+#: np.convolve sums kernels of up to 11 numbers in a plain loop (numpy's small_correlate);
+#: longer ones call BLAS once per window, ~20 ns a window and sum whatever p is.
+SMALL_KERNEL = 11
+
+
+def _sums_of_short(u: np.ndarray, v: np.ndarray, p: int):
+    """:func:`_block_moments` for a long window (p > :data:`SMALL_KERNEL`) from sums of
+    short convolutions — the same sums added in another order — and a bound on
+    |error of a| + |error of b| against the exact moments: any order of adding p terms
+    errs by at most (p − 1)·eps·(sum of |terms|), the means' errors enter the
+    covariances twice, and the terms are at most the block's largest coordinate squared."""
+    n = len(u)
+    c = max((d for d in range(2, SMALL_KERNEL + 1) if p % d == 0), default=1)  # c points
+    if c < 6:
+        c = SMALL_KERNEL  # and a shorter last piece
+    q, rest = divmod(p, c)
+    nw = n - p + 1
+
+    def window_sums(a: np.ndarray) -> np.ndarray:
+        short = np.convolve(a, np.ones(c), "valid")
+        out = short[:nw] + short[c : c + nw] if q > 1 else short[:nw].copy()
+        for k in range(2, q):  # a loop over the pieces of a window (p / c of them)
+            out += short[k * c : k * c + nw]
+        if rest:
+            out += np.convolve(a[q * c :], np.ones(rest), "valid")[:nw]
+        return out
+
+    mu = window_sums(u) / p
+    mv = window_sums(v) / p
+    cxx = window_sums(u * u) / p - mu * mu
+    cyy = window_sums(v * v) / p - mv * mv
+    cxy = window_sums(u * v) / p - mu * mv
+    eps = np.finfo(float).eps
+    big = float(np.abs(u).max() + np.abs(v).max()) if n else 0.0
+    bound = 64.0 * p * eps * big * big
+    du = u[p - 1 :] - u[: n - p + 1]
+    dv = v[p - 1 :] - v[: n - p + 1]
+    return cxx - cyy, 2.0 * cxy, du, dv, bound
+
+
+def _exact_at(u: np.ndarray, v: np.ndarray, p: int, j: np.ndarray) -> np.ndarray:
+    """δ of positions ``j`` exactly as :func:`_headings_of` gives it: the windows needed
+    (ending at j and at j + p − 1) gathered run by run with the p − 1 points before each
+    run, and convolved there only."""
+    m = len(u)
+    need = np.zeros(m, dtype=bool)
+    need[j] = True
+    need[j + (p - 1)] = True
+    lo, hi = _runs(need)  # runs of window ends
+    raw_lo = lo - (p - 1)
+    raw_len = hi - raw_lo
+    src = concat_ranges(raw_lo, raw_len)
+    h_cat = _headings_of(u[src], v[src], p)
+    seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
+    h = np.full(m, np.nan)
+    h[concat_ranges(lo, hi - lo)] = h_cat[concat_ranges(seg + (p - 1), hi - lo)]
+    return _angle_diff(h[j], h[j + (p - 1)])
+
+
 def _oriented_axis(
-    a: np.ndarray, b: np.ndarray, du: np.ndarray, dv: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
+    a: np.ndarray, b: np.ndarray, du: np.ndarray, dv: np.ndarray, bound: float | None = None
+):
     """The unit vector that :func:`_axis_headings` points along — cos and sin of
     0.5·atan2(b, a), flipped to agree with (du, dv) — by half-angle formulas, each in the
     form that does not cancel; NaN where the axis is undefined or the orientation too
-    close to call (the screen then leaves the row in)."""
+    close to call (the screen then leaves the row in). With ``bound`` (on |error of a| +
+    |error of b|) also how far the axis may be off (rad); where that is not small the axis
+    counts as undefined, and the orientation is called only where it holds against it."""
     with np.errstate(invalid="ignore", divide="ignore"):
         r = np.sqrt(a * a + b * b)
         c2 = a / r  # cos 2θ, θ in [-90°, 90°]
@@ -689,12 +762,20 @@ def _oriented_axis(
         s = np.copysign(np.where(cos_first, small, big), b)  # sin θ has the sign of b
         d = du * c + dv * s
         sign = np.where(d < 0.0, -1.0, 1.0)
-        unsure = ~(np.abs(d) > 1e-9 * (np.abs(du) + np.abs(dv))) | ~np.isfinite(r) | (r == 0)
+        turn = 0.0
+        if bound is not None:  # how far the axis may turn (rad) when a and b move by bound
+            turn = bound / (r - bound)
+        unsure = ~(np.abs(d) > (turn + 1e-9) * (np.abs(du) + np.abs(dv)))
+        unsure |= ~np.isfinite(r) | (r == 0)
+        if bound is not None:
+            unsure |= ~(r > 4.0 * bound)
         c *= sign
         s *= sign
     c[unsure] = np.nan
     s[unsure] = np.nan
-    return c, s
+    if bound is None:
+        return c, s
+    return c, s, turn
 
 
 def _peaks_above(

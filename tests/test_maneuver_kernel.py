@@ -235,3 +235,19 @@ def test_projection_by_repeat_equals_the_gathers():
     h = np.array([-1e4, -360.0, 719.0, 720.0, np.inf, -np.inf, np.nan, -0.0, 5.0])
     with np.errstate(invalid="ignore"):  # the remainder of an infinity is NaN
         assert np.array_equal(geo.remainder360(h.copy()), np.remainder(h, 360.0), equal_nan=True)
+
+
+def test_long_windows_far_from_the_track_anchor():
+    # 1 s fixes over 600 km: windows of up to 320 points (the screen's sums of short
+    # convolutions) whose coordinates are far larger than their spread
+    rng = np.random.default_rng(11)
+    n = 20_000
+    heading = 40.0 + np.cumsum(np.where(rng.random(n) < 0.002, rng.normal(0, 30, n), 0.0))
+    heading += 5.0 * np.sin(np.arange(n) / 400.0)  # gradual turns too
+    x = np.cumsum(30.0 * np.sin(np.radians(heading))) + rng.normal(0, 1.0, n)
+    y = np.cumsum(30.0 * np.cos(np.radians(heading))) + rng.normal(0, 1.0, n)
+    lon, lat = geo.from_local(x, y, 3.0, 50.0)
+    t = pd.Timestamp("2024-01-01", tz="UTC") + pd.to_timedelta(np.arange(n), unit="s")
+    df = pd.DataFrame({"sensor": "R", "batch": "1", "time": t, "lon": lon, "lat": lat})
+    for params in (ManeuverParams(), ManeuverParams(threshold_deg=3.0, noise_k=0.0)):
+        assert _same(df, params) > 0
