@@ -169,6 +169,14 @@ def test_plateaus_reaching_beyond_the_rows_computed_send_the_track_back():
             rows = concat_ranges(lo, hi - lo)
             return rows, values[rows]
 
+        def factor_every_row(x, y, index, p, chosen, values=values):
+            lo, hi = index.starts + (p - 1), index.ends - (p - 1)
+            ok = chosen & (hi > lo)
+            rows = concat_ranges(lo[ok], (hi - lo)[ok])
+            out = np.full(len(values), np.nan)
+            out[rows] = values[rows]
+            return out
+
         p_track = rng.integers(2, 4, 6)
         radius = np.maximum(p_track, rng.integers(1, 6))
         active = np.ones(6, dtype=bool)
@@ -176,6 +184,7 @@ def test_plateaus_reaching_beyond_the_rows_computed_send_the_track_back():
         x = np.zeros(n)
         with pytest.MonkeyPatch.context() as mp:
             mp.setattr(mod, "_factor_on_runs", factor_on_runs)
+            mp.setattr(mod, "_factor_every_row", factor_every_row)
             want, want_f, _ = mod._scale_candidates(x, x, index, p_track, radius, 5.0, active)
             got, got_f, _ = mod._scale_candidates(
                 x, x, index, p_track, radius, 5.0, active, interest
