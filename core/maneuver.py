@@ -673,39 +673,80 @@ def _factor_on_runs(
     for first in range(p - 1, m - p + 1, BLOCK):  # a loop over blocks, not over windows
         last = min(m - p + 1, first + BLOCK)  # δ positions first..last-1 need windows to
         # last + p - 2: the block's moments overlap the next block's by p - 1 windows
-        ub, vb = u[first - p + 1 : last + p - 1], v[first - p + 1 : last + p - 1]
-        k = last - first
-        if p > SMALL_KERNEL:  # long windows: the screen on sums of short convolutions
-            block = None
-            ex, ey, err = _oriented_axis(*_sums_of_short(ub, vb, p))
-            err = err[:k] + err[p - 1 :]
-        else:
-            block = _block_moments(ub, vb, p)
-            ex, ey = _oriented_axis(*block)
-            err = 0.0
-        with np.errstate(invalid="ignore"):
-            dot = ex[:k] * ex[p - 1 :]
-            dot += ey[:k] * ey[p - 1 :]
-            dot -= 2.0 * err
-            j = np.flatnonzero(~(dot > limit) & is_pos[first:last])  # NaN: left in
-        if not len(j):
-            continue
-        if block is None:
-            found_pos.append(j + first)
-            found_delta.append(_exact_at(ub, vb, p, j + (p - 1)))
-            continue
-        need = np.zeros(len(ex), dtype=bool)
-        need[j] = True
-        need[j + (p - 1)] = True
-        w = np.flatnonzero(need)
-        h = np.full(len(ex), np.nan)
-        h[w] = _axis_headings(*(col[w] for col in block))
+        raw = slice(first - p + 1, last + p - 1)
+        j, d = _screen_block(u[raw], v[raw], p, limit, is_pos[first:last])
         found_pos.append(j + first)
-        found_delta.append(_angle_diff(h[j], h[j + (p - 1)]))
+        found_delta.append(d)
     if not found_pos:
         return np.zeros(0, dtype="int64"), np.zeros(0)
     j = np.concatenate(found_pos)
     return (j if rows is None else rows[j]), np.concatenate(found_delta)
+
+
+def _screen_every_row(
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p: int,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    above: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_factor_on_runs` with ``above`` when the runs cover most rows: block by
+    block over the rows as they lie instead of gathering the runs (windows across a track
+    boundary are computed and never used)."""
+    n = len(x)
+    tr = index.track_of_row
+    x0, y0 = x[index.starts], y[index.starts]  # each track's anchor
+    is_pos = _span_mask(lo, hi, n)
+    limit = math.cos(math.radians(above)) + 1e-9
+    found_rows, found_delta = [], []
+    for first in range(p - 1, n - p + 1, BLOCK):  # a loop over blocks, not over windows
+        last = min(n - p + 1, first + BLOCK)
+        if not is_pos[first:last].any():
+            continue
+        raw = slice(first - p + 1, last + p - 1)
+        t_raw = tr[raw]
+        ub, vb = x[raw] - x0[t_raw], y[raw] - y0[t_raw]
+        j, d = _screen_block(ub, vb, p, limit, is_pos[first:last])
+        found_rows.append(j + first)
+        found_delta.append(d)
+    if not found_rows:
+        return np.zeros(0, dtype="int64"), np.zeros(0)
+    return np.concatenate(found_rows), np.concatenate(found_delta)
+
+
+def _screen_block(
+    ub: np.ndarray, vb: np.ndarray, p: int, limit: float, is_pos: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """One block of the screen: positions (offsets from the block's first δ position,
+    ``is_pos`` of them) whose δ may exceed the angle of cosine ``limit``, and their δ,
+    exactly. ``ub``/``vb`` hold the windows of the block plus p − 1 after."""
+    k = len(is_pos)
+    if p > SMALL_KERNEL:  # long windows: the screen on sums of short convolutions
+        block = None
+        ex, ey, err = _oriented_axis(*_sums_of_short(ub, vb, p))
+        err = err[:k] + err[p - 1 :]
+    else:
+        block = _block_moments(ub, vb, p)
+        ex, ey = _oriented_axis(*block)
+        err = 0.0
+    with np.errstate(invalid="ignore"):
+        dot = ex[:k] * ex[p - 1 :]
+        dot += ey[:k] * ey[p - 1 :]
+        dot -= 2.0 * err
+        j = np.flatnonzero(~(dot > limit) & is_pos)  # NaN: left in
+    if not len(j):
+        return j, np.zeros(0)
+    if block is None:
+        return j, _exact_at(ub, vb, p, j + (p - 1))
+    need = np.zeros(len(ex), dtype=bool)
+    need[j] = True
+    need[j + (p - 1)] = True
+    w = np.flatnonzero(need)
+    h = np.full(len(ex), np.nan)
+    h[w] = _axis_headings(*(col[w] for col in block))
+    return j, _angle_diff(h[j], h[j + (p - 1)])
 
 
 #: np.convolve sums kernels of up to 11 numbers in a plain loop (numpy's small_correlate);
@@ -931,6 +972,8 @@ def _scale_candidates(
                 chosen[trk] = True
                 delta = _factor_every_row(x, y, index, p, chosen)
                 rows = None
+            elif interest is not None and (d_hi - d_lo).sum() >= 0.6 * n:
+                rows, delta = _screen_every_row(x, y, index, p, d_lo, d_hi, threshold)
             else:
                 screen = None if interest is None else threshold
                 rows, delta = _factor_on_runs(x, y, index, p, d_lo, d_hi, screen)

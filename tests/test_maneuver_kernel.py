@@ -169,6 +169,10 @@ def test_plateaus_reaching_beyond_the_rows_computed_send_the_track_back():
             rows = concat_ranges(lo, hi - lo)
             return rows, values[rows]
 
+        def screen_every_row(x, y, index, p, lo, hi, above, values=values):
+            rows = concat_ranges(lo, hi - lo)
+            return rows, values[rows]
+
         def factor_every_row(x, y, index, p, chosen, values=values):
             lo, hi = index.starts + (p - 1), index.ends - (p - 1)
             ok = chosen & (hi > lo)
@@ -185,6 +189,7 @@ def test_plateaus_reaching_beyond_the_rows_computed_send_the_track_back():
         with pytest.MonkeyPatch.context() as mp:
             mp.setattr(mod, "_factor_on_runs", factor_on_runs)
             mp.setattr(mod, "_factor_every_row", factor_every_row)
+            mp.setattr(mod, "_screen_every_row", screen_every_row)
             want, want_f, _ = mod._scale_candidates(x, x, index, p_track, radius, 5.0, active)
             got, got_f, _ = mod._scale_candidates(
                 x, x, index, p_track, radius, 5.0, active, interest
