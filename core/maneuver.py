@@ -321,9 +321,21 @@ def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
     """Median sampling interval (s) of each track; NaN for one-point tracks."""
     dt = np.diff(t, prepend=np.nan)
     dt[index.starts] = np.nan
-    return (
-        pd.Series(dt).groupby(index.track_of_row).median().reindex(range(index.n_tracks)).to_numpy()
-    )
+    out = np.full(index.n_tracks, np.nan)
+    if not len(dt):
+        return out
+    # a track sampled at one interval has it as its median (of an even count too: the
+    # mean of two equal values is that value): no sort
+    with np.errstate(invalid="ignore"):
+        lo, hi = np.fmin.reduceat(dt, index.starts), np.fmax.reduceat(dt, index.starts)
+    one = lo == hi
+    out[one] = lo[one]
+    other = ~one & ~np.isnan(lo)
+    if other.any():
+        rows = np.flatnonzero(other[index.track_of_row])
+        med = pd.Series(dt[rows]).groupby(index.track_of_row[rows]).median()
+        out[med.index.to_numpy()] = med.to_numpy()
+    return out
 
 
 def _p_per_track(
@@ -401,13 +413,17 @@ def position_noise_m(
         ta, ti, tb, xa, xi, xb = t[a], t[i], t[b], x[a], x[i], x[b]
         ya, yi, yb, track_i = y[a], y[i], y[b], tr[i]
         ok = slice(None)
-    span = tb - ta
-    w = np.where(span > 0, (ti - ta) / np.where(span > 0, span, 1.0), 0.5)
-    ex = xi - ((1 - w) * xa + w * xb)
-    ey = yi - ((1 - w) * ya + w * yb)
-    # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
-    # noise has median sigma * sqrt(2 ln 2)
-    r = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
+    m = len(ti)
+    r = np.empty(m)
+    for first in range(0, m, BLOCK):  # blocks: no row-sized temporaries
+        s = slice(first, min(m, first + BLOCK))
+        span = tb[s] - ta[s]
+        w = np.where(span > 0, (ti[s] - ta[s]) / np.where(span > 0, span, 1.0), 0.5)
+        ex = xi[s] - ((1 - w) * xa[s] + w * xb[s])
+        ey = yi[s] - ((1 - w) * ya[s] + w * yb[s])
+        # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
+        # noise has median sigma * sqrt(2 ln 2)
+        r[s] = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
     med = pd.Series(r[ok]).groupby(track_i[ok]).median()
     out[med.index.to_numpy()] = med.to_numpy()
     return out
@@ -489,19 +505,25 @@ def _one_scale(
 
 
 def _search_sorted(
-    ts: np.ndarray, q: np.ndarray, index: TrackIndex, step: np.ndarray, window_s: float
+    ts: np.ndarray,
+    q: np.ndarray,
+    index: TrackIndex,
+    step: np.ndarray,
+    window_s: float,
+    first: int = 0,
 ) -> np.ndarray:
-    """``np.searchsorted(ts, q)`` for ``q = ts - window_s + 1e-3`` (``ts`` sorted): guessed
-    from each track's mean step ``step``, checked, and searched only where the guess is
-    wrong (irregular sampling) — a regular track needs no search at all."""
+    """``np.searchsorted(ts, q)`` for ``q = ts[first:first + len(q)] - window_s + 1e-3``
+    (``ts`` sorted): guessed from each track's mean step ``step``, checked, and searched
+    only where the guess is wrong (irregular sampling) — a regular track needs no search."""
     n = len(ts)
     if not np.isfinite(ts).all():
         return np.searchsorted(ts, q)
     with np.errstate(invalid="ignore", divide="ignore"):
         back = np.where(step > 0, np.floor((window_s - 1e-3) / step), 0.0)
     back = np.clip(back, 0, n).astype("int64")
-    a = np.arange(n) - np.repeat(back, index.sizes)
-    np.maximum(a, np.repeat(index.starts, index.sizes), out=a)
+    row = np.arange(first, first + len(q))
+    tr = index.track_of_row[row]
+    a = np.maximum(row - back[tr], index.starts[tr])
     below = ts[np.maximum(a - 1, 0)]
     good = ((a == 0) | (below < q)) & (ts[a] >= q)
     bad = np.flatnonzero(~good)
@@ -532,19 +554,21 @@ def _rest_mask(
     span[has] = rel[index.ends[has] - 1]
     offset = np.concatenate([[0.0], np.cumsum(span + 2.0 * window_s + 1.0)[:-1]])
     ts = rel + np.repeat(offset, sizes)
-    # first fix at or after t - window_s (a little later, so rounding never widens it)
-    q = ts - window_s + 1e-3
-    a = _search_sorted(ts, q, index, span / np.maximum(sizes - 1, 1), window_s)
-    dx = x - x[a]
-    dy = y - y[a]
-    d2 = dx * dx
-    d2 += dy * dy
+    step = span / np.maximum(sizes - 1, 1)
     reach = 2.0 * radius_m * (1 + 1e-9) + 1e-6
-    # squared distances with a margin far above their rounding: a screen keeps a track
-    # that may hold a stay, never drops one
-    close = (d2 <= reach * reach * (1 + 1e-9)) & (rel >= window_s * (1 - 1e-9))
     possible = np.zeros(index.n_tracks, dtype=bool)
-    possible[tr[close]] = True
+    for first in range(0, n, BLOCK):  # blocks: no row-sized temporaries
+        s = slice(first, min(n, first + BLOCK))
+        # first fix at or after t - window_s (a little later, so rounding never widens it)
+        a = _search_sorted(ts, ts[s] - window_s + 1e-3, index, step, window_s, first)
+        dx = x[s] - x[a]
+        dy = y[s] - y[a]
+        d2 = dx * dx
+        d2 += dy * dy
+        # squared distances with a margin far above their rounding: a screen keeps a
+        # track that may hold a stay, never drops one
+        close = (d2 <= reach * reach * (1 + 1e-9)) & (rel[s] >= window_s * (1 - 1e-9))
+        possible[tr[s][close]] = True
     if not possible.any():
         return rest
     if possible.all():

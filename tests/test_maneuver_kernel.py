@@ -226,8 +226,12 @@ def test_guessed_search_equals_searchsorted(window_s):
         ts += np.repeat(np.arange(index.n_tracks) * 1e7, index.sizes)  # tracks apart
         q = ts - window_s + 1e-3
         span = ts[index.ends - 1] - ts[index.starts]
-        got = _search_sorted(ts, q, index, span / np.maximum(index.sizes - 1, 1), window_s)
+        step = span / np.maximum(index.sizes - 1, 1)
+        got = _search_sorted(ts, q, index, step, window_s)
         assert np.array_equal(got, np.searchsorted(ts, q))
+        half = len(ts) // 2  # the second half only, as a block
+        got = _search_sorted(ts, q[half:], index, step, window_s, half)
+        assert np.array_equal(got, np.searchsorted(ts, q[half:]))
 
 
 def test_projection_by_repeat_equals_the_gathers():
@@ -265,3 +269,16 @@ def test_long_windows_far_from_the_track_anchor():
     df = pd.DataFrame({"sensor": "R", "batch": "1", "time": t, "lon": lon, "lat": lat})
     for params in (ManeuverParams(), ManeuverParams(threshold_deg=3.0, noise_k=0.0)):
         assert _same(df, params) > 0
+
+
+def test_median_interval_equals_the_groupby():
+    from wakeline.core.maneuver import median_interval_s
+    from wakeline.core.tracks import sorted_with_index, track_seconds
+
+    for seed, lattice in ((0, True), (1, False), (5, False)):
+        pts, index = sorted_with_index(_scene(seed, 10, lattice))
+        t = track_seconds(pts)
+        want = reference.median_interval_s(t, index)
+        got = median_interval_s(t, index)
+        assert np.array_equal(got, want, equal_nan=True)
+        assert np.array_equal(np.nan_to_num(got).view("int64"), np.nan_to_num(want).view("int64"))
