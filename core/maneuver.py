@@ -514,10 +514,9 @@ def _search_sorted(
 ) -> np.ndarray:
     """``np.searchsorted(ts, q)`` for ``q = ts[first:first + len(q)] - window_s + 1e-3``
     (``ts`` sorted): guessed from each track's mean step ``step``, checked, and searched
-    only where the guess is wrong (irregular sampling) — a regular track needs no search."""
+    only where the guess is wrong (irregular sampling) — a regular track needs no search.
+    ``ts`` must be finite (the caller checks once)."""
     n = len(ts)
-    if not np.isfinite(ts).all():
-        return np.searchsorted(ts, q)
     with np.errstate(invalid="ignore", divide="ignore"):
         back = np.where(step > 0, np.floor((window_s - 1e-3) / step), 0.0)
     back = np.clip(back, 0, n).astype("int64")
@@ -557,10 +556,15 @@ def _rest_mask(
     step = span / np.maximum(sizes - 1, 1)
     reach = 2.0 * radius_m * (1 + 1e-9) + 1e-6
     possible = np.zeros(index.n_tracks, dtype=bool)
+    finite = bool(np.isfinite(ts).all())
     for first in range(0, n, BLOCK):  # blocks: no row-sized temporaries
         s = slice(first, min(n, first + BLOCK))
         # first fix at or after t - window_s (a little later, so rounding never widens it)
-        a = _search_sorted(ts, ts[s] - window_s + 1e-3, index, step, window_s, first)
+        q = ts[s] - window_s + 1e-3
+        if finite:
+            a = _search_sorted(ts, q, index, step, window_s, first)
+        else:
+            a = np.searchsorted(ts, q)
         dx = x[s] - x[a]
         dy = y[s] - y[a]
         d2 = dx * dx
