@@ -603,10 +603,9 @@ def _dilate(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray, index: TrackIndex
     if not len(lo):
         return np.zeros(n, dtype=bool)
     tr = index.track_of_row[lo]
-    a = np.maximum(lo - reach, index.starts[tr])
+    a = np.maximum(lo - reach, index.starts[tr])  # sorted, as lo is
     b = np.minimum(hi + reach, index.ends[tr])
-    ev = np.bincount(a, minlength=n + 1) - np.bincount(b, minlength=n + 1)
-    return np.cumsum(ev[:n]) > 0
+    return _span_mask(a, b, n)
 
 
 def _merge_runs(lo: np.ndarray, hi: np.ndarray, tr: np.ndarray):
@@ -936,9 +935,22 @@ def _one_per_plateau(
 
 
 def _span_mask(lo: np.ndarray, hi: np.ndarray, n: int) -> np.ndarray:
-    """Mask of the rows of the (disjoint) runs ``[lo, hi)``."""
-    ev = np.bincount(lo, minlength=n + 1) - np.bincount(hi, minlength=n + 1)
-    return np.cumsum(ev[:n]) > 0
+    """Mask of the rows of the runs ``[lo, hi)`` (``lo`` sorted; runs may overlap): one
+    repeat of alternating False/True over the merged runs, no row-sized counts."""
+    if not len(lo):
+        return np.zeros(n, dtype=bool)
+    reach = np.maximum.accumulate(hi)
+    new = np.ones(len(lo), dtype=bool)
+    new[1:] = lo[1:] > reach[:-1]
+    first = np.flatnonzero(new)
+    lo, hi = lo[first], reach[np.append(first[1:], len(lo)) - 1]
+    counts = np.empty(2 * len(lo) + 1, dtype="int64")
+    counts[0:-1:2] = lo - np.concatenate([[0], hi[:-1]])  # gaps
+    counts[1::2] = hi - lo
+    counts[-1] = n - hi[-1]
+    values = np.zeros(len(counts), dtype=bool)
+    values[1::2] = True
+    return np.repeat(values, counts)
 
 
 def _scale_candidates(

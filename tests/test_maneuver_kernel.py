@@ -282,3 +282,17 @@ def test_median_interval_equals_the_groupby():
         got = median_interval_s(t, index)
         assert np.array_equal(got, want, equal_nan=True)
         assert np.array_equal(np.nan_to_num(got).view("int64"), np.nan_to_num(want).view("int64"))
+
+
+def test_span_mask_equals_marking_each_run():
+    from wakeline.core.maneuver import _span_mask
+
+    rng = np.random.default_rng(2)
+    for _ in range(200):
+        n = int(rng.integers(1, 60))
+        lo = np.sort(rng.integers(0, n, rng.integers(0, 8)))
+        hi = np.minimum(lo + rng.integers(0, 10, len(lo)), n)
+        want = np.zeros(n, dtype=bool)
+        for a, b in zip(lo, hi, strict=True):
+            want[a:b] = True
+        assert np.array_equal(_span_mask(lo, hi, n), want)
