@@ -332,9 +332,11 @@ def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
     out[one] = lo[one]
     other = ~one & ~np.isnan(lo)
     if other.any():
-        rows = np.flatnonzero(other[index.track_of_row])
-        med = pd.Series(dt[rows]).groupby(index.track_of_row[rows]).median()
-        out[med.index.to_numpy()] = med.to_numpy()
+        pick = other[index.track_of_row]
+        pick[index.starts] = False  # the NaN before each track's first fix
+        rows = np.flatnonzero(pick)
+        has, med = _group_median(dt[rows], index.track_of_row[rows], index.n_tracks)
+        out[has] = med
     return out
 
 
@@ -424,9 +426,44 @@ def position_noise_m(
         # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
         # noise has median sigma * sqrt(2 ln 2)
         r[s] = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
-    med = pd.Series(r[ok]).groupby(track_i[ok]).median()
-    out[med.index.to_numpy()] = med.to_numpy()
+    r, track_i = r[ok], track_i[ok]
+    has, med = _group_median(r, track_i, index.n_tracks)
+    out[has] = med
     return out
+
+
+def _group_median(values: np.ndarray, group: np.ndarray, n_groups: int):
+    """Groups present and their medians, as ``pd.Series(values).groupby(group).median()``
+    gives them, bit for bit (NaN skipped; of an even count the mean of the middle two):
+    ``group`` sorted. Groups of a size that many groups share (tracks cut to one length)
+    take one ``np.partition`` of a matrix per size; the rest the groupby."""
+    count = np.bincount(group, minlength=n_groups)
+    has = count > 0
+    out = np.full(n_groups, np.nan)
+    if not len(values):
+        return has, out[has]
+    if np.isnan(values).any():  # the groupby skips NaN: leave it to the groupby
+        med = pd.Series(values).groupby(group).median()
+        out[med.index.to_numpy()] = med.to_numpy()
+        return has, out[has]
+    first = np.concatenate([[0], np.cumsum(count)[:-1]])
+    sizes, shared = np.unique(count[has], return_counts=True)
+    rest = np.ones(n_groups, dtype=bool)
+    for m in sizes[(shared >= 8) & (sizes > 0)]:  # a loop over distinct sizes, few
+        g = np.flatnonzero(count == m)
+        block = values[(first[g][:, None] + np.arange(m)).ravel()].reshape(len(g), m)
+        if m % 2:
+            out[g] = np.partition(block, m // 2, axis=1)[:, m // 2]
+        else:
+            part = np.partition(block, [m // 2 - 1, m // 2], axis=1)
+            out[g] = (part[:, m // 2] + part[:, m // 2 - 1]) / 2
+        rest[g] = False
+    rest &= has
+    if rest.any():
+        rows = np.flatnonzero(rest[group])
+        med = pd.Series(values[rows]).groupby(group[rows]).median()
+        out[med.index.to_numpy()] = med.to_numpy()
+    return has, out[has]
 
 
 def _heading_noise_deg(

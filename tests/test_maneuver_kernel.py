@@ -296,3 +296,22 @@ def test_span_mask_equals_marking_each_run():
         for a, b in zip(lo, hi, strict=True):
             want[a:b] = True
         assert np.array_equal(_span_mask(lo, hi, n), want)
+
+
+def test_group_median_equals_the_groupby_bit_for_bit():
+    from wakeline.core.maneuver import _group_median
+
+    rng = np.random.default_rng(8)
+    for trial in range(20):
+        sizes = rng.choice([1, 2, 5, 6, 40, 41], 60)  # shared sizes, odd and even
+        sizes[: trial % 4] = rng.integers(1, 30, trial % 4)  # and a few of their own
+        group = np.repeat(np.arange(60), sizes)
+        values = rng.lognormal(0, 2, len(group))
+        if trial % 5 == 0:
+            values[rng.random(len(values)) < 0.1] = np.nan
+        group = group[group != 7]  # a group without values
+        values = values[: len(group)]
+        has, med = _group_median(values, group, 60)
+        want = pd.Series(values).groupby(group).median()
+        assert np.array_equal(np.flatnonzero(has), want.index.to_numpy())
+        assert np.array_equal(med.view("int64"), want.to_numpy().view("int64"))
