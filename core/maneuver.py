@@ -1005,9 +1005,14 @@ def _scale_candidates(
     (NaN where undefined) when ``interest`` is None.
 
     With ``interest`` (a row mask), only candidates among those rows are wanted: δ is then
-    computed on them and 2·radius rows around (their peak test needs δ within the radius,
-    whose own test needs the next radius); a plateau that reaches beyond that sends its
-    track back to the full computation."""
+    computed on them and the radius around (their peak test needs δ within it), and only
+    where it may exceed the threshold (:func:`_factor_on_runs`). A row of interest that is
+    a peak is one for sure; a peak near the edge of the rows computed may not be, but it
+    then equals any peak of interest within its radius, so it only matters through the
+    one-point-per-plateau rule: a cluster of equal peaks holding a row of interest must
+    lie with two radii around each member inside the rows computed (then every peak that
+    can touch it was seen), or its track goes back to the full computation (rare: equal
+    δ at nearby rows takes exact ties)."""
     n = len(x)
     tr = index.track_of_row
     full = np.full(n, np.nan) if interest is None else None
@@ -1027,7 +1032,7 @@ def _scale_candidates(
         while True:
             if interest is not None:
                 rt = tr[lo]
-                reach = 2 * radius[rt]
+                reach = radius[rt]
                 vl = index.starts[rt] + (p - 1)
                 vh = index.ends[rt] - (p - 1)
                 d_lo, d_hi, d_tr = _merge_runs(
