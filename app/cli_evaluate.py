@@ -28,6 +28,8 @@ def _maneuver_params(args: argparse.Namespace):
         window_s=args.window_s,
         max_window_s=args.max_window_s,
         min_speed_kn=args.min_speed,
+        gap_s=args.gap_s,
+        min_window_s=args.min_window_s,
     ).checked()
 
 
@@ -159,6 +161,20 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.max_window_s,
         help=f"gradual turns: windows double up to this many seconds; 0 = one window "
         f"(default {d.max_window_s:g})",
+    )
+    p.add_argument(
+        "--gap-s",
+        type=float,
+        default=d.gap_s,
+        help=f"turns that take a while: the first windows also compared this many seconds "
+        f"apart; 0 = off (default {d.gap_s:g})",
+    )
+    p.add_argument(
+        "--min-window-s",
+        type=float,
+        default=d.min_window_s,
+        help=f"sharp turns close together: windows also halve down to this many seconds where "
+        f"3 points fit (radar); 0 = off (default {d.min_window_s:g})",
     )
     p.add_argument(
         "--min-speed",
