@@ -18,6 +18,7 @@ from wakeline.core.bearing import (
     BearingParams,
     detect_sequence,
     observer_maneuvering,
+    observer_xy,
     statistic,
     y_spans,
 )
@@ -176,7 +177,7 @@ def run_metrics(
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
         hits = [
             d
-            for d in detect_sequence(t, b, params, excl)
+            for d in detect_sequence(t, b, params, excl, observer_xy(olon, olat))
             if t_m <= d.detect_time_s <= t_m + max_delay_s
         ]
         if hits:
@@ -185,7 +186,7 @@ def run_metrics(
             error.append(abs(hits[0].maneuver_time_s - t_m))
         t, b, olon, olat = simulate_bearings(rng, sc, 0.0, t_m, sigma_deg)
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        false_alarm += bool(detect_sequence(t, b, params, excl))
+        false_alarm += bool(detect_sequence(t, b, params, excl, observer_xy(olon, olat)))
     return {
         "detection": detected / runs,
         "reaction_min": float(np.mean(reaction)) / 60 if reaction else float("nan"),
@@ -229,7 +230,7 @@ def peak_z(
         rng = np.random.default_rng(seed)
         t, b, olon, olat = simulate_bearings(rng, sc, sign * turn_deg, t_m, 0.0)
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        st = statistic(t, b, params, excl, sigma_deg=sigma_deg)
+        st = statistic(t, b, params, excl, sigma_deg=sigma_deg, observer=observer_xy(olon, olat))
         # Y spans ending within the delay: boundaries up to max_delay_s − shortest span
         sel = (st.boundary_t >= t_m - 30.0) & (st.boundary_t <= t_m + max_delay_s - 30.0)
         peaks.append(float(st.z_peak[sel].max()) if sel.any() else 0.0)
