@@ -5,27 +5,36 @@ Two adjacent windows slide over a target's bearing sequence: X (the ``window_x_s
 seconds before a boundary) and Y (up to ``window_y_s`` seconds after it, tested over
 ``y_scales`` nested spans). Every span is in seconds, so the detector runs unchanged at
 any sampling rate and on irregular sampling (jitter, dropped samples): a window holds
-whatever samples fall in its span. X starts after the last gap or observer maneuver; Y
-stops before the next one (its shorter spans are still tested).
+whatever samples fall in its span. X starts after the last gap; Y stops before the next
+one (its shorter spans are still tested).
 
-**The motion model: the target's relative motion fitted on X.** A target at constant
-velocity seen from an observer at constant velocity (static, or on a steady leg) moves
-at constant velocity *relative* to the observer, and its bearing follows
+**The motion model: the target's motion fitted on X, with the observer's known positions.**
+In the frame of X's last line of sight (τ: time from the boundary, per X span), a
+constant-velocity target seen from the observer's positions has the bearing
 
-    β(τ) = β₀ + atan2(w_c·τ, 1 + w_r·τ)
+    β(τ) = β₀ + atan2(p + q·τ − s·d_c(τ), 1 + r·τ − s·d_a(τ))
 
-(τ: time from the boundary; w_c and w_r: cross-bearing and range rate over range, 1/s).
-The three parameters are fitted on X (pseudo-linear least squares, one Gauss–Newton
-step; vectorized over all boundaries). The observer's own turns break the relative
-constant velocity: windows touching them are excluded (and counted). A quadratic in time
-is kept as the alternative model (``relative_motion`` off).
+(d_a, d_c: the observer's displacement from its position at X's last sample, along and
+across that line of sight, in 10 km; s = 10 km / range; p, q, r: the target's offset and
+its own velocity over range). Multiplied out, tan β·(1 + rτ − s·d_a) = p + qτ − s·d_c is
+linear in the four parameters (pseudo-linear least squares, the tan β regressors taken from
+a smooth fit as an instrument), then one Gauss–Newton step; all boundaries at once. On a
+steady leg d is linear in τ and s trades off exactly against (q, r): a weak prior s ~ 0
+makes the fit the target's *relative* motion (three parameters, range unobservable), the
+first version's model, which is also where the fit starts (the step only keeps what lowers
+X's residuals). While the observer maneuvers, s — the range — becomes observable, so its
+turns are fitted through rather than excluded. A static observer (or none given) has
+d = 0: the relative-motion fit as before. ``exclude_observer_turns`` keeps the first
+version's way: X starts after the observer's last maneuvering sample, Y stops before the
+next one, and the relative motion is fitted. A quadratic in time is kept as the
+alternative model (``relative_motion`` off).
 
 **The GLR test (default, ``glr``).** A turn changes the bearing rate at some time t_c:
 β = model + Δω·max(t − t_c, 0). For t_c at the boundary and each Y span, the ramp is
 fitted together with the motion model over X and the span (one Gauss–Newton step from
-X's fit, the ramp's column added); z = Δω̂ / se(Δω̂), se from the 4×4 normal matrix and
-σ from X's residuals. This is the likelihood-ratio test of "constant relative velocity"
-against "bearing-rate change at t_c" (Gaussian noise), linearized; it uses the ramp
+X's fit, the ramp's column added); z = Δω̂ / se(Δω̂), se from the 4×4 (5×5 with s)
+normal matrix and σ from X's residuals. This is the likelihood-ratio test of "constant
+velocity" against "bearing-rate change at t_c" (Gaussian noise), linearized; it uses the ramp
 shape of a turn's residual, where the AUC only sees a shift of Y's median. Its null is
 N(0, 1) per test; the threshold covers the many boundaries and spans (alpha). The
 smallest rate change the data can show is z_crit·se (reported per batch).
@@ -127,7 +136,8 @@ class BearingParams(Params):
     observer_dv_ms: float = param(
         1.0,
         "m/s",
-        "observer velocity change within 60 s that marks its own maneuver",
+        "observer velocity change within 60 s that marks its own maneuver (excluded with "
+        "exclude_observer_turns, else counted in the report)",
         lo=0,
         hi=1000,
     )
@@ -338,10 +348,10 @@ def _fit_relative(tau, w, mx, y_over_x, polish=1, obs=None, mall=None):
         reach = np.sqrt(np.where(mall, da * da + dc * dc, 0.0)).max(axis=1)
         s_max = np.minimum(RANGE_FLOOR / np.maximum(reach, 1e-12), S_MAX)
 
-    def clip(theta):
+    def clip(theta, rows=slice(None)):
         theta[:, 2] = np.clip(theta[:, 2], lo, hi)
         if q > 3:
-            theta[:, 3] = np.clip(theta[:, 3], 0.0, s_max)
+            theta[:, 3] = np.clip(theta[:, 3], 0.0, s_max[rows])
         return theta
 
     def curve(theta):
@@ -365,6 +375,48 @@ def _fit_relative(tau, w, mx, y_over_x, polish=1, obs=None, mall=None):
             theta = clip(theta + _solve(_gram(jac, mx) + prior, g))
             f, jac = curve(theta)
         return f, jac, _gram(jac, mx) + prior, theta, prior
+
+    lx = int(mx.any(axis=0).nonzero()[0].max()) + 1 if mx.any() else 1  # X's columns
+
+    def cost(th, rows):  # X's residual sum of squares plus the prior, for some rows
+        tr = tau[rows, :lx]
+        num = th[:, 0:1] + th[:, 1:2] * tr - th[:, 3:4] * dc[rows, :lx]
+        den = 1.0 + th[:, 2:3] * tr - th[:, 3:4] * da[rows, :lx]
+        res = np.where(mx[rows, :lx], w[rows, :lx] - np.arctan2(num, den), 0.0)
+        return (res**2).sum(axis=1) + np.einsum("bi,bij,bj->b", th, prior[rows], th)
+
+    # Start from the better of today's relative-motion fit (s = 0) and the pseudo-linear
+    # solution with s; a Gauss–Newton step is halved (twice at most) where X's cost would
+    # rise, else the parameters stay, so the fit is never worse on X than the
+    # relative-motion one.
+    every = np.arange(len(theta))
+    rel = np.concatenate(
+        [_solve(_gram(cols[:3], mx) + prior[:, :3, :3], _rhs(cols[:3], mx, tan)), 0 * tan[:, :1]],
+        axis=1,
+    )
+    rel = clip(rel)
+    c_rel, c_new = cost(rel, every), cost(theta, every)
+    theta = np.where((c_new < c_rel)[:, None], theta, rel)
+    best = np.minimum(c_new, c_rel)
+    f, jac = curve(theta)
+    for _ in range(polish):
+        g = _rhs(jac, mx, w - f) - np.einsum("bij,bj->bi", prior, theta)
+        gram = _gram(jac, mx) + prior
+        step = _solve(gram, g)
+        # where s would go below 0 (the range beyond infinity), step with s held at 0
+        held = np.concatenate([_solve(gram[:, :3, :3], g[:, :3]), 0 * g[:, :1]], axis=1)
+        step = np.where((theta[:, 3] + step[:, 3] < 0)[:, None], held, step)
+        rows = every
+        for damp in (1.0, 0.5, 0.25):
+            cand = clip(theta[rows] + damp * step[rows], rows)
+            c = cost(cand, rows)
+            take = c <= best[rows] * (1.0 + 1e-9)  # at the optimum the step is ~0
+            theta[rows[take]], best[rows[take]] = cand[take], c[take]
+            rows = rows[~take]
+            if len(rows) == 0:
+                break
+        f, jac = curve(theta)
+    return f, jac, _gram(jac, mx) + prior, theta, prior
 
     def cost(theta):
         f = curve(theta)[0]
@@ -428,6 +480,10 @@ class Statistic:
     observer: "tuple[np.ndarray, np.ndarray] | None" = field(default=None, repr=False)
     # per boundary: X's fit pins the range down (s known to 30 %: the observer maneuvered)
     range_known: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool), repr=False)
+    # per boundary and Y span (shortest first): |z| (0 where the span is not tested) and
+    # the time of the span's last sample
+    z_span: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
+    y_end_span: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
 
 
 def observer_xy(obs_lon: np.ndarray, obs_lat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -472,6 +528,9 @@ def statistic(
     out = {key: np.zeros(nb) for key in keys}
     coef = np.zeros((nb, 4))
     known = np.zeros(nb, dtype=bool)
+    spans = y_spans(params)
+    z_span = np.zeros((nb, len(spans)))
+    y_end_span = np.zeros((nb, len(spans)))
     obs_kept = observer if use_obs else None
     if nb == 0:
         return Statistic(
@@ -484,10 +543,15 @@ def statistic(
             *keys_after(out),
             obs_kept,
             known,
+            z_span,
+            y_end_span,
         )
     u = np.unwrap(np.radians(bearing_deg))
     x_s = float(params.window_x_s)
-    spans = y_spans(params)
+    if use_obs:  # boundaries whose Y holds an observer maneuver
+        man = excluded if excluded is not None else _maneuvering_xy(t, *observer, 1.0)
+        cm = np.concatenate([[0], np.cumsum(man)])
+        y_man = cm[ye] > cm[k]
     chunk = max(1, int(1.5e6 // max(int((ye - xs).max()), 1)))
     for a in range(0, nb, chunk):  # blocks of boundaries bound the memory, not a per-window loop
         sl = slice(a, a + chunk)
@@ -495,11 +559,11 @@ def statistic(
         prior = None
         if params.relative_motion:
             obs = _observer_frame((*observer, t), u, k[sl], idx, x_s) if use_obs else None
-            f, jac, gram, c, prior = _fit_relative(
-                tau, w, mx, spans[-1] / x_s, 2 if use_obs else 1, obs, mx | my
-            )
+            f, jac, gram, c, prior = _fit_relative(tau, w, mx, spans[-1] / x_s, 1, obs, mx | my)
+            lin = c
         else:
             f, jac, gram, c = _fit_poly(tau, w, mx)
+            lin = c
         m = mx.sum(axis=1)
         resid = w - f
         dof = np.maximum(m - c.shape[1] + (1 if use_obs else 0), 1)
@@ -509,13 +573,29 @@ def statistic(
             ridge = 1e-9 * (np.trace(gram, axis1=1, axis2=2)[:, None, None] + 1e-12)
             var_s = np.linalg.inv(gram + ridge * np.eye(4))[:, 3, 3]
             known[sl] = sigma * np.sqrt(np.maximum(var_s, 0.0)) < 0.3 * c[:, 3]
+            # Where X leaves the range open and the observer maneuvers within Y, the GLR's
+            # one step from X's fit would meet the maneuver's effect, nonlinear in s, far
+            # from X's s: linearize there about the fit over X and the whole Y instead.
+            r = np.flatnonzero(y_man[sl] & ~known[sl])
+            if len(r):
+                sub = tuple(o[r] for o in obs)
+                f_r, jac_r, _, lin_r, _ = _fit_relative(
+                    tau[r], w[r], mx[r] | my[r], spans[-1] / x_s, 1, sub, mx[r] | my[r]
+                )
+                f[r], lin = f_r, lin.copy()
+                lin[r] = lin_r
+                for col, col_r in zip(jac, jac_r, strict=True):
+                    col[r] = col_r
         best_z = np.zeros(len(m))
         best_t = np.full(len(m), np.inf)
         full_t = t[k[sl]]
         last = np.full(len(m), False)
         n_span = np.stack([(my & (tau * x_s < span - 1e-9)).sum(axis=1) for span in spans], 1)
         if params.glr:
-            z_all, rate_all = _glr(tau, resid, mx, my, n_span, jac, c, prior, sigma, params.z_crit)
+            resid = w - f
+            z_all, rate_all = _glr(
+                tau, resid, mx, my, n_span, jac, lin, prior, sigma, params.z_crit
+            )
         for si in range(len(spans) - 1, -1, -1):  # nested Y spans: shorter ones react sooner
             span, n = spans[si], n_span[:, si]
             valid = (cover[sl] >= span - 1e-9) & (n >= params.min_samples)
@@ -536,6 +616,7 @@ def statistic(
                 out["sd"][sl] = np.where(first, sd, out["sd"][sl])
             last |= valid
             out["z_peak"][sl] = np.maximum(out["z_peak"][sl], np.abs(z))
+            z_span[sl, si], y_end_span[sl, si] = np.abs(z), y_end
             hit = np.abs(z) > params.z_crit
             best_t = np.where(hit, y_end, best_t)  # shortest rejecting span wins
             best_z = np.where(hit | (first & (best_z == 0)), z, best_z)
@@ -547,7 +628,17 @@ def statistic(
     if params.auc_mean and not params.glr:
         out["z"] = _auc_mean_z(out["boundary_t"], out["auc"], out["sd"], params.mean_span_s)
     return Statistic(
-        *(out[c] for c in keys[:7]), coef, win, t, u, params, *keys_after(out), obs_kept, known
+        *(out[c] for c in keys[:7]),
+        coef,
+        win,
+        t,
+        u,
+        params,
+        *keys_after(out),
+        obs_kept,
+        known,
+        z_span,
+        y_end_span,
     )
 
 
@@ -673,8 +764,7 @@ def maneuver_time(st: Statistic, i: int) -> float:
         obs = None
         if st.observer is not None:
             obs = _observer_frame((*st.observer, st.t), st.u, k, idx, float(p.window_x_s))
-        polish = 1 if obs is None else 2
-        f = _fit_relative(tau, w, mx, y_spans(p)[-1] / p.window_x_s, polish, obs, mx | my)[0]
+        f = _fit_relative(tau, w, mx, y_spans(p)[-1] / p.window_x_s, 1, obs, mx | my)[0]
     else:
         f = _fit_poly(tau, w, mx)[0]
     tt = st.t[xs[0] : ye[0]]
@@ -714,10 +804,17 @@ def observer_maneuvering(
     within ``span_s`` seconds: its own turns and speed changes. Velocities are taken over
     ``lag_s`` (at least one sample) so position jitter of a slow or docked observer does
     not count."""
-    n = len(t)
-    if n < 3 or np.all(np.isnan(obs_lon)):
-        return np.zeros(n, dtype=bool)
+    if len(t) < 3 or np.all(np.isnan(obs_lon)):
+        return np.zeros(len(t), dtype=bool)
     x, y = geo.to_local(obs_lon, obs_lat, float(np.nanmean(obs_lon)), float(np.nanmean(obs_lat)))
+    return _maneuvering_xy(t, x, y, dv_ms, span_s, lag_s)
+
+
+def _maneuvering_xy(t, x, y, dv_ms, span_s=60.0, lag_s=5.0):
+    """:func:`observer_maneuvering` on local positions (m)."""
+    n = len(t)
+    if n < 3:
+        return np.zeros(n, dtype=bool)
     back = np.minimum(np.searchsorted(t, t - lag_s, side="right") - 1, np.arange(n) - 1)
     back = np.maximum(back, 0)
     dt = np.maximum(t - t[back], 1e-9)

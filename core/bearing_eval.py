@@ -221,8 +221,8 @@ def peak_z(
     seed: int = 0,
 ) -> float:
     """The GLR's expected peak |z| for a turn (noise-free bearings, the noise σ given):
-    the largest over boundaries from 30 s before the turn whose Y ends within
-    ``max_delay_s`` after it, the smaller of a turn to either side. Below z_crit no
+    the largest over boundaries from 30 s before the turn and Y spans that end within
+    ``max_delay_s`` after it (as a detection must), the smaller of a turn to either side. Below z_crit no
     detector of this kind finds the turn in most runs: the geometry hides it."""
     params = replace(params, glr=True)
     peaks = []
@@ -231,9 +231,11 @@ def peak_z(
         t, b, olon, olat = simulate_bearings(rng, sc, sign * turn_deg, t_m, 0.0)
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
         st = statistic(t, b, params, excl, sigma_deg=sigma_deg, observer=observer_xy(olon, olat))
-        # Y spans ending within the delay: boundaries up to max_delay_s − shortest span
-        sel = (st.boundary_t >= t_m - 30.0) & (st.boundary_t <= t_m + max_delay_s - 30.0)
-        peaks.append(float(st.z_peak[sel].max()) if sel.any() else 0.0)
+        # the spans a detection can come from: boundaries from 30 s before the turn, Y
+        # ending after the turn and within the delay (the detection time is Y's end)
+        sel = (st.boundary_t[:, None] >= t_m - 30.0) & (st.y_end_span >= t_m)
+        sel &= st.y_end_span <= t_m + max_delay_s
+        peaks.append(float(st.z_span[sel].max()) if sel.any() else 0.0)
     return min(peaks)
 
 
