@@ -321,6 +321,14 @@ def _summary(g: pd.DataFrame) -> dict:
     }
 
 
+def _model_name(p: BearingParams) -> str:
+    if not p.relative_motion:
+        return "quadratic trend"
+    if p.exclude_observer_turns:
+        return "relative-motion fit, the observer's turns excluded"
+    return "constant-velocity target fitted with the observer's positions, through its turns"
+
+
 def format_evaluation(ev: dict) -> str:
     """The held-out table per method and sampling, mean and worst, split by what the
     geometry lets be seen, then every scenario."""
@@ -334,7 +342,7 @@ def format_evaluation(ev: dict) -> str:
     )
     lines = [
         f"Ours: {test}, X <= {p.window_x_s:g} s (>= {p.min_window_x_s:g} s), "
-        f"|z| > {p.z_crit:.2f}, {'relative-motion fit' if p.relative_motion else 'quadratic trend'}. "
+        f"|z| > {p.z_crit:.2f}, {_model_name(p)}. "
         "AUC: seed 002's test on the same feature as built before (Y 90 s, 3 nested spans, "
         "z > 3.64). "
         "Bearing noise 0.6 deg, 50 deg turn at 450 s (either side), 15 min runs; detected = a "
