@@ -704,10 +704,22 @@ def _auc_mean_z(bt: np.ndarray, auc: np.ndarray, sd: np.ndarray, span_s: float) 
 
 
 def auc_statistic(
-    t: np.ndarray, bearing_deg: np.ndarray, params: BearingParams | None = None
+    t: np.ndarray,
+    bearing_deg: np.ndarray,
+    params: BearingParams | None = None,
+    obs_lon: np.ndarray | None = None,
+    obs_lat: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Boundary times (s) and z for every tested boundary (for plots)."""
-    st = statistic(t, bearing_deg, (params or BearingParams()).checked())
+    """Boundary times (s) and z for every tested boundary (for plots), with the
+    observer's positions when given (as :func:`detect_with_report` takes them)."""
+    params = (params or BearingParams()).checked()
+    excluded = xy = None
+    if obs_lon is not None and obs_lat is not None:
+        obs_lon, obs_lat = np.asarray(obs_lon, float), np.asarray(obs_lat, float)
+        if np.isfinite(obs_lon).all() and np.isfinite(obs_lat).all():
+            excluded = observer_maneuvering(t, obs_lon, obs_lat, params.observer_dv_ms)
+            xy = observer_xy(obs_lon, obs_lat)
+    st = statistic(t, bearing_deg, params, excluded, observer=xy)
     return st.boundary_t, st.z
 
 
