@@ -751,6 +751,15 @@ def detections_from(st: Statistic, z_crit: float) -> list[Detection]:
             # those rejections are the same maneuver, not a new one.
             clear = np.flatnonzero(st.x_start_t[a:b] > out[-1].maneuver_time_s)
             if len(clear) == 0:
+                # ... but if one of its short spans rejected before the detection's own
+                # (a run that started early, on long Y spans), the alarm came then: the
+                # detection takes that time and that boundary's maneuver time (causal)
+                hit = a + np.flatnonzero(np.abs(st.z[a:b]) > z_crit)
+                j = int(hit[np.argmin(st.detect_t[hit])])
+                if st.detect_t[j] < out[-1].detect_time_s:
+                    when = maneuver_time(st, j) if len(st.u) else float(st.boundary_t[j])
+                    z = max(out[-1].z, float(st.z[j]), key=abs)
+                    out[-1] = Detection(float(st.detect_t[j]), when, z)
                 continue
             a = a + int(clear[0])
         kk = a + int(np.argmax(np.abs(st.z[a:b])))
