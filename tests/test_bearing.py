@@ -12,6 +12,7 @@ from wakeline.core.bearing import (
     detect,
     detect_sequence,
     detect_with_report,
+    detections_from,
     observer_maneuvering,
     observer_xy,
     read_bearings,
@@ -312,3 +313,20 @@ def test_observer_turn_makes_the_range_observable():
     assert np.all(np.abs(ranges / 15_000.0 - 1.0) < 0.5)
     assert st.range_known[through].mean() > 0.5
     assert np.abs(st.z).max() < 1.0  # no misfit without a target turn
+
+
+def test_detection_time_is_the_first_alarm_of_the_maneuver():
+    """Early boundaries reject on long Y spans only, later ones on short spans sooner: the
+    detection (one per maneuver) takes the earliest alarm, as it would be raised live (the
+    first version reported 503, 565 and 559 s here, and a second detection of the same
+    turn for seed 1)."""
+    for seed in (1, 3, 10):
+        rng = np.random.default_rng(seed)
+        sc = SCENARIOS[4]  # 15 min, the observer turns at 120 s, the target at 450 s
+        t, b, olon, olat = simulate_bearings(rng, sc, -50.0, 450.0, 0.6)
+        p = BearingParams()
+        st = statistic(t, b, p, observer=observer_xy(olon, olat))
+        hits = detections_from(st, p.z_crit)
+        assert len(hits) == 1
+        assert hits[0].detect_time_s == st.detect_t[np.abs(st.z) > p.z_crit].min()
+        assert 450.0 <= hits[0].detect_time_s <= 450.0 + 60.0
