@@ -244,9 +244,10 @@ def register(sub) -> None:
     p = sub.add_parser(
         "bearing",
         help="detect target maneuvers in bearing-only sequences (seed 002)",
-        description="Input: batch,time,bearing[,obs_lon,obs_lat] (degrees; the observer's position "
-        "excludes spans where it maneuvers itself). Two sliding windows X and Y (seconds); by default a "
-        "likelihood-ratio test of a bearing-rate change fitted with the target's relative motion "
+        description="Input: batch,time,bearing[,obs_lon,obs_lat] (degrees; the observer's positions "
+        "enter the motion fit, through its own turns; --exclude-observer-turns skips the spans where "
+        "it maneuvers instead). Two sliding windows X and Y (seconds); by default a "
+        "likelihood-ratio test of a bearing-rate change fitted with a constant-velocity target "
         "over X and nested Y spans (--no-glr: seed 002's Mann-Whitney AUC of the residuals from "
         "the trend fitted on X). Writes one row per detection: batch,detect_time,maneuver_time,z.",
         epilog=EPILOG,
