@@ -28,6 +28,8 @@ def _maneuver_params(args: argparse.Namespace):
         window_s=args.window_s,
         max_window_s=args.max_window_s,
         min_speed_kn=args.min_speed,
+        gap_s=args.gap_s,
+        min_window_s=args.min_window_s,
     ).checked()
 
 
@@ -161,6 +163,20 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         f"(default {d.max_window_s:g})",
     )
     p.add_argument(
+        "--gap-s",
+        type=float,
+        default=d.gap_s,
+        help=f"turns that take a while: the first windows also compared this many seconds "
+        f"apart; 0 = off (default {d.gap_s:g})",
+    )
+    p.add_argument(
+        "--min-window-s",
+        type=float,
+        default=d.min_window_s,
+        help=f"sharp turns close together: windows also halve down to this many seconds where "
+        f"3 points fit (radar); 0 = off (default {d.min_window_s:g})",
+    )
+    p.add_argument(
         "--min-speed",
         type=float,
         default=d.min_speed_kn,
@@ -228,9 +244,10 @@ def register(sub) -> None:
     p = sub.add_parser(
         "bearing",
         help="detect target maneuvers in bearing-only sequences (seed 002)",
-        description="Input: batch,time,bearing[,obs_lon,obs_lat] (degrees; the observer's position "
-        "excludes spans where it maneuvers itself). Two sliding windows X and Y (seconds); by default a "
-        "likelihood-ratio test of a bearing-rate change fitted with the target's relative motion "
+        description="Input: batch,time,bearing[,obs_lon,obs_lat] (degrees; the observer's positions "
+        "enter the motion fit, through its own turns; --exclude-observer-turns skips the spans where "
+        "it maneuvers instead). Two sliding windows X and Y (seconds); by default a "
+        "likelihood-ratio test of a bearing-rate change fitted with a constant-velocity target "
         "over X and nested Y spans (--no-glr: seed 002's Mann-Whitney AUC of the residuals from "
         "the trend fitted on X). Writes one row per detection: batch,detect_time,maneuver_time,z.",
         epilog=EPILOG,

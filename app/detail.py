@@ -103,7 +103,11 @@ class DetailPanel(QtWidgets.QTabWidget):
         t0 = t[0]
         self.b_curve.setData((t - t0) / 60.0, np.degrees(np.unwrap(np.radians(b))))
         p = self._bparams
-        bt, z = auc_statistic(t, b, p)
+        obs = [
+            g[c].to_numpy(dtype="float64") if c in g.columns else None
+            for c in ("obs_lon", "obs_lat")
+        ]
+        bt, z = auc_statistic(t, b, p, *obs)
         self.z_curve.setData((bt - t0) / 60.0, z)
         self.z_plot.setLabel("left", "z (GLR)" if p.glr else "z (AUC)")
         self.z_band.setRegion((-p.z_crit, p.z_crit))

@@ -35,14 +35,13 @@ from wakeline.app.map_draw import (
 )
 from wakeline.app.map_interact import MapInteractMixin
 from wakeline.app.map_legend import SideLegend
-from wakeline.app.map_paths import with_paths
+from wakeline.app.map_paths import SYMBOLS_MAX, LayerItem, crosses, with_paths
 
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
-#: Symbols are drawn when a curve has at most this many vertices after the level of
-#: detail (zoomed in): pyqtgraph builds them point by point (~10 µs each). Lines show
-#: without them beyond; marker-only layers show 1-px crosses.
-SYMBOLS_MAX = 3_000
+# SYMBOLS_MAX (map_paths): symbols are drawn when a curve has at most this many vertices
+# after the level of detail (zoomed in): pyqtgraph builds them point by point (~10 µs
+# each). Lines show without them beyond; marker-only layers show 1-px crosses.
 
 #: Selection curve items made with the canvas (more are made when needed).
 SELECTION_POOL = 12
@@ -76,6 +75,10 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         # or narrowed with its labels would resize the view box, and every layer would be
         # decimated and stroked again.
         self.getAxis("left").setStyle(tickTextWidth=44, autoReduceTextSpace=False)
+        # Axes and grid replay their labels on every paint (~10 ms each); cached, a
+        # repaint for a new layer or the selection copies them while the view stays.
+        for side in ("left", "bottom"):
+            self.getAxis(side).setCacheMode(CACHE)
         self.vb = self.plot_item.getViewBox()
         self.vb.setAspectLocked(True, ratio=1.0)
         # The view is set by fit() from the data, never by pyqtgraph's auto range.
@@ -227,7 +230,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                         "symbolBrush": curve.color,
                     }
                 pen = pg.mkPen(curve.color, width=data.style.width) if data.style.width else None
-                item = pg.PlotDataItem(pen=pen, connect="finite", **kw)
+                item = LayerItem(pen=pen, connect="finite", **kw)
                 # No re-plot on every view change (pyqtgraph's dynamic range limit would
                 # rebuild the symbols of every curve at each pan and zoom step).
                 item.setDynamicRangeLimit(None)
@@ -263,6 +266,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                     item.setData(curve.lon, curve.lat, connect="finite")
                 else:
                     item.setData(*self._crosses(curve, data.style.symbol_size), connect="pairs")
+                item.curve.sprite = None if few else curve.sprite
                 continue
             if data.style.symbol_size and data.style.width:
                 # Symbols on a line only where they can be told apart: pyqtgraph builds
@@ -278,16 +282,12 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             item.setData(curve.lon, curve.lat, connect="finite")
             if curve.path is not None:  # built in a worker (map_paths): paint only strokes
                 item.curve.path = curve.path
+            # Stroked in a worker for this view: the paint copies it while it fits.
+            item.curve.sprite = curve.sprite
 
     def _crosses(self, curve, size_px: float) -> tuple[np.ndarray, np.ndarray]:
         """A small cross (two segments, ``size_px`` wide) at every finite vertex."""
-        ok = np.isfinite(curve.lon) & np.isfinite(curve.lat)
-        x, y = curve.lon[ok], curve.lat[ok]
-        px = self.vb.viewPixelSize()
-        dx, dy = px[0] * size_px / 2, px[1] * size_px / 2
-        xs = np.stack([x - dx, x + dx, x, x], axis=1).ravel()
-        ys = np.stack([y, y, y - dy, y + dy], axis=1).ravel()
-        return xs, ys
+        return crosses(curve.lon, curve.lat, self.vb.viewPixelSize(), size_px)
 
     def refresh_lod(self, names: list[str] | None = None) -> None:
         """Redo the level of detail of layers (default all) whose decimation is stale."""
@@ -301,7 +301,11 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 self.lod_executor(lambda c=coast: relod(c, view, size), self._apply_coast)
         for name in list(names or self._data):
             data = self._data.get(name)
-            if data is None or name in self._lod_pending or not lod_is_stale(data, view, size):
+            if data is None or name in self._lod_pending:
+                continue
+            if not lod_is_stale(data, view, size) and not (
+                self.lod_executor is not None and sprite_is_stale(data, view, size)
+            ):
                 continue
             if self.lod_executor is None:
                 self._apply_lod(relod(data, view, size))
@@ -382,6 +386,27 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
 
     def render_png(self, path: str) -> bool:
         return self.grab().save(path)
+
+
+def sprite_is_stale(
+    data: DrawData, view: tuple[float, float, float, float], size_px: tuple[int, int]
+) -> bool:
+    """True when a curve of ``data`` has a sprite that no longer shows ``view`` at
+    ``size_px`` (panned or resized): a worker makes new ones, strokes fill in meanwhile."""
+    sv = data.view
+    if sv is None or not any(c.sprite is not None for c in data.curves):
+        return False
+    x0, x1, y0, y1 = view
+    tx = (sv[1] - sv[0]) / max(size_px[0], 1)
+    ty = (sv[3] - sv[2]) / max(size_px[1], 1)
+    return (
+        abs((x1 - x0) - (sv[1] - sv[0])) > tx
+        or abs((y1 - y0) - (sv[3] - sv[2])) > ty
+        or x0 < sv[0] - tx
+        or x1 > sv[1] + tx
+        or y0 < sv[2] - ty
+        or y1 > sv[3] + ty
+    )
 
 
 def color_icon(color: str) -> QtGui.QIcon:

@@ -128,6 +128,9 @@ class Curve:
     #: The curve's QPainterPath when a worker built it (:mod:`wakeline.app.map_paths`),
     #: so the GUI thread's paint only strokes it; None: built on the first paint.
     path: object = field(default=None, compare=False, repr=False)
+    #: The curve stroked into an image for the view it was decimated for, by a worker
+    #: (:class:`wakeline.app.map_paths.Sprite`); the paint then only copies it.
+    sprite: object = field(default=None, compare=False, repr=False)
 
     @property
     def n_vertices(self) -> int:
@@ -140,6 +143,7 @@ class DrawData:
 
     ``lod_box`` is ``(x0, x1, y0, y1)`` (degrees) the curves are valid in and ``px`` the
     pixel size (degrees) they were decimated for; both None for full resolution.
+    ``view`` is the view (x0, x1, y0, y1, degrees) they were made for.
     """
 
     name: str
@@ -148,6 +152,7 @@ class DrawData:
     style: LayerStyle
     lod_box: tuple[float, float, float, float] | None = None
     px: tuple[float, float] | None = None
+    view: tuple[float, float, float, float] | None = None
 
     @property
     def n_vertices(self) -> int:
@@ -311,7 +316,8 @@ def prepare_layer(
     if build_index and geom.n_points:
         geom.tree()
     curves, box, px = curves_for(geom, view, size_px)
-    return DrawData(name, geom, curves, style or LayerStyle(), box, px)
+    shown = view if px is not None else None
+    return DrawData(name, geom, curves, style or LayerStyle(), box, px, shown)
 
 
 def relod(
@@ -319,7 +325,7 @@ def relod(
 ) -> DrawData:
     """``data`` with its curves decimated again for a new view (pure; for a worker)."""
     curves, box, px = curves_for(data.geometry, view, size_px)
-    return replace(data, curves=curves, lod_box=box, px=px)
+    return replace(data, curves=curves, lod_box=box, px=px, view=view if px else None)
 
 
 def lod_is_stale(

@@ -10,6 +10,8 @@ LABEL_MAX = 32
 #: a label wider than that is shortened in the middle to fit it (by pixels, so wide
 #: glyphs such as Chinese fit too).
 RESERVED_CHARS = 26
+#: Room (px) left in the column for a label item's own padding.
+LABEL_PADDING_PX = 10.0
 
 
 def short_label(text: str, limit: int = LABEL_MAX) -> str:
@@ -38,11 +40,14 @@ class SideLegend(pg.LegendItem):
         self._metrics = QtGui.QFontMetricsF(font)
         self._text_px = float(self._metrics.horizontalAdvance("n" * RESERVED_CHARS))
         self.widest = self._text_px + 20 + 3 + 12  # the line sample, spacing, margins
+        # A label item is wider than its text by its own padding (~6 px): labels are
+        # shortened to fit the column less that, so a long name never widens it.
+        self._label_px = self._text_px - LABEL_PADDING_PX
         self.updateSize()
 
     def addItem(self, item, name: str) -> None:  # noqa: N802 - pyqtgraph's name
         text = self._metrics.elidedText(
-            short_label(str(name)), QtCore.Qt.TextElideMode.ElideMiddle, self._text_px
+            short_label(str(name)), QtCore.Qt.TextElideMode.ElideMiddle, self._label_px
         )
         super().addItem(item, text)
 

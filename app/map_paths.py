@@ -1,30 +1,224 @@
-"""Painter paths of the map's curves, built off the GUI thread.
+"""Painter paths and images of the map's curves, made off the GUI thread.
 
 pyqtgraph builds a curve's ``QPainterPath`` from its arrays on the first paint after
 ``setData`` (20–28 ms of GUI-thread CPU for 120k vertices). A ``QPainterPath`` is a
 plain value class (reentrant), so a worker can build it with pyqtgraph's own
-``arrayToQPath`` and the canvas hands it to the curve item after ``setData``: the paint
-then only strokes it.
+``arrayToQPath`` and the canvas hands it to the curve item after ``setData``.
+
+Stroking the path is the larger cost (a 1-px line through 180k vertices: 50–70 ms of
+Qt's raster engine) and Qt allows painting on a ``QImage`` in any thread. So a worker
+also strokes each long curve into a :class:`Sprite`, an image of the view the curve was
+decimated for, and :class:`SpriteCurve` paints by copying it while the map shows that
+view at that scale with that pen; any other paint (a pan beyond the image, a zoom not yet
+redone, another pen) strokes the path as pyqtgraph does. PySide holds the GIL while
+``QPainter.drawPath`` runs, so the worker strokes in pieces of ~``CHUNK_VERTICES``
+vertices: the GUI thread waits at most one piece for the GIL.
 """
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
+import numpy as np
 import pyqtgraph as pg
+import pyqtgraph.graphicsItems.PlotDataItem as _plot_data_item
+from PySide6 import QtCore, QtGui
 
-from wakeline.app.map_draw import DrawData
+from wakeline.app.map_draw import Curve, DrawData
 
 #: Curves with fewer vertices are left to pyqtgraph (cheap; wide pens draw segments).
 MIN_VERTICES = 2_000
+#: Symbols are drawn when a curve has at most this many vertices after the level of
+#: detail; beyond, lines are drawn with a 1-px pen (and may have a sprite).
+SYMBOLS_MAX = 3_000
+#: Vertices stroked per ``drawPath`` call when a worker makes a sprite (~5 ms each).
+CHUNK_VERTICES = 12_000
+#: Largest difference (pixels, across the image) between the map's scale and the image's
+#: for the image to be copied unscaled: a line is off by at most this at the far edge.
+SCALE_TOLERANCE_PX = 1.01
+#: Largest sprite (pixels): a bigger plot area is stroked on the GUI thread as before.
+MAX_SPRITE_PIXELS = 4096 * 4096
 
 
-def with_paths(data: DrawData) -> DrawData:
-    """``data`` with the path of every long line curve built (call it in a worker)."""
+@dataclass(frozen=True)
+class Sprite:
+    """A curve stroked into ``image`` for ``view`` (x0, x1, y0, y1, degrees) shown on the
+    image's pixels, with a cosmetic pen of colour ``rgba`` and ``width`` px."""
+
+    image: QtGui.QImage
+    view: tuple[float, float, float, float]
+    rgba: int  # the pen's colour, QColor.rgba()
+    width: float
+    antialias: bool
+    n: int  # length of the curve's arrays (NaN separators included)
+
+    def draw(self, p: QtGui.QPainter, item: pg.PlotCurveItem) -> bool:
+        """Copy the image onto ``p`` if it shows ``item`` exactly as a stroke would;
+        False (nothing painted) otherwise."""
+        opts = item.opts
+        pen = opts.get("pen")
+        if (
+            pen is None
+            or item.xData is None
+            or len(item.xData) != self.n
+            or opts.get("shadowPen") is not None
+            or opts.get("fillLevel") is not None
+            or bool(opts.get("antialias")) != self.antialias
+            or pen.widthF() != self.width
+            or pen.style() != QtCore.Qt.PenStyle.SolidLine
+            or pen.color().rgba() != self.rgba
+        ):
+            return False
+        t = p.transform()
+        x0, x1, y0, y1 = self.view
+        w, h = self.image.width(), self.image.height()
+        if abs(t.m12()) > 1e-12 or abs(t.m21()) > 1e-12:
+            return False
+        # The map's scale equals the image's to within a pixel across it (the plot size
+        # the worker was given is the plot area's rounded up by its half-pixel border).
+        if abs(t.m11() * (x1 - x0) - w) > SCALE_TOLERANCE_PX or (
+            abs(-t.m22() * (y1 - y0) - h) > SCALE_TOLERANCE_PX
+        ):
+            return False
+        vb = item.getViewBox()
+        if vb is None:
+            return False
+        shown = vb.viewRect()
+        tx, ty = (x1 - x0) / w, (y1 - y0) / h  # one pixel, in degrees
+        if (
+            shown.left() < x0 - tx
+            or shown.right() > x1 + tx
+            or shown.top() < y0 - ty
+            or shown.bottom() > y1 + ty
+        ):
+            return False  # panned beyond the image: stroke until a new one is made
+        corner = t.map(QtCore.QPointF(x0, y1))
+        p.save()
+        p.resetTransform()
+        p.drawImage(QtCore.QPointF(round(corner.x()), round(corner.y())), self.image)
+        p.restore()
+        return True
+
+
+def _chunks(lon: np.ndarray, size: int) -> list[tuple[int, int]]:
+    """``[a, b)`` ranges of about ``size`` vertices that cut only at NaN separators."""
+    n = len(lon)
+    if n <= size:
+        return [(0, n)]
+    gaps = np.flatnonzero(~np.isfinite(lon))
+    if len(gaps) == 0:
+        return [(0, n)]
+    want = np.arange(size, n, size)
+    cuts = np.unique(gaps[np.minimum(np.searchsorted(gaps, want), len(gaps) - 1)])
+    bounds = np.concatenate([[0], cuts + 1, [n]])
+    return [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
+
+
+def crosses(
+    lon: np.ndarray, lat: np.ndarray, px: tuple[float, float], size_px: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """A small cross (two segments, ``size_px`` pixels of ``px`` degrees wide) at every
+    finite vertex: arrays to draw with ``connect="pairs"``."""
+    ok = np.isfinite(lon) & np.isfinite(lat)
+    x, y = lon[ok], lat[ok]
+    dx, dy = px[0] * size_px / 2, px[1] * size_px / 2
+    xs = np.stack([x - dx, x + dx, x, x], axis=1).ravel()
+    ys = np.stack([y, y, y - dy, y + dy], axis=1).ravel()
+    return xs, ys
+
+
+def render_sprite(
+    curve: Curve,
+    view: tuple[float, float, float, float],
+    size_px: tuple[int, int],
+    width: float = 1.0,
+    antialias: bool = False,
+    connect: str = "finite",
+) -> Sprite | None:
+    """Stroke ``curve`` into an image of ``size_px`` (w, h) showing ``view`` (pure; for a
+    worker thread). None when the view or size cannot make one. ``connect="pairs"``:
+    the curve is segments (crosses), stroked in pieces of whole segments."""
+    x0, x1, y0, y1 = view
+    w, h = int(size_px[0]), int(size_px[1])
+    if w <= 0 or h <= 0 or w * h > MAX_SPRITE_PIXELS or not (x1 > x0 and y1 > y0):
+        return None
+    image = QtGui.QImage(w, h, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
+    image.fill(QtCore.Qt.GlobalColor.transparent)
+    sx, sy = w / (x1 - x0), h / (y1 - y0)
+    pen = pg.mkPen(curve.color, width=width)
+    painter = QtGui.QPainter(image)
+    try:
+        painter.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, antialias)
+        painter.setPen(pen)
+        painter.setTransform(QtGui.QTransform(sx, 0.0, 0.0, -sy, -x0 * sx, y1 * sy))
+        if connect == "pairs":
+            step = CHUNK_VERTICES - CHUNK_VERTICES % 2
+            pieces = [(a, min(a + step, len(curve.lon))) for a in range(0, len(curve.lon), step)]
+        else:
+            pieces = _chunks(curve.lon, CHUNK_VERTICES)
+        for a, b in pieces:
+            painter.drawPath(pg.arrayToQPath(curve.lon[a:b], curve.lat[a:b], connect=connect))
+    finally:
+        painter.end()
+    rgba = pen.color().rgba()
+    return Sprite(image, (x0, x1, y0, y1), rgba, float(width), antialias, len(curve.lon))
+
+
+def with_paths(data: DrawData, sprites: bool = True) -> DrawData:
+    """``data`` with the path of every long line curve built and, when it was decimated
+    for a view (``data.view``), its sprite stroked (call it in a worker)."""
+    size = None
+    if sprites and data.view is not None and data.px is not None:
+        x0, x1, y0, y1 = data.view
+        size = (round((x1 - x0) / data.px[0]), round((y1 - y0) / data.px[1]))
+    antialias = bool(pg.getConfigOption("antialias"))
     if not data.style.width:
-        return data  # markers only: drawn as symbols or crosses, never as this path
-    curves = tuple(
-        replace(c, path=pg.arrayToQPath(c.lon, c.lat, connect="finite"))
-        if len(c.lon) >= MIN_VERTICES and c.path is None
-        else c
-        for c in data.curves
-    )
-    return replace(data, curves=curves)
+        # Markers only: symbols while few, else 1-px crosses (one path) whose sprite is
+        # made here; never the line path.
+        if size is None or not data.style.symbol_size:
+            return data
+
+        def marks(c: Curve) -> Curve:
+            if c.n_vertices <= SYMBOLS_MAX or c.sprite is not None:
+                return c
+            xs, ys = crosses(c.lon, c.lat, data.px, data.style.symbol_size)
+            cross = replace(c, lon=xs, lat=ys)
+            sprite = render_sprite(cross, data.view, size, 1.0, antialias, connect="pairs")
+            return replace(c, sprite=sprite)
+
+        return replace(data, curves=tuple(marks(c) for c in data.curves))
+
+    def one(c: Curve) -> Curve:
+        if len(c.lon) < MIN_VERTICES:
+            return c
+        if c.path is None:
+            c = replace(c, path=pg.arrayToQPath(c.lon, c.lat, connect="finite"))
+        if size is not None and c.sprite is None and c.n_vertices > SYMBOLS_MAX:
+            c = replace(c, sprite=render_sprite(c, data.view, size, 1.0, antialias))
+        return c
+
+    return replace(data, curves=tuple(one(c) for c in data.curves))
+
+
+class SpriteCurve(pg.PlotCurveItem):
+    """A curve item that copies its :class:`Sprite` when it fits, else strokes."""
+
+    sprite: Sprite | None = None
+
+    def paint(self, p, opt, widget) -> None:
+        sprite = self.sprite
+        if sprite is not None and sprite.draw(p, self):
+            return
+        super().paint(p, opt, widget)
+
+
+class LayerItem(pg.PlotDataItem):
+    """``pg.PlotDataItem`` whose curve is a :class:`SpriteCurve`."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        # PlotDataItem makes its curve by the name PlotCurveItem of its module: point
+        # the name at ours for the constructor (GUI thread only, never re-entered).
+        original = _plot_data_item.PlotCurveItem
+        _plot_data_item.PlotCurveItem = SpriteCurve
+        try:
+            super().__init__(*args, **kwargs)
+        finally:
+            _plot_data_item.PlotCurveItem = original

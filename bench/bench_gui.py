@@ -25,7 +25,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 from PySide6 import QtCore, QtWidgets  # noqa: E402
 
-from wakeline.app.main import wait_for_jobs  # noqa: E402
+from wakeline.app.main import freeze_startup_objects, wait_for_jobs  # noqa: E402
 from wakeline.app.main_window import MainWindow  # noqa: E402
 from wakeline.core.io import write_points  # noqa: E402
 
@@ -251,6 +251,7 @@ def main() -> int:
         settings = QtCore.QSettings(str(tmp / "s.ini"), QtCore.QSettings.Format.IniFormat)
         window = MainWindow(settings)
         window.resize(1400, 900)
+        freeze_startup_objects()  # as the application does once its window is built
         window.show()
         settle(1500)  # start-up paints and layout done before the baseline
         print(f"{args.points:,} points, {args.points // 500:,} tracks; probe period {PERIOD_MS} ms")

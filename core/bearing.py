@@ -5,27 +5,36 @@ Two adjacent windows slide over a target's bearing sequence: X (the ``window_x_s
 seconds before a boundary) and Y (up to ``window_y_s`` seconds after it, tested over
 ``y_scales`` nested spans). Every span is in seconds, so the detector runs unchanged at
 any sampling rate and on irregular sampling (jitter, dropped samples): a window holds
-whatever samples fall in its span. X starts after the last gap or observer maneuver; Y
-stops before the next one (its shorter spans are still tested).
+whatever samples fall in its span. X starts after the last gap; Y stops before the next
+one (its shorter spans are still tested).
 
-**The motion model: the target's relative motion fitted on X.** A target at constant
-velocity seen from an observer at constant velocity (static, or on a steady leg) moves
-at constant velocity *relative* to the observer, and its bearing follows
+**The motion model: the target's motion fitted on X, with the observer's known positions.**
+In the frame of X's last line of sight (τ: time from the boundary, per X span), a
+constant-velocity target seen from the observer's positions has the bearing
 
-    β(τ) = β₀ + atan2(w_c·τ, 1 + w_r·τ)
+    β(τ) = β₀ + atan2(p + q·τ − s·d_c(τ), 1 + r·τ − s·d_a(τ))
 
-(τ: time from the boundary; w_c and w_r: cross-bearing and range rate over range, 1/s).
-The three parameters are fitted on X (pseudo-linear least squares, one Gauss–Newton
-step; vectorized over all boundaries). The observer's own turns break the relative
-constant velocity: windows touching them are excluded (and counted). A quadratic in time
-is kept as the alternative model (``relative_motion`` off).
+(d_a, d_c: the observer's displacement from its position at X's last sample, along and
+across that line of sight, in 10 km; s = 10 km / range; p, q, r: the target's offset and
+its own velocity over range). Multiplied out, tan β·(1 + rτ − s·d_a) = p + qτ − s·d_c is
+linear in the four parameters (pseudo-linear least squares, the tan β regressors taken from
+a smooth fit as an instrument), then one Gauss–Newton step; all boundaries at once. On a
+steady leg d is linear in τ and s trades off exactly against (q, r): a weak prior s ~ 0
+makes the fit the target's *relative* motion (three parameters, range unobservable), the
+first version's model, which is also where the fit starts (the step only keeps what lowers
+X's residuals). While the observer maneuvers, s — the range — becomes observable, so its
+turns are fitted through rather than excluded. A static observer (or none given) has
+d = 0: the relative-motion fit as before. ``exclude_observer_turns`` keeps the first
+version's way: X starts after the observer's last maneuvering sample, Y stops before the
+next one, and the relative motion is fitted. A quadratic in time is kept as the
+alternative model (``relative_motion`` off).
 
 **The GLR test (default, ``glr``).** A turn changes the bearing rate at some time t_c:
 β = model + Δω·max(t − t_c, 0). For t_c at the boundary and each Y span, the ramp is
 fitted together with the motion model over X and the span (one Gauss–Newton step from
-X's fit, the ramp's column added); z = Δω̂ / se(Δω̂), se from the 4×4 normal matrix and
-σ from X's residuals. This is the likelihood-ratio test of "constant relative velocity"
-against "bearing-rate change at t_c" (Gaussian noise), linearized; it uses the ramp
+X's fit, the ramp's column added); z = Δω̂ / se(Δω̂), se from the 4×4 (5×5 with s)
+normal matrix and σ from X's residuals. This is the likelihood-ratio test of "constant
+velocity" against "bearing-rate change at t_c" (Gaussian noise), linearized; it uses the ramp
 shape of a turn's residual, where the AUC only sees a shift of Y's median. Its null is
 N(0, 1) per test; the threshold covers the many boundaries and spans (alpha). The
 smallest rate change the data can show is z_crit·se (reported per batch).
@@ -61,6 +70,9 @@ DETECTION_COLUMNS = ("batch", "detect_time", "maneuver_time", "z")
 EXCLUSION_REASONS = ("gap", "sparse", "observer_maneuvering")
 RANGE_FLOOR = 0.9
 R_PRIOR = 1e-6  # weight of the prior r ~ 0, per sample of X
+S_PRIOR = 1e-8  # weight of the prior s ~ 0 (range unknown), per sample of X
+OBS_UNIT_M = 10_000.0  # the observer's displacement in units of 10 km (s = 10 km / range)
+S_MAX = 50.0  # range at least 200 m
 
 
 @dataclass(frozen=True)
@@ -114,10 +126,18 @@ class BearingParams(Params):
         hi=12,
     )
     min_samples: int = param(6, "samples", "fewest samples in X and in Y", lo=4, hi=100_000)
+    exclude_observer_turns: bool = param(
+        False,
+        "",
+        "exclude the windows where the observer maneuvers and fit the target's relative motion "
+        "(the first version; off: the observer's known positions enter the fit, through its "
+        "turns, with a constant-velocity target)",
+    )
     observer_dv_ms: float = param(
         1.0,
         "m/s",
-        "observer velocity change within 60 s that marks its own maneuver",
+        "observer velocity change within 60 s that marks its own maneuver (excluded with "
+        "exclude_observer_turns, else counted in the report)",
         lo=0,
         hi=1000,
     )
@@ -241,7 +261,23 @@ def _padded(t, u, k, xs, ye, x_s):
     ref = u[np.maximum(k - 1, 0)]
     w = u[idx] - ref[:, None]
     in_x = idx < k[:, None]
-    return tau, w, valid & in_x, valid & ~in_x
+    return tau, w, valid & in_x, valid & ~in_x, idx
+
+
+def _observer_frame(obs, u, k, idx, x_s):
+    """The observer's displacement from its position at X's last sample, along and across
+    that sample's bearing (units of ``OBS_UNIT_M``), per boundary and padded sample, and
+    its velocity along the bearing there (``OBS_UNIT_M`` per X span, over the last 5 s)."""
+    ox, oy, t = obs
+    ref = np.maximum(k - 1, 0)
+    dx = (ox[idx] - ox[ref][:, None]) / OBS_UNIT_M
+    dy = (oy[idx] - oy[ref][:, None]) / OBS_UNIT_M
+    sa, ca = np.sin(u[ref])[:, None], np.cos(u[ref])[:, None]
+    back = np.minimum(np.searchsorted(t, t[ref] - 5.0, side="right") - 1, ref - 1)
+    back = np.maximum(back, 0)
+    dt = np.maximum(t[ref] - t[back], 1e-9) / x_s
+    vx, vy = (ox[ref] - ox[back]) / OBS_UNIT_M / dt, (oy[ref] - oy[back]) / OBS_UNIT_M / dt
+    return dx * sa + dy * ca, dx * ca - dy * sa, vx * sa[:, 0] + vy * ca[:, 0]
 
 
 def _solve(gram: np.ndarray, rhs: np.ndarray) -> np.ndarray:
@@ -273,39 +309,151 @@ def _fit_poly(tau, w, mx, order=2):
     return sum(c * coef[:, i : i + 1] for i, c in enumerate(cols)), cols, gram, coef
 
 
-def _fit_relative(tau, w, mx, y_over_x, polish=1):
-    """Fit of β(τ) = atan2(p + q τ, 1 + r τ) on X (bearings relative to X's last sample):
-    a constant relative velocity (p ≈ bearing offset, q = cross-bearing and r = range
-    rate over range, per X span). Pseudo-linear least squares — tan β (1 + r τ) = p + q τ
-    is linear in p, q, r; the regressor τ·tan β takes the quadratic fit's smooth bearings
-    (an instrument: the noisy ones bias r) — then ``polish`` Gauss–Newton steps. Returns
-    the fitted curve, the Jacobian's columns, JᵀJ on X and (p, q, r)."""
+def _fit_relative(tau, w, mx, y_over_x, polish=1, obs=None, mall=None):
+    """Fit of β(τ) = atan2(p + q τ − s·d_c, 1 + r τ − s·d_a) on X (bearings relative to X's
+    last sample, whose line of sight is the frame). Without ``obs`` (d = 0): a constant
+    relative velocity (p ≈ bearing offset, q = cross-bearing and r = range rate over range,
+    per X span). With ``obs`` = (d_a, d_c), the observer's displacement along and across
+    the line of sight (units of ``OBS_UNIT_M``): a constant-velocity target seen from the
+    observer's known positions, (q, r) its own velocity over range and s = OBS_UNIT_M /
+    range; on a steady leg s trades off exactly against (q, r) and a weak prior s ~ 0 makes
+    it the relative-motion fit, while an observer maneuver makes s (the range) observable.
+    Pseudo-linear least squares — tan β (1 + r τ − s d_a) = p + q τ − s d_c is linear in
+    p, q, r, s; the regressors holding tan β take the quadratic fit's smooth bearings (an
+    instrument: the noisy ones bias r and s) — then ``polish`` Gauss–Newton steps. Returns
+    the fitted curve, the Jacobian's columns, JᵀJ on X (with the priors), the parameters
+    and the priors' weights. ``mall``: the samples of X and Y (the observer model keeps
+    the observer's displacement over them below ``RANGE_FLOOR`` of the range)."""
     lo, hi = -RANGE_FLOOR / y_over_x, RANGE_FLOOR  # the range stays > 1 - RANGE_FLOOR of now
     tan = np.tan(np.clip(w, -1.4, 1.4))
     smooth = np.tan(np.clip(_fit_poly(tau, w, mx)[0], -1.4, 1.4))
     cols = [np.ones_like(tau), tau, -tau * smooth]
     # r is unobservable when the bearing hardly moves (a target running along the line of
     # sight): a weak prior r ~ 0 keeps it from bending the curve to fit X's noise
-    prior = np.zeros((3, 3))
-    prior[2, 2] = R_PRIOR * mx.sum(axis=1).mean()
-    theta = _solve(_gram(cols, mx) + prior, _rhs(cols, mx, tan))
-    theta[:, 2] = np.clip(theta[:, 2], lo, hi)
+    n_x = mx.sum(axis=1).mean()
+    q = 3 if obs is None else 4
+    prior = np.zeros((mx.shape[0], q, q))
+    prior[:, 2, 2] = R_PRIOR * n_x
+    if obs is not None:
+        # the prior r ~ 0 acts on the relative range rate r − s·v_a (v_a: the observer's
+        # velocity along the line of sight), so on a steady leg it is today's prior and the
+        # exact trade-off between s and (q, r) is settled by the weak prior s ~ 0 alone
+        da, dc, va = obs
+        cols.append(smooth * da - dc)
+        a = np.zeros((mx.shape[0], q))
+        a[:, 2], a[:, 3] = 1.0, -va
+        prior = R_PRIOR * n_x * a[:, :, None] * a[:, None, :]
+        prior[:, 3, 3] += S_PRIOR * n_x
+    if q > 3:  # the observer stays nearer than RANGE_FLOOR of the range over X and Y
+        reach = np.sqrt(np.where(mall, da * da + dc * dc, 0.0)).max(axis=1)
+        s_max = np.minimum(RANGE_FLOOR / np.maximum(reach, 1e-12), S_MAX)
+
+    def clip(theta, rows=slice(None)):
+        theta[:, 2] = np.clip(theta[:, 2], lo, hi)
+        if q > 3:
+            theta[:, 3] = np.clip(theta[:, 3], 0.0, s_max[rows])
+        return theta
 
     def curve(theta):
         num = theta[:, 0:1] + theta[:, 1:2] * tau
         den = 1.0 + theta[:, 2:3] * tau
+        if q > 3:
+            num = num - theta[:, 3:4] * dc
+            den = den - theta[:, 3:4] * da
         d = num * num + den * den
         j0 = den / d
-        return np.arctan2(num, den), [j0, tau * j0, -num * tau / d]
+        jac = [j0, tau * j0, -num * tau / d]
+        if q > 3:
+            jac.append((num * da - den * dc) / d)
+        return np.arctan2(num, den), jac
 
+    theta = clip(_solve(_gram(cols, mx) + prior, _rhs(cols, mx, tan)))
+    if q == 3:  # today's relative-motion fit, unchanged
+        f, jac = curve(theta)
+        for _ in range(polish):
+            g = _rhs(jac, mx, w - f) - np.einsum("bij,bj->bi", prior, theta)
+            theta = clip(theta + _solve(_gram(jac, mx) + prior, g))
+            f, jac = curve(theta)
+        return f, jac, _gram(jac, mx) + prior, theta, prior
+
+    lx = int(mx.any(axis=0).nonzero()[0].max()) + 1 if mx.any() else 1  # X's columns
+
+    def cost(th, rows):  # X's residual sum of squares plus the prior, for some rows
+        tr = tau[rows, :lx]
+        num = th[:, 0:1] + th[:, 1:2] * tr - th[:, 3:4] * dc[rows, :lx]
+        den = 1.0 + th[:, 2:3] * tr - th[:, 3:4] * da[rows, :lx]
+        res = np.where(mx[rows, :lx], w[rows, :lx] - np.arctan2(num, den), 0.0)
+        return (res**2).sum(axis=1) + np.einsum("bi,bij,bj->b", th, prior[rows], th)
+
+    # Start from the better of today's relative-motion fit (s = 0) and the pseudo-linear
+    # solution with s; a Gauss–Newton step is halved (twice at most) where X's cost would
+    # rise, else the parameters stay, so the fit is never worse on X than the
+    # relative-motion one.
+    every = np.arange(len(theta))
+    rel = np.concatenate(
+        [_solve(_gram(cols[:3], mx) + prior[:, :3, :3], _rhs(cols[:3], mx, tan)), 0 * tan[:, :1]],
+        axis=1,
+    )
+    rel = clip(rel)
+    c_rel, c_new = cost(rel, every), cost(theta, every)
+    theta = np.where((c_new < c_rel)[:, None], theta, rel)
+    best = np.minimum(c_new, c_rel)
     f, jac = curve(theta)
     for _ in range(polish):
-        g = _rhs(jac, mx, w - f)
-        g[:, 2] -= prior[2, 2] * theta[:, 2]
-        theta = theta + _solve(_gram(jac, mx) + prior, g)
-        theta[:, 2] = np.clip(theta[:, 2], lo, hi)
+        g = _rhs(jac, mx, w - f) - np.einsum("bij,bj->bi", prior, theta)
+        gram = _gram(jac, mx) + prior
+        step = _solve(gram, g)
+        # where s would go below 0 (the range beyond infinity), step with s held at 0
+        held = np.concatenate([_solve(gram[:, :3, :3], g[:, :3]), 0 * g[:, :1]], axis=1)
+        step = np.where((theta[:, 3] + step[:, 3] < 0)[:, None], held, step)
+        rows = every
+        for damp in (1.0, 0.5, 0.25):
+            cand = clip(theta[rows] + damp * step[rows], rows)
+            c = cost(cand, rows)
+            take = c <= best[rows] * (1.0 + 1e-9)  # at the optimum the step is ~0
+            theta[rows[take]], best[rows[take]] = cand[take], c[take]
+            rows = rows[~take]
+            if len(rows) == 0:
+                break
         f, jac = curve(theta)
-    return f, jac, _gram(jac, mx) + prior, theta
+    return f, jac, _gram(jac, mx) + prior, theta, prior
+
+    def cost(theta):
+        f = curve(theta)[0]
+        return (np.where(mx, w - f, 0.0) ** 2).sum(axis=1) + np.einsum(
+            "bi,bij,bj->b", theta, prior, theta
+        )
+
+    # Start from the better of today's relative-motion fit (s = 0) and the pseudo-linear
+    # solution with s; every Gauss–Newton step is halved until X's cost drops (else the
+    # parameters stay), so the fit is never worse on X than the relative-motion one.
+    rel = clip(
+        np.concatenate(
+            [
+                _solve(_gram(cols[:3], mx) + prior[:, :3, :3], _rhs(cols[:3], mx, tan)),
+                0 * tan[:, :1],
+            ],
+            axis=1,
+        )
+    )
+    c_rel, c_new = cost(rel), cost(theta)
+    theta = np.where((c_new < c_rel)[:, None], theta, rel)
+    best = np.minimum(c_new, c_rel)
+    f, jac = curve(theta)
+    for _ in range(polish):
+        g = _rhs(jac, mx, w - f) - np.einsum("bij,bj->bi", prior, theta)
+        step = _solve(_gram(jac, mx) + prior, g)
+        done = np.zeros(len(best), dtype=bool)
+        new = theta.copy()
+        for damp in (1.0, 0.5, 0.25):
+            cand = clip(theta + damp * step)
+            c = cost(cand)
+            take = ~done & (c < best)
+            new[take], best[take] = cand[take], c[take]
+            done |= take
+        theta = new
+        f, jac = curve(theta)
+    return f, jac, _gram(jac, mx) + prior, theta, prior
 
 
 @dataclass
@@ -319,7 +467,8 @@ class Statistic:
     auc: np.ndarray  # AUC test only (NaN for the GLR)
     sd: np.ndarray
     rms_deg: np.ndarray
-    coef: np.ndarray  # (p, q, r) per X span (see _fit_relative), or the quadratic's
+    coef: np.ndarray  # (p, q, r, s) per X span (see _fit_relative; s = 0 without the
+    # observer's positions), or the quadratic's
     windows: Windows = field(repr=False)
     t: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     u: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # unwrapped, rad
@@ -327,6 +476,30 @@ class Statistic:
     # GLR: smallest bearing-rate change (rad/s) reaching z_crit over the longest Y span
     min_rate: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     z_peak: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # max |z|
+    # the observer's positions (x, y, m) when they enter the fit, else None
+    observer: "tuple[np.ndarray, np.ndarray] | None" = field(default=None, repr=False)
+    # per boundary: X's fit pins the range down (s known to 30 %: the observer maneuvered)
+    range_known: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool), repr=False)
+    # per boundary and Y span (shortest first): |z| (0 where the span is not tested) and
+    # the time of the span's last sample
+    z_span: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
+    y_end_span: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
+
+
+def observer_xy(obs_lon: np.ndarray, obs_lat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The observer's positions in local metres (east, north)."""
+    return geo.to_local(obs_lon, obs_lat, float(np.mean(obs_lon)), float(np.mean(obs_lat)))
+
+
+def models_observer(params: BearingParams, observer) -> bool:
+    """True when the observer's positions enter the motion fit (given, moving, and the
+    relative-motion model without the exclusion option)."""
+    if observer is None or params.exclude_observer_turns or not params.relative_motion:
+        return False
+    ox, oy = observer
+    return bool(len(ox) and np.isfinite(ox).all() and np.isfinite(oy).all()) and bool(
+        np.ptp(ox) + np.ptp(oy) > 1.0
+    )
 
 
 def statistic(
@@ -335,47 +508,94 @@ def statistic(
     params: BearingParams,
     excluded: np.ndarray | None = None,
     sigma_deg: float | None = None,
+    observer: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> Statistic:
     """z (and its parts) for every tested boundary; see the module docstring.
 
     ``sigma_deg`` replaces the noise estimated from X's residuals (GLR): with noise-free
-    bearings it gives the expected z of a maneuver (what the geometry lets be seen)."""
-    win = _windows(t, params, excluded)
+    bearings it gives the expected z of a maneuver (what the geometry lets be seen).
+    ``observer``: its positions (x, y in m, one per bearing): a moving observer's motion
+    then enters the fit and its turns are not excluded (unless
+    ``exclude_observer_turns``, when ``excluded`` marks them)."""
+    use_obs = models_observer(params, observer)
+    if use_obs:
+        observer = (np.asarray(observer[0], float), np.asarray(observer[1], float))
+    win = _windows(t, params, None if use_obs else excluded)
     ok = win.reason == ""
     k, xs, ye, cover = win.k[ok], win.xs[ok], win.ye[ok], win.y_cover[ok]
     nb = len(k)
     keys = ("boundary_t", "detect_t", "x_start_t", "z", "auc", "sd", "rms", "min_rate", "z_peak")
     out = {key: np.zeros(nb) for key in keys}
-    coef = np.zeros((nb, 3))
+    coef = np.zeros((nb, 4))
+    known = np.zeros(nb, dtype=bool)
+    spans = y_spans(params)
+    z_span = np.zeros((nb, len(spans)))
+    y_end_span = np.zeros((nb, len(spans)))
+    obs_kept = observer if use_obs else None
     if nb == 0:
         return Statistic(
-            *(out[c] for c in keys[:7]), coef, win, t, np.zeros(0), params, *keys_after(out)
+            *(out[c] for c in keys[:7]),
+            coef,
+            win,
+            t,
+            np.zeros(0),
+            params,
+            *keys_after(out),
+            obs_kept,
+            known,
+            z_span,
+            y_end_span,
         )
     u = np.unwrap(np.radians(bearing_deg))
     x_s = float(params.window_x_s)
-    spans = y_spans(params)
+    if use_obs:  # boundaries whose Y holds an observer maneuver
+        man = excluded if excluded is not None else _maneuvering_xy(t, *observer, 1.0)
+        cm = np.concatenate([[0], np.cumsum(man)])
+        y_man = cm[ye] > cm[k]
     chunk = max(1, int(1.5e6 // max(int((ye - xs).max()), 1)))
     for a in range(0, nb, chunk):  # blocks of boundaries bound the memory, not a per-window loop
         sl = slice(a, a + chunk)
-        tau, w, mx, my = _padded(t, u, k[sl], xs[sl], ye[sl], x_s)
+        tau, w, mx, my, idx = _padded(t, u, k[sl], xs[sl], ye[sl], x_s)
+        prior = None
         if params.relative_motion:
-            f, jac, gram, c = _fit_relative(tau, w, mx, spans[-1] / x_s)
-            prior = R_PRIOR * mx.sum(axis=1).mean()
+            obs = _observer_frame((*observer, t), u, k[sl], idx, x_s) if use_obs else None
+            f, jac, gram, c, prior = _fit_relative(tau, w, mx, spans[-1] / x_s, 1, obs, mx | my)
+            lin = c
         else:
             f, jac, gram, c = _fit_poly(tau, w, mx)
-            prior = 0.0
+            lin = c
         m = mx.sum(axis=1)
         resid = w - f
-        dof = np.maximum(m - c.shape[1], 1)
+        dof = np.maximum(m - c.shape[1] + (1 if use_obs else 0), 1)
         rms = np.sqrt((np.where(mx, resid, 0.0) ** 2).sum(axis=1) / dof)
         sigma = np.full(len(m), math.radians(sigma_deg)) if sigma_deg else np.maximum(rms, 1e-9)
+        if use_obs:  # s to 30 % (1 sd): X's fit sees the range
+            ridge = 1e-9 * (np.trace(gram, axis1=1, axis2=2)[:, None, None] + 1e-12)
+            var_s = np.linalg.inv(gram + ridge * np.eye(4))[:, 3, 3]
+            known[sl] = sigma * np.sqrt(np.maximum(var_s, 0.0)) < 0.3 * c[:, 3]
+            # Where X leaves the range open and the observer maneuvers within Y, the GLR's
+            # one step from X's fit would meet the maneuver's effect, nonlinear in s, far
+            # from X's s: linearize there about the fit over X and the whole Y instead.
+            r = np.flatnonzero(y_man[sl] & ~known[sl])
+            if len(r):
+                sub = tuple(o[r] for o in obs)
+                f_r, jac_r, _, lin_r, _ = _fit_relative(
+                    tau[r], w[r], mx[r] | my[r], spans[-1] / x_s, 1, sub, mx[r] | my[r]
+                )
+                f[r], lin = f_r, lin.copy()
+                lin[r] = lin_r
+                for col, col_r in zip(jac, jac_r, strict=True):
+                    col[r] = col_r
         best_z = np.zeros(len(m))
         best_t = np.full(len(m), np.inf)
         full_t = t[k[sl]]
         last = np.full(len(m), False)
         n_span = np.stack([(my & (tau * x_s < span - 1e-9)).sum(axis=1) for span in spans], 1)
         if params.glr:
-            z_all, rate_all = _glr(tau, resid, mx, my, n_span, jac, c, prior, sigma, params.z_crit)
+            resid = w - f
+            z_all, rate_all = _glr(
+                tau, resid, mx, my, n_span, jac, lin, prior, sigma, params.z_crit
+            )
         for si in range(len(spans) - 1, -1, -1):  # nested Y spans: shorter ones react sooner
             span, n = spans[si], n_span[:, si]
             valid = (cover[sl] >= span - 1e-9) & (n >= params.min_samples)
@@ -396,17 +616,30 @@ def statistic(
                 out["sd"][sl] = np.where(first, sd, out["sd"][sl])
             last |= valid
             out["z_peak"][sl] = np.maximum(out["z_peak"][sl], np.abs(z))
+            z_span[sl, si], y_end_span[sl, si] = np.abs(z), y_end
             hit = np.abs(z) > params.z_crit
             best_t = np.where(hit, y_end, best_t)  # shortest rejecting span wins
             best_z = np.where(hit | (first & (best_z == 0)), z, best_z)
         out["z"][sl] = best_z
         out["detect_t"][sl] = np.where(np.isfinite(best_t), best_t, full_t)
         out["rms"][sl] = np.degrees(rms)
-        coef[sl] = c
+        coef[sl, : c.shape[1]] = c
     out["boundary_t"], out["x_start_t"] = t[k], t[xs]
     if params.auc_mean and not params.glr:
         out["z"] = _auc_mean_z(out["boundary_t"], out["auc"], out["sd"], params.mean_span_s)
-    return Statistic(*(out[c] for c in keys[:7]), coef, win, t, u, params, *keys_after(out))
+    return Statistic(
+        *(out[c] for c in keys[:7]),
+        coef,
+        win,
+        t,
+        u,
+        params,
+        *keys_after(out),
+        obs_kept,
+        known,
+        z_span,
+        y_end_span,
+    )
 
 
 def keys_after(out: dict) -> tuple[np.ndarray, np.ndarray]:
@@ -418,7 +651,8 @@ def _glr(tau, resid, mx, my, n_span, jac, theta, prior, sigma, z_crit):
     ``n_span``: Y samples in the span): a ramp max(τ, 0) added to the motion model and
     fitted with it over X and the span (one Gauss–Newton step from X's fit). Sums over
     the span come from cumulative sums along the samples, so all spans cost one pass.
-    Also the smallest ramp slope (rad per X span) reaching ``z_crit``."""
+    ``prior``: the motion parameters' prior weights (or None). Also the smallest ramp
+    slope (rad per X span) reaching ``z_crit``."""
     cols = [*jac, np.maximum(tau, 0.0)]
     q = len(cols)
     m = mx.sum(axis=1)
@@ -426,15 +660,16 @@ def _glr(tau, resid, mx, my, n_span, jac, theta, prior, sigma, z_crit):
     gram = np.empty((*end.shape, q, q))
     g = np.empty((*end.shape, q))
     mall = mx | my
-    for i in range(q):  # q = 4 columns: a handful of cumulative sums over (B, L)
+    for i in range(q):  # q ≤ 5 columns: a handful of cumulative sums over (B, L)
         ci = np.where(mall, cols[i], 0.0)
         for j in range(i, q):
             cs = np.take_along_axis(np.cumsum(ci * cols[j], axis=1), end, axis=1)
             gram[..., i, j] = gram[..., j, i] = cs
         g[..., i] = np.take_along_axis(np.cumsum(ci * resid, axis=1), end, axis=1)
-    if prior:
-        gram[..., 2, 2] += prior
-        g[..., 2] -= prior * theta[:, 2:3]
+    if prior is not None:  # (B, q−1, q−1): the motion parameters' prior
+        nq = prior.shape[1]
+        gram[..., :nq, :nq] += prior[:, None]
+        g[..., :nq] -= np.einsum("bij,bj->bi", prior, theta)[:, None, :]
     ridge = 1e-9 * (np.trace(gram, axis1=-2, axis2=-1)[..., None, None] + 1e-12)
     inv = np.linalg.inv(gram + ridge * np.eye(q))
     slope = np.einsum("bsj,bsj->bs", inv[..., -1, :], g)
@@ -469,10 +704,22 @@ def _auc_mean_z(bt: np.ndarray, auc: np.ndarray, sd: np.ndarray, span_s: float) 
 
 
 def auc_statistic(
-    t: np.ndarray, bearing_deg: np.ndarray, params: BearingParams | None = None
+    t: np.ndarray,
+    bearing_deg: np.ndarray,
+    params: BearingParams | None = None,
+    obs_lon: np.ndarray | None = None,
+    obs_lat: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Boundary times (s) and z for every tested boundary (for plots)."""
-    st = statistic(t, bearing_deg, (params or BearingParams()).checked())
+    """Boundary times (s) and z for every tested boundary (for plots), with the
+    observer's positions when given (as :func:`detect_with_report` takes them)."""
+    params = (params or BearingParams()).checked()
+    excluded = xy = None
+    if obs_lon is not None and obs_lat is not None:
+        obs_lon, obs_lat = np.asarray(obs_lon, float), np.asarray(obs_lat, float)
+        if np.isfinite(obs_lon).all() and np.isfinite(obs_lat).all():
+            excluded = observer_maneuvering(t, obs_lon, obs_lat, params.observer_dv_ms)
+            xy = observer_xy(obs_lon, obs_lat)
+    st = statistic(t, bearing_deg, params, excluded, observer=xy)
     return st.boundary_t, st.z
 
 
@@ -504,6 +751,15 @@ def detections_from(st: Statistic, z_crit: float) -> list[Detection]:
             # those rejections are the same maneuver, not a new one.
             clear = np.flatnonzero(st.x_start_t[a:b] > out[-1].maneuver_time_s)
             if len(clear) == 0:
+                # ... but if one of its short spans rejected before the detection's own
+                # (a run that started early, on long Y spans), the alarm came then: the
+                # detection takes that time and that boundary's maneuver time (causal)
+                hit = a + np.flatnonzero(np.abs(st.z[a:b]) > z_crit)
+                j = int(hit[np.argmin(st.detect_t[hit])])
+                if st.detect_t[j] < out[-1].detect_time_s:
+                    when = maneuver_time(st, j) if len(st.u) else float(st.boundary_t[j])
+                    z = max(out[-1].z, float(st.z[j]), key=abs)
+                    out[-1] = Detection(float(st.detect_t[j]), when, z)
                 continue
             a = a + int(clear[0])
         kk = a + int(np.argmax(np.abs(st.z[a:b])))
@@ -524,9 +780,12 @@ def maneuver_time(st: Statistic, i: int) -> float:
     k, xs = st.windows.k[pos : pos + 1], st.windows.xs[pos : pos + 1]
     ye = np.minimum(st.windows.ye[pos : pos + 1], np.searchsorted(st.t, st.detect_t[i], "right"))
     ye = np.maximum(ye, k + 1)
-    tau, w, mx, my = _padded(st.t, st.u, k, xs, ye, float(p.window_x_s))
+    tau, w, mx, my, idx = _padded(st.t, st.u, k, xs, ye, float(p.window_x_s))
     if p.relative_motion:
-        f = _fit_relative(tau, w, mx, y_spans(p)[-1] / p.window_x_s)[0]
+        obs = None
+        if st.observer is not None:
+            obs = _observer_frame((*st.observer, st.t), st.u, k, idx, float(p.window_x_s))
+        f = _fit_relative(tau, w, mx, y_spans(p)[-1] / p.window_x_s, 1, obs, mx | my)[0]
     else:
         f = _fit_poly(tau, w, mx)[0]
     tt = st.t[xs[0] : ye[0]]
@@ -546,9 +805,12 @@ def detect_sequence(
     bearing_deg: np.ndarray,
     params: BearingParams,
     excluded: np.ndarray | None = None,
+    observer: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> list[Detection]:
-    """All detections in one sequence: one per run of rejecting boundaries."""
-    return detections_from(statistic(t, bearing_deg, params, excluded), params.z_crit)
+    """All detections in one sequence: one per run of rejecting boundaries (``excluded``
+    and ``observer`` as in :func:`statistic`)."""
+    st = statistic(t, bearing_deg, params, excluded, observer=observer)
+    return detections_from(st, params.z_crit)
 
 
 def observer_maneuvering(
@@ -563,10 +825,17 @@ def observer_maneuvering(
     within ``span_s`` seconds: its own turns and speed changes. Velocities are taken over
     ``lag_s`` (at least one sample) so position jitter of a slow or docked observer does
     not count."""
-    n = len(t)
-    if n < 3 or np.all(np.isnan(obs_lon)):
-        return np.zeros(n, dtype=bool)
+    if len(t) < 3 or np.all(np.isnan(obs_lon)):
+        return np.zeros(len(t), dtype=bool)
     x, y = geo.to_local(obs_lon, obs_lat, float(np.nanmean(obs_lon)), float(np.nanmean(obs_lat)))
+    return _maneuvering_xy(t, x, y, dv_ms, span_s, lag_s)
+
+
+def _maneuvering_xy(t, x, y, dv_ms, span_s=60.0, lag_s=5.0):
+    """:func:`observer_maneuvering` on local positions (m)."""
+    n = len(t)
+    if n < 3:
+        return np.zeros(n, dtype=bool)
     back = np.minimum(np.searchsorted(t, t - lag_s, side="right") - 1, np.arange(n) - 1)
     back = np.maximum(back, 0)
     dt = np.maximum(t - t[back], 1e-9)
@@ -584,16 +853,20 @@ def observer_maneuvering(
 
 
 def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) -> dict:
-    """Smallest bearing-rate change (deg/min) and, for a static observer, smallest turn
+    """Smallest bearing-rate change (deg/min) and, where the range is known, smallest turn
     (deg) the data can show at its noise and geometry (medians over the tested windows).
 
     GLR: the rate change whose fitted ramp slope reaches z_crit standard errors over the
-    longest Y span (σ from X's residuals, the slope's variance from the fit). AUC: a bearing-rate change Δω at the boundary drifts Y's residuals by Δω·Y/2 on average;
+    longest Y span (σ from X's residuals, the slope's variance from the fit). AUC: a
+    bearing-rate change Δω at the boundary drifts Y's residuals by Δω·Y/2 on average;
     a shift δ between two samples of noise σ gives AUC − ½ = Φ(δ/(σ√2)) − ½, so the
     smallest Δω meets z_crit·sd. With a static observer the fit's relative velocity is
-    the target's, over range: a turn Δc rotates (w_r, w_c) and changes the bearing rate by
-    w_r·sin Δc + w_c·(cos Δc − 1); the smallest |Δc| reaching Δω is reported. With a
-    moving observer the range is unobservable on a steady leg, so only Δω is given."""
+    the target's, over range; with a moving observer whose positions enter the fit, the
+    fit's (q, r) are the target's own velocity over range wherever X's fit pins the range
+    down (the observer maneuvered within X: ``range_known``). A turn Δc rotates (w_r, w_c)
+    and changes the bearing rate by w_r·sin Δc + w_c·(cos Δc − 1); the smallest |Δc|
+    reaching Δω is reported. On a moving observer's steady legs the range is unobservable,
+    so only Δω is given."""
     if len(st.z) == 0:
         return {"noise_deg": None, "min_rate_change_deg_min": None, "min_turn_deg": None}
     sigma = float(np.median(st.rms_deg))
@@ -601,7 +874,7 @@ def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) 
         # z_crit · σ · sd of the fitted ramp slope (rad/s), where Y has its full span
         sel = st.windows.y_cover[st.windows.reason == ""] >= params.window_y_s - 1e-9
         sel = sel if sel.any() else np.ones(len(sel), dtype=bool)
-        rate = st.min_rate[sel]
+        rate = st.min_rate
     else:
         need = params.z_crit * st.sd
         frac = np.clip(0.5 + need, None, 1 - 1e-12)
@@ -612,21 +885,28 @@ def min_detectable(st: Statistic, params: BearingParams, observer_static: bool) 
         rate = np.where(need < 0.5, delta / (params.window_y_s / 2.0), np.inf)  # rad/s
     out = {
         "noise_deg": round(sigma, 4),
-        "min_rate_change_deg_min": _finite(np.degrees(np.median(rate)) * 60.0),
+        "min_rate_change_deg_min": _finite(np.degrees(np.median(rate[sel])) * 60.0),
         "min_turn_deg": None,
     }
-    if observer_static and params.relative_motion:
-        turns = np.radians(np.arange(1.0, 181.0))
-        coef = st.coef[sel]
-        wc, wr = coef[:, 1:2] / params.window_x_s, coef[:, 2:3] / params.window_x_s
-        wc = wc / (1.0 + coef[:, 0:1] ** 2)  # bearing rate at the boundary
-        change = np.maximum(
-            np.abs(wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
-            np.abs(-wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
-        )
-        ok = change >= rate[:, None]
-        first = np.where(ok.any(axis=1), np.argmax(ok, axis=1) + 1.0, np.inf)
-        out["min_turn_deg"] = _finite(np.median(first))
+    if not params.relative_motion:
+        return out
+    if not observer_static:
+        if st.observer is None or len(st.range_known) != len(sel):
+            return out
+        sel = sel & st.range_known
+        if not sel.any():
+            return out
+    turns = np.radians(np.arange(1.0, 181.0))
+    coef = st.coef[sel]
+    wc, wr = coef[:, 1:2] / params.window_x_s, coef[:, 2:3] / params.window_x_s
+    wc = wc / (1.0 + coef[:, 0:1] ** 2)  # bearing rate at the boundary
+    change = np.maximum(
+        np.abs(wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
+        np.abs(-wr * np.sin(turns) + wc * (np.cos(turns) - 1)),
+    )
+    ok = change >= rate[sel][:, None]
+    first = np.where(ok.any(axis=1), np.argmax(ok, axis=1) + 1.0, np.inf)
+    out["min_turn_deg"] = _finite(np.median(first))
     return out
 
 
@@ -679,17 +959,27 @@ def detect_with_report(
         if np.any(np.diff(t) <= 0):
             raise InputError(f"batch {batch}: repeated time stamps; bearings must be one per time")
         excluded, static, observer = None, True, "not given (taken as static)"
+        xy, maneuvering = None, 0
         if {"obs_lon", "obs_lat"} <= set(g.columns):
             olon, olat = g["obs_lon"].to_numpy(float), g["obs_lat"].to_numpy(float)
             if np.isfinite(olon).all() and np.isfinite(olat).all():
                 excluded = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-                x, y = geo.to_local(olon, olat, float(olon.mean()), float(olat.mean()))
+                maneuvering = int(excluded.sum())
+                xy = observer_xy(olon, olat)
+                x, y = xy
                 speed = float(np.hypot(x[-1] - x[0], y[-1] - y[0]) / max(t[-1] - t[0], 1e-9))
                 static = speed < 0.5
                 observer = f"{speed / geo.KN_MS:.1f} kn mean" + (" (static)" if static else "")
             else:
                 observer = "position missing on some rows: no observer exclusion"
-        st = statistic(t, g["bearing"].to_numpy(float), params, excluded)
+        st = statistic(t, g["bearing"].to_numpy(float), params, excluded, observer=xy)
+        if st.observer is not None:
+            observer += (
+                f"; its positions enter the fit, {maneuvering} maneuvering samples "
+                "modelled, not excluded"
+                if maneuvering
+                else "; its positions enter the fit"
+            )
         found = detections_from(st, params.z_crit)
         for d in found:
             rows.append((str(batch), d.detect_time_s, d.maneuver_time_s, d.z))

@@ -18,6 +18,7 @@ from wakeline.core.bearing import (
     BearingParams,
     detect_sequence,
     observer_maneuvering,
+    observer_xy,
     statistic,
     y_spans,
 )
@@ -176,7 +177,7 @@ def run_metrics(
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
         hits = [
             d
-            for d in detect_sequence(t, b, params, excl)
+            for d in detect_sequence(t, b, params, excl, observer_xy(olon, olat))
             if t_m <= d.detect_time_s <= t_m + max_delay_s
         ]
         if hits:
@@ -185,7 +186,7 @@ def run_metrics(
             error.append(abs(hits[0].maneuver_time_s - t_m))
         t, b, olon, olat = simulate_bearings(rng, sc, 0.0, t_m, sigma_deg)
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        false_alarm += bool(detect_sequence(t, b, params, excl))
+        false_alarm += bool(detect_sequence(t, b, params, excl, observer_xy(olon, olat)))
     return {
         "detection": detected / runs,
         "reaction_min": float(np.mean(reaction)) / 60 if reaction else float("nan"),
@@ -220,8 +221,8 @@ def peak_z(
     seed: int = 0,
 ) -> float:
     """The GLR's expected peak |z| for a turn (noise-free bearings, the noise σ given):
-    the largest over boundaries from 30 s before the turn whose Y ends within
-    ``max_delay_s`` after it, the smaller of a turn to either side. Below z_crit no
+    the largest over boundaries from 30 s before the turn and Y spans that end within
+    ``max_delay_s`` after it (as a detection must), the smaller of a turn to either side. Below z_crit no
     detector of this kind finds the turn in most runs: the geometry hides it."""
     params = replace(params, glr=True)
     peaks = []
@@ -229,10 +230,12 @@ def peak_z(
         rng = np.random.default_rng(seed)
         t, b, olon, olat = simulate_bearings(rng, sc, sign * turn_deg, t_m, 0.0)
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        st = statistic(t, b, params, excl, sigma_deg=sigma_deg)
-        # Y spans ending within the delay: boundaries up to max_delay_s − shortest span
-        sel = (st.boundary_t >= t_m - 30.0) & (st.boundary_t <= t_m + max_delay_s - 30.0)
-        peaks.append(float(st.z_peak[sel].max()) if sel.any() else 0.0)
+        st = statistic(t, b, params, excl, sigma_deg=sigma_deg, observer=observer_xy(olon, olat))
+        # the spans a detection can come from: boundaries from 30 s before the turn, Y
+        # ending after the turn and within the delay (the detection time is Y's end)
+        sel = (st.boundary_t[:, None] >= t_m - 30.0) & (st.y_end_span >= t_m)
+        sel &= st.y_end_span <= t_m + max_delay_s
+        peaks.append(float(st.z_span[sel].max()) if sel.any() else 0.0)
     return min(peaks)
 
 
@@ -318,6 +321,14 @@ def _summary(g: pd.DataFrame) -> dict:
     }
 
 
+def _model_name(p: BearingParams) -> str:
+    if not p.relative_motion:
+        return "quadratic trend"
+    if p.exclude_observer_turns:
+        return "relative-motion fit, the observer's turns excluded"
+    return "constant-velocity target fitted with the observer's positions, through its turns"
+
+
 def format_evaluation(ev: dict) -> str:
     """The held-out table per method and sampling, mean and worst, split by what the
     geometry lets be seen, then every scenario."""
@@ -331,7 +342,7 @@ def format_evaluation(ev: dict) -> str:
     )
     lines = [
         f"Ours: {test}, X <= {p.window_x_s:g} s (>= {p.min_window_x_s:g} s), "
-        f"|z| > {p.z_crit:.2f}, {'relative-motion fit' if p.relative_motion else 'quadratic trend'}. "
+        f"|z| > {p.z_crit:.2f}, {_model_name(p)}. "
         "AUC: seed 002's test on the same feature as built before (Y 90 s, 3 nested spans, "
         "z > 3.64). "
         "Bearing noise 0.6 deg, 50 deg turn at 450 s (either side), 15 min runs; detected = a "

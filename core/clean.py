@@ -673,8 +673,9 @@ def _span_table(
     a, b = rows[spans[:, 0]], rows[spans[:, 1]]
     return pd.DataFrame(
         {
-            "sensor": pts["sensor"].to_numpy()[a].astype(str),
-            "batch": pts["batch"].to_numpy()[a].astype(str),
+            # The spans' rows only (a whole text column as objects would hold the GIL).
+            "sensor": pts["sensor"].iloc[a].astype(str).to_numpy(),
+            "batch": pts["batch"].iloc[a].astype(str).to_numpy(),
             "start": pts["time"].iloc[a].astype(str).to_numpy(),
             "end": pts["time"].iloc[b].astype(str).to_numpy(),
             "duration_s": t[b] - t[a],

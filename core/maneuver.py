@@ -17,7 +17,13 @@ the window is ``window_s`` seconds, turned into ``p`` points per track from its 
 sampling interval (never fewer than ``window_p``), so one default serves 1 s radar and
 5 min plots alike; ``window_s = 0`` is the paper's fixed ``p``. Gradual turns: the window
 doubles up to ``max_window_s`` and a turn seen only at a longer window is added where no
-turn lies within one window of it. No maneuver where the ship covers either window slower
+turn lies within one window of it. Turns that take a while: the first scale's windows are
+also compared ``gap_s`` apart (the turn itself between them; the gapped δ must also exceed
+t at the neighbouring points). Sharp turns close together (radar): the window also halves
+down to ``min_window_s`` on tracks sampled fast enough for 3 points in it; such a turn must
+clear the noise floor (at least t) with its own point left out too, so one stray plot is
+no turn. Each added turn needs no turn already found within its reach.
+No maneuver where the ship covers either window slower
 than ``min_speed_kn`` or where a window touches an at-rest span (cleaning's stationary
 rule: positions within ``rest_radius_m`` for ``rest_window_s``). ``ManeuverParams.paper()``
 switches all of these off.
@@ -106,6 +112,27 @@ class ManeuverParams(Params):
         hi=100.0,
         source="ours; seed 000 eq. 10-12 make the same point with a fixed error",
     )
+    gap_s: float = param(
+        10.0,
+        "s",
+        "turns that take a while: the first scale's windows are also compared with this many "
+        "seconds between them (the turn itself left out; tracks sampled at least every "
+        "gap_s, one point each side at least); 0 = off",
+        lo=0.0,
+        hi=1e7,
+        source="ours",
+    )
+    min_window_s: float = param(
+        5.0,
+        "s",
+        "sharp turns close together: windows also halve from window_s down to this duration "
+        "on tracks sampled fast enough for 3 points in it; a turn found there counts when it "
+        "also clears the noise floor with its own plot left out, and no turn already found "
+        "lies within that window; 0 = off",
+        lo=0.0,
+        hi=1e7,
+        source="ours",
+    )
     rest_radius_m: float = param(
         50.0,
         "m",
@@ -120,7 +147,15 @@ class ManeuverParams(Params):
     @classmethod
     def paper(cls) -> "ManeuverParams":
         """Seed 000 as written: p points per window, one scale, no speed or rest rule."""
-        return cls(window_s=0.0, max_window_s=0.0, min_speed_kn=0.0, rest_radius_m=0.0, noise_k=0.0)
+        return cls(
+            window_s=0.0,
+            max_window_s=0.0,
+            min_speed_kn=0.0,
+            rest_radius_m=0.0,
+            noise_k=0.0,
+            min_window_s=0.0,
+            gap_s=0.0,
+        )
 
 
 #: Windows per block: temporaries of 256 kB stay in the processor's cache (and in the
@@ -221,22 +256,27 @@ def _angle_diff(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.abs(w, out=w)
 
 
-def maneuver_factor(x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int) -> np.ndarray:
-    """δ per point (deg in [0, 180]); NaN where a window would leave its track."""
+def maneuver_factor(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int, gap: int = 0
+) -> np.ndarray:
+    """δ per point (deg in [0, 180]); NaN where a window would leave its track. ``gap``: the
+    backward window ends ``gap`` points before the point and the forward one starts
+    ``gap`` points after it (0: both at the point, seed 000)."""
     anchor = index.starts[index.track_of_row]
     h = window_headings(x, y, p, anchor)  # backward window ending at i
     n = len(x)
     delta = np.full(n, np.nan)
-    if n < 2 * p - 1:
+    q = int(gap)
+    if n < 2 * p - 1 + 2 * q:
         return delta
-    # The forward window starting at o is the backward window ending at o + p - 1.
-    back = h[: n - p + 1]
-    fwd = h[p - 1 :]
+    # The forward window starting at o + q is the backward window ending at o + q + p - 1.
+    back = h[: n - p + 1 - 2 * q]
+    fwd = h[p - 1 + 2 * q :]
     d = geo.angle_diff(back, fwd)
     pos = np.arange(n) - anchor
     size = index.sizes[index.track_of_row]
-    valid = (pos >= p - 1) & (pos <= size - p)
-    delta[: n - p + 1] = d
+    valid = (pos >= p - 1 + q) & (pos <= size - p - q)
+    delta[q : n - p + 1 - q] = d
     delta[~valid] = np.nan
     return delta
 
@@ -367,6 +407,18 @@ def _scales(params: ManeuverParams) -> list[float]:
     out = [params.window_s]
     while params.max_window_s > 0 and out[-1] * 2 <= params.max_window_s:
         out.append(out[-1] * 2)
+    return out
+
+
+def _fine_scales(params: ManeuverParams) -> list[float]:
+    """Window durations (s) below window_s: halved down to min_window_s."""
+    if params.window_s <= 0 or params.min_window_s <= 0:
+        return []
+    out = []
+    d = params.window_s / 2
+    while d >= params.min_window_s * (1 - 1e-9):
+        out.append(d)
+        d /= 2
     return out
 
 
@@ -522,6 +574,7 @@ def _one_scale(
     p_track: np.ndarray,
     radius: np.ndarray,
     active: np.ndarray | None = None,
+    gap: int = 0,
 ) -> tuple[np.ndarray, np.ndarray]:
     """δ per point and its local maxima (radius per track), one pass per distinct p; only
     on the ``active`` tracks when given (NaN and no peak elsewhere)."""
@@ -532,7 +585,7 @@ def _one_scale(
         chosen = (p_track == p) & active
         rows = np.flatnonzero(chosen[index.track_of_row])
         sub = TrackIndex(*_sub_index(index, chosen))
-        factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p))
+        factor[rows] = maneuver_factor(x[rows], y[rows], sub, int(p), gap)
         for r in np.unique(radius[chosen]):
             same_r = chosen & (radius == r)
             rr = np.flatnonzero(same_r[index.track_of_row])
@@ -1101,6 +1154,38 @@ def _scale_candidates(
     return cand[order], values[order], full
 
 
+def _gathered_headings(x: np.ndarray, y: np.ndarray, first: np.ndarray, p: int) -> np.ndarray:
+    """PCA heading (deg) of the ``p`` points from each row of ``first`` (a few candidate
+    windows, gathered as a candidates × p block), oriented first to last point."""
+    rows = first[:, None] + np.arange(p)
+    u = x[rows] - x[first][:, None]
+    v = y[rows] - y[first][:, None]
+    u0, v0 = u - u.mean(axis=1, keepdims=True), v - v.mean(axis=1, keepdims=True)
+    cxx, cyy, cxy = (u0 * u0).mean(axis=1), (v0 * v0).mean(axis=1), (u0 * v0).mean(axis=1)
+    theta = 0.5 * np.arctan2(2.0 * cxy, cxx - cyy)
+    ax, ay = np.cos(theta), np.sin(theta)
+    flip = (u[:, -1] - u[:, 0]) * ax + (v[:, -1] - v[:, 0]) * ay < 0
+    return np.remainder(np.degrees(np.arctan2(ax, ay)) + np.where(flip, 180.0, 0.0), 360.0)
+
+
+def _leave_one_out_deg(
+    x: np.ndarray, y: np.ndarray, index: TrackIndex, p_c: np.ndarray, cand: np.ndarray
+) -> np.ndarray:
+    """Per candidate o: the heading change between the ``p`` points before o and the ``p``
+    after it, o itself left out (a single stray plot bends both of o's own windows, and
+    neither of these); NaN where a window would leave the track."""
+    out = np.full(len(cand), np.nan)
+    tr = index.track_of_row[cand]
+    ok = (cand - p_c >= index.starts[tr]) & (cand + p_c < index.ends[tr])
+    for p in np.unique(p_c[ok]):  # a few distinct window sizes
+        sel = ok & (p_c == p)
+        o = cand[sel]
+        out[sel] = geo.angle_diff(
+            _gathered_headings(x, y, o - p, int(p)), _gathered_headings(x, y, o + 1, int(p))
+        )
+    return out
+
+
 def detect(
     points: pd.DataFrame, params: ManeuverParams | None = None, progress=None
 ) -> ManeuverResult:
@@ -1108,14 +1193,18 @@ def detect(
 
     At the first window duration the paper's rule runs as written (δ > t and the maximum
     within ±n points). Gradual turns: at each doubled duration up to ``max_window_s`` a peak
-    above t counts where no turn already found lies within one window of it. No maneuver
-    inside an at-rest span, on a window touching one, or where the ship covers a window
-    slower than ``min_speed_kn``. The extra tests run on the candidates (peaks above t) only.
+    above t counts where no turn already found lies within one window of it. Turns that
+    take a while: the first scale's windows ``gap_s`` apart. Sharp turns close together:
+    windows halved down to ``min_window_s`` where 3 points fit, a turn counting only when it
+    clears the noise floor with its own point left out. Every added turn needs no turn
+    already found within its reach. No maneuver inside an at-rest span, on a window touching
+    one, or where the ship covers a window slower than ``min_speed_kn``. The extra tests run
+    on the candidates (peaks above t) only.
 
     The first duration gives δ of every row (``ManeuverResult.factor``); the longer ones
     compute δ only on the rows where a new turn may count (no turn within one window, no
-    at-rest span within it) and two radii around them, and every scale looks for peaks
-    among the rows above t only. Same output as running every rule on every row
+    at-rest span within it) and a radius around them, and look for peaks among the rows
+    above t only. Same output as running every rule on every row
     (tests/test_maneuver_kernel.py).
     """
     params = (params or ManeuverParams()).checked()
@@ -1124,20 +1213,57 @@ def detect(
     t = track_seconds(pts)
     n = len(pts)
     tr = index.track_of_row
-    sigma = None
+    noise: list[np.ndarray] = []  # the track noise, computed when first needed
     rest = np.zeros(n, dtype=bool)
     if params.rest_radius_m > 0 and n:
         rest = _rest_mask(x, y, t, index, params.rest_radius_m, params.rest_window_s)
     rest_lo, rest_hi = _runs(rest)
+    any_rest = bool(len(rest_lo))
+
+    def accept(f_c: np.ndarray, cand: np.ndarray, p_c: np.ndarray, reach: np.ndarray, fine: bool):
+        """The candidates (δ ``f_c``) that clear the noise floor (always at a fine scale,
+        with the candidate's own point left out too), the minimum speed over ``reach``
+        points and the at-rest spans."""
+        ok = np.ones(len(cand), dtype=bool)
+        if not len(cand):
+            return ok
+        if params.noise_k > 0 or fine:
+            if not noise:
+                noise.append(position_noise_m(x, y, t, index))
+            with np.errstate(invalid="ignore"):
+                floor = np.maximum(
+                    params.noise_k * _heading_noise_deg(x, y, index, p_c, noise[0], cand),
+                    params.threshold_deg,
+                )
+                ok &= f_c > floor
+                if fine:
+                    ok &= _leave_one_out_deg(x, y, index, p_c, cand) > floor
+        if params.min_speed_kn > 0:
+            with np.errstate(invalid="ignore"):
+                ok &= _window_speed_ms(x, y, t, index, reach, cand) >= (
+                    params.min_speed_kn * geo.KN_MS
+                )
+        if any_rest:
+            ok &= ~_near(rest, index, reach - 1, cand)
+        return ok
+
+    def add(f_c: np.ndarray, cand: np.ndarray, ok: np.ndarray, reach: np.ndarray) -> None:
+        new, f_new = cand[ok], f_c[ok]
+        far = ~_near(found, index, reach[ok], new)
+        factor[new[far]] = f_new[far]
+        found[new[far]] = True
+
     scales = _scales(params)
+    fine_scales = _fine_scales(params)
     med = median_interval_s(t, index) if params.window_s > 0 else None
     found = np.zeros(n, dtype=bool)
     factor = np.full(n, np.nan)
-    p_first = None
+    p_first = np.full(index.n_tracks, int(params.window_p), dtype="int64")
     prev_p = np.zeros(index.n_tracks, dtype="int64")
+    n_steps = len(scales) + len(fine_scales) + (params.gap_s > 0)
     for k, duration in enumerate(scales):
         if progress:
-            progress(k / len(scales), f"maneuver factor, {duration:g} s windows")
+            progress(k / n_steps, f"maneuver factor, {duration:g} s windows")
         p_track = _p_per_track(t, index, params, duration, med)
         if k > 0:
             # tracks whose window did not grow at this duration have nothing new to find
@@ -1164,27 +1290,47 @@ def detect(
             )
             p_first = p_track
         p_c = p_track[tr[cand]]
-        ok = np.ones(len(cand), dtype=bool)
-        if params.noise_k > 0 and len(cand):
-            if sigma is None:  # at the first window's lag
-                sigma = position_noise_m(x, y, t, index)
-            with np.errstate(invalid="ignore"):
-                ok &= f_c > params.noise_k * _heading_noise_deg(x, y, index, p_c, sigma, cand)
-        if params.min_speed_kn > 0 and len(cand):
-            with np.errstate(invalid="ignore"):
-                ok &= _window_speed_ms(x, y, t, index, p_c, cand) >= (
-                    params.min_speed_kn * geo.KN_MS
-                )
-        if len(rest_lo) and len(cand):
-            ok &= ~_near(rest, index, p_c - 1, cand)
+        ok = accept(f_c, cand, p_c, p_c, fine=False)
         if k == 0:
             found[cand[ok]] = True
         else:
-            new, f_new = cand[ok], f_c[ok]
-            far = ~_near(found, index, p_track[tr[new]], new)
-            factor[new[far]] = f_new[far]
-            found[new[far]] = True
+            add(f_c, cand, ok, p_c)
         prev_p = p_track
+    if params.gap_s > 0 and med is not None:
+        if progress:
+            progress(len(scales) / n_steps, f"maneuver factor, windows {params.gap_s:g} s apart")
+        with np.errstate(invalid="ignore", divide="ignore"):
+            gap = np.where(np.isfinite(med) & (med > 0), np.round(params.gap_s / med / 2), 0)
+        gap = gap.astype("int64")  # points left out either side of the point
+        for g in np.unique(gap[gap > 0]):  # a few distinct gaps
+            f_g, peaks = _one_scale(x, y, index, p_first, p_first + g, gap == g, int(g))
+            with np.errstate(invalid="ignore"):
+                cand = np.flatnonzero(peaks & (f_g > params.threshold_deg))
+            p_c = p_first[tr[cand]]
+            ok = accept(f_g[cand], cand, p_c, p_c + g, fine=False)
+            # a turn that takes a while bends the gapped windows at the neighbouring points
+            # too; one noisy window pair does not
+            lo, hi = np.maximum(cand - 1, 0), np.minimum(cand + 1, len(f_g) - 1)
+            with np.errstate(invalid="ignore"):
+                ok &= np.fmin(f_g[lo], f_g[hi]) > params.threshold_deg
+            add(f_g[cand], cand, ok, p_c + g)
+    shortest = p_first
+    for k, duration in enumerate(fine_scales):
+        if progress:
+            progress((len(scales) + k + 1) / n_steps, f"maneuver factor, {duration:g} s windows")
+        with np.errstate(invalid="ignore", divide="ignore"):
+            chosen = np.where(np.isfinite(med) & (med > 0), np.round(duration / med), 0)
+        p_track = np.clip(chosen, 3, 1000).astype("int64")
+        # only where 3 points fit and the window is shorter than any before
+        active = (chosen >= 3) & (p_track < shortest)
+        if not active.any():
+            continue
+        f_k, peaks = _one_scale(x, y, index, p_track, p_track, active)
+        with np.errstate(invalid="ignore"):
+            cand = np.flatnonzero(peaks & (f_k > params.threshold_deg))
+        p_c = p_track[tr[cand]]
+        add(f_k[cand], cand, accept(f_k[cand], cand, p_c, p_c, fine=True), p_c)
+        shortest = np.where(active, p_track, shortest)
     if progress:
         progress(1.0, "maneuvers found")
     return ManeuverResult(pts, index, factor, found, p_first, rest, params)

@@ -115,7 +115,9 @@ def _to_parquet(df: pd.DataFrame) -> bytes:
 
 
 def _from_parquet(blob: bytes) -> pd.DataFrame:
-    return pq.read_table(io.BytesIO(blob)).to_pandas()
+    # One chunk per column, as a freshly imported table has: a row selection on a text
+    # column of many chunks (the Parquet reader's batches) costs several times as much.
+    return pq.read_table(io.BytesIO(blob)).combine_chunks().to_pandas()
 
 
 _SCHEMA = """

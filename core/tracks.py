@@ -379,8 +379,9 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     times = df["time"]
     out = index.keys.copy()
     out["points"] = index.sizes
-    out["start"] = times.iloc[index.starts].to_numpy()
-    out["end"] = times.iloc[index.ends - 1].to_numpy()
+    # Kept as timestamps (a tz-aware column's to_numpy() makes Timestamp objects).
+    out["start"] = times.iloc[index.starts].array
+    out["end"] = times.iloc[index.ends - 1].array
     out["duration_s"] = duration
     out["length_m"] = length
     out["mean_speed_kn"] = mean_speed

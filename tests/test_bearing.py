@@ -12,7 +12,9 @@ from wakeline.core.bearing import (
     detect,
     detect_sequence,
     detect_with_report,
+    detections_from,
     observer_maneuvering,
+    observer_xy,
     read_bearings,
     statistic,
 )
@@ -114,12 +116,18 @@ def test_report_says_why(tmp_path):
     by = {r["batch"]: r for r in report}
     assert by["short"]["windows"] == 0 and "too short" in by["short"]["too_short"]
     assert by["gap"]["excluded"]["gap"] > 0
-    assert by["s5-straight"]["excluded"]["observer_maneuvering"] > 0
+    # the observer's turn is modelled, not excluded, and the report says so
+    assert by["s5-straight"]["excluded"]["observer_maneuvering"] == 0
+    assert "modelled, not excluded" in by["s5-straight"]["observer"]
     assert by["s1-m"]["tested"] > 100 and by["s1-m"]["detections"] >= 1
     assert 0.3 < by["s1-m"]["noise_deg"] < 0.9  # simulated at 0.6 deg
     assert 5 < by["s1-m"]["min_turn_deg"] < 60  # the 50 deg turn is visible
-    assert by["s5-straight"]["min_turn_deg"] is None  # moving observer: range unobservable
     assert by["s5-straight"]["min_rate_change_deg_min"] > 0
+    # the first version's exclusion stays an option
+    _, report = detect_with_report(df, BearingParams(exclude_observer_turns=True))
+    by = {r["batch"]: r for r in report}
+    assert by["s5-straight"]["excluded"]["observer_maneuvering"] > 0
+    assert by["s5-straight"]["min_turn_deg"] is None  # steady legs only: range unobservable
 
 
 def test_auc_mean_option_eq15():
@@ -232,3 +240,93 @@ def test_geometry_that_hides_a_turn_is_reported_as_unobservable():
     # 35 km, 6 kn, the turn's velocity change along the line of sight
     far = Scenario("far slow", 35_000, 0.0, 6.0, 245.0, duration_s=SHORT, period_s=2.0)
     assert peak_z(far, 50.0, p, **kw) < p.z_crit
+
+
+# ---------------------------------------------------------------------------------------
+# the observer's own motion in the fit (issue 16, session 4)
+
+
+def _run_obs(sc: Scenario, turn: float, seed: int, params=None, sigma: float = 0.6):
+    """Detections with the observer's positions in the fit (the default)."""
+    rng = np.random.default_rng(seed)
+    t, b, olon, olat = simulate_bearings(rng, replace(sc, duration_s=SHORT), turn, 300.0, sigma)
+    params = params or BearingParams()
+    excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
+    return detect_sequence(t, b, params, excl, observer_xy(olon, olat))
+
+
+# the observer (8 kn) turns 60 deg at 290 s, while the target (8 km, 15 kn) turns at 300 s;
+# the range is unknown before (a steady leg), so the two turns are told apart by the shape
+# of the bearing's change alone: the expected peak z of a 50 deg turn is 5.9, not 17 as
+# without the observer's turn (and 0 when its turn is excluded: nothing is tested)
+TURNING_TOGETHER = Scenario("both turn", 8_000, 350, 15, 330, 8, 0, ((290.0, 60.0),))
+
+
+def test_observer_turning_during_the_targets_turn_is_modelled_and_the_turn_detected():
+    found = 0
+    for seed in range(1, 5):
+        hits = _run_obs(TURNING_TOGETHER, 50.0 if seed % 2 else -50.0, seed)
+        assert all(h.detect_time_s >= 300.0 for h in hits)
+        found += bool(hits) and hits[0].detect_time_s <= 300 + 240
+    assert found >= 3
+    # excluding the observer's turn instead loses the boundaries around the target's turn
+    p = BearingParams(exclude_observer_turns=True)
+    rng = np.random.default_rng(1)
+    t, b, olon, olat = simulate_bearings(
+        rng, replace(TURNING_TOGETHER, duration_s=SHORT), 50.0, 300.0, 0.6
+    )
+    excl = observer_maneuvering(t, olon, olat, p.observer_dv_ms)
+    st = statistic(t, b, p, excl, observer=observer_xy(olon, olat))
+    assert not ((st.boundary_t > 280) & (st.boundary_t < 360)).any()
+    st = statistic(t, b, BearingParams(), excl, observer=observer_xy(olon, olat))
+    assert ((st.boundary_t > 280) & (st.boundary_t < 360)).sum() > 20
+
+
+@pytest.mark.parametrize("when", [60.0, 200.0, 330.0])
+def test_observer_turns_without_a_target_turn_raise_no_alarm(when):
+    sc = replace(TURNING_TOGETHER, observer_turns=((when, -70.0),), observer_speed_kn=12.0)
+    alarms = sum(bool(_run_obs(sc, 0.0, seed)) for seed in range(1, 7))
+    assert alarms <= 1  # 6 runs of 10 min each, the threshold allows ~1 % per run
+
+
+def test_observer_model_reduces_to_the_relative_motion_fit_on_a_steady_leg():
+    rng = np.random.default_rng(4)
+    sc = replace(SCENARIOS[3], duration_s=SHORT)  # observer at 10 kn on a leg, no turn
+    t, b, olon, olat = simulate_bearings(rng, sc, 50.0, 300.0, 0.6)
+    rel = statistic(t, b, BearingParams())
+    obs = statistic(t, b, BearingParams(), observer=observer_xy(olon, olat))
+    assert obs.observer is not None and rel.observer is None
+    np.testing.assert_allclose(obs.boundary_t, rel.boundary_t)
+    assert np.abs(obs.z - rel.z).max() < 0.05 * max(np.abs(rel.z).max(), 1.0)
+    before = obs.boundary_t < 300.0  # X without the target's turn
+    assert np.abs(obs.coef[before, 3]).max() < 0.05  # s ~ 0: the range stays unknown
+
+
+def test_observer_turn_makes_the_range_observable():
+    """Noise-free bearings: after the observer's turn, X's fit finds the range."""
+    sc = replace(SCENARIOS[4], duration_s=SHORT)  # 15 km, the observer turns at 120 s
+    t, b, olon, olat = simulate_bearings(np.random.default_rng(0), sc, 0.0, 300.0, 0.0)
+    st = statistic(t, b, BearingParams(), observer=observer_xy(olon, olat), sigma_deg=0.6)
+    through = st.x_start_t < 100  # X holds the observer's turn
+    assert through.sum() > 20
+    ranges = 10_000.0 / st.coef[through, 3]  # s = 10 km / range at X's last sample
+    assert np.all(np.abs(ranges / 15_000.0 - 1.0) < 0.5)
+    assert st.range_known[through].mean() > 0.5
+    assert np.abs(st.z).max() < 1.0  # no misfit without a target turn
+
+
+def test_detection_time_is_the_first_alarm_of_the_maneuver():
+    """Early boundaries reject on long Y spans only, later ones on short spans sooner: the
+    detection (one per maneuver) takes the earliest alarm, as it would be raised live (the
+    first version reported 503, 565 and 559 s here, and a second detection of the same
+    turn for seed 1)."""
+    for seed in (1, 3, 10):
+        rng = np.random.default_rng(seed)
+        sc = SCENARIOS[4]  # 15 min, the observer turns at 120 s, the target at 450 s
+        t, b, olon, olat = simulate_bearings(rng, sc, -50.0, 450.0, 0.6)
+        p = BearingParams()
+        st = statistic(t, b, p, observer=observer_xy(olon, olat))
+        hits = detections_from(st, p.z_crit)
+        assert len(hits) == 1
+        assert hits[0].detect_time_s == st.detect_t[np.abs(st.z) > p.z_crit].min()
+        assert 450.0 <= hits[0].detect_time_s <= 450.0 + 60.0

@@ -63,13 +63,27 @@ def test_real_ais_ships_at_rest_make_no_maneuvers():
 
 def test_real_radar_turns_against_gnss_truth():
     rows = _real("autoferry-fusion")
-    # measured on exclusive radar tracks: precision 0.88, recall 0.62 (tuning 2-6:
-    # 0.94 / 0.78; held out 13-22: 0.80 / 0.43). Issue goal 0.8 / 0.7: recall NOT met,
-    # see docs/evaluation.md. Guards against regressions, not the goal.
+    # measured on exclusive radar tracks, GNSS jumps not scored: precision 0.90, recall 0.79
+    # (tuning 2-6: 0.95 / 1.00; held out 13-22: 0.82 / 0.57). Issue goal 0.8 / 0.7: met
+    # overall and on the tuning split, recall NOT met on the held-out split, see
+    # docs/evaluation.md. Guards against regressions, not the goal.
     assert rows.loc["ours", "precision"] >= 0.8
-    assert rows.loc["ours", "recall"] >= 0.6
-    assert rows.loc["ours, held out 13-22", "precision"] >= 0.75
+    assert rows.loc["ours", "recall"] >= 0.7
+    assert rows.loc["ours, held out 13-22", "precision"] >= 0.8
+    assert rows.loc["ours, held out 13-22", "recall"] >= 0.5
     assert rows.loc["ours", "ours_kept"] <= rows.loc["ours", "dp_kept"]
+
+
+def test_one_gnss_jump_in_the_autoferry_truth():
+    # scenario 6, target 1 jumps 3.2 m in 0.12 s at 2 m/s: its +33/-16 deg "turns" are the
+    # jump; no other track of the set has a step beyond 0.4 m
+    from wakeline.core import real_sets
+    from wakeline.core.evaluate_real import gnss_faults
+
+    _, truth = real_sets.read_autoferry(real_file("autoferry-fusion"))
+    faults = gnss_faults(truth)
+    assert set(faults["batch"]) == {"6/1"}
+    assert faults["t_s"].max() - faults["t_s"].min() < 2.0
 
 
 def test_autoferry_exclusive_tracks_share_no_plot():

@@ -1,0 +1,207 @@
+"""Curves stroked in a worker (sprites): the paint copies them and draws what a stroke
+draws; any view they do not fit falls back to stroking; the legend never resizes the map."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+pytest.importorskip("pytestqt")
+from PySide6 import QtGui  # noqa: E402
+
+from wakeline.app import map_paths  # noqa: E402
+from wakeline.app.map_canvas import MapCanvas, sprite_is_stale  # noqa: E402
+from wakeline.app.map_draw import LayerStyle, prepare_layer  # noqa: E402
+from wakeline.app.map_paths import _chunks, with_paths  # noqa: E402
+from wakeline.core import geo  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+LON0, LAT0 = -135.0, 5.0
+
+
+def many_tracks(seed: int, n_tracks: int = 150, n_points: int = 200) -> pd.DataFrame:
+    """Random-walk tracks in every direction (enough vertices for sprites), rows shuffled."""
+    rng = np.random.default_rng(seed)
+    heading = rng.uniform(0, 2 * np.pi, n_tracks)[:, None] + rng.normal(
+        0, 0.15, (n_tracks, n_points)
+    ).cumsum(axis=1)
+    step = rng.uniform(60, 200, n_tracks)[:, None]
+    x = rng.uniform(-20e3, 20e3, n_tracks)[:, None] + (step * np.sin(heading)).cumsum(axis=1)
+    y = rng.uniform(-20e3, 20e3, n_tracks)[:, None] + (step * np.cos(heading)).cumsum(axis=1)
+    lon, lat = geo.from_local(x.ravel(), y.ravel(), LON0, LAT0)
+    t0 = pd.Timestamp("2024-05-01", tz="UTC")
+    df = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": np.repeat(np.arange(n_tracks).astype(str), n_points),
+            "time": t0 + pd.to_timedelta(np.tile(np.arange(n_points) * 5, n_tracks), "s"),
+            "lon": lon,
+            "lat": lat,
+        }
+    )
+    return df.sample(frac=1.0, random_state=seed).reset_index(drop=True)
+
+
+def grab(canvas: MapCanvas) -> np.ndarray:
+    """The widget's pixels, every layer painted afresh (not from Qt's item cache)."""
+    for name in canvas.layer_names():
+        for item in canvas.layer_items(name):
+            item.curve.update()
+    img = canvas.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
+    w, h = img.width(), img.height()
+    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
+    return raw[:, : w * 3].reshape(h, w, 3).copy()
+
+
+def ink(rgb: np.ndarray) -> np.ndarray:
+    """Saturated pixels: the tracks (not the white background, grey grid or axes)."""
+    a = rgb.astype(int)
+    return (a.max(axis=2) - a.min(axis=2)) > 60
+
+
+def shown(qtbot, df: pd.DataFrame, sprites: bool, kind: str = "line") -> MapCanvas:
+    """A canvas showing ``df`` with a worker-style executor (run at once), its layer's
+    first view made as the window makes it (with or without sprites)."""
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(700, 520)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    canvas.lod_executor = lambda job, done: done(job()) if sprites else done(_no_sprites(job()))
+    canvas.set_true_aspect(LAT0)
+    style = LayerStyle(width=1.3) if kind == "line" else LayerStyle(width=0, symbol_size=4)
+    canvas.set_draw_data(prepare_layer(df, "L", "#d62728", style=style))
+    canvas.fit()
+    qtbot.wait(150)  # the level-of-detail timer
+    canvas.refresh_lod()
+    qtbot.wait(20)
+    return canvas
+
+
+def _no_sprites(data):
+    from dataclasses import replace
+
+    return replace(data, curves=tuple(replace(c, sprite=None) for c in data.curves))
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("kind", ["line", "marks"])
+def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind):
+    df = many_tracks(seed)
+    if kind == "marks":
+        df = df.iloc[::5].reset_index(drop=True)
+    with_sprite = shown(qtbot, df, sprites=True, kind=kind)
+    data = with_sprite.draw_data("L")
+    assert data.view is not None
+    assert any(c.sprite is not None for c in data.curves)
+    drawn = []
+    original = map_paths.Sprite.draw
+
+    def spy(self, p, item):
+        ok = original(self, p, item)
+        drawn.append(ok)
+        return ok
+
+    map_paths.Sprite.draw = spy
+    try:
+        a = grab(with_sprite)
+    finally:
+        map_paths.Sprite.draw = original
+    assert drawn and all(drawn), "the sprite was not used for the paint"
+    stroked = shown(qtbot, df, sprites=False, kind=kind)
+    b = grab(stroked)
+    ia, ib = ink(a), ink(b)
+    assert ib.sum() > 2000  # the scene is drawn at all
+    # The same pixels, to within the one-pixel rounding of the image's corner.
+    near_b = ib.copy()
+    near_b[1:] |= ib[:-1]
+    near_b[:-1] |= ib[1:]
+    near_b[:, 1:] |= ib[:, :-1]
+    near_b[:, :-1] |= ib[:, 1:]
+    near_a = ia.copy()
+    near_a[1:] |= ia[:-1]
+    near_a[:-1] |= ia[1:]
+    near_a[:, 1:] |= ia[:, :-1]
+    near_a[:, :-1] |= ia[:, 1:]
+    assert (ia & ~near_b).sum() <= 0.01 * ia.sum()
+    assert (ib & ~near_a).sum() <= 0.01 * ib.sum()
+
+
+def test_a_pan_beyond_the_sprite_strokes_then_makes_a_new_one(qtbot):
+    df = many_tracks(3)
+    canvas = shown(qtbot, df, sprites=True)
+    jobs = []
+    canvas.lod_executor = lambda job, done: jobs.append((job, done))
+    old = canvas.draw_data("L")
+    (x0, x1), (y0, y1) = canvas.vb.viewRange()
+    dx = 0.3 * (x1 - x0)
+    canvas.vb.setRange(xRange=(x0 + dx, x1 + dx), yRange=(y0, y1), padding=0)
+    view, size = canvas.current_view(), canvas.plot_size_px()
+    assert sprite_is_stale(old, view, size)
+    results = []
+    original = map_paths.Sprite.draw
+
+    def spy(self, p, item):
+        ok = original(self, p, item)
+        results.append(ok)
+        return ok
+
+    map_paths.Sprite.draw = spy
+    try:
+        before = grab(canvas)
+        assert results and not any(results)  # the old image does not cover the view
+        assert ink(before).sum() > 1000  # but the stroke drew the tracks meanwhile
+        canvas.refresh_lod()
+        assert jobs, "no new sprite was asked for"
+        job, done = jobs.pop()
+        done(job())
+        new = canvas.draw_data("L")
+        assert not sprite_is_stale(new, canvas.current_view(), canvas.plot_size_px())
+        results.clear()
+        grab(canvas)
+        assert results and all(results)
+    finally:
+        map_paths.Sprite.draw = original
+
+
+def test_no_sprite_without_a_view_or_for_short_curves():
+    df = many_tracks(4, n_tracks=3, n_points=50)
+    full = with_paths(prepare_layer(df, "L", style=LayerStyle(width=1)))
+    assert full.view is None and all(c.sprite is None for c in full.curves)
+    few = with_paths(
+        prepare_layer(
+            df, "L", style=LayerStyle(width=1), view=(-136, -134, 4, 6), size_px=(300, 300)
+        )
+    )
+    assert all(c.sprite is None for c in few.curves)  # 150 vertices: stroked, cheap
+
+
+def test_chunks_cut_only_at_separators():
+    rng = np.random.default_rng(0)
+    lengths = rng.integers(1, 900, 400)
+    parts = [np.append(rng.normal(size=n), np.nan) for n in lengths]
+    lon = np.concatenate(parts)[:-1]
+    pieces = _chunks(lon, 5000)
+    assert pieces[0][0] == 0 and pieces[-1][1] == len(lon)
+    for (_a, b), (c, _d) in zip(pieces[:-1], pieces[1:], strict=True):
+        assert b == c and np.isnan(lon[b - 1])  # each piece ends on a separator
+    assert max(b - a for a, b in pieces) <= 5000 + 900
+    assert _chunks(lon[:10], 5000) == [(0, 10)]
+
+
+def test_a_long_layer_name_never_widens_the_legend(qtbot):
+    df = many_tracks(5, n_tracks=4, n_points=20)
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(900, 500)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    width = canvas.legend.width()
+    vb = canvas.vb.rect().width()
+    for k, name in enumerate(
+        ["a", "W" * 60, "radar export 2024-05-01 · cleaned · compressed · maneuvers", "船" * 40]
+    ):
+        canvas.set_draw_data(prepare_layer(df, name, "#1f77b4"))
+        qtbot.wait(10)
+        assert canvas.legend.width() == pytest.approx(width), k
+        assert canvas.vb.rect().width() == pytest.approx(vb), k
