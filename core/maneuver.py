@@ -30,6 +30,8 @@ switches all of these off.
 """
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,9 +43,15 @@ from wakeline.core.tracks import (
     TrackIndex,
     concat_ranges,
     local_xy,
+    remember_order,
     sorted_with_index,
     track_seconds,
 )
+
+#: Tables of at least this many rows are detected in parts of whole tracks on threads
+#: (numpy releases the GIL in its passes); every rule is per track, so the result is the
+#: one of a single pass (tests/test_maneuver_kernel.py checks it).
+PARALLEL_MIN_ROWS = 400_000
 
 MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
 
@@ -1187,7 +1195,10 @@ def _leave_one_out_deg(
 
 
 def detect(
-    points: pd.DataFrame, params: ManeuverParams | None = None, progress=None
+    points: pd.DataFrame,
+    params: ManeuverParams | None = None,
+    progress=None,
+    parts: int | None = None,
 ) -> ManeuverResult:
     """Run the detector on every track of a canonical table.
 
@@ -1206,9 +1217,88 @@ def detect(
     at-rest span within it) and a radius around them, and look for peaks among the rows
     above t only. Same output as running every rule on every row
     (tests/test_maneuver_kernel.py).
+
+    ``parts``: groups of whole tracks detected at once on threads (default: one per core
+    from :data:`PARALLEL_MIN_ROWS` rows, else 1); the result does not depend on it.
     """
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
+    bounds = _parts(index, parts)
+    if len(bounds) <= 2:
+        return _detect_sorted(pts, index, params, progress)
+    return _detect_in_parts(pts, index, params, progress, bounds)
+
+
+def _parts(index: TrackIndex, parts: int | None) -> np.ndarray:
+    """Row bounds of ``parts`` groups of whole tracks of about equal size (default: one per
+    core for a large table, else one)."""
+    n = int(index.ends[-1]) if index.n_tracks else 0
+    if parts is None:
+        parts = min(os.cpu_count() or 1, 8) if n >= PARALLEL_MIN_ROWS else 1
+    parts = max(1, min(int(parts), index.n_tracks))
+    if parts == 1:
+        return np.array([0, n], dtype="int64")
+    cut = np.searchsorted(index.starts, np.arange(1, parts) * (n / parts))
+    cut = np.clip(cut, 1, index.n_tracks - 1)  # a part starts with a track, never empty
+    bounds = np.unique(np.concatenate([[0], index.starts[cut], [n]]))
+    return bounds.astype("int64")
+
+
+def _detect_in_parts(
+    pts: pd.DataFrame, index: TrackIndex, params: "ManeuverParams", progress, bounds
+) -> "ManeuverResult":
+    """:func:`_detect_sorted` on groups of whole tracks at once, results put together."""
+    t = track_seconds(pts)
+    pieces = []
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        k0, k1 = np.searchsorted(index.starts, [a, b])
+        sub = pts.iloc[a:b].reset_index(drop=True)
+        sub_index = TrackIndex(
+            index.starts[k0:k1] - a,
+            index.ends[k0:k1] - a,
+            index.track_of_row[a:b] - k0,
+            index.keys.iloc[k0:k1].reset_index(drop=True),
+        )
+        remember_order(sub, sub_index, t[a:b])
+        pieces.append((sub, sub_index))
+    stop: list[BaseException] = []
+
+    def relay(k: int):
+        # Part 0 reports; every part stops at its next report once any part was stopped
+        # (a caller cancels by raising from ``progress``).
+        def report(fraction: float, text: str = "") -> None:
+            if stop:
+                raise stop[0]
+            if k == 0 and progress is not None:
+                try:
+                    progress(fraction, text)
+                except BaseException as exc:
+                    stop.append(exc)
+                    raise
+
+        return report
+
+    with ThreadPoolExecutor(len(pieces), thread_name_prefix="wakeline-detect") as pool:
+        futures = [
+            pool.submit(_detect_sorted, sub, sub_index, params, relay(k))
+            for k, (sub, sub_index) in enumerate(pieces)
+        ]
+        results = [f.result() for f in futures]
+    return ManeuverResult(
+        pts,
+        index,
+        np.concatenate([r.factor for r in results]),
+        np.concatenate([r.is_maneuver for r in results]),
+        np.concatenate([r.window_p for r in results]),
+        np.concatenate([r.at_rest for r in results]),
+        params,
+    )
+
+
+def _detect_sorted(
+    pts: pd.DataFrame, index: TrackIndex, params: "ManeuverParams", progress=None
+) -> "ManeuverResult":
+    """The detector on a table in track order with its index (see :func:`detect`)."""
     x, y = local_xy(pts, index)
     t = track_seconds(pts)
     n = len(pts)

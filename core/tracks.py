@@ -89,6 +89,13 @@ def _remember(df: pd.DataFrame, index: "TrackIndex", t: np.ndarray) -> None:
     _IN_ORDER[key] = (ref, _fingerprint(df), index, t)
 
 
+def remember_order(df: pd.DataFrame, index: "TrackIndex", t: np.ndarray) -> None:
+    """Record that ``df`` (a fresh RangeIndex) is in track order with ``index`` and time
+    ``t`` (s), as :func:`sorted_with_index` would find: for a slice of whole tracks of a
+    table in order, whose index and seconds are known already."""
+    _remember(df, index, t)
+
+
 def known_order(df: pd.DataFrame) -> tuple["TrackIndex", np.ndarray] | None:
     """The :class:`TrackIndex` and time (s) of a table already sorted or checked, else None."""
     entry = _IN_ORDER.get(id(df))

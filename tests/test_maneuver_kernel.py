@@ -316,3 +316,36 @@ def test_group_median_equals_the_groupby_bit_for_bit():
         want = pd.Series(values).groupby(group).median()
         assert np.array_equal(np.flatnonzero(has), want.index.to_numpy())
         assert np.array_equal(med.view("int64"), want.to_numpy().view("int64"))
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n_tracks=st.integers(1, 12),
+    parts=st.integers(2, 5),
+    which=st.integers(0, len(PARAMS) - 1),
+)
+def test_detection_in_parts_of_whole_tracks_equals_one_pass(seed, n_tracks, parts, which):
+    df = _scene(seed, n_tracks, False)
+    one = detect(df, PARAMS[which], parts=1)
+    split = detect(df, PARAMS[which], parts=parts)
+    assert np.array_equal(split.factor.view("int64"), one.factor.view("int64"))
+    assert np.array_equal(split.is_maneuver, one.is_maneuver)
+    assert np.array_equal(split.at_rest, one.at_rest)
+    assert np.array_equal(split.window_p, one.window_p)
+    assert split.table().equals(one.table())
+
+
+def test_a_cancel_in_one_part_stops_every_part():
+    from wakeline.core.errors import Cancelled
+
+    df = _scene(5, 12, False)
+    calls = []
+
+    def progress(fraction, text=""):
+        calls.append(fraction)
+        if len(calls) >= 2:
+            raise Cancelled("stop")
+
+    with pytest.raises(Cancelled):
+        detect(df, ManeuverParams(), progress=progress, parts=3)
