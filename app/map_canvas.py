@@ -394,8 +394,12 @@ def sprite_is_stale(
     """True when a curve of ``data`` has a sprite that no longer shows ``view`` at
     ``size_px`` (panned or resized): a worker makes new ones, strokes fill in meanwhile."""
     sv = data.view
-    if sv is None or not any(c.sprite is not None for c in data.curves):
+    sprites = [c.sprite for c in data.curves if c.sprite is not None]
+    if sv is None or not sprites:
         return False
+    image = sprites[0].image
+    if abs(image.width() - size_px[0]) > 1 or abs(image.height() - size_px[1]) > 1:
+        return True  # the plot area was resized
     x0, x1, y0, y1 = view
     tx = (sv[1] - sv[0]) / max(size_px[0], 1)
     ty = (sv[3] - sv[2]) / max(size_px[1], 1)

@@ -205,3 +205,28 @@ def test_a_long_layer_name_never_widens_the_legend(qtbot):
         qtbot.wait(10)
         assert canvas.legend.width() == pytest.approx(width), k
         assert canvas.vb.rect().width() == pytest.approx(vb), k
+
+
+def test_a_resize_makes_new_sprites_for_the_new_size(qtbot):
+    canvas = shown(qtbot, many_tracks(6), sprites=True)
+    old = canvas.draw_data("L")
+    canvas.resize(canvas.width() + 120, canvas.height() - 60)
+    qtbot.wait(20)
+    assert sprite_is_stale(old, canvas.current_view(), canvas.plot_size_px())
+    canvas.refresh_lod()  # the executor runs the job at once
+    new = canvas.draw_data("L")
+    assert not sprite_is_stale(new, canvas.current_view(), canvas.plot_size_px())
+    used = []
+    original = map_paths.Sprite.draw
+
+    def spy(self, p, item):
+        ok = original(self, p, item)
+        used.append(ok)
+        return ok
+
+    map_paths.Sprite.draw = spy
+    try:
+        grab(canvas)
+    finally:
+        map_paths.Sprite.draw = original
+    assert used and all(used)
