@@ -191,6 +191,32 @@ def measure(name: str, action, window: MainWindow | None, results: dict) -> None
         sampler.report()
 
 
+def cancel_latency(window: MainWindow, layer: str) -> dict[str, float]:
+    """Start each step on ``layer``, cancel it after a while, and print how long the
+    runner took to stop (goal: < 0.5 s). Returns ms per step."""
+    app = QtWidgets.QApplication.instance()
+    out = {}
+    for step, after_s in (("clean", 0.5), ("maneuvers", 0.3), ("compress", 0.3), ("pipeline", 2.0)):
+        window.select_layer(layer)
+        settle(100)
+        before = set(window.layers)
+        window.run_step(step)
+        settle(int(after_s * 1000))
+        t0 = time.perf_counter()
+        window.runner.cancel()
+        while window.runner.busy and time.perf_counter() - t0 < 30:
+            app.processEvents()
+            time.sleep(0.002)
+        out[step] = (time.perf_counter() - t0) * 1000
+        wait_for_jobs(window)
+        made = set(window.layers) - before
+        print(
+            f"cancel {step:<10} after {after_s:.1f} s: stopped in {out[step]:5.0f} ms "
+            f"(goal < 500 ms); layers made: {len(made)}"
+        )
+    return out
+
+
 def drawn_check(window: MainWindow) -> bool:
     """At the end: every visible layer is in the map with every track drawn (a NaN-separated
     piece per track at least), at the level of detail of the current view. Prints it."""
@@ -270,6 +296,7 @@ def main() -> int:
         keys = [window.batch_model.key_of_row(r) for r in range(0, 200, 20)]
         measure("select 10 tracks", lambda: window.select_tracks(keys), window, results)
         measure("hide a layer", lambda: window.session.set_visible(comp, False), window, results)
+        cancel = cancel_latency(window, src)
         print("drawn at the end (window 1):")
         drawn = drawn_check(window)
         window.close()
@@ -288,7 +315,8 @@ def main() -> int:
         f"worst block {worst:.0f} ms (goal < 100 ms): {'OK' if worst < 100 else 'OVER'}; "
         f"most GUI-thread CPU between two ticks {worst_cpu:.0f} ms; "
         f"idle-loop block {base:.0f} ms, ratio {worst / base:.1f}; "
-        f"every track drawn: {'yes' if drawn else 'NO'}; load {os.getloadavg()[0]:.1f}"
+        f"every track drawn: {'yes' if drawn else 'NO'}; slowest cancel "
+        f"{max(cancel.values()):.0f} ms; load {os.getloadavg()[0]:.1f}"
     )
     del app
     return 0
