@@ -2,9 +2,12 @@
 the results back on the GUI thread, so a zoom on a million points never blocks."""
 
 import collections
+import logging
 from collections.abc import Callable
 
 from PySide6 import QtCore
+
+log = logging.getLogger(__name__)
 
 #: Between two results handed over to the GUI thread (ms).
 STEP_MS = 5
@@ -23,7 +26,9 @@ class _Task(QtCore.QRunnable):
         try:
             result = self.job()
         except Exception:  # noqa: BLE001 - a failed decimation keeps the old drawing
-            return
+            # Logged, and handed over as None so that the caller stops waiting for it.
+            log.exception("map drawing job failed")
+            result = None
         self.signals.done.emit(self.done, result)
 
 

@@ -19,7 +19,9 @@ def wait_for_jobs(window: MainWindow, timeout_ms: int = 120_000) -> None:
     app = QtWidgets.QApplication.instance()
 
     def busy() -> bool:
-        return bool(window.runner.busy or window._job_context or window.drawing)
+        return bool(
+            window.runner.busy or window._job_context or window.drawing or window.canvas.lod_busy
+        )
 
     if busy():
         elapsed = QtCore.QElapsedTimer()

@@ -255,35 +255,44 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
 
     def _swap_curves(self, data: DrawData) -> None:
         for item, curve in zip(self._items.get(data.name, []), data.curves, strict=False):
-            few = curve.n_vertices <= SYMBOLS_MAX
-            if data.style.symbol_size and not data.style.width:
-                # Markers only (maneuver points): symbols while few, else small 1-px
-                # crosses drawn as one path (pyqtgraph builds symbols point by point).
-                if (item.opts["symbol"] is not None) != few:
-                    item.setSymbol("o" if few else None)
-                    item.setPen(None if few else pg.mkPen(curve.color, width=1))
-                if few:
-                    item.setData(curve.lon, curve.lat, connect="finite")
-                else:
-                    item.setData(*self._crosses(curve, data.style.symbol_size), connect="pairs")
-                item.curve.sprite = None if few else curve.sprite
-                continue
-            if data.style.symbol_size and data.style.width:
-                # Symbols on a line only where they can be told apart: pyqtgraph builds
-                # them point by point in Python, which would block a million-point view.
-                if (item.opts["symbol"] is not None) != few:
-                    item.setSymbol("o" if few else None)
-            if data.style.width:
-                # A wide pen costs Qt's raster engine 5x a 1-px one (120k vertices: 159 ms
-                # at 1.3 px against 28 ms at 1 px): wide lines only where few vertices.
-                width = data.style.width if few else 1.0
-                if item.opts["pen"] is None or item.opts["pen"].widthF() != width:
-                    item.setPen(pg.mkPen(curve.color, width=width))
-            item.setData(curve.lon, curve.lat, connect="finite")
-            if curve.path is not None:  # built in a worker (map_paths): paint only strokes
-                item.curve.path = curve.path
-            # Stroked in a worker for this view: the paint copies it while it fits.
-            item.curve.sprite = curve.sprite
+            self._swap_curve(item, curve, data)
+            # Qt can keep a device-coordinate cache at its old place when new data change
+            # the bounds of a curve larger than the view (seen after a zoom, a pan or a
+            # resize): drop the cached pixmap with the data it showed.
+            item.curve.setCacheMode(QtWidgets.QGraphicsItem.CacheMode.NoCache)
+            item.curve.setCacheMode(CACHE)
+
+    def _swap_curve(self, item: pg.PlotDataItem, curve, data: DrawData) -> None:
+        """Swap one prepared curve into its item (line or markers)."""
+        few = curve.n_vertices <= SYMBOLS_MAX
+        if data.style.symbol_size and not data.style.width:
+            # Markers only (maneuver points): symbols while few, else small 1-px
+            # crosses drawn as one path (pyqtgraph builds symbols point by point).
+            if (item.opts["symbol"] is not None) != few:
+                item.setSymbol("o" if few else None)
+                item.setPen(None if few else pg.mkPen(curve.color, width=1))
+            if few:
+                item.setData(curve.lon, curve.lat, connect="finite")
+            else:
+                item.setData(*self._crosses(curve, data.style.symbol_size), connect="pairs")
+            item.curve.sprite = None if few else curve.sprite
+            return
+        if data.style.symbol_size and data.style.width:
+            # Symbols on a line only where they can be told apart: pyqtgraph builds
+            # them point by point in Python, which would block a million-point view.
+            if (item.opts["symbol"] is not None) != few:
+                item.setSymbol("o" if few else None)
+        if data.style.width:
+            # A wide pen costs Qt's raster engine 5x a 1-px one (120k vertices: 159 ms
+            # at 1.3 px against 28 ms at 1 px): wide lines only where few vertices.
+            width = data.style.width if few else 1.0
+            if item.opts["pen"] is None or item.opts["pen"].widthF() != width:
+                item.setPen(pg.mkPen(curve.color, width=width))
+        item.setData(curve.lon, curve.lat, connect="finite")
+        if curve.path is not None:  # built in a worker (map_paths): paint only strokes
+            item.curve.path = curve.path
+        # Stroked in a worker for this view: the paint copies it while it fits.
+        item.curve.sprite = curve.sprite
 
     def _crosses(self, curve, size_px: float) -> tuple[np.ndarray, np.ndarray]:
         """A small cross (two segments, ``size_px`` wide) at every finite vertex."""
@@ -303,23 +312,38 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             data = self._data.get(name)
             if data is None or name in self._lod_pending:
                 continue
+            # Sprites are redone for a moved or resized view of the shown layers only (a
+            # hidden layer's are redone when it is shown again).
             if not lod_is_stale(data, view, size) and not (
-                self.lod_executor is not None and sprite_is_stale(data, view, size)
+                self.lod_executor is not None
+                and self._visible.get(name, True)
+                and sprite_is_stale(data, view, size)
             ):
                 continue
             if self.lod_executor is None:
                 self._apply_lod(relod(data, view, size))
             else:
                 self._lod_pending.add(name)
-                self.lod_executor(lambda d=data: with_paths(relod(d, view, size)), self._apply_lod)
+                self.lod_executor(
+                    lambda d=data: with_paths(relod(d, view, size)),
+                    lambda result, name=name: self._apply_lod(result, name),
+                )
 
-    def _apply_coast(self, data: DrawData) -> None:
+    def _apply_coast(self, data: DrawData | None) -> None:
+        if data is None:  # the job failed: keep the coastline drawn as it is
+            self._coast_pending = False
+            return
         self._coast, self._coast_pending = data, False
         self.coastline.setData(data.curves[0].lon, data.curves[0].lat)
         if self.lod_executor is not None:
             self._lod_timer.start()  # the view may have moved on while the job ran
 
-    def _apply_lod(self, data: DrawData) -> None:
+    def _apply_lod(self, data: DrawData | None, name: str | None = None) -> None:
+        """Swap in a redone level of detail; ``data`` None: the job failed (the layer keeps
+        its drawing and may be redone at the next view change)."""
+        if data is None:
+            self._lod_pending.discard(name)
+            return
         self._lod_pending.discard(data.name)
         current = self._data.get(data.name)
         if current is None or current.geometry is not data.geometry:
@@ -342,6 +366,14 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             item.setVisible(visible)
         if name in self._visible:
             self._visible[name] = visible
+        if visible and self.lod_executor is not None:
+            self._lod_timer.start()  # its sprites may be for a view left while hidden
+
+    @property
+    def lod_busy(self) -> bool:
+        """Level-of-detail or sprite work is asked for or running (a view change pending,
+        a worker job not yet back)."""
+        return bool(self._lod_pending) or self._coast_pending or self._lod_timer.isActive()
 
     def layer_names(self) -> list[str]:
         return list(self._items)

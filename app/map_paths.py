@@ -67,6 +67,9 @@ class Sprite:
             or pen.color().rgba() != self.rgba
         ):
             return False
+        device = p.device()
+        if device is None or abs(device.devicePixelRatioF() - 1.0) > 1e-6:
+            return False  # made at one device pixel per pixel: a high-DPI paint strokes
         t = p.transform()
         x0, x1, y0, y1 = self.view
         w, h = self.image.width(), self.image.height()

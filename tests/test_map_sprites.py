@@ -6,7 +6,7 @@ import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
-from PySide6 import QtGui  # noqa: E402
+from PySide6 import QtGui, QtWidgets  # noqa: E402
 
 from wakeline.app import map_paths  # noqa: E402
 from wakeline.app.map_canvas import MapCanvas, sprite_is_stale  # noqa: E402
@@ -230,3 +230,95 @@ def test_a_resize_makes_new_sprites_for_the_new_size(qtbot):
     finally:
         map_paths.Sprite.draw = original
     assert used and all(used)
+
+
+def _cached_and_fresh(canvas: MapCanvas) -> tuple[np.ndarray, np.ndarray]:
+    """Track pixels as painted through the items' caches, and painted afresh (no cache)."""
+    cached = ink(grab_cached(canvas))
+    items = [it.curve for n in canvas.layer_names() for it in canvas.layer_items(n)]
+    modes = [it.cacheMode() for it in items]
+    for it in items:
+        it.setCacheMode(QtWidgets.QGraphicsItem.CacheMode.NoCache)
+    fresh = ink(grab_cached(canvas))
+    for it, mode in zip(items, modes, strict=True):
+        it.setCacheMode(mode)
+    return cached, fresh
+
+
+def grab_cached(canvas: MapCanvas) -> np.ndarray:
+    img = canvas.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
+    w, h = img.width(), img.height()
+    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
+    return raw[:, : w * 3].reshape(h, w, 3).copy()
+
+
+@pytest.mark.parametrize("sprites", [True, False])
+def test_no_ghost_of_the_cache_after_zoom_pan_and_resize(qtbot, sprites):
+    """Qt kept a curve's device-coordinate cache at its old place when new level-of-detail
+    data changed the bounds of a curve larger than the view: tracks drawn shifted or
+    missing after a zoom or a pan. What is shown equals a fresh paint."""
+    canvas = shown(qtbot, many_tracks(7, n_tracks=200, n_points=300), sprites=sprites)
+    steps = []
+    (x0, x1), (y0, y1) = canvas.vb.viewRange()
+    cx, cy, hw, hh = (x0 + x1) / 2, (y0 + y1) / 2, (x1 - x0) / 8, (y1 - y0) / 8
+    steps.append(
+        lambda: canvas.vb.setRange(xRange=(cx - hw, cx + hw), yRange=(cy - hh, cy + hh), padding=0)
+    )
+    steps.append(
+        lambda: canvas.vb.setRange(
+            xRange=(cx - hw * 0.4, cx + hw * 1.6), yRange=(cy - hh, cy + hh), padding=0
+        )
+    )
+    steps.append(
+        lambda: canvas.vb.setRange(
+            xRange=(cx - hw * 0.4, cx + hw * 1.6), yRange=(cy - hh * 1.6, cy + hh * 0.4), padding=0
+        )
+    )
+    steps.append(lambda: canvas.resize(canvas.width() - 150, canvas.height() + 40))
+    for k, step in enumerate(steps):
+        grab_cached(canvas)  # the caches filled for the view before the step
+        step()
+        qtbot.wait(120)
+        canvas.refresh_lod()
+        qtbot.wait(20)
+        cached, fresh = _cached_and_fresh(canvas)
+        assert fresh.sum() > 500, k
+        near = fresh.copy()
+        near[1:] |= fresh[:-1]
+        near[:-1] |= fresh[1:]
+        near[:, 1:] |= fresh[:, :-1]
+        near[:, :-1] |= fresh[:, 1:]
+        assert (cached & ~near).sum() <= 0.002 * cached.sum(), k
+        assert cached.sum() >= 0.98 * fresh.sum(), k
+
+
+def test_a_high_dpi_paint_strokes_instead_of_copying(qtbot):
+    canvas = shown(qtbot, many_tracks(8), sprites=True)
+    item = next(it.curve for it in canvas.layer_items("L") if it.curve.sprite is not None)
+    image = QtGui.QImage(200, 200, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
+    image.setDevicePixelRatio(2.0)
+    painter = QtGui.QPainter(image)
+    try:
+        assert item.sprite.draw(painter, item) is False
+    finally:
+        painter.end()
+
+
+def test_a_failed_drawing_job_is_let_go(qtbot, monkeypatch):
+    """A job that raises in the worker is logged and handed back as None: the layer is not
+    left waiting for it (it would never be redone)."""
+    from wakeline.app import map_canvas
+    from wakeline.app.lod_worker import LodWorker
+
+    canvas = shown(qtbot, many_tracks(9), sprites=True)
+    canvas.lod_executor = LodWorker(canvas)
+
+    def broken(*_args, **_kw):
+        raise RuntimeError("decimation failed")
+
+    monkeypatch.setattr(map_canvas, "relod", broken)
+    (x0, x1), (y0, y1) = canvas.vb.viewRange()
+    canvas.vb.setRange(xRange=(x0, x0 + (x1 - x0) / 5), yRange=(y0, y0 + (y1 - y0) / 5))
+    canvas.refresh_lod()
+    qtbot.waitUntil(lambda: not canvas.lod_busy, timeout=10_000)
+    assert "L" in canvas.layer_names()
