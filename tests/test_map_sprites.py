@@ -78,6 +78,21 @@ def shown(qtbot, df: pd.DataFrame, sprites: bool, kind: str = "line") -> MapCanv
     return canvas
 
 
+@pytest.fixture
+def sprite_calls(monkeypatch) -> list[bool]:
+    """What ``Sprite.draw`` answered during the test (True: the image was copied)."""
+    calls: list[bool] = []
+    original = map_paths.Sprite.draw
+
+    def spy(self, p, item):
+        ok = original(self, p, item)
+        calls.append(ok)
+        return ok
+
+    monkeypatch.setattr(map_paths.Sprite, "draw", spy)
+    return calls
+
+
 def _no_sprites(data):
     from dataclasses import replace
 
@@ -86,7 +101,7 @@ def _no_sprites(data):
 
 @pytest.mark.parametrize("seed", [1, 2])
 @pytest.mark.parametrize("kind", ["line", "marks"])
-def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind):
+def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind, sprite_calls):
     df = many_tracks(seed)
     if kind == "marks":
         df = df.iloc[::5].reset_index(drop=True)
@@ -94,20 +109,9 @@ def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind):
     data = with_sprite.draw_data("L")
     assert data.view is not None
     assert any(c.sprite is not None for c in data.curves)
-    drawn = []
-    original = map_paths.Sprite.draw
-
-    def spy(self, p, item):
-        ok = original(self, p, item)
-        drawn.append(ok)
-        return ok
-
-    map_paths.Sprite.draw = spy
-    try:
-        a = grab(with_sprite)
-    finally:
-        map_paths.Sprite.draw = original
-    assert drawn and all(drawn), "the sprite was not used for the paint"
+    sprite_calls.clear()
+    a = grab(with_sprite)
+    assert sprite_calls and all(sprite_calls), "the sprite was not used for the paint"
     stroked = shown(qtbot, df, sprites=False, kind=kind)
     b = grab(stroked)
     ia, ib = ink(a), ink(b)
@@ -127,7 +131,7 @@ def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind):
     assert (ib & ~near_a).sum() <= 0.01 * ib.sum()
 
 
-def test_a_pan_beyond_the_sprite_strokes_then_makes_a_new_one(qtbot):
+def test_a_pan_beyond_the_sprite_strokes_then_makes_a_new_one(qtbot, sprite_calls):
     df = many_tracks(3)
     canvas = shown(qtbot, df, sprites=True)
     jobs = []
@@ -138,30 +142,19 @@ def test_a_pan_beyond_the_sprite_strokes_then_makes_a_new_one(qtbot):
     canvas.vb.setRange(xRange=(x0 + dx, x1 + dx), yRange=(y0, y1), padding=0)
     view, size = canvas.current_view(), canvas.plot_size_px()
     assert sprite_is_stale(old, view, size)
-    results = []
-    original = map_paths.Sprite.draw
-
-    def spy(self, p, item):
-        ok = original(self, p, item)
-        results.append(ok)
-        return ok
-
-    map_paths.Sprite.draw = spy
-    try:
-        before = grab(canvas)
-        assert results and not any(results)  # the old image does not cover the view
-        assert ink(before).sum() > 1000  # but the stroke drew the tracks meanwhile
-        canvas.refresh_lod()
-        assert jobs, "no new sprite was asked for"
-        job, done = jobs.pop()
-        done(job())
-        new = canvas.draw_data("L")
-        assert not sprite_is_stale(new, canvas.current_view(), canvas.plot_size_px())
-        results.clear()
-        grab(canvas)
-        assert results and all(results)
-    finally:
-        map_paths.Sprite.draw = original
+    sprite_calls.clear()
+    before = grab(canvas)
+    assert sprite_calls and not any(sprite_calls)  # the old image does not cover the view
+    assert ink(before).sum() > 1000  # but the stroke drew the tracks meanwhile
+    canvas.refresh_lod()
+    assert jobs, "no new sprite was asked for"
+    job, done = jobs.pop()
+    done(job())
+    new = canvas.draw_data("L")
+    assert not sprite_is_stale(new, canvas.current_view(), canvas.plot_size_px())
+    sprite_calls.clear()
+    grab(canvas)
+    assert sprite_calls and all(sprite_calls)
 
 
 def test_no_sprite_without_a_view_or_for_short_curves():
@@ -207,7 +200,7 @@ def test_a_long_layer_name_never_widens_the_legend(qtbot):
         assert canvas.vb.rect().width() == pytest.approx(vb), k
 
 
-def test_a_resize_makes_new_sprites_for_the_new_size(qtbot):
+def test_a_resize_makes_new_sprites_for_the_new_size(qtbot, sprite_calls):
     canvas = shown(qtbot, many_tracks(6), sprites=True)
     old = canvas.draw_data("L")
     canvas.resize(canvas.width() + 120, canvas.height() - 60)
@@ -216,20 +209,9 @@ def test_a_resize_makes_new_sprites_for_the_new_size(qtbot):
     canvas.refresh_lod()  # the executor runs the job at once
     new = canvas.draw_data("L")
     assert not sprite_is_stale(new, canvas.current_view(), canvas.plot_size_px())
-    used = []
-    original = map_paths.Sprite.draw
-
-    def spy(self, p, item):
-        ok = original(self, p, item)
-        used.append(ok)
-        return ok
-
-    map_paths.Sprite.draw = spy
-    try:
-        grab(canvas)
-    finally:
-        map_paths.Sprite.draw = original
-    assert used and all(used)
+    sprite_calls.clear()
+    grab(canvas)
+    assert sprite_calls and all(sprite_calls)
 
 
 def _cached_and_fresh(canvas: MapCanvas) -> tuple[np.ndarray, np.ndarray]:
