@@ -425,24 +425,17 @@ def sprite_is_stale(
 ) -> bool:
     """True when a curve of ``data`` has a sprite that no longer shows ``view`` at
     ``size_px`` (panned or resized): a worker makes new ones, strokes fill in meanwhile."""
-    sv = data.view
     sprites = [c.sprite for c in data.curves if c.sprite is not None]
-    if sv is None or not sprites:
+    if data.view is None or not sprites:
         return False
-    image = sprites[0].image
-    if abs(image.width() - size_px[0]) > 1 or abs(image.height() - size_px[1]) > 1:
+    sprite = sprites[0]
+    if abs(sprite.image.width() - size_px[0]) > 1 or abs(sprite.image.height() - size_px[1]) > 1:
         return True  # the plot area was resized
     x0, x1, y0, y1 = view
-    tx = (sv[1] - sv[0]) / max(size_px[0], 1)
-    ty = (sv[3] - sv[2]) / max(size_px[1], 1)
-    return (
-        abs((x1 - x0) - (sv[1] - sv[0])) > tx
-        or abs((y1 - y0) - (sv[3] - sv[2])) > ty
-        or x0 < sv[0] - tx
-        or x1 > sv[1] + tx
-        or y0 < sv[2] - ty
-        or y1 > sv[3] + ty
-    )
+    sx0, sx1, sy0, sy1 = sprite.view
+    tx, ty = (sx1 - sx0) / max(size_px[0], 1), (sy1 - sy0) / max(size_px[1], 1)
+    zoomed = abs((x1 - x0) - (sx1 - sx0)) > tx or abs((y1 - y0) - (sy1 - sy0)) > ty
+    return zoomed or not sprite.covers(view)
 
 
 def color_icon(color: str) -> QtGui.QIcon:

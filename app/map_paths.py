@@ -50,6 +50,15 @@ class Sprite:
     antialias: bool
     n: int  # length of the curve's arrays (NaN separators included)
 
+    def covers(self, view: tuple[float, float, float, float]) -> bool:
+        """``view`` (x0, x1, y0, y1, degrees) lies within the image, to a pixel."""
+        x0, x1, y0, y1 = self.view
+        tx = (x1 - x0) / self.image.width()  # one pixel, in degrees
+        ty = (y1 - y0) / self.image.height()
+        return (
+            view[0] >= x0 - tx and view[1] <= x1 + tx and view[2] >= y0 - ty and view[3] <= y1 + ty
+        )
+
     def draw(self, p: QtGui.QPainter, item: pg.PlotCurveItem) -> bool:
         """Copy the image onto ``p`` if it shows ``item`` exactly as a stroke would;
         False (nothing painted) otherwise."""
@@ -85,13 +94,7 @@ class Sprite:
         if vb is None:
             return False
         shown = vb.viewRect()
-        tx, ty = (x1 - x0) / w, (y1 - y0) / h  # one pixel, in degrees
-        if (
-            shown.left() < x0 - tx
-            or shown.right() > x1 + tx
-            or shown.top() < y0 - ty
-            or shown.bottom() > y1 + ty
-        ):
+        if not self.covers((shown.left(), shown.right(), shown.top(), shown.bottom())):
             return False  # panned beyond the image: stroke until a new one is made
         corner = t.map(QtCore.QPointF(x0, y1))
         p.save()

@@ -40,6 +40,18 @@ def make_points(n_points: int, n_tracks: int, seed: int = 0) -> pd.DataFrame:
     )
 
 
+def best_of(fn, repeat: int):
+    """Best wall and best CPU time (s) of ``repeat`` calls of ``fn``, and its last result."""
+    wall = cpu = np.inf
+    result = None
+    for _ in range(repeat):
+        t, c = time.perf_counter(), time.process_time()
+        result = fn()
+        wall = min(wall, time.perf_counter() - t)
+        cpu = min(cpu, time.process_time() - c)
+    return wall, cpu, result
+
+
 def loop_factor(x: np.ndarray, y: np.ndarray, p: int) -> np.ndarray:
     n = len(x)
     out = np.full(n, np.nan)
@@ -127,24 +139,14 @@ def main() -> None:
         f"{len(df):,} points in {args.tracks:,} tracks, p = {params.window_p}, n = {params.radius_n}"
     )
 
-    best_full = cpu_full = np.inf
-    for _ in range(args.repeat):
-        t, c = time.perf_counter(), time.process_time()
-        result = detect(df, params)
-        best_full = min(best_full, time.perf_counter() - t)
-        cpu_full = min(cpu_full, time.process_time() - c)
+    best_full, cpu_full, result = best_of(lambda: detect(df, params), args.repeat)
     print(
         f"detect() end to end (sort, projection, factor, max filter): {best_full:.2f} s, "
         f"{len(df) / best_full / 1e6:.1f} M points/s (CPU {cpu_full:.2f} s, "
         f"{len(df) / cpu_full / 1e6:.1f} M points/s), {int(result.is_maneuver.sum()):,} maneuvers"
     )
     in_order = result.points  # sorted and remembered: what a pipeline step hands on
-    best_sorted = cpu_sorted = np.inf
-    for _ in range(args.repeat):
-        t, c = time.perf_counter(), time.process_time()
-        detect(in_order, params)
-        best_sorted = min(best_sorted, time.perf_counter() - t)
-        cpu_sorted = min(cpu_sorted, time.process_time() - c)
+    best_sorted, cpu_sorted, _ = best_of(lambda: detect(in_order, params), args.repeat)
     print(
         f"detect() on the table in track order: {best_sorted:.2f} s, "
         f"{len(df) / best_sorted / 1e6:.1f} M points/s (CPU {cpu_sorted:.2f} s, "
@@ -152,11 +154,7 @@ def main() -> None:
     )
 
     paper = ManeuverParams.paper()
-    best_paper = np.inf
-    for _ in range(args.repeat):
-        t = time.perf_counter()
-        detect(df, paper)
-        best_paper = min(best_paper, time.perf_counter() - t)
+    best_paper, _, _ = best_of(lambda: detect(df, paper), args.repeat)
     print(
         f"detect() with ManeuverParams.paper() (one scale, no speed/rest/noise tests): "
         f"{best_paper:.2f} s, {len(df) / best_paper / 1e6:.1f} M points/s; defaults cost "
@@ -167,11 +165,7 @@ def main() -> None:
 
     pts, index = result.points, result.index
     x, y = local_xy(pts, index)
-    best_core = np.inf
-    for _ in range(args.repeat):
-        t = time.perf_counter()
-        maneuver_factor(x, y, index, params.window_p)
-        best_core = min(best_core, time.perf_counter() - t)
+    best_core, _, _ = best_of(lambda: maneuver_factor(x, y, index, params.window_p), args.repeat)
     print(
         f"maneuver factor alone (projected input): {best_core:.2f} s, {len(df) / best_core / 1e6:.1f} M points/s"
     )

@@ -43,7 +43,7 @@ from wakeline.core.compress import (
 )
 from wakeline.core.maneuver import ManeuverParams, detect
 from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import local_xy, sorted_with_index
+from wakeline.core.tracks import local_xy, sorted_with_index, track_seconds
 
 
 def _vertical_dp(t: np.ndarray, c: np.ndarray, tol: float) -> np.ndarray:
@@ -75,7 +75,7 @@ def truth_turns(
     """Turn spans of accurate (GNSS) tracks: batch, start_s, end_s, change_deg."""
     pts, index = sorted_with_index(truth)
     x, y = local_xy(pts, index)
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)  # remembered with the order: not derived again
     rows = []
     for k, (a, b) in enumerate(zip(index.starts, index.ends, strict=True)):  # per track
         if b - a < 3:
@@ -127,7 +127,7 @@ def gnss_faults(truth: pd.DataFrame, fault_m: float = 0.5, window_s: float = 2.0
     percentile of this excess), and one jump of 3.2 m in 0.12 s (scenario 6, target 1)."""
     pts, index = sorted_with_index(truth)
     x, y = local_xy(pts, index)
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)  # remembered with the order: not derived again
     rows = []
     for k, (a, b) in enumerate(zip(index.starts, index.ends, strict=True)):  # per track
         if b - a < 3:
@@ -199,7 +199,7 @@ def score_turns(
 def _speed_either_side_kn(pts: pd.DataFrame, index) -> np.ndarray:
     """Speed over the legs before and after each point (from positions), knots."""
     x, y = local_xy(pts, index)
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     tr = index.track_of_row
     v = np.full(len(pts), np.nan)
     if len(pts) > 2:
