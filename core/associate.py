@@ -25,7 +25,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import seconds_to_time, time_seconds
-from wakeline.core.segments import Segments, ecef, segment_stats
+from wakeline.core.segments import Segments, chain_refit, ecef, segment_stats
 from wakeline.core.tracks import concat_ranges
 
 SEGMENT_METHODS = ("motion", "area", "dtw", "hausdorff")
@@ -106,6 +106,15 @@ class LinkParams(Params):
         "start for the old end, another end for the new start), not claimed more cheaply "
         "by someone else, costs less than this much more",
         0.0,
+    )
+    chain_passes: int = param(
+        1,
+        "",
+        "chain evidence: after an assignment, refit the ends of pieces shorter than "
+        "end_points over the chain they were joined into (a single fix borrows its "
+        "neighbours' motion) and assign again, this many times; 0: pair by pair only",
+        0,
+        5,
     )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
@@ -264,9 +273,16 @@ def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
     i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     keep = dist <= v * gap + params.position_tol_m
-    i, j, gap, dist = i[keep], j[keep], gap[keep], dist[keep]
+    i, j = i[keep], j[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
-    i, j, gap, dist = i[order], j[order], gap[order], dist[order]
+    return pair_features(seg, i[order], j[order])
+
+
+def pair_features(seg: Segments, i: np.ndarray, j: np.ndarray) -> Pairs:
+    """The features of the pairs (old ``i`` → new ``j``) of ``seg``: gap, end-to-start
+    distance, dead-reckoning miss, course and speed differences."""
+    gap = seg.t0[j] - seg.t1[i]
+    dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
     miss = _miss_one_turn(
         px, py, seg.vx1[i] * gap, seg.vy1[i] * gap, seg.vx0[j] * gap, seg.vy0[j] * gap
@@ -606,6 +622,13 @@ def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndar
     return label[leader[comp]]
 
 
+def _assign_scaled(seg: Segments, pairs: Pairs, cost: np.ndarray, params: LinkParams, assign):
+    """Assignment with the loose-end price, the short-piece rule and the margin test."""
+    chosen = assign(pairs.i, pairs.j, cost, params.gate, params.no_join)
+    chosen = insert_skipped(seg, pairs, cost, chosen, min(params.gate, params.no_join))
+    return margin_test(seg, pairs, cost, chosen, params.margin)
+
+
 def associate_interrupted(
     points: pd.DataFrame,
     params: LinkParams | None = None,
@@ -632,9 +655,18 @@ def associate_interrupted(
     if normalize == "minmax":  # seed 003 as written: a gate, no loose-end price, no margin
         chosen = assign(pairs.i, pairs.j, cost, params.gate)
     else:
-        chosen = assign(pairs.i, pairs.j, cost, params.gate, params.no_join)
-        chosen = insert_skipped(seg, pairs, cost, chosen, min(params.gate, params.no_join))
-        chosen = margin_test(seg, pairs, cost, chosen, params.margin)
+        chosen = _assign_scaled(seg, pairs, cost, params, assign)
+        base = seg
+        for _ in range(params.chain_passes):
+            chain = components(len(base), pairs.i[chosen], pairs.j[chosen])
+            seg, changed = chain_refit(
+                base, chain, params.end_points, params.accel_ms2, params.drift_ms
+            )
+            if not changed.any():
+                break
+            pairs = pair_features(seg, pairs.i, pairs.j)
+            cost = pair_cost(pairs, params, normalize, seg)
+            chosen = _assign_scaled(seg, pairs, cost, params, assign)
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
     progress(1.0, f"{len(chosen):,} pairs joined")
     return Association(seg, pairs, cost, chosen, targets, method)

@@ -56,6 +56,10 @@ class Segments:
     vel_sd1: np.ndarray = None  # type: ignore[assignment]
     motion0: np.ndarray = None  # type: ignore[assignment]
     motion1: np.ndarray = None  # type: ignore[assignment]
+    #: Position noise (m, per axis) behind ``pos_sd*``: the end's own fit residuals, or
+    #: its sensor's median where the end has too few points.
+    noise0: np.ndarray = None  # type: ignore[assignment]
+    noise1: np.ndarray = None  # type: ignore[assignment]
 
     def __len__(self) -> int:
         return len(self.t0)
@@ -241,7 +245,86 @@ def segment_stats(
         vel_sd1=vel_sd1,
         motion0=motion0,
         motion1=motion1,
+        noise0=res0,
+        noise1=res1,
     )
+
+
+def chain_refit(
+    seg: Segments,
+    chain: np.ndarray,
+    end_points: int = 10,
+    accel_ms2: float = 0.0,
+    drift_ms: float = np.inf,
+) -> tuple[Segments, np.ndarray]:
+    """``seg`` with the ends of short pieces refitted over the chain each piece sits in.
+
+    ``chain`` labels every track with its chain (tracks joined one after another, no two
+    of a chain overlapping in time). A piece's end is fitted on the last ``end_points``
+    fixes of its chain up to and including that end (its own and its predecessors'), its
+    start on the first ``end_points`` fixes from it on (its own and its successors'): a
+    single fix borrows the motion of its neighbours, and two fixes 460 m apart in noise
+    get the steadier velocity of the longer track they continue. The position noise of
+    the refitted end is the larger of the piece's own and the chain fit's residuals (a
+    chain that is no straight line says so). An end is replaced only where the chain fit
+    knows its velocity better (smaller ``vel_sd``) than the piece's own fit: long pieces
+    and reported (AIS) motion keep theirs. Motion borrowed across gaps is trusted less
+    the farther it reaches: ``accel_ms2`` × the time the fit spans beyond the piece (at
+    most ``drift_ms``) is added to its velocity error.
+
+    Returns the new summaries and, per track, whether either end was refitted.
+    """
+    from dataclasses import replace
+
+    pts, index = seg.points, seg.index
+    k = max(int(end_points), 1)
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    t = time_seconds(pts["time"])
+    row_chain = np.asarray(chain)[index.track_of_row]
+    order = np.lexsort((np.arange(len(t)), t, row_chain))
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    lon, lat, t, c_sorted = lon[order], lat[order], t[order], row_chain[order]
+    lo = np.searchsorted(c_sorted, chain, side="left")
+    hi = np.searchsorted(c_sorted, chain, side="right")
+    a0 = rank[index.starts]
+    a1 = rank[index.ends - 1]
+    offs = np.arange(k)
+    tail = a1[:, None] - offs
+    valid1 = tail >= lo[:, None]
+    tail = np.maximum(tail, lo[:, None])
+    head = a0[:, None] + offs
+    valid0 = head < hi[:, None]
+    head = np.minimum(head, hi[:, None] - 1)
+    out = {}
+    changed = np.zeros(len(seg), dtype=bool)
+    for end, rows, valid, anchor in (("0", head, valid0, a0), ("1", tail, valid1, a1)):
+        flon, flat, bx, by, resid, pf, vf = _end_fit(lon, lat, t, rows, valid, anchor)
+        own = getattr(seg, f"noise{end}")
+        noise = np.fmax(own, resid)
+        # Motion borrowed across a gap holds only as well as the ship kept it: the time
+        # the fit reaches beyond the piece adds accel × time (at most drift) of error.
+        t_far = np.where(valid, t[rows], t[anchor][:, None])
+        reach = np.abs(t_far - t[anchor][:, None]).max(axis=1)
+        own_span = seg.t1 - seg.t0
+        borrowed = np.minimum(accel_ms2 * np.maximum(reach - own_span, 0.0), drift_ms)
+        with np.errstate(invalid="ignore"):
+            vel_sd = np.where(np.isfinite(vf), np.hypot(noise * vf, borrowed), np.inf)
+        better = vel_sd < getattr(seg, f"vel_sd{end}")
+        changed |= better
+        new = {
+            f"lon{end}": flon,
+            f"lat{end}": flat,
+            f"vx{end}": bx,
+            f"vy{end}": by,
+            f"pos_sd{end}": noise * pf,
+            f"vel_sd{end}": vel_sd,
+            f"motion{end}": np.ones(len(seg), dtype=bool),
+            f"noise{end}": noise,
+        }
+        out.update({f: np.where(better, v, getattr(seg, f)) for f, v in new.items()})
+    return replace(seg, **out), changed
 
 
 def ecef(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:

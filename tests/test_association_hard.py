@@ -15,7 +15,7 @@ from wakeline.core.evaluate_association import (
     score_association,
 )
 from wakeline.core.fuse import FuseParams, associate_sensors
-from wakeline.core.segments import segment_stats
+from wakeline.core.segments import chain_refit, segment_stats
 from wakeline.core.transform import BsplineParams, bspline_segments, knot_vector
 
 
@@ -190,3 +190,54 @@ def test_real_evaluation_reports_the_mtad_halves_apart(tmp_path):
     assert "MTAD tuning half (Scene-0.csv, Scene-6.csv)" in text
     assert "held-out half" not in text  # one file of that half: no mean printed
     assert "wrong_skip" in text and "miss_left_loose" in text
+
+
+def _lane(name, y, seed):
+    """A ship sailing east at 6 m/s at north offset ``y``: a long piece, two single fixes
+    200 s apart, a long piece (10 m noise)."""
+    parts = [
+        straight(f"{name}1", 0, 600, course=90.0, start=(0, y), truth=name),
+        straight(f"{name}s1", 800, 800, course=90.0, start=(0, y), truth=name),
+        straight(f"{name}s2", 1000, 1000, course=90.0, start=(0, y), truth=name),
+        straight(f"{name}2", 1200, 1800, course=90.0, start=(0, y), truth=name),
+    ]
+    return noisy(pd.concat(parts), 10.0, seed)
+
+
+def test_chain_evidence_threads_single_fixes_of_two_neighbouring_ships():
+    # Two ships 1.2 km apart each leave two single fixes between their long pieces. Pair
+    # by pair, a single fix to a single fix has no motion on either side (all four such
+    # pairs cost the same): the margin test refuses the tie or the solver crosses them.
+    # With the chain pass each single fix borrows the motion of the piece it was joined
+    # to, and only the true pairs stay cheap.
+    missed = 0
+    for seed in range(3):
+        df = pd.concat([_lane("A", 0.0, seed), _lane("B", 1200.0, seed + 10)])
+        chained = score_association(associate_interrupted(df))
+        assert chained["p_ca"] == 1.0 and chained["p_fa"] == 0.0
+        single = score_association(associate_interrupted(df, LinkParams(chain_passes=0)))
+        missed += single["p_ca"] < 1.0
+    assert missed == 3
+
+
+def test_chain_refit_borrows_motion_only_where_it_is_better():
+    df = pd.concat([_lane("A", 0.0, 0), noisy(straight("L", 0, 1800, start=(0, 5000)), 10.0, 1)])
+    seg = segment_stats(df)
+    names = seg.index.keys["batch"].tolist()
+    k = {b: names.index(b) for b in names}
+    chain = np.arange(len(seg))
+    for b in ("As1", "As2", "A2"):
+        chain[k[b]] = chain[k["A1"]]
+    new, changed = chain_refit(seg, chain, 10, accel_ms2=0.001, drift_ms=1.0)
+    # The single fixes had no motion; now they carry the lane's 6 m/s east at both ends
+    # (the end from their predecessors, the start from their successors).
+    assert not seg.motion1[k["As1"]] and not seg.motion0[k["As2"]]
+    for b in ("As1", "As2"):
+        for vx, vy in ((new.vx0, new.vy0), (new.vx1, new.vy1)):
+            assert abs(vx[k[b]] - 6.0) < 0.5 and abs(vy[k[b]]) < 0.5
+    # Long pieces, and a track in a chain of its own, keep their own fits.
+    assert changed[k["As1"]] and changed[k["As2"]]
+    assert not changed[k["L"]] and new.vx1[k["L"]] == seg.vx1[k["L"]]
+    assert new.vx1[k["A1"]] == seg.vx1[k["A1"]] and new.vx0[k["A2"]] == seg.vx0[k["A2"]]
+    # Borrowed motion is trusted less than the lane's own: its error grows with the gap.
+    assert new.vel_sd1[k["As1"]] > seg.vel_sd1[k["A1"]]
