@@ -662,10 +662,19 @@ def associate_interrupted(
             seg, changed = chain_refit(
                 base, chain, params.end_points, params.accel_ms2, params.drift_ms
             )
-            if not changed.any():
+            touched = changed[pairs.i] | changed[pairs.j]
+            if not touched.any():
                 break
-            pairs = pair_features(seg, pairs.i, pairs.j)
-            cost = pair_cost(pairs, params, normalize, seg)
+            # Only pairs with a refitted end change their features and cost.
+            new = pair_features(seg, pairs.i[touched], pairs.j[touched])
+            fields = {}
+            for f in Pairs.__dataclass_fields__:
+                v = getattr(pairs, f).copy()
+                v[touched] = getattr(new, f)
+                fields[f] = v
+            pairs = Pairs(**fields)
+            cost = cost.copy()
+            cost[touched] = pair_cost(new, params, normalize, seg)
             chosen = _assign_scaled(seg, pairs, cost, params, assign)
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
     progress(1.0, f"{len(chosen):,} pairs joined")

@@ -278,41 +278,58 @@ def chain_refit(
 
     pts, index = seg.points, seg.index
     k = max(int(end_points), 1)
+    n = len(seg)
+    chain = np.asarray(chain)
+    # The chains laid end to end, without moving a row: pieces in (chain, start) order,
+    # ``off`` the place of each piece's first fix in that virtual sequence.
+    porder = np.lexsort((seg.t0, chain))
+    place = np.empty(n, dtype="int64")
+    place[porder] = np.arange(n)
+    off = np.concatenate([[0], np.cumsum(index.sizes[porder])])
+    c_sorted = chain[porder]
+    lo = off[np.searchsorted(c_sorted, chain, side="left")]
+    hi = off[np.searchsorted(c_sorted, chain, side="right")]
+    first = off[place]
+    last = first + index.sizes - 1
+    # Only a piece shorter than the fit in a chain of several can change.
+    short = np.flatnonzero((index.sizes < k) & (hi - lo > index.sizes))
+    changed = np.zeros(n, dtype=bool)
+    if len(short) == 0:
+        return seg, changed
+
+    def row(v: np.ndarray) -> np.ndarray:
+        q = np.searchsorted(off, v, side="right") - 1
+        return index.starts[porder[q]] + (v - off[q])
+
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
     t = time_seconds(pts["time"])
-    row_chain = np.asarray(chain)[index.track_of_row]
-    order = np.lexsort((np.arange(len(t)), t, row_chain))
-    rank = np.empty_like(order)
-    rank[order] = np.arange(len(order))
-    lon, lat, t, c_sorted = lon[order], lat[order], t[order], row_chain[order]
-    lo = np.searchsorted(c_sorted, chain, side="left")
-    hi = np.searchsorted(c_sorted, chain, side="right")
-    a0 = rank[index.starts]
-    a1 = rank[index.ends - 1]
     offs = np.arange(k)
-    tail = a1[:, None] - offs
-    valid1 = tail >= lo[:, None]
-    tail = np.maximum(tail, lo[:, None])
-    head = a0[:, None] + offs
-    valid0 = head < hi[:, None]
-    head = np.minimum(head, hi[:, None] - 1)
+    lo_s, hi_s = lo[short][:, None], hi[short][:, None]
+    tail = last[short][:, None] - offs
+    valid1 = tail >= lo_s
+    head = first[short][:, None] + offs
+    valid0 = head < hi_s
+    blocks = (
+        ("0", row(np.minimum(head, hi_s - 1)), valid0, index.starts[short]),
+        ("1", row(np.maximum(tail, lo_s)), valid1, index.ends[short] - 1),
+    )
+    own_span = seg.t1[short] - seg.t0[short]
     out = {}
-    changed = np.zeros(len(seg), dtype=bool)
-    for end, rows, valid, anchor in (("0", head, valid0, a0), ("1", tail, valid1, a1)):
+    for end, rows, valid, anchor in blocks:
         flon, flat, bx, by, resid, pf, vf = _end_fit(lon, lat, t, rows, valid, anchor)
-        own = getattr(seg, f"noise{end}")
+        own = getattr(seg, f"noise{end}")[short]
         noise = np.fmax(own, resid)
         # Motion borrowed across a gap holds only as well as the ship kept it: the time
         # the fit reaches beyond the piece adds accel × time (at most drift) of error.
         t_far = np.where(valid, t[rows], t[anchor][:, None])
         reach = np.abs(t_far - t[anchor][:, None]).max(axis=1)
-        own_span = seg.t1 - seg.t0
         borrowed = np.minimum(accel_ms2 * np.maximum(reach - own_span, 0.0), drift_ms)
         with np.errstate(invalid="ignore"):
             vel_sd = np.where(np.isfinite(vf), np.hypot(noise * vf, borrowed), np.inf)
-        better = vel_sd < getattr(seg, f"vel_sd{end}")
-        changed |= better
+        better = vel_sd < getattr(seg, f"vel_sd{end}")[short]
+        take = short[better]
+        changed[take] = True
         new = {
             f"lon{end}": flon,
             f"lat{end}": flat,
@@ -320,10 +337,13 @@ def chain_refit(
             f"vy{end}": by,
             f"pos_sd{end}": noise * pf,
             f"vel_sd{end}": vel_sd,
-            f"motion{end}": np.ones(len(seg), dtype=bool),
+            f"motion{end}": np.ones(len(short), dtype=bool),
             f"noise{end}": noise,
         }
-        out.update({f: np.where(better, v, getattr(seg, f)) for f, v in new.items()})
+        for f, v in new.items():
+            col = getattr(seg, f).copy()
+            col[take] = v[better]
+            out[f] = col
     return replace(seg, **out), changed
 
 
