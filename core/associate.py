@@ -657,15 +657,18 @@ def associate_interrupted(
     else:
         chosen = _assign_scaled(seg, pairs, cost, params, assign)
         base = seg
+        before = np.zeros(len(base), dtype=bool)  # refitted in the previous pass
         for _ in range(params.chain_passes):
             chain = components(len(base), pairs.i[chosen], pairs.j[chosen])
             seg, changed = chain_refit(
                 base, chain, params.end_points, params.accel_ms2, params.drift_ms
             )
-            touched = changed[pairs.i] | changed[pairs.j]
+            moved = changed | before
+            before = changed
+            touched = moved[pairs.i] | moved[pairs.j]
             if not touched.any():
                 break
-            # Only pairs with a refitted end change their features and cost.
+            # Only pairs with an end refitted now or in the previous pass change.
             new = pair_features(seg, pairs.i[touched], pairs.j[touched])
             fields = {}
             for f in Pairs.__dataclass_fields__:

@@ -7,7 +7,13 @@ from test_associate import straight, track
 
 from wakeline.app.cli import main
 from wakeline.core import geo, simulate
-from wakeline.core.associate import LinkParams, associate_interrupted, stitch
+from wakeline.core.associate import (
+    LinkParams,
+    associate_interrupted,
+    pair_cost,
+    pair_features,
+    stitch,
+)
 from wakeline.core.errors import InputError
 from wakeline.core.evaluate_association import (
     error_breakdown,
@@ -241,3 +247,16 @@ def test_chain_refit_borrows_motion_only_where_it_is_better():
     assert new.vx1[k["A1"]] == seg.vx1[k["A1"]] and new.vx0[k["A2"]] == seg.vx0[k["A2"]]
     # Borrowed motion is trusted less than the lane's own: its error grows with the gap.
     assert new.vel_sd1[k["As1"]] > seg.vel_sd1[k["A1"]]
+
+
+def test_chain_passes_keep_every_pair_priced_on_the_summaries_returned():
+    # Only the pairs touching a refitted piece are re-priced; whatever the number of
+    # passes, every pair's features and cost must be those of the final summaries.
+    df = pd.concat([_lane("A", 0.0, 3), _lane("B", 1200.0, 4), _lane("C", 2500.0, 5)])
+    for passes in (1, 2, 3):
+        params = LinkParams(chain_passes=passes)
+        a = associate_interrupted(df, params)
+        fresh = pair_features(a.segments, a.pairs.i, a.pairs.j)
+        for f in ("gap_s", "dist_m", "miss_m", "dcourse_deg", "dspeed_kn"):
+            np.testing.assert_allclose(getattr(a.pairs, f), getattr(fresh, f))
+        np.testing.assert_allclose(a.cost, pair_cost(fresh, params, "scaled", a.segments))

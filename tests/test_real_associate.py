@@ -4,10 +4,11 @@ Tracks are cut at their real gaps and the pieces renumbered at random, so the ba
 leak nothing; the old ids are the truth.
 """
 
+import numpy as np
 import pandas as pd
 
 from conftest import real_file
-from wakeline.core.associate import LinkParams, associate_interrupted
+from wakeline.core.associate import LinkParams, associate_interrupted, pair_cost, pair_features
 from wakeline.core.evaluate_association import cut_at_gaps, score_association
 from wakeline.core.io import read_points
 
@@ -75,3 +76,19 @@ def test_atd_tracks_cut_at_real_gaps():
     # design (see docs/evaluation.md). Measured P_CA 0.11, P_FA 0.66 (v1's fixed
     # tolerance: 0.23 / 0.78): most ends are left loose rather than joined wrongly.
     assert sc["p_ca"] > 0.05 and sc["p_fa"] < 0.75
+
+
+def test_mtad_chain_passes_reprice_every_pair_whose_ends_moved():
+    # Scene 35 (a third of its pieces single fixes): a second pass refits a different set
+    # of pieces than the first, and the pairs of pieces refitted only by the first must
+    # be priced again too. Every pair must carry the features of the summaries returned.
+    df = read_points(real_file("mtad-dtwcm", "original", "Scene-35.csv")).points
+    df["truth"] = df["batch"].str.split("-").str[0]
+    df = cut_at_gaps(df, min_gap_s=120.0)
+    for passes in (2, 3):
+        params = LinkParams(chain_passes=passes)
+        a = associate_interrupted(df, params)
+        fresh = pair_features(a.segments, a.pairs.i, a.pairs.j)
+        np.testing.assert_allclose(a.pairs.miss_m, fresh.miss_m)
+        np.testing.assert_allclose(a.pairs.dist_m, fresh.dist_m)
+        np.testing.assert_allclose(a.cost, pair_cost(fresh, params, "scaled", a.segments))
