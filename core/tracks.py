@@ -50,15 +50,61 @@ def _key_codes(df: pd.DataFrame, sort: bool = True) -> tuple[np.ndarray, np.ndar
 
 
 def _factorized(df: pd.DataFrame, sort: bool = True) -> tuple:
-    """Codes of sensor and batch (int64) and their distinct values."""
-    sensor_codes, sensor_uniques = pd.factorize(df["sensor"], sort=sort, use_na_sentinel=False)
-    batch_codes, batch_uniques = pd.factorize(df["batch"], sort=sort, use_na_sentinel=False)
-    return (
-        sensor_codes.astype("int64"),
-        batch_codes.astype("int64"),
-        sensor_uniques,
-        batch_uniques,
-    )
+    """Codes of sensor and batch (int64) and their distinct values (in text order with
+    ``sort``)."""
+    sensor_codes, sensor_uniques = _factorize(df["sensor"], sort)
+    batch_codes, batch_uniques = _factorize(df["batch"], sort)
+    return sensor_codes, batch_codes, sensor_uniques, batch_uniques
+
+
+def _factorize(col: pd.Series, sort: bool) -> tuple[np.ndarray, object]:
+    """``pd.factorize(col, sort=sort)`` (int64 codes), faster for Arrow text of integers."""
+    fast = _integer_text_codes(col) if sort else None
+    if fast is not None:
+        return fast
+    codes, uniques = pd.factorize(col, sort=sort, use_na_sentinel=False)
+    return codes.astype("int64"), uniques
+
+
+def _integer_text_codes(col: pd.Series) -> tuple[np.ndarray, object] | None:
+    """Sorted factorization of Arrow text holding plain integers ("0", "17", "-3": no
+    sign, spaces or leading zeros a round trip would change), or None.
+
+    Radar batch numbers and MMSIs are such text. Parsing them is linear and a lookup on the
+    integer replaces a hash of millions of strings (which misses the cache once there are
+    ~10⁵ distinct values); the few distinct values are then put in text order. The codes
+    and values are those of ``pd.factorize(col, sort=True)``."""
+    arr = _arrow_text(col)
+    if arr is None or len(col) == 0:
+        return None
+    sample = arr.take(pa.array(np.linspace(0, len(arr) - 1, 64).astype("int64")))
+    if not pc.all(pc.match_substring_regex(sample, r"^-?[0-9]+$")).as_py():
+        return None  # a failed cast of millions of rows takes seconds: look at a few first
+    try:
+        ints = pc.cast(arr, pa.int64())
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+        return None
+    v = ints.to_numpy()
+    lo, hi = int(v.min()), int(v.max())
+    if hi - lo <= 4 * len(v):  # a table over the range of values
+        present = np.zeros(hi - lo + 1, dtype=bool)
+        present[v - lo] = True
+        values = np.flatnonzero(present) + lo
+        codes = (np.cumsum(present) - 1)[v - lo]
+    else:
+        values, codes = np.unique(v, return_inverse=True)
+    text = pa.array(values).cast(pa.string())  # the plain text of each distinct value
+    # every row's text must be its value's plain text: same length is enough, as the cast
+    # accepts no spaces and a sign or leading zero makes it longer
+    plain_length = pc.binary_length(text).to_numpy().astype("int64")
+    if not np.array_equal(pc.binary_length(arr).to_numpy().astype("int64"), plain_length[codes]):
+        return None
+    text = pa.array(values).cast(pa.string())
+    order = pc.sort_indices(text).to_numpy()  # text order: "10" < "9"
+    new_code = np.empty(len(order), dtype="int64")
+    new_code[order] = np.arange(len(order))
+    uniques = pd.array(text.take(pa.array(order)).cast(arr.type), dtype=col.dtype)
+    return new_code[codes].astype("int64"), uniques
 
 
 #: Tables known to be in track order: id → (weak reference, fingerprint, index, seconds).
@@ -123,9 +169,10 @@ def _arrow_text(col: pd.Series) -> pa.ChunkedArray | None:
     return arr._pa_array
 
 
-def _change_if_ordered(df: pd.DataFrame, t: np.ndarray) -> np.ndarray | None:
-    """Per row, True where a new track starts — when the table is already ordered by
-    sensor, batch (as text) and time; None when it is not (or keys are not plain text).
+def _key_runs(df: pd.DataFrame, t: np.ndarray) -> tuple[np.ndarray, bool] | None:
+    """Per row, True where a new run of equal (sensor, batch) starts, and whether the table
+    is already ordered by sensor, batch (as text) and time; None when the keys are not
+    plain text or some run is not in time order (then only a full sort will do).
 
     Arrow compares neighbouring texts byte-wise (UTF-8 order is code-point order, the
     order of a sort by text), so no factorization of 10 M strings is needed."""
@@ -135,19 +182,54 @@ def _change_if_ordered(df: pd.DataFrame, t: np.ndarray) -> np.ndarray | None:
     n = len(df)
     s0, s1 = sensor.slice(0, n - 1), sensor.slice(1)
     b0, b1 = batch.slice(0, n - 1), batch.slice(1)
-    s_lt = pc.less(s1, s0)
-    if pc.any(s_lt).as_py():
-        return None
     s_eq = pc.equal(s1, s0).to_numpy()
-    b_eq = pc.equal(b1, b0).to_numpy()
-    b_lt = pc.less(b1, b0).to_numpy()
-    same = s_eq & b_eq
-    if np.any(s_eq & b_lt) or np.any(same & ~(np.diff(t) >= 0)):
+    same = s_eq & pc.equal(b1, b0).to_numpy()
+    if np.any(same & ~(np.diff(t) >= 0)):
         return None
     change = np.empty(n, dtype=bool)
     change[0] = True
     change[1:] = ~same
-    return change
+    ordered = not pc.any(pc.less(s1, s0)).as_py() and not np.any(s_eq & pc.less(b1, b0).to_numpy())
+    return change, ordered
+
+
+def _reorder_runs(
+    df: pd.DataFrame, change: np.ndarray
+) -> tuple[pd.DataFrame, "TrackIndex", np.ndarray] | None:
+    """The table in track order when every track is one run of rows in time order and
+    only the runs are out of order (batches numbered "0", "1", …, "10" in a file: not
+    text order): the runs are sorted, not the rows. None when a track is split over runs.
+    """
+    starts = np.flatnonzero(change)
+    if len(starts) * 8 > len(df):
+        return None  # short runs (a time-ordered export): tracks interleave, sort the rows
+    sizes = np.diff(np.append(starts, len(df)))
+    run_sensor = df["sensor"].iloc[starts].reset_index(drop=True)
+    run_batch = df["batch"].iloc[starts].reset_index(drop=True)
+    sensor_code, _ = pd.factorize(run_sensor, sort=True)
+    batch_code, _ = pd.factorize(run_batch, sort=True)
+    key = sensor_code.astype("int64") * (int(batch_code.max()) + 1) + batch_code
+    run_order = np.argsort(key, kind="stable")
+    if np.any(np.diff(key[run_order]) == 0):
+        return None  # a track in several runs: the rows must be sorted
+    sizes = sizes[run_order]
+    order = concat_ranges(starts[run_order], sizes)
+    run = np.repeat(np.arange(len(sizes)), sizes)
+    out = df.drop(columns=["sensor", "batch"]).iloc[order].reset_index(drop=True)
+    for name, values in sorted(
+        (("sensor", run_sensor), ("batch", run_batch)), key=lambda nv: df.columns.get_loc(nv[0])
+    ):
+        column = pd.Series(values.array.take(run_order).take(run), dtype=df[name].dtype)
+        out.insert(df.columns.get_loc(name), name, column)
+    new_starts = np.cumsum(sizes) - sizes
+    keys = pd.DataFrame(
+        {
+            "sensor": run_sensor.iloc[run_order].to_numpy(),
+            "batch": run_batch.iloc[run_order].to_numpy(),
+        }
+    ).astype("str")
+    index = TrackIndex(new_starts.astype("int64"), np.cumsum(sizes).astype("int64"), run, keys)
+    return out, index, order
 
 
 def sorted_with_index(df: pd.DataFrame) -> tuple[pd.DataFrame, "TrackIndex"]:
@@ -165,12 +247,18 @@ def sorted_with_index(df: pd.DataFrame) -> tuple[pd.DataFrame, "TrackIndex"]:
         return out, track_index(out)
     fresh = isinstance(df.index, pd.RangeIndex) and df.index.start == 0 and df.index.step == 1
     t = time_seconds(df["time"])
-    change = _change_if_ordered(df, t) if n > 1 else None
-    if change is not None:
+    runs = _key_runs(df, t) if n > 1 else None
+    if runs is not None and runs[1]:
         out = df if fresh else df.reset_index(drop=True)
-        index = _index_from_change(out, change)
+        index = _index_from_change(out, runs[0])
         _remember(out, index, t)
         return out, index
+    if runs is not None and df.columns.is_unique:
+        reordered = _reorder_runs(df, runs[0])
+        if reordered is not None:
+            out, index, order = reordered
+            _remember(out, index, t[order])
+            return out, index
     sensor, batch, sensor_uniques, batch_uniques = _factorized(df)
     track = sensor * (int(batch.max()) + 1) + batch
     if _is_sorted(track, t):
@@ -182,9 +270,31 @@ def sorted_with_index(df: pd.DataFrame) -> tuple[pd.DataFrame, "TrackIndex"]:
     out = _take_rows(
         df, order, {"sensor": (sensor, sensor_uniques), "batch": (batch, batch_uniques)}
     )
-    index = _index_from_codes(out, sensor[order], batch[order])
+    index = _index_from_track_codes(
+        track[order], int(batch.max()) + 1, keys=(sensor_uniques, batch_uniques)
+    )
     _remember(out, index, t[order])
     return out, index
+
+
+def _index_from_track_codes(track: np.ndarray, n_batch: int, keys: tuple) -> TrackIndex:
+    """The index of a sorted table from its track codes (``sensor * n_batch + batch``) and
+    the distinct sensor and batch values the codes point to."""
+    n = len(track)
+    change = np.empty(n, dtype=bool)
+    change[0] = True
+    np.not_equal(track[1:], track[:-1], out=change[1:])
+    starts = np.flatnonzero(change).astype("int64")
+    ends = np.append(starts[1:], n).astype("int64")
+    code = track[starts]
+    sensor_values, batch_values = keys
+    names = pd.DataFrame(
+        {
+            "sensor": np.asarray(sensor_values.take(code // n_batch), dtype=object),
+            "batch": np.asarray(batch_values.take(code % n_batch), dtype=object),
+        }
+    ).astype("str")
+    return TrackIndex(starts, ends, np.cumsum(change).astype("int64") - 1, names)
 
 
 def _take_rows(df: pd.DataFrame, order: np.ndarray, keys: dict[str, tuple]) -> pd.DataFrame:
@@ -207,7 +317,15 @@ def _is_sorted(track: np.ndarray, t: np.ndarray) -> bool:
 
 
 def _sort_order(track: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Stable order by (track, time): one int64 key (ms) when it fits, else a lexsort."""
+    """Stable order by (track, time).
+
+    When the rows of every track already come in time order (a time-ordered radar or AIS
+    export), a stable sort by track alone is that order: a radix sort on 16-bit digits of
+    the track code, linear in the rows. Otherwise one int64 key (ms) when it fits, else a
+    lexsort."""
+    order = _stable_code_order(track)
+    if order is not None and _is_sorted(track[order], t[order]):
+        return order
     t_ms = np.round((t - t.min()) * 1000.0)
     span = float(t_ms.max()) + 1.0
     if float(track.max() + 1) * span < 2**62:
@@ -215,6 +333,20 @@ def _sort_order(track: np.ndarray, t: np.ndarray) -> np.ndarray:
         if _is_sorted(track[order], t[order]):  # sub-millisecond ties could leave disorder
             return order
     return np.lexsort((t, track))
+
+
+def _stable_code_order(code: np.ndarray) -> np.ndarray | None:
+    """Stable argsort of non-negative integer codes below 2³², by one or two radix passes
+    on 16-bit digits (numpy sorts 16-bit integers by radix); None for larger codes."""
+    if not len(code):
+        return np.zeros(0, dtype="int64")
+    top = int(code.max())
+    if top < 2**16:
+        return np.argsort(code.astype("uint16"), kind="stable")
+    if top < 2**32:
+        low = np.argsort((code & 0xFFFF).astype("uint16"), kind="stable")
+        return low[np.argsort((code[low] >> 16).astype("uint16"), kind="stable")]
+    return None
 
 
 def sort_points(df: pd.DataFrame) -> pd.DataFrame:

@@ -2,6 +2,9 @@
 
 import numpy as np
 import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from wakeline.core import tracks
 from wakeline.core.tracks import known_order, sort_points, sorted_with_index, track_seconds
@@ -84,3 +87,103 @@ def test_sorting_rebuilds_text_keys_exactly():
     track = sensor * (int(batch.max()) + 1) + batch
     order = tracks._sort_order(track, tracks.time_seconds(df["time"]))
     pd.testing.assert_frame_equal(out, df.iloc[order].reset_index(drop=True), check_exact=True)
+
+
+def _reference(df: pd.DataFrame) -> pd.DataFrame:
+    """The order every path must give: sensor, batch (as text), time, then input order."""
+    k = df.assign(_row=np.arange(len(df)))
+    return (
+        k.sort_values(["sensor", "batch", "time", "_row"], kind="stable")
+        .drop(columns="_row")
+        .reset_index(drop=True)
+    )
+
+
+_BATCHES = ["0", "7", "9", "10", "100", "-3", "007", "+5", "b", "é", " 5", "12345678901"]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    batches=st.lists(st.sampled_from(_BATCHES), min_size=1, max_size=8, unique=True),
+    sizes=st.lists(st.integers(1, 40), min_size=1, max_size=8),
+    layout=st.sampled_from(["runs", "runs split", "time order", "shuffled"]),
+    seed=st.integers(0, 2**16),
+)
+def test_every_sort_path_gives_the_reference_order(batches, sizes, layout, seed):
+    """Contiguous runs out of text order (runs are sorted), a track split over two runs,
+    a time-ordered export (radix by track) and shuffled rows; integer-like batch text
+    (a lookup) and other text (a hash): all give the reference order and index."""
+    rng = np.random.default_rng(seed)
+    sizes = (sizes * len(batches))[: len(batches)]
+    batch = np.repeat(batches, sizes)
+    step = np.concatenate([np.arange(k) for k in sizes]) * 10
+    t = pd.Timestamp("2024-05-01", tz="UTC") + pd.to_timedelta(step, unit="s")
+    df = pd.DataFrame(
+        {
+            "sensor": pd.Series(
+                np.where(rng.random(len(batch)) < 0.2, "AIS", "R1")
+                if layout == "shuffled"
+                else "R1",
+                dtype="str",
+            ),
+            "batch": pd.Series(batch, dtype="str"),
+            "time": t,
+            "lon": rng.uniform(120, 121, len(batch)),
+            "lat": rng.uniform(30, 31, len(batch)),
+        }
+    )
+    if layout == "runs split" and len(df) > 2:
+        cut = len(df) // 2
+        df = pd.concat([df.iloc[cut:], df.iloc[:cut]]).reset_index(drop=True)
+    elif layout == "time order":
+        df = df.sort_values("time", kind="stable").reset_index(drop=True)
+    elif layout == "shuffled":
+        df = df.iloc[rng.permutation(len(df))].reset_index(drop=True)
+    tracks._IN_ORDER.clear()
+    out, index = sorted_with_index(df)
+    ref = _reference(df)
+    pd.testing.assert_frame_equal(out, ref, check_exact=True)
+    expected = _codes_index(ref)
+    np.testing.assert_array_equal(index.starts, expected.starts)
+    np.testing.assert_array_equal(index.ends, expected.ends)
+    np.testing.assert_array_equal(index.track_of_row, expected.track_of_row)
+    pd.testing.assert_frame_equal(index.keys, expected.keys)
+    np.testing.assert_array_equal(track_seconds(out), tracks.time_seconds(ref["time"]))
+
+
+@pytest.mark.parametrize(
+    "values",
+    [["0", "17", "-3", "17", "10", "9", "100"], ["12345678901", "5", "5"], ["3"] * 5],
+)
+def test_integer_text_is_factorized_as_pandas_does(values):
+    col = pd.Series(values, dtype="str")
+    codes, uniques = tracks._integer_text_codes(col)
+    ref_codes, ref_uniques = pd.factorize(col, sort=True)
+    np.testing.assert_array_equal(codes, ref_codes)
+    assert list(uniques) == list(ref_uniques)
+
+
+@pytest.mark.parametrize(
+    "values", [["007", "7"], ["-0", "0"], ["+5"], [" 5"], ["1e3"], ["a", "1"], ["1", None]]
+)
+def test_text_that_is_not_plain_integers_takes_the_hash(values):
+    assert tracks._integer_text_codes(pd.Series(values, dtype="str")) is None
+
+
+def test_contiguous_runs_are_reordered_not_sorted(monkeypatch):
+    """Batches "0".."11" each in one run: the runs are put in text order, no row sort."""
+    n = 12
+    df = pd.DataFrame(
+        {
+            "sensor": pd.Series(["R1"] * (n * 20), dtype="str"),
+            "batch": pd.Series(np.repeat([str(k) for k in range(n)], 20), dtype="str"),
+            "time": pd.Timestamp("2024-05-01", tz="UTC")
+            + pd.to_timedelta(np.tile(np.arange(20) * 10, n), unit="s"),
+            "lon": np.arange(n * 20.0),
+            "lat": np.zeros(n * 20),
+        }
+    )
+    monkeypatch.setattr(tracks, "_sort_order", None)  # a row sort would fail
+    out, index = sorted_with_index(df)
+    pd.testing.assert_frame_equal(out, _reference(df), check_exact=True)
+    assert list(index.keys["batch"][:4]) == ["0", "1", "10", "11"]
