@@ -210,7 +210,7 @@ def _detect(points: pd.DataFrame, params: dict, progress: Progress):
 
 
 def _factor_layer(res) -> pd.DataFrame:
-    pts = res.points.copy()
+    pts = res.points.copy(deep=False)  # copy-on-write: the new columns do not touch the input
     pts["maneuver_factor"] = res.factor
     pts["is_maneuver"] = res.is_maneuver
     return pts
