@@ -99,7 +99,6 @@ def _integer_text_codes(col: pd.Series) -> tuple[np.ndarray, object] | None:
     plain_length = pc.binary_length(text).to_numpy().astype("int64")
     if not np.array_equal(pc.binary_length(arr).to_numpy().astype("int64"), plain_length[codes]):
         return None
-    text = pa.array(values).cast(pa.string())
     order = pc.sort_indices(text).to_numpy()  # text order: "10" < "9"
     new_code = np.empty(len(order), dtype="int64")
     new_code[order] = np.arange(len(order))
@@ -221,14 +220,9 @@ def _reorder_runs(
     ):
         column = pd.Series(values.array.take(run_order).take(run), dtype=df[name].dtype)
         out.insert(df.columns.get_loc(name), name, column)
-    new_starts = np.cumsum(sizes) - sizes
-    keys = pd.DataFrame(
-        {
-            "sensor": run_sensor.iloc[run_order].to_numpy(),
-            "batch": run_batch.iloc[run_order].to_numpy(),
-        }
-    ).astype("str")
-    index = TrackIndex(new_starts.astype("int64"), np.cumsum(sizes).astype("int64"), run, keys)
+    change = np.zeros(len(df), dtype=bool)
+    change[np.cumsum(sizes) - sizes] = True
+    index = _index(change, run_sensor.iloc[run_order], run_batch.iloc[run_order])
     return out, index, order
 
 
@@ -280,21 +274,12 @@ def sorted_with_index(df: pd.DataFrame) -> tuple[pd.DataFrame, "TrackIndex"]:
 def _index_from_track_codes(track: np.ndarray, n_batch: int, keys: tuple) -> TrackIndex:
     """The index of a sorted table from its track codes (``sensor * n_batch + batch``) and
     the distinct sensor and batch values the codes point to."""
-    n = len(track)
-    change = np.empty(n, dtype=bool)
+    change = np.empty(len(track), dtype=bool)
     change[0] = True
     np.not_equal(track[1:], track[:-1], out=change[1:])
-    starts = np.flatnonzero(change).astype("int64")
-    ends = np.append(starts[1:], n).astype("int64")
-    code = track[starts]
+    code = track[change]
     sensor_values, batch_values = keys
-    names = pd.DataFrame(
-        {
-            "sensor": np.asarray(sensor_values.take(code // n_batch), dtype=object),
-            "batch": np.asarray(batch_values.take(code % n_batch), dtype=object),
-        }
-    ).astype("str")
-    return TrackIndex(starts, ends, np.cumsum(change).astype("int64") - 1, names)
+    return _index(change, sensor_values.take(code // n_batch), batch_values.take(code % n_batch))
 
 
 def _take_rows(df: pd.DataFrame, order: np.ndarray, keys: dict[str, tuple]) -> pd.DataFrame:
@@ -382,15 +367,17 @@ def _index_from_codes(
 
 
 def _index_from_change(df: pd.DataFrame, change: np.ndarray) -> TrackIndex:
-    n = len(df)
+    starts = np.flatnonzero(change)
+    return _index(change, df["sensor"].iloc[starts], df["batch"].iloc[starts])
+
+
+def _index(change: np.ndarray, sensor, batch) -> TrackIndex:
+    """The index of a sorted table from its track-start mask and each track's keys."""
     starts = np.flatnonzero(change).astype("int64")
-    ends = np.append(starts[1:], n).astype("int64")
+    ends = np.append(starts[1:], len(change)).astype("int64")
     track_of_row = np.cumsum(change).astype("int64") - 1
     keys = pd.DataFrame(
-        {
-            "sensor": df["sensor"].iloc[starts].to_numpy(),
-            "batch": df["batch"].iloc[starts].to_numpy(),
-        }
+        {"sensor": np.asarray(sensor, dtype=object), "batch": np.asarray(batch, dtype=object)}
     ).astype("str")
     return TrackIndex(starts, ends, track_of_row, keys)
 
