@@ -15,7 +15,7 @@ starts with a sweep on time (a k-d tree where the grid does not fit), filtered b
 and the speed needed to cover it. Everything per pair is vectorized; only the final assignment walks the sorted pairs.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -116,6 +116,22 @@ class LinkParams(Params):
         0,
         5,
     )
+    long_gap_s: float = param(
+        3600.0,
+        "s",
+        "second look: after the assignment, an old end and a new start both left loose are "
+        "joined across a gap longer than max_gap_s, up to this long, when each is the "
+        "other's cheapest candidate among all within reach (joined or not) by long_margin; "
+        "at most max_gap_s: off",
+        0.0,
+        86400.0 * 7,
+    )
+    long_margin: float = param(
+        0.25,
+        "",
+        "second look: how much cheaper than every rival of either piece a long-gap join must be",
+        0.0,
+    )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
     w1: float = param(
@@ -154,14 +170,27 @@ class Pairs:
     def __len__(self) -> int:
         return len(self.i)
 
+    def concat(self, other: "Pairs") -> "Pairs":
+        """These pairs followed by ``other``'s."""
+        return Pairs(*(np.concatenate([getattr(self, f), getattr(other, f)]) for f in _PAIR_FIELDS))
+
     def take(self, keep: np.ndarray) -> "Pairs":
         return Pairs(*(getattr(self, f)[keep] for f in self.__dataclass_fields__))
 
 
-def _grid_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarray] | None:
+_PAIR_FIELDS = ("i", "j", "gap_s", "dist_m", "miss_m", "dcourse_deg", "dspeed_kn")
+
+
+def _grid_pairs(
+    seg: Segments,
+    params: LinkParams,
+    ends: np.ndarray | None = None,
+    starts: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray] | None:
     """(end i, start j) of one sensor with ``t0[j] − t1[i]`` in (0, ``max_gap_s``] and the
     straight-line (chord) distance within ``v_max·gap + position_tol_m``, or None when the
-    grid's keys do not fit in 64 bits.
+    grid's keys do not fit in 64 bits. ``ends`` / ``starts``: masks of the tracks whose
+    end / start may take part (default all).
 
     Earth-centred positions are binned in cubes of side ``reach`` (the distance coverable
     in the longest gap): the starts reachable from an end lie in the 3×3×3 cubes about
@@ -170,7 +199,6 @@ def _grid_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarr
     expanded into pairs with ``np.repeat`` and cut to the reachability cone at once —
     no Python loop per track or per pair, work linear in the pairs looked at.
     """
-    n = len(seg)
     gmax = float(params.max_gap_s)
     v = params.v_max_kn * geo.KN_MS
     tol = params.position_tol_m
@@ -194,17 +222,24 @@ def _grid_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarr
     tmin = float(min(t0.min(), t1.min()))
     ks = key(cs)
     order = np.lexsort((t0, ks))
+    if starts is not None:
+        order = order[starts[order]]
+    n_s = len(order)
+    if n_s == 0:
+        return np.zeros(0, dtype="int64"), np.zeros(0, dtype="int64")
     cells, first = np.unique(ks[order], return_index=True)
     width = float(max(t0.max(), t1.max()) - tmin) + gmax + 10.0
     if len(cells) * width > 2.0**52 / 1e3:  # millisecond resolution of the sweep key
         return None
-    sweep = np.repeat(np.arange(len(cells)), np.diff(np.append(first, n))) * width + (
+    sweep = np.repeat(np.arange(len(cells)), np.diff(np.append(first, n_s))) * width + (
         t0[order] - tmin
     )
     # Ends in (cube, time) order too: the queries of each look-up come sorted and every
     # gather below walks both tables forwards (the cache decides the speed at 100 k).
     ke = key(ce)
     e_order = np.lexsort((t1, ke))
+    if ends is not None:
+        e_order = e_order[ends[e_order]]
     ke, ce_s, tq = ke[e_order], ce[e_order], t1[e_order] - tmin
     pe_s, ps_s, t0_s = pe[e_order], ps[order], t0[order]
     slack = 2e-3  # s: the sweep key's rounding; the exact gap test follows
@@ -251,9 +286,15 @@ def _tree_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarr
     return near["i"].astype("int64"), near["j"].astype("int64")
 
 
-def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
+def candidate_pairs(
+    seg: Segments,
+    params: LinkParams,
+    ends: np.ndarray | None = None,
+    starts: np.ndarray | None = None,
+) -> Pairs:
     """Pairs of one sensor with ``0 < start(j) − end(i) ≤ max_gap_s`` and reachable at
-    ``v_max_kn`` (+ ``position_tol_m``); features per pair, ordered by (i, j).
+    ``v_max_kn`` (+ ``position_tol_m``); features per pair, ordered by (i, j). ``ends`` /
+    ``starts``: masks of the tracks whose end / start may take part (default all).
 
     A reachable pair is at most ``reach = v·max_gap_s + position_tol_m`` apart, so
     :func:`_grid_pairs` finds them with a grid and a sweep on time (arrays end to end,
@@ -266,10 +307,14 @@ def candidate_pairs(seg: Segments, params: LinkParams) -> Pairs:
         e = np.zeros(0)
         return Pairs(e.astype("int64"), e.astype("int64"), e, e, e, e, e)
     v = params.v_max_kn * geo.KN_MS
-    found = _grid_pairs(seg, params)
+    found = _grid_pairs(seg, params, ends, starts)
     i, j = found if found is not None else _tree_pairs(seg, params)
     gap = seg.t0[j] - seg.t1[i]
     keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
+    if found is None and ends is not None:
+        keep &= ends[i]
+    if found is None and starts is not None:
+        keep &= starts[j]
     i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     keep = dist <= v * gap + params.position_tol_m
@@ -569,6 +614,34 @@ class Association:
     chosen: np.ndarray  # indices into ``pairs``
     target_of_track: np.ndarray  # per track: target label (str)
     method: str
+    #: What the assignment started from, so that it can run again without some pairs
+    #: (:meth:`without`): the summaries before any chain refit, the candidates of the
+    #: first pass and their costs, the parameters and the normalization.
+    base: Segments | None = None
+    base_pairs: Pairs | None = None
+    base_cost: np.ndarray | None = None
+    params: LinkParams | None = None
+    normalize: str = "scaled"
+
+    def without(self, blocked: np.ndarray) -> "Association":
+        """The association run again with the pairs ``blocked`` refused (int64 keys
+        ``i·n + j`` of track indices, old i → new j): the same candidates, costs,
+        chain passes and second look, so the remaining tracks may find other partners."""
+        if self.base is None or self.base_pairs is None or self.base_cost is None:
+            raise InputError("this association cannot be run again (no starting state kept)")
+        seg, pairs, cost, chosen = assign_interrupted(
+            self.base,
+            self.base_pairs,
+            self.base_cost,
+            self.params or LinkParams(),
+            self.method,
+            self.normalize,
+            blocked,
+        )
+        targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
+        return replace(
+            self, segments=seg, pairs=pairs, cost=cost, chosen=chosen, target_of_track=targets
+        )
 
     def points(self) -> pd.DataFrame:
         """Every input row (sorted by track and time) with a ``target`` column."""
@@ -629,6 +702,159 @@ def _assign_scaled(seg: Segments, pairs: Pairs, cost: np.ndarray, params: LinkPa
     return margin_test(seg, pairs, cost, chosen, params.margin)
 
 
+def _two_cheapest(owner: np.ndarray, cost: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per track (0..n−1): the index of its cheapest pair among those it ``owner``s (−1
+    when none) and the cost of its second cheapest (inf when none)."""
+    order = np.lexsort((cost, owner))
+    o = owner[order]
+    first = np.flatnonzero(np.r_[True, o[1:] != o[:-1]]) if len(o) else np.zeros(0, "int64")
+    best = np.full(n, -1, dtype="int64")
+    best[o[first]] = order[first]
+    second = np.full(n, np.inf)
+    nxt = first + 1
+    has = nxt < len(o)
+    has[has] = o[nxt[has]] == o[first[has]]
+    second[o[first[has]]] = cost[order[nxt[has]]]
+    return best, second
+
+
+def _blocked_cost(pairs: Pairs, cost: np.ndarray, n: int, blocked: np.ndarray | None):
+    if blocked is None or len(blocked) == 0 or len(pairs) == 0:
+        return cost
+    return np.where(np.isin(pairs.i * n + pairs.j, blocked), np.inf, cost)
+
+
+def long_gap_pass(
+    seg: Segments,
+    pairs: Pairs,
+    cost: np.ndarray,
+    chosen: np.ndarray,
+    params: LinkParams,
+    blocked: np.ndarray | None = None,
+) -> tuple[Pairs, np.ndarray, np.ndarray]:
+    """Second look across long gaps (``long_gap_s``): an old end and a new start that the
+    assignment left loose are joined across a gap in (``max_gap_s``, ``long_gap_s``] when
+    the pair costs at most the gate and ``no_join`` and is each one's cheapest candidate
+    among *all* candidates within ``long_gap_s`` — joined ones included — by at least
+    ``long_margin``. A ship that went silent for half an hour is found again when nothing
+    else could be it; in dense traffic, where a loose end has many rivals, it stays loose.
+
+    Returns the candidates with the accepted long pairs appended, their costs and the
+    chosen indices with the new ones added (mutually cheapest pairs never conflict).
+    """
+    n = len(seg)
+    if params.long_gap_s <= params.max_gap_s or n < 2:
+        return pairs, cost, chosen
+    free_end = np.ones(n, dtype=bool)
+    free_end[pairs.i[chosen]] = False
+    free_start = np.ones(n, dtype=bool)
+    free_start[pairs.j[chosen]] = False
+    if not (free_end.any() and free_start.any()):
+        return pairs, cost, chosen
+    wide = replace(params, max_gap_s=params.long_gap_s)
+    limit = min(params.gate, params.no_join)
+    m = params.long_margin
+
+    def mutual(cand: Pairs, c: np.ndarray, c_i: np.ndarray, c_j: np.ndarray) -> np.ndarray:
+        """Loose pairs beyond max_gap_s, each piece's cheapest by the margin (rivals of
+        the end priced ``c_i``, of the start ``c_j``)."""
+        best_i, second_i = _two_cheapest(cand.i, c_i, n)
+        best_j, second_j = _two_cheapest(cand.j, c_j, n)
+        k = np.arange(len(cand))
+        return (
+            free_end[cand.i]
+            & free_start[cand.j]
+            & (cand.gap_s > params.max_gap_s)
+            & (c <= limit)
+            & (best_i[cand.i] == k)
+            & (best_j[cand.j] == k)
+            & (second_i[cand.i] >= c + m)
+            & (second_j[cand.j] >= c + m)
+        )
+
+    # First among the loose pieces only (few pairs: a necessary condition), then against
+    # every rival of the pieces that pass.
+    loose = candidate_pairs(seg, wide, ends=free_end, starts=free_start)
+    c = _blocked_cost(loose, pair_cost(loose, wide, "scaled", seg), n, blocked)
+    ok = mutual(loose, c, c, c)
+    if not ok.any():
+        return pairs, cost, chosen
+    ends = np.zeros(n, dtype=bool)
+    ends[loose.i[ok]] = True
+    starts = np.zeros(n, dtype=bool)
+    starts[loose.j[ok]] = True
+    a = candidate_pairs(seg, wide, ends=ends)
+    b = candidate_pairs(seg, wide, starts=starts)
+    cand = a.concat(b.take(~ends[b.i]))
+    c = _blocked_cost(cand, pair_cost(cand, wide, "scaled", seg), n, blocked)
+    # A joined track competes for a start once, through its last end: its inner ends
+    # (already continued) are no rivals when that last end is a candidate too — and
+    # likewise for an end, through a joined track's first start.
+    chain = components(n, pairs.i[chosen], pairs.j[chosen])
+    key_j = cand.j * n + chain[cand.i]
+    inner_i = ~free_end[cand.i] & np.isin(key_j, key_j[free_end[cand.i]])
+    key_i = cand.i * n + chain[cand.j]
+    inner_j = ~free_start[cand.j] & np.isin(key_i, key_i[free_start[cand.j]])
+    ok = mutual(cand, c, np.where(inner_j, np.inf, c), np.where(inner_i, np.inf, c))
+    ok &= ends[cand.i] & starts[cand.j]
+    if not ok.any():
+        return pairs, cost, chosen
+    new = cand.take(ok)
+    added = len(pairs) + np.arange(len(new))
+    return pairs.concat(new), np.concatenate([cost, c[ok]]), np.concatenate([chosen, added])
+
+
+def assign_interrupted(
+    base: Segments,
+    pairs: Pairs,
+    cost: np.ndarray,
+    params: LinkParams,
+    method: str = "optimal",
+    normalize: str = "scaled",
+    blocked: np.ndarray | None = None,
+) -> tuple[Segments, Pairs, np.ndarray, np.ndarray]:
+    """The assignment stage of :func:`associate_interrupted`, from the candidates and
+    their costs: one-to-one assignment with the loose-end price, the short-piece rule and
+    the margin test, the chain passes, then the second look across long gaps.
+    ``blocked``: pairs refused (keys ``i·n + j``; the operator's rejections).
+
+    Returns the summaries (chain-refitted), the candidates (long pairs appended), their
+    costs and the indices of the chosen pairs.
+    """
+    n = len(base)
+    cost = _blocked_cost(pairs, cost, n, blocked)
+    assign = optimal_assign if method == "optimal" else greedy_assign
+    if normalize == "minmax":  # seed 003 as written: a gate, no loose-end price, no margin
+        return base, pairs, cost, assign(pairs.i, pairs.j, cost, params.gate)
+    seg = base
+    chosen = _assign_scaled(seg, pairs, cost, params, assign)
+    before = np.zeros(n, dtype=bool)  # refitted in the previous pass
+    for _ in range(params.chain_passes):
+        chain = components(n, pairs.i[chosen], pairs.j[chosen])
+        seg, changed = chain_refit(
+            base, chain, params.end_points, params.accel_ms2, params.drift_ms
+        )
+        moved = changed | before
+        before = changed
+        touched = moved[pairs.i] | moved[pairs.j]
+        if not touched.any():
+            break
+        # Only pairs with an end refitted now or in the previous pass change.
+        new = pair_features(seg, pairs.i[touched], pairs.j[touched])
+        fields = {}
+        for f in _PAIR_FIELDS:
+            v = getattr(pairs, f).copy()
+            v[touched] = getattr(new, f)
+            fields[f] = v
+        pairs = Pairs(**fields)
+        cost = cost.copy()
+        cost[touched] = pair_cost(new, params, normalize, seg)
+        cost = _blocked_cost(pairs, cost, n, blocked)
+        chosen = _assign_scaled(seg, pairs, cost, params, assign)
+    pairs, cost, chosen = long_gap_pass(seg, pairs, cost, chosen, params, blocked)
+    return seg, pairs, cost, chosen
+
+
 def associate_interrupted(
     points: pd.DataFrame,
     params: LinkParams | None = None,
@@ -646,42 +872,17 @@ def associate_interrupted(
         raise InputError(f"unknown method {method!r}; choose one of {', '.join(INTERRUPT_METHODS)}")
     progress = progress or null_progress
     progress(0.0, "summarizing tracks")
-    seg = segment_stats(points, params.end_points)
+    base = segment_stats(points, params.end_points)
     progress(0.3, "finding candidate pairs")
-    pairs = candidate_pairs(seg, params)
-    cost = pair_cost(pairs, params, normalize, seg)
-    progress(0.6, f"assigning {len(pairs):,} candidate pairs")
-    assign = optimal_assign if method == "optimal" else greedy_assign
-    if normalize == "minmax":  # seed 003 as written: a gate, no loose-end price, no margin
-        chosen = assign(pairs.i, pairs.j, cost, params.gate)
-    else:
-        chosen = _assign_scaled(seg, pairs, cost, params, assign)
-        base = seg
-        before = np.zeros(len(base), dtype=bool)  # refitted in the previous pass
-        for _ in range(params.chain_passes):
-            chain = components(len(base), pairs.i[chosen], pairs.j[chosen])
-            seg, changed = chain_refit(
-                base, chain, params.end_points, params.accel_ms2, params.drift_ms
-            )
-            moved = changed | before
-            before = changed
-            touched = moved[pairs.i] | moved[pairs.j]
-            if not touched.any():
-                break
-            # Only pairs with an end refitted now or in the previous pass change.
-            new = pair_features(seg, pairs.i[touched], pairs.j[touched])
-            fields = {}
-            for f in Pairs.__dataclass_fields__:
-                v = getattr(pairs, f).copy()
-                v[touched] = getattr(new, f)
-                fields[f] = v
-            pairs = Pairs(**fields)
-            cost = cost.copy()
-            cost[touched] = pair_cost(new, params, normalize, seg)
-            chosen = _assign_scaled(seg, pairs, cost, params, assign)
+    pairs0 = candidate_pairs(base, params)
+    cost0 = pair_cost(pairs0, params, normalize, base)
+    progress(0.6, f"assigning {len(pairs0):,} candidate pairs")
+    seg, pairs, cost, chosen = assign_interrupted(base, pairs0, cost0, params, method, normalize)
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
     progress(1.0, f"{len(chosen):,} pairs joined")
-    return Association(seg, pairs, cost, chosen, targets, method)
+    return Association(
+        seg, pairs, cost, chosen, targets, method, base, pairs0, cost0, params, normalize
+    )
 
 
 # --------------------------------------------------------------------------------------

@@ -156,7 +156,21 @@ def association_proposals(
     p = assoc.pairs
     cost = np.asarray(assoc.cost, dtype="float64").copy()
     out = _excluded(labels, p.i, p.j, rejected)
-    if out.any():
+    if out.any() and assoc.base is not None:
+        # The same assignment again (chain passes and second look included) with the
+        # rejected pairs refused, in either direction.
+        where = pd.Series(np.arange(len(labels)), index=labels)
+        where = where[~where.index.duplicated()]
+        a = where.reindex([x for x, _ in rejected]).to_numpy()
+        b = where.reindex([y for _, y in rejected]).to_numpy()
+        ok = ~(np.isnan(a) | np.isnan(b))
+        a, b = a[ok].astype("int64"), b[ok].astype("int64")
+        n = len(labels)
+        assoc = assoc.without(np.concatenate([a * n + b, b * n + a]))
+        p = assoc.pairs
+        cost = np.asarray(assoc.cost, dtype="float64")
+        seg = assoc.segments
+    elif out.any():
         cost[out] = np.inf
         gate = params.gate if assoc.method in ("optimal", "greedy", "motion") else params.limit
         if assoc.method == "optimal":

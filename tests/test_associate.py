@@ -282,11 +282,66 @@ def test_grid_sweep_finds_exactly_the_k_d_tree_pairs(changes, monkeypatch):
     b = a.assign(sensor="R2", lon=a["lon"] + 0.01)
     seg = segment_stats(pd.concat([a, b], ignore_index=True))
     params = LinkParams().replace(**changes)
-    grid = candidate_pairs(seg, params)
+    rng = np.random.default_rng(3)
+    masks = [(None, None), (rng.random(len(seg)) < 0.3, None), (None, rng.random(len(seg)) < 0.3)]
+    grid = [candidate_pairs(seg, params, e, s) for e, s in masks]
     assert assoc_mod._grid_pairs(seg, params) is not None
-    monkeypatch.setattr(assoc_mod, "_grid_pairs", lambda s, p: None)
-    tree = candidate_pairs(seg, params)
-    assert len(grid) == len(tree) > 0 or changes.get("max_gap_s") == 60.0
-    for f in grid.__dataclass_fields__:
-        np.testing.assert_array_equal(getattr(grid, f), getattr(tree, f))
-    assert (seg.sensor_code[grid.i] == seg.sensor_code[grid.j]).all()
+    monkeypatch.setattr(assoc_mod, "_grid_pairs", lambda *a: None)
+    tree = [candidate_pairs(seg, params, e, s) for e, s in masks]
+    assert len(grid[0]) == len(tree[0]) > 0 or changes.get("max_gap_s") == 60.0
+    for g, t in zip(grid, tree, strict=True):
+        for f in g.__dataclass_fields__:
+            np.testing.assert_array_equal(getattr(g, f), getattr(t, f))
+    assert (seg.sensor_code[grid[0].i] == seg.sensor_code[grid[0].j]).all()
+    # A mask keeps exactly the unmasked candidates whose end / start it allows.
+    full = grid[0]
+    assert len(grid[1]) == int(masks[1][0][full.i].sum())
+    assert len(grid[2]) == int(masks[2][1][full.j].sum())
+
+
+def test_second_look_joins_a_lone_ship_across_a_long_gap_and_keeps_rivals_loose():
+    # One ship silent for 30 min (beyond max_gap_s 720 s): nothing else could be it, so
+    # the second look joins it. Two ships silent side by side at the same speed: either
+    # start could be either's, so both ends stay loose.
+    lone = pd.concat([straight("1", 0, 600, truth="A"), straight("2", 2400, 3000, truth="A")])
+    far = (60_000.0, 0.0)
+    pair = pd.concat(
+        [
+            straight("3", 0, 600, truth="B", start=far, course=90.0),
+            straight("4", 0, 600, truth="C", start=(far[0], 300.0), course=90.0),
+            straight("5", 2400, 3000, truth="B", start=far, course=90.0),
+            straight("6", 2400, 3000, truth="C", start=(far[0], 300.0), course=90.0),
+        ]
+    )
+    df = pd.concat([lone, pair], ignore_index=True)
+    a = associate_interrupted(df)
+    joined = a.pair_table()[["batch_a", "batch_b"]].values.tolist()
+    assert joined == [["1", "2"]]
+    assert a.pair_table()["gap_s"].iloc[0] == pytest.approx(1800.0)
+    # Off: nothing beyond max_gap_s; a longer max_gap_s would join it in the first pass.
+    assert len(associate_interrupted(df, LinkParams(long_gap_s=0.0)).chosen) == 0
+    # Refusing the long join (the operator's rejection) runs the same assignment again.
+    n = len(a.segments)
+    keys = a.segments.index.keys["batch"].astype(str).tolist()
+    i, j = keys.index("1"), keys.index("2")
+    again = a.without(np.array([i * n + j]))
+    assert len(again.chosen) == 0
+    assert set(again.target_of_track) == set(keys)
+
+
+def test_second_look_leaves_a_join_of_the_first_pass_alone():
+    # A long-gap start whose cheapest end is already joined to someone else is a rival's:
+    # the loose end does not get it.
+    df = pd.concat(
+        [
+            straight("1", 0, 600, truth="A"),
+            straight("2", 900, 1500, truth="A"),
+            straight("3", 2700, 3300, truth="A"),
+        ],
+        ignore_index=True,
+    )
+    a = associate_interrupted(df)
+    assert sorted(a.pair_table()[["batch_a", "batch_b"]].values.tolist()) == [
+        ["1", "2"],
+        ["2", "3"],
+    ]

@@ -14,7 +14,7 @@ import pytest
 from conftest import real_file
 from wakeline.app.cli import main
 from wakeline.core import review as R
-from wakeline.core.associate import LinkParams, associate_interrupted
+from wakeline.core.associate import LinkParams, associate_interrupted, optimal_assign
 from wakeline.core.errors import InputError
 from wakeline.core.export_review import (
     export_decision_log,
@@ -142,6 +142,56 @@ def test_targets_follow_decisions(state):
     st.apply(stale)
     with pytest.raises(InputError, match="no longer applies"):
         st.apply(stale)
+
+
+def test_a_rejection_runs_the_same_association_again():
+    # Two ships side by side, both silent for 5 min: either start could be either's, so
+    # the margin test leaves all four ends loose. A clean join elsewhere is rejected: the
+    # association that runs again keeps the margin test (and the chain passes and the
+    # second look), so the ambiguous pairs are still not proposed.
+    from wakeline.core import geo
+
+    t0 = pd.Timestamp("2024-05-01T00:00:00Z")
+
+    rng = np.random.default_rng(0)
+
+    def piece(batch, t_start, y_m):
+        t = np.arange(t_start, t_start + 600.0, 10.0)
+        x, y = 6.0 * t + rng.normal(0, 30, len(t)), y_m + rng.normal(0, 30, len(t))
+        lon, lat = geo.from_local(x, y, 122.5, 30.5)
+        return pd.DataFrame(
+            {
+                "sensor": "R1",
+                "batch": batch,
+                "time": t0 + pd.to_timedelta(t, unit="s"),
+                "lon": lon,
+                "lat": lat,
+            }
+        )
+
+    df = pd.concat(
+        [
+            piece("1", 0, 0.0),
+            piece("2", 0, 20.0),
+            piece("3", 900, 0.0),
+            piece("4", 900, 20.0),
+            piece("5", 0, 40_000.0),
+            piece("6", 900, 40_000.0),
+        ],
+        ignore_index=True,
+    )
+    params = LinkParams()
+    assoc = associate_interrupted(df, params)
+    ap, _ = R.association_proposals(assoc, params)
+    joined = ap[["batch_a", "batch_b"]].values.tolist()
+    assert ["5", "6"] in joined and len(joined) < 3  # the tangle is not fully joined
+    again, re_assoc = R.association_proposals(assoc, params, [("R1:5", "R1:6")])
+    # Far from the tangle, the rejection changes nothing there.
+    assert again[["batch_a", "batch_b"]].values.tolist() == [p for p in joined if p != ["5", "6"]]
+    assert re_assoc.target_of_track[list(re_assoc.segments.index.keys["batch"]).index("6")] == "6"
+    # The old re-run (a plain assignment, no margin test) would have joined the tangle.
+    plain = optimal_assign(assoc.pairs.i, assoc.pairs.j, assoc.cost, params.gate)
+    assert len(plain) > len(joined)
 
 
 def test_rejected_pairs_are_never_proposed_again(scene):
