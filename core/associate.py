@@ -121,8 +121,8 @@ class LinkParams(Params):
         "s",
         "second look: after the assignment, an old end and a new start both left loose are "
         "joined across a gap longer than max_gap_s, up to this long, when each is the "
-        "other's cheapest candidate among all within reach (joined or not) by long_margin; "
-        "at most max_gap_s: off",
+        "other's cheapest candidate among all within reach (joined or not) by long_margin "
+        "(0, or any value up to max_gap_s, turns it off)",
         0.0,
         86400.0 * 7,
     )
@@ -666,6 +666,11 @@ class Association:
             }
         )
 
+    def long_joins(self) -> np.ndarray:
+        """Per chosen pair: joined by the second look, across a gap beyond ``max_gap_s``."""
+        limit = self.params.max_gap_s if self.params is not None else np.inf
+        return self.pairs.gap_s[self.chosen] > limit
+
     def report(self) -> dict:
         n_targets = len(np.unique(self.target_of_track))
         return {
@@ -673,6 +678,7 @@ class Association:
             "tracks": len(self.segments),
             "candidate_pairs": len(self.pairs),
             "pairs_chosen": len(self.chosen),
+            "long_gap_joins": int(self.long_joins().sum()),
             "targets": n_targets,
         }
 
@@ -739,8 +745,9 @@ def long_gap_pass(
     ``long_margin``. A ship that went silent for half an hour is found again when nothing
     else could be it; in dense traffic, where a loose end has many rivals, it stays loose.
 
-    Returns the candidates with the accepted long pairs appended, their costs and the
-    chosen indices with the new ones added (mutually cheapest pairs never conflict).
+    Returns the candidates with the long candidates of the pieces looked at appended,
+    their costs and the chosen indices with the accepted ones added (mutually cheapest
+    pairs never conflict).
     """
     n = len(seg)
     if params.long_gap_s <= params.max_gap_s or n < 2:
@@ -799,9 +806,15 @@ def long_gap_pass(
     ok &= ends[cand.i] & starts[cand.j]
     if not ok.any():
         return pairs, cost, chosen
-    new = cand.take(ok)
-    added = len(pairs) + np.arange(len(new))
-    return pairs.concat(new), np.concatenate([cost, c[ok]]), np.concatenate([chosen, added])
+    # Every long candidate of the pieces looked at is kept (their rivals beyond T_gap:
+    # the review shows the runner-up of a long join); the accepted ones are chosen.
+    long = cand.gap_s > params.max_gap_s
+    added = len(pairs) + np.flatnonzero(ok[long])
+    return (
+        pairs.concat(cand.take(long)),
+        np.concatenate([cost, c[long]]),
+        np.concatenate([chosen, added]),
+    )
 
 
 def assign_interrupted(
@@ -1096,7 +1109,9 @@ def stitch(
     The gap is filled at the sensor's period (the old track's median sampling interval,
     or ``period_s``). ``fill="line"`` (seed 003, the default: the better of the two on
     our scenes, docs/evaluation.md): a straight line fitted to ``fit_points`` points on
-    each side; ``"hermite"``: a cubic Hermite curve between the position and velocity
+    each side — except in a gap where the line would have the ship jump onto or off it,
+    or run along it, faster than ``v_max_kn`` (it did not go straight there), which takes
+    the Hermite curve; ``"hermite"``: a cubic Hermite curve between the position and velocity
     fitted to the old track's last points and the new track's first points, leaving and
     joining both tracks smoothly. Returns all input rows plus the filled ones: ``batch``
     is the target (one id per stitched track), the original batch is kept in
@@ -1138,7 +1153,24 @@ def stitch(
     vx = d10[0] + d01 * ex + d11 * seg.vx0[jj]
     vy = d10[1] + d01 * ey + d11 * seg.vy0[jj]
     if fill == "line":
-        x, y, vx, vy = _line_fill(seg, i, j, owner, tau, max(int(fit_points), 1))
+        lx, ly, lvx, lvy = _line_fill(seg, i, j, owner, tau, max(int(fit_points), 1))
+        # The paper's line assumes the ship went straight. Where it did not (a U-turn,
+        # a stop, a turn in a long gap) the line misses the ends, and a ship would jump
+        # onto or off it, or run along it, faster than v_max: that gap keeps the Hermite
+        # curve, which meets both ends.
+        v_max = (assoc.params.v_max_kn if assoc.params is not None else 30.0) * geo.KN_MS
+        first = np.r_[0, np.cumsum(count)[:-1]]
+        has = count > 0
+        f, last = first[has], first[has] + count[has] - 1
+        jump_in = np.hypot(lx[f], ly[f]) / tau[f]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            jump_out = np.hypot(ex[last] - lx[last], ey[last] - ly[last]) / (gap[has] - tau[last])
+        run = np.hypot(lvx[f], lvy[f])
+        bad = np.zeros(len(k), dtype=bool)
+        bad[has] = ~((jump_in <= v_max) & (jump_out <= v_max) & (run <= v_max))
+        line = ~bad[owner]
+        x, y = np.where(line, lx, x), np.where(line, ly, y)
+        vx, vy = np.where(line, lvx, vx), np.where(line, lvy, vy)
     lon, lat = geo.from_local(x, y, seg.lon1[ii], seg.lat1[ii])
     keys = seg.index.keys
     fill = pd.DataFrame(

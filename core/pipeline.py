@@ -358,6 +358,8 @@ def _summary_associate(res: StepResult) -> str:
         f"({rep['pairs_chosen']:,} joins of {rep['candidate_pairs']:,} candidate pairs, "
         f"{rep['method']})"
     )
+    if rep.get("long_gap_joins"):
+        msg += f"; {rep['long_gap_joins']:,} of the joins across gaps beyond T_gap (second look)"
     if "points_filled" in rep:
         msg += f"; {rep['points_filled']:,} points filled"
     return msg

@@ -192,7 +192,11 @@ def association_proposals(
             "batch_a": keys["batch"].to_numpy().astype(str)[p.i[k]],
             "sensor_b": keys["sensor"].to_numpy().astype(str)[p.j[k]],
             "batch_b": keys["batch"].to_numpy().astype(str)[p.j[k]],
-            "method": assoc.method,
+            "method": np.where(
+                p.gap_s[k] > (assoc.params.max_gap_s if assoc.params is not None else np.inf),
+                f"{assoc.method}, second look (gap beyond T_gap)",
+                assoc.method,
+            ),
             "cost": cost[k],
             "gap_s": p.gap_s[k],
             "distance_m": p.dist_m[k],

@@ -345,3 +345,36 @@ def test_second_look_leaves_a_join_of_the_first_pass_alone():
         ["1", "2"],
         ["2", "3"],
     ]
+
+
+def test_line_fill_never_makes_a_ship_jump_where_it_did_not_go_straight():
+    # A ship steams east, is silent for 30 min and comes back west (a U-turn in the gap):
+    # the paper's line through both ends' points misses them, so that gap takes the
+    # Hermite curve; a straight gap keeps the line. No filled step is faster than v_max.
+    east = straight("1", 0, 600, course=90.0, truth="A")
+    back = track(
+        "2",
+        np.arange(2400, 3001, 10.0),
+        3600.0 - 6.0 * (np.arange(2400, 3001, 10.0) - 2400),
+        np.full(61, 500.0),
+        truth="A",
+    )
+    far = (80_000.0, 0.0)
+    line_a = straight("3", 0, 600, course=90.0, start=far, truth="B")
+    line_b = straight("4", 900, 1500, course=90.0, start=far, truth="B")
+    df = pd.concat([east, back, line_a, line_b], ignore_index=True)
+    a = associate_interrupted(df)
+    assert sorted(a.pair_table()[["batch_a", "batch_b"]].values.tolist()) == [
+        ["1", "2"],
+        ["3", "4"],
+    ]
+    out = stitch(a).sort_values(["batch", "time"])
+    for _, g in out.groupby("batch"):
+        x, y = geo.to_local(g["lon"].to_numpy(), g["lat"].to_numpy(), 122.5, 30.5)
+        t = (g["time"] - T0).dt.total_seconds().to_numpy()
+        assert (np.hypot(np.diff(x), np.diff(y)) / np.diff(t)).max() <= 30 * geo.KN_MS
+    # The straight gap is still the paper's line: its fill lies on the track's line.
+    filled = out[out["interpolated"] & (out["batch"] == a.target_of_track[2])]
+    x, y = geo.to_local(filled["lon"].to_numpy(), filled["lat"].to_numpy(), 122.5, 30.5)
+    t = (filled["time"] - T0).dt.total_seconds().to_numpy()
+    np.testing.assert_allclose(x, far[0] + 6.0 * t, atol=1.0)
