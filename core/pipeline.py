@@ -302,7 +302,15 @@ def _summary_compress(res: StepResult) -> str:
     )
 
 
-def run_associate(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
+def run_associate(
+    points: pd.DataFrame,
+    params: dict,
+    progress: Progress = null_progress,
+    rejected: set[tuple[str, str]] | frozenset = frozenset(),
+):
+    """The associate step. ``rejected``: pairs of track labels (``sensor:batch``) the
+    operator rejected in an earlier run's review, kept out of this one (the session
+    passes them when the step runs again on the same layer)."""
     from wakeline.core.associate import (
         LinkParams,
         associate_interrupted,
@@ -328,10 +336,12 @@ def run_associate(points: pd.DataFrame, params: dict, progress: Progress = null_
         )
     from wakeline.core.review import association_proposals
 
+    proposals, assoc = association_proposals(assoc, lp, rejected)
     out = stitch(assoc, fill=opts.fill) if opts.stitch else assoc.points()
     pairs = assoc.pair_table()
-    proposals = association_proposals(assoc, lp)[0]
     report = {**assoc.report(), "method": method}
+    if rejected:
+        report["rejected_kept_out"] = len(rejected)
     if opts.stitch:
         report["points_filled"] = int(out["interpolated"].sum())
     role = "stitched" if opts.stitch else "associated"
@@ -358,6 +368,8 @@ def _summary_associate(res: StepResult) -> str:
         f"({rep['pairs_chosen']:,} joins of {rep['candidate_pairs']:,} candidate pairs, "
         f"{rep['method']})"
     )
+    if rep.get("rejected_kept_out"):
+        msg += f"; {rep['rejected_kept_out']:,} pairs rejected in an earlier review kept out"
     if rep.get("long_gap_joins"):
         msg += f"; {rep['long_gap_joins']:,} of the joins across gaps beyond T_gap (second look)"
     if "points_filled" in rep:

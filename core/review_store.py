@@ -14,7 +14,7 @@ from pathlib import Path
 import pandas as pd
 
 from wakeline.core.errors import InputError
-from wakeline.core.review import PROPOSAL_COLUMNS, Change, LogEntry, ReviewState
+from wakeline.core.review import PROPOSAL_COLUMNS, Change, LogEntry, ReviewState, pair_key
 
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS review_proposals (
@@ -199,6 +199,26 @@ def replay_decisions(state: ReviewState, rows: list[dict], queue: str) -> int:
             state.apply(Change.from_dict(row["change"]), when=row.get("time"))
             n += 1
     return n
+
+
+def rejected_pairs(rows: list[dict], layer_id: str) -> set[tuple[str, str]]:
+    """The pairs of track labels (order-free) the operator left rejected in any queue of
+    layer ``layer_id`` — every run of its step, decisions and undos taken in order — so
+    that a re-run of the step keeps them out (a rejected pair is never proposed again).
+    """
+    prefix = f"{layer_id}@"
+    status: dict[tuple[str, str], str] = {}
+    for row in rows:
+        if not (isinstance(row, dict) and str(row.get("queue", "")).startswith(prefix)):
+            continue
+        change = row.get("change")
+        if not isinstance(change, dict):
+            continue
+        pid, tracks = change.get("proposal"), change.get("tracks") or []
+        after = change.get("status_after") or {}
+        if pid and len(tracks) == 2 and pid in after:
+            status[pair_key(str(tracks[0]), str(tracks[1]))] = str(after[pid])
+    return {k for k, v in status.items() if v == "rejected"}
 
 
 class _Transaction:

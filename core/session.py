@@ -20,7 +20,7 @@ import pandas as pd
 
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, StepResult, params_to_json
-from wakeline.core.progress import Progress
+from wakeline.core.progress import Progress, null_progress
 
 #: Colours per result kind (the map's defaults); sources take the palette in turn.
 KIND_COLORS = {
@@ -193,7 +193,26 @@ class Session:
         changes until :meth:`apply_result`. Safe to call from a worker thread."""
         ids = [layer_ids] if isinstance(layer_ids, str) else list(layer_ids)
         points = self.input_points(ids)
+        if step == "associate" and len(ids) == 1:
+            rejected = self.rejected_pairs_below(ids[0])
+            if rejected:  # a re-run: what the operator rejected stays out
+                from wakeline.core.pipeline import run_associate
+
+                full = {**STEPS[step].defaults(), **(params or {})}
+                return run_associate(points, full, progress or null_progress, rejected)
         return STEPS[step](points, params, progress)
+
+    def rejected_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
+        """Pairs of track labels rejected in the review of any associate layer made from
+        ``layer_id`` (every run's queue, undos taken into account)."""
+        from wakeline.core.review_store import rejected_pairs
+
+        rows = list(self.decisions)  # a copy: the window may append while a worker reads
+        out: set[tuple[str, str]] = set()
+        for lay in list(self.layers.values()):
+            if lay.parent == layer_id and lay.step == "associate" and not lay.inputs[1:]:
+                out |= rejected_pairs(rows, lay.id)
+        return out
 
     def input_points(self, layer_ids: list[str]) -> pd.DataFrame:
         frames = [self.layers[i].points for i in layer_ids]

@@ -110,3 +110,44 @@ def test_project_decisions_survive_a_killed_process(pair, tmp_path):
     back = load_project(proj).to_session()
     st, _ = bind(back, back.layers[lid])
     assert (st.status[:3] == "rejected").all() and (st.status[3:] == "pending").all()
+
+
+def test_a_rerun_of_associate_keeps_out_what_the_operator_rejected():
+    # Reject two proposals (and undo a third rejection) in the review of an associated
+    # layer, then run Associate again on the same input: the two rejected pairs are not
+    # proposed again, the undone one is, and the report says how many were kept out.
+    pts = simulate.segments_scene(seed=2, n_ships=8, area_km=15)
+    s = Session()
+    src = s.add_layer("seg.csv", "source", pts)
+    (lay,) = s.apply_result(src.id, s.run_step(src.id, "associate"))
+    st, _ = bind(s, lay)
+    p = st.proposals
+    labels = list(zip(p["track_a"], p["track_b"], strict=True))
+    a, b, c = p["proposal"][:3]
+    for change in (R.reject(st, a), R.reject(st, b), R.reject(st, c)):
+        st.apply(change)
+        s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    back = R.reset(st, c)  # the third one taken back
+    st.apply(back)
+    s.decisions.append(decision_row(queue_key(lay), back, st.log[-1]))
+    assert s.rejected_pairs_below(src.id) == {R.pair_key(*labels[0]), R.pair_key(*labels[1])}
+    res = s.run_step(src.id, "associate")
+    assert res.report["rejected_kept_out"] == 2
+    again = res.tables["proposals"]
+    pairs = {
+        R.pair_key(f"{r.sensor_a}:{r.batch_a}", f"{r.sensor_b}:{r.batch_b}")
+        for r in again.itertuples()
+    }
+    assert R.pair_key(*labels[0]) not in pairs and R.pair_key(*labels[1]) not in pairs
+    assert R.pair_key(*labels[2]) in pairs
+    # The layer's points and pair table follow the re-run association, not the first one.
+    joined = {
+        R.pair_key(f"{r.sensor}:{r.batch_a}", f"{r.sensor}:{r.batch_b}")
+        for r in res.tables["pairs"].itertuples()
+    }
+    assert joined == pairs
+    (lay2,) = s.apply_result(src.id, res)
+    assert lay2.id == lay.id
+    # Rejections of every run count: the second run's queue has none of its own.
+    assert s.rejected_pairs_below(src.id) == {R.pair_key(*labels[0]), R.pair_key(*labels[1])}
+    assert "kept out" in STEPS["associate"].summary(res)
