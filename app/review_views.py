@@ -141,6 +141,8 @@ class GanttView(pg.PlotWidget):
         super().__init__(parent, background="w")
         self.state = state
         self.setLabel("bottom", self.tr("time"), units=self.tr("min"))
+        # Minutes stay minutes: no "kmin" on data spanning days.
+        self.getAxis("bottom").enableAutoSIPrefix(False)
         self.getPlotItem().hideAxis("left")
         self.getPlotItem().setMenuEnabled(False)
         self.t_ref = float(state.tracks["t0"].min()) if len(state.tracks) else 0.0

@@ -185,6 +185,8 @@ def association_proposals(
     k = np.asarray(assoc.chosen, dtype="int64")
     keys = seg.index.keys
     rival, rival_cost, rival_side = _runner_up(p.i, p.j, cost, k, labels)
+    m0, m1 = getattr(seg, "motion0", None), getattr(seg, "motion1", None)
+    known = m1[p.i[k]] & m0[p.j[k]] if m0 is not None and m1 is not None else np.ones(len(k), bool)
     df = pd.DataFrame(
         {
             "kind": "associate",
@@ -201,8 +203,9 @@ def association_proposals(
             "gap_s": p.gap_s[k],
             "distance_m": p.dist_m[k],
             "miss_m": p.miss_m[k],
-            "dcourse_deg": p.dcourse_deg[k],
-            "dspeed_kn": p.dspeed_kn[k],
+            # Unknown, not zero, where an end shows no motion (a single fix).
+            "dcourse_deg": np.where(known, p.dcourse_deg[k], np.nan),
+            "dspeed_kn": np.where(known, p.dspeed_kn[k], np.nan),
             "overlap_s": np.nan,
             "runner_up": rival,
             "runner_up_cost": rival_cost,

@@ -503,3 +503,22 @@ def test_mtad_two_files_fuse_review_export(tmp_path, capsys):
     )
     assert "7 targets" in capsys.readouterr().err
     assert gpx.read_text(encoding="utf-8").count("<trk>") == 7
+
+
+def test_course_and_speed_are_unknown_between_single_fixes():
+    # Two single fixes 300 s apart: a join priced on reachability alone. Its evidence
+    # must not claim Δcourse 0° and Δspeed 0 kn: neither end shows its motion.
+    t0 = pd.Timestamp("2024-05-01T00:00:00Z")
+    df = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": ["1", "2"],
+            "time": [t0, t0 + pd.Timedelta(seconds=300)],
+            "lon": [122.5, 122.51],
+            "lat": [30.5, 30.5],
+        }
+    )
+    ap, _ = R.association_proposals(associate_interrupted(df))
+    assert len(ap) == 1
+    assert np.isnan(ap["dcourse_deg"][0]) and np.isnan(ap["dspeed_kn"][0])
+    assert ap["gap_s"][0] == pytest.approx(300.0)

@@ -148,6 +148,10 @@ def test_gantt_and_network_show_the_members(qtbot, controller):
         gantt.cursor.setValue(gantt.cursor.value() + 1.0)
     net.show_proposal(pid)
     assert set(members) <= set(net.pos)
+    # Minutes are labelled as minutes on any span (not "kmin" on days of data).
+    gantt.setXRange(0, 5000, padding=0)
+    axis = gantt.getAxis("bottom")
+    assert axis.autoSIPrefixScale == 1.0 and "kmin" not in axis.labelString()
     edges = net.edges
     assert pid in set(edges["proposal"])
     # Click the middle of another proposal's edge: that proposal is chosen.
