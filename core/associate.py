@@ -172,13 +172,15 @@ class Pairs:
 
     def concat(self, other: "Pairs") -> "Pairs":
         """These pairs followed by ``other``'s."""
-        return Pairs(*(np.concatenate([getattr(self, f), getattr(other, f)]) for f in _PAIR_FIELDS))
+        return Pairs(
+            *(
+                np.concatenate([getattr(self, f), getattr(other, f)])
+                for f in self.__dataclass_fields__
+            )
+        )
 
     def take(self, keep: np.ndarray) -> "Pairs":
         return Pairs(*(getattr(self, f)[keep] for f in self.__dataclass_fields__))
-
-
-_PAIR_FIELDS = ("i", "j", "gap_s", "dist_m", "miss_m", "dcourse_deg", "dspeed_kn")
 
 
 def _grid_pairs(
@@ -855,7 +857,7 @@ def assign_interrupted(
         # Only pairs with an end refitted now or in the previous pass change.
         new = pair_features(seg, pairs.i[touched], pairs.j[touched])
         fields = {}
-        for f in _PAIR_FIELDS:
+        for f in Pairs.__dataclass_fields__:
             v = getattr(pairs, f).copy()
             v[touched] = getattr(new, f)
             fields[f] = v

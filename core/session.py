@@ -196,10 +196,8 @@ class Session:
         if step == "associate" and len(ids) == 1:
             rejected = self.rejected_pairs_below(ids[0])
             if rejected:  # a re-run: what the operator rejected stays out
-                from wakeline.core.pipeline import run_associate
-
                 full = {**STEPS[step].defaults(), **(params or {})}
-                return run_associate(points, full, progress or null_progress, rejected)
+                return STEPS[step].run(points, full, progress or null_progress, rejected)
         return STEPS[step](points, params, progress)
 
     def rejected_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
