@@ -1160,7 +1160,7 @@ def stitch(
         # a stop, a turn in a long gap) the line misses the ends, and a ship would jump
         # onto or off it, or run along it, faster than v_max: that gap keeps the Hermite
         # curve, which meets both ends.
-        v_max = (assoc.params.v_max_kn if assoc.params is not None else 30.0) * geo.KN_MS
+        v_max = (assoc.params or LinkParams()).v_max_kn * geo.KN_MS
         first = np.r_[0, np.cumsum(count)[:-1]]
         has = count > 0
         f, last = first[has], first[has] + count[has] - 1

@@ -185,8 +185,11 @@ def association_proposals(
     k = np.asarray(assoc.chosen, dtype="int64")
     keys = seg.index.keys
     rival, rival_cost, rival_side = _runner_up(p.i, p.j, cost, k, labels)
-    m0, m1 = getattr(seg, "motion0", None), getattr(seg, "motion1", None)
-    known = m1[p.i[k]] & m0[p.j[k]] if m0 is not None and m1 is not None else np.ones(len(k), bool)
+    known = (
+        seg.motion1[p.i[k]] & seg.motion0[p.j[k]]
+        if seg.motion0 is not None and seg.motion1 is not None
+        else np.ones(len(k), dtype=bool)
+    )
     df = pd.DataFrame(
         {
             "kind": "associate",
@@ -195,9 +198,7 @@ def association_proposals(
             "sensor_b": keys["sensor"].to_numpy().astype(str)[p.j[k]],
             "batch_b": keys["batch"].to_numpy().astype(str)[p.j[k]],
             "method": np.where(
-                p.gap_s[k] > (assoc.params.max_gap_s if assoc.params is not None else np.inf),
-                f"{assoc.method}, second look (gap beyond T_gap)",
-                assoc.method,
+                assoc.long_joins(), f"{assoc.method}, second look (gap beyond T_gap)", assoc.method
             ),
             "cost": cost[k],
             "gap_s": p.gap_s[k],
