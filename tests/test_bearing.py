@@ -242,6 +242,38 @@ def test_geometry_that_hides_a_turn_is_reported_as_unobservable():
     assert peak_z(far, 50.0, p, **kw) < p.z_crit
 
 
+def test_detection_bound_is_the_clairvoyant_test_and_bounds_the_detector():
+    """detection_bound is what the Neyman-Pearson test that knows the track finds (checked
+    by simulating that test), near 1 where the turn is plain and low where the geometry
+    hides it, and our detector never finds more than it (within Monte Carlo error)."""
+    from scipy.stats import norm
+
+    from wakeline.core.bearing_eval import _path, detection_bound, run_metrics
+
+    kw = dict(t_m=300.0, max_delay_s=240.0)
+    paper = replace(SCENARIOS[0], duration_s=SHORT, period_s=2.0)
+    assert detection_bound(paper, **kw) > 0.999
+    far = Scenario("far slow", 35_000, 0.0, 6.0, 245.0, duration_s=SHORT, period_s=2.0)
+    bound = detection_bound(far, **kw)
+    assert 0.03 < bound < 0.9
+    # the clairvoyant test simulated: LLR sum(s * (b - straight)) against its null quantile
+    rng = np.random.default_rng(3)
+    t = np.arange(300.0, 540.0 + 1e-9, 2.0)
+    found = []
+    for sign in (1.0, -1.0):
+        tx0, ty0 = _path(t, 6.0, 245.0, (), 0.0, 35_000.0)
+        tx1, ty1 = _path(t, 6.0, 245.0, ((300.0, sign * 50.0),), 0.0, 35_000.0)
+        straight = np.degrees(np.arctan2(tx0, ty0))
+        sig = np.degrees(np.arctan2(tx1, ty1)) - straight
+        noisy = straight + sig + rng.normal(0.0, 0.6, (4000, len(t)))
+        llr = (noisy - straight) @ sig / 0.6**2
+        found.append(np.mean(llr > norm.ppf(0.97) * np.linalg.norm(sig) / 0.6))
+    assert abs(np.mean(found) - bound) < 0.03
+    # ours, on the same hidden geometry, stays under the bound
+    ours = run_metrics(np.random.default_rng(5), far, BearingParams(), 12, **kw)
+    assert ours["detection"] <= bound + 3 * np.sqrt(bound * (1 - bound) / 12) + 1e-9
+
+
 # ---------------------------------------------------------------------------------------
 # the observer's own motion in the fit (issue 16, session 4)
 
