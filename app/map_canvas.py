@@ -62,6 +62,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
     cursorMoved = QtCore.Signal(float, float)  # lon, lat in degrees
     trackClicked = QtCore.Signal(str, str, str, bool)  # layer, sensor, batch, add to selection
     pointHovered = QtCore.Signal(object)  # dict (layer, sensor, batch, time, speed_kn) or None
+    selectionShown = QtCore.Signal()  # show_selection drew a new selection (new colours)
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent=parent, background="w")
@@ -116,6 +117,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         for _ in range(SELECTION_POOL):
             self._selection_pool.append(self._new_selection_item())
         self._selected = pd.DataFrame()
+        self._selection_colors: dict[tuple[str, str], str] = {}  # (sensor, batch) -> colour
+        self._context_opacity = 1.0  # of the layers' curves (< 1: muted behind a review)
         self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
         self.marks.setZValue(60)
         self.addItem(self.marks)
@@ -237,6 +240,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 # Painted into a pixmap once per data or view change: a repaint for the
                 # selection, hover or another layer blits it instead of stroking again.
                 item.curve.setCacheMode(CACHE)
+                item.setOpacity(self._context_opacity)
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)
@@ -360,6 +364,14 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self._data.pop(name, None)
         self._visible.pop(name, None)
         self._lod_pending.discard(name)
+
+    def mute_layers(self, opacity: float = 1.0) -> None:
+        """Draw every layer's curves at ``opacity`` (1: as they are; less: muted, the
+        context behind the curves of a proposal under review), layers added later too."""
+        self._context_opacity = float(opacity)
+        for items in self._items.values():
+            for item in items:
+                item.setOpacity(self._context_opacity)
 
     def set_visible(self, name: str, visible: bool) -> None:
         for item in self._items.get(name, []):

@@ -11,7 +11,7 @@ import pyqtgraph as pg
 from PySide6 import QtCore
 
 from wakeline.app.map_legend import short_label
-from wakeline.app.map_selection import selection_curves
+from wakeline.app.map_selection import SELECTION_PALETTE, selection_curves
 
 KM_PER_DEG = 111.195
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
@@ -29,11 +29,12 @@ class MapInteractMixin:
         """
         self._selected = points
         curves: tuple = ()
+        self._selection_colors = {}
         if len(points) == 0:
             self.selection.setData([], [])
         else:
             used = {c.color for d in self.visible_draw_data() for c in d.curves}
-            halo, curves = selection_curves(points, used)
+            halo, curves, self._selection_colors = selection_curves(points, used)
             self.selection.setData(halo.lon, halo.lat, connect="finite")
         pool = self._selection_pool
         while len(pool) < len(curves):
@@ -59,6 +60,7 @@ class MapInteractMixin:
             self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
         else:
             self.marks.setData([], [])
+        self.selectionShown.emit()
 
     def _sync_selection_legend(self) -> None:
         """Legend lines for the selection's curves as :meth:`show_selection` left them."""
@@ -83,6 +85,18 @@ class MapInteractMixin:
     def selection_items(self) -> list[pg.PlotDataItem]:
         """The per-batch coloured curves of the selection."""
         return list(self._selection_items)
+
+    def selection_color(self, sensor: str, batch: str) -> str | None:
+        """The colour the selection (and its legend line) gives the track ``sensor``,
+        ``batch``; None when it is not selected."""
+        return self._selection_colors.get((str(sensor), str(batch)))
+
+    def free_colors(self, taken: set[str] | frozenset[str] = frozenset()) -> list[str]:
+        """Colours of the selection's palette that no visible layer, no selected track
+        and nothing in ``taken`` uses (for other curves named in the legend)."""
+        used = {c.color for d in self.visible_draw_data() for c in d.curves}
+        used |= set(self._selection_colors.values()) | set(taken)
+        return [c for c in SELECTION_PALETTE if c not in used]
 
     def zoom_to_selection(self) -> bool:
         """Fit the view to the selected tracks; False when nothing is selected."""

@@ -48,8 +48,9 @@ class _SelectedTracks:
 
 def selection_curves(
     points: pd.DataFrame, avoid: set[str] | frozenset[str] = frozenset()
-) -> tuple[Curve, tuple[Curve, ...]]:
-    """The halo (every selected track, full resolution) and one curve per colour.
+) -> tuple[Curve, tuple[Curve, ...], dict[tuple[str, str], str]]:
+    """The halo (every selected track, full resolution), one curve per colour, and the
+    colour of every selected track by ``(sensor, batch)``.
 
     A curve's label is ``sensor · batch`` of its first batch (``(+k)`` when k more share
     the colour); empty (no legend line) beyond :data:`LEGEND_BATCHES` colours.
@@ -72,4 +73,8 @@ def selection_curves(
         if g < LEGEND_BATCHES:
             label = f"{geom.sensor[g]} · {geom.batch[g]}" + (f" (+{more})" if more else "")
         curves.append(Curve(label, palette[g], x, y))
-    return halo, tuple(curves)
+    colors = {
+        (str(s), str(b)): palette[g]
+        for s, b, g in zip(geom.sensor, geom.batch, color_of_track, strict=True)
+    }
+    return halo, tuple(curves), colors

@@ -12,9 +12,10 @@ points follow through :class:`wakeline.app.review_sync.ReviewSync`.
 """
 
 import contextlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import pandas as pd
+import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.map_canvas import MapCanvas
@@ -34,6 +35,8 @@ from wakeline.app.worker import Failed, Finished
 from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
 
 TR_CONTEXT = "ReviewDock"
+#: Opacity of the layers behind a proposal on the maps: its context, muted.
+CONTEXT_OPACITY = 0.35
 
 
 def tr(text: str) -> str:
@@ -84,6 +87,7 @@ class ReviewDock(QtCore.QObject):
         self.queues: dict[str, Bound] = {}
         self._binding: str | None = None
         self._items: dict[str, list] = {"proposal": [], "members": []}
+        self._geom: ProposalGeometry | None = None  # the current proposal's, as computed
         self.group = QtGui.QUndoGroup(self)
         self.sync = ReviewSync(self)
         from wakeline.app.worker import JobRunner
@@ -128,6 +132,7 @@ class ReviewDock(QtCore.QObject):
             (w.layersChanged, self.refresh),
             (w.batch_view.selectionModel().selectionChanged, self._show_members),
             (w.batch_model.modelReset, lambda: self._clear_items("members")),
+            (w.canvas.selectionShown, self._draw_proposal),  # its colours follow the legend
         ]
         for signal, slot in self._listening:
             signal.connect(slot)
@@ -305,12 +310,15 @@ class ReviewDock(QtCore.QObject):
         bound.widget.deleteLater()
         if self.bound is bound:
             self.bound = None
+            self._geom = None
+            self._clear_items()
 
     def _show(self, bound: Bound | None) -> None:
         if bound is self.bound and (bound is None) == self.dock.isHidden():
             return
         self.bound = bound
         self._enable(bound is not None)
+        self._geom = None
         self._clear_items()
         if bound is None:
             self.group.setActiveStack(None)
@@ -347,19 +355,57 @@ class ReviewDock(QtCore.QObject):
         for g in [group] if group else list(self._items):
             for canvas, item in self._items[g]:
                 canvas.removeItem(item)
+                canvas.legend.removeItem(item)  # a legend line of its own, if it has one
             self._items[g] = []
+            if g == "proposal":
+                for canvas in (self.w.canvas, self.before):
+                    canvas.mute_layers(1.0)
 
-    def _add_items(self, geom: ProposalGeometry, group: str) -> None:
+    def _add_items(self, geom: ProposalGeometry, group: str, z: float | None = None) -> None:
         for canvas in (self.w.canvas, self.before):
             for item in proposal_items(geom):
-                item.setZValue(55)
+                if z is not None:
+                    item.setZValue(z)
                 canvas.addItem(item)
                 self._items[group].append((canvas, item))
 
+    def _draw_proposal(self) -> None:
+        """Draw the current proposal on both maps: its two tracks on top in the colours
+        the main map's legend names them in (a selected track's selection colour; a track
+        not selected, as a fused layer's pair, a free colour and a legend line of its
+        own), the other members of its target muted, the layers muted behind it. Again
+        whenever the main map's selection changes."""
+        self._clear_items("proposal")
+        geom = self._geom
+        if geom is None:
+            return
+        canvas = self.w.canvas
+        free = iter(canvas.free_colors())
+        named: dict[str, str] = {}  # track -> legend text, for a line of its own
+        pieces = []
+        for piece in geom.pieces:
+            if not piece.context:
+                sensor, _, batch = piece.track.partition(":")
+                color = canvas.selection_color(sensor, batch)
+                if color is None:
+                    color = next(free, piece.color)
+                    named[piece.track] = f"{sensor} · {batch}"
+                piece = replace(piece, color=color)
+            pieces.append(piece)
+        self._add_items(replace(geom, pieces=pieces), "proposal")
+        for c, item in self._items["proposal"]:
+            name = item.opts.get("name") if isinstance(item, pg.PlotDataItem) else None
+            if c is canvas and name in named:
+                canvas.legend.addItem(item, named[name])
+        for c in (canvas, self.before):
+            c.mute_layers(CONTEXT_OPACITY)
+
     def show_proposal(self, proposal: str) -> None:
-        """Zoom to the proposal, its pieces in their own colours, the gap's dashed
-        connector and predicted path (both maps), its tracks selected; Gantt, network."""
+        """Zoom to the proposal, its tracks selected, its pieces in the legend's colours
+        over the muted layers, the gap's dashed connector and predicted path (both maps);
+        Gantt, network."""
         b = self.bound
+        self._geom = None
         self._clear_items("proposal")
         if b is None or not proposal:
             return
@@ -368,7 +414,6 @@ class ReviewDock(QtCore.QObject):
         a, c = row["track_a"], row["track_b"]
         members = list(dict.fromkeys([*st.members(st.target(a)), *st.members(st.target(c)), a, c]))
         geom = proposal_geometry(st, b.track_points(members), proposal)
-        self._add_items(geom, "proposal")
         if geom.bounds:
             x0, y0, x1, y1 = geom.bounds
             self.w.canvas.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0.15)
@@ -379,7 +424,9 @@ class ReviewDock(QtCore.QObject):
             keys = [("fused", st.target(a))]
         else:
             keys = [tuple(t.split(":", 1)) for t in (a, c)]
-        self.w.select_tracks(keys)
+        self.w.select_tracks(keys)  # the map's selection and legend name the colours
+        self._geom = geom
+        self._draw_proposal()
 
     def _show_members(self, *_args) -> None:
         """A fused track selected: its member tracks drawn in their own colours on both
@@ -401,7 +448,7 @@ class ReviewDock(QtCore.QObject):
             geom.pieces.append(
                 Piece(m, one["lon"].to_numpy(), one["lat"].to_numpy(), PALETTE[k % len(PALETTE)])
             )
-        self._add_items(geom, "members")
+        self._add_items(geom, "members", z=55)
         sensors = chosen["source"].astype(str).value_counts() if "source" in chosen else {}
         text = ", ".join(f"{s}: {n}" for s, n in dict(sensors).items())
         self.w.statusBar().showMessage(

@@ -1,7 +1,8 @@
-"""Map drawing of a proposal for the main map canvas (issue 13): every member track of
-the proposal's target in its own colour, and across a single-sensor gap a dashed
-straight connector plus the predicted path (cubic Hermite from the old track's end
-position and velocity to the new track's start position and velocity, as stitching
+"""Map drawing of a proposal for the main map canvas (issue 13): the proposal's two
+tracks in their own colours on top (the colours the map's legend names for them), the
+other member tracks of their target(s) muted under them, and across a single-sensor gap
+a dashed straight connector plus the predicted path (cubic Hermite from the old track's
+end position and velocity to the new track's start position and velocity, as stitching
 fills it).
 
 :func:`proposal_geometry` returns plain arrays (testable, Qt-free in spirit);
@@ -30,6 +31,14 @@ PALETTE = (
     "#17becf",
     "#bcbd22",
 )
+#: The proposal's two tracks (old, new) when no colours are given: the colours the map's
+#: selection gives two selected tracks over a blue and an orange layer.
+PAIR_COLORS = ("#d62728", "#2ca02c")
+#: The target's other members: context, one quiet colour, no legend line.
+MUTED = "#9a9a9a"
+#: Stacking (zValue): context members under the selection's curves (50), the gap's
+#: connector and predicted path over them, the proposal's two tracks on top (marks: 60).
+Z_MEMBER, Z_GAP, Z_PAIR = 45, 55, 56
 
 
 @dataclass
@@ -38,6 +47,7 @@ class Piece:
     lon: np.ndarray
     lat: np.ndarray
     color: str
+    context: bool = False  # a member of the target other than the proposal's two tracks
 
 
 @dataclass
@@ -85,9 +95,16 @@ def predicted_path(
     return np.asarray(lon), np.asarray(lat)
 
 
-def proposal_geometry(state: ReviewState, points: pd.DataFrame, proposal: str) -> ProposalGeometry:
-    """Pieces (members of the target(s) of the proposal's two tracks, earliest first,
-    one colour each), and for a proposal with a gap the connector and predicted path."""
+def proposal_geometry(
+    state: ReviewState,
+    points: pd.DataFrame,
+    proposal: str,
+    colors: dict[str, str] | None = None,
+) -> ProposalGeometry:
+    """Pieces (members of the target(s) of the proposal's two tracks): the two tracks in
+    ``colors`` (by ``sensor:batch``; default :data:`PAIR_COLORS`, old then new), the other
+    members as context in :data:`MUTED`; for a proposal with a gap the connector and
+    predicted path."""
     p = state.proposals.set_index("proposal").loc[proposal]
     members = list(
         dict.fromkeys(
@@ -105,12 +122,14 @@ def proposal_geometry(state: ReviewState, points: pd.DataFrame, proposal: str) -
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
     geom = ProposalGeometry(proposal)
+    pair = dict(zip((p["track_a"], p["track_b"]), PAIR_COLORS, strict=True))
+    pair.update({t: c for t, c in (colors or {}).items() if t in pair})
     tracks = {}
-    for k, m in enumerate(members):  # a handful of members
+    for m in members:  # a handful of members
         idx = np.flatnonzero(lab == m)
         idx = idx[np.argsort(t[idx], kind="stable")]
         tracks[m] = (t[idx], lon[idx], lat[idx])
-        geom.pieces.append(Piece(m, lon[idx], lat[idx], PALETTE[k % len(PALETTE)]))
+        geom.pieces.append(Piece(m, lon[idx], lat[idx], pair.get(m, MUTED), m not in pair))
     ta, tb = tracks.get(p["track_a"]), tracks.get(p["track_b"])
     # Zoom to the proposal's two tracks (the other members are drawn, maybe off view).
     both = [x for x in (ta, tb) if x is not None and len(x[0])]
@@ -133,20 +152,22 @@ def proposal_geometry(state: ReviewState, points: pd.DataFrame, proposal: str) -
 
 def proposal_items(geom: ProposalGeometry) -> list[pg.GraphicsObject]:
     """pyqtgraph items for :func:`proposal_geometry`: one curve per piece (own colour,
-    start marked), the dashed connector and the predicted path (dotted)."""
+    start marked; context pieces thinner, under the others), the dashed connector and the
+    predicted path (dotted). Each item has its zValue (:data:`Z_PAIR` …)."""
     items: list[pg.GraphicsObject] = []
     for piece in geom.pieces:
-        items.append(
-            pg.PlotDataItem(
-                piece.lon, piece.lat, pen=pg.mkPen(piece.color, width=3), name=piece.track
-            )
+        z, width, size = (Z_MEMBER, 2, 7) if piece.context else (Z_PAIR, 3, 9)
+        curve = pg.PlotDataItem(
+            piece.lon, piece.lat, pen=pg.mkPen(piece.color, width=width), name=piece.track
         )
+        curve.setZValue(z)
+        items.append(curve)
         if len(piece.lon):
-            items.append(
-                pg.ScatterPlotItem(
-                    piece.lon[:1], piece.lat[:1], size=9, brush=pg.mkBrush(piece.color), pen=None
-                )
+            start = pg.ScatterPlotItem(
+                piece.lon[:1], piece.lat[:1], size=size, brush=pg.mkBrush(piece.color), pen=None
             )
+            start.setZValue(z)
+            items.append(start)
     if geom.connector is not None:
         items.append(
             pg.PlotDataItem(
@@ -154,11 +175,15 @@ def proposal_items(geom: ProposalGeometry) -> list[pg.GraphicsObject]:
                 pen=pg.mkPen("#333333", width=1.5, style=QtCore.Qt.PenStyle.DashLine),
             )
         )
+        items[-1].setZValue(Z_GAP)
     if geom.predicted is not None:
         items.append(
             pg.PlotDataItem(
                 *geom.predicted,
-                pen=pg.mkPen("#d62728", width=2, style=QtCore.Qt.PenStyle.DotLine),
+                # Neutral ink, as the connector's: a colour of the palette would read as
+                # the track the legend names in it.
+                pen=pg.mkPen("#000000", width=2, style=QtCore.Qt.PenStyle.DotLine),
             )
         )
+        items[-1].setZValue(Z_GAP)
     return items

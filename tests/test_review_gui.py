@@ -13,7 +13,12 @@ from PySide6 import QtCore  # noqa: E402
 
 from wakeline.app.review_demo import ReviewWorkspace  # noqa: E402
 from wakeline.app.review_demo import main as demo_main  # noqa: E402
-from wakeline.app.review_map import proposal_geometry, proposal_items  # noqa: E402
+from wakeline.app.review_map import (  # noqa: E402
+    MUTED,
+    PAIR_COLORS,
+    proposal_geometry,
+    proposal_items,
+)
 from wakeline.app.review_panel import ReviewPanel  # noqa: E402
 from wakeline.app.review_undo import ReviewController  # noqa: E402
 from wakeline.app.review_views import GanttView, NetworkView  # noqa: E402
@@ -174,7 +179,14 @@ def test_map_geometry_of_a_proposal(scene, controller):
     geom = proposal_geometry(st, pts, row["proposal"])
     names = [p.track for p in geom.pieces]
     assert set(names) == set(st.members(st.target(f"{row['sensor_a']}:{row['batch_a']}")))
-    assert len({p.color for p in geom.pieces}) == len(geom.pieces)
+    # The proposal's two tracks in the pair's colours (old, new); other members muted.
+    ta, tb = (f"{row[f'sensor_{k}']}:{row[f'batch_{k}']}" for k in "ab")
+    colors = {p.track: p.color for p in geom.pieces if not p.context}
+    assert colors == {ta: PAIR_COLORS[0], tb: PAIR_COLORS[1]}
+    assert {p.color for p in geom.pieces if p.context} <= {MUTED}
+    given = {ta: "#9467bd", tb: "#8c564b"}
+    recoloured = proposal_geometry(st, pts, row["proposal"], given)
+    assert {p.track: p.color for p in recoloured.pieces if not p.context} == given
     a = pts[(pts["sensor"] == row["sensor_a"]) & (pts["batch"] == row["batch_a"])].sort_values(
         "time"
     )

@@ -9,10 +9,12 @@ screenshots there (docs/ holds the ones made so)."""
 import os
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
+import pyqtgraph as pg  # noqa: E402
 from PySide6 import QtCore, QtWidgets  # noqa: E402
 
 from conftest import real_file  # noqa: E402
@@ -35,7 +37,9 @@ def _settle(w, timeout_s: float = 60.0) -> None:
         wait_for_jobs(w)
         if not (w.review.busy or w.drawing or w.runner.busy):
             app.processEvents()  # a result may have been waiting in the queue
-            if not (w.review.busy or w.drawing or w.runner.busy or w._job_context):
+            # (a proposal shown in that turn zooms the map: its level of detail follows)
+            busy = w.review.busy or w.drawing or w.runner.busy or w.canvas.lod_busy
+            if not (busy or w._job_context):
                 return
         app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
     raise AssertionError("the window did not settle")
@@ -260,6 +264,161 @@ def test_review_in_the_window(qtbot, tmp_path, pair):
     log = pd.read_csv(tmp_path / "log.csv", encoding="utf-8-sig")
     assert {"merge", "undo merge"} <= set(log["action"])
     w2.close()
+
+
+def _legend_colors(canvas) -> dict[str, str]:
+    """The main map's legend: line text -> its pen's colour."""
+    out = {}
+    for sample, label in canvas.legend.items:
+        pen = sample.item.opts.get("pen")
+        if pen is not None:
+            out[label.text] = pg.mkPen(pen).color().name()
+    return out
+
+
+def _drawn_pieces(w) -> dict[str, pg.PlotDataItem]:
+    """The curves the review drew on the main map for the current proposal, by track."""
+    return {
+        item.opts["name"]: item
+        for c, item in w.review._items["proposal"]
+        if c is w.canvas and isinstance(item, pg.PlotDataItem) and item.opts.get("name")
+    }
+
+
+def test_proposal_is_drawn_in_the_colours_the_legend_names(qtbot, tmp_path):
+    """The proposal's two tracks are drawn in the colours the map's legend gives them
+    (the selection's, or lines of their own when not selected), above the layers, the
+    selection and the target's other members; the layers are muted behind them and come
+    back when the review leaves the map. (The pieces were drawn in the review's own
+    palette, blue and orange, over the selection's red and green the legend named.)"""
+    per = 6
+    starts = {"0": 0.0, "1": 900.0, "2": 1800.0, "3": 0.0}  # 0 -> 1 -> 2; 3 elsewhere
+    rows = []
+    for batch, t0 in starts.items():
+        t = t0 + 120.0 * np.arange(per)
+        lat = 30.0 + (0.05 if batch == "3" else 0.0)
+        rows.append(pd.DataFrame({"batch": batch, "t": t, "lon": 120.0 + 1e-4 * t, "lat": lat}))
+    pts = pd.concat(rows, ignore_index=True)
+    pts = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": pts["batch"],
+            "time": pd.to_datetime(pts["t"], unit="s", utc=True),
+            "lon": pts["lon"],
+            "lat": pts["lat"],
+        }
+    )
+    props = pd.DataFrame(
+        {
+            "proposal": ["A0001", "A0002"],
+            "kind": "associate",
+            "sensor_a": "R1",
+            "batch_a": ["0", "1"],
+            "sensor_b": "R1",
+            "batch_b": ["1", "2"],
+            "method": "optimal",
+            "cost": [0.2, 0.3],
+            "gap_s": 300.0,
+            "gate": 1.5,
+            "margin": [1.3, 1.2],
+        }
+    )
+    w = _window(qtbot, tmp_path)
+    src = w.session.add_layer("radar.csv", "source", pts)
+    target = pts["batch"].map({"0": "R1:0", "1": "R1:0", "2": "R1:0", "3": "R1:3"})
+    lay = w.session.add_layer(
+        "radar.csv · associated",
+        "associated",
+        pts.assign(target=target),
+        parent=src.id,
+        step="associate",
+        role="associated",
+        tables={"proposals": props},
+    )
+    _settle(w)
+    w.select_layer(lay.id)
+    _settle(w)
+    b = w.review.bound
+    assert b is not None and b.panel.set_current("A0001")
+    _settle(w)
+    canvas = w.canvas
+    layer_items = [item for items in canvas._items.values() for item in items]
+
+    def check(selected: set[str]) -> None:
+        qtbot.waitUntil(lambda: selected <= set(_legend_colors(canvas)), timeout=5000)
+        legend = _legend_colors(canvas)
+        items = _drawn_pieces(w)
+        pens = {t: items[t].opts["pen"].color().name() for t in ("R1:0", "R1:1")}
+        assert pens == {"R1:0": legend["R1 · 0"], "R1:1": legend["R1 · 1"]}, (pens, legend)
+        assert len(set(pens.values())) == 2
+        # The target's third member is context: muted, in no colour the legend names.
+        assert items["R1:2"].opts["pen"].color().name() not in legend.values()
+        under = [*layer_items, *canvas.selection_items(), items["R1:2"]]
+        top = min(items[t].zValue() for t in ("R1:0", "R1:1"))
+        assert top > max(item.zValue() for item in under)
+        assert all(item.opacity() < 1 for item in layer_items)  # the layers: context
+
+    check({"R1 · 0", "R1 · 1"})  # the pair is the selection: its legend lines
+    w.select_tracks([("R1", "3")])  # another track selected: the pair's own lines
+    check({"R1 · 3", "R1 · 0", "R1 · 1"})
+    assert "R1 · 3" in _legend_colors(canvas)
+    w.select_layer(src.id)  # no proposals: the review leaves the map
+    _settle(w)
+    assert not w.review._items["proposal"]
+    assert all(item.opacity() == 1 for item in layer_items)
+    assert not {"R1 · 0", "R1 · 1"} & set(_legend_colors(canvas))
+    w.close()
+
+
+@pytest.mark.real
+def test_long_join_on_the_saronic_ais(qtbot, tmp_path):
+    """The Saronic Gulf AIS cut at its 600 s gaps (one sensor, S1), Run ▸ Associate: the
+    long join S1:103 → S1:88 (3,226 s) under review is drawn in the colours the legend
+    names, over the muted layers. ``WAKELINE_SHOTS=docs`` writes docs/review-long-gap.png."""
+    from wakeline.core.evaluate_association import cut_at_gaps
+
+    raw = pd.read_csv(
+        real_file("greece-ais-annotated", "vessels.csv"),
+        sep=" ",
+        header=None,
+        names=["batch", "lon", "lat", "t"],
+    )
+    df = pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": raw["batch"].astype(str),
+            "time": pd.to_datetime(raw["t"], unit="s", utc=True),
+            "lon": raw["lon"],
+            "lat": raw["lat"],
+        }
+    )
+    path = tmp_path / "greece_cut.csv"
+    write_points(cut_at_gaps(df, min_gap_s=600.0).drop(columns="truth"), path)
+    w = _window(qtbot, tmp_path)
+    w.load_files([path])
+    _settle(w)
+    src = w.layer_id(path.name)
+    w.select_layer(src)
+    _settle(w)
+    w.run_step("associate")
+    _settle(w)
+    assoc = w.session.find(src, "associate")
+    w.select_layer(assoc.id)
+    _settle(w)
+    st = w.review.bound.controller.state
+    props = st.proposals
+    pair = props[(props["track_a"] == "S1:103") & (props["track_b"] == "S1:88")]
+    assert len(pair), "the long join of docs/review.md's picture"
+    assert w.review.bound.panel.set_current(pair["proposal"].iloc[0])
+    _settle(w)
+    qtbot.waitUntil(lambda: {"S1 · 103", "S1 · 88"} <= set(_legend_colors(w.canvas)))
+    legend, items = _legend_colors(w.canvas), _drawn_pieces(w)
+    assert items["S1:103"].opts["pen"].color().name() == legend["S1 · 103"]
+    assert items["S1:88"].opts["pen"].color().name() == legend["S1 · 88"]
+    others = [item for t, item in items.items() if t not in ("S1:103", "S1:88")]
+    assert others and all(item.opts["pen"].color().name() not in legend.values() for item in others)
+    _shot(w, "review-long-gap.png", tmp_path)
+    w.close()
 
 
 def test_thousand_proposals_in_the_window_stay_responsive(qtbot, tmp_path):
