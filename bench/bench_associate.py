@@ -12,10 +12,14 @@ time: on a shared machine it is the steadier of the two.
 """
 
 import argparse
+import hashlib
+import os
 import time
 import tracemalloc
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 from scipy.optimize import linear_sum_assignment
 
 from wakeline.core import associate as assoc_mod
@@ -35,10 +39,27 @@ from wakeline.core.tracks import sorted_with_index
 
 def scene(n_segments: int, seed: int = 0):
     """About ``n_segments`` segments: ships at the density of the 'dense' class scaled up,
-    60 s sampling (points per segment do not matter to the pairing)."""
+    60 s sampling (points per segment do not matter to the pairing).
+
+    Simulating 100 k segments takes minutes, so each scene is kept in
+    ``$WAKELINE_BENCH_CACHE`` (default ``~/.cache/wakeline-bench``) as Parquet, keyed by
+    its size, its seed and a hash of the simulator's source: a changed simulator makes a
+    new scene. Set ``WAKELINE_BENCH_CACHE=`` (empty) to simulate every time."""
     ships = max(int(n_segments / 3.0), 2)
     area = 20.0 * np.sqrt(ships / 80.0)
-    return simulate.segments_scene(seed=seed, n_ships=ships, area_km=area, period_s=60.0)
+    folder = os.environ.get("WAKELINE_BENCH_CACHE", str(Path.home() / ".cache/wakeline-bench"))
+    if not folder:
+        return simulate.segments_scene(seed=seed, n_ships=ships, area_km=area, period_s=60.0)
+    digest = hashlib.sha256(Path(simulate.__file__).read_bytes()).hexdigest()[:12]
+    path = Path(folder) / f"scene-{n_segments}-{seed}-{digest}.parquet"
+    if path.exists():
+        return pd.read_parquet(path)
+    df = simulate.segments_scene(seed=seed, n_ships=ships, area_km=area, period_s=60.0)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    df.to_parquet(tmp)
+    os.replace(tmp, path)
+    return pd.read_parquet(path)  # the same dtypes whether simulated now or before
 
 
 def dense_baseline(points, params: LinkParams) -> tuple[float, int]:

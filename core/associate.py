@@ -24,9 +24,9 @@ from wakeline.core import geo
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
-from wakeline.core.schema import seconds_to_time, time_seconds
+from wakeline.core.schema import seconds_to_time
 from wakeline.core.segments import Segments, chain_refit, ecef, segment_stats
-from wakeline.core.tracks import concat_ranges
+from wakeline.core.tracks import concat_ranges, track_seconds
 
 SEGMENT_METHODS = ("motion", "area", "dtw", "hausdorff")
 INTERRUPT_METHODS = ("optimal", "greedy")
@@ -647,7 +647,7 @@ class Association:
 
     def points(self) -> pd.DataFrame:
         """Every input row (sorted by track and time) with a ``target`` column."""
-        pts = self.segments.points.copy()
+        pts = self.segments.full_points().copy()
         pts["target"] = self.target_of_track[self.segments.index.track_of_row]
         return pts
 
@@ -1083,7 +1083,7 @@ def _line_fill(
     pts = seg.points
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     offs = np.arange(k)
     tail = np.maximum(idx.ends[i][:, None] - 1 - offs, idx.starts[i][:, None])
     head = np.minimum(idx.starts[j][:, None] + offs, idx.ends[j][:, None] - 1)

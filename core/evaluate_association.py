@@ -83,7 +83,7 @@ def score_association(assoc, truth_column: str = "truth") -> dict:
     """All scores of an :class:`~wakeline.core.associate.Association` whose points carry
     the true ship in ``truth_column``."""
     seg = assoc.segments
-    truth = seg.points[truth_column].astype(str).to_numpy()[seg.index.starts]
+    truth = seg.column(truth_column).astype(str).to_numpy()[seg.index.starts]
     out = set(
         zip(assoc.pairs.i[assoc.chosen].tolist(), assoc.pairs.j[assoc.chosen].tolist(), strict=True)
     )
@@ -547,7 +547,7 @@ def _reachable_scores(assoc, params: LinkParams) -> dict:
     """P_CA over the true pairs whose gap is within ``max_gap_s`` (the rest cannot be
     joined by construction) and how many those are."""
     seg = assoc.segments
-    truth = seg.points["truth"].astype(str).to_numpy()[seg.index.starts]
+    truth = seg.column("truth").astype(str).to_numpy()[seg.index.starts]
     true = consecutive_true_pairs(truth, seg.t0)
     reach = {(i, j) for i, j in true if 0 < seg.t0[j] - seg.t1[i] <= params.max_gap_s}
     out = set(
@@ -572,7 +572,7 @@ def error_breakdown(assoc, params: LinkParams | None = None) -> dict:
     """
     params = params or LinkParams()
     seg = assoc.segments
-    truth = seg.points["truth"].astype(str).to_numpy()[seg.index.starts]
+    truth = seg.column("truth").astype(str).to_numpy()[seg.index.starts]
     true = consecutive_true_pairs(truth, seg.t0)
     reach = {(i, j) for i, j in true if 0 < seg.t0[j] - seg.t1[i] <= params.max_gap_s}
     succ = {i for i, _ in reach}

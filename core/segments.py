@@ -5,13 +5,20 @@ gathered into a (tracks × k) block and fitted by a straight line in time at onc
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import pandas as pd
 
 from wakeline.core import geo
-from wakeline.core.schema import time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_origins
+from wakeline.core.tracks import (
+    TrackIndex,
+    known_order,
+    local_xy,
+    sorted_with_index,
+    track_origins,
+    track_seconds,
+)
 
 
 @dataclass(frozen=True)
@@ -22,7 +29,12 @@ class Segments:
     and north from a least-squares line over the first / last ``k`` points; speed in knots
     and course in degrees at both ends; ``ldm_deg`` the linear directional mean of the
     legs (seed 001 eq. 11); ``cross`` the open shoelace sum of the track in its own local
-    frame (m², for seed 001's area S).
+    frame (m², for seed 001's area S). Those two, the local frames and the sampling period
+    are computed from the points when first asked for (only some methods use them).
+
+    ``points`` holds the columns association reads, sorted by track and time; when the
+    input had more and had to be sorted, ``source`` is the input and ``source_row`` the
+    input row of every sorted row (:meth:`full_points` puts them together).
     """
 
     points: pd.DataFrame
@@ -39,13 +51,6 @@ class Segments:
     vy0: np.ndarray
     vx1: np.ndarray
     vy1: np.ndarray
-    ldm_deg: np.ndarray
-    cross: np.ndarray
-    origin_lon: np.ndarray
-    origin_lat: np.ndarray
-    first_xy: np.ndarray
-    last_xy: np.ndarray
-    period_s: np.ndarray
     #: Standard error (m, per axis) of the fitted start / end position and (m/s) of the
     #: fitted start / end velocity; a piece too short to show its own noise takes its
     #: sensor's median residual. ``moving0`` / ``moving1``: the end's motion is known
@@ -60,9 +65,55 @@ class Segments:
     #: its sensor's median where the end has too few points.
     noise0: np.ndarray = None  # type: ignore[assignment]
     noise1: np.ndarray = None  # type: ignore[assignment]
+    source: pd.DataFrame | None = None
+    source_row: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.t0)
+
+    def full_points(self) -> pd.DataFrame:
+        """Every input row with all its columns, in the order of ``points``."""
+        if self.source is None:
+            return self.points
+        return self.source.take(self.source_row).reset_index(drop=True)
+
+    def column(self, name: str) -> pd.Series:
+        """Column ``name`` of the input, in the order of ``points`` (any input column)."""
+        if name in self.points.columns or self.source is None:
+            return self.points[name]
+        return self.source[name].take(self.source_row).reset_index(drop=True)
+
+    @cached_property
+    def _shape(self) -> dict:
+        return _track_shape(self.points, self.index)
+
+    @property
+    def ldm_deg(self) -> np.ndarray:
+        return self._shape["ldm_deg"]
+
+    @property
+    def cross(self) -> np.ndarray:
+        return self._shape["cross"]
+
+    @property
+    def origin_lon(self) -> np.ndarray:
+        return self._shape["origin_lon"]
+
+    @property
+    def origin_lat(self) -> np.ndarray:
+        return self._shape["origin_lat"]
+
+    @property
+    def first_xy(self) -> np.ndarray:
+        return self._shape["first_xy"]
+
+    @property
+    def last_xy(self) -> np.ndarray:
+        return self._shape["last_xy"]
+
+    @property
+    def period_s(self) -> np.ndarray:
+        return self._shape["period_s"]
 
     @property
     def speed0_kn(self) -> np.ndarray:
@@ -149,12 +200,27 @@ def segment_stats(
 
     ``end_points``: points per end fit. With ``use_reported_motion`` the end velocities
     come from the reported speed and course (AIS) over the last three points where present.
+
+    A table that must be sorted first is sorted on the columns read here only (with the
+    input row of each); the others are gathered when asked for (``full_points``).
     """
-    pts, index = sorted_with_index(points)
-    n_tr = index.n_tracks
+    source = source_row = None
+    extra = [c for c in points.columns if c not in _READ]
+    if extra and points.columns.is_unique and known_order(points) is None:
+        narrow = points[[c for c in points.columns if c in _READ]]
+        narrow = narrow.assign(**{_ROW: np.arange(len(points), dtype="int64")})
+        pts, index = sorted_with_index(narrow)
+        source_row = pts[_ROW].to_numpy()
+        if not np.array_equal(source_row, np.arange(len(points))):
+            source = points
+        else:  # already in order: the input itself is the sorted table
+            pts, index = sorted_with_index(points)
+            source_row = None
+    else:
+        pts, index = sorted_with_index(points)
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     sizes = index.sizes
     k = max(int(end_points), 1)
     offs = np.arange(k)
@@ -192,7 +258,48 @@ def segment_stats(
     with np.errstate(invalid="ignore"):
         vel_sd0 = np.where(vf0 == 0.0, rep_sd, np.where(np.isfinite(vf0), res0 * vf0, np.inf))
         vel_sd1 = np.where(vf1 == 0.0, rep_sd, np.where(np.isfinite(vf1), res1 * vf1, np.inf))
-    # Legs within tracks: bearing and shoelace terms.
+    return Segments(
+        points=pts,
+        index=index,
+        sensor_code=sensor_code,
+        n=sizes,
+        t0=t[index.starts],
+        t1=t[index.ends - 1],
+        lon0=lon0,
+        lat0=lat0,
+        lon1=lon1,
+        lat1=lat1,
+        vx0=vx0,
+        vy0=vy0,
+        vx1=vx1,
+        vy1=vy1,
+        pos_sd0=res0 * pf0,
+        pos_sd1=res1 * pf1,
+        vel_sd0=vel_sd0,
+        vel_sd1=vel_sd1,
+        motion0=motion0,
+        motion1=motion1,
+        noise0=res0,
+        noise1=res1,
+        source=source,
+        source_row=source_row,
+    )
+
+
+#: The columns :func:`segment_stats` reads (``speed`` and ``course`` where reported), and
+#: the input row it carries through a sort.
+_READ = ("sensor", "batch", "time", "lon", "lat", "speed", "course")
+_ROW = "_source_row"
+
+
+def _track_shape(pts: pd.DataFrame, index: TrackIndex) -> dict:
+    """Per track from its legs: the linear directional mean (deg), the open shoelace sum
+    in the track's local frame (m²), that frame's origin, the first and last point in it
+    (m), and the median sampling interval (s)."""
+    n_tr = index.n_tracks
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    t = track_seconds(pts)
     same = np.zeros(len(pts), dtype=bool)
     if len(pts) > 1:
         same[1:] = index.track_of_row[1:] == index.track_of_row[:-1]
@@ -217,37 +324,15 @@ def segment_stats(
     period = (
         pd.Series(dt).groupby(index.track_of_row[legs]).median().reindex(range(n_tr)).to_numpy()
     )
-    return Segments(
-        points=pts,
-        index=index,
-        sensor_code=sensor_code,
-        n=sizes,
-        t0=t[index.starts],
-        t1=t[index.ends - 1],
-        lon0=lon0,
-        lat0=lat0,
-        lon1=lon1,
-        lat1=lat1,
-        vx0=vx0,
-        vy0=vy0,
-        vx1=vx1,
-        vy1=vy1,
-        ldm_deg=ldm,
-        cross=cross,
-        origin_lon=ox,
-        origin_lat=oy,
-        first_xy=np.column_stack([x[index.starts], y[index.starts]]),
-        last_xy=np.column_stack([x[index.ends - 1], y[index.ends - 1]]),
-        period_s=period,
-        pos_sd0=res0 * pf0,
-        pos_sd1=res1 * pf1,
-        vel_sd0=vel_sd0,
-        vel_sd1=vel_sd1,
-        motion0=motion0,
-        motion1=motion1,
-        noise0=res0,
-        noise1=res1,
-    )
+    return {
+        "ldm_deg": ldm,
+        "cross": cross,
+        "origin_lon": ox,
+        "origin_lat": oy,
+        "first_xy": np.column_stack([x[index.starts], y[index.starts]]),
+        "last_xy": np.column_stack([x[index.ends - 1], y[index.ends - 1]]),
+        "period_s": period,
+    }
 
 
 def chain_refit(
@@ -303,7 +388,7 @@ def chain_refit(
 
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     offs = np.arange(k)
     lo_s, hi_s = lo[short][:, None], hi[short][:, None]
     tail = last[short][:, None] - offs
