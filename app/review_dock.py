@@ -441,13 +441,13 @@ class ReviewDock(QtCore.QObject):
             return
         members = sorted({m for text in chosen["members"].astype(str) for m in text.split("+")})
         pts = b.track_points(members)
-        self.before.show_selection(pts)
+        self.before.show_selection(pts)  # its legend names each member's colour
         geom = ProposalGeometry("")
         for k, m in enumerate(members):
             one = b.track_points([m])
-            geom.pieces.append(
-                Piece(m, one["lon"].to_numpy(), one["lat"].to_numpy(), PALETTE[k % len(PALETTE)])
-            )
+            sensor, _, batch = m.partition(":")
+            color = self.before.selection_color(sensor, batch) or PALETTE[k % len(PALETTE)]
+            geom.pieces.append(Piece(m, one["lon"].to_numpy(), one["lat"].to_numpy(), color))
         self._add_items(geom, "members", z=55)
         sensors = chosen["source"].astype(str).value_counts() if "source" in chosen else {}
         text = ", ".join(f"{s}: {n}" for s, n in dict(sensors).items())

@@ -196,6 +196,13 @@ def test_review_in_the_window(qtbot, tmp_path, pair):
         w.batch_model.rowCount(),
     )
     assert "+" in w.statusBar().currentMessage()
+    # each member in the colour the before map's selection (and so its legend) gives it
+    before = w.review.before
+    for canvas, item in w.review._items["members"]:
+        track = item.opts.get("name") if hasattr(item, "opts") else None
+        if canvas is before and track:
+            sensor, _, batch = track.partition(":")
+            assert item.opts["pen"].color().name() == before.selection_color(sensor, batch)
     w.review.act_before.trigger()  # View ▸ Before/after map
     _settle(w)
     assert w.review.before.isVisible() and w.review.before.layer_names() == ids
