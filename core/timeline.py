@@ -116,8 +116,13 @@ class TimeIndex:
         if len(tracks) == 0:
             return np.zeros(0), np.zeros(0)
         base = tracks * self.span - self.t_min
-        lo = np.searchsorted(self.key, base + a, side="right")  # points after a
-        hi = np.searchsorted(self.key, base + t, side="right")  # … up to t
+        # Each track's window clipped to its own span: a key below its first time or
+        # beyond its last would fall among its neighbour's keys (a trail that began
+        # before the data pulled in the previous track's end).
+        a_k = np.maximum(a, self.t0[tracks])
+        t_k = np.minimum(t, self.t1[tracks])
+        lo = np.searchsorted(self.key, base + a_k, side="right")  # points after a
+        hi = np.searchsorted(self.key, base + t_k, side="right")  # … up to t
         n = hi - lo
         total = int(n.sum())
         first = np.cumsum(n) - n
@@ -130,8 +135,8 @@ class TimeIndex:
             n = np.bincount(np.repeat(np.arange(len(tracks)), n)[keep], minlength=len(tracks))
             first = np.cumsum(n) - n
             run = np.arange(len(src)) - np.repeat(first, n)
-        tail_lon, tail_lat = self._interp(tracks, np.maximum(a, self.t0[tracks]))
-        head_lon, head_lat = self._interp(tracks, np.minimum(t, self.t1[tracks]))
+        tail_lon, tail_lat = self._interp(tracks, a_k)
+        head_lon, head_lat = self._interp(tracks, t_k)
         seg = n + 3  # tail, points, head, NaN
         off = np.cumsum(seg) - seg
         lon = np.full(int(seg.sum()), np.nan)

@@ -7,6 +7,8 @@ import time
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from wakeline.core.timeline import PlaybackParams, build_index, overlapping, window_rows
 
@@ -46,6 +48,37 @@ def test_trail_is_one_nan_separated_curve_with_interpolated_ends():
     # Too many vertices: thinned, the ends of every piece kept.
     lon2, _ = ix.trail(16.0, 8.0, max_vertices=1)
     assert np.isnan(lon2).sum() == 2 and lon2[0] == pytest.approx(0.8)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    sizes=st.lists(st.integers(1, 6), min_size=1, max_size=6),
+    seed=st.integers(0, 10_000),
+    t=st.floats(-500.0, 1500.0),
+    trail_s=st.floats(0.5, 2000.0),
+)
+def test_a_trail_never_takes_points_of_another_track(sizes, seed, t, trail_s):
+    """Each piece of the trail lies on one track (issue found on real files: a trail that
+    began before the data's first time pulled in the previous track's end, drawing a line
+    from one ship to another at the slider's start)."""
+    rng = np.random.default_rng(seed)
+    times, lons, starts, ends, at = [], [], [], [], 0
+    for k, n in enumerate(sizes):
+        tk = np.sort(rng.choice(1000, n, replace=False)).astype(float)
+        times.append(tk)
+        lons.append(100.0 * k + tk / 100.0)  # track k's longitudes lie in [100 k, 100 k + 10]
+        starts.append(at)
+        ends.append(at + n)
+        at += n
+    tt, lon = np.concatenate(times), np.concatenate(lons)
+    ix = build_index([(tt, lon, np.zeros_like(lon), np.array(starts), np.array(ends))])
+    out, _ = ix.trail(t, trail_s)
+    pieces = np.split(out, np.flatnonzero(np.isnan(out)) + 1)
+    for piece in pieces:
+        piece = piece[~np.isnan(piece)]
+        if len(piece):
+            assert np.ptp(np.floor(piece / 100.0)) == 0, piece
+            assert np.all(np.diff(piece) >= -1e-9)  # forward in time along its own track
 
 
 def test_index_over_two_layers_and_window_rows():
