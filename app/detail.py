@@ -17,6 +17,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         super().__init__(parent)
         self.factor_plot = pg.PlotWidget(background="w")
         self.factor_plot.setLabel("bottom", "time since track start", units="min")
+        self.factor_plot.getAxis("bottom").enableAutoSIPrefix(False)  # no "kmin"
         self.factor_plot.setLabel("left", "maneuver factor δ", units="°")
         self.factor_curve = self.factor_plot.plot(pen=pg.mkPen("#1f77b4", width=1.5))
         self.factor_marks = pg.ScatterPlotItem(size=9, brush=pg.mkBrush("#d62728"), pen=None)
@@ -53,6 +54,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.b_plot.setLabel("left", "bearing", units="°")
         self.z_plot.setLabel("left", "z (AUC)")
         self.z_plot.setLabel("bottom", "time", units="min")
+        self.z_plot.getAxis("bottom").enableAutoSIPrefix(False)
         self.b_curve = self.b_plot.plot(
             pen=None, symbol="o", symbolSize=3, symbolBrush="#1f77b4", symbolPen=None
         )

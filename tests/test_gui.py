@@ -428,3 +428,20 @@ def test_map_image_and_relative_times(window, tmp_path):
     png = tmp_path / "map.png"
     assert window.export_map_image(png)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_detail_time_axes_keep_minutes(qtbot):
+    """A track of hours: the detail plots' time axes say "min", never "kmin"."""
+    from wakeline.app.detail import DetailPanel
+
+    panel = DetailPanel()
+    qtbot.addWidget(panel)
+    panel.factor_curve.setData(np.linspace(0.0, 5000.0, 50), np.zeros(50))
+    panel.factor_plot.getPlotItem().enableAutoRange()
+    panel.resize(600, 400)
+    panel.show()
+    qtbot.waitExposed(panel)
+    QtWidgets.QApplication.processEvents()
+    for plot in (panel.factor_plot, panel.z_plot):
+        label = plot.getAxis("bottom").labelString()
+        assert "(min)" in label and "kmin" not in label, label
