@@ -41,21 +41,24 @@ def _join(*parts) -> pa.Array:
     return pc.binary_join_element_wise(*parts, "")
 
 
-def _digits(scaled: np.ndarray, neg: np.ndarray, decimals: int, trim: str) -> pa.Array:
-    """Text of ``±scaled / 10**decimals`` (``scaled`` ≥ 0, int64) with ``decimals`` digits."""
+def _digits(
+    scaled: np.ndarray, neg: np.ndarray, decimals: int, trim: str, point: str = "."
+) -> pa.Array:
+    """Text of ``±scaled / 10**decimals`` (``scaled`` ≥ 0, int64) with ``decimals`` digits
+    after ``point``."""
     unit = 10**decimals
     whole = pc.cast(pa.array(scaled // unit), pa.string())
     if decimals > 0:
         frac = pc.utf8_lpad(pc.cast(pa.array(scaled % unit), pa.string()), decimals, "0")
         if trim == "none":
-            text = _join(whole, ".", frac)
+            text = _join(whole, point, frac)
         else:
             short = pc.utf8_rtrim(frac, "0")
             empty = pc.equal(pc.utf8_length(short), 0)
             if trim == "keep1":
-                text = _join(whole, ".", pc.if_else(empty, "0", short))
+                text = _join(whole, point, pc.if_else(empty, "0", short))
             else:
-                text = pc.if_else(empty, whole, _join(whole, ".", short))
+                text = pc.if_else(empty, whole, _join(whole, point, short))
     else:
         text = whole
     return pc.if_else(pa.array(neg), _join("-", text), text)
@@ -77,9 +80,11 @@ def format_numbers(values: np.ndarray, fmt: NumberFormat) -> pa.Array:
             )
         if fmt.trim == "repr1":
             text = pc.if_else(pc.match_substring(text, "."), text, _join(text, ".0"))
+        if fmt.point != ".":
+            text = pc.replace_substring(text, ".", fmt.point)
     else:
         scaled = np.rint(big).astype("int64")
-        text = _digits(scaled, (x < 0) & (scaled != 0), fmt.decimals, fmt.trim)
+        text = _digits(scaled, (x < 0) & (scaled != 0), fmt.decimals, fmt.trim, fmt.point)
     return pc.if_else(pa.array(finite), text, fmt.na)
 
 
@@ -155,7 +160,7 @@ def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
         d = tf.number.decimals
         if not tf.number.trim.startswith("repr") and 10**d <= unit_ns:
             scaled, neg = _round_div(ns, unit_ns // 10**d)
-            text = _digits(scaled, neg & (scaled != 0), d, tf.number.trim)
+            text = _digits(scaled, neg & (scaled != 0), d, tf.number.trim, tf.number.point)
         else:
             text = format_numbers(ns / unit_ns, tf.number)
         return pc.if_else(pa.array(ok), text, tf.number.na)

@@ -80,18 +80,27 @@ class NumberFormat:
     ``keep1`` — as ``zeros`` but at least one digit (``12.0``); ``repr`` — the shortest
     text that reads back to the same float (for 16–17 significant digits), ``12`` for
     whole numbers; ``repr1`` — the same with ``12.0`` (Python's way).
-    ``na`` is the text of a missing value.
+    ``na`` is the text of a missing value; ``point`` the decimal separator (``,`` in
+    European spreadsheets' exports, which then separate columns by ``;``).
     """
 
     decimals: int = 6
     trim: str = "zeros"
     na: str = ""
+    point: str = "."
 
     @staticmethod
     def detect(values: pd.Series) -> "NumberFormat | None":
         """The format of a column of number texts; None when they are not numbers."""
         text = values.astype("str").str.strip()
         present = text[text != ""]
+        point = "."
+        if (
+            present.str.contains(",", regex=False).any()
+            and not present.str.contains(".", regex=False).any()
+        ):
+            point = ","  # a decimal comma: read as a point, written back as a comma
+            present = present.str.replace(",", ".", regex=False)
         m = present.str.extract(_NUMBER)
         numeric = m[0].notna() & ((m[0].str.len() > 0) | (m[1].str.len() > 0))
         if len(present) == 0 or numeric.mean() < 0.9:
@@ -105,14 +114,14 @@ class NumberFormat:
         digits = frac.fillna("").str.len()
         decimals = int(digits.max()) if len(digits) else 0
         if int(whole.str.len().max()) + decimals > 15:
-            return NumberFormat(decimals, "repr" if (~has_point).any() else "repr1", na)
+            return NumberFormat(decimals, "repr" if (~has_point).any() else "repr1", na, point)
         if not has_point.any():
-            return NumberFormat(0, "none", na)
+            return NumberFormat(0, "none", na, point)
         if has_point.all() and (digits == decimals).all():
-            return NumberFormat(decimals, "none", na)
+            return NumberFormat(decimals, "none", na, point)
         if (~has_point).any():
-            return NumberFormat(decimals, "zeros", na)
-        return NumberFormat(decimals, "keep1", na)
+            return NumberFormat(decimals, "zeros", na, point)
+        return NumberFormat(decimals, "keep1", na, point)
 
 
 @dataclass(frozen=True)
@@ -145,7 +154,9 @@ class TimeFormat:
             return TimeFormat(tz=tz or "UTC")
         number = NumberFormat.detect(present)
         if number is not None:
-            numbers = pd.to_numeric(present, errors="coerce").abs()
+            numbers = pd.to_numeric(
+                present.str.replace(",", ".", regex=False), errors="coerce"
+            ).abs()
             scale = 1000 if numbers.median() > 1e11 else 1
             return TimeFormat(kind="unix", scale=scale, number=number, tz=tz or "UTC")
         first = present.iloc[0]

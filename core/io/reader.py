@@ -437,14 +437,41 @@ def _line_numbers(rows: np.ndarray, skip_rows: int, invalid_lines: list[int]) ->
     return rows + skip_rows + 1
 
 
-def _numbers(arr: pa.ChunkedArray) -> tuple[np.ndarray, np.ndarray]:
-    """float64 values and a mask of unparsable (present but not a number) cells."""
+#: A number written with a decimal comma (``57,6671``, ``-0,5``, ``1,5e3``): European
+#: spreadsheets' exports, read as such when the file's delimiter is not the comma.
+_COMMA_NUMBER = r"[+-]?\d*,\d+(?:[eE][+-]?\d+)?"
+
+
+def _with_decimal_comma(text: pd.Series, values: np.ndarray) -> int:
+    """Fill ``values`` (NaN where ``text`` is no plain number) from the texts written with
+    a decimal comma, in place; returns how many."""
+    miss = np.flatnonzero(np.isnan(values) & text.notna().to_numpy())
+    if not len(miss):
+        return 0
+    sub = text.iloc[miss]
+    comma = sub.str.fullmatch(_COMMA_NUMBER).fillna(False).to_numpy(dtype=bool)
+    if not comma.any():
+        return 0
+    fixed = pd.to_numeric(sub[comma].str.replace(",", ".", regex=False), errors="coerce")
+    values[miss[comma]] = fixed.to_numpy(dtype="float64")
+    return int(comma.sum())
+
+
+def _numbers(
+    arr: pa.ChunkedArray, decimal_comma: bool = False, counted: dict | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """float64 values and a mask of unparsable (present but not a number) cells. With
+    ``decimal_comma``, ``57,6671`` is 57.6671 (counted in ``counted["decimal_comma"]``)."""
     if pa.types.is_floating(arr.type) or pa.types.is_integer(arr.type):
         return arr.to_numpy().astype("float64", copy=False) if arr.null_count == 0 else pc.cast(
             arr, pa.float64()
         ).to_numpy(zero_copy_only=False), np.zeros(len(arr), bool)
     text = pd.Series(arr.to_pandas(), dtype="str").str.strip()
-    values = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
+    values = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64", copy=True)
+    if decimal_comma:
+        k = _with_decimal_comma(text, values)
+        if counted is not None and k:
+            counted["decimal_comma"] = counted.get("decimal_comma", 0) + k
     present = ~(text.isna() | (text == "")).to_numpy()
     lowered = text.str.lower()
     nan_words = lowered.isin(["nan", "na", "n/a", "null", "none"]).to_numpy()
@@ -511,13 +538,15 @@ def parse_times(
     kind: str,
     tz: datetime.tzinfo | None = None,
     info: dict | None = None,
+    decimal_comma: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """int64 ns since epoch (UTC) and a validity mask.
 
     Times without a zone are UTC unless ``tz`` names their zone; numbers are unix seconds
-    or milliseconds (absolute: ``tz`` does not apply). ``info``, when given, receives
-    ``time_format``, ``naive`` (text without a zone seen) and ``relative`` (seconds from
-    a scene start rather than since 1970)."""
+    or milliseconds (absolute: ``tz`` does not apply), with a decimal comma too when
+    ``decimal_comma``. ``info``, when given, receives ``time_format``, ``naive`` (text
+    without a zone seen), ``relative`` (seconds from a scene start rather than since 1970)
+    and ``decimal_comma`` (how many numbers had one)."""
     info = {} if info is None else info
     info.setdefault("naive", False)
     info.setdefault("relative", False)
@@ -540,10 +569,14 @@ def parse_times(
         return _epoch_ns(seconds, info)
     text = pd.Series(arr.to_pandas(), dtype="str").str.strip()
     present = ~(text.isna() | (text == ""))
-    numeric = pd.to_numeric(text, errors="coerce")
+    numeric = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64", copy=True)
+    if decimal_comma:
+        k = _with_decimal_comma(text, numeric)
+        if k:
+            info["decimal_comma"] = info.get("decimal_comma", 0) + k
     n_present = int(present.sum())
-    if kind == "unix" or (n_present and numeric.notna().sum() >= 0.5 * n_present):
-        return _epoch_ns(numeric.to_numpy(dtype="float64"), info)
+    if kind == "unix" or (n_present and np.isfinite(numeric).sum() >= 0.5 * n_present):
+        return _epoch_ns(numeric, info)
     sample = text[present].head(50)
     dayfirst = kind == "dayfirst" or bool(
         sample.str.match(r"^\d{1,2}[/-]\d{1,2}[/-]\d{4}").mean() > 0.5
@@ -602,8 +635,14 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
 
 
 def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
-    """Warnings about how the time column was read (local read as UTC; relative times)."""
+    """Warnings about how the time column was read (local read as UTC; relative times),
+    and numbers read with a decimal comma."""
     out = []
+    if time_info.get("decimal_comma"):
+        out.append(
+            f"{time_info['decimal_comma']:,} values were written with a decimal comma "
+            "(57,6671) and read as decimal numbers"
+        )
     if time_info.get("naive") and zone is None and header_is_local(time_src):
         out.append(
             f"the time column {time_src!r} says it holds local times but they were read as "
@@ -813,7 +852,9 @@ def _to_canonical(
                 undecodable |= np.asarray(pc.fill_null(hit, False), dtype=bool)
         flag(undecodable, f"bytes not valid {rows.encoding}")
     time_col = table[cols["time"]]
-    ns, time_ok = parse_times(time_col, res.format.time_kind, zone, time_info)
+    comma = sn.delimiter != ","  # a decimal comma cannot be unquoted in a comma-separated file
+    counted = time_info if time_info is not None else {}
+    ns, time_ok = parse_times(time_col, res.format.time_kind, zone, counted, comma)
     if not time_ok.all():
         flag(_trimmed(time_col)[1], "missing time")
         flag(~time_ok, "unparsable time")
@@ -828,7 +869,7 @@ def _to_canonical(
         if _clean_floats(arr, lo, hi, hi_open):
             floats[name] = arr  # the common case: passes through untouched
             continue
-        v, unparsable = _numbers(arr)
+        v, unparsable = _numbers(arr, comma, counted)
         flag(unparsable, f"unparsable {name}")
         with np.errstate(invalid="ignore"):
             outside = (v < lo) | (v >= hi if hi_open else v > hi) | np.isinf(v)
@@ -914,6 +955,7 @@ def _to_canonical(
         "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
         "blank_lines": int(blank.sum()) + bad.blank,
         "values_blanked": blanked,
+        "decimal_comma_values": int(counted.get("decimal_comma", 0)),
         **_count_tracks(
             sensor_codes,
             sensor_names,
@@ -1173,6 +1215,9 @@ def stream_points(
         time_info.setdefault("time_format", info.get("time_format"))
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
+        time_info["decimal_comma"] = time_info.get("decimal_comma", 0) + info.get(
+            "decimal_comma", 0
+        )
         for key in totals:
             totals[key] += counts[key]
         for k, v in counts["values_blanked"].items():
@@ -1269,6 +1314,7 @@ def stream_points(
         "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
         "blank_lines": totals["blank_lines"] + bad.blank,
         "values_blanked": blanked,
+        "decimal_comma_values": int(time_info.get("decimal_comma", 0)),
         "tracks": len(pairs),
         "sensors": per_sensor,
         "time_start": min(starts).isoformat() if starts else None,
