@@ -235,3 +235,23 @@ def test_output_into_a_pipe_is_written_in_place_never_replaced(tmp_path):
     assert stat.S_ISFIFO(fifo.stat().st_mode)
     assert got and got[0].count(b"\n") == 3
     assert not list(tmp_path.glob(".*.part"))
+
+
+def test_an_import_that_keeps_nothing_fails_and_says_why(tmp_path, capsys):
+    """Every row quarantined (a local-metres file) or no data rows: exit 2 with the reason
+    and what to try; the quarantine is still written (nothing lost)."""
+    from wakeline.app.cli import main
+
+    metres = tmp_path / "metres.csv"
+    metres.write_text(
+        "mmsi,time,lon,lat\n1,2024-01-01T00:00:00Z,1234.5,-80.2\n1,2024-01-01T00:00:10Z,1240.0,-81\n"
+    )
+    q = tmp_path / "q.csv"
+    assert main(["import", str(metres), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 2
+    err = capsys.readouterr().err
+    assert "all 2 rows were quarantined" in err and "degrees" in err
+    assert len(q.read_text().strip().splitlines()) == 3  # header + both rows
+    header_only = tmp_path / "h.csv"
+    header_only.write_text("mmsi,time,lon,lat\n")
+    assert main(["import", str(header_only), "-o", str(tmp_path / "o2.csv")]) == 2
+    assert "no data rows" in capsys.readouterr().err
