@@ -22,6 +22,25 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
     if args.like and args.layout:
         raise InputError("give either --like ORIGINAL or --layout NAME, not both")
+    suffix = args.output.suffix.lower()
+    if suffix in (".geojson", ".json", ".gpx"):
+        # The map formats: tracks as lines, not a CSV layout.
+        if args.like or args.layout:
+            raise InputError(
+                f"{args.output}: --like and --layout shape a CSV file; a {suffix} file is "
+                "written as it is (drop the option, or write to .csv)"
+            )
+        from wakeline.core.export_review import export_tracks
+
+        result = read_points(args.input)
+        kind = export_tracks(result.points, args.output)
+        print(f"exported {len(result.points):,} rows as {kind}", file=sys.stderr)
+        return 0
+    if suffix in (".gz", ".bz2", ".xz", ".zip", ".zst"):
+        raise InputError(
+            f"{args.output}: export writes plain text, not {suffix} (compress the file "
+            "afterwards, or write to .csv)"
+        )
     if args.like:
         from wakeline.core.io.formats import parse_mapping
 

@@ -513,3 +513,24 @@ def test_comma_separated_files_keep_their_meaning(write):
     res = read_points(path)
     assert res.report["rows_imported"] == 1 and res.report["decimal_comma_values"] == 0
     assert res.quarantine["reason"].tolist() == ["unparsable lon"]
+
+
+def test_export_writes_the_format_its_suffix_names(tmp_path, capsys):
+    """-o x.geojson / x.gpx write those formats (they wrote CSV silently); a compressed
+    suffix, or a CSV layout asked for a map format, is refused with a message."""
+    src = tmp_path / "p.csv"
+    src.write_text(
+        "sensor,batch,time,lon,lat\nS1,7,2024-05-01T00:00:00Z,11.5,57.6\n"
+        "S1,7,2024-05-01T00:00:10Z,11.6,57.7\n"
+    )
+    gj, gpx = tmp_path / "x.geojson", tmp_path / "x.gpx"
+    assert _run("export", src, "-o", gj) == 0
+    doc = json.loads(gj.read_text())
+    assert doc["type"] == "FeatureCollection"
+    assert doc["features"][0]["geometry"]["coordinates"] == [[11.5, 57.6], [11.6, 57.7]]
+    assert _run("export", src, "-o", gpx) == 0 and "<gpx" in gpx.read_text()
+    capsys.readouterr()
+    assert _run("export", src, "-o", tmp_path / "x.csv.gz") == 2
+    assert "plain text" in capsys.readouterr().err
+    assert _run("export", src, "-o", tmp_path / "y.geojson", "--layout", "dma") == 2
+    assert not (tmp_path / "x.csv.gz").exists() and not (tmp_path / "y.geojson").exists()
