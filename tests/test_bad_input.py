@@ -255,3 +255,33 @@ def test_an_import_that_keeps_nothing_fails_and_says_why(tmp_path, capsys):
     header_only.write_text("mmsi,time,lon,lat\n")
     assert main(["import", str(header_only), "-o", str(tmp_path / "o2.csv")]) == 2
     assert "no data rows" in capsys.readouterr().err
+
+
+def test_a_gzip_cut_short_is_named_and_explained(tmp_path, capsys):
+    """A .gz copied incompletely: an InputError naming the file and what to do (it was
+    'Truncated compressed stream' with no file name), from read_points and the CLI."""
+    import gzip
+
+    from wakeline.app.cli import main
+
+    rows = "".join(
+        f"S1,1,2024-05-01T00:{k // 60:02d}:{k % 60:02d}Z,11.{k:04d},57.5\n" for k in range(3000)
+    )
+    full = gzip.compress(("sensor,batch,time,lon,lat\n" + rows).encode())
+    cut = tmp_path / "cut.csv.gz"
+    cut.write_bytes(full[: len(full) // 2])  # cut within the sniffer's first bytes
+    with pytest.raises(InputError, match="cut.csv.gz: .*copy the file again"):
+        read_points(cut)
+    big = "".join(
+        f"S1,{k % 97},2024-05-01T{k // 3600 % 24:02d}:{k // 60 % 60:02d}:{k % 60:02d}Z,"
+        f"{(k * 7919) % 100000 / 1e4:.4f},57.{k:06d}\n"
+        for k in range(200_000)
+    )
+    full = gzip.compress(("sensor,batch,time,lon,lat\n" + big).encode(), compresslevel=1)
+    cut.write_bytes(full[: len(full) * 9 // 10])  # cut beyond them: found while reading
+    with pytest.raises(InputError, match="cut.csv.gz: the compressed data is cut short"):
+        read_points(cut)
+    assert main(["import", str(cut), "-o", str(tmp_path / "o.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "cut.csv.gz" in err and "copy the file again" in err
+    assert not (tmp_path / "o.csv").exists()

@@ -656,6 +656,33 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     return out
 
 
+def _names_read_errors(fn: Callable) -> Callable:
+    """Turn a decompression error (a gzip cut short, damaged bz2 data: raised without a
+    file name) into an :class:`InputError` that names the file and says what to do."""
+    import functools
+
+    @functools.wraps(fn)
+    def wrapper(path, *args, **kwargs):
+        try:
+            return fn(path, *args, **kwargs)
+        except (OSError, EOFError) as exc:
+            if getattr(exc, "filename", None) or isinstance(exc, InputError):
+                raise
+            text = str(exc) or type(exc).__name__
+            if isinstance(exc, EOFError) or any(
+                w in text.lower() for w in ("compress", "gzip", "bz2", "zlib", "crc")
+            ):
+                raise InputError(
+                    f"{path}: the compressed data is cut short or damaged ({text}); nothing "
+                    "was imported. The copy is probably incomplete: copy the file again, or "
+                    "decompress what is there (gzip -dc FILE > part.csv) and import that"
+                ) from exc
+            raise
+
+    return wrapper
+
+
+@_names_read_errors
 def read_points(
     path: str | Path,
     fmt: str = "auto",
@@ -1006,6 +1033,7 @@ def _count_tracks(
     }
 
 
+@_names_read_errors
 def inspect_file(
     path: str | Path,
     fmt: str = "auto",
@@ -1069,6 +1097,7 @@ _Fallback = StreamFallback
 STREAM_BYTES = 16 << 20
 
 
+@_names_read_errors
 def import_to_csv(
     path: str | Path,
     output: str | Path,

@@ -52,7 +52,9 @@ def _read_sample(path: Path) -> tuple[bytes, str | None]:
                 return fh.read(SAMPLE_BYTES), "gzip"
         except (OSError, EOFError, zlib.error) as exc:
             raise InputError(
-                f"{path}: looks gzip-compressed but cannot be decompressed ({exc})"
+                f"{path}: looks gzip-compressed but cannot be decompressed ({exc}); nothing "
+                "was imported. The copy is probably incomplete: copy the file again, or "
+                "decompress what is there (gzip -dc FILE > part.csv) and import that"
             ) from None
     return head, None
 
