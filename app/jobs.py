@@ -7,6 +7,7 @@ returns finished data; :meth:`JobsMixin._on_job_message` applies it on the GUI t
 """
 
 import dataclasses
+import sys
 from pathlib import Path
 
 from PySide6 import QtWidgets
@@ -209,7 +210,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             if msg.detail:
                 self.log_message(msg.detail)
             title = self.tr("{0} failed").format(msg.name)
-            QtWidgets.QMessageBox.warning(self, title, msg.message)
+            if getattr(self, "interactive", True):
+                QtWidgets.QMessageBox.warning(self, title, msg.message)
+            else:  # a screenshot run: nobody to close a dialog; say it and go on
+                print(f"wakeline: {title}: {msg.message}", file=sys.stderr)
         elif isinstance(msg, Cancelled):
             self.log_message(self.tr("{0} cancelled").format(msg.name))
             self.statusBar().showMessage(self.tr("{0} cancelled").format(msg.name), 5000)

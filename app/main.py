@@ -90,6 +90,7 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
         settings.clear()
         settings.setValue("language", "en")
     window = MainWindow(settings)
+    window.interactive = screenshot is None  # no modal dialogs while making a screenshot
     window.resize(1400, 900)
     freeze_startup_objects()
     if screenshot is None:

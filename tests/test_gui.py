@@ -445,3 +445,14 @@ def test_detail_time_axes_keep_minutes(qtbot):
     for plot in (panel.factor_plot, panel.z_plot):
         label = plot.getAxis("bottom").labelString()
         assert "(min)" in label and "kmin" not in label, label
+
+
+def test_screenshot_of_a_file_that_does_not_load_ends_with_an_error(qtbot, tmp_path, capsys):
+    """`wakeline gui BAD --screenshot X` returned never: the failure's modal dialog waited
+    for a click no one could give. Now the failure is printed and the run ends (exit 2)."""
+    empty = tmp_path / "empty.csv"
+    empty.write_text("")
+    started = time.perf_counter()
+    assert run([empty], screenshot=tmp_path / "x.png") == 2
+    assert time.perf_counter() - started < 60
+    assert "the file is empty" in capsys.readouterr().err
