@@ -396,6 +396,9 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
     proposals = fusion_proposals(assoc, fp)[0]
     report = {
         **assoc.report(),
+        "points_in": int(len(points)),
+        "max_distance_m": float(fp.max_distance_m),
+        "max_interp_s": float(fp.max_interp_s),
         "fused_points": int(len(fused)),
         "distance": opts.distance,
         "method": opts.method,
@@ -422,6 +425,20 @@ def _summary_fuse(res: StepResult) -> str:
         f"{rep['tracks']:,} tracks of {rep['sensors']} sensors -> {rep['targets']:,} targets "
         f"({rep['pairs_chosen']:,} pairs of {rep['candidate_pairs']:,} candidates, "
         f"{rep['distance']}, {rep['method']}); {rep['fused_points']:,} fused points"
+        + (f" from {rep['points_in']:,} input points" if "points_in" in rep else "")
+        + (
+            " (points of two sensors at one time become one)"
+            if rep.get("points_in", 0) > rep["fused_points"]
+            else ""
+        )
+        + (
+            f"; no candidate was close enough: the tracks of different sensors are farther "
+            f"apart than max_distance_m ({rep['max_distance_m']:g} m) or their times are "
+            f"further apart than max_interp_s ({rep['max_interp_s']:g} s) — raise them with "
+            "--set if the sensors are that noisy or sparse"
+            if not rep.get("pairs_chosen") and "max_distance_m" in rep
+            else ""
+        )
     )
 
 

@@ -183,3 +183,23 @@ def test_cli_fuse_round_trip_and_errors(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "at least two sensors" in err and "alpha must be at most 1" in err
     assert not bad.exists()
+
+
+def test_fuse_summary_counts_inputs_and_says_why_nothing_paired():
+    """The summary names the input points next to the fused ones, and when no pair is
+    chosen it names the two limits to raise (found by a helper: 0 pairs, no reason)."""
+    from wakeline.core.pipeline import _summary_fuse
+
+    class R:
+        report = {
+            "tracks": 30, "sensors": 2, "targets": 30, "pairs_chosen": 0,
+            "candidate_pairs": 10, "distance": "sync", "method": "optimal",
+            "fused_points": 772, "points_in": 772, "max_distance_m": 1000.0,
+            "max_interp_s": 600.0,
+        }  # fmt: skip
+
+    text = _summary_fuse(R())
+    assert "from 772 input points" in text and "max_distance_m (1000 m)" in text
+    R.report = {**R.report, "pairs_chosen": 5, "fused_points": 500}
+    text = _summary_fuse(R())
+    assert "become one" in text and "max_distance_m" not in text
