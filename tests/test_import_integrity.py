@@ -443,3 +443,25 @@ def test_streamed_import_equals_whole_file_import(tmp_path, monkeypatch, name):
     pd.testing.assert_frame_equal(streamed.quarantine, whole.quarantine)
     for key in ("rows_read", "rows_imported", "rows_quarantined", "tracks", "sensors"):
         assert streamed.report[key] == whole.report[key], key
+
+
+def test_tracks_that_restart_their_time_are_flagged(write):
+    """Several passes under one id, each timed from the start (the Øresund encounters:
+    one MMSI in five encounters): a warning names the batch and the way out; a shuffled
+    file and AIS messages a little out of order are not flagged."""
+    rows = []
+    for run in range(3):  # batch 7: three passes, each from t = 0 to 50 min
+        rows += [f"S1,7,{60 * m},{11 + run + m * 1e-3:.4f},57.5" for m in range(0, 50, 5)]
+    rows += [f"S1,8,{60 * m},12.0,{57 + m * 1e-3:.4f}" for m in range(40)]
+    rows[-5], rows[-6] = rows[-6], rows[-5]  # one message late by a minute: not a restart
+    res = read_points(write("passes.csv", "sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n"))
+    assert res.report["restarting_tracks"] == {"7": 3}
+    assert any(
+        "start their time again" in w and "batch 7: 3 runs" in w for w in res.report["warnings"]
+    )
+    rng = np.random.default_rng(0)
+    shuffled = [rows[i] for i in rng.permutation(len(rows))]
+    res = read_points(
+        write("shuffled.csv", "sensor,batch,time,lon,lat\n" + "\n".join(shuffled) + "\n")
+    )
+    assert res.report["restarting_tracks"] == {}

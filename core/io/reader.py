@@ -634,6 +634,21 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
+def _restart_warnings(restarting: dict[str, int], batch_src: str) -> list[str]:
+    """A warning when tracks restart their time in the file (several passes or ships
+    under one id)."""
+    if not restarting:
+        return []
+    name, runs = max(restarting.items(), key=lambda kv: kv[1])
+    return [
+        f"{len(restarting):,} track(s) start their time again within the file (batch "
+        f"{name}: {runs} runs, each going forward, the next starting at least "
+        f"{RESTART_BACK_S / 60:g} min earlier): several passes or ships may share one id in "
+        f"{batch_src!r}; they are joined into one track sorted by time. If a column tells "
+        "them apart, map it: --map batch=COLUMN, or --map sensor=COLUMN"
+    ]
+
+
 def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     """Warnings about how the time column was read (local read as UTC; relative times),
     and numbers read with a decimal comma."""
@@ -730,6 +745,7 @@ def read_points(
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes
     warnings += _time_warnings(res.columns["time"], time_info, zone)
+    warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(path),
@@ -983,6 +999,9 @@ def _to_canonical(
         "blank_lines": int(blank.sum()) + bad.blank,
         "values_blanked": blanked,
         "decimal_comma_values": int(counted.get("decimal_comma", 0)),
+        "restarting_tracks": _restarting_tracks(
+            sensor_codes, text["batch"].codes, text["batch"].names, ns, time_ok & ~bad_rows
+        ),
         **_count_tracks(
             sensor_codes,
             sensor_names,
@@ -997,6 +1016,41 @@ def _to_canonical(
 
 
 _CANONICAL_SET = frozenset(("sensor", "batch", "time", "lon", "lat", "speed", "course", "truth"))
+
+
+#: A track whose time jumps back by at least this much (s) in file order, a few times,
+#: holds several runs: passes or ships that share one id.
+RESTART_BACK_S = 600.0
+
+
+def _restarting_tracks(
+    sensor_codes: np.ndarray | None,
+    batch_codes: np.ndarray,
+    batch_names: np.ndarray,
+    ns: np.ndarray,
+    ok: np.ndarray,
+) -> dict[str, int]:
+    """Batches whose rows, in file order, run forward in time and then start again
+    (backward by at least :data:`RESTART_BACK_S`, on at most a tenth of their steps: a
+    shuffled file is not meant): batch name → runs. Several encounters of one ship or
+    several ships under one id, which sorting by time would interleave into a zig-zag."""
+    use = np.flatnonzero(ok & (batch_codes >= 0))
+    if len(use) < 3:
+        return {}
+    key = batch_codes[use].astype("int64")
+    if sensor_codes is not None:
+        key = sensor_codes[use].astype("int64") * (int(batch_codes.max()) + 1) + key
+    order = use[np.argsort(key, kind="stable")]  # each track's rows in file order
+    k = key[np.argsort(key, kind="stable")]
+    same = k[1:] == k[:-1]
+    back = same & (ns[order][1:] < ns[order][:-1] - int(RESTART_BACK_S * 1e9))
+    if not back.any():
+        return {}
+    steps = np.bincount(k[1:][same], minlength=int(k.max()) + 1)
+    backs = np.bincount(k[1:][back], minlength=int(k.max()) + 1)
+    hit = np.flatnonzero((backs > 0) & (backs <= 0.1 * steps))
+    n_batch = int(batch_codes.max()) + 1
+    return {str(batch_names[h % n_batch]): int(backs[h]) + 1 for h in hit}
 
 
 def _count_tracks(
@@ -1188,6 +1242,7 @@ def stream_points(
         res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
     totals: dict = {"rows_read": 0, "rows_imported": 0, "blank_lines": 0}
     blanked: dict[str, int] = {}
+    restarting: dict[str, int] = {}
     pairs: set[tuple[str, str]] = set()
     per_sensor: dict[str, int] = {}
     quarantines: list[pd.DataFrame] = []
@@ -1251,6 +1306,8 @@ def stream_points(
             totals[key] += counts[key]
         for k, v in counts["values_blanked"].items():
             blanked[k] = blanked.get(k, 0) + v
+        for k, v in counts["restarting_tracks"].items():
+            restarting[k] = restarting.get(k, 0) + v
         if len(quarantine):
             quarantines.append(quarantine)
         if len(points):
@@ -1321,6 +1378,7 @@ def stream_points(
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
     warnings = ["no batch column: the file is one track named after the file"] if file_batch else []
     warnings += _time_warnings(res.columns["time"], time_info, zone)
+    warnings += _restart_warnings(restarting, res.columns["batch"])
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(sn.path),
@@ -1344,6 +1402,7 @@ def stream_points(
         "blank_lines": totals["blank_lines"] + bad.blank,
         "values_blanked": blanked,
         "decimal_comma_values": int(time_info.get("decimal_comma", 0)),
+        "restarting_tracks": restarting,
         "tracks": len(pairs),
         "sensors": per_sensor,
         "time_start": min(starts).isoformat() if starts else None,
