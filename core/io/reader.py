@@ -1040,10 +1040,20 @@ def _restarting_tracks(
     key = batch_codes[use].astype("int64")
     if sensor_codes is not None:
         key = sensor_codes[use].astype("int64") * (int(batch_codes.max()) + 1) + key
-    order = use[np.argsort(key, kind="stable")]  # each track's rows in file order
-    k = key[np.argsort(key, kind="stable")]
+    t = ns[use]
+    if np.all(t[1:] >= t[:-1]):  # a time-ordered file: no track can go back
+        return {}
+    if np.all(key[1:] >= key[:-1]):  # grouped by track already
+        k = key
+    else:
+        from wakeline.core.tracks import _stable_code_order
+
+        sort = _stable_code_order(key)  # radix passes: linear; each track in file order
+        if sort is None:
+            sort = np.argsort(key, kind="stable")
+        k, t = key[sort], t[sort]
     same = k[1:] == k[:-1]
-    back = same & (ns[order][1:] < ns[order][:-1] - int(RESTART_BACK_S * 1e9))
+    back = same & (t[1:] < t[:-1] - int(RESTART_BACK_S * 1e9))
     if not back.any():
         return {}
     steps = np.bincount(k[1:][same], minlength=int(k.max()) + 1)
