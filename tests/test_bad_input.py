@@ -285,3 +285,24 @@ def test_a_gzip_cut_short_is_named_and_explained(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "cut.csv.gz" in err and "copy the file again" in err
     assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_unix_time_cut_short_is_quarantined_not_read_as_1970(tmp_path):
+    """The last line cut inside its unix time ('172' of '1723247791') read as 00:02:52 on
+    1 January 1970 inside a 2024 track; now it is quarantined with its reason, whether the
+    file is read whole or in pieces (the CLI streams it)."""
+    from wakeline.app.cli import main
+
+    lines = [f"7 23.{5000 + k:05d} 38.04 {1723247000 + 10 * k}" for k in range(300)]
+    src = tmp_path / "cut.txt"
+    src.write_text("\n".join(lines) + "\n7 23.52422 38.04177 172")
+    mapping = ["batch=col1", "lon=col2", "lat=col3", "time=col4"]
+    res = read_points(src, mapping=mapping)
+    assert res.report["rows_imported"] == 300
+    assert res.quarantine["reason"].str.startswith("time decades before").tolist() == [True]
+    assert not res.report["time_relative"]
+    q = tmp_path / "q.csv"
+    argv = ["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]
+    assert main(argv + [a for m in mapping for a in ("--map", m)]) == 0
+    assert "time decades before" in q.read_text()
+    assert len(pd.read_csv(tmp_path / "o.csv")) == 300

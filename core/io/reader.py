@@ -520,6 +520,19 @@ def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray
             info["time_format"] = "relative s"
             info["relative"] = True
     ok = finite & (np.abs(seconds) < 9.2e18 / scale)
+    floor = RELATIVE_BELOW_S * (1000.0 if scale == 1_000_000 else 1.0)
+    if info is not None and info.get("absolute") and median < floor:
+        median = floor  # a piece of a file read in pieces: the file's times are absolute
+    if median >= floor:
+        if info is not None:
+            info["absolute"] = True
+        # Absolute times, and among them a few from the first years after 1970: a number
+        # cut short (a truncated line) or damaged, not a time of this file.
+        early = finite & (np.abs(seconds) < floor)
+        if early.any():
+            ok &= ~early
+            if info is not None:
+                info["early_times"] = early
     x = np.where(ok, seconds, 0.0)
     # Whole and fractional parts apart: a float64 of ~1.7e18 ns cannot hold every ns.
     whole = np.floor(x)
@@ -898,6 +911,9 @@ def _to_canonical(
     comma = sn.delimiter != ","  # a decimal comma cannot be unquoted in a comma-separated file
     counted = time_info if time_info is not None else {}
     ns, time_ok = parse_times(time_col, res.format.time_kind, zone, counted, comma)
+    early = counted.pop("early_times", None)
+    if early is not None:
+        flag(early, "time decades before the file's other times (a number cut short?)")
     if not time_ok.all():
         flag(_trimmed(time_col)[1], "missing time")
         flag(~time_ok, "unparsable time")
@@ -1302,10 +1318,11 @@ def stream_points(
             )
         rows = _Rows(table, lines, _BadRows(), False, sn.encoding, False, False, [])
         del table
-        info: dict = {}
+        info: dict = {"absolute": time_info.get("absolute", False)}
         points, quarantine, counts = _to_canonical(
             rows, sn, res, sensor, zone, info, fetch_texts=False
         )
+        time_info["absolute"] = bool(info.get("absolute"))
         time_info.setdefault("time_format", info.get("time_format"))
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
