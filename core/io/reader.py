@@ -14,6 +14,7 @@ import codecs
 import contextlib
 import csv
 import datetime
+import functools
 import gzip
 import re
 import shutil
@@ -687,7 +688,6 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
 def _names_read_errors(fn: Callable) -> Callable:
     """Turn a decompression error (a gzip cut short, damaged bz2 data: raised without a
     file name) into an :class:`InputError` that names the file and says what to do."""
-    import functools
 
     @functools.wraps(fn)
     def wrapper(path, *args, **kwargs):
