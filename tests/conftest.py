@@ -21,6 +21,28 @@ def real_file(*parts: str) -> Path:
     return path
 
 
+def saronic_points(sensor: str = "AIS"):
+    """The Saronic Gulf AIS (greece-ais-annotated, headerless: batch lon lat unix-time) as
+    canonical points of one sensor; skipped when absent."""
+    import pandas as pd
+
+    raw = pd.read_csv(
+        real_file("greece-ais-annotated", "vessels.csv"),
+        sep=" ",
+        header=None,
+        names=["batch", "lon", "lat", "t"],
+    )
+    return pd.DataFrame(
+        {
+            "sensor": sensor,
+            "batch": raw["batch"].astype(str),
+            "time": pd.to_datetime(raw["t"], unit="s", utc=True),
+            "lon": raw["lon"],
+            "lat": raw["lat"],
+        }
+    )
+
+
 @pytest.fixture
 def write(tmp_path):
     """Write bytes or text to a file in tmp_path and return its path."""

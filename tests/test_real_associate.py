@@ -7,7 +7,7 @@ leak nothing; the old ids are the truth.
 import numpy as np
 import pandas as pd
 
-from conftest import real_file
+from conftest import real_file, saronic_points
 from wakeline.core.associate import LinkParams, associate_interrupted, pair_cost, pair_features
 from wakeline.core.evaluate_association import cut_at_gaps, score_association
 from wakeline.core.io import read_points
@@ -44,21 +44,7 @@ def test_mtad_scenes_cut_at_their_gaps_are_rejoined():
 
 
 def test_greece_ais_cut_at_600_s_gaps_makes_no_wrong_join():
-    raw = pd.read_csv(
-        real_file("greece-ais-annotated", "vessels.csv"),
-        sep=" ",
-        header=None,
-        names=["batch", "lon", "lat", "t"],
-    )
-    df = pd.DataFrame(
-        {
-            "sensor": "AIS",
-            "batch": raw["batch"].astype(str),
-            "time": pd.to_datetime(raw["t"], unit="s", utc=True),
-            "lon": raw["lon"],
-            "lat": raw["lat"],
-        }
-    )
+    df = saronic_points("AIS")
     df = cut_at_gaps(df, min_gap_s=600.0)
     sc = score_association(associate_interrupted(df, LinkParams(max_gap_s=3600.0)))
     # Measured: 110 pieces of 5 vessels, P_CA 0.667 (0.921 of the 76 true pairs within

@@ -17,7 +17,7 @@ pytest.importorskip("pytestqt")
 import pyqtgraph as pg  # noqa: E402
 from PySide6 import QtCore, QtWidgets  # noqa: E402
 
-from conftest import real_file  # noqa: E402
+from conftest import real_file, saronic_points  # noqa: E402
 from wakeline.app.cli import main as cli_main  # noqa: E402
 from wakeline.app.main import wait_for_jobs  # noqa: E402
 from wakeline.app.main_window import MainWindow  # noqa: E402
@@ -43,6 +43,23 @@ def _settle(w, timeout_s: float = 60.0) -> None:
                 return
         app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 50)
     raise AssertionError("the window did not settle")
+
+
+def _show_associated(w, src, points, proposals) -> None:
+    """Add an associated layer of ``points`` with its ``proposals`` under ``src`` and
+    select it (the review binds to it), as Run ▸ Associate would."""
+    lay = w.session.add_layer(
+        "radar.csv · associated",
+        "associated",
+        points,
+        parent=src.id,
+        step="associate",
+        role="associated",
+        tables={"proposals": proposals},
+    )
+    _settle(w)
+    w.select_layer(lay.id)
+    _settle(w)
 
 
 def _window(qtbot, tmp_path) -> MainWindow:
@@ -333,18 +350,7 @@ def test_proposal_is_drawn_in_the_colours_the_legend_names(qtbot, tmp_path):
     w = _window(qtbot, tmp_path)
     src = w.session.add_layer("radar.csv", "source", pts)
     target = pts["batch"].map({"0": "R1:0", "1": "R1:0", "2": "R1:0", "3": "R1:3"})
-    lay = w.session.add_layer(
-        "radar.csv · associated",
-        "associated",
-        pts.assign(target=target),
-        parent=src.id,
-        step="associate",
-        role="associated",
-        tables={"proposals": props},
-    )
-    _settle(w)
-    w.select_layer(lay.id)
-    _settle(w)
+    _show_associated(w, src, pts.assign(target=target), props)
     b = w.review.bound
     assert b is not None and b.panel.set_current("A0001")
     _settle(w)
@@ -384,21 +390,7 @@ def test_long_join_on_the_saronic_ais(qtbot, tmp_path):
     names, over the muted layers. ``WAKELINE_SHOTS=docs`` writes docs/review-long-gap.png."""
     from wakeline.core.evaluate_association import cut_at_gaps
 
-    raw = pd.read_csv(
-        real_file("greece-ais-annotated", "vessels.csv"),
-        sep=" ",
-        header=None,
-        names=["batch", "lon", "lat", "t"],
-    )
-    df = pd.DataFrame(
-        {
-            "sensor": "S1",
-            "batch": raw["batch"].astype(str),
-            "time": pd.to_datetime(raw["t"], unit="s", utc=True),
-            "lon": raw["lon"],
-            "lat": raw["lat"],
-        }
-    )
+    df = saronic_points("S1")
     path = tmp_path / "greece_cut.csv"
     write_points(cut_at_gaps(df, min_gap_s=600.0).drop(columns="truth"), path)
     w = _window(qtbot, tmp_path)
@@ -471,18 +463,7 @@ def test_thousand_proposals_in_the_window_stay_responsive(qtbot, tmp_path):
     t0 = time.perf_counter()
     src = w.session.add_layer("radar.csv", "source", pts)
     out = pts.assign(target="R1:" + (batch % n).astype(str))
-    lay = w.session.add_layer(
-        "radar.csv · associated",
-        "associated",
-        out,
-        parent=src.id,
-        step="associate",
-        role="associated",
-        tables={"proposals": props},
-    )
-    _settle(w)
-    w.select_layer(lay.id)
-    _settle(w)
+    _show_associated(w, src, out, props)
     bind_s = time.perf_counter() - t0
     b = w.review.bound
     assert b is not None and len(b.controller.state.proposals) == n
