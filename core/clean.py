@@ -149,6 +149,21 @@ class SpeedParams(Params):
         lo=1,
         hi=1000,
     )
+    split_factor: float = param(
+        3.0,
+        "",
+        "a break whose jump needs more than this many times v_max, over more than split_km, "
+        "starts a new track (two ships under one id: batch#2, #3 …); 0 never splits",
+        lo=0,
+        hi=1000,
+    )
+    split_km: float = param(
+        10.0,
+        "km",
+        "shortest jump that splits a track at a break (far beyond any position error)",
+        lo=0,
+        hi=1e5,
+    )
 
 
 @dataclass(frozen=True)
@@ -860,6 +875,11 @@ def _clean_block(
         alive &= ~short
     progress(1.0, "cleaned")
 
+    split = np.zeros(n, dtype=bool)
+    if params.speed.enabled and params.speed.split_factor > 0 and speed_breaks.any():
+        split = _split_rows(speed_breaks & alive, alive, track, lon, lat, t, params.speed)
+        if split.any():
+            pts, changed_rows = _split_batches(pts, index, split, changed_rows)
     cleaned = pts[alive].reset_index(drop=True)  # one copy of the surviving rows
     cleaned["lon"] = lon[alive]
     cleaned["lat"] = lat[alive]
@@ -886,10 +906,61 @@ def _clean_block(
         report["rules"]["stationary"]["at_rest_s"] = float(rest_table["duration_s"].sum())
     if params.speed.enabled:
         report["rules"]["speed"]["breaks"] = int(speed_breaks[alive].sum())
+        report["rules"]["speed"]["splits"] = int(split.sum())
     order = ordered_columns(cleaned)
     return CleanResult(
         cleaned if order == list(cleaned.columns) else cleaned[order], rejected, report
     )
+
+
+def _split_rows(
+    breaks: np.ndarray,
+    alive: np.ndarray,
+    track: np.ndarray,
+    lon: np.ndarray,
+    lat: np.ndarray,
+    t: np.ndarray,
+    sp: "SpeedParams",
+) -> np.ndarray:
+    """The breaks no ship could make: a jump from the last kept point of the same track
+    longer than ``split_km`` and than ``split_factor`` × v_max × the time between."""
+    rows = np.flatnonzero(breaks)
+    kept = np.flatnonzero(alive)
+    pos = np.searchsorted(kept, rows)  # rows are kept: the previous kept row is at pos - 1
+    has = pos > 0
+    prev = kept[np.maximum(pos - 1, 0)]
+    has &= track[prev] == track[rows]
+    d = geo.haversine_m(lon[prev], lat[prev], lon[rows], lat[rows])
+    dt = t[rows] - t[prev]
+    far = has & (d > sp.split_km * 1000.0) & (d > sp.split_factor * sp.v_max_kn * geo.KN_MS * dt)
+    out = np.zeros(len(alive), dtype=bool)
+    out[rows[far]] = True
+    return out
+
+
+def _split_batches(
+    pts: pd.DataFrame, index: TrackIndex, split: np.ndarray, changed_rows: list[pd.DataFrame]
+) -> tuple[pd.DataFrame, list[pd.DataFrame]]:
+    """Rows from each split on get their batch with ``#2``, ``#3`` … (removed and changed
+    rows too, so that a restored point returns to its piece)."""
+    piece = np.cumsum(split)
+    piece -= np.repeat(piece[index.starts] - split[index.starts], index.sizes)
+    rows = np.flatnonzero(piece > 0)
+    batch = pts["batch"].astype("str")
+    renamed = (
+        batch.iloc[rows] + "#" + pd.Series(piece[rows] + 1, index=batch.index[rows]).astype("str")
+    )
+    pts = pts.copy()
+    pts["batch"] = batch.mask(piece > 0, renamed)
+    new_of = pd.Series(pts["batch"].to_numpy()[rows], index=pts[ID].to_numpy()[rows])
+    out = []
+    for part in changed_rows:
+        hit = part[ID].isin(new_of.index).to_numpy()
+        if hit.any():
+            part = part.copy()
+            part.loc[hit, "batch"] = new_of.reindex(part.loc[hit, ID]).to_numpy()
+        out.append(part)
+    return pts, out
 
 
 def _report(

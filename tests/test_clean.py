@@ -298,3 +298,40 @@ def test_moored_ship_with_gps_jitter_is_at_rest():
     (span,) = ours.report["at_rest_spans"]
     assert span["duration_s"] >= 7000 and span["batch"] == "m"
     assert len(ours.points) >= 180  # the voyage is untouched
+
+
+def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
+    """One MMSI, a ship in the Gulf of Mexico then another in Puget Sound an hour later
+    (ATD 338000000, ~1,600 kn): the speed rule's break splits the track (batch, batch#2)
+    so no 2,800 km line joins them; a noise jump of 0.4 km at 80 kn is a break but no
+    split; split_factor 0 keeps the old single track. A point removed from the second
+    piece comes back into it on restore."""
+    t0 = pd.Timestamp("2024-01-01T00:00:00Z")
+
+    def leg(lon0, lat0, n, start_s, step_s=60.0, dlon=0.002):
+        return [
+            (lon0 + k * dlon, lat0, t0 + pd.Timedelta(seconds=start_s + k * step_s))
+            for k in range(n)
+        ]
+
+    rows = leg(-90.0, 28.0, 8, 0) + leg(-122.5, 48.4, 8, 3600)
+    rows[13] = (rows[13][0] + 1.0, rows[13][1], rows[13][2])  # an outlier inside piece 2
+    pts = pd.DataFrame(rows, columns=["lon", "lat", "time"]).assign(sensor="S1", batch="338")
+    res = clean(pts)
+    sp = res.report["rules"]["speed"]
+    assert sp["splits"] == 1
+    assert sorted(res.points["batch"].unique()) == ["338", "338#2"]
+    west = res.points[res.points["batch"] == "338#2"]
+    assert (west["lon"] < -120).all() and len(west) == 7
+    removed = res.rejected[res.rejected["action"] == "removed"]
+    assert removed["batch"].tolist() == ["338#2"]
+    back, _ = restore(res.points, res.rejected, removed["wl_id"])
+    assert (back["batch"] == "338#2").sum() == 8
+    single = clean(pts, CleanParams().with_settings(["speed.split_factor=0"]))
+    assert single.points["batch"].nunique() == 1
+    # 0.4 km in 10 s (80 kn) then steady: a break by the speed rule, not two ships
+    near = leg(0.0, 0.0, 6, 0, 10.0, 0.0003) + leg(0.0036, 0.0, 6, 60, 10.0, 0.0003)
+    near = pd.DataFrame(near, columns=["lon", "lat", "time"]).assign(sensor="S1", batch="9")
+    r2 = clean(near)
+    assert r2.report["rules"]["speed"]["splits"] == 0
+    assert r2.points["batch"].unique().tolist() == ["9"]
