@@ -64,17 +64,11 @@ def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
 
 
 def _read(paths: list[Path]):
-    import pandas as pd
+    """One or several files as one table, as ``fuse`` and ``review`` read them (files that
+    each hold one sensor of the same name get the differing part of their names)."""
+    from wakeline.app.cli_review import read_inputs
 
-    from wakeline.app.cli_steps import read_input
-
-    frames = []
-    for path in paths:
-        # Several files without a sensor column (one MTAD scene's AIS and radar files):
-        # each file is its own sensor, named after the file, so batches never merge.
-        kw = {"sensor": path.stem} if len(paths) > 1 else {}
-        frames.append(read_input(path, **kw))
-    return pd.concat(frames, ignore_index=True) if len(frames) > 1 else frames[0]
+    return read_inputs(paths)
 
 
 def _cmd_render(args: argparse.Namespace) -> int:

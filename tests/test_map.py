@@ -334,3 +334,23 @@ def test_render_help(capsys):
         main(["render", "--help"])
     assert exc.value.code == 0
     assert "usage: wakeline render" in capsys.readouterr().out
+
+
+def test_render_fuses_two_files_as_fuse_reads_them(tmp_path):
+    """`render A_AIS.csv A_radar.csv --step fuse` names the sensors from the files, as
+    `fuse` does (it failed with "found S1": both files were the default sensor)."""
+    from wakeline.app.cli import main
+
+    t0 = pd.Timestamp("2024-05-01T00:00:00Z")
+    for name, dlat in (("s_AIS.csv", 0.0), ("s_radar.csv", 0.0005)):
+        rows = [
+            (1, t0 + pd.Timedelta(seconds=30 * k), 122.0 + 0.003 * k, 30.0 + dlat)
+            for k in range(40)
+        ]
+        pd.DataFrame(rows, columns=["batch", "time", "lon", "lat"]).to_csv(
+            tmp_path / name, index=False
+        )
+    png = tmp_path / "f.png"
+    argv = ["render", str(tmp_path / "s_AIS.csv"), str(tmp_path / "s_radar.csv")]
+    assert main(argv + ["-o", str(png), "--step", "fuse", "--size", "300x200"]) == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
