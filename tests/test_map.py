@@ -344,10 +344,10 @@ def test_render_fuses_two_files_as_fuse_reads_them(tmp_path):
     t0 = pd.Timestamp("2024-05-01T00:00:00Z")
     for name, dlat in (("s_AIS.csv", 0.0), ("s_radar.csv", 0.0005)):
         rows = [
-            (1, t0 + pd.Timedelta(seconds=30 * k), 122.0 + 0.003 * k, 30.0 + dlat)
+            ("S1", 1, t0 + pd.Timedelta(seconds=30 * k), 122.0 + 0.003 * k, 30.0 + dlat)
             for k in range(40)
-        ]
-        pd.DataFrame(rows, columns=["batch", "time", "lon", "lat"]).to_csv(
+        ]  # each file names its one sensor alike (as MTAD's two-sensor files)
+        pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"]).to_csv(
             tmp_path / name, index=False
         )
     png = tmp_path / "f.png"
