@@ -45,6 +45,11 @@ class LayerView:
     text: dict = field(default_factory=dict)  # the batch table's display columns
     extra: dict = field(default_factory=dict)
 
+    @property
+    def colors(self) -> tuple[str, ...]:
+        """The colours the map draws the layer in (one per sensor of a source layer)."""
+        return tuple(self.draw.geometry.colors) if self.draw is not None else ()
+
     def track_rows(self, keys: list[tuple[str, str]]) -> np.ndarray:
         """Row numbers of the tracks ``keys`` (empty when none is known)."""
         parts = [np.arange(*self.ranges[k]) for k in keys if k in self.ranges]
@@ -127,9 +132,12 @@ def prepare_view(
     label: str = "",
     view: tuple[float, float, float, float] | None = None,
     size_px: tuple[int, int] | None = None,
+    colors: tuple[str, ...] | None = None,
 ) -> LayerView:
     """Everything the window shows of a layer; pure, for a worker thread. ``view`` and
-    ``size_px`` (the map's, or None for the data's extent) set the first level of detail."""
+    ``size_px`` (the map's, or None for the data's extent) set the first level of detail.
+    ``colors``: a source layer's sensors' colours in turn (default: ``color`` and the
+    source colours after it)."""
     from wakeline.app.map_draw import LayerStyle, prepare_layer
     from wakeline.app.map_paths import with_paths
 
@@ -157,8 +165,39 @@ def prepare_view(
         style=LayerStyle(width=width, symbol_size=symbol),
         view=view if size_px is not None else None,
         size_px=size_px,
+        colors=colors,
     )
     return LayerView(pts, summary, ranges, marks, with_paths(draw), display_text(summary))
+
+
+def prepare_view_apart(
+    points: pd.DataFrame,
+    kind: str,
+    in_use: tuple[set[str], set[str]],
+    label: str = "",
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+    first: str | None = None,
+) -> LayerView:
+    """:func:`prepare_view` in colours no other layer shows: ``in_use`` is (colours of
+    the visible layers, of the hidden ones), and takes the colours chosen, so the next
+    layer prepared with it is drawn apart from this one too. ``first``: the colour to
+    keep when it is free (a layer's saved colour). Pure, for a worker thread."""
+    from wakeline.app.map_colors import PALETTE, layer_colors
+
+    shown, hidden = in_use
+    palette = layer_colors(kind, len(PALETTE), shown, hidden, first)
+    lv = prepare_view(
+        points,
+        kind,
+        palette[0],
+        label,
+        view,
+        size_px,
+        colors=palette if kind == "source" else None,
+    )
+    shown.update(lv.colors)
+    return lv
 
 
 def draw_as(view: LayerView, layer_id: str, label: str):

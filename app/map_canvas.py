@@ -241,6 +241,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 # selection, hover or another layer blits it instead of stroking again.
                 item.curve.setCacheMode(CACHE)
                 item.setOpacity(self._context_opacity)
+                if data.style.z:
+                    item.setZValue(data.style.z)
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)

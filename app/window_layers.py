@@ -5,11 +5,13 @@ hide or remove a layer; prepared arrays are swapped into the map one layer per
 event-loop turn so a result of several layers never blocks in one piece.
 """
 
+from collections.abc import Iterable
+
 import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
-from wakeline.app.layer_view import draw_as, prepare_view
+from wakeline.app.layer_view import draw_as, prepare_view_apart
 from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
 from wakeline.core.session import Layer
@@ -28,16 +30,59 @@ class LayersMixin:
     def layers(self) -> dict[str, Layer]:
         return self.session.layers
 
+    def colors_in_use(self, exclude: Iterable[str] = ()) -> tuple[set[str], set[str]]:
+        """The colours the layers are drawn in: those of the visible layers and those of
+        the hidden ones, without the layers ``exclude`` (a step's re-run replaces them)."""
+        shown: set[str] = set()
+        hidden: set[str] = set()
+        for lid, layer in self.session.layers.items():
+            if lid in exclude:
+                continue
+            view = self.views.get(lid)
+            colors = view.colors if view is not None and view.colors else (layer.color,)
+            (shown if layer.visible else hidden).update(colors)
+        return shown, hidden
+
+    def replaced_by_run(self, lid: str, steps: Iterable[str]) -> set[str]:
+        """The layers a run of ``steps`` on layer ``lid`` replaces in place (the session
+        replaces a step's layers made from the same input): ``lid``'s children of the first
+        step, their children of the next (a pipeline's stages), and so on."""
+        out: set[str] = set()
+        current = {lid}
+        for step in steps:
+            current = {
+                i
+                for i, lay in self.session.layers.items()
+                if lay.parent in current and lay.step == step and not lay.inputs
+            }
+            out |= current
+        return out
+
+    def _adopt_view(self, event: str, lid: str) -> None:
+        """The session's first listener (before the project writer reads the layer): a
+        new or replaced layer takes the view a job prepared for it, and the colour it was
+        drawn in there, chosen apart from the other layers'; a layer added by a script or
+        a test is prepared here (small), in a colour no other layer shows."""
+        layer = self.session.layers.get(lid)
+        if event not in ("added", "changed") or layer is None:
+            return
+        pending = self._pending_views.pop((layer.step, layer.role), None)
+        if pending is not None:
+            self.views[lid] = pending
+            if pending.colors:
+                layer.color = pending.colors[0]
+        elif lid not in self.views or event == "changed":
+            keep = self.views.get(lid)
+            in_use = self.colors_in_use(exclude={lid})
+            first = keep.colors[0] if keep is not None and keep.colors else layer.color
+            self.views[lid] = prepare_view_apart(
+                layer.points, layer.kind, in_use, layer.name, first=first
+            )
+            layer.points = self.views[lid].points
+            layer.color = self.views[lid].colors[0] if self.views[lid].colors else layer.color
+
     def _on_session_event(self, event: str, lid: str) -> None:
         layer = self.session.layers.get(lid)
-        if event in ("added", "changed"):
-            pending = self._pending_views.pop((layer.step, layer.role), None)
-            if pending is not None:
-                self.views[lid] = pending
-            elif lid not in self.views or event == "changed":
-                # A layer added by a script or test: small, prepared here.
-                self.views[lid] = prepare_view(layer.points, layer.kind, layer.color)
-                layer.points = self.views[lid].points
         if event == "added":
             self._queue_draw(lid)
             item = QtWidgets.QListWidgetItem(
@@ -55,6 +100,9 @@ class LayersMixin:
                 self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
         elif event == "changed":
             self._queue_draw(lid)
+            row = self.layer_row(lid)
+            if row >= 0:  # a re-run may draw it in another colour
+                self.layer_list.item(row).setIcon(color_icon(layer.color))
             if lid == self.active:
                 self._make_current = lid
         elif event == "removed":

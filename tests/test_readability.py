@@ -1,0 +1,210 @@
+"""The map and window read well on real files: layer colours, framing, axis and table
+text, scale bar (GUI tests, pytest-qt, offscreen)."""
+
+import itertools
+
+import numpy as np
+import pandas as pd
+import pytest
+
+pytest.importorskip("pytestqt")
+from PySide6 import QtCore  # noqa: E402
+
+from wakeline.app.cli import main  # noqa: E402
+from wakeline.app.main import wait_for_jobs  # noqa: E402
+from wakeline.app.main_window import MainWindow  # noqa: E402
+from wakeline.app.map_canvas import MapCanvas  # noqa: E402
+from wakeline.core.session import KIND_COLORS  # noqa: E402
+from wakeline.resources import demo_path  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+
+@pytest.fixture
+def window(qtbot, tmp_path):
+    settings = QtCore.QSettings(str(tmp_path / "settings.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "en")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    w.resize(1400, 900)
+    yield w
+    w.runner.cancel()
+    w.runner.wait()
+
+
+def load(window, path) -> str | None:
+    window.load_file(path)
+    wait_for_jobs(window)
+    return window.layer_id(path.name)
+
+
+# -- colour vision ---------------------------------------------------------------------
+
+#: Machado, Oliveira & Fernandes (2009), deuteranopia (severity 1), on linear RGB.
+DEUTERANOPIA = np.array(
+    [
+        [0.367322, 0.860646, -0.227968],
+        [0.280085, 0.672501, 0.047413],
+        [-0.011820, 0.042940, 0.968881],
+    ]
+)
+
+
+def _linear(color: str) -> np.ndarray:
+    c = np.array([int(color[i : i + 2], 16) for i in (1, 3, 5)]) / 255.0
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def _lab(color: str) -> np.ndarray:
+    """CIELAB (D65) of ``#rrggbb``."""
+    m = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]])
+    xyz = (m @ _linear(color)) / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(xyz > 0.008856, np.cbrt(xyz), 7.787 * xyz + 16 / 116)
+    return np.array([116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])])
+
+
+def delta_e(a: str, b: str) -> float:
+    """CIE76 colour difference (the test's own, not the application's)."""
+    return float(np.linalg.norm(_lab(a) - _lab(b)))
+
+
+def _hex(linear: np.ndarray) -> str:
+    c = np.clip(linear, 0.0, 1.0)
+    s = np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055)
+    return "#" + "".join(f"{int(round(v * 255)):02x}" for v in s)
+
+
+def deutan(color: str) -> str:
+    """The colour a deuteranope sees (simulated)."""
+    return _hex(DEUTERANOPIA @ _linear(color))
+
+
+def test_simulated_deuteranopia_confuses_red_and_green():
+    # The simulation itself: tab10's red and green merge, blue and orange do not.
+    assert delta_e(deutan("#d62728"), deutan("#2ca02c")) < 10
+    assert delta_e(deutan("#1f77b4"), deutan("#ff7f0e")) > 80
+
+
+# -- 1. layer colours --------------------------------------------------------------------
+
+
+def test_each_visible_layer_has_a_colour_of_its_own(window, tmp_path):
+    """The demo (AIS and R1 in one file) and a second file, then the pipeline: no colour
+    is drawn by two layers (the R1 sensor and a radar file were drawn in the compressed
+    layer's red), the derived layers keep their kinds' colours, and each layer's icon in
+    the Layers list is the colour its curves are drawn in."""
+    demo = load(window, demo_path())
+    radar = pd.read_csv(demo_path())
+    radar = radar[radar["sensor"] == "R1"].assign(sensor="radar")
+    path = tmp_path / "radar.csv"
+    radar.to_csv(path, index=False)
+    load(window, path)
+    window.select_layer(demo)
+    window.run_step("pipeline")
+    wait_for_jobs(window)
+    assert [lay.kind for lay in window.layers.values()] == [
+        "source",
+        "source",
+        "cleaned",
+        "maneuvers",
+        "compressed",
+    ]
+    colors = {}
+    for lid, layer in window.layers.items():
+        drawn = [c.color for c in window.canvas.draw_data(lid).curves]
+        assert drawn[0] == layer.color
+        colors[lid] = set(drawn)
+    for a, b in itertools.combinations(colors, 2):
+        assert not colors[a] & colors[b], (window.layers[a].name, window.layers[b].name)
+    for layer in window.layers.values():
+        if layer.kind in KIND_COLORS:
+            assert layer.color == KIND_COLORS[layer.kind]
+    row = window.layer_row(window.layer_id("radar.csv"))
+    icon = window.layer_list.item(row).icon().pixmap(14, 14).toImage()
+    assert icon.pixelColor(7, 7).name() == window.layers[window.layer_id("radar.csv")].color
+
+
+def test_a_rerun_keeps_its_colour_and_a_second_result_of_a_kind_takes_another(window, tmp_path):
+    demo = load(window, demo_path())
+    window.run_step("clean")
+    wait_for_jobs(window)
+    cleaned = next(i for i, lay in window.layers.items() if lay.kind == "cleaned")
+    assert window.layers[cleaned].color == KIND_COLORS["cleaned"]
+    window.select_layer(demo)
+    window.run_step("clean")  # replaces the cleaned layer in place: its colour stays
+    wait_for_jobs(window)
+    assert window.layers[cleaned].color == KIND_COLORS["cleaned"]
+    other = tmp_path / "other.csv"
+    pd.read_csv(demo_path()).assign(sensor="B").to_csv(other, index=False)
+    second = load(window, other)
+    window.select_layer(second)
+    window.run_step("clean")
+    wait_for_jobs(window)
+    greens = [i for i, lay in window.layers.items() if lay.kind == "cleaned"]
+    assert len(greens) == 2
+    assert window.layers[greens[1]].color != KIND_COLORS["cleaned"]
+    shown = [c.color for d in window.canvas.visible_draw_data() for c in d.curves]
+    assert len(shown) == len(set(shown))
+
+
+def test_render_by_batch_keeps_batch_colours_apart_from_steps_and_on_top(
+    qapp, tmp_path, monkeypatch
+):
+    """``render --step clean maneuvers --color-by batch``: no batch in a colour that looks
+    like a step layer's (the cleaned green was the third batch colour), and the batches
+    drawn over the steps' lines, under the maneuver marks."""
+    from wakeline.app import map_render
+
+    drawn = {}
+
+    def keep(layers, path, **kw):
+        drawn["layers"] = list(layers)
+        return {"bounds": (0, 0, 1, 1), "layers": 0, "points": 0, "vertices": 0, "size": (1, 1)}
+
+    monkeypatch.setattr(map_render, "render_png", keep)
+    pts = pd.read_csv(demo_path())
+    csv = tmp_path / "demo.csv"
+    pts.to_csv(csv, index=False)
+    args = ["render", str(csv), "-o", str(tmp_path / "x.png"), "--color-by", "batch"]
+    assert main([*args, "--step", "clean", "maneuvers"]) == 0
+    source, *steps = drawn["layers"]
+    batch_colors = set(source.geometry.colors)
+    assert len(batch_colors) >= 10  # the demo has more batches than that
+    for step in steps:
+        for c in step.geometry.colors:
+            assert all(delta_e(c, b) >= 20 for b in batch_colors), (step.name, c)
+    lines = [s for s in steps if s.style.width]
+    marks = [s for s in steps if not s.style.width]
+    assert lines and marks
+    assert all(source.style.z > s.style.z for s in lines)
+    assert all(source.style.z < s.style.z for s in marks)
+
+
+def test_selection_colours_stay_apart_for_a_deuteranope(qtbot):
+    """Two and three tracks selected over a blue layer: their colours differ for a
+    deuteranope as well (the selection went red, then green)."""
+    rows = []
+    for k in range(4):
+        lon = 10.0 + 0.01 * np.arange(20)
+        rows.append(
+            pd.DataFrame(
+                {
+                    "sensor": "S",
+                    "batch": str(k),
+                    "time": pd.to_datetime(np.arange(20) * 10, unit="s", utc=True),
+                    "lon": lon,
+                    "lat": 55.0 + 0.01 * k,
+                }
+            )
+        )
+    df = pd.concat(rows, ignore_index=True)
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(600, 400)
+    canvas.set_layer("L", df, "#1f77b4")
+    for n in (2, 3, 4):
+        canvas.show_selection(df[df["batch"].astype(int) < n])
+        colours = [canvas.selection_color("S", str(k)) for k in range(n)]
+        for a, b in itertools.combinations(colours, 2):
+            assert delta_e(deutan(a), deutan(b)) >= 20, (n, a, b)
+        assert all(delta_e(c, "#1f77b4") >= 20 for c in colours)
