@@ -152,7 +152,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--bounds",
         type=parse_bounds,
         metavar="W,S,E,N",
-        help="area to show in degrees (default: the data with a 5%% margin)",
+        help="area to show in degrees (default: where the data are, with a 5%% margin; "
+        "a few far-flung points may fall outside)",
     )
     p.add_argument(
         "--bare",

@@ -10,7 +10,7 @@ import numpy as np
 from PySide6 import QtWidgets
 
 from wakeline.app.dialogs import QUARANTINE_KEPT
-from wakeline.app.layer_view import plan_view, points_box, prepare_view_apart
+from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
@@ -71,7 +71,7 @@ class ImportJobsMixin:
             if read:
                 lat = read[0][1].points["lat"].to_numpy(dtype="float64")
                 lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
-                plan = plan_view(state, [points_box(r[1].points) for r in read], lat0)
+                plan = plan_view(state, [points_sketch(r[1].points) for r in read], lat0)
             done = []
             for k, (path, result, sha, layout) in enumerate(read):
                 progress(0.8 + 0.2 * k / len(read), f"preparing the map for {path.name}")

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtWidgets
 
-from wakeline.app.layer_view import plan_view, points_box, prepare_view_apart
+from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.project import Project, load_project
 
@@ -110,12 +110,12 @@ class ProjectJobsMixin:
             warnings = proj.source_problems()
             # The view the map will show (fitted to the visible layers): each layer's level
             # of detail is made for it here, so the map strokes each layer once.
-            boxes = [points_box(lay.points) for lay in proj.layers if lay.visible]
+            sketches = [points_sketch(lay.points) for lay in proj.layers if lay.visible]
             lat0 = None
             if proj.layers and len(proj.layers[0].points):
                 lat = proj.layers[0].points["lat"].to_numpy(dtype="float64")
                 lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
-            plan = plan_view(state, boxes, lat0)
+            plan = plan_view(state, sketches, lat0)
             shown = plan["shown"] if plan else None
             views = {}
             # Saved colours are kept unless an earlier layer has one (a project saved

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from wakeline.app.map_frame import PositionSketch, framed_box, position_sketch
 from wakeline.app.models import batch_summary, display_text
 from wakeline.core.tracks import sort_points, track_index
 
@@ -71,6 +72,19 @@ def points_box(points: pd.DataFrame) -> tuple[float, float, float, float] | None
     return (float(lon.min()), float(lat.min()), float(lon.max()), float(lat.max()))
 
 
+def points_sketch(points: pd.DataFrame) -> PositionSketch | None:
+    """Where the points of a table are (:func:`~wakeline.app.map_frame.position_sketch`)."""
+    if len(points) == 0:
+        return None
+    return position_sketch(points["lon"].to_numpy(), points["lat"].to_numpy())
+
+
+def framed_range(sketches: list) -> tuple[float, float, float, float] | None:
+    """The range (x0, x1, y0, y1, degrees) a first view asks for: where the points of
+    ``sketches`` are (:func:`~wakeline.app.map_frame.framed_box`), with a fit's margin."""
+    return padded_range([framed_box(sketches)])
+
+
 def padded_range(boxes: list) -> tuple[float, float, float, float] | None:
     """The range (x0, x1, y0, y1, degrees) :meth:`MapCanvas.fit` asks for: the union of
     ``boxes`` (west, south, east, north) with a 5 % margin (at least 0.01°)."""
@@ -103,13 +117,15 @@ def shown_range(
     return (x0 - dx, x1 + dx, y0, y1)
 
 
-def plan_view(state: dict, boxes: list, lat0: float | None) -> dict | None:
+def plan_view(state: dict, sketches: list, lat0: float | None) -> dict | None:
     """The view a job's new layers will be shown in (pure, for the worker): ``state``
-    from the window (boxes of the layers kept, plot size, aspect latitude or None),
-    ``boxes`` of the new layers, ``lat0`` the aspect latitude when none is set yet.
-    Returns ``target`` (the range asked for), ``shown`` (after the aspect lock) and
-    ``lat0`` (None: keep the map's), or None when nothing is to be shown."""
-    target = padded_range([*state["boxes"], *boxes])
+    from the window (position sketches of the layers kept, plot size, aspect latitude
+    or None), ``sketches`` of the new layers (:func:`points_sketch`), ``lat0`` the aspect
+    latitude when none is set yet. The view frames where the points are
+    (:func:`framed_range`). Returns ``target`` (the range asked for), ``shown`` (after
+    the aspect lock) and ``lat0`` (None: keep the map's), or None when nothing is to be
+    shown."""
+    target = framed_range([*state["sketches"], *sketches])
     if target is None:
         return None
     keep = state["lat0"] is not None

@@ -22,7 +22,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from wakeline.app.layer_view import padded_range
+from wakeline.app.layer_view import framed_range, padded_range
 from wakeline.app.map_coast import coastline_draw
 from wakeline.app.map_draw import (
     PALETTE,
@@ -409,8 +409,15 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         """Vertices in the drawn paths of the visible layers (after level of detail)."""
         return sum(d.n_vertices for d in self.visible_draw_data())
 
+    def frame(self) -> None:
+        """Show where the points of the visible layers are, with a margin: a first view
+        (:mod:`wakeline.app.map_frame`; a few far-flung points are left out, :meth:`fit`
+        shows them)."""
+        self.show_range(framed_range([d.geometry.sketch() for d in self.visible_draw_data()]))
+
     def fit(self, points: pd.DataFrame | None = None) -> None:
-        """Show ``points`` (default: every visible layer) with a margin."""
+        """Show ``points`` (default: every point of every visible layer) with a margin:
+        "Fit to data", "Zoom to all"."""
         if points is not None:
             lon, lat = nan_separated(points)
             boxes = [(np.nanmin(lon), np.nanmin(lat), np.nanmax(lon), np.nanmax(lat))]

@@ -26,6 +26,7 @@ import pandas as pd
 from scipy.spatial import cKDTree
 
 from wakeline.app.map_colors import BATCH_PALETTE, PALETTE, layer_colors
+from wakeline.app.map_frame import PositionSketch, position_sketch
 from wakeline.app.map_lod import decimate, lod_box, nan_join
 from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core import geo
@@ -67,6 +68,7 @@ class LayerGeometry:
     colors: tuple[str, ...]
     relative: bool
     _tree: cKDTree | None = field(default=None, repr=False)
+    _sketch: PositionSketch | None = field(default=None, repr=False)
 
     @property
     def n_points(self) -> int:
@@ -86,6 +88,13 @@ class LayerGeometry:
             float(self.lon.max()),
             float(self.lat.max()),
         )
+
+    def sketch(self) -> PositionSketch | None:
+        """Where the points are (:mod:`wakeline.app.map_frame`), made on first use (in the
+        worker, by :func:`prepare_layer`); None when empty."""
+        if self._sketch is None and len(self.lon):
+            self._sketch = position_sketch(self.lon, self.lat)
+        return self._sketch
 
     @property
     def x_scale(self) -> float:
@@ -316,7 +325,8 @@ def prepare_layer(
     ``points`` is a canonical point table (or a geometry from an earlier call, to redo
     only the level of detail). ``view``/``size_px``: the canvas' view (x0, x1, y0, y1,
     degrees) and plot size in pixels, for the level of detail; None draws every point.
-    ``build_index`` builds the hover/pick k-d tree now (else on first hover). ``colors``:
+    ``build_index`` builds the hover/pick k-d tree and the position sketch (where the
+    points are, for the first view) now, else on first use. ``colors``:
     the colours of the sensors (or batches) in turn (see :func:`layer_geometry`).
     """
     if isinstance(points, LayerGeometry):
@@ -325,6 +335,7 @@ def prepare_layer(
         geom = layer_geometry(points, color, by_sensor, color_by, relative, name, colors)
     if build_index and geom.n_points:
         geom.tree()
+        geom.sketch()
     curves, box, px = curves_for(geom, view, size_px)
     shown = view if px is not None else None
     return DrawData(name, geom, curves, style or LayerStyle(), box, px, shown)

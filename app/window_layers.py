@@ -119,11 +119,13 @@ class LayersMixin:
 
     def _view_state(self, replace_all: bool = False) -> dict:
         """What a job needs to plan the view its layers will be shown in (GUI thread):
-        the boxes of the visible layers (none when ``replace_all``), plot size, aspect."""
+        where the points of the visible layers are (none when ``replace_all``; sketches
+        made in the worker with each layer), plot size, aspect."""
         keep = not replace_all and bool(self.session.layers)
-        boxes = [d.geometry.bounds() for d in self.canvas.visible_draw_data()] if keep else []
+        data = self.canvas.visible_draw_data() if keep else []
+        sketches = [d.geometry.sketch() for d in data]
         lat0 = self.canvas._lat0 if keep else None
-        return {"boxes": boxes, "size_px": self.canvas.plot_size_px(), "lat0": lat0}
+        return {"sketches": sketches, "size_px": self.canvas.plot_size_px(), "lat0": lat0}
 
     def _plan_view(self, plan: dict | None) -> None:
         """Before a job's layers are added: the aspect and range it planned (the layers'
@@ -159,7 +161,7 @@ class LayersMixin:
                     self.canvas.viewport().repaint()
         elif self._fit_after_draw:
             self._fit_after_draw = False
-            self.canvas.fit()
+            self.canvas.frame()
         elif self._make_current is not None:
             lid, self._make_current = self._make_current, None
             if lid in self.session.layers:

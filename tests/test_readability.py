@@ -208,3 +208,80 @@ def test_selection_colours_stay_apart_for_a_deuteranope(qtbot):
         for a, b in itertools.combinations(colours, 2):
             assert delta_e(deutan(a), deutan(b)) >= 20, (n, a, b)
         assert all(delta_e(c, "#1f77b4") >= 20 for c in colours)
+
+
+# -- 2. framing --------------------------------------------------------------------------
+
+
+def _view_holds(window, points: pd.DataFrame) -> np.ndarray:
+    x0, x1, y0, y1 = window.canvas.current_view()
+    lon, lat = points["lon"].to_numpy(), points["lat"].to_numpy()
+    return (lon >= x0) & (lon <= x1) & (lat >= y0) & (lat <= y1)
+
+
+def gulf_with_outliers(n_tracks: int = 40, n_points: int = 120) -> pd.DataFrame:
+    """Tracks in a 6° x 3° box (the ATD set's Gulf traffic) and one track whose last
+    three positions are 25° west and 17° north (its West-Coast outliers)."""
+    rng = np.random.default_rng(7)
+    rows = []
+    t = pd.Timestamp("2024-01-01", tz="UTC") + pd.to_timedelta(np.arange(n_points) * 60, "s")
+    for k in range(n_tracks):
+        lon0, lat0 = rng.uniform(-96, -90), rng.uniform(26, 29)
+        step = (
+            rng.normal(0, 0.002, (n_points, 2)).cumsum(axis=0)
+            + 0.003 * np.arange(n_points)[:, None]
+        )
+        rows.append(
+            pd.DataFrame(
+                {
+                    "sensor": "S1",
+                    "batch": str(1000 + k),
+                    "time": t,
+                    "lon": lon0 + step[:, 0],
+                    "lat": lat0 + step[:, 1],
+                }
+            )
+        )
+    far = rows[0].copy()
+    far.loc[far.index[-3:], ["lon", "lat"]] = [[-122.8, 46.0], [-122.9, 46.1], [-123.0, 46.2]]
+    rows[0] = far
+    return pd.concat(rows, ignore_index=True)
+
+
+def test_first_view_frames_the_points_and_fit_to_data_shows_all(window, tmp_path):
+    """Three far-flung positions among 4,800: the first view frames the traffic (every
+    point but those three, and not 20° of empty map), "Fit to data" every point."""
+    pts = gulf_with_outliers()
+    path = tmp_path / "gulf.csv"
+    pts.to_csv(path, index=False)
+    load(window, path)
+    inside = _view_holds(window, pts)
+    assert (~inside).sum() == 3
+    x0, x1, y0, y1 = window.canvas.current_view()
+    window.actions_["fit"].trigger()
+    assert _view_holds(window, pts).all()
+    f0, f1, g0, g1 = window.canvas.current_view()
+    # The traffic at over 4x the scale "Fit to data" shows it (it spans 33° then).
+    assert (x1 - x0) < 0.25 * (f1 - f0) and (y1 - y0) < 0.25 * (g1 - g0)
+    # The screenshot's view is the first view too (MapCanvas.frame).
+    window.canvas.frame()
+    assert (~_view_holds(window, pts)).sum() == 3
+
+
+def test_demo_and_mtad_scene_are_framed_whole(window):
+    """Sets without far-flung points open as a fit shows them: every point in view."""
+    from conftest import real_file
+
+    demo = load(window, demo_path())
+    assert _view_holds(window, window.layers[demo].points).all()
+    window.canvas.frame()
+    framed = window.canvas.current_view()
+    window.canvas.fit()
+    assert window.canvas.current_view() == pytest.approx(framed)
+    two = real_file("mtad-dtwcm", "two_sensor")
+    window.session.clear()
+    window.load_files([two / "scene-6_error_0_AIS.csv", two / "scene-6_error_0_radar.csv"])
+    wait_for_jobs(window)
+    assert len(window.layers) == 2
+    for layer in window.layers.values():
+        assert _view_holds(window, layer.points).all(), layer.name
