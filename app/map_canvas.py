@@ -43,6 +43,9 @@ __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 # after the level of detail (zoomed in): pyqtgraph builds them point by point (~10 µs
 # each). Lines show without them beyond; marker-only layers show 1-px crosses.
 
+#: The widest latitude tick label the left axis keeps room for from the start: thousandths of
+#: a degree (ticks 111 m apart) south of the equator.
+WIDEST_LATITUDE = "-88.888"
 #: Selection curve items made with the canvas (more are made when needed).
 SELECTION_POOL = 12
 #: Cache mode of a layer's curves.
@@ -74,8 +77,14 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.showGrid(x=True, y=True, alpha=0.25)
         # Room for latitude labels from the start, never given back: an axis that widened
         # or narrowed with its labels would resize the view box, and every layer would be
-        # decimated and stroked again.
-        self.getAxis("left").setStyle(tickTextWidth=44, autoReduceTextSpace=False)
+        # decimated and stroked again. The room is measured in the axis' font (pyqtgraph's
+        # tickTextWidth only counts when the text space is not expanded, and its measured
+        # width starts at 30 px: labels like "56.025" took more, and the axis widened one
+        # layout pass after the paint that measured them — a render grabbed before that
+        # had the axis title over its tick labels).
+        left = self.getAxis("left")
+        left.textWidth = max(left.textWidth, self.tick_text_room(left))
+        left.setStyle(autoReduceTextSpace=False)
         # Axes and grid replay their labels on every paint (~10 ms each); cached, a
         # repaint for a new layer or the selection copies them while the view stays.
         for side in ("left", "bottom"):
@@ -149,6 +158,13 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         menu.addAction("Zoom to all", self.fit)
 
     # -- view ------------------------------------------------------------------------
+
+    @staticmethod
+    def tick_text_room(axis: pg.AxisItem, widest: str = WIDEST_LATITUDE) -> float:
+        """Pixels the widest latitude label takes in ``axis``' tick font (the axis then
+        grows by itself for a wider one)."""
+        font = axis.style["tickFont"] or axis.font()
+        return math.ceil(QtGui.QFontMetricsF(font).horizontalAdvance(widest)) + 2
 
     def _new_selection_item(self) -> pg.PlotDataItem:
         item = pg.PlotDataItem(connect="finite")

@@ -126,6 +126,9 @@ def render_png(
             QtWidgets.QApplication.processEvents()
     canvas.vb.setRange(xRange=(west, east), yRange=(south, north), padding=0)
     QtWidgets.QApplication.processEvents()
+    # A paint measured the new tick labels; an axis they widen is laid out on the next
+    # turn (else the grab shows the axis title over its labels).
+    QtWidgets.QApplication.processEvents()
     canvas.refresh_lod()
     if bare:
         image = QtGui.QImage(w, h, QtGui.QImage.Format.Format_ARGB32)

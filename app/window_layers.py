@@ -21,6 +21,8 @@ from wakeline.core.session import Layer
 STEP_MS = 5
 
 EMPTY = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
+#: Batch table columns sized to their text when a layer is shown.
+FITTED_COLUMNS = ("sensor", "batch", "points", "start", "end")
 
 
 class LayersMixin:
@@ -233,6 +235,7 @@ class LayersMixin:
             self.batch_model.set_summary(view.summary, view.text)
         else:
             self.batch_model.set_summary(batch_summary(EMPTY))
+        self._fit_time_columns()
         if self.canvas.selected_points() is not None and len(self.canvas.selected_points()):
             self.canvas.show_selection(EMPTY)
         self.detail.clear()
@@ -242,6 +245,22 @@ class LayersMixin:
             self.params.show_guidance(root.summary)
         self.project.put_state("active", self.active)
         self._update_stats()
+
+    def _fit_time_columns(self) -> None:
+        """The batch table's first columns (Sensor … End) as wide as their longest text
+        or title (font metrics of one string per column, not a pass over the rows): Start
+        was cut to "2024-01-0 00:00:0" at the default width, and Sensor and Points took
+        100 px for "S1" and "16"."""
+        view, model = self.batch_view, self.batch_model
+        header = view.horizontalHeader()
+        style = view.style()
+        margin = 2 * (style.pixelMetric(QtWidgets.QStyle.PixelMetric.PM_FocusFrameHMargin) + 1)
+        fm = view.fontMetrics()
+        for col, (key, _title) in enumerate(model.COLUMNS):
+            if key not in FITTED_COLUMNS:
+                continue
+            text = fm.horizontalAdvance(model.widest_text(key)) + margin + 6
+            view.setColumnWidth(col, max(text, header.sectionSizeHint(col)))
 
     def active_layer(self) -> Layer | None:
         return self.session.get(self.active)

@@ -285,3 +285,90 @@ def test_demo_and_mtad_scene_are_framed_whole(window):
     assert len(window.layers) == 2
     for layer in window.layers.values():
         assert _view_holds(window, layer.points).all(), layer.name
+
+
+# -- 3. axis title and time columns --------------------------------------------------------
+
+
+def oresund_like() -> pd.DataFrame:
+    """Tracks in 0.14° x 0.06° at 56°N: latitude ticks like "56.025"."""
+    rows = []
+    for k in range(6):
+        lon = np.linspace(12.58, 12.72, 50)
+        lat = 56.0 + 0.01 * k + 0.002 * np.sin(np.arange(50) / 5.0)
+        t = pd.to_datetime(1_717_200_000 + 60 * np.arange(50), unit="s", utc=True)
+        rows.append(
+            pd.DataFrame({"sensor": "S1", "batch": str(k), "time": t, "lon": lon, "lat": lat})
+        )
+    return pd.concat(rows, ignore_index=True)
+
+
+def _left_axis_overlap(canvas) -> float:
+    """Pixels by which the latitude axis' title reaches into its widest tick label."""
+    from PySide6 import QtGui
+
+    axis = canvas.getAxis("left")
+    image = QtGui.QImage(10, 10, QtGui.QImage.Format.Format_ARGB32)
+    painter = QtGui.QPainter(image)
+    try:
+        _, _, texts = axis.generateDrawSpecs(painter)
+    finally:
+        painter.end()
+    assert texts, "no tick labels drawn"
+    title = axis.label.mapRectToParent(axis.label.boundingRect())
+    return title.right() - min(rect.left() for rect, _flags, _text in texts)
+
+
+def test_rendered_latitude_title_clears_its_tick_labels(qapp, tmp_path, monkeypatch):
+    """``wakeline render`` of the Øresund encounters: the image was grabbed while the
+    latitude axis still had the room of its first, shorter labels, and "latitude (°)" sat
+    on "56.025". Checked in the canvas as it is grabbed."""
+    from wakeline.app import map_render
+    from wakeline.app.map_draw import prepare_layer
+
+    seen = []
+    grab = MapCanvas.grab
+
+    def checked_grab(self, *args):
+        seen.append(_left_axis_overlap(self))
+        return grab(self, *args)
+
+    monkeypatch.setattr(MapCanvas, "grab", checked_grab)
+    layer = prepare_layer(oresund_like(), "oresund", build_index=False)
+    map_render.render_png([layer], tmp_path / "o.png", size=(1200, 800))
+    assert seen and seen[0] <= 0, f"the axis title covers {seen[0]:.1f} px of a tick label"
+
+
+def _time_column_fits(window) -> None:
+    model, view = window.batch_model, window.batch_view
+    fm = view.fontMetrics()
+    assert model.rowCount() > 0
+    for key in ("sensor", "batch", "points", "start", "end"):
+        col = [k for k, _ in model.COLUMNS].index(key)
+        widest = max(
+            fm.horizontalAdvance(model.index(r, col).data()) for r in range(model.rowCount())
+        )
+        # The item delegate's text margins: (focus frame margin + 1) on each side.
+        assert widest + 6 <= view.columnWidth(col), (key, widest, view.columnWidth(col))
+
+
+def test_batch_table_time_columns_fit_their_text(window, tmp_path):
+    """Dates ("2024-06-01 00:00:00" was cut to "2024-06-0 00:00:0") and elapsed times
+    of a day and more ("T+1 d 03:46:40") fit their columns; so do sensors, batches and
+    point counts, in columns no wider than they need (Start in view in a narrow dock)."""
+    dated = tmp_path / "dated.csv"
+    oresund_like().to_csv(dated, index=False)
+    lid = load(window, dated)
+    window.select_layer(lid)
+    _time_column_fits(window)
+    left_of_start = sum(window.batch_view.columnWidth(c) for c in range(3))
+    assert left_of_start < 240  # Sensor, Batch, Points: 300 px at Qt's default width
+    elapsed = tmp_path / "elapsed.csv"
+    pts = oresund_like().assign(
+        time=lambda d: pd.to_datetime(100_000 + d.index * 10.5, unit="s", utc=True)
+    )
+    pts.to_csv(elapsed, index=False)
+    lid = load(window, elapsed)
+    window.select_layer(lid)
+    assert window.batch_model.index(0, 3).data().startswith("T+1 d")
+    _time_column_fits(window)
