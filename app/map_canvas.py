@@ -46,6 +46,8 @@ __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 #: The widest latitude tick label the left axis keeps room for from the start: thousandths of
 #: a degree (ticks 111 m apart) south of the equator.
 WIDEST_LATITUDE = "-88.888"
+#: The scale bar and its label: dark grey (contrast 10 on white).
+SCALE_BAR_COLOR = "#404040"
 #: Selection curve items made with the canvas (more are made when needed).
 SELECTION_POOL = 12
 #: Cache mode of a layer's curves.
@@ -140,7 +142,11 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.hover_dot = pg.ScatterPlotItem(size=9, pen=pg.mkPen("k", width=1.5), brush=None)
         self.hover_dot.setZValue(99)
         self.addItem(self.hover_dot, ignoreBounds=True)
-        self.scale_bar = pg.ScaleBar(size=0.1, suffix="")
+        self.scale_bar = pg.ScaleBar(size=0.1, suffix="", brush=SCALE_BAR_COLOR)
+        # pyqtgraph draws its label light grey (200, 200, 200: contrast 1.7 on white):
+        # dark text on a light translucent box, readable over tracks and grid.
+        self.scale_bar.text.setColor(SCALE_BAR_COLOR)
+        self.scale_bar.text.fill = pg.mkBrush(255, 255, 255, 210)
         self.scale_bar.setParentItem(self.vb)
         self.scale_bar.anchor((1, 1), (1, 1), offset=(-20, -20))
         self._lod_timer = QtCore.QTimer(self)

@@ -372,3 +372,47 @@ def test_batch_table_time_columns_fit_their_text(window, tmp_path):
     window.select_layer(lid)
     assert window.batch_model.index(0, 3).data().startswith("T+1 d")
     _time_column_fits(window)
+
+
+# -- 4. scale bar --------------------------------------------------------------------------
+
+
+def _luminance(rgb) -> float:
+    c = np.asarray(rgb, dtype="float64") / 255.0
+    c = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    return float(0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2])
+
+
+def contrast(a, b) -> float:
+    """WCAG contrast ratio of two RGB colours (4.5 is the floor for normal text)."""
+    la, lb = sorted((_luminance(a), _luminance(b)), reverse=True)
+    return (la + 0.05) / (lb + 0.05)
+
+
+def test_scale_bar_label_reads_on_the_map(qtbot):
+    """The scale bar's "1 km" was light grey on white (contrast 1.7): its text, as drawn
+    over tracks and grid, now contrasts with its own background as body text must."""
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(800, 500)
+    pts = oresund_like()
+    canvas.set_layer("o", pts, "#1f77b4")
+    canvas.set_true_aspect(56.0)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    canvas.fit()
+    qtbot.wait(50)
+    label = canvas.scale_bar.text
+    assert label.toPlainText().endswith("km")
+    image = canvas.grab().toImage()
+    rect = canvas.mapFromScene(label.sceneBoundingRect()).boundingRect()
+    rgb = np.array(
+        [
+            [image.pixelColor(x, y).getRgb()[:3] for x in range(rect.left(), rect.right())]
+            for y in range(rect.top(), rect.bottom())
+        ]
+    ).reshape(-1, 3)
+    lum = np.array([_luminance(c) for c in rgb])
+    text, ground = rgb[np.argmin(lum)], rgb[np.argmax(lum)]
+    assert contrast(text, ground) >= 4.5, (text, ground)
+    assert contrast(label.color.getRgb()[:3], (255, 255, 255)) >= 7.0
