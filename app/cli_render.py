@@ -80,37 +80,41 @@ def _cmd_render(args: argparse.Namespace) -> int:
     try:
         from PySide6 import QtWidgets
 
-        from wakeline.app.map_draw import PALETTE, LayerStyle, prepare_layer
+        from wakeline.app.map_colors import PALETTE, batch_colors, layer_colors
+        from wakeline.app.map_draw import LayerStyle, prepare_layer
         from wakeline.app.map_render import render_png
-        from wakeline.core.session import KIND_COLORS
     except ImportError as exc:
         raise InputError(f"rendering needs the desktop libraries (Qt): {exc}") from None
     _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(["wakeline"])
     source_name = args.input[0].name if len(args.input) == 1 else "input"
+    # Every layer in a colour of its own: the steps' layers in their kinds' colours, the
+    # input's sensors (or batches) in colours none of them has.
+    taken: set[str] = set()
+    kind_color = []
+    for _suffix, kind, _pts in derived:
+        kind_color.append(layer_colors(kind, 1, taken)[0])
+        taken.add(kind_color[-1])
+    by_batch = args.color_by == "batch"
     layers = [
         prepare_layer(
             points,
             source_name,
-            PALETTE[0],
             color_by=args.color_by,
-            style=LayerStyle(width=1.3, symbol_size=3),
+            # Coloured by batch, the input is drawn over the steps' lines (under the
+            # maneuver marks), or its colours would hide under them.
+            style=LayerStyle(width=1.3, symbol_size=3, z=1.0 if by_batch else 0.0),
             build_index=False,
+            colors=batch_colors(taken) if by_batch else layer_colors("source", len(PALETTE), taken),
         )
     ]
-    for suffix, kind, pts in derived:
+    for (suffix, kind, pts), color in zip(derived, kind_color, strict=True):
         if kind == "maneuvers":
             pts = pts[pts["is_maneuver"].to_numpy(dtype=bool)] if "is_maneuver" in pts else pts
-            style = LayerStyle(width=0, symbol_size=8)
+            style = LayerStyle(width=0, symbol_size=8, z=2.0)
         else:
             style = LayerStyle(width=2.5 if kind in ("compressed", "fused") else 1.3)
         layers.append(
-            prepare_layer(
-                pts,
-                f"{source_name} · {suffix}",
-                KIND_COLORS.get(kind, PALETTE[len(layers) % len(PALETTE)]),
-                style=style,
-                build_index=False,
-            )
+            prepare_layer(pts, f"{source_name} · {suffix}", color, style=style, build_index=False)
         )
     info = render_png(layers, args.output, size=args.size, bounds=args.bounds, bare=args.bare)
     w, s, e, n = info["bounds"]
@@ -142,7 +146,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--bounds",
         type=parse_bounds,
         metavar="W,S,E,N",
-        help="area to show in degrees (default: the data with a 5%% margin)",
+        help="area to show in degrees (default: where the data are, with a 5%% margin; "
+        "a few far-flung points may fall outside)",
     )
     p.add_argument(
         "--bare",

@@ -15,24 +15,31 @@ from PySide6 import QtWidgets
 from wakeline.app.dialogs import summarize
 from wakeline.app.jobs_import import ImportJobsMixin
 from wakeline.app.jobs_project import ProjectJobsMixin
-from wakeline.app.layer_view import prepare_view
+from wakeline.app.layer_view import prepare_view_apart
 from wakeline.app.worker import Cancelled, Failed, Finished, Progress, Started
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, Pipeline, StepResult
 from wakeline.core.progress import sub_progress
-from wakeline.core.session import KIND_COLORS, PALETTE
 
 
-def _prepared(result: StepResult, progress, map_view, size_px) -> tuple[StepResult, dict]:
+def _prepared(
+    result: StepResult,
+    progress,
+    map_view,
+    size_px,
+    in_use: tuple[set[str], set[str]] | None = None,
+) -> tuple[StepResult, dict]:
     """The result with every layer's points sorted, and each layer's prepared view (map
-    level of detail for the canvas' ``map_view`` and ``size_px``)."""
+    level of detail for the canvas' ``map_view`` and ``size_px``), each in its kind's
+    colour unless a layer shown already has it (``in_use``: the colours of the visible and
+    of the hidden layers the result does not replace; see ``colors_in_use``)."""
+    in_use = in_use if in_use is not None else (set(), set())
     views, stages = {}, []
     for stage in result.stages or [result]:
         layers = []
         for new in stage.layers:
-            color = KIND_COLORS.get(new.kind, PALETTE[0])
-            lv = prepare_view(new.points, new.kind, color, new.suffix, map_view, size_px)
-            views[(stage.step, new.suffix)] = (lv, color)
+            lv = prepare_view_apart(new.points, new.kind, in_use, new.suffix, map_view, size_px)
+            views[(stage.step, new.suffix)] = (lv, lv.colors[0] if lv.colors else "")
             layers.append(dataclasses.replace(new, points=lv.points))
         stages.append(dataclasses.replace(stage, layers=layers))
         progress(1.0, "prepared for drawing")
@@ -110,18 +117,22 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 return pipe.run(self.session.layers[lid].points, progress)
 
             params = None
+            steps = [name for name, _ in pipe.stages]
         else:
             params = self.step_params(step)
 
             def run(progress):
                 return self.session.run_step(lid, step, params, progress)
 
+            steps = [step]
         canvas_view, size_px = self.canvas.current_view(), self.canvas.plot_size_px()
+        # The colours taken: every other layer's (a re-run's layers give theirs back).
+        in_use = self.colors_in_use(exclude=self.replaced_by_run(lid, steps))
 
         def job(progress):
             result = run(sub_progress(progress, 0.0, 0.85))
             prepared, views = _prepared(
-                result, sub_progress(progress, 0.85, 1.0), canvas_view, size_px
+                result, sub_progress(progress, 0.85, 1.0), canvas_view, size_px, in_use
             )
             return ("step", lid, prepared, views, params)
 

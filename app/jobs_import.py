@@ -10,11 +10,11 @@ import numpy as np
 from PySide6 import QtWidgets
 
 from wakeline.app.dialogs import QUARANTINE_KEPT
-from wakeline.app.layer_view import plan_view, points_box, prepare_view
+from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
-from wakeline.core.session import PALETTE, Source
+from wakeline.core.session import Source
 
 
 class ImportJobsMixin:
@@ -42,14 +42,15 @@ class ImportJobsMixin:
         from wakeline.core.io.export_like import layout_meta
 
         options = options or {}
-        first = len(self.session.layers)
-        colors = [PALETTE[(first + k) % len(PALETTE)] for k in range(len(paths))]
+        # Each file's sensors take source colours no layer shows (the worker chooses,
+        # once it knows the sensors).
+        in_use = self.colors_in_use()
         size_px = self.canvas.plot_size_px()
         state = self._view_state()
 
         def job(progress):
             read, errors = [], []
-            for k, (path, color) in enumerate(zip(paths, colors, strict=True)):
+            for k, path in enumerate(paths):
                 sub = sub_progress(progress, 0.8 * k / len(paths), 0.8 * (k + 1) / len(paths))
                 try:
                     result = read_points(path, progress=sub_progress(sub, 0.0, 0.85), **options)
@@ -63,20 +64,22 @@ class ImportJobsMixin:
                 sub(0.85, f"hashing {path.name}")
                 sha = file_hash(path)
                 sub(0.95, "learning the layout for export")
-                read.append((path, result, sha, color, layout_meta(path, result.report)))
+                read.append((path, result, sha, layout_meta(path, result.report)))
             # The view the map will show once these are added: each layer's level of
             # detail is made for it here, so the map strokes each layer once.
             plan = None
             if read:
                 lat = read[0][1].points["lat"].to_numpy(dtype="float64")
                 lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
-                plan = plan_view(state, [points_box(r[1].points) for r in read], lat0)
+                plan = plan_view(state, [points_sketch(r[1].points) for r in read], lat0)
             done = []
-            for k, (path, result, sha, color, layout) in enumerate(read):
+            for k, (path, result, sha, layout) in enumerate(read):
                 progress(0.8 + 0.2 * k / len(read), f"preparing the map for {path.name}")
                 shown = plan["shown"] if plan else None
-                view = prepare_view(result.points, "source", color, path.name, shown, size_px)
-                done.append((path, result, sha, view, color, layout))
+                view = prepare_view_apart(
+                    result.points, "source", in_use, path.name, shown, size_px
+                )
+                done.append((path, result, sha, view, view.colors[0], layout))
             return ("import", done, errors, plan)
 
         name = paths[0].name if len(paths) == 1 else f"{len(paths)} files"

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtWidgets
 
-from wakeline.app.layer_view import plan_view, points_box, prepare_view
+from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.project import Project, load_project
 
@@ -110,20 +110,24 @@ class ProjectJobsMixin:
             warnings = proj.source_problems()
             # The view the map will show (fitted to the visible layers): each layer's level
             # of detail is made for it here, so the map strokes each layer once.
-            boxes = [points_box(lay.points) for lay in proj.layers if lay.visible]
+            sketches = [points_sketch(lay.points) for lay in proj.layers if lay.visible]
             lat0 = None
             if proj.layers and len(proj.layers[0].points):
                 lat = proj.layers[0].points["lat"].to_numpy(dtype="float64")
                 lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
-            plan = plan_view(state, boxes, lat0)
+            plan = plan_view(state, sketches, lat0)
             shown = plan["shown"] if plan else None
             views = {}
+            # Saved colours are kept unless an earlier layer has one (a project saved
+            # with a radar source and the compressed layer both red).
+            in_use: tuple[set[str], set[str]] = (set(), set())
             for k, lay in enumerate(proj.layers):
                 progress(k / max(len(proj.layers), 1), f"preparing {lay.name}")
-                views[lay.id] = prepare_view(
-                    lay.points, lay.kind, lay.color, lay.name, shown, size_px
+                views[lay.id] = prepare_view_apart(
+                    lay.points, lay.kind, in_use, lay.name, shown, size_px, first=lay.color
                 )
                 lay.points = views[lay.id].points
+                lay.color = views[lay.id].colors[0] if views[lay.id].colors else lay.color
             return ("project", path, proj, views, warnings, plan)
 
         return self._start("open project", job, ("project", path.name))

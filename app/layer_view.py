@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from wakeline.app.map_frame import PositionSketch, framed_box, position_sketch
 from wakeline.app.models import batch_summary, display_text
 from wakeline.core.tracks import sort_points, track_index
 
@@ -45,6 +46,11 @@ class LayerView:
     text: dict = field(default_factory=dict)  # the batch table's display columns
     extra: dict = field(default_factory=dict)
 
+    @property
+    def colors(self) -> tuple[str, ...]:
+        """The colours the map draws the layer in (one per sensor of a source layer)."""
+        return tuple(self.draw.geometry.colors) if self.draw is not None else ()
+
     def track_rows(self, keys: list[tuple[str, str]]) -> np.ndarray:
         """Row numbers of the tracks ``keys`` (empty when none is known)."""
         parts = [np.arange(*self.ranges[k]) for k in keys if k in self.ranges]
@@ -64,6 +70,19 @@ def points_box(points: pd.DataFrame) -> tuple[float, float, float, float] | None
         return None
     lon, lat = lon[ok], lat[ok]
     return (float(lon.min()), float(lat.min()), float(lon.max()), float(lat.max()))
+
+
+def points_sketch(points: pd.DataFrame) -> PositionSketch | None:
+    """Where the points of a table are (:func:`~wakeline.app.map_frame.position_sketch`)."""
+    if len(points) == 0:
+        return None
+    return position_sketch(points["lon"].to_numpy(), points["lat"].to_numpy())
+
+
+def framed_range(sketches: list) -> tuple[float, float, float, float] | None:
+    """The range (x0, x1, y0, y1, degrees) a first view asks for: where the points of
+    ``sketches`` are (:func:`~wakeline.app.map_frame.framed_box`), with a fit's margin."""
+    return padded_range([framed_box(sketches)])
 
 
 def padded_range(boxes: list) -> tuple[float, float, float, float] | None:
@@ -98,13 +117,15 @@ def shown_range(
     return (x0 - dx, x1 + dx, y0, y1)
 
 
-def plan_view(state: dict, boxes: list, lat0: float | None) -> dict | None:
+def plan_view(state: dict, sketches: list, lat0: float | None) -> dict | None:
     """The view a job's new layers will be shown in (pure, for the worker): ``state``
-    from the window (boxes of the layers kept, plot size, aspect latitude or None),
-    ``boxes`` of the new layers, ``lat0`` the aspect latitude when none is set yet.
-    Returns ``target`` (the range asked for), ``shown`` (after the aspect lock) and
-    ``lat0`` (None: keep the map's), or None when nothing is to be shown."""
-    target = padded_range([*state["boxes"], *boxes])
+    from the window (position sketches of the layers kept, plot size, aspect latitude
+    or None), ``sketches`` of the new layers (:func:`points_sketch`), ``lat0`` the aspect
+    latitude when none is set yet. The view frames where the points are
+    (:func:`framed_range`). Returns ``target`` (the range asked for), ``shown`` (after
+    the aspect lock) and ``lat0`` (None: keep the map's), or None when nothing is to be
+    shown."""
+    target = framed_range([*state["sketches"], *sketches])
     if target is None:
         return None
     keep = state["lat0"] is not None
@@ -127,9 +148,12 @@ def prepare_view(
     label: str = "",
     view: tuple[float, float, float, float] | None = None,
     size_px: tuple[int, int] | None = None,
+    colors: tuple[str, ...] | None = None,
 ) -> LayerView:
     """Everything the window shows of a layer; pure, for a worker thread. ``view`` and
-    ``size_px`` (the map's, or None for the data's extent) set the first level of detail."""
+    ``size_px`` (the map's, or None for the data's extent) set the first level of detail.
+    ``colors``: a source layer's sensors' colours in turn (default: ``color`` and the
+    source colours after it)."""
     from wakeline.app.map_draw import LayerStyle, prepare_layer
     from wakeline.app.map_paths import with_paths
 
@@ -157,8 +181,39 @@ def prepare_view(
         style=LayerStyle(width=width, symbol_size=symbol),
         view=view if size_px is not None else None,
         size_px=size_px,
+        colors=colors,
     )
     return LayerView(pts, summary, ranges, marks, with_paths(draw), display_text(summary))
+
+
+def prepare_view_apart(
+    points: pd.DataFrame,
+    kind: str,
+    in_use: tuple[set[str], set[str]],
+    label: str = "",
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+    first: str | None = None,
+) -> LayerView:
+    """:func:`prepare_view` in colours no other layer shows: ``in_use`` is (colours of
+    the visible layers, of the hidden ones), and takes the colours chosen, so the next
+    layer prepared with it is drawn apart from this one too. ``first``: the colour to
+    keep when it is free (a layer's saved colour). Pure, for a worker thread."""
+    from wakeline.app.map_colors import PALETTE, layer_colors
+
+    shown, hidden = in_use
+    palette = layer_colors(kind, len(PALETTE), shown, hidden, first)
+    lv = prepare_view(
+        points,
+        kind,
+        palette[0],
+        label,
+        view,
+        size_px,
+        colors=palette if kind == "source" else None,
+    )
+    shown.update(lv.colors)
+    return lv
 
 
 def draw_as(view: LayerView, layer_id: str, label: str):

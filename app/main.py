@@ -117,7 +117,7 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
                 keys = (ais if len(ais) else frame).sort_values("duration_s", ascending=False)
                 if len(keys):
                     window.select_tracks([(str(keys["sensor"].iat[0]), str(keys["batch"].iat[0]))])
-            window.canvas.fit()
+            window.canvas.frame()  # where the points are, as the window first shows them
         for _ in range(10):
             app.processEvents()
             QtCore.QThread.msleep(20)

@@ -78,6 +78,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self._view_planned = False  # a job set the aspect and range for its layers
         self._draw_scheduled = False  # a _draw_next is queued on the event loop
         self._detail_key = None  # (layer, track) the Detail panel shows next turn
+        # First listener: a new layer takes its prepared view and colour before the
+        # project writer (the next listener) reads it.
+        self.session.subscribe(self._adopt_view)
         self.project = ProjectController(self.session, self)
         self.project.failed.connect(self._save_failed)
         self.session.subscribe(self._on_session_event)

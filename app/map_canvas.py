@@ -22,7 +22,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from wakeline.app.layer_view import padded_range
+from wakeline.app.layer_view import framed_range, padded_range
 from wakeline.app.map_coast import coastline_draw
 from wakeline.app.map_draw import (
     PALETTE,
@@ -43,6 +43,11 @@ __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 # after the level of detail (zoomed in): pyqtgraph builds them point by point (~10 µs
 # each). Lines show without them beyond; marker-only layers show 1-px crosses.
 
+#: The widest latitude tick label the left axis keeps room for from the start: thousandths of
+#: a degree (ticks 111 m apart) south of the equator.
+WIDEST_LATITUDE = "-88.888"
+#: The scale bar and its label: dark grey (contrast 10 on white).
+SCALE_BAR_COLOR = "#404040"
 #: Selection curve items made with the canvas (more are made when needed).
 SELECTION_POOL = 12
 #: Cache mode of a layer's curves.
@@ -74,8 +79,14 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.showGrid(x=True, y=True, alpha=0.25)
         # Room for latitude labels from the start, never given back: an axis that widened
         # or narrowed with its labels would resize the view box, and every layer would be
-        # decimated and stroked again.
-        self.getAxis("left").setStyle(tickTextWidth=44, autoReduceTextSpace=False)
+        # decimated and stroked again. The room is measured in the axis' font (pyqtgraph's
+        # tickTextWidth only counts when the text space is not expanded, and its measured
+        # width starts at 30 px: labels like "56.025" took more, and the axis widened one
+        # layout pass after the paint that measured them — a render grabbed before that
+        # had the axis title over its tick labels).
+        left = self.getAxis("left")
+        left.textWidth = max(left.textWidth, self.tick_text_room(left))
+        left.setStyle(autoReduceTextSpace=False)
         # Axes and grid replay their labels on every paint (~10 ms each); cached, a
         # repaint for a new layer or the selection copies them while the view stays.
         for side in ("left", "bottom"):
@@ -131,7 +142,11 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.hover_dot = pg.ScatterPlotItem(size=9, pen=pg.mkPen("k", width=1.5), brush=None)
         self.hover_dot.setZValue(99)
         self.addItem(self.hover_dot, ignoreBounds=True)
-        self.scale_bar = pg.ScaleBar(size=0.1, suffix="")
+        self.scale_bar = pg.ScaleBar(size=0.1, suffix="", brush=SCALE_BAR_COLOR)
+        # pyqtgraph draws its label light grey (200, 200, 200: contrast 1.7 on white):
+        # dark text on a light translucent box, readable over tracks and grid.
+        self.scale_bar.text.setColor(SCALE_BAR_COLOR)
+        self.scale_bar.text.fill = pg.mkBrush(255, 255, 255, 210)
         self.scale_bar.setParentItem(self.vb)
         self.scale_bar.anchor((1, 1), (1, 1), offset=(-20, -20))
         self._lod_timer = QtCore.QTimer(self)
@@ -149,6 +164,13 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         menu.addAction("Zoom to all", self.fit)
 
     # -- view ------------------------------------------------------------------------
+
+    @staticmethod
+    def tick_text_room(axis: pg.AxisItem, widest: str = WIDEST_LATITUDE) -> float:
+        """Pixels the widest latitude label takes in ``axis``' tick font (the axis then
+        grows by itself for a wider one)."""
+        font = axis.style["tickFont"] or axis.font()
+        return math.ceil(QtGui.QFontMetricsF(font).horizontalAdvance(widest)) + 2
 
     def _new_selection_item(self) -> pg.PlotDataItem:
         item = pg.PlotDataItem(connect="finite")
@@ -241,6 +263,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 # selection, hover or another layer blits it instead of stroking again.
                 item.curve.setCacheMode(CACHE)
                 item.setOpacity(self._context_opacity)
+                if data.style.z:
+                    item.setZValue(data.style.z)
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)
@@ -407,8 +431,15 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         """Vertices in the drawn paths of the visible layers (after level of detail)."""
         return sum(d.n_vertices for d in self.visible_draw_data())
 
+    def frame(self) -> None:
+        """Show where the points of the visible layers are, with a margin: a first view
+        (:mod:`wakeline.app.map_frame`; a few far-flung points are left out, :meth:`fit`
+        shows them)."""
+        self.show_range(framed_range([d.geometry.sketch() for d in self.visible_draw_data()]))
+
     def fit(self, points: pd.DataFrame | None = None) -> None:
-        """Show ``points`` (default: every visible layer) with a margin."""
+        """Show ``points`` (default: every point of every visible layer) with a margin:
+        "Fit to data", "Zoom to all"."""
         if points is not None:
             lon, lat = nan_separated(points)
             boxes = [(np.nanmin(lon), np.nanmin(lat), np.nanmax(lon), np.nanmax(lat))]

@@ -25,7 +25,8 @@ import numpy as np
 import pandas as pd
 from scipy.spatial import cKDTree
 
-from wakeline.app.map_colors import BATCH_PALETTE, PALETTE
+from wakeline.app.map_colors import BATCH_PALETTE, PALETTE, layer_colors
+from wakeline.app.map_frame import PositionSketch, position_sketch
 from wakeline.app.map_lod import decimate, lod_box, nan_join
 from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core import geo
@@ -35,10 +36,12 @@ from wakeline.core.tracks import sorted_with_index
 
 @dataclass(frozen=True)
 class LayerStyle:
-    """How a layer is drawn: line width (px, 0 = no line), symbol size (px, 0 = none)."""
+    """How a layer is drawn: line width (px, 0 = no line), symbol size (px, 0 = none),
+    stacking (``z``: higher over lower; equal: the later layer on top)."""
 
     width: float = 1.5
     symbol_size: float = 0.0
+    z: float = 0.0
 
 
 @dataclass
@@ -65,6 +68,7 @@ class LayerGeometry:
     colors: tuple[str, ...]
     relative: bool
     _tree: cKDTree | None = field(default=None, repr=False)
+    _sketch: PositionSketch | None = field(default=None, repr=False)
 
     @property
     def n_points(self) -> int:
@@ -84,6 +88,13 @@ class LayerGeometry:
             float(self.lon.max()),
             float(self.lat.max()),
         )
+
+    def sketch(self) -> PositionSketch | None:
+        """Where the points are (:mod:`wakeline.app.map_frame`), made on first use (in the
+        worker, by :func:`prepare_layer`); None when empty."""
+        if self._sketch is None and len(self.lon):
+            self._sketch = position_sketch(self.lon, self.lat)
+        return self._sketch
 
     @property
     def x_scale(self) -> float:
@@ -202,12 +213,15 @@ def layer_geometry(
     color_by: str = "layer",
     relative: bool | None = None,
     label: str = "",
+    colors: tuple[str, ...] | None = None,
 ) -> LayerGeometry:
     """Sort, unwrap and describe ``points`` (canonical table) for drawing.
 
-    ``color_by``: "layer" (one curve in ``color``), "sensor" (one curve per sensor in
-    palette colours from ``color``; ``by_sensor=True`` means the same) or "batch" (every
-    track in one of :data:`BATCH_PALETTE`, neighbours in the table differing).
+    ``color_by``: "layer" (one curve in ``color``), "sensor" (one curve per sensor:
+    ``color``, then the next free source colours, :func:`~wakeline.app.map_colors.layer_colors`;
+    ``by_sensor=True`` means the same) or "batch" (every track in one of
+    :data:`BATCH_PALETTE`, neighbours in the table differing). ``colors``: the colours
+    the sensors (or batches) take in turn instead (chosen apart from other layers').
     ``relative`` forces elapsed-time display; None decides from the time values.
     """
     if by_sensor and color_by == "layer":
@@ -227,16 +241,19 @@ def layer_geometry(
     lon = unwrap_tracks(lon, index.starts, index.sizes)
     sensor = index.keys["sensor"].to_numpy(dtype=object)
     batch = index.keys["batch"].to_numpy(dtype=object)
-    start = PALETTE.index(color) if color in PALETTE else 0
     if color_by == "sensor":
         names, group = np.unique(sensor.astype(str), return_inverse=True)
-        colors = tuple(PALETTE[(start + k) % len(PALETTE)] for k in range(len(names)))
+        if colors:
+            colors = tuple(colors[k % len(colors)] for k in range(len(names)))
+        else:
+            colors = layer_colors("source", len(names), first=color)
         labels = tuple(f"{label} · {s}" if label else str(s) for s in names)
     elif color_by == "batch":
-        k = len(BATCH_PALETTE)
+        palette = tuple(colors or BATCH_PALETTE)
+        k = len(palette)
         group = np.arange(index.n_tracks) % k
         used = min(k, index.n_tracks)
-        colors = BATCH_PALETTE[:used]
+        colors = palette[:used]
         # One legend line for the layer; the other colours carry no legend entry.
         head = f"{label} · " if label else ""
         labels = (f"{head}{index.n_tracks} batches, a colour each",) + ("",) * (used - 1)
@@ -301,20 +318,24 @@ def prepare_layer(
     size_px: tuple[int, int] | None = None,
     relative: bool | None = None,
     build_index: bool = True,
+    colors: tuple[str, ...] | None = None,
 ) -> DrawData:
     """Everything the canvas needs to draw a layer, computed off the GUI thread.
 
     ``points`` is a canonical point table (or a geometry from an earlier call, to redo
     only the level of detail). ``view``/``size_px``: the canvas' view (x0, x1, y0, y1,
     degrees) and plot size in pixels, for the level of detail; None draws every point.
-    ``build_index`` builds the hover/pick k-d tree now (else on first hover).
+    ``build_index`` builds the hover/pick k-d tree and the position sketch (where the
+    points are, for the first view) now, else on first use. ``colors``:
+    the colours of the sensors (or batches) in turn (see :func:`layer_geometry`).
     """
     if isinstance(points, LayerGeometry):
         geom = points
     else:
-        geom = layer_geometry(points, color, by_sensor, color_by, relative, label=name)
+        geom = layer_geometry(points, color, by_sensor, color_by, relative, name, colors)
     if build_index and geom.n_points:
         geom.tree()
+        geom.sketch()
     curves, box, px = curves_for(geom, view, size_px)
     shown = view if px is not None else None
     return DrawData(name, geom, curves, style or LayerStyle(), box, px, shown)

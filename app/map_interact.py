@@ -10,6 +10,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore
 
+from wakeline.app.map_colors import apart_from
 from wakeline.app.map_legend import short_label
 from wakeline.app.map_selection import SELECTION_PALETTE, selection_curves
 
@@ -96,7 +97,7 @@ class MapInteractMixin:
         and nothing in ``taken`` uses (for other curves named in the legend)."""
         used = {c.color for d in self.visible_draw_data() for c in d.curves}
         used |= set(self._selection_colors.values()) | set(taken)
-        return [c for c in SELECTION_PALETTE if c not in used]
+        return list(apart_from(SELECTION_PALETTE, used))
 
     def zoom_to_selection(self) -> bool:
         """Fit the view to the selected tracks; False when nothing is selected."""

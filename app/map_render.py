@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app.layer_view import framed_range
 from wakeline.app.map_canvas import MapCanvas
 from wakeline.app.map_draw import DrawData
 from wakeline.resources import coastline_path
@@ -23,15 +24,14 @@ DEFAULT_WIDTH = 1200
 DEFAULT_SIZE = (1200, 800)
 
 
-def data_bounds(layers: Iterable[DrawData], pad: float = 0.05) -> tuple[float, float, float, float]:
-    """``(W, S, E, N)`` around every point of ``layers`` with a margin (fraction)."""
-    boxes = [b for b in (d.geometry.bounds() for d in layers) if b is not None]
-    if not boxes:
+def frame_bounds(layers: Iterable[DrawData]) -> tuple[float, float, float, float]:
+    """``(W, S, E, N)`` framing where the points of ``layers`` are, with a 5 % margin (a
+    few far-flung points are left out: :mod:`wakeline.app.map_frame`)."""
+    target = framed_range([d.geometry.sketch() for d in layers])
+    if target is None:
         return (-180.0, -85.0, 180.0, 85.0)
-    w, s = min(b[0] for b in boxes), min(b[1] for b in boxes)
-    e, n = max(b[2] for b in boxes), max(b[3] for b in boxes)
-    px, py = max((e - w) * pad, 0.01), max((n - s) * pad, 0.01)
-    return (w - px, s - py, e + px, n + py)
+    x0, x1, y0, y1 = target
+    return (x0, y0, x1, y1)
 
 
 def true_aspect(bounds: tuple[float, float, float, float]) -> float:
@@ -73,10 +73,10 @@ def render_png(
     """Draw ``source`` (a live canvas: its visible layers, selection and view; or prepared
     layers) into the PNG ``path``; returns what was drawn (size, bounds, vertices).
 
-    ``size`` (w, h) px; ``bounds`` (W, S, E, N) degrees, default the canvas' view or the
-    data with a margin. Without ``bare`` the image is the whole map widget (axes, legend,
-    scale bar), the bounds shown whole at the true aspect. With ``bare`` it is the plot
-    area alone with its edges exactly at ``bounds``: the missing one of size/bounds is
+    ``size`` (w, h) px; ``bounds`` (W, S, E, N) degrees, default the canvas' view or
+    where the data are, with a margin (:func:`frame_bounds`). Without ``bare`` the image
+    is the whole map widget (axes, legend, scale bar), the bounds shown whole at the true
+    aspect. With ``bare`` it is the plot area alone with its edges exactly at ``bounds``: the missing one of size/bounds is
     chosen for the true aspect; when both are given they are both honoured (the aspect
     then is the one they make).
     """
@@ -85,7 +85,7 @@ def render_png(
         x0, x1, y0, y1 = live.current_view()
         bounds = (x0, y0, x1, y1)
     given_bounds = bounds is not None
-    bounds = bounds or data_bounds(layers)
+    bounds = bounds or frame_bounds(layers)
     if size is None:
         ratio = true_aspect(bounds) if given_bounds else DEFAULT_SIZE[0] / DEFAULT_SIZE[1]
         ratio = min(max(ratio, 0.2), 5.0)
@@ -125,6 +125,9 @@ def render_png(
             canvas.resize(canvas.width() + w - vw, canvas.height() + h - vh)
             QtWidgets.QApplication.processEvents()
     canvas.vb.setRange(xRange=(west, east), yRange=(south, north), padding=0)
+    QtWidgets.QApplication.processEvents()
+    # A paint measured the new tick labels; an axis they widen is laid out on the next
+    # turn (else the grab shows the axis title over its labels).
     QtWidgets.QApplication.processEvents()
     canvas.refresh_lod()
     if bare:

@@ -1,13 +1,15 @@
 """The selection's curves, pure numpy (worker-safe): every selected batch in its own colour.
 
-Colours come from the batch palette without the colours of the layers shown (and without
-the oranges of the selection halo), so a selected batch stands out from its layer; beyond
-the palette, batches share colours (one curve per colour).
+Colours come from the batch palette without colours that look like those of the layers
+shown (and without the oranges of the selection halo), so a selected batch stands out
+from its layer; beyond the palette, batches share colours (one curve per colour). The
+palette's order keeps the first colours apart for a deuteranope too (no red next to green).
 """
 
 import numpy as np
 import pandas as pd
 
+from wakeline.app.map_colors import apart_from
 from wakeline.app.map_draw import BATCH_PALETTE, Curve, unwrap_tracks
 from wakeline.app.map_lod import nan_join
 
@@ -61,7 +63,7 @@ def selection_curves(
     brk[geom.starts] = True
     lon, lat = nan_join(geom.lon, geom.lat, keep, brk)
     halo = Curve("", "#ffaa00", lon, lat)
-    palette = [c for c in SELECTION_PALETTE if c not in avoid] or list(SELECTION_PALETTE)
+    palette = list(apart_from(SELECTION_PALETTE, avoid)) or list(SELECTION_PALETTE)
     k = len(palette)
     color_of_track = np.arange(geom.n_tracks) % k
     color_of_point = color_of_track[geom.track] if geom.n_points else np.zeros(0, "int64")

@@ -93,6 +93,10 @@ def track_span_s(df: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     )
 
 
+#: Rows of a Python-text column :meth:`BatchTableModel.widest_text` looks at.
+WIDEST_ROWS = 1000
+
+
 class BatchTableModel(QtCore.QAbstractTableModel):
     """The batch table over :func:`batch_summary`, with sorting and a text filter done by
     numpy over whole columns (no per-cell Python calls while sorting or filtering): the
@@ -208,6 +212,20 @@ class BatchTableModel(QtCore.QAbstractTableModel):
             return None
         hit = np.flatnonzero(self._order == r)
         return int(hit[0]) if len(hit) else None
+
+    def widest_text(self, key: str) -> str:
+        """The longest display text of column ``key`` with its digits as "0" (what a
+        column must fit). Numpy text (elapsed times ``T+…``) is read whole in one pass;
+        other text from its first :data:`WIDEST_ROWS` rows (dates are all of one width,
+        "2024-01-01 00:00:00"; sensors and batches much alike)."""
+        texts = self._text.get(key, np.zeros(0, str))
+        if not len(texts):
+            return ""
+        if texts.dtype.kind == "U":
+            longest = str(texts[int(np.argmax(np.char.str_len(texts)))])
+        else:
+            longest = max((str(t) for t in texts[:WIDEST_ROWS]), key=len)
+        return longest.translate(str.maketrans("123456789", "000000000"))
 
     def rowCount(self, parent=None) -> int:  # noqa: N802 - Qt API
         return 0 if parent is not None and parent.isValid() else len(self._order)

@@ -16,6 +16,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore
 
+from wakeline.app.map_selection import SELECTION_PALETTE
 from wakeline.core import geo
 from wakeline.core.review import ReviewState, _labels
 from wakeline.core.schema import time_seconds
@@ -32,8 +33,9 @@ PALETTE = (
     "#bcbd22",
 )
 #: The proposal's two tracks (old, new) when no colours are given: the colours the map's
-#: selection gives two selected tracks over a blue and an orange layer.
-PAIR_COLORS = ("#d62728", "#2ca02c")
+#: selection gives two selected tracks over a blue and an orange layer (brown and pink:
+#: apart for a deuteranope too, as red and green are not).
+PAIR_COLORS = tuple(c for c in SELECTION_PALETTE if c not in ("#1f77b4", "#ff7f0e"))[:2]
 #: The target's other members: context, one quiet colour, no legend line.
 MUTED = "#9a9a9a"
 #: Stacking (zValue): context members under the selection's curves (50), the gap's

@@ -181,11 +181,19 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
     named = [(Path(w.session.layers[i].name).stem, w.session.layers[i].points) for i in ids]
     params = w.step_params("fuse")
     canvas_view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()
+    rerun = {
+        i
+        for i, lay in w.session.layers.items()
+        if lay.parent == ids[0] and lay.step == "fuse" and lay.inputs == ids
+    }
+    in_use = w.colors_in_use(exclude=rerun)
 
     def job(progress):
         points = R.combine_sources(named)
         result = STEPS["fuse"](points, params, sub_progress(progress, 0.0, 0.85))
-        prepared, views = _prepared(result, sub_progress(progress, 0.85, 1.0), canvas_view, size_px)
+        prepared, views = _prepared(
+            result, sub_progress(progress, 0.85, 1.0), canvas_view, size_px, in_use
+        )
         return ("fuse_layers", ids, prepared, views, params)
 
     names = " + ".join(n for n, _ in named)

@@ -5,11 +5,13 @@ hide or remove a layer; prepared arrays are swapped into the map one layer per
 event-loop turn so a result of several layers never blocks in one piece.
 """
 
+from collections.abc import Iterable
+
 import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
-from wakeline.app.layer_view import draw_as, prepare_view
+from wakeline.app.layer_view import draw_as, prepare_view_apart
 from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
 from wakeline.core.session import Layer
@@ -19,6 +21,8 @@ from wakeline.core.session import Layer
 STEP_MS = 5
 
 EMPTY = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
+#: Batch table columns sized to their text when a layer is shown.
+FITTED_COLUMNS = ("sensor", "batch", "points", "start", "end")
 
 
 class LayersMixin:
@@ -28,16 +32,59 @@ class LayersMixin:
     def layers(self) -> dict[str, Layer]:
         return self.session.layers
 
+    def colors_in_use(self, exclude: Iterable[str] = ()) -> tuple[set[str], set[str]]:
+        """The colours the layers are drawn in: those of the visible layers and those of
+        the hidden ones, without the layers ``exclude`` (a step's re-run replaces them)."""
+        shown: set[str] = set()
+        hidden: set[str] = set()
+        for lid, layer in self.session.layers.items():
+            if lid in exclude:
+                continue
+            view = self.views.get(lid)
+            colors = view.colors if view is not None and view.colors else (layer.color,)
+            (shown if layer.visible else hidden).update(colors)
+        return shown, hidden
+
+    def replaced_by_run(self, lid: str, steps: Iterable[str]) -> set[str]:
+        """The layers a run of ``steps`` on layer ``lid`` replaces in place (the session
+        replaces a step's layers made from the same input): ``lid``'s children of the first
+        step, their children of the next (a pipeline's stages), and so on."""
+        out: set[str] = set()
+        current = {lid}
+        for step in steps:
+            current = {
+                i
+                for i, lay in self.session.layers.items()
+                if lay.parent in current and lay.step == step and not lay.inputs
+            }
+            out |= current
+        return out
+
+    def _adopt_view(self, event: str, lid: str) -> None:
+        """The session's first listener (before the project writer reads the layer): a
+        new or replaced layer takes the view a job prepared for it, and the colour it was
+        drawn in there, chosen apart from the other layers'; a layer added by a script or
+        a test is prepared here (small), in a colour no other layer shows."""
+        layer = self.session.layers.get(lid)
+        if event not in ("added", "changed") or layer is None:
+            return
+        pending = self._pending_views.pop((layer.step, layer.role), None)
+        if pending is not None:
+            self.views[lid] = pending
+            if pending.colors:
+                layer.color = pending.colors[0]
+        elif lid not in self.views or event == "changed":
+            keep = self.views.get(lid)
+            in_use = self.colors_in_use(exclude={lid})
+            first = keep.colors[0] if keep is not None and keep.colors else layer.color
+            self.views[lid] = prepare_view_apart(
+                layer.points, layer.kind, in_use, layer.name, first=first
+            )
+            layer.points = self.views[lid].points
+            layer.color = self.views[lid].colors[0] if self.views[lid].colors else layer.color
+
     def _on_session_event(self, event: str, lid: str) -> None:
         layer = self.session.layers.get(lid)
-        if event in ("added", "changed"):
-            pending = self._pending_views.pop((layer.step, layer.role), None)
-            if pending is not None:
-                self.views[lid] = pending
-            elif lid not in self.views or event == "changed":
-                # A layer added by a script or test: small, prepared here.
-                self.views[lid] = prepare_view(layer.points, layer.kind, layer.color)
-                layer.points = self.views[lid].points
         if event == "added":
             self._queue_draw(lid)
             item = QtWidgets.QListWidgetItem(
@@ -55,6 +102,9 @@ class LayersMixin:
                 self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
         elif event == "changed":
             self._queue_draw(lid)
+            row = self.layer_row(lid)
+            if row >= 0:  # a re-run may draw it in another colour
+                self.layer_list.item(row).setIcon(color_icon(layer.color))
             if lid == self.active:
                 self._make_current = lid
         elif event == "removed":
@@ -71,11 +121,13 @@ class LayersMixin:
 
     def _view_state(self, replace_all: bool = False) -> dict:
         """What a job needs to plan the view its layers will be shown in (GUI thread):
-        the boxes of the visible layers (none when ``replace_all``), plot size, aspect."""
+        where the points of the visible layers are (none when ``replace_all``; sketches
+        made in the worker with each layer), plot size, aspect."""
         keep = not replace_all and bool(self.session.layers)
-        boxes = [d.geometry.bounds() for d in self.canvas.visible_draw_data()] if keep else []
+        data = self.canvas.visible_draw_data() if keep else []
+        sketches = [d.geometry.sketch() for d in data]
         lat0 = self.canvas._lat0 if keep else None
-        return {"boxes": boxes, "size_px": self.canvas.plot_size_px(), "lat0": lat0}
+        return {"sketches": sketches, "size_px": self.canvas.plot_size_px(), "lat0": lat0}
 
     def _plan_view(self, plan: dict | None) -> None:
         """Before a job's layers are added: the aspect and range it planned (the layers'
@@ -111,7 +163,7 @@ class LayersMixin:
                     self.canvas.viewport().repaint()
         elif self._fit_after_draw:
             self._fit_after_draw = False
-            self.canvas.fit()
+            self.canvas.frame()
         elif self._make_current is not None:
             lid, self._make_current = self._make_current, None
             if lid in self.session.layers:
@@ -183,6 +235,7 @@ class LayersMixin:
             self.batch_model.set_summary(view.summary, view.text)
         else:
             self.batch_model.set_summary(batch_summary(EMPTY))
+        self._fit_time_columns()
         if self.canvas.selected_points() is not None and len(self.canvas.selected_points()):
             self.canvas.show_selection(EMPTY)
         self.detail.clear()
@@ -192,6 +245,22 @@ class LayersMixin:
             self.params.show_guidance(root.summary)
         self.project.put_state("active", self.active)
         self._update_stats()
+
+    def _fit_time_columns(self) -> None:
+        """The batch table's first columns (Sensor … End) as wide as their longest text
+        or title (font metrics of one string per column, not a pass over the rows): Start
+        was cut to "2024-01-0 00:00:0" at the default width, and Sensor and Points took
+        100 px for "S1" and "16"."""
+        view, model = self.batch_view, self.batch_model
+        header = view.horizontalHeader()
+        style = view.style()
+        margin = 2 * (style.pixelMetric(QtWidgets.QStyle.PixelMetric.PM_FocusFrameHMargin) + 1)
+        fm = view.fontMetrics()
+        for col, (key, _title) in enumerate(model.COLUMNS):
+            if key not in FITTED_COLUMNS:
+                continue
+            text = fm.horizontalAdvance(model.widest_text(key)) + margin + 6
+            view.setColumnWidth(col, max(text, header.sectionSizeHint(col)))
 
     def active_layer(self) -> Layer | None:
         return self.session.get(self.active)
