@@ -233,12 +233,15 @@ def _read_dask(paths: Sequence[Path], kind: str, blocksize_mb: float):
     files = [str(p) for p in paths]
     if kind == "parquet":
         return dd.read_parquet(files)
+    # A compressed file cannot be cut into blocks: it is one partition (Dask warned so on
+    # every gzip input); plain files are read in blocks of blocksize_mb.
+    packed = any(Path(f).suffix.lower() in (".gz", ".bz2", ".xz", ".zst", ".zip") for f in files)
     try:
         return dd.read_csv(
             files,
             dtype="str",
             engine="pyarrow",
-            blocksize=int(blocksize_mb * 2**20),
+            blocksize=None if packed else int(blocksize_mb * 2**20),
             keep_default_na=False,
             na_values=[""],
         )

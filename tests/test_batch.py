@@ -205,3 +205,21 @@ def test_bad_batch_input_is_one_message(tmp_path, capsys, setup, message):
     assert message in err and err.count("\n") == 1
     if setup == "full":
         assert (out / "keep.txt").read_text() == "mine"
+
+
+def test_gzip_inputs_are_read_whole_without_a_warning(scene):
+    """A .gz input is one partition (it cannot be cut into blocks); Dask's warning about
+    it on every gzip input is not printed, and the rows are all there."""
+    import gzip
+    import warnings
+
+    from wakeline.core.batch import _read_dask
+
+    paths, whole = scene
+    gz = whole.with_name("all.csv.gz")
+    gz.write_bytes(gzip.compress(whole.read_bytes()))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ddf = _read_dask([gz], "csv", 0.1)
+        n = len(ddf.compute())
+    assert n == len(_rows(whole))
