@@ -11,14 +11,8 @@ next free one.
 from collections.abc import Iterable
 from functools import lru_cache
 
-#: The colour of each kind of step result (the map's defaults).
-KIND_COLORS = {
-    "cleaned": "#2ca02c",
-    "maneuvers": "#9467bd",
-    "compressed": "#d62728",
-    "associated": "#ff7f0e",
-    "fused": "#17becf",
-}
+from wakeline.core.session import KIND_COLORS  # each kind of step result's colour: one table
+
 #: Colours of source layers and their sensors, in turn: none is a kind's colour, none is
 #: grey (the coastline), all readable on white.
 SOURCE_COLORS = (
