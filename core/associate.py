@@ -132,6 +132,23 @@ class LinkParams(Params):
         "second look: how much cheaper than every rival of either piece a long-gap join must be",
         0.0,
     )
+    rest_kn: float = param(
+        0.5,
+        "kn",
+        "at rest: an end whose speed and speed error are both below this; between two ends "
+        "at rest the ship is expected where it lay (within rest_drift_m), not anywhere an "
+        "unknown acceleration could take it over the gap (0 = off)",
+        0.0,
+        5.0,
+    )
+    rest_drift_m: float = param(
+        50.0,
+        "m",
+        "between two ends at rest: how far a ship lying at a berth or at anchor may seem to "
+        "move (GPS wander, swinging at anchor), per axis",
+        0.0,
+        1e4,
+    )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
     w1: float = param(
@@ -366,6 +383,24 @@ def _minmax(x: np.ndarray) -> np.ndarray:
     return (x - lo) / (hi - lo) if hi > lo else np.zeros_like(x)
 
 
+def at_rest_pairs(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray:
+    """Per pair: both its old end and its new start are at rest — each end's speed and the
+    speed's standard error below ``rest_kn`` (never, when ``rest_kn`` is 0)."""
+    if params.rest_kn <= 0:
+        return np.zeros(len(pairs), dtype=bool)
+    i, j = pairs.i, pairs.j
+    slow = params.rest_kn * geo.KN_MS
+    with np.errstate(invalid="ignore"):
+        return (
+            seg.motion1[i]
+            & seg.motion0[j]
+            & (np.hypot(seg.vx1[i], seg.vy1[i]) < slow)
+            & (seg.vel_sd1[i] < slow)
+            & (np.hypot(seg.vx0[j], seg.vy0[j]) < slow)
+            & (seg.vel_sd0[j] < slow)
+        )
+
+
 def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np.ndarray, ...]:
     """Position miss (m) of each pair against the one-course-change prediction, its
     standard deviation (m), and whether neither end shows its motion (``blind``).
@@ -394,6 +429,17 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
         + seg.pos_sd0[j] ** 2
         + (vsd * gap) ** 2
         + np.minimum(0.5 * params.accel_ms2 * gap**2, params.drift_ms * gap) ** 2
+    )
+    # Both ends at rest: the ship lay still before and after the gap, so it is expected
+    # where it was, give or take its drift at a berth or an anchor, however long the gap
+    # (two ships moored 400 m apart are not one ship that crossed the harbour and
+    # stopped again).
+    rest = at_rest_pairs(seg, pairs, params)
+    miss = np.where(rest, np.hypot(px, py), miss)  # no dead reckoning on noise
+    var = np.where(
+        rest,
+        np.minimum(var, seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2 + params.rest_drift_m**2),
+        var,
     )
     # Never below a sampling-grid metre: exact synthetic positions still carry rounding.
     sigma = np.sqrt(np.maximum(var, 1.0))
@@ -443,8 +489,11 @@ def pair_cost(
             )
         course_tol = np.sqrt(params.course_tol_deg**2 + c_deg2)
         speed_tol = np.sqrt(params.speed_tol_kn**2 + v_kn2)
-        dcourse = np.where(known, dcourse, np.nan)
-        dspeed = np.where(known, dspeed, np.nan)
+        # At rest at both ends, course means nothing and equal (zero) speeds are the
+        # premise, not evidence: the position alone decides.
+        rest = at_rest_pairs(seg, pairs, params)
+        dcourse = np.where(known & ~rest, dcourse, np.nan)
+        dspeed = np.where(known & ~rest, dspeed, np.nan)
     else:
         d = (pairs.miss_m if params.predict else pairs.dist_m) / (
             params.position_tol_m + params.drift_ms * pairs.gap_s
@@ -732,6 +781,34 @@ def _blocked_cost(pairs: Pairs, cost: np.ndarray, n: int, blocked: np.ndarray | 
     return np.where(np.isin(pairs.i * n + pairs.j, blocked), np.inf, cost)
 
 
+def _skips(
+    cand: Pairs,
+    links: Pairs,
+    link_cost: np.ndarray,
+    limit: float,
+    chain: np.ndarray,
+    head: np.ndarray,
+    tail: np.ndarray,
+) -> np.ndarray:
+    """Per pair (i, j) of ``cand``: it skips a loose piece, or a chain of joined pieces,
+    lying in its gap — ``links`` hold (i, p) into the chain's first start p (``head``)
+    and (q, j) out of its last end q (``tail``), each costing at most ``limit``. The
+    route i → p … q → j explains the pair, so it is no rival of (i, p) or (q, j): one
+    ship may have left all of them. (Between two ends at rest the cost is tight, see
+    :func:`at_rest_pairs`, so moored ships do not route through each other.)"""
+    ok = link_cost <= limit
+    first = ok & head[links.j]
+    second = ok & tail[links.i]
+    if not (first.any() and second.any() and len(cand)):
+        return np.zeros(len(cand), dtype=bool)
+    a = pd.DataFrame({"i": links.i[first], "p": chain[links.j[first]]})
+    b = pd.DataFrame({"p": chain[links.i[second]], "j": links.j[second]})
+    m = a.merge(b, on="p")
+    n = len(chain)
+    keys = m["i"].to_numpy() * n + m["j"].to_numpy()
+    return np.isin(cand.i * n + cand.j, keys)
+
+
 def long_gap_pass(
     seg: Segments,
     pairs: Pairs,
@@ -782,9 +859,14 @@ def long_gap_pass(
         )
 
     # First among the loose pieces only (few pairs: a necessary condition), then against
-    # every rival of the pieces that pass.
+    # every rival of the pieces that pass. A pair that skips a loose piece of its own chain
+    # (i → p → j all cheap) is no rival: a ship moored for hours whose AIS comes and goes
+    # leaves pieces at one spot, and every later one is "as cheap" as the next.
     loose = candidate_pairs(seg, wide, ends=free_end, starts=free_start)
-    c = _blocked_cost(loose, pair_cost(loose, wide, "scaled", seg), n, blocked)
+    c_loose = _blocked_cost(loose, pair_cost(loose, wide, "scaled", seg), n, blocked)
+    chain = components(n, pairs.i[chosen], pairs.j[chosen])
+    skip = _skips(loose, loose, c_loose, limit, chain, free_start, free_end)
+    c = np.where(skip, np.inf, c_loose)
     ok = mutual(loose, c, c, c)
     if not ok.any():
         return pairs, cost, chosen
@@ -796,15 +878,32 @@ def long_gap_pass(
     b = candidate_pairs(seg, wide, starts=starts)
     cand = a.concat(b.take(~ends[b.i]))
     c = _blocked_cost(cand, pair_cost(cand, wide, "scaled", seg), n, blocked)
+    # The chains a skip may pass through: those one cheap loose step from a piece looked
+    # at; the links out of their last ends and into their first starts are added.
+    cheap = c_loose <= limit
+    near = np.zeros(n, dtype=bool)
+    near[chain[loose.j[cheap & ends[loose.i]]]] = True
+    near[chain[loose.i[cheap & starts[loose.j]]]] = True
+    out_of, into = free_end & near[chain], free_start & near[chain]
+    if out_of.any() or into.any():
+        extra = candidate_pairs(seg, wide, ends=out_of)
+        extra = extra.concat(candidate_pairs(seg, wide, starts=into))
+        links = cand.concat(extra)
+        c_links = np.concatenate(
+            [c, _blocked_cost(extra, pair_cost(extra, wide, "scaled", seg), n, blocked)]
+        )
+        skip = _skips(cand, links, c_links, limit, chain, free_start, free_end)
+        rank = np.where(skip, np.inf, c)
+    else:
+        rank = c
     # A joined track competes for a start once, through its last end: its inner ends
     # (already continued) are no rivals when that last end is a candidate too — and
     # likewise for an end, through a joined track's first start.
-    chain = components(n, pairs.i[chosen], pairs.j[chosen])
     key_j = cand.j * n + chain[cand.i]
     inner_i = ~free_end[cand.i] & np.isin(key_j, key_j[free_end[cand.i]])
     key_i = cand.i * n + chain[cand.j]
     inner_j = ~free_start[cand.j] & np.isin(key_i, key_i[free_start[cand.j]])
-    ok = mutual(cand, c, np.where(inner_j, np.inf, c), np.where(inner_i, np.inf, c))
+    ok = mutual(cand, rank, np.where(inner_j, np.inf, rank), np.where(inner_i, np.inf, rank))
     ok &= ends[cand.i] & starts[cand.j]
     if not ok.any():
         return pairs, cost, chosen

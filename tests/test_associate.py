@@ -329,6 +329,58 @@ def test_second_look_joins_a_lone_ship_across_a_long_gap_and_keeps_rivals_loose(
     assert set(again.target_of_track) == set(keys)
 
 
+def _moored(seed: int, spots, reported: bool) -> pd.DataFrame:
+    """Ships moored at ``spots`` (m) whose AIS comes and goes, as in real harbour AIS
+    (Saronic ships 4 and 5): 1-4 fixes a minute apart with 3 m of jitter, then 10-40 min
+    of silence, six times; with ``reported``, the AIS speed (0.0-0.2 kn) and a course."""
+    rng = np.random.default_rng(seed)
+    parts, name = [], 0
+    for truth, spot in spots.items():
+        t = float(rng.uniform(0, 600))
+        for _ in range(6):
+            n = int(rng.integers(1, 5))
+            ts = t + 60.0 * np.arange(n)
+            xy = np.asarray(spot) + rng.normal(0, 3.0, (n, 2))
+            piece = track(str(name), ts, xy[:, 0], xy[:, 1], truth=truth)
+            if reported:
+                piece["speed"] = np.round(rng.uniform(0, 0.2, n), 1)
+                piece["course"] = np.round(rng.uniform(0, 360, n), 1)
+            parts.append(piece)
+            name += 1
+            t = ts[-1] + float(rng.uniform(600, 2400))
+    return pd.concat(parts, ignore_index=True)
+
+
+def _joins(df: pd.DataFrame, params: LinkParams | None = None) -> tuple[int, int]:
+    pairs = associate_interrupted(df, params).pair_table()
+    truth = df.groupby("batch")["truth"].first()
+    right = truth[pairs["batch_a"]].to_numpy() == truth[pairs["batch_b"]].to_numpy()
+    return int(right.sum()), int((~right).sum())
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_moored_ships_400_m_apart_are_not_joined_to_each_other(seed):
+    # Three ships moored 400 m apart. Under the moving-ship model a ship silent for
+    # 10 min may be anywhere within ~200 m (1 sigma), so a piece's end took the other
+    # ship's next piece (its own next one was beyond 720 s): 199 of 240 joins wrong over
+    # 40 seeds before. Between two ends at rest the ship is expected where it lay.
+    df = _moored(seed, {"A": (0.0, 0.0), "B": (400.0, 0.0), "C": (0.0, 400.0)}, True)
+    assert _joins(df) == (15, 0)  # each ship's six pieces in one chain
+    # the moving-ship model (rest rule off) joins ships to each other
+    assert _joins(df, LinkParams(rest_kn=0.0))[1] > 0
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_second_look_chains_a_moored_ship_whose_ais_comes_and_goes(seed):
+    # A lone moored ship without reported speed: every later piece at the spot is as
+    # cheap as the next one, so each end had a rival within the margin and stayed loose.
+    # A pair that skips a piece of its own chain is no rival.
+    df = _moored(seed, {"A": (0.0, 0.0), "B": (20_000.0, 0.0)}, False)
+    right, wrong = _joins(df)
+    assert wrong == 0
+    assert right >= 8  # of 10; a single fix at each end of a gap shows no motion
+
+
 def test_second_look_leaves_a_join_of_the_first_pass_alone():
     # A long-gap start whose cheapest end is already joined to someone else is a rival's:
     # the loose end does not get it.
