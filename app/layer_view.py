@@ -22,6 +22,9 @@ DRAW_STYLE = {  # kind -> (symbol size px, line width px); maneuver layers draw 
     "fused": (0, 2.5),
     "maneuvers": (8, 0.0),
 }
+#: Stacking of a kind over the others (higher on top; equal: the later layer): the
+#: maneuver marks stay above the compressed and fused lines drawn through them.
+DRAW_Z = {"maneuvers": 2.0}
 
 
 def maneuver_table(points: pd.DataFrame) -> pd.DataFrame | None:
@@ -178,7 +181,7 @@ def prepare_view(
         label or kind,
         color,
         by_sensor=kind == "source",
-        style=LayerStyle(width=width, symbol_size=symbol),
+        style=LayerStyle(width=width, symbol_size=symbol, z=DRAW_Z.get(kind, 0.0)),
         view=view if size_px is not None else None,
         size_px=size_px,
         colors=colors,

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
-from PySide6 import QtCore  # noqa: E402
+from PySide6 import QtCore, QtGui  # noqa: E402
 
 from wakeline.app.cli import main  # noqa: E402
 from wakeline.app.main import wait_for_jobs  # noqa: E402
@@ -122,6 +122,22 @@ def test_each_visible_layer_has_a_colour_of_its_own(window, tmp_path):
     row = window.layer_row(window.layer_id("radar.csv"))
     icon = window.layer_list.item(row).icon().pixmap(14, 14).toImage()
     assert icon.pixelColor(7, 7).name() == window.layers[window.layer_id("radar.csv")].color
+
+
+def test_maneuver_marks_are_drawn_over_the_compressed_lines(window):
+    """The compressed layer comes after the maneuvers, and its lines run through the same
+    points: drawn later at an equal height they hid the marks (an operator's report)."""
+    demo = load(window, demo_path())
+    window.select_layer(demo)
+    window.run_step("pipeline")
+    wait_for_jobs(window)
+    z = {}
+    for lid, layer in window.layers.items():
+        items = window.canvas._items[lid]
+        assert items
+        z[layer.kind] = min(item.zValue() for item in items)
+    assert z["maneuvers"] > max(z[k] for k in ("source", "cleaned", "compressed"))
+    assert z["maneuvers"] < window.canvas.marks.zValue()  # under the selection's marks
 
 
 def test_a_rerun_keeps_its_colour_and_a_second_result_of_a_kind_takes_another(window, tmp_path):
@@ -416,3 +432,25 @@ def test_scale_bar_label_reads_on_the_map(qtbot):
     text, ground = rgb[np.argmin(lum)], rgb[np.argmax(lum)]
     assert contrast(text, ground) >= 4.5, (text, ground)
     assert contrast(label.color.getRgb()[:3], (255, 255, 255)) >= 7.0
+
+
+def test_axis_and_legend_text_read_on_the_white_plots(qtbot):
+    """pyqtgraph's text is light grey, made for a black background (contrast about 1.5 on
+    our white plots): axes, tick labels, titles and legend entries are drawn in dark ink,
+    on the map, the detail plots and the review's time lines."""
+    from wakeline.app.detail import DetailPanel
+
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.set_layer("o", oresund_like(), "#1f77b4")
+    white = (255, 255, 255)
+    for side in ("left", "bottom"):
+        axis = canvas.getAxis(side)
+        assert contrast(axis.textPen().color().getRgb()[:3], white) >= 4.5
+        assert contrast(axis.pen().color().getRgb()[:3], white) >= 4.5
+    for _, label in canvas.legend.items:
+        assert contrast(QtGui.QColor(label.opts["color"]).getRgb()[:3], white) >= 4.5
+    detail = DetailPanel()
+    qtbot.addWidget(detail)
+    axis = detail.factor_plot.getAxis("left")
+    assert contrast(axis.textPen().color().getRgb()[:3], white) >= 4.5
