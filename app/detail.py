@@ -6,6 +6,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtWidgets
 
+from wakeline.app import ink
 from wakeline.core.bearing import BearingParams, auc_statistic
 from wakeline.core.schema import time_seconds
 
@@ -15,6 +16,7 @@ class DetailPanel(QtWidgets.QTabWidget):
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)
+        ink.setup()
         self.factor_plot = pg.PlotWidget(background="w")
         self.factor_plot.setLabel("bottom", "time since track start", units="min")
         self.factor_plot.getAxis("bottom").enableAutoSIPrefix(False)  # no "kmin"

@@ -22,6 +22,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app import ink
 from wakeline.app.layer_view import framed_range, padded_range
 from wakeline.app.map_coast import coastline_draw
 from wakeline.app.map_draw import (
@@ -70,6 +71,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
     selectionShown = QtCore.Signal()  # show_selection drew a new selection (new colours)
 
     def __init__(self, parent=None) -> None:
+        ink.setup()
         super().__init__(parent=parent, background="w")
         if QtGui.QPixmapCache.cacheLimit() < PIXMAP_CACHE_KIB:
             QtGui.QPixmapCache.setCacheLimit(PIXMAP_CACHE_KIB)

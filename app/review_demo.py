@@ -13,6 +13,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtWidgets
 
+from wakeline.app import ink
 from wakeline.app.review_map import proposal_geometry, proposal_items
 from wakeline.app.review_panel import ReviewPanel
 from wakeline.app.review_undo import ReviewController
@@ -28,6 +29,7 @@ class ReviewWorkspace(QtWidgets.QSplitter):
         self.controller = controller
         self.points = points
         self.panel = ReviewPanel(controller)
+        ink.setup()
         self.map = pg.PlotWidget(background="w")
         self.map.setAspectLocked(True)
         self.map.setLabel("bottom", self.tr("longitude"), units="°")

@@ -11,6 +11,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore
 
+from wakeline.app import ink
 from wakeline.core.review import ReviewState
 
 MEMBER = "#1f77b4"
@@ -138,6 +139,7 @@ class GanttView(pg.PlotWidget):
     time_changed = QtCore.Signal(float)  # seconds since epoch
 
     def __init__(self, state: ReviewState, parent=None) -> None:
+        ink.setup()
         super().__init__(parent, background="w")
         self.state = state
         self.setLabel("bottom", self.tr("time"), units=self.tr("min"))
@@ -216,6 +218,7 @@ class NetworkView(pg.PlotWidget):
     proposal_clicked = QtCore.Signal(str)
 
     def __init__(self, state: ReviewState, parent=None) -> None:
+        ink.setup()
         super().__init__(parent, background="w")
         self.state = state
         self.getPlotItem().hideAxis("left")
