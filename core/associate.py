@@ -321,10 +321,21 @@ def candidate_pairs(
     stands in when the grid's cell keys would not fit in 64 bits (tracks spread over
     the globe with a short reach).
     """
+    return pair_features(seg, *candidate_ends(seg, params, ends, starts))
+
+
+def candidate_ends(
+    seg: Segments,
+    params: LinkParams,
+    ends: np.ndarray | None = None,
+    starts: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The (old end ``i``, new start ``j``) rows of :func:`candidate_pairs`, in (i, j)
+    order, without their features (for a caller that keeps only some)."""
     n = len(seg)
     if n < 2:
-        e = np.zeros(0)
-        return Pairs(e.astype("int64"), e.astype("int64"), e, e, e, e, e)
+        e = np.zeros(0, dtype="int64")
+        return e, e
     v = params.v_max_kn * geo.KN_MS
     found = _grid_pairs(seg, params, ends, starts)
     i, j = found if found is not None else _tree_pairs(seg, params)
@@ -339,7 +350,7 @@ def candidate_pairs(
     keep = dist <= v * gap + params.position_tol_m
     i, j = i[keep], j[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
-    return pair_features(seg, i[order], j[order])
+    return i[order], j[order]
 
 
 def pair_features(seg: Segments, i: np.ndarray, j: np.ndarray) -> Pairs:
@@ -878,24 +889,10 @@ def long_gap_pass(
     b = candidate_pairs(seg, wide, starts=starts)
     cand = a.concat(b.take(~ends[b.i]))
     c = _blocked_cost(cand, pair_cost(cand, wide, "scaled", seg), n, blocked)
-    # The chains a skip may pass through: those one cheap loose step from a piece looked
-    # at; the links out of their last ends and into their first starts are added.
-    cheap = c_loose <= limit
-    near = np.zeros(n, dtype=bool)
-    near[chain[loose.j[cheap & ends[loose.i]]]] = True
-    near[chain[loose.i[cheap & starts[loose.j]]]] = True
-    out_of, into = free_end & near[chain], free_start & near[chain]
-    if out_of.any() or into.any():
-        extra = candidate_pairs(seg, wide, ends=out_of)
-        extra = extra.concat(candidate_pairs(seg, wide, starts=into))
-        links = cand.concat(extra)
-        c_links = np.concatenate(
-            [c, _blocked_cost(extra, pair_cost(extra, wide, "scaled", seg), n, blocked)]
-        )
-        skip = _skips(cand, links, c_links, limit, chain, free_start, free_end)
-        rank = np.where(skip, np.inf, c)
-    else:
-        rank = c
+    # A route through loose pieces runs on loose links only (a joined start belongs to
+    # the chain that claimed it), so the loose pairs found first tell every skip.
+    skip = _skips(cand, loose, c_loose, limit, chain, free_start, free_end)
+    rank = np.where(skip, np.inf, c)
     # A joined track competes for a start once, through its last end: its inner ends
     # (already continued) are no rivals when that last end is a candidate too — and
     # likewise for an end, through a joined track's first start.
