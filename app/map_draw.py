@@ -27,7 +27,7 @@ from scipy.spatial import cKDTree
 
 from wakeline.app.map_colors import BATCH_PALETTE, PALETTE, layer_colors
 from wakeline.app.map_frame import PositionSketch, position_sketch
-from wakeline.app.map_lod import decimate, lod_box, nan_join
+from wakeline.app.map_lod import decimate, gap_breaks, lod_box, nan_join, split_at
 from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core import geo
 from wakeline.core.schema import time_seconds
@@ -51,7 +51,8 @@ class LayerGeometry:
     ``lon`` is unwrapped along each track (a track crossing 180° stays continuous);
     ``starts``/``ends`` delimit the tracks; ``track`` is the track of every point;
     ``sensor``/``batch`` are per track; ``time_s`` and ``speed_kn`` per point;
-    ``group`` is the curve (colour) of each track.
+    ``group`` is the curve (colour) of each track; ``gap_break`` per point: the leg
+    arriving at it spans a gap of hours and is not drawn (:func:`~wakeline.app.map_lod.gap_breaks`).
     """
 
     lon: np.ndarray
@@ -67,6 +68,7 @@ class LayerGeometry:
     labels: tuple[str, ...]
     colors: tuple[str, ...]
     relative: bool
+    gap_break: np.ndarray | None = None
     _tree: cKDTree | None = field(default=None, repr=False)
     _sketch: PositionSketch | None = field(default=None, repr=False)
 
@@ -274,6 +276,7 @@ def layer_geometry(
         labels=labels,
         colors=colors,
         relative=is_relative_time(t) if relative is None else bool(relative),
+        gap_break=gap_breaks(t, index.starts, index.ends),
     )
 
 
@@ -295,7 +298,10 @@ def curves_for(
         else:
             box = lod_box(view, margin)
     origin = (view[0], view[2]) if view is not None else (0.0, 0.0)
-    keep, brk = decimate(geom.lon, geom.lat, geom.starts, geom.ends, px, box, origin)
+    starts, ends = geom.starts, geom.ends
+    if geom.gap_break is not None:
+        starts, ends = split_at(starts, ends, geom.gap_break)
+    keep, brk = decimate(geom.lon, geom.lat, starts, ends, px, box, origin)
     group_of_point = geom.group[geom.track] if geom.n_points else np.zeros(0, dtype="int64")
     curves = []
     for g, (label, color) in enumerate(zip(geom.labels, geom.colors, strict=True)):
@@ -377,4 +383,5 @@ def nan_separated(points: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     keep = np.ones(geom.n_points, dtype=bool)
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True
+    brk |= geom.gap_break
     return nan_join(geom.lon, geom.lat, keep, brk)

@@ -10,6 +10,50 @@ curve is broken there, so no false straight line joins the two sides of a gap.
 
 import numpy as np
 
+#: A leg is not drawn when the ship went unseen longer than this (s) and than
+#: :data:`GAP_FACTOR` times its track's median time step: a straight line across hours or
+#: days says where nobody saw it, and crosses land (the ATD and Saronic AIS sets).
+GAP_BREAK_S = 1800.0
+GAP_FACTOR = 10.0
+
+
+def gap_breaks(time_s: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """Per point: the leg arriving at it spans a gap (see :data:`GAP_BREAK_S`), so the
+    curve breaks before it. ``time_s`` in seconds, sorted within each track; NaN times
+    never break."""
+    n = len(time_s)
+    out = np.zeros(n, dtype=bool)
+    if n < 2 or len(starts) == 0:
+        return out
+    step = np.empty(n)
+    step[0] = np.nan
+    np.subtract(time_s[1:], time_s[:-1], out=step[1:])
+    step[starts] = np.nan
+    sizes = ends - starts
+    track = np.repeat(np.arange(len(starts)), sizes)
+    # Median step of each track (the lower middle of its steps): steps sorted per track,
+    # NaN last, and the middle of the finite ones taken.
+    finite = np.isfinite(step)
+    order = np.lexsort((np.where(finite, step, np.inf), track))
+    count = np.bincount(track[finite], minlength=len(starts))
+    middle = starts + np.maximum(count - 1, 0) // 2
+    median = np.where(count > 0, step[order[np.minimum(middle, n - 1)]], np.inf)
+    limit = np.maximum(GAP_BREAK_S, GAP_FACTOR * median)
+    with np.errstate(invalid="ignore"):
+        out[:] = step > limit[track]
+    return out
+
+
+def split_at(
+    starts: np.ndarray, ends: np.ndarray, breaks: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Track bounds with every break point starting a piece of its own (for
+    :func:`decimate`, which keeps the ends of each piece and breaks between pieces)."""
+    cut = np.flatnonzero(breaks)
+    if not len(cut):
+        return starts, ends
+    return np.union1d(starts, cut), np.union1d(ends, cut)
+
 
 def _outcode(lon: np.ndarray, lat: np.ndarray, box: tuple[float, float, float, float]):
     x0, x1, y0, y1 = box

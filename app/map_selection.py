@@ -11,7 +11,7 @@ import pandas as pd
 
 from wakeline.app.map_colors import apart_from
 from wakeline.app.map_draw import BATCH_PALETTE, Curve, unwrap_tracks
-from wakeline.app.map_lod import nan_join
+from wakeline.app.map_lod import gap_breaks, nan_join
 
 #: Colours of selected batches: the batch palette without the oranges of the halo.
 SELECTION_PALETTE = tuple(c for c in BATCH_PALETTE if c not in ("#ff7f0e", "#e6550d"))
@@ -29,7 +29,7 @@ class _SelectedTracks:
         b_code, b_names = pd.factorize(points["batch"].astype(str), sort=True)
         t = points["time"]
         if isinstance(t.dtype, pd.DatetimeTZDtype) or np.issubdtype(t.dtype, np.datetime64):
-            t = t.to_numpy(dtype="datetime64[ns]").view("int64").astype("float64")
+            t = t.to_numpy(dtype="datetime64[ns]").view("int64").astype("float64") / 1e9
         else:
             t = pd.to_numeric(t, errors="coerce").to_numpy(dtype="float64")
         order = np.lexsort((t, b_code, s_code))
@@ -46,6 +46,7 @@ class _SelectedTracks:
         self.lat = points["lat"].to_numpy(dtype="float64")[order]
         self.sensor = np.asarray(s_names, dtype=object)[s_code[self.starts]]
         self.batch = np.asarray(b_names, dtype=object)[b_code[self.starts]]
+        self.gap_break = gap_breaks(t[order], self.starts, np.append(self.starts[1:], n))
 
 
 def selection_curves(
@@ -61,6 +62,7 @@ def selection_curves(
     keep = np.ones(geom.n_points, dtype=bool)
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True
+    brk |= geom.gap_break
     lon, lat = nan_join(geom.lon, geom.lat, keep, brk)
     halo = Curve("", "#ffaa00", lon, lat)
     palette = list(apart_from(SELECTION_PALETTE, avoid)) or list(SELECTION_PALETTE)

@@ -181,6 +181,42 @@ def test_lod_clips_to_the_view_and_breaks_the_curve_there():
     assert data.n_vertices == curve.n_vertices
 
 
+def test_a_gap_of_hours_is_not_drawn_as_a_straight_line():
+    """ATD's AIS has ships unseen for a day and Saronic's for hours: the straight leg
+    across the gap crossed land. A leg longer than 30 min and 10 of its track's steps is
+    left undrawn, in the decimated curves, the full-resolution ones and the selection;
+    a track sampled every 30 min keeps its legs, and a missed fix or two does not break."""
+    from wakeline.app.map_draw import nan_separated
+    from wakeline.app.map_selection import selection_curves
+
+    t_a = np.r_[np.arange(0, 3600, 10.0), 86_400 + np.arange(0, 3600, 10.0)]  # a day unseen
+    t_b = np.arange(0, 48 * 1800, 1800.0)  # every 30 min, steadily
+    t_c = np.delete(np.arange(0, 3600, 10.0), [50, 51, 200])  # a few missed fixes
+    parts = []
+    for k, t in enumerate((t_a, t_b, t_c)):
+        parts.append(
+            pd.DataFrame(
+                {
+                    "sensor": "S",
+                    "batch": f"b{k}",
+                    "time": pd.to_datetime(t, unit="s", utc=True),
+                    "lon": LON0 + k + 0.001 * np.arange(len(t)),
+                    "lat": LAT0 + 0.0005 * np.arange(len(t)) ** 1.1,
+                }
+            )
+        )
+    df = pd.concat(parts, ignore_index=True)
+    geom = layer_geometry(df)
+    assert np.flatnonzero(geom.gap_break).tolist() == [360]  # b0's first fix after the day
+    for view, size in ((None, None), ((LON0 - 1, LON0 + 4, LAT0 - 1, LAT0 + 4), (400, 400))):
+        curve = prepare_layer(df, "t", view=view, size_px=size).curves[0]
+        assert np.isnan(curve.lon).sum() == 3  # two track starts and the gap
+    lon, _ = nan_separated(df)
+    assert np.isnan(lon).sum() == 3
+    halo, _, _ = selection_curves(df)
+    assert np.isnan(halo.lon).sum() == 3
+
+
 def test_relod_when_zooming_in(qtbot):
     df = star_scene(n_tracks=6, n_points=300)
     coarse = prepare_layer(
