@@ -395,21 +395,19 @@ def _minmax(x: np.ndarray) -> np.ndarray:
 
 
 def at_rest_pairs(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray:
-    """Per pair: both its old end and its new start are at rest — each end's speed and the
-    speed's standard error below ``rest_kn`` (never, when ``rest_kn`` is 0)."""
+    """Per pair: its old end and its new start are at rest — each end's speed and the
+    speed's standard error below ``rest_kn`` — or one is and the other shows no motion of
+    its own (a single fix borrows the other end's velocity, so it is at rest too). Never
+    when ``rest_kn`` is 0."""
     if params.rest_kn <= 0:
         return np.zeros(len(pairs), dtype=bool)
     i, j = pairs.i, pairs.j
     slow = params.rest_kn * geo.KN_MS
+    known_i, known_j = seg.motion1[i], seg.motion0[j]
     with np.errstate(invalid="ignore"):
-        return (
-            seg.motion1[i]
-            & seg.motion0[j]
-            & (np.hypot(seg.vx1[i], seg.vy1[i]) < slow)
-            & (seg.vel_sd1[i] < slow)
-            & (np.hypot(seg.vx0[j], seg.vy0[j]) < slow)
-            & (seg.vel_sd0[j] < slow)
-        )
+        still_i = known_i & (np.hypot(seg.vx1[i], seg.vy1[i]) < slow) & (seg.vel_sd1[i] < slow)
+        still_j = known_j & (np.hypot(seg.vx0[j], seg.vy0[j]) < slow) & (seg.vel_sd0[j] < slow)
+    return (still_i & still_j) | (still_i & ~known_j) | (still_j & ~known_i)
 
 
 def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np.ndarray, ...]:
