@@ -439,17 +439,6 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
         + (vsd * gap) ** 2
         + np.minimum(0.5 * params.accel_ms2 * gap**2, params.drift_ms * gap) ** 2
     )
-    # Both ends at rest: the ship lay still before and after the gap, so it is expected
-    # where it was, give or take its drift at a berth or an anchor, however long the gap
-    # (two ships moored 400 m apart are not one ship that crossed the harbour and
-    # stopped again).
-    rest = at_rest_pairs(seg, pairs, params)
-    miss = np.where(rest, np.hypot(px, py), miss)  # no dead reckoning on noise
-    var = np.where(
-        rest,
-        np.minimum(var, seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2 + params.rest_drift_m**2),
-        var,
-    )
     # Never below a sampling-grid metre: exact synthetic positions still carry rounding.
     sigma = np.sqrt(np.maximum(var, 1.0))
     return miss, sigma, blind
@@ -484,6 +473,18 @@ def pair_cost(
         miss, sigma, blind = prediction_miss(seg, pairs, params)
         d = (miss if params.predict else pairs.dist_m) / (params.sigmas * sigma)
         i, j = pairs.i, pairs.j
+        # Both ends at rest: the ship lay still before and after the gap. Within
+        # ``sigmas`` standard deviations of its spot (its ends' noise and rest_drift_m:
+        # GPS wander, swinging at anchor) it is priced as any other pair; beyond, it
+        # must have left and stopped again, and the rest model charges every further
+        # sigmas·σ one unit, however long the gap (two ships moored 400 m apart are not
+        # one ship that crossed the harbour and stopped again).
+        rest = at_rest_pairs(seg, pairs, params)
+        if rest.any():
+            spot = params.sigmas * np.sqrt(
+                seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2 + params.rest_drift_m**2
+            )
+            d = np.where(rest, np.fmax(d, pairs.dist_m / spot - 1.0), d)
         known = seg.motion1[i] & seg.motion0[j]
         # Course and speed tolerances grow with the ends' velocity errors (noisy tracks
         # give noisy velocities): the error in knots, and in degrees as seen at the speed.
@@ -500,7 +501,6 @@ def pair_cost(
         speed_tol = np.sqrt(params.speed_tol_kn**2 + v_kn2)
         # At rest at both ends, course means nothing and equal (zero) speeds are the
         # premise, not evidence: the position alone decides.
-        rest = at_rest_pairs(seg, pairs, params)
         dcourse = np.where(known & ~rest, dcourse, np.nan)
         dspeed = np.where(known & ~rest, dspeed, np.nan)
     else:
@@ -803,8 +803,14 @@ def _skips(
     lying in its gap — ``links`` hold (i, p) into the chain's first start p (``head``)
     and (q, j) out of its last end q (``tail``), each costing at most ``limit``. The
     route i → p … q → j explains the pair, so it is no rival of (i, p) or (q, j): one
-    ship may have left all of them. (Between two ends at rest the cost is tight, see
-    :func:`at_rest_pairs`, so moored ships do not route through each other.)"""
+    ship may have left all of them.
+
+    The route's links are not compared with the pair's own cost: scaled costs shrink
+    with the gap, so a ship's own short links cost more than its long skip, and asking
+    the route to cost at most ``long_margin`` more lost more true joins on the hard
+    simulated scenes than it saved (docs/evaluation.md). The price: a lone piece of
+    another ship lying in a ship's gap, within reach of both ends, is taken as a step of
+    its route."""
     ok = link_cost <= limit
     first = ok & head[links.j]
     second = ok & tail[links.i]
