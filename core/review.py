@@ -80,14 +80,26 @@ def _labels(keys: pd.DataFrame) -> np.ndarray:
 
 
 def _runner_up(
-    a: np.ndarray, b: np.ndarray, cost: np.ndarray, chosen: np.ndarray, labels: np.ndarray
+    a: np.ndarray,
+    b: np.ndarray,
+    cost: np.ndarray,
+    chosen: np.ndarray,
+    labels: np.ndarray,
+    target: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """For each chosen candidate: the cheapest other candidate sharing its ``a`` or its
     ``b`` track — label of the competing track, its cost, and which side it competes for
-    (``a``: it pairs with the proposal's ``a`` track); ``""``/NaN when there is none."""
+    (``a``: it pairs with the proposal's ``a`` track); ``""``/NaN when there is none.
+
+    ``target`` (per track): a candidate between two tracks of one target is no rival —
+    it skips a step of the same ship's chain (a moored ship's pieces at one spot are all
+    as cheap as the next one), so it would show a negative margin on a sound join."""
     m = len(a)
     cand = pd.DataFrame({"k": np.arange(m), "a": a, "b": b, "cost": cost})
-    cand = cand[np.isfinite(cand["cost"].to_numpy())]
+    ok = np.isfinite(cost)
+    if target is not None and m:
+        ok &= target[a] != target[b]
+    cand = cand[ok]
     best = []
     for own, other in (("a", "b"), ("b", "a")):
         # The two cheapest candidates of every track on this side.
@@ -184,7 +196,9 @@ def association_proposals(
     gate = params.gate if assoc.method in ("optimal", "greedy", "motion") else params.limit
     k = np.asarray(assoc.chosen, dtype="int64")
     keys = seg.index.keys
-    rival, rival_cost, rival_side = _runner_up(p.i, p.j, cost, k, labels)
+    rival, rival_cost, rival_side = _runner_up(
+        p.i, p.j, cost, k, labels, np.asarray(assoc.target_of_track)
+    )
     known = (
         seg.motion1[p.i[k]] & seg.motion0[p.j[k]]
         if seg.motion0 is not None and seg.motion1 is not None

@@ -522,3 +522,20 @@ def test_course_and_speed_are_unknown_between_single_fixes():
     assert len(ap) == 1
     assert np.isnan(ap["dcourse_deg"][0]) and np.isnan(ap["dspeed_kn"][0])
     assert ap["gap_s"][0] == pytest.approx(300.0)
+
+
+def test_a_moored_ships_chain_shows_no_negative_margin():
+    # The pieces of a moored ship lie at one spot: a join skipping a step of the chain is
+    # as cheap as the step itself, and as the runner-up it gave sound joins margins of
+    # -0.04 to -0.0006 (found by a review). A candidate within one target is no rival.
+    from test_associate import _moored
+
+    df = _moored(1, {"A": (0.0, 0.0), "B": (400.0, 0.0)}, True)
+    props, _ = R.association_proposals(associate_interrupted(df))
+    assert len(props) == 10
+    assert (props["margin"] > 0).all()
+    truth = df.groupby("batch")["truth"].first()
+    rival = props["runner_up"].str.split(":").str[1]
+    mine = props["batch_a"].where(props["runner_up_side"] == "a", props["batch_b"])
+    has = rival.notna() & (rival != "")
+    assert (truth[rival[has]].to_numpy() != truth[mine[has]].to_numpy()).all()
