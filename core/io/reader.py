@@ -670,7 +670,7 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     if time_info.get("decimal_comma"):
         out.append(
             f"{time_info['decimal_comma']:,} values were written with a decimal comma "
-            "(57,6671) and read as decimal numbers"
+            "(like 57,6671) and read as decimal numbers (57.6671)"
         )
     if time_info.get("naive") and zone is None and header_is_local(time_src):
         out.append(
