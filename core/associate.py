@@ -739,8 +739,15 @@ class Association:
             "candidate_pairs": len(self.pairs),
             "pairs_chosen": len(self.chosen),
             "long_gap_joins": int(self.long_joins().sum()),
+            "rest_joins": int(self.rest_joins().sum()),
             "targets": n_targets,
         }
+
+    def rest_joins(self) -> np.ndarray:
+        """Per chosen pair: priced as a ship lying still at both ends (:func:`at_rest_pairs`)."""
+        if self.params is None or self.normalize != "scaled" or not len(self.chosen):
+            return np.zeros(len(self.chosen), dtype=bool)
+        return at_rest_pairs(self.segments, self.pairs.take(self.chosen), self.params)
 
 
 def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndarray:

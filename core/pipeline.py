@@ -372,6 +372,8 @@ def _summary_associate(res: StepResult) -> str:
         msg += f"; {rep['rejected_kept_out']:,} pairs rejected in an earlier review kept out"
     if rep.get("long_gap_joins"):
         msg += f"; {rep['long_gap_joins']:,} of the joins across gaps beyond T_gap (second look)"
+    if rep.get("rest_joins"):
+        msg += f"; {rep['rest_joins']:,} between ends at rest (moored or at anchor)"
     if "points_filled" in rep:
         msg += f"; {rep['points_filled']:,} points filled"
     return msg

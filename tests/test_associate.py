@@ -366,6 +366,7 @@ def test_moored_ships_400_m_apart_are_not_joined_to_each_other(seed):
     # 40 seeds before. Between two ends at rest the ship is expected where it lay.
     df = _moored(seed, {"A": (0.0, 0.0), "B": (400.0, 0.0), "C": (0.0, 400.0)}, True)
     assert _joins(df) == (15, 0)  # each ship's six pieces in one chain
+    assert associate_interrupted(df).report()["rest_joins"] == 15  # and says so
     # the moving-ship model (rest rule off) joins ships to each other
     assert _joins(df, LinkParams(rest_kn=0.0))[1] > 0
 
