@@ -112,7 +112,9 @@ def _cmd_render(args: argparse.Namespace) -> int:
             pts = pts[pts["is_maneuver"].to_numpy(dtype=bool)] if "is_maneuver" in pts else pts
             style = LayerStyle(width=0, symbol_size=8, z=2.0)
         else:
-            style = LayerStyle(width=2.5 if kind in ("compressed", "fused") else 1.3)
+            style = LayerStyle(
+                width=2.5 if kind in ("compressed", "fused") else 1.3, gaps=kind != "compressed"
+            )
         layers.append(
             prepare_layer(pts, f"{source_name} · {suffix}", color, style=style, build_index=False)
         )

@@ -181,7 +181,9 @@ def prepare_view(
         label or kind,
         color,
         by_sensor=kind == "source",
-        style=LayerStyle(width=width, symbol_size=symbol, z=DRAW_Z.get(kind, 0.0)),
+        style=LayerStyle(
+            width=width, symbol_size=symbol, z=DRAW_Z.get(kind, 0.0), gaps=kind != "compressed"
+        ),
         view=view if size_px is not None else None,
         size_px=size_px,
         colors=colors,

@@ -42,6 +42,9 @@ class LayerStyle:
     width: float = 1.5
     symbol_size: float = 0.0
     z: float = 0.0
+    #: Break the line at gaps of hours and impossible jumps (off for a compressed layer:
+    #: its long legs are the compression's, and the ship was seen along them).
+    gaps: bool = True
 
 
 @dataclass
@@ -276,7 +279,7 @@ def layer_geometry(
         labels=labels,
         colors=colors,
         relative=is_relative_time(t) if relative is None else bool(relative),
-        gap_break=gap_breaks(t, index.starts, index.ends),
+        gap_break=gap_breaks(t, index.starts, index.ends, lon, lat),
     )
 
 
@@ -339,6 +342,8 @@ def prepare_layer(
         geom = points
     else:
         geom = layer_geometry(points, color, by_sensor, color_by, relative, name, colors)
+    if style is not None and not style.gaps and geom.gap_break is not None:
+        geom = replace(geom, gap_break=None)
     if build_index and geom.n_points:
         geom.tree()
         geom.sketch()
@@ -383,5 +388,6 @@ def nan_separated(points: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     keep = np.ones(geom.n_points, dtype=bool)
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True
-    brk |= geom.gap_break
+    if geom.gap_break is not None:
+        brk |= geom.gap_break
     return nan_join(geom.lon, geom.lat, keep, brk)

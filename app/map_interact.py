@@ -21,9 +21,11 @@ NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
 class MapInteractMixin:
     """Selection, hover, picking and scale bar of the map canvas."""
 
-    def show_selection(self, points: pd.DataFrame, marks: pd.DataFrame | None = None) -> None:
+    def show_selection(
+        self, points: pd.DataFrame, marks: pd.DataFrame | None = None, gaps: bool = True
+    ) -> None:
         """Highlight ``points`` (the selected tracks, each batch in its own colour) and
-        optional marked points.
+        optional marked points; ``gaps``: break the lines at gaps, as their layer is drawn.
 
         The curve items and their legend lines are kept and reused from one selection to
         the next (making pyqtgraph items and legend labels is the slow part of a click).
@@ -35,7 +37,7 @@ class MapInteractMixin:
             self.selection.setData([], [])
         else:
             used = {c.color for d in self.visible_draw_data() for c in d.curves}
-            halo, curves, self._selection_colors = selection_curves(points, used)
+            halo, curves, self._selection_colors = selection_curves(points, used, gaps)
             self.selection.setData(halo.lon, halo.lat, connect="finite")
         pool = self._selection_pool
         while len(pool) < len(curves):

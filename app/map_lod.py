@@ -11,16 +11,29 @@ curve is broken there, so no false straight line joins the two sides of a gap.
 import numpy as np
 
 #: A leg is not drawn when the ship went unseen longer than this (s) and than
-#: :data:`GAP_FACTOR` times its track's median time step: a straight line across hours or
-#: days says where nobody saw it, and crosses land (the ATD and Saronic AIS sets).
+#: :data:`GAP_FACTOR` times its track's median time step, or longer than
+#: :data:`GAP_ALWAYS_S` whatever the sampling: a straight line across hours or days says
+#: where nobody saw it, and crosses land (the ATD and Saronic AIS sets).
 GAP_BREAK_S = 1800.0
 GAP_FACTOR = 10.0
+GAP_ALWAYS_S = 3 * 3600.0
+#: Nor a leg no ship could sail: faster than this (kn) over more than
+#: :data:`JUMP_MIN_M` (two ships under one id, a position error; short legs of noisy
+#: radar plots may seem fast and are drawn).
+JUMP_KN = 60.0
+JUMP_MIN_M = 1000.0
 
 
-def gap_breaks(time_s: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> np.ndarray:
-    """Per point: the leg arriving at it spans a gap (see :data:`GAP_BREAK_S`), so the
-    curve breaks before it. ``time_s`` in seconds, sorted within each track; NaN times
-    never break."""
+def gap_breaks(
+    time_s: np.ndarray,
+    starts: np.ndarray,
+    ends: np.ndarray,
+    lon: np.ndarray | None = None,
+    lat: np.ndarray | None = None,
+) -> np.ndarray:
+    """Per point: the leg arriving at it spans a gap (see :data:`GAP_BREAK_S`), or, with
+    positions (degrees), a jump no ship could make (:data:`JUMP_KN`), so the curve breaks
+    before it. ``time_s`` in seconds, sorted within each track; NaN times never break."""
     n = len(time_s)
     out = np.zeros(n, dtype=bool)
     if n < 2 or len(starts) == 0:
@@ -38,9 +51,20 @@ def gap_breaks(time_s: np.ndarray, starts: np.ndarray, ends: np.ndarray) -> np.n
     count = np.bincount(track[finite], minlength=len(starts))
     middle = starts + np.maximum(count - 1, 0) // 2
     median = np.where(count > 0, step[order[np.minimum(middle, n - 1)]], np.inf)
-    limit = np.maximum(GAP_BREAK_S, GAP_FACTOR * median)
+    limit = np.minimum(np.maximum(GAP_BREAK_S, GAP_FACTOR * median), GAP_ALWAYS_S)
     with np.errstate(invalid="ignore"):
         out[:] = step > limit[track]
+    if lon is not None and lat is not None:
+        lat_r = np.radians(lat)
+        dlat = np.diff(lat_r)
+        dlon = np.diff(np.radians(lon))
+        h = np.sin(dlat / 2) ** 2 + np.cos(lat_r[1:]) * np.cos(lat_r[:-1]) * np.sin(dlon / 2) ** 2
+        dist = np.empty(n)
+        dist[0] = 0.0
+        dist[1:] = 2 * 6_371_000.0 * np.arcsin(np.sqrt(np.clip(h, 0.0, 1.0)))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            fast = (dist > JUMP_MIN_M) & (dist > JUMP_KN * 1852.0 / 3600.0 * step)
+        out |= fast & np.isfinite(step)
     return out
 
 

@@ -46,11 +46,13 @@ class _SelectedTracks:
         self.lat = points["lat"].to_numpy(dtype="float64")[order]
         self.sensor = np.asarray(s_names, dtype=object)[s_code[self.starts]]
         self.batch = np.asarray(b_names, dtype=object)[b_code[self.starts]]
-        self.gap_break = gap_breaks(t[order], self.starts, np.append(self.starts[1:], n))
+        self.gap_break = gap_breaks(
+            t[order], self.starts, np.append(self.starts[1:], n), lon, self.lat
+        )
 
 
 def selection_curves(
-    points: pd.DataFrame, avoid: set[str] | frozenset[str] = frozenset()
+    points: pd.DataFrame, avoid: set[str] | frozenset[str] = frozenset(), gaps: bool = True
 ) -> tuple[Curve, tuple[Curve, ...], dict[tuple[str, str], str]]:
     """The halo (every selected track, full resolution), one curve per colour, and the
     colour of every selected track by ``(sensor, batch)``.
@@ -62,7 +64,8 @@ def selection_curves(
     keep = np.ones(geom.n_points, dtype=bool)
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True
-    brk |= geom.gap_break
+    if gaps:  # as the layer is drawn (a compressed layer's long legs are no gaps)
+        brk |= geom.gap_break
     lon, lat = nan_join(geom.lon, geom.lat, keep, brk)
     halo = Curve("", "#ffaa00", lon, lat)
     palette = list(apart_from(SELECTION_PALETTE, avoid)) or list(SELECTION_PALETTE)

@@ -43,7 +43,8 @@ class SelectionMixin:
             return
         keys = self.selected_keys()
         chosen = view.tracks(keys)
-        self.canvas.show_selection(chosen, maneuver_table(chosen))
+        gaps = view.draw.style.gaps if view.draw is not None else True
+        self.canvas.show_selection(chosen, maneuver_table(chosen), gaps)
         # The Detail panel's plots follow on the next event-loop turn (its own paint).
         self._detail_key = (self.active, keys[0]) if keys else None
         if keys:

@@ -275,7 +275,7 @@ def test_nan_separated_unwraps_the_antimeridian():
         {
             "sensor": ["S"] * 5,
             "batch": ["a", "a", "a", "b", "b"],
-            "time": pd.to_datetime([0, 60, 120, 0, 60], unit="s", utc=True),
+            "time": pd.to_datetime([0, 3600, 7200, 0, 3600], unit="s", utc=True),  # ~12 kn
             "lon": [179.9, -179.9, -179.7, 10.0, 10.1],
             "lat": [0.0, 0.0, 0.0, 1.0, 1.0],
         }

@@ -175,6 +175,7 @@ def test_lod_clips_to_the_view_and_breaks_the_curve_there():
         "t",
         view=(-0.5, 1.5, -0.5, 1.5),
         size_px=(200, 200),
+        style=LayerStyle(gaps=False),  # degrees per second: every leg an impossible jump
     )
     curve = data.curves[0]
     assert np.isnan(curve.lon).sum() == 1  # one break, at the gap
@@ -215,6 +216,40 @@ def test_a_gap_of_hours_is_not_drawn_as_a_straight_line():
     assert np.isnan(lon).sum() == 3
     halo, _, _ = selection_curves(df)
     assert np.isnan(halo.lon).sum() == 3
+
+
+def test_gaps_always_break_past_3_h_and_at_impossible_jumps_but_not_in_compressed_layers():
+    """An operator's findings on ATD: a two-point track (its median step is its gap) drew a
+    960 km line across a day, and one id jumping California-Florida at 4,700 kn was drawn;
+    and the compressed layer lost legs the ship sailed in plain view, its own steps being
+    long. A leg longer than 3 h, or faster than 60 kn over more than 1 km, breaks; a
+    compressed layer (``LayerStyle(gaps=False)``) and its selection break at track ends only."""
+    from wakeline.app.map_selection import selection_curves
+
+    def tr(batch, t, lon, lat):
+        return pd.DataFrame(
+            {
+                "sensor": "S",
+                "batch": batch,
+                "time": pd.to_datetime(np.asarray(t, float), unit="s", utc=True),
+                "lon": lon,
+                "lat": lat,
+            }
+        )
+
+    two = tr("two", [0, 86_400], [LON0, LON0 + 8.0], [LAT0, LAT0 + 2.0])  # a day apart
+    t = np.arange(0, 3000, 600.0)  # every 10 min, a jump of 30 degrees in the middle
+    jump = tr("jump", t, LON0 + np.r_[0, 0.01, 30.0, 30.01, 30.02], LAT0 + np.zeros(5))
+    noisy = tr("noisy", np.arange(0, 20, 1.0), LON0 + 0.0003 * (-1) ** np.arange(20), LAT0)
+    df = pd.concat([two, jump, noisy], ignore_index=True)
+    geom = layer_geometry(df)
+    assert np.flatnonzero(geom.gap_break).tolist() == [2, 26]  # jump, noisy (none), two
+    curve = prepare_layer(df, "t").curves[0]
+    assert np.isnan(curve.lon).sum() == 2 + 2
+    flat = prepare_layer(df, "t", style=LayerStyle(gaps=False)).curves[0]
+    assert np.isnan(flat.lon).sum() == 2  # track starts only
+    halo, _, _ = selection_curves(df, gaps=False)
+    assert np.isnan(halo.lon).sum() == 2
 
 
 def test_relod_when_zooming_in(qtbot):
