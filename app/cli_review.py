@@ -22,14 +22,15 @@ _TEXT = (
 )
 
 
-def read_inputs(paths: list[Path]) -> pd.DataFrame:
+def read_inputs(paths: list[Path], **options) -> pd.DataFrame:
     """Read one or several track files as one point table; files that each hold one
-    sensor of the same name get the differing part of their names as sensor."""
+    sensor of the same name get the differing part of their names as sensor.
+    ``options``: how to read them (read_points keywords, as ``--map`` and friends)."""
     from wakeline.app.cli_steps import read_input
     from wakeline.core.review import combine_sources
 
     paths = list(paths) if isinstance(paths, list | tuple) else [paths]
-    return combine_sources([(p.stem, read_input(p)) for p in paths])
+    return combine_sources([(p.stem, read_input(p, **options)) for p in paths])
 
 
 def read_table(path: Path, what: str) -> pd.DataFrame:

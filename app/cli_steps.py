@@ -210,6 +210,7 @@ def add_step_parsers(sub) -> None:
             )
         if name == "clean":
             _add_clean_flags(p)
+        _add_read_flags(p)
         p.set_defaults(func=run_step_command, step=name)
 
 
@@ -249,15 +250,24 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="seed 001 sampling-segmentation-B-spline-interpolation (splits batches holding two ships)",
     )
+
+
+def _add_read_flags(p: argparse.ArgumentParser) -> None:
+    """How to read the input, as for `wakeline import` (every step: a reading error
+    names --map, so every step takes it)."""
     from wakeline.core.io import FAMILIES
 
-    # How to read the input, as for `wakeline import`.
     p.add_argument("--format", choices=FAMILIES, default="auto", help="input layout (default auto)")
     p.add_argument("--map", action="append", metavar="FIELD=COLUMN", help="as for import")
     p.add_argument("--encoding", help="text encoding (default: detect)")
     p.add_argument("--delimiter", help="field delimiter (default: detect)")
     p.add_argument("--tz", metavar="ZONE", help="zone of times written without one (as import)")
     p.add_argument("--sensor", default="S1", help="sensor name when the file has none")
+
+
+def _read_options(args: argparse.Namespace) -> dict:
+    read = {"fmt": args.format, "mapping": args.map, "encoding": args.encoding}
+    return read | {"delimiter": args.delimiter, "sensor": args.sensor, "tz": args.tz}
 
 
 def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:
@@ -348,9 +358,9 @@ def run_step_command(args: argparse.Namespace) -> int:
     if step.many_inputs:
         from wakeline.app.cli_review import read_inputs
 
-        points = read_inputs(args.input)
+        points = read_inputs(args.input, **_read_options(args))
     else:
-        points = read_input(args.input)
+        points = read_input(args.input, **_read_options(args))
     result = step(points, params)
     write_table(step.output, result.tables[step.output], args.output)
     for table, _flag in step.outputs:
@@ -370,10 +380,8 @@ def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
     from wakeline.core.io import write_json
     from wakeline.core.pipeline import StepResult, params_to_json
 
-    read = {"fmt": args.format, "mapping": args.map, "encoding": args.encoding}
-    read |= {"delimiter": args.delimiter, "sensor": args.sensor, "tz": args.tz}
     rejected = getattr(args, "out__rejected", None)
-    out = clean_file(args.input, args.output, rejected, params["clean"], **read)
+    out = clean_file(args.input, args.output, rejected, params["clean"], **_read_options(args))
     for warning in out.read_report.get("warnings", []):
         print(f"{args.input}: warning: {warning}", file=sys.stderr)
     if out.read_report["rows_quarantined"]:

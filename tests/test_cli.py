@@ -119,3 +119,24 @@ def test_evaluate_maneuver_on_a_real_folder(tmp_path, capsys):
     assert set(pd.read_csv(out)["method"]) == {"ours", "paper"}
     assert main(["evaluate", "maneuver", "--real", str(tmp_path)]) == 2
     assert "no known real set" in capsys.readouterr().err
+
+
+def test_every_step_reads_a_headerless_file_with_map(tmp_path, capsys):
+    """A reading error tells the operator to use --map; every step takes it (before, only
+    clean and import did: `associate FILE --map ...` was refused as an unknown flag)."""
+    rows = ["5 23.48402 37.35515 1722468684", "5 23.48410 37.35520 1722468744"]
+    rows += ["7 23.50000 37.40000 1722468684", "7 23.50010 37.40010 1722468744"]
+    src = tmp_path / "headerless.csv"
+    src.write_text("\n".join(rows) + "\n")
+    mapping = ["--map", "batch=col1", "--map", "lon=col2", "--map", "lat=col3"]
+    mapping += ["--map", "time=col4"]
+    for step in ("maneuvers", "compress", "associate"):
+        out = tmp_path / f"{step}.csv"
+        assert main([step, str(src), "-o", str(out), *mapping]) == 0, step
+        assert out.exists()
+    radar = tmp_path / "headerless_radar.csv"
+    radar.write_text(src.read_text())
+    fused = tmp_path / "f.csv"
+    assert main(["fuse", str(src), str(radar), "-o", str(fused), *mapping]) == 0
+    assert fused.exists()
+    capsys.readouterr()
