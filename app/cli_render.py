@@ -50,17 +50,20 @@ def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
     points), …]`` of every new layer, each step on the primary layer of the one before."""
     from wakeline.core.pipeline import STEPS
 
-    out = []
+    out: dict[str, tuple[str, str, object]] = {}
     current = points
     for name in steps:
         step = STEPS[name]
         result = step(current)
         for layer in result.layers:
-            out.append((layer.suffix, layer.kind, layer.points))
+            # A step that makes a layer an earlier one made (compress makes the maneuvers
+            # again) replaces it: drawn twice, the copy took a colour and the input lost
+            # its own (an operator's report: the input drawn brown beside the red line).
+            out[layer.suffix] = (layer.suffix, layer.kind, layer.points)
         primary = [lay for lay in result.layers if lay.suffix == step.primary]
         if primary:
             current = primary[0].points
-    return out
+    return list(out.values())
 
 
 def _read(paths: list[Path]):

@@ -425,3 +425,17 @@ def test_render_fuses_two_files_as_fuse_reads_them(tmp_path):
     argv = ["render", str(tmp_path / "s_AIS.csv"), str(tmp_path / "s_radar.csv")]
     assert main(argv + ["-o", str(png), "--step", "fuse", "--size", "300x200"]) == 0
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_render_steps_draw_each_layer_once_and_the_input_in_its_own_colour(tmp_path):
+    """`render --step maneuvers compress`: compress makes the maneuvers again, and the
+    copy was drawn as a second layer that took the input's blue (the input came out brown
+    beside the red compressed line, an operator's report)."""
+    from wakeline.app.cli_render import run_steps
+    from wakeline.app.map_colors import SOURCE_COLORS, layer_colors
+    from wakeline.core.simulate import maneuver_tracks
+
+    derived = run_steps(maneuver_tracks(3, "short", 300.0, seed=2), ["maneuvers", "compress"])
+    assert [suffix for suffix, _, _ in derived] == ["maneuvers", "compressed"]
+    taken = {layer_colors(kind, 1)[0] for _, kind, _ in derived}
+    assert layer_colors("source", 1, taken)[0] == SOURCE_COLORS[0]
