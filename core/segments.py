@@ -193,6 +193,22 @@ def _reported_velocity(
     return vx, vy
 
 
+#: A reported speed at most this (kn, the error of a reported velocity) is a stop.
+STOP_KN = 0.3
+
+
+def _reported_stop(pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """Per end: every reported speed over ``rows`` (at least one) is at most
+    :data:`STOP_KN` — the ship lay still, course or none."""
+    if "speed" not in pts.columns:
+        return np.zeros(len(rows), dtype=bool)
+    sog = pts["speed"].to_numpy(dtype="float64", na_value=np.nan)[rows]
+    ok = valid & np.isfinite(sog)
+    with np.errstate(invalid="ignore"):
+        slow = (sog <= STOP_KN) | ~ok
+    return ok.any(axis=1) & slow.all(axis=1)
+
+
 def segment_stats(
     points: pd.DataFrame, end_points: int = 10, use_reported_motion: bool = True
 ) -> Segments:
@@ -237,6 +253,7 @@ def segment_stats(
             (tail, (vx1, vy1), motion1, vf1),
         ):
             rep = _reported_velocity(pts, rows, few)
+            have = np.zeros(len(vx), dtype=bool)
             if rep is not None:
                 have = np.isfinite(rep[0])
                 vx[have] = rep[0][have]
@@ -244,6 +261,13 @@ def segment_stats(
                 known |= have
                 # A reported velocity is good to a few tenths of a knot.
                 vf[have] = np.minimum(vf[have], 0.0)
+            # A reported speed without a course still tells a stop: within the report's
+            # own error of zero the velocity is zero whatever the heading.
+            stop = _reported_stop(pts, rows, few) & ~have
+            vx[stop] = 0.0
+            vy[stop] = 0.0
+            known |= stop
+            vf[stop] = np.minimum(vf[stop], 0.0)
 
     sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
     # Noise per axis: each end's own residuals, or its sensor's median where it has too

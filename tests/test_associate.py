@@ -371,6 +371,21 @@ def test_moored_ships_400_m_apart_are_not_joined_to_each_other(seed):
     assert _joins(df, LinkParams(rest_kn=0.0))[1] > 0
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_a_reported_stop_without_a_course_is_at_rest(seed):
+    # The Saronic annotated files report speed but no course. A speed within a report's
+    # error of zero (0.0-0.2 kn here) says the ship lay still whatever its heading, so a
+    # single fix of a moored ship is at rest too, not a piece of unknown motion that any
+    # start in reach may continue (an operator found one joined to a ship 14 km away).
+    df = _moored(seed, {"A": (0.0, 0.0), "B": (400.0, 0.0), "C": (0.0, 400.0)}, True)
+    df["course"] = np.nan
+    assert _joins(df) == (15, 0)
+    seg = segment_stats(df)
+    assert seg.motion0.all() and seg.motion1.all()  # single fixes included
+    moving = df.assign(speed=5.0)  # a speed without a course is no velocity
+    assert not segment_stats(moving).motion0[segment_stats(moving).n == 1].any()
+
+
 @pytest.mark.parametrize("swing", [60.0, 120.0])
 def test_a_ship_swinging_at_anchor_keeps_its_own_next_piece(swing):
     # At anchor a ship swings round its chain: its next piece lies 60-120 m off, 30 min
