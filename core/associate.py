@@ -324,6 +324,28 @@ def candidate_pairs(
     return pair_features(seg, *candidate_ends(seg, params, ends, starts))
 
 
+#: A pair may be as far apart as this times the speed its faster end was seen at, when
+#: that is above ``v_max_kn`` (high-speed craft: the Saronic ferries at 32-40 kn).
+FAST_FACTOR = 1.2
+#: ... but never beyond this (kn), and only from ends whose speed is known to 2 kn.
+FAST_CAP_KN = 60.0
+FAST_SD_KN = 2.0
+
+
+def _seen_speed_kn(seg: Segments) -> tuple[np.ndarray, np.ndarray]:
+    """Per track: the reach speed (kn) its end and its start allow, FAST_FACTOR × the speed
+    seen there where that speed is known to FAST_SD_KN (0 elsewhere), at most FAST_CAP_KN."""
+    out = []
+    for speed, sd, known in (
+        (seg.speed1_kn, seg.vel_sd1, seg.motion1),
+        (seg.speed0_kn, seg.vel_sd0, seg.motion0),
+    ):
+        with np.errstate(invalid="ignore"):
+            sure = known & (sd < FAST_SD_KN * geo.KN_MS) & np.isfinite(speed)
+        out.append(np.where(sure, np.minimum(FAST_FACTOR * speed, FAST_CAP_KN), 0.0))
+    return out[0], out[1]
+
+
 def candidate_ends(
     seg: Segments,
     params: LinkParams,
@@ -336,9 +358,15 @@ def candidate_ends(
     if n < 2:
         e = np.zeros(0, dtype="int64")
         return e, e
-    v = params.v_max_kn * geo.KN_MS
-    found = _grid_pairs(seg, params, ends, starts)
-    i, j = found if found is not None else _tree_pairs(seg, params)
+    fast_end, fast_start = _seen_speed_kn(seg)
+    # The search reaches as far as the fastest end seen (a high-speed ferry), each pair
+    # as far as its own ends: max(v_max_kn, FAST_FACTOR × the faster end's speed).
+    seen = float(max(fast_end.max(), fast_start.max(), 0.0))
+    wide = (
+        replace(params, v_max_kn=max(params.v_max_kn, seen)) if seen > params.v_max_kn else params
+    )
+    found = _grid_pairs(seg, wide, ends, starts)
+    i, j = found if found is not None else _tree_pairs(seg, wide)
     gap = seg.t0[j] - seg.t1[i]
     keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
     if found is None and ends is not None:
@@ -347,6 +375,7 @@ def candidate_ends(
         keep &= starts[j]
     i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
+    v = np.maximum(params.v_max_kn, np.maximum(fast_end[i], fast_start[j])) * geo.KN_MS
     keep = dist <= v * gap + params.position_tol_m
     i, j = i[keep], j[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique

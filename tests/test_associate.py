@@ -371,6 +371,30 @@ def test_moored_ships_400_m_apart_are_not_joined_to_each_other(seed):
     assert _joins(df, LinkParams(rest_kn=0.0))[1] > 0
 
 
+def test_a_high_speed_ferry_is_followed_across_a_gap_at_its_own_speed():
+    # Saronic's vessel 2 is a high-speed craft at 32-40 kn: 19 of its true pairs within
+    # T_gap were no candidates at v_max_kn 30. A pair may now be as far apart as 1.2 x the
+    # speed its faster end was seen at; a slow ship gets no more reach than before.
+    fast = pd.concat(
+        [
+            straight("1", 0, 600, speed=38 * geo.KN_MS, course=90.0, truth="F"),
+            straight("2", 1200, 1800, speed=38 * geo.KN_MS, course=90.0, truth="F"),
+        ]
+    )
+    a = associate_interrupted(fast)
+    assert a.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["1", "2"]]
+    # The same 11.7 km in 600 s behind a ship seen at 10 kn is out of reach (38 kn).
+    kn10 = 10 * geo.KN_MS
+    start = (kn10 * 600 + 38 * geo.KN_MS * 600 - kn10 * 1200, 0.0)
+    slow = pd.concat(
+        [
+            straight("3", 0, 600, speed=kn10, course=90.0, truth="S"),
+            straight("4", 1200, 1800, speed=kn10, course=90.0, truth="S", start=start),
+        ]
+    )
+    assert len(candidate_pairs(segment_stats(slow), LinkParams())) == 0
+
+
 @pytest.mark.parametrize("seed", range(3))
 def test_a_reported_stop_without_a_course_is_at_rest(seed):
     # The Saronic annotated files report speed but no course. A speed within a report's
