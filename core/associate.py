@@ -136,8 +136,8 @@ class LinkParams(Params):
         0.5,
         "kn",
         "at rest: an end whose speed and speed error are both below this; between two ends "
-        "at rest the ship is expected where it lay (within rest_drift_m), not anywhere an "
-        "unknown acceleration could take it over the gap (0 = off)",
+        "at rest the ship is expected where it lay (free within sigmas x rest_drift_m, "
+        "charged beyond), not anywhere an unknown acceleration could take it (0 = off)",
         0.0,
         5.0,
     )
@@ -145,7 +145,7 @@ class LinkParams(Params):
         50.0,
         "m",
         "between two ends at rest: how far a ship lying at a berth or at anchor may seem to "
-        "move (GPS wander, swinging at anchor), per axis",
+        "move (GPS wander, swinging at anchor), per axis; free within sigmas times this",
         0.0,
         1e4,
     )
@@ -312,7 +312,9 @@ def candidate_pairs(
     starts: np.ndarray | None = None,
 ) -> Pairs:
     """Pairs of one sensor with ``0 < start(j) − end(i) ≤ max_gap_s`` and reachable at
-    ``v_max_kn`` (+ ``position_tol_m``); features per pair, ordered by (i, j). ``ends`` /
+    ``v_max_kn`` — or at :data:`FAST_FACTOR` × the speed the faster end was seen at, when
+    that is more (:func:`_seen_speed_kn`) — plus ``position_tol_m``; features per pair,
+    ordered by (i, j). ``ends`` /
     ``starts``: masks of the tracks whose end / start may take part (default all).
 
     A reachable pair is at most ``reach = v·max_gap_s + position_tol_m`` apart, so
@@ -321,7 +323,32 @@ def candidate_pairs(
     stands in when the grid's cell keys would not fit in 64 bits (tracks spread over
     the globe with a short reach).
     """
-    return pair_features(seg, *candidate_ends(seg, params, ends, starts))
+    n = len(seg)
+    if n < 2:
+        e = np.zeros(0)
+        return Pairs(e.astype("int64"), e.astype("int64"), e, e, e, e, e)
+    fast_end, fast_start = _seen_speed_kn(seg)
+    # The search reaches as far as the fastest end seen (a high-speed ferry), each pair
+    # as far as its own ends: max(v_max_kn, FAST_FACTOR × the faster end's speed).
+    seen = float(max(fast_end.max(), fast_start.max(), 0.0))
+    wide = (
+        replace(params, v_max_kn=max(params.v_max_kn, seen)) if seen > params.v_max_kn else params
+    )
+    found = _grid_pairs(seg, wide, ends, starts)
+    i, j = found if found is not None else _tree_pairs(seg, wide)
+    gap = seg.t0[j] - seg.t1[i]
+    keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
+    if found is None and ends is not None:
+        keep &= ends[i]
+    if found is None and starts is not None:
+        keep &= starts[j]
+    i, j, gap = i[keep], j[keep], gap[keep]
+    dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
+    v = np.maximum(params.v_max_kn, np.maximum(fast_end[i], fast_start[j])) * geo.KN_MS
+    keep = dist <= v * gap + params.position_tol_m
+    i, j = i[keep], j[keep]
+    order = np.argsort(i * n + j)  # (i, j) order; keys are unique
+    return pair_features(seg, i[order], j[order])
 
 
 #: A pair may be as far apart as this times the speed its faster end was seen at, when
@@ -344,42 +371,6 @@ def _seen_speed_kn(seg: Segments) -> tuple[np.ndarray, np.ndarray]:
             sure = known & (sd < FAST_SD_KN * geo.KN_MS) & np.isfinite(speed)
         out.append(np.where(sure, np.minimum(FAST_FACTOR * speed, FAST_CAP_KN), 0.0))
     return out[0], out[1]
-
-
-def candidate_ends(
-    seg: Segments,
-    params: LinkParams,
-    ends: np.ndarray | None = None,
-    starts: np.ndarray | None = None,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The (old end ``i``, new start ``j``) rows of :func:`candidate_pairs`, in (i, j)
-    order, without their features (for a caller that keeps only some)."""
-    n = len(seg)
-    if n < 2:
-        e = np.zeros(0, dtype="int64")
-        return e, e
-    fast_end, fast_start = _seen_speed_kn(seg)
-    # The search reaches as far as the fastest end seen (a high-speed ferry), each pair
-    # as far as its own ends: max(v_max_kn, FAST_FACTOR × the faster end's speed).
-    seen = float(max(fast_end.max(), fast_start.max(), 0.0))
-    wide = (
-        replace(params, v_max_kn=max(params.v_max_kn, seen)) if seen > params.v_max_kn else params
-    )
-    found = _grid_pairs(seg, wide, ends, starts)
-    i, j = found if found is not None else _tree_pairs(seg, wide)
-    gap = seg.t0[j] - seg.t1[i]
-    keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
-    if found is None and ends is not None:
-        keep &= ends[i]
-    if found is None and starts is not None:
-        keep &= starts[j]
-    i, j, gap = i[keep], j[keep], gap[keep]
-    dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
-    v = np.maximum(params.v_max_kn, np.maximum(fast_end[i], fast_start[j])) * geo.KN_MS
-    keep = dist <= v * gap + params.position_tol_m
-    i, j = i[keep], j[keep]
-    order = np.argsort(i * n + j)  # (i, j) order; keys are unique
-    return i[order], j[order]
 
 
 def pair_features(seg: Segments, i: np.ndarray, j: np.ndarray) -> Pairs:
