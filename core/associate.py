@@ -361,15 +361,18 @@ FAST_SD_KN = 2.0
 
 def _seen_speed_kn(seg: Segments) -> tuple[np.ndarray, np.ndarray]:
     """Per track: the reach speed (kn) its end and its start allow, FAST_FACTOR × the speed
-    seen there where that speed is known to FAST_SD_KN (0 elsewhere), at most FAST_CAP_KN."""
+    seen there — fitted where known to FAST_SD_KN, or reported — at most FAST_CAP_KN."""
     out = []
-    for speed, sd, known in (
-        (seg.speed1_kn, seg.vel_sd1, seg.motion1),
-        (seg.speed0_kn, seg.vel_sd0, seg.motion0),
+    for speed, sd, known, sog in (
+        (seg.speed1_kn, seg.vel_sd1, seg.motion1, seg.sog1),
+        (seg.speed0_kn, seg.vel_sd0, seg.motion0, seg.sog0),
     ):
         with np.errstate(invalid="ignore"):
             sure = known & (sd < FAST_SD_KN * geo.KN_MS) & np.isfinite(speed)
-        out.append(np.where(sure, np.minimum(FAST_FACTOR * speed, FAST_CAP_KN), 0.0))
+        seen = np.where(sure, speed, 0.0)
+        if sog is not None:  # a reported speed counts without a course (AIS to 0.1 kn)
+            seen = np.fmax(seen, np.nan_to_num(sog))
+        out.append(np.minimum(FAST_FACTOR * seen, FAST_CAP_KN))
     return out[0], out[1]
 
 

@@ -65,6 +65,10 @@ class Segments:
     #: its sensor's median where the end has too few points.
     noise0: np.ndarray = None  # type: ignore[assignment]
     noise1: np.ndarray = None  # type: ignore[assignment]
+    #: Reported speed (kn) at the start / end: the median over its first / last three
+    #: points where reported, course or none (NaN elsewhere); the reach of a fast craft.
+    sog0: np.ndarray | None = None
+    sog1: np.ndarray | None = None
     source: pd.DataFrame | None = None
     source_row: np.ndarray | None = None
 
@@ -197,6 +201,19 @@ def _reported_velocity(
 STOP_KN = 0.3
 
 
+def _reported_speed(pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray) -> np.ndarray | None:
+    """Per end: the median reported speed (kn) over ``rows`` (NaN where none); None when the
+    table reports no speed."""
+    if "speed" not in pts.columns:
+        return None
+    sog = pts["speed"].to_numpy(dtype="float64", na_value=np.nan)[rows]
+    sog = np.where(valid, sog, np.nan)
+    out = np.full(len(rows), np.nan)
+    have = np.isfinite(sog).any(axis=1)
+    out[have] = np.nanmedian(sog[have], axis=1)
+    return out
+
+
 def _reported_stop(pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray) -> np.ndarray:
     """Per end: every reported speed over ``rows`` (at least one) is at most
     :data:`STOP_KN` — the ship lay still, course or none."""
@@ -305,6 +322,8 @@ def segment_stats(
         motion1=motion1,
         noise0=res0,
         noise1=res1,
+        sog0=_reported_speed(pts, head, valid & (offs[None, :] < 3)),
+        sog1=_reported_speed(pts, tail, valid & (offs[None, :] < 3)),
         source=source,
         source_row=source_row,
     )

@@ -393,6 +393,13 @@ def test_a_high_speed_ferry_is_followed_across_a_gap_at_its_own_speed():
         ]
     )
     assert len(candidate_pairs(segment_stats(slow), LinkParams())) == 0
+    # A reported speed counts without a course (the annotated files report speed and
+    # heading): two single fixes of the ferry 11.7 km and 600 s apart are candidates.
+    v38 = 38 * geo.KN_MS
+    fixes = pd.concat([track("7", [600.0], [0.0], [0.0]), track("8", [1200.0], [v38 * 600], [0.0])])
+    fixes["speed"] = 38.0
+    assert len(candidate_pairs(segment_stats(fixes), LinkParams())) == 1
+    assert len(candidate_pairs(segment_stats(fixes.assign(speed=np.nan)), LinkParams())) == 0
 
 
 @pytest.mark.parametrize("seed", range(3))
