@@ -43,6 +43,38 @@ def saronic_points(sensor: str = "AIS"):
     )
 
 
+def make_window(qtbot, tmp_path, size: tuple[int, int] = (1400, 900)):
+    """A main window in English with settings of its own under ``tmp_path``, ``size`` px;
+    :func:`window` yields one and ends its jobs after the test."""
+    from PySide6 import QtCore
+
+    from wakeline.app.main_window import MainWindow
+
+    settings = QtCore.QSettings(str(tmp_path / "settings.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "en")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    w.resize(*size)
+    return w
+
+
+@pytest.fixture
+def window(qtbot, tmp_path):
+    w = make_window(qtbot, tmp_path)
+    yield w
+    w.runner.cancel()
+    w.runner.wait()
+
+
+def load(window, path) -> str | None:
+    """Open a file in the window's worker, wait, and return the new layer's id."""
+    from wakeline.app.main import wait_for_jobs
+
+    window.load_file(path)
+    wait_for_jobs(window)
+    return window.layer_id(path.name)
+
+
 @pytest.fixture
 def write(tmp_path):
     """Write bytes or text to a file in tmp_path and return its path."""

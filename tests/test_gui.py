@@ -10,6 +10,7 @@ import pytest
 pytest.importorskip("pytestqt")
 from PySide6 import QtCore, QtWidgets  # noqa: E402
 
+from conftest import load  # noqa: E402
 from wakeline.app import i18n  # noqa: E402
 from wakeline.app.main import run, wait_for_jobs  # noqa: E402
 from wakeline.app.main_window import MainWindow, format_dms  # noqa: E402
@@ -20,25 +21,6 @@ from wakeline.core.io import read_points, write_points  # noqa: E402
 from wakeline.resources import demo_path, translations_dir  # noqa: E402
 
 pytestmark = pytest.mark.gui
-
-
-@pytest.fixture
-def window(qtbot, tmp_path):
-    settings = QtCore.QSettings(str(tmp_path / "settings.ini"), QtCore.QSettings.Format.IniFormat)
-    settings.setValue("language", "en")
-    w = MainWindow(settings)
-    qtbot.addWidget(w)
-    w.resize(1400, 900)
-    yield w
-    w.runner.cancel()
-    w.runner.wait()
-
-
-def load(window, path) -> str | None:
-    """Open a file in the window's worker, wait, and return the new layer's id."""
-    window.load_file(path)
-    wait_for_jobs(window)
-    return window.layer_id(path.name)
 
 
 def test_demo_draws_one_curve_per_sensor(window):

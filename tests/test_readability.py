@@ -8,34 +8,16 @@ import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
-from PySide6 import QtCore, QtGui  # noqa: E402
+from PySide6 import QtGui  # noqa: E402
 
+from conftest import load  # noqa: E402
 from wakeline.app.cli import main  # noqa: E402
 from wakeline.app.main import wait_for_jobs  # noqa: E402
-from wakeline.app.main_window import MainWindow  # noqa: E402
 from wakeline.app.map_canvas import MapCanvas  # noqa: E402
 from wakeline.core.session import KIND_COLORS  # noqa: E402
 from wakeline.resources import demo_path  # noqa: E402
 
 pytestmark = pytest.mark.gui
-
-
-@pytest.fixture
-def window(qtbot, tmp_path):
-    settings = QtCore.QSettings(str(tmp_path / "settings.ini"), QtCore.QSettings.Format.IniFormat)
-    settings.setValue("language", "en")
-    w = MainWindow(settings)
-    qtbot.addWidget(w)
-    w.resize(1400, 900)
-    yield w
-    w.runner.cancel()
-    w.runner.wait()
-
-
-def load(window, path) -> str | None:
-    window.load_file(path)
-    wait_for_jobs(window)
-    return window.layer_id(path.name)
 
 
 # -- colour vision ---------------------------------------------------------------------

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from conftest import load, make_window
 from wakeline.core.timeline import PlaybackParams, build_index, overlapping, window_rows
 
 
@@ -119,27 +120,16 @@ def _scene_csv(path, relative: bool = False):
 
 @pytest.fixture
 def window(qtbot, tmp_path):
-    from PySide6 import QtCore
-
-    from wakeline.app.main_window import MainWindow
-
-    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
-    settings.setValue("language", "en")
-    w = MainWindow(settings)
-    qtbot.addWidget(w)
-    w.resize(1200, 800)
+    w = make_window(qtbot, tmp_path, (1200, 800))
     yield w
     w.runner.cancel()
     w.runner.wait()
 
 
 def _load(window, qtbot, path):
-    from wakeline.app.main import wait_for_jobs
-
-    window.load_file(path)
-    wait_for_jobs(window)
+    lid = load(window, path)
     qtbot.waitUntil(lambda: not window.time_controller.busy, timeout=20_000)
-    return window.layer_id(path.name)
+    return lid
 
 
 @pytest.mark.gui
