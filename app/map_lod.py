@@ -10,6 +10,8 @@ curve is broken there, so no false straight line joins the two sides of a gap.
 
 import numpy as np
 
+from wakeline.core import geo
+
 #: A leg is not drawn when the ship went unseen longer than this (s) and than
 #: :data:`GAP_FACTOR` times its track's median time step, or longer than
 #: :data:`GAP_ALWAYS_S` whatever the sampling: a straight line across hours or days says
@@ -55,15 +57,11 @@ def gap_breaks(
     with np.errstate(invalid="ignore"):
         out[:] = step > limit[track]
     if lon is not None and lat is not None:
-        lat_r = np.radians(lat)
-        dlat = np.diff(lat_r)
-        dlon = np.diff(np.radians(lon))
-        h = np.sin(dlat / 2) ** 2 + np.cos(lat_r[1:]) * np.cos(lat_r[:-1]) * np.sin(dlon / 2) ** 2
         dist = np.empty(n)
         dist[0] = 0.0
-        dist[1:] = 2 * 6_371_000.0 * np.arcsin(np.sqrt(np.clip(h, 0.0, 1.0)))
+        dist[1:] = geo.haversine_m(lon[:-1], lat[:-1], lon[1:], lat[1:])
         with np.errstate(invalid="ignore", divide="ignore"):
-            fast = (dist > JUMP_MIN_M) & (dist > JUMP_KN * 1852.0 / 3600.0 * step)
+            fast = (dist > JUMP_MIN_M) & (dist > JUMP_KN * geo.KN_MS * step)
         out |= fast & np.isfinite(step)
     return out
 

@@ -201,26 +201,29 @@ def _reported_velocity(
 STOP_KN = 0.3
 
 
-def _reported_speed(pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray) -> np.ndarray | None:
-    """Per end: the median reported speed (kn) over ``rows`` (NaN where none); None when the
-    table reports no speed."""
+def _reported_sog(pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray) -> np.ndarray | None:
+    """Reported speeds (kn) over ``rows`` (NaN where not reported or not ``valid``); None
+    when the table reports no speed."""
     if "speed" not in pts.columns:
         return None
     sog = pts["speed"].to_numpy(dtype="float64", na_value=np.nan)[rows]
-    sog = np.where(valid, sog, np.nan)
-    out = np.full(len(rows), np.nan)
+    return np.where(valid, sog, np.nan)
+
+
+def _median_sog(sog: np.ndarray | None) -> np.ndarray | None:
+    """Per end: the median reported speed (kn), NaN where none."""
+    if sog is None:
+        return None
+    out = np.full(len(sog), np.nan)
     have = np.isfinite(sog).any(axis=1)
     out[have] = np.nanmedian(sog[have], axis=1)
     return out
 
 
-def _reported_stop(pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray) -> np.ndarray:
-    """Per end: every reported speed over ``rows`` (at least one) is at most
-    :data:`STOP_KN` — the ship lay still, course or none."""
-    if "speed" not in pts.columns:
-        return np.zeros(len(rows), dtype=bool)
-    sog = pts["speed"].to_numpy(dtype="float64", na_value=np.nan)[rows]
-    ok = valid & np.isfinite(sog)
+def _reported_stop(sog: np.ndarray) -> np.ndarray:
+    """Per end: every reported speed (at least one) is at most :data:`STOP_KN` — the ship
+    lay still, course or none."""
+    ok = np.isfinite(sog)
     with np.errstate(invalid="ignore"):
         slow = (sog <= STOP_KN) | ~ok
     return ok.any(axis=1) & slow.all(axis=1)
@@ -263,11 +266,12 @@ def segment_stats(
     lon0, lat0, vx0, vy0, res0, pf0, vf0 = _end_fit(lon, lat, t, head, valid, index.starts)
     lon1, lat1, vx1, vy1, res1, pf1, vf1 = _end_fit(lon, lat, t, tail, valid, index.ends - 1)
     motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
+    few = valid & (offs[None, :] < 3)  # the reported motion of an end: its three last fixes
+    sog0, sog1 = _reported_sog(pts, head, few), _reported_sog(pts, tail, few)
     if use_reported_motion:
-        few = valid & (offs[None, :] < 3)
-        for rows, (vx, vy), known, vf in (
-            (head, (vx0, vy0), motion0, vf0),
-            (tail, (vx1, vy1), motion1, vf1),
+        for rows, (vx, vy), known, vf, sog in (
+            (head, (vx0, vy0), motion0, vf0, sog0),
+            (tail, (vx1, vy1), motion1, vf1, sog1),
         ):
             rep = _reported_velocity(pts, rows, few)
             have = np.zeros(len(vx), dtype=bool)
@@ -280,11 +284,12 @@ def segment_stats(
                 vf[have] = np.minimum(vf[have], 0.0)
             # A reported speed without a course still tells a stop: within the report's
             # own error of zero the velocity is zero whatever the heading.
-            stop = _reported_stop(pts, rows, few) & ~have
-            vx[stop] = 0.0
-            vy[stop] = 0.0
-            known |= stop
-            vf[stop] = np.minimum(vf[stop], 0.0)
+            if sog is not None:
+                stop = _reported_stop(sog) & ~have
+                vx[stop] = 0.0
+                vy[stop] = 0.0
+                known |= stop
+                vf[stop] = np.minimum(vf[stop], 0.0)
 
     sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
     # Noise per axis: each end's own residuals, or its sensor's median where it has too
@@ -322,8 +327,8 @@ def segment_stats(
         motion1=motion1,
         noise0=res0,
         noise1=res1,
-        sog0=_reported_speed(pts, head, valid & (offs[None, :] < 3)),
-        sog1=_reported_speed(pts, tail, valid & (offs[None, :] < 3)),
+        sog0=_median_sog(sog0),
+        sog1=_median_sog(sog1),
         source=source,
         source_row=source_row,
     )
