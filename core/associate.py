@@ -149,6 +149,17 @@ class LinkParams(Params):
         0.0,
         1e4,
     )
+    log_sigma: float = param(
+        0.5,
+        "",
+        "spread of the prediction: a pair pays this × ln(σ / σ_best) on its position term, "
+        "σ its predicted position's standard deviation and σ_best the tightest among the "
+        "candidates of its old end and of its new start, so a ship's next piece beats a "
+        "later one that skips it (0 = off: the scaled miss alone)",
+        0.0,
+        5.0,
+        "the 1/σ² of a position likelihood",
+    )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
     w1: float = param(
@@ -467,6 +478,43 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
     return miss, sigma, blind
 
 
+@dataclass(frozen=True)
+class _Priced:
+    """A pricing before the spread term (:func:`_spread`), which compares each pair with
+    the other candidates of its ends and so is added over a whole candidate set."""
+
+    cost: np.ndarray  # without the spread term, before the price of blind pairs
+    share: np.ndarray | None  # the position term's part of the weights
+    log_sd: np.ndarray | None  # ln σ of the predicted position (m)
+    blind: np.ndarray
+
+    def take(self, keep: np.ndarray) -> "_Priced":
+        return _Priced(
+            self.cost[keep],
+            None if self.share is None else self.share[keep],
+            None if self.log_sd is None else self.log_sd[keep],
+            self.blind[keep],
+        )
+
+    def put(self, where: np.ndarray, new: "_Priced") -> "_Priced":
+        """A copy with the pairs at ``where`` priced as ``new``."""
+        out = []
+        for f in ("cost", "share", "log_sd", "blind"):
+            v = getattr(self, f)
+            if v is not None:
+                v = v.copy()
+                v[where] = getattr(new, f)
+            out.append(v)
+        return _Priced(*out)
+
+    def total(self, pairs: Pairs, params: LinkParams, n: int) -> np.ndarray:
+        """The costs: plus the spread term, blind pairs at ``no_join`` less the margin."""
+        cost = self.cost
+        if self.log_sd is not None and len(pairs):
+            cost = cost + self.share * _spread(pairs, cost, self.log_sd, self.blind, params, n)
+        return np.where(self.blind, max(params.no_join - params.margin, 0.0), cost)
+
+
 def pair_cost(
     pairs: Pairs, params: LinkParams, normalize: str = "scaled", seg: Segments | None = None
 ) -> np.ndarray:
@@ -480,8 +528,20 @@ def pair_cost(
     over the terms that are known for the pair (course and speed mean nothing at an end
     without motion). A pair of which neither end shows its motion has only reachability
     as evidence and costs ``no_join`` less the margin: it is taken only when nothing else
-    claims either piece.
+    claims either piece. With ``log_sigma`` the position term also pays the spread of its
+    prediction against the other candidates in ``pairs`` of the same ends (:func:`_spread`).
     """
+    if normalize == "minmax":
+        return _pricing(pairs, params, normalize, seg).cost
+    return _pricing(pairs, params, normalize, seg).total(
+        pairs, params, 0 if seg is None else len(seg)
+    )
+
+
+def _pricing(
+    pairs: Pairs, params: LinkParams, normalize: str = "scaled", seg: Segments | None = None
+) -> _Priced:
+    """:func:`pair_cost` of every pair on its own, the spread term apart."""
     wsum = params.alpha + params.beta + params.gamma
     if wsum <= 0:
         raise InputError("alpha + beta + gamma must be positive")
@@ -489,9 +549,11 @@ def pair_cost(
         d = pairs.miss_m if params.predict else pairs.dist_m
         a, b, g = params.alpha / wsum, params.beta / wsum, params.gamma / wsum
         terms = (_minmax(d), _minmax(pairs.dcourse_deg), _minmax(pairs.dspeed_kn))
-        return a * terms[0] + b * np.nan_to_num(terms[1]) + g * np.nan_to_num(terms[2])
+        cost = a * terms[0] + b * np.nan_to_num(terms[1]) + g * np.nan_to_num(terms[2])
+        return _Priced(cost, None, None, np.zeros(len(pairs), dtype=bool))
     blind = np.zeros(len(pairs), dtype=bool)
     dcourse, dspeed = pairs.dcourse_deg, pairs.dspeed_kn
+    log_sd = None
     if params.uncertainty_gate and seg is not None:
         miss, sigma, blind = prediction_miss(seg, pairs, params)
         d = (miss if params.predict else pairs.dist_m) / (params.sigmas * sigma)
@@ -508,6 +570,10 @@ def pair_cost(
                 seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2 + params.rest_drift_m**2
             )
             d = np.where(rest, np.fmax(d, pairs.dist_m / spot - 1.0), d)
+            # At rest the ship is expected at its spot, not spread by unknown motion.
+            sigma = np.where(rest, np.fmin(sigma, spot / params.sigmas), sigma)
+        if params.log_sigma > 0:
+            log_sd = np.log(sigma)
         known = seg.motion1[i] & seg.motion0[j]
         # Course and speed tolerances grow with the ends' velocity errors (noisy tracks
         # give noisy velocities): the error in knots, and in degrees as seen at the speed.
@@ -536,7 +602,38 @@ def pair_cost(
     with np.errstate(invalid="ignore", divide="ignore"):
         cost = (w * np.nan_to_num(terms)).sum(axis=1) / w.sum(axis=1)
     cost = np.where(w.sum(axis=1) > 0, cost, np.inf)
-    return np.where(blind, max(params.no_join - params.margin, 0.0), cost)
+    share = None
+    if log_sd is not None:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            share = np.nan_to_num(w[:, 0] / w.sum(axis=1))
+    return _Priced(cost, share, log_sd, blind)
+
+
+def _spread(
+    pairs: Pairs,
+    cost: np.ndarray,
+    log_sd: np.ndarray,
+    blind: np.ndarray,
+    params: LinkParams,
+    n: int,
+) -> np.ndarray:
+    """Per pair: ``log_sigma`` × ln(σ / σ_best), added to its position term.
+
+    A position likelihood is the scaled miss's *and* 1/σ²: a prediction spread wider than
+    a rival's explains a start there less, so a ship's next piece beats a later one that
+    skips it. σ_best is the tightest σ among the plausible candidates (cost within the
+    gate and ``no_join``, with motion at one end at least) of the pair's old end and of
+    its new start, the pair itself included: never a bonus, and a lone candidate pays
+    nothing however long its gap.
+    """
+    i, j = pairs.i, pairs.j
+    ok = (cost <= min(params.gate, params.no_join)) & ~blind & np.isfinite(log_sd)
+    tight_i = np.full(n, np.inf)
+    tight_j = np.full(n, np.inf)
+    np.minimum.at(tight_i, i[ok], log_sd[ok])
+    np.minimum.at(tight_j, j[ok], log_sd[ok])
+    best = np.fmin(np.minimum(tight_i[i], tight_j[j]), log_sd)
+    return params.log_sigma * np.nan_to_num(log_sd - best)
 
 
 def greedy_assign(
@@ -957,16 +1054,30 @@ def assign_interrupted(
     method: str = "optimal",
     normalize: str = "scaled",
     blocked: np.ndarray | None = None,
+    priced: _Priced | None = None,
 ) -> tuple[Segments, Pairs, np.ndarray, np.ndarray]:
     """The assignment stage of :func:`associate_interrupted`, from the candidates and
     their costs: one-to-one assignment with the loose-end price, the short-piece rule and
     the margin test, the chain passes, then the second look across long gaps.
     ``blocked``: pairs refused (keys ``i·n + j``; the operator's rejections).
+    ``priced``: the pricing of ``pairs`` on ``base`` behind ``cost``, when the caller has
+    it (the chain passes price only the pairs they touch; without it, every pair once).
 
     Returns the summaries (chain-refitted), the candidates (long pairs appended), their
     costs and the indices of the chosen pairs.
     """
     n = len(base)
+    pairs_in = pairs
+    spread = normalize != "minmax" and params.log_sigma > 0
+    refused = blocked is not None and len(blocked) > 0
+
+    def unblocked(p: _Priced) -> _Priced:
+        # A refused pair is no rival of its ends' other candidates in the spread term.
+        return replace(p, cost=_blocked_cost(pairs, p.cost, n, blocked)) if refused else p
+
+    if spread and refused:
+        priced = unblocked(priced or _pricing(pairs, params, normalize, base))
+        cost = priced.total(pairs, params, n)
     cost = _blocked_cost(pairs, cost, n, blocked)
     assign = optimal_assign if method == "optimal" else greedy_assign
     if normalize == "minmax":  # seed 003 as written: a gate, no loose-end price, no margin
@@ -992,8 +1103,16 @@ def assign_interrupted(
             v[touched] = getattr(new, f)
             fields[f] = v
         pairs = Pairs(**fields)
-        cost = cost.copy()
-        cost[touched] = pair_cost(new, params, normalize, seg)
+        if spread:
+            # The spread term compares each pair with its ends' other candidates, so the
+            # total is taken over all of them; only the touched ones are priced again.
+            if priced is None:
+                priced = unblocked(_pricing(pairs_in, params, normalize, base))
+            priced = unblocked(priced.put(touched, _pricing(new, params, normalize, seg)))
+            cost = priced.total(pairs, params, n)
+        else:
+            cost = cost.copy()
+            cost[touched] = pair_cost(new, params, normalize, seg)
         cost = _blocked_cost(pairs, cost, n, blocked)
         chosen = _assign_scaled(seg, pairs, cost, params, assign)
     pairs, cost, chosen = long_gap_pass(seg, pairs, cost, chosen, params, blocked)
@@ -1020,9 +1139,12 @@ def associate_interrupted(
     base = segment_stats(points, params.end_points)
     progress(0.3, "finding candidate pairs")
     pairs0 = candidate_pairs(base, params)
-    cost0 = pair_cost(pairs0, params, normalize, base)
+    priced = _pricing(pairs0, params, normalize, base)
+    cost0 = priced.cost if normalize == "minmax" else priced.total(pairs0, params, len(base))
     progress(0.6, f"assigning {len(pairs0):,} candidate pairs")
-    seg, pairs, cost, chosen = assign_interrupted(base, pairs0, cost0, params, method, normalize)
+    seg, pairs, cost, chosen = assign_interrupted(
+        base, pairs0, cost0, params, method, normalize, priced=priced
+    )
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
     progress(1.0, f"{len(chosen):,} pairs joined")
     return Association(

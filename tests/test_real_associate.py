@@ -27,19 +27,20 @@ def mtad_scores(method: str, params: LinkParams | None = None) -> pd.DataFrame:
 
 def test_mtad_scenes_cut_at_their_gaps_are_rejoined():
     # Defaults: each end's noise is measured (MTAD's noisy tracks carry ~460 m), no
-    # hand-set tolerance, one chain pass. Measured (mean over the 10 scenes): P_CA 0.838,
-    # P_FA 0.036; pair by pair (chain_passes=0) 0.809 / 0.054; the fixed tolerance of v1
-    # with position_tol_m = 1000 m: 0.790 / 0.073.
+    # hand-set tolerance, one chain pass, the spread term. Measured (mean over the 10
+    # scenes): P_CA 0.885, P_FA 0.031; without the spread term (log_sigma=0, session 8)
+    # 0.875 / 0.035; the fixed tolerance of v1 with position_tol_m = 1000 m: 0.790 / 0.073.
+    # (Pair by pair, chain_passes=0, is as good here with the spread term: 0.888 / 0.031.)
     opt = mtad_scores("optimal").mean(numeric_only=True)
-    pairwise = mtad_scores("optimal", LinkParams(chain_passes=0)).mean(numeric_only=True)
+    flat = mtad_scores("optimal", LinkParams(log_sigma=0.0)).mean(numeric_only=True)
     v1 = mtad_scores(
         "optimal",
         LinkParams(
             uncertainty_gate=False, position_tol_m=1000.0, no_join=1.5, margin=0.0, chain_passes=0
         ),
     ).mean(numeric_only=True)
-    assert opt["p_ca"] >= 0.82 and opt["p_fa"] <= 0.045
-    assert opt["p_ca"] > pairwise["p_ca"] and opt["p_fa"] < pairwise["p_fa"]
+    assert opt["p_ca"] >= 0.87 and opt["p_fa"] <= 0.04
+    assert opt["p_ca"] > flat["p_ca"] and opt["p_fa"] < flat["p_fa"]
     assert opt["p_ca"] > v1["p_ca"] and opt["p_fa"] < v1["p_fa"]
 
 
