@@ -507,12 +507,26 @@ class _Priced:
             out.append(v)
         return _Priced(*out)
 
-    def total(self, pairs: Pairs, params: LinkParams, n: int) -> np.ndarray:
-        """The costs: plus the spread term, blind pairs at ``no_join`` less the margin."""
+    def total(
+        self, pairs: Pairs, params: LinkParams, n: int, refs: tuple | None = None
+    ) -> np.ndarray:
+        """The costs: plus the spread term (against ``refs``, :func:`_references`, by
+        default those of these pairs), blind pairs at ``no_join`` less the margin."""
         cost = self.cost
         if self.log_sd is not None and len(pairs):
-            cost = cost + self.share * _spread(pairs, cost, self.log_sd, self.blind, params, n)
+            refs = refs if refs is not None else _references(pairs, self, params, n)
+            cost = cost + self.share * _spread(pairs, self.log_sd, refs, params)
         return np.where(self.blind, max(params.no_join - params.margin, 0.0), cost)
+
+
+def _concat_priced(a: _Priced, b: _Priced) -> _Priced:
+    """The pricing of two candidate sets put one after the other."""
+    return _Priced(
+        *(
+            None if getattr(a, f) is None else np.concatenate([getattr(a, f), getattr(b, f)])
+            for f in ("cost", "share", "log_sd", "blind")
+        )
+    )
 
 
 def pair_cost(
@@ -529,7 +543,8 @@ def pair_cost(
     without motion). A pair of which neither end shows its motion has only reachability
     as evidence and costs ``no_join`` less the margin: it is taken only when nothing else
     claims either piece. With ``log_sigma`` the position term also pays the spread of its
-    prediction against the other candidates in ``pairs`` of the same ends (:func:`_spread`).
+    prediction against the plausible candidates within ``max_gap_s`` in ``pairs`` of the
+    same ends (:func:`_spread`); ``uncertainty_gate`` off, there is no σ and no spread.
     """
     if normalize == "minmax":
         return _pricing(pairs, params, normalize, seg).cost
@@ -609,31 +624,46 @@ def _pricing(
     return _Priced(cost, share, log_sd, blind)
 
 
-def _spread(
-    pairs: Pairs,
-    cost: np.ndarray,
-    log_sd: np.ndarray,
-    blind: np.ndarray,
-    params: LinkParams,
-    n: int,
-) -> np.ndarray:
+def _references(pairs: Pairs, priced: _Priced, params: LinkParams, n: int) -> tuple:
+    """Per track (0..n−1): ln σ of the tightest plausible candidate of its old end and of
+    its new start (inf when none) — among the candidates within ``max_gap_s`` (the first
+    pass's, which is all it sees), and among all of ``pairs`` (for a second-look pair,
+    whose rivals include the other long candidates). Plausible: priced within the gate
+    and ``no_join`` before the spread term, with motion at one end at least."""
+    ok = (
+        (priced.cost <= min(params.gate, params.no_join))
+        & ~priced.blind
+        & np.isfinite(priced.log_sd)
+    )
+    out = []
+    for use in (ok & (pairs.gap_s <= params.max_gap_s), ok):
+        tight_i = np.full(n, np.inf)
+        tight_j = np.full(n, np.inf)
+        np.minimum.at(tight_i, pairs.i[use], priced.log_sd[use])
+        np.minimum.at(tight_j, pairs.j[use], priced.log_sd[use])
+        out.append((tight_i, tight_j))
+    return tuple(out)
+
+
+def _spread(pairs: Pairs, log_sd: np.ndarray, refs: tuple, params: LinkParams) -> np.ndarray:
     """Per pair: ``log_sigma`` × ln(σ / σ_best), added to its position term.
 
     A position likelihood is the scaled miss's *and* 1/σ²: a prediction spread wider than
     a rival's explains a start there less, so a ship's next piece beats a later one that
-    skips it. σ_best is the tightest σ among the plausible candidates (cost within the
-    gate and ``no_join``, with motion at one end at least) of the pair's old end and of
-    its new start, the pair itself included: never a bonus, and a lone candidate pays
-    nothing however long its gap.
+    skips it. σ_best is the tightest σ among the plausible candidates (``refs``,
+    :func:`_references`: within ``max_gap_s`` for a first-pass pair, any for a
+    second-look one) of the pair's old end and of its new start, the pair itself
+    included: never a bonus, and a lone candidate pays nothing however long its gap.
     """
+    (short_i, short_j), (all_i, all_j) = refs
     i, j = pairs.i, pairs.j
-    ok = (cost <= min(params.gate, params.no_join)) & ~blind & np.isfinite(log_sd)
-    tight_i = np.full(n, np.inf)
-    tight_j = np.full(n, np.inf)
-    np.minimum.at(tight_i, i[ok], log_sd[ok])
-    np.minimum.at(tight_j, j[ok], log_sd[ok])
-    best = np.fmin(np.minimum(tight_i[i], tight_j[j]), log_sd)
-    return params.log_sigma * np.nan_to_num(log_sd - best)
+    first = pairs.gap_s <= params.max_gap_s
+    best = np.where(
+        first,
+        np.minimum(short_i[i], short_j[j]),
+        np.minimum(all_i[i], all_j[j]),
+    )
+    return params.log_sigma * np.nan_to_num(log_sd - np.fmin(best, log_sd))
 
 
 def greedy_assign(
@@ -958,6 +988,7 @@ def long_gap_pass(
     chosen: np.ndarray,
     params: LinkParams,
     blocked: np.ndarray | None = None,
+    priced: _Priced | None = None,
 ) -> tuple[Pairs, np.ndarray, np.ndarray]:
     """Second look across long gaps (``long_gap_s``): an old end and a new start that the
     assignment left loose are joined across a gap in (``max_gap_s``, ``long_gap_s``] when
@@ -968,7 +999,8 @@ def long_gap_pass(
 
     Returns the candidates with the long candidates of the pieces looked at appended,
     their costs and the chosen indices with the accepted ones added (mutually cheapest
-    pairs never conflict).
+    pairs never conflict). ``priced``: the pricing of ``pairs`` on ``seg`` (the spread
+    term's references come from it; priced here when not given).
     """
     n = len(seg)
     if params.long_gap_s <= params.max_gap_s or n < 2:
@@ -982,6 +1014,24 @@ def long_gap_pass(
     wide = replace(params, max_gap_s=params.long_gap_s)
     limit = min(params.gate, params.no_join)
     m = params.long_margin
+    main = None
+    if params.log_sigma > 0:
+        main = priced if priced is not None else _pricing(pairs, params, "scaled", seg)
+        main = replace(main, cost=_blocked_cost(pairs, main.cost, n, blocked))
+        if main.log_sd is None:  # no σ (uncertainty_gate off): no spread term
+            main = None
+
+    def price(p: Pairs) -> np.ndarray:
+        # The spread of a pair is taken among the first pass's candidates and the long
+        # ones looked at (pair_cost over the candidates returned gives the same).
+        parts = _pricing(p, wide, "scaled", seg)
+        parts = replace(parts, cost=_blocked_cost(p, parts.cost, n, blocked))
+        refs = None
+        if main is not None:
+            long = p.gap_s > params.max_gap_s
+            both = pairs.concat(p.take(long))
+            refs = _references(both, _concat_priced(main, parts.take(long)), params, n)
+        return _blocked_cost(p, parts.total(p, params, n, refs), n, blocked)
 
     def mutual(cand: Pairs, c: np.ndarray, c_i: np.ndarray, c_j: np.ndarray) -> np.ndarray:
         """Loose pairs beyond max_gap_s, each piece's cheapest by the margin (rivals of
@@ -1005,7 +1055,7 @@ def long_gap_pass(
     # (i → p → j all cheap) is no rival: a ship moored for hours whose AIS comes and goes
     # leaves pieces at one spot, and every later one is "as cheap" as the next.
     loose = candidate_pairs(seg, wide, ends=free_end, starts=free_start)
-    c_loose = _blocked_cost(loose, pair_cost(loose, wide, "scaled", seg), n, blocked)
+    c_loose = price(loose)
     chain = components(n, pairs.i[chosen], pairs.j[chosen])
     skip = _skips(loose, loose, c_loose, limit, chain, free_start, free_end)
     c = np.where(skip, np.inf, c_loose)
@@ -1019,7 +1069,7 @@ def long_gap_pass(
     a = candidate_pairs(seg, wide, ends=ends)
     b = candidate_pairs(seg, wide, starts=starts)
     cand = a.concat(b.take(~ends[b.i]))
-    c = _blocked_cost(cand, pair_cost(cand, wide, "scaled", seg), n, blocked)
+    c = price(cand)
     # A route through loose pieces runs on loose links only (a joined start belongs to
     # the chain that claimed it), so the loose pairs found first tell every skip.
     skip = _skips(cand, loose, c_loose, limit, chain, free_start, free_end)
@@ -1115,7 +1165,9 @@ def assign_interrupted(
             cost[touched] = pair_cost(new, params, normalize, seg)
         cost = _blocked_cost(pairs, cost, n, blocked)
         chosen = _assign_scaled(seg, pairs, cost, params, assign)
-    pairs, cost, chosen = long_gap_pass(seg, pairs, cost, chosen, params, blocked)
+    pairs, cost, chosen = long_gap_pass(
+        seg, pairs, cost, chosen, params, blocked, priced if spread else None
+    )
     return seg, pairs, cost, chosen
 
 

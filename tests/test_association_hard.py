@@ -82,11 +82,65 @@ def test_a_wider_prediction_pays_its_spread_against_the_tightest_plausible_rival
     assert off[1] < LinkParams().no_join and off[2] > LinkParams().gate  # 2 km in 50 s
     share = 0.5  # alpha's part of the weights when course and speed are known
     assert on[1] - off[1] == pytest.approx(share * 0.5 * np.log(sigma[1] / sigma[0]))
-    assert sigma[2] < sigma[0]  # tighter, but it cannot be the ship: no reference
-    assert on[2] == pytest.approx(off[2])
+    assert sigma[2] < sigma[0]  # tighter, but it cannot be the ship: (1, 2) paid nothing
     # A lone candidate pays nothing however long its gap.
     alone = pair_features(seg, i[1:2], j[1:2])
     assert pair_cost(alone, LinkParams(), "scaled", seg)[0] == pytest.approx(off[1])
+
+
+def test_the_spread_is_taken_on_the_new_start_side_too():
+    # Start 3 continues ship B's piece 5 after 100 s; ship A's end 1 reaches it only
+    # after 600 s. End 1 has no other candidate: it pays against start 3's tighter one.
+    a = noisy(straight("1", 0, 600, course=90.0, truth="A"), 5.0, 0)
+    five = noisy(straight("5", 500, 1100, course=90.0, start=(0.0, 150.0), truth="B"), 5.0, 4)
+    q = noisy(straight("3", 1200, 1800, course=90.0, start=(0.0, 150.0), truth="B"), 5.0, 2)
+    seg = segment_stats(pd.concat([a, five, q]))
+    k = {b: n for n, b in enumerate(seg.index.keys["batch"])}
+    pairs = pair_features(seg, np.array([k["1"], k["5"]]), np.array([k["3"], k["3"]]))
+    on = pair_cost(pairs, LinkParams(), "scaled", seg)
+    off = pair_cost(pairs, LinkParams(log_sigma=0.0), "scaled", seg)
+    _, sigma, _ = prediction_miss(seg, pairs, LinkParams())
+    assert off[0] < LinkParams().no_join and on[1] == pytest.approx(off[1])
+    assert on[0] - off[0] == pytest.approx(0.5 * 0.5 * np.log(sigma[0] / sigma[1]))
+
+
+def test_a_rejected_pair_shapes_no_other_pair_in_the_second_look():
+    # A's pieces 1 and 2 lie 1800 s apart (a second-look join); X starts at 1's prediction
+    # 200 s after it and turns away. Rejecting (1, X) must leave what the scene without X
+    # gives: the rejected pair is no reference for the spread of 1's other candidates.
+    one = straight("1", 0, 600, course=90.0, truth="A")
+    two = straight("2", 2400, 3000, course=90.0, start=(0.0, 6000.0), truth="A")
+    x = straight("X", 800, 3000, course=0.0, start=(4800.0, -4800.0), truth="B")
+    alone = associate_interrupted(pd.concat([one, two])).pair_table()
+    assoc = associate_interrupted(pd.concat([one, two, x]))
+    assert assoc.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["1", "X"]]
+    keys = assoc.segments.index.keys["batch"].astype(str).tolist()
+    n = len(keys)
+    redone = assoc.without(np.array([keys.index("1") * n + keys.index("X")])).pair_table()
+    assert redone[["batch_a", "batch_b"]].values.tolist() == [["1", "2"]]
+    assert redone["cost"].iloc[0] == pytest.approx(alone["cost"].iloc[0])
+
+
+def test_every_stored_cost_is_the_pair_cost_of_the_candidates_returned():
+    # Long (second-look) pairs included: their spread is taken among the first pass's
+    # candidates and the long ones looked at, as pair_cost over all returned gives it.
+    df = simulate.segments_scene(seed=12, n_ships=60, area_km=4.0, sigma_m=20.0, hard=True)
+    params = LinkParams()
+    a = associate_interrupted(df, params)
+    assert a.long_joins().sum() > 5
+    fresh = pair_features(a.segments, a.pairs.i, a.pairs.j)
+    np.testing.assert_allclose(a.cost, pair_cost(fresh, params, "scaled", a.segments))
+
+
+def test_without_the_uncertainty_gate_there_is_no_spread_term():
+    # The fixed tolerance of v1 has no σ: log_sigma changes nothing, the second look
+    # included (it once failed there for want of σ).
+    df = simulate.segments_scene(seed=12, n_ships=60, area_km=4.0, sigma_m=20.0, hard=True)
+    a = associate_interrupted(df, LinkParams(uncertainty_gate=False))
+    b = associate_interrupted(df, LinkParams(uncertainty_gate=False, log_sigma=0.0))
+    assert a.long_joins().sum() > 0
+    np.testing.assert_array_equal(a.chosen, b.chosen)
+    np.testing.assert_allclose(a.cost, b.cost)
 
 
 def test_the_spread_term_helps_on_hard_harbour_scenes():
