@@ -154,7 +154,8 @@ class LinkParams(Params):
         "",
         "spread of the prediction: a pair pays this × ln(σ / σ_best) on its position term, "
         "σ its predicted position's standard deviation and σ_best the tightest among the "
-        "candidates of its old end and of its new start, so a ship's next piece beats a "
+        "plausible candidates of its old end and of its new start (none without "
+        "uncertainty_gate), so a ship's next piece beats a "
         "later one that skips it (0 = off: the scaled miss alone)",
         0.0,
         5.0,
@@ -488,24 +489,35 @@ class _Priced:
     log_sd: np.ndarray | None  # ln σ of the predicted position (m)
     blind: np.ndarray
 
+    def _fields(self) -> tuple:
+        return (self.cost, self.share, self.log_sd, self.blind)
+
     def take(self, keep: np.ndarray) -> "_Priced":
+        return _Priced(*(None if v is None else v[keep] for v in self._fields()))
+
+    def concat(self, other: "_Priced") -> "_Priced":
+        """These pairs' pricing followed by ``other``'s."""
         return _Priced(
-            self.cost[keep],
-            None if self.share is None else self.share[keep],
-            None if self.log_sd is None else self.log_sd[keep],
-            self.blind[keep],
+            *(
+                None if v is None else np.concatenate([v, w])
+                for v, w in zip(self._fields(), other._fields(), strict=True)
+            )
         )
 
     def put(self, where: np.ndarray, new: "_Priced") -> "_Priced":
         """A copy with the pairs at ``where`` priced as ``new``."""
         out = []
-        for f in ("cost", "share", "log_sd", "blind"):
-            v = getattr(self, f)
+        for v, w in zip(self._fields(), new._fields(), strict=True):
             if v is not None:
                 v = v.copy()
-                v[where] = getattr(new, f)
+                v[where] = w
             out.append(v)
         return _Priced(*out)
+
+    def refusing(self, pairs: Pairs, n: int, blocked: np.ndarray | None) -> "_Priced":
+        """The refused pairs (keys ``i·n + j``) priced ∞: no join, and no reference of
+        their ends' other candidates in the spread term."""
+        return replace(self, cost=_blocked_cost(pairs, self.cost, n, blocked))
 
     def total(
         self, pairs: Pairs, params: LinkParams, n: int, refs: tuple | None = None
@@ -517,16 +529,6 @@ class _Priced:
             refs = refs if refs is not None else _references(pairs, self, params, n)
             cost = cost + self.share * _spread(pairs, self.log_sd, refs, params)
         return np.where(self.blind, max(params.no_join - params.margin, 0.0), cost)
-
-
-def _concat_priced(a: _Priced, b: _Priced) -> _Priced:
-    """The pricing of two candidate sets put one after the other."""
-    return _Priced(
-        *(
-            None if getattr(a, f) is None else np.concatenate([getattr(a, f), getattr(b, f)])
-            for f in ("cost", "share", "log_sd", "blind")
-        )
-    )
 
 
 def pair_cost(
@@ -546,8 +548,6 @@ def pair_cost(
     prediction against the plausible candidates within ``max_gap_s`` in ``pairs`` of the
     same ends (:func:`_spread`); ``uncertainty_gate`` off, there is no σ and no spread.
     """
-    if normalize == "minmax":
-        return _pricing(pairs, params, normalize, seg).cost
     return _pricing(pairs, params, normalize, seg).total(
         pairs, params, 0 if seg is None else len(seg)
     )
@@ -1017,20 +1017,19 @@ def long_gap_pass(
     main = None
     if params.log_sigma > 0:
         main = priced if priced is not None else _pricing(pairs, params, "scaled", seg)
-        main = replace(main, cost=_blocked_cost(pairs, main.cost, n, blocked))
+        main = main.refusing(pairs, n, blocked)
         if main.log_sd is None:  # no σ (uncertainty_gate off): no spread term
             main = None
 
     def price(p: Pairs) -> np.ndarray:
         # The spread of a pair is taken among the first pass's candidates and the long
         # ones looked at (pair_cost over the candidates returned gives the same).
-        parts = _pricing(p, wide, "scaled", seg)
-        parts = replace(parts, cost=_blocked_cost(p, parts.cost, n, blocked))
+        parts = _pricing(p, wide, "scaled", seg).refusing(p, n, blocked)
         refs = None
         if main is not None:
             long = p.gap_s > params.max_gap_s
             both = pairs.concat(p.take(long))
-            refs = _references(both, _concat_priced(main, parts.take(long)), params, n)
+            refs = _references(both, main.concat(parts.take(long)), params, n)
         return _blocked_cost(p, parts.total(p, params, n, refs), n, blocked)
 
     def mutual(cand: Pairs, c: np.ndarray, c_i: np.ndarray, c_j: np.ndarray) -> np.ndarray:
@@ -1121,12 +1120,8 @@ def assign_interrupted(
     spread = normalize != "minmax" and params.log_sigma > 0
     refused = blocked is not None and len(blocked) > 0
 
-    def unblocked(p: _Priced) -> _Priced:
-        # A refused pair is no rival of its ends' other candidates in the spread term.
-        return replace(p, cost=_blocked_cost(pairs, p.cost, n, blocked)) if refused else p
-
     if spread and refused:
-        priced = unblocked(priced or _pricing(pairs, params, normalize, base))
+        priced = (priced or _pricing(pairs, params, normalize, base)).refusing(pairs, n, blocked)
         cost = priced.total(pairs, params, n)
     cost = _blocked_cost(pairs, cost, n, blocked)
     assign = optimal_assign if method == "optimal" else greedy_assign
@@ -1157,8 +1152,9 @@ def assign_interrupted(
             # The spread term compares each pair with its ends' other candidates, so the
             # total is taken over all of them; only the touched ones are priced again.
             if priced is None:
-                priced = unblocked(_pricing(pairs_in, params, normalize, base))
-            priced = unblocked(priced.put(touched, _pricing(new, params, normalize, seg)))
+                priced = _pricing(pairs_in, params, normalize, base).refusing(pairs, n, blocked)
+            priced = priced.put(touched, _pricing(new, params, normalize, seg))
+            priced = priced.refusing(pairs, n, blocked)
             cost = priced.total(pairs, params, n)
         else:
             cost = cost.copy()
@@ -1192,7 +1188,7 @@ def associate_interrupted(
     progress(0.3, "finding candidate pairs")
     pairs0 = candidate_pairs(base, params)
     priced = _pricing(pairs0, params, normalize, base)
-    cost0 = priced.cost if normalize == "minmax" else priced.total(pairs0, params, len(base))
+    cost0 = priced.total(pairs0, params, len(base))
     progress(0.6, f"assigning {len(pairs0):,} candidate pairs")
     seg, pairs, cost, chosen = assign_interrupted(
         base, pairs0, cost0, params, method, normalize, priced=priced
