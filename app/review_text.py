@@ -84,9 +84,12 @@ def evidence_text(state, pid: str, p: pd.Series) -> str:
         ("miss_m", tr("position misfit {0:.0f} m")),
         ("dcourse_deg", tr("Δcourse {0:.1f}°")),
         ("dspeed_kn", tr("Δspeed {0:.1f} kn")),
+        ("spread", tr("spread of the prediction +{0:.2f}")),
         ("overlap_s", tr("overlap {0:.0f} s")),
     ):
         v = p[name]
+        if name == "spread" and not (v is not None and v >= 0.005):
+            continue  # the join's own prediction is the tightest: nothing to say
         if v == v and v is not None:  # not NaN
             parts.append(label.format(float(v)))
     rival = (

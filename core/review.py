@@ -53,6 +53,7 @@ PROPOSAL_COLUMNS = (
     "miss_m",
     "dcourse_deg",
     "dspeed_kn",
+    "spread",
     "overlap_s",
     "runner_up",
     "runner_up_cost",
@@ -204,6 +205,13 @@ def association_proposals(
         if seg.motion0 is not None and seg.motion1 is not None
         else np.ones(len(k), dtype=bool)
     )
+    # The spread term's part of the cost (the parts above do not show it): the cost less
+    # the same pair priced without it, which needs no other candidate.
+    spread = np.full(len(k), np.nan)
+    used = assoc.params or params
+    if assoc.method in _assoc.INTERRUPT_METHODS and assoc.normalize == "scaled" and len(k):
+        flat = _assoc.pair_cost(p.take(k), used.replace(log_sigma=0.0), "scaled", seg)
+        spread = cost[k] - flat
     df = pd.DataFrame(
         {
             "kind": "associate",
@@ -221,6 +229,7 @@ def association_proposals(
             # Unknown, not zero, where an end shows no motion (a single fix).
             "dcourse_deg": np.where(known, p.dcourse_deg[k], np.nan),
             "dspeed_kn": np.where(known, p.dspeed_kn[k], np.nan),
+            "spread": spread,
             "overlap_s": np.nan,
             "runner_up": rival,
             "runner_up_cost": rival_cost,

@@ -14,7 +14,7 @@ import pytest
 from conftest import real_file
 from wakeline.app.cli import main
 from wakeline.core import review as R
-from wakeline.core.associate import LinkParams, associate_interrupted, optimal_assign
+from wakeline.core.associate import LinkParams, associate_interrupted, optimal_assign, pair_cost
 from wakeline.core.errors import InputError
 from wakeline.core.export_review import (
     export_decision_log,
@@ -47,6 +47,15 @@ def _snapshot(st: R.ReviewState):
     return (list(st.status), sorted(st.links), list(st.target_of_track()))
 
 
+def test_the_spread_part_shows_where_a_join_paid_for_a_wide_prediction():
+    # A hard harbour: some joins are not their tracks' tightest plausible candidate.
+    df = segments_scene(seed=12, n_ships=60, area_km=4.0, sigma_m=20.0, hard=True)
+    ap = R.association_proposals(associate_interrupted(df))[0]
+    paid = ap["spread"] > 0.005
+    assert paid.any() and (~paid).any()
+    assert (ap.loc[paid, "cost"] > ap.loc[paid, "spread"]).all()
+
+
 def test_association_proposals_carry_evidence(scene):
     seg, _ = scene
     params = LinkParams()
@@ -58,6 +67,15 @@ def test_association_proposals_carry_evidence(scene):
     assert ap["proposal"].is_unique and (ap["kind"] == "associate").all()
     assert (ap["cost"] <= params.gate).all() and (ap["gap_s"] > 0).all()
     assert ap[["distance_m", "miss_m", "dcourse_deg", "dspeed_kn"]].notna().all().all()
+    # The spread term's part: never negative, zero for the tightest, the rest of the cost
+    # what the pair costs without it.
+    assert (ap["spread"] >= -1e-12).all() and (ap["spread"] < 1e-9).any()
+    k = assoc.chosen
+    flat = pair_cost(assoc.pairs.take(k), params.replace(log_sigma=0.0), "scaled", assoc.segments)
+    by_pair = ap.set_index(["batch_a", "batch_b"])
+    keys = assoc.segments.index.keys["batch"].astype(str).to_numpy()
+    mine = by_pair.loc[list(zip(keys[assoc.pairs.i[k]], keys[assoc.pairs.j[k]], strict=True))]
+    np.testing.assert_allclose(mine["cost"] - mine["spread"], flat, atol=1e-9)
     # The margin is the cheaper of runner-up and gate minus the cost.
     alt = np.fmin(ap["runner_up_cost"].to_numpy(), params.gate)
     np.testing.assert_allclose(ap["margin"], alt - ap["cost"])

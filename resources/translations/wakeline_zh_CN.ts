@@ -705,6 +705,10 @@
         <source>Δspeed {0:.1f} kn</source>
         <translation>航速差 {0:.1f} kn</translation>
     </message>
+    <message>
+        <source>spread of the prediction +{0:.2f}</source>
+        <translation>预测离散 +{0:.2f}</translation>
+    </message>
 </context>
 <context>
     <name>ReviewCommand</name>
