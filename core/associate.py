@@ -1116,7 +1116,6 @@ def assign_interrupted(
     costs and the indices of the chosen pairs.
     """
     n = len(base)
-    pairs_in = pairs
     spread = normalize != "minmax" and params.log_sigma > 0
     refused = blocked is not None and len(blocked) > 0
 
@@ -1152,7 +1151,7 @@ def assign_interrupted(
             # The spread term compares each pair with its ends' other candidates, so the
             # total is taken over all of them; only the touched ones are priced again.
             if priced is None:
-                priced = _pricing(pairs_in, params, normalize, base).refusing(pairs, n, blocked)
+                priced = _pricing(pairs, params, normalize, base).refusing(pairs, n, blocked)
             priced = priced.put(touched, _pricing(new, params, normalize, seg))
             priced = priced.refusing(pairs, n, blocked)
             cost = priced.total(pairs, params, n)
