@@ -8,6 +8,7 @@ every byte as it was. When a change of results is intended, regenerate with
 
 import hashlib
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -82,19 +83,27 @@ def _run(name: str, tmp: Path) -> dict[str, str]:
 
 def _content(flag: str, path: Path) -> bytes:
     """The bytes a run wrote; a JSON report without the values that name files (they
-    depend on where the repository is checked out)."""
+    depend on where the repository is checked out). Numbers written at full float64
+    precision (a report's, a maneuver's factor) count to 8 significant digits: numpy's
+    sin, cos, arctan2 and log differ in the last bit between CPUs (AVX-512 machines take
+    other SIMD paths; ``NPY_DISABLE_CPU_FEATURES="X86_V4 AVX512_ICL"`` shows it)."""
     if flag != "--report":
-        return path.read_bytes()
+        return _FULL_FLOAT.sub(lambda m: b"%.8g" % float(m.group()), path.read_bytes())
 
     def strip(value):
         if isinstance(value, dict):
             return {k: strip(v) for k, v in value.items() if k not in PATH_KEYS}
         if isinstance(value, list):
             return [strip(v) for v in value]
+        if isinstance(value, float):
+            return float(f"{value:.8g}")
         return value
 
     return json.dumps(strip(json.loads(path.read_text())), sort_keys=True).encode()
 
+
+#: A number in a CSV with more than 10 decimals: written at full float64 precision.
+_FULL_FLOAT = re.compile(rb"-?\d+\.\d{11,}(?:e[-+]?\d+)?")
 
 #: Report keys whose values are file paths.
 PATH_KEYS = {"input", "output", "file", "path", "source_file"}
