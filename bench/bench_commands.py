@@ -7,7 +7,8 @@ the same run, best of ``--repeat`` runs each.
 - ``wakeline --help`` against ``python -c "import numpy, pandas"``;
 - Douglas–Peucker (``douglas_peucker_mask``) against ``shapely.simplify`` on the same
   coordinates, and the textbook line-distance variant;
-- interrupted-track association at 1 k / 10 k / 100 k segments (growth per 10×);
+- interrupted-track association at 1 k / 10 k / 100 k segments (growth per 10×), and at
+  one density: the 10 k scene against ten copies of it side by side;
 - ``detect()`` points/s at 10 M points.
 
 Run: ``python bench/bench_commands.py [--points 2000000] [--detect-points 10000000]
@@ -121,6 +122,22 @@ def douglas_peucker(n_points: int, repeat: int) -> None:
         print(f"{'':<22} line-distance variant (ours, numpy): {line:.2f} s, {line / base:.1f}x")
 
 
+def tiled(df, copies: int):
+    """``copies`` of a scene side by side in longitude, far enough apart that no pair
+    crosses between them, batches renamed per copy: ``copies`` times the segments at
+    exactly the scene's density (the simulator's scenes are not: ships start in a box
+    that grows as √n and drift up to ~55 km out of it, so a small scene has a larger
+    sparse fringe and fewer candidate pairs per segment)."""
+    import pandas as pd
+
+    width = float(df["lon"].max() - df["lon"].min()) + 1.0
+    parts = [
+        df.assign(lon=df["lon"] + k * width, batch=df["batch"].astype(str) + f"~{k}")
+        for k in range(copies)
+    ]
+    return pd.concat(parts, ignore_index=True)
+
+
 def association(sizes: list[int], repeat: int) -> None:
     from bench_associate import scene
 
@@ -129,30 +146,46 @@ def association(sizes: list[int], repeat: int) -> None:
     from wakeline.core.tracks import sorted_with_index
 
     params = LinkParams()
-    prev = None
-    for n in sizes:
+
+    def timed(raw):
         # Sorted once, as the step before hands it on (issue 17, "sort once"), as
         # bench_associate.py does; the sort of the simulator's unsorted rows is printed
         # apart: it is n log n and not the association's.
-        raw = scene(n)
-        t_sort = best(lambda raw=raw: sorted_with_index(raw), repeat)
+        t_sort = best(lambda: sorted_with_index(raw), repeat)
         df, _ = sorted_with_index(raw)
         seg = segment_stats(df, params.end_points)
-        t_pairs = best(lambda seg=seg: candidate_pairs(seg, params), repeat)
-        t_all = best(lambda df=df: associate_interrupted(df, params), repeat)
+        n_pairs = len(candidate_pairs(seg, params))
+        t_pairs = best(lambda: candidate_pairs(seg, params), repeat)
+        t_all = best(lambda: associate_interrupted(df, params), repeat)
+        return len(seg), n_pairs, t_pairs, t_all, t_sort, len(df)
+
+    def show(what, now, prev):
+        n, n_pairs, t_pairs, t_all, t_sort, rows = now
         grow = ""
         if prev is not None:
-            f = np.log10(len(seg) / prev[0])
+            f = np.log10(n / prev[0])
             grow = (
-                f"; growth per 10x: pairs {(t_pairs / prev[1]) ** (1 / f):.1f}x, "
-                f"association {(t_all / prev[2]) ** (1 / f):.1f}x (goal <= 11x)"
+                f"; growth per 10x: pairs {(n_pairs / prev[1]) ** (1 / f):.1f}x in number, "
+                f"{(t_pairs / prev[2]) ** (1 / f):.1f}x in time, association "
+                f"{(t_all / prev[3]) ** (1 / f):.1f}x (goal <= 11x)"
             )
         print(
-            f"association {len(seg):>7,} segments: candidate pairs {t_pairs:.3f} s, "
-            f"associate_interrupted {t_all:.2f} s{grow} (sorting the {len(df):,} "
-            f"unsorted points before: {t_sort:.2f} s)"
+            f"association {what} {n:>7,} segments ({n_pairs / n:.2f} candidate pairs each): "
+            f"candidate pairs {t_pairs:.3f} s, associate_interrupted {t_all:.2f} s{grow} "
+            f"(sorting the {rows:,} unsorted points before: {t_sort:.2f} s)"
         )
-        prev = (len(seg), t_pairs, t_all)
+
+    prev = None
+    for n in sizes:
+        now = timed(scene(n))
+        show("scene", now, prev)
+        prev = now
+    # The same growth at one density: the middle scene, and ten copies of it side by side.
+    if len(sizes) >= 2:
+        base = scene(sizes[-2])
+        one = timed(base)
+        show("tiled x1", one, None)
+        show("tiled x10", timed(tiled(base, 10)), one)
 
 
 def detect_rate(n_points: int, repeat: int) -> None:
