@@ -174,6 +174,15 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         font = axis.style["tickFont"] or axis.font()
         return math.ceil(QtGui.QFontMetricsF(font).horizontalAdvance(widest)) + 2
 
+    def close(self) -> bool:
+        """Stop the deferred updates first: pyqtgraph's ``close`` deletes the plot's items
+        (the legend among them) while this widget lives on, and a legend update still due
+        would then reach a deleted legend (seen as a teardown error in a GUI test)."""
+        self._legend_timer.stop()
+        self._lod_timer.stop()
+        self._legend_wanted = []
+        return super().close()
+
     def _new_selection_item(self) -> pg.PlotDataItem:
         item = pg.PlotDataItem(connect="finite")
         item.setZValue(50)
