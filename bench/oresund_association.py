@@ -12,31 +12,11 @@ import argparse
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from wakeline.core.evaluate_association import run_method, score_association
-from wakeline.core.real_sets import read_oresund
+from wakeline.core.real_sets import oresund_cut, read_oresund
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "real" / "oresund-encounters"
-
-
-def cut_scene(pts: pd.DataFrame, seed: int, lo: float, hi: float) -> pd.DataFrame:
-    """Each track with one window of fixes removed; pieces renumbered at random."""
-    rng = np.random.default_rng(seed)
-    t = pts["time"].astype("int64").to_numpy() / 1e9
-    out = []
-    for b, idx in pts.groupby("batch").indices.items():
-        tt = t[idx]
-        g = rng.uniform(lo, hi)
-        if tt[-1] - tt[0] < g + 240:
-            out.append(pts.iloc[idx].assign(truth=b, batch=f"{b}#a"))
-            continue
-        c = rng.uniform(tt[0] + 120, tt[-1] - 120 - g)
-        out.append(pts.iloc[idx[tt < c]].assign(truth=b, batch=f"{b}#a"))
-        out.append(pts.iloc[idx[tt > c + g]].assign(truth=b, batch=f"{b}#b"))
-    df = pd.concat(out, ignore_index=True)
-    names = {k: str(i) for i, k in enumerate(rng.permutation(df["batch"].unique()))}
-    return df.assign(batch=df["batch"].map(names))
 
 
 def main() -> None:
@@ -48,13 +28,10 @@ def main() -> None:
     if not (args.data / "encounters.csv").exists():
         raise SystemExit(f"{args.data}: encounters.csv not found (see ../shared/data/real)")
     pts = read_oresund(args.data)
-    # The encounters share one relative clock: a day apart each, so they never meet.
-    enc = pts["batch"].str.split("/").str[0].astype(int)
-    pts["time"] = pts["time"] + pd.to_timedelta(enc * 86400, unit="s")
     methods = ("ours, optimal", "seed 003 (min-max, greedy)")
     rows = []
     for seed in range(args.seeds):
-        df = cut_scene(pts, seed, *args.gap)
+        df = oresund_cut(pts, seed, *args.gap)
         scores = [score_association(run_method(df, m)) for m in methods]
         rows.append([(s["p_ca"], s["p_fa"]) for s in scores])
         line = "; ".join(

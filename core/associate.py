@@ -89,6 +89,13 @@ class LinkParams(Params):
         0.0,
         5.0,
     )
+    measured_accel: bool = param(
+        True,
+        "",
+        "the unknown acceleration of a gap is at least what either end shows beyond its "
+        "noise (a quadratic fit over its end points, significant at 1 %): a ship seen "
+        "speeding up, slowing down or turning gets the wider gate; false: accel_ms2 alone",
+    )
     sigmas: float = param(
         3.0, "σ", "position miss worth one unit of distance, in standard deviations", 0.5, 20.0
     )
@@ -445,14 +452,23 @@ def at_rest_pairs(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray
     return (still_i & still_j) | (still_i & ~known_j) | (still_j & ~known_i)
 
 
+def _gap_accel(seg: Segments, i: np.ndarray, j: np.ndarray, params: LinkParams):
+    """Per pair: the unknown acceleration (m/s²) allowed in the gap: ``accel_ms2``, or
+    with ``measured_accel`` the larger of it and what either end shows (a ship seen
+    speeding up, slowing down or turning at an end may go on doing so in the gap)."""
+    if not params.measured_accel or seg.accel0 is None or seg.accel1 is None:
+        return params.accel_ms2
+    return np.fmax(params.accel_ms2, np.fmax(seg.accel1[i], seg.accel0[j]))
+
+
 def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np.ndarray, ...]:
     """Position miss (m) of each pair against the one-course-change prediction, its
     standard deviation (m), and whether neither end shows its motion (``blind``).
 
     An end without motion (one fix, or fixes at one instant) borrows the other end's
     velocity; the standard deviation combines both ends' fitted-position errors, the
-    velocity error over the gap and the unseen manoeuvres: ½·``accel_ms2``·gap², which
-    for long gaps becomes ``drift_ms``·gap (an acceleration does not last for hours; a
+    velocity error over the gap and the unseen manoeuvres: ½·a·gap² (a: ``accel_ms2``, or
+    what an end shows, :func:`_gap_accel`), which for long gaps becomes ``drift_ms``·gap (an acceleration does not last for hours; a
     velocity change of ``drift_ms`` does) — all per axis, added in squares.
     """
     i, j, gap = pairs.i, pairs.j, pairs.gap_s
@@ -472,7 +488,7 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
         seg.pos_sd1[i] ** 2
         + seg.pos_sd0[j] ** 2
         + (vsd * gap) ** 2
-        + np.minimum(0.5 * params.accel_ms2 * gap**2, params.drift_ms * gap) ** 2
+        + np.minimum(0.5 * _gap_accel(seg, i, j, params) * gap**2, params.drift_ms * gap) ** 2
     )
     # Never below a sampling-grid metre: exact synthetic positions still carry rounding.
     sigma = np.sqrt(np.maximum(var, 1.0))

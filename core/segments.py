@@ -69,6 +69,9 @@ class Segments:
     #: points where reported, course or none (NaN elsewhere); the reach of a fast craft.
     sog0: np.ndarray | None = None
     sog1: np.ndarray | None = None
+    #: Acceleration (m/s²) the start / end shows beyond its noise (0 where none shows).
+    accel0: np.ndarray | None = None
+    accel1: np.ndarray | None = None
     source: pd.DataFrame | None = None
     source_row: np.ndarray | None = None
 
@@ -177,6 +180,51 @@ def _end_fit(
     return flon, flat, bx, by, resid, pos_f, vel_f
 
 
+def _end_accel(
+    lon: np.ndarray,
+    lat: np.ndarray,
+    t: np.ndarray,
+    rows: np.ndarray,
+    valid: np.ndarray,
+    anchor: np.ndarray,
+) -> np.ndarray:
+    """Per end: the acceleration (m/s²) its fixes show beyond their noise.
+
+    A quadratic fit x(t), y(t) over ``rows`` (tracks × k, ``valid`` mask) about the
+    anchor: 0 unless its quadratic terms, both axes together, exceed their standard
+    errors by :data:`ACCEL_CHI2` (χ² with two degrees of freedom at 1 %), else their
+    magnitude less the noise's share. Turns count as well as speed changes. Ends of
+    fewer than 4 fixes show none.
+    """
+    w = valid.astype("float64")
+    x, y = geo.to_local(lon[rows], lat[rows], lon[anchor][:, None], lat[anchor][:, None])
+    tt = t[rows] - t[anchor][:, None]
+    sw = w.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u = (tt - ((w * tt).sum(axis=1) / sw)[:, None]) * w
+        var = (u * u).sum(axis=1)
+        # The quadratic orthogonal to the constant and to the line over the valid rows.
+        q = (u * u - (var / sw)[:, None] - ((u * u * u).sum(axis=1) / var)[:, None] * u) * w
+        qq = (q * q).sum(axis=1)
+        c2 = np.zeros(len(sw))
+        r2 = np.zeros(len(sw))
+        for v in (x, y):
+            mv = (w * v).sum(axis=1) / sw
+            bv = (u * v).sum(axis=1) / var
+            cv = (q * v).sum(axis=1) / qq
+            r = (v - mv[:, None] - bv[:, None] * u - cv[:, None] * q) * w
+            c2 += cv * cv
+            r2 += (r * r).sum(axis=1)
+        se2 = r2 / (2 * (sw - 3)) / qq  # per axis, of the quadratic term
+        shows = (sw > 3) & (qq > 0) & (c2 > ACCEL_CHI2 * se2)
+        return np.where(shows, 2 * np.sqrt(np.maximum(c2 - 2 * se2, 0.0)), 0.0)
+
+
+#: χ² (two degrees of freedom) above which an end's quadratic term is an acceleration
+#: rather than noise: 9.21 is the 1 % level.
+ACCEL_CHI2 = 9.21
+
+
 def _reported_velocity(
     pts: pd.DataFrame, rows: np.ndarray, valid: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray] | None:
@@ -265,6 +313,8 @@ def segment_stats(
     tail = np.maximum(index.ends[:, None] - 1 - offs, index.starts[:, None])
     lon0, lat0, vx0, vy0, res0, pf0, vf0 = _end_fit(lon, lat, t, head, valid, index.starts)
     lon1, lat1, vx1, vy1, res1, pf1, vf1 = _end_fit(lon, lat, t, tail, valid, index.ends - 1)
+    accel0 = _end_accel(lon, lat, t, head, valid, index.starts)
+    accel1 = _end_accel(lon, lat, t, tail, valid, index.ends - 1)
     motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
     few = valid & (offs[None, :] < 3)  # the reported motion of an end: its three last fixes
     sog0, sog1 = _reported_sog(pts, head, few), _reported_sog(pts, tail, few)
@@ -329,6 +379,8 @@ def segment_stats(
         noise1=res1,
         sog0=_median_sog(sog0),
         sog1=_median_sog(sog1),
+        accel0=accel0,
+        accel1=accel1,
         source=source,
         source_row=source_row,
     )

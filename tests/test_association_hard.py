@@ -48,6 +48,46 @@ def test_end_noise_is_measured_per_track_and_short_pieces_have_no_motion():
     assert np.isfinite(sd["3"])  # the sensor's median noise stands in
 
 
+def turning(rate_deg_s, gap_s, speed=6.0, turn_from=520.0):
+    """One ship east at ``speed`` m/s that starts a steady turn at ``turn_from`` s and
+    keeps turning through a gap: piece "1" to 600 s, piece "2" from 600 + ``gap_s``."""
+    t = np.arange(0.0, 1501.0)
+    turn = np.where(t >= turn_from, np.radians(rate_deg_s), 0.0)
+    heading = np.radians(90.0) + np.cumsum(turn)
+    x, y = np.cumsum(speed * np.sin(heading)), np.cumsum(speed * np.cos(heading))
+    a = (t <= 600) & (t % 10 == 0)
+    b = (t >= 600 + gap_s) & (t % 10 == 0)
+    return pd.concat(
+        [track("1", t[a], x[a], y[a], truth="A"), track("2", t[b], x[b], y[b], truth="A")]
+    )
+
+
+def test_an_end_shows_the_acceleration_its_fixes_carry_beyond_their_noise():
+    # A turn of 0.3 deg/s at 6 m/s (0.031 m/s² towards the centre) over the last 80 s.
+    seg = segment_stats(turning(0.3, 240.0))
+    assert 0.02 < seg.accel1[0] < 0.04 and 0.02 < seg.accel0[1] < 0.04  # end of 1, start of 2
+    assert seg.accel0[0] == 0.0  # piece 1 starts straight
+    # Straight tracks in noise: an acceleration shows at about 1 % of the ends (the test's
+    # level), not more; with 3 fixes nothing can show.
+    rng = np.random.default_rng(5)
+    tracks = [
+        noisy(straight(str(k), 0, 90, speed=rng.uniform(2, 10), start=(0, 3000 * k)), 30.0, k)
+        for k in range(400)
+    ]
+    seg = segment_stats(pd.concat([*tracks, straight("short", 0, 20, start=(0, -5000))]))
+    assert (seg.accel1 > 0).mean() <= 0.03 and (seg.accel0 > 0).mean() <= 0.03
+    assert seg.accel1[list(seg.index.keys["batch"]).index("short")] == 0.0
+
+
+def test_a_ship_seen_turning_keeps_the_wider_gate_across_the_gap():
+    # Turning at 0.3 deg/s through a 240 s gap: the dead-reckoned end misses by ~400 m,
+    # far beyond ½·accel_ms2·gap² (29 m); the turn the old end shows widens the gate.
+    df = turning(0.3, 240.0)
+    joined = associate_interrupted(df)
+    assert joined.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["1", "2"]]
+    assert len(associate_interrupted(df, LinkParams(measured_accel=False)).chosen) == 0
+
+
 def test_a_loose_end_stays_loose_next_to_another_ship():
     # Ship A ends heading east; 300 s later ship B appears 500 m north of where A would be,
     # sailing the opposite way. Reachable, and near; not the same ship.
