@@ -51,6 +51,15 @@ class LinkParams(Params):
         200.0, "m", "position error allowed on top of v_max when checking reachability", 0.0
     )
     end_points: int = param(10, "points", "points of each end fitted for position and motion", 1)
+    end_points_max: int = param(
+        40,
+        "points",
+        "longest end fit: an end whose fixes show no acceleration (1 % test) over 2x, 4x ... "
+        "end_points is fitted over that many, up to this (a long steady track's velocity is "
+        "known better; a turning one's is not averaged over the turn); end_points: never",
+        1,
+        1000,
+    )
     alpha: float = param(
         0.5, "", "α: weight of the position distance", 0.0, 1.0, "seed 003 eq. (position)"
     )
@@ -1199,7 +1208,7 @@ def associate_interrupted(
         raise InputError(f"unknown method {method!r}; choose one of {', '.join(INTERRUPT_METHODS)}")
     progress = progress or null_progress
     progress(0.0, "summarizing tracks")
-    base = segment_stats(points, params.end_points)
+    base = segment_stats(points, params.end_points, end_points_max=params.end_points_max)
     progress(0.3, "finding candidate pairs")
     pairs0 = candidate_pairs(base, params)
     priced = _pricing(pairs0, params, normalize, base)

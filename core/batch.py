@@ -13,7 +13,8 @@
    line and the GUI) and writes every stage's table as ``OUTDIR/<step>/part-NNNNN.parquet``.
 3. **Association across buckets.** Interrupted-track association joins tracks of one
    sensor that may sit in different buckets. It reads each track only through the first
-   and last ``end_points`` points (:func:`wakeline.core.segments.segment_stats`), so the
+   and last ``end_points`` points, or ``end_points_max`` where it runs straight
+   (:func:`wakeline.core.segments.segment_stats`), so the
    buckets hand back those few points per track; the core's ``associate`` step runs once
    on them and the target of every track is mapped back onto its bucket's rows.
 
@@ -510,7 +511,10 @@ def run_batch(
             shutil.move(str(stage / "quarantine"), str(outdir / "quarantine"))
 
         t = time.perf_counter()
-        assoc_k = int(assoc[1]["associate"].end_points) if assoc else 0
+        # Every fix an end fit may take: end_points, or up to end_points_max where the
+        # track runs straight.
+        link = assoc[1]["associate"] if assoc else None
+        assoc_k = max(int(link.end_points), int(link.end_points_max)) if link else 0
         buckets = sorted(int(d.name.split("-")[1]) for d in stage.glob("bucket-*"))
         tasks = [
             dask.delayed(_run_bucket, pure=False)(

@@ -154,9 +154,28 @@ def _end_fit(
     error factors of the anchor position (× residual sd) and of the velocity (× residual
     sd, 1/s; infinite without a time span).
     """
-    w = valid.astype("float64")
+    return _line_fit(*_local(lon, lat, t, rows, anchor), valid, lon[anchor], lat[anchor])
+
+
+def _local(
+    lon: np.ndarray, lat: np.ndarray, t: np.ndarray, rows: np.ndarray, anchor: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """East, north (m) and time (s) of ``rows`` (tracks × k) from each track's anchor row."""
     x, y = geo.to_local(lon[rows], lat[rows], lon[anchor][:, None], lat[anchor][:, None])
-    tt = t[rows] - t[anchor][:, None]
+    return x, y, t[rows] - t[anchor][:, None]
+
+
+def _line_fit(
+    x: np.ndarray,
+    y: np.ndarray,
+    tt: np.ndarray,
+    valid: np.ndarray,
+    lon_a: np.ndarray,
+    lat_a: np.ndarray,
+) -> tuple[np.ndarray, ...]:
+    """:func:`_end_fit` on local coordinates (:func:`_local`) about anchors at
+    ``lon_a``, ``lat_a``."""
+    w = valid.astype("float64")
     sw = w.sum(axis=1)
     mt = (w * tt).sum(axis=1) / sw
     mx = (w * x).sum(axis=1) / sw
@@ -168,7 +187,7 @@ def _end_fit(
         by = np.where(var > 0, (dt * (y - my[:, None])).sum(axis=1) / var, 0.0)
     ax = mx - bx * mt
     ay = my - by * mt
-    flon, flat = geo.from_local(ax, ay, lon[anchor], lat[anchor])
+    flon, flat = geo.from_local(ax, ay, lon_a, lat_a)
     rx = (x - ax[:, None] - bx[:, None] * tt) * w
     ry = (y - ay[:, None] - by[:, None] * tt) * w
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -196,9 +215,12 @@ def _end_accel(
     magnitude less the noise's share. Turns count as well as speed changes. Ends of
     fewer than 4 fixes show none.
     """
+    return _accel(*_local(lon, lat, t, rows, anchor), valid)
+
+
+def _accel(x: np.ndarray, y: np.ndarray, tt: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """:func:`_end_accel` on local coordinates (:func:`_local`)."""
     w = valid.astype("float64")
-    x, y = geo.to_local(lon[rows], lat[rows], lon[anchor][:, None], lat[anchor][:, None])
-    tt = t[rows] - t[anchor][:, None]
     sw = w.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         u = (tt - ((w * tt).sum(axis=1) / sw)[:, None]) * w
@@ -218,6 +240,74 @@ def _end_accel(
         se2 = r2 / (2 * (sw - 3)) / qq  # per axis, of the quadratic term
         shows = (sw > 3) & (qq > 0) & (c2 > ACCEL_CHI2 * se2)
         return np.where(shows, 2 * np.sqrt(np.maximum(c2 - 2 * se2, 0.0)), 0.0)
+
+
+def _end_rows(
+    index: TrackIndex, tracks: np.ndarray, width: int, head: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The rows (tracks × ``width``) of the first (``head``) or last fixes of ``tracks``
+    from their start / end inwards, which of them are fixes of the track, and the anchor
+    row (the first / last fix)."""
+    offs = np.arange(width)
+    starts, ends = index.starts[tracks], index.ends[tracks]
+    if head:
+        rows = np.minimum(starts[:, None] + offs, ends[:, None] - 1)
+        anchor = starts
+    else:
+        rows = np.maximum(ends[:, None] - 1 - offs, starts[:, None])
+        anchor = ends - 1
+    valid = offs[None, :] < np.minimum(index.sizes[tracks], width)[:, None]
+    return rows, valid, anchor
+
+
+#: Ends whose longer fits are tested or made at once (bounds the temporaries: a block of
+#: ends × fit width floats each).
+FIT_BLOCK = 16384
+
+
+def _straight_fits(
+    lon: np.ndarray,
+    lat: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    k: int,
+    k_max: int,
+    head: bool,
+) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+    """:func:`_end_fit` of every track's start (``head``) or end over ``k`` fixes, or 2k,
+    4k … (at most ``k_max``) while the fixes over that span show no acceleration
+    (:func:`_end_accel`'s test): the longest span over which the straight line holds, so
+    a long steady track's velocity is known better and a turning one's is not averaged
+    over the turn. Returns the fit and the number of fixes each took, in blocks of
+    :data:`FIT_BLOCK` tracks."""
+    n = len(index.sizes)
+    out = [np.empty(n) for _ in range(7)]
+    widths = np.full(n, k)
+    offs = np.arange(k_max)
+    for b in range(0, n, FIT_BLOCK):
+        part = np.arange(b, min(b + FIT_BLOCK, n))
+        rows, _valid, anchor = _end_rows(index, part, k_max, head)
+        x, y, tt = _local(lon, lat, t, rows, anchor)
+        size = index.sizes[part]
+        width = widths[part]
+        cand = np.flatnonzero(size > k)
+        w = k
+        while len(cand) and w < k_max:
+            w = min(2 * w, k_max)
+            valid = offs[:w] < np.minimum(size[cand], w)[:, None]
+            cand = cand[_accel(x[cand, :w], y[cand, :w], tt[cand, :w], valid) == 0]
+            width[cand] = w
+            cand = cand[size[cand] > w]
+        widths[part] = width
+        for w in np.unique(width):
+            sub = np.flatnonzero(width == w)
+            valid = offs[:w] < np.minimum(size[sub], w)[:, None]
+            fit = _line_fit(
+                x[sub, :w], y[sub, :w], tt[sub, :w], valid, lon[anchor[sub]], lat[anchor[sub]]
+            )
+            for arr, v in zip(out, fit, strict=True):
+                arr[part[sub]] = v
+    return tuple(out), widths
 
 
 #: χ² (two degrees of freedom) above which an end's quadratic term is an acceleration
@@ -278,12 +368,17 @@ def _reported_stop(sog: np.ndarray) -> np.ndarray:
 
 
 def segment_stats(
-    points: pd.DataFrame, end_points: int = 10, use_reported_motion: bool = True
+    points: pd.DataFrame,
+    end_points: int = 10,
+    use_reported_motion: bool = True,
+    end_points_max: int | None = None,
 ) -> Segments:
     """Summaries of every track of ``points`` (any order) for association.
 
-    ``end_points``: points per end fit. With ``use_reported_motion`` the end velocities
-    come from the reported speed and course (AIS) over the last three points where present.
+    ``end_points``: points per end fit; with ``end_points_max`` an end is fitted over 2×,
+    4× … as many, up to that, while its fixes over the span show no acceleration
+    (:func:`_straight_fits`). With ``use_reported_motion`` the end velocities come from the
+    reported speed and course (AIS) over the last three points where present.
 
     A table that must be sorted first is sorted on the columns read here only (with the
     input row of each); the others are gathered when asked for (``full_points``).
@@ -311,8 +406,14 @@ def segment_stats(
     valid = offs[None, :] < np.minimum(sizes, k)[:, None]
     head = np.minimum(index.starts[:, None] + offs, index.ends[:, None] - 1)
     tail = np.maximum(index.ends[:, None] - 1 - offs, index.starts[:, None])
-    lon0, lat0, vx0, vy0, res0, pf0, vf0 = _end_fit(lon, lat, t, head, valid, index.starts)
-    lon1, lat1, vx1, vy1, res1, pf1, vf1 = _end_fit(lon, lat, t, tail, valid, index.ends - 1)
+    if end_points_max is not None and end_points_max > k:
+        fits = [_straight_fits(lon, lat, t, index, k, end_points_max, h)[0] for h in (True, False)]
+    else:
+        fits = [
+            _end_fit(lon, lat, t, head, valid, index.starts),
+            _end_fit(lon, lat, t, tail, valid, index.ends - 1),
+        ]
+    (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fits
     accel0 = _end_accel(lon, lat, t, head, valid, index.starts)
     accel1 = _end_accel(lon, lat, t, tail, valid, index.ends - 1)
     motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
