@@ -199,27 +199,15 @@ def _line_fit(
     return flon, flat, bx, by, resid, pos_f, vel_f
 
 
-def _end_accel(
-    lon: np.ndarray,
-    lat: np.ndarray,
-    t: np.ndarray,
-    rows: np.ndarray,
-    valid: np.ndarray,
-    anchor: np.ndarray,
-) -> np.ndarray:
+def _accel(x: np.ndarray, y: np.ndarray, tt: np.ndarray, valid: np.ndarray) -> np.ndarray:
     """Per end: the acceleration (m/s²) its fixes show beyond their noise.
 
-    A quadratic fit x(t), y(t) over ``rows`` (tracks × k, ``valid`` mask) about the
-    anchor: 0 unless its quadratic terms, both axes together, exceed their standard
-    errors by :data:`ACCEL_CHI2` (χ² with two degrees of freedom at 1 %), else their
-    magnitude less the noise's share. Turns count as well as speed changes. Ends of
-    fewer than 4 fixes show none.
+    A quadratic fit x(t), y(t) over the end's fixes in local coordinates about its anchor
+    (:func:`_local`; tracks × k, ``valid`` mask): 0 unless its quadratic terms, both axes
+    together, exceed their standard errors by :data:`ACCEL_CHI2` (χ² with two degrees of
+    freedom at 1 %), else their magnitude less the noise's share. Turns count as well as
+    speed changes. Ends of fewer than 4 fixes show none.
     """
-    return _accel(*_local(lon, lat, t, rows, anchor), valid)
-
-
-def _accel(x: np.ndarray, y: np.ndarray, tt: np.ndarray, valid: np.ndarray) -> np.ndarray:
-    """:func:`_end_accel` on local coordinates (:func:`_local`)."""
     w = valid.astype("float64")
     sw = w.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -276,7 +264,7 @@ def _straight_fits(
 ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
     """:func:`_end_fit` of every track's start (``head``) or end over ``k`` fixes, or 2k,
     4k … (at most ``k_max``) while the fixes over that span show no acceleration
-    (:func:`_end_accel`'s test): the longest span over which the straight line holds, so
+    (:func:`_accel`'s test): the longest span over which the straight line holds, so
     a long steady track's velocity is known better and a turning one's is not averaged
     over the turn. Returns the fit and the number of fixes each took, in blocks of
     :data:`FIT_BLOCK` tracks."""
@@ -414,8 +402,8 @@ def segment_stats(
             _end_fit(lon, lat, t, tail, valid, index.ends - 1),
         ]
     (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fits
-    accel0 = _end_accel(lon, lat, t, head, valid, index.starts)
-    accel1 = _end_accel(lon, lat, t, tail, valid, index.ends - 1)
+    accel0 = _accel(*_local(lon, lat, t, head, index.starts), valid)
+    accel1 = _accel(*_local(lon, lat, t, tail, index.ends - 1), valid)
     motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
     few = valid & (offs[None, :] < 3)  # the reported motion of an end: its three last fixes
     sog0, sog1 = _reported_sog(pts, head, few), _reported_sog(pts, tail, few)
