@@ -65,7 +65,7 @@ def scene(n_segments: int, seed: int = 0):
 def dense_baseline(points, params: LinkParams) -> tuple[float, int]:
     """Every (old, new) pair scored in an n×n matrix, then linear_sum_assignment."""
     t = time.perf_counter()
-    seg = segment_stats(points, params.end_points)
+    seg = segment_stats(points, params.end_points, end_points_max=params.end_points_max)
     n = len(seg)
     i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
     i, j = i.ravel(), j.ravel()
@@ -121,7 +121,7 @@ def growth(sizes: list[int], repeat: int) -> None:
         w, c = time.perf_counter(), time.process_time()
         df, _ = sorted_with_index(df)
         sort_t = (time.perf_counter() - w, time.process_time() - c)
-        seg = segment_stats(df, params.end_points)
+        seg = segment_stats(df, params.end_points, end_points_max=params.end_points_max)
         t = {
             "pairs": timed(lambda seg=seg: candidate_pairs(seg, params), repeat),
             "k-d tree pairs": timed(lambda seg=seg: tree_pairs(seg, params), repeat),

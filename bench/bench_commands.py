@@ -153,7 +153,7 @@ def association(sizes: list[int], repeat: int) -> None:
         # apart: it is n log n and not the association's.
         t_sort = best(lambda: sorted_with_index(raw), repeat)
         df, _ = sorted_with_index(raw)
-        seg = segment_stats(df, params.end_points)
+        seg = segment_stats(df, params.end_points, end_points_max=params.end_points_max)
         n_pairs = len(candidate_pairs(seg, params))
         t_pairs = best(lambda: candidate_pairs(seg, params), repeat)
         t_all = best(lambda: associate_interrupted(df, params), repeat)

@@ -56,7 +56,8 @@ class LinkParams(Params):
         "points",
         "longest end fit: an end whose fixes show no acceleration (1 % test) over 2x, 4x ... "
         "end_points is fitted over that many, up to this (a long steady track's velocity is "
-        "known better; a turning one's is not averaged over the turn); end_points: never",
+        "known better; a turning one's is not averaged over the turn); end_points: never. "
+        "Interrupted-track association only (segment clustering keeps end_points)",
         1,
         1000,
     )
@@ -461,7 +462,9 @@ def at_rest_pairs(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray
     return (still_i & still_j) | (still_i & ~known_j) | (still_j & ~known_i)
 
 
-def _gap_accel(seg: Segments, i: np.ndarray, j: np.ndarray, params: LinkParams):
+def _gap_accel(
+    seg: Segments, i: np.ndarray, j: np.ndarray, params: LinkParams
+) -> np.ndarray | float:
     """Per pair: the unknown acceleration (m/s²) allowed in the gap: ``accel_ms2``, or
     with ``measured_accel`` the larger of it and what either end shows (a ship seen
     speeding up, slowing down or turning at an end may go on doing so in the gap)."""
@@ -477,8 +480,9 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
     An end without motion (one fix, or fixes at one instant) borrows the other end's
     velocity; the standard deviation combines both ends' fitted-position errors, the
     velocity error over the gap and the unseen manoeuvres: ½·a·gap² (a: ``accel_ms2``, or
-    what an end shows, :func:`_gap_accel`), which for long gaps becomes ``drift_ms``·gap (an acceleration does not last for hours; a
-    velocity change of ``drift_ms`` does) — all per axis, added in squares.
+    what an end shows, :func:`_gap_accel`), which for long gaps becomes ``drift_ms``·gap
+    (an acceleration does not last for hours; a velocity change of ``drift_ms`` does) —
+    all per axis, added in squares.
     """
     i, j, gap = pairs.i, pairs.j, pairs.gap_s
     known_i, known_j = seg.motion1[i], seg.motion0[j]
@@ -1367,6 +1371,7 @@ def associate_segments(
         raise InputError(f"unknown method {method!r}; choose one of {', '.join(SEGMENT_METHODS)}")
     progress = progress or null_progress
     progress(0.0, "summarizing segments")
+    # Seed 001's features as the paper has them: ends over end_points fixes, not longer.
     seg = segment_stats(points, params.end_points)
     progress(0.2, "finding candidate pairs")
     pairs = candidate_pairs(seg, params)

@@ -203,18 +203,21 @@ def _accel(x: np.ndarray, y: np.ndarray, tt: np.ndarray, valid: np.ndarray) -> n
     """Per end: the acceleration (m/s²) its fixes show beyond their noise.
 
     A quadratic fit x(t), y(t) over the end's fixes in local coordinates about its anchor
-    (:func:`_local`; tracks × k, ``valid`` mask): 0 unless its quadratic terms, both axes
-    together, exceed their standard errors by :data:`ACCEL_CHI2` (χ² with two degrees of
-    freedom at 1 %), else their magnitude less the noise's share. Turns count as well as
-    speed changes. Ends of fewer than 4 fixes show none.
+    (:func:`_local`; tracks × k, ``valid`` mask). Its quadratic terms, both axes together,
+    against their standard errors (the noise estimated from the same residuals, 2(n − 3)
+    degrees of freedom): 0 unless they pass :func:`_f_crit` at :data:`TEST_LEVEL`, else the
+    acceleration by which they pass it (continuous: 0 at the threshold). Turns count as
+    well as speed changes. Ends of fewer than 4 fixes, or of fixes at fewer than three
+    instants, show none.
     """
     w = valid.astype("float64")
     sw = w.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         u = (tt - ((w * tt).sum(axis=1) / sw)[:, None]) * w
-        var = (u * u).sum(axis=1)
+        u2 = u * u
+        var = u2.sum(axis=1)
         # The quadratic orthogonal to the constant and to the line over the valid rows.
-        q = (u * u - (var / sw)[:, None] - ((u * u * u).sum(axis=1) / var)[:, None] * u) * w
+        q = (u2 - (var / sw)[:, None] - ((u2 * u).sum(axis=1) / var)[:, None] * u) * w
         qq = (q * q).sum(axis=1)
         c2 = np.zeros(len(sw))
         r2 = np.zeros(len(sw))
@@ -226,8 +229,24 @@ def _accel(x: np.ndarray, y: np.ndarray, tt: np.ndarray, valid: np.ndarray) -> n
             c2 += cv * cv
             r2 += (r * r).sum(axis=1)
         se2 = r2 / (2 * (sw - 3)) / qq  # per axis, of the quadratic term
-        shows = (sw > 3) & (qq > 0) & (c2 > ACCEL_CHI2 * se2)
-        return np.where(shows, 2 * np.sqrt(np.maximum(c2 - 2 * se2, 0.0)), 0.0)
+        # Fixes at two instants leave a quadratic of rounding noise only.
+        spread = qq > 1e-9 * (u2 * u2).sum(axis=1)
+        crit = _f_crit(2 * (sw - 3))
+        shows = (sw > 3) & spread & (c2 > crit * se2)
+        return np.where(shows, 2 * np.sqrt(np.maximum(c2 - crit * se2, 0.0)), 0.0)
+
+
+#: Level of the tests that tell an end's curve or bend from its noise.
+TEST_LEVEL = 0.01
+
+
+def _f_crit(m: np.ndarray, level: float = TEST_LEVEL) -> np.ndarray:
+    """Threshold on |c|² / se² of a two-axis estimate c whose standard error se comes
+    from the residuals with ``m`` degrees of freedom, at ``level``: the statistic is
+    2·F(2, m), whose upper tail has the closed form m·(level^(−2/m) − 1) (9.21, the χ²
+    value, as m grows; 13.0 at m = 14, the 10-fix quadratic)."""
+    m = np.maximum(np.asarray(m, dtype="float64"), 1.0)
+    return m * (level ** (-2.0 / m) - 1.0)
 
 
 def _end_rows(
@@ -248,8 +267,8 @@ def _end_rows(
     return rows, valid, anchor
 
 
-#: Ends whose longer fits are tested or made at once (bounds the temporaries: a block of
-#: ends × fit width floats each).
+#: Ends whose longer fits are tested or made at once, for fits of 40 fixes (bounds the
+#: temporaries: a block of ends × fit width floats each; wider fits take fewer ends).
 FIT_BLOCK = 16384
 
 
@@ -261,46 +280,69 @@ def _straight_fits(
     k: int,
     k_max: int,
     head: bool,
-) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+) -> tuple[tuple[np.ndarray, ...], np.ndarray, np.ndarray]:
     """:func:`_end_fit` of every track's start (``head``) or end over ``k`` fixes, or 2k,
     4k … (at most ``k_max``) while the fixes over that span show no acceleration
-    (:func:`_accel`'s test): the longest span over which the straight line holds, so
-    a long steady track's velocity is known better and a turning one's is not averaged
-    over the turn. Returns the fit and the number of fixes each took, in blocks of
-    :data:`FIT_BLOCK` tracks."""
+    (:func:`_accel`): the longest span over which the straight line holds, so a long
+    steady track's velocity is known better and a turning one's is not averaged over a
+    turn its fixes show. A turn too slow to show in the noise is averaged over, and the
+    fit's velocity error, a line's, is then too small (docs/evaluation.md).
+
+    Returns the fit, the number of fixes each fit took, and the acceleration (m/s²) each
+    end's first ``k`` fixes show (the recent motion: a turn a longer span shows may be
+    over before the gap).
+    """
     n = len(index.sizes)
     out = [np.empty(n) for _ in range(7)]
-    widths = np.full(n, k)
-    offs = np.arange(k_max)
-    for b in range(0, n, FIT_BLOCK):
-        part = np.arange(b, min(b + FIT_BLOCK, n))
-        rows, _valid, anchor = _end_rows(index, part, k_max, head)
-        x, y, tt = _local(lon, lat, t, rows, anchor)
-        size = index.sizes[part]
-        width = widths[part]
-        cand = np.flatnonzero(size > k)
-        w = k
-        while len(cand) and w < k_max:
-            w = min(2 * w, k_max)
-            valid = offs[:w] < np.minimum(size[cand], w)[:, None]
-            cand = cand[_accel(x[cand, :w], y[cand, :w], tt[cand, :w], valid) == 0]
-            width[cand] = w
-            cand = cand[size[cand] > w]
-        widths[part] = width
-        for w in np.unique(width):
-            sub = np.flatnonzero(width == w)
-            valid = offs[:w] < np.minimum(size[sub], w)[:, None]
-            fit = _line_fit(
-                x[sub, :w], y[sub, :w], tt[sub, :w], valid, lon[anchor[sub]], lat[anchor[sub]]
-            )
-            for arr, v in zip(out, fit, strict=True):
-                arr[part[sub]] = v
-    return tuple(out), widths
+    used = np.empty(n, dtype="int64")
+    accel = np.zeros(n)
+    block = max(1024, FIT_BLOCK * 40 // max(k_max, 40))
+    for b in range(0, n, block):
+        part = np.arange(b, min(b + block, n))
+        fit, width, acc = _straight_block(lon, lat, t, index, part, k, k_max, head)
+        for arr, v in zip(out, fit, strict=True):
+            arr[part] = v
+        used[part] = np.minimum(index.sizes[part], width)
+        accel[part] = acc
+    return tuple(out), used, accel
 
 
-#: χ² (two degrees of freedom) above which an end's quadratic term is an acceleration
-#: rather than noise: 9.21 is the 1 % level.
-ACCEL_CHI2 = 9.21
+def _straight_block(
+    lon: np.ndarray,
+    lat: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    part: np.ndarray,
+    k: int,
+    k_max: int,
+    head: bool,
+) -> tuple[list, np.ndarray, np.ndarray]:
+    """:func:`_straight_fits` of the tracks ``part``: their fits, span widths and
+    accelerations."""
+    size = index.sizes[part]
+    top = int(min(k_max, max(k, size.max())))
+    rows, _valid, anchor = _end_rows(index, part, top, head)
+    x, y, tt = _local(lon, lat, t, rows, anchor)
+    offs = np.arange(top)
+
+    def span(sub: np.ndarray, w: int) -> tuple[np.ndarray, ...]:
+        return x[sub, :w], y[sub, :w], tt[sub, :w], offs[:w] < np.minimum(size[sub], w)[:, None]
+
+    every = np.arange(len(part))
+    best = list(_line_fit(*span(every, k), lon[anchor], lat[anchor]))
+    acc = _accel(*span(every, k))
+    width = np.full(len(part), k)
+    cand = np.flatnonzero(size > k)
+    w = k
+    while len(cand) and w < top:
+        w = min(2 * w, top)
+        cand = cand[_accel(*span(cand, w)) == 0]
+        width[cand] = w
+        longer = _line_fit(*span(cand, w), lon[anchor[cand]], lat[anchor[cand]])
+        for arr, v in zip(best, longer, strict=True):
+            arr[cand] = v
+        cand = cand[size[cand] > w]
+    return best, width, acc
 
 
 def _reported_velocity(
@@ -395,15 +437,18 @@ def segment_stats(
     head = np.minimum(index.starts[:, None] + offs, index.ends[:, None] - 1)
     tail = np.maximum(index.ends[:, None] - 1 - offs, index.starts[:, None])
     if end_points_max is not None and end_points_max > k:
-        fits = [_straight_fits(lon, lat, t, index, k, end_points_max, h)[0] for h in (True, False)]
+        (fit0, _, accel0), (fit1, _, accel1) = (
+            _straight_fits(lon, lat, t, index, k, end_points_max, h) for h in (True, False)
+        )
     else:
-        fits = [
-            _end_fit(lon, lat, t, head, valid, index.starts),
-            _end_fit(lon, lat, t, tail, valid, index.ends - 1),
-        ]
-    (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fits
-    accel0 = _accel(*_local(lon, lat, t, head, index.starts), valid)
-    accel1 = _accel(*_local(lon, lat, t, tail, index.ends - 1), valid)
+        ends = []
+        for rows, anchor in ((head, index.starts), (tail, index.ends - 1)):
+            x, y, tt = _local(lon, lat, t, rows, anchor)
+            ends.append(
+                (_line_fit(x, y, tt, valid, lon[anchor], lat[anchor]), _accel(x, y, tt, valid))
+            )
+        (fit0, accel0), (fit1, accel1) = ends
+    (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fit0, fit1
     motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
     few = valid & (offs[None, :] < 3)  # the reported motion of an end: its three last fixes
     sog0, sog1 = _reported_sog(pts, head, few), _reported_sog(pts, tail, few)

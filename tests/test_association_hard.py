@@ -22,7 +22,7 @@ from wakeline.core.evaluate_association import (
     score_association,
 )
 from wakeline.core.fuse import FuseParams, associate_sensors
-from wakeline.core.segments import _straight_fits, chain_refit, segment_stats
+from wakeline.core.segments import _accel, _straight_fits, chain_refit, segment_stats
 from wakeline.core.transform import BsplineParams, bspline_segments, knot_vector
 
 
@@ -72,16 +72,36 @@ def test_an_end_shows_the_acceleration_its_fixes_carry_beyond_their_noise():
     rng = np.random.default_rng(5)
     tracks = [
         noisy(straight(str(k), 0, 90, speed=rng.uniform(2, 10), start=(0, 3000 * k)), 30.0, k)
-        for k in range(400)
+        for k in range(1000)
     ]
     seg = segment_stats(pd.concat([*tracks, straight("short", 0, 20, start=(0, -5000))]))
-    assert (seg.accel1 > 0).mean() <= 0.03 and (seg.accel0 > 0).mean() <= 0.03
+    assert (seg.accel1 > 0).mean() <= 0.02 and (seg.accel0 > 0).mean() <= 0.02
     assert seg.accel1[list(seg.index.keys["batch"]).index("short")] == 0.0
+
+
+@pytest.mark.parametrize("fixes", [4, 5, 7, 10, 25, 40])
+def test_the_acceleration_test_holds_its_level_for_any_number_of_fixes(fixes):
+    # The noise is estimated from the same residuals: the statistic is 2·F(2, 2(n − 3)),
+    # not χ²₂ (9.21 gave 18 % false alarms at 4 fixes, 3 % at 10). Uneven times, a fix
+    # missing here and there; 20,000 straight ends in 30 m noise.
+    rng = np.random.default_rng(fixes)
+    n = 20000
+    tt = np.sort(rng.uniform(0, 10 * fixes, (n, fixes)), axis=1) - 10 * fixes
+    x = 5 * tt + rng.normal(0, 30, (n, fixes))
+    y = -3 * tt + rng.normal(0, 30, (n, fixes))
+    valid = np.ones((n, fixes), dtype=bool)
+    if fixes >= 10:
+        valid[:, 3] = rng.random(n) > 0.3
+    rate = (_accel(x, y, tt, valid) > 0).mean()
+    assert 0.006 < rate < 0.014
+    # Fixes at two instants: a quadratic of rounding noise only, never an acceleration.
+    two = np.where(np.arange(fixes) < fixes // 2, -7.1, 0.0) * np.ones((n, 1))
+    assert not (_accel(x, y, two, np.ones((n, fixes), dtype=bool)) > 0).any()
 
 
 def test_an_end_is_fitted_over_as_many_fixes_as_its_straight_run_allows():
     # 60 fixes at 10 s in 30 m noise: straight (40 fixes fitted at both ends); turning
-    # 0.5 deg/s over its last 150 s (the end keeps 10, the start takes 40); 8 fixes (all).
+    # 0.5 deg/s over its last 150 s (the end keeps 10, the start takes 40); 8 fixes (all 8).
     steady = noisy(straight("1", 0, 590, speed=7.0, course=60.0), 30.0, 3)
     t = np.arange(0.0, 591.0, 10.0)
     heading = np.radians(60.0) + np.radians(0.5) * np.clip(t - 440.0, 0.0, None)
@@ -94,7 +114,7 @@ def test_an_end_is_fitted_over_as_many_fixes_as_its_straight_run_allows():
     lon, lat = seg.points["lon"].to_numpy(), seg.points["lat"].to_numpy()
     t_s = (seg.points["time"].astype("int64").to_numpy() / 1e9).astype("float64")
     widths = [_straight_fits(lon, lat, t_s, seg.index, 10, 40, head)[1] for head in (True, False)]
-    assert widths[0].tolist() == [40, 40, 10] and widths[1].tolist() == [40, 10, 10]
+    assert widths[0].tolist() == [40, 40, 8] and widths[1].tolist() == [40, 10, 8]
     # The longer fit knows the steady ship's velocity about (40 / 10)^1.5 = 8x better.
     longer = segment_stats(df, end_points_max=40)
     assert longer.vel_sd1[0] < seg.vel_sd1[0] / 4
@@ -103,7 +123,8 @@ def test_an_end_is_fitted_over_as_many_fixes_as_its_straight_run_allows():
 
 def test_longer_end_fits_join_more_in_crowded_hard_scenes():
     # Measured (seeds 0-1 tuning, 5-6 held out, docs/evaluation.md): very dense P_CA
-    # 0.679 / 0.661 -> 0.773 / 0.754 at lower P_FA. Here seeds 11-12 of the very dense class.
+    # 0.681 / 0.664 -> 0.778 / 0.755 at lower P_FA. Here seeds 11-12 of the very dense class
+    # (0.692 / 0.193 -> 0.762 / 0.140 and 0.691 / 0.224 -> 0.774 / 0.159).
     got = []
     for seed in (11, 12):
         df = simulate.segments_scene(seed=seed, n_ships=250, area_km=20.0, sigma_m=60.0, hard=True)
