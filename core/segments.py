@@ -432,23 +432,15 @@ def segment_stats(
     t = track_seconds(pts)
     sizes = index.sizes
     k = max(int(end_points), 1)
-    offs = np.arange(k)
-    valid = offs[None, :] < np.minimum(sizes, k)[:, None]
-    head = np.minimum(index.starts[:, None] + offs, index.ends[:, None] - 1)
-    tail = np.maximum(index.ends[:, None] - 1 - offs, index.starts[:, None])
-    if end_points_max is not None and end_points_max > k:
-        (fit0, _, accel0), (fit1, _, accel1) = (
-            _straight_fits(lon, lat, t, index, k, end_points_max, h) for h in (True, False)
-        )
-    else:
-        ends = []
-        for rows, anchor in ((head, index.starts), (tail, index.ends - 1)):
-            x, y, tt = _local(lon, lat, t, rows, anchor)
-            ends.append(
-                (_line_fit(x, y, tt, valid, lon[anchor], lat[anchor]), _accel(x, y, tt, valid))
-            )
-        (fit0, accel0), (fit1, accel1) = ends
+    k_max = max(k, int(end_points_max or k))
+    (fit0, _, accel0), (fit1, _, accel1) = (
+        _straight_fits(lon, lat, t, index, k, k_max, h) for h in (True, False)
+    )
     (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fit0, fit1
+    everyone = np.arange(len(sizes))
+    head, valid, _ = _end_rows(index, everyone, k, head=True)
+    tail, _, _ = _end_rows(index, everyone, k, head=False)
+    offs = np.arange(k)
     motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
     few = valid & (offs[None, :] < 3)  # the reported motion of an end: its three last fixes
     sog0, sog1 = _reported_sog(pts, head, few), _reported_sog(pts, tail, few)
