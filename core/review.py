@@ -54,6 +54,7 @@ PROPOSAL_COLUMNS = (
     "dcourse_deg",
     "dspeed_kn",
     "spread",
+    "accel_ms2",
     "overlap_s",
     "runner_up",
     "runner_up_cost",
@@ -208,10 +209,15 @@ def association_proposals(
     # The spread term's part of the cost (the parts above do not show it): the cost less
     # the same pair priced without it, which needs no other candidate.
     spread = np.full(len(k), np.nan)
+    # The acceleration an end shows, where it widened the gate beyond accel_ms2.
+    accel = np.full(len(k), np.nan)
     used = assoc.params or params
     if assoc.method in _assoc.INTERRUPT_METHODS and assoc.normalize == "scaled" and len(k):
         flat = _assoc.pair_cost(p.take(k), used.replace(log_sigma=0.0), "scaled", seg)
         spread = cost[k] - flat
+        if used.uncertainty_gate:
+            shown = np.broadcast_to(_assoc._gap_accel(seg, p.i[k], p.j[k], used), len(k))
+            accel = np.where(shown > used.accel_ms2, shown, np.nan)
     df = pd.DataFrame(
         {
             "kind": "associate",
@@ -230,6 +236,7 @@ def association_proposals(
             "dcourse_deg": np.where(known, p.dcourse_deg[k], np.nan),
             "dspeed_kn": np.where(known, p.dspeed_kn[k], np.nan),
             "spread": spread,
+            "accel_ms2": accel,
             "overlap_s": np.nan,
             "runner_up": rival,
             "runner_up_cost": rival_cost,

@@ -10,6 +10,7 @@ import sys
 import numpy as np
 import pandas as pd
 import pytest
+from test_association_hard import turning
 
 from conftest import real_file
 from wakeline.app.cli import main
@@ -54,6 +55,17 @@ def test_the_spread_part_shows_where_a_join_paid_for_a_wide_prediction():
     paid = ap["spread"] > 0.005
     assert paid.any() and (~paid).any()
     assert (ap.loc[paid, "cost"] > ap.loc[paid, "spread"]).all()
+
+
+def test_the_acceleration_an_end_shows_is_named_where_it_widened_the_gate():
+    # A ship turning 0.3 deg/s through a 240 s gap is joined only because its ends show
+    # the turn (tests/test_association_hard.py); the proposal says so, and a straight
+    # ship's does not.
+    ap = R.association_proposals(associate_interrupted(turning(0.3, 240.0)))[0]
+    assert len(ap) == 1 and 0.02 < ap["accel_ms2"].iloc[0] < 0.04
+    straight = turning(0.0, 240.0)
+    ap = R.association_proposals(associate_interrupted(straight))[0]
+    assert len(ap) == 1 and ap["accel_ms2"].isna().all()
 
 
 def test_association_proposals_carry_evidence(scene):

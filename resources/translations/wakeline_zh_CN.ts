@@ -709,6 +709,10 @@
         <source>spread of the prediction +{0:.2f}</source>
         <translation>预测离散 +{0:.2f}</translation>
     </message>
+    <message>
+        <source>an end turns or changes speed ({0:.3f} m/s²): wider gate</source>
+        <translation>航迹端点在转向或变速（{0:.3f} m/s²）：门限放宽</translation>
+    </message>
 </context>
 <context>
     <name>ReviewCommand</name>
