@@ -85,7 +85,7 @@ def evidence_text(state, pid: str, p: pd.Series) -> str:
         ("dcourse_deg", tr("Δcourse {0:.1f}°")),
         ("dspeed_kn", tr("Δspeed {0:.1f} kn")),
         ("spread", tr("spread of the prediction +{0:.2f}")),
-        ("accel_ms2", tr("an end turns or changes speed ({0:.3f} m/s²): wider gate")),
+        ("end_accel_ms2", tr("an end turns or changes speed ({0:.2g} m/s²): wider gate")),
         ("overlap_s", tr("overlap {0:.0f} s")),
     ):
         v = p[name]

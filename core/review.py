@@ -54,7 +54,7 @@ PROPOSAL_COLUMNS = (
     "dcourse_deg",
     "dspeed_kn",
     "spread",
-    "accel_ms2",
+    "end_accel_ms2",
     "overlap_s",
     "runner_up",
     "runner_up_cost",
@@ -209,15 +209,18 @@ def association_proposals(
     # The spread term's part of the cost (the parts above do not show it): the cost less
     # the same pair priced without it, which needs no other candidate.
     spread = np.full(len(k), np.nan)
-    # The acceleration an end shows, where it widened the gate beyond accel_ms2.
+    # The acceleration an end shows, where it lowered the join's cost (widened its gate):
+    # not where the drift cap, the rest rule or a blind pair's price made it moot.
     accel = np.full(len(k), np.nan)
     used = assoc.params or params
     if assoc.method in _assoc.INTERRUPT_METHODS and assoc.normalize == "scaled" and len(k):
         flat = _assoc.pair_cost(p.take(k), used.replace(log_sigma=0.0), "scaled", seg)
         spread = cost[k] - flat
-        if used.uncertainty_gate:
+        if used.measured_accel and used.uncertainty_gate:
+            alone = used.replace(log_sigma=0.0, measured_accel=False)
+            lowered = _assoc.pair_cost(p.take(k), alone, "scaled", seg) - flat >= 0.005
             shown = np.broadcast_to(_assoc._gap_accel(seg, p.i[k], p.j[k], used), len(k))
-            accel = np.where(shown > used.accel_ms2, shown, np.nan)
+            accel = np.where(lowered, shown, np.nan)
     df = pd.DataFrame(
         {
             "kind": "associate",
@@ -236,7 +239,7 @@ def association_proposals(
             "dcourse_deg": np.where(known, p.dcourse_deg[k], np.nan),
             "dspeed_kn": np.where(known, p.dspeed_kn[k], np.nan),
             "spread": spread,
-            "accel_ms2": accel,
+            "end_accel_ms2": accel,
             "overlap_s": np.nan,
             "runner_up": rival,
             "runner_up_cost": rival_cost,
@@ -335,6 +338,11 @@ def read_proposals(df: pd.DataFrame) -> pd.DataFrame:
     for c in ("runner_up", "runner_up_side"):
         if c in out.columns:
             out[c] = out[c].fillna("").astype(str)
+    # Every other column is a number: a cell that is not one reads as unknown.
+    text = {"proposal", "kind", "sensor_a", "batch_a", "sensor_b", "batch_b", "method"}
+    for c in PROPOSAL_COLUMNS:
+        if c in out.columns and c not in text | {"runner_up", "runner_up_side"}:
+            out[c] = pd.to_numeric(out[c], errors="coerce")
     for c in PROPOSAL_COLUMNS:
         if c not in out.columns:
             out[c] = "" if c in ("kind", "method", "runner_up", "runner_up_side") else np.nan

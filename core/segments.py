@@ -203,15 +203,18 @@ def _accel(x: np.ndarray, y: np.ndarray, tt: np.ndarray, valid: np.ndarray) -> n
     """Per end: the acceleration (m/s²) its fixes show beyond their noise.
 
     A quadratic fit x(t), y(t) over the end's fixes in local coordinates about its anchor
-    (:func:`_local`; tracks × k, ``valid`` mask). Its quadratic terms, both axes together,
-    against their standard errors (the noise estimated from the same residuals, 2(n − 3)
-    degrees of freedom): 0 unless they pass :func:`_f_crit` at :data:`TEST_LEVEL`, else the
-    acceleration by which they pass it (continuous: 0 at the threshold). Turns count as
-    well as speed changes. Ends of fewer than 4 fixes, or of fixes at fewer than three
-    instants, show none.
+    (:func:`_local`; tracks × k, ``valid`` a prefix of each row, times in order, as
+    :func:`_end_rows` gives them). Its quadratic terms, both axes together, against their
+    standard errors — the noise estimated from the same residuals, at least
+    :data:`NOISE_FLOOR_M`, with 2(d − 3) degrees of freedom for d distinct instants (a
+    copied fix adds no evidence): 0 unless they pass :func:`_f_crit` at
+    :data:`TEST_LEVEL`, else the acceleration by which they pass it (continuous: 0 at the
+    threshold), at most :data:`ACCEL_MAX`. Turns count as well as speed changes. Ends of
+    fixes at fewer than 4 instants show none.
     """
     w = valid.astype("float64")
     sw = w.sum(axis=1)
+    instants = 1 + ((tt[:, 1:] != tt[:, :-1]) & valid[:, 1:]).sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         u = (tt - ((w * tt).sum(axis=1) / sw)[:, None]) * w
         u2 = u * u
@@ -228,12 +231,24 @@ def _accel(x: np.ndarray, y: np.ndarray, tt: np.ndarray, valid: np.ndarray) -> n
             r = (v - mv[:, None] - bv[:, None] * u - cv[:, None] * q) * w
             c2 += cv * cv
             r2 += (r * r).sum(axis=1)
-        se2 = r2 / (2 * (sw - 3)) / qq  # per axis, of the quadratic term
+        dof = 2 * (instants - 3)
+        noise2 = np.maximum(r2 / dof, NOISE_FLOOR_M**2)  # per axis
+        se2 = noise2 / qq  # of the quadratic term
         # Fixes at two instants leave a quadratic of rounding noise only.
         spread = qq > 1e-9 * (u2 * u2).sum(axis=1)
-        crit = _f_crit(2 * (sw - 3))
-        shows = (sw > 3) & spread & (c2 > crit * se2)
-        return np.where(shows, 2 * np.sqrt(np.maximum(c2 - crit * se2, 0.0)), 0.0)
+        crit = _f_crit(dof)
+        shows = (instants > 3) & spread & (c2 > crit * se2)
+        shown = 2 * np.sqrt(np.maximum(c2 - crit * se2, 0.0))
+        return np.where(shows, np.minimum(shown, ACCEL_MAX), 0.0)
+
+
+#: Position noise (m, per axis) an end is never assumed to be below: exact synthetic
+#: positions still carry rounding, which would pass for a curve.
+NOISE_FLOOR_M = 0.01
+
+#: The most acceleration (m/s²) an end is taken to show: no ship turns or speeds up
+#: harder (10 m/s turning 5 °/s is 0.87); fixes crowded into milliseconds can seem to.
+ACCEL_MAX = 1.0
 
 
 #: Level of the tests that tell an end's curve or bend from its noise.
@@ -328,9 +343,9 @@ def _straight_block(
     def span(sub: np.ndarray, w: int) -> tuple[np.ndarray, ...]:
         return x[sub, :w], y[sub, :w], tt[sub, :w], offs[:w] < np.minimum(size[sub], w)[:, None]
 
-    every = np.arange(len(part))
-    best = list(_line_fit(*span(every, k), lon[anchor], lat[anchor]))
-    acc = _accel(*span(every, k))
+    first = span(np.arange(len(part)), k)
+    best = list(_line_fit(*first, lon[anchor], lat[anchor]))
+    acc = _accel(*first)
     width = np.full(len(part), k)
     cand = np.flatnonzero(size > k)
     w = k

@@ -82,18 +82,22 @@ def test_an_end_shows_the_acceleration_its_fixes_carry_beyond_their_noise():
 @pytest.mark.parametrize("fixes", [4, 5, 7, 10, 25, 40])
 def test_the_acceleration_test_holds_its_level_for_any_number_of_fixes(fixes):
     # The noise is estimated from the same residuals: the statistic is 2·F(2, 2(n − 3)),
-    # not χ²₂ (9.21 gave 18 % false alarms at 4 fixes, 3 % at 10). Uneven times, a fix
-    # missing here and there; 20,000 straight ends in 30 m noise.
+    # not χ²₂ (9.21 gave 18 % false alarms at 4 fixes, 3 % at 10). Uneven times, ends
+    # shorter than the span; 20,000 straight ends in 30 m noise.
     rng = np.random.default_rng(fixes)
     n = 20000
     tt = np.sort(rng.uniform(0, 10 * fixes, (n, fixes)), axis=1) - 10 * fixes
     x = 5 * tt + rng.normal(0, 30, (n, fixes))
     y = -3 * tt + rng.normal(0, 30, (n, fixes))
     valid = np.ones((n, fixes), dtype=bool)
-    if fixes >= 10:
-        valid[:, 3] = rng.random(n) > 0.3
+    if fixes >= 10:  # ends of fewer fixes than the span (a prefix, as _end_rows gives)
+        valid = np.arange(fixes) < rng.integers(fixes // 2, fixes + 1, n)[:, None]
     rate = (_accel(x, y, tt, valid) > 0).mean()
     assert 0.006 < rate < 0.014
+    # A copied fix adds no evidence: 5 instants each twice are tested as 5.
+    dup = np.repeat(np.arange(0.0, 50.0, 10.0) - 40.0, 2) * np.ones((n, 1))
+    xy = [np.repeat(rng.normal(0, 3, (n, 5)), 2, axis=1) for _ in range(2)]
+    assert 0.006 < (_accel(*xy, dup, np.ones((n, 10), dtype=bool)) > 0).mean() < 0.014
     # Fixes at two instants: a quadratic of rounding noise only, never an acceleration.
     two = np.where(np.arange(fixes) < fixes // 2, -7.1, 0.0) * np.ones((n, 1))
     assert not (_accel(x, y, two, np.ones((n, fixes), dtype=bool)) > 0).any()

@@ -10,6 +10,7 @@ import sys
 import numpy as np
 import pandas as pd
 import pytest
+from test_associate import track
 from test_association_hard import turning
 
 from conftest import real_file
@@ -62,10 +63,21 @@ def test_the_acceleration_an_end_shows_is_named_where_it_widened_the_gate():
     # the turn (tests/test_association_hard.py); the proposal says so, and a straight
     # ship's does not.
     ap = R.association_proposals(associate_interrupted(turning(0.3, 240.0)))[0]
-    assert len(ap) == 1 and 0.02 < ap["accel_ms2"].iloc[0] < 0.04
+    assert len(ap) == 1 and 0.02 < ap["end_accel_ms2"].iloc[0] < 0.04
     straight = turning(0.0, 240.0)
     ap = R.association_proposals(associate_interrupted(straight))[0]
-    assert len(ap) == 1 and ap["accel_ms2"].isna().all()
+    assert len(ap) == 1 and ap["end_accel_ms2"].isna().all()
+    # A ship that bends as its piece ends, then holds its new course: the acceleration
+    # widens a 300 s gap; past the drift cap (2 x drift_ms / accel_ms2 = 2,000 s) it
+    # changes nothing, and the line says nothing.
+    for gap, named in ((300.0, True), (2500.0, False)):
+        t = np.arange(0.0, 1201.0 + gap)
+        heading = np.radians(90.0) + np.cumsum(np.where((t >= 520) & (t < 600), 0.005, 0.0))
+        x, y = np.cumsum(6 * np.sin(heading)), np.cumsum(6 * np.cos(heading))
+        a, b = (t <= 600) & (t % 10 == 0), (t >= 600 + gap) & (t % 10 == 0)
+        df = pd.concat([track("1", t[a], x[a], y[a]), track("2", t[b], x[b], y[b])])
+        ap = R.association_proposals(associate_interrupted(df))[0]
+        assert len(ap) == 1 and ap["end_accel_ms2"].notna().iloc[0] == named, gap
 
 
 def test_association_proposals_carry_evidence(scene):
@@ -569,3 +581,24 @@ def test_a_moored_ships_chain_shows_no_negative_margin():
     mine = props["batch_a"].where(props["runner_up_side"] == "a", props["batch_b"])
     has = rival.notna() & (rival != "")
     assert (truth[rival[has]].to_numpy() != truth[mine[has]].to_numpy()).all()
+
+
+def test_proposals_read_back_take_a_cell_that_is_no_number_as_unknown():
+    # A hand-edited or foreign proposals CSV: text in a number column reads as NaN (the
+    # evidence line then leaves it out) instead of failing when the evidence is shown.
+    df = pd.DataFrame(
+        {
+            "proposal": ["A0001"],
+            "sensor_a": ["R"],
+            "batch_a": ["1"],
+            "sensor_b": ["R"],
+            "batch_b": ["2"],
+            "cost": ["0.4"],
+            "gap_s": ["n/a"],
+            "spread": [""],
+        }
+    )
+    out = R.read_proposals(df)
+    assert out["cost"].iloc[0] == 0.4
+    assert np.isnan(out["gap_s"].iloc[0]) and np.isnan(out["spread"].iloc[0])
+    assert np.isnan(out["end_accel_ms2"].iloc[0])

@@ -710,8 +710,8 @@
         <translation>预测离散 +{0:.2f}</translation>
     </message>
     <message>
-        <source>an end turns or changes speed ({0:.3f} m/s²): wider gate</source>
-        <translation>航迹端点在转向或变速（{0:.3f} m/s²）：门限放宽</translation>
+        <source>an end turns or changes speed ({0:.2g} m/s²): wider gate</source>
+        <translation>航迹端点在转向或变速（{0:.2g} m/s²）：门限放宽</translation>
     </message>
 </context>
 <context>
