@@ -5,10 +5,10 @@ over their last fixes; each end fitted by ``segment_stats`` with the fits of ses
 velocity error exceeds 3 × its stated standard deviation (a calibrated error: 1.1 %, the
 Rayleigh tail) and the rms velocity error.
 
-    python bench/end_fit_calibration.py [DT] [SIGMA]      # default 10 s, 60 m
+    python bench/end_fit_calibration.py [--dt 10] [--sigma 60]
 """
 
-import sys
+import argparse
 
 import numpy as np
 import pandas as pd
@@ -18,8 +18,11 @@ from wakeline.core.segments import segment_stats
 
 
 def main() -> None:
-    dt = float(sys.argv[1]) if len(sys.argv) > 1 else 10.0
-    sigma = float(sys.argv[2]) if len(sys.argv) > 2 else 60.0
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--dt", type=float, default=10.0, help="sampling interval, s")
+    ap.add_argument("--sigma", type=float, default=60.0, help="position noise per axis, m")
+    args = ap.parse_args()
+    dt, sigma = args.dt, args.sigma
     rng = np.random.default_rng(7)
     ends, fixes, speed = 1500, 60, 6.0
     t = np.arange(fixes) * dt
