@@ -308,6 +308,7 @@ def _straight_fits(
     over before the gap).
     """
     n = len(index.sizes)
+    k_max = max(k, k_max)
     out = [np.empty(n) for _ in range(7)]
     used = np.empty(n, dtype="int64")
     accel = np.zeros(n)
@@ -447,7 +448,7 @@ def segment_stats(
     t = track_seconds(pts)
     sizes = index.sizes
     k = max(int(end_points), 1)
-    k_max = max(k, int(end_points_max or k))
+    k_max = int(end_points_max or k)
     (fit0, _, accel0), (fit1, _, accel1) = (
         _straight_fits(lon, lat, t, index, k, k_max, h) for h in (True, False)
     )
