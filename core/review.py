@@ -332,20 +332,17 @@ def read_proposals(df: pd.DataFrame) -> pd.DataFrame:
     if missing:
         raise InputError(f"proposals table lacks the column(s) {', '.join(missing)}")
     out = df.copy()
-    for c in ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "kind", "method"):
-        if c in out.columns:
-            out[c] = out[c].astype(str)
-    for c in ("runner_up", "runner_up_side"):
-        if c in out.columns:
-            out[c] = out[c].fillna("").astype(str)
-    # Every other column is a number: a cell that is not one reads as unknown.
-    text = {"proposal", "kind", "sensor_a", "batch_a", "sensor_b", "batch_b", "method"}
-    for c in PROPOSAL_COLUMNS:
-        if c in out.columns and c not in text | {"runner_up", "runner_up_side"}:
-            out[c] = pd.to_numeric(out[c], errors="coerce")
+    names = ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "kind", "method")
+    optional = ("runner_up", "runner_up_side")  # empty where there is none
     for c in PROPOSAL_COLUMNS:
         if c not in out.columns:
-            out[c] = "" if c in ("kind", "method", "runner_up", "runner_up_side") else np.nan
+            out[c] = "" if c in ("kind", "method", *optional) else np.nan
+        elif c in names:
+            out[c] = out[c].astype(str)
+        elif c in optional:
+            out[c] = out[c].fillna("").astype(str)
+        else:  # a number: a cell that is not one reads as unknown
+            out[c] = pd.to_numeric(out[c], errors="coerce")
     dup = out["proposal"].duplicated()
     if dup.any():
         raise InputError(f"proposal id {out['proposal'][dup].iloc[0]!r} appears twice")
