@@ -59,6 +59,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         ev = evaluate_real_association(
             args.real,
             cut_s=args.cut_s,
+            gaps=args.gaps,
             params=link_params(args.set),
             truth_sep=args.truth_sep,
             mapping=args.map,
@@ -329,6 +330,15 @@ def register(sub) -> None:
         default=120.0,
         help="associate --real: cut where a step exceeds this (s) and 4x the track's median "
         "step (default 120)",
+    )
+    p.add_argument(
+        "--gaps",
+        type=positive_float,
+        nargs=2,
+        metavar=("LO", "HI"),
+        help="associate --real: instead of cutting at the tracks' own gaps, remove one window "
+        "of fixes of random length in [LO, HI] s from each track, at least 120 s from either "
+        "end (known gaps; --seed draws them)",
     )
     p.add_argument(
         "--truth-sep",

@@ -184,7 +184,8 @@ class AssociationEvaluation:
             )
         lines += [
             "",
-            "P_CA≤T: P_CA over the true pairs whose gap is within the default T_gap (720 s)",
+            f"P_CA≤T: P_CA over the true pairs whose gap is within the default T_gap "
+            f"({LinkParams().max_gap_s:g} s)",
             "",
             "Seed 001 Table 3 (its real radar data, target level):",
         ]
@@ -259,6 +260,49 @@ def cut_at_gaps(
     perm = np.random.default_rng(seed).permutation(int(piece.max()) + 1 if len(piece) else 0)
     df["batch"] = perm[piece].astype(str)
     return df
+
+
+def cut_known_gaps(
+    points: pd.DataFrame,
+    lo_s: float,
+    hi_s: float,
+    seed: int = 0,
+    margin_s: float = 120.0,
+    truth_column: str = "truth",
+) -> pd.DataFrame:
+    """Real data made into an association test at gaps of known length: each track
+    loses one window of fixes, of random length in [``lo_s``, ``hi_s``] s, placed at
+    random at least ``margin_s`` from either end (a track too short for it stays whole);
+    the old batch becomes the truth (``truth_column``, unless the table has one) and the
+    pieces get shuffled numbers. The track's own gaps are left inside its pieces, so
+    every true pair's gap is at least ``lo_s`` and at most ``hi_s`` plus a sampling
+    interval."""
+    from wakeline.core.schema import time_seconds
+    from wakeline.core.tracks import sort_points, track_index
+
+    if not 0 <= lo_s <= hi_s:
+        raise ValueError(f"gaps: need 0 <= lo <= hi, got {lo_s:g} and {hi_s:g} s")
+    df = sort_points(points).copy()
+    index = track_index(df)
+    t = time_seconds(df["time"])
+    first = t[index.starts]
+    last = t[index.ends - 1]
+    rng = np.random.default_rng(seed)
+    g = rng.uniform(lo_s, hi_s, len(first))
+    room = (last - first) - (g + 2 * margin_s)
+    cut = room >= 0
+    c = first + margin_s + rng.uniform(0.0, 1.0, len(first)) * np.maximum(room, 0.0)
+    tr = index.track_of_row
+    c_row, g_row, cut_row = c[tr], g[tr], cut[tr]
+    after = cut_row & (t > c_row + g_row)
+    keep = ~cut_row | (t < c_row) | after
+    piece = 2 * tr + after
+    if truth_column not in df.columns:
+        df[truth_column] = df["batch"].astype(str)
+    df, piece = df[keep], piece[keep]
+    used, piece = np.unique(piece, return_inverse=True)
+    perm = rng.permutation(len(used))
+    return df.assign(batch=perm[piece].astype(str)).reset_index(drop=True)
 
 
 # --------------------------------------------------------------------------------------
@@ -491,11 +535,19 @@ class RealEvaluation:
     table: pd.DataFrame  # one row per (file, method)
     skipped: list  # (file, reason)
     cut_s: float
+    gaps: tuple[float, float] | None = None  # known gaps (lo, hi) s instead of cut_s
 
     def format(self) -> str:
+        if self.gaps is None:
+            how = f"cut where a step exceeds {self.cut_s:g} s and 4 x the track's median step"
+        else:
+            how = (
+                f"each cut once by removing {self.gaps[0]:g}-{self.gaps[1]:g} s of fixes "
+                "(known gaps)"
+            )
         lines = [
-            f"Association on real tracks cut where a step exceeds {self.cut_s:g} s and 4 x the "
-            "track's median step; pieces renumbered at random, the old ids are the truth "
+            f"Association on real tracks {how}; pieces renumbered at random, the old ids are "
+            "the truth "
             "(reach: true pairs whose gap is within max_gap_s; F1 is seed 001's target level)",
             "",
             f"{'file':<28} {'method':<28} {'pieces':>6} {'true':>5} {'reach':>5} {'P_CA':>6} "
@@ -606,6 +658,7 @@ def evaluate_real_association(
     path,
     cut_s: float = 120.0,
     params: LinkParams | None = None,
+    gaps: tuple[float, float] | None = None,
     methods: tuple[str, ...] = (
         "ours, optimal",
         "ours, pair by pair",
@@ -623,6 +676,8 @@ def evaluate_real_association(
     or the part before ``truth_sep`` when given, e.g. ``-`` for MTAD's ``MMSI-k``) are
     the truth; they are cut at their gaps (:func:`cut_at_gaps`, ``cut_s``) and the pieces
     renumbered at random, so nothing but positions, times and reported motion is left.
+    With ``gaps`` (lo, hi) in s, each track instead loses one window of fixes of a known
+    length (:func:`cut_known_gaps`) and its own gaps stay inside its pieces.
     """
     from wakeline.core.errors import InputError
     from wakeline.core.io import read_points
@@ -640,7 +695,10 @@ def evaluate_real_association(
         if "truth" not in df.columns:
             truth = df["batch"].astype(str)
             df["truth"] = truth.str.split(truth_sep).str[0] if truth_sep else truth
-        cut = cut_at_gaps(df, min_gap_s=cut_s, seed=seed)
+        if gaps is None:
+            cut = cut_at_gaps(df, min_gap_s=cut_s, seed=seed)
+        else:
+            cut = cut_known_gaps(df, *gaps, seed=seed)
         for label in methods:
             assoc = run_method(cut, label, params)
             rows.append(
@@ -658,4 +716,4 @@ def evaluate_real_association(
         raise InputError(
             "no file could be scored: " + "; ".join(f"{f}: {why}" for f, why in skipped)
         )
-    return RealEvaluation(pd.DataFrame(rows), skipped, cut_s)
+    return RealEvaluation(pd.DataFrame(rows), skipped, cut_s, gaps)

@@ -71,26 +71,14 @@ def read_oresund(folder: Path) -> pd.DataFrame:
 def oresund_cut(pts: pd.DataFrame, seed: int, lo: float, hi: float) -> pd.DataFrame:
     """Øresund tracks (:func:`read_oresund`) with one window of fixes removed from each —
     random length in [``lo``, ``hi``] s, at a random place at least 2 min from either end
-    (a track too short keeps whole) — the pieces renumbered at random and the old batch as
-    ``truth``; the encounters put a day apart on their shared relative clock, so they
-    never meet."""
+    (a track too short keeps whole; :func:`~wakeline.core.evaluate_association.cut_known_gaps`)
+    — the pieces renumbered at random and the old batch as ``truth``; the encounters put a
+    day apart on their shared relative clock, so they never meet."""
+    from wakeline.core.evaluate_association import cut_known_gaps
+
     enc = pts["batch"].str.split("/").str[0].astype(int)
     pts = pts.assign(time=pts["time"] + pd.to_timedelta(enc * 86400, unit="s"))
-    rng = np.random.default_rng(seed)
-    t = pts["time"].astype("int64").to_numpy() / 1e9
-    out = []
-    for b, idx in pts.groupby("batch").indices.items():
-        tt = t[idx]
-        g = rng.uniform(lo, hi)
-        if tt[-1] - tt[0] < g + 240:
-            out.append(pts.iloc[idx].assign(truth=b, batch=f"{b}#a"))
-            continue
-        c = rng.uniform(tt[0] + 120, tt[-1] - 120 - g)
-        out.append(pts.iloc[idx[tt < c]].assign(truth=b, batch=f"{b}#a"))
-        out.append(pts.iloc[idx[tt > c + g]].assign(truth=b, batch=f"{b}#b"))
-    df = pd.concat(out, ignore_index=True)
-    names = {k: str(i) for i, k in enumerate(rng.permutation(df["batch"].unique()))}
-    return df.assign(batch=df["batch"].map(names))
+    return cut_known_gaps(pts, lo, hi, seed=seed, margin_s=120.0)
 
 
 def read_autoferry(

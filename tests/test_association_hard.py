@@ -3,6 +3,8 @@
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from test_associate import straight, track
 
 from wakeline.app.cli import main
@@ -17,6 +19,7 @@ from wakeline.core.associate import (
 )
 from wakeline.core.errors import InputError
 from wakeline.core.evaluate_association import (
+    cut_known_gaps,
     error_breakdown,
     evaluate_real_association,
     score_association,
@@ -295,7 +298,7 @@ def test_hard_scene_has_what_the_easy_one_lacks():
     spans = ships.assign(t=t).groupby(["truth", "batch"])["t"].agg(["min", "max"]).reset_index()
     spans = spans.sort_values(["truth", "min"])
     gaps = spans.groupby("truth")["min"].shift(-1) - spans["max"]
-    assert (gaps > 720).any()
+    assert (gaps > LinkParams().max_gap_s).any()
     # Speed changes: the true path is not at constant speed for some ship.
     assert easy["truth"].nunique() == 15
 
@@ -359,6 +362,60 @@ def test_real_evaluation_on_a_folder_and_its_errors(tmp_path, capsys):
     empty.mkdir()
     assert main(["evaluate", "associate", "--real", str(empty)]) == 2
     assert "no .csv" in capsys.readouterr().err
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    spans=st.lists(st.integers(1, 40), min_size=1, max_size=6),
+    step=st.sampled_from([1.0, 10.0, 30.0, 1800.0]),
+    lo=st.floats(0.0, 3000.0),
+    width=st.floats(0.0, 3000.0),
+    seed=st.integers(0, 2**16),
+)
+def test_known_gap_cut_loses_one_window_per_track_and_nothing_else(spans, step, lo, width, seed):
+    # Each track either stays whole or loses the fixes of one window of [lo, lo + width]
+    # s, at least 120 s from its ends: two pieces of the same truth, the fixes between
+    # them exactly the window's, and no other row lost or moved.
+    hi = lo + width
+    rows = [
+        (f"s{k}", pd.Timestamp("2024-05-01", tz="UTC") + pd.Timedelta(seconds=step * m))
+        for k, n in enumerate(spans)
+        for m in range(n)
+    ]
+    df = pd.DataFrame(rows, columns=["batch", "time"]).assign(sensor="AIS", lon=10.0, lat=55.0)
+    out = cut_known_gaps(df, lo, hi, seed=seed)
+    assert set(out["truth"]) <= set(df["batch"])
+    for name, part in out.groupby("truth"):
+        whole = df[df["batch"] == name]
+        pieces = part.groupby("batch")["time"].agg(["min", "max", "size"]).sort_values("min")
+        assert len(pieces) in (1, 2)
+        assert part["time"].is_unique
+        if len(pieces) == 1:
+            assert len(part) == len(whole)
+            continue
+        first, second = pieces.iloc[0], pieces.iloc[1]
+        gap = (second["min"] - first["max"]).total_seconds()
+        assert gap >= lo
+        assert gap <= hi + 2 * step + 1e-6
+        lost = whole[(whole["time"] > first["max"]) & (whole["time"] < second["min"])]
+        assert len(part) + len(lost) == len(whole)
+        span = (whole["time"].max() - whole["time"].min()).total_seconds()
+        assert span >= lo + 240 - 1e-6
+    # Every track too short for its window stays whole, and the pieces are renumbered.
+    assert out["batch"].nunique() >= df["batch"].nunique() or out.empty
+
+
+def test_known_gap_cut_on_the_command_line(tmp_path, capsys):
+    df = simulate.segments_scene(seed=1, n_ships=6, area_km=20.0, pieces=(1, 1))
+    df.drop(columns=["truth", "true_lon", "true_lat"]).to_csv(tmp_path / "a.csv", index=False)
+    ev = evaluate_real_association(tmp_path, gaps=(60.0, 120.0), methods=("ours, optimal",))
+    assert ev.table["pieces"].iloc[0] > df["batch"].nunique()
+    assert ev.table["true_pairs"].iloc[0] == ev.table["pieces"].iloc[0] - df["batch"].nunique()
+    assert "known gaps" in ev.format()
+    assert main(["evaluate", "associate", "--real", str(tmp_path), "--gaps", "60", "120"]) == 0
+    assert "60-120 s of fixes" in capsys.readouterr().out
+    with pytest.raises(ValueError, match="lo <= hi"):
+        cut_known_gaps(df, 120.0, 60.0)
 
 
 def test_error_breakdown_names_each_wrong_join_and_miss():
