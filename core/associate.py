@@ -149,6 +149,13 @@ class LinkParams(Params):
         "second look: how much cheaper than every rival of either piece a long-gap join must be",
         0.0,
     )
+    long_rivals: bool = param(
+        True,
+        "",
+        "second look: a join of the assignment gives way where a loose piece beyond "
+        "max_gap_s would continue either of its pieces cheaper by long_margin (the "
+        "assignment cannot see it), and comes back if the second look does not take it",
+    )
     rest_kn: float = param(
         0.5,
         "kn",
@@ -1041,6 +1048,7 @@ def long_gap_pass(
     if not (free_end.any() and free_start.any()):
         return pairs, cost, chosen
     wide = replace(params, max_gap_s=params.long_gap_s)
+    released = np.zeros(0, dtype="int64")
     limit = min(params.gate, params.no_join)
     m = params.long_margin
     main = None
@@ -1078,6 +1086,47 @@ def long_gap_pass(
             & (second_j[cand.j] >= c + m)
         )
 
+    if params.long_rivals:
+        # A join the assignment made without seeing a loose piece just beyond max_gap_s
+        # (up to twice it) that continues one of its pieces cheaper by the margin gives
+        # way, so that the second look below weighs both; it comes back if the second
+        # look does not take it. Only a join dearer than the margin can be beaten (a
+        # rival costs at least 0).
+        near = replace(params, max_gap_s=min(params.long_gap_s, 2.0 * params.max_gap_s))
+        open_ = chosen[cost[chosen] >= m]
+        end_open = np.zeros(n, dtype=bool)
+        end_open[pairs.i[open_]] = True
+        start_open = np.zeros(n, dtype=bool)
+        start_open[pairs.j[open_]] = True
+        rivals = candidate_pairs(seg, near, ends=end_open, starts=free_start).concat(
+            candidate_pairs(seg, near, ends=free_end, starts=start_open)
+        )
+        rivals = rivals.take(rivals.gap_s > params.max_gap_s)
+        if len(rivals):
+            c_riv = price(rivals)
+            of_end = np.full(n, np.inf)
+            of_start = np.full(n, np.inf)
+            joined_i = ~free_end[rivals.i]
+            np.minimum.at(of_end, rivals.i[joined_i], c_riv[joined_i])
+            np.minimum.at(of_start, rivals.j[~joined_i], c_riv[~joined_i])
+            beaten = np.minimum(of_end[pairs.i[chosen]], of_start[pairs.j[chosen]]) + m
+            released = chosen[beaten <= cost[chosen]]
+            if len(released):
+                chosen = np.setdiff1d(chosen, released)
+                free_end[pairs.i[released]] = True
+                free_start[pairs.j[released]] = True
+
+    def restored(pairs: Pairs, cost: np.ndarray, chosen: np.ndarray):
+        """The released joins whose pieces the second look left loose, chosen again."""
+        if not len(released):
+            return pairs, cost, chosen
+        taken_i = np.zeros(n, dtype=bool)
+        taken_i[pairs.i[chosen]] = True
+        taken_j = np.zeros(n, dtype=bool)
+        taken_j[pairs.j[chosen]] = True
+        back = released[~taken_i[pairs.i[released]] & ~taken_j[pairs.j[released]]]
+        return pairs, cost, np.sort(np.concatenate([chosen, back]))
+
     # First among the loose pieces only (few pairs: a necessary condition), then against
     # every rival of the pieces that pass. A pair that skips a loose piece of its own chain
     # (i → p → j all cheap) is no rival: a ship moored for hours whose AIS comes and goes
@@ -1089,7 +1138,7 @@ def long_gap_pass(
     c = np.where(skip, np.inf, c_loose)
     ok = mutual(loose, c, c, c)
     if not ok.any():
-        return pairs, cost, chosen
+        return restored(pairs, cost, chosen)
     ends = np.zeros(n, dtype=bool)
     ends[loose.i[ok]] = True
     starts = np.zeros(n, dtype=bool)
@@ -1112,12 +1161,12 @@ def long_gap_pass(
     ok = mutual(cand, rank, np.where(inner_j, np.inf, rank), np.where(inner_i, np.inf, rank))
     ok &= ends[cand.i] & starts[cand.j]
     if not ok.any():
-        return pairs, cost, chosen
+        return restored(pairs, cost, chosen)
     # Every long candidate of the pieces looked at is kept (their rivals beyond T_gap:
     # the review shows the runner-up of a long join); the accepted ones are chosen.
     long = cand.gap_s > params.max_gap_s
     added = len(pairs) + np.flatnonzero(ok[long])
-    return (
+    return restored(
         pairs.concat(cand.take(long)),
         np.concatenate([cost, c[long]]),
         np.concatenate([chosen, added]),

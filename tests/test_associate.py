@@ -1,5 +1,7 @@
 """Single-sensor association (SPEC §5): joining, refusing, clustering, stitching."""
 
+from dataclasses import replace
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -417,13 +419,16 @@ def test_a_reported_stop_without_a_course_is_at_rest(seed):
     assert not segment_stats(moving).motion0[segment_stats(moving).n == 1].any()
 
 
+@pytest.mark.parametrize("max_gap", [720.0, 1200.0])
 @pytest.mark.parametrize("swing", [60.0, 120.0])
-def test_a_ship_swinging_at_anchor_keeps_its_own_next_piece(swing):
+def test_a_ship_swinging_at_anchor_keeps_its_own_next_piece(swing, max_gap):
     # At anchor a ship swings round its chain: its next piece lies 60-120 m off, 30 min
     # later, while another ship leaves a berth 250 m away heading out at 6 kn. A rest
     # model that charged every metre off the spot priced the true pair above the mover
     # (found by a reviewer: 0.83 against 0.31); within sigmas * sigma of the spot the
-    # pair is priced as any other.
+    # pair is priced as any other. With max_gap_s 1200 the mover is within T_gap and the
+    # ship's own piece is not: the assignment took the mover (0.30) until the second look
+    # could weigh the two (long_rivals).
     rng = np.random.default_rng(0)
 
     def piece(name, t0, xy, truth, n=4, kn=0.1, course=None, step=None):
@@ -444,9 +449,18 @@ def test_a_ship_swinging_at_anchor_keeps_its_own_next_piece(swing):
         ],
         ignore_index=True,
     )
-    assert associate_interrupted(df).pair_table()[["batch_a", "batch_b"]].values.tolist() == [
-        ["a1", "a2"]
-    ]
+    params = LinkParams(max_gap_s=max_gap)
+    joins = associate_interrupted(df, params).pair_table()[["batch_a", "batch_b"]]
+    assert joins.values.tolist() == [["a1", "a2"]]
+    if max_gap > 900:
+        old = associate_interrupted(df, replace(params, long_rivals=False)).pair_table()
+        assert old[["batch_a", "batch_b"]].values.tolist() == [["a1", "b1"]]
+        # A second moored ship beside a2's spot whose AIS ends 900 s before a2 starts: a2
+        # now has two cheap predecessors beyond T_gap, the second look cannot tell them
+        # apart, and the mover's join comes back rather than leaving a1 loose.
+        rival = piece("c1", 0.0, (swing + 20.0, -10.0), "C", n=18)
+        both = associate_interrupted(pd.concat([df, rival], ignore_index=True), params)
+        assert ["a1", "b1"] in both.pair_table()[["batch_a", "batch_b"]].values.tolist()
 
 
 @pytest.mark.parametrize("seed", range(3))
