@@ -149,6 +149,15 @@ class LinkParams(Params):
         "second look: how much cheaper than every rival of either piece a long-gap join must be",
         0.0,
     )
+    min_gap_steps: float = param(
+        0.5,
+        "",
+        "a pair's gap must be at least this many of its pieces' time steps (the smaller "
+        "of the two ends' median steps): a ship seen every 30 min does not reappear after "
+        "3 min (0 = off)",
+        0.0,
+        10.0,
+    )
     long_rivals: bool = param(
         True,
         "",
@@ -378,6 +387,9 @@ def candidate_pairs(
         keep &= ends[i]
     if found is None and starts is not None:
         keep &= starts[j]
+    if params.min_gap_steps > 0 and seg.step1 is not None and seg.step0 is not None:
+        with np.errstate(invalid="ignore"):
+            keep &= ~(gap < params.min_gap_steps * np.fmin(seg.step1[i], seg.step0[j]))
     i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     v = np.maximum(params.v_max_kn, np.maximum(fast_end[i], fast_start[j])) * geo.KN_MS

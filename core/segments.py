@@ -72,6 +72,10 @@ class Segments:
     #: Acceleration (m/s²) the start / end shows beyond its noise (0 where none shows).
     accel0: np.ndarray | None = None
     accel1: np.ndarray | None = None
+    #: Median time step (s) between the first / last ``end_points`` fixes of the piece
+    #: (its sensor's median where the piece has fewer than three): when its ship is seen.
+    step0: np.ndarray | None = None
+    step1: np.ndarray | None = None
     source: pd.DataFrame | None = None
     source_row: np.ndarray | None = None
 
@@ -282,6 +286,22 @@ def _end_rows(
     return rows, valid, anchor
 
 
+def _end_step(
+    t: np.ndarray, rows: np.ndarray, valid: np.ndarray, sensor_code: np.ndarray
+) -> np.ndarray:
+    """Per end: the median time step (s) between its fixes (``rows``/``valid`` as
+    :func:`_end_rows` gives them), where it has three or more; its sensor's median of
+    those elsewhere (NaN when no end of the sensor has three)."""
+    tt = np.where(valid, t[rows], np.nan)
+    steps = np.abs(np.diff(tt, axis=1))
+    enough = np.isfinite(steps).sum(axis=1) >= 2
+    step = np.full(len(rows), np.nan)
+    if enough.any():
+        step[enough] = np.nanmedian(steps[enough], axis=1)
+    per_sensor = pd.Series(step).groupby(sensor_code).median()
+    return np.where(enough, step, per_sensor.reindex(sensor_code).to_numpy())
+
+
 #: Ends whose longer fits are tested or made at once, for fits of 40 fixes (bounds the
 #: temporaries: a block of ends × fit width floats each; wider fits take fewer ends).
 FIT_BLOCK = 16384
@@ -484,6 +504,7 @@ def segment_stats(
                 vf[stop] = np.minimum(vf[stop], 0.0)
 
     sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
+    step0, step1 = (_end_step(t, rows, valid, sensor_code) for rows in (head, tail))
     # Noise per axis: each end's own residuals, or its sensor's median where it has too
     # few points (the whole table's median if no track of the sensor shows any).
     res = np.where(np.isfinite(res0), res0, res1)
@@ -523,6 +544,8 @@ def segment_stats(
         sog1=_median_sog(sog1),
         accel0=accel0,
         accel1=accel1,
+        step0=step0,
+        step1=step1,
         source=source,
         source_row=source_row,
     )

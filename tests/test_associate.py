@@ -551,3 +551,27 @@ def test_wide_unsorted_tables_sort_only_the_columns_read_and_give_the_same_assoc
     pa, pb = a.points(), b.points()
     assert "_source_row" not in pa.columns
     pd.testing.assert_frame_equal(pa, pb)
+
+
+def test_a_ship_seen_every_half_hour_does_not_reappear_three_minutes_later():
+    # Sparse AIS (ATD 2025: posits every ~30 min): one ship's track ends, another ship's
+    # starts 200 s later 300 m on, both reported every 1,800 s. Nothing says the second
+    # is the first seen again sooner than it ever was: no candidate (min_gap_steps 0.5).
+    rng = np.random.default_rng(3)
+    t = 1800.0 * np.arange(6) + rng.uniform(-60, 60, 6)
+    a = track("a", t, 2.0 * t, rng.normal(0, 30, 6))
+    b_t = t[-1] + 200.0 + 1800.0 * np.arange(6)
+    b = track("b", b_t, 2.0 * t[-1] + 300.0 + 2.0 * (b_t - b_t[0]), rng.normal(0, 30, 6))
+    df = pd.concat([a, b], ignore_index=True)
+    assert len(associate_interrupted(df).chosen) == 0
+    assert len(associate_interrupted(df, LinkParams(min_gap_steps=0.0)).chosen) == 1
+    # A radar batch that changes after one missed scan (20 s at a 10 s period), or after
+    # none at all (one period), is still continued.
+    for gap in (10.0, 20.0):
+        r = pd.concat(
+            [straight("r1", 0, 300), straight("r2", 300 + gap, 600, truth="r1")],
+            ignore_index=True,
+        )
+        assert associate_interrupted(r).pair_table()[["batch_a", "batch_b"]].values.tolist() == [
+            ["r1", "r2"]
+        ]
