@@ -915,22 +915,52 @@ def _sums_of_short(u: np.ndarray, v: np.ndarray, p: int):
 
 
 def _exact_at(u: np.ndarray, v: np.ndarray, p: int, j: np.ndarray) -> np.ndarray:
-    """δ of positions ``j`` exactly as :func:`_headings_of` gives it: the windows needed
-    (ending at j and at j + p − 1) gathered run by run with the p − 1 points before each
-    run, and convolved there only."""
-    m = len(u)
-    need = np.zeros(m, dtype=bool)
+    """δ of positions ``j`` exactly as :func:`_headings_of` gives it, for p >
+    :data:`SMALL_KERNEL`: the headings of the windows needed (ending at j and at j + p − 1)
+    only, from :func:`_gathered_moments`."""
+    need = np.zeros(len(u), dtype=bool)
     need[j] = True
     need[j + (p - 1)] = True
-    lo, hi = _runs(need)  # runs of window ends
-    raw_lo = lo - (p - 1)
-    raw_len = hi - raw_lo
-    src = concat_ranges(raw_lo, raw_len)
-    h_cat = _headings_of(u[src], v[src], p)
-    seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
-    h = np.full(m, np.nan)
-    h[concat_ranges(lo, hi - lo)] = h_cat[concat_ranges(seg + (p - 1), hi - lo)]
+    ends = np.flatnonzero(need)
+    h = np.full(len(u), np.nan)
+    h[ends] = _axis_headings(*_gathered_moments(u, v, p, ends))
     return _angle_diff(h[j], h[j + (p - 1)])
+
+
+def _gathered_moments(u: np.ndarray, v: np.ndarray, p: int, ends: np.ndarray):
+    """:func:`_block_moments` of the windows ending at ``ends`` (p > :data:`SMALL_KERNEL`),
+    the same bits: for such p, ``np.convolve`` sums each window by numpy's dot of it with
+    the kernel (BLAS ``ddot``), and ``np.matmul`` of a 1 × p row by a p × 1 column makes
+    that same call (numpy's matmul, row @ column), here on each window gathered as a row."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    first = ends - (p - 1)
+    wu = sliding_window_view(u, p)[first]  # copies: one row of p per window
+    wv = sliding_window_view(v, p)[first]
+    ones = np.ones((p, 1))
+
+    def sums(w: np.ndarray) -> np.ndarray:
+        return np.matmul(w[:, None, :], ones)[:, 0, 0]
+
+    mu = sums(wu)
+    mu /= p
+    mv = sums(wv)
+    mv /= p
+    tmp = np.multiply(wu, wu)
+    cxx = sums(tmp)
+    cxx /= p
+    cxx -= mu * mu
+    np.multiply(wv, wv, out=tmp)
+    cyy = sums(tmp)
+    cyy /= p
+    cyy -= mv * mv
+    np.multiply(wu, wv, out=tmp)
+    cxy = sums(tmp)
+    cxy /= p
+    cxy -= mu * mv
+    cxy *= 2.0
+    cxx -= cyy
+    return cxx, cxy, u[ends] - u[first], v[ends] - v[first]
 
 
 def _oriented_axis(
