@@ -434,13 +434,18 @@ def _near(
     mask: np.ndarray, index: TrackIndex, reach: np.ndarray, rows: np.ndarray | None = None
 ) -> np.ndarray:
     """Per row (or per row of ``rows``): is a ``mask`` row of the same track within
-    ±``reach`` rows (``reach`` per row, aligned with ``rows`` when given)?"""
-    cs = np.concatenate([[0], np.cumsum(mask)])
+    ±``reach`` rows (``reach`` per row, aligned with ``rows`` when given)? For a few
+    ``rows``, the marked rows are counted by two searches in their list, not by a
+    cumulative sum over every row."""
     row = np.arange(len(mask)) if rows is None else rows
     tr = index.track_of_row[row]
     lo = np.maximum(row - reach, index.starts[tr])
     hi = np.minimum(row + reach + 1, index.ends[tr])
-    return cs[hi] - cs[lo] > 0
+    if rows is None:
+        cs = np.concatenate([[0], np.cumsum(mask)])
+        return cs[hi] - cs[lo] > 0
+    marked = np.flatnonzero(mask)
+    return np.searchsorted(marked, hi) > np.searchsorted(marked, lo)
 
 
 def position_noise_m(
