@@ -379,12 +379,9 @@ def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
     one = lo == hi
     out[one] = lo[one]
     other = ~one & ~np.isnan(lo)
-    if other.any():
-        pick = other[index.track_of_row]
-        pick[index.starts] = False  # the NaN before each track's first fix
-        rows = np.flatnonzero(pick)
-        has, med = _group_median(dt[rows], index.track_of_row[rows], index.n_tracks)
-        out[has] = med
+    if other.any():  # each track's steps after its first fix: one run of dt per track
+        count = np.where(other, index.sizes - 1, 0)
+        out[other] = _run_medians(dt, index.starts + 1, count)[other]
     return out
 
 
@@ -462,13 +459,11 @@ def position_noise_m(
         k = int(lag)
         if n <= 2 * k:
             return out
-        ok = tr[: n - 2 * k] == tr[2 * k :]  # the point before and after in its track
-        if not ok.any():
-            return out
         ta, ti, tb = t[: n - 2 * k], t[k : n - k], t[2 * k :]
         xa, xi, xb = x[: n - 2 * k], x[k : n - k], x[2 * k :]
         ya, yi, yb = y[: n - 2 * k], y[k : n - k], y[2 * k :]
-        track_i = tr[k : n - k]
+        # a track's points with a neighbour k before and after: one run of r per track
+        first, count = index.starts, np.maximum(index.sizes - 2 * k, 0)
     else:
         lag_row = np.asarray(lag, dtype="int64")[tr] if n else tr
         row = np.arange(n)
@@ -478,57 +473,94 @@ def position_noise_m(
         if not len(i):
             return out
         ta, ti, tb, xa, xi, xb = t[a], t[i], t[b], x[a], x[i], x[b]
-        ya, yi, yb, track_i = y[a], y[i], y[b], tr[i]
-        ok = slice(None)
+        ya, yi, yb = y[a], y[i], y[b]
+        count = np.bincount(tr[i], minlength=index.n_tracks)
+        first = np.cumsum(count) - count
     m = len(ti)
     r = np.empty(m)
-    for first in range(0, m, BLOCK):  # blocks: no row-sized temporaries
-        s = slice(first, min(m, first + BLOCK))
-        span = tb[s] - ta[s]
-        w = np.where(span > 0, (ti[s] - ta[s]) / np.where(span > 0, span, 1.0), 0.5)
-        ex = xi[s] - ((1 - w) * xa[s] + w * xb[s])
-        ey = yi[s] - ((1 - w) * ya[s] + w * yb[s])
+    scale = np.sqrt(2 * np.log(2))
+    for lo in range(0, m, BLOCK):  # blocks: no row-sized temporaries
+        s = slice(lo, min(m, lo + BLOCK))
+        # the arithmetic of the plain form, in place:
+        # w = where(span > 0, (ti - ta) / where(span > 0, span, 1), 0.5)
+        # r = hypot(xi - ((1 - w) xa + w xb), yi - (…)) / sqrt(1 + w² + (1 - w)²) / scale
+        span = np.subtract(tb[s], ta[s])
+        moved = span > 0
+        w = np.subtract(ti[s], ta[s])
+        w /= np.where(moved, span, 1.0)
+        np.copyto(w, 0.5, where=~moved)
+        rest = np.subtract(1, w, out=span)  # 1 - w
+        ex = np.multiply(rest, xa[s])
+        ex += w * xb[s]
+        np.subtract(xi[s], ex, out=ex)
+        ey = np.multiply(rest, ya[s])
+        ey += w * yb[s]
+        np.subtract(yi[s], ey, out=ey)
         # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
         # noise has median sigma * sqrt(2 ln 2)
-        r[s] = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
-    r, track_i = r[ok], track_i[ok]
-    has, med = _group_median(r, track_i, index.n_tracks)
-    out[has] = med
+        h = np.hypot(ex, ey, out=r[s])
+        np.multiply(w, w, out=w)
+        w += 1.0
+        rest *= rest
+        w += rest
+        h /= np.sqrt(w, out=w)
+        h /= scale
+    has = count > 0
+    out[has] = _run_medians(r, first, count)[has]
     return out
 
 
 def _group_median(values: np.ndarray, group: np.ndarray, n_groups: int):
     """Groups present and their medians, as ``pd.Series(values).groupby(group).median()``
-    gives them, bit for bit (NaN skipped; of an even count the mean of the middle two):
-    ``group`` sorted. Groups of a size that many groups share (tracks cut to one length)
-    take one ``np.partition`` of a matrix per size; the rest the groupby."""
+    gives them, bit for bit (:func:`_run_medians`): ``group`` sorted."""
     count = np.bincount(group, minlength=n_groups)
     has = count > 0
-    out = np.full(n_groups, np.nan)
-    if not len(values):
-        return has, out[has]
-    if np.isnan(values).any():  # the groupby skips NaN: leave it to the groupby
-        med = pd.Series(values).groupby(group).median()
-        out[med.index.to_numpy()] = med.to_numpy()
-        return has, out[has]
-    first = np.concatenate([[0], np.cumsum(count)[:-1]])
-    sizes, shared = np.unique(count[has], return_counts=True)
-    rest = np.ones(n_groups, dtype=bool)
-    for m in sizes[(shared >= 8) & (sizes > 0)]:  # a loop over distinct sizes, few
+    return has, _run_medians(values, np.cumsum(count) - count, count)[has]
+
+
+def _run_medians(values: np.ndarray, first: np.ndarray, count: np.ndarray) -> np.ndarray:
+    """Median of each run ``values[first[g] : first[g] + count[g]]`` (NaN for an empty one)
+    as pandas' groupby median gives it, bit for bit (NaN skipped; of an even count the mean
+    of the middle two). Runs of a length that many runs share (tracks cut to one length)
+    take ``np.partition`` of a runs × length block, a few rows at a time; the others, and
+    runs holding a NaN, the groupby."""
+    out = np.full(len(count), np.nan)
+    rest = count > 0
+    if not rest.any():
+        return out
+    sizes, shared = np.unique(count[rest], return_counts=True)
+    nan = bool(np.isnan(values).any())
+    # of an even count, the lower middle value is the largest of the lower half once the
+    # upper middle one is in place (one partition point, not two); a tie of -0.0 and 0.0
+    # could pick another zero there, so that takes the two points
+    one_point = not np.signbit(values).any()
+    for m in sizes[shared >= 8]:  # a loop over distinct lengths, few
         g = np.flatnonzero(count == m)
-        block = values[(first[g][:, None] + np.arange(m)).ravel()].reshape(len(g), m)
-        if m % 2:
-            out[g] = np.partition(block, m // 2, axis=1)[:, m // 2]
-        else:
-            part = np.partition(block, [m // 2 - 1, m // 2], axis=1)
-            out[g] = (part[:, m // 2] + part[:, m // 2 - 1]) / 2
-        rest[g] = False
-    rest &= has
+        med = np.empty(len(g))
+        span = np.arange(m)
+        step = max(1, BLOCK // int(m))  # runs per chunk: ~BLOCK values
+        for a in range(0, len(g), step):  # a loop over chunks of runs
+            block = values[first[g[a : a + step], None] + span]
+            if m % 2:
+                block.partition(m // 2, axis=1)
+                med[a : a + step] = block[:, m // 2]
+            elif one_point:
+                block.partition(m // 2, axis=1)
+                med[a : a + step] = (block[:, m // 2] + block[:, : m // 2].max(axis=1)) / 2
+            else:
+                block.partition([m // 2 - 1, m // 2], axis=1)
+                med[a : a + step] = (block[:, m // 2] + block[:, m // 2 - 1]) / 2
+            if nan:  # such a run goes to the groupby
+                med[a : a + step][np.isnan(block).any(axis=1)] = np.nan
+        done = ~np.isnan(med)
+        out[g[done]] = med[done]
+        rest[g[done]] = False
     if rest.any():
-        rows = np.flatnonzero(rest[group])
-        med = pd.Series(values[rows]).groupby(group[rows]).median()
+        g = np.flatnonzero(rest)
+        rows = concat_ranges(first[g], count[g])
+        med = pd.Series(values[rows]).groupby(np.repeat(g, count[g])).median()
         out[med.index.to_numpy()] = med.to_numpy()
-    return has, out[has]
+    return out
 
 
 def _heading_noise_deg(
