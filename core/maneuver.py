@@ -775,17 +775,17 @@ def _factor_every_row(
     out = np.full(n, np.nan)
     tr = index.track_of_row
     x0, y0 = x[index.starts], y[index.starts]  # each track's anchor
+    # δ is defined from a track's p-th row to its p-th last
+    lo, hi = index.starts + (p - 1), index.ends - (p - 1)
+    keep = chosen & (hi > lo)
+    valid = _span_mask(lo[keep], hi[keep], n)
     for first in range(p - 1, n - p + 1, BLOCK):  # a loop over blocks, not over windows
         last = min(n - p + 1, first + BLOCK)  # δ rows; windows end at first … last + p - 2
         raw = slice(first - p + 1, last + p - 1)
         t_raw = tr[raw]
         h = _block_headings(x[raw] - x0[t_raw], y[raw] - y0[t_raw], p)
-        k = last - first
-        d = _angle_diff(h[:k], h[p - 1 :])
-        t_row = t_raw[p - 1 : p - 1 + k]
-        pos = np.arange(first, last) - index.starts[t_row]
-        valid = (pos >= p - 1) & (pos <= index.sizes[t_row] - p) & chosen[t_row]
-        out[first:last] = np.where(valid, d, np.nan)
+        d = _angle_diff(h[: last - first], h[p - 1 :])
+        out[first:last] = np.where(valid[first:last], d, np.nan)
     return out
 
 
