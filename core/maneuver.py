@@ -656,7 +656,7 @@ def _search_sorted(
         back = np.where(step > 0, np.floor((window_s - 1e-3) / step), 0.0)
     back = np.clip(back, 0, n).astype("int64")
     row = np.arange(first, first + len(q))
-    tr = index.track_of_row[row]
+    tr = index.track_of_row[first : first + len(q)]
     a = np.maximum(row - back[tr], index.starts[tr])
     below = ts[np.maximum(a - 1, 0)]
     good = ((a == 0) | (below < q)) & (ts[a] >= q)
