@@ -1048,10 +1048,16 @@ def _peaks_above(
     q = np.flatnonzero(above) if rows is None else rows[above]
     w = delta[above]
     tq = track[q]
-    rq = radius[tq]
+    reach = int(radius.max()) if len(radius) else 0
+    # rows of later tracks moved on by more than any radius: "within the radius in the same
+    # track" is one difference of slots
+    slot = tq * (reach + 1)
+    slot += q
+    per_track = not (radius == reach).all()
+    rq = radius[tq] if per_track else reach
     peak = np.ones(len(q), dtype=bool)
     for j in range(1, len(q)):  # a loop over offsets in the list of rows above t
-        close = (q[j:] - q[:-j] <= rq[j:]) & (tq[j:] == tq[:-j])
+        close = slot[j:] - slot[:-j] <= (rq[j:] if per_track else rq)
         if not close.any():  # rows are sorted: no pair further apart can be closer
             break
         peak[:-j] &= ~close | (w[:-j] >= w[j:])
