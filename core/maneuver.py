@@ -813,13 +813,14 @@ def _factor_on_runs(
     n = len(x)
     if len(lo) == index.n_tracks and int(raw_len.sum()) == n and (raw_lo == index.starts).all():
         rows = None  # every row: no gather
-        u = x - x[index.starts][index.track_of_row]
-        v = y - y[index.starts][index.track_of_row]
+        u = x - np.repeat(x[index.starts], index.sizes)
+        v = y - np.repeat(y[index.starts], index.sizes)
     else:
         rows = concat_ranges(raw_lo, raw_len)
-        anchor = np.repeat(index.starts[tr], raw_len)
-        u = x[rows] - x[anchor]
-        v = y[rows] - y[anchor]
+        u = x[rows]
+        u -= np.repeat(x[index.starts[tr]], raw_len)  # each run's track anchor
+        v = y[rows]
+        v -= np.repeat(y[index.starts[tr]], raw_len)
     # δ of row o: the window ending at o against the window ending at o + p - 1
     seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
     pos = concat_ranges(seg + (p - 1), hi - lo)
