@@ -25,12 +25,12 @@ def remainder360(h: np.ndarray) -> np.ndarray:
     other values take ``np.remainder``."""
     with np.errstate(invalid="ignore"):
         far = (h < -360.0) | (h >= 720.0)  # infinities too; NaN stays NaN below
-    if far.any():
-        return np.remainder(h, 360.0, out=h)
-    h += 0.0  # -0.0 -> +0.0, as the remainder gives
-    shift = (h < 0.0) * 360.0  # (-1e-17 + 360 rounds to 360, and stays there)
-    shift -= (h >= 360.0) * 360.0
-    h += shift  # adding +0.0 changes nothing
+        if far.any():
+            return np.remainder(h, 360.0, out=h)
+        # +360, -360 or +0.0 (which also turns -0.0 into +0.0, as the remainder gives);
+        # both tests on h as given (-1e-17 + 360 rounds to 360, and stays there)
+        shift = (h < 0.0).view(np.int8) - (h >= 360.0).view(np.int8)
+    h += shift * 360.0
     return h
 
 

@@ -379,12 +379,9 @@ def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
     one = lo == hi
     out[one] = lo[one]
     other = ~one & ~np.isnan(lo)
-    if other.any():
-        pick = other[index.track_of_row]
-        pick[index.starts] = False  # the NaN before each track's first fix
-        rows = np.flatnonzero(pick)
-        has, med = _group_median(dt[rows], index.track_of_row[rows], index.n_tracks)
-        out[has] = med
+    if other.any():  # each track's steps after its first fix: one run of dt per track
+        count = np.where(other, index.sizes - 1, 0)
+        out[other] = _run_medians(dt, index.starts + 1, count)[other]
     return out
 
 
@@ -434,13 +431,18 @@ def _near(
     mask: np.ndarray, index: TrackIndex, reach: np.ndarray, rows: np.ndarray | None = None
 ) -> np.ndarray:
     """Per row (or per row of ``rows``): is a ``mask`` row of the same track within
-    ±``reach`` rows (``reach`` per row, aligned with ``rows`` when given)?"""
-    cs = np.concatenate([[0], np.cumsum(mask)])
+    ±``reach`` rows (``reach`` per row, aligned with ``rows`` when given)? For a few
+    ``rows``, the marked rows are counted by two searches in their list, not by a
+    cumulative sum over every row."""
     row = np.arange(len(mask)) if rows is None else rows
     tr = index.track_of_row[row]
     lo = np.maximum(row - reach, index.starts[tr])
     hi = np.minimum(row + reach + 1, index.ends[tr])
-    return cs[hi] - cs[lo] > 0
+    if rows is None:
+        cs = np.concatenate([[0], np.cumsum(mask)])
+        return cs[hi] - cs[lo] > 0
+    marked = np.flatnonzero(mask)
+    return np.searchsorted(marked, hi) > np.searchsorted(marked, lo)
 
 
 def position_noise_m(
@@ -457,13 +459,11 @@ def position_noise_m(
         k = int(lag)
         if n <= 2 * k:
             return out
-        ok = tr[: n - 2 * k] == tr[2 * k :]  # the point before and after in its track
-        if not ok.any():
-            return out
         ta, ti, tb = t[: n - 2 * k], t[k : n - k], t[2 * k :]
         xa, xi, xb = x[: n - 2 * k], x[k : n - k], x[2 * k :]
         ya, yi, yb = y[: n - 2 * k], y[k : n - k], y[2 * k :]
-        track_i = tr[k : n - k]
+        # a track's points with a neighbour k before and after: one run of r per track
+        first, count = index.starts, np.maximum(index.sizes - 2 * k, 0)
     else:
         lag_row = np.asarray(lag, dtype="int64")[tr] if n else tr
         row = np.arange(n)
@@ -473,57 +473,94 @@ def position_noise_m(
         if not len(i):
             return out
         ta, ti, tb, xa, xi, xb = t[a], t[i], t[b], x[a], x[i], x[b]
-        ya, yi, yb, track_i = y[a], y[i], y[b], tr[i]
-        ok = slice(None)
+        ya, yi, yb = y[a], y[i], y[b]
+        count = np.bincount(tr[i], minlength=index.n_tracks)
+        first = np.cumsum(count) - count
     m = len(ti)
     r = np.empty(m)
-    for first in range(0, m, BLOCK):  # blocks: no row-sized temporaries
-        s = slice(first, min(m, first + BLOCK))
-        span = tb[s] - ta[s]
-        w = np.where(span > 0, (ti[s] - ta[s]) / np.where(span > 0, span, 1.0), 0.5)
-        ex = xi[s] - ((1 - w) * xa[s] + w * xb[s])
-        ey = yi[s] - ((1 - w) * ya[s] + w * yb[s])
+    scale = np.sqrt(2 * np.log(2))
+    for lo in range(0, m, BLOCK):  # blocks: no row-sized temporaries
+        s = slice(lo, min(m, lo + BLOCK))
+        # the arithmetic of the plain form, in place:
+        # w = where(span > 0, (ti - ta) / where(span > 0, span, 1), 0.5)
+        # r = hypot(xi - ((1 - w) xa + w xb), yi - (…)) / sqrt(1 + w² + (1 - w)²) / scale
+        span = np.subtract(tb[s], ta[s])
+        moved = span > 0
+        w = np.subtract(ti[s], ta[s])
+        w /= np.where(moved, span, 1.0)
+        np.copyto(w, 0.5, where=~moved)
+        rest = np.subtract(1, w, out=span)  # 1 - w
+        ex = np.multiply(rest, xa[s])
+        ex += w * xb[s]
+        np.subtract(xi[s], ex, out=ex)
+        ey = np.multiply(rest, ya[s])
+        ey += w * yb[s]
+        np.subtract(yi[s], ey, out=ey)
         # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
         # noise has median sigma * sqrt(2 ln 2)
-        r[s] = np.hypot(ex, ey) / np.sqrt(1 + w**2 + (1 - w) ** 2) / np.sqrt(2 * np.log(2))
-    r, track_i = r[ok], track_i[ok]
-    has, med = _group_median(r, track_i, index.n_tracks)
-    out[has] = med
+        h = np.hypot(ex, ey, out=r[s])
+        np.multiply(w, w, out=w)
+        w += 1.0
+        rest *= rest
+        w += rest
+        h /= np.sqrt(w, out=w)
+        h /= scale
+    has = count > 0
+    out[has] = _run_medians(r, first, count)[has]
     return out
 
 
 def _group_median(values: np.ndarray, group: np.ndarray, n_groups: int):
     """Groups present and their medians, as ``pd.Series(values).groupby(group).median()``
-    gives them, bit for bit (NaN skipped; of an even count the mean of the middle two):
-    ``group`` sorted. Groups of a size that many groups share (tracks cut to one length)
-    take one ``np.partition`` of a matrix per size; the rest the groupby."""
+    gives them, bit for bit (:func:`_run_medians`): ``group`` sorted."""
     count = np.bincount(group, minlength=n_groups)
     has = count > 0
-    out = np.full(n_groups, np.nan)
-    if not len(values):
-        return has, out[has]
-    if np.isnan(values).any():  # the groupby skips NaN: leave it to the groupby
-        med = pd.Series(values).groupby(group).median()
-        out[med.index.to_numpy()] = med.to_numpy()
-        return has, out[has]
-    first = np.concatenate([[0], np.cumsum(count)[:-1]])
-    sizes, shared = np.unique(count[has], return_counts=True)
-    rest = np.ones(n_groups, dtype=bool)
-    for m in sizes[(shared >= 8) & (sizes > 0)]:  # a loop over distinct sizes, few
+    return has, _run_medians(values, np.cumsum(count) - count, count)[has]
+
+
+def _run_medians(values: np.ndarray, first: np.ndarray, count: np.ndarray) -> np.ndarray:
+    """Median of each run ``values[first[g] : first[g] + count[g]]`` (NaN for an empty one)
+    as pandas' groupby median gives it, bit for bit (NaN skipped; of an even count the mean
+    of the middle two). Runs of a length that many runs share (tracks cut to one length)
+    take ``np.partition`` of a runs × length block, a few rows at a time; the others, and
+    runs holding a NaN, the groupby."""
+    out = np.full(len(count), np.nan)
+    rest = count > 0
+    if not rest.any():
+        return out
+    sizes, shared = np.unique(count[rest], return_counts=True)
+    nan = bool(np.isnan(values).any())
+    # of an even count, the lower middle value is the largest of the lower half once the
+    # upper middle one is in place (one partition point, not two); a tie of -0.0 and 0.0
+    # could pick another zero there, so that takes the two points
+    one_point = not np.signbit(values).any()
+    for m in sizes[shared >= 8]:  # a loop over distinct lengths, few
         g = np.flatnonzero(count == m)
-        block = values[(first[g][:, None] + np.arange(m)).ravel()].reshape(len(g), m)
-        if m % 2:
-            out[g] = np.partition(block, m // 2, axis=1)[:, m // 2]
-        else:
-            part = np.partition(block, [m // 2 - 1, m // 2], axis=1)
-            out[g] = (part[:, m // 2] + part[:, m // 2 - 1]) / 2
-        rest[g] = False
-    rest &= has
+        med = np.empty(len(g))
+        span = np.arange(m)
+        step = max(1, BLOCK // int(m))  # runs per chunk: ~BLOCK values
+        for a in range(0, len(g), step):  # a loop over chunks of runs
+            block = values[first[g[a : a + step], None] + span]
+            if m % 2:
+                block.partition(m // 2, axis=1)
+                med[a : a + step] = block[:, m // 2]
+            elif one_point:
+                block.partition(m // 2, axis=1)
+                med[a : a + step] = (block[:, m // 2] + block[:, : m // 2].max(axis=1)) / 2
+            else:
+                block.partition([m // 2 - 1, m // 2], axis=1)
+                med[a : a + step] = (block[:, m // 2] + block[:, m // 2 - 1]) / 2
+            if nan:  # such a run goes to the groupby
+                med[a : a + step][np.isnan(block).any(axis=1)] = np.nan
+        done = ~np.isnan(med)
+        out[g[done]] = med[done]
+        rest[g[done]] = False
     if rest.any():
-        rows = np.flatnonzero(rest[group])
-        med = pd.Series(values[rows]).groupby(group[rows]).median()
+        g = np.flatnonzero(rest)
+        rows = concat_ranges(first[g], count[g])
+        med = pd.Series(values[rows]).groupby(np.repeat(g, count[g])).median()
         out[med.index.to_numpy()] = med.to_numpy()
-    return has, out[has]
+    return out
 
 
 def _heading_noise_deg(
@@ -619,7 +656,7 @@ def _search_sorted(
         back = np.where(step > 0, np.floor((window_s - 1e-3) / step), 0.0)
     back = np.clip(back, 0, n).astype("int64")
     row = np.arange(first, first + len(q))
-    tr = index.track_of_row[row]
+    tr = index.track_of_row[first : first + len(q)]
     a = np.maximum(row - back[tr], index.starts[tr])
     below = ts[np.maximum(a - 1, 0)]
     good = ((a == 0) | (below < q)) & (ts[a] >= q)
@@ -738,17 +775,17 @@ def _factor_every_row(
     out = np.full(n, np.nan)
     tr = index.track_of_row
     x0, y0 = x[index.starts], y[index.starts]  # each track's anchor
+    # δ is defined from a track's p-th row to its p-th last
+    lo, hi = index.starts + (p - 1), index.ends - (p - 1)
+    keep = chosen & (hi > lo)
+    valid = _span_mask(lo[keep], hi[keep], n)
     for first in range(p - 1, n - p + 1, BLOCK):  # a loop over blocks, not over windows
         last = min(n - p + 1, first + BLOCK)  # δ rows; windows end at first … last + p - 2
         raw = slice(first - p + 1, last + p - 1)
         t_raw = tr[raw]
         h = _block_headings(x[raw] - x0[t_raw], y[raw] - y0[t_raw], p)
-        k = last - first
-        d = _angle_diff(h[:k], h[p - 1 :])
-        t_row = t_raw[p - 1 : p - 1 + k]
-        pos = np.arange(first, last) - index.starts[t_row]
-        valid = (pos >= p - 1) & (pos <= index.sizes[t_row] - p) & chosen[t_row]
-        out[first:last] = np.where(valid, d, np.nan)
+        d = _angle_diff(h[: last - first], h[p - 1 :])
+        out[first:last] = np.where(valid[first:last], d, np.nan)
     return out
 
 
@@ -776,13 +813,14 @@ def _factor_on_runs(
     n = len(x)
     if len(lo) == index.n_tracks and int(raw_len.sum()) == n and (raw_lo == index.starts).all():
         rows = None  # every row: no gather
-        u = x - x[index.starts][index.track_of_row]
-        v = y - y[index.starts][index.track_of_row]
+        u = x - np.repeat(x[index.starts], index.sizes)
+        v = y - np.repeat(y[index.starts], index.sizes)
     else:
         rows = concat_ranges(raw_lo, raw_len)
-        anchor = np.repeat(index.starts[tr], raw_len)
-        u = x[rows] - x[anchor]
-        v = y[rows] - y[anchor]
+        u = x[rows]
+        u -= np.repeat(x[index.starts[tr]], raw_len)  # each run's track anchor
+        v = y[rows]
+        v -= np.repeat(y[index.starts[tr]], raw_len)
     # δ of row o: the window ending at o against the window ending at o + p - 1
     seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
     pos = concat_ranges(seg + (p - 1), hi - lo)
@@ -915,22 +953,52 @@ def _sums_of_short(u: np.ndarray, v: np.ndarray, p: int):
 
 
 def _exact_at(u: np.ndarray, v: np.ndarray, p: int, j: np.ndarray) -> np.ndarray:
-    """δ of positions ``j`` exactly as :func:`_headings_of` gives it: the windows needed
-    (ending at j and at j + p − 1) gathered run by run with the p − 1 points before each
-    run, and convolved there only."""
-    m = len(u)
-    need = np.zeros(m, dtype=bool)
+    """δ of positions ``j`` exactly as :func:`_headings_of` gives it, for p >
+    :data:`SMALL_KERNEL`: the headings of the windows needed (ending at j and at j + p − 1)
+    only, from :func:`_gathered_moments`."""
+    need = np.zeros(len(u), dtype=bool)
     need[j] = True
     need[j + (p - 1)] = True
-    lo, hi = _runs(need)  # runs of window ends
-    raw_lo = lo - (p - 1)
-    raw_len = hi - raw_lo
-    src = concat_ranges(raw_lo, raw_len)
-    h_cat = _headings_of(u[src], v[src], p)
-    seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
-    h = np.full(m, np.nan)
-    h[concat_ranges(lo, hi - lo)] = h_cat[concat_ranges(seg + (p - 1), hi - lo)]
+    ends = np.flatnonzero(need)
+    h = np.full(len(u), np.nan)
+    h[ends] = _axis_headings(*_gathered_moments(u, v, p, ends))
     return _angle_diff(h[j], h[j + (p - 1)])
+
+
+def _gathered_moments(u: np.ndarray, v: np.ndarray, p: int, ends: np.ndarray):
+    """:func:`_block_moments` of the windows ending at ``ends`` (p > :data:`SMALL_KERNEL`),
+    the same bits: for such p, ``np.convolve`` sums each window by numpy's dot of it with
+    the kernel (BLAS ``ddot``), and ``np.matmul`` of a 1 × p row by a p × 1 column makes
+    that same call (numpy's matmul, row @ column), here on each window gathered as a row."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    first = ends - (p - 1)
+    wu = sliding_window_view(u, p)[first]  # copies: one row of p per window
+    wv = sliding_window_view(v, p)[first]
+    ones = np.ones((p, 1))
+
+    def sums(w: np.ndarray) -> np.ndarray:
+        return np.matmul(w[:, None, :], ones)[:, 0, 0]
+
+    mu = sums(wu)
+    mu /= p
+    mv = sums(wv)
+    mv /= p
+    tmp = np.multiply(wu, wu)
+    cxx = sums(tmp)
+    cxx /= p
+    cxx -= mu * mu
+    np.multiply(wv, wv, out=tmp)
+    cyy = sums(tmp)
+    cyy /= p
+    cyy -= mv * mv
+    np.multiply(wu, wv, out=tmp)
+    cxy = sums(tmp)
+    cxy /= p
+    cxy -= mu * mv
+    cxy *= 2.0
+    cxx -= cyy
+    return cxx, cxy, u[ends] - u[first], v[ends] - v[first]
 
 
 def _oriented_axis(
@@ -981,10 +1049,16 @@ def _peaks_above(
     q = np.flatnonzero(above) if rows is None else rows[above]
     w = delta[above]
     tq = track[q]
-    rq = radius[tq]
+    reach = int(radius.max()) if len(radius) else 0
+    # rows of later tracks moved on by more than any radius: "within the radius in the same
+    # track" is one difference of slots
+    slot = tq * (reach + 1)
+    slot += q
+    per_track = not (radius == reach).all()
+    rq = radius[tq] if per_track else reach
     peak = np.ones(len(q), dtype=bool)
     for j in range(1, len(q)):  # a loop over offsets in the list of rows above t
-        close = (q[j:] - q[:-j] <= rq[j:]) & (tq[j:] == tq[:-j])
+        close = slot[j:] - slot[:-j] <= (rq[j:] if per_track else rq)
         if not close.any():  # rows are sorted: no pair further apart can be closer
             break
         peak[:-j] &= ~close | (w[:-j] >= w[j:])

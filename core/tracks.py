@@ -388,8 +388,9 @@ def track_origins(df: pd.DataFrame, index: TrackIndex) -> tuple[np.ndarray, np.n
     lat = df["lat"].to_numpy(dtype="float64")
     if index.n_tracks == 0:
         return np.zeros(0), np.zeros(0)
-    s = np.add.reduceat(np.sin(lon), index.starts)
-    c = np.add.reduceat(np.cos(lon), index.starts)
+    buf = np.sin(lon)
+    s = np.add.reduceat(buf, index.starts)
+    c = np.add.reduceat(np.cos(lon, out=buf), index.starts)
     lon0 = np.degrees(np.arctan2(s, c))
     lat0 = np.add.reduceat(lat, index.starts) / index.sizes
     return lon0, lat0
@@ -402,14 +403,18 @@ def local_xy(df: pd.DataFrame, index: TrackIndex) -> tuple[np.ndarray, np.ndarra
     taken once per track rather than once per point (bit-identical)."""
     lon0, lat0 = track_origins(df, index)
     sizes = index.sizes  # per-track values spread by repeat, not by a gather per row
-    dlon = df["lon"].to_numpy(dtype="float64") - np.repeat(lon0, sizes)
-    dlon += 180.0
-    dlon = geo.remainder360(dlon)
-    dlon -= 180.0  # geo.wrap180, bit for bit
-    x = geo.EARTH_RADIUS_M * np.radians(dlon) * np.repeat(np.cos(np.radians(lat0)), sizes)
-    y = geo.EARTH_RADIUS_M * np.radians(
-        df["lat"].to_numpy(dtype="float64") - np.repeat(lat0, sizes)
-    )
+    x = df["lon"].to_numpy(dtype="float64") - np.repeat(lon0, sizes)
+    x += 180.0
+    x = geo.remainder360(x)
+    x -= 180.0  # geo.wrap180, bit for bit
+    # R · radians(dlon) · cos(radians(lat0)), R · radians(lat - lat0), in place
+    np.radians(x, out=x)
+    x *= geo.EARTH_RADIUS_M
+    x *= np.repeat(np.cos(np.radians(lat0)), sizes)
+    y = np.repeat(lat0, sizes)
+    np.subtract(df["lat"].to_numpy(dtype="float64"), y, out=y)
+    np.radians(y, out=y)
+    y *= geo.EARTH_RADIUS_M
     return x, y
 
 

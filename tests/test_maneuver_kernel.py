@@ -349,3 +349,19 @@ def test_a_cancel_in_one_part_stops_every_part():
 
     with pytest.raises(Cancelled):
         detect(df, ManeuverParams(), progress=progress, parts=3)
+
+
+@pytest.mark.parametrize("p", [12, 16, 17, 32, 100, 320])
+def test_gathered_window_moments_equal_the_convolutions_bit_for_bit(p):
+    # the exact δ behind the long-window screen sums only the windows it needs, by the
+    # same BLAS dot product np.convolve makes for a kernel longer than 11
+    from wakeline.core.maneuver import _block_moments, _gathered_moments
+
+    rng = np.random.default_rng(p)
+    u = np.cumsum(rng.normal(30.0, 5.0, 3000)) + rng.normal(0, 20.0, 3000)
+    v = np.cumsum(rng.normal(-10.0, 5.0, 3000)) + rng.normal(0, 20.0, 3000)
+    want = _block_moments(u, v, p)
+    ends = np.sort(rng.choice(np.arange(p - 1, len(u)), 400, replace=False))
+    got = _gathered_moments(u, v, p, ends)
+    for w, g in zip(want, got, strict=True):
+        assert np.array_equal(w[ends - (p - 1)].view("int64"), g.view("int64"))
