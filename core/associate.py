@@ -1053,14 +1053,10 @@ def long_gap_pass(
     n = len(seg)
     if params.long_gap_s <= params.max_gap_s or n < 2:
         return pairs, cost, chosen
-    free_end = np.ones(n, dtype=bool)
-    free_end[pairs.i[chosen]] = False
-    free_start = np.ones(n, dtype=bool)
-    free_start[pairs.j[chosen]] = False
+    free_end, free_start = _free(pairs, chosen, n)
     if not (free_end.any() and free_start.any()):
         return pairs, cost, chosen
     wide = replace(params, max_gap_s=params.long_gap_s)
-    released = np.zeros(0, dtype="int64")
     limit = min(params.gate, params.no_join)
     m = params.long_margin
     main = None
@@ -1081,108 +1077,146 @@ def long_gap_pass(
             refs = _references(both, main.concat(parts.take(long)), params, n)
         return _blocked_cost(p, parts.total(p, params, n, refs), n, blocked)
 
-    def mutual(cand: Pairs, c: np.ndarray, c_i: np.ndarray, c_j: np.ndarray) -> np.ndarray:
-        """Loose pairs beyond max_gap_s, each piece's cheapest by the margin (rivals of
-        the end priced ``c_i``, of the start ``c_j``)."""
-        best_i, second_i = _two_cheapest(cand.i, c_i, n)
-        best_j, second_j = _two_cheapest(cand.j, c_j, n)
-        k = np.arange(len(cand))
-        return (
-            free_end[cand.i]
-            & free_start[cand.j]
-            & (cand.gap_s > params.max_gap_s)
-            & (c <= limit)
-            & (best_i[cand.i] == k)
-            & (best_j[cand.j] == k)
-            & (second_i[cand.i] >= c + m)
-            & (second_j[cand.j] >= c + m)
-        )
+    def look(joined: np.ndarray) -> tuple[Pairs, np.ndarray, np.ndarray]:
+        """The second look with ``joined`` (indices into ``pairs``) as the joins: the long
+        candidates of the pieces it looked at, their costs, and which it joins."""
+        free_end, free_start = _free(pairs, joined, n)
+        none = (pairs.take(np.zeros(0, dtype="int64")), np.zeros(0), np.zeros(0, dtype=bool))
 
+        def mutual(cand: Pairs, c: np.ndarray, c_i: np.ndarray, c_j: np.ndarray):
+            """Loose pairs beyond max_gap_s, each piece's cheapest by the margin (rivals
+            of the end priced ``c_i``, of the start ``c_j``)."""
+            best_i, second_i = _two_cheapest(cand.i, c_i, n)
+            best_j, second_j = _two_cheapest(cand.j, c_j, n)
+            k = np.arange(len(cand))
+            return (
+                free_end[cand.i]
+                & free_start[cand.j]
+                & (cand.gap_s > params.max_gap_s)
+                & (c <= limit)
+                & (best_i[cand.i] == k)
+                & (best_j[cand.j] == k)
+                & (second_i[cand.i] >= c + m)
+                & (second_j[cand.j] >= c + m)
+            )
+
+        # First among the loose pieces only (few pairs: a necessary condition), then
+        # against every rival of the pieces that pass. A pair that skips a loose piece of
+        # its own chain (i → p → j all cheap) is no rival: a ship moored for hours whose
+        # AIS comes and goes leaves pieces at one spot, and every later one is "as cheap"
+        # as the next.
+        loose = candidate_pairs(seg, wide, ends=free_end, starts=free_start)
+        c_loose = price(loose)
+        chain = components(n, pairs.i[joined], pairs.j[joined])
+        skip = _skips(loose, loose, c_loose, limit, chain, free_start, free_end)
+        c = np.where(skip, np.inf, c_loose)
+        ok = mutual(loose, c, c, c)
+        if not ok.any():
+            return none
+        ends = np.zeros(n, dtype=bool)
+        ends[loose.i[ok]] = True
+        starts = np.zeros(n, dtype=bool)
+        starts[loose.j[ok]] = True
+        a = candidate_pairs(seg, wide, ends=ends)
+        b = candidate_pairs(seg, wide, starts=starts)
+        cand = a.concat(b.take(~ends[b.i]))
+        c = price(cand)
+        # A route through loose pieces runs on loose links only (a joined start belongs
+        # to the chain that claimed it), so the loose pairs found first tell every skip.
+        skip = _skips(cand, loose, c_loose, limit, chain, free_start, free_end)
+        rank = np.where(skip, np.inf, c)
+        # A joined track competes for a start once, through its last end: its inner ends
+        # (already continued) are no rivals when that last end is a candidate too — and
+        # likewise for an end, through a joined track's first start.
+        key_j = cand.j * n + chain[cand.i]
+        inner_i = ~free_end[cand.i] & np.isin(key_j, key_j[free_end[cand.i]])
+        key_i = cand.i * n + chain[cand.j]
+        inner_j = ~free_start[cand.j] & np.isin(key_i, key_i[free_start[cand.j]])
+        ok = mutual(cand, rank, np.where(inner_j, np.inf, rank), np.where(inner_i, np.inf, rank))
+        ok &= ends[cand.i] & starts[cand.j]
+        if not ok.any():
+            return none
+        # Every long candidate of the pieces looked at is kept (their rivals beyond
+        # T_gap: the review shows the runner-up of a long join).
+        long = cand.gap_s > params.max_gap_s
+        return cand.take(long), c[long], ok[long]
+
+    released = np.zeros(0, dtype="int64")
     if params.long_rivals:
-        # A join the assignment made without seeing a loose piece just beyond max_gap_s
-        # (up to twice it) that continues one of its pieces cheaper by the margin gives
-        # way, so that the second look below weighs both; it comes back if the second
-        # look does not take it. Only a join dearer than the margin can be beaten (a
-        # rival costs at least 0).
-        near = replace(params, max_gap_s=min(params.long_gap_s, 2.0 * params.max_gap_s))
-        open_ = chosen[cost[chosen] >= m]
-        end_open = np.zeros(n, dtype=bool)
-        end_open[pairs.i[open_]] = True
-        start_open = np.zeros(n, dtype=bool)
-        start_open[pairs.j[open_]] = True
-        rivals = candidate_pairs(seg, near, ends=end_open, starts=free_start).concat(
-            candidate_pairs(seg, near, ends=free_end, starts=start_open)
-        )
-        rivals = rivals.take(rivals.gap_s > params.max_gap_s)
-        if len(rivals):
-            c_riv = price(rivals)
-            of_end = np.full(n, np.inf)
-            of_start = np.full(n, np.inf)
-            joined_i = ~free_end[rivals.i]
-            np.minimum.at(of_end, rivals.i[joined_i], c_riv[joined_i])
-            np.minimum.at(of_start, rivals.j[~joined_i], c_riv[~joined_i])
-            beaten = np.minimum(of_end[pairs.i[chosen]], of_start[pairs.j[chosen]]) + m
-            released = chosen[beaten <= cost[chosen]]
-            if len(released):
-                chosen = np.setdiff1d(chosen, released)
-                free_end[pairs.i[released]] = True
-                free_start[pairs.j[released]] = True
-
-    def restored(pairs: Pairs, cost: np.ndarray, chosen: np.ndarray):
-        """The released joins whose pieces the second look left loose, chosen again."""
-        if not len(released):
-            return pairs, cost, chosen
-        taken_i = np.zeros(n, dtype=bool)
-        taken_i[pairs.i[chosen]] = True
-        taken_j = np.zeros(n, dtype=bool)
-        taken_j[pairs.j[chosen]] = True
-        back = released[~taken_i[pairs.i[released]] & ~taken_j[pairs.j[released]]]
-        return pairs, cost, np.sort(np.concatenate([chosen, back]))
-
-    # First among the loose pieces only (few pairs: a necessary condition), then against
-    # every rival of the pieces that pass. A pair that skips a loose piece of its own chain
-    # (i → p → j all cheap) is no rival: a ship moored for hours whose AIS comes and goes
-    # leaves pieces at one spot, and every later one is "as cheap" as the next.
-    loose = candidate_pairs(seg, wide, ends=free_end, starts=free_start)
-    c_loose = price(loose)
-    chain = components(n, pairs.i[chosen], pairs.j[chosen])
-    skip = _skips(loose, loose, c_loose, limit, chain, free_start, free_end)
-    c = np.where(skip, np.inf, c_loose)
-    ok = mutual(loose, c, c, c)
+        released = _released(seg, pairs, cost, chosen, params, price, free_end, free_start)
+    joined = chosen[~np.isin(chosen, released)]
+    found, c_found, ok = look(joined)
+    if len(released):
+        # A join gives way only to a long join the second look makes: the others come
+        # back, and the second look runs again with them joined (as loose pieces they
+        # were rivals they never were).
+        took_i = np.zeros(n, dtype=bool)
+        took_i[found.i[ok]] = True
+        took_j = np.zeros(n, dtype=bool)
+        took_j[found.j[ok]] = True
+        kept = released[took_i[pairs.i[released]] | took_j[pairs.j[released]]]
+        if len(kept) < len(released):
+            released = kept
+            joined = chosen[~np.isin(chosen, released)]
+            found, c_found, ok = look(joined)
     if not ok.any():
-        return restored(pairs, cost, chosen)
-    ends = np.zeros(n, dtype=bool)
-    ends[loose.i[ok]] = True
-    starts = np.zeros(n, dtype=bool)
-    starts[loose.j[ok]] = True
-    a = candidate_pairs(seg, wide, ends=ends)
-    b = candidate_pairs(seg, wide, starts=starts)
-    cand = a.concat(b.take(~ends[b.i]))
-    c = price(cand)
-    # A route through loose pieces runs on loose links only (a joined start belongs to
-    # the chain that claimed it), so the loose pairs found first tell every skip.
-    skip = _skips(cand, loose, c_loose, limit, chain, free_start, free_end)
-    rank = np.where(skip, np.inf, c)
-    # A joined track competes for a start once, through its last end: its inner ends
-    # (already continued) are no rivals when that last end is a candidate too — and
-    # likewise for an end, through a joined track's first start.
-    key_j = cand.j * n + chain[cand.i]
-    inner_i = ~free_end[cand.i] & np.isin(key_j, key_j[free_end[cand.i]])
-    key_i = cand.i * n + chain[cand.j]
-    inner_j = ~free_start[cand.j] & np.isin(key_i, key_i[free_start[cand.j]])
-    ok = mutual(cand, rank, np.where(inner_j, np.inf, rank), np.where(inner_i, np.inf, rank))
-    ok &= ends[cand.i] & starts[cand.j]
-    if not ok.any():
-        return restored(pairs, cost, chosen)
-    # Every long candidate of the pieces looked at is kept (their rivals beyond T_gap:
-    # the review shows the runner-up of a long join); the accepted ones are chosen.
-    long = cand.gap_s > params.max_gap_s
-    added = len(pairs) + np.flatnonzero(ok[long])
-    return restored(
-        pairs.concat(cand.take(long)),
-        np.concatenate([cost, c[long]]),
-        np.concatenate([chosen, added]),
+        return pairs, cost, chosen
+    out = np.concatenate([joined, len(pairs) + np.flatnonzero(ok)])
+    if len(released):
+        # What the last look did not take after all, comes back.
+        end_free, start_free = _free(pairs.concat(found), out, n)
+        back = released[end_free[pairs.i[released]] & start_free[pairs.j[released]]]
+        out = np.concatenate([out, back])
+    return pairs.concat(found), np.concatenate([cost, c_found]), out
+
+
+def _free(pairs: Pairs, chosen: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per track (0..n−1): its end is not continued, its start does not continue, by
+    ``chosen`` (indices into ``pairs``)."""
+    free_end = np.ones(n, dtype=bool)
+    free_end[pairs.i[chosen]] = False
+    free_start = np.ones(n, dtype=bool)
+    free_start[pairs.j[chosen]] = False
+    return free_end, free_start
+
+
+def _released(
+    seg: Segments,
+    pairs: Pairs,
+    cost: np.ndarray,
+    chosen: np.ndarray,
+    params: LinkParams,
+    price,
+    free_end: np.ndarray,
+    free_start: np.ndarray,
+) -> np.ndarray:
+    """``long_rivals``: the joins of ``chosen`` that a loose piece just beyond max_gap_s
+    (up to twice it) would continue cheaper by ``long_margin`` — the assignment could not
+    see it — priced by ``price`` (the second look's; its spread reference among the
+    candidates up to twice max_gap_s). Only a join dearer than the margin can be beaten
+    (a rival costs at least 0)."""
+    n = len(seg)
+    m = params.long_margin
+    near = replace(params, max_gap_s=min(params.long_gap_s, 2.0 * params.max_gap_s))
+    open_ = chosen[cost[chosen] >= m]
+    end_open = np.zeros(n, dtype=bool)
+    end_open[pairs.i[open_]] = True
+    start_open = np.zeros(n, dtype=bool)
+    start_open[pairs.j[open_]] = True
+    rivals = candidate_pairs(seg, near, ends=end_open, starts=free_start).concat(
+        candidate_pairs(seg, near, ends=free_end, starts=start_open)
     )
+    rivals = rivals.take(rivals.gap_s > params.max_gap_s)
+    if not len(rivals):
+        return np.zeros(0, dtype="int64")
+    c_riv = price(rivals)
+    of_end = np.full(n, np.inf)
+    of_start = np.full(n, np.inf)
+    joined_i = ~free_end[rivals.i]
+    np.minimum.at(of_end, rivals.i[joined_i], c_riv[joined_i])
+    np.minimum.at(of_start, rivals.j[~joined_i], c_riv[~joined_i])
+    beaten = np.minimum(of_end[pairs.i[chosen]], of_start[pairs.j[chosen]]) + m
+    return chosen[beaten <= cost[chosen]]
 
 
 def assign_interrupted(

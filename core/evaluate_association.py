@@ -233,6 +233,15 @@ def evaluate_association(
     return AssociationEvaluation(table, scenes, seed, hard)
 
 
+def _truth(df: pd.DataFrame) -> pd.Series:
+    """Each row's track as the truth: its batch, or ``sensor:batch`` when the table holds
+    several sensors (batch 7 of R1 and batch 7 of R2 are two tracks)."""
+    batch = df["batch"].astype(str)
+    if "sensor" in df.columns and df["sensor"].nunique() > 1:
+        return df["sensor"].astype(str) + ":" + batch
+    return batch
+
+
 def cut_at_gaps(
     points: pd.DataFrame,
     min_gap_s: float,
@@ -241,9 +250,9 @@ def cut_at_gaps(
     seed: int = 0,
 ) -> pd.DataFrame:
     """Real data made into an association test: each track is cut where the time step
-    exceeds ``min_gap_s`` and ``factor`` × the track's median step; the old batch becomes
-    the truth (``truth_column``, unless the table has one) and the pieces get shuffled
-    numbers, so batch ids leak nothing."""
+    exceeds ``min_gap_s`` and ``factor`` × the track's median step; the old track becomes
+    the truth (``truth_column``, unless the table has one; :func:`_truth`) and the pieces
+    get shuffled numbers, so batch ids leak nothing."""
     from wakeline.core.schema import time_seconds
     from wakeline.core.tracks import sort_points, track_index
 
@@ -256,7 +265,7 @@ def cut_at_gaps(
     new = index.first_of_track() | (step > np.maximum(min_gap_s, factor * median))
     piece = np.cumsum(new) - 1
     if truth_column not in df.columns:
-        df[truth_column] = df["batch"].astype(str)
+        df[truth_column] = _truth(df)
     perm = np.random.default_rng(seed).permutation(int(piece.max()) + 1 if len(piece) else 0)
     df["batch"] = perm[piece].astype(str)
     return df
@@ -273,10 +282,11 @@ def cut_known_gaps(
     """Real data made into an association test at gaps of known length: each track
     loses one window of fixes, of random length in [``lo_s``, ``hi_s``] s, placed at
     random at least ``margin_s`` from either end (a track too short for it stays whole);
-    the old batch becomes the truth (``truth_column``, unless the table has one) and the
-    pieces get shuffled numbers. The track's own gaps are left inside its pieces, so
-    every true pair's gap is at least ``lo_s`` and at most ``hi_s`` plus a sampling
-    interval."""
+    the old track becomes the truth (``truth_column``, unless the table has one;
+    :func:`_truth`) and the pieces get shuffled numbers. The track's own gaps stay inside
+    its pieces, so every true pair's gap is at least ``lo_s``; it is at most ``hi_s`` plus
+    two sampling steps where the sampling is regular, more where the window meets one of
+    the track's own gaps."""
     from wakeline.core.schema import time_seconds
     from wakeline.core.tracks import sort_points, track_index
 
@@ -298,7 +308,7 @@ def cut_known_gaps(
     keep = ~cut_row | (t < c_row) | after
     piece = 2 * tr + after
     if truth_column not in df.columns:
-        df[truth_column] = df["batch"].astype(str)
+        df[truth_column] = _truth(df)
     df, piece = df[keep], piece[keep]
     used, piece = np.unique(piece, return_inverse=True)
     perm = rng.permutation(len(used))
@@ -693,8 +703,10 @@ def evaluate_real_association(
             skipped.append((f.name, str(e)))
             continue
         if "truth" not in df.columns:
-            truth = df["batch"].astype(str)
-            df["truth"] = truth.str.split(truth_sep).str[0] if truth_sep else truth
+            ship = df["batch"].astype(str)
+            df["truth"] = _truth(
+                df.assign(batch=ship.str.split(truth_sep).str[0] if truth_sep else ship)
+            )
         if gaps is None:
             cut = cut_at_gaps(df, min_gap_s=cut_s, seed=seed)
         else:

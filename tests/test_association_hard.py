@@ -19,6 +19,7 @@ from wakeline.core.associate import (
 )
 from wakeline.core.errors import InputError
 from wakeline.core.evaluate_association import (
+    cut_at_gaps,
     cut_known_gaps,
     error_breakdown,
     evaluate_real_association,
@@ -371,28 +372,46 @@ def test_real_evaluation_on_a_folder_and_its_errors(tmp_path, capsys):
     lo=st.floats(0.0, 3000.0),
     width=st.floats(0.0, 3000.0),
     seed=st.integers(0, 2**16),
+    own_truth=st.booleans(),
 )
-def test_known_gap_cut_loses_one_window_per_track_and_nothing_else(spans, step, lo, width, seed):
+def test_known_gap_cut_loses_one_window_per_track_and_nothing_else(
+    spans, step, lo, width, seed, own_truth
+):
     # Each track either stays whole or loses the fixes of one window of [lo, lo + width]
-    # s, at least 120 s from its ends: two pieces of the same truth, the fixes between
-    # them exactly the window's, and no other row lost or moved.
+    # s, at least 120 s from its ends: two pieces of one track, the fixes between them
+    # exactly the window's, every other fix where it was; each piece one track's; the
+    # pieces renumbered. Input shuffled; a truth column already there is kept.
     hi = lo + width
     rows = [
-        (f"s{k}", pd.Timestamp("2024-05-01", tz="UTC") + pd.Timedelta(seconds=step * m))
+        (f"s{k}", pd.Timestamp("2024-05-01", tz="UTC") + pd.Timedelta(seconds=step * m), k, m)
         for k, n in enumerate(spans)
         for m in range(n)
     ]
-    df = pd.DataFrame(rows, columns=["batch", "time"]).assign(sensor="AIS", lon=10.0, lat=55.0)
+    df = pd.DataFrame(rows, columns=["batch", "time", "k", "m"])
+    df = df.assign(sensor="AIS", lon=10.0 + 0.01 * df["k"], lat=55.0 + 1e-4 * df["m"])
+    if own_truth:
+        df["truth"] = "ship-" + df["batch"]
+    df = df.sample(frac=1.0, random_state=seed % 1000).reset_index(drop=True)
     out = cut_known_gaps(df, lo, hi, seed=seed)
-    assert set(out["truth"]) <= set(df["batch"])
-    for name, part in out.groupby("truth"):
-        whole = df[df["batch"] == name]
+    name = {b: ("ship-" + b if own_truth else b) for b in df["batch"]}
+    assert (out.groupby("batch")["truth"].nunique() == 1).all()  # a piece is one track's
+    # Every fix kept is an input fix of its truth's track, unchanged.
+    back = out.merge(df, on=["k", "m"], suffixes=("", "_in"))
+    assert len(back) == len(out)
+    assert (back["truth"] == back["batch_in"].map(name)).all()
+    assert (back["lon"] == back["lon_in"]).all() and (back["lat"] == back["lat_in"]).all()
+    assert (back["time"] == back["time_in"]).all()
+    assert not set(out["batch"]) & set(df["batch"])  # renumbered
+    cut = 0
+    for b, whole in df.groupby("batch"):
+        part = out[out["truth"] == name[b]]
         pieces = part.groupby("batch")["time"].agg(["min", "max", "size"]).sort_values("min")
         assert len(pieces) in (1, 2)
         assert part["time"].is_unique
         if len(pieces) == 1:
             assert len(part) == len(whole)
             continue
+        cut += 1
         first, second = pieces.iloc[0], pieces.iloc[1]
         gap = (second["min"] - first["max"]).total_seconds()
         assert gap >= lo
@@ -401,8 +420,20 @@ def test_known_gap_cut_loses_one_window_per_track_and_nothing_else(spans, step, 
         assert len(part) + len(lost) == len(whole)
         span = (whole["time"].max() - whole["time"].min()).total_seconds()
         assert span >= lo + 240 - 1e-6
-    # Every track too short for its window stays whole, and the pieces are renumbered.
-    assert out["batch"].nunique() >= df["batch"].nunique() or out.empty
+    assert out["batch"].nunique() == len(spans) + cut
+
+
+def test_known_gap_cut_keeps_tracks_of_two_sensors_apart():
+    # Batch 7 of R1 and batch 7 of R2 are two ships (found by the review: one truth).
+    t0 = pd.Timestamp("2024-05-01", tz="UTC")
+    rows = [
+        (s, "7", t0 + pd.Timedelta(seconds=off + 10.0 * m), 10.0 + 0.1 * k, 55.0)
+        for k, (s, off) in enumerate((("R1", 0.0), ("R2", 5.0)))
+        for m in range(200)
+    ]
+    df = pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"])
+    for out in (cut_known_gaps(df, 300.0, 600.0), cut_at_gaps(df.iloc[::2], 5.0)):
+        assert out.groupby(["sensor", "batch"])["truth"].first().nunique() == 2
 
 
 def test_known_gap_cut_on_the_command_line(tmp_path, capsys):

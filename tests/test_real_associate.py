@@ -96,3 +96,28 @@ def test_oresund_manoeuvring_ships_are_rejoined_across_cut_gaps():
             flat = score_association(associate_interrupted(df, LinkParams(measured_accel=False)))
             assert sc["p_fa"] == 0.0 and sc["p_ca"] >= 0.95, (gap, seed, sc)
             assert sc["p_ca"] >= flat["p_ca"]
+
+
+def test_a_join_that_gives_way_and_comes_back_blocks_no_long_join():
+    # MTAD scene 35 cut at known 300-900 s gaps (seed 1): a join gave way to a rival just
+    # beyond T_gap, the second look did not take its pieces and it came back — but while
+    # it was out its end had counted as a loose rival of another start, and a true long
+    # join that long_rivals=false makes was lost (found by the session-11 review). The
+    # second look now runs again with the joins that came back in place.
+    from wakeline.core.evaluate_association import consecutive_true_pairs, cut_known_gaps
+
+    df = read_points(real_file("mtad-dtwcm", "original", "Scene-35.csv")).points
+    df["truth"] = df["batch"].str.split("-").str[0]
+    cut = cut_known_gaps(df, 300.0, 900.0, seed=1)
+
+    def joins(params):
+        a = associate_interrupted(cut, params)
+        seg = a.segments
+        truth = seg.column("truth").astype(str).to_numpy()[seg.index.starts]
+        out = set(zip(a.pairs.i[a.chosen].tolist(), a.pairs.j[a.chosen].tolist(), strict=True))
+        return out, consecutive_true_pairs(truth, seg.t0)
+
+    on, true = joins(LinkParams())
+    off, _ = joins(LinkParams(long_rivals=False))
+    assert not (off - on) & true
+    assert len(on & true) > len(off & true)
