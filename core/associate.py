@@ -162,8 +162,9 @@ class LinkParams(Params):
         True,
         "",
         "second look: a join of the assignment gives way where a loose piece beyond "
-        "max_gap_s would continue either of its pieces cheaper by long_margin (the "
-        "assignment cannot see it), and comes back if the second look does not take it",
+        "max_gap_s (up to twice it) would continue either of its pieces cheaper by "
+        "long_margin (the assignment cannot see it), and comes back if the second look "
+        "does not take it",
     )
     rest_kn: float = param(
         0.5,
