@@ -1,0 +1,136 @@
+"""Association in a harbour with ships at rest (issue 15): ships at berths along three
+quays (spacing drawn per case, GPS jitter 2–8 m, AIS every 3 min), ships swinging at anchor
+(40–150 m, 500 m and more apart) and hard moving ships (10 s, 10 m), every track cut once
+at a known gap (``cut_known_gaps``). Defaults beside ``rest_drift_s=0`` (the at-rest wander
+of session 11: rest_drift_m whatever the gap). Cases: "tuning" chose ``rest_drift_s``
+(seeds 0–2, berths 30–80 m apart, gaps 300–900 s); "report" was run once after (seeds
+10–12, berths 25–60 m apart, gaps 600–1,500 s).
+
+    python bench/moored_harbour.py [--seeds 3]
+    python bench/moored_harbour.py --wander   # real ships at rest (Saronic, from ../shared)
+
+``--wander``: how far real ships at rest (greece-ais-annotated, GPL, read from
+``../shared``) lie g seconds after an end of 10 fixes at rest (spanning at most 30 min,
+end to end slower than 0.25 m/s) from that end's mean position; the evidence for
+``rest_drift_s``.
+"""
+
+import argparse
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core import geo, simulate
+from wakeline.core.associate import LinkParams, associate_interrupted
+from wakeline.core.evaluate_association import cut_known_gaps, score_association
+
+#: name: (first seed, berth spacing m, known gaps s)
+CASES = {
+    "tuning: berths 30-80 m, gaps 300-900 s": (0, (30.0, 80.0), (300.0, 900.0)),
+    "report: berths 25-60 m, gaps 600-1500 s": (10, (25.0, 60.0), (600.0, 1500.0)),
+}
+
+
+def harbour(
+    seed: int, spacing: tuple[float, float], n_berth: int = 39, n_anchor: int = 15, n_move: int = 20
+) -> pd.DataFrame:
+    """Six hours of a harbour: berths, an anchorage and moving ships (truth b*, a*, m*)."""
+    rng = np.random.default_rng(seed)
+    dur, t0, rows = 6 * 3600.0, 1.7e9, []
+    n = int(dur / 180)
+    for q in range(3):  # three quays 250 m apart
+        x = 0.0
+        for k in range(n_berth // 3):
+            x += rng.uniform(*spacing)
+            t = t0 + np.cumsum(rng.uniform(170, 190, n))
+            jitter = rng.uniform(2, 8)
+            xy = np.array([x, q * 250.0]) + rng.normal(0, jitter, (n, 2))
+            rows.append(pd.DataFrame({"truth": f"b{q}-{k}", "t": t, "x": xy[:, 0], "y": xy[:, 1]}))
+    for k in range(n_anchor):
+        centre = rng.uniform([-1500, 800], [1500, 2500])
+        radius = rng.uniform(40, 150)
+        t = t0 + np.cumsum(rng.uniform(170, 190, n))
+        ang = np.cumsum(rng.normal(0, 0.05, n)) + rng.uniform(0, 2 * np.pi)
+        x = centre[0] + radius * np.cos(ang) + rng.normal(0, 4, n)
+        y = centre[1] + radius * np.sin(ang) + rng.normal(0, 4, n)
+        rows.append(pd.DataFrame({"truth": f"a{k}", "t": t, "x": x, "y": y}))
+    df = pd.concat(rows, ignore_index=True)
+    lon, lat = geo.from_local(df["x"].to_numpy(), df["y"].to_numpy(), *simulate.SCENE_ORIGIN)
+    still = pd.DataFrame(
+        {
+            "sensor": "AIS",
+            "batch": df["truth"],
+            "truth": df["truth"],
+            "time": pd.to_datetime(df["t"], unit="s", utc=True),
+            "lon": lon,
+            "lat": lat,
+        }
+    )
+    ships = simulate.hard_ships(rng, n_move, 6000.0, dur)
+    spec = simulate.SensorSpec("AIS", period_s=10.0, sigma_m=10.0, coverage=1.0, interrupt=False)
+    counter = simulate._BatchCounter(1000)
+    moving = pd.concat(
+        [f for s in ships for f in simulate._observe(rng, s, spec, counter, simulate.SCENE_ORIGIN)],
+        ignore_index=True,
+    )
+    name = "m" + moving["truth"].astype(str)
+    moving = moving.assign(batch=name, truth=name)
+    return pd.concat([still, moving[still.columns]], ignore_index=True)
+
+
+SARONIC = Path(__file__).resolve().parents[2] / "shared/data/real/greece-ais-annotated/vessels.csv"
+
+
+def wander(path: Path = SARONIC, n: int = 10) -> None:
+    """Percentiles of the distance (m) from an at-rest end's mean to the fix g s later."""
+    df = pd.read_csv(path, sep=" ", header=None, names=["id", "lon", "lat", "t"])
+    out = []
+    for _, g in df.groupby("id"):
+        g = g.sort_values("t")
+        x, y = geo.to_local(
+            g["lon"].to_numpy(), g["lat"].to_numpy(), g["lon"].mean(), g["lat"].mean()
+        )
+        t = g["t"].to_numpy(dtype="float64")
+        for k in range(n, len(t) - 1, 3):
+            xs, ys, ts = x[k - n : k], y[k - n : k], t[k - n : k]
+            if ts[-1] - ts[0] > 1800:
+                continue
+            if np.hypot(xs[-1] - xs[0], ys[-1] - ys[0]) / max(ts[-1] - ts[0], 1.0) > 0.25:
+                continue
+            for gap in (300, 900, 1800, 3600):
+                m = np.searchsorted(t, ts[-1] + gap)
+                if m < len(t) and t[m] - ts[-1] <= gap * 1.3:
+                    out.append((gap, np.hypot(x[m] - xs.mean(), y[m] - ys.mean())))
+    o = pd.DataFrame(out, columns=["gap_s", "d"])
+    o = o[o["d"] < 1000]  # a ship that sailed away
+    q = o.groupby("gap_s")["d"].quantile([0.5, 0.9]).unstack()
+    print("real ships at rest (Saronic): distance from the end's mean, m")
+    for gap, row in q.iterrows():
+        print(f"  after {gap:5d} s: median {row[0.5]:5.1f}, 90 % {row[0.9]:5.1f}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seeds", type=int, default=3)
+    ap.add_argument("--wander", action="store_true", help="real ships at rest (Saronic)")
+    args = ap.parse_args()
+    if args.wander:
+        wander()
+        return
+    variants = {"defaults": LinkParams(), "rest_drift_s=0": LinkParams(rest_drift_s=0.0)}
+    for case, (first, spacing, gaps) in CASES.items():
+        print(case)
+        for v, params in variants.items():
+            got = []
+            for seed in range(first, first + args.seeds):
+                df = cut_known_gaps(harbour(seed, spacing), *gaps, seed=seed)
+                sc = score_association(associate_interrupted(df, params))
+                got.append((sc["p_ca"], sc["p_fa"]))
+            each = ", ".join(f"{a:.3f}/{b:.3f}" for a, b in got)
+            mean = np.mean(got, axis=0)
+            print(f"  {v:<16} P_CA/P_FA per seed {each}; mean {mean[0]:.3f}/{mean[1]:.3f}")
+
+
+if __name__ == "__main__":
+    main()
