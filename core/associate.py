@@ -194,6 +194,27 @@ class LinkParams(Params):
         "ours; Saronic AIS at rest: 90 % of ships within 15 m of their end after 5 min, "
         "37 m after 1 h",
     )
+    rest_seen_s: float = param(
+        600.0,
+        "s",
+        "between two ends at rest: when each end's own fixes span at least this long, their "
+        "scatter shows how much the ship wanders at its spot, and the ship is expected within "
+        "rest_wander x that scatter (at most the rest_drift_m allowance), every metre off it "
+        "charged; shorter ends say nothing of a swing and keep the allowance and its free "
+        "zone (0 = off)",
+        0.0,
+        86400.0,
+        "ours; Saronic AIS at rest (bench/moored_harbour.py --wander)",
+    )
+    rest_wander: float = param(
+        3.0,
+        "",
+        "between two ends seen at rest for rest_seen_s: how far the ship may seem to move, "
+        "per axis, in units of its ends' own scatter",
+        0.0,
+        100.0,
+        "ours; Saronic AIS at rest: 2-4.5 by the ends' scatter",
+    )
     log_sigma: float = param(
         0.5,
         "",
@@ -477,6 +498,19 @@ def _minmax(x: np.ndarray) -> np.ndarray:
     return (x - lo) / (hi - lo) if hi > lo else np.zeros_like(x)
 
 
+def _seen_at_rest(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray:
+    """Per pair: both ends' own fixes (three or more each) span at least ``rest_seen_s``."""
+    if params.rest_seen_s <= 0 or seg.span0 is None or seg.span1 is None:
+        return np.zeros(len(pairs), dtype=bool)
+    i, j = pairs.i, pairs.j
+    return (
+        (seg.n[i] >= 3)
+        & (seg.n[j] >= 3)
+        & (seg.span1[i] >= params.rest_seen_s)
+        & (seg.span0[j] >= params.rest_seen_s)
+    )
+
+
 def rest_drift_m(gap_s: np.ndarray, params: LinkParams) -> np.ndarray:
     """How far (m, per axis) a ship at rest at both ends of a gap of ``gap_s`` seconds
     may seem to have moved: ``rest_drift_m`` once the gap reaches ``rest_drift_s``, less
@@ -651,10 +685,17 @@ def _pricing(
         # one ship that crossed the harbour and stopped again).
         rest = at_rest_pairs(seg, pairs, params)
         if rest.any():
-            spot = params.sigmas * np.sqrt(
-                seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2 + rest_drift_m(pairs.gap_s, params) ** 2
-            )
-            d = np.where(rest, np.fmax(d, pairs.dist_m / spot - 1.0), d)
+            drift = rest_drift_m(pairs.gap_s, params)
+            # Ends seen at rest long enough show the ship's wander: a ship lying within
+            # 4 m for an hour is at a berth and is not expected 40 m off (its neighbour's
+            # spot); every metre off the spot is charged. A short end (a few fixes) says
+            # nothing of a swing at anchor: the allowance and its free zone.
+            seen = _seen_at_rest(seg, pairs, params) & rest
+            if seen.any():
+                scatter = params.rest_wander * np.fmax(seg.noise1[i], seg.noise0[j])
+                drift = np.where(seen, np.fmin(drift, scatter), drift)
+            spot = params.sigmas * np.sqrt(seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2 + drift**2)
+            d = np.where(rest, np.fmax(d, pairs.dist_m / spot - np.where(seen, 0.0, 1.0)), d)
             # At rest the ship is expected at its spot, not spread by unknown motion.
             sigma = np.where(rest, np.fmin(sigma, spot / params.sigmas), sigma)
         if params.log_sigma > 0:

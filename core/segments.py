@@ -76,6 +76,10 @@ class Segments:
     #: (its sensor's median where the piece has fewer than three): when its ship is seen.
     step0: np.ndarray | None = None
     step1: np.ndarray | None = None
+    #: Time (s) spanned by the first / last ``end_points`` fixes of the piece itself (0
+    #: for a single fix): how long the end was seen.
+    span0: np.ndarray | None = None
+    span1: np.ndarray | None = None
     source: pd.DataFrame | None = None
     source_row: np.ndarray | None = None
 
@@ -505,6 +509,8 @@ def segment_stats(
 
     sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
     step0, step1 = (_end_step(t, rows, valid, sensor_code) for rows in (head, tail))
+    span0 = t[head].max(axis=1) - t[index.starts] if len(sizes) else np.zeros(0)
+    span1 = t[index.ends - 1] - t[tail].min(axis=1) if len(sizes) else np.zeros(0)
     # Noise per axis: each end's own residuals, or its sensor's median where it has too
     # few points (the whole table's median if no track of the sensor shows any).
     res = np.where(np.isfinite(res0), res0, res1)
@@ -546,6 +552,8 @@ def segment_stats(
         accel1=accel1,
         step0=step0,
         step1=step1,
+        span0=span0,
+        span1=span1,
         source=source,
         source_row=source_row,
     )
