@@ -54,12 +54,17 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         return 0
 
     if args.kind == "associate" and args.real:
+        from wakeline.core.errors import InputError
         from wakeline.core.evaluate_association import evaluate_real_association
+
+        if args.gaps_every is not None and args.gaps is None:
+            raise InputError("--gaps-every needs --gaps LO HI (the length of each window)")
 
         ev = evaluate_real_association(
             args.real,
             cut_s=args.cut_s,
             gaps=args.gaps,
+            gaps_every=args.gaps_every,
             params=link_params(args.set),
             truth_sep=args.truth_sep,
             mapping=args.map,
@@ -339,6 +344,13 @@ def register(sub) -> None:
         help="associate --real: instead of cutting at the tracks' own gaps, remove one window "
         "of fixes of random length in [LO, HI] s from each track, at least 120 s from either "
         "end (known gaps; --seed draws them)",
+    )
+    p.add_argument(
+        "--gaps-every",
+        type=positive_float,
+        metavar="S",
+        help="associate --real --gaps: one such window in every S seconds of each track "
+        "(many true pairs from a few long tracks) instead of one per track",
     )
     p.add_argument(
         "--truth-sep",

@@ -116,13 +116,24 @@ def wander(path: Path = SARONIC, n: int = 10) -> None:
             for gap in (300, 900, 1800, 3600):
                 m = np.searchsorted(t, ts[-1] + gap)
                 if m < len(t) and t[m] - ts[-1] <= gap * 1.3:
-                    out.append((gap, np.hypot(x[m] - xs.mean(), y[m] - ys.mean())))
-    o = pd.DataFrame(out, columns=["gap_s", "d"])
+                    sd = np.sqrt((np.var(xs) + np.var(ys)) / 2)  # the end's scatter per axis
+                    out.append((gap, sd, np.hypot(x[m] - xs.mean(), y[m] - ys.mean())))
+    o = pd.DataFrame(out, columns=["gap_s", "sd", "d"])
     o = o[o["d"] < 1000]  # a ship that sailed away
     q = o.groupby("gap_s")["d"].quantile([0.5, 0.9]).unstack()
     print("real ships at rest (Saronic): distance from the end's mean, m")
     for gap, row in q.iterrows():
         print(f"  after {gap:5d} s: median {row[0.5]:5.1f}, 90 % {row[0.9]:5.1f}")
+    o["scatter"] = pd.cut(o["sd"], [-1.0, 2.0, 5.0, 20.0], labels=["<= 2 m", "2-5 m", "5-20 m"])
+    by = o.groupby(["scatter", "gap_s"], observed=True)["d"]
+    print("by the end's own scatter (per axis): 90 % of the distance, m; the same as a")
+    print("per-axis wander (Rayleigh: 90 % / 2.146, less the scatter), in units of the scatter")
+    for (band, gap), d90 in by.quantile(0.9).items():
+        sd = o.loc[(o["scatter"] == band) & (o["gap_s"] == gap), "sd"].median()
+        wander = np.sqrt(max((d90 / 2.146) ** 2 - sd**2, 0.0))
+        print(
+            f"  scatter {band:>6}, after {gap:5d} s: 90 % {d90:6.1f}; wander {wander / sd:4.1f} x"
+        )
 
 
 def main() -> None:
@@ -135,9 +146,9 @@ def main() -> None:
         return
     variants = {
         "defaults": LinkParams(),
-        "rest_seen_s=0": LinkParams(rest_seen_s=0.0),
-        "rest_drift_s=0": LinkParams(rest_drift_s=0.0),
-        "session 11": LinkParams(rest_seen_s=0.0, rest_drift_s=0.0),
+        "rest_move=0.5": LinkParams(rest_move=0.5),
+        "rest_drift_s=2700": LinkParams(rest_drift_s=2700.0),
+        "session 11": LinkParams(rest_seen_s=0.0),
     }
     for case, (first, spacing, gaps, tide) in CASES.items():
         print(case)

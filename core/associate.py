@@ -184,11 +184,11 @@ class LinkParams(Params):
         1e4,
     )
     rest_drift_s: float = param(
-        2700.0,
+        0.0,
         "s",
-        "between two ends at rest: the gap over which the drift reaches rest_drift_m; a "
-        "shorter gap allows rest_drift_m x sqrt(gap / rest_drift_s), so ships moored 40 m "
-        "apart stay apart over a 15 min gap (0 = rest_drift_m whatever the gap)",
+        "between two ends at rest: the gap over which the allowance reaches rest_drift_m; a "
+        "shorter gap allows rest_drift_m x sqrt(gap / rest_drift_s) (0 = rest_drift_m "
+        "whatever the gap; measured and not taken: docs/evaluation.md)",
         0.0,
         86400.0 * 7,
         "ours; Saronic AIS at rest: 90 % of ships within 15 m of their end after 5 min, "
@@ -197,11 +197,11 @@ class LinkParams(Params):
     rest_seen_s: float = param(
         600.0,
         "s",
-        "between two ends at rest: when each end's own fixes span at least this long, their "
-        "scatter shows how much the ship wanders at its spot, and the ship is expected within "
-        "rest_wander x that scatter (at most the rest_drift_m allowance), every metre off it "
-        "charged; shorter ends say nothing of a swing and keep the allowance and its free "
-        "zone (0 = off)",
+        "between two ends at rest: when each end's own fit (3 fixes or more) spans at least "
+        "this long, its scatter shows how much the ship wanders at its spot: the pair costs "
+        "the cheaper of lying within rest_wander x that scatter (every metre off the "
+        "prediction charged) and having moved within the rest_drift_m allowance (rest_move "
+        "more); shorter ends say nothing of a swing and keep the allowance (0 = off)",
         0.0,
         86400.0,
         "ours; Saronic AIS at rest (bench/moored_harbour.py --wander)",
@@ -213,7 +213,17 @@ class LinkParams(Params):
         "per axis, in units of its ends' own scatter",
         0.0,
         100.0,
-        "ours; Saronic AIS at rest: 2-4.5 by the ends' scatter",
+        "ours; Saronic AIS at rest, ends scattered <= 2 m: 1.7-4.2 (5 min to 1 h)",
+    )
+    rest_move: float = param(
+        1.0,
+        "",
+        "between two ends seen at rest for rest_seen_s: what it costs that the ship moved "
+        "within the rest_drift_m allowance rather than lay where it was seen (a ship "
+        "re-berthed or drifting), on top of that allowance's price",
+        0.0,
+        10.0,
+        "ours",
     )
     log_sigma: float = param(
         0.5,
@@ -691,11 +701,24 @@ def _pricing(
             # spot); every metre off the spot is charged. A short end (a few fixes) says
             # nothing of a swing at anchor: the allowance and its free zone.
             seen = _seen_at_rest(seg, pairs, params) & rest
+            ends_sd2 = seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2
+            spot = params.sigmas * np.sqrt(ends_sd2 + drift**2)
+            loose = np.fmax(d, pairs.dist_m / spot - 1.0)  # within the allowance, free
+            d = np.where(rest, loose, d)
             if seen.any():
-                scatter = params.rest_wander * np.fmax(seg.noise1[i], seg.noise0[j])
-                drift = np.where(seen, np.fmin(drift, scatter), drift)
-            spot = params.sigmas * np.sqrt(seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2 + drift**2)
-            d = np.where(rest, np.fmax(d, pairs.dist_m / spot - np.where(seen, 0.0, 1.0)), d)
+                # Two hypotheses: it lay where it was seen lying (the spot its scatter
+                # shows, every metre off the prediction charged: a ship creeping below
+                # rest_kn is expected where its velocity takes it), or it moved within the
+                # allowance (re-berthed, drifted: rest_move more). The scatter is taken as
+                # at least a metre (a GPS holding one position shows none).
+                scatter = params.rest_wander * np.fmax(np.fmax(seg.noise1[i], seg.noise0[j]), 1.0)
+                vel2 = (seg.vel_sd1[i] ** 2 + seg.vel_sd0[j] ** 2) / 2 * pairs.gap_s**2
+                tight = params.sigmas * np.sqrt(
+                    ends_sd2 + np.fmin(drift, scatter) ** 2 + np.where(seen, vel2, 0.0)
+                )
+                lay = np.fmax(d, (miss if params.predict else pairs.dist_m) / tight)
+                d = np.where(seen, np.fmin(lay, loose + params.rest_move), d)
+                spot = np.where(seen, tight, spot)
             # At rest the ship is expected at its spot, not spread by unknown motion.
             sigma = np.where(rest, np.fmin(sigma, spot / params.sigmas), sigma)
         if params.log_sigma > 0:

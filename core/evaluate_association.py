@@ -278,6 +278,7 @@ def cut_known_gaps(
     seed: int = 0,
     margin_s: float = 120.0,
     truth_column: str = "truth",
+    every_s: float | None = None,
 ) -> pd.DataFrame:
     """Real data made into an association test at gaps of known length: each track
     loses one window of fixes, of random length in [``lo_s``, ``hi_s``] s, placed at
@@ -286,7 +287,14 @@ def cut_known_gaps(
     :func:`_truth`) and the pieces get shuffled numbers. The track's own gaps stay inside
     its pieces, so every true pair's gap is at least ``lo_s``; it is at most ``hi_s`` plus
     two sampling steps where the sampling is regular, more where the window meets one of
-    the track's own gaps."""
+    the track's own gaps.
+
+    ``every_s``: one window in every ``every_s`` s of each track instead (the track's time
+    cut into spans of that length from its first fix, a window at least ``margin_s`` from
+    either end of its span and of the track), so a long track gives many true pairs; a
+    window is only made where the gap it leaves is at most ``hi_s`` plus two of the
+    track's median steps (not where the track is silent anyway), so every true pair's gap
+    is known."""
     from wakeline.core.schema import time_seconds
     from wakeline.core.tracks import sort_points, track_index
 
@@ -298,15 +306,50 @@ def cut_known_gaps(
     first = t[index.starts]
     last = t[index.ends - 1]
     rng = np.random.default_rng(seed)
-    g = rng.uniform(lo_s, hi_s, len(first))
-    room = (last - first) - (g + 2 * margin_s)
-    cut = room >= 0
-    c = first + margin_s + rng.uniform(0.0, 1.0, len(first)) * np.maximum(room, 0.0)
     tr = index.track_of_row
-    c_row, g_row, cut_row = c[tr], g[tr], cut[tr]
-    after = cut_row & (t > c_row + g_row)
-    keep = ~cut_row | (t < c_row) | after
-    piece = 2 * tr + after
+    if every_s is None:
+        g = rng.uniform(lo_s, hi_s, len(first))
+        room = (last - first) - (g + 2 * margin_s)
+        cut = room >= 0
+        c = first + margin_s + rng.uniform(0.0, 1.0, len(first)) * np.maximum(room, 0.0)
+        c_row, g_row, cut_row = c[tr], g[tr], cut[tr]
+        after = cut_row & (t > c_row + g_row)
+        keep = ~cut_row | (t < c_row) | after
+        piece = 2 * tr + after
+    else:
+        if not every_s > 0:
+            raise ValueError(f"gaps every: need a positive span, got {every_s:g} s")
+        # One window per (track, span): spans of every_s from the track's first fix.
+        span = np.floor((t - first[tr]) / every_s).astype("int64")
+        width = int(span.max()) + 1 if len(span) else 1
+        key = tr * width + span  # non-decreasing: rows are in track and time order
+        keys, inv = np.unique(key, return_inverse=True)
+        k_tr, k_span = keys // width, keys % width
+        lo_t = first[k_tr] + k_span * every_s
+        hi_t = np.minimum(lo_t + every_s, last[k_tr])
+        g = rng.uniform(lo_s, hi_s, len(keys))
+        room = (hi_t - lo_t) - (g + 2 * margin_s)
+        cut = room >= 0
+        c = lo_t + margin_s + rng.uniform(0.0, 1.0, len(keys)) * np.maximum(room, 0.0)
+        # Known gaps only: no window where the track is silent anyway (the fixes either
+        # side of it more than hi_s and two of the track's median steps apart).
+        along = tr * 1e8 + (t - first[tr])  # track, then time: sorted
+        before_w = np.searchsorted(along, k_tr * 1e8 + (c - first[k_tr])) - 1
+        after_w = np.searchsorted(along, k_tr * 1e8 + (c + g - first[k_tr]), side="right")
+        step = np.diff(t, prepend=np.nan)
+        step[index.starts] = np.nan
+        median = pd.Series(step).groupby(tr).median().reindex(np.arange(len(first))).to_numpy()
+        inside = cut & (after_w < len(t))
+        made = np.full(len(keys), np.inf)
+        made[inside] = t[after_w[inside]] - t[before_w[inside]]
+        cut &= made <= hi_s + 2 * np.nan_to_num(median[k_tr], nan=np.inf)
+        c_row, g_row, cut_row = c[inv], g[inv], cut[inv]
+        after = cut_row & (t > c_row + g_row)
+        keep = ~cut_row | (t < c_row) | after
+        # Windows passed before each span of its track, then the span's own.
+        before = np.cumsum(cut) - cut
+        before = before - before[np.searchsorted(k_tr, k_tr)]
+        piece = tr * (len(keys) + 1) + before[inv] + after
     if truth_column not in df.columns:
         df[truth_column] = _truth(df)
     df, piece = df[keep], piece[keep]
@@ -546,13 +589,15 @@ class RealEvaluation:
     skipped: list  # (file, reason)
     cut_s: float
     gaps: tuple[float, float] | None = None  # known gaps (lo, hi) s instead of cut_s
+    gaps_every: float | None = None  # one known gap per this many s of track
 
     def format(self) -> str:
         if self.gaps is None:
             how = f"cut where a step exceeds {self.cut_s:g} s and 4 x the track's median step"
         else:
+            often = "once" if self.gaps_every is None else f"every {self.gaps_every:g} s"
             how = (
-                f"each cut once by removing {self.gaps[0]:g}-{self.gaps[1]:g} s of fixes "
+                f"each cut {often} by removing {self.gaps[0]:g}-{self.gaps[1]:g} s of fixes "
                 "(known gaps)"
             )
         lines = [
@@ -669,6 +714,7 @@ def evaluate_real_association(
     cut_s: float = 120.0,
     params: LinkParams | None = None,
     gaps: tuple[float, float] | None = None,
+    gaps_every: float | None = None,
     methods: tuple[str, ...] = (
         "ours, optimal",
         "ours, pair by pair",
@@ -687,7 +733,8 @@ def evaluate_real_association(
     the truth; they are cut at their gaps (:func:`cut_at_gaps`, ``cut_s``) and the pieces
     renumbered at random, so nothing but positions, times and reported motion is left.
     With ``gaps`` (lo, hi) in s, each track instead loses one window of fixes of a known
-    length (:func:`cut_known_gaps`) and its own gaps stay inside its pieces.
+    length (:func:`cut_known_gaps`) and its own gaps stay inside its pieces; with
+    ``gaps_every`` one such window in every ``gaps_every`` s of each track.
     """
     from wakeline.core.errors import InputError
     from wakeline.core.io import read_points
@@ -710,7 +757,7 @@ def evaluate_real_association(
         if gaps is None:
             cut = cut_at_gaps(df, min_gap_s=cut_s, seed=seed)
         else:
-            cut = cut_known_gaps(df, *gaps, seed=seed)
+            cut = cut_known_gaps(df, *gaps, seed=seed, every_s=gaps_every)
         for label in methods:
             assoc = run_method(cut, label, params)
             rows.append(
@@ -728,4 +775,4 @@ def evaluate_real_association(
         raise InputError(
             "no file could be scored: " + "; ".join(f"{f}: {why}" for f, why in skipped)
         )
-    return RealEvaluation(pd.DataFrame(rows), skipped, cut_s, gaps)
+    return RealEvaluation(pd.DataFrame(rows), skipped, cut_s, gaps, gaps_every)

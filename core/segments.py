@@ -76,8 +76,9 @@ class Segments:
     #: (its sensor's median where the piece has fewer than three): when its ship is seen.
     step0: np.ndarray | None = None
     step1: np.ndarray | None = None
-    #: Time (s) spanned by the first / last ``end_points`` fixes of the piece itself (0
-    #: for a single fix): how long the end was seen.
+    #: Time (s) spanned by the fixes of the piece's own start / end fit (``end_points``,
+    #: or up to ``end_points_max`` where they show no acceleration; 0 for a single fix):
+    #: how long the end was seen as it is fitted.
     span0: np.ndarray | None = None
     span1: np.ndarray | None = None
     source: pd.DataFrame | None = None
@@ -473,7 +474,7 @@ def segment_stats(
     sizes = index.sizes
     k = max(int(end_points), 1)
     k_max = int(end_points_max or k)
-    (fit0, _, accel0), (fit1, _, accel1) = (
+    (fit0, used0, accel0), (fit1, used1, accel1) = (
         _straight_fits(lon, lat, t, index, k, k_max, h) for h in (True, False)
     )
     (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fit0, fit1
@@ -509,8 +510,9 @@ def segment_stats(
 
     sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
     step0, step1 = (_end_step(t, rows, valid, sensor_code) for rows in (head, tail))
-    span0 = t[head].max(axis=1) - t[index.starts] if len(sizes) else np.zeros(0)
-    span1 = t[index.ends - 1] - t[tail].min(axis=1) if len(sizes) else np.zeros(0)
+    # The time each end's own fit spans (over the fixes it used, up to end_points_max).
+    span0 = t[index.starts + np.maximum(used0, 1) - 1] - t[index.starts]
+    span1 = t[index.ends - 1] - t[index.ends - np.maximum(used1, 1)]
     # Noise per axis: each end's own residuals, or its sensor's median where it has too
     # few points (the whole table's median if no track of the sensor shows any).
     res = np.where(np.isfinite(res0), res0, res1)

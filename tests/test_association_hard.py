@@ -423,6 +423,59 @@ def test_known_gap_cut_loses_one_window_per_track_and_nothing_else(
     assert out["batch"].nunique() == len(spans) + cut
 
 
+@settings(max_examples=40, deadline=None)
+@given(
+    spans=st.lists(st.integers(1, 300), min_size=1, max_size=5),
+    step=st.sampled_from([1.0, 10.0, 60.0]),
+    silent=st.lists(st.integers(0, 299), max_size=4),
+    lo=st.floats(0.0, 600.0),
+    width=st.floats(0.0, 600.0),
+    every=st.floats(900.0, 5000.0),
+    seed=st.integers(0, 2**16),
+)
+def test_known_gaps_every_span_are_known_and_lose_nothing_else(
+    spans, step, silent, lo, width, every, seed
+):
+    # One window per `every` s of each track: each piece one track's, every fix kept is an
+    # input fix, the fixes lost are exactly those between consecutive pieces, and every
+    # gap between consecutive pieces is known: at least lo, at most hi + 2 median steps
+    # (tracks with a silence of 20 steps at some fixes: no window is made across it).
+    hi = lo + width
+    rows = []
+    for k, n in enumerate(spans):
+        t = step * np.arange(n, dtype=float)
+        for m in silent:
+            t[m % n :] += 20 * step if m % n else 0.0
+        rows += [(f"s{k}", t[m], k, m) for m in range(n)]
+    df = pd.DataFrame(rows, columns=["batch", "sec", "k", "m"])
+    df["time"] = pd.Timestamp("2024-05-01", tz="UTC") + pd.to_timedelta(df["sec"], unit="s")
+    df = df.assign(sensor="AIS", lon=10.0 + 0.01 * df["k"], lat=55.0 + 1e-4 * df["m"])
+    df = df.sample(frac=1.0, random_state=seed % 1000).reset_index(drop=True)
+    out = cut_known_gaps(df, lo, hi, seed=seed, every_s=every)
+    assert (out.groupby("batch")["truth"].nunique() == 1).all()
+    back = out.merge(df, on=["k", "m"], suffixes=("", "_in"))
+    assert len(back) == len(out)
+    assert (back["truth"] == back["batch_in"]).all()
+    assert (back["time"] == back["time_in"]).all() and (back["lon"] == back["lon_in"]).all()
+    for b, whole in df.groupby("batch"):
+        part = out[out["truth"] == b]
+        pieces = part.groupby("batch")["sec"].agg(["min", "max", "size"]).sort_values("min")
+        assert (pieces["min"].to_numpy()[1:] > pieces["max"].to_numpy()[:-1]).all()
+        gaps = pieces["min"].to_numpy()[1:] - pieces["max"].to_numpy()[:-1]
+        median = np.median(np.diff(np.sort(whole["sec"].to_numpy()))) if len(whole) > 1 else 0
+        assert (gaps >= lo - 1e-6).all() and (gaps <= hi + 2 * median + 1e-6).all()
+        lost = len(whole) - len(part)
+        between = sum(
+            ((whole["sec"] > a) & (whole["sec"] < c)).sum()
+            for a, c in zip(
+                pieces["max"].to_numpy()[:-1], pieces["min"].to_numpy()[1:], strict=True
+            )
+        )
+        assert lost == between
+        span = whole["sec"].max() - whole["sec"].min()
+        assert len(pieces) <= int(span // every) + 2
+
+
 def test_known_gap_cut_keeps_tracks_of_two_sensors_apart():
     # Batch 7 of R1 and batch 7 of R2 are two ships (found by the review: one truth).
     t0 = pd.Timestamp("2024-05-01", tz="UTC")
@@ -445,6 +498,11 @@ def test_known_gap_cut_on_the_command_line(tmp_path, capsys):
     assert "known gaps" in ev.format()
     assert main(["evaluate", "associate", "--real", str(tmp_path), "--gaps", "60", "120"]) == 0
     assert "60-120 s of fixes" in capsys.readouterr().out
+    assert main(["evaluate", "associate", "--real", str(tmp_path), "--gaps-every", "600"]) == 2
+    assert "--gaps-every needs --gaps" in capsys.readouterr().err
+    args = ["evaluate", "associate", "--real", str(tmp_path), "--gaps", "60", "120"]
+    assert main([*args, "--gaps-every", "1800"]) == 0
+    assert "each cut every 1800 s by removing 60-120 s of fixes" in capsys.readouterr().out
     with pytest.raises(ValueError, match="lo <= hi"):
         cut_known_gaps(df, 120.0, 60.0)
 
