@@ -702,7 +702,7 @@ def _pricing(
             # nothing of a swing at anchor: the allowance and its free zone.
             seen = _seen_at_rest(seg, pairs, params) & rest
             ends_sd2 = seg.pos_sd1[i] ** 2 + seg.pos_sd0[j] ** 2
-            spot = params.sigmas * np.sqrt(ends_sd2 + drift**2)
+            spot = params.sigmas * np.sqrt(np.fmax(ends_sd2 + drift**2, 1.0))
             loose = np.fmax(d, pairs.dist_m / spot - 1.0)  # within the allowance, free
             d = np.where(rest, loose, d)
             if seen.any():
@@ -713,12 +713,19 @@ def _pricing(
                 # at least a metre (a GPS holding one position shows none).
                 scatter = params.rest_wander * np.fmax(np.fmax(seg.noise1[i], seg.noise0[j]), 1.0)
                 vel2 = (seg.vel_sd1[i] ** 2 + seg.vel_sd0[j] ** 2) / 2 * pairs.gap_s**2
+                # Never below a metre, as the moving-ship sigma (rest_wander may be 0).
                 tight = params.sigmas * np.sqrt(
-                    ends_sd2 + np.fmin(drift, scatter) ** 2 + np.where(seen, vel2, 0.0)
+                    np.fmax(
+                        ends_sd2 + np.fmin(drift, scatter) ** 2 + np.where(seen, vel2, 0.0), 1.0
+                    )
                 )
                 lay = np.fmax(d, (miss if params.predict else pairs.dist_m) / tight)
-                d = np.where(seen, np.fmin(lay, loose + params.rest_move), d)
-                spot = np.where(seen, tight, spot)
+                moved = loose + params.rest_move
+                d = np.where(seen, np.fmin(lay, moved), d)
+                # The tight spread only where lying still is the price taken: a pair priced
+                # as "moved" is spread as widely as any rest pair, and must not become the
+                # tightest reference of its ends' other candidates (the spread term).
+                spot = np.where(seen & (lay <= moved), tight, spot)
             # At rest the ship is expected at its spot, not spread by unknown motion.
             sigma = np.where(rest, np.fmin(sigma, spot / params.sigmas), sigma)
         if params.log_sigma > 0:

@@ -333,16 +333,22 @@ def cut_known_gaps(
         c = lo_t + margin_s + rng.uniform(0.0, 1.0, len(keys)) * np.maximum(room, 0.0)
         # Known gaps only: no window where the track is silent anyway (the fixes either
         # side of it more than hi_s and two of the track's median steps apart).
-        along = tr * 1e8 + (t - first[tr])  # track, then time: sorted
-        before_w = np.searchsorted(along, k_tr * 1e8 + (c - first[k_tr])) - 1
-        after_w = np.searchsorted(along, k_tr * 1e8 + (c + g - first[k_tr]), side="right")
+        scale = float((last - first).max()) * (1 + 1e-9) + 1.0
+        along = tr + (t - first[tr]) / scale  # track, then time within it: sorted
+        before_w = np.searchsorted(along, k_tr + (c - first[k_tr]) / scale) - 1
+        before_w = np.maximum(before_w, index.starts[k_tr])
+        after_w = np.searchsorted(along, k_tr + (c + g - first[k_tr]) / scale, side="right")
+        after_w = np.minimum(after_w, index.ends[k_tr] - 1)
         step = np.diff(t, prepend=np.nan)
         step[index.starts] = np.nan
         median = pd.Series(step).groupby(tr).median().reindex(np.arange(len(first))).to_numpy()
-        inside = cut & (after_w < len(t))
-        made = np.full(len(keys), np.inf)
-        made[inside] = t[after_w[inside]] - t[before_w[inside]]
+        made = t[after_w] - t[before_w]
         cut &= made <= hi_s + 2 * np.nan_to_num(median[k_tr], nan=np.inf)
+        # Two windows with no fix between them would make one unknown gap of both: the
+        # first of them is not made.
+        w = np.flatnonzero(cut)
+        merged = (k_tr[w[1:]] == k_tr[w[:-1]]) & (t[after_w[w[:-1]]] >= c[w[1:]])
+        cut[w[:-1][merged]] = False
         c_row, g_row, cut_row = c[inv], g[inv], cut[inv]
         after = cut_row & (t > c_row + g_row)
         keep = ~cut_row | (t < c_row) | after

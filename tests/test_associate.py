@@ -466,6 +466,32 @@ def test_a_ship_seen_at_rest_that_moved_is_still_joined_when_nothing_else_could_
     assert _joins(df) == (1, 0)
 
 
+def test_a_ship_leaving_its_berth_keeps_its_way_out_beside_a_neighbour_that_stays():
+    # A lay steady at its berth for an hour and leaves during a 10 min gap at 5 m/s; B,
+    # moored 180 m away, is silent 7 min and stays. A -> B's next piece is priced "moved"
+    # (about 1.3); in the first version it still set A's tightest spread reference (a few
+    # metres), so A's true way out paid +0.3-0.65 and crossed no_join (found by review).
+    def case(seed: int) -> pd.DataFrame:
+        rng = np.random.default_rng(seed)
+        t = 180.0 * np.arange(20)
+        t2 = t[-1] + 600.0 + 10.0 * np.arange(60)
+        x2 = 5.0 * (t2 - t[-1])
+        tb = t + rng.uniform(0, 180)
+        tb2 = tb[-1] + 400.0 + 180.0 * np.arange(20)
+        return pd.concat(
+            [
+                track("Aa", t, rng.normal(0, 1, 20), rng.normal(0, 1, 20), truth="A"),
+                track("Ab", t2, x2 + rng.normal(0, 10, 60), rng.normal(0, 10, 60), truth="A"),
+                track("Ba", tb, 180 + rng.normal(0, 1, 20), rng.normal(0, 1, 20), truth="B"),
+                track("Bb", tb2, 180 + rng.normal(0, 1, 20), rng.normal(0, 1, 20), truth="B"),
+            ],
+            ignore_index=True,
+        )
+
+    joins = np.array([_joins(case(s)) for s in range(8)]).sum(axis=0)
+    assert joins.tolist() == [16, 0]
+
+
 @pytest.mark.parametrize("seed", range(4))
 def test_ships_moored_40_m_apart_keep_their_own_pieces_across_a_gap_beyond_t_gap(seed):
     # Silent for 13-18 min: the second look must tell the ship's own piece (a few metres
