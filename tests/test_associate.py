@@ -398,8 +398,8 @@ SESSION_11_REST = LinkParams(rest_drift_s=0.0, rest_seen_s=0.0)
 def test_ships_moored_40_m_apart_keep_their_own_pieces_across_a_gap_within_t_gap():
     # A ship at rest was allowed 50 m of wander per axis whatever the gap (3 sigma:
     # 150 m, free), so a neighbour 40 m off was within the margin of the ship's own piece
-    # and the join was dropped. Wander takes time (rest_drift_s), and a ship seen lying
-    # within 4 m for half an hour is at a berth (rest_seen_s, rest_wander).
+    # and the join was dropped. A ship seen lying within 4 m for half an hour is at a
+    # berth (rest_seen_s, rest_wander).
     new = np.array([_joins(_quay(s, (100.0, 400.0))) for s in range(8)]).sum(axis=0)
     old = np.array([_joins(_quay(s, (100.0, 400.0)), SESSION_11_REST) for s in range(8)])
     assert new.tolist() == [48, 0]
@@ -409,7 +409,7 @@ def test_ships_moored_40_m_apart_keep_their_own_pieces_across_a_gap_within_t_gap
 def test_ships_moored_40_m_apart_keep_their_own_pieces_when_ais_comes_every_30_s():
     # The evidence is the end's own fit (up to end_points_max fixes): at 30 s, 40 fixes
     # span 20 min (the first version took end_points, 10 fixes, 4.5 min: never "seen").
-    # Silent 10-15 min, beyond T_gap: session 11's rules made 6 of 48 joins, 11 wrong.
+    # Silent 10-15 min, beyond T_gap: session 11's rules made 6 right joins of 48, 11 wrong.
     joins = [_joins(_quay(s, (600.0, 900.0), step_s=30.0)) for s in range(8)]
     assert np.array(joins).sum(axis=0).tolist()[1] == 0
     assert np.array(joins).sum(axis=0).tolist()[0] >= 46
