@@ -1243,11 +1243,8 @@ def long_gap_pass(
         # A join gives way only to a long join the second look makes: the others come
         # back, and the second look runs again with them joined (as loose pieces they
         # were rivals they never were).
-        took_i = np.zeros(n, dtype=bool)
-        took_i[found.i[ok]] = True
-        took_j = np.zeros(n, dtype=bool)
-        took_j[found.j[ok]] = True
-        kept = released[took_i[pairs.i[released]] | took_j[pairs.j[released]]]
+        left_i, left_j = _free(found, np.flatnonzero(ok), n)
+        kept = released[~left_i[pairs.i[released]] | ~left_j[pairs.j[released]]]
         if len(kept) < len(released):
             released = kept
             joined = chosen[~np.isin(chosen, released)]

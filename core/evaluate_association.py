@@ -312,10 +312,7 @@ def cut_known_gaps(
         room = (last - first) - (g + 2 * margin_s)
         cut = room >= 0
         c = first + margin_s + rng.uniform(0.0, 1.0, len(first)) * np.maximum(room, 0.0)
-        c_row, g_row, cut_row = c[tr], g[tr], cut[tr]
-        after = cut_row & (t > c_row + g_row)
-        keep = ~cut_row | (t < c_row) | after
-        piece = 2 * tr + after
+        window = tr  # each row's window: its track's
     else:
         if not every_s > 0:
             raise ValueError(f"gaps every: need a positive span, got {every_s:g} s")
@@ -349,10 +346,13 @@ def cut_known_gaps(
         w = np.flatnonzero(cut)
         merged = (k_tr[w[1:]] == k_tr[w[:-1]]) & (t[after_w[w[:-1]]] >= c[w[1:]])
         cut[w[:-1][merged]] = False
-        c_row, g_row, cut_row = c[inv], g[inv], cut[inv]
-        after = cut_row & (t > c_row + g_row)
-        keep = ~cut_row | (t < c_row) | after
-        # Windows passed before each span of its track, then the span's own.
+        window = inv  # each row's window: its span's
+    c_row, g_row, cut_row = c[window], g[window], cut[window]
+    after = cut_row & (t > c_row + g_row)
+    keep = ~cut_row | (t < c_row) | after
+    if every_s is None:
+        piece = 2 * tr + after
+    else:  # windows passed before each span of its track, then the span's own
         before = np.cumsum(cut) - cut
         before = before - before[np.searchsorted(k_tr, k_tr)]
         piece = tr * (len(keys) + 1) + before[inv] + after
