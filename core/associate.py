@@ -869,6 +869,11 @@ def optimal_assign(
         ]
     )
     size = n_old + n_new
+    # In whole numbers (micro-units of cost): scipy's LAPJVsp can loop for ever on float
+    # costs (seen on 500 single-fix pieces with near-equal costs: no answer after 2 min;
+    # 3 ms in whole numbers; tests/test_associate.py). Exact while sums stay below 2**53.
+    scale = min(1e6, 2.0**52 / (float(vals.max()) * size))
+    vals = np.maximum(np.round(vals * scale), 1.0)
     graph = sparse.csr_matrix((vals, (rows, cols)), shape=(size, size))
     r, c = min_weight_full_bipartite_matching(graph)
     # Chosen real edges: row r < n_old matched to a column c < n_new.

@@ -705,3 +705,42 @@ def test_a_ship_seen_every_half_hour_does_not_reappear_three_minutes_later():
         assert associate_interrupted(r).pair_table()[["batch_a", "batch_b"]].values.tolist() == [
             ["r1", "r2"]
         ]
+
+
+def test_optimal_assign_ends_on_costs_that_loop_scipys_float_solver():
+    # The candidate set of a simulated scene of 500 single-fix pieces (costs just under
+    # no_join, near-equal): scipy's min_weight_full_bipartite_matching given these costs
+    # as floats gave no answer in 2 minutes; optimal_assign hands it whole numbers. Run in
+    # a child process, so a regression fails this test instead of hanging the suite.
+    import io
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from scipy.optimize import linear_sum_assignment
+
+    data = Path(__file__).parent / "data" / "assign_float_loop.npz"
+    code = (
+        "import numpy as np, sys\n"
+        "from wakeline.core.associate import optimal_assign\n"
+        f"d = np.load({str(data)!r})\n"
+        "k = optimal_assign(d['i'], d['j'], d['cost'], float(d['gate']), float(d['unmatched']))\n"
+        "np.save(sys.stdout.buffer, k)\n"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, timeout=60)
+    assert run.returncode == 0, run.stderr.decode()
+    chosen = np.load(io.BytesIO(run.stdout))
+    d = np.load(data)
+    i, j, cost = d["i"], d["j"], d["cost"]
+    half = float(d["unmatched"]) / 2
+    assert len(np.unique(i[chosen])) == len(chosen) == len(np.unique(j[chosen]))
+    # Optimal: the same problem solved densely by another algorithm (shortest augmenting
+    # paths) costs the same, to the micro-unit rounding.
+    ui, ri = np.unique(i, return_inverse=True)
+    uj, rj = np.unique(j, return_inverse=True)
+    dense = np.full((len(ui), len(uj)), 2 * half)  # a missing pair: both left loose
+    np.minimum.at(dense, (ri, rj), cost)
+    r, c = linear_sum_assignment(dense)
+    best = dense[r, c].sum() + half * (abs(len(ui) - len(uj)))
+    ours = cost[chosen].sum() + half * (len(ui) + len(uj) - 2 * len(chosen))
+    assert ours == pytest.approx(best, abs=1e-6 * len(ui) * 4)
