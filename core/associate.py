@@ -124,6 +124,16 @@ class LinkParams(Params):
         "by someone else, costs less than this much more",
         0.0,
     )
+    blind_order: float = param(
+        0.01,
+        "",
+        "a pair of which neither end shows its motion (single fixes) costs no_join less "
+        "the margin, plus this much × the speed it implies (distance / gap) over v_max_kn, "
+        "so that among such pairs the slower is taken; 0: all alike, the assignment's "
+        "order decides",
+        0.0,
+        0.25,
+    )
     chain_passes: int = param(
         1,
         "",
@@ -642,7 +652,20 @@ class _Priced:
         if self.log_sd is not None and len(pairs):
             refs = refs if refs is not None else _references(pairs, self, params, n)
             cost = cost + self.share * _spread(pairs, self.log_sd, refs, params)
-        return np.where(self.blind, max(params.no_join - params.margin, 0.0), cost)
+        blind = max(params.no_join - params.margin, 0.0)
+        if params.blind_order > 0 and self.blind.any():
+            blind = blind + params.blind_order * _blind_order(pairs, params)
+        return np.where(self.blind, blind, cost)
+
+
+def _blind_order(pairs: Pairs, params: LinkParams) -> np.ndarray:
+    """Per pair, 0..1: the speed its two fixes imply (distance / gap) over ``v_max_kn``
+    (1 beyond). With no motion at either end this is all the pair shows, and a ship is
+    found slower far more often than near v_max."""
+    v_max = max(params.v_max_kn * geo.KN_MS, 1e-9)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        level = pairs.dist_m / np.fmax(pairs.gap_s, 1e-9) / v_max
+    return np.clip(np.nan_to_num(level, nan=1.0, posinf=1.0), 0.0, 1.0)
 
 
 def pair_cost(
@@ -657,8 +680,9 @@ def pair_cost(
     same in every scene and a gate can be absolute. Weights are renormalized to sum to 1
     over the terms that are known for the pair (course and speed mean nothing at an end
     without motion). A pair of which neither end shows its motion has only reachability
-    as evidence and costs ``no_join`` less the margin: it is taken only when nothing else
-    claims either piece. With ``log_sigma`` the position term also pays the spread of its
+    as evidence and costs ``no_join`` less the margin (plus ``blind_order`` × the speed it
+    implies over v_max: the slower first): it is taken only when nothing else claims either
+    piece. With ``log_sigma`` the position term also pays the spread of its
     prediction against the plausible candidates within ``max_gap_s`` in ``pairs`` of the
     same ends (:func:`_spread`); ``uncertainty_gate`` off, there is no σ and no spread.
     """

@@ -744,3 +744,31 @@ def test_optimal_assign_ends_on_costs_that_loop_scipys_float_solver():
     best = dense[r, c].sum() + half * (abs(len(ui) - len(uj)))
     ours = cost[chosen].sum() + half * (len(ui) + len(uj) - 2 * len(chosen))
     assert ours == pytest.approx(best, abs=1e-6 * len(ui) * 4)
+
+
+def test_blind_order_orders_only_the_pairs_without_motion():
+    # Pieces of one and of many fixes: a pair of two single fixes costs no_join less the
+    # margin plus blind_order x its implied speed over v_max (the slower cheaper); every
+    # other pair costs what it cost without the order.
+    from wakeline.core.associate import pair_cost, prediction_miss
+
+    rng = np.random.default_rng(4)
+    parts = []
+    for k in range(12):
+        t0 = float(rng.uniform(0, 900))
+        t1 = t0 + (0.0 if k % 2 else float(rng.uniform(60, 300)))
+        course = float(rng.uniform(0, 360))
+        start = tuple(rng.uniform(0, 4000, 2))
+        parts.append(straight(str(k), t0, t1, float(rng.uniform(2, 10)), course, start))
+    seg = segment_stats(pd.concat(parts))
+    params = LinkParams()
+    pairs = candidate_pairs(seg, params)
+    blind = prediction_miss(seg, pairs, params)[2]
+    assert blind.any() and (~blind).any()
+    flat = pair_cost(pairs, replace(params, blind_order=0.0), seg=seg)
+    ordered = pair_cost(pairs, params, seg=seg)
+    np.testing.assert_array_equal(ordered[~blind], flat[~blind])
+    base = params.no_join - params.margin
+    np.testing.assert_allclose(flat[blind], base)
+    speed = pairs.dist_m[blind] / pairs.gap_s[blind] / (params.v_max_kn * geo.KN_MS)
+    np.testing.assert_allclose(ordered[blind], base + 0.01 * np.clip(speed, 0, 1))

@@ -560,17 +560,21 @@ def _lane(name, y, seed):
 
 def test_chain_evidence_threads_single_fixes_of_two_neighbouring_ships():
     # Two ships 1.2 km apart each leave two single fixes between their long pieces. Pair
-    # by pair, a single fix to a single fix has no motion on either side (all four such
-    # pairs cost the same): the margin test refuses the tie or the solver crosses them.
-    # With the chain pass each single fix borrows the motion of the piece it was joined
-    # to, and only the true pairs stay cheap.
+    # by pair, a single fix to a single fix has no motion on either side: without
+    # blind_order all four such pairs cost the same, and the margin test refuses the tie
+    # or the solver crosses them. With the chain pass each single fix borrows the motion
+    # of the piece it was joined to, and only the true pairs stay cheap; blind_order
+    # alone (the slower of the four, 6 m/s against 8.5 m/s across) also finds them.
     missed = 0
     for seed in range(3):
         df = pd.concat([_lane("A", 0.0, seed), _lane("B", 1200.0, seed + 10)])
         chained = score_association(associate_interrupted(df))
         assert chained["p_ca"] == 1.0 and chained["p_fa"] == 0.0
-        single = score_association(associate_interrupted(df, LinkParams(chain_passes=0)))
+        flat = LinkParams(chain_passes=0, blind_order=0.0)
+        single = score_association(associate_interrupted(df, flat))
         missed += single["p_ca"] < 1.0
+        ordered = score_association(associate_interrupted(df, LinkParams(chain_passes=0)))
+        assert ordered["p_ca"] == 1.0 and ordered["p_fa"] == 0.0
     assert missed == 3
 
 
