@@ -654,7 +654,12 @@ class _Priced:
             cost = cost + self.share * _spread(pairs, self.log_sd, refs, params)
         blind = max(params.no_join - params.margin, 0.0)
         if params.blind_order > 0 and self.blind.any():
-            blind = blind + params.blind_order * _blind_order(pairs, params)
+            # Never more than half the room left below the price of staying loose (and
+            # the gate): the order settles ties, it must not push a pair out of reach
+            # (with margin 0 there is no room: all alike, as before).
+            room = max(min(params.gate, params.no_join) - blind, 0.0) / 2.0
+            step = min(params.blind_order, room)
+            blind = blind + step * _blind_order(pairs, params)
         return np.where(self.blind, blind, cost)
 
 
@@ -871,7 +876,7 @@ def optimal_assign(
     from scipy import sparse
     from scipy.sparse.csgraph import min_weight_full_bipartite_matching
 
-    ok = cost <= gate
+    ok = (cost <= gate) & np.isfinite(cost)
     idx = np.flatnonzero(ok)
     if len(idx) == 0:
         return np.zeros(0, dtype="int64")
@@ -882,6 +887,10 @@ def optimal_assign(
     half = (
         gate if unmatched is None else unmatched
     ) / 2.0  # each side's unmatched price: together a pair is worth keeping if c < gate
+    # A price of staying loose above what every real pair together can cost changes
+    # nothing (the most pairs, then the least cost): capped there, so that an infinite
+    # gate still leaves finite whole numbers below.
+    half = min(half, 2.0 * min(n_old, n_new) * (float(cost[idx].max()) + shift) + 1.0)
     rows = np.concatenate([ri, np.arange(n_old), n_old + np.arange(n_new), n_old + rj])
     cols = np.concatenate([rj, n_new + np.arange(n_old), np.arange(n_new), n_new + ri])
     vals = np.concatenate(

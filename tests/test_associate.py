@@ -772,3 +772,39 @@ def test_blind_order_orders_only_the_pairs_without_motion():
     np.testing.assert_allclose(flat[blind], base)
     speed = pairs.dist_m[blind] / pairs.gap_s[blind] / (params.v_max_kn * geo.KN_MS)
     np.testing.assert_allclose(ordered[blind], base + 0.01 * np.clip(speed, 0, 1))
+
+
+def test_blind_order_never_lifts_a_pair_out_of_reach():
+    # With margin 0 a pair of single fixes costs no_join itself: no room below the price
+    # of staying loose, so the order adds nothing (it would drop every such pair); with a
+    # gate just above the flat price, at most half the room is taken.
+    df = pd.concat([straight(str(k), 100.0 * k, 100.0 * k, truth="A") for k in range(6)])
+    seg = segment_stats(df)
+    from wakeline.core.associate import pair_cost
+
+    for params in (
+        LinkParams(margin=0.0),
+        LinkParams(margin=0.0, blind_order=0.25),
+        LinkParams(gate=1.255),
+        LinkParams(no_join=0.2, margin=0.25),
+    ):
+        pairs = candidate_pairs(seg, params)
+        cost = pair_cost(pairs, params, seg=seg)
+        flat = pair_cost(pairs, replace(params, blind_order=0.0), seg=seg)
+        limit = min(params.gate, params.no_join)
+        assert np.all(cost >= flat) and np.all((cost <= limit) | (flat > limit))
+        joined = associate_interrupted(df, params).chosen
+        assert len(joined) == len(
+            associate_interrupted(df, replace(params, blind_order=0.0)).chosen
+        )
+
+
+def test_optimal_assign_with_an_open_gate_is_still_optimal():
+    # An infinite gate (and price of staying loose): the most pairs, then the least cost.
+    i = np.array([0, 0, 1, 1])
+    j = np.array([2, 3, 2, 3])
+    cost = np.array([1.0, 5.0, 2.0, 100.0])
+    chosen = optimal_assign(i, j, cost, np.inf)
+    assert sorted(chosen.tolist()) == [1, 2]  # 5 + 2 < 1 + 100
+    blocked = np.array([1.0, np.inf, 2.0, 100.0])  # a refused pair never enters
+    assert sorted(optimal_assign(i, j, blocked, np.inf).tolist()) == [0, 3]
