@@ -279,6 +279,75 @@ def test_bad_zone_is_a_clear_error(write):
         read_points(write("local.csv", LOCAL, encoding="gb18030"), tz="Mars/Olympus")
 
 
+OUTSIDE = "time outside 1677-2262"
+
+
+@pytest.mark.parametrize(
+    ("fmt", "tz"),
+    [
+        ("{y}-01-01T00:00:{s:02d}Z", None),  # zoned ISO text
+        ("{y}-01-01 00:00:{s:02d}", None),  # naive ISO text, read as UTC
+        ("{y}-01-01 00:00:{s:02d}", "Europe/Oslo"),  # naive ISO text in a zone
+        ("01/01/{y} 00:00:{s:02d}", None),  # day-first text
+        ("01/01/{y} 00:00:{s:02d}", "+08:00"),
+    ],
+)
+def test_times_a_ns_clock_cannot_hold_are_quarantined_not_fatal(write, fmt, tz):
+    """Years before 1677 or after 2262 (a typo, a placeholder like 9999) are rows with a
+    reason, not an error that stops every command (fuzzing found it)."""
+    years = [2024, 2024, 2300, 1600, 9999, 2024]
+    body = "".join(f"A,1,{fmt.format(y=y, s=i)},10.{i},55\n" for i, y in enumerate(years))
+    r = read_points(write("span.csv", "sensor,batch,time,lon,lat\n" + body), tz=tz)
+    assert_all_accounted(r, 6)
+    assert r.report["rows_imported"] == 3
+    assert r.quarantine["line"].tolist() == [4, 5, 6]
+    assert (r.quarantine["reason"].str.startswith(OUTSIDE)).all()
+
+
+def test_repeated_hour_of_a_clock_change_is_placed_by_track_order(write):
+    """Local times through the autumn change (02:00-02:59 twice): two ships logged every
+    2 min, interleaved; each row lands on its true UTC instant. A track showing one pass
+    only stays quarantined with the reason; the spring gap has no times to place."""
+    utc = pd.date_range("2024-10-27T00:00Z", "2024-10-27T02:30Z", freq="2min")
+    wall = utc.tz_convert("Europe/Copenhagen").strftime("%Y-%m-%d %H:%M:%S")
+    lines = [f"{b},{w},{10 + i * 1e-3:.4f},55" for i, w in enumerate(wall) for b in ("A", "B")]
+    lines += ["C,2024-10-27 02:30:00,11,56", "C,2024-10-27 03:10:00,11.01,56"]  # one pass
+    lines += ["D,2024-03-31 02:30:00,12,57"]  # a wall clock the spring change skips
+    r = read_points(
+        write("dst.csv", "batch,time,lon,lat\n" + "\n".join(lines) + "\n"), tz="Europe/Copenhagen"
+    )
+    assert_all_accounted(r, len(lines))
+    pts = r.points.sort_values(["batch", "time"])
+    for b in ("A", "B"):
+        got = pd.DatetimeIndex(pts.loc[pts["batch"] == b, "time"])
+        assert (got.as_unit("ns") == utc.as_unit("ns")).all() and len(got) == len(utc), b
+    assert r.quarantine["line"].tolist() == [len(lines) - 1, len(lines) + 1]
+    assert r.quarantine["reason"].str.contains("clock change in Europe/Copenhagen").all()
+    assert any("placed in the first or second pass" in w for w in r.report["warnings"])
+    assert r.report["restarting_tracks"] == {}
+
+
+@settings(
+    max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    years=st.lists(st.integers(1, 9999), min_size=1, max_size=8),
+    tz=st.sampled_from([None, "Europe/Copenhagen", "America/New_York", "+05:30"]),
+    text=st.sampled_from(
+        ["{y:04d}-{m:02d}-{d:02d}T{h:02d}:30:00", "{d:02d}/{m:02d}/{y:04d} {h:02d}:30:00"]
+    ),
+    month=st.integers(1, 12),
+    day=st.integers(1, 28),
+    hour=st.integers(0, 23),
+)
+def test_any_year_and_hour_is_a_point_or_a_quarantine_row(write, years, tz, text, month, day, hour):
+    body = "".join(
+        f"A,{i % 2},{text.format(y=y, m=month, d=day, h=hour)},10,55\n" for i, y in enumerate(years)
+    )
+    r = read_points(write("any.csv", "sensor,batch,time,lon,lat\n" + body), tz=tz)
+    assert_all_accounted(r, len(years))
+
+
 def test_relative_times_are_flagged(write):
     r = read_points(write("rel.csv", "batch,time,lon,lat\n1,0,1,2\n1,12.5,1,2\n"))
     assert r.report["time_relative"] is True

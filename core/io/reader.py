@@ -541,10 +541,88 @@ def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray
     return ns, ok
 
 
-def _localize(values: pd.Series, tz: datetime.tzinfo) -> pd.Series:
-    """Naive wall-clock times in ``tz`` → UTC (a time skipped or repeated by a clock
-    change becomes NaT: quarantined as unparsable)."""
-    return values.dt.tz_localize(tz, ambiguous="NaT", nonexistent="NaT").dt.tz_convert("UTC")
+_NS_LIMIT = 9_223_372_036  # whole seconds either side of 1970 an int64 of ns can hold
+_UNIT_PER_S = {"s": 1, "ms": 1_000, "us": 1_000_000, "ns": 1_000_000_000}
+
+
+def _mark(info: dict | None, key: str, mask: pd.Series) -> None:
+    """OR a per-row flag (a bool Series indexed by row) into ``info[key]``, a bool array
+    over the whole column (``info["_rows"]`` long), which the reader turns into a reason."""
+    if info is None or not mask.any():
+        return
+    if key not in info:
+        info[key] = np.zeros(info["_rows"], dtype=bool)
+    info[key][mask.index.to_numpy()[mask.to_numpy(dtype=bool)]] = True
+
+
+def _as_ns(values: pd.Series, info: dict | None = None) -> pd.Series:
+    """Times at ns resolution; times a ns clock cannot hold (before 1677 or after 2262,
+    parsed at a coarser unit) become NaT and are marked ``outside_span`` in ``info``."""
+    unit = values.dt.unit
+    if unit != "ns":
+        plain = values.dt.tz_convert(None) if values.dt.tz is not None else values
+        raw = plain.to_numpy().view("int64")
+        limit = _NS_LIMIT * _UNIT_PER_S[unit]
+        outside = pd.Series((raw != np.iinfo("int64").min) & (np.abs(raw) >= limit), values.index)
+        if outside.any():
+            _mark(info, "outside_span", outside)
+            values = values.where(~outside)
+    return values.dt.as_unit("ns")
+
+
+def _localize(values: pd.Series, tz: datetime.tzinfo, info: dict | None = None) -> pd.Series:
+    """Naive wall-clock times in ``tz`` → UTC. A time skipped by a clock change becomes
+    NaT, marked ``clock_change`` in ``info``; so does a time the clock repeated, marked
+    ``ambiguous`` too with both instants (``ambiguous_first``, ``ambiguous_second``, ns)
+    and the wall clock (``ambiguous_wall``), which the reader may place by track order."""
+    values = _as_ns(values, info)
+    utc = values.dt.tz_localize(tz, ambiguous="NaT", nonexistent="NaT")
+    changed = values.notna() & utc.isna()
+    _mark(info, "clock_change", changed)
+    if info is not None and changed.any():
+        first = values[changed].dt.tz_localize(tz, ambiguous=True, nonexistent="NaT")
+        repeated = first.notna()
+        if repeated.any():
+            rows = first.index[repeated.to_numpy()]
+            second = values[rows].dt.tz_localize(tz, ambiguous=False)
+            _mark(info, "ambiguous", pd.Series(True, index=rows))
+            for key, vals in (
+                ("ambiguous_first", first[rows].dt.tz_convert(None)),
+                ("ambiguous_second", second.dt.tz_convert(None)),
+                ("ambiguous_wall", values[rows]),
+            ):
+                if key not in info:
+                    info[key] = np.zeros(info["_rows"], dtype="int64")
+                info[key][rows.to_numpy()] = vals.to_numpy().view("int64")
+    return utc.dt.tz_convert("UTC")
+
+
+def _place_repeated_hour(track: np.ndarray, info: dict, ns: np.ndarray, ok: np.ndarray) -> int:
+    """Times in the hour a clock change repeats, placed by their track's file order.
+
+    In a track that shows both passes of the repeated hour (its wall clock steps back
+    within that hour), the rows up to the step back are the first pass and the rest the
+    second. Tracks that show one pass only stay
+    quarantined: which pass it was is not in the file. Sets ``ns``/``ok`` in place and
+    clears the placed rows from ``info["clock_change"]``; returns how many were placed.
+    """
+    amb = info.pop("ambiguous", None)
+    first = info.pop("ambiguous_first", None)
+    second = info.pop("ambiguous_second", None)
+    wall = info.pop("ambiguous_wall", None)
+    if amb is None:
+        return 0
+    rows = np.flatnonzero(amb)
+    frame = pd.DataFrame({"track": track[rows], "wall": wall[rows]}, index=rows)
+    before = frame.groupby("track")["wall"].cummax().groupby(frame["track"]).shift(1)
+    frame["back"] = (before > frame["wall"]).astype("int8")
+    after_back = frame.groupby("track")["back"].cummax().to_numpy(dtype=bool)
+    both = frame.groupby("track")["back"].transform("max").to_numpy(dtype=bool)
+    placed = rows[both]
+    ns[placed] = np.where(after_back[both], second[placed], first[placed])
+    ok[placed] = True
+    info["clock_change"][placed] = False
+    return len(placed)
 
 
 def parse_times(
@@ -562,6 +640,7 @@ def parse_times(
     without a zone seen), ``relative`` (seconds from a scene start rather than since 1970)
     and ``decimal_comma`` (how many numbers had one)."""
     info = {} if info is None else info
+    info["_rows"] = len(arr)
     info.setdefault("naive", False)
     info.setdefault("relative", False)
     if pa.types.is_timestamp(arr.type):
@@ -569,15 +648,20 @@ def parse_times(
         if arr.type.tz is None:
             info["naive"] = True
             if tz is not None:
-                values = pd.Series(arr.to_pandas()).dt.as_unit("ns")
-                utc = _localize(values, tz)
+                utc = _localize(pd.Series(arr.to_pandas()), tz, info)
                 ok = utc.notna().to_numpy()
                 ns = np.zeros(len(utc), dtype="int64")
                 ns[ok] = utc[ok].dt.tz_convert(None).to_numpy().astype("int64")
                 return ns, ok
-        ns = pc.cast(arr, pa.timestamp("ns", arr.type.tz)).cast(pa.int64())
-        ok = np.asarray(pc.is_valid(ns))
-        return ns.fill_null(0).to_numpy(), ok
+        per_s = _UNIT_PER_S[arr.type.unit]
+        raw = pc.cast(arr, pa.int64()).to_numpy(zero_copy_only=False)
+        valid = np.asarray(pc.is_valid(arr), dtype=bool)
+        raw = np.where(valid, raw, 0).astype("int64")
+        outside = valid & (np.abs(raw) >= _NS_LIMIT * per_s)
+        _mark(info, "outside_span", pd.Series(outside))
+        ok = valid & ~outside
+        ns = np.where(ok, raw, 0) * (1_000_000_000 // per_s)
+        return ns, ok
     if pa.types.is_integer(arr.type) or pa.types.is_floating(arr.type):
         seconds = pc.cast(arr, pa.float64()).to_numpy(zero_copy_only=False)
         return _epoch_ns(seconds, info)
@@ -604,20 +688,21 @@ def parse_times(
             todo = parsed.isna() & present
             if not todo.any():
                 break
-            parsed[todo] = pd.to_datetime(text[todo], format=fmt, errors="coerce").dt.as_unit("ns")
-        parsed = _localize(parsed, tz) if tz is not None else parsed.dt.tz_localize("UTC")
+            parsed[todo] = _as_ns(pd.to_datetime(text[todo], format=fmt, errors="coerce"), info)
+        parsed = _localize(parsed, tz, info) if tz is not None else parsed.dt.tz_localize("UTC")
     elif tz is not None and info["naive"]:
         parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns, UTC]")
         naive = present.to_numpy() & ~zoned
         local = pd.to_datetime(text[naive], format="ISO8601", errors="coerce")
-        parsed[naive] = _localize(pd.Series(local).dt.as_unit("ns"), tz)
+        parsed[naive] = _localize(pd.Series(local), tz, info)
         if zoned.any():
-            parsed[zoned] = pd.to_datetime(
-                text[zoned], format="ISO8601", errors="coerce", utc=True
-            ).dt.as_unit("ns")
+            parsed[zoned] = _as_ns(
+                pd.to_datetime(text[zoned], format="ISO8601", errors="coerce", utc=True),
+                info,
+            )
     else:
         parsed = pd.to_datetime(text, format="ISO8601", errors="coerce", utc=True)
-    parsed = pd.Series(parsed).dt.as_unit("ns")
+    parsed = _as_ns(pd.Series(parsed), info)
     ok = parsed.notna().to_numpy()
     ns = np.zeros(len(parsed), dtype="int64")
     ns[ok] = (
@@ -676,6 +761,12 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
         out.append(
             f"the time column {time_src!r} says it holds local times but they were read as "
             "UTC: give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)"
+        )
+    if time_info.get("clock_placed"):
+        out.append(
+            f"{time_info['clock_placed']:,} local times fell in the hour the clock change "
+            f"in {zone} repeats; each was placed in the first or second pass by its "
+            "track's order in the file"
         )
     if time_info.get("relative"):
         out.append(
@@ -916,6 +1007,19 @@ def _to_canonical(
         flag(early, "time decades before the file's other times (a number cut short?)")
     if not time_ok.all():
         flag(_trimmed(time_col)[1], "missing time")
+        outside = counted.pop("outside_span", None)
+        if outside is not None:
+            flag(outside, "time outside 1677-2262 (more than a ns clock holds)")
+        if "ambiguous" in counted:
+            track = text["batch"].codes.astype("int64")
+            if "sensor" in text:
+                track = track * (len(text["sensor"].names) + 1) + text["sensor"].codes
+            ns, time_ok = np.array(ns), np.array(time_ok)  # writable copies
+            placed = _place_repeated_hour(track, counted, ns, time_ok)
+            counted["clock_placed"] = counted.get("clock_placed", 0) + placed
+        changed = counted.pop("clock_change", None)
+        if changed is not None:
+            flag(changed, f"local time skipped or repeated by a clock change in {zone}")
         flag(~time_ok, "unparsable time")
 
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
@@ -1326,9 +1430,8 @@ def stream_points(
         time_info.setdefault("time_format", info.get("time_format"))
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
-        time_info["decimal_comma"] = time_info.get("decimal_comma", 0) + info.get(
-            "decimal_comma", 0
-        )
+        for key in ("decimal_comma", "clock_placed"):
+            time_info[key] = time_info.get(key, 0) + info.get(key, 0)
         for key in totals:
             totals[key] += counts[key]
         for k, v in counts["values_blanked"].items():
