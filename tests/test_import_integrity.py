@@ -534,3 +534,17 @@ def test_tracks_that_restart_their_time_are_flagged(write):
         write("shuffled.csv", "sensor,batch,time,lon,lat\n" + "\n".join(shuffled) + "\n")
     )
     assert res.report["restarting_tracks"] == {}
+
+
+def test_times_read_as_arrow_timestamps_with_a_gap_stay_exact():
+    """A time column Arrow typed as timestamps, one cell empty: the others keep every ns
+    (a conversion through floats moved them by 64 ns)."""
+    import pyarrow as pa
+
+    from wakeline.core.io.reader import parse_times
+
+    ns = np.array([1_714_522_466_215_000_000, 0, 1_714_522_486_215_000_123])
+    arr = pa.chunked_array([pa.array(ns, type=pa.timestamp("ns", "UTC"), mask=ns == 0)])
+    got, ok = parse_times(arr, "auto")
+    assert ok.tolist() == [True, False, True]
+    assert got[ok].tolist() == ns[ok].tolist()

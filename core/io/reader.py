@@ -654,9 +654,9 @@ def parse_times(
                 ns[ok] = utc[ok].dt.tz_convert(None).to_numpy().astype("int64")
                 return ns, ok
         per_s = _UNIT_PER_S[arr.type.unit]
-        raw = pc.cast(arr, pa.int64()).to_numpy(zero_copy_only=False)
         valid = np.asarray(pc.is_valid(arr), dtype=bool)
-        raw = np.where(valid, raw, 0).astype("int64")
+        # nulls filled first: to_numpy would give floats with NaN (and lose ns)
+        raw = pc.cast(arr, pa.int64()).fill_null(0).to_numpy(zero_copy_only=False)
         outside = valid & (np.abs(raw) >= _NS_LIMIT * per_s)
         _mark(info, "outside_span", pd.Series(outside))
         ok = valid & ~outside

@@ -172,6 +172,15 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
 
 #: One timestamp's text, ``YYYY-MM-DD`` ``T`` ``HH:MM:SS`` ``.`` ``mmmZ``, as fixed fields.
 _ISO_ROW = np.dtype([("date", "S10"), ("t", "S1"), ("hms", "S8"), ("dot", "S1"), ("ms", "S4")])
+#: The same with the digits below the ms (``uuunnn``) and the ``Z`` after them.
+_ISO_ROW_FINE = np.dtype(
+    [
+        *[(k, _ISO_ROW[k]) for k in ("date", "t", "hms", "dot")],
+        ("ms", "S3"),
+        ("sub", "S6"),
+        ("z", "S1"),
+    ]
+)
 
 
 def _digits(values: np.ndarray, width: int) -> np.ndarray:
@@ -219,8 +228,8 @@ _TIME_TABLES: list[tuple[np.ndarray, np.ndarray]] = []
 
 def iso_ms_from_ns(ns: np.ndarray, valid: np.ndarray | None = None) -> pa.StringArray:
     """``YYYY-MM-DDTHH:MM:SS.mmmZ`` for nanoseconds since the epoch (int64), as Arrow text;
-    with 6 or 9 decimals for the whole column when some time is finer than the ms (so
-    that writing and reading again loses no time: 500 fixes 0.1 ms apart stayed 50).
+    a time finer than the ms gets 6 or 9 decimals (writing and reading again loses no
+    time: cut to the ms, 500 fixes 0.1 ms apart came back as 50 distinct times).
 
     Integer arithmetic on the epoch and table look-ups: each row's text is four gathers
     (its date among the dates present, its second of the day among 86,400, its
@@ -235,22 +244,14 @@ def iso_ms_from_ns(ns: np.ndarray, valid: np.ndarray | None = None) -> pa.String
     if valid is not None:
         ns = np.where(valid, ns, 0)
     ms, sub = np.divmod(ns, 1_000_000)  # sub: below the millisecond, 0..999,999 ns
-    extra = 0 if not sub.any() else 3 if not (sub % 1000).any() else 6
+    finer = bool(sub.any())
     days, msd = np.divmod(ms, 86_400_000)
     sec, milli = np.divmod(msd.astype("int32"), 1000)
-    row = _ISO_ROW
-    if extra:  # finer than ms somewhere: the whole column gets us or ns digits
-        row = np.dtype([*[(k, _ISO_ROW[k]) for k in ("date", "t", "hms", "dot")],
-                        ("ms", "S3"), ("sub", f"S{extra}"), ("z", "S1")])  # fmt: skip
-    out = np.empty(n, dtype=row)
+    out = np.empty(n, dtype=_ISO_ROW_FINE if finer else _ISO_ROW)
     out["t"] = b"T"
     out["dot"] = b"."
     out["hms"] = hms_table[sec]
-    out["ms"] = ms_table[milli]
-    if extra:
-        digits = sub // (1000 if extra == 3 else 1)
-        out["sub"] = _digits(digits, extra).view(f"S{extra}").ravel()
-        out["z"] = b"Z"
+    out["ms"] = ms_table[milli]  # "mmmZ", cut to "mmm" in a fine record
     if n:
         first = int(days.min())
         span = int(days.max()) - first + 1
@@ -261,13 +262,23 @@ def iso_ms_from_ns(ns: np.ndarray, valid: np.ndarray | None = None) -> pa.String
             dates, pos = np.unique(days, return_inverse=True)
         y, m, d = _civil(dates)
         out["date"] = _field_table([(y, 4), b"-", (m, 2), b"-", (d, 2)], len(dates))[pos]
-    width = row.itemsize
-    offsets = np.arange(0, width * (n + 1), width, dtype="int32")
+    if finer:  # each row its own digits: 3, 6 or 9 (a row reads the same in any block)
+        out["sub"] = _digits(sub, 6).view("S6").ravel()
+        out["z"] = b"Z"
+        extra = np.where(sub == 0, 0, np.where(sub % 1000 == 0, 3, 6))
+        width = _ISO_ROW_FINE.itemsize
+        col = np.arange(width)
+        keep = (col < 23 + extra[:, None]) | (col == width - 1)
+        data = out.view("uint8").reshape(n, width)[keep]
+        offsets = np.concatenate([[0], np.cumsum(24 + extra)]).astype("int32")
+    else:
+        data = out
+        offsets = np.arange(0, 24 * (n + 1), 24, dtype="int32")
     bitmap, nulls = None, 0
     if valid is not None and not valid.all():
         bitmap = pa.py_buffer(np.packbits(valid, bitorder="little"))
         nulls = int(n - valid.sum())
-    return pa.StringArray.from_buffers(n, pa.py_buffer(offsets), pa.py_buffer(out), bitmap, nulls)
+    return pa.StringArray.from_buffers(n, pa.py_buffer(offsets), pa.py_buffer(data), bitmap, nulls)
 
 
 def _to_arrow(df: pd.DataFrame) -> pa.Table:
