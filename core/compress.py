@@ -24,6 +24,7 @@ from wakeline.core.tracks import (
     TrackIndex,
     concat_ranges,
     local_xy,
+    repeated_rows,
     sorted_with_index,
     track_origins,
     track_seconds,
@@ -148,13 +149,14 @@ def _least_squares_knots(
 class Compressed:
     """A compression of every track of a sorted table."""
 
-    points: pd.DataFrame  # the sorted input
+    points: pd.DataFrame  # the sorted input (without rows repeating their predecessor)
     index: TrackIndex
     kept: np.ndarray  # bool per point
     knot_xy: np.ndarray  # (K, 2) local metres of each knot (track frame)
     reconstructed_xy: np.ndarray  # (N, 2) every point reconstructed on the compressed track
     xy: np.ndarray  # (N, 2) observed points in the track frame
     true_xy: np.ndarray | None  # (N, 2) true positions (simulations) or None
+    repeats: int = 0  # input rows repeating their predecessor (time, place): set aside
 
     def point_errors(self, against: str = "observed") -> np.ndarray:
         """Synchronized distance (m) of every original point."""
@@ -181,6 +183,8 @@ class Compressed:
             "ratio": float(self.kept.sum() / max(idx.sizes.sum(), 1)),
             "dis_e_m": float(err_obs.mean()) if len(err_obs) else 0.0,
         }
+        if self.repeats:
+            overall["repeated_rows"] = self.repeats
         if self.true_xy is not None:
             err_true = self.point_errors("truth")
             per["dis_e_true_m"] = np.add.reduceat(err_true, idx.starts) / idx.sizes
@@ -210,12 +214,24 @@ def compress_with(
     sorted_points: pd.DataFrame | None = None,
 ) -> Compressed:
     """Compress to the rows marked in ``keep`` (aligned with ``sort_points(points)``)
-    plus each track's first and last point."""
+    plus each track's first and last point. Rows that repeat their predecessor (same
+    time and place) are set aside (counted in ``repeats``; a repeat marked in ``keep``
+    keeps its original): they would weigh twice in the fit and in Dis_e."""
+
     pts, index = sorted_with_index(sorted_points if sorted_points is not None else points)
     n = len(pts)
     kept = np.zeros(n, dtype=bool) if keep is None else np.asarray(keep, dtype=bool).copy()
     kept[index.starts] = True
     kept[index.ends - 1] = True
+    repeat = repeated_rows(pts, index)
+    repeats = int(repeat.sum())
+    if repeats:  # set aside: a row repeating its predecessor is kept as that one, once
+        original = np.maximum.accumulate(np.where(repeat, 0, np.arange(n)))
+        kept[original[np.flatnonzero(kept & repeat)]] = True
+        rows = np.flatnonzero(~repeat)
+        kept = kept[rows]
+        pts, index = sorted_with_index(pts.iloc[rows].reset_index(drop=True))
+        n = len(pts)
     x, y = local_xy(pts, index)
     xy = np.column_stack([x, y])
     t = track_seconds(pts)
@@ -239,7 +255,7 @@ def compress_with(
             lat0[index.track_of_row],
         )
         true_xy = np.column_stack([tx, ty])
-    return Compressed(pts, index, kept, knot_xy, recon, xy, true_xy)
+    return Compressed(pts, index, kept, knot_xy, recon, xy, true_xy, repeats)
 
 
 DP_DISTANCES = ("segment", "line")
@@ -251,12 +267,30 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
     span ends (plus Douglas–Peucker inside a span at the rest radius), both ends of long
     gaps and speed changes. Track ends are added by :func:`compress_with`."""
     from wakeline.core.clean import rest_spans
-    from wakeline.core.maneuver import _near, _sub_index, local_maxima, median_interval_s
+    from wakeline.core.maneuver import (
+        ManeuverResult,
+        _near,
+        _sub_index,
+        local_maxima,
+        median_interval_s,
+    )
 
     params = params or CompressParams()
     pts, index = result.points, result.index
     keep = np.asarray(result.is_maneuver, dtype=bool).copy()
     if not len(keep):
+        return keep
+    repeat = repeated_rows(pts, index)
+    if repeat.any():  # rows repeating their predecessor (time and place): never kept
+        rows = np.flatnonzero(~repeat)
+        sub_pts, sub_index = sorted_with_index(pts.iloc[rows].reset_index(drop=True))
+        at_rest = None if result.at_rest is None else np.asarray(result.at_rest)[rows]
+        sub = ManeuverResult(
+            sub_pts, sub_index, np.asarray(result.factor)[rows], keep[rows],
+            result.window_p, at_rest, result.params,
+        )  # fmt: skip
+        keep[:] = False
+        keep[rows] = turning_keep(sub, params)
         return keep
     rest = np.zeros(len(keep), dtype=bool) if result.at_rest is None else np.asarray(result.at_rest)
     x, y = local_xy(pts, index)

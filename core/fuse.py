@@ -45,6 +45,7 @@ from wakeline.core.tracks import (
     concat_ranges,
     derive_motion,
     interp_positions,
+    repeated_rows,
     sorted_with_index,
     track_index,
 )
@@ -130,6 +131,7 @@ class SensorAssociation:
     target_of_track: np.ndarray
     distance: str
     method: str
+    repeats: int = 0  # input rows repeating their predecessor (time, place): set aside
 
     def pair_table(self) -> pd.DataFrame:
         """Chosen pairs: sensor_a, batch_a, sensor_b, batch_b, distance (m), overlap (s)."""
@@ -156,6 +158,7 @@ class SensorAssociation:
             "candidate_pairs": len(self.a),
             "pairs_chosen": len(self.chosen),
             "targets": len(np.unique(self.target_of_track)),
+            **({"repeated_rows": self.repeats} if self.repeats else {}),
         }
 
 
@@ -264,7 +267,8 @@ def associate_sensors(
     ``distance``: ``sync`` (mean synchronized distance), ``dtw`` (over the common time
     span) or ``dtw_whole`` (seed 003 as written: over both whole tracks); ``method``:
     ``optimal`` or ``greedy`` (seed 003). Returns the pairs and a target per track
-    (unpaired tracks are targets of their own).
+    (unpaired tracks are targets of their own). Rows repeating their predecessor (same
+    time and place) are set aside and counted (``repeats``).
     """
     params = (params or FuseParams()).checked()
     if distance not in DISTANCES:
@@ -273,6 +277,10 @@ def associate_sensors(
         raise InputError(f"unknown method {method!r}; choose one of {', '.join(ASSIGNMENTS)}")
     progress = progress or null_progress
     pts, index = sorted_with_index(points)
+    repeat = repeated_rows(pts, index)
+    repeats = int(repeat.sum())
+    if repeats:  # rows repeating their predecessor (time, place) would weigh twice
+        pts, index = sorted_with_index(pts.iloc[np.flatnonzero(~repeat)].reset_index(drop=True))
     sensors = sorted(index.keys["sensor"].unique())
     if len(sensors) < 2:
         raise InputError(
@@ -333,7 +341,7 @@ def associate_sensors(
     target = _target_labels(index, t0, a[chosen], b[chosen])
     progress(1.0, f"{len(chosen):,} pairs")
     return SensorAssociation(
-        pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method
+        pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method, repeats
     )
 
 

@@ -44,6 +44,7 @@ from wakeline.core.tracks import (
     concat_ranges,
     local_xy,
     remember_order,
+    repeated_rows,
     sorted_with_index,
     track_seconds,
 )
@@ -366,9 +367,11 @@ class ManeuverResult:
 
 
 def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
-    """Median sampling interval (s) of each track; NaN for one-point tracks."""
+    """Median sampling interval (s) of each track, over its steps forward in time (a row
+    repeated at the same time is not a 0 s interval); NaN for one-point tracks."""
     dt = np.diff(t, prepend=np.nan)
     dt[index.starts] = np.nan
+    dt[dt == 0] = np.nan
     out = np.full(index.n_tracks, np.nan)
     if not len(dt):
         return out
@@ -1297,10 +1300,28 @@ def detect(
     """
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
+    repeat = repeated_rows(pts, index)
+    if repeat.any():
+        return _detect_without_repeats(pts, index, repeat, params, progress, parts)
     bounds = _parts(index, parts)
     if len(bounds) <= 2:
         return _detect_sorted(pts, index, params, progress)
     return _detect_in_parts(pts, index, params, progress, bounds)
+
+
+def _detect_without_repeats(pts, index, repeat, params, progress, parts) -> "ManeuverResult":
+    """:func:`detect` on the rows that do not repeat their predecessor; each repeat gets its
+    original's factor and at-rest flag and is never a maneuver point itself."""
+    keep = ~repeat
+    sub = pts.iloc[np.flatnonzero(keep)].reset_index(drop=True)
+    res = detect(sub, params, progress, parts)
+    original = np.cumsum(keep) - 1  # each row's row in ``sub`` (a repeat: its original's)
+    is_maneuver = np.zeros(len(pts), dtype=bool)
+    is_maneuver[keep] = res.is_maneuver
+    at_rest = None if res.at_rest is None else res.at_rest[original]
+    return ManeuverResult(
+        pts, index, res.factor[original], is_maneuver, res.window_p, at_rest, res.params
+    )
 
 
 def _parts(index: TrackIndex, parts: int | None) -> np.ndarray:

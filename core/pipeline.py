@@ -296,8 +296,13 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
 def _summary_compress(res: StepResult) -> str:
     o = res.report["overall"]
     extra = f", Dis_e against truth {o['dis_e_true_m']:.1f} m" if "dis_e_true_m" in o else ""
+    repeats = (
+        f" ({o['repeated_rows']:,} rows repeating the time and place of the row before set aside)"
+        if o.get("repeated_rows")
+        else ""
+    )
     return (
-        f"kept {o['kept']:,} of {o['points']:,} points ({o['ratio']:.1%}); "
+        f"kept {o['kept']:,} of {o['points']:,} points ({o['ratio']:.1%}){repeats}; "
         f"Dis_e {o['dis_e_m']:.1f} m{extra}"
     )
 
@@ -431,6 +436,12 @@ def _summary_fuse(res: StepResult) -> str:
         + (
             " (points of two sensors at one time become one)"
             if rep.get("points_in", 0) > rep["fused_points"]
+            else ""
+        )
+        + (
+            f"; {rep['repeated_rows']:,} rows repeating the time and place of the row "
+            "before set aside"
+            if rep.get("repeated_rows")
             else ""
         )
         + (

@@ -566,3 +566,18 @@ def interp_positions(
     if max_gap_s is not None:
         inside &= dt <= max_gap_s
     return out_lon, out_lat, inside
+
+
+def repeated_rows(pts: pd.DataFrame, index: TrackIndex) -> np.ndarray:
+    """Rows (of a table in track order) that repeat the previous row of their track: same
+    time, lon and lat. They carry no new position; a window of p points over them spans
+    half the time and a 0 m step has no heading, so the detector runs without them."""
+    n = len(pts)
+    out = np.zeros(n, dtype=bool)
+    if n < 2:
+        return out
+    t = track_seconds(pts)
+    lon, lat = pts["lon"].to_numpy(), pts["lat"].to_numpy()
+    out[1:] = (t[1:] == t[:-1]) & (lon[1:] == lon[:-1]) & (lat[1:] == lat[:-1])
+    out[index.starts] = False
+    return out
