@@ -39,7 +39,9 @@ Rules, in the order they run (each can be switched off):
    the point after is not (ours: a ship sailing between stops has long steps too, but
    skipping one of its points makes a longer step, not a shorter one).
 7. ``short_tracks`` — tracks with fewer than ``min_points`` points are set aside (in
-   the rejected table, restorable), not deleted.
+   the rejected table, restorable), not deleted. Ours: the points the stationary rule
+   took out of an at-rest span count (``count_at_rest``), so a ship moored for the whole
+   capture keeps its span ends instead of vanishing from the cleaned layer.
 
 Then the transforming steps, off by default (:mod:`wakeline.core.transform`), in the order
 ``bspline`` (seed 001's sampling–segmentation–spline–interpolation), ``resample``,
@@ -229,6 +231,14 @@ class ShortTracksParams(Params):
     enabled: bool = param(True, "", "set aside tracks with too few points")
     min_points: int = param(
         10, "points", "tracks with fewer points are set aside", lo=1, hi=1_000_000, source="SPEC §2"
+    )
+    count_at_rest: bool = param(
+        True,
+        "",
+        "points the stationary rule took out of an at-rest span still count: a ship moored "
+        "the whole capture keeps its span ends (false: only what is left counts, and the "
+        "ship is set aside)",
+        source="ours",
     )
 
 
@@ -869,7 +879,10 @@ def _clean_block(
     # 7. short tracks
     step(6, "short_tracks")
     if params.short_tracks.enabled:
-        counts = np.bincount(track[alive], minlength=index.n_tracks)
+        seen = alive.copy()
+        if params.short_tracks.count_at_rest and "stationary" in removed_by:
+            seen |= removed_by["stationary"]
+        counts = np.bincount(track[seen], minlength=index.n_tracks)
         short = (counts < params.short_tracks.min_points)[track] & alive
         removed_by["short_tracks"] = short
         alive &= ~short

@@ -335,3 +335,22 @@ def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
     r2 = clean(near)
     assert r2.report["rules"]["speed"]["splits"] == 0
     assert r2.points["batch"].unique().tolist() == ["9"]
+
+
+def test_a_ship_moored_all_capture_keeps_its_span_ends():
+    """Moored for the whole capture with GPS jitter: the stationary rule takes the span's
+    inside out and leaves its two ends; the short-track rule counts what was seen at
+    rest, so the ship stays in the cleaned layer (fuzzing found it vanished); the
+    paper's count (only what is left) sets it aside, and a track of 5 fixes still goes."""
+    rng = np.random.default_rng(3)
+    moored = straight(360, period_s=10.0, speed_kn=0.0, batch="moored")
+    moored[["lon", "lat"]] += rng.uniform(-4e-5, 4e-5, (360, 2))
+    few = straight(5, period_s=10.0, speed_kn=10.0, batch="few", lon0=moored.lon.iloc[0] + 0.1)
+    df = pd.concat([moored, few], ignore_index=True)
+    ours = clean(df)
+    assert ours.points.groupby("batch").size().to_dict() == {"moored": 2}
+    assert ours.report["rules"]["stationary"]["removed"] == 358
+    assert set(removed(ours, "short_tracks")) == set(range(360, 365))
+    paper = clean(df, CleanParams().with_settings(["short_tracks.count_at_rest=false"]))
+    assert len(paper.points) == 0
+    assert len(paper.points) + len(paper.rejected.query("action == 'removed'")) == len(df)
