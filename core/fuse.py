@@ -28,7 +28,7 @@ Fusion turns each target's member tracks into one track:
   (mirrored where a fused part begins), so the fused track has no jump.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -71,10 +71,28 @@ class FuseParams(Params):
         1.0,
         source="seed 003 §3.3 (its threshold value is in a lost table)",
     )
+    count_at_rates: bool = param(
+        True,
+        "",
+        "count each track's points in units of its own median interval before the ratio "
+        "(1 s radar against 30 s AIS of one ship is a ratio of 1, not 30); false: raw "
+        "counts (seed 003, sensors at one rate)",
+        source="ours",
+    )
     probe_s: float = param(
         60.0, "s", "spacing of the probe grid that finds tracks near each other", 1.0
     )
     dtw_points: int = param(48, "points", "points per track compared by DTW", 4, 512)
+    best_factor: float = param(
+        3.0,
+        "",
+        "a pair is a candidate only if its distance is within this factor of the best "
+        "distance either of its tracks has to any track of the other sensor, plus 10 % of "
+        "max_distance_m (a radar piece 40 m from its ship's AIS is not handed to another "
+        "ship 500 m away because its own AIS took an earlier piece); 0: off (seed 003)",
+        0.0,
+        source="ours",
+    )
     pieces: bool = param(
         True,
         "",
@@ -132,6 +150,8 @@ class SensorAssociation:
     distance: str
     method: str
     repeats: int = 0  # input rows repeating their predecessor (time, place): set aside
+    #: pairs found near each other and how many each of seed 003's gates refused
+    gates: dict = field(default_factory=dict)
 
     def pair_table(self) -> pd.DataFrame:
         """Chosen pairs: sensor_a, batch_a, sensor_b, batch_b, distance (m), overlap (s)."""
@@ -159,6 +179,7 @@ class SensorAssociation:
             "pairs_chosen": len(self.chosen),
             "targets": len(np.unique(self.target_of_track)),
             **({"repeated_rows": self.repeats} if self.repeats else {}),
+            **self.gates,
         }
 
 
@@ -290,17 +311,27 @@ def associate_sensors(
     progress(0.0, "probing tracks")
     t, t0, t1 = _spans(pts, index)
     a, b = _probe_pairs(pts, index, t0, t1, params)
+    gates = {"probed_pairs": len(a)}
     lo = np.maximum(t0[a], t0[b])
     hi = np.minimum(t1[a], t1[b])
     overlap = hi - lo
     keep = overlap >= max(params.min_overlap_s, 0.0)
     keep &= overlap > 0
+    gates["refused_short_overlap"] = int((~keep).sum())
     a, b, lo, hi, overlap = a[keep], b[keep], lo[keep], hi[keep], overlap[keep]
     na, ra = _count_in(t, index, a, lo, hi)
     nb, rb = _count_in(t, index, b, lo, hi)
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.maximum(na, nb) / np.minimum(na, nb)
+        if params.count_at_rates:  # the time each track's points cover, at its own rate
+            from wakeline.core.maneuver import median_interval_s
+
+            med = np.nan_to_num(median_interval_s(t, index), nan=1.0)
+            ca, cb = na * med[a], nb * med[b]
+            ratio = np.maximum(ca, cb) / np.minimum(ca, cb)
+        else:
+            ratio = np.maximum(na, nb) / np.minimum(na, nb)
     keep = (np.minimum(na, nb) >= 2) & (ratio <= params.count_ratio_max)
+    gates["refused_count_ratio"] = int((~keep).sum())
     a, b, lo, hi, overlap, ratio = a[keep], b[keep], lo[keep], hi[keep], overlap[keep], ratio[keep]
     na, ra, nb, rb = na[keep], ra[keep], nb[keep], rb[keep]
     progress(0.4, f"measuring {len(a):,} candidate pairs ({distance})")
@@ -324,6 +355,17 @@ def associate_sensors(
     else:  # seed 003 as written: DTW over both whole tracks, not only the common span
         sz, st = index.sizes, index.starts
         dist = _dtw_distance(pts, index, a, b, sz[a], st[a], sz[b], st[b], params.dtw_points)
+    cost = dist
+    if params.best_factor > 0 and len(a):
+        # Each track's best distance to any track of another sensor; a pair far beyond
+        # the best of either of its tracks is left out of the assignment.
+        best = np.full(index.n_tracks, np.inf)
+        np.minimum.at(best, a, dist)
+        np.minimum.at(best, b, dist)
+        slack = 0.1 * params.max_distance_m
+        cost = np.where(
+            dist <= params.best_factor * np.minimum(best[a], best[b]) + slack, dist, np.inf
+        )
     progress(0.8, "assigning")
     assign = optimal_assign if method == "optimal" else greedy_assign
     sensor_of = pd.factorize(index.keys["sensor"])[0]
@@ -335,13 +377,13 @@ def associate_sensors(
             if len(sel):
                 rounds = 6 if params.pieces else 1
                 chosen.append(
-                    sel[_assign_rounds(a[sel], b[sel], dist[sel], t0, t1, params, assign, rounds)]
+                    sel[_assign_rounds(a[sel], b[sel], cost[sel], t0, t1, params, assign, rounds)]
                 )
     chosen = np.concatenate(chosen) if chosen else np.zeros(0, dtype="int64")
     target = _target_labels(index, t0, a[chosen], b[chosen])
     progress(1.0, f"{len(chosen):,} pairs")
     return SensorAssociation(
-        pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method, repeats
+        pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method, repeats, gates
     )
 
 

@@ -444,14 +444,33 @@ def _summary_fuse(res: StepResult) -> str:
             if rep.get("repeated_rows")
             else ""
         )
-        + (
+        + (_no_pair_reason(rep) if not rep.get("pairs_chosen") and "max_distance_m" in rep else "")
+    )
+
+
+def _no_pair_reason(rep: dict) -> str:
+    """Why fusion paired nothing: the gate that refused the pairs found near each other."""
+    probed = rep.get("probed_pairs", 0)
+    if not probed:
+        return (
             f"; no candidate was close enough: the tracks of different sensors are farther "
             f"apart than max_distance_m ({rep['max_distance_m']:g} m) or their times are "
             f"further apart than max_interp_s ({rep['max_interp_s']:g} s) — raise them with "
             "--set if the sensors are that noisy or sparse"
-            if not rep.get("pairs_chosen") and "max_distance_m" in rep
-            else ""
         )
+    parts = [
+        f"{rep[key]:,} {what}"
+        for key, what in (
+            ("refused_short_overlap", "for a common span under min_overlap_s"),
+            ("refused_count_ratio", "for a point-count ratio over count_ratio_max"),
+        )
+        if rep.get(key)
+    ]
+    refused = "; ".join(parts) if parts else "none by the gates"
+    return (
+        f"; {probed:,} pairs of tracks came within max_distance_m "
+        f"({rep['max_distance_m']:g} m) of each other, refused: {refused}; the rest were "
+        "farther apart on average than the gate"
     )
 
 

@@ -76,11 +76,36 @@ def test_non_overlapping_tracks_are_never_paired():
 
 
 def test_point_count_ratio_gate():
+    """Counts compared at each track's own rate: 2 s AIS and 30 s radar of one ship pair
+    (seed 003's raw counts, 15x, refuse them); a track silent over most of the common
+    span is still refused."""
     ais = observe("AIS", "1", 0, 1800, 2.0, 10.0, 1)
     radar = observe("R1", "2", 0, 1800, 30.0, 10.0, 2)  # 15x fewer points
-    assert len(associate_sensors(pd.concat([ais, radar])).chosen) == 0
-    loose = FuseParams(count_ratio_max=20.0)
+    assert len(associate_sensors(pd.concat([ais, radar])).chosen) == 1
+    paper = FuseParams(count_at_rates=False)
+    assert len(associate_sensors(pd.concat([ais, radar]), paper).chosen) == 0
+    loose = FuseParams(count_at_rates=False, count_ratio_max=20.0)
     assert len(associate_sensors(pd.concat([ais, radar]), loose).chosen) == 1
+    t = (ais["time"] - T0).dt.total_seconds()
+    quiet = ais[(t < 150) | ((t > 1650) & (t < 1700))]  # 200 s of points over 1700 s
+    assert len(associate_sensors(pd.concat([quiet, radar])).chosen) == 0
+
+
+def test_a_piece_is_not_handed_to_another_ship_far_beyond_its_own():
+    """Two ships 500 m apart side by side; AIS sees both whole, the radar sees only ship
+    A, broken into two pieces. Round one gives A's AIS one piece; the other piece is
+    40 m from A's AIS and 500 m from B's: it waits for round two (A's AIS again), not
+    B's AIS (fuzzing found 22 of 121 pairs wrong in a harbour like this)."""
+    ais_a = observe("AIS", "a", 0, 1800, 10.0, 8.0, 1, truth="A")
+    ais_b = observe("AIS", "b", 0, 1800, 10.0, 8.0, 2, truth="B", bias=(500.0, 0.0))
+    r1 = observe("R1", "r1", 0, 850, 3.0, 30.0, 3, truth="A")
+    r2 = observe("R1", "r2", 950, 1800, 3.0, 30.0, 4, truth="A")
+    df = pd.concat([ais_a, ais_b, r1, r2], ignore_index=True)
+    got = set(map(tuple, associate_sensors(df).pair_table()[["batch_a", "batch_b"]].values))
+    assert got == {("a", "r1"), ("a", "r2")}
+    paper = associate_sensors(df, FuseParams(best_factor=0.0)).pair_table()
+    assert ("b", "r1") in set(map(tuple, paper[["batch_a", "batch_b"]].values)) or (
+        "b", "r2") in set(map(tuple, paper[["batch_a", "batch_b"]].values))  # fmt: skip
 
 
 def _steps(f: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
