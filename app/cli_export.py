@@ -67,13 +67,12 @@ def _cmd_export(args: argparse.Namespace) -> int:
         from wakeline.core.io import write_json
 
         write_json(layout.to_dict(), args.save_layout)
+    from wakeline.app.cli_steps import say_quarantined
+
     result = read_points(args.input)
-    if result.report["rows_quarantined"]:
-        print(
-            f"{args.input}: {result.report['rows_quarantined']:,} rows quarantined on reading "
-            "(run `wakeline import` with --quarantine to see them)",
-            file=sys.stderr,
-        )
+    say_quarantined(args.input, result.report)
+    if len(result.points) == 0:
+        raise InputError(f"{args.input}: no usable points: nothing to export")
     rep = export_like(
         result.points,
         layout,

@@ -323,18 +323,39 @@ def step_params(step, args: argparse.Namespace) -> dict:
     return out
 
 
-def read_input(path: Path, **options):
+READ_KEYS = ("rows_read", "rows_imported", "rows_quarantined", "quarantine_reasons", "blank_lines")
+
+
+def read_counts(report: dict) -> dict:
+    """The reading's counts for a step's ``--report``: every line of the input is a point
+    or a quarantine row, and the JSON says how many went where and why."""
+    return {key: report[key] for key in READ_KEYS if key in report}
+
+
+def say_quarantined(path, report: dict) -> None:
+    """One line on stderr: how many rows reading quarantined, and why."""
+    n = report.get("rows_quarantined", 0)
+    if not n:
+        return
+    reasons = sorted(report.get("quarantine_reasons", {}).items(), key=lambda kv: -kv[1])
+    why = "; ".join(f"{count:,} {reason}" for reason, count in reasons[:3])
+    more = f"; {len(reasons) - 3} more reasons" if len(reasons) > 3 else ""
+    print(
+        f"{path}: {n:,} rows quarantined on reading ({why}{more}); run `wakeline import` "
+        "with --quarantine to see them",
+        file=sys.stderr,
+    )
+
+
+def read_input(path: Path, counts: dict | None = None, **options):
     """Points of any layout ``import`` reads (``options``: read_points keywords);
-    quarantined rows are counted on stderr."""
+    quarantined rows are counted on stderr and, when ``counts`` is given, into it."""
     from wakeline.core.io import read_points
 
     result = read_points(path, **options)
-    if result.report["rows_quarantined"]:
-        print(
-            f"{path}: {result.report['rows_quarantined']:,} rows quarantined on reading "
-            "(run `wakeline import` with --quarantine to see them)",
-            file=sys.stderr,
-        )
+    say_quarantined(path, result.report)
+    if counts is not None:
+        counts.update(read_counts(result.report))
     if len(result.points) == 0:
         raise InputError(f"{path}: no usable points")
     return result.points
@@ -355,12 +376,13 @@ def run_step_command(args: argparse.Namespace) -> int:
     params = step_params(step, args)
     if step.name == "clean":
         return _run_clean(step, params, args)
+    read: dict = {}
     if step.many_inputs:
         from wakeline.app.cli_review import read_inputs
 
         points = read_inputs(args.input, **_read_options(args))
     else:
-        points = read_input(args.input, **_read_options(args))
+        points = read_input(args.input, read, **_read_options(args))
     result = step(points, params)
     write_table(step.output, result.tables[step.output], args.output)
     for table, _flag in step.outputs:
@@ -368,7 +390,8 @@ def run_step_command(args: argparse.Namespace) -> int:
         if path:
             write_table(table, result.tables[table], path)
     if args.report:
-        write_json({**result.report, "params": params_to_json(params)}, args.report)
+        extra = {"read": read} if read else {}
+        write_json({**result.report, **extra, "params": params_to_json(params)}, args.report)
     print(step.summary(result), file=sys.stderr)
     return 0
 
@@ -384,13 +407,9 @@ def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
     out = clean_file(args.input, args.output, rejected, params["clean"], **_read_options(args))
     for warning in out.read_report.get("warnings", []):
         print(f"{args.input}: warning: {warning}", file=sys.stderr)
-    if out.read_report["rows_quarantined"]:
-        print(
-            f"{args.input}: {out.read_report['rows_quarantined']:,} rows quarantined on reading "
-            "(run `wakeline import` with --quarantine to see them)",
-            file=sys.stderr,
-        )
+    say_quarantined(args.input, out.read_report)
     if args.report:
-        write_json({**out.report, "params": params_to_json(params)}, args.report)
+        read = read_counts(out.read_report)
+        write_json({**out.report, "read": read, "params": params_to_json(params)}, args.report)
     print(step.summary(StepResult("clean", [], out.report)), file=sys.stderr)
     return 0

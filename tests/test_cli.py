@@ -140,3 +140,32 @@ def test_every_step_reads_a_headerless_file_with_map(tmp_path, capsys):
     assert main(["fuse", str(src), str(radar), "-o", str(fused), *mapping]) == 0
     assert fused.exists()
     capsys.readouterr()
+
+
+@pytest.mark.parametrize("step", ["clean", "maneuvers", "compress"])
+def test_step_reports_say_where_every_input_row_went(step, tmp_path, capsys):
+    """A step's --report carries the reading's counts (rows read, points, quarantined by
+    reason); stderr names the reasons; export of a file with no usable row fails."""
+    import json
+
+    good = [f"S,1,2024-05-01T00:{m:02d}:00Z,{10 + m * 1e-3:.4f},55" for m in range(30)]
+    bad = [
+        "S,1,not a time,10,55",
+        "S,1,2024-05-01T01:00:00Z,999,55",
+        "S,1,2300-01-01T00:00:00Z,10,55",
+    ]
+    src = tmp_path / "in.csv"
+    src.write_text("sensor,batch,time,lon,lat\n" + "\n".join(good + bad) + "\n")
+    assert (
+        main([step, str(src), "-o", str(tmp_path / "o.csv"), "--report", str(tmp_path / "r.json")])
+        == 0
+    )
+    read = json.loads((tmp_path / "r.json").read_text())["read"]
+    assert read["rows_read"] == 33 and read["rows_imported"] == 30
+    assert read["rows_quarantined"] == 3 and sum(read["quarantine_reasons"].values()) == 3
+    err = capsys.readouterr().err
+    assert "3 rows quarantined on reading" in err and "lon out of range" in err
+    allbad = tmp_path / "bad.csv"
+    allbad.write_text("sensor,batch,time,lon,lat\n" + "\n".join(bad) + "\n")
+    assert main(["export", str(allbad), "-o", str(tmp_path / "e.csv")]) == 2
+    assert "no usable points" in capsys.readouterr().err
