@@ -1537,8 +1537,9 @@ def _cluster(
     must be reachable from the one before it. Returns the chosen link indices."""
     n = len(seg)
     parent = np.arange(n)
-    members: dict[int, list[int]] = {}
+    members: dict[int, np.ndarray] = {}  # a cluster's members in time order (roots only)
     v = params.v_max_kn * geo.KN_MS
+    tol = params.position_tol_m
 
     def find(a: int) -> int:
         while parent[a] != a:
@@ -1550,23 +1551,34 @@ def _cluster(
     order = order[dist[order] <= limit]
     chosen = []
     t0, t1 = seg.t0, seg.t1
+    lon0, lat0, lon1, lat1 = seg.lon0, seg.lat0, seg.lon1, seg.lat1
+
+    def reachable(p: np.ndarray, q: np.ndarray) -> bool:
+        """Every q starts after its p ends and within reach of it."""
+        gap = t0[q] - t1[p]
+        if (gap <= 0).any():
+            return False
+        d = geo.haversine_m(lon1[p], lat1[p], lon0[q], lat0[q])
+        return bool((d <= v * gap + tol).all())
+
     for k in order.tolist():
         ra, rb = find(int(pairs.i[k])), find(int(pairs.j[k]))
         if ra == rb:
             continue
-        ma = members.get(ra, [ra])
-        mb = members.get(rb, [rb])
-        merged = sorted(ma + mb, key=lambda s: t0[s])
-        ok = True
-        for p, q in zip(merged[:-1], merged[1:], strict=True):
-            gap = t0[q] - t1[p]
-            if gap <= 0:
-                ok = False
-                break
-            d = float(geo.haversine_m(seg.lon1[p], seg.lat1[p], seg.lon0[q], seg.lat0[q]))
-            if d > v * gap + params.position_tol_m:
-                ok = False
-                break
+        ma = members.get(ra)
+        mb = members.get(rb)
+        ma = np.array([ra]) if ma is None else ma
+        mb = np.array([rb]) if mb is None else mb
+        # Each cluster is a valid chain already: when one lies wholly before the other only
+        # the junction is new; else the merged chain is checked link by link (arrays).
+        if t0[mb[0]] >= t0[ma[-1]]:
+            merged, ok = np.concatenate([ma, mb]), reachable(ma[-1:], mb[:1])
+        elif t0[ma[0]] >= t0[mb[-1]]:
+            merged, ok = np.concatenate([mb, ma]), reachable(mb[-1:], ma[:1])
+        else:
+            both = np.concatenate([ma, mb])
+            merged = both[np.argsort(t0[both], kind="stable")]
+            ok = reachable(merged[:-1], merged[1:])
         if not ok:
             continue
         parent[rb] = ra
