@@ -472,7 +472,9 @@ def fuse(
 ) -> pd.DataFrame:
     """One fused track per target (SPEC §6): sensor ``fused``, batch = target, ``members``
     lists the member tracks (``sensor:batch`` joined by ``+``), ``source`` the sensors
-    covering each point, ``weight_base`` the weight of the point's own sensor. Tracks
+    covering each point, ``weight_base`` the weight of the point's own sensor. Speed and
+    course: a single sensor's point keeps its reported values; blended points (and points
+    without a report) take the fused track's. Tracks
     without a partner come out as single-member targets, so nothing is lost."""
     params = (params or FuseParams()).checked()
     progress = progress or null_progress
@@ -530,8 +532,8 @@ def fuse(
             "time": pts["time"].to_numpy()[rows],
             "lon": flon[rows],
             "lat": flat[rows],
-            "speed": np.nan,
-            "course": np.nan,
+            "speed": _column(pts, "speed")[rows],
+            "course": _column(pts, "course")[rows],
             "source": source[rows],
             "n_sources": n_cover[rows],
             "base_track": row_track[rows],
@@ -550,12 +552,26 @@ def fuse(
         _blend_junctions(out, pts, index, params.blend_points, params.blend_straddle)
     out["lon"] = np.round(out["lon"], 7)
     out["lat"] = np.round(out["lat"], 7)
+    # Speed and course: a point that is one sensor's own keeps what that sensor reported
+    # (AIS SOG/COG); a blended point, or one without a report, gets the fused track's.
+    own = (out["n_sources"].to_numpy() == 1) & np.isfinite(out["speed"].to_numpy())
+    own_course = (out["n_sources"].to_numpy() == 1) & np.isfinite(out["course"].to_numpy())
+    reported = out["speed"].to_numpy(), out["course"].to_numpy()
     out = out.drop(columns=["base_track", "speed", "course"])
     speed, course = derive_motion(out, track_index(out))
-    out.insert(5, "speed", np.round(speed, 2))
-    out.insert(6, "course", np.round(course, 1))
+    speed = np.where(own, reported[0], np.round(speed, 2))
+    course = np.where(own_course, reported[1], np.round(course, 1))
+    out.insert(5, "speed", speed)
+    out.insert(6, "course", course)
     progress(1.0, f"{out['batch'].nunique():,} fused tracks")
     return out
+
+
+def _column(pts: pd.DataFrame, name: str) -> np.ndarray:
+    """A float column of the points, NaN where absent."""
+    if name not in pts.columns:
+        return np.full(len(pts), np.nan)
+    return pd.to_numeric(pts[name], errors="coerce").to_numpy(dtype="float64")
 
 
 def _blend_junctions(

@@ -228,3 +228,18 @@ def test_fuse_summary_counts_inputs_and_says_why_nothing_paired():
     R.report = {**R.report, "pairs_chosen": 5, "fused_points": 500}
     text = _summary_fuse(R())
     assert "become one" in text and "max_distance_m" not in text
+
+
+def test_a_single_sensors_points_keep_their_reported_speed_and_course():
+    """AIS SOG/COG pass through fusion where AIS alone covers the time (fuzzing found them
+    recomputed from positions); where two sensors blend, the fused track's motion."""
+    ais = observe("AIS", "1", 0, 1800, 10.0, 5.0, 1).assign(speed=11.7, course=60.3)
+    radar = observe("R1", "2", 900, 1800, 10.0, 30.0, 2)
+    lone = observe("AIS", "9", 0, 600, 10.0, 5.0, 3, truth="B", bias=(5000.0, 0.0))
+    lone = lone.assign(speed=8.2, course=61.0)
+    fused = fuse(associate_sensors(pd.concat([ais, radar, lone], ignore_index=True)))
+    alone = fused[fused["n_sources"] == 1]
+    assert len(alone) > 60 and (alone["speed"].isin([11.7, 8.2])).all()
+    assert (alone["course"].isin([60.3, 61.0])).all()
+    both = fused[fused["n_sources"] >= 2]
+    assert len(both) > 50 and 10.5 < both["speed"].median() < 13.0  # 6 m/s ≈ 11.7 kn
