@@ -215,12 +215,12 @@ def _probe_pairs(
             if r <= s:
                 continue
             ia, ib = np.flatnonzero(sensor == s), np.flatnonzero(sensor == r)
-            near = cKDTree(coords[ia]).query_ball_tree(cKDTree(coords[ib]), params.max_distance_m)
-            lens = np.fromiter((len(x) for x in near), dtype="int64", count=len(ia))
-            if lens.sum() == 0:
+            near = cKDTree(coords[ia]).sparse_distance_matrix(
+                cKDTree(coords[ib]), params.max_distance_m, output_type="ndarray"
+            )  # arrays end to end: no Python list per probe
+            if len(near) == 0:
                 continue
-            pa = np.repeat(ia, lens)
-            pb = ib[np.fromiter((k for x in near for k in x), dtype="int64", count=int(lens.sum()))]
+            pa, pb = ia[near["i"]], ib[near["j"]]
             pairs.append(np.column_stack([track[pa], track[pb]]))
     if not pairs:
         e = np.zeros(0, dtype="int64")
