@@ -327,6 +327,38 @@ def test_repeated_hour_of_a_clock_change_is_placed_by_track_order(write):
     assert r.report["restarting_tracks"] == {}
 
 
+def test_repeated_hour_rows_out_of_order_stay_quarantined(write, tmp_path, monkeypatch):
+    """A message 10 min late, a file newest-first or shuffled: the rows of the repeated hour
+    are not placed (a step back is not a second pass); read in pieces, the two passes of
+    a track are placed as the whole-file reader places them."""
+    late = ["A,2021-10-31 01:50:00,10.0,55", "A,2021-10-31 02:10:00,10.01,55"]
+    late += ["A,2021-10-31 02:30:00,10.02,55", "A,2021-10-31 02:20:00,10.03,55"]
+    late += ["A,2021-10-31 02:40:00,10.04,55", "A,2021-10-31 03:10:00,10.05,55"]
+    head = "batch,time,lon,lat\n"
+    r = read_points(write("late.csv", head + "\n".join(late) + "\n"), tz="Europe/Copenhagen")
+    assert r.quarantine["line"].tolist() == [3, 4, 5, 6]
+    newest = read_points(
+        write("newest.csv", head + "\n".join(late[::-1]) + "\n"), tz="Europe/Copenhagen"
+    )
+    assert newest.report["rows_quarantined"] == 4
+    utc = pd.date_range("2024-10-27T00:00Z", "2024-10-27T01:58Z", freq="2min")
+    wall = utc.tz_convert("Europe/Copenhagen").strftime("%Y-%m-%d %H:%M:%S")
+    rows = [f"A,{w},{10 + i * 1e-3:.4f},55" for i, w in enumerate(wall)]
+    shuffled = [rows[i] for i in np.random.default_rng(1).permutation(len(rows))]
+    r = read_points(write("sh.csv", head + "\n".join(shuffled) + "\n"), tz="Europe/Copenhagen")
+    assert r.report["rows_quarantined"] == len(rows)  # every row is in the repeated hour
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv, write_points
+
+    src = write("sorted.csv", head + "\n".join(rows) + "\n")
+    whole = read_points(src, tz="Europe/Copenhagen")
+    assert whole.report["rows_quarantined"] == 0
+    write_points(whole.points, tmp_path / "whole.csv")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 300)  # the passes in different pieces
+    import_to_csv(src, tmp_path / "streamed.csv", tz="Europe/Copenhagen")
+    assert (tmp_path / "streamed.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
+
+
 @settings(
     max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )

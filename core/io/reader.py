@@ -597,14 +597,24 @@ def _localize(values: pd.Series, tz: datetime.tzinfo, info: dict | None = None) 
     return utc.dt.tz_convert("UTC")
 
 
-def _place_repeated_hour(track: np.ndarray, info: dict, ns: np.ndarray, ok: np.ndarray) -> int:
+#: A track's wall clock must step back at least this far (s) inside the repeated hour of a
+#: clock change for its rows there to be read as two passes (a late message steps back
+#: minutes; the change steps back an hour less the track's interval).
+PASS_BACK_S = 1800.0
+
+
+def _place_repeated_hour(
+    track: np.ndarray, info: dict, ns: np.ndarray, ok: np.ndarray
+) -> int:
     """Times in the hour a clock change repeats, placed by their track's file order.
 
-    In a track that shows both passes of the repeated hour (its wall clock steps back
-    within that hour), the rows up to the step back are the first pass and the rest the
-    second. Tracks that show one pass only stay
-    quarantined: which pass it was is not in the file. Sets ``ns``/``ok`` in place and
-    clears the placed rows from ``info["clock_change"]``; returns how many were placed.
+    A track whose times in that hour run forward, step back once by at least
+    :data:`PASS_BACK_S`, then run forward again shows both passes: the rows before the
+    step are the first pass, the rest the second — provided the whole track, placed so,
+    runs forward in the file. Any other track (one pass, rows out of order, a file
+    newest-first or shuffled) keeps them quarantined: which pass a row was is not in the
+    file. Sets ``ns``/``ok`` in place and clears the placed rows from
+    ``info["clock_change"]``; returns how many were placed.
     """
     amb = info.pop("ambiguous", None)
     first = info.pop("ambiguous_first", None)
@@ -612,14 +622,31 @@ def _place_repeated_hour(track: np.ndarray, info: dict, ns: np.ndarray, ok: np.n
     wall = info.pop("ambiguous_wall", None)
     if amb is None:
         return 0
-    rows = np.flatnonzero(amb)
+    rows = np.flatnonzero(amb)  # file order
     frame = pd.DataFrame({"track": track[rows], "wall": wall[rows]}, index=rows)
-    before = frame.groupby("track")["wall"].cummax().groupby(frame["track"]).shift(1)
-    frame["back"] = (before > frame["wall"]).astype("int8")
-    after_back = frame.groupby("track")["back"].cummax().to_numpy(dtype=bool)
-    both = frame.groupby("track")["back"].transform("max").to_numpy(dtype=bool)
-    placed = rows[both]
-    ns[placed] = np.where(after_back[both], second[placed], first[placed])
+    step = frame.groupby("track")["wall"].diff().to_numpy()  # ns; NaN at a track's first
+    back = step < 0
+    frame["back"] = back.astype("int8")
+    frame["big"] = (back & (-step >= PASS_BACK_S * 1e9)).astype("int8")
+    per = frame.groupby("track").agg(backs=("back", "sum"), big=("big", "sum"))
+    two = per.index[(per["backs"] == 1) & (per["big"] == 1)]
+    chosen = frame["track"].isin(two).to_numpy()
+    if not chosen.any():
+        return 0
+    after = frame["back"].groupby(frame["track"]).cummax().to_numpy(dtype=bool)
+    placed = rows[chosen]
+    trial = ns.copy()
+    trial[placed] = np.where(after[chosen], second[placed], first[placed])
+    # The whole track so placed must run forward in the file (its other rows too).
+    usable = ok.copy()
+    usable[placed] = True
+    in_two = np.isin(track, np.asarray(two)) & usable
+    members = np.flatnonzero(in_two)
+    sub = pd.DataFrame({"track": track[members], "t": trial[members]})
+    forward = sub.groupby("track")["t"].diff().fillna(0).to_numpy() >= 0
+    bad_tracks = np.unique(sub["track"].to_numpy()[~forward])
+    placed = placed[~np.isin(track[placed], bad_tracks)]
+    ns[placed] = trial[placed]
     ok[placed] = True
     info["clock_change"][placed] = False
     return len(placed)
@@ -1011,6 +1038,8 @@ def _to_canonical(
         if outside is not None:
             flag(outside, "time outside 1677-2262 (more than a ns clock holds)")
         if "ambiguous" in counted:
+            if counted.get("_streaming"):
+                raise StreamFallback  # a track's two passes may lie in two pieces
             track = text["batch"].codes.astype("int64")
             if "sensor" in text:
                 track = track * (len(text["sensor"].names) + 1) + text["sensor"].codes
@@ -1422,7 +1451,7 @@ def stream_points(
             )
         rows = _Rows(table, lines, _BadRows(), False, sn.encoding, False, False, [])
         del table
-        info: dict = {"absolute": time_info.get("absolute", False)}
+        info: dict = {"absolute": time_info.get("absolute", False), "_streaming": True}
         points, quarantine, counts = _to_canonical(
             rows, sn, res, sensor, zone, info, fetch_texts=False
         )
