@@ -87,9 +87,10 @@ class FuseParams(Params):
         3.0,
         "",
         "a pair is a candidate only if its distance is within this factor of the best "
-        "distance either of its tracks has to any track of the other sensor, plus 10 % of "
-        "max_distance_m (a radar piece 40 m from its ship's AIS is not handed to another "
-        "ship 500 m away because its own AIS took an earlier piece); 0: off (seed 003)",
+        "distance either of its tracks has to a track of the same other sensor over an "
+        "overlapping time, plus 10 % of max_distance_m (a radar piece 40 m from its ship's "
+        "AIS is not handed to another ship 500 m away because its own AIS took an earlier "
+        "piece); 0: off (seed 003)",
         0.0,
         source="ours",
     )
@@ -357,15 +358,9 @@ def associate_sensors(
         dist = _dtw_distance(pts, index, a, b, sz[a], st[a], sz[b], st[b], params.dtw_points)
     cost = dist
     if params.best_factor > 0 and len(a):
-        # Each track's best distance to any track of another sensor; a pair far beyond
-        # the best of either of its tracks is left out of the assignment.
-        best = np.full(index.n_tracks, np.inf)
-        np.minimum.at(best, a, dist)
-        np.minimum.at(best, b, dist)
+        best = _best_rival(a, b, lo, hi, dist, pd.factorize(index.keys["sensor"])[0])
         slack = 0.1 * params.max_distance_m
-        cost = np.where(
-            dist <= params.best_factor * np.minimum(best[a], best[b]) + slack, dist, np.inf
-        )
+        cost = np.where(dist <= params.best_factor * best + slack, dist, np.inf)
     progress(0.8, "assigning")
     assign = optimal_assign if method == "optimal" else greedy_assign
     sensor_of = pd.factorize(index.keys["sensor"])[0]
@@ -385,6 +380,31 @@ def associate_sensors(
     return SensorAssociation(
         pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method, repeats, gates
     )
+
+
+def _best_rival(
+    a: np.ndarray,
+    b: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    dist: np.ndarray,
+    sensor_of: np.ndarray,
+) -> np.ndarray:
+    """Per pair: the smallest distance of a pair that shares one of its tracks, pairs it
+    with the same other sensor and overlaps it in time (``lo``–``hi``: the common spans);
+    the pair itself included. A radar piece that follows another of the same ship is
+    no rival of it: they cover different times."""
+    k = np.arange(len(a))
+    # each pair seen from both of its tracks: (track, the other track's sensor, pair)
+    own = np.concatenate([a, b])
+    other = np.concatenate([sensor_of[b], sensor_of[a]])
+    side = pd.DataFrame({"own": own, "other": other, "k": np.concatenate([k, k])})
+    both = side.merge(side, on=["own", "other"], suffixes=("", "_r"))
+    kk, kr = both["k"].to_numpy(), both["k_r"].to_numpy()
+    overlap = (np.minimum(hi[kk], hi[kr]) > np.maximum(lo[kk], lo[kr])) | (kk == kr)
+    best = np.full(len(a), np.inf)
+    np.minimum.at(best, kk[overlap], dist[kr[overlap]])
+    return best
 
 
 def _assign_rounds(

@@ -243,3 +243,14 @@ def test_a_single_sensors_points_keep_their_reported_speed_and_course():
     assert (alone["course"].isin([60.3, 61.0])).all()
     both = fused[fused["n_sources"] >= 2]
     assert len(both) > 50 and 10.5 < both["speed"].median() < 13.0  # 6 m/s ≈ 11.7 kn
+
+
+def test_a_later_piece_is_judged_against_rivals_of_its_own_time():
+    """The best distance a pair is compared with comes from pairs over the same time: a
+    radar piece far off (400 m) after a close one (5 m) still joins its only AIS (review:
+    the close earlier piece's 5 m refused it)."""
+    ais = observe("AIS", "A", 0, 7200, 10.0, 0.0, 1, course=90.0)
+    p1 = observe("R1", "P1", 0, 3596, 4.0, 0.0, 2, course=90.0, bias=(0.0, 5.0))
+    p2 = observe("R1", "P2", 3600, 7200, 4.0, 0.0, 3, course=90.0, bias=(0.0, 400.0))
+    pairs = associate_sensors(pd.concat([ais, p1, p2], ignore_index=True)).pair_table()
+    assert sorted(pairs["batch_b"]) == ["P1", "P2"]

@@ -603,9 +603,7 @@ def _localize(values: pd.Series, tz: datetime.tzinfo, info: dict | None = None) 
 PASS_BACK_S = 1800.0
 
 
-def _place_repeated_hour(
-    track: np.ndarray, info: dict, ns: np.ndarray, ok: np.ndarray
-) -> int:
+def _place_repeated_hour(track: np.ndarray, info: dict, ns: np.ndarray, ok: np.ndarray) -> int:
     """Times in the hour a clock change repeats, placed by their track's file order.
 
     A track whose times in that hour run forward, step back once by at least
