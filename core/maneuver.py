@@ -383,8 +383,16 @@ def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
     out[one] = lo[one]
     other = ~one & ~np.isnan(lo)
     if other.any():  # each track's steps after its first fix: one run of dt per track
-        count = np.where(other, index.sizes - 1, 0)
-        out[other] = _run_medians(dt, index.starts + 1, count)[other]
+        finite = np.isfinite(dt)
+        if (~finite).sum() > index.n_tracks:  # 0 s steps (NaN) beside each track's first:
+            # left out first, so that every run is free of NaN (the fast median)
+            per = np.add.reduceat(finite.astype("int64"), index.starts)
+            count = np.where(other, per, 0)
+            first = np.concatenate([[0], np.cumsum(per)[:-1]])
+            out[other] = _run_medians(dt[finite], first, count)[other]
+        else:
+            count = np.where(other, index.sizes - 1, 0)
+            out[other] = _run_medians(dt, index.starts + 1, count)[other]
     return out
 
 

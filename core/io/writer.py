@@ -268,8 +268,14 @@ def iso_ms_from_ns(ns: np.ndarray, valid: np.ndarray | None = None) -> pa.String
         extra = np.where(sub == 0, 0, np.where(sub % 1000 == 0, 3, 6))
         width = _ISO_ROW_FINE.itemsize
         col = np.arange(width)
-        keep = (col < 23 + extra[:, None]) | (col == width - 1)
-        data = out.view("uint8").reshape(n, width)[keep]
+        flat = out.view("uint8").reshape(n, width)
+        step = 1 << 20  # rows at a time: the byte mask stays ~30 MB
+        data = np.concatenate(
+            [
+                flat[a : a + step][(col < 23 + extra[a : a + step, None]) | (col == width - 1)]
+                for a in range(0, n, step)
+            ]
+        )
         offsets = np.concatenate([[0], np.cumsum(24 + extra)]).astype("int32")
     else:
         data = out
