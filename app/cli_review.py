@@ -22,15 +22,28 @@ _TEXT = (
 )
 
 
-def read_inputs(paths: list[Path], **options) -> pd.DataFrame:
+def read_inputs(paths: list[Path], counts: dict | None = None, **options) -> pd.DataFrame:
     """Read one or several track files as one point table; files that each hold one
     sensor of the same name get the differing part of their names as sensor.
-    ``options``: how to read them (read_points keywords, as ``--map`` and friends)."""
+    ``options``: how to read them (read_points keywords, as ``--map`` and friends);
+    ``counts``, when given, receives the reading's counts summed over the files."""
     from wakeline.app.cli_steps import read_input
     from wakeline.core.review import combine_sources
 
     paths = list(paths) if isinstance(paths, list | tuple) else [paths]
-    return combine_sources([(p.stem, read_input(p, **options)) for p in paths])
+    tables = []
+    for p in paths:
+        one: dict = {}
+        tables.append((p.stem, read_input(p, one, **options)))
+        if counts is not None:
+            for key, value in one.items():
+                if isinstance(value, dict):
+                    merged = counts.setdefault(key, {})
+                    for k, v in value.items():
+                        merged[k] = merged.get(k, 0) + v
+                else:
+                    counts[key] = counts.get(key, 0) + value
+    return combine_sources(tables)
 
 
 def read_table(path: Path, what: str) -> pd.DataFrame:

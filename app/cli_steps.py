@@ -380,7 +380,7 @@ def run_step_command(args: argparse.Namespace) -> int:
     if step.many_inputs:
         from wakeline.app.cli_review import read_inputs
 
-        points = read_inputs(args.input, **_read_options(args))
+        points = read_inputs(args.input, read, **_read_options(args))
     else:
         points = read_input(args.input, read, **_read_options(args))
     result = step(points, params)

@@ -462,15 +462,20 @@ def _no_pair_reason(rep: dict) -> str:
         f"{rep[key]:,} {what}"
         for key, what in (
             ("refused_short_overlap", "for a common span under min_overlap_s"),
-            ("refused_count_ratio", "for a point-count ratio over count_ratio_max"),
+            (
+                "refused_count_ratio",
+                "for a point-count ratio over count_ratio_max (or under 2 points in the "
+                "common span)",
+            ),
         )
         if rep.get(key)
     ]
     refused = "; ".join(parts) if parts else "none by the gates"
+    rest = probed - rep.get("refused_short_overlap", 0) - rep.get("refused_count_ratio", 0)
     return (
         f"; {probed:,} pairs of tracks came within max_distance_m "
-        f"({rep['max_distance_m']:g} m) of each other, refused: {refused}; the rest were "
-        "farther apart on average than the gate"
+        f"({rep['max_distance_m']:g} m) of each other, refused: {refused}"
+        + (f"; the other {rest:,} were farther apart on average than the gate" if rest else "")
     )
 
 
