@@ -3,9 +3,10 @@
 ``wakeline batch PIPELINE.json IN… -o OUTDIR`` (``app/cli_batch.py``) runs
 :func:`run_batch`. Three passes (docs/batch.md):
 
-1. **Read and shuffle.** A Dask dataframe reads the CSV or Parquet inputs in blocks
-   (``blocksize_mb``); each block is made canonical (the types ``wakeline import``
-   gives; unusable rows go to ``OUTDIR/quarantine/``) and its rows are written to one of
+1. **Read and shuffle.** Each CSV input is read by the importer (one Dask task per file:
+   every line a point or a quarantine row, as ``wakeline import``); Parquet inputs by a
+   Dask dataframe in blocks (``blocksize_mb``), each block made canonical (unusable rows
+   to ``OUTDIR/quarantine/``). The rows are written to one of
    ``n`` buckets on disk by a hash of (sensor, batch). Every track lands whole in one
    bucket, so a bucket holds complete tracks and about ``partition_mb`` of input.
 2. **Per-track steps.** Each bucket runs the pipeline's stages with the core's own step
@@ -202,11 +203,6 @@ def _write_block(df: pd.DataFrame, stage: str, n: int, partition_info=None) -> p
     part = partition_info["number"] if partition_info else 0
     root = Path(stage)
     good, quarantine = canonical_block(df)
-    if ID not in good.columns:
-        # The row's number in the concatenated inputs (what clean's reject trail keys on):
-        # block and position here; pass 2 adds the rows of the blocks before.
-        good[ID] = np.arange(len(good), dtype="int64")
-        good[BLOCK] = np.int64(part)
     if len(quarantine):
         qdir = root / "quarantine"
         qdir.mkdir(parents=True, exist_ok=True)
@@ -214,6 +210,20 @@ def _write_block(df: pd.DataFrame, stage: str, n: int, partition_info=None) -> p
             pa.Table.from_pandas(quarantine, preserve_index=False),
             qdir / f"block-{part:06d}.parquet",
         )
+    _to_buckets(good, root, n, part, f"block-{part:06d}")
+    return pd.DataFrame({"block": [part], "rows": [len(df)], "quarantined": [len(quarantine)]})
+
+
+def _to_buckets(good: pd.DataFrame, root: Path, n: int, part: int, name: str) -> None:
+    """Canonical rows of one block (number ``part``) into the bucket files ``name``."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    if ID not in good.columns:
+        # The row's number in the concatenated inputs (what clean's reject trail keys on):
+        # block and position here; pass 2 adds the rows of the blocks before.
+        good[ID] = np.arange(len(good), dtype="int64")
+        good[BLOCK] = np.int64(part)
     bucket = bucket_of(good, n)
     order = np.argsort(bucket, kind="stable")
     good, bucket = good.iloc[order], bucket[order]
@@ -224,8 +234,108 @@ def _write_block(df: pd.DataFrame, stage: str, n: int, partition_info=None) -> p
         d = root / f"bucket-{int(bucket[lo]):05d}"
         d.mkdir(parents=True, exist_ok=True)
         table = pa.Table.from_pandas(good.iloc[lo:hi], preserve_index=False)
-        pq.write_table(table, d / f"block-{part:06d}.parquet")
-    return pd.DataFrame({"block": [part], "rows": [len(df)], "quarantined": [len(quarantine)]})
+        pq.write_table(table, d / f"{name}.parquet")
+
+
+#: Block numbers of an imported CSV input: the file's number times this, plus its piece.
+PIECES = 1 << 24
+
+
+def _import_file(path: str, file_no: int, stage: str, n: int) -> pd.DataFrame:
+    """Pass 1 on one CSV input, read as ``wakeline import`` reads it (every line a point
+    or a quarantine row, unix or ISO times, the same reasons), piece by piece into the
+    buckets. A file the streamed reader cannot take (quotes in its start, a value only
+    the careful parse reads) is read whole. Returns one row of counts per piece."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from wakeline.core.io import read_points
+    from wakeline.core.io.formats import resolve
+    from wakeline.core.io.reader import StreamFallback, stream_points
+    from wakeline.core.io.sniff import sniff
+
+    root = Path(stage)
+    pieces: list[int] = []
+
+    def sink(points: pd.DataFrame) -> None:
+        part = file_no * PIECES + len(pieces)
+        _to_buckets(points.copy(), root, n, part, f"block-{part:012d}")
+        pieces.append(len(points))
+
+    sn = sniff(Path(path))
+    try:
+        if sn.kind != "csv" or sn.has_quotes:
+            raise StreamFallback
+        result = stream_points(sn, resolve(sn.columns, "auto", None, source=path), sink)
+    except StreamFallback:
+        for k in range(len(pieces)):  # what the streamed reader wrote: read again whole
+            for f in root.glob(f"bucket-*/block-{file_no * PIECES + k:012d}.parquet"):
+                f.unlink()
+        pieces.clear()
+        result = read_points(path)
+        sink(result.points)
+    q = result.quarantine
+    if len(q):
+        qdir = root / "quarantine"
+        qdir.mkdir(parents=True, exist_ok=True)
+        q = q.assign(file=str(path))[["file", "line", "reason", "text"]].astype(
+            {"line": "int64", "reason": "str", "text": "str"}
+        )
+        pq.write_table(
+            pa.Table.from_pandas(q, preserve_index=False), qdir / f"file-{file_no:06d}.parquet"
+        )
+    blocks = file_no * PIECES + np.arange(len(pieces), dtype="int64")
+    rows = np.asarray(pieces, dtype="int64")
+    rows[:1] += len(q)  # the file's quarantined rows counted with its first piece
+    quarantined = np.zeros(len(pieces), dtype="int64")
+    quarantined[:1] = len(q)
+    return pd.DataFrame({"block": blocks, "rows": rows, "quarantined": quarantined})
+
+
+def _import_inputs(inputs: Sequence[Path], stage: Path, n: int) -> pd.DataFrame:
+    """Pass 1 over CSV inputs: each file read by the importer, one Dask task per file."""
+    import dask
+
+    from wakeline.core.io import sniff
+    from wakeline.core.io.formats import resolve
+
+    for p in inputs:  # the columns first: one clear message before any work
+        sn = sniff(p)
+        try:
+            cols = resolve(sn.columns, "auto", None, source=str(p)).columns
+        except InputError:
+            _check_columns(list(sn.columns))
+            raise
+        _check_columns([c for c in ("batch", "time", "lon", "lat") if c in cols])
+    tasks = [
+        dask.delayed(_import_file, pure=False)(str(p), k, str(stage), n)
+        for k, p in enumerate(inputs)
+    ]
+    return pd.concat(dask.compute(*tasks), ignore_index=True)
+
+
+def _read_parquet_inputs(inputs: Sequence[Path], stage: Path, n: int, opts) -> pd.DataFrame:
+    """Pass 1 over Parquet inputs: Dask blocks, each made canonical."""
+    import pyarrow as pa
+
+    ddf = _read_dask(inputs, "parquet", opts.blocksize_mb)
+    _check_columns(list(ddf.columns))
+    pass1 = ddf.map_partitions(
+        _write_block,
+        str(stage),
+        n,
+        meta=pd.DataFrame(
+            {
+                "block": pd.Series([], dtype="int64"),
+                "rows": pd.Series([], dtype="int64"),
+                "quarantined": pd.Series([], dtype="int64"),
+            }
+        ),
+    )
+    try:
+        return pass1.compute()
+    except (ValueError, pa.ArrowException, pd.errors.ParserError) as exc:
+        raise InputError(f"batch: cannot read the inputs: {_reason(exc)}") from None
 
 
 def _read_dask(paths: Sequence[Path], kind: str, blocksize_mb: float):
@@ -316,7 +426,7 @@ def _add_counts(total: dict, rep: dict) -> dict:
 
 
 def _run_bucket(
-    bucket: int, stage: str, outdir: str, per_track: list, assoc_k: int, offsets: np.ndarray
+    bucket: int, stage: str, outdir: str, per_track: list, assoc_k: int, offsets: tuple
 ) -> dict:
     """Pass 2 on one bucket: run the per-track stages, write their tables."""
     t0 = time.perf_counter()
@@ -324,7 +434,8 @@ def _run_bucket(
     name = f"part-{bucket:05d}.parquet"
     current = read_parts(root / f"bucket-{bucket:05d}")
     if BLOCK in current.columns:
-        current[ID] += offsets[current[BLOCK].to_numpy()]
+        keys, starts = offsets  # block numbers (sorted) and the rows before each
+        current[ID] += starts[np.searchsorted(keys, current[BLOCK].to_numpy())]
         current = current.drop(columns=BLOCK)
     rows_in = len(current)
     info: dict = {"bucket": bucket, "rows_in": rows_in, "stages": [], "summary": None}
@@ -473,7 +584,6 @@ def run_batch(
     timings: dict[str, float] = {}
     client = _client(opts)
     import dask
-    import pyarrow as pa
 
     threads = opts.threads or min(os.cpu_count() or 1, 4)
     local = contextlib.ExitStack()
@@ -481,29 +591,14 @@ def run_batch(
         local.enter_context(dask.config.set(scheduler="threads", num_workers=threads))
     try:
         t = time.perf_counter()
-        ddf = _read_dask(inputs, kind, opts.blocksize_mb)
-        _check_columns(list(ddf.columns))
-        pass1 = ddf.map_partitions(
-            _write_block,
-            str(stage),
-            n,
-            meta=pd.DataFrame(
-                {
-                    "block": pd.Series([], dtype="int64"),
-                    "rows": pd.Series([], dtype="int64"),
-                    "quarantined": pd.Series([], dtype="int64"),
-                }
-            ),
-        )
-        try:
-            counts = pass1.compute()
-        except (ValueError, pa.ArrowException, pd.errors.ParserError) as exc:
-            raise InputError(f"batch: cannot read the inputs: {_reason(exc)}") from None
+        if kind == "csv":
+            counts = _import_inputs(inputs, stage, n)
+        else:
+            counts = _read_parquet_inputs(inputs, stage, n, opts)
         timings["read_shuffle_s"] = time.perf_counter() - t
         counts = counts.sort_values("block")
         kept = (counts["rows"] - counts["quarantined"]).to_numpy()
-        offsets = np.zeros(int(counts["block"].max()) + 1 if len(counts) else 1, dtype="int64")
-        offsets[counts["block"].to_numpy()] = np.cumsum(kept) - kept
+        offsets = (counts["block"].to_numpy(), np.cumsum(kept) - kept)
         rows_read = int(counts["rows"].sum())
         quarantined = int(counts["quarantined"].sum())
         log(f"read {rows_read:,} rows into {n} buckets ({quarantined:,} quarantined)")

@@ -159,9 +159,11 @@ def test_parquet_inputs_and_quarantine(tmp_path):
     mixed.to_csv(tmp_path / "in.csv", index=False)
     res = run_batch(Pipeline.default(), [tmp_path / "in.csv"], tmp_path / "o1", BatchOptions())
     assert res.report["quarantined"] == 3
+    # CSV inputs are read as `wakeline import` reads them: its quarantine, line by line
     q = pd.read_parquet(tmp_path / "o1" / "quarantine")
-    assert sorted(q["lat"].fillna("")) == ["", "95.0", "x"]
-    assert set(q["reason"]) == {"latitude missing or out of range"}
+    assert q["line"].tolist() == [len(df) + 2, len(df) + 3, len(df) + 4]
+    assert q["reason"].tolist() == ["lat out of range", "unparsable lat", "missing lat"]
+    assert (q["file"] == str(tmp_path / "in.csv")).all()
     write = tmp_path / "in.parquet"
     df.to_parquet(write)
     res2 = run_batch(Pipeline.default(), [write], tmp_path / "o2", BatchOptions(csv=True))
@@ -223,3 +225,27 @@ def test_gzip_inputs_are_read_whole_without_a_warning(scene):
         ddf = _read_dask([gz], "csv", 0.1)
         n = len(ddf.compute())
     assert n == len(_rows(whole))
+
+
+@pytest.mark.parametrize("case", ["stray_quote", "unix_seconds", "short_row"])
+def test_batch_reads_csv_as_import_does(tmp_path, case):
+    """A stray quote (before: every row after it vanished), unix-second times (before:
+    all quarantined) and a short row (before: the run stopped): batch keeps what `wakeline
+    clean` keeps, quarantines what it quarantines, line by line (fuzzing)."""
+    rows = [
+        f"S1,A,2024-01-01T00:{i // 60:02d}:{i % 60:02d}Z,{10 + i * 1e-4:.4f},50.0"
+        for i in range(600)
+    ]
+    if case == "stray_quote":
+        rows[100] = rows[100].replace(",50.0", ',"50.0')
+    elif case == "unix_seconds":
+        rows = [f"S1,A,{1_700_000_000 + 10 * i},{10 + i * 1e-4:.4f},50.0" for i in range(600)]
+    else:
+        rows[200] = "S1,A,2024"
+    src = tmp_path / "in.csv"
+    src.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    res = run_batch(Pipeline.default(), [src], tmp_path / "out", BatchOptions(csv=True))
+    assert main(["clean", str(src), "-o", str(tmp_path / "c.csv")]) == 0
+    assert res.report["rows_read"] == 600
+    assert res.report["quarantined"] == (0 if case == "unix_seconds" else 1)
+    assert res.report["steps"]["clean"]["rows_out"] == len(_rows(tmp_path / "c.csv"))
