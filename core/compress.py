@@ -187,8 +187,13 @@ class Compressed:
             overall["repeated_rows"] = self.repeats
         if self.true_xy is not None:
             err_true = self.point_errors("truth")
-            per["dis_e_true_m"] = np.add.reduceat(err_true, idx.starts) / idx.sizes
-            overall["dis_e_true_m"] = float(err_true.mean())
+            known = np.isfinite(err_true)  # points with a truth (a blank cell has none)
+            if known.any():
+                n_known = np.add.reduceat(known.astype("int64"), idx.starts)
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    sums = np.add.reduceat(np.where(known, err_true, 0.0), idx.starts)
+                    per["dis_e_true_m"] = np.where(n_known > 0, sums / n_known, np.nan)
+                overall["dis_e_true_m"] = float(err_true[known].mean())
         return {
             "overall": overall,
             "tracks": per.to_dict(orient="records"),
@@ -248,9 +253,9 @@ def compress_with(
     true_xy = None
     if {"true_lon", "true_lat"} <= set(pts.columns):
         lon0, lat0 = track_origins(pts, index)
-        tx, ty = geo.to_local(
-            pts["true_lon"].to_numpy(dtype="float64"),
-            pts["true_lat"].to_numpy(dtype="float64"),
+        tx, ty = geo.to_local(  # a blank or unreadable truth cell: NaN, not an error
+            pd.to_numeric(pts["true_lon"], errors="coerce").to_numpy(dtype="float64"),
+            pd.to_numeric(pts["true_lat"], errors="coerce").to_numpy(dtype="float64"),
             lon0[index.track_of_row],
             lat0[index.track_of_row],
         )

@@ -285,3 +285,15 @@ def test_rows_repeated_in_time_and_place_change_no_result(seed):
     assert repeated_rows(pts, index).sum() == len(twice) - len(once)
     pts, index = sorted_with_index(moved)
     assert repeated_rows(pts, index).sum() == len(twice) - len(once) - 1
+
+
+def test_blank_truth_cells_are_unknown_not_an_error(tmp_path):
+    """A blank or unreadable true_lon/true_lat cell (fuzzing: an internal error) is a
+    point without a truth: Dis_e against truth over the others."""
+    df = simulate.maneuver_tracks(3, "short", 30.0, seed=1)
+    df["true_lon"] = df["true_lon"].astype(object)
+    df.loc[[2, 5], "true_lon"] = ""
+    df.loc[7, "true_lon"] = "n/a"
+    rep = compress_with(df, detect(df).is_maneuver).report()
+    assert np.isfinite(rep["overall"]["dis_e_true_m"])
+    assert all(np.isfinite(t["dis_e_true_m"]) for t in rep["tracks"])
