@@ -534,3 +534,28 @@ def test_export_writes_the_format_its_suffix_names(tmp_path, capsys):
     assert "plain text" in capsys.readouterr().err
     assert _run("export", src, "-o", tmp_path / "y.geojson", "--layout", "dma") == 2
     assert not (tmp_path / "x.csv.gz").exists() and not (tmp_path / "y.geojson").exists()
+
+
+def test_rows_beyond_the_sampled_start_keep_their_precision(tmp_path):
+    """8,000 rows with 4 decimals and whole seconds, then a vessel with 6 decimals and
+    half seconds: exported like the original, every value reads back as it was (fuzzing:
+    the later rows were rounded to the start's format, up to 5 m and 0.5 s off)."""
+    rows = ["sensor,batch,time,lon,lat"]
+    for i in range(8000):
+        t = f"{i // 3600:02d}:{i // 60 % 60:02d}:{i % 60:02d}"
+        rows.append(f"S1,A,2024-01-01T{t}Z,{10 + i * 1e-4:.4f},{55 + i * 1e-4:.4f}")
+    for i in range(300):
+        t = f"{i // 3600:02d}:{i // 60 % 60:02d}:{i % 60:02d}.500"
+        rows.append(f"S1,B,2024-01-01T{t}Z,{11 + i * 1.234567e-4:.6f},{55.001234 + i * 1e-6:.6f}")
+    src = tmp_path / "mix.csv"
+    src.write_text("\n".join(rows) + "\n")
+    assert main(["import", str(src), "-o", str(tmp_path / "i.csv")]) == 0
+    assert (
+        main(["export", str(tmp_path / "i.csv"), "--like", str(src), "-o", str(tmp_path / "e.csv")])
+        == 0
+    )
+    a, b = read_points(src).points, read_points(tmp_path / "e.csv").points
+    assert len(a) == len(b) == 8300
+    assert (a["time"].to_numpy() == b["time"].to_numpy()).all()
+    assert np.abs(a["lon"].to_numpy() - b["lon"].to_numpy()).max() < 1e-9
+    assert np.abs(a["lat"].to_numpy() - b["lat"].to_numpy()).max() < 1e-9

@@ -263,6 +263,63 @@ def _raw_head(path: Path, compression: str | None, n_bytes: int = 1 << 20) -> by
         return fh.read(n_bytes)
 
 
+def _fraction_digits(column, regex: str) -> int:
+    """The most digits the group ``f`` of ``regex`` holds over an Arrow text column."""
+    import pyarrow.compute as pc
+
+    got = pc.extract_regex(column, regex)
+    if got.null_count == len(got):
+        return 0
+    longest = pc.max(pc.utf8_length(pc.struct_field(got, [0]))).as_py()
+    return int(longest or 0)
+
+
+def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | None):
+    """The number and time formats made wide enough for every row of the file, not only
+    the sampled start: a column whose later rows carry more decimals (another vessel,
+    another source appended) gets as many, so that writing it again loses nothing."""
+    import pyarrow as pa
+    import pyarrow.csv as pcsv
+
+    keys = [c.key for c in cols if c.number is not None and c.number.trim not in ("repr", "repr1")]
+    if time_key and time.kind == "text":
+        keys.append(time_key)
+    if not keys:
+        return cols, time
+    try:
+        table = pcsv.read_csv(
+            path,
+            read_options=pcsv.ReadOptions(
+                column_names=list(sn.columns),
+                skip_rows=sn.skip_rows + (1 if sn.has_header else 0),
+                encoding=sn.encoding,
+            ),
+            parse_options=pcsv.ParseOptions(
+                delimiter=sn.delimiter, invalid_row_handler=lambda _row: "skip"
+            ),
+            convert_options=pcsv.ConvertOptions(
+                include_columns=keys, column_types={k: pa.string() for k in keys}
+            ),
+        )
+    except (pa.ArrowInvalid, OSError, UnicodeDecodeError, ValueError):
+        return cols, time  # the sample's formats stand
+    out = []
+    for c in cols:
+        if c.key in keys and c.key != time_key:
+            sep = "," if c.number.point == "," else r"\."
+            d = _fraction_digits(table[c.key], rf"^\s*[-+]?\d*{sep}(?P<f>\d+)\s*$")
+            if d > c.number.decimals:
+                trim = "none" if c.number.trim == "none" else "zeros"
+                c = replace(c, number=replace(c.number, decimals=d, trim=trim))
+        out.append(c)
+    if time_key in keys:
+        d = _fraction_digits(table[time_key], r":\d{2}[.,](?P<f>\d+)")
+        if d > time.frac_digits:
+            trim = "zeros" if time.frac_digits == 0 else time.frac_trim
+            time = replace(time, frac_digits=min(d, 9), frac_trim=trim)
+    return out, time
+
+
 def describe_layout(
     path: str | Path,
     report: dict | None = None,
@@ -332,6 +389,8 @@ def describe_layout(
         cols.append(Column(raw, f, number, key))
     time_key = columns_of.get("time")
     time = TimeFormat.detect(sample[time_key], tz) if time_key else TimeFormat(tz=tz or "UTC")
+    if not whole or len(lines) > SAMPLE_ROWS + 1:  # rows beyond the sample
+        cols, time = _widened(path, sn, cols, time, time_key)
     return Layout(
         name=name,
         columns=tuple(cols),
