@@ -49,6 +49,23 @@ def _cmd_export(args: argparse.Namespace) -> int:
         )
     else:
         layout = preset_layout(args.layout or "canonical")
+    if args.like and not args.tz and layout.time.kind == "text" and not layout.time.suffix:
+        from wakeline.core.io.formats import header_is_local
+
+        names = [c.name for c in layout.columns if c.field == "time"]
+        if names and header_is_local(names[0]):
+            print(
+                f"{args.like}: warning: its time column {names[0]!r} holds local times; they "
+                "are written as UTC clock times unless --tz gives their zone (the one the "
+                "import was given, e.g. --tz Asia/Shanghai)",
+                file=sys.stderr,
+            )
+        elif names:
+            print(
+                f"{args.like}: its times carry no zone: written as UTC clock times (if the "
+                "import read them in a zone with --tz, give the same --tz here)",
+                file=sys.stderr,
+            )
     if args.tz:
         from dataclasses import replace
 
@@ -82,6 +99,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
         prefer_sensor=args.id_sensor,
         members_path=args.members,
     )
+    for warning in rep.get("warnings", []):
+        print(f"{args.output}: warning: {warning}", file=sys.stderr)
     msg = (
         f"exported {rep['rows']:,} rows as {rep['layout']} ({rep['encoding']}, "
         f"{len(rep['columns'])} columns)"

@@ -268,3 +268,5 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             apply_fused(self, *done[1:])
         elif kind == "export":
             self.log_message(self.tr("exported {0} to {1}").format(done[1], done[2]))
+            for warning in done[3] if len(done) > 3 else []:
+                self.log_message(f"{self.tr('Warning')}: {warning}")

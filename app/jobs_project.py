@@ -88,8 +88,8 @@ class ProjectJobsMixin:
         points = layer.points
 
         def job(_progress):
-            export_like(points, layout, path)
-            return ("export", layer.name, path)
+            rep = export_like(points, layout, path)
+            return ("export", layer.name, path, rep.get("warnings", []))
 
         return self._start("export", job, ("export", layer.name))
 

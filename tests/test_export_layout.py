@@ -559,3 +559,23 @@ def test_rows_beyond_the_sampled_start_keep_their_precision(tmp_path):
     assert (a["time"].to_numpy() == b["time"].to_numpy()).all()
     assert np.abs(a["lon"].to_numpy() - b["lon"].to_numpy()).max() < 1e-9
     assert np.abs(a["lat"].to_numpy() - b["lat"].to_numpy()).max() < 1e-9
+
+
+def test_sensors_sharing_an_id_in_a_layout_without_sensor_column_are_warned(tmp_path, capsys):
+    """AIS and two radars all with batch 007, written to a layout with no sensor column:
+    read back they would be one track; the export says so (fuzzing)."""
+    rows = ["sensor,batch,time,lon,lat"]
+    for k, s in enumerate(("AIS", "R1", "R2")):
+        rows += [
+            f"{s},007,2024-01-01T00:{m:02d}:00Z,{10 + 0.05 * k + m * 1e-3:.4f},55"
+            for m in range(20)
+        ]
+    src = tmp_path / "mixed.csv"
+    src.write_text("\n".join(rows) + "\n")
+    assert (
+        main(["export", str(src), "--layout", "marinecadastre", "-o", str(tmp_path / "m.csv")]) == 0
+    )
+    err = capsys.readouterr().err
+    assert "used by more than one sensor (e.g. 007: AIS, R1, R2)" in err
+    assert main(["export", str(src), "--layout", "canonical", "-o", str(tmp_path / "c.csv")]) == 0
+    assert "more than one sensor" not in capsys.readouterr().err

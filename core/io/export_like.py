@@ -445,6 +445,27 @@ def write_layout(
     }
 
 
+def _shared_ids_warning(points: pd.DataFrame, layout: Layout) -> list[str]:
+    """A warning when tracks of different sensors share a batch id and the layout has no
+    sensor column: read back, each such id is one track (the sensors' fixes mixed)."""
+    if any(c.field == "sensor" for c in layout.columns) or "sensor" not in points.columns:
+        return []
+    keys = points[["sensor", "batch"]].astype("str").drop_duplicates()
+    if keys["sensor"].nunique() < 2:
+        return []
+    shared = keys.groupby("batch")["sensor"].agg(list)
+    shared = shared[shared.map(len) > 1]
+    if shared.empty:
+        return []
+    batch, sensors = shared.index[0], shared.iloc[0]
+    return [
+        f"{len(shared):,} batch id(s) are used by more than one sensor (e.g. {batch}: "
+        f"{', '.join(sensors)}) and the layout {layout.name!r} has no sensor column: read "
+        "back, each is one track with the sensors' fixes mixed; export one sensor at a "
+        "time, or to a layout with a sensor column"
+    ]
+
+
 def export_like(
     points: pd.DataFrame,
     layout: Layout,
@@ -468,6 +489,7 @@ def export_like(
     else:
         ids, members = assign_target_ids(points, renumber=renumber, prefer_sensor=prefer_sensor)
     report = write_layout(ids, layout, path, columns=columns)
+    report["warnings"] = _shared_ids_warning(ids, layout)
     report["members"] = None
     report["targets"] = None
     if members is not None:
