@@ -205,14 +205,24 @@ def _bearing_params(args: argparse.Namespace):
 
 
 def _cmd_bearing(args: argparse.Namespace) -> int:
+    from wakeline.app.cli_steps import say_quarantined
     from wakeline.core.bearing import detect_with_report, read_bearings, report_lines
     from wakeline.core.io import write_csv, write_json
 
     params = _bearing_params(args)
-    table, report = detect_with_report(read_bearings(args.input), params)
+    bearings = read_bearings(args.input)
+    quarantine = bearings.attrs.get("quarantine")
+    q = {} if quarantine is None else quarantine["reason"].value_counts().to_dict()
+    read = {
+        "rows_imported": len(bearings),
+        "rows_quarantined": int(sum(q.values())),
+        "quarantine_reasons": q,
+    }
+    say_quarantined(args.input, read)
+    table, report = detect_with_report(bearings, params)
     write_csv(table, args.output)
     if args.report:
-        write_json({"batches": report, "params": dict(vars(params))}, args.report)
+        write_json({"batches": report, "read": read, "params": dict(vars(params))}, args.report)
     for line in report_lines(report):
         print(line, file=sys.stderr)
     print(f"{len(table):,} maneuver detections", file=sys.stderr)

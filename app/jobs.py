@@ -250,6 +250,12 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         elif kind == "bearing":
             _, bearings, result = done
             self.bearings, self.bearing_detections = bearings, result.tables["detections"]
+            quarantine = bearings.attrs.get("quarantine")
+            if quarantine is not None and len(quarantine):
+                reasons = "; ".join(
+                    f"{n:,} {why}" for why, n in quarantine["reason"].value_counts().items()
+                )
+                self.log_message(f"bearing: {len(quarantine):,} lines quarantined ({reasons})")
             self.log_message(f"bearing: {summarize(result.report)}")
             for line in result.report.get("why", []):
                 self.log_message(f"    {line}")

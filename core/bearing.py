@@ -919,31 +919,116 @@ def _finite(x: float) -> float | None:
 
 
 def read_bearings(path) -> pd.DataFrame:
-    """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads)."""
-    from wakeline.core.io.reader import parse_times
-    from wakeline.core.io.sniff import read_small_table
+    """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads).
 
-    df = read_small_table(path, ("batch", "time", "bearing"), "bearings", text_columns=("batch",))
-    bearing = pd.to_numeric(df["bearing"], errors="coerce")
-    bad = df.index[bearing.isna()]
-    if len(bad):
-        raise InputError(
-            f"{path}: bearing is not a number on line(s) {', '.join(str(i + 2) for i in bad[:10])}"
-        )
-    import pyarrow as pa
-
-    ns, ok = parse_times(pa.chunked_array([pa.array(df["time"].astype(str))]), "auto")
-    if not ok.all():
-        raise InputError(
-            f"{path}: unreadable time on line(s) "
-            f"{', '.join(str(i + 2) for i in np.flatnonzero(~ok)[:10])}"
-        )
-    df["time"] = pd.Series(ns.view("datetime64[ns]")).dt.tz_localize("UTC")
-    df["bearing"] = bearing.to_numpy() % 360.0
-    for col in ("obs_lon", "obs_lat"):
-        if col in df.columns:
-            df[col] = pd.to_numeric(df[col], errors="coerce")
+    Every line is a bearing or a quarantine row (``df.attrs["quarantine"]``: line, reason,
+    text; :func:`read_bearings_checked` returns both): a line with the wrong number of
+    fields, no batch, an unreadable time, a bearing that is not a finite number or an
+    observer position out of range. Raises :class:`InputError` for missing columns or when
+    no line is usable."""
+    df, quarantine = read_bearings_checked(path)
+    df.attrs["quarantine"] = quarantine
     return df
+
+
+def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The bearings of ``path`` and its quarantine (see :func:`read_bearings`)."""
+    import pyarrow as pa
+    import pyarrow.csv as pcsv
+
+    from wakeline.core.io.reader import parse_times
+    from wakeline.core.io.sniff import sniff
+
+    sn = sniff(path)
+    missing = [c for c in ("batch", "time", "bearing") if c not in sn.columns]
+    if missing:
+        raise InputError(
+            f"{path}: missing required column {', '.join(missing)} (bearings); "
+            f"headers found: {', '.join(sn.columns)}"
+        )
+    refused: list[tuple[int, str, str]] = []
+
+    def invalid(row) -> str:
+        if row.text.strip():
+            refused.append((int(row.number or 0), f"{row.actual_columns} fields, not "
+                            f"{row.expected_columns}", row.text))  # fmt: skip
+        return "skip"
+
+    try:
+        table = pcsv.read_csv(
+            path,
+            read_options=pcsv.ReadOptions(
+                column_names=list(sn.columns),
+                skip_rows=sn.skip_rows,
+                encoding=sn.encoding,
+                use_threads=False,  # line numbers for the refused rows
+            ),
+            parse_options=pcsv.ParseOptions(
+                delimiter=sn.delimiter, invalid_row_handler=invalid, ignore_empty_lines=False
+            ),
+            convert_options=pcsv.ConvertOptions(
+                column_types={c: pa.string() for c in sn.columns}, strings_can_be_null=False
+            ),
+        )
+    except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read the bearings: {exc}") from None
+    df = table.to_pandas()
+    n = len(df)
+    # each table row's line: the lines after the header, less those refused
+    taken = set(r[0] for r in refused)
+    lines = [
+        k for k in range(sn.skip_rows + 1, sn.skip_rows + 1 + n + len(taken)) if k not in taken
+    ]
+    line = np.asarray(lines[:n], dtype="int64")
+    blank = (
+        (df.apply(lambda c: c.str.strip()) == "").all(axis=1).to_numpy() if n else np.zeros(0, bool)
+    )
+    reason = np.full(n, "", dtype=object)
+
+    def flag(mask: np.ndarray, why: str) -> None:
+        reason[mask & (reason == "") & ~blank] = why
+
+    batch = df["batch"].str.strip()
+    flag((batch == "").to_numpy(), "missing batch")
+    ns, ok = parse_times(pa.chunked_array([pa.array(df["time"].str.strip())]), "auto")
+    flag(~ok, "unparsable time")
+    bearing = pd.to_numeric(df["bearing"].str.strip(), errors="coerce").to_numpy(dtype="float64")
+    flag(~np.isfinite(bearing), "bearing not a finite number")
+    obs = {}
+    for col, lim in (("obs_lon", 180.0), ("obs_lat", 90.0)):
+        if col in df.columns:
+            text = df[col].str.strip()
+            v = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
+            flag((text != "").to_numpy() & ~(np.abs(v) <= lim), f"{col} out of range or unreadable")
+            obs[col] = v
+    keep = (reason == "") & ~blank
+    quarantine = pd.DataFrame(
+        {
+            "line": np.concatenate([line[~keep & ~blank], [r[0] for r in refused]]).astype("int64"),
+            "reason": list(reason[~keep & ~blank]) + [r[1] for r in refused],
+            "text": [  # the quarantined rows only (few): their fields as read
+                sn.delimiter.join(r) for r in df[~keep & ~blank].itertuples(index=False)
+            ]
+            + [r[2] for r in refused],
+        }
+    )
+    quarantine = quarantine.sort_values("line", kind="stable", ignore_index=True)
+    if not keep.any():
+        why = quarantine["reason"].value_counts().head(3).to_dict()
+        raise InputError(f"{path}: no usable bearing: {len(quarantine):,} lines quarantined {why}")
+    out = pd.DataFrame(
+        {
+            "batch": batch[keep].to_numpy().astype(str),
+            "time": pd.Series(ns[keep].view("datetime64[ns]")).dt.tz_localize("UTC"),
+            "bearing": bearing[keep] % 360.0,
+        }
+    )
+    for col, v in obs.items():
+        out[col] = v[keep]
+    for col in df.columns:  # other columns as read
+        if col not in out.columns and col not in ("bearing",):
+            out[col] = df[col].to_numpy()[keep]
+    return out, quarantine
 
 
 def detect_with_report(

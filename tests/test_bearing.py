@@ -187,10 +187,15 @@ def test_bad_bearing_input(tmp_path, capsys):
     with pytest.raises(InputError, match="missing required column bearing"):
         read_bearings(p)
     p.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,10\n1,2024-01-01T00:00:01Z,north\n")
-    with pytest.raises(InputError, match="not a number on line"):
-        read_bearings(p)
+    got = read_bearings(p)
+    assert len(got) == 1 and got.attrs["quarantine"]["line"].tolist() == [3]
+    assert main(["bearing", str(p), "-o", str(tmp_path / "o.csv")]) == 0
+    assert (
+        "1 rows quarantined on reading (1 bearing not a finite number)" in capsys.readouterr().err
+    )
+    p.write_text("batch,time,bearing\n1,2024-01-01T00:00:01Z,north\n")
     assert main(["bearing", str(p), "-o", str(tmp_path / "o.csv")]) == 2
-    assert "line(s) 3" in capsys.readouterr().err
+    assert "no usable bearing" in capsys.readouterr().err
     p.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,10\n1,2024-01-01T00:00:00Z,11\n")
     with pytest.raises(InputError, match="repeated time"):
         detect(read_bearings(p))
@@ -362,3 +367,33 @@ def test_detection_time_is_the_first_alarm_of_the_maneuver():
         assert len(hits) == 1
         assert hits[0].detect_time_s == st.detect_t[np.abs(st.z) > p.z_crit].min()
         assert 450.0 <= hits[0].detect_time_s <= 450.0 + 60.0
+
+
+def test_every_bearing_line_is_a_bearing_or_a_quarantine_row(tmp_path):
+    """An inf bearing (it turned off detection for its batch), extra fields (an internal
+    error), an empty batch (silently dropped), an unreadable time and an observer at lat
+    95 (accepted): each its own quarantine row, the rest read (fuzzing)."""
+    rows = [
+        f"s1,2024-05-01T00:{m // 60:02d}:{m % 60:02d}Z,{30 + 0.01 * m:.3f},10,55"
+        for m in range(200)
+    ]
+    rows[10] = "s1,2024-05-01T00:00:10Z,inf,10,55"
+    rows[20] = "s1,2024-05-01T00:00:20Z,30.2,10,55,5,5"
+    rows[30] = ",2024-05-01T00:00:30Z,30.3,10,55"
+    rows[40] = "s1,yesterday,30.4,10,55"
+    rows[50] = "s1,2024-05-01T00:00:50Z,30.5,10,95"
+    rows.insert(60, "")
+    p = tmp_path / "b.csv"
+    p.write_text("batch,time,bearing,obs_lon,obs_lat\n" + "\n".join(rows) + "\n")
+    got = read_bearings(p)
+    q = got.attrs["quarantine"]
+    assert q["line"].tolist() == [12, 22, 32, 42, 52]
+    assert len(got) + len(q) == 200
+    assert q["reason"].tolist() == [
+        "bearing not a finite number",
+        "7 fields, not 5",
+        "missing batch",
+        "unparsable time",
+        "obs_lat out of range or unreadable",
+    ]
+    assert np.isfinite(got["bearing"]).all() and len(detect(got)) >= 0
