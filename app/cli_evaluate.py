@@ -218,7 +218,9 @@ def _cmd_bearing(args: argparse.Namespace) -> int:
         "rows_quarantined": int(sum(q.values())),
         "quarantine_reasons": q,
     }
-    say_quarantined(args.input, read)
+    say_quarantined(args.input, read, "bearing")
+    if args.quarantine and quarantine is not None:
+        write_csv(quarantine, args.quarantine)
     table, report = detect_with_report(bearings, params)
     write_csv(table, args.output)
     if args.report:
@@ -275,6 +277,12 @@ def register(sub) -> None:
         type=Path,
         metavar="R.json",
         help="per batch: windows tested, skipped and why, noise and the smallest visible turn",
+    )
+    p.add_argument(
+        "--quarantine",
+        type=Path,
+        metavar="Q.csv",
+        help="the input lines not read as bearings: line, reason, text",
     )
     _add_bearing_options(p)
     p.set_defaults(func=_cmd_bearing)

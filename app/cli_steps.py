@@ -332,8 +332,9 @@ def read_counts(report: dict) -> dict:
     return {key: report[key] for key in READ_KEYS if key in report}
 
 
-def say_quarantined(path, report: dict) -> None:
-    """One line on stderr: how many rows reading quarantined, and why."""
+def say_quarantined(path, report: dict, command: str = "import") -> None:
+    """One line on stderr: how many rows reading quarantined, and why; ``command`` is the
+    one whose ``--quarantine`` writes them."""
     n = report.get("rows_quarantined", 0)
     if not n:
         return
@@ -341,7 +342,7 @@ def say_quarantined(path, report: dict) -> None:
     why = "; ".join(f"{count:,} {reason}" for reason, count in reasons[:3])
     more = f"; {len(reasons) - 3} more reasons" if len(reasons) > 3 else ""
     print(
-        f"{path}: {n:,} rows quarantined on reading ({why}{more}); run `wakeline import` "
+        f"{path}: {n:,} rows quarantined on reading ({why}{more}); run `wakeline {command}` "
         "with --quarantine to see them",
         file=sys.stderr,
     )
