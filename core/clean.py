@@ -461,6 +461,20 @@ def _transform(result: CleanResult, name: str, step_params) -> CleanResult:
         after = resample(before, step_params, next_id)
     else:
         after = smooth(before, step_params)
+    if name != "smooth" and len(after):
+        # New points: speed and course from their own track (they were left blank)
+        from wakeline.core.tracks import derive_motion
+
+        after, index = sorted_with_index(after)
+        speed, course = derive_motion(after, index)
+        after = after.copy()
+        for col, derived, digits in (("speed", speed, 2), ("course", course, 1)):
+            values = (
+                after[col].to_numpy(dtype="float64")
+                if col in after
+                else np.full(len(after), np.nan)
+            )
+            after[col] = np.where(np.isfinite(values), values, np.round(derived, digits))
     if name == "smooth":
         moved = (before["lon"].to_numpy() != after["lon"].to_numpy()) | (
             before["lat"].to_numpy() != after["lat"].to_numpy()

@@ -158,3 +158,16 @@ def test_cli_transform_flags(tmp_path, capsys):
     assert "resample" in capsys.readouterr().err
     assert main(["clean", str(src), "-o", str(out), "--smooth", "2"]) == 2
     assert "smooth.window must be at least 3" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("step", ["resample", "bspline"])
+def test_points_a_transform_makes_get_their_tracks_speed_and_course(step):
+    """Resampled or spline points had speed and course blank (an export like the original
+    wrote empty course cells, fuzzing): derived from the new track."""
+    df = straight(120, period_s=10.0, speed_kn=12.0, batch="a")
+    df["course"] = np.nan
+    df["speed"] = np.nan
+    out = clean(df, CleanParams().with_settings([f"{step}.enabled=true"])).points
+    assert len(out) > 10
+    assert out["speed"].between(11.0, 13.0).mean() > 0.9
+    assert np.isfinite(out["course"]).all()
