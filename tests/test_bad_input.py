@@ -306,3 +306,14 @@ def test_a_unix_time_cut_short_is_quarantined_not_read_as_1970(tmp_path):
     assert main(argv + [a for m in mapping for a in ("--map", m)]) == 0
     assert "time decades before" in q.read_text()
     assert len(pd.read_csv(tmp_path / "o.csv")) == 300
+
+
+def test_a_header_without_a_line_end_is_a_header_only_file(tmp_path, capsys):
+    """`sensor,batch,time,lon,lat` and nothing else, no newline: 'no data rows', not 'a
+    line is longer than 512 MB' (fuzzing)."""
+    from wakeline.app.cli import main
+
+    p = tmp_path / "h.csv"
+    p.write_text("sensor,batch,time,lon,lat")
+    assert main(["import", str(p), "-o", str(tmp_path / "o.csv")]) == 2
+    assert "no data rows" in capsys.readouterr().err

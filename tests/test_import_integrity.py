@@ -580,3 +580,16 @@ def test_times_read_as_arrow_timestamps_with_a_gap_stay_exact():
     got, ok = parse_times(arr, "auto")
     assert ok.tolist() == [True, False, True]
     assert got[ok].tolist() == ns[ok].tolist()
+
+
+def test_unix_seconds_and_milliseconds_in_one_column(write):
+    """A feed that switched from seconds to milliseconds: each number read in its own unit
+    (fuzzing: the seconds rows were quarantined as 'decades before'); a damaged 9-digit
+    number (1975) in a 2023 file is still refused."""
+    rows = [f"S,1,{1_700_000_000 + 10 * i},{10 + i * 1e-3:.3f},55" for i in range(20)]
+    rows += [f"S,1,{(1_700_000_200 + 10 * i) * 1000},{10.02 + i * 1e-3:.3f},55" for i in range(20)]
+    rows += ["S,1,170000000,10.5,55"]
+    r = read_points(write("mix.csv", "sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n"))
+    assert r.report["rows_imported"] == 40 and r.quarantine["line"].tolist() == [42]
+    t = r.points["time"].astype("int64").to_numpy() // 10**9
+    assert (np.diff(t) == 10).all() and t[0] == 1_700_000_000

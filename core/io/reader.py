@@ -313,6 +313,11 @@ def _read_rows(sn: Sniff, res: Resolved) -> _Rows:
                     f"{sn.path}: cannot decode the text as {enc}; give the file's encoding "
                     "with --encoding (e.g. gb18030, utf-16, latin-1)"
                 ) from None
+            if "Empty CSV file" in text or ("file is too short" in text and _one_line(sn)):
+                # a header alone, without a line end
+                raise InputError(
+                    f"{sn.path}: no data rows (a header only?); nothing imported"
+                ) from None
             if "straddl" in text or "block" in text:
                 if block + 1 < len(_BLOCKS):
                     block += 1
@@ -508,36 +513,49 @@ def parse_zone(text: str | None) -> datetime.tzinfo | None:
         ) from None
 
 
+#: In a file of absolute unix times, a number more than this many seconds before the
+#: file's median time is damaged (cut short), not a time of the file.
+EARLY_BEFORE_S = 40 * 365.25 * 86400.0
+
+
 def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Unix seconds (or milliseconds, told apart by magnitude) to int64 ns, and validity."""
+    """Unix seconds or milliseconds to int64 ns, and validity. Relative times (a scene's
+    seconds from its start) are seconds; absolute ones are told apart number by number by
+    magnitude (1.7e9 s, 1.7e12 ms: a feed that switched unit reads whole)."""
     finite = np.isfinite(seconds)
-    scale = 1_000_000_000
-    median = float(np.nanmedian(np.abs(seconds[finite]))) if finite.any() else 0.0
-    if median > _MS_THRESHOLD:
-        scale = 1_000_000
+    mag = np.abs(np.where(finite, seconds, 0.0))
+    median = float(np.median(mag[finite])) if finite.any() else 0.0
+    ms_file = median > _MS_THRESHOLD
     if info is not None:
-        info["time_format"] = "unix ms" if scale == 1_000_000 else "unix s"
-        if finite.any() and float(np.nanmax(np.abs(seconds[finite]))) < RELATIVE_BELOW_S:
+        info["time_format"] = "unix ms" if ms_file else "unix s"
+        if finite.any() and float(mag[finite].max()) < RELATIVE_BELOW_S:
             info["time_format"] = "relative s"
             info["relative"] = True
-    ok = finite & (np.abs(seconds) < 9.2e18 / scale)
-    floor = RELATIVE_BELOW_S * (1000.0 if scale == 1_000_000 else 1.0)
-    if info is not None and info.get("absolute") and median < floor:
-        median = floor  # a piece of a file read in pieces: the file's times are absolute
-    if median >= floor:
+    floor = RELATIVE_BELOW_S * (1000.0 if ms_file else 1.0)
+    absolute = median >= floor or bool(info is not None and info.get("absolute"))
+    per = np.full(len(seconds), 1_000_000 if ms_file else 1_000_000_000, dtype="int64")
+    ok = finite.copy()
+    if absolute:
         if info is not None:
             info["absolute"] = True
-        # Absolute times, and among them a few from the first years after 1970: a number
-        # cut short (a truncated line) or damaged, not a time of this file.
-        early = finite & (np.abs(seconds) < floor)
+        ms = finite & (mag > _MS_THRESHOLD)
+        per = np.where(ms, 1_000_000, 1_000_000_000).astype("int64")
+        if info is not None and ms.any() and not ms[finite].all():
+            info["time_format"] = "unix s and ms"
+        # Among absolute times, a number from the first years after 1970 or decades before
+        # the file's others: cut short (a truncated line) or damaged, not a time of this file.
+        as_s = np.where(ms, mag / 1000.0, mag) * np.sign(np.where(finite, seconds, 0.0))
+        centre = float(np.median(as_s[finite])) if finite.any() else 0.0
+        early = finite & ((np.abs(as_s) < RELATIVE_BELOW_S) | (as_s < centre - EARLY_BEFORE_S))
         if early.any():
             ok &= ~early
             if info is not None:
                 info["early_times"] = early
+    ok &= mag < 9.2e18 / per
     x = np.where(ok, seconds, 0.0)
     # Whole and fractional parts apart: a float64 of ~1.7e18 ns cannot hold every ns.
     whole = np.floor(x)
-    ns = whole.astype("int64") * scale + np.round((x - whole) * scale).astype("int64")
+    ns = whole.astype("int64") * per + np.round((x - whole) * per).astype("int64")
     return ns, ok
 
 
@@ -734,6 +752,18 @@ def parse_times(
         (parsed[ok] - pd.Timestamp(0, tz="UTC")).to_numpy().astype("timedelta64[ns]").view("int64")
     )
     return ns, ok
+
+
+def _one_line(sn: Sniff) -> bool:
+    """Whether the file holds one line at most (no line break after its first one)."""
+    opener = gzip.open if sn.compression == "gzip" else open
+    with opener(sn.path, "rb") as fh:
+        head = fh.read(1 << 16)
+    return (
+        len(head) < (1 << 16)
+        and not head.rstrip(b"\r\n").count(b"\n")
+        and b"\r" not in head.rstrip(b"\r\n")
+    )
 
 
 def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None) -> list[str]:
