@@ -48,8 +48,21 @@ def read_inputs(paths: list[Path], counts: dict | None = None, **options) -> pd.
 
 def read_table(path: Path, what: str) -> pd.DataFrame:
     """A small CSV (proposals or decisions) with every column as text, blanks kept."""
+    import csv
+
     try:
-        return pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig")
+        with open(path, encoding="utf-8-sig", newline="") as fh:
+            counts = [len(row) for row in csv.reader(fh)]
+        if counts:
+            bad = [k for k, c in enumerate(counts[1:], start=2) if c not in (0, counts[0])]
+            if bad:
+                raise InputError(
+                    f"{path}: line {bad[0]} of the {what} table has {counts[bad[0] - 1]} "
+                    f"fields, the header {counts[0]}"
+                )
+        return pd.read_csv(
+            path, dtype=str, keep_default_na=False, encoding="utf-8-sig", index_col=False
+        )
     except pd.errors.EmptyDataError:
         raise InputError(f"{path}: the {what} file is empty") from None
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:

@@ -346,6 +346,12 @@ def read_proposals(df: pd.DataFrame) -> pd.DataFrame:
     dup = out["proposal"].duplicated()
     if dup.any():
         raise InputError(f"proposal id {out['proposal'][dup].iloc[0]!r} appears twice")
+    same = (out["sensor_a"] == out["sensor_b"]) & (out["batch_a"] == out["batch_b"])
+    if same.any():
+        row = out[same].iloc[0]
+        raise InputError(
+            f"proposal {row['proposal']!r} joins track {row['sensor_a']}:{row['batch_a']} to itself"
+        )
     return out[list(PROPOSAL_COLUMNS)].reset_index(drop=True)
 
 

@@ -473,6 +473,19 @@ def test_cli_review_matches_the_core_session(scene, tmp_path, capsys):
     ap_csv = str(tmp_path / "ap.csv")
     assert main(["review", str(radar), "-o", str(out), "--proposals", ap_csv, ap_csv]) == 2
     assert "appears twice" in capsys.readouterr().err
+    # A decisions row with a field too many, a proposal joining a track to itself: each
+    # one clear message (fuzzing: "unknown decision ''", and the self-join accepted).
+    (tmp_path / "extra.csv").write_text("proposal,decision\nA0001,accept,x\n", encoding="utf-8")
+    argv = ["review", str(radar), "-o", str(out), "--proposals", ap_csv]
+    assert main([*argv, "--decisions", str(tmp_path / "extra.csv")]) == 2
+    assert "line 2 of the decisions table has 3 fields, the header 2" in capsys.readouterr().err
+    selfjoin = pd.read_csv(ap_csv, dtype=str, keep_default_na=False).head(1)
+    selfjoin["sensor_b"], selfjoin["batch_b"] = selfjoin["sensor_a"], selfjoin["batch_a"]
+    selfjoin.to_csv(tmp_path / "self.csv", index=False)
+    assert (
+        main(["review", str(radar), "-o", str(out), "--proposals", str(tmp_path / "self.csv")]) == 2
+    )
+    assert "to itself" in capsys.readouterr().err
 
 
 def test_fuse_takes_one_file_per_sensor(scene, tmp_path, capsys):
