@@ -317,3 +317,22 @@ def test_a_header_without_a_line_end_is_a_header_only_file(tmp_path, capsys):
     p.write_text("sensor,batch,time,lon,lat")
     assert main(["import", str(p), "-o", str(tmp_path / "o.csv")]) == 2
     assert "no data rows" in capsys.readouterr().err
+
+
+def test_a_stray_nul_byte_is_its_rows_problem_in_any_file(tmp_path):
+    """One NUL byte in a 40-line file refused the whole file as binary, while in a long
+    file (beyond the sample) it only quarantined its row (fuzzing): now the row either
+    way; a PNG is still a binary file."""
+    from wakeline.core.errors import InputError
+    from wakeline.core.io import read_points
+
+    rows = [f"S,1,2024-01-01T00:00:{i:02d}Z,{10 + i * 1e-3:.3f},55" for i in range(40)]
+    rows[5] = rows[5].replace("55", "5\x005")
+    p = tmp_path / "nul.csv"
+    p.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    r = read_points(p)
+    assert r.report["rows_imported"] == 39 and r.quarantine["line"].tolist() == [7]
+    png = tmp_path / "x.csv"
+    png.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(range(256)) * 8)
+    with pytest.raises(InputError, match="binary"):
+        read_points(png)

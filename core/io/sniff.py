@@ -85,7 +85,9 @@ def _is_wide(encoding: str | None) -> bool:
 
 
 def _looks_binary(sample: bytes) -> bool:
-    if b"\x00" in sample:
+    """Binary data: NUL bytes beyond a stray one or two (a damaged line of a text file is
+    its row's problem, quarantined, wherever it lies), or many control characters."""
+    if sample.count(b"\x00") > max(4, len(sample) // 1000):
         return True
     control = sum(sample.count(bytes([b])) for b in (*range(0, 9), *range(14, 32)))
     return control > 0.01 * max(len(sample), 1)
