@@ -601,6 +601,9 @@ def run_batch(
         offsets = (counts["block"].to_numpy(), np.cumsum(kept) - kept)
         rows_read = int(counts["rows"].sum())
         quarantined = int(counts["quarantined"].sum())
+        if rows_read == 0:
+            shutil.rmtree(outdir, ignore_errors=True)
+            raise InputError("batch: the inputs hold no data rows (headers only?)")
         log(f"read {rows_read:,} rows into {n} buckets ({quarantined:,} quarantined)")
         if (stage / "quarantine").exists():
             shutil.move(str(stage / "quarantine"), str(outdir / "quarantine"))
