@@ -321,7 +321,7 @@ def test_bearing_only_data_shows_the_statistic_and_detections(window, tmp_path, 
     bad.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,abc\n")
     window.load_bearings(bad)
     wait_for_jobs(window)
-    assert shown and "not a number" in shown[-1]
+    assert shown and "no usable bearing" in shown[-1] and "not a finite number" in shown[-1]
 
 
 def test_failed_save_shows_a_dialog_and_marks_the_title(window, tmp_path, monkeypatch):
