@@ -919,7 +919,9 @@ def _finite(x: float) -> float | None:
 
 
 def read_bearings(path) -> pd.DataFrame:
-    """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads).
+    """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads;
+    Chinese and other common header names, :data:`BEARING_NAMES`; ``bearing_rad`` in
+    radians).
 
     Every line is a bearing or a quarantine row (``df.attrs["quarantine"]``: line, reason,
     text; :func:`read_bearings_checked` returns both): a line with the wrong number of
@@ -931,6 +933,33 @@ def read_bearings(path) -> pd.DataFrame:
     return df
 
 
+#: Header names a bearing file may use for each field (lower case; a ``_rad`` bearing is
+#: in radians).
+BEARING_NAMES = {
+    "batch": ("batch", "批号", "目标号", "航迹号", "目标", "target", "track", "id", "mmsi"),
+    "time": ("time", "时间", "时刻", "timestamp", "datetime", "utc"),
+    "bearing": ("bearing", "方位", "方位角", "azimuth", "brg", "bearing_deg", "bearing_rad"),
+    "obs_lon": ("obs_lon", "observer_lon", "own_lon", "本舰经度", "观测点经度"),
+    "obs_lat": ("obs_lat", "observer_lat", "own_lat", "本舰纬度", "观测点纬度"),
+}
+
+
+def _bearing_columns(columns) -> dict[str, str]:
+    """Field → the file's column, by :data:`BEARING_NAMES` (first match wins; a unit in
+    brackets, as in ``方位(度)``, is ignored)."""
+    import re
+
+    plain = {c: re.sub(r"[(（\[].*?[)）\]]", "", str(c)).strip().lower() for c in columns}
+    out: dict[str, str] = {}
+    for name, options in BEARING_NAMES.items():
+        for option in options:
+            hit = [c for c in columns if plain[c] == option]
+            if hit and hit[0] not in out.values():
+                out[name] = hit[0]
+                break
+    return out
+
+
 def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
     """The bearings of ``path`` and its quarantine (see :func:`read_bearings`)."""
     import pyarrow as pa
@@ -940,7 +969,8 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
     from wakeline.core.io.sniff import sniff
 
     sn = sniff(path)
-    missing = [c for c in ("batch", "time", "bearing") if c not in sn.columns]
+    names = _bearing_columns(sn.columns)
+    missing = [c for c in ("batch", "time", "bearing") if c not in names]
     if missing:
         raise InputError(
             f"{path}: missing required column {', '.join(missing)} (bearings); "
@@ -972,7 +1002,10 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
         )
     except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
         raise InputError(f"{path}: cannot read the bearings: {exc}") from None
-    df = table.to_pandas()
+    df = table.to_pandas().rename(columns={src: f for f, src in names.items()})
+    if names.get("bearing", "").lower().endswith("_rad"):  # radians: to degrees
+        rad = pd.to_numeric(df["bearing"].str.strip(), errors="coerce")
+        df["bearing"] = np.degrees(rad).astype(str).where(rad.notna(), df["bearing"])
     n = len(df)
     # each table row's line: the lines after the header, less those refused
     taken = set(r[0] for r in refused)

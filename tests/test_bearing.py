@@ -183,7 +183,7 @@ def test_random_scenarios_differ_by_seed():
 
 def test_bad_bearing_input(tmp_path, capsys):
     p = tmp_path / "x.csv"
-    p.write_text("batch,time,azimuth\n1,2024-01-01T00:00:00Z,10\n")
+    p.write_text("batch,time,heading\n1,2024-01-01T00:00:00Z,10\n")
     with pytest.raises(InputError, match="missing required column bearing"):
         read_bearings(p)
     p.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,10\n1,2024-01-01T00:00:01Z,north\n")
@@ -397,3 +397,24 @@ def test_every_bearing_line_is_a_bearing_or_a_quarantine_row(tmp_path):
         "obs_lat out of range or unreadable",
     ]
     assert np.isfinite(got["bearing"]).all() and len(detect(got)) >= 0
+
+
+def test_bearing_files_with_chinese_headers_or_radians(tmp_path):
+    """批号,时间,方位(度) in GB18030 and a bearing_rad column read as the canonical
+    batch,time,bearing in degrees (fuzzing: neither was recognised)."""
+    times = [f"2024-05-01T00:{m // 60:02d}:{m % 60:02d}Z" for m in range(120)]
+    cn = tmp_path / "cn.csv"
+    cn.write_text(
+        "批号,时间,方位(度)\n"
+        + "".join(f"7,{t},{30 + 0.01 * m:.3f}\n" for m, t in enumerate(times)),
+        encoding="gb18030",
+    )
+    rad = tmp_path / "rad.csv"
+    rad.write_text(
+        "batch,time,bearing_rad\n"
+        + "".join(f"7,{t},{np.radians(30 + 0.01 * m):.8f}\n" for m, t in enumerate(times))
+    )
+    a, b = read_bearings(cn), read_bearings(rad)
+    assert len(a) == len(b) == 120 and (a["batch"] == "7").all()
+    np.testing.assert_allclose(a["bearing"], b["bearing"], atol=1e-5)
+    assert a["bearing"].iloc[1] == pytest.approx(30.01)
