@@ -1070,6 +1070,7 @@ class Association:
             "long_gap_joins": int(self.long_joins().sum()),
             "rest_joins": int(self.rest_joins().sum()),
             "targets": n_targets,
+            "single_fix_tracks": int((self.segments.n == 1).sum()),
         }
 
     def rest_joins(self) -> np.ndarray:

@@ -381,6 +381,13 @@ def _summary_associate(res: StepResult) -> str:
         msg += f"; {rep['rest_joins']:,} between ends at rest (moored or at anchor)"
     if "points_filled" in rep:
         msg += f"; {rep['points_filled']:,} points filled"
+    single = rep.get("single_fix_tracks", 0)
+    if rep["tracks"] >= 100 and single > 0.5 * rep["tracks"]:
+        msg += (
+            f"; warning: {single:,} of the {rep['tracks']:,} tracks are single fixes (a file "
+            "of radar plots?): each join rests on distance and time alone, so expect wrong "
+            "joins where ships are close; a tracker belongs before this step"
+        )
     return msg
 
 

@@ -861,3 +861,14 @@ def test_segment_clustering_checks_only_new_links_with_the_same_result(singles):
     want = _cluster_reference(seg, pairs, dist, params.gate, params)
     assert len(want) > 10
     np.testing.assert_array_equal(got, want)
+
+
+def test_a_file_of_single_fixes_is_warned(tmp_path, capsys):
+    """Mostly one-point tracks (radar plots): the summary warns that joins rest on
+    distance and time alone (fuzzing: a plot file ran for a minute and joined wrongly)."""
+    df = simulate.segments_scene(seed=2, n_ships=6, area_km=20.0).sort_values("time").head(300)
+    df = df.assign(batch=np.arange(len(df)).astype(str))
+    src = tmp_path / "plots.csv"
+    df.to_csv(src, index=False)
+    assert main(["associate", str(src), "-o", str(tmp_path / "a.csv")]) == 0
+    assert "300 of the 300 tracks are single fixes" in capsys.readouterr().err
