@@ -986,7 +986,7 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
 
     try:
         table = pcsv.read_csv(
-            path,
+            pa.input_stream(str(path), compression=sn.compression),
             read_options=pcsv.ReadOptions(
                 column_names=list(sn.columns),
                 skip_rows=sn.skip_rows,

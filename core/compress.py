@@ -194,6 +194,8 @@ class Compressed:
                     sums = np.add.reduceat(np.where(known, err_true, 0.0), idx.starts)
                     per["dis_e_true_m"] = np.where(n_known > 0, sums / n_known, np.nan)
                 overall["dis_e_true_m"] = float(err_true[known].mean())
+                # a track without any truth: None in the report (JSON has no NaN)
+                per["dis_e_true_m"] = per["dis_e_true_m"].astype(object).where(n_known > 0, None)
         return {
             "overall": overall,
             "tracks": per.to_dict(orient="records"),

@@ -291,7 +291,7 @@ def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | Non
             path,
             read_options=pcsv.ReadOptions(
                 column_names=list(sn.columns),
-                skip_rows=sn.skip_rows + (1 if sn.has_header else 0),
+                skip_rows=sn.skip_rows,  # the header included
                 encoding=sn.encoding,
             ),
             parse_options=pcsv.ParseOptions(
