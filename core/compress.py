@@ -25,6 +25,7 @@ from wakeline.core.tracks import (
     concat_ranges,
     local_xy,
     repeated_rows,
+    rows_of,
     sorted_with_index,
     track_origins,
     track_seconds,
@@ -237,7 +238,7 @@ def compress_with(
         kept[original[np.flatnonzero(kept & repeat)]] = True
         rows = np.flatnonzero(~repeat)
         kept = kept[rows]
-        pts, index = sorted_with_index(pts.iloc[rows].reset_index(drop=True))
+        pts, index = rows_of(pts, rows)
         n = len(pts)
     x, y = local_xy(pts, index)
     xy = np.column_stack([x, y])
@@ -290,7 +291,7 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
     repeat = repeated_rows(pts, index)
     if repeat.any():  # rows repeating their predecessor (time and place): never kept
         rows = np.flatnonzero(~repeat)
-        sub_pts, sub_index = sorted_with_index(pts.iloc[rows].reset_index(drop=True))
+        sub_pts, sub_index = rows_of(pts, rows)
         at_rest = None if result.at_rest is None else np.asarray(result.at_rest)[rows]
         sub = ManeuverResult(
             sub_pts, sub_index, np.asarray(result.factor)[rows], keep[rows],

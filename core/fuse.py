@@ -46,6 +46,7 @@ from wakeline.core.tracks import (
     derive_motion,
     interp_positions,
     repeated_rows,
+    rows_of,
     sorted_with_index,
     track_index,
 )
@@ -302,7 +303,7 @@ def associate_sensors(
     repeat = repeated_rows(pts, index)
     repeats = int(repeat.sum())
     if repeats:  # rows repeating their predecessor (time, place) would weigh twice
-        pts, index = sorted_with_index(pts.iloc[np.flatnonzero(~repeat)].reset_index(drop=True))
+        pts, index = rows_of(pts, np.flatnonzero(~repeat))
     sensors = sorted(index.keys["sensor"].unique())
     if len(sensors) < 2:
         raise InputError(

@@ -581,3 +581,9 @@ def repeated_rows(pts: pd.DataFrame, index: TrackIndex) -> np.ndarray:
     out[1:] = (t[1:] == t[:-1]) & (lon[1:] == lon[:-1]) & (lat[1:] == lat[:-1])
     out[index.starts] = False
     return out
+
+
+def rows_of(pts: pd.DataFrame, rows: np.ndarray) -> tuple[pd.DataFrame, "TrackIndex"]:
+    """The given rows (ascending) of a table in track order, and their index: still in
+    track order, so no sort (used to set aside :func:`repeated_rows`)."""
+    return sorted_with_index(pts.iloc[rows].reset_index(drop=True))
