@@ -206,20 +206,19 @@ def _bearing_params(args: argparse.Namespace):
 
 def _cmd_bearing(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import say_quarantined
-    from wakeline.core.bearing import detect_with_report, read_bearings, report_lines
+    from wakeline.core.bearing import detect_with_report, read_bearings_checked, report_lines
     from wakeline.core.io import write_csv, write_json
 
     params = _bearing_params(args)
-    bearings = read_bearings(args.input)
-    quarantine = bearings.attrs.get("quarantine")
-    q = {} if quarantine is None else quarantine["reason"].value_counts().to_dict()
+    bearings, quarantine = read_bearings_checked(args.input)
+    q = quarantine["reason"].value_counts().to_dict()
     read = {
         "rows_imported": len(bearings),
         "rows_quarantined": int(sum(q.values())),
         "quarantine_reasons": q,
     }
     say_quarantined(args.input, read, "bearing")
-    if args.quarantine and quarantine is not None:
+    if args.quarantine:
         write_csv(quarantine, args.quarantine)
     table, report = detect_with_report(bearings, params)
     write_csv(table, args.output)

@@ -52,20 +52,22 @@ def read_table(path: Path, what: str) -> pd.DataFrame:
 
     try:
         with open(path, encoding="utf-8-sig", newline="") as fh:
-            counts = [len(row) for row in csv.reader(fh)]
-        if counts:
-            bad = [k for k, c in enumerate(counts[1:], start=2) if c not in (0, counts[0])]
-            if bad:
-                raise InputError(
-                    f"{path}: line {bad[0]} of the {what} table has {counts[bad[0] - 1]} "
-                    f"fields, the header {counts[0]}"
-                )
+            reader = csv.reader(fh)
+            header = next(reader, None)
+            for row in reader:  # a few thousand proposals at most
+                if row and len(row) != len(header):
+                    raise InputError(
+                        f"{path}: line {reader.line_num} of the {what} table has {len(row)} "
+                        f"fields, the header {len(header)}"
+                    )
         return pd.read_csv(
             path, dtype=str, keep_default_na=False, encoding="utf-8-sig", index_col=False
         )
     except pd.errors.EmptyDataError:
         raise InputError(f"{path}: the {what} file is empty") from None
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read the {what} table ({exc})") from None
+    except csv.Error as exc:  # a field over the csv module's limit (128 KB), a NUL byte
         raise InputError(f"{path}: cannot read the {what} table ({exc})") from None
 
 

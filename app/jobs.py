@@ -248,10 +248,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             name = self.session.layers[lid].name if lid in self.session.layers else lid
             self.log_message(f"{result.step} on {name}: {summarize(result.report)}")
         elif kind == "bearing":
-            _, bearings, result = done
+            _, bearings, quarantine, result = done
             self.bearings, self.bearing_detections = bearings, result.tables["detections"]
-            quarantine = bearings.attrs.get("quarantine")
-            if quarantine is not None and len(quarantine):
+            if len(quarantine):
                 reasons = "; ".join(
                     f"{n:,} {why}" for why, n in quarantine["reason"].value_counts().items()
                 )

@@ -105,14 +105,15 @@ class ImportJobsMixin:
     def load_bearings(self, path: Path) -> int | None:
         """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it
         in the worker; the Detail panel shows the sequences, z and the detections."""
-        from wakeline.core.bearing import read_bearings
+        from wakeline.core.bearing import read_bearings_checked
         from wakeline.core.pipeline import step_bearing
 
         params = self.params.params("bearing")
 
         def job(progress):
-            bearings = read_bearings(path)
-            return ("bearing", bearings, step_bearing(bearings, params, progress))
+            bearings, quarantine = read_bearings_checked(path)
+            result = step_bearing(bearings, params, progress)
+            return ("bearing", bearings, quarantine, result)
 
         return self._start("bearing", job, ("bearing", Path(path).name))
 

@@ -921,16 +921,14 @@ def _finite(x: float) -> float | None:
 def read_bearings(path) -> pd.DataFrame:
     """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads;
     Chinese and other common header names, :data:`BEARING_NAMES`; ``bearing_rad`` in
-    radians).
+    radians): the usable bearings only.
 
-    Every line is a bearing or a quarantine row (``df.attrs["quarantine"]``: line, reason,
-    text; :func:`read_bearings_checked` returns both): a line with the wrong number of
-    fields, no batch, an unreadable time, a bearing that is not a finite number or an
+    Every line is a bearing or a quarantine row (line, reason, text), which
+    :func:`read_bearings_checked` returns beside the bearings: a line with the wrong number
+    of fields, no batch, an unreadable time, a bearing that is not a finite number or an
     observer position out of range. Raises :class:`InputError` for missing columns or when
     no line is usable."""
-    df, quarantine = read_bearings_checked(path)
-    df.attrs["quarantine"] = quarantine
-    return df
+    return read_bearings_checked(path)[0]
 
 
 #: Header names a bearing file may use for each field (lower case; a ``_rad`` bearing is
@@ -977,8 +975,10 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
             f"headers found: {', '.join(sn.columns)}"
         )
     refused: list[tuple[int, str, str]] = []
+    skipped: list[int] = []  # every line the reader left out, blank or refused
 
     def invalid(row) -> str:
+        skipped.append(int(row.number or 0))
         if row.text.strip():
             refused.append((int(row.number or 0), f"{row.actual_columns} fields, not "
                             f"{row.expected_columns}", row.text))  # fmt: skip
@@ -1007,8 +1007,8 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
         rad = pd.to_numeric(df["bearing"].str.strip(), errors="coerce")
         df["bearing"] = np.degrees(rad).astype(str).where(rad.notna(), df["bearing"])
     n = len(df)
-    # each table row's line: the lines after the header, less those refused
-    taken = set(r[0] for r in refused)
+    # each table row's line: the lines after the header, less those the reader left out
+    taken = set(skipped)
     lines = [
         k for k in range(sn.skip_rows + 1, sn.skip_rows + 1 + n + len(taken)) if k not in taken
     ]

@@ -16,6 +16,7 @@ from wakeline.core.bearing import (
     observer_maneuvering,
     observer_xy,
     read_bearings,
+    read_bearings_checked,
     statistic,
 )
 from wakeline.core.bearing_eval import (
@@ -187,8 +188,10 @@ def test_bad_bearing_input(tmp_path, capsys):
     with pytest.raises(InputError, match="missing required column bearing"):
         read_bearings(p)
     p.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,10\n1,2024-01-01T00:00:01Z,north\n")
-    got = read_bearings(p)
-    assert len(got) == 1 and got.attrs["quarantine"]["line"].tolist() == [3]
+    got, q = read_bearings_checked(p)
+    assert len(got) == 1 and q["line"].tolist() == [3]
+    assert read_bearings(p).attrs == {}  # pd.concat of tables with a frame in attrs fails
+    assert len(pd.concat([got, read_bearings(p)])) == 2
     assert main(["bearing", str(p), "-o", str(tmp_path / "o.csv")]) == 0
     assert (
         "1 rows quarantined on reading (1 bearing not a finite number)" in capsys.readouterr().err
@@ -385,8 +388,7 @@ def test_every_bearing_line_is_a_bearing_or_a_quarantine_row(tmp_path):
     rows.insert(60, "")
     p = tmp_path / "b.csv"
     p.write_text("batch,time,bearing,obs_lon,obs_lat\n" + "\n".join(rows) + "\n")
-    got = read_bearings(p)
-    q = got.attrs["quarantine"]
+    got, q = read_bearings_checked(p)
     assert q["line"].tolist() == [12, 22, 32, 42, 52]
     assert len(got) + len(q) == 200
     assert q["reason"].tolist() == [
@@ -418,3 +420,18 @@ def test_bearing_files_with_chinese_headers_or_radians(tmp_path):
     assert len(a) == len(b) == 120 and (a["batch"] == "7").all()
     np.testing.assert_allclose(a["bearing"], b["bearing"], atol=1e-5)
     assert a["bearing"].iloc[1] == pytest.approx(30.01)
+
+
+def test_bearing_line_numbers_count_blank_and_whitespace_lines(tmp_path):
+    """A line of spaces or an empty line is no bearing and no quarantine row, but the lines
+    after it keep their own numbers (they were one low)."""
+    p = tmp_path / "b.csv"
+    p.write_bytes(
+        b"batch,time,bearing\r\n1,2024-01-01T00:00:00Z,10\r\n   \r\n1,2024-01-01T00:00:10Z,11"
+        b"\r\n\r\n1,2024-01-01T00:00:20Z,x\r\n1,2024-01-01T00:00:30Z,12,5\r\n \t\r\n"
+        b"1,2024-01-01T00:00:40Z,\r\n"
+    )
+    got, q = read_bearings_checked(p)
+    assert len(got) == 2
+    assert q["line"].tolist() == [6, 7, 9]
+    assert q["text"].tolist()[0] == "1,2024-01-01T00:00:20Z,x"

@@ -479,6 +479,16 @@ def test_cli_review_matches_the_core_session(scene, tmp_path, capsys):
     argv = ["review", str(radar), "-o", str(out), "--proposals", ap_csv]
     assert main([*argv, "--decisions", str(tmp_path / "extra.csv")]) == 2
     assert "line 2 of the decisions table has 3 fields, the header 2" in capsys.readouterr().err
+    # Lines, not records: a quoted note over two lines before the bad row; a field over
+    # the csv module's 128 KB limit is a message, not an internal error.
+    (tmp_path / "ml.csv").write_text(
+        'proposal,decision\nA0001,"accept\nlater"\n\nA0002,reject,x\n', encoding="utf-8"
+    )
+    assert main([*argv, "--decisions", str(tmp_path / "ml.csv")]) == 2
+    assert "line 5 of the decisions table has 3 fields" in capsys.readouterr().err
+    (tmp_path / "big.csv").write_text(f"proposal,decision\nA0001,{'x' * 200_000}\n")
+    assert main([*argv, "--decisions", str(tmp_path / "big.csv")]) == 2
+    assert "cannot read the decisions table (field larger" in capsys.readouterr().err
     selfjoin = pd.read_csv(ap_csv, dtype=str, keep_default_na=False).head(1)
     selfjoin["sensor_b"], selfjoin["batch_b"] = selfjoin["sensor_a"], selfjoin["batch_a"]
     selfjoin.to_csv(tmp_path / "self.csv", index=False)
