@@ -20,6 +20,7 @@ from wakeline.core.io.export_like import (
     write_layout,
 )
 from wakeline.core.io.layout import (
+    WIDEN_MAX_DECIMALS,
     Layout,
     NumberFormat,
     TimeFormat,
@@ -559,6 +560,35 @@ def test_rows_beyond_the_sampled_start_keep_their_precision(tmp_path):
     assert (a["time"].to_numpy() == b["time"].to_numpy()).all()
     assert np.abs(a["lon"].to_numpy() - b["lon"].to_numpy()).max() < 1e-9
     assert np.abs(a["lat"].to_numpy() - b["lat"].to_numpy()).max() < 1e-9
+
+
+def test_one_damaged_row_does_not_widen_a_whole_column(tmp_path):
+    """A latitude out of range with 9 decimals (quarantined) and a longitude with 20
+    decimals late in the file: the first widens nothing, the second at most to
+    WIDEN_MAX_DECIMALS, and no value is written with float noise (review: one such row
+    gave every row 20 decimals, ``10.12340000000000017977``)."""
+    rows = ["batch,time,lon,lat"]
+    for i in range(6000):  # the damaged rows beyond the sampled start
+        rows.append(f"A,2024-01-01T{i // 3600:02d}:{i // 60 % 60:02d}:{i % 60:02d}Z,"
+                    f"{10 + i * 1e-4:.4f},{55 + i * 1e-4:.4f}")  # fmt: skip
+    rows.append("A,2024-01-01T02:00:00Z,10.4,95.123456789")
+    rows.append("A,2024-01-01T02:00:01Z,10.12345678901234567890,55.5")
+    src = tmp_path / "d.csv"
+    src.write_text("\n".join(rows) + "\n")
+    layout = describe_layout(src)
+    assert layout.field_column("lat").number.decimals == 4
+    assert layout.field_column("lon").number.decimals == WIDEN_MAX_DECIMALS
+    out = tmp_path / "e.csv"
+    assert main(["export", str(src), "--like", str(src), "-o", str(out)]) == 0
+    text = out.read_text().splitlines()
+    assert max(len(line.split(",")[2].partition(".")[2]) for line in text[1:]) <= 10
+    assert ",10.0001000000," in out.read_text()  # not 10.00010000000000043
+    # the same rows within the sampled start: the latitude as before, the longitude
+    # written as the shortest text that reads back the same
+    src.write_text("\n".join(rows[:1] + rows[-2:] + rows[1:-2]) + "\n")
+    layout = describe_layout(src)
+    assert layout.field_column("lat").number.decimals == 4
+    assert layout.field_column("lon").number.trim.startswith("repr")
 
 
 def test_sensors_sharing_an_id_in_a_layout_without_sensor_column_are_warned(tmp_path, capsys):

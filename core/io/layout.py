@@ -22,6 +22,7 @@ import re
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
@@ -90,8 +91,9 @@ class NumberFormat:
     point: str = "."
 
     @staticmethod
-    def detect(values: pd.Series) -> "NumberFormat | None":
-        """The format of a column of number texts; None when they are not numbers."""
+    def detect(values: pd.Series, limit: float | None = None) -> "NumberFormat | None":
+        """The format of a column of number texts; None when they are not numbers. Values
+        beyond ±``limit`` (damaged rows, quarantined on reading) do not set the format."""
         text = values.astype("str").str.strip()
         present = text[text != ""]
         point = "."
@@ -109,6 +111,10 @@ class NumberFormat:
         na = "" if len(na_words) == 0 else str(na_words.iloc[0])
         if na.lower() not in ("", "nan", "na", "n/a", "null", "none"):
             return None
+        if limit is not None:  # damaged rows are not written again: their digits do not count
+            value = pd.to_numeric(present, errors="coerce").abs()
+            sound = numeric & ~(value > limit)
+            numeric = sound if sound.any() else numeric
         whole, frac = m[0][numeric], m[1][numeric]
         has_point = frac.notna()
         digits = frac.fillna("").str.len()
@@ -263,21 +269,38 @@ def _raw_head(path: Path, compression: str | None, n_bytes: int = 1 << 20) -> by
         return fh.read(n_bytes)
 
 
-def _fraction_digits(column, regex: str) -> int:
-    """The most digits the group ``f`` of ``regex`` holds over an Arrow text column."""
+#: The most decimals widening gives a number column (degrees: 10 is 0.01 mm; more would
+#: write float noise, e.g. ``55.12340000000000018``) and the range of values it counts:
+#: a damaged row (out of range, quarantined on reading) widens nothing.
+WIDEN_MAX_DECIMALS = 10
+_WIDEN_RANGE = {"lon": 180.0, "lat": 90.0, "speed": 1e4, "course": 360.0}
+
+
+def _fraction_digits(column, regex: str, limit: float | None = None) -> int:
+    """The most digits the group ``f`` of ``regex`` holds over an Arrow text column (rows
+    whose value lies beyond ±``limit`` left out)."""
+    import pyarrow as pa
     import pyarrow.compute as pc
 
     got = pc.extract_regex(column, regex)
     if got.null_count == len(got):
         return 0
-    longest = pc.max(pc.utf8_length(pc.struct_field(got, [0]))).as_py()
+    digits = pc.utf8_length(pc.struct_field(got, [0]))
+    if limit is not None:
+        value = pd.to_numeric(
+            pc.utf8_trim_whitespace(column).to_pandas().str.replace(",", ".", regex=False),
+            errors="coerce",
+        ).to_numpy(dtype="float64")
+        digits = pc.if_else(pa.array(np.abs(value) <= limit), digits, None)
+    longest = pc.max(digits).as_py()
     return int(longest or 0)
 
 
 def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | None):
     """The number and time formats made wide enough for every row of the file, not only
     the sampled start: a column whose later rows carry more decimals (another vessel,
-    another source appended) gets as many, so that writing it again loses nothing."""
+    another source appended) gets as many (at most :data:`WIDEN_MAX_DECIMALS`; rows out
+    of the field's range do not count), so that writing it again loses nothing."""
     import pyarrow as pa
     import pyarrow.csv as pcsv
 
@@ -288,7 +311,7 @@ def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | Non
         return cols, time
     try:
         table = pcsv.read_csv(
-            path,
+            pa.input_stream(str(path), compression=sn.compression),
             read_options=pcsv.ReadOptions(
                 column_names=list(sn.columns),
                 skip_rows=sn.skip_rows,  # the header included
@@ -307,7 +330,10 @@ def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | Non
     for c in cols:
         if c.key in keys and c.key != time_key:
             sep = "," if c.number.point == "," else r"\."
-            d = _fraction_digits(table[c.key], rf"^\s*[-+]?\d*{sep}(?P<f>\d+)\s*$")
+            d = _fraction_digits(
+                table[c.key], rf"^\s*[-+]?\d*{sep}(?P<f>\d+)\s*$", _WIDEN_RANGE.get(c.field)
+            )
+            d = min(d, max(WIDEN_MAX_DECIMALS, c.number.decimals))
             if d > c.number.decimals:
                 trim = "none" if c.number.trim == "none" else "zeros"
                 c = replace(c, number=replace(c.number, decimals=d, trim=trim))
@@ -383,7 +409,9 @@ def describe_layout(
     cols = []
     for raw, key in zip(raw_names, sn.columns, strict=True):
         f = field_of.get(key)
-        number = NumberFormat.detect(sample[key]) if f in NUMBER_FIELDS else None
+        number = (
+            NumberFormat.detect(sample[key], _WIDEN_RANGE.get(f)) if f in NUMBER_FIELDS else None
+        )
         if f in NUMBER_FIELDS and number is None:
             number = NumberFormat()
         cols.append(Column(raw, f, number, key))
