@@ -308,6 +308,29 @@ def test_a_unix_time_cut_short_is_quarantined_not_read_as_1970(tmp_path):
     assert len(pd.read_csv(tmp_path / "o.csv")) == 300
 
 
+def test_unix_ms_cut_short_or_too_large_get_their_own_reason(tmp_path):
+    """A millisecond file: a time cut to 9 digits is decades early; one cut to 11 digits
+    (read as seconds: year 2508) and 1e22 are outside 1677-2262; none is 'unparsable'
+    (review), and the CLI's streamed read agrees."""
+    from wakeline.app.cli import main
+
+    rows = ["batch,time,lon,lat"]
+    rows += [f"A,{1700000000000 + 1000 * k},{10 + k * 1e-3:.3f},55" for k in range(50)]
+    rows += ["A,170000001,10.5,55", "A,17000000220,10.5,55", "A,1e22,10.5,55"]
+    src = tmp_path / "ms.csv"
+    src.write_text("\n".join(rows) + "\n")
+    res = read_points(src)
+    assert res.report["rows_imported"] == 50
+    assert res.quarantine["reason"].str.split(" ").str[:3].str.join(" ").tolist() == [
+        "time decades before",
+        "time outside 1677-2262",
+        "time outside 1677-2262",
+    ]
+    q = tmp_path / "q.csv"
+    assert main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 0
+    assert pd.read_csv(q)["reason"].tolist() == res.quarantine["reason"].tolist()
+
+
 def test_a_header_without_a_line_end_is_a_header_only_file(tmp_path, capsys):
     """`sensor,batch,time,lon,lat` and nothing else, no newline: 'no data rows', not 'a
     line is longer than 512 MB' (fuzzing)."""

@@ -551,7 +551,11 @@ def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray
             ok &= ~early
             if info is not None:
                 info["early_times"] = early
-    ok &= mag < 9.2e18 / per
+    beyond = finite & (mag >= 9.2e18 / per)  # e.g. a ms time cut to 11 digits, read as s
+    if beyond.any():
+        ok &= ~beyond
+        if info is not None and "_rows" in info:
+            _mark(info, "outside_span", pd.Series(beyond))
     x = np.where(ok, seconds, 0.0)
     # Whole and fractional parts apart: a float64 of ~1.7e18 ns cannot hold every ns.
     whole = np.floor(x)
