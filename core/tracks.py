@@ -569,17 +569,29 @@ def interp_positions(
 
 
 def repeated_rows(pts: pd.DataFrame, index: TrackIndex) -> np.ndarray:
-    """Rows (of a table in track order) that repeat the previous row of their track: same
-    time, lon and lat. They carry no new position; a window of p points over them spans
-    half the time and a 0 m step has no heading, so the detector runs without them."""
+    """Rows (of a table in track order) that repeat an earlier row of their track: same
+    time, lon and lat (the previous row, or any row of the same time: P, Q, P, Q). They
+    carry no new position; a window of p points over them spans half the time and a 0 m
+    step has no heading, so the detector runs without them."""
     n = len(pts)
     out = np.zeros(n, dtype=bool)
     if n < 2:
         return out
     t = track_seconds(pts)
     lon, lat = pts["lon"].to_numpy(), pts["lat"].to_numpy()
-    out[1:] = (t[1:] == t[:-1]) & (lon[1:] == lon[:-1]) & (lat[1:] == lat[:-1])
-    out[index.starts] = False
+    same_t = np.zeros(n, dtype=bool)
+    same_t[1:] = t[1:] == t[:-1]
+    same_t[index.starts] = False
+    out[1:] = same_t[1:] & (lon[1:] == lon[:-1]) & (lat[1:] == lat[:-1])
+    # Rows sharing a time with a row other than their neighbour (few): by value.
+    tied = same_t.copy()
+    tied[:-1] |= same_t[1:]
+    if (tied & ~out).sum() > 2:
+        rows = np.flatnonzero(tied)
+        key = pd.DataFrame(
+            {"k": index.track_of_row[rows], "t": t[rows], "x": lon[rows], "y": lat[rows]}
+        )
+        out[rows[key.duplicated(keep="first").to_numpy()]] = True
     return out
 
 

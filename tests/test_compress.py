@@ -285,6 +285,14 @@ def test_rows_repeated_in_time_and_place_change_no_result(seed):
     assert repeated_rows(pts, index).sum() == len(twice) - len(once)
     pts, index = sorted_with_index(moved)
     assert repeated_rows(pts, index).sum() == len(twice) - len(once) - 1
+    # Two fixes of one time, the pair logged twice (P, Q, P, Q): both second copies.
+    pq = once.iloc[[5, 5, 5, 5]].copy()
+    pq.iloc[[1, 3], pq.columns.get_loc("lon")] += 1e-3
+    pts, index = sorted_with_index(pd.concat([once, pq.iloc[1:]], ignore_index=True))
+    rep = repeated_rows(pts, index)
+    assert rep.sum() == 2
+    kept = pts[~rep]
+    assert kept.duplicated(["sensor", "batch", "time", "lon", "lat"]).sum() == 0
 
 
 def test_blank_truth_cells_are_unknown_not_an_error(tmp_path):
