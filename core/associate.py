@@ -159,6 +159,14 @@ class LinkParams(Params):
         "second look: how much cheaper than every rival of either piece a long-gap join must be",
         0.0,
     )
+    long_margin_moving: float = param(
+        0.1,
+        "",
+        "second look: the margin instead when both pieces are seen moving (the old end's and "
+        "the new start's fitted speed above rest_kn): their motion is evidence a loose posit "
+        "lacks (= long_margin: one margin for all)",
+        0.0,
+    )
     min_gap_steps: float = param(
         0.5,
         "",
@@ -528,6 +536,14 @@ def _seen_at_rest(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray
         & (seg.n[j] >= 3)
         & (seg.span1[i] >= params.rest_seen_s)
         & (seg.span0[j] >= params.rest_seen_s)
+    )
+
+
+def _both_moving(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray:
+    """Per pair: the old end's and the new start's fitted speeds are above ``rest_kn``."""
+    slow = params.rest_kn * geo.KN_MS
+    return (np.hypot(seg.vx1[pairs.i], seg.vy1[pairs.i]) > slow) & (
+        np.hypot(seg.vx0[pairs.j], seg.vy0[pairs.j]) > slow
     )
 
 
@@ -1190,7 +1206,7 @@ def long_gap_pass(
         return pairs, cost, chosen
     wide = replace(params, max_gap_s=params.long_gap_s)
     limit = min(params.gate, params.no_join)
-    m = params.long_margin
+    margin = params.long_margin
     main = None
     if params.log_sigma > 0:
         main = priced if priced is not None else _pricing(pairs, params, "scaled", seg)
@@ -1221,6 +1237,7 @@ def long_gap_pass(
             best_i, second_i = _two_cheapest(cand.i, c_i, n)
             best_j, second_j = _two_cheapest(cand.j, c_j, n)
             k = np.arange(len(cand))
+            m = np.where(_both_moving(seg, cand, params), params.long_margin_moving, margin)
             return (
                 free_end[cand.i]
                 & free_start[cand.j]
