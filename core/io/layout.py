@@ -276,24 +276,23 @@ WIDEN_MAX_DECIMALS = 10
 _WIDEN_RANGE = {"lon": 180.0, "lat": 90.0, "speed": 1e4, "course": 360.0}
 
 
-def _fraction_digits(column, regex: str, limit: float | None = None) -> int:
+def _fraction_digits(column, regex: str, limit: float | None = None, floor: int = 0) -> int:
     """The most digits the group ``f`` of ``regex`` holds over an Arrow text column (rows
-    whose value lies beyond ±``limit`` left out)."""
-    import pyarrow as pa
+    whose value lies beyond ±``limit`` left out), or ``floor`` if no row holds more."""
     import pyarrow.compute as pc
 
     got = pc.extract_regex(column, regex)
     if got.null_count == len(got):
-        return 0
-    digits = pc.utf8_length(pc.struct_field(got, [0]))
-    if limit is not None:
-        value = pd.to_numeric(
-            pc.utf8_trim_whitespace(column).to_pandas().str.replace(",", ".", regex=False),
-            errors="coerce",
-        ).to_numpy(dtype="float64")
-        digits = pc.if_else(pa.array(np.abs(value) <= limit), digits, None)
-    longest = pc.max(digits).as_py()
-    return int(longest or 0)
+        return floor
+    digits = pc.fill_null(pc.utf8_length(pc.struct_field(got, [0])), 0).to_numpy(
+        zero_copy_only=False
+    )
+    wider = np.flatnonzero(digits > floor)  # few: only these are checked against the range
+    if limit is not None and len(wider):
+        text = pc.take(column, wider).to_pandas().str.strip().str.replace(",", ".", regex=False)
+        value = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
+        wider = wider[np.abs(value) <= limit]
+    return max(floor, int(digits[wider].max())) if len(wider) else floor
 
 
 def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | None):
@@ -330,9 +329,8 @@ def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | Non
     for c in cols:
         if c.key in keys and c.key != time_key:
             sep = "," if c.number.point == "," else r"\."
-            d = _fraction_digits(
-                table[c.key], rf"^\s*[-+]?\d*{sep}(?P<f>\d+)\s*$", _WIDEN_RANGE.get(c.field)
-            )
+            regex = rf"^\s*[-+]?\d*{sep}(?P<f>\d+)\s*$"
+            d = _fraction_digits(table[c.key], regex, _WIDEN_RANGE.get(c.field), c.number.decimals)
             d = min(d, max(WIDEN_MAX_DECIMALS, c.number.decimals))
             if d > c.number.decimals:
                 trim = "none" if c.number.trim == "none" else "zeros"
