@@ -42,6 +42,12 @@ def _cmd_batch(args: argparse.Namespace) -> int:
         scheduler=args.scheduler or "",
         workers=args.workers or 0,
         csv=args.csv,
+        fmt=args.format,
+        mapping=tuple(args.map or ()),
+        encoding=args.encoding,
+        delimiter=args.delimiter,
+        tz=args.tz,
+        sensor=args.sensor,
     )
     result = run_batch(pipe, args.input, args.outdir, opts, log=lambda m: print(m, file=sys.stderr))
     rep = result.report
@@ -62,16 +68,24 @@ def register(sub: argparse._SubParsersAction) -> None:
         "batch",
         help="run a saved pipeline over large inputs with Dask (per-track partitions)",
         description="Run a saved pipeline (Run > Save pipeline in the GUI, or "
-        "--print-pipeline) over canonical CSV or Parquet inputs larger than memory. Rows are "
-        "partitioned by (sensor, batch) so every track is processed whole by the same step "
-        "functions as `wakeline clean|maneuvers|compress`; interrupted association runs once "
-        "over every track's end points and maps the targets back (docs/batch.md). Writes "
-        "OUTDIR/<step>/ as Parquet partitions, OUTDIR/report.json, and with --csv "
-        "OUTDIR/<step>.csv in canonical CSV. Other layouts: convert with `wakeline import`.",
+        "--print-pipeline) over inputs larger than memory: CSV files of any layout `wakeline "
+        "import` reads (read as it reads them, with the same --format/--map/--encoding/"
+        "--delimiter/--tz/--sensor; gzip, bz2, xz, zstd or a zip of one file too), or Parquet "
+        "files with the canonical columns. Rows are partitioned by (sensor, batch) so every "
+        "track is processed whole by the same step functions as `wakeline "
+        "clean|maneuvers|compress`; interrupted association runs once over every track's end "
+        "points and maps the targets back (docs/batch.md). Writes OUTDIR/<step>/ as Parquet "
+        "partitions, OUTDIR/report.json, and with --csv OUTDIR/<step>.csv in canonical CSV. An "
+        "input without a data row (a header only) is skipped with a warning.",
         epilog=EPILOG,
     )
     p.add_argument("pipeline", type=Path, nargs="?", help="pipeline JSON")
-    p.add_argument("input", type=Path, nargs="*", help="canonical CSV files, or Parquet files")
+    p.add_argument(
+        "input",
+        type=Path,
+        nargs="*",
+        help="CSV files (any layout `wakeline import` reads), or Parquet files (canonical columns)",
+    )
     # dest outdir: the command line's output check is for files, OUTDIR is a folder.
     p.add_argument(
         "-o",
@@ -95,18 +109,24 @@ def register(sub: argparse._SubParsersAction) -> None:
         type=positive_float,
         default=32.0,
         metavar="MB",
-        help="input megabytes per partition of whole tracks (default 32; a worker thread holds about 20x this)",
+        help="input megabytes (as text; compressed inputs estimated) per partition of whole "
+        "tracks (default 32; a worker thread holds about 20x this)",
     )
     p.add_argument(
         "--blocksize-mb",
         type=positive_float,
         default=32.0,
         metavar="MB",
-        help="megabytes per block read from a CSV input (default 32)",
+        help="Parquet inputs: megabytes (uncompressed) of row groups per read task (default 32; "
+        "a row group is never split). CSV inputs are one task per file, read in 16 MB pieces "
+        "whatever this is",
     )
     p.add_argument(
         "--print-pipeline",
         action="store_true",
         help="print the default pipeline (clean, compress) as JSON and exit",
     )
+    from wakeline.app.cli_steps import _add_read_flags
+
+    _add_read_flags(p)  # how CSV inputs are read: the same flags as `wakeline clean`
     p.set_defaults(func=_cmd_batch)

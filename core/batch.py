@@ -3,11 +3,13 @@
 ``wakeline batch PIPELINE.json IN… -o OUTDIR`` (``app/cli_batch.py``) runs
 :func:`run_batch`. Three passes (docs/batch.md):
 
-1. **Read and shuffle.** Each CSV input is read by the importer (one Dask task per file:
-   every line a point or a quarantine row, as ``wakeline import``); Parquet inputs by a
-   Dask dataframe in blocks (``blocksize_mb``), each block made canonical (unusable rows
-   to ``OUTDIR/quarantine/``). The rows are written to one of
-   ``n`` buckets on disk by a hash of (sensor, batch). Every track lands whole in one
+1. **Read and shuffle.** Each CSV input (any layout ``wakeline import`` reads; gzip, bz2,
+   xz, zstd or a zip of one file too) is read by the importer, one Dask task per file in
+   pieces of whole lines: every line a point or a quarantine row, as ``wakeline
+   import``; a piece the streamed reader cannot take is read again on its own, never the
+   whole file. Parquet inputs are read by a Dask dataframe in blocks (``blocksize_mb``),
+   each block made canonical (unusable rows to ``OUTDIR/quarantine/``). The rows are
+   written to one of ``n`` buckets on disk by a hash of (sensor, batch). Every track lands whole in one
    bucket, so a bucket holds complete tracks and about ``partition_mb`` of input.
 2. **Per-track steps.** Each bucket runs the pipeline's stages with the core's own step
    functions (:class:`wakeline.core.pipeline.Pipeline`, the same code as the command
@@ -29,10 +31,12 @@ import json
 import math
 import os
 import shutil
+import tempfile
 import time
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import BinaryIO
 
 import numpy as np
 import pandas as pd
@@ -54,7 +58,8 @@ class BatchOptions:
 
     #: input bytes per bucket (a bucket's tracks are processed in one call)
     partition_mb: float = 32.0
-    #: bytes per block read from an input file
+    #: Parquet inputs: megabytes (uncompressed) of row groups per block of pass 1. CSV
+    #: inputs are one task per file, read in the importer's pieces (16 MB): not used
     blocksize_mb: float = 32.0
     #: ``dask.distributed`` scheduler address (``tcp://host:8786``); empty: local
     scheduler: str = ""
@@ -69,6 +74,15 @@ class BatchOptions:
     csv: bool = False
     #: buckets (0: from the input size and ``partition_mb``)
     buckets: int = 0
+    #: how CSV inputs are read, as ``wakeline clean`` reads its input (``--format``,
+    #: ``--map FIELD=COLUMN``…, ``--encoding``, ``--delimiter``, ``--tz``); ``sensor``
+    #: names the sensor of inputs without a sensor column (CSV and Parquet)
+    fmt: str = "auto"
+    mapping: tuple[str, ...] = ()
+    encoding: str | None = None
+    delimiter: str | None = None
+    tz: str | None = None
+    sensor: str = DEFAULT_SENSOR
 
 
 @dataclass
@@ -157,7 +171,9 @@ def _to_time(col: pd.Series) -> pd.Series:
         return t.dt.tz_convert("UTC").astype(TIME_DTYPE)
 
 
-def canonical_block(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
+def canonical_block(
+    df: pd.DataFrame, sensor: str = DEFAULT_SENSOR
+) -> tuple[pd.DataFrame, pd.DataFrame]:
     """(points, quarantined rows) of one block of a canonical table read as text or typed.
 
     Types as ``wakeline import`` gives them: sensor and batch text (edge blanks trimmed),
@@ -166,7 +182,7 @@ def canonical_block(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
     """
     out = df.copy()
     if "sensor" not in out.columns:
-        out.insert(0, "sensor", DEFAULT_SENSOR)
+        out.insert(0, "sensor", sensor)
     for col in ("sensor", "batch"):
         out[col] = out[col].astype("str").str.strip().where(out[col].notna())
     out["time"] = _to_time(out["time"])
@@ -194,7 +210,9 @@ def bucket_of(points: pd.DataFrame, n: int) -> np.ndarray:
     return (h % np.uint64(n)).astype("int64")
 
 
-def _write_block(df: pd.DataFrame, stage: str, n: int, partition_info=None) -> pd.DataFrame:
+def _write_block(
+    df: pd.DataFrame, stage: str, n: int, sensor: str = DEFAULT_SENSOR, partition_info=None
+) -> pd.DataFrame:
     """Pass 1 on one block: canonical rows into bucket files, quarantine beside them.
     Returns one row of counts (a small frame Dask gathers)."""
     import pyarrow as pa
@@ -202,7 +220,7 @@ def _write_block(df: pd.DataFrame, stage: str, n: int, partition_info=None) -> p
 
     part = partition_info["number"] if partition_info else 0
     root = Path(stage)
-    good, quarantine = canonical_block(df)
+    good, quarantine = canonical_block(df, sensor)
     if len(quarantine):
         qdir = root / "quarantine"
         qdir.mkdir(parents=True, exist_ok=True)
@@ -240,90 +258,394 @@ def _to_buckets(good: pd.DataFrame, root: Path, n: int, part: int, name: str) ->
 #: Block numbers of an imported CSV input: the file's number times this, plus its piece.
 PIECES = 1 << 24
 
+# -- pass 1 on CSV inputs: the importer, piece by piece -------------------------------------
 
-def _import_file(path: str, file_no: int, stage: str, n: int) -> pd.DataFrame:
+#: First bytes of the compressed files batch reads (gzip: the importer opens it itself;
+#: the others are decompressed into the stage folder, one file at a time per task).
+_MAGIC = (
+    (b"\x1f\x8b", "gzip"),
+    (b"BZh", "bz2"),
+    (b"\xfd7zXZ\x00", "xz"),
+    (b"\x28\xb5\x2f\xfd", "zstd"),
+    (b"PK\x03\x04", "zip"),
+    (b"PK\x05\x06", "zip"),
+)
+#: Decompressed bytes read to estimate a compressed input's size (its number of buckets).
+_ESTIMATE_BYTES = 4 << 20
+
+
+def compression_of(path: Path) -> str | None:
+    """``gzip``, ``bz2``, ``xz``, ``zstd``, ``zip`` or None, from the file's first bytes
+    (the name does not matter, as for the importer's gzip)."""
+    with open(path, "rb") as fh:
+        head = fh.read(8)
+    return next((kind for magic, kind in _MAGIC if head.startswith(magic)), None)
+
+
+@contextlib.contextmanager
+def _text_stream(path: Path, kind: str | None) -> Iterator[tuple[BinaryIO, BinaryIO]]:
+    """(decompressed stream, raw file) of ``path``; read errors of the compressed data
+    become one :class:`InputError` naming the file and what to do."""
+    import bz2
+    import gzip
+    import lzma
+    import zipfile
+    import zlib
+
+    import pyarrow as pa
+
+    with contextlib.ExitStack() as stack:
+        raw = stack.enter_context(open(path, "rb"))
+        try:
+            if kind is None:
+                stream = raw
+            elif kind == "gzip":
+                stream = stack.enter_context(gzip.open(raw))
+            elif kind == "bz2":
+                stream = stack.enter_context(bz2.open(raw))
+            elif kind == "xz":
+                stream = stack.enter_context(lzma.open(raw))
+            elif kind == "zstd":
+                stream = stack.enter_context(
+                    pa.CompressedInputStream(pa.PythonFile(raw, mode="r"), "zstd")
+                )
+            else:
+                archive = stack.enter_context(zipfile.ZipFile(raw))
+                members = [m for m in archive.infolist() if not m.is_dir()]
+                if len(members) != 1:
+                    raise InputError(
+                        f"{path}: a zip archive of {len(members)} files; batch reads a zip "
+                        "holding one CSV file: unzip it and give the CSV files"
+                    )
+                stream = stack.enter_context(archive.open(members[0]))
+            yield stream, raw
+        except OSError as exc:
+            if exc.errno:  # the disk, not the data
+                raise
+            raise InputError(_damaged(path, kind, exc)) from None
+        except (EOFError, lzma.LZMAError, zlib.error, zipfile.BadZipFile) as exc:
+            raise InputError(_damaged(path, kind, exc)) from None
+        except pa.ArrowException as exc:
+            raise InputError(_damaged(path, kind, exc)) from None
+
+
+def _damaged(path: Path, kind: str | None, exc: Exception) -> str:
+    text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return (
+        f"{path}: the {kind or 'file'} data is cut short or damaged ({text}); nothing was "
+        "read from it. Copy the file again, or decompress what is there and give that"
+    )
+
+
+def _head(path: Path, kind: str | None, limit: int) -> tuple[bytes, int, bool]:
+    """The first ``limit`` text bytes of ``path``, the raw bytes they took, and whether
+    that is the whole file."""
+    with _text_stream(path, kind) as (stream, raw):
+        data = bytes(stream.read(limit + 1))
+        used = raw.tell()
+    return data[:limit], used, len(data) <= limit
+
+
+def _unpack(path: Path, kind: str, dest: Path) -> None:
+    """Decompress ``path`` into ``dest`` in chunks (bounded memory)."""
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    with _text_stream(path, kind) as (stream, _raw), open(dest, "wb") as out:
+        while chunk := stream.read(16 << 20):
+            try:
+                out.write(chunk)
+            except OSError as exc:  # no space left on the stage's disk
+                raise InputError(
+                    f"{path}: cannot decompress into {dest.parent} ({exc.strerror}); give an "
+                    "OUTDIR on a disk with room for the largest input decompressed"
+                ) from None
+
+
+def _local_name(path: Path) -> str:
+    """A scratch file's name that gives the same one-track name as ``path`` to a file
+    without a batch column (the importer names it after the file, up to the first dot)."""
+    return f"{path.name.split('.')[0]}.csv"
+
+
+@dataclass(frozen=True)
+class _CsvInput:
+    """What the survey of one CSV input found."""
+
+    path: Path
+    compression: str | None
+    text_bytes: int  # its size as text (estimated for compressed files)
+    empty: bool  # no data rows (empty, or a header only)
+
+
+def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
+    """Check one CSV input before any work (compression, encoding, columns: the
+    importer's one message) and estimate its size as text."""
+    from wakeline.core.io import resolve, sniff
+    from wakeline.core.io.sniff import SAMPLE_BYTES
+
+    kind = compression_of(path)
+    size = path.stat().st_size
+    if kind == "zip":
+        import zipfile
+
+        with _text_stream(path, kind):  # one member, readable
+            pass
+        with zipfile.ZipFile(path) as archive:
+            text_bytes = sum(m.file_size for m in archive.infolist())
+    limit = SAMPLE_BYTES if kind is None else max(SAMPLE_BYTES, _ESTIMATE_BYTES)
+    head, used, whole = _head(path, kind, limit)
+    if kind is None:
+        text_bytes = size
+    elif kind != "zip":
+        text_bytes = len(head) if whole else int(size * len(head) / max(used, 1))
+    if not head.strip():
+        return _CsvInput(path, kind, text_bytes, True)
+    target = path
+    if kind not in (None, "gzip"):  # the importer reads these only decompressed
+        sample = head[:SAMPLE_BYTES]
+        if not (whole and len(head) <= SAMPLE_BYTES):
+            cut = max(sample.rfind(b"\n"), sample.rfind(b"\r"))
+            sample = sample if cut < 0 else sample[: cut + 1]
+        target = stage / "survey" / _local_name(path)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(sample)
+    try:
+        sn = sniff(target, read["encoding"], read["delimiter"])
+        if sn.kind == "csv":
+            resolve(sn.columns, read["fmt"], read["mapping"], source=str(path))
+    except InputError as exc:
+        raise InputError(str(exc).replace(str(target), str(path))) from None
+    finally:
+        if target != path:
+            target.unlink(missing_ok=True)
+    # A header alone (the whole file was in the sample and has no data line).
+    empty = sn.kind == "csv" and not sn.preview and whole and len(head) <= SAMPLE_BYTES
+    return _CsvInput(path, kind, text_bytes, empty)
+
+
+def _pieces(sn, quoted: bool) -> Iterator[tuple[bytes, int]]:
+    """The file in pieces of whole lines (about the importer's ``STREAM_BYTES``), each
+    with the physical line (1-based) it starts on. With ``quoted``, a piece ends where
+    the quotes since its start balance (a quoted cell may hold line ends)."""
+    from wakeline.core.io.reader import STREAM_BYTES
+
+    with _text_stream(sn.path, sn.compression) as (stream, _raw):
+        carry, first_line = b"", 1
+        while True:
+            data = bytes(stream.read(STREAM_BYTES))
+            buf = carry + data
+            if data:
+                cut = _cut(buf, quoted)
+                if cut < 0:
+                    carry = buf
+                    continue
+                piece, carry = buf[: cut + 1], buf[cut + 1 :]
+            else:
+                piece, carry = buf, b""
+            if piece:
+                yield piece, first_line
+            first_line += piece.count(b"\n") + piece.count(b"\r") - piece.count(b"\r\n")
+            if not data:
+                return
+
+
+def _cut(buf: bytes, quoted: bool) -> int:
+    """Index of the line end a piece of ``buf`` ends on (-1: none). With ``quoted``, the
+    last one after an even number of quotes, unless that leaves less than half of ``buf``
+    (a stray quote: the piece's own reader then reads it line by line)."""
+    end = b"\n" if b"\n" in buf else b"\r"
+    cut = buf.rfind(end)
+    if not quoted or cut < 0:
+        return cut
+    arr = np.frombuffer(buf, dtype=np.uint8)
+    quotes = np.flatnonzero(arr == ord('"'))
+    if not len(quotes):
+        return cut
+    ends = np.flatnonzero(arr == ord(end))
+    even = ends[np.searchsorted(quotes, ends) % 2 == 0]
+    return int(even[-1]) if len(even) and even[-1] >= len(buf) // 2 else cut
+
+
+def _header_prefix(sn) -> tuple[bytes, int]:
+    """What a later piece of the file needs in front to read as the file does: its
+    leading lines and header (or, without a header, the generated names), and how many
+    lines that is."""
+    import re
+
+    if not sn.has_header:
+        return (sn.delimiter.join(sn.columns) + "\n").encode(sn.encoding), 1
+    with _text_stream(sn.path, sn.compression) as (stream, _raw):
+        head = bytes(stream.read(1 << 20))
+    ends = [m.end() for m in re.finditer(rb"\r\n|\n|\r", head)]
+    if len(ends) < sn.skip_rows:
+        raise InputError(f"{sn.path}: a header longer than 1 MB")
+    return head[: ends[sn.skip_rows - 1]], sn.skip_rows
+
+
+def _read_pieces(sn, read: dict, sink, scratch: Path) -> tuple[pd.DataFrame, list[str]]:
+    """The file read by the importer piece by piece (each piece on its own: its careful
+    parse, encodings and quarantine); returns the quarantine (file line numbers) and the
+    importer's warnings. Memory: about one piece."""
+    from wakeline.core.io import read_points
+
+    scratch.mkdir(parents=True, exist_ok=True)
+    piece_file = scratch / _local_name(sn.path)
+    prefix, prefix_lines = _header_prefix(sn)
+    quarantines, warnings = [], []
+    for k, (piece, first_line) in enumerate(_pieces(sn, sn.has_quotes)):
+        # The first piece is the file's start, header included; a later one gets the header.
+        piece_file.write_bytes(piece if k == 0 else prefix + piece)
+        offset = 0 if k == 0 else first_line - 1 - prefix_lines
+        del piece
+        try:
+            res = read_points(piece_file, **{**read, "delimiter": sn.delimiter})
+        except InputError as exc:
+            raise InputError(str(exc).replace(str(piece_file), str(sn.path))) from None
+        sink(res.points)
+        if len(res.quarantine):
+            quarantines.append(res.quarantine.assign(line=res.quarantine["line"] + offset))
+        warnings += res.report.get("warnings", [])
+    piece_file.unlink(missing_ok=True)
+    q = pd.concat(quarantines, ignore_index=True) if quarantines else None
+    return q, list(dict.fromkeys(warnings))
+
+
+def _import_file(
+    path: str, file_no: int, stage: str, n: int, compression: str | None, read: dict
+) -> dict:
     """Pass 1 on one CSV input, read as ``wakeline import`` reads it (every line a point
-    or a quarantine row, unix or ISO times, the same reasons), piece by piece into the
-    buckets. A file the streamed reader cannot take (quotes in its start, a value only
-    the careful parse reads) is read whole. Returns one row of counts per piece."""
+    or a quarantine row, the same reasons), piece by piece into the buckets: streamed,
+    or, where the streamed reader gives up (a value only the careful parse reads, another
+    encoding further on, quotes), each piece read by the importer on its own. A bz2, xz,
+    zstd or zip file is first decompressed into the stage folder. Returns the counts per
+    piece (``counts``), the importer's ``warnings`` and ``rows`` (points + quarantined)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from wakeline.core.io import read_points
-    from wakeline.core.io.formats import resolve
-    from wakeline.core.io.reader import StreamFallback, stream_points
-    from wakeline.core.io.sniff import sniff
+    from wakeline.core.io import read_points, resolve, sniff
+    from wakeline.core.io.reader import StreamFallback, parse_zone, stream_points
 
-    root = Path(stage)
+    root, src = Path(stage), Path(path)
+    scratch = root / f"file-{file_no:06d}"
     pieces: list[int] = []
 
     def sink(points: pd.DataFrame) -> None:
+        if not len(points):
+            return
         part = file_no * PIECES + len(pieces)
-        _to_buckets(points.copy(), root, n, part, f"block-{part:012d}")
+        _to_buckets(points, root, n, part, f"block-{part:012d}")
         pieces.append(len(points))
 
-    sn = sniff(Path(path))
-    try:
-        if sn.kind != "csv" or sn.has_quotes:
-            raise StreamFallback
-        result = stream_points(sn, resolve(sn.columns, "auto", None, source=path), sink)
-    except StreamFallback:
-        for k in range(len(pieces)):  # what the streamed reader wrote: read again whole
+    def forget() -> None:
+        """Remove what the streamed reader wrote before it gave up."""
+        for k in range(len(pieces)):
             for f in root.glob(f"bucket-*/block-{file_no * PIECES + k:012d}.parquet"):
                 f.unlink()
         pieces.clear()
-        result = read_points(path)
-        sink(result.points)
-    q = result.quarantine
-    if len(q):
+
+    readable = src
+    try:
+        if compression not in (None, "gzip"):
+            readable = scratch / _local_name(src)
+            _unpack(src, compression, readable)
+        sn = sniff(readable, read["encoding"], read["delimiter"])
+        wide = sn.encoding.lower().replace("_", "-").startswith(("utf-16", "utf-32"))
+        if sn.kind != "csv" or wide:  # NMEA logs, UTF-16 text: read whole
+            res = read_points(readable, **read)
+            sink(res.points)
+            q, warnings = res.quarantine, res.report.get("warnings", [])
+        else:
+            q = None
+            if not sn.has_quotes:
+                try:
+                    cols = resolve(sn.columns, read["fmt"], read["mapping"], source=str(src))
+                    zone = parse_zone(read["tz"])
+                    res = stream_points(sn, cols, sink, read["sensor"], zone, read["tz"])
+                    q, warnings = res.quarantine, res.report.get("warnings", [])
+                except StreamFallback:
+                    forget()
+            if q is None:
+                q, warnings = _read_pieces(sn, read, sink, scratch / "pieces")
+    except InputError as exc:
+        raise InputError(str(exc).replace(str(readable), str(src))) from None
+    except (OSError, EOFError) as exc:  # a gzip cut short, met by the streamed reader
+        if isinstance(exc, OSError) and (exc.errno or exc.filename):
+            raise
+        raise InputError(_damaged(src, compression, exc)) from None
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    n_q = 0 if q is None else len(q)
+    if n_q:
         qdir = root / "quarantine"
         qdir.mkdir(parents=True, exist_ok=True)
-        q = q.assign(file=str(path))[["file", "line", "reason", "text"]].astype(
+        q = q.assign(file=str(src))[["file", "line", "reason", "text"]].astype(
             {"line": "int64", "reason": "str", "text": "str"}
         )
         pq.write_table(
             pa.Table.from_pandas(q, preserve_index=False), qdir / f"file-{file_no:06d}.parquet"
         )
+    if not pieces and n_q:  # every row quarantined: its counts still need a block
+        pieces.append(0)
     blocks = file_no * PIECES + np.arange(len(pieces), dtype="int64")
     rows = np.asarray(pieces, dtype="int64")
-    rows[:1] += len(q)  # the file's quarantined rows counted with its first piece
+    rows[:1] += n_q  # the file's quarantined rows counted with its first piece
     quarantined = np.zeros(len(pieces), dtype="int64")
-    quarantined[:1] = len(q)
-    return pd.DataFrame({"block": blocks, "rows": rows, "quarantined": quarantined})
+    quarantined[:1] = n_q
+    counts = pd.DataFrame({"block": blocks, "rows": rows, "quarantined": quarantined})
+    return {"counts": counts, "warnings": list(warnings), "rows": int(rows.sum())}
 
 
-def _import_inputs(inputs: Sequence[Path], stage: Path, n: int) -> pd.DataFrame:
-    """Pass 1 over CSV inputs: each file read by the importer, one Dask task per file."""
+def _read_options(opts: BatchOptions) -> dict:
+    """``read_points`` keywords of the options (as ``wakeline clean`` passes them)."""
+    from wakeline.core.io import parse_mapping
+
+    return {
+        "fmt": opts.fmt,
+        "mapping": parse_mapping(list(opts.mapping)) if opts.mapping else None,
+        "encoding": opts.encoding,
+        "delimiter": opts.delimiter,
+        "sensor": opts.sensor,
+        "tz": opts.tz,
+    }
+
+
+def _import_inputs(
+    inputs: Sequence[_CsvInput], stage: Path, n: int, read: dict
+) -> tuple[pd.DataFrame, list[str], list[str]]:
+    """Pass 1 over CSV inputs: each file read by the importer, one Dask task per file.
+    Returns the counts per piece, the warnings (``FILE: warning: …``, in input order) and
+    the inputs without a data row (reported and skipped)."""
     import dask
 
-    from wakeline.core.io import sniff
-    from wakeline.core.io.formats import resolve
-
-    for p in inputs:  # the columns first: one clear message before any work
-        sn = sniff(p)
-        try:
-            cols = resolve(sn.columns, "auto", None, source=str(p)).columns
-        except InputError:
-            _check_columns(list(sn.columns))
-            raise
-        _check_columns([c for c in ("batch", "time", "lon", "lat") if c in cols])
+    todo = [(k, i) for k, i in enumerate(inputs) if not i.empty]
     tasks = [
-        dask.delayed(_import_file, pure=False)(str(p), k, str(stage), n)
-        for k, p in enumerate(inputs)
+        dask.delayed(_import_file, pure=False)(str(i.path), k, str(stage), n, i.compression, read)
+        for k, i in todo
     ]
-    return pd.concat(dask.compute(*tasks), ignore_index=True)
+    done = dict(zip((k for k, _ in todo), dask.compute(*tasks), strict=True))
+    warnings, empty = [], []
+    for k, i in enumerate(inputs):
+        d = done.get(k)
+        if d is None or not d["rows"]:
+            empty.append(str(i.path))
+            warnings.append(f"{i.path}: warning: no data rows (a header only?); skipped")
+        if d is not None:
+            warnings += [f"{i.path}: warning: {w}" for w in d["warnings"]]
+    counts = [d["counts"] for d in done.values()]
+    none = pd.DataFrame({c: pd.Series([], dtype="int64") for c in ("block", "rows", "quarantined")})
+    return pd.concat([none, *counts], ignore_index=True), warnings, empty
 
 
 def _read_parquet_inputs(inputs: Sequence[Path], stage: Path, n: int, opts) -> pd.DataFrame:
     """Pass 1 over Parquet inputs: Dask blocks, each made canonical."""
     import pyarrow as pa
 
-    ddf = _read_dask(inputs, "parquet", opts.blocksize_mb)
+    ddf = _read_dask(inputs, opts.blocksize_mb)
     _check_columns(list(ddf.columns))
     pass1 = ddf.map_partitions(
         _write_block,
         str(stage),
         n,
+        opts.sensor,
         meta=pd.DataFrame(
             {
                 "block": pd.Series([], dtype="int64"),
@@ -338,26 +660,17 @@ def _read_parquet_inputs(inputs: Sequence[Path], stage: Path, n: int, opts) -> p
         raise InputError(f"batch: cannot read the inputs: {_reason(exc)}") from None
 
 
-def _read_dask(paths: Sequence[Path], kind: str, blocksize_mb: float):
+def _read_dask(paths: Sequence[Path], blocksize_mb: float):
+    """Parquet inputs as a Dask dataframe: row groups gathered into blocks of about
+    ``blocksize_mb`` (uncompressed, as Parquet's metadata gives it; a row group is never
+    split), in input order."""
     import dask.dataframe as dd
 
-    files = [str(p) for p in paths]
-    if kind == "parquet":
-        return dd.read_parquet(files)
-    # A compressed file cannot be cut into blocks: it is one partition (Dask warned so on
-    # every gzip input); plain files are read in blocks of blocksize_mb.
-    packed = any(Path(f).suffix.lower() in (".gz", ".bz2", ".xz", ".zst", ".zip") for f in files)
-    try:
-        return dd.read_csv(
-            files,
-            dtype="str",
-            engine="pyarrow",
-            blocksize=None if packed else int(blocksize_mb * 2**20),
-            keep_default_na=False,
-            na_values=[""],
-        )
-    except (ValueError, OSError) as exc:
-        raise InputError(f"batch: cannot read the inputs as CSV: {_reason(exc)}") from None
+    return dd.read_parquet(
+        [str(p) for p in paths],
+        blocksize=max(1, int(blocksize_mb * 2**20)),
+        split_row_groups="adaptive",
+    )
 
 
 def _reason(exc: Exception) -> str:
@@ -374,7 +687,8 @@ def _check_columns(columns: Sequence[str]) -> None:
     if missing:
         raise InputError(
             f"batch: the inputs lack column(s) {', '.join(missing)}; batch reads the canonical "
-            "layout (sensor,batch,time,lon,lat,…): convert other layouts with `wakeline import`"
+            "layout in Parquet inputs (sensor,batch,time,lon,lat,…); give other layouts as CSV "
+            "(any layout `wakeline import` reads)"
         )
 
 
@@ -553,7 +867,8 @@ def run_batch(
     options: BatchOptions | None = None,
     log=None,
 ) -> BatchResult:
-    """Run ``pipeline`` over ``inputs`` (canonical CSV or Parquet) into ``outdir``.
+    """Run ``pipeline`` over ``inputs`` (CSV of any layout the importer reads, or
+    canonical Parquet) into ``outdir``; ``log`` receives progress lines and warnings.
 
     Writes ``outdir/<step>/part-NNNNN.parquet`` per step (named after the CLI
     subcommand; ``clean_rejected``, ``quarantine`` and, for a compress without a
@@ -566,6 +881,36 @@ def run_batch(
         raise InputError("batch: give at least one input file")
     per_track, assoc = check_pipeline(pipeline)
     kind = _input_kind(inputs)
+    read = _read_options(opts)
+    in_bytes = sum(p.stat().st_size for p in inputs if p.is_file()) or sum(
+        f.stat().st_size for p in inputs if p.is_dir() for f in p.rglob("*") if f.is_file()
+    )
+    if kind == "csv":
+        from wakeline.core.io import parse_zone
+
+        parse_zone(opts.tz)  # an unknown zone: one message before any work
+        # Every input checked before any work: one clear message (columns, compression).
+        with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
+            csv_inputs = [_survey(p, Path(tmp), read) for p in inputs]
+        text_bytes = sum(i.text_bytes for i in csv_inputs)
+    else:
+        given = [
+            flag
+            for flag, value in (
+                ("--format", opts.fmt != "auto"),
+                ("--map", bool(opts.mapping)),
+                ("--encoding", opts.encoding),
+                ("--delimiter", opts.delimiter),
+                ("--tz", opts.tz),
+            )
+            if value
+        ]
+        if given:
+            raise InputError(
+                f"batch: {', '.join(given)}: for CSV inputs only; Parquet inputs hold the "
+                "canonical columns (sensor,batch,time,lon,lat,…)"
+            )
+        text_bytes = in_bytes
     outdir = Path(outdir)
     if outdir.exists() and not outdir.is_dir():
         raise InputError(f"{outdir}: exists and is not a folder")
@@ -577,10 +922,8 @@ def run_batch(
         shutil.rmtree(outdir)  # an earlier batch's output: replaced whole
     outdir.mkdir(parents=True, exist_ok=True)
     stage = outdir / STAGE
-    in_bytes = sum(p.stat().st_size for p in inputs if p.is_file()) or sum(
-        f.stat().st_size for p in inputs if p.is_dir() for f in p.rglob("*") if f.is_file()
-    )
-    n = opts.buckets or max(1, math.ceil(in_bytes / (opts.partition_mb * 2**20)))
+    # Buckets from the inputs' size as text (a compressed file's estimated from its start).
+    n = opts.buckets or max(1, math.ceil(text_bytes / (opts.partition_mb * 2**20)))
     timings: dict[str, float] = {}
     client = _client(opts)
     import dask
@@ -591,19 +934,29 @@ def run_batch(
         local.enter_context(dask.config.set(scheduler="threads", num_workers=threads))
     try:
         t = time.perf_counter()
-        if kind == "csv":
-            counts = _import_inputs(inputs, stage, n)
-        else:
-            counts = _read_parquet_inputs(inputs, stage, n, opts)
+        warnings: list[str] = []
+        empty: list[str] = []
+        try:
+            if kind == "csv":
+                counts, warnings, empty = _import_inputs(csv_inputs, stage, n, read)
+            else:
+                counts = _read_parquet_inputs(inputs, stage, n, opts)
+        except (InputError, OSError):
+            # Nothing half-written is left: the same OUTDIR can be given again.
+            shutil.rmtree(outdir, ignore_errors=True)
+            raise
         timings["read_shuffle_s"] = time.perf_counter() - t
         counts = counts.sort_values("block")
         kept = (counts["rows"] - counts["quarantined"]).to_numpy()
         offsets = (counts["block"].to_numpy(), np.cumsum(kept) - kept)
         rows_read = int(counts["rows"].sum())
         quarantined = int(counts["quarantined"].sum())
+        blocks = len(counts)  # pass 1's read tasks' pieces (CSV) or blocks (Parquet)
         if rows_read == 0:
             shutil.rmtree(outdir, ignore_errors=True)
             raise InputError("batch: the inputs hold no data rows (headers only?)")
+        for warning in warnings:
+            log(warning)
         log(f"read {rows_read:,} rows into {n} buckets ({quarantined:,} quarantined)")
         if (stage / "quarantine").exists():
             shutil.move(str(stage / "quarantine"), str(outdir / "quarantine"))
@@ -662,9 +1015,13 @@ def run_batch(
     report = {
         "inputs": [str(p) for p in inputs],
         "input_bytes": in_bytes,
+        "input_text_bytes": text_bytes,
         "buckets": n,
+        "blocks": blocks,
         "rows_read": rows_read,
         "quarantined": quarantined,
+        "empty_inputs": empty,
+        "warnings": warnings,
         "steps": stages_rep,
         "timings_s": {k: round(v, 3) for k, v in timings.items()},
         "scheduler": opts.scheduler

@@ -1,6 +1,8 @@
 """SPEC §1 bad input: clear messages, exit status 2, nothing lost, no half-written files."""
 
+import bz2
 import json
+import lzma
 import os
 
 import pandas as pd
@@ -122,7 +124,9 @@ def test_mapping_to_absent_column(write, tmp_path, capsys):
         (b"", "the file is empty"),
         (b"\n\n  \n", "the file is empty"),
         (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(256)) * 4, "binary file"),
-        (b"PK\x03\x04" + bytes(200), "binary file"),
+        (b"PK\x03\x04" + bytes(200), "compressed (zip); Wakeline opens text files and gzip"),
+        (bz2.compress(b"batch,time,lon,lat\n" * 50), "Decompress it first (bunzip2 -k FILE)"),
+        (lzma.compress(b"batch,time,lon,lat\n" * 50), "compressed (xz)"),
         (b"\x1f\x8b\x08\x00garbage-not-gzip" * 10, "cannot be decompressed"),
     ],
 )

@@ -177,11 +177,12 @@ def test_parquet_inputs_and_quarantine(tmp_path):
 @pytest.mark.parametrize(
     ("setup", "message"),
     [
-        ("nocols", "lack column(s)"),
+        ("nocols", "missing required column"),
         ("fuse", "step fuse is not supported"),
         ("notpipe", "not a Wakeline pipeline"),
         ("full", "is not empty"),
         ("noargs", "needs PIPELINE.json"),
+        ("parquet_map", "--map: for CSV inputs only"),
     ],
 )
 def test_bad_batch_input_is_one_message(tmp_path, capsys, setup, message):
@@ -200,6 +201,9 @@ def test_bad_batch_input_is_one_message(tmp_path, capsys, setup, message):
         out.mkdir()
         (out / "keep.txt").write_text("mine")
     argv = ["batch", str(pipe), str(data), "-o", str(out)]
+    if setup == "parquet_map":
+        pd.read_csv(data).to_parquet(tmp_path / "in.parquet")
+        argv = ["batch", str(pipe), str(tmp_path / "in.parquet"), "-o", str(out), "--map", "lon=x"]
     if setup == "noargs":
         argv = ["batch", str(pipe)]
     assert main(argv) == 2
@@ -209,22 +213,258 @@ def test_bad_batch_input_is_one_message(tmp_path, capsys, setup, message):
         assert (out / "keep.txt").read_text() == "mine"
 
 
-def test_gzip_inputs_are_read_whole_without_a_warning(scene):
-    """A .gz input is one partition (it cannot be cut into blocks); Dask's warning about
-    it on every gzip input is not printed, and the rows are all there."""
+def _compress(path: Path, kind: str) -> Path:
+    """``path`` compressed as ``kind`` (gzip, bz2, xz, zstd, zip)."""
+    import bz2
     import gzip
-    import warnings
+    import lzma
+    import zipfile
 
-    from wakeline.core.batch import _read_dask
+    data = path.read_bytes()
+    out = path.with_name(f"{path.name}.{kind}")
+    if kind == "gzip":
+        out.write_bytes(gzip.compress(data))
+    elif kind == "bz2":
+        out.write_bytes(bz2.compress(data))
+    elif kind == "xz":
+        out.write_bytes(lzma.compress(data))
+    elif kind == "zstd":
+        import pyarrow as pa
 
-    paths, whole = scene
-    gz = whole.with_name("all.csv.gz")
-    gz.write_bytes(gzip.compress(whole.read_bytes()))
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        ddf = _read_dask([gz], "csv", 0.1)
-        n = len(ddf.compute())
-    assert n == len(_rows(whole))
+        with pa.output_stream(str(out), compression="zstd") as fh:
+            fh.write(data)
+    else:
+        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
+            archive.writestr(path.name, data)
+    return out
+
+
+def _zstd() -> bool:
+    import pyarrow as pa
+
+    return pa.Codec.is_available("zstd")
+
+
+@pytest.mark.parametrize(
+    "kind",
+    [
+        "gzip",
+        "bz2",
+        "xz",
+        pytest.param("zstd", marks=pytest.mark.skipif(not _zstd(), reason="no zstd in pyarrow")),
+        "zip",
+    ],
+)
+def test_compressed_csv_inputs(scene, tmp_path, monkeypatch, kind):
+    """Compressed inputs are read as their text (before: bz2, xz, zstd and zip were
+    refused as binary files); the result equals `wakeline clean` on the text, and the
+    quarantine names the compressed file. Small pieces: the damaged file is read piece
+    by piece from its decompressed copy."""
+    from wakeline.core.io import reader
+
+    paths, _whole = scene
+    parts = []
+    for k, p in enumerate(paths):
+        text = p.read_bytes()
+        if k == 1:  # one damaged value: quarantined, named in the compressed file
+            lines = text.splitlines(keepends=True)
+            lines[5] = lines[5].replace(b",", b",x", 3)
+            text = b"".join(lines)
+        plain = tmp_path / p.name
+        plain.write_bytes(text)
+        parts.append(plain)
+    whole = _concat(parts, tmp_path / "all.csv")
+    packed = [_compress(p, kind) for p in parts]
+    monkeypatch.setattr(reader, "STREAM_BYTES", 8192)
+    res = run_batch(Pipeline.default(), packed, tmp_path / "out", BatchOptions(csv=True))
+    monkeypatch.undo()
+    assert main(["clean", str(whole), "-o", str(tmp_path / "c.csv")]) == 0
+    pd.testing.assert_frame_equal(_rows(tmp_path / "out" / "clean.csv"), _rows(tmp_path / "c.csv"))
+    assert res.report["blocks"] > 2 * len(parts)
+    q = pd.read_parquet(tmp_path / "out" / "quarantine")
+    assert q["file"].tolist() == [str(packed[1])] and q["line"].tolist() == [6]
+    assert res.report["rows_read"] == sum(len(pd.read_csv(p)) for p in paths)
+    # The buckets follow the text's size, not the compressed size.
+    assert res.report["input_text_bytes"] == sum(p.stat().st_size for p in parts)
+
+
+@pytest.mark.parametrize("case", ["cut", "cut_later", "two_files"])
+def test_unreadable_compressed_input_is_one_message(tmp_path, capsys, monkeypatch, case):
+    """Compressed data cut short (seen when checking the inputs, or later while reading:
+    before, a gzip cut short there was "Truncated compressed stream" without the file's
+    name) or a zip of several files: one message naming the file; no OUTDIR left."""
+    from wakeline.core import batch
+
+    src = tmp_path / "in.csv"
+    rows = [f"S1,A,{1_700_000_000 + i},{10 + i * 1e-5:.5f},50.0" for i in range(40_000)]
+    src.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    if case.startswith("cut"):
+        packed = _compress(src, "bz2" if case == "cut" else "gzip")
+        packed.write_bytes(packed.read_bytes()[: packed.stat().st_size * 3 // 4])
+        message = "cut short or damaged"
+        if case == "cut_later":  # the check before the work reads only the start
+            monkeypatch.setattr(batch, "_ESTIMATE_BYTES", 1 << 16)
+    else:
+        import zipfile
+
+        packed = tmp_path / "two.zip"
+        with zipfile.ZipFile(packed, "w") as archive:
+            archive.write(src, "a.csv")
+            archive.write(src, "b.csv")
+        message = "unzip it"
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    out = tmp_path / "out"
+    assert main(["batch", str(pipe), str(packed), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert str(packed) in err and message in err and err.count("\n") == 1
+    assert not out.exists()
+
+
+def _one_bad_value(tmp_path: Path, quoted: bool = False) -> Path:
+    """A file of many pieces (at 4 KB a piece) with one value only the careful parse
+    reads, in a piece in the middle."""
+    rows = [
+        f"S1,{i % 7},2024-01-01T{i // 3600:02d}:{i // 60 % 60:02d}:{i % 60:02d}Z,"
+        f"{10 + i * 1e-4:.4f},{50 + (i % 13) * 1e-3:.4f}"
+        for i in range(3000)
+    ]
+    rows[1500] = rows[1500].replace(",10.", ",1O.")  # a letter O for a zero
+    if quoted:  # quotes in the file's start: read piece by piece too, cut between quotes
+        rows[3] = rows[3].replace("S1,", '"S1",')
+        rows[40] = rows[40].replace("S1,", '"S\n1",')
+    src = tmp_path / "in.csv"
+    src.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    return src
+
+
+@pytest.mark.parametrize("quoted", [False, True])
+def test_one_bad_value_costs_its_piece_not_a_whole_file_read(tmp_path, monkeypatch, quoted):
+    """Before: one value the streamed reader could not convert (or a quote in the file's
+    start) made batch read the whole file at once (memory: the file's size several times
+    over). Now only that piece is read again carefully; the rows equal `wakeline clean`
+    and the quarantine equals `wakeline import --quarantine`."""
+    import wakeline.core.io as wio
+    from wakeline.core.io import reader
+
+    src = _one_bad_value(tmp_path, quoted)
+    assert main(["clean", str(src), "-o", str(tmp_path / "c.csv")]) == 0
+    assert (
+        main(
+            [
+                "import",
+                str(src),
+                "-o",
+                str(tmp_path / "i.csv"),
+                "--quarantine",
+                str(tmp_path / "q.csv"),
+            ]
+        )
+        == 0
+    )
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4096)
+    sizes = []
+    real = wio.read_points
+
+    def spy(path, *args, **kwargs):
+        sizes.append(Path(path).stat().st_size)
+        return real(path, *args, **kwargs)
+
+    monkeypatch.setattr(wio, "read_points", spy)
+    res = run_batch(Pipeline.default(), [src], tmp_path / "out", BatchOptions(csv=True))
+    assert sizes and max(sizes) < src.stat().st_size / 4  # pieces, never the whole file
+    assert res.report["blocks"] > 10
+    pd.testing.assert_frame_equal(_rows(tmp_path / "out" / "clean.csv"), _rows(tmp_path / "c.csv"))
+    q = pd.read_parquet(tmp_path / "out" / "quarantine").drop(columns="file")
+    ref = pd.read_csv(tmp_path / "q.csv", dtype={"line": "int64"}, keep_default_na=False)
+    pd.testing.assert_frame_equal(q, ref[["line", "reason", "text"]], check_dtype=False)
+    assert res.report["quarantined"] == len(ref) >= 1
+
+
+def test_any_layout_the_importer_reads(tmp_path, capsys):
+    """Before: batch refused inputs without a `batch` column. Now any layout `wakeline
+    import` reads, with the same reading flags as `wakeline clean`: an AIS export (MMSI
+    as the batch), and one ship's file without an id column, semicolons and own names
+    mapped with --map (its track named after the file)."""
+    df = simulate.maneuver_tracks(4, "short", 50.0, seed=3)
+    ais = pd.DataFrame(
+        {
+            "MMSI": "2190" + df["batch"].astype(str),
+            "BaseDateTime": df["time"].dt.strftime("%Y-%m-%dT%H:%M:%S"),
+            "LAT": df["lat"],
+            "LON": df["lon"],
+        }
+    )
+    ais.to_csv(tmp_path / "ais.csv", index=False)
+    one = df[df["batch"] == df["batch"].iloc[0]]
+    own = pd.DataFrame(
+        {"t": one["time"].dt.strftime("%Y-%m-%dT%H:%M:%SZ"), "x": one["lon"], "y": one["lat"]}
+    )
+    own.to_csv(tmp_path / "ship7.csv", index=False, sep=";")
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    for name, flags in (
+        ("ais.csv", []),
+        ("ship7.csv", ["--map", "time=t", "--map", "lon=x", "--map", "lat=y"]),
+    ):
+        src, out = tmp_path / name, tmp_path / f"out-{name}"
+        assert main(["batch", str(pipe), str(src), "-o", str(out), "--csv", *flags]) == 0
+        assert main(["clean", str(src), "-o", str(tmp_path / f"c-{name}"), *flags]) == 0
+        batch, single = _rows(out / "clean.csv"), _rows(tmp_path / f"c-{name}")
+        assert len(single) > 10
+        pd.testing.assert_frame_equal(batch, single)
+    assert set(_rows(tmp_path / "out-ship7.csv" / "clean.csv")["batch"]) == {"ship7"}
+
+
+def test_parquet_blocks_follow_blocksize(tmp_path, capsys):
+    """--blocksize-mb sizes the read tasks of Parquet inputs (before: Dask's default,
+    whatever was given; its help spoke of CSV inputs, which are read by file)."""
+    df = simulate.maneuver_tracks(6, "short", 50.0, seed=2)
+    src = tmp_path / "in.parquet"
+    df.to_parquet(src, row_group_size=200)
+    small = run_batch(
+        Pipeline.default(), [src], tmp_path / "a", BatchOptions(csv=True, blocksize_mb=0.01)
+    )
+    big = run_batch(
+        Pipeline.default(), [src], tmp_path / "b", BatchOptions(csv=True, blocksize_mb=64)
+    )
+    assert small.report["blocks"] > 1 and big.report["blocks"] == 1
+    pd.testing.assert_frame_equal(
+        _rows(tmp_path / "a" / "clean.csv"), _rows(tmp_path / "b" / "clean.csv")
+    )
+    with pytest.raises(SystemExit):
+        main(["batch", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--blocksize-mb MB Parquet inputs" in text and "CSV inputs are one task per file" in text
+
+
+def test_header_only_input_is_reported(tmp_path, capsys):
+    """A CSV with a header and no data row beside others: a warning naming the file and
+    "no data rows", counted in the report (before: silently accepted, or the whole batch
+    refused when the header had no line end). All inputs without data: exit 2."""
+    rows = [
+        f"S1,A,2024-01-01T00:{i // 60:02d}:{i % 60:02d}Z,{10 + i * 1e-3:.4f},50.0"
+        for i in range(300)
+    ]
+    good = tmp_path / "good.csv"
+    good.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    head = tmp_path / "head.csv"
+    head.write_text("sensor,batch,time,lon,lat\n")
+    bare = tmp_path / "bare.csv"
+    bare.write_text("sensor,batch,time,lon,lat")
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    out = tmp_path / "out"
+    assert main(["batch", str(pipe), str(good), str(head), str(bare), "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    for p in (head, bare):
+        assert f"{p}: warning: no data rows" in err
+    assert str(good) + ": warning" not in err
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["empty_inputs"] == [str(head), str(bare)] and rep["rows_read"] == 300
+    assert main(["batch", str(pipe), str(head), str(bare), "-o", str(tmp_path / "o2")]) == 2
+    err = capsys.readouterr().err
+    assert "no data rows" in err and err.count("\n") == 1
 
 
 @pytest.mark.parametrize("case", ["stray_quote", "unix_seconds", "short_row"])

@@ -56,7 +56,33 @@ def _read_sample(path: Path) -> tuple[bytes, str | None]:
                 "was imported. The copy is probably incomplete: copy the file again, or "
                 "decompress what is there (gzip -dc FILE > part.csv) and import that"
             ) from None
+    kind = next((k for magic, k in _PACKED if head.startswith(magic)), None)
+    if kind == "bz2" and head[4:10] != b"1AY&SY":  # a text starting "BZh": its block magic
+        kind = None
+    if kind is not None:
+        raise InputError(
+            f"{path}: compressed ({kind}); Wakeline opens text files and gzip. Decompress it first "
+            f"({_UNPACK[kind]}) and open the CSV; `wakeline batch` reads it as it is"
+        )
     return head, None
+
+
+#: First bytes of the compressed formats the importer does not open itself (gzip it does).
+_PACKED = (
+    (b"BZh", "bz2"),
+    (b"\xfd7zXZ\x00", "xz"),
+    (b"\x28\xb5\x2f\xfd", "zstd"),
+    (b"PK\x03\x04", "zip"),
+    (b"PK\x05\x06", "zip"),
+    (b"7z\xbc\xaf\x27\x1c", "7z"),
+)
+_UNPACK = {
+    "bz2": "bunzip2 -k FILE",
+    "xz": "unxz -k FILE",
+    "zstd": "unzstd FILE",
+    "zip": "unzip FILE",
+    "7z": "7z x FILE",
+}
 
 
 def _bom_encoding(sample: bytes) -> str | None:
