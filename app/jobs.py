@@ -114,7 +114,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             pipe = self.pipeline()
 
             def run(progress):
-                return pipe.run(self.session.layers[lid].points, progress)
+                return pipe.run(self.session.input_points([lid]), progress)
 
             params = None
             steps = [name for name, _ in pipe.stages]

@@ -178,7 +178,20 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
             tr("Select two or more layers in the Layers list (Ctrl+click), e.g. radar and AIS."),
         )
         return None
-    named = [(Path(w.session.layers[i].name).stem, w.session.layers[i].points) for i in ids]
+    layers = w.session.layers
+    for i in ids:  # a layer and one made from it: the same points twice
+        up = next((a for a in w.session.ancestors(i) if a in ids), None)
+        if up is not None:
+            QtWidgets.QMessageBox.information(
+                w,
+                tr("Fuse selected layers"),
+                tr("{0} is made from {1}: fusing both would count its points twice. "
+                   "Select one of them (Ctrl+click to unselect).").format(
+                    layers[i].name, layers[up].name
+                ),
+            )  # fmt: skip
+            return None
+    named = [(Path(layers[i].name).stem, layers[i].points) for i in ids]
     params = w.step_params("fuse")
     canvas_view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()
     rerun = {

@@ -212,7 +212,10 @@ class LayersMixin:
         """Make ``lid`` the active layer, as a click in the Layers list does."""
         row = self.layer_row(lid)
         if row >= 0:
-            self.layer_list.setCurrentRow(row)
+            # Only this layer selected: a step's new layer must not join the layers
+            # selected before it (Run ▸ Fuse takes the selection).
+            flag = QtCore.QItemSelectionModel.SelectionFlag.ClearAndSelect
+            self.layer_list.setCurrentRow(row, flag)
 
     def remove_active_layer(self) -> None:
         if self.active is not None:

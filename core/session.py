@@ -145,14 +145,18 @@ class Session:
     def get(self, layer_id: str | None) -> Layer | None:
         return self.layers.get(layer_id) if layer_id else None
 
+    def ancestors(self, layer_id: str) -> list[str]:
+        """The layers ``layer_id`` was made from, nearest first (empty for a source)."""
+        out, up = [], self.layers[layer_id].parent
+        while up in self.layers and up not in out and up != layer_id:
+            out.append(up)
+            up = self.layers[up].parent
+        return out
+
     def root(self, layer_id: str) -> Layer:
         """The imported layer a result descends from (itself for a source)."""
-        layer = self.layers[layer_id]
-        seen = {layer.id}
-        while layer.parent in self.layers and layer.parent not in seen:
-            layer = self.layers[layer.parent]
-            seen.add(layer.id)
-        return layer
+        up = self.ancestors(layer_id)
+        return self.layers[up[-1] if up else layer_id]
 
     def children(self, layer_id: str) -> list[Layer]:
         return [lay for lay in self.layers.values() if lay.parent == layer_id]
@@ -213,6 +217,11 @@ class Session:
         return out
 
     def input_points(self, layer_ids: list[str]) -> pd.DataFrame:
+        """The points of the given layers, concatenated. Raises :class:`InputError` when
+        one was removed (by the operator, while a step waited to read it)."""
+        gone = [i for i in layer_ids if i not in self.layers]
+        if gone:
+            raise InputError("the input layer was removed before the step read it; nothing changed")
         frames = [self.layers[i].points for i in layer_ids]
         if len(frames) == 1:
             return frames[0]

@@ -487,3 +487,36 @@ def test_thousand_proposals_in_the_window_stay_responsive(qtbot, tmp_path):
     assert len(w.session.decisions) == steps
     assert per_key_ms < 150  # a shared 2-core machine: generous bound
     w.close()
+
+
+def test_a_step_selects_only_its_layer_and_fuse_refuses_a_layer_with_its_own_copy(
+    qtbot, tmp_path, monkeypatch
+):
+    """Operator test: AIS clicked, Run ▸ Clean, radar Ctrl+clicked, Run ▸ Fuse fused the
+    AIS, its cleaned copy and the radar (the step's new layer joined the selection: the
+    AIS points went in twice). Now a step's layer is the only one selected, and fusing a
+    layer with a layer made from it is refused with a message."""
+    files = _sim_pair(tmp_path)
+    w = _window(qtbot, tmp_path)
+    w.load_files(files)
+    _settle(w)
+    ais, radar = (w.layer_id(f.name) for f in files)
+    w.select_layer(ais)
+    w.run_step("clean")
+    _settle(w)
+    cleaned = next(i for i, lay in w.layers.items() if lay.step == "clean")
+    selected = [i.data(QtCore.Qt.ItemDataRole.UserRole) for i in w.layer_list.selectedItems()]
+    assert selected == [cleaned] and w.active == cleaned
+    w.layer_list.item(w.layer_row(radar)).setSelected(True)
+    w.actions_["fuse"].trigger()
+    _settle(w)
+    fused = next(lay for lay in w.layers.values() if lay.step == "fuse")
+    assert sorted(fused.inputs) == sorted([cleaned, radar])
+    said = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "information", lambda *a: said.append(a[2]))
+    for lid in (ais, cleaned):
+        w.layer_list.item(w.layer_row(lid)).setSelected(True)
+    n = len(w.layers)
+    w.actions_["fuse"].trigger()
+    _settle(w)
+    assert len(w.layers) == n and "would count its points twice" in said[-1]
