@@ -14,6 +14,7 @@ from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
+from wakeline.core.schema import FILE_ROW
 from wakeline.core.session import Source
 
 
@@ -76,9 +77,10 @@ class ImportJobsMixin:
             for k, (path, result, sha, layout) in enumerate(read):
                 progress(0.8 + 0.2 * k / len(read), f"preparing the map for {path.name}")
                 shown = plan["shown"] if plan else None
-                view = prepare_view_apart(
-                    result.points, "source", in_use, path.name, shown, size_px
-                )
+                # The layer is kept in track order; each point's file row goes with it
+                # (Export ▸ As it came in writes the file's order again).
+                pts = result.points.assign(**{FILE_ROW: np.arange(len(result.points))})
+                view = prepare_view_apart(pts, "source", in_use, path.name, shown, size_px)
                 done.append((path, result, sha, view, view.colors[0], layout))
             return ("import", done, errors, plan)
 

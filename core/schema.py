@@ -54,6 +54,12 @@ def seconds_to_time(seconds: np.ndarray) -> pd.Series:
     return pd.Series(pd.to_datetime(ns, unit="ns", utc=True)).astype(TIME_DTYPE)
 
 
+#: A point's row number among the points its file gave (added where a layer is stored in
+#: track order, e.g. the window's source layers): "export as it came in" writes the rows
+#: in that order again. Internal: never exported.
+FILE_ROW = "wl_row"
+
+
 def ordered_columns(df: pd.DataFrame) -> list[str]:
     """Canonical columns first (those present), then the extra columns in their order."""
     head = [c for c in CANONICAL_COLUMNS if c in df.columns]

@@ -398,6 +398,40 @@ def test_export_as_it_came_in_follows_lineage(window, tmp_path):
     assert out.read_text().splitlines()[0] == "SendShipNO,SendTime,nNO,lon,lat"
 
 
+def test_an_untouched_layer_comes_back_as_it_came_in_row_order_and_all(window, tmp_path):
+    """Operator test: Export ▸ As it came in of a source layer wrote its rows in track
+    order (the window keeps layers sorted), where the CLI gives the file back byte for
+    byte. A radar export in time order (tracks interleaved) comes back identical; the
+    cleaned layer keeps the file's order of the rows it kept."""
+    src = tmp_path / "radar.csv"
+    df = simulate.demo_scene(seed=3).head(400).sort_values("time", kind="stable")
+    lines = ["SendTime,nNO,lon,lat,SendShipNO"]
+    secs = (df["time"] - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds().astype(int)
+    for s, t, b, lon, lat in zip(
+        df["sensor"], secs, df["batch"], df["lon"], df["lat"], strict=True
+    ):
+        lines.append(f"{t},{b},{lon:.6f},{lat:.6f},{s}")
+    src.write_text("\n".join(lines) + "\n")
+    lid = load(window, src)
+    assert not window.layers[lid].points["wl_row"].is_monotonic_increasing  # stored sorted
+    out = tmp_path / "back.csv"
+    assert window.export_as_came_in(out) is not None
+    wait_for_jobs(window)
+    assert out.read_bytes() == src.read_bytes()
+    window.run_step("clean")
+    wait_for_jobs(window)
+    window.select_layer(window.session.find(lid, "clean", "cleaned").id)
+    assert window.export_as_came_in(out) is not None
+    wait_for_jobs(window)
+    kept = out.read_text().splitlines()
+    assert kept[0] == lines[0] and len(kept) > 300
+    assert [lines.index(x) for x in kept[1:]] == sorted(lines.index(x) for x in kept[1:])
+    csv_out = tmp_path / "canonical.csv"
+    assert window.export("csv", csv_out) is not None
+    wait_for_jobs(window)
+    assert "wl_row" not in csv_out.read_text().splitlines()[0]
+
+
 def test_map_image_and_relative_times(window, tmp_path):
     src = tmp_path / "scene.csv"
     df = simulate.demo_scene().head(400)

@@ -29,7 +29,7 @@ from wakeline.core.io.layout import (
     TimeFormat,
 )
 from wakeline.core.io.writer import atomic_path
-from wakeline.core.schema import CANONICAL_COLUMNS, EPOCH
+from wakeline.core.schema import CANONICAL_COLUMNS, EPOCH, FILE_ROW
 
 #: Rows formatted and encoded at a time (bounds the memory of an export).
 CHUNK_ROWS = 500_000
@@ -483,6 +483,9 @@ def export_like(
 
     from wakeline.core.io.writer import write_csv
 
+    order = points[FILE_ROW] if FILE_ROW in points.columns else None
+    if order is not None and order.notna().all() and order.is_unique:
+        points = points.iloc[np.argsort(order.to_numpy(), kind="stable")]  # the file's order
     own = {c.key or c.name for c in layout.columns if c.field is None}
     if own & {"target", "members"}:  # the operator's own columns, not a merge result
         ids, members = points, None

@@ -38,6 +38,7 @@ NUMBER_FIELDS = ("lon", "lat", "speed", "course")
 INTERNAL_COLUMNS = frozenset(
     (
         "wl_id",
+        "wl_row",
         "target",
         "members",
         "source_batch",
