@@ -934,6 +934,7 @@ def _clean_block(
     if params.speed.enabled:
         report["rules"]["speed"]["breaks"] = int(speed_breaks[alive].sum())
         report["rules"]["speed"]["splits"] = int(split.sum())
+        report["tracks_out"] += int(split.sum())  # each split starts a track (batch#2 …)
     order = ordered_columns(cleaned)
     return CleanResult(
         cleaned if order == list(cleaned.columns) else cleaned[order], rejected, report

@@ -321,6 +321,7 @@ def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
     sp = res.report["rules"]["speed"]
     assert sp["splits"] == 1
     assert sorted(res.points["batch"].unique()) == ["338", "338#2"]
+    assert res.report["tracks_in"] == 1 and res.report["tracks_out"] == 2  # was 1
     west = res.points[res.points["batch"] == "338#2"]
     assert (west["lon"] < -120).all() and len(west) == 7
     removed = res.rejected[res.rejected["action"] == "removed"]
