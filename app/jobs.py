@@ -109,7 +109,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self, self.tr("Nothing to run on"), self.tr("Open a track file first.")
             )
             return None
-        lid = layer.id
+        lid = self.session.step_input(layer.id)
+        if lid != layer.id:
+            layer = self.session.layers[lid]
+            self.log_message(self.tr("{0} runs on {1}").format(step, layer.name))
         if step == "pipeline":
             pipe = self.pipeline()
 

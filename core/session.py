@@ -153,6 +153,16 @@ class Session:
             up = self.layers[up].parent
         return out
 
+    def step_input(self, layer_id: str) -> str:
+        """The layer a step asked for on ``layer_id`` reads: a maneuvers layer is its
+        parent's points with the maneuver factor added, so a step on it runs on the parent
+        (Compress after Maneuvers would otherwise find the same maneuvers again, as a
+        child of the first)."""
+        layer = self.layers[layer_id]
+        if layer.role == "maneuvers" and layer.parent in self.layers:
+            return layer.parent
+        return layer_id
+
     def root(self, layer_id: str) -> Layer:
         """The imported layer a result descends from (itself for a source)."""
         up = self.ancestors(layer_id)

@@ -50,6 +50,11 @@ def test_layers_by_id_with_lineage_and_rerun_replaces_only_its_own(scene):
     assert ("changed", comp_src[0].id) in events
     # The maneuver layer that goes with a compressed layer is its sibling.
     assert s.related(comp_cln[-1].id, "maneuvers").id == comp_cln[0].id
+    # A step asked for on a maneuvers layer reads its parent (operator test: Compress
+    # with the maneuvers layer active made "… · maneuvers · maneuvers"); lineage too.
+    assert s.step_input(comp_cln[0].id) == cleaned.id
+    assert s.step_input(cleaned.id) == cleaned.id and s.step_input(a.id) == a.id
+    assert s.ancestors(comp_cln[-1].id) == [cleaned.id, a.id] and s.ancestors(a.id) == []
     # Results of a second input coexist.
     s.apply_result(b.id, s.run_step(b.id, "clean"))
     assert (

@@ -4,6 +4,10 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>{0} runs on {1}</source>
+        <translation>{0} 在 {1} 上运行</translation>
+    </message>
+    <message>
         <source>Wakeline</source>
         <translation>Wakeline 航迹工作台</translation>
     </message>
@@ -855,6 +859,10 @@
     <message>
         <source>Select two or more layers in the Layers list (Ctrl+click), e.g. radar and AIS.</source>
         <translation>在图层列表中选择两个或更多图层（Ctrl+单击），例如雷达和 AIS。</translation>
+    </message>
+    <message>
+        <source>{0} is made from {1}: fusing both would count its points twice. Select one of them (Ctrl+click to unselect).</source>
+        <translation>{0} 由 {1} 生成：同时融合两者会把其中的点计算两次。请只选择其中一个（Ctrl+单击可取消选择）。</translation>
     </message>
     <message>
         <source>an input layer was removed; result dropped</source>
