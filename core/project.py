@@ -372,8 +372,22 @@ class ProjectWriter:
         return done.wait(timeout)
 
     def close(self, timeout: float | None = 30.0) -> None:
+        """Finish every queued task, then stop; wait up to ``timeout`` s for that."""
+        self.finish()
+        self.wait(timeout)
+
+    def finish(self) -> None:
+        """Stop once every task queued so far has run, without waiting for it."""
         self._queue.put(None)
+
+    def busy(self) -> bool:
+        """Whether the writer thread still runs."""
+        return self._thread.is_alive()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Wait until the writer has stopped (after :meth:`finish`); True when it has."""
         self._thread.join(timeout)
+        return not self._thread.is_alive()
 
     def _run(self) -> None:
         store: ProjectStore | None = None

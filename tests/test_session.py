@@ -261,3 +261,35 @@ def test_target_ids_are_unique_across_sensors():
     pts = pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"])
     out = STEPS["associate"](pts).tables["points"]
     assert out.groupby("sensor")["target"].first().to_dict() == {"R1": "R1:7", "R2": "R2:7"}
+
+
+def test_save_as_never_waits_for_the_previous_writer_on_the_calling_thread(
+    scene, tmp_path, monkeypatch
+):
+    """Operator test: a second Save as 0.2 s after the first blocked the window 1 s (the
+    old file's writer was joined on the GUI thread). Now the new writer waits for it in
+    its own thread; both files are whole, the same file saved twice too."""
+    pytest.importorskip("PySide6")
+    import wakeline.app.project_controller as pc
+    from wakeline.app.project_controller import ProjectController
+
+    slow = pc.save_project
+
+    def save_slowly(*args, **kwargs):
+        time.sleep(0.5)
+        slow(*args, **kwargs)
+
+    monkeypatch.setattr(pc, "save_project", save_slowly)
+    s = Session()
+    s.add_layer("scene.csv", "source", scene[1])
+    ctl = ProjectController(s)
+    a, b = tmp_path / "a.wakeline", tmp_path / "b.wakeline"
+    ctl.save_as(a)
+    started = time.perf_counter()
+    ctl.save_as(b)
+    ctl.save_as(b)  # the same file again, right away
+    assert time.perf_counter() - started < 0.25
+    s.add_layer("more.csv", "source", scene[1].head(50))  # followed by the last writer
+    ctl.detach()
+    assert len(load_project(a).layers) == 1
+    assert [lay.name for lay in load_project(b).layers] == ["scene.csv", "more.csv"]
