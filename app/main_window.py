@@ -55,6 +55,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     """Wakeline's main window."""
 
     layersChanged = QtCore.Signal()
+    activeChanged = QtCore.Signal()  # the layer the table and steps work on
 
     def __init__(self, settings: QtCore.QSettings | None = None) -> None:
         super().__init__()

@@ -61,6 +61,18 @@ class TimeScene:
     relative: bool
 
 
+def one_clock(geometries: dict[str, LayerGeometry], active: str | None) -> list[LayerGeometry]:
+    """The layers the time slider runs over: all of them when their times are all dates or
+    all elapsed from a scene start (MTAD); when both kinds are open, those of the active
+    layer's kind (else of the most layers): seconds from a scene start on a slider of
+    dates ran it from 1970 to now."""
+    kinds = {lid: g.relative for lid, g in geometries.items()}
+    if len(set(kinds.values())) < 2:
+        return list(geometries.values())
+    keep = kinds.get(active) if active in kinds else sum(kinds.values()) * 2 > len(kinds)
+    return [g for lid, g in geometries.items() if kinds[lid] == keep]
+
+
 def index_job(geometries: list[LayerGeometry]) -> TimeScene:
     """The time index over the tracks of ``geometries`` (pure; for a worker)."""
     colors: list[str] = []
@@ -252,6 +264,7 @@ class TimeController(QtCore.QObject):
         self._timer.setInterval(50)
         self._timer.timeout.connect(self._rebuild)
         window.layersChanged.connect(self._timer.start)
+        window.activeChanged.connect(self._active_changed)
         panel.time_changed.connect(self._draw)
         panel.trail_changed.connect(lambda: self._draw(panel.time()))
         panel.window_changed.connect(self._window_changed)
@@ -280,9 +293,18 @@ class TimeController(QtCore.QObject):
         self._gen += 1
         gen = self._gen
         originals = self._originals()
-        lines = [d.geometry for d, _ in originals.values() if d.style.width > 0]
+        lines = one_clock(
+            {lid: d.geometry for lid, (d, _) in originals.items() if d.style.width > 0},
+            self.window.active,
+        )
         self._run(lambda: index_job(lines), lambda scene: self._scene_done(gen, scene))
         self._apply_window(originals)
+
+    def _active_changed(self) -> None:
+        """With dates and scene times both open, the slider follows the active layer's."""
+        kinds = {d.geometry.relative for d, _ in self._originals().values()}
+        if len(kinds) > 1:
+            self._timer.start()
 
     def _run(self, job, done) -> None:
         self._pending += 1

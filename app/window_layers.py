@@ -233,6 +233,7 @@ class LayersMixin:
     def set_active(self, lid: str | None) -> None:
         """Make ``lid`` the layer the batch table, statistics and steps work on."""
         self.active = lid if lid in self.session.layers else None
+        self.activeChanged.emit()
         view = self.views.get(self.active) if self.active else None
         if view is not None:
             self.batch_model.set_summary(view.summary, view.text)

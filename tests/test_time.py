@@ -205,6 +205,25 @@ def test_scene_relative_times_read_as_elapsed_and_gantt_follows(window, qtbot, t
     assert panel.time() == pytest.approx(900.0)
 
 
+def test_dates_and_scene_times_open_together_the_slider_follows_the_active_layer(
+    window, qtbot, tmp_path
+):
+    """Operator test: MTAD (seconds from a scene start) and an AIS file of 2024 open
+    together ran the slider from 0 to 1.7e9 s and labelled it 1970. Now it runs over the
+    active layer's kind of clock."""
+    _scene_csv(tmp_path / "rel.csv", relative=True)
+    t0 = _scene_csv(tmp_path / "abs.csv")
+    _load(window, qtbot, tmp_path / "rel.csv")
+    _load(window, qtbot, tmp_path / "abs.csv")
+    panel = window.time_panel
+    window.select_layer(window.layer_id("abs.csv"))
+    qtbot.waitUntil(lambda: panel._lo >= t0 and not window.time_controller.busy, timeout=10_000)
+    assert panel._hi - panel._lo < 3600 and "1970" not in panel.time_label.text()
+    window.select_layer(window.layer_id("rel.csv"))
+    qtbot.waitUntil(lambda: panel._hi < 3600 and not window.time_controller.busy, timeout=10_000)
+    assert panel.time_label.text().startswith("T+")
+
+
 @pytest.mark.gui
 def test_slider_move_at_a_million_points_stays_responsive(qtbot):
     """A slider move redraws ~2,000 markers and 120k trail vertices out of 1M points:
