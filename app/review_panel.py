@@ -46,6 +46,10 @@ class ReviewPanel(QtWidgets.QWidget):
         self.view.verticalHeader().setVisible(False)
         self.view.verticalHeader().setDefaultSectionSize(20)
         self.view.horizontalHeader().setStretchLastSection(True)
+        # "milliAmpere:…" hid the batch number: a long track label keeps both ends.
+        self.view.setTextElideMode(QtCore.Qt.TextElideMode.ElideMiddle)
+        self.view.horizontalHeader().setResizeContentsPrecision(200)  # rows looked at
+        self.view.resizeColumnsToContents()
         self.view.selectionModel().currentRowChanged.connect(self._row_changed)
 
         self.status_box = QtWidgets.QComboBox()

@@ -74,6 +74,15 @@ def counts_text(total: int, counts: dict) -> str:
     )
 
 
+def cost_text(value) -> str:
+    """A cost, gate or margin for reading: 3 significant digits below 100, whole numbers
+    with thousands separators above (fusion costs are metres: "1,000", not "1e+03")."""
+    v = float(value)
+    if v != v:
+        return "–"
+    return f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}"
+
+
 def evidence_text(state, pid: str, p: pd.Series) -> str:
     """The evidence of proposal ``pid`` (row ``p`` of the proposals) as rich text."""
     unit = tr("m") if p["kind"] == "fuse" else tr("(scaled)")
@@ -94,22 +103,22 @@ def evidence_text(state, pid: str, p: pd.Series) -> str:
         if v == v and v is not None:  # not NaN
             parts.append(label.format(float(v)))
     rival = (
-        tr("runner-up {0} at {1:.3g}").format(p["runner_up"], float(p["runner_up_cost"]))
+        tr("runner-up {0} at {1}").format(p["runner_up"], cost_text(p["runner_up_cost"]))
         if p["runner_up"]
         else tr("no runner-up (the alternative is leaving both unmatched)")
     )
     target = state.target(p["track_a"])
-    head = tr("<b>{0}</b> ({1}) {2} → {3}, {4}: cost {5:.3g} {6} (gate {7:.3g})").format(
+    head = tr("<b>{0}</b> ({1}) {2} → {3}, {4}: cost {5} {6} (gate {7})").format(
         pid,
         status_name(state.status_of(pid)),
         p["track_a"],
         p["track_b"],
         p["method"],
-        float(p["cost"]),
+        cost_text(p["cost"]),
         unit,
-        float(p["gate"]),
+        cost_text(p["gate"]),
     )
-    tail = tr("margin {0:.3g}. Target {1}: {2}").format(
-        float(p["margin"]), target, " + ".join(state.members(target))
+    tail = tr("margin {0}. Target {1}: {2}").format(
+        cost_text(p["margin"]), target, " + ".join(state.members(target))
     )
     return "; ".join([head, *parts, rival, tail])

@@ -518,8 +518,8 @@
         <translation>（归一化）</translation>
     </message>
     <message>
-        <source>&lt;b&gt;{0}&lt;/b&gt; ({1}) {2} → {3}, {4}: cost {5:.3g} {6} (gate {7:.3g})</source>
-        <translation>&lt;b&gt;{0}&lt;/b&gt;（{1}）{2} → {3}，{4}：代价 {5:.3g} {6}（门限 {7:.3g}）</translation>
+        <source>&lt;b&gt;{0}&lt;/b&gt; ({1}) {2} → {3}, {4}: cost {5} {6} (gate {7})</source>
+        <translation>&lt;b&gt;{0}&lt;/b&gt;（{1}）{2} → {3}，{4}：代价 {5} {6}（门限 {7}）</translation>
     </message>
     <message>
         <source>Accept</source>
@@ -614,8 +614,8 @@
         <translation>裕度</translation>
     </message>
     <message>
-        <source>margin {0:.3g}. Target {1}: {2}</source>
-        <translation>裕度 {0:.3g}。目标 {1}：{2}</translation>
+        <source>margin {0}. Target {1}: {2}</source>
+        <translation>裕度 {0}。目标 {1}：{2}</translation>
     </message>
     <message>
         <source>merge the tracks of the selected rows</source>
@@ -670,8 +670,8 @@
         <translation>次优候选（或门限）代价减去本代价：越小越不确定</translation>
     </message>
     <message>
-        <source>runner-up {0} at {1:.3g}</source>
-        <translation>次优候选 {0}，代价 {1:.3g}</translation>
+        <source>runner-up {0} at {1}</source>
+        <translation>次优候选 {0}，代价 {1}</translation>
     </message>
     <message>
         <source>split</source>
