@@ -200,6 +200,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         retranslate(self)
         self.detail.retranslate()
         self.params.retranslate()
+        if hasattr(self, "review"):  # built after the first retranslate
+            self.review.retranslate()
         self.canvas.setLabel("bottom", self.tr("longitude"), units="°")
         self.canvas.setLabel("left", self.tr("latitude"), units="°")
         self._update_stats()

@@ -210,6 +210,16 @@ class ReviewDock(QtCore.QObject):
             w.menus["export"].addAction(act)
         self._enable(False)
 
+    def retranslate(self) -> None:
+        """The menus' texts again (the language changed while the window runs)."""
+        self.edit_menu.setTitle(tr("&Edit"))
+        self.act_undo.setText(tr("&Undo"))
+        self.act_redo.setText(tr("&Redo"))
+        self.review_menu.setTitle(tr("Re&view"))
+        for name, text, _key, _method in REVIEW_KEYS:
+            self.review_actions[name].setText(tr(text))
+        self.act_fuse.setText(tr("Fuse &selected layers (two or more)"))
+
     def _fuse(self) -> None:
         if len(self.w.layer_list.selectedItems()) >= 2:
             fuse_selected(self.w)

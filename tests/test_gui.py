@@ -248,8 +248,10 @@ def test_chinese_translation_switches_the_menus(window):
     titles = [a.text() for a in window.menuBar().actions()]
     assert "文件(&F)" in titles
     assert window.docks["batches"].windowTitle() == "批次表"
+    assert "审核(&V)" in titles and "撤销(&U)" == window.review.act_undo.text()  # operator test
     window.set_language("en")
     assert window.menuBar().actions()[0].text() == "&File"
+    assert "Re&view" in [a.text() for a in window.menuBar().actions()]
 
 
 def test_nan_separated_unwraps_the_antimeridian():
