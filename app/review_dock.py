@@ -19,6 +19,7 @@ import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.map_canvas import MapCanvas
+from wakeline.app.map_colors import delta_e
 from wakeline.app.review_map import (
     PALETTE,
     Piece,
@@ -37,6 +38,10 @@ from wakeline.core.review_session import proposals_of, queue_key, sorted_by_trac
 TR_CONTEXT = "ReviewDock"
 #: Opacity of the layers behind a proposal on the maps: its context, muted.
 CONTEXT_OPACITY = 0.35
+
+
+#: Colour difference (CIE ΔE) between a proposal's two tracks when the window picks them.
+PAIR_DELTA_E = 40.0
 
 
 def tr(text: str) -> str:
@@ -390,16 +395,25 @@ class ReviewDock(QtCore.QObject):
         if geom is None:
             return
         canvas = self.w.canvas
-        free = iter(canvas.free_colors())
+        free = canvas.free_colors()
         named: dict[str, str] = {}  # track -> legend text, for a line of its own
+        given: dict[str, str] = {}  # track -> its colour: the pair's two must differ plainly
         pieces = []
         for piece in geom.pieces:
             if not piece.context:
                 sensor, _, batch = piece.track.partition(":")
-                color = canvas.selection_color(sensor, batch)
+                color = canvas.selection_color(sensor, batch) or given.get(piece.track)
                 if color is None:
-                    color = next(free, piece.color)
+                    # plum beside navy passed the map's test (ΔE 25) but not an eye's
+                    far = [
+                        c
+                        for c in free
+                        if all(delta_e(c, g) >= PAIR_DELTA_E for g in given.values())
+                    ]
+                    color = (far or free or [piece.color])[0]
+                    free = [c for c in free if c != color]
                     named[piece.track] = f"{sensor} · {batch}"
+                given[piece.track] = color
                 piece = replace(piece, color=color)
             pieces.append(piece)
         self._add_items(replace(geom, pieces=pieces), "proposal")
