@@ -41,8 +41,9 @@ from wakeline.app.map_paths import SYMBOLS_MAX, LayerItem, crosses, with_paths
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
 # SYMBOLS_MAX (map_paths): symbols are drawn when a curve has at most this many vertices
-# after the level of detail (zoomed in): pyqtgraph builds them point by point (~10 µs
-# each). Lines show without them beyond; marker-only layers show 1-px crosses.
+# after the level of detail (zoomed in), all of one style (map_paths.UniformScatter: set
+# with numpy, not spot by spot). Lines show without them beyond; marker-only layers show
+# 1-px crosses.
 
 #: The widest latitude tick label the left axis keeps room for from the start: thousandths of
 #: a degree (ticks 111 m apart) south of the equator.
@@ -259,14 +260,25 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             for curve in data.curves:
                 kw = {}
                 if data.style.symbol_size:
+                    # One pen and brush object each for good: the symbol atlas keys a
+                    # style by their ids (a colour given as text made a new brush, and
+                    # a new atlas entry, at every swap).
                     kw = {
                         "symbol": "o",
                         "symbolSize": data.style.symbol_size,
-                        "symbolPen": None,
-                        "symbolBrush": curve.color,
+                        "symbolPen": pg.mkPen(None),
+                        "symbolBrush": pg.mkBrush(curve.color),
                     }
                 pen = pg.mkPen(curve.color, width=data.style.width) if data.style.width else None
                 item = LayerItem(pen=pen, connect="finite", **kw)
+                if kw:
+                    # The legend draws its sample with the scatter's style, which
+                    # pyqtgraph sets only with symbols to draw (a curve zoomed to no
+                    # vertex showed pyqtgraph's default, a large black-rimmed dot).
+                    item.scatter.setSymbol(kw["symbol"], update=False)
+                    item.scatter.setSize(kw["symbolSize"], update=False)
+                    item.scatter.setPen(kw["symbolPen"], update=False)
+                    item.scatter.setBrush(kw["symbolBrush"], update=False)
                 # No re-plot on every view change (pyqtgraph's dynamic range limit would
                 # rebuild the symbols of every curve at each pan and zoom step).
                 item.setDynamicRangeLimit(None)
@@ -302,32 +314,36 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             item.curve.setCacheMode(CACHE)
 
     def _swap_curve(self, item: pg.PlotDataItem, curve, data: DrawData) -> None:
-        """Swap one prepared curve into its item (line or markers)."""
+        """Swap one prepared curve into its item (line or markers).
+
+        One ``setData`` with the new arrays and the new style together: pyqtgraph's
+        ``setSymbol`` and ``setPen`` each redraw the item from its *old* arrays (symbols
+        turned on over the old 37 k-vertex curve blocked the GUI thread for 720 ms).
+        """
         few = curve.n_vertices <= SYMBOLS_MAX
         if data.style.symbol_size and not data.style.width:
             # Markers only (maneuver points): symbols while few, else small 1-px
             # crosses drawn as one path (pyqtgraph builds symbols point by point).
-            if (item.opts["symbol"] is not None) != few:
-                item.setSymbol("o" if few else None)
-                item.setPen(None if few else pg.mkPen(curve.color, width=1))
             if few:
-                item.setData(curve.lon, curve.lat, connect="finite")
+                item.setData(curve.lon, curve.lat, connect="finite", symbol="o", pen=None)
             else:
-                item.setData(*self._crosses(curve, data.style.symbol_size), connect="pairs")
+                xs, ys = self._crosses(curve, data.style.symbol_size)
+                pen = pg.mkPen(curve.color, width=1)
+                item.setData(xs, ys, connect="pairs", symbol=None, pen=pen)
             item.curve.sprite = None if few else curve.sprite
             return
+        style = {}
         if data.style.symbol_size and data.style.width:
-            # Symbols on a line only where they can be told apart: pyqtgraph builds
-            # them point by point in Python, which would block a million-point view.
-            if (item.opts["symbol"] is not None) != few:
-                item.setSymbol("o" if few else None)
+            # Symbols on a line only where they can be told apart (each costs every
+            # paint a pixmap copy).
+            style["symbol"] = "o" if few else None
         if data.style.width:
             # A wide pen costs Qt's raster engine 5x a 1-px one (120k vertices: 159 ms
             # at 1.3 px against 28 ms at 1 px): wide lines only where few vertices.
             width = data.style.width if few else 1.0
             if item.opts["pen"] is None or item.opts["pen"].widthF() != width:
-                item.setPen(pg.mkPen(curve.color, width=width))
-        item.setData(curve.lon, curve.lat, connect="finite")
+                style["pen"] = pg.mkPen(curve.color, width=width)
+        item.setData(curve.lon, curve.lat, connect="finite", **style)
         if curve.path is not None:  # built in a worker (map_paths): paint only strokes
             item.curve.path = curve.path
         # Stroked in a worker for this view: the paint copies it while it fits.

@@ -304,3 +304,97 @@ def test_a_failed_drawing_job_is_let_go(qtbot, monkeypatch):
     canvas.refresh_lod()
     qtbot.waitUntil(lambda: not canvas.lod_busy, timeout=10_000)
     assert "L" in canvas.layer_names()
+
+
+def _scatter_pixels(qtbot, cls, x, y, **style) -> np.ndarray:
+    import pyqtgraph as pg
+
+    plot = pg.PlotWidget(background="w")
+    qtbot.addWidget(plot)
+    plot.resize(300, 240)
+    plot.show()
+    qtbot.waitExposed(plot)
+    plot.setRange(xRange=(0, 1), yRange=(0, 1), padding=0)
+    item = cls()
+    plot.addItem(item)
+    item.setData(x=x, y=y, **style)
+    img = plot.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
+    w, h = img.width(), img.height()
+    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
+    return raw[:, : w * 3].reshape(h, w, 3).copy()
+
+
+def test_uniform_scatter_draws_what_pyqtgraph_draws(qtbot):
+    """The vectorized scatter puts the same symbol at the same pixels as pyqtgraph's."""
+    import pyqtgraph as pg
+
+    rng = np.random.default_rng(3)
+    x, y = rng.random(400), rng.random(400)
+    x[::37] = np.nan  # the NaN separators of a layer's curve
+    style = {"symbol": "o", "size": 5, "pen": pg.mkPen(None), "brush": pg.mkBrush("#d62728")}
+    ours = _scatter_pixels(qtbot, map_paths.UniformScatter, x, y, **style)
+    theirs = _scatter_pixels(qtbot, pg.ScatterPlotItem, x, y, **style)
+    assert ink(ours).sum() > 1000
+    assert np.array_equal(ours, theirs)
+
+
+def test_a_swap_sets_symbols_once_per_curve_never_spot_by_spot(qtbot, monkeypatch):
+    """Swapping a layer's level of detail hands each curve's symbols over in one piece:
+    one symbol style looked up per curve (pyqtgraph looked one up per spot, ~10 µs each:
+    a layer of 12 sensors at 3,000 symbols blocked the GUI thread for 200 ms and more),
+    and the symbols are set on the new arrays only (pyqtgraph's setSymbol redrew them
+    first on the old 100 k-vertex curve: 700 ms)."""
+    import pyqtgraph.graphicsItems.ScatterPlotItem as scatter_module
+
+    looked_up, largest = [], [0]
+    atlas_get = scatter_module.SymbolAtlas.__getitem__
+
+    def counting(self, styles):
+        looked_up.append(len(styles))
+        return atlas_get(self, styles)
+
+    add_points = map_paths.UniformScatter.addPoints
+
+    def recording(self, *args, **kwargs):
+        y = kwargs.get("y")
+        largest[0] = max(largest[0], 0 if y is None else len(y))
+        return add_points(self, *args, **kwargs)
+
+    monkeypatch.setattr(scatter_module.SymbolAtlas, "__getitem__", counting)
+    monkeypatch.setattr(map_paths.UniformScatter, "addPoints", recording)
+    df = many_tracks(5, n_tracks=240, n_points=120)
+    df["sensor"] = "S" + (df["batch"].astype(int) % 3).astype(str)
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(700, 520)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    canvas.lod_executor = lambda job, done: done(job())
+    canvas.set_true_aspect(LAT0)
+    style = LayerStyle(width=1.3, symbol_size=3)
+    canvas.set_draw_data(prepare_layer(df, "L", "#1f77b4", by_sensor=True, style=style))
+    canvas.fit()
+    canvas.refresh_lod()
+    qtbot.wait(20)
+    data = canvas.draw_data("L")
+    assert len(data.curves) == 3
+    assert min(c.n_vertices for c in data.curves) > map_paths.SYMBOLS_MAX  # lines only
+    for item, curve in zip(canvas.layer_items("L"), data.curves, strict=True):
+        # No symbol drawn yet, but the legend's sample already has the layer's.
+        assert item.scatter.opts["size"] == 3
+        assert item.scatter.opts["brush"].color().name() == QtGui.QColor(curve.color).name()
+    looked_up.clear()
+    largest[0] = 0
+    canvas.vb.scaleBy((0.06, 0.06))
+    canvas.refresh_lod()
+    qtbot.wait(20)
+    data = canvas.draw_data("L")
+    few = [c for c in data.curves if c.n_vertices <= map_paths.SYMBOLS_MAX]
+    assert few, "zoomed in, some curve should carry symbols"
+    for item, curve in zip(canvas.layer_items("L"), data.curves, strict=True):
+        if curve.n_vertices <= map_paths.SYMBOLS_MAX:
+            # Every vertex of the curve has its symbol: nothing is drawn less.
+            assert item.scatter.isVisible()
+            assert np.array_equal(item.scatter.data["x"], curve.lon, equal_nan=True)
+    assert largest[0] <= map_paths.SYMBOLS_MAX + 1000  # never the old long curve
+    assert sum(looked_up) <= len(few)
