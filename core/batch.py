@@ -426,26 +426,10 @@ def _pieces(sn, quoted: bool) -> Iterator[tuple[bytes, int]]:
     """The file in pieces of whole lines (about the importer's ``STREAM_BYTES``), each
     with the physical line (1-based) it starts on. With ``quoted``, a piece ends where
     the quotes since its start balance (a quoted cell may hold line ends)."""
-    from wakeline.core.io.reader import STREAM_BYTES
+    from wakeline.core.io.reader import line_pieces
 
     with _text_stream(sn.path, sn.compression) as (stream, _raw):
-        carry, first_line = b"", 1
-        while True:
-            data = bytes(stream.read(STREAM_BYTES))
-            buf = carry + data
-            if data:
-                cut = _cut(buf, quoted)
-                if cut < 0:
-                    carry = buf
-                    continue
-                piece, carry = buf[: cut + 1], buf[cut + 1 :]
-            else:
-                piece, carry = buf, b""
-            if piece:
-                yield piece, first_line
-            first_line += piece.count(b"\n") + piece.count(b"\r") - piece.count(b"\r\n")
-            if not data:
-                return
+        yield from line_pieces(stream, cut=lambda buf: _cut(buf, quoted))
 
 
 def _cut(buf: bytes, quoted: bool) -> int:

@@ -1411,6 +1411,40 @@ def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress
         shutil.rmtree(scratch, ignore_errors=True)
 
 
+def last_line_end(buf: bytes) -> int:
+    """Index of the last line end of ``buf`` (``\\n``, or ``\\r`` in a file of old Mac
+    line ends); -1 when there is none."""
+    cut = buf.rfind(b"\n")
+    return buf.rfind(b"\r") if cut < 0 else cut
+
+
+def line_pieces(
+    stream, size: int | None = None, cut: Callable[[bytes], int] = last_line_end
+) -> Iterator[tuple[bytes, int]]:
+    """A binary stream in pieces of whole lines (about ``size`` bytes each, default
+    :data:`STREAM_BYTES`; the last as it ends), each with the physical line (1-based) it
+    starts on. ``cut(buf)``: the index of the line end a piece ends on (-1: read on), e.g.
+    one outside quotes."""
+    size = size or STREAM_BYTES
+    carry, first_line = b"", 1
+    while True:
+        data = bytes(stream.read(size))
+        buf = carry + data
+        if data:
+            end = cut(buf)
+            if end < 0:
+                carry = buf
+                continue
+            piece, carry = buf[: end + 1], buf[end + 1 :]
+        else:
+            piece, carry = buf, b""
+        if piece:
+            yield piece, first_line
+        first_line += piece.count(b"\n") + piece.count(b"\r") - piece.count(b"\r\n")
+        if not data:
+            return
+
+
 def stream_points(
     sn: Sniff,
     res: Resolved,
@@ -1515,30 +1549,14 @@ def stream_points(
         with _open(sn, sn.encoding, "strict") as stream, _quiet_undecodable_rows():
             # Pieces of whole lines, parsed one at a time: memory stays one piece
             # (the streaming reader would read ahead as far as the file goes).
-            carry, first_line, skip = b"", 1, sn.skip_rows
-            while True:
-                data = bytes(stream.read(STREAM_BYTES))
-                consumed[0] += len(data)
-                buf = carry + data
-                if data:
-                    cut = buf.rfind(b"\n")
-                    cut = buf.rfind(b"\r") if cut < 0 else cut
-                    if cut < 0:
-                        carry = buf
-                        continue
-                    piece, carry = buf[: cut + 1], buf[cut + 1 :]
-                else:
-                    piece, carry = buf, b""
-                if not piece:
-                    break
+            skip = sn.skip_rows
+            for piece, first_line in line_pieces(stream):
+                consumed[0] += len(piece)
                 table, lines = parse(piece, skip, first_line)
                 if table.num_rows:
                     flush(table, lines)
-                del table
-                first_line += piece.count(b"\n") + piece.count(b"\r") - piece.count(b"\r\n")
+                del table, piece
                 skip = 0
-                if not data:
-                    break
             if totals["rows_imported"] == 0:
                 raise _Fallback  # nothing imported: let the whole-file path say why
     except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
