@@ -980,7 +980,8 @@ def _split_batches(
     )
     pts = pts.copy()
     pts["batch"] = batch.mask(piece > 0, renamed)
-    new_of = pd.Series(pts["batch"].to_numpy()[rows], index=pts[ID].to_numpy()[rows])
+    # Only the renamed rows become Python text (the whole column would hold the GIL).
+    new_of = pd.Series(pts["batch"].iloc[rows].to_numpy(), index=pts[ID].to_numpy()[rows])
     out = []
     for part in changed_rows:
         hit = part[ID].isin(new_of.index).to_numpy()

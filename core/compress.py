@@ -19,7 +19,7 @@ import pandas as pd
 
 from wakeline.core import geo
 from wakeline.core.params import Params, param
-from wakeline.core.schema import time_seconds
+from wakeline.core.schema import time_seconds, to_float
 from wakeline.core.tracks import (
     TrackIndex,
     concat_ranges,
@@ -257,8 +257,8 @@ def compress_with(
     if {"true_lon", "true_lat"} <= set(pts.columns):
         lon0, lat0 = track_origins(pts, index)
         tx, ty = geo.to_local(  # a blank or unreadable truth cell: NaN, not an error
-            pd.to_numeric(pts["true_lon"], errors="coerce").to_numpy(dtype="float64"),
-            pd.to_numeric(pts["true_lat"], errors="coerce").to_numpy(dtype="float64"),
+            to_float(pts["true_lon"]),
+            to_float(pts["true_lat"]),
             lon0[index.track_of_row],
             lat0[index.track_of_row],
         )

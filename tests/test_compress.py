@@ -305,3 +305,20 @@ def test_blank_truth_cells_are_unknown_not_an_error(tmp_path):
     rep = compress_with(df, detect(df).is_maneuver).report()
     assert np.isfinite(rep["overall"]["dis_e_true_m"])
     assert all(np.isfinite(t["dis_e_true_m"]) for t in rep["tracks"])
+
+
+@pytest.mark.parametrize("dtype", ["str", object])
+@pytest.mark.parametrize("junk", [[], ["n/a"]])  # Arrow parses every cell / refuses one
+def test_text_truth_parses_as_pandas_would(dtype, junk):
+    """The truth columns of a file read as text (a blank cell makes the whole column
+    text) are parsed by Arrow in the worker (it releases the GIL, pandas' parser holds
+    it — a quarter of a second at a million rows, the GUI thread waiting); the values
+    are those of ``pd.to_numeric(errors="coerce")``, blanks and junk NaN."""
+    from wakeline.core.schema import PARSE_SLICE, to_float
+
+    cells = ["121.525035", "", "  ", None, " 2.5 ", "1e3", "-inf", "nan", ".5", "+3", *junk]
+    col = pd.Series(cells * (PARSE_SLICE // 5), dtype=dtype)
+    expected = pd.to_numeric(col, errors="coerce").to_numpy(dtype="float64", na_value=np.nan)
+    np.testing.assert_array_equal(to_float(col), expected)
+    assert to_float(pd.Series([], dtype=dtype)).dtype == np.float64
+    np.testing.assert_array_equal(to_float(pd.Series([1, 2])), [1.0, 2.0])
