@@ -31,6 +31,7 @@ switches all of these off.
 
 import math
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -53,6 +54,16 @@ from wakeline.core.tracks import (
 #: (numpy releases the GIL in its passes); every rule is per track, so the result is the
 #: one of a single pass (tests/test_maneuver_kernel.py checks it).
 PARALLEL_MIN_ROWS = 400_000
+#: ... in parts of about this many rows (several per thread, taken as threads come free):
+#: row-sized arrays of a part then stay below the allocator's mmap threshold (reused, not
+#: fresh pages) and within the shared cache, and a thread slowed by the machine's other
+#: load holds back less (10 M rows, 2 cores: 16 parts ~10 % faster than 2).
+PART_ROWS = 640_000
+
+
+def _threads() -> int:
+    return min(os.cpu_count() or 1, 8)
+
 
 MANEUVER_COLUMNS = ("sensor", "batch", "index", "time", "lon", "lat", "factor")
 
@@ -167,10 +178,15 @@ class ManeuverParams(Params):
         )
 
 
-#: Windows per block: temporaries of 256 kB stay in the processor's cache (and in the
+#: ``np.degrees`` is ``x * (180.0 / NPY_PI)`` (numpy's npy_rad2deg): the same product as one
+#: multiplication by this constant, bit for bit, in a vectorized loop.
+RAD_TO_DEG = 180.0 / math.pi
+
+#: Windows per block: temporaries of 512 kB stay in the processor's cache (and in the
 #: allocator's reusable heap), where row-sized ones (80 MB at 10 M points) would be fresh
-#: pages every time.
-BLOCK = 1 << 15
+#: pages every time. Not smaller: every numpy call is a point where a thread may wait for
+#: the other's GIL (2^15 on two threads: ~10 % slower at 10 M points, 2^17 no faster).
+BLOCK = 1 << 16
 
 
 def window_headings(
@@ -244,10 +260,13 @@ def _axis_headings(a: np.ndarray, b: np.ndarray, du: np.ndarray, dv: np.ndarray)
     du += dv
     flip = du < 0.0
     heading = np.arctan2(ax, ay, out=theta)
-    np.degrees(heading, out=heading)
+    heading *= RAD_TO_DEG  # np.degrees, bit for bit, without its per-element call
     heading += 0.0  # as the plain form's "+ where(flip, 180, 0)": -0.0 becomes 0.0
     heading += flip * 180.0  # + 0.0 where not flipped: no change
-    return _wrap360(heading)
+    # in [-180, 360] (or NaN), where _wrap360 never takes np.remainder: its shift alone
+    shift = (heading < 0.0).view(np.int8) - (heading >= 360.0).view(np.int8)
+    heading += shift * 360.0
+    return heading
 
 
 def _wrap360(h: np.ndarray) -> np.ndarray:
@@ -369,7 +388,11 @@ class ManeuverResult:
 def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
     """Median sampling interval (s) of each track, over its steps forward in time (a row
     repeated at the same time is not a 0 s interval); NaN for one-point tracks."""
-    dt = np.diff(t, prepend=np.nan)
+    t = np.asarray(t, dtype="float64")
+    dt = np.empty(len(t))  # np.diff(t, prepend=nan), without the prepended copy
+    if len(t):
+        dt[0] = np.nan
+        np.subtract(t[1:], t[:-1], out=dt[1:])
     dt[index.starts] = np.nan
     dt[dt == 0] = np.nan
     out = np.full(index.n_tracks, np.nan)
@@ -487,37 +510,108 @@ def position_noise_m(
         ya, yi, yb = y[a], y[i], y[b]
         count = np.bincount(tr[i], minlength=index.n_tracks)
         first = np.cumsum(count) - count
+    cols = (ta, ti, tb, xa, xi, xb, ya, yi, yb)
     m = len(ti)
-    r = np.empty(m)
-    scale = np.sqrt(2 * np.log(2))
+    key = np.empty(m)
     for lo in range(0, m, BLOCK):  # blocks: no row-sized temporaries
         s = slice(lo, min(m, lo + BLOCK))
-        # the arithmetic of the plain form, in place:
-        # w = where(span > 0, (ti - ta) / where(span > 0, span, 1), 0.5)
-        # r = hypot(xi - ((1 - w) xa + w xb), yi - (…)) / sqrt(1 + w² + (1 - w)²) / scale
-        span = np.subtract(tb[s], ta[s])
-        moved = span > 0
-        w = np.subtract(ti[s], ta[s])
-        w /= np.where(moved, span, 1.0)
-        np.copyto(w, 0.5, where=~moved)
-        rest = np.subtract(1, w, out=span)  # 1 - w
-        ex = np.multiply(rest, xa[s])
-        ex += w * xb[s]
-        np.subtract(xi[s], ex, out=ex)
-        ey = np.multiply(rest, ya[s])
-        ey += w * yb[s]
-        np.subtract(yi[s], ey, out=ey)
-        # each axis' residual has variance sigma^2 (1 + w^2 + (1-w)^2); |e| of 2-D Gaussian
-        # noise has median sigma * sqrt(2 ln 2)
-        h = np.hypot(ex, ey, out=r[s])
-        np.multiply(w, w, out=w)
-        w += 1.0
-        rest *= rest
-        w += rest
-        h /= np.sqrt(w, out=w)
-        h /= scale
+        ex, ey, w = _noise_residuals(*(col[s] for col in cols))
+        # (r · scale)² up to rounding, to find each track's middle values by; r itself
+        # (hypot: ~10× a product) is computed for those only
+        k = np.multiply(ex, ex, out=key[s])
+        ey *= ey
+        k += ey
+        k /= w
+
+    def radius(rows: np.ndarray) -> np.ndarray:
+        ex, ey, w = _noise_residuals(*(col[rows] for col in cols))
+        # |e| of 2-D Gaussian noise has median sigma * sqrt(2 ln 2)
+        r = np.hypot(ex, ey)
+        r /= np.sqrt(w, out=w)
+        r /= np.sqrt(2 * np.log(2))
+        return r
+
     has = count > 0
-    out[has] = _run_medians(r, first, count)[has]
+    out[has] = _run_medians_by_key(key, radius, first, count)[has]
+    return out
+
+
+def _noise_residuals(ta, ti, tb, xa, xi, xb, ya, yi, yb):
+    """Per point of :func:`position_noise_m`: the residual (ex, ey) from the time
+    interpolation of its neighbours and 1 + w² + (1 − w)², the factor of its variance —
+    the arithmetic of the plain form, in place:
+    w = where(span > 0, (ti - ta) / where(span > 0, span, 1), 0.5),
+    r = hypot(xi - ((1 - w) xa + w xb), yi - (…)) / sqrt(1 + w² + (1 - w)²) / scale."""
+    span = np.subtract(tb, ta)
+    moved = span > 0
+    w = np.subtract(ti, ta)
+    w /= np.where(moved, span, 1.0)
+    np.copyto(w, 0.5, where=~moved)
+    rest = np.subtract(1, w, out=span)  # 1 - w
+    ex = np.multiply(rest, xa)
+    ex += w * xb
+    np.subtract(xi, ex, out=ex)
+    ey = np.multiply(rest, ya)
+    ey += w * yb
+    np.subtract(yi, ey, out=ey)
+    np.multiply(w, w, out=w)
+    w += 1.0
+    rest *= rest
+    w += rest
+    return ex, ey, w
+
+
+def _run_medians_by_key(key: np.ndarray, exact, first: np.ndarray, count: np.ndarray) -> np.ndarray:
+    """:func:`_run_medians` of values computed by ``exact(rows)`` (rows into ``key``),
+    bit for bit, computing few of them: ``key`` orders the values up to a relative
+    error far below 1e-9 (each value is a root of its key, rounded a few times), so a
+    value whose key lies beyond the middle keys by more than 3e-9 (relative, or 3e-200)
+    is surely on that side of the middle values; those within are computed and sorted.
+    Runs with a non-finite key, and runs of a length few runs share, take the values
+    of all their rows and :func:`_run_medians`."""
+    out = np.full(len(count), np.nan)
+    rest = count > 0
+    if not rest.any():
+        return out
+    sizes, shared = np.unique(count[rest], return_counts=True)
+    for m in sizes[shared >= 8]:  # a loop over distinct lengths, few
+        m = int(m)
+        g = np.flatnonzero(count == m)
+        med = np.full(len(g), np.nan)
+        span = np.arange(m)
+        k_lo, k_hi = (m - 1) // 2, m // 2  # the middle one, or two
+        step = max(1, BLOCK // m)  # runs per chunk: ~BLOCK values
+        for a in range(0, len(g), step):  # a loop over chunks of runs
+            rows = first[g[a : a + step], None] + span
+            kb = key[rows]
+            ok = np.isfinite(kb).all(axis=1)
+            if not ok.all():  # such a run takes all its values, below
+                rows, kb = rows[ok], kb[ok]
+            mid = kb.copy()
+            mid.partition(k_hi, axis=1)  # the lower middle: the largest of the lower half
+            lo = mid[:, :k_hi].max(axis=1) if k_lo != k_hi else mid[:, k_hi].copy()
+            lo *= 1 - 3e-9
+            lo -= 3e-200
+            hi = mid[:, k_hi] * (1 + 3e-9)
+            hi += 3e-200
+            below = np.count_nonzero(kb < lo[:, None], axis=1)
+            br, bc = np.nonzero((kb >= lo[:, None]) & (kb <= hi[:, None]))
+            vals = exact(rows[br, bc])
+            vals = vals[np.lexsort((vals, br))]  # by run, then value
+            n_band = np.bincount(br, minlength=len(rows))
+            at = np.cumsum(n_band) - n_band - below  # each run's rank 0 in ``vals``
+            value = vals[at + k_hi]
+            if k_lo != k_hi:
+                value += vals[at + k_lo]
+                value /= 2
+            med[a : a + step][ok] = value
+        done = ~np.isnan(med)
+        out[g[done]] = med[done]
+        rest[g[done]] = False
+    if rest.any():
+        g = np.flatnonzero(rest)
+        vals = exact(concat_ranges(first[g], count[g]))
+        out[g] = _run_medians(vals, np.cumsum(count[g]) - count[g], count[g])
     return out
 
 
@@ -693,12 +787,14 @@ def _rest_mask(
         return rest
     tr = index.track_of_row
     sizes = index.sizes
-    rel = t - np.repeat(t[index.starts], sizes)
+    rel = np.repeat(t[index.starts], sizes)
+    rel = np.subtract(t, rel, out=rel)  # in place: row-sized temporaries are fresh pages
     span = np.zeros(index.n_tracks)
     has = sizes > 0
     span[has] = rel[index.ends[has] - 1]
     offset = np.concatenate([[0.0], np.cumsum(span + 2.0 * window_s + 1.0)[:-1]])
-    ts = rel + np.repeat(offset, sizes)
+    ts = np.repeat(offset, sizes)
+    ts += rel
     step = span / np.maximum(sizes - 1, 1)
     reach = 2.0 * radius_m * (1 + 1e-9) + 1e-6
     possible = np.zeros(index.n_tracks, dtype=bool)
@@ -776,6 +872,24 @@ def _headings_of(u: np.ndarray, v: np.ndarray, p: int) -> np.ndarray:
     return out
 
 
+def _anchored(x: np.ndarray, index: TrackIndex) -> bool:
+    """Are ``x``'s coordinates already taken relative to each track's first point (every
+    track's first value +0.0)? Then subtracting the anchor changes no bit (x − (+0.0) is
+    x, −0.0 included), and the kernels below skip it."""
+    x0 = x[index.starts]
+    return bool((x0 == 0.0).all() and not np.signbit(x0).any())
+
+
+def _anchored_xy(x: np.ndarray, y: np.ndarray, index: TrackIndex) -> tuple[np.ndarray, np.ndarray]:
+    """Coordinates relative to each track's first point, the anchor every window sum is
+    taken against (once per table, not once per scale and block)."""
+    u = np.repeat(x[index.starts], index.sizes)
+    np.subtract(x, u, out=u)
+    v = np.repeat(y[index.starts], index.sizes)
+    np.subtract(y, v, out=v)
+    return u, v
+
+
 def _factor_every_row(
     x: np.ndarray, y: np.ndarray, index: TrackIndex, p: int, chosen: np.ndarray
 ) -> np.ndarray:
@@ -785,6 +899,7 @@ def _factor_every_row(
     n = len(x)
     out = np.full(n, np.nan)
     tr = index.track_of_row
+    anchored = _anchored(x, index) and _anchored(y, index)
     x0, y0 = x[index.starts], y[index.starts]  # each track's anchor
     # δ is defined from a track's p-th row to its p-th last
     lo, hi = index.starts + (p - 1), index.ends - (p - 1)
@@ -793,10 +908,13 @@ def _factor_every_row(
     for first in range(p - 1, n - p + 1, BLOCK):  # a loop over blocks, not over windows
         last = min(n - p + 1, first + BLOCK)  # δ rows; windows end at first … last + p - 2
         raw = slice(first - p + 1, last + p - 1)
-        t_raw = tr[raw]
-        h = _block_headings(x[raw] - x0[t_raw], y[raw] - y0[t_raw], p)
+        if anchored:
+            h = _block_headings(x[raw], y[raw], p)
+        else:
+            t_raw = tr[raw]
+            h = _block_headings(x[raw] - x0[t_raw], y[raw] - y0[t_raw], p)
         d = _angle_diff(h[: last - first], h[p - 1 :])
-        out[first:last] = np.where(valid[first:last], d, np.nan)
+        np.copyto(out[first:last], d, where=valid[first:last])
     return out
 
 
@@ -822,16 +940,21 @@ def _factor_on_runs(
     raw_lo = lo - (p - 1)
     raw_len = hi - lo + 2 * (p - 1)
     n = len(x)
+    anchored = _anchored(x, index) and _anchored(y, index)
     if len(lo) == index.n_tracks and int(raw_len.sum()) == n and (raw_lo == index.starts).all():
         rows = None  # every row: no gather
-        u = x - np.repeat(x[index.starts], index.sizes)
-        v = y - np.repeat(y[index.starts], index.sizes)
+        if anchored:
+            u, v = x, y
+        else:
+            u = x - np.repeat(x[index.starts], index.sizes)
+            v = y - np.repeat(y[index.starts], index.sizes)
     else:
         rows = concat_ranges(raw_lo, raw_len)
         u = x[rows]
-        u -= np.repeat(x[index.starts[tr]], raw_len)  # each run's track anchor
         v = y[rows]
-        v -= np.repeat(y[index.starts[tr]], raw_len)
+        if not anchored:
+            u -= np.repeat(x[index.starts[tr]], raw_len)  # each run's track anchor
+            v -= np.repeat(y[index.starts[tr]], raw_len)
     # δ of row o: the window ending at o against the window ending at o + p - 1
     seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
     pos = concat_ranges(seg + (p - 1), hi - lo)
@@ -871,6 +994,7 @@ def _screen_every_row(
     boundary are computed and never used)."""
     n = len(x)
     tr = index.track_of_row
+    anchored = _anchored(x, index) and _anchored(y, index)
     x0, y0 = x[index.starts], y[index.starts]  # each track's anchor
     is_pos = _span_mask(lo, hi, n)
     limit = math.cos(math.radians(above)) + 1e-9
@@ -880,8 +1004,11 @@ def _screen_every_row(
         if not is_pos[first:last].any():
             continue
         raw = slice(first - p + 1, last + p - 1)
-        t_raw = tr[raw]
-        ub, vb = x[raw] - x0[t_raw], y[raw] - y0[t_raw]
+        if anchored:
+            ub, vb = x[raw], y[raw]
+        else:
+            t_raw = tr[raw]
+            ub, vb = x[raw] - x0[t_raw], y[raw] - y0[t_raw]
         j, d = _screen_block(ub, vb, p, limit, is_pos[first:last])
         found_rows.append(j + first)
         found_delta.append(d)
@@ -950,17 +1077,31 @@ def _sums_of_short(u: np.ndarray, v: np.ndarray, p: int):
             out += np.convolve(a[q * c :], np.ones(rest), "valid")[:nw]
         return out
 
-    mu = window_sums(u) / p
-    mv = window_sums(v) / p
-    cxx = window_sums(u * u) / p - mu * mu
-    cyy = window_sums(v * v) / p - mv * mv
-    cxy = window_sums(u * v) / p - mu * mv
+    # the plain form's arithmetic (sums / p − products of means), in place
+    mu = window_sums(u)
+    mu /= p
+    mv = window_sums(v)
+    mv /= p
+    tmp = np.multiply(u, u)
+    cxx = window_sums(tmp)
+    cxx /= p
+    cxx -= np.multiply(mu, mu, out=tmp[:nw])
+    np.multiply(v, v, out=tmp)
+    cyy = window_sums(tmp)
+    cyy /= p
+    cyy -= np.multiply(mv, mv, out=tmp[:nw])
+    np.multiply(u, v, out=tmp)
+    cxy = window_sums(tmp)
+    cxy /= p
+    cxy -= np.multiply(mu, mv, out=tmp[:nw])
     eps = np.finfo(float).eps
     big = float(np.abs(u).max() + np.abs(v).max()) if n else 0.0
     bound = 64.0 * p * eps * big * big
-    du = u[p - 1 :] - u[: n - p + 1]
-    dv = v[p - 1 :] - v[: n - p + 1]
-    return cxx - cyy, 2.0 * cxy, du, dv, bound
+    cxx -= cyy
+    cxy *= 2.0
+    du = np.subtract(u[p - 1 :], u[: n - p + 1], out=mu)
+    dv = np.subtract(v[p - 1 :], v[: n - p + 1], out=mv)
+    return cxx, cxy, du, dv, bound
 
 
 def _exact_at(u: np.ndarray, v: np.ndarray, p: int, j: np.ndarray) -> np.ndarray:
@@ -1022,24 +1163,46 @@ def _oriented_axis(
     |error of b|) also how far the axis may be off (rad); where that is not small the axis
     counts as undefined, and the orientation is called only where it holds against it."""
     with np.errstate(invalid="ignore", divide="ignore"):
-        r = np.sqrt(a * a + b * b)
-        c2 = a / r  # cos 2θ, θ in [-90°, 90°]
-        big = np.sqrt(0.5 * (1.0 + np.abs(c2)))  # the larger of |cos θ|, |sin θ|
-        small = np.abs(b) / r / (2.0 * big)  # |sin 2θ| / (2 · larger)
-        cos_first = c2 >= 0.0
-        c = np.where(cos_first, big, small)
-        s = np.copysign(np.where(cos_first, small, big), b)  # sin θ has the sign of b
-        d = du * c + dv * s
-        sign = np.where(d < 0.0, -1.0, 1.0)
+        r = np.multiply(a, a)
+        tmp = np.multiply(b, b)
+        r += tmp
+        r = np.sqrt(r, out=r)
+        c2 = np.divide(a, r)  # cos 2θ, θ in [-90°, 90°]
+        cos_first = (c2 >= 0.0).astype(np.float64)  # 1.0 or 0.0
+        big = np.abs(c2, out=c2)
+        big += 1.0
+        big *= 0.5
+        big = np.sqrt(big, out=big)  # the larger of |cos θ|, |sin θ|
+        small = np.abs(b, out=tmp)
+        small /= r
+        small /= 2.0 * big  # |sin 2θ| / (2 · larger)
+        # c, s = where(cos_first, big, small), where(cos_first, small, big), as products
+        # (x · 1.0 + y · 0.0 is x for the finite x, y ≥ 0 of every row not unsure below;
+        # a 50/50 mask costs a select ~10× a product)
+        c = big * cos_first
+        s = small * cos_first
+        cos_first -= 1.0  # 0.0 or -1.0
+        c -= small * cos_first
+        s -= big * cos_first
+        s = np.copysign(s, b, out=s)  # sin θ has the sign of b
+        d = du * c
+        d += dv * s
+        sign = (d < 0.0) * -2.0  # -2.0 or -0.0
+        sign += 1.0  # where(d < 0, -1, 1)
         turn = 0.0
         if bound is not None:  # how far the axis may turn (rad) when a and b move by bound
             turn = bound / (r - bound)
-        unsure = ~(np.abs(d) > (turn + 1e-9) * (np.abs(du) + np.abs(dv)))
-        unsure |= ~np.isfinite(r) | (r == 0)
+        e = np.abs(du)
+        e += np.abs(dv)
+        e *= turn + 1e-9
+        sure = np.abs(d, out=d) > e
+        sure &= np.isfinite(r)
+        sure &= r != 0
         if bound is not None:
-            unsure |= ~(r > 4.0 * bound)
+            sure &= r > 4.0 * bound
         c *= sign
         s *= sign
+    unsure = ~sure
     c[unsure] = np.nan
     s[unsure] = np.nan
     if bound is None:
@@ -1067,13 +1230,24 @@ def _peaks_above(
     slot += q
     per_track = not (radius == reach).all()
     rq = radius[tq] if per_track else reach
-    peak = np.ones(len(q), dtype=bool)
-    for j in range(1, len(q)):  # a loop over offsets in the list of rows above t
-        close = slot[j:] - slot[:-j] <= (rq[j:] if per_track else rq)
-        if not close.any():  # rows are sorted: no pair further apart can be closer
+    m = len(q)
+    peak = np.ones(m, dtype=bool)
+    gap = np.empty(max(m - 1, 0), dtype=slot.dtype)  # buffers for every offset
+    close, beaten = np.empty(max(m - 1, 0), dtype=bool), np.empty(max(m - 1, 0), dtype=bool)
+    for j in range(1, m):  # a loop over offsets in the list of rows above t
+        k = m - j
+        d = np.subtract(slot[j:], slot[:-j], out=gap[:k])
+        c = np.less_equal(d, rq[j:] if per_track else rq, out=close[:k])
+        if not c.any():  # rows are sorted: no pair further apart can be closer
             break
-        peak[:-j] &= ~close | (w[:-j] >= w[j:])
-        peak[j:] &= ~close | (w[j:] >= w[:-j])
+        # a row loses to a close row of larger δ (w holds no NaN: every row is above t);
+        # peak &= ~close | (w >= other) as peak &= ~(close & (w < other))
+        b = np.less(w[:-j], w[j:], out=beaten[:k])
+        b &= c
+        peak[:-j] &= np.logical_not(b, out=b)
+        b = np.less(w[j:], w[:-j], out=beaten[:k])
+        b &= c
+        peak[j:] &= np.logical_not(b, out=b)
     return q[peak]
 
 
@@ -1161,7 +1335,7 @@ def _scale_candidates(
     δ at nearby rows takes exact ties)."""
     n = len(x)
     tr = index.track_of_row
-    full = np.full(n, np.nan) if interest is None else None
+    full = None  # δ of every row, when interest is None
     cand_rows, cand_delta = [], []
     for p in np.unique(p_track[active]):  # usually one or a few
         p = int(p)
@@ -1229,16 +1403,25 @@ def _scale_candidates(
                         continue
             break
         if len(d_lo):
-            if full is not None and rows is None:
-                np.copyto(full, delta, where=~np.isnan(delta))
-            elif full is not None:
-                full[rows] = delta
+            if interest is None and rows is None and full is None:
+                # the first δ of every row is the array itself, with NaN as np.full has it
+                delta[np.isnan(delta)] = np.nan
+                full = delta
+            elif interest is None:
+                if full is None:
+                    full = np.full(n, np.nan)
+                if rows is None:
+                    np.copyto(full, delta, where=~np.isnan(delta))
+                else:
+                    full[rows] = delta
             keep = _one_per_plateau(q, label, tr, radius)
             q = q[keep]
             if interest is not None:
                 q = q[interest[q]]
             cand_rows.append(q)
             cand_delta.append(delta[q] if rows is None else delta[np.searchsorted(rows, q)])
+    if interest is None and full is None:
+        full = np.full(n, np.nan)
     if not cand_rows:
         return np.zeros(0, dtype="int64"), np.zeros(0), full
     cand = np.concatenate(cand_rows)
@@ -1303,18 +1486,22 @@ def detect(
     above t only. Same output as running every rule on every row
     (tests/test_maneuver_kernel.py).
 
-    ``parts``: groups of whole tracks detected at once on threads (default: one per core
-    from :data:`PARALLEL_MIN_ROWS` rows, else 1); the result does not depend on it.
+    ``parts``: groups of whole tracks detected on threads, one thread per core at most
+    (default: parts of about :data:`PART_ROWS` rows, at least one per core, from
+    :data:`PARALLEL_MIN_ROWS` rows; else 1); the result does not depend on it.
     """
     params = (params or ManeuverParams()).checked()
     pts, index = sorted_with_index(points)
+    bounds = _parts(index, parts)
+    if len(bounds) > 2:
+        # the parts look for repeated rows themselves, on the threads: None if any holds one
+        result = _detect_in_parts(pts, index, params, progress, bounds)
+        if result is not None:
+            return result
     repeat = repeated_rows(pts, index)
     if repeat.any():
         return _detect_without_repeats(pts, index, repeat, params, progress, parts)
-    bounds = _parts(index, parts)
-    if len(bounds) <= 2:
-        return _detect_sorted(pts, index, params, progress)
-    return _detect_in_parts(pts, index, params, progress, bounds)
+    return _detect_sorted(pts, index, params, progress)
 
 
 def _detect_without_repeats(pts, index, repeat, params, progress, parts) -> "ManeuverResult":
@@ -1333,11 +1520,11 @@ def _detect_without_repeats(pts, index, repeat, params, progress, parts) -> "Man
 
 
 def _parts(index: TrackIndex, parts: int | None) -> np.ndarray:
-    """Row bounds of ``parts`` groups of whole tracks of about equal size (default: one per
-    core for a large table, else one)."""
+    """Row bounds of ``parts`` groups of whole tracks of about equal size (default: about
+    :data:`PART_ROWS` rows each and at least one per core for a large table, else one)."""
     n = int(index.ends[-1]) if index.n_tracks else 0
     if parts is None:
-        parts = min(os.cpu_count() or 1, 8) if n >= PARALLEL_MIN_ROWS else 1
+        parts = max(_threads(), -(-n // PART_ROWS)) if n >= PARALLEL_MIN_ROWS else 1
     parts = max(1, min(int(parts), index.n_tracks))
     if parts == 1:
         return np.array([0, n], dtype="int64")
@@ -1349,8 +1536,10 @@ def _parts(index: TrackIndex, parts: int | None) -> np.ndarray:
 
 def _detect_in_parts(
     pts: pd.DataFrame, index: TrackIndex, params: "ManeuverParams", progress, bounds
-) -> "ManeuverResult":
-    """:func:`_detect_sorted` on groups of whole tracks at once, results put together."""
+) -> "ManeuverResult | None":
+    """:func:`_detect_sorted` on groups of whole tracks at once, results put together;
+    None when a part holds rows that repeat their predecessor (:func:`repeated_rows`, a
+    rule within tracks: checked by each part on its thread, before any detection)."""
     t = track_seconds(pts)
     pieces = []
     for a, b in zip(bounds[:-1], bounds[1:], strict=True):
@@ -1365,36 +1554,57 @@ def _detect_in_parts(
         remember_order(sub, sub_index, t[a:b])
         pieces.append((sub, sub_index))
     stop: list[BaseException] = []
+    share = np.diff(bounds) / max(int(bounds[-1]), 1)  # each part's share of the rows
+    done = np.zeros(len(pieces))  # each part's own fraction
+    one_at_a_time = threading.Lock()
 
     def relay(k: int):
-        # Part 0 reports; every part stops at its next report once any part was stopped
-        # (a caller cancels by raising from ``progress``).
+        # Every part reports the fraction of all rows done, one call at a time; every part
+        # stops at its next report once any part was stopped (a caller cancels by raising
+        # from ``progress``).
         def report(fraction: float, text: str = "") -> None:
             if stop:
                 raise stop[0]
-            if k == 0 and progress is not None:
-                try:
-                    progress(fraction, text)
-                except BaseException as exc:
-                    stop.append(exc)
-                    raise
+            done[k] = fraction
+            if progress is not None:
+                with one_at_a_time:
+                    try:
+                        progress(float(min(1.0, share @ done)), text)
+                    except BaseException as exc:
+                        stop.append(exc)
+                        raise
 
         return report
 
-    with ThreadPoolExecutor(len(pieces), thread_name_prefix="wakeline-detect") as pool:
-        futures = [
-            pool.submit(_detect_sorted, sub, sub_index, params, relay(k))
-            for k, (sub, sub_index) in enumerate(pieces)
-        ]
-        results = [f.result() for f in futures]
+    n = len(pts)
+    factor = np.empty(n)
+    is_maneuver = np.empty(n, dtype=bool)
+    at_rest = np.empty(n, dtype=bool)
+
+    def repeats(k: int) -> bool:
+        return bool(repeated_rows(*pieces[k]).any())
+
+    def part(k: int) -> np.ndarray:
+        # each part puts its rows in place itself: the copies run on the threads, not one
+        # after the other on the caller's
+        if stop:  # a part stopped before this one began
+            raise stop[0]
+        sub, sub_index = pieces[k]
+        res = _detect_sorted(sub, sub_index, params, relay(k))
+        rows = slice(bounds[k], bounds[k + 1])
+        factor[rows] = res.factor
+        is_maneuver[rows] = res.is_maneuver
+        at_rest[rows] = res.at_rest
+        return res.window_p
+
+    workers = min(len(pieces), _threads())
+    with ThreadPoolExecutor(workers, thread_name_prefix="wakeline-detect") as pool:
+        if any(pool.map(repeats, range(len(pieces)))):
+            return None
+        futures = [pool.submit(part, k) for k in range(len(pieces))]
+        window_p = [f.result() for f in futures]
     return ManeuverResult(
-        pts,
-        index,
-        np.concatenate([r.factor for r in results]),
-        np.concatenate([r.is_maneuver for r in results]),
-        np.concatenate([r.window_p for r in results]),
-        np.concatenate([r.at_rest for r in results]),
-        params,
+        pts, index, factor, is_maneuver, np.concatenate(window_p), at_rest, params
     )
 
 
@@ -1420,6 +1630,7 @@ def _detect_sorted(
         ok = np.ones(len(cand), dtype=bool)
         if not len(cand):
             return ok
+        # each test runs on the candidates still standing only (a candidate out stays out)
         if params.noise_k > 0 or fine:
             if not noise:
                 noise.append(position_noise_m(x, y, t, index))
@@ -1430,14 +1641,17 @@ def _detect_sorted(
                 )
                 ok &= f_c > floor
                 if fine:
-                    ok &= _leave_one_out_deg(x, y, index, p_c, cand) > floor
+                    j = np.flatnonzero(ok)
+                    ok[j] = _leave_one_out_deg(x, y, index, p_c[j], cand[j]) > floor[j]
         if params.min_speed_kn > 0:
+            j = np.flatnonzero(ok)
             with np.errstate(invalid="ignore"):
-                ok &= _window_speed_ms(x, y, t, index, reach, cand) >= (
+                ok[j] = _window_speed_ms(x, y, t, index, reach[j], cand[j]) >= (
                     params.min_speed_kn * geo.KN_MS
                 )
         if any_rest:
-            ok &= ~_near(rest, index, reach - 1, cand)
+            j = np.flatnonzero(ok)
+            ok[j] = ~_near(rest, index, reach[j] - 1, cand[j])
         return ok
 
     def add(f_c: np.ndarray, cand: np.ndarray, ok: np.ndarray, reach: np.ndarray) -> None:
@@ -1450,7 +1664,8 @@ def _detect_sorted(
     fine_scales = _fine_scales(params)
     med = median_interval_s(t, index) if params.window_s > 0 else None
     found = np.zeros(n, dtype=bool)
-    factor = np.full(n, np.nan)
+    factor = np.empty(0)  # δ of every row: the first scale's, below
+    u, v = _anchored_xy(x, y, index)  # what every window sum is taken against
     p_first = np.full(index.n_tracks, int(params.window_p), dtype="int64")
     prev_p = np.zeros(index.n_tracks, dtype="int64")
     n_steps = len(scales) + len(fine_scales) + (params.gap_s > 0)
@@ -1473,13 +1688,13 @@ def _detect_sorted(
             if len(rest_lo):
                 interest &= ~_dilate(rest_lo, rest_hi, p_track[tr[rest_lo]] - 1, index, n)
             cand, f_c, _ = _scale_candidates(
-                x, y, index, p_track, radius, params.threshold_deg, grew, interest
+                u, v, index, p_track, radius, params.threshold_deg, grew, interest
             )
         else:
             radius = np.full_like(p_track, params.radius_n)
             active = np.ones(index.n_tracks, dtype=bool)
             cand, f_c, factor = _scale_candidates(
-                x, y, index, p_track, radius, params.threshold_deg, active
+                u, v, index, p_track, radius, params.threshold_deg, active
             )
             p_first = p_track
         p_c = p_track[tr[cand]]
