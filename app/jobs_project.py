@@ -135,7 +135,7 @@ class ProjectJobsMixin:
     def _apply_project(
         self, path: Path, proj: Project, views: dict, warnings: list, plan: dict | None = None
     ) -> None:
-        previous = self.project.release()  # the session's clearing is not written
+        self.project.release()  # the session's clearing is not written
         self.session.clear()
         self.views.update(views)
         problems = self.params.from_dict(proj.params)
@@ -144,7 +144,7 @@ class ProjectJobsMixin:
             proj.to_session(self.session)
         finally:
             self._view_planned = False
-        self.project.follow(path, proj.read_only, after=previous)
+        self.project.follow(path, proj.read_only)
         sel = [r for r in proj.selection if r[0] in self.session.layers]
         if sel:  # applied once the layers are drawn (one per event-loop turn)
             self._make_current = sel[0][0]

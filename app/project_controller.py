@@ -34,43 +34,42 @@ class ProjectController(QtCore.QObject):
 
     def save_as(self, path: Path, state: dict | None = None) -> None:
         """Write the whole session to ``path`` (in the writer thread), then follow it."""
-        previous = self.release()
+        self.release()
         snapshot = Session()
         snapshot.layers = dict(self.session.layers)
         snapshot.sources = list(self.session.sources)
         snapshot.params = dict(self.session.params)
         snapshot.selection = list(self.session.selection)
         snapshot.decisions = list(self.session.decisions)
-        self._attach(Path(path), read_only=False, after=previous)
+        self._attach(Path(path), read_only=False)
         self.writer.submit_file(lambda p: save_project(snapshot, p, state))
 
-    def follow(self, path: Path, read_only: bool, after: ProjectWriter | None = None) -> None:
-        """Continue writing to an opened project (nothing when it is read-only); ``after``:
-        a writer released earlier that must finish first."""
-        previous = self.release() or after
+    def follow(self, path: Path, read_only: bool) -> None:
+        """Continue writing to an opened project (nothing when it is read-only)."""
+        self.release()
         self.path, self.read_only, self.dirty = Path(path), read_only, False
         if not read_only:
-            self._attach(Path(path), read_only=False, after=previous)
+            self._attach(Path(path), read_only=False)
 
-    def _attach(self, path: Path, read_only: bool, after: ProjectWriter | None = None) -> None:
-        """A writer for ``path``; with ``after``, its first task waits (in its own thread,
-        never the GUI's) until that writer has written its queue: the same file may be
-        written again."""
+    def _attach(self, path: Path, read_only: bool) -> None:
+        """A writer for ``path``. Its first task waits (in its own thread, never the
+        GUI's) until every writer released before has written its queue: the same file
+        may be written again (Save as twice; a read-only project opened in between)."""
         self.path, self.read_only, self.dirty = path, read_only, False
         self.writer = ProjectWriter(path, lambda exc: self._error.emit(_describe(exc)))
-        if after is not None:
-            self.writer.submit_file(lambda _p: after.wait())
+        earlier = [w for w in self._draining if w.busy()]
+        if earlier:
+            self.writer.submit_file(lambda _p: [w.wait() for w in earlier])
 
-    def release(self) -> ProjectWriter | None:
+    def release(self) -> None:
         """Stop following the file without waiting: the writer finishes its queue in its
-        own thread (a Save as right after a step waited 0.2–1 s for it on the GUI thread).
-        Returns it, for the next writer to wait on."""
+        own thread (a Save as right after a step waited 0.2–1 s for it on the GUI thread);
+        the next writer waits for it."""
         previous, self.writer = self.writer, None
         if previous is not None:
             previous.finish()
             self._draining = [w for w in self._draining if w.busy()] + [previous]
         self.path, self.read_only = None, False
-        return previous
 
     def detach(self, timeout: float = 30.0) -> None:
         """Stop following the file once everything queued is written, the released

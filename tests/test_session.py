@@ -293,3 +293,21 @@ def test_save_as_never_waits_for_the_previous_writer_on_the_calling_thread(
     ctl.detach()
     assert len(load_project(a).layers) == 1
     assert [lay.name for lay in load_project(b).layers] == ["scene.csv", "more.csv"]
+    # A read-only project opened between two slow saves of one file (review: the second
+    # save did not wait for the first, and the first's older session won).
+    calls = []
+
+    def first_slowly(*args, **kwargs):
+        calls.append(1)
+        time.sleep(0.5 if len(calls) == 1 else 0.0)
+        slow(*args, **kwargs)
+
+    monkeypatch.setattr(pc, "save_project", first_slowly)
+    ctl = ProjectController(s)
+    ctl.save_as(a)
+    ctl.release()
+    ctl.follow(tmp_path / "elsewhere.wakeline", read_only=True)
+    s.remove_layer(next(iter(s.layers)))
+    ctl.save_as(a)
+    ctl.detach()
+    assert [lay.name for lay in load_project(a).layers] == ["more.csv"]
