@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.io.writer import atomic_path, write_csv
-from wakeline.core.schema import FILE_ROW, ordered_columns, time_seconds
+from wakeline.core.schema import time_seconds, written_columns
 from wakeline.core.tracks import sorted_with_index
 
 _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
@@ -46,8 +46,7 @@ def spreadsheet_safe(df: pd.DataFrame) -> pd.DataFrame:
 
 def export_csv(points: pd.DataFrame, path: str | Path) -> None:
     """Canonical CSV (canonical columns first), spreadsheet-safe, written atomically."""
-    cols = [c for c in ordered_columns(points) if c != FILE_ROW]
-    write_csv(spreadsheet_safe(points[cols]), path)
+    write_csv(spreadsheet_safe(points[written_columns(points)]), path)
 
 
 def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict:

@@ -17,7 +17,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.export import export_geojson, spreadsheet_safe
 from wakeline.core.io.writer import atomic_path, write_csv
 from wakeline.core.review import ReviewState, _labels
-from wakeline.core.schema import ordered_columns
+from wakeline.core.schema import written_columns
 
 EXPORT_FORMATS = ("csv", "geojson", "gpx")
 
@@ -50,7 +50,7 @@ def fused_tracks(state: ReviewState, sassoc: object, params: object | None = Non
 
 def export_tracks_csv(points: pd.DataFrame, path: str | Path, bom: bool = False) -> None:
     """Spreadsheet-safe CSV, canonical columns first; ``bom`` prefixes a UTF-8 BOM."""
-    export_table_csv(points[ordered_columns(points)], path, bom)
+    export_table_csv(points[written_columns(points)], path, bom)
 
 
 def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline") -> None:

@@ -98,3 +98,9 @@ def ordered_columns(df: pd.DataFrame) -> list[str]:
     if "truth" in df.columns:
         head.append("truth")
     return head + [c for c in df.columns if c not in head]
+
+
+def written_columns(df: pd.DataFrame) -> list[str]:
+    """The columns a points file gets: :func:`ordered_columns` without the window's
+    internal file row (:data:`FILE_ROW`)."""
+    return [c for c in ordered_columns(df) if c != FILE_ROW]

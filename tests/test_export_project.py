@@ -92,3 +92,16 @@ def test_bad_project_files(tmp_path):
     con.close()
     with pytest.raises(InputError, match="not a Wakeline project"):
         load_project(other)
+
+
+def test_the_window_s_file_row_is_never_written(tmp_path):
+    """The window keeps each point's file row (wl_row) for Export ▸ As it came in; the
+    canonical and the reviewed-tracks exports wrote it as a column (review)."""
+    from wakeline.core.export_review import export_tracks_csv
+
+    pts = simulate.demo_scene(seed=1).head(50)
+    pts = pts.assign(wl_row=range(len(pts)))
+    for write in (export_csv, export_tracks_csv):
+        out = tmp_path / f"{write.__name__}.csv"
+        write(pts, out)
+        assert "wl_row" not in out.read_text().splitlines()[0]
