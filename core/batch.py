@@ -484,6 +484,13 @@ def _read_pieces(sn, read: dict, sink, scratch: Path) -> tuple[pd.DataFrame, lis
             res = read_points(piece_file, **{**read, "delimiter": sn.delimiter})
         except InputError as exc:
             raise InputError(str(exc).replace(str(piece_file), str(sn.path))) from None
+        clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
+        placed = any("hour the clock change" in w for w in res.report.get("warnings", []))
+        if clock.any() or placed:
+            # A repeated hour is placed by each track's order over the whole file.
+            from wakeline.core.io.reader import WholeFileNeeded
+
+            raise WholeFileNeeded
         sink(res.points)
         if len(res.quarantine):
             quarantines.append(res.quarantine.assign(line=res.quarantine["line"] + offset))
@@ -506,7 +513,12 @@ def _import_file(
     import pyarrow.parquet as pq
 
     from wakeline.core.io import read_points, resolve, sniff
-    from wakeline.core.io.reader import StreamFallback, parse_zone, stream_points
+    from wakeline.core.io.reader import (
+        StreamFallback,
+        WholeFileNeeded,
+        parse_zone,
+        stream_points,
+    )
 
     root, src = Path(stage), Path(path)
     scratch = root / f"file-{file_no:06d}"
@@ -545,10 +557,21 @@ def _import_file(
                     zone = parse_zone(read["tz"])
                     res = stream_points(sn, cols, sink, read["sensor"], zone, read["tz"])
                     q, warnings = res.quarantine, res.report.get("warnings", [])
+                except WholeFileNeeded:  # the repeated hour of a clock change
+                    forget()
+                    res = read_points(readable, **read)
+                    sink(res.points)
+                    q, warnings = res.quarantine, res.report.get("warnings", [])
                 except StreamFallback:
                     forget()
             if q is None:
-                q, warnings = _read_pieces(sn, read, sink, scratch / "pieces")
+                try:
+                    q, warnings = _read_pieces(sn, read, sink, scratch / "pieces")
+                except WholeFileNeeded:
+                    forget()
+                    res = read_points(readable, **read)
+                    sink(res.points)
+                    q, warnings = res.quarantine, res.report.get("warnings", [])
     except InputError as exc:
         raise InputError(str(exc).replace(str(readable), str(src))) from None
     except (OSError, EOFError) as exc:  # a gzip cut short, met by the streamed reader

@@ -489,3 +489,27 @@ def test_batch_reads_csv_as_import_does(tmp_path, case):
     assert res.report["rows_read"] == 600
     assert res.report["quarantined"] == (0 if case == "unix_seconds" else 1)
     assert res.report["steps"]["clean"]["rows_out"] == len(_rows(tmp_path / "c.csv"))
+
+
+@pytest.mark.parametrize("quoted", [False, True])
+def test_a_clock_change_s_repeated_hour_is_read_over_the_whole_file(tmp_path, monkeypatch, quoted):
+    """Local times with --tz through the autumn clock change: the repeated hour is placed
+    by each track's order over the whole file. Read piece by piece, a track whose two
+    passes lay in two pieces was quarantined (review: 34 of 120 rows); now such a file is
+    read whole, as `wakeline clean` reads it."""
+    from wakeline.core.io import read_points, reader
+
+    rows = ["batch,time,lon,lat"]
+    t = pd.Timestamp("2024-10-27 00:30:00", tz="UTC")
+    for k in range(120):
+        local = (t + pd.Timedelta(minutes=k)).tz_convert("Europe/Oslo").tz_localize(None)
+        batch = '"A"' if quoted else "A"
+        rows.append(f"{batch},{local:%Y-%m-%d %H:%M:%S},{10 + k * 1e-3:.4f},55.0")
+    src = tmp_path / "dst.csv"
+    src.write_text("\n".join(rows) + "\n")
+    whole = read_points(src, tz="Europe/Oslo")
+    assert len(whole.points) == 120 and len(whole.quarantine) == 0
+    monkeypatch.setattr(reader, "STREAM_BYTES", 2000)
+    opts = BatchOptions(threads=1, tz="Europe/Oslo")
+    res = run_batch(Pipeline.default(), [src], tmp_path / "out", opts)
+    assert res.report["rows_read"] == 120 and res.report["quarantined"] == 0

@@ -1071,7 +1071,7 @@ def _to_canonical(
             flag(outside, "time outside 1677-2262 (more than a ns clock holds)")
         if "ambiguous" in counted:
             if counted.get("_streaming"):
-                raise StreamFallback  # a track's two passes may lie in two pieces
+                raise WholeFileNeeded  # a track's two passes may lie in two pieces
             track = text["batch"].codes.astype("int64")
             if "sensor" in text:
                 track = track * (len(text["sensor"].names) + 1) + text["sensor"].codes
@@ -1333,6 +1333,12 @@ def inspect_file(
 
 class StreamFallback(Exception):
     """The streamed import met something only the whole-file reader handles."""
+
+
+class WholeFileNeeded(StreamFallback):
+    """... and that no reading in pieces handles either: rows whose reading depends on
+    rows anywhere else in the file (a clock change's repeated hour: a track's two passes
+    may lie in two pieces)."""
 
 
 _Fallback = StreamFallback
