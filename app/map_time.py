@@ -320,6 +320,8 @@ class TimeController(QtCore.QObject):
         if gen != self._gen:
             return
         self.overlay.set_scene(scene if scene.index.n_tracks else None)
+        if scene.relative != self.panel._relative and self.panel.time_window() is not None:
+            self.panel.set_time_window(None)  # a window on the other clock cut everything
         self.panel.set_range(scene.index.bounds(), scene.relative)
         self._draw(self.panel.time())
         self.scene_ready.emit()
@@ -342,13 +344,16 @@ class TimeController(QtCore.QObject):
         """Cut every visible layer to the panel's window (or restore it) in a worker.
         A layer is cut again when the window or its data changed, or when the window
         redrew it from its full data meanwhile."""
-        win = self.panel.time_window()
+        window = self.panel.time_window()
         canvas = self.window.canvas
         view, size = canvas.current_view(), canvas.plot_size_px()
         for lid, (data, source) in originals.items():
             old = self._filtered.get(lid)
             if lid not in canvas.layer_names():
                 continue
+            # A layer on the other clock (scene times beside dates) is never cut.
+            same_clock = data.geometry.relative == self.panel._relative
+            win = window if same_clock else None
             shown = canvas.draw_data(lid).geometry
             if old is None and win is None:
                 continue  # never cut: the canvas shows the full layer

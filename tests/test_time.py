@@ -219,9 +219,18 @@ def test_dates_and_scene_times_open_together_the_slider_follows_the_active_layer
     window.select_layer(window.layer_id("abs.csv"))
     qtbot.waitUntil(lambda: panel._lo >= t0 and not window.time_controller.busy, timeout=10_000)
     assert panel._hi - panel._lo < 3600 and "1970" not in panel.time_label.text()
-    window.select_layer(window.layer_id("rel.csv"))
+    # A time window on the date clock cuts only the layers on it (review: the scene-time
+    # layer was cut to nothing, and the window stayed on after the slider changed clock).
+    rel, ab = window.layer_id("rel.csv"), window.layer_id("abs.csv")
+    shown = lambda lid: len(window.canvas.draw_data(lid).geometry.lon)  # noqa: E731
+    full = shown(rel), shown(ab)
+    panel.set_time_window((t0, t0 + 800))
+    qtbot.waitUntil(lambda: not window.time_controller.busy and shown(ab) < full[1], timeout=10_000)
+    assert shown(rel) == full[0]
+    window.select_layer(rel)
     qtbot.waitUntil(lambda: panel._hi < 3600 and not window.time_controller.busy, timeout=10_000)
-    assert panel.time_label.text().startswith("T+")
+    assert panel.time_label.text().startswith("T+") and panel.time_window() is None
+    qtbot.waitUntil(lambda: shown(ab) == full[1], timeout=10_000)
 
 
 @pytest.mark.gui
