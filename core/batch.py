@@ -260,26 +260,20 @@ PIECES = 1 << 24
 
 # -- pass 1 on CSV inputs: the importer, piece by piece -------------------------------------
 
-#: First bytes of the compressed files batch reads (gzip: the importer opens it itself;
-#: the others are decompressed into the stage folder, one file at a time per task).
-_MAGIC = (
-    (b"\x1f\x8b", "gzip"),
-    (b"BZh", "bz2"),
-    (b"\xfd7zXZ\x00", "xz"),
-    (b"\x28\xb5\x2f\xfd", "zstd"),
-    (b"PK\x03\x04", "zip"),
-    (b"PK\x05\x06", "zip"),
-)
 #: Decompressed bytes read to estimate a compressed input's size (its number of buckets).
 _ESTIMATE_BYTES = 4 << 20
 
 
 def compression_of(path: Path) -> str | None:
     """``gzip``, ``bz2``, ``xz``, ``zstd``, ``zip`` or None, from the file's first bytes
-    (the name does not matter, as for the importer's gzip)."""
+    (the name does not matter, as for the importer's gzip; the importer's own test)."""
+    from wakeline.core.io.sniff import packed_kind
+
     with open(path, "rb") as fh:
-        head = fh.read(8)
-    return next((kind for magic, kind in _MAGIC if head.startswith(magic)), None)
+        kind = packed_kind(fh.read(16))
+    if kind == "7z":
+        raise InputError(f"{path}: a 7z archive; unpack it (7z x FILE) and give the CSV files")
+    return kind
 
 
 @contextlib.contextmanager

@@ -56,15 +56,25 @@ def _read_sample(path: Path) -> tuple[bytes, str | None]:
                 "was imported. The copy is probably incomplete: copy the file again, or "
                 "decompress what is there (gzip -dc FILE > part.csv) and import that"
             ) from None
-    kind = next((k for magic, k in _PACKED if head.startswith(magic)), None)
-    if kind == "bz2" and head[4:10] != b"1AY&SY":  # a text starting "BZh": its block magic
-        kind = None
+    kind = packed_kind(head)
     if kind is not None:
+        batch = "; `wakeline batch` reads it as it is" if kind != "7z" else ""
         raise InputError(
             f"{path}: compressed ({kind}); Wakeline opens text files and gzip. Decompress it first "
-            f"({_UNPACK[kind]}) and open the CSV; `wakeline batch` reads it as it is"
+            f"({_UNPACK[kind]}) and open the CSV{batch}"
         )
     return head, None
+
+
+def packed_kind(head: bytes) -> str | None:
+    """The compressed format a file's first bytes show (``gzip``, ``bz2``, ``xz``,
+    ``zstd``, ``zip``, ``7z``), or None for text."""
+    if head[:2] == b"\x1f\x8b":
+        return "gzip"
+    kind = next((k for magic, k in _PACKED if head.startswith(magic)), None)
+    if kind == "bz2" and head[4:10] != b"1AY&SY":  # a text starting "BZh": its block magic
+        return None
+    return kind
 
 
 #: First bytes of the compressed formats the importer does not open itself (gzip it does).
