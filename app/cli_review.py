@@ -53,7 +53,7 @@ def read_table(path: Path, what: str) -> pd.DataFrame:
     try:
         with open(path, encoding="utf-8-sig", newline="") as fh:
             reader = csv.reader(fh)
-            header = next(reader, None)
+            header = next((row for row in reader if row), None)  # blank lines skipped
             for row in reader:  # a few thousand proposals at most
                 if row and len(row) != len(header):
                     raise InputError(
