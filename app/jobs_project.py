@@ -96,7 +96,7 @@ class ProjectJobsMixin:
     def save_project(self, path: Path) -> None:
         """Save the session to ``path`` (in the background) and keep it up to date."""
         self.project.save_as(Path(path), {"view": self.canvas.vb.viewRange()})
-        self.retranslate()
+        self.update_title()  # not every text: the axes' labels relaid the map (~100 ms)
 
     def open_project(self, path: Path) -> int:
         """Open a project in the worker; the current session stays as it is unless the
@@ -149,7 +149,7 @@ class ProjectJobsMixin:
         if sel:  # applied once the layers are drawn (one per event-loop turn)
             self._make_current = sel[0][0]
             self._restore_selection = [(s, b) for _, s, b in sel]
-        self.retranslate()
+        self.update_title()
         self._fit_after_draw = plan is None
         if proj.read_only:
             ro = self.tr("the project file is read-only: it opens read-only, changes are not saved")

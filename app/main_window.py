@@ -187,8 +187,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
 
     # -- texts ---------------------------------------------------------------------
 
-    def retranslate(self) -> None:
-        """Set every visible text (called again when the language changes)."""
+    def update_title(self) -> None:
+        """The window title: the project file and whether it is read-only or unsaved."""
         title = self.tr("Wakeline")
         if self.project.path is not None:
             title += f" — {self.project.path.name}"
@@ -197,6 +197,10 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             if self.project.dirty:
                 title += " " + self.tr("[not saved]")
         self.setWindowTitle(title)
+
+    def retranslate(self) -> None:
+        """Set every visible text (called again when the language changes)."""
+        self.update_title()
         retranslate(self)
         self.detail.retranslate()
         self.params.retranslate()
@@ -277,7 +281,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     def _save_failed(self, message: str) -> None:
         text = self.tr("Saving the project failed: {0}").format(message)
         self.log_message(f"{self.tr('Error')}: {text}")
-        self.retranslate()
+        self.update_title()
         QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt API
