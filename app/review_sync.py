@@ -179,18 +179,21 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
         )
         return None
     layers = w.session.layers
-    for i in ids:  # a layer and one made from it: the same points twice
-        up = next((a for a in w.session.ancestors(i) if a in ids), None)
-        if up is not None:
+    seen: dict[str, str] = {}  # source layer -> the first selected layer made from it
+    for i in ids:  # two layers from one file (one made from the other, or two results)
+        shared = w.session.sources_of(i) & set(seen)
+        if shared:
+            src = min(shared)
             QtWidgets.QMessageBox.information(
                 w,
                 tr("Fuse selected layers"),
-                tr("{0} is made from {1}: fusing both would count its points twice. "
-                   "Select one of them (Ctrl+click to unselect).").format(
-                    layers[i].name, layers[up].name
+                tr("{0} and {1} both come from {2}: fusing them would count its points "
+                   "twice. Select one of them (Ctrl+click to unselect).").format(
+                    layers[seen[src]].name, layers[i].name, layers[src].name
                 ),
             )  # fmt: skip
             return None
+        seen.update(dict.fromkeys(w.session.sources_of(i), i))
     named = [(Path(layers[i].name).stem, layers[i].points) for i in ids]
     params = w.step_params("fuse")
     canvas_view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()

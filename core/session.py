@@ -163,6 +163,23 @@ class Session:
             return layer.parent
         return layer_id
 
+    def sources_of(self, layer_id: str) -> set[str]:
+        """The imported layers whose points ``layer_id`` holds (several for a fused layer:
+        every input's)."""
+        layer, out, todo, seen = None, set(), [layer_id], set()
+        while todo:
+            lid = todo.pop()
+            if lid in seen or lid not in self.layers:
+                continue
+            seen.add(lid)
+            layer = self.layers[lid]
+            up = [i for i in (layer.inputs or [layer.parent]) if i in self.layers]
+            if up:
+                todo.extend(up)
+            else:
+                out.add(lid)
+        return out
+
     def root(self, layer_id: str) -> Layer:
         """The imported layer a result descends from (itself for a source)."""
         up = self.ancestors(layer_id)

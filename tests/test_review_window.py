@@ -520,3 +520,10 @@ def test_a_step_selects_only_its_layer_and_fuse_refuses_a_layer_with_its_own_cop
     w.actions_["fuse"].trigger()
     _settle(w)
     assert len(w.layers) == n and "would count its points twice" in said[-1]
+    # Two results of one file (the cleaned AIS and the fused layer made from it) neither.
+    w.layer_list.clearSelection()
+    for lid in (cleaned, fused.id):
+        w.layer_list.item(w.layer_row(lid)).setSelected(True)
+    w.actions_["fuse"].trigger()
+    _settle(w)
+    assert len(w.layers) == n and "both come from" in said[-1]

@@ -55,6 +55,7 @@ def test_layers_by_id_with_lineage_and_rerun_replaces_only_its_own(scene):
     assert s.step_input(comp_cln[0].id) == cleaned.id
     assert s.step_input(cleaned.id) == cleaned.id and s.step_input(a.id) == a.id
     assert s.ancestors(comp_cln[-1].id) == [cleaned.id, a.id] and s.ancestors(a.id) == []
+    assert s.sources_of(comp_cln[-1].id) == {a.id} and s.sources_of(a.id) == {a.id}
     # Results of a second input coexist.
     s.apply_result(b.id, s.run_step(b.id, "clean"))
     assert (

@@ -861,8 +861,8 @@
         <translation>在图层列表中选择两个或更多图层（Ctrl+单击），例如雷达和 AIS。</translation>
     </message>
     <message>
-        <source>{0} is made from {1}: fusing both would count its points twice. Select one of them (Ctrl+click to unselect).</source>
-        <translation>{0} 由 {1} 生成：同时融合两者会把其中的点计算两次。请只选择其中一个（Ctrl+单击可取消选择）。</translation>
+        <source>{0} and {1} both come from {2}: fusing them would count its points twice. Select one of them (Ctrl+click to unselect).</source>
+        <translation>{0} 和 {1} 都来自 {2}：融合它们会把其中的点计算两次。请只选择其中一个（Ctrl+单击可取消选择）。</translation>
     </message>
     <message>
         <source>an input layer was removed; result dropped</source>
