@@ -368,7 +368,7 @@ def describe_layout(
     else:
         res = resolve(sn.columns, fmt, mapping, source=str(path))
         columns_of, name = res.columns, res.format.name
-    tz = tz or report.get("tz")
+    tz = tz or report.get("tz") or report.get("time_zone")  # the import report says time_zone
     head = _raw_head(path, sn.compression)
     bom = head.startswith(b"\xef\xbb\xbf")
     cut = head.rfind(b"\n")
