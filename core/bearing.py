@@ -1034,6 +1034,13 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
             v = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
             flag((text != "").to_numpy() & ~(np.abs(v) <= lim), f"{col} out of range or unreadable")
             obs[col] = v
+    # A second bearing of one batch at one time (a line logged twice, two detections in
+    # one camera frame): the first is kept, the others are quarantined, not the file.
+    sound = np.flatnonzero((reason == "") & ~blank)
+    again = pd.DataFrame({"b": batch.to_numpy()[sound], "t": ns[sound]}).duplicated()
+    repeated = np.zeros(n, dtype=bool)
+    repeated[sound[again.to_numpy()]] = True
+    flag(repeated, "repeated time in its batch (one bearing per time)")
     keep = (reason == "") & ~blank
     quarantine = pd.DataFrame(
         {
