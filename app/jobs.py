@@ -16,6 +16,7 @@ from wakeline.app.dialogs import summarize
 from wakeline.app.jobs_import import ImportJobsMixin
 from wakeline.app.jobs_project import ProjectJobsMixin
 from wakeline.app.layer_view import prepare_view_apart
+from wakeline.app.window_words import window_words
 from wakeline.app.worker import Cancelled, Failed, Finished, Progress, Started
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, Pipeline, StepResult
@@ -225,7 +226,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self.log_message(msg.detail)
             title = self.tr("{0} failed").format(msg.name)
             if getattr(self, "interactive", True):
-                QtWidgets.QMessageBox.warning(self, title, msg.message)
+                QtWidgets.QMessageBox.warning(self, title, window_words(msg.message))
             else:  # a screenshot run: nobody to close a dialog; say it and go on
                 print(f"wakeline: {title}: {msg.message}", file=sys.stderr)
         elif isinstance(msg, Cancelled):
@@ -244,7 +245,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             for text in done[2]:
                 self.log_message(f"{self.tr('Error')}: {text}")
             if done[2]:
-                QtWidgets.QMessageBox.warning(self, self.tr("Cannot open file"), "\n".join(done[2]))
+                text = window_words("\n".join(done[2]))
+                QtWidgets.QMessageBox.warning(self, self.tr("Cannot open file"), text)
         elif kind == "step":
             _, lid, result, views, params = done
             self._apply_step(lid, result, views, params)

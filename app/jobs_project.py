@@ -95,7 +95,12 @@ class ProjectJobsMixin:
 
     def save_project(self, path: Path) -> None:
         """Save the session to ``path`` (in the background) and keep it up to date."""
-        self.project.save_as(Path(path), {"view": self.canvas.vb.viewRange()})
+        ok, note = self.project.save_as(Path(path), {"view": self.canvas.vb.viewRange()})
+        if note:
+            self.log_message(f"{self.tr('Warning') if ok else self.tr('Error')}: {note}")
+        if not ok:
+            QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), note)
+            return
         self.update_title()  # not every text: the axes' labels relaid the map (~100 ms)
 
     def open_project(self, path: Path) -> int:
@@ -144,7 +149,7 @@ class ProjectJobsMixin:
             proj.to_session(self.session)
         finally:
             self._view_planned = False
-        self.project.follow(path, proj.read_only)
+        lock_note = self.project.follow(path, proj.read_only)
         sel = [r for r in proj.selection if r[0] in self.session.layers]
         if sel:  # applied once the layers are drawn (one per event-loop turn)
             self._make_current = sel[0][0]
@@ -154,6 +159,10 @@ class ProjectJobsMixin:
         if proj.read_only:
             ro = self.tr("the project file is read-only: it opens read-only, changes are not saved")
             warnings = [ro, *warnings]
+        elif lock_note and self.project.read_only:  # open in another window or process
+            warnings = [lock_note, *warnings]
+        elif lock_note:  # a stale lock (a crash) taken over: the log is enough
+            self.log_message(f"{self.tr('Note')}: {lock_note}")
         for w in warnings + problems:
             self.log_message(f"{self.tr('Warning')}: {w}")
         if warnings or problems:

@@ -36,6 +36,7 @@ from wakeline.app.review_dock import ReviewDock
 from wakeline.app.time_panel import install_time
 from wakeline.app.window_layers import EMPTY, LayersMixin
 from wakeline.app.window_selection import SelectionMixin
+from wakeline.app.window_words import window_words
 from wakeline.app.worker import JobRunner
 from wakeline.core.session import Session
 from wakeline.resources import coastline_path
@@ -271,7 +272,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         )
 
     def log_message(self, text: str) -> None:
-        self.log.appendPlainText(text)
+        self.log.appendPlainText(window_words(text))
 
     def _show_cursor(self, lon: float, lat: float) -> None:
         self.cursor_label.setText(
@@ -285,6 +286,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt API
+        if self.project.unsaved and not self._close_read_only():
+            event.ignore()
+            return
         self.settings.setValue("geometry", self.saveGeometry())
         self.settings.setValue("state", self.saveState())
         self.runner.cancel()
@@ -293,6 +297,26 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.lod_worker.wait(5000)
         self.project.detach()
         super().closeEvent(event)
+
+    def _close_read_only(self) -> bool:
+        """A read-only project (open elsewhere, or not writable) was changed: offer Save
+        as before closing. False keeps the window open."""
+        buttons = QtWidgets.QMessageBox.StandardButton
+        answer = QtWidgets.QMessageBox.question(
+            self,
+            self.tr("Changes not saved"),
+            self.tr(
+                "This project was opened read-only, so the changes made since are not in "
+                "any file. Save them as a new project before closing?"
+            ),
+            buttons.Save | buttons.Discard | buttons.Cancel,
+        )
+        if answer == buttons.Cancel:
+            return False
+        if answer == buttons.Save:
+            self.save_project_dialog()
+            return not self.project.unsaved
+        return True
 
 
 __all__ = ["MainWindow", "format_dms", "maneuver_table", "Path", "EMPTY"]

@@ -5,6 +5,10 @@ the core's :class:`~wakeline.core.project.ProjectWriter` thread: a new or replac
 writes its Parquet once; visibility, order, selection, view and parameters are small rows.
 A failed write is never silent: :attr:`failed` carries the message to the window (a
 dialog, the log, and the title marked unsaved).
+
+One writer per file: the controller holds the project's lock
+(:mod:`wakeline.core.project_lock`) while it follows it; a project another window or
+process holds opens read-only, and "Save as" onto it is refused.
 """
 
 from pathlib import Path
@@ -12,6 +16,7 @@ from pathlib import Path
 from PySide6 import QtCore
 
 from wakeline.core.project import ProjectWriter, save_project
+from wakeline.core.project_lock import ProjectLocks
 from wakeline.core.session import Session
 
 
@@ -25,6 +30,10 @@ class ProjectController(QtCore.QObject):
         self.path: Path | None = None
         self.read_only = False
         self.dirty = False
+        self.locked_by: str | None = None  # who holds the file this window follows read-only
+        self.unsaved = False  # changes made while following a read-only file
+        self.locks = ProjectLocks()
+        self._held: Path | None = None  # the path whose lock the current writer holds
         self.writer: ProjectWriter | None = None
         self._draining: list[ProjectWriter] = []  # released, still writing their queue
         self._error.connect(self._on_error)
@@ -32,9 +41,16 @@ class ProjectController(QtCore.QObject):
 
     # -- attaching ----------------------------------------------------------------
 
-    def save_as(self, path: Path, state: dict | None = None) -> None:
-        """Write the whole session to ``path`` (in the writer thread), then follow it."""
+    def save_as(self, path: Path, state: dict | None = None) -> tuple[bool, str]:
+        """Write the whole session to ``path`` (in the writer thread), then follow it.
+        Returns (False, why) when another window or process holds ``path`` (the current
+        file is still followed), else (True, note) — the note says a stale lock was taken
+        over, or is empty."""
+        ok, note = self.locks.acquire(path)
+        if not ok:
+            return False, f"{path} is open in {note}: save it under another name"
         self.release()
+        self._held = Path(path)
         snapshot = Session()
         snapshot.layers = dict(self.session.layers)
         snapshot.sources = list(self.session.sources)
@@ -42,14 +58,26 @@ class ProjectController(QtCore.QObject):
         snapshot.selection = list(self.session.selection)
         snapshot.decisions = list(self.session.decisions)
         self._attach(Path(path), read_only=False)
-        self.writer.submit_file(lambda p: save_project(snapshot, p, state))
+        token = self.locks.token
+        self.writer.submit_file(lambda p: save_project(snapshot, p, state, lock_token=token))
+        return True, note
 
-    def follow(self, path: Path, read_only: bool) -> None:
-        """Continue writing to an opened project (nothing when it is read-only)."""
+    def follow(self, path: Path, read_only: bool) -> str | None:
+        """Continue writing to an opened project (nothing when it is read-only). When
+        another window or process holds it, it is followed read-only: the return value
+        says who holds it (or that a stale lock was taken over), else None."""
         self.release()
+        note = None
+        if not read_only:
+            ok, note = self.locks.acquire(path)
+            if not ok:
+                read_only, self.locked_by = True, note
+                note = f"the project is open in {note}: it opens read-only, changes are not saved"
         self.path, self.read_only, self.dirty = Path(path), read_only, False
         if not read_only:
+            self._held = Path(path)
             self._attach(Path(path), read_only=False)
+        return note or None
 
     def _attach(self, path: Path, read_only: bool) -> None:
         """A writer for ``path``. Its first task waits (in its own thread, never the
@@ -66,10 +94,15 @@ class ProjectController(QtCore.QObject):
         own thread (a Save as right after a step waited 0.2–1 s for it on the GUI thread);
         the next writer waits for it."""
         previous, self.writer = self.writer, None
+        held, self._held = self._held, None
         if previous is not None:
+            if held is not None:  # the lock goes once the queue is written
+                previous.submit_file(lambda _p: self.locks.release(held))
             previous.finish()
             self._draining = [w for w in self._draining if w.busy()] + [previous]
-        self.path, self.read_only = None, False
+        elif held is not None:
+            self.locks.release(held)
+        self.path, self.read_only, self.locked_by, self.unsaved = None, False, None, False
 
     def detach(self, timeout: float = 30.0) -> None:
         """Stop following the file once everything queued is written, the released
@@ -80,7 +113,9 @@ class ProjectController(QtCore.QObject):
         for writer in self._draining:
             writer.wait(timeout)
         self._draining = []
-        self.path, self.read_only = None, False
+        self.locks.release_all()
+        self._held = None
+        self.path, self.read_only, self.locked_by, self.unsaved = None, False, None, False
 
     def flush(self, timeout: float = 30.0) -> bool:
         return self.writer.flush(timeout) if self.writer is not None else True
@@ -97,6 +132,7 @@ class ProjectController(QtCore.QObject):
 
     def _on_event(self, event: str, layer_id: str) -> None:
         if self.writer is None:
+            self.unsaved = self.unsaved or self.path is not None
             return
         layer = self.session.layers.get(layer_id)
         if event in ("added", "changed") and layer is not None:
@@ -123,6 +159,7 @@ class ProjectController(QtCore.QObject):
         self._submit(lambda st: st.put_params(params))
 
     def add_decision(self, decision: dict) -> None:
+        self.unsaved = self.unsaved or (self.writer is None and self.path is not None)
         self._submit(lambda st: st.add_decision(decision))
 
     def _on_error(self, message: str) -> None:

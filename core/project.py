@@ -32,6 +32,7 @@ import pyarrow.parquet as pq
 from wakeline.core import __version__
 from wakeline.core.errors import InputError
 from wakeline.core.io.writer import atomic_path
+from wakeline.core.project_lock import read_holder
 from wakeline.core.session import Layer, Session, Source
 
 SCHEMA_VERSION = 2
@@ -241,8 +242,18 @@ class ProjectStore:
             self.add_decision(d)
 
 
-def save_project(session: Session | Project, path: str | Path, state: dict | None = None) -> None:
-    """Write a complete project to ``path`` atomically (Save as)."""
+def save_project(
+    session: Session | Project,
+    path: str | Path,
+    state: dict | None = None,
+    lock_token: str | None = None,
+) -> None:
+    """Write a complete project to ``path`` atomically (Save as). Refused (InputError)
+    when another window or process holds ``path`` (its lock file, see
+    :mod:`wakeline.core.project_lock`), unless ``lock_token`` is that holder's."""
+    holder = read_holder(path)
+    if holder is not None and holder.token != lock_token and holder.alive() is not False:
+        raise InputError(f"{path} is open in {holder.describe()}: save it under another name")
     if isinstance(session, Project):
         session = session.to_session()
     with atomic_path(path) as tmp:

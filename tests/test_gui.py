@@ -1,6 +1,7 @@
 """GUI tests (pytest-qt, offscreen): the main window on the core engine."""
 
 import json
+import os
 import time
 
 import numpy as np
@@ -18,6 +19,7 @@ from wakeline.app.map_canvas import nan_separated  # noqa: E402
 from wakeline.app.worker import Cancelled, Finished, JobRunner  # noqa: E402
 from wakeline.core import simulate  # noqa: E402
 from wakeline.core.io import read_points, write_points  # noqa: E402
+from wakeline.core.project import load_project  # noqa: E402
 from wakeline.resources import demo_path, translations_dir  # noqa: E402
 
 pytestmark = pytest.mark.gui
@@ -193,6 +195,50 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     assert list(w3.layers) == before and w3.project.path == proj
     w2.close()
     w3.close()
+
+
+def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch):
+    """Operator test: both windows numbered their new layer L2 and one's was lost. The
+    second window opens the project read-only, says who holds it, refuses Save as onto
+    it, and offers Save as when closed with changes."""
+    shown, asked = [], []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+    monkeypatch.setattr(QtWidgets.QMessageBox, "question", lambda *a: asked.append(a[2]))
+    src = tmp_path / "scene.csv"
+    write_points(simulate.demo_scene(), src)
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    a, b = MainWindow(settings), MainWindow(settings)
+    qtbot.addWidget(a)
+    qtbot.addWidget(b)
+    load(a, src)
+    proj = tmp_path / "work.wakeline"
+    a.save_project(proj)
+    a.project.flush()
+    b.open_project(proj)
+    wait_for_jobs(b)
+    assert b.project.read_only and "read-only" in b.windowTitle()
+    assert shown and f"process {os.getpid()}" in shown[-1] and "read-only" in shown[-1]
+    a.run_step("clean")
+    wait_for_jobs(a)
+    b.run_step("compress")
+    wait_for_jobs(b)
+    b.save_project(proj)  # onto the file the other window holds: refused, nothing written
+    assert "save it under another name" in shown[-1] and b.project.path == proj
+    a.project.flush()
+    assert [lay.kind for lay in load_project(proj).layers] == ["source", "cleaned"]
+    b.close()  # changed while read-only: Save as is offered
+    assert asked and "read-only" in asked[-1]
+    a.close()
+    assert not (tmp_path / "work.wakeline.lock").exists()
+    c = MainWindow(settings)  # once both are closed the project opens writable
+    qtbot.addWidget(c)
+    c.open_project(proj)
+    wait_for_jobs(c)
+    assert not c.project.read_only and [lay.kind for lay in c.layers.values()] == [
+        "source",
+        "cleaned",
+    ]
+    c.close()
 
 
 def test_parameters_panel_refuses_bad_values_and_round_trips_presets(window, tmp_path):
@@ -474,3 +520,22 @@ def test_screenshot_of_a_file_that_does_not_load_ends_with_an_error(qtbot, tmp_p
     assert run([empty], screenshot=tmp_path / "x.png") == 2
     assert time.perf_counter() - started < 60
     assert "the file is empty" in capsys.readouterr().err
+
+
+def test_window_messages_name_the_import_dialog_not_cli_flags(window, write):
+    """Operator test: a log warning told a window user to 'give the zone with --tz'."""
+    from wakeline.app.window_words import window_words
+
+    rows = ["batch,本地时间,lon,lat"] + [
+        f"1,2023-05-01 10:{k:02d}:00,{10 + k * 1e-3:.3f},55" for k in range(20)
+    ]
+    load(window, write("local.csv", "\n".join(rows) + "\n"))
+    log = window.log.toPlainText()
+    assert "read as UTC" in log and "Time zone field" in log and "--tz" not in log
+    for text in (
+        "map it: --map batch=COLUMN, or --map sensor=COLUMN",
+        "x.csv: cannot decode; choose the file's encoding (--encoding, e.g. gb18030)",
+        "use --tz Europe/Oslo or --delimiter ';'",
+    ):
+        assert "--" not in window_words(text), window_words(text)
+    assert window_words("a value -- not a flag") == "a value -- not a flag"

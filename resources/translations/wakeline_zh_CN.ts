@@ -260,6 +260,26 @@
         <translation>无法打开工程</translation>
     </message>
     <message>
+        <source>Project not saved</source>
+        <translation>工程未保存</translation>
+    </message>
+    <message>
+        <source>Saving the project failed: {0}</source>
+        <translation>保存工程失败：{0}</translation>
+    </message>
+    <message>
+        <source>Note</source>
+        <translation>提示</translation>
+    </message>
+    <message>
+        <source>Changes not saved</source>
+        <translation>更改未保存</translation>
+    </message>
+    <message>
+        <source>This project was opened read-only, so the changes made since are not in any file. Save them as a new project before closing?</source>
+        <translation>此工程以只读方式打开，之后的更改未写入任何文件。关闭前另存为新工程吗？</translation>
+    </message>
+    <message>
         <source>Project opened with warnings</source>
         <translation>工程已打开（有警告）</translation>
     </message>

@@ -1,0 +1,48 @@
+"""The engine's messages speak of command-line flags (``--tz``, ``--map``, ``--encoding``);
+in the window the same advice names the import dialog's fields (operator test: a log
+warning told a window user to "give the zone with --tz")."""
+
+import re
+
+# Whole phrases first (they read best), then any flag left over.
+_PHRASES = (
+    (
+        "give the zone with --tz (e.g. --tz Asia/Shanghai or --tz +08:00)",
+        "choose the zone in the import dialog's Time zone field (File ▸ Open tracks…; "
+        "e.g. Asia/Shanghai or +08:00)",
+    ),
+    (
+        "map it: --map batch=COLUMN, or --map sensor=COLUMN",
+        "map it to batch or sensor in the import dialog's Column mapping (File ▸ Open tracks…)",
+    ),
+    (
+        "with --encoding (e.g. gb18030, utf-16, latin-1)",
+        "in the import dialog's Encoding field (File ▸ Open tracks…; e.g. gb18030, utf-16, "
+        "latin-1)",
+    ),
+    (
+        "(--encoding, e.g. gb18030, utf-16, latin-1)",
+        "(the import dialog's Encoding field, File ▸ Open tracks…; e.g. gb18030, utf-16, latin-1)",
+    ),
+    ("give the right --encoding", "choose the right Encoding in the import dialog"),
+    ("give --encoding utf-16", "choose the Encoding utf-16 in the import dialog"),
+    ("map columns with --map field=column", "map the columns in the import dialog"),
+)
+_FIELDS = {
+    "tz": "Time zone",
+    "map": "Column mapping",
+    "encoding": "Encoding",
+    "format": "Layout",
+    "sensor": "Sensor",
+    "delimiter": "Layout",
+}
+_FLAG = re.compile(r"--(" + "|".join(_FIELDS) + r")\b(?:[ =](?!-)[^\s,;:)]+)?")
+
+
+def window_words(text: str) -> str:
+    """``text`` with command-line flags replaced by the import dialog's fields."""
+    if "--" not in text:
+        return text
+    for cli, window in _PHRASES:
+        text = text.replace(cli, window)
+    return _FLAG.sub(lambda m: f"the import dialog's {_FIELDS[m.group(1)]} field", text)
