@@ -312,6 +312,33 @@ def test_a_unix_time_cut_short_is_quarantined_not_read_as_1970(tmp_path):
     assert len(pd.read_csv(tmp_path / "o.csv")) == 300
 
 
+@pytest.mark.parametrize("fmt", ["%Y-%m-%d %H:%M:%S", "%d/%m/%Y %H:%M:%S"])
+def test_a_mistyped_year_in_text_times_is_quarantined(tmp_path, fmt):
+    """Operator test: 1700-01-01 among 2023 rows (and 2203) parsed, imported, and
+    survived clean; as with a unix number cut short, a text time decades from the file's
+    others is a quarantine row with its line — read whole, by the CLI's streamed read, and
+    a legitimate span of years (a 20-year archive) is untouched."""
+    from wakeline.app.cli import main
+
+    t0 = pd.Timestamp("2023-05-01 10:00:00")
+    times = [t0 + pd.Timedelta(minutes=k) for k in range(40)]
+    times[10] = times[10].replace(year=1700)
+    times[25] = times[25].replace(year=2203)
+    times[30] = times[30].replace(year=2004)  # 19 years earlier: a time of this archive
+    rows = ["sensor,batch,time,lon,lat"]
+    rows += [f"AIS,1,{t.strftime(fmt)},{10 + k * 1e-3:.3f},55" for k, t in enumerate(times)]
+    src = tmp_path / "years.csv"
+    src.write_text("\n".join(rows) + "\n")
+    res = read_points(src)
+    assert res.report["rows_imported"] == 38
+    assert res.quarantine["line"].tolist() == [12, 27]
+    assert res.quarantine["reason"].str.startswith("time decades away").all()
+    q = tmp_path / "q.csv"
+    assert main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 0
+    assert pd.read_csv(q)["line"].tolist() == [12, 27]
+    assert len(pd.read_csv(tmp_path / "o.csv")) == 38
+
+
 def test_unix_ms_cut_short_or_too_large_get_their_own_reason(tmp_path):
     """A millisecond file: a time cut to 9 digits is decades early; one cut to 11 digits
     (read as seconds: year 2508) and 1e22 are outside 1677-2262; none is 'unparsable'

@@ -563,6 +563,19 @@ def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray
     return ns, ok
 
 
+def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
+    """Valid times more than :data:`EARLY_BEFORE_S` from the median of the valid ones
+    (taken on at most ~100 k of them)."""
+    good = np.flatnonzero(ok)
+    if len(good) < 3:
+        return np.zeros(len(ns), dtype=bool)
+    sample = np.asarray(ns)[good[:: max(len(good) // 100_000, 1)]]
+    centre = float(np.median(sample))  # float: 1700 minus 2023 in ns overflows int64
+    return np.asarray(ok) & (
+        np.abs(np.asarray(ns, dtype="float64") - centre) > EARLY_BEFORE_S * 1e9
+    )
+
+
 _NS_LIMIT = 9_223_372_036  # whole seconds either side of 1970 an int64 of ns can hold
 _UNIT_PER_S = {"s": 1, "ms": 1_000, "us": 1_000_000, "ns": 1_000_000_000}
 
@@ -1082,6 +1095,13 @@ def _to_canonical(
         if changed is not None:
             flag(changed, f"local time skipped or repeated by a clock change in {zone}")
         flag(~time_ok, "unparsable time")
+    if str(counted.get("time_format", "")).endswith("text"):
+        # Text times: a mistyped year (1700-01-01 among 2023 rows) parses; as with numbers
+        # cut short, a time decades from the file's others is not a time of this file.
+        flag(
+            _decades_away(ns, time_ok),
+            "time decades away from the file's other times (a mistyped year?)",
+        )
 
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
     blanked: dict[str, int] = {}
