@@ -10,15 +10,17 @@ and the detector's output (``detect_with_report``) and shows
   Export… writing them as CSV;
 - the per-batch report lines (windows tested, skipped and why, smallest visible turn).
 
-:func:`bearing_line_points` gives the same lines as a points table any map layer draws
-(``MapCanvas.set_layer(name, points, color, symbols=False)``).
+:func:`bearing_line_points` gives the same lines as a points table a map layer draws
+with its gap breaking off (:func:`line_layer`): both ends of a line carry the sample's
+time, and a 20 km leg in no time is a jump the map otherwise breaks (nothing drawn).
 """
 
+import math
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.core import geo
 from wakeline.core.bearing import report_lines
@@ -26,6 +28,44 @@ from wakeline.core.io import write_csv
 from wakeline.core.schema import time_seconds
 
 from .map_canvas import MapCanvas
+from .map_draw import DrawData, LayerStyle, prepare_layer
+from .map_legend import LABEL_PADDING_PX
+
+#: Smallest width (px) of the map's plot area: the map widget's minimum is this plus its
+#: latitude axis and legend column (a dock had given the map ~200 px and its plot ~40 px).
+#: The main window at 1400 px has ~410 px left for this dock.
+MIN_PLOT_PX = 180
+#: The map's layers, as the legend names them (its column is reserved for these).
+LAYER_NAMES = ("observer", "bearing lines", "maneuvers")
+#: Smallest width (px) of the detections table and report beside (or under) the map.
+MIN_SIDE_PX = 260
+#: Relative sizes of the map and the table beside (or under) it.
+SPLIT_WEIGHTS = (3000, 2000)
+#: Stacking of the layers: the observer's track over the maneuver lines over the fan of
+#: bearing lines (which otherwise hid the track they start from).
+Z_OBSERVER, Z_MANEUVERS, Z_LINES = 2.0, 1.0, 0.0
+
+
+def legend_width(names) -> float:
+    """Width (px) of a map legend column showing ``names`` (as :class:`SideLegend` counts
+    it: the label's text in its 9-pt font, its padding, the line sample and margins)."""
+    font = QtGui.QFont()
+    font.setPointSizeF(9.0)
+    metrics = QtGui.QFontMetricsF(font)
+    text = max(metrics.horizontalAdvance(n) for n in names)
+    return math.ceil(text + LABEL_PADDING_PX + 20 + 3 + 12)
+
+
+def line_layer(
+    points: pd.DataFrame, name: str, color: str, width: float, z: float = 0.0
+) -> DrawData:
+    """A map layer of :func:`bearing_line_points`: lines only, never broken.
+
+    The map breaks a leg faster than a ship (:func:`~wakeline.app.map_lod.gap_breaks`);
+    a bearing line is a 20 km leg between two points of one time, so with the default
+    style every line lost its far end and nothing was drawn (``gaps=False``)."""
+    style = LayerStyle(width=width, symbol_size=0, z=z, gaps=False)
+    return prepare_layer(points, name, color, style=style, build_index=False)
 
 
 def bearing_line_points(
@@ -162,17 +202,46 @@ class BearingView(QtWidgets.QWidget):
         lay.addWidget(self.table, 3)
         lay.addWidget(self.export_button)
         lay.addWidget(self.log, 1)
-        split = QtWidgets.QSplitter(QtCore.Qt.Orientation.Horizontal, self)
+        side.setMinimumWidth(MIN_SIDE_PX)
+        # The map's legend column is reserved for its three short names, not for the
+        # 26 characters of a main map's layer names (230 px of a dock's width).
+        self.map.legend.widest = legend_width(LAYER_NAMES)
+        self.map.legend.updateSize()
+        # The plot area keeps MIN_PLOT_PX beside the axis and the legend column.
+        self.map.setMinimumWidth(self.map_min_width())
+        self.split = split = QtWidgets.QSplitter(QtCore.Qt.Orientation.Horizontal, self)
+        split.setChildrenCollapsible(False)
         split.addWidget(self.map)
         split.addWidget(side)
         split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
+        split.setSizes(list(SPLIT_WEIGHTS))  # relative: the map 3/5 from the first show
         outer = QtWidgets.QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
         outer.addWidget(split)
         self.bearings = pd.DataFrame()
         self.detections = pd.DataFrame()
         self._length = 20_000.0
+
+    def map_min_width(self) -> int:
+        """The map widget's minimum width: its plot area at least :data:`MIN_PLOT_PX`."""
+        axis = self.map.getAxis("left")
+        # The axis: its tick labels and title; then the plot's borders and margins.
+        chrome = axis.textWidth + axis.label.boundingRect().height() + 6
+        return math.ceil(MIN_PLOT_PX + chrome + self.map.legend.widest)
+
+    def minimumSizeHint(self) -> QtCore.QSize:  # noqa: N802 (Qt API)
+        """As narrow as the map with the table under it (:meth:`resizeEvent` puts it
+        there when the view is narrower than both side by side)."""
+        return QtCore.QSize(max(self.map.minimumWidth(), MIN_SIDE_PX), 320)
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 (Qt API)
+        wide = event.size().width() >= self.map.minimumWidth() + MIN_SIDE_PX + 8
+        want = QtCore.Qt.Orientation.Horizontal if wide else QtCore.Qt.Orientation.Vertical
+        if self.split.orientation() != want:
+            self.split.setOrientation(want)
+            self.split.setSizes(list(SPLIT_WEIGHTS))
+        super().resizeEvent(event)
 
     def show_result(
         self,
@@ -194,22 +263,22 @@ class BearingView(QtWidgets.QWidget):
         obs = bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(
             sensor="observer"
         )
-        self.map.set_layer("observer", obs[["sensor", "batch", "time", "lon", "lat"]], "#555555")
-        self.map.set_layer(
-            "bearing lines",
-            bearing_line_points(bearings, length),
-            "#1f77b4",
-            symbols=False,
-            width=0.8,
+        observer = prepare_layer(
+            obs[["sensor", "batch", "time", "lon", "lat"]],
+            LAYER_NAMES[0],
+            "#555555",
+            style=LayerStyle(width=1.5, symbol_size=3, z=Z_OBSERVER),
+            build_index=False,
+        )
+        self.map.set_draw_data(observer)
+        self.map.set_draw_data(
+            line_layer(
+                bearing_line_points(bearings, length), LAYER_NAMES[1], "#1f77b4", 1.0, Z_LINES
+            )
         )
         if len(detections):
-            self.map.set_layer(
-                "maneuvers",
-                bearing_line_points(bearings, length, at_times=detections),
-                "#d62728",
-                symbols=False,
-                width=2.5,
-            )
+            lines = bearing_line_points(bearings, length, at_times=detections)
+            self.map.set_draw_data(line_layer(lines, LAYER_NAMES[2], "#d62728", 2.5, Z_MANEUVERS))
         lat = float(np.nanmean(bearings["obs_lat"].to_numpy(float)))
         self.map.set_true_aspect(lat)
         self.map.fit(self.map_points())
