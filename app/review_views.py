@@ -248,6 +248,7 @@ class NetworkView(pg.PlotWidget):
             n: (float(np.cos(a)), float(np.sin(a))) for n, a in zip(nodes, ang, strict=True)
         }
         self.edges = candidate_edges(self.state, nodes)
+        labels: list = []
         for r in self.edges.itertuples():  # one item per edge: tens around a proposal
             color, style = STATUS_PEN.get(r.kind, STATUS_PEN["pending"])
             rel = r.cost / r.gate if r.gate == r.gate and r.gate > 0 else 0.5
@@ -261,10 +262,7 @@ class NetworkView(pg.PlotWidget):
             self.addItem(line)
             self._items.append(line)
             if r.kind not in ("manual", "runner-up") and r.cost == r.cost:
-                lab = pg.TextItem(f"{r.cost:.3g}", color=color, anchor=(0.5, 0.5))
-                lab.setPos((xa + xb) / 2, (ya + yb) / 2)
-                self.addItem(lab)
-                self._items.append(lab)
+                labels.append((r.proposal == proposal, (xa + xb) / 2, (ya + yb) / 2, r, color))
         xy = np.array([self.pos[n] for n in nodes])
         brushes = [pg.mkBrush(MEMBER if n in members else "#ffffff") for n in nodes]
         dots = pg.ScatterPlotItem(
@@ -272,13 +270,37 @@ class NetworkView(pg.PlotWidget):
         )
         self.addItem(dots)
         self._items.append(dots)
-        for n, (x, y) in zip(nodes, xy, strict=True):
-            t = pg.TextItem(n, color="#000", anchor=(0.5, -0.4))
-            t.setPos(x, y)
+        self._cost_labels(labels)
+        # Track labels outside the circle, each pointing away from it (below the node
+        # they sat on the edges' lines and on each other).
+        for n, a in zip(nodes, ang, strict=True):
+            c, s = float(np.cos(a)), float(np.sin(a))
+            t = pg.TextItem(n, color="#000", anchor=(0.5 - 0.5 * c, 0.5 + 0.5 * s))
+            t.setPos(1.09 * c, 1.09 * s)
             self.addItem(t)
             self._items.append(t)
-        self.setXRange(-1.4, 1.4, padding=0)
-        self.setYRange(-1.4, 1.4, padding=0)
+        self.setXRange(-1.6, 1.6, padding=0)
+        self.setYRange(-1.45, 1.45, padding=0)
+
+    def _cost_labels(self, labels: list) -> None:
+        """Each proposal edge's cost on a white box at its middle; the current proposal's
+        first, then the others only where they keep clear of labels already placed (on a
+        dense neighbourhood the chords' middles crowd the centre). Tens of labels."""
+        placed: list[tuple[float, float]] = []
+        for current, x, y, r, color in sorted(labels, key=lambda item: not item[0]):
+            if not current and any(abs(x - px) < 0.3 and abs(y - py) < 0.12 for px, py in placed):
+                continue
+            lab = pg.TextItem(
+                f"{r.cost:.3g}",
+                color=color,
+                anchor=(0.5, 0.5),
+                fill=pg.mkBrush(255, 255, 255, 225),
+            )
+            lab.setPos(x, y)
+            lab.setZValue(5)
+            self.addItem(lab)
+            self._items.append(lab)
+            placed.append((x, y))
 
     def edge_at(self, x: float, y: float, tol: float = 0.08) -> str:
         """The proposal of the nearest proposal edge within ``tol`` (view units) of (x, y);
