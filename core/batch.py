@@ -354,12 +354,6 @@ def _unpack(path: Path, kind: str, dest: Path) -> None:
                 ) from None
 
 
-def _local_name(path: Path) -> str:
-    """A scratch file's name that gives the same one-track name as ``path`` to a file
-    without a batch column (the importer names it after the file, up to the first dot)."""
-    return f"{path.name.split('.')[0]}.csv"
-
-
 @dataclass(frozen=True)
 class _CsvInput:
     """What the survey of one CSV input found."""
@@ -374,6 +368,7 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     """Check one CSV input before any work (compression, encoding, columns: the
     importer's one message) and estimate its size as text."""
     from wakeline.core.io import resolve, sniff
+    from wakeline.core.io.pieces import local_name
     from wakeline.core.io.sniff import SAMPLE_BYTES
 
     kind = compression_of(path)
@@ -399,7 +394,7 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
         if not (whole and len(head) <= SAMPLE_BYTES):
             cut = max(sample.rfind(b"\n"), sample.rfind(b"\r"))
             sample = sample if cut < 0 else sample[: cut + 1]
-        target = stage / "survey" / _local_name(path)
+        target = stage / "survey" / local_name(path)
         target.parent.mkdir(parents=True, exist_ok=True)
         target.write_bytes(sample)
     try:
@@ -416,84 +411,6 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     return _CsvInput(path, kind, text_bytes, empty)
 
 
-def _pieces(sn, quoted: bool) -> Iterator[tuple[bytes, int]]:
-    """The file in pieces of whole lines (about the importer's ``STREAM_BYTES``), each
-    with the physical line (1-based) it starts on. With ``quoted``, a piece ends where
-    the quotes since its start balance (a quoted cell may hold line ends)."""
-    from wakeline.core.io.reader import line_pieces
-
-    with _text_stream(sn.path, sn.compression) as (stream, _raw):
-        yield from line_pieces(stream, cut=lambda buf: _cut(buf, quoted))
-
-
-def _cut(buf: bytes, quoted: bool) -> int:
-    """Index of the line end a piece of ``buf`` ends on (-1: none). With ``quoted``, the
-    last one after an even number of quotes, unless that leaves less than half of ``buf``
-    (a stray quote: the piece's own reader then reads it line by line)."""
-    end = b"\n" if b"\n" in buf else b"\r"
-    cut = buf.rfind(end)
-    if not quoted or cut < 0:
-        return cut
-    arr = np.frombuffer(buf, dtype=np.uint8)
-    quotes = np.flatnonzero(arr == ord('"'))
-    if not len(quotes):
-        return cut
-    ends = np.flatnonzero(arr == ord(end))
-    even = ends[np.searchsorted(quotes, ends) % 2 == 0]
-    return int(even[-1]) if len(even) and even[-1] >= len(buf) // 2 else cut
-
-
-def _header_prefix(sn) -> tuple[bytes, int]:
-    """What a later piece of the file needs in front to read as the file does: its
-    leading lines and header (or, without a header, the generated names), and how many
-    lines that is."""
-    import re
-
-    if not sn.has_header:
-        return (sn.delimiter.join(sn.columns) + "\n").encode(sn.encoding), 1
-    with _text_stream(sn.path, sn.compression) as (stream, _raw):
-        head = bytes(stream.read(1 << 20))
-    ends = [m.end() for m in re.finditer(rb"\r\n|\n|\r", head)]
-    if len(ends) < sn.skip_rows:
-        raise InputError(f"{sn.path}: a header longer than 1 MB")
-    return head[: ends[sn.skip_rows - 1]], sn.skip_rows
-
-
-def _read_pieces(sn, read: dict, sink, scratch: Path) -> tuple[pd.DataFrame, list[str]]:
-    """The file read by the importer piece by piece (each piece on its own: its careful
-    parse, encodings and quarantine); returns the quarantine (file line numbers) and the
-    importer's warnings. Memory: about one piece."""
-    from wakeline.core.io import read_points
-
-    scratch.mkdir(parents=True, exist_ok=True)
-    piece_file = scratch / _local_name(sn.path)
-    prefix, prefix_lines = _header_prefix(sn)
-    quarantines, warnings = [], []
-    for k, (piece, first_line) in enumerate(_pieces(sn, sn.has_quotes)):
-        # The first piece is the file's start, header included; a later one gets the header.
-        piece_file.write_bytes(piece if k == 0 else prefix + piece)
-        offset = 0 if k == 0 else first_line - 1 - prefix_lines
-        del piece
-        try:
-            res = read_points(piece_file, **{**read, "delimiter": sn.delimiter})
-        except InputError as exc:
-            raise InputError(str(exc).replace(str(piece_file), str(sn.path))) from None
-        clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
-        placed = any("hour the clock change" in w for w in res.report.get("warnings", []))
-        if clock.any() or placed:
-            # A repeated hour is placed by each track's order over the whole file.
-            from wakeline.core.io.reader import WholeFileNeeded
-
-            raise WholeFileNeeded
-        sink(res.points)
-        if len(res.quarantine):
-            quarantines.append(res.quarantine.assign(line=res.quarantine["line"] + offset))
-        warnings += res.report.get("warnings", [])
-    piece_file.unlink(missing_ok=True)
-    q = pd.concat(quarantines, ignore_index=True) if quarantines else None
-    return q, list(dict.fromkeys(warnings))
-
-
 def _import_file(
     path: str, file_no: int, stage: str, n: int, compression: str | None, read: dict
 ) -> dict:
@@ -507,6 +424,7 @@ def _import_file(
     import pyarrow.parquet as pq
 
     from wakeline.core.io import read_points, resolve, sniff
+    from wakeline.core.io.pieces import local_name, piece_safe, read_in_pieces
     from wakeline.core.io.reader import (
         StreamFallback,
         WholeFileNeeded,
@@ -535,11 +453,10 @@ def _import_file(
     readable = src
     try:
         if compression not in (None, "gzip"):
-            readable = scratch / _local_name(src)
+            readable = scratch / local_name(src)
             _unpack(src, compression, readable)
         sn = sniff(readable, read["encoding"], read["delimiter"])
-        wide = sn.encoding.lower().replace("_", "-").startswith(("utf-16", "utf-32"))
-        if sn.kind != "csv" or wide:  # NMEA logs, UTF-16 text: read whole
+        if not piece_safe(sn):  # NMEA logs, UTF-16 text: read whole
             res = read_points(readable, **read)
             sink(res.points)
             q, warnings = res.quarantine, res.report.get("warnings", [])
@@ -560,7 +477,8 @@ def _import_file(
                     forget()
             if q is None:
                 try:
-                    q, warnings = _read_pieces(sn, read, sink, scratch / "pieces")
+                    res = read_in_pieces(sn, read, sink, scratch / "pieces", reset=forget)
+                    q, warnings = res.quarantine, res.report.get("warnings", [])
                 except WholeFileNeeded:
                     forget()
                     res = read_points(readable, **read)

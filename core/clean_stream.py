@@ -23,17 +23,29 @@ cleaning temporaries (peaks in ``bench/bench_memory.py``). Scratch space: about 
 size, in the system's temporary folder, removed at the end (also on error or cancel);
 what a killed run left is removed by the next run (:func:`remove_stale_scratch`).
 
-Files the streamed reader does not take (quotes in the sampled start, another encoding,
-an NMEA log, values that need the careful parse), tables whose ``wl_id`` column cannot be
-used as ids, and cleanings with a transforming step (``bspline``, ``resample``,
-``smooth``: they number new points across the whole table) are read whole and cleaned in
-memory, with the same outputs (``streamed`` is False in the result).
+Where the streamed reader gives up (a value only the careful parse reads, a line further
+on not in the encoding of the file's start) and for files with quotes in their start, the
+spill is emptied and the file read piece by piece by the importer
+(:func:`~wakeline.core.io.pieces.read_in_pieces`, the reading ``wakeline batch`` does):
+each piece its own careful parse and quarantine, line numbers the file's, one import
+report for the whole file; memory stays about one piece (session 16: a 318 MB file with
+one bad longitude peaked at 2.56 GB read whole, 1.49 GB now). Read whole and cleaned in
+memory, with the same outputs (``streamed`` is False in the result): what no reading in
+pieces gives (a clock change's repeated hour, a piece the importer refuses), NMEA logs
+and UTF-16 text, tables whose ``wl_id`` column cannot be used as ids, and cleanings
+with a transforming step (``bspline``, ``resample``, ``smooth``: they number new points
+across the whole table).
+
+A text column is quoted in the output when a value that needs quotes is kept, as the
+whole table's writer decides: the blocks holding such values are cleaned once beforehand
+to see (none for the usual file).
 """
 
 import os
 import shutil
 import tempfile
 import threading
+import zlib
 from collections import deque
 from concurrent.futures import Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
@@ -42,6 +54,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pyarrow as pa
+import pyarrow.compute as pc
 import pyarrow.ipc as ipc
 
 from wakeline.core import clean as clean_mod
@@ -54,7 +67,7 @@ from wakeline.core.clean import (
     merge_reports,
 )
 from wakeline.core.errors import Cancelled, InputError
-from wakeline.core.io.writer import needs_quotes
+from wakeline.core.io.writer import _NEEDS_QUOTES, needs_quotes
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
 from wakeline.core.tracks import sorted_with_index
@@ -95,7 +108,8 @@ def clean_file(
     nothing is written then and the scratch files are removed. Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping, resolve
-    from wakeline.core.io.reader import StreamFallback, parse_zone, stream_points
+    from wakeline.core.io.pieces import piece_safe, read_in_pieces
+    from wakeline.core.io.reader import StreamFallback, WholeFileNeeded, parse_zone, stream_points
     from wakeline.core.io.sniff import sniff
 
     params = (params or CleanParams()).checked()
@@ -115,22 +129,48 @@ def clean_file(
     zone = parse_zone(tz)
     sn = sniff(path, encoding, delimiter)
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
-    if sn.kind != "csv" or sn.has_quotes or transforms:
+    if not piece_safe(sn) or transforms:
         return _clean_whole(path, output, rejected, params, progress, options)
     res = resolve(sn.columns, fmt, mapping, source=str(path))
     remove_stale_scratch()
     folder = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
+    reached = [0.0]  # the reading's progress so far: a second reading goes on from there
+
+    def reading(fraction: float, text: str) -> None:
+        reached[0] = max(reached[0], 0.4 * fraction)
+        progress(reached[0], text)
+
     try:
         spill = _Spill(folder)
+        read = None
         try:
-            read = stream_points(
-                sn, res, spill, sensor, zone, tz, lambda f, text: progress(0.4 * f, text)
-            )
-        except StreamFallback:
+            if not sn.has_quotes:  # the streamed reader takes no quotes
+                try:
+                    read = stream_points(sn, res, spill, sensor, zone, tz, reading)
+                except WholeFileNeeded:
+                    raise
+                except StreamFallback:
+                    # Read again from the start piece by piece, each piece its own careful
+                    # parse: one bad value costs its piece, not a whole-file read.
+                    spill.reset()
+            if read is None:
+                start = reached[0]
+
+                def again(fraction: float, text: str) -> None:
+                    reading((start + (0.4 - start) * fraction) / 0.4, text)
+
+                read = read_in_pieces(sn, options, spill, folder / "pieces", again, spill.reset)
+        except WholeFileNeeded:  # a repeated hour, a piece the importer refuses
             read = None
+        except (OSError, EOFError, zlib.error) as exc:
+            if isinstance(exc, OSError) and (exc.errno or exc.filename):
+                raise
+            read = None  # a damaged gzip: the whole-file reader names it
         if read is None or not spill.ids_usable():
             shutil.rmtree(folder, ignore_errors=True)
             return _clean_whole(path, output, rejected, params, progress, options)
+        if spill.rows == 0:
+            raise InputError(f"{path}: no usable points")
         report = _clean_runs(spill, output, rejected, params, progress, rows)
         return FileCleanResult(report, read.report, read.quarantine, True)
     finally:
@@ -195,8 +235,11 @@ class _Spill:
         self.rows = 0
         self.given: list[np.ndarray] | None = None  # the file's own wl_id values
         self.given_ok = True
-        # text columns the whole table's CSV would quote: quoted in every part written
+        # text columns with values the CSV writer quotes, and the keys (numbers in the
+        # registry) of the tracks holding them: the cleaned output quotes a column in every
+        # block written if a value that needs it is kept (the whole table's writer's choice)
         self.quote: set[str] = set()
+        self.quote_keys: dict[str, list[np.ndarray]] = {}
 
     def __call__(self, points: pd.DataFrame) -> None:
         n = len(points)
@@ -230,15 +273,27 @@ class _Spill:
             known[new] = self.registry.get_indexer(joined[new])
         self.keys.append((known.astype("int64"), counts[present].astype("int64")))
         table = pa.Table.from_pandas(points.take(order), preserve_index=False)
+        row_keys = None
         for name, column in zip(table.column_names, table.columns, strict=True):
-            if name in self.quote or not _is_text(column):
+            if not _is_text(column):
                 continue
-            if needs_quotes(column.cast(pa.string())):
+            hit = pc.match_substring_regex(column.cast(pa.string()), _NEEDS_QUOTES)
+            hit = np.asarray(pc.fill_null(hit, False), dtype=bool)
+            if hit.any():
+                if row_keys is None:  # the run's rows are in the order of its keys
+                    row_keys = np.repeat(known, counts[present])
                 self.quote.add(name)
+                self.quote_keys.setdefault(name, []).append(np.unique(row_keys[hit]))
         path = self.folder / f"run{len(self.paths):05d}.arrow"
         with ipc.new_file(str(path), table.schema) as writer:
             writer.write_table(table)
         self.paths.append(path)
+
+    def reset(self) -> None:
+        """Forget the runs written so far (a reading starting again)."""
+        for path in self.paths:
+            path.unlink(missing_ok=True)
+        self.__init__(self.folder)
 
     def ids_usable(self) -> bool:
         """Whether the file's ``wl_id`` column (if any) is what :func:`clean` keeps:
@@ -328,14 +383,17 @@ def _clean_runs(
         raise RuntimeError("streamed clean: a run's key order differs from the global order")
     blocks = block_cuts(ends, rows)
     given = spill.given is not None
+    # each block's first key (in the global order)
+    block_keys = np.searchsorted(starts, np.array([a for a, _ in blocks], dtype="int64"))
     stop = threading.Event()
 
     def check(_fraction: float = 0.0, _text: str = "") -> None:
         if stop.is_set():
             raise Cancelled()
 
-    def work(k: int) -> tuple[CleanResult, Path | None]:
-        """Block ``k``: its rows from every run, in file order, cleaned."""
+    def work(k: int, trail: bool = True) -> tuple[CleanResult, Path | None]:
+        """Block ``k``: its rows from every run, in file order, cleaned (its rejected
+        rows to a scratch run with ``trail``)."""
         k0, k1 = np.searchsorted(starts, blocks[k])
         ranges = []
         for pos, cum in zip(run_pos, run_cum, strict=True):
@@ -352,13 +410,14 @@ def _clean_runs(
         del src
         result = clean_mod._clean_block(pts, index, params, check)
         path = None
-        if rejected is not None and len(result.rejected):
+        if trail and rejected is not None and len(result.rejected):
             path = spill.folder / f"rejected{k:05d}.arrow"
             table = pa.Table.from_pandas(result.rejected, preserve_index=False)
             with ipc.new_file(str(path), table.schema) as writer:
                 writer.write_table(table)
         return result, path
 
+    quote = _kept_quotes(spill, rank, block_keys, work, progress)
     reports: list[dict] = []
     reject_paths: list[Path] = []
     reject_template: pd.DataFrame | None = None
@@ -369,7 +428,7 @@ def _clean_runs(
     pending: deque[Future] = deque()
     try:
         with atomic_path(output) as tmp, open(tmp, "wb") as fh:
-            out = _Appender(fh, scratch, points=True, quote=frozenset(spill.quote))
+            out = _Appender(fh, scratch, points=True, quote=frozenset(quote))
             for k in range(len(blocks)):
                 while len(pending) < 2 and k + len(pending) < len(blocks):
                     pending.append(pool.submit(work, k + len(pending)))
@@ -396,6 +455,36 @@ def _clean_runs(
         _merge_rejected(reject_paths, reject_template, rejected, scratch, rows)
     progress(1.0, "cleaned")
     return reports[0] if len(reports) == 1 else merge_reports(reports)
+
+
+def _kept_quotes(
+    spill: _Spill, rank: np.ndarray, block_keys: np.ndarray, work, progress: Progress
+) -> set[str]:
+    """The text columns the whole cleaned table's CSV quotes: those where a value that
+    needs quotes is kept. Only the blocks holding such values are cleaned to see (in
+    order, until every column is decided); none for the usual file without them."""
+    from wakeline.core.io.writer import _needs_quotes, _to_arrow
+
+    where: dict[int, list[str]] = {}  # block → the columns it has values to quote in
+    for name, keys in spill.quote_keys.items():
+        ranks = rank[np.unique(np.concatenate(keys))]
+        for k in np.unique(np.searchsorted(block_keys, ranks, side="right") - 1).tolist():
+            where.setdefault(int(k), []).append(name)
+    quote: set[str] = set()
+    for k in sorted(where):
+        names = [name for name in where[k] if name not in quote]
+        if not names:
+            continue
+        progress(0.4, "cleaning: the blocks with values to quote")
+        result, _ = work(k, trail=False)
+        table = _to_arrow(result.points[[n for n in names if n in result.points.columns]])
+        quote.update(
+            n for n, c in zip(table.column_names, table.columns, strict=True) if _needs_quotes(c)
+        )
+        del result, table
+        if quote >= set(spill.quote_keys):
+            break
+    return quote
 
 
 def _merge_rejected(

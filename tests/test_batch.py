@@ -513,3 +513,33 @@ def test_a_clock_change_s_repeated_hour_is_read_over_the_whole_file(tmp_path, mo
     opts = BatchOptions(threads=1, tz="Europe/Oslo")
     res = run_batch(Pipeline.default(), [src], tmp_path / "out", opts)
     assert res.report["rows_read"] == 120 and res.report["quarantined"] == 0
+
+
+def test_later_lines_in_another_encoding_are_read_as_import_reads_them(tmp_path, monkeypatch):
+    """An ASCII start, a bad value (the streamed reader gives up) and, further on, many
+    Latin-1 lines: before, the piece of those lines sniffed its own encoding and stopped
+    the batch ("cannot decode"); now every piece is read as `read_points` reads the whole
+    file (UTF-8, then GB18030, then UTF-8 with those rows quarantined: core/io/pieces.py),
+    still in pieces, and the quarantine equals `wakeline import`'s."""
+    import sys
+
+    from wakeline.core.io import read_points, reader
+
+    rows = [
+        f"S1,{i % 3},2024-01-01T00:{i // 60 % 60:02d}:{i % 60:02d}Z,{10 + i * 1e-4:.4f},50.0,ok"
+        for i in range(3000)
+    ]
+    rows[100] = rows[100].replace(",10.", ",1O.")
+    data = ("sensor,batch,time,lon,lat,remark\n" + "\n".join(rows) + "\n").encode()
+    data = data[:100_000] + data[100_000:].replace(b",ok\n", b",caf\xe9\n")
+    src = tmp_path / "in.csv"
+    src.write_bytes(data)
+    monkeypatch.setattr(sys.modules["wakeline.core.io.sniff"], "SAMPLE_BYTES", 4096)
+    whole = read_points(src)
+    assert len(whole.quarantine) > 600
+    monkeypatch.setattr(reader, "STREAM_BYTES", 8192)
+    res = run_batch(Pipeline.default(), [src], tmp_path / "out", BatchOptions(threads=1))
+    assert res.report["blocks"] > 5  # pieces, not one whole read
+    q = pd.read_parquet(tmp_path / "out" / "quarantine").drop(columns="file")
+    pd.testing.assert_frame_equal(q, whole.quarantine, check_dtype=False)
+    assert res.report["warnings"] == [f"{src}: warning: {w}" for w in whole.report["warnings"]]

@@ -4,6 +4,7 @@ scattered through the file, cut into several pieces and blocks."""
 
 import json
 import sys
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -218,3 +219,166 @@ def test_a_late_stray_quote_is_quoted_as_the_whole_table_would(tmp_path, monkeyp
     assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
     assert (tmp_path / "b_rej.csv").read_bytes() == (tmp_path / "a_rej.csv").read_bytes()
     assert as_json(got.report) == as_json(want_report)
+
+
+# -- a value the streamed reader cannot convert: the file read again in pieces --------------
+
+
+def _bad_lon(line: str) -> str:
+    """The line with its longitude mistyped (a letter l for a one): only the careful
+    parse reads that column then, and the row is quarantined as unparsable."""
+    parts = line.split(",")
+    parts[3] = "l" + parts[3][1:]
+    return ",".join(parts)
+
+
+def _spy_reads(monkeypatch) -> list[int]:
+    """The sizes of the files read_points reads from now on (pieces, or the whole file)."""
+    import wakeline.core.io as wio
+
+    sizes: list[int] = []
+    real = wio.read_points
+
+    def spy(path, *args, **kwargs):
+        sizes.append(Path(path).stat().st_size)
+        return real(path, *args, **kwargs)
+
+    monkeypatch.setattr(wio, "read_points", spy)
+    return sizes
+
+
+def _same_as_in_memory(tmp_path, src, got, block_rows: int, tz: str | None = None) -> None:
+    """Points, reject trail, clean report, quarantine and the import report of ``got``
+    equal reading ``src`` whole and cleaning it in memory."""
+    read = read_points(src, tz=tz)
+    want = clean(read.points)
+    write_points(want.points, tmp_path / "a.csv")
+    write_csv(want.rejected, tmp_path / "a_rej.csv")
+    assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
+    assert (tmp_path / "b_rej.csv").read_bytes() == (tmp_path / "a_rej.csv").read_bytes()
+    assert as_json(got.report) == as_json(want.report)
+    pd.testing.assert_frame_equal(got.quarantine, read.quarantine)
+    mine = {k: v for k, v in got.read_report.items() if k not in ("pieces", "streamed")}
+    assert as_json(mine) == as_json(read.report)
+
+
+@pytest.mark.parametrize("block_rows", [150, 10**6])
+def test_a_bad_value_mid_file_is_read_in_pieces_not_whole(tmp_path, monkeypatch, block_rows):
+    """Before: one value only the careful parse reads made `wakeline clean` read the whole
+    file at once (a 318 MB file: peak 2.56 GB against 1.44 GB without it). Now the file
+    is read again piece by piece (core/io/pieces.py), each piece its own careful parse:
+    the same points, reject trail, quarantine (file line numbers, reasons) and import
+    report as the whole-table way."""
+    src = tmp_path / "scattered.csv"
+    scattered_file(src)
+    lines = src.read_text().splitlines()
+    lines[700] = _bad_lon(lines[700])
+    src.write_text("\n".join(lines) + "\n")
+    monkeypatch.setattr("wakeline.core.clean.BLOCK_ROWS", block_rows)
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)  # a dozen pieces
+    sizes = _spy_reads(monkeypatch)
+    got = clean_file(src, tmp_path / "b.csv", tmp_path / "b_rej.csv", block_rows=block_rows)
+    assert got.streamed and got.read_report["pieces"] >= 10
+    assert sizes and max(sizes) < src.stat().st_size / 4  # pieces, never the whole file
+    monkeypatch.undo()
+    _same_as_in_memory(tmp_path, src, got, block_rows)
+    assert got.read_report["quarantine_reasons"]["unparsable lon"] == 1
+    assert 701 in got.quarantine["line"].tolist() and got.read_report["rows_quarantined"] == 4
+
+
+def _damaged_track_file(path, case: str) -> int:
+    """A canonical file of a few tracks in time order with one mistyped longitude (where
+    ``case`` says); returns the STREAM_BYTES to read it with."""
+    rng = np.random.default_rng(5)
+    n = 900
+    k = np.arange(n)
+    t = pd.Timestamp("2024-05-01T00:00:00Z") + pd.to_timedelta(k // 3 * 10.0, unit="s")
+    df = pd.DataFrame(
+        {
+            "sensor": np.where(k % 3 == 0, "AIS", "R1"),
+            "batch": (k % 3).astype(str),
+            "time": t,
+            "lon": 122.0 + k // 3 * 1e-4 + (k % 3) * 0.1 + rng.normal(0, 1e-5, n),
+            "lat": 30.0 + k // 3 * 1e-4 + rng.normal(0, 1e-5, n),
+            "speed": np.round(rng.uniform(5, 15, n), 1),
+        }
+    )
+    if case == "header_only":  # a header longer than a read: the first piece is itself
+        df["remark_" + "r" * 3000] = "ok"
+    if case in ("gb18030", "latin1"):
+        df["remark"] = "ok"
+    if case == "clock_change":  # local times through the autumn clock change (02:00-03:00)
+        utc = pd.Timestamp("2024-10-26T23:50:00Z") + pd.to_timedelta(k // 3 * 20.0, unit="s")
+        df["time"] = utc.tz_convert("Europe/Oslo").tz_localize(None).strftime("%Y-%m-%d %H:%M:%S")
+    write_points(df, path)
+    lines = path.read_text().splitlines()
+    at = {"first": 1, "last": len(lines) - 1, "header_only": 400, "quoted": 450}
+    at.update({"unbalanced": 450, "blank_tail": 300, "clock_change": 1})
+    at.update({"gb18030": 200, "latin1": 600})
+    lines[at[case]] = _bad_lon(lines[at[case]])
+    if case in ("quoted", "unbalanced"):  # quotes in the start: pieces read quoted
+        lines[1:] = [line.replace("R1,", '"R1",', 1) for line in lines[1:]]
+        lines[60] = lines[60].replace('"R1",', '"R1" ,')  # a space after the quote
+    if case == "unbalanced":  # a quoted cell over two lines: the whole file line by line
+        lines[701] = lines[701].replace('"R1",', '"R\n1",')
+    if case == "blank_tail":  # the last pieces hold blank lines only
+        lines += [""] * 5000
+    data = ("\n".join(lines) + "\n").encode()
+    if case == "gb18030":  # Chinese text after an ASCII start: the file reads as GB18030
+        data = data[:20000] + data[20000:].replace(b",ok\n", ",船\n".encode("gb18030"))
+    if case == "latin1":  # one byte neither UTF-8 nor GB18030 reads: its row quarantined
+        at = data.index(b",ok\n", 30000)
+        data = data[:at] + b",caf\xe9\n" + data[at + 4 :]
+    path.write_bytes(data)
+    return len(lines[0]) + 10 if case == "header_only" else 4 << 10
+
+
+@pytest.mark.parametrize(
+    "case",
+    ["first", "last", "header_only", "quoted", "unbalanced", "blank_tail", "gb18030", "latin1"],
+)
+def test_pieces_equal_the_whole_table_way(tmp_path, monkeypatch, case):
+    """A bad value in the first piece, in the last; a first piece that is the header
+    alone; quotes in the file's start (the pieces read quoted, as the whole file); a
+    quoted cell over two lines (the whole file is then read line by line: so is every
+    piece); pieces of blank lines at the end. Each equals the whole-table way."""
+    src = tmp_path / "tracks.csv"
+    monkeypatch.setattr(reader, "STREAM_BYTES", _damaged_track_file(src, case))
+    monkeypatch.setattr("wakeline.core.clean.BLOCK_ROWS", 200)
+    monkeypatch.setattr(sys.modules["wakeline.core.io.sniff"], "SAMPLE_BYTES", 4096)
+    sizes = _spy_reads(monkeypatch)
+    got = clean_file(src, tmp_path / "b.csv", tmp_path / "b_rej.csv", block_rows=200)
+    assert got.streamed and got.read_report["pieces"] >= 5
+    assert max(sizes) < src.stat().st_size / 3
+    if case == "header_only":
+        assert sizes[0] < len(src.read_text().splitlines()[0]) + 2  # the header alone
+    _same_as_in_memory(tmp_path, src, got, 200)
+    monkeypatch.undo()
+    assert got.read_report["quarantine_reasons"].get("unparsable lon") == 1
+    if case == "gb18030":
+        assert got.read_report["encoding"] == "gb18030" and not len(got.quarantine) > 1
+    if case == "latin1":
+        assert got.read_report["quarantine_reasons"]["bytes not valid utf-8"] == 1
+    if case == "quoted":
+        assert got.read_report["quarantine_reasons"] == {"unparsable lon": 1}
+    if case == "unbalanced":
+        assert any(w.startswith("quotes do not balance") for w in got.read_report["warnings"])
+    if case == "blank_tail":
+        assert got.read_report["blank_lines"] == 5000
+
+
+def test_a_repeated_hour_read_in_pieces_falls_back_to_the_whole_file(tmp_path, monkeypatch):
+    """Local times through a clock change, and a bad value first: the streamed reader
+    gives up, the pieces meet the repeated hour (placed by each track's order over the
+    whole file), and the file is read whole, with the same outputs."""
+    src = tmp_path / "tracks.csv"
+    monkeypatch.setattr(reader, "STREAM_BYTES", _damaged_track_file(src, "clock_change"))
+    sizes = _spy_reads(monkeypatch)
+    got = clean_file(
+        src, tmp_path / "b.csv", tmp_path / "b_rej.csv", tz="Europe/Oslo", block_rows=200
+    )
+    assert not got.streamed
+    assert any("hour the clock change" in w for w in got.read_report["warnings"])
+    assert len(sizes) > 2 and sizes[-1] == src.stat().st_size > 3 * max(sizes[:-1])
+    monkeypatch.undo()
+    _same_as_in_memory(tmp_path, src, got, 200, tz="Europe/Oslo")

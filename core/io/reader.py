@@ -274,12 +274,25 @@ def _is_decode_error(exc: Exception) -> bool:
     return isinstance(exc, UnicodeDecodeError) or "UTF8" in text or "UTF-8" in text
 
 
-def _read_rows(sn: Sniff, res: Resolved) -> _Rows:
+#: The import's note for a file whose quotes do not balance.
+UNBALANCED_NOTE = (
+    "quotes do not balance (a quoted cell ran over line ends): the file was read line by "
+    "line, quoted cells unquoted"
+)
+
+
+def encoding_note(start: str, enc: str) -> str:
+    """The import's note for a file read in ``enc`` whose start reads as ``start``."""
+    return f"the start of the file reads as {start} but a later line does not: read as {enc}"
+
+
+def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
     """Parse the whole file, falling back (never failing for the file's sake) through:
     the careful all-text parse when a value does not convert; GB18030 when UTF-8 breaks
     after the sampled start; replacement characters (rows quarantined) when no encoding
     reads every byte; bigger blocks for very long lines; and a line-by-line parse when a
-    stray quote swallowed lines (checked by counting the physical lines)."""
+    stray quote swallowed lines (checked by counting the physical lines; ``unbalanced``:
+    known beforehand, a piece of such a file)."""
     attempts = [(sn.encoding, "strict")]
     if sn.encoding == "utf-8" and sn.ascii and not sn.encoding_given:
         attempts.append(("gb18030", "strict"))
@@ -288,6 +301,9 @@ def _read_rows(sn: Sniff, res: Resolved) -> _Rows:
     careful = False
     # No quote in the sampled start: a quote later on is text, and each line is one row.
     quoting = sn.has_quotes
+    if unbalanced:
+        quoting, careful = False, True
+        notes.append(UNBALANCED_NOTE)
     threads = True
     step = block = 0
     while True:
@@ -337,16 +353,11 @@ def _read_rows(sn: Sniff, res: Resolved) -> _Rows:
             expected = _count_lines(sn, enc) - sn.skip_rows
             if table.num_rows + len(bad.lines) + bad.blank != expected:
                 quoting, careful = False, True
-                notes.append(
-                    "quotes do not balance (a quoted cell ran over line ends): the file was "
-                    "read line by line, quoted cells unquoted"
-                )
+                notes.append(UNBALANCED_NOTE)
                 continue
         break
     if enc != sn.encoding:
-        notes.append(
-            f"the start of the file reads as {sn.encoding} but a later line does not: read as {enc}"
-        )
+        notes.append(encoding_note(sn.encoding, enc))
     if errors == "replace":
         notes.append(
             f"some bytes are not valid {enc}: their rows are quarantined "
@@ -883,6 +894,9 @@ def read_points(
     sensor: str = DEFAULT_SENSOR,
     progress: Progress | None = None,
     tz: str | None = None,
+    *,
+    sniffed: Sniff | None = None,
+    line_by_line: bool = False,
 ) -> ImportResult:
     """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
     canonical point table.
@@ -892,7 +906,10 @@ def read_points(
     ``["batch=MMSI"]``); ``sensor`` names the sensor when the file has no sensor column;
     ``tz`` (IANA name or ±HH:MM) is the zone of times written without one (default UTC).
     Every data line ends up a point or a quarantined row. Raises :class:`InputError` for
-    a file that cannot be read at all.
+    a file that cannot be read at all. A piece of a larger file is read as the whole file
+    is (:mod:`wakeline.core.io.pieces`): ``sniffed`` is then the file's :class:`Sniff`
+    for ``path`` (delimiter, encoding, quoting, columns; not sniffed again), and
+    ``line_by_line`` reads it as a file whose quotes do not balance.
     """
     progress = progress or null_progress
     path = Path(path)
@@ -900,13 +917,13 @@ def read_points(
         mapping = parse_mapping(mapping)
     zone = parse_zone(tz)
     progress(0.0, f"reading {path.name}")
-    sn = sniff(path, encoding, delimiter)
+    sn = sniffed if sniffed is not None else sniff(path, encoding, delimiter)
     if sn.kind == "nmea":
         from wakeline.core.io.nmea import read_nmea
 
         return read_nmea(sn, sensor=sensor, progress=progress)
     res = resolve(sn.columns, fmt, mapping, source=str(path))
-    rows = _read_rows(sn, res)
+    rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
     if "batch" not in res.columns:
         n = rows.table.num_rows

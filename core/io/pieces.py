@@ -1,0 +1,317 @@
+"""Read a CSV file piece by piece with the importer: each piece its own careful parse.
+
+Where the streamed reader (:func:`~wakeline.core.io.reader.stream_points`) gives up on a
+file — a value only the careful parse reads (``12O.5`` for a longitude), a line further
+on not in the encoding of the file's start — and for files with quotes in their start,
+:func:`read_in_pieces` reads it from its start in pieces of whole lines (about
+``STREAM_BYTES``; a quoted cell over line ends stays in one piece), each read by
+:func:`~wakeline.core.io.read_points` on its own with the file's :class:`Sniff`
+(delimiter, encoding, quoting, columns). One damaged value then costs its piece a careful
+parse and itself a quarantine row, not a read of the whole file at once: memory stays
+about one piece. Used by ``wakeline clean`` (:mod:`wakeline.core.clean_stream`) and
+``wakeline batch`` (:mod:`wakeline.core.batch`).
+
+The result is what :func:`read_points` on the whole file gives: the points (handed to a
+sink piece by piece, in file order), the quarantine with the file's line numbers, and one
+import report (counts summed, the first piece's columns and formats, warnings once; plus
+``pieces``). Where the whole-file reader changes its reading for the whole file (quotes
+that do not balance, an encoding that fails further on), every piece is read again that
+way. What no reading in pieces gives raises
+:class:`~wakeline.core.io.reader.WholeFileNeeded`: a clock change's repeated hour (placed
+by each track's order over the whole file), or a piece the importer refuses (the
+whole-file reader then says why). The tracks that start their time again within the file
+(``restarting_tracks``) are counted within each piece and summed, as the streamed reader
+counts them: a track whose restart falls across two pieces is not seen.
+"""
+
+import contextlib
+import dataclasses
+import gzip
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import BinaryIO
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.io.reader import (
+    UNBALANCED_NOTE,
+    ImportResult,
+    WholeFileNeeded,
+    _restart_warnings,
+    _time_warnings,
+    empty_quarantine,
+    encoding_note,
+    line_pieces,
+    parse_zone,
+)
+from wakeline.core.io.sniff import Sniff
+from wakeline.core.progress import Progress, null_progress
+
+
+def local_name(path: Path) -> str:
+    """A scratch file's name that gives the same one-track name as ``path`` to a file
+    without a batch column (the importer names it after the file, up to the first dot)."""
+    return f"{path.name.split('.')[0]}.csv"
+
+
+@contextlib.contextmanager
+def _text(sn: Sniff) -> Iterator[BinaryIO]:
+    """The file's bytes as text (a gzip file decompressed)."""
+    with open(sn.path, "rb") as raw:
+        if sn.compression == "gzip":
+            with gzip.open(raw) as stream:
+                yield stream
+        else:
+            yield raw
+
+
+def pieces(sn: Sniff) -> Iterator[tuple[bytes, int]]:
+    """The file in pieces of whole lines (about the importer's ``STREAM_BYTES``), each
+    with the physical line (1-based) it starts on. A piece ends where the quotes since its
+    start balance (a quoted cell may hold line ends: it stays in one piece)."""
+    with _text(sn) as stream:
+        yield from line_pieces(stream, cut=lambda buf: cut(buf, True))
+
+
+def cut(buf: bytes, quoted: bool) -> int:
+    """Index of the line end a piece of ``buf`` ends on (-1: none). With ``quoted``, the
+    last one after an even number of quotes, unless that leaves less than half of ``buf``
+    (a stray quote: the piece's own reader then reads it line by line)."""
+    end = b"\n" if b"\n" in buf else b"\r"
+    last = buf.rfind(end)
+    if not quoted or last < 0 or b'"' not in buf:
+        return last
+    arr = np.frombuffer(buf, dtype=np.uint8)
+    quotes = np.flatnonzero(arr == ord('"'))
+    ends = np.flatnonzero(arr == ord(end))
+    even = ends[np.searchsorted(quotes, ends) % 2 == 0]
+    return int(even[-1]) if len(even) and even[-1] >= len(buf) // 2 else last
+
+
+def piece_safe(sn: Sniff) -> bool:
+    """Whether the file can be cut into pieces of whole lines at its line-end bytes (not
+    UTF-16 or UTF-32 text, whose line ends are two or four bytes) and is a CSV."""
+    wide = sn.encoding.lower().replace("_", "-").startswith(("utf-16", "utf-32"))
+    return sn.kind == "csv" and not wide
+
+
+def read_in_pieces(
+    sn: Sniff,
+    read: dict,
+    sink: Callable[[pd.DataFrame], None],
+    scratch: Path,
+    progress: Progress | None = None,
+    reset: Callable[[], None] | None = None,
+) -> ImportResult:
+    """Read the CSV ``sn`` piece by piece, each piece by :func:`read_points` on its own
+    (``read``: its keywords: fmt, mapping, sensor, tz; encoding and delimiter are the
+    file's, in ``sn``), handing each piece's points (in file order; none for a piece
+    without points) to ``sink``. Returns the quarantine (file line numbers), the import
+    report and layout of the whole file (points empty). ``scratch``: a folder for the
+    piece file (removed after).
+
+    Every piece is read with the file's :class:`Sniff` (delimiter, encoding, quoting,
+    columns: not sniffed again), as :func:`read_points` reads every line of the whole
+    file. Where that reader would change its reading for the whole file — quotes that do
+    not balance somewhere (it then reads every line without quoting), bytes not valid in
+    the encoding of the file's start (after an ASCII start it tries GB18030, then UTF-8
+    replacing what does not decode) — ``reset()`` is called to forget the points handed
+    so far and every piece is read again that way (without ``reset``:
+    :class:`WholeFileNeeded`). Raises :class:`WholeFileNeeded` for what only a whole-file
+    read gives (module docstring). Memory: about one piece."""
+    progress = progress or null_progress
+    scratch.mkdir(parents=True, exist_ok=True)
+    piece_file = scratch / local_name(sn.path)
+    line_by_line = False
+    # The whole-file reader's encodings in turn (reader._read_rows; strict: a piece that
+    # does not decode sends every piece to the next one).
+    encodings = [(sn.encoding, False)]
+    if sn.encoding == "utf-8" and sn.ascii and not sn.encoding_given:
+        encodings = [(sn.encoding, True), ("gb18030", True), (sn.encoding, False)]
+    step = 0
+    try:
+        while True:
+            encoding, strict = encodings[step]
+            # given: each piece decodes in this encoding, replacing what does not
+            piece_sn = dataclasses.replace(sn, encoding=encoding, encoding_given=True)
+            try:
+                parts = _read_all(piece_sn, read, line_by_line, strict, sink, piece_file, progress)
+                break
+            except _Again as again:
+                if reset is None:
+                    raise WholeFileNeeded from None
+                reset()
+                if again.quotes:
+                    line_by_line = True
+                else:
+                    step += 1
+    finally:
+        piece_file.unlink(missing_ok=True)
+    quarantines, reports, layouts, keys = parts
+    if encoding != sn.encoding:  # as the whole-file reader notes it, after the quotes
+        first = [w for w in reports[0].get("warnings", []) if w != UNBALANCED_NOTE]
+        notes = [UNBALANCED_NOTE] if line_by_line else []
+        notes.append(encoding_note(sn.encoding, encoding))
+        reports[0] = {**reports[0], "warnings": notes + first}
+    q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
+    q = q.sort_values("line", kind="stable", ignore_index=True)
+    tracks = len(pd.concat(keys).drop_duplicates()) if keys else 0
+    report = merge_import_reports(sn, reports, q, tracks, read.get("tz"))
+    layout = {**layouts[0], "compression": sn.compression} if layouts else {}
+    if layout:
+        layout.update(
+            time_format=report["time_format"],
+            time_relative=report["time_relative"],
+        )
+    progress(1.0, "imported")
+    empty = pd.DataFrame({c: pd.Series([], dtype="str") for c in ("sensor", "batch")})
+    return ImportResult(empty, q, report, layout)
+
+
+class _Again(Exception):
+    """A piece the whole-file reader would read otherwise: every piece is read again
+    without quoting (``quotes``) or in the next encoding."""
+
+    def __init__(self, quotes: bool) -> None:
+        super().__init__()
+        self.quotes = quotes
+
+
+def _read_all(
+    sn: Sniff,
+    read: dict,
+    line_by_line: bool,
+    strict: bool,
+    sink,
+    piece_file: Path,
+    progress: Progress,
+) -> tuple:
+    """Every piece read by :func:`read_points` as the file ``sn`` (``strict``: a piece
+    with bytes not valid in its encoding raises :class:`_Again`): the quarantines (file
+    line numbers), reports, layouts and track keys of the pieces."""
+    from wakeline.core.io import read_points
+
+    options = {k: v for k, v in read.items() if k not in ("encoding", "delimiter")}
+    # The first piece is the file's start (its leading lines and header skipped as the
+    # file's); a later one starts with data.
+    first_sn = dataclasses.replace(sn, path=piece_file, compression=None)
+    later_sn = dataclasses.replace(first_sn, skip_rows=0)
+    size = max(_size(sn), 1)
+    done = 0
+    quarantines, reports, layouts, keys = [], [], [], []
+    for k, (piece, first_line) in enumerate(pieces(sn)):
+        piece_file.write_bytes(piece)
+        done += len(piece)
+        del piece
+        try:
+            res = read_points(
+                piece_file,
+                **options,
+                sniffed=first_sn if k == 0 else later_sn,
+                line_by_line=line_by_line,
+            )
+        except InputError:
+            raise WholeFileNeeded from None  # the whole-file reader says what it is
+        warnings = res.report.get("warnings", [])
+        clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
+        if clock.any() or any("hour the clock change" in w for w in warnings):
+            raise WholeFileNeeded  # a repeated hour is placed over the whole file
+        if not line_by_line and UNBALANCED_NOTE in warnings:
+            raise _Again(quotes=True)
+        if strict and any(w.startswith("some bytes are not valid") for w in warnings):
+            raise _Again(quotes=False)
+        if len(res.points):
+            keys.append(res.points[["sensor", "batch"]].drop_duplicates())
+            sink(res.points)
+        del res.points
+        if len(res.quarantine):
+            line = res.quarantine["line"] + (first_line - 1)
+            quarantines.append(res.quarantine.assign(line=line))
+        reports.append(res.report)
+        layouts.append(res.layout)
+        progress(min(0.95, done / size), "importing in pieces")
+    return quarantines, reports, layouts, keys
+
+
+def _size(sn: Sniff) -> int:
+    try:
+        return sn.path.stat().st_size
+    except OSError:
+        return 1
+
+
+def _sum(dicts: list[dict]) -> dict:
+    out: dict = {}
+    for d in dicts:
+        for key, value in d.items():
+            out[key] = out.get(key, 0) + int(value)
+    return out
+
+
+def merge_import_reports(
+    sn: Sniff, reports: list[dict], quarantine: pd.DataFrame, tracks: int, tz: str | None
+) -> dict:
+    """One import report of the pieces' reports, as :func:`read_points` gives it for the
+    whole file: counts summed (tracks: ``tracks``, counted over the pieces' keys), the
+    quarantine's reasons, the first piece's columns and formats, the time span over all,
+    and the warnings once each (those with counts made again from the summed counts)."""
+    first = reports[0]
+    zone = parse_zone(tz)
+    time_src = first["columns"]["time"]
+    batch_src = first["columns"].get("batch", "")
+    decimal = sum(int(r.get("decimal_comma_values", 0)) for r in reports)
+    restarting = _sum([r.get("restarting_tracks", {}) for r in reports])
+    with_rows = [r for r in reports if r.get("rows_imported")]
+    relative = bool(with_rows) and all(r.get("time_relative") for r in with_rows)
+    # The warnings that carry a piece's count are made again from the summed counts.
+    counted: set[str] = set()
+    for r in reports:
+        counted.update(
+            _time_warnings(time_src, {"decimal_comma": r.get("decimal_comma_values", 0)}, zone)
+        )
+        counted.update(_restart_warnings(r.get("restarting_tracks", {}), batch_src))
+    relative_note = _time_warnings(time_src, {"relative": True}, zone)
+    local_note = _time_warnings(time_src, {"naive": True}, zone)  # local times read as UTC
+    notes, timing = [], []
+    for r in reports:
+        for w in r.get("warnings", []):
+            if w in counted or w in relative_note:
+                continue
+            (timing if w in local_note else notes).append(w)
+    warnings = list(dict.fromkeys(notes))
+    warnings += _time_warnings(time_src, {"decimal_comma": decimal}, zone)
+    warnings += list(dict.fromkeys(timing))
+    if relative:
+        warnings += relative_note
+    warnings += _restart_warnings(restarting, batch_src)
+    starts = [pd.Timestamp(r["time_start"]) for r in reports if r.get("time_start")]
+    ends = [pd.Timestamp(r["time_end"]) for r in reports if r.get("time_end")]
+    # A later piece read in a fallback encoding: the whole file is read in that one.
+    encodings = [r["encoding"] for r in reports]
+    encoding = next((e for e in encodings if e != sn.encoding), encodings[0])
+    by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
+    return {
+        **first,
+        "input": str(sn.path),
+        "encoding": encoding,
+        "compression": sn.compression,
+        "careful_parse": any(r.get("careful_parse") for r in reports),
+        "time_format": (with_rows or reports)[0].get("time_format"),
+        "time_relative": relative,
+        "rows_read": sum(int(r["rows_read"]) for r in reports),
+        "rows_imported": sum(int(r["rows_imported"]) for r in reports),
+        "rows_quarantined": len(quarantine),
+        "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
+        "blank_lines": sum(int(r.get("blank_lines", 0)) for r in reports),
+        "values_blanked": _sum([r.get("values_blanked", {}) for r in reports]),
+        "decimal_comma_values": decimal,
+        "restarting_tracks": restarting,
+        "tracks": int(tracks),
+        "sensors": _sum([r.get("sensors", {}) for r in reports]),
+        "time_start": min(starts).isoformat() if starts else None,
+        "time_end": max(ends).isoformat() if ends else None,
+        "pieces": len(reports),
+        "warnings": warnings,
+    }
