@@ -546,6 +546,44 @@ def test_streamed_import_equals_whole_file_import(tmp_path, monkeypatch, name):
         assert streamed.report[key] == whole.report[key], key
 
 
+@pytest.mark.parametrize(
+    "case", ["bad value", "quoted start", "late edge blank", "late comma", "all quarantined"]
+)
+def test_import_reads_what_the_stream_cannot_in_pieces_byte_for_byte(tmp_path, monkeypatch, case):
+    """`wakeline import` read a file whole when the streamed reader gave up (one value only
+    the careful parse reads, quotes in the start): now piece by piece (``pieces`` in the
+    report), and the output is the whole-file import's byte for byte — a text column that
+    needs quotes in one later piece is quoted in every piece, as the whole table's writer
+    quotes it."""
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv, write_points
+
+    lines = canonical_lines(150)
+    if case == "bad value":
+        lines[77] = lines[77].replace(",12.", ",12O.", 1)
+    elif case == "quoted start":
+        lines[0] = lines[0].replace(",ok", ',"ok, said the pilot"')
+    elif case == "late edge blank":
+        lines[120] = lines[120].replace(",ok", ", ok")
+    elif case == "late comma":  # a quoted comma far after the sampled start
+        lines[140] = lines[140].replace(",ok", ',"a, b"')
+    else:  # no piece has a point: the header alone, as the whole-file import writes it
+        lines = [line.replace(",12.", ",12O.", 1) for line in lines]
+    src = tmp_path / "in.csv"
+    src.write_text("\n".join([HEADER, *lines]) + "\n")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 400)  # many pieces
+    whole = read_points(src)
+    write_points(whole.points, tmp_path / "whole.csv")
+    got = import_to_csv(src, tmp_path / "pieces.csv")
+    assert (tmp_path / "pieces.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
+    pd.testing.assert_frame_equal(got.quarantine, whole.quarantine)
+    for key in ("rows_read", "rows_imported", "rows_quarantined", "tracks", "sensors"):
+        assert got.report[key] == whole.report[key], key
+    if case in ("bad value", "quoted start"):
+        assert got.report.get("pieces", 0) > 5
+    assert not list(tmp_path.glob("*.part")) and not list(tmp_path.glob("part*"))
+
+
 def test_tracks_that_restart_their_time_are_flagged(write):
     """Several passes under one id, each timed from the start (the Øresund encounters:
     one MMSI in five encounters): a warning names the batch and the way out; a shuffled

@@ -20,6 +20,7 @@ import re
 import shutil
 import sys
 import tempfile
+import zlib
 import zoneinfo
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -1401,11 +1402,14 @@ def import_to_csv(
     holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
 
     The result has the quarantine, report and layout of :func:`read_points` but no points
-    (an empty table). Files that need the whole-file fallbacks (a value that does not
-    convert, another encoding, unbalanced quotes, unnumbered bad rows) are read with
-    :func:`read_points` instead, so the output is the same either way.
+    (an empty table). Files the streamed reader does not take (a value only the careful
+    parse reads, quotes, another encoding further on) are read piece by piece by the
+    importer (:func:`~wakeline.core.io.pieces.read_in_pieces`); what needs the whole file
+    (a clock change's repeated hour, NMEA, UTF-16) with :func:`read_points`. The output
+    is the same either way, byte for byte (quoting decided over the whole table).
     """
-    from wakeline.core.io.writer import atomic_path, write_points
+    from wakeline.core.io.pieces import piece_safe, read_in_pieces
+    from wakeline.core.io.writer import PointParts, atomic_path, write_points
 
     path, output = Path(path), Path(output)
     if isinstance(mapping, list):
@@ -1413,43 +1417,50 @@ def import_to_csv(
     zone = parse_zone(tz)
     sn = sniff(path, encoding, delimiter)
 
-    def whole() -> ImportResult:
+    def whole(target: Path) -> ImportResult:
         result = read_points(path, fmt, mapping, encoding, delimiter, sensor, progress, tz)
-        write_points(result.points, output)
+        write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
 
-    if sn.kind != "csv" or sn.has_quotes:
-        return whole()
+    if sn.kind != "csv":  # NMEA logs
+        return whole(output)
     res = resolve(sn.columns, fmt, mapping, source=str(path))
+    progress = progress or null_progress
+    # Each part's Arrow copy in the system's temporary folder (nothing of ours is left
+    # beside the output).
+    scratch = Path(tempfile.mkdtemp(prefix="wakeline-import-"))
     try:
         with atomic_path(output) as tmp:
-            result = _stream(sn, res, tmp, sensor, zone, tz, progress or null_progress)
-    except _Fallback:
-        return whole()
-    return result
-
-
-def _stream(sn: Sniff, res: Resolved, tmp: Path, sensor: str, zone, tz, progress) -> ImportResult:
-    """Write the file's points to ``tmp`` piece by piece (see :func:`stream_points`)."""
-    from wakeline.core.io.writer import write_points
-
-    # Each piece goes through write_points (the one canonical writer) into a scratch file
-    # in the system's temporary folder (nothing of ours is left beside the output).
-    scratch = Path(tempfile.mkdtemp(prefix="wakeline-import-"))
-    chunk_file = scratch / "piece.csv"
-    try:
-        with open(tmp, "wb") as fh:
-
-            def sink(points: pd.DataFrame) -> None:
-                write_points(points, chunk_file)
-                with open(chunk_file, "rb") as src:
-                    header = src.readline()
-                    if fh.tell() == 0:
-                        fh.write(header)
-                    while block := src.read(16 << 20):
-                        fh.write(block)
-
-            return stream_points(sn, res, sink, sensor, zone, tz, progress)
+            parts = PointParts(scratch / "parts", tmp)
+            result = None
+            try:
+                if not sn.has_quotes:  # the streamed reader takes no quotes
+                    try:
+                        result = stream_points(sn, res, parts, sensor, zone, tz, progress)
+                    except WholeFileNeeded:
+                        raise
+                    except _Fallback:
+                        parts.reset()  # again piece by piece, each its own careful parse
+                if result is None and not piece_safe(sn):  # UTF-16: not cut at its bytes
+                    parts.reset()
+                    return whole(tmp)
+                if result is None:
+                    read = {"fmt": fmt, "mapping": mapping, "sensor": sensor, "tz": tz}
+                    result = read_in_pieces(
+                        sn, read, parts, scratch / "pieces", progress, parts.reset
+                    )
+            except WholeFileNeeded:  # a clock change's repeated hour; a piece refused
+                parts.reset()
+                return whole(tmp)
+            except (OSError, EOFError, zlib.error) as exc:
+                if isinstance(exc, OSError) and (exc.errno or exc.filename):
+                    raise
+                parts.reset()
+                return whole(tmp)  # a damaged gzip: the whole-file reader names it
+            finally:
+                parts.close()
+            parts.finish(result.report.get("extra_columns") or ())
+            return result
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
 

@@ -22,7 +22,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
-from wakeline.core.schema import ordered_columns
+from wakeline.core.schema import empty_points, ordered_columns
 
 _NEEDS_QUOTES = r'[,"\r\n]|^\s|\s$'
 
@@ -350,24 +350,29 @@ def write_csv(df: pd.DataFrame, path: str | Path, quote: frozenset[str] = frozen
     in the text columns named in ``quote`` (a table written in parts: the whole's choice).
     """
     table = _to_arrow(df)
-    quoted = [
-        (name in quote and pa.types.is_string(c.type)) or _needs_quotes(c)
-        for name, c in zip(table.column_names, table.columns, strict=True)
-    ]
     header = (",".join(_quote(str(c)) for c in df.columns) + "\n").encode("utf-8")
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as fh:
             fh.write(header)
-            if not len(df):
-                pass
-            elif any(quoted):
-                body = _quoted_body(table, quoted)
-                offsets = np.frombuffer(body.buffers()[1], dtype="int32")
-                start, end = offsets[body.offset], offsets[body.offset + len(body)]
-                fh.write(memoryview(body.buffers()[2])[start:end])
-            else:
-                options = pacsv.WriteOptions(include_header=False, quoting_style="none")
-                pacsv.write_csv(table, fh, options)
+            _write_body(table, fh, quote)
+
+
+def _write_body(table: pa.Table, fh, quote: frozenset[str]) -> None:
+    """The CSV rows of a table made by :func:`_to_arrow` (no header) to ``fh``."""
+    if not table.num_rows:
+        return
+    quoted = [
+        (name in quote and pa.types.is_string(c.type)) or _needs_quotes(c)
+        for name, c in zip(table.column_names, table.columns, strict=True)
+    ]
+    if any(quoted):
+        body = _quoted_body(table, quoted)
+        offsets = np.frombuffer(body.buffers()[1], dtype="int32")
+        start, end = offsets[body.offset], offsets[body.offset + len(body)]
+        fh.write(memoryview(body.buffers()[2])[start:end])
+    else:
+        options = pacsv.WriteOptions(include_header=False, quoting_style="none")
+        pacsv.write_csv(table, fh, options)
 
 
 def write_points(
@@ -376,6 +381,75 @@ def write_points(
     """Write the canonical point table (canonical columns first, extras after);
     ``quote`` as for :func:`write_csv`."""
     write_csv(points[ordered_columns(points)], path, quote)
+
+
+class PointParts:
+    """The canonical CSV of a point table handed over in parts (a file read in pieces),
+    written to ``out`` as :func:`write_points` writes the whole table: a text column is
+    quoted in every part when a value anywhere needs quotes. Each part is appended to
+    ``out`` at once and kept as Arrow IPC in ``folder``; when some part's quoting differs
+    from the whole table's (rare: a value needing quotes after the others), :meth:`finish`
+    writes every part again from its IPC with the whole table's quoting. Memory: one
+    part; scratch: about a fifth of the output's size (LZ4)."""
+
+    def __init__(self, folder: Path, out: Path) -> None:
+        self.folder, self.out = Path(folder), Path(out)
+        self.folder.mkdir(parents=True, exist_ok=True)
+        self.parts: list[tuple[Path, frozenset[str]]] = []
+        self._fh = None
+        self.header = b""
+
+    def __call__(self, points: pd.DataFrame) -> None:
+        if not len(points) and self.parts:
+            return
+        table = _to_arrow(points[ordered_columns(points)])
+        names, columns = table.column_names, table.columns
+        quoted = frozenset(n for n, c in zip(names, columns, strict=True) if _needs_quotes(c))
+        if self._fh is None:
+            self._fh = open(self.out, "wb")  # noqa: SIM115 - closed by finish/close
+            self.header = (",".join(_quote(n) for n in names) + "\n").encode("utf-8")
+            self._fh.write(self.header)
+        _write_body(table, self._fh, frozenset())
+        ipc_path = self.folder / f"part{len(self.parts):05d}.arrow"
+        # LZ4: as fast as writing it plain (2 M rows: 0.05 s against 1 s of CSV), a fifth of
+        # the output's size in scratch.
+        options = pa.ipc.IpcWriteOptions(compression="lz4")
+        with pa.ipc.new_file(str(ipc_path), table.schema, options=options) as sink:
+            sink.write_table(table)
+        self.parts.append((ipc_path, quoted))
+
+    def reset(self) -> None:
+        """Forget every part handed so far (a reading that starts again)."""
+        self.close()
+        for ipc_path, _ in self.parts:
+            ipc_path.unlink(missing_ok=True)
+        self.parts.clear()
+
+    def close(self) -> None:
+        if self._fh is not None:
+            self._fh.close()
+            self._fh = None
+
+    def finish(self, extra: Iterable[str] = ()) -> None:
+        """Close ``out``; write it again when the parts' quoting differs. When no part
+        came (every row quarantined) ``out`` is the header alone: the canonical columns
+        and the file's ``extra`` ones."""
+        self.close()
+        if not self.parts:
+            empty = empty_points()
+            write_points(
+                empty.assign(**{str(c): pd.Series([], dtype="str") for c in extra}), self.out
+            )
+            return
+        union = frozenset().union(*(q for _, q in self.parts))
+        if any(q != union for _, q in self.parts):
+            with open(self.out, "wb") as fh:
+                fh.write(self.header)
+                for ipc_path, _ in self.parts:
+                    with pa.ipc.open_file(str(ipc_path)) as src:
+                        _write_body(src.read_all(), fh, union)
+        for ipc_path, _ in self.parts:
+            ipc_path.unlink(missing_ok=True)
 
 
 def _json_default(obj):
