@@ -280,13 +280,16 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         )
 
     def _save_failed(self, message: str) -> None:
+        """A write to the project failed: logged each time, one dialog (the first since
+        the file was saved or opened — not one per change); closing offers Save as."""
         text = self.tr("Saving the project failed: {0}").format(message)
         self.log_message(f"{self.tr('Error')}: {text}")
         self.update_title()
-        QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)
+        if self.project.failures == 1:
+            QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt API
-        if self.project.unsaved and not self._close_read_only():
+        if (self.project.unsaved or self.project.dirty) and not self._close_unsaved():
             event.ignore()
             return
         self.settings.setValue("geometry", self.saveGeometry())
@@ -298,24 +301,32 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.project.detach()
         super().closeEvent(event)
 
-    def _close_read_only(self) -> bool:
-        """A read-only project (open elsewhere, or not writable) was changed: offer Save
-        as before closing. False keeps the window open."""
+    def _close_unsaved(self) -> bool:
+        """Changes are not all in a file — the project was opened read-only (open
+        elsewhere, or not writable), or a write failed (the file moved, a full disk, a
+        failed Save as): offer Save as before closing. False keeps the window open."""
         buttons = QtWidgets.QMessageBox.StandardButton
+        if self.project.dirty:
+            text = self.tr(
+                "Some changes could not be written to the project file (see the log). "
+                "Save the work as a new project before closing?"
+            )
+        else:
+            text = self.tr(
+                "This project was opened read-only, so the changes made since are not in "
+                "any file. Save them as a new project before closing?"
+            )
         answer = QtWidgets.QMessageBox.question(
             self,
             self.tr("Changes not saved"),
-            self.tr(
-                "This project was opened read-only, so the changes made since are not in "
-                "any file. Save them as a new project before closing?"
-            ),
+            text,
             buttons.Save | buttons.Discard | buttons.Cancel,
         )
         if answer == buttons.Cancel:
             return False
         if answer == buttons.Save:
             self.save_project_dialog()
-            return not self.project.unsaved
+            return not (self.project.unsaved or self.project.dirty)
         return True
 
 

@@ -29,7 +29,8 @@ class ProjectController(QtCore.QObject):
         self.session = session
         self.path: Path | None = None
         self.read_only = False
-        self.dirty = False
+        self.dirty = False  # a write failed since the file was saved or opened
+        self.failures = 0  # writes failed since then (the window shows the first)
         self.locked_by: str | None = None  # who holds the file this window follows read-only
         self.unsaved = False  # changes made while following a read-only file
         self.locks = ProjectLocks()
@@ -83,7 +84,7 @@ class ProjectController(QtCore.QObject):
         """A writer for ``path``. Its first task waits (in its own thread, never the
         GUI's) until every writer released before has written its queue: the same file
         may be written again (Save as twice; a read-only project opened in between)."""
-        self.path, self.read_only, self.dirty = path, read_only, False
+        self.path, self.read_only, self.dirty, self.failures = path, read_only, False, 0
         self.writer = ProjectWriter(path, lambda exc: self._error.emit(_describe(exc)))
         earlier = [w for w in self._draining if w.busy()]
         if earlier:
@@ -164,6 +165,7 @@ class ProjectController(QtCore.QObject):
 
     def _on_error(self, message: str) -> None:
         self.dirty = True
+        self.failures += 1
         self.failed.emit(message)
 
 

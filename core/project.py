@@ -1,4 +1,4 @@
-"""The project file (``.wakeline``): one SQLite database (WAL) written as the operator works.
+"""The project file (``.wakeline``): one SQLite database written as the operator works.
 
 What it holds: the sources (path and content hash), the parameters, every layer with its
 lineage (Parquet blobs, so times, text and numbers come back exactly), the layers' side
@@ -6,7 +6,11 @@ tables, small state rows (selection, view, active layer) and the review decision
 
 It is written incrementally: a layer's Parquet once, when the layer is made (or
 replaced); a visibility, selection or parameter change is one small row, each in its own
-transaction — never the whole file again. :class:`ProjectWriter` does the writing on a
+transaction — never the whole file again. Each transaction lands in the ``.wakeline`` file
+itself (a rollback journal, not WAL: with WAL the committed work sat in a ``-wal`` side
+file until a checkpoint, so a project renamed, moved or copied while open lost it, and a
+project in a read-only folder could not be opened). A project moved or removed while open
+is noticed at the next write, which fails with a message instead of writing elsewhere. :class:`ProjectWriter` does the writing on a
 background thread and reports failures through a callback. "Save as" writes a complete
 new file beside the target and renames it over, so a crash never leaves a half-written
 project. Opening checks everything before anything is returned: a damaged or newer file
@@ -18,7 +22,9 @@ import io
 import json
 import os
 import queue
+import shutil
 import sqlite3
+import tempfile
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -141,11 +147,18 @@ class ProjectStore:
     owns one on its own thread.
     """
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, create: bool = True) -> None:
+        """Open ``path`` (made when ``create``; otherwise a missing file is an
+        :class:`InputError`: the project was moved or removed while open)."""
         self.path = Path(path)
+        if not create and not self.path.exists():
+            raise InputError(_moved(self.path))
         self.con = sqlite3.connect(self.path, timeout=10)
+        self._ino = _inode(self.path)
         try:
-            self.con.execute("PRAGMA journal_mode=WAL")
+            # A rollback journal: every commit is in the file itself (module docstring);
+            # an older project left in WAL mode is checkpointed into it here.
+            self.con.execute("PRAGMA journal_mode=DELETE")
             self.con.execute("PRAGMA synchronous=NORMAL")
             with self.con:
                 self.con.executescript(_SCHEMA)
@@ -159,6 +172,12 @@ class ProjectStore:
 
     def close(self) -> None:
         self.con.close()
+
+    def check_path(self) -> None:
+        """Raise :class:`InputError` when the file at :attr:`path` is no longer the one
+        open (renamed, moved or removed since): a write would go to a file nobody opens."""
+        if _inode(self.path) != self._ino:
+            raise InputError(_moved(self.path))
 
     # -- writes --------------------------------------------------------------------
 
@@ -242,6 +261,21 @@ class ProjectStore:
             self.add_decision(d)
 
 
+def _inode(path: Path) -> tuple[int, int] | None:
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return st.st_dev, st.st_ino
+
+
+def _moved(path: Path) -> str:
+    return (
+        f"{path}: the project file was moved, renamed or removed while open; this change "
+        "is not saved: use Save as to write the work to a file"
+    )
+
+
 def save_project(
     session: Session | Project,
     path: str | Path,
@@ -260,8 +294,6 @@ def save_project(
         store = ProjectStore(tmp)
         try:
             store.put_all(session, state)
-            store.con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
-            store.con.execute("PRAGMA journal_mode=DELETE")
         finally:
             store.close()
 
@@ -315,7 +347,20 @@ def load_project(path: str | Path) -> Project:
         raise InputError(f"{path}: no such project file")
     writable = os.access(path, os.W_OK) and os.access(path.parent, os.W_OK)
     try:
-        con = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+        try:
+            con = _open_read_only(path)
+        except sqlite3.OperationalError:
+            if writable:
+                raise
+            # A project left in WAL mode (older Wakeline, or a crash) in a folder that
+            # cannot be written: SQLite cannot open it there; read a copy.
+            with tempfile.TemporaryDirectory(prefix="wakeline-ro-") as tmp:
+                for suffix in ("", "-wal"):
+                    if Path(f"{path}{suffix}").exists():
+                        shutil.copyfile(f"{path}{suffix}", Path(tmp) / f"p.wakeline{suffix}")
+                project = load_project(Path(tmp) / "p.wakeline")
+            project.read_only = True
+            return project
         try:
             meta = dict(con.execute("SELECT key, value FROM meta").fetchall())
             schema = int(meta.get("schema", "0"))
@@ -353,6 +398,17 @@ def load_project(path: str | Path) -> Project:
     return Project(sources, params, layers, selection, decisions, state, not writable)
 
 
+def _open_read_only(path: Path) -> sqlite3.Connection:
+    """A read-only connection that has checked it can read (SQLite opens lazily)."""
+    con = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    try:
+        con.execute("SELECT count(*) FROM sqlite_master").fetchone()
+    except sqlite3.DatabaseError:
+        con.close()
+        raise
+    return con
+
+
 class ProjectWriter:
     """Writes to a project file on a background thread, one task at a time, in order.
 
@@ -361,9 +417,15 @@ class ProjectWriter:
     with the next task. ``flush()`` waits until the queue is empty.
     """
 
-    def __init__(self, path: str | Path, on_error: Callable[[Exception], None]) -> None:
+    def __init__(
+        self, path: str | Path, on_error: Callable[[Exception], None], create: bool = False
+    ) -> None:
+        """``create``: make ``path`` when it does not exist at the first write; otherwise
+        (following an opened or saved project) a missing file fails every write with a
+        message: the project was moved or removed while open."""
         self.path = Path(path)
         self.on_error = on_error
+        self.create = create
         self._queue: queue.Queue = queue.Queue()
         self._thread = threading.Thread(target=self._run, name="wakeline-project", daemon=True)
         self._thread.start()
@@ -418,7 +480,8 @@ class ProjectWriter:
                     fn(self.path)
                     continue
                 if store is None:
-                    store = ProjectStore(self.path)
+                    store = ProjectStore(self.path, create=self.create)
+                store.check_path()
                 fn(store)
             except Exception as exc:  # noqa: BLE001 - reported to the caller, never lost
                 if store is not None:

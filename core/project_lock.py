@@ -64,10 +64,37 @@ class LockHolder:
         except ProcessLookupError:
             return False
         except PermissionError:  # runs, as another user
-            return True
+            pass
         except OSError:
             return False
-        return True
+        # The number may have been given to another process since (a crash, then a
+        # reboot): one that started after the lock was taken is not its holder.
+        started = _process_start(self.pid)
+        taken = _parse_since(self.since)
+        return not (started is not None and taken is not None and started > taken + 2.0)
+
+
+def _process_start(pid: int) -> float | None:
+    """When process ``pid`` started (unix s), from /proc (Linux); None elsewhere."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+        ticks = int(stat[stat.rindex(")") + 2 :].split()[19])  # field 22: starttime
+        boot = next(
+            float(line.split()[1])
+            for line in Path("/proc/stat").read_text().splitlines()
+            if line.startswith("btime ")
+        )
+        return boot + ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError, StopIteration):
+        return None
+
+
+def _parse_since(since: str) -> float | None:
+    try:
+        t = _dt.datetime.strptime(since, "%Y-%m-%d %H:%M:%S UTC")
+    except ValueError:
+        return None
+    return t.replace(tzinfo=_dt.UTC).timestamp()
 
 
 def read_holder(project: str | Path) -> LockHolder | None:
@@ -133,7 +160,9 @@ class ProjectLocks:
                         f"{holder.describe()}; if it is not open there any more, "
                         f"remove {lock_path(key)}"
                     )
-                return False, holder.describe()
+                return False, (
+                    f"{holder.describe()} (if no Wakeline has it open, remove {lock_path(key)})"
+                )
             return False, "another Wakeline (the lock file keeps changing)"
 
     def holds(self, project: str | Path) -> bool:

@@ -241,6 +241,50 @@ def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch)
     c.close()
 
 
+def test_project_renamed_or_copied_while_open_loses_nothing(qtbot, tmp_path, monkeypatch):
+    """Operator test: a copy of an open project held one layer of four, and renaming it
+    while open lost the work (it sat in a -wal side file). Now the file alone holds every
+    flushed write; a write after the rename fails with one dialog (not one per change),
+    and closing offers Save as."""
+    import shutil
+
+    shown, asked = [], []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+    monkeypatch.setattr(QtWidgets.QMessageBox, "question", lambda *a: asked.append(a[2]))
+    src = tmp_path / "scene.csv"
+    write_points(simulate.demo_scene(), src)
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    load(w, src)
+    proj = tmp_path / "p.wakeline"
+    w.save_project(proj)
+    w.run_step("clean")
+    wait_for_jobs(w)
+    w.run_step("compress")
+    wait_for_jobs(w)
+    assert w.project.flush()
+    shutil.copyfile(proj, tmp_path / "copy.wakeline")
+    kinds = [lay.kind for lay in load_project(tmp_path / "copy.wakeline").layers]
+    assert kinds == ["source", "cleaned", "maneuvers", "compressed"]
+    proj.rename(tmp_path / "moved.wakeline")
+    w.run_step("maneuvers")
+    wait_for_jobs(w)
+    w.project.flush()
+    qtbot.waitUntil(lambda: w.project.dirty, timeout=5000)
+    w.select_layer(next(iter(w.layers)))
+    w.run_step("clean")  # a second failing change: logged, no second dialog
+    wait_for_jobs(w)
+    w.project.flush()
+    qtbot.waitUntil(lambda: w.project.failures >= 2, timeout=5000)
+    assert len([t for t in shown if "moved, renamed or removed" in t]) == 1
+    assert "not saved" in w.windowTitle() and not proj.exists()
+    w.close()
+    assert asked and "could not be written" in asked[-1]
+    back = load_project(tmp_path / "moved.wakeline")
+    assert [lay.kind for lay in back.layers] == kinds
+
+
 def test_parameters_panel_refuses_bad_values_and_round_trips_presets(window, tmp_path):
     p = window.params
     p.from_dict({"maneuver": {"threshold_deg": 25.0}, "clean": {"speed": {"v_max_kn": 22.0}}})

@@ -105,3 +105,27 @@ def test_a_damaged_lock_is_held_while_young_and_stale_when_old(tmp_path):
     os.utime(lock_path(proj), (old, old))
     ok, note = ProjectLocks().acquire(proj)
     assert ok and "taken over" in note
+
+
+def test_a_lock_whose_process_number_was_reused_is_stale(tmp_path):
+    """Operator test: a crash, a reboot, and the lock's pid (1 here) now belongs to
+    another process that started after the lock was taken: taken over, not respected
+    forever."""
+    proj = tmp_path / "work.wakeline"
+    body = {
+        "token": "x",
+        "pid": 1,
+        "host": socket.gethostname(),
+        "user": "alice",
+        "since": "2001-01-01 00:00:00 UTC",  # long before process 1 started
+    }
+    lock_path(proj).write_text(json.dumps(body))
+    if not os.path.exists("/proc/1/stat"):
+        pytest.skip("no /proc: process start times are not known here")
+    ok, note = ProjectLocks().acquire(proj)
+    assert ok and "no longer running" in note
+    # A live holder that started before its lock: respected, and the way out is named.
+    body.update(pid=os.getppid(), since="2999-01-01 00:00:00 UTC")
+    lock_path(proj).write_text(json.dumps(body))
+    ok, who = ProjectLocks().acquire(proj)
+    assert not ok and str(lock_path(proj)) in who

@@ -2,10 +2,12 @@
 the session, and the incremental project file."""
 
 import os
+import shutil
 import sqlite3
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -160,6 +162,84 @@ def test_incremental_project_writes_small_rows_and_reopens(scene, tmp_path):
     assert s2.root(cleaned.id).id == src.id and s2.new_id() not in s2.layers
 
 
+def test_every_write_is_in_the_project_file_itself(scene, tmp_path):
+    """Operator test: with WAL the committed work sat in a ``-wal`` side file, so a copy
+    of the ``.wakeline`` made while it was open held one layer of four, and a project
+    renamed while open lost what was written before and after. Now a copy taken after a
+    flush is complete, and a write after a rename fails with a message (nothing is
+    written to a file nobody opens)."""
+    _, points = scene
+    s = Session()
+    src = s.add_layer("scene", "source", points)
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    errors = []
+    writer = ProjectWriter(path, errors.append)
+    cleaned = s.apply_result(src.id, s.run_step(src.id, "clean"))[0]
+    writer.submit(lambda st: st.put_layer(cleaned, 1))
+    writer.submit(lambda st: st.add_decision({"action": "accept", "proposal": 1}))
+    assert writer.flush(10) and errors == []
+    copy = tmp_path / "copy.wakeline"
+    shutil.copyfile(path, copy)  # the file alone, as a user copies it to a stick
+    assert [lay.id for lay in load_project(copy).layers] == [src.id, cleaned.id]
+    assert load_project(copy).decisions == [{"action": "accept", "proposal": 1}]
+    assert not Path(f"{path}-wal").exists()
+    moved = tmp_path / "moved.wakeline"
+    path.rename(moved)
+    writer.submit(lambda st: st.add_decision({"action": "reject", "proposal": 2}))
+    assert writer.flush(10)
+    writer.close()
+    assert len(errors) == 1 and "moved, renamed or removed" in str(errors[0])
+    assert not path.exists()  # no new, empty project at the old name
+    back = load_project(moved)
+    assert [lay.id for lay in back.layers] == [src.id, cleaned.id]
+    assert back.decisions == [{"action": "accept", "proposal": 1}]
+
+
+def test_a_project_left_in_wal_mode_opens_from_a_read_only_folder(scene, tmp_path, monkeypatch):
+    """A project an older Wakeline (or a crash) left in WAL mode, in a folder that cannot
+    be written: SQLite cannot open it there ("unable to open database file", reported as
+    "not a Wakeline project"); it is read from a copy and opens read-only."""
+    _, points = scene
+    s = Session()
+    s.add_layer("scene", "source", points)
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    path = folder / "p.wakeline"
+    save_project(s, path)
+    con = sqlite3.connect(path)
+    con.execute("PRAGMA journal_mode=WAL")
+    con.execute("PRAGMA wal_autocheckpoint=0")
+    con.execute('INSERT INTO decisions (json) VALUES (\'{"action": "accept"}\')')
+    con.commit()
+    # The files as a crash leaves them: the decision only in the -wal file.
+    shutil.copyfile(path, tmp_path / "main.bin")
+    shutil.copyfile(f"{path}-wal", tmp_path / "wal.bin")
+    con.close()
+    shutil.copyfile(tmp_path / "main.bin", path)
+    shutil.copyfile(tmp_path / "wal.bin", f"{path}-wal")
+    for f in folder.glob("p.wakeline-shm"):
+        f.unlink()
+    folder.chmod(0o555)
+    try:
+        if os.access(folder, os.W_OK):  # root: SQLite's refusal there is simulated
+            import wakeline.core.project as project_mod
+
+            real = project_mod._open_read_only
+
+            def refuse(p):
+                if Path(p).parent == folder:
+                    raise sqlite3.OperationalError("unable to open database file")
+                return real(p)
+
+            monkeypatch.setattr(project_mod, "_open_read_only", refuse)
+            monkeypatch.setattr(project_mod.os, "access", lambda p, mode: False)
+        back = load_project(path)
+        assert back.read_only and back.decisions == [{"action": "accept"}]
+    finally:
+        folder.chmod(0o755)
+
+
 def test_writer_reports_failures(tmp_path):
     errors = []
     writer = ProjectWriter(tmp_path / "gone" / "p.wakeline", errors.append)
@@ -211,7 +291,7 @@ def test_killed_writer_loses_at_most_the_task_in_flight(tmp_path):
     code = (
         "import os, sys\n"
         "from wakeline.core.project import ProjectWriter\n"
-        f"w = ProjectWriter({str(path)!r}, print)\n"
+        f"w = ProjectWriter({str(path)!r}, print, create=True)\n"
         "w.submit(lambda st: st.add_decision({'action': 'reject', 'proposal': 7}))\n"
         "w.flush(10)\n"
         "os.kill(os.getpid(), 9)\n"

@@ -268,6 +268,10 @@
         <translation>保存工程失败：{0}</translation>
     </message>
     <message>
+        <source>Some changes could not be written to the project file (see the log). Save the work as a new project before closing?</source>
+        <translation>部分更改未能写入工程文件（见日志）。关闭前将工作另存为新工程吗？</translation>
+    </message>
+    <message>
         <source>Note</source>
         <translation>提示</translation>
     </message>
