@@ -324,19 +324,54 @@ def test_a_mistyped_year_in_text_times_is_quarantined(tmp_path, fmt):
     times = [t0 + pd.Timedelta(minutes=k) for k in range(40)]
     times[10] = times[10].replace(year=1700)
     times[25] = times[25].replace(year=2203)
-    times[30] = times[30].replace(year=2004)  # 19 years earlier: a time of this archive
     rows = ["sensor,batch,time,lon,lat"]
     rows += [f"AIS,1,{t.strftime(fmt)},{10 + k * 1e-3:.3f},55" for k, t in enumerate(times)]
+    # 19 years earlier, a track of its own: a time of this archive
+    rows += [f"AIS,2,{t.replace(year=2004).strftime(fmt)},11,55" for t in times[:5]]
     src = tmp_path / "years.csv"
     src.write_text("\n".join(rows) + "\n")
     res = read_points(src)
-    assert res.report["rows_imported"] == 38
+    assert res.report["rows_imported"] == 43
     assert res.quarantine["line"].tolist() == [12, 27]
     assert res.quarantine["reason"].str.startswith("time decades away").all()
     q = tmp_path / "q.csv"
     assert main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 0
     assert pd.read_csv(q)["line"].tolist() == [12, 27]
-    assert len(pd.read_csv(tmp_path / "o.csv")) == 38
+    assert len(pd.read_csv(tmp_path / "o.csv")) == 43
+
+
+def test_a_lone_row_days_from_its_track_is_quarantined_and_real_gaps_are_not(tmp_path):
+    """Operator test: 2032 and 2013 among 2023 rows (within the decades rule) imported,
+    survived clean, and stretched the track over 19 years. A row days away from both rows
+    of its track around it in the file, while those two are close, is quarantined; a real
+    gap (a ship silent for days, then several rows), a track's first or last row days
+    away, and two interleaved tracks on different days are not."""
+    from wakeline.app.cli import main
+
+    t0 = pd.Timestamp("2023-03-01 03:00:00")
+    rows = ["sensor,batch,time,lon,lat"]
+    for k in range(60):  # track A, interleaved with track B (B is a week later)
+        ta = t0 + pd.Timedelta(seconds=10 * k)
+        if k == 20:
+            ta = ta.replace(year=2032)  # mistyped year
+        if k == 40:
+            ta = ta.replace(month=7)  # mistyped month
+        rows.append(f"AIS,A,{ta:%Y-%m-%d %H:%M:%S},{10 + k * 1e-4:.4f},55")
+        tb = t0 + pd.Timedelta(days=7, seconds=10 * k)
+        rows.append(f"AIS,B,{tb:%Y-%m-%d %H:%M:%S},{11 + k * 1e-4:.4f},55")
+    for k in range(5):  # track C: silent for 3 days, then five rows
+        tc = t0 + pd.Timedelta(days=3 if k >= 2 else 0, seconds=10 * k)
+        rows.append(f"AIS,C,{tc:%Y-%m-%d %H:%M:%S},{12 + k * 1e-4:.4f},55")
+    rows.append(f"AIS,D,{t0 - pd.Timedelta(days=30):%Y-%m-%d %H:%M:%S},13,55")  # first row
+    rows += [f"AIS,D,{t0 + pd.Timedelta(seconds=10 * k):%Y-%m-%d %H:%M:%S},13,55" for k in range(5)]
+    src = tmp_path / "typo.csv"
+    src.write_text("\n".join(rows) + "\n")
+    res = read_points(src)
+    assert res.quarantine["line"].tolist() == [42, 82]
+    assert res.quarantine["reason"].str.startswith("time days away").all()
+    q = tmp_path / "q.csv"
+    assert main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 0
+    assert pd.read_csv(q)["line"].tolist() == [42, 82]
 
 
 def test_unix_ms_cut_short_or_too_large_get_their_own_reason(tmp_path):

@@ -575,6 +575,54 @@ def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray
     return ns, ok
 
 
+#: A row is alone in time when it lies more than this from both rows of its track around
+#: it in the file (and more than LONE_RATIO times their distance apart): 1 day (s).
+LONE_MIN_S = 86_400.0
+LONE_RATIO = 100.0
+
+
+def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray:
+    """Rows whose time is days from both rows of their track before and after them in the
+    file while those two are close (a mistyped year or month: 2032 or 2013 in a 2023
+    track; the decades rule misses them). Only such a lone row: a real gap, a track's
+    first or last row, or rows out of order together are left alone. The rows of other
+    tracks around it screen first (O(n)); only candidates are checked by track."""
+    n = len(ns)
+    out = np.zeros(n, dtype=bool)
+    if n < 3:
+        return out
+    t = np.where(ok, np.asarray(ns, dtype="float64") / 1e9, np.nan)
+    far = LONE_MIN_S
+    with np.errstate(invalid="ignore"):
+        step = np.abs(np.diff(t))
+        cand = np.ones(n, dtype=bool)
+        cand[1:] &= ~(step <= far)  # NaN (an invalid neighbour) does not clear it
+        cand[:-1] &= ~(step <= far)
+    cand &= ok
+    if not cand.any():
+        return out
+    # Same-track neighbours in file order (valid rows only), for the candidates' tracks.
+    rows = np.flatnonzero(ok & np.isin(track, np.unique(track[cand])))
+    order = rows[np.argsort(track[rows], kind="stable")]
+    tr, tt = track[order], t[order]
+    same_prev = np.r_[False, tr[1:] == tr[:-1]]
+    same_next = np.r_[tr[:-1] == tr[1:], False]
+    prev = np.r_[np.nan, tt[:-1]]
+    nxt = np.r_[tt[1:], np.nan]
+    with np.errstate(invalid="ignore"):
+        apart = np.abs(nxt - prev)
+        limit = np.maximum(far, LONE_RATIO * apart)
+        lone = (
+            same_prev
+            & same_next
+            & (np.abs(tt - prev) > limit)
+            & (np.abs(tt - nxt) > limit)
+            & cand[order]
+        )
+    out[order[lone]] = True
+    return out
+
+
 def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
     """Valid times more than :data:`EARLY_BEFORE_S` from the median of the valid ones
     (taken on at most ~100 k of them)."""
@@ -1119,6 +1167,15 @@ def _to_canonical(
         flag(
             _decades_away(ns, time_ok),
             "time decades away from the file's other times (a mistyped year?)",
+        )
+    if not counted.get("relative"):
+        track = text["batch"].codes.astype("int64")
+        if "sensor" in text:
+            track = track * (len(text["sensor"].names) + 1) + text["sensor"].codes
+        flag(
+            _lone_times(np.asarray(ns), np.asarray(time_ok) & (reasons == 0) & ~blank, track),
+            "time days away from its track's rows before and after it in the file "
+            "(a mistyped date?)",
         )
 
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
