@@ -271,8 +271,9 @@ def _inode(path: Path) -> tuple[int, int] | None:
 
 def _moved(path: Path) -> str:
     return (
-        f"{path}: the project file was moved, renamed or removed while open; this change "
-        "is not saved: use Save as to write the work to a file"
+        f"{path}: the project file was moved, renamed or removed while open (or never "
+        "written: a failed Save as); this change is not saved: use Save as to write the "
+        "work to a file"
     )
 
 
