@@ -1,4 +1,4 @@
-"""The review's proposals and decisions in the project file (SQLite, WAL).
+"""The review's proposals and decisions in the project file (SQLite).
 
 Two tables beside the project's own (``review_proposals``, ``review_decisions``); every
 decision is one row written in its own transaction the moment it is made, so killing
@@ -50,7 +50,7 @@ class ReviewStore:
         self.path = Path(path)
         try:
             self._db = sqlite3.connect(self.path, isolation_level=None)
-            self._db.execute("PRAGMA journal_mode=WAL")
+            self._db.execute("PRAGMA journal_mode=DELETE")  # every commit in the file itself
             self._db.execute("PRAGMA synchronous=FULL")
             self._db.executescript(_SCHEMA)
         except sqlite3.DatabaseError as exc:
