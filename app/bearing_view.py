@@ -4,15 +4,17 @@ Self-contained: :class:`BearingView` takes the core's bearing table (``read_bear
 and the detector's output (``detect_with_report``) and shows
 
 - a :class:`MapCanvas` with the observer's track and, per batch, lines from the observer
-  along the measured bearings (every few samples, one NaN-separated curve per batch);
-  the bearings at the estimated maneuver times are drawn thicker in red;
+  along the measured bearings (every few samples), a colour and a legend entry per batch
+  (:data:`MAX_LINE_COLOURS`; further batches share one), as long as the scene is large
+  (:func:`line_length_m`); the bearings at the estimated maneuver times are drawn thicker
+  in red;
 - the detections (batch, detect_time, maneuver_time, z) in a sortable table, with
   Export… writing them as CSV;
 - the per-batch report lines (windows tested, skipped and why, smallest visible turn).
 
 :func:`bearing_line_points` gives the same lines as a points table a map layer draws
 with its gap breaking off (:func:`line_layer`): both ends of a line carry the sample's
-time, and a 20 km leg in no time is a jump the map otherwise breaks (nothing drawn).
+time, and a long leg in no time is a jump the map otherwise breaks (nothing drawn).
 """
 
 import math
@@ -28,8 +30,9 @@ from wakeline.core.io import write_csv
 from wakeline.core.schema import time_seconds
 
 from .map_canvas import MapCanvas
-from .map_draw import DrawData, LayerStyle, prepare_layer
-from .map_legend import LABEL_PADDING_PX
+from .map_colors import BATCH_PALETTE
+from .map_draw import DrawData, LayerStyle, layer_geometry, prepare_layer
+from .map_legend import LABEL_PADDING_PX, short_label
 
 #: Smallest width (px) of the map's plot area: the map widget's minimum is this plus its
 #: latitude axis and legend column (a dock had given the map ~200 px and its plot ~40 px).
@@ -44,6 +47,111 @@ SPLIT_WEIGHTS = (3000, 2000)
 #: Stacking of the layers: the observer's track over the maneuver lines over the fan of
 #: bearing lines (which otherwise hid the track they start from).
 Z_OBSERVER, Z_MANEUVERS, Z_LINES = 2.0, 1.0, 0.0
+#: Colours of the batches' bearing lines, in turn: the batch palette less the maneuvers'
+#: reds and the observer's greys.
+LINE_COLOURS = tuple(
+    c for c in BATCH_PALETTE if c not in ("#d62728", "#ad494a", "#7f7f7f", "#636363")
+)
+#: Batches with a colour (and legend entry) of their own; the others share OTHER_COLOUR.
+MAX_LINE_COLOURS = 8
+OTHER_COLOUR = "#9e9e9e"
+OTHER_LABEL = "other batches"
+#: Longest batch name in the legend (characters; as long as "bearing lines"): the
+#: legend column keeps its width and the plot its room in a narrow dock.
+LABEL_CHARS = 14
+
+#: Bearing-line length when nothing tells the range (:func:`line_length_m`): the reach of
+#: a vessel at TYPICAL_SPEED_MS during the longest sequence, or SPAN_FACTOR times the
+#: observer's own track, within [MIN_LENGTH_M, MAX_LENGTH_M].
+TYPICAL_SPEED_MS = 5.0
+SPAN_FACTOR = 4.0
+MIN_LENGTH_M, MAX_LENGTH_M = 300.0, 20_000.0
+#: With ranges known: the lines reach this much past the far targets (95th percentile).
+RANGE_MARGIN = 1.25
+#: Columns that give the target's range (metres), or its true position.
+RANGE_COLUMNS = ("range_m", "range")
+TRUTH_COLUMNS = ("true_lon", "true_lat")
+#: Margin of the fitted view (share of the scene's size on each side; at least MIN_PAD_M).
+FIT_MARGIN, MIN_PAD_M = 0.06, 20.0
+#: Rows of the detections table kept visible under the map in a narrow dock.
+MIN_TABLE_ROWS = 3
+
+
+def _finite_range_m(bearings: pd.DataFrame) -> np.ndarray:
+    """The target ranges (m) the table knows: a range column, or the distance from the
+    observer to the true target position; empty when it knows none."""
+    for name in RANGE_COLUMNS:
+        if name in bearings.columns:
+            r = pd.to_numeric(bearings[name], errors="coerce").to_numpy(dtype="float64")
+            r = r[np.isfinite(r) & (r > 0)]
+            if len(r):
+                return r
+    if set(TRUTH_COLUMNS) <= set(bearings.columns):
+        cols = [bearings[c].to_numpy(dtype="float64") for c in ("obs_lon", "obs_lat")]
+        cols += [bearings[c].to_numpy(dtype="float64") for c in TRUTH_COLUMNS]
+        r = np.asarray(geo.haversine_m(*cols), dtype="float64")
+        return r[np.isfinite(r) & (r > 0)]
+    return np.zeros(0)
+
+
+def line_length_m(bearings: pd.DataFrame) -> float:
+    """How long to draw the bearing lines (m), from the data: the range is unknown in
+    bearing-only data, yet a fixed 20 km fitted a harbour scene (targets 50–500 m off, a
+    camera's 100-s sequences) into a 60–90 km view with nothing to see.
+
+    - The table knows the ranges (``range_m``/``range``, or the targets' true positions
+      ``true_lon, true_lat``): :data:`RANGE_MARGIN` times their 95th percentile, so the
+      lines just pass the targets;
+    - else the larger of the distance a vessel covers at :data:`TYPICAL_SPEED_MS` (10 kn)
+      during the longest sequence (a sensor that holds a target ~100 s — a camera in a
+      harbour — sees it within ~500 m; a 15-min sonar or ESM sequence reaches kilometres)
+      and :data:`SPAN_FACTOR` times the extent of the observer's track (lines reach well
+      beyond the observer's own motion, the baseline that makes ranges observable);
+    - within [:data:`MIN_LENGTH_M`, :data:`MAX_LENGTH_M`].
+
+    The view is fitted to the observer's track and the lines (:meth:`BearingView.show_result`),
+    so the scene is at the targets' scale; ``length_m`` there (or
+    :meth:`BearingView.set_line_length`) overrides this."""
+    r = _finite_range_m(bearings)
+    if len(r):
+        return float(np.clip(RANGE_MARGIN * np.percentile(r, 95), MIN_LENGTH_M, MAX_LENGTH_M))
+    span_s = 0.0
+    if len(bearings) and "time" in bearings.columns:
+        t = pd.Series(time_seconds(bearings["time"]), index=bearings.index)
+        spans = t.groupby(bearings["batch"].astype(str).to_numpy()).agg(lambda x: x.max() - x.min())
+        span_s = float(np.nanmax(spans.to_numpy())) if len(spans) else 0.0
+    extent = 0.0
+    if {"obs_lon", "obs_lat"} <= set(bearings.columns):
+        lon = bearings["obs_lon"].to_numpy(dtype="float64")
+        lat = bearings["obs_lat"].to_numpy(dtype="float64")
+        ok = np.isfinite(lon) & np.isfinite(lat)
+        if ok.any():
+            lon, lat = lon[ok], lat[ok]
+            extent = float(
+                geo.haversine_m(
+                    np.array([lon.min()]), np.array([lat.min()]),
+                    np.array([lon.max()]), np.array([lat.max()]),
+                )[0]
+            )  # fmt: skip
+    want = max(TYPICAL_SPEED_MS * span_s, SPAN_FACTOR * extent)
+    return float(np.clip(want, MIN_LENGTH_M, MAX_LENGTH_M))
+
+
+def batch_colours(batches) -> dict[str, tuple[str, str]]:
+    """Each batch's line colour and legend label (its name, shortened): :data:`LINE_COLOURS`
+    in turn, in sorted order. Beyond :data:`MAX_LINE_COLOURS` batches the first
+    ``MAX_LINE_COLOURS - 1`` keep theirs and the rest share :data:`OTHER_COLOUR` under
+    one label, :data:`OTHER_LABEL` (at most MAX_LINE_COLOURS legend entries)."""
+    names = sorted({str(b) for b in batches})
+    many = len(names) > MAX_LINE_COLOURS
+    own = names[: MAX_LINE_COLOURS - 1] if many else names
+    out = {
+        b: (LINE_COLOURS[k % len(LINE_COLOURS)], short_label(b, LABEL_CHARS))
+        for k, b in enumerate(own)
+    }
+    for b in names[len(own) :]:
+        out[b] = (OTHER_COLOUR, OTHER_LABEL)
+    return out
 
 
 def legend_width(names) -> float:
@@ -62,15 +170,36 @@ def line_layer(
     """A map layer of :func:`bearing_line_points`: lines only, never broken.
 
     The map breaks a leg faster than a ship (:func:`~wakeline.app.map_lod.gap_breaks`);
-    a bearing line is a 20 km leg between two points of one time, so with the default
+    a bearing line is a long leg between two points of one time, so with the default
     style every line lost its far end and nothing was drawn (``gaps=False``)."""
     style = LayerStyle(width=width, symbol_size=0, z=z, gaps=False)
     return prepare_layer(points, name, color, style=style, build_index=False)
 
 
+def batch_line_layer(
+    points: pd.DataFrame, name: str, width: float, z: float = 0.0
+) -> tuple[DrawData, dict[str, tuple[str, str]]]:
+    """:func:`line_layer` with a colour and a legend entry per batch
+    (:func:`batch_colours`): one curve per batch. Returns the layer and the colours."""
+    batch = points["batch"].astype(str).str.rsplit("#", n=1).str[0]
+    colours = batch_colours(batch.unique())
+    label = batch.map({b: lab for b, (_, lab) in colours.items()})
+    # layer_geometry: a curve per "sensor", coloured by the sensors' sorted order.
+    by_label = {lab: col for col, lab in colours.values()}
+    labels = sorted(by_label)
+    geom = layer_geometry(
+        points.assign(sensor=label.to_numpy()),
+        by_label[labels[0]] if labels else LINE_COLOURS[0],
+        color_by="sensor",
+        colors=tuple(by_label[lab] for lab in labels) or None,
+    )
+    style = LayerStyle(width=width, symbol_size=0, z=z, gaps=False)
+    return prepare_layer(geom, name, style=style, build_index=False), colours
+
+
 def bearing_line_points(
     bearings: pd.DataFrame,
-    length_m: float = 20_000.0,
+    length_m: float = MAX_LENGTH_M,
     max_lines: int = 60,
     at_times: pd.DataFrame | None = None,
 ) -> pd.DataFrame:
@@ -191,6 +320,12 @@ class BearingView(QtWidgets.QWidget):
         self.table.setModel(self.model)
         self.table.setSortingEnabled(True)
         self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectionBehavior.SelectRows)
+        # One line per detection (times wrapped onto two lines took a narrow dock's room).
+        self.table.setWordWrap(False)
+        self.table.verticalHeader().hide()
+        rows = self.table.verticalHeader()
+        rows.setDefaultSectionSize(self.table.fontMetrics().height() + 8)
+        rows.setSectionResizeMode(QtWidgets.QHeaderView.ResizeMode.Fixed)
         self.export_button = QtWidgets.QPushButton(self.tr("Export detections…"), self)
         self.export_button.clicked.connect(self._export_dialog)
         self.log = QtWidgets.QPlainTextEdit(self)
@@ -203,6 +338,11 @@ class BearingView(QtWidgets.QWidget):
         lay.addWidget(self.export_button)
         lay.addWidget(self.log, 1)
         side.setMinimumWidth(MIN_SIDE_PX)
+        # Under the map (a narrow dock) the table keeps its header and MIN_TABLE_ROWS rows
+        # and the report two lines (the map had taken all but one clipped row).
+        self.table.setMinimumHeight(self.table_min_height())
+        self.log.setMinimumHeight(2 * self.log.fontMetrics().lineSpacing() + 12)
+        self.side = side
         # The map's legend column is reserved for its three short names, not for the
         # 26 characters of a main map's layer names (230 px of a dock's width).
         self.map.legend.widest = legend_width(LAYER_NAMES)
@@ -221,7 +361,29 @@ class BearingView(QtWidgets.QWidget):
         outer.addWidget(split)
         self.bearings = pd.DataFrame()
         self.detections = pd.DataFrame()
-        self._length = 20_000.0
+        self._report: list[dict] = []
+        #: The bearing lines' length (m) set by :meth:`set_line_length`; None: from the
+        #: data (:func:`line_length_m`).
+        self.fixed_length_m: float | None = None
+        #: The length the lines are drawn with now.
+        self.length_m = MAX_LENGTH_M
+        #: Each batch's line colour and legend label, as drawn now.
+        self.colours: dict[str, tuple[str, str]] = {}
+
+    def table_min_height(self) -> int:
+        """Height (px) of the table's header and :data:`MIN_TABLE_ROWS` rows, with the
+        room of a horizontal scroll bar."""
+        header = self.table.horizontalHeader().sizeHint().height()
+        rows = MIN_TABLE_ROWS * self.table.verticalHeader().defaultSectionSize()
+        bar = self.table.style().pixelMetric(QtWidgets.QStyle.PixelMetric.PM_ScrollBarExtent)
+        return header + rows + bar + 2 * self.table.frameWidth()
+
+    def set_line_length(self, length_m: float | None) -> None:
+        """Draw the bearing lines ``length_m`` metres long (None: from the data,
+        :func:`line_length_m`); redraws what is shown."""
+        self.fixed_length_m = float(length_m) if length_m else None
+        if len(self.bearings):
+            self.show_result(self.bearings, self.detections, self._report)
 
     def map_min_width(self) -> int:
         """The map widget's minimum width: its plot area at least :data:`MIN_PLOT_PX`."""
@@ -250,16 +412,22 @@ class BearingView(QtWidgets.QWidget):
         report: list[dict] | None = None,
         length_m: float | None = None,
     ) -> None:
-        """Draw the observer, the bearing lines and the detections; list the report."""
-        self.bearings, self.detections = bearings, detections
+        """Draw the observer, the bearing lines (a colour per batch) and the detections;
+        list the report; fit the view to the observer's track and the lines.
+
+        The lines are ``length_m`` long if given, else :meth:`set_line_length`'s, else as
+        the data suggest (:func:`line_length_m`: the targets' ranges when known, else the
+        scene's scale from the sequences' duration and the observer's track)."""
+        self.bearings, self.detections, self._report = bearings, detections, report or []
         self.model.set_table(detections)
+        self.table.resizeColumnsToContents()
         self.log.setPlainText("\n".join(report_lines(report or [])))
         for name in list(self.map.layer_names()):
             self.map.remove_layer(name)
         if bearings.empty or not {"obs_lon", "obs_lat"} <= set(bearings.columns):
             self.log.appendPlainText(self.tr("No observer position: no bearing lines to draw."))
             return
-        length = self._length = length_m or 20_000.0
+        length = self.length_m = float(length_m or self.fixed_length_m or line_length_m(bearings))
         obs = bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(
             sensor="observer"
         )
@@ -271,22 +439,36 @@ class BearingView(QtWidgets.QWidget):
             build_index=False,
         )
         self.map.set_draw_data(observer)
-        self.map.set_draw_data(
-            line_layer(
-                bearing_line_points(bearings, length), LAYER_NAMES[1], "#1f77b4", 1.0, Z_LINES
-            )
+        lines, self.colours = batch_line_layer(
+            bearing_line_points(bearings, length), LAYER_NAMES[1], 1.0, Z_LINES
         )
+        self.map.set_draw_data(lines)
         if len(detections):
             lines = bearing_line_points(bearings, length, at_times=detections)
             self.map.set_draw_data(line_layer(lines, LAYER_NAMES[2], "#d62728", 2.5, Z_MANEUVERS))
         lat = float(np.nanmean(bearings["obs_lat"].to_numpy(float)))
         self.map.set_true_aspect(lat)
-        self.map.fit(self.map_points())
+        self.map.show_range(self.fit_range())
+
+    def fit_range(self) -> tuple[float, float, float, float] | None:
+        """The view (x0, x1, y0, y1, degrees) around the observer's track and the lines
+        with a :data:`FIT_MARGIN` margin: the map's own fit pads at least 0.01° (a
+        kilometre), which left a harbour scene in the middle third of the view."""
+        pts = self.map_points()
+        lon, lat = pts["lon"].to_numpy(float), pts["lat"].to_numpy(float)
+        ok = np.isfinite(lon) & np.isfinite(lat)
+        if not ok.any():
+            return None
+        w, e, s, n = lon[ok].min(), lon[ok].max(), lat[ok].min(), lat[ok].max()
+        pad_y = max((n - s) * FIT_MARGIN, np.degrees(MIN_PAD_M / geo.EARTH_RADIUS_M))
+        cos = max(math.cos(math.radians(0.5 * (s + n))), 0.05)
+        pad_x = max((e - w) * FIT_MARGIN, np.degrees(MIN_PAD_M / geo.EARTH_RADIUS_M) / cos)
+        return (w - pad_x, e + pad_x, s - pad_y, n + pad_y)
 
     def map_points(self) -> pd.DataFrame:
         """Every point drawn (for fitting the view)."""
         parts = [
-            bearing_line_points(self.bearings, self._length),
+            bearing_line_points(self.bearings, self.length_m),
             self.bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(
                 sensor="observer"
             )[["sensor", "batch", "time", "lon", "lat"]],

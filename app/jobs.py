@@ -269,7 +269,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.detail.show_bearings(
                 bearings, self.bearing_detections, self.params.params("bearing")
             )
-            self.docks["detail"].raise_()
+            # The Bearing-only dock (map and detections) comes to the front, not the
+            # Detail dock's tab of the same name behind which it was tabbed.
+            self.docks["bearing"].show()
+            self.docks["bearing"].raise_()
         elif kind == "project":
             self._apply_project(*done[1:])
         elif kind == "fuse_layers":

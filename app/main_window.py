@@ -180,9 +180,11 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         d = self.docks
         horizontal, vertical = QtCore.Qt.Orientation.Horizontal, QtCore.Qt.Orientation.Vertical
         self.resizeDocks([d["layers"], d["batches"]], [300, 560], horizontal)
+        # The detail/bearing tabs get the larger share of the right column: the bearing
+        # dock's map and its detections table under it (a 142-px map, one clipped row).
         self.resizeDocks(
             [d["layers"], d["params"], d["batches"], d["detail"], d["log"]],
-            [150, 450, 420, 260, 130],
+            [150, 450, 300, 460, 130],
             vertical,
         )
 

@@ -1155,11 +1155,17 @@ def report_lines(report: list[dict]) -> list[str]:
         turn = f", smallest turn ≈ {r['min_turn_deg']:.0f}°" if r["min_turn_deg"] else ""
         rate = r["min_rate_change_deg_min"]
         see = f"smallest bearing-rate change ≈ {rate:.2f}°/min" if rate else "nothing detectable"
+        if not r["tested"]:  # no window: no noise, nothing to see (not "noise ≈ None°")
+            what = "noise and detectable change not estimated: no window tested"
+        elif r["noise_deg"] is None:
+            what = f"noise not estimated, {see}{turn}"
+        else:
+            what = f"noise ≈ {r['noise_deg']}°, {see}{turn}"
         lines.append(
             f"batch {r['batch']}: {r['detections']} detection(s); {r['tested']} of "
             f"{r['windows']} windows tested"
             + (f" (skipped: {skipped})" if skipped else "")
-            + f"; noise ≈ {r['noise_deg']}°, {see}{turn}"
+            + f"; {what}"
         )
     return lines
 

@@ -5,9 +5,18 @@ import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
-from wakeline.app.bearing_view import BearingView, bearing_line_points  # noqa: E402
+from wakeline.app.bearing_view import (  # noqa: E402
+    MAX_LENGTH_M,
+    MAX_LINE_COLOURS,
+    MIN_TABLE_ROWS,
+    OTHER_LABEL,
+    RANGE_MARGIN,
+    BearingView,
+    bearing_line_points,
+    line_length_m,
+)
 from wakeline.core import geo  # noqa: E402
-from wakeline.core.bearing import detect_with_report  # noqa: E402
+from wakeline.core.bearing import detect_with_report, report_lines  # noqa: E402
 from wakeline.core.bearing_eval import simulate_table  # noqa: E402
 
 pytestmark = pytest.mark.gui
@@ -56,7 +65,11 @@ def test_view_shows_lines_and_exports_detections(qtbot, tmp_path):
     assert view.model.rowCount() == len(table)
 
 
-BLUE, RED, GREY = (0x1F, 0x77, 0xB4), (0xD6, 0x27, 0x28), (0x55, 0x55, 0x55)
+RED, GREY = (0xD6, 0x27, 0x28), (0x55, 0x55, 0x55)
+
+
+def rgb(name: str) -> tuple[int, int, int]:
+    return tuple(int(name[k : k + 2], 16) for k in (1, 3, 5))
 
 
 def rgb_of(widget) -> np.ndarray:
@@ -120,17 +133,60 @@ def eo_like_table() -> pd.DataFrame:
     return pd.concat(rows, ignore_index=True)
 
 
-@pytest.mark.parametrize("case", ["sim", "eo"])
+#: Where the Autoferry EO/IR scenes are (Trondheim harbour).
+HARBOUR = (10.39908, 63.43890)
+
+
+def harbour_table(
+    ranges=((80.0, 300.0), (150.0, 450.0)), duration_s: float = 100.0, truth: bool = False
+) -> pd.DataFrame:
+    """A camera's bearings in a harbour, like the Autoferry EO/IR files: a ferry that
+    drifts ~10 m in ``duration_s`` (4 Hz), each target moving from one range to another
+    (metres) across the view. ``truth`` adds the targets' true positions."""
+    t = np.arange(0.0, duration_s, 0.25)
+    time = pd.Timestamp("2021-05-05 09:06:00", tz="UTC") + pd.to_timedelta(t, unit="s")
+    lat0 = HARBOUR[1]
+    m_lon = geo.EARTH_RADIUS_M * np.cos(np.radians(lat0)) * np.pi / 180.0
+    m_lat = geo.EARTH_RADIUS_M * np.pi / 180.0
+    ox, oy = 0.1 * t, 0.02 * t  # metres east and north of HARBOUR
+    rows = []
+    for k, (r0, r1) in enumerate(ranges):
+        az = np.radians(40.0 + 150.0 * k + 0.3 * t)  # sweeping round the ferry
+        r = np.linspace(r0, r1, len(t))
+        tx, ty = ox + r * np.sin(az), oy + r * np.cos(az)
+        part = pd.DataFrame(
+            {
+                "batch": f"s16_t{k + 1}",
+                "time": time,
+                "bearing": np.degrees(np.arctan2(tx - ox, ty - oy)) % 360.0,
+                "obs_lon": HARBOUR[0] + ox / m_lon,
+                "obs_lat": lat0 + oy / m_lat,
+            }
+        )
+        if truth:
+            part = part.assign(true_lon=HARBOUR[0] + tx / m_lon, true_lat=lat0 + ty / m_lat)
+        rows.append(part)
+    return pd.concat(rows, ignore_index=True)
+
+
+def line_colour(view, batch_id: str) -> tuple[int, int, int]:
+    """The colour the view gives the line ``batch#k``."""
+    return rgb(view.colours[batch_id.rsplit("#", 1)[0]][0])
+
+
+@pytest.mark.parametrize("case", ["sim", "eo", "harbour"])
 def test_bearing_lines_maneuvers_and_observer_are_painted(qtbot, case):
-    """Every bearing line is a 20 km leg between two points of one time: the map's jump
+    """Every bearing line is a long leg between two points of one time: the map's jump
     breaking cut each one to a lone vertex and nothing was painted (a dock with the
-    observer alone). Now the pixels along the lines have the lines' colours."""
+    observer alone). Now the pixels along the lines have their batch's colour."""
     if case == "sim":
         df = simulate_table(seed=4)
         table, report = detect_with_report(df)
         assert len(table)
-    else:
+    elif case == "eo":
         df, table, report = eo_like_table(), pd.DataFrame(), []
+    else:
+        df, table, report = harbour_table(), pd.DataFrame(), []
     view = BearingView()
     qtbot.addWidget(view)
     view.resize(1200, 700)
@@ -138,25 +194,27 @@ def test_bearing_lines_maneuvers_and_observer_are_painted(qtbot, case):
     qtbot.waitExposed(view)
     view.show_result(df, table, report)
     qtbot.wait(50)
-    rgb = rgb_of(view)
+    pixels = rgb_of(view)
     canvas = view.map
     (x0, x1), (y0, y1) = canvas.vb.viewRange()
 
-    lines = bearing_line_points(df, 20_000.0)
+    lines = bearing_line_points(df, view.length_m)
     # Every line lies in the view (fit to the lines and the observer).
     assert lines["lon"].between(x0, x1).all() and lines["lat"].between(y0, y1).all()
-    points = along(lines, (0.4, 0.7, 0.95))
-    blue = [has_colour(rgb, to_px(canvas, *p), BLUE) for p in points]
-    # Red maneuver lines lie over some of the blue ones.
-    assert np.mean(blue) > 0.9, f"{np.mean(blue):.0%} of the bearing-line samples are blue"
+    fractions = (0.4, 0.7, 0.95)
+    points = along(lines, fractions)
+    colours = np.repeat([line_colour(view, b) for b in lines["batch"].iloc[0::2]], 3, axis=0)
+    hit = [has_colour(pixels, to_px(canvas, *p), c) for p, c in zip(points, colours, strict=True)]
+    # Red maneuver lines (and the other batches' lines) lie over some of them.
+    assert np.mean(hit) > 0.85, f"{np.mean(hit):.0%} of the line samples have their colour"
     if len(table):
-        maneuvers = bearing_line_points(df, 20_000.0, at_times=table)
+        maneuvers = bearing_line_points(df, view.length_m, at_times=table)
         assert len(maneuvers) == 2 * len(table)
         for p in along(maneuvers, (0.3, 0.6, 0.9)):
-            assert has_colour(rgb, to_px(canvas, *p), RED), p
+            assert has_colour(pixels, to_px(canvas, *p), RED), p
     # The observer's track is drawn over the fan of lines that start on it.
     obs = df[["obs_lon", "obs_lat"]].to_numpy()[:: max(len(df) // 20, 1)]
-    assert all(has_colour(rgb, to_px(canvas, lon, lat), GREY) for lon, lat in obs)
+    assert all(has_colour(pixels, to_px(canvas, lon, lat), GREY) for lon, lat in obs)
 
 
 def test_map_keeps_a_usable_width_in_a_narrow_dock(qtbot):
@@ -191,3 +249,160 @@ def test_map_keeps_a_usable_width_in_a_narrow_dock(qtbot):
     qtbot.waitUntil(lambda: view.split.orientation() == QtCore.Qt.Orientation.Horizontal)
     qtbot.waitUntil(lambda: view.map.width() > view.width() // 2)
     assert view.map.plot_size_px()[0] >= MIN_PLOT_PX
+
+
+def test_lines_are_as_long_as_a_harbour_scene_and_the_view_shows_it(qtbot):
+    """Camera bearings in a harbour (targets 80–450 m off, 100-s sequences, a ferry that
+    hardly moves) were drawn 20 km long and fitted into a 60–90 km view: nothing could be
+    seen. The length now follows the data (the sequences' duration, the observer's track,
+    or the ranges when the table knows them) and the view the scene."""
+    df = harbour_table()
+    view = BearingView()
+    qtbot.addWidget(view)
+    view.resize(900, 600)
+    view.show()
+    qtbot.waitExposed(view)
+    view.show_result(df, pd.DataFrame(), [])
+    assert 300.0 <= view.length_m <= 1_000.0
+    (x0, x1), (y0, y1) = view.map.vb.viewRange()
+    lat0 = HARBOUR[1]
+    width_m = geo.haversine_m(np.array([x0]), np.array([lat0]), np.array([x1]), np.array([lat0]))
+    height_m = geo.haversine_m(np.array([x0]), np.array([y0]), np.array([x0]), np.array([y1]))
+    assert float(max(width_m[0], height_m[0])) < 4_000.0  # not 60 km
+    assert float(min(width_m[0], height_m[0])) > 2 * 300.0  # the fan, not a zoom on the ferry
+    inside = lambda lon, lat: (x0 <= lon <= x1) and (y0 <= lat <= y1)  # noqa: E731
+    # The observer's whole track and the near part of every line (where the targets are)
+    assert all(inside(*p) for p in df[["obs_lon", "obs_lat"]].to_numpy())
+    lines = bearing_line_points(df, view.length_m)
+    near = along(lines, (0.0, 0.25, 0.5, 1.0))
+    assert all(inside(*p) for p in near)
+    # and every target position (80–450 m) lies on the drawn part of its line
+    truth = harbour_table(truth=True)
+    r = geo.haversine_m(
+        truth["obs_lon"].to_numpy(), truth["obs_lat"].to_numpy(),
+        truth["true_lon"].to_numpy(), truth["true_lat"].to_numpy(),
+    )  # fmt: skip
+    assert r.max() < view.length_m
+    assert all(inside(*p) for p in truth[["true_lon", "true_lat"]].to_numpy()[::40])
+
+    # The ranges known (a truth position or a range column): just past the far target.
+    assert line_length_m(truth) == pytest.approx(RANGE_MARGIN * np.percentile(r, 95))
+    assert line_length_m(df.assign(range_m=2_000.0)) == pytest.approx(RANGE_MARGIN * 2_000.0)
+    # A 15-min sequence of a target 20 km off, the observer moving 5 km: 20 km as before.
+    assert line_length_m(simulate_table(seed=4)) == MAX_LENGTH_M
+    # The length can be set: for a call, or for the view until set back to the data's.
+    view.show_result(df, pd.DataFrame(), [], length_m=5_000.0)
+    assert view.length_m == 5_000.0
+    view.set_line_length(2_500.0)
+    assert view.length_m == 2_500.0
+    end = bearing_line_points(df, 2_500.0).iloc[1::2]
+    (x0, x1), (y0, y1) = view.map.vb.viewRange()
+    assert end["lon"].between(x0, x1).all() and end["lat"].between(y0, y1).all()
+    view.set_line_length(None)
+    assert view.length_m == line_length_m(df)
+
+
+def test_each_batch_has_its_own_pen_and_legend_entry(qtbot):
+    """Both targets' lines were one blue layer: now a colour and a legend entry per batch
+    (up to MAX_LINE_COLOURS; the rest share one, "other batches")."""
+    df = harbour_table()
+    view = BearingView()
+    qtbot.addWidget(view)
+    view.show_result(df, pd.DataFrame(), [])
+    items = view.map.layer_items("bearing lines")
+    assert len(items) == 2
+    pens = {it.opts["pen"].color().name() for it in items}
+    assert len(pens) == 2
+    assert {c for c, _ in view.colours.values()} == pens
+    assert not pens & {"#d62728", "#555555"}  # not the maneuvers' red, not the observer's grey
+    # each curve holds exactly one batch's lines: its points are that batch's line ends
+    for it in items:
+        colour = it.opts["pen"].color().name()
+        batch = next(b for b, (c, _) in view.colours.items() if c == colour)
+        lines = bearing_line_points(df[df["batch"] == batch], view.length_m)
+        x, y = it.curve.getData()
+        ok = np.isfinite(x)
+        assert np.allclose(np.sort(x[ok]), np.sort(lines["lon"].to_numpy()))
+    labels = [label.text for _, label in view.map.legend.items]
+    assert labels == ["observer", "s16_t1", "s16_t2"]
+
+    many = pd.concat(
+        [eo_like_table().assign(batch=f"b{k:02d}") for k in range(MAX_LINE_COLOURS + 3)],
+        ignore_index=True,
+    )
+    view.show_result(many, pd.DataFrame(), [])
+    items = view.map.layer_items("bearing lines")
+    assert len(items) == MAX_LINE_COLOURS
+    assert len({it.opts["pen"].color().name() for it in items}) == MAX_LINE_COLOURS
+    labels = [label.text for _, label in view.map.legend.items]
+    assert OTHER_LABEL in labels and "b00" in labels and "b10" not in labels
+
+
+def test_report_says_what_was_not_estimated(qtbot):
+    """A batch where no window was tested printed ``noise ≈ None°``."""
+    untested = {
+        "batch": "s3_t1",
+        "too_short": "",
+        "excluded": {"gap": 5, "sparse": 3},
+        "detections": 0,
+        "tested": 0,
+        "windows": 8,
+        "noise_deg": None,
+        "min_rate_change_deg_min": None,
+        "min_turn_deg": None,
+    }
+    tested = {
+        **untested,
+        "batch": "s3_t2",
+        "excluded": {"gap": 9},
+        "detections": 1,
+        "tested": 12,
+        "windows": 21,
+        "noise_deg": 0.8701,
+        "min_rate_change_deg_min": 9.51,
+        "min_turn_deg": 10.0,
+    }
+    lines = report_lines([untested, tested])
+    assert lines[0] == (
+        "batch s3_t1: 0 detection(s); 0 of 8 windows tested (skipped: 5 gap, 3 sparse); "
+        "noise and detectable change not estimated: no window tested"
+    )
+    assert "noise ≈ 0.8701°, smallest bearing-rate change ≈ 9.51°/min" in lines[1]
+    assert "None" not in "\n".join(lines)
+    assert "not estimated" in report_lines([{**tested, "noise_deg": None}])[0]
+    # the view lists it so; a real run of a batch too gappy to test says the same
+    df = harbour_table()
+    gappy = df[(df["batch"] == "s16_t1") & (np.arange(len(df)) % 40 == 0)]
+    table, report = detect_with_report(pd.concat([gappy, df[df["batch"] == "s16_t2"]]))
+    view = BearingView()
+    qtbot.addWidget(view)
+    view.show_result(df, table, report)
+    text = view.log.toPlainText()
+    assert "None" not in text and "s16_t1" in text
+
+
+def test_loading_bearings_raises_the_dock_with_map_and_table_in_view(qtbot, tmp_path):
+    """At 1800×1000 the Detail panel's Bearing-only tab came to the front, not the
+    Bearing-only dock; and that dock's map was 142 px high with one detection row shown."""
+    from PySide6 import QtCore
+
+    from tests.conftest import make_window
+    from wakeline.app.main import wait_for_jobs
+
+    w = make_window(qtbot, tmp_path, (1800, 1000))
+    w.show()
+    qtbot.waitExposed(w)
+    path = tmp_path / "bearings.csv"
+    simulate_table(seed=4).to_csv(path, index=False)
+    w.load_bearings(path)
+    wait_for_jobs(w)
+    qtbot.waitUntil(lambda: not w.docks["bearing"].visibleRegion().isEmpty())
+    assert w.docks["detail"].visibleRegion().isEmpty()  # tabbed behind
+    view = w.bearing_view
+    assert view.split.orientation() == QtCore.Qt.Orientation.Vertical
+    assert view.map.plot_size_px()[1] >= 180
+    assert len(w.bearing_detections) >= MIN_TABLE_ROWS
+    rows = view.table.viewport().height() // view.table.verticalHeader().defaultSectionSize()
+    assert rows >= MIN_TABLE_ROWS
+    w.runner.cancel()
+    w.runner.wait()

@@ -591,6 +591,38 @@ def test_one_damaged_row_does_not_widen_a_whole_column(tmp_path):
     assert layout.field_column("lon").number.trim.startswith("repr")
 
 
+def test_quarantined_lines_do_not_set_the_number_formats(tmp_path):
+    """One malformed line (``;`` for ``,``: a short row, quarantined on reading) put its
+    remark under the speed column of the layout's sample, and the speed format fell back to
+    the default: every ``0.0`` came back as ``0`` (operator test). Quarantined lines set no
+    format, so the file comes back as it came in, less the quarantined line; a stray word
+    in a number column (an unparsable value, quarantined too) sets nothing either."""
+    rows = [
+        "batch,time,lon,lat,speed,flag,remark",
+        "2,2024-08-01 08:40:06,23.64286,37.94322,0.0,-1.0,note:STOP_START",
+        "2,2024-08-01 08:41:06,23.64386,37.94322,1.5,2.5,note:STOP_END",
+        "2;2024-08-01 08:41:30;23.64436,37.94322,7.96139,318.52919,note:SHORT",
+        "2,2024-08-01 08:42:06,23.64486,37.94322,10.0,-1.0,note:CHANGE",
+        "2,2024-08-01 08:43:06,23.64586,37.94322,0.0,-1.0,note:STOP_START",
+    ]
+    src = tmp_path / "one_bad_line.csv"
+    src.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    result = read_points(src)
+    assert result.report["quarantine_reasons"] == {"short row: 5 of 7 fields": 1}
+    layout = Layout.from_dict(layout_meta(src, result.report))
+    assert layout.field_column("speed").number == NumberFormat(1, "none")
+    assert layout.field_column("lon").number == NumberFormat(5, "none")
+    out = tmp_path / "back.csv"
+    write_layout(result.points.sort_values("time", kind="stable"), layout, out)
+    assert out.read_text(encoding="utf-8") == "\n".join(rows[:3] + rows[4:]) + "\n"
+    # a word in the column: not a number format's concern
+    assert NumberFormat.detect(pd.Series(["0.0", "1.5", "x", *["2.0"] * 9])) == NumberFormat(
+        1, "none"
+    )
+    with_na = pd.Series(["0.0", "NaN", "x", *["1.5"] * 18])
+    assert NumberFormat.detect(with_na) == NumberFormat(1, "none", "NaN")
+
+
 def test_sensors_sharing_an_id_in_a_layout_without_sensor_column_are_warned(tmp_path, capsys):
     """AIS and two radars all with batch 007, written to a layout with no sensor column:
     read back they would be one track; the export says so (fuzzing)."""

@@ -93,8 +93,9 @@ class NumberFormat:
 
     @staticmethod
     def detect(values: pd.Series, limit: float | None = None) -> "NumberFormat | None":
-        """The format of a column of number texts; None when they are not numbers. Values
-        beyond ±``limit`` (damaged rows, quarantined on reading) do not set the format."""
+        """The format of a column of number texts; None when they are not numbers (fewer
+        than 90 % are). Values beyond ±``limit`` and words other than a missing-value word
+        (``NaN``, ``null``, …; damaged rows, quarantined on reading) do not set the format."""
         text = values.astype("str").str.strip()
         present = text[text != ""]
         point = "."
@@ -108,10 +109,11 @@ class NumberFormat:
         numeric = m[0].notna() & ((m[0].str.len() > 0) | (m[1].str.len() > 0))
         if len(present) == 0 or numeric.mean() < 0.9:
             return None
-        na_words = present[~numeric]
-        na = "" if len(na_words) == 0 else str(na_words.iloc[0])
-        if na.lower() not in ("", "nan", "na", "n/a", "null", "none"):
-            return None
+        # Missing-value words are written back; any other word is a damaged cell (its row
+        # is quarantined on reading, never written again) and sets nothing.
+        others = present[~numeric]
+        na_words = others[others.str.lower().isin(["nan", "na", "n/a", "null", "none"])]
+        na = "" if len(na_words) == 0 else str(na_words.mode().iloc[0])
         if limit is not None:  # damaged rows are not written again: their digits do not count
             value = pd.to_numeric(present, errors="coerce").abs()
             sound = numeric & ~(value > limit)
@@ -401,9 +403,12 @@ def describe_layout(
         dtype="str",
         keep_default_na=False,
         skipinitialspace=False,
-        on_bad_lines="skip",
+        on_bad_lines="skip",  # too many fields: quarantined on reading
         engine="python",
     )
+    # A short row (quarantined on reading) is padded with NaN (an empty field is ""): its
+    # cells sit under the wrong columns and must not set any column's format.
+    sample = sample[sample.notna().all(axis=1)]
     field_of = {src: f for f, src in columns_of.items()}
     cols = []
     for raw, key in zip(raw_names, sn.columns, strict=True):
