@@ -44,6 +44,29 @@ class LinkParams(Params):
         86400.0 * 7,
         "seed 003 tuned 70 s / 90 s on MTAD; 720 s covers 10 min gaps plus a sampling period",
     )
+    soft_gap_s: float = param(
+        1200.0,
+        "s",
+        "soft T_gap: the assignment also sees pairs across a gap longer than max_gap_s, up to "
+        "this long, between moving pieces (above rest_kn) of at least 3 fixes each that have "
+        "no candidate within max_gap_s cheaper than long_margin, when the gap is at least "
+        "one time step of each; such a pair costs gap_price more per max_gap_s beyond "
+        "max_gap_s and is joined only where it is each piece's cheapest candidate not "
+        "claimed more cheaply, by long_margin (0, or any value up to max_gap_s: the hard "
+        "wall of earlier versions; the second look still reaches to long_gap_s)",
+        0.0,
+        86400.0 * 7,
+        "ours (issue 15): MTAD at known gaps of 300-900 s; docs/evaluation.md",
+    )
+    gap_price: float = param(
+        0.75,
+        "",
+        "soft T_gap: what a pair beyond max_gap_s pays in the assignment per max_gap_s of gap "
+        "beyond it (a ship is silent that long less often)",
+        0.0,
+        10.0,
+        "ours (issue 15)",
+    )
     v_max_kn: float = param(
         30.0, "kn", "fastest plausible ship: the gap must be coverable at this speed", 1.0, 100.0
     )
@@ -311,11 +334,12 @@ def _grid_pairs(
     params: LinkParams,
     ends: np.ndarray | None = None,
     starts: np.ndarray | None = None,
+    min_gap_s: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray] | None:
-    """(end i, start j) of one sensor with ``t0[j] − t1[i]`` in (0, ``max_gap_s``] and the
-    straight-line (chord) distance within ``v_max·gap + position_tol_m``, or None when the
-    grid's keys do not fit in 64 bits. ``ends`` / ``starts``: masks of the tracks whose
-    end / start may take part (default all).
+    """(end i, start j) of one sensor with ``t0[j] − t1[i]`` in (``min_gap_s``,
+    ``max_gap_s``] and the straight-line (chord) distance within ``v_max·gap +
+    position_tol_m``, or None when the grid's keys do not fit in 64 bits. ``ends`` /
+    ``starts``: masks of the tracks whose end / start may take part (default all).
 
     Earth-centred positions are binned in cubes of side ``reach`` (the distance coverable
     in the longest gap): the starts reachable from an end lie in the 3×3×3 cubes about
@@ -375,13 +399,13 @@ def _grid_pairs(
         c = np.searchsorted(cells, kq)
         e = np.flatnonzero((c < len(cells)) & (cells[np.minimum(c, len(cells) - 1)] == kq))
         base = c[e] * width + tq[e]
-        lo = np.searchsorted(sweep, base - slack, side="left")
+        lo = np.searchsorted(sweep, base + min_gap_s - slack, side="left")
         cnt = np.searchsorted(sweep, base + gmax + slack, side="right") - lo
         i = np.repeat(e, cnt)
         j = concat_ranges(lo, cnt)
         gap = t0_s[j] - (tq[i] + tmin)
         d2 = ((pe_s[i] - ps_s[j]) ** 2).sum(axis=1)
-        ok = (gap > 0) & (gap <= gmax) & (d2 <= (v * gap + tol) ** 2)
+        ok = (gap > min_gap_s) & (gap <= gmax) & (d2 <= (v * gap + tol) ** 2)
         i, j = e_order[i[ok]], order[j[ok]]
         keep = i != j
         out_i.append(i[keep])
@@ -416,8 +440,10 @@ def candidate_pairs(
     params: LinkParams,
     ends: np.ndarray | None = None,
     starts: np.ndarray | None = None,
+    min_gap_s: float = 0.0,
 ) -> Pairs:
-    """Pairs of one sensor with ``0 < start(j) − end(i) ≤ max_gap_s`` and reachable at
+    """Pairs of one sensor with ``min_gap_s < start(j) − end(i) ≤ max_gap_s`` (``min_gap_s``
+    0 by default) and reachable at
     ``v_max_kn`` — or at :data:`FAST_FACTOR` × the speed the faster end was seen at, when
     that is more (:func:`_seen_speed_kn`) — plus ``position_tol_m``; features per pair,
     ordered by (i, j). ``ends`` /
@@ -440,10 +466,10 @@ def candidate_pairs(
     wide = (
         replace(params, v_max_kn=max(params.v_max_kn, seen)) if seen > params.v_max_kn else params
     )
-    found = _grid_pairs(seg, wide, ends, starts)
+    found = _grid_pairs(seg, wide, ends, starts, min_gap_s)
     i, j = found if found is not None else _tree_pairs(seg, wide)
     gap = seg.t0[j] - seg.t1[i]
-    keep = (i != j) & (gap > 0) & (gap <= params.max_gap_s)
+    keep = (i != j) & (gap > max(min_gap_s, 0.0)) & (gap <= params.max_gap_s)
     if found is None and ends is not None:
         keep &= ends[i]
     if found is None and starts is not None:
@@ -458,6 +484,132 @@ def candidate_pairs(
     i, j = i[keep], j[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
     return pair_features(seg, i[order], j[order])
+
+
+#: Soft T_gap: the fewest fixes a piece needs at both ends of a pair beyond max_gap_s in
+#: the assignment (three: its line fit shows its noise and its motion).
+SOFT_FIXES = 3
+
+
+def _soft_gap(params: LinkParams) -> float:
+    """The longest gap the first pass's assignment sees (``soft_gap_s``, at least
+    ``max_gap_s``; ``max_gap_s`` when the soft T_gap is off)."""
+    return max(params.max_gap_s, params.soft_gap_s)
+
+
+def _soft_ends(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarray]:
+    """Per track: its end, its start may take part in a pair beyond ``max_gap_s`` in the
+    first pass (soft T_gap) — a piece of at least :data:`SOFT_FIXES` fixes whose fit there
+    is moving (above ``rest_kn``)."""
+    fit = seg.n >= SOFT_FIXES
+    slow = params.rest_kn * geo.KN_MS
+    return fit & (np.hypot(seg.vx1, seg.vy1) > slow), fit & (np.hypot(seg.vx0, seg.vy0) > slow)
+
+
+def _fitted(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray:
+    """Per pair: both pieces may take part beyond ``max_gap_s`` (:func:`_soft_ends`), and
+    its gap is at least one time step of each piece (a ship reported every 30 min is
+    not missing after 20)."""
+    end, start = _soft_ends(seg, params)
+    ok = end[pairs.i] & start[pairs.j]
+    if seg.step1 is not None and seg.step0 is not None:
+        with np.errstate(invalid="ignore"):
+            ok &= ~(pairs.gap_s < np.fmax(seg.step1[pairs.i], seg.step0[pairs.j]))
+    return ok
+
+
+def _in_first(gap_s: np.ndarray, fitted: np.ndarray | None, params: LinkParams) -> np.ndarray:
+    """Per pair: one the first pass's assignment may see — its gap within ``max_gap_s``,
+    or within the soft T_gap (``soft_gap_s``) between pieces that may take part there
+    (``fitted``, :func:`_fitted`; the assignment sees those of them whose pieces are open,
+    :func:`first_pass_pairs`). The others are the second look's only."""
+    inside = gap_s <= params.max_gap_s
+    soft = _soft_gap(params)
+    if soft <= params.max_gap_s or fitted is None:
+        return inside
+    return inside | ((gap_s <= soft) & fitted)
+
+
+def first_pass_pairs(
+    seg: Segments, params: LinkParams, normalize: str = "scaled"
+) -> "tuple[Pairs, _Priced, np.ndarray]":
+    """The first pass's candidates, their pricing and costs: :func:`candidate_pairs`
+    within ``max_gap_s`` and, with the soft T_gap (``soft_gap_s``), the pairs up to it
+    between pieces that may take part (:func:`_fitted`) and are **open**: whose cheapest
+    candidate within ``max_gap_s`` costs at least ``long_margin`` (or who have none). A
+    piece with a cheaper one has nothing to gain from a longer look (a join beyond
+    ``max_gap_s`` must be its cheapest by ``long_margin``, :func:`soft_gap_test`), and
+    leaving it out keeps the search near the size of the hard wall's. Ordered by (i, j);
+    min-max (seed 003 as written) keeps its hard T_gap."""
+    n = len(seg)
+    pairs = candidate_pairs(seg, params)
+    priced = _pricing(pairs, params, normalize, seg)
+    cost = priced.total(pairs, params, n)
+    soft = _soft_gap(params)
+    if normalize == "minmax" or soft <= params.max_gap_s or n < 2:
+        return pairs, priced, cost
+    best_end = np.full(n, np.inf)
+    best_start = np.full(n, np.inf)
+    np.minimum.at(best_end, pairs.i, cost)
+    np.minimum.at(best_start, pairs.j, cost)
+    ends, starts = _soft_ends(seg, params)
+    ends &= best_end >= params.long_margin
+    starts &= best_start >= params.long_margin
+    more = candidate_pairs(
+        seg, replace(params, max_gap_s=soft), ends=ends, starts=starts, min_gap_s=params.max_gap_s
+    )
+    more = more.take(_fitted(seg, more, params))
+    extra = _pricing(more, params, normalize, seg)
+    # Only pairs that could sway a decision are kept: a pair priced (before the spread
+    # term, which only adds) beyond the gate and the larger margin, gap price included,
+    # can neither be joined nor be anyone's rival (about 4 % are kept in the bench scene).
+    limit = min(params.gate, params.no_join) + max(params.margin, params.long_margin)
+    keep = extra.cost + _gap_price(more, params) <= limit
+    if not keep.any():
+        return pairs, priced, cost
+    more, extra = more.take(keep), extra.take(keep)
+    # Pairs the first pass sees take their spread against candidates within max_gap_s
+    # (_spread): the short pairs' costs do not change.
+    refs = _references(pairs, priced, params, n) if priced.log_sd is not None else None
+    both = pairs.concat(more)
+    order = np.argsort(both.i * n + both.j, kind="stable")
+    cost = np.concatenate([cost, extra.total(more, params, n, refs)])[order]
+    return both.take(order), priced.concat(extra).take(order), cost
+
+
+def _gap_price(pairs: Pairs, params: LinkParams) -> np.ndarray:
+    """Per pair: what the assignment adds for a gap beyond ``max_gap_s`` (soft T_gap):
+    ``gap_price`` per ``max_gap_s`` beyond it."""
+    beyond = np.maximum(pairs.gap_s - params.max_gap_s, 0.0)
+    return params.gap_price * beyond / max(params.max_gap_s, 1e-9)
+
+
+def soft_gap_test(
+    pairs: Pairs, cost: np.ndarray, chosen: np.ndarray, params: LinkParams, n: int
+) -> np.ndarray:
+    """The chosen pairs (indices into ``pairs``) less the joins across a gap beyond
+    ``max_gap_s`` (soft T_gap) that are not each piece's cheapest candidate by
+    ``long_margin`` — among all its candidates here, not only those overlapping in time
+    (the margin test's), a rival whose other piece is claimed more cheaply excepted.
+    A long join is held to the second look's standard; both pieces stay loose."""
+    long = pairs.gap_s[chosen] > params.max_gap_s
+    if not long.any():
+        return chosen
+    claim_end = np.full(n, np.inf)
+    claim_start = np.full(n, np.inf)
+    claim_end[pairs.i[chosen]] = cost[chosen]
+    claim_start[pairs.j[chosen]] = cost[chosen]
+    mine = np.zeros(len(pairs), dtype=bool)
+    mine[chosen] = True
+    rival_i = np.where(mine | (claim_start[pairs.j] < cost), np.inf, cost)
+    rival_j = np.where(mine | (claim_end[pairs.i] < cost), np.inf, cost)
+    best_i = np.full(n, np.inf)
+    best_j = np.full(n, np.inf)
+    np.minimum.at(best_i, pairs.i, rival_i)
+    np.minimum.at(best_j, pairs.j, rival_j)
+    c = cost[chosen] + params.long_margin
+    close = (best_i[pairs.i[chosen]] < c) | (best_j[pairs.j[chosen]] < c)
+    return chosen[~(long & close)]
 
 
 #: A pair may be as far apart as this times the speed its faster end was seen at, when
@@ -628,9 +780,10 @@ class _Priced:
     share: np.ndarray | None  # the position term's part of the weights
     log_sd: np.ndarray | None  # ln σ of the predicted position (m)
     blind: np.ndarray
+    fitted: np.ndarray | None = None  # both pieces may take part in the soft T_gap
 
     def _fields(self) -> tuple:
-        return (self.cost, self.share, self.log_sd, self.blind)
+        return (self.cost, self.share, self.log_sd, self.blind, self.fitted)
 
     def take(self, keep: np.ndarray) -> "_Priced":
         return _Priced(*(None if v is None else v[keep] for v in self._fields()))
@@ -667,7 +820,7 @@ class _Priced:
         cost = self.cost
         if self.log_sd is not None and len(pairs):
             refs = refs if refs is not None else _references(pairs, self, params, n)
-            cost = cost + self.share * _spread(pairs, self.log_sd, refs, params)
+            cost = cost + self.share * _spread(pairs, self.log_sd, refs, params, self.fitted)
         blind = max(params.no_join - params.margin, 0.0)
         if params.blind_order > 0 and self.blind.any():
             # Never more than half the room left below the price of staying loose (and
@@ -807,7 +960,7 @@ def _pricing(
     if log_sd is not None:
         with np.errstate(invalid="ignore", divide="ignore"):
             share = np.nan_to_num(w[:, 0] / w.sum(axis=1))
-    return _Priced(cost, share, log_sd, blind)
+    return _Priced(cost, share, log_sd, blind, None if seg is None else _fitted(seg, pairs, params))
 
 
 def _references(pairs: Pairs, priced: _Priced, params: LinkParams, n: int) -> tuple:
@@ -831,19 +984,29 @@ def _references(pairs: Pairs, priced: _Priced, params: LinkParams, n: int) -> tu
     return tuple(out)
 
 
-def _spread(pairs: Pairs, log_sd: np.ndarray, refs: tuple, params: LinkParams) -> np.ndarray:
+def _spread(
+    pairs: Pairs,
+    log_sd: np.ndarray,
+    refs: tuple,
+    params: LinkParams,
+    fitted: np.ndarray | None = None,
+) -> np.ndarray:
     """Per pair: ``log_sigma`` × ln(σ / σ_best), added to its position term.
 
     A position likelihood is the scaled miss's *and* 1/σ²: a prediction spread wider than
     a rival's explains a start there less, so a ship's next piece beats a later one that
     skips it. σ_best is the tightest σ among the plausible candidates (``refs``,
-    :func:`_references`: within ``max_gap_s`` for a first-pass pair, any for a
+    :func:`_references`: within ``max_gap_s`` for a pair the first pass may see — within
+    ``max_gap_s``, or the soft T_gap's (``fitted``, :func:`_in_first`) — any for a
     second-look one) of the pair's old end and of its new start, the pair itself
     included: never a bonus, and a lone candidate pays nothing however long its gap.
     """
     (short_i, short_j), (all_i, all_j) = refs
     i, j = pairs.i, pairs.j
-    first = pairs.gap_s <= params.max_gap_s
+    # A pair the first pass may see (within max_gap_s, or the soft T_gap's) is compared
+    # with its ends' candidates within max_gap_s: every candidate set holds those, so the
+    # cost is the same whichever set it is priced in.
+    first = _in_first(pairs.gap_s, fitted, params)
     best = np.where(
         first,
         np.minimum(short_i[i], short_j[j]),
@@ -1072,7 +1235,8 @@ class Association:
         )
 
     def long_joins(self) -> np.ndarray:
-        """Per chosen pair: joined by the second look, across a gap beyond ``max_gap_s``."""
+        """Per chosen pair: joined across a gap beyond ``max_gap_s`` (by the second look, or
+        by the assignment within the soft T_gap, ``soft_gap_s``)."""
         limit = self.params.max_gap_s if self.params is not None else np.inf
         return self.pairs.gap_s[self.chosen] > limit
 
@@ -1115,10 +1279,15 @@ def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndar
 
 
 def _assign_scaled(seg: Segments, pairs: Pairs, cost: np.ndarray, params: LinkParams, assign):
-    """Assignment with the loose-end price, the short-piece rule and the margin test."""
+    """Assignment with the loose-end price, the short-piece rule and the margin test; pairs
+    beyond ``max_gap_s`` (soft T_gap) pay the gap price and must pass
+    :func:`soft_gap_test`."""
+    if len(pairs) and (pairs.gap_s > params.max_gap_s).any():
+        cost = cost + _gap_price(pairs, params)
     chosen = assign(pairs.i, pairs.j, cost, params.gate, params.no_join)
     chosen = insert_skipped(seg, pairs, cost, chosen, min(params.gate, params.no_join))
-    return margin_test(seg, pairs, cost, chosen, params.margin)
+    chosen = margin_test(seg, pairs, cost, chosen, params.margin)
+    return soft_gap_test(pairs, cost, chosen, params, len(seg))
 
 
 def _two_cheapest(owner: np.ndarray, cost: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -1307,7 +1476,16 @@ def long_gap_pass(
             found, c_found, ok = look(joined)
     if not ok.any():
         return pairs, cost, chosen
-    out = np.concatenate([joined, len(pairs) + np.flatnonzero(ok)])
+    # Pairs within the soft T_gap that the first pass saw already (and left loose) are
+    # joined where they are, not listed twice.
+    key = pairs.i * n + pairs.j
+    order = np.argsort(key, kind="stable")
+    key_f = found.i * n + found.j
+    at = np.minimum(np.searchsorted(key[order], key_f), max(len(key) - 1, 0))
+    seen = (key[order][at] == key_f) if len(key) else np.zeros(len(found), dtype=bool)
+    again = order[at[seen & ok]]
+    found, c_found, ok = found.take(~seen), c_found[~seen], ok[~seen]
+    out = np.concatenate([joined, again, len(pairs) + np.flatnonzero(ok)])
     if len(released):
         # What the last look did not take after all, comes back.
         end_free, start_free = _free(pairs.concat(found), out, n)
@@ -1352,6 +1530,20 @@ def _released(
     rivals = candidate_pairs(seg, near, ends=end_open, starts=free_start).concat(
         candidate_pairs(seg, near, ends=free_end, starts=start_open)
     )
+    # A join across the soft T_gap is itself long: its pieces' rivals are looked for as
+    # far as the second look reaches (few joins, so few searches).
+    far = open_[pairs.gap_s[open_] > params.max_gap_s]
+    if len(far) and params.long_gap_s > near.max_gap_s:
+        wide = replace(params, max_gap_s=params.long_gap_s)
+        end_far = np.zeros(n, dtype=bool)
+        end_far[pairs.i[far]] = True
+        start_far = np.zeros(n, dtype=bool)
+        start_far[pairs.j[far]] = True
+        beyond = near.max_gap_s
+        more = candidate_pairs(seg, wide, end_far, free_start, beyond).concat(
+            candidate_pairs(seg, wide, free_end, start_far, beyond)
+        )
+        rivals = rivals.concat(more)
     rivals = rivals.take(rivals.gap_s > params.max_gap_s)
     if not len(rivals):
         return np.zeros(0, dtype="int64")
@@ -1455,9 +1647,7 @@ def associate_interrupted(
     progress(0.0, "summarizing tracks")
     base = segment_stats(points, params.end_points, end_points_max=params.end_points_max)
     progress(0.3, "finding candidate pairs")
-    pairs0 = candidate_pairs(base, params)
-    priced = _pricing(pairs0, params, normalize, base)
-    cost0 = priced.total(pairs0, params, len(base))
+    pairs0, priced, cost0 = first_pass_pairs(base, params, normalize)
     progress(0.6, f"assigning {len(pairs0):,} candidate pairs")
     seg, pairs, cost, chosen = assign_interrupted(
         base, pairs0, cost0, params, method, normalize, priced=priced

@@ -103,8 +103,9 @@ SCENES = {
 #: ships in a 4 km square (3.75 ships/km², the nearest ship a few hundred metres away).
 HARD_SCENES = {**SCENES, "harbour": (60, 4.0, 20.0)}
 
-# 50 tolerances: open; no second look across long gaps (the ablation is about the cost).
-_OPEN = {"gate": 50.0, "no_join": 50.0, "margin": 0.0, "long_gap_s": 0.0}
+# 50 tolerances: open; no second look across long gaps nor soft T_gap (the ablation is
+# about the cost).
+_OPEN = {"gate": 50.0, "no_join": 50.0, "margin": 0.0, "long_gap_s": 0.0, "soft_gap_s": 0.0}
 
 #: Method label -> (mode, method, normalize, params changes)
 METHODS = {
@@ -121,6 +122,7 @@ METHODS = {
             "margin": 0.0,
             "chain_passes": 0,
             "long_gap_s": 0.0,
+            "soft_gap_s": 0.0,
         },
     ),
     # The default without its chain pass: every pair priced on its own two ends.
