@@ -42,7 +42,6 @@ from wakeline.core import geo
 from wakeline.core.params import Params, param
 from wakeline.core.tracks import (
     TrackIndex,
-    concat_ranges,
     local_xy,
     remember_order,
     repeated_rows,
@@ -466,8 +465,8 @@ def _near(
 ) -> np.ndarray:
     """Per row (or per row of ``rows``): is a ``mask`` row of the same track within
     ±``reach`` rows (``reach`` per row, aligned with ``rows`` when given)? For a few
-    ``rows``, the marked rows are counted by two searches in their list, not by a
-    cumulative sum over every row."""
+    ``rows``, the marked rows are counted by two searches in their list (``mask`` may be
+    that list, sorted), not by a cumulative sum over every row."""
     row = np.arange(len(mask)) if rows is None else rows
     tr = index.track_of_row[row]
     lo = np.maximum(row - reach, index.starts[tr])
@@ -475,7 +474,7 @@ def _near(
     if rows is None:
         cs = np.concatenate([[0], np.cumsum(mask)])
         return cs[hi] - cs[lo] > 0
-    marked = np.flatnonzero(mask)
+    marked = np.flatnonzero(mask) if mask.dtype == bool else mask  # or the rows, sorted
     return np.searchsorted(marked, hi) > np.searchsorted(marked, lo)
 
 
@@ -545,14 +544,19 @@ def _noise_residuals(ta, ti, tb, xa, xi, xb, ya, yi, yb):
     span = np.subtract(tb, ta)
     moved = span > 0
     w = np.subtract(ti, ta)
-    w /= np.where(moved, span, 1.0)
-    np.copyto(w, 0.5, where=~moved)
+    if moved.all():  # (times strictly increasing: the usual case) the wheres change nothing
+        w /= span
+    else:
+        w /= np.where(moved, span, 1.0)
+        np.copyto(w, 0.5, where=~moved)
     rest = np.subtract(1, w, out=span)  # 1 - w
+    tmp = np.multiply(w, xb)
     ex = np.multiply(rest, xa)
-    ex += w * xb
+    ex += tmp
     np.subtract(xi, ex, out=ex)
+    np.multiply(w, yb, out=tmp)
     ey = np.multiply(rest, ya)
-    ey += w * yb
+    ey += tmp
     np.subtract(yi, ey, out=ey)
     np.multiply(w, w, out=w)
     w += 1.0
@@ -610,7 +614,7 @@ def _run_medians_by_key(key: np.ndarray, exact, first: np.ndarray, count: np.nda
         rest[g[done]] = False
     if rest.any():
         g = np.flatnonzero(rest)
-        vals = exact(concat_ranges(first[g], count[g]))
+        vals = exact(_ranges(first[g], count[g]))
         out[g] = _run_medians(vals, np.cumsum(count[g]) - count[g], count[g])
     return out
 
@@ -662,7 +666,7 @@ def _run_medians(values: np.ndarray, first: np.ndarray, count: np.ndarray) -> np
         rest[g[done]] = False
     if rest.any():
         g = np.flatnonzero(rest)
-        rows = concat_ranges(first[g], count[g])
+        rows = _ranges(first[g], count[g])
         med = pd.Series(values[rows]).groupby(np.repeat(g, count[g])).median()
         out[med.index.to_numpy()] = med.to_numpy()
     return out
@@ -834,6 +838,22 @@ def _rest_mask(
 # operands, only on fewer rows.
 
 
+def _ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """:func:`tracks.concat_ranges` (``starts[k]``, ``starts[k] + 1``, … for ``counts[k]``
+    values, concatenated; counts ≥ 0) as one cumulative sum of steps: ~10× faster for many
+    short ranges, where the repeats of ``concat_ranges`` cost ~7 ns a value."""
+    counts = np.asarray(counts, dtype="int64")
+    starts = np.asarray(starts, dtype="int64")
+    if not (counts > 0).all():
+        starts, counts = starts[counts > 0], counts[counts > 0]
+    steps = np.ones(int(counts.sum()), dtype="int64")
+    if len(steps):
+        steps[0] = starts[0]
+        # each range's first value, from the last value of the one before
+        steps[np.cumsum(counts[:-1])] = starts[1:] - (starts[:-1] + counts[:-1] - 1)
+    return np.cumsum(steps, out=steps)
+
+
 def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """First and one-past-last row of every run of True in ``mask``."""
     edge = np.diff(mask.view(np.int8), prepend=np.int8(0), append=np.int8(0))
@@ -949,7 +969,7 @@ def _factor_on_runs(
             u = x - np.repeat(x[index.starts], index.sizes)
             v = y - np.repeat(y[index.starts], index.sizes)
     else:
-        rows = concat_ranges(raw_lo, raw_len)
+        rows = _ranges(raw_lo, raw_len)
         u = x[rows]
         v = y[rows]
         if not anchored:
@@ -959,24 +979,26 @@ def _factor_on_runs(
     seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
     m = len(u)
     if above is None:
-        pos = concat_ranges(seg + (p - 1), hi - lo)
+        pos = _ranges(seg + (p - 1), hi - lo)
         out_rows = pos + np.repeat(raw_lo - seg, hi - lo)
         h = _headings_of(u, v, p)
         return out_rows, _angle_diff(h[pos], h[pos + (p - 1)])
     is_pos = _span_mask(seg + (p - 1), seg + (p - 1) + (hi - lo), m)  # runs apart: a mask
-    limit = math.cos(math.radians(above)) + 1e-9
+    limit = _screen_limit(above)
     found_pos, found_delta = [], []
     for first in range(p - 1, m - p + 1, BLOCK):  # a loop over blocks, not over windows
         last = min(m - p + 1, first + BLOCK)  # δ positions first..last-1 need windows to
         # last + p - 2: the block's moments overlap the next block's by p - 1 windows
         raw = slice(first - p + 1, last + p - 1)
-        j, d = _screen_block(u[raw], v[raw], p, limit, is_pos[first:last])
+        j, d = _screen_block(u[raw], v[raw], p, limit, is_pos[first:last], exact=False)
         found_pos.append(j + first)
         found_delta.append(d)
     if not found_pos:
         return np.zeros(0, dtype="int64"), np.zeros(0)
     j = np.concatenate(found_pos)
-    return (j if rows is None else rows[j]), np.concatenate(found_delta)
+    # the exact δ of the positions left in, all blocks at once (few: one call, not one a block)
+    delta = _exact_at(u, v, p, j) if limit is not None else np.concatenate(found_delta)
+    return (j if rows is None else rows[j]), delta
 
 
 def _screen_every_row(
@@ -996,7 +1018,7 @@ def _screen_every_row(
     anchored = _anchored(x, index) and _anchored(y, index)
     x0, y0 = x[index.starts], y[index.starts]  # each track's anchor
     is_pos = _span_mask(lo, hi, n)
-    limit = math.cos(math.radians(above)) + 1e-9
+    limit = _screen_limit(above)
     found_rows, found_delta = [], []
     for first in range(p - 1, n - p + 1, BLOCK):  # a loop over blocks, not over windows
         last = min(n - p + 1, first + BLOCK)
@@ -1008,128 +1030,193 @@ def _screen_every_row(
         else:
             t_raw = tr[raw]
             ub, vb = x[raw] - x0[t_raw], y[raw] - y0[t_raw]
-        j, d = _screen_block(ub, vb, p, limit, is_pos[first:last])
+        j, d = _screen_block(ub, vb, p, limit, is_pos[first:last], exact=not anchored)
         found_rows.append(j + first)
         found_delta.append(d)
     if not found_rows:
         return np.zeros(0, dtype="int64"), np.zeros(0)
-    return np.concatenate(found_rows), np.concatenate(found_delta)
+    j = np.concatenate(found_rows)
+    if anchored and limit is not None:  # the exact δ of the rows left in, all at once
+        return j, _exact_at(x, y, p, j)
+    return j, np.concatenate(found_delta)
 
 
 def _screen_block(
-    ub: np.ndarray, vb: np.ndarray, p: int, limit: float, is_pos: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
+    ub: np.ndarray,
+    vb: np.ndarray,
+    p: int,
+    limit: float | None,
+    is_pos: np.ndarray,
+    exact: bool = True,
+) -> tuple[np.ndarray, np.ndarray | None]:
     """One block of the screen: positions (offsets from the block's first δ position,
-    ``is_pos`` of them) whose δ may exceed the angle of cosine ``limit``, and their δ,
-    exactly. ``ub``/``vb`` hold the windows of the block plus p − 1 after."""
+    ``is_pos`` of them) whose δ may exceed the threshold behind ``limit``
+    (:func:`_screen_limit`; None: every position), and their δ, exactly (None without
+    ``exact`` and with a ``limit``: the caller computes it, for all blocks at once —
+    :func:`_exact_at` of position j + first of the array the block is cut from).
+    ``ub``/``vb`` hold the windows of the block plus p − 1 after."""
     k = len(is_pos)
-    if p > SMALL_KERNEL:  # long windows: the screen on sums of short convolutions
-        block = None
-        ex, ey, err = _oriented_axis(*_sums_of_short(ub, vb, p))
-        err = err[:k] + err[p - 1 :]
-    else:
-        block = _block_moments(ub, vb, p)
-        ex, ey = _oriented_axis(*block)
-        err = 0.0
+    if limit is None:  # δ of every position, as :func:`_factor_on_runs` without a screen
+        j = np.flatnonzero(is_pos)
+        h = _headings_of(ub, vb, p)
+        return j, _angle_diff(h[p - 1 : p - 1 + k][j], h[2 * (p - 1) :][j])
+    ex, ey, tau = _screen_axes(ub, vb, p)
     with np.errstate(invalid="ignore"):
-        dot = ex[:k] * ex[p - 1 :]
-        dot += ey[:k] * ey[p - 1 :]
-        dot -= 2.0 * err
-        j = np.flatnonzero(~(dot > limit) & is_pos)  # NaN: left in
-    if not len(j):
-        return j, np.zeros(0)
-    if block is None:
-        return j, _exact_at(ub, vb, p, j + (p - 1))
-    need = np.zeros(len(ex), dtype=bool)
-    need[j] = True
-    need[j + (p - 1)] = True
-    w = np.flatnonzero(need)
-    h = np.full(len(ex), np.nan)
-    h[w] = _axis_headings(*(col[w] for col in block))
-    return j, _angle_diff(h[j], h[j + (p - 1)])
+        # 4·c1·c2·cos(angle) − 4τ1 − 4τ2 against 4·(cos t + margins); NaN: left in
+        dot = np.multiply(ex[:k], ex[p - 1 :])
+        dot += np.multiply(ey[:k], ey[p - 1 :], out=ex[:k])
+        dot -= tau[:k]
+        dot -= tau[p - 1 :]
+        out = np.greater(dot, limit, out=np.empty(k, dtype=bool))
+    j = np.flatnonzero(np.greater(is_pos, out, out=out))  # a position, not screened out
+    if not exact:
+        return j, None
+    return j, _exact_at(ub, vb, p, j + (p - 1))
 
 
 #: np.convolve sums kernels of up to 11 numbers in a plain loop (numpy's small_correlate);
 #: longer ones call BLAS once per window, ~20 ns a window and sum whatever p is.
 SMALL_KERNEL = 11
 
+#: The screen's own rounding (float32 unit vectors, ~1e-6): δ is screened out only where
+#: the cosine of the angle between the two oriented axes exceeds cos(t) by this much on
+#: top of the bounds on the axes themselves.
+SCREEN_MARGIN = 3e-5
 
-def _sums_of_short(u: np.ndarray, v: np.ndarray, p: int):
-    """:func:`_block_moments` for a long window (p > :data:`SMALL_KERNEL`) from sums of
-    short convolutions — the same sums added in another order — and a bound on
-    |error of a| + |error of b| against the exact moments: any order of adding p terms
-    errs by at most (p − 1)·eps·(sum of |terms|), the means' errors enter the
-    covariances twice, and the terms are at most the block's largest coordinate squared."""
+
+def _screen_limit(above: float) -> float | None:
+    """The limit that :func:`_screen_block` compares its dot products (scaled by 4) with,
+    to screen out δ at most ``above`` (deg); None where the screen cannot tell (``above``
+    near 90° or past it, where the weights that keep uncertain axes in no longer do)."""
+    limit = math.cos(math.radians(above)) + 1e-9 + SCREEN_MARGIN
+    return 4.0 * limit if limit > 1e-3 else None
+
+
+def _window_sums(a: np.ndarray, p: int) -> np.ndarray:
+    """Sums of every ``p`` consecutive values, in some order (not ``np.convolve``'s bits):
+    sums of 1, 2, 4, … values by doubling, those of p's binary digits added up."""
+    nw = len(a) - p + 1
+    out = None
+    done = 0  # values of the window summed so far, from its first
+    piece, width = a, 1  # piece[i]: the sum of a[i : i + width]
+    while True:
+        if p & width:
+            seg = piece[done : done + nw]
+            out = seg.copy() if out is None else np.add(out, seg, out=out)
+            done += width
+        if 2 * width > p:
+            return out
+        piece = np.add(piece[:-width], piece[width:])
+        width *= 2
+
+
+def _screen_axes(u: np.ndarray, v: np.ndarray, p: int):
+    """Per window of ``p`` points, in float32: ``2c·o``, where o is the unit vector along
+    the window's major axis oriented by its displacement d, as :func:`_axis_headings`
+    orients it, and c the cosine of the angle between that axis and d (≤ 1; an orientation
+    too close to call has c ≈ 0); and ``4τ``, τ a bound on the angle (rad) between that
+    axis and the one :func:`_axis_headings` computes (infinite or NaN where unsure).
+
+    No trigonometry, no half angles. The moments are sums in any order, scaled by p²:
+    A = p²·(cxx − cyy), B = p²·2cxy; both these and the exact moments of
+    :func:`_block_moments` (times p²) lie within (10p + 15)·p²·eps·G of the true ones in
+    |A| + |B| (G = (max|u| + max|v|)², every term at most G), so within E = 64·p³·eps·G of
+    each other, and the axis (half the angle of (A, B)) turns by at most τ = E / (R − E)
+    between them, R = |(A, B)|, trusted where R > 4E. The projection of d onto the axis,
+    times 2R, is W = ((R + A)·du + B·dv, B·du + (R − A)·dv) (the projection matrix in
+    doubled-angle form): it points along the oriented axis, |W| = 2R·|d|·c. The rest runs
+    in float32 on A/E, B/E (at most 1/(32·p·eps) in size) and d; its rounding, ~1e-6 on
+    the unit vectors, is what :data:`SCREEN_MARGIN` covers."""
     n = len(u)
-    c = max((d for d in range(2, SMALL_KERNEL + 1) if p % d == 0), default=1)  # c points
-    if c < 6:
-        c = SMALL_KERNEL  # and a shorter last piece
-    q, rest = divmod(p, c)
     nw = n - p + 1
-
-    def window_sums(a: np.ndarray) -> np.ndarray:
-        short = np.convolve(a, np.ones(c), "valid")
-        out = short[:nw] + short[c : c + nw] if q > 1 else short[:nw].copy()
-        for k in range(2, q):  # a loop over the pieces of a window (p / c of them)
-            out += short[k * c : k * c + nw]
-        if rest:
-            out += np.convolve(a[q * c :], np.ones(rest), "valid")[:nw]
-        return out
-
-    # the plain form's arithmetic (sums / p − products of means), in place
-    mu = window_sums(u)
-    mu /= p
-    mv = window_sums(v)
-    mv /= p
-    tmp = np.multiply(u, u)
-    cxx = window_sums(tmp)
-    cxx /= p
-    cxx -= np.multiply(mu, mu, out=tmp[:nw])
-    np.multiply(v, v, out=tmp)
-    cyy = window_sums(tmp)
-    cyy /= p
-    cyy -= np.multiply(mv, mv, out=tmp[:nw])
+    f32 = np.float32
+    q = np.multiply(u, u)
+    tmp = np.multiply(v, v)
+    q -= tmp  # u² − v²
     np.multiply(u, v, out=tmp)
-    cxy = window_sums(tmp)
-    cxy /= p
-    cxy -= np.multiply(mu, mv, out=tmp[:nw])
-    eps = np.finfo(float).eps
-    big = float(np.abs(u).max() + np.abs(v).max()) if n else 0.0
-    bound = 64.0 * p * eps * big * big
-    cxx -= cyy
-    cxy *= 2.0
-    du = np.subtract(u[p - 1 :], u[: n - p + 1], out=mu)
-    dv = np.subtract(v[p - 1 :], v[: n - p + 1], out=mv)
-    return cxx, cxy, du, dv, bound
+    su = _window_sums(u, p)
+    sv = _window_sums(v, p)
+    s_q = _window_sums(q, p)
+    s_x = _window_sums(tmp, p)
+    with np.errstate(invalid="ignore", over="ignore"):
+        big = float(np.maximum(u.max(), -u.min()) + np.maximum(v.max(), -v.min()))
+        e = 64.0 * float(p) ** 3 * float(np.finfo(float).eps) * big * big
+    inv = 1.0 / e if 1e-280 < e < 1e280 else math.nan  # NaN: no window sure
+    t = np.multiply(su, sv, out=tmp[:nw])
+    s_x *= float(p)
+    s_x -= t  # B / 2 = p·Σuv − Σu·Σv
+    np.subtract(su, sv, out=t)
+    su += sv
+    t *= su
+    s_q *= float(p)
+    s_q -= t  # A = p·Σ(u² − v²) − (Σu − Σv)(Σu + Σv)
+    a = np.multiply(s_q, inv, out=np.empty(nw, dtype=f32), casting="same_kind")
+    b = np.multiply(s_x, 2.0 * inv, out=np.empty(nw, dtype=f32), casting="same_kind")
+    du = np.subtract(u[p - 1 :], u[:nw], out=np.empty(nw, dtype=f32), casting="same_kind")
+    dv = np.subtract(v[p - 1 :], v[:nw], out=np.empty(nw, dtype=f32), casting="same_kind")
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        r = np.multiply(a, a)
+        w = np.multiply(b, b)
+        r += w
+        np.sqrt(r, out=r)  # R / E
+        ex = np.add(r, a)
+        ex *= du
+        np.multiply(b, dv, out=w)
+        ex += w  # (R + A)·du + B·dv
+        ey = np.subtract(r, a, out=a)
+        ey *= dv
+        np.multiply(b, du, out=w)
+        ey += w  # B·du + (R − A)·dv
+        du *= du
+        dv *= dv
+        du += dv  # |d|²
+        sure = np.greater(du, 1e-30, out=np.empty(nw, dtype=bool))  # d well inside float32
+        sure &= r > 4.0
+        np.sqrt(du, out=du)
+        du *= r
+        np.divide(1.0, du, out=du)  # 1 / (R·|d|)
+        ex *= du
+        ey *= du
+        tau = np.subtract(r, 1.0, out=r)
+        tau *= sure
+        np.abs(tau, out=tau)  # (R < E: -0.0 where unsure)
+        np.divide(4.0, tau, out=tau)  # 4·E / (R − E); +inf (or NaN) where unsure
+    return ex, ey, tau
 
 
 def _exact_at(u: np.ndarray, v: np.ndarray, p: int, j: np.ndarray) -> np.ndarray:
-    """δ of positions ``j`` exactly as :func:`_headings_of` gives it, for p >
-    :data:`SMALL_KERNEL`: the headings of the windows needed (ending at j and at j + p − 1)
-    only, from :func:`_gathered_moments`."""
-    need = np.zeros(len(u), dtype=bool)
-    need[j] = True
-    need[j + (p - 1)] = True
-    ends = np.flatnonzero(need)
-    h = np.full(len(u), np.nan)
-    h[ends] = _axis_headings(*_gathered_moments(u, v, p, ends))
-    return _angle_diff(h[j], h[j + (p - 1)])
+    """δ of positions ``j`` exactly as :func:`_headings_of` gives it: the headings of the
+    windows needed (ending at j and at j + p − 1) only, from :func:`_gathered_moments`."""
+    if not len(j):
+        return np.zeros(0)
+    ends = np.union1d(j, j + (p - 1))  # sorted, each window once
+    h = _axis_headings(*_gathered_moments(u, v, p, ends))
+    return _angle_diff(h[np.searchsorted(ends, j)], h[np.searchsorted(ends, j + (p - 1))])
 
 
 def _gathered_moments(u: np.ndarray, v: np.ndarray, p: int, ends: np.ndarray):
-    """:func:`_block_moments` of the windows ending at ``ends`` (p > :data:`SMALL_KERNEL`),
-    the same bits: for such p, ``np.convolve`` sums each window by numpy's dot of it with
-    the kernel (BLAS ``ddot``), and ``np.matmul`` of a 1 × p row by a p × 1 column makes
-    that same call (numpy's matmul, row @ column), here on each window gathered as a row."""
-    from numpy.lib.stride_tricks import sliding_window_view
-
+    """:func:`_block_moments` of the windows ending at ``ends``, the same bits, each window
+    gathered as a row of p values. For p ≤ :data:`SMALL_KERNEL` ``np.convolve`` sums each
+    window in a plain loop over its p values in order, wherever the window lies: the rows
+    one after another are convolved the same way, and every p-th sum is a window's. For
+    longer p it sums each window by numpy's dot with the kernel (BLAS ``ddot``), and
+    ``np.matmul`` of a 1 × p row by a p × 1 column makes that same call (numpy's matmul,
+    row @ column)."""
     first = ends - (p - 1)
-    wu = sliding_window_view(u, p)[first]  # copies: one row of p per window
-    wv = sliding_window_view(v, p)[first]
-    ones = np.ones((p, 1))
+    rows = first[:, None] + np.arange(p)
+    wu = u[rows]  # one row of p per window
+    wv = v[rows]
+    if p <= SMALL_KERNEL:
+        ones = np.ones(p)
 
-    def sums(w: np.ndarray) -> np.ndarray:
-        return np.matmul(w[:, None, :], ones)[:, 0, 0]
+        def sums(w: np.ndarray) -> np.ndarray:
+            return np.convolve(w.ravel(), ones, "valid")[::p]
+
+    else:
+        column = np.ones((p, 1))
+
+        def sums(w: np.ndarray) -> np.ndarray:
+            return np.matmul(w[:, None, :], column)[:, 0, 0]
 
     mu = sums(wu)
     mu /= p
@@ -1150,63 +1237,6 @@ def _gathered_moments(u: np.ndarray, v: np.ndarray, p: int, ends: np.ndarray):
     cxy *= 2.0
     cxx -= cyy
     return cxx, cxy, u[ends] - u[first], v[ends] - v[first]
-
-
-def _oriented_axis(
-    a: np.ndarray, b: np.ndarray, du: np.ndarray, dv: np.ndarray, bound: float | None = None
-):
-    """The unit vector that :func:`_axis_headings` points along — cos and sin of
-    0.5·atan2(b, a), flipped to agree with (du, dv) — by half-angle formulas, each in the
-    form that does not cancel; NaN where the axis is undefined or the orientation too
-    close to call (the screen then leaves the row in). With ``bound`` (on |error of a| +
-    |error of b|) also how far the axis may be off (rad); where that is not small the axis
-    counts as undefined, and the orientation is called only where it holds against it."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        r = np.multiply(a, a)
-        tmp = np.multiply(b, b)
-        r += tmp
-        r = np.sqrt(r, out=r)
-        c2 = np.divide(a, r)  # cos 2θ, θ in [-90°, 90°]
-        cos_first = (c2 >= 0.0).astype(np.float64)  # 1.0 or 0.0
-        big = np.abs(c2, out=c2)
-        big += 1.0
-        big *= 0.5
-        big = np.sqrt(big, out=big)  # the larger of |cos θ|, |sin θ|
-        small = np.abs(b, out=tmp)
-        small /= r
-        small /= 2.0 * big  # |sin 2θ| / (2 · larger)
-        # c, s = where(cos_first, big, small), where(cos_first, small, big), as products
-        # (x · 1.0 + y · 0.0 is x for the finite x, y ≥ 0 of every row not unsure below;
-        # a 50/50 mask costs a select ~10× a product)
-        c = big * cos_first
-        s = small * cos_first
-        cos_first -= 1.0  # 0.0 or -1.0
-        c -= small * cos_first
-        s -= big * cos_first
-        s = np.copysign(s, b, out=s)  # sin θ has the sign of b
-        d = du * c
-        d += dv * s
-        sign = (d < 0.0) * -2.0  # -2.0 or -0.0
-        sign += 1.0  # where(d < 0, -1, 1)
-        turn = 0.0
-        if bound is not None:  # how far the axis may turn (rad) when a and b move by bound
-            turn = bound / (r - bound)
-        e = np.abs(du)
-        e += np.abs(dv)
-        e *= turn + 1e-9
-        sure = np.abs(d, out=d) > e
-        sure &= np.isfinite(r)
-        sure &= r != 0
-        if bound is not None:
-            sure &= r > 4.0 * bound
-        c *= sign
-        s *= sign
-    unsure = ~sure
-    c[unsure] = np.nan
-    s[unsure] = np.nan
-    if bound is None:
-        return c, s
-    return c, s, turn
 
 
 def _peaks_above(
@@ -1669,14 +1699,17 @@ def _detect_sorted(
 
     def add(f_c: np.ndarray, cand: np.ndarray, ok: np.ndarray, reach: np.ndarray) -> None:
         new, f_new = cand[ok], f_c[ok]
-        far = ~_near(found, index, reach[ok], new)
+        far = ~_near(found_rows[0], index, reach[ok], new)
         factor[new[far]] = f_new[far]
         found[new[far]] = True
+        added = new[far]  # sorted, none of them found already
+        found_rows[0] = np.insert(found_rows[0], np.searchsorted(found_rows[0], added), added)
 
     scales = _scales(params)
     fine_scales = _fine_scales(params)
     med = median_interval_s(t, index) if params.window_s > 0 else None
     found = np.zeros(n, dtype=bool)
+    found_rows = [np.zeros(0, dtype="int64")]  # the rows of ``found``, sorted
     factor = np.empty(0)  # δ of every row: the first scale's, below
     u, v = _anchored_xy(x, y, index)  # what every window sum is taken against
     p_first = np.full(index.n_tracks, int(params.window_p), dtype="int64")
@@ -1694,7 +1727,7 @@ def _detect_sorted(
             radius = np.maximum(p_track, params.radius_n)
             # rows where a new turn may count: none found within one window, no at-rest
             # span within one window less one (the tests below, as rows)
-            f_rows = np.flatnonzero(found)
+            f_rows = found_rows[0]
             interest = grew[tr]
             if len(f_rows):
                 interest &= ~_dilate(f_rows, f_rows + 1, p_track[tr[f_rows]], index, n)
@@ -1714,6 +1747,7 @@ def _detect_sorted(
         ok = accept(f_c, cand, p_c, p_c, fine=False)
         if k == 0:
             found[cand[ok]] = True
+            found_rows[0] = cand[ok]  # cand is sorted
         else:
             add(f_c, cand, ok, p_c)
         prev_p = p_track
