@@ -14,6 +14,7 @@ points follow through :class:`wakeline.app.review_sync.ReviewSync`.
 import contextlib
 from dataclasses import dataclass, field, replace
 
+import numpy as np
 import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui, QtWidgets
@@ -24,8 +25,10 @@ from wakeline.app.review_map import (
     PALETTE,
     Piece,
     ProposalGeometry,
+    ProposalItems,
     proposal_geometry,
-    proposal_items,
+    proposal_members,
+    tracks_geometry,
 )
 from wakeline.app.review_panel import ReviewPanel
 from wakeline.app.review_sync import ProjectDecisions, ReviewSync, fuse_selected
@@ -34,6 +37,7 @@ from wakeline.app.review_views import GanttView, NetworkView
 from wakeline.app.time_panel import link_gantt
 from wakeline.app.worker import Failed, Finished
 from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
+from wakeline.core.schema import time_seconds
 
 TR_CONTEXT = "ReviewDock"
 #: Opacity of the layers behind a proposal on the maps: its context, muted.
@@ -42,6 +46,14 @@ CONTEXT_OPACITY = 0.35
 
 #: Colour difference (CIE ΔE) between a proposal's two tracks when the window picks them.
 PAIR_DELTA_E = 40.0
+#: The proposal is drawn again in the legend's colours this long after the map's
+#: selection last changed: a layer updated after a decision clears the selection and
+#: restores it a few event-loop turns later, and the proposal follows once, not twice.
+REDRAW_MS = 40
+#: Proposal geometries kept per queue (the current one, those looked at lately).
+GEOMETRY_CACHE = 64
+#: Items made per event-loop turn ahead of a new queue's first drawing.
+WARM_BATCH = 8
 
 
 def tr(text: str) -> str:
@@ -75,11 +87,46 @@ class Bound:
     gantt: GanttView
     network: NetworkView
     cache: dict = field(default_factory=dict)
+    arrays: tuple | None = None  # t, lon, lat of points, time-sorted within each track
+    geometries: dict = field(default_factory=dict)  # (proposal, members) -> geometry
+
+    def geometry(self, proposal: str, members: list[str]) -> ProposalGeometry:
+        """The map geometry of ``proposal`` (:func:`proposal_geometry`) whose target(s)
+        hold ``members``: from the points' arrays, cached (it depends on nothing else)."""
+        key = (proposal, tuple(members))
+        geom = self.geometries.get(key)
+        if geom is None:
+            st = self.controller.state
+            if self.arrays is None:
+                geom = proposal_geometry(st, self.track_points(members), proposal)
+            else:
+                t, lon, lat = self.arrays
+                empty = (0, 0)
+                sl = {m: slice(*self.ranges.get(m, empty)) for m in members}
+                tracks = {m: (t[k], lon[k], lat[k]) for m, k in sl.items()}
+                geom = tracks_geometry(st, proposal, tracks)
+            if len(self.geometries) >= GEOMETRY_CACHE:
+                self.geometries.clear()
+            self.geometries[key] = geom
+        return geom
 
     def track_points(self, labels: list[str]) -> pd.DataFrame:
         """The points of the tracks ``labels`` (``sensor:batch``)."""
         parts = [self.points.iloc[slice(*self.ranges[t])] for t in labels if t in self.ranges]
         return pd.concat(parts) if parts else self.points.iloc[:0]
+
+
+def track_arrays(points: pd.DataFrame, ranges: dict[str, tuple[int, int]]) -> tuple:
+    """Time (s), lon and lat of ``points`` (sorted by track, rows ``ranges``), each
+    track's in time order (stable) as :func:`proposal_geometry` orders them (worker)."""
+    t = time_seconds(points["time"]) if len(points) else np.zeros(0)
+    code = np.zeros(len(points), dtype="int64")
+    for k, (start, end) in enumerate(ranges.values()):
+        code[start:end] = k
+    order = np.lexsort((t, code))
+    lon = points["lon"].to_numpy(dtype="float64")[order]
+    lat = points["lat"].to_numpy(dtype="float64")[order]
+    return np.asarray(t, dtype="float64")[order], lon, lat
 
 
 class ReviewDock(QtCore.QObject):
@@ -91,8 +138,26 @@ class ReviewDock(QtCore.QObject):
         self.bound: Bound | None = None
         self.queues: dict[str, Bound] = {}
         self._binding: str | None = None
-        self._items: dict[str, list] = {"proposal": [], "members": []}
+        self._items: dict[str, list] = {"proposal": [], "members": []}  # (canvas, item) shown
+        # The items of each group on each map, made once and reused (ProposalItems).
+        self._pools: dict[str, dict] = {"proposal": {}, "members": {}}
+        self._lines: dict = {}  # proposal item -> its own legend line's text (main map)
         self._geom: ProposalGeometry | None = None  # the current proposal's, as computed
+        self._redraw = QtCore.QTimer(self)  # the proposal again in the legend's colours
+        self._redraw.setSingleShot(True)
+        self._redraw.setInterval(REDRAW_MS)
+        self._redraw.timeout.connect(self._draw_proposal)
+        self._views = QtCore.QTimer(self)  # Gantt, then network, on later event-loop turns
+        self._views.setSingleShot(True)
+        self._views.setInterval(0)
+        self._views.timeout.connect(self._draw_views)
+        self._views_todo: list[str] = []  # "gantt" and/or "network" still to draw
+        self._views_proposal = ""
+        self._bind_steps = None  # the stages of a bind still to run (_bind_stages)
+        self._bind_timer = QtCore.QTimer(self)
+        self._bind_timer.setSingleShot(True)
+        self._bind_timer.setInterval(0)
+        self._bind_timer.timeout.connect(self._next_bind_step)
         self.group = QtGui.QUndoGroup(self)
         self.sync = ReviewSync(self)
         from wakeline.app.worker import JobRunner
@@ -137,7 +202,7 @@ class ReviewDock(QtCore.QObject):
             (w.layersChanged, self.refresh),
             (w.batch_view.selectionModel().selectionChanged, self._show_members),
             (w.batch_model.modelReset, lambda: self._clear_items("members")),
-            (w.canvas.selectionShown, self._draw_proposal),  # its colours follow the legend
+            (w.canvas.selectionShown, self._redraw.start),  # its colours follow the legend
         ]
         for signal, slot in self._listening:
             signal.connect(slot)
@@ -269,7 +334,7 @@ class ReviewDock(QtCore.QObject):
                 progress(0.0, "reading the proposals")
                 state, points = bind(session, session.layers[lid])
                 pts, ranges = sorted_by_track(points)
-                return key, lid, state, pts, ranges
+                return key, lid, state, pts, ranges, track_arrays(pts, ranges)
 
             self.binder.run("review", job)
 
@@ -277,7 +342,10 @@ class ReviewDock(QtCore.QObject):
     def busy(self) -> bool:
         """Binding or updating the layer is under way (tests wait on it)."""
         settling = self.bound is not None and self.bound.panel._settle.isActive()
-        return self.binder.busy or self._binding is not None or self.sync.busy or settling
+        drawing = self._redraw.isActive() or bool(self._views_todo) or self._bind_steps is not None
+        return (
+            self.binder.busy or self._binding is not None or self.sync.busy or settling or drawing
+        )
 
     def _on_bind_message(self, msg) -> None:
         if isinstance(msg, Failed):
@@ -285,15 +353,43 @@ class ReviewDock(QtCore.QObject):
             self.w.log_message(f"{tr('Error')} (review): {msg.message}")
         if not isinstance(msg, Finished):
             return
-        key, lid, state, pts, ranges = msg.result
-        self._binding = None
-        if lid not in self.w.session.layers or queue_key(self.w.session.layers[lid]) != key:
+        # The widgets are made and the first proposal drawn over a few event-loop turns
+        # (queue; Gantt and network; the maps), none of them a long block.
+        self._bind_steps = self._bind_stages(*msg.result)
+        self._next_bind_step()
+
+    def _next_bind_step(self) -> None:
+        steps = self._bind_steps
+        if steps is None:
+            return
+        try:
+            next(steps)
+        except StopIteration:
+            self._bind_steps = None
+            return
+        self._bind_timer.start()
+
+    def _bind_stages(self, key, lid, state, pts, ranges, arrays):
+        """Bind a queue the worker read, one stage per event-loop turn (a generator);
+        a layer removed or run again meanwhile drops it."""
+
+        def stale() -> bool:
+            layers = self.w.session.layers
+            if lid in layers and queue_key(layers[lid]) == key:
+                return False
+            self._binding = None
             self.refresh()
+            return True
+
+        if stale():
             return
         controller = ReviewController(state, ProjectDecisions(self.w, key), self)
         panel = ReviewPanel(controller)
         for act in panel.actions:  # the window's Review and Edit menus hold the keys
             panel.removeAction(act)
+        yield
+        if stale():
+            return
         gantt, network = GanttView(state), NetworkView(state)
         box = QtWidgets.QSplitter()
         box.addWidget(panel)
@@ -303,7 +399,11 @@ class ReviewDock(QtCore.QObject):
         box.addWidget(views)
         box.setSizes([560, 700])
         bound = Bound(lid, key, controller, pts, ranges, box, panel, gantt, network)
-        panel.current_settled.connect(self.show_proposal)
+        bound.arrays = arrays
+        # Only the shown queue's panel draws (a queue still binding waits for _show).
+        panel.current_settled.connect(
+            lambda pid, b=bound: self.bound is b and self.show_proposal(pid)
+        )
         network.proposal_clicked.connect(panel.set_current)
         if getattr(self.w, "time_panel", None) is not None:  # the slider's cursor in the Gantt
             link_gantt(self.w.time_panel, gantt)
@@ -311,9 +411,24 @@ class ReviewDock(QtCore.QObject):
         self.group.addStack(controller.stack)
         self.stack.addWidget(box)
         self.queues[key] = bound
+        self._binding = None
         layer = self.w.session.layers[lid]
         if state.version and layer.meta.get("review_decisions") != len(state.log):
             self.sync.schedule(bound)  # decisions replayed that the stored layer lacks
+        yield
+        # The items the first proposal's drawing takes, made ahead a few per turn
+        # (making pyqtgraph items is the slow part of a first drawing).
+        pid = panel.current()
+        if pid:
+            n = len(proposal_members(state, pid))
+            pools = [(self._pool("proposal", c), n) for c in (self.w.canvas, self.before)]
+            pools += gantt.pools_for(pid) + network.pools_for(pid)
+            for pool, n in pools:
+                while self.queues.get(key) is bound and pool.reserve(n, WARM_BATCH):
+                    yield
+                yield
+        if self.queues.get(key) is not bound:
+            return  # dropped meanwhile (its layer removed or run again)
         active = self.w.active_layer()
         if active is not None and queue_key(active) == key:
             self._show(bound)
@@ -349,6 +464,7 @@ class ReviewDock(QtCore.QObject):
             self.w.resizeDocks([self.dock], [360], QtCore.Qt.Orientation.Vertical)
         self.dock.raise_()
         self._draw_before(self.w.session.layers[bound.lid])
+        bound.panel._settle.stop()  # a new queue's first row: shown here, not again
         self.show_proposal(bound.panel.current())
 
     def _draw_before(self, layer) -> None:
@@ -366,33 +482,58 @@ class ReviewDock(QtCore.QObject):
 
     # -- drawing --------------------------------------------------------------------
 
+    def _pool(self, group: str, canvas: MapCanvas) -> ProposalItems:
+        pools = self._pools[group]
+        if canvas not in pools:
+            pools[canvas] = ProposalItems(canvas, z=55 if group == "members" else None)
+        return pools[canvas]
+
     def _clear_items(self, group: str | None = None) -> None:
         for g in [group] if group else list(self._items):
-            for canvas, item in self._items[g]:
-                canvas.removeItem(item)
-                canvas.legend.removeItem(item)  # a legend line of its own, if it has one
+            if g == "proposal":
+                self._redraw.stop()
+                self._sync_lines({})
+            for pool in self._pools[g].values():
+                pool.clear()  # hidden, kept for the next one
             self._items[g] = []
             if g == "proposal":
                 for canvas in (self.w.canvas, self.before):
                     canvas.mute_layers(1.0)
 
-    def _add_items(self, geom: ProposalGeometry, group: str, z: float | None = None) -> None:
+    def _add_items(self, geom: ProposalGeometry, group: str) -> None:
+        """Show ``geom`` in the group's items on both maps (they replace what they showed)."""
+        shown = []
         for canvas in (self.w.canvas, self.before):
-            for item in proposal_items(geom):
-                if z is not None:
-                    item.setZValue(z)
-                canvas.addItem(item)
-                self._items[group].append((canvas, item))
+            shown += [(canvas, item) for item in self._pool(group, canvas).show(geom)]
+        self._items[group] = shown
+
+    def _sync_lines(self, wanted: dict) -> None:
+        """The main map's legend lines of the proposal's own curves: ``wanted`` (item ->
+        text), the others removed; a line whose curve changed colour is repainted."""
+        legend = self.w.canvas.legend
+        for item, text in list(self._lines.items()):
+            if wanted.get(item) != text:
+                legend.removeItem(item)
+                del self._lines[item]
+        for item, text in wanted.items():
+            if item not in self._lines:
+                legend.addItem(item, text)
+                self._lines[item] = text
+        for sample, _label in legend.items:
+            if sample.item in self._lines:
+                sample.update()  # its line takes the curve's new pen
 
     def _draw_proposal(self) -> None:
         """Draw the current proposal on both maps: its two tracks on top in the colours
         the main map's legend names them in (a selected track's selection colour; a track
         not selected, as a fused layer's pair, a free colour and a legend line of its
         own), the other members of its target muted, the layers muted behind it. Again
-        whenever the main map's selection changes."""
-        self._clear_items("proposal")
+        (:data:`REDRAW_MS` after) whenever the main map's selection changes; the items
+        are reused, and the same proposal in new colours only restyles them."""
+        self._redraw.stop()
         geom = self._geom
         if geom is None:
+            self._clear_items("proposal")
             return
         canvas = self.w.canvas
         free = canvas.free_colors()
@@ -417,32 +558,32 @@ class ReviewDock(QtCore.QObject):
                 piece = replace(piece, color=color)
             pieces.append(piece)
         self._add_items(replace(geom, pieces=pieces), "proposal")
+        wanted = {}
         for c, item in self._items["proposal"]:
             name = item.opts.get("name") if isinstance(item, pg.PlotDataItem) else None
             if c is canvas and name in named:
-                canvas.legend.addItem(item, named[name])
+                wanted[item] = named[name]
+        self._sync_lines(wanted)
         for c in (canvas, self.before):
             c.mute_layers(CONTEXT_OPACITY)
 
     def show_proposal(self, proposal: str) -> None:
         """Zoom to the proposal, its tracks selected, its pieces in the legend's colours
         over the muted layers, the gap's dashed connector and predicted path (both maps);
-        Gantt, network."""
+        Gantt and network on the next event-loop turns (one each)."""
         b = self.bound
         self._geom = None
-        self._clear_items("proposal")
+        self._views_todo = []
         if b is None or not proposal:
+            self._clear_items("proposal")
             return
         st = b.controller.state
-        row = st.proposals.iloc[b.panel.model.row_of[proposal]]
-        a, c = row["track_a"], row["track_b"]
-        members = list(dict.fromkeys([*st.members(st.target(a)), *st.members(st.target(c)), a, c]))
-        geom = proposal_geometry(st, b.track_points(members), proposal)
+        k = st._row[proposal]
+        a, c = st.track_a[k], st.track_b[k]
+        geom = b.geometry(proposal, proposal_members(st, proposal))
         if geom.bounds:
             x0, y0, x1, y1 = geom.bounds
             self.w.canvas.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0.15)
-        b.gantt.show_proposal(proposal)
-        b.network.show_proposal(proposal)
         layer = self.w.session.layers.get(b.lid)
         if layer is not None and layer.step == "fuse":
             keys = [("fused", st.target(a))]
@@ -450,18 +591,33 @@ class ReviewDock(QtCore.QObject):
             keys = [tuple(t.split(":", 1)) for t in (a, c)]
         self.w.select_tracks(keys)  # the map's selection and legend name the colours
         self._geom = geom
-        self._draw_proposal()
+        self._draw_proposal()  # now, in the selection's colours (no redraw pending)
+        self._views_proposal = proposal
+        self._views_todo = ["gantt", "network"]
+        self._views.start()
+
+    def _draw_views(self) -> None:
+        """One of the current proposal's views (Gantt, then network) per event-loop turn."""
+        b = self.bound
+        if b is None or not self._views_todo:
+            self._views_todo = []
+            return
+        view = self._views_todo.pop(0)
+        (b.gantt if view == "gantt" else b.network).show_proposal(self._views_proposal)
+        if self._views_todo:
+            self._views.start()
 
     def _show_members(self, *_args) -> None:
         """A fused track selected: its member tracks drawn in their own colours on both
         maps; the status bar lists them and the sensors behind its points."""
         b, layer = self.bound, self.w.active_layer()
-        self._clear_items("members")
         if b is None or layer is None or layer.id != b.lid or "members" not in layer.points:
+            self._clear_items("members")
             return
         view = self.w.views.get(layer.id)
         chosen = view.tracks(self.w.selected_keys()) if view is not None else None
         if chosen is None or not len(chosen):
+            self._clear_items("members")
             return
         members = sorted({m for text in chosen["members"].astype(str) for m in text.split("+")})
         pts = b.track_points(members)
@@ -472,7 +628,7 @@ class ReviewDock(QtCore.QObject):
             sensor, _, batch = m.partition(":")
             color = self.before.selection_color(sensor, batch) or PALETTE[k % len(PALETTE)]
             geom.pieces.append(Piece(m, one["lon"].to_numpy(), one["lat"].to_numpy(), color))
-        self._add_items(geom, "members", z=55)
+        self._add_items(geom, "members")
         sensors = chosen["source"].astype(str).value_counts() if "source" in chosen else {}
         text = ", ".join(f"{s}: {n}" for s, n in dict(sensors).items())
         self.w.statusBar().showMessage(
@@ -486,6 +642,11 @@ class ReviewDock(QtCore.QObject):
             with contextlib.suppress(RuntimeError, TypeError):  # already gone
                 signal.disconnect(slot)
         self._listening = []
+        self._redraw.stop()
+        self._views.stop()
+        self._views_todo = []
+        self._bind_timer.stop()
+        self._bind_steps = None
         for runner in (self.binder, self.sync.runner):
             runner.cancel()
             runner.wait(5000)

@@ -6,7 +6,9 @@ end position and velocity to the new track's start position and velocity, as sti
 fills it).
 
 :func:`proposal_geometry` returns plain arrays (testable, Qt-free in spirit);
-:func:`proposal_items` turns them into pyqtgraph items the canvas adds and removes.
+:func:`proposal_items` turns them into pyqtgraph items; :class:`ProposalItems` keeps
+one canvas's items and reuses them from one proposal to the next (``setData``, ``setPen``:
+making and deleting pyqtgraph items was most of a redraw on the GUI thread).
 """
 
 from dataclasses import dataclass, field
@@ -14,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
-from PySide6 import QtCore
+from PySide6 import QtCore, QtGui
 
 from wakeline.app.map_selection import SELECTION_PALETTE
 from wakeline.core import geo
@@ -107,15 +109,7 @@ def proposal_geometry(
     ``colors`` (by ``sensor:batch``; default :data:`PAIR_COLORS`, old then new), the other
     members as context in :data:`MUTED`; for a proposal with a gap the connector and
     predicted path."""
-    p = state.proposals.set_index("proposal").loc[proposal]
-    members = list(
-        dict.fromkeys(
-            state.members(state.target(p["track_a"])) + state.members(state.target(p["track_b"]))
-        )
-    )
-    for t in (p["track_a"], p["track_b"]):  # a rejected pair: both still shown
-        if t not in members:
-            members.append(t)
+    members = proposal_members(state, proposal)
     lab = _labels(points[["sensor", "batch"]].astype(str))
     sel = pd.Series(lab).isin(members).to_numpy()
     pts = points[sel]
@@ -123,16 +117,40 @@ def proposal_geometry(
     t = time_seconds(pts["time"]) if len(pts) else np.zeros(0)
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
-    geom = ProposalGeometry(proposal)
-    pair = dict(zip((p["track_a"], p["track_b"]), PAIR_COLORS, strict=True))
-    pair.update({t: c for t, c in (colors or {}).items() if t in pair})
     tracks = {}
     for m in members:  # a handful of members
         idx = np.flatnonzero(lab == m)
         idx = idx[np.argsort(t[idx], kind="stable")]
         tracks[m] = (t[idx], lon[idx], lat[idx])
-        geom.pieces.append(Piece(m, lon[idx], lat[idx], pair.get(m, MUTED), m not in pair))
-    ta, tb = tracks.get(p["track_a"]), tracks.get(p["track_b"])
+    return tracks_geometry(state, proposal, tracks, colors)
+
+
+def proposal_members(state: ReviewState, proposal: str) -> list[str]:
+    """The tracks :func:`proposal_geometry` draws: the members of the target(s) of the
+    proposal's two tracks, earliest first, and the two tracks (a rejected pair's too)."""
+    k = state._row[proposal]
+    a, b = state.track_a[k], state.track_b[k]
+    return list(
+        dict.fromkeys([*state.members(state.target(a)), *state.members(state.target(b)), a, b])
+    )
+
+
+def tracks_geometry(
+    state: ReviewState,
+    proposal: str,
+    tracks: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]],
+    colors: dict[str, str] | None = None,
+) -> ProposalGeometry:
+    """:func:`proposal_geometry` from the time-sorted arrays (t, lon, lat) of every track
+    of :func:`proposal_members` (in that order)."""
+    k = state._row[proposal]
+    track_a, track_b = state.track_a[k], state.track_b[k]
+    geom = ProposalGeometry(proposal)
+    pair = dict(zip((track_a, track_b), PAIR_COLORS, strict=True))
+    pair.update({t: c for t, c in (colors or {}).items() if t in pair})
+    for m, (_t, lon, lat) in tracks.items():
+        geom.pieces.append(Piece(m, lon, lat, pair.get(m, MUTED), m not in pair))
+    ta, tb = tracks.get(track_a), tracks.get(track_b)
     # Zoom to the proposal's two tracks (the other members are drawn, maybe off view).
     both = [x for x in (ta, tb) if x is not None and len(x[0])]
     if both:
@@ -189,3 +207,134 @@ def proposal_items(geom: ProposalGeometry) -> list[pg.GraphicsObject]:
         )
         items[-1].setZValue(Z_GAP)
     return items
+
+
+class ProposalItems:
+    """The items of :func:`proposal_items` on one canvas, made once and reused.
+
+    :meth:`show` puts a geometry's arrays and colours into the kept items (one curve per
+    piece, the connector and the predicted path: the colours, widths and zValues
+    :func:`proposal_items` gives them; the pieces' start marks in two scatter items, the
+    context's and the pair's, at those zValues) and hides the rest; :meth:`clear` hides
+    them all. A piece whose arrays are the ones already shown keeps its data (a new colour
+    only restyles it), so the same proposal in the legend's new colours costs little.
+    ``z`` overrides every zValue (the members of a selected fused track).
+    """
+
+    def __init__(self, canvas, z: float | None = None) -> None:
+        self.canvas = canvas
+        self.z = z
+        self.curves: list[pg.PlotDataItem] = []
+        self.marks = {  # start marks: (item, what it shows) for context, pair
+            context: (self._add(pg.ScatterPlotItem(pen=None)), None) for context in (True, False)
+        }
+        for context, (item, _) in self.marks.items():
+            item.setZValue(self._z(Z_MEMBER if context else Z_PAIR))
+        self.connector: pg.PlotDataItem | None = None
+        self.predicted: pg.PlotDataItem | None = None
+        self.shown: list[pg.GraphicsObject] = []  # in use
+        self._data: list[tuple] = []  # per curve: the (lon, lat) arrays it shows
+        self._style: list[tuple | None] = []  # per curve: (color, context)
+
+    def _z(self, z: float) -> float:
+        return z if self.z is None else self.z
+
+    def _add(self, item: pg.GraphicsObject) -> pg.GraphicsObject:
+        item.setVisible(False)
+        self.canvas.addItem(item)
+        return item
+
+    def _line(self, pen: QtGui.QPen) -> pg.PlotDataItem:
+        item = pg.PlotDataItem([], [], pen=pen)
+        item.setZValue(self._z(Z_GAP))
+        return self._add(item)
+
+    def reserve(self, n: int, batch: int) -> bool:
+        """Make (hidden) up to ``batch`` more piece curves towards ``n``; True while short."""
+        for _ in range(min(batch, n - len(self.curves))):
+            self.curves.append(self._add(pg.PlotDataItem([], [])))
+            self._data.append((None, None))
+            self._style.append(None)
+        return len(self.curves) < n
+
+    def show(self, geom: ProposalGeometry) -> list[pg.GraphicsObject]:
+        """Draw ``geom``; returns the items in use."""
+        shown: list[pg.GraphicsObject] = []
+        n = len(geom.pieces)
+        self.reserve(n, n)
+        starts: dict[bool, list] = {True: [], False: []}
+        for k, piece in enumerate(geom.pieces):
+            curve = self.curves[k]
+            z, width = (Z_MEMBER, 2) if piece.context else (Z_PAIR, 3)
+            style = (piece.color, piece.context)
+            if self._data[k][0] is not piece.lon or self._data[k][1] is not piece.lat:
+                curve.setData(piece.lon, piece.lat, pen=pg.mkPen(piece.color, width=width))
+                self._data[k] = (piece.lon, piece.lat)
+            elif self._style[k] != style:
+                curve.setPen(pg.mkPen(piece.color, width=width))
+            self._style[k] = style
+            curve.opts["name"] = piece.track
+            curve.setZValue(self._z(z))
+            curve.setVisible(True)
+            shown.append(curve)
+            if len(piece.lon):
+                starts[piece.context].append((piece.lon[0], piece.lat[0], piece.color))
+        for k in range(n, len(self.curves)):
+            self._hide(k)
+        for context, (item, was) in self.marks.items():
+            now = tuple(starts[context])
+            if now != was:
+                if now:
+                    x, y, colors = zip(*now, strict=True)
+                    brushes = [pg.mkBrush(c) for c in colors]
+                    item.setData(x, y, size=7 if context else 9, brush=brushes)
+                else:
+                    item.setData([], [])
+                self.marks[context] = (item, now)
+            item.setVisible(bool(now))
+            if now:
+                shown.append(item)
+        if geom.connector is not None and self.connector is None:
+            dash = QtCore.Qt.PenStyle.DashLine
+            self.connector = self._line(pg.mkPen("#333333", width=1.5, style=dash))
+        if geom.predicted is not None and self.predicted is None:
+            # Neutral ink, as the connector's: a colour of the palette would read as the
+            # track the legend names in it.
+            dot = QtCore.Qt.PenStyle.DotLine
+            self.predicted = self._line(pg.mkPen("#000000", width=2, style=dot))
+        for item, xy in ((self.connector, geom.connector), (self.predicted, geom.predicted)):
+            if item is None:
+                continue
+            if xy is None:
+                if item.isVisible():
+                    item.setData([], [])
+                    item.setVisible(False)
+                continue
+            item.setData(*xy)
+            item.setVisible(True)
+            shown.append(item)
+        self.shown = shown
+        return shown
+
+    def _hide(self, k: int) -> None:
+        curve = self.curves[k]
+        if self._data[k][0] is not None:
+            curve.setData([], [])
+            self._data[k] = (None, None)
+        curve.opts["name"] = None
+        curve.setVisible(False)
+
+    def clear(self) -> None:
+        """Hide every item (kept for the next proposal)."""
+        for k in range(len(self.curves)):
+            self._hide(k)
+        for context, (item, was) in self.marks.items():
+            if was:
+                item.setData([], [])
+            item.setVisible(False)
+            self.marks[context] = (item, None)
+        for item in (self.connector, self.predicted):
+            if item is not None and item.isVisible():
+                item.setData([], [])
+                item.setVisible(False)
+        self.shown = []

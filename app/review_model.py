@@ -25,6 +25,14 @@ _STATUS_COLORS = {
     "split": "#fbe9d0",
 }
 SORT_ROLE = QtCore.Qt.ItemDataRole.UserRole + 1
+_ROLES = frozenset(
+    (
+        QtCore.Qt.ItemDataRole.DisplayRole,
+        SORT_ROLE,
+        QtCore.Qt.ItemDataRole.BackgroundRole,
+        QtCore.Qt.ItemDataRole.ToolTipRole,
+    )
+)
 
 
 class ProposalModel(QtCore.QAbstractTableModel):
@@ -71,8 +79,8 @@ class ProposalModel(QtCore.QAbstractTableModel):
         return self.cols[name][row]
 
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
-        if not index.isValid():
-            return None
+        if role not in _ROLES or not index.isValid():
+            return None  # asked for many roles per cell (fonts, sizes, …): answer fast
         name = COLUMNS[index.column()][0]
         v = self.value(index.row(), name)
         if role == QtCore.Qt.ItemDataRole.DisplayRole:

@@ -3,7 +3,9 @@ the nearby candidates with a time cursor, and the candidate network (tracks as n
 candidate links as edges weighted by cost; clicking an edge selects its proposal).
 
 Both take the core :class:`~wakeline.core.review.ReviewState` and redraw on
-:meth:`show_proposal`; neither edits anything.
+:meth:`show_proposal`; neither edits anything. Their pyqtgraph items are made once and
+reused (:class:`ItemPool`): making and deleting tens of text items per proposal was most
+of a redraw on the GUI thread.
 """
 
 import numpy as np
@@ -29,24 +31,27 @@ STATUS_PEN = {
 def neighbourhood(state: ReviewState, proposal: str, hops: int = 1) -> tuple[list, list]:
     """Tracks around a proposal: (members of its target(s), nearby tracks) — nearby are
     the tracks linked to a member by any proposal or runner-up, ``hops`` steps out."""
-    p = state.proposals
-    row = p.index[p["proposal"] == proposal]
-    if len(row) == 0:
+    k = state._row.get(proposal)
+    if k is None:
         return [], []
-    r = p.loc[row[0]]
-    members = list(
-        dict.fromkeys(
-            state.members(state.target(r["track_a"])) + state.members(state.target(r["track_b"]))
-        )
-    )
-    adj = _adjacency(state)
+    a, b = state.track_a[k], state.track_b[k]
+    members = list(dict.fromkeys(state.members(state.target(a)) + state.members(state.target(b))))
+    base = _static(state)["adj"]
+    manual: dict[str, set] = {}
+    for x, y in state.links:
+        manual.setdefault(x, set()).add(y)
+        manual.setdefault(y, set()).add(x)
     seen = set(members)
     frontier = set(members)
     for _ in range(hops):
-        new = set().union(*(adj.get(t, ()) for t in frontier)) - seen
+        new = set()
+        for t in frontier:
+            new |= base.get(t, set())
+            new |= manual.get(t, set())
+        new -= seen
         seen |= new
         frontier = new
-    t0 = _t0(state)
+    t0 = _static(state)["t0"]
     nearby = sorted(seen - set(members), key=lambda x: t0[x])
     return members, nearby
 
@@ -82,25 +87,64 @@ def _static(state: ReviewState) -> dict:
         adj.setdefault(a, set()).add(b)
         adj.setdefault(b, set()).add(a)
     d["adj"] = adj
+    d["t0"] = dict(zip(state._labels_arr.tolist(), state._t0_arr.tolist(), strict=True))
+    d["span"] = (  # first and last time of every track, by row of state.tracks
+        state.tracks["t0"].to_numpy(dtype="float64"),
+        state.tracks["t1"].to_numpy(dtype="float64"),
+    )
     if len(_STATIC) > 8:
         _STATIC.clear()
     _STATIC[id(state)] = (state, d)
     return d
 
 
-def _adjacency(state: ReviewState) -> dict:
-    base = _static(state)["adj"]
-    if not state.links:
-        return base
-    adj = {k: set(v) for k, v in base.items()}
-    for a, b in state.links:
-        adj.setdefault(a, set()).add(b)
-        adj.setdefault(b, set()).add(a)
-    return adj
-
-
 def _t0(state: ReviewState) -> dict:
-    return dict(zip(state._labels_arr.tolist(), state._t0_arr.tolist(), strict=True))
+    return _static(state)["t0"]
+
+
+def _z(item, z: float):
+    item.setZValue(z)
+    return item
+
+
+class ItemPool:
+    """Items of one kind in a plot, made on demand and kept: :meth:`take` hands out the
+    next one (shown), :meth:`done` hides those the last drawing did not take."""
+
+    def __init__(self, plot: pg.PlotWidget, make) -> None:
+        self.plot, self.make = plot, make
+        self.items: list = []
+        self.used = 0
+        self._shown = 0
+
+    def begin(self) -> None:
+        self.used = 0
+
+    def reserve(self, n: int, batch: int) -> bool:
+        """Make (hidden) up to ``batch`` more items towards ``n``; True while short."""
+        for _ in range(min(batch, n - len(self.items))):
+            item = self.make()
+            item.setVisible(False)
+            self.plot.addItem(item)
+            self.items.append(item)
+        return len(self.items) < n
+
+    def take(self):
+        if self.used == len(self.items):
+            item = self.make()
+            self.plot.addItem(item)
+            self.items.append(item)
+        item = self.items[self.used]
+        self.used += 1
+        item.setVisible(True)
+        return item
+
+    def done(self) -> list:
+        """Hide the items not taken since :meth:`begin`; the items in use."""
+        for item in self.items[self.used : self._shown]:
+            item.setVisible(False)
+        self._shown = self.used
+        return self.items[: self.used]
 
 
 def candidate_edges(state: ReviewState, among: list[str] | None = None) -> pd.DataFrame:
@@ -152,8 +196,14 @@ class GanttView(pg.PlotWidget):
         self.cursor.sigPositionChanged.connect(self._cursor_moved)
         self.rows: list[str] = []
         self.members: list[str] = []
-        self._items: list = []
+        self._items: list = []  # the items showing the current proposal
         self.addItem(self.cursor)
+        self._bars = pg.BarGraphItem(x0=[], x1=[], y=[], height=0.6)
+        self._bars.setVisible(False)
+        self.addItem(self._bars)
+        self._labels = ItemPool(self, lambda: pg.TextItem("", anchor=(1, 0.5)))
+        self._brush = {c: pg.mkBrush(c) for c in (MEMBER, NEARBY)}
+        self._pen = {c: pg.mkPen(c) for c in (MEMBER, NEARBY)}
 
     def set_time(self, t_s: float) -> None:
         """Move the cursor to ``t_s`` (s since epoch) without re-emitting."""
@@ -167,40 +217,44 @@ class GanttView(pg.PlotWidget):
     def _cursor_moved(self) -> None:
         self.time_changed.emit(self.time())
 
-    def show_proposal(self, proposal: str) -> None:
-        for it in self._items:
-            self.removeItem(it)
-        self._items = []
+    def pools_for(self, proposal: str) -> list[tuple[ItemPool, int]]:
+        """The item pools and how many items :meth:`show_proposal` will take from them."""
         members, nearby = neighbourhood(self.state, proposal)
+        return [(self._labels, len(members) + len(nearby))]
+
+    def show_proposal(self, proposal: str) -> None:
+        st = self.state
+        members, nearby = neighbourhood(st, proposal)
         self.members, self.rows = members, members + nearby
+        self._labels.begin()
         if not self.rows:
+            self._labels.done()
+            self._bars.setVisible(False)
+            self._items = []
             return
-        span = self.state.tracks.set_index("track").loc[self.rows]
-        x0 = (span["t0"].to_numpy() - self.t_ref) / 60.0
-        x1 = (span["t1"].to_numpy() - self.t_ref) / 60.0
+        t0, t1 = _static(st)["span"]
+        rows = np.array([st._track_no[t] for t in self.rows], dtype="int64")
+        x0 = (t0[rows] - self.t_ref) / 60.0
+        x1 = (t1[rows] - self.t_ref) / 60.0
         y = -np.arange(len(self.rows), dtype=float)
         colors = [MEMBER] * len(members) + [NEARBY] * len(nearby)
-        bars = pg.BarGraphItem(
+        self._bars.setOpts(
             x0=x0,
             x1=x1,
             y=y,
             height=0.6,
-            brushes=[pg.mkBrush(c) for c in colors],
-            pens=[pg.mkPen(c) for c in colors],
+            brushes=[self._brush[c] for c in colors],
+            pens=[self._pen[c] for c in colors],
         )
-        self.addItem(bars)
-        self._items.append(bars)
-        p = self.state.proposals.set_index("proposal").loc[proposal]
+        self._bars.setVisible(True)
+        k_row = st._row[proposal]
+        pair = (st.track_a[k_row], st.track_b[k_row])
         for k, name in enumerate(self.rows):
-            bold = name in (p["track_a"], p["track_b"])
-            text = pg.TextItem(
-                ("▶ " if bold else "") + name,
-                color="#000" if k < len(members) else "#666",
-                anchor=(1, 0.5),
-            )
+            bold = name in pair
+            text = self._labels.take()
+            text.setText(("▶ " if bold else "") + name, "#000" if k < len(members) else "#666")
             text.setPos(x0[k], y[k])
-            self.addItem(text)
-            self._items.append(text)
+        self._items = [self._bars, *self._labels.done()]
         lo, hi = float(np.min(x0)), float(np.max(x1))
         pad = 0.3 * (hi - lo) + 1.0
         self.setXRange(lo - pad, hi + 0.05 * (hi - lo) + 1.0, padding=0)
@@ -229,18 +283,44 @@ class NetworkView(pg.PlotWidget):
         self.edges = pd.DataFrame()
         self.current = ""
         self.max_nodes = 24  # members always; the nearest others up to this many nodes
-        self._items: list = []
+        self._items: list = []  # the items showing the current proposal
+        self._lines = ItemPool(self, lambda: _z(pg.PlotCurveItem(), 1))
+        self._costs = ItemPool(self, self._cost_item)
+        self._names = ItemPool(self, lambda: _z(pg.TextItem("", color="#000"), 3))
+        self._dots = pg.ScatterPlotItem(size=14, pen=pg.mkPen("#333", width=1.2))
+        self._dots.setVisible(False)
+        self._dots.setZValue(2)  # edges under the nodes, names and costs over them
+        self.addItem(self._dots)
+        self._node_brush = {c: pg.mkBrush(c) for c in (MEMBER, "#ffffff")}
         self.scene().sigMouseClicked.connect(self._clicked)
 
-    def show_proposal(self, proposal: str, hops: int = 2) -> None:
-        for it in self._items:
-            self.removeItem(it)
-        self._items = []
-        self.current = proposal
+    @staticmethod
+    def _cost_item() -> pg.TextItem:
+        item = pg.TextItem("", anchor=(0.5, 0.5), fill=pg.mkBrush(255, 255, 255, 225))
+        item.setZValue(5)
+        return item
+
+    def _nodes(self, proposal: str, hops: int) -> tuple[list[str], list[str]]:
         members, nearby = neighbourhood(self.state, proposal, hops)
-        nodes = members + nearby[: max(0, self.max_nodes - len(members))]
+        return members, members + nearby[: max(0, self.max_nodes - len(members))]
+
+    def pools_for(self, proposal: str, hops: int = 2) -> list[tuple[ItemPool, int]]:
+        """The item pools and how many items :meth:`show_proposal` will take from them."""
+        _members, nodes = self._nodes(proposal, hops)
+        n_edges = len(candidate_edges(self.state, nodes)) if nodes else 0
+        return [(self._lines, n_edges), (self._costs, n_edges), (self._names, len(nodes))]
+
+    def show_proposal(self, proposal: str, hops: int = 2) -> None:
+        self.current = proposal
+        members, nodes = self._nodes(proposal, hops)
+        for pool in (self._lines, self._costs, self._names):
+            pool.begin()
         if not nodes:
             self.edges = pd.DataFrame()
+            for pool in (self._lines, self._costs, self._names):
+                pool.done()
+            self._dots.setVisible(False)
+            self._items = []
             return
         # Circle, members first (so they sit together), in time order.
         ang = 2 * np.pi * np.arange(len(nodes)) / len(nodes) + np.pi / 2
@@ -256,29 +336,30 @@ class NetworkView(pg.PlotWidget):
             if r.proposal == proposal and r.kind != "runner-up":
                 width += 2.0
             (xa, ya), (xb, yb) = self.pos[r.a], self.pos[r.b]
-            line = pg.PlotCurveItem(
-                [xa, xb], [ya, yb], pen=pg.mkPen(color, width=width, style=style)
-            )
-            self.addItem(line)
-            self._items.append(line)
+            line = self._lines.take()
+            line.setData([xa, xb], [ya, yb], pen=pg.mkPen(color, width=width, style=style))
             if r.kind not in ("manual", "runner-up") and r.cost == r.cost:
                 labels.append((r.proposal == proposal, (xa + xb) / 2, (ya + yb) / 2, r, color))
         xy = np.array([self.pos[n] for n in nodes])
-        brushes = [pg.mkBrush(MEMBER if n in members else "#ffffff") for n in nodes]
-        dots = pg.ScatterPlotItem(
-            xy[:, 0], xy[:, 1], size=14, brush=brushes, pen=pg.mkPen("#333", width=1.2)
-        )
-        self.addItem(dots)
-        self._items.append(dots)
+        in_target = set(members)
+        brushes = [self._node_brush[MEMBER if n in in_target else "#ffffff"] for n in nodes]
+        self._dots.setData(xy[:, 0], xy[:, 1], brush=brushes)
+        self._dots.setVisible(True)
         self._cost_labels(labels)
         # Track labels outside the circle, each pointing away from it (below the node
         # they sat on the edges' lines and on each other).
         for n, a in zip(nodes, ang, strict=True):
             c, s = float(np.cos(a)), float(np.sin(a))
-            t = pg.TextItem(n, color="#000", anchor=(0.5 - 0.5 * c, 0.5 + 0.5 * s))
+            t = self._names.take()
+            t.setText(n)
+            t.setAnchor((0.5 - 0.5 * c, 0.5 + 0.5 * s))
             t.setPos(1.09 * c, 1.09 * s)
-            self.addItem(t)
-            self._items.append(t)
+        self._items = [
+            *self._lines.done(),
+            self._dots,
+            *self._costs.done(),
+            *self._names.done(),
+        ]
         self.setXRange(-1.6, 1.6, padding=0)
         self.setYRange(-1.45, 1.45, padding=0)
 
@@ -290,16 +371,9 @@ class NetworkView(pg.PlotWidget):
         for current, x, y, r, color in sorted(labels, key=lambda item: not item[0]):
             if not current and any(abs(x - px) < 0.3 and abs(y - py) < 0.12 for px, py in placed):
                 continue
-            lab = pg.TextItem(
-                f"{r.cost:.3g}",
-                color=color,
-                anchor=(0.5, 0.5),
-                fill=pg.mkBrush(255, 255, 255, 225),
-            )
+            lab = self._costs.take()
+            lab.setText(f"{r.cost:.3g}", color)
             lab.setPos(x, y)
-            lab.setZValue(5)
-            self.addItem(lab)
-            self._items.append(lab)
             placed.append((x, y))
 
     def edge_at(self, x: float, y: float, tol: float = 0.08) -> str:
