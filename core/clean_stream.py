@@ -45,7 +45,6 @@ import os
 import shutil
 import tempfile
 import threading
-import zlib
 from collections import deque
 from concurrent.futures import Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
@@ -108,8 +107,8 @@ def clean_file(
     nothing is written then and the scratch files are removed. Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping, resolve
-    from wakeline.core.io.pieces import piece_safe, read_in_pieces
-    from wakeline.core.io.reader import StreamFallback, WholeFileNeeded, parse_zone, stream_points
+    from wakeline.core.io.pieces import piece_safe, stream_or_pieces
+    from wakeline.core.io.reader import parse_zone
     from wakeline.core.io.sniff import sniff
 
     params = (params or CleanParams()).checked()
@@ -126,7 +125,7 @@ def clean_file(
         "sensor": sensor,
         "tz": tz,
     }
-    zone = parse_zone(tz)
+    parse_zone(tz)  # a zone it does not know is refused before anything is read
     sn = sniff(path, encoding, delimiter)
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
     if not piece_safe(sn) or transforms:
@@ -140,32 +139,18 @@ def clean_file(
         reached[0] = max(reached[0], 0.4 * fraction)
         progress(reached[0], text)
 
+    start: list[float] = []
+
+    def again(fraction: float, text: str) -> None:  # a second reading goes on from there
+        if not start:
+            start.append(reached[0])
+        reading((start[0] + (0.4 - start[0]) * fraction) / 0.4, text)
+
     try:
         spill = _Spill(folder)
-        read = None
-        try:
-            if not sn.has_quotes:  # the streamed reader takes no quotes
-                try:
-                    read = stream_points(sn, res, spill, sensor, zone, tz, reading)
-                except WholeFileNeeded:
-                    raise
-                except StreamFallback:
-                    # Read again from the start piece by piece, each piece its own careful
-                    # parse: one bad value costs its piece, not a whole-file read.
-                    spill.reset()
-            if read is None:
-                start = reached[0]
-
-                def again(fraction: float, text: str) -> None:
-                    reading((start + (0.4 - start) * fraction) / 0.4, text)
-
-                read = read_in_pieces(sn, options, spill, folder / "pieces", again, spill.reset)
-        except WholeFileNeeded:  # a repeated hour, a piece the importer refuses
-            read = None
-        except (OSError, EOFError, zlib.error) as exc:
-            if isinstance(exc, OSError) and (exc.errno or exc.filename):
-                raise
-            read = None  # a damaged gzip: the whole-file reader names it
+        read = stream_or_pieces(
+            sn, res, options, spill, spill.reset, folder / "pieces", reading, again
+        )
         if read is None or not spill.ids_usable():
             shutil.rmtree(folder, ignore_errors=True)
             return _clean_whole(path, output, rejected, params, progress, options)

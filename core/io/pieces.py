@@ -27,6 +27,7 @@ counts them: a track whose restart falls across two pieces is not seen.
 import contextlib
 import dataclasses
 import gzip
+import zlib
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import BinaryIO
@@ -35,6 +36,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
     UNBALANCED_NOTE,
     ImportResult,
@@ -95,6 +97,47 @@ def piece_safe(sn: Sniff) -> bool:
     UTF-16 or UTF-32 text, whose line ends are two or four bytes) and is a CSV."""
     wide = sn.encoding.lower().replace("_", "-").startswith(("utf-16", "utf-32"))
     return sn.kind == "csv" and not wide
+
+
+def stream_or_pieces(
+    sn: Sniff,
+    res: Resolved,
+    read: dict,
+    sink: Callable[[pd.DataFrame], None],
+    reset: Callable[[], None],
+    scratch: Path,
+    progress: Progress | None = None,
+    pieces_progress: Progress | None = None,
+) -> ImportResult | None:
+    """The CSV ``sn``'s points into ``sink`` in bounded memory, as ``wakeline import``
+    and ``wakeline clean`` read them: streamed (:func:`~wakeline.core.io.reader.stream_points`,
+    no quotes in the start), or — where it gives up, and for quoted files — again from the
+    start piece by piece (:func:`read_in_pieces`, ``reset()`` first forgetting what the
+    sink got). None when only a whole read gives the points (a clock change's repeated
+    hour, a piece the importer refuses, UTF-16 text, a damaged gzip whose message the
+    whole-file reader gives): the caller resets its sink and reads whole. ``read``: fmt,
+    mapping, sensor, tz; ``pieces_progress`` (default ``progress``) for the reading in
+    pieces."""
+    from wakeline.core.io.reader import StreamFallback, stream_points
+
+    tz = read.get("tz")
+    try:
+        if not sn.has_quotes:  # the streamed reader takes no quotes
+            try:
+                return stream_points(sn, res, sink, read["sensor"], parse_zone(tz), tz, progress)
+            except WholeFileNeeded:
+                raise
+            except StreamFallback:
+                reset()  # one bad value costs its piece a careful parse, not a whole read
+        if not piece_safe(sn):  # UTF-16: not cut at its line-end bytes
+            return None
+        return read_in_pieces(sn, read, sink, scratch, pieces_progress or progress, reset)
+    except WholeFileNeeded:
+        return None
+    except (OSError, EOFError, zlib.error) as exc:
+        if isinstance(exc, OSError) and (exc.errno or exc.filename):
+            raise
+        return None
 
 
 def read_in_pieces(

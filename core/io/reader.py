@@ -20,7 +20,6 @@ import re
 import shutil
 import sys
 import tempfile
-import zlib
 import zoneinfo
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -1465,13 +1464,13 @@ def import_to_csv(
     (a clock change's repeated hour, NMEA, UTF-16) with :func:`read_points`. The output
     is the same either way, byte for byte (quoting decided over the whole table).
     """
-    from wakeline.core.io.pieces import piece_safe, read_in_pieces
+    from wakeline.core.io.pieces import stream_or_pieces
     from wakeline.core.io.writer import PointParts, atomic_path, write_points
 
     path, output = Path(path), Path(output)
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
-    zone = parse_zone(tz)
+    parse_zone(tz)  # a zone it does not know is refused before anything is read
     sn = sniff(path, encoding, delimiter)
 
     def whole(target: Path) -> ImportResult:
@@ -1489,33 +1488,16 @@ def import_to_csv(
     try:
         with atomic_path(output) as tmp:
             parts = PointParts(scratch / "parts", tmp)
-            result = None
+            read = {"fmt": fmt, "mapping": mapping, "sensor": sensor, "tz": tz}
             try:
-                if not sn.has_quotes:  # the streamed reader takes no quotes
-                    try:
-                        result = stream_points(sn, res, parts, sensor, zone, tz, progress)
-                    except WholeFileNeeded:
-                        raise
-                    except _Fallback:
-                        parts.reset()  # again piece by piece, each its own careful parse
-                if result is None and not piece_safe(sn):  # UTF-16: not cut at its bytes
-                    parts.reset()
-                    return whole(tmp)
-                if result is None:
-                    read = {"fmt": fmt, "mapping": mapping, "sensor": sensor, "tz": tz}
-                    result = read_in_pieces(
-                        sn, read, parts, scratch / "pieces", progress, parts.reset
-                    )
-            except WholeFileNeeded:  # a clock change's repeated hour; a piece refused
-                parts.reset()
-                return whole(tmp)
-            except (OSError, EOFError, zlib.error) as exc:
-                if isinstance(exc, OSError) and (exc.errno or exc.filename):
-                    raise
-                parts.reset()
-                return whole(tmp)  # a damaged gzip: the whole-file reader names it
+                result = stream_or_pieces(
+                    sn, res, read, parts, parts.reset, scratch / "pieces", progress
+                )
             finally:
                 parts.close()
+            if result is None:  # what only a whole read gives
+                parts.reset()
+                return whole(tmp)
             parts.finish(result.report.get("extra_columns") or ())
             return result
     finally:
