@@ -31,7 +31,6 @@ class ProjectController(QtCore.QObject):
         self.read_only = False
         self.dirty = False  # a write failed since the file was saved or opened
         self.failures = 0  # writes failed since then (the window shows the first)
-        self.locked_by: str | None = None  # who holds the file this window follows read-only
         self.unsaved = False  # changes made while following a read-only file
         self.locks = ProjectLocks()
         self._held: Path | None = None  # the path whose lock the current writer holds
@@ -72,7 +71,7 @@ class ProjectController(QtCore.QObject):
         if not read_only:
             ok, note = self.locks.acquire(path)
             if not ok:
-                read_only, self.locked_by = True, note
+                read_only = True
                 note = f"the project is open in {note}: it opens read-only, changes are not saved"
         self.path, self.read_only, self.dirty = Path(path), read_only, False
         if not read_only:
@@ -103,7 +102,7 @@ class ProjectController(QtCore.QObject):
             self._draining = [w for w in self._draining if w.busy()] + [previous]
         elif held is not None:
             self.locks.release(held)
-        self.path, self.read_only, self.locked_by, self.unsaved = None, False, None, False
+        self.path, self.read_only, self.unsaved = None, False, False
 
     def detach(self, timeout: float = 30.0) -> None:
         """Stop following the file once everything queued is written, the released
@@ -116,7 +115,7 @@ class ProjectController(QtCore.QObject):
         self._draining = []
         self.locks.release_all()
         self._held = None
-        self.path, self.read_only, self.locked_by, self.unsaved = None, False, None, False
+        self.path, self.read_only, self.unsaved = None, False, False
 
     def flush(self, timeout: float = 30.0) -> bool:
         return self.writer.flush(timeout) if self.writer is not None else True

@@ -146,7 +146,8 @@ class ProjectLocks:
                 if holder.token == self.token:
                     self._held[key] = 1
                     return True, note
-                if holder.alive() is False:
+                alive = holder.alive()
+                if alive is False:
                     note = f"a lock left by {holder.describe()} (no longer running) was taken over"
                     try:
                         lock_path(key).unlink()
@@ -155,7 +156,7 @@ class ProjectLocks:
                     except OSError as exc:
                         return False, f"{holder.describe()} (stale lock, cannot remove: {exc})"
                     continue
-                if holder.alive() is None:
+                if alive is None:
                     return False, (
                         f"{holder.describe()}; if it is not open there any more, "
                         f"remove {lock_path(key)}"
@@ -164,10 +165,6 @@ class ProjectLocks:
                     f"{holder.describe()} (if no Wakeline has it open, remove {lock_path(key)})"
                 )
             return False, "another Wakeline (the lock file keeps changing)"
-
-    def holds(self, project: str | Path) -> bool:
-        with self._mutex:
-            return Path(project).absolute() in self._held
 
     def release(self, project: str | Path) -> None:
         """Give up one claim on ``project``; the lock file goes with the last one (and
@@ -179,20 +176,23 @@ class ProjectLocks:
                 self._held[key] = n
                 return
             self._held.pop(key, None)
-            holder = read_holder(key)
-            if holder is not None and holder.token == self.token:
-                try:
-                    lock_path(key).unlink()
-                except OSError:
-                    pass
+            self._remove_own(key)
 
     def release_all(self) -> None:
+        """Give up every project held, whatever the claims (closing the window)."""
         with self._mutex:
-            keys = list(self._held)
-        for key in keys:
-            with self._mutex:
-                self._held[key] = min(self._held.get(key, 1), 1)
-            self.release(key)
+            keys, self._held = list(self._held), {}
+            for key in keys:
+                self._remove_own(key)
+
+    def _remove_own(self, key: Path) -> None:
+        """Remove ``key``'s lock file when it is still ours."""
+        holder = read_holder(key)
+        if holder is not None and holder.token == self.token:
+            try:
+                lock_path(key).unlink()
+            except OSError:
+                pass
 
     def _create(self, key: Path) -> bool:
         """Write the lock file if there is none (atomically: O_EXCL); False if there is.

@@ -151,14 +151,27 @@ def test_export_and_reimport(window, tmp_path):
     assert window.session.root(comp).id == lid
 
 
-def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
-    shown = []
+def _project_bench(qtbot, tmp_path, monkeypatch):
+    """The demo scene as a CSV, shared window settings and the dialogs recorded: (scene
+    path, a function making a window, warning texts, question texts)."""
+    shown, asked = [], []
     monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+    monkeypatch.setattr(QtWidgets.QMessageBox, "question", lambda *a: asked.append(a[2]))
     src = tmp_path / "scene.csv"
     write_points(simulate.demo_scene(), src)
     settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
-    w = MainWindow(settings)
-    qtbot.addWidget(w)
+
+    def new_window() -> MainWindow:
+        w = MainWindow(settings)
+        qtbot.addWidget(w)
+        return w
+
+    return src, new_window, shown, asked
+
+
+def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
+    src, new_window, shown, _ = _project_bench(qtbot, tmp_path, monkeypatch)
+    w = new_window()
     load(w, src)
     proj = tmp_path / "work.wakeline"
     w.save_project(proj)
@@ -170,8 +183,7 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     layers = [(i, lay.name, lay.parent) for i, lay in w.layers.items()]
     w.close()  # autosaved after every change: nothing else to do
 
-    w2 = MainWindow(settings)
-    qtbot.addWidget(w2)
+    w2 = new_window()
     w2.open_project(proj)
     wait_for_jobs(w2)
     assert [(i, lay.name, lay.parent) for i, lay in w2.layers.items()] == layers
@@ -180,8 +192,7 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     assert not shown
     # The source changes: reported, not fatal.
     src.write_text(src.read_text() + "\n")
-    w3 = MainWindow(settings)
-    qtbot.addWidget(w3)
+    w3 = new_window()
     w3.open_project(proj)
     wait_for_jobs(w3)
     assert shown and "changed" in shown[-1]
@@ -201,15 +212,8 @@ def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch)
     """Operator test: both windows numbered their new layer L2 and one's was lost. The
     second window opens the project read-only, says who holds it, refuses Save as onto
     it, and offers Save as when closed with changes."""
-    shown, asked = [], []
-    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
-    monkeypatch.setattr(QtWidgets.QMessageBox, "question", lambda *a: asked.append(a[2]))
-    src = tmp_path / "scene.csv"
-    write_points(simulate.demo_scene(), src)
-    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
-    a, b = MainWindow(settings), MainWindow(settings)
-    qtbot.addWidget(a)
-    qtbot.addWidget(b)
+    src, new_window, shown, asked = _project_bench(qtbot, tmp_path, monkeypatch)
+    a, b = new_window(), new_window()
     load(a, src)
     proj = tmp_path / "work.wakeline"
     a.save_project(proj)
@@ -230,8 +234,7 @@ def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch)
     assert asked and "read-only" in asked[-1]
     a.close()
     assert not (tmp_path / "work.wakeline.lock").exists()
-    c = MainWindow(settings)  # once both are closed the project opens writable
-    qtbot.addWidget(c)
+    c = new_window()  # once both are closed the project opens writable
     c.open_project(proj)
     wait_for_jobs(c)
     assert not c.project.read_only and [lay.kind for lay in c.layers.values()] == [
@@ -248,14 +251,8 @@ def test_project_renamed_or_copied_while_open_loses_nothing(qtbot, tmp_path, mon
     and closing offers Save as."""
     import shutil
 
-    shown, asked = [], []
-    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
-    monkeypatch.setattr(QtWidgets.QMessageBox, "question", lambda *a: asked.append(a[2]))
-    src = tmp_path / "scene.csv"
-    write_points(simulate.demo_scene(), src)
-    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
-    w = MainWindow(settings)
-    qtbot.addWidget(w)
+    src, new_window, shown, asked = _project_bench(qtbot, tmp_path, monkeypatch)
+    w = new_window()
     load(w, src)
     proj = tmp_path / "p.wakeline"
     w.save_project(proj)
