@@ -344,8 +344,9 @@ def test_a_lone_row_days_from_its_track_is_quarantined_and_real_gaps_are_not(tmp
     """Operator test: 2032 and 2013 among 2023 rows (within the decades rule) imported,
     survived clean, and stretched the track over 19 years. A row days away from both rows
     of its track around it in the file, while those two are close, is quarantined; a real
-    gap (a ship silent for days, then several rows), a track's first or last row days
-    away, and two interleaved tracks on different days are not."""
+    gap (a ship silent for days, then several rows), a track's first row days away on a
+    day the file's other ships were recorded, and two interleaved tracks on different days
+    are not."""
     from wakeline.app.cli import main
 
     t0 = pd.Timestamp("2023-03-01 03:00:00")
@@ -364,6 +365,9 @@ def test_a_lone_row_days_from_its_track_is_quarantined_and_real_gaps_are_not(tmp
         rows.append(f"AIS,C,{tc:%Y-%m-%d %H:%M:%S},{12 + k * 1e-4:.4f},55")
     rows.append(f"AIS,D,{t0 - pd.Timedelta(days=30):%Y-%m-%d %H:%M:%S},13,55")  # first row
     rows += [f"AIS,D,{t0 + pd.Timedelta(seconds=10 * k):%Y-%m-%d %H:%M:%S},13,55" for k in range(5)]
+    # track E: recorded on the day of D's first row (D's first row is not alone in the file)
+    e0 = t0 - pd.Timedelta(days=30, hours=2)
+    rows += [f"AIS,E,{e0 + pd.Timedelta(minutes=k):%Y-%m-%d %H:%M:%S},14,55" for k in range(5)]
     src = tmp_path / "typo.csv"
     src.write_text("\n".join(rows) + "\n")
     res = read_points(src)
@@ -372,6 +376,84 @@ def test_a_lone_row_days_from_its_track_is_quarantined_and_real_gaps_are_not(tmp
     q = tmp_path / "q.csv"
     assert main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 0
     assert pd.read_csv(q)["line"].tolist() == [42, 82]
+
+
+def _track_rows(batch: str, times, lon: float) -> list[str]:
+    return [
+        f"AIS,{batch},{t:%Y-%m-%d %H:%M:%S},{lon + k * 1e-4:.4f},55" for k, t in enumerate(times)
+    ]
+
+
+def test_a_mistyped_date_in_a_tracks_first_or_last_row_is_quarantined(tmp_path):
+    """A track's first or last row has one neighbour, so the lone-row rule never saw a
+    typo there: 2013 for 2023 in the last row of one track, 2024 in the first row of
+    another imported and stretched them over 10 years and 1 year. Such an edge row is
+    quarantined when it lies days from the rest of its track (and 100 times its median
+    step), where no other track of the file is."""
+    t0 = pd.Timestamp("2023-06-01 03:00:00")
+    a = [t0 + pd.Timedelta(seconds=10 * k) for k in range(30)]
+    a[-1] = a[-1].replace(year=2013)  # last row, line 31
+    b = [t0 + pd.Timedelta(minutes=5, seconds=6 * k) for k in range(20)]
+    b[0] = b[0].replace(year=2024)  # first row, line 32
+    c = [t0 + pd.Timedelta(minutes=k) for k in range(10)]
+    c[-1] += pd.Timedelta(days=3)  # a month's typo would be 30 days: a day's, 3 (line 61)
+    rows = ["sensor,batch,time,lon,lat"]
+    rows += _track_rows("A", a, 10) + _track_rows("B", b, 11) + _track_rows("C", c, 12)
+    src = tmp_path / "edges.csv"
+    src.write_text("\n".join(rows) + "\n")
+    res = read_points(src)
+    assert res.quarantine["line"].tolist() == [31, 32, 61]
+    assert res.quarantine["reason"].str.startswith("time days from the rest of its track").all()
+    assert res.report["rows_imported"] + res.report["rows_quarantined"] == 60
+    span = res.points.groupby("batch")["time"].agg(lambda t: t.max() - t.min())
+    assert (span < pd.Timedelta(hours=1)).all()
+    q = tmp_path / "q.csv"
+    assert main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 0
+    assert pd.read_csv(q)["line"].tolist() == [31, 32, 61]
+    assert len(pd.read_csv(tmp_path / "o.csv")) == 57
+
+
+def test_edge_rows_of_real_data_shapes_are_kept(tmp_path):
+    """What real data looks like at a track's ends is not quarantined: a ship seen again
+    a day and more later while other ships are recorded then (AIS visits); a track
+    sampled daily (a day's step is its own rhythm); a track of two rows (no step of its
+    own to compare); a track whose last rows come back together after days (a real gap
+    of several rows); an edge row within a day of its neighbour."""
+    t0 = pd.Timestamp("2023-06-01 03:00:00")
+    rows = ["sensor,batch,time,lon,lat"]
+    visit = [t0 + pd.Timedelta(seconds=10 * k) for k in range(20)]
+    visit.append(t0 + pd.Timedelta(days=2, hours=5))  # seen again 2 days later, once
+    rows += _track_rows("V", visit, 10)
+    other = [t0 + pd.Timedelta(hours=6 * k) for k in range(12)]  # a ship over those 3 days
+    rows += _track_rows("O", other, 11)
+    rows += _track_rows("D", [t0 + pd.Timedelta(days=k) for k in range(6)], 12)  # daily
+    rows += _track_rows("T", [t0, t0 + pd.Timedelta(days=400)], 13)  # two rows
+    back = [t0 + pd.Timedelta(seconds=30 * k) for k in range(10)]
+    back += [t0 + pd.Timedelta(days=5, seconds=30 * k) for k in range(3)]  # 3 rows, 5 d on
+    rows += _track_rows("G", back, 14)
+    near = [t0 + pd.Timedelta(seconds=5 * k) for k in range(10)]
+    near.append(t0 + pd.Timedelta(hours=23))  # within a day
+    rows += _track_rows("N", near, 15)
+    src = tmp_path / "real_shapes.csv"
+    src.write_text("\n".join(rows) + "\n")
+    res = read_points(src)
+    assert len(res.quarantine) == 0
+    assert res.report["rows_imported"] == len(rows) - 1
+
+
+def test_a_one_track_file_whose_last_row_comes_back_alone_days_later_is_quarantined(tmp_path):
+    """The rule's limit, as documented: with no other track in the file to say the day was
+    recorded, a single row days after a track's rows is taken for a typo (the row keeps
+    its line in the quarantine); with a second row there it is a real gap."""
+    t0 = pd.Timestamp("2023-06-01 03:00:00")
+    times = [t0 + pd.Timedelta(seconds=10 * k) for k in range(20)]
+    rows = ["sensor,batch,time,lon,lat"] + _track_rows("A", [*times, t0 + pd.Timedelta(days=2)], 10)
+    src = tmp_path / "one.csv"
+    src.write_text("\n".join(rows) + "\n")
+    assert read_points(src).quarantine["line"].tolist() == [22]
+    rows.append(f"AIS,A,{t0 + pd.Timedelta(days=2, seconds=10):%Y-%m-%d %H:%M:%S},10,55")
+    src.write_text("\n".join(rows) + "\n")
+    assert len(read_points(src).quarantine) == 0
 
 
 def test_unix_ms_cut_short_or_too_large_get_their_own_reason(tmp_path):

@@ -631,3 +631,87 @@ def test_unix_seconds_and_milliseconds_in_one_column(write):
     assert r.report["rows_imported"] == 40 and r.quarantine["line"].tolist() == [42]
     t = r.points["time"].astype("int64").to_numpy() // 10**9
     assert (np.diff(t) == 10).all() and t[0] == 1_700_000_000
+
+
+@pytest.mark.parametrize("way", ["streamed", "in pieces"])
+def test_edge_typos_read_in_pieces_are_a_part_of_the_whole_reads(tmp_path, monkeypatch, way):
+    """A mistyped date in a track's first or last row (the edge-row rule). A read in
+    pieces judges a track's edges in the file's last piece only (a track's last row there
+    is its last in the file; the other tracks of the earlier pieces are known): the last
+    row of a track ending there is quarantined as the whole read does; a typo in the first
+    row of a track that begins in an earlier piece is only seen by a whole read. Every row
+    is still a point or a quarantine row with its line."""
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv
+    from wakeline.core.io.reader import line_pieces
+
+    t0 = pd.Timestamp("2023-06-01 03:00:00")
+    remark = '"ok, a"' if way == "in pieces" else "ok"  # quotes: read in pieces
+    rows = []
+    for batch, n, typo in (("A", 30, "first"), ("B", 30, None), ("C", 30, "last")):
+        for k in range(n):
+            t = t0 + pd.Timedelta(seconds=10 * k)
+            if (typo == "first" and k == 0) or (typo == "last" and k == n - 1):
+                t = t.replace(year=2024 if typo == "first" else 2013)
+            rows.append(f"S1,{batch},{t:%Y-%m-%dT%H:%M:%S}Z,{12 + k * 1e-3:.4f},55.0,10,0,{remark}")
+    src = tmp_path / "edges.csv"
+    src.write_text("\n".join([HEADER, *rows]) + "\n")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 550)  # 6-7 pieces, 8 and 9 rows of C last
+    with open(src, "rb") as f:
+        last_piece = list(line_pieces(f))[-1][0].decode()
+    assert last_piece.count(",C,") >= 5  # the test's premise: C ends in the last piece
+    whole = read_points(src)
+    assert whole.quarantine["line"].tolist() == [2, 91]
+    got = import_to_csv(src, tmp_path / "out.csv")
+    assert got.report.get("streamed" if way == "streamed" else "pieces")
+    assert got.quarantine["line"].tolist() == [91]  # C's last row; A's first: a whole read
+    assert got.quarantine["reason"].str.startswith("time days from the rest").all()
+    assert got.report["rows_imported"] + got.report["rows_quarantined"] == len(rows)
+    assert len(pd.read_csv(tmp_path / "out.csv")) == got.report["rows_imported"] == 89
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    tracks=st.lists(
+        st.tuples(st.integers(3, 25), st.integers(1, 900), st.integers(0, 6 * 3600)),
+        min_size=1,
+        max_size=4,
+    ),
+    typo=st.one_of(
+        st.none(),
+        st.tuples(
+            st.integers(0, 3),
+            st.booleans(),
+            st.sampled_from(["year", "month", "day"]),
+            st.integers(1, 9) | st.integers(-9, -1),
+        ),
+    ),
+    edge_gap_h=st.integers(0, 23),
+)
+def test_edge_typo_property(tmp_path_factory, tracks, typo, edge_gap_h):
+    """Tracks of one day (3-25 rows, a step of 1 s to 15 min, starting within 6 h), the
+    first track's last row up to 23 h after its others (real): nothing is quarantined;
+    with one first or last row's year, month or day mistyped (1-9 off; a day's typo
+    taken as >= 2 days), that row alone is, and every row is a point or a quarantine row."""
+    t0 = pd.Timestamp("2023-06-15 00:00:00")
+    rows, typo_line = [], None
+    for b, (n, step, offset) in enumerate(tracks):
+        times = [t0 + pd.Timedelta(seconds=offset + step * k) for k in range(n)]
+        if b == 0:
+            times[-1] += pd.Timedelta(hours=edge_gap_h)
+        if typo is not None and typo[0] % len(tracks) == b:
+            _, first, unit, off = typo
+            i = 0 if first else n - 1
+            if unit == "day" and abs(off) < 2:
+                off = 2 if off > 0 else -2
+            times[i] += pd.DateOffset(**{unit + "s": off})
+            typo_line = 2 + len(rows) + i
+        rows += [
+            f"S1,{b},{t:%Y-%m-%dT%H:%M:%S}Z,{12 + k * 1e-3:.4f},55.0,10,0,ok"
+            for k, t in enumerate(times)
+        ]
+    path = tmp_path_factory.mktemp("edge") / "e.csv"
+    path.write_text("\n".join([HEADER, *rows]) + "\n")
+    r = read_points(path)
+    assert_all_accounted(r, len(rows))
+    assert r.quarantine["line"].tolist() == ([] if typo_line is None else [typo_line])

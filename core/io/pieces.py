@@ -43,10 +43,13 @@ from wakeline.core.io.reader import (
     WholeFileNeeded,
     _restart_warnings,
     _time_warnings,
+    add_spans,
+    edge_state,
     empty_quarantine,
     encoding_note,
     line_pieces,
     parse_zone,
+    with_last,
 )
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.progress import Progress, null_progress
@@ -244,7 +247,8 @@ def _read_all(
     size = max(_size(sn), 1)
     done = 0
     quarantines, reports, layouts, keys = [], [], [], []
-    for k, (piece, first_line) in enumerate(pieces(sn)):
+    edges = edge_state()  # a track's first and last rows: judged in the last piece
+    for k, ((piece, first_line), final) in enumerate(with_last(pieces(sn))):
         piece_file.write_bytes(piece)
         done += len(piece)
         del piece
@@ -254,6 +258,7 @@ def _read_all(
                 **options,
                 sniffed=first_sn if k == 0 else later_sn,
                 line_by_line=line_by_line,
+                edges={**edges, "final": final},
             )
         except InputError:
             raise WholeFileNeeded from None  # the whole-file reader says what it is
@@ -267,6 +272,10 @@ def _read_all(
             raise _Again(quotes=False)
         if len(res.points):
             keys.append(res.points[["sensor", "batch"]].drop_duplicates())
+            edges["seen"].update(
+                zip(keys[-1]["sensor"].astype(str), keys[-1]["batch"].astype(str), strict=True)
+            )
+            edges["covered"] = add_spans(edges["covered"], res.points)
             sink(res.points)
         del res.points
         if len(res.quarantine):

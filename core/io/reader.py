@@ -622,6 +622,182 @@ def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray
     return out
 
 
+def _edge_times(
+    ns: np.ndarray,
+    ok: np.ndarray,
+    track: np.ndarray,
+    covered: np.ndarray | None = None,
+    first_known: Callable[[np.ndarray], np.ndarray] | None = None,
+) -> np.ndarray:
+    """A track's first or last row (file order, valid rows) with a mistyped date: more
+    than ``limit`` = max(:data:`LONE_MIN_S`, :data:`LONE_RATIO` × the track's median step,
+    its two end steps left out) outside the span of the track's other rows, while no other
+    track of the file covers its time: no other track's span (its rows but such lone edge
+    rows) within :data:`LONE_MIN_S`, nor another track's lone edge row within it. Only
+    tracks of at least 3 valid rows are judged. A real edge row after a day-long gap is
+    kept when the file's other tracks were recorded then; in a one-track file it is
+    quarantined (with its line). ``covered``: more spans (s, [start, end] rows, already
+    widened) that count as other tracks' (the earlier pieces of a read in pieces);
+    ``first_known``: track codes → whether the track began before (its first row here is
+    not its first). Screened in O(n) (each track's first, second, last-but-one and last
+    rows); only the tracks with a candidate are sorted. ``track``: codes; rows with a
+    negative code are not judged."""
+    n = len(ns)
+    out = np.zeros(n, dtype=bool)
+    good = np.flatnonzero(np.asarray(ok) & (np.asarray(track) >= 0))
+    if len(good) < 3:
+        return out
+    code = np.asarray(track)[good].astype("int64")
+    size = np.bincount(code)
+    t = np.asarray(ns)[good].astype("float64") / 1e9
+    far = LONE_MIN_S
+
+    def first_rows(keep: np.ndarray) -> np.ndarray:
+        """Index (in ``good``) of each track's first kept row; -1 for none."""
+        pos = np.full(len(size), -1, dtype="int64")
+        idx = np.flatnonzero(keep)[::-1]
+        pos[code[idx]] = idx  # repeated codes: the last assignment (the first row) stays
+        return pos
+
+    def last_rows(keep: np.ndarray) -> np.ndarray:
+        pos = np.full(len(size), -1, dtype="int64")
+        idx = np.flatnonzero(keep)
+        pos[code[idx]] = idx
+        return pos
+
+    everyone = np.ones(len(good), dtype=bool)
+    first, last = first_rows(everyone), last_rows(everyone)
+    judged = size >= 3
+    not_edge = everyone.copy()
+    not_edge[first[size > 0]] = False
+    second = first_rows(not_edge)
+    not_edge = everyone.copy()
+    not_edge[last[size > 0]] = False
+    before_last = last_rows(not_edge)
+    edge = []
+    for rows, nbs in ((first, second), (last, before_last)):
+        k = np.flatnonzero(judged)
+        k = k[np.abs(t[rows[k]] - t[nbs[k]]) > far]
+        if first_known is not None and rows is first and len(k):
+            k = k[~np.asarray(first_known(k), dtype=bool)]  # began in an earlier piece
+        edge.append(rows[k])
+    edge_i = np.concatenate(edge)
+    if not len(edge_i):
+        return out
+    # Candidates' tracks, in file order within each track: steps, median step, the span
+    # of the track's other rows.
+    cand_tracks = np.unique(code[edge_i])
+    rows = np.flatnonzero(np.isin(code, cand_tracks))
+    rows = rows[np.argsort(code[rows], kind="stable")]
+    tr, tt = code[rows], t[rows]
+    start = np.flatnonzero(np.r_[True, tr[1:] != tr[:-1]])
+    end = np.r_[start[1:], len(tr)]
+    step = np.abs(np.diff(tt))
+    inner = np.r_[tr[1:] == tr[:-1]]  # a step within a track
+    # Median step of each track without its first and last steps (an edge typo's own).
+    ends_step = np.zeros(len(step), dtype=bool)
+    ends_step[start[start < len(step)]] = True
+    ends_step[end[end - 2 >= 0] - 2] = True
+    use = inner & ~ends_step
+    st, sv = tr[:-1][use], step[use]
+    o = np.lexsort((sv, st))
+    st, sv = st[o], sv[o]
+    typical = np.zeros(len(size))
+    if len(st):
+        s0 = np.flatnonzero(np.r_[True, st[1:] != st[:-1]])
+        s1 = np.r_[s0[1:], len(st)]
+        typical[st[s0]] = sv[(s0 + s1 - 1) // 2]
+    # Span of each track's rows but its first, and but its last.
+    # (every candidate track has >= 3 rows: its first row stands in for its last one)
+    tail, head_only = tt.copy(), tt.copy()
+    tail[start] = tt[start + 1]
+    head_only[end - 1] = tt[end - 2]
+    lo_tail, hi_tail = np.minimum.reduceat(tail, start), np.maximum.reduceat(tail, start)
+    lo_head = np.minimum.reduceat(head_only, start)
+    hi_head = np.maximum.reduceat(head_only, start)
+    n_first = len(edge[0])
+    is_first = np.arange(len(edge_i)) < n_first
+    which = np.searchsorted(tr[start], code[edge_i])
+    lo = np.where(is_first, lo_tail[which], lo_head[which])
+    hi = np.where(is_first, hi_tail[which], hi_head[which])
+    limit = np.maximum(far, LONE_RATIO * typical[code[edge_i]])
+    te = t[edge_i]
+    alone = (te < lo - limit) | (te > hi + limit)
+    if not alone.any():
+        return out
+    # Other tracks: the span of every track of the file within a day, a track's rows
+    # but its alone edge rows (a typo's span covers nothing); an alone edge row of
+    # another track within a day covers it too (two ships seen again on one day).
+    lo_all = np.full(len(size), np.inf)
+    hi_all = np.full(len(size), -np.inf)
+    np.minimum.at(lo_all, code, t)
+    np.maximum.at(hi_all, code, t)
+    pos = np.where(is_first, start[which], end[which] - 1)[alone]
+    core = tt.copy()
+    core[pos] = np.nan
+    lo_all[tr[start]] = np.fmin.reduceat(core, start)
+    hi_all[tr[start]] = np.fmax.reduceat(core, start)
+    have = size > 0
+    starts = np.sort(lo_all[have] - far)
+    stops = np.sort(hi_all[have] + far)
+    spans = np.searchsorted(starts, te, "right") - np.searchsorted(stops, te, "left")
+    own = (te >= lo_all[code[edge_i]] - far) & (te <= hi_all[code[edge_i]] + far)
+    others = spans - own
+    lone_t = np.sort(te[alone])
+    others += (
+        np.searchsorted(lone_t, te + far, "right") - np.searchsorted(lone_t, te - far, "left")
+    ) - alone  # itself
+    if covered is not None and len(covered):  # already widened by LONE_MIN_S
+        c = np.asarray(covered, dtype="float64")
+        others += np.searchsorted(np.sort(c[:, 0]), te, "right") - np.searchsorted(
+            np.sort(c[:, 1]), te, "left"
+        )
+    out[good[edge_i[alone & (others == 0)]]] = True
+    return out
+
+
+def edge_state() -> dict:
+    """What a read in pieces carries from piece to piece for the edge-row rule: the
+    tracks seen (``seen``: (sensor, batch) names) and the time their points cover
+    (``covered``: merged [start, end] rows in s, widened by :data:`LONE_MIN_S`). The
+    piece's reader is told ``final`` for the file's last piece."""
+    return {"seen": set(), "covered": np.empty((0, 2)), "final": False}
+
+
+def add_spans(covered: np.ndarray, points: pd.DataFrame) -> np.ndarray:
+    """``covered`` (merged [start, end] rows, s) with the span of each track of
+    ``points`` widened by :data:`LONE_MIN_S`, merged again (memory: a few rows for
+    tracks that overlap in time)."""
+    if not len(points):
+        return covered
+    ns = pd.DatetimeIndex(points["time"]).asi8
+    ts = pd.Series(ns / 1e9, index=points.index)
+    span = ts.groupby([points["sensor"], points["batch"]], observed=True, sort=False).agg(
+        ["min", "max"]
+    )
+    new = np.c_[span["min"].to_numpy() - LONE_MIN_S, span["max"].to_numpy() + LONE_MIN_S]
+    both = np.concatenate([covered, new])
+    both = both[np.argsort(both[:, 0], kind="stable")]
+    reach = np.maximum.accumulate(both[:, 1])
+    begin = np.r_[True, both[1:, 0] > reach[:-1]]
+    first = np.flatnonzero(begin)
+    last = np.r_[first[1:], len(both)] - 1
+    return np.c_[both[first, 0], reach[last]]
+
+
+def with_last(items: Iterator) -> Iterator[tuple[object, bool]]:
+    """Each item with whether it is the last one (one item read ahead)."""
+    it = iter(items)
+    try:
+        prev = next(it)
+    except StopIteration:
+        return
+    for item in it:
+        yield prev, False
+        prev = item
+    yield prev, True
+
+
 def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
     """Valid times more than :data:`EARLY_BEFORE_S` from the median of the valid ones
     (taken on at most ~100 k of them)."""
@@ -945,6 +1121,7 @@ def read_points(
     *,
     sniffed: Sniff | None = None,
     line_by_line: bool = False,
+    edges: dict | None = None,
 ) -> ImportResult:
     """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
     canonical point table.
@@ -957,7 +1134,8 @@ def read_points(
     a file that cannot be read at all. A piece of a larger file is read as the whole file
     is (:mod:`wakeline.core.io.pieces`): ``sniffed`` is then the file's :class:`Sniff`
     for ``path`` (delimiter, encoding, quoting, columns; not sniffed again), and
-    ``line_by_line`` reads it as a file whose quotes do not balance.
+    ``line_by_line`` reads it as a file whose quotes do not balance, and ``edges`` says
+    what the earlier pieces saw for the edge-row rule (:func:`edge_state`).
     """
     progress = progress or null_progress
     path = Path(path)
@@ -981,8 +1159,9 @@ def read_points(
         notes.append("no batch column: the file is one track named after the file")
     progress(0.6, "checking values")
 
-    time_info: dict = {}
+    time_info: dict = {} if edges is None else {"_edges": edges}
     points, quarantine, counts = _to_canonical(rows, sn, res, sensor, zone, time_info)
+    time_info.pop("_edges", None)
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes
     warnings += _time_warnings(res.columns["time"], time_info, zone)
@@ -1176,6 +1355,37 @@ def _to_canonical(
             "time days away from its track's rows before and after it in the file "
             "(a mistyped date?)",
         )
+        # A track's first or last row: judged by a whole read, and by a read in pieces in
+        # its last piece only (a track's last row there is its last in the file).
+        edges = counted.get("_edges")
+        if edges is None or edges.get("final"):
+            first_known = None
+            if edges is not None and edges.get("seen"):
+                seen = edges["seen"]
+                width = len(text["sensor"].names) + 1 if "sensor" in text else 1
+
+                def first_known(codes: np.ndarray) -> np.ndarray:
+                    b = text["batch"].names[codes // width]
+                    s = text["sensor"].names[codes % width] if "sensor" in text else None
+                    return np.array(
+                        [
+                            (str(s[i]) if s is not None else sensor, str(b[i])) in seen
+                            for i in range(len(codes))
+                        ],
+                        dtype=bool,
+                    )
+
+            flag(
+                _edge_times(
+                    np.asarray(ns),
+                    np.asarray(time_ok) & (reasons == 0) & ~blank,
+                    track,
+                    None if edges is None else edges.get("covered"),
+                    first_known,
+                ),
+                "time days from the rest of its track, at its start or end, where the file "
+                "has no other track (a mistyped date?)",
+            )
 
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
     blanked: dict[str, int] = {}
@@ -1566,6 +1776,8 @@ def stream_points(
     quarantines: list[pd.DataFrame] = []
     starts, ends = [], []
     time_info: dict = {}
+    edges = edge_state()
+    edges["seen"] = pairs  # the tracks of earlier pieces
     size = max(sn.path.stat().st_size, 1)
     consumed = [0]
 
@@ -1601,7 +1813,7 @@ def stream_points(
         skipped = sorted(local.lines + local.blank_lines)
         return table, _line_numbers(np.arange(table.num_rows), skip, skipped) + offset
 
-    def flush(table: pa.Table, lines: np.ndarray) -> None:
+    def flush(table: pa.Table, lines: np.ndarray, final: bool) -> None:
         n = table.num_rows
         if file_batch:
             name = sn.path.name.split(".")[0] or "1"
@@ -1610,7 +1822,11 @@ def stream_points(
             )
         rows = _Rows(table, lines, _BadRows(), False, sn.encoding, False, False, [])
         del table
-        info: dict = {"absolute": time_info.get("absolute", False), "_streaming": True}
+        info: dict = {
+            "absolute": time_info.get("absolute", False),
+            "_streaming": True,
+            "_edges": {**edges, "final": final},
+        }
         points, quarantine, counts = _to_canonical(
             rows, sn, res, sensor, zone, info, fetch_texts=False
         )
@@ -1632,9 +1848,10 @@ def stream_points(
             for s, c in points["sensor"].value_counts().items():
                 per_sensor[str(s)] = per_sensor.get(str(s), 0) + int(c)
             keys = points[["sensor", "batch"]].drop_duplicates()
-            pairs.update(zip(keys["sensor"], keys["batch"], strict=True))
+            pairs.update(zip(keys["sensor"].astype(str), keys["batch"].astype(str), strict=True))
             starts.append(points["time"].min())
             ends.append(points["time"].max())
+            edges["covered"] = add_spans(edges["covered"], points)
             sink(points)
         progress(min(0.95, consumed[0] / size), "importing")
 
@@ -1643,11 +1860,11 @@ def stream_points(
             # Pieces of whole lines, parsed one at a time: memory stays one piece
             # (the streaming reader would read ahead as far as the file goes).
             skip = sn.skip_rows
-            for piece, first_line in line_pieces(stream):
+            for (piece, first_line), final in with_last(line_pieces(stream)):
                 consumed[0] += len(piece)
                 table, lines = parse(piece, skip, first_line)
                 if table.num_rows:
-                    flush(table, lines)
+                    flush(table, lines, final)
                 del table, piece
                 skip = 0
             if totals["rows_imported"] == 0:
