@@ -246,6 +246,15 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
                 help=f"{d['doc']} (default {'on' if d['default'] else 'off'})",
             )
             continue
+        if isinstance(d["default"], str):
+            p.add_argument(
+                flag,
+                dest=d["name"],
+                choices=d["choices"],
+                default=d["default"],
+                help=f"{d['doc']} (default {d['default']})",
+            )
+            continue
         kind = positive_int if isinstance(d["default"], int) else positive_float
         p.add_argument(
             flag,

@@ -141,6 +141,15 @@ class BearingParams(Params):
         lo=0,
         hi=1000,
     )
+    windows: str = param(
+        "fixed",
+        "",
+        "fixed: the spans above for every sequence (a shorter one is not tested, and the "
+        "report says why); fit: a sequence shorter than X_min + the shortest Y span gets "
+        "X = X_min = max(30 s, 0.4 x its duration) and Y = max(16 s, 0.4 x its duration) "
+        "(not sound on real harbour sequences of 1-2 min: docs/evaluation.md)",
+        choices=("fixed", "fit"),
+    )
 
     @property
     def z_crit(self) -> float:
@@ -180,6 +189,28 @@ class Windows:
     y_cover: np.ndarray = field(default_factory=lambda: np.zeros(0))  # s of Y with data
 
 
+#: ``windows="fit"``: a sequence shorter than the windows gets X = X_min = FIT_X of its
+#: duration (at least FIT_X_MIN_S) and Y = FIT_Y of it (at least FIT_Y_MIN_S).
+FIT_X, FIT_Y = 0.4, 0.4
+FIT_X_MIN_S, FIT_Y_MIN_S = 30.0, 16.0
+
+
+def windows_for(params: BearingParams, t: np.ndarray) -> BearingParams:
+    """The windows used on a sequence of times ``t`` (s): ``params`` itself, or with
+    ``windows="fit"`` and a sequence shorter than X_min + the shortest Y span, X, X_min and
+    Y shrunk to it (:data:`FIT_X`, :data:`FIT_Y` of its duration, floors
+    :data:`FIT_X_MIN_S`, :data:`FIT_Y_MIN_S`); the result has ``windows="fixed"``."""
+    if params.windows != "fit" or len(t) < 2:
+        return params
+    duration = float(t[-1] - t[0])
+    x_min = min(float(params.min_window_x_s), float(params.window_x_s))
+    if duration >= x_min + float(y_spans(params)[0]):
+        return params.replace(windows="fixed")
+    x = max(FIT_X_MIN_S, FIT_X * duration)
+    y = max(FIT_Y_MIN_S, FIT_Y * duration)
+    return params.replace(window_x_s=x, min_window_x_s=x, window_y_s=y, windows="fixed")
+
+
 def y_spans(params: BearingParams) -> np.ndarray:
     """The spans of Y tested (s), shortest first: the GLR takes ``y_scales`` spans spaced
     geometrically from ``window_y_s``/8 to ``window_y_s``, the AUC takes 1/k, 2/k, … of it (eq. 15: all of it)."""
@@ -213,7 +244,13 @@ def _windows(t: np.ndarray, params: BearingParams, excluded: np.ndarray | None =
             empty,
             np.zeros(0, dtype=object),
             f"series too short for the windows: {len(t)} samples over {span:.0f} s "
-            f"< X + Y = {x_min:.0f} + {y_min:.0f} s",
+            f"< X + Y = {x_min:.0f} + {y_min:.0f} s"
+            + (
+                " (windows=fit shrinks them to a short series; on real camera sequences of "
+                "1-2 min most of its detections were not maneuvers: docs/evaluation.md)"
+                if x_min > FIT_X_MIN_S
+                else ""
+            ),
         )
     n = len(t)
     tol = float(np.median(np.diff(t)))
@@ -517,6 +554,7 @@ def statistic(
     ``observer``: its positions (x, y in m, one per bearing): a moving observer's motion
     then enters the fit and its turns are not excluded (unless
     ``exclude_observer_turns``, when ``excluded`` marks them)."""
+    params = windows_for(params, np.asarray(t, dtype=float))
     use_obs = models_observer(params, observer)
     if use_obs:
         observer = (np.asarray(observer[0], float), np.asarray(observer[1], float))
@@ -1097,7 +1135,8 @@ def detect_with_report(
                 observer = f"{speed / geo.KN_MS:.1f} kn mean" + (" (static)" if static else "")
             else:
                 observer = "position missing on some rows: no observer exclusion"
-        st = statistic(t, g["bearing"].to_numpy(float), params, excluded, observer=xy)
+        used = windows_for(params, t)  # the spans this sequence is tested with
+        st = statistic(t, g["bearing"].to_numpy(float), used, excluded, observer=xy)
         if st.observer is not None:
             observer += (
                 f"; its positions enter the fit, {maneuvering} maneuvering samples "
@@ -1105,7 +1144,7 @@ def detect_with_report(
                 if maneuvering
                 else "; its positions enter the fit"
             )
-        found = detections_from(st, params.z_crit)
+        found = detections_from(st, used.z_crit)
         for d in found:
             rows.append((str(batch), d.detect_time_s, d.maneuver_time_s, d.z))
         win = st.windows
@@ -1114,7 +1153,11 @@ def detect_with_report(
             {
                 "batch": str(batch),
                 "test": "GLR" if params.glr else "AUC-mean (eq. 15)" if params.auc_mean else "AUC",
-                "y_spans_s": [round(float(v), 1) for v in y_spans(params)],
+                "x_s": round(float(used.window_x_s), 1),
+                "min_x_s": round(float(used.min_window_x_s), 1),
+                "y_spans_s": [round(float(v), 1) for v in y_spans(used)],
+                "window_rule": params.windows
+                + ("" if used.window_y_s == params.window_y_s else " (shrunk to the sequence)"),
                 "samples": int(len(t)),
                 "duration_s": round(float(t[-1] - t[0]), 3) if len(t) else 0.0,
                 "median_interval_s": round(float(np.median(np.diff(t))), 3) if len(t) > 1 else None,
@@ -1124,7 +1167,7 @@ def detect_with_report(
                 "excluded": counts,
                 "too_short": win.too_short or None,
                 "detections": len(found),
-                **min_detectable(st, params, static),
+                **min_detectable(st, used, static),
             }
         )
     out = pd.DataFrame(rows, columns=["batch", "detect_s", "maneuver_s", "z"])

@@ -133,6 +133,49 @@ def read_autoferry(
     return _ned_points(radar_pts, "radar"), _ned_points(truth, "gnss")
 
 
+def autoferry_bearings(
+    folder: Path, gate_deg: float = 3.0, sensor: str = "eo"
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Autoferry camera bearings (``sensor`` eo or ir) gated to each target by its GNSS
+    truth bearing from the ferry (within ``gate_deg``; per time the nearest one), as a
+    bearing table (``batch`` scenario-target, ``time``, ``bearing`` deg from north,
+    ``obs_lon``/``obs_lat`` the ferry, ``truth_bearing``) and the de-duplicated truth
+    (scenario, target_id, time s, north, east in m). The gate uses the truth, so the
+    sequences are what an ideal association gives, clutter within the gate included."""
+    from wakeline.core import geo
+
+    det = pd.read_csv(folder / "detections.csv.gz")
+    truth = pd.read_csv(folder / "ground_truth.csv.gz")
+    det = det[(det["sensor"] == sensor) & det["bearing_rad"].notna()]
+    truth = truth.drop_duplicates(["scenario", "target_id", "time"]).sort_values("time")
+    frames = []
+    for (scenario, target), tr in truth.groupby(["scenario", "target_id"]):
+        d = det[det["scenario"] == scenario]
+        north = np.interp(d["time"], tr["time"], tr["north"])
+        east = np.interp(d["time"], tr["time"], tr["east"])
+        true_b = np.degrees(np.arctan2(east - d["own_east"], north - d["own_north"]))
+        b = np.degrees(d["bearing_rad"].to_numpy())
+        err = geo.angle_diff(b, true_b)
+        seq = d.assign(bearing=b % 360.0, truth_bearing=true_b % 360.0, err=err)[err < gate_deg]
+        seq = seq.sort_values("err").drop_duplicates("time").sort_values("time")
+        lon, lat = geo.from_local(
+            seq["own_east"].to_numpy(), seq["own_north"].to_numpy(), PIREN_LON, PIREN_LAT
+        )
+        frames.append(
+            pd.DataFrame(
+                {
+                    "batch": f"{scenario}-{target}",
+                    "time": _times(seq["time"].to_numpy()),
+                    "bearing": seq["bearing"].to_numpy(),
+                    "obs_lon": lon,
+                    "obs_lat": lat,
+                    "truth_bearing": seq["truth_bearing"].to_numpy(),
+                }
+            )
+        )
+    return pd.concat(frames, ignore_index=True), truth
+
+
 def _ned_points(df: pd.DataFrame, sensor: str) -> pd.DataFrame:
     lon, lat = geo.from_local(
         df["east"].to_numpy(dtype="float64"),

@@ -97,3 +97,22 @@ def test_defaults_say_why_on_real_camera_bearings():
         if r["tested"] == 0:  # nothing tested: the report says why
             assert r["too_short"] or sum(r["excluded"].values()) == r["windows"]
     print([(r["batch"], r["samples"], r["tested"], r["too_short"], r["excluded"]) for r in report])
+
+
+def test_fit_windows_test_every_real_camera_sequence_and_fixed_ones_say_why():
+    """The 18 gated EO sequences (60-152 s): the fixed windows test none and the report
+    names the fit option; windows="fit" tests every one (the detections it makes are
+    mostly not maneuvers: bench/bearing_real.py, docs/evaluation.md)."""
+    from wakeline.core.real_sets import autoferry_bearings
+
+    folder = real_file("autoferry-fusion", "detections.csv.gz").parent
+    bearings, _ = autoferry_bearings(folder)
+    bearings = bearings.drop(columns="truth_bearing")
+    _, report = detect_with_report(bearings)
+    assert len(report) == 18
+    assert all(r["tested"] == 0 and "windows=fit" in r["too_short"] for r in report)
+    _, report = detect_with_report(bearings, BearingParams(windows="fit"))
+    assert all(r["tested"] > 0 and r["window_rule"].startswith("fit") for r in report)
+    assert all(
+        r["x_s"] == pytest.approx(max(30.0, 0.4 * r["duration_s"]), abs=0.06) for r in report
+    )
