@@ -756,6 +756,9 @@ def _edge_times(
     return out
 
 
+_END = object()
+
+
 def edge_state() -> dict:
     """What a read in pieces carries from piece to piece for the edge-row rule: the
     tracks seen (``seen``: (sensor, batch) names) and the time their points cover
@@ -786,16 +789,17 @@ def add_spans(covered: np.ndarray, points: pd.DataFrame) -> np.ndarray:
 
 
 def with_last(items: Iterator) -> Iterator[tuple[object, bool]]:
-    """Each item with whether it is the last one (one item read ahead)."""
+    """Each item with whether it is the last one (one item read ahead; the item handed
+    out is not kept here, so the caller can free it)."""
     it = iter(items)
-    try:
-        prev = next(it)
-    except StopIteration:
+    pending = [next(it, _END)]
+    if pending[0] is _END:
         return
     for item in it:
-        yield prev, False
-        prev = item
-    yield prev, True
+        pending.append(item)
+        del item
+        yield pending.pop(0), False
+    yield pending.pop(), True
 
 
 def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
