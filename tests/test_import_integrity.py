@@ -639,35 +639,52 @@ def test_edge_typos_read_in_pieces_are_a_part_of_the_whole_reads(tmp_path, monke
     pieces judges a track's edges in the file's last piece only (a track's last row there
     is its last in the file; the other tracks of the earlier pieces are known): the last
     row of a track ending there is quarantined as the whole read does; a typo in the first
-    row of a track that begins in an earlier piece is only seen by a whole read. Every row
-    is still a point or a quarantine row with its line."""
+    row of a track that begins in an earlier piece is only seen by a whole read; a track
+    that began in an earlier piece and comes back in the last one after days (a row 5
+    days on, then rows 10 days on) is not taken for a typo there. Every row is still a
+    point or a quarantine row with its line."""
     import wakeline.core.io.reader as reader
     from wakeline.core.io import import_to_csv
     from wakeline.core.io.reader import line_pieces
 
     t0 = pd.Timestamp("2023-06-01 03:00:00")
     remark = '"ok, a"' if way == "in pieces" else "ok"  # quotes: read in pieces
+
+    def line(batch: str, t: pd.Timestamp, k: int) -> str:
+        return f"S1,{batch},{t:%Y-%m-%dT%H:%M:%S}Z,{12 + k * 1e-3:.4f},55.0,10,0,{remark}"
+
     rows = []
-    for batch, n, typo in (("A", 30, "first"), ("B", 30, None), ("C", 30, "last")):
+    for batch, n, typo in (("A", 30, "first"), ("B", 30, None)):
         for k in range(n):
             t = t0 + pd.Timedelta(seconds=10 * k)
-            if (typo == "first" and k == 0) or (typo == "last" and k == n - 1):
-                t = t.replace(year=2024 if typo == "first" else 2013)
-            rows.append(f"S1,{batch},{t:%Y-%m-%dT%H:%M:%S}Z,{12 + k * 1e-3:.4f},55.0,10,0,{remark}")
+            rows.append(line(batch, t.replace(year=2012) if typo and k == 0 else t, k))
+    rows += [line("D", t0 + pd.Timedelta(seconds=10 * k), k) for k in range(3)]
+    c = [t0 + pd.Timedelta(seconds=10 * k) for k in range(30)]
+    c[-1] = c[-1].replace(year=2033)  # A's typo in an earlier piece spans 2012-2023
+    rows += [line("C", t, k) for k, t in enumerate(c)]
+    d_back = [t0 + pd.Timedelta(days=5)] + [t0 + pd.Timedelta(days=10, seconds=k) for k in range(3)]
+    rows += [line("D", t, k) for k, t in enumerate(d_back)]
     src = tmp_path / "edges.csv"
     src.write_text("\n".join([HEADER, *rows]) + "\n")
-    monkeypatch.setattr(reader, "STREAM_BYTES", 550)  # 6-7 pieces, 8 and 9 rows of C last
-    with open(src, "rb") as f:
-        last_piece = list(line_pieces(f))[-1][0].decode()
-    assert last_piece.count(",C,") >= 5  # the test's premise: C ends in the last piece
+
+    def last_piece(size: int) -> str:
+        with open(src, "rb") as f:
+            parts = list(line_pieces(f, size))
+        return parts[-1][0].decode() if len(parts) >= 4 else ""
+
+    # the test's premise: C ends and D comes back in the last piece, D began before it
+    size = next(n for n in range(400, 900, 10) if last_piece(n).count(",C,") >= 4)
+    assert last_piece(size).count(",D,") == 4
+    monkeypatch.setattr(reader, "STREAM_BYTES", size)
+    c_last = 2 + 63 + 29
     whole = read_points(src)
-    assert whole.quarantine["line"].tolist() == [2, 91]
+    assert whole.quarantine["line"].tolist() == [2, c_last]
     got = import_to_csv(src, tmp_path / "out.csv")
     assert got.report.get("streamed" if way == "streamed" else "pieces")
-    assert got.quarantine["line"].tolist() == [91]  # C's last row; A's first: a whole read
+    assert got.quarantine["line"].tolist() == [c_last]  # A's first row: only a whole read
     assert got.quarantine["reason"].str.startswith("time days from the rest").all()
     assert got.report["rows_imported"] + got.report["rows_quarantined"] == len(rows)
-    assert len(pd.read_csv(tmp_path / "out.csv")) == got.report["rows_imported"] == 89
+    assert len(pd.read_csv(tmp_path / "out.csv")) == got.report["rows_imported"] == len(rows) - 1
 
 
 @settings(max_examples=40, deadline=None)
