@@ -15,8 +15,13 @@ and the detector's output (``detect_with_report``) and shows
 :func:`bearing_line_points` gives the same lines as a points table a map layer draws
 with its gap breaking off (:func:`line_layer`): both ends of a line carry the sample's
 time, and a long leg in no time is a jump the map otherwise breaks (nothing drawn).
+
+:func:`bearing_scene` prepares those layers and the view that frames them (pure, for the
+window's worker); :func:`main_map_layers` makes copies of them for the main map, which
+otherwise sat at empty 0–1° axes when only a bearing file was loaded.
 """
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -29,10 +34,12 @@ from wakeline.core.bearing import report_lines
 from wakeline.core.io import write_csv
 from wakeline.core.schema import time_seconds
 
+from .layer_view import shown_range
 from .map_canvas import MapCanvas
 from .map_colors import BATCH_PALETTE
-from .map_draw import DrawData, LayerStyle, layer_geometry, prepare_layer
+from .map_draw import DrawData, LayerStyle, layer_geometry, prepare_layer, relod
 from .map_legend import LABEL_PADDING_PX, short_label
+from .map_paths import with_paths
 
 #: Smallest width (px) of the map's plot area: the map widget's minimum is this plus its
 #: latitude axis and legend column (a dock had given the map ~200 px and its plot ~40 px).
@@ -75,6 +82,9 @@ TRUTH_COLUMNS = ("true_lon", "true_lat")
 FIT_MARGIN, MIN_PAD_M = 0.06, 20.0
 #: Rows of the detections table kept visible under the map in a narrow dock.
 MIN_TABLE_ROWS = 3
+#: The bearing layers on the main map: names (apart from the session's layer ids) and
+#: legend labels start with this.
+MAIN_PREFIX = "bearings · "
 
 
 def _finite_range_m(bearings: pd.DataFrame) -> np.ndarray:
@@ -165,7 +175,12 @@ def legend_width(names) -> float:
 
 
 def line_layer(
-    points: pd.DataFrame, name: str, color: str, width: float, z: float = 0.0
+    points: pd.DataFrame,
+    name: str,
+    color: str,
+    width: float,
+    z: float = 0.0,
+    build_index: bool = False,
 ) -> DrawData:
     """A map layer of :func:`bearing_line_points`: lines only, never broken.
 
@@ -173,11 +188,11 @@ def line_layer(
     a bearing line is a long leg between two points of one time, so with the default
     style every line lost its far end and nothing was drawn (``gaps=False``)."""
     style = LayerStyle(width=width, symbol_size=0, z=z, gaps=False)
-    return prepare_layer(points, name, color, style=style, build_index=False)
+    return prepare_layer(points, name, color, style=style, build_index=build_index)
 
 
 def batch_line_layer(
-    points: pd.DataFrame, name: str, width: float, z: float = 0.0
+    points: pd.DataFrame, name: str, width: float, z: float = 0.0, build_index: bool = False
 ) -> tuple[DrawData, dict[str, tuple[str, str]]]:
     """:func:`line_layer` with a colour and a legend entry per batch
     (:func:`batch_colours`): one curve per batch. Returns the layer and the colours."""
@@ -194,7 +209,7 @@ def batch_line_layer(
         colors=tuple(by_label[lab] for lab in labels) or None,
     )
     style = LayerStyle(width=width, symbol_size=0, z=z, gaps=False)
-    return prepare_layer(geom, name, style=style, build_index=False), colours
+    return prepare_layer(geom, name, style=style, build_index=build_index), colours
 
 
 def bearing_line_points(
@@ -258,6 +273,95 @@ def bearing_line_points(
             "lat": np.column_stack([olat, end_lat]).ravel(),
         }
     )
+
+
+@dataclasses.dataclass(frozen=True)
+class BearingScene:
+    """The bearing map, prepared off the GUI thread (:func:`bearing_scene`): the layers
+    (observer, bearing lines, maneuvers when there are detections), each batch's colour
+    and label, the lines' length (m), the aspect latitude and the view that frames the
+    observer's track and the lines (x0, x1, y0, y1, degrees)."""
+
+    layers: tuple[DrawData, ...]
+    colours: dict[str, tuple[str, str]]
+    length_m: float
+    lat0: float
+    target: tuple[float, float, float, float] | None
+
+
+def scene_range(layers) -> tuple[float, float, float, float] | None:
+    """The view (x0, x1, y0, y1, degrees) around every point of ``layers`` with a
+    :data:`FIT_MARGIN` margin: the map's own fit pads at least 0.01° (a kilometre), which
+    left a harbour scene in the middle third of the view."""
+    boxes = [d.geometry.bounds() for d in layers]
+    boxes = [b for b in boxes if b is not None and all(map(math.isfinite, b))]
+    if not boxes:
+        return None
+    w, s = min(b[0] for b in boxes), min(b[1] for b in boxes)
+    e, n = max(b[2] for b in boxes), max(b[3] for b in boxes)
+    pad_y = max((n - s) * FIT_MARGIN, np.degrees(MIN_PAD_M / geo.EARTH_RADIUS_M))
+    cos = max(math.cos(math.radians(0.5 * (s + n))), 0.05)
+    pad_x = max((e - w) * FIT_MARGIN, np.degrees(MIN_PAD_M / geo.EARTH_RADIUS_M) / cos)
+    return (w - pad_x, e + pad_x, s - pad_y, n + pad_y)
+
+
+def bearing_scene(
+    bearings: pd.DataFrame,
+    detections: pd.DataFrame,
+    length_m: float | None = None,
+    build_index: bool = False,
+) -> BearingScene | None:
+    """The bearing map's layers (pure numpy/pandas: run it in a worker): the observer's
+    positions, the bearing lines ``length_m`` metres long (None: :func:`line_length_m`) a
+    colour per batch, and the lines at the detections' maneuver times; None when the
+    table has no observer position (nothing to draw). ``build_index``: the hover k-d tree
+    and position sketch now (a worker's job), not on the GUI thread's first use."""
+    if bearings.empty or not {"obs_lon", "obs_lat"} <= set(bearings.columns):
+        return None
+    length = float(length_m or line_length_m(bearings))
+    obs = bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(sensor="observer")
+    observer = prepare_layer(
+        obs[["sensor", "batch", "time", "lon", "lat"]],
+        LAYER_NAMES[0],
+        "#555555",
+        style=LayerStyle(width=1.5, symbol_size=3, z=Z_OBSERVER),
+        build_index=build_index,
+    )
+    lines, colours = batch_line_layer(
+        bearing_line_points(bearings, length), LAYER_NAMES[1], 1.0, Z_LINES, build_index
+    )
+    layers = [observer, lines]
+    if len(detections):
+        at = bearing_line_points(bearings, length, at_times=detections)
+        layers.append(
+            line_layer(at, LAYER_NAMES[2], "#d62728", 2.5, Z_MANEUVERS, build_index=build_index)
+        )
+    lat = bearings["obs_lat"].to_numpy(float)
+    lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else 0.0
+    return BearingScene(tuple(layers), colours, length, lat0, scene_range(layers[:2]))
+
+
+def main_map_layers(
+    scene: BearingScene,
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+    lat0: float | None = None,
+) -> list[DrawData]:
+    """The scene's layers for the main map: named and labelled with :data:`MAIN_PREFIX`
+    (apart from the session's layers) and, with ``view`` (x0, x1, y0, y1, degrees; the
+    range asked for) and ``size_px``, decimated and stroked for the view the map will
+    show at the aspect of ``lat0`` (None: the scene's) — pure, for a worker."""
+    shown = None
+    if view is not None and size_px is not None:
+        shown = shown_range(view, size_px, scene.lat0 if lat0 is None else lat0)
+    out = []
+    for data in scene.layers:
+        geom = data.geometry
+        geom = dataclasses.replace(geom, labels=tuple(MAIN_PREFIX + t for t in geom.labels))
+        curves = tuple(dataclasses.replace(c, label=MAIN_PREFIX + c.label) for c in data.curves)
+        main = dataclasses.replace(data, name=MAIN_PREFIX + data.name, geometry=geom, curves=curves)
+        out.append(with_paths(relod(main, shown, size_px)) if shown is not None else main)
+    return out
 
 
 class DetectionsModel(QtCore.QAbstractTableModel):
@@ -369,6 +473,8 @@ class BearingView(QtWidgets.QWidget):
         self.length_m = MAX_LENGTH_M
         #: Each batch's line colour and legend label, as drawn now.
         self.colours: dict[str, tuple[str, str]] = {}
+        #: The layers drawn now (None: none).
+        self.scene: BearingScene | None = None
 
     def table_min_height(self) -> int:
         """Height (px) of the table's header and :data:`MIN_TABLE_ROWS` rows, with the
@@ -411,69 +517,38 @@ class BearingView(QtWidgets.QWidget):
         detections: pd.DataFrame,
         report: list[dict] | None = None,
         length_m: float | None = None,
+        scene: BearingScene | None = None,
     ) -> None:
         """Draw the observer, the bearing lines (a colour per batch) and the detections;
         list the report; fit the view to the observer's track and the lines.
 
         The lines are ``length_m`` long if given, else :meth:`set_line_length`'s, else as
         the data suggest (:func:`line_length_m`: the targets' ranges when known, else the
-        scene's scale from the sequences' duration and the observer's track)."""
+        scene's scale from the sequences' duration and the observer's track). ``scene``:
+        the layers prepared in a worker (:func:`bearing_scene`; else prepared here)."""
         self.bearings, self.detections, self._report = bearings, detections, report or []
         self.model.set_table(detections)
         self.table.resizeColumnsToContents()
         self.log.setPlainText("\n".join(report_lines(report or [])))
         for name in list(self.map.layer_names()):
             self.map.remove_layer(name)
-        if bearings.empty or not {"obs_lon", "obs_lat"} <= set(bearings.columns):
+        if scene is None:
+            length = length_m or self.fixed_length_m
+            scene = bearing_scene(bearings, detections, length)
+        self.scene = scene
+        if scene is None:
             self.log.appendPlainText(self.tr("No observer position: no bearing lines to draw."))
             return
-        length = self.length_m = float(length_m or self.fixed_length_m or line_length_m(bearings))
-        obs = bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(
-            sensor="observer"
-        )
-        observer = prepare_layer(
-            obs[["sensor", "batch", "time", "lon", "lat"]],
-            LAYER_NAMES[0],
-            "#555555",
-            style=LayerStyle(width=1.5, symbol_size=3, z=Z_OBSERVER),
-            build_index=False,
-        )
-        self.map.set_draw_data(observer)
-        lines, self.colours = batch_line_layer(
-            bearing_line_points(bearings, length), LAYER_NAMES[1], 1.0, Z_LINES
-        )
-        self.map.set_draw_data(lines)
-        if len(detections):
-            lines = bearing_line_points(bearings, length, at_times=detections)
-            self.map.set_draw_data(line_layer(lines, LAYER_NAMES[2], "#d62728", 2.5, Z_MANEUVERS))
-        lat = float(np.nanmean(bearings["obs_lat"].to_numpy(float)))
-        self.map.set_true_aspect(lat)
-        self.map.show_range(self.fit_range())
+        self.length_m, self.colours = scene.length_m, scene.colours
+        for data in scene.layers:
+            self.map.set_draw_data(data)
+        self.map.set_true_aspect(scene.lat0)
+        self.map.show_range(scene.target)
 
     def fit_range(self) -> tuple[float, float, float, float] | None:
         """The view (x0, x1, y0, y1, degrees) around the observer's track and the lines
-        with a :data:`FIT_MARGIN` margin: the map's own fit pads at least 0.01° (a
-        kilometre), which left a harbour scene in the middle third of the view."""
-        pts = self.map_points()
-        lon, lat = pts["lon"].to_numpy(float), pts["lat"].to_numpy(float)
-        ok = np.isfinite(lon) & np.isfinite(lat)
-        if not ok.any():
-            return None
-        w, e, s, n = lon[ok].min(), lon[ok].max(), lat[ok].min(), lat[ok].max()
-        pad_y = max((n - s) * FIT_MARGIN, np.degrees(MIN_PAD_M / geo.EARTH_RADIUS_M))
-        cos = max(math.cos(math.radians(0.5 * (s + n))), 0.05)
-        pad_x = max((e - w) * FIT_MARGIN, np.degrees(MIN_PAD_M / geo.EARTH_RADIUS_M) / cos)
-        return (w - pad_x, e + pad_x, s - pad_y, n + pad_y)
-
-    def map_points(self) -> pd.DataFrame:
-        """Every point drawn (for fitting the view)."""
-        parts = [
-            bearing_line_points(self.bearings, self.length_m),
-            self.bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(
-                sensor="observer"
-            )[["sensor", "batch", "time", "lon", "lat"]],
-        ]
-        return pd.concat([p for p in parts if len(p)], ignore_index=True)
+        with a :data:`FIT_MARGIN` margin (:func:`scene_range`); None when nothing is drawn."""
+        return self.scene.target if self.scene is not None else None
 
     def export(self, path: str | Path) -> None:
         """Write the detections as CSV (``batch,detect_time,maneuver_time,z``)."""

@@ -233,6 +233,24 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.log_message(self.tr("{0} cancelled").format(msg.name))
             self.statusBar().showMessage(self.tr("{0} cancelled").format(msg.name), 5000)
 
+    def _show_bearings_on_map(self, scene, layers: list) -> None:
+        """The bearings on the main map (layers named ``MAIN_PREFIX…``, prepared in the
+        worker): the observer's positions, the bearing lines and the maneuver lines; the
+        map is framed on them when it shows no other layer (it sat at empty 0–1° axes)."""
+        from wakeline.app.bearing_view import MAIN_PREFIX
+
+        for name in self.canvas.layer_names():
+            if name.startswith(MAIN_PREFIX):
+                self.canvas.remove_layer(name)
+        if scene is None:
+            self.log_message(self.tr("bearing: no observer position, nothing to draw on the map"))
+            return
+        for data in layers:
+            self.canvas.set_draw_data(data, True)
+        if not any(layer.visible for layer in self.session.layers.values()):
+            self.canvas.set_true_aspect(scene.lat0)
+            self.canvas.show_range(scene.target)
+
     def _apply(self, done: tuple) -> None:
         kind = done[0]
         if kind == "import":
@@ -253,7 +271,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             name = self.session.layers[lid].name if lid in self.session.layers else lid
             self.log_message(f"{result.step} on {name}: {summarize(result.report)}")
         elif kind == "bearing":
-            _, bearings, quarantine, result = done
+            _, bearings, quarantine, result, scene, main = done
             self.bearings, self.bearing_detections = bearings, result.tables["detections"]
             if len(quarantine):
                 reasons = "; ".join(
@@ -264,8 +282,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             for line in result.report.get("why", []):
                 self.log_message(f"    {line}")
             self.bearing_view.show_result(
-                bearings, self.bearing_detections, result.report["report"]
+                bearings, self.bearing_detections, result.report["report"], scene=scene
             )
+            self._show_bearings_on_map(scene, main)
             self.detail.show_bearings(
                 bearings, self.bearing_detections, self.params.params("bearing")
             )

@@ -106,16 +106,31 @@ class ImportJobsMixin:
 
     def load_bearings(self, path: Path) -> int | None:
         """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it
-        in the worker; the Detail panel shows the sequences, z and the detections."""
+        in the worker; the Detail panel shows the sequences, z and the detections, the
+        Bearing-only dock and the main map the observer and the bearing lines (prepared
+        here, in the worker: :func:`~wakeline.app.bearing_view.bearing_scene`)."""
+        from wakeline.app.bearing_view import bearing_scene, main_map_layers
         from wakeline.core.bearing import read_bearings_checked
         from wakeline.core.pipeline import step_bearing
 
         params = self.params.params("bearing")
+        length_m = self.bearing_view.fixed_length_m
+        # The main map is framed on the bearings when it shows no layer (else it keeps
+        # its view): the layers' level of detail is made for that view.
+        frame = not any(layer.visible for layer in self.session.layers.values())
+        view, size_px, lat0 = self.canvas.current_view(), self.canvas.plot_size_px(), None
+        if not frame:
+            lat0 = self.canvas._lat0
 
         def job(progress):
             bearings, quarantine = read_bearings_checked(path)
-            result = step_bearing(bearings, params, progress)
-            return ("bearing", bearings, quarantine, result)
+            result = step_bearing(bearings, params, sub_progress(progress, 0.0, 0.9))
+            progress(0.9, "preparing the map")
+            scene = bearing_scene(bearings, result.tables["detections"], length_m, True)
+            main = []
+            if scene is not None:
+                main = main_map_layers(scene, scene.target if frame else view, size_px, lat0)
+            return ("bearing", bearings, quarantine, result, scene, main)
 
         return self._start("bearing", job, ("bearing", Path(path).name))
 

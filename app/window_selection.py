@@ -102,6 +102,8 @@ class SelectionMixin:
         self.detail.show_track(factor, threshold, compressed, factor, dis_e_m=dis)
 
     def _track_clicked(self, lid: str, sensor: str, batch: str, add: bool) -> None:
+        if lid not in self.session.layers:
+            return  # a map layer of no session layer (the bearings): no batch to select
         if lid != self.active:
             self.select_layer(lid)
         self.select_tracks([(sensor, batch)], add=add)

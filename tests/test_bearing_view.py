@@ -406,3 +406,71 @@ def test_loading_bearings_raises_the_dock_with_map_and_table_in_view(qtbot, tmp_
     assert rows >= MIN_TABLE_ROWS
     w.runner.cancel()
     w.runner.wait()
+
+
+def canvas_rgb(canvas) -> np.ndarray:
+    """The map widget's pixels as an (h, w, 3) array, every curve painted afresh."""
+    from PySide6 import QtGui
+
+    for name in canvas.layer_names():
+        for item in canvas.layer_items(name):
+            item.curve.update()
+    img = canvas.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
+    w, h = img.width(), img.height()
+    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
+    return raw[:, : w * 3].reshape(h, w, 3).copy()
+
+
+def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):
+    """With only a bearing file loaded the main map sat at empty 0–1° axes (the bearings
+    went to their dock alone). Now it draws the observer and the bearing lines, prepared
+    in the worker, framed on them; with a track layer shown it keeps its view."""
+    from tests.conftest import make_window
+    from wakeline.app.bearing_view import MAIN_PREFIX
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.resources import demo_path
+
+    w = make_window(qtbot, tmp_path, (1600, 1000))
+    w.show()
+    qtbot.waitExposed(w)
+    df = harbour_table()
+    path = tmp_path / "bearings.csv"
+    df.to_csv(path, index=False)
+    w.load_bearings(path)
+    wait_for_jobs(w)
+    canvas = w.canvas
+    names = [n for n in canvas.layer_names() if n.startswith(MAIN_PREFIX)]
+    assert len(names) == 2  # observer and lines (no detection: no maneuver lines)
+    # Framed on the harbour scene: not 0–1°, not a 60-km view, the fan in view.
+    (x0, x1), (y0, y1) = canvas.vb.viewRange()
+    lat0 = HARBOUR[1]
+    width_m = geo.haversine_m(np.array([x0]), np.array([lat0]), np.array([x1]), np.array([lat0]))
+    assert 2 * 300.0 < float(width_m[0]) < 4_000.0
+    inside = lambda lon, lat: (x0 <= lon <= x1) and (y0 <= lat <= y1)  # noqa: E731
+    assert all(inside(*p) for p in df[["obs_lon", "obs_lat"]].to_numpy())
+    lines = bearing_line_points(df, w.bearing_view.length_m)
+    assert all(inside(*p) for p in along(lines, (0.0, 0.5, 1.0)))
+    # The pixels: each line in its batch's colour, the observer in grey over them.
+    qtbot.wait(50)
+    pixels = canvas_rgb(canvas)
+    view = w.bearing_view
+    points = along(lines, (0.4, 0.7, 0.95))
+    colours = np.repeat([line_colour(view, b) for b in lines["batch"].iloc[0::2]], 3, axis=0)
+    hit = [has_colour(pixels, to_px(canvas, *p), c) for p, c in zip(points, colours, strict=True)]
+    assert np.mean(hit) > 0.85, f"{np.mean(hit):.0%} of the line samples have their colour"
+    obs = df[["obs_lon", "obs_lat"]].to_numpy()[:: max(len(df) // 20, 1)]
+    assert all(has_colour(pixels, to_px(canvas, lon, lat), GREY) for lon, lat in obs)
+    labels = [label.text for _, label in canvas.legend.items]
+    assert MAIN_PREFIX + "observer" in labels and MAIN_PREFIX + "s16_t1" in labels
+
+    # A track layer shown: loading bearings again keeps the map's view.
+    w.load_file(demo_path())
+    wait_for_jobs(w)
+    qtbot.waitUntil(lambda: not w.drawing)
+    before = canvas.current_view()
+    w.load_bearings(path)
+    wait_for_jobs(w)
+    assert canvas.current_view() == pytest.approx(before)
+    assert len([n for n in canvas.layer_names() if n.startswith(MAIN_PREFIX)]) == 2
+    w.runner.cancel()
+    w.runner.wait()
