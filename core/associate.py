@@ -370,9 +370,10 @@ def _grid_pairs(
     t0, t1 = seg.t0, seg.t1
     tmin = float(min(t0.min(), t1.min()))
     ks = key(cs)
-    order = np.lexsort((t0, ks))
-    if starts is not None:
-        order = order[starts[order]]
+    # Only the starts (ends) that may take part are sorted: a stable sort of the subset
+    # gives the order the whole one would, filtered.
+    sub = np.flatnonzero(starts) if starts is not None else slice(None)
+    order = np.arange(len(ks))[sub][np.lexsort((t0[sub], ks[sub]))]
     n_s = len(order)
     if n_s == 0:
         return np.zeros(0, dtype="int64"), np.zeros(0, dtype="int64")
@@ -386,21 +387,31 @@ def _grid_pairs(
     # Ends in (cube, time) order too: the queries of each look-up come sorted and every
     # gather below walks both tables forwards (the cache decides the speed at 100 k).
     ke = key(ce)
-    e_order = np.lexsort((t1, ke))
-    if ends is not None:
-        e_order = e_order[ends[e_order]]
+    sub = np.flatnonzero(ends) if ends is not None else slice(None)
+    e_order = np.arange(len(ke))[sub][np.lexsort((t1[sub], ke[sub]))]
     ke, ce_s, tq = ke[e_order], ce[e_order], t1[e_order] - tmin
     pe_s, ps_s, t0_s = pe[e_order], ps[order], t0[order]
     slack = 2e-3  # s: the sweep key's rounding; the exact gap test follows
+    # Each end's place in its cube (0..1 per axis): a start in the next cube over is at
+    # least the way to that cube's face (edge, corner) away, so it is reachable only after
+    # (that way − position_tol_m)/v. Looking no earlier there (a metre to spare for the
+    # rounding, far above it) skips only pairs the distance test below refuses.
+    frac = np.clip(pe_s / side - (ce_s + origin), 0.0, 1.0) * side
     out_i, out_j = [], []
     for off in np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 3):
         kq = ((ke >> (3 * bits)) << bits | ce_s[:, 0] + off[0]) << bits | ce_s[:, 1] + off[1]
         kq = kq << bits | ce_s[:, 2] + off[2]
         c = np.searchsorted(cells, kq)
         e = np.flatnonzero((c < len(cells)) & (cells[np.minimum(c, len(cells) - 1)] == kq))
+        soon = np.full(len(e), float(min_gap_s))
+        if off.any() and v > 0:
+            way = np.zeros(len(e))
+            for k in np.flatnonzero(off):
+                way += (side - frac[e, k] if off[k] > 0 else frac[e, k]) ** 2
+            soon = np.fmax(soon, (np.sqrt(way) - tol - 1.0) / v)
         base = c[e] * width + tq[e]
-        lo = np.searchsorted(sweep, base + min_gap_s - slack, side="left")
-        cnt = np.searchsorted(sweep, base + gmax + slack, side="right") - lo
+        lo = np.searchsorted(sweep, base + soon - slack, side="left")
+        cnt = np.maximum(np.searchsorted(sweep, base + gmax + slack, side="right") - lo, 0)
         i = np.repeat(e, cnt)
         j = concat_ranges(lo, cnt)
         gap = t0_s[j] - (tq[i] + tmin)
@@ -484,6 +495,43 @@ def candidate_pairs(
     i, j = i[keep], j[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
     return pair_features(seg, i[order], j[order])
+
+
+def _narrowed(
+    seg: Segments,
+    params: LinkParams,
+    ends: np.ndarray | None,
+    starts: np.ndarray | None,
+    before: tuple | None,
+) -> tuple[Pairs, tuple]:
+    """:func:`candidate_pairs` (``seg``, ``params``, ``ends``, ``starts``) with the help of
+    ``before``, what this returned for an earlier search on the same ``seg`` and
+    ``params`` (or None): a search finds each end's pairs on its own (its look-ups, then
+    exact tests per pair), so the pairs of ends and starts that the earlier search had
+    are its pairs, filtered; ends (or starts) it did not have are searched apart and
+    merged in, in (i, j) order. The same pairs, features and order as a new search.
+    Returns the pairs and what to pass as ``before`` next time."""
+    n = len(seg)
+    e = np.ones(n, dtype=bool) if ends is None else ends.copy()
+    s = np.ones(n, dtype=bool) if starts is None else starts.copy()
+    if before is None:
+        found = candidate_pairs(seg, params, ends, starts)
+        return found, (e, s, found)
+    e0, s0, p0 = before
+    new_e, new_s = e & ~e0, s & ~s0
+    if new_e.any() and new_s.any():
+        found = candidate_pairs(seg, params, ends, starts)
+        return found, (e, s, found)
+    found = p0.take(e[p0.i] & s[p0.j])
+    if new_e.any() or new_s.any():
+        more = (
+            candidate_pairs(seg, params, new_e, starts)
+            if new_e.any()
+            else candidate_pairs(seg, params, ends, new_s)
+        )
+        found = found.concat(more)
+        found = found.take(np.argsort(found.i * n + found.j, kind="stable"))
+    return found, (e, s, found)
 
 
 #: Soft T_gap: the fewest fixes a piece needs at both ends of a pair beyond max_gap_s in
@@ -1383,16 +1431,31 @@ def long_gap_pass(
         if main.log_sd is None:  # no σ (uncertainty_gate off): no spread term
             main = None
 
+    # The references of the first pass's candidates, taken once: a set's references are
+    # the least over its parts (_references).
+    main_refs = None if main is None else _references(pairs, main, params, n)
+
     def price(p: Pairs) -> np.ndarray:
         # The spread of a pair is taken among the first pass's candidates and the long
         # ones looked at (pair_cost over the candidates returned gives the same).
         parts = _pricing(p, wide, "scaled", seg).refusing(p, n, blocked)
         refs = None
-        if main is not None:
+        if main_refs is not None:
             long = p.gap_s > params.max_gap_s
-            both = pairs.concat(p.take(long))
-            refs = _references(both, main.concat(parts.take(long)), params, n)
+            own = _references(p.take(long), parts.take(long), params, n)
+            refs = tuple(
+                (np.minimum(a_i, b_i), np.minimum(a_j, b_j))
+                for (a_i, a_j), (b_i, b_j) in zip(main_refs, own, strict=True)
+            )
         return _blocked_cost(p, parts.total(p, params, n, refs), n, blocked)
+
+    # The searches of the first look, for the second: that one has fewer loose pieces
+    # (released joins came back), so its searches are mostly the first's, filtered.
+    searched: dict[str, tuple] = {}
+
+    def search(name: str, ends: np.ndarray | None = None, starts: np.ndarray | None = None):
+        found, searched[name] = _narrowed(seg, wide, ends, starts, searched.get(name))
+        return found
 
     def look(joined: np.ndarray) -> tuple[Pairs, np.ndarray, np.ndarray]:
         """The second look with ``joined`` (indices into ``pairs``) as the joins: the long
@@ -1423,7 +1486,7 @@ def long_gap_pass(
         # its own chain (i → p → j all cheap) is no rival: a ship moored for hours whose
         # AIS comes and goes leaves pieces at one spot, and every later one is "as cheap"
         # as the next.
-        loose = candidate_pairs(seg, wide, ends=free_end, starts=free_start)
+        loose = search("loose", free_end, free_start)
         c_loose = price(loose)
         chain = components(n, pairs.i[joined], pairs.j[joined])
         skip = _skips(loose, loose, c_loose, limit, chain, free_start, free_end)
@@ -1435,8 +1498,8 @@ def long_gap_pass(
         ends[loose.i[ok]] = True
         starts = np.zeros(n, dtype=bool)
         starts[loose.j[ok]] = True
-        a = candidate_pairs(seg, wide, ends=ends)
-        b = candidate_pairs(seg, wide, starts=starts)
+        a = search("a", ends=ends)
+        b = search("b", starts=starts)
         cand = a.concat(b.take(~ends[b.i]))
         c = price(cand)
         # A route through loose pieces runs on loose links only (a joined start belongs

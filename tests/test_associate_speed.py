@@ -1,0 +1,103 @@
+"""Association speed (issue 17) without changing its result: the grid's narrower time
+windows and the second look's reuse of the first look's searches."""
+
+import numpy as np
+import pytest
+
+from wakeline.core import associate as assoc_mod
+from wakeline.core import simulate
+from wakeline.core.associate import LinkParams, associate_interrupted, candidate_pairs
+from wakeline.core.segments import segment_stats
+
+
+@pytest.fixture(scope="module")
+def rerun_scene():
+    """150 ships in 27 km (the bench's density): a scene where released joins come back
+    and the second look runs again (long_gap_pass)."""
+    area = 20.0 * np.sqrt(150 / 80.0)
+    return simulate.segments_scene(seed=4, n_ships=150, area_km=area, period_s=60.0)
+
+
+def _same_pairs(a, b):
+    for f in a.__dataclass_fields__:
+        np.testing.assert_array_equal(getattr(a, f), getattr(b, f), err_msg=f)
+
+
+def test_narrowed_search_equals_a_new_search(rerun_scene):
+    # Fewer ends and starts, more ends, more starts, more of both: always the pairs,
+    # features and order of a new candidate_pairs search.
+    seg = segment_stats(rerun_scene)
+    params = LinkParams().replace(max_gap_s=3600.0)
+    n = len(seg)
+    rng = np.random.default_rng(5)
+    e0, s0 = rng.random(n) < 0.6, rng.random(n) < 0.6
+    first, before = assoc_mod._narrowed(seg, params, e0, s0, None)
+    _same_pairs(first, candidate_pairs(seg, params, e0, s0))
+    fewer_e, fewer_s = e0 & (rng.random(n) < 0.7), s0 & (rng.random(n) < 0.7)
+    more_e, more_s = fewer_e | (rng.random(n) < 0.1), fewer_s | (rng.random(n) < 0.1)
+    for e, s in [
+        (fewer_e, fewer_s),
+        (more_e, fewer_s),
+        (fewer_e, more_s),
+        (more_e, more_s),
+        (None, fewer_s),
+        (fewer_e, None),
+    ]:
+        got, _ = assoc_mod._narrowed(seg, params, e, s, before)
+        _same_pairs(got, candidate_pairs(seg, params, e, s))
+        assert len(got) > 0
+
+
+def test_second_look_reuses_the_first_looks_searches(rerun_scene, monkeypatch):
+    # The second look has fewer loose pieces than the first: its three searches are the
+    # first's, filtered (no new grid search), and the association is the same as with
+    # every search made anew.
+    searches = []
+    search = assoc_mod.candidate_pairs
+
+    def counted(*args, **kwargs):
+        min_gap = args[4] if len(args) > 4 else kwargs.get("min_gap_s", 0.0)
+        searches.append((args[1].max_gap_s, min_gap))
+        return search(*args, **kwargs)
+
+    monkeypatch.setattr(assoc_mod, "candidate_pairs", counted)
+    a = associate_interrupted(rerun_scene, LinkParams())
+    look = (LinkParams().long_gap_s, 0.0)  # the second look's searches
+    assert searches.count(look) == 3  # one look's
+
+    monkeypatch.setattr(assoc_mod, "_narrowed", lambda s, p, e, st, before: _fresh(s, p, e, st))
+    searches.clear()
+    b = associate_interrupted(rerun_scene, LinkParams())
+    assert searches.count(look) == 2 * 3  # the second look searched again
+    _same_pairs(a.pairs, b.pairs)
+    np.testing.assert_array_equal(a.cost, b.cost)
+    np.testing.assert_array_equal(a.chosen, b.chosen)
+
+
+def _fresh(seg, params, ends, starts):
+    found = assoc_mod.candidate_pairs(seg, params, ends, starts)
+    return found, None
+
+
+def test_grid_looks_at_few_pairs_beyond_those_it_finds(rerun_scene, monkeypatch):
+    # A start in a neighbouring cube is looked at only from the time it could be reached:
+    # the grid tests 2.9× the pairs it keeps here (5.9× with the whole time window in all
+    # 27 cubes), and the association is the k-d tree's.
+    looked = []
+    ranges = assoc_mod.concat_ranges
+
+    def counted(lo, cnt):
+        looked.append(int(np.sum(cnt)))
+        return ranges(lo, cnt)
+
+    monkeypatch.setattr(assoc_mod, "concat_ranges", counted)
+    seg = segment_stats(rerun_scene)
+    params = LinkParams()
+    found = assoc_mod._grid_pairs(seg, params)
+    assert 0 < sum(looked) < 4 * len(found[0])
+    a = associate_interrupted(rerun_scene, params)
+    monkeypatch.setattr(assoc_mod, "_grid_pairs", lambda *args: None)
+    b = associate_interrupted(rerun_scene, params)
+    _same_pairs(a.pairs, b.pairs)
+    np.testing.assert_array_equal(a.cost, b.cost)
+    np.testing.assert_array_equal(a.chosen, b.chosen)
