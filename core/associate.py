@@ -352,8 +352,7 @@ def _grid_pairs(
     v = params.v_max_kn * geo.KN_MS
     tol = params.position_tol_m
     side = v * gmax + tol
-    pe = ecef(seg.lon1, seg.lat1)
-    ps = ecef(seg.lon0, seg.lat0)
+    pe, ps = seg.ecef1, seg.ecef0
     if not (np.isfinite(pe).all() and np.isfinite(ps).all() and side > 0):
         return None  # the k-d tree path handles (or reports) what a grid cannot bin
     origin = np.floor(np.minimum(pe.min(axis=0), ps.min(axis=0)) / side) - 2
@@ -390,32 +389,43 @@ def _grid_pairs(
     sub = np.flatnonzero(ends) if ends is not None else slice(None)
     e_order = np.arange(len(ke))[sub][np.lexsort((t1[sub], ke[sub]))]
     ke, ce_s, tq = ke[e_order], ce[e_order], t1[e_order] - tmin
-    pe_s, ps_s, t0_s = pe[e_order], ps[order], t0[order]
+    # Positions by axis (one gather per axis per pair; the squares summed x, y, z in turn
+    # as a row sum does).
+    pe_s, ps_s, t0_s = pe[e_order].T.copy(), ps[order].T.copy(), t0[order]
     slack = 2e-3  # s: the sweep key's rounding; the exact gap test follows
     # Each end's place in its cube (0..1 per axis): a start in the next cube over is at
     # least the way to that cube's face (edge, corner) away, so it is reachable only after
     # (that way − position_tol_m)/v. Looking no earlier there (a metre to spare for the
     # rounding, far above it) skips only pairs the distance test below refuses.
-    frac = np.clip(pe_s / side - (ce_s + origin), 0.0, 1.0) * side
+    frac = (np.clip(pe_s.T / side - (ce_s + origin), 0.0, 1.0) * side).T.copy()
+    # The cube look-ups once per cube the ends lie in (ends come sorted by cube).
+    if len(ke) == 0:
+        return np.zeros(0, dtype="int64"), np.zeros(0, dtype="int64")
+    first_of_cube = np.r_[True, ke[1:] != ke[:-1]]
+    head, cube = np.flatnonzero(first_of_cube), np.cumsum(first_of_cube) - 1
+    ku, cu = ke[head], ce_s[head]
     out_i, out_j = [], []
     for off in np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 3):
-        kq = ((ke >> (3 * bits)) << bits | ce_s[:, 0] + off[0]) << bits | ce_s[:, 1] + off[1]
-        kq = kq << bits | ce_s[:, 2] + off[2]
-        c = np.searchsorted(cells, kq)
-        e = np.flatnonzero((c < len(cells)) & (cells[np.minimum(c, len(cells) - 1)] == kq))
+        kq = ((ku >> (3 * bits)) << bits | cu[:, 0] + off[0]) << bits | cu[:, 1] + off[1]
+        kq = kq << bits | cu[:, 2] + off[2]
+        cq = np.searchsorted(cells, kq)
+        hit = (cq < len(cells)) & (cells[np.minimum(cq, len(cells) - 1)] == kq)
+        e = np.flatnonzero(hit[cube])
         soon = np.full(len(e), float(min_gap_s))
         if off.any() and v > 0:
             way = np.zeros(len(e))
             for k in np.flatnonzero(off):
-                way += (side - frac[e, k] if off[k] > 0 else frac[e, k]) ** 2
+                way += (side - frac[k][e] if off[k] > 0 else frac[k][e]) ** 2
             soon = np.fmax(soon, (np.sqrt(way) - tol - 1.0) / v)
-        base = c[e] * width + tq[e]
+        base = cq[cube[e]] * width + tq[e]
         lo = np.searchsorted(sweep, base + soon - slack, side="left")
         cnt = np.maximum(np.searchsorted(sweep, base + gmax + slack, side="right") - lo, 0)
         i = np.repeat(e, cnt)
         j = concat_ranges(lo, cnt)
         gap = t0_s[j] - (tq[i] + tmin)
-        d2 = ((pe_s[i] - ps_s[j]) ** 2).sum(axis=1)
+        d2 = (pe_s[0][i] - ps_s[0][j]) ** 2
+        d2 += (pe_s[1][i] - ps_s[1][j]) ** 2
+        d2 += (pe_s[2][i] - ps_s[2][j]) ** 2
         ok = (gap > min_gap_s) & (gap <= gmax) & (d2 <= (v * gap + tol) ** 2)
         i, j = e_order[i[ok]], order[j[ok]]
         keep = i != j
@@ -492,9 +502,9 @@ def candidate_pairs(
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     v = np.maximum(params.v_max_kn, np.maximum(fast_end[i], fast_start[j])) * geo.KN_MS
     keep = dist <= v * gap + params.position_tol_m
-    i, j = i[keep], j[keep]
+    i, j, dist = i[keep], j[keep], dist[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
-    return pair_features(seg, i[order], j[order])
+    return pair_features(seg, i[order], j[order], dist[order])
 
 
 def _narrowed(
@@ -685,11 +695,15 @@ def _seen_speed_kn(seg: Segments) -> tuple[np.ndarray, np.ndarray]:
     return out[0], out[1]
 
 
-def pair_features(seg: Segments, i: np.ndarray, j: np.ndarray) -> Pairs:
+def pair_features(
+    seg: Segments, i: np.ndarray, j: np.ndarray, dist: np.ndarray | None = None
+) -> Pairs:
     """The features of the pairs (old ``i`` → new ``j``) of ``seg``: gap, end-to-start
-    distance, dead-reckoning miss, course and speed differences."""
+    distance (m; ``dist`` when the caller has it), dead-reckoning miss, course and speed
+    differences."""
     gap = seg.t0[j] - seg.t1[i]
-    dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
+    if dist is None:
+        dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
     miss = _miss_one_turn(
         px, py, seg.vx1[i] * gap, seg.vy1[i] * gap, seg.vx0[j] * gap, seg.vy0[j] * gap

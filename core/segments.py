@@ -131,21 +131,33 @@ class Segments:
     def period_s(self) -> np.ndarray:
         return self._shape["period_s"]
 
-    @property
+    # Speeds, courses and Earth-centred positions are computed once per summary (the
+    # association asks for them in every candidate search and pricing; read only).
+    @cached_property
     def speed0_kn(self) -> np.ndarray:
         return np.hypot(self.vx0, self.vy0) / geo.KN_MS
 
-    @property
+    @cached_property
     def speed1_kn(self) -> np.ndarray:
         return np.hypot(self.vx1, self.vy1) / geo.KN_MS
 
-    @property
+    @cached_property
     def course0_deg(self) -> np.ndarray:
         return geo.wrap360(np.degrees(np.arctan2(self.vx0, self.vy0)))
 
-    @property
+    @cached_property
     def course1_deg(self) -> np.ndarray:
         return geo.wrap360(np.degrees(np.arctan2(self.vx1, self.vy1)))
+
+    @cached_property
+    def ecef0(self) -> np.ndarray:
+        """Earth-centred position (m, n × 3) of each start (:func:`ecef`)."""
+        return ecef(self.lon0, self.lat0)
+
+    @cached_property
+    def ecef1(self) -> np.ndarray:
+        """Earth-centred position (m, n × 3) of each end (:func:`ecef`)."""
+        return ecef(self.lon1, self.lat1)
 
 
 def _end_fit(

@@ -101,3 +101,30 @@ def test_grid_looks_at_few_pairs_beyond_those_it_finds(rerun_scene, monkeypatch)
     _same_pairs(a.pairs, b.pairs)
     np.testing.assert_array_equal(a.cost, b.cost)
     np.testing.assert_array_equal(a.chosen, b.chosen)
+
+
+def test_per_track_summaries_are_computed_once(rerun_scene, monkeypatch):
+    # Speeds, courses and Earth-centred positions are asked for in every candidate search
+    # and pricing: computed once per summary (the same values), and one great-circle
+    # distance per pair found in a search.
+    from wakeline.core import geo
+    from wakeline.core.segments import ecef
+
+    seg = segment_stats(rerun_scene)
+    assert seg.speed0_kn is seg.speed0_kn and seg.course1_deg is seg.course1_deg
+    np.testing.assert_array_equal(seg.speed1_kn, np.hypot(seg.vx1, seg.vy1) / geo.KN_MS)
+    np.testing.assert_array_equal(seg.ecef0, ecef(seg.lon0, seg.lat0))
+    np.testing.assert_array_equal(seg.ecef1, ecef(seg.lon1, seg.lat1))
+    calls = []
+    haversine = geo.haversine_m
+
+    def counted(*args):
+        calls.append(len(args[0]))
+        return haversine(*args)
+
+    monkeypatch.setattr(geo, "haversine_m", counted)
+    found = candidate_pairs(seg, LinkParams())
+    assert len(calls) == 1 and len(found) > 0
+    monkeypatch.undo()
+    again = assoc_mod.pair_features(seg, found.i, found.j)
+    _same_pairs(found, again)
