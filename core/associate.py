@@ -343,8 +343,9 @@ def _grid_pairs(
 
     Earth-centred positions are binned in cubes of side ``reach`` (the distance coverable
     in the longest gap): the starts reachable from an end lie in the 3×3×3 cubes about
-    it, so 27 look-ups per end. Starts are sorted by (cube, start time); each look-up is a
-    ``searchsorted`` for the cube's starts in the end's time window, the ranges are
+    it, so 27 look-ups per end (per cube of ends). Starts are sorted by (cube, start time);
+    each look-up is a ``searchsorted`` for the cube's starts in the end's time window (from
+    when that cube could be reached), the ranges are
     expanded into pairs with ``np.repeat`` and cut to the reachability cone at once —
     no Python loop per track or per pair, work linear in the pairs looked at.
     """
@@ -417,6 +418,8 @@ def _grid_pairs(
             for k in np.flatnonzero(off):
                 way += (side - frac[k][e] if off[k] > 0 else frac[k][e]) ** 2
             soon = np.fmax(soon, (np.sqrt(way) - tol - 1.0) / v)
+            live = soon <= gmax + 2.0 * slack  # the others' windows are empty
+            e, soon = e[live], soon[live]
         base = cq[cube[e]] * width + tq[e]
         lo = np.searchsorted(sweep, base + soon - slack, side="left")
         cnt = np.maximum(np.searchsorted(sweep, base + gmax + slack, side="right") - lo, 0)
