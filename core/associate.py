@@ -535,6 +535,8 @@ def _narrowed(
     if new_e.any() and new_s.any():
         found = candidate_pairs(seg, params, ends, starts)
         return found, (e, s, found)
+    if np.array_equal(e, e0) and np.array_equal(s, s0):
+        return p0, before  # the same search: the same pairs (the same object)
     found = p0.take(e[p0.i] & s[p0.j])
     if new_e.any() or new_s.any():
         more = (
@@ -1517,8 +1519,12 @@ def long_gap_pass(
         starts[loose.j[ok]] = True
         a = search("a", ends=ends)
         b = search("b", starts=starts)
-        cand = a.concat(b.take(~ends[b.i]))
-        c = price(cand)
+        if searched.get("cand", (None,))[0] is a and searched["cand"][1] is b:
+            cand, c = searched["cand"][2:]  # the same searches: the same pairs and prices
+        else:
+            cand = a.concat(b.take(~ends[b.i]))
+            c = price(cand)
+            searched["cand"] = (a, b, cand, c)
         # A route through loose pieces runs on loose links only (a joined start belongs
         # to the chain that claimed it), so the loose pairs found first tell every skip.
         skip = _skips(cand, loose, c_loose, limit, chain, free_start, free_end)

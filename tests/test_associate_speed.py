@@ -50,25 +50,36 @@ def test_narrowed_search_equals_a_new_search(rerun_scene):
 
 def test_second_look_reuses_the_first_looks_searches(rerun_scene, monkeypatch):
     # The second look has fewer loose pieces than the first: its three searches are the
-    # first's, filtered (no new grid search), and the association is the same as with
-    # every search made anew.
+    # first's, filtered (no new grid search), the candidates of the same searches keep
+    # their prices (one pricing fewer), and the association is the same as with every
+    # search made and priced anew.
     searches = []
     search = assoc_mod.candidate_pairs
+    priced = []
+    pricing = assoc_mod._pricing
 
     def counted(*args, **kwargs):
         min_gap = args[4] if len(args) > 4 else kwargs.get("min_gap_s", 0.0)
         searches.append((args[1].max_gap_s, min_gap))
         return search(*args, **kwargs)
 
+    def counted_pricing(*args, **kwargs):
+        priced.append(len(args[0]))
+        return pricing(*args, **kwargs)
+
     monkeypatch.setattr(assoc_mod, "candidate_pairs", counted)
+    monkeypatch.setattr(assoc_mod, "_pricing", counted_pricing)
     a = associate_interrupted(rerun_scene, LinkParams())
     look = (LinkParams().long_gap_s, 0.0)  # the second look's searches
     assert searches.count(look) == 3  # one look's
+    reused = len(priced)
 
     monkeypatch.setattr(assoc_mod, "_narrowed", lambda s, p, e, st, before: _fresh(s, p, e, st))
     searches.clear()
+    priced.clear()
     b = associate_interrupted(rerun_scene, LinkParams())
     assert searches.count(look) == 2 * 3  # the second look searched again
+    assert len(priced) == reused + 1  # and priced its candidates again
     _same_pairs(a.pairs, b.pairs)
     np.testing.assert_array_equal(a.cost, b.cost)
     np.testing.assert_array_equal(a.chosen, b.chosen)
