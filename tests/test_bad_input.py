@@ -507,3 +507,38 @@ def test_a_stray_nul_byte_is_its_rows_problem_in_any_file(tmp_path):
     png.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(range(256)) * 8)
     with pytest.raises(InputError, match="binary"):
         read_points(png)
+
+
+def test_tracks_of_three_or_four_daily_rows_are_kept(tmp_path):
+    """Review h60 F1: with 3 rows both steps of a track are end steps; left out of its
+    median step, that was 0 and the limit a day, so a ship's 3 noon reports (a day and an
+    hour apart) lost 2 of them, and 3 ships of 3 reports each in consecutive weeks 6 of 9.
+    The typical step of an edge row is now the median of its track's steps without its
+    own step: they are kept, and a mistyped year in such a track is still quarantined."""
+    t0 = pd.Timestamp("2023-06-01 00:00:00")
+    step = pd.Timedelta(days=1, hours=1)
+    cases = {
+        "noon3": _track_rows("A", [t0 + k * step for k in range(3)], 10),
+        "noon4": _track_rows("A", [t0 + k * step for k in range(4)], 10),
+        "noon3x3": [
+            row
+            for w, b in enumerate("ABC")
+            for row in _track_rows(b, [t0 + pd.Timedelta(weeks=w) + k * step for k in range(3)], 10)
+        ],
+    }
+    for name, rows in cases.items():
+        src = tmp_path / f"{name}.csv"
+        src.write_text("\n".join(["sensor,batch,time,lon,lat", *rows]) + "\n")
+        res = read_points(src)
+        assert len(res.quarantine) == 0 and len(res.points) == len(rows), name
+        q = tmp_path / f"{name}.q.csv"
+        assert (
+            main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--quarantine", str(q)]) == 0
+        )
+        assert len(pd.read_csv(q)) == 0 and len(pd.read_csv(tmp_path / "o.csv")) == len(rows)
+    typo = [t0 + k * step for k in range(3)]
+    typo[-1] = typo[-1].replace(year=2013)
+    src = tmp_path / "typo3.csv"
+    src.write_text("\n".join(["sensor,batch,time,lon,lat", *_track_rows("A", typo, 10)]) + "\n")
+    res = read_points(src)
+    assert res.quarantine["line"].tolist() == [4] and len(res.points) == 2

@@ -732,3 +732,154 @@ def test_edge_typo_property(tmp_path_factory, tracks, typo, edge_gap_h):
     r = read_points(path)
     assert_all_accounted(r, len(rows))
     assert r.quarantine["line"].tolist() == ([] if typo_line is None else [typo_line])
+
+
+# --- the edge-row rule read in pieces (review h60: F2, F4, F5) ------------------------------
+
+_D, _H, _M = pd.Timedelta(days=1), pd.Timedelta(hours=1), pd.Timedelta(minutes=1)
+_T0 = pd.Timestamp("2023-06-01 00:00:00")
+
+
+def _edge_rows(rows, way: str) -> list[str]:
+    """(batch, time) pairs as canonical lines; quoted remarks send the import in pieces."""
+    remark = '"ok, a"' if way == "in pieces" else "ok"
+    return [
+        f"S1,{b},{t:%Y-%m-%dT%H:%M:%S}Z,{12 + k % 999 * 1e-3:.4f},55.0,10,0,{remark}"
+        for k, (b, t) in enumerate(rows)
+    ]
+
+
+def _size_with_last(src, rows_in_last: int) -> int:
+    """A piece size giving >= 2 pieces whose last one with rows holds ``rows_in_last``."""
+    from wakeline.core.io.reader import line_pieces
+
+    for size in range(200, 8000, 3):
+        with open(src, "rb") as f:
+            parts = [p for p, _ in line_pieces(f, size) if p.strip()]
+        if len(parts) >= 2 and parts[-1].decode().strip().count("\n") + 1 == rows_in_last:
+            return size
+    raise AssertionError("no such piece size")
+
+
+def _whole_and_in_pieces(src, tmp_path, monkeypatch, size: int, way: str, n: int):
+    """The quarantined lines of a whole read and of `import_to_csv` at ``size``; every
+    row is a point or a quarantine row in both."""
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv
+
+    whole = read_points(src)
+    assert len(whole.points) + len(whole.quarantine) == n
+    monkeypatch.setattr(reader, "STREAM_BYTES", size)
+    got = import_to_csv(src, tmp_path / "out.csv")
+    assert got.report.get("streamed" if way == "streamed" else "pieces")
+    assert got.report["rows_imported"] + got.report["rows_quarantined"] == n
+    assert len(pd.read_csv(tmp_path / "out.csv")) == got.report["rows_imported"]
+    return whole.quarantine["line"].tolist(), got.quarantine["line"].tolist()
+
+
+@pytest.mark.parametrize("way", ["streamed", "in pieces"])
+@pytest.mark.parametrize("case", ["daily", "hourly"])
+def test_a_read_in_pieces_keeps_a_real_last_row_the_whole_read_keeps(
+    tmp_path, monkeypatch, case, way
+):
+    """F2: the typical step of a track came from the last piece's rows only: a ship's
+    daily noon reports whose last one came 3 days after its previous (within 100 × its
+    daily step), or an hourly satellite-AIS ship seen again 2.5 days on (within 100 × its
+    hourly step), lost that real last row when the last piece held its last 3 rows.
+    Now each track's earlier steps are carried (count, span, sum of steps): the read in
+    pieces keeps it, as the whole read does."""
+    if case == "daily":
+        rows = [("A", _T0 + k * _D) for k in range(30)] + [("A", _T0 + 32 * _D)]
+    else:
+        rows = [("A", _T0 + k * _H) for k in range(72)] + [("A", _T0 + 131 * _H)]
+    src = tmp_path / "e.csv"
+    src.write_text("\n".join([HEADER, *_edge_rows(rows, way)]) + "\n")
+    size = _size_with_last(src, 3)
+    whole, got = _whole_and_in_pieces(src, tmp_path, monkeypatch, size, way, len(rows))
+    assert whole == [] and got == []
+
+
+@pytest.mark.parametrize("way", ["streamed", "in pieces"])
+def test_a_track_split_over_pieces_covers_its_whole_span(tmp_path, monkeypatch, way):
+    """F5: a covering track's rows split over pieces (B on day 0, and on day 5 in the last
+    piece) covered only the days of each piece's rows, leaving a hole where A's real row
+    on day 3 then had no other track: quarantined in pieces, kept whole. Each track's
+    span is now carried whole (min and max merged over the pieces)."""
+    rows = [("B", _T0 + k * _M) for k in range(50)] + [("A", _T0 + k * _M) for k in range(50)]
+    rows += [("A", _T0 + 3 * _D)] + [("B", _T0 + 5 * _D + k * _M) for k in range(10)]
+    src = tmp_path / "e.csv"
+    src.write_text("\n".join([HEADER, *_edge_rows(rows, way)]) + "\n")
+    size = _size_with_last(src, 15)  # A's last row and B's day 5 in the last piece
+    whole, got = _whole_and_in_pieces(src, tmp_path, monkeypatch, size, way, len(rows))
+    assert whole == [] and got == []
+
+
+@pytest.mark.parametrize("way", ["streamed", "in pieces"])
+def test_blank_lines_in_the_last_piece_leave_the_edge_rule_on(tmp_path, monkeypatch, way):
+    """F4: a file whose last piece holds only blank lines never ran the edge-row rule (it
+    ran in the last piece only): a 2013 typo in B's last row passed. The rule now runs in
+    the last piece with rows."""
+    rows = [(b, _T0 + k * _M) for b in "AB" for k in range(30)]
+    rows[-1] = ("B", (_T0 + 29 * _M).replace(year=2013))
+    src = tmp_path / "e.csv"
+    src.write_text("\n".join([HEADER, *_edge_rows(rows, way), *[""] * 3000]) + "\n")
+    from wakeline.core.io.reader import line_pieces
+
+    with open(src, "rb") as f:
+        parts = [p for p, _ in line_pieces(f, 1200)]
+    assert len(parts) >= 3 and not parts[-1].strip()  # the premise: a blank last piece
+    whole, got = _whole_and_in_pieces(src, tmp_path, monkeypatch, 1200, way, len(rows))
+    assert whole == got == [61]
+
+
+@settings(
+    max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    tracks=st.lists(
+        st.tuples(
+            st.integers(2, 40),  # rows
+            st.sampled_from([10, 600, 3600, 86_400]),  # step (s)
+            st.integers(0, 3 * 86_400),  # start
+            st.integers(0, 6 * 86_400),  # last row's extra gap (s)
+        ),
+        min_size=1,
+        max_size=4,
+    ),
+    typo=st.one_of(st.none(), st.tuples(st.integers(0, 3), st.booleans(), st.integers(-9, 9))),
+    size=st.integers(250, 3000),
+    interleave=st.booleans(),
+)
+def test_edge_rule_in_pieces_quarantines_only_what_a_whole_read_does(
+    tmp_path, monkeypatch, tracks, typo, size, interleave
+):
+    """Tracks of any step (10 s to a day), a real gap before a last row, a mistyped year in
+    a first or last row, tracks one after the other or interleaved, read in pieces of any
+    size: the rows the edge-row rule quarantines are a part of the whole read's (a read in
+    pieces may miss a typo, never take a real row), and every row is a point or a
+    quarantine row."""
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv
+
+    per_track = []
+    for b, (n, step, start, gap) in enumerate(tracks):
+        times = [_T0 + pd.Timedelta(seconds=start + step * k) for k in range(n)]
+        times[-1] += pd.Timedelta(seconds=gap)
+        if typo is not None and typo[0] % len(tracks) == b and typo[2]:
+            i = 0 if typo[1] else n - 1
+            times[i] = times[i] + pd.DateOffset(years=typo[2])
+        per_track.append([(str(b), t) for t in times])
+    if interleave:
+        rows = [
+            r for k in range(max(map(len, per_track))) for tr in per_track for r in tr[k : k + 1]
+        ]
+    else:
+        rows = [r for tr in per_track for r in tr]
+    src = tmp_path / "p.csv"
+    src.write_text("\n".join([HEADER, *_edge_rows(rows, "streamed")]) + "\n")
+    whole = read_points(src)
+    assert len(whole.points) + len(whole.quarantine) == len(rows)
+    monkeypatch.setattr(reader, "STREAM_BYTES", size)
+    got = import_to_csv(src, tmp_path / "out.csv")
+    assert got.report["rows_imported"] + got.report["rows_quarantined"] == len(rows)
+    assert set(got.quarantine["line"]) <= set(whole.quarantine["line"])

@@ -43,13 +43,13 @@ from wakeline.core.io.reader import (
     WholeFileNeeded,
     _restart_warnings,
     _time_warnings,
-    add_spans,
+    blank_bytes,
     edge_state,
     empty_quarantine,
     encoding_note,
     line_pieces,
     parse_zone,
-    with_last,
+    with_final,
 )
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.progress import Progress, null_progress
@@ -247,8 +247,9 @@ def _read_all(
     size = max(_size(sn), 1)
     done = 0
     quarantines, reports, layouts, keys = [], [], [], []
-    edges = edge_state()  # a track's first and last rows: judged in the last piece
-    for k, ((piece, first_line), final) in enumerate(with_last(pieces(sn))):
+    edges = edge_state()  # a track's first and last rows: judged in the last piece with rows
+    has_rows = blank_bytes(sn.delimiter)
+    for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn), has_rows)):
         piece_file.write_bytes(piece)
         done += len(piece)
         del piece
@@ -272,10 +273,6 @@ def _read_all(
             raise _Again(quotes=False)
         if len(res.points):
             keys.append(res.points[["sensor", "batch"]].drop_duplicates())
-            edges["seen"].update(
-                zip(keys[-1]["sensor"].astype(str), keys[-1]["batch"].astype(str), strict=True)
-            )
-            edges["covered"] = add_spans(edges["covered"], res.points)
             sink(res.points)
         del res.points
         if len(res.quarantine):

@@ -622,35 +622,141 @@ def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray
     return out
 
 
+def _track_summary(
+    ns: np.ndarray, ok: np.ndarray, track: np.ndarray
+) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Per track of a piece (valid rows, file order): its codes and ``n`` (rows), ``lo``,
+    ``hi`` (time span, s), ``first``, ``last`` (times of its first and last rows, s) and
+    ``steps`` (sum of its steps |t[i+1] - t[i]|, s). One stable sort of the valid rows."""
+    good = np.flatnonzero(np.asarray(ok) & (np.asarray(track) >= 0))
+    code = np.asarray(track)[good].astype("int64")
+    t = np.asarray(ns)[good].astype("float64") / 1e9
+    small = len(code) and code.max() < 1 << 16  # a radix sort: 2 ms, not 20, for 266 k rows
+    order = np.argsort(code.astype("uint16") if small else code, kind="stable")
+    tr, tt = code[order], t[order]
+    if not len(tr):
+        empty = np.zeros(0)
+        names = ("n", "lo", "hi", "first", "last", "steps")
+        return tr, {k: empty for k in names}
+    start = np.flatnonzero(np.r_[True, tr[1:] != tr[:-1]])
+    end = np.r_[start[1:], len(tr)]
+    step = np.r_[np.where(tr[1:] == tr[:-1], np.abs(np.diff(tt)), 0.0), 0.0]
+    return tr[start], {
+        "n": (end - start).astype("int64"),
+        "lo": np.minimum.reduceat(tt, start),
+        "hi": np.maximum.reduceat(tt, start),
+        "first": tt[start],
+        "last": tt[end - 1],
+        "steps": np.add.reduceat(step, start),
+    }
+
+
+class EdgeCarry:
+    """What a read in pieces carries from piece to piece for the edge-row rule, per track
+    (a ``sensor\\x1fbatch`` key; no per-row state): its valid rows' count ``n``, time span
+    ``lo``/``hi``, last time ``last`` in file order and the sum of its steps ``steps``
+    (every |time difference| of consecutive rows in file order, across pieces; all in s).
+    Memory: 5 numbers and a key per track of the file."""
+
+    _FIELDS = ("n", "lo", "hi", "last", "steps")
+
+    def __init__(self) -> None:
+        self.keys = pd.Index([], dtype=object)
+        self.data = {k: np.zeros(0, dtype="int64" if k == "n" else "float64") for k in self._FIELDS}
+
+    def __len__(self) -> int:
+        return len(self.keys)
+
+    def lookup(self, keys: np.ndarray) -> dict[str, np.ndarray]:
+        """For each key: its carried numbers (``n`` 0 and NaN for a track not seen) and
+        ``at`` (its index here, -1 for none)."""
+        at = (
+            self.keys.get_indexer(pd.Index(keys, dtype=object))
+            if len(self.keys)
+            else np.full(len(keys), -1)
+        )
+        seen = at >= 0
+        out: dict[str, np.ndarray] = {"at": at}
+        for k in self._FIELDS:
+            v = np.zeros(len(keys), dtype="int64") if k == "n" else np.full(len(keys), np.nan)
+            v[seen] = self.data[k][at[seen]]
+            out[k] = v
+        return out
+
+    def spans(self, skip: np.ndarray) -> np.ndarray:
+        """[lo, hi] rows (s) of the carried tracks but those at the indices ``skip``."""
+        keep = np.ones(len(self.keys), dtype=bool)
+        keep[skip[skip >= 0]] = False
+        return np.c_[self.data["lo"][keep], self.data["hi"][keep]]
+
+    def add(self, keys: np.ndarray, piece: dict[str, np.ndarray]) -> None:
+        """Merge a piece's :func:`_track_summary` (tracks named by ``keys``) in, the piece
+        coming after those carried (the step from a track's carried last row to its first
+        row in the piece counts)."""
+        if not len(keys):
+            return
+        old = self.lookup(keys)
+        seen = old["at"] >= 0
+        d = self.data
+        at = old["at"][seen]
+        d["n"][at] += piece["n"][seen]
+        d["lo"][at] = np.minimum(d["lo"][at], piece["lo"][seen])
+        d["hi"][at] = np.maximum(d["hi"][at], piece["hi"][seen])
+        d["steps"][at] += piece["steps"][seen] + np.abs(piece["first"][seen] - d["last"][at])
+        d["last"][at] = piece["last"][seen]
+        new = ~seen
+        if new.any():
+            self.keys = self.keys.append(pd.Index(np.asarray(keys, dtype=object)[new]))
+            for k in self._FIELDS:
+                d[k] = np.concatenate([d[k], piece[k][new]])
+
+
 def _edge_times(
     ns: np.ndarray,
     ok: np.ndarray,
     track: np.ndarray,
-    covered: np.ndarray | None = None,
-    first_known: Callable[[np.ndarray], np.ndarray] | None = None,
+    earlier: Callable[[np.ndarray], tuple[dict[str, np.ndarray], np.ndarray]] | None = None,
 ) -> np.ndarray:
     """A track's first or last row (file order, valid rows) with a mistyped date: more
-    than ``limit`` = max(:data:`LONE_MIN_S`, :data:`LONE_RATIO` × the track's median step,
-    its two end steps left out) outside the span of the track's other rows, while no other
-    track of the file covers its time: no other track's span (its rows but such lone edge
-    rows) within :data:`LONE_MIN_S`, nor another track's lone edge row within it. Only
-    tracks of at least 3 valid rows are judged. A real edge row after a day-long gap is
-    kept when the file's other tracks were recorded then; in a one-track file it is
-    quarantined (with its line). ``covered``: more spans (s, [start, end] rows, already
-    widened) that count as other tracks' (the earlier pieces of a read in pieces);
-    ``first_known``: track codes → whether the track began before (its first row here is
-    not its first). Screened in O(n) (each track's first, second, last-but-one and last
-    rows); only the tracks with a candidate are sorted. ``track``: codes; rows with a
-    negative code are not judged."""
+    than ``limit`` = max(:data:`LONE_MIN_S`, :data:`LONE_RATIO` × the track's typical
+    step) outside the span of the track's other rows, while no other track of the file
+    covers its time: no other track's span (its rows but such lone edge rows) within
+    :data:`LONE_MIN_S`, nor another track's lone edge row within it. The typical step of
+    a candidate row: the median of its track's steps without the row's own step. Only
+    tracks of at least 3 valid rows are judged. ``track``: codes; rows with a negative
+    code are not judged.
+
+    ``earlier`` (the last piece of a read in pieces): track codes → what the earlier
+    pieces carried for them (:meth:`EdgeCarry.lookup`: ``n``, ``lo``, ``hi``, ``last``,
+    ``steps``) and the [lo, hi] spans (s) of the earlier tracks not in this piece. A
+    track seen before has its first row here left alone; its last row is judged with its
+    earlier rows' span, and a typical step of max(the median of its steps here, 2 × the
+    mean of its other steps) — at least the median of all its steps (half of a set of
+    steps lie at or above its median, so the median is at most twice the mean), so a read
+    in pieces quarantines no row a whole read keeps. Screened in O(n) (each track's first,
+    second, last-but-one and last rows); only the tracks with a candidate are sorted."""
     n = len(ns)
     out = np.zeros(n, dtype=bool)
     good = np.flatnonzero(np.asarray(ok) & (np.asarray(track) >= 0))
-    if len(good) < 3:
+    if not len(good):
         return out
     code = np.asarray(track)[good].astype("int64")
     size = np.bincount(code)
     t = np.asarray(ns)[good].astype("float64") / 1e9
     far = LONE_MIN_S
+    present = np.flatnonzero(size)
+    prior = {k: np.zeros(len(size)) for k in ("lo", "hi", "last", "steps")}
+    for k in prior:
+        prior[k][:] = np.nan
+    n_prior = np.zeros(len(size), dtype="int64")
+    covered = np.empty((0, 2))
+    if earlier is not None:
+        got, covered = earlier(present)
+        n_prior[present] = got["n"]
+        for k in prior:
+            prior[k][present] = got[k]
+    if len(good) + int(n_prior.sum()) < 3:
+        return out
 
     def first_rows(keep: np.ndarray) -> np.ndarray:
         """Index (in ``good``) of each track's first kept row; -1 for none."""
@@ -667,24 +773,25 @@ def _edge_times(
 
     everyone = np.ones(len(good), dtype=bool)
     first, last = first_rows(everyone), last_rows(everyone)
-    judged = size >= 3
     not_edge = everyone.copy()
     not_edge[first[size > 0]] = False
     second = first_rows(not_edge)
     not_edge = everyone.copy()
     not_edge[last[size > 0]] = False
     before_last = last_rows(not_edge)
-    edge = []
-    for rows, nbs in ((first, second), (last, before_last)):
-        k = np.flatnonzero(judged)
-        k = k[np.abs(t[rows[k]] - t[nbs[k]]) > far]
-        if first_known is not None and rows is first and len(k):
-            k = k[~np.asarray(first_known(k), dtype=bool)]  # began in an earlier piece
-        edge.append(rows[k])
+    # First rows: tracks of >= 3 rows not seen before; last rows: >= 3 rows with the
+    # earlier pieces' (the row next to a last row: its track's row before it here, or
+    # the carried last one).
+    k_first = np.flatnonzero((size >= 3) & (n_prior == 0))
+    k_first = k_first[np.abs(t[first[k_first]] - t[second[k_first]]) > far]
+    k_last = np.flatnonzero((size >= 1) & (size + n_prior >= 3))
+    nb = np.where(size[k_last] >= 2, t[np.maximum(before_last[k_last], 0)], prior["last"][k_last])
+    k_last = k_last[np.abs(t[last[k_last]] - nb) > far]
+    edge = [first[k_first], last[k_last]]
     edge_i = np.concatenate(edge)
     if not len(edge_i):
         return out
-    # Candidates' tracks, in file order within each track: steps, median step, the span
+    # Candidates' tracks, in file order within each track: steps, typical step, the span
     # of the track's other rows.
     cand_tracks = np.unique(code[edge_i])
     rows = np.flatnonzero(np.isin(code, cand_tracks))
@@ -692,37 +799,57 @@ def _edge_times(
     tr, tt = code[rows], t[rows]
     start = np.flatnonzero(np.r_[True, tr[1:] != tr[:-1]])
     end = np.r_[start[1:], len(tr)]
-    step = np.abs(np.diff(tt))
-    inner = np.r_[tr[1:] == tr[:-1]]  # a step within a track
-    # Median step of each track without its first and last steps (an edge typo's own).
-    ends_step = np.zeros(len(step), dtype=bool)
-    ends_step[start[start < len(step)]] = True
-    ends_step[end[end - 2 >= 0] - 2] = True
-    use = inner & ~ends_step
-    st, sv = tr[:-1][use], step[use]
-    o = np.lexsort((sv, st))
-    st, sv = st[o], sv[o]
-    typical = np.zeros(len(size))
-    if len(st):
-        s0 = np.flatnonzero(np.r_[True, st[1:] != st[:-1]])
-        s1 = np.r_[s0[1:], len(st)]
-        typical[st[s0]] = sv[(s0 + s1 - 1) // 2]
-    # Span of each track's rows but its first, and but its last.
-    # (every candidate track has >= 3 rows: its first row stands in for its last one)
-    tail, head_only = tt.copy(), tt.copy()
-    tail[start] = tt[start + 1]
-    head_only[end - 1] = tt[end - 2]
-    lo_tail, hi_tail = np.minimum.reduceat(tail, start), np.maximum.reduceat(tail, start)
-    lo_head = np.minimum.reduceat(head_only, start)
-    hi_head = np.maximum.reduceat(head_only, start)
     n_first = len(edge[0])
     is_first = np.arange(len(edge_i)) < n_first
     which = np.searchsorted(tr[start], code[edge_i])
-    lo = np.where(is_first, lo_tail[which], lo_head[which])
-    hi = np.where(is_first, hi_tail[which], hi_head[which])
-    limit = np.maximum(far, LONE_RATIO * typical[code[edge_i]])
+    # Each track's steps here sorted; a candidate's median without its own step (its
+    # track's first step for a first row, last step for a last row): of the m - 1 other
+    # steps, the lower middle one.
+    step = np.abs(np.diff(tt))
+    inner_at = np.flatnonzero(tr[1:] == tr[:-1])  # step j: between rows j and j + 1
+    st, sv = tr[inner_at], step[inner_at]
+    o = np.lexsort((sv, st))
+    rank = np.empty(len(o), dtype="int64")
+    rank[o] = np.arange(len(o))
+    sorted_v = sv[o]
+    s0 = np.searchsorted(st[o], tr[start], "left")  # each track's first sorted step
+    m = np.searchsorted(st[o], tr[start], "right") - s0  # its steps here
+    step_no = np.full(len(step) + 1, -1, dtype="int64")
+    step_no[inner_at] = np.arange(len(inner_at))
+    own_j = np.where(is_first, start[which], end[which] - 2)  # own step's j (-1: none here)
+    own_j = np.where(m[which] >= 1, own_j, len(step))
+    own_no = step_no[own_j]
+    own_rank = np.r_[rank, -1][np.where(own_no >= 0, own_no, len(rank))]  # in all sorted
+    own_rank = np.where(own_rank >= 0, own_rank - s0[which], -1)  # in its track's
+    others_n = m[which] - (own_rank >= 0)
+    mid = (others_n - 1) // 2
+    idx = s0[which] + mid + ((own_rank >= 0) & (own_rank <= mid))
+    typical = np.zeros(len(edge_i))
+    has = others_n >= 1
+    typical[has] = sorted_v[idx[has]]
+    # A track seen before (last rows only): its other steps' mean, twice, bounds their median.
+    c = code[edge_i]
+    own_here = m[which] >= 1  # the last row's own step lies here, not from the carried row
+    bridge = np.where(own_here, np.abs(tt[start[which]] - prior["last"][c]), 0.0)
+    count = n_prior[c] - 1 + own_here
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = (prior["steps"][c] + bridge) / count
+    typical = np.where((n_prior[c] > 0) & (count >= 1), np.fmax(typical, 2 * mean), typical)
+    # Span of each track's rows but its first, and but its last (with its earlier rows).
+    tail, head_only = tt.copy(), tt.copy()
+    tail[start] = np.nan
+    head_only[end - 1] = np.nan
+    lo = np.where(
+        is_first, np.fmin.reduceat(tail, start)[which], np.fmin.reduceat(head_only, start)[which]
+    )
+    hi = np.where(
+        is_first, np.fmax.reduceat(tail, start)[which], np.fmax.reduceat(head_only, start)[which]
+    )
+    lo, hi = np.fmin(lo, prior["lo"][c]), np.fmax(hi, prior["hi"][c])
+    limit = np.maximum(far, LONE_RATIO * typical)
     te = t[edge_i]
-    alone = (te < lo - limit) | (te > hi + limit)
+    with np.errstate(invalid="ignore"):
+        alone = (te < lo - limit) | (te > hi + limit)
     if not alone.any():
         return out
     # Other tracks: the span of every track of the file within a day, a track's rows
@@ -737,69 +864,64 @@ def _edge_times(
     core[pos] = np.nan
     lo_all[tr[start]] = np.fmin.reduceat(core, start)
     hi_all[tr[start]] = np.fmax.reduceat(core, start)
-    have = size > 0
-    starts = np.sort(lo_all[have] - far)
-    stops = np.sort(hi_all[have] + far)
+    lo_all = np.fmin(lo_all, prior["lo"])  # with the track's earlier rows
+    hi_all = np.fmax(hi_all, prior["hi"])
+    lo_all = np.where(np.isnan(lo_all), np.inf, lo_all)
+    hi_all = np.where(np.isnan(hi_all), -np.inf, hi_all)
+    have = np.isfinite(lo_all) & np.isfinite(hi_all)
+    span_lo = np.r_[lo_all[have], np.asarray(covered, dtype="float64")[:, 0]]
+    span_hi = np.r_[hi_all[have], np.asarray(covered, dtype="float64")[:, 1]]
+    starts = np.sort(span_lo - far)
+    stops = np.sort(span_hi + far)
     spans = np.searchsorted(starts, te, "right") - np.searchsorted(stops, te, "left")
-    own = (te >= lo_all[code[edge_i]] - far) & (te <= hi_all[code[edge_i]] + far)
+    own = (te >= lo_all[c] - far) & (te <= hi_all[c] + far)
     others = spans - own
     lone_t = np.sort(te[alone])
     others += (
         np.searchsorted(lone_t, te + far, "right") - np.searchsorted(lone_t, te - far, "left")
     ) - alone  # itself
-    if covered is not None and len(covered):  # already widened by LONE_MIN_S
-        c = np.asarray(covered, dtype="float64")
-        others += np.searchsorted(np.sort(c[:, 0]), te, "right") - np.searchsorted(
-            np.sort(c[:, 1]), te, "left"
-        )
     out[good[edge_i[alone & (others == 0)]]] = True
     return out
 
 
-_END = object()
+def with_final(
+    items: Iterator[tuple[bytes, int]], has_rows: Callable[[bytes], bool]
+) -> Iterator[tuple[tuple[bytes, int], bool]]:
+    """Each (piece, first line) with whether it is the last piece with rows
+    (``has_rows(piece)``; pieces after it hold only blank lines). Reads ahead to the next
+    piece with rows: holds one piece, and the blank ones after it, until then; a piece
+    handed out is not kept here, so the caller can free it."""
+    pending: list = []
+    for item in items:
+        if has_rows(item[0]) and pending:
+            while pending:
+                yield pending.pop(0), False
+        pending.append(item)
+        del item
+    final = True  # the first held piece with rows is the last one
+    while pending:
+        rows = has_rows(pending[0][0])
+        yield pending.pop(0), final and rows
+        final = final and not rows
+
+
+def blank_bytes(delimiter: str) -> Callable[[bytes], bool]:
+    """``has_rows(piece)`` for :func:`with_final`: whether ``piece`` holds a byte other
+    than blanks, line ends, quotes and ``delimiter`` (a row with a value)."""
+    drop = b' \t\r\n\x0b\x0c"' + delimiter.encode("ascii", "ignore")
+
+    def has_rows(piece: bytes) -> bool:
+        return bool(piece.translate(None, drop))
+
+    return has_rows
 
 
 def edge_state() -> dict:
-    """What a read in pieces carries from piece to piece for the edge-row rule: the
-    tracks seen (``seen``: (sensor, batch) names) and the time their points cover
-    (``covered``: merged [start, end] rows in s, widened by :data:`LONE_MIN_S`). The
-    piece's reader is told ``final`` for the file's last piece."""
-    return {"seen": set(), "covered": np.empty((0, 2)), "final": False}
-
-
-def add_spans(covered: np.ndarray, points: pd.DataFrame) -> np.ndarray:
-    """``covered`` (merged [start, end] rows, s) with the span of each track of
-    ``points`` widened by :data:`LONE_MIN_S`, merged again (memory: a few rows for
-    tracks that overlap in time)."""
-    if not len(points):
-        return covered
-    ns = pd.DatetimeIndex(points["time"]).asi8
-    ts = pd.Series(ns / 1e9, index=points.index)
-    span = ts.groupby([points["sensor"], points["batch"]], observed=True, sort=False).agg(
-        ["min", "max"]
-    )
-    new = np.c_[span["min"].to_numpy() - LONE_MIN_S, span["max"].to_numpy() + LONE_MIN_S]
-    both = np.concatenate([covered, new])
-    both = both[np.argsort(both[:, 0], kind="stable")]
-    reach = np.maximum.accumulate(both[:, 1])
-    begin = np.r_[True, both[1:, 0] > reach[:-1]]
-    first = np.flatnonzero(begin)
-    last = np.r_[first[1:], len(both)] - 1
-    return np.c_[both[first, 0], reach[last]]
-
-
-def with_last(items: Iterator) -> Iterator[tuple[object, bool]]:
-    """Each item with whether it is the last one (one item read ahead; the item handed
-    out is not kept here, so the caller can free it)."""
-    it = iter(items)
-    pending = [next(it, _END)]
-    if pending[0] is _END:
-        return
-    for item in it:
-        pending.append(item)
-        del item
-        yield pending.pop(0), False
-    yield pending.pop(), True
+    """What a read in pieces carries from piece to piece for the edge-row rule: each
+    track's :class:`EdgeCarry` numbers (``carry``, filled by the pieces before the last
+    one with rows). The piece's reader is told ``final`` for the file's last piece with
+    rows (:func:`with_final`), where the rule runs."""
+    return {"carry": EdgeCarry(), "final": False}
 
 
 def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
@@ -1360,36 +1482,34 @@ def _to_canonical(
             "(a mistyped date?)",
         )
         # A track's first or last row: judged by a whole read, and by a read in pieces in
-        # its last piece only (a track's last row there is its last in the file).
+        # its last piece with rows (a track's last row there is its last in the file),
+        # with what the earlier pieces carried of each track (EdgeCarry).
         edges = counted.get("_edges")
-        if edges is None or edges.get("final"):
-            first_known = None
-            if edges is not None and edges.get("seen"):
-                seen = edges["seen"]
-                width = len(text["sensor"].names) + 1 if "sensor" in text else 1
+        valid = np.asarray(time_ok) & (reasons == 0) & ~blank
+        carry = None if edges is None else edges["carry"]
 
-                def first_known(codes: np.ndarray) -> np.ndarray:
-                    b = text["batch"].names[codes // width]
-                    s = text["sensor"].names[codes % width] if "sensor" in text else None
-                    return np.array(
-                        [
-                            (str(s[i]) if s is not None else sensor, str(b[i])) in seen
-                            for i in range(len(codes))
-                        ],
-                        dtype=bool,
-                    )
+        def keys(codes: np.ndarray) -> np.ndarray:
+            width = len(text["sensor"].names) + 1 if "sensor" in text else 1
+            b = text["batch"].names[codes // width]
+            s = text["sensor"].names[codes % width] if "sensor" in text else [sensor] * len(b)
+            return np.array([f"{x}\x1f{y}" for x, y in zip(s, b, strict=True)], dtype=object)
+
+        if edges is None or edges.get("final"):
+            earlier = None
+            if carry is not None and len(carry):
+
+                def earlier(codes: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
+                    got = carry.lookup(keys(codes))
+                    return got, carry.spans(got["at"])
 
             flag(
-                _edge_times(
-                    np.asarray(ns),
-                    np.asarray(time_ok) & (reasons == 0) & ~blank,
-                    track,
-                    None if edges is None else edges.get("covered"),
-                    first_known,
-                ),
+                _edge_times(np.asarray(ns), valid, track, earlier),
                 "time days from the rest of its track, at its start or end, where the file "
                 "has no other track (a mistyped date?)",
             )
+        else:
+            codes, summary = _track_summary(np.asarray(ns), valid, track)
+            carry.add(keys(codes), summary)
 
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
     blanked: dict[str, int] = {}
@@ -1781,7 +1901,6 @@ def stream_points(
     starts, ends = [], []
     time_info: dict = {}
     edges = edge_state()
-    edges["seen"] = pairs  # the tracks of earlier pieces
     size = max(sn.path.stat().st_size, 1)
     consumed = [0]
 
@@ -1855,7 +1974,6 @@ def stream_points(
             pairs.update(zip(keys["sensor"].astype(str), keys["batch"].astype(str), strict=True))
             starts.append(points["time"].min())
             ends.append(points["time"].max())
-            edges["covered"] = add_spans(edges["covered"], points)
             sink(points)
         progress(min(0.95, consumed[0] / size), "importing")
 
@@ -1864,7 +1982,8 @@ def stream_points(
             # Pieces of whole lines, parsed one at a time: memory stays one piece
             # (the streaming reader would read ahead as far as the file goes).
             skip = sn.skip_rows
-            for (piece, first_line), final in with_last(line_pieces(stream)):
+            has_rows = blank_bytes(sn.delimiter)
+            for (piece, first_line), final in with_final(line_pieces(stream), has_rows):
                 consumed[0] += len(piece)
                 table, lines = parse(piece, skip, first_line)
                 if table.num_rows:
