@@ -883,3 +883,23 @@ def test_edge_rule_in_pieces_quarantines_only_what_a_whole_read_does(
     got = import_to_csv(src, tmp_path / "out.csv")
     assert got.report["rows_imported"] + got.report["rows_quarantined"] == len(rows)
     assert set(got.quarantine["line"]) <= set(whole.quarantine["line"])
+
+
+@pytest.mark.parametrize("way", ["streamed", "in pieces"])
+@pytest.mark.parametrize("here", [1, 2])
+def test_a_last_row_typo_with_few_rows_of_its_track_in_the_last_piece(
+    tmp_path, monkeypatch, here, way
+):
+    """A track's last row is judged in the last piece with rows even when only 1 or 2 of
+    its rows are there (the rest carried from the earlier pieces): a 2013 typo in A's last
+    row, after B's rows, is quarantined as the whole read does (before, a track needed 3
+    rows in the last piece)."""
+    rows = [("A", _T0 + k * _M) for k in range(40)] + [("B", _T0 + k * _M) for k in range(40)]
+    if here == 2:
+        rows.append(("A", _T0 + 40 * _M))
+    rows.append(("A", (_T0 + 41 * _M).replace(year=2013)))
+    src = tmp_path / "e.csv"
+    src.write_text("\n".join([HEADER, *_edge_rows(rows, way)]) + "\n")
+    size = _size_with_last(src, here)
+    whole, got = _whole_and_in_pieces(src, tmp_path, monkeypatch, size, way, len(rows))
+    assert whole == got == [len(rows) + 1]
