@@ -1180,11 +1180,43 @@ def margin_test(
     claim_i = np.full(len(seg), np.inf)
     claim_j[pairs.j[chosen]] = cost[chosen]
     claim_i[pairs.i[chosen]] = cost[chosen]
+    bad = np.zeros(len(chosen), dtype=bool)
+    at = np.full(len(seg), -1, dtype=np.int64)
+    c_all = cost[chosen]
+    for own, other, claim in ((pairs.i, pairs.j, claim_j), (pairs.j, pairs.i, claim_i)):
+        mine = own[chosen]
+        if len(np.unique(mine)) < len(mine):  # not one-to-one: every claim row apart
+            return _margin_test_joined(seg, pairs, cost, chosen, margin, claim_i, claim_j)
+        # Every candidate sharing its ``own`` end with a chosen pair (k: that pair).
+        at[mine] = np.arange(len(chosen))
+        k = at[own]
+        at[mine] = -1
+        sel = np.flatnonzero(k >= 0)
+        k = k[sel]
+        r, o, c_r = other[sel], other[chosen[k]], cost[sel]
+        lo = np.maximum(seg.t0[r], seg.t0[o])
+        hi = np.minimum(seg.t1[r], seg.t1[o])
+        rival = (r != o) & (hi >= lo) & (c_r < c_all[k] + margin) & ~(claim[r] < c_r)
+        bad[k[rival]] = True
+    return chosen[~bad]
+
+
+def _margin_test_joined(
+    seg: Segments,
+    pairs: Pairs,
+    cost: np.ndarray,
+    chosen: np.ndarray,
+    margin: float,
+    claim_i: np.ndarray,
+    claim_j: np.ndarray,
+) -> np.ndarray:
+    """:func:`margin_test` for chosen pairs that share an end (not one-to-one): each
+    chosen row is compared with every candidate of its end by a join."""
     ch = pd.DataFrame({"k": chosen, "i": pairs.i[chosen], "j": pairs.j[chosen], "c": cost[chosen]})
     cand = pd.DataFrame({"i": pairs.i, "j": pairs.j, "c": cost})
     bad = np.zeros(len(chosen), dtype=bool)
-    pos = pd.Series(np.arange(len(chosen)), index=chosen)
     for own, other, claim in (("i", "j", claim_j), ("j", "i", claim_i)):
+        ch["row"] = np.arange(len(chosen))
         m = ch.merge(cand, on=own, suffixes=("", "_r"))
         r, o = m[f"{other}_r"].to_numpy(), m[other].to_numpy()
         lo = np.maximum(seg.t0[r], seg.t0[o])
@@ -1195,7 +1227,7 @@ def margin_test(
             & (m["c_r"].to_numpy() < m["c"].to_numpy() + margin)
             & ~(claim[r] < m["c_r"].to_numpy())
         )
-        bad[pos.loc[m["k"].to_numpy()[rival]].to_numpy()] = True
+        bad[m["row"].to_numpy()[rival]] = True
     return chosen[~bad]
 
 

@@ -139,3 +139,34 @@ def test_per_track_summaries_are_computed_once(rerun_scene, monkeypatch):
     monkeypatch.undo()
     again = assoc_mod.pair_features(seg, found.i, found.j)
     _same_pairs(found, again)
+
+
+def test_margin_test_by_index_equals_the_join(rerun_scene):
+    # The one-to-one margin test (arrays indexed by end) keeps exactly the pairs the
+    # join of every chosen pair with its end's candidates keeps, on random costs and
+    # random one-to-one choices, margins from 0.01 to 1.
+    seg = segment_stats(rerun_scene)
+    params = LinkParams()
+    pairs = candidate_pairs(seg, params)
+    rng = np.random.default_rng(11)
+    n = len(seg)
+    for trial in range(6):
+        cost = rng.random(len(pairs)) * 2
+        if trial % 2:
+            cost[rng.random(len(pairs)) < 0.05] = np.inf
+        order = rng.permutation(len(pairs))
+        used_i, used_j, chosen = np.zeros(n, bool), np.zeros(n, bool), []
+        for p in order[: len(pairs) // 2]:  # a greedy one-to-one choice
+            i, j = pairs.i[p], pairs.j[p]
+            if not used_i[i] and not used_j[j]:
+                used_i[i] = used_j[j] = True
+                chosen.append(p)
+        chosen = np.sort(np.array(chosen))
+        margin = [0.01, 0.1, 0.3, 1.0, 0.2, 0.05][trial]
+        claim_i, claim_j = np.full(n, np.inf), np.full(n, np.inf)
+        claim_j[pairs.j[chosen]] = cost[chosen]
+        claim_i[pairs.i[chosen]] = cost[chosen]
+        fast = assoc_mod.margin_test(seg, pairs, cost, chosen, margin)
+        joined = assoc_mod._margin_test_joined(seg, pairs, cost, chosen, margin, claim_i, claim_j)
+        np.testing.assert_array_equal(fast, joined)
+        assert 0 < len(fast) < len(chosen)
