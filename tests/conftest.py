@@ -13,6 +13,21 @@ DATA = Path(__file__).resolve().parent / "data"
 SHARED_REAL = Path(os.environ.get("WAKELINE_SHARED", REPO.parent / "shared")) / "data" / "real"
 
 
+def canvas_rgb(canvas):
+    """A map widget's pixels as an (h, w, 3) uint8 array, every layer painted afresh (not
+    from Qt's item cache)."""
+    import numpy as np
+    from PySide6 import QtGui
+
+    for name in canvas.layer_names():
+        for item in canvas.layer_items(name):
+            item.curve.update()
+    img = canvas.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
+    w, h = img.width(), img.height()
+    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
+    return raw[:, : w * 3].reshape(h, w, 3).copy()
+
+
 def real_file(*parts: str) -> Path:
     """A file of ../shared/data/real; the test is skipped when it is absent."""
     path = SHARED_REAL.joinpath(*parts)

@@ -5,6 +5,7 @@ import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
+from conftest import canvas_rgb  # noqa: E402
 from wakeline.app.bearing_view import (  # noqa: E402
     MAX_LENGTH_M,
     MAX_LINE_COLOURS,
@@ -406,19 +407,6 @@ def test_loading_bearings_raises_the_dock_with_map_and_table_in_view(qtbot, tmp_
     assert rows >= MIN_TABLE_ROWS
     w.runner.cancel()
     w.runner.wait()
-
-
-def canvas_rgb(canvas) -> np.ndarray:
-    """The map widget's pixels as an (h, w, 3) array, every curve painted afresh."""
-    from PySide6 import QtGui
-
-    for name in canvas.layer_names():
-        for item in canvas.layer_items(name):
-            item.curve.update()
-    img = canvas.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
-    w, h = img.width(), img.height()
-    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
-    return raw[:, : w * 3].reshape(h, w, 3).copy()
 
 
 def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):

@@ -8,6 +8,7 @@ import pytest
 pytest.importorskip("pytestqt")
 from PySide6 import QtGui, QtWidgets  # noqa: E402
 
+from conftest import canvas_rgb  # noqa: E402
 from wakeline.app import map_paths  # noqa: E402
 from wakeline.app.map_canvas import MapCanvas, sprite_is_stale  # noqa: E402
 from wakeline.app.map_draw import LayerStyle, prepare_layer  # noqa: E402
@@ -40,17 +41,6 @@ def many_tracks(seed: int, n_tracks: int = 150, n_points: int = 200) -> pd.DataF
         }
     )
     return df.sample(frac=1.0, random_state=seed).reset_index(drop=True)
-
-
-def grab(canvas: MapCanvas) -> np.ndarray:
-    """The widget's pixels, every layer painted afresh (not from Qt's item cache)."""
-    for name in canvas.layer_names():
-        for item in canvas.layer_items(name):
-            item.curve.update()
-    img = canvas.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
-    w, h = img.width(), img.height()
-    raw = np.frombuffer(img.constBits(), dtype=np.uint8).reshape(h, img.bytesPerLine())
-    return raw[:, : w * 3].reshape(h, w, 3).copy()
 
 
 def ink(rgb: np.ndarray) -> np.ndarray:
@@ -110,10 +100,10 @@ def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind, sprite_calls):
     assert data.view is not None
     assert any(c.sprite is not None for c in data.curves)
     sprite_calls.clear()
-    a = grab(with_sprite)
+    a = canvas_rgb(with_sprite)
     assert sprite_calls and all(sprite_calls), "the sprite was not used for the paint"
     stroked = shown(qtbot, df, sprites=False, kind=kind)
-    b = grab(stroked)
+    b = canvas_rgb(stroked)
     ia, ib = ink(a), ink(b)
     assert ib.sum() > 2000  # the scene is drawn at all
     # The same pixels, to within the one-pixel rounding of the image's corner.
@@ -143,7 +133,7 @@ def test_a_pan_beyond_the_sprite_strokes_then_makes_a_new_one(qtbot, sprite_call
     view, size = canvas.current_view(), canvas.plot_size_px()
     assert sprite_is_stale(old, view, size)
     sprite_calls.clear()
-    before = grab(canvas)
+    before = canvas_rgb(canvas)
     assert sprite_calls and not any(sprite_calls)  # the old image does not cover the view
     assert ink(before).sum() > 1000  # but the stroke drew the tracks meanwhile
     canvas.refresh_lod()
@@ -153,7 +143,7 @@ def test_a_pan_beyond_the_sprite_strokes_then_makes_a_new_one(qtbot, sprite_call
     new = canvas.draw_data("L")
     assert not sprite_is_stale(new, canvas.current_view(), canvas.plot_size_px())
     sprite_calls.clear()
-    grab(canvas)
+    canvas_rgb(canvas)
     assert sprite_calls and all(sprite_calls)
 
 
@@ -210,7 +200,7 @@ def test_a_resize_makes_new_sprites_for_the_new_size(qtbot, sprite_calls):
     new = canvas.draw_data("L")
     assert not sprite_is_stale(new, canvas.current_view(), canvas.plot_size_px())
     sprite_calls.clear()
-    grab(canvas)
+    canvas_rgb(canvas)
     assert sprite_calls and all(sprite_calls)
 
 
