@@ -714,9 +714,13 @@ def test_edge_typo_property(tmp_path_factory, tracks, typo, edge_gap_h):
     rows, typo_line = [], None
     for b, (n, step, offset) in enumerate(tracks):
         times = [t0 + pd.Timedelta(seconds=offset + step * k) for k in range(n)]
-        if b == 0:
+        typo_here = typo is not None and typo[0] % len(tracks) == b
+        # A 3-row track's typical step for its first row is its other step: with the
+        # real edge gap there (up to 23 h) a month's typo lies within 100x of it and
+        # stays (the price of keeping 3-row daily tracks, review F1).
+        if b == 0 and not (n == 3 and typo_here and typo[1]):
             times[-1] += pd.Timedelta(hours=edge_gap_h)
-        if typo is not None and typo[0] % len(tracks) == b:
+        if typo_here:
             _, first, unit, off = typo
             i = 0 if first else n - 1
             if unit == "day" and abs(off) < 2:
