@@ -383,22 +383,29 @@ def test_proposal_is_drawn_in_the_colours_the_legend_names(qtbot, tmp_path):
     w.close()
 
 
-@pytest.mark.real
-def test_long_join_on_the_saronic_ais(qtbot, tmp_path):
-    """The Saronic Gulf AIS cut at its 600 s gaps (one sensor, S1), Run ▸ Associate: the
-    long join S1:103 → S1:88 (3,226 s) under review is drawn in the colours the legend
-    names, over the muted layers. ``WAKELINE_SHOTS=docs`` writes docs/review-long-gap.png."""
+def _saronic_cut_window(qtbot, tmp_path) -> tuple[MainWindow, str]:
+    """A window with the Saronic Gulf AIS (S1) cut at its 600 s gaps loaded and selected;
+    the layer's id."""
     from wakeline.core.evaluate_association import cut_at_gaps
 
-    df = saronic_points("S1")
     path = tmp_path / "greece_cut.csv"
-    write_points(cut_at_gaps(df, min_gap_s=600.0).drop(columns="truth"), path)
+    write_points(cut_at_gaps(saronic_points("S1"), min_gap_s=600.0).drop(columns="truth"), path)
     w = _window(qtbot, tmp_path)
     w.load_files([path])
     _settle(w)
     src = w.layer_id(path.name)
     w.select_layer(src)
     _settle(w)
+    return w, src
+
+
+@pytest.mark.real
+def test_long_join_on_the_saronic_ais(qtbot, tmp_path):
+    """The Saronic Gulf AIS cut at its 600 s gaps (one sensor, S1), Run ▸ Associate: the
+    long join S1:103 → S1:88 (3,226 s) under review is drawn in the colours the legend
+    names, over the muted layers. ``WAKELINE_SHOTS=docs`` writes docs/review-long-gap.png."""
+
+    w, src = _saronic_cut_window(qtbot, tmp_path)
     w.run_step("associate")
     _settle(w)
     assoc = w.session.find(src, "associate")
@@ -440,7 +447,6 @@ def test_review_redraw_on_the_saronic_association_keeps_within_budget(qtbot, tmp
     import time
 
     from wakeline.app.review_dock import ReviewDock
-    from wakeline.core.evaluate_association import cut_at_gaps
 
     times: dict[str, list[float]] = {}
     for name in ("show_proposal", "_draw_proposal", "_draw_views", "_next_bind_step"):
@@ -461,14 +467,7 @@ def test_review_redraw_on_the_saronic_association_keeps_within_budget(qtbot, tmp
         "addItem",
         lambda self, *a, **k: (added.append(self), add_item(self, *a, **k))[1],
     )
-    path = tmp_path / "greece_cut.csv"
-    write_points(cut_at_gaps(saronic_points("S1"), min_gap_s=600.0).drop(columns="truth"), path)
-    w = _window(qtbot, tmp_path)
-    w.load_files([path])
-    _settle(w)
-    src = w.layer_id(path.name)
-    w.select_layer(src)
-    _settle(w)
+    w, src = _saronic_cut_window(qtbot, tmp_path)
     gc.collect()
     gc.disable()
     try:
