@@ -95,6 +95,75 @@ def test_index_over_two_layers_and_window_rows():
     assert PlaybackParams(speed=0.0).problems()
 
 
+def _index_by_repeat(parts):
+    """build_index's arrays as the plain ``np.repeat`` formulation gives them."""
+    ts, lons, lats, ss, es, off = [], [], [], [], [], 0
+    for t, lon, lat, s, e in parts:
+        ok = e > s
+        ts.append(t), lons.append(lon), lats.append(lat)
+        ss.append(s[ok] + off), es.append(e[ok] + off)
+        off += len(t)
+    s, e = np.concatenate(ss), np.concatenate(es)
+    sizes = e - s
+    first = np.cumsum(sizes) - sizes
+    rows = np.repeat(s, sizes) + (np.arange(int(sizes.sum())) - np.repeat(first, sizes))
+    t = np.concatenate(ts)[rows]
+    t_min = t[first].min()
+    span = t[first + sizes - 1].max() - t_min + 1.0
+    key = np.repeat(np.arange(len(s)), sizes) * span + (t - t_min)
+    return t, np.concatenate(lons)[rows], np.concatenate(lats)[rows], first, key
+
+
+@given(
+    layers=st.lists(
+        st.tuples(
+            st.lists(st.integers(0, 5), min_size=1, max_size=6),  # track sizes (0: empty)
+            st.integers(0, 3),  # points before the first track
+            st.integers(0, 3),  # gap between tracks
+            st.integers(0, 3),  # points after the last
+        ),
+        min_size=1,
+        max_size=3,
+    ),
+    seed=st.integers(0, 10_000),
+)
+def test_index_rows_and_keys_equal_the_repeat_formulation(layers, seed):
+    """The per-point track numbers and row gathers made without ``np.repeat`` (it held
+    the GIL at a million points) are the same, with empty tracks, gaps and loose points."""
+    rng = np.random.default_rng(seed)
+    parts = []
+    for sizes, lead, gap, tail in layers:
+        starts, ends, at = [], [], lead
+        for n in sizes:
+            starts.append(at), ends.append(at + n)
+            at += n + gap
+        n = at + tail
+        t = np.sort(rng.random(n) * 1000.0)
+        parts.append((t, rng.random(n), rng.random(n), np.array(starts), np.array(ends)))
+    if not any(len(p[3]) and (p[4] > p[3]).any() for p in parts):
+        return
+    ix = build_index(parts)
+    t, lon, lat, first, key = _index_by_repeat(parts)
+    for got, want in ((ix.time_s, t), (ix.lon, lon), (ix.lat, lat), (ix.starts, first)):
+        np.testing.assert_array_equal(got, want)
+    np.testing.assert_array_equal(ix.key, key)
+
+
+def test_index_at_a_million_points_makes_no_repeat(monkeypatch):
+    """``np.repeat`` holds the GIL while it fills its output: at a million points its
+    fresh pages took 50–120 ms on the shared test machine, and the GUI thread stopped
+    meanwhile (the index is rebuilt in a worker right after an Open project)."""
+    n, ntr = 1_000_000, 10_000
+    starts = np.arange(ntr) * (n // ntr)
+    t = np.tile(np.arange(n // ntr, dtype=float), ntr)
+    lon = np.linspace(0.0, 1.0, n)
+    ends = starts + n // ntr
+    monkeypatch.setattr(np, "repeat", lambda *a, **k: pytest.fail("np.repeat called"))
+    ix = build_index([(t, lon, lon, starts, ends), (t, lon, lon, starts + 1, ends - 1)])
+    assert ix.n_tracks == 2 * ntr and len(ix.key) == 2 * n - 2 * ntr
+    assert np.all(np.diff(ix.key) > 0)
+
+
 # -- GUI -------------------------------------------------------------------------------
 
 pytestqt = pytest.importorskip("pytestqt")
