@@ -100,8 +100,11 @@ def _index_by_repeat(parts):
     ts, lons, lats, ss, es, off = [], [], [], [], [], 0
     for t, lon, lat, s, e in parts:
         ok = e > s
-        ts.append(t), lons.append(lon), lats.append(lat)
-        ss.append(s[ok] + off), es.append(e[ok] + off)
+        ts.append(t)
+        lons.append(lon)
+        lats.append(lat)
+        ss.append(s[ok] + off)
+        es.append(e[ok] + off)
         off += len(t)
     s, e = np.concatenate(ss), np.concatenate(es)
     sizes = e - s
@@ -135,7 +138,8 @@ def test_index_rows_and_keys_equal_the_repeat_formulation(layers, seed):
     for sizes, lead, gap, tail in layers:
         starts, ends, at = [], [], lead
         for n in sizes:
-            starts.append(at), ends.append(at + n)
+            starts.append(at)
+            ends.append(at + n)
             at += n + gap
         n = at + tail
         t = np.sort(rng.random(n) * 1000.0)
