@@ -18,6 +18,7 @@ end to end slower than 0.25 m/s) from that end's mean position; the evidence for
 """
 
 import argparse
+import os
 from pathlib import Path
 
 import numpy as np
@@ -94,7 +95,11 @@ def harbour(
     return pd.concat([still, moving[still.columns]], ignore_index=True)
 
 
-SARONIC = Path(__file__).resolve().parents[2] / "shared/data/real/greece-ais-annotated/vessels.csv"
+#: ../shared, or $WAKELINE_SHARED (as the tests read it)
+SARONIC = (
+    Path(os.environ.get("WAKELINE_SHARED", Path(__file__).resolve().parents[2] / "shared"))
+    / "data/real/greece-ais-annotated/vessels.csv"
+)
 
 
 def wander(path: Path = SARONIC, n: int = 10) -> None:
