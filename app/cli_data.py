@@ -80,7 +80,12 @@ def nothing_imported(rep: dict) -> str:
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from wakeline.core import simulate
+    from wakeline.core.errors import InputError
     from wakeline.core.io import write_points
+
+    if args.hard and args.kind not in ("segments", "multisensor"):
+        # refused rather than ignored: the file would be the easy scene under a hard name
+        raise InputError(f"--hard applies to segments and multisensor, not to {args.kind}")
 
     if args.kind == "bearing":
         from wakeline.core.bearing_eval import simulate_table

@@ -35,8 +35,16 @@ def _maneuver_params(args: argparse.Namespace):
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
 
+    from wakeline.core.errors import InputError
     from wakeline.core.evaluate import evaluate_maneuver
     from wakeline.core.io import write_csv
+
+    # refused rather than ignored: the table printed would not be the one asked for
+    if args.hard and (args.kind not in ("associate", "fuse") or args.real):
+        where = "--real" if args.real else args.kind
+        raise InputError(f"--hard applies to the simulated associate and fuse scenes, not {where}")
+    if args.real and args.kind not in ("associate", "maneuver"):
+        raise InputError(f"--real applies to associate and maneuver, not to {args.kind}")
 
     if args.kind == "fuse":
         from wakeline.core.evaluate_association import evaluate_fusion
@@ -54,7 +62,6 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         return 0
 
     if args.kind == "associate" and args.real:
-        from wakeline.core.errors import InputError
         from wakeline.core.evaluate_association import evaluate_real_association
 
         if args.gaps_every is not None and args.gaps is None:

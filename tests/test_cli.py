@@ -169,3 +169,24 @@ def test_step_reports_say_where_every_input_row_went(step, tmp_path, capsys):
     allbad.write_text("sensor,batch,time,lon,lat\n" + "\n".join(bad) + "\n")
     assert main(["export", str(allbad), "-o", str(tmp_path / "e.csv")]) == 2
     assert "no usable points" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["evaluate", "maneuver", "--hard", "--tracks", "1"], "--hard applies"),
+        (["evaluate", "bearing", "--hard"], "--hard applies"),
+        (["evaluate", "associate", "--real", "x.csv", "--hard"], "not --real"),
+        (["evaluate", "fuse", "--real", "x.csv"], "--real applies"),
+        (["evaluate", "bearing", "--real", "x.csv"], "--real applies"),
+        (["simulate", "maneuver", "--hard", "-o", "x.csv"], "--hard applies"),
+        (["simulate", "demo", "--hard", "-o", "x.csv"], "--hard applies"),
+    ],
+)
+def test_flags_that_do_not_apply_are_refused_not_ignored(argv, message, tmp_path, capsys):
+    """`evaluate maneuver --hard` printed the easy seed 000 table and `simulate maneuver
+    --hard` wrote the easy scene: a flag that does not apply is refused (exit 2)."""
+    argv = [str(tmp_path / a) if a == "x.csv" else a for a in argv]
+    assert main(argv) == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "x.csv").exists()
