@@ -324,7 +324,9 @@ def register(sub) -> None:
         help="score on a real set instead. maneuver: a folder of shared/data/real "
         "(autoferry-fusion, greece-ais-annotated, dma-single-ship, oresund-encounters); "
         "associate: a file, or every .csv/.csv.gz in DIR (each track's id is the truth; "
-        "tracks are cut at their gaps, pieces renumbered)",
+        "tracks are cut at their gaps, pieces renumbered); one of those four folders is "
+        "read as one scene by its own reader (autoferry-fusion: the radar tracks, "
+        "1.7 s, e.g. with --cut-s 5)",
     )
     p.add_argument(
         "--scenes",

@@ -717,6 +717,32 @@ def error_breakdown(assoc, params: LinkParams | None = None) -> dict:
     return counts
 
 
+@dataclass(frozen=True)
+class _KnownSet:
+    """A folder of ``shared/data/real`` that :func:`real_sets.recognise` knows."""
+
+    folder: object
+    name: str  # the folder's name, the scene's label in the table
+
+
+def _known_set(path) -> "_KnownSet | None":
+    """The recognised real set in the folder ``path`` (Saronic, DMA, Øresund, Autoferry),
+    or None (a file, or a folder of track files such as MTAD's scenes)."""
+    from pathlib import Path
+
+    from wakeline.core import real_sets
+    from wakeline.core.errors import InputError
+
+    p = Path(path)
+    if not p.is_dir():
+        return None
+    try:
+        real_sets.recognise(p)
+    except InputError:
+        return None
+    return _KnownSet(p, p.name)
+
+
 def evaluate_real_association(
     path,
     cut_s: float = 120.0,
@@ -743,17 +769,27 @@ def evaluate_real_association(
     With ``gaps`` (lo, hi) in s, each track instead loses one window of fixes of a known
     length (:func:`cut_known_gaps`) and its own gaps stay inside its pieces; with
     ``gaps_every`` one such window in every ``gaps_every`` s of each track.
+
+    A folder that :func:`real_sets.recognise` knows (Saronic, DMA, Øresund, Autoferry) is
+    one scene read by :func:`real_sets.association_tracks` instead of file by file (its
+    other files are annotations, third-party simplifications or radar plots, not tracks).
     """
+    from wakeline.core import real_sets
     from wakeline.core.errors import InputError
     from wakeline.core.io import read_points
 
     progress = progress or null_progress
-    files = real_files(path)
+    known = _known_set(path)  # a folder of shared/data/real: its own reader, one scene
+    files = [known] if known is not None else real_files(path)
     rows, skipped = [], []
     for n, f in enumerate(files):
         progress(n / len(files), f.name)
         try:
-            df = read_points(f, mapping=mapping).points
+            df = (
+                real_sets.association_tracks(f.folder)
+                if f is known
+                else read_points(f, mapping=mapping).points
+            )
         except InputError as e:
             skipped.append((f.name, str(e)))
             continue

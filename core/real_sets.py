@@ -194,6 +194,27 @@ def _ned_points(df: pd.DataFrame, sensor: str) -> pd.DataFrame:
     )
 
 
+def association_tracks(folder: Path) -> pd.DataFrame:
+    """The tracks of a recognised real set (:func:`recognise`) for ``evaluate associate
+    --real DIR``, each batch one ship's track (its id the truth): Saronic ``vessels.csv``,
+    the DMA ship's ``sample_ship.csv`` (not the third-party ``processed_*.csv``
+    simplifications beside it), the Øresund encounters a day apart (:func:`oresund_cut`'s
+    clock; a ship of two encounters is two tracks), and Autoferry's exclusive radar tracks
+    (:func:`read_autoferry`: the plots within 15 m of a target's GNSS position; batch
+    ``scenario/target``) with each scenario two days from the next, so no join can cross
+    scenarios — the radar's own gaps, not its clutter, are the test."""
+    name = recognise(folder)
+    if name == "autoferry":
+        pts, _ = read_autoferry(Path(folder), exclusive=True)
+        scenario = pts["batch"].str.split("/").str[0].astype(int)
+        return pts.assign(time=pts["time"] + pd.to_timedelta(scenario * 2 * 86400, unit="s"))
+    if name == "oresund":
+        pts = read_oresund(Path(folder)).drop(columns="role")
+        enc = pts["batch"].str.split("/").str[0].astype(int)
+        return pts.assign(time=pts["time"] + pd.to_timedelta(enc * 86400, unit="s"))
+    return {"greece": read_greece, "dma": read_dma}[name](Path(folder))
+
+
 def recognise(folder: Path) -> str:
     """Which real set a folder holds: greece, dma, oresund or autoferry."""
     folder = Path(folder)
