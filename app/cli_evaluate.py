@@ -121,6 +121,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             args.real,
             _maneuver_params(args),
             progress=_progress,
+            mapping=args.map,
         )
         print(ev.format())
         if args.csv:
@@ -322,7 +323,9 @@ def register(sub) -> None:
         type=Path,
         metavar="DIR",
         help="score on a real set instead. maneuver: a folder of shared/data/real "
-        "(autoferry-fusion, greece-ais-annotated, dma-single-ship, oresund-encounters); "
+        "(autoferry-fusion, greece-ais-annotated, dma-single-ship, oresund-encounters), or "
+        "any file or folder of track files (no turn truth: slow share, at-rest spans, "
+        "compression against Douglas-Peucker; --map as in import); "
         "associate: a file, or every .csv/.csv.gz in DIR (each track's id is the truth; "
         "tracks are cut at their gaps, pieces renumbered); one of those four folders is "
         "read as one scene by its own reader (autoferry-fusion: the radar tracks, "
@@ -398,7 +401,7 @@ def register(sub) -> None:
         "--map",
         action="append",
         metavar="FIELD=COLUMN",
-        help="associate --real: map a canonical field to a column of the files (as in import)",
+        help="--real: map a canonical field to a column of the files (as in import)",
     )
     _add_detector_options(p)
     _add_bearing_options(p)

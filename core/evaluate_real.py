@@ -25,6 +25,9 @@ What each set can say:
   maneuver by role.
 - every set: the compressor's points kept and Dis_e against Douglas–Peucker's points kept
   at the same Dis_e (tolerance found by bisection).
+- any other file, or folder of track files (MTAD scenes, ATD): read as ``wakeline import``
+  reads them (``mapping`` as ``--map``), the tracks of several files kept apart; the slow
+  share, the at-rest spans and the compression against Douglas–Peucker (no turn truth).
 """
 
 from dataclasses import dataclass
@@ -41,6 +44,7 @@ from wakeline.core.compress import (
     douglas_peucker_mask,
     turning_keep,
 )
+from wakeline.core.errors import InputError
 from wakeline.core.maneuver import ManeuverParams, detect
 from wakeline.core.schema import time_seconds
 from wakeline.core.tracks import local_xy, sorted_with_index, track_seconds
@@ -282,6 +286,22 @@ def _split_rows(
     return out
 
 
+def _track_files(path: Path, mapping: list[str] | None) -> pd.DataFrame:
+    """The tracks of a file, or of every .csv / .csv.gz in a folder, as import reads them;
+    with several files each batch is prefixed by its file's name (MTAD scenes reuse ids)."""
+    from wakeline.core.evaluate_association import real_files
+    from wakeline.core.io import read_points
+
+    files = real_files(path)
+    frames = []
+    for f in files:
+        df = read_points(f, mapping=mapping).points
+        if len(files) > 1:
+            df = df.assign(batch=f.name + ":" + df["batch"].astype(str))
+        frames.append(df)
+    return pd.concat(frames, ignore_index=True)
+
+
 def evaluate_real(
     folder: str | Path,
     params: ManeuverParams | None = None,
@@ -290,21 +310,29 @@ def evaluate_real(
     exclusive: bool = True,
     fault_m: float = 0.5,
     fault_margin_s: float = 2.0,
+    mapping: list[str] | None = None,
 ) -> RealEvaluation:
     """Score maneuver detection and compression on a real set (see the module docstring),
     with ``params`` (default: ours) and with seed 000's detector as written. Autoferry:
     ``exclusive`` radar tracks (a plot serves one target at most, see
     :func:`real_sets.read_autoferry`), and the turn scores also per scenario split; turns
     within ``fault_margin_s`` (the truth course's 2 s baseline) of a GNSS jump larger than
-    ``fault_m`` are not scored for recall (:func:`gnss_faults`; ``fault_m = inf``: all)."""
+    ``fault_m`` are not scored for recall (:func:`gnss_faults`; ``fault_m = inf``: all).
+    Any other file or folder of track files is read as import reads it (``mapping``: its
+    ``--map`` entries) and scored without truth: slow share, at-rest spans, compression."""
     folder = Path(folder)
-    name = real_sets.recognise(folder)
+    try:
+        name = real_sets.recognise(folder)
+    except InputError:
+        name = None  # a file or a folder of track files: positions only
     params = (params or ManeuverParams()).checked()
     truth = None
     split_rows: list = []
     if name == "autoferry":
         points, truth = real_sets.read_autoferry(folder, exclusive=exclusive)
         faults = gnss_faults(truth, fault_m)
+    elif name is None:
+        points = _track_files(folder, mapping)
     else:
         points = {
             "greece": real_sets.read_greece,
@@ -318,7 +346,7 @@ def evaluate_real(
     rows = []
     for k, (label, (mp, cp)) in enumerate(methods.items()):
         if progress:
-            progress(k / len(methods), f"{name}: {label}")
+            progress(k / len(methods), f"{name or folder.name}: {label}")
         res = detect(points, mp)
         row: dict = {"method": label, "points": int(len(res.points))}
         is_m = res.is_maneuver
@@ -343,11 +371,11 @@ def evaluate_real(
             {key: comp[key] for key in ("ours_kept", "ours_dis_e_m", "dp_kept", "dp_dis_e_m")}
         )
         rows.append(row)
-    if name in ("greece", "dma"):
+    if name not in ("autoferry", "oresund"):  # AIS (or unknown) with moored spells
         rep = clean(points).report
         rest = rep["rules"]["stationary"]
         for row in rows:
             row["at_rest_spans"] = rest.get("spans", 0)
     if progress:
         progress(1.0, "done")
-    return RealEvaluation(name, folder, pd.DataFrame(rows + split_rows))
+    return RealEvaluation(name or folder.name, folder, pd.DataFrame(rows + split_rows))

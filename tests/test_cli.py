@@ -117,8 +117,9 @@ def test_evaluate_maneuver_on_a_real_folder(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "oresund" in text and "GW_with_turn" in text
     assert set(pd.read_csv(out)["method"]) == {"ours", "paper"}
-    assert main(["evaluate", "maneuver", "--real", str(tmp_path)]) == 2
-    assert "no known real set" in capsys.readouterr().err
+    (tmp_path / "empty").mkdir()
+    assert main(["evaluate", "maneuver", "--real", str(tmp_path / "empty")]) == 2
+    assert "no .csv or .csv.gz files" in capsys.readouterr().err
 
 
 def test_every_step_reads_a_headerless_file_with_map(tmp_path, capsys):

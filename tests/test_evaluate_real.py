@@ -55,3 +55,25 @@ def test_a_real_turn_with_sound_gnss_is_scored():
     assert len(turns) == 1 and 35 <= turns["change_deg"].iloc[0] <= 45
     assert gnss_faults(truth).empty
     assert len(sound_turns(turns, gnss_faults(truth), 2.0)) == 1
+
+
+def test_any_track_file_or_folder_is_scored_without_turn_truth(tmp_path):
+    """`evaluate maneuver --real` took only the four sets it knows ("no known real set" on
+    MTAD's scenes or an ATD file); any track file or folder of them now gets the scores that
+    need no truth. Two files reusing the same batch ids stay two tracks each."""
+    from wakeline.core import simulate
+    from wakeline.core.evaluate_real import evaluate_real
+    from wakeline.core.io import write_points
+
+    scene = simulate.segments_scene(seed=2, n_ships=3, area_km=10.0)
+    (tmp_path / "sets").mkdir()
+    for k in range(2):
+        write_points(scene, tmp_path / "sets" / f"scene-{k}.csv")
+    one = evaluate_real(tmp_path / "sets" / "scene-0.csv").rows.set_index("method")
+    both = evaluate_real(tmp_path / "sets").rows.set_index("method")
+    assert set(one.index) == {"ours", "paper"}
+    assert both.loc["ours", "points"] == 2 * one.loc["ours", "points"]
+    assert both.loc["ours", "maneuvers"] == 2 * one.loc["ours", "maneuvers"]
+    for col in ("slow_share", "ours_kept", "dp_kept", "at_rest_spans"):
+        assert col in one.columns
+    assert one.loc["ours", "ours_kept"] <= one.loc["ours", "points"]
