@@ -224,6 +224,14 @@ class IsolatedParams(Params):
     iqr_factor: float = param(
         1.5, "", "a step is an outlier above Q3 + f * IQR", lo=0, hi=100, source="seed 003 §2.2"
     )
+    bridge: bool = param(
+        True,
+        "",
+        "a point is isolated only if the step over it is no longer than two ordinary steps "
+        "(the upper fence): a ship sailing between stops keeps its points (ours); false: "
+        "both steps outliers is enough (seed 003's plain box plot)",
+        source="ours",
+    )
 
 
 @dataclass(frozen=True)
@@ -886,7 +894,10 @@ def _clean_block(
         r_next = np.append(rows[1:], rows[-1])
         bridge, _ = geo.short_legs(lon[r_prev], lat[r_prev], lon[r_next], lat[r_next])
         mask = np.zeros(n, dtype=bool)
-        mask[rows[out_in & out_out & ~first & ~last & (bridge <= 2.0 * upper)]] = True
+        isolated = out_in & out_out & ~first & ~last
+        if params.isolated.bridge:
+            isolated &= bridge <= 2.0 * upper
+        mask[rows[isolated]] = True
         removed_by["isolated"] = mask
         alive &= ~mask
 

@@ -87,6 +87,20 @@ class BsplineParams(Params):
     v_max_kn: float = param(
         30.0, "kn", "interpolate only where the implied speed is below this", lo=0.1, hi=200
     )
+    jump_per_interval: bool = param(
+        True,
+        "",
+        "Δd applies per sampling interval: a leg across k intervals (a missed detection) is "
+        "a jump only beyond k·Δd (ours); false: every leg longer than Δd is a jump (seed 001)",
+        source="ours",
+    )
+    judge_after_jump: bool = param(
+        False,
+        "",
+        "judge the turn right after a jump like any other (seed 001); false: a turn out of a "
+        "jump is not judged (ours: its course is the jump's, not the ship's)",
+        source="ours",
+    )
 
 
 def _new_ids(start: int, n: int) -> np.ndarray:
@@ -242,7 +256,11 @@ def bspline_segments(points: pd.DataFrame, params: BsplineParams, next_id: int =
     # had no gaps inside a batch).
     leg_dt = np.full(m, np.nan)
     leg_dt[1:] = ts[1:] - ts[:-1]
-    allowed = params.split_distance_m * np.maximum(1.0, np.nan_to_num(leg_dt) / params.sample_s)
+    allowed = params.split_distance_m * (
+        np.maximum(1.0, np.nan_to_num(leg_dt) / params.sample_s)
+        if params.jump_per_interval
+        else 1.0
+    )
     jump = np.nan_to_num(dist) > allowed
     # turn between the leg into the previous point and the leg into this one
     turn = np.full(m, np.nan)
@@ -250,7 +268,8 @@ def bspline_segments(points: pd.DataFrame, params: BsplineParams, next_id: int =
         turn[1:] = geo.angle_diff(course[1:], course[:-1])
     turn[first] = np.nan
     turn[np.append(False, first[:-1])] = np.nan
-    turn[np.append(False, jump[:-1])] = np.nan  # a turn out of a jump means nothing
+    if not params.judge_after_jump:
+        turn[np.append(False, jump[:-1])] = np.nan  # a turn out of a jump means nothing
     abnormal = np.nan_to_num(turn) > params.split_angle_deg
     judged = np.isfinite(turn)
     ratio = np.bincount(s_track, abnormal, minlength=index.n_tracks) / np.maximum(

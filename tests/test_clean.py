@@ -355,3 +355,19 @@ def test_a_ship_moored_all_capture_keeps_its_span_ends():
     paper = clean(df, CleanParams().with_settings(["short_tracks.count_at_rest=false"]))
     assert len(paper.points) == 0
     assert len(paper.points) + len(paper.rejected.query("action == 'removed'")) == len(df)
+
+
+def test_isolated_bridge_keeps_a_leg_between_stops_and_the_paper_rule_does_not():
+    # moored 30 fixes (5 m jitter), a 6-fix leg of 500 m steps, moored again: the leg's
+    # steps are box-plot outliers, but skipping a leg point doubles the step (not isolated)
+    rng = np.random.default_rng(3)
+    at_rest = rng.normal(0, 5, (30, 2))
+    leg = np.column_stack([np.arange(1, 7) * 500.0, np.zeros(6)])
+    xy = np.vstack([at_rest, leg, at_rest + [3500.0, 0.0]])
+    lon, lat = geo.from_local(xy[:, 0], xy[:, 1], np.full(len(xy), 122.0), np.full(len(xy), 30.0))
+    df = straight(len(xy)).assign(lon=lon, lat=lat)
+    base = ["stationary.enabled=false", "speed.enabled=false", "turn.enabled=false"]
+    ours = clean(df, CleanParams().with_settings(base))
+    assert removed(ours, "isolated") == []
+    paper = clean(df, CleanParams().with_settings([*base, "isolated.bridge=false"]))
+    assert set(range(31, 36)) <= set(removed(paper, "isolated"))  # the leg's inner points

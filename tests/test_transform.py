@@ -171,3 +171,26 @@ def test_points_a_transform_makes_get_their_tracks_speed_and_course(step):
     assert len(out) > 10
     assert out["speed"].between(11.0, 13.0).mean() > 0.9
     assert np.isfinite(out["course"]).all()
+
+
+def test_bspline_delta_d_per_interval_and_the_papers_way():
+    # 20 kn, 10 s fixes, Δt 21 s: ordinary sampled legs ~216 m; a 70 s silence makes one
+    # leg of ~720 m > Δd = 450 m, which is a jump only under the paper's rule
+    df = straight(60, speed_kn=20.0, period_s=10.0).drop(index=range(20, 26))
+    ours = bspline_segments(df, BsplineParams(enabled=True, sample_s=21.0))
+    assert ours.batch.unique().tolist() == ["1"]
+    paper = bspline_segments(
+        df, BsplineParams(enabled=True, sample_s=21.0, jump_per_interval=False)
+    )
+    assert paper.batch.unique().tolist() == ["1/1", "1/2"]
+
+
+def test_bspline_judges_the_turn_after_a_jump_only_the_papers_way():
+    # a 3 km jump south off a course of 60°: the leg out of it turns ~120° against the
+    # jump's course; only the paper's rule splits there too (a one-fix segment)
+    df = straight(60, speed_kn=12.0, period_s=10.0)
+    df.loc[30:, "lat"] = df.loc[30:, "lat"] - 0.03
+    ours = BsplineParams(enabled=True, sample_s=21.0, quality_ratio=1.0)  # multi-target rule
+    paper = BsplineParams(enabled=True, sample_s=21.0, quality_ratio=1.0, judge_after_jump=True)
+    assert bspline_segments(df, ours).batch.nunique() == 2  # the jump alone splits
+    assert bspline_segments(df, paper).batch.nunique() == 3  # and the turn out of it too
