@@ -18,7 +18,10 @@ time, and a long leg in no time is a jump the map otherwise breaks (nothing draw
 
 :func:`bearing_scene` prepares those layers and the view that frames them (pure, for the
 window's worker); :func:`main_map_layers` makes copies of them for the main map, which
-otherwise sat at empty 0–1° axes when only a bearing file was loaded.
+otherwise sat at empty 0–1° axes when only a bearing file was loaded. On the main window a
+bearing file is a session layer of kind ``bearing`` (in the Layers list, saved in the
+project, cut by the time window); :func:`bearing_layer_view` is the view the window keeps
+of it.
 """
 
 import dataclasses
@@ -34,12 +37,13 @@ from wakeline.core.bearing import report_lines
 from wakeline.core.io import write_csv
 from wakeline.core.schema import time_seconds
 
-from .layer_view import shown_range
+from .layer_view import LayerView, shown_range
 from .map_canvas import MapCanvas
 from .map_colors import BATCH_PALETTE
 from .map_draw import DrawData, LayerStyle, layer_geometry, prepare_layer, relod
 from .map_legend import LABEL_PADDING_PX, short_label
 from .map_paths import with_paths
+from .models import batch_summary, display_text
 
 #: Smallest width (px) of the map's plot area: the map widget's minimum is this plus its
 #: latitude axis and legend column (a dock had given the map ~200 px and its plot ~40 px).
@@ -82,9 +86,11 @@ TRUTH_COLUMNS = ("true_lon", "true_lat")
 FIT_MARGIN, MIN_PAD_M = 0.06, 20.0
 #: Rows of the detections table kept visible under the map in a narrow dock.
 MIN_TABLE_ROWS = 3
-#: The bearing layers on the main map: names (apart from the session's layer ids) and
-#: legend labels start with this.
-MAIN_PREFIX = "bearings · "
+#: The parts of a bearing layer on the main map (the scene's layers, in this order): the
+#: map names them ``<layer id>/<part>`` and the legend ``<layer name> · <label>``.
+PARTS = ("observer", "lines", "maneuvers")
+#: Columns of an empty points table (a bearing layer has no tracks in the batch table).
+EMPTY_POINTS = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
 
 
 def _finite_range_m(bearings: pd.DataFrame) -> np.ndarray:
@@ -346,22 +352,80 @@ def main_map_layers(
     view: tuple[float, float, float, float] | None = None,
     size_px: tuple[int, int] | None = None,
     lat0: float | None = None,
+    shown: tuple[float, float, float, float] | None = None,
 ) -> list[DrawData]:
-    """The scene's layers for the main map: named and labelled with :data:`MAIN_PREFIX`
-    (apart from the session's layers) and, with ``view`` (x0, x1, y0, y1, degrees; the
-    range asked for) and ``size_px``, decimated and stroked for the view the map will
-    show at the aspect of ``lat0`` (None: the scene's) — pure, for a worker."""
-    shown = None
-    if view is not None and size_px is not None:
+    """The scene's layers for the main map, named by their part (:data:`PARTS`; the
+    window names them ``<layer id>/<part>``, :func:`~wakeline.app.layer_view.map_layers`)
+    and, with ``view`` (x0, x1, y0, y1, degrees; the range asked for) and ``size_px``,
+    decimated and stroked for the view the map will show at the aspect of ``lat0`` (None:
+    the scene's) — or for ``shown``, that view already worked out. Pure, for a worker."""
+    if shown is None and view is not None and size_px is not None:
         shown = shown_range(view, size_px, scene.lat0 if lat0 is None else lat0)
     out = []
-    for data in scene.layers:
-        geom = data.geometry
-        geom = dataclasses.replace(geom, labels=tuple(MAIN_PREFIX + t for t in geom.labels))
-        curves = tuple(dataclasses.replace(c, label=MAIN_PREFIX + c.label) for c in data.curves)
-        main = dataclasses.replace(data, name=MAIN_PREFIX + data.name, geometry=geom, curves=curves)
+    for data, part in zip(scene.layers, PARTS, strict=False):
+        main = dataclasses.replace(data, name=part)
         out.append(with_paths(relod(main, shown, size_px)) if shown is not None else main)
     return out
+
+
+def bearing_layer_view(
+    bearings: pd.DataFrame,
+    detections: pd.DataFrame,
+    report: list[dict] | None = None,
+    scene: BearingScene | None = None,
+    parts: list[DrawData] | None = None,
+) -> LayerView:
+    """A bearing layer's view for the main window (pure, for a worker): the bearing
+    table as its points, no tracks for the batch table, and in ``extra`` the ``scene``
+    (:func:`bearing_scene`; the Bearing-only dock draws it), the main map's ``parts``
+    (:func:`main_map_layers`; made here from the scene when not given), the
+    ``detections`` and the detector's ``report``."""
+    if parts is None:
+        parts = main_map_layers(scene) if scene is not None else []
+    summary = batch_summary(EMPTY_POINTS)
+    extra = {
+        "scene": scene,
+        "parts": tuple(parts),
+        "detections": detections,
+        "report": list(report or []),
+    }
+    return LayerView(bearings, summary, {}, None, None, display_text(summary), extra)
+
+
+def layer_meta(file: str, sha256: str, view: LayerView) -> dict:
+    """A bearing layer's ``meta`` (kept in the project): the file it was read from and
+    its hash, the detector's per-batch report and the lines' length (m)."""
+    scene = view.extra.get("scene")
+    return {
+        "file": file,
+        "sha256": sha256,
+        "report": view.extra.get("report", []),
+        "length_m": scene.length_m if scene is not None else None,
+    }
+
+
+def bearing_stats(layer, tr=str) -> str:
+    """The Statistics panel's text for a bearing layer: its bearings, sequences, time
+    span and detections (``tr``: the window's translation)."""
+    points = layer.points
+    detections = layer.tables.get("detections", pd.DataFrame())
+    lines = [
+        f"{tr('Layer')}: {layer.name} [{layer.kind}]  ({layer.id})",
+        f"{tr('Bearings')}: {len(points):,}   {tr('Sequences')}: {points['batch'].nunique():,}"
+        f"   {tr('Detections')}: {len(detections):,}",
+    ]
+    if len(points):
+        lines.append(f"{tr('Time')}: {points['time'].min()} – {points['time'].max()}")
+    if layer.meta.get("length_m"):
+        lines.append(f"{tr('Bearing lines')}: {layer.meta['length_m']:,.0f} m")
+    return "\n".join(lines)
+
+
+def layer_scene(layer, build_index: bool = True) -> BearingScene | None:
+    """The scene of a stored bearing layer (:class:`~wakeline.core.session.Layer` of kind
+    ``bearing``), its lines as long as when it was read (``meta["length_m"]``)."""
+    detections = layer.tables.get("detections", pd.DataFrame(columns=["batch"]))
+    return bearing_scene(layer.points, detections, layer.meta.get("length_m"), build_index)
 
 
 class DetectionsModel(QtCore.QAbstractTableModel):

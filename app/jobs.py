@@ -21,6 +21,7 @@ from wakeline.app.worker import Cancelled, Failed, Finished, Progress, Started
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, Pipeline, StepResult
 from wakeline.core.progress import sub_progress
+from wakeline.core.session import BEARING_KIND
 
 
 def _prepared(
@@ -108,6 +109,13 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         if layer is None:
             QtWidgets.QMessageBox.information(
                 self, self.tr("Nothing to run on"), self.tr("Open a track file first.")
+            )
+            return None
+        if layer.kind == BEARING_KIND:
+            QtWidgets.QMessageBox.information(
+                self,
+                self.tr("Nothing to run on"),
+                self.tr("A bearing layer has no tracks: choose a track layer."),
             )
             return None
         lid = self.session.step_input(layer.id)
@@ -233,23 +241,15 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.log_message(self.tr("{0} cancelled").format(msg.name))
             self.statusBar().showMessage(self.tr("{0} cancelled").format(msg.name), 5000)
 
-    def _show_bearings_on_map(self, scene, layers: list) -> None:
-        """The bearings on the main map (layers named ``MAIN_PREFIX…``, prepared in the
-        worker): the observer's positions, the bearing lines and the maneuver lines; the
-        map is framed on them when it shows no other layer (it sat at empty 0–1° axes)."""
-        from wakeline.app.bearing_view import MAIN_PREFIX
-
-        for name in self.canvas.layer_names():
-            if name.startswith(MAIN_PREFIX):
-                self.canvas.remove_layer(name)
-        if scene is None:
-            self.log_message(self.tr("bearing: no observer position, nothing to draw on the map"))
-            return
-        for data in layers:
-            self.canvas.set_draw_data(data, True)
-        if not any(layer.visible for layer in self.session.layers.values()):
-            self.canvas.set_true_aspect(scene.lat0)
-            self.canvas.show_range(scene.target)
+    def show_bearing_layer(self, view) -> None:
+        """A bearing layer's data in the Bearing-only dock (its map and detections) and
+        the Detail panel (the sequences and z)."""
+        bearings, detections = view.points, view.extra["detections"]
+        self.bearings, self.bearing_detections = bearings, detections
+        self.bearing_view.show_result(
+            bearings, detections, view.extra["report"], scene=view.extra["scene"]
+        )
+        self.detail.show_bearings(bearings, detections, self.params.params("bearing"))
 
     def _apply(self, done: tuple) -> None:
         kind = done[0]
@@ -271,8 +271,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             name = self.session.layers[lid].name if lid in self.session.layers else lid
             self.log_message(f"{result.step} on {name}: {summarize(result.report)}")
         elif kind == "bearing":
-            _, bearings, quarantine, result, scene, main = done
-            self.bearings, self.bearing_detections = bearings, result.tables["detections"]
+            _, path, quarantine, result, view, sha, plan = done
             if len(quarantine):
                 reasons = "; ".join(
                     f"{n:,} {why}" for why, n in quarantine["reason"].value_counts().items()
@@ -281,13 +280,12 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.log_message(f"bearing: {summarize(result.report)}")
             for line in result.report.get("why", []):
                 self.log_message(f"    {line}")
-            self.bearing_view.show_result(
-                bearings, self.bearing_detections, result.report["report"], scene=scene
-            )
-            self._show_bearings_on_map(scene, main)
-            self.detail.show_bearings(
-                bearings, self.bearing_detections, self.params.params("bearing")
-            )
+            if view.extra["scene"] is None:
+                self.log_message(
+                    self.tr("bearing: no observer position, nothing to draw on the map")
+                )
+            self._apply_bearings(path, view, sha, plan)
+            self.show_bearing_layer(view)
             # The Bearing-only dock (map and detections) comes to the front, not the
             # Detail dock's tab of the same name behind which it was tabbed.
             self.docks["bearing"].show()

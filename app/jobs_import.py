@@ -106,33 +106,67 @@ class ImportJobsMixin:
 
     def load_bearings(self, path: Path) -> int | None:
         """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it
-        in the worker; the Detail panel shows the sequences, z and the detections, the
-        Bearing-only dock and the main map the observer and the bearing lines (prepared
-        here, in the worker: :func:`~wakeline.app.bearing_view.bearing_scene`)."""
-        from wakeline.app.bearing_view import bearing_scene, main_map_layers
+        in the worker; the result is a bearing layer of the session (the Layers list, the
+        project, the time window: :meth:`_apply_bearings`), drawn on the main map (the
+        observer and the bearing lines, prepared here, in the worker:
+        :func:`~wakeline.app.bearing_view.bearing_scene`); the Detail panel shows the
+        sequences, z and the detections, the Bearing-only dock its map and table. The same
+        file opened again replaces its layer."""
+        from wakeline.app.bearing_view import bearing_layer_view, bearing_scene, main_map_layers
         from wakeline.core.bearing import read_bearings_checked
         from wakeline.core.pipeline import step_bearing
 
         params = self.params.params("bearing")
         length_m = self.bearing_view.fixed_length_m
-        # The main map is framed on the bearings when it shows no layer (else it keeps
-        # its view): the layers' level of detail is made for that view.
-        frame = not any(layer.visible for layer in self.session.layers.values())
+        path = Path(path)
+        # The main map is framed on the bearings when it shows no other layer (else it
+        # keeps its view): the layers' level of detail is made for that view.
+        again = self.session.bearing_layer(str(path.resolve()))
+        frame = not any(lay.visible and lay is not again for lay in self.session.layers.values())
         view, size_px, lat0 = self.canvas.current_view(), self.canvas.plot_size_px(), None
         if not frame:
             lat0 = self.canvas._lat0
 
         def job(progress):
             bearings, quarantine = read_bearings_checked(path)
-            result = step_bearing(bearings, params, sub_progress(progress, 0.0, 0.9))
+            result = step_bearing(bearings, params, sub_progress(progress, 0.0, 0.85))
+            progress(0.85, f"hashing {path.name}")
+            sha = file_hash(path)
             progress(0.9, "preparing the map")
-            scene = bearing_scene(bearings, result.tables["detections"], length_m, True)
-            main = []
+            detections = result.tables["detections"]
+            scene = bearing_scene(bearings, detections, length_m, True)
+            plan, parts = None, []
             if scene is not None:
-                main = main_map_layers(scene, scene.target if frame else view, size_px, lat0)
-            return ("bearing", bearings, quarantine, result, scene, main)
+                parts = main_map_layers(scene, scene.target if frame else view, size_px, lat0)
+                if frame:
+                    plan = {"target": scene.target, "lat0": scene.lat0}
+            lview = bearing_layer_view(bearings, detections, result.report["report"], scene, parts)
+            return ("bearing", path, quarantine, result, lview, sha, plan)
 
-        return self._start("bearing", job, ("bearing", Path(path).name))
+        return self._start("bearing", job, ("bearing", path.name))
+
+    def _apply_bearings(self, path: Path, view, sha: str, plan: dict | None) -> None:
+        """A bearing file read: its layer added to the session (or the one of the same
+        file replaced), the map framed on it when it shows nothing else (``plan``)."""
+        from wakeline.app.bearing_view import layer_meta
+
+        resolved = str(path.resolve())
+        if not any(s.path == resolved for s in self.session.sources):
+            self.session.sources.append(Source(resolved, sha))
+        old = self.session.bearing_layer(resolved)
+        lid = old.id if old is not None else self.session.new_id()
+        self.views[lid] = view
+        self._plan_view(plan)
+        try:
+            self.session.put_bearings(
+                path.name,
+                view.points,
+                view.extra["detections"],
+                layer_meta(resolved, sha, view),
+                layer_id=lid,
+            )
+        finally:
+            self._view_planned = False
 
     def open_bearings_dialog(self) -> None:
         path, _ = QtWidgets.QFileDialog.getOpenFileName(

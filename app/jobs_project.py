@@ -7,11 +7,23 @@ layers for drawing run in the worker, the GUI thread only swaps the result in.
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 from PySide6 import QtWidgets
 
 from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.project import Project, load_project
+from wakeline.core.session import BEARING_KIND, Layer
+
+
+def _aspect_latitude(layer: Layer) -> float | None:
+    """The mean latitude (degrees) of a layer's points (a bearing layer's: the
+    observer's), None when it has none."""
+    column = "obs_lat" if layer.kind == BEARING_KIND else "lat"
+    if column not in layer.points.columns or not len(layer.points):
+        return None
+    lat = layer.points[column].to_numpy(dtype="float64")
+    return float(np.nanmean(lat)) if np.isfinite(lat).any() else None
 
 
 class ProjectJobsMixin:
@@ -20,6 +32,13 @@ class ProjectJobsMixin:
     def export_dialog(self, kind: str) -> None:
         layer = self.active_layer()
         if layer is None:
+            return
+        if layer.kind == BEARING_KIND:  # no tracks; its detections: the dock's Export
+            text = self.tr(
+                "A bearing layer has no tracks to export: Export detections… in the "
+                "Bearing-only dock writes its detections."
+            )
+            QtWidgets.QMessageBox.information(self, self.tr("Export"), text)
             return
         if kind == "as_came_in":
             self.export_as_came_in()
@@ -111,15 +130,24 @@ class ProjectJobsMixin:
         state = self._view_state(replace_all=True)
 
         def job(progress):
+            from wakeline.app.bearing_view import bearing_layer_view, layer_scene, main_map_layers
+
             proj = load_project(path)
             warnings = proj.source_problems()
+            # A bearing layer's scene (observer, lines, maneuvers) is made again from its
+            # stored table, detections and line length.
+            scenes = {lay.id: layer_scene(lay) for lay in proj.layers if lay.kind == BEARING_KIND}
             # The view the map will show (fitted to the visible layers): each layer's level
             # of detail is made for it here, so the map strokes each layer once.
-            sketches = [points_sketch(lay.points) for lay in proj.layers if lay.visible]
-            lat0 = None
-            if proj.layers and len(proj.layers[0].points):
-                lat = proj.layers[0].points["lat"].to_numpy(dtype="float64")
-                lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else None
+            sketches = []
+            for lay in proj.layers:
+                if not lay.visible:
+                    continue
+                if lay.kind != BEARING_KIND:
+                    sketches.append(points_sketch(lay.points))
+                elif scenes[lay.id] is not None:
+                    sketches += [d.geometry.sketch() for d in scenes[lay.id].layers[:2]]
+            lat0 = _aspect_latitude(proj.layers[0]) if proj.layers else None
             plan = plan_view(state, sketches, lat0)
             shown = plan["shown"] if plan else None
             views = {}
@@ -128,6 +156,16 @@ class ProjectJobsMixin:
             in_use: tuple[set[str], set[str]] = (set(), set())
             for k, lay in enumerate(proj.layers):
                 progress(k / max(len(proj.layers), 1), f"preparing {lay.name}")
+                if lay.kind == BEARING_KIND:
+                    scene = scenes[lay.id]
+                    parts = []
+                    if scene is not None:
+                        parts = main_map_layers(scene, size_px=size_px, shown=shown)
+                    detections = lay.tables.get("detections", pd.DataFrame(columns=["batch"]))
+                    views[lay.id] = bearing_layer_view(
+                        lay.points, detections, lay.meta.get("report"), scene, parts
+                    )
+                    continue
                 views[lay.id] = prepare_view_apart(
                     lay.points, lay.kind, in_use, lay.name, shown, size_px, first=lay.color
                 )
@@ -150,6 +188,9 @@ class ProjectJobsMixin:
         finally:
             self._view_planned = False
         lock_note = self.project.follow(path, proj.read_only)
+        bearing = [lid for lid, lay in self.session.layers.items() if lay.kind == BEARING_KIND]
+        if bearing and bearing[-1] in self.views:  # the dock and Detail show the last
+            self.show_bearing_layer(self.views[bearing[-1]])
         sel = [r for r in proj.selection if r[0] in self.session.layers]
         if sel:  # applied once the layers are drawn (one per event-loop turn)
             self._make_current = sel[0][0]

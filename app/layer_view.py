@@ -238,3 +238,37 @@ def draw_as(view: LayerView, layer_id: str, label: str):
     )
     curves = tuple(dataclasses.replace(c, label=relabel(c.label)) for c in data.curves)
     return dataclasses.replace(data, name=layer_id, geometry=geometry, curves=curves)
+
+
+#: Between a layer's id and a part's name in the map's layer names (a bearing layer is
+#: drawn as several map layers: ``L3/observer``, ``L3/lines`` …).
+PART_SEP = "/"
+
+
+def map_layers(view: LayerView, layer_id: str, label: str) -> list:
+    """Every map layer a session layer is drawn as, keyed and labelled for the map: a
+    point layer's one (:func:`draw_as`, named ``layer_id``), or the parts of a bearing
+    layer (``view.extra["parts"]``, named ``layer_id/part``, legend ``label · …``)."""
+    import dataclasses
+
+    parts = view.extra.get("parts")
+    if parts is None:
+        return [draw_as(view, layer_id, label)] if view.draw is not None else []
+
+    def relabel(text: str) -> str:
+        return f"{label} · {text}" if text else text
+
+    out = []
+    for data in parts:
+        geometry = dataclasses.replace(
+            data.geometry, labels=tuple(relabel(t) for t in data.geometry.labels)
+        )
+        curves = tuple(dataclasses.replace(c, label=relabel(c.label)) for c in data.curves)
+        name = f"{layer_id}{PART_SEP}{data.name}"
+        out.append(dataclasses.replace(data, name=name, geometry=geometry, curves=curves))
+    return out
+
+
+def is_part_of(name: str, layer_id: str) -> bool:
+    """Whether the map layer ``name`` draws session layer ``layer_id`` (or a part of it)."""
+    return name == layer_id or name.startswith(layer_id + PART_SEP)

@@ -21,7 +21,7 @@ from PySide6 import QtCore, QtWidgets
 
 from wakeline.app import i18n
 from wakeline.app.actions import build_actions, retranslate
-from wakeline.app.bearing_view import BearingView
+from wakeline.app.bearing_view import BearingView, bearing_stats
 from wakeline.app.detail import DetailPanel
 from wakeline.app.dialogs import ImportReportDialog
 from wakeline.app.import_dialog import ImportDialog
@@ -38,7 +38,7 @@ from wakeline.app.window_layers import EMPTY, LayersMixin
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.window_words import window_words
 from wakeline.app.worker import JobRunner
-from wakeline.core.session import Session
+from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
 
 
@@ -65,6 +65,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.session = Session()
         self.views: dict[str, LayerView] = {}
         self.active: str | None = None
+        #: The bearing table and detections the Bearing-only dock shows (None: none).
+        self.bearings = None
+        self.bearing_detections = None
         self.translator = None
         self.language = "en"
         self.runner = JobRunner(self)
@@ -245,6 +248,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             self.stats.setPlainText(self.tr("No layer. File ▸ Open tracks… (Ctrl+O)"))
             return
         view = self.views.get(layer.id)
+        if layer.kind == BEARING_KIND:
+            self.stats.setPlainText(bearing_stats(layer, self.tr))
+            return
         summary = view.summary if view is not None else batch_summary(EMPTY)
         tracks = len(summary)
         sensors = ", ".join(sorted(summary["sensor"].astype(str).unique())) if tracks else ""

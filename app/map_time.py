@@ -275,15 +275,24 @@ class TimeController(QtCore.QObject):
         """A rebuild or a window cut is waiting or running."""
         return self._timer.isActive() or self._pending > 0 or self.overlay.busy
 
-    def _originals(self) -> dict[str, tuple[DrawData, object]]:
-        """Visible layers: (their full draw data, the prepared view it comes from)."""
-        from wakeline.app.layer_view import draw_as
+    def _originals(self) -> dict[str, tuple[DrawData, object, bool]]:
+        """The map layers of the visible session layers, by map name: (their full draw
+        data, the prepared data it comes from, whether the slider's index runs over it).
+        A bearing layer's parts are cut by the window like point layers; only its observer
+        joins the index (the slider's span and the observer's position at t: a bearing
+        line is two points of one time, a track of no duration)."""
+        from wakeline.app.layer_view import map_layers
 
         out = {}
         for lid, layer in self.window.session.layers.items():
             view = self.window.views.get(lid)
-            if layer.visible and view is not None and view.draw is not None:
-                out[lid] = (draw_as(view, lid, layer.name), view.draw)
+            if not layer.visible or view is None:
+                continue
+            parts = view.extra.get("parts")
+            sources = parts if parts is not None else [view.draw]
+            for data, src in zip(map_layers(view, lid, layer.name), sources, strict=True):
+                indexed = parts is None or src.name == "observer"
+                out[data.name] = (data, src, indexed)
         return out
 
     def _rebuild(self) -> None:
@@ -294,7 +303,11 @@ class TimeController(QtCore.QObject):
         gen = self._gen
         originals = self._originals()
         lines = one_clock(
-            {lid: d.geometry for lid, (d, _) in originals.items() if d.style.width > 0},
+            {
+                name: d.geometry
+                for name, (d, _, indexed) in originals.items()
+                if indexed and d.style.width > 0
+            },
             self.window.active,
         )
         self._run(lambda: index_job(lines), lambda scene: self._scene_done(gen, scene))
@@ -302,7 +315,7 @@ class TimeController(QtCore.QObject):
 
     def _active_changed(self) -> None:
         """With dates and scene times both open, the slider follows the active layer's."""
-        kinds = {d.geometry.relative for d, _ in self._originals().values()}
+        kinds = {d.geometry.relative for d, _, _ in self._originals().values()}
         if len(kinds) > 1:
             self._timer.start()
 
@@ -340,14 +353,14 @@ class TimeController(QtCore.QObject):
         if not self._pending:
             self.window_applied.emit()
 
-    def _apply_window(self, originals: dict[str, tuple[DrawData, object]]) -> None:
+    def _apply_window(self, originals: dict[str, tuple[DrawData, object, bool]]) -> None:
         """Cut every visible layer to the panel's window (or restore it) in a worker.
         A layer is cut again when the window or its data changed, or when the window
         redrew it from its full data meanwhile."""
         window = self.panel.time_window()
         canvas = self.window.canvas
         view, size = canvas.current_view(), canvas.plot_size_px()
-        for lid, (data, source) in originals.items():
+        for lid, (data, source, _indexed) in originals.items():
             old = self._filtered.get(lid)
             if lid not in canvas.layer_names():
                 continue

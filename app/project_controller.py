@@ -17,7 +17,7 @@ from PySide6 import QtCore
 
 from wakeline.core.project import ProjectWriter, save_project
 from wakeline.core.project_lock import ProjectLocks
-from wakeline.core.session import Session
+from wakeline.core.session import BEARING_KIND, Session
 
 
 class ProjectController(QtCore.QObject):
@@ -138,7 +138,7 @@ class ProjectController(QtCore.QObject):
         if event in ("added", "changed") and layer is not None:
             pos = self._pos(layer_id)
             self._submit(lambda st: st.put_layer(layer, pos))
-            if event == "added" and layer.kind == "source":
+            if event == "added" and layer.kind in ("source", BEARING_KIND):
                 sources = list(self.session.sources)
                 self._submit(lambda st: st.put_sources(sources))
         elif event == "visibility" and layer is not None:

@@ -11,10 +11,10 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
-from wakeline.app.layer_view import draw_as, prepare_view_apart
+from wakeline.app.layer_view import is_part_of, map_layers, prepare_view_apart
 from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
-from wakeline.core.session import Layer
+from wakeline.core.session import BEARING_KIND, Layer
 
 #: Between two pieces of drawing work: a real timer (not a zero-delay call), so the map's
 #: paint of one piece and the next piece fall in different event-loop turns.
@@ -68,6 +68,18 @@ class LayersMixin:
         layer = self.session.layers.get(lid)
         if event not in ("added", "changed") or layer is None:
             return
+        if layer.kind == BEARING_KIND:
+            # Prepared in the worker that read it (or opened the project); a bearing
+            # layer added by a script or a test is prepared here (small).
+            view = self.views.get(lid)
+            if view is None or view.points is not layer.points:
+                from wakeline.app.bearing_view import bearing_layer_view, layer_scene
+
+                scene = layer_scene(layer)
+                detections = layer.tables.get("detections", pd.DataFrame(columns=["batch"]))
+                report = layer.meta.get("report")
+                self.views[lid] = bearing_layer_view(layer.points, detections, report, scene)
+            return
         pending = self._pending_views.pop((layer.step, layer.role), None)
         if pending is not None:
             self.views[lid] = pending
@@ -98,8 +110,14 @@ class LayersMixin:
             item.setCheckState(checked)
             self.layer_list.addItem(item)
             self._make_current = lid  # once the drawing queue is through (one per turn)
-            if len(self.session.layers) == 1 and len(layer.points) and not self._view_planned:
-                self.canvas.set_true_aspect(float(np.nanmean(layer.points["lat"].to_numpy())))
+            lat = layer.points.get("lat")
+            if (
+                len(self.session.layers) == 1
+                and lat is not None
+                and len(lat)
+                and not self._view_planned
+            ):
+                self.canvas.set_true_aspect(float(np.nanmean(lat.to_numpy())))
         elif event == "changed":
             self._queue_draw(lid)
             row = self.layer_row(lid)
@@ -108,7 +126,8 @@ class LayersMixin:
             if lid == self.active:
                 self._make_current = lid
         elif event == "removed":
-            self.canvas.remove_layer(lid)
+            for name in self.map_names(lid):
+                self.canvas.remove_layer(name)
             self.views.pop(lid, None)
             row = self.layer_row(lid)
             if row >= 0:
@@ -116,7 +135,8 @@ class LayersMixin:
             if not self.session.layers:
                 self.set_active(None)
         elif event == "visibility":
-            self.canvas.set_visible(lid, layer.visible)
+            for name in self.map_names(lid):
+                self.canvas.set_visible(name, layer.visible)
         self.layersChanged.emit()
 
     def _view_state(self, replace_all: bool = False) -> dict:
@@ -156,7 +176,13 @@ class LayersMixin:
             lid = self._draw_queue.pop(0)
             layer = self.session.layers.get(lid)
             if layer is not None and lid in self.views:
-                self.canvas.set_draw_data(draw_as(self.views[lid], lid, layer.name), layer.visible)
+                drawn = map_layers(self.views[lid], lid, layer.name)
+                keep = {d.name for d in drawn}
+                for name in self.map_names(lid):  # a part the layer has no more
+                    if name not in keep:
+                        self.canvas.remove_layer(name)
+                for data in drawn:
+                    self.canvas.set_draw_data(data, layer.visible)
                 if layer.visible and self.canvas.isVisible():
                     # Paint now, in this turn: Qt would merge the paints of layers swapped in
                     # on successive turns into one long paint of them all.
@@ -196,6 +222,10 @@ class LayersMixin:
             or self._make_current is not None
             or self._after_current
         )
+
+    def map_names(self, lid: str) -> list[str]:
+        """The map layers that draw session layer ``lid`` (a bearing layer: its parts)."""
+        return [n for n in self.canvas.layer_names() if is_part_of(n, lid)]
 
     def layer_row(self, lid: str) -> int:
         """Row of layer ``lid`` in the Layers list (-1 when absent)."""
@@ -248,6 +278,9 @@ class LayersMixin:
             root = self.views.get(self.session.root(self.active).id, view)
             self.params.show_guidance(root.summary)
         self.project.put_state("active", self.active)
+        layer = self.session.get(self.active)
+        if view is not None and layer.kind == BEARING_KIND and self.bearings is not view.points:
+            self.show_bearing_layer(view)  # its map and detections in the dock
         self._update_stats()
 
     def _fit_time_columns(self) -> None:

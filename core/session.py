@@ -30,6 +30,12 @@ KIND_COLORS = {
     "associated": "#ff7f0e",
     "fused": "#17becf",
 }
+#: The kind of a bearing layer: its ``points`` are a bearing table (``batch, time,
+#: bearing[, obs_lon, obs_lat]``), its ``tables["detections"]`` the detector's output and
+#: its ``meta`` the file, the detector's per-batch report and the lines' length.
+BEARING_KIND = "bearing"
+#: Its colour in the Layers list (the observer's grey on the map).
+BEARING_COLOR = "#555555"
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 
 Listener = Callable[[str, str], None]  # (event, layer id)
@@ -141,6 +147,48 @@ class Session:
         if layer.visible != visible:
             layer.visible = visible
             self._emit("visibility", layer_id)
+
+    def put_bearings(
+        self,
+        name: str,
+        bearings: pd.DataFrame,
+        detections: pd.DataFrame,
+        meta: dict,
+        *,
+        layer_id: str | None = None,
+    ) -> Layer:
+        """Add a bearing layer (:data:`BEARING_KIND`), or replace in place (same id,
+        ``changed``) the one read from the same file (``meta["file"]``): a bearing file
+        opened again is a re-run of the detector, not a second layer. ``layer_id``: the id
+        to give a new layer (a window prepares its view under it first)."""
+        old = self.bearing_layer(meta.get("file"))
+        tables = {"detections": detections}
+        if old is None:
+            return self.add_layer(
+                name,
+                BEARING_KIND,
+                bearings,
+                meta,
+                color=BEARING_COLOR,
+                layer_id=layer_id,
+                tables=tables,
+            )
+        old.points, old.tables, old.meta, old.created = bearings, tables, dict(meta), _now()
+        self._emit("changed", old.id)
+        return old
+
+    def bearing_layer(self, file: str | None) -> Layer | None:
+        """The bearing layer read from ``file`` (as ``meta["file"]`` says), if any."""
+        if file is None:
+            return None
+        return next(
+            (
+                lay
+                for lay in self.layers.values()
+                if lay.kind == BEARING_KIND and lay.meta.get("file") == file
+            ),
+            None,
+        )
 
     def get(self, layer_id: str | None) -> Layer | None:
         return self.layers.get(layer_id) if layer_id else None

@@ -414,7 +414,6 @@ def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):
     went to their dock alone). Now it draws the observer and the bearing lines, prepared
     in the worker, framed on them; with a track layer shown it keeps its view."""
     from tests.conftest import make_window
-    from wakeline.app.bearing_view import MAIN_PREFIX
     from wakeline.app.main import wait_for_jobs
     from wakeline.resources import demo_path
 
@@ -427,8 +426,8 @@ def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):
     w.load_bearings(path)
     wait_for_jobs(w)
     canvas = w.canvas
-    names = [n for n in canvas.layer_names() if n.startswith(MAIN_PREFIX)]
-    assert len(names) == 2  # observer and lines (no detection: no maneuver lines)
+    lid = w.layer_id("bearings.csv")
+    assert w.map_names(lid) == [f"{lid}/observer", f"{lid}/lines"]  # no maneuver lines
     # Framed on the harbour scene: not 0–1°, not a 60-km view, the fan in view.
     (x0, x1), (y0, y1) = canvas.vb.viewRange()
     lat0 = HARBOUR[1]
@@ -438,7 +437,9 @@ def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):
     assert all(inside(*p) for p in df[["obs_lon", "obs_lat"]].to_numpy())
     lines = bearing_line_points(df, w.bearing_view.length_m)
     assert all(inside(*p) for p in along(lines, (0.0, 0.5, 1.0)))
-    # The pixels: each line in its batch's colour, the observer in grey over them.
+    # The pixels: each line in its batch's colour, the observer in grey over them (the
+    # time slider's positions off: they draw the observer's trail over it).
+    w.time_panel.overlay_box.setChecked(False)
     qtbot.wait(50)
     pixels = canvas_rgb(canvas)
     view = w.bearing_view
@@ -449,7 +450,7 @@ def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):
     obs = df[["obs_lon", "obs_lat"]].to_numpy()[:: max(len(df) // 20, 1)]
     assert all(has_colour(pixels, to_px(canvas, lon, lat), GREY) for lon, lat in obs)
     labels = [label.text for _, label in canvas.legend.items]
-    assert MAIN_PREFIX + "observer" in labels and MAIN_PREFIX + "s16_t1" in labels
+    assert "bearings.csv · observer" in labels and "bearings.csv · s16_t1" in labels
 
     # A track layer shown: loading bearings again keeps the map's view.
     w.load_file(demo_path())
@@ -459,6 +460,7 @@ def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):
     w.load_bearings(path)
     wait_for_jobs(w)
     assert canvas.current_view() == pytest.approx(before)
-    assert len([n for n in canvas.layer_names() if n.startswith(MAIN_PREFIX)]) == 2
+    assert len(w.map_names(lid)) == 2  # the file's layer replaced, not a second one
+    assert [lay.kind for lay in w.layers.values()].count("bearing") == 1
     w.runner.cancel()
     w.runner.wait()

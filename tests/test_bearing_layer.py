@@ -1,0 +1,216 @@
+"""A bearing file is a layer of the session like a track file: in the Layers list with a
+visibility toggle, saved in the project and read back with identical arrays, and cut by
+the time slider's window (pytest-qt, offscreen; the core part without Qt)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from test_bearing_view import harbour_table, has_colour, line_colour, to_px
+
+from conftest import canvas_rgb, make_window
+from wakeline.core.bearing import detect_with_report, read_bearings_checked
+from wakeline.core.bearing_eval import simulate_table
+from wakeline.core.project import load_project, save_project
+from wakeline.core.session import BEARING_KIND, Session
+
+
+def test_bearing_layer_is_kept_and_replaced_per_file_and_read_back_exactly(tmp_path):
+    """Core: the bearing table, the detections and the report go into the project file
+    (Parquet blobs, JSON) and come back equal; the same file read again replaces its
+    layer (same id), another file adds one."""
+    simulate_table(seed=4).to_csv(tmp_path / "b.csv", index=False)
+    df, _ = read_bearings_checked(tmp_path / "b.csv")  # as the window reads it
+    detections, report = detect_with_report(df)
+    assert len(detections)
+    session = Session()
+    meta = {"file": "/data/b.csv", "report": report, "length_m": 2500.0}
+    first = session.put_bearings("b.csv", df, detections, meta)
+    again = session.put_bearings("b.csv", df.iloc[:100], detections.iloc[:1], meta)
+    assert again.id == first.id and len(session.layers) == 1
+    assert len(session.layers[first.id].points) == 100
+    other = session.put_bearings("c.csv", df, detections, {**meta, "file": "/data/c.csv"})
+    session.set_visible(other.id, False)
+    save_project(session, tmp_path / "p.wakeline")
+
+    proj = load_project(tmp_path / "p.wakeline")
+    assert [(lay.id, lay.kind, lay.visible) for lay in proj.layers] == [
+        (first.id, BEARING_KIND, True),
+        (other.id, BEARING_KIND, False),
+    ]
+    back = proj.layers[1]
+    pd.testing.assert_frame_equal(back.points, df.reset_index(drop=True))
+    pd.testing.assert_frame_equal(back.tables["detections"], detections)
+    assert back.meta == {**meta, "file": "/data/c.csv"}
+
+
+def _lines(w, lid: str):
+    return w.canvas.draw_data(f"{lid}/lines").geometry
+
+
+def _window(qtbot, tmp_path, size=(1400, 900)):
+    w = make_window(qtbot, tmp_path, size)
+    w.show()
+    qtbot.waitExposed(w)
+    return w
+
+
+def _open_bearings(w, qtbot, path) -> str:
+    from wakeline.app.main import wait_for_jobs
+
+    w.load_bearings(path)
+    wait_for_jobs(w)
+    qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=20_000)
+    return w.layer_id(path.name)
+
+
+@pytest.mark.gui
+def test_bearing_layer_is_in_the_layers_list_and_its_toggle_hides_it(qtbot, tmp_path, monkeypatch):
+    """(a) The bearings' map layers were in no list: the operator could not hide them.
+    Now the file is one item of the Layers list; unchecking it hides the observer, the
+    lines and the maneuver lines (items and pixels); checking it shows them again."""
+    from PySide6 import QtCore
+
+    w = _window(qtbot, tmp_path)
+    path = tmp_path / "bearings.csv"
+    df = harbour_table()
+    df.to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)
+    assert lid is not None and w.layers[lid].kind == BEARING_KIND
+    assert w.layer_list.count() == 1
+    item = w.layer_list.item(w.layer_row(lid))
+    assert item.text() == "bearings.csv  [bearing]"
+    assert item.checkState() == QtCore.Qt.CheckState.Checked
+    names = w.map_names(lid)
+    assert names == [f"{lid}/observer", f"{lid}/lines"]
+    w.time_panel.overlay_box.setChecked(False)  # the slider's markers and trail off
+
+    def painted() -> float:
+        """Share of sampled points along the lines painted in their batch's colour."""
+        qtbot.wait(30)
+        pixels = canvas_rgb(w.canvas)
+        geom = _lines(w, lid)
+        mid_lon = 0.5 * (geom.lon[geom.starts] + geom.lon[geom.ends - 1])
+        mid_lat = 0.5 * (geom.lat[geom.starts] + geom.lat[geom.ends - 1])
+        colours = [line_colour(w.bearing_view, b) for b in geom.batch]
+        hits = [
+            has_colour(pixels, to_px(w.canvas, x, y), c)
+            for x, y, c in zip(mid_lon, mid_lat, colours, strict=True)
+        ]
+        return float(np.mean(hits))
+
+    assert painted() > 0.85
+    item.setCheckState(QtCore.Qt.CheckState.Unchecked)  # as a click on its box does
+    assert not w.layers[lid].visible
+    assert not any(it.isVisible() for n in names for it in w.canvas.layer_items(n))
+    assert painted() < 0.05
+    item.setCheckState(QtCore.Qt.CheckState.Checked)
+    assert all(it.isVisible() for n in names for it in w.canvas.layer_items(n))
+    assert painted() > 0.85
+    # Steps refuse it (it has no tracks) rather than fail in the worker.
+    w.select_layer(lid)
+    from PySide6 import QtWidgets
+
+    told = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "information", lambda *a: told.append(a[2]))
+    assert w.run_step("clean") is None and "no tracks" in told[0]
+    assert "Bearings: 800   Sequences: 2   Detections: 0" in w.stats.toPlainText()
+    # A second file is a second layer; choosing a layer shows it in the Bearing-only dock.
+    other = tmp_path / "other.csv"
+    simulate_table(seed=4).to_csv(other, index=False)
+    second = _open_bearings(w, qtbot, other)
+    assert w.layer_list.count() == 2 and second != lid
+    assert w.bearings is w.layers[second].points
+    w.select_layer(lid)
+    assert w.bearings is w.layers[lid].points and w.bearing_view.model.rowCount() == 0
+    # Removed: its map layers go too.
+    w.remove_active_layer()
+    assert w.map_names(lid) == [] and w.layer_list.count() == 1 and w.map_names(second)
+    w.runner.cancel()
+    w.runner.wait()
+
+
+@pytest.mark.gui
+def test_bearing_layer_is_saved_and_reopened_with_identical_arrays(qtbot, tmp_path):
+    """(b) Save, reopen: the bearings were gone. Now the layer is written to the project
+    (its table and detections as Parquet, by the project writer's thread, like a track
+    layer) when it is loaded into a saved project, its visibility as it changes; the
+    reopened project has it with the same table, detections, report, map arrays and
+    visibility, and the Bearing-only dock shows it again."""
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.resources import demo_path
+
+    w = _window(qtbot, tmp_path)
+    w.load_file(demo_path())
+    wait_for_jobs(w)
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    path = tmp_path / "bearings.csv"
+    simulate_table(seed=4).to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)  # after the save: written as it comes
+    layer = w.layers[lid]
+    view = w.views[lid]
+    assert len(view.extra["detections"]) and f"{lid}/maneuvers" in w.map_names(lid)
+    drawn = {n: w.canvas.draw_data(n).geometry for n in w.map_names(lid)}
+    w.session.set_visible(lid, False)
+    assert w.project.flush(30)
+    w.close()
+
+    w2 = make_window(qtbot, tmp_path)
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    again = w2.layers[lid]
+    assert (again.name, again.kind, again.visible) == ("bearings.csv", BEARING_KIND, False)
+    pd.testing.assert_frame_equal(again.points, layer.points)
+    pd.testing.assert_frame_equal(
+        again.tables["detections"], layer.tables["detections"].reset_index(drop=True)
+    )
+    assert again.meta["report"] == layer.meta["report"]
+    assert again.meta["length_m"] == pytest.approx(layer.meta["length_m"])
+    assert w2.map_names(lid) == list(drawn)
+    for name, geom in drawn.items():
+        back = w2.canvas.draw_data(name).geometry
+        for key in ("lon", "lat", "time_s", "starts", "ends", "batch"):
+            np.testing.assert_array_equal(getattr(back, key), getattr(geom, key), err_msg=key)
+        assert not any(it.isVisible() for it in w2.canvas.layer_items(name))
+    assert w2.layer_list.item(w2.layer_row(lid)).text() == "bearings.csv  [bearing]"
+    assert w2.bearing_view.model.rowCount() == len(layer.tables["detections"])
+    w2.runner.cancel()
+    w2.runner.wait()
+    w2.close()
+
+
+@pytest.mark.gui
+def test_time_window_cuts_the_bearing_lines(qtbot, tmp_path):
+    """(c) The time window cut the track layers only: bearing lines from outside it
+    stayed on the map. Now the slider spans the bearings (with no track layer it had no
+    range, so no window could be set) and a window keeps only the lines, maneuver lines
+    and observer positions of times inside it; switched off, all come back."""
+    w = _window(qtbot, tmp_path)
+    path = tmp_path / "bearings.csv"
+    df = harbour_table()
+    df.to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)
+    panel = w.time_panel
+    t_s = df["time"].astype("int64").to_numpy() / 1e9
+    assert panel.time_range() == pytest.approx((t_s.min(), t_s.max()))
+    full = _lines(w, lid)
+    line_t = full.time_s[full.starts]
+    assert full.n_tracks == 120  # 60 lines per batch
+    a, b = t_s.min() + 20.0, t_s.min() + 40.0
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        panel.set_time_window((a, b))
+    qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
+    cut = _lines(w, lid)
+    inside = (line_t >= a) & (line_t <= b)
+    assert 0 < cut.n_tracks == int(inside.sum()) < full.n_tracks
+    assert cut.n_points == 2 * cut.n_tracks  # whole lines, both ends
+    assert cut.time_s.min() >= a and cut.time_s.max() <= b
+    drawn = sum(len(c.lon) for c in w.canvas.draw_data(f"{lid}/lines").curves)
+    assert drawn <= 3 * cut.n_tracks  # two vertices and a break per line at most
+    observer = w.canvas.draw_data(f"{lid}/observer").geometry
+    assert observer.n_points and observer.time_s.min() >= a and observer.time_s.max() <= b
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        panel.set_time_window(None)
+    qtbot.waitUntil(lambda: _lines(w, lid).n_tracks == full.n_tracks, timeout=10_000)
+    w.runner.cancel()
+    w.runner.wait()
