@@ -209,6 +209,11 @@ def test_time_window_cuts_the_bearing_lines(qtbot, tmp_path):
     assert drawn <= 3 * cut.n_tracks  # two vertices and a break per line at most
     observer = w.canvas.draw_data(f"{lid}/observer").geometry
     assert observer.n_points and observer.time_s.min() >= a and observer.time_s.max() <= b
+    # Hidden and shown again under the window: still cut.
+    w.session.set_visible(lid, False)
+    w.session.set_visible(lid, True)
+    qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
+    assert _lines(w, lid).n_tracks == cut.n_tracks
     with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
         panel.set_time_window(None)
     qtbot.waitUntil(lambda: _lines(w, lid).n_tracks == full.n_tracks, timeout=10_000)
