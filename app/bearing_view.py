@@ -609,6 +609,15 @@ class BearingView(QtWidgets.QWidget):
         self.map.set_true_aspect(scene.lat0)
         self.map.show_range(scene.target)
 
+    def clear(self) -> None:
+        """Show nothing (the bearing layer shown was removed)."""
+        self.bearings, self.detections, self._report = pd.DataFrame(), pd.DataFrame(), []
+        self.model.set_table(pd.DataFrame(columns=["batch"]))
+        self.log.clear()
+        for name in list(self.map.layer_names()):
+            self.map.remove_layer(name)
+        self.scene, self.colours = None, {}
+
     def fit_range(self) -> tuple[float, float, float, float] | None:
         """The view (x0, x1, y0, y1, degrees) around the observer's track and the lines
         with a :data:`FIT_MARGIN` margin (:func:`scene_range`); None when nothing is drawn."""

@@ -93,6 +93,17 @@ class DetailPanel(QtWidgets.QTabWidget):
         self._draw_bearing(self.bearing_batch.currentText())
         self.setCurrentWidget(self.bearing_box)
 
+    def clear_bearings(self) -> None:
+        """No bearing sequence shown (its layer was removed)."""
+        self._bearings, self._detections = pd.DataFrame(), pd.DataFrame()
+        self.bearing_batch.blockSignals(True)
+        self.bearing_batch.clear()
+        self.bearing_batch.blockSignals(False)
+        self._draw_bearing("")
+        for curve in (self.b_curve, self.z_curve):
+            curve.setData([], [])
+        self.b_plot.setTitle("")
+
     def _draw_bearing(self, batch: str) -> None:
         for line in self.detect_lines:
             for plot in (self.b_plot, self.z_plot):

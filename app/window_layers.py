@@ -128,7 +128,10 @@ class LayersMixin:
         elif event == "removed":
             for name in self.map_names(lid):
                 self.canvas.remove_layer(name)
-            self.views.pop(lid, None)
+            gone = self.views.pop(lid, None)
+            if gone is not None and gone.points is self.bearings:
+                # Next turn: a project opened clears the session and shows its own.
+                QtCore.QTimer.singleShot(0, self._bearings_removed)
             row = self.layer_row(lid)
             if row >= 0:
                 self.layer_list.takeItem(row)
@@ -222,6 +225,20 @@ class LayersMixin:
             or self._make_current is not None
             or self._after_current
         )
+
+    def _bearings_removed(self) -> None:
+        """The bearing layer the Bearing-only dock and the Detail panel showed was
+        removed: they show the last bearing layer left, or nothing."""
+        layers = self.session.layers.values()
+        if self.bearings is not None and any(lay.points is self.bearings for lay in layers):
+            return  # another one is shown meanwhile
+        left = [i for i, lay in self.session.layers.items() if lay.kind == BEARING_KIND]
+        if left and left[-1] in self.views:
+            self.show_bearing_layer(self.views[left[-1]])
+            return
+        self.bearings = self.bearing_detections = None
+        self.bearing_view.clear()
+        self.detail.clear_bearings()
 
     def map_names(self, lid: str) -> list[str]:
         """The map layers that draw session layer ``lid`` (a bearing layer: its parts)."""

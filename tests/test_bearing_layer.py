@@ -122,9 +122,14 @@ def test_bearing_layer_is_in_the_layers_list_and_its_toggle_hides_it(qtbot, tmp_
     assert w.bearings is w.layers[second].points
     w.select_layer(lid)
     assert w.bearings is w.layers[lid].points and w.bearing_view.model.rowCount() == 0
-    # Removed: its map layers go too.
+    # Removed: its map layers go too; the dock shows the layer left, then nothing.
     w.remove_active_layer()
     assert w.map_names(lid) == [] and w.layer_list.count() == 1 and w.map_names(second)
+    qtbot.waitUntil(lambda: w.bearings is w.layers[second].points, timeout=2000)
+    w.session.remove_layer(second)
+    qtbot.waitUntil(lambda: w.bearings is None, timeout=2000)
+    assert w.bearings is None and w.bearing_view.model.rowCount() == 0
+    assert w.bearing_view.map.layer_names() == [] and w.detail.bearing_batch.count() == 0
     w.runner.cancel()
     w.runner.wait()
 
