@@ -25,6 +25,7 @@ of it.
 """
 
 import dataclasses
+import functools
 import math
 from pathlib import Path
 
@@ -36,13 +37,15 @@ from wakeline.core import geo
 from wakeline.core.bearing import report_lines
 from wakeline.core.io import write_csv
 from wakeline.core.schema import time_seconds
+from wakeline.core.timeline import spread_picks
 
 from .layer_view import LayerView, shown_range
 from .map_canvas import MapCanvas
 from .map_colors import BATCH_PALETTE
-from .map_draw import DrawData, LayerStyle, layer_geometry, prepare_layer, relod
+from .map_draw import DrawData, LayerGeometry, LayerStyle, layer_geometry, prepare_layer, relod
 from .map_legend import LABEL_PADDING_PX, short_label
 from .map_paths import with_paths
+from .map_time import geometry_rows
 from .models import batch_summary, display_text
 
 #: Smallest width (px) of the map's plot area: the map widget's minimum is this plus its
@@ -84,6 +87,8 @@ RANGE_COLUMNS = ("range_m", "range")
 TRUTH_COLUMNS = ("true_lon", "true_lat")
 #: Margin of the fitted view (share of the scene's size on each side; at least MIN_PAD_M).
 FIT_MARGIN, MIN_PAD_M = 0.06, 20.0
+#: Bearing lines drawn per batch (over the whole sequence, or over a time window).
+MAX_LINES = 60
 #: Rows of the detections table kept visible under the map in a narrow dock.
 MIN_TABLE_ROWS = 3
 #: The parts of a bearing layer on the main map (the scene's layers, in this order): the
@@ -197,12 +202,15 @@ def line_layer(
     return prepare_layer(points, name, color, style=style, build_index=build_index)
 
 
-def batch_line_layer(
-    points: pd.DataFrame, name: str, width: float, z: float = 0.0, build_index: bool = False
-) -> tuple[DrawData, dict[str, tuple[str, str]]]:
-    """:func:`line_layer` with a colour and a legend entry per batch
-    (:func:`batch_colours`): one curve per batch. Returns the layer and the colours."""
-    batch = points["batch"].astype(str).str.rsplit("#", n=1).str[0]
+def batch_line_geometry(
+    points: pd.DataFrame,
+) -> tuple[LayerGeometry, dict[str, tuple[str, str]]]:
+    """The geometry of :func:`bearing_line_points` with a colour and a legend entry per
+    batch (:func:`batch_colours`): one curve per batch. Returns it and the colours."""
+    if "line_batch" in points.columns:  # no string split per point (0.4 s per 100k lines)
+        batch = points["line_batch"].astype(str)
+    else:
+        batch = points["batch"].astype(str).str.rsplit("#", n=1).str[0]
     colours = batch_colours(batch.unique())
     label = batch.map({b: lab for b, (_, lab) in colours.items()})
     # layer_geometry: a curve per "sensor", coloured by the sensors' sorted order.
@@ -214,17 +222,59 @@ def batch_line_layer(
         color_by="sensor",
         colors=tuple(by_label[lab] for lab in labels) or None,
     )
+    return geom, colours
+
+
+def batch_line_layer(
+    points: pd.DataFrame, name: str, width: float, z: float = 0.0, build_index: bool = False
+) -> tuple[DrawData, dict[str, tuple[str, str]]]:
+    """:func:`line_layer` with a colour and a legend entry per batch
+    (:func:`batch_line_geometry`). Returns the layer and the colours."""
+    geom, colours = batch_line_geometry(points)
     style = LayerStyle(width=width, symbol_size=0, z=z, gaps=False)
     return prepare_layer(geom, name, style=style, build_index=build_index), colours
+
+
+def line_batches(geom: LayerGeometry, points: pd.DataFrame) -> np.ndarray:
+    """Per line (track) of ``geom`` (:func:`batch_line_geometry` of ``points``, made with
+    ``source``: two rows per line, ``line_batch`` its batch): its batch's number. A hash
+    lookup of the line ids, no string split."""
+    ids = points["batch"].to_numpy()[0::2]
+    _, code = np.unique(points["line_batch"].to_numpy(dtype=str)[0::2], return_inverse=True)
+    return code[pd.Index(ids).get_indexer(geom.batch)].astype("int64")
+
+
+def window_lines(
+    lines: LayerGeometry,
+    batch: np.ndarray,
+    window: tuple[float, float] | None = None,
+    max_lines: int = MAX_LINES,
+) -> LayerGeometry:
+    """The bearing lines to draw of ``lines`` (every bearing's, :func:`batch_line_geometry`;
+    ``batch`` per line, :func:`line_batches`) with time in ``window`` (s; None: all): at
+    most ``max_lines`` per batch, spread evenly over its bearings there in time
+    (:func:`~wakeline.core.timeline.spread_picks`: the lines :func:`bearing_line_points`
+    picks). A window of 20 s drew the few of the whole sequence's lines that fell in it;
+    now it draws up to ``max_lines`` of its own. Vectorized; pure, for a worker."""
+    t = lines.time_s[lines.starts]
+    inside = np.arange(len(t))
+    if window is not None:
+        inside = np.flatnonzero((t >= window[0]) & (t <= window[1]))
+    picks = inside[spread_picks(batch[inside], t[inside], max_lines)]
+    keep = np.zeros(len(t), dtype=bool)
+    keep[picks] = True
+    return geometry_rows(lines, np.repeat(keep, lines.ends - lines.starts))
 
 
 def bearing_line_points(
     bearings: pd.DataFrame,
     length_m: float = MAX_LENGTH_M,
-    max_lines: int = 60,
+    max_lines: int = MAX_LINES,
     at_times: pd.DataFrame | None = None,
+    source: bool = False,
 ) -> pd.DataFrame:
-    """Bearing lines as two-point tracks: ``sensor, batch, time, lon, lat``.
+    """Bearing lines as two-point tracks: ``sensor, batch, time, lon, lat`` (``batch``:
+    ``<batch>#<k>``; with ``source`` also ``line_batch``, the batch itself).
 
     Per batch, at most ``max_lines`` lines evenly spread over its samples (or, with
     ``at_times`` holding ``batch, maneuver_time``, the samples nearest those times), each
@@ -267,18 +317,21 @@ def bearing_line_points(
     end_lon = olon + np.degrees(x / (geo.EARTH_RADIUS_M * np.cos(np.radians(lat0))))
     end_lat = olat + np.degrees(y / geo.EARTH_RADIUS_M)
     n = len(sel)
-    ids = np.char.add(sel["batch"].astype(str).to_numpy().astype(str), "#")
-    ids = np.char.add(ids, np.arange(n).astype(str))
-    t = sel["time"].to_numpy()
-    return pd.DataFrame(
+    names = sel["batch"].astype(str).to_numpy().astype(str)
+    ids = np.char.add(np.char.add(names, "#"), np.arange(n).astype(str))
+    out = pd.DataFrame(
         {
             "sensor": "bearing",
             "batch": np.repeat(ids, 2),
-            "time": np.repeat(t, 2),
+            # Kept a datetime column (not Timestamp objects: 0.1 s per 100k lines).
+            "time": sel["time"].repeat(2).reset_index(drop=True),
             "lon": np.column_stack([olon, end_lon]).ravel(),
             "lat": np.column_stack([olat, end_lat]).ravel(),
         }
     )
+    if source:
+        out["line_batch"] = np.repeat(names, 2)
+    return out
 
 
 @dataclasses.dataclass(frozen=True)
@@ -293,6 +346,10 @@ class BearingScene:
     length_m: float
     lat0: float
     target: tuple[float, float, float, float] | None
+    #: Every bearing's line (:func:`batch_line_geometry`) and its batch's number: a time
+    #: window chooses the lines it draws among them (:func:`window_lines`).
+    all_lines: LayerGeometry | None = None
+    line_batch: np.ndarray | None = None
 
 
 def scene_range(layers) -> tuple[float, float, float, float] | None:
@@ -333,8 +390,15 @@ def bearing_scene(
         style=LayerStyle(width=1.5, symbol_size=3, z=Z_OBSERVER),
         build_index=build_index,
     )
-    lines, colours = batch_line_layer(
-        bearing_line_points(bearings, length), LAYER_NAMES[1], 1.0, Z_LINES, build_index
+    # Every bearing's line; the ones drawn (at most MAX_LINES per batch) chosen from them.
+    every = bearing_line_points(bearings, length, max_lines=max(len(bearings), 1), source=True)
+    all_lines, colours = batch_line_geometry(every)
+    line_batch = line_batches(all_lines, every)
+    lines = prepare_layer(
+        window_lines(all_lines, line_batch),
+        LAYER_NAMES[1],
+        style=LayerStyle(width=1.0, symbol_size=0, z=Z_LINES, gaps=False),
+        build_index=build_index,
     )
     layers = [observer, lines]
     if len(detections):
@@ -344,7 +408,8 @@ def bearing_scene(
         )
     lat = bearings["obs_lat"].to_numpy(float)
     lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else 0.0
-    return BearingScene(tuple(layers), colours, length, lat0, scene_range(layers[:2]))
+    target = scene_range(layers[:2])
+    return BearingScene(tuple(layers), colours, length, lat0, target, all_lines, line_batch)
 
 
 def main_map_layers(
@@ -383,9 +448,13 @@ def bearing_layer_view(
     if parts is None:
         parts = main_map_layers(scene) if scene is not None else []
     summary = batch_summary(EMPTY_POINTS)
+    cuts = {}
+    if scene is not None and scene.all_lines is not None:
+        cuts["lines"] = functools.partial(window_lines, scene.all_lines, scene.line_batch)
     extra = {
         "scene": scene,
         "parts": tuple(parts),
+        "cuts": cuts,  # a part's own time-window cut (map_time.window_draw_data)
         "detections": detections,
         "report": list(report or []),
     }

@@ -11,6 +11,7 @@ detail. A frame on the GUI thread is two ``searchsorted`` calls over the index
 and the map.
 """
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -18,7 +19,7 @@ import pyqtgraph as pg
 from PySide6 import QtCore
 
 from wakeline.app.map_draw import DrawData, LayerGeometry, prepare_layer
-from wakeline.core.timeline import TimeIndex, build_index, window_rows
+from wakeline.core.timeline import TimeIndex, build_index, mask_rows
 
 TRAIL_COLOR = "#202020"
 MARKER_BRUSH = "#ffcc00"
@@ -90,7 +91,13 @@ def index_job(geometries: list[LayerGeometry]) -> TimeScene:
 def window_geometry(g: LayerGeometry, t_from: float, t_to: float) -> LayerGeometry:
     """``g`` with only the points whose time lies in [t_from, t_to] (s); tracks with no
     such point drop out."""
-    rows, kept, starts, ends = window_rows(g.time_s, g.starts, g.ends, t_from, t_to)
+    return geometry_rows(g, (g.time_s >= t_from) & (g.time_s <= t_to))
+
+
+def geometry_rows(g: LayerGeometry, keep: np.ndarray) -> LayerGeometry:
+    """``g`` with only the points ``keep`` (bool per point); tracks with none drop out
+    (curves, colours and labels kept)."""
+    rows, kept, starts, ends = mask_rows(keep, g.starts, g.ends)
     return LayerGeometry(
         lon=g.lon[rows],
         lat=g.lat[rows],
@@ -113,10 +120,19 @@ def window_draw_data(
     window: tuple[float, float] | None,
     view: tuple[float, float, float, float] | None,
     size_px: tuple[int, int] | None,
+    cut: Callable[[tuple[float, float]], LayerGeometry] | None = None,
 ) -> DrawData:
     """A layer's draw data cut to ``window`` (None: the whole layer), its level of detail
-    done for ``view`` and its hover index built (pure; for a worker)."""
-    geom = data.geometry if window is None else window_geometry(data.geometry, *window)
+    done for ``view`` and its hover index built (pure; for a worker). ``cut(window)``:
+    the layer's own cut (a bearing layer's lines: chosen again among every bearing of the
+    window, :func:`~wakeline.app.bearing_view.window_lines`); its legend labels are the
+    layer's."""
+    if window is None:
+        geom = data.geometry
+    elif cut is not None:
+        geom = replace(cut(window), labels=data.geometry.labels)
+    else:
+        geom = window_geometry(data.geometry, *window)
     out = prepare_layer(geom, data.name, style=data.style, view=view, size_px=size_px)
     return replace(out, name=data.name)
 
@@ -275,12 +291,13 @@ class TimeController(QtCore.QObject):
         """A rebuild or a window cut is waiting or running."""
         return self._timer.isActive() or self._pending > 0 or self.overlay.busy
 
-    def _originals(self) -> dict[str, tuple[DrawData, object, bool]]:
+    def _originals(self) -> dict[str, tuple[DrawData, object, bool, object]]:
         """The map layers of the visible session layers, by map name: (their full draw
-        data, the prepared data it comes from, whether the slider's index runs over it).
-        A bearing layer's parts are cut by the window like point layers; only its observer
-        joins the index (the slider's span and the observer's position at t: a bearing
-        line is two points of one time, a track of no duration)."""
+        data, the prepared data it comes from, whether the slider's index runs over it,
+        their own cut or None). A bearing layer's parts are cut by the window like point
+        layers, its lines chosen again among the bearings of the window (``cut``); only
+        its observer joins the index (the slider's span and the observer's position at t:
+        a bearing line is two points of one time, a track of no duration)."""
         from wakeline.app.layer_view import map_layers
 
         out = {}
@@ -290,9 +307,10 @@ class TimeController(QtCore.QObject):
                 continue
             parts = view.extra.get("parts")
             sources = parts if parts is not None else [view.draw]
+            cuts = view.extra.get("cuts", {})
             for data, src in zip(map_layers(view, lid, layer.name), sources, strict=True):
                 indexed = parts is None or src.name == "observer"
-                out[data.name] = (data, src, indexed)
+                out[data.name] = (data, src, indexed, cuts.get(src.name) if parts else None)
         return out
 
     def _rebuild(self) -> None:
@@ -305,7 +323,7 @@ class TimeController(QtCore.QObject):
         lines = one_clock(
             {
                 name: d.geometry
-                for name, (d, _, indexed) in originals.items()
+                for name, (d, _, indexed, _) in originals.items()
                 if indexed and d.style.width > 0
             },
             self.window.active,
@@ -315,7 +333,7 @@ class TimeController(QtCore.QObject):
 
     def _active_changed(self) -> None:
         """With dates and scene times both open, the slider follows the active layer's."""
-        kinds = {d.geometry.relative for d, _, _ in self._originals().values()}
+        kinds = {d.geometry.relative for d, *_ in self._originals().values()}
         if len(kinds) > 1:
             self._timer.start()
 
@@ -353,14 +371,14 @@ class TimeController(QtCore.QObject):
         if not self._pending:
             self.window_applied.emit()
 
-    def _apply_window(self, originals: dict[str, tuple[DrawData, object, bool]]) -> None:
+    def _apply_window(self, originals: dict[str, tuple[DrawData, object, bool, object]]) -> None:
         """Cut every visible layer to the panel's window (or restore it) in a worker.
         A layer is cut again when the window or its data changed, or when the window
         redrew it from its full data meanwhile."""
         window = self.panel.time_window()
         canvas = self.window.canvas
         view, size = canvas.current_view(), canvas.plot_size_px()
-        for lid, (data, source, _indexed) in originals.items():
+        for lid, (data, source, _indexed, cut) in originals.items():
             old = self._filtered.get(lid)
             if lid not in canvas.layer_names():
                 continue
@@ -393,4 +411,4 @@ class TimeController(QtCore.QObject):
                 if not self._pending:
                     self.window_applied.emit()
 
-            self._run(lambda d=data, w=win: window_draw_data(d, w, view, size), done)
+            self._run(lambda d=data, w=win, c=cut: window_draw_data(d, w, view, size, c), done)

@@ -164,7 +164,14 @@ def window_rows(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The points of tracks (rows ``starts[k]:ends[k]``) with time in [t_from, t_to]:
     (kept rows, kept tracks, their new starts, their new ends) over the kept rows."""
-    keep = (time_s >= t_from) & (time_s <= t_to)
+    return mask_rows((time_s >= t_from) & (time_s <= t_to), starts, ends)
+
+
+def mask_rows(
+    keep: np.ndarray, starts: np.ndarray, ends: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The points ``keep`` (bool per point) of tracks (rows ``starts[k]:ends[k]``, end to
+    end): (kept rows, kept tracks, their new starts, their new ends) over the kept rows."""
     rows = np.flatnonzero(keep)
     track = np.repeat(np.arange(len(starts)), ends - starts)
     per = np.bincount(track[rows], minlength=len(starts)) if len(rows) else np.zeros(len(starts))
@@ -172,6 +179,29 @@ def window_rows(
     sizes = per[kept].astype("int64")
     new_ends = np.cumsum(sizes)
     return rows, kept, new_ends - sizes, new_ends
+
+
+def spread_picks(group: np.ndarray, key: np.ndarray, max_per: int) -> np.ndarray:
+    """Indices of at most ``max_per`` items of each group, spread evenly over the group's
+    items in ``key`` order (ties: in input order), its first and last kept: per group of
+    ``n`` the items ``np.linspace(0, n - 1, min(n, max_per)).round()`` of that order, as
+    a loop per group would pick them (one ``lexsort`` and array arithmetic, no loop).
+    Returned in group, then key order."""
+    group, key = np.asarray(group), np.asarray(key)
+    if len(group) == 0 or max_per < 1:
+        return _empty_i()
+    order = np.lexsort((key, group))
+    g = group[order]
+    starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
+    sizes = np.diff(np.r_[starts, len(g)])
+    per = np.minimum(sizes, max_per)
+    first = np.cumsum(per) - per
+    j = np.arange(int(per.sum())) - np.repeat(first, per)  # pick number inside its group
+    size, n = np.repeat(sizes, per), np.repeat(per, per)
+    step = (size - 1) / np.maximum(n - 1, 1)
+    pos = np.round(j * step).astype("int64")
+    pos = np.where((j == n - 1) & (n > 1), size - 1, pos)  # linspace ends on the last
+    return order[np.repeat(starts, per) + pos]
 
 
 def _per_point(values: np.ndarray, first: np.ndarray, n: int) -> np.ndarray:
@@ -244,6 +274,8 @@ __all__ = [
     "PlaybackParams",
     "TimeIndex",
     "build_index",
+    "mask_rows",
     "overlapping",
+    "spread_picks",
     "window_rows",
 ]

@@ -43,6 +43,50 @@ def test_bearing_layer_is_kept_and_replaced_per_file_and_read_back_exactly(tmp_p
     assert back.meta == {**meta, "file": "/data/c.csv"}
 
 
+def test_lines_drawn_are_the_picks_of_bearing_line_points_and_a_window_picks_again():
+    """The lines a scene draws, now chosen from every bearing's line, are those
+    bearing_line_points picked (at most 60 per batch over the sequence); a window picks up
+    to 60 among its own bearings, in the same colours."""
+    from wakeline.app.bearing_view import (
+        MAX_LINES,
+        bearing_line_points,
+        bearing_scene,
+        window_lines,
+    )
+    from wakeline.core.schema import time_seconds
+
+    df = simulate_table(seed=4)
+    scene = bearing_scene(df, pd.DataFrame(columns=["batch"]), 5000.0)
+    drawn = scene.layers[1].geometry
+    old = bearing_line_points(df, 5000.0)
+    # The same lines (batch, time) and ends (their aspect latitude is the mean of the
+    # lines' observer positions: a few nanodegrees apart).
+    prefix = pd.Series(drawn.batch).astype(str).str.rsplit("#", n=1).str[0].to_numpy()
+    mine = pd.DataFrame(
+        {
+            "batch": np.repeat(prefix, 2),
+            "time": drawn.time_s,
+            "lon": drawn.lon,
+            "lat": drawn.lat,
+        }
+    )
+    theirs = old.assign(
+        batch=old["batch"].str.rsplit("#", n=1).str[0],
+        time=time_seconds(old["time"]),
+    )[["batch", "time", "lon", "lat"]]
+    mine, theirs = (d.sort_values(list(d.columns)).to_numpy() for d in (mine, theirs))
+    assert (mine[:, 0] == theirs[:, 0]).all()
+    assert np.allclose(mine[:, 1:].astype(float), theirs[:, 1:].astype(float), atol=1e-6)
+    t = scene.all_lines.time_s[scene.all_lines.starts]
+    a, b = t.min() + 100.0, t.min() + 160.0
+    cut = window_lines(scene.all_lines, scene.line_batch, (a, b))
+    times = cut.time_s[cut.starts]
+    assert times.min() >= a and times.max() <= b
+    n_batches = df["batch"].nunique()
+    assert cut.n_tracks == MAX_LINES * n_batches  # 61 bearings per batch in the window
+    assert cut.labels == drawn.labels and cut.colors == drawn.colors
+
+
 def _lines(w, lid: str):
     return w.canvas.draw_data(f"{lid}/lines").geometry
 
@@ -188,32 +232,42 @@ def test_bearing_layer_is_saved_and_reopened_with_identical_arrays(qtbot, tmp_pa
 def test_time_window_cuts_the_bearing_lines(qtbot, tmp_path):
     """(c) The time window cut the track layers only: bearing lines from outside it
     stayed on the map. Now the slider spans the bearings (with no track layer it had no
-    range, so no window could be set) and a window keeps only the lines, maneuver lines
-    and observer positions of times inside it; switched off, all come back."""
+    range, so no window could be set) and a window keeps only lines, maneuver lines and
+    observer positions of times inside it; the lines are chosen again among the window's
+    own bearings (up to 60 per batch, spread over it: a 20-s window had kept the 12 of
+    the whole sequence's 60 that fell in it); switched off, all come back."""
     w = _window(qtbot, tmp_path)
     path = tmp_path / "bearings.csv"
-    df = harbour_table()
+    df = harbour_table()  # 2 batches of 400 bearings, 4 Hz over 100 s
     df.to_csv(path, index=False)
     lid = _open_bearings(w, qtbot, path)
     panel = w.time_panel
     t_s = df["time"].astype("int64").to_numpy() / 1e9
+    batch = df["batch"].to_numpy()
     assert panel.time_range() == pytest.approx((t_s.min(), t_s.max()))
     full = _lines(w, lid)
-    line_t = full.time_s[full.starts]
     assert full.n_tracks == 120  # 60 lines per batch
-    a, b = t_s.min() + 20.0, t_s.min() + 40.0
-    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
-        panel.set_time_window((a, b))
-    qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
-    cut = _lines(w, lid)
-    inside = (line_t >= a) & (line_t <= b)
-    assert 0 < cut.n_tracks == int(inside.sum()) < full.n_tracks
-    assert cut.n_points == 2 * cut.n_tracks  # whole lines, both ends
-    assert cut.time_s.min() >= a and cut.time_s.max() <= b
-    drawn = sum(len(c.lon) for c in w.canvas.draw_data(f"{lid}/lines").curves)
-    assert drawn <= 3 * cut.n_tracks  # two vertices and a break per line at most
-    observer = w.canvas.draw_data(f"{lid}/observer").geometry
-    assert observer.n_points and observer.time_s.min() >= a and observer.time_s.max() <= b
+    for seconds, per_batch in ((20.0, 60), (5.0, 21)):  # 81 and 21 bearings per batch
+        a, b = t_s.min() + 20.0, t_s.min() + 20.0 + seconds
+        with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+            panel.set_time_window((a, b))
+        qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
+        cut = _lines(w, lid)
+        assert cut.n_points == 2 * cut.n_tracks  # whole lines, both ends
+        line_t = cut.time_s[cut.starts]
+        line_batch = np.array([str(x).rsplit("#", 1)[0] for x in cut.batch])
+        for name in ("s16_t1", "s16_t2"):
+            mine = line_t[line_batch == name]
+            there = t_s[(batch == name) & (t_s >= a) & (t_s <= b)]
+            assert len(mine) == per_batch
+            assert (np.abs(mine[:, None] - there[None, :]).min(axis=1) < 1e-3).all()
+            assert mine.min() == pytest.approx(there.min(), abs=1e-3)  # spread over it
+            assert mine.max() == pytest.approx(there.max(), abs=1e-3)
+        assert cut.labels == full.labels and cut.colors == full.colors
+        drawn = sum(len(c.lon) for c in w.canvas.draw_data(f"{lid}/lines").curves)
+        assert drawn <= 3 * cut.n_tracks  # two vertices and a break per line at most
+        observer = w.canvas.draw_data(f"{lid}/observer").geometry
+        assert observer.n_points and observer.time_s.min() >= a and observer.time_s.max() <= b
     # Hidden and shown again under the window: still cut.
     w.session.set_visible(lid, False)
     w.session.set_visible(lid, True)

@@ -11,7 +11,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import load, make_window
-from wakeline.core.timeline import PlaybackParams, build_index, overlapping, window_rows
+from wakeline.core.timeline import (
+    PlaybackParams,
+    build_index,
+    overlapping,
+    spread_picks,
+    window_rows,
+)
 
 
 def _three_tracks():
@@ -115,6 +121,28 @@ def _index_by_repeat(parts):
     span = t[first + sizes - 1].max() - t_min + 1.0
     key = np.repeat(np.arange(len(s)), sizes) * span + (t - t_min)
     return t, np.concatenate(lons)[rows], np.concatenate(lats)[rows], first, key
+
+
+def test_spread_picks_are_a_per_group_linspace():
+    """At most max_per items per group, evenly spread in key order, ends kept: the picks
+    of a loop of ``np.linspace(0, n - 1, min(n, max_per)).round()`` per group."""
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        n_groups = int(rng.integers(1, 6))
+        sizes = rng.integers(1, 300, n_groups)
+        max_per = int(rng.integers(1, 90))
+        group = np.repeat(np.arange(n_groups), sizes)
+        key = rng.integers(0, 40, len(group)).astype(float)  # ties too
+        perm = rng.permutation(len(group))
+        group, key = group[perm], key[perm]
+        order = np.lexsort((key, group))
+        want = []
+        for g in range(n_groups):
+            idx = order[group[order] == g]
+            pick = np.linspace(0, len(idx) - 1, min(len(idx), max_per)).round().astype(int)
+            want.extend(idx[pick])
+        assert spread_picks(group, key, max_per).tolist() == want
+    assert len(spread_picks(np.zeros(0), np.zeros(0), 5)) == 0
 
 
 @given(
