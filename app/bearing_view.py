@@ -439,12 +439,15 @@ def bearing_layer_view(
     report: list[dict] | None = None,
     scene: BearingScene | None = None,
     parts: list[DrawData] | None = None,
+    params=None,
 ) -> LayerView:
     """A bearing layer's view for the main window (pure, for a worker): the bearing
     table as its points, no tracks for the batch table, and in ``extra`` the ``scene``
     (:func:`bearing_scene`; the Bearing-only dock draws it), the main map's ``parts``
     (:func:`main_map_layers`; made here from the scene when not given), the
-    ``detections`` and the detector's ``report``."""
+    ``detections``, the detector's ``report`` and, with the detector's ``params``, the
+    Detail panel's ``curves`` (:func:`~wakeline.app.detail.sequence_curves`: z over
+    every sequence is not computed on the GUI thread)."""
     if parts is None:
         parts = main_map_layers(scene) if scene is not None else []
     summary = batch_summary(EMPTY_POINTS)
@@ -458,6 +461,10 @@ def bearing_layer_view(
         "detections": detections,
         "report": list(report or []),
     }
+    if params is not None:
+        from .detail import sequence_curves
+
+        extra["curves"] = (params, sequence_curves(bearings, params))
     return LayerView(bearings, summary, {}, None, None, display_text(summary), extra)
 
 

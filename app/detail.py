@@ -11,6 +11,32 @@ from wakeline.core.bearing import BearingParams, auc_statistic
 from wakeline.core.schema import time_seconds
 
 
+def sequence_curves(
+    bearings: pd.DataFrame, params: BearingParams, batch: str | None = None
+) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]]:
+    """The Detail panel's curves of every bearing sequence (or of ``batch`` only), pure
+    and for a worker: per batch (time since its start in min, unwrapped bearing in °,
+    the tested boundaries' times in min, their z, its start in s since 1970)."""
+    out = {}
+    if bearings.empty:
+        return out
+    key = bearings["batch"].astype(str)
+    rows = bearings if batch is None else bearings[key == batch]
+    for name, g in rows.groupby(key, sort=True):  # a step per sequence, vectorized within
+        g = g.sort_values("time", kind="stable")
+        t = time_seconds(g["time"])
+        b = g["bearing"].to_numpy(dtype="float64")
+        obs = [
+            g[c].to_numpy(dtype="float64") if c in g.columns else None
+            for c in ("obs_lon", "obs_lat")
+        ]
+        bt, z = auc_statistic(t, b, params, *obs)
+        t0 = float(t[0])
+        curve = np.degrees(np.unwrap(np.radians(b)))
+        out[str(name)] = ((t - t0) / 60.0, curve, (bt - t0) / 60.0, z, t0)
+    return out
+
+
 class DetailPanel(QtWidgets.QTabWidget):
     """Plots for one selected track."""
 
@@ -74,6 +100,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         self._bearings = pd.DataFrame()
         self._detections = pd.DataFrame()
         self._bparams = BearingParams()
+        self._curves: dict = {}
         self.message = ""
 
     def retranslate(self) -> None:
@@ -82,10 +109,17 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.setTabText(2, self.tr("Bearing-only"))
 
     def show_bearings(
-        self, bearings: pd.DataFrame, detections: pd.DataFrame, params: BearingParams
+        self,
+        bearings: pd.DataFrame,
+        detections: pd.DataFrame,
+        params: BearingParams,
+        curves: tuple[BearingParams, dict] | None = None,
     ) -> None:
-        """Bearing sequences and their detections; the combo picks the sequence."""
+        """Bearing sequences and their detections; the combo picks the sequence.
+        ``curves``: :func:`sequence_curves` made in a worker with those parameters (used
+        while they are the panel's; else a sequence's curves are made when shown)."""
         self._bearings, self._detections, self._bparams = bearings, detections, params
+        self._curves = curves[1] if curves is not None and curves[0] == params else {}
         self.bearing_batch.blockSignals(True)
         self.bearing_batch.clear()
         self.bearing_batch.addItems(sorted(bearings["batch"].astype(str).unique()))
@@ -95,7 +129,7 @@ class DetailPanel(QtWidgets.QTabWidget):
 
     def clear_bearings(self) -> None:
         """No bearing sequence shown (its layer was removed)."""
-        self._bearings, self._detections = pd.DataFrame(), pd.DataFrame()
+        self._bearings, self._detections, self._curves = pd.DataFrame(), pd.DataFrame(), {}
         self.bearing_batch.blockSignals(True)
         self.bearing_batch.clear()
         self.bearing_batch.blockSignals(False)
@@ -112,18 +146,13 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.detect_lines = []
         if self._bearings.empty or not batch:
             return
-        g = self._bearings[self._bearings["batch"].astype(str) == batch].sort_values("time")
-        t = time_seconds(g["time"])
-        b = g["bearing"].to_numpy(dtype="float64")
-        t0 = t[0]
-        self.b_curve.setData((t - t0) / 60.0, np.degrees(np.unwrap(np.radians(b))))
         p = self._bparams
-        obs = [
-            g[c].to_numpy(dtype="float64") if c in g.columns else None
-            for c in ("obs_lon", "obs_lat")
-        ]
-        bt, z = auc_statistic(t, b, p, *obs)
-        self.z_curve.setData((bt - t0) / 60.0, z)
+        curves = self._curves.get(batch) or sequence_curves(self._bearings, p, batch).get(batch)
+        if curves is None:
+            return
+        minutes, bearing, bt, z, t0 = curves
+        self.b_curve.setData(minutes, bearing)
+        self.z_curve.setData(bt, z)
         self.z_plot.setLabel("left", "z (GLR)" if p.glr else "z (AUC)")
         self.z_band.setRegion((-p.z_crit, p.z_crit))
         det = self._detections[self._detections["batch"].astype(str) == batch]

@@ -249,7 +249,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         self.bearing_view.show_result(
             bearings, detections, view.extra["report"], scene=view.extra["scene"]
         )
-        self.detail.show_bearings(bearings, detections, self.params.params("bearing"))
+        self.detail.show_bearings(
+            bearings, detections, self.params.params("bearing"), view.extra.get("curves")
+        )
 
     def _apply(self, done: tuple) -> None:
         kind = done[0]

@@ -140,7 +140,9 @@ class ImportJobsMixin:
                 parts = main_map_layers(scene, scene.target if frame else view, size_px, lat0)
                 if frame:
                     plan = {"target": scene.target, "lat0": scene.lat0}
-            lview = bearing_layer_view(bearings, detections, result.report["report"], scene, parts)
+            lview = bearing_layer_view(
+                bearings, detections, result.report["report"], scene, parts, params
+            )
             return ("bearing", path, quarantine, result, lview, sha, plan)
 
         return self._start("bearing", job, ("bearing", path.name))

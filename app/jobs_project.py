@@ -128,6 +128,7 @@ class ProjectJobsMixin:
         path = Path(path)
         size_px = self.canvas.plot_size_px()
         state = self._view_state(replace_all=True)
+        bearing_params = self.params.params("bearing")
 
         def job(progress):
             from wakeline.app.bearing_view import bearing_layer_view, layer_scene, main_map_layers
@@ -163,7 +164,7 @@ class ProjectJobsMixin:
                         parts = main_map_layers(scene, size_px=size_px, shown=shown)
                     detections = lay.tables.get("detections", pd.DataFrame(columns=["batch"]))
                     views[lay.id] = bearing_layer_view(
-                        lay.points, detections, lay.meta.get("report"), scene, parts
+                        lay.points, detections, lay.meta.get("report"), scene, parts, bearing_params
                     )
                     continue
                 views[lay.id] = prepare_view_apart(

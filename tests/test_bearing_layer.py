@@ -278,3 +278,39 @@ def test_time_window_cuts_the_bearing_lines(qtbot, tmp_path):
     qtbot.waitUntil(lambda: _lines(w, lid).n_tracks == full.n_tracks, timeout=10_000)
     w.runner.cancel()
     w.runner.wait()
+
+
+@pytest.mark.gui
+def test_detail_curves_are_made_in_the_worker_not_on_the_gui_thread(qtbot, tmp_path, monkeypatch):
+    """The Detail panel's z over a sequence (seed 002's statistic, ~90 ms at 9,000
+    bearings) was computed on the GUI thread when a bearing file was shown; it is made in
+    the worker that reads the file, for every sequence, and the panel draws those
+    curves (the same as computing them there)."""
+    import threading
+
+    from wakeline.app import detail
+
+    calls = []
+    real = detail.auc_statistic
+
+    def probe(*args, **kwargs):
+        calls.append(threading.current_thread() is threading.main_thread())
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(detail, "auc_statistic", probe)
+    w = _window(qtbot, tmp_path)
+    path = tmp_path / "bearings.csv"
+    df = simulate_table(seed=4)
+    df.to_csv(path, index=False)
+    _open_bearings(w, qtbot, path)
+    batches = sorted(df["batch"].astype(str).unique())
+    assert len(batches) > 1 and calls.count(False) == len(batches) and True not in calls
+    panel = w.detail
+    for batch in batches:  # the operator picks each sequence: still nothing on the GUI thread
+        panel.bearing_batch.setCurrentText(batch)
+        minutes, bearing, bt, z, _ = panel._curves[batch]
+        np.testing.assert_array_equal(panel.z_curve.getData()[1], z)
+    assert True not in calls
+    fresh = detail.sequence_curves(w.bearings, panel._bparams, batches[-1])[batches[-1]]
+    np.testing.assert_array_equal(panel.z_curve.getData()[1], fresh[3])
+    np.testing.assert_array_equal(panel.b_curve.getData()[1], fresh[1])
