@@ -83,9 +83,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from wakeline.core.errors import InputError
     from wakeline.core.io import write_points
 
-    if args.hard and args.kind not in ("segments", "multisensor"):
+    if args.hard and args.kind not in ("maneuver", "segments", "multisensor"):
         # refused rather than ignored: the file would be the easy scene under a hard name
-        raise InputError(f"--hard applies to segments and multisensor, not to {args.kind}")
+        raise InputError(
+            f"--hard applies to maneuver, segments and multisensor, not to {args.kind}"
+        )
+    if args.hard and (args.length is not None or args.sigma is not None):
+        raise InputError("--length and --sigma are seed 000's classes; --hard has its own")
 
     if args.kind == "bearing":
         from wakeline.core.bearing_eval import simulate_table
@@ -97,8 +101,16 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             f"simulated {len(df):,} bearings in {df['batch'].nunique()} sequences", file=sys.stderr
         )
         return 0
-    if args.kind == "maneuver":
-        df = simulate.maneuver_tracks(args.tracks, args.length, args.sigma, seed=args.seed)
+    if args.kind == "maneuver" and args.hard:
+        hp = simulate.HardManeuverParams(n_ships=args.tracks)
+        df = simulate.hard_maneuver_scene(args.seed, hp).points
+    elif args.kind == "maneuver":
+        df = simulate.maneuver_tracks(
+            args.tracks,
+            args.length or "short",
+            300.0 if args.sigma is None else args.sigma,
+            seed=args.seed,
+        )
     elif args.kind == "segments":
         df = simulate.segments_scene(
             seed=args.seed, n_ships=args.ships, area_km=args.area_km, hard=args.hard
@@ -179,18 +191,20 @@ def register(sub) -> None:
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("-o", "--output", type=Path, required=True, help="canonical CSV to write")
     p.add_argument(
-        "--tracks", type=positive_int, default=100, help="maneuver: number of tracks (default 100)"
+        "--tracks",
+        type=positive_int,
+        default=100,
+        help="maneuver: number of tracks (--hard: ships) (default 100)",
     )
     p.add_argument(
         "--length",
         choices=tuple(LENGTH_CLASSES),
-        default="short",
-        help="maneuver: track class, short < 100, medium 100-200, long > 200 points",
+        help="maneuver: track class, short < 100, medium 100-200, long > 200 points "
+        "(default short)",
     )
     p.add_argument(
         "--sigma",
         type=positive_float,
-        default=300.0,
         help="maneuver: position noise std per axis, metres (default 300)",
     )
     p.add_argument(
@@ -205,8 +219,10 @@ def register(sub) -> None:
     p.add_argument(
         "--hard",
         action="store_true",
-        help="segments/multisensor: the hard variant (speed changes, curved paths, missed scans, "
-        "long gaps, loose ends, clutter; multisensor: split radar tracks, ships without AIS, "
-        "partial overlap)",
+        help="maneuver, segments, multisensor: the hard variant (speed changes, curved paths, "
+        "missed scans, long gaps, loose ends, clutter; multisensor: split radar tracks, ships "
+        "without AIS, partial overlap; maneuver: radar 1-2 s and AIS 10/30 s tracks with "
+        "jitter, gaps and heavy-tailed noise, sharp and gradual turns, slow and moored ships, "
+        "columns kind, rate, true_turn, turn_deg)",
     )
     p.set_defaults(func=_cmd_simulate)

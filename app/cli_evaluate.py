@@ -40,9 +40,11 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
     from wakeline.core.io import write_csv
 
     # refused rather than ignored: the table printed would not be the one asked for
-    if args.hard and (args.kind not in ("associate", "fuse") or args.real):
+    if args.hard and (args.kind not in ("maneuver", "associate", "fuse") or args.real):
         where = "--real" if args.real else args.kind
-        raise InputError(f"--hard applies to the simulated associate and fuse scenes, not {where}")
+        raise InputError(
+            f"--hard applies to the simulated maneuver, associate and fuse scenes, not {where}"
+        )
     if args.real and args.kind not in ("associate", "maneuver"):
         raise InputError(f"--real applies to associate and maneuver, not to {args.kind}")
 
@@ -126,6 +128,17 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         print(ev.format())
         if args.csv:
             write_csv(ev.rows, args.csv)
+        return 0
+
+    if args.hard:
+        from wakeline.core.evaluate import evaluate_maneuver_hard
+
+        ev = evaluate_maneuver_hard(
+            args.tracks, args.seed, args.scenes, _maneuver_params(args), progress=_progress
+        )
+        print(ev.format())
+        if args.csv:
+            write_csv(ev.table, args.csv)
         return 0
 
     ev = evaluate_maneuver(
@@ -335,7 +348,8 @@ def register(sub) -> None:
         "--scenes",
         type=positive_int,
         default=5,
-        help="associate, fuse: scenes per density class (default 5)",
+        help="associate, fuse: scenes per density class; maneuver --hard: scenes, seeds "
+        "--seed on (default 5)",
     )
     p.add_argument(
         "--set",
@@ -358,14 +372,20 @@ def register(sub) -> None:
         help="bearing: skip the eq. 15 AUC-mean and quadratic-trend comparisons",
     )
     p.add_argument(
-        "--tracks", type=positive_int, default=100, help="tracks per class (default 100)"
+        "--tracks",
+        type=positive_int,
+        default=100,
+        help="maneuver: tracks per class; --hard: ships per scene (default 100)",
     )
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--csv", type=Path, help="also write the full table as CSV")
     p.add_argument(
         "--hard",
         action="store_true",
-        help="associate, fuse: the hard simulated scenes (see 'simulate --hard')",
+        help="maneuver, associate, fuse: the hard simulated scenes (see 'simulate --hard'); "
+        "maneuver: radar 1-2 s and AIS 10/30 s tracks with jitter, missed scans, gaps, "
+        "heavy-tailed noise, speed changes, sharp and gradual turns, slow and moored ships; "
+        "turn scores, slow shares and compression against Douglas-Peucker, ours and --paper",
     )
     p.add_argument(
         "--cut-s",

@@ -175,19 +175,23 @@ def covered_turns(turns: pd.DataFrame, observed: pd.DataFrame, margin_s: float) 
 def score_turns(
     detections: pd.DataFrame,
     turns: pd.DataFrame,
-    match_s: float,
+    match_s: float | pd.Series,
     scored: pd.DataFrame | None = None,
 ) -> dict:
-    """Event scores: a detection (batch, t_s) is right within ``match_s`` of any turn span
-    of its batch; a turn of ``scored`` (default all) is found when a detection is."""
+    """Event scores: a detection (batch, t_s) is right within ``match_s`` (s; or a Series
+    of seconds by batch) of any turn span of its batch; a turn of ``scored`` (default all)
+    is found when a detection is."""
     det = detections.reset_index(drop=True)
     scored = turns if scored is None else scored
 
     def hits(tab: pd.DataFrame) -> pd.DataFrame:
         pairs = det.reset_index().merge(tab.reset_index(), on="batch", suffixes=("_d", "_t"))
-        inside = (pairs["t_s"] >= pairs["start_s"] - match_s) & (
-            pairs["t_s"] <= pairs["end_s"] + match_s
+        tol = (
+            pairs["batch"].map(match_s).astype("float64")
+            if isinstance(match_s, pd.Series)
+            else match_s
         )
+        inside = (pairs["t_s"] >= pairs["start_s"] - tol) & (pairs["t_s"] <= pairs["end_s"] + tol)
         return pairs[inside]
 
     right = hits(turns)["index_d"].nunique()
@@ -218,7 +222,8 @@ def _speed_either_side_kn(pts: pd.DataFrame, index) -> np.ndarray:
 def compression_against_dp(
     result, cparams: CompressParams | None = None, iterations: int = 20
 ) -> dict:
-    """Our compression (kept, Dis_e) and Douglas–Peucker's kept points at the same Dis_e."""
+    """Our compression (kept, Dis_e) and Douglas–Peucker's kept points at the same Dis_e
+    (and both Dis_e against the true path, ``*_dis_e_true_m``, where the table has one)."""
     pts, index = result.points, result.index
     ours = compress_with(
         None,
@@ -246,6 +251,8 @@ def compression_against_dp(
         "dp_kept": dp["kept"],
         "dp_dis_e_m": dp["dis_e_m"],
         "dp_tolerance_m": lo,
+        "ours_dis_e_true_m": ours.get("dis_e_true_m", np.nan),
+        "dp_dis_e_true_m": dp.get("dis_e_true_m", np.nan),
     }
 
 

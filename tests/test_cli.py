@@ -1,3 +1,4 @@
+import json
 import subprocess
 import sys
 
@@ -175,19 +176,60 @@ def test_step_reports_say_where_every_input_row_went(step, tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["evaluate", "maneuver", "--hard", "--tracks", "1"], "--hard applies"),
         (["evaluate", "bearing", "--hard"], "--hard applies"),
         (["evaluate", "associate", "--real", "x.csv", "--hard"], "not --real"),
+        (["evaluate", "maneuver", "--real", "x.csv", "--hard"], "not --real"),
         (["evaluate", "fuse", "--real", "x.csv"], "--real applies"),
         (["evaluate", "bearing", "--real", "x.csv"], "--real applies"),
-        (["simulate", "maneuver", "--hard", "-o", "x.csv"], "--hard applies"),
         (["simulate", "demo", "--hard", "-o", "x.csv"], "--hard applies"),
+        (["simulate", "bearing", "--hard", "-o", "x.csv"], "--hard applies"),
+        (["simulate", "maneuver", "--hard", "--sigma", "3", "-o", "x.csv"], "--length and"),
+        (["simulate", "maneuver", "--hard", "--length", "long", "-o", "x.csv"], "--length and"),
     ],
 )
 def test_flags_that_do_not_apply_are_refused_not_ignored(argv, message, tmp_path, capsys):
-    """`evaluate maneuver --hard` printed the easy seed 000 table and `simulate maneuver
-    --hard` wrote the easy scene: a flag that does not apply is refused (exit 2)."""
+    """`--hard` where there is no hard scene (bearing, demo, real data), and seed 000's
+    classes with the hard maneuver scene, are refused (exit 2), not ignored."""
     argv = [str(tmp_path / a) if a == "x.csv" else a for a in argv]
     assert main(argv) == 2
     assert message in capsys.readouterr().err
     assert not (tmp_path / "x.csv").exists()
+
+
+def test_simulate_maneuver_hard_writes_a_scene_import_reads_whole(tmp_path, capsys):
+    """`simulate maneuver --hard` (before: refused) writes the hard scene with its truth
+    columns; `import` reads every row of it."""
+    out = tmp_path / "hard.csv"
+    assert (
+        main(["simulate", "maneuver", "--hard", "--tracks", "12", "--seed", "3", "-o", str(out)])
+        == 0
+    )
+    df = pd.read_csv(out, dtype={"batch": str})
+    assert {"kind", "rate", "true_turn", "turn_deg", "true_lon", "true_lat"} <= set(df.columns)
+    assert set(df["rate"]) == {"radar", "ais10", "ais30"} and df["true_turn"].sum() > 0
+    easy = tmp_path / "easy.csv"
+    assert main(["simulate", "maneuver", "--tracks", "12", "--seed", "3", "-o", str(easy)]) == 0
+    assert "kind" not in pd.read_csv(easy).columns  # without --hard: seed 000's protocol
+    capsys.readouterr()
+    report = tmp_path / "r.json"
+    assert main(["import", str(out), "-o", str(tmp_path / "i.csv"), "--report", str(report)]) == 0
+    rep = json.loads(report.read_text())
+    assert rep["rows_quarantined"] == 0 and rep["rows_imported"] == len(df)
+
+
+def test_evaluate_maneuver_hard_prints_the_hard_table(tmp_path, capsys):
+    """`evaluate maneuver --hard` (before: refused) scores ours and the paper's detector
+    and compressor on hard scenes, per sampling class."""
+    out = tmp_path / "hard.csv"
+    argv = ["evaluate", "maneuver", "--hard", "--tracks", "10", "--scenes", "1", "--csv", str(out)]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "Hard maneuver scenes: 1 scene(s) of 10 ships" in text
+    for row in ("radar  ours", "ais10  paper", "ais30  ours", "all    paper"):
+        assert row in text
+    assert "Douglas-Peucker" in text and "still" in text
+    table = pd.read_csv(out)
+    assert set(table["method"]) == {"ours", "paper"} and len(table) == 8
+    assert {"precision", "recall", "slow_share", "kept", "dp_kept", "dis_e_true_m"} <= set(
+        table.columns
+    )

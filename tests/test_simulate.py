@@ -1,4 +1,5 @@
 import numpy as np
+import pandas as pd
 import pytest
 
 from wakeline.core import geo, simulate
@@ -88,3 +89,55 @@ def test_demo_scene_is_small_and_has_both_sensors():
     assert (
         df[df.sensor == "R1"].groupby("truth").batch.nunique().max() >= 2
     )  # interrupted radar tracks
+
+
+def test_hard_maneuver_scene_truth_is_consistent():
+    """The hard scene's truth holds: each true turn changes the true course by its stated
+    change (chords before its start and after its end), moored ships stay on their swing
+    circle, slow ships stay below 1 kn, and each sampling class has its period."""
+    hp = simulate.HardManeuverParams(n_ships=40, duration_s=2400.0)
+    sc = simulate.hard_maneuver_scene(7, hp)
+    pts = sort_points(sc.points)
+    idx = track_index(pts)
+    t = time_seconds(pts.time) - (simulate.T0 - pd.Timestamp(0, tz="UTC")).total_seconds()
+    x, y = geo.to_local(pts.true_lon.to_numpy(), pts.true_lat.to_numpy(), *simulate.SCENE_ORIGIN)
+    rows = dict(zip(idx.keys["batch"], zip(idx.starts, idx.ends, strict=True), strict=True))
+
+    def course(a, b, lo, hi):
+        sel = np.flatnonzero((t[a:b] >= lo) & (t[a:b] <= hi)) + a
+        if len(sel) < 2 or t[sel[-1]] - t[sel[0]] < 20:
+            return None
+        i, j = sel[0], sel[-1]
+        return np.degrees(np.arctan2(x[j] - x[i], y[j] - y[i]))
+
+    checked = 0
+    for turn in sc.turns.itertuples():  # a few dozen turns
+        a, b = rows[turn.batch]
+        before = course(a, b, turn.start_s - 100, turn.start_s)
+        after = course(a, b, turn.end_s, turn.end_s + 100)
+        if before is None or after is None:
+            continue
+        assert geo.angle_diff(after, before + turn.change_deg) < 1.0
+        checked += 1
+    assert checked >= 20
+    assert set(sc.turns["kind"]) == {"sharp", "gradual"}
+    gradual = sc.turns[sc.turns["kind"] == "gradual"]
+    assert ((gradual.end_s - gradual.start_s) >= 60).all()  # spread over minutes
+    tracks = sc.tracks.set_index("batch")
+    for batch, tr in tracks.iterrows():  # 40 tracks
+        a, b = rows[batch]
+        if tr.kind == "moored":  # the extent in any direction is at most the diameter
+            for ang in np.radians(np.arange(0, 180, 15)):
+                proj = x[a:b] * np.sin(ang) + y[a:b] * np.cos(ang)
+                assert np.ptp(proj) <= 2 * tr.swing_m + 0.5
+        if tr.kind == "slow":
+            span = t[b - 1] - t[a]
+            assert np.hypot(x[b - 1] - x[a], y[b - 1] - y[a]) / span < 1.0 * geo.KN_MS
+        if tr.kind != "moving":
+            assert batch not in set(sc.turns["batch"])
+        steps = np.median(np.diff(t[a:b]))
+        lo, hi = {"radar": (1.0, 2.1), "ais10": (9.0, 11.5), "ais30": (27.0, 34.0)}[tr.rate]
+        assert lo <= steps <= hi
+    assert set(tracks["kind"]) == {"moving", "slow", "moored"}
+    again = simulate.hard_maneuver_scene(7, hp)
+    assert again.points.equals(sc.points)
