@@ -77,3 +77,31 @@ def test_any_track_file_or_folder_is_scored_without_turn_truth(tmp_path):
     for col in ("slow_share", "ours_kept", "dp_kept", "at_rest_spans"):
         assert col in one.columns
     assert one.loc["ours", "ours_kept"] <= one.loc["ours", "points"]
+
+
+def test_hard_scene_scoring_tolerance_per_track_and_unseen_turns():
+    """Hard maneuver scenes (core/evaluate.py): the match tolerance is per track (2 periods,
+    at least 10 s: 60 s on 30 s AIS), and a turn inside a gap is not scored for recall."""
+    from wakeline.core.evaluate import observable_turns
+
+    turns = pd.DataFrame(
+        {
+            "batch": ["ais", "radar", "radar", "radar"],
+            "start_s": [1000.0, 1000.0, 2000.0, 3000.0],
+            "end_s": [1010.0, 1010.0, 2005.0, 3100.0],
+            "change_deg": [40.0, 40.0, 60.0, 10.0],
+            "speed_kn": [8.0, 8.0, 8.0, 8.0],
+        }
+    )
+    tol = pd.Series({"ais": 60.0, "radar": 10.0})
+    det = pd.DataFrame({"batch": ["ais", "radar"], "t_s": [1050.0, 1050.0]})
+    s = score_turns(det, turns, tol, turns.iloc[:2])
+    assert s["precision"] == 0.5 and s["recall"] == 0.5  # 40 s late: right on AIS only
+    # radar plots every 1.5 s, none from 1900 s to 2100 s: the turn at 2000 s is unseen
+    t = np.arange(0.0, 4000.0, 1.5)
+    t = t[(t < 1900.0) | (t > 2100.0)]
+    ais = np.arange(0.0, 4000.0, 30.0)
+    points = pd.concat([_table(t, t * 0, t, "radar"), _table(ais, ais * 0, ais, "ais")])
+    seen = observable_turns(turns, points, tol, threshold_deg=15.0)
+    # the turn in the gap and the 10° one are not scored; the others are
+    assert sorted(seen["start_s"]) == [1000.0, 1000.0]
