@@ -233,14 +233,15 @@ class HardManeuverEvaluation:
 
         def cell(col: str, fmt: str) -> pd.Series:
             agg = g[col].agg(["mean", "min", "max"])
-            return agg.apply(
-                lambda r: (
-                    f"{r['mean']:{fmt}} ({r['min']:{fmt}}-{r['max']:{fmt}})"
-                    if r["min"] != r["max"]
-                    else f"{r['mean']:{fmt}}"
-                ),
-                axis=1,
-            )
+
+            def text(r: pd.Series) -> str:
+                if np.isnan(r["mean"]):
+                    return "-"  # no scene had such a turn to find
+                if r["min"] == r["max"]:
+                    return f"{r['mean']:{fmt}}"
+                return f"{r['mean']:{fmt}} ({r['min']:{fmt}}-{r['max']:{fmt}})"
+
+            return agg.apply(text, axis=1)
 
         p = self.params
         seeds = f"{self.seed}-{self.seed + self.scenes - 1}" if self.scenes > 1 else str(self.seed)
@@ -248,7 +249,12 @@ class HardManeuverEvaluation:
             f"Hard maneuver scenes: {self.scenes} scene(s) of {self.n_ships} ships, seeds {seeds} "
             "(HardManeuverParams: radar 1-2 s, AIS 10 s / 30 s with jitter, missed scans, gaps, "
             "heavy-tailed noise, speed changes, sharp and gradual turns, slow and moored ships). "
-            f"Ours: window {p.window_s:g} s (p >= {p.window_p}), n = {p.radius_n}, "
+            + (
+                f"Ours: window {p.window_s:g} s (p >= {p.window_p})"
+                if p.window_s
+                else f"Ours: p = {p.window_p}"
+            )
+            + f", n = {p.radius_n}, "
             f"t = {p.threshold_deg:g} deg; paper: seed 000 as written. Mean over the scenes, "
             "(min-max).",
             "",

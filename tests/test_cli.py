@@ -228,6 +228,7 @@ def test_evaluate_maneuver_hard_prints_the_hard_table(tmp_path, capsys):
     for row in ("radar  ours", "ais10  paper", "ais30  ours", "all    paper"):
         assert row in text
     assert "Douglas-Peucker" in text and "still" in text
+    assert "nan" not in text  # a class without gradual turns to find shows "-"
     table = pd.read_csv(out)
     assert set(table["method"]) == {"ours", "paper"} and len(table) == 8
     assert {"precision", "recall", "slow_share", "kept", "dp_kept", "dis_e_true_m"} <= set(
