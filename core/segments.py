@@ -159,6 +159,41 @@ class Segments:
         """Earth-centred position (m, n × 3) of each end (:func:`ecef`)."""
         return ecef(self.lon1, self.lat1)
 
+    @cached_property
+    def t0_rank(self) -> np.ndarray:
+        """Each track's place (0..n−1) in start-time order, ties by index: the key that
+        orders tracks by (group, start time) in one integer sort (:func:`order_by`)."""
+        return time_rank(self.t0)
+
+    @cached_property
+    def t1_rank(self) -> np.ndarray:
+        """Each track's place (0..n−1) in end-time order, ties by index (:func:`order_by`)."""
+        return time_rank(self.t1)
+
+
+def time_rank(t: np.ndarray) -> np.ndarray:
+    """Place (0..n−1) of each value of ``t`` in ascending order, ties (and NaN, last) in
+    index order: what a stable sort of ``t`` puts where."""
+    rank = np.empty(len(t), dtype="int64")
+    rank[np.argsort(t, kind="stable")] = np.arange(len(t))
+    return rank
+
+
+def order_by(major: np.ndarray, rank: np.ndarray) -> np.ndarray:
+    """``np.lexsort((t, major))`` from ``rank`` = :func:`time_rank` of ``t`` (``major``
+    and ``rank`` of the same rows; ``rank`` may be a subset's places in a larger
+    ranking): one sort of the unique integer keys ``major·R + rank`` (R above every rank)
+    instead of two stable indirect sorts — the same permutation, several times faster
+    at 100 k tracks. Falls back to ``lexsort`` when ``major`` is negative or the keys
+    would not fit in 63 bits."""
+    if len(major) == 0:
+        return np.zeros(0, dtype="int64")
+    big = int(rank.max()) + 1
+    lo, hi = int(major.min()), int(major.max())
+    if lo < 0 or (hi + 1) * big >= 2**63:
+        return np.lexsort((rank, major))
+    return np.argsort(major.astype("int64") * big + rank)
+
 
 def _end_fit(
     lon: np.ndarray,
@@ -654,7 +689,7 @@ def chain_refit(
     chain = np.asarray(chain)
     # The chains laid end to end, without moving a row: pieces in (chain, start) order,
     # ``off`` the place of each piece's first fix in that virtual sequence.
-    porder = np.lexsort((seg.t0, chain))
+    porder = order_by(chain, seg.t0_rank)
     place = np.empty(n, dtype="int64")
     place[porder] = np.arange(n)
     off = np.concatenate([[0], np.cumsum(index.sizes[porder])])
