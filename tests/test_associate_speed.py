@@ -257,3 +257,29 @@ def test_association_sorts_no_pairs_or_tracks_by_lexsort(rerun_scene, monkeypatc
     _same_pairs(a.pairs, b.pairs)
     np.testing.assert_array_equal(a.chosen, b.chosen)
     np.testing.assert_array_equal(a.target_of_track, b.target_of_track)
+
+
+def test_pricing_weighted_mean_by_columns_is_the_stacks_bits():
+    # _pricing's weighted mean by columns (a + b + c + 0.0) instead of an m × 3 stack's
+    # row sums: the same bits, with signed zeros, unknown (NaN) and infinite terms, huge
+    # terms that overflow, and weights of 0.
+    rng = np.random.default_rng(2)
+    m = 200_000
+    terms = []
+    for _ in range(3):
+        c = np.abs(rng.standard_normal(m)) * 10.0 ** rng.integers(-8, 300, m)
+        c[rng.random(m) < 0.2] = -0.0
+        c[rng.random(m) < 0.2] = 0.0
+        c[rng.random(m) < 0.1] = np.nan
+        c[rng.random(m) < 0.05] = np.inf
+        terms.append(c)
+    for weights in [(0.5, 0.25, 0.25), (1.0, 0.0, 0.0), (0.3, 0.7, 0.0), (0.0, 0.0, 1.0)]:
+        t = np.column_stack(terms)
+        w = np.array(weights) * np.isfinite(t)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            cost = (w * np.nan_to_num(t)).sum(axis=1) / w.sum(axis=1)
+            share = np.nan_to_num(w[:, 0] / w.sum(axis=1))
+        cost = np.where(w.sum(axis=1) > 0, cost, np.inf)
+        got_cost, got_share = assoc_mod._weighted_mean(tuple(terms), weights)
+        np.testing.assert_array_equal(got_cost.view(np.int64), cost.view(np.int64))
+        np.testing.assert_array_equal(got_share.view(np.int64), share.view(np.int64))
