@@ -1055,10 +1055,13 @@ def _references(pairs: Pairs, priced: _Priced, params: LinkParams, n: int) -> tu
     )
     out = []
     for use in (ok & (pairs.gap_s <= params.max_gap_s), ok):
+        # The others as inf, which no minimum takes: one pass, not three gathers of the
+        # pairs used.
+        log_sd = np.where(use, priced.log_sd, np.inf)
         tight_i = np.full(n, np.inf)
         tight_j = np.full(n, np.inf)
-        np.minimum.at(tight_i, pairs.i[use], priced.log_sd[use])
-        np.minimum.at(tight_j, pairs.j[use], priced.log_sd[use])
+        np.minimum.at(tight_i, pairs.i, log_sd)
+        np.minimum.at(tight_j, pairs.j, log_sd)
         out.append((tight_i, tight_j))
     return tuple(out)
 

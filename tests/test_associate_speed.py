@@ -283,3 +283,31 @@ def test_pricing_weighted_mean_by_columns_is_the_stacks_bits():
         got_cost, got_share = assoc_mod._weighted_mean(tuple(terms), weights)
         np.testing.assert_array_equal(got_cost.view(np.int64), cost.view(np.int64))
         np.testing.assert_array_equal(got_share.view(np.int64), share.view(np.int64))
+
+
+def test_references_by_inf_equal_those_of_the_pairs_used():
+    # The tightest ln σ per end and start, the pairs not used set to inf instead of
+    # gathered out: the same bits (NaN and infinite σ, signed zeros, blind pairs).
+    rng = np.random.default_rng(4)
+    n, m = 500, 20_000
+    pairs = assoc_mod.Pairs(
+        np.sort(rng.integers(0, n, m)),
+        rng.integers(0, n, m),
+        rng.random(m) * 1500,
+        *(rng.random(m) for _ in range(4)),
+    )
+    log_sd = rng.standard_normal(m)
+    log_sd[rng.random(m) < 0.05] = np.nan
+    log_sd[rng.random(m) < 0.05] = np.inf
+    log_sd[rng.random(m) < 0.05] = -0.0
+    log_sd[rng.random(m) < 0.05] = 0.0
+    priced = assoc_mod._Priced(rng.random(m) * 3, rng.random(m), log_sd, rng.random(m) < 0.1)
+    params = LinkParams()
+    got = assoc_mod._references(pairs, priced, params, n)
+    ok = (priced.cost <= min(params.gate, params.no_join)) & ~priced.blind & np.isfinite(log_sd)
+    for (ti, tj), use in zip(got, (ok & (pairs.gap_s <= params.max_gap_s), ok), strict=True):
+        want_i, want_j = np.full(n, np.inf), np.full(n, np.inf)
+        np.minimum.at(want_i, pairs.i[use], log_sd[use])
+        np.minimum.at(want_j, pairs.j[use], log_sd[use])
+        np.testing.assert_array_equal(ti.view(np.int64), want_i.view(np.int64))
+        np.testing.assert_array_equal(tj.view(np.int64), want_j.view(np.int64))
