@@ -5,7 +5,9 @@ the speed-up over the dense way (an n×n cost matrix and linear_sum_assignment) 
 subset both can run.
 
 Run: ``python bench/bench_associate.py [--segments 1000 10000 100000] [--dense 2500]
-[--repeat 2]``.
+[--repeat 2]``; ``--stages``: CPU time per stage of one association at 10 k and 100 k
+segments (or ``--segments``) and its growth; ``--density``: ships per km² around a ship
+and candidate pairs per segment of each scene.
 Goals: issue 6, 10 k segments in < 10 s and 100 k well below the machine's 24 GB;
 issue 17, association growth ≤ 11× per 10× segments. CPU time is printed beside wall
 time: on a shared machine it is the steadier of the two.
@@ -143,14 +145,115 @@ def growth(sizes: list[int], repeat: int) -> None:
         prev = (len(seg), t)
 
 
+#: The functions of core/associate.py (and segments.py, through it) whose own CPU time
+#: ``--stages`` reports.
+STAGES = (
+    "segment_stats", "chain_refit", "components", "candidate_pairs", "_pricing",
+    "pair_features", "prediction_miss", "at_rest_pairs", "optimal_assign", "insert_skipped",
+    "margin_test", "soft_gap_test", "_released", "_narrowed", "_two_cheapest", "_skips",
+    "_targets", "_references", "_spread", "first_pass_pairs", "long_gap_pass",
+    "assign_interrupted", "_fitted", "_soft_ends", "_both_moving",
+)  # fmt: skip
+
+
+def stages(sizes: list[int], repeat: int) -> None:
+    """Exclusive CPU time (``time.process_time``) of each stage of one association per
+    size (best of ``repeat`` by total), and its growth per 10× segments: each function of
+    :data:`STAGES` wrapped, its callees' time taken off its own."""
+    acc: dict[str, float] = {}
+    stack: list[float] = []
+
+    def wrapped(name, fn):
+        def run(*args, **kwargs):
+            t = time.process_time()
+            stack.append(0.0)
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                spent = time.process_time() - t
+                acc[name] = acc.get(name, 0.0) + spent - stack.pop()
+                if stack:
+                    stack[-1] += spent
+
+        return run
+
+    saved = {name: getattr(assoc_mod, name) for name in STAGES if hasattr(assoc_mod, name)}
+    for name, fn in saved.items():
+        setattr(assoc_mod, name, wrapped(name, fn))
+    params = LinkParams()
+    rows = {}
+    try:
+        for n in sizes:
+            df, _ = sorted_with_index(scene(n))
+            best = None
+            for _ in range(repeat):
+                acc.clear()
+                t = time.process_time()
+                assoc_mod.associate_interrupted(df, params)
+                total = time.process_time() - t
+                acc["(the rest)"] = total - sum(acc.values())
+                acc["total"] = total
+                if best is None or total < best["total"]:
+                    best = dict(acc)
+            rows[n] = best
+    finally:
+        for name, fn in saved.items():
+            setattr(assoc_mod, name, fn)
+    with open("/proc/loadavg") as f:
+        print(f"CPU s per stage, own time, best of {repeat} (load {f.read().split()[0]})")
+    last = rows[sizes[-1]]
+    print(f"{'stage':22s}" + "".join(f"{n:>10,}" for n in sizes) + "  growth per 10x")
+    for k in sorted(last, key=lambda k: -last[k]):
+        cells = "".join(f"{rows[n].get(k, 0.0):10.3f}" for n in sizes)
+        a, b = rows[sizes[0]].get(k, 0.0), last[k]
+        f = np.log10(sizes[-1] / sizes[0])
+        grow = f"{(b / a) ** (1 / f):6.1f}x" if a > 0 and f > 0 else ""
+        print(f"{k:22s}{cells}  {grow}")
+
+
+def density(sizes: list[int]) -> None:
+    """How dense each scene is where its ships are: ships per km² around a ship (the
+    other ships in its 10 km cell in the same 10 min), candidate pairs per segment."""
+    params = LinkParams()
+    for n in sizes:
+        df, _ = sorted_with_index(scene(n))
+        seg = segment_stats(df, params.end_points, end_points_max=params.end_points_max)
+        pairs = candidate_pairs(seg, params)
+        lon0, lat0 = float(df["lon"].mean()), float(df["lat"].mean())
+        x, y = geo.to_local(df["lon"].to_numpy(), df["lat"].to_numpy(), lon0, lat0)
+        t = (df["time"] - df["time"].min()).dt.total_seconds().to_numpy()
+        cell = np.floor(x / 10_000.0) * 1e6 + np.floor(y / 10_000.0) + (t // 600) * 1e12
+        ship = pd.factorize(df["truth"])[0]
+        occupied = pd.DataFrame({"cell": cell, "ship": ship}).drop_duplicates()
+        count = occupied.groupby("cell").size().to_numpy()
+        around = (count * count).sum() / count.sum() / 100.0  # per km² of a 10 km cell
+        ships = max(int(n / 3.0), 2)
+        print(
+            f"scene({n}): {len(seg):,} segments, {ships:,} ships started at "
+            f"{ships / (20.0 * np.sqrt(ships / 80.0)) ** 2:.3f} per km² for "
+            f"{(t.max() - t.min()) / 3600:.1f} h; ships per km² around a ship {around:.3f}; "
+            f"{len(pairs) / len(seg):.2f} candidate pairs per segment"
+        )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--segments", type=int, nargs="+", default=[1000, 10_000, 100_000])
+    ap.add_argument("--segments", type=int, nargs="+", default=None)
     ap.add_argument("--dense", type=int, default=2500, help="segments for the dense comparison")
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--growth-only", action="store_true", help="only the growth per 10x (issue 17)")
+    ap.add_argument("--stages", action="store_true", help="CPU time per stage and its growth")
+    ap.add_argument("--density", action="store_true", help="how dense each scene is")
     args = ap.parse_args()
     params = LinkParams()
+    if args.stages or args.density:
+        sizes = args.segments or [10_000, 100_000]
+        if args.density:
+            density(sizes)
+        if args.stages:
+            stages(sizes, args.repeat)
+        return
+    args.segments = args.segments or [1000, 10_000, 100_000]
     growth(args.segments, args.repeat)
     if args.growth_only:
         return

@@ -311,3 +311,26 @@ def test_references_by_inf_equal_those_of_the_pairs_used():
         np.minimum.at(want_j, pairs.j[use], log_sd[use])
         np.testing.assert_array_equal(ti.view(np.int64), want_i.view(np.int64))
         np.testing.assert_array_equal(tj.view(np.int64), want_j.view(np.int64))
+
+
+def test_bench_stages_reports_every_stage_and_restores_the_functions(
+    rerun_scene, monkeypatch, capsys
+):
+    # `python bench/bench_associate.py --stages`: own CPU time per stage at each size,
+    # its growth, and the association's functions unwrapped afterwards.
+    import sys
+    from pathlib import Path
+
+    monkeypatch.syspath_prepend(str(Path(__file__).resolve().parents[1] / "bench"))
+    import bench_associate
+
+    sizes = {1000: rerun_scene, 10_000: rerun_scene}
+    monkeypatch.setattr(bench_associate, "scene", lambda n: sizes[n])
+    before = {name: getattr(assoc_mod, name) for name in bench_associate.STAGES}
+    bench_associate.stages([1000, 10_000], 1)
+    out = capsys.readouterr().out
+    for name in ("total", "candidate_pairs", "segment_stats", "(the rest)"):
+        assert f"\n{name} " in out
+    assert "growth per 10x" in out
+    assert all(getattr(assoc_mod, name) is fn for name, fn in before.items())
+    sys.modules.pop("bench_associate", None)
