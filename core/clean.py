@@ -14,7 +14,9 @@ Rules, in the order they run (each can be switched off):
    the first with the mean position (``keep="mean"``; the kept row is then *changed*).
 2. ``stationary`` — at-rest spans: every position over ``window_s`` seconds stays within
    ``radius_m`` metres (:func:`at_rest`; tolerant of GPS jitter and a ship swinging at its
-   berth). The inside of each span is removed; its first and last point stay (where and when
+   berth). On a track sampled more sparsely than that (AIS posits every 30 min) the window
+   spans ``steps`` of its median intervals and the radius grows with it, the speed limit
+   2 · radius / window kept (:func:`rest_frame`). The inside of each span is removed; its first and last point stay (where and when
    the ship stopped and left); the report lists the spans (``at_rest_spans``). Seed 001
    eq. 1 (speed below ``speed_kn`` and the identical lon/lat at the next point — 1–6 m of
    jitter defeats it) is ``paper_rule``.
@@ -107,6 +109,16 @@ class StationaryParams(Params):
         lo=1,
         hi=1e7,
         source="ours, from seed 001 eq. 1's 1 kn",
+    )
+    steps: float = param(
+        1.0,
+        "intervals",
+        "sparse tracks: a stay also spans at least this many of the track's median sampling "
+        "intervals (a stay needs two fixes to be seen), the radius growing with the window so "
+        "2 * radius / window, the speed limit, stays; 0 = window_s and radius_m on every track",
+        lo=0,
+        hi=1000,
+        source="ours",
     )
     paper_rule: bool = param(
         False,
@@ -645,6 +657,39 @@ def _local_xy_rows(lon: np.ndarray, lat: np.ndarray, index: TrackIndex):
     return geo.to_local(lon, lat, lon0[tr], lat0[tr])
 
 
+def rest_frame(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    window_s: float,
+    steps: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Positions (m) and times (s) in which :func:`at_rest` with ``window_s`` and its radius
+    is, per track, the rule with a window of at least ``steps`` median sampling intervals.
+
+    A stay is seen only when two fixes fall in it: on a track reported every 30 min a
+    3-min window holds one fix and nothing is ever at rest. Each track whose ``steps``
+    median intervals exceed ``window_s`` has its times and positions divided by
+    f = steps · median / window_s about its first fix: its window becomes f · window_s
+    and its radius f · radius, so the speed the rule tolerates (2 · radius / window) is the
+    same at every sampling, and so is the reach back over a gap (four windows). The arrays
+    come back as they are (the same objects) when no track is that sparse."""
+    if steps <= 0 or len(t) < 2:
+        return x, y, t
+    from wakeline.core.maneuver import median_interval_s  # lazy: maneuver imports clean
+
+    with np.errstate(invalid="ignore"):
+        f = np.fmax(steps * median_interval_s(t, index) / window_s, 1.0)
+    f[~np.isfinite(f)] = 1.0
+    if not (f > 1.0).any():
+        return x, y, t
+    tr = index.track_of_row
+    fr = f[tr]
+    t0 = t[index.starts[tr]]
+    return x / fr, y / fr, t0 + (t - t0) / fr
+
+
 def at_rest(
     x: np.ndarray,
     y: np.ndarray,
@@ -790,7 +835,8 @@ def _clean_block(
         else:
             sub = TrackIndex(*_sub_index_rows(track[rows], index.n_tracks))
             x, y = _local_xy_rows(lon[rows], lat[rows], sub)
-            rest = at_rest(x, y, t[rows], sub, sp.radius_m, sp.window_s)
+            x, y, t_rest = rest_frame(x, y, t[rows], sub, sp.window_s, sp.steps)
+            rest = at_rest(x, y, t_rest, sub, sp.radius_m, sp.window_s)
             spans = rest_spans(rest, sub)
             inside = rest.copy()
             inside[spans[:, 0]] = False  # a span's first and last point stay: where and

@@ -274,7 +274,7 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
     the maneuver points, and — ours, for time-synchronized Dis_e on real traffic — at-rest
     span ends (plus Douglas–Peucker inside a span at the rest radius), both ends of long
     gaps and speed changes. Track ends are added by :func:`compress_with`."""
-    from wakeline.core.clean import rest_spans
+    from wakeline.core.clean import rest_frame, rest_spans
     from wakeline.core.maneuver import (
         ManeuverResult,
         _near,
@@ -314,7 +314,11 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
         rows = concat_ranges(spans[:, 0], sizes)
         span_of_row = np.repeat(np.arange(len(sizes)), sizes)
         sub = TrackIndex(starts, starts + sizes, span_of_row, pd.DataFrame(index=range(len(sizes))))
-        keep[rows[douglas_peucker_mask(x[rows], y[rows], sub, radius_m)]] = True
+        # inside a span at the radius that made it (a sparse track's grows with its window)
+        steps = result.params.rest_steps if result.params is not None else 0.0
+        window_s = result.params.rest_window_s if result.params is not None else 180.0
+        xs, ys, _ = rest_frame(x, y, t, index, window_s, steps)
+        keep[rows[douglas_peucker_mask(xs[rows], ys[rows], sub, radius_m)]] = True
     p_row = np.asarray(result.window_p)[tr]
     if params.gap_factor > 0 and len(t) > 1:
         med = median_interval_s(t, index)[tr]

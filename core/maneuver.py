@@ -25,7 +25,8 @@ clear the noise floor (at least t) with its own point left out too, so one stray
 no turn. Each added turn needs no turn already found within its reach.
 No maneuver where the ship covers either window slower
 than ``min_speed_kn`` or where a window touches an at-rest span (cleaning's stationary
-rule: positions within ``rest_radius_m`` for ``rest_window_s``). ``ManeuverParams.paper()``
+rule: positions within ``rest_radius_m`` for ``rest_window_s``, on sparse tracks for
+``rest_steps`` of their median intervals with the radius grown alike). ``ManeuverParams.paper()``
 switches all of these off.
 """
 
@@ -161,6 +162,14 @@ class ManeuverParams(Params):
     )
     rest_window_s: float = param(
         180.0, "s", "at rest: the shortest stay that counts", lo=1.0, hi=1e7
+    )
+    rest_steps: float = param(
+        1.0,
+        "intervals",
+        "at rest on sparse tracks: the stay also spans this many of the track's median "
+        "sampling intervals, the radius growing with it (cleaning's stationary.steps); 0 = off",
+        lo=0.0,
+        hi=1000.0,
     )
 
     @classmethod
@@ -776,19 +785,27 @@ def _search_sorted(
 
 
 def _rest_mask(
-    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m: float, window_s: float
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    radius_m: float,
+    window_s: float,
+    steps: float = 0.0,
 ) -> np.ndarray:
-    """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`), run only on the tracks
-    that can hold a stay: a stay ending at a point covers every fix of the last
+    """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`, on sparse tracks over
+    ``steps`` sampling intervals: :func:`wakeline.core.clean.rest_frame`), run only on the
+    tracks that can hold a stay: a stay ending at a point covers every fix of the last
     ``window_s`` before it, so somewhere the point and the first fix of that window lie
     within 2·``radius_m``, at least ``window_s`` after the track's first fix. Tracks that
     never do are left out (same result, less work)."""
-    from wakeline.core.clean import at_rest  # the same rule cleaning uses
+    from wakeline.core.clean import at_rest, rest_frame  # the same rule cleaning uses
 
     n = len(x)
     rest = np.zeros(n, dtype=bool)
     if n == 0:
         return rest
+    x, y, t = rest_frame(x, y, t, index, window_s, steps)
     tr = index.track_of_row
     sizes = index.sizes
     rel = np.repeat(t[index.starts], sizes)
@@ -1662,7 +1679,9 @@ def _detect_sorted(
     noise: list[np.ndarray] = []  # the track noise, computed when first needed
     rest = np.zeros(n, dtype=bool)
     if params.rest_radius_m > 0 and n:
-        rest = _rest_mask(x, y, t, index, params.rest_radius_m, params.rest_window_s)
+        rest = _rest_mask(
+            x, y, t, index, params.rest_radius_m, params.rest_window_s, params.rest_steps
+        )
     rest_lo, rest_hi = _runs(rest)
     any_rest = bool(len(rest_lo))
 

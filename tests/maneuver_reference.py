@@ -137,6 +137,9 @@ class ManeuverParams(Params):
     rest_window_s: float = param(
         180.0, "s", "at rest: the shortest stay that counts", lo=1.0, hi=1e7
     )
+    rest_steps: float = param(  # added with core (h68): sparse tracks' stays
+        1.0, "intervals", "at rest: the stay spans this many median intervals", lo=0.0, hi=1000.0
+    )
 
     @classmethod
     def paper(cls) -> "ManeuverParams":
@@ -493,19 +496,26 @@ def _one_scale(
 
 
 def _rest_mask(
-    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m: float, window_s: float
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    radius_m: float,
+    window_s: float,
+    steps: float = 0.0,
 ) -> np.ndarray:
     """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`), run only on the tracks
     that can hold a stay: a stay ending at a point covers every fix of the last
     ``window_s`` before it, so somewhere the point and the first fix of that window lie
     within 2·``radius_m``, at least ``window_s`` after the track's first fix. Tracks that
     never do are left out (same result, less work)."""
-    from wakeline.core.clean import at_rest  # the same rule cleaning uses
+    from wakeline.core.clean import at_rest, rest_frame  # the same rule cleaning uses
 
     n = len(x)
     rest = np.zeros(n, dtype=bool)
     if n == 0:
         return rest
+    x, y, t = rest_frame(x, y, t, index, window_s, steps)
     tr = index.track_of_row
     rel = t - t[index.starts[tr]]
     span = np.zeros(index.n_tracks)
@@ -585,7 +595,9 @@ def detect(
     noise: list[np.ndarray] = []  # the track noise, computed when first needed
     rest = np.zeros(len(pts), dtype=bool)
     if params.rest_radius_m > 0 and len(pts):
-        rest = _rest_mask(x, y, t, index, params.rest_radius_m, params.rest_window_s)
+        rest = _rest_mask(
+            x, y, t, index, params.rest_radius_m, params.rest_window_s, params.rest_steps
+        )
     any_rest = bool(rest.any())
 
     def accept(f: np.ndarray, cand: np.ndarray, p_c: np.ndarray, reach: np.ndarray, fine: bool):

@@ -322,3 +322,25 @@ def test_text_truth_parses_as_pandas_would(dtype, junk):
     np.testing.assert_array_equal(to_float(col), expected)
     assert to_float(pd.Series([], dtype=dtype)).dtype == np.float64
     np.testing.assert_array_equal(to_float(pd.Series([1, 2])), [1.0, 2.0])
+
+
+def test_a_stay_of_a_sparse_track_is_simplified_at_its_own_radius():
+    # a port call seen every 30 min with ~70 m of noise (the ATD 2025 set): 12 fixes at the
+    # berth. The stay spans the track's sampling and its radius grows with it (500 m here),
+    # so inside it Douglas-Peucker runs at that radius: the span's ends and a fix or two,
+    # not every noisy fix (at the 50 m of a 3-min stay nearly all 12 were kept)
+    from test_maneuver import _port_call
+
+    from wakeline.core.compress import turning_keep
+    from wakeline.core.maneuver import ManeuverParams
+
+    result = detect(_port_call(stop=12, seed=9))
+    assert result.at_rest[8:20].all() and result.is_maneuver.sum() == 0
+    keep = turning_keep(result)
+    assert keep[8] and keep[19]  # where and when the ship stopped and left
+    assert keep[9:19].sum() <= 2
+    x, y = local_xy(result.points, result.index)
+    span = track_index(result.points.iloc[8:20].reset_index(drop=True))
+    at_50 = douglas_peucker_mask(x[8:20], y[8:20], span, 50.0)
+    assert at_50[1:-1].sum() >= 6  # what the 3-min stay's radius keeps of the noise
+    assert not detect(result.points, ManeuverParams(rest_steps=0)).at_rest.any()

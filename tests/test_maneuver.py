@@ -231,6 +231,34 @@ def test_moored_and_drifting_ships_make_no_maneuvers():
     assert ours.at_rest[ours.points["batch"].to_numpy() == "m"].all()
 
 
+def _port_call(period_s=1800.0, noise_m=70.0, stop=4, seed=6, batch="c"):
+    """A ship reported every ``period_s`` (the ATD 2025 set: ~30 min, ~70 m of noise): in at
+    8 kn heading north for 8 fixes, ``stop`` fixes at its berth, out the way it came."""
+    rng = np.random.default_rng(seed)
+    leg = 8.0 * geo.KN_MS * period_s * np.arange(-8, 0)
+    y = np.concatenate([leg, np.zeros(stop), leg[::-1]])
+    x = np.zeros(len(y))
+    x += rng.normal(0, noise_m, len(x))
+    y += rng.normal(0, noise_m, len(y))
+    return track_from_xy(x, y, period_s=period_s, batch=batch)
+
+
+def test_a_port_call_seen_every_30_min_is_at_rest_not_a_maneuver():
+    # a stay seen by fixes 30 min apart: the 3-min window holds one fix, so before the stay
+    # took the track's sampling (rest_steps) the berth was no stay and the way back out a
+    # 180 deg "turn" of a ship at rest
+    call = _port_call()
+    ours = detect(call)
+    assert ours.is_maneuver.sum() == 0
+    assert ours.at_rest[8:12].all() and not ours.at_rest[:7].any()
+    before = detect(call, ManeuverParams(rest_steps=0))
+    assert before.is_maneuver.sum() >= 1 and not before.at_rest.any()
+    # the same sampling, a ship that turns 90 deg under way and never stops: still found
+    df, _ = _path(lambda t: np.where(t < 8 * 1800, 0.0, 90.0), 8.0, 16 * 1800, 1800.0, 70.0, 7)
+    found = detect(df)
+    assert found.is_maneuver.sum() == 1 and not found.at_rest.any()
+
+
 def test_gradual_turn_is_found_with_the_default_windows():
     # 283 deg to 8 deg (85 deg) over 12 minutes at 8 kn, AIS every 10 s, 5 m noise
     def course(t):
