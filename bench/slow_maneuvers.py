@@ -11,7 +11,8 @@ of a ship under way (each leg at least 1 kn: the chord over two legs 30 min each
 speed there). With the file's reported SOG when it has one. Also the maneuvers the change
 removes, and whether the reported course changed by more than 15 deg between the fixes
 either side (where SOG is at least 1 kn at both: a rough check, random fixes 30 min apart
-show it half the time).
+show it half the time). Last, the position noise: the distance between consecutive posits
+that both report SOG 0.
 """
 
 import argparse
@@ -99,6 +100,24 @@ def main() -> None:
             f"{label}: {len(rows)}; reported course change > 15 deg between the fixes either side "
             f"{int((d[defined] > 15).sum())} of {int(defined.sum())} with SOG >= 1 kn ({share:.2f})"
         )
+    if "speed" in pts:  # the noise: consecutive posits of a ship that reports SOG 0 at both
+        p, index = before.points, before.index
+        x, y = local_xy(p, index)
+        t = track_seconds(p)
+        sog = p["speed"].to_numpy(float)
+        tr = index.track_of_row
+        still = (tr[1:] == tr[:-1]) & (sog[1:] == 0) & (sog[:-1] == 0)
+        dt, d = np.diff(t), np.hypot(np.diff(x), np.diff(y))
+        for lo, hi in ((0, 300), (1500, 2100)):
+            k = still & (dt >= lo) & (dt < hi)
+            if k.any():
+                med = float(np.median(d[k]))
+                # Rayleigh: median sqrt(2 ln 2) * sigma * sqrt(2) for two fixes' difference
+                sigma = med / np.sqrt(2 * np.log(2)) / np.sqrt(2)
+                print(
+                    f"both SOG 0, {lo}-{hi} s apart: {int(k.sum())} pairs, distance median "
+                    f"{med:.0f} m, 90 % {np.percentile(d[k], 90):.0f} m, sigma per axis {sigma:.0f} m"
+                )
 
 
 if __name__ == "__main__":
