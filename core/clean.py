@@ -16,10 +16,10 @@ Rules, in the order they run (each can be switched off):
    ``radius_m`` metres (:func:`at_rest`; tolerant of GPS jitter and a ship swinging at its
    berth). On a track sampled more sparsely than that (AIS posits every 30 min) the window
    spans ``steps`` of its median intervals and the radius grows with it, the speed limit
-   2 · radius / window kept (:func:`rest_frame`). The inside of each span is removed; its first and last point stay (where and when
-   the ship stopped and left); the report lists the spans (``at_rest_spans``). Seed 001
-   eq. 1 (speed below ``speed_kn`` and the identical lon/lat at the next point — 1–6 m of
-   jitter defeats it) is ``paper_rule``.
+   2 · radius / window kept (:func:`rest_frame`). The inside of each span is removed; its
+   first and last point stay (where and when the ship stopped and left); the report lists
+   the spans (``at_rest_spans``). Seed 001 eq. 1 (speed below ``speed_kn`` and the
+   identical lon/lat at the next point — 1–6 m of jitter defeats it) is ``paper_rule``.
 3. ``speed`` — the distance from the last *kept* point is longer than ``v_max_kn`` · Δt
    plus ``tolerance_m`` (seed 001 eq. 2–3; the tolerance is ours: position noise alone
    fakes high speeds over short intervals). Rounds of vectorized passes, each removing the first point of every run of

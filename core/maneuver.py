@@ -26,8 +26,8 @@ no turn. Each added turn needs no turn already found within its reach.
 No maneuver where the ship covers either window slower
 than ``min_speed_kn`` or where a window touches an at-rest span (cleaning's stationary
 rule: positions within ``rest_radius_m`` for ``rest_window_s``, on sparse tracks for
-``rest_steps`` of their median intervals with the radius grown alike). ``ManeuverParams.paper()``
-switches all of these off.
+``rest_steps`` of their median intervals with the radius grown alike).
+``ManeuverParams.paper()`` switches all of these off.
 """
 
 import math
