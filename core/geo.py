@@ -11,6 +11,10 @@ EARTH_RADIUS_M = 6_371_000.0
 #: Metres per nautical mile; 1 knot = 1852 m / 3600 s.
 NM_M = 1852.0
 KN_MS = NM_M / 3600.0
+#: ``np.radians`` is ``x * (NPY_PI / 180.0)`` (numpy's npy_deg2rad, one call per element):
+#: the same product as one multiplication by this constant, bit for bit, in a vectorized loop
+#: (~0.3 against ~3 ns a value).
+DEG_TO_RAD = np.pi / 180.0
 
 
 def wrap180(deg: np.ndarray | float) -> np.ndarray:

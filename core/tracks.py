@@ -384,7 +384,7 @@ def _index(change: np.ndarray, sensor, batch) -> TrackIndex:
 
 def track_origins(df: pd.DataFrame, index: TrackIndex) -> tuple[np.ndarray, np.ndarray]:
     """Per-track local-plane origin: circular-mean longitude and mean latitude, degrees."""
-    lon = np.radians(df["lon"].to_numpy(dtype="float64"))
+    lon = df["lon"].to_numpy(dtype="float64") * geo.DEG_TO_RAD  # np.radians, bit for bit
     lat = df["lat"].to_numpy(dtype="float64")
     if index.n_tracks == 0:
         return np.zeros(0), np.zeros(0)
@@ -404,16 +404,19 @@ def local_xy(df: pd.DataFrame, index: TrackIndex) -> tuple[np.ndarray, np.ndarra
     lon0, lat0 = track_origins(df, index)
     sizes = index.sizes  # per-track values spread by repeat, not by a gather per row
     x = df["lon"].to_numpy(dtype="float64") - np.repeat(lon0, sizes)
-    x += 180.0
-    x = geo.remainder360(x)
+    x += 180.0  # never -0.0 (a sum is -0.0 only of two -0.0)
+    # geo.remainder360 changes nothing in [0, 360) but -0.0: two reductions, not its passes
+    if len(x) and not (x.min() >= 0.0 and x.max() < 360.0):  # NaN fails both: the remainder
+        x = geo.remainder360(x)
     x -= 180.0  # geo.wrap180, bit for bit
-    # R · radians(dlon) · cos(radians(lat0)), R · radians(lat - lat0), in place
-    np.radians(x, out=x)
+    # R · radians(dlon) · cos(radians(lat0)), R · radians(lat - lat0), in place; np.radians
+    # as its own product (geo.DEG_TO_RAD)
+    x *= geo.DEG_TO_RAD
     x *= geo.EARTH_RADIUS_M
     x *= np.repeat(np.cos(np.radians(lat0)), sizes)
     y = np.repeat(lat0, sizes)
     np.subtract(df["lat"].to_numpy(dtype="float64"), y, out=y)
-    np.radians(y, out=y)
+    y *= geo.DEG_TO_RAD
     y *= geo.EARTH_RADIUS_M
     return x, y
 
