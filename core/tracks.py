@@ -585,6 +585,8 @@ def repeated_rows(pts: pd.DataFrame, index: TrackIndex) -> np.ndarray:
     same_t = np.zeros(n, dtype=bool)
     same_t[1:] = t[1:] == t[:-1]
     same_t[index.starts] = False
+    if not same_t.any():  # (the usual case) no two fixes of a track at one time
+        return out
     out[1:] = same_t[1:] & (lon[1:] == lon[:-1]) & (lat[1:] == lat[:-1])
     # Rows sharing a time with a row other than their neighbour (few): by value.
     tied = same_t.copy()

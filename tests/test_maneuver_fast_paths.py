@@ -340,3 +340,19 @@ def test_rest_strides_mark_what_cannot_be_known():
     # 10 s steps: a stay spans ≥ 18 steps, stride 8 (a power of two ≤ 9); 100 s steps: 2
     # steps, stride 1 (the other screen); one fix: 0; a NaN time: 1
     assert s.tolist() == [8, 1, 0, 1, 0]
+
+
+def test_repeated_rows_equal_the_plain_rule():
+    from wakeline.core.tracks import repeated_rows
+
+    for ties in (False, True):
+        df = ais(seed=5)
+        if ties:  # a fix repeated, a time shared by two positions, P Q P Q
+            df = pd.concat([df, df.iloc[[3, 40]], df.iloc[[50]].assign(lon=0.0)], ignore_index=True)
+        pts, index = sorted_with_index(df)
+        got = repeated_rows(pts, index)
+        key = pd.DataFrame(
+            {"k": index.track_of_row, "t": track_seconds(pts), "x": pts["lon"], "y": pts["lat"]}
+        )
+        assert np.array_equal(got, key.duplicated(keep="first").to_numpy())
+        assert got.any() == ties
