@@ -79,15 +79,24 @@ def compare(rev: str, n_points: int, n_tracks: int, repeat: int) -> None:
     from wakeline.core import maneuver as now
 
     root = Path(__file__).resolve().parent.parent
-    src = subprocess.run(
-        ["git", "show", f"{rev}:core/maneuver.py"], cwd=root, check=True, capture_output=True
-    ).stdout
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / "maneuver_before.py"
-        path.write_bytes(src)
-        spec = importlib.util.spec_from_file_location("maneuver_before", path)
-        before = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(before)
+
+    def module_of(name: str, file: str):
+        src = subprocess.run(
+            ["git", "show", f"{rev}:{file}"], cwd=root, check=True, capture_output=True
+        ).stdout
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / f"{name}.py"
+            path.write_bytes(src)
+            spec = importlib.util.spec_from_file_location(name, path)
+            module = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(module)
+        return module
+
+    before = module_of("maneuver_before", "core/maneuver.py")
+    # the projection and the repeated-rows check it calls, as they were at ``rev`` too
+    tracks_before = module_of("tracks_before", "core/tracks.py")
+    before.local_xy = tracks_before.local_xy
+    before.repeated_rows = tracks_before.repeated_rows
     from wakeline.core.tracks import sorted_with_index
 
     df = sorted_with_index(make_points(n_points, n_tracks))[0]  # in track order, as a step
@@ -126,7 +135,8 @@ def main() -> None:
     ap.add_argument(
         "--against",
         metavar="REV",
-        help="also time core/maneuver.py of this git revision in the same process, and check "
+        help="also time core/maneuver.py (with tracks.local_xy and repeated_rows) of this git "
+        "revision in the same process, and check "
         "that both give the same maneuver points and factor bits (e.g. 85bebba)",
     )
     args = ap.parse_args()
