@@ -141,3 +141,50 @@ def test_hard_maneuver_scene_truth_is_consistent():
     assert set(tracks["kind"]) == {"moving", "slow", "moored"}
     again = simulate.hard_maneuver_scene(7, hp)
     assert again.points.equals(sc.points)
+
+
+def test_hard_radar_offset_along_and_across_the_track():
+    """The radar plots' wandering offset has its own size and time scale along the track
+    and across it (Autoferry: 2.2 m over ~23 s along, 1.15 m over ~8.5 s across); an
+    isotropic offset would give both directions the same spread."""
+    hp = simulate.HardManeuverParams(
+        n_ships=30,
+        duration_s=1800.0,
+        share_moored=0.0,
+        share_slow=0.0,
+        radar_sigma_m=0.0,
+        radar_outliers=0.0,
+        radar_offset_m=0.5,
+        radar_offset_s=5.0,
+        radar_offset_along_m=3.0,
+        radar_offset_along_s=30.0,
+    )
+    sc = simulate.hard_maneuver_scene(3, hp)
+    pts = sort_points(sc.points[sc.points["rate"] == "radar"])
+    t0 = (simulate.T0 - pd.Timestamp(0, tz="UTC")).total_seconds()
+    along, across, steps_along, steps_across = [], [], [], []
+    for batch, g in pts.groupby("batch"):  # a handful of radar tracks
+        t = time_seconds(g["time"]) - t0
+        px, py = geo.to_local(g.lon.to_numpy(), g.lat.to_numpy(), *simulate.SCENE_ORIGIN)
+        tx, ty = geo.to_local(g.true_lon.to_numpy(), g.true_lat.to_numpy(), *simulate.SCENE_ORIGIN)
+        course = np.arctan2(np.gradient(tx, t), np.gradient(ty, t))
+        turns = sc.turns[sc.turns["batch"] == batch]
+        away = np.ones(len(t), dtype=bool)
+        for tu in turns.itertuples():  # a few turns per track
+            away &= (t < tu.start_s - 5) | (t > tu.end_s + 5)
+        ex, ey = px - tx, py - ty
+        a = ex * np.sin(course) + ey * np.cos(course)
+        c = ex * np.cos(course) - ey * np.sin(course)
+        along.append(a[away])
+        across.append(c[away])
+        lag = np.flatnonzero(away[1:] & away[:-1])  # one-scan steps away from turns
+        steps_along.append(np.diff(a)[lag])
+        steps_across.append(np.diff(c)[lag])
+    along, across = np.concatenate(along), np.concatenate(across)
+    assert len(along) > 2000
+    assert np.std(along) == pytest.approx(3.0, rel=0.25)
+    assert np.std(across) == pytest.approx(0.5, rel=0.25)
+    # relative one-scan change: larger for the 5 s process than for the 30 s one
+    rel_along = np.std(np.concatenate(steps_along)) / np.std(along)
+    rel_across = np.std(np.concatenate(steps_across)) / np.std(across)
+    assert rel_across > 1.8 * rel_along
