@@ -30,6 +30,7 @@ def _maneuver_params(args: argparse.Namespace):
         min_speed_kn=args.min_speed,
         gap_s=args.gap_s,
         min_window_s=args.min_window_s,
+        noise_lag_s=args.noise_lag_s,
     ).checked()
 
 
@@ -202,6 +203,14 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.min_window_s,
         help=f"sharp turns close together: windows also halve down to this many seconds where "
         f"3 points fit (radar); 0 = off (default {d.min_window_s:g})",
+    )
+    p.add_argument(
+        "--noise-lag-s",
+        type=float,
+        default=d.noise_lag_s,
+        help=f"the track noise of the noise floor: each point against the points this many "
+        f"seconds either side (sees an offset wandering over a window); 0 = its neighbours "
+        f"(default {d.noise_lag_s:g})",
     )
     p.add_argument(
         "--min-speed",

@@ -27,7 +27,10 @@ No maneuver where the ship covers either window slower
 than ``min_speed_kn`` or where a window touches an at-rest span (cleaning's stationary
 rule: positions within ``rest_radius_m`` for ``rest_window_s``, on sparse tracks for
 ``rest_steps`` of their median intervals with the radius grown alike).
-``ManeuverParams.paper()`` switches all of these off.
+``ManeuverParams.paper()`` switches all of these off. Option (off by default): ``noise_lag_s``
+measures the track noise of the noise floor against points that many seconds either side,
+not the neighbours, so it sees an offset wandering over a window (radar; docs/evaluation.md
+"Hard radar against real radar").
 """
 
 import math
@@ -131,6 +134,18 @@ class ManeuverParams(Params):
         lo=0.0,
         hi=100.0,
         source="ours; seed 000 eq. 10-12 make the same point with a fixed error",
+    )
+    noise_lag_s: float = param(
+        0.0,
+        "s",
+        "the track's position noise (noise_k's) is each point against the time "
+        "interpolation of the points about this many seconds before and after it "
+        "(round(noise_lag_s / median interval) points, at least 1): over a window's length "
+        "it also sees an offset that wanders over the window, as a radar plot's reflection "
+        "centre does; 0 = against its neighbouring points",
+        lo=0.0,
+        hi=1e7,
+        source="ours (branch h69: hard radar scenes, docs/evaluation.md)",
     )
     gap_s: float = param(
         10.0,
@@ -1950,7 +1965,7 @@ def _detect_sorted(
         # each test runs on the candidates still standing only (a candidate out stays out)
         if params.noise_k > 0 or fine:
             if not noise:
-                noise.append(position_noise_m(x, y, t, index))
+                noise.append(position_noise_m(x, y, t, index, _noise_lag(t, index, params)))
             if fine:  # the floor itself is wanted below
                 with np.errstate(invalid="ignore"):
                     floor = np.maximum(
@@ -2073,6 +2088,18 @@ def _detect_sorted(
     if progress:
         progress(1.0, "maneuvers found")
     return ManeuverResult(pts, index, factor, found, p_first, rest, params)
+
+
+def _noise_lag(t: np.ndarray, index: TrackIndex, params: ManeuverParams) -> "np.ndarray | int":
+    """Points between a point and the neighbours its noise is measured against, per track
+    (``noise_lag_s`` over the track's median interval, at least 1); 1 when that is all."""
+    if params.noise_lag_s <= 0 or not index.n_tracks:
+        return 1
+    med = median_interval_s(t, index)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        lag = np.where(np.isfinite(med) & (med > 0), np.round(params.noise_lag_s / med), 1)
+    lag = np.clip(lag, 1, 1000).astype("int64")
+    return 1 if (lag == 1).all() else lag
 
 
 def _sub_index(index: TrackIndex, selected: np.ndarray):

@@ -106,6 +106,9 @@ class ManeuverParams(Params):
         hi=100.0,
         source="ours; seed 000 eq. 10-12 make the same point with a fixed error",
     )
+    noise_lag_s: float = param(
+        0.0, "s", "noise against the points this many seconds either side; 0 = neighbours"
+    )
     gap_s: float = param(
         10.0,
         "s",
@@ -609,7 +612,14 @@ def detect(
             return ok
         if params.noise_k > 0 or fine:
             if not noise:
-                noise.append(position_noise_m(x, y, t, index))
+                lag = 1
+                if params.noise_lag_s > 0:  # branch h69: noise over a window's length
+                    med_ = median_interval_s(t, index)
+                    with np.errstate(invalid="ignore", divide="ignore"):
+                        ok_ = np.isfinite(med_) & (med_ > 0)
+                        lag = np.where(ok_, np.round(params.noise_lag_s / med_), 1)
+                    lag = np.clip(lag, 1, 1000).astype("int64")
+                noise.append(position_noise_m(x, y, t, index, lag))
             with np.errstate(invalid="ignore"):
                 floor = np.maximum(
                     params.noise_k * _heading_noise_deg(x, y, index, p_c, noise[0], cand),

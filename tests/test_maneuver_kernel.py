@@ -1,7 +1,8 @@
 """The fast maneuver kernel against the straightforward detector (issue 17).
 
 ``tests/maneuver_reference.py`` is a frozen copy of ``core/maneuver.py`` as it was before
-the kernel was reworked (main at fc44de4, with the gapped and fine windows of s4-15): δ of
+the kernel was reworked (main at fc44de4, with the gapped and fine windows of s4-15; the
+noise lag ``noise_lag_s`` of h69 added to both): δ of
 every row at every window scale, a maximum filter over every row, the rules on the
 candidates. When results change on purpose, change both (or retire this copy). ``detect()`` must give the same maneuver points, the same
 δ bit for bit (NaN where undefined) and the same at-rest mask, on random scenes of several
@@ -67,6 +68,7 @@ PARAMS = [
     ManeuverParams(window_s=5.0, radius_n=2, threshold_deg=5.0),
     ManeuverParams(window_s=30.0, max_window_s=2000.0, radius_n=9, noise_k=0.0),
     ManeuverParams(threshold_deg=60.0, min_speed_kn=0.0, rest_radius_m=10.0),
+    ManeuverParams(noise_lag_s=10.0, noise_k=4.0),
 ]
 
 
