@@ -27,6 +27,7 @@ Run: ``python bench/radar_false_rate.py [--seeds 0 1 2 3 4] [--set key=value ...
 """
 
 import argparse
+import os
 from pathlib import Path
 
 import numpy as np
@@ -38,6 +39,8 @@ from wakeline.core import geo, real_sets, simulate
 from wakeline.core.maneuver import ManeuverParams, detect
 from wakeline.core.schema import time_seconds
 
+#: ../shared, or $WAKELINE_SHARED (as the tests read it)
+REAL = Path(os.environ.get("WAKELINE_SHARED", Path(__file__).resolve().parents[2] / "shared"))
 SPEED_BINS = (0.0, 1.0, 5.0, 10.0, np.inf)
 SPEED_LABELS = ("<1 kn", "1-5 kn", "5-10 kn", ">10 kn")
 #: 1 kn bins for the speed-standardised comparison (the false rate falls steeply with speed)
@@ -255,9 +258,7 @@ def _parse_set(items):
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2, 3, 4])
-    ap.add_argument(
-        "--real", default=str(Path("/work/shared/data/real/autoferry-fusion")), help="folder"
-    )
+    ap.add_argument("--real", default=str(REAL / "data/real/autoferry-fusion"), help="folder")
     ap.add_argument("--set", nargs="*", help="ManeuverParams overrides key=value")
     ap.add_argument("--scene-set", nargs="*", help="HardManeuverParams overrides key=value")
     ap.add_argument("--no-noise", action="store_true", help="false rates only")
