@@ -664,6 +664,7 @@ def rest_frame(
     index: TrackIndex,
     window_s: float,
     steps: float,
+    med: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Positions (m) and times (s) in which :func:`at_rest` with ``window_s`` and its radius
     is, per track, the rule with a window of at least ``steps`` median sampling intervals.
@@ -674,13 +675,16 @@ def rest_frame(
     f = steps · median / window_s about its first fix: its window becomes f · window_s
     and its radius f · radius, so the speed the rule tolerates (2 · radius / window) is the
     same at every sampling, and so is the reach back over a gap (four windows). The arrays
-    come back as they are (the same objects) when no track is that sparse."""
+    come back as they are (the same objects) when no track is that sparse. ``med``: each
+    track's median interval (s) when the caller has it."""
     if steps <= 0 or len(t) < 2:
         return x, y, t
-    from wakeline.core.maneuver import median_interval_s  # lazy: maneuver imports clean
+    if med is None:
+        from wakeline.core.maneuver import median_interval_s  # lazy: maneuver imports clean
 
+        med = median_interval_s(t, index)
     with np.errstate(invalid="ignore"):
-        f = np.fmax(steps * median_interval_s(t, index) / window_s, 1.0)
+        f = np.fmax(steps * med / window_s, 1.0)
     f[~np.isfinite(f)] = 1.0
     if not (f > 1.0).any():
         return x, y, t

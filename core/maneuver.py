@@ -934,17 +934,19 @@ def _rest_mask(
     radius_m: float,
     window_s: float,
     steps: float = 0.0,
+    med: np.ndarray | None = None,
 ) -> np.ndarray:
     """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`, on sparse tracks over
-    ``steps`` sampling intervals: :func:`wakeline.core.clean.rest_frame`), run only on the
-    tracks that can hold a stay (:func:`_rest_possible`; same result, less work)."""
+    ``steps`` sampling intervals: :func:`wakeline.core.clean.rest_frame`, ``med`` each
+    track's median interval when known), run only on the tracks that can hold a stay
+    (:func:`_rest_possible`; same result, less work)."""
     from wakeline.core.clean import at_rest, rest_frame  # the same rule cleaning uses
 
     n = len(x)
     rest = np.zeros(n, dtype=bool)
     if n == 0:
         return rest
-    x, y, t = rest_frame(x, y, t, index, window_s, steps)
+    x, y, t = rest_frame(x, y, t, index, window_s, steps, med)
     possible = _rest_possible(x, y, t, index, radius_m, window_s)
     if not possible.any():
         return rest
@@ -1947,10 +1949,14 @@ def _detect_sorted(
     n = len(pts)
     tr = index.track_of_row
     noise: list[np.ndarray] = []  # the track noise, computed when first needed
+    # each track's median interval (s), once for the windows, the rest rule and the noise
+    wants_med = params.window_s > 0 or params.noise_lag_s > 0
+    wants_med |= params.rest_radius_m > 0 and params.rest_steps > 0
+    med = median_interval_s(t, index) if wants_med else None
     rest = np.zeros(n, dtype=bool)
     if params.rest_radius_m > 0 and n:
         rest = _rest_mask(
-            x, y, t, index, params.rest_radius_m, params.rest_window_s, params.rest_steps
+            x, y, t, index, params.rest_radius_m, params.rest_window_s, params.rest_steps, med
         )
     rest_lo, rest_hi = _runs(rest)
     any_rest = bool(len(rest_lo))
@@ -1965,7 +1971,7 @@ def _detect_sorted(
         # each test runs on the candidates still standing only (a candidate out stays out)
         if params.noise_k > 0 or fine:
             if not noise:
-                noise.append(position_noise_m(x, y, t, index, _noise_lag(t, index, params)))
+                noise.append(position_noise_m(x, y, t, index, _noise_lag(med, params)))
             if fine:  # the floor itself is wanted below
                 with np.errstate(invalid="ignore"):
                     floor = np.maximum(
@@ -1997,7 +2003,7 @@ def _detect_sorted(
 
     scales = _scales(params)
     fine_scales = _fine_scales(params)
-    med = median_interval_s(t, index) if params.window_s > 0 else None
+    med = med if params.window_s > 0 else None
     found = np.zeros(n, dtype=bool)
     found_rows = [np.zeros(0, dtype="int64")]  # the rows of ``found``, sorted
     factor = np.empty(0)  # δ of every row: the first scale's, below
@@ -2090,12 +2096,12 @@ def _detect_sorted(
     return ManeuverResult(pts, index, factor, found, p_first, rest, params)
 
 
-def _noise_lag(t: np.ndarray, index: TrackIndex, params: ManeuverParams) -> "np.ndarray | int":
+def _noise_lag(med: np.ndarray | None, params: ManeuverParams) -> "np.ndarray | int":
     """Points between a point and the neighbours its noise is measured against, per track
-    (``noise_lag_s`` over the track's median interval, at least 1); 1 when that is all."""
-    if params.noise_lag_s <= 0 or not index.n_tracks:
+    (``noise_lag_s`` over the track's median interval ``med`` in s, at least 1); 1 when
+    that is all."""
+    if params.noise_lag_s <= 0 or med is None or not len(med):
         return 1
-    med = median_interval_s(t, index)
     with np.errstate(invalid="ignore", divide="ignore"):
         lag = np.where(np.isfinite(med) & (med > 0), np.round(params.noise_lag_s / med), 1)
     lag = np.clip(lag, 1, 1000).astype("int64")
