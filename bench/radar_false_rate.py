@@ -1,6 +1,6 @@
 """False turns per track-hour and plot noise: real Autoferry radar against the hard scene's.
 
-Question (issue 15, branch h69): is the hard maneuver scene's radar harsher than real radar,
+Question (issue 15, session 18): is the hard maneuver scene's radar harsher than real radar,
 or would long real radar tracks suffer the same false-turn rate?
 
 False-turn rate: the default detector (or ``--set key=value`` overrides of

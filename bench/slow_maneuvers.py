@@ -3,7 +3,7 @@
     python bench/slow_maneuvers.py                        # ATD example_truth (the tuning file)
     python bench/slow_maneuvers.py FILE [--map k=col ...]
 
-For the detector with sparse stays off (``rest_steps=0``, the rule before h68) and on (the
+For the detector with sparse stays off (``rest_steps=0``, the rule before session 18) and on (the
 default), the maneuver points and the goal's slow share (speed over the chord from the fix
 before to the fix after, as ``wakeline evaluate maneuver --real`` counts it), split by what
 the two legs show: at rest or crawling (the legs together slower than 1 kn), or a reversal

@@ -145,7 +145,7 @@ class ManeuverParams(Params):
         "centre does; 0 = against its neighbouring points",
         lo=0.0,
         hi=1e7,
-        source="ours (branch h69: hard radar scenes, docs/evaluation.md)",
+        source="ours (session 18: hard radar scenes, docs/evaluation.md)",
     )
     gap_s: float = param(
         10.0,

@@ -140,7 +140,7 @@ class ManeuverParams(Params):
     rest_window_s: float = param(
         180.0, "s", "at rest: the shortest stay that counts", lo=1.0, hi=1e7
     )
-    rest_steps: float = param(  # added with core (h68): sparse tracks' stays
+    rest_steps: float = param(  # added with core (session 18): sparse tracks' stays
         1.0, "intervals", "at rest: the stay spans this many median intervals", lo=0.0, hi=1000.0
     )
 
@@ -613,7 +613,7 @@ def detect(
         if params.noise_k > 0 or fine:
             if not noise:
                 lag = 1
-                if params.noise_lag_s > 0:  # branch h69: noise over a window's length
+                if params.noise_lag_s > 0:  # session 18: noise over a window's length
                     med_ = median_interval_s(t, index)
                     with np.errstate(invalid="ignore", divide="ignore"):
                         ok_ = np.isfinite(med_) & (med_ > 0)

@@ -2,7 +2,7 @@
 
 ``tests/maneuver_reference.py`` is a frozen copy of ``core/maneuver.py`` as it was before
 the kernel was reworked (main at fc44de4, with the gapped and fine windows of s4-15; the
-noise lag ``noise_lag_s`` of h69 added to both): δ of
+noise lag ``noise_lag_s`` of session 18 added to both): δ of
 every row at every window scale, a maximum filter over every row, the rules on the
 candidates. When results change on purpose, change both (or retire this copy). ``detect()`` must give the same maneuver points, the same
 δ bit for bit (NaN where undefined) and the same at-rest mask, on random scenes of several
