@@ -686,12 +686,19 @@ def rest_frame(
     with np.errstate(invalid="ignore"):
         f = np.fmax(steps * med / window_s, 1.0)
     f[~np.isfinite(f)] = 1.0
-    if not (f > 1.0).any():
+    sparse = f > 1.0
+    if not sparse.any():
         return x, y, t
+    # only the sparse tracks' rows are scaled (the others' divide by 1: left as they are)
     tr = index.track_of_row
-    fr = f[tr]
-    t0 = t[index.starts[tr]]
-    return x / fr, y / fr, t0 + (t - t0) / fr
+    rows = np.flatnonzero(sparse[tr])
+    fr = f[tr[rows]]
+    t0 = t[index.starts[tr[rows]]]
+    x, y, t = x.copy(), y.copy(), t.copy()
+    x[rows] /= fr
+    y[rows] /= fr
+    t[rows] = t0 + (t[rows] - t0) / fr
+    return x, y, t
 
 
 def at_rest(

@@ -276,6 +276,7 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
     gaps and speed changes. Track ends are added by :func:`compress_with`."""
     from wakeline.core.clean import rest_frame, rest_spans
     from wakeline.core.maneuver import (
+        ManeuverParams,
         ManeuverResult,
         _near,
         _sub_index,
@@ -304,7 +305,9 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
     x, y = local_xy(pts, index)
     t = time_seconds(pts["time"])
     tr = index.track_of_row
-    radius_m = result.params.rest_radius_m if result.params is not None else 50.0
+    # the rule that made the spans (unknown: the defaults of before sparse stays)
+    mp = result.params if result.params is not None else ManeuverParams(rest_steps=0.0)
+    med_track: np.ndarray | None = None  # each track's median interval (s), when first needed
     if params.keep_rest and rest.any():
         spans = rest_spans(rest, index)
         keep[spans[:, 0]] = True
@@ -315,13 +318,13 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
         span_of_row = np.repeat(np.arange(len(sizes)), sizes)
         sub = TrackIndex(starts, starts + sizes, span_of_row, pd.DataFrame(index=range(len(sizes))))
         # inside a span at the radius that made it (a sparse track's grows with its window)
-        steps = result.params.rest_steps if result.params is not None else 0.0
-        window_s = result.params.rest_window_s if result.params is not None else 180.0
-        xs, ys, _ = rest_frame(x, y, t, index, window_s, steps)
-        keep[rows[douglas_peucker_mask(xs[rows], ys[rows], sub, radius_m)]] = True
+        if mp.rest_steps > 0:
+            med_track = median_interval_s(t, index)
+        xs, ys, _ = rest_frame(x, y, t, index, mp.rest_window_s, mp.rest_steps, med_track)
+        keep[rows[douglas_peucker_mask(xs[rows], ys[rows], sub, mp.rest_radius_m)]] = True
     p_row = np.asarray(result.window_p)[tr]
     if params.gap_factor > 0 and len(t) > 1:
-        med = median_interval_s(t, index)[tr]
+        med = (median_interval_s(t, index) if med_track is None else med_track)[tr]
         big = (np.diff(t) > params.gap_factor * med[1:]) & (tr[1:] == tr[:-1])
         gap = np.zeros(len(t), dtype=bool)
         gap[1:] |= big

@@ -2105,7 +2105,8 @@ def _noise_lag(med: np.ndarray | None, params: ManeuverParams) -> "np.ndarray | 
     with np.errstate(invalid="ignore", divide="ignore"):
         lag = np.where(np.isfinite(med) & (med > 0), np.round(params.noise_lag_s / med), 1)
     lag = np.clip(lag, 1, 1000).astype("int64")
-    return 1 if (lag == 1).all() else lag
+    # one lag for every track: the slices of position_noise_m, not its per-row gathers
+    return int(lag[0]) if (lag == lag[0]).all() else lag
 
 
 def _sub_index(index: TrackIndex, selected: np.ndarray):
