@@ -458,6 +458,11 @@ def clean(
     """Apply the enabled rules, then the enabled transforming steps; return cleaned points,
     the rejected trail and the report."""
     params = (params or CleanParams()).checked()
+    if "time" in points.columns and points["time"].isna().any():
+        raise InputError(
+            f"{int(points['time'].isna().sum()):,} points have no time: read the file with "
+            "import, which sets such rows aside in its quarantine"
+        )
     progress = progress or null_progress
     enabled = [name for name in TRANSFORMS if getattr(params, name).enabled]
     share = 1.0 / (1 + len(enabled))
@@ -937,7 +942,9 @@ def _clean_block(
 
     # 6. isolated points
     step(5, "isolated")
-    if params.isolated.enabled:
+    if params.isolated.enabled and not alive.any():  # nothing left (or an empty table)
+        removed_by["isolated"] = np.zeros(n, dtype=bool)
+    elif params.isolated.enabled:
         rows = np.flatnonzero(alive)
         dist, _, _ = legs(rows)
         upper = _tukey_upper(dist, track[rows], params.isolated.iqr_factor)

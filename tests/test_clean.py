@@ -404,3 +404,15 @@ def test_a_ship_reported_every_30_min_is_at_rest_over_its_own_sampling():
     x, y = np.zeros(50), np.zeros(50)
     got = rest_frame(x, y, t, index, 180.0, 1.0)
     assert all(a is b for a, b in zip(got, (x, y, t), strict=True))
+
+
+def test_an_empty_table_cleans_to_nothing_and_a_point_without_time_is_named():
+    from wakeline.core.errors import InputError
+
+    empty = straight(3).iloc[:0]
+    result = clean(empty)
+    assert len(result.points) == 0 and len(result.rejected) == 0
+    df = straight(20)
+    df.loc[5, "time"] = pd.NaT
+    with pytest.raises(InputError, match="1 points have no time"):
+        clean(df)
