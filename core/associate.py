@@ -664,15 +664,25 @@ def soft_gap_test(
     claim_start[pairs.j[chosen]] = cost[chosen]
     mine = np.zeros(len(pairs), dtype=bool)
     mine[chosen] = True
-    rival_i = np.where(mine | (claim_start[pairs.j] < cost), np.inf, cost)
-    rival_j = np.where(mine | (claim_end[pairs.i] < cost), np.inf, cost)
+    lc = chosen[long]
+    # Only the rivals of the long joins' pieces are looked at (27 of 65,723 joins are long
+    # in the bench's 100 k scene): the pairs of their old ends, of their new starts.
+    of_end = np.zeros(n, dtype=bool)
+    of_start = np.zeros(n, dtype=bool)
+    of_end[pairs.i[lc]] = True
+    of_start[pairs.j[lc]] = True
+    ri = np.flatnonzero(of_end[pairs.i])
+    rj = np.flatnonzero(of_start[pairs.j])
+    rival_i = np.where(mine[ri] | (claim_start[pairs.j[ri]] < cost[ri]), np.inf, cost[ri])
+    rival_j = np.where(mine[rj] | (claim_end[pairs.i[rj]] < cost[rj]), np.inf, cost[rj])
     best_i = np.full(n, np.inf)
     best_j = np.full(n, np.inf)
-    np.minimum.at(best_i, pairs.i, rival_i)
-    np.minimum.at(best_j, pairs.j, rival_j)
-    c = cost[chosen] + params.long_margin
-    close = (best_i[pairs.i[chosen]] < c) | (best_j[pairs.j[chosen]] < c)
-    return chosen[~(long & close)]
+    np.minimum.at(best_i, pairs.i[ri], rival_i)
+    np.minimum.at(best_j, pairs.j[rj], rival_j)
+    c = cost[lc] + params.long_margin
+    keep = np.ones(len(chosen), dtype=bool)
+    keep[np.flatnonzero(long)] = ~((best_i[pairs.i[lc]] < c) | (best_j[pairs.j[lc]] < c))
+    return chosen[keep]
 
 
 #: A pair may be as far apart as this times the speed its faster end was seen at, when

@@ -204,6 +204,89 @@ def test_two_cheapest_without_a_sort_equals_the_sort():
         np.testing.assert_array_equal(got[1], want[1])
 
 
+def _soft_gap_test_all_pairs(pairs, cost, chosen, params, n):
+    """soft_gap_test with the rivals of every pair scattered (before issue 17's session 18)."""
+    long = pairs.gap_s[chosen] > params.max_gap_s
+    if not long.any():
+        return chosen
+    claim_end = np.full(n, np.inf)
+    claim_start = np.full(n, np.inf)
+    claim_end[pairs.i[chosen]] = cost[chosen]
+    claim_start[pairs.j[chosen]] = cost[chosen]
+    mine = np.zeros(len(pairs), dtype=bool)
+    mine[chosen] = True
+    rival_i = np.where(mine | (claim_start[pairs.j] < cost), np.inf, cost)
+    rival_j = np.where(mine | (claim_end[pairs.i] < cost), np.inf, cost)
+    best_i = np.full(n, np.inf)
+    best_j = np.full(n, np.inf)
+    np.minimum.at(best_i, pairs.i, rival_i)
+    np.minimum.at(best_j, pairs.j, rival_j)
+    c = cost[chosen] + params.long_margin
+    close = (best_i[pairs.i[chosen]] < c) | (best_j[pairs.j[chosen]] < c)
+    return chosen[~(long & close)]
+
+
+def test_soft_gap_test_on_the_long_joins_pieces_equals_all_pairs():
+    # One-to-one joins, some beyond max_gap_s; ties, inf and NaN costs; rivals claimed
+    # more cheaply elsewhere or not.
+    rng = np.random.default_rng(5)
+    params = LinkParams()
+    n, dropped, kept = 400, 0, 0
+    for trial in range(12):
+        m = [0, 30, 600, 3000][trial % 4]
+        i, j = rng.integers(0, n, m), rng.integers(0, n, m)
+        gap = rng.uniform(0.0, 2.0 * params.max_gap_s, m)
+        cost = np.round(rng.random(m) * 2, 1)
+        cost[rng.random(m) < 0.05] = np.inf
+        if trial >= 6 and m:
+            cost[rng.integers(0, m, 3)] = np.nan
+        z = np.zeros(m)
+        pairs = assoc_mod.Pairs(i, j, gap, z, z, z, z)
+        # One-to-one: the first pair of each end among the first of each start.
+        first_i = np.unique(i, return_index=True)[1]
+        cand = np.sort(first_i)
+        chosen = cand[np.unique(j[cand], return_index=True)[1]]
+        chosen = np.sort(rng.permutation(chosen)[: len(chosen) // 2])
+        with np.errstate(invalid="ignore"):  # NaN in np.minimum, either way
+            got = assoc_mod.soft_gap_test(pairs, cost, chosen, params, n)
+            want = _soft_gap_test_all_pairs(pairs, cost, chosen, params, n)
+        np.testing.assert_array_equal(got, want)
+        dropped += len(chosen) - len(want)
+        kept += int((gap[want] > params.max_gap_s).sum())
+    assert dropped > 0 and kept > 0  # both outcomes tested
+
+
+def test_soft_gap_test_scatters_only_the_long_joins_pieces_pairs(monkeypatch):
+    # 2,000 joins, one beyond max_gap_s: its two pieces' few pairs are scattered, not all.
+    params = LinkParams()
+    n = 4000
+    i = np.r_[np.arange(2000), np.arange(2000)]
+    j = np.r_[np.arange(2000) + 2000, (np.arange(2000) + 1) % 2000 + 2000]
+    gap = np.full(4000, 60.0)
+    gap[0] = 1.5 * params.max_gap_s
+    z = np.zeros(4000)
+    pairs = assoc_mod.Pairs(i, j, gap, z, z, z, z)
+    cost = np.r_[np.full(2000, 0.5), np.full(2000, 1.4)]
+    scattered = []
+
+    class _Minimum:
+        def at(self, out, idx, values):
+            scattered.append(len(idx))
+            np.minimum.at(out, idx, values)
+
+    class _Np:
+        minimum = _Minimum()
+
+        def __getattr__(self, name):
+            return getattr(np, name)
+
+    monkeypatch.setattr(assoc_mod, "np", _Np())
+    got = assoc_mod.soft_gap_test(pairs, cost, np.arange(2000), params, n)
+    monkeypatch.undo()
+    np.testing.assert_array_equal(got, np.arange(2000))  # rivals claimed more cheaply
+    assert sum(scattered) <= 4, scattered  # end 0's two pairs, start 2000's two
+
+
 def test_order_by_rank_equals_lexsort():
     # Ties in time (index order), NaN times (last), a subset's places in the whole
     # ranking, and keys too wide for one integer (the lexsort fallback).
