@@ -9,7 +9,10 @@ their spread).
 - Douglas–Peucker (``douglas_peucker_mask``) against ``shapely.simplify`` on the same
   coordinates, and the textbook line-distance variant;
 - interrupted-track association at 1 k / 10 k / 100 k segments (growth per 10×), and at
-  one density: the 10 k scene against ten copies of it side by side;
+  one density: the 10 k scene against ten copies of it side by side — the goal's figure,
+  since the simulator's bigger scenes are denser too (candidate pairs per segment 3.4 /
+  5.4 / 6.4: ships drift out of a start box that grows as √n, a sparser fringe in a
+  small scene), so their growth is also the pairs' growth;
 - ``detect()`` points/s at 10 M points.
 
 Run: ``python bench/bench_commands.py [--points 2000000] [--detect-points 10000000]
@@ -160,15 +163,25 @@ def association(sizes: list[int], repeat: int) -> None:
         t_all = best(lambda: associate_interrupted(df, params), repeat)
         return len(seg), n_pairs, t_pairs, t_all, t_sort, len(df)
 
-    def show(what, now, prev):
+    def show(what, now, prev, judged=False):
         n, n_pairs, t_pairs, t_all, t_sort, rows = now
         grow = ""
         if prev is not None:
             f = np.log10(n / prev[0])
+            g_pairs = (n_pairs / prev[1]) ** (1 / f)
+            g_all = (t_all / prev[3]) ** (1 / f)
+            # The goal is judged at one density (10x the segments, the same candidate pairs
+            # per segment); the simulator's bigger scenes are denser as well, so there the
+            # growth is also the pairs' (printed for comparison, not judged).
+            verdict = (
+                f"goal <= 11x, {'met' if g_all <= 11 else 'NOT met'}"
+                if judged
+                else "not judged: the scene is denser too, see the tiled rows"
+            )
             grow = (
-                f"; growth per 10x: pairs {(n_pairs / prev[1]) ** (1 / f):.1f}x in number, "
+                f"; growth per 10x: pairs {g_pairs:.1f}x in number, "
                 f"{(t_pairs / prev[2]) ** (1 / f):.1f}x in time, association "
-                f"{(t_all / prev[3]) ** (1 / f):.1f}x (goal <= 11x)"
+                f"{g_all:.1f}x ({verdict})"
             )
         print(
             f"association {what} {n:>7,} segments ({n_pairs / n:.2f} candidate pairs each): "
@@ -186,7 +199,7 @@ def association(sizes: list[int], repeat: int) -> None:
         base = scene(sizes[-2])
         one = timed(base)
         show("tiled x1", one, None)
-        show("tiled x10", timed(tiled(base, 10)), one)
+        show("tiled x10", timed(tiled(base, 10)), one, judged=True)
 
 
 def detect_rate(n_points: int, repeat: int) -> None:
@@ -217,7 +230,8 @@ def detect_rate(n_points: int, repeat: int) -> None:
         f"detect() {n_points:,} points in track order, median of {repeat}: wall {wall:.2f} s "
         f"({n_points / wall / 1e6:.1f} M points/s; runs {min(walls):.2f}-{max(walls):.2f} s, "
         f"{n_points / max(walls) / 1e6:.1f}-{n_points / min(walls) / 1e6:.1f} M/s), CPU "
-        f"{cpu:.2f} s ({n_points / cpu / 1e6:.1f} M points/s) (goal >= 10 M/s wall); load "
+        f"{cpu:.2f} s ({n_points / cpu / 1e6:.1f} M points/s) (goal >= 10 M/s wall, "
+        f"{'met' if n_points / wall >= 10e6 else 'NOT met'}); load "
         f"average {' '.join(load)} before, {' '.join(load_after)} after; sorted_with_index of "
         f"the unsorted table before it: {first:.2f} s"
     )
