@@ -203,7 +203,12 @@ def observable_turns(
     tol = turns["batch"].map(match_s).to_numpy(dtype="float64")
     start, end = turns["start_s"].to_numpy(), turns["end_s"].to_numpy()
 
+    t_lo, t_hi = (float(t.min()), float(t.max())) if len(t) else (0.0, 0.0)
+
     def any_in(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        # Clipped to the scene's times: a key below its first time or beyond its last
+        # would fall among the previous (next) batch's keys.
+        lo, hi = np.maximum(lo, t_lo), np.minimum(hi, t_hi)
         return np.searchsorted(key, base + hi, "right") > np.searchsorted(key, base + lo, "left")
 
     ok = (

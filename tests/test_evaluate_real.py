@@ -105,3 +105,31 @@ def test_hard_scene_scoring_tolerance_per_track_and_unseen_turns():
     seen = observable_turns(turns, points, tol, threshold_deg=15.0)
     # the turn in the gap and the 10° one are not scored; the others are
     assert sorted(seen["start_s"]) == [1000.0, 1000.0]
+
+
+def test_observable_turns_does_not_see_a_neighbouring_tracks_samples():
+    """A turn's search window reaching before the scene's first time (or after its last)
+    must not fall among the previous (next) batch's keys: batch "b" starts at 50 s, so its
+    turn from 5 s has no sample before it even though batch "a" samples from 0 s; a turn
+    ending at "b"'s last sample has none after it, though "c" samples from 0 s."""
+    from wakeline.core.evaluate import observable_turns
+
+    ta, tb = np.arange(0.0, 1001.0), np.arange(50.0, 1001.0)
+    points = pd.concat(
+        [_table(ta, ta * 0, ta, "a"), _table(tb, tb * 0, tb, "b"), _table(ta, ta * 0, ta, "c")]
+    )
+    turns = pd.DataFrame(
+        {
+            "batch": ["b", "b", "b"],
+            "start_s": [5.0, 995.0, 500.0],
+            "end_s": [60.0, 1000.5, 520.0],
+            "change_deg": [90.0, 90.0, 90.0],
+            "speed_kn": [10.0, 10.0, 10.0],
+        }
+    )
+    tol = pd.Series({"a": 10.0, "b": 10.0, "c": 10.0})
+    seen = observable_turns(turns, points, tol, 15.0)
+    assert list(seen["start_s"]) == [500.0]
+    # each batch alone: the same answer
+    alone = observable_turns(turns, points[points["batch"] == "b"], tol, 15.0)
+    assert list(alone["start_s"]) == [500.0]
