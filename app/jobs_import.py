@@ -15,7 +15,6 @@ from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
 from wakeline.core.schema import FILE_ROW
-from wakeline.core.session import Source
 
 
 class ImportJobsMixin:
@@ -97,7 +96,7 @@ class ImportJobsMixin:
             self.log_message(f"    quarantined {count:,}: {reason}")
         for warning in rep.get("warnings", []):
             self.log_message(f"    {self.tr('Warning')}: {warning}")
-        self.session.sources.append(Source(str(path.resolve()), sha))
+        self.session.note_source(str(path.resolve()), sha)
         quarantine = result.quarantine.head(QUARANTINE_KEPT).astype(str).to_dict("records")
         meta = {"file": str(path), "report": rep, "quarantine": quarantine, "layout": layout}
         lid = self.session.new_id()
@@ -153,8 +152,7 @@ class ImportJobsMixin:
         from wakeline.app.bearing_view import layer_meta
 
         resolved = str(path.resolve())
-        if not any(s.path == resolved for s in self.session.sources):
-            self.session.sources.append(Source(resolved, sha))
+        self.session.note_source(resolved, sha)
         old = self.session.bearing_layer(resolved)
         lid = old.id if old is not None else self.session.new_id()
         self.views[lid] = view

@@ -138,7 +138,7 @@ class ProjectController(QtCore.QObject):
         if event in ("added", "changed") and layer is not None:
             pos = self._pos(layer_id)
             self._submit(lambda st: st.put_layer(layer, pos))
-            if event == "added" and layer.kind in ("source", BEARING_KIND):
+            if layer.kind in ("source", BEARING_KIND):  # "changed": a file read again
                 sources = list(self.session.sources)
                 self._submit(lambda st: st.put_sources(sources))
         elif event == "visibility" and layer is not None:

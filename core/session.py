@@ -105,6 +105,15 @@ class Session:
         for listener in list(self._listeners):
             listener(event, layer_id)
 
+    def note_source(self, path: str, sha256: str) -> None:
+        """The file ``path`` was read with content hash ``sha256``: its Source is added,
+        or, read before, its hash replaced (a file edited and opened again)."""
+        for k, s in enumerate(self.sources):
+            if s.path == path:
+                self.sources[k] = Source(path, sha256)
+                return
+        self.sources.append(Source(path, sha256))
+
     # -- layers --------------------------------------------------------------------
 
     def new_id(self) -> str:

@@ -314,3 +314,33 @@ def test_detail_curves_are_made_in_the_worker_not_on_the_gui_thread(qtbot, tmp_p
     fresh = detail.sequence_curves(w.bearings, panel._bparams, batches[-1])[batches[-1]]
     np.testing.assert_array_equal(panel.z_curve.getData()[1], fresh[3])
     np.testing.assert_array_equal(panel.b_curve.getData()[1], fresh[1])
+
+
+@pytest.mark.gui
+def test_reopened_changed_bearing_file_keeps_its_new_hash(qtbot, tmp_path):
+    """A bearing file edited and opened again replaced its layer (with the new hash in its
+    meta) but the session's Source kept the first read's hash, and the project writer
+    wrote sources on "added" only: the saved project then said the file had changed since
+    it was loaded. Now the Source's hash is replaced and written on "changed" too."""
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.core.project import file_hash
+
+    w = _window(qtbot, tmp_path)
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    path = tmp_path / "b.csv"
+    simulate_table(seed=4).to_csv(path, index=False)
+    w.load_bearings(path)
+    wait_for_jobs(w)
+    simulate_table(seed=5).to_csv(path, index=False)  # the file is edited, opened again
+    w.load_bearings(path)
+    wait_for_jobs(w)
+    (layer,) = w.session.layers.values()
+    sha = file_hash(path)
+    assert layer.meta["sha256"] == sha
+    assert [(s.path, s.sha256) for s in w.session.sources] == [(str(path.resolve()), sha)]
+    assert w.project.flush(30)
+    assert load_project(proj).source_problems() == []
+    w.runner.cancel()
+    w.runner.wait()
+    w.close()

@@ -460,3 +460,15 @@ def test_layer_data_is_never_selected_as_a_column(scene, tmp_path, monkeypatch):
     pd.testing.assert_frame_equal(back.layers[1].points, cleaned.points.reset_index(drop=True))
     for name, table in cleaned.tables.items():
         pd.testing.assert_frame_equal(back.layers[1].tables[name], table.reset_index(drop=True))
+
+
+def test_a_file_read_again_replaces_its_sources_hash():
+    """``note_source``: a path read again keeps one Source, with the last read's hash."""
+    s = Session()
+    s.note_source("/data/b.csv", "aaa")
+    s.note_source("/data/c.csv", "ccc")
+    s.note_source("/data/b.csv", "bbb")
+    assert [(x.path, x.sha256) for x in s.sources] == [
+        ("/data/b.csv", "bbb"),
+        ("/data/c.csv", "ccc"),
+    ]
