@@ -18,6 +18,7 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6 import QtCore
 
+from wakeline.app.layer_view import is_part_of
 from wakeline.app.map_draw import DrawData, LayerGeometry, prepare_layer
 from wakeline.core.timeline import TimeIndex, build_index, mask_rows
 
@@ -66,12 +67,14 @@ def one_clock(geometries: dict[str, LayerGeometry], active: str | None) -> list[
     """The layers the time slider runs over: all of them when their times are all dates or
     all elapsed from a scene start (MTAD); when both kinds are open, those of the active
     layer's kind (else of the most layers): seconds from a scene start on a slider of
-    dates ran it from 1970 to now."""
-    kinds = {lid: g.relative for lid, g in geometries.items()}
+    dates ran it from 1970 to now. ``geometries`` by map layer name; ``active``: a session
+    layer id, drawn as the map layer of its id or as parts (``L3/observer``)."""
+    kinds = {name: g.relative for name, g in geometries.items()}
     if len(set(kinds.values())) < 2:
         return list(geometries.values())
-    keep = kinds.get(active) if active in kinds else sum(kinds.values()) * 2 > len(kinds)
-    return [g for lid, g in geometries.items() if kinds[lid] == keep]
+    mine = [k for name, k in kinds.items() if active is not None and is_part_of(name, active)]
+    keep = mine[0] if mine else sum(kinds.values()) * 2 > len(kinds)
+    return [g for name, g in geometries.items() if kinds[name] == keep]
 
 
 def index_job(geometries: list[LayerGeometry]) -> TimeScene:

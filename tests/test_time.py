@@ -335,6 +335,36 @@ def test_dates_and_scene_times_open_together_the_slider_follows_the_active_layer
 
 
 @pytest.mark.gui
+def test_an_active_bearing_layer_takes_the_slider_to_its_clock(window, qtbot, tmp_path):
+    """The slider's clock follows the active layer when dates and scene times are both
+    open, but a bearing layer is drawn as parts (``L3/observer``) and the active id
+    (``L3``) matched none of them: with two scene-time layers open, an active dated
+    bearing layer left the slider on scene time."""
+    from test_bearing_view import harbour_table
+
+    from wakeline.app.main import wait_for_jobs
+
+    _scene_csv(tmp_path / "rel.csv", relative=True)
+    _scene_csv(tmp_path / "rel2.csv", relative=True)
+    _load(window, qtbot, tmp_path / "rel.csv")
+    _load(window, qtbot, tmp_path / "rel2.csv")
+    path = tmp_path / "bearings.csv"
+    df = harbour_table()
+    df.to_csv(path, index=False)
+    window.load_bearings(path)
+    wait_for_jobs(window)
+    qtbot.waitUntil(lambda: not window.time_controller.busy, timeout=20_000)
+    t_s = df["time"].astype("int64").to_numpy() / 1e9
+    panel = window.time_panel
+    window.select_layer(window.layer_id("rel.csv"))
+    qtbot.waitUntil(lambda: panel._hi < 3600 and not window.time_controller.busy, timeout=10_000)
+    window.select_layer(window.layer_id("bearings.csv"))
+    qtbot.waitUntil(lambda: not window.time_controller.busy, timeout=10_000)
+    assert panel.time_range() == pytest.approx((t_s.min(), t_s.max()), abs=1e-3)
+    assert not panel.time_label.text().startswith("T+")
+
+
+@pytest.mark.gui
 def test_slider_move_at_a_million_points_stays_responsive(qtbot):
     """A slider move redraws ~2,000 markers and 120k trail vertices out of 1M points:
     the GUI thread answers within 100 ms (10 ms timer probe)."""
