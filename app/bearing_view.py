@@ -440,6 +440,7 @@ def bearing_layer_view(
     scene: BearingScene | None = None,
     parts: list[DrawData] | None = None,
     params=None,
+    statistic: pd.DataFrame | None = None,
 ) -> LayerView:
     """A bearing layer's view for the main window (pure, for a worker): the bearing
     table as its points, no tracks for the batch table, and in ``extra`` the ``scene``
@@ -447,7 +448,8 @@ def bearing_layer_view(
     (:func:`main_map_layers`; made here from the scene when not given), the
     ``detections``, the detector's ``report`` and, with the detector's ``params``, the
     Detail panel's ``curves`` (:func:`~wakeline.app.detail.sequence_curves`: z over
-    every sequence is not computed on the GUI thread)."""
+    every sequence is not computed on the GUI thread; from the detector's ``statistic``
+    when given, the one its detections came from, else computed)."""
     if parts is None:
         parts = main_map_layers(scene) if scene is not None else []
     summary = batch_summary(EMPTY_POINTS)
@@ -464,7 +466,7 @@ def bearing_layer_view(
     if params is not None:
         from .detail import sequence_curves
 
-        extra["curves"] = (params, sequence_curves(bearings, params))
+        extra["curves"] = (params, sequence_curves(bearings, params, statistic=statistic))
     return LayerView(bearings, summary, {}, None, None, display_text(summary), extra)
 
 

@@ -12,25 +12,40 @@ from wakeline.core.schema import time_seconds
 
 
 def sequence_curves(
-    bearings: pd.DataFrame, params: BearingParams, batch: str | None = None
+    bearings: pd.DataFrame,
+    params: BearingParams,
+    batch: str | None = None,
+    statistic: pd.DataFrame | None = None,
 ) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]]:
     """The Detail panel's curves of every bearing sequence (or of ``batch`` only), pure
     and for a worker: per batch (time since its start in min, unwrapped bearing in °,
-    the tested boundaries' times in min, their z, its start in s since 1970)."""
+    the tested boundaries' times in min, their z, its start in s since 1970).
+    ``statistic``: the detector's own (``batch, boundary_s, z``, from
+    :func:`~wakeline.core.bearing.detect_with_statistic` with ``params``), taken instead
+    of computing z again."""
     out = {}
     if bearings.empty:
         return out
     key = bearings["batch"].astype(str)
     rows = bearings if batch is None else bearings[key == batch]
+    given = {}
+    if statistic is not None:
+        given = {
+            str(name): (s["boundary_s"].to_numpy(dtype="float64"), s["z"].to_numpy("float64"))
+            for name, s in statistic.groupby(statistic["batch"].astype(str), sort=False)
+        }
     for name, g in rows.groupby(key, sort=True):  # a step per sequence, vectorized within
         g = g.sort_values("time", kind="stable")
         t = time_seconds(g["time"])
         b = g["bearing"].to_numpy(dtype="float64")
-        obs = [
-            g[c].to_numpy(dtype="float64") if c in g.columns else None
-            for c in ("obs_lon", "obs_lat")
-        ]
-        bt, z = auc_statistic(t, b, params, *obs)
+        if statistic is not None:  # a sequence with no tested boundary has no row
+            bt, z = given.get(str(name), (np.zeros(0), np.zeros(0)))
+        else:
+            obs = [
+                g[c].to_numpy(dtype="float64") if c in g.columns else None
+                for c in ("obs_lon", "obs_lat")
+            ]
+            bt, z = auc_statistic(t, b, params, *obs)
         t0 = float(t[0])
         curve = np.degrees(np.unwrap(np.radians(b)))
         out[str(name)] = ((t - t0) / 60.0, curve, (bt - t0) / 60.0, z, t0)

@@ -140,7 +140,13 @@ class ImportJobsMixin:
                 if frame:
                     plan = {"target": scene.target, "lat0": scene.lat0}
             lview = bearing_layer_view(
-                bearings, detections, result.report["report"], scene, parts, params
+                bearings,
+                detections,
+                result.report["report"],
+                scene,
+                parts,
+                params,
+                statistic=result.tables["statistic"],  # z is not computed again
             )
             return ("bearing", path, quarantine, result, lview, sha, plan)
 

@@ -1114,8 +1114,19 @@ def detect_with_report(
 ) -> tuple[pd.DataFrame, list[dict]]:
     """Detections for every batch (``batch, detect_time, maneuver_time, z``) and, per
     batch, what was tested and why windows were skipped."""
+    table, report, _ = detect_with_statistic(bearings, params)
+    return table, report
+
+
+def detect_with_statistic(
+    bearings: pd.DataFrame, params: BearingParams | None = None
+) -> tuple[pd.DataFrame, list[dict], pd.DataFrame]:
+    """:func:`detect_with_report`'s detections and report, and the statistic they came
+    from: per tested boundary of every batch, ``batch``, ``boundary_s`` (s since 1970)
+    and ``z`` (the Detail panel's curve, not computed again)."""
     params = (params or BearingParams()).checked()
     rows, report = [], []
+    stat_batch, stat_t, stat_z = [], [], []
     for batch, g in bearings.groupby("batch", sort=True):  # one pass per target
         g = g.sort_values("time", kind="stable")
         t = time_seconds(g["time"])
@@ -1144,6 +1155,9 @@ def detect_with_report(
                 if maneuvering
                 else "; its positions enter the fit"
             )
+        stat_batch.append(np.full(len(st.z), str(batch), dtype=object))
+        stat_t.append(np.asarray(st.boundary_t, dtype="float64"))
+        stat_z.append(np.asarray(st.z, dtype="float64"))
         found = detections_from(st, used.z_crit)
         for d in found:
             rows.append((str(batch), d.detect_time_s, d.maneuver_time_s, d.z))
@@ -1179,7 +1193,15 @@ def detect_with_report(
             "z": out["z"].to_numpy(),
         }
     )
-    return table, report
+    cat = lambda xs, dtype: np.concatenate(xs) if xs else np.zeros(0, dtype)  # noqa: E731
+    statistic_table = pd.DataFrame(
+        {
+            "batch": pd.Series(cat(stat_batch, object), dtype="str"),
+            "boundary_s": cat(stat_t, "float64"),
+            "z": cat(stat_z, "float64"),
+        }
+    )
+    return table, report, statistic_table
 
 
 def detect(bearings: pd.DataFrame, params: BearingParams | None = None) -> pd.DataFrame:

@@ -735,11 +735,13 @@ def default_pipeline(points, cleaning, mparams, cparams, progress=None) -> StepR
 def step_bearing(bearings: pd.DataFrame, params, progress: Progress | None = None) -> StepResult:
     """Bearing-only maneuver detection (seed 002) on every sequence; no new layer. The
     report's ``report`` says per batch what was tested and why windows were skipped;
-    ``why`` holds it as log lines."""
-    from wakeline.core.bearing import detect_with_report, report_lines
+    ``why`` holds it as log lines. Tables: ``detections`` and ``statistic`` (the z of
+    every tested boundary, :func:`~wakeline.core.bearing.detect_with_statistic`; the
+    Detail panel's curves, not kept in a project)."""
+    from wakeline.core.bearing import detect_with_statistic, report_lines
 
     (progress or null_progress)(0.0, "AUC detection")
-    detections, report = detect_with_report(bearings, params)
+    detections, report, statistic = detect_with_statistic(bearings, params)
     return StepResult(
         "bearing",
         [],
@@ -749,5 +751,5 @@ def step_bearing(bearings: pd.DataFrame, params, progress: Progress | None = Non
             "report": report,
             "why": report_lines(report),
         },
-        {"detections": detections},
+        {"detections": detections, "statistic": statistic},
     )

@@ -488,3 +488,31 @@ def test_fixed_windows_say_why_and_fit_windows_shrink_to_a_short_sequence():
     short = windows_for(fit, np.arange(0.0, 20.0, 0.2))
     assert (short.window_x_s, short.window_y_s) == (30.0, 16.0)
     assert windows_for(BearingParams(), np.arange(0.0, 20.0, 0.2)) == BearingParams()
+
+
+@pytest.mark.parametrize("params", [BearingParams(), BearingParams(windows="fit")])
+def test_the_detectors_statistic_is_returned_and_is_the_plotted_one(params):
+    """``detect_with_statistic``: the same detections and report as ``detect_with_report``
+    and the z of every tested boundary they came from, per batch; ``auc_statistic`` (the
+    Detail panel's curve when the detector's is not at hand) gives the same z, also with
+    windows="fit" on a short sequence (shrunk windows)."""
+    from wakeline.core.bearing import auc_statistic, detect_with_statistic
+    from wakeline.core.schema import time_seconds
+
+    df = pd.concat(
+        [simulate_table(seed=4), _short_table(60.0).assign(batch="short")], ignore_index=True
+    )
+    table, report, stat = detect_with_statistic(df, params)
+    pd.testing.assert_frame_equal(table, detect_with_report(df, params)[0])
+    assert report == detect_with_report(df, params)[1]
+    assert list(stat.columns) == ["batch", "boundary_s", "z"]
+    for r in report:
+        mine = stat[stat["batch"] == r["batch"]]
+        assert len(mine) == r["tested"]
+        g = df[df["batch"].astype(str) == r["batch"]].sort_values("time")
+        obs = [g[c].to_numpy() if c in g else None for c in ("obs_lon", "obs_lat")]
+        bt, z = auc_statistic(time_seconds(g["time"]), g["bearing"].to_numpy(), params, *obs)
+        np.testing.assert_array_equal(mine["boundary_s"].to_numpy(), bt)
+        np.testing.assert_array_equal(mine["z"].to_numpy(), z)
+    short = stat[stat["batch"] == "short"]
+    assert (len(short) > 0) == (params.windows == "fit")
