@@ -286,12 +286,9 @@ def bearing_line_points(
     batch = df["batch"].astype(str).to_numpy()
     starts = np.flatnonzero(np.r_[True, batch[1:] != batch[:-1]])
     sizes = np.diff(np.r_[starts, len(df)])
-    if at_times is None:
-        per = np.minimum(sizes, max_lines)
-        within = np.concatenate(
-            [np.linspace(0, s - 1, p).round() for s, p in zip(sizes, per, strict=True)]
-        )
-        rows = (np.repeat(starts, per) + within).astype(int)
+    if at_times is None:  # the time window's rule (ties in row order), batches in df order
+        group = np.repeat(np.arange(len(starts)), sizes)
+        rows = spread_picks(group, np.arange(len(df)), max_lines)
     else:
         t = time_seconds(df["time"])
         want = at_times.assign(batch=at_times["batch"].astype(str))

@@ -46,6 +46,31 @@ def test_bearing_lines_start_at_the_observer_and_point_along_the_bearing():
     assert bearing_line_points(df.drop(columns=["obs_lon", "obs_lat"])).empty
 
 
+def test_bearing_line_points_picks_by_the_one_spread_rule(monkeypatch):
+    """bearing_line_points picked its lines with a loop of its own (a linspace per batch)
+    beside ``spread_picks`` (the time window's): one rule now, so a change of it moves
+    both. Here the rule is swapped for "the first ``max_per`` of each batch in time"."""
+    from wakeline.app import bearing_view
+
+    df = simulate_table(seed=3).sample(frac=1.0, random_state=0)  # rows in no order
+    expected = bearing_line_points(df, 1_000.0, max_lines=7)
+
+    def first_ones(group, key, max_per):
+        order = np.lexsort((key, group))
+        g = np.asarray(group)[order]
+        rank = np.arange(len(g)) - np.searchsorted(g, g)  # place inside its group
+        return order[rank < max_per]
+
+    monkeypatch.setattr(bearing_view, "spread_picks", first_ones)
+    lines = bearing_line_points(df, 1_000.0, max_lines=7)
+    want = df.sort_values(["batch", "time"]).groupby("batch").head(7)
+    assert lines["time"].iloc[::2].tolist() == want["time"].tolist()
+    # the rule itself: per batch, the rows np.linspace(0, n - 1, 7).round() in time
+    spread = df.sort_values(["batch", "time"]).groupby("batch", group_keys=False)
+    spread = spread.apply(lambda g: g.iloc[np.linspace(0, len(g) - 1, 7).round().astype(int)])
+    assert expected["time"].iloc[::2].tolist() == spread["time"].tolist()
+
+
 def test_view_shows_lines_and_exports_detections(qtbot, tmp_path):
     df = simulate_table(seed=4)
     df = df[df.batch.isin(["s2-m", "s4-straight"])]
