@@ -479,11 +479,22 @@ def layer_meta(file: str, sha256: str, view: LayerView) -> dict:
     }
 
 
+#: The columns of the detector's table (:func:`~wakeline.core.bearing.detect_with_report`).
+DETECTION_COLUMNS = ["batch", "detect_time", "maneuver_time", "z"]
+
+
+def layer_detections(layer) -> pd.DataFrame:
+    """A bearing layer's detections (its ``detections`` table), or an empty table with the
+    detector's columns when it was stored without one."""
+    found = layer.tables.get("detections")
+    return found if found is not None else pd.DataFrame(columns=DETECTION_COLUMNS)
+
+
 def bearing_stats(layer, tr=str) -> str:
     """The Statistics panel's text for a bearing layer: its bearings, sequences, time
     span and detections (``tr``: the window's translation)."""
     points = layer.points
-    detections = layer.tables.get("detections", pd.DataFrame())
+    detections = layer_detections(layer)
     lines = [
         f"{tr('Layer')}: {layer.name} [{layer.kind}]  ({layer.id})",
         f"{tr('Bearings')}: {len(points):,}   {tr('Sequences')}: {points['batch'].nunique():,}"
@@ -499,7 +510,7 @@ def bearing_stats(layer, tr=str) -> str:
 def layer_scene(layer, build_index: bool = True) -> BearingScene | None:
     """The scene of a stored bearing layer (:class:`~wakeline.core.session.Layer` of kind
     ``bearing``), its lines as long as when it was read (``meta["length_m"]``)."""
-    detections = layer.tables.get("detections", pd.DataFrame(columns=["batch"]))
+    detections = layer_detections(layer)
     return bearing_scene(layer.points, detections, layer.meta.get("length_m"), build_index)
 
 

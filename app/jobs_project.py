@@ -7,7 +7,6 @@ layers for drawing run in the worker, the GUI thread only swaps the result in.
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 from PySide6 import QtWidgets
 
 from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
@@ -131,7 +130,12 @@ class ProjectJobsMixin:
         bearing_params = self.params.params("bearing")
 
         def job(progress):
-            from wakeline.app.bearing_view import bearing_layer_view, layer_scene, main_map_layers
+            from wakeline.app.bearing_view import (
+                bearing_layer_view,
+                layer_detections,
+                layer_scene,
+                main_map_layers,
+            )
 
             proj = load_project(path)
             warnings = proj.source_problems()
@@ -162,7 +166,7 @@ class ProjectJobsMixin:
                     parts = []
                     if scene is not None:
                         parts = main_map_layers(scene, size_px=size_px, shown=shown)
-                    detections = lay.tables.get("detections", pd.DataFrame(columns=["batch"]))
+                    detections = layer_detections(lay)
                     views[lay.id] = bearing_layer_view(
                         lay.points, detections, lay.meta.get("report"), scene, parts, bearing_params
                     )

@@ -73,10 +73,14 @@ class LayersMixin:
             # layer added by a script or a test is prepared here (small).
             view = self.views.get(lid)
             if view is None or view.points is not layer.points:
-                from wakeline.app.bearing_view import bearing_layer_view, layer_scene
+                from wakeline.app.bearing_view import (
+                    bearing_layer_view,
+                    layer_detections,
+                    layer_scene,
+                )
 
                 scene = layer_scene(layer)
-                detections = layer.tables.get("detections", pd.DataFrame(columns=["batch"]))
+                detections = layer_detections(layer)
                 report = layer.meta.get("report")
                 self.views[lid] = bearing_layer_view(layer.points, detections, report, scene)
             return

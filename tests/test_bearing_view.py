@@ -71,6 +71,24 @@ def test_bearing_line_points_picks_by_the_one_spread_rule(monkeypatch):
     assert expected["time"].iloc[::2].tolist() == spread["time"].tolist()
 
 
+def test_a_bearing_layers_detections_come_from_one_helper():
+    """``layer_detections``: a bearing layer's detections, or (a layer stored without
+    them) an empty table with the detector's columns; it was written out three times
+    (window, project opening, scene) with a ``batch`` column only."""
+    from wakeline.app.bearing_view import bearing_stats, layer_detections, layer_scene
+    from wakeline.core.session import Session
+
+    df = simulate_table(seed=3)
+    detections, report = detect_with_report(df)
+    session = Session()
+    lay = session.put_bearings("b.csv", df, detections, {"file": "/b.csv", "report": report})
+    assert layer_detections(lay) is detections
+    lay.tables = {}
+    empty = layer_detections(lay)
+    assert empty.empty and list(empty.columns) == list(detections.columns)
+    assert layer_scene(lay) is not None and "Detections: 0" in bearing_stats(lay)
+
+
 def test_view_shows_lines_and_exports_detections(qtbot, tmp_path):
     df = simulate_table(seed=4)
     df = df[df.batch.isin(["s2-m", "s4-straight"])]
