@@ -45,7 +45,7 @@ from .map_colors import BATCH_PALETTE
 from .map_draw import DrawData, LayerGeometry, LayerStyle, layer_geometry, prepare_layer, relod
 from .map_legend import LABEL_PADDING_PX, short_label
 from .map_paths import with_paths
-from .map_time import geometry_rows
+from .map_time import geometry_rows, window_draw_data
 from .models import batch_summary, display_text
 
 #: Smallest width (px) of the map's plot area: the map widget's minimum is this plus its
@@ -430,6 +430,30 @@ def main_map_layers(
     return out
 
 
+def scene_cuts(scene: BearingScene) -> dict:
+    """The parts' own time-window cuts of ``scene`` by part name (:data:`PARTS`;
+    :func:`~wakeline.app.map_time.window_draw_data`'s ``cut``): the lines are chosen again
+    among the window's bearings (:func:`window_lines`); the other parts are cut like point
+    layers (no entry)."""
+    if scene.all_lines is None:
+        return {}
+    return {"lines": functools.partial(window_lines, scene.all_lines, scene.line_batch)}
+
+
+def window_scene_layers(scene: BearingScene, window: tuple[float, float] | None) -> list[DrawData]:
+    """The scene's layers (the Bearing-only dock's map) cut to ``window`` (s; None: the
+    layers as prepared), each part as the main map cuts its copy
+    (:func:`~wakeline.app.map_time.window_draw_data` with :func:`scene_cuts`). Pure, for a
+    worker."""
+    if window is None:
+        return list(scene.layers)
+    cuts = scene_cuts(scene)
+    return [
+        window_draw_data(data, window, None, None, cuts.get(part))
+        for data, part in zip(scene.layers, PARTS, strict=False)
+    ]
+
+
 def bearing_layer_view(
     bearings: pd.DataFrame,
     detections: pd.DataFrame,
@@ -450,9 +474,7 @@ def bearing_layer_view(
     if parts is None:
         parts = main_map_layers(scene) if scene is not None else []
     summary = batch_summary(EMPTY_POINTS)
-    cuts = {}
-    if scene is not None and scene.all_lines is not None:
-        cuts["lines"] = functools.partial(window_lines, scene.all_lines, scene.line_batch)
+    cuts = scene_cuts(scene) if scene is not None else {}
     extra = {
         "scene": scene,
         "parts": tuple(parts),
@@ -564,7 +586,12 @@ class DetectionsModel(QtCore.QAbstractTableModel):
 
 
 class BearingView(QtWidgets.QWidget):
-    """Map of bearing lines and the table of detections, with CSV export."""
+    """Map of bearing lines and the table of detections, with CSV export.
+
+    ``scene_shown`` follows every scene :meth:`show_result` draws in full (the main
+    window's time controller then cuts it to the time window, :meth:`draw_layers`)."""
+
+    scene_shown = QtCore.Signal()
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)
@@ -690,10 +717,16 @@ class BearingView(QtWidgets.QWidget):
             self.log.appendPlainText(self.tr("No observer position: no bearing lines to draw."))
             return
         self.length_m, self.colours = scene.length_m, scene.colours
-        for data in scene.layers:
-            self.map.set_draw_data(data)
+        self.draw_layers(scene.layers)
         self.map.set_true_aspect(scene.lat0)
         self.map.show_range(scene.target)
+        self.scene_shown.emit()
+
+    def draw_layers(self, layers) -> None:
+        """Swap in the map's layers (the scene's, or those cut to a time window:
+        :func:`window_scene_layers`); the view is kept."""
+        for data in layers:
+            self.map.set_draw_data(data)
 
     def clear(self) -> None:
         """Show nothing (the bearing layer shown was removed)."""

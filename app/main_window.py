@@ -136,6 +136,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.stats = QtWidgets.QPlainTextEdit(readOnly=True)
         self.detail = DetailPanel()
         self.bearing_view = BearingView()
+        self.time_controller.attach_bearing_view(self.bearing_view)  # the window cuts it too
         self.log = QtWidgets.QPlainTextEdit(readOnly=True)
         self.log.setMaximumBlockCount(5000)
         self._build_docks(batch_box)

@@ -277,6 +277,8 @@ class TimeController(QtCore.QObject):
         self.overlay = TimeOverlay(window.canvas, window.lod_worker)
         self._gen = 0
         self._filtered: dict[str, tuple] = {}  # layer id -> (window, geometry it was cut from)
+        self._dock = None  # the Bearing-only dock (attach_bearing_view)
+        self._dock_cut: dict | None = None  # its scene and the window it is cut to
         self._pending = 0
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
@@ -288,6 +290,13 @@ class TimeController(QtCore.QObject):
         panel.trail_changed.connect(lambda: self._draw(panel.time()))
         panel.window_changed.connect(self._window_changed)
         panel.overlay_toggled.connect(self._overlay_toggled)
+
+    def attach_bearing_view(self, view) -> None:
+        """Cut the Bearing-only dock's map (``view``, a
+        :class:`~wakeline.app.bearing_view.BearingView`) to the window as well: at every
+        window change and every scene it shows (its ``scene_shown``)."""
+        self._dock = view
+        view.scene_shown.connect(self._dock_shown)
 
     @property
     def busy(self) -> bool:
@@ -371,6 +380,7 @@ class TimeController(QtCore.QObject):
     def _window_changed(self, window) -> None:
         self.window.batch_model.set_time_window(window)
         self._apply_window(self._originals())
+        self._cut_dock()
         if not self._pending:
             self.window_applied.emit()
 
@@ -415,3 +425,43 @@ class TimeController(QtCore.QObject):
                     self.window_applied.emit()
 
             self._run(lambda d=data, w=win, c=cut: window_draw_data(d, w, view, size, c), done)
+
+    def _dock_shown(self) -> None:
+        """The dock drew a scene in full: cut it to the window (when one is set)."""
+        self._dock_cut = None
+        self._cut_dock()
+
+    def _cut_dock(self) -> None:
+        """Cut the dock's scene to the panel's window in a worker, each part as the main
+        map cuts its copy (:func:`~wakeline.app.bearing_view.window_scene_layers`), or
+        draw it in full again when the window is cleared. A scene on the other clock
+        (scene times beside dates) is never cut."""
+        from wakeline.app.bearing_view import window_scene_layers
+
+        dock = self._dock
+        scene = dock.scene if dock is not None else None
+        if scene is None or not scene.layers:
+            self._dock_cut = None
+            return
+        window = self.panel.time_window()
+        win = window if scene.layers[0].geometry.relative == self.panel._relative else None
+        old = self._dock_cut
+        if old is None and win is None:
+            return  # drawn in full already
+        if old is not None and old["scene"] is scene and old["win"] == win:
+            return  # cut (or being cut) for this window already
+        if win is None:
+            self._dock_cut = None
+            dock.draw_layers(scene.layers)
+            return
+        state = {"scene": scene, "win": win}
+        self._dock_cut = state
+
+        def done(layers: list[DrawData]) -> None:
+            if self._dock_cut is not state or dock.scene is not scene:
+                return  # a newer window or scene meanwhile
+            dock.draw_layers(layers)
+            if not self._pending:
+                self.window_applied.emit()
+
+        self._run(lambda: window_scene_layers(scene, win), done)

@@ -281,6 +281,66 @@ def test_time_window_cuts_the_bearing_lines(qtbot, tmp_path):
 
 
 @pytest.mark.gui
+def test_time_window_cuts_the_bearing_docks_map_in_the_worker(qtbot, tmp_path, monkeypatch):
+    """The Bearing-only dock's own map was not cut by the time window: with a window set
+    the main map drew the window's lines, the dock still the whole sequence's fan. Now the
+    dock's parts are cut as the main map's (the same lines: window_lines' picks among the
+    window's bearings), in the worker; a scene shown again under the window (a new line
+    length) is cut too; clearing the window restores the full fan."""
+    import threading
+
+    from wakeline.app import bearing_view
+
+    threads = []
+    real = getattr(bearing_view, "window_scene_layers", None)
+
+    def probe(*args, **kwargs):
+        threads.append(threading.current_thread() is threading.main_thread())
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(bearing_view, "window_scene_layers", probe, raising=False)
+    w = _window(qtbot, tmp_path)
+    path = tmp_path / "bearings.csv"
+    df = harbour_table()  # 2 batches of 400 bearings, 4 Hz over 100 s
+    df.to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)
+    dock = w.bearing_view.map
+    observer_name, lines_name = bearing_view.LAYER_NAMES[:2]
+
+    def dock_lines():
+        return dock.draw_data(lines_name).geometry
+
+    full = dock_lines()
+    assert full.n_tracks == 120  # 60 lines per batch: the whole sequence's fan
+    t_s = df["time"].astype("int64").to_numpy() / 1e9
+    a, b = t_s.min() + 20.0, t_s.min() + 25.0  # 21 bearings per batch
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window((a, b))
+    qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
+    cut = dock_lines()
+    line_t = cut.time_s[cut.starts]
+    assert cut.n_tracks == 42 and line_t.min() >= a and line_t.max() <= b
+    main = _lines(w, lid)  # the same lines as the main map's
+    np.testing.assert_array_equal(np.sort(main.time_s), np.sort(cut.time_s))
+    np.testing.assert_allclose(np.sort(main.lon), np.sort(cut.lon))
+    assert cut.labels == full.labels and cut.colors == full.colors
+    observer = dock.draw_data(observer_name).geometry
+    assert observer.n_points and observer.time_s.min() >= a and observer.time_s.max() <= b
+    assert threads == [False]  # cut in the worker
+    # The dock shows a scene again (another line length) under the window: cut as well.
+    w.bearing_view.set_line_length(2_000.0)
+    qtbot.waitUntil(lambda: dock_lines().n_tracks == 42, timeout=10_000)
+    assert threads == [False, False]
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window(None)
+    qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
+    assert dock_lines().n_tracks == 120
+    assert dock.draw_data(observer_name).geometry.n_points == len(df)
+    w.runner.cancel()
+    w.runner.wait()
+
+
+@pytest.mark.gui
 def test_detail_curves_are_made_in_the_worker_not_on_the_gui_thread(qtbot, tmp_path, monkeypatch):
     """The Detail panel's z over a sequence (seed 002's statistic, ~90 ms at 9,000
     bearings) was computed on the GUI thread when a bearing file was shown; it is made in
