@@ -592,6 +592,9 @@ class BearingView(QtWidgets.QWidget):
     window's time controller then cuts it to the time window, :meth:`draw_layers`)."""
 
     scene_shown = QtCore.Signal()
+    #: The operator set another line length (:meth:`set_line_length`); the scene shown
+    #: now has it (the main window prepares its map's copy of the layer again).
+    length_changed = QtCore.Signal()
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)
@@ -667,6 +670,7 @@ class BearingView(QtWidgets.QWidget):
         self.fixed_length_m = float(length_m) if length_m else None
         if len(self.bearings):
             self.show_result(self.bearings, self.detections, self._report)
+            self.length_changed.emit()
 
     def map_min_width(self) -> int:
         """The map widget's minimum width: its plot area at least :data:`MIN_PLOT_PX`."""

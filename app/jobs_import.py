@@ -11,6 +11,7 @@ from PySide6 import QtWidgets
 
 from wakeline.app.dialogs import QUARANTINE_KEPT
 from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
+from wakeline.app.map_time import guarded
 from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
@@ -151,6 +152,44 @@ class ImportJobsMixin:
             return ("bearing", path, quarantine, result, lview, sha, plan)
 
         return self._start("bearing", job, ("bearing", path.name))
+
+    def bearing_length_changed(self) -> None:
+        """The Bearing-only dock's lines got another length: the main map's parts of the
+        bearing layer it shows are made again from the dock's new scene in the LOD worker
+        (:func:`~wakeline.app.bearing_view.main_map_layers`, for the map's view, as the load
+        does); then the layer is replaced in place (``changed``: redrawn, cut by the time
+        window, its new ``length_m`` saved in the project). Nothing when the dock shows no
+        layer of the session."""
+        from wakeline.app.bearing_view import bearing_layer_view, main_map_layers
+
+        dock = self.bearing_view
+        scene, bearings = dock.scene, dock.bearings
+        lid = next((i for i, lay in self.session.layers.items() if lay.points is bearings), None)
+        old = self.views.get(lid) if lid is not None else None
+        if scene is None or old is None:
+            return
+        detections, report = old.extra["detections"], old.extra["report"]
+        # For the view and aspect the map shows now (it keeps them).
+        view, size_px = self.canvas.current_view(), self.canvas.plot_size_px()
+        lat0 = self.canvas._lat0
+
+        def job():
+            parts = main_map_layers(scene, view, size_px, lat0)
+            return bearing_layer_view(bearings, detections, report, scene, parts)
+
+        def done(new) -> None:
+            layer = self.session.layers.get(lid)
+            if new is None or layer is None or layer.points is not bearings:
+                return  # the job failed, or the layer was removed or replaced meanwhile
+            if dock.scene is not scene:
+                return  # another length (or layer) meanwhile: its own job follows
+            if "curves" in old.extra:  # z over the sequences: not the lines' length's
+                new.extra["curves"] = old.extra["curves"]
+            self.views[lid] = new
+            meta = {**layer.meta, "length_m": scene.length_m}
+            self.session.put_bearings(layer.name, bearings, detections, meta, layer_id=lid)
+
+        self.lod_worker(guarded(job), done)
 
     def _apply_bearings(self, path: Path, view, sha: str, plan: dict | None) -> None:
         """A bearing file read: its layer added to the session (or the one of the same

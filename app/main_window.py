@@ -137,6 +137,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.detail = DetailPanel()
         self.bearing_view = BearingView()
         self.time_controller.attach_bearing_view(self.bearing_view)  # the window cuts it too
+        self.bearing_view.length_changed.connect(self.bearing_length_changed)
         self.log = QtWidgets.QPlainTextEdit(readOnly=True)
         self.log.setMaximumBlockCount(5000)
         self._build_docks(batch_box)

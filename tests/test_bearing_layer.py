@@ -8,6 +8,7 @@ import pytest
 from test_bearing_view import harbour_table, has_colour, line_colour, to_px
 
 from conftest import canvas_rgb, make_window
+from wakeline.core import geo
 from wakeline.core.bearing import detect_with_report, read_bearings_checked
 from wakeline.core.bearing_eval import simulate_table
 from wakeline.core.project import load_project, save_project
@@ -330,12 +331,58 @@ def test_time_window_cuts_the_bearing_docks_map_in_the_worker(qtbot, tmp_path, m
     # The dock shows a scene again (another line length) under the window: cut as well.
     w.bearing_view.set_line_length(2_000.0)
     qtbot.waitUntil(lambda: dock_lines().n_tracks == 42, timeout=10_000)
-    assert threads == [False, False]
+    qtbot.waitUntil(lambda: w.layers[lid].meta["length_m"] == 2_000.0, timeout=10_000)
+    qtbot.waitUntil(lambda: not w.time_controller.busy and not w.drawing, timeout=10_000)
+    assert len(threads) >= 2 and True not in threads
     with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
         w.time_panel.set_time_window(None)
     qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
     assert dock_lines().n_tracks == 120
     assert dock.draw_data(observer_name).geometry.n_points == len(df)
+    w.runner.cancel()
+    w.runner.wait()
+
+
+@pytest.mark.gui
+def test_line_length_changed_in_the_dock_redraws_the_main_maps_layer(qtbot, tmp_path):
+    """A line length set in the Bearing-only dock redrew the dock only: the main map kept
+    the old lines. Now the main map's parts are made again from the dock's new scene (in
+    the LOD worker), still cut by the time window, and the layer keeps the new length (the
+    project's ``length_m``)."""
+    w = _window(qtbot, tmp_path)
+    path = tmp_path / "bearings.csv"
+    df = harbour_table()
+    df.to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)
+    before = _lines(w, lid)
+    t_s = df["time"].astype("int64").to_numpy() / 1e9
+    a, b = t_s.min() + 20.0, t_s.min() + 25.0
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window((a, b))
+    qtbot.waitUntil(lambda: not w.time_controller.busy, timeout=10_000)
+    curves = w.views[lid].extra["curves"]
+    length = 0.5 * w.bearing_view.length_m
+    w.bearing_view.set_line_length(length)
+    qtbot.waitUntil(lambda: w.layers[lid].meta["length_m"] == length, timeout=10_000)
+    qtbot.waitUntil(lambda: not w.time_controller.busy and not w.drawing, timeout=10_000)
+    assert w.views[lid].extra["scene"] is w.bearing_view.scene
+    assert w.views[lid].extra["curves"] is curves  # z is not made again
+    cut = _lines(w, lid)
+    assert cut.n_tracks == 42  # the window's lines (21 per batch), at the new length
+    dock = w.bearing_view.map.draw_data("bearing lines").geometry
+    np.testing.assert_allclose(np.sort(cut.lon), np.sort(dock.lon))
+    np.testing.assert_allclose(np.sort(cut.lat), np.sort(dock.lat))
+
+    def lengths_m(g):  # each line's length, observer to far end (flat, as they are made)
+        dlon, dlat = g.lon[g.starts + 1] - g.lon[g.starts], g.lat[g.starts + 1] - g.lat[g.starts]
+        cos = np.cos(np.radians(g.lat[g.starts].mean()))
+        return np.radians(np.hypot(dlon * cos, dlat)) * geo.EARTH_RADIUS_M
+
+    assert lengths_m(before) == pytest.approx(2 * length, rel=1e-3)
+    assert lengths_m(cut) == pytest.approx(length, rel=1e-3)  # half as long on the main map
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window(None)
+    qtbot.waitUntil(lambda: _lines(w, lid).n_tracks == 120, timeout=10_000)
     w.runner.cancel()
     w.runner.wait()
 
