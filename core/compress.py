@@ -282,6 +282,7 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
         _sub_index,
         local_maxima,
         median_interval_s,
+        window_ends,
     )
 
     params = params or CompressParams()
@@ -332,10 +333,7 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
         keep |= gap & ~rest
     if params.speed_change_kn > 0:
         n = len(x)
-        row = np.arange(n)
-        a = np.clip(row - p_row + 1, 0, n - 1)
-        b = np.clip(row + p_row - 1, 0, n - 1)
-        inside = (row - p_row + 1 >= index.starts[tr]) & (row + p_row - 1 < index.ends[tr])
+        a, b, inside = window_ends(index, np.arange(n), p_row, n)
         with np.errstate(invalid="ignore", divide="ignore"):
             v_back = np.hypot(x - x[a], y - y[a]) / (t - t[a])
             v_fwd = np.hypot(x[b] - x, y[b] - y) / (t[b] - t)

@@ -817,13 +817,7 @@ def _fast_enough(
     beyond ``speed_ms`` by more than :data:`HYPOT_MARGIN`, relative, or one below it); the
     others (within the margin, a time step ≤ 0 or not finite, lengths out of the safe
     range) take the exact speeds."""
-    n = len(x)
-    tr = index.track_of_row[rows]
-    a = rows - p_row + 1
-    b = rows + p_row - 1
-    inside = (a >= index.starts[tr]) & (b < index.ends[tr])
-    a = np.clip(a, 0, n - 1)
-    b = np.clip(b, 0, n - 1)
+    a, b, inside = window_ends(index, rows, p_row, len(x))
     back, fwd, sure = _lengths_sq(x, y, rows, a, b)
     to = t[rows]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -846,6 +840,19 @@ def _fast_enough(
     return ok
 
 
+def window_ends(
+    index: TrackIndex, rows: np.ndarray, p_row: np.ndarray, n: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The first row of the window ending at each of ``rows`` and the last row of the one
+    starting there (``p_row`` points each, clipped to [0, n)), and whether both windows lie
+    inside the row's track."""
+    tr = index.track_of_row[rows]
+    a = rows - p_row + 1
+    b = rows + p_row - 1
+    inside = (a >= index.starts[tr]) & (b < index.ends[tr])
+    return np.clip(a, 0, n - 1), np.clip(b, 0, n - 1), inside
+
+
 def _window_speed_ms(
     x: np.ndarray,
     y: np.ndarray,
@@ -857,14 +864,8 @@ def _window_speed_ms(
     """The slower of the straight-line speeds (m/s) over the window ending at each point
     and the one starting there (p points each); NaN where a window leaves the track.
     Per row, or per row of ``rows`` (``p_row`` aligned with them)."""
-    n = len(x)
-    row = np.arange(n) if rows is None else rows
-    tr = index.track_of_row[row]
-    a = row - p_row + 1
-    b = row + p_row - 1
-    ok = (a >= index.starts[tr]) & (b < index.ends[tr])
-    a = np.clip(a, 0, n - 1)
-    b = np.clip(b, 0, n - 1)
+    row = np.arange(len(x)) if rows is None else rows
+    a, b, ok = window_ends(index, row, p_row, len(x))
     xo, yo, to = x[row], y[row], t[row]
     with np.errstate(invalid="ignore", divide="ignore"):
         v_back = np.hypot(xo - x[a], yo - y[a]) / (to - t[a])
