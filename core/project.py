@@ -2,7 +2,8 @@
 
 What it holds: the sources (path and content hash), the parameters, every layer with its
 lineage (Parquet blobs, so times, text and numbers come back exactly), the layers' side
-tables, small state rows (selection, view, active layer) and the review decisions.
+tables, small state rows (selection, view, active layer, the time window) and the review
+decisions.
 
 It is written incrementally: a layer's Parquet once, when the layer is made (or
 replaced); a visibility, selection or parameter change is one small row, each in its own
@@ -39,6 +40,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.io.writer import atomic_path
 from wakeline.core.project_lock import read_holder
 from wakeline.core.session import Layer, Session, Source
+from wakeline.core.timeline import TimeWindow
 
 SCHEMA_VERSION = 2
 
@@ -78,6 +80,9 @@ class Project:
     decisions: list[dict] = field(default_factory=list)
     state: dict[str, object] = field(default_factory=dict)
     read_only: bool = False
+    #: The map's time window (the ``time_window`` state row; None: none, or a project
+    #: saved before it was kept).
+    time_window: TimeWindow | None = None
 
     def source_problems(self) -> list[str]:
         """One sentence per source that is missing or whose content changed."""
@@ -111,6 +116,7 @@ class Project:
                 **{**lay.lineage(), "tables": lay.tables},
             )
         session.selection = list(self.selection)
+        session.set_time_window(self.time_window)
         return session
 
 
@@ -277,6 +283,10 @@ class ProjectStore:
                 "INSERT OR REPLACE INTO state VALUES (?, ?)", (key, json.dumps(value, default=str))
             )
 
+    def put_time_window(self, window: TimeWindow | None) -> None:
+        """The ``time_window`` state row: :meth:`TimeWindow.to_json`, or null (none)."""
+        self.put_state("time_window", window.to_json() if window is not None else None)
+
     def add_decision(self, decision: dict) -> None:
         with self.con:
             self.con.execute("INSERT INTO decisions (json) VALUES (?)", (json.dumps(decision),))
@@ -288,6 +298,7 @@ class ProjectStore:
         self.put_sources(session.sources)
         self.put_params(session.params)
         self.put_state("selection", session.selection)
+        self.put_time_window(session.time_window)
         for key, value in (state or {}).items():
             self.put_state(key, value)
         for d in session.decisions:
@@ -425,8 +436,10 @@ def load_project(path: str | Path) -> Project:
             if schema >= 2:
                 state = {k: json.loads(v) for k, v in con.execute("SELECT key, json FROM state")}
                 selection = [tuple(r) for r in state.pop("selection", [])]
+                # Absent in a project saved before the window was kept: no window.
+                time_window = TimeWindow.from_json(state.pop("time_window", None))
             else:
-                state = {}
+                state, time_window = {}, None
                 names = {lay.name: lay.id for lay in layers}
                 selection = [
                     (names.get(lay, ""), s, b)
@@ -442,7 +455,7 @@ def load_project(path: str | Path) -> Project:
         raise InputError(f"{path}: the project is damaged ({type(exc).__name__}: {exc})") from None
     if not isinstance(params, dict) or not all(isinstance(v, dict) for v in params.values()):
         raise InputError(f"{path}: the project is damaged (parameters are not a table)")
-    return Project(sources, params, layers, selection, decisions, state, not writable)
+    return Project(sources, params, layers, selection, decisions, state, not writable, time_window)
 
 
 def _open_read_only(path: Path) -> sqlite3.Connection:

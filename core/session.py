@@ -6,7 +6,9 @@ layer's id, the step, the role it plays in the step's output (``cleaned``,
 ``compressed`` …), the parameters and the time it was made. Re-running a step on the same
 input replaces only the layers of that (input, step, role); results of other inputs
 coexist. The GUI is a view over a session: it subscribes to its events
-(``added``, ``changed``, ``removed``, ``visibility``) and never keeps layers of its own.
+(``added``, ``changed``, ``removed``, ``visibility``; ``time_window`` with no layer id)
+and never keeps layers of its own. The session also holds the map's time window
+(:class:`~wakeline.core.timeline.TimeWindow`, s), saved with the project.
 """
 
 import dataclasses
@@ -21,6 +23,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, StepResult, params_to_json
 from wakeline.core.progress import Progress, null_progress
+from wakeline.core.timeline import TimeWindow
 
 #: Colours per result kind (the map's defaults); sources take the palette in turn.
 KIND_COLORS = {
@@ -92,6 +95,8 @@ class Session:
         self.params: dict[str, dict] = {}
         self.selection: list[tuple[str, str, str]] = []  # layer id, sensor, batch
         self.decisions: list[dict] = []
+        #: The map's time window (s on the layers' clock; None: no window).
+        self.time_window: TimeWindow | None = None
         self._ids = itertools.count(1)
         self._listeners: list[Listener] = []
 
@@ -113,6 +118,15 @@ class Session:
                 self.sources[k] = Source(path, sha256)
                 return
         self.sources.append(Source(path, sha256))
+
+    def set_time_window(self, window: TimeWindow | tuple[float, float] | None) -> None:
+        """Set the map's time window ((from, to) in s, a :class:`TimeWindow`, or None: no
+        window); a ``time_window`` event (layer id ``""``) when it changed. Raises
+        ValueError for a window that is not finite or ends before it starts."""
+        window = TimeWindow.of(window)
+        if window != self.time_window:
+            self.time_window = window
+            self._emit("time_window", "")
 
     # -- layers --------------------------------------------------------------------
 
@@ -397,6 +411,7 @@ class Session:
         self.sources.clear()
         self.selection.clear()
         self.decisions.clear()
+        self.set_time_window(None)
 
 
 def _params_json(params: dict | None) -> dict:

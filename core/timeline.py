@@ -8,6 +8,7 @@ increases through the whole array, so one :func:`numpy.searchsorted` answers "wh
 Python loop per track.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,6 +32,61 @@ class PlaybackParams(Params):
     )
     step_s: float = param(60.0, "s", "one step of the step buttons", 0.1, 86400.0)
     fps: float = param(20.0, "1/s", "frames drawn per second while playing", 1.0, 60.0)
+
+
+@dataclass(frozen=True)
+class TimeWindow:
+    """The map's time window [``start_s``, ``end_s``]: seconds on the layers' clock (since
+    1970-01-01 UTC; for scene-relative times such as MTAD's, the seconds after the scene
+    start the importer reads). Kept by the session, saved in the project as
+    :meth:`to_json` (``{"start": …, "end": …, "unit": "s"}``)."""
+
+    start_s: float
+    end_s: float
+    #: The unit of ``start_s`` and ``end_s`` (written beside them in the project).
+    UNIT = "s"
+
+    def __post_init__(self) -> None:
+        for name in ("start_s", "end_s"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+                raise ValueError(f"time window: {name} must be a number, got {value!r}")
+            if not math.isfinite(value):
+                raise ValueError(f"time window: {name} must be finite, got {value!r}")
+            object.__setattr__(self, name, float(value))
+        if self.end_s < self.start_s:
+            raise ValueError(
+                f"time window: ends ({self.end_s} s) before it starts ({self.start_s} s)"
+            )
+
+    @classmethod
+    def of(cls, window: "TimeWindow | tuple[float, float] | None") -> "TimeWindow | None":
+        """``window`` as a TimeWindow: (from, to) in s, a TimeWindow, or None."""
+        if window is None or isinstance(window, TimeWindow):
+            return window
+        start, end = window
+        return cls(start, end)
+
+    def bounds(self) -> tuple[float, float]:
+        """(from, to) in s, as the time panel holds it."""
+        return (self.start_s, self.end_s)
+
+    def to_json(self) -> dict:
+        """The plain value the project stores, with its unit."""
+        return {"start": self.start_s, "end": self.end_s, "unit": self.UNIT}
+
+    @classmethod
+    def from_json(cls, value: object) -> "TimeWindow | None":
+        """Read :meth:`to_json`'s value back (None: no window). Raises ValueError when it
+        is not one: not a mapping of two finite numbers in seconds, or ending before it
+        starts."""
+        if value is None:
+            return None
+        if not isinstance(value, dict) or set(value) != {"start", "end", "unit"}:
+            raise ValueError(f"time window: expected start, end and unit, got {value!r}")
+        if value["unit"] != cls.UNIT:
+            raise ValueError(f"time window: unit must be {cls.UNIT!r}, got {value['unit']!r}")
+        return cls(value["start"], value["end"])
 
 
 def _empty_i() -> np.ndarray:

@@ -1,6 +1,7 @@
 """The session model (layers by id with lineage), the step registry shared by the CLI and
 the session, and the incremental project file."""
 
+import json
 import os
 import shutil
 import sqlite3
@@ -472,3 +473,68 @@ def test_a_file_read_again_replaces_its_sources_hash():
         ("/data/b.csv", "bbb"),
         ("/data/c.csv", "ccc"),
     ]
+
+
+def test_time_window_is_kept_in_the_session_and_the_project(scene, tmp_path):
+    """The map's time window was not saved: a project reopened showed every point. Now the
+    session holds it (s, with its unit in the file), Save as and the incremental writer
+    store it, opening gives it back; a project without it (saved before) opens with no
+    window; a window that is not one (reversed, not finite, another unit) is refused as
+    damaged, as any bad row."""
+    from wakeline.core.timeline import TimeWindow
+
+    _, points = scene
+    s = Session()
+    events = []
+    s.subscribe(lambda e, lid: events.append((e, lid)))
+    s.add_layer("scene", "source", points)
+    t0 = float(points["time"].astype("int64").min()) / 1e9
+    s.set_time_window((t0 + 60.0, t0 + 600.5))
+    s.set_time_window(TimeWindow(t0 + 60.0, t0 + 600.5))  # the same: no event
+    assert events[1:] == [("time_window", "")]
+    assert s.time_window == TimeWindow(t0 + 60.0, t0 + 600.5)
+    with pytest.raises(ValueError):
+        s.set_time_window((t0 + 10.0, t0))
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    back = load_project(path)
+    assert back.time_window == s.time_window and "time_window" not in back.state
+    assert back.to_session().time_window == s.time_window
+    # The writer's small row (as the window writes it when the operator moves the window).
+    errors = []
+    writer = ProjectWriter(path, errors.append)
+    writer.submit(lambda st: st.put_time_window(TimeWindow(t0, t0 + 1.25)))
+    assert writer.flush(10)
+    writer.close()
+    assert errors == [] and load_project(path).time_window == TimeWindow(t0, t0 + 1.25)
+    con = sqlite3.connect(path)
+    (raw,) = con.execute("SELECT json FROM state WHERE key = 'time_window'").fetchone()
+    con.close()
+    assert json.loads(raw) == {"start": t0, "end": t0 + 1.25, "unit": "s"}
+    # Cleared: null in the file, no window back.
+    s.set_time_window(None)
+    save_project(s, path)
+    assert load_project(path).time_window is None
+    # A project saved before the window was kept: no row, opens as before.
+    s.set_time_window((t0, t0 + 5.0))
+    save_project(s, path)
+    con = sqlite3.connect(path)
+    con.execute("DELETE FROM state WHERE key = 'time_window'")
+    con.commit()
+    con.close()
+    old = load_project(path)
+    assert old.time_window is None and [lay.name for lay in old.layers] == ["scene"]
+    assert old.to_session().time_window is None
+    for bad in (
+        {"start": t0 + 5.0, "end": t0, "unit": "s"},
+        {"start": t0, "end": t0 + 5.0, "unit": "ms"},
+        {"start": "noon", "end": t0, "unit": "s"},
+        {"start": t0, "end": float("inf"), "unit": "s"},
+        [t0, t0 + 5.0],
+    ):
+        con = sqlite3.connect(path)
+        con.execute("INSERT OR REPLACE INTO state VALUES ('time_window', ?)", (json.dumps(bad),))
+        con.commit()
+        con.close()
+        with pytest.raises(InputError, match="damaged.*time window"):
+            load_project(path)
