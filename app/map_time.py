@@ -29,6 +29,8 @@ MARKER_BRUSH = "#ffcc00"
 WIDE_MAX = 20_000
 #: Beyond this many markers they are drawn smaller (a busy harbour stays readable).
 MANY_MARKERS = 500
+#: No window of the session waits for the panel (:attr:`TimeController._restore`).
+_NO_RESTORE = object()
 
 
 def thin_to_pixels(
@@ -266,6 +268,10 @@ class TimeController(QtCore.QObject):
     through); a window change cuts every visible layer in a worker and swaps the results
     in. ``window`` is the main window (its ``views``, ``session``, ``canvas``,
     ``batch_model``, ``lod_worker``, ``drawing`` and ``layersChanged``).
+
+    The window is the session's (``Session.time_window``, saved in the project): the
+    panel's changes are written to it, and a window the session gets otherwise (a project
+    opened) is set on the panel once the slider spans the new layers.
     """
 
     scene_ready = QtCore.Signal()
@@ -280,6 +286,9 @@ class TimeController(QtCore.QObject):
         self._dock = None  # the Bearing-only dock (attach_bearing_view)
         self._dock_cut: dict | None = None  # its scene and the window it is cut to
         self._pending = 0
+        self._indexing: int | None = None  # the rebuild whose index is being made
+        # A window the session got (a project opened), for the panel after the rebuild.
+        self._restore: object = _NO_RESTORE
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(50)
@@ -290,6 +299,7 @@ class TimeController(QtCore.QObject):
         panel.trail_changed.connect(lambda: self._draw(panel.time()))
         panel.window_changed.connect(self._window_changed)
         panel.overlay_toggled.connect(self._overlay_toggled)
+        window.session.subscribe(self._session_event)
 
     def attach_bearing_view(self, view) -> None:
         """Cut the Bearing-only dock's map (``view``, a
@@ -330,7 +340,7 @@ class TimeController(QtCore.QObject):
             self._timer.start()
             return
         self._gen += 1
-        gen = self._gen
+        gen = self._indexing = self._gen
         originals = self._originals()
         lines = one_clock(
             {
@@ -362,12 +372,33 @@ class TimeController(QtCore.QObject):
     def _scene_done(self, gen: int, scene: TimeScene) -> None:
         if gen != self._gen:
             return
+        self._indexing = None
+        restore, self._restore = self._restore, _NO_RESTORE
         self.overlay.set_scene(scene if scene.index.n_tracks else None)
-        if scene.relative != self.panel._relative and self.panel.time_window() is not None:
+        if (
+            restore is _NO_RESTORE
+            and scene.relative != self.panel._relative
+            and self.panel.time_window() is not None
+        ):
             self.panel.set_time_window(None)  # a window on the other clock cut everything
         self.panel.set_range(scene.index.bounds(), scene.relative)
+        if restore is not _NO_RESTORE:
+            self.panel.set_time_window(restore)  # the opened project's: cuts the map
         self._draw(self.panel.time())
         self.scene_ready.emit()
+
+    def _session_event(self, event: str, _lid: str) -> None:
+        """The session's time window changed (a project opened, a script): the panel
+        takes it — after the rebuild under way, so the slider spans the new layers first
+        and the new layers are the ones cut. The panel's own changes come back equal."""
+        if event != "time_window":
+            return
+        window = self.window.session.time_window
+        bounds = window.bounds() if window is not None else None
+        if self._timer.isActive() or self._indexing is not None:
+            self._restore = bounds
+        elif bounds != self.panel.time_window():
+            self.panel.set_time_window(bounds)
 
     def _draw(self, t: float) -> None:
         if self.panel.overlay_on():
@@ -378,6 +409,8 @@ class TimeController(QtCore.QObject):
         self._draw(self.panel.time())
 
     def _window_changed(self, window) -> None:
+        # The session keeps it (the project writes it: ProjectController).
+        self.window.session.set_time_window(window)
         self.window.batch_model.set_time_window(window)
         self._apply_window(self._originals())
         self._cut_dock()

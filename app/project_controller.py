@@ -2,7 +2,8 @@
 
 Once the work has a project file, every session event becomes one small write queued on
 the core's :class:`~wakeline.core.project.ProjectWriter` thread: a new or replaced layer
-writes its Parquet once; visibility, order, selection, view and parameters are small rows.
+writes its Parquet once; visibility, order, selection, view, the time window and
+parameters are small rows.
 A failed write is never silent: :attr:`failed` carries the message to the window (a
 dialog, the log, and the title marked unsaved).
 
@@ -57,6 +58,7 @@ class ProjectController(QtCore.QObject):
         snapshot.params = dict(self.session.params)
         snapshot.selection = list(self.session.selection)
         snapshot.decisions = list(self.session.decisions)
+        snapshot.time_window = self.session.time_window
         self._attach(Path(path), read_only=False)
         token = self.locks.token
         self.writer.submit_file(lambda p: save_project(snapshot, p, state, lock_token=token))
@@ -149,6 +151,9 @@ class ProjectController(QtCore.QObject):
         elif event == "reordered":
             order = list(self.session.layers)
             self._submit(lambda st: st.put_order(order))
+        elif event == "time_window":
+            window = self.session.time_window
+            self._submit(lambda st: st.put_time_window(window))
 
     def put_state(self, key: str, value: object) -> None:
         """A small state row (selection, view, active layer)."""

@@ -100,6 +100,8 @@ class LayersMixin:
             layer.color = self.views[lid].colors[0] if self.views[lid].colors else layer.color
 
     def _on_session_event(self, event: str, lid: str) -> None:
+        if event == "time_window":  # the time controller follows it; no layer changed
+            return
         layer = self.session.layers.get(lid)
         if event == "added":
             self._queue_draw(lid)

@@ -282,6 +282,58 @@ def test_slider_playback_and_time_window(window, qtbot, tmp_path):
 
 
 @pytest.mark.gui
+@pytest.mark.parametrize("relative", [False, True], ids=["dates", "scene-times"])
+def test_time_window_is_saved_and_reopened_with_the_maps_cut(qtbot, tmp_path, relative):
+    """The time window was not saved: a project reopened drew every point. Now a window
+    set after Save as is written at once (the project writer's thread), and the project
+    reopened in a new window shows the same slider span and window, and the map and the
+    batch table cut the same way; cleared, the project reopens without one."""
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.core.project import load_project
+    from wakeline.core.timeline import TimeWindow
+
+    t0 = _scene_csv(tmp_path / "four.csv", relative)
+    w = make_window(qtbot, tmp_path, (1200, 800))
+    lid = _load(w, qtbot, tmp_path / "four.csv")
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    span = w.time_panel.time_range()
+    window = (t0 + 200.0, t0 + 400.0)  # tracks 0 and 1: 21 points each
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window(window)
+    cut = w.canvas.draw_data(lid).geometry
+    assert cut.n_points == 42 and w.session.time_window == TimeWindow(*window)
+    rows = w.batch_model.rowCount()
+    assert w.project.flush(30)
+    assert load_project(proj).time_window == TimeWindow(*window)  # written at once
+    w.runner.cancel()
+    w.runner.wait()
+    w.close()
+
+    w2 = make_window(qtbot, tmp_path, (1200, 800))
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    qtbot.waitUntil(lambda: not w2.time_controller.busy and not w2.drawing, timeout=20_000)
+    panel = w2.time_panel
+    assert panel.time_range() == span and panel._relative == relative
+    assert panel.time_window() == window and panel.window_button.isChecked()
+    assert w2.session.time_window == TimeWindow(*window)
+    back = w2.canvas.draw_data(lid).geometry
+    for key in ("lon", "lat", "time_s", "batch"):
+        np.testing.assert_array_equal(getattr(back, key), getattr(cut, key), err_msg=key)
+    assert w2.batch_model.rowCount() == rows == 2
+    # Cleared in the reopened window: written, and the project opens with no window.
+    with qtbot.waitSignal(w2.time_controller.window_applied, timeout=10_000):
+        panel.set_time_window(None)
+    assert w2.canvas.draw_data(lid).geometry.n_points == 170
+    assert w2.project.flush(30)
+    assert load_project(proj).time_window is None
+    w2.runner.cancel()
+    w2.runner.wait()
+    w2.close()
+
+
+@pytest.mark.gui
 def test_scene_relative_times_read_as_elapsed_and_gantt_follows(window, qtbot, tmp_path):
     from wakeline.app.review_views import GanttView
     from wakeline.app.time_panel import link_gantt
