@@ -34,7 +34,7 @@ import pandas as pd
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.core import geo
-from wakeline.core.bearing import report_lines
+from wakeline.core.bearing import BearingLineParams, report_lines
 from wakeline.core.io import write_csv
 from wakeline.core.schema import time_seconds
 from wakeline.core.timeline import spread_picks
@@ -79,7 +79,10 @@ LABEL_CHARS = 14
 #: observer's own track, within [MIN_LENGTH_M, MAX_LENGTH_M].
 TYPICAL_SPEED_MS = 5.0
 SPAN_FACTOR = 4.0
-MIN_LENGTH_M, MAX_LENGTH_M = 300.0, 20_000.0
+#: The core's line-length parameter (``BearingLineParams.length_m``: unit and range of
+#: the dock's length box; 0 there: from the data).
+LENGTH_FIELD = next(f for f in dataclasses.fields(BearingLineParams) if f.name == "length_m")
+MIN_LENGTH_M, MAX_LENGTH_M = 300.0, float(LENGTH_FIELD.metadata["hi"])
 #: With ranges known: the lines reach this much past the far targets (95th percentile).
 RANGE_MARGIN = 1.25
 #: Columns that give the target's range (metres), or its true position.
@@ -586,10 +589,13 @@ class DetectionsModel(QtCore.QAbstractTableModel):
 
 
 class BearingView(QtWidgets.QWidget):
-    """Map of bearing lines and the table of detections, with CSV export.
+    """Map of bearing lines and the table of detections, with CSV export, and the lines'
+    length (:attr:`length_box`, metres; its lowest value: from the data).
 
     ``scene_shown`` follows every scene :meth:`show_result` draws in full (the main
-    window's time controller then cuts it to the time window, :meth:`draw_layers`)."""
+    window's time controller then cuts it to the time window, :meth:`draw_layers`).
+    :attr:`executor` (the main window's LOD worker: ``executor(job, done)``) makes the
+    scene of a new line length off the GUI thread; without one it is made here."""
 
     scene_shown = QtCore.Signal()
     #: The operator set another line length (:meth:`set_line_length`); the scene shown
@@ -612,12 +618,19 @@ class BearingView(QtWidgets.QWidget):
         rows.setSectionResizeMode(QtWidgets.QHeaderView.ResizeMode.Fixed)
         self.export_button = QtWidgets.QPushButton(self.tr("Export detections…"), self)
         self.export_button.clicked.connect(self._export_dialog)
+        self.length_label = QtWidgets.QLabel(self.tr("Line length"), self)
+        self.length_box = self._length_box()
+        self.length_label.setBuddy(self.length_box)
+        length_row = QtWidgets.QHBoxLayout()
+        length_row.addWidget(self.length_label)
+        length_row.addWidget(self.length_box, 1)
         self.log = QtWidgets.QPlainTextEdit(self)
         self.log.setReadOnly(True)
         self.log.setMaximumBlockCount(2000)
         side = QtWidgets.QWidget(self)
         lay = QtWidgets.QVBoxLayout(side)
         lay.setContentsMargins(0, 0, 0, 0)
+        lay.addLayout(length_row)
         lay.addWidget(self.table, 3)
         lay.addWidget(self.export_button)
         lay.addWidget(self.log, 1)
@@ -655,6 +668,47 @@ class BearingView(QtWidgets.QWidget):
         self.colours: dict[str, tuple[str, str]] = {}
         #: The layers drawn now (None: none).
         self.scene: BearingScene | None = None
+        #: Runs a scene's making for a new line length: ``executor(job, done)`` calls
+        #: ``done(job())`` on the GUI thread (the main window's LOD worker); None: here.
+        self.executor = None
+        self._scene_gen = 0  # the newest scene asked for (a length, or data shown)
+        self._wanted: tuple | None = None  # a length's scene waiting for the executor
+        self._building = False  # one is being made by the executor
+
+    def _length_box(self) -> QtWidgets.QDoubleSpinBox:
+        """The line length's spin box, from the core's parameter
+        (:data:`LENGTH_FIELD`: metres, its range; its lowest value reads "from the data")."""
+        meta = LENGTH_FIELD.metadata
+        box = QtWidgets.QDoubleSpinBox(self)
+        box.setDecimals(0)
+        box.setRange(meta["lo"], meta["hi"])
+        box.setValue(LENGTH_FIELD.default)
+        box.setSuffix(f" {meta['unit']}")
+        box.setSpecialValueText(self.tr("from the data"))
+        box.setStepType(QtWidgets.QAbstractSpinBox.StepType.AdaptiveDecimalStepType)
+        box.setKeyboardTracking(False)  # typed: one change at Enter, not one per digit
+        box.setToolTip(
+            self.tr(
+                "Length of the bearing lines from the observer; lowest value: from the "
+                "data (past the targets' ranges when known, else the scene's scale)"
+            )
+        )
+        box.valueChanged.connect(self._length_edited)
+        return box
+
+    def _length_edited(self, value: float) -> None:
+        self.set_line_length(value if value > LENGTH_FIELD.metadata["lo"] else None)
+
+    def _show_length(self, length_m: float) -> None:
+        """The length box shows ``length_m`` (m), the length drawn now (no signal)."""
+        self.length_box.blockSignals(True)
+        self.length_box.setValue(length_m)
+        self.length_box.blockSignals(False)
+
+    @property
+    def busy(self) -> bool:
+        """A line length's scene is being made or waits to be."""
+        return self._building or self._wanted is not None
 
     def table_min_height(self) -> int:
         """Height (px) of the table's header and :data:`MIN_TABLE_ROWS` rows, with the
@@ -665,12 +719,51 @@ class BearingView(QtWidgets.QWidget):
         return header + rows + bar + 2 * self.table.frameWidth()
 
     def set_line_length(self, length_m: float | None) -> None:
-        """Draw the bearing lines ``length_m`` metres long (None: from the data,
-        :func:`line_length_m`); redraws what is shown."""
+        """Draw the bearing lines ``length_m`` metres long (None or 0: from the data,
+        :func:`line_length_m`); redraws what is shown: the scene is made again by
+        :attr:`executor` (off the GUI thread; else here) and swapped in when done, then
+        ``length_changed``. Of changes made while one is being made only the last is
+        made next; a scene asked for before another length or other data is dropped."""
         self.fixed_length_m = float(length_m) if length_m else None
-        if len(self.bearings):
-            self.show_result(self.bearings, self.detections, self._report)
-            self.length_changed.emit()
+        if not len(self.bearings):
+            return
+        self._scene_gen += 1
+        self._wanted = (
+            self._scene_gen,
+            self.bearings,
+            self.detections,
+            self._report,
+            self.fixed_length_m,
+        )
+        if self.executor is None or not self._building:
+            self._build_next()
+
+    def _build_next(self) -> None:
+        """Make the scene of the newest length asked for (:attr:`executor`, or here)."""
+        wanted, self._wanted = self._wanted, None
+        _gen, bearings, detections, _report, length = wanted
+
+        def job() -> BearingScene | None:
+            return bearing_scene(bearings, detections, length, build_index=True)
+
+        if self.executor is None:
+            self._scene_built(wanted, job())
+            return
+        self._building = True
+        self.executor(job, lambda scene: self._scene_built(wanted, scene))
+
+    def _scene_built(self, wanted: tuple, scene: BearingScene | None) -> None:
+        """A length's scene is made (GUI thread): swapped in unless a newer length or
+        other data were asked for meanwhile (then the newer one is made next)."""
+        self._building = False
+        if self._wanted is not None:
+            self._build_next()  # this one is stale: make the newest
+            return
+        gen, bearings, detections, report, _length = wanted
+        if scene is None or gen != self._scene_gen or self.bearings is not bearings:
+            return  # failed (the old drawing stays), or other data shown meanwhile
+        self._show(bearings, detections, report, scene)
+        self.length_changed.emit()
 
     def map_min_width(self) -> int:
         """The map widget's minimum width: its plot area at least :data:`MIN_PLOT_PX`."""
@@ -706,21 +799,35 @@ class BearingView(QtWidgets.QWidget):
         The lines are ``length_m`` long if given, else :meth:`set_line_length`'s, else as
         the data suggest (:func:`line_length_m`: the targets' ranges when known, else the
         scene's scale from the sequences' duration and the observer's track). ``scene``:
-        the layers prepared in a worker (:func:`bearing_scene`; else prepared here)."""
+        the layers prepared in a worker (:func:`bearing_scene`; else prepared here). A
+        line length's scene still being made (:meth:`set_line_length`) is dropped."""
+        if scene is None:
+            length = length_m or self.fixed_length_m
+            scene = bearing_scene(bearings, detections, length)
+        self._scene_gen += 1
+        self._wanted = None
+        self._show(bearings, detections, report, scene)
+
+    def _show(
+        self,
+        bearings: pd.DataFrame,
+        detections: pd.DataFrame,
+        report: list[dict] | None,
+        scene: BearingScene | None,
+    ) -> None:
+        """Swap in ``scene`` (made already) with its data; fit the view to it."""
         self.bearings, self.detections, self._report = bearings, detections, report or []
         self.model.set_table(detections)
         self.table.resizeColumnsToContents()
         self.log.setPlainText("\n".join(report_lines(report or [])))
         for name in list(self.map.layer_names()):
             self.map.remove_layer(name)
-        if scene is None:
-            length = length_m or self.fixed_length_m
-            scene = bearing_scene(bearings, detections, length)
         self.scene = scene
         if scene is None:
             self.log.appendPlainText(self.tr("No observer position: no bearing lines to draw."))
             return
         self.length_m, self.colours = scene.length_m, scene.colours
+        self._show_length(scene.length_m)
         self.draw_layers(scene.layers)
         self.map.set_true_aspect(scene.lat0)
         self.map.show_range(scene.target)
@@ -735,6 +842,8 @@ class BearingView(QtWidgets.QWidget):
     def clear(self) -> None:
         """Show nothing (the bearing layer shown was removed)."""
         self.bearings, self.detections, self._report = pd.DataFrame(), pd.DataFrame(), []
+        self._scene_gen += 1
+        self._wanted = None
         self.model.set_table(pd.DataFrame(columns=["batch"]))
         self.log.clear()
         for name in list(self.map.layer_names()):

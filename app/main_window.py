@@ -136,6 +136,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.stats = QtWidgets.QPlainTextEdit(readOnly=True)
         self.detail = DetailPanel()
         self.bearing_view = BearingView()
+        self.bearing_view.executor = self.lod_worker  # a new length's scene: off this thread
         self.time_controller.attach_bearing_view(self.bearing_view)  # the window cuts it too
         self.bearing_view.length_changed.connect(self.bearing_length_changed)
         self.log = QtWidgets.QPlainTextEdit(readOnly=True)

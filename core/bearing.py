@@ -158,6 +158,22 @@ class BearingParams(Params):
         return float(NormalDist().inv_cdf(1.0 - self.alpha / 2.0))
 
 
+@dataclass(frozen=True)
+class BearingLineParams(Params):
+    """How the bearing lines are drawn from the observer (a drawing setting, not the
+    detector's: the Bearing-only dock's length box is made from this field's range and
+    unit). A bearing layer keeps the length it is drawn with (``meta["length_m"]``)."""
+
+    length_m: float = param(
+        0.0,
+        "m",
+        "length of each bearing line from the observer (0: from the data: past the targets' "
+        "ranges when known, else the scene's scale, 300 m to 20 km)",
+        lo=0.0,
+        hi=20_000.0,
+    )
+
+
 def auc_windows(values: np.ndarray, m: np.ndarray | int) -> np.ndarray:
     """AUC of the first ``m`` columns against the rest, for every row (ranks, ties ½).
 

@@ -388,6 +388,55 @@ def test_line_length_changed_in_the_dock_redraws_the_main_maps_layer(qtbot, tmp_
 
 
 @pytest.mark.gui
+def test_length_box_redraws_both_maps_and_the_scene_is_made_in_the_worker(
+    qtbot, tmp_path, monkeypatch
+):
+    """The dock's length box drives the length-change path: the dock's lines, the main
+    map's layer and the project's ``length_m`` follow it. The dock's new scene was made on
+    the GUI thread (``bearing_scene`` in ``show_result``); it is made in the LOD worker
+    now (the thread recorded in the build), and of two quick changes the newer wins."""
+    import threading
+
+    from wakeline.app import bearing_view
+
+    calls = []
+    real = bearing_view.bearing_scene
+
+    def probe(bearings, detections, length_m=None, build_index=False):
+        calls.append((threading.current_thread() is threading.main_thread(), length_m))
+        return real(bearings, detections, length_m, build_index)
+
+    monkeypatch.setattr(bearing_view, "bearing_scene", probe)
+    w = _window(qtbot, tmp_path)
+    path = tmp_path / "bearings.csv"
+    harbour_table().to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)
+    dock = w.bearing_view
+    box = dock.length_box
+    assert box.value() == pytest.approx(dock.length_m, abs=0.5)  # the length drawn
+    calls.clear()
+    box.setValue(700.0)
+    box.setValue(1_100.0)  # at once: the 700-m scene, if made, is not the one left
+    qtbot.waitUntil(lambda: w.layers[lid].meta["length_m"] == 1_100.0, timeout=10_000)
+    qtbot.waitUntil(lambda: not dock.busy and not w.drawing, timeout=10_000)
+    qtbot.wait(200)  # a stale result would land meanwhile
+    assert calls and all(not on_gui for on_gui, _ in calls)  # made in the worker
+    assert calls[-1][1] == 1_100.0 and dock.length_m == 1_100.0
+    assert dock.scene.length_m == 1_100.0 and w.views[lid].extra["scene"] is dock.scene
+    assert w.layers[lid].meta["length_m"] == 1_100.0 and box.value() == 1_100.0
+    main = _lines(w, lid)
+    d = geo.haversine_m(
+        main.lon[main.starts],
+        main.lat[main.starts],
+        main.lon[main.starts + 1],
+        main.lat[main.starts + 1],
+    )
+    assert d == pytest.approx(1_100.0, rel=1e-3)  # the main map's lines too
+    w.runner.cancel()
+    w.runner.wait()
+
+
+@pytest.mark.gui
 def test_detail_curves_are_made_in_the_worker_not_on_the_gui_thread(qtbot, tmp_path, monkeypatch):
     """The Detail panel's z over a sequence (seed 002's statistic, ~90 ms at 9,000
     bearings) was computed on the GUI thread when a bearing file was shown; it is made in

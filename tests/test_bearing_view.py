@@ -346,6 +346,78 @@ def test_lines_are_as_long_as_a_harbour_scene_and_the_view_shows_it(qtbot):
     assert view.length_m == line_length_m(df)
 
 
+def test_length_box_follows_the_core_parameter_and_sets_the_length(qtbot):
+    """No widget set the lines' length (only ``set_line_length`` from code). The dock has a
+    spin box now, its unit and range the core's ``BearingLineParams.length_m`` (metres,
+    0 … 20 km; 0 reads "from the data"); it shows the length drawn, and a value typed in
+    redraws the lines that long, through the length-change path (``length_changed``)."""
+    import dataclasses
+
+    from wakeline.core.bearing import BearingLineParams
+
+    field = {f.name: f for f in dataclasses.fields(BearingLineParams)}["length_m"]
+    df = harbour_table()
+    view = BearingView()
+    qtbot.addWidget(view)
+    box = view.length_box
+    assert (box.minimum(), box.maximum()) == (field.metadata["lo"], field.metadata["hi"])
+    assert box.suffix() == " m" and field.metadata["unit"] == "m"
+    assert box.specialValueText() == "from the data" and box.value() == field.default == 0.0
+    assert BearingLineParams(length_m=25_000.0).problems()  # beyond the box's range
+    view.show_result(df, pd.DataFrame(), [])
+    auto = line_length_m(df)
+    assert view.length_m == auto and box.value() == pytest.approx(auto, abs=0.5)
+    with qtbot.waitSignal(view.length_changed, timeout=5000):
+        box.setValue(1_234.0)
+    assert view.fixed_length_m == 1_234.0 and view.length_m == 1_234.0
+    assert view.scene.length_m == 1_234.0
+    g = view.map.draw_data("bearing lines").geometry
+    d = geo.haversine_m(g.lon[g.starts], g.lat[g.starts], g.lon[g.starts + 1], g.lat[g.starts + 1])
+    assert d == pytest.approx(1_234.0, rel=1e-3)
+    # The lowest value: from the data again (the box then shows the length drawn).
+    with qtbot.waitSignal(view.length_changed, timeout=5000):
+        box.setValue(box.minimum())
+    assert view.fixed_length_m is None and view.length_m == auto
+    assert box.value() == pytest.approx(auto, abs=0.5)
+
+
+def test_a_new_lengths_scene_is_made_by_the_executor_and_only_the_newest_is_shown(qtbot):
+    """The dock made a new length's scene on the GUI thread (13–29 ms for a real EO file,
+    44–72 ms at 9,000 bearings). It is made by the executor (the main window's LOD
+    worker) now, and swapped in when done. Two changes in a row: the first's scene
+    arrives after the second was asked for and is not drawn (the second is made next);
+    a scene of a length asked for before other data were shown is dropped too."""
+    df = harbour_table()
+    view = BearingView()
+    qtbot.addWidget(view)
+    view.show_result(df, pd.DataFrame(), [])
+    jobs = []
+    view.executor = lambda job, done: jobs.append((job, done))
+    shown = []
+    view.length_changed.connect(lambda: shown.append(view.length_m))
+    first = view.length_m
+    view.set_line_length(800.0)
+    view.set_line_length(1_600.0)
+    assert len(jobs) == 1 and view.busy and view.length_m == first  # nothing made here
+    job, done = jobs.pop()
+    done(job())  # 800 m: stale, the 1,600 m scene is asked for
+    assert view.length_m == first and shown == [] and len(jobs) == 1
+    job, done = jobs.pop()
+    scene = job()
+    assert scene.length_m == 1_600.0
+    done(scene)
+    assert view.scene is scene and view.length_m == 1_600.0 and shown == [1_600.0]
+    assert not view.busy and view.length_box.value() == 1_600.0
+    # Asked for, then other data shown before it is made: dropped.
+    view.set_line_length(3_000.0)
+    other = harbour_table().iloc[:200]
+    view.show_result(other, pd.DataFrame(), [])
+    kept = view.scene
+    job, done = jobs.pop()
+    done(job())
+    assert view.scene is kept and view.bearings is other and shown == [1_600.0]
+
+
 def test_each_batch_has_its_own_pen_and_legend_entry(qtbot):
     """Both targets' lines were one blue layer: now a colour and a legend entry per batch
     (up to MAX_LINE_COLOURS; the rest share one, "other batches")."""
