@@ -289,6 +289,7 @@ class TimeController(QtCore.QObject):
         self._indexing: int | None = None  # the rebuild whose index is being made
         # A window the session got (a project opened), for the panel after the rebuild.
         self._restore: object = _NO_RESTORE
+        self._writing = False  # the panel's window being written to the session
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(50)
@@ -390,8 +391,8 @@ class TimeController(QtCore.QObject):
     def _session_event(self, event: str, _lid: str) -> None:
         """The session's time window changed (a project opened, a script): the panel
         takes it — after the rebuild under way, so the slider spans the new layers first
-        and the new layers are the ones cut. The panel's own changes come back equal."""
-        if event != "time_window":
+        and the new layers are the ones cut. Not the panel's own changes written back."""
+        if event != "time_window" or self._writing:
             return
         window = self.window.session.time_window
         bounds = window.bounds() if window is not None else None
@@ -410,7 +411,11 @@ class TimeController(QtCore.QObject):
 
     def _window_changed(self, window) -> None:
         # The session keeps it (the project writes it: ProjectController).
-        self.window.session.set_time_window(window)
+        self._writing = True
+        try:
+            self.window.session.set_time_window(window)
+        finally:
+            self._writing = False
         self.window.batch_model.set_time_window(window)
         self._apply_window(self._originals())
         self._cut_dock()

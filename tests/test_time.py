@@ -322,12 +322,18 @@ def test_time_window_is_saved_and_reopened_with_the_maps_cut(qtbot, tmp_path, re
     for key in ("lon", "lat", "time_s", "batch"):
         np.testing.assert_array_equal(getattr(back, key), getattr(cut, key), err_msg=key)
     assert w2.batch_model.rowCount() == rows == 2
-    # Cleared in the reopened window: written, and the project opens with no window.
+    # Save as writes it with the rest.
+    w2.save_project(tmp_path / "copy.wakeline")
+    assert w2.project.flush(30)
+    assert load_project(tmp_path / "copy.wakeline").time_window == TimeWindow(*window)
+    # Cleared in the window (following the copy now): written, the copy opens without
+    # one; the first file keeps its own.
     with qtbot.waitSignal(w2.time_controller.window_applied, timeout=10_000):
         panel.set_time_window(None)
     assert w2.canvas.draw_data(lid).geometry.n_points == 170
     assert w2.project.flush(30)
-    assert load_project(proj).time_window is None
+    assert load_project(tmp_path / "copy.wakeline").time_window is None
+    assert load_project(proj).time_window == TimeWindow(*window)
     w2.runner.cancel()
     w2.runner.wait()
     w2.close()
@@ -383,6 +389,17 @@ def test_dates_and_scene_times_open_together_the_slider_follows_the_active_layer
     window.select_layer(rel)
     qtbot.waitUntil(lambda: panel._hi < 3600 and not window.time_controller.busy, timeout=10_000)
     assert panel.time_label.text().startswith("T+") and panel.time_window() is None
+    qtbot.waitUntil(lambda: shown(ab) == full[1], timeout=10_000)
+    # A window set while the slider is about to change clock is cleared as well (the
+    # session's copy of the panel's window is not taken for an opened project's).
+    window.select_layer(ab)
+    qtbot.waitUntil(lambda: panel._lo >= t0 and not window.time_controller.busy, timeout=10_000)
+    window.select_layer(rel)
+    assert window.time_controller.busy  # the rebuild for the other clock is under way
+    panel.set_time_window((t0, t0 + 800))
+    assert window.session.time_window is not None
+    qtbot.waitUntil(lambda: panel._hi < 3600 and not window.time_controller.busy, timeout=10_000)
+    assert panel.time_window() is None and window.session.time_window is None
     qtbot.waitUntil(lambda: shown(ab) == full[1], timeout=10_000)
 
 
