@@ -437,6 +437,53 @@ def test_length_box_redraws_both_maps_and_the_scene_is_made_in_the_worker(
 
 
 @pytest.mark.gui
+def test_a_bearing_projects_window_and_length_come_back_on_both_maps(qtbot, tmp_path):
+    """A bearing layer saved with a line length set in the dock's box and a time window:
+    reopened, the slider has the same span and window, the length box and the layer the
+    same length, and the main map and the dock draw the same window's lines as before."""
+    from wakeline.app.main import wait_for_jobs
+
+    w = _window(qtbot, tmp_path)
+    path = tmp_path / "bearings.csv"
+    df = harbour_table()
+    df.to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    w.bearing_view.length_box.setValue(700.0)
+    qtbot.waitUntil(lambda: w.layers[lid].meta["length_m"] == 700.0, timeout=10_000)
+    t_s = df["time"].astype("int64").to_numpy() / 1e9
+    window = (t_s.min() + 20.0, t_s.min() + 25.0)
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window(window)
+    qtbot.waitUntil(lambda: not w.time_controller.busy and not w.drawing, timeout=10_000)
+    span = w.time_panel.time_range()
+    main, dock = _lines(w, lid), w.bearing_view.map.draw_data("bearing lines").geometry
+    assert main.n_tracks == dock.n_tracks == 42
+    assert w.project.flush(30)
+    w.runner.cancel()
+    w.runner.wait()
+    w.close()
+
+    w2 = make_window(qtbot, tmp_path)
+    w2.show()
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    qtbot.waitUntil(lambda: not w2.time_controller.busy and not w2.drawing, timeout=20_000)
+    assert w2.time_panel.time_range() == span and w2.time_panel.time_window() == window
+    assert w2.layers[lid].meta["length_m"] == 700.0
+    assert w2.bearing_view.length_box.value() == 700.0
+    back = _lines(w2, lid)
+    back_dock = w2.bearing_view.map.draw_data("bearing lines").geometry
+    for key in ("lon", "lat", "time_s"):
+        np.testing.assert_array_equal(getattr(back, key), getattr(main, key), err_msg=key)
+        np.testing.assert_array_equal(getattr(back_dock, key), getattr(dock, key), err_msg=key)
+    w2.runner.cancel()
+    w2.runner.wait()
+    w2.close()
+
+
+@pytest.mark.gui
 def test_detail_curves_are_made_in_the_worker_not_on_the_gui_thread(qtbot, tmp_path, monkeypatch):
     """The Detail panel's z over a sequence (seed 002's statistic, ~90 ms at 9,000
     bearings) was computed on the GUI thread when a bearing file was shown; it is made in
