@@ -48,6 +48,8 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         )
     if args.real and args.kind not in ("associate", "maneuver"):
         raise InputError(f"--real applies to associate and maneuver, not to {args.kind}")
+    if args.sensor != "radar" and not (args.real and args.kind == "maneuver"):
+        raise InputError("--sensor applies to maneuver --real (the Autoferry set)")
 
     if args.kind == "fuse":
         from wakeline.core.evaluate_association import evaluate_fusion
@@ -125,6 +127,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             _maneuver_params(args),
             progress=_progress,
             mapping=args.map,
+            sensor=args.sensor,
         )
         print(ev.format())
         if args.csv:
@@ -352,6 +355,14 @@ def register(sub) -> None:
         "tracks are cut at their gaps, pieces renumbered); one of those four folders is "
         "read as one scene by its own reader (autoferry-fusion: the radar tracks, "
         "1.7 s, e.g. with --cut-s 5)",
+    )
+    p.add_argument(
+        "--sensor",
+        choices=("radar", "lidar"),
+        default="radar",
+        help="maneuver --real autoferry-fusion: the tracks from radar plots (1.7 s) or lidar "
+        "returns (0.5 s), each within 15 m of a target's GNSS position, the nearest per scan "
+        "(default radar)",
     )
     p.add_argument(
         "--scenes",

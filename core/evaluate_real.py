@@ -318,6 +318,7 @@ def evaluate_real(
     fault_m: float = 0.5,
     fault_margin_s: float = 2.0,
     mapping: list[str] | None = None,
+    sensor: str = "radar",
 ) -> RealEvaluation:
     """Score maneuver detection and compression on a real set (see the module docstring),
     with ``params`` (default: ours) and with seed 000's detector as written. Autoferry:
@@ -326,17 +327,21 @@ def evaluate_real(
     within ``fault_margin_s`` (the truth course's 2 s baseline) of a GNSS jump larger than
     ``fault_m`` are not scored for recall (:func:`gnss_faults`; ``fault_m = inf``: all).
     Any other file or folder of track files is read as import reads it (``mapping``: its
-    ``--map`` entries) and scored without truth: slow share, at-rest spans, compression."""
+    ``--map`` entries) and scored without truth: slow share, at-rest spans, compression.
+    ``sensor``: Autoferry's radar (default) or lidar plots, the same gate and rules (any
+    other set: radar only, refused otherwise)."""
     folder = Path(folder)
     try:
         name = real_sets.recognise(folder)
     except InputError:
         name = None  # a file or a folder of track files: positions only
+    if sensor != "radar" and name != "autoferry":
+        raise InputError(f"sensor {sensor!r}: only the Autoferry set has other sensors")
     params = (params or ManeuverParams()).checked()
     truth = None
     split_rows: list = []
     if name == "autoferry":
-        points, truth = real_sets.read_autoferry(folder, exclusive=exclusive)
+        points, truth = real_sets.read_autoferry(folder, exclusive=exclusive, sensor=sensor)
         faults = gnss_faults(truth, fault_m)
     elif name is None:
         points = _track_files(folder, mapping)
@@ -385,4 +390,7 @@ def evaluate_real(
             row["at_rest_spans"] = rest.get("spans", 0)
     if progress:
         progress(1.0, "done")
-    return RealEvaluation(name or folder.name, folder, pd.DataFrame(rows + split_rows))
+    label = name or folder.name
+    if sensor != "radar":
+        label = f"{label} ({sensor})"
+    return RealEvaluation(label, folder, pd.DataFrame(rows + split_rows))

@@ -81,16 +81,23 @@ def oresund_cut(pts: pd.DataFrame, seed: int, lo: float, hi: float) -> pd.DataFr
     return cut_known_gaps(pts, lo, hi, seed=seed, margin_s=120.0)
 
 
-def read_autoferry(
-    folder: Path, gate_m: float = 15.0, exclusive: bool = False
-) -> tuple[pd.DataFrame, pd.DataFrame]:
-    """Autoferry radar plots turned into one radar track per (scenario, target), and the
-    targets' GNSS truth.
+#: The Autoferry sensors that give positions (relative to the ferry): radar scans every
+#: 1.68 s, lidar every 0.50 s.
+AUTOFERRY_POSITION_SENSORS = ("radar", "lidar")
 
-    A radar plot belongs to a target when it lies within ``gate_m`` of the target's GNSS
-    position at the plot's time (the radar also sees quays and buildings); per scan the
-    nearest such plot is kept. Returns (radar points, truth points), both canonical with
-    batch ``scenario/target``.
+
+def read_autoferry(
+    folder: Path, gate_m: float = 15.0, exclusive: bool = False, sensor: str = "radar"
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Autoferry radar (or lidar) plots turned into one track per (scenario, target), and
+    the targets' GNSS truth.
+
+    A plot belongs to a target when it lies within ``gate_m`` (m) of the target's GNSS
+    position at the plot's time (the radar also sees quays and buildings; the lidar gives
+    several returns per hull); per scan the nearest such plot is kept. ``sensor``: radar
+    (1.68 s scans) or lidar (0.50 s scans), same gate and rules. Returns (sensor points,
+    truth points), both canonical with batch ``scenario/target``, the points' sensor
+    ``sensor``.
 
     ``exclusive``: a plot serves one target at most — the one whose GNSS position is nearer
     (a tracker never puts one plot in two tracks; when two targets pass within a gate, the
@@ -101,7 +108,12 @@ def read_autoferry(
     truth = truth.drop_duplicates(["scenario", "target_id", "time"]).sort_values(
         ["scenario", "target_id", "time"]
     )
-    radar = det[(det["sensor"] == "radar") & det["meas_north"].notna()].copy()
+    if sensor not in AUTOFERRY_POSITION_SENSORS:
+        raise InputError(
+            f"sensor {sensor!r}: the Autoferry position sensors are "
+            + ", ".join(AUTOFERRY_POSITION_SENSORS)
+        )
+    radar = det[(det["sensor"] == sensor) & det["meas_north"].notna()].copy()
     radar["north"] = radar["own_north"] + radar["meas_north"]
     radar["east"] = radar["own_east"] + radar["meas_east"]
     parts = []
@@ -123,14 +135,14 @@ def read_autoferry(
             hit = hit.drop_duplicates("time")
         parts.append(hit)
     if not parts:
-        raise InputError(f"{folder}: no radar plot lies near a GNSS target")
+        raise InputError(f"{folder}: no {sensor} plot lies near a GNSS target")
     radar_pts = pd.concat(parts, ignore_index=True)
     if exclusive:  # each plot to its nearest target, then each target's nearest plot per scan
         radar_pts = radar_pts.sort_values("d", kind="stable").drop_duplicates("plot")
         radar_pts = radar_pts.drop_duplicates(["batch", "scan"]).sort_values(["batch", "time"])
         radar_pts = radar_pts.drop_duplicates(["batch", "time"]).reset_index(drop=True)
     truth["batch"] = truth["scenario"].astype(str) + "/" + truth["target_id"].astype(str)
-    return _ned_points(radar_pts, "radar"), _ned_points(truth, "gnss")
+    return _ned_points(radar_pts, sensor), _ned_points(truth, "gnss")
 
 
 def autoferry_bearings(

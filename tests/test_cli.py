@@ -181,6 +181,8 @@ def test_step_reports_say_where_every_input_row_went(step, tmp_path, capsys):
         (["evaluate", "maneuver", "--real", "x.csv", "--hard"], "not --real"),
         (["evaluate", "fuse", "--real", "x.csv"], "--real applies"),
         (["evaluate", "bearing", "--real", "x.csv"], "--real applies"),
+        (["evaluate", "associate", "--real", "x.csv", "--sensor", "lidar"], "--sensor applies"),
+        (["evaluate", "maneuver", "--sensor", "lidar"], "--sensor applies"),
         (["simulate", "demo", "--hard", "-o", "x.csv"], "--hard applies"),
         (["simulate", "bearing", "--hard", "-o", "x.csv"], "--hard applies"),
         (["simulate", "maneuver", "--hard", "--sigma", "3", "-o", "x.csv"], "--length and"),

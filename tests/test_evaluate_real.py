@@ -133,3 +133,113 @@ def test_observable_turns_does_not_see_a_neighbouring_tracks_samples():
     # each batch alone: the same answer
     alone = observable_turns(turns, points[points["batch"] == "b"], tol, 15.0)
     assert list(alone["start_s"]) == [500.0]
+
+
+def _autoferry_folder(folder, seed=0):
+    """A two-target Autoferry-like set: GNSS at 5 Hz, radar plots every 1.68 s (one per
+    target and clutter), lidar every 0.5 s with three returns per hull (0.3, 1.5 and 4 m
+    from the GNSS position) and clutter 40 m off; measurements relative to the ferry."""
+    rng = np.random.default_rng(seed)
+    folder.mkdir()
+    t_truth = np.arange(0.0, 60.0, 0.2)
+    pos = {
+        1: (100.0 + 2.0 * t_truth, 50.0 + 0 * t_truth),
+        2: (20.0 + 0 * t_truth, 200.0 - 1.5 * t_truth),
+    }
+    truth = pd.concat(
+        pd.DataFrame(
+            {
+                "scenario": 2,
+                "scan": np.arange(len(t_truth)),
+                "target_id": k,
+                "time": 1.6e9 + t_truth,
+                "north": n,
+                "east": e,
+                "down": 0.0,
+            }
+        )
+        for k, (n, e) in pos.items()
+    )
+    truth.to_csv(folder / "ground_truth.csv.gz", index=False)
+    own = (5.0, -3.0)
+    rows = []
+    for sensor, dt, offsets in (("radar", 1.68, (0.5,)), ("lidar", 0.5, (0.3, 1.5, 4.0))):
+        for scan, t in enumerate(np.arange(0.1, 59.0, dt)):
+            for n, e in pos.values():
+                gn, ge = np.interp(t, t_truth, n), np.interp(t, t_truth, e)
+                for off in rng.permutation(offsets):  # returns in no particular order
+                    rows.append((2, scan, 1.6e9 + t, sensor, gn + off - own[0], ge - own[1]))
+            rows.append((2, scan, 1.6e9 + t, sensor, 300.0, 300.0))  # clutter
+    det = pd.DataFrame(
+        rows, columns=["scenario", "scan", "time", "sensor", "meas_north", "meas_east"]
+    )
+    det = det.assign(
+        own_north=own[0],
+        own_east=own[1],
+        sensor_id=det["sensor"].map({"lidar": 1, "radar": 2}),
+        k=0,
+        bearing_rad=np.nan,
+    )
+    det.to_csv(folder / "detections.csv.gz", index=False)
+    return pos
+
+
+def test_autoferry_lidar_tracks_keep_the_nearest_return_per_scan(tmp_path):
+    """`read_autoferry(sensor="lidar")` (before: radar only) makes tracks of the lidar's
+    returns with the radar's gate and rules: one return per target and scan (the nearest
+    to its GNSS position: 0.3 m here, of three), 0.5 s apart, its sensor named lidar."""
+    import pytest
+
+    from wakeline.core import real_sets
+    from wakeline.core.errors import InputError
+
+    folder = tmp_path / "autoferry"
+    _autoferry_folder(folder)
+    radar, truth = real_sets.read_autoferry(folder, exclusive=True)
+    lidar, truth2 = real_sets.read_autoferry(folder, exclusive=True, sensor="lidar")
+    assert set(radar["sensor"]) == {"radar"} and set(lidar["sensor"]) == {"lidar"}
+    assert truth.equals(truth2)
+    assert set(lidar["batch"]) == {"2/1", "2/2"}
+    for pts, dt in ((radar, 1.68), (lidar, 0.5)):
+        for _, g in pts.groupby("batch"):
+            steps = np.diff(time_seconds_of(g))
+            assert np.allclose(steps, dt, atol=1e-3)  # one plot per scan, clutter gated out
+    # the kept lidar return is the 0.3 m one: positions 0.3 m north of the GNSS track
+    g = lidar[lidar["batch"] == "2/1"]
+    x, y = geo.to_local(
+        g["lon"].to_numpy(), g["lat"].to_numpy(), real_sets.PIREN_LON, real_sets.PIREN_LAT
+    )
+    t = time_seconds_of(g) - 1.6e9
+    assert np.allclose(y - (100.0 + 2.0 * t), 0.3, atol=0.02)
+    assert np.allclose(x, 50.0, atol=0.02)
+    with pytest.raises(InputError, match="position sensors"):
+        real_sets.read_autoferry(folder, sensor="eo")
+
+
+def test_evaluate_real_scores_the_autoferry_lidar(tmp_path):
+    """`evaluate_real(..., sensor="lidar")` scores the lidar tracks (straight targets: no
+    truth turn, no detection), names the sensor, and refuses lidar on a set without one."""
+    import pytest
+
+    from wakeline.core.errors import InputError
+    from wakeline.core.evaluate_real import evaluate_real
+
+    folder = tmp_path / "autoferry"
+    _autoferry_folder(folder)
+    radar = evaluate_real(folder)
+    lidar = evaluate_real(folder, sensor="lidar")
+    assert "lidar" in lidar.name and "lidar" not in radar.name
+    rows = lidar.rows.set_index("method")
+    assert rows.loc["ours", "points"] > 3 * radar.rows.set_index("method").loc["ours", "points"]
+    assert rows.loc["ours", "turns"] == 0 and rows.loc["ours", "detections"] == 0
+    (tmp_path / "other").mkdir()
+    pts = _table(*_gnss(lambda t: np.full_like(t, 10.0)), batch="a")
+    pts.to_csv(tmp_path / "other" / "a.csv", index=False)
+    with pytest.raises(InputError, match="only the Autoferry"):
+        evaluate_real(tmp_path / "other", sensor="lidar")
+
+
+def time_seconds_of(df: pd.DataFrame) -> np.ndarray:
+    from wakeline.core.schema import time_seconds
+
+    return time_seconds(df["time"])
