@@ -10,7 +10,8 @@ of 25-60 s between turn events drawn from gradual (20-90 deg over 10-40 s), shar
 in 1-4 s), small (15-25 deg over 4-15 s) and zig-zag (two sharp turns of opposite sign 2-10 s
 apart). Truth and scores are the real evaluation's (core/evaluate_real.py) on a 5 Hz "GNSS".
 
-Run: ``python bench/radar_turns_synthetic.py [--seeds 1 2 3 4] [--tracks 150]``
+Run: ``python bench/radar_turns_synthetic.py [--seeds 1 2 3 4] [--tracks 150] [--set k=v ...]``
+(``--set``: one more row, the defaults with these ``ManeuverParams`` changes).
 """
 
 import argparse
@@ -100,7 +101,12 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
     ap.add_argument("--tracks", type=int, default=150)
+    ap.add_argument("--set", nargs="*", metavar="KEY=VALUE", help="ManeuverParams changes")
     args = ap.parse_args()
+    variants = dict(VARIANTS)
+    if args.set:
+        changes = {k: float(v) for k, v in (item.split("=", 1) for item in args.set)}
+        variants["default, " + " ".join(args.set)] = changes
     print(
         f"{'seed':>4} {'variant':24} {'detections':>10} {'turns':>6} {'precision':>9} {'recall':>7}"
     )
@@ -108,7 +114,7 @@ def main() -> None:
         pts, truth = make(seed, args.tracks)
         turns = er.truth_turns(truth, 15.0, 1.0)
         scored = er.covered_turns(turns, pts, 10.0)
-        for name, kw in VARIANTS.items():
+        for name, kw in variants.items():
             tab = detect(pts, ManeuverParams(**kw)).table()
             det = pd.DataFrame({"batch": tab["batch"], "t_s": time_seconds(tab["time"])})
             s = er.score_turns(det, turns, 10.0, scored)
