@@ -11,12 +11,14 @@ track on one side, on tracks where p > 5, with no default maneuver within 5 rows
 the real Autoferry radar (both splits) and the synthetic radar set of
 ``bench/radar_turns_synthetic.py``.
 
-Run: ``python bench/radar_track_ends.py [--seeds 1 2 3 4] [--tracks 150]`` (reads
-$WAKELINE_SHARED/data/real/autoferry-fusion, default ../shared).
+Run: ``python bench/radar_track_ends.py [--seeds 1 2 3 4] [--tracks 150] [--hard 5]`` (reads
+$WAKELINE_SHARED/data/real/autoferry-fusion, default ../shared; ``--hard N``: also the hard
+maneuver table over N scenes, ``evaluate maneuver --hard``'s, with the rule in ours).
 """
 
 import argparse
 import os
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -35,7 +37,17 @@ FIRST_SCALE_P5 = ManeuverParams(window_s=0.0, max_window_s=0.0, gap_s=0.0, min_w
 def with_track_ends(points: pd.DataFrame) -> tuple[pd.DataFrame, int]:
     """Detections (batch, t_s) of the default detector plus the track-end rule above, and
     how many the rule added."""
-    res = detect(points, ManeuverParams())
+    res, added = track_ends_result(points)
+    tab = res.table()
+    return pd.DataFrame(
+        {"batch": tab["batch"].astype(str), "t_s": time_seconds(tab["time"])}
+    ), added
+
+
+def track_ends_result(points: pd.DataFrame, params: ManeuverParams | None = None):
+    """The default detector's result (``params``: another one's) with the track-end rule's
+    maneuvers added, and how many it added."""
+    res = detect(points, params or ManeuverParams())
     short = detect(points, FIRST_SCALE_P5)
     pts, index = res.points, res.index
     tr = index.track_of_row
@@ -52,11 +64,7 @@ def with_track_ends(points: pd.DataFrame) -> tuple[pd.DataFrame, int]:
         [not (tr[f[a:b]] == tr[r]).any() for r, a, b in zip(extra, lo, hi, strict=True)], bool
     )
     found[extra[alone]] = True
-    tab = pts[found]
-    det = pd.DataFrame(
-        {"batch": tab["batch"].astype(str).to_numpy(), "t_s": time_seconds(tab["time"])}
-    )
-    return det, int(alone.sum())
+    return replace(res, is_maneuver=found), int(alone.sum())
 
 
 def _split(batch: pd.Series, tuning: bool | None) -> np.ndarray:
@@ -70,6 +78,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4])
     ap.add_argument("--tracks", type=int, default=150)
+    ap.add_argument("--hard", type=int, default=0, metavar="N", help="hard scenes (0: none)")
     args = ap.parse_args()
     pts, truth = real_sets.read_autoferry(REAL / "data/real/autoferry-fusion", exclusive=True)
     turns = er.truth_turns(truth, 15.0, 1.0)
@@ -96,6 +105,19 @@ def main() -> None:
             f"synthetic seed {seed}: default P {s0['precision']:.3f} R {s0['recall']:.3f}; "
             f"with track ends (+{added}) P {s1['precision']:.3f} R {s1['recall']:.3f}"
         )
+
+    if args.hard:
+        from wakeline.core import evaluate
+
+        plain = evaluate.detect
+
+        def patched(points, params=None, *a, **k):
+            if params is not None and params.window_s > 0:  # ours, not the paper's
+                return track_ends_result(points, params)[0]
+            return plain(points, params, *a, **k)
+
+        evaluate.detect = patched
+        print(evaluate.evaluate_maneuver_hard(100, 0, args.hard, ManeuverParams()).format())
 
 
 if __name__ == "__main__":
