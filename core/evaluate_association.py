@@ -743,6 +743,45 @@ def _known_set(path) -> "_KnownSet | None":
     return _KnownSet(p, p.name)
 
 
+def scene_scores(
+    df: pd.DataFrame,
+    cut_s: float = 120.0,
+    params: LinkParams | None = None,
+    gaps: tuple[float, float] | None = None,
+    gaps_every: float | None = None,
+    methods: tuple[str, ...] = ("ours, optimal",),
+    truth_sep: str = "",
+    seed: int = 0,
+) -> list[dict]:
+    """One real scene's association scores, one dict per method (see
+    :func:`evaluate_real_association`): its tracks (batch, or the part before ``truth_sep``)
+    are the truth unless it has a ``truth`` column; cut at gaps over ``cut_s`` s
+    (:func:`cut_at_gaps`) or, with ``gaps`` (lo, hi) s, at known gaps
+    (:func:`cut_known_gaps`, one per ``gaps_every`` s of track when given)."""
+    if "truth" not in df.columns:
+        ship = df["batch"].astype(str)
+        df = df.assign(
+            truth=_truth(df.assign(batch=ship.str.split(truth_sep).str[0] if truth_sep else ship))
+        )
+    if gaps is None:
+        cut = cut_at_gaps(df, min_gap_s=cut_s, seed=seed)
+    else:
+        cut = cut_known_gaps(df, *gaps, seed=seed, every_s=gaps_every)
+    rows = []
+    for label in methods:
+        assoc = run_method(cut, label, params)
+        rows.append(
+            {
+                "method": label,
+                "pieces": cut["batch"].nunique(),
+                **score_association(assoc),
+                **_reachable_scores(assoc, params or LinkParams()),
+                **error_breakdown(assoc, params),
+            }
+        )
+    return rows
+
+
 def evaluate_real_association(
     path,
     cut_s: float = 120.0,
@@ -793,27 +832,12 @@ def evaluate_real_association(
         except InputError as e:
             skipped.append((f.name, str(e)))
             continue
-        if "truth" not in df.columns:
-            ship = df["batch"].astype(str)
-            df["truth"] = _truth(
-                df.assign(batch=ship.str.split(truth_sep).str[0] if truth_sep else ship)
+        rows += [
+            {"file": f.name, **row}
+            for row in scene_scores(
+                df, cut_s, params, gaps, gaps_every, methods, truth_sep=truth_sep, seed=seed
             )
-        if gaps is None:
-            cut = cut_at_gaps(df, min_gap_s=cut_s, seed=seed)
-        else:
-            cut = cut_known_gaps(df, *gaps, seed=seed, every_s=gaps_every)
-        for label in methods:
-            assoc = run_method(cut, label, params)
-            rows.append(
-                {
-                    "file": f.name,
-                    "method": label,
-                    "pieces": cut["batch"].nunique(),
-                    **score_association(assoc),
-                    **_reachable_scores(assoc, params or LinkParams()),
-                    **error_breakdown(assoc, params),
-                }
-            )
+        ]
     progress(1.0, "done")
     if not rows:
         raise InputError(

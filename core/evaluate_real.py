@@ -219,6 +219,14 @@ def _speed_either_side_kn(pts: pd.DataFrame, index) -> np.ndarray:
     return v / geo.KN_MS
 
 
+def slow_share(res, slow_kn: float = 1.0) -> float:
+    """Issue 15's measure: the share of a detection's maneuver points where the ship is
+    slower than ``slow_kn`` (knots) over the legs either side (0 when there is none)."""
+    is_m = res.is_maneuver
+    v = _speed_either_side_kn(res.points, res.index)
+    return float((is_m & (v < slow_kn)).sum() / max(is_m.sum(), 1))
+
+
 def compression_against_dp(
     result, cparams: CompressParams | None = None, iterations: int = 20
 ) -> dict:
@@ -363,8 +371,7 @@ def evaluate_real(
         row: dict = {"method": label, "points": int(len(res.points))}
         is_m = res.is_maneuver
         row["maneuvers"] = int(is_m.sum())
-        v = _speed_either_side_kn(res.points, res.index)
-        row["slow_share"] = float((is_m & (v < 1.0)).sum() / max(is_m.sum(), 1))
+        row["slow_share"] = slow_share(res)
         if truth is not None:
             turns = truth_turns(truth, mp.threshold_deg, max(mp.min_speed_kn, 1.0))
             scored = sound_turns(covered_turns(turns, points, match_s), faults, fault_margin_s)
