@@ -185,7 +185,7 @@ def test_report_counts_per_rule_and_track():
     assert rep["points_in"] == 30 and rep["points_out"] == 29
     assert rep["rules"]["speed"]["removed"] == 1
     assert rep["tracks"][0]["speed_removed"] == 1
-    assert rep["rules"]["speed"]["params"]["v_max_kn"] == 30.0
+    assert rep["rules"]["speed"]["params"]["v_max_kn"] == 40.0
     json.dumps(rep)  # serialisable
 
 
@@ -416,3 +416,32 @@ def test_an_empty_table_cleans_to_nothing_and_a_point_without_time_is_named():
     df.loc[5, "time"] = pd.NaT
     with pytest.raises(InputError, match="1 points have no time"):
         clean(df)
+
+
+@pytest.mark.parametrize("period_s", [10.0, 60.0, 600.0, 1800.0])
+def test_a_fast_ferry_is_kept_whole_at_any_sampling(period_s):
+    """A ship at 33 kn (the Saronic ferry sails 32 kn for 10 min on end) loses no fix to the
+    speed rule, whatever its sampling: at 30 kn the 200 m tolerance hid the excess at 10 s
+    and 60 s (3 kn × 60 s = 93 m) but not at 600 s (926 m), where half its fixes went."""
+    df = straight(40, speed_kn=33.0, period_s=period_s)
+    assert clean(df).report["rules"]["speed"]["removed"] == 0
+
+
+def test_saronic_ferry_resampled_to_ten_minutes_keeps_its_fixes():
+    """The Saronic ferry (vessel 2, 30-34 kn under way) decimated to one fix per 600 s
+    (bench/sampling_sweep.py): the speed rule removed 56 of its fixes in 27 breaks at
+    30 kn, 3 at its own 60 s."""
+    import importlib.util
+
+    from conftest import REPO
+
+    path = real_file("greece-ais-annotated", "vessels.csv")
+    spec = importlib.util.spec_from_file_location("_sweep", REPO / "bench" / "sampling_sweep.py")
+    sweep = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(sweep)
+    from wakeline.core import real_sets
+
+    pts = real_sets.read_greece(path.parent)
+    ferry = sweep.decimate(pts[pts["batch"] == "2"], 600.0)
+    assert len(ferry) > 300
+    assert clean(ferry).report["rules"]["speed"]["removed"] == 0

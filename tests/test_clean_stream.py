@@ -152,7 +152,7 @@ def test_cli_clean_streams_and_matches_the_step(tmp_path, monkeypatch, capsys):
     report = json.loads(rep.read_text())
     assert report["points_out"] == want_report["points_out"]
     assert report["rules"]["speed"]["removed"] == want_report["rules"]["speed"]["removed"]
-    assert report["params"]["clean"]["speed"]["v_max_kn"] == 30.0
+    assert report["params"]["clean"]["speed"]["v_max_kn"] == 40.0
 
 
 def test_clean_file_falls_back_for_transforms_and_quotes(tmp_path):
