@@ -21,6 +21,7 @@ def _load(name: str):
     [
         ("oresund_association", "SHARED", "data/real/oresund-encounters"),
         ("moored_harbour", "SARONIC", "data/real/greece-ais-annotated/vessels.csv"),
+        ("sampling_sweep", "REAL", "data/real"),
     ],
 )
 def test_bench_reads_shared_from_the_environment(monkeypatch, tmp_path, name, attr, tail):
