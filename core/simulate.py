@@ -925,14 +925,22 @@ def _hard_times(
     return t, period
 
 
-def _hard_noise(
-    rng: np.random.Generator, hp: HardManeuverParams, rate: str, t, sigma=None, true_xy=None
-):
-    """Heavy-tailed position noise (m, (N, 2)): white noise with a share of outlying fixes;
+def hard_noise(
+    rng: np.random.Generator,
+    hp: HardManeuverParams,
+    rate: str,
+    t: np.ndarray,
+    sigma: float | None = None,
+    true_xy: np.ndarray | None = None,
+) -> np.ndarray:
+    """Heavy-tailed position noise (m, (N, 2)) at sample times ``t`` (s) of one track whose
+    ``rate`` is "radar" (else AIS): white noise with a share of outlying fixes;
     radar plots also an offset wandering along the track (sd ``radar_offset_along_m``, time
     constant ``radar_offset_along_s``) and across it (``radar_offset_m``,
     ``radar_offset_s``), stationary first-order processes; the track's direction is that of
-    ``true_xy`` (m, (N, 2)) at each sample (north where it does not move)."""
+    ``true_xy`` (m, (N, 2)) at each sample (north where it does not move). ``sigma``
+    (m) replaces the white noise's sd. The measured radar of Autoferry is
+    ``HardManeuverParams()``'s (``bench/radar_turns_synthetic.py`` draws its plots here)."""
     radar = rate == "radar"
     base = (hp.radar_sigma_m if radar else hp.ais_sigma_m) if sigma is None else sigma
     out_sd = hp.radar_outlier_m if radar else hp.ais_outlier_m
@@ -1037,7 +1045,7 @@ def hard_maneuver_scene(
                 end = ts + abs(delta) / rate_d
                 v_turn = float(ship.speed(np.array([(ts + end) / 2]))[0]) / geo.KN_MS
                 turn_rows.append((name, ts, end, delta, tk, v_turn))
-        xy = true_xy + _hard_noise(rng, hp, rate, t, sigma, true_xy)
+        xy = true_xy + hard_noise(rng, hp, rate, t, sigma, true_xy)
         mark = np.zeros(len(t), dtype="int64")
         turn_deg = np.zeros(len(t))
         if turns:
