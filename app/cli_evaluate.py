@@ -190,8 +190,8 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         "--max-window-s",
         type=float,
         default=d.max_window_s,
-        help=f"gradual turns: windows double up to this many seconds; 0 = one window "
-        f"(default {d.max_window_s:g})",
+        help=f"gradual turns: the longest window, seconds (windows double from --window-s while "
+        f"within it and end with it); 0 = one window (default {d.max_window_s:g})",
     )
     p.add_argument(
         "--gap-s",

@@ -16,8 +16,8 @@ Time, not points (ours, docs/evaluation.md "Departures: cleaning, maneuvers, com
 the window is ``window_s`` seconds, turned into ``p`` points per track from its median
 sampling interval (never fewer than ``window_p``), so one default serves 1 s radar and
 5 min plots alike; ``window_s = 0`` is the paper's fixed ``p``. Gradual turns: the window
-doubles up to ``max_window_s`` and a turn seen only at a longer window is added where no
-turn lies within one window of it. Turns that take a while: the first scale's windows are
+doubles while within ``max_window_s``, the last window being ``max_window_s`` itself, and a
+turn seen only at a longer window is added where no turn lies within one window of it. Turns that take a while: the first scale's windows are
 also compared ``gap_s`` apart (the turn itself between them; the gapped δ must also exceed
 t at the neighbouring points). Sharp turns close together (radar): the window also halves
 down to ``min_window_s`` on tracks sampled fast enough for 3 points in it; such a turn must
@@ -110,10 +110,11 @@ class ManeuverParams(Params):
         source="ours",
     )
     max_window_s: float = param(
-        600.0,
+        320.0,
         "s",
-        "gradual turns: windows double up to this duration; a turn found only at a longer "
-        "window counts where no shorter-window turn lies within that window; 0 = one scale",
+        "gradual turns: the longest window; windows double from window_s while within it and "
+        "end with it (10 s: 10, 20, ..., 320 s); a turn found only at a longer window counts "
+        "where no shorter-window turn lies within that window; 0 = one scale",
         lo=0.0,
         hi=1e7,
         source="ours",
@@ -469,12 +470,19 @@ def _p_per_track(
 
 
 def _scales(params: ManeuverParams) -> list[float]:
-    """Window durations (s): window_s doubled up to max_window_s; [0] = points only."""
+    """Window durations (s): window_s doubled while within max_window_s, then max_window_s
+    itself when the doubling does not land on it (10 s up to 320 s: 10, 20, ..., 320; 8 s:
+    8, 16, ..., 256, 320); [0] = points only."""
     if params.window_s <= 0:
         return [0.0]
-    out = [params.window_s]
-    while params.max_window_s > 0 and out[-1] * 2 <= params.max_window_s:
+    out = [float(params.window_s)]
+    top = float(params.max_window_s)
+    if top <= params.window_s * (1 + 1e-9):  # 0 = one scale; none shorter than window_s
+        return out
+    while out[-1] * 2 <= top * (1 + 1e-9):
         out.append(out[-1] * 2)
+    if out[-1] < top * (1 - 1e-9):
+        out.append(float(top))
     return out
 
 
@@ -1804,7 +1812,7 @@ def detect(
     """Run the detector on every track of a canonical table.
 
     At the first window duration the paper's rule runs as written (δ > t and the maximum
-    within ±n points). Gradual turns: at each doubled duration up to ``max_window_s`` a peak
+    within ±n points). Gradual turns: at each doubled duration within ``max_window_s`` (and at ``max_window_s``) a peak
     above t counts where no turn already found lies within one window of it. Turns that
     take a while: the first scale's windows ``gap_s`` apart. Sharp turns close together:
     windows halved down to ``min_window_s`` where 3 points fit, a turn counting only when it

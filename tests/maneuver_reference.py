@@ -1,5 +1,8 @@
 """Maneuver detection by PCA heading and a maximum filter (seed 000, SPEC §3).
 
+(Frozen reference copy; since h79 its ``_scales`` ends with ``max_window_s`` itself and the
+default ``max_window_s`` is 320 s, as in core/maneuver.py.)
+
 For every point ``o`` of a track (in its local plane, metres) the heading of the ``p``
 points ending at ``o`` and of the ``p`` points starting at ``o`` is the direction of the
 first principal component of their positions, oriented by the displacement from the
@@ -81,10 +84,11 @@ class ManeuverParams(Params):
         source="ours",
     )
     max_window_s: float = param(
-        600.0,
+        320.0,
         "s",
-        "gradual turns: windows double up to this duration; a turn found only at a longer "
-        "window counts where no shorter-window turn lies within that window; 0 = one scale",
+        "gradual turns: the longest window; windows double from window_s while within it and "
+        "end with it (10 s: 10, 20, ..., 320 s); a turn found only at a longer window counts "
+        "where no shorter-window turn lies within that window; 0 = one scale",
         lo=0.0,
         hi=1e7,
         source="ours",
@@ -359,12 +363,19 @@ def _p_per_track(
 
 
 def _scales(params: ManeuverParams) -> list[float]:
-    """Window durations (s): window_s doubled up to max_window_s; [0] = points only."""
+    """Window durations (s): window_s doubled while within max_window_s, then max_window_s
+    itself when the doubling does not land on it (10 s up to 320 s: 10, 20, ..., 320; 8 s:
+    8, 16, ..., 256, 320); [0] = points only."""
     if params.window_s <= 0:
         return [0.0]
-    out = [params.window_s]
-    while params.max_window_s > 0 and out[-1] * 2 <= params.max_window_s:
+    out = [float(params.window_s)]
+    top = float(params.max_window_s)
+    if top <= params.window_s * (1 + 1e-9):  # 0 = one scale; none shorter than window_s
+        return out
+    while out[-1] * 2 <= top * (1 + 1e-9):
         out.append(out[-1] * 2)
+    if out[-1] < top * (1 - 1e-9):
+        out.append(float(top))
     return out
 
 

@@ -6,6 +6,7 @@ from wakeline.core import baselines, geo, simulate
 from wakeline.core.errors import InputError
 from wakeline.core.maneuver import (
     ManeuverParams,
+    _scales,
     detect,
     largest_tolerable_error_m,
     local_maxima,
@@ -270,6 +271,28 @@ def test_gradual_turn_is_found_with_the_default_windows():
     assert during.sum() >= 1 and (~during).sum() == 0
     single_scale = detect(df, ManeuverParams(max_window_s=0.0)).table()
     assert len(single_scale) == 0  # 10 s windows alone see ~1 deg per window
+
+
+def test_the_window_ladder_ends_at_max_window_s():
+    # the longest window is max_window_s itself; the default ladder is the one of before
+    # (10 s doubled while within 600 s: 10 ... 320 s)
+    assert _scales(ManeuverParams()) == [10.0, 20.0, 40.0, 80.0, 160.0, 320.0]
+    assert ManeuverParams().max_window_s == 320.0
+    assert _scales(ManeuverParams(window_s=8.0)) == [8.0, 16.0, 32.0, 64.0, 128.0, 256.0, 320.0]
+    assert _scales(ManeuverParams(max_window_s=600.0))[-2:] == [320.0, 600.0]
+    assert _scales(ManeuverParams(max_window_s=0.0)) == [10.0]
+    assert _scales(ManeuverParams(max_window_s=5.0)) == [10.0]
+    assert _scales(ManeuverParams.paper()) == [0.0]
+
+    # the gradual turn above: 10-80 s windows see nothing, a last rung of 150 s finds it
+    def course(t):
+        return 283 + 85 * np.clip((t - 1800) / 720, 0, 1)
+
+    df, _ = _path(course, 8.0, 4200, 10.0, 5.0, seed=3)
+    assert len(detect(df, ManeuverParams(max_window_s=80.0)).table()) == 0
+    found = detect(df, ManeuverParams(max_window_s=150.0)).table()
+    assert len(found) >= 1
+    assert ((found["index"] * 10.0 >= 1800 - 120) & (found["index"] * 10.0 <= 2520 + 120)).all()
 
 
 def test_one_default_serves_radar_and_ais_rates():
