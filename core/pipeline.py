@@ -624,6 +624,30 @@ def params_to_json(params: dict[str, Any]) -> dict[str, dict]:
     return {key: dataclasses.asdict(value) for key, value in params.items()}
 
 
+#: Pipeline file version. 2 (h79): ``max_window_s`` of the maneuver detector is the longest
+#: window itself; in version 1 windows doubled from ``window_s`` while within it.
+PIPELINE_VERSION = 2
+
+
+def _ladder_top_v1(values: dict) -> dict:
+    """A version-1 maneuver parameter dict with ``max_window_s`` turned into the window its
+    ladder ended with then (``window_s`` doubled while within it), so the file's detector
+    runs the windows it ran: 600 s from 10 s windows is 320 s."""
+    from wakeline.core.maneuver import ManeuverParams
+
+    if not isinstance(values, dict) or "max_window_s" not in values:
+        return values
+    d = ManeuverParams()
+    w = float(values.get("window_s", d.window_s))
+    top = float(values["max_window_s"])
+    if w <= 0 or top <= 0:
+        return values
+    last = w
+    while last * 2 <= top:  # version 1's rule, exactly
+        last *= 2
+    return {**values, "max_window_s": last}
+
+
 def params_from_json(step: str, data: dict[str, dict]) -> dict[str, Any]:
     """The parameter sets of ``step`` from :func:`params_to_json` output (checked)."""
     out = STEPS[step].defaults()
@@ -643,6 +667,20 @@ def params_from_json(step: str, data: dict[str, dict]) -> dict[str, Any]:
     return out
 
 
+def _v1(step: str, data: dict, old: bool) -> dict:
+    """``data`` (a step's parameter sets from a pipeline file) with version 1's maneuver
+    ``max_window_s`` translated (:func:`_ladder_top_v1`) when ``old``."""
+    if not old or not isinstance(data, dict):
+        return data
+    from wakeline.core.maneuver import ManeuverParams
+
+    defaults = STEPS[step].defaults() if step in STEPS else {}
+    return {
+        key: _ladder_top_v1(value) if isinstance(defaults.get(key), ManeuverParams) else value
+        for key, value in data.items()
+    }
+
+
 @dataclass(frozen=True)
 class Pipeline:
     """A saved sequence of steps with their parameters (the GUI's presets, ``batch``)."""
@@ -659,7 +697,7 @@ class Pipeline:
     def to_json(self) -> str:
         return json.dumps(
             {
-                "wakeline_pipeline": 1,
+                "wakeline_pipeline": PIPELINE_VERSION,
                 "steps": [
                     {"step": name, "params": params_to_json(params)} for name, params in self.stages
                 ],
@@ -671,8 +709,10 @@ class Pipeline:
     def from_json(cls, text: str) -> "Pipeline":
         try:
             data = json.loads(text)
+            old = data.get("wakeline_pipeline", 1) == 1  # max_window_s: see PIPELINE_VERSION
             stages = tuple(
-                (s["step"], params_from_json(s["step"], s.get("params", {}))) for s in data["steps"]
+                (s["step"], params_from_json(s["step"], _v1(s["step"], s.get("params", {}), old)))
+                for s in data["steps"]
             )
         except (ValueError, KeyError, TypeError) as exc:
             raise InputError(f"not a Wakeline pipeline: {exc}") from None

@@ -17,6 +17,7 @@ from wakeline.app.cli import main
 from wakeline.core import simulate
 from wakeline.core.errors import InputError
 from wakeline.core.io import read_points, write_points
+from wakeline.core.maneuver import ManeuverParams, _scales
 from wakeline.core.pipeline import STEPS, Pipeline, params_from_json, params_to_json
 from wakeline.core.project import ProjectWriter, load_project, save_project
 from wakeline.core.session import Session
@@ -78,6 +79,24 @@ def test_pipeline_applies_stage_by_stage(scene):
     assert params_to_json(back.stages[0][1]) == params_to_json(pipe.stages[0][1])
     with pytest.raises(InputError, match="not a Wakeline pipeline"):
         Pipeline.from_json("{}")
+
+
+def test_a_version_1_pipeline_runs_the_windows_it_ran():
+    # version 1 (before h79): max_window_s was "double while within"; 600 s from 10 s
+    # windows ran 10 ... 320 s, which max_window_s = 320 s means now
+    def read(version, **maneuver):
+        steps = [{"step": "compress", "params": {"maneuver": maneuver}}]
+        text = json.dumps({"wakeline_pipeline": version, "steps": steps})
+        return Pipeline.from_json(text).stages[0][1]["maneuver"]
+
+    assert read(1, max_window_s=600.0).max_window_s == 320.0
+    assert _scales(read(1, max_window_s=600.0)) == _scales(ManeuverParams())
+    assert read(1, window_s=8.0, max_window_s=600.0).max_window_s == 512.0
+    assert read(1, window_s=8.0, max_window_s=320.0).max_window_s == 256.0
+    assert read(1, max_window_s=0.0).max_window_s == 0.0
+    assert read(1, window_s=0.0, max_window_s=600.0).max_window_s == 600.0  # one scale anyway
+    assert read(2, max_window_s=600.0).max_window_s == 600.0
+    assert json.loads(Pipeline.default().to_json())["wakeline_pipeline"] == 2
 
 
 def test_params_json_round_trip_and_refusal():
