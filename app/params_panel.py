@@ -26,9 +26,19 @@ from wakeline.core.maneuver import (
     smallest_detectable_turn_deg,
 )
 from wakeline.core.params import Params
-from wakeline.core.pipeline import AssociateOptions, CompressOptions, FuseOptions, ManeuverOptions
+from wakeline.core.pipeline import (
+    PARAMS_VERSION,
+    AssociateOptions,
+    CompressOptions,
+    FuseOptions,
+    ManeuverOptions,
+    params_from_version,
+)
 
 #: Pipeline steps in order: key, title, parameter class.
+#: A preset file's version key (its table is the panel's form, :data:`PARAMS_VERSION`).
+PRESET_VERSION_KEY = "wakeline_params"
+
 GROUPS = (
     ("maneuver", "Maneuvers (seed 000)", ManeuverParams),
     ("compress", "Compression (seed 000)", CompressParams),
@@ -229,7 +239,8 @@ class ParamsPanel(QtWidgets.QWidget):
     # -- presets -------------------------------------------------------------------
 
     def save_preset(self, path: str | Path) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n", encoding="utf-8")
+        data = {PRESET_VERSION_KEY: PARAMS_VERSION, **self.to_dict()}
+        Path(path).write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
 
     def load_preset(self, path: str | Path) -> list[str]:
         try:
@@ -238,7 +249,10 @@ class ParamsPanel(QtWidgets.QWidget):
             raise InputError(f"{path}: not a parameter preset ({exc})") from None
         if not isinstance(data, dict):
             raise InputError(f"{path}: not a parameter preset")
-        return self.from_dict(data)
+        version = data.pop(PRESET_VERSION_KEY, 1)  # none before max_window_s's meaning changed
+        if not isinstance(version, int):
+            raise InputError(f"{path}: not a parameter preset (version {version!r})")
+        return self.from_dict(params_from_version(data, version))
 
     def _save_dialog(self) -> None:
         path, _ = QtWidgets.QFileDialog.getSaveFileName(

@@ -648,6 +648,20 @@ def _ladder_top_v1(values: dict) -> dict:
     return {**values, "max_window_s": last}
 
 
+#: Version of a saved parameter table in the panel's form (group -> field -> value: a
+#: parameter preset, a project's ``params``). 2: ``max_window_s`` is the longest window
+#: itself (see :data:`PIPELINE_VERSION`); a table without a version is version 1.
+PARAMS_VERSION = 2
+
+
+def params_from_version(data: dict, version: int) -> dict:
+    """A saved parameter table (the panel's form) read as today's: version 1's maneuver
+    ``max_window_s`` becomes the window its ladder ended with (:func:`_ladder_top_v1`)."""
+    if version >= PARAMS_VERSION or not isinstance(data, dict):
+        return data
+    return {k: _ladder_top_v1(v) if k == "maneuver" else v for k, v in data.items()}
+
+
 def params_from_json(step: str, data: dict[str, dict]) -> dict[str, Any]:
     """The parameter sets of ``step`` from :func:`params_to_json` output (checked)."""
     out = STEPS[step].defaults()

@@ -38,6 +38,7 @@ import pyarrow.parquet as pq
 from wakeline.core import __version__
 from wakeline.core.errors import InputError
 from wakeline.core.io.writer import atomic_path
+from wakeline.core.pipeline import PARAMS_VERSION, params_from_version
 from wakeline.core.project_lock import read_holder
 from wakeline.core.session import Layer, Session, Source
 from wakeline.core.timeline import TimeWindow
@@ -270,11 +271,16 @@ class ProjectStore:
             )
 
     def put_params(self, params: dict[str, dict]) -> None:
+        """The parameter table (the panel's form), with its version (``params_version``)."""
         with self.con:
             self.con.execute("DELETE FROM params")
             self.con.executemany(
                 "INSERT INTO params VALUES (?, ?)",
                 [(k, json.dumps(v, default=str)) for k, v in params.items()],
+            )
+            self.con.execute(
+                "INSERT OR REPLACE INTO state VALUES (?, ?)",
+                ("params_version", json.dumps(PARAMS_VERSION)),
             )
 
     def put_state(self, key: str, value: object) -> None:
@@ -438,8 +444,9 @@ def load_project(path: str | Path) -> Project:
                 selection = [tuple(r) for r in state.pop("selection", [])]
                 # Absent in a project saved before the window was kept: no window.
                 time_window = TimeWindow.from_json(state.pop("time_window", None))
+                params_version = state.pop("params_version", 1)
             else:
-                state, time_window = {}, None
+                state, time_window, params_version = {}, None, 1
                 names = {lay.name: lay.id for lay in layers}
                 selection = [
                     (names.get(lay, ""), s, b)
@@ -455,6 +462,9 @@ def load_project(path: str | Path) -> Project:
         raise InputError(f"{path}: the project is damaged ({type(exc).__name__}: {exc})") from None
     if not isinstance(params, dict) or not all(isinstance(v, dict) for v in params.values()):
         raise InputError(f"{path}: the project is damaged (parameters are not a table)")
+    if not isinstance(params_version, int):
+        raise InputError(f"{path}: the project is damaged (parameter version {params_version!r})")
+    params = params_from_version(params, params_version)
     return Project(sources, params, layers, selection, decisions, state, not writable, time_window)
 
 

@@ -295,6 +295,13 @@ def test_parameters_panel_refuses_bad_values_and_round_trips_presets(window, tmp
     assert p.params("maneuver").threshold_deg == 15.0
     assert p.load_preset(preset) == []
     assert p.params("maneuver").threshold_deg == 25.0
+    # a preset saved before presets had a version (max_window_s 600 s meant 10 ... 320 s)
+    old = json.loads(preset.read_text(encoding="utf-8"))
+    assert old.pop("wakeline_params") == 2
+    old["maneuver"]["max_window_s"] = 600.0
+    preset.write_text(json.dumps(old), encoding="utf-8")
+    assert p.load_preset(preset) == []
+    assert p.params("maneuver").max_window_s == 320.0
     # Every parameter of the core is in the tree, with its unit in the tooltip.
     leaf = p.root.child("associate", "max_gap_s")
     assert "[s]" in leaf.opts["tip"] and "seed 003" in leaf.opts["tip"]

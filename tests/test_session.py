@@ -99,6 +99,27 @@ def test_a_version_1_pipeline_runs_the_windows_it_ran():
     assert json.loads(Pipeline.default().to_json())["wakeline_pipeline"] == 2
 
 
+def test_a_project_saved_before_params_had_a_version_runs_the_windows_it_ran(tmp_path):
+    # projects keep the panel's parameter table; one saved before the params_version row
+    # (version 1) meant max_window_s 600 s as the ladder 10 ... 320 s
+    s = Session()
+    s.params = {"maneuver": {"window_s": 10.0, "max_window_s": 600.0}, "compress": {}}
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    assert load_project(path).params["maneuver"]["max_window_s"] == 600.0  # saved today
+    with sqlite3.connect(path) as con:
+        con.execute("DELETE FROM state WHERE key = 'params_version'")
+    con.close()
+    back = load_project(path)
+    assert back.params["maneuver"]["max_window_s"] == 320.0
+    assert back.params["compress"] == {} and "params_version" not in back.state
+    with sqlite3.connect(path) as con:
+        con.execute("INSERT INTO state VALUES ('params_version', '\"two\"')")
+    con.close()
+    with pytest.raises(InputError, match="damaged"):
+        load_project(path)
+
+
 def test_params_json_round_trip_and_refusal():
     for name, step in STEPS.items():
         data = params_to_json(step.defaults())
