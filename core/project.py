@@ -2,8 +2,8 @@
 
 What it holds: the sources (path and content hash), the parameters, every layer with its
 lineage (Parquet blobs, so times, text and numbers come back exactly), the layers' side
-tables, small state rows (selection, view, active layer, the time window) and the review
-decisions.
+tables, small state rows (the selection, the map's view, the active layer, the time
+window) and the review decisions.
 
 It is written incrementally: a layer's Parquet once, when the layer is made (or
 replaced); a visibility, selection or parameter change is one small row, each in its own
@@ -15,7 +15,10 @@ is noticed at the next write, which fails with a message instead of writing else
 background thread and reports failures through a callback. "Save as" writes a complete
 new file beside the target and renames it over, so a crash never leaves a half-written
 project. Opening checks everything before anything is returned: a damaged or newer file
-raises one :class:`InputError` and the caller's session stays untouched.
+raises one :class:`InputError` and the caller's session stays untouched. The state rows
+only say where the operator was (what the map showed, what was selected): a bad one is
+left out with one warning in :attr:`Project.warnings` and the project opens; a bad data
+row (layers, parameters, decisions) refuses it as damaged.
 """
 
 import hashlib
@@ -40,7 +43,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.io.writer import atomic_path
 from wakeline.core.pipeline import PARAMS_VERSION, params_from_version
 from wakeline.core.project_lock import read_holder
-from wakeline.core.session import Layer, Session, Source
+from wakeline.core.session import Layer, MapView, Session, Source
 from wakeline.core.timeline import TimeWindow
 
 SCHEMA_VERSION = 2
@@ -84,6 +87,12 @@ class Project:
     #: The map's time window (the ``time_window`` state row; None: none, or a project
     #: saved before it was kept).
     time_window: TimeWindow | None = None
+    #: The map's view (the ``view`` state row, degrees; None: none kept).
+    map_view: MapView | None = None
+    #: The active layer's id (the ``active`` state row; None: none kept).
+    active: str | None = None
+    #: One sentence per state row left out because it could not be used.
+    warnings: list[str] = field(default_factory=list)
 
     def source_problems(self) -> list[str]:
         """One sentence per source that is missing or whose content changed."""
@@ -116,8 +125,15 @@ class Project:
                 layer_id=lay.id,
                 **{**lay.lineage(), "tables": lay.tables},
             )
-        session.selection = list(self.selection)
+        # The active layer, or (a project saved before it was kept) the selection's.
+        active = self.active if self.active in session.layers else None
+        if active is None and self.selection and self.selection[0][0] in session.layers:
+            active = self.selection[0][0]
+        session.set_active(active)
+        # The table shows the active layer's tracks: a selection of another is not shown.
+        session.selection = [s for s in self.selection if s[0] == active]
         session.set_time_window(self.time_window)
+        session.set_map_view(self.map_view)
         return session
 
 
@@ -293,6 +309,10 @@ class ProjectStore:
         """The ``time_window`` state row: :meth:`TimeWindow.to_json`, or null (none)."""
         self.put_state("time_window", window.to_json() if window is not None else None)
 
+    def put_map_view(self, view: MapView | None) -> None:
+        """The ``view`` state row: :meth:`MapView.to_json`, or null (none)."""
+        self.put_state("view", view.to_json() if view is not None else None)
+
     def add_decision(self, decision: dict) -> None:
         with self.con:
             self.con.execute("INSERT INTO decisions (json) VALUES (?)", (json.dumps(decision),))
@@ -304,7 +324,9 @@ class ProjectStore:
         self.put_sources(session.sources)
         self.put_params(session.params)
         self.put_state("selection", session.selection)
+        self.put_state("active", session.active)
         self.put_time_window(session.time_window)
+        self.put_map_view(session.map_view)
         for key, value in (state or {}).items():
             self.put_state(key, value)
         for d in session.decisions:
@@ -440,15 +462,12 @@ def load_project(path: str | Path) -> Project:
             layers = _load_layers(con) if schema >= 2 else _load_layers_v1(con)
             decisions = [json.loads(r[0]) for r in con.execute("SELECT json FROM decisions")]
             if schema >= 2:
-                state = {k: json.loads(v) for k, v in con.execute("SELECT key, json FROM state")}
-                selection = [tuple(r) for r in state.pop("selection", [])]
-                # Absent in a project saved before the window was kept: no window.
-                time_window = TimeWindow.from_json(state.pop("time_window", None))
-                params_version = state.pop("params_version", 1)
+                rows = con.execute("SELECT key, json FROM state").fetchall()
+                ui = _read_state(rows, [lay.id for lay in layers])
             else:
-                state, time_window, params_version = {}, None, 1
+                ui = _ViewState({}, [], None, None, None, [])
                 names = {lay.name: lay.id for lay in layers}
-                selection = [
+                ui.selection = [
                     (names.get(lay, ""), s, b)
                     for lay, s, b in con.execute("SELECT layer, sensor, batch FROM selection")
                 ]
@@ -462,10 +481,95 @@ def load_project(path: str | Path) -> Project:
         raise InputError(f"{path}: the project is damaged ({type(exc).__name__}: {exc})") from None
     if not isinstance(params, dict) or not all(isinstance(v, dict) for v in params.values()):
         raise InputError(f"{path}: the project is damaged (parameters are not a table)")
+    params_version = ui.state.pop("params_version", 1)  # none before max_window_s changed
     if not isinstance(params_version, int):
         raise InputError(f"{path}: the project is damaged (parameter version {params_version!r})")
     params = params_from_version(params, params_version)
-    return Project(sources, params, layers, selection, decisions, state, not writable, time_window)
+    return Project(
+        sources,
+        params,
+        layers,
+        ui.selection,
+        decisions,
+        ui.state,
+        not writable,
+        ui.time_window,
+        ui.map_view,
+        ui.active,
+        ui.warnings,
+    )
+
+
+@dataclass
+class _ViewState:
+    """The state rows read: where the operator was (see :func:`_read_state`)."""
+
+    state: dict[str, object]
+    selection: list[tuple[str, str, str]]
+    time_window: TimeWindow | None
+    map_view: MapView | None
+    active: str | None
+    warnings: list[str]
+
+
+#: What each state row is, for the warning when it is left out.
+_STATE_WHAT = {
+    "selection": "selected tracks",
+    "active": "active layer",
+    "time_window": "time window",
+    "view": "map view",
+}
+
+
+def _selection(value: object) -> list[tuple[str, str, str]]:
+    """The ``selection`` row: a list of [layer id, sensor, batch] texts."""
+    if value is None:
+        return []
+    if not isinstance(value, list) or not all(
+        isinstance(r, list) and len(r) == 3 and all(isinstance(x, str) for x in r) for r in value
+    ):
+        raise ValueError(f"expected [layer, sensor, batch] rows, got {value!r:.120}")
+    return [tuple(r) for r in value]
+
+
+def _active(value: object, layer_ids: list[str]) -> str | None:
+    """The ``active`` row: the id of one of the project's layers, or null."""
+    if value is not None and value not in layer_ids:
+        raise ValueError(f"no layer {value!r:.60} in the project")
+    return value
+
+
+def _read_state(rows: list[tuple[str, str]], layer_ids: list[str]) -> _ViewState:
+    """The state rows (key, JSON) of a project whose layers are ``layer_ids``. A row that
+    cannot be used (not JSON, not the value it should hold) only says where the operator
+    was: it is left out with one warning, and the rest opens (a row missing — a project
+    saved before it was kept — opens as before, without it)."""
+    out = _ViewState({}, [], None, None, None, [])
+    readers = {
+        "selection": _selection,
+        "active": lambda v: _active(v, layer_ids),
+        "time_window": TimeWindow.from_json,
+        "view": MapView.from_json,
+    }
+    for key, raw in rows:
+        what = _STATE_WHAT.get(key, f"state row {key!r}")
+        try:
+            value = json.loads(raw)
+            if key in readers:
+                value = readers[key](value)
+        except (ValueError, TypeError) as exc:
+            out.warnings.append(
+                f"the saved {what} could not be used and is left out ({exc}); "
+                "the project opened without it"
+            )
+            continue
+        if key == "selection":
+            out.selection = value
+        elif key in ("active", "time_window", "view"):
+            setattr(out, {"view": "map_view"}.get(key, key), value)
+        else:
+            out.state[key] = value
+    return out
 
 
 def _open_read_only(path: Path) -> sqlite3.Connection:

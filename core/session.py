@@ -6,18 +6,22 @@ layer's id, the step, the role it plays in the step's output (``cleaned``,
 ``compressed`` …), the parameters and the time it was made. Re-running a step on the same
 input replaces only the layers of that (input, step, role); results of other inputs
 coexist. The GUI is a view over a session: it subscribes to its events
-(``added``, ``changed``, ``removed``, ``visibility``; ``time_window`` with no layer id)
-and never keeps layers of its own. The session also holds the map's time window
-(:class:`~wakeline.core.timeline.TimeWindow`, s), saved with the project.
+(``added``, ``changed``, ``removed``, ``visibility``; ``time_window``, ``map_view`` and
+``active`` with no layer id) and never keeps layers of its own. The session also holds
+what brings an operator back to where they were, saved with the project: the map's time
+window (:class:`~wakeline.core.timeline.TimeWindow`, s), the map's view
+(:class:`MapView`, degrees), the active layer and the selected tracks.
 """
 
 import dataclasses
 import datetime as dt
 import itertools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
@@ -82,6 +86,73 @@ class Layer:
         return out
 
 
+@dataclass(frozen=True)
+class MapView:
+    """The map's view box: longitude ``x0`` … ``x1`` and latitude ``y0`` … ``y1``, in
+    degrees (as the map's axes). Kept by the session, saved in the project as
+    :meth:`to_json` (``{"x": [x0, x1], "y": [y0, y1], "unit": "deg"}``)."""
+
+    x0: float
+    x1: float
+    y0: float
+    y1: float
+    #: The unit of the four bounds (written beside them in the project).
+    UNIT = "deg"
+
+    def __post_init__(self) -> None:
+        for name in ("x0", "x1", "y0", "y1"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+                raise ValueError(f"map view: {name} must be a number, got {value!r}")
+            if not math.isfinite(value):
+                raise ValueError(f"map view: {name} must be finite, got {value!r}")
+            object.__setattr__(self, name, float(value))
+        if not (self.x0 < self.x1 and self.y0 < self.y1):
+            raise ValueError(
+                f"map view: longitude {self.x0} … {self.x1}° and latitude {self.y0} … "
+                f"{self.y1}° must each increase"
+            )
+
+    @classmethod
+    def of(cls, view: "MapView | tuple[float, float, float, float] | None") -> "MapView | None":
+        """``view`` as a MapView: (x0, x1, y0, y1) in degrees, a MapView, or None."""
+        if view is None or isinstance(view, MapView):
+            return view
+        x0, x1, y0, y1 = view
+        return cls(x0, x1, y0, y1)
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(x0, x1, y0, y1) in degrees, as the map's ``show_range`` takes it."""
+        return (self.x0, self.x1, self.y0, self.y1)
+
+    def to_json(self) -> dict:
+        """The plain value the project stores, with its unit."""
+        return {"x": [self.x0, self.x1], "y": [self.y0, self.y1], "unit": self.UNIT}
+
+    @classmethod
+    def from_json(cls, value: object) -> "MapView | None":
+        """Read :meth:`to_json`'s value back (None: no view). A project saved before
+        the view had its unit holds ``[[x0, x1], [y0, y1]]`` (the map's range, degrees),
+        read as well. Raises ValueError when it is neither, or not a view (not finite,
+        an axis that does not increase, another unit)."""
+        if value is None:
+            return None
+        if isinstance(value, dict):
+            if set(value) != {"x", "y", "unit"}:
+                raise ValueError(f"map view: expected x, y and unit, got {value!r}")
+            if value["unit"] != cls.UNIT:
+                raise ValueError(f"map view: unit must be {cls.UNIT!r}, got {value['unit']!r}")
+            value = [value["x"], value["y"]]
+        if (
+            not isinstance(value, list)
+            or len(value) != 2
+            or not all(isinstance(v, list) and len(v) == 2 for v in value)
+        ):
+            raise ValueError(f"map view: expected two [from, to] ranges, got {value!r}")
+        (x0, x1), (y0, y1) = value
+        return cls(x0, x1, y0, y1)
+
+
 def _now() -> str:
     return dt.datetime.now(dt.UTC).isoformat(timespec="seconds").replace("+00:00", "Z")
 
@@ -97,6 +168,10 @@ class Session:
         self.decisions: list[dict] = []
         #: The map's time window (s on the layers' clock; None: no window).
         self.time_window: TimeWindow | None = None
+        #: The map's view (degrees; None: not known, the map frames the data).
+        self.map_view: MapView | None = None
+        #: The layer the batch table and the steps work on (None: none).
+        self.active: str | None = None
         self._ids = itertools.count(1)
         self._listeners: list[Listener] = []
 
@@ -127,6 +202,27 @@ class Session:
         if window != self.time_window:
             self.time_window = window
             self._emit("time_window", "")
+
+    def set_map_view(self, view: MapView | tuple[float, float, float, float] | None) -> None:
+        """Set the map's view ((x0, x1, y0, y1) in degrees, a :class:`MapView`, or None);
+        a ``map_view`` event (layer id ``""``) when it changed. Raises ValueError for a
+        view that is not finite or whose ranges do not increase."""
+        view = MapView.of(view)
+        if view != self.map_view:
+            self.map_view = view
+            self._emit("map_view", "")
+
+    def set_active(self, layer_id: str | None) -> None:
+        """Make ``layer_id`` (a layer of the session, or None) the active layer; an
+        ``active`` event (layer id ``""``) when it changed. The selection keeps only that
+        layer's tracks (the batch table shows the active layer's). Raises InputError for
+        an id the session does not hold."""
+        if layer_id is not None and layer_id not in self.layers:
+            raise InputError(f"no layer {layer_id} to make active")
+        if layer_id != self.active:
+            self.active = layer_id
+            self.selection = [s for s in self.selection if s[0] == layer_id]
+            self._emit("active", "")
 
     # -- layers --------------------------------------------------------------------
 
@@ -164,6 +260,8 @@ class Session:
         if self.layers.pop(layer_id, None) is not None:
             self.selection = [s for s in self.selection if s[0] != layer_id]
             self._emit("removed", layer_id)
+            if self.active == layer_id:
+                self.set_active(None)
 
     def set_visible(self, layer_id: str, visible: bool) -> None:
         layer = self.layers[layer_id]
@@ -412,6 +510,8 @@ class Session:
         self.selection.clear()
         self.decisions.clear()
         self.set_time_window(None)
+        self.set_map_view(None)
+        self.set_active(None)
 
 
 def _params_json(params: dict | None) -> dict:

@@ -182,7 +182,7 @@ def test_incremental_project_writes_small_rows_and_reopens(scene, tmp_path):
     src = s.add_layer("scene", "source", points)
     s.apply_result(src.id, s.run_step(src.id, "clean"))
     path = tmp_path / "p.wakeline"
-    save_project(s, path, {"view": [1, 2, 3, 4]})
+    save_project(s, path, {"note": [1, 2, 3, 4]})
     errors = []
     writer = ProjectWriter(path, errors.append)
     cleaned = s.find(src.id, "clean", "cleaned")
@@ -196,7 +196,7 @@ def test_incremental_project_writes_small_rows_and_reopens(scene, tmp_path):
     back = load_project(path)
     assert [lay.id for lay in back.layers] == [src.id, cleaned.id]
     assert back.layers[1].visible is False and back.layers[1].parent == src.id
-    assert back.selection == [(cleaned.id, "R1", "3")] and back.state["view"] == [1, 2, 3, 4]
+    assert back.selection == [(cleaned.id, "R1", "3")] and back.state["note"] == [1, 2, 3, 4]
     assert back.decisions == [{"action": "accept", "proposal": 1}]
     assert "rejected" in back.layers[1].tables
     s2 = back.to_session()
@@ -572,9 +572,177 @@ def test_time_window_is_kept_in_the_session_and_the_project(scene, tmp_path):
         {"start": t0, "end": float("inf"), "unit": "s"},
         [t0, t0 + 5.0],
     ):
-        con = sqlite3.connect(path)
-        con.execute("INSERT OR REPLACE INTO state VALUES ('time_window', ?)", (json.dumps(bad),))
-        con.commit()
-        con.close()
-        with pytest.raises(InputError, match="damaged.*time window"):
-            load_project(path)
+        # A bad window only says what the map showed: left out with one warning (it
+        # refused the whole project as damaged before), the layers open.
+        _put_state_row(path, "time_window", json.dumps(bad))
+        back = load_project(path)
+        assert back.time_window is None and [lay.name for lay in back.layers] == ["scene"]
+        assert len(back.warnings) == 1 and "time window" in back.warnings[0]
+
+
+def _put_state_row(path, key: str, raw: str) -> None:
+    """Write the state row ``key`` of the project ``path`` as the text ``raw``."""
+    con = sqlite3.connect(path)
+    con.execute("INSERT OR REPLACE INTO state VALUES (?, ?)", (key, raw))
+    con.commit()
+    con.close()
+
+
+def _drop_state_rows(path, *keys: str) -> None:
+    con = sqlite3.connect(path)
+    con.executemany("DELETE FROM state WHERE key = ?", [(k,) for k in keys])
+    con.commit()
+    con.close()
+
+
+def test_view_active_layer_and_selection_round_trip(scene, tmp_path):
+    """A reopened project framed all the data again, and made the selection's (or the
+    last) layer active: the view Save as stored was never read, the active layer never
+    written by Save as. Now the session holds the map's view (degrees, with the unit in
+    the file) and the active layer; Save as and the writer's small rows store them, and
+    opening gives back the view, the active layer, the visible layers and the selection."""
+    from wakeline.core.session import MapView
+
+    _, points = scene
+    s = Session()
+    events = []
+    s.subscribe(lambda e, lid: events.append((e, lid)))
+    a = s.add_layer("a", "source", points)
+    b = s.add_layer("b", "source", points.head(300))
+    c = s.add_layer("c", "source", points.head(100))
+    s.set_visible(c.id, False)
+    s.set_active(b.id)
+    s.set_active(b.id)  # the same: no event
+    s.selection = [(b.id, "R1", "3"), (b.id, "AIS", "7")]
+    view = MapView(11.25, 11.5, 57.6, 57.75)
+    s.set_map_view((11.25, 11.5, 57.6, 57.75))
+    s.set_map_view(view)  # the same: no event
+    assert [e for e, _ in events[3:]] == ["visibility", "active", "map_view"]
+    with pytest.raises(ValueError):
+        s.set_map_view((11.5, 11.25, 57.6, 57.75))  # west > east
+    with pytest.raises(InputError):
+        s.set_active("L99")
+    assert s.map_view == view and s.active == b.id
+
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    back = load_project(path)
+    assert back.warnings == []
+    assert (back.map_view, back.active) == (view, b.id)
+    assert back.selection == s.selection
+    assert [lay.visible for lay in back.layers] == [True, True, False]
+    s2 = back.to_session()
+    assert (s2.map_view, s2.active, s2.selection) == (view, b.id, s.selection)
+    con = sqlite3.connect(path)
+    (raw,) = con.execute("SELECT json FROM state WHERE key = 'view'").fetchone()
+    con.close()
+    assert json.loads(raw) == {"x": [11.25, 11.5], "y": [57.6, 57.75], "unit": "deg"}
+
+    # The writer's small rows, as the window writes them when they change.
+    errors = []
+    writer = ProjectWriter(path, errors.append)
+    zoomed = MapView(11.3, 11.31, 57.7, 57.705)
+    writer.submit(lambda st: st.put_map_view(zoomed))
+    writer.submit(lambda st: st.put_state("active", a.id))
+    writer.submit(lambda st: st.put_state("selection", [(a.id, "R1", "2")]))
+    assert writer.flush(10)
+    writer.close()
+    back = load_project(path)
+    assert errors == [] and back.warnings == []
+    assert (back.map_view, back.active, back.selection) == (zoomed, a.id, [(a.id, "R1", "2")])
+
+    # Another layer made active drops the selection of the last one (the table shows
+    # the active layer's tracks); a selection of a layer not active is not restored.
+    s.set_active(a.id)
+    assert s.selection == []
+    _put_state_row(path, "selection", json.dumps([[b.id, "R1", "3"]]))
+    assert load_project(path).to_session().selection == []
+    # Removing the active layer leaves none active.
+    s.remove_layer(a.id)
+    assert s.active is None and events[-1] == ("active", "")
+
+    # The view Save as wrote before it had a unit: the map's [[x0, x1], [y0, y1]].
+    _put_state_row(path, "view", json.dumps([[11.3, 11.31], [57.7, 57.705]]))
+    assert load_project(path).map_view == zoomed
+
+
+def test_a_project_without_view_rows_opens_as_before(scene, tmp_path):
+    """A project saved before the view and active layer were kept (no rows) opens as
+    before: no view (the map frames the data), the selection's layer active, else none."""
+    _, points = scene
+    s = Session()
+    a = s.add_layer("a", "source", points)
+    b = s.add_layer("b", "source", points.head(300))
+    s.set_active(b.id)
+    s.selection = [(b.id, "R1", "3")]
+    s.set_map_view((11.25, 11.5, 57.6, 57.75))
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    _drop_state_rows(path, "view", "active")
+    back = load_project(path)
+    assert back.warnings == [] and (back.map_view, back.active) == (None, None)
+    s2 = back.to_session()
+    assert (s2.map_view, s2.active, s2.selection) == (None, b.id, [(b.id, "R1", "3")])
+    _drop_state_rows(path, "selection", "time_window")
+    s3 = load_project(path).to_session()
+    assert (s3.active, s3.selection, s3.time_window) == (None, [], None)
+    assert list(s3.layers) == [a.id, b.id]
+
+
+@pytest.mark.parametrize(
+    ("key", "raw", "what"),
+    [
+        ("view", '{"x": [11.5, 11.25], "y": [57.6, 57.75], "unit": "deg"}', "map view"),
+        ("view", '{"x": [11.25, 11.5], "y": [57.6, 57.75], "unit": "m"}', "map view"),
+        ("view", '{"x": [11.25, NaN], "y": [57.6, 57.75], "unit": "deg"}', "map view"),
+        ("view", "[1, 2, 3, 4]", "map view"),
+        ("view", "{not json", "map view"),
+        ("active", '"L99"', "active layer"),
+        ("active", "[1]", "active layer"),
+        ("selection", '[["L2", "R1"]]', "selected tracks"),
+        ("selection", '"L2"', "selected tracks"),
+        ("time_window", '{"start": 5, "end": 1, "unit": "s"}', "time window"),
+        ("time_window", "{", "time window"),
+    ],
+)
+def test_a_bad_view_state_row_is_left_out_with_one_warning(scene, tmp_path, key, raw, what):
+    """One bad row of where the operator was (view, active layer, selection, time
+    window) refused the whole project as damaged. Now it is left out with one warning and
+    the project opens with everything else; a bad data row still refuses it."""
+    _, points = scene
+    s = Session()
+    s.add_layer("a", "source", points)
+    b = s.add_layer("b", "source", points.head(300))
+    s.set_active(b.id)
+    s.selection = [(b.id, "R1", "3")]
+    s.set_map_view((11.25, 11.5, 57.6, 57.75))
+    s.set_time_window((0.0, 60.0))
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    good = load_project(path)
+    _put_state_row(path, key, raw)
+    back = load_project(path)
+    assert len(back.warnings) == 1, back.warnings
+    assert what in back.warnings[0] and "left out" in back.warnings[0]
+    assert [lay.id for lay in back.layers] == [lay.id for lay in good.layers]
+    for field in ("map_view", "active", "selection", "time_window"):
+        expected = getattr(good, field)
+        wanted = {"view": "map_view"}.get(key, key)
+        if field == wanted:
+            expected = [] if field == "selection" else None
+        assert getattr(back, field) == expected, field
+    back.to_session()  # opens
+
+
+def test_a_bad_data_row_still_refuses_the_project(scene, tmp_path):
+    _, points = scene
+    s = Session()
+    s.add_layer("a", "source", points)
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    con = sqlite3.connect(path)
+    con.execute("INSERT INTO params VALUES ('clean', '{not json')")
+    con.commit()
+    con.close()
+    with pytest.raises(InputError, match="damaged"):
+        load_project(path)
