@@ -113,7 +113,8 @@ class ProjectJobsMixin:
 
     def save_project(self, path: Path) -> None:
         """Save the session to ``path`` (in the background) and keep it up to date."""
-        ok, note = self.project.save_as(Path(path), {"view": self.canvas.vb.viewRange()})
+        self.view_keeper.store()  # the view as it is now, not as it was 0.4 s ago
+        ok, note = self.project.save_as(Path(path))
         if note:
             self.log_message(f"{self.tr('Warning') if ok else self.tr('Error')}: {note}")
         if not ok:
@@ -138,12 +139,13 @@ class ProjectJobsMixin:
             )
 
             proj = load_project(path)
-            warnings = proj.source_problems()
+            warnings = [*proj.warnings, *proj.source_problems()]
             # A bearing layer's scene (observer, lines, maneuvers) is made again from its
             # stored table, detections and line length.
             scenes = {lay.id: layer_scene(lay) for lay in proj.layers if lay.kind == BEARING_KIND}
-            # The view the map will show (fitted to the visible layers): each layer's level
-            # of detail is made for it here, so the map strokes each layer once.
+            # The view the map will show (the saved one, else fitted to the visible
+            # layers): each layer's level of detail is made for it here, so the map
+            # strokes each layer once.
             sketches = []
             for lay in proj.layers:
                 if not lay.visible:
@@ -153,7 +155,8 @@ class ProjectJobsMixin:
                 elif scenes[lay.id] is not None:
                     sketches += [d.geometry.sketch() for d in scenes[lay.id].layers[:2]]
             lat0 = _aspect_latitude(proj.layers[0]) if proj.layers else None
-            plan = plan_view(state, sketches, lat0)
+            saved = proj.map_view.bounds() if proj.map_view is not None else None
+            plan = plan_view(state, sketches, lat0, saved)
             shown = plan["shown"] if plan else None
             views = {}
             # Saved colours are kept unless an earlier layer has one (a project saved
@@ -196,10 +199,13 @@ class ProjectJobsMixin:
         bearing = [lid for lid, lay in self.session.layers.items() if lay.kind == BEARING_KIND]
         if bearing and bearing[-1] in self.views:  # the dock and Detail show the last
             self.show_bearing_layer(self.views[bearing[-1]])
-        sel = [r for r in proj.selection if r[0] in self.session.layers]
-        if sel:  # applied once the layers are drawn (one per event-loop turn)
-            self._make_current = sel[0][0]
-            self._restore_selection = [(s, b) for _, s, b in sel]
+        # The active layer (the selection's in a project saved before it was kept) and
+        # its selected tracks, once the layers are drawn (one per event-loop turn).
+        active = self.session.active
+        if active is not None:
+            self._make_current = active
+            sel = [(s, b) for lid, s, b in self.session.selection if lid == active]
+            self._restore_selection = sel or None
         self.update_title()
         self._fit_after_draw = plan is None
         if proj.read_only:

@@ -120,15 +120,22 @@ def shown_range(
     return (x0 - dx, x1 + dx, y0, y1)
 
 
-def plan_view(state: dict, sketches: list, lat0: float | None) -> dict | None:
+def plan_view(
+    state: dict,
+    sketches: list,
+    lat0: float | None,
+    target: tuple[float, float, float, float] | None = None,
+) -> dict | None:
     """The view a job's new layers will be shown in (pure, for the worker): ``state``
     from the window (position sketches of the layers kept, plot size, aspect latitude
     or None), ``sketches`` of the new layers (:func:`points_sketch`), ``lat0`` the aspect
     latitude when none is set yet. The view frames where the points are
-    (:func:`framed_range`). Returns ``target`` (the range asked for), ``shown`` (after
-    the aspect lock) and ``lat0`` (None: keep the map's), or None when nothing is to be
+    (:func:`framed_range`), or is ``target`` (x0, x1, y0, y1, degrees: a project's saved
+    view) when given. Returns ``target`` (the range asked for), ``shown`` (after the
+    aspect lock) and ``lat0`` (None: keep the map's), or None when nothing is to be
     shown."""
-    target = framed_range([*state["sketches"], *sketches])
+    if target is None:
+        target = framed_range([*state["sketches"], *sketches])
     if target is None:
         return None
     keep = state["lat0"] is not None

@@ -34,6 +34,7 @@ from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
 from wakeline.app.review_dock import ReviewDock
 from wakeline.app.time_panel import install_time
+from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.window_words import window_words
@@ -105,6 +106,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.canvas.trackClicked.connect(self._track_clicked)
         self.canvas.pointHovered.connect(self._show_hover)
         self.time_controller = install_time(self)  # slider under the map: self.time_panel
+        # The map's view, written to the session (and the project) once it settles.
+        self.view_keeper = MapViewKeeper(self.canvas, self.session, self)
 
         self.layer_list = QtWidgets.QListWidget()
         self.layer_list.itemChanged.connect(self._layer_item_changed)
@@ -125,6 +128,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         header.setStretchLastSection(True)
         header.setResizeContentsPrecision(50)  # size columns from 50 rows, not all
         self.batch_view.selectionModel().selectionChanged.connect(self._table_selection_changed)
+        self.batch_model.modelReset.connect(self._reselect)  # after the view dropped it
         self.filter_edit = QtWidgets.QLineEdit()
         self.filter_edit.setClearButtonEnabled(True)
         self.filter_edit.textChanged.connect(self.batch_model.set_filter)
@@ -309,6 +313,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.runner.wait(5000)
         self.review.close()
         self.lod_worker.wait(5000)
+        if self.view_keeper.pending:  # the last zoom is kept too
+            self.view_keeper.store()
         self.project.detach()
         super().closeEvent(event)
 

@@ -2,8 +2,9 @@
 
 Once the work has a project file, every session event becomes one small write queued on
 the core's :class:`~wakeline.core.project.ProjectWriter` thread: a new or replaced layer
-writes its Parquet once; visibility, order, selection, view, the time window and
-parameters are small rows.
+writes its Parquet once; visibility, order, selection, the active layer, the map's view
+(debounced by :mod:`wakeline.app.view_keeper`), the time window and parameters are small
+rows.
 A failed write is never silent: :attr:`failed` carries the message to the window (a
 dialog, the log, and the title marked unsaved).
 
@@ -59,6 +60,8 @@ class ProjectController(QtCore.QObject):
         snapshot.selection = list(self.session.selection)
         snapshot.decisions = list(self.session.decisions)
         snapshot.time_window = self.session.time_window
+        snapshot.map_view = self.session.map_view
+        snapshot.active = self.session.active
         self._attach(Path(path), read_only=False)
         token = self.locks.token
         self.writer.submit_file(lambda p: save_project(snapshot, p, state, lock_token=token))
@@ -134,7 +137,9 @@ class ProjectController(QtCore.QObject):
 
     def _on_event(self, event: str, layer_id: str) -> None:
         if self.writer is None:
-            self.unsaved = self.unsaved or self.path is not None
+            # Panning or another active layer in a read-only project is no work lost.
+            moved = event in ("map_view", "active")
+            self.unsaved = self.unsaved or (self.path is not None and not moved)
             return
         layer = self.session.layers.get(layer_id)
         if event in ("added", "changed") and layer is not None:
@@ -154,9 +159,15 @@ class ProjectController(QtCore.QObject):
         elif event == "time_window":
             window = self.session.time_window
             self._submit(lambda st: st.put_time_window(window))
+        elif event == "map_view":
+            view = self.session.map_view
+            self._submit(lambda st: st.put_map_view(view))
+        elif event == "active":  # the selection keeps only the active layer's tracks
+            active, selection = self.session.active, list(self.session.selection)
+            self._submit(lambda st: _put_active(st, active, selection))
 
     def put_state(self, key: str, value: object) -> None:
-        """A small state row (selection, view, active layer)."""
+        """A small state row (the selection)."""
         self._submit(lambda st: st.put_state(key, value))
 
     def put_params(self, params: dict) -> None:
@@ -171,6 +182,13 @@ class ProjectController(QtCore.QObject):
         self.dirty = True
         self.failures += 1
         self.failed.emit(message)
+
+
+def _put_active(store, active: str | None, selection: list) -> None:
+    """The ``active`` and ``selection`` rows (another active layer keeps none of the last
+    one's tracks selected)."""
+    store.put_state("active", active)
+    store.put_state("selection", selection)
 
 
 def _describe(exc: Exception) -> str:

@@ -100,7 +100,9 @@ class LayersMixin:
             layer.color = self.views[lid].colors[0] if self.views[lid].colors else layer.color
 
     def _on_session_event(self, event: str, lid: str) -> None:
-        if event == "time_window":  # the time controller follows it; no layer changed
+        if event in ("time_window", "map_view", "active"):
+            # The time controller and the view keeper follow the first two; the active
+            # layer is the window's own (set_active), or made current after an open.
             return
         layer = self.session.layers.get(lid)
         if event == "added":
@@ -221,6 +223,11 @@ class LayersMixin:
             self._selecting = True
             self.select_tracks(pending)
             self._selecting = False
+            # The session's too (another layer made current meanwhile dropped it).
+            selection = [(self.active, s, b) for s, b in pending]
+            if selection != self.session.selection:
+                self.session.selection = selection
+                self.project.put_state("selection", selection)
 
     @property
     def drawing(self) -> bool:
@@ -287,20 +294,22 @@ class LayersMixin:
         """Make ``lid`` the layer the batch table, statistics and steps work on."""
         self.active = lid if lid in self.session.layers else None
         self.activeChanged.emit()
+        # The session keeps it (the project writes it); its selection keeps only this
+        # layer's tracks, selected again in the table below (_reselect).
+        self.session.set_active(self.active)
+        if self.canvas.selected_points() is not None and len(self.canvas.selected_points()):
+            self.canvas.show_selection(EMPTY)
+        self.detail.clear()
         view = self.views.get(self.active) if self.active else None
         if view is not None:
             self.batch_model.set_summary(view.summary, view.text)
         else:
             self.batch_model.set_summary(batch_summary(EMPTY))
         self._fit_time_columns()
-        if self.canvas.selected_points() is not None and len(self.canvas.selected_points()):
-            self.canvas.show_selection(EMPTY)
-        self.detail.clear()
         if view is not None:
             # The detection limit depends on the raw sampling: take it from the source layer.
             root = self.views.get(self.session.root(self.active).id, view)
             self.params.show_guidance(root.summary)
-        self.project.put_state("active", self.active)
         layer = self.session.get(self.active)
         if view is not None and layer.kind == BEARING_KIND and self.bearings is not view.points:
             self.show_bearing_layer(view)  # its map and detections in the dock

@@ -37,6 +37,19 @@ class SelectionMixin:
         if last is not None:
             self.batch_view.scrollTo(last)
 
+    def _reselect(self) -> None:
+        """The batch table was reset (another layer's summary, a time window, a filter):
+        Qt drops the rows' selection without a signal. The session's selection of the
+        active layer is selected again where its rows are shown, and the map follows; the
+        session keeps the tracks a window hides, selected again when it shows them."""
+        keys = [(s, b) for lid, s, b in self.session.selection if lid == self.active]
+        if keys:
+            self._selecting = True
+            try:
+                self.select_tracks(keys)
+            finally:
+                self._selecting = False
+
     def _table_selection_changed(self, *_args) -> None:
         view = self.views.get(self.active) if self.active else None
         if view is None:

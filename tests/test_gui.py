@@ -208,6 +208,112 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     w3.close()
 
 
+def test_project_reopens_where_the_operator_was(qtbot, tmp_path, monkeypatch):
+    """Operator test: a reopened project framed all the data again and made the last
+    layer active (the view Save as stored was never read back, the active layer never
+    saved by it). Now the active layer, the hidden layer, the selected tracks, the map's
+    view (written once it settles, not per move) and the time window come back in a new
+    window; a bad view-state row is left out with one warning and the project opens."""
+    import sqlite3
+
+    from wakeline.core.session import MapView
+
+    src, new_window, shown, _ = _project_bench(qtbot, tmp_path, monkeypatch)
+    w = new_window()
+    w.resize(1200, 800)
+    lid = load(w, src)
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    w.run_step("pipeline")
+    wait_for_jobs(w)
+    qtbot.waitUntil(lambda: not w.drawing and not w.time_controller.busy, timeout=20_000)
+    cleaned = next(i for i, lay in w.layers.items() if lay.kind == "cleaned")
+    assert cleaned != list(w.layers)[-1]  # not the layer an open made active before
+    w.select_layer(cleaned)
+    w.layer_list.item(w.layer_row(lid)).setCheckState(QtCore.Qt.CheckState.Unchecked)
+    assert not w.layers[lid].visible
+    t_lo, t_hi = w.time_panel.time_range()
+    window = (t_lo + 0.2 * (t_hi - t_lo), t_lo + 0.7 * (t_hi - t_lo))
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window(window)
+    rows = w.batch_model.rowCount()
+    keys = [w.batch_model.key_of_row(1), w.batch_model.key_of_row(3)]
+    w.select_tracks(keys)
+    keys = w.selected_keys()
+    assert len(keys) == 2
+    # The table reset (here: the window set again) keeps the selection (Qt dropped it).
+    w.batch_model.set_time_window(window)
+    assert w.batch_model.rowCount() == rows and w.selected_keys() == keys
+    # A pan of 20 steps: one write once it settles, not one per step.
+    events = []
+    w.session.subscribe(lambda e, _lid: events.append(e))
+    x0, x1, y0, y1 = w.canvas.current_view()
+    cx, cy, dx, dy = (x0 + x1) / 2, (y0 + y1) / 2, (x1 - x0) / 8, (y1 - y0) / 8
+    for k in range(20):
+        w.canvas.vb.setRange(
+            xRange=(cx - dx + k * dx / 100, cx + dx + k * dx / 100),
+            yRange=(cy - dy, cy + dy),
+            padding=0,
+        )
+        QtWidgets.QApplication.processEvents()
+    assert w.view_keeper.pending and "map_view" not in events
+    qtbot.waitUntil(lambda: not w.view_keeper.pending, timeout=5000)
+    assert events.count("map_view") == 1
+    assert w.project.flush(30)
+    panned = MapView.of(w.canvas.current_view())
+    assert load_project(proj).map_view == panned  # written without Save as
+    # Zoomed into one corner, then closed at once: the last view is written on close.
+    x0, x1, y0, y1 = panned.bounds()
+    w.canvas.vb.setRange(xRange=(x0, x0 + (x1 - x0) / 3), yRange=(y0, y0 + (y1 - y0) / 3))
+    view = w.canvas.current_view()
+    size = w.canvas.plot_size_px()
+    w.close()
+    back = load_project(proj)
+    assert back.active == cleaned and back.map_view == MapView(*view)
+    assert back.selection == [(cleaned, s, b) for s, b in keys]
+
+    w2 = new_window()
+    w2.resize(1200, 800)
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    qtbot.waitUntil(lambda: not w2.drawing and not w2.time_controller.busy, timeout=20_000)
+    assert not shown
+    assert w2.active == cleaned and w2.session.active == cleaned
+    assert w2.layer_list.currentItem().data(QtCore.Qt.ItemDataRole.UserRole) == cleaned
+    assert not w2.layers[lid].visible and all(
+        lay.visible for i, lay in w2.layers.items() if i != lid
+    )
+    state = QtCore.Qt.CheckState
+    assert w2.layer_list.item(w2.layer_row(lid)).checkState() == state.Unchecked
+    assert all(not item.isVisible() for n in w2.map_names(lid) for item in w2.canvas.layer_items(n))
+    assert w2.selected_keys() == keys
+    assert w2.session.selection == [(cleaned, s, b) for s, b in keys]
+    assert w2.time_panel.time_window() == window
+    assert w2.canvas.plot_size_px() == size
+    got = w2.canvas.current_view()
+    px = ((view[1] - view[0]) / size[0], (view[3] - view[2]) / size[1])
+    for k in range(4):
+        assert abs(got[k] - view[k]) <= px[k // 2], (got, view)
+    w2.close()
+
+    # A bad time-window row: one warning, and the project opens with the rest.
+    con = sqlite3.connect(proj)
+    row = '{"start": 5, "end": 1, "unit": "s"}'
+    con.execute("INSERT OR REPLACE INTO state VALUES ('time_window', ?)", (row,))
+    con.commit()
+    con.close()
+    w3 = new_window()
+    w3.resize(1200, 800)
+    w3.open_project(proj)
+    wait_for_jobs(w3)
+    qtbot.waitUntil(lambda: not w3.drawing and not w3.time_controller.busy, timeout=20_000)
+    assert len(shown) == 1 and "time window" in shown[0] and "left out" in shown[0]
+    assert "time window" in w3.log.toPlainText()
+    assert list(w3.layers) == list(w2.layers) and w3.active == cleaned
+    assert w3.time_panel.time_window() is None and w3.selected_keys() == keys
+    w3.close()
+
+
 def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch):
     """Operator test: both windows numbered their new layer L2 and one's was lost. The
     second window opens the project read-only, says who holds it, refuses Save as onto
