@@ -314,6 +314,28 @@ def test_project_reopens_where_the_operator_was(qtbot, tmp_path, monkeypatch):
     w3.close()
 
 
+def test_panning_a_read_only_project_is_no_unsaved_work(qtbot, tmp_path):
+    """With the view and the active layer written as they change, a read-only project
+    panned, or another layer made active, would offer Save as on closing: not work lost.
+    A change to the layers still is."""
+    from wakeline.app.project_controller import ProjectController
+    from wakeline.core.project import save_project
+    from wakeline.core.session import Session
+
+    s = Session()
+    a = s.add_layer("a", "source", simulate.demo_scene().head(50))
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    ctl = ProjectController(s)
+    ctl.follow(path, read_only=True)
+    s.set_map_view((10.0, 11.0, 57.0, 57.5))
+    s.set_active(a.id)
+    assert not ctl.unsaved
+    s.set_visible(a.id, False)
+    assert ctl.unsaved
+    ctl.detach()
+
+
 def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch):
     """Operator test: both windows numbered their new layer L2 and one's was lost. The
     second window opens the project read-only, says who holds it, refuses Save as onto
