@@ -205,6 +205,23 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         r = self._order[row]
         return str(self._text["sensor"][r]), str(self._text["batch"][r])
 
+    def keys_of_rows(self, rows: np.ndarray) -> list[tuple[str, str]]:
+        """(sensor, batch) of visible rows ``rows`` (:meth:`key_of_row` for many)."""
+        r = self._order[np.asarray(rows, dtype="int64")]
+        sensors = self._text["sensor"][r].astype(str).tolist()
+        batches = self._text["batch"][r].astype(str).tolist()
+        return list(zip(sensors, batches, strict=True))
+
+    def rows_of_keys(self, keys: list[tuple[str, str]]) -> np.ndarray:
+        """Visible rows of the tracks ``keys`` (sensor, batch), ascending; unknown and
+        filtered-out tracks are left out. One dictionary lookup per key and one inverse
+        of the visible order (not a scan of the rows per key)."""
+        found = np.fromiter((self._keys.get(tuple(k), -1) for k in keys), "int64", len(keys))
+        where = np.full(len(self._df), -1, dtype="int64")
+        where[self._order] = np.arange(len(self._order))
+        rows = where[found[found >= 0]]
+        return np.unique(rows[rows >= 0])
+
     def row_of_key(self, sensor: str, batch: str) -> int | None:
         """Visible row of a track (None when unknown or filtered out)."""
         r = self._keys.get((sensor, batch))

@@ -336,6 +336,46 @@ def test_panning_a_read_only_project_is_no_unsaved_work(qtbot, tmp_path):
     ctl.detach()
 
 
+def test_a_table_reset_selects_the_selection_again(window, tmp_path):
+    """A batch-table reset (a time window, a filter) dropped the rows' selection without
+    a signal, so the map and the project kept tracks the table no longer showed selected.
+    Now the session's selection is selected again where its rows are shown (a range per
+    run of rows, one lookup per key), and the tracks a window hides come back with it."""
+    n = 600
+    k = np.repeat(np.arange(n), 3)
+    t = 1_714_521_600 + (k % 60) * 60 + np.tile([0, 10, 20], n)
+    csv = tmp_path / "many.csv"
+    pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": k.astype(str),
+            "time": pd.to_datetime(t, unit="s", utc=True).strftime("%Y-%m-%dT%H:%M:%SZ"),
+            "lon": 122 + 1e-3 * (k % 30) + 1e-5 * np.tile([0, 1, 2], n),
+            "lat": 30 + 1e-3 * (k // 30),
+        }
+    ).to_csv(csv, index=False)
+    lid = load(window, csv)
+    model = window.batch_model
+    model.sort(1, QtCore.Qt.SortOrder.DescendingOrder)
+    wanted = [("R1", str(b)) for b in range(0, n, 3)] + [("R1", "nope")]
+    window.select_tracks(wanted)
+    shown = window.selected_keys()
+    assert sorted(shown) == sorted(wanted[:-1])
+    assert shown == [
+        model.key_of_row(r) for r in range(model.rowCount()) if model.key_of_row(r) in shown
+    ]
+    assert window.session.selection == [(lid, s, b) for s, b in shown]
+    t0 = 1_714_521_600
+    model.set_time_window((t0, t0 + 29 * 60 + 30))  # tracks k % 60 < 30: half of them
+    inside = [key for key in shown if int(key[1]) % 60 < 30]
+    assert sorted(window.selected_keys()) == sorted(inside) and len(inside) < len(shown)
+    assert len(window.session.selection) == len(shown)  # the hidden ones kept
+    model.set_time_window(None)
+    model.set_filter("")
+    assert sorted(window.selected_keys()) == sorted(shown)
+    assert model.keys_of_rows(model.rows_of_keys(wanted)) == shown
+
+
 def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch):
     """Operator test: both windows numbered their new layer L2 and one's was lost. The
     second window opens the project read-only, says who holds it, refuses Save as onto
