@@ -275,6 +275,8 @@ class TimeController(QtCore.QObject):
     """
 
     scene_ready = QtCore.Signal()
+    #: The panel's window is on the maps: emitted once every job of a window change is
+    #: through (at once when it needed none).
     window_applied = QtCore.Signal()
 
     def __init__(self, window, panel) -> None:
@@ -286,6 +288,7 @@ class TimeController(QtCore.QObject):
         self._dock = None  # the Bearing-only dock (attach_bearing_view)
         self._dock_cut: dict | None = None  # its scene and the window it is cut to
         self._pending = 0
+        self._window_owed = False  # window_applied owed once no job is pending
         self._indexing: int | None = None  # the rebuild whose index is being made
         # A window the session got (a project opened), for the panel after the rebuild.
         self._restore: object = _NO_RESTORE
@@ -367,6 +370,10 @@ class TimeController(QtCore.QObject):
             self._pending -= 1
             if result is not None:
                 done(result)
+            if not self._pending and self._window_owed:
+                # every job of the window is through (a stale result dropped counts too)
+                self._window_owed = False
+                self.window_applied.emit()
 
         self.window.lod_worker(guarded(job), finish)
 
@@ -417,9 +424,11 @@ class TimeController(QtCore.QObject):
         finally:
             self._writing = False
         self.window.batch_model.set_time_window(window)
+        self._window_owed = True
         self._apply_window(self._originals())
         self._cut_dock()
         if not self._pending:
+            self._window_owed = False
             self.window_applied.emit()
 
     def _apply_window(self, originals: dict[str, tuple[DrawData, object, bool, object]]) -> None:
@@ -453,14 +462,13 @@ class TimeController(QtCore.QObject):
                 continue
             state = {"win": win, "src": source, "shown": None}
             self._filtered[lid] = state
+            self._window_owed = True
 
             def done(result: DrawData, lid=lid, state=state) -> None:
                 if self._filtered.get(lid) is not state or lid not in canvas.layer_names():
                     return  # a newer window or layer meanwhile
                 canvas.set_draw_data(result)
                 state["shown"] = result.geometry
-                if not self._pending:
-                    self.window_applied.emit()
 
             self._run(lambda d=data, w=win, c=cut: window_draw_data(d, w, view, size, c), done)
 
@@ -494,12 +502,11 @@ class TimeController(QtCore.QObject):
             return
         state = {"scene": scene, "win": win}
         self._dock_cut = state
+        self._window_owed = True
 
         def done(layers: list[DrawData]) -> None:
             if self._dock_cut is not state or dock.scene is not scene:
                 return  # a newer window or scene meanwhile
             dock.draw_layers(layers)
-            if not self._pending:
-                self.window_applied.emit()
 
         self._run(lambda: window_scene_layers(scene, win), done)
