@@ -26,7 +26,10 @@ no turn. Each added turn needs no turn already found within its reach.
 No maneuver where the ship covers either window slower
 than ``min_speed_kn`` or where a window touches an at-rest span (cleaning's stationary
 rule: positions within ``rest_radius_m`` for ``rest_window_s``, on sparse tracks for
-``rest_steps`` of their median intervals with the radius grown alike).
+``rest_steps`` of their median intervals with the radius grown alike). No heading window
+spans a step longer than ``max_step_windows`` (4) such at-rest windows, the at-rest rule's
+reach over a gap: for the headings a track is cut there (an AIS ferry unseen for an hour
+in port has no course across that hour).
 ``ManeuverParams.paper()`` switches all of these off. Option (off by default): ``noise_lag_s``
 measures the track noise of the noise floor against points that many seconds either side,
 not the neighbours, so it sees an offset wandering over a window (radar; docs/evaluation.md
@@ -187,6 +190,18 @@ class ManeuverParams(Params):
         lo=0.0,
         hi=1000.0,
     )
+    max_step_windows: float = param(
+        4.0,
+        "at-rest windows",
+        "no heading window spans a step longer than this many at-rest windows (rest_window_s; "
+        "on sparse tracks rest_steps median intervals, at least one): the at-rest rule's reach "
+        "over a gap (four windows), beyond which neither a stay nor a course was seen; the "
+        "headings treat the track as cut there; 0 = off (a window spans any step)",
+        lo=0.0,
+        hi=1e6,
+        source="ours; cleaning's at_rest reaches back four windows (docs/evaluation.md, "
+        "Sampling-rate sweep: the Saronic ferry's 45-62 min AIS gaps in port)",
+    )
 
     @classmethod
     def paper(cls) -> "ManeuverParams":
@@ -199,6 +214,7 @@ class ManeuverParams(Params):
             noise_k=0.0,
             min_window_s=0.0,
             gap_s=0.0,
+            max_step_windows=0.0,
         )
 
 
@@ -1961,7 +1977,9 @@ def _detect_sorted(
     # each track's median interval (s), once for the windows, the rest rule and the noise
     wants_med = params.window_s > 0 or params.noise_lag_s > 0
     wants_med |= params.rest_radius_m > 0 and params.rest_steps > 0
+    wants_med |= params.max_step_windows > 0
     med = median_interval_s(t, index) if wants_med else None
+    track_index, med_track = index, med  # the tracks as given (the result's index)
     rest = np.zeros(n, dtype=bool)
     if params.rest_radius_m > 0 and n:
         rest = _rest_mask(
@@ -1969,6 +1987,15 @@ def _detect_sorted(
         )
     rest_lo, rest_hi = _runs(rest)
     any_rest = bool(len(rest_lo))
+    # headings are not taken across a step longer than max_step_windows at-rest windows:
+    # from here on each piece between such steps is a track (the median interval, p, the
+    # track noise and the at-rest spans stay the whole track's)
+    parent = None
+    pieces = _heading_pieces(t, index, med, params)
+    if pieces is not None:
+        index, parent = pieces
+        tr = index.track_of_row
+        med = med[parent]
 
     def accept(f_c: np.ndarray, cand: np.ndarray, p_c: np.ndarray, reach: np.ndarray, fine: bool):
         """The candidates (δ ``f_c``) that clear the noise floor (always at a fine scale,
@@ -1980,7 +2007,9 @@ def _detect_sorted(
         # each test runs on the candidates still standing only (a candidate out stays out)
         if params.noise_k > 0 or fine:
             if not noise:
-                noise.append(position_noise_m(x, y, t, index, _noise_lag(med, params)))
+                lag = _noise_lag(med_track if params.window_s > 0 else None, params)
+                sigma = position_noise_m(x, y, t, track_index, lag)
+                noise.append(sigma if parent is None else sigma[parent])
             if fine:  # the floor itself is wanted below
                 with np.errstate(invalid="ignore"):
                     floor = np.maximum(
@@ -2102,7 +2131,9 @@ def _detect_sorted(
         shortest = np.where(active, p_track, shortest)
     if progress:
         progress(1.0, "maneuvers found")
-    return ManeuverResult(pts, index, factor, found, p_first, rest, params)
+    if parent is not None:  # each track's p: its first piece's (every piece has the same)
+        p_first = p_first[np.searchsorted(parent, np.arange(track_index.n_tracks))]
+    return ManeuverResult(pts, track_index, factor, found, p_first, rest, params)
 
 
 def _noise_lag(med: np.ndarray | None, params: ManeuverParams) -> "np.ndarray | int":
@@ -2116,6 +2147,37 @@ def _noise_lag(med: np.ndarray | None, params: ManeuverParams) -> "np.ndarray | 
     lag = np.clip(lag, 1, 1000).astype("int64")
     # one lag for every track: the slices of position_noise_m, not its per-row gathers
     return int(lag[0]) if (lag == lag[0]).all() else lag
+
+
+def _heading_pieces(
+    t: np.ndarray, index: TrackIndex, med: np.ndarray | None, params: ManeuverParams
+) -> tuple[TrackIndex, np.ndarray] | None:
+    """The tracks cut, for the heading windows, at every step (s, ``t``) longer than
+    ``max_step_windows`` at-rest windows — per track max(``rest_window_s``,
+    max(``rest_steps``, 1) × its median interval ``med``): cleaning's at-rest rule reaches
+    back over a step of up to four such windows (:func:`wakeline.core.clean.at_rest`,
+    :func:`wakeline.core.clean.rest_frame`), and a heading across a longer one is a chord over
+    time nobody observed. Returns the index of the pieces and each piece's track, or None
+    when no step is that long (or the rule is off)."""
+    if params.max_step_windows <= 0 or len(t) < 2 or med is None:
+        return None
+    tr = index.track_of_row
+    # a track without a median interval (one fix) takes rest_window_s (fmax skips NaN)
+    window = np.fmax(params.rest_window_s, max(params.rest_steps, 1.0) * med)
+    with np.errstate(invalid="ignore"):
+        cut = np.diff(t) > params.max_step_windows * window[tr[1:]]
+    cut &= tr[1:] == tr[:-1]
+    if not cut.any():
+        return None
+    first = np.zeros(len(t), dtype=bool)
+    first[index.starts[index.sizes > 0]] = True
+    first[1:] |= cut
+    starts = np.flatnonzero(first)
+    ends = np.append(starts[1:], len(t))
+    parent = tr[starts]
+    track_of_row = np.repeat(np.arange(len(starts)), ends - starts)
+    keys = index.keys.iloc[parent].reset_index(drop=True)
+    return TrackIndex(starts, ends, track_of_row, keys), parent
 
 
 def _sub_index(index: TrackIndex, selected: np.ndarray):

@@ -260,6 +260,50 @@ def test_a_port_call_seen_every_30_min_is_at_rest_not_a_maneuver():
     assert found.is_maneuver.sum() == 1 and not found.at_rest.any()
 
 
+def _ferry_in_port(period_s: float, gap_s: float = 3480.0, seed: int = 3) -> pd.DataFrame:
+    """A 30 kn ferry reported every ``period_s``: 20 fixes heading north to 1.4 km off its
+    port, no report for ``gap_s`` while it berths and turns round (the Saronic ferry's AIS
+    in port: 45-62 min), then out heading south for 5 fixes and a 60 deg turn to 240 deg
+    (row 25, five fixes after the gap), 5 m of noise."""
+    rng = np.random.default_rng(seed)
+    step = 30.0 * geo.KN_MS * period_s
+    x, y = list(np.zeros(20)), list(-1400.0 - step * np.arange(20)[::-1])
+    x.append(300.0)
+    y.append(-1500.0)
+    for k in range(20):
+        course = np.radians(180.0 if k < 5 else 240.0)
+        x.append(x[-1] + step * np.sin(course))
+        y.append(y[-1] + step * np.cos(course))
+    x = np.array(x) + rng.normal(0, 5.0, 41)
+    y = np.array(y) + rng.normal(0, 5.0, 41)
+    t = np.r_[np.arange(20), 19 + gap_s / period_s + np.arange(21)] * period_s
+    df = track_from_xy(x, y)
+    df["time"] = pd.to_datetime(t, unit="s", utc=True)
+    return df
+
+
+@pytest.mark.parametrize("period_s", [60.0, 180.0, 600.0])
+def test_no_heading_across_an_hour_in_port_nobody_saw(period_s):
+    # a step longer than 4 at-rest windows (720 s; 4 intervals at 600 s) is beyond the
+    # at-rest rule's reach: neither a stay nor a course was seen over it. Without the cut the
+    # window before the first fix after the gap is a chord across the hour: a 180 deg
+    # "turn" there (a slow chord: the ship came back the way it went in), and the real turn
+    # five fixes later lies within its maximum filter, hidden
+    df = _ferry_in_port(period_s)
+    ours = detect(df)
+    assert np.flatnonzero(ours.is_maneuver).tolist() == [25]
+    assert 55 < ours.factor[25] < 65
+    assert np.isnan(ours.factor[20:24]).all()  # no window reaches back over the gap
+    spanned = detect(df, ManeuverParams(max_step_windows=0))
+    assert np.flatnonzero(spanned.is_maneuver).tolist() == [20]
+    assert spanned.factor[20] > 170
+    # a step within the reach is spanned (40 min at 60 s sampling: 2,400 s > 720 s, cut;
+    # 10 min: not)
+    short = _ferry_in_port(60.0, gap_s=600.0)
+    same = detect(short), detect(short, ManeuverParams(max_step_windows=0))
+    assert np.array_equal(same[0].factor, same[1].factor, equal_nan=True)
+
+
 def test_gradual_turn_is_found_with_the_default_windows():
     # 283 deg to 8 deg (85 deg) over 12 minutes at 8 kn, AIS every 10 s, 5 m noise
     def course(t):

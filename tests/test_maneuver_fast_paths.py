@@ -103,13 +103,21 @@ PARAMS = [
 ]
 
 
+def _reference_params(params: ManeuverParams):
+    """The reference's parameters: it predates ``max_step_windows`` (headings not taken
+    across a long step), so it is compared with that rule off."""
+    fields = dict(params.__dict__)
+    assert fields.pop("max_step_windows") == 0
+    return reference.ManeuverParams(**fields)
+
+
 @pytest.mark.parametrize("scene", sorted(SCENES))
 @pytest.mark.parametrize("which", range(len(PARAMS)))
 def test_detect_equals_the_straightforward_detector(scene, which):
     df = SCENES[scene]()
-    params = PARAMS[which]
+    params = PARAMS[which].replace(max_step_windows=0.0)
     ours = detect(df, params)
-    ref = reference.detect(df, reference.ManeuverParams(**params.__dict__))
+    ref = reference.detect(df, _reference_params(params))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
     assert np.array_equal(ours.factor.view("int64"), ref.factor.view("int64"))
     assert np.array_equal(ours.at_rest, ref.at_rest)
@@ -117,6 +125,22 @@ def test_detect_equals_the_straightforward_detector(scene, which):
     if which == 0:  # the comparison is about maneuvers and at-rest spans found
         assert ref.is_maneuver.sum() > 10
         assert scene != "ais" or ref.at_rest.sum() > 100
+
+
+@pytest.mark.parametrize("scene", sorted(SCENES))
+def test_no_step_beyond_the_reach_no_change(scene):
+    # no step of these scenes is longer than 4 at-rest windows (720 s; the AIS scene's 10 min
+    # gap is shorter): the default, max_step_windows = 4, cuts nothing and changes no bit
+    df = SCENES[scene]()
+    on, off = detect(df), detect(df, ManeuverParams(max_step_windows=0.0))
+    if scene == "ais":
+        pts, index = sorted_with_index(df)
+        dt = np.diff(track_seconds(pts))[np.diff(index.track_of_row) == 0]
+        assert dt.max() == 610.0  # the gap is spanned
+    assert np.array_equal(on.is_maneuver, off.is_maneuver)
+    assert np.array_equal(on.factor.view("int64"), off.factor.view("int64"))
+    assert np.array_equal(on.at_rest, off.at_rest)
+    assert np.array_equal(on.window_p, off.window_p)
 
 
 def test_the_scenes_take_the_shortcuts(monkeypatch):

@@ -61,6 +61,34 @@ def test_real_ais_ships_at_rest_make_no_maneuvers():
     assert rows.loc["ours", "ours_kept"] <= rows.loc["ours", "dp_kept"]
 
 
+@pytest.mark.parametrize("rate_s", [180.0, 600.0])
+def test_saronic_ferry_decimated_makes_no_turns_across_its_hours_in_port(rate_s):
+    # vessel 2, the fast ferry, has AIS gaps of 45-62 min in port; decimated to 180 s or
+    # 600 s (the first fix at or after each tick, as bench/sampling_sweep.py) the heading
+    # window before the first fix after a gap spanned the hour: reversals with a slow chord
+    # (slow share 0.179 / 0.231 without the cut, docs/evaluation.md "Sampling-rate sweep")
+    from wakeline.core import real_sets
+    from wakeline.core.evaluate_real import slow_share
+    from wakeline.core.maneuver import ManeuverParams, median_interval_s
+
+    pts = real_sets.read_greece(real_file("greece-ais-annotated"))
+    ferry = pts[pts["batch"] == "2"].sort_values("time").reset_index(drop=True)
+    t = time_seconds(ferry["time"])
+    rows = np.unique(np.searchsorted(t, np.arange(t[0], t[-1] + 1.0, rate_s)))
+    ferry = ferry.iloc[rows[rows < len(t)]].reset_index(drop=True)
+    ours = detect(ferry)
+    spanned = detect(ferry, ManeuverParams(max_step_windows=0))
+    assert slow_share(spanned) > 0.1  # measured 0.179 / 0.231
+    assert slow_share(ours) == 0.0
+    assert ours.is_maneuver.sum() >= 0.8 * spanned.is_maneuver.sum()  # 24 / 28, 19 / 13
+    # no window of a maneuver point holds a step beyond the reach (4 x max(180 s, median))
+    t = time_seconds(ours.points["time"])
+    reach = 4 * max(180.0, float(median_interval_s(t, ours.index)[0]))
+    p = int(ours.window_p[0])  # 5 points at every scale at this sampling
+    for r in np.flatnonzero(ours.is_maneuver):
+        assert np.diff(t[r - p + 1 : r + p]).max() <= reach
+
+
 def test_real_radar_turns_against_gnss_truth():
     rows = _real("autoferry-fusion")
     # measured on exclusive radar tracks, GNSS jumps not scored: precision 0.90, recall 0.79
