@@ -31,6 +31,7 @@ def _maneuver_params(args: argparse.Namespace):
         gap_s=args.gap_s,
         min_window_s=args.min_window_s,
         noise_lag_s=args.noise_lag_s,
+        max_step_windows=args.max_step_windows,
     ).checked()
 
 
@@ -214,6 +215,14 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         help=f"the track noise of the noise floor: each point against the points this many "
         f"seconds either side (sees an offset wandering over a window); 0 = its neighbours "
         f"(default {d.noise_lag_s:g})",
+    )
+    p.add_argument(
+        "--max-step-windows",
+        type=float,
+        default=d.max_step_windows,
+        help=f"no heading window spans a step longer than this many at-rest windows (180 s, "
+        f"on sparse tracks one median interval): the at-rest rule's reach; 0 = any step "
+        f"(default {d.max_step_windows:g})",
     )
     p.add_argument(
         "--min-speed",

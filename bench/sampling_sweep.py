@@ -4,6 +4,7 @@ sweep (session 19)").
     python bench/sampling_sweep.py                      # every set, every rate, both variants
     python bench/sampling_sweep.py --quick              # fewer rates, regular only
     python bench/sampling_sweep.py --sets saronic dma --rates 60 180 600 --jitter 0
+    python bench/sampling_sweep.py --max-step-windows 0   # headings across any step (before)
 
 Each real set's tracks are decimated to one fix every R seconds per track: at ticks
 t0, t0 + R, t0 + 2R, ... from the track's first fix, the first fix at or after each tick is
@@ -157,10 +158,17 @@ def rest_time_share(res, max_leg_s: float = 3600.0) -> float:
     return float(dt[leg & both].sum() / max(dt[leg].sum(), 1e-9))
 
 
-def one_row(pts: pd.DataFrame, hours: float, turns: pd.DataFrame | None, rate_s) -> dict:
-    """The maneuver, at-rest, compression and cleaning figures of one decimated set; with
-    GNSS ``turns``, the turns found (match within max(10 s, 2 sampling periods))."""
-    res = detect(pts, ManeuverParams())
+def one_row(
+    pts: pd.DataFrame,
+    hours: float,
+    turns: pd.DataFrame | None,
+    rate_s,
+    params: ManeuverParams | None = None,
+) -> dict:
+    """The maneuver, at-rest, compression and cleaning figures of one decimated set (the
+    detector's ``params``, default its defaults); with GNSS ``turns``, the turns found (match
+    within max(10 s, 2 sampling periods))."""
+    res = detect(pts, params or ManeuverParams())
     comp = compression_against_dp(res)
     n_m = int(res.is_maneuver.sum())
     med = median_interval_s(track_seconds(res.points), res.index)
@@ -196,7 +204,14 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
     ap.add_argument("--quick", action="store_true", help=f"rates {QUICK_RATES}, regular only")
     ap.add_argument("--no-assoc", action="store_true", help="skip the association columns")
     ap.add_argument("--csv", help="write the table here too")
+    ap.add_argument(
+        "--max-step-windows",
+        type=float,
+        default=ManeuverParams().max_step_windows,
+        help="the detector's max_step_windows (0 = headings across any step, as before)",
+    )
     a = ap.parse_args(argv)
+    params = ManeuverParams(max_step_windows=a.max_step_windows)
     rates = a.rates or (QUICK_RATES if a.quick else RATES)
     variants = [0.0] if a.quick or a.jitter <= 0 else [0.0, a.jitter]
     cpu0, wall0 = time.process_time(), time.time()
@@ -215,7 +230,7 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
             cases += [(f"{r:g}" + (f"±{j:.0%}" if j else ""), r, j) for j in variants]
         for label, r, j in cases:
             pts = points if r is None else decimate(points, r, j)
-            row = {"set": name, "rate": label, **one_row(pts, hours, turns, r)}
+            row = {"set": name, "rate": label, **one_row(pts, hours, turns, r, params)}
             if gaps is not None and scenes and not a.no_assoc:
                 row["P_CA"], row["P_FA"], row["pairs"], row["reach"] = association(
                     scenes, r, j, *gaps

@@ -236,3 +236,14 @@ def test_evaluate_maneuver_hard_prints_the_hard_table(tmp_path, capsys):
     assert {"precision", "recall", "slow_share", "kept", "dp_kept", "dis_e_true_m"} <= set(
         table.columns
     )
+
+
+def test_evaluate_maneuver_takes_the_step_limit():
+    from wakeline.app.cli_evaluate import _maneuver_params
+
+    def params(*extra):
+        return _maneuver_params(build_parser().parse_args(["evaluate", "maneuver", *extra]))
+
+    assert params().max_step_windows == 4.0
+    assert params("--max-step-windows", "0").max_step_windows == 0.0
+    assert params("--paper").max_step_windows == 0.0
