@@ -2,6 +2,7 @@
 
     python bench/slow_maneuvers.py                        # ATD example_truth (the tuning file)
     python bench/slow_maneuvers.py FILE [--map k=col ...]
+    python bench/slow_maneuvers.py --max-step-windows 0   # headings across any step (before)
 
 For the detector with sparse stays off (``rest_steps=0``, the rule before session 18) and on (the
 default), the maneuver points and the goal's slow share (speed over the chord from the fix
@@ -64,9 +65,18 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("file", nargs="?", default=str(DEFAULT))
     ap.add_argument("--map", nargs="*", default=None)
+    ap.add_argument(
+        "--max-step-windows",
+        type=float,
+        default=ManeuverParams().max_step_windows,
+        help="the detector's max_step_windows (0 = headings across any step, as before)",
+    )
     args = ap.parse_args()
     pts = _track_files(Path(args.file), args.map)
-    results = {s: detect(pts, ManeuverParams(rest_steps=s)) for s in (0.0, 1.0)}
+    results = {
+        s: detect(pts, ManeuverParams(rest_steps=s, max_step_windows=args.max_step_windows))
+        for s in (0.0, 1.0)
+    }
     for steps, res in results.items():
         p, index = res.points, res.index
         x, y = local_xy(p, index)
