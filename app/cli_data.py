@@ -8,7 +8,7 @@ from wakeline.app.cli_common import EPILOG, positive_float, positive_int
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
-    from wakeline.core.io import import_to_csv, write_csv, write_json
+    from wakeline.core.io import import_to_csv, nothing_imported, write_csv, write_json
 
     # Streamed: batch in, batch out (bounded memory); same output as read_points.
     result = import_to_csv(
@@ -43,39 +43,6 @@ def _cmd_import(args: argparse.Namespace) -> int:
         print(f"wakeline: error: {nothing_imported(rep)}", file=sys.stderr)
         return 2
     return 0
-
-
-#: What to do when every row of a file was quarantined for one reason.
-_HINTS = {
-    "lon out of range": "the positions are not longitude/latitude in degrees (local metres "
-    "or another projection?): Wakeline reads WGS-84 degrees; convert them first, or check "
-    "that --map lon=… and lat=… name the right columns",
-    "lat out of range": "the positions are not longitude/latitude in degrees (local metres "
-    "or another projection?): Wakeline reads WGS-84 degrees; convert them first, or check "
-    "that --map lon=… and lat=… name the right columns",
-    "unparsable time": "the time column is not a time Wakeline reads (ISO 8601, day-first "
-    "dd/mm/yyyy, unix seconds or milliseconds): check --map time=…",
-    "missing batch": "no row has a track id: map one with --map batch=COLUMN",
-}
-
-
-def nothing_imported(rep: dict) -> str:
-    """Why a file gave no points, and what to try: the main reason with its hint."""
-    if not rep.get("rows_read"):
-        return f"{rep.get('input', 'the file')}: no data rows (a header only?); nothing imported"
-    reasons = rep.get("quarantine_reasons") or {}
-    if not reasons:
-        return "nothing imported"
-    reason, count = max(reasons.items(), key=lambda kv: kv[1])
-    text = (
-        f"nothing imported: all {rep['rows_read']:,} rows were quarantined, {count:,} as '{reason}'"
-    )
-    for key, hint in _HINTS.items():
-        if reason.startswith(key):
-            return f"{text}; {hint}"
-    if reason.startswith("unparsable "):
-        return f"{text}; check the column mapped to {reason.split()[-1]} (--map)"
-    return text
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:

@@ -351,14 +351,14 @@ def say_quarantined(path, report: dict, command: str = "import") -> None:
 def read_input(path: Path, counts: dict | None = None, **options):
     """Points of any layout ``import`` reads (``options``: read_points keywords);
     quarantined rows are counted on stderr and, when ``counts`` is given, into it."""
-    from wakeline.core.io import read_points
+    from wakeline.core.io import nothing_imported, read_points
 
     result = read_points(path, **options)
     say_quarantined(path, result.report)
     if counts is not None:
         counts.update(read_counts(result.report))
     if len(result.points) == 0:
-        raise InputError(f"{path}: no usable points")
+        raise InputError(nothing_imported(result.report, str(path)))
     return result.points
 
 

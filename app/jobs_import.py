@@ -39,7 +39,7 @@ class ImportJobsMixin:
 
     def load_files(self, paths: list[Path], options: dict | None = None) -> int:
         """Import files (one job, one after the other); each becomes a source layer."""
-        from wakeline.core.io import read_points
+        from wakeline.core.io import nothing_imported, read_points
         from wakeline.core.io.export_like import layout_meta
 
         options = options or {}
@@ -56,7 +56,7 @@ class ImportJobsMixin:
                 try:
                     result = read_points(path, progress=sub_progress(sub, 0.0, 0.85), **options)
                     if len(result.points) == 0:
-                        raise InputError(f"{path.name}: no usable points")
+                        raise InputError(nothing_imported(result.report, path.name))
                 except (InputError, OSError) as exc:
                     if len(paths) == 1:
                         raise

@@ -108,7 +108,7 @@ def clean_file(
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping, resolve
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
-    from wakeline.core.io.reader import parse_zone
+    from wakeline.core.io.reader import nothing_imported, parse_zone
     from wakeline.core.io.sniff import sniff
 
     params = (params or CleanParams()).checked()
@@ -155,7 +155,7 @@ def clean_file(
             shutil.rmtree(folder, ignore_errors=True)
             return _clean_whole(path, output, rejected, params, progress, options)
         if spill.rows == 0:
-            raise InputError(f"{path}: no usable points")
+            raise InputError(nothing_imported(read.report, str(path)))
         report = _clean_runs(spill, output, rejected, params, progress, rows)
         return FileCleanResult(report, read.report, read.quarantine, True)
     finally:
@@ -190,11 +190,11 @@ def remove_stale_scratch(folder: str | Path | None = None) -> list[Path]:
 def _clean_whole(path, output, rejected, params, progress, options) -> FileCleanResult:
     """The whole-table way: read_points, clean, write."""
     from wakeline.core.clean import clean
-    from wakeline.core.io import read_points, write_csv, write_points
+    from wakeline.core.io import nothing_imported, read_points, write_csv, write_points
 
     read = read_points(path, progress=lambda f, text: progress(0.3 * f, text), **options)
     if len(read.points) == 0:
-        raise InputError(f"{path}: no usable points")
+        raise InputError(nothing_imported(read.report, str(path)))
     result = clean(read.points, params, lambda f, text: progress(0.3 + 0.65 * f, text))
     del read.points
     write_points(result.points, output)

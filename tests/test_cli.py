@@ -144,6 +144,21 @@ def test_every_step_reads_a_headerless_file_with_map(tmp_path, capsys):
     capsys.readouterr()
 
 
+@pytest.mark.parametrize("step", ["clean", "maneuvers", "associate"])
+def test_a_step_on_a_file_with_no_usable_row_says_why(step, tmp_path, capsys):
+    """Operator test: `wakeline clean` on a file whose every time is unreadable said only
+    "no usable points" (the reading's quarantine counts were lost); every step now says
+    how many rows went to the quarantine, for what, and what to try."""
+    src = tmp_path / "us.csv"
+    rows = [f"7,05/01/2024 08:0{m}:00 AM,12.{m},56.0" for m in range(5)]
+    src.write_text("mmsi,timestamp,lon,lat\n" + "\n".join(rows) + "\n")
+    assert main([step, str(src), "-o", str(tmp_path / "o.csv")]) == 2
+    err = capsys.readouterr().err
+    assert "all 5 rows were quarantined" in err and "'unparsable time'" in err, err
+    assert "--map time=" in err and str(src) in err
+    assert not (tmp_path / "o.csv").exists()
+
+
 @pytest.mark.parametrize("step", ["clean", "maneuvers", "compress"])
 def test_step_reports_say_where_every_input_row_went(step, tmp_path, capsys):
     """A step's --report carries the reading's counts (rows read, points, quarantined by

@@ -6,6 +6,7 @@ from wakeline.core.io.reader import (
     ImportResult,
     import_to_csv,
     inspect_file,
+    nothing_imported,
     parse_zone,
     read_points,
 )
@@ -28,6 +29,7 @@ __all__ = [
     "import_to_csv",
     "inspect_file",
     "label_points",
+    "nothing_imported",
     "parse_mapping",
     "parse_zone",
     "read_association_table",

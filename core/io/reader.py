@@ -75,6 +75,44 @@ def empty_quarantine() -> pd.DataFrame:
     )
 
 
+#: What to do when every row of a file was quarantined for one reason.
+_HINTS = {
+    "lon out of range": "the positions are not longitude/latitude in degrees (local metres "
+    "or another projection?): Wakeline reads WGS-84 degrees; convert them first, or check "
+    "that --map lon=… and lat=… name the right columns",
+    "lat out of range": "the positions are not longitude/latitude in degrees (local metres "
+    "or another projection?): Wakeline reads WGS-84 degrees; convert them first, or check "
+    "that --map lon=… and lat=… name the right columns",
+    "unparsable time": "the time column is not a time Wakeline reads (ISO 8601, day-first "
+    "dd/mm/yyyy, unix seconds or milliseconds): check --map time=…",
+    "missing batch": "no row has a track id: map one with --map batch=COLUMN",
+}
+
+
+def nothing_imported(rep: dict, name: str | None = None) -> str:
+    """Why a file gave no points, and what to try: the main reason with its hint.
+
+    ``rep``: an import report; ``name``: the file as the message names it (default: the
+    report's ``input``, named only when the file has no data rows)."""
+    if not rep.get("rows_read"):
+        return f"{name or rep.get('input', 'the file')}: no data rows (a header only?); nothing imported"
+    prefix = f"{name}: " if name else ""
+    reasons = rep.get("quarantine_reasons") or {}
+    if not reasons:
+        return f"{prefix}nothing imported"
+    reason, count = max(reasons.items(), key=lambda kv: kv[1])
+    text = (
+        f"{prefix}nothing imported: all {rep['rows_read']:,} rows were quarantined, "
+        f"{count:,} as '{reason}'"
+    )
+    for key, hint in _HINTS.items():
+        if reason.startswith(key):
+            return f"{text}; {hint}"
+    if reason.startswith("unparsable "):
+        return f"{text}; check the column mapped to {reason.split()[-1]} (--map)"
+    return text
+
+
 @dataclass
 class _BadRows:
     lines: list[int] = field(default_factory=list)
