@@ -108,6 +108,49 @@ def test_ais_dma_day_first(write):
     assert r.points.speed.tolist() == [9.1, 9.0]
 
 
+def _month_first_text(rows: int = 200) -> str:
+    """A generic AIS file whose times write the month first (US: 05/17/2024 08:00:00),
+    one fix every 2 h from 1 May: days up to 12 for the first 132 rows."""
+    t0 = pd.Timestamp("2024-05-01 08:00:00")
+    lines = [
+        f"366{k % 3},{(t0 + pd.Timedelta(hours=2 * k)).strftime('%m/%d/%Y %H:%M:%S')},"
+        f"{-70 + k * 1e-3:.4f},{41 + k * 1e-3:.4f}"
+        for k in range(rows)
+    ]
+    return "mmsi,timestamp,lon,lat\n" + "\n".join(lines) + "\n"
+
+
+def test_month_first_times_are_read_month_first(write, tmp_path, monkeypatch):
+    """Operator test: a file of US times (mm/dd/yyyy) was read day-first: its first 132
+    rows (days up to 12) landed months away, 1 May as 5 January, and the other 68 were
+    quarantined as unparsable. The file shows the order (a second number above 12, no
+    first one): read so, with a warning, streamed or whole (a streamed piece holding only
+    days up to 12 cannot tell alone), and written back so by export --like."""
+    from wakeline.app.cli import main
+    from wakeline.core.io import import_to_csv, reader
+
+    src = write("us.csv", _month_first_text())
+    want = pd.Timestamp("2024-05-01T08:00:00Z") + pd.to_timedelta(2 * np.arange(200), unit="h")
+    r = read_points(src)
+    assert r.report["rows_quarantined"] == 0 and r.report["time_format"] == "month-first text"
+    assert sorted(r.points["time"]) == list(want)
+    assert any("month first" in w for w in r.report["warnings"])
+    monkeypatch.setattr(reader, "STREAM_BYTES", 2000)  # the first pieces: days up to 12
+    out = tmp_path / "out.csv"
+    streamed = import_to_csv(src, out)
+    assert streamed.report["rows_quarantined"] == 0
+    assert sorted(pd.to_datetime(pd.read_csv(out)["time"])) == list(want)
+    back = tmp_path / "back.csv"
+    assert main(["export", str(out), "-o", str(back), "--like", str(src)]) == 0
+    assert back.read_text().splitlines()[1:3] == src.read_text().splitlines()[1:3]
+    # Day-first stays day-first (13/05/2024), and a file that cannot tell (no number
+    # above 12) is read day-first as documented.
+    day = write("eu.csv", "mmsi,timestamp,lon,lat\n1,13/05/2024 08:00:00,10,55\n")
+    assert read_points(day).points["time"].iloc[0] == pd.Timestamp("2024-05-13T08:00:00Z")
+    both = write("amb.csv", "mmsi,timestamp,lon,lat\n1,05/01/2024 08:00:00,10,55\n")
+    assert read_points(both).points["time"].iloc[0] == pd.Timestamp("2024-01-05T08:00:00Z")
+
+
 def test_mtad_measurement_and_association_table(write):
     meas = (
         "batch,source,time,lat,lon,vel,cou\n"

@@ -73,6 +73,23 @@ _DAYFIRST = re.compile(
 _OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
 
 
+def _month_first(dates: pd.Series) -> bool:
+    """Whether slashed dates (``nn/nn/yyyy``) write the month first: none has a first
+    number above 12 and some a second one (the import reads them so)."""
+    parts = dates.str.extract(r"^(\d{1,2})\D(\d{1,2})\D")
+    first = pd.to_numeric(parts[0], errors="coerce")
+    second = pd.to_numeric(parts[1], errors="coerce")
+    return bool(not (first > 12).any() and (second > 12).any())
+
+
+def _as_month_first(time: "TimeFormat") -> "TimeFormat":
+    """A day-first text format with the month first (``%d/%m/%Y`` -> ``%m/%d/%Y``)."""
+    if time.kind != "text" or not time.pattern.startswith("%d"):
+        return time
+    ds = time.pattern[2]
+    return replace(time, pattern=f"%m{ds}%d{ds}" + time.pattern[6:])
+
+
 @dataclass(frozen=True)
 class NumberFormat:
     """How one numeric column is written.
@@ -182,6 +199,8 @@ class TimeFormat:
                 trim = "none"
             else:
                 trim = "zeros"
+            if regex is _DAYFIRST and _month_first(present):
+                date = "%m{ds}%d{ds}%Y"
             pattern = date.format(ds=m["ds"]) + m["sep"] + "%H:%M" + (":%S" if m["sec"] else "")
             suffix = (m.groupdict().get("suffix") or "") if regex is _ISO else ""
             zone = tz or "UTC"
@@ -423,6 +442,8 @@ def describe_layout(
     time = TimeFormat.detect(sample[time_key], tz) if time_key else TimeFormat(tz=tz or "UTC")
     if not whole or len(lines) > SAMPLE_ROWS + 1:  # rows beyond the sample
         cols, time = _widened(path, sn, cols, time, time_key)
+    if report.get("time_format") == "month-first text":  # seen over the whole file
+        time = _as_month_first(time)
     return Layout(
         name=name,
         columns=tuple(cols),

@@ -267,6 +267,8 @@ def _read_all(
         clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
         if clock.any() or any("hour the clock change" in w for w in warnings):
             raise WholeFileNeeded  # a repeated hour is placed over the whole file
+        if res.report.get("time_format") == "month-first text":
+            raise WholeFileNeeded  # the other pieces may hold only days up to 12
         if not line_by_line and UNBALANCED_NOTE in warnings:
             raise _Again(quotes=True)
         if strict and any(w.startswith("some bytes are not valid") for w in warnings):

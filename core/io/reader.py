@@ -50,6 +50,34 @@ _DAYFIRST_FORMATS = (
     "%d/%m/%Y %H:%M",
     "%d-%m-%Y %H:%M:%S",
 )
+#: The same with the month first (US exports: 05/17/2024), read only when the file says so.
+_MONTHFIRST_FORMATS = tuple(
+    f.replace("%d", "{d}").replace("%m", "%d").replace("{d}", "%m") for f in _DAYFIRST_FORMATS
+)
+#: The first two numbers of a slashed date (``dd/mm/yyyy`` or ``mm/dd/yyyy``).
+_SLASHED_DATE = r"^\s*(\d{1,2})[/-](\d{1,2})[/-]\d{4}"
+
+
+def _month_first(text: pd.Series) -> int:
+    """How many slashed dates of ``text`` show the month first: none has a first number
+    above 12 and these have a second one above 12 (0: day-first, or no evidence)."""
+    parts = text.str.extract(_SLASHED_DATE)
+    first = pd.to_numeric(parts[0], errors="coerce")
+    second = pd.to_numeric(parts[1], errors="coerce")
+    if (first > 12).any():
+        return 0
+    return int((second > 12).sum())
+
+
+def _parse_slashed(text: pd.Series, todo: pd.Series, formats, info: dict) -> pd.Series:
+    """Naive times of ``text`` where ``todo``, trying ``formats`` in turn (NaT elsewhere)."""
+    parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns]")
+    for fmt in formats:
+        left = parsed.isna() & todo
+        if not left.any():
+            break
+        parsed[left] = _as_ns(pd.to_datetime(text[left], format=fmt, errors="coerce"), info)
+    return parsed
 
 
 @dataclass
@@ -1142,12 +1170,18 @@ def parse_times(
     info["naive"] = bool((present.to_numpy() & ~zoned).any())
     info["time_format"] = "day-first text" if dayfirst else "ISO 8601 text"
     if dayfirst:
-        parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns]")
-        for fmt in _DAYFIRST_FORMATS:
-            todo = parsed.isna() & present
-            if not todo.any():
-                break
-            parsed[todo] = _as_ns(pd.to_datetime(text[todo], format=fmt, errors="coerce"), info)
+        parsed = _parse_slashed(text, present, _DAYFIRST_FORMATS, info)
+        # Dates that day-first cannot read (05/17/2024) and none that only it can: the
+        # file writes the month first. (A whole file's evidence: a piece of a streamed
+        # read may hold only days up to 12.)
+        if kind != "dayfirst" and (parsed.isna() & present).any():
+            month_first = _month_first(text[present])
+            if month_first:
+                if info.get("_streaming"):
+                    raise WholeFileNeeded
+                parsed = _parse_slashed(text, present, _MONTHFIRST_FORMATS, info)
+                info["time_format"] = "month-first text"
+                info["month_first"] = month_first
         parsed = _localize(parsed, tz, info) if tz is not None else parsed.dt.tz_localize("UTC")
     elif tz is not None and info["naive"]:
         parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns, UTC]")
@@ -1223,6 +1257,12 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     """Warnings about how the time column was read (local read as UTC; relative times),
     and numbers read with a decimal comma."""
     out = []
+    if time_info.get("month_first"):
+        out.append(
+            f"the times in {time_src!r} write the month first (mm/dd/yyyy: "
+            f"{time_info['month_first']:,} have a second number above 12, none a first): "
+            "read so"
+        )
     if time_info.get("decimal_comma"):
         out.append(
             f"{time_info['decimal_comma']:,} values were written with a decimal comma "
