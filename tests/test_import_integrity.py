@@ -182,6 +182,33 @@ def test_undecodable_bytes_are_quarantined_not_fatal(write):
     assert "not valid" in r.quarantine["reason"].iloc[0]
 
 
+@pytest.mark.parametrize("streamed", [False, True])
+def test_a_header_line_again_is_named_so(write, tmp_path, monkeypatch, streamed):
+    """Operator test: two exports joined into one file repeat the header mid-file; the
+    line was quarantined as "unparsable time". It is named for what it is — here with
+    Chinese names in GB18030, read whole and streamed in pieces."""
+    from wakeline.core.io import import_to_csv, reader
+
+    header = "批号,时间,经度,纬度,航速(节),航向"
+    rows = [
+        f"{400 + i % 2},2024-05-01 08:{i // 60:02d}:{i % 60:02d},"
+        f"{122 + i * 1e-3:.4f},{30 + i * 1e-3:.4f},9.5,45"
+        for i in range(300)
+    ]
+    text = "\n".join([header, *rows[:150], header, *rows[150:]]) + "\n"
+    path = write("joined.csv", text, encoding="gb18030")
+    if streamed:
+        monkeypatch.setattr(reader, "STREAM_BYTES", 2000)
+        r = import_to_csv(path, tmp_path / "out.csv")
+        assert len(pd.read_csv(tmp_path / "out.csv")) == 300
+    else:
+        r = read_points(path)
+        assert_all_accounted(r, 301)
+    assert r.report["rows_imported"] == 300
+    assert r.quarantine["line"].tolist() == [152]
+    assert r.quarantine["reason"].tolist() == ["the header line again (files joined?)"]
+
+
 def test_a_5_mb_cell(write):
     body = canonical_lines(5, lambda i: "x" * 5_000_000 if i == 2 else "ok")
     r = read_points(write("big.csv", "\n".join([HEADER, *body]) + "\n"))

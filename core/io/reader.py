@@ -1445,6 +1445,24 @@ def _text_column(arr: pa.ChunkedArray) -> _Text:
     return _Text(codes, names.astype(object), arr if unchanged else None)
 
 
+def _header_again(table: pa.Table, cols: dict[str, str], rows: np.ndarray) -> np.ndarray:
+    """Which of ``rows`` (a mask) repeat the header: every mapped cell is its column's
+    name (a second file's header where files were joined). Looks at ``rows`` only."""
+    out = np.zeros(table.num_rows, dtype=bool)
+    where = np.flatnonzero(rows)
+    if not len(where):
+        return out
+    sub = table.take(pa.array(where))
+    same = np.ones(len(where), dtype=bool)
+    for src in set(cols.values()):
+        text, _ = _trimmed(sub[src]) if src in sub.column_names else (None, None)
+        if text is None:
+            continue
+        same &= np.asarray(pc.fill_null(pc.equal(text, src.strip()), False), dtype=bool)
+    out[where[same]] = True
+    return out
+
+
 def _trimmed(arr: pa.ChunkedArray) -> tuple[pa.ChunkedArray, np.ndarray]:
     """Text with edge blanks removed, and a mask of missing (null or blank) cells."""
     text = pc.utf8_trim_whitespace(pc.cast(arr, pa.string()).fill_null(""))
@@ -1542,6 +1560,7 @@ def _to_canonical(
         changed = counted.pop("clock_change", None)
         if changed is not None:
             flag(changed, f"local time skipped or repeated by a clock change in {zone}")
+        flag(_header_again(table, cols, ~time_ok), "the header line again (files joined?)")
         flag(~time_ok, "unparsable time")
     if str(counted.get("time_format", "")).endswith("text"):
         # Text times: a mistyped year (1700-01-01 among 2023 rows) parses; as with numbers
