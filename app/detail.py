@@ -62,6 +62,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.factor_plot.setLabel("bottom", "time since track start", units="min")
         self.factor_plot.getAxis("bottom").enableAutoSIPrefix(False)  # no "kmin"
         self.factor_plot.setLabel("left", "maneuver factor δ", units="°")
+        self.factor_plot.getAxis("left").enableAutoSIPrefix(False)  # no "m°"
         self.factor_curve = self.factor_plot.plot(pen=pg.mkPen("#1f77b4", width=1.5))
         self.factor_marks = pg.ScatterPlotItem(size=9, brush=pg.mkBrush("#d62728"), pen=None)
         self.factor_plot.addItem(self.factor_marks)
@@ -72,6 +73,8 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.comp_plot = pg.PlotWidget(background="w")
         self.comp_plot.setLabel("bottom", "longitude", units="°")
         self.comp_plot.setLabel("left", "latitude", units="°")
+        for side in ("left", "bottom"):  # no "m°" near 0° E or 0° N
+            self.comp_plot.getAxis(side).enableAutoSIPrefix(False)
         self.comp_plot.getPlotItem().getViewBox().setAspectLocked(True)
         self.comp_orig = self.comp_plot.plot(
             pen=pg.mkPen("#9a9a9a", width=1),

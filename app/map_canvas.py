@@ -79,6 +79,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self.plot_item = self.getPlotItem()
         self.setLabel("bottom", "longitude", units="°")
         self.setLabel("left", "latitude", units="°")
+        for side in ("left", "bottom"):  # degrees, never "m°" (near 0° E or 0° N)
+            self.getAxis(side).enableAutoSIPrefix(False)
         self.showGrid(x=True, y=True, alpha=0.25)
         # Room for latitude labels from the start, never given back: an axis that widened
         # or narrowed with its labels would resize the view box, and every layer would be

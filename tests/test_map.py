@@ -284,6 +284,31 @@ def test_relod_when_zooming_in(qtbot):
     assert canvas.draw_data("s").px[0] < 0.01
 
 
+def test_degree_axes_near_greenwich_stay_in_degrees(qtbot):
+    """Operator test: zoomed in at 0° E (the Thames at Greenwich) the map's longitude axis
+    read "longitude (m°)" with ticks -3 … 3 — pyqtgraph's SI prefix on degrees, read as
+    3° by anyone; the Detail views' δ (empty: "m°", ±500) and compressed-track axes too."""
+    from wakeline.app.detail import DetailPanel
+
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(500, 400)
+    canvas.show()
+    canvas.vb.setRange(xRange=(-0.003, 0.003), yRange=(51.47, 51.48), padding=0)
+    detail = DetailPanel()
+    qtbot.addWidget(detail)
+    detail.resize(500, 400)
+    detail.show()
+    detail.comp_plot.setXRange(-0.002, 0.002, padding=0)
+    detail.comp_plot.setYRange(-0.001, 0.001, padding=0)
+    QtWidgets.QApplication.processEvents()
+    axes = [canvas.getAxis("bottom"), canvas.getAxis("left"), detail.factor_plot.getAxis("left")]
+    axes += [detail.comp_plot.getAxis("bottom"), detail.comp_plot.getAxis("left")]
+    for axis in axes:
+        assert "(°)" in axis.labelString(), axis.labelString()
+        assert axis.autoSIPrefixScale == 1.0
+
+
 def test_hover_shows_sensor_batch_time_speed_and_elapsed_time(qtbot):
     t = pd.to_datetime([0.0, 100.0, 200.0], unit="s", utc=True)  # MTAD: seconds from start
     df = pd.DataFrame(
