@@ -151,6 +151,40 @@ def test_month_first_times_are_read_month_first(write, tmp_path, monkeypatch):
     assert read_points(both).points["time"].iloc[0] == pd.Timestamp("2024-01-05T08:00:00Z")
 
 
+def test_times_written_as_digits_alone(write, tmp_path, monkeypatch):
+    """Operator test: times written yyyymmddHHMMSS (20240501080104, as some radar and
+    logger exports do) were read as unix milliseconds and every row quarantined as "time
+    outside 1677-2262". 14-digit whole numbers cannot be unix times Wakeline reads: they
+    are read as the clock time they spell (UTC, or --tz), whole and streamed; one that
+    spells no time is quarantined as unparsable; export --like writes them back so."""
+    from wakeline.app.cli import main
+    from wakeline.core.io import import_to_csv, reader
+
+    t0 = pd.Timestamp("2024-05-01 08:00:00")
+    times = [(t0 + pd.Timedelta(seconds=37 * k)).strftime("%Y%m%d%H%M%S") for k in range(120)]
+    times[60] = "20241341250000"  # month 13: no time
+    rows = [f"7,{t},{12 + k * 1e-3:.4f},56.0" for k, t in enumerate(times)]
+    src = write("compact.csv", "mmsi,timestamp,lon,lat\n" + "\n".join(rows) + "\n")
+    want = [pd.Timestamp(t, tz="UTC") for k, t in enumerate(times) if k != 60]
+    r = read_points(src)
+    assert r.report["time_format"] == "yyyymmddHHMMSS text"
+    assert list(r.points["time"]) == want
+    assert r.quarantine["line"].tolist() == [62]
+    assert r.quarantine["reason"].tolist() == ["unparsable time"]
+    local = read_points(src, tz="Europe/Copenhagen")  # CEST: UTC+2
+    assert local.points["time"].iloc[0] == pd.Timestamp("2024-05-01T06:00:00Z")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 1000)
+    out = tmp_path / "out.csv"
+    assert import_to_csv(src, out).report["rows_quarantined"] == 1
+    assert list(pd.to_datetime(pd.read_csv(out)["time"])) == want
+    back = tmp_path / "back.csv"
+    assert main(["export", str(out), "-o", str(back), "--like", str(src)]) == 0
+    assert back.read_text().splitlines()[1:4] == src.read_text().splitlines()[1:4]
+    # Unix milliseconds (13 digits today) stay unix milliseconds.
+    ms = write("ms.csv", "mmsi,timestamp,lon,lat\n7,1714550464000,12.0,56.0\n")
+    assert read_points(ms).points["time"].iloc[0] == pd.Timestamp("2024-05-01T08:01:04Z")
+
+
 def test_mtad_measurement_and_association_table(write):
     meas = (
         "batch,source,time,lat,lon,vel,cou\n"

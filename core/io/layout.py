@@ -173,11 +173,14 @@ class TimeFormat:
 
     @staticmethod
     def detect(values: pd.Series, tz: str | None = None) -> "TimeFormat":
-        """The format of a column of time texts (ISO, day-first or unix numbers)."""
+        """The format of a column of time texts (ISO, day-first, yyyymmddHHMMSS or unix
+        numbers)."""
         text = values.astype("str").str.strip()
         present = text[text != ""]
         if len(present) == 0:
             return TimeFormat(tz=tz or "UTC")
+        if present.str.fullmatch(r"\d{14}").mean() >= 0.9:  # yyyymmddHHMMSS, as read
+            return TimeFormat("text", "%Y%m%d%H%M%S", 0, "none", "", tz or "UTC")
         number = NumberFormat.detect(present)
         if number is not None:
             numbers = pd.to_numeric(

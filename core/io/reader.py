@@ -595,6 +595,34 @@ def parse_zone(text: str | None) -> datetime.tzinfo | None:
 EARLY_BEFORE_S = 40 * 365.25 * 86400.0
 
 
+def _is_compact(values: np.ndarray) -> bool:
+    """Whether numbers are times written as digits alone, yyyymmddHHMMSS (20240501080104):
+    most are 14-digit whole numbers, which as unix milliseconds would lie after 2286."""
+    finite = values[np.isfinite(values)]
+    if not len(finite):
+        return False
+    digits = (finite >= 1e13) & (finite < 1e14) & (finite == np.floor(finite))
+    return bool(digits.mean() >= 0.9)
+
+
+def _compact_iso(values: np.ndarray) -> pa.Array:
+    """yyyymmddHHMMSS numbers as ISO text (``2024-05-01 08:01:04``); null where a value
+    is not 14 digits (quarantined as unparsable)."""
+    ok = np.isfinite(values) & (values >= 1e13) & (values < 1e14) & (values == np.floor(values))
+    digits = pa.array(np.where(ok, values, 0).astype("int64")).cast(pa.string())
+    parts = [pc.utf8_slice_codeunits(digits, a, b) for a, b in _COMPACT_PARTS]
+    iso = pc.binary_join_element_wise(
+        pc.binary_join_element_wise(*parts[:3], "-"),
+        pc.binary_join_element_wise(*parts[3:], ":"),
+        " ",
+    )
+    return pc.if_else(pa.array(ok), iso, pa.scalar(None, pa.string()))
+
+
+#: Where year, month, day, hour, minute and second sit in yyyymmddHHMMSS.
+_COMPACT_PARTS = ((0, 4), (4, 6), (6, 8), (8, 10), (10, 12), (12, 14))
+
+
 def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Unix seconds or milliseconds to int64 ns, and validity. Relative times (a scene's
     seconds from its start) are seconds; absolute ones are told apart number by number by
@@ -1149,12 +1177,18 @@ def parse_times(
         ok = valid & ~outside
         ns = np.where(ok, raw, 0) * (1_000_000_000 // per_s)
         return ns, ok
+    compact = False  # digits alone, yyyymmddHHMMSS: read as the text they spell
     if pa.types.is_integer(arr.type) or pa.types.is_floating(arr.type):
         seconds = pc.cast(arr, pa.float64()).to_numpy(zero_copy_only=False)
-        return _epoch_ns(seconds, info)
+        if kind != "auto" or not _is_compact(seconds):
+            return _epoch_ns(seconds, info)
+        arr, compact = pa.chunked_array([_compact_iso(seconds)]), True
     text = pd.Series(arr.to_pandas(), dtype="str").str.strip()
-    present = ~(text.isna() | (text == ""))
     numeric = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64", copy=True)
+    if kind == "auto" and not compact and _is_compact(numeric):
+        text = pd.Series(_compact_iso(numeric).to_pandas(), index=text.index, dtype="str")
+        compact, numeric = True, np.full(len(text), np.nan)
+    present = ~(text.isna() | (text == ""))
     if decimal_comma:
         k = _with_decimal_comma(text, numeric)
         if k:
@@ -1169,6 +1203,8 @@ def parse_times(
     zoned = text.str.contains(_ZONE_SUFFIX, regex=True).fillna(False).to_numpy(dtype=bool)
     info["naive"] = bool((present.to_numpy() & ~zoned).any())
     info["time_format"] = "day-first text" if dayfirst else "ISO 8601 text"
+    if compact:
+        info["time_format"] = "yyyymmddHHMMSS text"
     if dayfirst:
         parsed = _parse_slashed(text, present, _DAYFIRST_FORMATS, info)
         # Dates that day-first cannot read (05/17/2024) and none that only it can: the
