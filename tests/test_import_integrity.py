@@ -219,6 +219,37 @@ def test_a_5_mb_cell(write):
 # --- 3. headers as users write them ------------------------------------------------------
 
 
+@pytest.mark.parametrize("streamed", [False, True])
+def test_rows_ending_with_the_delimiter_and_excels_sep_line(write, tmp_path, monkeypatch, streamed):
+    """Operator test: an export whose every row ends with a delimiter the header lacks
+    ("…,80.9,") had all its rows quarantined as "too many fields: 7 of 6"; a European
+    Excel file starting with "sep=;" was refused ("headers found: sep=, col2"). The empty
+    last field is one more (empty) column; the sep line names the delimiter and is skipped
+    — line numbers stay physical lines."""
+    from wakeline.core.io import import_to_csv, reader
+
+    rows = [
+        f"7,2024-05-01 08:{k // 60:02d}:{k % 60:02d},{12 + k * 1e-3:.4f},56.0," for k in range(90)
+    ]
+    rows[40] = "7,not a time,12.0,56.0,"
+    trailing = write("trailing.csv", "mmsi,timestamp,lon,lat\n" + "\n".join(rows) + "\n")
+    semi = [r.rstrip(",").replace(",", ";").replace(".", ",") for r in rows]
+    excel = write("excel.csv", "sep=;\nmmsi;timestamp;lon;lat\n" + "\n".join(semi) + "\n")
+    for path, header_lines in ((trailing, 1), (excel, 2)):
+        if streamed:
+            monkeypatch.setattr(reader, "STREAM_BYTES", 1000)
+            r = import_to_csv(path, tmp_path / "out.csv")
+            points = pd.read_csv(tmp_path / "out.csv")
+        else:
+            r = read_points(path)
+            points = r.points
+            assert_all_accounted(r, 90)
+        assert r.report["rows_imported"] == 89 and len(points) == 89
+        assert r.quarantine["line"].tolist() == [41 + header_lines]
+        assert r.quarantine["reason"].tolist() == ["unparsable time"]
+        assert points["lon"].iloc[1] == pytest.approx(12.001)
+
+
 def test_public_ais_export_with_unit_suffixes():
     r = read_points(BATTERY / "public_ais_units.csv")
     cols = r.report["columns"]

@@ -401,6 +401,7 @@ def describe_layout(
     decoded = text.decode(sn.encoding, errors="replace").removeprefix("\ufeff")
     line_end = "\r\n" if "\r\n" in decoded else ("\r" if "\r" in decoded else "\n")
     lines = [ln for ln in re.split(r"\r\n|\r|\n", decoded) if ln.strip()]
+    lines = lines[1:] if sn.excel_sep else lines  # Excel's "sep=;" line: no header
     header_line = lines[0] if sn.has_header and lines else ""
     raw_names = (
         next(csv.reader([header_line], delimiter=sn.delimiter)) if header_line else list(sn.columns)

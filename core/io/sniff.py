@@ -14,6 +14,8 @@ ENCODINGS = ("utf-8", "gb18030")
 DELIMITERS = (",", ";", "\t")
 _NMEA = re.compile(r"[!$]AIVD[MO],")
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+#: Excel's first line naming the delimiter (``sep=;``), before the header.
+_EXCEL_SEP = re.compile(r'"?sep=(.)"?')
 
 
 @dataclass(frozen=True)
@@ -34,6 +36,7 @@ class Sniff:
     kind: str = "csv"  # "csv" or "nmea" (raw AIS sentences)
     encoding_given: bool = False  # the caller named the encoding
     ascii: bool = True  # the sample is plain ASCII (any ASCII-based encoding reads it)
+    excel_sep: bool = False  # the file starts with Excel's "sep=;" line (skipped)
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
@@ -234,12 +237,23 @@ def sniff(path: str | Path, encoding: str | None = None, delimiter: str | None =
     }
     if _NMEA.search(lines[0]) or sum(bool(_NMEA.search(x)) for x in lines[:20]) >= 2:
         return Sniff(path, compression, enc, ",", False, 0, (), (), kind="nmea", **extras)
+    excel = _EXCEL_SEP.fullmatch(lines[0].strip())
+    if excel and len(lines) > 1:  # Excel's "sep=;" line names the delimiter: skipped
+        delimiter = delimiter or excel.group(1)
+        lines = lines[1:]
+        extras["excel_sep"] = True
+        leading_blank = next(
+            i for i, line in enumerate(physical) if i > leading_blank and line.strip()
+        )
     delim = delimiter or _pick_delimiter(lines)
     first = [f.strip().strip('"') for f in lines[0].split(delim)]
     has_header = any(f and not _NUMBER.match(f) for f in first)
     if has_header:
-        columns = _unique_names(first)
         data_lines = lines[1:6]
+        rows = [line.split(delim) for line in data_lines]
+        if rows and all(len(r) == len(first) + 1 and not r[-1].strip() for r in rows):
+            first.append("")  # every row ends with the delimiter: one more (empty) column
+        columns = _unique_names(first)
     else:
         columns = tuple(f"col{i + 1}" for i in range(len(first)))
         data_lines = lines[:5]
