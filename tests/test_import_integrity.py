@@ -209,6 +209,42 @@ def test_a_header_line_again_is_named_so(write, tmp_path, monkeypatch, streamed)
     assert r.quarantine["reason"].tolist() == ["the header line again (files joined?)"]
 
 
+@pytest.mark.parametrize("streamed", [False, True])
+def test_nul_bytes_and_joined_files_with_a_bom(write, tmp_path, monkeypatch, streamed):
+    """Operator test: a logger's file cut short by a power loss ends in a block of NUL
+    bytes: the file was refused as binary and its good lines lost. A NUL byte in a line
+    made its id a track of its own ("\\x00219230000"), and a header repeated with its byte
+    order mark (files joined with cat) was an "unparsable time". Now the block is one
+    damaged line, a line with NUL bytes is quarantined as damaged, and the repeated
+    header is named."""
+    from wakeline.core.io import import_to_csv, reader
+
+    rows = [
+        f"7,2024-05-01 08:{k // 60:02d}:{k % 60:02d},{12 + k * 1e-3:.4f},56.0" for k in range(60)
+    ]
+    part = "\ufeffmmsi,timestamp,lon,lat\r\n" + "\r\n".join(rows) + "\r\n"
+    damaged = part.replace("\r\n7,", "\r\n\x007,", 1)  # line 2: a NUL byte first
+    raw = damaged.encode() + part.encode() + b"\x00" * 4096
+    path = write("logger.csv", raw)
+    if streamed:
+        monkeypatch.setattr(reader, "STREAM_BYTES", 1000)
+        r = import_to_csv(path, tmp_path / "out.csv")
+        points = pd.read_csv(tmp_path / "out.csv", dtype={"batch": str})
+    else:
+        r = read_points(path)
+        points = r.points
+        assert_all_accounted(r, 122)  # 2 x 60 rows, the second header, the NUL block
+    assert r.report["rows_imported"] == 119
+    assert set(points["batch"]) == {"7"}
+    assert r.quarantine["line"].tolist() == [2, 62, 123]
+    reasons = r.quarantine["reason"].tolist()
+    assert reasons[:2] == [
+        "NUL bytes in the line (damaged)",
+        "the header line again (files joined?)",
+    ]
+    assert reasons[2].startswith("short row")
+
+
 def test_a_5_mb_cell(write):
     body = canonical_lines(5, lambda i: "x" * 5_000_000 if i == 2 else "ok")
     r = read_points(write("big.csv", "\n".join([HEADER, *body]) + "\n"))

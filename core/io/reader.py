@@ -1494,6 +1494,7 @@ def _header_again(table: pa.Table, cols: dict[str, str], rows: np.ndarray) -> np
         text, _ = _trimmed(sub[src]) if src in sub.column_names else (None, None)
         if text is None:
             continue
+        text = pc.utf8_ltrim(text, "\ufeff")  # a joined file's byte order mark
         same &= np.asarray(pc.fill_null(pc.equal(text, src.strip()), False), dtype=bool)
     out[where[same]] = True
     return out
@@ -1562,6 +1563,13 @@ def _to_canonical(
             reason_names.append(reason)
             reasons[new] = len(reason_names) - 1
 
+    for name in ("sensor", "batch"):
+        if name in text:  # NUL bytes: a damaged line (its id would make a track of its own)
+            names = text[name].names  # distinct values: a few, not one per row
+            nul = np.fromiter(("\x00" in v for v in names), dtype=bool, count=len(names))
+            if nul.any():
+                codes = text[name].codes
+                flag((codes >= 0) & nul[np.maximum(codes, 0)], "NUL bytes in the line (damaged)")
     for name in ("sensor", "batch"):
         if name in text:
             flag(text[name].codes < 0, f"missing {name}")

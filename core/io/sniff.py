@@ -14,6 +14,8 @@ ENCODINGS = ("utf-8", "gb18030")
 DELIMITERS = (",", ";", "\t")
 _NMEA = re.compile(r"[!$]AIVD[MO],")
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+#: A block of NUL bytes (64 or more in a row).
+_NUL_BLOCK = re.compile(rb"\x00{64,}")
 #: Excel's first line naming the delimiter (``sep=;``), before the header.
 _EXCEL_SEP = re.compile(r'"?sep=(.)"?')
 
@@ -126,6 +128,12 @@ def _is_wide(encoding: str | None) -> bool:
 def _looks_binary(sample: bytes) -> bool:
     """Binary data: NUL bytes beyond a stray one or two (a damaged line of a text file is
     its row's problem, quarantined, wherever it lies), or many control characters."""
+    # Blocks of NUL bytes (a logger's file cut short by a power loss, zeros where lines
+    # were to go) are damaged lines of a text file, not the sign of a binary one.
+    text = _NUL_BLOCK.sub(b"", sample)
+    if not text.strip():
+        return bool(sample)  # nothing but NUL bytes
+    sample = text
     if sample.count(b"\x00") > max(4, len(sample) // 1000):
         return True
     control = sum(sample.count(bytes([b])) for b in (*range(0, 9), *range(14, 32)))
