@@ -215,7 +215,8 @@ class TimeFormat:
             return TimeFormat("text", pattern, digits, trim, suffix, zone)
         raise InputError(
             f"cannot tell the time format from {first!r}; "
-            "expected unix seconds, ISO 8601 or dd/mm/yyyy HH:MM:SS"
+            "expected unix seconds, ISO 8601, dd/mm/yyyy (or mm/dd/yyyy) HH:MM:SS or "
+            "yyyymmddHHMMSS"
         )
 
 

@@ -112,7 +112,8 @@ _HINTS = {
     "or another projection?): Wakeline reads WGS-84 degrees; convert them first, or check "
     "that --map lon=… and lat=… name the right columns",
     "unparsable time": "the time column is not a time Wakeline reads (ISO 8601, day-first "
-    "dd/mm/yyyy, unix seconds or milliseconds): check --map time=…",
+    "dd/mm/yyyy or month-first mm/dd/yyyy, yyyymmddHHMMSS, unix seconds or milliseconds): "
+    "check --map time=…",
     "missing batch": "no row has a track id: map one with --map batch=COLUMN",
 }
 
