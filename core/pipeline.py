@@ -164,15 +164,19 @@ def run_clean(points: pd.DataFrame, params: dict, progress: Progress = null_prog
 
 
 def _summary_clean(res: StepResult) -> str:
+    """Where the points went: kept, then removed, changed (kept, with new values) and
+    replaced, each with its rules (the removed add up to what was not kept)."""
     rep = res.report
-    touched = {
-        rule: sum(v.get(k, 0) for k in ("removed", "changed", "replaced"))
-        for rule, v in rep["rules"].items()
-    }
-    counts = ", ".join(f"{rule} {n:,}" for rule, n in touched.items() if n)
+    parts = []
+    for action in ("removed", "changed", "replaced"):
+        per = {rule: v.get(action, 0) for rule, v in rep["rules"].items()}
+        per = {rule: n for rule, n in per.items() if n}
+        if per:
+            rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())
+            parts.append(f"{action} {sum(per.values()):,} ({rules})")
     return (
         f"kept {rep['points_out']:,} of {rep['points_in']:,} points in {rep['tracks_out']:,} tracks"
-        + (f"; {counts}" if counts else "")
+        + (f"; {'; '.join(parts)}" if parts else "")
     )
 
 
