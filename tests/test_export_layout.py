@@ -537,6 +537,19 @@ def test_export_writes_the_format_its_suffix_names(tmp_path, capsys):
     assert not (tmp_path / "x.csv.gz").exists() and not (tmp_path / "y.geojson").exists()
 
 
+def test_export_refuses_a_spreadsheet_suffix(tmp_path, capsys):
+    """Operator test: `wakeline export … -o tracks.xlsx` wrote CSV text into tracks.xlsx
+    (which a spreadsheet refuses to open) and said "exported"; it is refused, naming the
+    formats export writes."""
+    src = tmp_path / "p.csv"
+    src.write_text("sensor,batch,time,lon,lat\nS1,7,2024-05-01T00:00:00Z,11.5,57.6\n")
+    for name in ("tracks.xlsx", "tracks.ods"):
+        assert _run("export", src, "-o", tmp_path / name) == 2
+        err = capsys.readouterr().err
+        assert "write to .csv" in err and err.count("\n") == 1, err
+        assert not (tmp_path / name).exists()
+
+
 def test_rows_beyond_the_sampled_start_keep_their_precision(tmp_path):
     """8,000 rows with 4 decimals and whole seconds, then a vessel with 6 decimals and
     half seconds: exported like the original, every value reads back as it was (fuzzing:

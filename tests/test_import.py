@@ -185,6 +185,20 @@ def test_times_written_as_digits_alone(write, tmp_path, monkeypatch):
     assert read_points(ms).points["time"].iloc[0] == pd.Timestamp("2024-05-01T08:01:04Z")
 
 
+def test_delimiter_as_typed_on_a_command_line(write, tmp_path, capsys):
+    """Operator test: `--delimiter '\\t'` (the shell passes backslash-t) and `--delimiter
+    tab` read a tab-separated file as one column ("missing required column …, headers
+    found: mmsi<TAB>timestamp…"); `--delimiter ';;'` was taken too. The words for a tab
+    are understood, anything longer than a character is refused by name."""
+    from wakeline.app.cli import main
+
+    src = write("tab.csv", "mmsi\ttimestamp\tlon\tlat\n7\t2024-05-01T00:00:00Z\t11.5\t57.6\n")
+    for given in ("\\t", "tab", "\t"):
+        assert len(read_points(src, delimiter=given).points) == 1
+    assert main(["import", str(src), "-o", str(tmp_path / "o.csv"), "--delimiter", ";;"]) == 2
+    assert "--delimiter ';;': give one character" in capsys.readouterr().err
+
+
 def test_mtad_measurement_and_association_table(write):
     meas = (
         "batch,source,time,lat,lon,vel,cou\n"

@@ -209,9 +209,28 @@ def _unique_names(names: list[str]) -> tuple[str, ...]:
     return tuple(out)
 
 
+#: Delimiters as people type them on a command line (a shell passes ``\t`` as two
+#: characters).
+_DELIMITER_WORDS = {"\\t": "\t", "tab": "\t", "space": " ", "comma": ",", "semicolon": ";"}
+
+
+def delimiter_given(delimiter: str | None) -> str | None:
+    """The delimiter a user named: one character, or ``\\t``/``tab``/``space``/``comma``/
+    ``semicolon``; None: detect. Raises :class:`InputError` for anything else."""
+    if delimiter is None or delimiter == "":
+        return None
+    delim = _DELIMITER_WORDS.get(delimiter.lower(), delimiter)
+    if len(delim) != 1:
+        raise InputError(
+            f"--delimiter {delimiter!r}: give one character (, ; |), or tab, \\t or space"
+        )
+    return delim
+
+
 def sniff(path: str | Path, encoding: str | None = None, delimiter: str | None = None) -> Sniff:
     """Inspect a CSV file. Raises :class:`InputError` for empty, binary or undecodable files."""
     path = Path(path)
+    delimiter = delimiter_given(delimiter)
     sample, compression = _read_sample(path)
     if not sample.strip():
         raise InputError(f"{path}: the file is empty")
