@@ -186,6 +186,10 @@ class DetailPanel(QtWidgets.QTabWidget):
     def clear(self) -> None:
         self.factor_curve.setData([], [])
         self.factor_marks.setData([], [])
+        # An empty plot keeps no time axis of the track shown before (minutes of an
+        # 8-day track under a 2-hour one's "run Maneuvers or Compress to see δ").
+        self.factor_plot.setXRange(0.0, 1.0, padding=0)
+        self.factor_plot.enableAutoRange(axis="x")
         self.comp_orig.setData([], [])
         self.comp_kept.setData([], [])
         self.factor_plot.setTitle("")

@@ -747,6 +747,35 @@ def test_detail_time_axes_keep_minutes(qtbot):
         assert "(min)" in label and "kmin" not in label, label
 
 
+def test_detail_time_axis_of_a_track_without_factor_is_not_the_last_tracks(qtbot):
+    """Operator test: after an 8-day track's δ, a fused track (no δ: "run Maneuvers or
+    Compress to see δ") showed the time axis of the 8-day one, 0 … 12,000 min."""
+    from wakeline.app.detail import DetailPanel
+
+    panel = DetailPanel()
+    qtbot.addWidget(panel)
+    panel.resize(600, 400)
+    panel.show()
+    qtbot.waitExposed(panel)
+    t0 = pd.Timestamp("2024-08-01", tz="UTC")
+    long = pd.DataFrame(
+        {
+            "time": t0 + pd.to_timedelta(np.arange(100) * 130.0, unit="min"),
+            "maneuver_factor": np.linspace(0.0, 90.0, 100),
+            "is_maneuver": np.arange(100) == 50,
+        }
+    )
+    panel.show_track(long, threshold_deg=15.0)
+    QtWidgets.QApplication.processEvents()
+    assert panel.factor_plot.viewRange()[0][1] > 10_000
+    panel.show_track(pd.DataFrame({"time": long["time"].head(5)}))
+    QtWidgets.QApplication.processEvents()
+    assert panel.factor_plot.viewRange()[0][1] <= 1.0
+    panel.show_track(long.head(20), threshold_deg=15.0)  # data again: its own range
+    QtWidgets.QApplication.processEvents()
+    assert 2000 < panel.factor_plot.viewRange()[0][1] < 3000
+
+
 def test_screenshot_of_a_file_that_does_not_load_ends_with_an_error(qtbot, tmp_path, capsys):
     """`wakeline gui BAD --screenshot X` returned never: the failure's modal dialog waited
     for a click no one could give. Now the failure is printed and the run ends (exit 2)."""
