@@ -63,6 +63,36 @@ PIXMAP_CACHE_KIB = 256 * 1024
 LodExecutor = Callable[[Callable[[], DrawData], Callable[[DrawData], None]], None]
 
 
+class LongitudeAxis(pg.AxisItem):
+    """The bottom axis: major ticks at least a label's width apart. pyqtgraph puts 2.25
+    or more labelled intervals on any width, so a narrow map (the before/after pair)
+    printed "131.16131.18131.20" as one string."""
+
+    GAP_PX = 10.0  # free space between two tick labels
+
+    def tickSpacing(self, minVal: float, maxVal: float, size: float):  # noqa: N802, N803
+        levels = super().tickSpacing(minVal, maxVal, size)
+        dif = abs(maxVal - minVal)
+        if not levels or size <= 0 or dif == 0 or self._tickSpacing is not None:
+            return levels
+        px = size / dif  # pixels per degree
+        major = levels[0][0]
+        metrics = QtGui.QFontMetricsF(self.style.get("tickFont") or self.font())
+
+        def room(spacing: float) -> float:
+            texts = self.tickStrings([minVal, maxVal, (minVal + maxVal) / 2], 1.0, spacing)
+            return max(metrics.horizontalAdvance(t) for t in texts) + self.GAP_PX
+
+        if major * px >= room(major):
+            return levels
+        while major * px < room(major) and major < dif:
+            exp = math.floor(math.log10(major))
+            m = round(major / 10**exp, 6)
+            major = (2.0 if m < 2 else 5.0 if m < 5 else 10.0) * 10**exp
+        m = round(major / 10 ** math.floor(math.log10(major)), 6)
+        return [(major, 0.0), (major / (2.0 if m == 2 else 5.0), 0.0)]
+
+
 class MapCanvas(MapInteractMixin, pg.PlotWidget):
     """A pyqtgraph plot set up as a lon/lat chart with layers, selection, hover, picking."""
 
@@ -73,7 +103,9 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
 
     def __init__(self, parent=None) -> None:
         ink.setup()
-        super().__init__(parent=parent, background="w")
+        super().__init__(
+            parent=parent, background="w", axisItems={"bottom": LongitudeAxis("bottom")}
+        )
         if QtGui.QPixmapCache.cacheLimit() < PIXMAP_CACHE_KIB:
             QtGui.QPixmapCache.setCacheLimit(PIXMAP_CACHE_KIB)
         self.plot_item = self.getPlotItem()

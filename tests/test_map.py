@@ -309,6 +309,29 @@ def test_degree_axes_near_greenwich_stay_in_degrees(qtbot):
         assert axis.autoSIPrefixScale == 1.0
 
 
+@pytest.mark.parametrize("width", [420, 560, 900])
+def test_longitude_tick_labels_keep_apart(qtbot, width):
+    """Operator test: the before/after maps (a narrow map each) printed their longitude
+    labels as one string, "131.16131.18131.20": pyqtgraph spaces major ticks by the
+    axis length alone. Major ticks are now at least a label's width apart."""
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(width, 420)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    canvas.set_true_aspect(19.72)
+    canvas.vb.setRange(xRange=(131.14, 131.23), yRange=(19.65, 19.80), padding=0)
+    QtWidgets.QApplication.processEvents()
+    axis = canvas.getAxis("bottom")
+    (lo, hi), size = canvas.vb.viewRange()[0], axis.geometry().width()
+    spacing, values = axis.tickValues(lo, hi, size)[0]
+    texts = axis.tickStrings(values, 1.0, spacing)
+    metrics = QtGui.QFontMetricsF(axis.style.get("tickFont") or axis.font())
+    widest = max(metrics.horizontalAdvance(t) for t in texts)
+    assert spacing * size / (hi - lo) >= widest + 4, (spacing, texts, size)
+    assert len(values) >= 1
+
+
 def test_hover_shows_sensor_batch_time_speed_and_elapsed_time(qtbot):
     t = pd.to_datetime([0.0, 100.0, 200.0], unit="s", utc=True)  # MTAD: seconds from start
     df = pd.DataFrame(
