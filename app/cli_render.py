@@ -162,6 +162,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--step",
         nargs="+",
+        action="extend",  # --step clean --step compress: both, in order (was the last)
         choices=STEPS,
         metavar="NAME",
         help=f"run steps with default parameters before drawing, in order ({', '.join(STEPS)})",
