@@ -151,6 +151,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--proposals",
         type=Path,
         nargs="+",
+        action="extend",  # the flag given twice: both tables (was the last, silently)
         required=True,
         metavar="P.csv",
         help="proposals table(s): e.g. one from associate and one from fuse",

@@ -473,6 +473,10 @@ def test_cli_review_matches_the_core_session(scene, tmp_path, capsys):
     ap_csv = str(tmp_path / "ap.csv")
     assert main(["review", str(radar), "-o", str(out), "--proposals", ap_csv, ap_csv]) == 2
     assert "appears twice" in capsys.readouterr().err
+    # The flag given twice reads both tables (operator test: the first was dropped).
+    twice = ["--proposals", ap_csv, "--proposals", ap_csv]
+    assert main(["review", str(radar), "-o", str(out), *twice]) == 2
+    assert "appears twice" in capsys.readouterr().err
     # A decisions row with a field too many, a proposal joining a track to itself: each
     # one clear message (fuzzing: "unknown decision ''", and the self-join accepted).
     (tmp_path / "extra.csv").write_text("proposal,decision\nA0001,accept,x\n", encoding="utf-8")
