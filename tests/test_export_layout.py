@@ -550,6 +550,22 @@ def test_export_refuses_a_spreadsheet_suffix(tmp_path, capsys):
         assert not (tmp_path / name).exists()
 
 
+def test_relative_times_written_as_dates_are_warned_about(tmp_path, capsys):
+    """Operator test: an MTAD scene (seconds from its start) exported --layout dma came
+    out as 01/01/1970 00:00:00 … without a word; a reader takes those for January 1970.
+    The export says so (not for the canonical layout, which stores them so, nor when the
+    times are written as seconds)."""
+    src = tmp_path / "scene.csv"
+    src.write_text("MMSI,time,lat,lon,vel,cou\n7,0.0,20.1,131.2,9,90\n7,10.0,20.1,131.21,9,90\n")
+    for layout, warned in (("dma", True), ("marinecadastre", True), ("canonical", False)):
+        assert _run("export", src, "-o", tmp_path / f"{layout}.csv", "--layout", layout) == 0
+        err = capsys.readouterr().err
+        assert ("January 1970" in err) == warned, (layout, err)
+    assert _run("export", src, "-o", tmp_path / "like.csv", "--like", src) == 0
+    assert "January 1970" not in capsys.readouterr().err
+    assert (tmp_path / "like.csv").read_text().splitlines()[1].split(",")[1] == "0.0"
+
+
 def test_rows_beyond_the_sampled_start_keep_their_precision(tmp_path):
     """8,000 rows with 4 decimals and whole seconds, then a vessel with 6 decimals and
     half seconds: exported like the original, every value reads back as it was (fuzzing:

@@ -445,6 +445,25 @@ def write_layout(
     }
 
 
+def _relative_times_warning(points: pd.DataFrame, layout: Layout) -> list[str]:
+    """A warning when times that count from a scene start (all before 1973: relative, the
+    window shows them as T+…) are written as dates: they read as days of January 1970."""
+    from wakeline.core.io.reader import RELATIVE_BELOW_S
+
+    if layout.time.kind != "text" or layout.name == "canonical":  # canonical: as stored
+        return []
+    if "time" not in points.columns or not len(points):
+        return []
+    latest = (pd.to_datetime(points["time"], utc=True).max() - EPOCH).total_seconds()
+    if not latest < RELATIVE_BELOW_S:
+        return []
+    return [
+        "the times count from a scene start (relative: T+… in the window) and are written "
+        f"as dates of January 1970 ({layout.time.pattern}); to keep them as seconds, "
+        "export like a file whose times are seconds (--like)"
+    ]
+
+
 def _shared_ids_warning(points: pd.DataFrame, layout: Layout) -> list[str]:
     """A warning when tracks of different sensors share a batch id and the layout has no
     sensor column: read back, each such id is one track (the sensors' fixes mixed)."""
@@ -492,7 +511,7 @@ def export_like(
     else:
         ids, members = assign_target_ids(points, renumber=renumber, prefer_sensor=prefer_sensor)
     report = write_layout(ids, layout, path, columns=columns)
-    report["warnings"] = _shared_ids_warning(ids, layout)
+    report["warnings"] = _shared_ids_warning(ids, layout) + _relative_times_warning(ids, layout)
     report["members"] = None
     report["targets"] = None
     if members is not None:
