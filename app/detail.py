@@ -52,6 +52,25 @@ def sequence_curves(
     return out
 
 
+#: A time step this many times the track's median step breaks the δ curve.
+GAP_STEPS = 10.0
+
+
+def gaps_broken(minutes: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A curve's x (minutes) and y with a NaN inserted in every gap longer than
+    :data:`GAP_STEPS` median steps (at least 1 min), drawn with ``connect="finite"``: a
+    line across hours without fixes (a ship at rest, cleaned away) is no value of δ; the
+    track's ends, where δ is undefined (NaN), are left out rather than drawn at 0."""
+    x = np.asarray(minutes, dtype="float64")
+    y = np.asarray(values, dtype="float64")
+    if len(x) < 3:
+        return x, y
+    step = np.diff(x)
+    limit = max(GAP_STEPS * float(np.median(step)), 1.0)
+    cut = np.flatnonzero(step > limit) + 1
+    return np.insert(x, cut, np.nan), np.insert(y, cut, np.nan)
+
+
 class DetailPanel(QtWidgets.QTabWidget):
     """Plots for one selected track."""
 
@@ -210,7 +229,8 @@ class DetailPanel(QtWidgets.QTabWidget):
             t = time_seconds(track["time"])
             minutes = (t - t[0]) / 60.0
             delta = track["maneuver_factor"].to_numpy(dtype="float64")
-            self.factor_curve.setData(minutes, np.nan_to_num(delta, nan=0.0))
+            x, y = gaps_broken(minutes, delta)
+            self.factor_curve.setData(x, y, connect="finite")
             hits = track["is_maneuver"].to_numpy(dtype=bool)
             self.factor_marks.setData(minutes[hits], delta[hits])
             if threshold_deg is not None:

@@ -776,6 +776,33 @@ def test_detail_time_axis_of_a_track_without_factor_is_not_the_last_tracks(qtbot
     assert 2000 < panel.factor_plot.viewRange()[0][1] < 3000
 
 
+def test_detail_factor_curve_breaks_at_gaps_and_leaves_undefined_ends_out(qtbot):
+    """Operator test: the DMA ship's δ (its hours at rest cleaned away) was drawn as
+    straight ramps from 50° to 125° across 4-hour gaps, and the ends where δ is undefined
+    as 0°. The curve breaks at a gap of more than 10 median steps; NaN is not drawn."""
+    from wakeline.app.detail import DetailPanel
+
+    panel = DetailPanel()
+    qtbot.addWidget(panel)
+    t0 = pd.Timestamp("2023-03-01", tz="UTC")
+    minutes = np.r_[np.arange(40.0), 280.0 + np.arange(40.0)]  # a 4-hour gap
+    delta = np.r_[np.nan, np.nan, np.linspace(0, 50, 36), np.nan, np.nan] + 0.0
+    delta = np.r_[delta, 125.0 - delta]
+    track = pd.DataFrame(
+        {
+            "time": t0 + pd.to_timedelta(minutes, unit="min"),
+            "maneuver_factor": delta,
+            "is_maneuver": np.zeros(80, dtype=bool),
+        }
+    )
+    panel.show_track(track, threshold_deg=15.0)
+    x, y = panel.factor_curve.getData()
+    gap = np.flatnonzero(np.isnan(x))
+    assert len(gap) == 1 and x[gap[0] - 1] == 39.0 and x[gap[0] + 1] == 280.0
+    assert not (y == 0.0)[np.isfinite(x)][:2].any()  # the undefined start is not 0°
+    assert np.isnan(y[:2]).all() and panel.factor_curve.opts["connect"] == "finite"
+
+
 def test_screenshot_of_a_file_that_does_not_load_ends_with_an_error(qtbot, tmp_path, capsys):
     """`wakeline gui BAD --screenshot X` returned never: the failure's modal dialog waited
     for a click no one could give. Now the failure is printed and the run ends (exit 2)."""
