@@ -566,6 +566,33 @@ def test_relative_times_written_as_dates_are_warned_about(tmp_path, capsys):
     assert (tmp_path / "like.csv").read_text().splitlines()[1].split(",")[1] == "0.0"
 
 
+@pytest.mark.parametrize(
+    ("text", "utc"),
+    [
+        ("2024-05-01 08:01:04,123", "2024-05-01T08:01:04.123Z"),  # ISO 8601's comma
+        ("2024-05-01 08:01:04 UTC", "2024-05-01T08:01:04Z"),  # the zone as a word
+        ("01.05.2024 08:01:04", "2024-05-01T08:01:04Z"),  # day-first with dots
+        ("01/05/2024 08:01:04 UTC", "2024-05-01T08:01:04Z"),
+    ],
+)
+def test_more_written_times_import_and_export_back(text, utc, tmp_path, capsys):
+    """Operator test: times written "08:01:04,123" (ISO 8601 allows the comma; Python's
+    logging writes it), "… UTC", and "01.05.2024 08:01:04" (German, Norwegian exports)
+    were every row quarantined as unparsable, and export --like could not tell their
+    format. They read as what they say, and export --like writes them back byte for
+    byte."""
+    src = tmp_path / "t.csv"
+    src.write_text(f"mmsi;timestamp;lon;lat\n7;{text};12.0;56.0\n7;{text};12.001;56.001\n")
+    out, back = tmp_path / "out.csv", tmp_path / "back.csv"
+    assert _run("import", src, "-o", out) == 0
+    assert (
+        pd.read_csv(out)["time"].iloc[0]
+        == pd.Timestamp(utc).strftime("%Y-%m-%dT%H:%M:%S.%f")[:-3] + "Z"
+    )
+    assert _run("export", out, "-o", back, "--like", src) == 0
+    assert back.read_bytes() == src.read_bytes()
+
+
 def test_rows_beyond_the_sampled_start_keep_their_precision(tmp_path):
     """8,000 rows with 4 decimals and whole seconds, then a vessel with 6 decimals and
     half seconds: exported like the original, every value reads back as it was (fuzzing:

@@ -175,10 +175,10 @@ def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
     base = _strftime(seconds, tf.pattern)
     if d > 0:
         frac = (ns - seconds * 1_000_000_000) // q
-        digits = _digits(frac, np.zeros(len(frac), bool), d, tf.frac_trim)
-        # _digits writes "0.123": keep what follows "0".
+        digits = _digits(frac, np.zeros(len(frac), bool), d, tf.frac_trim, tf.frac_point)
+        # _digits writes "0.123" (or "0,123"): keep what follows "0".
         text = pc.if_else(
-            pc.match_substring(digits, "."),
+            pc.match_substring(digits, tf.frac_point),
             _join(base, pc.utf8_slice_codeunits(digits, 1)),
             base,
         )

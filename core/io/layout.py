@@ -64,11 +64,11 @@ INTERNAL_COLUMNS = frozenset(
 _NUMBER = re.compile(r"^[+-]?(\d*)(?:\.(\d*))?$")
 _ISO = re.compile(
     r"^\d{4}(?P<ds>[-/])\d{2}(?P=ds)\d{2}(?P<sep>[T ])\d{2}:\d{2}(?P<sec>:\d{2})?"
-    r"(?:\.(?P<frac>\d+))?(?P<suffix>Z|[+-]\d{2}:?\d{2})?$"
+    r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<suffix>Z|[+-]\d{2}:?\d{2}| ?UTC| ?GMT)?$"
 )
 _DAYFIRST = re.compile(
     r"^\d{2}(?P<ds>[/.-])\d{2}(?P=ds)\d{4}(?P<sep>[T ])\d{2}:\d{2}(?P<sec>:\d{2})?"
-    r"(?:\.(?P<frac>\d+))?$"
+    r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<suffix> ?UTC| ?GMT)?$"
 )
 _OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
 
@@ -157,8 +157,8 @@ class TimeFormat:
     ``kind``: ``unix`` — a number of seconds (``scale`` 1) or milliseconds (``scale``
     1000) since 1970 (or since a scene start), formatted by ``number``; ``text`` —
     ``pattern`` (strftime, up to whole seconds) then ``frac_digits`` fraction digits
-    (``frac_trim`` as in :class:`NumberFormat`) then ``suffix`` (``Z``, ``+08:00`` or
-    nothing). ``tz``: the zone whose wall-clock time is written (an IANA name or
+    after ``frac_point`` (``.``, or ISO 8601's ``,``; ``frac_trim`` as in
+    :class:`NumberFormat`) then ``suffix`` (``Z``, ``+08:00``, `` UTC`` or nothing). ``tz``: the zone whose wall-clock time is written (an IANA name or
     ``UTC``; a fixed offset suffix fixes it).
     """
 
@@ -170,6 +170,7 @@ class TimeFormat:
     tz: str = "UTC"
     scale: int = 1
     number: NumberFormat = field(default_factory=lambda: NumberFormat(0, "none"))
+    frac_point: str = "."
 
     @staticmethod
     def detect(values: pd.Series, tz: str | None = None) -> "TimeFormat":
@@ -205,14 +206,15 @@ class TimeFormat:
             if regex is _DAYFIRST and _month_first(present):
                 date = "%m{ds}%d{ds}%Y"
             pattern = date.format(ds=m["ds"]) + m["sep"] + "%H:%M" + (":%S" if m["sec"] else "")
-            suffix = (m.groupdict().get("suffix") or "") if regex is _ISO else ""
+            suffix = m["suffix"] or ""
             zone = tz or "UTC"
             off = _OFFSET.match(suffix)
             if off:
                 zone = f"{off[1]}{off[2]}:{off[3]}"
-            elif suffix == "Z":
+            elif suffix.strip() in ("Z", "UTC", "GMT"):
                 zone = "UTC"
-            return TimeFormat("text", pattern, digits, trim, suffix, zone)
+            point = m["point"] or "."
+            return TimeFormat("text", pattern, digits, trim, suffix, zone, frac_point=point)
         raise InputError(
             f"cannot tell the time format from {first!r}; "
             "expected unix seconds, ISO 8601, dd/mm/yyyy (or mm/dd/yyyy) HH:MM:SS or "

@@ -49,13 +49,16 @@ _DAYFIRST_FORMATS = (
     "%d/%m/%Y %H:%M:%S.%f",
     "%d/%m/%Y %H:%M",
     "%d-%m-%Y %H:%M:%S",
+    "%d.%m.%Y %H:%M:%S",  # German, Norwegian …: 01.05.2024 08:01:04
+    "%d.%m.%Y %H:%M:%S.%f",
+    "%d.%m.%Y %H:%M",
 )
 #: The same with the month first (US exports: 05/17/2024), read only when the file says so.
 _MONTHFIRST_FORMATS = tuple(
     f.replace("%d", "{d}").replace("%m", "%d").replace("{d}", "%m") for f in _DAYFIRST_FORMATS
 )
 #: The first two numbers of a slashed date (``dd/mm/yyyy`` or ``mm/dd/yyyy``).
-_SLASHED_DATE = r"^\s*(\d{1,2})[/-](\d{1,2})[/-]\d{4}"
+_SLASHED_DATE = r"^\s*(\d{1,2})[/.-](\d{1,2})[/.-]\d{4}"
 
 
 def _month_first(text: pd.Series) -> int:
@@ -1198,8 +1201,14 @@ def parse_times(
     if kind == "unix" or (n_present and np.isfinite(numeric).sum() >= 0.5 * n_present):
         return _epoch_ns(numeric, info)
     sample = text[present].head(50)
+    # ISO 8601's decimal comma (08:01:04,123, as Python's logging writes) and a zone
+    # written as a word (08:01:04 UTC): forms the ISO parser below does not take.
+    if sample.str.contains(r":\d\d,\d", regex=True).any():
+        text = text.str.replace(r"(:\d\d),(\d)", r"\1.\2", regex=True)
+    if sample.str.contains(r"\s(?:UTC|GMT)$", regex=True).any():
+        text = text.str.replace(r"\s*(?:UTC|GMT)$", "Z", regex=True)
     dayfirst = kind == "dayfirst" or bool(
-        sample.str.match(r"^\d{1,2}[/-]\d{1,2}[/-]\d{4}").mean() > 0.5
+        sample.str.match(r"^\d{1,2}[/.-]\d{1,2}[/.-]\d{4}").mean() > 0.5
     )
     zoned = text.str.contains(_ZONE_SUFFIX, regex=True).fillna(False).to_numpy(dtype=bool)
     info["naive"] = bool((present.to_numpy() & ~zoned).any())
@@ -1207,6 +1216,7 @@ def parse_times(
     if compact:
         info["time_format"] = "yyyymmddHHMMSS text"
     if dayfirst:
+        text = text.str.removesuffix("Z")  # 01/05/2024 08:01:04 UTC: UTC, as naive
         parsed = _parse_slashed(text, present, _DAYFIRST_FORMATS, info)
         # Dates that day-first cannot read (05/17/2024) and none that only it can: the
         # file writes the month first. (A whole file's evidence: a piece of a streamed
