@@ -36,6 +36,9 @@ def _cmd_import(args: argparse.Namespace) -> int:
         msg += "\ncolumns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
     if rep.get("extra_columns"):
         msg += "\nextra columns (carried as they are): " + ", ".join(rep["extra_columns"])
+    if rep.get("values_blanked"):
+        blanked = ", ".join(f"{k} {v:,}" for k, v in rep["values_blanked"].items())
+        msg += f"\nvalues blanked, their rows kept: {blanked}"
     for warning in rep.get("warnings", []):
         msg += f"\nwarning: {warning}"
     print(msg, file=sys.stderr)

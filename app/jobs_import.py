@@ -95,6 +95,8 @@ class ImportJobsMixin:
         )
         for reason, count in rep["quarantine_reasons"].items():
             self.log_message(f"    quarantined {count:,}: {reason}")
+        for reason, count in rep.get("values_blanked", {}).items():
+            self.log_message(f"    blanked {count:,} (row kept): {reason}")
         for warning in rep.get("warnings", []):
             self.log_message(f"    {self.tr('Warning')}: {warning}")
         self.session.note_source(str(path.resolve()), sha)

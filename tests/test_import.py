@@ -284,6 +284,47 @@ def test_crlf_and_blank_lines(write):
     assert r.points.batch.iloc[0] == "007"
 
 
+@pytest.mark.parametrize("streamed", [False, True])
+def test_an_unreadable_speed_or_course_is_blanked_not_the_fix(write, tmp_path, streamed):
+    """Operator test: a row whose course was written "-" (or speed "unknown") was quarantined
+    as "unparsable course": a good fix lost for an attribute that is derived from the
+    positions where missing. The value is blanked, the row kept and the blank counted
+    (as a course outside [0, 360) is); an unreadable position still quarantines."""
+    from wakeline.app.cli import main
+    from wakeline.core.io import import_to_csv
+
+    text = (
+        "mmsi,timestamp,lon,lat,sog,cog\n"
+        "7,2024-05-01T08:00:00Z,12.0,56.0,9.5,-\n"
+        "7,2024-05-01T08:01:00Z,12.001,56.001,unknown,45\n"
+        "7,2024-05-01T08:02:00Z,12.002,56.002,9.5,511\n"
+        "7,2024-05-01T08:03:00Z,x,56.003,9.5,45\n"
+    )
+    path = write("dash.csv", text)
+    if streamed:
+        r = import_to_csv(path, tmp_path / "o.csv")
+        points = pd.read_csv(tmp_path / "o.csv")
+    else:
+        r = read_points(path)
+        points = r.points
+    assert len(points) == 3 and r.quarantine["reason"].tolist() == ["unparsable lon"]
+    assert points["course"].isna().tolist() == [True, False, True]
+    assert points["speed"].isna().tolist() == [False, True, False]
+    assert r.report["values_blanked"] == {
+        "unparsable speed": 1,
+        "unparsable course": 1,
+        "course outside [0, 360)": 1,
+    }
+    if not streamed:
+        import contextlib
+        import io
+
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            assert main(["import", str(path), "-o", str(tmp_path / "c.csv")]) == 0
+        assert "values blanked, their rows kept: unparsable speed 1" in err.getvalue()
+
+
 def test_real_atd2025_sample():
     r = read_points(DATA / "atd2025_example_sample.csv")
     assert r.report["format"] == "generic"

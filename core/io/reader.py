@@ -1674,17 +1674,24 @@ def _to_canonical(
             floats[name] = arr  # the common case: passes through untouched
             continue
         v, unparsable = _numbers(arr, comma, counted)
-        flag(unparsable, f"unparsable {name}")
         with np.errstate(invalid="ignore"):
             outside = (v < lo) | (v >= hi if hi_open else v > hi) | np.isinf(v)
         if name in ("lon", "lat"):
+            flag(unparsable, f"unparsable {name}")
             flag(np.isnan(v) & ~unparsable, f"missing {name}")
             flag(outside, f"{name} out of range")
-        elif outside.any():
-            # Attributes, not positions: blank the value, keep the row, count it.
-            label = "course outside [0, 360)" if name == "course" else "speed negative or infinite"
-            blanked[label] = int(outside.sum())
-            v = np.where(outside, np.nan, v)
+        else:
+            # Attributes, not positions: blank the value, keep the row, count it (a
+            # course written "-" cost its fix; speed and course are derived from the
+            # positions where missing).
+            if unparsable.any():
+                blanked[f"unparsable {name}"] = int(unparsable.sum())
+            if outside.any():
+                label = (
+                    "course outside [0, 360)" if name == "course" else "speed negative or infinite"
+                )
+                blanked[label] = int(outside.sum())
+                v = np.where(outside, np.nan, v)
         floats[name] = pa.array(v)
 
     bad_rows = reasons != 0
