@@ -12,6 +12,8 @@ LABEL_MAX = 32
 RESERVED_CHARS = 26
 #: Room (px) left in the column for a label item's own padding.
 LABEL_PADDING_PX = 10.0
+#: The most height (px) the legend asks of the plot's layout; a longer one is clipped.
+MIN_HEIGHT_PX = 120.0
 
 
 def short_label(text: str, limit: int = LABEL_MAX) -> str:
@@ -35,6 +37,7 @@ class SideLegend(pg.LegendItem):
     def __init__(self, *args, **kwargs) -> None:
         super().__init__(*args, **kwargs)
         self.bare = False
+        self.setFlag(self.GraphicsItemFlag.ItemClipsChildrenToShape, True)
         font = QtGui.QFont()
         font.setPointSizeF(9.0)  # pyqtgraph's legend label size
         self._metrics = QtGui.QFontMetricsF(font)
@@ -66,7 +69,11 @@ class SideLegend(pg.LegendItem):
         w = 0.0 if self.bare else self.widest
         self.setMinimumWidth(w)
         self.setMaximumWidth(w)
-        self.setMinimumHeight(height)
+        # At most MIN_HEIGHT_PX asked for: a legend of more lines than the map is tall
+        # made the plot's row taller than the widget (the view box and the longitude
+        # axis pushed out of sight, the view a strip). The lines that do not fit are
+        # clipped (every name is in the Layers panel).
+        self.setMinimumHeight(min(height, MIN_HEIGHT_PX))
         self.setMaximumHeight(height)
         self.setVisible(not self.bare)  # an empty legend draws nothing but keeps its column
         self.updateGeometry()

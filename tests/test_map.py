@@ -332,6 +332,41 @@ def test_longitude_tick_labels_keep_apart(qtbot, width):
     assert len(values) >= 1
 
 
+def test_a_legend_longer_than_the_map_leaves_the_map_its_size(qtbot):
+    """Operator test: with eleven files and their steps shown (some 50 legend lines) the
+    legend beside the map made the plot's row taller than the window: the longitude
+    axis went out of sight, the view became a strip of 0.015° and the legend's lines
+    spread apart. The map keeps its size; the lines that do not fit are clipped."""
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(700, 420)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    t = pd.date_range("2024-01-01", periods=5, freq="min", tz="UTC")
+    for k in range(30):
+        df = pd.DataFrame(
+            {
+                "sensor": "S1",
+                "batch": "1",
+                "time": t,
+                "lon": 10 + k * 0.01 + np.arange(5) * 1e-3,
+                "lat": 55 + np.arange(5) * 1e-3,
+            }
+        )
+        canvas.set_draw_data(prepare_layer(df, f"layer{k}", style=LayerStyle(width=1)))
+    canvas.set_true_aspect(55.0)
+    canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    QtWidgets.QApplication.processEvents()
+    view = canvas.vb.sceneBoundingRect()
+    axis = canvas.getAxis("bottom").sceneBoundingRect()
+    assert view.bottom() <= canvas.height() and axis.bottom() <= canvas.height() + 1, (
+        view,
+        axis,
+    )
+    assert canvas.legend.geometry().bottom() <= canvas.height()
+
+
 def test_hover_shows_sensor_batch_time_speed_and_elapsed_time(qtbot):
     t = pd.to_datetime([0.0, 100.0, 200.0], unit="s", utc=True)  # MTAD: seconds from start
     df = pd.DataFrame(
