@@ -11,7 +11,7 @@ of a redraw on the GUI thread.
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
-from PySide6 import QtCore
+from PySide6 import QtCore, QtGui
 
 from wakeline.app import ink
 from wakeline.core.review import ReviewState
@@ -100,6 +100,10 @@ def _static(state: ReviewState) -> dict:
 
 def _t0(state: ReviewState) -> dict:
     return _static(state)["t0"]
+
+
+#: Where the track names sit: this far from the centre (the nodes' circle has radius 1).
+NAME_AT = 1.09
 
 
 def _z(item, z: float):
@@ -292,6 +296,8 @@ class NetworkView(pg.PlotWidget):
         self._dots.setZValue(2)  # edges under the nodes, names and costs over them
         self.addItem(self._dots)
         self._node_brush = {c: pg.mkBrush(c) for c in (MEMBER, "#ffffff")}
+        self._name_px: tuple[float, float] | None = None  # widest name, line height (px)
+        self.getPlotItem().getViewBox().sigResized.connect(self._resized)
         self.scene().sigMouseClicked.connect(self._clicked)
 
     @staticmethod
@@ -353,15 +359,40 @@ class NetworkView(pg.PlotWidget):
             t = self._names.take()
             t.setText(n)
             t.setAnchor((0.5 - 0.5 * c, 0.5 + 0.5 * s))
-            t.setPos(1.09 * c, 1.09 * s)
+            t.setPos(NAME_AT * c, NAME_AT * s)
         self._items = [
             *self._lines.done(),
             self._dots,
             *self._costs.done(),
             *self._names.done(),
         ]
-        self.setXRange(-1.6, 1.6, padding=0)
-        self.setYRange(-1.45, 1.45, padding=0)
+        metrics = QtGui.QFontMetricsF(self._names.items[0].textItem.font()) if nodes else None
+        self._name_px = (
+            (max(metrics.horizontalAdvance(n) for n in nodes) + 8.0, metrics.height() + 4.0)
+            if metrics
+            else (0.0, 0.0)
+        )
+        self._frame()
+
+    def _frame(self) -> None:
+        """The circle with its track names whole in the view: the names are pixels
+        beside the nodes, so the range that holds them depends on the view's size in
+        pixels (a fixed ±1.6 cut "S1:378113585" at a narrow dock's edges)."""
+        vb = self.getPlotItem().getViewBox()
+        w_px, h_px = float(vb.width()), float(vb.height())
+        name_w, name_h = self._name_px or (0.0, 0.0)
+        x_half, y_half = 1.6, 1.45
+        if w_px > 0 and h_px > 0:
+            # A name reaches NAME_AT + its width in data units (2·half / pixels each).
+            x_half = max(x_half, NAME_AT / max(1.0 - 2.0 * name_w / w_px, 0.2))
+            y_half = max(y_half, NAME_AT / max(1.0 - 2.0 * name_h / h_px, 0.2))
+        # One call: the locked aspect then widens whichever axis needs it (two calls
+        # narrowed the first to fit the second).
+        self.setRange(xRange=(-x_half, x_half), yRange=(-y_half, y_half), padding=0)
+
+    def _resized(self, *_args) -> None:
+        if self._name_px is not None:  # a proposal shown: keep its names in view
+            self._frame()
 
     def _cost_labels(self, labels: list) -> None:
         """Each proposal edge's cost on a white box at its middle; the current proposal's

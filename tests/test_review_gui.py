@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
-from PySide6 import QtCore  # noqa: E402
+from PySide6 import QtCore, QtWidgets  # noqa: E402
 
 from wakeline.app.review_demo import ReviewWorkspace  # noqa: E402
 from wakeline.app.review_demo import main as demo_main  # noqa: E402
@@ -170,6 +170,35 @@ def test_gantt_and_network_show_the_members(qtbot, controller):
     with qtbot.waitSignal(net.proposal_clicked) as sig:
         qtbot.mouseClick(net.viewport(), QtCore.Qt.MouseButton.LeftButton, pos=widget_pt)
     assert sig.args == [target]
+
+
+@pytest.mark.parametrize("size", [(300, 260), (500, 400), (260, 420)])
+def test_network_names_stay_inside_the_view(qtbot, controller, size):
+    """Operator test: on the ATD AIS in a narrow Review dock the candidate network cut
+    its track names at the left and right edges ("…378113585"): the view was a fixed
+    ±1.6 around the circle and the names are pixels. Every name is now whole in view,
+    after a resize too."""
+    st = controller.state
+    pid = st.proposals["proposal"].iloc[0]
+    net = NetworkView(st)
+    qtbot.addWidget(net)
+    net.resize(*size)
+    net.show()
+    qtbot.waitExposed(net)
+    net.show_proposal(pid)
+    for step in (size, (size[0] - 60, size[1])):
+        net.resize(*step)
+        QtWidgets.QApplication.processEvents()
+        QtWidgets.QApplication.processEvents()
+        view = net.getPlotItem().getViewBox().sceneBoundingRect().adjusted(-1, -1, 1, 1)
+        names = [t for t in net._names.items if t.isVisible() and t.toPlainText()]
+        assert names
+        for t in names:
+            assert view.contains(t.sceneBoundingRect()), (
+                t.toPlainText(),
+                t.sceneBoundingRect(),
+                view,
+            )
 
 
 def test_map_geometry_of_a_proposal(scene, controller):
