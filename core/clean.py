@@ -72,7 +72,7 @@ from wakeline.core.errors import Cancelled, InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import ordered_columns, time_seconds
-from wakeline.core.tracks import TrackIndex, sorted_with_index
+from wakeline.core.tracks import TrackIndex, median_interval_s, sorted_with_index
 from wakeline.core.transform import (
     BsplineParams,
     ResampleParams,
@@ -689,8 +689,6 @@ def rest_frame(
     if steps <= 0 or len(t) < 2:
         return x, y, t
     if med is None:
-        from wakeline.core.maneuver import median_interval_s  # lazy: maneuver imports clean
-
         med = median_interval_s(t, index)
     with np.errstate(invalid="ignore"):
         f = np.fmax(steps * med / window_s, 1.0)

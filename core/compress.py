@@ -24,6 +24,7 @@ from wakeline.core.tracks import (
     TrackIndex,
     concat_ranges,
     local_xy,
+    median_interval_s,
     repeated_rows,
     rows_of,
     sorted_with_index,
@@ -281,7 +282,6 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
         _near,
         _sub_index,
         local_maxima,
-        median_interval_s,
         window_ends,
     )
 

@@ -325,7 +325,7 @@ def associate_sensors(
     nb, rb = _count_in(t, index, b, lo, hi)
     with np.errstate(divide="ignore", invalid="ignore"):
         if params.count_at_rates:  # the time each track's points cover, at its own rate
-            from wakeline.core.maneuver import median_interval_s
+            from wakeline.core.tracks import median_interval_s
 
             med = np.nan_to_num(median_interval_s(t, index), nan=1.0)
             ca, cb = na * med[a], nb * med[b]

@@ -49,9 +49,12 @@ from wakeline.core import geo
 from wakeline.core.params import Params, param
 from wakeline.core.tracks import (
     TrackIndex,
+    concat_ranges,
     local_xy,
+    median_interval_s,
     remember_order,
     repeated_rows,
+    run_medians,
     sorted_with_index,
     track_seconds,
 )
@@ -431,40 +434,6 @@ class ManeuverResult:
         return out.astype({"sensor": "str", "batch": "str"})
 
 
-def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
-    """Median sampling interval (s) of each track, over its steps forward in time (a row
-    repeated at the same time is not a 0 s interval); NaN for one-point tracks."""
-    t = np.asarray(t, dtype="float64")
-    dt = np.empty(len(t))  # np.diff(t, prepend=nan), without the prepended copy
-    if len(t):
-        dt[0] = np.nan
-        np.subtract(t[1:], t[:-1], out=dt[1:])
-    dt[index.starts] = np.nan
-    dt[dt == 0] = np.nan
-    out = np.full(index.n_tracks, np.nan)
-    if not len(dt):
-        return out
-    # a track sampled at one interval has it as its median (of an even count too: the
-    # mean of two equal values is that value): no sort
-    with np.errstate(invalid="ignore"):
-        lo, hi = np.fmin.reduceat(dt, index.starts), np.fmax.reduceat(dt, index.starts)
-    one = lo == hi
-    out[one] = lo[one]
-    other = ~one & ~np.isnan(lo)
-    if other.any():  # each track's steps after its first fix: one run of dt per track
-        finite = np.isfinite(dt)
-        if (~finite).sum() > index.n_tracks:  # 0 s steps (NaN) beside each track's first:
-            # left out first, so that every run is free of NaN (the fast median)
-            per = np.add.reduceat(finite.astype("int64"), index.starts)
-            count = np.where(other, per, 0)
-            first = np.concatenate([[0], np.cumsum(per)[:-1]])
-            out[other] = _run_medians(dt[finite], first, count)[other]
-        else:
-            count = np.where(other, index.sizes - 1, 0)
-            out[other] = _run_medians(dt, index.starts + 1, count)[other]
-    return out
-
-
 def _p_per_track(
     t: np.ndarray,
     index: TrackIndex,
@@ -620,13 +589,13 @@ def _noise_residuals(ta, ti, tb, xa, xi, xb, ya, yi, yb):
 
 
 def _run_medians_by_key(key: np.ndarray, exact, first: np.ndarray, count: np.ndarray) -> np.ndarray:
-    """:func:`_run_medians` of values computed by ``exact(rows)`` (rows into ``key``),
+    """:func:`~wakeline.core.tracks.run_medians` of values computed by ``exact(rows)`` (rows into ``key``),
     bit for bit, computing few of them: ``key`` orders the values up to a relative
     error far below 1e-9 (each value is a root of its key, rounded a few times), so a
     value whose key lies beyond the middle keys by more than 3e-9 (relative, or 3e-200)
     is surely on that side of the middle values; those within are computed and sorted.
     Runs with a non-finite key, and runs of a length few runs share, take the values
-    of all their rows and :func:`_run_medians`. Keys are ≥ 0 (or not finite)."""
+    of all their rows and :func:`~wakeline.core.tracks.run_medians`. Keys are ≥ 0 (or not finite)."""
     out = np.full(len(count), np.nan)
     rest = count > 0
     if not rest.any():
@@ -679,62 +648,17 @@ def _run_medians_by_key(key: np.ndarray, exact, first: np.ndarray, count: np.nda
         rest[g[done]] = False
     if rest.any():
         g = np.flatnonzero(rest)
-        vals = exact(_ranges(first[g], count[g]))
-        out[g] = _run_medians(vals, np.cumsum(count[g]) - count[g], count[g])
+        vals = exact(concat_ranges(first[g], count[g]))
+        out[g] = run_medians(vals, np.cumsum(count[g]) - count[g], count[g])
     return out
 
 
 def _group_median(values: np.ndarray, group: np.ndarray, n_groups: int):
     """Groups present and their medians, as ``pd.Series(values).groupby(group).median()``
-    gives them, bit for bit (:func:`_run_medians`): ``group`` sorted."""
+    gives them, bit for bit (:func:`~wakeline.core.tracks.run_medians`): ``group`` sorted."""
     count = np.bincount(group, minlength=n_groups)
     has = count > 0
-    return has, _run_medians(values, np.cumsum(count) - count, count)[has]
-
-
-def _run_medians(values: np.ndarray, first: np.ndarray, count: np.ndarray) -> np.ndarray:
-    """Median of each run ``values[first[g] : first[g] + count[g]]`` (NaN for an empty one)
-    as pandas' groupby median gives it, bit for bit (NaN skipped; of an even count the mean
-    of the middle two). Runs of a length that many runs share (tracks cut to one length)
-    take ``np.partition`` of a runs × length block, a few rows at a time; the others, and
-    runs holding a NaN, the groupby."""
-    out = np.full(len(count), np.nan)
-    rest = count > 0
-    if not rest.any():
-        return out
-    sizes, shared = np.unique(count[rest], return_counts=True)
-    nan = bool(np.isnan(values).any())
-    # of an even count, the lower middle value is the largest of the lower half once the
-    # upper middle one is in place (one partition point, not two); a tie of -0.0 and 0.0
-    # could pick another zero there, so that takes the two points
-    one_point = not np.signbit(values).any()
-    for m in sizes[shared >= 8]:  # a loop over distinct lengths, few
-        g = np.flatnonzero(count == m)
-        med = np.empty(len(g))
-        span = np.arange(m)
-        step = max(1, BLOCK // int(m))  # runs per chunk: ~BLOCK values
-        for a in range(0, len(g), step):  # a loop over chunks of runs
-            block = values[first[g[a : a + step], None] + span]
-            if m % 2:
-                block.partition(m // 2, axis=1)
-                med[a : a + step] = block[:, m // 2]
-            elif one_point:
-                block.partition(m // 2, axis=1)
-                med[a : a + step] = (block[:, m // 2] + block[:, : m // 2].max(axis=1)) / 2
-            else:
-                block.partition([m // 2 - 1, m // 2], axis=1)
-                med[a : a + step] = (block[:, m // 2] + block[:, m // 2 - 1]) / 2
-            if nan:  # such a run goes to the groupby
-                med[a : a + step][np.isnan(block).any(axis=1)] = np.nan
-        done = ~np.isnan(med)
-        out[g[done]] = med[done]
-        rest[g[done]] = False
-    if rest.any():
-        g = np.flatnonzero(rest)
-        rows = _ranges(first[g], count[g])
-        med = pd.Series(values[rows]).groupby(np.repeat(g, count[g])).median()
-        out[med.index.to_numpy()] = med.to_numpy()
-    return out
+    return has, run_medians(values, np.cumsum(count) - count, count)[has]
 
 
 def _heading_noise_deg(
@@ -1113,22 +1037,6 @@ def _rest_screen(
 # operands, only on fewer rows.
 
 
-def _ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """:func:`tracks.concat_ranges` (``starts[k]``, ``starts[k] + 1``, … for ``counts[k]``
-    values, concatenated; counts ≥ 0) as one cumulative sum of steps: ~10× faster for many
-    short ranges, where the repeats of ``concat_ranges`` cost ~7 ns a value."""
-    counts = np.asarray(counts, dtype="int64")
-    starts = np.asarray(starts, dtype="int64")
-    if not (counts > 0).all():
-        starts, counts = starts[counts > 0], counts[counts > 0]
-    steps = np.ones(int(counts.sum()), dtype="int64")
-    if len(steps):
-        steps[0] = starts[0]
-        # each range's first value, from the last value of the one before
-        steps[np.cumsum(counts[:-1])] = starts[1:] - (starts[:-1] + counts[:-1] - 1)
-    return np.cumsum(steps, out=steps)
-
-
 def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """First and one-past-last row of every run of True in ``mask``: the rows where the
     value changes (one comparison and one search of the mask), runs of True every other
@@ -1218,7 +1126,7 @@ def _factor_every_row(
         # row mask; the rows before the first span and after the last are never written
         out = np.empty(n)
         gap_lo = np.concatenate([[0], hi])
-        outside = _ranges(gap_lo, np.concatenate([lo, [n]]) - gap_lo)
+        outside = concat_ranges(gap_lo, np.concatenate([lo, [n]]) - gap_lo)
     else:
         out = np.full(n, np.nan)
         valid = _span_mask(lo[keep], hi[keep], n)
@@ -1271,7 +1179,7 @@ def _factor_on_runs(
             u = x - np.repeat(x[index.starts], index.sizes)
             v = y - np.repeat(y[index.starts], index.sizes)
     else:
-        rows = _ranges(raw_lo, raw_len)
+        rows = concat_ranges(raw_lo, raw_len)
         u = np.take(x, rows)  # x[rows], ~30 % faster for many rows
         v = np.take(y, rows)
         if not anchored:
@@ -1281,7 +1189,7 @@ def _factor_on_runs(
     seg = np.concatenate([[0], np.cumsum(raw_len)[:-1]])
     m = len(u)
     if above is None:
-        pos = _ranges(seg + (p - 1), hi - lo)
+        pos = concat_ranges(seg + (p - 1), hi - lo)
         out_rows = pos + np.repeat(raw_lo - seg, hi - lo)
         h = _headings_of(u, v, p)
         return out_rows, _angle_diff(h[pos], h[pos + (p - 1)])

@@ -523,10 +523,102 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def concat_ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """``starts[k], starts[k] + 1, …`` (``counts[k]`` values) for every k, concatenated."""
+    """``starts[k], starts[k] + 1, …`` (``counts[k]`` values, ≥ 0) for every k, concatenated,
+    as one cumulative sum of steps (~10× faster for many short ranges than repeating the
+    starts and adding offsets)."""
     counts = np.asarray(counts, dtype="int64")
-    offsets = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
-    return np.repeat(np.asarray(starts, dtype="int64"), counts) + offsets
+    starts = np.asarray(starts, dtype="int64")
+    if not (counts > 0).all():
+        starts, counts = starts[counts > 0], counts[counts > 0]
+    steps = np.ones(int(counts.sum()), dtype="int64")
+    if len(steps):
+        steps[0] = starts[0]
+        # each range's first value, from the last value of the one before
+        steps[np.cumsum(counts[:-1])] = starts[1:] - (starts[:-1] + counts[:-1] - 1)
+    return np.cumsum(steps, out=steps)
+
+
+#: Values per block of :func:`run_medians`' partitions.
+MEDIAN_BLOCK = 1 << 16
+
+
+def median_interval_s(t: np.ndarray, index: TrackIndex) -> np.ndarray:
+    """Median sampling interval (s) of each track, over its steps forward in time (a row
+    repeated at the same time is not a 0 s interval); NaN for one-point tracks."""
+    t = np.asarray(t, dtype="float64")
+    dt = np.empty(len(t))  # np.diff(t, prepend=nan), without the prepended copy
+    if len(t):
+        dt[0] = np.nan
+        np.subtract(t[1:], t[:-1], out=dt[1:])
+    dt[index.starts] = np.nan
+    dt[dt == 0] = np.nan
+    out = np.full(index.n_tracks, np.nan)
+    if not len(dt):
+        return out
+    # a track sampled at one interval has it as its median (of an even count too: the
+    # mean of two equal values is that value): no sort
+    with np.errstate(invalid="ignore"):
+        lo, hi = np.fmin.reduceat(dt, index.starts), np.fmax.reduceat(dt, index.starts)
+    one = lo == hi
+    out[one] = lo[one]
+    other = ~one & ~np.isnan(lo)
+    if other.any():  # each track's steps after its first fix: one run of dt per track
+        finite = np.isfinite(dt)
+        if (~finite).sum() > index.n_tracks:  # 0 s steps (NaN) beside each track's first:
+            # left out first, so that every run is free of NaN (the fast median)
+            per = np.add.reduceat(finite.astype("int64"), index.starts)
+            count = np.where(other, per, 0)
+            first = np.concatenate([[0], np.cumsum(per)[:-1]])
+            out[other] = run_medians(dt[finite], first, count)[other]
+        else:
+            count = np.where(other, index.sizes - 1, 0)
+            out[other] = run_medians(dt, index.starts + 1, count)[other]
+    return out
+
+
+def run_medians(values: np.ndarray, first: np.ndarray, count: np.ndarray) -> np.ndarray:
+    """Median of each run ``values[first[g] : first[g] + count[g]]`` (NaN for an empty one)
+    as pandas' groupby median gives it, bit for bit (NaN skipped; of an even count the mean
+    of the middle two). Runs of a length that many runs share (tracks cut to one length)
+    take ``np.partition`` of a runs × length block (about ``MEDIAN_BLOCK`` values at a
+    time); the others, and runs holding a NaN, the groupby."""
+    out = np.full(len(count), np.nan)
+    rest = count > 0
+    if not rest.any():
+        return out
+    sizes, shared = np.unique(count[rest], return_counts=True)
+    nan = bool(np.isnan(values).any())
+    # of an even count, the lower middle value is the largest of the lower half once the
+    # upper middle one is in place (one partition point, not two); a tie of -0.0 and 0.0
+    # could pick another zero there, so that takes the two points
+    one_point = not np.signbit(values).any()
+    for m in sizes[shared >= 8]:  # a loop over distinct lengths, few
+        g = np.flatnonzero(count == m)
+        med = np.empty(len(g))
+        span = np.arange(m)
+        step = max(1, MEDIAN_BLOCK // int(m))  # runs per chunk: ~BLOCK values
+        for a in range(0, len(g), step):  # a loop over chunks of runs
+            block = values[first[g[a : a + step], None] + span]
+            if m % 2:
+                block.partition(m // 2, axis=1)
+                med[a : a + step] = block[:, m // 2]
+            elif one_point:
+                block.partition(m // 2, axis=1)
+                med[a : a + step] = (block[:, m // 2] + block[:, : m // 2].max(axis=1)) / 2
+            else:
+                block.partition([m // 2 - 1, m // 2], axis=1)
+                med[a : a + step] = (block[:, m // 2] + block[:, m // 2 - 1]) / 2
+            if nan:  # such a run goes to the groupby
+                med[a : a + step][np.isnan(block).any(axis=1)] = np.nan
+        done = ~np.isnan(med)
+        out[g[done]] = med[done]
+        rest[g[done]] = False
+    if rest.any():
+        g = np.flatnonzero(rest)
+        rows = concat_ranges(first[g], count[g])
+        med = pd.Series(values[rows]).groupby(np.repeat(g, count[g])).median()
+        out[med.index.to_numpy()] = med.to_numpy()
+    return out
 
 
 def interp_positions(
