@@ -335,6 +335,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self._swap_curves(data)
         for item in items:
             item.setVisible(self._visible[name])
+        self.legend.show_entries(items, self._visible[name])
         if data.px is None and data.geometry.n_points > 50_000:
             self._lod_timer.start()
 
@@ -459,8 +460,10 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 item.setOpacity(self._context_opacity)
 
     def set_visible(self, name: str, visible: bool) -> None:
+        """Show or hide layer ``name``'s curves and their legend entries."""
         for item in self._items.get(name, []):
             item.setVisible(visible)
+        self.legend.show_entries(self._items.get(name, []), visible)
         if name in self._visible:
             self._visible[name] = visible
         if visible and self.lod_executor is not None:

@@ -1,5 +1,7 @@
 """A legend that lives in the plot's layout, beside the view box: it never covers data."""
 
+import itertools
+
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
@@ -24,6 +26,15 @@ def short_label(text: str, limit: int = LABEL_MAX) -> str:
     return text[:head] + "…" + text[-(limit - 1 - head) :]
 
 
+class FixedSample(pg.ItemSample):
+    """A legend entry's sample that a click leaves alone: pyqtgraph's hid the curve behind
+    the session's back (the layer still ticked in the Layers list, the entry an eye);
+    layers are shown and hidden in the Layers list, and their entries follow."""
+
+    def mouseClickEvent(self, event) -> None:  # noqa: N802 - pyqtgraph's name
+        event.ignore()
+
+
 class SideLegend(pg.LegendItem):
     """A legend that lives in the plot's layout (a column right of the view box).
 
@@ -35,6 +46,7 @@ class SideLegend(pg.LegendItem):
     """
 
     def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("sampleType", FixedSample)
         super().__init__(*args, **kwargs)
         self.bare = False
         self.setFlag(self.GraphicsItemFlag.ItemClipsChildrenToShape, True)
@@ -46,6 +58,9 @@ class SideLegend(pg.LegendItem):
         # A label item is wider than its text by its own padding (~6 px): labels are
         # shortened to fit the column less that, so a long name never widens it.
         self._label_px = self._text_px - LABEL_PADDING_PX
+        self._rank: dict[int, int] = {}  # id(sample) -> its place among the entries
+        self._ranks = itertools.count()
+        self._hidden: dict[int, tuple] = {}  # id(item) -> (sample, label) left out
         self.updateSize()
 
     def addItem(self, item, name: str) -> None:  # noqa: N802 - pyqtgraph's name
@@ -53,6 +68,62 @@ class SideLegend(pg.LegendItem):
             short_label(str(name)), QtCore.Qt.TextElideMode.ElideMiddle, self._label_px
         )
         super().addItem(item, text)
+        sample, _label = self.items[-1]
+        self._rank[id(sample)] = next(self._ranks)
+
+    def removeItem(self, item) -> None:  # noqa: N802 - pyqtgraph's name
+        """Remove ``item``'s entry, shown or left out (:meth:`show_entries`)."""
+        pair = self._hidden.pop(id(item), None)
+        if pair is not None:
+            self._rank.pop(id(pair[0]), None)
+            self._removeItemFromLayout(*pair)
+            return
+        for sample, _label in self.items:
+            if sample.item is item or _label.text == item:
+                self._rank.pop(id(sample), None)
+                break
+        super().removeItem(item)
+
+    def show_entries(self, items, shown: bool) -> None:
+        """Leave the entries of ``items`` out of the legend (``shown`` False: a hidden
+        layer's) or show them again in their place among the others. The entries are kept,
+        not made again (a new label costs pyqtgraph ~9 ms of text layout)."""
+        ids = {id(item) for item in items}
+        if shown:
+            back = [self._hidden.pop(i) for i in ids if i in self._hidden]
+            if not back:
+                return
+            self.items.extend(back)
+            self.items.sort(key=lambda pair: self._rank.get(id(pair[0]), 0))
+            for sample, label in back:
+                sample.show()
+                label.show()
+        else:
+            out = [pair for pair in self.items if id(pair[0].item) in ids]
+            if not out:
+                return
+            for sample, label in out:
+                self.items.remove((sample, label))
+                self._hidden[id(sample.item)] = (sample, label)
+                sample.hide()
+                label.hide()
+        for k in range(self.layout.count() - 1, -1, -1):  # laid out again, in order
+            self.layout.removeAt(k)
+        for sample, label in self.items:
+            self._addItemToLayout(sample, label)
+        self.updateSize()
+
+    def clear(self) -> None:
+        """Remove every entry, those left out too."""
+        for pair in self._hidden.values():
+            self._removeItemFromLayout(*pair)
+        self._hidden.clear()
+        self._rank.clear()
+        super().clear()
+
+    def hidden_items(self) -> list:
+        """The plot items whose entries are left out (:meth:`show_entries`)."""
+        return [sample.item for sample, _label in self._hidden.values()]
 
     def updateSize(self) -> None:  # noqa: N802 - pyqtgraph's name
         width = height = 0.0

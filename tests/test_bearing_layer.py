@@ -559,3 +559,65 @@ def test_reopened_changed_bearing_file_keeps_its_new_hash(qtbot, tmp_path):
     w.runner.cancel()
     w.runner.wait()
     w.close()
+
+
+def _legend(w) -> list[str]:
+    """The main map's legend entries, top to bottom."""
+    return [label.text for _sample, label in w.canvas.legend.items]
+
+
+@pytest.mark.gui
+def test_a_hidden_layers_entries_leave_the_legend(qtbot, tmp_path):
+    """Review: a layer unticked in the Layers list left its entries in the map's legend
+    (pyqtgraph draws a hidden curve's entry as an eye). Now a hidden point layer's sensor
+    lines and a hidden bearing layer's observer and line entries leave the legend, come
+    back in their place when ticked again, and a layer hidden in a reopened project has
+    none; a click on an entry's sample no longer hides the curve behind the Layers list."""
+    from PySide6 import QtCore
+
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.resources import demo_path
+
+    w = _window(qtbot, tmp_path)
+    w.load_file(demo_path())
+    wait_for_jobs(w)
+    demo = w.layer_id(demo_path().name)
+    path = tmp_path / "bearings.csv"
+    harbour_table().to_csv(path, index=False)
+    bear = _open_bearings(w, qtbot, path)
+    full = _legend(w)
+    points = [t for t in full if not t.startswith("bearings.csv")]
+    bearing = [t for t in full if t.startswith("bearings.csv")]
+    assert points and len(bearing) >= 2, full  # sensors; observer and lines
+    state = QtCore.Qt.CheckState
+    w.layer_list.item(w.layer_row(demo)).setCheckState(state.Unchecked)
+    assert _legend(w) == bearing
+    w.layer_list.item(w.layer_row(bear)).setCheckState(state.Unchecked)
+    assert _legend(w) == []
+    w.layer_list.item(w.layer_row(demo)).setCheckState(state.Checked)
+    assert _legend(w) == points
+    w.layer_list.item(w.layer_row(bear)).setCheckState(state.Checked)
+    assert _legend(w) == full  # back in their place
+    # A click on a sample leaves the curve as the Layers list says.
+    sample, _label = w.canvas.legend.items[0]
+    event = QtCore.QEvent(QtCore.QEvent.Type.None_)
+    event.button = lambda: QtCore.Qt.MouseButton.LeftButton
+    event.accept = event.ignore = lambda: None
+    sample.mouseClickEvent(event)
+    assert sample.item.isVisible()
+    # A layer hidden in a project is opened without entries; ticked, they come.
+    proj = tmp_path / "work.wakeline"
+    w.session.set_visible(bear, False)
+    w.save_project(proj)
+    assert w.project.flush(30)
+    w.close()
+    w2 = _window(qtbot, tmp_path)
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    qtbot.waitUntil(lambda: not w2.drawing, timeout=20_000)
+    assert _legend(w2) == points
+    w2.session.set_visible(bear, True)
+    assert _legend(w2) == full
+    w2.runner.cancel()
+    w2.runner.wait()
+    w2.close()
