@@ -158,5 +158,6 @@ def retranslate(w) -> None:
             tr("Maneuvers"),
             tr("Target"),
             tr("Status"),
-        ]
+        ],
+        relative={"start": tr("Start (T+)"), "end": tr("End (T+)")},
     )

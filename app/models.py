@@ -4,6 +4,7 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtCore
 
+from wakeline.app.time_text import is_relative_time
 from wakeline.core.timeline import overlapping
 from wakeline.core.tracks import track_summary
 
@@ -48,7 +49,7 @@ def display_text(df: pd.DataFrame) -> dict[str, np.ndarray]:
     out["points"] = (
         df["points"].astype("int64").astype(str).to_numpy() if len(df) else np.zeros(0, str)
     )
-    from wakeline.app.time_text import format_times, is_relative_time
+    from wakeline.app.time_text import format_times
 
     if len(df):
         epoch = pd.Timestamp("1970-01-01", tz="UTC")
@@ -116,10 +117,16 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         ("status", "Status"),
     )
     TEXT = ("sensor", "batch", "target", "status")
+    #: Titles of the time columns over times elapsed from a scene start (MTAD, Øresund),
+    #: shown ``T+h:mm:ss`` as on the time slider: they are no UTC dates.
+    RELATIVE_TITLES = {"start": "Start (T+)", "end": "End (T+)"}
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)
         self._titles = [t for _, t in self.COLUMNS]
+        self._relative_titles = dict(self.RELATIVE_TITLES)
+        #: The layer shown has scene-relative times (its Start and End are ``T+…``).
+        self.relative = False
         self._filter = ""
         self._window: tuple[float, float] | None = None
         self._sort: tuple[int, QtCore.Qt.SortOrder] | None = None
@@ -131,8 +138,12 @@ class BatchTableModel(QtCore.QAbstractTableModel):
     def frame(self) -> pd.DataFrame:
         return self._df
 
-    def set_titles(self, titles: list[str]) -> None:
+    def set_titles(self, titles: list[str], relative: dict[str, str] | None = None) -> None:
+        """The column titles (translated); ``relative``: those of the time columns over
+        scene-relative times (:attr:`RELATIVE_TITLES`)."""
         self._titles = titles
+        if relative is not None:
+            self._relative_titles = dict(relative)
         self.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(titles) - 1)
 
     def set_summary(self, df: pd.DataFrame, text: dict | None = None) -> None:
@@ -145,6 +156,7 @@ class BatchTableModel(QtCore.QAbstractTableModel):
             for k, (s, b) in enumerate(zip(self._text["sensor"], self._text["batch"], strict=True))
         }
         self._span_s = track_span_s(self._df)
+        self.relative = is_relative_time(np.concatenate(self._span_s))
         self._order = self._visible_rows()
         self.endResetModel()
 
@@ -255,6 +267,9 @@ class BatchTableModel(QtCore.QAbstractTableModel):
             role == QtCore.Qt.ItemDataRole.DisplayRole
             and orientation == QtCore.Qt.Orientation.Horizontal
         ):
+            key = self.COLUMNS[section][0]
+            if self.relative and key in self._relative_titles:
+                return self._relative_titles[key]
             return self._titles[section]
         return None
 

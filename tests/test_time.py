@@ -199,6 +199,7 @@ def test_index_at_a_million_points_makes_no_repeat(monkeypatch):
 # -- GUI -------------------------------------------------------------------------------
 
 pytestqt = pytest.importorskip("pytestqt")
+from PySide6 import QtCore  # noqa: E402
 
 
 def _scene_csv(path, relative: bool = False):
@@ -337,6 +338,42 @@ def test_time_window_is_saved_and_reopened_with_the_maps_cut(qtbot, tmp_path, re
     w2.runner.cancel()
     w2.runner.wait()
     w2.close()
+
+
+def _headers(window) -> list[str]:
+    model = window.batch_model
+    return [
+        model.headerData(c, QtCore.Qt.Orientation.Horizontal) for c in range(model.columnCount())
+    ]
+
+
+@pytest.mark.gui
+def test_batch_table_names_scene_times_t_plus_not_utc(window, qtbot, tmp_path):
+    """Review: over an MTAD scene (times elapsed from its start, shown ``T+0:16:23``) the
+    batch table's header said "Start (UTC)" / "End (UTC)". Now the time columns are named
+    as the slider names those times (``T+``), in English and Chinese, and a layer of dates
+    is "(UTC)" again."""
+    from conftest import real_file
+
+    mtad = _load(window, qtbot, real_file("mtad-dtwcm", "original", "Scene-35.csv"))
+    model = window.batch_model
+    assert model.rowCount() > 10
+    titles = _headers(window)
+    assert "Start (UTC)" not in titles and "End (UTC)" not in titles, titles
+    start, end = titles.index("Start (T+)"), titles.index("End (T+)")
+    cells = [model.data(model.index(r, c)) for r in range(model.rowCount()) for c in (start, end)]
+    assert all(c.startswith("T+") for c in cells), cells[:4]
+    window.set_language("zh_CN")
+    assert {"开始 (T+)", "结束 (T+)"} <= set(_headers(window))
+    window.set_language("en")
+    t0 = _scene_csv(tmp_path / "abs.csv")
+    dated = _load(window, qtbot, tmp_path / "abs.csv")
+    window.select_layer(dated)
+    titles = _headers(window)
+    assert titles[start] == "Start (UTC)" and titles[end] == "End (UTC)" and not model.relative
+    assert model.data(model.index(0, start)).startswith(str(pd.Timestamp(t0, unit="s").year))
+    window.select_layer(mtad)
+    assert _headers(window)[start] == "Start (T+)"
 
 
 @pytest.mark.gui

@@ -164,6 +164,14 @@
         <translation>结束 (UTC)</translation>
     </message>
     <message>
+        <source>Start (T+)</source>
+        <translation>开始 (T+)</translation>
+    </message>
+    <message>
+        <source>End (T+)</source>
+        <translation>结束 (T+)</translation>
+    </message>
+    <message>
         <source>Duration (min)</source>
         <translation>时长 (分钟)</translation>
     </message>
