@@ -3,7 +3,7 @@
 What it holds: the sources (path and content hash), the parameters, every layer with its
 lineage (Parquet blobs, so times, text and numbers come back exactly), the layers' side
 tables, small state rows (the selection, the map's view, the active layer, the time
-window) and the review decisions.
+window, the time slider's time) and the review decisions.
 
 It is written incrementally: a layer's Parquet once, when the layer is made (or
 replaced); a visibility, selection or parameter change is one small row, each in its own
@@ -44,7 +44,7 @@ from wakeline.core.io.writer import atomic_path
 from wakeline.core.pipeline import PARAMS_VERSION, params_from_version
 from wakeline.core.project_lock import read_holder
 from wakeline.core.session import Layer, MapView, Session, Source
-from wakeline.core.timeline import TimeWindow
+from wakeline.core.timeline import TimeWindow, current_time_from_json, current_time_to_json
 
 SCHEMA_VERSION = 2
 
@@ -93,6 +93,8 @@ class Project:
     active: str | None = None
     #: One sentence per state row left out because it could not be used.
     warnings: list[str] = field(default_factory=list)
+    #: The time slider's time (the ``current_time`` state row, s; None: none kept).
+    current_time: float | None = None
 
     def source_problems(self) -> list[str]:
         """One sentence per source that is missing or whose content changed."""
@@ -133,6 +135,7 @@ class Project:
         # The table shows the active layer's tracks: a selection of another is not shown.
         session.selection = [s for s in self.selection if s[0] == active]
         session.set_time_window(self.time_window)
+        session.set_current_time(self.current_time)
         session.set_map_view(self.map_view)
         return session
 
@@ -309,6 +312,11 @@ class ProjectStore:
         """The ``time_window`` state row: :meth:`TimeWindow.to_json`, or null (none)."""
         self.put_state("time_window", window.to_json() if window is not None else None)
 
+    def put_current_time(self, t: float | None) -> None:
+        """The ``current_time`` state row: the slider's time ``{"t": …, "unit": "s"}``,
+        or null (none)."""
+        self.put_state("current_time", current_time_to_json(t))
+
     def put_map_view(self, view: MapView | None) -> None:
         """The ``view`` state row: :meth:`MapView.to_json`, or null (none)."""
         self.put_state("view", view.to_json() if view is not None else None)
@@ -326,6 +334,7 @@ class ProjectStore:
         self.put_state("selection", session.selection)
         self.put_state("active", session.active)
         self.put_time_window(session.time_window)
+        self.put_current_time(session.current_time)
         self.put_map_view(session.map_view)
         for key, value in (state or {}).items():
             self.put_state(key, value)
@@ -497,6 +506,7 @@ def load_project(path: str | Path) -> Project:
         ui.map_view,
         ui.active,
         ui.warnings,
+        ui.current_time,
     )
 
 
@@ -510,6 +520,7 @@ class _ViewState:
     map_view: MapView | None
     active: str | None
     warnings: list[str]
+    current_time: float | None = None
 
 
 #: What each state row is, for the warning when it is left out.
@@ -517,6 +528,7 @@ _STATE_WHAT = {
     "selection": "selected tracks",
     "active": "active layer",
     "time_window": "time window",
+    "current_time": "time slider's time",
     "view": "map view",
 }
 
@@ -549,6 +561,7 @@ def _read_state(rows: list[tuple[str, str]], layer_ids: list[str]) -> _ViewState
         "selection": _selection,
         "active": lambda v: _active(v, layer_ids),
         "time_window": TimeWindow.from_json,
+        "current_time": current_time_from_json,
         "view": MapView.from_json,
     }
     for key, raw in rows:
@@ -565,7 +578,7 @@ def _read_state(rows: list[tuple[str, str]], layer_ids: list[str]) -> _ViewState
             continue
         if key == "selection":
             out.selection = value
-        elif key in ("active", "time_window", "view"):
+        elif key in ("active", "time_window", "current_time", "view"):
             setattr(out, {"view": "map_view"}.get(key, key), value)
         else:
             out.state[key] = value

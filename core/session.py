@@ -6,11 +6,12 @@ layer's id, the step, the role it plays in the step's output (``cleaned``,
 ``compressed`` …), the parameters and the time it was made. Re-running a step on the same
 input replaces only the layers of that (input, step, role); results of other inputs
 coexist. The GUI is a view over a session: it subscribes to its events
-(``added``, ``changed``, ``removed``, ``visibility``; ``time_window``, ``map_view`` and
-``active`` with no layer id) and never keeps layers of its own. The session also holds
-what brings an operator back to where they were, saved with the project: the map's time
-window (:class:`~wakeline.core.timeline.TimeWindow`, s), the map's view
-(:class:`MapView`, degrees), the active layer and the selected tracks.
+(``added``, ``changed``, ``removed``, ``visibility``; ``time_window``,
+``current_time``, ``map_view`` and ``active`` with no layer id) and never keeps layers
+of its own. The session also holds what brings an operator back to where they were,
+saved with the project: the map's time window
+(:class:`~wakeline.core.timeline.TimeWindow`, s), the time slider's time (s), the map's
+view (:class:`MapView`, degrees), the active layer and the selected tracks.
 """
 
 import dataclasses
@@ -27,7 +28,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, StepResult, params_to_json
 from wakeline.core.progress import Progress, null_progress
-from wakeline.core.timeline import TimeWindow
+from wakeline.core.timeline import TimeWindow, check_current_time
 
 #: Colours per result kind (the map's defaults); sources take the palette in turn.
 KIND_COLORS = {
@@ -170,6 +171,9 @@ class Session:
         self.time_window: TimeWindow | None = None
         #: The map's view (degrees; None: not known, the map frames the data).
         self.map_view: MapView | None = None
+        #: The time slider's time (s on the layers' clock, as the time window; None: not
+        #: known, the slider starts at the layers' first time).
+        self.current_time: float | None = None
         #: The layer the batch table and the steps work on (None: none).
         self.active: str | None = None
         self._ids = itertools.count(1)
@@ -202,6 +206,15 @@ class Session:
         if window != self.time_window:
             self.time_window = window
             self._emit("time_window", "")
+
+    def set_current_time(self, t: float | None) -> None:
+        """Set the time slider's time (s on the layers' clock, or None); a
+        ``current_time`` event (layer id ``""``) when it changed. Raises ValueError for a
+        time that is not a finite number."""
+        t = check_current_time(t)
+        if t != self.current_time:
+            self.current_time = t
+            self._emit("current_time", "")
 
     def set_map_view(self, view: MapView | tuple[float, float, float, float] | None) -> None:
         """Set the map's view ((x0, x1, y0, y1) in degrees, a :class:`MapView`, or None);
@@ -510,6 +523,7 @@ class Session:
         self.selection.clear()
         self.decisions.clear()
         self.set_time_window(None)
+        self.set_current_time(None)
         self.set_map_view(None)
         self.set_active(None)
 

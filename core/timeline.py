@@ -89,6 +89,40 @@ class TimeWindow:
         return cls(value["start"], value["end"])
 
 
+#: The unit of the slider's time in the project (the ``current_time`` state row).
+CURRENT_TIME_UNIT = "s"
+
+
+def current_time_to_json(t: float | None) -> dict | None:
+    """The slider's time ``t`` (s on the layers' clock, as :class:`TimeWindow`; None:
+    not kept) as the project stores it: ``{"t": …, "unit": "s"}``, or None."""
+    return None if t is None else {"t": float(t), "unit": CURRENT_TIME_UNIT}
+
+
+def current_time_from_json(value: object) -> float | None:
+    """Read :func:`current_time_to_json`'s value back (None: not kept). Raises ValueError
+    when it is not one: not a mapping of one finite number in seconds."""
+    if value is None:
+        return None
+    if not isinstance(value, dict) or set(value) != {"t", "unit"}:
+        raise ValueError(f"slider time: expected t and unit, got {value!r:.120}")
+    if value["unit"] != CURRENT_TIME_UNIT:
+        raise ValueError(f"slider time: unit must be {CURRENT_TIME_UNIT!r}, got {value['unit']!r}")
+    return check_current_time(value["t"])
+
+
+def check_current_time(t: object) -> float | None:
+    """``t`` as the slider's time (s; None stays None). Raises ValueError when it is not a
+    finite number."""
+    if t is None:
+        return None
+    if isinstance(t, bool) or not isinstance(t, (int, float, np.number)):
+        raise ValueError(f"slider time: must be a number, got {t!r:.60}")
+    if not math.isfinite(t):
+        raise ValueError(f"slider time: must be finite, got {t!r}")
+    return float(t)
+
+
 def _empty_i() -> np.ndarray:
     return np.zeros(0, dtype="int64")
 

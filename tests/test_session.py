@@ -580,6 +580,47 @@ def test_time_window_is_kept_in_the_session_and_the_project(scene, tmp_path):
         assert len(back.warnings) == 1 and "time window" in back.warnings[0]
 
 
+def test_slider_time_is_kept_in_the_session_and_the_project(scene, tmp_path):
+    """Review: the time slider's time was not saved (a reopened project started at the
+    layers' first time). Now the session holds it (s on the layers' clock), Save as and
+    the writer's small row store it as {t, unit}, opening gives it back; a project without
+    the row opens as before; a bad row is left out with one warning and the project
+    opens."""
+    _, points = scene
+    s = Session()
+    events = []
+    s.subscribe(lambda e, lid: events.append((e, lid)))
+    s.add_layer("scene", "source", points)
+    t0 = float(points["time"].astype("int64").min()) / 1e9
+    s.set_current_time(t0 + 125.5)
+    s.set_current_time(t0 + 125.5)  # the same: no event
+    assert events[1:] == [("current_time", "")]
+    for bad in (float("nan"), float("inf"), "noon", True):
+        with pytest.raises(ValueError):
+            s.set_current_time(bad)
+    assert s.current_time == t0 + 125.5
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    back = load_project(path)
+    assert back.current_time == t0 + 125.5 and "current_time" not in back.state
+    assert back.warnings == [] and back.to_session().current_time == t0 + 125.5
+    errors = []
+    writer = ProjectWriter(path, errors.append)
+    writer.submit(lambda st: st.put_current_time(t0 + 7.25))
+    assert writer.flush(10)
+    writer.close()
+    assert errors == [] and load_project(path).current_time == t0 + 7.25
+    con = sqlite3.connect(path)
+    (raw,) = con.execute("SELECT json FROM state WHERE key = 'current_time'").fetchone()
+    con.close()
+    assert json.loads(raw) == {"t": t0 + 7.25, "unit": "s"}
+    s.clear()
+    assert s.current_time is None and events[-1] == ("current_time", "")
+    _drop_state_rows(path, "current_time")  # saved before it was kept: opens as before
+    old = load_project(path)
+    assert old.current_time is None and old.warnings == [] and old.layers
+
+
 def _put_state_row(path, key: str, raw: str) -> None:
     """Write the state row ``key`` of the project ``path`` as the text ``raw``."""
     con = sqlite3.connect(path)
@@ -703,6 +744,10 @@ def test_a_project_without_view_rows_opens_as_before(scene, tmp_path):
         ("selection", '"L2"', "selected tracks"),
         ("time_window", '{"start": 5, "end": 1, "unit": "s"}', "time window"),
         ("time_window", "{", "time window"),
+        ("current_time", '{"t": "noon", "unit": "s"}', "slider's time"),
+        ("current_time", '{"t": 5, "unit": "ms"}', "slider's time"),
+        ("current_time", '{"t": Infinity, "unit": "s"}', "slider's time"),
+        ("current_time", "12.5", "slider's time"),
     ],
 )
 def test_a_bad_view_state_row_is_left_out_with_one_warning(scene, tmp_path, key, raw, what):
@@ -717,6 +762,7 @@ def test_a_bad_view_state_row_is_left_out_with_one_warning(scene, tmp_path, key,
     s.selection = [(b.id, "R1", "3")]
     s.set_map_view((11.25, 11.5, 57.6, 57.75))
     s.set_time_window((0.0, 60.0))
+    s.set_current_time(30.0)
     path = tmp_path / "p.wakeline"
     save_project(s, path)
     good = load_project(path)
@@ -725,7 +771,7 @@ def test_a_bad_view_state_row_is_left_out_with_one_warning(scene, tmp_path, key,
     assert len(back.warnings) == 1, back.warnings
     assert what in back.warnings[0] and "left out" in back.warnings[0]
     assert [lay.id for lay in back.layers] == [lay.id for lay in good.layers]
-    for field in ("map_view", "active", "selection", "time_window"):
+    for field in ("map_view", "active", "selection", "time_window", "current_time"):
         expected = getattr(good, field)
         wanted = {"view": "map_view"}.get(key, key)
         if field == wanted:
