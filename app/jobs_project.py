@@ -114,6 +114,7 @@ class ProjectJobsMixin:
     def save_project(self, path: Path) -> None:
         """Save the session to ``path`` (in the background) and keep it up to date."""
         self.view_keeper.store()  # the view as it is now, not as it was 0.4 s ago
+        self.time_controller.store_time()  # and the slider's time
         ok, note = self.project.save_as(Path(path))
         if note:
             self.log_message(f"{self.tr('Warning') if ok else self.tr('Error')}: {note}")

@@ -315,6 +315,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.lod_worker.wait(5000)
         if self.view_keeper.pending:  # the last zoom is kept too
             self.view_keeper.store()
+        if self.time_controller.time_pending:  # and the slider's last move
+            self.time_controller.store_time()
         self.project.detach()
         super().closeEvent(event)
 

@@ -11,6 +11,7 @@ detail. A frame on the GUI thread is two ``searchsorted`` calls over the index
 and the map.
 """
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
@@ -31,6 +32,9 @@ WIDE_MAX = 20_000
 MANY_MARKERS = 500
 #: No window of the session waits for the panel (:attr:`TimeController._restore`).
 _NO_RESTORE = object()
+#: The slider's time is written to the session (and so the project) this long (ms) after
+#: its last move: once a drag or the playback settles, never once per frame.
+SETTLE_MS = 400
 
 
 def thin_to_pixels(
@@ -271,7 +275,10 @@ class TimeController(QtCore.QObject):
 
     The window is the session's (``Session.time_window``, saved in the project): the
     panel's changes are written to it, and a window the session gets otherwise (a project
-    opened) is set on the panel once the slider spans the new layers.
+    opened) is set on the panel once the slider spans the new layers. The slider's time is
+    the session's too (``Session.current_time``): written once it settles
+    (:data:`SETTLE_MS` after its last move, not while playing; :meth:`store_time` at once
+    for Save as and closing), and set on the slider like the window.
     """
 
     scene_ready = QtCore.Signal()
@@ -293,6 +300,11 @@ class TimeController(QtCore.QObject):
         # A window the session got (a project opened), for the panel after the rebuild.
         self._restore: object = _NO_RESTORE
         self._writing = False  # the panel's window being written to the session
+        self._restore_t: object = _NO_RESTORE  # the session's slider time, for the panel
+        self._time_timer = QtCore.QTimer(self)  # the slider's time, once it settles
+        self._time_timer.setSingleShot(True)
+        self._time_timer.setInterval(SETTLE_MS)
+        self._time_timer.timeout.connect(self._time_settled)
         self._timer = QtCore.QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(50)
@@ -300,6 +312,9 @@ class TimeController(QtCore.QObject):
         window.layersChanged.connect(self._timer.start)
         window.activeChanged.connect(self._active_changed)
         panel.time_changed.connect(self._draw)
+        panel.time_changed.connect(lambda _t: self._time_timer.start())
+        # Paused: written once it settles (a late timer skipped while playing).
+        panel.play_button.toggled.connect(lambda on: on or self._time_timer.start())
         panel.trail_changed.connect(lambda: self._draw(panel.time()))
         panel.window_changed.connect(self._window_changed)
         panel.overlay_toggled.connect(self._overlay_toggled)
@@ -382,6 +397,9 @@ class TimeController(QtCore.QObject):
             return
         self._indexing = None
         restore, self._restore = self._restore, _NO_RESTORE
+        restore_t = self._restore_t
+        if scene.index.n_tracks:  # else kept for a slider with a span (a layer shown)
+            self._restore_t = _NO_RESTORE
         self.overlay.set_scene(scene if scene.index.n_tracks else None)
         if (
             restore is _NO_RESTORE
@@ -392,6 +410,8 @@ class TimeController(QtCore.QObject):
         self.panel.set_range(scene.index.bounds(), scene.relative)
         if restore is not _NO_RESTORE:
             self.panel.set_time_window(restore)  # the opened project's: cuts the map
+        if restore_t is not _NO_RESTORE and self._restore_t is _NO_RESTORE:
+            self.panel.set_time(restore_t)  # the opened project's (within the span)
         self._draw(self.panel.time())
         self.scene_ready.emit()
 
@@ -399,6 +419,8 @@ class TimeController(QtCore.QObject):
         """The session's time window changed (a project opened, a script): the panel
         takes it — after the rebuild under way, so the slider spans the new layers first
         and the new layers are the ones cut. Not the panel's own changes written back."""
+        if event == "current_time":
+            self._session_time()
         if event != "time_window" or self._writing:
             return
         window = self.window.session.time_window
@@ -407,6 +429,50 @@ class TimeController(QtCore.QObject):
             self._restore = bounds
         elif bounds != self.panel.time_window():
             self.panel.set_time_window(bounds)
+
+    def _session_time(self) -> None:
+        """The session's slider time changed (a project opened, a script): the slider
+        takes it, after the rebuild under way (as the window). Not the panel's own time
+        written back; a move of the slider not yet written is dropped for it."""
+        if self._writing:
+            return
+        self._time_timer.stop()
+        t = self.window.session.current_time
+        if t is None:  # cleared: nothing to show
+            self._restore_t = _NO_RESTORE
+        elif (
+            self._timer.isActive()
+            or self._indexing is not None
+            or not math.isfinite(self.panel.time())  # no span yet
+        ):
+            self._restore_t = t
+        elif self.panel.time() != t:
+            self._restore_t = _NO_RESTORE
+            self.panel.set_time(t)
+
+    @property
+    def time_pending(self) -> bool:
+        """A move of the slider waits to be written to the session."""
+        return self._time_timer.isActive()
+
+    def _time_settled(self) -> None:
+        if self.panel.is_playing:
+            return  # written when paused (play_button) or at its end, not per frame
+        self.store_time()
+
+    def store_time(self) -> None:
+        """Write the slider's time to the session now (Save as, closing, once it settles;
+        the project writes it). Not while an opened project's time waits for the slider,
+        nor when the slider has no time."""
+        self._time_timer.stop()
+        t = self.panel.time()
+        if self._restore_t is not _NO_RESTORE or not math.isfinite(t):
+            return
+        self._writing = True
+        try:
+            self.window.session.set_current_time(t)
+        finally:
+            self._writing = False
 
     def _draw(self, t: float) -> None:
         if self.panel.overlay_on():

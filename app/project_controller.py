@@ -3,7 +3,8 @@
 Once the work has a project file, every session event becomes one small write queued on
 the core's :class:`~wakeline.core.project.ProjectWriter` thread: a new or replaced layer
 writes its Parquet once; visibility, order, selection, the active layer, the map's view
-(debounced by :mod:`wakeline.app.view_keeper`), the time window and parameters are small
+(debounced by :mod:`wakeline.app.view_keeper`), the time window, the slider's time
+(debounced by :class:`~wakeline.app.map_time.TimeController`) and parameters are small
 rows.
 A failed write is never silent: :attr:`failed` carries the message to the window (a
 dialog, the log, and the title marked unsaved).
@@ -60,6 +61,7 @@ class ProjectController(QtCore.QObject):
         snapshot.selection = list(self.session.selection)
         snapshot.decisions = list(self.session.decisions)
         snapshot.time_window = self.session.time_window
+        snapshot.current_time = self.session.current_time
         snapshot.map_view = self.session.map_view
         snapshot.active = self.session.active
         self._attach(Path(path), read_only=False)
@@ -137,8 +139,9 @@ class ProjectController(QtCore.QObject):
 
     def _on_event(self, event: str, layer_id: str) -> None:
         if self.writer is None:
-            # Panning or another active layer in a read-only project is no work lost.
-            moved = event in ("map_view", "active")
+            # Panning, another active layer or the slider moved in a read-only project
+            # is no work lost.
+            moved = event in ("map_view", "active", "current_time")
             self.unsaved = self.unsaved or (self.path is not None and not moved)
             return
         layer = self.session.layers.get(layer_id)
@@ -159,6 +162,9 @@ class ProjectController(QtCore.QObject):
         elif event == "time_window":
             window = self.session.time_window
             self._submit(lambda st: st.put_time_window(window))
+        elif event == "current_time":  # debounced by the TimeController
+            t = self.session.current_time
+            self._submit(lambda st: st.put_current_time(t))
         elif event == "map_view":
             view = self.session.map_view
             self._submit(lambda st: st.put_map_view(view))

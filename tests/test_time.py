@@ -2,6 +2,7 @@
 its playback, the time window on the map and the batch table, the Gantt cursor hook, and
 a slider move at a million points staying under 100 ms (timer probe)."""
 
+import sqlite3
 import time
 
 import numpy as np
@@ -338,6 +339,80 @@ def test_time_window_is_saved_and_reopened_with_the_maps_cut(qtbot, tmp_path, re
     w2.runner.cancel()
     w2.runner.wait()
     w2.close()
+
+
+@pytest.mark.gui
+def test_slider_time_is_saved_when_it_settles_and_reopened(qtbot, tmp_path, monkeypatch):
+    """Review: the slider's time was not saved (a reopened project started at the first
+    time). Now it is written to the project once it settles (SETTLE_MS after the last
+    move: one row for a 30-step drag, none while the animation plays, one when paused),
+    at once on close, and a reopened project's slider is at it (not written back); a bad
+    row: one warning, the project opens with the slider at its start."""
+    from PySide6 import QtWidgets
+
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.app.map_time import SETTLE_MS
+    from wakeline.core.project import load_project
+
+    shown = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+    t0 = _scene_csv(tmp_path / "four.csv")
+    w = make_window(qtbot, tmp_path, (1200, 800))
+    _load(w, qtbot, tmp_path / "four.csv")
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    panel = w.time_panel
+    events = []
+    w.session.subscribe(lambda e, _lid: events.append(e))
+    for k in range(30):  # a drag: one write once it settles
+        panel.set_time(t0 + 100.0 + 10.0 * k)
+        QtWidgets.QApplication.processEvents()
+    assert w.time_controller.time_pending and "current_time" not in events
+    qtbot.waitUntil(lambda: not w.time_controller.time_pending, timeout=5000)
+    assert events.count("current_time") == 1 and w.session.current_time == t0 + 390.0
+    assert w.project.flush(30) and load_project(proj).current_time == t0 + 390.0
+    # Playing: no write per frame, nor one per SETTLE_MS; one when paused.
+    panel.speed.setValue(200.0)
+    panel.play()
+    qtbot.wait(3 * SETTLE_MS)
+    assert panel.is_playing and panel.time() > t0 + 450.0
+    assert events.count("current_time") == 1
+    panel.pause()
+    paused = panel.time()
+    qtbot.waitUntil(lambda: events.count("current_time") == 2, timeout=5000)
+    assert w.session.current_time == paused
+    # Moved, then closed at once: written on close.
+    panel.set_time(t0 + 1234.0)
+    assert w.time_controller.time_pending
+    w.runner.cancel()
+    w.runner.wait()
+    w.close()
+    assert load_project(proj).current_time == t0 + 1234.0
+
+    w2 = make_window(qtbot, tmp_path, (1200, 800))
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    qtbot.waitUntil(lambda: not w2.time_controller.busy and not w2.drawing, timeout=20_000)
+    assert w2.time_panel.time() == t0 + 1234.0 and w2.session.current_time == t0 + 1234.0
+    assert w2.time_panel.time_label.text().startswith("2024-05-01 00:20:34")
+    qtbot.wait(SETTLE_MS + 100)
+    assert w2.project.flush(30) and load_project(proj).current_time == t0 + 1234.0
+    assert not shown
+    w2.runner.cancel()
+    w2.runner.wait()
+    w2.close()
+    con = sqlite3.connect(proj)
+    con.execute("INSERT OR REPLACE INTO state VALUES ('current_time', '{\"t\": \"noon\"}')")
+    con.commit()
+    con.close()
+    w3 = make_window(qtbot, tmp_path, (1200, 800))
+    w3.open_project(proj)
+    wait_for_jobs(w3)
+    qtbot.waitUntil(lambda: not w3.time_controller.busy and not w3.drawing, timeout=20_000)
+    assert len(shown) == 1 and "slider's time" in shown[0] and "left out" in shown[0]
+    assert w3.layers and w3.time_panel.time() == t0
+    w3.runner.cancel()
+    w3.runner.wait()
 
 
 def _headers(window) -> list[str]:
