@@ -6,6 +6,13 @@ Pan, zoom and resize move the view many times a second; the view is written to
 one small row (:class:`~wakeline.app.project_controller.ProjectController`). A view the
 session gets otherwise (a script) is shown on the map; a project's saved view is shown
 by the open job's plan, so its layers are decimated for it in the worker.
+
+The map keeps the aspect of a kilometre, so a view asked for on a window of another
+shape is shown widened along one axis (pyqtgraph's target range is the view asked for,
+its view range the one shown). While the map's target is the session's view (a project
+opened, a resize since) nothing is written: the wider view shown is that view fitted to
+the window, and writing it back made the saved view grow with every open in a window
+of another shape. A pan or zoom (a new target) writes the view shown.
 """
 
 from PySide6 import QtCore
@@ -60,19 +67,29 @@ class MapViewKeeper(QtCore.QObject):
         self._timer.stop()
         try:
             view = MapView.of(self.canvas.current_view())
+            target = self._target()
         except ValueError:  # a view box not laid out yet (no width): nothing to keep
             return
-        if same_view(view, self.session.map_view):
-            return
+        if same_view(view, self.session.map_view) or same_view(target, self.session.map_view):
+            return  # the session's view, fitted to this window's shape: kept as it is
         self._storing = True
         try:
             self.session.set_map_view(view)
         finally:
             self._storing = False
 
+    def _target(self) -> MapView:
+        """The view the map was last asked for (before the aspect lock widened it)."""
+        (x0, x1), (y0, y1) = self.canvas.vb.targetRange()
+        return MapView(x0, x1, y0, y1)
+
     def _session_event(self, event: str, _lid: str) -> None:
         if event != "map_view" or self._storing or self.session.map_view is None:
             return
         view = self.session.map_view
-        if not same_view(view, MapView.of(self.canvas.current_view())):
+        try:
+            asked = self._target()
+        except ValueError:
+            asked = None
+        if not same_view(view, asked):
             self.canvas.show_range(view.bounds())

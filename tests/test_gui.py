@@ -376,6 +376,93 @@ def test_a_table_reset_selects_the_selection_again(window, tmp_path):
     assert model.keys_of_rows(model.rows_of_keys(wanted)) == shown
 
 
+def _open_in(new_window, qtbot, proj, size):
+    w = new_window()
+    w.resize(*size)
+    w.show()
+    qtbot.waitExposed(w)
+    w.open_project(proj)
+    wait_for_jobs(w)
+    qtbot.waitUntil(lambda: not w.drawing and not w.time_controller.busy, timeout=20_000)
+    return w
+
+
+def test_a_window_of_another_shape_fits_the_saved_view_without_writing_it(
+    qtbot, tmp_path, monkeypatch
+):
+    """Review: a project opened in a window of another shape widened one axis of its
+    saved view (the aspect lock) and wrote that wider view back 400 ms later, so the
+    saved view grew with every open in a window of another shape. Now the saved view is
+    fitted into the window (all of it shown, one axis exact) and stays as it was — in the
+    session and the file, a resize too, and on close — until the operator pans or zooms;
+    reopened in the first window's shape it shows what it showed there."""
+    from wakeline.app.view_keeper import SETTLE_MS
+    from wakeline.core.session import MapView
+
+    src, new_window, shown, _ = _project_bench(qtbot, tmp_path, monkeypatch)
+    w = new_window()
+    w.resize(1200, 800)
+    w.show()
+    qtbot.waitExposed(w)
+    load(w, src)
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    x0, x1, y0, y1 = w.canvas.current_view()
+    w.canvas.vb.setRange(
+        xRange=(x0 + 0.3 * (x1 - x0), x0 + 0.6 * (x1 - x0)),
+        yRange=(y0 + 0.2 * (y1 - y0), y0 + 0.5 * (y1 - y0)),
+        padding=0,
+    )
+    first = w.canvas.current_view()
+    size = w.canvas.plot_size_px()
+    w.close()
+    saved = load_project(proj).map_view
+    assert saved == MapView(*first)
+
+    def fits(view, target, px) -> bool:
+        """``view`` shows all of ``target``, one axis exactly (within a pixel)."""
+        inside = all(
+            (view[k] <= target[k] + px[k // 2]) if k % 2 == 0 else view[k] >= target[k] - px[k // 2]
+            for k in range(4)
+        )
+        exact = [all(abs(view[k] - target[k]) <= px[k // 2] for k in ax) for ax in ((0, 1), (2, 3))]
+        return inside and any(exact)
+
+    for shape in ((1500, 600), (800, 900)):
+        w2 = _open_in(new_window, qtbot, proj, shape)
+        got, px_size = w2.canvas.current_view(), w2.canvas.plot_size_px()
+        px = ((got[1] - got[0]) / px_size[0], (got[3] - got[2]) / px_size[1])
+        assert fits(got, saved.bounds(), px), (got, saved)
+        assert not same_shape(got, first), (got, first)  # the fit is another shape
+        w2.resize(shape[0] - 100, shape[1] + 50)  # a resize keeps it too
+        qtbot.wait(SETTLE_MS + 200)
+        assert not w2.view_keeper.pending and w2.session.map_view == saved
+        w2.close()
+        assert load_project(proj).map_view == saved, shape  # not written back
+    # Back in a window of the first one's size: the saved view fitted as before (its
+    # plot may differ by a few pixels: the docks), never grown by the opens between.
+    w3 = _open_in(new_window, qtbot, proj, (1200, 800))
+    got, px_size = w3.canvas.current_view(), w3.canvas.plot_size_px()
+    px = ((got[1] - got[0]) / px_size[0], (got[3] - got[2]) / px_size[1])
+    assert fits(got, saved.bounds(), px), (got, saved)
+    assert abs(px_size[0] - size[0]) < 0.1 * size[0] and abs(px_size[1] - size[1]) < 0.1 * size[1]
+    assert all(abs(got[k] - first[k]) <= 0.1 * (first[1] - first[0]) for k in (0, 1))
+    assert all(abs(got[k] - first[k]) <= 0.1 * (first[3] - first[2]) for k in (2, 3))
+    # The operator pans: the view shown is written once it settles.
+    w3.canvas.vb._resetTarget()  # as a mouse drag does
+    w3.canvas.vb.translateBy(x=0.1 * (first[1] - first[0]))
+    qtbot.waitUntil(lambda: w3.session.map_view != saved, timeout=5000)
+    assert w3.session.map_view == MapView(*w3.canvas.current_view())
+    assert w3.project.flush(30) and load_project(proj).map_view == w3.session.map_view
+    w3.close()
+    assert not shown
+
+
+def same_shape(a, b) -> bool:
+    """Two views of the same width-to-height ratio (within 1 %)."""
+    return abs((a[1] - a[0]) / (a[3] - a[2]) / ((b[1] - b[0]) / (b[3] - b[2])) - 1) < 0.01
+
+
 def test_project_open_in_two_windows_loses_nothing(qtbot, tmp_path, monkeypatch):
     """Operator test: both windows numbered their new layer L2 and one's was lost. The
     second window opens the project read-only, says who holds it, refuses Save as onto
