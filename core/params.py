@@ -7,6 +7,7 @@ the same field metadata.
 
 import dataclasses
 import math
+import numbers
 from typing import Any
 
 from wakeline.core.errors import InputError
@@ -138,3 +139,13 @@ def _parse(text: str, kind: type) -> Any:
         # Not finite or not whole: kept as a float so problems() names the parameter.
         return int(value) if math.isfinite(value) and value == int(value) else value
     return kind(text)
+
+
+def finite_number(value: object, what: str) -> float:
+    """``value`` as a float when it is a finite number (not a bool); else ValueError
+    "``what`` must be a number / finite, got …" (a value read from a project, say)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{what} must be a number, got {value!r:.60}")
+    if not math.isfinite(value):
+        raise ValueError(f"{what} must be finite, got {value!r}")
+    return float(value)

@@ -17,15 +17,14 @@ view (:class:`MapView`, degrees), the active layer and the selected tracks.
 import dataclasses
 import datetime as dt
 import itertools
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.params import finite_number
 from wakeline.core.pipeline import STEPS, StepResult, params_to_json
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.timeline import TimeWindow, check_current_time
@@ -102,12 +101,7 @@ class MapView:
 
     def __post_init__(self) -> None:
         for name in ("x0", "x1", "y0", "y1"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
-                raise ValueError(f"map view: {name} must be a number, got {value!r}")
-            if not math.isfinite(value):
-                raise ValueError(f"map view: {name} must be finite, got {value!r}")
-            object.__setattr__(self, name, float(value))
+            object.__setattr__(self, name, finite_number(getattr(self, name), f"map view: {name}"))
         if not (self.x0 < self.x1 and self.y0 < self.y1):
             raise ValueError(
                 f"map view: longitude {self.x0} … {self.x1}° and latitude {self.y0} … "

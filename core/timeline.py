@@ -8,12 +8,11 @@ increases through the whole array, so one :func:`numpy.searchsorted` answers "wh
 Python loop per track.
 """
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from wakeline.core.params import Params, param
+from wakeline.core.params import Params, finite_number, param
 
 
 @dataclass(frozen=True)
@@ -48,12 +47,9 @@ class TimeWindow:
 
     def __post_init__(self) -> None:
         for name in ("start_s", "end_s"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
-                raise ValueError(f"time window: {name} must be a number, got {value!r}")
-            if not math.isfinite(value):
-                raise ValueError(f"time window: {name} must be finite, got {value!r}")
-            object.__setattr__(self, name, float(value))
+            object.__setattr__(
+                self, name, finite_number(getattr(self, name), f"time window: {name}")
+            )
         if self.end_s < self.start_s:
             raise ValueError(
                 f"time window: ends ({self.end_s} s) before it starts ({self.start_s} s)"
@@ -116,11 +112,7 @@ def check_current_time(t: object) -> float | None:
     finite number."""
     if t is None:
         return None
-    if isinstance(t, bool) or not isinstance(t, (int, float, np.number)):
-        raise ValueError(f"slider time: must be a number, got {t!r:.60}")
-    if not math.isfinite(t):
-        raise ValueError(f"slider time: must be finite, got {t!r}")
-    return float(t)
+    return finite_number(t, "slider time:")
 
 
 def _empty_i() -> np.ndarray:
