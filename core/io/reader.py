@@ -32,7 +32,13 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
-from wakeline.core.io.formats import Resolved, header_is_local, parse_mapping, resolve
+from wakeline.core.io.formats import (
+    Resolved,
+    header_is_local,
+    normalize_header,
+    parse_mapping,
+    resolve,
+)
 from wakeline.core.io.sniff import Sniff, sniff
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
@@ -1528,6 +1534,36 @@ def _clean_floats(arr: pa.ChunkedArray, lo: float, hi: float, hi_open: bool = Fa
     return bool(pc.all(pc.and_(pc.greater_equal(arr, lo), upper)).as_py())
 
 
+#: ITU-R M.1371's "not available" values as Wakeline reads them: lon 181, lat 91, SOG 1023
+#: (102.3 kn), COG 3600 (360.0°).
+AIS_NOT_AVAILABLE = {"lon": 181.0, "lat": 91.0, "speed": 102.3, "course": 360.0}
+#: The quarantine reason of a row whose position is AIS's "not available" (as the NMEA
+#: reader says it).
+AIS_NO_POSITION = "position not available (lon 181 / lat 91)"
+#: Speed and course column names that are AIS's own (normalised): SOG, COG.
+_AIS_NAMES = {"speed": "sog", "course": "cog"}
+
+
+def ais_columns(res: Resolved) -> set[str]:
+    """The attribute fields (speed, course) whose column is AIS's: in an AIS layout
+    (MarineCadastre, DMA), or named SOG / COG. Only there is 102.3 kn AIS's "not
+    available"; a radar's speed column keeps 102.3 kn as the number it is."""
+    out = set()
+    for name, ais_name in _AIS_NAMES.items():
+        src = res.columns.get(name)
+        if src is not None and (res.format.family == "ais" or normalize_header(src) == ais_name):
+            out.add(name)
+    return out
+
+
+def _holds(arr: pa.ChunkedArray, value: float | None) -> bool:
+    """Whether a numeric column holds ``value`` (one vectorized comparison)."""
+    if value is None or len(arr) == 0:
+        return False
+    hit = pc.any(pc.less(pc.abs(pc.subtract(arr, value)), 1e-9)).as_py()
+    return bool(hit)
+
+
 _RANGES = {
     "lon": (-180.0, 180.0, False),
     "lat": (-90.0, 90.0, False),
@@ -1665,12 +1701,14 @@ def _to_canonical(
 
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
     blanked: dict[str, int] = {}
+    ais = ais_columns(res)
     for name in _FLOAT_FIELDS:
         if name not in cols:
             continue
         arr = table[cols[name]]
         lo, hi, hi_open = _RANGES[name]
-        if _clean_floats(arr, lo, hi, hi_open):
+        sentinel = AIS_NOT_AVAILABLE[name] if name in ais else None
+        if _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel):
             floats[name] = arr  # the common case: passes through untouched
             continue
         v, unparsable = _numbers(arr, comma, counted)
@@ -1679,21 +1717,35 @@ def _to_canonical(
         if name in ("lon", "lat"):
             flag(unparsable, f"unparsable {name}")
             flag(np.isnan(v) & ~unparsable, f"missing {name}")
+            # AIS's "not available" (lon 181, lat 91): no position, its own reason.
+            flag(v == AIS_NOT_AVAILABLE[name], AIS_NO_POSITION)
             flag(outside, f"{name} out of range")
         else:
+            # Counted on the rows kept (the positions are checked first: a row quarantined
+            # for its position does not count its speed too).
+            kept_so_far = (reasons == 0) & ~blank
+            if sentinel is not None:
+                # AIS's "not available" (SOG 1023 = 102.3 kn, COG 3600 = 360°): no value.
+                na = np.abs(v - sentinel) < 1e-9
+                if na.any():
+                    label = f"{name} {sentinel:g} (AIS: not available)"
+                    blanked[label] = int((na & kept_so_far).sum())
+                    v = np.where(na, np.nan, v)
+                    outside &= ~na
             # Attributes, not positions: blank the value, keep the row, count it (a
             # course written "-" cost its fix; speed and course are derived from the
             # positions where missing).
             if unparsable.any():
-                blanked[f"unparsable {name}"] = int(unparsable.sum())
+                blanked[f"unparsable {name}"] = int((unparsable & kept_so_far).sum())
             if outside.any():
                 label = (
                     "course outside [0, 360)" if name == "course" else "speed negative or infinite"
                 )
-                blanked[label] = int(outside.sum())
+                blanked[label] = int((outside & kept_so_far).sum())
                 v = np.where(outside, np.nan, v)
         floats[name] = pa.array(v)
 
+    blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
     bad_rows = reasons != 0
     keep = ~bad_rows & ~blank
     all_kept = bool(keep.all())
