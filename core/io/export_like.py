@@ -417,6 +417,8 @@ def write_layout(
         try:
             if layout.bom and layout.encoding.replace("-", "").lower() in ("utf8", "utf_8"):
                 fh.write(codecs.BOM_UTF8)
+            for title in layout.title_lines:  # a title above the header, as it came
+                fh.write(encoder.encode(title + layout.line_end))
             if layout.header:
                 fh.write(encoder.encode(header_line + (layout.line_end if n else "")))
             for start in range(0, n, CHUNK_ROWS):

@@ -251,6 +251,26 @@ FORMATS: tuple[Format, ...] = (
 FAMILIES = ("auto", "canonical", "radar", "ais", "mtad", "generic")
 
 
+def _alias_table() -> dict[str, str]:
+    """Normalised header name → canonical field, over the synonyms and every format's
+    own names (``SendShipNO``, ``# Timestamp``, ``cou``...)."""
+    out: dict[str, str] = {}
+    for fmt in FORMATS:
+        for name, cands in fmt.candidates.items():
+            for cand in cands:
+                out.setdefault(normalize_header(cand), name)
+    return out
+
+
+_ALIASES = _alias_table()
+
+
+def known_fields(names: list[str] | tuple[str, ...]) -> set[str]:
+    """The canonical fields that a line's cells name (by synonym or a format's own
+    names): how a header line is told from a title line above it."""
+    return {f for n in names if (f := _ALIASES.get(normalize_header(n.strip().strip('"'))))}
+
+
 @dataclass(frozen=True)
 class Resolved:
     """A format chosen for a file, with the source column of every canonical field."""

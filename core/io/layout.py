@@ -251,6 +251,8 @@ class Layout:
     final_newline: bool = True
     source: str = ""
     header: bool = True
+    #: Lines above the header (a title), written back before it.
+    title_lines: tuple[str, ...] = ()
 
     def field_column(self, name: str) -> Column | None:
         """The column that carries canonical field ``name``, if any."""
@@ -275,8 +277,9 @@ class Layout:
             )
             for c in data["columns"]
         )
-        rest = {k: v for k, v in data.items() if k not in ("columns", "time")}
-        return Layout(columns=columns, time=TimeFormat(**time), **rest)
+        rest = {k: v for k, v in data.items() if k not in ("columns", "time", "title_lines")}
+        titles = tuple(data.get("title_lines") or ())
+        return Layout(columns=columns, time=TimeFormat(**time), title_lines=titles, **rest)
 
     def with_encoding(self, encoding: str | None) -> "Layout":
         """The same layout in another text encoding (None: unchanged)."""
@@ -404,7 +407,8 @@ def describe_layout(
     decoded = text.decode(sn.encoding, errors="replace").removeprefix("\ufeff")
     line_end = "\r\n" if "\r\n" in decoded else ("\r" if "\r" in decoded else "\n")
     lines = [ln for ln in re.split(r"\r\n|\r|\n", decoded) if ln.strip()]
-    lines = lines[1:] if sn.excel_sep else lines  # Excel's "sep=;" line: no header
+    # Excel's "sep=;" line and a title above the header: neither is the header.
+    lines = lines[int(sn.excel_sep) + len(sn.title_lines) :]
     header_line = lines[0] if sn.has_header and lines else ""
     raw_names = (
         next(csv.reader([header_line], delimiter=sn.delimiter)) if header_line else list(sn.columns)
@@ -463,6 +467,7 @@ def describe_layout(
         final_newline=final_newline,
         source=str(path),
         header=sn.has_header,
+        title_lines=tuple(t for _, t in sn.title_lines),
     )
 
 

@@ -1291,6 +1291,27 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
+#: The reason a line above the header is skipped.
+TITLE_REASON = "above the header (a title?): skipped"
+
+
+def _title_report(sn: Sniff) -> list[dict]:
+    """The lines skipped above the header: line number (1-based), reason and text."""
+    return [{"line": n, "reason": TITLE_REASON, "text": t} for n, t in sn.title_lines]
+
+
+def _title_warnings(sn: Sniff) -> list[str]:
+    """One warning naming the lines above the header that were skipped."""
+    if not sn.title_lines:
+        return []
+    shown = "; ".join(f"line {n}: {t[:60]!r}" for n, t in sn.title_lines[:3])
+    more = f" and {len(sn.title_lines) - 3} more" if len(sn.title_lines) > 3 else ""
+    return [
+        f"{len(sn.title_lines)} line(s) above the header skipped (a title, not data): "
+        f"{shown}{more}; the header is line {sn.skip_rows if sn.has_header else '-'}"
+    ]
+
+
 def _restart_warnings(restarting: dict[str, int], batch_src: str) -> list[str]:
     """A warning when tracks restart their time in the file (several passes or ships
     under one id)."""
@@ -1420,7 +1441,7 @@ def read_points(
     points, quarantine, counts = _to_canonical(rows, sn, res, sensor, zone, time_info)
     time_info.pop("_edges", None)
     progress(1.0, "imported")
-    warnings = list(rows.notes) + notes
+    warnings = list(rows.notes) + notes + _title_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
@@ -1432,6 +1453,7 @@ def read_points(
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
+        "lines_above_header": _title_report(sn),
         "columns": res.columns,
         "extra_columns": extra,
         "careful_parse": rows.careful,
@@ -1947,6 +1969,7 @@ def inspect_file(
         "encoding": sn.encoding,
         "delimiter": sn.delimiter,
         "header": sn.has_header,
+        "lines_above_header": _title_report(sn),
         "preview": [list(r) for r in sn.preview],
         "local_time": False,
         "problem": None,
@@ -2230,6 +2253,7 @@ def stream_points(
         q["text"] = pd.Series(texts, dtype="str")
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
     warnings = ["no batch column: the file is one track named after the file"] if file_batch else []
+    warnings += _title_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(restarting, res.columns["batch"])
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
@@ -2241,6 +2265,7 @@ def stream_points(
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
+        "lines_above_header": _title_report(sn),
         "columns": res.columns,
         "extra_columns": extra,
         "careful_parse": False,

@@ -39,6 +39,9 @@ class Sniff:
     encoding_given: bool = False  # the caller named the encoding
     ascii: bool = True  # the sample is plain ASCII (any ASCII-based encoding reads it)
     excel_sep: bool = False  # the file starts with Excel's "sep=;" line (skipped)
+    #: Lines above the header (a title: "Radar track export 2024-05-01"), skipped:
+    #: (physical line number, 1-based; text).
+    title_lines: tuple[tuple[int, str], ...] = ()
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
@@ -227,8 +230,41 @@ def delimiter_given(delimiter: str | None) -> str | None:
     return delim
 
 
-def sniff(path: str | Path, encoding: str | None = None, delimiter: str | None = None) -> Sniff:
-    """Inspect a CSV file. Raises :class:`InputError` for empty, binary or undecodable files."""
+#: Lines looked at for a header below a title line.
+TITLE_LINES_MAX = 10
+
+
+def _title_count(lines: list[str], delimiter: str | None) -> int:
+    """How many of the first non-blank lines are a title above the header: 0 when the
+    first line names at least three known fields (or no later line names more, and at
+    least three); else the index of the first of the next :data:`TITLE_LINES_MAX` lines
+    that does (split on its own delimiter)."""
+    from wakeline.core.io.formats import known_fields
+
+    def named(k: int) -> int:
+        delim = delimiter or _pick_delimiter(lines[k:])
+        return len(known_fields(lines[k].split(delim)))
+
+    first = named(0)
+    if first >= 3 or len(lines) < 2:
+        return 0
+    for k in range(1, min(TITLE_LINES_MAX + 1, len(lines) - 1 + 1)):
+        if named(k) >= 3 and named(k) > first:
+            return k
+    return 0
+
+
+def sniff(
+    path: str | Path,
+    encoding: str | None = None,
+    delimiter: str | None = None,
+    skip_rows: int | None = None,
+) -> Sniff:
+    """Inspect a CSV file. Raises :class:`InputError` for empty, binary or undecodable files.
+
+    A title above the header (lines that name no known column, then a line that does) is
+    found among the first :data:`TITLE_LINES_MAX` lines and skipped (``title_lines``);
+    ``skip_rows`` (physical lines before the header) says it instead of detecting it."""
     path = Path(path)
     delimiter = delimiter_given(delimiter)
     sample, compression = _read_sample(path)
@@ -272,6 +308,17 @@ def sniff(path: str | Path, encoding: str | None = None, delimiter: str | None =
         leading_blank = next(
             i for i, line in enumerate(physical) if i > leading_blank and line.strip()
         )
+    titles = _title_count(lines, delimiter) if skip_rows is None else 0
+    if skip_rows is not None:  # given: that many physical lines, then the header
+        titles = sum(1 for line in physical[:skip_rows] if line.strip())
+        titles -= int(extras.get("excel_sep", False))
+        titles = max(0, min(titles, len(lines) - 1))
+    if titles:
+        nonblank = [i for i, line in enumerate(physical) if line.strip()]
+        offset = int(extras.get("excel_sep", False))
+        extras["title_lines"] = tuple((nonblank[offset + k] + 1, lines[k]) for k in range(titles))
+        leading_blank = nonblank[offset + titles]
+        lines = lines[titles:]
     delim = delimiter or _pick_delimiter(lines)
     first = [f.strip().strip('"') for f in lines[0].split(delim)]
     has_header = any(f and not _NUMBER.match(f) for f in first)

@@ -1,0 +1,145 @@
+"""A title above the header ("Radar track export 2024-05-01", then the header on line 2):
+the header is found among the first lines, the lines above it skipped and counted."""
+
+import pandas as pd
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from wakeline.app.cli import main
+from wakeline.core.io import import_to_csv, read_points, sniff
+from wakeline.core.io.export_like import write_layout
+from wakeline.core.io.layout import describe_layout
+
+HEADERS = {
+    "en": "track_id,time,lon,lat,speed,course",
+    "zh": "批号,时间,经度,纬度,航速(节),航向",
+    "ais": "MMSI,BaseDateTime,LAT,LON,SOG,COG",
+}
+
+
+def _rows(n: int, kind: str = "en", delim: str = ",") -> list[str]:
+    out = []
+    for k in range(n):
+        t = f"2024-05-01T08:{k // 60:02d}:{k % 60:02d}"
+        lon, lat = f"{122 + k * 1e-3:.4f}", f"{30 + k * 1e-3:.4f}"
+        cells = (
+            [str(400 + k % 2), t, lat, lon] if kind == "ais" else [str(400 + k % 2), t, lon, lat]
+        )
+        out.append(delim.join([*cells, "9.5", "45"]))
+    return out
+
+
+@pytest.mark.parametrize("streamed", [False, True])
+@pytest.mark.parametrize("kind", ["en", "zh"])
+def test_a_title_line_above_the_header_is_skipped_and_counted(write, tmp_path, kind, streamed):
+    """Tester: an export whose first line is "Radar track export 2024-05-01" and header on
+    line 2 was refused (missing required column; headers found: Radar track export…)."""
+    text = "Radar track export 2024-05-01\n" + HEADERS[kind] + "\n" + "\n".join(_rows(50)) + "\n"
+    path = write("titled.csv", text, encoding="gb18030" if kind == "zh" else "utf-8")
+    if streamed:
+        r = import_to_csv(path, tmp_path / "o.csv")
+        points = pd.read_csv(tmp_path / "o.csv")
+    else:
+        r = read_points(path)
+        points = r.points
+    assert len(points) == 50 and r.report["rows_quarantined"] == 0
+    assert r.report["lines_above_header"] == [
+        {
+            "line": 1,
+            "reason": "above the header (a title?): skipped",
+            "text": "Radar track export 2024-05-01",
+        }
+    ]
+    assert any("1 line(s) above the header skipped" in w for w in r.report["warnings"])
+    assert points["lon"].iloc[1] == pytest.approx(122.001)
+
+
+def test_several_title_lines_with_blank_lines_and_a_bad_row_keep_line_numbers(write):
+    rows = _rows(20)
+    rows[5] = "400,not a time,122.0,30.0,9.5,45"
+    text = "Export\nStation 3, radar 2\n\n" + HEADERS["en"] + "\n" + "\n".join(rows) + "\n"
+    r = read_points(write("t.csv", text))
+    assert [x["line"] for x in r.report["lines_above_header"]] == [1, 2]
+    assert r.quarantine["line"].tolist() == [4 + 6]  # physical line of rows[5]
+    assert r.report["rows_imported"] == 19
+
+
+def test_the_cli_says_which_lines_it_skipped(write, tmp_path, capsys):
+    text = "Radar track export 2024-05-01\n" + HEADERS["en"] + "\n" + "\n".join(_rows(5)) + "\n"
+    path = write("t.csv", text)
+    assert main(["import", str(path), "-o", str(tmp_path / "o.csv")]) == 0
+    err = capsys.readouterr().err
+    assert "imported 5 rows" in err
+    assert "line 1: 'Radar track export 2024-05-01'" in err
+
+
+def test_a_file_without_title_or_without_header_is_read_as_before(write):
+    plain = write("p.csv", HEADERS["en"] + "\n" + "\n".join(_rows(5)) + "\n")
+    assert sniff(plain).title_lines == () and sniff(plain).skip_rows == 1
+    bare = write("b.csv", "\n".join(_rows(5)) + "\n")
+    sn = sniff(bare)
+    assert sn.title_lines == () and sn.skip_rows <= 1  # as before: no line searched past
+
+
+def test_explicit_skip_rows_in_sniff(write):
+    text = "a,b,c\nx,y,z\n" + HEADERS["en"] + "\n" + "\n".join(_rows(3)) + "\n"
+    sn = sniff(write("s.csv", text), skip_rows=2)
+    assert sn.columns[0] == "track_id" and sn.skip_rows == 3
+    assert [n for n, _ in sn.title_lines] == [1, 2]
+
+
+def test_export_like_writes_the_title_back_and_reimports_the_same_rows(write, tmp_path):
+    text = (
+        "Radar track export 2024-05-01\n"
+        + HEADERS["ais"]
+        + "\n"
+        + "\n".join(_rows(30, "ais"))
+        + "\n"
+    )
+    src = write("t.csv", text)
+    r = read_points(src)
+    out = tmp_path / "like.csv"
+    write_layout(r.points, describe_layout(src, r.report), out)
+    assert out.read_bytes() == src.read_bytes()
+    again = read_points(out)
+    pd.testing.assert_frame_equal(again.points, r.points)
+
+
+@settings(
+    max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    titles=st.lists(
+        st.text(
+            st.characters(whitelist_categories=("L", "N", "Zs"), whitelist_characters=":-/"),
+            min_size=1,
+            max_size=30,
+        ).filter(lambda s: s.strip()),
+        min_size=0,
+        max_size=5,
+    ),
+    blanks=st.lists(st.booleans(), min_size=5, max_size=5),
+    kind=st.sampled_from(sorted(HEADERS)),
+    delim=st.sampled_from([",", ";", "\t"]),
+    n=st.integers(1, 30),
+)
+def test_count_identity_with_title_lines(tmp_path_factory, titles, blanks, kind, delim, n):
+    """Every physical line is the header, blank, a skipped title, a point or quarantined."""
+    lines = []
+    for k, t in enumerate(titles):
+        lines.append(t)
+        if blanks[k]:
+            lines.append("")
+    header = HEADERS[kind].replace(",", delim)
+    lines += [header, *_rows(n, kind, delim)]
+    path = tmp_path_factory.mktemp("t") / "t.csv"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    r = read_points(path)
+    rep = r.report
+    assert rep["rows_imported"] == n, rep
+    skipped = len(rep["lines_above_header"])
+    assert skipped == len(titles)
+    total = rep["rows_imported"] + rep["rows_quarantined"] + skipped + 1 + rep["blank_lines"]
+    blank_above = sum(blanks[: len(titles)])
+    assert total + blank_above == len(lines)
