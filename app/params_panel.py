@@ -9,7 +9,6 @@ import dataclasses
 import json
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 from pyqtgraph.parametertree import Parameter, ParameterTree
 from PySide6 import QtCore, QtWidgets
@@ -22,8 +21,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.fuse import FuseParams
 from wakeline.core.maneuver import (
     ManeuverParams,
-    largest_tolerable_error_m,
-    smallest_detectable_turn_deg,
+    detection_limit,
 )
 from wakeline.core.params import Params
 from wakeline.core.pipeline import (
@@ -280,24 +278,31 @@ class ParamsPanel(QtWidgets.QWidget):
     # -- guidance ------------------------------------------------------------------
 
     def show_guidance(self, summary: pd.DataFrame) -> None:
-        """Seed 000's detection limit for the loaded data: typical speed and interval."""
-        if summary.empty:
-            self.guidance.setText("")
-            return
-        speed = float(np.nanmedian(summary["mean_speed_kn"])) if len(summary) else float("nan")
-        interval = float(np.nanmedian(summary["duration_s"] / np.maximum(summary["points"] - 1, 1)))
+        """Seed 000's detection limit for the loaded data: typical speed and interval
+        (core.maneuver.detection_limit), or why none can be given."""
         mp = self._values["maneuver"]
-        if not np.isfinite(speed) or speed <= 0:
+        limit = detection_limit(summary, mp.window_p, mp.threshold_deg)
+        if limit is None:
             self.guidance.setText("")
             return
-        leg = interval * mp.window_p
-        eps = largest_tolerable_error_m(mp.threshold_deg, speed, leg)
-        turn = smallest_detectable_turn_deg(100.0, speed, leg)
+        if limit.reason is not None:
+            self.guidance.setText(
+                self.tr("Detection limit (seed 000): none for this data: {0}.").format(limit.reason)
+            )
+            return
         self.guidance.setText(
             self.tr(
                 "Detection limit (seed 000) for this data: median speed {0:.1f} kn, "
                 "interval {1:.0f} s, legs of p = {2} points ({3:.0f} s). A {4:.0f}° turn "
                 "stands out from position errors up to {5:.0f} m; with 100 m errors the "
                 "smallest turn found is {6:.1f}°."
-            ).format(speed, interval, mp.window_p, leg, mp.threshold_deg, eps, turn)
+            ).format(
+                limit.speed_kn,
+                limit.interval_s,
+                mp.window_p,
+                limit.leg_s,
+                mp.threshold_deg,
+                limit.eps_m,
+                limit.turn_deg,
+            )
         )

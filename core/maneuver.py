@@ -2113,3 +2113,81 @@ def largest_tolerable_error_m(threshold_deg: float, speed_kn: float, leg_s: floa
     ``threshold_deg`` stays above the noise; 16 kn, 30 min legs, 15° → ≈ 975 m."""
     v = speed_kn * geo.KN_MS
     return v * leg_s / (2.0 * math.tan(math.radians(180.0 - threshold_deg) / 2.0))
+
+
+#: Below this median sampling interval (s) the batches are not tracks sampled in time.
+GUIDANCE_MIN_INTERVAL_S = 1.0
+#: Above this median speed (kn) the batches are not one ship each (no ship goes faster;
+#: AIS itself tops out at 102.2 kn).
+GUIDANCE_MAX_SPEED_KN = 100.0
+
+
+@dataclass(frozen=True)
+class DetectionLimit:
+    """Seed 000's detection limit for a data set: the typical speed (kn) and sampling
+    interval (s), legs of ``window_p`` points (``leg_s``), the largest position error (m)
+    a ``threshold_deg`` turn stands out from, and the smallest turn (deg) found with
+    100 m errors. ``reason`` is set (and the numbers are NaN) when no limit can be given."""
+
+    speed_kn: float
+    interval_s: float
+    leg_s: float
+    eps_m: float
+    turn_deg: float
+    reason: str | None = None
+
+
+def detection_limit(
+    summary: pd.DataFrame, window_p: int, threshold_deg: float, eps_m: float = 100.0
+) -> DetectionLimit | None:
+    """The detection limit of seed 000 eq. 10/12 from a :func:`track_summary` table, or
+    None when there is nothing to judge (no track with two points). When the batches are
+    no tracks — their points share times (radar plots written one batch per scan: median
+    interval below :data:`GUIDANCE_MIN_INTERVAL_S`), or their median speed is no ship's
+    (above :data:`GUIDANCE_MAX_SPEED_KN`) — ``reason`` says why no limit is given."""
+    if summary.empty:
+        return None
+    points = summary["points"].to_numpy(dtype="float64")
+    duration = summary["duration_s"].to_numpy(dtype="float64")
+    moving = points > 1
+    if not moving.any():
+        return None
+    interval = float(np.nanmedian(duration[moving] / (points[moving] - 1)))
+    speeds = summary["mean_speed_kn"].to_numpy(dtype="float64")[moving]
+    speed = float(np.nanmedian(speeds)) if np.isfinite(speeds).any() else float("nan")
+    nan = float("nan")
+    shared = int(np.count_nonzero(duration[moving] <= 0))
+    if not interval >= GUIDANCE_MIN_INTERVAL_S:
+        return DetectionLimit(
+            speed,
+            interval,
+            nan,
+            nan,
+            nan,
+            f"points share times (median interval {interval:.1f} s; {shared:,} of "
+            f"{int(moving.sum()):,} batches have all their points at one time): these look "
+            "like radar plots (one batch per scan), not tracks; no detection limit can be "
+            "given until the plots are joined into tracks",
+        )
+    if not np.isfinite(speed) or speed <= 0:
+        return DetectionLimit(
+            speed, interval, nan, nan, nan, "the tracks do not move: no typical speed"
+        )
+    if speed > GUIDANCE_MAX_SPEED_KN:
+        return DetectionLimit(
+            speed,
+            interval,
+            nan,
+            nan,
+            nan,
+            f"median speed {speed:.0f} kn is no ship's: the batches are not one ship each "
+            "(radar plots, or one id for several ships); no detection limit can be given",
+        )
+    leg = interval * window_p
+    return DetectionLimit(
+        speed,
+        interval,
+        leg,
+        largest_tolerable_error_m(threshold_deg, speed, leg),
+        smallest_detectable_turn_deg(eps_m, speed, leg),
+    )

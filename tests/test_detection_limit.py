@@ -1,0 +1,103 @@
+"""Seed 000's detection limit in the parameter panel: numbers for tracks, a reason for
+radar plots (points sharing times) and for batches whose speed is no ship's."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from wakeline.core import geo
+from wakeline.core.maneuver import (
+    detection_limit,
+    largest_tolerable_error_m,
+    smallest_detectable_turn_deg,
+)
+from wakeline.core.tracks import track_summary
+
+T0 = pd.Timestamp("2024-05-01T08:00:00Z")
+
+
+def _ships(n_ships: int = 12, n_scans: int = 60, dt: float = 10.0, kn: float = 12.0):
+    """Ships on straight lines; one row per ship and scan (times exactly shared)."""
+    rows = []
+    v = kn * geo.KN_MS
+    for s in range(n_ships):
+        lat0, lon0 = 59.0 + 0.05 * s, 10.0 + 0.03 * s
+        for k in range(n_scans):
+            north = v * dt * k
+            rows.append((s, k, T0 + pd.Timedelta(seconds=dt * k), lon0, lat0 + north / 111_195.0))
+    return pd.DataFrame(rows, columns=["ship", "scan", "time", "lon", "lat"])
+
+
+def _points(df: pd.DataFrame, batch: pd.Series) -> pd.DataFrame:
+    return pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": batch.astype(str),
+            "time": df["time"],
+            "lon": df["lon"],
+            "lat": df["lat"],
+            "speed": np.nan,
+            "course": np.nan,
+        }
+    )
+
+
+def test_tracks_give_the_seed_000_numbers():
+    df = _ships()
+    limit = detection_limit(track_summary(_points(df, df["ship"])), 5, 15.0)
+    assert limit.reason is None
+    assert limit.speed_kn == pytest.approx(12.0, rel=1e-3)
+    assert limit.interval_s == pytest.approx(10.0)
+    assert limit.leg_s == pytest.approx(50.0)
+    assert limit.eps_m == pytest.approx(largest_tolerable_error_m(15.0, limit.speed_kn, 50.0))
+    assert limit.turn_deg == pytest.approx(
+        smallest_detectable_turn_deg(100.0, limit.speed_kn, 50.0)
+    )
+
+
+@pytest.mark.parametrize("jitter_s", [0.0, 0.05])
+def test_radar_plots_one_batch_per_scan_give_a_reason_not_numbers(jitter_s):
+    """Tester: the Autoferry radar written one batch per scan showed "median speed
+    1440.9 kn, interval 0 s" as the detection limit."""
+    df = _ships()
+    df["time"] = df["time"] + pd.to_timedelta(df["ship"] * jitter_s, unit="s")
+    limit = detection_limit(track_summary(_points(df, df["scan"])), 5, 15.0)
+    assert limit.reason is not None and "points share times" in limit.reason
+    assert "plots" in limit.reason
+    assert math.isnan(limit.eps_m) and math.isnan(limit.turn_deg)
+
+
+def test_batches_holding_several_ships_give_a_reason():
+    """Each batch alternates between two ships 5 km apart every 10 s: ~970 kn."""
+    df = _ships(n_ships=2)
+    df = df[(df["scan"] % 2) == df["ship"]].copy()  # scan k: ship k % 2
+    limit = detection_limit(track_summary(_points(df, pd.Series(0, index=df.index))), 5, 15.0)
+    assert limit.reason is not None and "no ship's" in limit.reason
+    assert limit.speed_kn > 100
+
+
+def test_nothing_to_judge():
+    assert (
+        detection_limit(
+            track_summary(_points(_ships().iloc[:0], pd.Series([], dtype=int))), 5, 15.0
+        )
+        is None
+    )
+    one = _ships().iloc[:1]
+    assert detection_limit(track_summary(_points(one, one["ship"])), 5, 15.0) is None
+
+
+def test_the_panel_says_why(qtbot):
+    from wakeline.app.params_panel import ParamsPanel
+
+    panel = ParamsPanel()
+    qtbot.addWidget(panel)
+    df = _ships()
+    panel.show_guidance(track_summary(_points(df, df["scan"])))
+    text = panel.guidance.text()
+    assert "points share times" in text and "kn" not in text.split(":")[0]
+    assert "1440" not in text and "interval 0 s" not in text
+    panel.show_guidance(track_summary(_points(df, df["ship"])))
+    assert "median speed 12.0 kn, interval 10 s" in panel.guidance.text()
