@@ -357,6 +357,7 @@ def merge_import_reports(
         "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
         "blank_lines": sum(int(r.get("blank_lines", 0)) for r in reports),
         "values_blanked": _sum([r.get("values_blanked", {}) for r in reports]),
+        "lat_beyond_90_lon_within": sum(int(r.get("lat_beyond_90_lon_within", 0)) for r in reports),
         "decimal_comma_values": decimal,
         "restarting_tracks": restarting,
         "tracks": int(tracks),

@@ -143,6 +143,12 @@ def nothing_imported(rep: dict, name: str | None = None) -> str:
         f"{prefix}nothing imported: all {rep['rows_read']:,} rows were quarantined, "
         f"{count:,} as '{reason}'"
     )
+    cols = rep.get("columns") or {}
+    if rep.get("lat_beyond_90_lon_within", 0) > rep["rows_read"] / 2 and "lat" in cols:
+        return (
+            f"{text}; the lat column holds longitudes and lon latitudes, it seems: "
+            f"try --map lat={cols['lon']} --map lon={cols['lat']}"
+        )
     for key, hint in _HINTS.items():
         if reason.startswith(key):
             return f"{text}; {hint}"
@@ -1444,6 +1450,7 @@ def read_points(
     warnings = list(rows.notes) + notes + _title_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
+    warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(path),
@@ -1584,6 +1591,65 @@ def _holds(arr: pa.ChunkedArray, value: float | None) -> bool:
         return False
     hit = pc.any(pc.less(pc.abs(pc.subtract(arr, value)), 1e-9)).as_py()
     return bool(hit)
+
+
+def _looks_swapped(lon, lat) -> int:
+    """Rows whose lat lies beyond ±90 (within ±180) while their lon lies within ±90: a
+    longitude under the lat name and a latitude under lon (one vectorized pass; NaN and
+    null count as no)."""
+    if lon is None or lat is None or len(lat) == 0:
+        return 0
+    try:
+        a_lat, a_lon = pc.abs(pc.cast(lat, pa.float64())), pc.abs(pc.cast(lon, pa.float64()))
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+        return 0
+    hit = pc.and_(
+        pc.and_(pc.greater(a_lat, 90.0), pc.less_equal(a_lat, 180.0)),
+        pc.less_equal(a_lon, 90.0),
+    )
+    return int(pc.sum(pc.cast(pc.fill_null(hit, False), pa.int64())).as_py() or 0)
+
+
+#: The layouts that fix the order of the position columns (format name → the field that
+#: comes first): a file of such a layout with the other order may have its names swapped.
+POSITION_ORDER = {
+    "radar": "lon",
+    "ais-marinecadastre": "lat",
+    "ais-dma": "lat",
+    "mtad-measurement": "lat",
+    "mtad-scene": "lat",
+}
+
+
+def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list[str]:
+    """Warnings that the lat and lon columns may hold each other's values: most rows have
+    lat beyond ±90 and lon within ±90 (``swapped`` of ``rows``), or a known layout's
+    position columns come in the other order. Nothing is swapped: that is the user's
+    call (``--map lat=… --map lon=…``)."""
+    lat, lon = res.columns.get("lat"), res.columns.get("lon")
+    if lat is None or lon is None:
+        return []
+    out = []
+    fix = f"--map lat={lon} --map lon={lat}"
+    if rows and swapped > rows / 2:
+        out.append(
+            f"column {lat!r} (read as latitude) is beyond ±90° in most rows while {lon!r} "
+            f"lies within ±90° (lat_beyond_90_lon_within in the report counts them): the "
+            f"columns look swapped (longitudes under "
+            f"{lat!r}); those rows are quarantined. If so, import again with {fix}"
+        )
+    first = POSITION_ORDER.get(res.format.name)
+    if first is not None and lat in sn.columns and lon in sn.columns:
+        lat_first = sn.columns.index(lat) < sn.columns.index(lon)
+        if lat_first != (first == "lat"):
+            order = f"{lat}, {lon}" if lat_first else f"{lon}, {lat}"
+            usual = "latitude first" if first == "lat" else "longitude first"
+            out.append(
+                f"the position columns come as {order}; the {res.format.label} layout has "
+                f"{usual}: if the names were swapped the positions are mirrored (check the "
+                f"map; {fix} reads them the other way)"
+            )
+    return out
 
 
 _RANGES = {
@@ -1768,6 +1834,7 @@ def _to_canonical(
         floats[name] = pa.array(v)
 
     blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
+    swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
     bad_rows = reasons != 0
     keep = ~bad_rows & ~blank
     all_kept = bool(keep.all())
@@ -1840,6 +1907,7 @@ def _to_canonical(
         "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
         "blank_lines": int(blank.sum()) + bad.blank,
         "values_blanked": blanked,
+        "lat_beyond_90_lon_within": swapped,
         "decimal_comma_values": int(counted.get("decimal_comma", 0)),
         "restarting_tracks": _restarting_tracks(
             sensor_codes, text["batch"].codes, text["batch"].names, ns, time_ok & ~bad_rows
@@ -2126,7 +2194,12 @@ def stream_points(
     file_batch = "batch" not in res.columns
     if file_batch:
         res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
-    totals: dict = {"rows_read": 0, "rows_imported": 0, "blank_lines": 0}
+    totals: dict = {
+        "rows_read": 0,
+        "rows_imported": 0,
+        "blank_lines": 0,
+        "lat_beyond_90_lon_within": 0,
+    }
     blanked: dict[str, int] = {}
     restarting: dict[str, int] = {}
     pairs: set[tuple[str, str]] = set()
@@ -2256,6 +2329,9 @@ def stream_points(
     warnings += _title_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(restarting, res.columns["batch"])
+    warnings += position_warnings(
+        sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
+    )
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(sn.path),

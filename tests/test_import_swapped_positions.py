@@ -1,0 +1,98 @@
+"""Latitude and longitude under each other's names: warned of, never swapped silently."""
+
+import pandas as pd
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from wakeline.app.cli import main
+from wakeline.core.io import import_to_csv, nothing_imported, read_points
+
+
+def _generic(values: list[tuple[float, float]], header: str = "track_id,time,lat,lon") -> str:
+    lines = [header]
+    for k, (a, b) in enumerate(values):
+        lines.append(f"7,2024-05-01T08:{k // 60:02d}:{k % 60:02d}Z,{a:.5f},{b:.5f}")
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("streamed", [False, True])
+def test_longitudes_under_lat_are_named_and_the_fix_given(write, tmp_path, streamed):
+    """Tester: a file whose 'lat' holds 120-131 and 'lon' 20-30. Every row was
+    quarantined as 'lat out of range' with a hint about projections; the message now says
+    the columns look swapped and gives the --map that reads them; nothing is swapped."""
+    values = [(120 + k * 0.1, 20 + k * 0.1) for k in range(100)]
+    path = write("swapped.csv", _generic(values))
+    if streamed:
+        r = import_to_csv(path, tmp_path / "o.csv")
+    else:
+        r = read_points(path)
+    assert r.report["rows_imported"] == 0
+    assert r.report["lat_beyond_90_lon_within"] == 100
+    assert any("the columns look swapped" in w for w in r.report["warnings"])
+    msg = nothing_imported(r.report)
+    assert "try --map lat=lon --map lon=lat" in msg
+    fixed = read_points(path, mapping=["lat=lon", "lon=lat"])
+    assert fixed.report["rows_imported"] == 100
+    assert fixed.points["lat"].iloc[0] == pytest.approx(20.0)
+    assert not any("swapped" in w for w in fixed.report["warnings"])
+
+
+def test_a_few_rows_beyond_90_do_not_warn(write):
+    values = [(56 + k * 1e-3, 12 + k * 1e-3) for k in range(20)]
+    values[3] = (123.0, 12.0)  # one damaged row
+    r = read_points(write("one.csv", _generic(values)))
+    assert r.report["rows_quarantined"] == 1
+    assert not any("swapped" in w for w in r.report["warnings"])
+
+
+def test_a_known_layout_with_its_position_columns_the_other_way_round_warns(
+    write, capsys, tmp_path
+):
+    """Both in range (LON holding 56°N, LAT 12°E): not decidable from the values; the
+    MarineCadastre layout has LAT before LON, so the reversed order is named."""
+    text = "MMSI,BaseDateTime,LON,LAT,SOG,COG\n" + "".join(
+        f"219000001,2024-05-01T08:00:{k:02d},{56 + k * 1e-3:.4f},{12 + k * 1e-3:.4f},9.5,45\n"
+        for k in range(10)
+    )
+    path = write("mc.csv", text)
+    r = read_points(path)
+    assert r.report["rows_imported"] == 10  # not guessed: imported as the names say
+    assert r.points["lon"].iloc[0] == pytest.approx(56.0)
+    assert any("the position columns come as LON, LAT" in w for w in r.report["warnings"])
+    assert main(["import", str(path), "-o", str(tmp_path / "o.csv")]) == 0
+    assert "--map lat=LON --map lon=LAT" in capsys.readouterr().err
+    usual = write("ok.csv", text.replace("LON,LAT", "LAT,LON", 1))
+    assert not any("position columns" in w for w in read_points(usual).report["warnings"])
+
+
+def test_a_generic_file_in_either_order_does_not_warn(write):
+    for header in ("track_id,time,lat,lon", "track_id,time,lon,lat"):
+        r = read_points(write("g.csv", _generic([(30.0, 30.0), (30.1, 30.1)], header)))
+        assert r.report["warnings"] == []
+
+
+@settings(
+    max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    st.lists(
+        st.tuples(st.floats(-180, 180, allow_nan=False), st.floats(-180, 180, allow_nan=False)),
+        min_size=1,
+        max_size=40,
+    )
+)
+def test_the_swap_warning_follows_the_values(tmp_path_factory, values):
+    path = tmp_path_factory.mktemp("s") / "s.csv"
+    path.write_text(_generic(values), encoding="utf-8")
+    r = read_points(path)
+    rep = r.report
+    assert rep["rows_imported"] + rep["rows_quarantined"] == len(values)
+    s = pd.Series([round(a, 5) for a, _ in values])
+    b = pd.Series([round(x, 5) for _, x in values])
+    expect = int(((s.abs() > 90) & (s.abs() <= 180) & (b.abs() <= 90)).sum())
+    assert rep["lat_beyond_90_lon_within"] == expect
+    warned = any("the columns look swapped" in w for w in rep["warnings"])
+    assert warned == (expect > len(values) / 2)
+    # never swapped: every point is where its names put it
+    assert (r.points["lat"].abs() <= 90).all()
