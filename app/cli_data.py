@@ -20,6 +20,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
         delimiter=args.delimiter,
         sensor=args.sensor,
         tz=args.tz,
+        skip_rows=args.skip_rows,
     )
     if args.quarantine:
         write_csv(result.quarantine, args.quarantine)
@@ -130,6 +131,13 @@ def register(sub) -> None:
         "--encoding", help="text encoding (default: detect UTF-8 / UTF-16 by BOM / GB18030)"
     )
     p.add_argument("--delimiter", help="field delimiter (default: detect , ; or tab)")
+    p.add_argument(
+        "--skip-rows",
+        type=int,
+        metavar="N",
+        help="lines before the header (a title), skipped and counted (default: detect a title "
+        "above a header naming known columns)",
+    )
     p.add_argument(
         "--tz",
         metavar="ZONE",

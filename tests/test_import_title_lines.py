@@ -143,3 +143,28 @@ def test_count_identity_with_title_lines(tmp_path_factory, titles, blanks, kind,
     total = rep["rows_imported"] + rep["rows_quarantined"] + skipped + 1 + rep["blank_lines"]
     blank_above = sum(blanks[: len(titles)])
     assert total + blank_above == len(lines)
+
+
+def test_skip_rows_option_for_a_title_longer_than_detection_looks(write, tmp_path, capsys):
+    """Twelve lines of notes above the header: past what detection looks at (10), so the
+    import is refused naming --skip-rows; `wakeline import --skip-rows 12` reads it, the
+    12 lines counted, and export --like with the report writes them back."""
+    notes = [f"note {k}: exported by station {k}" for k in range(12)]
+    text = "\n".join([*notes, HEADERS["en"], *_rows(40)]) + "\n"
+    path = write("long.csv", text)
+    out = tmp_path / "o.csv"
+    assert main(["import", str(path), "-o", str(out)]) == 2
+    assert "skip the lines above it with --skip-rows N" in capsys.readouterr().err
+    report = tmp_path / "r.json"
+    assert (
+        main(["import", str(path), "-o", str(out), "--skip-rows", "12", "--report", str(report)])
+        == 0
+    )
+    assert "12 line(s) above the header skipped" in capsys.readouterr().err
+    assert len(pd.read_csv(out)) == 40
+    r = read_points(path, skip_rows=12)
+    assert r.report["rows_imported"] == 40 and len(r.report["lines_above_header"]) == 12
+    like = tmp_path / "like.csv"
+    write_layout(r.points, describe_layout(path, r.report), like)
+    assert like.read_bytes() == path.read_bytes()
+    assert main(["import", str(path), "-o", str(out), "--skip-rows", "-1"]) == 2

@@ -391,7 +391,7 @@ def describe_layout(
     """
     path = Path(path)
     report = report or {}
-    sn = sniff(path, report.get("encoding"), report.get("delimiter"))
+    sn = sniff(path, report.get("encoding"), report.get("delimiter"), report.get("skip_rows_given"))
     if report.get("columns"):
         columns_of = dict(report["columns"])
         name = str(report.get("format", "generic"))

@@ -35,6 +35,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.io.formats import (
     Resolved,
     header_is_local,
+    known_fields,
     normalize_header,
     parse_mapping,
     resolve,
@@ -1297,6 +1298,20 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
+def _resolve_header(sn: Sniff, fmt: str, mapping: dict[str, str] | None, source: str) -> Resolved:
+    """:func:`resolve` for a sniffed file; when the header names few known columns, the
+    error says how to skip lines above a header further down (``--skip-rows``)."""
+    try:
+        return resolve(sn.columns, fmt, mapping, source=source)
+    except InputError as exc:
+        if sn.has_header and len(known_fields(sn.columns)) < 3:
+            raise InputError(
+                f"{exc}; if the header is further down (a title above it), skip the lines "
+                "above it with --skip-rows N"
+            ) from None
+        raise
+
+
 #: The reason a line above the header is skipped.
 TITLE_REASON = "above the header (a title?): skipped"
 
@@ -1406,6 +1421,7 @@ def read_points(
     sniffed: Sniff | None = None,
     line_by_line: bool = False,
     edges: dict | None = None,
+    skip_rows: int | None = None,
 ) -> ImportResult:
     """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
     canonical point table.
@@ -1420,6 +1436,8 @@ def read_points(
     for ``path`` (delimiter, encoding, quoting, columns; not sniffed again), and
     ``line_by_line`` reads it as a file whose quotes do not balance, and ``edges`` says
     what the earlier pieces saw for the edge-row rule (:func:`edge_state`).
+    ``skip_rows`` (physical lines before the header) skips a title above the header
+    instead of detecting it (:func:`~wakeline.core.io.sniff.sniff`).
     """
     progress = progress or null_progress
     path = Path(path)
@@ -1427,12 +1445,12 @@ def read_points(
         mapping = parse_mapping(mapping)
     zone = parse_zone(tz)
     progress(0.0, f"reading {path.name}")
-    sn = sniffed if sniffed is not None else sniff(path, encoding, delimiter)
+    sn = sniffed if sniffed is not None else sniff(path, encoding, delimiter, skip_rows)
     if sn.kind == "nmea":
         from wakeline.core.io.nmea import read_nmea
 
         return read_nmea(sn, sensor=sensor, progress=progress)
-    res = resolve(sn.columns, fmt, mapping, source=str(path))
+    res = _resolve_header(sn, fmt, mapping, str(path))
     rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
     if "batch" not in res.columns:
@@ -1461,6 +1479,7 @@ def read_points(
         "compression": sn.compression,
         "header": sn.has_header,
         "lines_above_header": _title_report(sn),
+        "skip_rows_given": sn.skip_rows_given,
         "columns": res.columns,
         "extra_columns": extra,
         "careful_parse": rows.careful,
@@ -2045,7 +2064,7 @@ def inspect_file(
     if sn.kind == "nmea":
         return out
     try:
-        res = resolve(sn.columns, fmt, mapping, source=str(path))
+        res = _resolve_header(sn, fmt, mapping, str(path))
     except InputError as exc:
         out["problem"] = str(exc)
         out["mapping"] = {k: v for k, v in (mapping or {}).items() if v in sn.columns}
@@ -2089,6 +2108,7 @@ def import_to_csv(
     sensor: str = DEFAULT_SENSOR,
     tz: str | None = None,
     progress: Progress | None = None,
+    skip_rows: int | None = None,
 ) -> ImportResult:
     """Import ``path`` and write the canonical CSV ``output`` batch by batch, never
     holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
@@ -2107,16 +2127,18 @@ def import_to_csv(
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
     parse_zone(tz)  # a zone it does not know is refused before anything is read
-    sn = sniff(path, encoding, delimiter)
+    sn = sniff(path, encoding, delimiter, skip_rows)
 
     def whole(target: Path) -> ImportResult:
-        result = read_points(path, fmt, mapping, encoding, delimiter, sensor, progress, tz)
+        result = read_points(
+            path, fmt, mapping, encoding, delimiter, sensor, progress, tz, skip_rows=skip_rows
+        )
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
 
     if sn.kind != "csv":  # NMEA logs
         return whole(output)
-    res = resolve(sn.columns, fmt, mapping, source=str(path))
+    res = _resolve_header(sn, fmt, mapping, str(path))
     progress = progress or null_progress
     # Each part's Arrow copy in the system's temporary folder (nothing of ours is left
     # beside the output).
@@ -2342,6 +2364,7 @@ def stream_points(
         "compression": sn.compression,
         "header": sn.has_header,
         "lines_above_header": _title_report(sn),
+        "skip_rows_given": sn.skip_rows_given,
         "columns": res.columns,
         "extra_columns": extra,
         "careful_parse": False,

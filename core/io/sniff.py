@@ -42,6 +42,7 @@ class Sniff:
     #: Lines above the header (a title: "Radar track export 2024-05-01"), skipped:
     #: (physical line number, 1-based; text).
     title_lines: tuple[tuple[int, str], ...] = ()
+    skip_rows_given: int | None = None  # the caller's skip_rows (None: detected)
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
@@ -310,6 +311,9 @@ def sniff(
         )
     titles = _title_count(lines, delimiter) if skip_rows is None else 0
     if skip_rows is not None:  # given: that many physical lines, then the header
+        if skip_rows < 0:
+            raise InputError(f"--skip-rows {skip_rows}: give 0 or more lines")
+        extras["skip_rows_given"] = skip_rows
         titles = sum(1 for line in physical[:skip_rows] if line.strip())
         titles -= int(extras.get("excel_sep", False))
         titles = max(0, min(titles, len(lines) - 1))
