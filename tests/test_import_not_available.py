@@ -126,3 +126,24 @@ def test_every_row_is_a_point_or_quarantined_and_no_na_value_survives(tmp_path_f
         if not (a or b)
     ]
     assert np.isnan(speed).sum() == sum(s in ("102.3", "102.30", "-", "") for s, _ in kept)
+
+
+def test_cli_round_trip_import_export_like_reimport_gives_the_same_rows(write, tmp_path):
+    """import -> export --like the original -> import again: the same canonical rows (the
+    blanked values are written empty, not as the AIS code; the n/a position stays out)."""
+    from wakeline.app.cli import main
+
+    rows = [
+        ("56.0", "12.0", "9.5", "45.0"),
+        ("56.001", "12.001", "102.3", "45.0"),
+        ("91", "181", "102.3", "360.0"),
+        ("56.002", "12.002", "9.5", "360.0"),
+    ]
+    src = write("ais.csv", "Radar track export 2024-05-01\n" + _ais_text(rows))
+    first, like, second = tmp_path / "c.csv", tmp_path / "like.csv", tmp_path / "c2.csv"
+    assert main(["import", str(src), "-o", str(first)]) == 0
+    assert main(["export", str(first), "-o", str(like), "--like", str(src)]) == 0
+    assert like.read_text().splitlines()[0] == "Radar track export 2024-05-01"
+    assert main(["import", str(like), "-o", str(second)]) == 0
+    assert first.read_bytes() == second.read_bytes()
+    assert len(pd.read_csv(second)) == 3

@@ -30,14 +30,23 @@ def _rows(n: int, kind: str = "en", delim: str = ",") -> list[str]:
     return out
 
 
-@pytest.mark.parametrize("streamed", [False, True])
+@pytest.mark.parametrize("streamed", [False, True, "quoted"])
 @pytest.mark.parametrize("kind", ["en", "zh"])
-def test_a_title_line_above_the_header_is_skipped_and_counted(write, tmp_path, kind, streamed):
+def test_a_title_line_above_the_header_is_skipped_and_counted(
+    write, tmp_path, monkeypatch, kind, streamed
+):
     """Tester: an export whose first line is "Radar track export 2024-05-01" and header on
-    line 2 was refused (missing required column; headers found: Radar track export…)."""
-    text = "Radar track export 2024-05-01\n" + HEADERS[kind] + "\n" + "\n".join(_rows(50)) + "\n"
+    line 2 was refused (missing required column; headers found: Radar track export…).
+    Streamed in small pieces too, with and without a quoted cell."""
+    from wakeline.core.io import reader
+
+    rows = _rows(50)
+    if streamed == "quoted":
+        rows[7] = rows[7].replace("400,", '"400",', 1)
+    text = "Radar track export 2024-05-01\n" + HEADERS[kind] + "\n" + "\n".join(rows) + "\n"
     path = write("titled.csv", text, encoding="gb18030" if kind == "zh" else "utf-8")
     if streamed:
+        monkeypatch.setattr(reader, "STREAM_BYTES", 600)
         r = import_to_csv(path, tmp_path / "o.csv")
         points = pd.read_csv(tmp_path / "o.csv")
     else:
