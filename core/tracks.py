@@ -633,7 +633,8 @@ def interp_positions(
     ``df`` is sorted with ``index``. Returns lon, lat (degrees; longitude differences are
     wrapped, so tracks across 180° interpolate the short way) and a mask of queries inside
     their track's time span (outside, the nearest end is returned) and, with ``max_gap_s``,
-    between two points at most that far apart in time. Vectorized over all
+    between two points at most that far apart in time or at one of the track's own times
+    (a fix is where the ship was, even after a long gap). Vectorized over all
     queries: one ``searchsorted`` on a (track, time) key.
     """
     track = np.asarray(track, dtype="int64")
@@ -650,7 +651,8 @@ def interp_positions(
     q = track * span + (times_s - base)
     hi = np.searchsorted(key, q, side="left")
     hi = np.clip(hi, index.starts[track], index.ends[track] - 1)
-    lo = np.maximum(hi - 1, index.starts[track])
+    # A query at one of the track's own times is that fix, whatever gap precedes it.
+    lo = np.where(t[hi] == times_s, hi, np.maximum(hi - 1, index.starts[track]))
     dt = t[hi] - t[lo]
     with np.errstate(invalid="ignore", divide="ignore"):
         f = np.where(dt > 0, (times_s - t[lo]) / dt, 0.0)

@@ -254,3 +254,24 @@ def test_a_later_piece_is_judged_against_rivals_of_its_own_time():
     p2 = observe("R1", "P2", 3600, 7200, 4.0, 0.0, 3, course=90.0, bias=(0.0, 400.0))
     pairs = associate_sensors(pd.concat([ais, p1, p2], ignore_index=True)).pair_table()
     assert sorted(pairs["batch_b"]) == ["P1", "P2"]
+
+
+def test_a_fix_after_a_long_gap_is_where_the_track_was():
+    """A query at one of a track's own times is that fix, even when a gap longer than
+    ``max_gap_s`` precedes it (it was 'not covered': a fix both sensors hold after one
+    sensor's gap came out twice, once fused and once alone)."""
+    ais = observe("AIS", "1", 0, 1800, 10.0, 5.0, 1)
+    t = (ais["time"] - T0).dt.total_seconds()
+    ais = ais[(t == 0) | (t >= 700)]  # 0 s, then 700 s of silence
+    pts, index = sorted_with_index(ais)
+    q = time_seconds(pd.Series(T0 + pd.to_timedelta([700.0, 350.0, 1800.0], unit="s")))
+    lon, lat, ok = interp_positions(pts, index, np.zeros(3, "int64"), q, 600.0)
+    assert ok.tolist() == [True, False, True]
+    assert (lon[0], lat[0]) == (ais["lon"].iloc[1], ais["lat"].iloc[1])
+    radar = observe("R1", "2", 600, 1800, 10.0, 30.0, 2)
+    both = ais.set_index("time")[["lon", "lat"]].loc[radar["time"].iloc[10]]
+    radar.loc[radar.index[10], ["lon", "lat"]] = both.to_numpy()  # the same fix at 700 s
+    f = fuse(associate_sensors(pd.concat([ais, radar], ignore_index=True)))
+    assert not f.duplicated(["batch", "time"]).any()
+    at = f[f["time"] == radar["time"].iloc[10]]
+    assert len(at) == 1 and at["n_sources"].iloc[0] == 2
