@@ -443,7 +443,43 @@ def fusion_errors(assoc, fused: pd.DataFrame) -> dict:
     for s in sorted(idx.keys["sensor"].unique()):
         sel = covered & (pts["sensor"].to_numpy() == s)
         out[f"{s}_m"] = float(err[sel].mean()) if sel.any() else float("nan")
+    out.update(single_sensor_shifts(pts, fused))
     return out
+
+
+def single_sensor_shifts(points: pd.DataFrame, fused: pd.DataFrame) -> dict:
+    """The fused track's points of one source against that sensor's own fix at the same
+    time (same ship): mean error against truth of both (m), and the largest and the 99th
+    percentile distance of the fused point from its own fix (m)."""
+    from wakeline.core import geo
+
+    one = fused[fused["n_sources"] == 1]
+    keys = ["sensor", "time", "truth"]
+    own = points[[*keys, "lon", "lat"]].drop_duplicates(keys)
+    one = one.drop(columns="sensor").rename(columns={"source": "sensor"})
+    m = one.merge(own, on=keys, suffixes=("", "_own"))
+    if len(m) == 0:
+        nan = float("nan")
+        return dict.fromkeys(
+            ("single_fused_err", "single_own_err", "single_shift_p99", "single_shift_max"), nan
+        )
+    shift = geo.haversine_m(m["lon"], m["lat"], m["lon_own"], m["lat_own"])
+    nan = float("nan")
+    truth = "true_lon" in m.columns
+    return {
+        "single_fused_err": float(
+            geo.haversine_m(m["lon"], m["lat"], m["true_lon"], m["true_lat"]).mean()
+        )
+        if truth
+        else nan,
+        "single_own_err": float(
+            geo.haversine_m(m["lon_own"], m["lat_own"], m["true_lon"], m["true_lat"]).mean()
+        )
+        if truth
+        else nan,
+        "single_shift_p99": float(np.percentile(shift, 99)),
+        "single_shift_max": float(shift.max()),
+    }
 
 
 @dataclass(frozen=True)
@@ -491,6 +527,18 @@ class FuseEvaluation:
                     for c in self.errors.columns
                     if c.endswith("_m") and c != "fused_m"
                 )
+            )
+        lines += [
+            "",
+            "Fused points of one sensor (junction blends included) against that sensor's own "
+            "fix, metres: error against truth (fused, own), distance from the own fix (99th "
+            "percentile, largest):",
+            f"{'scene':<18} {'fused':>7} {'own':>7} {'p99':>7} {'max':>7}",
+        ]
+        for _, r in self.errors.iterrows():
+            lines.append(
+                f"{r['scene']:<18} {r['single_fused_err']:7.1f} {r['single_own_err']:7.1f} "
+                f"{r['single_shift_p99']:7.1f} {r['single_shift_max']:7.1f}"
             )
         return "\n".join(lines)
 

@@ -7,7 +7,11 @@ import pytest
 from wakeline.app.cli import main
 from wakeline.core import geo, simulate
 from wakeline.core.errors import InputError
-from wakeline.core.evaluate_association import fusion_errors, sensor_pair_scores
+from wakeline.core.evaluate_association import (
+    fusion_errors,
+    sensor_pair_scores,
+    single_sensor_shifts,
+)
 from wakeline.core.fuse import FuseParams, associate_sensors, fuse, member_weights
 from wakeline.core.schema import time_seconds
 from wakeline.core.tracks import interp_positions, sorted_with_index
@@ -275,3 +279,23 @@ def test_a_fix_after_a_long_gap_is_where_the_track_was():
     assert not f.duplicated(["batch", "time"]).any()
     at = f[f["time"] == radar["time"].iloc[10]]
     assert len(at) == 1 and at["n_sources"].iloc[0] == 2
+
+
+def test_single_sensor_shifts_measure_a_lone_point_against_its_own_fix():
+    """The evaluation's view of fusion where one sensor is alone: each such fused point
+    against its sensor's fix at that time (the fused error in the overlap never saw the
+    lone points the junction blend moved)."""
+    ais = observe("AIS", "1", 0, 1800, 10.0, 5.0, 1)
+    radar = observe("R1", "2", 0, 900, 10.0, 30.0, 2)
+    a = associate_sensors(pd.concat([ais, radar], ignore_index=True))
+    f = fuse(a, FuseParams(blend_points=0))
+    got = single_sensor_shifts(a.points, f)
+    assert got["single_shift_max"] < 0.05  # without a blend: the fixes themselves
+    assert got["single_fused_err"] == pytest.approx(got["single_own_err"], abs=0.05)
+    lone = np.flatnonzero(f["n_sources"].to_numpy() == 1)
+    assert len(lone) > 50
+    f.loc[lone[-1], "lat"] += 100.0 / 111_195.0  # 100 m north
+    got = single_sensor_shifts(a.points, f)
+    assert got["single_shift_max"] == pytest.approx(100.0, abs=0.5)
+    assert got["single_shift_p99"] < 100.0
+    assert set(got) <= set(fusion_errors(a, f))
