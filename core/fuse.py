@@ -22,10 +22,13 @@ Fusion turns each target's member tracks into one track:
   timestamps, the others are interpolated there, and the positions averaged with their
   weights (renormalized over the members covering that time);
 - where one member covers it: that member's points;
-- at each junction between the two: seed 003's linear-extrapolation blend — the fused
-  part's last 3 points are extrapolated to the next 3 single-sensor times, and the 6
-  points are blended with fused weights 5/5 … 0/5 against the single sensor's 0/5 … 5/5
-  (mirrored where a fused part begins), so the fused track has no jump.
+- at each junction between the two: seed 003's weight-gradient blend, fused weights
+  5/5 … 0/5 against the single sensor's 0/5 … 5/5 over 6 points (mirrored where a fused
+  part begins), so the fused track has no jump. The fused track beyond the junction is
+  not seed 003's line extrapolated from its last 3 points (over MTAD's sparse fixes it
+  put a lone AIS fix 4 km off) but the single sensor's own points carried by the fused
+  track's mean offset from them over those 3 points: a point moves by at most that
+  offset, the sensors' disagreement at the junction.
 """
 
 from dataclasses import dataclass, field
@@ -127,7 +130,13 @@ class FuseParams(Params):
     )
     smooth_window: int = param(5, "points", "moving-average window of the noise estimate", 3, 51)
     blend_points: int = param(
-        3, "points", "points extrapolated and blended at each junction", 0, 20, "seed 003 §4.2"
+        3,
+        "points",
+        "fused points whose offset from the single sensor's track is carried over a junction "
+        "(the blend then spans twice as many points)",
+        0,
+        20,
+        "seed 003 §4.2",
     )
     blend_straddle: bool = param(
         False,
@@ -570,7 +579,9 @@ def fuse(
     out = out.sort_values(["batch", "time"], kind="stable").reset_index(drop=True)
     progress(0.7, "blending junctions")
     if params.blend_points > 0:
-        _blend_junctions(out, pts, index, params.blend_points, params.blend_straddle)
+        _blend_junctions(
+            out, pts, index, params.blend_points, params.blend_straddle, params.max_interp_s
+        )
     out["lon"] = np.round(out["lon"], 7)
     out["lat"] = np.round(out["lat"], 7)
     # Speed and course: a point that is one sensor's own keeps what that sensor reported
@@ -596,16 +607,33 @@ def _column(pts: pd.DataFrame, name: str) -> np.ndarray:
 
 
 def _blend_junctions(
-    out: pd.DataFrame, pts: pd.DataFrame, index: TrackIndex, k: int, straddle: bool
+    out: pd.DataFrame,
+    pts: pd.DataFrame,
+    index: TrackIndex,
+    k: int,
+    straddle: bool,
+    max_gap_s: float,
 ) -> None:
-    """The linear-extrapolation weight-gradient blend (seed 003 §4.2) at every junction
-    between a fused part (several sources) and a single-sensor part, in place on ``out``.
+    """The weight-gradient blend (seed 003 §4.2) at every junction between a fused part
+    (several sources) and a single-sensor part, in place on ``out``.
 
-    A line fitted to the ``k`` fused points next to the junction is extrapolated; over a
-    window of 2k points the fused weight falls 1 → 0 going away from the fused part
-    (5/5 … 0/5 for k = 3) against the single sensor's 0 → 1. ``straddle`` places the
-    window across the junction (k fused + k single points, seed 003); otherwise it lies
-    on the single-sensor side, so the fused part keeps its full accuracy.
+    Seed 003 extrapolates a line through the fused part's last points; over sparse fixes
+    (MTAD: 200–700 s apart, 500 m noise) that line ran kilometres off. Here the fused
+    track is carried on by the single sensor's own fixes: its offset from the single
+    track, d̄ = mean of (fused − single track) over the ``k`` fused points next to the
+    junction (the single track interpolated there), is added to the single sensor's
+    points with the fused weight, 1 → 0 over a window of 2k points going away from the
+    fused part (5/5 … 0/5 for k = 3). A single point thus moves by at most |d̄|, the
+    sensors' disagreement at the junction, and never beyond it. ``straddle`` places the
+    window across the junction (k fused + k single points, seed 003): the fused points
+    in it are pulled toward the single track with weights 0/5, 1/5, 2/5; otherwise the
+    window lies on the single-sensor side, so the fused part keeps its full accuracy.
+
+    A window holds only consecutive points of one target no more than ``max_gap_s``
+    apart, its single points of the one track that goes on alone (a gap longer than
+    that, or another sensor's point, ends it: no junction to smooth over). A point in
+    two windows (a short stretch between two fused parts) takes their weighted mean
+    shift, so it lies between the two offsets.
     """
     n = len(out)
     if n < 2:
@@ -616,66 +644,72 @@ def _blend_junctions(
     lon = out["lon"].to_numpy(dtype="float64")
     lat = out["lat"].to_numpy(dtype="float64")
     base = out["base_track"].to_numpy()
-    same = tgt[1:] == tgt[:-1]
-    step = np.arange(k)
-    new_lon, new_lat = lon.copy(), lat.copy()
+    # link[i]: rows i and i + 1 follow one another on one target within max_gap_s
+    link = np.zeros(n, dtype=bool)
+    link[:-1] = (tgt[1:] == tgt[:-1]) & (t[1:] - t[:-1] <= max_gap_s)
     w_away = np.linspace(1.0, 0.0, 2 * k)  # fused weight, from the fused side outwards
-    for forward in (True, False):
-        # forward: fused row e, single row e + 1; backward: single row s − 1, fused row s.
-        if forward:
-            last_fused = np.flatnonzero(same & fused[:-1] & ~fused[1:])
-            first_single = last_fused + 1
-            fit_rows = last_fused[:, None] - step[None, ::-1]
-            sign = 1
+    n_single = k if straddle else 2 * k
+    step_s = np.arange(n_single)
+    step_f = np.arange(k)
+    num_x, num_y, den = np.zeros(n), np.zeros(n), np.zeros(n)
+    for sign in (1, -1):
+        # sign 1: fused row e, single row e + 1; sign −1: single row e − 1, fused row e.
+        if sign == 1:
+            edge = np.flatnonzero(link & fused & ~np.roll(fused, -1))
         else:
-            first_single = np.flatnonzero(same & ~fused[:-1] & fused[1:])
-            last_fused = first_single + 1
-            fit_rows = last_fused[:, None] + step[None, :]
-            sign = -1
-        if len(last_fused) == 0:
+            edge = 1 + np.flatnonzero(link[:-1] & ~fused[:-1] & fused[1:])
+        if len(edge) == 0:
             continue
-        start = (last_fused - sign * (k - 1)) if straddle else first_single
-        rows = start[:, None] + sign * np.arange(2 * k)[None, :]  # ordered away from fused
-        lo = np.searchsorted(tgt, tgt[last_fused], side="left")[:, None]
-        hi = np.searchsorted(tgt, tgt[last_fused], side="right")[:, None]
-        fit_ok = (fit_rows >= lo) & (fit_rows < hi)
-        fit_rows = np.clip(fit_rows, 0, n - 1)
-        fit_ok &= fused[fit_rows]
-        ok = (rows >= lo) & (rows < hi)
-        rows = np.clip(rows, 0, n - 1)
-        want_fused = np.zeros_like(ok)
+        single = base[edge + sign]  # the track that goes on alone
+        srows = edge[:, None] + sign * (1 + step_s)[None, :]
+        frows = edge[:, None] - sign * step_f[None, :]
+        s_ok = _run(srows, link, sign, n) & ~fused[np.clip(srows, 0, n - 1)]
+        s_ok &= base[np.clip(srows, 0, n - 1)] == single[:, None]
+        s_ok = np.cumprod(s_ok, axis=1).astype(bool)
+        f_ok = _run(frows, link, -sign, n)
+        f_ok[:, 1:] &= fused[np.clip(frows[:, 1:], 0, n - 1)]
+        f_ok = np.cumprod(f_ok, axis=1).astype(bool)
+        srows, frows = np.clip(srows, 0, n - 1), np.clip(frows, 0, n - 1)
+        # The single track at the fused rows' times, and the fused track's offset from it.
+        il, ia, cov = interp_positions(
+            pts, index, np.repeat(single, k), t[frows].ravel(), max_gap_s
+        )
+        il, ia, cov = il.reshape(frows.shape), ia.reshape(frows.shape), cov.reshape(frows.shape)
+        f_ok &= cov
+        dx, dy = geo.to_local(lon[frows], lat[frows], il, ia)  # fused − single, metres
+        m = f_ok.sum(axis=1)
+        use = m > 0
+        mx = np.where(f_ok, dx, 0.0).sum(axis=1) / np.maximum(m, 1)
+        my = np.where(f_ok, dy, 0.0).sum(axis=1) / np.maximum(m, 1)
+        # Single rows: shifted by the offset with the fused weight.
+        ws = w_away[k + step_s] if straddle else w_away[step_s]
+        c = np.where(s_ok & use[:, None], ws[None, :], 0.0)
+        np.add.at(num_x, srows, c * mx[:, None])
+        np.add.at(num_y, srows, c * my[:, None])
+        np.add.at(den, srows, c)
         if straddle:
-            want_fused[:, :k] = True
-        ok &= fused[rows] == want_fused
-        a_lon, a_lat = lon[last_fused][:, None], lat[last_fused][:, None]
-        fx, fy = geo.to_local(lon[fit_rows], lat[fit_rows], a_lon, a_lat)
-        ft = t[fit_rows] - t[last_fused][:, None]
-        wgt = fit_ok.astype("float64")
-        sw = np.maximum(wgt.sum(axis=1), 1.0)[:, None]
-        mt = (wgt * ft).sum(axis=1)[:, None] / sw
-        dtm = (ft - mt) * wgt
-        var = (dtm * dtm).sum(axis=1)[:, None]
-        safe = np.where(var > 0, var, 1.0)
-        rt = t[rows] - t[last_fused][:, None] - mt
-        ext = []
-        for v in (fx, fy):
-            mv = (wgt * v).sum(axis=1)[:, None] / sw
-            slope = np.where(var > 0, (dtm * (v - mv)).sum(axis=1)[:, None] / safe, 0.0)
-            ext.append(mv + slope * rt)
-        own_x, own_y = geo.to_local(lon[rows], lat[rows], a_lon, a_lat)
-        # Fused side: own position on fused rows, the extrapolation on single rows.
-        f_x = np.where(fused[rows], own_x, ext[0])
-        f_y = np.where(fused[rows], own_y, ext[1])
-        # Single side: own position on single rows, the single track interpolated on fused rows.
-        single_track = base[first_single]
-        il, ia, _ = interp_positions(pts, index, np.repeat(single_track, 2 * k), t[rows].ravel())
-        ix, iy = geo.to_local(il.reshape(rows.shape), ia.reshape(rows.shape), a_lon, a_lat)
-        s_x = np.where(fused[rows], ix, own_x)
-        s_y = np.where(fused[rows], iy, own_y)
-        bx = w_away * f_x + (1 - w_away) * s_x
-        by = w_away * f_y + (1 - w_away) * s_y
-        blon, blat = geo.from_local(bx, by, a_lon, a_lat)
-        new_lon[rows[ok]] = blon[ok]
-        new_lat[rows[ok]] = blat[ok]
+            # Fused rows: pulled toward the single track with the single sensor's weight.
+            c = np.where(f_ok, 1.0 - w_away[k - 1 - step_f][None, :], 0.0)
+            np.add.at(num_x, frows, -c * dx)
+            np.add.at(num_y, frows, -c * dy)
+            np.add.at(den, frows, c)
+    moved = den > 0
+    if not moved.any():
+        return
+    scale = np.maximum(den[moved], 1.0)
+    new_lon, new_lat = lon.copy(), lat.copy()
+    new_lon[moved], new_lat[moved] = geo.from_local(
+        num_x[moved] / scale, num_y[moved] / scale, lon[moved], lat[moved]
+    )
     out["lon"] = new_lon
     out["lat"] = new_lat
+
+
+def _run(rows: np.ndarray, link: np.ndarray, sign: int, n: int) -> np.ndarray:
+    """Per window (a row of ``rows``, stepping by ``sign`` from column to column): the
+    columns inside the table whose step from the previous column is a link (the first
+    column's own step from the window's edge included)."""
+    prev = rows - sign
+    lo = np.minimum(prev, rows)
+    inside = (rows >= 0) & (rows < n) & (prev >= 0) & (prev < n)
+    return inside & link[np.clip(lo, 0, n - 1)]

@@ -299,3 +299,82 @@ def test_single_sensor_shifts_measure_a_lone_point_against_its_own_fix():
     assert got["single_shift_max"] == pytest.approx(100.0, abs=0.5)
     assert got["single_shift_p99"] < 100.0
     assert set(got) <= set(fusion_errors(a, f))
+
+
+def _own_fix_shift(assoc, fused: pd.DataFrame) -> pd.DataFrame:
+    """The fused points of one source next to their sensor's own fix: shift (m)."""
+    one = fused[fused["n_sources"] == 1].drop(columns="sensor")
+    own = assoc.points[["sensor", "time", "truth", "lon", "lat"]]
+    m = one.rename(columns={"source": "sensor"}).merge(
+        own, on=["sensor", "time", "truth"], suffixes=("", "_own")
+    )
+    assert len(m) == len(one)
+    m["shift"] = geo.haversine_m(m["lon"], m["lat"], m["lon_own"], m["lat_own"])
+    return m
+
+
+@pytest.mark.parametrize("straddle", [False, True])
+def test_a_sensor_seen_alone_for_minutes_keeps_its_own_fixes(straddle):
+    """Sparse sensors (radar every 240 s, σ 300 m; AIS every 300 s, σ 100 m), one of them
+    starting 10 min to 45 min before the other: seed 003's line through the fused part's
+    last points, extrapolated backwards over the lone stretch, put lone radar fixes
+    4.1 km off (MTAD two-sensor scene 0: an AIS fix 4 km off, 735 s before the fused
+    part). The single sensor's points now stay within its noise of its own fixes, those
+    out of reach of the blend window are its fixes, and their error against truth is
+    theirs."""
+    sensors = (
+        simulate.SensorSpec("R1", period_s=240.0, sigma_m=300.0, coverage=0.95),
+        simulate.SensorSpec("AIS", period_s=300.0, sigma_m=100.0, coverage=0.6),
+    )
+    df = simulate.multisensor_scene(
+        seed=1, n_ships=12, area_km=60.0, duration_s=3 * 3600.0, sensors=sensors
+    )
+    a = associate_sensors(df)
+    f = fuse(a, FuseParams(blend_straddle=straddle))
+    m = _own_fix_shift(a, f)
+    # One sensor starts at least 10 min before the other on most ships.
+    t = time_seconds(df["time"])
+    first = df.assign(t=t).groupby(["truth", "sensor"])["t"].min().unstack()
+    assert ((first["AIS"] - first["R1"]).abs() >= 600).sum() >= 6
+    sigma = m["sensor"].map({"R1": 300.0, "AIS": 100.0})
+    assert (m["shift"] <= 2.0 * sigma).all()  # was up to 4.1 km (R1) and 283 m (AIS)
+    # Points more than 2 k = 6 rows from any fused point of their track are untouched.
+    g = f.groupby("batch", sort=False)
+    row = g.cumcount().to_numpy()
+    fused_row = np.where(f["n_sources"].to_numpy() >= 2, row, np.nan)
+    nxt = pd.Series(fused_row).groupby(f["batch"].to_numpy()).bfill().to_numpy()
+    prv = pd.Series(fused_row).groupby(f["batch"].to_numpy()).ffill().to_numpy()
+    far = ~(np.abs(nxt - row) <= 6) & ~(np.abs(row - prv) <= 6)
+    far_times = set(f.loc[far & (f["n_sources"].to_numpy() == 1), "time"])
+    lone = m[m["time"].isin(far_times)]
+    assert len(lone) > 20 and lone["shift"].max() < 0.05
+    err = geo.haversine_m(m["lon"], m["lat"], m["true_lon"], m["true_lat"])
+    own = geo.haversine_m(m["lon_own"], m["lat_own"], m["true_lon"], m["true_lat"])
+    assert err.mean() <= 1.05 * own.mean()  # was 467 m against 377 m
+
+
+def test_a_short_stretch_between_fused_parts_lies_between_their_offsets():
+    """A gap fill: AIS silent for 700 s, the radar (250 m to the east, every 300 s) seen
+    alone twice in it. Both points sit in the windows of both junctions: each moves by
+    no more than the fused track's largest distance from the radar next to the stretch,
+    toward the fused track (the step into the stretch shrinks)."""
+    ais = observe("AIS", "1", 0, 3600, 60.0, 100.0, 1)
+    t = (ais["time"] - T0).dt.total_seconds()
+    ais = ais[(t <= 1200) | (t >= 1900)]
+    radar = observe("R1", "2", 0, 3600, 300.0, 3.0, 2, bias=(250.0, 0.0))
+    a = associate_sensors(pd.concat([ais, radar], ignore_index=True))
+    f = fuse(a)
+    m = _own_fix_shift(a, f)
+    lone = m[m["time"].isin(T0 + pd.to_timedelta([1500, 1800], unit="s"))]
+    assert len(lone) == 2
+    pts, index = a.points, a.index
+    radar_track = int(np.flatnonzero(index.keys["sensor"] == "R1")[0])
+    both = f[f["n_sources"] >= 2]
+    tb = (both["time"] - T0).dt.total_seconds().to_numpy()
+    near = both[(np.abs(tb - 1200) <= 180) | (np.abs(tb - 1900) <= 180)]
+    tn = time_seconds(near["time"])
+    rl, ra, _ = interp_positions(pts, index, np.full(len(near), radar_track), tn)
+    apart = geo.haversine_m(near["lon"], near["lat"], rl, ra).max()
+    assert (lone["shift"] <= apart + 0.5).all() and (lone["shift"] > 50.0).all()
+    dx, _ = geo.to_local(lone["lon"], lone["lat"], lone["lon_own"], lone["lat_own"])
+    assert (dx < 0).all()  # toward the fused track, west of the radar
