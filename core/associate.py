@@ -84,6 +84,17 @@ class LinkParams(Params):
         1,
         1000,
     )
+    end_span_s: float = param(
+        450.0,
+        "s",
+        "end fits in track time: an end is fitted over 1 + end_span_s / its median step "
+        "fixes (at least 3, at most end_points; end_points_max shrinks in proportion; the "
+        "chain pass's refits alike), so the fit spans about the same time at any sampling "
+        "(0 = end_points fixes whatever the sampling, SPEC §5's last 10 points)",
+        0.0,
+        86400.0,
+        "ours (issue 15, sampling sweep): docs/evaluation.md",
+    )
     alpha: float = param(
         0.5, "", "α: weight of the position distance", 0.0, 1.0, "seed 003 eq. (position)"
     )
@@ -1761,7 +1772,12 @@ def assign_interrupted(
     for _ in range(params.chain_passes):
         chain = components(n, pairs.i[chosen], pairs.j[chosen])
         seg, changed = chain_refit(
-            base, chain, params.end_points, params.accel_ms2, params.drift_ms
+            base,
+            chain,
+            params.end_points,
+            params.accel_ms2,
+            params.drift_ms,
+            params.end_span_s,
         )
         moved = changed | before
         before = changed
@@ -1812,7 +1828,12 @@ def associate_interrupted(
         raise InputError(f"unknown method {method!r}; choose one of {', '.join(INTERRUPT_METHODS)}")
     progress = progress or null_progress
     progress(0.0, "summarizing tracks")
-    base = segment_stats(points, params.end_points, end_points_max=params.end_points_max)
+    base = segment_stats(
+        points,
+        params.end_points,
+        end_points_max=params.end_points_max,
+        end_span_s=params.end_span_s,
+    )
     progress(0.3, "finding candidate pairs")
     pairs0, priced, cost0 = first_pass_pairs(base, params, normalize)
     progress(0.6, f"assigning {len(pairs0):,} candidate pairs")

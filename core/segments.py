@@ -364,8 +364,8 @@ def _straight_fits(
     lat: np.ndarray,
     t: np.ndarray,
     index: TrackIndex,
-    k: int,
-    k_max: int,
+    k: "int | np.ndarray",
+    k_max: "int | np.ndarray",
     head: bool,
 ) -> tuple[tuple[np.ndarray, ...], np.ndarray, np.ndarray]:
     """:func:`_end_fit` of every track's start (``head``) or end over ``k`` fixes, or 2k,
@@ -373,21 +373,23 @@ def _straight_fits(
     (:func:`_accel`): the longest span over which the straight line holds, so a long
     steady track's velocity is known better and a turning one's is not averaged over a
     turn its fixes show. A turn too slow to show in the noise is averaged over, and the
-    fit's velocity error, a line's, is then too small (docs/evaluation.md).
+    fit's velocity error, a line's, is then too small (docs/evaluation.md). ``k`` and
+    ``k_max``: one for all tracks, or one per track (``end_span_s``).
 
     Returns the fit, the number of fixes each fit took, and the acceleration (m/s²) each
     end's first ``k`` fixes show (the recent motion: a turn a longer span shows may be
     over before the gap).
     """
     n = len(index.sizes)
-    k_max = max(k, k_max)
+    kk = np.broadcast_to(np.maximum(np.asarray(k, dtype="int64"), 1), (n,))
+    km = np.maximum(np.broadcast_to(np.asarray(k_max, dtype="int64"), (n,)), kk)
     out = [np.empty(n) for _ in range(7)]
     used = np.empty(n, dtype="int64")
     accel = np.zeros(n)
-    block = max(1024, FIT_BLOCK * 40 // max(k_max, 40))
+    block = max(1024, FIT_BLOCK * 40 // max(int(km.max()) if n else 40, 40))
     for b in range(0, n, block):
         part = np.arange(b, min(b + block, n))
-        fit, width, acc = _straight_block(lon, lat, t, index, part, k, k_max, head)
+        fit, width, acc = _straight_block(lon, lat, t, index, part, kk[part], km[part], head)
         for arr, v in zip(out, fit, strict=True):
             arr[part] = v
         used[part] = np.minimum(index.sizes[part], width)
@@ -401,35 +403,40 @@ def _straight_block(
     t: np.ndarray,
     index: TrackIndex,
     part: np.ndarray,
-    k: int,
-    k_max: int,
+    k: np.ndarray,
+    k_max: np.ndarray,
     head: bool,
 ) -> tuple[list, np.ndarray, np.ndarray]:
-    """:func:`_straight_fits` of the tracks ``part``: their fits, span widths and
-    accelerations."""
+    """:func:`_straight_fits` of the tracks ``part`` (``k``, ``k_max`` per track): their
+    fits, span widths and accelerations."""
     size = index.sizes[part]
-    top = int(min(k_max, max(k, size.max())))
+    top_each = np.minimum(k_max, np.maximum(k, size))
+    top = int(top_each.max())
     rows, _valid, anchor = _end_rows(index, part, top, head)
     x, y, tt = _local(lon, lat, t, rows, anchor)
     offs = np.arange(top)
 
-    def span(sub: np.ndarray, w: int) -> tuple[np.ndarray, ...]:
-        return x[sub, :w], y[sub, :w], tt[sub, :w], offs[:w] < np.minimum(size[sub], w)[:, None]
+    def span(sub: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, ...]:
+        c = int(w.max())
+        return x[sub, :c], y[sub, :c], tt[sub, :c], offs[:c] < np.minimum(size[sub], w)[:, None]
 
-    first = span(np.arange(len(part)), k)
+    everyone = np.arange(len(part))
+    first = span(everyone, k)
     best = list(_line_fit(*first, lon[anchor], lat[anchor]))
     acc = _accel(*first)
-    width = np.full(len(part), k)
-    cand = np.flatnonzero(size > k)
-    w = k
-    while len(cand) and w < top:
-        w = min(2 * w, top)
-        cand = cand[_accel(*span(cand, w)) == 0]
+    width = k.copy()
+    cand = np.flatnonzero((size > k) & (k < top_each))
+    while len(cand):
+        w = np.minimum(2 * width[cand], top_each[cand])
+        ok = _accel(*span(cand, w)) == 0
+        cand, w = cand[ok], w[ok]
+        if not len(cand):
+            break
         width[cand] = w
         longer = _line_fit(*span(cand, w), lon[anchor[cand]], lat[anchor[cand]])
         for arr, v in zip(best, longer, strict=True):
             arr[cand] = v
-        cand = cand[size[cand] > w]
+        cand = cand[(size[cand] > w) & (w < top_each[cand])]
     return best, width, acc
 
 
@@ -485,11 +492,32 @@ def _reported_stop(sog: np.ndarray) -> np.ndarray:
     return ok.any(axis=1) & slow.all(axis=1)
 
 
+#: The fewest fixes an end fit takes under ``end_span_s``: three, whose line fit shows
+#: its noise as well as its motion.
+END_MIN_FIXES = 3
+
+
+def _span_widths(
+    step_s: np.ndarray, end_span_s: float, k: int, k_max: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Per end: the fixes its fit takes (``1 + round(end_span_s / step_s)``, within
+    [:data:`END_MIN_FIXES`, ``k``]; ``k`` where the step is unknown) and the most its
+    straight-run fit may take (``k_max`` × that / ``k``): the same track time at any
+    sampling, so a 10-fix fit of 1-min AIS is a 4-fix fit of 3-min AIS, not 30 min."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        want = 1.0 + np.round(end_span_s / step_s)
+    want = np.where(np.isfinite(want), want, k)
+    kk = np.clip(want, min(END_MIN_FIXES, k), k).astype("int64")
+    km = np.maximum(kk, np.round(kk * (max(k_max, k) / k))).astype("int64")
+    return kk, km
+
+
 def segment_stats(
     points: pd.DataFrame,
     end_points: int = 10,
     use_reported_motion: bool = True,
     end_points_max: int | None = None,
+    end_span_s: float = 0.0,
 ) -> Segments:
     """Summaries of every track of ``points`` (any order) for association.
 
@@ -497,6 +525,9 @@ def segment_stats(
     4× … as many, up to that, while its fixes over the span show no acceleration
     (:func:`_straight_fits`). With ``use_reported_motion`` the end velocities come from the
     reported speed and course (AIS) over the last three points where present.
+    ``end_span_s`` (s, 0 = off): an end fit takes the fixes of about that much track
+    time at its end's median step, ``end_points`` at most and :data:`END_MIN_FIXES` at
+    least, and ``end_points_max`` shrinks in proportion (:func:`_span_widths`).
 
     A table that must be sorted first is sorted on the columns read here only (with the
     input row of each); the others are gathered when asked for (``full_points``).
@@ -521,13 +552,19 @@ def segment_stats(
     sizes = index.sizes
     k = max(int(end_points), 1)
     k_max = int(end_points_max or k)
-    (fit0, used0, accel0), (fit1, used1, accel1) = (
-        _straight_fits(lon, lat, t, index, k, k_max, h) for h in (True, False)
-    )
-    (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fit0, fit1
     everyone = np.arange(len(sizes))
     head, valid, _ = _end_rows(index, everyone, k, head=True)
     tail, _, _ = _end_rows(index, everyone, k, head=False)
+    sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
+    step0, step1 = (_end_step(t, rows, valid, sensor_code) for rows in (head, tail))
+    widths = [(k, k_max), (k, k_max)]
+    if end_span_s > 0:
+        widths = [_span_widths(step, end_span_s, k, k_max) for step in (step0, step1)]
+    (fit0, used0, accel0), (fit1, used1, accel1) = (
+        _straight_fits(lon, lat, t, index, kk, km, h)
+        for (kk, km), h in zip(widths, (True, False), strict=True)
+    )
+    (lon0, lat0, vx0, vy0, res0, pf0, vf0), (lon1, lat1, vx1, vy1, res1, pf1, vf1) = fit0, fit1
     offs = np.arange(k)
     motion0, motion1 = np.isfinite(vf0), np.isfinite(vf1)
     few = valid & (offs[None, :] < 3)  # the reported motion of an end: its three last fixes
@@ -555,8 +592,6 @@ def segment_stats(
                 known |= stop
                 vf[stop] = np.minimum(vf[stop], 0.0)
 
-    sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
-    step0, step1 = (_end_step(t, rows, valid, sensor_code) for rows in (head, tail))
     # The time each end's own fit spans (over the fixes it used, up to end_points_max).
     span0 = t[index.starts + np.maximum(used0, 1) - 1] - t[index.starts]
     span1 = t[index.ends - 1] - t[index.ends - np.maximum(used1, 1)]
@@ -663,6 +698,7 @@ def chain_refit(
     end_points: int = 10,
     accel_ms2: float = 0.0,
     drift_ms: float = np.inf,
+    end_span_s: float = 0.0,
 ) -> tuple[Segments, np.ndarray]:
     """``seg`` with the ends of short pieces refitted over the chain each piece sits in.
 
@@ -678,6 +714,9 @@ def chain_refit(
     and reported (AIS) motion keep theirs. Motion borrowed across gaps is trusted less
     the farther it reaches: ``accel_ms2`` × the time the fit spans beyond the piece (at
     most ``drift_ms``) is added to its velocity error.
+
+    With ``end_span_s`` (s) each end takes the fixes of that much track time at its
+    piece's median step instead (:func:`_span_widths`), a piece short when it has fewer.
 
     Returns the new summaries and, per track, whether either end was refitted.
     """
@@ -698,8 +737,12 @@ def chain_refit(
     hi = off[np.searchsorted(c_sorted, chain, side="right")]
     first = off[place]
     last = first + index.sizes - 1
+    k0 = k1 = np.full(n, k)
+    if end_span_s > 0 and seg.step0 is not None and seg.step1 is not None:
+        k0 = _span_widths(seg.step0, end_span_s, k, k)[0]
+        k1 = _span_widths(seg.step1, end_span_s, k, k)[0]
     # Only a piece shorter than the fit in a chain of several can change.
-    short = np.flatnonzero((index.sizes < k) & (hi - lo > index.sizes))
+    short = np.flatnonzero((index.sizes < np.maximum(k0, k1)) & (hi - lo > index.sizes))
     changed = np.zeros(n, dtype=bool)
     if len(short) == 0:
         return seg, changed
@@ -714,9 +757,9 @@ def chain_refit(
     offs = np.arange(k)
     lo_s, hi_s = lo[short][:, None], hi[short][:, None]
     tail = last[short][:, None] - offs
-    valid1 = tail >= lo_s
+    valid1 = (tail >= lo_s) & (offs < k1[short][:, None])
     head = first[short][:, None] + offs
-    valid0 = head < hi_s
+    valid0 = (head < hi_s) & (offs < k0[short][:, None])
     blocks = (
         ("0", row(np.minimum(head, hi_s - 1)), valid0, index.starts[short]),
         ("1", row(np.maximum(tail, lo_s)), valid1, index.ends[short] - 1),

@@ -872,3 +872,40 @@ def test_a_file_of_single_fixes_is_warned(tmp_path, capsys):
     df.to_csv(src, index=False)
     assert main(["associate", str(src), "-o", str(tmp_path / "a.csv")]) == 0
     assert "300 of the 300 tracks are single fixes" in capsys.readouterr().err
+
+
+def _ferry_at(period_s: float) -> pd.DataFrame:
+    """A ferry leaving port every ``period_s`` s: 10 kn for 40 min, then 35 kn (18 m/s) for
+    its last 9 min before a 600 s outage, 35 kn for 9 min after it, then 10 kn again (a
+    straight line east; the Saronic ferries' case at 3-min AIS)."""
+    slow, fast = 10 * geo.KN_MS, 35 * geo.KN_MS
+    t = np.arange(0.0, 4 * 3600.0, period_s)
+    t_fast0, t_gap0, t_gap1, t_fast1 = 2400.0, 2940.0, 3540.0, 4080.0
+    v = np.where((t >= t_fast0) & (t < t_fast1), fast, slow)
+    x = np.concatenate([[0.0], np.cumsum(v[:-1] * np.diff(t))])
+    keep = (t <= t_gap0) | (t >= t_gap1)
+    piece = np.where(t <= t_gap0, "a", "b")
+    return pd.concat(
+        [
+            track(
+                p, t[keep & (piece == p)], x[keep & (piece == p)], 0.0 * t[keep & (piece == p)], "F"
+            )
+            for p in ("a", "b")
+        ]
+    )
+
+
+@pytest.mark.parametrize("period_s", [60.0, 180.0])
+def test_a_ferry_that_sped_up_just_before_its_gap_is_in_reach_at_any_sampling(period_s):
+    """The reach is 1.2 x the speed an end fit saw: with ten fixes at 3-min AIS the fit
+    spans 27 min of slow and fast (~22 kn seen), the gap was covered at 35 kn, so the
+    pair was no candidate (Saronic at 180 s, docs/evaluation.md); fitted over the last
+    ``end_span_s`` of track it sees the 35 kn. At 1-min AIS ten fixes are 9 min: both ways."""
+    df = _ferry_at(period_s)
+    assert _joins(df) == (1, 0)
+    points = replace(LinkParams(), end_span_s=0.0)
+    assert _joins(df, points) == ((1, 0) if period_s == 60.0 else (0, 0))
+    if period_s == 180.0:  # piece "a" is the first track; its end seen, both ways
+        assert segment_stats(df, 10, end_points_max=40).speed1_kn[0] < 25.0
+        seen = segment_stats(df, 10, end_points_max=40, end_span_s=450.0).speed1_kn[0]
+        assert abs(seen - 35.0) < 0.5
