@@ -48,7 +48,7 @@ class LinkParams(Params):
         1200.0,
         "s",
         "soft T_gap: the assignment also sees pairs across a gap longer than max_gap_s, up to "
-        "this long, between moving pieces (above rest_kn) of at least 3 fixes each that have "
+        "this long, between moving pieces (above rest_kn) of at least soft_min_fixes each that have "
         "no candidate within max_gap_s cheaper than long_margin, when the gap is at least "
         "one time step of each; such a pair costs gap_price more per max_gap_s beyond "
         "max_gap_s and is joined only where it is each piece's cheapest candidate not "
@@ -57,6 +57,16 @@ class LinkParams(Params):
         0.0,
         86400.0 * 7,
         "ours (issue 15): MTAD at known gaps of 300-900 s; docs/evaluation.md",
+    )
+    soft_min_fixes: int = param(
+        2,
+        "fixes",
+        "soft T_gap: the fewest fixes each piece of a pair beyond max_gap_s needs (two show "
+        "its motion, its noise then its sensor's median; at 3-min sampling two fixes are "
+        "the track time three are at 1 min)",
+        1,
+        100,
+        "ours (issue 15, sampling sweep; 3 before): docs/evaluation.md",
     )
     gap_price: float = param(
         0.75,
@@ -560,11 +570,6 @@ def _narrowed(
     return found, (e, s, found)
 
 
-#: Soft T_gap: the fewest fixes a piece needs at both ends of a pair beyond max_gap_s in
-#: the assignment (three: its line fit shows its noise and its motion).
-SOFT_FIXES = 3
-
-
 def _soft_gap(params: LinkParams) -> float:
     """The longest gap the first pass's assignment sees (``soft_gap_s``, at least
     ``max_gap_s``; ``max_gap_s`` when the soft T_gap is off)."""
@@ -573,9 +578,9 @@ def _soft_gap(params: LinkParams) -> float:
 
 def _soft_ends(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarray]:
     """Per track: its end, its start may take part in a pair beyond ``max_gap_s`` in the
-    first pass (soft T_gap) — a piece of at least :data:`SOFT_FIXES` fixes whose fit there
-    is moving (above ``rest_kn``)."""
-    fit = seg.n >= SOFT_FIXES
+    first pass (soft T_gap) — a piece of at least ``soft_min_fixes`` fixes whose fit
+    there is moving (above ``rest_kn``)."""
+    fit = seg.n >= params.soft_min_fixes
     slow = params.rest_kn * geo.KN_MS
     return fit & (np.hypot(seg.vx1, seg.vy1) > slow), fit & (np.hypot(seg.vx0, seg.vy0) > slow)
 

@@ -14,6 +14,7 @@ from wakeline.core.associate import (
     associate_segments,
     candidate_pairs,
     dtw_batch,
+    first_pass_pairs,
     greedy_assign,
     optimal_assign,
     polygon_area,
@@ -909,3 +910,16 @@ def test_a_ferry_that_sped_up_just_before_its_gap_is_in_reach_at_any_sampling(pe
         assert segment_stats(df, 10, end_points_max=40).speed1_kn[0] < 25.0
         seen = segment_stats(df, 10, end_points_max=40, end_span_s=450.0).speed1_kn[0]
         assert abs(seen - 35.0) < 0.5
+
+
+def test_a_two_fix_piece_takes_part_in_the_soft_t_gap():
+    """At 3-min sampling a ship seen for 3 min is two fixes: its motion shows (it is
+    moving), so its pair across a 15-min gap is in the first pass's assignment
+    (``soft_min_fixes`` 2); at 3, the paper-era rule, only the second look could see it."""
+    a = straight("a", 0, 1620, speed=6.0, period=180.0, truth="A")
+    b = straight("b", 2520, 2700, speed=6.0, period=180.0, truth="A")
+    seg = segment_stats(pd.concat([a, b]), 10, end_points_max=40, end_span_s=450.0)
+    assert list(seg.n) == [10, 2]
+    pairs = first_pass_pairs(seg, LinkParams())[0]
+    assert list(zip(pairs.i, pairs.j, strict=True)) == [(0, 1)] and pairs.gap_s[0] == 900.0
+    assert len(first_pass_pairs(seg, LinkParams(soft_min_fixes=3))[0]) == 0
