@@ -899,7 +899,7 @@ def _ferry_at(period_s: float) -> pd.DataFrame:
 @pytest.mark.parametrize("period_s", [60.0, 180.0])
 def test_a_ferry_that_sped_up_just_before_its_gap_is_in_reach_at_any_sampling(period_s):
     """The reach is 1.2 x the speed an end fit saw: with ten fixes at 3-min AIS the fit
-    spans 27 min of slow and fast (~22 kn seen), the gap was covered at 35 kn, so the
+    spans 27 min of slow and fast (14 kn seen), the gap was covered at 35 kn, so the
     pair was no candidate (Saronic at 180 s, docs/evaluation.md); fitted over the last
     ``end_span_s`` of track it sees the 35 kn. At 1-min AIS ten fixes are 9 min: both ways."""
     df = _ferry_at(period_s)
@@ -923,3 +923,26 @@ def test_a_two_fix_piece_takes_part_in_the_soft_t_gap():
     pairs = first_pass_pairs(seg, LinkParams())[0]
     assert list(zip(pairs.i, pairs.j, strict=True)) == [(0, 1)] and pairs.gap_s[0] == 900.0
     assert len(first_pass_pairs(seg, LinkParams(soft_min_fixes=3))[0]) == 0
+
+
+def test_end_fits_in_track_time_leave_dense_tracks_as_they_were():
+    """``end_span_s`` 450 s: a track sampled every 10 s (radar) or 45 s keeps its 10-fix
+    fits (and the straight run to 40) exactly; at 100 s it takes 5 (20 along a straight
+    run), at 600 s the floor 3 (12)."""
+    for period, fixes in ((10.0, 10), (45.0, 10), (100.0, 5), (600.0, 3)):
+        df = pd.concat(
+            [
+                straight("a", 0, 300 * period, period=period),
+                straight("b", 0, 4 * period, period=period),
+            ]
+        )
+        df = df.assign(
+            lon=df["lon"] + 1e-4 * np.sin(np.arange(len(df)) * 1.7),  # some noise
+        )
+        old = segment_stats(df, 10, end_points_max=40)
+        new = segment_stats(df, 10, end_points_max=40, end_span_s=450.0)
+        if fixes == 10:
+            for f in ("vx1", "vy1", "pos_sd1", "vel_sd1", "span0", "span1", "accel1"):
+                np.testing.assert_array_equal(getattr(old, f), getattr(new, f), err_msg=f)
+        else:  # the long straight piece "a" is fitted along its run to 4 x `fixes`, not 40
+            assert new.span1[0] == (4 * fixes - 1) * period < old.span1[0] == 39 * period
