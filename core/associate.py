@@ -98,7 +98,7 @@ class LinkParams(Params):
         450.0,
         "s",
         "end fits in track time: an end is fitted over 1 + end_span_s / its median step "
-        "fixes (at least 3, at most end_points; end_points_max shrinks in proportion; the "
+        "fixes, rounded (at least 3, at most end_points; end_points_max shrinks in proportion; the "
         "chain pass's refits alike), so the fit spans about the same time at any sampling "
         "(0 = end_points fixes whatever the sampling, SPEC §5's last 10 points)",
         0.0,

@@ -503,7 +503,7 @@ def _span_widths(
     """Per end: the fixes its fit takes (``1 + round(end_span_s / step_s)``, within
     [:data:`END_MIN_FIXES`, ``k``]; ``k`` where the step is unknown) and the most its
     straight-run fit may take (``k_max`` × that / ``k``): the same track time at any
-    sampling, so a 10-fix fit of 1-min AIS is a 4-fix fit of 3-min AIS, not 30 min."""
+    sampling (``end_span_s`` 450: 9 fixes of 1-min AIS, 3 of 3-min AIS, not 27 min)."""
     with np.errstate(invalid="ignore", divide="ignore"):
         want = 1.0 + np.round(end_span_s / step_s)
     want = np.where(np.isfinite(want), want, k)
