@@ -142,11 +142,18 @@ def _p(params: dict[str, Any], key: str, default_cls: type) -> Any:
     return (value if value is not None else default_cls()).checked()
 
 
+#: The columns of a cleaned layer's ``at_rest`` table (one row per span; times as text).
+AT_REST_COLUMNS = ("sensor", "batch", "start", "end", "duration_s", "points", "lon", "lat")
+
+
 def run_clean(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
     from wakeline.core.clean import CleanParams, clean
 
     res = clean(points, _p(params, "clean", CleanParams), progress=progress)
     rep = res.report
+    # The at-rest spans the stationary rule found, beside the layer (the Statistics panel
+    # counts them; the project keeps them with the layer's other side tables).
+    rest = pd.DataFrame(rep.get("at_rest_spans", []), columns=AT_REST_COLUMNS)
     return StepResult(
         "clean",
         [
@@ -155,7 +162,7 @@ def run_clean(points: pd.DataFrame, params: dict, progress: Progress = null_prog
                 "cleaned",
                 res.points,
                 {"rejected": int(len(res.rejected))},
-                {"rejected": res.rejected},
+                {"rejected": res.rejected, "at_rest": rest},
             )
         ],
         rep,
