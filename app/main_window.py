@@ -29,10 +29,11 @@ from wakeline.app.jobs import JobsMixin, preload
 from wakeline.app.layer_view import LayerView, maneuver_table
 from wakeline.app.lod_worker import LodWorker
 from wakeline.app.map_canvas import MapCanvas
-from wakeline.app.models import BatchTableModel, batch_summary
+from wakeline.app.models import BatchTableModel
 from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
 from wakeline.app.review_dock import ReviewDock
+from wakeline.app.stats_panel import StatsPanel
 from wakeline.app.time_panel import install_time
 from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin
@@ -41,6 +42,9 @@ from wakeline.app.window_words import window_words
 from wakeline.app.worker import JobRunner
 from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
+
+#: Between two recomputations of the Statistics figures while the time window moves (ms).
+STATS_WINDOW_MS = 300
 
 
 def format_dms(value: float, positive: str, negative: str) -> str:
@@ -137,7 +141,11 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         bl.setContentsMargins(2, 2, 2, 2)
         bl.addWidget(self.filter_edit)
         bl.addWidget(self.batch_view)
-        self.stats = QtWidgets.QPlainTextEdit(readOnly=True)
+        self.stats = StatsPanel()
+        self.stats.executor = self.lod_worker  # the figures of a layer: off this thread
+        # The figures follow the map's time window, at most every STATS_WINDOW_MS.
+        self._stats_timer = QtCore.QTimer(self, singleShot=True, interval=STATS_WINDOW_MS)
+        self._stats_timer.timeout.connect(self._update_stats)
         self.detail = DetailPanel()
         self.bearing_view = BearingView()
         self.bearing_view.executor = self.lod_worker  # a new length's scene: off this thread
@@ -217,6 +225,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         retranslate(self)
         self.detail.retranslate()
         self.params.retranslate()
+        self.stats.retranslate()
         if hasattr(self, "review"):  # built after the first retranslate
             self.review.retranslate()
         self.canvas.setLabel("bottom", self.tr("longitude"), units="°")
@@ -250,38 +259,31 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     # -- misc ----------------------------------------------------------------------
 
     def _update_stats(self) -> None:
+        """The Statistics dock: the active layer's figures, computed in the worker
+        (:class:`~wakeline.app.stats_panel.StatsPanel`), over the map's time window when
+        one is set; the status bar's counts at once."""
         layer = self.active_layer()
         if layer is None:
-            self.stats.setPlainText(self.tr("No layer. File ▸ Open tracks… (Ctrl+O)"))
+            self.stats.show_message(self.tr("No layer. File ▸ Open tracks… (Ctrl+O)"))
             return
-        view = self.views.get(layer.id)
         if layer.kind == BEARING_KIND:
-            self.stats.setPlainText(bearing_stats(layer, self.tr))
+            self.stats.show_message(bearing_stats(layer, self.tr))
             return
-        summary = view.summary if view is not None else batch_summary(EMPTY)
-        tracks = len(summary)
-        sensors = ", ".join(sorted(summary["sensor"].astype(str).unique())) if tracks else ""
-        lines = [
-            f"{self.tr('Layer')}: {layer.name} [{layer.kind}]  ({layer.id})",
-            f"{self.tr('Points')}: {len(layer.points):,}   {self.tr('Tracks')}: {tracks:,}   "
-            f"{self.tr('Sensors')}: {sensors}",
-        ]
+        head = [(self.tr("Layer"), f"{layer.name} [{layer.kind}]  ({layer.id})")]
         if layer.parent:
             parent = self.session.get(layer.parent)
-            made = f"{layer.step} ← {parent.name if parent else layer.parent}"
-            lines.append(f"{self.tr('Made by')}: {made}, {layer.created}")
-        if tracks and view is not None and len(view.text.get("start", [])):
-            # Series.argmin/argmax: no object array of Timestamps (0.1 s per 2,000 tracks).
-            first = view.text["start"][int(summary["start"].argmin())]
-            last = view.text["end"][int(summary["end"].argmax())]
-            lines.append(f"{self.tr('Time')}: {first} – {last}")
+            made = f"{layer.step} ← {parent.name if parent else layer.parent}, {layer.created}"
+            head.append((self.tr("Made by"), made))
         for key in ("dis_e_m", "rejected", "threshold_deg"):
             value = layer.meta.get(key)
             if value is not None:
-                lines.append(
-                    f"{key}: {value:.1f}" if isinstance(value, float) else f"{key}: {value}"
-                )
-        self.stats.setPlainText("\n".join(lines))
+                head.append((key, f"{value:.1f}" if isinstance(value, float) else f"{value}"))
+        tw = self.session.time_window
+        window = (tw.start_s, tw.end_s) if tw is not None else None
+        key = (layer.id, id(layer.points), len(layer.points), window)
+        self.stats.compute(key, layer.points, dict(layer.tables), window, head)
+        view = self.views.get(layer.id)
+        tracks = len(view.summary) if view is not None else 0
         self.statusBar().showMessage(
             f"{len(layer.points):,} {self.tr('points')}, {tracks:,} {self.tr('tracks')}"
         )

@@ -100,6 +100,8 @@ class LayersMixin:
             layer.color = self.views[lid].colors[0] if self.views[lid].colors else layer.color
 
     def _on_session_event(self, event: str, lid: str) -> None:
+        if event == "time_window" and not self._stats_timer.isActive():
+            self._stats_timer.start()  # the Statistics figures of the window's points
         if event in ("time_window", "current_time", "map_view", "active"):
             # The time controller and the view keeper follow the first three; the active
             # layer is the window's own (set_active), or made current after an open.

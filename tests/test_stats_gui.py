@@ -1,0 +1,126 @@
+"""The Statistics dock: the figures of a real file, computed in a worker thread, a stale
+result dropped, the time window followed, and the event loop kept free on a million
+points."""
+
+import threading
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+pytest.importorskip("pytestqt")
+
+from conftest import load, real_file  # noqa: E402
+from wakeline.app.lod_worker import LodWorker  # noqa: E402
+from wakeline.app.stats_panel import StatsPanel  # noqa: E402
+from wakeline.core.io import read_points  # noqa: E402
+from wakeline.core.stats import layer_stats  # noqa: E402
+
+
+def _scene(n_tracks: int, n: int, lon0: float = 10.0) -> pd.DataFrame:
+    tr = np.repeat(np.arange(n_tracks), n)
+    t = np.tile(np.arange(n) * 10.0, n_tracks) + tr
+    return pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": tr.astype(str),
+            "time": pd.to_datetime(t, unit="s", utc=True),
+            "lon": lon0 + np.tile(np.arange(n), n_tracks) * 1e-4,
+            "lat": 55.0 + tr * 1e-3,
+        }
+    )
+
+
+def test_the_dock_shows_the_figures_of_an_mtad_scene_computed_in_a_worker(window, qtbot):
+    path = real_file("mtad-dtwcm", "original", "Scene-35.csv")
+    lid = load(window, path)
+    panel = window.stats
+    qtbot.waitUntil(
+        lambda: panel.stats is not None and panel.key and panel.key[0] == lid, timeout=20_000
+    )
+    expected = layer_stats(read_points(path).points)
+    s = panel.stats
+    assert (s.points, s.tracks) == (expected.points, expected.tracks)
+    assert panel.computed_in is not None and panel.computed_in != threading.main_thread().ident
+    rows = dict(panel.rows())
+    assert rows["Tracks"] == f"{expected.tracks:,}"
+    assert rows["Targets"] == "no target ids"
+    assert rows["Layer"].startswith("Scene-35.csv [source]")
+    life = rows["Track lifetime min / median / 90 % / max"]
+    assert life.endswith((" s", " min", " h", " d")) and life.count("/") == 3
+    assert " km × " in rows["Extent (east-west × north-south)"]
+    assert "km²" in rows["Area covered"]
+    assert any(k.startswith("Sensor ") and "median interval" in v for k, v in rows.items())
+    # MTAD counts seconds from the scene start: shown as elapsed time.
+    assert rows["Time"].startswith("T+")
+    # The histogram holds every track.
+    heights = panel.bars.opts["height"]
+    assert int(np.sum(heights)) == expected.tracks
+    assert "tracks" in window.stats.toPlainText()
+
+
+def test_a_stale_result_is_dropped_and_the_latest_shown(qtbot):
+    panel = StatsPanel()
+    qtbot.addWidget(panel)
+    jobs = []
+    panel.executor = lambda job, done: jobs.append((job, done))
+    a, b, c = _scene(3, 10), _scene(5, 10), _scene(7, 10)
+    panel.compute(("a",), a)
+    panel.compute(("b",), b)  # waits for a's job
+    panel.compute(("c",), c)  # replaces b
+    assert len(jobs) == 1 and panel.busy
+    job, done = jobs.pop()
+    done(job())  # a's result: stale
+    assert panel.stats is None and panel.dropped == 1
+    assert len(jobs) == 1  # c's job started once a's ended
+    job, done = jobs.pop()
+    done(job())
+    assert panel.stats.tracks == 7 and not panel.busy
+    # The same request again starts no job.
+    assert panel.compute(("c",), c) is False and not jobs
+
+
+def test_the_figures_follow_the_time_window(window, qtbot):
+    path = real_file("mtad-dtwcm", "original", "Scene-35.csv")
+    lid = load(window, path)
+    panel = window.stats
+    qtbot.waitUntil(lambda: panel.stats is not None and panel.key[0] == lid, timeout=20_000)
+    whole = panel.stats
+    window.session.set_time_window((whole.start_s, whole.start_s + 0.25 * whole.span_s))
+    qtbot.waitUntil(
+        lambda: panel.stats is not None and panel.stats.window is not None, timeout=20_000
+    )
+    assert panel.stats.points < whole.points
+    assert panel.stats.span_s <= 0.25 * whole.span_s + 1e-6
+    assert "Time window" in dict(panel.rows())
+    window.session.set_time_window(None)
+    qtbot.waitUntil(lambda: panel.stats is not None and panel.stats.window is None, timeout=20_000)
+    assert panel.stats.points == whole.points
+
+
+def test_a_million_points_do_not_block_the_event_loop(qtbot):
+    from PySide6 import QtCore
+
+    panel = StatsPanel()
+    qtbot.addWidget(panel)
+    worker = LodWorker()
+    panel.executor = worker
+    pts = _scene(1000, 1000)
+    gaps, last = [], [time.perf_counter()]
+
+    def tick():
+        now = time.perf_counter()
+        gaps.append(now - last[0])
+        last[0] = now
+
+    timer = QtCore.QTimer(interval=5)
+    timer.timeout.connect(tick)
+    timer.start()
+    panel.compute(("big",), pts)
+    qtbot.waitUntil(lambda: panel.stats is not None, timeout=60_000)
+    timer.stop()
+    worker.wait()
+    assert panel.stats.points == 1_000_000 and panel.stats.tracks == 1000
+    assert panel.computed_in != threading.main_thread().ident
+    assert max(gaps) < 0.1, f"the event loop waited {max(gaps) * 1000:.0f} ms"
