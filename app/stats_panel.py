@@ -198,6 +198,9 @@ class StatsPanel(QtWidgets.QWidget):
             self.hist.getAxis(side).enableAutoSIPrefix(False)
         self.bars = pg.BarGraphItem(x=[], height=[], width=1.0, brush="#1f77b4", pen="#1f77b4")
         self.hist.addItem(self.bars)
+        # No taller a minimum than the text box the dock held before (70 px with the note).
+        for widget in (self.table, self.hist):
+            widget.setMinimumHeight(48)
         split = QtWidgets.QSplitter(QtCore.Qt.Orientation.Horizontal)
         split.addWidget(self.table)
         split.addWidget(self.hist)
@@ -208,6 +211,11 @@ class StatsPanel(QtWidgets.QWidget):
         lay.addWidget(self.note)
         lay.addWidget(split, 1)
         self.split = split
+
+    def sizeHint(self) -> QtCore.QSize:  # noqa: N802 - Qt API
+        """As high as the text box the dock held before (the plot's 480 px hint made the
+        bottom dock area take height from the docks above it)."""
+        return QtCore.QSize(520, 192)
 
     # -- requests ------------------------------------------------------------------
 
