@@ -5,6 +5,8 @@ from PySide6 import QtGui, QtWidgets
 from wakeline.app import i18n
 
 STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
+#: The translation context of the texts here: :func:`retranslate` calls the window's ``tr``.
+TR_CONTEXT = "MainWindow"
 
 
 def build_actions(w) -> None:

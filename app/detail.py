@@ -78,9 +78,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         super().__init__(parent)
         ink.setup()
         self.factor_plot = pg.PlotWidget(background="w")
-        self.factor_plot.setLabel("bottom", "time since track start", units="min")
         self.factor_plot.getAxis("bottom").enableAutoSIPrefix(False)  # no "kmin"
-        self.factor_plot.setLabel("left", "maneuver factor δ", units="°")
         self.factor_plot.getAxis("left").enableAutoSIPrefix(False)  # no "m°"
         self.factor_curve = self.factor_plot.plot(pen=pg.mkPen("#1f77b4", width=1.5))
         self.factor_marks = pg.ScatterPlotItem(size=9, brush=pg.mkBrush("#d62728"), pen=None)
@@ -90,8 +88,6 @@ class DetailPanel(QtWidgets.QTabWidget):
         )
         self.factor_plot.addItem(self.threshold)
         self.comp_plot = pg.PlotWidget(background="w")
-        self.comp_plot.setLabel("bottom", "longitude", units="°")
-        self.comp_plot.setLabel("left", "latitude", units="°")
         for side in ("left", "bottom"):  # no "m°" near 0° E or 0° N
             self.comp_plot.getAxis(side).enableAutoSIPrefix(False)
         self.comp_plot.getPlotItem().getViewBox().setAspectLocked(True)
@@ -116,9 +112,6 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.b_plot = self.bearing_plots.addPlot(row=0, col=0)
         self.z_plot = self.bearing_plots.addPlot(row=1, col=0)
         self.z_plot.setXLink(self.b_plot)
-        self.b_plot.setLabel("left", "bearing", units="°")
-        self.z_plot.setLabel("left", "z (AUC)")
-        self.z_plot.setLabel("bottom", "time", units="min")
         self.z_plot.getAxis("bottom").enableAutoSIPrefix(False)
         self.b_curve = self.b_plot.plot(
             pen=None, symbol="o", symbolSize=3, symbolBrush="#1f77b4", symbolPen=None
@@ -139,11 +132,25 @@ class DetailPanel(QtWidgets.QTabWidget):
         self._bparams = BearingParams()
         self._curves: dict = {}
         self.message = ""
+        self.retranslate()
 
     def retranslate(self) -> None:
+        """Tab titles and axis labels in the current language."""
         self.setTabText(0, self.tr("Maneuver factor"))
         self.setTabText(1, self.tr("Compressed over original"))
         self.setTabText(2, self.tr("Bearing-only"))
+        minutes = self.tr("min")
+        self.factor_plot.setLabel("bottom", self.tr("time since track start"), units=minutes)
+        self.factor_plot.setLabel("left", self.tr("maneuver factor δ"), units="°")
+        self.comp_plot.setLabel("bottom", self.tr("longitude"), units="°")
+        self.comp_plot.setLabel("left", self.tr("latitude"), units="°")
+        self.b_plot.setLabel("left", self.tr("bearing"), units="°")
+        self.z_plot.setLabel("left", self._z_label())
+        self.z_plot.setLabel("bottom", self.tr("time"), units=minutes)
+
+    def _z_label(self) -> str:
+        """The z axis's name: the detector's statistic (GLR or AUC)."""
+        return self.tr("z (GLR)") if self._bparams.glr else self.tr("z (AUC)")
 
     def show_bearings(
         self,
@@ -190,7 +197,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         minutes, bearing, bt, z, t0 = curves
         self.b_curve.setData(minutes, bearing)
         self.z_curve.setData(bt, z)
-        self.z_plot.setLabel("left", "z (GLR)" if p.glr else "z (AUC)")
+        self.z_plot.setLabel("left", self._z_label())
         self.z_band.setRegion((-p.z_crit, p.z_crit))
         det = self._detections[self._detections["batch"].astype(str) == batch]
         for when in time_seconds(det["maneuver_time"]) if len(det) else []:

@@ -140,7 +140,39 @@ class ParamsPanel(QtWidgets.QWidget):
         lay.addWidget(self.guidance)
         lay.addLayout(buttons)
 
+    def group_titles(self) -> dict[str, str]:
+        """The tree's group titles in the current language, by group name (the pipeline
+        steps of :data:`GROUPS`, ``clean`` and its rules)."""
+        return {
+            "clean": self.tr("Cleaning (seeds 001, 003)"),
+            "duplicates": self.tr("duplicates"),
+            "stationary": self.tr("stationary"),
+            "speed": self.tr("speed"),
+            "turn": self.tr("turn"),
+            "speed_outliers": self.tr("speed outliers"),
+            "isolated": self.tr("isolated"),
+            "short_tracks": self.tr("short tracks"),
+            "bspline": self.tr("bspline"),
+            "resample": self.tr("resample"),
+            "smooth": self.tr("smooth"),
+            "maneuver": self.tr("Maneuvers (seed 000)"),
+            "compress": self.tr("Compression (seed 000)"),
+            "associate": self.tr("Association, one sensor (seeds 001, 003)"),
+            "fuse": self.tr("Association and fusion, several sensors (seed 003)"),
+            "bearing": self.tr("Bearing-only (seed 002)"),
+            "maneuver_options": self.tr("Maneuver detector"),
+            "compress_options": self.tr("Compression method"),
+            "associate_options": self.tr("Association mode"),
+            "fuse_options": self.tr("Fusion distance and assignment"),
+        }
+
     def retranslate(self) -> None:
+        titles = self.group_titles()
+        for grp in self.root.children():
+            grp.setOpts(title=titles.get(grp.name(), grp.opts.get("title")))
+            for sub in grp.children():
+                if sub.hasChildren() and sub.name() in titles:
+                    sub.setOpts(title=titles[sub.name()])
         for button, text in zip(
             self.buttons,
             (self.tr("Save preset…"), self.tr("Load preset…"), self.tr("Defaults")),

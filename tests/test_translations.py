@@ -1,4 +1,5 @@
-"""Chinese translations of the review panel and the time slider (issue 13): every text of
+"""Chinese translations of the review panel and the time slider (issue 13), the Detail
+plots, the parameter tree, the Statistics dock, the menus and dock titles: every text of
 those modules goes through the translator, and every one has a zh_CN entry.
 
 The modules are read with :mod:`ast` (no Qt needed): a text is ``self.tr("…")`` (context:
@@ -17,7 +18,18 @@ import pytest
 from wakeline.resources import translations_dir
 
 APP = Path(__file__).resolve().parents[1] / "app"
-MODULES = sorted(APP.glob("review_*.py")) + [APP / "time_panel.py", APP / "map_time.py"]
+MODULES = sorted(APP.glob("review_*.py")) + [
+    APP / name
+    for name in (
+        "time_panel.py",
+        "map_time.py",
+        "detail.py",
+        "params_panel.py",
+        "stats_panel.py",
+        "actions.py",
+        "main_window.py",
+    )
+]
 SETTERS = {
     "setText",
     "setToolTip",
@@ -160,3 +172,50 @@ def test_panels_switch_to_chinese(qtbot):
     finally:
         i18n.install(app, "en", translator)
     qtbot.waitUntil(lambda: panel.window_button.text() == "Time window", timeout=2000)
+
+
+def test_detail_params_and_statistics_switch_to_chinese(qtbot):
+    """The Detail plots' axis labels, the parameter tree's group titles, the Statistics
+    dock's figures and the Bearing-only dock's title follow the language."""
+    pytest.importorskip("pytestqt")
+    import pandas as pd
+    from PySide6 import QtWidgets
+
+    from wakeline.app import i18n
+    from wakeline.app.detail import DetailPanel
+    from wakeline.app.params_panel import ParamsPanel
+    from wakeline.app.stats_panel import StatsPanel
+
+    app = QtWidgets.QApplication.instance()
+    detail, params, stats = DetailPanel(), ParamsPanel(), StatsPanel()
+    for widget in (detail, params, stats):
+        qtbot.addWidget(widget)
+    pts = pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": ["1", "1", "2"],
+            "time": pd.to_datetime([0.0, 60.0, 30.0], unit="s", utc=True),
+            "lon": [10.0, 10.01, 10.02],
+            "lat": [55.0, 55.0, 55.01],
+        }
+    )
+    stats.compute(("k",), pts)
+    assert dict(stats.rows())["Targets"] == "no target ids"
+    translator = i18n.install(app, "zh_CN", None)
+    zh = zh_table()
+    try:
+        for widget in (detail, params, stats):
+            widget.retranslate()
+        label = detail.factor_plot.getAxis("bottom").labelText
+        assert label == zh[("DetailPanel", "time since track start")]
+        titles = {g.name(): g.opts["title"] for g in params.root.children()}
+        assert titles["clean"] == zh[("ParamsPanel", "Cleaning (seeds 001, 003)")]
+        assert titles["bearing"] == zh[("ParamsPanel", "Bearing-only (seed 002)")]
+        rows = dict(stats.rows())
+        assert rows[zh[("StatsPanel", "Targets")]] == zh[("StatsPanel", "no target ids")]
+        assert stats.hist.getAxis("left").labelText == zh[("StatsPanel", "tracks")]
+        assert zh[("MainWindow", "Bearing-only")] == "纯方位"
+    finally:
+        i18n.install(app, "en", translator)
+    stats.retranslate()
+    assert "Targets" in dict(stats.rows())

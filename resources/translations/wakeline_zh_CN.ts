@@ -331,6 +331,42 @@
         <source>tracks</source>
         <translation>条航迹</translation>
     </message>
+    <message>
+        <source>Bearing-only</source>
+        <translation>纯方位</translation>
+    </message>
+    <message>
+        <source>Made by</source>
+        <translation>生成方式</translation>
+    </message>
+    <message>
+        <source>[read-only]</source>
+        <translation>[只读]</translation>
+    </message>
+    <message>
+        <source>[not saved]</source>
+        <translation>[未保存]</translation>
+    </message>
+    <message>
+        <source>&amp;Save pipeline as…</source>
+        <translation>流程另存为(&amp;S)…</translation>
+    </message>
+    <message>
+        <source>&amp;Load pipeline…</source>
+        <translation>载入流程(&amp;L)…</translation>
+    </message>
+    <message>
+        <source>&amp;Zoom to selection</source>
+        <translation>缩放到选中(&amp;Z)</translation>
+    </message>
+    <message>
+        <source>Map &amp;image (PNG)…</source>
+        <translation>地图图像(&amp;I)（PNG）…</translation>
+    </message>
+    <message>
+        <source>Active layer &amp;as it came in (layout, encoding, times)…</source>
+        <translation>当前图层按原格式导出(&amp;A)（列布局、编码、时间）…</translation>
+    </message>
 </context>
 <context>
     <name>ParamsPanel</name>
@@ -366,6 +402,86 @@
         <source>Detection limit (seed 000) for this data: median speed {0:.1f} kn, interval {1:.0f} s, legs of p = {2} points ({3:.0f} s). A {4:.0f}° turn stands out from position errors up to {5:.0f} m; with 100 m errors the smallest turn found is {6:.1f}°.</source>
         <translation>本数据的检测极限（种子文献 000）：航速中位数 {0:.1f} 节，采样间隔 {1:.0f} 秒，窗口 p = {2} 点（{3:.0f} 秒）。位置误差不超过 {5:.0f} 米时，{4:.0f}° 的转向可被检出；误差为 100 米时，可检出的最小转向为 {6:.1f}°。</translation>
     </message>
+    <message>
+        <source>Cleaning (seeds 001, 003)</source>
+        <translation>清洗（种子文献 001、003）</translation>
+    </message>
+    <message>
+        <source>duplicates</source>
+        <translation>重复点</translation>
+    </message>
+    <message>
+        <source>stationary</source>
+        <translation>静止点</translation>
+    </message>
+    <message>
+        <source>speed</source>
+        <translation>速度跳变</translation>
+    </message>
+    <message>
+        <source>turn</source>
+        <translation>转向异常</translation>
+    </message>
+    <message>
+        <source>speed outliers</source>
+        <translation>速度离群点</translation>
+    </message>
+    <message>
+        <source>isolated</source>
+        <translation>孤立点</translation>
+    </message>
+    <message>
+        <source>short tracks</source>
+        <translation>短航迹</translation>
+    </message>
+    <message>
+        <source>bspline</source>
+        <translation>B 样条</translation>
+    </message>
+    <message>
+        <source>resample</source>
+        <translation>重采样</translation>
+    </message>
+    <message>
+        <source>smooth</source>
+        <translation>平滑</translation>
+    </message>
+    <message>
+        <source>Maneuvers (seed 000)</source>
+        <translation>机动检测（种子文献 000）</translation>
+    </message>
+    <message>
+        <source>Compression (seed 000)</source>
+        <translation>压缩（种子文献 000）</translation>
+    </message>
+    <message>
+        <source>Association, one sensor (seeds 001, 003)</source>
+        <translation>关联，单传感器（种子文献 001、003）</translation>
+    </message>
+    <message>
+        <source>Association and fusion, several sensors (seed 003)</source>
+        <translation>关联与融合，多传感器（种子文献 003）</translation>
+    </message>
+    <message>
+        <source>Bearing-only (seed 002)</source>
+        <translation>纯方位（种子文献 002）</translation>
+    </message>
+    <message>
+        <source>Maneuver detector</source>
+        <translation>机动检测方法</translation>
+    </message>
+    <message>
+        <source>Compression method</source>
+        <translation>压缩方法</translation>
+    </message>
+    <message>
+        <source>Association mode</source>
+        <translation>关联模式</translation>
+    </message>
+    <message>
+        <source>Fusion distance and assignment</source>
+        <translation>融合距离与分配</translation>
+    </message>
 </context>
 <context>
     <name>DetailPanel</name>
@@ -400,6 +516,42 @@
     <message>
         <source>{0}: {1} maneuvers detected; band ±{2:.2f}</source>
         <translation>{0}：检测到 {1} 次机动；阈值带 ±{2:.2f}</translation>
+    </message>
+    <message>
+        <source>min</source>
+        <translation>分钟</translation>
+    </message>
+    <message>
+        <source>time since track start</source>
+        <translation>航迹开始后的时间</translation>
+    </message>
+    <message>
+        <source>maneuver factor δ</source>
+        <translation>机动因子 δ</translation>
+    </message>
+    <message>
+        <source>longitude</source>
+        <translation>经度</translation>
+    </message>
+    <message>
+        <source>latitude</source>
+        <translation>纬度</translation>
+    </message>
+    <message>
+        <source>bearing</source>
+        <translation>方位</translation>
+    </message>
+    <message>
+        <source>time</source>
+        <translation>时间</translation>
+    </message>
+    <message>
+        <source>z (GLR)</source>
+        <translation>z（GLR）</translation>
+    </message>
+    <message>
+        <source>z (AUC)</source>
+        <translation>z（AUC）</translation>
     </message>
 </context>
 <context>
@@ -899,6 +1051,145 @@
     <message>
         <source>an input layer was removed; result dropped</source>
         <translation>一个输入图层已被删除；结果已丢弃</translation>
+    </message>
+</context>
+<context>
+    <name>StatsPanel</name>
+    <message>
+        <source>Points</source>
+        <translation>点数</translation>
+    </message>
+    <message>
+        <source>Tracks</source>
+        <translation>航迹数</translation>
+    </message>
+    <message>
+        <source>Sensor {0}</source>
+        <translation>传感器 {0}</translation>
+    </message>
+    <message>
+        <source>{0} tracks, {1} points, median interval {2}</source>
+        <translation>{0} 条航迹，{1} 个点，采样间隔中位数 {2}</translation>
+    </message>
+    <message>
+        <source>Targets</source>
+        <translation>目标数</translation>
+    </message>
+    <message>
+        <source>no target ids</source>
+        <translation>无目标编号</translation>
+    </message>
+    <message>
+        <source>Track lifetime min / median / 90 % / max</source>
+        <translation>航迹持续时间 最小 / 中位数 / 90% / 最大</translation>
+    </message>
+    <message>
+        <source>Points per track min / median / 90 % / max</source>
+        <translation>每条航迹点数 最小 / 中位数 / 90% / 最大</translation>
+    </message>
+    <message>
+        <source>Longitude</source>
+        <translation>经度</translation>
+    </message>
+    <message>
+        <source>Latitude</source>
+        <translation>纬度</translation>
+    </message>
+    <message>
+        <source>Extent (east-west × north-south)</source>
+        <translation>范围（东西 × 南北）</translation>
+    </message>
+    <message>
+        <source>Area covered</source>
+        <translation>覆盖面积</translation>
+    </message>
+    <message>
+        <source>{0} (cells of {1} holding a point)</source>
+        <translation>{0}（按边长 {1} 的网格中有点的格子计）</translation>
+    </message>
+    <message>
+        <source>Time</source>
+        <translation>时间</translation>
+    </message>
+    <message>
+        <source>Time span</source>
+        <translation>时间跨度</translation>
+    </message>
+    <message>
+        <source>Time window</source>
+        <translation>时间窗</translation>
+    </message>
+    <message>
+        <source>only the points in {0} – {1}</source>
+        <translation>仅统计 {0} – {1} 内的点</translation>
+    </message>
+    <message>
+        <source>At-rest spans</source>
+        <translation>静止时段</translation>
+    </message>
+    <message>
+        <source>{0} in {1} tracks, total {2}, median {3}</source>
+        <translation>{0} 段，分布于 {1} 条航迹，合计 {2}，中位数 {3}</translation>
+    </message>
+    <message>
+        <source>Maneuvers</source>
+        <translation>机动</translation>
+    </message>
+    <message>
+        <source>{0} points in {1} tracks</source>
+        <translation>{0} 个机动点，分布于 {1} 条航迹</translation>
+    </message>
+    <message>
+        <source>Computing…</source>
+        <translation>正在计算…</translation>
+    </message>
+    <message>
+        <source>The figures could not be computed (see the log).</source>
+        <translation>无法计算统计数据（见日志）。</translation>
+    </message>
+    <message>
+        <source>Track lifetimes</source>
+        <translation>航迹持续时间</translation>
+    </message>
+    <message>
+        <source>lifetime</source>
+        <translation>持续时间</translation>
+    </message>
+    <message>
+        <source>tracks</source>
+        <translation>航迹数</translation>
+    </message>
+    <message>
+        <source>s</source>
+        <translation>秒</translation>
+    </message>
+    <message>
+        <source>min</source>
+        <translation>分钟</translation>
+    </message>
+    <message>
+        <source>h</source>
+        <translation>小时</translation>
+    </message>
+    <message>
+        <source>d</source>
+        <translation>天</translation>
+    </message>
+    <message>
+        <source>m</source>
+        <translation>米</translation>
+    </message>
+    <message>
+        <source>km</source>
+        <translation>千米</translation>
+    </message>
+    <message>
+        <source>m²</source>
+        <translation>平方米</translation>
+    </message>
+    <message>
+        <source>km²</source>
+        <translation>平方千米</translation>
     </message>
 </context>
 </TS>
