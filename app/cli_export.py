@@ -36,16 +36,9 @@ def _cmd_export(args: argparse.Namespace) -> int:
         kind = export_tracks(result.points, args.output)
         print(f"exported {len(result.points):,} rows as {kind}", file=sys.stderr)
         return 0
-    if suffix in (".xlsx", ".xls", ".xlsm", ".ods", ".parquet", ".shp", ".kml", ".kmz"):
-        raise InputError(
-            f"{args.output}: export writes CSV text, GeoJSON or GPX, not {suffix} (a CSV "
-            "file opens in a spreadsheet: write to .csv)"
-        )
-    if suffix in (".gz", ".bz2", ".xz", ".zip", ".zst"):
-        raise InputError(
-            f"{args.output}: export writes plain text, not {suffix} (compress the file "
-            "afterwards, or write to .csv)"
-        )
+    from wakeline.core.export import check_text_path
+
+    check_text_path(args.output)  # no CSV text in tracks.xlsx (the window asks the same)
     if args.like:
         from wakeline.core.io.formats import parse_mapping
 

@@ -49,6 +49,19 @@ class ProjectJobsMixin:
         if path:
             self.export(kind, Path(path))
 
+    def _text_path_ok(self, path: Path) -> bool:
+        """CSV text only under a name that says so (the rule ``wakeline export`` keeps,
+        :func:`~wakeline.core.export.check_text_path`); else a warning, and False."""
+        from wakeline.core.export import check_text_path
+
+        try:
+            check_text_path(path)
+        except InputError as exc:
+            QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), str(exc))
+            self.log_message(f"{self.tr('Error')}: {exc}")
+            return False
+        return True
+
     def export(self, kind: str, path: Path) -> int | None:
         """Write the active layer (or its maneuver points) to ``path`` in the worker."""
         from wakeline.app.cli_steps import write_table
@@ -56,6 +69,8 @@ class ProjectJobsMixin:
 
         layer = self.active_layer()
         if layer is None:
+            return None
+        if kind in ("csv", "maneuvers") and not self._text_path_ok(path):
             return None
         view = self.views[layer.id]
         man = self.session.related(layer.id, "maneuvers")
@@ -103,6 +118,8 @@ class ProjectJobsMixin:
             if not chosen:
                 return None
             path = Path(chosen)
+        if not self._text_path_ok(path):
+            return None
         points = layer.points
 
         def job(_progress):

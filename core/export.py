@@ -44,8 +44,36 @@ def spreadsheet_safe(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
+#: Names of formats that are not CSV text: a CSV file given such a name does not open.
+NOT_TEXT_SUFFIXES = (".xlsx", ".xls", ".xlsm", ".ods", ".parquet", ".shp", ".kml", ".kmz")
+#: Names of compressed files: the writers write plain text.
+COMPRESSED_SUFFIXES = (".gz", ".bz2", ".xz", ".zip", ".zst")
+
+
+def check_text_path(path: str | Path) -> None:
+    """Refuse (:class:`~wakeline.core.errors.InputError`, one line) a name that says the
+    file is a spreadsheet, another binary format or compressed, for CSV text: written,
+    ``tracks.xlsx`` held CSV text that a spreadsheet refuses to open. The command line's
+    ``export`` and the window's Export menu both ask here."""
+    from wakeline.core.errors import InputError
+
+    suffix = Path(path).suffix.lower()
+    if suffix in NOT_TEXT_SUFFIXES:
+        raise InputError(
+            f"{path}: export writes CSV text, GeoJSON or GPX, not {suffix} (a CSV "
+            "file opens in a spreadsheet: write to .csv)"
+        )
+    if suffix in COMPRESSED_SUFFIXES:
+        raise InputError(
+            f"{path}: export writes plain text, not {suffix} (compress the file "
+            "afterwards, or write to .csv)"
+        )
+
+
 def export_csv(points: pd.DataFrame, path: str | Path) -> None:
-    """Canonical CSV (canonical columns first), spreadsheet-safe, written atomically."""
+    """Canonical CSV (canonical columns first), spreadsheet-safe, written atomically;
+    a name :func:`check_text_path` refuses raises InputError and writes nothing."""
+    check_text_path(path)
     write_csv(spreadsheet_safe(points[written_columns(points)]), path)
 
 

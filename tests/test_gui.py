@@ -118,6 +118,33 @@ def test_errors_in_a_job_reach_a_dialog_and_the_log(window, monkeypatch):
     assert "at least two sensors" in window.log.toPlainText()
 
 
+def test_export_refuses_csv_text_under_a_spreadsheet_name(window, tmp_path, monkeypatch):
+    """File ▸ Export ▸ CSV to tracks.xlsx wrote CSV text there (the command line refuses
+    it since its own operator test): the window refuses it with the same rule and words,
+    writes nothing and starts no job; .csv still goes through."""
+    from wakeline.core.errors import InputError
+    from wakeline.core.export import check_text_path
+
+    shown = []
+    monkeypatch.setattr(
+        QtWidgets.QMessageBox, "warning", lambda _p, _t, text, *a: shown.append(text)
+    )
+    load(window, demo_path())
+    for name, kind in (("tracks.xlsx", "csv"), ("m.ods", "maneuvers"), ("t.csv.gz", "csv")):
+        assert window.export(kind, tmp_path / name) is None
+        wait_for_jobs(window)
+        assert not (tmp_path / name).exists()
+        with pytest.raises(InputError) as exc:
+            check_text_path(tmp_path / name)
+        assert shown[-1] == str(exc.value) and "write to .csv" in shown[-1]
+    assert window.export_as_came_in(tmp_path / "again.xlsx") is None
+    assert not (tmp_path / "again.xlsx").exists()
+    assert "again.xlsx" in window.log.toPlainText()
+    assert window.export("csv", tmp_path / "tracks.csv")
+    wait_for_jobs(window)
+    assert (tmp_path / "tracks.csv").exists()
+
+
 def test_export_and_reimport(window, tmp_path):
     lid = load(window, demo_path())
     window.run_step("compress")
