@@ -107,13 +107,15 @@ class ProjectJobsMixin:
             self.log_message(f"{self.tr('Error')}: {exc}")
             return None
         if path is None:
+            from wakeline.core.export import COMPRESSED_SUFFIXES, NOT_TEXT_SUFFIXES
+
             src = Path(layout.source) if layout.source else Path("tracks.csv")
-            suggestion = f"{layer.name.replace(' · ', '_')}{src.suffix or '.csv'}"
+            ext = src.suffix or ".csv"
+            if ext.lower() in COMPRESSED_SUFFIXES + NOT_TEXT_SUFFIXES:
+                ext = ".csv"  # tracks.csv.gz read: the text is written as plain text
+            suggestion = f"{layer.name.replace(' · ', '_')}{ext}"
             chosen, _ = QtWidgets.QFileDialog.getSaveFileName(
-                self,
-                self.tr("Export as it came in"),
-                suggestion,
-                f"{layout.name} (*{src.suffix or '.csv'})",
+                self, self.tr("Export as it came in"), suggestion, f"{layout.name} (*{ext})"
             )
             if not chosen:
                 return None

@@ -145,6 +145,29 @@ def test_export_refuses_csv_text_under_a_spreadsheet_name(window, tmp_path, monk
     assert (tmp_path / "tracks.csv").exists()
 
 
+def test_export_as_it_came_in_suggests_csv_for_a_compressed_source(window, tmp_path, monkeypatch):
+    """A layer read from radar.csv.gz is offered as ….csv (its plain text would be refused
+    under .gz), and the name the operator picks is written."""
+    import gzip
+
+    src = tmp_path / "radar.csv.gz"
+    with gzip.open(src, "wt") as fh:
+        fh.write("sensor,batch,time,lon,lat\n")
+        fh.writelines(f"S1,7,2024-05-01T00:0{k}:00Z,11.5{k},57.6\n" for k in range(5))
+    load(window, src)
+    seen = []
+
+    def dialog(_parent, _title, suggestion, filt):
+        seen.append((suggestion, filt))
+        return str(tmp_path / suggestion), filt
+
+    monkeypatch.setattr(QtWidgets.QFileDialog, "getSaveFileName", dialog)
+    assert window.export_as_came_in()
+    wait_for_jobs(window)
+    assert seen[0][0].endswith(".csv") and "(*.csv)" in seen[0][1]
+    assert (tmp_path / seen[0][0]).read_text().startswith("sensor,batch,time")
+
+
 def test_export_and_reimport(window, tmp_path):
     lid = load(window, demo_path())
     window.run_step("compress")
