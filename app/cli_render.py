@@ -66,6 +66,28 @@ def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
     return list(out.values())
 
 
+#: Files named one by one in the input's legend name; more are counted.
+NAMED_FILES = 3
+
+
+def input_name(paths: list[Path]) -> str:
+    """The input's name in the legend: its file; files that differ in the middle of their
+    names as ``scene-0_{AIS,radar}.csv``, others joined by " + " (beyond
+    :data:`NAMED_FILES`, the first ones and how many more); never a bare "input"."""
+    names = [Path(p).name for p in paths]
+    if len(names) == 1:
+        return names[0]
+    if len(names) <= NAMED_FILES:
+        head = os.path.commonprefix(names)
+        tail = os.path.commonprefix([n[len(head) :][::-1] for n in names])[::-1]
+        middles = [n[len(head) : len(n) - len(tail)] for n in names]
+        if (head or tail) and all(middles):
+            return f"{head}{{{','.join(middles)}}}{tail}"
+        return " + ".join(names)
+    shown = " + ".join(names[: NAMED_FILES - 1])
+    return f"{shown} + {len(names) - NAMED_FILES + 1} more files"
+
+
 def _read(paths: list[Path]):
     """One or several files as one table, as ``fuse`` and ``review`` read them (files that
     each hold one sensor of the same name get the differing part of their names)."""
@@ -89,7 +111,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
     except ImportError as exc:
         raise InputError(f"rendering needs the desktop libraries (Qt): {exc}") from None
     _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(["wakeline"])
-    source_name = args.input[0].name if len(args.input) == 1 else "input"
+    source_name = input_name(args.input)
     # Every layer in a colour of its own: the steps' layers in their kinds' colours, the
     # input's sensors (or batches) in colours none of them has.
     taken: set[str] = set()

@@ -514,6 +514,55 @@ def test_render_fuses_two_files_as_fuse_reads_them(tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_render_names_the_input_files_in_the_legend(tmp_path, monkeypatch):
+    """`render a.csv b.csv` named the combined layer "input" in the legend (and its steps
+    "input · fused"): the files are named."""
+    from pathlib import Path
+
+    from wakeline.app import map_render
+    from wakeline.app.cli import main
+    from wakeline.app.cli_render import input_name
+
+    t0 = pd.Timestamp("2024-05-01T00:00:00Z")
+    for name, dlat in (("a.csv", 0.0), ("b.csv", 0.01)):
+        rows = [
+            ("S1", 1, t0 + pd.Timedelta(seconds=30 * k), 10.0 + 0.003 * k, 55 + dlat)
+            for k in range(9)
+        ]
+        pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"]).to_csv(
+            tmp_path / name, index=False
+        )
+    seen = []
+
+    def fake_render(layers, path, **_kw):
+        seen.extend(layer.name for layer in layers)
+        return {
+            "layers": len(layers),
+            "points": 0,
+            "vertices": 0,
+            "size": (1, 1),
+            "bounds": (0, 0, 1, 1),
+        }
+
+    monkeypatch.setattr(map_render, "render_png", fake_render)
+    argv = [
+        "render",
+        str(tmp_path / "a.csv"),
+        str(tmp_path / "b.csv"),
+        "-o",
+        str(tmp_path / "x.png"),
+    ]
+    assert main(argv + ["--step", "clean"]) == 0
+    assert seen and all(n.startswith("{a,b}.csv") for n in seen), seen
+    assert not any(n.startswith("input") for n in seen)
+    paths = [tmp_path / f"f{k}.csv" for k in range(11)]
+    assert input_name(paths[:1]) == "f0.csv"
+    assert input_name([Path("s_AIS.csv"), Path("s_radar.csv")]) == "s_{AIS,radar}.csv"
+    assert input_name([Path("ais.csv"), Path("radar.txt")]) == "ais.csv + radar.txt"
+    assert input_name([Path("x.csv"), Path("x.csv")]) == "x.csv + x.csv"
+    assert input_name(paths) == "f0.csv + f1.csv + 9 more files"
+
+
 def test_render_steps_draw_each_layer_once_and_the_input_in_its_own_colour(tmp_path):
     """`render --step maneuvers compress`: compress makes the maneuvers again, and the
     copy was drawn as a second layer that took the input's blue (the input came out brown
