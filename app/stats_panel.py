@@ -238,6 +238,7 @@ class StatsPanel(QtWidgets.QWidget):
         self._head = []
         self._message = text
         self.note.setText(text)
+        self.note.show()
         self.split.hide()
 
     def compute(
@@ -264,6 +265,7 @@ class StatsPanel(QtWidgets.QWidget):
 
         self._message = tr("Computing…")
         self.note.setText(self._message)
+        self.note.show()  # above the figures of the last layer until the new ones come
         if self.executor is None:
             self._arrived(job())
         elif self._busy:
@@ -284,6 +286,7 @@ class StatsPanel(QtWidgets.QWidget):
             if not self.busy:
                 self._message = tr("The figures could not be computed (see the log).")
                 self.note.setText(self._message)
+                self.note.show()
             return
         token, ident, stats = result
         if token != self._token:

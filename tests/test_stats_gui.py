@@ -79,6 +79,16 @@ def test_a_stale_result_is_dropped_and_the_latest_shown(qtbot):
     assert panel.stats.tracks == 7 and not panel.busy
     # The same request again starts no job.
     assert panel.compute(("c",), c) is False and not jobs
+    assert not panel.note.isVisibleTo(panel) and panel.split.isVisibleTo(panel)
+    # A message (no layer, a bearing layer) replaces the figures, and is seen.
+    panel.show_message("No layer")
+    assert panel.note.isVisibleTo(panel) and not panel.split.isVisibleTo(panel)
+    assert panel.toPlainText() == "No layer"
+    panel.compute(("a",), a)
+    assert panel.note.isVisibleTo(panel) and panel.note.text() == "Computing…"
+    job, done = jobs.pop()
+    done(job())
+    assert panel.stats.tracks == 3 and not panel.note.isVisibleTo(panel)
 
 
 def test_the_figures_follow_the_time_window(window, qtbot):
