@@ -172,6 +172,9 @@ class StatsPanel(QtWidgets.QWidget):
         self.stats: LayerStats | None = None
         #: Thread id of the job that computed :attr:`stats`.
         self.computed_in: int | None = None
+        #: The request key :attr:`stats` answer (the table may show them while the
+        #: latest request, :attr:`key`, is computed).
+        self.shown_key: tuple | None = None
         #: Results dropped because a newer request had been made.
         self.dropped = 0
         self._head: list[tuple[str, str]] = []
@@ -234,7 +237,7 @@ class StatsPanel(QtWidgets.QWidget):
         self._key = None
         self._token += 1  # a result on its way is for something else now
         self._waiting = None
-        self.stats = None
+        self.stats = self.shown_key = None
         self._head = []
         self._message = text
         self.note.setText(text)
@@ -292,7 +295,7 @@ class StatsPanel(QtWidgets.QWidget):
         if token != self._token:
             self.dropped += 1
             return
-        self.stats, self.computed_in = stats, ident
+        self.stats, self.computed_in, self.shown_key = stats, ident, self._key
         self._message = ""
         self._fill()
 

@@ -36,9 +36,7 @@ def test_the_dock_shows_the_figures_of_an_mtad_scene_computed_in_a_worker(window
     path = real_file("mtad-dtwcm", "original", "Scene-35.csv")
     lid = load(window, path)
     panel = window.stats
-    qtbot.waitUntil(
-        lambda: panel.stats is not None and panel.key and panel.key[0] == lid, timeout=20_000
-    )
+    qtbot.waitUntil(lambda: panel.shown_key and panel.shown_key[0] == lid, timeout=20_000)
     expected = layer_stats(read_points(path).points)
     s = panel.stats
     assert (s.points, s.tracks) == (expected.points, expected.tracks)
@@ -76,7 +74,7 @@ def test_a_stale_result_is_dropped_and_the_latest_shown(qtbot):
     assert len(jobs) == 1  # c's job started once a's ended
     job, done = jobs.pop()
     done(job())
-    assert panel.stats.tracks == 7 and not panel.busy
+    assert panel.stats.tracks == 7 and not panel.busy and panel.shown_key == ("c",)
     # The same request again starts no job.
     assert panel.compute(("c",), c) is False and not jobs
     assert not panel.note.isVisibleTo(panel) and panel.split.isVisibleTo(panel)
@@ -95,7 +93,7 @@ def test_the_figures_follow_the_time_window(window, qtbot):
     path = real_file("mtad-dtwcm", "original", "Scene-35.csv")
     lid = load(window, path)
     panel = window.stats
-    qtbot.waitUntil(lambda: panel.stats is not None and panel.key[0] == lid, timeout=20_000)
+    qtbot.waitUntil(lambda: panel.shown_key and panel.shown_key[0] == lid, timeout=20_000)
     whole = panel.stats
     window.session.set_time_window((whole.start_s, whole.start_s + 0.25 * whole.span_s))
     qtbot.waitUntil(
@@ -134,3 +132,34 @@ def test_a_million_points_do_not_block_the_event_loop(qtbot):
     assert panel.stats.points == 1_000_000 and panel.stats.tracks == 1000
     assert panel.computed_in != threading.main_thread().ident
     assert max(gaps) < 0.1, f"the event loop waited {max(gaps) * 1000:.0f} ms"
+
+
+def test_the_figures_follow_a_rerun_of_the_active_layer(window, qtbot):
+    """Maneuvers on an MTAD scene: the dock shows the maneuver points; run again with a
+    higher threshold, the layer's data change and the dock shows the new count."""
+    from wakeline.app.main import wait_for_jobs
+
+    path = real_file("mtad-dtwcm", "original", "Scene-35.csv")
+    src = load(window, path)
+    panel = window.stats
+    counts = []
+    for threshold in (15.0, 60.0):
+        window.select_layer(src)
+        window.params.from_dict({"maneuver": {"threshold_deg": threshold}})
+        window.run_step("maneuvers")
+        wait_for_jobs(window)
+        lid = next(i for i, lay in window.layers.items() if lay.kind == "maneuvers")
+        window.select_layer(lid)
+        layer = window.layers[lid]
+        want = int(layer.points["is_maneuver"].sum())
+        qtbot.waitUntil(
+            lambda lid=lid, want=want: (
+                panel.shown_key is not None
+                and panel.shown_key[0] == lid
+                and panel.stats.maneuvers["points"] == want
+            ),
+            timeout=20_000,
+        )
+        counts.append(want)
+        assert "Maneuvers" in dict(panel.rows())
+    assert counts[1] < counts[0]
