@@ -219,3 +219,28 @@ def test_detail_params_and_statistics_switch_to_chinese(qtbot):
         i18n.install(app, "en", translator)
     stats.retranslate()
     assert "Targets" in dict(stats.rows())
+
+
+def test_the_window_in_chinese_titles_the_bearing_dock_and_its_statistics(qtbot, tmp_path):
+    """The Bearing-only dock's tab title was English in the Chinese window."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore, QtWidgets
+
+    from wakeline.app import i18n
+    from wakeline.app.main_window import MainWindow
+
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "zh_CN")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    try:
+        zh = zh_table()
+        assert w.docks["bearing"].windowTitle() == zh[("MainWindow", "Bearing-only")]
+        assert w.docks["stats"].windowTitle() == zh[("MainWindow", "Statistics")]
+        label = w.detail.z_plot.getAxis("bottom").labelText
+        assert label == zh[("DetailPanel", "time")]
+    finally:
+        w.set_language("en")
+        w.close()
+    assert w.docks["bearing"].windowTitle() == "Bearing-only"
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)
