@@ -121,3 +121,36 @@ def test_a_cleaned_layer_carries_its_at_rest_spans_to_the_figures():
     rest = layer_stats(layer.points, layer.tables).at_rest
     assert rest["spans"] == 1 and rest["tracks"] == 1
     assert 990.0 <= rest["total_s"] <= 1100.0  # 100 fixes 10 s apart at one place
+
+
+def test_the_at_rest_table_comes_back_from_a_project_and_an_empty_one_too(tmp_path):
+    """The cleaned layer's at_rest side table is stored with the layer: a reopened
+    project counts the same spans (and a layer with none keeps an empty table)."""
+    from wakeline.core.project import load_project, save_project
+    from wakeline.core.session import Session
+
+    n = 300
+    lon = 10 + np.concatenate(
+        [np.arange(100) * 0.0005, np.full(100, 0.05), 0.05 + np.arange(100) * 0.0005]
+    )
+    moored = pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": "7",
+            "time": T0 + pd.to_timedelta(np.arange(n) * 10.0, unit="s"),
+            "lon": lon,
+            "lat": np.full(n, 55.0),
+        }
+    )
+    s = Session()
+    for name, pts in (("moored.csv", moored), ("moving.csv", scene())):
+        lid = s.add_layer(name, "source", pts).id
+        s.apply_result(lid, s.run_step(lid, "clean"))
+    path = tmp_path / "p.wakeline"
+    save_project(s, path)
+    back = {lay.name: lay for lay in load_project(path).layers}
+    cleaned = [name for name in back if name.endswith("cleaned")]
+    assert len(cleaned) == 2
+    rests = {name: layer_stats(back[name].points, back[name].tables).at_rest for name in cleaned}
+    assert rests[next(n for n in cleaned if n.startswith("moored"))]["spans"] == 1
+    assert rests[next(n for n in cleaned if n.startswith("moving"))]["spans"] == 0
