@@ -403,6 +403,10 @@
         <translation>本数据的检测极限（种子文献 000）：航速中位数 {0:.1f} 节，采样间隔 {1:.0f} 秒，窗口 p = {2} 点（{3:.0f} 秒）。位置误差不超过 {5:.0f} 米时，{4:.0f}° 的转向可被检出；误差为 100 米时，可检出的最小转向为 {6:.1f}°。</translation>
     </message>
     <message>
+        <source>Detection limit (seed 000): none for this data: {0}.</source>
+        <translation>本数据无法给出检测极限（种子文献 000）：{0}。</translation>
+    </message>
+    <message>
         <source>Cleaning (seeds 001, 003)</source>
         <translation>清洗（种子文献 001、003）</translation>
     </message>
