@@ -22,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
-from wakeline.core.params import Params, param
+from wakeline.core.params import Params, finite_number, param
 from wakeline.core.progress import Progress, null_progress, sub_progress
 
 
@@ -648,10 +648,12 @@ def _ladder_top_v1(values: dict) -> dict:
 
     if not isinstance(values, dict) or "max_window_s" not in values:
         return values
-    d = ManeuverParams()
-    w = float(values.get("window_s", d.window_s))
-    top = float(values["max_window_s"])
-    if w <= 0 or top <= 0:
+    try:  # a value that is no finite number is left for the parameters' own check
+        w = finite_number(values.get("window_s", ManeuverParams().window_s), "window_s")
+        top = finite_number(values["max_window_s"], "max_window_s")
+    except ValueError:
+        return values
+    if w <= 0 or top <= 0 or top > 1e7:  # 1e7: the field's range (a 2**k loop stays short)
         return values
     last = w
     while last * 2 <= top:  # version 1's rule, exactly

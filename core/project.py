@@ -472,9 +472,15 @@ def load_project(path: str | Path) -> Project:
             decisions = [json.loads(r[0]) for r in con.execute("SELECT json FROM decisions")]
             if schema >= 2:
                 rows = con.execute("SELECT key, json FROM state").fetchall()
+                # the parameters' version says how to read them: a data row, not a view
+                # state row (unreadable: the project is damaged, not read as version 1)
+                versions = [json.loads(v) for k, v in rows if k == "params_version"]
+                params_version = versions[0] if versions else 1  # none before version 2
+                rows = [(k, v) for k, v in rows if k != "params_version"]
                 ui = _read_state(rows, [lay.id for lay in layers])
             else:
                 ui = _ViewState({}, [], None, None, None, [])
+                params_version = 1
                 names = {lay.name: lay.id for lay in layers}
                 ui.selection = [
                     (names.get(lay, ""), s, b)
@@ -490,8 +496,7 @@ def load_project(path: str | Path) -> Project:
         raise InputError(f"{path}: the project is damaged ({type(exc).__name__}: {exc})") from None
     if not isinstance(params, dict) or not all(isinstance(v, dict) for v in params.values()):
         raise InputError(f"{path}: the project is damaged (parameters are not a table)")
-    params_version = ui.state.pop("params_version", 1)  # none before max_window_s changed
-    if not isinstance(params_version, int):
+    if isinstance(params_version, bool) or not isinstance(params_version, int):
         raise InputError(f"{path}: the project is damaged (parameter version {params_version!r})")
     params = params_from_version(params, params_version)
     return Project(

@@ -118,6 +118,27 @@ def test_a_project_saved_before_params_had_a_version_runs_the_windows_it_ran(tmp
     con.close()
     with pytest.raises(InputError, match="damaged"):
         load_project(path)
+    with sqlite3.connect(path) as con:  # not even JSON: damaged, not read as version 1
+        con.execute("UPDATE state SET json = 'two' WHERE key = 'params_version'")
+    con.close()
+    with pytest.raises(InputError, match="damaged"):
+        load_project(path)
+
+
+def test_a_version_1_table_with_a_bad_window_is_refused_by_the_parameters_not_crashed():
+    # review: "x", null, [1] raised TypeError/ValueError from the translation itself (out
+    # of Load preset's InputError handler, into Qt's loop), Infinity looped for ever
+    from wakeline.core.pipeline import params_from_version
+
+    for bad in ("x", None, [1], float("inf"), float("nan"), -5.0):
+        table = {"maneuver": {"window_s": 10.0, "max_window_s": bad}}
+        assert params_from_version(table, 1) == table  # left for the parameters' check
+        steps = [{"step": "maneuvers", "params": {"maneuver": {"max_window_s": bad}}}]
+        text = json.dumps({"wakeline_pipeline": 1, "steps": steps})
+        with pytest.raises(InputError):
+            Pipeline.from_json(text)
+    table = {"maneuver": {"window_s": "ten", "max_window_s": 600.0}}
+    assert params_from_version(table, 1) == table
 
 
 def test_params_json_round_trip_and_refusal():
