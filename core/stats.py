@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core import geo
-from wakeline.core.tracks import sorted_with_index, track_seconds
+from wakeline.core.tracks import run_medians, sorted_with_index, track_seconds
 
 #: Bins of the lifetime histogram.
 HIST_BINS = 20
@@ -47,7 +47,8 @@ class Spread:
 class Extent:
     """The points' lon/lat box (degrees), its size (km) and the area the tracks cover:
     ``covered_km2`` is the area of the grid cells (``cell_km`` a side, about
-    :data:`GRID_CELLS` along the box's longer side) holding at least one point."""
+    :data:`GRID_CELLS` along the box's longer side) holding at least one point. A box
+    across ±180° runs east from ``lon_min`` to ``lon_max`` < ``lon_min``."""
 
     lon_min: float
     lon_max: float
@@ -113,6 +114,12 @@ def _extent(lon: np.ndarray, lat: np.ndarray) -> Extent | None:
     if not ok.any():
         return None
     lon, lat = lon[ok], lat[ok]
+    if lon.max() - lon.min() > 180.0:  # perhaps across ±180°: the shortest arc holding all
+        s = np.unique(lon)
+        gaps = np.diff(s)
+        i = int(np.argmax(gaps))
+        if gaps[i] > s[0] + 360.0 - s[-1]:  # the widest empty arc is inside, not at ±180°
+            lon = np.where(lon >= s[i + 1], lon, lon + 360.0)  # east of it, continuous
     x0, x1, y0, y1 = float(lon.min()), float(lon.max()), float(lat.min()), float(lat.max())
     coslat = np.cos(0.5 * (y0 + y1) * geo.DEG_TO_RAD)
     width = float((x1 - x0) * KM_PER_DEG * coslat)
@@ -130,23 +137,16 @@ def _extent(lon: np.ndarray, lat: np.ndarray) -> Extent | None:
         covered = min(cells * cell * cell, width * height)
     else:
         covered = 0.0
+    if x1 > 180.0:  # across ±180°: the east bound is given as it reads (x1 < x0)
+        x1 -= 360.0
     return Extent(x0, x1, y0, y1, width, height, width * height, float(covered), cell)
 
 
 def _median_by_group(code: np.ndarray, values: np.ndarray, n_groups: int) -> np.ndarray:
-    """Median of ``values`` per group code 0 … n_groups − 1 (NaN for an empty group), from
-    one lexsort."""
-    out = np.full(n_groups, np.nan)
-    if not len(values):
-        return out
-    order = np.lexsort((values, code))
-    c, v = code[order], values[order]
-    starts = np.flatnonzero(np.r_[True, c[1:] != c[:-1]])
-    counts = np.diff(np.r_[starts, len(c)])
-    lo = starts + (counts - 1) // 2
-    hi = starts + counts // 2
-    out[c[starts]] = 0.5 * (v[lo] + v[hi])
-    return out
+    """Median of ``values`` per group code 0 … n_groups − 1 (NaN for an empty group)."""
+    order = np.argsort(code, kind="stable")
+    count = np.bincount(code, minlength=n_groups)
+    return run_medians(values[order], np.cumsum(count) - count, count)
 
 
 def layer_stats(

@@ -154,3 +154,26 @@ def test_the_at_rest_table_comes_back_from_a_project_and_an_empty_one_too(tmp_pa
     rests = {name: layer_stats(back[name].points, back[name].tables).at_rest for name in cleaned}
     assert rests[next(n for n in cleaned if n.startswith("moored"))]["spans"] == 1
     assert rests[next(n for n in cleaned if n.startswith("moving"))]["spans"] == 0
+
+
+def test_extent_across_the_antimeridian_is_the_short_arc():
+    """Review: an 11 km track from 179.95° E to 179.95° W read as 39,420 km wide (the box
+    of the raw longitudes); the box runs east across ±180°."""
+    lon = np.linspace(179.95, 180.05, 50)
+    lon = np.where(lon > 180.0, lon - 360.0, lon)
+    pts = pd.DataFrame(
+        {
+            "sensor": "AIS",
+            "batch": "1",
+            "time": pd.date_range("2024-05-01", periods=50, freq="10s", tz="UTC"),
+            "lon": lon,
+            "lat": np.full(50, 10.0),
+        }
+    )
+    e = layer_stats(pts).extent
+    assert 10.0 < e.width_km < 12.0 and e.covered_km2 <= e.box_km2 < 1.0
+    assert e.lon_min == pytest.approx(179.95) and e.lon_max == pytest.approx(-179.95)
+    # a track spanning 200° without crossing (the wider arc is the one at ±180°) is left as it is
+    wide = pts.assign(lon=np.linspace(-100.0, 100.0, 50))
+    e = layer_stats(wide).extent
+    assert e.lon_min == -100.0 and e.lon_max == 100.0
