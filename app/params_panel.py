@@ -33,10 +33,10 @@ from wakeline.core.pipeline import (
     params_from_version,
 )
 
-#: Pipeline steps in order: key, title, parameter class.
 #: A preset file's version key (its table is the panel's form, :data:`PARAMS_VERSION`).
 PRESET_VERSION_KEY = "wakeline_params"
 
+#: Pipeline steps in order: key, title, parameter class.
 GROUPS = (
     ("maneuver", "Maneuvers (seed 000)", ManeuverParams),
     ("compress", "Compression (seed 000)", CompressParams),

@@ -44,8 +44,10 @@ def scenes_of(name: str) -> tuple[list, tuple]:
     return sw.read_set(name)[1], sw.SETS[name][1]
 
 
-def run(name: str, rate, params: LinkParams) -> dict:
-    scenes, (gaps, every) = scenes_of(name)
+def run(name: str, rate, params: LinkParams, read=None) -> dict:
+    """Mean scores of set ``name`` decimated to ``rate`` s (None: as it is); ``read``: the
+    set's :func:`scenes_of`, read once for every rate."""
+    scenes, (gaps, every) = read or scenes_of(name)
     rows = []
     for pts, sep in scenes:
         if rate is not None:
@@ -75,19 +77,14 @@ def main(argv=None) -> None:
     ap.add_argument("--rates", nargs="+", default=["180"])
     ap.add_argument("--set", action="append", default=[], help="LinkParams NAME=VALUE")
     a = ap.parse_args(argv)
-    changes = {}
-    for kv in a.set:
-        k, v = kv.split("=", 1)
-        changes[k] = (
-            type(getattr(LinkParams(), k))(v) if v not in ("true", "false") else v == "true"
-        )
-    params = LinkParams().replace(**changes)
+    params = LinkParams().replace(**dict(kv.split("=", 1) for kv in a.set))  # text converted
     cpu = time.process_time()
     print(f"{'set':<10}{'rate':>6}  P_CA  P_FA pairs reach  skip loose swap | notc taken loose")
     for name in a.sets:
+        read = scenes_of(name)
         for r in a.rates:
             rate = None if r == "own" else float(r)
-            o = run(name, rate, params)
+            o = run(name, rate, params, read)
             print(
                 f"{name:<10}{r:>6} {o['p_ca']:.3f} {o['p_fa']:.3f} {o['pairs']:5d} {o['reach']:5d}"
                 f"  {o['wrong_skip']:4d} {o['wrong_loose']:5d} {o['wrong_swap']:4d} |"

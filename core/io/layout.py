@@ -27,6 +27,7 @@ import pandas as pd
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.formats import resolve
+from wakeline.core.io.reader import month_first_dates
 from wakeline.core.io.sniff import sniff
 from wakeline.core.schema import CANONICAL_COLUMNS
 
@@ -74,12 +75,9 @@ _OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
 
 
 def _month_first(dates: pd.Series) -> bool:
-    """Whether slashed dates (``nn/nn/yyyy``) write the month first: none has a first
-    number above 12 and some a second one (the import reads them so)."""
-    parts = dates.str.extract(r"^(\d{1,2})\D(\d{1,2})\D")
-    first = pd.to_numeric(parts[0], errors="coerce")
-    second = pd.to_numeric(parts[1], errors="coerce")
-    return bool(not (first > 12).any() and (second > 12).any())
+    """Whether slashed dates (``nn/nn/yyyy``) write the month first, by the import's own
+    rule (:func:`~wakeline.core.io.reader.month_first_dates`), so export writes them as read."""
+    return month_first_dates(dates) > 0
 
 
 def _as_month_first(time: "TimeFormat") -> "TimeFormat":

@@ -68,7 +68,7 @@ _MONTHFIRST_FORMATS = tuple(
 _SLASHED_DATE = r"^\s*(\d{1,2})[/.-](\d{1,2})[/.-]\d{4}"
 
 
-def _month_first(text: pd.Series) -> int:
+def month_first_dates(text: pd.Series) -> int:
     """How many slashed dates of ``text`` show the month first: none has a first number
     above 12 and these have a second one above 12 (0: day-first, or no evidence)."""
     parts = text.str.extract(_SLASHED_DATE)
@@ -1235,7 +1235,7 @@ def parse_times(
         # file writes the month first. (A whole file's evidence: a piece of a streamed
         # read may hold only days up to 12.)
         if kind != "dayfirst" and (parsed.isna() & present).any():
-            month_first = _month_first(text[present])
+            month_first = month_first_dates(text[present])
             if month_first:
                 if info.get("_streaming"):
                     raise WholeFileNeeded

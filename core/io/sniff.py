@@ -250,7 +250,8 @@ def _title_count(lines: list[str], delimiter: str | None) -> int:
     if first >= 3 or len(lines) < 2:
         return 0
     for k in range(1, min(TITLE_LINES_MAX + 1, len(lines) - 1 + 1)):
-        if named(k) >= 3 and named(k) > first:
+        count = named(k)
+        if count >= 3 and count > first:
             return k
     return 0
 
