@@ -299,6 +299,8 @@ class TimeController(QtCore.QObject):
         self._indexing: int | None = None  # the rebuild whose index is being made
         # A window the session got (a project opened), for the panel after the rebuild.
         self._restore: object = _NO_RESTORE
+        # The clock of the last scene with tracks (scene times or dates; None: none yet).
+        self._clock: bool | None = None
         self._writing = False  # the panel's window being written to the session
         self._restore_t: object = _NO_RESTORE  # the session's slider time, for the panel
         self._time_timer = QtCore.QTimer(self)  # the slider's time, once it settles
@@ -396,19 +398,25 @@ class TimeController(QtCore.QObject):
         if gen != self._gen:
             return
         self._indexing = None
-        restore, self._restore = self._restore, _NO_RESTORE
-        restore_t = self._restore_t
-        if scene.index.n_tracks:  # else kept for a slider with a span (a layer shown)
-            self._restore_t = _NO_RESTORE
-        self.overlay.set_scene(scene if scene.index.n_tracks else None)
+        restore, restore_t = self._restore, self._restore_t
+        empty = not scene.index.n_tracks
+        if not empty:  # else kept for a slider with a span (a layer shown)
+            self._restore = self._restore_t = _NO_RESTORE
+        self.overlay.set_scene(None if empty else scene)
+        # A scene with no track (every layer hidden) has no clock: the panel keeps the
+        # last one, so its window stays and cuts the layers shown again.
         if (
             restore is _NO_RESTORE
-            and scene.relative != self.panel._relative
+            and not empty
+            and self._clock is not None
+            and scene.relative != self._clock
             and self.panel.time_window() is not None
         ):
             self.panel.set_time_window(None)  # a window on the other clock cut everything
-        self.panel.set_range(scene.index.bounds(), scene.relative)
-        if restore is not _NO_RESTORE:
+        if not empty:
+            self._clock = scene.relative
+        self.panel.set_range(scene.index.bounds(), bool(self._clock))
+        if restore is not _NO_RESTORE and not empty:
             self.panel.set_time_window(restore)  # the opened project's: cuts the map
         if restore_t is not _NO_RESTORE and self._restore_t is _NO_RESTORE:
             self.panel.set_time(restore_t)  # the opened project's (within the span)
@@ -417,15 +425,20 @@ class TimeController(QtCore.QObject):
 
     def _session_event(self, event: str, _lid: str) -> None:
         """The session's time window changed (a project opened, a script): the panel
-        takes it — after the rebuild under way, so the slider spans the new layers first
-        and the new layers are the ones cut. Not the panel's own changes written back."""
+        takes it — after the rebuild under way (or, every layer hidden, once one is
+        shown), so the slider spans the new layers first and the new layers are the ones
+        cut. Not the panel's own changes written back."""
         if event == "current_time":
             self._session_time()
         if event != "time_window" or self._writing:
             return
         window = self.window.session.time_window
         bounds = window.bounds() if window is not None else None
-        if self._timer.isActive() or self._indexing is not None:
+        if (
+            self._timer.isActive()
+            or self._indexing is not None
+            or not math.isfinite(self.panel.time())  # no span (every layer hidden)
+        ):
             self._restore = bounds
         elif bounds != self.panel.time_window():
             self.panel.set_time_window(bounds)

@@ -341,6 +341,132 @@ def test_time_window_is_saved_and_reopened_with_the_maps_cut(qtbot, tmp_path, re
     w2.close()
 
 
+def _idle(w, qtbot) -> None:
+    """Wait for the rebuild a layer change starts (50 ms later) and every job after it."""
+    qtbot.wait(100)
+    qtbot.waitUntil(lambda: not w.time_controller.busy and not w.drawing, timeout=20_000)
+
+
+@pytest.mark.gui
+@pytest.mark.parametrize("relative", [False, True], ids=["dates", "scene-times"])
+def test_time_window_stays_while_every_layer_is_hidden(qtbot, tmp_path, relative):
+    """Review: with scene times (MTAD), hiding the only layer cleared the time window and
+    wrote None to the project: the scene with no track read as dates, a clock change. A
+    scene with no track has no clock now: the window stays (panel, session, file) and
+    cuts the layer shown again."""
+    from wakeline.core.project import load_project
+    from wakeline.core.timeline import TimeWindow
+
+    t0 = _scene_csv(tmp_path / "four.csv", relative)
+    w = make_window(qtbot, tmp_path, (1200, 800))
+    lid = _load(w, qtbot, tmp_path / "four.csv")
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    window = (t0 + 200.0, t0 + 400.0)  # tracks 0 and 1: 21 points each
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window(window)
+    w.session.set_visible(lid, False)
+    _idle(w, qtbot)
+    assert w.time_panel.time_window() == window and w.session.time_window == TimeWindow(*window)
+    assert w.project.flush(30) and load_project(proj).time_window == TimeWindow(*window)
+    w.session.set_visible(lid, True)
+    _idle(w, qtbot)
+    assert w.time_panel.time_window() == window and w.time_panel._relative == relative
+    assert w.canvas.draw_data(lid).geometry.n_points == 42
+    assert w.project.flush(30) and load_project(proj).time_window == TimeWindow(*window)
+    w.runner.cancel()
+    w.runner.wait()
+    w.close()
+
+
+def _hidden_project(qtbot, tmp_path, relative: bool):
+    """A project of four.csv saved with a time window of tracks 0 and 1 (21 points each)
+    and the slider at t0 + 300 s, then its layer hidden in the file: (path, layer id,
+    t0, window)."""
+    from wakeline.core.project import load_project
+    from wakeline.core.timeline import TimeWindow
+
+    t0 = _scene_csv(tmp_path / "four.csv", relative)
+    w = make_window(qtbot, tmp_path, (1200, 800))
+    lid = _load(w, qtbot, tmp_path / "four.csv")
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    window = (t0 + 200.0, t0 + 400.0)
+    with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
+        w.time_panel.set_time_window(window)
+    w.time_panel.set_time(t0 + 300.0)
+    w.runner.cancel()
+    w.runner.wait()
+    w.close()  # writes the slider's time
+    con = sqlite3.connect(proj)
+    con.execute("UPDATE layers SET visible = 0")
+    con.commit()
+    con.close()
+    saved = load_project(proj)
+    assert saved.time_window == TimeWindow(*window) and saved.current_time == t0 + 300.0
+    assert not any(lay.visible for lay in saved.layers)
+    return proj, lid, t0, window
+
+
+@pytest.mark.gui
+@pytest.mark.parametrize("relative", [False, True], ids=["dates", "scene-times"])
+def test_time_window_of_a_project_opened_with_its_layers_hidden(qtbot, tmp_path, relative):
+    """Review: a scene-times project saved with its layers hidden lost its time window
+    once a layer was shown (panel, session, and the file rewritten with None): the scene
+    with no track took the window, on a panel whose clock was still dates. The window and
+    the slider's time now wait for a slider with a span, then cut the map and the table."""
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.app.map_time import SETTLE_MS
+    from wakeline.core.project import load_project
+    from wakeline.core.timeline import TimeWindow
+
+    proj, lid, t0, window = _hidden_project(qtbot, tmp_path, relative)
+    w2 = make_window(qtbot, tmp_path, (1200, 800))
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    _idle(w2, qtbot)
+    panel = w2.time_panel
+    assert w2.session.time_window == TimeWindow(*window)  # waits for a slider with a span
+    w2.session.set_visible(lid, True)
+    _idle(w2, qtbot)
+    assert panel._relative == relative and panel.time_window() == window
+    assert w2.session.time_window == TimeWindow(*window)
+    assert panel.time() == t0 + 300.0 and w2.session.current_time == t0 + 300.0
+    assert w2.canvas.draw_data(lid).geometry.n_points == 42
+    assert w2.batch_model.rowCount() == 2
+    qtbot.wait(SETTLE_MS + 100)
+    assert w2.project.flush(30)
+    back = load_project(proj)
+    assert back.time_window == TimeWindow(*window) and back.current_time == t0 + 300.0
+    w2.runner.cancel()
+    w2.runner.wait()
+    w2.close()
+
+
+@pytest.mark.gui
+def test_a_window_set_while_every_layer_is_hidden_wins_over_the_opened_projects(qtbot, tmp_path):
+    """A window a script sets while the opened project's waits for a slider with a span
+    (every layer hidden) is the one the panel takes once a layer is shown: it waits as
+    well, not put at once on a panel with no span and then replaced by the older one."""
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.core.timeline import TimeWindow
+
+    proj, lid, t0, _window = _hidden_project(qtbot, tmp_path, relative=True)
+    w2 = make_window(qtbot, tmp_path, (1200, 800))
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    _idle(w2, qtbot)
+    w2.session.set_time_window((t0 + 695.0, t0 + 1000.0))  # only track 2: 30 points
+    w2.session.set_visible(lid, True)
+    _idle(w2, qtbot)
+    assert w2.time_panel.time_window() == (t0 + 695.0, t0 + 1000.0)
+    assert w2.session.time_window == TimeWindow(t0 + 695.0, t0 + 1000.0)
+    assert w2.canvas.draw_data(lid).geometry.n_points == 30
+    w2.runner.cancel()
+    w2.runner.wait()
+    w2.close()
+
+
 @pytest.mark.gui
 def test_slider_time_is_saved_when_it_settles_and_reopened(qtbot, tmp_path, monkeypatch):
     """Review: the slider's time was not saved (a reopened project started at the first
