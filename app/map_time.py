@@ -303,6 +303,8 @@ class TimeController(QtCore.QObject):
         self._clock: bool | None = None
         self._writing = False  # the panel's window being written to the session
         self._restore_t: object = _NO_RESTORE  # the session's slider time, for the panel
+        # The slider's time (s) and clock when every layer was hidden, for the next span.
+        self._kept_t: tuple[float, bool] | None = None
         self._time_timer = QtCore.QTimer(self)  # the slider's time, once it settles
         self._time_timer.setSingleShot(True)
         self._time_timer.setInterval(SETTLE_MS)
@@ -413,13 +415,24 @@ class TimeController(QtCore.QObject):
             and self.panel.time_window() is not None
         ):
             self.panel.set_time_window(None)  # a window on the other clock cut everything
+        if empty and self._restore_t is _NO_RESTORE and math.isfinite(self.panel.time()):
+            # The slider loses its time with its span: written (a move not yet settled)
+            # and kept for the layers shown again.
+            self.store_time()
+            self._kept_t = (self.panel.time(), bool(self._clock))
+        kept = None
         if not empty:
             self._clock = scene.relative
+            kept, self._kept_t = self._kept_t, None
         self.panel.set_range(scene.index.bounds(), bool(self._clock))
         if restore is not _NO_RESTORE and not empty:
             self.panel.set_time_window(restore)  # the opened project's: cuts the map
         if restore_t is not _NO_RESTORE and self._restore_t is _NO_RESTORE:
             self.panel.set_time(restore_t)  # the opened project's (within the span)
+        elif kept is not None and kept[1] == scene.relative:
+            lo, hi = self.panel.time_range()
+            if lo <= kept[0] <= hi:
+                self.panel.set_time(kept[0])  # where it was before every layer was hidden
         self._draw(self.panel.time())
         self.scene_ready.emit()
 
@@ -428,6 +441,8 @@ class TimeController(QtCore.QObject):
         takes it — after the rebuild under way (or, every layer hidden, once one is
         shown), so the slider spans the new layers first and the new layers are the ones
         cut. Not the panel's own changes written back."""
+        if event == "removed" or (event == "current_time" and not self._writing):
+            self._kept_t = None  # a layer removed, a project opened, a script
         if event == "current_time":
             self._session_time()
         if event != "time_window" or self._writing:

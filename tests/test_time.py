@@ -349,11 +349,14 @@ def _idle(w, qtbot) -> None:
 
 @pytest.mark.gui
 @pytest.mark.parametrize("relative", [False, True], ids=["dates", "scene-times"])
-def test_time_window_stays_while_every_layer_is_hidden(qtbot, tmp_path, relative):
+def test_time_window_and_slider_time_stay_while_every_layer_is_hidden(qtbot, tmp_path, relative):
     """Review: with scene times (MTAD), hiding the only layer cleared the time window and
     wrote None to the project: the scene with no track read as dates, a clock change. A
     scene with no track has no clock now: the window stays (panel, session, file) and
-    cuts the layer shown again."""
+    cuts the layer shown again. The slider's time (both clocks) went back to the start
+    once the layer was shown, and that was saved; a move not yet settled was dropped. It
+    is written when the slider loses its span, and the slider comes back to it."""
+    from wakeline.app.map_time import SETTLE_MS
     from wakeline.core.project import load_project
     from wakeline.core.timeline import TimeWindow
 
@@ -365,15 +368,24 @@ def test_time_window_stays_while_every_layer_is_hidden(qtbot, tmp_path, relative
     window = (t0 + 200.0, t0 + 400.0)  # tracks 0 and 1: 21 points each
     with qtbot.waitSignal(w.time_controller.window_applied, timeout=10_000):
         w.time_panel.set_time_window(window)
+    w.time_panel.set_time(t0 + 300.0)
+    assert w.time_controller.time_pending  # not settled yet
     w.session.set_visible(lid, False)
     _idle(w, qtbot)
     assert w.time_panel.time_window() == window and w.session.time_window == TimeWindow(*window)
-    assert w.project.flush(30) and load_project(proj).time_window == TimeWindow(*window)
+    assert w.session.current_time == t0 + 300.0
+    assert w.project.flush(30)
+    saved = load_project(proj)
+    assert saved.time_window == TimeWindow(*window) and saved.current_time == t0 + 300.0
     w.session.set_visible(lid, True)
     _idle(w, qtbot)
     assert w.time_panel.time_window() == window and w.time_panel._relative == relative
+    assert w.time_panel.time() == t0 + 300.0
     assert w.canvas.draw_data(lid).geometry.n_points == 42
-    assert w.project.flush(30) and load_project(proj).time_window == TimeWindow(*window)
+    qtbot.wait(SETTLE_MS + 100)
+    assert w.session.current_time == t0 + 300.0 and w.project.flush(30)
+    saved = load_project(proj)
+    assert saved.time_window == TimeWindow(*window) and saved.current_time == t0 + 300.0
     w.runner.cancel()
     w.runner.wait()
     w.close()
