@@ -135,6 +135,11 @@ class SideLegend(pg.LegendItem):
                     row_w += item.width() + 3
                     row_h = max(row_h, item.height())
             width, height = max(width, row_w), height + row_h
+        # the layout's margins and the spacing between rows are part of its height too:
+        # left out, the shape clipped the last line (a legend of one entry cut in half)
+        rows = self.layout.rowCount()
+        _left, top, _right, bottom = self.layout.getContentsMargins()
+        height += top + bottom + max(self.layout.verticalSpacing(), 0.0) * max(rows - 1, 0)
         if self.items:
             self.widest = max(self.widest, width + 6)
         w = 0.0 if self.bare else self.widest

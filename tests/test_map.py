@@ -367,6 +367,39 @@ def test_a_legend_longer_than_the_map_leaves_the_map_its_size(qtbot):
     assert canvas.legend.geometry().bottom() <= canvas.height()
 
 
+def test_a_short_legend_shows_its_lines_whole(qtbot):
+    """Seen on a render of one MTAD scene: the legend's one line was cut in half, since
+    the legend's height (which clips its children since it may be clipped) left out its
+    layout's margins. Every label of a short legend lies inside the legend."""
+    canvas = MapCanvas()
+    qtbot.addWidget(canvas)
+    canvas.resize(700, 420)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    t = pd.date_range("2024-01-01", periods=5, freq="min", tz="UTC")
+    for k in range(3):
+        df = pd.DataFrame(
+            {
+                "sensor": "S1",
+                "batch": "1",
+                "time": t,
+                "lon": 10 + k * 0.01 + np.arange(5) * 1e-3,
+                "lat": 55 + np.arange(5) * 1e-3,
+            }
+        )
+        canvas.set_draw_data(prepare_layer(df, f"layer{k}", style=LayerStyle(width=1)))
+        QtWidgets.QApplication.processEvents()
+        legend = canvas.legend
+        inside = legend.rect()
+        for _sample, label in legend.items:
+            box = label.mapRectToParent(label.boundingRect())
+            assert inside.top() <= box.top() and box.bottom() <= inside.bottom() + 0.5, (
+                k,
+                box,
+                inside,
+            )
+
+
 def test_hover_shows_sensor_batch_time_speed_and_elapsed_time(qtbot):
     t = pd.to_datetime([0.0, 100.0, 200.0], unit="s", utc=True)  # MTAD: seconds from start
     df = pd.DataFrame(
