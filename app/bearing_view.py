@@ -48,6 +48,9 @@ from .map_paths import with_paths
 from .map_time import geometry_rows, window_draw_data
 from .models import batch_summary, display_text
 
+#: The translation context of :func:`bearing_stats`'s texts: it is handed the main
+#: window's ``tr`` (:class:`BearingView`'s own texts are under ``BearingView``).
+TR_CONTEXT = "MainWindow"
 #: Smallest width (px) of the map's plot area: the map widget's minimum is this plus its
 #: latitude axis and legend column (a dock had given the map ~200 px and its plot ~40 px).
 #: The main window at 1400 px has ~410 px left for this dock.
@@ -616,9 +619,9 @@ class BearingView(QtWidgets.QWidget):
         rows = self.table.verticalHeader()
         rows.setDefaultSectionSize(self.table.fontMetrics().height() + 8)
         rows.setSectionResizeMode(QtWidgets.QHeaderView.ResizeMode.Fixed)
-        self.export_button = QtWidgets.QPushButton(self.tr("Export detections…"), self)
+        self.export_button = QtWidgets.QPushButton(self)
         self.export_button.clicked.connect(self._export_dialog)
-        self.length_label = QtWidgets.QLabel(self.tr("Line length"), self)
+        self.length_label = QtWidgets.QLabel(self)
         self.length_box = self._length_box()
         self.length_label.setBuddy(self.length_box)
         length_row = QtWidgets.QHBoxLayout()
@@ -674,25 +677,35 @@ class BearingView(QtWidgets.QWidget):
         self._scene_gen = 0  # the newest scene asked for (a length, or data shown)
         self._wanted: tuple | None = None  # a length's scene waiting for the executor
         self._building = False  # one is being made by the executor
+        self.retranslate()
+
+    def retranslate(self) -> None:
+        """Set the texts in the current language (the main window calls it again when the
+        language changes: this view is made before the window installs its translator)."""
+        self.export_button.setText(self.tr("Export detections…"))
+        self.length_label.setText(self.tr("Line length"))
+        self.length_box.setSpecialValueText(self.tr("from the data"))
+        self.length_box.setToolTip(
+            self.tr(
+                "Length of the bearing lines from the observer; lowest value: from the "
+                "data (past the targets' ranges when known, else the scene's scale)"
+            )
+        )
+        self.map.setLabel("bottom", self.tr("longitude"), units="°")
+        self.map.setLabel("left", self.tr("latitude"), units="°")
 
     def _length_box(self) -> QtWidgets.QDoubleSpinBox:
         """The line length's spin box, from the core's parameter
-        (:data:`LENGTH_FIELD`: metres, its range; its lowest value reads "from the data")."""
+        (:data:`LENGTH_FIELD`: metres, its range; its lowest value reads "from the data",
+        set by :meth:`retranslate`)."""
         meta = LENGTH_FIELD.metadata
         box = QtWidgets.QDoubleSpinBox(self)
         box.setDecimals(0)
         box.setRange(meta["lo"], meta["hi"])
         box.setValue(LENGTH_FIELD.default)
         box.setSuffix(f" {meta['unit']}")
-        box.setSpecialValueText(self.tr("from the data"))
         box.setStepType(QtWidgets.QAbstractSpinBox.StepType.AdaptiveDecimalStepType)
         box.setKeyboardTracking(False)  # typed: one change at Enter, not one per digit
-        box.setToolTip(
-            self.tr(
-                "Length of the bearing lines from the observer; lowest value: from the "
-                "data (past the targets' ranges when known, else the scene's scale)"
-            )
-        )
         box.valueChanged.connect(self._length_edited)
         return box
 

@@ -90,6 +90,10 @@ def preload() -> None:
 class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
     """Loading, running and saving for :class:`~wakeline.app.main_window.MainWindow`."""
 
+    #: The translation context of ``self.tr`` here: PySide looks a text up along
+    #: ``type(self).__mro__``, which starts at the window (``MainWindow``).
+    TR_CONTEXT = "MainWindow"
+
     # -- steps ---------------------------------------------------------------------
 
     def step_params(self, step: str) -> dict:

@@ -21,6 +21,10 @@ from wakeline.core.schema import FILE_ROW
 class ImportJobsMixin:
     """File ▸ Open tracks and File ▸ Open bearings."""
 
+    #: The translation context of ``self.tr`` here: PySide looks a text up along
+    #: ``type(self).__mro__``, which starts at the window (``MainWindow``).
+    TR_CONTEXT = "MainWindow"
+
     def load_file(
         self,
         path: Path,

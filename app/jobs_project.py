@@ -28,6 +28,10 @@ def _aspect_latitude(layer: Layer) -> float | None:
 class ProjectJobsMixin:
     """Export ▸ …, File ▸ Save project and File ▸ Open project."""
 
+    #: The translation context of ``self.tr`` here: PySide looks a text up along
+    #: ``type(self).__mro__``, which starts at the window (``MainWindow``).
+    TR_CONTEXT = "MainWindow"
+
     def export_dialog(self, kind: str) -> None:
         layer = self.active_layer()
         if layer is None:

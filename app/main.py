@@ -12,6 +12,9 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from wakeline.app.main_window import MainWindow
 from wakeline.resources import demo_path, resource_path
 
+#: The translation context of the texts here: the excepthook calls the window's ``tr``.
+TR_CONTEXT = "MainWindow"
+
 
 def wait_for_jobs(window: MainWindow, timeout_ms: int = 120_000) -> None:
     """Run the event loop until the window's worker has no job left (tests, screenshots,

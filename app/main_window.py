@@ -226,6 +226,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.detail.retranslate()
         self.params.retranslate()
         self.stats.retranslate()
+        self.bearing_view.retranslate()
         if hasattr(self, "review"):  # built after the first retranslate
             self.review.retranslate()
         self.canvas.setLabel("bottom", self.tr("longitude"), units="°")

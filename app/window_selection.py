@@ -15,6 +15,10 @@ from wakeline.app.layer_view import maneuver_table
 class SelectionMixin:
     """Track selection, detail, hover and File ▸ Export map image."""
 
+    #: The translation context of ``self.tr`` here: PySide looks a text up along
+    #: ``type(self).__mro__``, which starts at the window (``MainWindow``).
+    TR_CONTEXT = "MainWindow"
+
     def selected_keys(self) -> list[tuple[str, str]]:
         """(sensor, batch) of the selected rows, in table order. Read from the
         selection's ranges (whole rows: the table selects rows), not ``selectedRows()``,

@@ -367,6 +367,78 @@
         <source>Active layer &amp;as it came in (layout, encoding, times)…</source>
         <translation>当前图层按原格式导出(&amp;A)（列布局、编码、时间）…</translation>
     </message>
+    <message>
+        <source>A bearing layer has no tracks: choose a track layer.</source>
+        <translation>方位图层没有航迹：请选择航迹图层。</translation>
+    </message>
+    <message>
+        <source>Cannot load pipeline</source>
+        <translation>无法载入流程</translation>
+    </message>
+    <message>
+        <source>Pipeline</source>
+        <translation>流程</translation>
+    </message>
+    <message>
+        <source>bearing: no observer position, nothing to draw on the map</source>
+        <translation>方位：没有观测平台位置，地图上无可绘制的内容</translation>
+    </message>
+    <message>
+        <source>pipeline saved to {0}</source>
+        <translation>流程已保存到 {0}</translation>
+    </message>
+    <message>
+        <source>the input layer was removed; result dropped</source>
+        <translation>输入图层已被删除；结果已丢弃</translation>
+    </message>
+    <message>
+        <source>A bearing layer has no tracks to export: Export detections… in the Bearing-only dock writes its detections.</source>
+        <translation>方位图层没有可导出的航迹：其检测结果请在纯方位面板中用“导出检测结果…”写出。</translation>
+    </message>
+    <message>
+        <source>Export as it came in</source>
+        <translation>按原格式导出</translation>
+    </message>
+    <message>
+        <source>the project file is read-only: it opens read-only, changes are not saved</source>
+        <translation>工程文件为只读：以只读方式打开，更改不会保存</translation>
+    </message>
+    <message>
+        <source>Export map image</source>
+        <translation>导出地图图像</translation>
+    </message>
+    <message>
+        <source>map image written to {0}</source>
+        <translation>地图图像已写入 {0}</translation>
+    </message>
+    <message>
+        <source>map image not written: {0}</source>
+        <translation>地图图像未写入：{0}</translation>
+    </message>
+    <message>
+        <source>Bearings</source>
+        <translation>方位数</translation>
+    </message>
+    <message>
+        <source>Sequences</source>
+        <translation>序列数</translation>
+    </message>
+    <message>
+        <source>Detections</source>
+        <translation>检测数</translation>
+    </message>
+    <message>
+        <source>Bearing lines</source>
+        <translation>方位线长度</translation>
+    </message>
+    <message>
+        <source>Unexpected error</source>
+        <translation>意外错误</translation>
+    </message>
+    <message>
+        <source>The details are in the log.</source>
+        <translation>详细信息见日志。</translation>
+    </message>
 </context>
 <context>
     <name>ParamsPanel</name>
@@ -610,6 +682,77 @@
     <message>
         <source>Open track file</source>
         <translation>打开航迹文件</translation>
+    </message>
+    <message>
+        <source>Time zone</source>
+        <translation>时区</translation>
+    </message>
+    <message>
+        <source>Zone of times written without one (IANA name or ±HH:MM). Unix times are absolute and not shifted.</source>
+        <translation>未注明时区的时间所用的时区（IANA 名称或 ±HH:MM）。Unix 时间是绝对时间，不作偏移。</translation>
+    </message>
+    <message>
+        <source>Detected</source>
+        <translation>识别结果</translation>
+    </message>
+    <message>
+        <source>no layout fits</source>
+        <translation>没有匹配的格式</translation>
+    </message>
+    <message>
+        <source>delimiter</source>
+        <translation>分隔符</translation>
+    </message>
+    <message>
+        <source>Unmapped columns (kept as extra columns): {0}</source>
+        <translation>未映射的列（作为附加列保留）：{0}</translation>
+    </message>
+    <message>
+        <source>The time column {0} holds local times: choose their time zone, or they are read as UTC.</source>
+        <translation>时间列 {0} 是本地时间：请选择其时区，否则按 UTC 读取。</translation>
+    </message>
+    <message>
+        <source>Choose the time column.</source>
+        <translation>请选择时间列。</translation>
+    </message>
+</context>
+<context>
+    <name>BearingView</name>
+    <message>
+        <source>Export detections…</source>
+        <translation>导出检测结果…</translation>
+    </message>
+    <message>
+        <source>Line length</source>
+        <translation>方位线长度</translation>
+    </message>
+    <message>
+        <source>from the data</source>
+        <translation>由数据决定</translation>
+    </message>
+    <message>
+        <source>Length of the bearing lines from the observer; lowest value: from the data (past the targets' ranges when known, else the scene's scale)</source>
+        <translation>方位线从观测平台起算的长度；最小值：由数据决定（已知目标距离时画过目标距离，否则按场景尺度）</translation>
+    </message>
+    <message>
+        <source>longitude</source>
+        <translation>经度</translation>
+    </message>
+    <message>
+        <source>latitude</source>
+        <translation>纬度</translation>
+    </message>
+    <message>
+        <source>No observer position: no bearing lines to draw.</source>
+        <translation>没有观测平台位置：无法绘制方位线。</translation>
+    </message>
+    <message>
+        <source>Export detections</source>
+        <translation>导出检测结果</translation>
+    </message>
+    <message>
+        <source>Cannot export</source>
+        <translation>无法导出</translation>
     </message>
 </context>
 <context>
