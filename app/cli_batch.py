@@ -48,6 +48,7 @@ def _cmd_batch(args: argparse.Namespace) -> int:
         delimiter=args.delimiter,
         tz=args.tz,
         sensor=args.sensor,
+        skip_rows=args.skip_rows,
     )
     result = run_batch(pipe, args.input, args.outdir, opts, log=lambda m: print(m, file=sys.stderr))
     rep = result.report
@@ -70,7 +71,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Run a saved pipeline (Run > Save pipeline in the GUI, or "
         "--print-pipeline) over inputs larger than memory: CSV files of any layout `wakeline "
         "import` reads (read as it reads them, with the same --format/--map/--encoding/"
-        "--delimiter/--tz/--sensor; gzip, bz2, xz, zstd or a zip of one file too), or Parquet "
+        "--delimiter/--tz/--sensor/--skip-rows; gzip, bz2, xz, zstd or a zip of one file too), or Parquet "
         "files with the canonical columns. Rows are partitioned by (sensor, batch) so every "
         "track is processed whole by the same step functions as `wakeline "
         "clean|maneuvers|compress`; interrupted association runs once over every track's end "

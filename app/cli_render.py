@@ -88,18 +88,21 @@ def input_name(paths: list[Path]) -> str:
     return f"{shown} + {len(names) - NAMED_FILES + 1} more files"
 
 
-def _read(paths: list[Path]):
+def _read(paths: list[Path], **options):
     """One or several files as one table, as ``fuse`` and ``review`` read them (files that
-    each hold one sensor of the same name get the differing part of their names)."""
+    each hold one sensor of the same name get the differing part of their names);
+    ``options``: read_points keywords (the reading flags)."""
     from wakeline.app.cli_review import read_inputs
 
-    return read_inputs(paths)
+    return read_inputs(paths, **options)
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
     if args.output.suffix.lower() != ".png":
         raise InputError(f"{args.output}: the output must be a .png file")
-    points = _read(args.input)
+    from wakeline.app.cli_steps import _read_options
+
+    points = _read(args.input, **_read_options(args))
     derived = run_steps(points, args.step or [])
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     try:
@@ -195,4 +198,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         default="sensor",
         help="colour the input's tracks per sensor (default) or per batch",
     )
+    from wakeline.app.cli_steps import _add_read_flags
+
+    _add_read_flags(p)  # how the inputs are read: the same flags as the steps
     p.set_defaults(func=_cmd_render)

@@ -263,11 +263,19 @@ def _add_read_flags(p: argparse.ArgumentParser) -> None:
     p.add_argument("--delimiter", help="field delimiter (default: detect)")
     p.add_argument("--tz", metavar="ZONE", help="zone of times written without one (as import)")
     p.add_argument("--sensor", default="S1", help="sensor name when the file has none")
+    p.add_argument(
+        "--skip-rows",
+        type=int,
+        metavar="N",
+        help="lines before the header (a title), skipped and counted (default: detect, as import)",
+    )
 
 
 def _read_options(args: argparse.Namespace) -> dict:
+    """The ``read_points`` keywords of :func:`_add_read_flags`' flags."""
     read = {"fmt": args.format, "mapping": args.map, "encoding": args.encoding}
-    return read | {"delimiter": args.delimiter, "sensor": args.sensor, "tz": args.tz}
+    read |= {"delimiter": args.delimiter, "sensor": args.sensor, "tz": args.tz}
+    return read | {"skip_rows": args.skip_rows}
 
 
 def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:
@@ -327,9 +335,11 @@ READ_KEYS = ("rows_read", "rows_imported", "rows_quarantined", "quarantine_reaso
 
 
 def read_counts(report: dict) -> dict:
-    """The reading's counts for a step's ``--report``: every line of the input is a point
-    or a quarantine row, and the JSON says how many went where and why."""
-    return {key: report[key] for key in READ_KEYS if key in report}
+    """The reading's counts for a step's ``--report``: every line of the input is a point,
+    a quarantine row, a blank line, the header or a line skipped above it (a title, or
+    ``--skip-rows``), and the JSON says how many went where and why."""
+    out = {key: report[key] for key in READ_KEYS if key in report}
+    return out | {"skipped_above_header": len(report.get("lines_above_header") or ())}
 
 
 def say_quarantined(path, report: dict, command: str = "import") -> None:

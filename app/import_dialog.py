@@ -1,5 +1,6 @@
 """The import dialog: pick a file, see its first rows, the detected layout and column
-mapping, change the mapping from the file's own columns, choose encoding and time zone.
+mapping, change the mapping from the file's own columns, choose encoding, time zone and the lines above the
+header (a title longer than the detection reaches).
 
 Self-contained (core objects only). ``options()`` returns the keyword arguments of
 :func:`wakeline.core.io.read_points`: ``read_points(**dialog.options())``.
@@ -53,6 +54,18 @@ class ImportDialog(QtWidgets.QDialog):
                 "Unix times are absolute and not shifted."
             )
         )
+        # Lines before the header (a title block): -1 shows "auto" (detected, as import
+        # without --skip-rows); N skips N physical lines, as `--skip-rows N`.
+        self.skip_box = QtWidgets.QSpinBox()
+        self.skip_box.setRange(-1, 100000)
+        self.skip_box.setValue(-1)
+        self.skip_box.setSpecialValueText(self.tr("auto"))
+        self.skip_box.setToolTip(
+            self.tr(
+                "Lines before the header (a title or notes), skipped and counted; auto finds "
+                "a title of up to 10 lines above a header naming known columns."
+            )
+        )
         self.sensor_edit = QtWidgets.QLineEdit()
         self.sensor_edit.setPlaceholderText(self.tr("sensor name when the file has none"))
         self.layout_label = QtWidgets.QLabel()
@@ -88,6 +101,7 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow(self.tr("Layout"), self.format_box)
         form.addRow(self.tr("Encoding"), self.encoding_box)
         form.addRow(self.tr("Time zone"), self.tz_box)
+        form.addRow(self.tr("Lines above the header"), self.skip_box)
         form.addRow(self.tr("Sensor"), self.sensor_edit)
         form.addRow(self.tr("Detected"), self.layout_label)
         self.buttons = QtWidgets.QDialogButtonBox(
@@ -116,6 +130,7 @@ class ImportDialog(QtWidgets.QDialog):
         self.path_edit.textChanged.connect(self.refresh)
         self.format_box.currentIndexChanged.connect(self.refresh)
         self.encoding_box.currentTextChanged.connect(self.refresh)
+        self.skip_box.valueChanged.connect(self.refresh)
         self.tz_box.currentTextChanged.connect(self._update_warning)
         self.refresh()
 
@@ -135,16 +150,24 @@ class ImportDialog(QtWidgets.QDialog):
         enc = self.encoding_box.currentText().strip()
         return None if enc in ("", "auto") else enc
 
+    def _skip_rows(self) -> int | None:
+        """Lines before the header as chosen; None: detected ("auto")."""
+        value = self.skip_box.value()
+        return None if value < 0 else value
+
     def refresh(self) -> None:
-        """Detect the layout and mapping again (file, layout or encoding changed); the
-        operator's own choices are dropped."""
+        """Detect the layout and mapping again (file, layout, encoding or the lines above
+        the header changed); the operator's own choices are dropped."""
         path = Path(self.path_edit.text())
         self._info = {}
         text, problem = "", None
         if path.is_file():
             try:
                 self._info = inspect_file(
-                    path, fmt=self.format_box.currentText(), encoding=self._encoding()
+                    path,
+                    fmt=self.format_box.currentText(),
+                    encoding=self._encoding(),
+                    skip_rows=self._skip_rows(),
                 )
             except (InputError, OSError) as exc:
                 problem = str(exc)
@@ -159,9 +182,11 @@ class ImportDialog(QtWidgets.QDialog):
         if info:
             delim = {"\t": "tab", " ": "space"}.get(info["delimiter"], info["delimiter"])
             label = info["format_label"] or self.tr("no layout fits")
-            self.layout_label.setText(
-                f"{label}; {info['encoding']}; " + self.tr("delimiter") + f" {delim}"
-            )
+            text = f"{label}; {info['encoding']}; " + self.tr("delimiter") + f" {delim}"
+            above = len(info.get("lines_above_header") or ())
+            if above:
+                text += "; " + self.tr("{0} line(s) above the header skipped").format(above)
+            self.layout_label.setText(text)
         else:
             self.layout_label.setText("")
         self._problem = problem
@@ -235,7 +260,8 @@ class ImportDialog(QtWidgets.QDialog):
         return [c for c in self._info.get("columns", []) if c not in used]
 
     def options(self) -> dict:
-        """Keyword arguments of ``read_points`` (``sensor`` only when one is typed)."""
+        """Keyword arguments of ``read_points`` (``sensor`` only when one is typed;
+        ``skip_rows`` None: detected)."""
         zone = self.tz_box.currentText().strip()
         out = {
             "path": Path(self.path_edit.text()),
@@ -243,6 +269,7 @@ class ImportDialog(QtWidgets.QDialog):
             "encoding": self._encoding(),
             "mapping": [f"{k}={v}" for k, v in self.mapping().items()],
             "tz": None if zone.upper() in ("", "UTC") else zone,
+            "skip_rows": self._skip_rows(),
         }
         sensor = self.sensor_edit.text().strip()
         if sensor:

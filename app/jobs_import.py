@@ -33,10 +33,13 @@ class ImportJobsMixin:
         mapping: list[str] | None = None,
         sensor: str | None = None,
         tz: str | None = None,
+        skip_rows: int | None = None,
     ) -> int:
         """Import a file as a new layer, in the worker; returns the job number. ``tz``:
-        the zone of naive local times (IANA name or ±HH:MM)."""
+        the zone of naive local times (IANA name or ±HH:MM); ``skip_rows``: lines before
+        the header (None: detected)."""
         options = {"fmt": fmt, "mapping": mapping or [], "encoding": encoding, "tz": tz}
+        options["skip_rows"] = skip_rows
         if sensor:
             options["sensor"] = sensor
         return self.load_files([Path(path)], options)

@@ -35,6 +35,7 @@ _FIELDS = {
     "format": "Layout",
     "sensor": "Sensor",
     "delimiter": "Layout",
+    "skip-rows": "Lines above the header",
 }
 _FLAG = re.compile(r"--(" + "|".join(_FIELDS) + r")\b(?:[ =](?!-)[^\s,;:)]+)?")
 

@@ -75,14 +75,16 @@ class BatchOptions:
     #: buckets (0: from the input size and ``partition_mb``)
     buckets: int = 0
     #: how CSV inputs are read, as ``wakeline clean`` reads its input (``--format``,
-    #: ``--map FIELD=COLUMN``…, ``--encoding``, ``--delimiter``, ``--tz``); ``sensor``
-    #: names the sensor of inputs without a sensor column (CSV and Parquet)
+    #: ``--map FIELD=COLUMN``…, ``--encoding``, ``--delimiter``, ``--tz``, ``--skip-rows``:
+    #: lines before the header, None detected); ``sensor`` names the sensor of inputs
+    #: without a sensor column (CSV and Parquet)
     fmt: str = "auto"
     mapping: tuple[str, ...] = ()
     encoding: str | None = None
     delimiter: str | None = None
     tz: str | None = None
     sensor: str = DEFAULT_SENSOR
+    skip_rows: int | None = None
 
 
 @dataclass
@@ -367,8 +369,9 @@ class _CsvInput:
 def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     """Check one CSV input before any work (compression, encoding, columns: the
     importer's one message) and estimate its size as text."""
-    from wakeline.core.io import resolve, sniff
+    from wakeline.core.io import sniff
     from wakeline.core.io.pieces import local_name
+    from wakeline.core.io.reader import _resolve_header
     from wakeline.core.io.sniff import SAMPLE_BYTES
 
     kind = compression_of(path)
@@ -398,9 +401,9 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
         target.parent.mkdir(parents=True, exist_ok=True)
         target.write_bytes(sample)
     try:
-        sn = sniff(target, read["encoding"], read["delimiter"])
+        sn = sniff(target, read["encoding"], read["delimiter"], read["skip_rows"])
         if sn.kind == "csv":
-            resolve(sn.columns, read["fmt"], read["mapping"], source=str(path))
+            _resolve_header(sn, read["fmt"], read["mapping"], str(path))  # names --skip-rows
     except InputError as exc:
         raise InputError(str(exc).replace(str(target), str(path))) from None
     finally:
@@ -423,11 +426,12 @@ def _import_file(
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from wakeline.core.io import read_points, resolve, sniff
+    from wakeline.core.io import read_points, sniff
     from wakeline.core.io.pieces import local_name, piece_safe, read_in_pieces
     from wakeline.core.io.reader import (
         StreamFallback,
         WholeFileNeeded,
+        _resolve_header,
         parse_zone,
         stream_points,
     )
@@ -455,7 +459,7 @@ def _import_file(
         if compression not in (None, "gzip"):
             readable = scratch / local_name(src)
             _unpack(src, compression, readable)
-        sn = sniff(readable, read["encoding"], read["delimiter"])
+        sn = sniff(readable, read["encoding"], read["delimiter"], read["skip_rows"])
         if not piece_safe(sn):  # NMEA logs, UTF-16 text: read whole
             res = read_points(readable, **read)
             sink(res.points)
@@ -464,7 +468,7 @@ def _import_file(
             q = None
             if not sn.has_quotes:
                 try:
-                    cols = resolve(sn.columns, read["fmt"], read["mapping"], source=str(src))
+                    cols = _resolve_header(sn, read["fmt"], read["mapping"], str(src))
                     zone = parse_zone(read["tz"])
                     res = stream_points(sn, cols, sink, read["sensor"], zone, read["tz"])
                     q, warnings = res.quarantine, res.report.get("warnings", [])
@@ -510,7 +514,11 @@ def _import_file(
     quarantined = np.zeros(len(pieces), dtype="int64")
     quarantined[:1] = n_q
     counts = pd.DataFrame({"block": blocks, "rows": rows, "quarantined": quarantined})
-    return {"counts": counts, "warnings": list(warnings), "rows": int(rows.sum())}
+    lines = {  # the file's other lines: a title skipped above the header, blank lines
+        "skipped_above_header": len(res.report.get("lines_above_header") or ()),
+        "blank_lines": int(res.report.get("blank_lines", 0)),
+    }
+    return {"counts": counts, "warnings": list(warnings), "rows": int(rows.sum()), **lines}
 
 
 def _read_options(opts: BatchOptions) -> dict:
@@ -524,15 +532,17 @@ def _read_options(opts: BatchOptions) -> dict:
         "delimiter": opts.delimiter,
         "sensor": opts.sensor,
         "tz": opts.tz,
+        "skip_rows": opts.skip_rows,
     }
 
 
 def _import_inputs(
     inputs: Sequence[_CsvInput], stage: Path, n: int, read: dict
-) -> tuple[pd.DataFrame, list[str], list[str]]:
+) -> tuple[pd.DataFrame, list[str], list[str], dict[str, int]]:
     """Pass 1 over CSV inputs: each file read by the importer, one Dask task per file.
-    Returns the counts per piece, the warnings (``FILE: warning: …``, in input order) and
-    the inputs without a data row (reported and skipped)."""
+    Returns the counts per piece, the warnings (``FILE: warning: …``, in input order),
+    the inputs without a data row (reported and skipped) and the lines that are neither
+    rows nor headers, summed (``skipped_above_header``, ``blank_lines``)."""
     import dask
 
     todo = [(k, i) for k, i in enumerate(inputs) if not i.empty]
@@ -551,7 +561,8 @@ def _import_inputs(
             warnings += [f"{i.path}: warning: {w}" for w in d["warnings"]]
     counts = [d["counts"] for d in done.values()]
     none = pd.DataFrame({c: pd.Series([], dtype="int64") for c in ("block", "rows", "quarantined")})
-    return pd.concat([none, *counts], ignore_index=True), warnings, empty
+    lines = {k: sum(d[k] for d in done.values()) for k in ("skipped_above_header", "blank_lines")}
+    return pd.concat([none, *counts], ignore_index=True), warnings, empty, lines
 
 
 def _read_parquet_inputs(inputs: Sequence[Path], stage: Path, n: int, opts) -> pd.DataFrame:
@@ -821,6 +832,7 @@ def run_batch(
                 ("--encoding", opts.encoding),
                 ("--delimiter", opts.delimiter),
                 ("--tz", opts.tz),
+                ("--skip-rows", opts.skip_rows is not None),
             )
             if value
         ]
@@ -855,9 +867,10 @@ def run_batch(
         t = time.perf_counter()
         warnings: list[str] = []
         empty: list[str] = []
+        lines: dict[str, int] = {}  # CSV inputs: lines skipped above headers, blank lines
         try:
             if kind == "csv":
-                counts, warnings, empty = _import_inputs(csv_inputs, stage, n, read)
+                counts, warnings, empty, lines = _import_inputs(csv_inputs, stage, n, read)
             else:
                 counts = _read_parquet_inputs(inputs, stage, n, opts)
         except (InputError, OSError):
@@ -939,6 +952,7 @@ def run_batch(
         "blocks": blocks,
         "rows_read": rows_read,
         "quarantined": quarantined,
+        **lines,
         "empty_inputs": empty,
         "warnings": warnings,
         "steps": stages_rep,

@@ -100,15 +100,17 @@ def clean_file(
     sensor: str = DEFAULT_SENSOR,
     tz: str | None = None,
     block_rows: int | None = None,
+    skip_rows: int | None = None,
 ) -> FileCleanResult:
     """Clean the track file ``path`` into the canonical CSV ``output`` (and the reject
     trail into ``rejected`` when given) by blocks of whole tracks; see the module
     docstring. ``progress`` may raise :class:`~wakeline.core.errors.Cancelled` to stop:
-    nothing is written then and the scratch files are removed. Raises
+    nothing is written then and the scratch files are removed. ``skip_rows``: physical
+    lines before the header, skipped and counted (None: detected; ``read_points``). Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
-    from wakeline.core.io.formats import parse_mapping, resolve
+    from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
-    from wakeline.core.io.reader import nothing_imported, parse_zone
+    from wakeline.core.io.reader import _resolve_header, nothing_imported, parse_zone
     from wakeline.core.io.sniff import sniff
 
     params = (params or CleanParams()).checked()
@@ -124,13 +126,14 @@ def clean_file(
         "delimiter": delimiter,
         "sensor": sensor,
         "tz": tz,
+        "skip_rows": skip_rows,
     }
     parse_zone(tz)  # a zone it does not know is refused before anything is read
-    sn = sniff(path, encoding, delimiter)
+    sn = sniff(path, encoding, delimiter, skip_rows)
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
     if not piece_safe(sn) or transforms:
         return _clean_whole(path, output, rejected, params, progress, options)
-    res = resolve(sn.columns, fmt, mapping, source=str(path))
+    res = _resolve_header(sn, fmt, mapping, str(path))  # names --skip-rows where it may help
     remove_stale_scratch()
     folder = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
     reached = [0.0]  # the reading's progress so far: a second reading goes on from there

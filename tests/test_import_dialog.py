@@ -68,3 +68,63 @@ def test_unreadable_file_and_nmea(qtbot, write):
     assert "NMEA" in dlg.layout_label.text()
     assert dlg.mapping() == {}
     assert len(read_points(**dlg.options()).points) == 2
+
+
+def test_lines_above_the_header_reach_preview_mapping_and_read_points(qtbot, write):
+    """A file with 12 lines of notes above its header (past the detection's 10 lines): on
+    "auto" the dialog shows the notes as the header and the error names the dialog's field;
+    with 12 lines above the header, the preview starts at the header, the mapping is the
+    file's and read_points(**options()) counts every line."""
+    from test_skip_rows_everywhere import NOTES, ROWS, _titled_text
+
+    from wakeline.app.window_words import window_words
+
+    path = write("titled.csv", _titled_text())
+    dlg = ImportDialog(path=path)
+    qtbot.addWidget(dlg)
+    assert dlg.skip_box.text() == "auto" and dlg.options()["skip_rows"] is None
+    assert dlg.mapping().get("time") is None
+    assert "Lines above the header field" in window_words(dlg.warning_label.text())
+    dlg.skip_box.setValue(NOTES)
+    assert dlg.preview.toPlainText().startswith("track_id, time, lon, lat")
+    assert f"{NOTES} line(s) above the header skipped" in dlg.layout_label.text()
+    assert dlg.mapping() == {
+        "batch": "track_id",
+        "time": "time",
+        "lon": "lon",
+        "lat": "lat",
+        "speed": "speed",
+        "course": "course",
+    }
+    assert dlg.warning_label.text() == ""
+    rep = read_points(**dlg.options()).report
+    assert len(rep["lines_above_header"]) == NOTES and rep["blank_lines"] == 1
+    assert rep["rows_imported"] == ROWS - 1 and rep["rows_quarantined"] == 1
+    lines = len(path.read_text().splitlines())
+    assert rep["rows_imported"] + rep["rows_quarantined"] + NOTES + 1 + 1 == lines
+
+
+def test_file_open_passes_the_lines_above_the_header_to_the_import(window, write, monkeypatch):
+    """File ▸ Open tracks…: the dialog's lines above the header reach the import job
+    (``load_file(**dialog.options())``); the layer's report counts the 12 lines."""
+    from PySide6 import QtWidgets
+    from test_skip_rows_everywhere import NOTES, ROWS, _titled_text
+
+    from wakeline.app import main_window
+    from wakeline.app.main import wait_for_jobs
+
+    path = write("titled.csv", _titled_text())
+
+    class Chosen(ImportDialog):
+        def exec(self):
+            self.path_edit.setText(str(path))
+            self.skip_box.setValue(NOTES)
+            return QtWidgets.QDialog.DialogCode.Accepted
+
+    monkeypatch.setattr(main_window, "ImportDialog", Chosen)
+    window.open_dialog()
+    wait_for_jobs(window)
+    layer = window.session.get(window.layer_id(path.name))
+    rep = layer.meta["report"]
+    assert len(layer.points) == ROWS - 1 and len(rep["lines_above_header"]) == NOTES
+    assert rep["skip_rows_given"] == NOTES

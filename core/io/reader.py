@@ -2033,8 +2033,10 @@ def inspect_file(
     mapping: dict[str, str] | list[str] | None = None,
     encoding: str | None = None,
     delimiter: str | None = None,
+    skip_rows: int | None = None,
 ) -> dict:
-    """What an import of ``path`` would use, from its first 256 KiB (for the import dialog).
+    """What an import of ``path`` would use, from its first 256 KiB (for the import dialog);
+    ``skip_rows``: lines before the header, as :func:`read_points` takes it (None: detected).
 
     Returns a plain dict: ``kind`` (csv or nmea), ``columns`` (the file's header names, in
     order), ``mapping`` (canonical field → column, as detected or as ``mapping`` forces
@@ -2045,7 +2047,7 @@ def inspect_file(
     the file cannot be read at all (missing, empty, binary, undecodable)."""
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
-    sn = sniff(path, encoding, delimiter)
+    sn = sniff(path, encoding, delimiter, skip_rows)
     out: dict = {
         "kind": sn.kind,
         "columns": list(sn.columns),

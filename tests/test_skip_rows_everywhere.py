@@ -1,0 +1,118 @@
+"""``--skip-rows N`` reaches every command that reads track files (the steps' shared
+reading flags, ``wakeline batch``) as it reaches ``wakeline import``: a file with 12 lines
+of notes above its header (past the 10 lines the title detection searches) reads the same
+everywhere, and every line is counted: input lines = points + quarantined + skipped above
+the header + the header + blank lines."""
+
+import json
+
+import pandas as pd
+import pytest
+
+from wakeline.app.cli import main
+from wakeline.core.clean_stream import clean_file
+from wakeline.core.io import reader
+
+NOTES = 12
+ROWS = 80
+
+
+def _titled_text() -> str:
+    """12 lines of notes, a header naming known columns, 80 rows of two tracks (one with
+    lat 95: quarantined) and a blank line among them: 95 lines."""
+    notes = [f"note {k}: exported by station {k}, operator log" for k in range(NOTES)]
+    rows = []
+    for k in range(ROWS):
+        track, step = 400 + k % 2, k // 2
+        t = pd.Timestamp("2024-05-01T08:00:00") + pd.Timedelta(seconds=10 * step)
+        lon, lat = 122 + step * 5e-4 + 0.1 * (k % 2), 30 + step * 1e-4
+        rows.append(f"{track},{t:%Y-%m-%dT%H:%M:%S},{lon:.5f},{lat:.5f},9.5,45")
+    rows[17] = rows[17].replace(",30.", ",95.", 1)  # out of range: quarantined
+    rows.insert(40, "")
+    return "\n".join([*notes, "track_id,time,lon,lat,speed,course", *rows]) + "\n"
+
+
+@pytest.fixture
+def titled(write):
+    return write("titled.csv", _titled_text())
+
+
+def _lines(path) -> int:
+    return len(path.read_text().splitlines())
+
+
+def _identity(read: dict, lines: int) -> None:
+    assert read["skipped_above_header"] == NOTES
+    assert read["rows_imported"] == ROWS - 1 and read["rows_quarantined"] == 1
+    assert read["blank_lines"] == 1
+    assert read["rows_imported"] + read["rows_quarantined"] + NOTES + 1 + 1 == lines
+
+
+@pytest.mark.parametrize("whole", [False, True])
+def test_clean_takes_skip_rows_streamed_and_whole(titled, tmp_path, capsys, whole, monkeypatch):
+    """Without --skip-rows the header is not found (refused, the error names --skip-rows);
+    with it, clean reads the rows (streamed in small pieces, and whole: --smooth) and its
+    report counts the 12 skipped lines."""
+    monkeypatch.setattr(reader, "STREAM_BYTES", 700)  # streamed: several pieces
+    out, rep = tmp_path / "c.csv", tmp_path / "r.json"
+    extra = ["--smooth"] if whole else []
+    assert main(["clean", str(titled), "-o", str(out), *extra]) == 2
+    assert "--skip-rows" in capsys.readouterr().err
+    args = ["clean", str(titled), "-o", str(out), "--report", str(rep), "--skip-rows", "12"]
+    assert main([*args, *extra]) == 0
+    assert f"{NOTES} line(s) above the header skipped" in capsys.readouterr().err
+    _identity(json.loads(rep.read_text())["read"], _lines(titled))
+    assert len(pd.read_csv(out)) > 0
+    params = None
+    if whole:
+        from wakeline.core.clean import CleanParams
+
+        params = CleanParams().with_settings(["smooth.enabled=true"])
+    res = clean_file(titled, tmp_path / "c2.csv", params=params, skip_rows=NOTES)
+    assert res.streamed is not whole
+    assert len(res.read_report["lines_above_header"]) == NOTES
+    assert pd.read_csv(tmp_path / "c2.csv").equals(pd.read_csv(out))
+
+
+def test_a_step_reads_with_skip_rows(titled, tmp_path, capsys):
+    """maneuvers (the steps' flags are generated in one place): refused without it, the
+    12 lines counted in its report's reading with it."""
+    out, rep = tmp_path / "m.csv", tmp_path / "r.json"
+    assert main(["maneuvers", str(titled), "-o", str(out)]) == 2
+    capsys.readouterr()
+    assert (
+        main(["maneuvers", str(titled), "-o", str(out), "--report", str(rep), "--skip-rows", "12"])
+        == 0
+    )
+    _identity(json.loads(rep.read_text())["read"], _lines(titled))
+
+
+def test_review_and_render_take_the_reading_flags():
+    """review and render read track files as the steps do: the same flags."""
+    from wakeline.app.cli import build_parser
+
+    parser = build_parser()
+    for command in (
+        ["review", "x.csv", "-o", "o.csv", "--proposals", "p.csv"],
+        ["render", "x.csv", "-o", "o.png"],
+    ):
+        args = parser.parse_args([*command, "--skip-rows", "12", "--encoding", "gb18030"])
+        assert args.skip_rows == 12 and args.encoding == "gb18030"
+
+
+def test_batch_reads_with_skip_rows(titled, tmp_path, capsys):
+    """wakeline batch: refused without it; with it the report counts every line."""
+    pytest.importorskip("dask.dataframe")
+    pytest.importorskip("distributed")
+    from wakeline.core.pipeline import Pipeline
+
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json(), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["batch", str(pipe), str(titled), "-o", str(out)]) == 2
+    assert "--skip-rows" in capsys.readouterr().err
+    assert main(["batch", str(pipe), str(titled), "-o", str(out), "--skip-rows", "12"]) == 0
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["skipped_above_header"] == NOTES and rep["blank_lines"] == 1
+    assert rep["quarantined"] == 1 and rep["rows_read"] == ROWS
+    assert rep["rows_read"] + NOTES + 1 + rep["blank_lines"] == _lines(titled)
