@@ -644,6 +644,22 @@
 <context>
     <name>ImportDialog</name>
     <message>
+        <source>Lines above the header</source>
+        <translation>表头上方的行数</translation>
+    </message>
+    <message>
+        <source>Lines before the header (a title or notes), skipped and counted; auto finds a title of up to 10 lines above a header naming known columns.</source>
+        <translation>表头之前的行（标题或说明），跳过并计数；“自动”可识别表头（含已知列名）上方最多 10 行的标题。</translation>
+    </message>
+    <message>
+        <source>auto</source>
+        <translation>自动</translation>
+    </message>
+    <message>
+        <source>{0} line(s) above the header skipped</source>
+        <translation>已跳过表头上方的 {0} 行</translation>
+    </message>
+    <message>
         <source>Import tracks</source>
         <translation>导入航迹</translation>
     </message>
