@@ -332,6 +332,20 @@ def test_longitude_tick_labels_keep_apart(qtbot, width):
     assert len(values) >= 1
 
 
+def _small_layer(k: int):
+    """Layer ``layer{k}``: one five-point track, 0.01° east of layer k − 1's."""
+    df = pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": "1",
+            "time": pd.date_range("2024-01-01", periods=5, freq="min", tz="UTC"),
+            "lon": 10 + k * 0.01 + np.arange(5) * 1e-3,
+            "lat": 55 + np.arange(5) * 1e-3,
+        }
+    )
+    return prepare_layer(df, f"layer{k}", style=LayerStyle(width=1))
+
+
 def test_a_legend_longer_than_the_map_leaves_the_map_its_size(qtbot):
     """Operator test: with eleven files and their steps shown (some 50 legend lines) the
     legend beside the map made the plot's row taller than the window: the longitude
@@ -342,18 +356,8 @@ def test_a_legend_longer_than_the_map_leaves_the_map_its_size(qtbot):
     canvas.resize(700, 420)
     canvas.show()
     qtbot.waitExposed(canvas)
-    t = pd.date_range("2024-01-01", periods=5, freq="min", tz="UTC")
     for k in range(30):
-        df = pd.DataFrame(
-            {
-                "sensor": "S1",
-                "batch": "1",
-                "time": t,
-                "lon": 10 + k * 0.01 + np.arange(5) * 1e-3,
-                "lat": 55 + np.arange(5) * 1e-3,
-            }
-        )
-        canvas.set_draw_data(prepare_layer(df, f"layer{k}", style=LayerStyle(width=1)))
+        canvas.set_draw_data(_small_layer(k))
     canvas.set_true_aspect(55.0)
     canvas.fit()
     QtWidgets.QApplication.processEvents()
@@ -376,18 +380,8 @@ def test_a_short_legend_shows_its_lines_whole(qtbot):
     canvas.resize(700, 420)
     canvas.show()
     qtbot.waitExposed(canvas)
-    t = pd.date_range("2024-01-01", periods=5, freq="min", tz="UTC")
     for k in range(3):
-        df = pd.DataFrame(
-            {
-                "sensor": "S1",
-                "batch": "1",
-                "time": t,
-                "lon": 10 + k * 0.01 + np.arange(5) * 1e-3,
-                "lat": 55 + np.arange(5) * 1e-3,
-            }
-        )
-        canvas.set_draw_data(prepare_layer(df, f"layer{k}", style=LayerStyle(width=1)))
+        canvas.set_draw_data(_small_layer(k))
         QtWidgets.QApplication.processEvents()
         legend = canvas.legend
         inside = legend.rect()
