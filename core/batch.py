@@ -371,7 +371,7 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     importer's one message) and estimate its size as text."""
     from wakeline.core.io import sniff
     from wakeline.core.io.pieces import local_name
-    from wakeline.core.io.reader import _resolve_header
+    from wakeline.core.io.reader import resolve_header
     from wakeline.core.io.sniff import SAMPLE_BYTES
 
     kind = compression_of(path)
@@ -403,7 +403,7 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     try:
         sn = sniff(target, read["encoding"], read["delimiter"], read["skip_rows"])
         if sn.kind == "csv":
-            _resolve_header(sn, read["fmt"], read["mapping"], str(path))  # names --skip-rows
+            resolve_header(sn, read["fmt"], read["mapping"], str(path))  # names --skip-rows
     except InputError as exc:
         raise InputError(str(exc).replace(str(target), str(path))) from None
     finally:
@@ -431,8 +431,8 @@ def _import_file(
     from wakeline.core.io.reader import (
         StreamFallback,
         WholeFileNeeded,
-        _resolve_header,
         parse_zone,
+        resolve_header,
         stream_points,
     )
 
@@ -468,7 +468,7 @@ def _import_file(
             q = None
             if not sn.has_quotes:
                 try:
-                    cols = _resolve_header(sn, read["fmt"], read["mapping"], str(src))
+                    cols = resolve_header(sn, read["fmt"], read["mapping"], str(src))
                     zone = parse_zone(read["tz"])
                     res = stream_points(sn, cols, sink, read["sensor"], zone, read["tz"])
                     q, warnings = res.quarantine, res.report.get("warnings", [])

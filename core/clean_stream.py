@@ -110,7 +110,7 @@ def clean_file(
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
-    from wakeline.core.io.reader import _resolve_header, nothing_imported, parse_zone
+    from wakeline.core.io.reader import nothing_imported, parse_zone, resolve_header
     from wakeline.core.io.sniff import sniff
 
     params = (params or CleanParams()).checked()
@@ -133,7 +133,7 @@ def clean_file(
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
     if not piece_safe(sn) or transforms:
         return _clean_whole(path, output, rejected, params, progress, options)
-    res = _resolve_header(sn, fmt, mapping, str(path))  # names --skip-rows where it may help
+    res = resolve_header(sn, fmt, mapping, str(path))  # names --skip-rows where it may help
     remove_stale_scratch()
     folder = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
     reached = [0.0]  # the reading's progress so far: a second reading goes on from there

@@ -26,8 +26,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
-from wakeline.core.io.formats import resolve
-from wakeline.core.io.reader import month_first_dates
+from wakeline.core.io.reader import month_first_dates, resolve_header
 from wakeline.core.io.sniff import sniff
 from wakeline.core.schema import CANONICAL_COLUMNS
 
@@ -394,7 +393,7 @@ def describe_layout(
         columns_of = dict(report["columns"])
         name = str(report.get("format", "generic"))
     else:
-        res = resolve(sn.columns, fmt, mapping, source=str(path))
+        res = resolve_header(sn, fmt, mapping, str(path))
         columns_of, name = res.columns, res.format.name
     tz = tz or report.get("tz") or report.get("time_zone")  # the import report says time_zone
     head = _raw_head(path, sn.compression)

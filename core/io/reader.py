@@ -1298,7 +1298,7 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
-def _resolve_header(sn: Sniff, fmt: str, mapping: dict[str, str] | None, source: str) -> Resolved:
+def resolve_header(sn: Sniff, fmt: str, mapping: dict[str, str] | None, source: str) -> Resolved:
     """:func:`resolve` for a sniffed file; when the header names few known columns, the
     error says how to skip lines above a header further down (``--skip-rows``)."""
     try:
@@ -1450,7 +1450,7 @@ def read_points(
         from wakeline.core.io.nmea import read_nmea
 
         return read_nmea(sn, sensor=sensor, progress=progress)
-    res = _resolve_header(sn, fmt, mapping, str(path))
+    res = resolve_header(sn, fmt, mapping, str(path))
     rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
     if "batch" not in res.columns:
@@ -2066,7 +2066,7 @@ def inspect_file(
     if sn.kind == "nmea":
         return out
     try:
-        res = _resolve_header(sn, fmt, mapping, str(path))
+        res = resolve_header(sn, fmt, mapping, str(path))
     except InputError as exc:
         out["problem"] = str(exc)
         out["mapping"] = {k: v for k, v in (mapping or {}).items() if v in sn.columns}
@@ -2140,7 +2140,7 @@ def import_to_csv(
 
     if sn.kind != "csv":  # NMEA logs
         return whole(output)
-    res = _resolve_header(sn, fmt, mapping, str(path))
+    res = resolve_header(sn, fmt, mapping, str(path))
     progress = progress or null_progress
     # Each part's Arrow copy in the system's temporary folder (nothing of ours is left
     # beside the output).
