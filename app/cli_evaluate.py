@@ -51,6 +51,11 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         raise InputError(f"--real applies to associate and maneuver, not to {args.kind}")
     if args.sensor != "radar" and not (args.real and args.kind == "maneuver"):
         raise InputError("--sensor applies to maneuver --real (the Autoferry set)")
+    from wakeline.app.cli_steps import _read_options
+
+    read = _read_options(args)  # --real's track files: read as import reads them
+    if not args.real and any(v not in (None, "auto") for v in read.values()):
+        raise InputError("the reading flags (--map, --skip-rows, ...) apply to --real's files")
 
     if args.kind == "fuse":
         from wakeline.core.evaluate_association import evaluate_fusion
@@ -80,7 +85,8 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             gaps_every=args.gaps_every,
             params=link_params(args.set),
             truth_sep=args.truth_sep,
-            mapping=args.map,
+            mapping=read.pop("mapping"),
+            read=read,
             seed=args.seed,
             progress=_progress,
         )
@@ -127,7 +133,8 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             args.real,
             _maneuver_params(args),
             progress=_progress,
-            mapping=args.map,
+            mapping=read.pop("mapping"),
+            read=read,
             sensor=args.sensor,
         )
         print(ev.format())
@@ -359,7 +366,8 @@ def register(sub) -> None:
         help="score on a real set instead. maneuver: a folder of shared/data/real "
         "(autoferry-fusion, greece-ais-annotated, dma-single-ship, oresund-encounters), or "
         "any file or folder of track files (no turn truth: slow share, at-rest spans, "
-        "compression against Douglas-Peucker; --map as in import); "
+        "compression against Douglas-Peucker; read as import reads them, see 'reading the "
+        "input' below); "
         "associate: a file, or every .csv/.csv.gz in DIR (each track's id is the truth; "
         "tracks are cut at their gaps, pieces renumbered); one of those four folders is "
         "read as one scene by its own reader (autoferry-fusion: the radar tracks, "
@@ -446,11 +454,15 @@ def register(sub) -> None:
         help="associate --real: the truth is the track id up to this character "
         "(MTAD: '-', so MMSI-k sub-tracks are one ship)",
     )
-    p.add_argument(
-        "--map",
-        action="append",
-        metavar="FIELD=COLUMN",
-        help="--real: map a canonical field to a column of the files (as in import)",
+    from wakeline.app.cli_steps import _add_read_flags
+
+    _add_read_flags(
+        p,
+        omit=("sensor",),
+        description="--real FILE or a folder of track files (maneuver and associate): how "
+        "each file is read, as `wakeline import` and the steps read it (e.g. --skip-rows N "
+        "as given to `wakeline clean`). The four named folders of shared/data/real are read "
+        "by their own readers and ignore these flags.",
     )
     _add_detector_options(p)
     _add_bearing_options(p)

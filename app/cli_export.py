@@ -15,8 +15,19 @@ def _split(items: list[str] | None) -> list[str]:
     return [c.strip() for item in items or () for c in item.split(",") if c.strip()]
 
 
-def _cmd_export(args: argparse.Namespace) -> int:
+def _read_in(args: argparse.Namespace):
+    """IN, read with the reading flags (a reading error names IN's --in-map)."""
+    from wakeline.app.cli_steps import _read_options
     from wakeline.core.io import read_points
+
+    try:
+        return read_points(args.input, **_read_options(args))
+    except InputError as exc:
+        raise InputError(str(exc).replace("--map field", "--in-map field")) from None
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from wakeline.app.cli_steps import say_quarantined
     from wakeline.core.io.export_like import export_like
     from wakeline.core.io.layout import load_layout, preset_layout
 
@@ -32,7 +43,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
             )
         from wakeline.core.export_review import export_tracks
 
-        result = read_points(args.input)
+        result = _read_in(args)
         kind = export_tracks(result.points, args.output)
         print(f"exported {len(result.points):,} rows as {kind}", file=sys.stderr)
         return 0
@@ -42,9 +53,16 @@ def _cmd_export(args: argparse.Namespace) -> int:
     if args.like:
         from wakeline.core.io.formats import parse_mapping
 
-        layout = load_layout(
-            args.like, tz=args.tz, fmt=args.format, mapping=parse_mapping(args.map)
-        )
+        try:
+            layout = load_layout(
+                args.like,
+                tz=args.tz,
+                fmt=args.format,
+                mapping=parse_mapping(args.map),
+                skip_rows=args.like_skip_rows,
+            )
+        except InputError as exc:  # ORIGINAL's lines above its header: --like-skip-rows
+            raise InputError(str(exc).replace("--skip-rows N", "--like-skip-rows N")) from None
     else:
         layout = preset_layout(args.layout or "canonical")
     if args.like and not args.tz and layout.time.kind == "text" and not layout.time.suffix:
@@ -82,9 +100,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
         from wakeline.core.io import write_json
 
         write_json(layout.to_dict(), args.save_layout)
-    from wakeline.app.cli_steps import say_quarantined
-
-    result = read_points(args.input)
+    result = _read_in(args)
     say_quarantined(args.input, result.report)
     if len(result.points) == 0:
         raise InputError(f"{args.input}: no usable points: nothing to export")
@@ -150,6 +166,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="ORIGINAL's column for canonical FIELD, as given to import; repeatable",
     )
     p.add_argument(
+        "--like-skip-rows",
+        type=int,
+        metavar="N",
+        help="lines before ORIGINAL's header (a title), as given to import (default: detect)",
+    )
+    p.add_argument(
         "--layout",
         choices=tuple(PRESETS),
         help="a built-in layout (default canonical when --like is not given)",
@@ -191,5 +213,15 @@ def register(sub: argparse._SubParsersAction) -> None:
         type=Path,
         metavar="L.json",
         help="also write the layout used as JSON (give it to --like later)",
+    )
+    from wakeline.app.cli_steps import _add_read_flags
+
+    _add_read_flags(
+        p,
+        rename=("format", "map", "encoding", "tz"),
+        description="How IN is read, as `wakeline import` and the steps read it (e.g. "
+        "--skip-rows N as given to `wakeline clean`). --format, --map, --encoding and --tz "
+        "above are about ORIGINAL and the file written; IN's are --in-format, --in-map, "
+        "--in-encoding, --in-tz.",
     )
     p.set_defaults(func=_cmd_export)

@@ -252,30 +252,66 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
     )
 
 
-def _add_read_flags(p: argparse.ArgumentParser) -> None:
+def _add_read_flags(
+    p: argparse.ArgumentParser,
+    *,
+    rename: tuple[str, ...] = (),
+    omit: tuple[str, ...] = (),
+    prefix: str = "in",
+    description: str | None = None,
+) -> None:
     """How to read the input, as for `wakeline import` (every step: a reading error
-    names --map, so every step takes it)."""
+    names --map, so every step takes it), in a group of their own.
+
+    A command whose own flags already use some of these names (``export``'s --format,
+    --map, --encoding, --tz shape the file it writes) gets those as ``--PREFIX-NAME``
+    (``rename``); ``omit`` leaves flags out (``evaluate``'s --sensor is another thing);
+    ``description`` says under the group's title what the flags apply to.
+    :func:`_read_options` gives the ``read_points`` keywords whatever the flags are named.
+    """
     from wakeline.core.io import FAMILIES
 
-    p.add_argument("--format", choices=FAMILIES, default="auto", help="input layout (default auto)")
-    p.add_argument("--map", action="append", metavar="FIELD=COLUMN", help="as for import")
-    p.add_argument("--encoding", help="text encoding (default: detect)")
-    p.add_argument("--delimiter", help="field delimiter (default: detect)")
-    p.add_argument("--tz", metavar="ZONE", help="zone of times written without one (as import)")
-    p.add_argument("--sensor", default="S1", help="sensor name when the file has none")
-    p.add_argument(
-        "--skip-rows",
-        type=int,
-        metavar="N",
-        help="lines before the header (a title), skipped and counted (default: detect, as import)",
-    )
+    flags = {  # read_points keyword -> (flag name, argparse keywords)
+        "fmt": (
+            "format",
+            {"choices": FAMILIES, "default": "auto", "help": "input layout (default auto)"},
+        ),
+        "mapping": (
+            "map",
+            {"action": "append", "metavar": "FIELD=COLUMN", "help": "as for import"},
+        ),
+        "encoding": ("encoding", {"help": "text encoding (default: detect)"}),
+        "delimiter": ("delimiter", {"help": "field delimiter (default: detect)"}),
+        "tz": ("tz", {"metavar": "ZONE", "help": "zone of times written without one (as import)"}),
+        "sensor": ("sensor", {"default": "S1", "help": "sensor name when the file has none"}),
+        "skip_rows": (
+            "skip-rows",
+            {
+                "type": int,
+                "metavar": "N",
+                "help": "lines before the header (a title), skipped and counted (default: "
+                "detect, as import)",
+            },
+        ),
+    }
+    unknown = (set(rename) | set(omit)) - {name for name, _kw in flags.values()}
+    if unknown:
+        raise ValueError(f"no reading flag {sorted(unknown)}")
+    group = p.add_argument_group("reading the input", description)
+    dests = {}
+    for keyword, (name, kw) in flags.items():
+        if name in omit:
+            continue
+        flag = f"--{prefix}-{name}" if name in rename else f"--{name}"
+        dests[keyword] = flag[2:].replace("-", "_")
+        group.add_argument(flag, dest=dests[keyword], **kw)
+    p.set_defaults(read_dests=dests)
 
 
 def _read_options(args: argparse.Namespace) -> dict:
-    """The ``read_points`` keywords of :func:`_add_read_flags`' flags."""
-    read = {"fmt": args.format, "mapping": args.map, "encoding": args.encoding}
-    read |= {"delimiter": args.delimiter, "sensor": args.sensor, "tz": args.tz}
-    return read | {"skip_rows": args.skip_rows}
+    """The ``read_points`` keywords of :func:`_add_read_flags`' flags (those given to
+    the command's parser, under the names it gave them)."""
+    return {keyword: getattr(args, dest) for keyword, dest in args.read_dests.items()}
 
 
 def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:

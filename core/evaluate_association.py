@@ -846,6 +846,7 @@ def evaluate_real_association(
     truth_sep: str = "",
     seed: int = 0,
     progress: Progress | None = None,
+    read: dict | None = None,
 ) -> RealEvaluation:
     """Score association methods on a real set with identities (issue 15, deliverable 7).
 
@@ -860,6 +861,9 @@ def evaluate_real_association(
     A folder that :func:`real_sets.recognise` knows (Saronic, DMA, Øresund, Autoferry) is
     one scene read by :func:`real_sets.association_tracks` instead of file by file (its
     other files are annotations, third-party simplifications or radar plots, not tracks).
+    The files read as import reads them take ``mapping`` (``--map`` entries) and ``read``
+    (the other ``read_points`` keywords, e.g. ``skip_rows``); the recognised sets ignore
+    both.
     """
     from wakeline.core import real_sets
     from wakeline.core.errors import InputError
@@ -875,7 +879,7 @@ def evaluate_real_association(
             df = (
                 real_sets.association_tracks(f.folder)
                 if f is known
-                else read_points(f, mapping=mapping).points
+                else read_points(f, mapping=mapping, **(read or {})).points
             )
         except InputError as e:
             skipped.append((f.name, str(e)))

@@ -301,16 +301,17 @@ def _split_rows(
     return out
 
 
-def _track_files(path: Path, mapping: list[str] | None) -> pd.DataFrame:
-    """The tracks of a file, or of every .csv / .csv.gz in a folder, as import reads them;
-    with several files each batch is prefixed by its file's name (MTAD scenes reuse ids)."""
+def _track_files(path: Path, mapping: list[str] | None, read: dict | None = None) -> pd.DataFrame:
+    """The tracks of a file, or of every .csv / .csv.gz in a folder, as import reads them
+    (``read``: more ``read_points`` keywords, e.g. ``skip_rows``); with several files each
+    batch is prefixed by its file's name (MTAD scenes reuse ids)."""
     from wakeline.core.evaluate_association import real_files
     from wakeline.core.io import read_points
 
     files = real_files(path)
     frames = []
     for f in files:
-        df = read_points(f, mapping=mapping).points
+        df = read_points(f, mapping=mapping, **(read or {})).points
         if len(files) > 1:
             df = df.assign(batch=f.name + ":" + df["batch"].astype(str))
         frames.append(df)
@@ -327,6 +328,7 @@ def evaluate_real(
     fault_margin_s: float = 2.0,
     mapping: list[str] | None = None,
     sensor: str = "radar",
+    read: dict | None = None,
 ) -> RealEvaluation:
     """Score maneuver detection and compression on a real set (see the module docstring),
     with ``params`` (default: ours) and with seed 000's detector as written. Autoferry:
@@ -335,7 +337,9 @@ def evaluate_real(
     within ``fault_margin_s`` (the truth course's 2 s baseline) of a GNSS jump larger than
     ``fault_m`` are not scored for recall (:func:`gnss_faults`; ``fault_m = inf``: all).
     Any other file or folder of track files is read as import reads it (``mapping``: its
-    ``--map`` entries) and scored without truth: slow share, at-rest spans, compression.
+    ``--map`` entries; ``read``: the other ``read_points`` keywords, e.g. ``skip_rows``,
+    ``delimiter``; the named sets' own readers ignore both) and scored without truth:
+    slow share, at-rest spans, compression.
     ``sensor``: Autoferry's radar (default) or lidar plots, the same gate and rules (any
     other set: radar only, refused otherwise)."""
     folder = Path(folder)
@@ -352,7 +356,7 @@ def evaluate_real(
         points, truth = real_sets.read_autoferry(folder, exclusive=exclusive, sensor=sensor)
         faults = gnss_faults(truth, fault_m)
     elif name is None:
-        points = _track_files(folder, mapping)
+        points = _track_files(folder, mapping, read)
     else:
         points = {
             "greece": real_sets.read_greece,

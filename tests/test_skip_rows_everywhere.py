@@ -1,8 +1,8 @@
 """``--skip-rows N`` reaches every command that reads track files (the steps' shared
-reading flags, ``wakeline batch``) as it reaches ``wakeline import``: a file with 12 lines
-of notes above its header (past the 10 lines the title detection searches) reads the same
-everywhere, and every line is counted: input lines = points + quarantined + skipped above
-the header + the header + blank lines."""
+reading flags, ``wakeline batch``, ``export`` and ``evaluate --real``) as it reaches
+``wakeline import``: a file with 12 lines of notes above its header (past the 10 lines
+the title detection searches) reads the same everywhere, and every line is counted:
+input lines = points + quarantined + skipped above the header + the header + blank lines."""
 
 import json
 
@@ -116,3 +116,77 @@ def test_batch_reads_with_skip_rows(titled, tmp_path, capsys):
     assert rep["skipped_above_header"] == NOTES and rep["blank_lines"] == 1
     assert rep["quarantined"] == 1 and rep["rows_read"] == ROWS
     assert rep["rows_read"] + NOTES + 1 + rep["blank_lines"] == _lines(titled)
+
+
+def _refused_naming(err: str, flag: str) -> None:
+    """A reading error: one message (after any progress lines) naming the flag to give,
+    not an internal error."""
+    last = err.strip().splitlines()[-1]
+    assert last.startswith("wakeline: error:") and flag in last
+    assert "internal error" not in err and "Traceback" not in err
+
+
+def test_export_reads_in_with_skip_rows(titled, tmp_path, capsys):
+    """export reads IN with the steps' reading flags: refused without --skip-rows, a
+    wrong count refused with the message (naming export's own --in-map, not --map, which
+    is ORIGINAL's), the 12 lines skipped with it, to CSV and to GeoJSON."""
+    out = tmp_path / "e.csv"
+    assert main(["export", str(titled), "-o", str(out)]) == 2
+    _refused_naming(capsys.readouterr().err, "--skip-rows")
+    assert main(["export", str(titled), "-o", str(out), "--skip-rows", "11"]) == 2
+    err = capsys.readouterr().err
+    _refused_naming(err, "--skip-rows")
+    assert "--in-map" in err and "with --map" not in err
+    assert main(["export", str(titled), "-o", str(out), "--skip-rows", str(NOTES)]) == 0
+    assert "1 rows quarantined" in capsys.readouterr().err
+    got = pd.read_csv(out)
+    assert len(got) == ROWS - 1 and set(got["batch"]) == {400, 401}
+    geo = tmp_path / "e.geojson"
+    assert main(["export", str(titled), "-o", str(geo), "--skip-rows", str(NOTES)]) == 0
+    assert len(json.loads(geo.read_text())["features"]) == 2
+
+
+def test_export_like_an_original_with_notes_above_its_header(titled, tmp_path, capsys):
+    """--like ORIGINAL whose header is below 12 lines of notes: --like-skip-rows says so
+    (the refusal names it, not IN's --skip-rows); the notes are written back above the
+    header and the rows in the original's columns."""
+    canonical = tmp_path / "c.csv"
+    assert main(["export", str(titled), "-o", str(canonical), "--skip-rows", str(NOTES)]) == 0
+    capsys.readouterr()
+    out = tmp_path / "like.csv"
+    assert main(["export", str(canonical), "-o", str(out), "--like", str(titled)]) == 2
+    _refused_naming(capsys.readouterr().err, "--like-skip-rows N")
+    args = ["export", str(canonical), "-o", str(out), "--like", str(titled)]
+    assert main([*args, "--like-skip-rows", str(NOTES)]) == 0
+    lines = out.read_text().splitlines()
+    assert lines[:NOTES] == titled.read_text().splitlines()[:NOTES]
+    assert lines[NOTES] == "track_id,time,lon,lat,speed,course"
+    assert len(lines) == NOTES + 1 + ROWS - 1
+
+
+@pytest.mark.parametrize("kind", ["maneuver", "associate"])
+def test_evaluate_real_reads_with_skip_rows(titled, capsys, kind):
+    """evaluate maneuver|associate --real FILE: refused without --skip-rows or with a
+    wrong count (one message naming it), scored on the 79 points with it."""
+    assert main(["evaluate", kind, "--real", str(titled)]) == 2
+    _refused_naming(capsys.readouterr().err, "--skip-rows")
+    assert main(["evaluate", kind, "--real", str(titled), "--skip-rows", "11"]) == 2
+    _refused_naming(capsys.readouterr().err, "--skip-rows")
+    assert main(["evaluate", kind, "--real", str(titled), "--skip-rows", str(NOTES)]) == 0
+    out = capsys.readouterr().out
+    if kind == "maneuver":
+        ours = next(line.split() for line in out.splitlines() if line.split()[:1] == ["ours"])
+        assert int(ours[1]) == ROWS - 1  # points scored
+    else:
+        assert "titled.csv" in out and "ours, optimal" in out
+
+
+def test_evaluate_reading_flags_need_real_and_help_says_where(capsys):
+    """Without --real there is nothing to read: refused; the help says the named folders
+    of shared/data/real ignore them."""
+    assert main(["evaluate", "maneuver", "--skip-rows", "3"]) == 2
+    assert "--real" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["evaluate", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "--skip-rows N" in help_text and "ignore these flags" in help_text

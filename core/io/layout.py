@@ -573,9 +573,11 @@ def load_layout(
     tz: str | None = None,
     fmt: str = "auto",
     mapping: dict[str, str] | None = None,
+    skip_rows: int | None = None,
 ) -> Layout:
     """A layout from a file: a layout JSON (``Layout.to_dict``) or the original data file
-    (read as an import with ``fmt`` and ``mapping`` would read it)."""
+    (read as an import with ``fmt``, ``mapping`` and ``skip_rows``, the lines above its
+    header, would read it)."""
     import json
 
     path = Path(path)
@@ -586,7 +588,8 @@ def load_layout(
             raise InputError(f"{path}: no such file") from None
         except (ValueError, KeyError, TypeError) as exc:
             raise InputError(f"{path}: not a Wakeline layout file ({exc})") from None
-    return describe_layout(path, fmt=fmt, mapping=mapping, tz=tz)
+    report = None if skip_rows is None else {"skip_rows_given": skip_rows}
+    return describe_layout(path, report, fmt=fmt, mapping=mapping, tz=tz)
 
 
 __all__ = [
