@@ -36,19 +36,16 @@ def _cmd_batch(args: argparse.Namespace) -> int:
     except UnicodeDecodeError:
         raise InputError(f"{args.pipeline}: not UTF-8 text") from None
     pipe = Pipeline.from_json(text)
+    from wakeline.app.cli_steps import read_options
+
+    read = read_options(args)  # BatchOptions names its fields as read_points does
     opts = BatchOptions(
         partition_mb=args.partition_mb,
         blocksize_mb=args.blocksize_mb,
         scheduler=args.scheduler or "",
         workers=args.workers or 0,
         csv=args.csv,
-        fmt=args.format,
-        mapping=tuple(args.map or ()),
-        encoding=args.encoding,
-        delimiter=args.delimiter,
-        tz=args.tz,
-        sensor=args.sensor,
-        skip_rows=args.skip_rows,
+        **read | {"mapping": tuple(read["mapping"] or ())},
     )
     result = run_batch(pipe, args.input, args.outdir, opts, log=lambda m: print(m, file=sys.stderr))
     rep = result.report
@@ -127,7 +124,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         action="store_true",
         help="print the default pipeline (clean, compress) as JSON and exit",
     )
-    from wakeline.app.cli_steps import _add_read_flags
+    from wakeline.app.cli_steps import add_read_flags
 
-    _add_read_flags(p)  # how CSV inputs are read: the same flags as `wakeline clean`
+    add_read_flags(p)  # how CSV inputs are read: the same flags as `wakeline clean`
     p.set_defaults(func=_cmd_batch)

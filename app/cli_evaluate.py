@@ -51,9 +51,9 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         raise InputError(f"--real applies to associate and maneuver, not to {args.kind}")
     if args.sensor != "radar" and not (args.real and args.kind == "maneuver"):
         raise InputError("--sensor applies to maneuver --real (the Autoferry set)")
-    from wakeline.app.cli_steps import _read_options
+    from wakeline.app.cli_steps import read_options
 
-    read = _read_options(args)  # --real's track files: read as import reads them
+    read = read_options(args)  # --real's track files: read as import reads them
     if not args.real and any(v not in (None, "auto") for v in read.values()):
         raise InputError("the reading flags (--map, --skip-rows, ...) apply to --real's files")
 
@@ -454,9 +454,9 @@ def register(sub) -> None:
         help="associate --real: the truth is the track id up to this character "
         "(MTAD: '-', so MMSI-k sub-tracks are one ship)",
     )
-    from wakeline.app.cli_steps import _add_read_flags
+    from wakeline.app.cli_steps import add_read_flags
 
-    _add_read_flags(
+    add_read_flags(
         p,
         omit=("sensor",),
         description="--real FILE or a folder of track files (maneuver and associate): how "

@@ -17,11 +17,11 @@ def _split(items: list[str] | None) -> list[str]:
 
 def _read_in(args: argparse.Namespace):
     """IN, read with the reading flags (a reading error names IN's --in-map)."""
-    from wakeline.app.cli_steps import _read_options
+    from wakeline.app.cli_steps import read_options
     from wakeline.core.io import read_points
 
     try:
-        return read_points(args.input, **_read_options(args))
+        return read_points(args.input, **read_options(args))
     except InputError as exc:
         raise InputError(str(exc).replace("--map field", "--in-map field")) from None
 
@@ -214,9 +214,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="L.json",
         help="also write the layout used as JSON (give it to --like later)",
     )
-    from wakeline.app.cli_steps import _add_read_flags
+    from wakeline.app.cli_steps import add_read_flags
 
-    _add_read_flags(
+    add_read_flags(
         p,
         rename=("format", "map", "encoding", "tz"),
         description="How IN is read, as `wakeline import` and the steps read it (e.g. "

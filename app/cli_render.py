@@ -100,9 +100,9 @@ def _read(paths: list[Path], **options):
 def _cmd_render(args: argparse.Namespace) -> int:
     if args.output.suffix.lower() != ".png":
         raise InputError(f"{args.output}: the output must be a .png file")
-    from wakeline.app.cli_steps import _read_options
+    from wakeline.app.cli_steps import read_options
 
-    points = _read(args.input, **_read_options(args))
+    points = _read(args.input, **read_options(args))
     derived = run_steps(points, args.step or [])
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     try:
@@ -198,7 +198,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         default="sensor",
         help="colour the input's tracks per sensor (default) or per batch",
     )
-    from wakeline.app.cli_steps import _add_read_flags
+    from wakeline.app.cli_steps import add_read_flags
 
-    _add_read_flags(p)  # how the inputs are read: the same flags as the steps
+    add_read_flags(p)  # how the inputs are read: the same flags as the steps
     p.set_defaults(func=_cmd_render)

@@ -80,7 +80,7 @@ def _proposals(path: Path) -> pd.DataFrame:
 
 
 def _cmd_review(args: argparse.Namespace) -> int:
-    from wakeline.app.cli_steps import _read_options
+    from wakeline.app.cli_steps import read_options
     from wakeline.core.export_review import (
         export_decision_log,
         export_tracks,
@@ -89,7 +89,7 @@ def _cmd_review(args: argparse.Namespace) -> int:
     )
     from wakeline.core.review import ReviewState, apply_decisions, track_table
 
-    points = read_inputs(args.input, **_read_options(args))
+    points = read_inputs(args.input, **read_options(args))
     props = pd.concat([_proposals(p) for p in args.proposals], ignore_index=True)
     state = ReviewState(track_table(points), props)
     if args.decisions:
@@ -176,7 +176,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--set", action="append", metavar="NAME=VALUE", help="--fused: change a fuse parameter"
     )
-    from wakeline.app.cli_steps import _add_read_flags
+    from wakeline.app.cli_steps import add_read_flags
 
-    _add_read_flags(p)  # how the track files are read: the same flags as the steps
+    add_read_flags(p)  # how the track files are read: the same flags as the steps
     p.set_defaults(func=_cmd_review)

@@ -210,7 +210,7 @@ def add_step_parsers(sub) -> None:
             )
         if name == "clean":
             _add_clean_flags(p)
-        _add_read_flags(p)
+        add_read_flags(p)
         p.set_defaults(func=run_step_command, step=name)
 
 
@@ -252,7 +252,7 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
     )
 
 
-def _add_read_flags(
+def add_read_flags(
     p: argparse.ArgumentParser,
     *,
     rename: tuple[str, ...] = (),
@@ -267,7 +267,7 @@ def _add_read_flags(
     --map, --encoding, --tz shape the file it writes) gets those as ``--PREFIX-NAME``
     (``rename``); ``omit`` leaves flags out (``evaluate``'s --sensor is another thing);
     ``description`` says under the group's title what the flags apply to.
-    :func:`_read_options` gives the ``read_points`` keywords whatever the flags are named.
+    :func:`read_options` gives the ``read_points`` keywords whatever the flags are named.
     """
     from wakeline.core.io import FAMILIES
 
@@ -308,8 +308,8 @@ def _add_read_flags(
     p.set_defaults(read_dests=dests)
 
 
-def _read_options(args: argparse.Namespace) -> dict:
-    """The ``read_points`` keywords of :func:`_add_read_flags`' flags (those given to
+def read_options(args: argparse.Namespace) -> dict:
+    """The ``read_points`` keywords of :func:`add_read_flags`' flags (those given to
     the command's parser, under the names it gave them)."""
     return {keyword: getattr(args, dest) for keyword, dest in args.read_dests.items()}
 
@@ -427,9 +427,9 @@ def run_step_command(args: argparse.Namespace) -> int:
     if step.many_inputs:
         from wakeline.app.cli_review import read_inputs
 
-        points = read_inputs(args.input, read, **_read_options(args))
+        points = read_inputs(args.input, read, **read_options(args))
     else:
-        points = read_input(args.input, read, **_read_options(args))
+        points = read_input(args.input, read, **read_options(args))
     result = step(points, params)
     write_table(step.output, result.tables[step.output], args.output)
     for table, _flag in step.outputs:
@@ -451,7 +451,7 @@ def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
     from wakeline.core.pipeline import StepResult, params_to_json
 
     rejected = getattr(args, "out__rejected", None)
-    out = clean_file(args.input, args.output, rejected, params["clean"], **_read_options(args))
+    out = clean_file(args.input, args.output, rejected, params["clean"], **read_options(args))
     for warning in out.read_report.get("warnings", []):
         print(f"{args.input}: warning: {warning}", file=sys.stderr)
     say_quarantined(args.input, out.read_report)

@@ -190,3 +190,22 @@ def test_evaluate_reading_flags_need_real_and_help_says_where(capsys):
         main(["evaluate", "--help"])
     help_text = " ".join(capsys.readouterr().out.split())
     assert "--skip-rows N" in help_text and "ignore these flags" in help_text
+
+
+def test_the_reading_flags_are_public():
+    """The commands import the reading flags by their public names (add_read_flags,
+    read_options): no module of app/ imports a private name of cli_steps."""
+    import ast
+    from pathlib import Path
+
+    from wakeline.app import cli_steps
+
+    public = {"add_read_flags", "read_options"}
+    assert all(callable(getattr(cli_steps, name)) for name in public)
+    assert not {"_" + name for name in public} & set(vars(cli_steps))  # no alias left
+    private = []
+    for path in sorted((Path(cli_steps.__file__).parent).glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and node.module == "wakeline.app.cli_steps":
+                private += [f"{path.name}: {a.name}" for a in node.names if a.name[0] == "_"]
+    assert private == []
