@@ -192,6 +192,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             self.addDockWidget(where, dock)
             self.docks[key] = dock
         self.tabifyDockWidget(self.docks["stats"], self.docks["log"])
+        # The lifetime histogram keeps a readable height while the Statistics tab is up.
+        self.docks["stats"].visibilityChanged.connect(self.stats.set_raised)
         self.tabifyDockWidget(self.docks["detail"], self.docks["bearing"])
         self.docks["detail"].raise_()
         self.docks["log"].raise_()

@@ -21,6 +21,13 @@ from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core.stats import LayerStats, Spread, layer_stats
 
 TR_CONTEXT = "StatsPanel"
+#: The lifetime histogram's least height (px) while the dock is raised: its title, axis
+#: and label take about 70 px, this leaves about 80 px of bars (at the 104 px the
+#: bottom dock area had in the default window they were 5 px high).
+HIST_MIN_HEIGHT = 150
+#: The table's least height, and the histogram's while the dock is behind another tab
+#: (px): no taller than the text box the dock held before (70 px with the note).
+LOW_MIN_HEIGHT = 48
 
 
 def tr(text: str) -> str:
@@ -201,9 +208,10 @@ class StatsPanel(QtWidgets.QWidget):
             self.hist.getAxis(side).enableAutoSIPrefix(False)
         self.bars = pg.BarGraphItem(x=[], height=[], width=1.0, brush="#1f77b4", pen="#1f77b4")
         self.hist.addItem(self.bars)
-        # No taller a minimum than the text box the dock held before (70 px with the note).
+        # The table scrolls, so a few rows will do; the histogram asks for its height
+        # while the dock is raised (set_raised).
         for widget in (self.table, self.hist):
-            widget.setMinimumHeight(48)
+            widget.setMinimumHeight(LOW_MIN_HEIGHT)
         split = QtWidgets.QSplitter(QtCore.Qt.Orientation.Horizontal)
         split.addWidget(self.table)
         split.addWidget(self.hist)
@@ -219,6 +227,14 @@ class StatsPanel(QtWidgets.QWidget):
         """As high as the text box the dock held before (the plot's 480 px hint made the
         bottom dock area take height from the docks above it)."""
         return QtCore.QSize(520, 192)
+
+    def set_raised(self, raised: bool) -> None:
+        """The dock is shown (its tab raised) or not (behind the Log tab, closed): while
+        shown the histogram keeps :data:`HIST_MIN_HEIGHT` px, so the bottom dock area
+        grows to it; behind the Log it asks no more height of the docks above than the
+        text box before it (the Bearing-only dock's map). Connected to the dock's
+        ``visibilityChanged``."""
+        self.hist.setMinimumHeight(HIST_MIN_HEIGHT if raised else LOW_MIN_HEIGHT)
 
     # -- requests ------------------------------------------------------------------
 

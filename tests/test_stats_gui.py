@@ -163,3 +163,28 @@ def test_the_figures_follow_a_rerun_of_the_active_layer(window, qtbot):
         counts.append(want)
         assert "Maneuvers" in dict(panel.rows())
     assert counts[1] < counts[0]
+
+
+def test_the_histogram_keeps_a_readable_height_when_the_dock_is_raised(window, qtbot, tmp_path):
+    """In the window as `wakeline gui` opens it (1400×900) the bottom dock area was 104 px
+    high: the lifetime histogram's bars got about 5 px under its title and axis. Raised,
+    the Statistics dock now keeps the histogram HIST_MIN_HEIGHT px high, about 80 px of
+    bars; behind the Log tab it asks no more than before (the docks above keep theirs)."""
+    from wakeline.app.stats_panel import HIST_MIN_HEIGHT, LOW_MIN_HEIGHT
+
+    path = tmp_path / "tracks.csv"
+    _scene(12, 40).to_csv(path, index=False)
+    window.show()
+    qtbot.waitExposed(window)
+    lid = load(window, path)
+    panel = window.stats
+    qtbot.waitUntil(lambda: panel.shown_key and panel.shown_key[0] == lid, timeout=20_000)
+    assert panel.hist.minimumHeight() == LOW_MIN_HEIGHT  # the Log tab is up at start
+    window.docks["stats"].raise_()
+    qtbot.waitUntil(lambda: panel.hist.isVisible() and panel.hist.height() >= HIST_MIN_HEIGHT)
+    assert panel.hist.minimumHeight() == HIST_MIN_HEIGHT
+    bars_px = panel.hist.getPlotItem().getViewBox().sceneBoundingRect().height()
+    assert bars_px >= 70, bars_px
+    assert int(np.sum(panel.bars.opts["height"])) == 12
+    window.docks["log"].raise_()
+    qtbot.waitUntil(lambda: panel.hist.minimumHeight() == LOW_MIN_HEIGHT)
