@@ -8,19 +8,14 @@ from wakeline.app.cli_common import EPILOG, positive_float, positive_int
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
+    from wakeline.app.cli_steps import read_options
     from wakeline.core.io import import_to_csv, nothing_imported, write_csv, write_json
 
     # Streamed: batch in, batch out (bounded memory); same output as read_points.
     result = import_to_csv(
         args.input,
         args.output,
-        fmt=args.format,
-        mapping=args.map or [],
-        encoding=args.encoding,
-        delimiter=args.delimiter,
-        sensor=args.sensor,
-        tz=args.tz,
-        skip_rows=args.skip_rows,
+        **read_options(args),
     )
     if args.quarantine:
         write_csv(result.quarantine, args.quarantine)
@@ -103,7 +98,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 def register(sub) -> None:
     """Add the import and simulate subcommands."""
-    from wakeline.core.io.formats import FAMILIES, FORMATS
+    from wakeline.app.cli_steps import add_read_flags
+    from wakeline.core.io.formats import FORMATS
     from wakeline.core.simulate import KINDS, LENGTH_CLASSES
 
     formats = "; ".join(f"{f.family}: {f.label}" for f in FORMATS)
@@ -117,36 +113,7 @@ def register(sub) -> None:
     )
     p.add_argument("input", type=Path, help="input CSV (.csv or .csv.gz)")
     p.add_argument("-o", "--output", type=Path, required=True, help="canonical CSV to write")
-    p.add_argument(
-        "--format", choices=FAMILIES, default="auto", help="input layout (default: auto-detect)"
-    )
-    p.add_argument(
-        "--map",
-        action="append",
-        metavar="FIELD=COLUMN",
-        help="take canonical FIELD (sensor, batch, time, lon, lat, speed, course, truth) "
-        "from COLUMN; repeatable",
-    )
-    p.add_argument(
-        "--encoding", help="text encoding (default: detect UTF-8 / UTF-16 by BOM / GB18030)"
-    )
-    p.add_argument("--delimiter", help="field delimiter (default: detect , ; or tab)")
-    p.add_argument(
-        "--skip-rows",
-        type=int,
-        metavar="N",
-        help="lines before the header (a title), skipped and counted (default: detect a title "
-        "above a header naming known columns)",
-    )
-    p.add_argument(
-        "--tz",
-        metavar="ZONE",
-        help="zone of times written without one: IANA name (Asia/Shanghai) or ±HH:MM "
-        "(default UTC; unix times are absolute and not shifted)",
-    )
-    p.add_argument(
-        "--sensor", default="S1", help="sensor name when the file has no sensor column (default S1)"
-    )
+    add_read_flags(p)
     p.add_argument(
         "--quarantine",
         type=Path,

@@ -260,8 +260,8 @@ def add_read_flags(
     prefix: str = "in",
     description: str | None = None,
 ) -> None:
-    """How to read the input, as for `wakeline import` (every step: a reading error
-    names --map, so every step takes it), in a group of their own.
+    """How to read the input, for `wakeline import` and every command reading track files
+    (a reading error names --map, so every one takes it), in a group of their own.
 
     A command whose own flags already use some of these names (``export``'s --format,
     --map, --encoding, --tz shape the file it writes) gets those as ``--PREFIX-NAME``
@@ -274,23 +274,44 @@ def add_read_flags(
     flags = {  # read_points keyword -> (flag name, argparse keywords)
         "fmt": (
             "format",
-            {"choices": FAMILIES, "default": "auto", "help": "input layout (default auto)"},
+            {"choices": FAMILIES, "default": "auto", "help": "input layout (default: auto-detect)"},
         ),
         "mapping": (
             "map",
-            {"action": "append", "metavar": "FIELD=COLUMN", "help": "as for import"},
+            {
+                "action": "append",
+                "metavar": "FIELD=COLUMN",
+                "help": "take canonical FIELD (sensor, batch, time, lon, lat, speed, course, "
+                "truth) from COLUMN; repeatable",
+            },
         ),
-        "encoding": ("encoding", {"help": "text encoding (default: detect)"}),
-        "delimiter": ("delimiter", {"help": "field delimiter (default: detect)"}),
-        "tz": ("tz", {"metavar": "ZONE", "help": "zone of times written without one (as import)"}),
-        "sensor": ("sensor", {"default": "S1", "help": "sensor name when the file has none"}),
+        "encoding": (
+            "encoding",
+            {"help": "text encoding (default: detect UTF-8 / UTF-16 by BOM / GB18030)"},
+        ),
+        "delimiter": ("delimiter", {"help": "field delimiter (default: detect , ; or tab)"}),
+        "tz": (
+            "tz",
+            {
+                "metavar": "ZONE",
+                "help": "zone of times written without one: IANA name (Asia/Shanghai) or "
+                "±HH:MM (default UTC; unix times are absolute and not shifted)",
+            },
+        ),
+        "sensor": (
+            "sensor",
+            {
+                "default": "S1",
+                "help": "sensor name when the file has no sensor column (default S1)",
+            },
+        ),
         "skip_rows": (
             "skip-rows",
             {
                 "type": int,
                 "metavar": "N",
                 "help": "lines before the header (a title), skipped and counted (default: "
-                "detect, as import)",
+                "detect a title above a header naming known columns)",
             },
         ),
     }
