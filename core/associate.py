@@ -44,6 +44,21 @@ class LinkParams(Params):
         86400.0 * 7,
         "seed 003 tuned 70 s / 90 s on MTAD; 720 s covers 10 min gaps plus a sampling period",
     )
+    step_allowance_s: float = param(
+        120.0,
+        "s",
+        "T_gap in sampling steps: the two sampling steps (the old end's and the new start's, "
+        "summed) that max_gap_s allows for — a 10-min outage of 1-min AIS is a gap of up to "
+        "10 + 2 × 1 min. A pair whose ends' median steps sum to more has the excess taken "
+        "off its gap wherever the gap meets a time limit (max_gap_s, soft_gap_s, long_gap_s "
+        "and the gap price), so the limits hold the same outage at any sampling: at 3-min "
+        "sampling T_gap is 600 + 2 × 180 = 960 s (0 = off: the gap as it is, whatever the "
+        "sampling)",
+        0.0,
+        86400.0,
+        "ours (issue 15, sampling sweep; max_gap_s 720 = a 600 s outage plus two 60 s "
+        "steps): docs/evaluation.md",
+    )
     soft_gap_s: float = param(
         1200.0,
         "s",
@@ -333,21 +348,60 @@ class Pairs:
     miss_m: np.ndarray
     dcourse_deg: np.ndarray
     dspeed_kn: np.ndarray
+    #: Seconds of the gap that sparse sampling explains beyond what the time limits allow
+    #: for (``step_allowance_s``; :func:`counted_gap`); None: none.
+    allow_s: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.i)
+
+    def _field(self, f: str) -> np.ndarray:
+        v = getattr(self, f)
+        return np.zeros(len(self.i)) if v is None else v
 
     def concat(self, other: "Pairs") -> "Pairs":
         """These pairs followed by ``other``'s."""
         return Pairs(
             *(
-                np.concatenate([getattr(self, f), getattr(other, f)])
+                None
+                if getattr(self, f) is None and getattr(other, f) is None
+                else np.concatenate([self._field(f), other._field(f)])
                 for f in self.__dataclass_fields__
             )
         )
 
     def take(self, keep: np.ndarray) -> "Pairs":
-        return Pairs(*(getattr(self, f)[keep] for f in self.__dataclass_fields__))
+        return Pairs(
+            *(
+                None if getattr(self, f) is None else getattr(self, f)[keep]
+                for f in self.__dataclass_fields__
+            )
+        )
+
+
+def counted_gap(pairs: Pairs) -> np.ndarray:
+    """Per pair: its gap (s) as the time limits count it — less the part its ends' sparse
+    sampling explains (``step_allowance_s``, :func:`_step_allowance`)."""
+    return pairs.gap_s if pairs.allow_s is None else pairs.gap_s - pairs.allow_s
+
+
+def _step_allowance(seg: Segments, i: np.ndarray, j: np.ndarray, allowance_s: float) -> np.ndarray:
+    """Per pair (old ``i`` → new ``j``): the seconds by which the old end's and the new
+    start's median time steps (``step1`` / ``step0``) sum to more than ``allowance_s``
+    (0 where not, or when ``allowance_s`` is 0: off)."""
+    if allowance_s <= 0 or seg.step1 is None or seg.step0 is None:
+        return np.zeros(len(i))
+    steps = np.nan_to_num(seg.step1[i]) + np.nan_to_num(seg.step0[j])
+    return np.maximum(steps - allowance_s, 0.0)
+
+
+def _largest_allowance(seg: Segments, params: LinkParams) -> float:
+    """The most (s) :func:`_step_allowance` gives any pair of ``seg``: how much further in
+    time a candidate search must look."""
+    if params.step_allowance_s <= 0 or seg.step1 is None or seg.step0 is None or not len(seg):
+        return 0.0
+    top = float(np.nanmax(np.nan_to_num(seg.step1))) + float(np.nanmax(np.nan_to_num(seg.step0)))
+    return max(top - params.step_allowance_s, 0.0)
 
 
 def _grid_pairs(
@@ -488,7 +542,8 @@ def candidate_pairs(
     min_gap_s: float = 0.0,
 ) -> Pairs:
     """Pairs of one sensor with ``min_gap_s < start(j) − end(i) ≤ max_gap_s`` (``min_gap_s``
-    0 by default) and reachable at
+    0 by default; the gap as the time limits count it, :func:`counted_gap`: less the
+    part sparse sampling explains, ``step_allowance_s``) and reachable at
     ``v_max_kn`` — or at :data:`FAST_FACTOR` × the speed the faster end was seen at, when
     that is more (:func:`_seen_speed_kn`) — plus ``position_tol_m``; features per pair,
     ordered by (i, j). ``ends`` /
@@ -511,10 +566,19 @@ def candidate_pairs(
     wide = (
         replace(params, v_max_kn=max(params.v_max_kn, seen)) if seen > params.v_max_kn else params
     )
+    # Sparse sampling: the gaps are counted less each pair's step allowance, so the search
+    # looks as much further as the largest allowance (the exact test per pair follows).
+    extra = _largest_allowance(seg, params)
+    if extra > 0:
+        wide = replace(wide, max_gap_s=params.max_gap_s + extra)
     found = _grid_pairs(seg, wide, ends, starts, min_gap_s)
     i, j = found if found is not None else _tree_pairs(seg, wide)
     gap = seg.t0[j] - seg.t1[i]
-    keep = (i != j) & (gap > max(min_gap_s, 0.0)) & (gap <= params.max_gap_s)
+    allow = _step_allowance(seg, i, j, params.step_allowance_s)
+    counted = gap - allow
+    keep = (i != j) & (gap > 0.0) & (counted <= params.max_gap_s)
+    if min_gap_s > 0:
+        keep &= counted > min_gap_s
     if found is None and ends is not None:
         keep &= ends[i]
     if found is None and starts is not None:
@@ -528,7 +592,7 @@ def candidate_pairs(
     keep = dist <= v * gap + params.position_tol_m
     i, j, dist = i[keep], j[keep], dist[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
-    return pair_features(seg, i[order], j[order], dist[order])
+    return pair_features(seg, i[order], j[order], dist[order], params.step_allowance_s)
 
 
 def _narrowed(
@@ -659,7 +723,7 @@ def first_pass_pairs(
 def _gap_price(pairs: Pairs, params: LinkParams) -> np.ndarray:
     """Per pair: what the assignment adds for a gap beyond ``max_gap_s`` (soft T_gap):
     ``gap_price`` per ``max_gap_s`` beyond it."""
-    beyond = np.maximum(pairs.gap_s - params.max_gap_s, 0.0)
+    beyond = np.maximum(counted_gap(pairs) - params.max_gap_s, 0.0)
     return params.gap_price * beyond / max(params.max_gap_s, 1e-9)
 
 
@@ -671,7 +735,7 @@ def soft_gap_test(
     ``long_margin`` — among all its candidates here, not only those overlapping in time
     (the margin test's), a rival whose other piece is claimed more cheaply excepted.
     A long join is held to the second look's standard; both pieces stay loose."""
-    long = pairs.gap_s[chosen] > params.max_gap_s
+    long = counted_gap(pairs)[chosen] > params.max_gap_s
     if not long.any():
         return chosen
     claim_end = np.full(n, np.inf)
@@ -727,11 +791,16 @@ def _seen_speed_kn(seg: Segments) -> tuple[np.ndarray, np.ndarray]:
 
 
 def pair_features(
-    seg: Segments, i: np.ndarray, j: np.ndarray, dist: np.ndarray | None = None
+    seg: Segments,
+    i: np.ndarray,
+    j: np.ndarray,
+    dist: np.ndarray | None = None,
+    step_allowance_s: float = 0.0,
 ) -> Pairs:
     """The features of the pairs (old ``i`` → new ``j``) of ``seg``: gap, end-to-start
     distance (m; ``dist`` when the caller has it), dead-reckoning miss, course and speed
-    differences."""
+    differences, and the gap's step allowance (s; ``step_allowance_s``,
+    :func:`_step_allowance`; None when no pair has one)."""
     gap = seg.t0[j] - seg.t1[i]
     if dist is None:
         dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
@@ -744,7 +813,10 @@ def pair_features(
     slow = np.minimum(seg.speed1_kn[i], seg.speed0_kn[j])
     dcourse = geo.angle_diff(seg.course1_deg[i], seg.course0_deg[j]) * np.clip(slow / 2.0, 0, 1)
     dspeed = np.abs(seg.speed1_kn[i] - seg.speed0_kn[j])
-    return Pairs(i, j, gap, dist, miss, dcourse, dspeed)
+    allow = _step_allowance(seg, i, j, step_allowance_s) if step_allowance_s > 0 else None
+    if allow is not None and not allow.any():
+        allow = None  # the common case (steps within the allowance): no array kept
+    return Pairs(i, j, gap, dist, miss, dcourse, dspeed, allow)
 
 
 def _miss_one_turn(
@@ -1080,7 +1152,7 @@ def _references(pairs: Pairs, priced: _Priced, params: LinkParams, n: int) -> tu
         & np.isfinite(priced.log_sd)
     )
     out = []
-    for use in (ok & (pairs.gap_s <= params.max_gap_s), ok):
+    for use in (ok & (counted_gap(pairs) <= params.max_gap_s), ok):
         # The others as inf, which no minimum takes: one pass, not three gathers of the
         # pairs used.
         log_sd = np.where(use, priced.log_sd, np.inf)
@@ -1114,7 +1186,7 @@ def _spread(
     # A pair the first pass may see (within max_gap_s, or the soft T_gap's) is compared
     # with its ends' candidates within max_gap_s: every candidate set holds those, so the
     # cost is the same whichever set it is priced in.
-    first = _in_first(pairs.gap_s, fitted, params)
+    first = _in_first(counted_gap(pairs), fitted, params)
     best = np.where(
         first,
         np.minimum(short_i[i], short_j[j]),
@@ -1380,7 +1452,7 @@ class Association:
         """Per chosen pair: joined across a gap beyond ``max_gap_s`` (by the second look, or
         by the assignment within the soft T_gap, ``soft_gap_s``)."""
         limit = self.params.max_gap_s if self.params is not None else np.inf
-        return self.pairs.gap_s[self.chosen] > limit
+        return counted_gap(self.pairs)[self.chosen] > limit
 
     def report(self) -> dict:
         n_targets = len(np.unique(self.target_of_track))
@@ -1427,7 +1499,7 @@ def _assign_scaled(seg: Segments, pairs: Pairs, cost: np.ndarray, params: LinkPa
     """Assignment with the loose-end price, the short-piece rule and the margin test; pairs
     beyond ``max_gap_s`` (soft T_gap) pay the gap price and must pass
     :func:`soft_gap_test`."""
-    if len(pairs) and (pairs.gap_s > params.max_gap_s).any():
+    if len(pairs) and (counted_gap(pairs) > params.max_gap_s).any():
         cost = cost + _gap_price(pairs, params)
     chosen = assign(pairs.i, pairs.j, cost, params.gate, params.no_join)
     chosen = insert_skipped(seg, pairs, cost, chosen, min(params.gate, params.no_join))
@@ -1555,7 +1627,7 @@ def long_gap_pass(
         parts = _pricing(p, wide, "scaled", seg).refusing(p, n, blocked)
         refs = None
         if main_refs is not None:
-            long = p.gap_s > params.max_gap_s
+            long = counted_gap(p) > params.max_gap_s
             own = _references(p.take(long), parts.take(long), params, n)
             refs = tuple(
                 (np.minimum(a_i, b_i), np.minimum(a_j, b_j))
@@ -1587,7 +1659,7 @@ def long_gap_pass(
             return (
                 free_end[cand.i]
                 & free_start[cand.j]
-                & (cand.gap_s > params.max_gap_s)
+                & (counted_gap(cand) > params.max_gap_s)
                 & (c <= limit)
                 & (best_i[cand.i] == k)
                 & (best_j[cand.j] == k)
@@ -1637,7 +1709,7 @@ def long_gap_pass(
             return none
         # Every long candidate of the pieces looked at is kept (their rivals beyond
         # T_gap: the review shows the runner-up of a long join).
-        long = cand.gap_s > params.max_gap_s
+        long = counted_gap(cand) > params.max_gap_s
         return cand.take(long), c[long], ok[long]
 
     released = np.zeros(0, dtype="int64")
@@ -1715,7 +1787,7 @@ def _released(
     )
     # A join across the soft T_gap is itself long: its pieces' rivals are looked for as
     # far as the second look reaches (few joins, so few searches).
-    far = open_[pairs.gap_s[open_] > params.max_gap_s]
+    far = open_[counted_gap(pairs)[open_] > params.max_gap_s]
     if len(far) and params.long_gap_s > near.max_gap_s:
         wide = replace(params, max_gap_s=params.long_gap_s)
         end_far = np.zeros(n, dtype=bool)
@@ -1727,7 +1799,7 @@ def _released(
             candidate_pairs(seg, wide, free_end, start_far, beyond)
         )
         rivals = rivals.concat(more)
-    rivals = rivals.take(rivals.gap_s > params.max_gap_s)
+    rivals = rivals.take(counted_gap(rivals) > params.max_gap_s)
     if not len(rivals):
         return np.zeros(0, dtype="int64")
     c_riv = price(rivals)
@@ -1790,11 +1862,17 @@ def assign_interrupted(
         if not touched.any():
             break
         # Only pairs with an end refitted now or in the previous pass change.
-        new = pair_features(seg, pairs.i[touched], pairs.j[touched])
+        # The steps are the base's (a refit end is seen at the sampling it was).
+        new = replace(
+            pair_features(seg, pairs.i[touched], pairs.j[touched]),
+            allow_s=None if pairs.allow_s is None else pairs.allow_s[touched],
+        )
         fields = {}
         for f in Pairs.__dataclass_fields__:
-            v = getattr(pairs, f).copy()
-            v[touched] = getattr(new, f)
+            v = getattr(pairs, f)
+            if v is not None:
+                v = v.copy()
+                v[touched] = getattr(new, f)
             fields[f] = v
         pairs = Pairs(**fields)
         if spread:

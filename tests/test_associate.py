@@ -13,6 +13,7 @@ from wakeline.core.associate import (
     associate_interrupted,
     associate_segments,
     candidate_pairs,
+    counted_gap,
     dtw_batch,
     first_pass_pairs,
     greedy_assign,
@@ -914,14 +915,16 @@ def test_a_ferry_that_sped_up_just_before_its_gap_is_in_reach_at_any_sampling(pe
 
 def test_a_two_fix_piece_takes_part_in_the_soft_t_gap():
     """At 3-min sampling a ship seen for 3 min is two fixes: its motion shows (it is
-    moving), so its pair across a 15-min gap is in the first pass's assignment
-    (``soft_min_fixes`` 2); at 3, the paper-era rule, only the second look could see it."""
+    moving), so its pair across an 18-min gap is in the first pass's assignment
+    (``soft_min_fixes`` 2); at 3, the paper-era rule, only the second look could see it.
+    (18 min: beyond T_gap even counted in steps, 1,080 s less 2 × 180 − 120 s = 840 s.)"""
     a = straight("a", 0, 1620, speed=6.0, period=180.0, truth="A")
-    b = straight("b", 2520, 2700, speed=6.0, period=180.0, truth="A")
+    b = straight("b", 2700, 2880, speed=6.0, period=180.0, truth="A")
     seg = segment_stats(pd.concat([a, b]), 10, end_points_max=40, end_span_s=450.0)
     assert list(seg.n) == [10, 2]
     pairs = first_pass_pairs(seg, LinkParams())[0]
-    assert list(zip(pairs.i, pairs.j, strict=True)) == [(0, 1)] and pairs.gap_s[0] == 900.0
+    assert list(zip(pairs.i, pairs.j, strict=True)) == [(0, 1)] and pairs.gap_s[0] == 1080.0
+    assert counted_gap(pairs)[0] == 840.0
     assert len(first_pass_pairs(seg, LinkParams(soft_min_fixes=3))[0]) == 0
 
 
@@ -946,3 +949,53 @@ def test_end_fits_in_track_time_leave_dense_tracks_as_they_were():
                 np.testing.assert_array_equal(getattr(old, f), getattr(new, f), err_msg=f)
         else:  # the long straight piece "a" is fitted along its run to 4 x `fixes`, not 40
             assert new.span1[0] == (4 * fixes - 1) * period < old.span1[0] == 39 * period
+
+
+def _lane(batch, t0, t1, y_m, truth, seed, period=180.0):
+    """A ship east at 5 m/s along y = ``y_m``, a fix every ``period`` s, 20 m noise."""
+    t = np.arange(t0, t1 + 1e-9, period)
+    rng = np.random.default_rng(seed)
+    return track(
+        batch, t, 5.0 * t + rng.normal(0, 20, len(t)), y_m + rng.normal(0, 20, len(t)), truth
+    )
+
+
+def test_t_gap_counts_the_outage_not_the_sampling():
+    """``step_allowance_s``: at 3-min sampling a 10-min outage is a 15-min gap (600 s plus
+    a step at each side), within T_gap counted in steps (900 − (180 + 180 − 120) = 660 s).
+    The rule before saw it only beyond T_gap: from pieces with no cheap candidate within
+    720 s, at the gap price. Here ship A's end (a1) has one, ship X's next piece 150 m
+    off (X continues it itself), so A's own next piece (a2) was never weighed for it, and
+    B's last piece, ending 300 m off A's lane 480 s before a2 starts, took a2: a wrong
+    join (every noise seed of 12 tried). Counted in steps, a1 → a2 is weighed with the
+    rest and b1 → a2 loses (the two are within the margin of each other, so a2 stays
+    loose)."""
+    df = pd.concat(
+        [
+            _lane("a1", 0, 1800, 0.0, "A", 0),
+            _lane("a2", 2700, 4500, 0.0, "A", 1),
+            _lane("x0", 0, 1800, 150.0, "X", 2),
+            _lane("x1", 2100, 4500, 150.0, "X", 3),
+            _lane("b1", 0, 2220, 300.0, "B", 4),
+        ],
+        ignore_index=True,
+    )
+
+    def joins(params):
+        pt = associate_interrupted(df, params).pair_table()
+        return sorted(zip(pt["batch_a"], pt["batch_b"], strict=True))
+
+    assert joins(LinkParams(step_allowance_s=0.0)) == [("b1", "a2"), ("x0", "x1")]
+    assert joins(LinkParams()) == [("x0", "x1")]
+    seg = segment_stats(df, 10, end_span_s=450.0)
+    pairs = candidate_pairs(seg, LinkParams())
+    names = seg.index.keys["batch"].to_numpy()
+    k = np.flatnonzero((names[pairs.i] == "a1") & (names[pairs.j] == "a2"))
+    assert len(k) == 1 and pairs.gap_s[k[0]] == 900.0 and counted_gap(pairs)[k[0]] == 660.0
+    before = candidate_pairs(seg, LinkParams(step_allowance_s=0.0))
+    assert not ((names[before.i] == "a1") & (names[before.j] == "a2")).any()
+    # Dense sampling is untouched: at 60 s the steps are within the allowance.
+    dense = pd.concat(
+        [_lane("a1", 0, 1800, 0.0, "A", 0, 60.0), _lane("a2", 2700, 4500, 0.0, "A", 1, 60.0)]
+    )
+    assert candidate_pairs(segment_stats(dense), LinkParams()).allow_s is None

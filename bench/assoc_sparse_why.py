@@ -1,0 +1,167 @@
+"""Why association fails on decimated MTAD (issue 15 goal 3c): every wrong join and every
+missed true pair, at any gap, with what decided it.
+
+    python bench/assoc_sparse_why.py --set mtad-tune --rate 180 [--set-param NAME=VALUE] [--list]
+
+Per true pair (consecutive pieces of one track, any gap): joined, or missed because
+``beyond`` (not a candidate of any pass: gap over ``soft_gap_s`` and the second look did not
+reach it, or over ``long_gap_s``; raw gap), ``unreach`` (gap within reach but no candidate:
+reachability, ``min_gap_steps``, soft-gap eligibility), ``taken`` (a piece went to a wrong
+join), ``loose`` (a candidate, both pieces left free: cost above ``no_join`` / the gate, or
+dropped by the margin / soft-gap test). Per wrong join: the band of its gap as the time
+limits count it (``first`` ≤ ``max_gap_s`` < ``soft`` ≤ ``soft_gap_s`` < ``long``; less the
+step allowance, ``step_allowance_s``), and whether the old end has a true
+successor / the new start a true predecessor at all (``loose``: one of them has none —
+a track's last or first piece joined; ``swap``: both had one).
+Tallies by the fixes of the smaller piece (1, 2, 3, 4+).
+"""
+
+import argparse
+import sys
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import assoc_rates as ar  # noqa: E402
+import sampling_sweep as sw  # noqa: E402
+
+from wakeline.core.associate import LinkParams, counted_gap  # noqa: E402
+from wakeline.core.evaluate_association import (  # noqa: E402
+    _truth,
+    cut_known_gaps,
+    run_method,
+)
+
+
+def _fixes(n: int) -> str:
+    return str(n) if n < 4 else "4+"
+
+
+def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list]:
+    """(true pair rows, wrong join rows) of one scene cut at known ``gaps`` (lo, hi) s."""
+    ship = pts["batch"].astype(str).str.split("-").str[0]
+    df = pts.assign(truth=_truth(pts.assign(batch=ship)))
+    cut = cut_known_gaps(df, *gaps, seed=seed)
+    a = run_method(cut, "ours, optimal", params)
+    seg = a.segments
+    truth = seg.column("truth").astype(str).to_numpy()[seg.index.starts]
+    order = np.lexsort((seg.t0, truth))
+    same = truth[order][1:] == truth[order][:-1]
+    ti, tj = order[:-1][same], order[1:][same]
+    true = set(zip(ti.tolist(), tj.tolist(), strict=True))
+    succ, pred = set(ti.tolist()), set(tj.tolist())
+    pi, pj = a.pairs.i, a.pairs.j
+    key = {(int(x), int(y)): k for k, (x, y) in enumerate(zip(pi, pj, strict=True))}
+    ch = a.chosen
+    out = {(int(pi[k]), int(pj[k])): int(k) for k in ch}
+    used_i = {i for i, _ in out}
+    used_j = {j for _, j in out}
+    n = seg.n
+    step = np.fmax(seg.step1, 0)
+    trues = []
+    for i, j in sorted(true):
+        gap = seg.t0[j] - seg.t1[i]
+        k = key.get((i, j))
+        if (i, j) in out:
+            why = "joined"
+        elif k is None:
+            why = "beyond" if gap > params.soft_gap_s else "unreach"
+        elif i in used_i or j in used_j:
+            why = "taken"
+        else:
+            why = "loose"
+        trues.append(
+            dict(
+                i=i,
+                j=j,
+                gap=gap,
+                steps=gap / step[i] if step[i] > 0 else np.nan,
+                ni=int(n[i]),
+                nj=int(n[j]),
+                cost=float(a.cost[k]) if k is not None else np.nan,
+                miss=float(a.pairs.miss_m[k]) if k is not None else np.nan,
+                why=why,
+            )
+        )
+    wrongs = []
+    counted = counted_gap(a.pairs)
+    for (i, j), k in out.items():
+        if (i, j) in true:
+            continue
+        gap = seg.t0[j] - seg.t1[i]
+        band = (
+            "first"
+            if counted[k] <= params.max_gap_s
+            else ("soft" if counted[k] <= max(params.soft_gap_s, params.max_gap_s) else "long")
+        )
+        kind = "skip" if truth[i] == truth[j] else ("swap" if i in succ and j in pred else "loose")
+        wrongs.append(
+            dict(
+                i=i,
+                j=j,
+                gap=gap,
+                steps=gap / step[i] if step[i] > 0 else np.nan,
+                ni=int(n[i]),
+                nj=int(n[j]),
+                cost=float(a.cost[k]),
+                miss=float(a.pairs.miss_m[k]),
+                dist=float(a.pairs.dist_m[k]),
+                band=band,
+                kind=kind,
+                moving=bool(a.segments.motion1[i] and a.segments.motion0[j]),
+            )
+        )
+    return trues, wrongs
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--set", default="mtad-tune", help="mtad-tune or mtad-held")
+    ap.add_argument("--rate", type=float, default=180.0)
+    ap.add_argument("--set-param", action="append", default=[], help="LinkParams NAME=VALUE")
+    ap.add_argument("--list", action="store_true", help="print every wrong join and miss")
+    a = ap.parse_args(argv)
+    params = LinkParams().replace(**dict(kv.split("=", 1) for kv in a.set_param))
+    scenes, (gaps, _every) = ar.scenes_of(a.set)
+    trues, wrongs = [], []
+    for s, (pts, _sep) in enumerate(scenes):
+        t, w = scene_rows(sw.decimate(pts, a.rate), params, gaps)
+        trues += [dict(r, scene=s) for r in t]
+        wrongs += [dict(r, scene=s) for r in w]
+    print(f"{a.set} at {a.rate:g} s: {len(trues)} true pairs, {len(wrongs)} wrong joins")
+    print("true pairs by outcome:", dict(Counter(r["why"] for r in trues)))
+    print("misses by outcome x smaller piece fixes:")
+    for why in ("beyond", "unreach", "taken", "loose"):
+        c = Counter(_fixes(min(r["ni"], r["nj"])) for r in trues if r["why"] == why)
+        print(f"  {why:<8}", dict(sorted(c.items())))
+    print("true pairs by gap band (joined / all):")
+    for lo, hi in ((0, 720), (720, 1200), (1200, 3600), (3600, np.inf)):
+        rs = [r for r in trues if lo < r["gap"] <= hi]
+        print(f"  {lo:>5}-{hi:<5} {sum(r['why'] == 'joined' for r in rs):4d} / {len(rs):4d}")
+    print("wrong joins by band x kind:", dict(Counter((r["band"], r["kind"]) for r in wrongs)))
+    print(
+        "wrong joins by smaller piece fixes:",
+        dict(sorted(Counter(_fixes(min(r["ni"], r["nj"])) for r in wrongs).items())),
+    )
+    print("wrong joins, gap < 1 step of the old end:", sum(r["steps"] < 1.0 for r in wrongs))
+    if a.list:
+        print("\nwrong joins:")
+        for r in sorted(wrongs, key=lambda r: (r["band"], r["scene"])):
+            print(
+                f"  sc{r['scene']} {r['band']:<5} {r['kind']:<5} gap {r['gap']:6.0f} s "
+                f"({r['steps']:4.1f} steps) n {r['ni']:3d}->{r['nj']:<3d} cost {r['cost']:.2f} "
+                f"miss {r['miss']:6.0f} m dist {r['dist']:6.0f} m moving {r['moving']}"
+            )
+        print("\nmisses:")
+        for r in sorted(trues, key=lambda r: (r["why"], r["scene"])):
+            if r["why"] != "joined":
+                print(
+                    f"  sc{r['scene']} {r['why']:<7} gap {r['gap']:6.0f} s ({r['steps']:4.1f} steps)"
+                    f" n {r['ni']:3d}->{r['nj']:<3d} cost {r['cost']:.2f} miss {r['miss']:6.0f} m"
+                )
+
+
+if __name__ == "__main__":
+    main()
