@@ -465,11 +465,13 @@ def clutter_tracks(
     origin: tuple[float, float],
     first_batch: int,
 ) -> list[pd.DataFrame]:
-    """Short false tracks (3–15 fixes, wandering at 0–15 kn), each its own ``truth``."""
+    """Short false tracks (3–15 fixes, wandering at 0–15 kn), each its own ``truth``; never
+    more fixes than the scene's duration holds at ``period_s`` (sparse sampling)."""
     frames = []
+    fit = max(1, int(duration_s // period_s)) if period_s > 0 else 15
     for k in range(n):
-        m = int(rng.integers(3, 16))
-        t = rng.uniform(0.0, duration_s - m * period_s) + period_s * np.arange(m)
+        m = min(int(rng.integers(3, 16)), fit)
+        t = rng.uniform(0.0, max(0.0, duration_s - m * period_s)) + period_s * np.arange(m)
         v = rng.uniform(0.0, 15.0) * geo.KN_MS
         head = np.radians(rng.uniform(0, 360) + np.cumsum(rng.normal(0, 20.0, m)))
         xy0 = rng.uniform(-area_m / 2, area_m / 2, 2)

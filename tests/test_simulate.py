@@ -188,3 +188,16 @@ def test_hard_radar_offset_along_and_across_the_track():
     rel_along = np.std(np.concatenate(steps_along)) / np.std(along)
     rel_across = np.std(np.concatenate(steps_across)) / np.std(across)
     assert rel_across > 1.8 * rel_along
+
+
+def test_hard_segments_scene_at_sparse_sampling():
+    """Clutter tracks fit the scene at any period: 10-min sampling of a 2-h scene raised
+    (3-15 clutter fixes need up to 9,000 s)."""
+    from wakeline.core.simulate import segments_scene
+
+    for seed in range(4):
+        pts = segments_scene(seed=seed, hard=True, period_s=600.0)
+        clutter = pts[pts["truth"].astype(str).str.startswith("clutter")]
+        assert len(clutter) > 0
+        t = (clutter["time"] - pts["time"].min()).dt.total_seconds()
+        assert t.max() <= 7200.0 + 1e-6
