@@ -60,6 +60,21 @@ def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list
     used_j = {j for _, j in out}
     n = seg.n
     step = np.fmax(seg.step1, 0)
+
+    def pair_row(i: int, j: int, k) -> dict:
+        """The columns a true pair and a wrong join share (k: the pair's row, or None)."""
+        gap = seg.t0[j] - seg.t1[i]
+        return dict(
+            i=i,
+            j=j,
+            gap=gap,
+            steps=gap / step[i] if step[i] > 0 else np.nan,
+            ni=int(n[i]),
+            nj=int(n[j]),
+            cost=float(a.cost[k]) if k is not None else np.nan,
+            miss=float(a.pairs.miss_m[k]) if k is not None else np.nan,
+        )
+
     trues = []
     for i, j in sorted(true):
         gap = seg.t0[j] - seg.t1[i]
@@ -72,25 +87,12 @@ def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list
             why = "taken"
         else:
             why = "loose"
-        trues.append(
-            dict(
-                i=i,
-                j=j,
-                gap=gap,
-                steps=gap / step[i] if step[i] > 0 else np.nan,
-                ni=int(n[i]),
-                nj=int(n[j]),
-                cost=float(a.cost[k]) if k is not None else np.nan,
-                miss=float(a.pairs.miss_m[k]) if k is not None else np.nan,
-                why=why,
-            )
-        )
+        trues.append(dict(**pair_row(i, j, k), why=why))
     wrongs = []
     counted = counted_gap(a.pairs)
     for (i, j), k in out.items():
         if (i, j) in true:
             continue
-        gap = seg.t0[j] - seg.t1[i]
         band = (
             "first"
             if counted[k] <= params.max_gap_s
@@ -99,14 +101,7 @@ def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list
         kind = "skip" if truth[i] == truth[j] else ("swap" if i in succ and j in pred else "loose")
         wrongs.append(
             dict(
-                i=i,
-                j=j,
-                gap=gap,
-                steps=gap / step[i] if step[i] > 0 else np.nan,
-                ni=int(n[i]),
-                nj=int(n[j]),
-                cost=float(a.cost[k]),
-                miss=float(a.pairs.miss_m[k]),
+                **pair_row(i, j, k),
                 dist=float(a.pairs.dist_m[k]),
                 band=band,
                 kind=kind,
