@@ -14,6 +14,7 @@ import pandas as pd
 
 from wakeline.app.map_frame import PositionSketch, framed_box, position_sketch
 from wakeline.app.models import batch_summary, display_text
+from wakeline.core.geo import EARTH_RADIUS_M
 from wakeline.core.tracks import sort_points, track_index
 
 DRAW_STYLE = {  # kind -> (symbol size px, line width px); maneuver layers draw their turns
@@ -88,15 +89,24 @@ def framed_range(sketches: list) -> tuple[float, float, float, float] | None:
     return padded_range([framed_box(sketches)])
 
 
+#: Smallest margin (m) of a fitted view on each side: a single fix is shown 100 m wide.
+#: (It was 0.01°, a kilometre: a 1 km harbour scene filled a quarter of the view.)
+MIN_PAD_M = 50.0
+
+
 def padded_range(boxes: list) -> tuple[float, float, float, float] | None:
     """The range (x0, x1, y0, y1, degrees) :meth:`MapCanvas.fit` asks for: the union of
-    ``boxes`` (west, south, east, north) with a 5 % margin (at least 0.01°)."""
+    ``boxes`` (west, south, east, north) with a 5 % margin (at least :data:`MIN_PAD_M`
+    metres, in longitude at the box's middle latitude)."""
     boxes = [b for b in boxes if b is not None]
     if not boxes:
         return None
     w, s = min(b[0] for b in boxes), min(b[1] for b in boxes)
     e, n = max(b[2] for b in boxes), max(b[3] for b in boxes)
-    pad_x, pad_y = max((e - w) * 0.05, 0.01), max((n - s) * 0.05, 0.01)
+    min_pad = math.degrees(MIN_PAD_M / EARTH_RADIUS_M)
+    cos = max(math.cos(math.radians(0.5 * (s + n))), 0.05)
+    pad_x = max((e - w) * 0.05, min_pad / cos)
+    pad_y = max((n - s) * 0.05, min_pad)
     return (w - pad_x, e + pad_x, s - pad_y, n + pad_y)
 
 

@@ -602,3 +602,29 @@ def test_render_steps_draw_each_layer_once_and_the_input_in_its_own_colour(tmp_p
     assert [suffix for suffix, _, _ in derived] == ["maneuvers", "compressed"]
     taken = {layer_colors(kind, 1)[0] for _, kind, _ in derived}
     assert layer_colors("source", 1, taken)[0] == SOURCE_COLORS[0]
+
+
+def test_render_frames_a_harbour_scene_closely(qapp, tmp_path, capsys):
+    """A scene 1 km across (Autoferry's Trondheim harbour radar) filled a quarter of the
+    rendered view: the fit padded at least 0.01° (a kilometre) on each side. The margin
+    is now 5 % with a 50 m floor, so the scene fills most of the view's height (the
+    legend beside the map takes some of its width)."""
+    from wakeline.app.layer_view import padded_range
+
+    t = pd.Timestamp("2021-05-04T07:55:00Z") + pd.to_timedelta(np.arange(60) * 2, "s")
+    lon = 10.385 + np.linspace(0.0, 0.012, 60)  # ~600 m east
+    lat = 63.4340 + np.linspace(0.0, 0.007, 60)  # ~780 m north
+    csv = tmp_path / "harbour.csv"
+    pd.DataFrame({"sensor": "radar", "batch": "1", "time": t, "lon": lon, "lat": lat}).to_csv(
+        csv, index=False
+    )
+    assert main(["render", str(csv), "-o", str(tmp_path / "h.png")]) == 0
+    out = capsys.readouterr().out
+    w, s, e, n = (float(v) for v in out.split("bounds ")[1].rstrip(")\n").split(","))
+    assert w <= lon.min() and e >= lon.max() and s <= lat.min() and n >= lat.max()
+    assert (lat.max() - lat.min()) / (n - s) > 0.6  # was 0.20
+    # A single fix: 50 m each side (was 1.1 km).
+    x0, x1, y0, y1 = padded_range([(10.39, 63.44, 10.39, 63.44)])
+    assert geo.haversine_m(x0, 63.44, x1, 63.44) == pytest.approx(100.0, rel=0.01)
+    assert geo.haversine_m(10.39, y0, 10.39, y1) == pytest.approx(100.0, rel=0.01)
+
