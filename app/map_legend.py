@@ -14,6 +14,10 @@ LABEL_MAX = 32
 RESERVED_CHARS = 26
 #: Room (px) left in the column for a label item's own padding.
 LABEL_PADDING_PX = 10.0
+#: Between a layer's file name and what the layer is ("tracks.csv · cleaned").
+LABEL_SEPARATOR = " · "
+#: Fewest characters of the file's name a shortened label keeps before its "· what".
+MIN_HEAD_CHARS = 8
 #: The most height (px) the legend asks of the plot's layout; a longer one is clipped.
 MIN_HEIGHT_PX = 120.0
 
@@ -63,11 +67,24 @@ class SideLegend(pg.LegendItem):
         self._hidden: dict[int, tuple] = {}  # id(item) -> (sample, label) left out
         self.updateSize()
 
+    def fit_label(self, name: str) -> str:
+        """``name`` shortened to fit the column. A layer's name ``FILE · what`` (the steps'
+        layers, the input's sensors) keeps ``· what`` whole and shortens the file's name
+        in its middle: shortening the whole left "autoferry_{ra…v · maneuvers" beside
+        "autoferry_{ra… · compressed" (the file's end cut at a different place in each)."""
+        middle = QtCore.Qt.TextElideMode.ElideMiddle
+        whole = self._metrics.elidedText(short_label(name), middle, self._label_px)
+        if whole == name:
+            return name
+        head, sep, tail = name.rpartition(LABEL_SEPARATOR)
+        room = self._label_px - self._metrics.horizontalAdvance(sep + tail)
+        if not (head and tail) or room < self._metrics.horizontalAdvance("n" * MIN_HEAD_CHARS):
+            return whole
+        head = short_label(head, max(LABEL_MAX - len(sep + tail), MIN_HEAD_CHARS))
+        return self._metrics.elidedText(head, middle, room) + sep + tail
+
     def addItem(self, item, name: str) -> None:  # noqa: N802 - pyqtgraph's name
-        text = self._metrics.elidedText(
-            short_label(str(name)), QtCore.Qt.TextElideMode.ElideMiddle, self._label_px
-        )
-        super().addItem(item, text)
+        super().addItem(item, self.fit_label(str(name)))
         sample, _label = self.items[-1]
         self._rank[id(sample)] = next(self._ranks)
 

@@ -628,3 +628,21 @@ def test_render_frames_a_harbour_scene_closely(qapp, tmp_path, capsys):
     assert geo.haversine_m(x0, 63.44, x1, 63.44) == pytest.approx(100.0, rel=0.01)
     assert geo.haversine_m(10.39, y0, 10.39, y1) == pytest.approx(100.0, rel=0.01)
 
+
+def test_legend_shortens_the_file_name_and_keeps_what_the_layer_is(qapp):
+    """Seen on a render of two Autoferry files: the whole label was shortened in its
+    middle, so the file's name was cut at a different place in each line
+    ("autoferry_{ra…v · maneuvers", "autoferry_{ra… · compressed"). Now the file's name
+    is shortened in its own middle and "· what" stays whole."""
+    from wakeline.app.map_legend import SideLegend
+
+    legend = SideLegend()
+    name = "autoferry_{radar,lidar}_zh.csv"
+    for what in ("lidar", "cleaned", "maneuvers", "compressed"):
+        label = legend.fit_label(f"{name} · {what}")
+        head, sep, tail = label.rpartition(" · ")
+        assert tail == what and "…" in head, label
+        assert head.startswith("autof") and head.endswith("zh.csv"), label
+        assert legend._metrics.horizontalAdvance(label) <= legend._label_px
+    assert legend.fit_label("a.csv · cleaned") == "a.csv · cleaned"
+    assert legend.fit_label("x" * 60).count("…") == 1  # no separator: shortened whole
