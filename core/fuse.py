@@ -66,7 +66,21 @@ class FuseParams(Params):
         1000.0, "m", "largest track distance accepted as one ship (the assignment gate)", 1.0
     )
     min_overlap_s: float = param(
-        60.0, "s", "shortest common time span of two tracks to compare them", 0.0
+        60.0,
+        "s",
+        "shortest common time span of two tracks to compare them (a shorter one will do "
+        "when it holds min_overlap_fixes of each)",
+        0.0,
+    )
+    min_overlap_fixes: int = param(
+        15,
+        "fixes",
+        "a common span shorter than min_overlap_s is enough when each track has this many "
+        "fixes in it: a harbour radar and lidar (1.7 s, 0.5 s) see a boat together for "
+        "35-59 s (0 = min_overlap_s alone)",
+        0,
+        100_000,
+        "ours: Autoferry radar + lidar, 7 of 18 true pairs 34-59 s",
     )
     count_ratio_max: float = param(
         4.0,
@@ -326,12 +340,15 @@ def associate_sensors(
     lo = np.maximum(t0[a], t0[b])
     hi = np.minimum(t1[a], t1[b])
     overlap = hi - lo
+    na, ra = _count_in(t, index, a, lo, hi)
+    nb, rb = _count_in(t, index, b, lo, hi)
     keep = overlap >= max(params.min_overlap_s, 0.0)
+    if params.min_overlap_fixes > 0:  # a short span densely seen by both is evidence too
+        keep |= np.minimum(na, nb) >= params.min_overlap_fixes
     keep &= overlap > 0
     gates["refused_short_overlap"] = int((~keep).sum())
     a, b, lo, hi, overlap = a[keep], b[keep], lo[keep], hi[keep], overlap[keep]
-    na, ra = _count_in(t, index, a, lo, hi)
-    nb, rb = _count_in(t, index, b, lo, hi)
+    na, ra, nb, rb = na[keep], ra[keep], nb[keep], rb[keep]
     with np.errstate(divide="ignore", invalid="ignore"):
         if params.count_at_rates:  # the time each track's points cover, at its own rate
             from wakeline.core.tracks import median_interval_s

@@ -95,6 +95,28 @@ def test_point_count_ratio_gate():
     assert len(associate_sensors(pd.concat([quiet, radar])).chosen) == 0
 
 
+def test_a_short_common_span_densely_seen_by_both_sensors_is_compared():
+    """Autoferry's harbour radar (1.7 s) and lidar (0.5 s) see a boat together for 35-59 s:
+    under min_overlap_s (60 s) the true pairs were never compared, 7 of 18 went unfused,
+    and in scenario 4 the lidar track of one boat was fused with the radar track of the
+    other, 60 m away, the one pair that overlapped 60 s. A shorter span with
+    min_overlap_fixes of each track is compared; sparse tracks still need 60 s."""
+    lid_a = observe("lidar", "a", 0, 76, 0.5, 2.0, 1, truth="A")
+    rad_a = observe("radar", "a", 17, 76, 1.7, 3.0, 2, truth="A")  # 59 s with lidar a
+    lid_b = observe("lidar", "b", 20, 78, 0.5, 2.0, 3, truth="B", bias=(60.0, 0.0))
+    rad_b = observe("radar", "b", -19, 78, 1.7, 3.0, 4, truth="B", bias=(60.0, 0.0))
+    df = pd.concat([lid_a, rad_a, lid_b, rad_b], ignore_index=True)
+    got = associate_sensors(df).pair_table()[["batch_a", "batch_b"]].values.tolist()
+    assert sorted(got) == [["a", "a"], ["b", "b"]]
+    seconds_only = FuseParams(min_overlap_fixes=0)
+    wrong = associate_sensors(df, seconds_only).pair_table()[["batch_a", "batch_b"]]
+    assert wrong.values.tolist() == [["a", "b"]]  # what it did: two boats fused
+    # 10 s tracks over 50 s: 5 fixes each, refused as before.
+    ais = observe("AIS", "1", 0, 300, 10.0, 5.0, 5)
+    radar = observe("R1", "2", 250, 600, 10.0, 20.0, 6)
+    assert len(associate_sensors(pd.concat([ais, radar])).a) == 0
+
+
 def test_a_piece_is_not_handed_to_another_ship_far_beyond_its_own():
     """Two ships 500 m apart side by side; AIS sees both whole, the radar sees only ship
     A, broken into two pieces. Round one gives A's AIS one piece; the other piece is
