@@ -383,6 +383,8 @@ def associate_sensors(
     else:  # seed 003 as written: DTW over both whole tracks, not only the common span
         sz, st = index.sizes, index.starts
         dist = _dtw_distance(pts, index, a, b, sz[a], st[a], sz[b], st[b], params.dtw_points)
+    if np.isfinite(dist).any():  # what the gate would have to be to pair anything
+        gates["nearest_m"] = round(float(np.nanmin(np.where(np.isfinite(dist), dist, np.nan))), 1)
     cost = dist
     if params.best_factor > 0 and len(a):
         best = _best_rival(a, b, lo, hi, dist, pd.factorize(index.keys["sensor"])[0])

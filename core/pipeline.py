@@ -490,10 +490,20 @@ def _no_pair_reason(rep: dict) -> str:
     ]
     refused = "; ".join(parts) if parts else "none by the gates"
     rest = probed - rep.get("refused_short_overlap", 0) - rep.get("refused_count_ratio", 0)
+    far = ""
+    if rest:
+        far = (
+            f"; {'all' if rest == probed else 'the other'} {rest:,} were farther apart on "
+            "average than the gate"
+        )
+        if rep.get("nearest_m") is not None:
+            far += (
+                f" (the nearest {rep['nearest_m']:,.0f} m apart on average: raise "
+                "max_distance_m with --set if the sensors are that noisy)"
+            )
     return (
         f"; {probed:,} pairs of tracks came within max_distance_m "
-        f"({rep['max_distance_m']:g} m) of each other, refused: {refused}"
-        + (f"; the other {rest:,} were farther apart on average than the gate" if rest else "")
+        f"({rep['max_distance_m']:g} m) of each other, refused: {refused}" + far
     )
 
 

@@ -256,6 +256,23 @@ def test_fuse_summary_counts_inputs_and_says_why_nothing_paired():
     assert "become one" in text and "max_distance_m" not in text
 
 
+def test_when_every_pair_is_beyond_the_gate_the_summary_says_how_far_the_nearest_is():
+    """MTAD V2's positive demo pair (one ship, sources 9001 / 9002) lies 3.1 km apart on
+    average: the summary said "the other 1 were farther apart on average than the gate",
+    with no figure to raise the gate to. It now says all were, and the nearest's distance."""
+    from wakeline.core.pipeline import STEPS
+
+    ais = observe("AIS", "1", 0, 1800, 10.0, 10.0, 1)
+    radar = observe("R1", "2", 0, 1800, 10.0, 10.0, 2, course=70.0)  # 0 to 1.9 km apart
+    df = pd.concat([ais, radar], ignore_index=True)
+    rep = associate_sensors(df, FuseParams(max_distance_m=600.0)).report()
+    assert rep["pairs_chosen"] == 0 and rep["nearest_m"] == pytest.approx(940.0, abs=30.0)
+    step = STEPS["fuse"]
+    text = step.summary(step(df, {"fuse": FuseParams(max_distance_m=600.0)}))
+    assert "all 1 were farther apart on average than the gate" in text, text
+    assert "the nearest 9" in text and "m apart on average" in text, text
+
+
 def test_a_single_sensors_points_keep_their_reported_speed_and_course():
     """AIS SOG/COG pass through fusion where AIS alone covers the time (fuzzing found them
     recomputed from positions); where two sensors blend, the fused track's motion."""
