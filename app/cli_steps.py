@@ -395,8 +395,10 @@ def read_counts(report: dict) -> dict:
     """The reading's counts for a step's ``--report``: every line of the input is a point,
     a quarantine row, a blank line, the header or a line skipped above it (a title, or
     ``--skip-rows``), and the JSON says how many went where and why."""
+    from wakeline.core.io.reader import skipped_above_header
+
     out = {key: report[key] for key in READ_KEYS if key in report}
-    return out | {"skipped_above_header": len(report.get("lines_above_header") or ())}
+    return out | {"skipped_above_header": skipped_above_header(report)}
 
 
 def say_quarantined(path, report: dict, command: str = "import") -> None:

@@ -433,6 +433,7 @@ def _import_file(
         WholeFileNeeded,
         parse_zone,
         resolve_header,
+        skipped_above_header,
         stream_points,
     )
 
@@ -515,7 +516,7 @@ def _import_file(
     quarantined[:1] = n_q
     counts = pd.DataFrame({"block": blocks, "rows": rows, "quarantined": quarantined})
     lines = {  # the file's other lines: a title skipped above the header, blank lines
-        "skipped_above_header": len(res.report.get("lines_above_header") or ()),
+        "skipped_above_header": skipped_above_header(res.report),
         "blank_lines": int(res.report.get("blank_lines", 0)),
     }
     return {"counts": counts, "warnings": list(warnings), "rows": int(rows.sum()), **lines}

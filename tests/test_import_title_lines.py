@@ -150,8 +150,34 @@ def test_count_identity_with_title_lines(tmp_path_factory, titles, blanks, kind,
     skipped = len(rep["lines_above_header"])
     assert skipped == len(titles)
     total = rep["rows_imported"] + rep["rows_quarantined"] + skipped + 1 + rep["blank_lines"]
-    blank_above = sum(blanks[: len(titles)])
-    assert total + blank_above == len(lines)
+    # The blank lines between the titles and the header are counted too (they were not:
+    # the report fell short of the file's lines by them).
+    assert rep["blank_lines_above_header"] == sum(blanks[: len(titles)])
+    assert total + rep["blank_lines_above_header"] == len(lines)
+
+
+def test_every_line_above_the_header_is_counted_in_the_reports(write, tmp_path):
+    """An operator's GB18030 radar export: a title, an export-time line, a blank line,
+    then the header. The import report named the two title lines but not the blank one,
+    so its counts fell a line short of the file; `wakeline clean --report` alike. Blank
+    lines above the header and Excel's "sep=;" line are counted now."""
+    rows = [r.replace(",", ";") for r in _rows(6, "zh")]
+    text = "sep=;\n\n雷达航迹导出\n导出时间：2024-05-01\n\n" + HEADERS["zh"].replace(",", ";")
+    path = write("t.csv", text + "\n" + "\n".join(rows) + "\n")
+    lines = len(path.read_text(encoding="utf-8").splitlines())
+    rep = read_points(path).report
+    assert len(rep["lines_above_header"]) == 2 and rep["excel_sep_line"] == 1
+    assert rep["blank_lines_above_header"] == 2 and rep["rows_read"] == 6
+    above = len(rep["lines_above_header"]) + rep["blank_lines_above_header"] + 1
+    assert rep["rows_read"] + rep["blank_lines"] + above + 1 == lines
+    report = tmp_path / "r.json"
+    out = tmp_path / "o.csv"
+    assert main(["clean", str(path), "-o", str(out), "--report", str(report)]) == 0
+    import json
+
+    read = json.loads(report.read_text())["read"]
+    assert read["skipped_above_header"] == 5  # was 2
+    assert read["rows_read"] + read["blank_lines"] + read["skipped_above_header"] + 1 == lines
 
 
 def test_skip_rows_option_for_a_title_longer_than_detection_looks(write, tmp_path, capsys):

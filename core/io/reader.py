@@ -1316,6 +1316,16 @@ def resolve_header(sn: Sniff, fmt: str, mapping: dict[str, str] | None, source: 
 TITLE_REASON = "above the header (a title?): skipped"
 
 
+def skipped_above_header(report: dict) -> int:
+    """Lines of the file above its header (or first row) that are neither: the title
+    lines, blank lines and Excel's "sep=" line, from an import ``report``."""
+    return (
+        len(report.get("lines_above_header") or ())
+        + int(report.get("blank_lines_above_header", 0))
+        + int(report.get("excel_sep_line", 0))
+    )
+
+
 def _title_report(sn: Sniff) -> list[dict]:
     """The lines skipped above the header: line number (1-based), reason and text."""
     return [{"line": n, "reason": TITLE_REASON, "text": t} for n, t in sn.title_lines]
@@ -1479,6 +1489,9 @@ def read_points(
         "compression": sn.compression,
         "header": sn.has_header,
         "lines_above_header": _title_report(sn),
+        # with the header, the lines above it, blank_lines, rows_read: every physical line
+        "blank_lines_above_header": sn.blank_above_header,
+        "excel_sep_line": int(sn.excel_sep),
         "skip_rows_given": sn.skip_rows_given,
         "columns": res.columns,
         "extra_columns": extra,
@@ -2366,6 +2379,9 @@ def stream_points(
         "compression": sn.compression,
         "header": sn.has_header,
         "lines_above_header": _title_report(sn),
+        # with the header, the lines above it, blank_lines, rows_read: every physical line
+        "blank_lines_above_header": sn.blank_above_header,
+        "excel_sep_line": int(sn.excel_sep),
         "skip_rows_given": sn.skip_rows_given,
         "columns": res.columns,
         "extra_columns": extra,

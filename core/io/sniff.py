@@ -43,6 +43,9 @@ class Sniff:
     #: (physical line number, 1-based; text).
     title_lines: tuple[tuple[int, str], ...] = ()
     skip_rows_given: int | None = None  # the caller's skip_rows (None: detected)
+    #: Blank lines above the header (or above the first row of a file without one): with
+    #: the title lines, Excel's "sep=" line and the header, every line before the data.
+    blank_above_header: int = 0
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
@@ -338,6 +341,8 @@ def sniff(
         data_lines = lines[:5]
     preview = tuple(tuple(f.strip('"') for f in line.split(delim)) for line in data_lines)
     skip_rows = leading_blank + (1 if has_header else 0)
+    titled = len(extras.get("title_lines", ()))
+    extras["blank_above_header"] = leading_blank - titled - int(extras.get("excel_sep", False))
     return Sniff(path, compression, enc, delim, has_header, skip_rows, columns, preview, **extras)
 
 
