@@ -97,13 +97,43 @@ def _read(paths: list[Path], **options):
     return read_inputs(paths, **options)
 
 
+def is_maneuver_table(path: Path) -> bool:
+    """``path`` is what ``wakeline maneuvers`` writes (its header is exactly
+    ``sensor,batch,index,time,lon,lat,factor``): turning points, not tracks."""
+    from wakeline.core.io import sniff
+    from wakeline.core.maneuver import MANEUVER_COLUMNS
+
+    try:
+        return tuple(sniff(path).columns) == MANEUVER_COLUMNS
+    except (InputError, OSError):
+        return False  # read (and refused) with the tracks, with their message
+
+
 def _cmd_render(args: argparse.Namespace) -> int:
     if args.output.suffix.lower() != ".png":
         raise InputError(f"{args.output}: the output must be a .png file")
     from wakeline.app.cli_steps import read_options
 
-    points = _read(args.input, **read_options(args))
-    derived = run_steps(points, args.step or [])
+    # A maneuvers table beside its tracks (`render clean.csv man.csv`) was read as one
+    # more sensor's tracks: its turning points joined by lines into tracks of their own.
+    # It is drawn as the maneuver marks it is.
+    marks = [p for p in args.input if is_maneuver_table(p)]
+    tracks = [p for p in args.input if p not in marks]
+    if not tracks and args.step:
+        raise InputError(
+            "--step needs a track file: the inputs are maneuver tables (drawn as marks)"
+        )
+    points = _read(tracks, **read_options(args)) if tracks else None
+    derived = run_steps(points, args.step or []) if tracks else []
+    if marks:
+        import pandas as pd
+
+        from wakeline.core.io import read_points
+
+        table = pd.concat([read_points(p).points for p in marks], ignore_index=True)
+        # named after its own file(s) when tracks are drawn too: "man.csv · maneuvers"
+        named = f"{input_name(marks)} · maneuvers" if tracks else "maneuvers"
+        derived.append((named, "maneuvers", table.assign(is_maneuver=True)))
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     try:
         from PySide6 import QtWidgets
@@ -114,7 +144,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
     except ImportError as exc:
         raise InputError(f"rendering needs the desktop libraries (Qt): {exc}") from None
     _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(["wakeline"])
-    source_name = input_name(args.input)
+    source_name = input_name(tracks or marks)
     # Every layer in a colour of its own: the steps' layers in their kinds' colours, the
     # input's sensors (or batches) in colours none of them has.
     taken: set[str] = set()
@@ -123,18 +153,22 @@ def _cmd_render(args: argparse.Namespace) -> int:
         kind_color.append(layer_colors(kind, 1, taken)[0])
         taken.add(kind_color[-1])
     by_batch = args.color_by == "batch"
-    layers = [
-        prepare_layer(
-            points,
-            source_name,
-            color_by=args.color_by,
-            # Coloured by batch, the input is drawn over the steps' lines (under the
-            # maneuver marks), or its colours would hide under them.
-            style=LayerStyle(width=1.3, symbol_size=3, z=1.0 if by_batch else 0.0),
-            build_index=False,
-            colors=batch_colors(taken) if by_batch else layer_colors("source", len(PALETTE), taken),
+    layers = []
+    if points is not None:
+        layers.append(
+            prepare_layer(
+                points,
+                source_name,
+                color_by=args.color_by,
+                # Coloured by batch, the input is drawn over the steps' lines (under the
+                # maneuver marks), or its colours would hide under them.
+                style=LayerStyle(width=1.3, symbol_size=3, z=1.0 if by_batch else 0.0),
+                build_index=False,
+                colors=batch_colors(taken)
+                if by_batch
+                else layer_colors("source", len(PALETTE), taken),
+            )
         )
-    ]
     for (suffix, kind, pts), color in zip(derived, kind_color, strict=True):
         if kind == "maneuvers":
             pts = pts[pts["is_maneuver"].to_numpy(dtype=bool)] if "is_maneuver" in pts else pts
@@ -143,9 +177,8 @@ def _cmd_render(args: argparse.Namespace) -> int:
             style = LayerStyle(
                 width=2.5 if kind in ("compressed", "fused") else 1.3, gaps=kind != "compressed"
             )
-        layers.append(
-            prepare_layer(pts, f"{source_name} · {suffix}", color, style=style, build_index=False)
-        )
+        name = suffix if " · " in suffix else f"{source_name} · {suffix}"
+        layers.append(prepare_layer(pts, name, color, style=style, build_index=False))
     info = render_png(layers, args.output, size=args.size, bounds=args.bounds, bare=args.bare)
     w, s, e, n = info["bounds"]
     print(

@@ -646,3 +646,33 @@ def test_legend_shortens_the_file_name_and_keeps_what_the_layer_is(qapp):
         assert legend._metrics.horizontalAdvance(label) <= legend._label_px
     assert legend.fit_label("a.csv · cleaned") == "a.csv · cleaned"
     assert legend.fit_label("x" * 60).count("…") == 1  # no separator: shortened whole
+
+
+def test_render_draws_a_maneuvers_table_as_marks_beside_its_tracks(tmp_path, monkeypatch):
+    """`render clean.csv man.csv` (the file `wakeline maneuvers` wrote): the turning
+    points were read as one more sensor's tracks ("atd_{cle,m}an.csv · m"), joined by
+    lines. They are drawn as maneuver marks named after their file."""
+    from wakeline.app import map_render
+    from wakeline.core.simulate import maneuver_tracks
+
+    tracks, marks = tmp_path / "clean.csv", tmp_path / "man.csv"
+    maneuver_tracks(3, "short", 50.0, seed=4).to_csv(tracks, index=False)
+    assert main(["maneuvers", str(tracks), "-o", str(marks)]) == 0
+    n_marks = len(pd.read_csv(marks))
+    assert n_marks > 0
+    seen = {}
+
+    def fake_render(layers, path, **_kw):
+        seen.update({d.name: d for d in layers})
+        return {"layers": len(layers), "points": 0, "vertices": 0, "size": (1, 1),
+                "bounds": (0, 0, 1, 1)}  # fmt: skip
+
+    monkeypatch.setattr(map_render, "render_png", fake_render)
+    assert main(["render", str(tracks), str(marks), "-o", str(tmp_path / "x.png")]) == 0
+    assert list(seen) == ["clean.csv", "man.csv · maneuvers"], list(seen)
+    assert seen["clean.csv"].geometry.n_points == len(pd.read_csv(tracks))
+    assert seen["man.csv · maneuvers"].geometry.n_points == n_marks
+    seen.clear()
+    assert main(["render", str(marks), "-o", str(tmp_path / "y.png")]) == 0
+    assert list(seen) == ["man.csv · maneuvers"]
+    assert main(["render", str(marks), "-o", str(tmp_path / "z.png"), "--step", "clean"]) == 2
