@@ -235,7 +235,8 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
         "--max-gap",
         type=positive_float,
         metavar="SECONDS",
-        help="resample: never interpolate across longer gaps (default 60 s)",
+        help="resample: never interpolate across longer gaps (default 60 s; a step up to 2 "
+        "of the track's median steps is no gap: --set resample.max_gap_steps=K)",
     )
     p.add_argument(
         "--smooth",

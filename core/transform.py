@@ -26,7 +26,13 @@ import pandas as pd
 from wakeline.core import geo
 from wakeline.core.params import Params, param
 from wakeline.core.schema import seconds_to_time, time_seconds
-from wakeline.core.tracks import TrackIndex, local_xy, sorted_with_index, track_origins
+from wakeline.core.tracks import (
+    TrackIndex,
+    local_xy,
+    median_interval_s,
+    sorted_with_index,
+    track_origins,
+)
 
 
 @dataclass(frozen=True)
@@ -36,7 +42,22 @@ class ResampleParams(Params):
         20.0, "s", "resampling period", lo=0.001, hi=1e6, source="seed 003 §2.2: 20 s"
     )
     max_gap_s: float = param(
-        60.0, "s", "never interpolate across a gap longer than this", lo=0, hi=1e7
+        60.0,
+        "s",
+        "never interpolate across a gap longer than this (and max_gap_steps of the track's "
+        "median step)",
+        lo=0,
+        hi=1e7,
+    )
+    max_gap_steps: float = param(
+        2.0,
+        "steps",
+        "a step up to this many of the track's median sampling steps is no gap, whatever "
+        "max_gap_s says: a track fixed every 120 s, resampled at 30 s with max_gap_s 60 s, "
+        "kept 8 of its 118 fixes (only grid times that fell on a fix); 0 = max_gap_s alone",
+        lo=0,
+        hi=1000,
+        source="ours",
     )
 
 
@@ -155,7 +176,10 @@ def resample(points: pd.DataFrame, params: ResampleParams, next_id: int = 0) -> 
     exact = t[right] == grid_t
     left = np.where(exact, right, np.maximum(right - 1, index.starts[grid_track]))
     gap = t[right] - t[left]
-    keep = exact | ((gap > 0) & (gap <= params.max_gap_s))
+    # A gap is longer than max_gap_s and than max_gap_steps of the track's own step: a
+    # sparse track's regular step is not a gap (NaN for one-fix tracks: max_gap_s).
+    limit = np.fmax(params.max_gap_s, params.max_gap_steps * median_interval_s(t, index))
+    keep = exact | ((gap > 0) & (gap <= limit[grid_track]))
     left, right, grid_t = left[keep], right[keep], grid_t[keep]
     with np.errstate(invalid="ignore", divide="ignore"):
         w = np.where(right > left, (grid_t - t[left]) / (t[right] - t[left]), 0.0)

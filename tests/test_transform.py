@@ -38,6 +38,24 @@ def test_resample_on_a_grid_without_bridging_gaps():
     assert out.wl_id.min() == 100
 
 
+def test_resample_a_sparse_track_finer_than_max_gap_keeps_it():
+    """A track fixed every 120 s (MTAD decimated), resampled at 30 s with the default
+    max_gap_s of 60 s: every step was a "gap", and only grid times falling on a fix were
+    kept (8 of 118 fixes in three tracks). A step up to max_gap_steps (2) of the track's
+    median step is no gap; a gap longer than that still is not bridged."""
+    df = straight(30, period_s=120.0)
+    df = df.drop(index=range(12, 16)).reset_index(drop=True)  # one 600 s gap
+    df["wl_id"] = np.arange(len(df))
+    params = ResampleParams(enabled=True, period_s=30.0, max_gap_s=60.0)
+    out = resample(df, params)
+    t = time_seconds(out["time"]) - time_seconds(df["time"])[0]
+    assert len(out) == (11 * 120 // 30 + 1) + (29 - 16) * 120 // 30 + 1  # both pieces whole
+    assert not np.any((t > 11 * 120) & (t < 16 * 120))  # the 600 s gap is not bridged
+    old = resample(df, ResampleParams(enabled=True, period_s=30.0, max_gap_s=60.0,
+                                      max_gap_steps=0.0))  # fmt: skip
+    assert len(old) == len(df)  # what it did: the fixes alone (grid times on a fix)
+
+
 def test_smooth_reduces_noise_and_keeps_tracks_apart():
     rng = np.random.default_rng(0)
     a = straight(100, batch="a")
