@@ -113,6 +113,12 @@ def test_export_like_writes_the_title_back_and_reimports_the_same_rows(write, tm
     assert out.read_bytes() == src.read_bytes()
     again = read_points(out)
     pd.testing.assert_frame_equal(again.points, r.points)
+    # Blank lines among the titles and above the header come back too (they were
+    # dropped: a GB18030 export with a blank line under its title lost it).
+    spaced = write("s.csv", "\nRadar track export\n\nStation 3\n\n" + text.split("\n", 1)[1])
+    r = read_points(spaced)
+    write_layout(r.points, describe_layout(spaced, r.report), out)
+    assert out.read_bytes() == spaced.read_bytes()
 
 
 @settings(

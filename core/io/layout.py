@@ -464,8 +464,19 @@ def describe_layout(
         final_newline=final_newline,
         source=str(path),
         header=sn.has_header,
-        title_lines=tuple(t for _, t in sn.title_lines),
+        title_lines=_lines_above(sn),
     )
+
+
+def _lines_above(sn) -> tuple[str, ...]:
+    """The lines above the header to write back: the titles, and the blank lines among
+    and around them where they were ("" each; a blank line between a title and the
+    header was dropped, so the table did not come out byte for byte). With Excel's
+    "sep=" line (not written back) the titles alone."""
+    if sn.excel_sep:
+        return tuple(t for _, t in sn.title_lines)
+    texts = dict(sn.title_lines)
+    return tuple(texts.get(k, "") for k in range(1, sn.skip_rows - int(sn.has_header) + 1))
 
 
 _DEG = NumberFormat(6, "none")
