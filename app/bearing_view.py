@@ -357,8 +357,9 @@ class BearingScene:
 
 def scene_range(layers) -> tuple[float, float, float, float] | None:
     """The view (x0, x1, y0, y1, degrees) around every point of ``layers`` with a
-    :data:`FIT_MARGIN` margin: the map's own fit pads at least 0.01° (a kilometre), which
-    left a harbour scene in the middle third of the view."""
+    :data:`FIT_MARGIN` margin (at least :data:`MIN_PAD_M`): the map's own fit padded at
+    least 0.01° (a kilometre) then, which left a harbour scene in the middle third of the
+    view (it pads at least 50 m now, ``layer_view.MIN_PAD_M``)."""
     boxes = [d.geometry.bounds() for d in layers]
     boxes = [b for b in boxes if b is not None and all(map(math.isfinite, b))]
     if not boxes:
