@@ -676,3 +676,39 @@ def test_render_draws_a_maneuvers_table_as_marks_beside_its_tracks(tmp_path, mon
     assert main(["render", str(marks), "-o", str(tmp_path / "y.png")]) == 0
     assert list(seen) == ["man.csv · maneuvers"]
     assert main(["render", str(marks), "-o", str(tmp_path / "z.png"), "--step", "clean"]) == 2
+
+
+def test_render_draws_an_associated_target_as_one_line_across_its_join(tmp_path, monkeypatch):
+    """`render --step associate`: the associated layer was drawn as the pieces it joined,
+    each on its own, so no join could be seen in the image (an ATD join of a ship heading
+    south-west to one 18 km north-east looked like two unrelated tracks). Each target is
+    one line now: the join is drawn from the old piece's end to the new one's start."""
+    from wakeline.app import map_render
+
+    t = np.arange(0, 1800, 10.0)
+    keep = (t < 700) | (t >= 1000)  # a 300 s gap
+    x, y = 5.0 * t[keep], np.zeros(keep.sum())
+    lon, lat = geo.from_local(x, y, LON0, LAT0)
+    csv = tmp_path / "two.csv"
+    pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": np.where(t[keep] < 700, "1", "2"),
+            "time": pd.Timestamp("2024-05-01", tz="UTC") + pd.to_timedelta(t[keep], "s"),
+            "lon": lon,
+            "lat": lat,
+        }
+    ).to_csv(csv, index=False)
+    seen = {}
+
+    def fake_render(layers, path, **_kw):
+        seen.update({d.name: d for d in layers})
+        return {"layers": len(layers), "points": 0, "vertices": 0, "size": (1, 1),
+                "bounds": (0, 0, 1, 1)}  # fmt: skip
+
+    monkeypatch.setattr(map_render, "render_png", fake_render)
+    argv = ["render", str(csv), "-o", str(tmp_path / "x.png"), "--step", "associate"]
+    assert main(argv) == 0
+    assert len(seen["two.csv"].geometry.starts) == 2  # the input: its two batches
+    joined = seen["two.csv · associated"].geometry
+    assert len(joined.starts) == 1 and joined.n_points == keep.sum()  # one line, joined
