@@ -448,7 +448,7 @@ def _summary_fuse(res: StepResult) -> str:
     rep = res.report
     return (
         f"{rep['tracks']:,} tracks of {rep['sensors']} sensors -> {rep['targets']:,} targets "
-        f"({rep['pairs_chosen']:,} pairs of {rep['candidate_pairs']:,} candidates, "
+        f"({_count(rep['pairs_chosen'], 'pair')} of {_count(rep['candidate_pairs'], 'candidate')}, "
         f"{rep['distance']}, {rep['method']}); {rep['fused_points']:,} fused points"
         + (f" from {rep['points_in']:,} input points" if "points_in" in rep else "")
         + (
@@ -464,6 +464,11 @@ def _summary_fuse(res: StepResult) -> str:
         )
         + (_no_pair_reason(rep) if not rep.get("pairs_chosen") and "max_distance_m" in rep else "")
     )
+
+
+def _count(n: int, noun: str) -> str:
+    """``n`` with its noun, singular for one: '1 pair', '2 pairs'."""
+    return f"{n:,} {noun}" + ("" if n == 1 else "s")
 
 
 def _no_pair_reason(rep: dict) -> str:
@@ -492,17 +497,18 @@ def _no_pair_reason(rep: dict) -> str:
     rest = probed - rep.get("refused_short_overlap", 0) - rep.get("refused_count_ratio", 0)
     far = ""
     if rest:
-        far = (
-            f"; {'all' if rest == probed else 'the other'} {rest:,} were farther apart on "
-            "average than the gate"
-        )
+        if rest == 1:
+            who = "it was" if probed == 1 else "the other one was"
+        else:
+            who = f"{'all' if rest == probed else 'the other'} {rest:,} were"
+        far = f"; {who} farther apart on average than the gate"
         if rep.get("nearest_m") is not None:
             far += (
                 f" (the nearest {rep['nearest_m']:,.0f} m apart on average: raise "
                 "max_distance_m with --set if the sensors are that noisy)"
             )
     return (
-        f"; {probed:,} pairs of tracks came within max_distance_m "
+        f"; {_count(probed, 'pair')} of tracks came within max_distance_m "
         f"({rep['max_distance_m']:g} m) of each other, refused: {refused}" + far
     )
 

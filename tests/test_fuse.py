@@ -259,7 +259,7 @@ def test_fuse_summary_counts_inputs_and_says_why_nothing_paired():
 def test_when_every_pair_is_beyond_the_gate_the_summary_says_how_far_the_nearest_is():
     """MTAD V2's positive demo pair (one ship, sources 9001 / 9002) lies 3.1 km apart on
     average: the summary said "the other 1 were farther apart on average than the gate",
-    with no figure to raise the gate to. It now says all were, and the nearest's distance."""
+    with no figure to raise the gate to. It now says it was, and the nearest's distance."""
     from wakeline.core.pipeline import STEPS
 
     ais = observe("AIS", "1", 0, 1800, 10.0, 10.0, 1)
@@ -269,7 +269,8 @@ def test_when_every_pair_is_beyond_the_gate_the_summary_says_how_far_the_nearest
     assert rep["pairs_chosen"] == 0 and rep["nearest_m"] == pytest.approx(940.0, abs=30.0)
     step = STEPS["fuse"]
     text = step.summary(step(df, {"fuse": FuseParams(max_distance_m=600.0)}))
-    assert "all 1 were farther apart on average than the gate" in text, text
+    assert "1 pair of tracks came within" in text, text
+    assert "refused: none by the gates; it was farther apart on average than the gate" in text, text
     assert "the nearest 9" in text and "m apart on average" in text, text
 
 
