@@ -261,7 +261,7 @@ def layer_geometry(
         colors = palette[:used]
         # One legend line for the layer; the other colours carry no legend entry.
         head = f"{label} · " if label else ""
-        labels = (f"{head}{index.n_tracks} batches, a colour each",) + ("",) * (used - 1)
+        labels = (f"{head}{index.n_tracks} batches",) + ("",) * (used - 1)
     else:
         group = np.zeros(index.n_tracks, dtype="int64")
         colors, labels = (color,), (label,)

@@ -712,3 +712,26 @@ def test_render_draws_an_associated_target_as_one_line_across_its_join(tmp_path,
     assert len(seen["two.csv"].geometry.starts) == 2  # the input: its two batches
     joined = seen["two.csv · associated"].geometry
     assert len(joined.starts) == 1 and joined.n_points == keep.sum()  # one line, joined
+
+
+def test_a_per_batch_layer_keeps_its_batch_count_beside_a_long_file_name(qapp):
+    """Coloured by batch, the layer's one legend line said "FILE · 37 batches, a colour
+    each": too long to keep any of the file's name, so the whole was cut in its middle
+    and the count was lost. The line is "FILE · 37 batches" (the colours say the rest)."""
+    import pandas as pd
+
+    from wakeline.app.map_draw import layer_geometry
+    from wakeline.app.map_legend import SideLegend
+
+    pts = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": [str(k // 3) for k in range(111)],
+            "time": pd.date_range("2024-01-01", periods=111, freq="10s", tz="UTC"),
+            "lon": np.linspace(10.0, 10.1, 111),
+            "lat": 63.4,
+        }
+    )
+    geo = layer_geometry(pts, label="autoferry_radar_zh_gbk.csv", color_by="batch")
+    label = SideLegend().fit_label(geo.labels[0])
+    assert label.endswith(" · 37 batches") and label.startswith("autof"), label
