@@ -52,8 +52,9 @@ class LinkParams(Params):
         "10 + 2 × 1 min. A pair whose ends' median steps sum to more has the excess taken "
         "off its gap wherever the gap meets a time limit (max_gap_s, soft_gap_s, long_gap_s "
         "and the gap price), so the limits hold the same outage at any sampling: at 3-min "
-        "sampling T_gap is 600 + 2 × 180 = 960 s (0 = off: the gap as it is, whatever the "
-        "sampling)",
+        "sampling T_gap is 600 + 2 × 180 = 960 s; each end's step counts up to max_gap_s (a "
+        "longer step is an outage of its own, not sampling) (0 = off: the gap as it is, "
+        "whatever the sampling)",
         0.0,
         86400.0,
         "ours (issue 15, sampling sweep; max_gap_s 720 = a 600 s outage plus two 60 s "
@@ -385,22 +386,32 @@ def counted_gap(pairs: Pairs) -> np.ndarray:
     return pairs.gap_s if pairs.allow_s is None else pairs.gap_s - pairs.allow_s
 
 
-def _step_allowance(seg: Segments, i: np.ndarray, j: np.ndarray, allowance_s: float) -> np.ndarray:
+def _step_allowance(
+    seg: Segments, i: np.ndarray, j: np.ndarray, allowance_s: float, step_cap_s: float
+) -> np.ndarray:
     """Per pair (old ``i`` → new ``j``): the seconds by which the old end's and the new
-    start's median time steps (``step1`` / ``step0``) sum to more than ``allowance_s``
-    (0 where not, or when ``allowance_s`` is 0: off)."""
+    start's median time steps (``step1`` / ``step0``, each counted up to ``step_cap_s``)
+    sum to more than ``allowance_s`` (0 where not, or when ``allowance_s`` is 0: off).
+
+    The cap is T_gap itself (``max_gap_s``): a step longer than T_gap is an outage of its
+    own, not sampling, so one piece reported every few hours neither makes any gap of its
+    own "within T_gap" nor widens every piece's candidate search (ATD's 12 h steps did:
+    33 s and 1.6 GB at its own cuts, against 2.4 s)."""
     if allowance_s <= 0 or seg.step1 is None or seg.step0 is None:
         return np.zeros(len(i))
-    steps = np.nan_to_num(seg.step1[i]) + np.nan_to_num(seg.step0[j])
+    steps = np.fmin(np.nan_to_num(seg.step1[i]), step_cap_s)
+    steps += np.fmin(np.nan_to_num(seg.step0[j]), step_cap_s)
     return np.maximum(steps - allowance_s, 0.0)
 
 
 def _largest_allowance(seg: Segments, params: LinkParams) -> float:
     """The most (s) :func:`_step_allowance` gives any pair of ``seg``: how much further in
-    time a candidate search must look."""
+    time a candidate search must look (at most 2 × ``max_gap_s`` − ``step_allowance_s``)."""
     if params.step_allowance_s <= 0 or seg.step1 is None or seg.step0 is None or not len(seg):
         return 0.0
-    top = float(np.nanmax(np.nan_to_num(seg.step1))) + float(np.nanmax(np.nan_to_num(seg.step0)))
+    cap = params.max_gap_s
+    top = min(float(np.nanmax(np.nan_to_num(seg.step1))), cap)
+    top += min(float(np.nanmax(np.nan_to_num(seg.step0))), cap)
     return max(top - params.step_allowance_s, 0.0)
 
 
@@ -574,7 +585,7 @@ def candidate_pairs(
     found = _grid_pairs(seg, wide, ends, starts, min_gap_s)
     i, j = found if found is not None else _tree_pairs(seg, wide)
     gap = seg.t0[j] - seg.t1[i]
-    allow = _step_allowance(seg, i, j, params.step_allowance_s)
+    allow = _step_allowance(seg, i, j, params.step_allowance_s, params.max_gap_s)
     counted = gap - allow
     keep = (i != j) & (gap > 0.0) & (counted <= params.max_gap_s)
     if min_gap_s > 0:
@@ -592,7 +603,9 @@ def candidate_pairs(
     keep = dist <= v * gap + params.position_tol_m
     i, j, dist = i[keep], j[keep], dist[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
-    return pair_features(seg, i[order], j[order], dist[order], params.step_allowance_s)
+    return pair_features(
+        seg, i[order], j[order], dist[order], params.step_allowance_s, params.max_gap_s
+    )
 
 
 def _narrowed(
@@ -796,11 +809,12 @@ def pair_features(
     j: np.ndarray,
     dist: np.ndarray | None = None,
     step_allowance_s: float = 0.0,
+    step_cap_s: float = np.inf,
 ) -> Pairs:
     """The features of the pairs (old ``i`` → new ``j``) of ``seg``: gap, end-to-start
     distance (m; ``dist`` when the caller has it), dead-reckoning miss, course and speed
-    differences, and the gap's step allowance (s; ``step_allowance_s``,
-    :func:`_step_allowance`; None when no pair has one)."""
+    differences, and the gap's step allowance (s; ``step_allowance_s``, each end's step
+    counted up to ``step_cap_s``, :func:`_step_allowance`; None when no pair has one)."""
     gap = seg.t0[j] - seg.t1[i]
     if dist is None:
         dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
@@ -813,7 +827,9 @@ def pair_features(
     slow = np.minimum(seg.speed1_kn[i], seg.speed0_kn[j])
     dcourse = geo.angle_diff(seg.course1_deg[i], seg.course0_deg[j]) * np.clip(slow / 2.0, 0, 1)
     dspeed = np.abs(seg.speed1_kn[i] - seg.speed0_kn[j])
-    allow = _step_allowance(seg, i, j, step_allowance_s) if step_allowance_s > 0 else None
+    allow = (
+        _step_allowance(seg, i, j, step_allowance_s, step_cap_s) if step_allowance_s > 0 else None
+    )
     if allow is not None and not allow.any():
         allow = None  # the common case (steps within the allowance): no array kept
     return Pairs(i, j, gap, dist, miss, dcourse, dspeed, allow)

@@ -10,6 +10,7 @@ from wakeline.app.cli import main
 from wakeline.core import geo, simulate
 from wakeline.core.associate import (
     LinkParams,
+    _largest_allowance,
     associate_interrupted,
     associate_segments,
     candidate_pairs,
@@ -999,3 +1000,28 @@ def test_t_gap_counts_the_outage_not_the_sampling():
         [_lane("a1", 0, 1800, 0.0, "A", 0, 60.0), _lane("a2", 2700, 4500, 0.0, "A", 1, 60.0)]
     )
     assert candidate_pairs(segment_stats(dense), LinkParams()).allow_s is None
+
+
+def test_a_step_longer_than_t_gap_is_an_outage_not_sampling():
+    """Review of session 20: the step allowance had no bound. A piece reported every 2 h
+    made any gap of its own "within T_gap" (a1 → a2 over 1 h counted −3,480 s), and the
+    largest step of the scene widened every piece's search (ATD's 12 h steps: 33 s and
+    1.6 GB at its own cuts, 2.4 s without). Each end's step now counts up to max_gap_s."""
+    df = pd.concat(
+        [
+            _lane("a1", 0, 1800, 0.0, "A", 0),
+            _lane("a2", 5400, 5400 + 4 * 7200, 0.0, "A", 1, 7200.0),
+        ],
+        ignore_index=True,
+    )
+    p = LinkParams()
+    seg = segment_stats(df, 10, end_span_s=450.0)
+    assert np.nanmax(seg.step0) == 7200.0
+    # the search looks at most 2 × 720 − 120 s further
+    assert _largest_allowance(seg, p) == 2 * p.max_gap_s - p.step_allowance_s
+    pairs = candidate_pairs(seg, replace(p, max_gap_s=5000.0))
+    names = seg.index.keys["batch"].to_numpy()
+    k = np.flatnonzero((names[pairs.i] == "a1") & (names[pairs.j] == "a2"))
+    # gap 3,600 s; allowance 180 + min(7,200, 5,000) − 120 = 5,060 s
+    assert len(k) == 1 and counted_gap(pairs)[k[0]] == 3600.0 - 5060.0
+    assert not len(candidate_pairs(seg, p).i)  # at 720 s: 3,600 − (180 + 720 − 120) > 720
