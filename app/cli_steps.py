@@ -235,8 +235,9 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
         "--max-gap",
         type=positive_float,
         metavar="SECONDS",
-        help="resample: never interpolate across longer gaps (default 60 s; a step up to 2 "
-        "of the track's median steps is no gap: --set resample.max_gap_steps=K)",
+        help="resample: never interpolate across longer gaps. Given, it is the limit; "
+        "by default 60 s, and on a sparse track a step up to 2 of its median steps "
+        "(resample.max_gap_steps), never above 600 s (resample.max_gap_cap_s), is no gap",
     )
     p.add_argument(
         "--smooth",

@@ -316,6 +316,11 @@ class CleanParams:
                     f"--set {key}={value}: expected rule.param with rule one of {', '.join(STEPS)}"
                 )
             changes.setdefault(rule, {})[name] = value
+        resample = changes.get("resample", {})
+        if "max_gap_s" in resample and "max_gap_steps" not in resample:
+            # A max_gap_s given (--max-gap, --set, a saved table from before the adaptive
+            # limit) is the limit, as SPEC §2.8 has it: no track's own step overrides it.
+            resample["max_gap_steps"] = "0"
         out = self
         for rule, values in changes.items():
             out = dataclasses.replace(out, **{rule: getattr(out, rule).replace(**values)})

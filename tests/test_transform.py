@@ -56,6 +56,36 @@ def test_resample_a_sparse_track_finer_than_max_gap_keeps_it():
     assert len(old) == len(df)  # what it did: the fixes alone (grid times on a fix)
 
 
+def test_resample_a_sparse_track_is_not_bridged_beyond_the_cap(tmp_path):
+    """SPEC §2.8: never across a gap longer than max_gap. The adaptive limit (max_gap_steps
+    of the track's median step) made every step of a sparse track "no gap": two fixes 6 h
+    apart became 1,081 points at 20 s, ATD's 30-min posits straight lines across hours.
+    It is capped at max_gap_cap_s (600 s), and a max_gap_s given is the limit."""
+    two = straight(2, period_s=6 * 3600.0)
+    two["wl_id"] = np.arange(2)
+    out = resample(two, ResampleParams(enabled=True, period_s=20.0))
+    assert len(out) == 2  # the two fixes (on the grid), nothing between
+    wide = resample(two, ResampleParams(enabled=True, period_s=20.0, max_gap_cap_s=1e7))
+    assert len(wide) == 6 * 3600 // 20 + 1  # what it did without the cap
+    # 120 s steps (under the cap) are still no gap, 900 s ones (2 x 900 > 600) are.
+    for period, expect in ((120.0, 29 * 120 // 30 + 1), (900.0, 30)):
+        df = straight(30, period_s=period)
+        df["wl_id"] = np.arange(len(df))
+        assert len(resample(df, ResampleParams(enabled=True, period_s=30.0))) == expect
+    # A max_gap_s given (--set, --max-gap, a saved table without max_gap_steps) wins.
+    assert CleanParams().with_settings(["resample.max_gap_s=60"]).resample.max_gap_steps == 0
+    keep = CleanParams().with_settings(["resample.max_gap_s=60", "resample.max_gap_steps=3"])
+    assert keep.resample.max_gap_steps == 3
+    df = straight(30, period_s=120.0)
+    src, a, b = tmp_path / "a.csv", tmp_path / "b.csv", tmp_path / "c.csv"
+    df.to_csv(src, index=False)
+    common = ["clean", str(src), "--resample", "30", "--off", "short_tracks"]
+    assert main([*common, "-o", str(a)]) == 0
+    assert main([*common, "-o", str(b), "--max-gap", "60"]) == 0
+    assert len(pd.read_csv(a)) == 29 * 120 // 30 + 1
+    assert len(pd.read_csv(b)) == 30  # the fixes alone: every 120 s step is a gap
+
+
 def test_smooth_reduces_noise_and_keeps_tracks_apart():
     rng = np.random.default_rng(0)
     a = straight(100, batch="a")
