@@ -68,16 +68,17 @@ class FuseParams(Params):
     min_overlap_s: float = param(
         60.0,
         "s",
-        "shortest common time span of two tracks to compare them (a shorter one will do "
-        "when it holds min_overlap_fixes of each)",
+        "shortest common time span of two tracks to compare them (one at least half as long "
+        "will do when it holds min_overlap_fixes of each)",
         0.0,
     )
     min_overlap_fixes: int = param(
         15,
         "fixes",
-        "a common span shorter than min_overlap_s is enough when each track has this many "
-        "fixes in it: a harbour radar and lidar (1.7 s, 0.5 s) see a boat together for "
-        "35-59 s (0 = min_overlap_s alone)",
+        "a common span shorter than min_overlap_s, but at least half of it, is enough when "
+        "each track has this many fixes in it: a harbour radar and lidar (1.7 s, 0.5 s) see "
+        "a boat together for 35-59 s; at 10 Hz 15 fixes are 1.5 s, too short to tell two "
+        "boats apart, hence the half (0 = min_overlap_s alone)",
         0,
         100_000,
         "ours: Autoferry radar + lidar, 7 of 18 true pairs 34-59 s",
@@ -343,8 +344,10 @@ def associate_sensors(
     na, ra = _count_in(t, index, a, lo, hi)
     nb, rb = _count_in(t, index, b, lo, hi)
     keep = overlap >= max(params.min_overlap_s, 0.0)
-    if params.min_overlap_fixes > 0:  # a short span densely seen by both is evidence too
-        keep |= np.minimum(na, nb) >= params.min_overlap_fixes
+    if params.min_overlap_fixes > 0:  # a short span densely seen by both is evidence too,
+        # if not too short: two boats passing each other look alike for a second or two
+        dense = np.minimum(na, nb) >= params.min_overlap_fixes
+        keep |= dense & (overlap >= 0.5 * max(params.min_overlap_s, 0.0))
     keep &= overlap > 0
     gates["refused_short_overlap"] = int((~keep).sum())
     a, b, lo, hi, overlap = a[keep], b[keep], lo[keep], hi[keep], overlap[keep]

@@ -424,6 +424,8 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
         "points_in": int(len(points)),
         "max_distance_m": float(fp.max_distance_m),
         "max_interp_s": float(fp.max_interp_s),
+        "min_overlap_s": float(fp.min_overlap_s),
+        "min_overlap_fixes": int(fp.min_overlap_fixes),
         "fused_points": int(len(fused)),
         "distance": opts.distance,
         "method": opts.method,
@@ -471,6 +473,22 @@ def _count(n: int, noun: str) -> str:
     return f"{n:,} {noun}" + ("" if n == 1 else "s")
 
 
+def _short_overlap_text(rep: dict) -> str:
+    """The overlap gate as the summary names it: min_overlap_s, and min_overlap_fixes over
+    a span of at least half of it (values when the report has them)."""
+    span = rep.get("min_overlap_s")
+    fixes = rep.get("min_overlap_fixes")
+    s = f" ({span:g} s)" if span is not None else ""
+    if fixes == 0:
+        return f"for a common span under min_overlap_s{s}"
+    half = f" ({span / 2:g} s)" if span is not None else ""
+    n = f" ({fixes:,})" if fixes is not None else ""
+    return (
+        f"for a common span under min_overlap_s{s} without min_overlap_fixes{n} of each "
+        f"track in at least half of it{half}"
+    )
+
+
 def _no_pair_reason(rep: dict) -> str:
     """Why fusion paired nothing: the gate that refused the pairs found near each other."""
     probed = rep.get("probed_pairs", 0)
@@ -484,7 +502,7 @@ def _no_pair_reason(rep: dict) -> str:
     parts = [
         f"{rep[key]:,} {what}"
         for key, what in (
-            ("refused_short_overlap", "for a common span under min_overlap_s"),
+            ("refused_short_overlap", _short_overlap_text(rep)),
             (
                 "refused_count_ratio",
                 "for a point-count ratio over count_ratio_max (or under 2 points in the "

@@ -117,6 +117,31 @@ def test_a_short_common_span_densely_seen_by_both_sensors_is_compared():
     assert len(associate_sensors(pd.concat([ais, radar])).a) == 0
 
 
+def test_a_dense_common_span_still_needs_half_of_min_overlap_s():
+    """min_overlap_fixes (15) alone let a 10 Hz sensor pair compare over 1.5 s: two boats
+    60 m apart passing each other, both seen at 10 Hz for the same 2 s, were fused. The
+    short span must also be at least half of min_overlap_s (30 s), which Autoferry's true
+    radar + lidar pairs (34.8-59 s together, bench/fuse_autoferry.py) are."""
+    from wakeline.core.pipeline import STEPS
+
+    u = np.array([np.sin(np.radians(60.0)), np.cos(np.radians(60.0))])
+    meet = 2 * 6.0 * 29.0 * u + 60.0 * np.array([u[1], -u[0]])  # 60 m apart at t = 29 s
+    a = observe("L1", "a", 0, 30, 0.1, 1.0, 1, truth="A")
+    b = observe("L2", "b", 28, 60, 0.1, 1.0, 2, truth="B", bias=tuple(meet), course=240.0)
+    df = pd.concat([a, b], ignore_index=True)
+    got = associate_sensors(df)
+    assert len(got.chosen) == 0 and got.report()["refused_short_overlap"] == 1
+    assert len(associate_sensors(df, FuseParams(min_overlap_s=4.0)).chosen) == 1  # 2 s >= 2 s
+    step = STEPS["fuse"]
+    text = step.summary(step(df, {"fuse": FuseParams()}))
+    assert "under min_overlap_s (60 s) without min_overlap_fixes (15) of each track" in text
+    assert "in at least half of it (30 s)" in text, text
+    # 31 s together at 10 Hz (over half of 60 s): compared, as the Autoferry pairs are.
+    c = observe("L2", "c", -1, 30, 0.1, 1.0, 3, truth="A")
+    long = associate_sensors(pd.concat([a, c], ignore_index=True)).pair_table()
+    assert long[["batch_a", "batch_b"]].values.tolist() == [["a", "c"]]
+
+
 def test_a_piece_is_not_handed_to_another_ship_far_beyond_its_own():
     """Two ships 500 m apart side by side; AIS sees both whole, the radar sees only ship
     A, broken into two pieces. Round one gives A's AIS one piece; the other piece is
