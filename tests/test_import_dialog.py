@@ -128,3 +128,17 @@ def test_file_open_passes_the_lines_above_the_header_to_the_import(window, write
     rep = layer.meta["report"]
     assert len(layer.points) == ROWS - 1 and len(rep["lines_above_header"]) == NOTES
     assert rep["skip_rows_given"] == NOTES
+
+
+def test_lines_above_the_header_past_the_end_show_the_message(qtbot, write):
+    """Lines above the header at or past the file's end: the dialog shows the refusal
+    with the file's line count (was: the last line read as the header), and a count
+    back inside the file reads again."""
+    path = write("short.csv", "batch,time,lon,lat\n1,1714521600,10.0,57.0\n")
+    dlg = ImportDialog(path=path)
+    qtbot.addWidget(dlg)
+    dlg.skip_box.setValue(100)
+    assert "100: the file has 2 lines" in dlg.warning_label.text()
+    assert dlg.preview.toPlainText() == "" and dlg.mapping() == {}
+    dlg.skip_box.setValue(0)
+    assert dlg.warning_label.text() == "" and dlg.mapping()["time"] == "time"

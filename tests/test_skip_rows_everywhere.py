@@ -209,3 +209,105 @@ def test_the_reading_flags_are_public():
             if isinstance(node, ast.ImportFrom) and node.module == "wakeline.app.cli_steps":
                 private += [f"{path.name}: {a.name}" for a in node.names if a.name[0] == "_"]
     assert private == []
+
+
+#: A headerless file of 5 rows (Unix times): 5 lines.
+_BARE = "".join(f"{1714521600 + 10 * k},{10 + k * 1e-3:.3f},57.0\n" for k in range(5))
+_BARE_MAP = ["--map", "time=col1", "--map", "lon=col2", "--map", "lat=col3"]
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["import", "-o", "o.csv"],
+        ["export", "-o", "x.csv"],
+        ["clean", "-o", "c.csv"],
+        ["maneuvers", "-o", "m.csv"],
+        ["evaluate", "maneuver", "--real"],
+    ],
+)
+@pytest.mark.parametrize("skip", [100, NOTES + 1 + ROWS + 1])
+def test_skip_rows_past_the_end_is_refused_by_every_command(
+    titled, tmp_path, capsys, command, skip
+):
+    """--skip-rows at or past the file's 94 lines: one message naming the flag and the
+    line count, from every command that reads with it (was: clamped to the last line,
+    read as the header)."""
+    assert _lines(titled) == NOTES + 1 + ROWS + 1 == 94
+    where = 3 if command[0] == "evaluate" else 1
+    args = [*command[:where], str(titled), *command[where:]]
+    args = [str(tmp_path / a) if a.endswith(".csv") else a for a in args]
+    assert main([*args, "--skip-rows", str(skip)]) == 2
+    err = capsys.readouterr().err
+    _refused_naming(err, f"--skip-rows {skip}: the file has 94 lines")
+
+
+def test_skip_rows_of_a_headerless_file(write, tmp_path, capsys):
+    """A headerless 5-row file: --skip-rows 100 and 5 refused with the line count (100 was
+    accepted: the last row imported, the first counted as a title, "the header is line
+    -"); 4 imports the last row and says where it is."""
+    bare = write("b5.csv", _BARE)
+    out = str(tmp_path / "o.csv")
+    for skip in (100, 5):
+        assert main(["import", str(bare), "-o", out, *_BARE_MAP, "--skip-rows", str(skip)]) == 2
+        _refused_naming(capsys.readouterr().err, f"--skip-rows {skip}: the file has 5 lines")
+    assert main(["import", str(bare), "-o", out, *_BARE_MAP, "--skip-rows", "4"]) == 0
+    err = capsys.readouterr().err
+    assert "4 line(s) above the header skipped" in err and "the first row is line 5" in err
+    assert len(pd.read_csv(out)) == 1
+
+
+def test_skip_rows_leaving_only_the_header_or_blank_lines(write, tmp_path, capsys):
+    """Two notes, a header, no rows: --skip-rows 2 leaves the header only, refused as a
+    header-only file is; 3 leaves nothing. A file whose last two lines are blank:
+    skipping into them is refused (the lines after are blank), skipping a blank line
+    among the notes is counted as a physical line."""
+    out = str(tmp_path / "o.csv")
+    header = "batch,time,lon,lat"
+    only = write("only.csv", f"note one\nnote two\n{header}\n")
+    assert main(["import", str(only), "-o", out, "--skip-rows", "2"]) == 2
+    assert "no data rows (a header only?)" in capsys.readouterr().err
+    assert main(["import", str(only), "-o", out, "--skip-rows", "3"]) == 2
+    _refused_naming(capsys.readouterr().err, "--skip-rows 3: the file has 3 lines")
+    rows = "1,1714521600,10.0,57.0\n1,1714521610,10.001,57.0\n"
+    blank = write("blank.csv", f"note\n\nnote\n{header}\n{rows}\n\n")
+    assert _lines(blank) == 8
+    assert main(["import", str(blank), "-o", out, "--skip-rows", "6"]) == 2
+    _refused_naming(
+        capsys.readouterr().err,
+        "--skip-rows 6: the file has 8 lines and those after line 6 are blank",
+    )
+    assert main(["import", str(blank), "-o", out, "--skip-rows", "3"]) == 0
+    assert len(pd.read_csv(out)) == 2
+
+
+def test_skip_rows_refused_exactly_when_no_text_is_left(tmp_path):
+    """For any file of notes, blank lines, a header or none, rows and trailing blank
+    lines, sniff(skip_rows=k) refuses (naming the line count) exactly when the lines after
+    the first k have no text, and otherwise reads."""
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    from wakeline.core.errors import InputError
+    from wakeline.core.io.sniff import sniff
+
+    line = st.sampled_from(["", "note", "1714521600,10.0,57.0"])
+
+    @settings(max_examples=150, deadline=None)
+    @given(body=st.lists(line, min_size=1, max_size=8), header=st.booleans(), k=st.integers(0, 12))
+    def check(body, header, k):
+        lines = (["time,lon,lat"] if header else []) + body
+        if not any(x.strip() for x in lines):
+            return
+        path = tmp_path / "f.csv"
+        path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        left = any(x.strip() for x in lines[k:])
+        try:
+            sniff(path, skip_rows=k)
+        except InputError as exc:
+            assert not left, str(exc)
+            assert str(exc).startswith(f"--skip-rows {k}: the file has {len(lines)} line")
+        else:
+            assert left
+
+    check()

@@ -1339,7 +1339,12 @@ def _title_warnings(sn: Sniff) -> list[str]:
     more = f" and {len(sn.title_lines) - 3} more" if len(sn.title_lines) > 3 else ""
     return [
         f"{len(sn.title_lines)} line(s) above the header skipped (a title, not data): "
-        f"{shown}{more}; the header is line {sn.skip_rows if sn.has_header else '-'}"
+        f"{shown}{more}; "
+        + (
+            f"the header is line {sn.skip_rows}"
+            if sn.has_header
+            else f"the first row is line {sn.skip_rows + 1}"
+        )
     ]
 
 

@@ -259,6 +259,25 @@ def _title_count(lines: list[str], delimiter: str | None) -> int:
     return 0
 
 
+def _skip_rows_past_end(skip_rows: int, physical: list[str], whole: bool) -> str:
+    """The refusal of a ``--skip-rows`` that leaves no line with text to read (the header
+    or first row would be past the end): names the flag and the file's line count.
+    ``physical``: the lines of the sample; ``whole``: the sample is the whole file."""
+    count = len(physical) - int(physical[-1] == "")  # a last line end starts no line
+    lines = f"{count:,} line" + ("" if count == 1 else "s")
+    if not whole:
+        return (
+            f"--skip-rows {skip_rows}: the header must lie within the first "
+            f"{SAMPLE_BYTES // 1024} KB of the file ({lines})"
+        )
+    if skip_rows >= count:
+        return f"--skip-rows {skip_rows}: the file has {lines}"
+    return (
+        f"--skip-rows {skip_rows}: the file has {lines} and those after line "
+        f"{skip_rows:,} are blank"
+    )
+
+
 def sniff(
     path: str | Path,
     encoding: str | None = None,
@@ -317,6 +336,8 @@ def sniff(
     if skip_rows is not None:  # given: that many physical lines, then the header
         if skip_rows < 0:
             raise InputError(f"--skip-rows {skip_rows}: give 0 or more lines")
+        if not any(line.strip() for line in physical[skip_rows:]):
+            raise InputError(_skip_rows_past_end(skip_rows, physical, len(sample) < SAMPLE_BYTES))
         extras["skip_rows_given"] = skip_rows
         titles = sum(1 for line in physical[:skip_rows] if line.strip())
         titles -= int(extras.get("excel_sep", False))
