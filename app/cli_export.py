@@ -4,6 +4,7 @@
 """
 
 import argparse
+import re
 import sys
 from pathlib import Path
 
@@ -24,6 +25,12 @@ def _read_in(args: argparse.Namespace):
         return read_points(args.input, **read_options(args))
     except InputError as exc:
         raise InputError(str(exc).replace("--map field", "--in-map field")) from None
+
+
+def _like_flag(message: str) -> str:
+    """A reading error about ORIGINAL (``--like``) with ``--skip-rows`` named as export's
+    flag for ORIGINAL's count, ``--like-skip-rows`` (IN's count is ``--skip-rows``)."""
+    return re.sub(r"(?<![\w-])--skip-rows\b", "--like-skip-rows", message)
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
@@ -62,7 +69,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
                 skip_rows=args.like_skip_rows,
             )
         except InputError as exc:  # ORIGINAL's lines above its header: --like-skip-rows
-            raise InputError(str(exc).replace("--skip-rows N", "--like-skip-rows N")) from None
+            raise InputError(_like_flag(str(exc))) from None
     else:
         layout = preset_layout(args.layout or "canonical")
     if args.like and not args.tz and layout.time.kind == "text" and not layout.time.suffix:

@@ -311,3 +311,19 @@ def test_skip_rows_refused_exactly_when_no_text_is_left(tmp_path):
             assert left
 
     check()
+
+
+def test_export_like_names_like_skip_rows_for_the_originals_count(titled, tmp_path, capsys):
+    """Every refusal of ORIGINAL's count names --like-skip-rows (a negative count said
+    "--skip-rows -1"); IN's own wrong count still names --skip-rows."""
+    out = str(tmp_path / "x.csv")
+    like = ["export", str(titled), "--like", str(titled), "-o", out]
+    for count, said in (("-1", "give 0 or more lines"), ("100", "the file has 94 lines")):
+        assert main([*like, "--skip-rows", str(NOTES), "--like-skip-rows", count]) == 2
+        err = capsys.readouterr().err
+        _refused_naming(err, f"--like-skip-rows {count}: {said}")
+        assert " --skip-rows" not in err
+    assert main([*like, "--skip-rows", "100", "--like-skip-rows", str(NOTES)]) == 2
+    err = capsys.readouterr().err
+    _refused_naming(err, "--skip-rows 100: the file has 94 lines")
+    assert "--like-skip-rows" not in err
