@@ -177,13 +177,9 @@ def _cmd_render(args: argparse.Namespace) -> int:
             style = LayerStyle(
                 width=2.5 if kind in ("compressed", "fused") else 1.3, gaps=kind != "compressed"
             )
-        if kind == "associated" and "target" in pts.columns:
-            # One line per target: a join is drawn from the old piece's end to the new
-            # one's start (it was drawn as the pieces it joined, each on its own, and no
-            # join, however far, could be seen); a gap of hours is still left open.
-            pts = pts.assign(batch=pts["target"].astype(str))
         name = suffix if " · " in suffix else f"{source_name} · {suffix}"
-        layers.append(prepare_layer(pts, name, color, style=style, build_index=False))
+        # kind: an associated layer is drawn one line per target (map_draw.drawn_lines)
+        layers.append(prepare_layer(pts, name, color, style=style, build_index=False, kind=kind))
     info = render_png(layers, args.output, size=args.size, bounds=args.bounds, bare=args.bare)
     w, s, e, n = info["bounds"]
     print(

@@ -204,6 +204,7 @@ def prepare_view(
         view=view if size_px is not None else None,
         size_px=size_px,
         colors=colors,
+        kind=kind,
     )
     return LayerView(pts, summary, ranges, marks, with_paths(draw), display_text(summary))
 

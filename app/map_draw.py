@@ -316,6 +316,17 @@ def curves_for(
     return tuple(curves), box, px
 
 
+def drawn_lines(points: pd.DataFrame, kind: str) -> pd.DataFrame:
+    """``points`` as their lines are drawn: an associated layer (``kind`` "associated",
+    with a ``target`` column) one line per target, so each join shows as a leg from the
+    old piece's end to the new one's start (drawn as the pieces it joined, each on its
+    own, no join could be seen, however far); a gap of hours is still left open. The
+    layer's table keeps its batches; only the drawing is per target."""
+    if kind == "associated" and "target" in points.columns:
+        return points.assign(batch=points["target"].astype(str))
+    return points
+
+
 def prepare_layer(
     points: pd.DataFrame | LayerGeometry,
     name: str = "",
@@ -328,6 +339,7 @@ def prepare_layer(
     relative: bool | None = None,
     build_index: bool = True,
     colors: tuple[str, ...] | None = None,
+    kind: str = "",
 ) -> DrawData:
     """Everything the canvas needs to draw a layer, computed off the GUI thread.
 
@@ -337,10 +349,12 @@ def prepare_layer(
     ``build_index`` builds the hover/pick k-d tree and the position sketch (where the
     points are, for the first view) now, else on first use. ``colors``:
     the colours of the sensors (or batches) in turn (see :func:`layer_geometry`).
+    ``kind``: the layer's kind (``source``, ``associated``…); see :func:`drawn_lines`.
     """
     if isinstance(points, LayerGeometry):
         geom = points
     else:
+        points = drawn_lines(points, kind)
         geom = layer_geometry(points, color, by_sensor, color_by, relative, name, colors)
     if style is not None and not style.gaps and geom.gap_break is not None:
         geom = replace(geom, gap_break=None)

@@ -678,13 +678,9 @@ def test_render_draws_a_maneuvers_table_as_marks_beside_its_tracks(tmp_path, mon
     assert main(["render", str(marks), "-o", str(tmp_path / "z.png"), "--step", "clean"]) == 2
 
 
-def test_render_draws_an_associated_target_as_one_line_across_its_join(tmp_path, monkeypatch):
-    """`render --step associate`: the associated layer was drawn as the pieces it joined,
-    each on its own, so no join could be seen in the image (an ATD join of a ship heading
-    south-west to one 18 km north-east looked like two unrelated tracks). Each target is
-    one line now: the join is drawn from the old piece's end to the new one's start."""
-    from wakeline.app import map_render
-
+def _one_ship_in_two_batches(tmp_path):
+    """One radar track at 5 m/s, east, cut by a 300 s gap into batches 1 and 2: the
+    file's path and its number of rows."""
     t = np.arange(0, 1800, 10.0)
     keep = (t < 700) | (t >= 1000)  # a 300 s gap
     x, y = 5.0 * t[keep], np.zeros(keep.sum())
@@ -699,6 +695,17 @@ def test_render_draws_an_associated_target_as_one_line_across_its_join(tmp_path,
             "lat": lat,
         }
     ).to_csv(csv, index=False)
+    return csv, int(keep.sum())
+
+
+def test_render_draws_an_associated_target_as_one_line_across_its_join(tmp_path, monkeypatch):
+    """`render --step associate`: the associated layer was drawn as the pieces it joined,
+    each on its own, so no join could be seen in the image (an ATD join of a ship heading
+    south-west to one 18 km north-east looked like two unrelated tracks). Each target is
+    one line now: the join is drawn from the old piece's end to the new one's start."""
+    from wakeline.app import map_render
+
+    csv, n = _one_ship_in_two_batches(tmp_path)
     seen = {}
 
     def fake_render(layers, path, **_kw):
@@ -711,7 +718,27 @@ def test_render_draws_an_associated_target_as_one_line_across_its_join(tmp_path,
     assert main(argv) == 0
     assert len(seen["two.csv"].geometry.starts) == 2  # the input: its two batches
     joined = seen["two.csv · associated"].geometry
-    assert len(joined.starts) == 1 and joined.n_points == keep.sum()  # one line, joined
+    assert len(joined.starts) == 1 and joined.n_points == n  # one line, joined
+
+
+def test_the_windows_associated_layer_is_one_line_per_target(window, tmp_path):
+    """Steps ▸ Associate in the window: the associated layer drew the pieces it joined
+    each on its own (only `wakeline render` drew a target as one line), so a join was
+    invisible on screen. The layer's drawing is one line per target now, through the
+    same layer preparation as render; its table keeps both batches."""
+    from conftest import load
+    from wakeline.app.main import wait_for_jobs
+
+    csv, n = _one_ship_in_two_batches(tmp_path)
+    lid = load(window, csv)
+    assert len(window.canvas.draw_data(lid).geometry.starts) == 2
+    window.run_step("associate")
+    wait_for_jobs(window)
+    (assoc,) = [lay for lay in window.layers.values() if lay.kind == "associated"]
+    assert set(assoc.points["batch"].astype(str)) == {"1", "2"}
+    assert assoc.points["target"].nunique() == 1  # the step joined them
+    geom = window.canvas.draw_data(assoc.id).geometry
+    assert list(geom.starts) == [0] and list(geom.ends) == [n] and geom.n_points == n
 
 
 def test_a_per_batch_layer_keeps_its_batch_count_beside_a_long_file_name(qapp):
