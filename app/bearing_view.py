@@ -358,8 +358,8 @@ class BearingScene:
 def scene_range(layers) -> tuple[float, float, float, float] | None:
     """The view (x0, x1, y0, y1, degrees) around every point of ``layers`` with a
     :data:`FIT_MARGIN` margin (at least :data:`MIN_PAD_M`): the map's own fit padded at
-    least 0.01° (a kilometre) then, which left a harbour scene in the middle third of the
-    view (it pads at least 50 m now, ``layer_view.MIN_PAD_M``)."""
+    least 0.01° (a kilometre) then, which left a 1 km harbour scene filling a fifth of the
+    view's height (it pads at least 50 m now, ``layer_view.MIN_PAD_M``; docs/map.md)."""
     boxes = [d.geometry.bounds() for d in layers]
     boxes = [b for b in boxes if b is not None and all(map(math.isfinite, b))]
     if not boxes:

@@ -90,7 +90,8 @@ def framed_range(sketches: list) -> tuple[float, float, float, float] | None:
 
 
 #: Smallest margin (m) of a fitted view on each side: a single fix is shown 100 m wide.
-#: (It was 0.01°, a kilometre: a 1 km harbour scene filled a quarter of the view.)
+#: (It was 0.01°, a kilometre: a 1 km harbour scene filled a fifth of the rendered view's
+#: height, 0.20; tests/test_map.py::test_render_frames_a_harbour_scene_closely.)
 MIN_PAD_M = 50.0
 
 

@@ -23,7 +23,8 @@ from wakeline.core.stats import LayerStats, Spread, layer_stats
 TR_CONTEXT = "StatsPanel"
 #: The lifetime histogram's least height (px) while the dock is raised: its title, axis
 #: and label take about 70 px, this leaves about 80 px of bars (at the 104 px the
-#: bottom dock area had in the default window they were 5 px high).
+#: bottom dock area had in the default window they were 15 px high, as measured by
+#: ``docs/tools/render_statistics_dock.py``, docs/map.md).
 HIST_MIN_HEIGHT = 150
 #: The table's least height, and the histogram's while the dock is behind another tab
 #: (px): no taller than the text box the dock held before (70 px with the note).

@@ -605,10 +605,10 @@ def test_render_steps_draw_each_layer_once_and_the_input_in_its_own_colour(tmp_p
 
 
 def test_render_frames_a_harbour_scene_closely(qapp, tmp_path, capsys):
-    """A scene 1 km across (Autoferry's Trondheim harbour radar) filled a quarter of the
-    rendered view: the fit padded at least 0.01° (a kilometre) on each side. The margin
-    is now 5 % with a 50 m floor, so the scene fills most of the view's height (the
-    legend beside the map takes some of its width)."""
+    """A scene 1 km across (Autoferry's Trondheim harbour radar) filled a fifth of the
+    rendered view's height (0.20): the fit padded at least 0.01° (a kilometre) on each
+    side. The margin is now 5 % with a 50 m floor, so the scene fills most of the view's
+    height (the legend beside the map takes some of its width)."""
     from wakeline.app.layer_view import padded_range
 
     t = pd.Timestamp("2021-05-04T07:55:00Z") + pd.to_timedelta(np.arange(60) * 2, "s")

@@ -167,9 +167,10 @@ def test_the_figures_follow_a_rerun_of_the_active_layer(window, qtbot):
 
 def test_the_histogram_keeps_a_readable_height_when_the_dock_is_raised(window, qtbot, tmp_path):
     """In the window as `wakeline gui` opens it (1400×900) the bottom dock area was 104 px
-    high: the lifetime histogram's bars got about 5 px under its title and axis. Raised,
-    the Statistics dock now keeps the histogram HIST_MIN_HEIGHT px high, about 80 px of
-    bars; behind the Log tab it asks no more than before (the docks above keep theirs)."""
+    high: the lifetime histogram's bars got 15 px under its title and axis (measured,
+    docs/map.md). Raised, the Statistics dock now keeps the histogram HIST_MIN_HEIGHT px
+    high, about 80 px of bars; behind the Log tab it asks no more than before (the docks
+    above keep theirs)."""
     from wakeline.app.stats_panel import HIST_MIN_HEIGHT, LOW_MIN_HEIGHT
 
     path = tmp_path / "tracks.csv"
