@@ -142,3 +142,30 @@ def test_lines_above_the_header_past_the_end_show_the_message(qtbot, write):
     assert dlg.preview.toPlainText() == "" and dlg.mapping() == {}
     dlg.skip_box.setValue(0)
     assert dlg.warning_label.text() == "" and dlg.mapping()["time"] == "time"
+
+
+def test_file_open_with_lines_past_the_end_tells_the_operator(window, write, monkeypatch):
+    """File ▸ Open tracks… accepted with more lines above the header than the file has:
+    the import is refused with a message naming the dialog's field and the line count
+    (no layer, no crash)."""
+    from PySide6 import QtWidgets
+
+    from wakeline.app import main_window
+    from wakeline.app.main import wait_for_jobs
+
+    path = write("short.csv", "batch,time,lon,lat\n1,1714521600,10.0,57.0\n")
+    shown = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+
+    class Chosen(ImportDialog):
+        def exec(self):
+            self.path_edit.setText(str(path))
+            self.skip_box.setValue(100)
+            return QtWidgets.QDialog.DialogCode.Accepted
+
+    monkeypatch.setattr(main_window, "ImportDialog", Chosen)
+    window.open_dialog()
+    wait_for_jobs(window)
+    assert window.layer_id(path.name) is None
+    assert shown and "Lines above the header field" in shown[-1]
+    assert "the file has 2 lines" in shown[-1]
