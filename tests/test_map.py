@@ -648,18 +648,10 @@ def test_legend_shortens_the_file_name_and_keeps_what_the_layer_is(qapp):
     assert legend.fit_label("x" * 60).count("…") == 1  # no separator: shortened whole
 
 
-def test_render_draws_a_maneuvers_table_as_marks_beside_its_tracks(tmp_path, monkeypatch):
-    """`render clean.csv man.csv` (the file `wakeline maneuvers` wrote): the turning
-    points were read as one more sensor's tracks ("atd_{cle,m}an.csv · m"), joined by
-    lines. They are drawn as maneuver marks named after their file."""
+def _capture_rendered_layers(monkeypatch) -> dict:
+    """Make `wakeline render` hand its layers to a dict (name -> layer) instead of drawing."""
     from wakeline.app import map_render
-    from wakeline.core.simulate import maneuver_tracks
 
-    tracks, marks = tmp_path / "clean.csv", tmp_path / "man.csv"
-    maneuver_tracks(3, "short", 50.0, seed=4).to_csv(tracks, index=False)
-    assert main(["maneuvers", str(tracks), "-o", str(marks)]) == 0
-    n_marks = len(pd.read_csv(marks))
-    assert n_marks > 0
     seen = {}
 
     def fake_render(layers, path, **_kw):
@@ -668,6 +660,21 @@ def test_render_draws_a_maneuvers_table_as_marks_beside_its_tracks(tmp_path, mon
                 "bounds": (0, 0, 1, 1)}  # fmt: skip
 
     monkeypatch.setattr(map_render, "render_png", fake_render)
+    return seen
+
+
+def test_render_draws_a_maneuvers_table_as_marks_beside_its_tracks(tmp_path, monkeypatch):
+    """`render clean.csv man.csv` (the file `wakeline maneuvers` wrote): the turning
+    points were read as one more sensor's tracks ("atd_{cle,m}an.csv · m"), joined by
+    lines. They are drawn as maneuver marks named after their file."""
+    from wakeline.core.simulate import maneuver_tracks
+
+    tracks, marks = tmp_path / "clean.csv", tmp_path / "man.csv"
+    maneuver_tracks(3, "short", 50.0, seed=4).to_csv(tracks, index=False)
+    assert main(["maneuvers", str(tracks), "-o", str(marks)]) == 0
+    n_marks = len(pd.read_csv(marks))
+    assert n_marks > 0
+    seen = _capture_rendered_layers(monkeypatch)
     assert main(["render", str(tracks), str(marks), "-o", str(tmp_path / "x.png")]) == 0
     assert list(seen) == ["clean.csv", "man.csv · maneuvers"], list(seen)
     assert seen["clean.csv"].geometry.n_points == len(pd.read_csv(tracks))
@@ -703,17 +710,9 @@ def test_render_draws_an_associated_target_as_one_line_across_its_join(tmp_path,
     each on its own, so no join could be seen in the image (an ATD join of a ship heading
     south-west to one 18 km north-east looked like two unrelated tracks). Each target is
     one line now: the join is drawn from the old piece's end to the new one's start."""
-    from wakeline.app import map_render
 
     csv, n = _one_ship_in_two_batches(tmp_path)
-    seen = {}
-
-    def fake_render(layers, path, **_kw):
-        seen.update({d.name: d for d in layers})
-        return {"layers": len(layers), "points": 0, "vertices": 0, "size": (1, 1),
-                "bounds": (0, 0, 1, 1)}  # fmt: skip
-
-    monkeypatch.setattr(map_render, "render_png", fake_render)
+    seen = _capture_rendered_layers(monkeypatch)
     argv = ["render", str(csv), "-o", str(tmp_path / "x.png"), "--step", "associate"]
     assert main(argv) == 0
     assert len(seen["two.csv"].geometry.starts) == 2  # the input: its two batches
