@@ -313,7 +313,7 @@ class ParamsPanel(QtWidgets.QWidget):
         """Seed 000's detection limit for the loaded data: typical speed and interval
         (core.maneuver.detection_limit), or why none can be given."""
         mp = self._values["maneuver"]
-        limit = detection_limit(summary, mp.window_p, mp.threshold_deg)
+        limit = detection_limit(summary, mp.window_p, mp.threshold_deg, window_s=mp.window_s)
         if limit is None:
             self.guidance.setText("")
             return
@@ -331,7 +331,7 @@ class ParamsPanel(QtWidgets.QWidget):
             ).format(
                 limit.speed_kn,
                 limit.interval_s,
-                mp.window_p,
+                limit.window_p,
                 limit.leg_s,
                 mp.threshold_deg,
                 limit.eps_m,

@@ -2135,16 +2135,26 @@ class DetectionLimit:
     eps_m: float
     turn_deg: float
     reason: str | None = None
+    #: Points per heading window at that interval, as the detector chooses them.
+    window_p: int = 0
 
 
 def detection_limit(
-    summary: pd.DataFrame, window_p: int, threshold_deg: float, eps_m: float = 100.0
+    summary: pd.DataFrame,
+    window_p: int,
+    threshold_deg: float,
+    eps_m: float = 100.0,
+    window_s: float = 0.0,
 ) -> DetectionLimit | None:
     """The detection limit of seed 000 eq. 10/12 from a :func:`track_summary` table, or
-    None when there is nothing to judge (no track with two points). When the batches are
-    no tracks — their points share times (radar plots written one batch per scan: median
-    interval below :data:`GUIDANCE_MIN_INTERVAL_S`), or their median speed is no ship's
-    (above :data:`GUIDANCE_MAX_SPEED_KN`) — ``reason`` says why no limit is given."""
+    None when there is nothing to judge (no track with two points). The interval is the
+    median over tracks of each one's median sampling interval (its ``interval_s``; the
+    detector's own figure, so gaps do not stretch it), the legs ``window_p`` points or, with
+    ``window_s`` > 0, the points the detector takes for that many seconds at that interval
+    (never fewer than ``window_p``). When the batches are no tracks — their points share
+    times (radar plots written one batch per scan: median interval below
+    :data:`GUIDANCE_MIN_INTERVAL_S`), or their median speed is no ship's (above
+    :data:`GUIDANCE_MAX_SPEED_KN`) — ``reason`` says why no limit is given."""
     if summary.empty:
         return None
     points = summary["points"].to_numpy(dtype="float64")
@@ -2153,6 +2163,10 @@ def detection_limit(
     if not moving.any():
         return None
     interval = float(np.nanmedian(duration[moving] / (points[moving] - 1)))
+    if "interval_s" in summary.columns:
+        steps = summary["interval_s"].to_numpy(dtype="float64")[moving]
+        if np.isfinite(steps).any() and interval >= GUIDANCE_MIN_INTERVAL_S:
+            interval = float(np.nanmedian(steps))
     speeds = summary["mean_speed_kn"].to_numpy(dtype="float64")[moving]
     speed = float(np.nanmedian(speeds)) if np.isfinite(speeds).any() else float("nan")
     nan = float("nan")
@@ -2183,11 +2197,15 @@ def detection_limit(
             f"median speed {speed:.0f} kn is no ship's: the batches are not one ship each "
             "(radar plots, or one id for several ships); no detection limit can be given",
         )
-    leg = interval * window_p
+    p = int(window_p)
+    if window_s > 0:
+        p = int(np.clip(max(round(window_s / interval), window_p), 2, 1000))
+    leg = interval * p
     return DetectionLimit(
         speed,
         interval,
         leg,
         largest_tolerable_error_m(threshold_deg, speed, leg),
         smallest_detectable_turn_deg(eps_m, speed, leg),
+        window_p=p,
     )

@@ -487,7 +487,9 @@ def fill_motion(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def track_summary(df: pd.DataFrame) -> pd.DataFrame:
-    """One row per track: sensor, batch, points, start, end, duration_s, length_m, mean_speed_kn."""
+    """One row per track: sensor, batch, points, start, end, duration_s, length_m,
+    mean_speed_kn and interval_s (its median sampling interval, :func:`median_interval_s`;
+    NaN for a one-point track)."""
     df = sort_points(df)
     index = track_index(df)
     if index.n_tracks == 0:
@@ -501,6 +503,7 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
                 "duration_s",
                 "length_m",
                 "mean_speed_kn",
+                "interval_s",
             ]
         )
     dist, _, _, _ = step_motion(df, index)
@@ -519,6 +522,7 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     out["duration_s"] = duration
     out["length_m"] = length
     out["mean_speed_kn"] = mean_speed
+    out["interval_s"] = median_interval_s(t, index)
     return out
 
 

@@ -57,6 +57,23 @@ def test_tracks_give_the_seed_000_numbers():
     )
 
 
+def test_the_interval_and_window_are_the_detectors_own():
+    """The panel's figure was each track's mean interval (a gap stretched it: MTAD
+    Scene-35 read 58 s where its steps are ~30 s and the Statistics dock said 31 s), and
+    its legs were window_p points, though the detector takes window_s seconds of points
+    (10 s of 1 s radar: 10 points, not 5)."""
+    df = _ships(dt=1.0, n_scans=600)
+    df = df[(df["scan"] < 200) | (df["scan"] >= 400)]  # a 200 s gap in every track
+    summary = track_summary(_points(df, df["ship"]))
+    assert (summary["interval_s"] == 1.0).all()
+    limit = detection_limit(summary, 5, 15.0, window_s=10.0)
+    assert limit.interval_s == pytest.approx(1.0)  # was (599 s / 399 steps) 1.5 s
+    assert limit.window_p == 10 and limit.leg_s == pytest.approx(10.0)
+    sparse = _ships(dt=60.0)  # 60 s plots: 10 s is under one step, window_p points
+    limit = detection_limit(track_summary(_points(sparse, sparse["ship"])), 5, 15.0, window_s=10.0)
+    assert limit.window_p == 5 and limit.leg_s == pytest.approx(300.0)
+
+
 @pytest.mark.parametrize("jitter_s", [0.0, 0.05])
 def test_radar_plots_one_batch_per_scan_give_a_reason_not_numbers(jitter_s):
     """Tester: the Autoferry radar written one batch per scan showed "median speed
