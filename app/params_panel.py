@@ -97,6 +97,7 @@ class ParamsPanel(QtWidgets.QWidget):
         self._values: dict[str, Params] = {}
         self._clean = CleanParams()
         self._guard = False
+        self._summary: pd.DataFrame | None = None  # the data the guidance is about
         children = [
             {
                 "name": "clean",
@@ -248,6 +249,8 @@ class ParamsPanel(QtWidgets.QWidget):
                 self.refused.emit(str(exc))
             else:
                 self.problem.setText("")
+                if path[0] == "maneuver" and self._summary is not None:
+                    self.show_guidance(self._summary)  # its window and threshold changed
                 self.changed.emit(path[0])
 
     def _current(self, path: list[str]):
@@ -312,6 +315,7 @@ class ParamsPanel(QtWidgets.QWidget):
     def show_guidance(self, summary: pd.DataFrame) -> None:
         """Seed 000's detection limit for the loaded data: typical speed and interval
         (core.maneuver.detection_limit), or why none can be given."""
+        self._summary = summary
         mp = self._values["maneuver"]
         limit = detection_limit(summary, mp.window_p, mp.threshold_deg, window_s=mp.window_s)
         if limit is None:

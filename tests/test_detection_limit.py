@@ -118,3 +118,17 @@ def test_the_panel_says_why(qtbot):
     assert "1440" not in text and "interval 0 s" not in text
     panel.show_guidance(track_summary(_points(df, df["ship"])))
     assert "median speed 12.0 kn, interval 10 s" in panel.guidance.text()
+
+
+def test_the_panel_follows_the_window_it_is_given(qtbot):
+    """The guidance was computed once per layer: a new window_s or threshold left it
+    describing windows the detector no longer takes."""
+    from wakeline.app.params_panel import ParamsPanel
+
+    panel = ParamsPanel()
+    qtbot.addWidget(panel)
+    df = _ships(dt=1.0, n_scans=300)
+    panel.show_guidance(track_summary(_points(df, df["ship"])))
+    assert "legs of p = 10 points (10 s)" in panel.guidance.text()
+    assert panel.from_dict({"maneuver": {"window_s": 20.0}}) == []
+    assert "legs of p = 20 points (20 s)" in panel.guidance.text()
