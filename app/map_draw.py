@@ -72,6 +72,10 @@ class LayerGeometry:
     colors: tuple[str, ...]
     relative: bool
     gap_break: np.ndarray | None = None
+    #: Per point, the batch it belongs to where a line joins several (an associated layer
+    #: is drawn one line per target, :func:`drawn_lines`): hover and click name it, not the
+    #: line's target. None: each line is one batch.
+    point_batch: np.ndarray | None = None
     _tree: cKDTree | None = field(default=None, repr=False)
     _sketch: PositionSketch | None = field(default=None, repr=False)
 
@@ -122,9 +126,10 @@ class LayerGeometry:
     def describe(self, i: int) -> dict:
         """Sensor, batch, time (text), speed (kn) of point ``i``."""
         k = int(self.track[i])
+        batch = self.batch[k] if self.point_batch is None else self.point_batch[i]
         return {
             "sensor": str(self.sensor[k]),
-            "batch": str(self.batch[k]),
+            "batch": str(batch),
             "time": format_time(float(self.time_s[i]), self.relative),
             "time_s": float(self.time_s[i]),
             "speed_kn": float(self.speed_kn[i]),
@@ -233,7 +238,11 @@ def layer_geometry(
         color_by = "sensor"
     if color_by not in ("layer", "sensor", "batch"):
         raise ValueError(f"color_by must be layer, sensor or batch, not {color_by!r}")
-    cols = [c for c in ("sensor", "batch", "time", "lon", "lat", "speed") if c in points.columns]
+    cols = [
+        c
+        for c in ("sensor", "batch", "time", "lon", "lat", "speed", "piece_batch")
+        if c in points.columns
+    ]
     df, index = sorted_with_index(points[cols])
     lon = df["lon"].to_numpy(dtype="float64")
     lat = df["lat"].to_numpy(dtype="float64")
@@ -280,6 +289,7 @@ def layer_geometry(
         colors=colors,
         relative=is_relative_time(t) if relative is None else bool(relative),
         gap_break=gap_breaks(t, index.starts, index.ends, lon, lat),
+        point_batch=df["piece_batch"].to_numpy(dtype=object) if "piece_batch" in df else None,
     )
 
 
@@ -321,9 +331,10 @@ def drawn_lines(points: pd.DataFrame, kind: str) -> pd.DataFrame:
     with a ``target`` column) one line per target, so each join shows as a leg from the
     old piece's end to the new one's start (drawn as the pieces it joined, each on its
     own, no join could be seen, however far); a gap of hours is still left open. The
-    layer's table keeps its batches; only the drawing is per target."""
+    layer's table keeps its batches; only the drawing is per target (each point keeps its
+    batch in ``piece_batch``: what hover and click name)."""
     if kind == "associated" and "target" in points.columns:
-        return points.assign(batch=points["target"].astype(str))
+        return points.assign(piece_batch=points["batch"], batch=points["target"].astype(str))
     return points
 
 

@@ -121,6 +121,7 @@ def geometry_rows(g: LayerGeometry, keep: np.ndarray) -> LayerGeometry:
         labels=g.labels,
         colors=g.colors,
         relative=g.relative,
+        point_batch=None if g.point_batch is None else g.point_batch[rows],
     )
 
 

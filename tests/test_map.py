@@ -738,6 +738,13 @@ def test_the_windows_associated_layer_is_one_line_per_target(window, tmp_path):
     assert assoc.points["target"].nunique() == 1  # the step joined them
     geom = window.canvas.draw_data(assoc.id).geometry
     assert list(geom.starts) == [0] and list(geom.ends) == [n] and geom.n_points == n
+    # Hover and click name the point's own batch, not the line's target (a click on the
+    # map selected a batch the batch table did not have)
+    assert {geom.describe(i)["batch"] for i in (0, n - 1)} == {"1", "2"}
+    from wakeline.app.map_time import window_geometry
+
+    late = window_geometry(geom, geom.time_s[-1] - 1.0, geom.time_s[-1])
+    assert late.describe(late.n_points - 1)["batch"] == "2"
 
 
 def test_a_per_batch_layer_keeps_its_batch_count_beside_a_long_file_name(qapp):
