@@ -445,13 +445,20 @@ def _p_per_track(
     (``med``, computed when not given), never fewer than ``window_p``; ``window_p`` itself
     when no duration is given."""
     window_s = params.window_s if window_s is None else window_s
-    p = np.full(index.n_tracks, int(params.window_p), dtype="int64")
-    if window_s > 0:
-        med = median_interval_s(t, index) if med is None else med
-        with np.errstate(invalid="ignore", divide="ignore"):
-            chosen = np.where(np.isfinite(med) & (med > 0), np.round(window_s / med), 0)
-        p = np.clip(np.maximum(chosen, params.window_p), 2, 1000).astype("int64")
-    return p
+    if window_s <= 0:
+        return np.full(index.n_tracks, int(params.window_p), dtype="int64")
+    med = median_interval_s(t, index) if med is None else med
+    return window_points(window_s, med, params.window_p)
+
+
+def window_points(window_s: float, interval_s: np.ndarray, window_p: int) -> np.ndarray:
+    """Points per heading window of ``window_s`` seconds at each median sampling interval
+    ``interval_s`` (s): ``window_s`` / interval, rounded, never fewer than ``window_p``
+    (an unknown interval: ``window_p``), within 2 … 1000."""
+    med = np.asarray(interval_s, dtype="float64")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        chosen = np.where(np.isfinite(med) & (med > 0), np.round(window_s / med), 0)
+    return np.clip(np.maximum(chosen, window_p), 2, 1000).astype("int64")
 
 
 def _scales(params: ManeuverParams) -> list[float]:
@@ -2170,36 +2177,28 @@ def detection_limit(
     speeds = summary["mean_speed_kn"].to_numpy(dtype="float64")[moving]
     speed = float(np.nanmedian(speeds)) if np.isfinite(speeds).any() else float("nan")
     nan = float("nan")
+
+    def none_because(reason: str) -> DetectionLimit:
+        return DetectionLimit(speed, interval, nan, nan, nan, reason)
+
     shared = int(np.count_nonzero(duration[moving] <= 0))
     if not interval >= GUIDANCE_MIN_INTERVAL_S:
-        return DetectionLimit(
-            speed,
-            interval,
-            nan,
-            nan,
-            nan,
+        return none_because(
             f"points share times (median interval {interval:.1f} s; {shared:,} of "
             f"{int(moving.sum()):,} batches have all their points at one time): these look "
             "like radar plots (one batch per scan), not tracks; no detection limit can be "
-            "given until the plots are joined into tracks",
+            "given until the plots are joined into tracks"
         )
     if not np.isfinite(speed) or speed <= 0:
-        return DetectionLimit(
-            speed, interval, nan, nan, nan, "the tracks do not move: no typical speed"
-        )
+        return none_because("the tracks do not move: no typical speed")
     if speed > GUIDANCE_MAX_SPEED_KN:
-        return DetectionLimit(
-            speed,
-            interval,
-            nan,
-            nan,
-            nan,
+        return none_because(
             f"median speed {speed:.0f} kn is no ship's: the batches are not one ship each "
-            "(radar plots, or one id for several ships); no detection limit can be given",
+            "(radar plots, or one id for several ships); no detection limit can be given"
         )
     p = int(window_p)
-    if window_s > 0:
-        p = int(np.clip(max(round(window_s / interval), window_p), 2, 1000))
+    if window_s > 0:  # as the detector chooses them (:func:`_p_per_track`)
+        p = int(window_points(window_s, np.array([interval]), window_p)[0])
     leg = interval * p
     return DetectionLimit(
         speed,

@@ -346,16 +346,22 @@ def _small_layer(k: int):
     return prepare_layer(df, f"layer{k}", style=LayerStyle(width=1))
 
 
-def test_a_legend_longer_than_the_map_leaves_the_map_its_size(qtbot):
-    """Operator test: with eleven files and their steps shown (some 50 legend lines) the
-    legend beside the map made the plot's row taller than the window: the longitude
-    axis went out of sight, the view became a strip of 0.015° and the legend's lines
-    spread apart. The map keeps its size; the lines that do not fit are clipped."""
+def _shown_canvas(qtbot) -> "MapCanvas":
+    """A map canvas of 700 × 420 px, shown and exposed."""
     canvas = MapCanvas()
     qtbot.addWidget(canvas)
     canvas.resize(700, 420)
     canvas.show()
     qtbot.waitExposed(canvas)
+    return canvas
+
+
+def test_a_legend_longer_than_the_map_leaves_the_map_its_size(qtbot):
+    """Operator test: with eleven files and their steps shown (some 50 legend lines) the
+    legend beside the map made the plot's row taller than the window: the longitude
+    axis went out of sight, the view became a strip of 0.015° and the legend's lines
+    spread apart. The map keeps its size; the lines that do not fit are clipped."""
+    canvas = _shown_canvas(qtbot)
     for k in range(30):
         canvas.set_draw_data(_small_layer(k))
     canvas.set_true_aspect(55.0)
@@ -375,11 +381,7 @@ def test_a_short_legend_shows_its_lines_whole(qtbot):
     """Seen on a render of one MTAD scene: the legend's one line was cut in half, since
     the legend's height (which clips its children since it may be clipped) left out its
     layout's margins. Every label of a short legend lies inside the legend."""
-    canvas = MapCanvas()
-    qtbot.addWidget(canvas)
-    canvas.resize(700, 420)
-    canvas.show()
-    qtbot.waitExposed(canvas)
+    canvas = _shown_canvas(qtbot)
     for k in range(3):
         canvas.set_draw_data(_small_layer(k))
         QtWidgets.QApplication.processEvents()
