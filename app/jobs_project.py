@@ -138,6 +138,9 @@ class ProjectJobsMixin:
         """Save the session to ``path`` (in the background) and keep it up to date."""
         self.view_keeper.store()  # the view as it is now, not as it was 0.4 s ago
         self.time_controller.store_time()  # and the slider's time
+        # The panel's values: the session holds a project's table from when it was opened
+        # (none before a first save), and Save as wrote that, not what the panel held.
+        self.session.params = self.params.to_dict()
         ok, note = self.project.save_as(Path(path))
         if note:
             self.log_message(f"{self.tr('Warning') if ok else self.tr('Error')}: {note}")

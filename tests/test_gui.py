@@ -258,6 +258,30 @@ def test_project_save_close_reopen(qtbot, tmp_path, monkeypatch):
     w3.close()
 
 
+def test_a_project_saves_the_parameters_set_before_it_was_saved(qtbot, tmp_path, monkeypatch):
+    """Save and Save as wrote the parameter table the session had when a project was
+    opened (none for a first save), not the panel's: parameters set before the first save,
+    or since opening before a Save as, came back as the defaults or the old values."""
+    src, new_window, _, _ = _project_bench(qtbot, tmp_path, monkeypatch)
+    w = new_window()
+    load(w, src)
+    w.params.from_dict({"maneuver": {"threshold_deg": 22.0}})
+    first, other = tmp_path / "first.wakeline", tmp_path / "other.wakeline"
+    w.save_project(first)
+    assert w.project.flush(30)
+    assert load_project(first).params["maneuver"]["threshold_deg"] == 22.0  # none before
+    w.params.from_dict({"maneuver": {"threshold_deg": 25.0}})
+    w.save_project(other)  # Save as
+    assert w.project.flush(30)
+    assert load_project(other).params["maneuver"]["threshold_deg"] == 25.0  # 22 before
+    w.close()
+    w2 = new_window()
+    w2.open_project(other)
+    wait_for_jobs(w2)
+    assert w2.params.params("maneuver").threshold_deg == 25.0
+    w2.close()
+
+
 def test_project_reopens_where_the_operator_was(qtbot, tmp_path, monkeypatch):
     """Operator test: a reopened project framed all the data again and made the last
     layer active (the view Save as stored was never read back, the active layer never
