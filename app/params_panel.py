@@ -2,7 +2,9 @@
 
 Every field of a :class:`~wakeline.core.params.Params` becomes an editable row with its
 unit, range and tooltip (meaning and source). A value the core refuses is put back and the
-reason shown. Presets are the values as JSON.
+reason shown. Presets are the values as JSON. A resample ``max_gap_s`` set here without
+``max_gap_steps`` is the gap limit, as on the command line (core.transform.stated_max_gap):
+``max_gap_steps`` shows 0 and a note says why.
 """
 
 import dataclasses
@@ -32,6 +34,7 @@ from wakeline.core.pipeline import (
     ManeuverOptions,
     params_from_version,
 )
+from wakeline.core.transform import stated_max_gap
 
 #: A preset file's version key (its table is the panel's form, :data:`PARAMS_VERSION`).
 PRESET_VERSION_KEY = "wakeline_params"
@@ -97,6 +100,10 @@ class ParamsPanel(QtWidgets.QWidget):
         self._values: dict[str, Params] = {}
         self._clean = CleanParams()
         self._guard = False
+        self._loading = False  # a table (preset, project, pipeline) is being applied
+        # Resample values set here (edited or loaded) since the start or Defaults: what the
+        # operator stated, for the core's max_gap rule (core.transform.stated_max_gap).
+        self._stated: set[str] = set()
         self._summary: pd.DataFrame | None = None  # the data the guidance is about
         children = [
             {
@@ -126,6 +133,8 @@ class ParamsPanel(QtWidgets.QWidget):
         self.guidance.setTextFormat(QtCore.Qt.TextFormat.PlainText)
         self.problem = QtWidgets.QLabel(wordWrap=True)
         self.problem.setStyleSheet("color: #b00020")
+        self.note = QtWidgets.QLabel(wordWrap=True)
+        self.note.setTextFormat(QtCore.Qt.TextFormat.PlainText)
         self.buttons = [QtWidgets.QPushButton() for _ in range(3)]
         save, load, reset = self.buttons
         save.clicked.connect(self._save_dialog)
@@ -138,6 +147,7 @@ class ParamsPanel(QtWidgets.QWidget):
         lay.setContentsMargins(2, 2, 2, 2)
         lay.addWidget(self.tree, 1)
         lay.addWidget(self.problem)
+        lay.addWidget(self.note)
         lay.addWidget(self.guidance)
         lay.addLayout(buttons)
 
@@ -202,16 +212,21 @@ class ParamsPanel(QtWidgets.QWidget):
     def from_dict(self, data: dict) -> list[str]:
         """Apply values (e.g. a preset); returns the problems with values not applied."""
         problems = []
-        for key, values in data.items():
-            if key == "clean":
-                for step, vals in values.items():
-                    for name, v in vals.items():
-                        problems += self._set_value(("clean", step, name), v)
-            elif key in self._values:
-                for name, v in values.items():
-                    problems += self._set_value((key, name), v)
-            else:
-                problems.append(f"unknown parameter group {key!r}")
+        self._loading = True
+        self.note.setText("")
+        try:
+            for key, values in data.items():
+                if key == "clean":
+                    for step, vals in values.items():
+                        for name, v in vals.items():
+                            problems += self._set_value(("clean", step, name), v)
+                elif key in self._values:
+                    for name, v in values.items():
+                        problems += self._set_value((key, name), v)
+                else:
+                    problems.append(f"unknown parameter group {key!r}")
+        finally:
+            self._loading = False
         return problems
 
     def reset(self) -> None:
@@ -221,6 +236,7 @@ class ParamsPanel(QtWidgets.QWidget):
                 **{k: dataclasses.asdict(c()) for k, _, c in GROUPS},
             }
         )
+        self._stated.clear()  # nothing stated: the defaults' adaptive limit again
 
     def _set_value(self, path: tuple[str, ...], value) -> list[str]:
         try:
@@ -240,7 +256,7 @@ class ParamsPanel(QtWidgets.QWidget):
                 continue
             path = self.root.childPath(param)
             try:
-                self._apply(path, value)
+                note = self._apply(path, value)
             except InputError as exc:
                 self._guard = True
                 param.setValue(self._current(path))
@@ -249,6 +265,7 @@ class ParamsPanel(QtWidgets.QWidget):
                 self.refused.emit(str(exc))
             else:
                 self.problem.setText("")
+                self.note.setText("" if self._loading else note)
                 if path[0] == "maneuver" and self._summary is not None:
                     self.show_guidance(self._summary)  # its window and threshold changed
                 self.changed.emit(path[0])
@@ -258,16 +275,39 @@ class ParamsPanel(QtWidgets.QWidget):
             return getattr(getattr(self._clean, path[1]), path[2])
         return getattr(self._values[path[0]], path[1])
 
-    def _apply(self, path: list[str], value) -> None:
-        if path[0] == "clean":
-            step = getattr(self._clean, path[1]).replace(**{path[2]: value})
-            new = dataclasses.replace(self._clean, **{path[1]: step})
-            new.checked()
-            self._clean = new
-        else:
+    def _apply(self, path: list[str], value) -> str:
+        """Take a value (:class:`InputError` when the core refuses it); returns a note on
+        what else it changed ("" for nothing)."""
+        if path[0] != "clean":
             new = self._values[path[0]].replace(**{path[1]: value})
             new.checked()
             self._values[path[0]] = new
+            return ""
+        changes = {path[2]: value}
+        if path[1] == "resample":  # the command line's rule for a stated max_gap_s
+            stated = {name: self._current(["clean", "resample", name]) for name in self._stated}
+            changes = stated_max_gap({**stated, **changes})
+        step = getattr(self._clean, path[1]).replace(**changes)
+        new = dataclasses.replace(self._clean, **{path[1]: step})
+        new.checked()
+        old, self._clean = getattr(self._clean, path[1]), new
+        if path[1] != "resample":
+            return ""
+        self._stated.add(path[2])
+        ruled = [n for n in changes if n != path[2] and getattr(step, n) != getattr(old, n)]
+        self._guard = True  # the values the rule changed, shown
+        try:
+            for name in ruled:
+                self.root.child("clean", "resample", name).setValue(getattr(step, name))
+        finally:
+            self._guard = False
+        if "max_gap_steps" in ruled:
+            return self.tr(
+                "resample: max_gap_steps is now 0, so the max_gap_s you set is the gap limit "
+                "on every track (as with --max-gap). Set max_gap_steps to use the adaptive "
+                "limit again."
+            )
+        return ""
 
     # -- presets -------------------------------------------------------------------
 

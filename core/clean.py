@@ -80,6 +80,7 @@ from wakeline.core.transform import (
     bspline_segments,
     resample,
     smooth,
+    stated_max_gap,
 )
 
 
@@ -316,11 +317,10 @@ class CleanParams:
                     f"--set {key}={value}: expected rule.param with rule one of {', '.join(STEPS)}"
                 )
             changes.setdefault(rule, {})[name] = value
-        resample = changes.get("resample", {})
-        if "max_gap_s" in resample and "max_gap_steps" not in resample:
+        if "resample" in changes:
             # A max_gap_s given (--max-gap, --set, a saved table from before the adaptive
             # limit) is the limit, as SPEC §2.8 has it: no track's own step overrides it.
-            resample["max_gap_steps"] = "0"
+            changes["resample"] = stated_max_gap(changes["resample"])
         out = self
         for rule, values in changes.items():
             out = dataclasses.replace(out, **{rule: getattr(out, rule).replace(**values)})

@@ -18,7 +18,9 @@ before) and leaves the choice of what to record to :func:`wakeline.core.clean.cl
 which puts every replaced original in the rejected table.
 """
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -56,7 +58,8 @@ class ResampleParams(Params):
         "a step up to this many of the track's median sampling steps (and up to "
         "max_gap_cap_s) is no gap: a track fixed every 120 s, resampled at 30 s with "
         "max_gap_s 60 s, kept 8 of its 118 fixes (only grid times that fell on a fix); "
-        "0 = max_gap_s alone, as does a max_gap_s given with --max-gap or --set",
+        "0 = max_gap_s alone, as does a max_gap_s given with --max-gap or --set or edited "
+        "in the parameter panel (without max_gap_steps)",
         lo=0,
         hi=1000,
         source="ours",
@@ -71,6 +74,19 @@ class ResampleParams(Params):
         hi=1e7,
         source="ours: MTAD, ATD",
     )
+
+
+def stated_max_gap(stated: Mapping[str, Any]) -> dict[str, Any]:
+    """The resample values an operator stated (``name -> value``, text or number), with
+    SPEC §2.8's rule: a ``max_gap_s`` stated without ``max_gap_steps`` is the gap limit
+    itself, so ``max_gap_steps`` becomes 0 (the adaptive limit, a step up to
+    ``max_gap_steps`` of the track's median step, is off). A ``max_gap_steps`` stated too
+    is kept. The command line's settings (:meth:`CleanParams.with_settings`: ``--max-gap``,
+    ``--set``, a pipeline file) and the GUI's parameter panel both apply it."""
+    out = dict(stated)
+    if "max_gap_s" in out and "max_gap_steps" not in out:
+        out["max_gap_steps"] = 0.0
+    return out
 
 
 @dataclass(frozen=True)

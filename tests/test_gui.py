@@ -636,6 +636,75 @@ def test_parameters_panel_refuses_bad_values_and_round_trips_presets(window, tmp
     assert "[s]" in leaf.opts["tip"] and "seed 003" in leaf.opts["tip"]
 
 
+def test_parameters_panel_max_gap_is_the_limit_as_on_the_command_line(qtbot, window, tmp_path):
+    """Operator test: resample max_gap_s set in the Parameters panel left the adaptive limit
+    on (a step up to max_gap_steps = 2 of the track's median step is no gap), so the
+    panel's clean bridged the 120 s steps that `wakeline clean --resample 30 --max-gap 100`
+    leaves alone: 117 points against the command line's 30. The panel applies the core's
+    rule (core.transform.stated_max_gap): max_gap_steps shows 0 and a note says why; the
+    pipeline file (wakeline batch) and the project keep it; a max_gap_steps the operator
+    sets is kept."""
+    from test_clean import straight
+
+    from conftest import make_window
+    from wakeline.app.cli import main as cli_main
+    from wakeline.core.pipeline import Pipeline
+
+    src, by_cli = tmp_path / "sparse.csv", tmp_path / "cli.csv"
+    straight(30, period_s=120.0).to_csv(src, index=False)
+    flags = ["--resample", "30", "--off", "short_tracks"]
+    assert cli_main(["clean", str(src), "-o", str(by_cli), *flags, "--max-gap", "100"]) == 0
+    assert len(pd.read_csv(by_cli)) == 30  # every 120 s step is a gap
+    lid = load(window, src)
+    p = window.params
+    resample = p.root.child("clean", "resample")
+    p.root.child("clean", "short_tracks", "enabled").setValue(False)
+    resample.child("enabled").setValue(True)
+    resample.child("period_s").setValue(30.0)
+    resample.child("max_gap_s").setValue(100.0)  # as the operator types it
+    assert window.step_params("clean")["clean"].resample.max_gap_steps == 0
+    assert resample.child("max_gap_steps").value() == 0  # shown
+    assert "max_gap_steps is now 0" in p.note.text()
+    window.run_step("clean")
+    wait_for_jobs(window)
+    cleaned = window.session.find(lid, "clean", "cleaned")
+    assert len(cleaned.points) == 30  # the command line's result (117 before)
+    assert cleaned.params["clean"]["resample"]["max_gap_steps"] == 0  # what it ran with
+    # The pipeline file the panel saves runs the same in `wakeline batch`.
+    pipe = tmp_path / "pipe.json"
+    window.save_pipeline(pipe)
+    stages = Pipeline.from_json(pipe.read_text(encoding="utf-8")).stages
+    assert stages[0][1]["clean"].resample.max_gap_steps == 0
+    # The project reopens with the same values, and the step runs the same again.
+    proj = tmp_path / "gap.wakeline"
+    window.save_project(proj)
+    window.close()
+    w2 = make_window(qtbot, tmp_path)
+    try:
+        w2.open_project(proj)
+        wait_for_jobs(w2)
+        back = w2.params.clean_params().resample
+        assert (back.max_gap_s, back.max_gap_steps) == (100.0, 0)
+        w2.run_step("clean")
+        wait_for_jobs(w2)
+        assert len(w2.session.find(lid, "clean", "cleaned").points) == 30
+        # A max_gap_steps the operator sets is theirs, whatever max_gap_s they set after.
+        again = w2.params.root.child("clean", "resample")
+        again.child("max_gap_steps").setValue(3.0)
+        again.child("max_gap_s").setValue(90.0)
+        assert w2.params.clean_params().resample.max_gap_steps == 3
+        assert w2.params.note.text() == ""
+        # Defaults: nothing stated, the adaptive limit again until max_gap_s is set.
+        w2.params.reset()
+        assert w2.params.clean_params().resample.max_gap_steps == 2
+        again.child("max_gap_s").setValue(90.0)
+        assert w2.params.clean_params().resample.max_gap_steps == 0
+    finally:
+        w2.runner.cancel()
+        w2.runner.wait()
+        w2.close()
+
+
 def test_quarantined_rows_are_viewable(window, tmp_path):
     src = tmp_path / "with_bad_rows.csv"
     write_points(simulate.demo_scene().head(50), src)

@@ -1,3 +1,5 @@
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -17,6 +19,7 @@ from wakeline.core.transform import (
     greedy_sample,
     resample,
     smooth,
+    stated_max_gap,
 )
 
 
@@ -84,6 +87,27 @@ def test_resample_a_sparse_track_is_not_bridged_beyond_the_cap(tmp_path):
     assert main([*common, "-o", str(b), "--max-gap", "60"]) == 0
     assert len(pd.read_csv(a)) == 29 * 120 // 30 + 1
     assert len(pd.read_csv(b)) == 30  # the fixes alone: every 120 s step is a gap
+
+
+def test_a_stated_max_gap_is_the_limit_one_rule_for_command_line_panel_and_batch():
+    """SPEC §2.8: a max_gap_s the operator states is the gap limit (max_gap_steps 0, the
+    adaptive limit off) unless max_gap_steps is stated too. The rule is one function of
+    the core: the command line's settings, a pipeline file (``wakeline batch``) and the
+    GUI's parameter panel (which had no such rule) all call it."""
+    from wakeline.core.pipeline import Pipeline
+
+    assert stated_max_gap({"max_gap_s": 300.0}) == {"max_gap_s": 300.0, "max_gap_steps": 0.0}
+    both = {"max_gap_s": "300", "max_gap_steps": "3"}
+    assert stated_max_gap(both) == both
+    assert stated_max_gap({"period_s": 30.0}) == {"period_s": 30.0}  # nothing stated: adaptive
+    source = {"max_gap_s": 300.0}
+    stated_max_gap(source)
+    assert source == {"max_gap_s": 300.0}  # the caller's values are left as they were
+    # The command line's settings and a pipeline file batch reads take it from there.
+    assert CleanParams().with_settings(["resample.max_gap_s=300"]).resample.max_gap_steps == 0
+    stage = {"step": "clean", "params": {"clean": {"resample": {"max_gap_s": 300}}}}
+    text = json.dumps({"wakeline_pipeline": 2, "steps": [stage]})
+    assert Pipeline.from_json(text).stages[0][1]["clean"].resample.max_gap_steps == 0
 
 
 def test_smooth_reduces_noise_and_keeps_tracks_apart():

@@ -479,6 +479,10 @@
         <translation>本数据无法给出检测极限（种子文献 000）：{0}。</translation>
     </message>
     <message>
+        <source>resample: max_gap_steps is now 0, so the max_gap_s you set is the gap limit on every track (as with --max-gap). Set max_gap_steps to use the adaptive limit again.</source>
+        <translation>重采样：max_gap_steps 已设为 0，您设定的 max_gap_s 即为每条航迹的间断上限（与 --max-gap 相同）。如需再用自适应上限，请设定 max_gap_steps。</translation>
+    </message>
+    <message>
         <source>Cleaning (seeds 001, 003)</source>
         <translation>清洗（种子文献 001、003）</translation>
     </message>
