@@ -31,6 +31,26 @@ def summarize(report: dict) -> str:
     return ", ".join(parts)
 
 
+def step_lines(result) -> list[str]:
+    """What a finished step did, as the log shows it: the step's own summary (the line
+    ``wakeline STEP`` prints: where the points went, rule by rule, why nothing was paired),
+    for a pipeline one line per stage (``clean: …``); the figures of :func:`summarize`
+    where a step has no summary of its own. Command-line advice names the window's
+    controls (:func:`~wakeline.app.window_words.window_words`)."""
+    from wakeline.app.window_words import window_words
+    from wakeline.core.pipeline import STEPS
+
+    def one(res) -> str:
+        try:
+            return STEPS[res.step].summary(res)
+        except (KeyError, TypeError, ValueError):  # a report the summary cannot read
+            return summarize(res.report)
+
+    if result.stages:
+        return [window_words(f"{res.step}: {one(res)}") for res in result.stages]
+    return [window_words(one(result))]
+
+
 class ImportReportDialog(QtWidgets.QDialog):
     """A source layer's import report and its quarantined rows (line, reason, raw text)."""
 

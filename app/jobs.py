@@ -12,7 +12,7 @@ from pathlib import Path
 
 from PySide6 import QtWidgets
 
-from wakeline.app.dialogs import summarize
+from wakeline.app.dialogs import step_lines, summarize
 from wakeline.app.jobs_import import ImportJobsMixin
 from wakeline.app.jobs_project import ProjectJobsMixin
 from wakeline.app.layer_view import prepare_view_apart
@@ -275,7 +275,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             _, lid, result, views, params = done
             self._apply_step(lid, result, views, params)
             name = self.session.layers[lid].name if lid in self.session.layers else lid
-            self.log_message(f"{result.step} on {name}: {summarize(result.report)}")
+            self.log_lines(f"{result.step} on {name}", step_lines(result))
         elif kind == "bearing":
             _, path, quarantine, result, view, sha, plan = done
             if len(quarantine):

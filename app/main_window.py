@@ -294,6 +294,16 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     def log_message(self, text: str) -> None:
         self.log.appendPlainText(window_words(text))
 
+    def log_lines(self, head: str, lines: list[str]) -> None:
+        """``head: line`` for one line; ``head:`` and the lines indented under it for more
+        (a pipeline's stages)."""
+        if len(lines) == 1:
+            self.log_message(f"{head}: {lines[0]}")
+            return
+        self.log_message(f"{head}:")
+        for line in lines:
+            self.log_message(f"    {line}")
+
     def _show_cursor(self, lon: float, lat: float) -> None:
         self.cursor_label.setText(
             f"{lon:.5f}°, {lat:.5f}°   {format_dms(lat, 'N', 'S')} {format_dms(lon, 'E', 'W')}"

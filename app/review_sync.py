@@ -218,7 +218,7 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
 
 def apply_fused(w, ids: list[str], result, views: dict, params) -> None:
     """Add a fuse-across-layers result (GUI thread: a swap of prepared data)."""
-    from wakeline.app.dialogs import summarize
+    from wakeline.app.dialogs import step_lines
 
     missing = [i for i in ids if i not in w.session.layers]
     if missing:
@@ -230,4 +230,4 @@ def apply_fused(w, ids: list[str], result, views: dict, params) -> None:
     finally:
         w._pending_views = {}
     names = " + ".join(w.session.layers[i].name for i in ids)
-    w.log_message(f"fuse on {names}: {summarize(result.report)}")
+    w.log_lines(f"fuse on {names}", step_lines(result))

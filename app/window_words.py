@@ -27,6 +27,7 @@ _PHRASES = (
     ("give the right --encoding", "choose the right Encoding in the import dialog"),
     ("give --encoding utf-16", "choose the Encoding utf-16 in the import dialog"),
     ("map columns with --map field=column", "map the columns in the import dialog"),
+    (" with --set", " in the Parameters panel"),
 )
 _FIELDS = {
     "tz": "Time zone",
