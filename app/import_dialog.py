@@ -10,6 +10,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app.window_words import window_words
 from wakeline.core.errors import InputError
 from wakeline.core.io import FAMILIES, inspect_file
 from wakeline.core.io.formats import FIELDS
@@ -189,7 +190,8 @@ class ImportDialog(QtWidgets.QDialog):
             self.layout_label.setText(text)
         else:
             self.layout_label.setText("")
-        self._problem = problem
+        # The engine's advice names command-line flags; here it names this dialog's fields.
+        self._problem = window_words(problem) if problem else problem
         self._update_warning()
 
     def _fill_mapping(self) -> None:

@@ -77,14 +77,12 @@ def test_lines_above_the_header_reach_preview_mapping_and_read_points(qtbot, wri
     file's and read_points(**options()) counts every line."""
     from test_skip_rows_everywhere import NOTES, ROWS, _titled_text
 
-    from wakeline.app.window_words import window_words
-
     path = write("titled.csv", _titled_text())
     dlg = ImportDialog(path=path)
     qtbot.addWidget(dlg)
     assert dlg.skip_box.text() == "auto" and dlg.options()["skip_rows"] is None
     assert dlg.mapping().get("time") is None
-    assert "Lines above the header field" in window_words(dlg.warning_label.text())
+    assert "Lines above the header field" in dlg.warning_label.text()
     dlg.skip_box.setValue(NOTES)
     assert dlg.preview.toPlainText().startswith("track_id, time, lon, lat")
     assert f"{NOTES} line(s) above the header skipped" in dlg.layout_label.text()
@@ -138,7 +136,8 @@ def test_lines_above_the_header_past_the_end_show_the_message(qtbot, write):
     dlg = ImportDialog(path=path)
     qtbot.addWidget(dlg)
     dlg.skip_box.setValue(100)
-    assert "100: the file has 2 lines" in dlg.warning_label.text()
+    warning = dlg.warning_label.text()
+    assert "Lines above the header field: the file has 2 lines" in warning, warning
     assert dlg.preview.toPlainText() == "" and dlg.mapping() == {}
     dlg.skip_box.setValue(0)
     assert dlg.warning_label.text() == "" and dlg.mapping()["time"] == "time"
@@ -169,3 +168,20 @@ def test_file_open_with_lines_past_the_end_tells_the_operator(window, write, mon
     assert window.layer_id(path.name) is None
     assert shown and "Lines above the header field" in shown[-1]
     assert "the file has 2 lines" in shown[-1]
+
+
+def test_the_dialogs_advice_names_its_own_fields_not_cli_flags(qtbot, write):
+    """Operator test (Autoferry detections.csv.gz: local metres, no track id): the
+    dialog's warning told a window user to "map columns with --map field=column" and
+    "skip the lines above it with --skip-rows N"."""
+    head = "scenario,scan,time,sensor_id,sensor,own_north,own_east,k,meas_north,meas_east\n"
+    rows = "".join(
+        f"2,{k},{1620114891.8 + k},2,radar,-16.6,-390.4,0,{k}.5,-3.25\n" for k in range(9)
+    )
+    dlg = ImportDialog(path=write("detections.csv", head + rows))
+    qtbot.addWidget(dlg)
+    warning = dlg.warning_label.text()
+    assert "missing required column" in warning and "meas_north" in warning, warning
+    assert "--" not in warning, warning
+    assert "map the columns in the import dialog" in warning, warning
+    assert "Lines above the header field" in warning, warning
