@@ -201,6 +201,7 @@ class GanttView(pg.PlotWidget):
         self.rows: list[str] = []
         self.members: list[str] = []
         self._items: list = []  # the items showing the current proposal
+        self._span = None  # the shown rows' bar starts and ends (min), for _fit_x
         self.addItem(self.cursor)
         self._bars = pg.BarGraphItem(x0=[], x1=[], y=[], height=0.6)
         self._bars.setVisible(False)
@@ -232,6 +233,7 @@ class GanttView(pg.PlotWidget):
         self.members, self.rows = members, members + nearby
         self._labels.begin()
         if not self.rows:
+            self._span = None
             self._labels.done()
             self._bars.setVisible(False)
             self._items = []
@@ -259,12 +261,39 @@ class GanttView(pg.PlotWidget):
             text.setText(("▶ " if bold else "") + name, "#000" if k < len(members) else "#666")
             text.setPos(x0[k], y[k])
         self._items = [self._bars, *self._labels.done()]
+        self._span = (x0, x1)
         lo, hi = float(np.min(x0)), float(np.max(x1))
-        pad = 0.3 * (hi - lo) + 1.0
-        self.setXRange(lo - pad, hi + 0.05 * (hi - lo) + 1.0, padding=0)
+        self._fit_x()
         self.setYRange(float(y.min()) - 0.8, 0.8, padding=0)
         if not lo <= self.cursor.value() <= hi:
             self.set_time(self.t_ref + 60.0 * lo)
+
+    def _fit_x(self) -> None:
+        """The time range of the shown rows, with room on the left for each row's label
+        (drawn left of its bar, a fixed size in pixels): in a narrow dock a 30 % margin
+        left the first member's name off the chart."""
+        span = getattr(self, "_span", None)  # (resized while PlotWidget builds: none yet)
+        if span is None or self.plotItem is None:  # nothing shown, or closed
+            return
+        x0, x1 = span
+        lo, hi = float(np.min(x0)), float(np.max(x1))
+        right = hi + 0.05 * (hi - lo) + 1.0
+        left = lo - (0.3 * (hi - lo) + 1.0)
+        width_px = self.getViewBox().width()
+        if width_px > 0:
+            labels = self._labels.items[: self._labels.used]
+            # label k ends at its bar's start: (x0 - left) / (right - left) >= its share
+            share = np.array([t.textItem.boundingRect().width() + 6.0 for t in labels])
+            share = np.minimum(share / width_px, 0.8)
+            k = np.arange(min(len(share), len(x0)))
+            if len(k):
+                need = (x0[k] - share[k] * right) / (1.0 - share[k])
+                left = min(left, float(need.min()))
+        self.setXRange(left, right, padding=0)
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 - Qt API
+        super().resizeEvent(event)
+        self._fit_x()
 
 
 class NetworkView(pg.PlotWidget):

@@ -411,3 +411,32 @@ def test_operator_reviews_an_mtad_pair_end_to_end(qtbot, tmp_path):
     log = pd.read_csv(tmp_path / "log.csv")
     assert len(log) == n_decisions and log["action"].iloc[-1] == "undo merge"
     assert (tmp_path / "out.gpx").read_text(encoding="utf-8").count("<trk>") == len(set(want))
+
+
+def test_gantt_labels_stay_inside_a_narrow_chart(qtbot, controller):
+    """Operator test (ATD dataset1 in a 350-px Gantt dock): the label of a member that
+    starts first ("▶ S1:338219317") ran off the chart's left edge; the time axis now
+    leaves room for every label, also after the chart is resized."""
+    st = controller.state
+    gantt = GanttView(st)
+    qtbot.addWidget(gantt)
+    gantt.resize(330, 260)
+    gantt.show()
+    qtbot.waitExposed(gantt)
+    vb = gantt.getViewBox()
+
+    def clipped() -> list[str]:
+        QtWidgets.QApplication.processEvents()
+        gantt.grab()  # paint: the labels take their place for this view
+        left = vb.sceneBoundingRect().left()
+        return [
+            t.textItem.toPlainText()
+            for t in gantt._labels.items[: gantt._labels.used]
+            if t.sceneBoundingRect().left() < left - 0.5
+        ]
+
+    for pid in st.proposals["proposal"][:5]:
+        gantt.show_proposal(pid)
+        assert not clipped(), pid
+    gantt.resize(240, 260)
+    assert not clipped()
