@@ -340,6 +340,30 @@
         <translation>生成方式</translation>
     </message>
     <message>
+        <source>Dis_e (mean synchronized distance)</source>
+        <translation>Dis_e（平均同步距离）</translation>
+    </message>
+    <message>
+        <source>Maneuver threshold</source>
+        <translation>机动阈值</translation>
+    </message>
+    <message>
+        <source>Removed by clean</source>
+        <translation>清洗删除</translation>
+    </message>
+    <message>
+        <source>Changed by clean (kept, new values)</source>
+        <translation>清洗修改（保留，数值已改）</translation>
+    </message>
+    <message>
+        <source>Replaced by clean</source>
+        <translation>清洗替换</translation>
+    </message>
+    <message>
+        <source>Removed or changed by clean</source>
+        <translation>清洗删除或修改</translation>
+    </message>
+    <message>
         <source>[read-only]</source>
         <translation>[只读]</translation>
     </message>
