@@ -28,7 +28,7 @@ def read_inputs(paths: list[Path], counts: dict | None = None, **options) -> pd.
     ``options``: how to read them (read_points keywords, as ``--map`` and friends);
     ``counts``, when given, receives the reading's counts summed over the files."""
     from wakeline.app.cli_steps import read_input
-    from wakeline.core.review import combine_sources
+    from wakeline.core.review import combine_sources, source_names
 
     paths = list(paths) if isinstance(paths, list | tuple) else [paths]
     tables = []
@@ -43,7 +43,8 @@ def read_inputs(paths: list[Path], counts: dict | None = None, **options) -> pd.
                         merged[k] = merged.get(k, 0) + v
                 else:
                     counts[key] = counts.get(key, 0) + value
-    return combine_sources(tables)
+    names = source_names([name for name, _ in tables], [str(p) for p in paths])
+    return combine_sources([(n, t) for n, (_, t) in zip(names, tables, strict=True)])
 
 
 def read_table(path: Path, what: str) -> pd.DataFrame:

@@ -194,7 +194,22 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
             )  # fmt: skip
             return None
         seen.update(dict.fromkeys(w.session.sources_of(i), i))
-    named = [(Path(layers[i].name).stem, layers[i].points) for i in ids]
+    files = [w.session.root(i).meta.get("file") for i in ids]
+    for k, i in enumerate(ids):  # one file opened twice: two layers of the same points
+        twin = next((j for j, f in zip(ids[:k], files, strict=False) if f and f == files[k]), None)
+        if twin is not None:
+            QtWidgets.QMessageBox.information(
+                w,
+                tr("Fuse selected layers"),
+                tr("{0} and {1} both come from {2}: fusing them would count its points "
+                   "twice. Select one of them (Ctrl+click to unselect).").format(
+                    layers[twin].name, layers[i].name, files[k]
+                ),
+            )  # fmt: skip
+            return None
+    from wakeline.core.review_session import fuse_names
+
+    named = list(zip(fuse_names(w.session, ids), [layers[i].points for i in ids], strict=True))
     params = w.step_params("fuse")
     canvas_view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()
     rerun = {

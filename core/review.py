@@ -26,6 +26,7 @@ import dataclasses
 import datetime as _dt
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -728,6 +729,23 @@ def combine_sources(named: list[tuple[str, pd.DataFrame]]) -> pd.DataFrame:
         out.append(df)
     both = pd.concat(out, ignore_index=True)
     return both
+
+
+def source_names(names: list[str], paths: list[str | None]) -> list[str]:
+    """The names :func:`combine_sources` tells sources apart by: ``names`` (file stems) as
+    given, except where two or more are equal — there the part of their files' ``paths``
+    that differs (``ais/tracks.csv`` and ``radar/tracks.csv`` → ``ais`` and ``radar``; both
+    were ``tracks``, one sensor, and fusion found "tracks of one sensor" only)."""
+    out = list(names)
+    for name in {n for n in out if out.count(n) > 1}:
+        ks = [k for k, n in enumerate(out) if n == name and paths[k]]
+        if len(ks) < 2:
+            continue
+        stems = [str(Path(str(paths[k])).with_suffix("")) for k in ks]
+        parts = _distinct_parts([s.replace("\\", "/") for s in stems])
+        for k, part in zip(ks, parts, strict=True):
+            out[k] = part.strip("/") or part
+    return out
 
 
 def _distinct_parts(names: list[str]) -> list[str]:

@@ -47,9 +47,18 @@ def input_points(session: Session, layer: Layer) -> pd.DataFrame:
         )
     if len(ids) == 1:
         return session.layers[ids[0]].points
+    names = fuse_names(session, ids)
     return R.combine_sources(
-        [(Path(session.layers[i].name).stem, session.layers[i].points) for i in ids]
+        [(name, session.layers[i].points) for name, i in zip(names, ids, strict=True)]
     )
+
+
+def fuse_names(session: Session, ids: list[str]) -> list[str]:
+    """The names layers ``ids`` are fused under (their file stems; their files' differing
+    folders where two stems are equal: :func:`~wakeline.core.review.source_names`)."""
+    stems = [Path(session.layers[i].name).stem for i in ids]
+    files = [session.root(i).meta.get("file") for i in ids]
+    return R.source_names(stems, files)
 
 
 def bind(session: Session, layer: Layer) -> tuple[R.ReviewState, pd.DataFrame]:

@@ -640,3 +640,51 @@ def test_a_step_selects_only_its_layer_and_fuse_refuses_a_layer_with_its_own_cop
     w.actions_["fuse"].trigger()
     _settle(w)
     assert len(w.layers) == n and "both come from" in said[-1]
+
+
+def test_two_files_of_one_name_fuse_as_two_sensors(qtbot, tmp_path, monkeypatch):
+    """Operator test: ais/tracks.csv and radar/tracks.csv (one name, two folders, both
+    sensor S1) selected and fused: both were named "tracks", became one sensor, and the
+    fuse failed with "needs tracks of at least two sensors; found tracks". Now the
+    folders name them, in the window and on the command line; one file opened twice is
+    refused with a message."""
+    told = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "information", lambda *a: told.append(a[2]))
+    files = []
+    for f in _sim_pair(tmp_path):
+        folder = tmp_path / ("radar" if "radar" in f.name else "ais")
+        folder.mkdir()
+        files.append(f.rename(folder / "tracks.csv"))
+    w = _window(qtbot, tmp_path)
+    w.load_files(files)
+    _settle(w)
+    ids = list(w.layers)
+    assert len(ids) == 2
+    from wakeline.app.review_sync import fuse_selected
+
+    fuse_selected(w, ids)
+    _settle(w)
+    fused = next((lay for lay in w.layers.values() if lay.step == "fuse"), None)
+    assert fused is not None, w.log.toPlainText()
+    props = fused.tables["proposals"]
+    assert len(props) and set(props["sensor_a"]) | set(props["sensor_b"]) == {"ais", "radar"}
+    w.select_layer(fused.id)
+    _settle(w)
+    assert w.review.bound is not None and w.review.bound.lid == fused.id  # the same names
+    assert set(w.review.bound.controller.state.tracks["sensor"]) == {"ais", "radar"}
+    cli = tmp_path / "cli_p.csv"
+    args = ["fuse", *map(str, files), "-o", str(tmp_path / "cli.csv"), "--proposals", str(cli)]
+    assert cli_main(args) == 0
+    assert set(pd.read_csv(cli)["sensor_a"]) | set(pd.read_csv(cli)["sensor_b"]) == {
+        "ais",
+        "radar",
+    }
+    # The same file twice: refused, with the file named.
+    w.load_files(files[:1])
+    _settle(w)
+    twin = [i for i, lay in w.layers.items() if lay.kind == "source"][-1]
+    n = len(w.layers)
+    fuse_selected(w, [ids[0], twin])
+    _settle(w)
+    assert len(w.layers) == n and told and "both come from" in told[-1], told
+    w.close()
