@@ -214,7 +214,29 @@ class ImportDialog(QtWidgets.QDialog):
     def _mapping_changed(self) -> None:
         if not self._updating:
             self._update_extra()
+            self._recheck()
             self._update_warning()
+
+    def _recheck(self) -> None:
+        """Why an import would fail with the mapping as the boxes now hold it (the
+        detection's "missing required column" stayed after the operator mapped every
+        column of a headerless file)."""
+        path = Path(self.path_edit.text())
+        if not self._info or self._info.get("kind") != "csv" or not path.is_file():
+            return
+        try:
+            info = inspect_file(
+                path,
+                fmt=self.format_box.currentText(),
+                mapping=self.mapping() or None,
+                encoding=self._encoding(),
+                skip_rows=self._skip_rows(),
+            )
+        except (InputError, OSError) as exc:
+            problem = str(exc)
+        else:
+            problem = info["problem"]
+        self._problem = window_words(problem) if problem else None
 
     def _update_extra(self) -> None:
         columns = self._info.get("columns", []) if self._info.get("kind") != "nmea" else []

@@ -185,3 +185,21 @@ def test_the_dialogs_advice_names_its_own_fields_not_cli_flags(qtbot, write):
     assert "--" not in warning, warning
     assert "map the columns in the import dialog" in warning, warning
     assert "Lines above the header field" in warning, warning
+
+
+def test_the_warning_follows_the_mapping(qtbot, write):
+    """Operator test (Saronic vessels.csv: no header, "batch lon lat unix-time"): after
+    mapping col1..col4 the dialog still said "missing required column batch, time, lon,
+    lat" (the detection's verdict), though OK then imported all 18,834 rows."""
+    rows = "".join(f"{k % 3} 23.{k:05d} 37.5 {1722468684 + 60 * k}\n" for k in range(30))
+    dlg = ImportDialog(path=write("vessels.csv", rows))
+    qtbot.addWidget(dlg)
+    assert "missing required column" in dlg.warning_label.text()
+    for field, col in (("batch", "col1"), ("lon", "col2"), ("lat", "col3"), ("time", "col4")):
+        box = dlg.mapping_boxes[field]
+        box.setCurrentIndex(box.findText(col))
+    assert dlg.warning_label.text() == "", dlg.warning_label.text()
+    assert read_points(**dlg.options()).report["rows_imported"] == 30
+    box = dlg.mapping_boxes["lat"]  # unmapped again: the reason comes back
+    box.setCurrentIndex(0)
+    assert "lat" in dlg.warning_label.text() and "missing" in dlg.warning_label.text()
