@@ -97,14 +97,20 @@ class TimePanel(QtWidgets.QWidget):
             self.to_button,
         ):
             row2.addWidget(w)
+        row2.addStretch(1)
+        # The window's range on a line of its own, always there: beside the buttons it had
+        # the row's leftover width, none at the default layout (ATD: "2024-0" of
+        # "2024-01-01 06:00:00 UTC to 2024-01-01 12:00:00 UTC"). Its text never changes its
+        # size (ignored width, one line's height): no re-layout of the map.
         ignored = QtWidgets.QSizePolicy.Policy.Ignored
-        self.window_label.setSizePolicy(ignored, QtWidgets.QSizePolicy.Policy.Preferred)
-        row2.addWidget(self.window_label, 1)
+        self.window_label.setSizePolicy(ignored, QtWidgets.QSizePolicy.Policy.Fixed)
+        self.window_label.setFixedHeight(self.fontMetrics().height() + 2)
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(4, 2, 4, 2)
         lay.setSpacing(2)
         lay.addLayout(row1)
         lay.addLayout(row2)
+        lay.addWidget(self.window_label)
         self.retranslate()
         self._enable(False)
 
@@ -159,14 +165,14 @@ class TimePanel(QtWidgets.QWidget):
     def _update_labels(self) -> None:
         self.time_label.setText(format_time(self._t, self._relative))
         if self.time_window() is None:
-            self.window_label.setText("")
+            self.window_label.setText(self.tr("Time window: none (every time shown)"))
         else:
             a, b = self.time_window()
-            self.window_label.setText(
-                self.tr("{0} to {1}").format(
-                    format_time(a, self._relative), format_time(b, self._relative)
-                )
+            span = self.tr("{0} to {1}").format(
+                format_time(a, self._relative), format_time(b, self._relative)
             )
+            self.window_label.setText(self.tr("Time window: {0}").format(span))
+        self.window_label.setToolTip(self.window_label.text())
 
     def _enable(self, on: bool) -> None:
         for w in (self, self.slider, self.play_button, self.back_button, self.forward_button):

@@ -767,3 +767,25 @@ def test_slider_move_at_a_million_points_stays_responsive(qtbot):
     )
     # < 100 ms on an idle machine; on a loaded one no worse than twice a repaint.
     assert median < max(100.0, 2.0 * base_median), f"slider {blocks} ms, pan {base} ms"
+
+
+@pytest.mark.gui
+def test_the_time_windows_range_can_be_read_in_the_default_layout(window, qtbot, tmp_path):
+    """Operator test (ATD dataset1 at 1600 × 1000): the window's range sat beside the
+    buttons in the row's leftover width and showed "2024-0"; it has a line of its own now,
+    and its height does not change with the text."""
+    t0 = _scene_csv(tmp_path / "four.csv")
+    window.resize(1400, 900)  # the size of `wakeline gui --screenshot`
+    window.show()
+    qtbot.waitExposed(window)
+    _load(window, qtbot, tmp_path / "four.csv")
+    panel = window.time_panel
+    height = panel.height()
+    with qtbot.waitSignal(window.time_controller.window_applied, timeout=10_000):
+        panel.set_time_window((t0 + 695.0, t0 + 1000.0))
+    qtbot.wait(50)
+    label = panel.window_label
+    text = label.text()
+    assert "2024-05-01 00:11:35" in text and "2024-05-01 00:16:40" in text, text
+    assert label.isVisible() and label.fontMetrics().horizontalAdvance(text) <= label.width()
+    assert panel.height() == height

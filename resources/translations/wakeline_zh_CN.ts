@@ -802,6 +802,14 @@
 <context>
     <name>TimePanel</name>
     <message>
+        <source>Time window: none (every time shown)</source>
+        <translation>时间窗：无（显示全部时间）</translation>
+    </message>
+    <message>
+        <source>Time window: {0}</source>
+        <translation>时间窗：{0}</translation>
+    </message>
+    <message>
         <source>From here</source>
         <translation>从此处开始</translation>
     </message>
