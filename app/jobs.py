@@ -205,8 +205,13 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
     # -- messages ------------------------------------------------------------------
 
     def _start(self, name: str, fn, context: tuple) -> int:
+        running = list(self._job_context) if self.runner.busy else []
         job = self.runner.run(name, fn)
-        # One job at a time: an older job's result will never be applied.
+        # One job at a time: an older job's result will never be applied; its
+        # cancellation names the job that took its place (an Associate of ATD dataset1
+        # was cancelled by File ▸ Open of another file, the log said only "cancelled").
+        for old in running:
+            self._replaced[old] = name
         self._job_context = {job: context}
         return job
 
@@ -242,7 +247,15 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             else:  # a screenshot run: nobody to close a dialog; say it and go on
                 print(f"wakeline: {title}: {msg.message}", file=sys.stderr)
         elif isinstance(msg, Cancelled):
-            self.log_message(self.tr("{0} cancelled").format(msg.name))
+            by = self._replaced.pop(msg.job, None)
+            if by is None:
+                self.log_message(self.tr("{0} cancelled").format(msg.name))
+            else:
+                text = self.tr(
+                    "{0} cancelled: {1} took its place (one job at a time); run {0} again "
+                    "once it is done"
+                )
+                self.log_message(text.format(msg.name, by))
             self.statusBar().showMessage(self.tr("{0} cancelled").format(msg.name), 5000)
 
     def show_bearing_layer(self, view) -> None:

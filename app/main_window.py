@@ -79,6 +79,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.runner = JobRunner(self)
         self.runner.message.connect(self._on_job_message)
         self._job_context: dict[int, tuple] = {}
+        self._replaced: dict[int, str] = {}  # a running job -> the job that took its place
         self._selecting = False
         self._pending_views: dict = {}
         self._draw_queue: list[str] = []

@@ -1091,3 +1091,34 @@ def test_the_log_says_where_a_steps_points_went_and_why_nothing_fused(window, tm
     log = window.log.toPlainText()
     assert "0 pairs" in log and "max_distance_m" in log, log
     assert "Parameters panel" in log and "--set" not in log, log
+
+
+def test_a_job_cancelled_by_the_next_one_says_so(window, tmp_path):
+    """Operator test: File ▸ Open of a second file while Associate ran on ATD dataset1
+    cancelled the Associate (one job at a time); the log said only "associate
+    cancelled". It now names the job that took its place and says to run it again."""
+    load(window, demo_path())
+    started = []
+
+    def long_job(progress):
+        for k in range(2000):
+            started.append(k)
+            progress(k / 2000, "working")
+            time.sleep(0.005)
+        return ("export", "x", tmp_path / "x")
+
+    window._start("associate", long_job, ("associate", "demo"))
+    deadline = time.time() + 5
+    while not started and time.time() < deadline:
+        QtWidgets.QApplication.processEvents()
+    src = tmp_path / "other.csv"
+    write_points(simulate.demo_scene(seed=5), src)
+    load(window, src)
+    log = window.log.toPlainText()
+    assert "associate cancelled: open other.csv took its place" in log, log
+    assert "run associate again" in log, log
+    window.runner.cancel()  # a job cancelled by hand says only that
+    window._start("associate", long_job, ("associate", "demo"))
+    window.runner.cancel()
+    wait_for_jobs(window)
+    assert window.log.toPlainText().splitlines()[-1] == "associate cancelled"

@@ -336,6 +336,10 @@
         <translation>纯方位</translation>
     </message>
     <message>
+        <source>{0} cancelled: {1} took its place (one job at a time); run {0} again once it is done</source>
+        <translation>{0} 已取消：{1} 取代了它（一次只运行一个任务）；待其完成后请重新运行 {0}</translation>
+    </message>
+    <message>
         <source>Made by</source>
         <translation>生成方式</translation>
     </message>
