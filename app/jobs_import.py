@@ -111,7 +111,28 @@ class ImportJobsMixin:
         meta = {"file": str(path), "report": rep, "quarantine": quarantine, "layout": layout}
         lid = self.session.new_id()
         self.views[lid] = view
-        self.session.add_layer(path.name, "source", view.points, meta, color=color, layer_id=lid)
+        name = self._source_name(path)
+        self.session.add_layer(name, "source", view.points, meta, color=color, layer_id=lid)
+
+    def _source_name(self, path: Path) -> str:
+        """A new source layer's name: the file's name, with its folder where a layer
+        has that name already (ais/tracks.csv and radar/tracks.csv were both "tracks.csv"
+        in the Layers list, the legend and the fused layer's name), and a number where
+        that is taken too (one file opened twice)."""
+        layers = self.session.layers.values()
+        taken = {lay.name for lay in layers}
+        same_file = any(
+            lay.kind == "source" and Path(str(lay.meta.get("file", ""))) == Path(path)
+            for lay in layers
+        )
+        name = path.name
+        if name in taken and path.parent.name and not same_file:
+            name = f"{path.parent.name}/{path.name}"
+        k = 2
+        while name in taken:
+            name = f"{path.name} ({k})"
+            k += 1
+        return name
 
     def load_bearings(self, path: Path) -> int | None:
         """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it

@@ -1122,3 +1122,22 @@ def test_a_job_cancelled_by_the_next_one_says_so(window, tmp_path):
     window.runner.cancel()
     wait_for_jobs(window)
     assert window.log.toPlainText().splitlines()[-1] == "associate cancelled"
+
+
+def test_files_of_one_name_get_layer_names_apart(window, tmp_path):
+    """Operator test: ais/tracks.csv and radar/tracks.csv were both "tracks.csv" in the
+    Layers list and the legend (and "tracks.csv + tracks.csv · fused"); a file opened
+    twice gave two layers of one name."""
+    paths = []
+    for folder, seed in (("ais", 1), ("radar", 2)):
+        (tmp_path / folder).mkdir()
+        paths.append(tmp_path / folder / "tracks.csv")
+        write_points(simulate.demo_scene(seed=seed), paths[-1])
+    window.load_files(paths)
+    wait_for_jobs(window)
+    window.load_files(paths[:1])
+    wait_for_jobs(window)
+    names = [lay.name for lay in window.layers.values()]
+    assert names == ["tracks.csv", "radar/tracks.csv", "tracks.csv (2)"], names
+    shown = [window.layer_list.item(r).text() for r in range(window.layer_list.count())]
+    assert len(set(shown)) == 3, shown
