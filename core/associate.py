@@ -52,9 +52,9 @@ class LinkParams(Params):
         "10 + 2 × 1 min. A pair whose ends' median steps sum to more has the excess taken "
         "off its gap wherever the gap meets a time limit (max_gap_s, soft_gap_s, long_gap_s "
         "and the gap price), so the limits hold the same outage at any sampling: at 3-min "
-        "sampling T_gap is 600 + 2 × 180 = 960 s; each end's step counts up to max_gap_s (a "
-        "longer step is an outage of its own, not sampling) (0 = off: the gap as it is, "
-        "whatever the sampling)",
+        "sampling T_gap is 600 + 2 × 180 = 960 s; each end's step counts up to max_gap_s, and "
+        "nothing when it is over twice max_gap_s (a longer step is an outage of its own, not "
+        "sampling) (0 = off: the gap as it is, whatever the sampling)",
         0.0,
         86400.0,
         "ours (issue 15, sampling sweep; max_gap_s 720 = a 600 s outage plus two 60 s "
@@ -393,15 +393,26 @@ def _step_allowance(
     start's median time steps (``step1`` / ``step0``, each counted up to ``step_cap_s``)
     sum to more than ``allowance_s`` (0 where not, or when ``allowance_s`` is 0: off).
 
-    The cap is T_gap itself (``max_gap_s``): a step longer than T_gap is an outage of its
-    own, not sampling, so one piece reported every few hours neither makes any gap of its
-    own "within T_gap" nor widens every piece's candidate search (ATD's 12 h steps did:
-    33 s and 1.6 GB at its own cuts, against 2.4 s)."""
+    The cap is T_gap itself (``max_gap_s``), and a step beyond twice it counts nothing
+    (:func:`_sampling_step`): a step longer than T_gap is an outage of its own, not
+    sampling, so one piece reported every few hours neither makes any gap of its own
+    "within T_gap" nor widens every piece's candidate search (ATD's 12 h steps did: 33 s
+    and 1.6 GB at its own cuts, against 2.4 s); and a track reported every 30 min does not
+    reach every other ship's start one report later (ATD at known 30–60 min gaps: 1,346
+    wrong joins with the cap alone, 418 so)."""
     if allowance_s <= 0 or seg.step1 is None or seg.step0 is None:
         return np.zeros(len(i))
-    steps = np.fmin(np.nan_to_num(seg.step1[i]), step_cap_s)
-    steps += np.fmin(np.nan_to_num(seg.step0[j]), step_cap_s)
+    steps = _sampling_step(seg.step1[i], step_cap_s) + _sampling_step(seg.step0[j], step_cap_s)
     return np.maximum(steps - allowance_s, 0.0)
+
+
+def _sampling_step(step_s: np.ndarray, cap_s: float) -> np.ndarray:
+    """Per end: how much of its median time step (s) counts as sampling — all of it up to
+    ``cap_s`` (T_gap), ``cap_s`` up to twice it (one report missed in the end's few steps),
+    nothing beyond: a piece reported more sparsely than that is outside the design (every
+    gap of its own is an outage; ATD's 30-min posits), not sampling to allow for."""
+    step = np.nan_to_num(step_s)
+    return np.where(step <= 2.0 * cap_s, np.fmin(step, cap_s), 0.0)
 
 
 def _largest_allowance(seg: Segments, params: LinkParams) -> float:
@@ -409,9 +420,7 @@ def _largest_allowance(seg: Segments, params: LinkParams) -> float:
     time a candidate search must look (at most 2 × ``max_gap_s`` − ``step_allowance_s``)."""
     if params.step_allowance_s <= 0 or seg.step1 is None or seg.step0 is None or not len(seg):
         return 0.0
-    cap = params.max_gap_s
-    top = min(float(np.nanmax(np.nan_to_num(seg.step1))), cap)
-    top += min(float(np.nanmax(np.nan_to_num(seg.step0))), cap)
+    top = sum(float(_sampling_step(s, params.max_gap_s).max()) for s in (seg.step1, seg.step0))
     return max(top - params.step_allowance_s, 0.0)
 
 

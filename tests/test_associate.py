@@ -11,6 +11,7 @@ from wakeline.core import geo, simulate
 from wakeline.core.associate import (
     LinkParams,
     _largest_allowance,
+    _sampling_step,
     associate_interrupted,
     associate_segments,
     candidate_pairs,
@@ -1006,7 +1007,10 @@ def test_a_step_longer_than_t_gap_is_an_outage_not_sampling():
     """Review of session 20: the step allowance had no bound. A piece reported every 2 h
     made any gap of its own "within T_gap" (a1 → a2 over 1 h counted −3,480 s), and the
     largest step of the scene widened every piece's search (ATD's 12 h steps: 33 s and
-    1.6 GB at its own cuts, 2.4 s without). Each end's step now counts up to max_gap_s."""
+    1.6 GB at its own cuts, 2.4 s without). Each end's step now counts up to max_gap_s,
+    and nothing beyond twice it (session 21: a track reported every 30 min reached every
+    other ship's start one report later; ATD at known 30–60 min gaps, 1,346 wrong joins
+    → 418)."""
     df = pd.concat(
         [
             _lane("a1", 0, 1800, 0.0, "A", 0),
@@ -1017,11 +1021,41 @@ def test_a_step_longer_than_t_gap_is_an_outage_not_sampling():
     p = LinkParams()
     seg = segment_stats(df, 10, end_span_s=450.0)
     assert np.nanmax(seg.step0) == 7200.0
-    # the search looks at most 2 × 720 − 120 s further
-    assert _largest_allowance(seg, p) == 2 * p.max_gap_s - p.step_allowance_s
+    # a2's 2 h step is beyond 2 × 720 s: no sampling to allow for; the search looks only
+    # as far further as a1's 180 s steps take it
+    assert _largest_allowance(seg, p) == 180.0 + 180.0 - p.step_allowance_s
+    # a step up to twice T_gap (a report missed among an end's few steps) counts T_gap
+    steps = np.array([600.0, 720.0, 1000.0, 1440.0, 1441.0, 7200.0, np.nan])
+    assert _sampling_step(steps, 720.0).tolist() == [600.0, 720.0, 720.0, 720.0, 0.0, 0.0, 0.0]
     pairs = candidate_pairs(seg, replace(p, max_gap_s=5000.0))
     names = seg.index.keys["batch"].to_numpy()
     k = np.flatnonzero((names[pairs.i] == "a1") & (names[pairs.j] == "a2"))
     # gap 3,600 s; allowance 180 + min(7,200, 5,000) − 120 = 5,060 s
     assert len(k) == 1 and counted_gap(pairs)[k[0]] == 3600.0 - 5060.0
-    assert not len(candidate_pairs(seg, p).i)  # at 720 s: 3,600 − (180 + 720 − 120) > 720
+    assert not len(candidate_pairs(seg, p).i)  # at 720 s: 3,600 − (180 + 0 − 120) > 720
+
+
+def test_a_track_reported_every_half_hour_does_not_reach_the_next_report_of_another_ship():
+    """ATD 2025 (30-min posits): each end's 1,750 s step counted as T_gap made every gap
+    of about one report (1,000–1,700 s) count under 720 s, so a ship's last piece reached
+    any start one report later: 1,143 of 1,346 wrong joins at known 30–60 min gaps were
+    such. A step beyond twice T_gap is an outage of its own: the gap counts as it is."""
+    df = pd.concat(
+        [
+            _lane("a", 0, 6 * 1800, 0.0, "A", 0, 1800.0),  # its last report at 10,800 s
+            _lane("b", 10800 + 1700, 10800 + 1700 + 6 * 1800, 0.0, "B", 1, 1800.0),
+        ],
+        ignore_index=True,
+    )
+    seg = segment_stats(df, 10, end_span_s=450.0)
+    p = LinkParams()
+    assert not len(candidate_pairs(seg, p).i)
+    # at 10-min sampling (within twice T_gap) a gap of about one report is no outage
+    df10 = pd.concat(
+        [
+            _lane("a", 0, 6 * 600, 0.0, "A", 0, 600.0),
+            _lane("b", 3600 + 570, 3600 + 570 + 6 * 600, 0.0, "B", 1, 600.0),
+        ],
+        ignore_index=True,
+    )
+    assert len(candidate_pairs(segment_stats(df10, 10, end_span_s=450.0), p).i) == 1
