@@ -12,6 +12,7 @@ import json
 from pathlib import Path
 
 import pandas as pd
+import shiboken6
 from pyqtgraph.parametertree import Parameter, ParameterTree
 from PySide6 import QtCore, QtWidgets
 
@@ -89,6 +90,25 @@ def _group(name: str, title: str, params: Params) -> dict:
     }
 
 
+class ReleasedParameterTree(ParameterTree):
+    """pyqtgraph's :class:`ParameterTree` that lets go of its root item with its life.
+
+    pyqtgraph's ``TreeWidget`` keeps, for the tree's whole life, a Python wrapper of its
+    invisible root item. Qt made that item (it is no QObject), so PySide never learns
+    that it died with the tree: the wrapper stayed registered at the freed address, and
+    a C++ object later made there came back to Python as that ``QTreeWidgetItem`` (a
+    pyqtgraph SpinBox's ``lineEdit()``, a plot's ``children()``: the GUI tests'
+    intermittent AttributeErrors and crashes, one window's tree each). Here the wrapper
+    is invalidated (forgotten by PySide, the item untouched) when the tree is destroyed.
+    """
+
+    def __init__(self, parent: QtWidgets.QWidget | None = None, showHeader: bool = True) -> None:
+        super().__init__(parent, showHeader=showHeader)
+        root = self._invRootItem._real_item
+        # Capture the item only: the tree's own wrapper is invalid by then.
+        self.destroyed.connect(lambda _obj=None, root=root: shiboken6.invalidate(root))
+
+
 class ParamsPanel(QtWidgets.QWidget):
     """Tree of every pipeline parameter; emits ``changed`` with the step name."""
 
@@ -125,7 +145,7 @@ class ParamsPanel(QtWidgets.QWidget):
                 if sub.hasChildren():
                     sub.setOpts(expanded=False)
             grp.setOpts(expanded=grp.name() in ("clean", "maneuver"))
-        self.tree = ParameterTree(showHeader=False)
+        self.tree = ReleasedParameterTree(showHeader=False)
         self.tree.setParameters(self.root, showTop=False)
         self.root.sigTreeStateChanged.connect(self._tree_changed)
 

@@ -705,6 +705,24 @@ def test_parameters_panel_max_gap_is_the_limit_as_on_the_command_line(qtbot, win
         w2.close()
 
 
+def test_a_destroyed_parameter_tree_leaves_no_wrapper_of_its_root_item(qtbot):
+    """pyqtgraph's tree keeps a Python wrapper of the root item Qt made, which PySide did
+    not forget when the tree died: a C++ object later made at that address came back to
+    Python as that QTreeWidgetItem (a SpinBox's lineEdit(), a plot's children(): the GUI
+    tests' intermittent AttributeErrors). The wrapper goes with the tree."""
+    import shiboken6
+
+    from wakeline.app.params_panel import ParamsPanel
+
+    panel = ParamsPanel()
+    root = panel.tree.invisibleRootItem()._real_item
+    assert shiboken6.isValid(root) and root.childCount() > 0
+    panel.deleteLater()
+    QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.Type.DeferredDelete)
+    assert not shiboken6.isValid(panel.tree)
+    assert not shiboken6.isValid(root), "the dead root item's wrapper is still registered"
+
+
 def test_quarantined_rows_are_viewable(window, tmp_path):
     src = tmp_path / "with_bad_rows.csv"
     write_points(simulate.demo_scene().head(50), src)
