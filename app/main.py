@@ -125,7 +125,13 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
             app.processEvents()
             QtCore.QThread.msleep(20)
         ok = window.grab().save(str(screenshot))
-        window.close()
+        window.close()  # stops the jobs (a few seconds' wait each) and the docks
+        # Deleted here, its jobs ended first: a window left behind (frozen above) lived on
+        # in the tests until a later test's teardown deleted it.
+        window.runner.wait()
+        window.lod_worker.wait()
+        window.deleteLater()
+        QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.Type.DeferredDelete)
         del window, settings
         shutil.rmtree(scratch, ignore_errors=True)
         return 0 if ok and all(loaded) else 2

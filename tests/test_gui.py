@@ -804,9 +804,17 @@ def test_dms():
     assert format_dms(-122.25, "E", "W") == "122°15'00.0\"W"
 
 
+def _main_windows() -> int:
+    return sum(isinstance(w, MainWindow) for w in QtWidgets.QApplication.topLevelWidgets())
+
+
 def test_screenshot_runs_the_pipeline(qapp, tmp_path):
     png = tmp_path / "shot.png"
+    before = _main_windows()
     assert run([demo_path()], screenshot=png) == 0
+    # Its window is deleted before run() returns (a test with no qtbot has no teardown
+    # that would end it; it lived on into later tests).
+    assert _main_windows() == before
     data = png.read_bytes()
     assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10_000
     from PySide6 import QtGui
