@@ -54,7 +54,8 @@ class LinkParams(Params):
         "and the gap price), so the limits hold the same outage at any sampling: at 3-min "
         "sampling T_gap is 600 + 2 × 180 = 960 s; each end's step counts up to max_gap_s, and "
         "nothing when it is over twice max_gap_s (a longer step is an outage of its own, not "
-        "sampling) (0 = off: the gap as it is, whatever the sampling)",
+        "sampling); the second look's searches count it up to their own reach, long_gap_s "
+        "(0 = off: the gap as it is, whatever the sampling)",
         0.0,
         86400.0,
         "ours (issue 15, sampling sweep; max_gap_s 720 = a 600 s outage plus two 60 s "
