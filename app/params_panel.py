@@ -124,6 +124,7 @@ class ParamsPanel(QtWidgets.QWidget):
         # Resample values set here (edited or loaded) since the start or Defaults: what the
         # operator stated, for the core's max_gap rule (core.transform.stated_max_gap).
         self._stated: set[str] = set()
+        self._note_key = ""  # the note under the tree (_show_note)
         self._summary: pd.DataFrame | None = None  # the data the guidance is about
         children = [
             {
@@ -210,6 +211,7 @@ class ParamsPanel(QtWidgets.QWidget):
             strict=True,
         ):
             button.setText(text)
+        self._show_note(self._note_key)
 
     # -- values --------------------------------------------------------------------
 
@@ -233,7 +235,14 @@ class ParamsPanel(QtWidgets.QWidget):
         """Apply values (e.g. a preset); returns the problems with values not applied."""
         problems = []
         self._loading = True
-        self.note.setText("")
+        self._show_note("")
+        resample = data.get("clean", {}).get("resample")
+        if isinstance(resample, dict):
+            # The command line's rule, by what the table holds (an older table without
+            # max_gap_steps gets 0, as with_settings gives it), whatever the order of its
+            # values and whatever was edited before: what it holds is what was stated.
+            data = {**data, "clean": {**data["clean"], "resample": stated_max_gap(resample)}}
+            self._stated = set(data["clean"]["resample"])
         try:
             for key, values in data.items():
                 if key == "clean":
@@ -285,7 +294,7 @@ class ParamsPanel(QtWidgets.QWidget):
                 self.refused.emit(str(exc))
             else:
                 self.problem.setText("")
-                self.note.setText("" if self._loading else note)
+                self._show_note("" if self._loading else note)
                 if path[0] == "maneuver" and self._summary is not None:
                     self.show_guidance(self._summary)  # its window and threshold changed
                 self.changed.emit(path[0])
@@ -295,9 +304,23 @@ class ParamsPanel(QtWidgets.QWidget):
             return getattr(getattr(self._clean, path[1]), path[2])
         return getattr(self._values[path[0]], path[1])
 
+    def _show_note(self, key: str) -> None:
+        """The note under the tree: ``key`` names it ("" for none), so that a language
+        switch can write it again."""
+        self._note_key = key
+        self.note.setText(
+            self.tr(
+                "resample: max_gap_steps is now 0, so the max_gap_s you set is the gap limit "
+                "on every track (as with --max-gap). Set max_gap_steps to use the adaptive "
+                "limit again."
+            )
+            if key == "max_gap_steps"
+            else ""
+        )
+
     def _apply(self, path: list[str], value) -> str:
-        """Take a value (:class:`InputError` when the core refuses it); returns a note on
-        what else it changed ("" for nothing)."""
+        """Take a value (:class:`InputError` when the core refuses it); returns the key of
+        a note on what else it changed ("" for nothing; :meth:`_show_note`)."""
         if path[0] != "clean":
             new = self._values[path[0]].replace(**{path[1]: value})
             new.checked()
@@ -321,13 +344,7 @@ class ParamsPanel(QtWidgets.QWidget):
                 self.root.child("clean", "resample", name).setValue(getattr(step, name))
         finally:
             self._guard = False
-        if "max_gap_steps" in ruled:
-            return self.tr(
-                "resample: max_gap_steps is now 0, so the max_gap_s you set is the gap limit "
-                "on every track (as with --max-gap). Set max_gap_steps to use the adaptive "
-                "limit again."
-            )
-        return ""
+        return "max_gap_steps" if "max_gap_steps" in ruled else ""
 
     # -- presets -------------------------------------------------------------------
 

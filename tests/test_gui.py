@@ -1167,3 +1167,34 @@ def test_files_of_one_name_get_layer_names_apart(window, tmp_path):
     assert names == ["tracks.csv", "radar/tracks.csv", "tracks.csv (2)"], names
     shown = [window.layer_list.item(r).text() for r in range(window.layer_list.count())]
     assert len(set(shown)) == 3, shown
+
+
+def test_parameters_panel_loads_a_table_by_the_command_lines_max_gap_rule(qtbot):
+    """Review of session 21: the panel applied the max_gap rule when an edit changed a
+    value, the command line by what a table holds. A loaded table (project, preset,
+    pipeline) now decides as the command line does: an older table with only max_gap_s
+    gives max_gap_steps 0 even when max_gap_s equals the current value, an earlier edit
+    of max_gap_steps does not carry over, and the order of the values does not matter.
+    (The note under the tree follows a language switch: tests/test_translations.py.)"""
+    from wakeline.app.params_panel import ParamsPanel
+    from wakeline.core.clean import CleanParams
+
+    def cli(resample: dict) -> float:
+        settings = {f"resample.{k}": str(v) for k, v in resample.items()}
+        return CleanParams().with_settings(settings).resample.max_gap_steps
+
+    panel = ParamsPanel()
+    qtbot.addWidget(panel)
+    default_gap = panel.clean_params().resample.max_gap_s
+    for before, table in (
+        ({}, {"max_gap_s": default_gap}),  # an older table, max_gap_s unchanged
+        ({"max_gap_steps": 3.0}, {"max_gap_s": 100.0}),  # an edit before the load
+        ({}, {"max_gap_steps": 2.0, "max_gap_s": 100.0}),  # both, steps listed first
+        ({}, {"max_gap_s": 100.0, "max_gap_steps": 2.0}),
+    ):
+        panel.reset()
+        for name, v in before.items():
+            panel.root.child("clean", "resample", name).setValue(v)
+        assert panel.from_dict({"clean": {"resample": table}}) == []
+        shown = panel.root.child("clean", "resample", "max_gap_steps").value()
+        assert panel.clean_params().resample.max_gap_steps == cli(table) == shown, table

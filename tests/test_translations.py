@@ -215,6 +215,9 @@ def test_detail_params_and_statistics_switch_to_chinese(qtbot):
     )
     stats.compute(("k",), pts)
     assert dict(stats.rows())["Targets"] == "no target ids"
+    params.root.child("clean", "resample", "max_gap_s").setValue(90.0)  # the rule's note
+    english = params.note.text()
+    assert english.startswith("resample: max_gap_steps is now 0")
     translator = i18n.install(app, "zh_CN", None)
     zh = zh_table()
     try:
@@ -225,6 +228,7 @@ def test_detail_params_and_statistics_switch_to_chinese(qtbot):
         titles = {g.name(): g.opts["title"] for g in params.root.children()}
         assert titles["clean"] == zh[("ParamsPanel", "Cleaning (seeds 001, 003)")]
         assert titles["bearing"] == zh[("ParamsPanel", "Bearing-only (seed 002)")]
+        assert params.note.text() == zh[("ParamsPanel", english)]  # written again
         rows = dict(stats.rows())
         assert rows[zh[("StatsPanel", "Targets")]] == zh[("StatsPanel", "no target ids")]
         assert stats.hist.getAxis("left").labelText == zh[("StatsPanel", "tracks")]
