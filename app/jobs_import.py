@@ -119,15 +119,23 @@ class ImportJobsMixin:
         has that name already (ais/tracks.csv and radar/tracks.csv were both "tracks.csv"
         in the Layers list, the legend and the fused layer's name), and a number where
         that is taken too (one file opened twice)."""
+        from wakeline.core.review import distinct_folders
+
         layers = self.session.layers.values()
         taken = {lay.name for lay in layers}
-        same_file = any(
-            lay.kind == "source" and Path(str(lay.meta.get("file", ""))) == Path(path)
+        files = {
+            str(lay.meta["file"])
             for lay in layers
-        )
+            if lay.kind == "source"
+            and lay.meta.get("file")
+            and Path(lay.meta["file"]).name == path.name
+        }
         name = path.name
-        if name in taken and path.parent.name and not same_file:
-            name = f"{path.parent.name}/{path.name}"
+        if name in taken and str(path) not in files:
+            # the folders that tell it from the other files of this name (core's rule, as
+            # the sensors of a fusion are named)
+            folder = distinct_folders([*sorted(files), str(path)])[-1]
+            name = f"{folder}/{path.name}" if folder else name
         k = 2
         while name in taken:
             name = f"{path.name} ({k})"

@@ -48,7 +48,8 @@ class ProjectJobsMixin:
             return
         filt = "GeoJSON (*.geojson)" if kind == "geojson" else "CSV (*.csv)"
         suffix = ".geojson" if kind == "geojson" else ".csv"
-        name = layer.name.replace(" · ", "_") + suffix
+        # a layer named after its folder ("radar/tracks.csv") suggests one file name
+        name = layer.name.replace(" · ", "_").replace("/", "_") + suffix
         path, _ = QtWidgets.QFileDialog.getSaveFileName(self, self.tr("Export"), name, filt)
         if path:
             self.export(kind, Path(path))

@@ -26,7 +26,7 @@ import dataclasses
 import datetime as _dt
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import PurePath
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -733,30 +733,51 @@ def combine_sources(named: list[tuple[str, pd.DataFrame]]) -> pd.DataFrame:
 
 def source_names(names: list[str], paths: list[str | None]) -> list[str]:
     """The names :func:`combine_sources` tells sources apart by: ``names`` (file stems) as
-    given, except where two or more are equal — there the part of their files' ``paths``
-    that differs (``ais/tracks.csv`` and ``radar/tracks.csv`` → ``ais`` and ``radar``; both
-    were ``tracks``, one sensor, and fusion found "tracks of one sensor" only)."""
+    given, except where two or more are equal — there the folders that tell their files'
+    ``paths`` apart (``ais/tracks.csv`` and ``radar/tracks.csv`` → ``ais`` and ``radar``;
+    both were ``tracks``, one sensor, and fusion found "tracks of one sensor" only;
+    :func:`distinct_folders`)."""
     out = list(names)
     for name in {n for n in out if out.count(n) > 1}:
         ks = [k for k, n in enumerate(out) if n == name and paths[k]]
         if len(ks) < 2:
             continue
-        stems = [str(Path(str(paths[k])).with_suffix("")) for k in ks]
-        parts = _distinct_parts([s.replace("\\", "/") for s in stems])
-        for k, part in zip(ks, parts, strict=True):
-            out[k] = part.strip("/") or part
+        for k, folder in zip(ks, distinct_folders([str(paths[k]) for k in ks]), strict=True):
+            out[k] = folder or out[k]
     return out
 
 
+def distinct_folders(paths: list[str]) -> list[str]:
+    """Per path: the fewest folders just above the file that tell it apart from the others
+    (``d/radar1/tracks.csv``, ``d/radar2/tracks.csv`` → ``radar1``, ``radar2``;
+    ``a/x/t.csv``, ``b/x/t.csv`` → ``a/x``, ``b/x``), whole folder names, never parts of
+    one; "" for paths that no folder tells apart (one file twice)."""
+    parts = [PurePath(str(p).replace("\\", "/")).parent.parts for p in paths]
+    deepest = max((len(p) for p in parts), default=0)
+    for d in range(1, deepest + 1):
+        tails = ["/".join(p[-d:]) for p in parts]
+        if len(set(tails)) == len(tails):
+            return tails
+    tails = ["/".join(p) for p in parts]
+    return [t if tails.count(t) == 1 else "" for t in tails]
+
+
 def _distinct_parts(names: list[str]) -> list[str]:
-    """Each name without the prefix and suffix all names share (``_``/``-`` trimmed);
-    the whole name when that leaves nothing or two would be equal."""
+    """Each name without the leading and trailing words all names share (words end at
+    ``_``, ``-``, ``.``, ``/`` or a space: ``radar1`` and ``radar2`` stay whole, not ``1``
+    and ``2``); the whole name when that leaves nothing or two would be equal."""
     if len(names) < 2:
         return list(names)
     import os
 
+    seps = "_-./ "
     pre = os.path.commonprefix(names)
+    if not all(len(n) == len(pre) or n[len(pre)] in seps for n in names):
+        pre = pre[: max(pre.rfind(c) for c in seps) + 1]  # back to a word's end
     suf = os.path.commonprefix([n[::-1] for n in names])[::-1]
+    if suf and not all(len(n) == len(suf) or n[-len(suf) - 1] in seps for n in names):
+        cut = [k for k, c in enumerate(suf) if c in seps]
+        suf = suf[cut[0] :] if cut else ""  # from a word's start
     parts = []
     for n in names:
         core = n[len(pre) : len(n) - len(suf) if suf else len(n)].strip("_- .")

@@ -1167,6 +1167,14 @@ def test_files_of_one_name_get_layer_names_apart(window, tmp_path):
     assert names == ["tracks.csv", "radar/tracks.csv", "tracks.csv (2)"], names
     shown = [window.layer_list.item(r).text() for r in range(window.layer_list.count())]
     assert len(set(shown)) == 3, shown
+    # a third file of that name whose folder is "radar" too: the folders above tell it
+    # apart, as the core names the sensors of a fusion (review of session 21)
+    other = tmp_path / "b" / "radar" / "tracks.csv"
+    other.parent.mkdir(parents=True)
+    write_points(simulate.demo_scene(seed=3), other)
+    window.load_files([other])
+    wait_for_jobs(window)
+    assert [lay.name for lay in window.layers.values()][-1] == "b/radar/tracks.csv"
 
 
 def test_parameters_panel_loads_a_table_by_the_command_lines_max_gap_rule(qtbot):

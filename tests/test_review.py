@@ -523,6 +523,18 @@ def test_fuse_takes_one_file_per_sensor(scene, tmp_path, capsys):
 def test_combine_sources_names():
     assert R._distinct_parts(["scene-0_error_0_AIS", "scene-0_error_0_radar"]) == ["AIS", "radar"]
     assert R._distinct_parts(["a", "a"]) == ["a", "a"]
+    # whole words, never parts of one (review of session 21: radar1/radar2 became 1 / 2)
+    assert R._distinct_parts(["radar1", "radar2"]) == ["radar1", "radar2"]
+    assert R._distinct_parts(["run_radar1_x", "run_radar2_x"]) == ["radar1", "radar2"]
+    assert R.distinct_folders(["d/radar1/tracks.csv", "d/radar2/tracks.csv"]) == [
+        "radar1",
+        "radar2",
+    ]
+    assert R.distinct_folders(["a/x/t.csv", "b/x/t.csv"]) == ["a/x", "b/x"]
+    assert R.distinct_folders(["t.csv", "t.csv"]) == ["", ""]  # one file twice
+    assert R.source_names(
+        ["tracks", "tracks", "o"], ["d/radar1/tracks.csv", "d/radar2/tracks.csv", "o.csv"]
+    ) == ["radar1", "radar2", "o"]
     a = pd.DataFrame({"sensor": ["X"], "batch": ["1"]})
     b = pd.DataFrame({"sensor": ["Y"], "batch": ["1"]})
     assert R.combine_sources([("f1", a), ("f2", b)])["sensor"].tolist() == ["X", "Y"]
