@@ -30,6 +30,7 @@ from wakeline.app.review_map import (
     proposal_members,
     tracks_geometry,
 )
+from wakeline.app.review_model import queue_digest
 from wakeline.app.review_panel import ReviewPanel
 from wakeline.app.review_sync import ProjectDecisions, ReviewSync, fuse_selected
 from wakeline.app.review_undo import ReviewController
@@ -334,7 +335,9 @@ class ReviewDock(QtCore.QObject):
                 progress(0.0, "reading the proposals")
                 state, points = bind(session, session.layers[lid])
                 pts, ranges = sorted_by_track(points)
-                return key, lid, state, pts, ranges, track_arrays(pts, ranges)
+                state.target_of_track()  # cached: the first proposal's evidence names it
+                arrays = track_arrays(pts, ranges)
+                return key, lid, state, pts, ranges, arrays, queue_digest(state)
 
             self.binder.run("review", job)
 
@@ -369,7 +372,7 @@ class ReviewDock(QtCore.QObject):
             return
         self._bind_timer.start()
 
-    def _bind_stages(self, key, lid, state, pts, ranges, arrays):
+    def _bind_stages(self, key, lid, state, pts, ranges, arrays, digest):
         """Bind a queue the worker read, one stage per event-loop turn (a generator);
         a layer removed or run again meanwhile drops it."""
 
@@ -384,7 +387,7 @@ class ReviewDock(QtCore.QObject):
         if stale():
             return
         controller = ReviewController(state, ProjectDecisions(self.w, key), self)
-        panel = ReviewPanel(controller)
+        panel = ReviewPanel(controller, digest=digest)
         for act in panel.actions:  # the window's Review and Edit menus hold the keys
             panel.removeAction(act)
         yield

@@ -1,6 +1,11 @@
-"""The review queue's table model and its status/sensor filter (over a ReviewController)."""
+"""The review queue's table model and its status/sensor filter (over a ReviewController),
+and :func:`queue_digest`: what the panel needs from a whole queue (its widest cell texts,
+its sensors), made in the worker so the GUI thread only measures a handful of strings."""
+
+from dataclasses import dataclass
 
 import numpy as np
+import pandas as pd
 from PySide6 import QtCore, QtGui
 
 from wakeline.app import review_text as T
@@ -33,6 +38,60 @@ _ROLES = frozenset(
         QtCore.Qt.ItemDataRole.ToolTipRole,
     )
 )
+
+
+def cell_text(v) -> str:
+    """The queue's text of a (non-status) cell value: floats to 3 significant digits
+    below 10, whole numbers above, NaN blank."""
+    if isinstance(v, float | np.floating):
+        return "" if np.isnan(v) else f"{v:.3g}" if abs(v) < 10 else f"{v:.0f}"
+    return str(v)
+
+
+@dataclass(frozen=True)
+class QueueDigest:
+    """What the panel needs of a whole queue, read once (in the worker).
+
+    ``widest``: per column, the few cell texts that can be its widest (the columns are
+    sized from them with font metrics, not from every row); ``sensors``: the sensors of
+    the queue's tracks, sorted (the sensor filter's items)."""
+
+    widest: dict[str, list[str]]
+    sensors: list[str]
+
+
+def _widest_texts(values: np.ndarray, keep: int = 4) -> list[str]:
+    """The texts of ``values`` that may be the widest: for numbers the extremes (the
+    largest and smallest, the largest magnitudes and the smallest nonzero ones, which
+    give the longest ``.3g`` texts); for strings the ``keep`` longest. Vectorized."""
+    if len(values) == 0:
+        return []
+    if np.issubdtype(values.dtype, np.number):
+        v = values.astype("float64")
+        v = v[np.isfinite(v)]
+        if len(v) == 0:
+            return []
+        mag = np.abs(v)
+        small = mag[(mag > 0) & (mag < 10)]
+        picks = [v.min(), v.max(), mag.max()]
+        if len(small):
+            picks += [small.min(), *np.sort(small)[:keep]]
+        neg = v[(v < 0) & (v > -10)]
+        if len(neg):
+            picks += [neg.max(), neg.min()]
+        return list(dict.fromkeys(cell_text(float(x)) for x in picks))
+    s = pd.Series(values).astype(str)
+    top = np.argsort(-s.str.len().to_numpy(), kind="stable")[:keep]
+    return list(dict.fromkeys(s.iloc[top].tolist()))
+
+
+def queue_digest(state) -> QueueDigest:
+    """:class:`QueueDigest` of a :class:`~wakeline.core.review.ReviewState` (no widgets:
+    safe in the worker)."""
+    p = state.proposals
+    widest = {name: _widest_texts(p[name].to_numpy()) for name, _ in COLUMNS if name != "status"}
+    sensors = np.unique(state.tracks["sensor"].astype(str).to_numpy(dtype=str))
+    return QueueDigest(widest, sensors.tolist())
 
 
 class ProposalModel(QtCore.QAbstractTableModel):
@@ -84,11 +143,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
         name = COLUMNS[index.column()][0]
         v = self.value(index.row(), name)
         if role == QtCore.Qt.ItemDataRole.DisplayRole:
-            if name == "status":
-                return T.status_name(v)
-            if isinstance(v, float | np.floating):
-                return "" if np.isnan(v) else f"{v:.3g}" if abs(v) < 10 else f"{v:.0f}"
-            return str(v)
+            return T.status_name(v) if name == "status" else cell_text(v)
         if role == SORT_ROLE:
             if isinstance(v, float | np.floating):
                 return float(np.inf) if np.isnan(v) else float(v)

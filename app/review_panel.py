@@ -10,7 +10,14 @@ import numpy as np
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app import review_text as T
-from wakeline.app.review_model import COLUMNS, SORT_ROLE, ProposalFilter, ProposalModel
+from wakeline.app.review_model import (
+    COLUMNS,
+    SORT_ROLE,
+    ProposalFilter,
+    ProposalModel,
+    QueueDigest,
+    queue_digest,
+)
 from wakeline.app.review_undo import ReviewController
 
 __all__ = ["COLUMNS", "SORT_ROLE", "ProposalFilter", "ProposalModel", "ReviewPanel"]
@@ -22,14 +29,22 @@ class ReviewPanel(QtWidgets.QWidget):
     ``current_changed(proposal)`` is emitted when the current proposal changes;
     ``current_settled(proposal)`` when it has stayed for :attr:`settle_ms` (the map, Gantt
     and network follow that one, so holding a key down never waits for redraws).
-    :attr:`actions` lists the ``QAction``s for the menu.
+    :attr:`actions` lists the ``QAction``s for the menu. ``digest`` (made in the worker
+    by :func:`~wakeline.app.review_model.queue_digest`, else here) gives the widest cell
+    texts the columns are sized from and the sensors of the filter.
     """
 
     current_changed = QtCore.Signal(str)
     current_settled = QtCore.Signal(str)  # the same, once the keys rest (for heavy views)
 
-    def __init__(self, controller: ReviewController, parent=None) -> None:
+    #: Widest a column is sized to (px); a longer text is elided in the middle.
+    MAX_COLUMN_PX = 360
+
+    def __init__(
+        self, controller: ReviewController, parent=None, digest: QueueDigest | None = None
+    ) -> None:
         super().__init__(parent)
+        self.digest = digest if digest is not None else queue_digest(controller.state)
         self.controller = controller
         self.advance = True  # move to the next proposal after accept / reject
         self.settle_ms = 80
@@ -48,15 +63,15 @@ class ReviewPanel(QtWidgets.QWidget):
         self.view.horizontalHeader().setStretchLastSection(True)
         # "milliAmpere:…" hid the batch number: a long track label keeps both ends.
         self.view.setTextElideMode(QtCore.Qt.TextElideMode.ElideMiddle)
-        self.view.horizontalHeader().setResizeContentsPrecision(200)  # rows looked at
-        self.view.resizeColumnsToContents()
+        # Sized from the digest's few widest texts by font metrics: resizeColumnsToContents
+        # asked the model for every role of 200 rows x 10 columns on the GUI thread.
+        self.fit_columns()
         self.view.selectionModel().currentRowChanged.connect(self._row_changed)
 
         self.status_box = QtWidgets.QComboBox()
         self.status_box.addItems(T.status_filter_items())
-        sensors = sorted(set(controller.state.tracks["sensor"].astype(str)))
         self.sensor_box = QtWidgets.QComboBox()
-        self.sensor_box.addItems([T.all_sensors(), *sensors])
+        self.sensor_box.addItems([T.all_sensors(), *self.digest.sensors])
         self.sort_box = QtWidgets.QComboBox()
         self.sort_box.addItems(T.sort_items())
         for box in (self.status_box, self.sensor_box):
@@ -86,6 +101,24 @@ class ReviewPanel(QtWidgets.QWidget):
         if self.proxy.rowCount():
             self.view.selectRow(0)
             self.view.setCurrentIndex(self.proxy.index(0, 0))
+
+    def fit_columns(self) -> None:
+        """Column widths (px) from font metrics of the digest's widest texts and the titles
+        (a handful of strings a column, whatever the queue's length)."""
+        style = self.view.style()
+        cell_fm, head = self.view.fontMetrics(), self.view.horizontalHeader()
+        head_fm = head.fontMetrics()
+        pad = 2 * (style.pixelMetric(QtWidgets.QStyle.PixelMetric.PM_FocusFrameHMargin) + 1) + 6
+        head_pad = 3 * style.pixelMetric(
+            QtWidgets.QStyle.PixelMetric.PM_HeaderMargin
+        ) + style.pixelMetric(QtWidgets.QStyle.PixelMetric.PM_HeaderMarkSize)
+        titles = T.column_titles()
+        statuses = list(T.status_names().values())
+        for col, (name, _) in enumerate(COLUMNS):
+            texts = statuses if name == "status" else self.digest.widest.get(name, [])
+            cell = max((cell_fm.horizontalAdvance(t) for t in texts), default=0) + pad
+            title = head_fm.horizontalAdvance(titles[name]) + head_pad
+            head.resizeSection(col, min(max(cell, title), self.MAX_COLUMN_PX))
 
     # -- actions ------------------------------------------------------------------------
 
@@ -302,4 +335,5 @@ class ReviewPanel(QtWidgets.QWidget):
             action.setText(text)
             action.setToolTip(tip)
         self.model.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(COLUMNS) - 1)
+        self.fit_columns()
         self._after_change([])
