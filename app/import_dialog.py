@@ -192,6 +192,7 @@ class ImportDialog(QtWidgets.QDialog):
             self.layout_label.setText("")
         # The engine's advice names command-line flags; here it names this dialog's fields.
         self._problem = window_words(problem) if problem else problem
+        self._missing = list(info.get("missing", [])) if info else []
         self._update_warning()
 
     def _fill_mapping(self) -> None:
@@ -233,10 +234,11 @@ class ImportDialog(QtWidgets.QDialog):
                 skip_rows=self._skip_rows(),
             )
         except (InputError, OSError) as exc:
-            problem = str(exc)
+            problem, missing = str(exc), []
         else:
-            problem = info["problem"]
+            problem, missing = info["problem"], info.get("missing", [])
         self._problem = window_words(problem) if problem else None
+        self._missing = [m for m in missing if m not in self.mapping()]
 
     def _update_extra(self) -> None:
         columns = self._info.get("columns", []) if self._info.get("kind") != "nmea" else []
@@ -263,7 +265,12 @@ class ImportDialog(QtWidgets.QDialog):
                     "are read as UTC."
                 ).format(time_col)
             )
-        if time_col is None and self._info.get("kind") == "csv":
+        missing = getattr(self, "_missing", [])
+        if missing:  # no layout fits: the fields recognised are mapped, these are not
+            problems.append(
+                self.tr("Required fields still without a column: {0}.").format(", ".join(missing))
+            )
+        elif time_col is None and self._info.get("kind") == "csv":
             problems.append(self.tr("Choose the time column."))
         self.warning_label.setText("\n".join(problems))
 

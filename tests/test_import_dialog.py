@@ -203,3 +203,42 @@ def test_the_warning_follows_the_mapping(qtbot, write):
     box = dlg.mapping_boxes["lat"]  # unmapped again: the reason comes back
     box.setCurrentIndex(0)
     assert "lat" in dlg.warning_label.text() and "missing" in dlg.warning_label.text()
+
+
+def test_no_layout_fits_yet_the_recognised_fields_are_mapped(qtbot, write):
+    """Operator test (Autoferry detections.csv.gz in File > Open): no layout fits (local
+    metres, no track id), and the dialog left every box empty, not even time -> time or
+    sensor -> sensor, saying only "Choose the time column." The fields the synonym table
+    knows are mapped; the warning names the required ones still missing."""
+    from wakeline.core.io import inspect_file
+
+    head = "scenario,scan,time,sensor_id,sensor,own_north,own_east,k,meas_north,meas_east\n"
+    rows = "".join(
+        f"2,{k},{1620114891.8 + k},2,radar,-16.6,-390.4,0,{k}.5,-3.25\n" for k in range(9)
+    )
+    path = write("detections.csv", head + rows)
+    info = inspect_file(path)
+    assert info["problem"] and info["missing"] == ["batch", "lon", "lat"]
+    assert info["mapping"] == {"sensor": "sensor", "time": "time"}
+    dlg = ImportDialog(path=path)
+    qtbot.addWidget(dlg)
+    assert dlg.mapping() == {"sensor": "sensor", "time": "time"}
+    warning = dlg.warning_label.text()
+    assert "Required fields still without a column: batch, lon, lat." in warning, warning
+    assert "Choose the time column" not in warning
+    for field, col in (("batch", "scan"), ("lon", "meas_east")):
+        box = dlg.mapping_boxes[field]
+        box.setCurrentIndex(box.findText(col))
+    assert "without a column: lat." in dlg.warning_label.text(), dlg.warning_label.text()
+    box = dlg.mapping_boxes["lat"]
+    box.setCurrentIndex(box.findText("meas_north"))
+    assert dlg.warning_label.text() == "", dlg.warning_label.text()
+
+
+def test_the_real_autoferry_detections_map_time_and_sensor(qtbot):
+    from conftest import real_file
+
+    dlg = ImportDialog(path=real_file("autoferry-fusion", "detections.csv.gz"))
+    qtbot.addWidget(dlg)
+    assert dlg.mapping() == {"sensor": "sensor", "time": "time"}
+    assert "batch, lon, lat" in dlg.warning_label.text()

@@ -312,6 +312,19 @@ def _resolve(
     return columns, missing
 
 
+def guess_columns(
+    headers: tuple[str, ...] | list[str], mapping: dict[str, str] | None = None
+) -> tuple[dict[str, str], list[str]]:
+    """Every field whose column the synonym table (:data:`SYNONYMS`) recognises in
+    ``headers`` (``mapping``'s choices of columns present kept first), and the required
+    fields (:data:`~wakeline.core.schema.REQUIRED_COLUMNS`) still without a column.
+
+    What the import starts from when no layout fits: the fields it knows, not nothing."""
+    headers = tuple(headers)
+    kept = {k: v for k, v in (mapping or {}).items() if v in headers}
+    return _resolve(FORMATS[-1], headers, kept)
+
+
 def parse_mapping(items: list[str] | None) -> dict[str, str]:
     """``["batch=MMSI", "time=t"]`` → ``{"batch": "MMSI", "time": "t"}``; checks the field names."""
     out: dict[str, str] = {}
@@ -371,7 +384,7 @@ def resolve(
             f"headers found: {', '.join(headers)}"
         )
     # Auto detection failed: report against the generic names.
-    columns, missing = _resolve(FORMATS[-1], headers, mapping)
+    columns, missing = guess_columns(headers, mapping)
     if missing == ["batch"]:
         # One ship's export (time and position, no id column): the reader names the one
         # track after the file.

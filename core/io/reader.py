@@ -34,6 +34,7 @@ import pyarrow.csv as pacsv
 from wakeline.core.errors import InputError
 from wakeline.core.io.formats import (
     Resolved,
+    guess_columns,
     header_is_local,
     known_fields,
     normalize_header,
@@ -2060,8 +2061,10 @@ def inspect_file(
     order), ``mapping`` (canonical field → column, as detected or as ``mapping`` forces
     it), ``extra`` (columns no field takes: carried as extra columns), ``format`` and
     ``format_label``, ``encoding``, ``delimiter``, ``header``, ``preview`` (first rows as
-    lists of cells), ``local_time`` (the time column's name says local time) and
-    ``problem`` (why an import would fail, or None). Raises :class:`InputError` only when
+    lists of cells), ``local_time`` (the time column's name says local time),
+    ``problem`` (why an import would fail, or None) and ``missing`` (the required fields
+    still without a column when no layout fits; the fields the synonyms recognise are in
+    ``mapping`` all the same). Raises :class:`InputError` only when
     the file cannot be read at all (missing, empty, binary, undecodable)."""
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
@@ -2080,6 +2083,7 @@ def inspect_file(
         "preview": [list(r) for r in sn.preview],
         "local_time": False,
         "problem": None,
+        "missing": [],
     }
     if sn.kind == "nmea":
         return out
@@ -2087,7 +2091,8 @@ def inspect_file(
         res = resolve_header(sn, fmt, mapping, str(path))
     except InputError as exc:
         out["problem"] = str(exc)
-        out["mapping"] = {k: v for k, v in (mapping or {}).items() if v in sn.columns}
+        # No layout fits: still every field the synonyms recognise, and what is missing.
+        out["mapping"], out["missing"] = guess_columns(sn.columns, mapping)
     else:
         out["format"], out["format_label"] = res.format.name, res.format.label
         out["mapping"] = dict(res.columns)

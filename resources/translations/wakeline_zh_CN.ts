@@ -763,6 +763,10 @@
         <source>Choose the time column.</source>
         <translation>请选择时间列。</translation>
     </message>
+    <message>
+        <source>Required fields still without a column: {0}.</source>
+        <translation>尚未指定列的必填字段：{0}。</translation>
+    </message>
 </context>
 <context>
     <name>BearingView</name>
