@@ -143,6 +143,13 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         bl.setContentsMargins(2, 2, 2, 2)
         bl.addWidget(self.filter_edit)
         bl.addWidget(self.batch_view)
+        # What the table counts (it, the Statistics dock and the status bar count three
+        # different things under a time window: operator test, ATD 06:00-12:00).
+        self.batch_count = QtWidgets.QLabel()
+        self.batch_count.setWordWrap(True)
+        bl.addWidget(self.batch_count)
+        for signal in (self.batch_model.modelReset, self.batch_model.layoutChanged):
+            signal.connect(self.update_batch_count)
         self.stats = StatsPanel()
         self.stats.executor = self.lod_worker  # the figures of a layer: off this thread
         # The figures follow the map's time window, at most every STATS_WINDOW_MS.
@@ -227,6 +234,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         """Set every visible text (called again when the language changes)."""
         self.update_title()
         retranslate(self)
+        self.update_batch_count()
         self.detail.retranslate()
         self.params.retranslate()
         self.stats.retranslate()
@@ -284,10 +292,37 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         window = (tw.start_s, tw.end_s) if tw is not None else None
         key = (layer.id, id(layer.points), len(layer.points), window)
         self.stats.compute(key, layer.points, dict(layer.tables), window, head)
+        self.statusBar().showMessage(self.counts_message(layer, window))
+
+    def counts_message(self, layer, window: tuple[float, float] | None) -> str:
+        """The status bar's counts: the whole layer's points and tracks, and with a time
+        window how many of its tracks overlap it (as the batch table counts them)."""
         view = self.views.get(layer.id)
         tracks = len(view.summary) if view is not None else 0
-        self.statusBar().showMessage(
-            f"{len(layer.points):,} {self.tr('points')}, {tracks:,} {self.tr('tracks')}"
+        text = self.tr("{0} points, {1} tracks").format(f"{len(layer.points):,}", f"{tracks:,}")
+        overlap = self.batch_model.tracks_overlapping(window) if view is not None else None
+        if overlap is None:
+            return text
+        return self.tr("{0} · {1} of the tracks overlap the time window").format(
+            text, f"{overlap:,}"
+        )
+
+    def update_batch_count(self) -> None:
+        """The line under the batch table: how many tracks it shows and why not all."""
+        shown, total = self.batch_model.counts()
+        filtered, windowed = self.batch_model.shown_because()
+        if not (filtered or windowed):
+            self.batch_count.setText(self.tr("{0} tracks").format(f"{total:,}"))
+            return
+        why = []
+        if filtered:
+            why.append(self.tr("matching the filter"))
+        if windowed:
+            why.append(self.tr("whose time span overlaps the time window"))
+        self.batch_count.setText(
+            self.tr("{0} of {1} tracks: those {2}").format(
+                f"{shown:,}", f"{total:,}", self.tr(" and ").join(why)
+            )
         )
 
     def _result_rows(self, layer) -> list[tuple[str, str]]:

@@ -212,6 +212,22 @@ class BatchTableModel(QtCore.QAbstractTableModel):
     def time_window(self) -> tuple[float, float] | None:
         return self._window
 
+    def tracks_overlapping(self, window: tuple[float, float] | None) -> int | None:
+        """How many of the layer's tracks have a time span overlapping ``window`` = (from,
+        to) s, as the table counts them (None: no window). The text filter plays no part."""
+        if window is None:
+            return None
+        t0, t1 = self._span_s
+        return int(overlapping(t0, t1, float(window[0]), float(window[1])).sum())
+
+    def counts(self) -> tuple[int, int]:
+        """(rows shown, tracks of the layer)."""
+        return len(self._order), len(self._df)
+
+    def shown_because(self) -> tuple[bool, bool]:
+        """Why rows are hidden: (the text filter is on, the time window is on)."""
+        return bool(self._filter), self._window is not None
+
     def key_of_row(self, row: int) -> tuple[str, str]:
         """(sensor, batch) of visible row ``row``."""
         r = self._order[row]

@@ -87,10 +87,19 @@ def length_text(km: float) -> str:
 def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
     """The table's rows (figure, value), translated, every value with its unit."""
     relative = is_relative_time(np.array([s.start_s, s.end_s]))
-    rows = [
-        (tr("Points"), f"{s.points:,}"),
-        (tr("Tracks"), f"{s.tracks:,}"),
-    ]
+    if s.window is None:
+        rows = [(tr("Points"), f"{s.points:,}"), (tr("Tracks"), f"{s.tracks:,}")]
+    else:  # said first: every figure below counts the window's points only
+        rows = [
+            (
+                tr("Time window"),
+                tr("only the points in {0} – {1}").format(
+                    format_time(s.window[0], relative), format_time(s.window[1], relative)
+                ),
+            ),
+            (tr("Points in the window"), f"{s.points:,}"),
+            (tr("Tracks with points in the window"), f"{s.tracks:,}"),
+        ]
     for r in s.sensors.itertuples(index=False):
         interval = duration_text(r.interval_s) if math.isfinite(r.interval_s) else "—"
         rows.append(
@@ -135,15 +144,6 @@ def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
             )
         )
         rows.append((tr("Time span"), duration_text(s.span_s)))
-    if s.window is not None:
-        rows.append(
-            (
-                tr("Time window"),
-                tr("only the points in {0} – {1}").format(
-                    format_time(s.window[0], relative), format_time(s.window[1], relative)
-                ),
-            )
-        )
     if s.at_rest is not None:
         r = s.at_rest
         rows.append(

@@ -224,3 +224,42 @@ def test_the_statistics_say_what_clean_removed_and_changed_and_it_adds_up(window
     assert actions.get("changed", 0)  # the speeds replaced: their points are kept
     changed = rows["Changed by clean (kept, new values)"]
     assert changed.startswith(f"{actions['changed']:,} (speed_outliers"), rows
+
+
+def test_each_track_count_says_what_it_counts_under_a_time_window(window, qtbot, write):
+    """Operator test (ATD dataset1, window 06:00-12:00): the batch table showed 4,758
+    tracks, the Statistics dock 2,930 and the status bar 5,620, none saying what it
+    counts. Three tracks: A has points in the window, B spans it with none inside (a
+    gap), C ends before it: 3 in the layer, 2 overlap the window, 1 has points in it."""
+    t0 = 1_704_067_200  # 2024-01-01 00:00 UTC
+    rows = ["sensor,batch,time,lon,lat"]
+    for batch, hours in (("A", (7, 8, 9)), ("B", (1, 2, 14, 15)), ("C", (1, 2, 3))):
+        rows += [f"S1,{batch},{t0 + 3600 * h},{10 + h * 1e-3},55.0" for h in hours]
+    lid = load(window, write("three.csv", "\n".join(rows) + "\n"))
+    window.select_layer(lid)
+    panel = window.stats
+    qtbot.waitUntil(lambda: panel.stats is not None and panel.stats.tracks == 3, timeout=20_000)
+    assert window.batch_count.text() == "3 tracks"
+    assert window.statusBar().currentMessage() == "10 points, 3 tracks"
+    window.session.set_time_window((t0 + 6 * 3600, t0 + 12 * 3600))
+    qtbot.waitUntil(
+        lambda: panel.stats is not None and panel.stats.window is not None, timeout=20_000
+    )
+    assert window.batch_model.rowCount() == 2
+    assert window.batch_count.text() == (
+        "2 of 3 tracks: those whose time span overlaps the time window"
+    )
+    status = window.statusBar().currentMessage()
+    assert status == "10 points, 3 tracks · 2 of the tracks overlap the time window", status
+    rows = panel.rows()
+    names = [name for name, _ in rows]  # the window heads the figures it restricts
+    assert names[names.index("Time window") + 1 :][:2] == [
+        "Points in the window",
+        "Tracks with points in the window",
+    ]
+    assert dict(rows)["Tracks with points in the window"] == "1"
+    assert dict(rows)["Points in the window"] == "3"
+    window.filter_edit.setText("A")
+    assert window.batch_count.text() == (
+        "1 of 3 tracks: those matching the filter and whose time span overlaps the time window"
+    )

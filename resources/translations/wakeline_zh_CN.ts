@@ -4,6 +4,34 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>{0} points, {1} tracks</source>
+        <translation>{0} 个点，{1} 条航迹</translation>
+    </message>
+    <message>
+        <source>{0} · {1} of the tracks overlap the time window</source>
+        <translation>{0} · 其中 {1} 条航迹的时间跨度与时间窗重叠</translation>
+    </message>
+    <message>
+        <source>{0} tracks</source>
+        <translation>{0} 条航迹</translation>
+    </message>
+    <message>
+        <source>matching the filter</source>
+        <translation>与筛选匹配</translation>
+    </message>
+    <message>
+        <source>whose time span overlaps the time window</source>
+        <translation>时间跨度与时间窗重叠</translation>
+    </message>
+    <message>
+        <source>{0} of {1} tracks: those {2}</source>
+        <translation>显示 {1} 条航迹中的 {0} 条：{2}的航迹</translation>
+    </message>
+    <message>
+        <source> and </source>
+        <translation>且</translation>
+    </message>
+    <message>
         <source>{0} runs on {1}</source>
         <translation>{0} 在 {1} 上运行</translation>
     </message>
@@ -322,14 +350,6 @@
     <message>
         <source>Time</source>
         <translation>时间</translation>
-    </message>
-    <message>
-        <source>points</source>
-        <translation>点</translation>
-    </message>
-    <message>
-        <source>tracks</source>
-        <translation>条航迹</translation>
     </message>
     <message>
         <source>Bearing-only</source>
@@ -1262,6 +1282,14 @@
 </context>
 <context>
     <name>StatsPanel</name>
+    <message>
+        <source>Points in the window</source>
+        <translation>时间窗内的点数</translation>
+    </message>
+    <message>
+        <source>Tracks with points in the window</source>
+        <translation>在时间窗内有点的航迹数</translation>
+    </message>
     <message>
         <source>Points</source>
         <translation>点数</translation>
