@@ -106,9 +106,46 @@ class ProposalModel(QtCore.QAbstractTableModel):
     def _refresh(self) -> None:
         st = self.controller.state
         p = st.proposals
+        #: Row of ``state.proposals`` per model row (the model's rows are sorted here).
+        self.prop = np.arange(len(p))
         self.ids = p["proposal"].tolist()
         self.row_of = {pid: k for k, pid in enumerate(self.ids)}
         self.cols = {name: p[name].to_numpy() for name, _ in COLUMNS if name != "status"}
+
+    def sort(self, column: int, order=QtCore.Qt.SortOrder.AscendingOrder) -> None:
+        """Order the rows by ``column`` with one numpy sort (the proxy asked ``data`` for
+        two values per comparison, n log n calls on the GUI thread). Ties keep the
+        proposals' own order; NaN sorts last ascending, as the proxy's sort did."""
+        n = len(self.ids)
+        if n == 0 or not 0 <= column < len(COLUMNS):
+            return
+        name = COLUMNS[column][0]
+        inv = np.empty(n, dtype="int64")  # proposal row -> model row
+        inv[self.prop] = np.arange(n)
+        if name == "status":
+            key = np.asarray(self.controller.state.status).astype(str)[self.prop]
+        else:
+            key = self.cols[name]
+        if np.issubdtype(np.asarray(key).dtype, np.number):
+            key = np.nan_to_num(np.asarray(key, dtype="float64"), nan=np.inf)
+        else:
+            key = pd.Series(key).astype(str).to_numpy(dtype=str)
+        rank = np.unique(key[inv], return_inverse=True)[1].ravel()
+        descending = order == QtCore.Qt.SortOrder.DescendingOrder
+        new_prop = np.argsort(-rank if descending else rank, kind="stable")
+        perm = inv[new_prop]  # model rows in their new order
+        new_row = np.empty(n, dtype="int64")
+        new_row[perm] = np.arange(n)
+        self.layoutAboutToBeChanged.emit()
+        old = self.persistentIndexList()
+        self.changePersistentIndexList(
+            old, [self.index(int(new_row[i.row()]), i.column()) for i in old]
+        )
+        self.prop = new_prop
+        self.ids = [self.ids[k] for k in perm]
+        self.row_of = {pid: k for k, pid in enumerate(self.ids)}
+        self.cols = {k: v[perm] for k, v in self.cols.items()}
+        self.layoutChanged.emit()
 
     def _on_changed(self, proposals: list) -> None:
         col = [n for n, _ in COLUMNS].index("status")
@@ -134,7 +171,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
 
     def value(self, row: int, name: str):
         if name == "status":
-            return str(self.controller.state.status[row])
+            return str(self.controller.state.status[self.prop[row]])
         return self.cols[name][row]
 
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
@@ -149,7 +186,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
                 return float(np.inf) if np.isnan(v) else float(v)
             return str(v)
         if role == QtCore.Qt.ItemDataRole.BackgroundRole:
-            color = _STATUS_COLORS.get(str(self.controller.state.status[index.row()]))
+            color = _STATUS_COLORS.get(str(self.value(index.row(), "status")))
             return QtGui.QBrush(QtGui.QColor(color)) if color else None
         if role == QtCore.Qt.ItemDataRole.ToolTipRole and name == "margin":
             return T.margin_tip()
@@ -157,7 +194,13 @@ class ProposalModel(QtCore.QAbstractTableModel):
 
 
 class ProposalFilter(QtCore.QSortFilterProxyModel):
-    """Filter by status and by sensor (either track's)."""
+    """Filter by status and by sensor (either track's); sorting is the source model's
+    (:meth:`ProposalModel.sort`, one numpy sort), the proxy keeps its order."""
+
+    def sort(self, column: int, order=QtCore.Qt.SortOrder.AscendingOrder) -> None:
+        source = self.sourceModel()
+        if source is not None:
+            source.sort(column, order)
 
     def __init__(self, parent=None) -> None:
         super().__init__(parent)

@@ -189,6 +189,10 @@ class ReviewPanel(QtWidgets.QWidget):
             return ""
         return self.model.ids[self.proxy.mapToSource(idx).row()]
 
+    def current_at(self, row: int) -> str:
+        """The proposal id shown at ``row`` of the queue (as filtered and sorted)."""
+        return self.model.ids[self.proxy.mapToSource(self.proxy.index(row, 0)).row()]
+
     def set_current(self, proposal: str) -> bool:
         """Make ``proposal`` current (clearing filters that hide it)."""
         row = self.model.row_of.get(proposal)
@@ -315,7 +319,8 @@ class ReviewPanel(QtWidgets.QWidget):
             self.evidence.setText("")
             return
         st = self.controller.state
-        self.evidence.setText(T.evidence_text(st, pid, st.proposals.iloc[self.model.row_of[pid]]))
+        row = int(self.model.prop[self.model.row_of[pid]])
+        self.evidence.setText(T.evidence_text(st, pid, st.proposals.iloc[row]))
 
     def changeEvent(self, event) -> None:  # noqa: N802 - Qt API
         if event.type() == QtCore.QEvent.Type.LanguageChange:
