@@ -35,9 +35,8 @@ def step_lines(result) -> list[str]:
     """What a finished step did, as the log shows it: the step's own summary (the line
     ``wakeline STEP`` prints: where the points went, rule by rule, why nothing was paired),
     for a pipeline one line per stage (``clean: …``); the figures of :func:`summarize`
-    where a step has no summary of its own. Command-line advice names the window's
-    controls (:func:`~wakeline.app.window_words.window_words`)."""
-    from wakeline.app.window_words import window_words
+    where a step has no summary of its own. (The log puts command-line advice in the
+    window's words: :meth:`MainWindow.log_message`.)"""
     from wakeline.core.pipeline import STEPS
 
     def one(res) -> str:
@@ -47,8 +46,8 @@ def step_lines(result) -> list[str]:
             return summarize(res.report)
 
     if result.stages:
-        return [window_words(f"{res.step}: {one(res)}") for res in result.stages]
-    return [window_words(one(result))]
+        return [f"{res.step}: {one(res)}" for res in result.stages]
+    return [one(result)]
 
 
 class ImportReportDialog(QtWidgets.QDialog):

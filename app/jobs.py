@@ -231,6 +231,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.progress.hide()
             self.cancel_button.hide()
         step, base = self._job_context.pop(msg.job, (msg.name, ""))
+        # A replaced job may end otherwise than cancelled (done before it looked): its
+        # entry goes with its last message whatever that is.
+        by = self._replaced.pop(msg.job, None)
         if isinstance(msg, Finished):
             self._apply(msg.result)
             self.statusBar().showMessage(
@@ -247,7 +250,6 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             else:  # a screenshot run: nobody to close a dialog; say it and go on
                 print(f"wakeline: {title}: {msg.message}", file=sys.stderr)
         elif isinstance(msg, Cancelled):
-            by = self._replaced.pop(msg.job, None)
             if by is None:
                 self.log_message(self.tr("{0} cancelled").format(msg.name))
             else:

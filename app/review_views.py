@@ -290,10 +290,16 @@ class GanttView(pg.PlotWidget):
                 need = (x0[k] - share[k] * right) / (1.0 - share[k])
                 left = min(left, float(need.min()))
         self.setXRange(left, right, padding=0)
+        self._fitted = tuple(self.getViewBox().viewRange()[0])
 
     def resizeEvent(self, event) -> None:  # noqa: N802 - Qt API
         super().resizeEvent(event)
-        self._fit_x()
+        # fitted again only while the operator has not panned or zoomed it (review)
+        fitted = getattr(self, "_fitted", None)  # (resized while PlotWidget builds: none)
+        if fitted is None or self.plotItem is None:
+            self._fit_x()
+        elif np.allclose(self.getViewBox().viewRange()[0], fitted):
+            self._fit_x()
 
 
 class NetworkView(pg.PlotWidget):

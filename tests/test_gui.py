@@ -1148,6 +1148,13 @@ def test_a_job_cancelled_by_the_next_one_says_so(window, tmp_path):
     window.runner.cancel()
     wait_for_jobs(window)
     assert window.log.toPlainText().splitlines()[-1] == "associate cancelled"
+    assert window._replaced == {}
+    # a replaced job that ends before it sees the cancel leaves no entry behind (review)
+    from wakeline.app.worker import Failed
+
+    window._replaced[999] = "open other.csv"
+    window._on_job_message(Failed(999, "associate", "gone", ""))
+    assert window._replaced == {}
 
 
 def test_files_of_one_name_get_layer_names_apart(window, tmp_path):

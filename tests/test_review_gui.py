@@ -509,3 +509,25 @@ def test_gantt_labels_stay_inside_a_narrow_chart(qtbot, controller):
         assert not clipped(), pid
     gantt.resize(240, 260)
     assert not clipped()
+
+
+def test_gantt_keeps_the_operators_zoom_when_resized(qtbot, controller):
+    """Review of session 21: every resize fitted the time axis again, so a dock or
+    splitter move threw away the operator's pan or zoom. It fits again only while the
+    range is the one it set."""
+    st = controller.state
+    gantt = GanttView(st)
+    qtbot.addWidget(gantt)
+    gantt.resize(330, 260)
+    gantt.show()
+    qtbot.waitExposed(gantt)
+    gantt.show_proposal(st.proposals["proposal"].iloc[0])
+    vb = gantt.getViewBox()
+    lo, hi = vb.viewRange()[0]
+    vb.setXRange(lo + 0.25 * (hi - lo), hi - 0.25 * (hi - lo), padding=0)  # zoomed in
+    zoomed = vb.viewRange()[0]
+    gantt.resize(300, 260)
+    QtWidgets.QApplication.processEvents()
+    assert np.allclose(vb.viewRange()[0], zoomed)
+    gantt.show_proposal(st.proposals["proposal"].iloc[-1])  # another proposal: fitted
+    assert not np.allclose(vb.viewRange()[0], zoomed)
