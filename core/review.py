@@ -589,17 +589,54 @@ class ReviewState:
 def _set(state: ReviewState, action: str, proposal: str, status: str) -> Change:
     row = state._proposal_row(proposal)
     p = state.proposals.iloc[row]
+    after = {proposal: status}
+    if status in ACTIVE:  # a join: what it puts into one target is joined, whatever it said
+        after |= dict.fromkeys(_cut_but_joined(state, after), "accepted")
     return Change(
         action,
         proposal,
         (p["track_a"], p["track_b"]),
-        {proposal: str(state.status[row])},
-        {proposal: status},
+        {pid: str(state.status[state._row[pid]]) for pid in after},
+        after,
     )
 
 
+def _component_of(
+    state: ReviewState, status: Mapping[str, str] | None = None, links: Iterable = ()
+) -> np.ndarray:
+    """Component number per track with the statuses ``status`` set and ``links`` added
+    (the targets such a change would make; the state is not touched)."""
+    from wakeline.core.associate import components
+
+    st = state.status.copy()
+    for pid, s in (status or {}).items():
+        st[state._row[pid]] = s
+    active = np.isin(st, ACTIVE)
+    every = state.links | set(links)
+    la = np.asarray([state._track_no[x] for x, _ in every], dtype="int64")
+    lb = np.asarray([state._track_no[y] for _, y in every], dtype="int64")
+    a = np.concatenate([state._pa[active], la])
+    b = np.concatenate([state._pb[active], lb])
+    return components(len(state.tracks), a, b)
+
+
+def _cut_but_joined(
+    state: ReviewState, status: Mapping[str, str], links: Iterable = ()
+) -> list[str]:
+    """Proposals rejected or split whose two tracks a change (``status`` set, ``links``
+    added) puts into one target: the change says they are one ship, so their rows must
+    not say otherwise (they become ``accepted``)."""
+    comp = _component_of(state, status, links)
+    cut = ~np.isin(state.status, ACTIVE)
+    for pid in status:
+        cut[state._row[pid]] = False
+    sel = np.flatnonzero(cut & (comp[state._pa] == comp[state._pb]))
+    return state.proposals["proposal"].to_numpy()[sel].tolist()
+
+
 def accept(state: ReviewState, proposal: str) -> Change:
-    """Accept a proposal: its two tracks are one ship."""
+    """Accept a proposal: its two tracks are one ship (a rejected or split proposal the
+    join puts inside the target is accepted with it)."""
     return _set(state, "accept", proposal, "accepted")
 
 
@@ -614,14 +651,35 @@ def reset(state: ReviewState, proposal: str) -> Change:
 
 
 def merge(state: ReviewState, tracks: Iterable[str]) -> Change:
-    """Merge two or more tracks by hand into one target (manual links in a chain)."""
+    """Merge two or more tracks by hand into one target: every rejected or split proposal
+    among the tracks of their targets is accepted again, and manual links in a chain
+    through ``tracks`` join what is still apart."""
     tracks = list(dict.fromkeys(tracks))
     if len(tracks) < 2:
         raise InputError("merge needs at least two different tracks")
-    for t in tracks:
-        state._track(t)
-    links = {pair_key(x, y) for x, y in zip(tracks[:-1], tracks[1:], strict=True)}
-    return Change("merge", "", tuple(tracks), links_added=frozenset(links - state.links))
+    rows = [state._track(t) for t in tracks]
+    # Every track of the targets merged ends in one target: a proposal among them that
+    # was rejected or split joins them again (accepted), so its row does not say "split"
+    # beside a joined target; manual links only join what those proposals leave apart.
+    tg = state.target_of_track()
+    involved = np.isin(tg, tg[rows])
+    among = involved[state._pa] & involved[state._pb] & ~np.isin(state.status, ACTIVE)
+    after = dict.fromkeys(state.proposals["proposal"].to_numpy()[among].tolist(), "accepted")
+    comp = _component_of(state, after)
+    links = set()
+    for x, y, rx, ry in zip(tracks[:-1], tracks[1:], rows[:-1], rows[1:], strict=True):
+        cx, cy = comp[rx], comp[ry]
+        if cx != cy:
+            links.add(pair_key(x, y))
+            comp[comp == cy] = cx
+    return Change(
+        "merge",
+        next(iter(after)) if len(after) == 1 else "",
+        tuple(tracks),
+        {pid: str(state.status[state._row[pid]]) for pid in after},
+        after,
+        links_added=frozenset(links),
+    )
 
 
 def split_track(state: ReviewState, label: str) -> Change:

@@ -11,6 +11,7 @@ import pytest
 pytest.importorskip("pytestqt")
 from PySide6 import QtCore, QtWidgets  # noqa: E402
 
+from wakeline.app import review_text as T  # noqa: E402
 from wakeline.app.review_demo import ReviewWorkspace  # noqa: E402
 from wakeline.app.review_demo import main as demo_main  # noqa: E402
 from wakeline.app.review_map import (  # noqa: E402
@@ -19,6 +20,7 @@ from wakeline.app.review_map import (  # noqa: E402
     proposal_geometry,
     proposal_items,
 )
+from wakeline.app.review_model import COLUMNS  # noqa: E402
 from wakeline.app.review_panel import ReviewPanel  # noqa: E402
 from wakeline.app.review_undo import ReviewController  # noqa: E402
 from wakeline.app.review_views import GanttView, NetworkView  # noqa: E402
@@ -348,6 +350,71 @@ def test_queue_sorts_with_numpy_not_by_asking_the_model(qtbot, controller, monke
     controller.reject(p["proposal"].iat[3])
     panel.status_box.setCurrentText("rejected")
     assert shown() == [p["proposal"].iat[3]]
+
+
+def _rows_agree_with_the_core(panel) -> None:
+    """Every row's status is the core's, and a row saying rejected or split never sits
+    beside a target holding both its tracks (the evidence line names that target)."""
+    st = panel.controller.state
+    m = panel.model
+    col = [n for n, _ in COLUMNS].index("status")
+    for r, pid in enumerate(m.ids):
+        status = st.status_of(pid)
+        assert m.data(m.index(r, col)) == T.status_name(status), pid
+        a, b = st.proposals["track_a"][r], st.proposals["track_b"][r]
+        joined = st.target(a) == st.target(b)
+        assert joined == (status in R.ACTIVE), (pid, status, st.target(a), st.target(b))
+    pid = panel.current()
+    assert f"({T.status_name(st.status_of(pid))})" in panel.evidence.text()
+
+
+def test_row_status_follows_split_merge_accept_reject_in_any_order(scene, tmp_path, qtbot):
+    pts, ap = scene
+    db = tmp_path / "p.wakeline"
+    store = ReviewStore(db)
+    ctl = ReviewController(R.ReviewState(R.track_table(pts), ap), store)
+    store.save_queue(ctl.state)
+    panel = ReviewPanel(ctl)
+    qtbot.addWidget(panel)
+    acts = {
+        "split": panel.act_split,
+        "merge": panel.act_merge,
+        "accept": panel.act_accept,
+        "reject": panel.act_reject,
+    }
+    walks = {  # proposal: the keys pressed on it, in order
+        "A0001": ["split", "merge"],
+        "A0002": ["merge", "split"],
+        "A0003": ["accept", "split"],
+        "A0004": ["reject", "merge"],
+        "A0005": ["split", "merge", "reject", "merge", "split", "accept"],
+    }
+    want = {"A0001": "accepted", "A0002": "split", "A0003": "split", "A0004": "accepted"}
+    done = 0
+    for pid, steps in walks.items():
+        for step in steps:
+            assert panel.set_current(pid)
+            n = ctl.stack.count()
+            acts[step].trigger()  # S, M, A, R
+            done += ctl.stack.count() - n
+            _rows_agree_with_the_core(panel)
+        if pid in want:
+            assert ctl.state.status_of(pid) == want[pid], pid
+    final = list(ctl.state.status)
+    for _ in range(done):
+        panel.act_undo.trigger()
+        _rows_agree_with_the_core(panel)
+    assert set(ctl.state.status) == {"pending"} and not ctl.state.links
+    for _ in range(done):
+        panel.act_redo.trigger()
+        _rows_agree_with_the_core(panel)
+    assert list(ctl.state.status) == final
+    store.close()
+    with ReviewStore(db) as again:  # the project reopened
+        reopened = ReviewPanel(ReviewController(again.load()))
+    qtbot.addWidget(reopened)
+    assert list(reopened.controller.state.status) == final
+    _rows_agree_with_the_core(reopened)
 
 
 def test_thousand_proposals_stay_responsive(qtbot):
