@@ -5,6 +5,7 @@ import sys
 from pathlib import Path
 
 from wakeline.app.cli_common import EPILOG, positive_float, positive_int
+from wakeline.core.words import count
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
@@ -23,7 +24,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
         write_json(result.report, args.report)
     rep = result.report
     msg = (
-        f"imported {rep['rows_imported']:,} rows in {rep['tracks']:,} tracks "
+        f"imported {count(rep['rows_imported'], 'row')} in {count(rep['tracks'], 'track')} "
         f"({rep['format']}, {rep['encoding']}); {rep['rows_quarantined']:,} quarantined"
     )
     if rep["rows_quarantined"] and not args.quarantine:
@@ -89,8 +90,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         df = simulate.demo_scene(seed=args.seed)
     write_points(df, args.output)
     print(
-        f"simulated {len(df):,} points, {df.groupby(['sensor', 'batch']).ngroups:,} tracks, "
-        f"{df['truth'].nunique():,} targets",
+        f"simulated {count(len(df), 'point')}, "
+        f"{count(df.groupby(['sensor', 'batch']).ngroups, 'track')}, "
+        f"{count(df['truth'].nunique(), 'target')}",
         file=sys.stderr,
     )
     return 0

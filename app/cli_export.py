@@ -10,6 +10,7 @@ from pathlib import Path
 
 from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
+from wakeline.core.words import count
 
 
 def _split(items: list[str] | None) -> list[str]:
@@ -52,7 +53,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
         result = _read_in(args)
         kind = export_tracks(result.points, args.output)
-        print(f"exported {len(result.points):,} rows as {kind}", file=sys.stderr)
+        print(f"exported {count(len(result.points), 'row')} as {kind}", file=sys.stderr)
         return 0
     from wakeline.core.export import check_text_path
 
@@ -123,13 +124,13 @@ def _cmd_export(args: argparse.Namespace) -> int:
     for warning in rep.get("warnings", []):
         print(f"{args.output}: warning: {warning}", file=sys.stderr)
     msg = (
-        f"exported {rep['rows']:,} rows as {rep['layout']} ({rep['encoding']}, "
-        f"{len(rep['columns'])} columns)"
+        f"exported {count(rep['rows'], 'row')} as {rep['layout']} ({rep['encoding']}, "
+        f"{count(len(rep['columns']), 'column')})"
     )
     if rep["rows_made"]:
-        msg += f"; {rep['rows_made']:,} rows made by Wakeline (operator columns left empty)"
+        msg += f"; {count(rep['rows_made'], 'row')} made by Wakeline (operator columns left empty)"
     if rep["members"]:
-        msg += f"; {rep['targets']:,} targets, members in {rep['members']}"
+        msg += f"; {count(rep['targets'], 'target')}, members in {rep['members']}"
     print(msg, file=sys.stderr)
     return 0
 

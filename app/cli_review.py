@@ -8,6 +8,7 @@ from pathlib import Path
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.words import count
 
 _TEXT = (
     "proposal",
@@ -116,12 +117,12 @@ def _cmd_review(args: argparse.Namespace) -> int:
     counts = tab["status"].value_counts().to_dict()
     n_targets = state.targets()["target"].nunique()
     print(
-        f"{len(tab):,} proposals ("
+        f"{count(len(tab), 'proposal')} ("
         + ", ".join(
             f"{counts.get(s, 0):,} {s}" for s in ("accepted", "rejected", "split", "pending")
         )
-        + f"), {len(state.log):,} decisions, {len(state.tracks):,} tracks -> "
-        f"{n_targets:,} targets; wrote {fmt}",
+        + f"), {count(len(state.log), 'decision')}, {count(len(state.tracks), 'track')} -> "
+        f"{count(n_targets, 'target')}; wrote {fmt}",
         file=sys.stderr,
     )
     return 0

@@ -16,6 +16,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
 from wakeline.core.schema import FILE_ROW
+from wakeline.core.words import count
 
 
 class ImportJobsMixin:
@@ -97,13 +98,13 @@ class ImportJobsMixin:
     def _apply_import(self, path: Path, result, sha: str, view, color: str, layout) -> None:
         rep = result.report
         self.log_message(
-            f"{path.name}: {rep['rows_imported']:,} rows in {rep['tracks']:,} tracks "
+            f"{path.name}: {count(rep['rows_imported'], 'row')} in {count(rep['tracks'], 'track')} "
             f"({rep['format_label']}, {rep['encoding']}); {rep['rows_quarantined']:,} quarantined"
         )
-        for reason, count in rep["quarantine_reasons"].items():
-            self.log_message(f"    quarantined {count:,}: {reason}")
-        for reason, count in rep.get("values_blanked", {}).items():
-            self.log_message(f"    blanked {count:,} (row kept): {reason}")
+        for reason, n in rep["quarantine_reasons"].items():
+            self.log_message(f"    quarantined {n:,}: {reason}")
+        for reason, n in rep.get("values_blanked", {}).items():
+            self.log_message(f"    blanked {n:,} (row kept): {reason}")
         for warning in rep.get("warnings", []):
             self.log_message(f"    {self.tr('Warning')}: {warning}")
         self.session.note_source(str(path.resolve()), sha)

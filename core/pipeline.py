@@ -24,6 +24,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, finite_number, param
 from wakeline.core.progress import Progress, null_progress, sub_progress
+from wakeline.core.words import count
 
 
 @dataclass(frozen=True)
@@ -182,8 +183,8 @@ def _summary_clean(res: StepResult) -> str:
             rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())
             parts.append(f"{action} {sum(per.values()):,} ({rules})")
     return (
-        f"kept {rep['points_out']:,} of {rep['points_in']:,} points in {rep['tracks_out']:,} tracks"
-        + (f"; {'; '.join(parts)}" if parts else "")
+        f"kept {rep['points_out']:,} of {count(rep['points_in'], 'point')} "
+        f"in {count(rep['tracks_out'], 'track')}" + (f"; {'; '.join(parts)}" if parts else "")
     )
 
 
@@ -252,7 +253,10 @@ def run_maneuvers(points: pd.DataFrame, params: dict, progress: Progress = null_
 
 def _summary_maneuvers(res: StepResult) -> str:
     r = res.report
-    return f"{r['maneuvers']:,} maneuver points in {r['tracks']:,} tracks ({r['method']})"
+    return (
+        f"{count(r['maneuvers'], 'maneuver point')} in {count(r['tracks'], 'track')} "
+        f"({r['method']})"
+    )
 
 
 def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
@@ -308,12 +312,13 @@ def _summary_compress(res: StepResult) -> str:
     o = res.report["overall"]
     extra = f", Dis_e against truth {o['dis_e_true_m']:.1f} m" if "dis_e_true_m" in o else ""
     repeats = (
-        f" ({o['repeated_rows']:,} rows repeating the time and place of the row before set aside)"
+        f" ({count(o['repeated_rows'], 'row')} repeating the time and place of the row before "
+        "set aside)"
         if o.get("repeated_rows")
         else ""
     )
     return (
-        f"kept {o['kept']:,} of {o['points']:,} points ({o['ratio']:.1%}){repeats}; "
+        f"kept {o['kept']:,} of {count(o['points'], 'point')} ({o['ratio']:.1%}){repeats}; "
         f"Dis_e {o['dis_e_m']:.1f} m{extra}"
     )
 
@@ -380,18 +385,20 @@ def run_associate(
 def _summary_associate(res: StepResult) -> str:
     rep = res.report
     msg = (
-        f"{rep['tracks']:,} tracks -> {rep['targets']:,} targets "
-        f"({rep['pairs_chosen']:,} joins of {rep['candidate_pairs']:,} candidate pairs, "
+        f"{count(rep['tracks'], 'track')} -> {count(rep['targets'], 'target')} "
+        f"({count(rep['pairs_chosen'], 'join')} of "
+        f"{count(rep['candidate_pairs'], 'candidate pair')}, "
         f"{rep['method']})"
     )
     if rep.get("rejected_kept_out"):
-        msg += f"; {rep['rejected_kept_out']:,} pairs rejected in an earlier review kept out"
+        rej = count(rep["rejected_kept_out"], "pair")
+        msg += f"; {rej} rejected in an earlier review kept out"
     if rep.get("long_gap_joins"):
         msg += f"; {rep['long_gap_joins']:,} of the joins across gaps beyond T_gap (second look)"
     if rep.get("rest_joins"):
         msg += f"; {rep['rest_joins']:,} between ends at rest (moored or at anchor)"
     if "points_filled" in rep:
-        msg += f"; {rep['points_filled']:,} points filled"
+        msg += f"; {count(rep['points_filled'], 'point')} filled"
     single = rep.get("single_fix_tracks", 0)
     if rep["tracks"] >= 100 and single > 0.5 * rep["tracks"]:
         msg += (
@@ -449,28 +456,24 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
 def _summary_fuse(res: StepResult) -> str:
     rep = res.report
     return (
-        f"{rep['tracks']:,} tracks of {rep['sensors']} sensors -> {rep['targets']:,} targets "
-        f"({_count(rep['pairs_chosen'], 'pair')} of {_count(rep['candidate_pairs'], 'candidate')}, "
-        f"{rep['distance']}, {rep['method']}); {rep['fused_points']:,} fused points"
-        + (f" from {rep['points_in']:,} input points" if "points_in" in rep else "")
+        f"{count(rep['tracks'], 'track')} of {count(rep['sensors'], 'sensor')} -> "
+        f"{count(rep['targets'], 'target')} "
+        f"({count(rep['pairs_chosen'], 'pair')} of {count(rep['candidate_pairs'], 'candidate')}, "
+        f"{rep['distance']}, {rep['method']}); {count(rep['fused_points'], 'fused point')}"
+        + (f" from {count(rep['points_in'], 'input point')}" if "points_in" in rep else "")
         + (
             " (points of two sensors at one time become one)"
             if rep.get("points_in", 0) > rep["fused_points"]
             else ""
         )
         + (
-            f"; {rep['repeated_rows']:,} rows repeating the time and place of the row "
+            f"; {count(rep['repeated_rows'], 'row')} repeating the time and place of the row "
             "before set aside"
             if rep.get("repeated_rows")
             else ""
         )
         + (_no_pair_reason(rep) if not rep.get("pairs_chosen") and "max_distance_m" in rep else "")
     )
-
-
-def _count(n: int, noun: str) -> str:
-    """``n`` with its noun, singular for one: '1 pair', '2 pairs'."""
-    return f"{n:,} {noun}" + ("" if n == 1 else "s")
 
 
 def _short_overlap_text(rep: dict) -> str:
@@ -526,7 +529,7 @@ def _no_pair_reason(rep: dict) -> str:
                 "max_distance_m with --set if the sensors are that noisy)"
             )
     return (
-        f"; {_count(probed, 'pair')} of tracks came within max_distance_m "
+        f"; {count(probed, 'pair')} of tracks came within max_distance_m "
         f"({rep['max_distance_m']:g} m) of each other, refused: {refused}" + far
     )
 

@@ -262,3 +262,23 @@ def test_evaluate_maneuver_takes_the_step_limit():
     assert params().max_step_windows == 4.0
     assert params("--max-step-windows", "0").max_step_windows == 0.0
     assert params("--paper").max_step_windows == 0.0
+
+
+def test_summaries_count_one_track_in_the_singular(tmp_path, capsys):
+    """The command line's summaries share the window's counted nouns: "1 track", not
+    "1 tracks" (:func:`wakeline.core.words.count`)."""
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+
+    pts = simulate.demo_scene(seed=3)
+    one = pts[
+        (pts["sensor"] == "AIS") & (pts["batch"] == pts["batch"][pts["sensor"] == "AIS"].iloc[0])
+    ]
+    src = tmp_path / "one.csv"
+    write_points(one, src)
+    assert main(["import", str(src), "-o", str(tmp_path / "out.csv")]) == 0
+    err = capsys.readouterr().err
+    assert f"imported {len(one)} rows in 1 track (" in err, err
+    assert main(["associate", str(src), "-o", str(tmp_path / "a.csv")]) == 0
+    err = capsys.readouterr().err
+    assert "1 track -> 1 target (0 joins of 0 candidate pairs" in err, err

@@ -1213,3 +1213,42 @@ def test_parameters_panel_loads_a_table_by_the_command_lines_max_gap_rule(qtbot)
         assert panel.from_dict({"clean": {"resample": table}}) == []
         shown = panel.root.child("clean", "resample", "max_gap_steps").value()
         assert panel.clean_params().resample.max_gap_steps == cli(table) == shown, table
+
+
+def test_the_log_counts_one_track_in_the_singular(window, tmp_path):
+    """Operator test (Saronic vessel_1, Øresund): the log read "1 tracks", "1 targets",
+    "1 pairs". One helper (:func:`wakeline.core.words.count`) now makes the counted nouns
+    of the window's log and of the command line's summaries."""
+    from wakeline.core.words import count
+
+    assert [count(1, "track"), count(2, "track"), count(0, "pair")] == [
+        "1 track",
+        "2 tracks",
+        "0 pairs",
+    ]
+    assert count(1_234, "row") == "1,234 rows"
+    pts = simulate.demo_scene(seed=3)
+    ais = pts[pts["sensor"] == "AIS"]
+    one = ais[ais["batch"] == ais["batch"].iloc[0]].copy()
+    src = tmp_path / "one.csv"
+    write_points(one, src)
+    load(window, src)
+    window.run_step("clean")
+    wait_for_jobs(window)
+    log = window.log.toPlainText()
+    assert f"one.csv: {len(one)} rows in 1 track (" in log, log
+    assert f"clean on one.csv: kept {len(one)} of {len(one)} points in 1 track" in log, log
+    # The same ship silent for 5 min: two tracks, joined into one target by one pair.
+    t = pd.to_datetime(one["time"])
+    mid = t.iloc[len(t) // 2]
+    two = one[(t < mid) | (t > mid + pd.Timedelta(minutes=5))].copy()
+    two["batch"] = np.where(pd.to_datetime(two["time"]) < mid, "first", "second")
+    src = tmp_path / "two.csv"
+    write_points(two, src)
+    load(window, src)
+    window.run_step("associate")
+    wait_for_jobs(window)
+    log = window.log.toPlainText()
+    assert "two.csv: 2 tracks -> 1 target (1 join of 1 candidate pair, optimal)" in log, log
+    for wrong in ("1 tracks", "1 targets", "1 joins", "1 candidate pairs", "1 pairs"):
+        assert f" {wrong}" not in log, log
