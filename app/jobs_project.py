@@ -224,6 +224,7 @@ class ProjectJobsMixin:
         finally:
             self._view_planned = False
         lock_note = self.project.follow(path, proj.read_only)
+        self.log_message(self._opened_text(path, len(proj.layers), len(proj.decisions)))
         bearing = [lid for lid, lay in self.session.layers.items() if lay.kind == BEARING_KIND]
         if bearing and bearing[-1] in self.views:  # the dock and Detail show the last
             self.show_bearing_layer(self.views[bearing[-1]])
@@ -249,6 +250,17 @@ class ProjectJobsMixin:
             QtWidgets.QMessageBox.warning(
                 self, self.tr("Project opened with warnings"), "\n".join(warnings + problems)
             )
+
+    def _opened_text(self, path: Path, layers: int, decisions: int) -> str:
+        """The log line of an opened project: its file, its layers and the review
+        decisions restored from it (as opening a file logs its import summary)."""
+        n_layers = self.tr("1 layer") if layers == 1 else self.tr("{0} layers").format(layers)
+        n_decided = (
+            self.tr("1 review decision restored")
+            if decisions == 1
+            else self.tr("{0} review decisions restored").format(f"{decisions:,}")
+        )
+        return self.tr("Opened project {0}: {1}, {2}").format(str(path), n_layers, n_decided)
 
     def open_project_dialog(self) -> None:
         path, _ = QtWidgets.QFileDialog.getOpenFileName(

@@ -697,3 +697,43 @@ def test_two_files_of_one_name_fuse_as_two_sensors(qtbot, tmp_path, monkeypatch)
     _settle(w)
     assert len(w.layers) == n and told and "both come from" in told[-1], told
     w.close()
+
+
+def test_opening_a_project_logs_its_file_layers_and_decisions(qtbot, tmp_path):
+    """GUI test: File ▸ Open project wrote nothing to the log; it now names the project
+    file, its layers and the review decisions restored, as opening a file logs its
+    import summary (and in Chinese when the window speaks it)."""
+    src = tmp_path / "scene.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=4, area_km=10), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    _settle(w)
+    w.run_step("associate")
+    _settle(w)
+    assoc = w.session.find(w.layer_id(src.name), "associate")
+    w.select_layer(assoc.id)
+    _settle(w)
+    acts = w.review.review_actions
+    acts["accept"].trigger()
+    acts["reject"].trigger()
+    _settle(w)
+    assert len(w.session.decisions) == 2
+    w.close()
+
+    w2 = _window(qtbot, tmp_path)
+    w2.open_project(proj)
+    _settle(w2)
+    line = f"Opened project {proj}: 2 layers, 2 review decisions restored"
+    assert w2.log.toPlainText().splitlines()[0] == line, w2.log.toPlainText()
+    assert w2.review.bound.controller.state.log_table()["action"].tolist() == ["accept", "reject"]
+    w2.set_language("zh_CN")
+    try:
+        w2.open_project(proj)
+        _settle(w2)
+        assert f"已打开工程 {proj}：2 个图层，恢复了 2 条审核决策" in w2.log.toPlainText()
+    finally:
+        w2.set_language("en")
+    w2.close()

@@ -324,6 +324,26 @@
         <translation>工程已打开（有警告）</translation>
     </message>
     <message>
+        <source>Opened project {0}: {1}, {2}</source>
+        <translation>已打开工程 {0}：{1}，{2}</translation>
+    </message>
+    <message>
+        <source>1 layer</source>
+        <translation>1 个图层</translation>
+    </message>
+    <message>
+        <source>{0} layers</source>
+        <translation>{0} 个图层</translation>
+    </message>
+    <message>
+        <source>1 review decision restored</source>
+        <translation>恢复了 1 条审核决策</translation>
+    </message>
+    <message>
+        <source>{0} review decisions restored</source>
+        <translation>恢复了 {0} 条审核决策</translation>
+    </message>
+    <message>
         <source>Open project</source>
         <translation>打开工程</translation>
     </message>
