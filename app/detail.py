@@ -1,6 +1,8 @@
 """Detail views: the selected track's maneuver factor and compression; bearing-only data
 with the detector's z statistic (GLR or AUC, as set) and its threshold band."""
 
+from collections.abc import Callable
+
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
@@ -132,6 +134,9 @@ class DetailPanel(QtWidgets.QTabWidget):
         self._bparams = BearingParams()
         self._curves: dict = {}
         self.message = ""
+        #: Each plot's title as made (a plot, and how to write its text): the language
+        #: menu writes them again at once, not at the next selection.
+        self._titles: dict[str, tuple[object, Callable[[], str]]] = {}
         self.retranslate()
 
     def retranslate(self) -> None:
@@ -147,6 +152,14 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.b_plot.setLabel("left", self.tr("bearing"), units="°")
         self.z_plot.setLabel("left", self._z_label())
         self.z_plot.setLabel("bottom", self.tr("time"), units=minutes)
+        for plot, make in self._titles.values():
+            plot.setTitle(make())
+
+    def _set_title(self, name: str, plot, make: Callable[[], str]) -> None:
+        """Title ``plot`` with ``make()`` (a text through ``self.tr``), kept for
+        :meth:`retranslate`."""
+        self._titles[name] = (plot, make)
+        plot.setTitle(make())
 
     def _z_label(self) -> str:
         """The z axis's name: the detector's statistic (GLR or AUC)."""
@@ -180,7 +193,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         self._draw_bearing("")
         for curve in (self.b_curve, self.z_curve):
             curve.setData([], [])
-        self.b_plot.setTitle("")
+        self._set_title("bearing", self.b_plot, str)
 
     def _draw_bearing(self, batch: str) -> None:
         for line in self.detect_lines:
@@ -205,8 +218,13 @@ class DetailPanel(QtWidgets.QTabWidget):
                 line = pg.InfiniteLine((when - t0) / 60.0, pen=pg.mkPen("#d62728", width=1.5))
                 plot.addItem(line)
                 self.detect_lines.append(line)
-        self.b_plot.setTitle(
-            self.tr("{0}: {1} maneuvers detected; band ±{2:.2f}").format(batch, len(det), p.z_crit)
+        found = len(det)
+        self._set_title(
+            "bearing",
+            self.b_plot,
+            lambda: self.tr("{0}: {1} maneuvers detected; band ±{2:.2f}").format(
+                batch, found, p.z_crit
+            ),
         )
 
     def clear(self) -> None:
@@ -218,8 +236,8 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.factor_plot.enableAutoRange(axis="x")
         self.comp_orig.setData([], [])
         self.comp_kept.setData([], [])
-        self.factor_plot.setTitle("")
-        self.comp_plot.setTitle("")
+        self._set_title("factor", self.factor_plot, str)
+        self._set_title("compression", self.comp_plot, str)
 
     def show_track(
         self,
@@ -242,13 +260,18 @@ class DetailPanel(QtWidgets.QTabWidget):
             self.factor_marks.setData(minutes[hits], delta[hits])
             if threshold_deg is not None:
                 self.threshold.setValue(threshold_deg)
-            self.factor_plot.setTitle(
-                self.tr("{0} maneuvers; threshold {1:g}°").format(
-                    int(hits.sum()), threshold_deg or 0
-                )
+            n_hits = int(hits.sum())
+            self._set_title(
+                "factor",
+                self.factor_plot,
+                lambda: self.tr("{0} maneuvers; threshold {1:g}°").format(
+                    n_hits, threshold_deg or 0
+                ),
             )
         else:
-            self.factor_plot.setTitle(self.tr("run Maneuvers or Compress to see δ"))
+            self._set_title(
+                "factor", self.factor_plot, lambda: self.tr("run Maneuvers or Compress to see δ")
+            )
         if compressed is not None and original is not None and len(compressed):
             self.comp_orig.setData(original["lon"].to_numpy(), original["lat"].to_numpy())
             self.comp_kept.setData(compressed["lon"].to_numpy(), compressed["lat"].to_numpy())
@@ -257,10 +280,13 @@ class DetailPanel(QtWidgets.QTabWidget):
                 True, ratio=max(np.cos(np.radians(lat)), 0.05)
             )
             dis = np.nan if dis_e_m is None else dis_e_m
-            self.comp_plot.setTitle(
-                self.tr("{0} of {1} points kept, Dis_e {2:.0f} m").format(
-                    len(compressed), len(original), dis
-                )
+            kept, of = len(compressed), len(original)
+            self._set_title(
+                "compression",
+                self.comp_plot,
+                lambda: self.tr("{0} of {1} points kept, Dis_e {2:.0f} m").format(kept, of, dis),
             )
         else:
-            self.comp_plot.setTitle(self.tr("run Compress to compare"))
+            self._set_title(
+                "compression", self.comp_plot, lambda: self.tr("run Compress to compare")
+            )

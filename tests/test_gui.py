@@ -784,6 +784,34 @@ def test_chinese_translation_switches_the_menus(window):
     assert "Re&view" in [a.text() for a in window.menuBar().actions()]
 
 
+def test_detail_plot_titles_follow_the_language_at_once(window, qtbot):
+    """GUI test: the Detail plots' titles stayed English after Language ▸ 简体中文 until
+    the next selection; they are written again with the rest of the window."""
+    load(window, demo_path())
+    window.run_step("pipeline")
+    wait_for_jobs(window)
+    comp = next(n for n, lay in window.layers.items() if lay.kind == "compressed")
+    window.select_layer(comp)
+    wait_for_jobs(window)
+    window.select_tracks([window.batch_model.key_of_row(0)])
+    qtbot.waitUntil(lambda: window.detail.comp_kept.getData()[0] is not None, timeout=5000)
+    d = window.detail
+
+    def titles() -> list[str]:
+        return [p.getPlotItem().titleLabel.text for p in (d.factor_plot, d.comp_plot)]
+
+    en = titles()
+    assert "maneuvers; threshold" in en[0] and "points kept, Dis_e" in en[1], en
+    window.set_language("zh_CN")
+    try:
+        zh = titles()
+        assert "个机动点；阈值" in zh[0] and "保留" in zh[1] and "Dis_e" in zh[1], zh
+        assert [t.split()[0] for t in zh] != [t.split()[0] for t in en]
+    finally:
+        window.set_language("en")
+    assert titles() == en
+
+
 def test_nan_separated_unwraps_the_antimeridian():
     df = pd.DataFrame(
         {
