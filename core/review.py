@@ -590,7 +590,8 @@ def _set(state: ReviewState, action: str, proposal: str, status: str) -> Change:
     row = state._proposal_row(proposal)
     p = state.proposals.iloc[row]
     after = {proposal: status}
-    if status in ACTIVE:  # a join: what it puts into one target is joined, whatever it said
+    if status in ACTIVE and state.status[row] not in ACTIVE:
+        # A join: what it puts into one target is joined, whatever its rows said.
         after |= dict.fromkeys(_cut_but_joined(state, after), "accepted")
     return Change(
         action,
