@@ -517,8 +517,12 @@ def test_review_redraw_on_the_saronic_association_keeps_within_budget(qtbot, tmp
         rows = [(st._row[big] + k) % n for k in range(1, n)]
         other_row = next(r for r in rows if st.target(st.track_a[r]) != mine)
         other = st.proposals["proposal"].iloc[other_row]
-        row = panel.proxy.mapFromSource(panel.model.index(panel.model.row_of[other], 0))
-        sel.select(row, flags.Select | flags.Rows)  # a second row beside the current one
+        for pid, how in ((big, flags.ClearAndSelect), (other, flags.Select)):
+            # the current row and a second one beside it (the current one is not always
+            # selected once the views have settled: a merge of one row's joined tracks is
+            # nothing to draw)
+            row = panel.proxy.mapFromSource(panel.model.index(panel.model.row_of[pid], 0))
+            sel.select(row, how | flags.Rows)
         act("merge", acts["merge"].trigger)
         assert st.links
         act("undo merge", w.review.act_undo.trigger)
