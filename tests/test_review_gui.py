@@ -358,10 +358,11 @@ def _rows_agree_with_the_core(panel) -> None:
     st = panel.controller.state
     m = panel.model
     col = [n for n, _ in COLUMNS].index("status")
-    for r, pid in enumerate(m.ids):
+    tracks = st.proposals.set_index("proposal")[["track_a", "track_b"]]
+    for r, pid in enumerate(m.ids):  # the model's rows (in its own sort order since h104)
         status = st.status_of(pid)
         assert m.data(m.index(r, col)) == T.status_name(status), pid
-        a, b = st.proposals["track_a"][r], st.proposals["track_b"][r]
+        a, b = tracks.loc[pid]
         joined = st.target(a) == st.target(b)
         assert joined == (status in R.ACTIVE), (pid, status, st.target(a), st.target(b))
     pid = panel.current()
