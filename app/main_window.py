@@ -336,18 +336,25 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             rows.append((label, f"{meta['dis_e_m']:,.1f} m"))
         if meta.get("threshold_deg") is not None:
             rows.append((self.tr("Maneuver threshold"), f"{meta['threshold_deg']:g}°"))
+        labels = {
+            "removed": self.tr("Removed by clean"),
+            "changed": self.tr("Changed by clean (kept, new values)"),
+            "replaced": self.tr("Replaced by clean"),
+        }
+        counts = meta.get("clean_counts")
         rejected = layer.tables.get("rejected")
-        if isinstance(rejected, pd.DataFrame) and {"rule", "action"} <= set(rejected.columns):
-            labels = {
-                "removed": self.tr("Removed by clean"),
-                "changed": self.tr("Changed by clean (kept, new values)"),
-                "replaced": self.tr("Replaced by clean"),
-            }
-            counts = rejected.groupby(["action", "rule"], sort=False).size()
-            for action, per in counts.groupby(level=0, sort=False):
-                rules = ", ".join(f"{rule} {n:,}" for (_a, rule), n in per.items())
+        if (
+            counts is None  # a project saved before the step kept its counts
+            and isinstance(rejected, pd.DataFrame)
+            and {"rule", "action"} <= set(rejected.columns)
+        ):
+            per = rejected.groupby(["action", "rule"], sort=False).size()
+            counts = {a: dict(p.droplevel(0).items()) for a, p in per.groupby(level=0, sort=False)}
+        if counts:
+            for action, per in counts.items():
+                rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())
                 label = labels.get(action, action)
-                rows.append((label, f"{int(per.sum()):,} ({rules})"))
+                rows.append((label, f"{sum(per.values()):,} ({rules})"))
         elif meta.get("rejected") is not None:
             rows.append((self.tr("Removed or changed by clean"), f"{meta['rejected']:,}"))
         return rows

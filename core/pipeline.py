@@ -162,7 +162,8 @@ def run_clean(points: pd.DataFrame, params: dict, progress: Progress = null_prog
                 "cleaned",
                 "cleaned",
                 res.points,
-                {"rejected": int(len(res.rejected))},
+                # per action and rule, so the Statistics dock reads it, not the table
+                {"rejected": int(len(res.rejected)), "clean_counts": clean_counts(rep)},
                 {"rejected": res.rejected, "at_rest": rest},
             )
         ],
@@ -171,17 +172,27 @@ def run_clean(points: pd.DataFrame, params: dict, progress: Progress = null_prog
     )
 
 
+def clean_counts(report: dict) -> dict[str, dict[str, int]]:
+    """A clean report's points per action (``removed``, ``changed`` — kept, with new
+    values — ``replaced``) and rule, in the rules' order; actions and rules without
+    points left out."""
+    out = {}
+    for action in ("removed", "changed", "replaced"):
+        per = {rule: int(v.get(action, 0)) for rule, v in report["rules"].items()}
+        per = {rule: n for rule, n in per.items() if n}
+        if per:
+            out[action] = per
+    return out
+
+
 def _summary_clean(res: StepResult) -> str:
     """Where the points went: kept, then removed, changed (kept, with new values) and
     replaced, each with its rules (the removed add up to what was not kept)."""
     rep = res.report
     parts = []
-    for action in ("removed", "changed", "replaced"):
-        per = {rule: v.get(action, 0) for rule, v in rep["rules"].items()}
-        per = {rule: n for rule, n in per.items() if n}
-        if per:
-            rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())
-            parts.append(f"{action} {sum(per.values()):,} ({rules})")
+    for action, per in clean_counts(rep).items():
+        rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())
+        parts.append(f"{action} {sum(per.values()):,} ({rules})")
     return (
         f"kept {rep['points_out']:,} of {count(rep['points_in'], 'point')} "
         f"in {count(rep['tracks_out'], 'track')}" + (f"; {'; '.join(parts)}" if parts else "")

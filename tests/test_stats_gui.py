@@ -224,6 +224,18 @@ def test_the_statistics_say_what_clean_removed_and_changed_and_it_adds_up(window
     assert actions.get("changed", 0)  # the speeds replaced: their points are kept
     changed = rows["Changed by clean (kept, new values)"]
     assert changed.startswith(f"{actions['changed']:,} (speed_outliers"), rows
+    # The rows come from the counts the step kept in the layer's meta (review of session
+    # 21: a groupby over the rejected table ran on the GUI thread at every refresh); a
+    # layer of a project saved before that falls back to the table, with the same rows.
+    assert cleaned.meta["clean_counts"]["removed"]["stationary"] > 0
+    shown = dict(window._result_rows(cleaned))
+    table = cleaned.tables["rejected"]
+    cleaned.tables["rejected"] = table.iloc[:0]  # not read
+    assert dict(window._result_rows(cleaned)) == shown
+    cleaned.tables["rejected"] = table
+    counts = cleaned.meta.pop("clean_counts")  # an older project's layer
+    assert dict(window._result_rows(cleaned)) == shown
+    cleaned.meta["clean_counts"] = counts
 
 
 def test_each_track_count_says_what_it_counts_under_a_time_window(window, qtbot, write):
