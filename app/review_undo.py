@@ -67,7 +67,11 @@ class ReviewController(QtCore.QObject):
         self.changed.emit(sorted(change.status_after))
 
     def do(self, change: R.Change) -> None:
-        """Apply a decision through the undo stack."""
+        """Apply a decision through the undo stack; one that changes nothing is not
+        pushed (no do-nothing step to undo, nothing written to the decision log)."""
+        if change.empty:
+            self.changed.emit(sorted(change.status_after))  # the views show it as it is
+            return
         self.stack.push(ReviewCommand(self, change))
 
     def accept(self, proposal: str) -> None:

@@ -373,6 +373,13 @@ class Change:
     links_added: frozenset = frozenset()
     links_removed: frozenset = frozenset()
 
+    @property
+    def empty(self) -> bool:
+        """Changes nothing: no status moves and no link is added or removed (a merge of
+        tracks already in one target, an accept of an accepted proposal)."""
+        moved = any(self.status_before.get(k) != v for k, v in self.status_after.items())
+        return not (moved or self.links_added or self.links_removed)
+
     def inverse(self) -> "Change":
         """The change that undoes this one (its action is ``undo <action>``, and the
         inverse of that is the original again)."""

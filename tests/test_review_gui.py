@@ -270,8 +270,15 @@ def test_controller_writes_every_decision_and_reopens(scene, tmp_path, qtbot):
     ctl.accept("A0001")
     ctl.reject("A0002")
     ctl.stack.undo()
-    ctl.merge(ctl.state.tracks["track"][:3].tolist())
+    # three tracks of three targets (tracks of one target merged change nothing)
+    tg = ctl.state.target_of_track()
+    firsts = pd.Series(ctl.state.tracks["track"].to_numpy()).groupby(tg).first()[:3].tolist()
+    ctl.merge(firsts)
     assert store.decision_count() == 4
+    n = ctl.stack.count()
+    ctl.merge(firsts)  # again: nothing to change, no step to undo, nothing written
+    ctl.accept("A0001")
+    assert store.decision_count() == 4 and ctl.stack.count() == n
     want = ctl.state.target_of_track().copy()
     store.close()
     with ReviewStore(db) as again:
