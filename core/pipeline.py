@@ -305,6 +305,8 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     report = comp.report()
     report["method"] = opts.method
     report["refined_vertices"] = refine
+    if opts.method != "dp":  # the turning points it kept around, as the maneuvers layer has
+        report["maneuvers"] = int(len(table))
     kept = comp.kept_points()
     per_track = {f"{t['sensor']}\x1f{t['batch']}": t["dis_e_m"] for t in report["tracks"]}
     layers.append(
@@ -328,9 +330,11 @@ def _summary_compress(res: StepResult) -> str:
         if o.get("repeated_rows")
         else ""
     )
+    found = res.report.get("maneuvers")
+    turns = "" if found is None else f"{count(found, 'maneuver point')}; "
     return (
-        f"kept {o['kept']:,} of {count(o['points'], 'point')} ({o['ratio']:.1%}){repeats}; "
-        f"Dis_e {o['dis_e_m']:.1f} m{extra}"
+        f"{turns}kept {o['kept']:,} of {count(o['points'], 'point')} ({o['ratio']:.1%})"
+        f"{repeats}; Dis_e {o['dis_e_m']:.1f} m{extra}"
     )
 
 

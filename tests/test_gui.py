@@ -1133,7 +1133,7 @@ def test_the_log_says_where_a_steps_points_went_and_why_nothing_fused(window, tm
     wait_for_jobs(window)
     log = window.log.toPlainText()
     assert "clean: kept" in log and "removed" in log and "stationary" in log, log
-    assert "compress: kept" in log and "Dis_e" in log, log
+    assert "maneuver points; kept" in log and "Dis_e" in log, log
     # Sensors 5 km apart: nothing pairs, and the log says which gate to open, and where.
     apart = pts.copy()
     apart.loc[apart["sensor"] == "R1", "lat"] += 0.045
