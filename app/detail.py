@@ -222,9 +222,11 @@ class DetailPanel(QtWidgets.QTabWidget):
         self._set_title(
             "bearing",
             self.b_plot,
-            lambda: self.tr("{0}: {1} maneuvers detected; band ±{2:.2f}").format(
-                batch, found, p.z_crit
-            ),
+            lambda: (
+                self.tr("{0}: 1 maneuver detected; band ±{2:.2f}")
+                if found == 1
+                else self.tr("{0}: {1} maneuvers detected; band ±{2:.2f}")
+            ).format(batch, found, p.z_crit),
         )
 
     def clear(self) -> None:
@@ -264,9 +266,11 @@ class DetailPanel(QtWidgets.QTabWidget):
             self._set_title(
                 "factor",
                 self.factor_plot,
-                lambda: self.tr("{0} maneuvers; threshold {1:g}°").format(
-                    n_hits, threshold_deg or 0
-                ),
+                lambda: (
+                    self.tr("1 maneuver; threshold {1:g}°")
+                    if n_hits == 1
+                    else self.tr("{0} maneuvers; threshold {1:g}°")
+                ).format(n_hits, threshold_deg or 0),
             )
         else:
             self._set_title(

@@ -1280,3 +1280,25 @@ def test_the_log_counts_one_track_in_the_singular(window, tmp_path):
     assert "two.csv: 2 tracks -> 1 target (1 join of 1 candidate pair, optimal)" in log, log
     for wrong in ("1 tracks", "1 targets", "1 joins", "1 candidate pairs", "1 pairs"):
         assert f" {wrong}" not in log, log
+
+
+def test_detail_title_counts_one_maneuver_in_the_singular(qtbot):
+    """Seen on ATD dataset1's window (session 21): "1 maneuvers; threshold 15°"."""
+    from wakeline.app.detail import DetailPanel
+
+    panel = DetailPanel()
+    qtbot.addWidget(panel)
+    t = pd.to_datetime(np.arange(6) * 60.0, unit="s", utc=True)
+    track = pd.DataFrame(
+        {
+            "time": t,
+            "lon": np.linspace(10.0, 10.05, 6),
+            "lat": np.full(6, 55.0),
+            "maneuver_factor": [0.0, 5.0, 40.0, 5.0, 0.0, 0.0],
+            "is_maneuver": [False, False, True, False, False, False],
+        }
+    )
+    panel.show_track(track, threshold_deg=15.0)
+    assert panel.factor_plot.getPlotItem().titleLabel.text == "1 maneuver; threshold 15°"
+    panel.show_track(track.assign(is_maneuver=track["maneuver_factor"] > 1), threshold_deg=15.0)
+    assert panel.factor_plot.getPlotItem().titleLabel.text == "3 maneuvers; threshold 15°"

@@ -646,6 +646,10 @@
         <translation>{0} 个机动点；阈值 {1:g}°</translation>
     </message>
     <message>
+        <source>1 maneuver; threshold {1:g}°</source>
+        <translation>1 个机动点；阈值 {1:g}°</translation>
+    </message>
+    <message>
         <source>run Maneuvers or Compress to see δ</source>
         <translation>运行机动检测或压缩以查看 δ</translation>
     </message>
@@ -663,6 +667,10 @@
     </message>
     <message>
         <source>{0}: {1} maneuvers detected; band ±{2:.2f}</source>
+        <translation>{0}：检测到 {1} 次机动；阈值带 ±{2:.2f}</translation>
+    </message>
+    <message>
+        <source>{0}: 1 maneuver detected; band ±{2:.2f}</source>
         <translation>{0}：检测到 {1} 次机动；阈值带 ±{2:.2f}</translation>
     </message>
     <message>
