@@ -1073,3 +1073,40 @@ def hard_maneuver_scene(
 
 
 KINDS = ("maneuver", "segments", "multisensor", "bearing", "demo")
+
+
+def review_queue(n: int, seed: int = 0) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """A review queue of ``n`` two-track ships, one association proposal each (old track
+    k ends at 600 s, new track n + k starts at 700 s; costs and runner-ups random): the
+    track table and the proposals :class:`~wakeline.core.review.ReviewState` takes, for
+    timing the review at a given size."""
+    tracks = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": [str(k) for k in range(2 * n)],
+            "t0": np.r_[np.zeros(n), np.full(n, 700.0)],
+            "t1": np.r_[np.full(n, 600.0), np.full(n, 1300.0)],
+        }
+    )
+    tracks.insert(0, "track", "R1:" + tracks["batch"])
+    rng = np.random.default_rng(seed)
+    cost = rng.uniform(0, 1.5, n)
+    props = pd.DataFrame(
+        {
+            "proposal": [f"A{k + 1:04d}" for k in range(n)],
+            "kind": "associate",
+            "sensor_a": "R1",
+            "batch_a": [str(k) for k in range(n)],
+            "sensor_b": "R1",
+            "batch_b": [str(n + k) for k in range(n)],
+            "method": "optimal",
+            "cost": cost,
+            "gap_s": 100.0,
+            "runner_up": [f"R1:{n + (k + 1) % n}" for k in range(n)],
+            "runner_up_side": "a",
+            "runner_up_cost": cost + rng.uniform(0, 1, n),
+            "gate": 1.5,
+        }
+    )
+    props["margin"] = np.fmin(props["runner_up_cost"], 1.5) - cost
+    return tracks, props

@@ -28,7 +28,7 @@ from wakeline.core import review as R  # noqa: E402
 from wakeline.core.associate import associate_interrupted  # noqa: E402
 from wakeline.core.io import write_points  # noqa: E402
 from wakeline.core.review_store import ReviewStore  # noqa: E402
-from wakeline.core.simulate import segments_scene  # noqa: E402
+from wakeline.core.simulate import review_queue, segments_scene  # noqa: E402
 
 pytestmark = pytest.mark.gui
 
@@ -428,35 +428,7 @@ def test_row_status_follows_split_merge_accept_reject_in_any_order(scene, tmp_pa
 def test_thousand_proposals_stay_responsive(qtbot):
     n = 1000
     # 1000 two-track ships: old track k, new track k, one proposal each.
-    tracks = pd.DataFrame(
-        {
-            "sensor": "R1",
-            "batch": [str(k) for k in range(2 * n)],
-            "t0": np.r_[np.zeros(n), np.full(n, 700.0)],
-            "t1": np.r_[np.full(n, 600.0), np.full(n, 1300.0)],
-        }
-    )
-    tracks.insert(0, "track", "R1:" + tracks["batch"])
-    rng = np.random.default_rng(0)
-    cost = rng.uniform(0, 1.5, n)
-    props = pd.DataFrame(
-        {
-            "proposal": [f"A{k + 1:04d}" for k in range(n)],
-            "kind": "associate",
-            "sensor_a": "R1",
-            "batch_a": [str(k) for k in range(n)],
-            "sensor_b": "R1",
-            "batch_b": [str(n + k) for k in range(n)],
-            "method": "optimal",
-            "cost": cost,
-            "gap_s": 100.0,
-            "runner_up": [f"R1:{n + (k + 1) % n}" for k in range(n)],
-            "runner_up_side": "a",
-            "runner_up_cost": cost + rng.uniform(0, 1, n),
-            "gate": 1.5,
-        }
-    )
-    props["margin"] = np.fmin(props["runner_up_cost"], 1.5) - cost
+    tracks, props = review_queue(n)
     t = time.perf_counter()
     st = R.ReviewState(tracks, props)
     ctl = ReviewController(st)
