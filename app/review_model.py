@@ -100,6 +100,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
     def __init__(self, controller: ReviewController, parent=None) -> None:
         super().__init__(parent)
         self.controller = controller
+        self._sorted: tuple | None = None  # (column, order) of the last sort
         self._refresh()
         controller.changed.connect(self._on_changed)
 
@@ -120,6 +121,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
         if n == 0 or not 0 <= column < len(COLUMNS):
             return
         name = COLUMNS[column][0]
+        self._sorted = (column, order)  # a decision re-sorts a queue sorted by status
         inv = np.empty(n, dtype="int64")  # proposal row -> model row
         inv[self.prop] = np.arange(n)
         if name == "status":
@@ -149,6 +151,11 @@ class ProposalModel(QtCore.QAbstractTableModel):
 
     def _on_changed(self, proposals: list) -> None:
         col = [n for n, _ in COLUMNS].index("status")
+        sorted_by = self._sorted
+        if sorted_by is not None and sorted_by[0] == col and proposals:
+            # sorted by status: the rows move with their new status (as the proxy's
+            # dynamic sort did before the queue sorted itself)
+            self.sort(*sorted_by)
         rows = [self.row_of[p] for p in proposals if p in self.row_of]
         if rows:
             self.dataChanged.emit(self.index(min(rows), 0), self.index(max(rows), len(COLUMNS) - 1))

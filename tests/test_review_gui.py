@@ -578,3 +578,18 @@ def test_gantt_keeps_the_operators_zoom_when_resized(qtbot, controller):
     assert np.allclose(vb.viewRange()[0], zoomed)
     gantt.show_proposal(st.proposals["proposal"].iloc[-1])  # another proposal: fitted
     assert not np.allclose(vb.viewRange()[0], zoomed)
+
+
+def test_a_queue_sorted_by_status_moves_a_row_when_its_status_changes(qtbot, controller):
+    """The queue sorts itself since session 21 (one numpy sort), and lost the proxy's
+    dynamic sort: sorted by status, an accepted row stayed among the pending ones."""
+    panel = ReviewPanel(controller)
+    qtbot.addWidget(panel)
+    col = [n for n, _ in COLUMNS].index("status")
+    panel.view.sortByColumn(col, QtCore.Qt.SortOrder.AscendingOrder)
+    shown = lambda: [panel.current_at(r) for r in range(panel.proxy.rowCount())]  # noqa: E731
+    last = shown()[-1]
+    controller.accept(last)  # "accepted" sorts before "pending"
+    assert shown()[0] == last
+    controller.stack.undo()
+    assert shown()[-1] == last
