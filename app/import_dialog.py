@@ -37,6 +37,7 @@ class ImportDialog(QtWidgets.QDialog):
         super().__init__(parent)
         self.setWindowTitle(self.tr("Import tracks"))
         self._info: dict = {}
+        self._missing: list[str] = []  # required fields no column is mapped to
         self._updating = False
         self.path_edit = QtWidgets.QLineEdit(str(path or ""))
         browse = QtWidgets.QPushButton(self.tr("Browse…"))
@@ -265,10 +266,11 @@ class ImportDialog(QtWidgets.QDialog):
                     "are read as UTC."
                 ).format(time_col)
             )
-        missing = getattr(self, "_missing", [])
-        if missing:  # no layout fits: the fields recognised are mapped, these are not
+        if self._missing:  # no layout fits: the fields recognised are mapped, these are not
             problems.append(
-                self.tr("Required fields still without a column: {0}.").format(", ".join(missing))
+                self.tr("Required fields still without a column: {0}.").format(
+                    ", ".join(self._missing)
+                )
             )
         elif time_col is None and self._info.get("kind") == "csv":
             problems.append(self.tr("Choose the time column."))

@@ -75,7 +75,7 @@ def _widest_texts(values: np.ndarray, keep: int = 4) -> list[str]:
         small = mag[(mag > 0) & (mag < 10)]
         picks = [v.min(), v.max(), mag.max()]
         if len(small):
-            picks += [small.min(), *np.sort(small)[:keep]]
+            picks += list(np.sort(small)[:keep])  # the smallest nonzero first
         neg = v[(v < 0) & (v > -10)]
         if len(neg):
             picks += [neg.max(), neg.min()]
