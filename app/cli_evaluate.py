@@ -28,6 +28,7 @@ def _maneuver_params(args: argparse.Namespace):
         window_s=args.window_s,
         max_window_s=args.max_window_s,
         min_speed_kn=args.min_speed,
+        slow_side=args.slow_side,
         gap_s=args.gap_s,
         min_window_s=args.min_window_s,
         noise_lag_s=args.noise_lag_s,
@@ -236,6 +237,13 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         type=float,
         default=d.min_speed_kn,
         help=f"kn: no maneuver where the ship is slower over a window (default {d.min_speed_kn:g})",
+    )
+    p.add_argument(
+        "--slow-side",
+        type=float,
+        default=d.slow_side,
+        help=f"share of --min-speed the slower window needs (the faster one all of it); "
+        f"1 = both windows (default {d.slow_side:g})",
     )
     p.add_argument(
         "--paper",

@@ -133,6 +133,16 @@ class ManeuverParams(Params):
         hi=100.0,
         source="ours; seed 001 eq. 1's 1 kn",
     )
+    slow_side: float = param(
+        1.0,
+        "",
+        "the slower of the two windows needs only this share of min_speed_kn (the faster "
+        "one all of it): 1 = both windows at min speed; below 1 a ship turning as it leaves "
+        "or comes to rest counts while a ship slow on both sides still does not",
+        lo=0.0,
+        hi=1.0,
+        source="ours",
+    )
     noise_k: float = param(
         2.0,
         "",
@@ -766,15 +776,19 @@ def _fast_enough(
     p_row: np.ndarray,
     rows: np.ndarray,
     speed_ms: float,
+    slow_side: float = 1.0,
 ) -> np.ndarray:
-    """Per row of ``rows``: ``_window_speed_ms(…) >= speed_ms``, the same booleans, with the
-    two hypots taken as square roots of sums of squares where that decides (both speeds
-    beyond ``speed_ms`` by more than :data:`HYPOT_MARGIN`, relative, or one below it); the
-    others (within the margin, a time step ≤ 0 or not finite, lengths out of the safe
-    range) take the exact speeds."""
+    """Per row of ``rows``: the faster of the two windows' straight-line speeds (m/s) is at
+    least ``speed_ms`` and the slower at least ``slow_side`` × ``speed_ms`` (with 1:
+    ``_window_speed_ms(…) >= speed_ms``, the same booleans). The two hypots are taken as
+    square roots of sums of squares where that decides (every speed beyond its bound by
+    more than :data:`HYPOT_MARGIN`, relative, or one below it); the others (within the
+    margin, a time step ≤ 0 or not finite, lengths out of the safe range) take the exact
+    speeds."""
     a, b, inside = window_ends(index, rows, p_row, len(x))
     back, fwd, sure = _lengths_sq(x, y, rows, a, b)
     to = t[rows]
+    low = speed_ms * slow_side
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         dt_back, dt_fwd = to - t[a], t[b] - to
         sure &= (dt_back > 1e-200) & (dt_back < 1e200) & (dt_fwd > 1e-200) & (dt_fwd < 1e200)
@@ -782,16 +796,19 @@ def _fast_enough(
         v_back /= dt_back
         v_fwd = np.sqrt(fwd, out=fwd)
         v_fwd /= dt_fwd
-        slow = speed_ms * (1 - HYPOT_MARGIN)
-        no = (v_back < slow) | (v_fwd < slow)
-        fast = speed_ms * (1 + HYPOT_MARGIN)
-        yes = (v_back >= fast) & (v_fwd >= fast)
+        v_lo, v_hi = np.fmin(v_back, v_fwd), np.fmax(v_back, v_fwd)
+        no = (v_lo < low * (1 - HYPOT_MARGIN)) | (v_hi < speed_ms * (1 - HYPOT_MARGIN))
+        yes = (v_lo >= low * (1 + HYPOT_MARGIN)) & (v_hi >= speed_ms * (1 + HYPOT_MARGIN))
     ok = yes & sure & inside
     # outside the track: NaN, never fast enough
     j = np.flatnonzero(inside & ~(sure & (yes | no)))
     if len(j):
         with np.errstate(invalid="ignore"):
-            ok[j] = _window_speed_ms(x, y, t, index, p_row[j], rows[j]) >= speed_ms
+            if slow_side >= 1.0:
+                ok[j] = _window_speed_ms(x, y, t, index, p_row[j], rows[j]) >= speed_ms
+            else:
+                lo, hi = _window_speeds_ms(x, y, t, index, p_row[j], rows[j])
+                ok[j] = (lo >= low) & (hi >= speed_ms)
     return ok
 
 
@@ -806,6 +823,28 @@ def window_ends(
     b = rows + p_row - 1
     inside = (a >= index.starts[tr]) & (b < index.ends[tr])
     return np.clip(a, 0, n - 1), np.clip(b, 0, n - 1), inside
+
+
+def _window_speeds_ms(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    p_row: np.ndarray,
+    rows: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The slower and the faster straight-line speed (m/s) of the two windows at each of
+    ``rows`` (as :func:`_window_speed_ms`); NaN where a window leaves the track."""
+    a, b, ok = window_ends(index, rows, p_row, len(x))
+    xo, yo, to = x[rows], y[rows], t[rows]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        v_back = np.hypot(xo - x[a], yo - y[a]) / (to - t[a])
+        v_fwd = np.hypot(x[b] - xo, y[b] - yo) / (t[b] - to)
+    nan = np.nan
+    return (
+        np.where(ok, np.fmin(v_back, v_fwd), nan),
+        np.where(ok, np.fmax(v_back, v_fwd), nan),
+    )
 
 
 def _window_speed_ms(
@@ -1940,7 +1979,16 @@ def _detect_sorted(
                 )
         if params.min_speed_kn > 0:
             j = np.flatnonzero(ok)
-            ok[j] = _fast_enough(x, y, t, index, reach[j], cand[j], params.min_speed_kn * geo.KN_MS)
+            ok[j] = _fast_enough(
+                x,
+                y,
+                t,
+                index,
+                reach[j],
+                cand[j],
+                params.min_speed_kn * geo.KN_MS,
+                params.slow_side,
+            )
         if any_rest:
             j = np.flatnonzero(ok)
             ok[j] = ~_near(rest, index, reach[j] - 1, cand[j])

@@ -354,6 +354,43 @@ def test_minimum_speed():
     assert len(detect(slow, ManeuverParams(min_speed_kn=0.5, rest_radius_m=0)).table()) == 1
 
 
+def _leaving_rest(seed: int, creep_ms: float = 0.35, period_s: float = 1.0) -> pd.DataFrame:
+    """A boat creeping at ``creep_ms`` on 300° for 60 s, then turning to 255° in 4 s as it
+    starts to speed up (to 3 m/s over 15 s), then on 255° to 130 s (0.2 m noise, as a
+    harbour radar sees it)."""
+    rng = np.random.default_rng(seed)
+    fine = np.arange(0.0, 130.0, 0.1)
+    speed = creep_ms + (3.0 - creep_ms) * np.clip((fine - 60.0) / 15.0, 0.0, 1.0)
+    course = np.radians(300.0 - 45.0 * np.clip((fine - 60.0) / 4.0, 0.0, 1.0))
+    x, y = np.cumsum(speed * np.sin(course) * 0.1), np.cumsum(speed * np.cos(course) * 0.1)
+    t = np.arange(0.0, 130.0, period_s)
+    px = np.interp(t, fine, x) + rng.normal(0, 0.2, len(t))
+    py = np.interp(t, fine, y) + rng.normal(0, 0.2, len(t))
+    return track_from_xy(px, py, period_s=period_s, batch=f"r{seed}")
+
+
+def test_slow_side_lets_a_turn_that_leaves_rest_count():
+    # The window before the turn creeps at 0.35 m/s (0.7 kn): the default asks 1 kn of both
+    # windows and finds nothing; slow_side 0.5 asks 0.5 kn of the slower one.
+    both, side = ManeuverParams(), ManeuverParams(slow_side=0.5)
+    found_both = found_side = 0
+    for seed in range(10):
+        df = _leaving_rest(seed)
+        t = (df["time"] - df["time"].iloc[0]).dt.total_seconds().to_numpy()
+        near = (t > 55) & (t < 70)
+        found_both += bool(detect(df, both).is_maneuver[near].any())
+        found_side += bool(detect(df, side).is_maneuver[near].any())
+    assert found_both <= 2  # a 5 s window that catches the speed-up now and then
+    assert found_side >= 9
+    # Slow on both sides stays no maneuver: jitter of a moored boat, a drift at 0.5 kn.
+    moored = _moored(3600, 1.0, 2.0, seed=1)
+    drifting, _ = _path(lambda t: 90 + 40 * np.sin(t / 300), 0.5, 3600, 1.0, 0.5, seed=2)
+    df = pd.concat([moored, drifting.assign(batch="d")], ignore_index=True)
+    assert detect(df, side).is_maneuver.sum() == 0
+    with pytest.raises(InputError, match="slow_side"):
+        ManeuverParams(slow_side=1.5).checked()
+
+
 def _plateau_reference(delta, index, radius):
     """The plateau rule as first written: a full-length pass per offset k = 1 … radius."""
     from scipy.ndimage import maximum_filter1d
