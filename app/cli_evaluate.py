@@ -52,6 +52,10 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         raise InputError(f"--real applies to associate and maneuver, not to {args.kind}")
     if args.sensor != "radar" and not (args.real and args.kind == "maneuver"):
         raise InputError("--sensor applies to maneuver --real (the Autoferry set)")
+    if args.gnss and not (args.real and args.kind == "maneuver"):
+        raise InputError("--gnss applies to maneuver --real (a file or folder of tracks)")
+    if args.gnss_map and not args.gnss:
+        raise InputError("--gnss-map needs --gnss")
     from wakeline.app.cli_steps import read_options
 
     read = read_options(args)  # --real's track files: read as import reads them
@@ -137,6 +141,10 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             mapping=read.pop("mapping"),
             read=read,
             sensor=args.sensor,
+            gnss=args.gnss,
+            gnss_mapping=args.gnss_map,
+            gate_m=args.gnss_gate_m,
+            gnss_fault_m=args.gnss_fault_m if args.gnss_fault_m is not None else float("inf"),
         )
         print(ev.format())
         if args.csv:
@@ -388,6 +396,33 @@ def register(sub) -> None:
         help="maneuver --real autoferry-fusion: the tracks from radar plots (1.7 s) or lidar "
         "returns (0.5 s), each within 15 m of a target's GNSS position, the nearest per scan "
         "(default radar)",
+    )
+    p.add_argument(
+        "--gnss",
+        metavar="FILE",
+        help="maneuver --real FILE or folder: a file or folder of truth tracks (GNSS logs of "
+        "the targets, read as import reads them) to score turns against: each track is "
+        "scored against the truth track it follows (median distance within --gnss-gate-m)",
+    )
+    p.add_argument(
+        "--gnss-map",
+        metavar="FIELD=COLUMN",
+        action="append",
+        help="--gnss file's columns, as --map (repeatable)",
+    )
+    p.add_argument(
+        "--gnss-gate-m",
+        type=float,
+        default=50.0,
+        help="m: a track follows the truth track whose median distance at its fixes is at "
+        "most this (default 50)",
+    )
+    p.add_argument(
+        "--gnss-fault-m",
+        type=float,
+        help="m: a truth fix that departs this far from its local velocity is a GNSS fault, "
+        "and a turn within 2 s of one is not scored for recall (the Autoferry set's rule, "
+        "0.5 there; for logs of many fixes a second; default: no such rule)",
     )
     p.add_argument(
         "--scenes",

@@ -28,7 +28,10 @@ What each set can say:
   at the same Dis_e (tolerance found by bisection).
 - any other file, or folder of track files (MTAD scenes, ATD): read as ``wakeline import``
   reads them (``mapping`` as ``--map``), the tracks of several files kept apart; the slow
-  share, the at-rest spans and the compression against Douglas–Peucker (no turn truth).
+  share, the at-rest spans and the compression against Douglas–Peucker; with a GNSS truth
+  file (``gnss``, ``--gnss``: accurate tracks of the targets, read the same way) also the
+  turns as for the Autoferry set, each observed track scored against the truth track it
+  follows (:func:`match_to_truth`).
 """
 
 from dataclasses import dataclass
@@ -320,6 +323,75 @@ def _track_files(path: Path, mapping: list[str] | None, read: dict | None = None
     return pd.concat(frames, ignore_index=True)
 
 
+#: An observed track follows a truth track when their median distance at its fixes is at
+#: most this (m): a harbour radar's plots lie within a few metres of the GNSS antenna, an
+#: AIS position within tens; two boats are rarely nearer than this for a whole track.
+TRUTH_GATE_M = 50.0
+
+
+def match_to_truth(
+    points: pd.DataFrame, truth: pd.DataFrame, gate_m: float = TRUTH_GATE_M
+) -> pd.DataFrame:
+    """Which truth track each observed track follows: per observed (sensor, batch), the
+    truth batch whose position, interpolated in time at the observed fixes, lies nearest in
+    the median over the fixes both cover (m), when that is at most ``gate_m`` and covers at
+    least half the fixes. Columns sensor, batch, truth_batch (missing: no match), median_m,
+    fixes."""
+    pts, index = sorted_with_index(points)
+    t = track_seconds(pts)
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    tpts, tindex = sorted_with_index(truth)
+    tt = track_seconds(tpts)
+    tlon = tpts["lon"].to_numpy(dtype="float64")
+    tlat = tpts["lat"].to_numpy(dtype="float64")
+    track = index.track_of_row
+    n_tr = index.n_tracks
+    best = np.full(n_tr, np.inf)
+    who = np.full(n_tr, -1, dtype=np.int64)
+    sizes = np.maximum(index.sizes, 1)
+    for k, (a, b) in enumerate(zip(tindex.starts, tindex.ends, strict=True)):  # per target
+        if b - a < 2:
+            continue
+        inside = (t >= tt[a]) & (t <= tt[b - 1])
+        rows = np.flatnonzero(inside)
+        if not len(rows):
+            continue
+        # Longitudes unwrapped about the target's first fix: interpolation across 180°.
+        ulon = tlon[a] + geo.wrap180(tlon[a:b] - tlon[a])
+        ilon = np.interp(t[rows], tt[a:b], ulon)
+        ilat = np.interp(t[rows], tt[a:b], tlat[a:b])
+        d = geo.haversine_m(lon[rows], lat[rows], ilon, ilat)
+        med = pd.Series(d).groupby(track[rows]).median()
+        count = np.bincount(track[rows], minlength=n_tr)
+        tr = med.index.to_numpy()
+        ok = (med.to_numpy() < best[tr]) & (count[tr] * 2 >= sizes[tr])
+        best[tr[ok]] = med.to_numpy()[ok]
+        who[tr[ok]] = k
+    keys = index.keys.reset_index(drop=True)
+    names = tindex.keys["batch"].astype(str).to_numpy()
+    matched = (who >= 0) & (best <= gate_m)
+    return pd.DataFrame(
+        {
+            "sensor": keys["sensor"].astype(str).to_numpy(),
+            "batch": keys["batch"].astype(str).to_numpy(),
+            "truth_batch": np.where(matched, names[np.maximum(who, 0)], None),
+            "median_m": np.where(who >= 0, best, np.nan),
+            "fixes": index.sizes,
+        }
+    )
+
+
+def _turns_per_track(turns: pd.DataFrame, match: pd.DataFrame) -> pd.DataFrame:
+    """The truth turns under each observed track's key (``sensor/batch``) instead of the
+    truth batch's, once per observed track that follows it."""
+    m = match.dropna(subset=["truth_batch"])
+    key = m["sensor"] + "/" + m["batch"]
+    link = pd.DataFrame({"batch": m["truth_batch"].astype(str).to_numpy(), "key": key.to_numpy()})
+    out = turns.merge(link, on="batch")
+    return out.drop(columns="batch").rename(columns={"key": "batch"})[list(turns.columns)]
+
+
 def evaluate_real(
     folder: str | Path,
     params: ManeuverParams | None = None,
@@ -331,6 +403,10 @@ def evaluate_real(
     mapping: list[str] | None = None,
     sensor: str = "radar",
     read: dict | None = None,
+    gnss: str | Path | None = None,
+    gnss_mapping: list[str] | None = None,
+    gate_m: float = TRUTH_GATE_M,
+    gnss_fault_m: float = np.inf,
 ) -> RealEvaluation:
     """Score maneuver detection and compression on a real set (see the module docstring),
     with ``params`` (default: ours) and with seed 000's detector as written. Autoferry:
@@ -343,7 +419,13 @@ def evaluate_real(
     ``delimiter``; the named sets' own readers ignore both) and scored without truth:
     slow share, at-rest spans, compression.
     ``sensor``: Autoferry's radar (default) or lidar plots, the same gate and rules (any
-    other set: radar only, refused otherwise)."""
+    other set: radar only, refused otherwise).
+    ``gnss``: a file or folder of truth tracks (accurate positions of the targets, e.g.
+    GNSS logs at ≥ 1 Hz; read as import reads them, ``gnss_mapping`` as ``--map``) for any
+    other file or folder: each observed track is scored against the truth track it follows
+    within ``gate_m`` (:func:`match_to_truth`), turns and detections under the observed
+    track's name; the GNSS-fault rule with ``gnss_fault_m`` (m; default none: ``fault_m``
+    is the Autoferry logs' own, and the rule wants fixes many times a second)."""
     folder = Path(folder)
     try:
         name = real_sets.recognise(folder)
@@ -351,6 +433,8 @@ def evaluate_real(
         name = None  # a file or a folder of track files: positions only
     if sensor != "radar" and name != "autoferry":
         raise InputError(f"sensor {sensor!r}: only the Autoferry set has other sensors")
+    if gnss is not None and name is not None:
+        raise InputError(f"--gnss: the {name} set has its own truth; give a file or folder")
     params = (params or ManeuverParams()).checked()
     truth = None
     split_rows: list = []
@@ -365,6 +449,27 @@ def evaluate_real(
             "dma": real_sets.read_dma,
             "oresund": real_sets.read_oresund,
         }[name](folder)
+    match = None
+    if gnss is not None:
+        truth = _track_files(Path(gnss), gnss_mapping, read)
+        faults = pd.DataFrame(columns=["batch", "t_s"])
+        match = match_to_truth(points, truth, gate_m)
+        if np.isfinite(gnss_fault_m):  # under the observed tracks' names, as the turns
+            link = match.dropna(subset=["truth_batch"])
+            link = pd.DataFrame(
+                {
+                    "batch": link["truth_batch"].astype(str).to_numpy(),
+                    "key": (link["sensor"] + "/" + link["batch"]).to_numpy(),
+                }
+            )
+            faults = gnss_faults(truth, gnss_fault_m).merge(link, on="batch")
+            faults = faults.drop(columns="batch").rename(columns={"key": "batch"})
+        if match["truth_batch"].isna().all():
+            raise InputError(
+                f"--gnss: no track of {folder.name} follows a truth track within {gate_m:g} m "
+                f"(median distance over the fixes both cover; {len(match)} tracks, "
+                f"{truth['batch'].nunique()} truth tracks)"
+            )
     methods = {
         "ours": (params, CompressParams()),
         "paper": (ManeuverParams.paper(), CompressParams.paper()),
@@ -380,11 +485,21 @@ def evaluate_real(
         row["slow_share"] = slow_share(res)
         if truth is not None:
             turns = truth_turns(truth, mp.threshold_deg, max(mp.min_speed_kn, 1.0))
-            scored = sound_turns(covered_turns(turns, points, match_s), faults, fault_margin_s)
             tab = res.table()
             det = pd.DataFrame({"batch": tab["batch"], "t_s": time_seconds(tab["time"])})
+            observed = points
+            if match is not None:  # under each observed track's sensor/batch
+                turns = _turns_per_track(turns, match)
+                det["batch"] = tab["sensor"].astype(str) + "/" + tab["batch"].astype(str)
+                observed = points.assign(
+                    batch=points["sensor"].astype(str) + "/" + points["batch"].astype(str)
+                )
+            scored = sound_turns(covered_turns(turns, observed, match_s), faults, fault_margin_s)
             row.update(score_turns(det, turns, match_s, scored))
-            split_rows += _split_rows(row, det, turns, scored, match_s)
+            if match is None:
+                split_rows += _split_rows(row, det, turns, scored, match_s)
+            else:
+                row["tracks_matched"] = f"{int(match['truth_batch'].notna().sum())}/{len(match)}"
         if "role" in res.points.columns:
             role = res.points.drop_duplicates("batch").set_index("batch")["role"]
             with_turn = set(res.table()["batch"])

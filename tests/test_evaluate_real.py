@@ -243,3 +243,74 @@ def time_seconds_of(df: pd.DataFrame) -> np.ndarray:
     from wakeline.core.schema import time_seconds
 
     return time_seconds(df["time"])
+
+
+def test_any_track_file_is_scored_against_a_gnss_truth_file(tmp_path):
+    """`evaluate maneuver --real FILE --gnss TRUTH` (before: turn truth only for the
+    Autoferry folder): each observed track is scored against the truth track it follows,
+    whatever the two files call their tracks; a clutter track follows none and is left out
+    of the turns, its detections counted as wrong."""
+    import pytest
+
+    from wakeline.core.errors import InputError
+    from wakeline.core.evaluate_real import evaluate_real, match_to_truth
+    from wakeline.core.io import write_points
+
+    # Two targets logged at 8 Hz: one turns 90° at 60 s, one runs straight 300 m away.
+    t, x, y = _gnss(lambda t: np.where(t < 60, 0.0, 90.0))
+    t2, x2, y2 = _gnss(lambda t: np.full_like(t, 180.0), seed=1)
+    truth = pd.concat([_table(t, x, y, "boat A"), _table(t2, x2 + 300.0, y2, "boat B")])
+    # A radar sees both every 1.7 s with 1 m of noise, under numbers of its own, and a
+    # clutter track that follows nobody.
+    rng = np.random.default_rng(3)
+    scans = np.arange(0.5, 119.0, 1.7)
+    observed = []
+    for name, (tt, xx, yy) in (("7", (t, x, y)), ("12", (t2, x2 + 300.0, y2))):
+        ox = np.interp(scans, tt, xx) + rng.normal(0, 1.0, len(scans))
+        oy = np.interp(scans, tt, yy) + rng.normal(0, 1.0, len(scans))
+        observed.append(_table(scans, ox, oy, name).assign(sensor="radar"))
+    observed.append(
+        _table(scans, 150.0 + rng.normal(0, 1.0, len(scans)), 2.0 * scans, "99").assign(
+            sensor="radar"
+        )
+    )
+    write_points(pd.concat(observed), tmp_path / "radar.csv")
+    write_points(truth, tmp_path / "gnss.csv")
+
+    match = match_to_truth(pd.concat(observed), truth).set_index("batch")
+    assert match.loc["7", "truth_batch"] == "boat A"
+    assert match.loc["12", "truth_batch"] == "boat B"
+    assert pd.isna(match.loc["99", "truth_batch"])
+    assert match.loc["7", "median_m"] < 3.0
+
+    rows = evaluate_real(tmp_path / "radar.csv", gnss=tmp_path / "gnss.csv").rows
+    ours = rows.set_index("method").loc["ours"]
+    assert ours["turns"] == 1 and ours["recall"] == 1.0
+    assert ours["tracks_matched"] == "2/3"
+    with pytest.raises(InputError, match="within 0.1 m"):
+        evaluate_real(tmp_path / "radar.csv", gnss=tmp_path / "gnss.csv", gate_m=0.1)
+
+
+def test_the_autoferry_set_written_out_scores_the_same_with_its_gnss_file(tmp_path):
+    """The generic --gnss path on the real Autoferry radar tracks and GNSS logs written out
+    as two plain files (track numbers shuffled) gives the figures of the set's own reader."""
+    from conftest import real_file
+    from wakeline.core import real_sets
+    from wakeline.core.evaluate_real import evaluate_real
+    from wakeline.core.io import write_points
+
+    folder = real_file("autoferry-fusion")
+    pts, truth = real_sets.read_autoferry(folder, exclusive=True)
+    names = pts["batch"].astype(str).unique()
+    perm = np.random.default_rng(0).permutation(len(names)).astype(str)
+    new = dict(zip(names, perm, strict=True))
+    write_points(pts.assign(batch=pts["batch"].astype(str).map(new)), tmp_path / "radar.csv")
+    write_points(truth, tmp_path / "gnss.csv")
+    native = evaluate_real(folder).rows.set_index("method")
+    plain = evaluate_real(
+        tmp_path / "radar.csv", gnss=tmp_path / "gnss.csv", gnss_fault_m=0.5
+    ).rows.set_index("method")
+    for method in ("ours", "paper"):
+        for col in ("detections", "turns", "precision", "recall"):
+            assert plain.loc[method, col] == native.loc[method, col], (method, col)
+    assert plain.loc["ours", "tracks_matched"] == f"{len(names)}/{len(names)}"
