@@ -382,14 +382,20 @@ def match_to_truth(
     )
 
 
-def _turns_per_track(turns: pd.DataFrame, match: pd.DataFrame) -> pd.DataFrame:
-    """The truth turns under each observed track's key (``sensor/batch``) instead of the
-    truth batch's, once per observed track that follows it."""
+def _track_key(df: pd.DataFrame) -> pd.Series:
+    """An observed track's name under a GNSS truth: ``sensor/batch``."""
+    return df["sensor"].astype(str) + "/" + df["batch"].astype(str)
+
+
+def _under_tracks(by_truth: pd.DataFrame, match: pd.DataFrame) -> pd.DataFrame:
+    """Rows keyed by truth batch (turns, GNSS faults) under each observed track's name
+    instead, once per observed track that follows that truth track."""
     m = match.dropna(subset=["truth_batch"])
-    key = m["sensor"] + "/" + m["batch"]
-    link = pd.DataFrame({"batch": m["truth_batch"].astype(str).to_numpy(), "key": key.to_numpy()})
-    out = turns.merge(link, on="batch")
-    return out.drop(columns="batch").rename(columns={"key": "batch"})[list(turns.columns)]
+    link = pd.DataFrame(
+        {"batch": m["truth_batch"].astype(str).to_numpy(), "key": _track_key(m).to_numpy()}
+    )
+    out = by_truth.merge(link, on="batch")
+    return out.drop(columns="batch").rename(columns={"key": "batch"})[list(by_truth.columns)]
 
 
 def evaluate_real(
@@ -454,16 +460,8 @@ def evaluate_real(
         truth = _track_files(Path(gnss), gnss_mapping, read)
         faults = pd.DataFrame(columns=["batch", "t_s"])
         match = match_to_truth(points, truth, gate_m)
-        if np.isfinite(gnss_fault_m):  # under the observed tracks' names, as the turns
-            link = match.dropna(subset=["truth_batch"])
-            link = pd.DataFrame(
-                {
-                    "batch": link["truth_batch"].astype(str).to_numpy(),
-                    "key": (link["sensor"] + "/" + link["batch"]).to_numpy(),
-                }
-            )
-            faults = gnss_faults(truth, gnss_fault_m).merge(link, on="batch")
-            faults = faults.drop(columns="batch").rename(columns={"key": "batch"})
+        if np.isfinite(gnss_fault_m):
+            faults = _under_tracks(gnss_faults(truth, gnss_fault_m), match)
         if match["truth_batch"].isna().all():
             raise InputError(
                 f"--gnss: no track of {folder.name} follows a truth track within {gate_m:g} m "
@@ -489,11 +487,9 @@ def evaluate_real(
             det = pd.DataFrame({"batch": tab["batch"], "t_s": time_seconds(tab["time"])})
             observed = points
             if match is not None:  # under each observed track's sensor/batch
-                turns = _turns_per_track(turns, match)
-                det["batch"] = tab["sensor"].astype(str) + "/" + tab["batch"].astype(str)
-                observed = points.assign(
-                    batch=points["sensor"].astype(str) + "/" + points["batch"].astype(str)
-                )
+                turns = _under_tracks(turns, match)
+                det["batch"] = _track_key(tab).to_numpy()
+                observed = points.assign(batch=_track_key(points))
             scored = sound_turns(covered_turns(turns, observed, match_s), faults, fault_margin_s)
             row.update(score_turns(det, turns, match_s, scored))
             if match is None:
