@@ -350,11 +350,15 @@ def match_to_truth(
     best = np.full(n_tr, np.inf)
     who = np.full(n_tr, -1, dtype=np.int64)
     sizes = np.maximum(index.sizes, 1)
+    by_time = np.argsort(t, kind="stable")
+    t_sorted = t[by_time]
     for k, (a, b) in enumerate(zip(tindex.starts, tindex.ends, strict=True)):  # per target
         if b - a < 2:
             continue
-        inside = (t >= tt[a]) & (t <= tt[b - 1])
-        rows = np.flatnonzero(inside)
+        # The observed fixes within the target's time span (a slice of the time order).
+        lo = np.searchsorted(t_sorted, tt[a], side="left")
+        hi = np.searchsorted(t_sorted, tt[b - 1], side="right")
+        rows = by_time[lo:hi]
         if not len(rows):
             continue
         # Longitudes unwrapped about the target's first fix: interpolation across 180°.
