@@ -101,6 +101,13 @@ class ManeuverParams(Params):
         hi=100.0,
         source="ours; seed 001 eq. 1's 1 kn",
     )
+    slow_side: float = param(
+        1.0,
+        "",
+        "the slower window needs only this share of min_speed_kn (the faster one all of it)",
+        lo=0.0,
+        hi=1.0,
+    )
     noise_k: float = param(
         2.0,
         "",
@@ -482,6 +489,21 @@ def _window_speed_ms(
     return np.where(ok, np.fmin(v_back, v_fwd), np.nan)
 
 
+def _faster_window_speed_ms(
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, p_row: np.ndarray, rows
+) -> np.ndarray:
+    """The faster of the two windows' straight-line speeds (m/s); NaN as above."""
+    n = len(x)
+    tr = index.track_of_row[rows]
+    a, b = rows - p_row + 1, rows + p_row - 1
+    ok = (a >= index.starts[tr]) & (b < index.ends[tr])
+    a, b = np.clip(a, 0, n - 1), np.clip(b, 0, n - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        v_back = np.hypot(x[rows] - x[a], y[rows] - y[a]) / (t[rows] - t[a])
+        v_fwd = np.hypot(x[b] - x[rows], y[b] - y[rows]) / (t[b] - t[rows])
+    return np.where(ok, np.fmax(v_back, v_fwd), np.nan)
+
+
 def _one_scale(
     x: np.ndarray,
     y: np.ndarray,
@@ -640,10 +662,10 @@ def detect(
                 if fine:
                     ok &= _leave_one_out_deg(x, y, index, p_c, cand) > floor
         if params.min_speed_kn > 0:
+            speed = params.min_speed_kn * geo.KN_MS
             with np.errstate(invalid="ignore"):
-                ok &= _window_speed_ms(x, y, t, index, reach, cand) >= (
-                    params.min_speed_kn * geo.KN_MS
-                )
+                ok &= _window_speed_ms(x, y, t, index, reach, cand) >= params.slow_side * speed
+                ok &= _faster_window_speed_ms(x, y, t, index, reach, cand) >= speed
         if any_rest:
             ok &= ~_near(rest, index, reach - 1, cand)
         return ok
