@@ -145,6 +145,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--wander", action="store_true", help="real ships at rest (Saronic)")
+    ap.add_argument("--set", action="append", default=[], help="one more row: NAME=VALUE")
     args = ap.parse_args()
     if args.wander:
         wander()
@@ -155,6 +156,10 @@ def main() -> None:
         "rest_drift_s=2700": LinkParams(rest_drift_s=2700.0),
         "session 11": LinkParams(rest_seen_s=0.0),
     }
+    if args.set:
+        variants[" ".join(args.set)] = LinkParams().replace(
+            **dict(kv.split("=", 1) for kv in args.set)
+        )
     for case, (first, spacing, gaps, tide) in CASES.items():
         print(case)
         for v, params in variants.items():

@@ -274,7 +274,7 @@ class LinkParams(Params):
         "37 m after 1 h",
     )
     rest_seen_s: float = param(
-        600.0,
+        300.0,
         "s",
         "between two ends at rest: when each end's own fit (3 fixes or more) spans at least "
         "this long, its scatter shows how much the ship wanders at its spot: the pair costs "
@@ -283,7 +283,8 @@ class LinkParams(Params):
         "more); shorter ends say nothing of a swing and keep the allowance (0 = off)",
         0.0,
         86400.0,
-        "ours; Saronic AIS at rest (bench/moored_harbour.py --wander)",
+        "ours; Saronic AIS at rest (bench/moored_harbour.py --wander); 600 s until "
+        "session 22, when end fits span about end_span_s (450 s): docs/evaluation.md",
     )
     rest_wander: float = param(
         3.0,

@@ -419,6 +419,43 @@ def test_ships_moored_40_m_apart_keep_their_own_pieces_when_ais_comes_every_30_s
     assert np.array(joins).sum(axis=0).tolist()[0] >= 46
 
 
+def _berth_and_newcomer(seed: int) -> pd.DataFrame:
+    """A ship seen at its berth for 7 min (AIS every 60 s, 2 m jitter), silent 15-22 min,
+    then back at its berth; 10-12 min after it fell silent a ship at the next berth, 100 m
+    off, switches its AIS on (a track with no predecessor)."""
+    rng = np.random.default_rng(seed)
+    t1 = 60.0 * np.arange(8)
+    t2 = t1[-1] + rng.uniform(900, 1300) + 60.0 * np.arange(30)
+    tb = t1[-1] + rng.uniform(600, 700) + 60.0 * np.arange(40)
+
+    def jitter(n: int) -> np.ndarray:
+        return rng.normal(0, 2.0, n)
+
+    return pd.concat(
+        [
+            track("a1", t1, jitter(8), jitter(8), truth="A"),
+            track("a2", t2, jitter(30), jitter(30), truth="A"),
+            track("b", tb, 100 + jitter(40), jitter(40), truth="B"),
+        ],
+        ignore_index=True,
+    )
+
+
+def test_a_ship_seen_at_its_berth_for_minutes_is_not_given_to_the_next_berth():
+    # Its end's fit spans 7 min at rest: under session 21's rest_seen_s (600 s, more than
+    # the ~450 s an end fit takes since end_span_s) it was not "seen", the newcomer 100 m
+    # off within T_gap cost 0.17 under the moving model's wide spread (below long_margin,
+    # so long_rivals could not release it) and took the end: 8 wrong joins of 8. Seen at
+    # rest from 300 s, the 100 m cost the "moved" price, the join gave way to its own
+    # piece beyond T_gap (Saronic's days overlaid on one day, bench/overlay_days.py).
+    new = np.array([_joins(_berth_and_newcomer(s)) for s in range(8)]).sum(axis=0)
+    old = np.array(
+        [_joins(_berth_and_newcomer(s), LinkParams(rest_seen_s=600.0)) for s in range(8)]
+    ).sum(axis=0)
+    assert new.tolist() == [8, 0]
+    assert old.tolist() == [0, 8]
+
+
 def test_a_ship_at_rest_holding_one_gps_position_keeps_its_next_piece():
     # A GPS holding one position shows no scatter: taken as a metre, never a spot of
     # zero (found by the review: 0/0, and 0.2 m off cost infinity).
