@@ -830,13 +830,16 @@ def pair_features(
     if dist is None:
         dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
-    miss = _miss_one_turn(
-        px, py, seg.vx1[i] * gap, seg.vy1[i] * gap, seg.vx0[j] * gap, seg.vy0[j] * gap
-    )
+    # the new piece's velocity and course in the old end's plane (turned by the meridians'
+    # convergence between the ends: 0.5° over a 20 km gap at 72° N)
+    turn = geo.plane_turn(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
+    vxj, vyj = geo.turn_into_plane(seg.vx0[j], seg.vy0[j], turn)
+    miss = _miss_one_turn(px, py, seg.vx1[i] * gap, seg.vy1[i] * gap, vxj * gap, vyj * gap)
     # Course over ground means nothing for a ship at rest: the difference counts in full
     # only when both ends move at 2 kn or more.
     slow = np.minimum(seg.speed1_kn[i], seg.speed0_kn[j])
-    dcourse = geo.angle_diff(seg.course1_deg[i], seg.course0_deg[j]) * np.clip(slow / 2.0, 0, 1)
+    course_j = seg.course0_deg[j] + np.degrees(np.arctan2(*turn))
+    dcourse = geo.angle_diff(seg.course1_deg[i], course_j) * np.clip(slow / 2.0, 0, 1)
     dspeed = np.abs(seg.speed1_kn[i] - seg.speed0_kn[j])
     allow = (
         _step_allowance(seg, i, j, step_allowance_s, step_cap_s) if step_allowance_s > 0 else None
@@ -941,10 +944,13 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
     """
     i, j, gap = pairs.i, pairs.j, pairs.gap_s
     known_i, known_j = seg.motion1[i], seg.motion0[j]
-    vxi = np.where(known_i, seg.vx1[i], seg.vx0[j])
-    vyi = np.where(known_i, seg.vy1[i], seg.vy0[j])
-    vxj = np.where(known_j, seg.vx0[j], vxi)
-    vyj = np.where(known_j, seg.vy0[j], vyi)
+    # the new piece's velocity in the old end's plane (:func:`pair_features`)
+    turn = geo.plane_turn(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
+    vx0j, vy0j = geo.turn_into_plane(seg.vx0[j], seg.vy0[j], turn)
+    vxi = np.where(known_i, seg.vx1[i], vx0j)
+    vyi = np.where(known_i, seg.vy1[i], vy0j)
+    vxj = np.where(known_j, vx0j, vxi)
+    vyj = np.where(known_j, vy0j, vyi)
     px, py = geo.to_local(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
     miss = _miss_one_turn(px, py, vxi * gap, vyi * gap, vxj * gap, vyj * gap)
     vsd_i = np.where(known_i, seg.vel_sd1[i], np.nan)

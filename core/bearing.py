@@ -541,7 +541,7 @@ class Statistic:
 
 def observer_xy(obs_lon: np.ndarray, obs_lat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The observer's positions in local metres (east, north)."""
-    return geo.to_local(obs_lon, obs_lat, float(np.mean(obs_lon)), float(np.mean(obs_lat)))
+    return geo.to_local(obs_lon, obs_lat, *geo.centre_deg(obs_lon, obs_lat))
 
 
 def models_observer(params: BearingParams, observer) -> bool:
@@ -881,7 +881,7 @@ def observer_maneuvering(
     not count."""
     if len(t) < 3 or np.all(np.isnan(obs_lon)):
         return np.zeros(len(t), dtype=bool)
-    x, y = geo.to_local(obs_lon, obs_lat, float(np.nanmean(obs_lon)), float(np.nanmean(obs_lat)))
+    x, y = geo.to_local(obs_lon, obs_lat, *geo.centre_deg(obs_lon, obs_lat))
     return _maneuvering_xy(t, x, y, dv_ms, span_s, lag_s)
 
 

@@ -698,22 +698,33 @@ def _blend_junctions(
         )
         il, ia, cov = il.reshape(frows.shape), ia.reshape(frows.shape), cov.reshape(frows.shape)
         f_ok &= cov
-        dx, dy = geo.to_local(lon[frows], lat[frows], il, ia)  # fused − single, metres
+        # fused − single at each fused row, in the plane about the junction's fused row
+        # (one frame for the whole window: east/north offsets carried from point to point
+        # turned with the meridians' convergence, metres at high latitude)
+        elon, elat = lon[edge][:, None], lat[edge][:, None]
+        fx, fy = geo.to_local(lon[frows], lat[frows], elon, elat)
+        sx, sy = geo.to_local(il, ia, elon, elat)
+        dx, dy = fx - sx, fy - sy
         m = f_ok.sum(axis=1)
         use = m > 0
         mx = np.where(f_ok, dx, 0.0).sum(axis=1) / np.maximum(m, 1)
         my = np.where(f_ok, dy, 0.0).sum(axis=1) / np.maximum(m, 1)
-        # Single rows: shifted by the offset with the fused weight.
+        # Single rows: shifted by the offset with the fused weight (the offset as a shift in
+        # the row's own plane)
         ws = w_away[k + step_s] if straddle else w_away[step_s]
         c = np.where(s_ok & use[:, None], ws[None, :], 0.0)
-        np.add.at(num_x, srows, c * mx[:, None])
-        np.add.at(num_y, srows, c * my[:, None])
+        px, py = geo.to_local(lon[srows], lat[srows], elon, elat)
+        qlon, qlat = geo.from_local(px + mx[:, None], py + my[:, None], elon, elat)
+        ox, oy = geo.to_local(qlon, qlat, lon[srows], lat[srows])
+        np.add.at(num_x, srows, c * ox)
+        np.add.at(num_y, srows, c * oy)
         np.add.at(den, srows, c)
         if straddle:
             # Fused rows: pulled toward the single track with the single sensor's weight.
             c = np.where(f_ok, 1.0 - w_away[k - 1 - step_f][None, :], 0.0)
-            np.add.at(num_x, frows, -c * dx)
-            np.add.at(num_y, frows, -c * dy)
+            gx, gy = geo.to_local(il, ia, lon[frows], lat[frows])  # single − fused, own plane
+            np.add.at(num_x, frows, c * gx)
+            np.add.at(num_y, frows, c * gy)
             np.add.at(den, frows, c)
     moved = den > 0
     if not moved.any():

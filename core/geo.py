@@ -79,28 +79,143 @@ def circular_mean_deg(deg: np.ndarray, weights: np.ndarray | None = None) -> flo
     return float(wrap180(np.degrees(np.arctan2(np.sum(w * np.sin(rad)), np.sum(w * np.cos(rad))))))
 
 
+#: Rows per block of :func:`plane_xy` on long 1-D inputs: its dozen temporaries stay in
+#: the cache (a third faster on 10 M rows than whole-array temporaries).
+PLANE_BLOCK = 16_384
+
+
+def plane_xy(sl, cl, sp, cp, sl0, cl0, sp0, cp0) -> tuple[np.ndarray, np.ndarray]:
+    """Azimuthal equidistant coordinates (m) from the sines and cosines of each point's
+    longitude and latitude and of its origin's (see :func:`to_local`). The longitude
+    difference enters through its sine and cosine (angle-difference identities), so it
+    needs no wrapping; ``1 - cos Δλ`` is taken as ``sin² Δλ / (1 + cos Δλ)``, so a point
+    at its origin lies at exactly (0, 0). Long 1-D inputs of one length go block by
+    block (the same arithmetic)."""
+    args = [np.asarray(v, dtype="float64") for v in (sl, cl, sp, cp, sl0, cl0, sp0, cp0)]
+    n = len(args[0]) if args[0].ndim == 1 else 0
+    if n <= PLANE_BLOCK or any(v.shape != (n,) for v in args):
+        return _plane_block(*args)
+    x, y = np.empty(n), np.empty(n)
+    for a in range(0, n, PLANE_BLOCK):
+        b = min(a + PLANE_BLOCK, n)
+        x[a:b], y[a:b] = _plane_block(*(v[a:b] for v in args))
+    return x, y
+
+
+def _plane_block(sl, cl, sp, cp, sl0, cl0, sp0, cp0) -> tuple[np.ndarray, np.ndarray]:
+    sd = sl * cl0
+    sd -= cl * sl0  # sin Δλ
+    cd = cl * cl0
+    cd += sl * sl0  # cos Δλ
+    xo = cp * sd  # the unit sphere's point in the origin's east / north / up frame
+    with np.errstate(invalid="ignore", divide="ignore"):
+        vers = sd * sd
+        vers /= 1.0 + cd  # 1 - cos Δλ, without the cancellation
+    yo = sp * cp0
+    yo -= cp * sp0  # sin(φ - φ0) ...
+    vers *= sp0
+    vers *= cp
+    yo += vers  # ... + sin φ0 cos φ (1 - cos Δλ)
+    up = cp * cp0
+    up *= cd
+    up += sp * sp0  # cos c
+    rho = xo * xo
+    rho += yo * yo
+    rho = np.sqrt(rho)  # sin c, c the angular distance from the origin
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k = np.arctan2(rho, up)
+        k /= rho  # c / sin c: the distance from the origin kept exact
+    k = np.where(rho == 0.0, 1.0, k) * EARTH_RADIUS_M
+    return xo * k, yo * k
+
+
+def sin_cos_deg(deg) -> tuple[np.ndarray, np.ndarray]:
+    """Sine and cosine of angles in degrees (radians as ``deg * DEG_TO_RAD``)."""
+    rad = np.asarray(deg, dtype="float64") * DEG_TO_RAD
+    with np.errstate(invalid="ignore"):  # ±inf: NaN, as a bad fix gives
+        return np.sin(rad), np.cos(rad)
+
+
+def sin_cos_lat(lat) -> tuple[np.ndarray, np.ndarray]:
+    """Sine and cosine of latitudes in degrees: the cosine, never negative in [-90°, 90°],
+    as ``sqrt((1 - s)(1 + s))`` (a few multiplications in place of a second trigonometric
+    call; within 2e-9 of ``np.cos``, relative, up to 89.99°, 2e-15 below 80°)."""
+    s = np.sin(np.asarray(lat, dtype="float64") * DEG_TO_RAD)
+    c = 1.0 - s
+    c *= 1.0 + s
+    with np.errstate(invalid="ignore"):  # |lat| > 90 (no fix has it): NaN
+        return s, (np.sqrt(c, out=c) if isinstance(c, np.ndarray) else np.sqrt(c))
+
+
+def centre_deg(lon, lat) -> tuple[float, float]:
+    """The direction of the mean of points on the unit sphere (lon, lat degrees; NaN
+    rows left out; NaN, NaN without a finite one): a centre for :func:`to_local` that
+    lies among the points across the 180° meridian and near a pole, where the mean of
+    the longitudes does not."""
+    sl, cl = sin_cos_deg(lon)
+    sp, cp = sin_cos_lat(lat)
+    ex, ey, ez = cp * cl, cp * sl, sp
+    ok = np.isfinite(ex) & np.isfinite(ey) & np.isfinite(ez)
+    if not ok.any():
+        return float("nan"), float("nan")
+    ex, ey, ez = float(ex[ok].sum()), float(ey[ok].sum()), float(ez[ok].sum())
+    lat = np.degrees(np.arctan2(ez, np.hypot(ex, ey)))
+    return float(np.degrees(np.arctan2(ey, ex))), float(lat)
+
+
 def to_local(lon, lat, lon0, lat0) -> tuple[np.ndarray, np.ndarray]:
     """Project degrees to a local plane about (lon0, lat0): x east, y north, metres.
 
-    Equirectangular about ``lat0``: good to well under 1 % within ~500 km of the origin,
-    which is what per-track window geometry needs. ``lon0``/``lat0`` may be arrays
+    Azimuthal equidistant on the sphere: each point's distance and azimuth from the
+    origin are exact, and other distances are stretched by at most c²/6 at angular
+    distance c from the origin (1e-5 at 50 km, 0.1 % at 500 km), at any latitude and
+    across the 180° meridian. So results that use
+    the plane do not depend on where on Earth a scene lies (an equirectangular plane
+    about ``lat0`` stretched east-west distances by ``tan(lat0) · Δlat``: 3 % 50 km
+    north of the origin at 72° N). North is +y at the origin; away from it north turns
+    by the meridians' convergence (about ``Δlon · sin(lat0)``), so a reported course
+    belongs in the plane of an origin near its point. ``lon0``/``lat0`` may be arrays
     broadcast against ``lon``/``lat`` (one origin per track, repeated per point).
     """
-    dlon = wrap180(np.asarray(lon, dtype="float64") - lon0)
-    x = EARTH_RADIUS_M * np.radians(dlon) * np.cos(np.radians(lat0))
-    y = EARTH_RADIUS_M * np.radians(np.asarray(lat, dtype="float64") - lat0)
-    return x, y
+    sl, cl = sin_cos_deg(lon)
+    sp, cp = sin_cos_lat(lat)
+    sl0, cl0 = sin_cos_deg(lon0)
+    sp0, cp0 = sin_cos_lat(lat0)
+    return plane_xy(sl, cl, sp, cp, sl0, cl0, sp0, cp0)
 
 
 def from_local(x, y, lon0, lat0) -> tuple[np.ndarray, np.ndarray]:
     """Inverse of :func:`to_local`: local metres back to lon/lat degrees."""
-    lat = np.asarray(lat0, dtype="float64") + np.degrees(
-        np.asarray(y, dtype="float64") / EARTH_RADIUS_M
-    )
-    lon = lon0 + np.degrees(
-        np.asarray(x, dtype="float64") / (EARTH_RADIUS_M * np.cos(np.radians(lat0)))
-    )
+    u = np.asarray(x, dtype="float64") / EARTH_RADIUS_M
+    v = np.asarray(y, dtype="float64") / EARTH_RADIUS_M
+    c = np.sqrt(u * u + v * v)  # angular distance from the origin
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = np.where(c > 0.0, np.sin(c) / c, 1.0)
+    xo, yo, up = u * f, v * f, np.cos(c)
+    sp0, cp0 = sin_cos_lat(lat0)
+    horiz = up * cp0 - yo * sp0  # along the origin's meridian plane, towards its axis
+    z = up * sp0 + yo * cp0
+    lat = np.degrees(np.arctan2(z, np.sqrt(horiz * horiz + xo * xo)))
+    lon = np.asarray(lon0, dtype="float64") + np.degrees(np.arctan2(xo, horiz))
     return wrap180(lon), lat
+
+
+def plane_turn(lon, lat, lon0, lat0) -> tuple[np.ndarray, np.ndarray]:
+    """Sine and cosine of the angle γ (clockwise) from north at (lon, lat) to the plane's
+    +y about (lon0, lat0) (:func:`to_local`): a direction of azimuth θ there points at
+    θ + γ in that plane. γ is the meridians' convergence, about Δlon · sin(lat): 0.6° 20
+    km apart at 72° N, so an east/north velocity of one place used in the plane of
+    another is turned by it first (:func:`turn_into_plane`). 0 at the origin itself."""
+    a = initial_bearing_deg(lon0, lat0, lon, lat)  # the radial line's direction in the plane
+    b = initial_bearing_deg(lon, lat, lon0, lat0) + 180.0  # and its azimuth at the point
+    g = np.where((np.asarray(lon) == lon0) & (np.asarray(lat) == lat0), 0.0, a - b) * DEG_TO_RAD
+    return np.sin(g), np.cos(g)
+
+
+def turn_into_plane(vx, vy, turn: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """An east/north vector turned by :func:`plane_turn`'s (sin γ, cos γ)."""
+    s, c = turn
+    return vx * c + vy * s, vy * c - vx * s
 
 
 def destination(lon, lat, bearing_deg, dist_m) -> tuple[np.ndarray, np.ndarray]:

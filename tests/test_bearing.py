@@ -516,3 +516,17 @@ def test_the_detectors_statistic_is_returned_and_is_the_plotted_one(params):
         np.testing.assert_array_equal(mine["z"].to_numpy(), z)
     short = stat[stat["batch"] == "short"]
     assert (len(short) > 0) == (params.windows == "fit")
+
+
+def test_observer_plane_across_the_antimeridian():
+    # an observer steaming east across 180°: its plane about the mean of the longitudes
+    # (0°, the far side of the Earth) put it ±20,000 km from itself
+    from wakeline.core.bearing import observer_maneuvering, observer_xy
+
+    lon = np.linspace(179.95, 180.05, 11)
+    lon = np.where(lon >= 180.0, lon - 360.0, lon)
+    lat = np.full(11, -16.0)
+    x, y = observer_xy(lon, lat)
+    assert np.all(np.diff(x) > 0) and np.abs(x).max() < 6_000.0 and np.abs(y).max() < 1.0
+    t = np.arange(11) * 60.0
+    assert not observer_maneuvering(t, lon, lat, dv_ms=1.0).any()

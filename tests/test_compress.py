@@ -27,7 +27,9 @@ def test_noise_free_polyline_is_exact_with_its_vertices():
     keep[[10, 22]] = True
     for refine in (False, True):
         comp = compress_with(df, keep, refine=refine)
-        assert comp.report()["overall"]["dis_e_m"] < 1e-3
+        # straight in the plane about the first point; in the plane about the track's
+        # centre (azimuthal equidistant, 35 km off) its 77 km bow by 1.4 cm (measured)
+        assert comp.report()["overall"]["dis_e_m"] < 0.02
         assert len(comp.kept_points()) == 4
 
 

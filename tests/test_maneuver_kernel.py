@@ -253,9 +253,9 @@ def test_projection_by_repeat_equals_the_gathers():
     x, y = local_xy(pts, index)
     lon0, lat0 = track_origins(pts, index)
     row = index.track_of_row
-    dlon = geo.wrap180(pts["lon"].to_numpy() - lon0[row])
-    want_x = geo.EARTH_RADIUS_M * np.radians(dlon) * np.cos(np.radians(lat0))[row]
-    want_y = geo.EARTH_RADIUS_M * np.radians(pts["lat"].to_numpy() - lat0[row])
+    want_x, want_y = geo.to_local(
+        pts["lon"].to_numpy(), pts["lat"].to_numpy(), lon0[row], lat0[row]
+    )
     assert np.array_equal(x.view("int64"), want_x.view("int64"))
     assert np.array_equal(y.view("int64"), want_y.view("int64"))
     h = np.array([-1e4, -360.0, 719.0, 720.0, np.inf, -np.inf, np.nan, -0.0, 5.0])

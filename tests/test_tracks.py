@@ -7,9 +7,11 @@ from wakeline.core.schema import time_seconds
 from wakeline.core.tracks import (
     derive_motion,
     fill_motion,
+    interp_positions,
     local_xy,
     sort_points,
     track_index,
+    track_origins,
     track_summary,
 )
 
@@ -144,3 +146,38 @@ def test_sort_keeps_sub_millisecond_order():
     s = sort_points(df)
     ref = df.sort_values(["sensor", "batch", "time"], kind="stable").reset_index(drop=True)
     pd.testing.assert_frame_equal(s, ref)
+
+
+def test_track_origin_and_plane_turn_with_the_globe():
+    # one track near the pole, across 180°: the origin is the points' centre on the
+    # sphere (it turns with the track when the globe turns), and every point's distance
+    # from it in the plane is its great-circle distance
+    lon, lat = geo.destination(179.0, 86.0, np.linspace(0, 300, 30), np.full(30, 80_000.0))
+    rows = [("S1", "a", f"2024-01-01T00:{k:02d}:00Z", lon[k], lat[k]) for k in range(30)]
+    df = sort_points(_points(rows))
+    index = track_index(df)
+    lon0, lat0 = track_origins(df, index)
+    x, y = local_xy(df, index)
+    d = geo.haversine_m(lon0[0], lat0[0], df["lon"].to_numpy(), df["lat"].to_numpy())
+    np.testing.assert_allclose(np.hypot(x, y), d, rtol=1e-9)
+    assert geo.haversine_m(lon0[0], lat0[0], *geo.centre_deg(lon, lat)) < 1e-6
+    want = geo.to_local(df["lon"].to_numpy(), df["lat"].to_numpy(), lon0[0], lat0[0])
+    assert np.array_equal(x, want[0]) and np.array_equal(y, want[1])  # bit for bit
+
+
+def test_interpolation_follows_the_great_circle():
+    # 40 km east-west at 72° N: linear in degrees the midpoint lay 50 m off the great circle
+    rows = [
+        ("S1", "a", "2024-01-01T00:00:00Z", 10.0, 72.0),
+        ("S1", "a", "2024-01-01T01:00:00Z", 11.2, 72.0),
+    ]
+    df = sort_points(_points(rows))
+    index = track_index(df)
+    t0 = time_seconds(df["time"])[0]
+    lon, lat, ok = interp_positions(df, index, np.array([0, 0, 0]), t0 + np.array([0, 1800, 3600]))
+    assert ok.all() and lon[0] == 10.0 and lat[0] == 72.0 and lat[2] == 72.0
+    mid = geo.destination(
+        10.0, 72.0, geo.initial_bearing_deg(10.0, 72.0, 11.2, 72.0),
+        0.5 * geo.haversine_m(10.0, 72.0, 11.2, 72.0),
+    )  # fmt: skip
+    assert geo.haversine_m(lon[1], lat[1], *mid) < 0.01
