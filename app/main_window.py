@@ -41,6 +41,7 @@ from wakeline.app.window_layers import EMPTY, LayersMixin
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.window_words import window_words
 from wakeline.app.worker import JobRunner
+from wakeline.core import geo
 from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
 
@@ -373,6 +374,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             self.log_message(f"    {line}")
 
     def _show_cursor(self, lon: float, lat: float) -> None:
+        lon = float(geo.wrap180(lon))  # tracks across 180° are drawn on past it
         self.cursor_label.setText(
             f"{lon:.5f}°, {lat:.5f}°   {format_dms(lat, 'N', 'S')} {format_dms(lon, 'E', 'W')}"
         )

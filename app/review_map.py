@@ -148,6 +148,9 @@ def tracks_geometry(
     geom = ProposalGeometry(proposal)
     pair = dict(zip((track_a, track_b), PAIR_COLORS, strict=True))
     pair.update({t: c for t, c in (colors or {}).items() if t in pair})
+    # each track continuous across 180° (from its first point, as the map draws it), not a
+    # line across the whole world
+    tracks = {m: (t, _continuous(lon), lat) for m, (t, lon, lat) in tracks.items()}
     for m, (_t, lon, lat) in tracks.items():
         geom.pieces.append(Piece(m, lon, lat, pair.get(m, MUTED), m not in pair))
     ta, tb = tracks.get(track_a), tracks.get(track_b)
@@ -164,10 +167,19 @@ def tracks_geometry(
             end = (ta[0][-1], ta[1][-1], ta[2][-1])
             start = (tb[0][0], tb[1][0], tb[2][0])
             geom.connector = (np.array([end[1], start[1]]), np.array([end[2], start[2]]))
-            geom.predicted = predicted_path(
+            plon, plat = predicted_path(
                 end, _end_velocity(*ta, at_end=True), start, _end_velocity(*tb, at_end=False)
             )
+            geom.predicted = (_continuous(np.r_[end[1], plon])[1:], plat)
     return geom
+
+
+def _continuous(lon: np.ndarray) -> np.ndarray:
+    """Longitudes made continuous from the first (±360° steps removed)."""
+    lon = np.asarray(lon, dtype="float64")
+    if len(lon) < 2:
+        return lon
+    return lon[0] + np.concatenate([[0.0], np.cumsum(geo.wrap180(np.diff(lon)))])
 
 
 def proposal_items(geom: ProposalGeometry) -> list[pg.GraphicsObject]:

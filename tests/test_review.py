@@ -643,3 +643,13 @@ def test_proposals_read_back_take_a_cell_that_is_no_number_as_unknown():
     assert out["cost"].iloc[0] == 0.4
     assert np.isnan(out["gap_s"].iloc[0]) and np.isnan(out["spread"].iloc[0])
     assert np.isnan(out["end_accel_ms2"].iloc[0])
+
+
+def test_proposal_pieces_across_the_antimeridian_stay_continuous():
+    # a piece crossing 180° was a line across the whole world, and the view zoomed to it
+    from wakeline.app.review_map import _continuous
+
+    lon = np.array([179.8, 179.95, -179.9, -179.7])
+    out = _continuous(lon)
+    assert np.all(np.diff(out) > 0) and out[-1] == pytest.approx(180.3)
+    assert _continuous(np.array([5.0]))[0] == 5.0
