@@ -1972,10 +1972,14 @@ def polygon_area(seg: Segments, pairs: Pairs) -> np.ndarray:
     (seed 001 eq. 8), from each track's open shoelace sum, in a frame at i's origin."""
     i, j = pairs.i, pairs.j
     lon_o, lat_o = seg.origin_lon[i], seg.origin_lat[i]
-    # j's own frame → i's frame: shift by j's origin seen from i's origin.
+    # j's own frame → i's frame: turned by the meridians' convergence between the origins
+    # (geo.plane_turn), shifted by j's origin seen from i's origin.
     ojx, ojy = geo.to_local(seg.origin_lon[j], seg.origin_lat[j], lon_o, lat_o)
-    fj = seg.first_xy[j] + np.column_stack([ojx, ojy])
-    lj = seg.last_xy[j] + np.column_stack([ojx, ojy])
+    turn = geo.plane_turn(seg.origin_lon[j], seg.origin_lat[j], lon_o, lat_o)
+    fj = np.column_stack([*geo.turn_into_plane(*seg.first_xy[j].T, turn)])
+    lj = np.column_stack([*geo.turn_into_plane(*seg.last_xy[j].T, turn)])
+    fj += np.column_stack([ojx, ojy])
+    lj += np.column_stack([ojx, ojy])
     cross_j = seg.cross[j] + ojx * (lj[:, 1] - fj[:, 1]) - ojy * (lj[:, 0] - fj[:, 0])
     fi, li = seg.first_xy[i], seg.last_xy[i]
     total = (
@@ -2129,7 +2133,15 @@ def associate_segments(
     else:
         area = polygon_area(seg, pairs)
         if method == "area":
-            second = geo.angle_diff(seg.ldm_deg[pairs.i], seg.ldm_deg[pairs.j])
+            # j's mean course seen from i's origin (turned by the meridians' convergence)
+            i, j = pairs.i, pairs.j
+            sg, cg = geo.plane_turn(
+                seg.origin_lon[j], seg.origin_lat[j], seg.origin_lon[i], seg.origin_lat[i]
+            )
+            second = geo.angle_diff(seg.ldm_deg[i], seg.ldm_deg[j] + np.degrees(np.arctan2(sg, cg)))
+            # a piece without a moving leg has no direction (it was taken as north): the
+            # mean difference of unrelated directions, 90°
+            second = np.where(np.isnan(second), 90.0, second)
         else:
             second = shape_distance(seg, pairs, method)
         dist = params.w1 * _minmax(area) + params.w2 * _minmax(second)
@@ -2221,15 +2233,18 @@ def stitch(
     h11 = s**3 - s**2
     ii, jj = i[owner], j[owner]
     ex, ey = geo.to_local(seg.lon0[jj], seg.lat0[jj], seg.lon1[ii], seg.lat1[ii])
-    x = h10 * g * seg.vx1[ii] + h01 * ex + h11 * g * seg.vx0[jj]
-    y = h10 * g * seg.vy1[ii] + h01 * ey + h11 * g * seg.vy0[jj]
+    # the new piece's velocity in the old end's plane (geo.plane_turn)
+    turn = geo.plane_turn(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
+    vxj, vyj = (v[owner] for v in geo.turn_into_plane(seg.vx0[j], seg.vy0[j], turn))
+    x = h10 * g * seg.vx1[ii] + h01 * ex + h11 * g * vxj
+    y = h10 * g * seg.vy1[ii] + h01 * ey + h11 * g * vyj
     # The old track's end is the frame's origin, so its basis term h00 vanishes.
     # Velocity from the derivative of the Hermite basis (per second).
     d10 = (3 * s**2 - 4 * s + 1) * seg.vx1[ii], (3 * s**2 - 4 * s + 1) * seg.vy1[ii]
     d01 = (-6 * s**2 + 6 * s) / g
     d11 = 3 * s**2 - 2 * s
-    vx = d10[0] + d01 * ex + d11 * seg.vx0[jj]
-    vy = d10[1] + d01 * ey + d11 * seg.vy0[jj]
+    vx = d10[0] + d01 * ex + d11 * vxj
+    vy = d10[1] + d01 * ey + d11 * vyj
     if fill == "line":
         lx, ly, lvx, lvy = _line_fill(seg, i, j, owner, tau, max(int(fit_points), 1))
         # The paper's line assumes the ship went straight. Where it did not (a U-turn,
@@ -2250,6 +2265,9 @@ def stitch(
         x, y = np.where(line, lx, x), np.where(line, ly, y)
         vx, vy = np.where(line, lvx, vx), np.where(line, lvy, vy)
     lon, lat = geo.from_local(x, y, seg.lon1[ii], seg.lat1[ii])
+    # the course at each filled point from north there (the plane's +y turns away from it)
+    sg, cg = geo.plane_turn(lon, lat, seg.lon1[ii], seg.lat1[ii])
+    course = np.degrees(np.arctan2(vx, vy) - np.arctan2(sg, cg))
     keys = seg.index.keys
     fill = pd.DataFrame(
         {
@@ -2259,7 +2277,7 @@ def stitch(
             "lon": np.round(lon, 6),
             "lat": np.round(lat, 6),
             "speed": np.round(np.hypot(vx, vy) / geo.KN_MS, 2),
-            "course": np.round(geo.wrap360(np.degrees(np.arctan2(vx, vy))), 1),
+            "course": np.round(geo.wrap360(course), 1),
             "target": assoc.target_of_track[ii],
             "source_batch": "",
             "interpolated": True,

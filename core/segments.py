@@ -28,7 +28,8 @@ class Segments:
     Times in seconds since the epoch; positions in degrees; velocities ``v*`` in m/s east
     and north from a least-squares line over the first / last ``k`` points; speed in knots
     and course in degrees at both ends; ``ldm_deg`` the linear directional mean of the
-    legs (seed 001 eq. 11); ``cross`` the open shoelace sum of the track in its own local
+    legs (seed 001 eq. 11; in the track's own frame, north at its origin; NaN without a
+    leg that moves); ``cross`` the open shoelace sum of the track in its own local
     frame (m², for seed 001's area S). Those two, the local frames and the sampling period
     are computed from the points when first asked for (only some methods use them).
 
@@ -661,17 +662,21 @@ def _track_shape(pts: pd.DataFrame, index: TrackIndex) -> dict:
     if len(pts) > 1:
         same[1:] = index.track_of_row[1:] == index.track_of_row[:-1]
     legs = np.flatnonzero(same)
-    _, brg = geo.short_legs(lon[legs - 1], lat[legs - 1], lon[legs], lat[legs])
+    ox, oy = track_origins(pts, index)
+    x, y = local_xy(pts, index)
+    # the legs' directions in the track's plane (north at its origin): taken from each
+    # leg's own north they turned with the meridians' convergence along the track
     moved = (lon[legs] != lon[legs - 1]) | (lat[legs] != lat[legs - 1])
-    rad = np.radians(brg[moved])
+    lx, ly = x[legs[moved]] - x[legs[moved] - 1], y[legs[moved]] - y[legs[moved] - 1]
+    norm = np.hypot(lx, ly)
+    norm[norm == 0.0] = 1.0
     owner = index.track_of_row[legs[moved]]
     ldm = geo.wrap360(
         np.degrees(
-            np.arctan2(np.bincount(owner, np.sin(rad), n_tr), np.bincount(owner, np.cos(rad), n_tr))
+            np.arctan2(np.bincount(owner, lx / norm, n_tr), np.bincount(owner, ly / norm, n_tr))
         )
     )
-    ox, oy = track_origins(pts, index)
-    x, y = local_xy(pts, index)
+    ldm[np.bincount(owner, minlength=n_tr) == 0] = np.nan  # no leg that moves: no direction
     cross = np.bincount(
         index.track_of_row[legs],
         x[legs - 1] * y[legs] - y[legs - 1] * x[legs],
