@@ -668,7 +668,10 @@ def _local_xy_rows(lon: np.ndarray, lat: np.ndarray, index: TrackIndex):
     lon0 = lon[first] if len(lon) else np.zeros(index.n_tracks)
     lat0 = lat[first] if len(lat) else np.zeros(index.n_tracks)
     tr = index.track_of_row
-    return geo.to_local(lon, lat, lon0[tr], lat0[tr])
+    # geo.to_local(lon, lat, lon0[tr], lat0[tr]) bit for bit, the origins' sines and
+    # cosines taken once per track
+    per_track = (*geo.sin_cos_deg(lon0), *geo.sin_cos_lat(lat0))
+    return geo.plane_xy(*geo.sin_cos_deg(lon), *geo.sin_cos_lat(lat), *(v[tr] for v in per_track))
 
 
 def rest_frame(
