@@ -27,6 +27,8 @@ def _cmd_import(args: argparse.Namespace) -> int:
         f"imported {count(rep['rows_imported'], 'row')} in {count(rep['tracks'], 'track')} "
         f"({rep['format']}, {rep['encoding']}); {rep['rows_quarantined']:,} quarantined"
     )
+    if rep.get("blank_lines"):  # so the counts add up to the file's lines
+        msg += f", {count(rep['blank_lines'], 'blank line')} skipped"
     if rep["rows_quarantined"] and not args.quarantine:
         msg += " (write them with --quarantine FILE)"
     if rep.get("columns"):

@@ -15,6 +15,7 @@ from pathlib import Path
 
 from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
+from wakeline.core.words import count
 
 #: Older flag spellings kept beside the generated ones: (parameter set, field) -> flags.
 ALIASES = {
@@ -413,7 +414,7 @@ def say_quarantined(path, report: dict, command: str = "import") -> None:
     why = "; ".join(f"{count:,} {reason}" for reason, count in reasons[:3])
     more = f"; {len(reasons) - 3} more reasons" if len(reasons) > 3 else ""
     print(
-        f"{path}: {n:,} rows quarantined on reading ({why}{more}); run `wakeline {command}` "
+        f"{path}: {count(n, 'row')} quarantined on reading ({why}{more}); run `wakeline {command}` "
         "with --quarantine to see them",
         file=sys.stderr,
     )

@@ -193,9 +193,7 @@ def test_bad_bearing_input(tmp_path, capsys):
     assert read_bearings(p).attrs == {}  # pd.concat of tables with a frame in attrs fails
     assert len(pd.concat([got, read_bearings(p)])) == 2
     assert main(["bearing", str(p), "-o", str(tmp_path / "o.csv")]) == 0
-    assert (
-        "1 rows quarantined on reading (1 bearing not a finite number)" in capsys.readouterr().err
-    )
+    assert "1 row quarantined on reading (1 bearing not a finite number)" in capsys.readouterr().err
     p.write_text("batch,time,bearing\n1,2024-01-01T00:00:01Z,north\n")
     assert main(["bearing", str(p), "-o", str(tmp_path / "o.csv")]) == 2
     assert "no usable bearing" in capsys.readouterr().err

@@ -138,7 +138,7 @@ def test_export_reads_in_with_skip_rows(titled, tmp_path, capsys):
     _refused_naming(err, "--skip-rows")
     assert "--in-map" in err and "with --map" not in err
     assert main(["export", str(titled), "-o", str(out), "--skip-rows", str(NOTES)]) == 0
-    assert "1 rows quarantined" in capsys.readouterr().err
+    assert "1 row quarantined" in capsys.readouterr().err
     got = pd.read_csv(out)
     assert len(got) == ROWS - 1 and set(got["batch"]) == {400, 401}
     geo = tmp_path / "e.geojson"

@@ -67,6 +67,14 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "target_no",
         "vessel_id",
         "ship_id",
+        # after every id above: a file's "target" or "vessel" is its track only when
+        # nothing names one better (Wakeline's own output has batch and target)
+        "target",
+        "target_number",
+        "vessel",
+        "ship",
+        "object_id",
+        "contact_id",
         "批号",
         "目标号",
         "目标批号",
@@ -75,6 +83,8 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "目标编号",
         "目标id",
         "批次号",
+        "目标",
+        "船号",
     ),
     "time": (
         "unix时间戳",

@@ -692,6 +692,26 @@ LONE_MIN_S = 86_400.0
 LONE_RATIO = 100.0
 
 
+#: Steps back in time (s) smaller than this do not count against a track's file order
+#: (AIS from several receivers arrives a little out of order).
+ORDER_JITTER_S = 60.0
+
+
+def _in_file_order(tr: np.ndarray, tt: np.ndarray) -> np.ndarray:
+    """Per track code (an array indexed by code): whether its rows, in file order, run in
+    time order, forward or backward, but for at most a tenth of their steps (plus two: one
+    mistyped row makes two) going the other way by more than :data:`ORDER_JITTER_S`.
+    ``tr``: codes grouped by track, ``tt``: their times (s) in file order within a track."""
+    size = int(tr.max()) + 1 if len(tr) else 0
+    same = tr[1:] == tr[:-1]
+    d = np.diff(tt)
+    with np.errstate(invalid="ignore"):
+        fwd = np.bincount(tr[1:][same & (d > ORDER_JITTER_S)], minlength=size)
+        back = np.bincount(tr[1:][same & (d < -ORDER_JITTER_S)], minlength=size)
+    steps = np.bincount(tr[1:][same], minlength=size)
+    return np.minimum(fwd, back) <= 0.1 * steps + 2
+
+
 def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray:
     """Rows whose time is days from both rows of their track before and after them in the
     file while those two are close (a mistyped year or month: 2032 or 2013 in a 2023
@@ -718,6 +738,9 @@ def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray
     tr, tt = track[order], t[order]
     same_prev = np.r_[False, tr[1:] == tr[:-1]]
     same_next = np.r_[tr[:-1] == tr[1:], False]
+    # Only a track written in time order (either way) has neighbours to judge by: in a
+    # file of rows in random order every row's neighbours are anywhere in its span.
+    same_prev &= _in_file_order(tr, tt)[tr]
     prev = np.r_[np.nan, tt[:-1]]
     nxt = np.r_[tt[1:], np.nan]
     with np.errstate(invalid="ignore"):
@@ -2006,7 +2029,11 @@ def _restarting_tracks(
         return {}
     steps = np.bincount(k[1:][same], minlength=int(k.max()) + 1)
     backs = np.bincount(k[1:][back], minlength=int(k.max()) + 1)
-    hit = np.flatnonzero((backs > 0) & (backs <= 0.1 * steps))
+    # each run going forward: any step back (beyond jitter) is one of the few restarts; a
+    # short track in random order has steps back of every size, few of them 10 min long
+    loose = same & (t[1:] < t[:-1] - int(ORDER_JITTER_S * 1e9))
+    loose_n = np.bincount(k[1:][loose], minlength=int(k.max()) + 1)
+    hit = np.flatnonzero((backs > 0) & (loose_n <= 0.1 * steps))
     n_batch = int(batch_codes.max()) + 1
     return {str(batch_names[h % n_batch]): int(backs[h]) + 1 for h in hit}
 
