@@ -12,6 +12,28 @@ def _progress(fraction: float, text: str) -> None:
     print(f"  {fraction:4.0%} {text}", file=sys.stderr)
 
 
+def _say_read(path, report: dict) -> None:
+    """What reading one of --real's files gave, on stderr as ``import`` says it: rows
+    imported, quarantined (and why), blank lines, the columns taken, the warnings."""
+    from wakeline.app.cli_steps import say_quarantined
+    from wakeline.core.words import count
+
+    rep = report
+    blank = rep.get("blank_lines", 0)
+    text = (
+        f"{path}: read {count(rep.get('rows_imported', 0), 'row')} in "
+        f"{count(rep.get('tracks', 0), 'track')} ({rep.get('format')}, {rep.get('encoding')}); "
+        f"{rep.get('rows_quarantined', 0):,} quarantined"
+        + (f", {count(blank, 'blank line')} skipped" if blank else "")
+    )
+    if rep.get("columns"):
+        text += "; columns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
+    print(text, file=sys.stderr)
+    for warning in rep.get("warnings", []):
+        print(f"{path}: warning: {warning}", file=sys.stderr)
+    say_quarantined(path, rep)
+
+
 def _maneuver_params(args: argparse.Namespace):
     from wakeline.core.maneuver import ManeuverParams
 
@@ -94,6 +116,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             read=read,
             seed=args.seed,
             progress=_progress,
+            reading=_say_read,
         )
         print(ev.format())
         if args.csv:
@@ -145,6 +168,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
             gnss_mapping=args.gnss_map,
             gate_m=args.gnss_gate_m,
             gnss_fault_m=args.gnss_fault_m if args.gnss_fault_m is not None else float("inf"),
+            reading=_say_read,
         )
         print(ev.format())
         if args.csv:

@@ -863,6 +863,7 @@ def evaluate_real_association(
     seed: int = 0,
     progress: Progress | None = None,
     read: dict | None = None,
+    reading=None,
 ) -> RealEvaluation:
     """Score association methods on a real set with identities (issue 15, deliverable 7).
 
@@ -879,11 +880,12 @@ def evaluate_real_association(
     other files are annotations, third-party simplifications or radar plots, not tracks).
     The files read as import reads them take ``mapping`` (``--map`` entries) and ``read``
     (the other ``read_points`` keywords, e.g. ``skip_rows``); the recognised sets ignore
-    both.
+    both. ``reading(file, report)`` is told each read file's import report (rows imported
+    and quarantined, warnings); a file with no point is skipped with the reason.
     """
     from wakeline.core import real_sets
     from wakeline.core.errors import InputError
-    from wakeline.core.io import read_points
+    from wakeline.core.io import nothing_imported, read_points
 
     progress = progress or null_progress
     known = _known_set(path)  # a folder of shared/data/real: its own reader, one scene
@@ -892,11 +894,15 @@ def evaluate_real_association(
     for n, f in enumerate(files):
         progress(n / len(files), f.name)
         try:
-            df = (
-                real_sets.association_tracks(f.folder)
-                if f is known
-                else read_points(f, mapping=mapping, **(read or {})).points
-            )
+            if f is known:
+                df = real_sets.association_tracks(f.folder)
+            else:
+                result = read_points(f, mapping=mapping, **(read or {}))
+                if reading is not None:
+                    reading(f, result.report)
+                df = result.points
+                if len(df) == 0:
+                    raise InputError(nothing_imported(result.report))
         except InputError as e:
             skipped.append((f.name, str(e)))
             continue

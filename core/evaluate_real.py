@@ -306,21 +306,41 @@ def _split_rows(
     return out
 
 
-def _track_files(path: Path, mapping: list[str] | None, read: dict | None = None) -> pd.DataFrame:
+def _track_files(
+    path: Path, mapping: list[str] | None, read: dict | None = None, reading=None
+) -> pd.DataFrame:
     """The tracks of a file, or of every .csv / .csv.gz in a folder, as import reads them
     (``read``: more ``read_points`` keywords, e.g. ``skip_rows``); with several files each
-    batch is prefixed by its file's name (MTAD scenes reuse ids)."""
+    batch is prefixed by its file's name (MTAD scenes reuse ids). ``reading(file, report)``
+    is told each file's import report (rows imported and quarantined, warnings)."""
     from wakeline.core.evaluate_association import real_files
-    from wakeline.core.io import read_points
+    from wakeline.core.io import nothing_imported, read_points
 
     files = real_files(path)
     frames = []
     for f in files:
-        df = read_points(f, mapping=mapping, **(read or {})).points
+        result = read_points(f, mapping=mapping, **(read or {}))
+        if reading is not None:
+            reading(f, result.report)
+        df = result.points
+        if len(df) == 0:
+            raise InputError(nothing_imported(result.report, str(f)))
         if len(files) > 1:
             df = df.assign(batch=f.name + ":" + df["batch"].astype(str))
         frames.append(df)
-    return pd.concat(frames, ignore_index=True)
+    return in_content_order(pd.concat(frames, ignore_index=True))
+
+
+def in_content_order(points: pd.DataFrame) -> pd.DataFrame:
+    """Points ordered by sensor, batch, time and then position: rows of one track at one
+    time (AIS repeats a time stamp) come in the same order however the file ordered its
+    rows, so the scores do not depend on the row order of the export."""
+    keys = [c for c in ("sensor", "batch") if c in points.columns]
+    key = points[keys].astype(str) if keys else pd.DataFrame(index=points.index)
+    order = key.assign(_t=points["time"], _x=points["lon"], _y=points["lat"]).sort_values(
+        [*keys, "_t", "_x", "_y"], kind="stable"
+    )
+    return points.loc[order.index].reset_index(drop=True)
 
 
 #: An observed track follows a truth track when their median distance at its fixes is at
@@ -417,6 +437,7 @@ def evaluate_real(
     gnss_mapping: list[str] | None = None,
     gate_m: float = TRUTH_GATE_M,
     gnss_fault_m: float = np.inf,
+    reading=None,
 ) -> RealEvaluation:
     """Score maneuver detection and compression on a real set (see the module docstring),
     with ``params`` (default: ours) and with seed 000's detector as written. Autoferry:
@@ -427,7 +448,10 @@ def evaluate_real(
     Any other file or folder of track files is read as import reads it (``mapping``: its
     ``--map`` entries; ``read``: the other ``read_points`` keywords, e.g. ``skip_rows``,
     ``delimiter``; the named sets' own readers ignore both) and scored without truth:
-    slow share, at-rest spans, compression.
+    slow share, at-rest spans, compression; ``reading(file, report)`` is told each such
+    file's import report. Points of one track at one time are taken in the order of their
+    positions (:func:`in_content_order`), so the scores do not depend on the file's row
+    order.
     ``sensor``: Autoferry's radar (default) or lidar plots, the same gate and rules (any
     other set: radar only, refused otherwise).
     ``gnss``: a file or folder of truth tracks (accurate positions of the targets, e.g.
@@ -452,16 +476,17 @@ def evaluate_real(
         points, truth = real_sets.read_autoferry(folder, exclusive=exclusive, sensor=sensor)
         faults = gnss_faults(truth, fault_m)
     elif name is None:
-        points = _track_files(folder, mapping, read)
+        points = _track_files(folder, mapping, read, reading)
     else:
         points = {
             "greece": real_sets.read_greece,
             "dma": real_sets.read_dma,
             "oresund": real_sets.read_oresund,
         }[name](folder)
+        points = in_content_order(points)
     match = None
     if gnss is not None:
-        truth = _track_files(Path(gnss), gnss_mapping, read)
+        truth = _track_files(Path(gnss), gnss_mapping, read, reading)
         faults = pd.DataFrame(columns=["batch", "t_s"])
         match = match_to_truth(points, truth, gate_m)
         if np.isfinite(gnss_fault_m):

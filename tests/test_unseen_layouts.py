@@ -17,6 +17,8 @@ from hypothesis import strategies as st
 
 from conftest import DATA, SHARED_REAL
 from wakeline.app.cli import main
+from wakeline.core.evaluate_association import evaluate_real_association
+from wakeline.core.evaluate_real import evaluate_real
 from wakeline.core.io import read_points, write_points
 
 ATD = DATA / "atd2025_example_sample.csv"
@@ -104,6 +106,71 @@ def test_every_layout_imports_line_for_line_to_the_same_points(atd, name):
     _same_points(got, pts, v.exact)
 
 
+def _maneuver(path, **kw) -> pd.DataFrame:
+    return evaluate_real(path, **kw).rows.set_index("method")[MANEUVER_COLS]
+
+
+def _assoc(path, **kw) -> pd.DataFrame:
+    ev = evaluate_real_association(path, methods=("ours, optimal", "ours, greedy"), **kw)
+    return ev.table.set_index("method")[ASSOC_COLS]
+
+
+@pytest.mark.parametrize(
+    "name", ["chinese_gb18030_crlf", "bom_extra_shuffled_summary", "nmea_tag_blocks"]
+)
+def test_evaluations_score_a_layout_as_the_canonical_file(atd, name):
+    _, canonical, variants = atd
+    v = variants[name]
+    tz = dict(zip(v.flags[::2], v.flags[1::2], strict=True)).get("--tz")
+    rtol = 1e-3 if v.exact else 3e-3  # AIS rounds positions to 0.2 m: DP keeps 604, not 603
+    pd.testing.assert_frame_equal(
+        _maneuver(v.path, read={"tz": tz}), _maneuver(canonical), rtol=rtol
+    )
+    pd.testing.assert_frame_equal(_assoc(v.path, read={"tz": tz}), _assoc(canonical), rtol=rtol)
+
+
+def test_a_folder_of_several_layouts_scores_as_one_file(atd, tmp_path):
+    pts, canonical, _ = atd
+    ids = sorted(pts["batch"].unique())
+    parts = [lv.marinecadastre, lv.radar, lv.semicolon_comma]
+    for k, make in enumerate(parts):
+        sub = tmp_path / make.__name__
+        sub.mkdir()
+        v = make(pts[pts["batch"].isin(ids[k::3])].reset_index(drop=True), sub)
+        v.path.rename(tmp_path / f"{make.__name__}.csv")
+    seen = []
+    got = evaluate_real(tmp_path, reading=lambda f, rep: seen.append((f.name, rep)))
+    assert sorted(f for f, _ in seen) == sorted(f"{m.__name__}.csv" for m in parts)
+    assert sum(rep["rows_imported"] for _, rep in seen) == len(pts)
+    want = _maneuver(canonical)
+    pd.testing.assert_frame_equal(got.rows.set_index("method")[MANEUVER_COLS], want, rtol=1e-3)
+    assoc = evaluate_real_association(tmp_path, methods=("ours, optimal",))
+    assert set(assoc.table["file"]) == {f"{m.__name__}.csv" for m in parts}
+
+
+def test_rows_of_one_time_score_the_same_in_any_row_order(tmp_path):
+    # AIS repeats time stamps (the DMA ship: 68 of them, at another position): the
+    # evaluation took them in file order, so a shuffled export scored 27 maneuvers, not 28
+    rng = np.random.default_rng(3)
+    t = np.repeat(np.arange(0, 4000, 20), 2)[:300]
+    heading = np.where(t < 2000, 0.0, 90.0)
+    step = 5.0 * 20 / 2
+    x = np.cumsum(step * np.sin(np.radians(heading))) + rng.normal(0, 3, len(t))
+    y = np.cumsum(step * np.cos(np.radians(heading))) + rng.normal(0, 3, len(t))
+    df = pd.DataFrame(
+        {
+            "batch": "1",
+            "time": pd.to_datetime(1.7e9 + t, unit="s", utc=True),
+            "lon": 11.8 + x / 60_000,
+            "lat": 57.6 + y / 111_000,
+        }
+    )
+    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+    write_points(df, a)
+    write_points(df.sample(frac=1.0, random_state=1), b)
+    pd.testing.assert_frame_equal(_maneuver(a), _maneuver(b))
+
+
 def test_rows_in_random_order_are_not_taken_for_mistyped_dates(tmp_path):
     # 5 vessels over 9 days, rows shuffled: each row's neighbours in the file are anywhere
     # in its track's span, and the lone-time rule quarantined 181 of 18,834 Saronic rows
@@ -150,6 +217,21 @@ def test_a_target_column_is_the_track(tmp_path):
     # a file's own id column wins over it
     p.write_text("mmsi,target,time,lon,lat\n1,A,0,1,2\n")
     assert read_points(p).report["columns"]["batch"] == "mmsi"
+
+
+def test_evaluate_says_what_reading_each_file_gave(atd, capsys):
+    _, _, variants = atd
+    v = variants["bom_extra_shuffled_summary"]
+    assert main(["evaluate", "maneuver", "--real", str(v.path)]) == 0
+    err = capsys.readouterr().err
+    assert f"{v.path}: read 1,590 rows in 42 tracks (generic, utf-8); 1 quarantined" in err
+    assert "1 blank line skipped" in err and "batch=Vessel ID" in err
+    assert "1 row quarantined on reading (1 missing batch)" in err
+    # no batch column found: the evaluation says so (the whole file would be one track)
+    one = v.path.with_name("no_id.csv")
+    one.write_text("time,lon,lat\n2024-01-01T00:00:00Z,1,2\n2024-01-01T00:01:00Z,1.001,2\n")
+    assert main(["evaluate", "associate", "--real", str(one)]) == 0
+    assert "warning: no batch column" in capsys.readouterr().err
 
 
 def test_import_says_blank_lines_so_the_counts_add_up(atd, tmp_path, capsys):
@@ -207,6 +289,15 @@ def _shared(*parts):
     if not path.exists():
         pytest.skip(f"real data not available: {path}")
     return path
+
+
+def test_the_dma_ship_shuffled_scores_as_its_native_folder(tmp_path):
+    from wakeline.core import real_sets
+
+    folder = _shared("dma-single-ship")
+    pts = real_sets.read_dma(folder)
+    v = lv.messy(pts, tmp_path)
+    pd.testing.assert_frame_equal(_maneuver(v.path), _maneuver(folder), rtol=1e-3)
 
 
 def test_the_saronic_vessels_shuffled_import_whole(tmp_path):
