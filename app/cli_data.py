@@ -42,6 +42,9 @@ def _cmd_import(args: argparse.Namespace) -> int:
         msg += f"\nwarning: {warning}"
     print(msg, file=sys.stderr)
     if rep["rows_imported"] == 0:
+        # no header-only CSV left behind to be taken for a result (a pipe stays a pipe)
+        if Path(args.output).is_file():
+            Path(args.output).unlink()
         print(f"wakeline: error: {nothing_imported(rep)}", file=sys.stderr)
         return 2
     return 0

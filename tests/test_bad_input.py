@@ -255,10 +255,12 @@ def test_an_import_that_keeps_nothing_fails_and_says_why(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "all 2 rows were quarantined" in err and "degrees" in err
     assert len(q.read_text().strip().splitlines()) == 3  # header + both rows
+    assert not (tmp_path / "o.csv").exists()  # no header-only output (h111: there was one)
     header_only = tmp_path / "h.csv"
     header_only.write_text("mmsi,time,lon,lat\n")
     assert main(["import", str(header_only), "-o", str(tmp_path / "o2.csv")]) == 2
     assert "no data rows" in capsys.readouterr().err
+    assert not (tmp_path / "o2.csv").exists()
 
 
 def test_a_gzip_cut_short_is_named_and_explained(tmp_path, capsys):

@@ -48,6 +48,10 @@ from wakeline.core.schema import DEFAULT_SENSOR
 QUARANTINE_COLUMNS = ("line", "reason", "text")
 #: The batch "column" of a file without one: its one track is named after the file.
 FILE_BATCH = "(file name)"
+NO_BATCH_WARNING = (
+    "no batch column: the file is one track named after the file (if a column holds "
+    "each track's id, map it: --map batch=COLUMN)"
+)
 _TEXT_FIELDS = ("sensor", "batch", "truth")
 _FLOAT_FIELDS = ("lon", "lat", "speed", "course")
 #: Seconds since 1970 beyond which a number is read as milliseconds (year 5138 in seconds).
@@ -1497,7 +1501,7 @@ def read_points(
         batch = pa.repeat(pa.scalar(path.name.split(".")[0] or "1"), n).dictionary_encode()
         rows.table = rows.table.append_column(FILE_BATCH, batch)
         res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
-        notes.append("no batch column: the file is one track named after the file")
+        notes.append(NO_BATCH_WARNING)
     progress(0.6, "checking values")
 
     time_info: dict = {} if edges is None else {"_edges": edges}
@@ -2399,7 +2403,7 @@ def stream_points(
         texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], sn.encoding)
         q["text"] = pd.Series(texts, dtype="str")
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
-    warnings = ["no batch column: the file is one track named after the file"] if file_batch else []
+    warnings = [NO_BATCH_WARNING] if file_batch else []
     warnings += _title_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(restarting, res.columns["batch"])
