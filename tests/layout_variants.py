@@ -242,6 +242,28 @@ def nmea(points: pd.DataFrame, folder: Path) -> Variant | None:
     return Variant("nmea_tag_blocks", _write(folder / "ais.nmea", lines), exact=False)
 
 
+def date_and_clock(points: pd.DataFrame, folder: Path) -> Variant:
+    """The date and the clock time in two columns (day-first dates)."""
+    t = _utc(points)
+    day, clock = t.dt.strftime("%d/%m/%Y"), t.dt.strftime("%H:%M:%S.%f")
+    lat, lon = _fmt(points["lat"]), _fmt(points["lon"])
+    lines = ["MMSI,Date,Time,Latitude,Longitude"] + [
+        f"{b},{d},{c},{la},{lo}"
+        for b, d, c, la, lo in zip(points["batch"], day, clock, lat, lon, strict=True)
+    ]
+    return Variant("date_and_clock_columns", _write(folder / "date_time.csv", lines))
+
+
+def twelve_hour(points: pd.DataFrame, folder: Path) -> Variant:
+    """A US spreadsheet's month-first dates with a 12-hour clock (whole seconds)."""
+    stamps = _utc(points).dt.strftime("%m/%d/%Y %I:%M:%S %p")
+    lat, lon = _fmt(points["lat"]), _fmt(points["lon"])
+    lines = ["MMSI,BaseDateTime,LAT,LON"] + [
+        f"{b},{s},{la},{lo}" for b, s, la, lo in zip(points["batch"], stamps, lat, lon, strict=True)
+    ]
+    return Variant("twelve_hour_clock", _write(folder / "ampm.csv", lines))
+
+
 LAYOUTS = (
     marinecadastre,
     dma,
@@ -254,6 +276,8 @@ LAYOUTS = (
     relative,
     messy,
     utf16_tab,
+    date_and_clock,
+    twelve_hour,
     nmea,
 )
 

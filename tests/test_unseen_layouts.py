@@ -98,8 +98,10 @@ def test_every_layout_imports_line_for_line_to_the_same_points(atd, name):
     assert rep["rows_imported"] + rep["rows_quarantined"] + rep.get("blank_lines", 0) == (
         _lines_below_header(v)
     )
-    # what is said: times kept relative, decimal commas read as decimal points
-    assert not [w for w in rep["warnings"] if "relative" not in w and "decimal comma" not in w]
+    # what is said: times kept relative, decimal commas read as decimal points, clock
+    # times joined with their dates
+    said = ("relative", "decimal comma", "clock times")
+    assert not [w for w in rep["warnings"] if not any(k in w for k in said)]
     got = r.points
     if rep.get("time_relative"):  # seconds from the scene's start: the same clock, moved
         got = got.assign(time=got["time"] - got["time"].min() + pts["time"].min())
@@ -308,3 +310,33 @@ def test_the_saronic_vessels_shuffled_import_whole(tmp_path):
     r = read_points(v.path)
     assert r.report["rows_imported"] == len(pts) == 18_834
     assert r.report["rows_quarantined"] == 1  # the summary line
+
+
+@pytest.mark.parametrize("name", ["date_and_clock_columns", "twelve_hour_clock"])
+def test_import_writes_dates_and_clock_times_or_12_hour_times_as_instants(atd, tmp_path, name):
+    # both quarantined every row before (h111): 'unparsable time'
+    pts, _, variants = atd
+    out = tmp_path / "o.csv"
+    assert main(["import", str(variants[name].path), "-o", str(out)]) == 0
+    got = pd.read_csv(out, dtype={"batch": str})
+    assert len(got) == len(pts)
+    want = pts["time"].sort_values().reset_index(drop=True)
+    times = pd.to_datetime(got["time"], utc=True).sort_values().reset_index(drop=True)
+    assert (times == want).all()
+
+
+def test_a_date_column_alone_is_the_time_and_beside_clock_times_their_date(tmp_path):
+    p = tmp_path / "d.csv"
+    p.write_text("Date,MMSI,Lat,Lon\n2023-03-01 00:01:46,1,57.1,11.2\n")
+    assert read_points(p).report["columns"]["time"] == "Date"
+    p.write_bytes(
+        "日期,时间,批号,经度,纬度\r\n2023-03-01,08:01:46,1,11.2,57.1\r\n".encode("gb18030")
+    )
+    r = read_points(p, tz="Asia/Shanghai")
+    assert r.report["time_date_column"] == "日期"
+    assert r.points["time"].iloc[0] == pd.Timestamp("2023-03-01T00:01:46Z")
+    # a time column of whole instants keeps them, a date column beside it notwithstanding
+    p.write_text("Date,Time,MMSI,Lat,Lon\n2023-03-01,2023-03-02T00:01:46Z,1,57.1,11.2\n")
+    r = read_points(p)
+    assert r.report["time_date_column"] is None
+    assert r.points["time"].iloc[0] == pd.Timestamp("2023-03-02T00:01:46Z")

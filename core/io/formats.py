@@ -114,6 +114,10 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "时刻",
         "本地时间",
         "北京时间",
+        # last: a date column is the time when no column names one (with a column of
+        # clock times beside it, the two are joined: reader._date_column)
+        "date",
+        "日期",
     ),
     "lon": ("lon", "longitude", "lng", "long", "x_lon", "经度"),
     "lat": ("lat", "latitude", "y_lat", "纬度"),

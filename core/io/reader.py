@@ -64,6 +64,8 @@ _DAYFIRST_FORMATS = (
     "%d.%m.%Y %H:%M:%S",  # German, Norwegian …: 01.05.2024 08:01:04
     "%d.%m.%Y %H:%M:%S.%f",
     "%d.%m.%Y %H:%M",
+    "%d/%m/%Y %I:%M:%S %p",  # 12-hour clocks: 01/05/2024 8:01:04 PM
+    "%d/%m/%Y %I:%M %p",
 )
 #: The same with the month first (US exports: 05/17/2024), read only when the file says so.
 _MONTHFIRST_FORMATS = tuple(
@@ -1395,6 +1397,11 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     """Warnings about how the time column was read (local read as UTC; relative times),
     and numbers read with a decimal comma."""
     out = []
+    if time_info.get("date_column"):
+        out.append(
+            f"the times in {time_src!r} are clock times: each joined with its row's date "
+            f"in {time_info['date_column']!r}"
+        )
     if time_info.get("month_first"):
         out.append(
             f"the times in {time_src!r} write the month first (mm/dd/yyyy: "
@@ -1530,6 +1537,7 @@ def read_points(
         "extra_columns": extra,
         "careful_parse": rows.careful,
         "time_format": time_info.get("time_format"),
+        "time_date_column": time_info.get("date_column"),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
         **counts,
@@ -1725,6 +1733,30 @@ _RANGES = {
 }
 
 
+#: Headers of a column of dates beside a time column of clock times (normalised).
+_DATE_NAMES = frozenset({"date", "utcdate", "dateutc", "datum", "fecha", "日期", "日期utc"})
+_CLOCK = r"^\s*\d{1,2}:\d{2}(?::\d{2}(?:[.,]\d+)?)?(?:\s*[AaPp]\.?[Mm]\.?)?\s*$"
+
+
+def _date_column(columns, mapped: set) -> str | None:
+    """The file's column of dates (``Date``, ``日期``...) that no field is mapped to."""
+    for name in columns:
+        if name not in mapped and normalize_header(name) in _DATE_NAMES:
+            return name
+    return None
+
+
+def _clock_only(arr: pa.ChunkedArray) -> bool:
+    """Whether a time column holds clock times without a date (``08:01:04``): its first
+    50 values present, every one, or pyarrow typed it a time of day."""
+    if pa.types.is_time(arr.type):
+        return True
+    if not (pa.types.is_string(arr.type) or pa.types.is_large_string(arr.type)):
+        return False
+    head = arr.slice(0, 200).drop_null().to_pylist()[:50]
+    return bool(head) and all(re.match(_CLOCK, v) for v in head)
+
+
 def _to_canonical(
     rows: _Rows,
     sn: Sniff,
@@ -1781,6 +1813,13 @@ def _to_canonical(
                 undecodable |= np.asarray(pc.fill_null(hit, False), dtype=bool)
         flag(undecodable, f"bytes not valid {rows.encoding}")
     time_col = table[cols["time"]]
+    date_src = _date_column(sn.columns, mapped)
+    if date_src is not None and _clock_only(time_col):
+        time_col = pc.binary_join_element_wise(
+            pc.cast(table[date_src], pa.string()), pc.cast(time_col, pa.string()), " "
+        )
+        if time_info is not None:
+            time_info["date_column"] = date_src
     comma = sn.delimiter != ","  # a decimal comma cannot be unquoted in a comma-separated file
     counted = time_info if time_info is not None else {}
     ns, time_ok = parse_times(time_col, res.format.time_kind, zone, counted, comma)
@@ -2340,6 +2379,8 @@ def stream_points(
         )
         time_info["absolute"] = bool(info.get("absolute"))
         time_info.setdefault("time_format", info.get("time_format"))
+        if info.get("date_column"):
+            time_info["date_column"] = info["date_column"]
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         for key in ("decimal_comma", "clock_placed"):
