@@ -604,9 +604,15 @@ def evaluate_fusion(
 # real data with known identities
 
 
+#: The names of track files in a folder given to ``--real`` (each also gzipped): what
+#: owners export tracks as (a tab-separated ``.txt`` or ``.tsv``, a raw AIS ``.nmea`` log).
+TRACK_SUFFIXES = (".csv", ".tsv", ".txt", ".nmea", ".log")
+
+
 def real_files(path) -> list:
-    """The track files of a real set: ``path`` itself, or every ``*.csv`` / ``*.csv.gz``
-    directly in the folder ``path`` (sorted)."""
+    """The track files of a real set: ``path`` itself, or every file directly in the
+    folder ``path`` named ``*.csv``, ``*.tsv``, ``*.txt``, ``*.nmea`` or ``*.log``, or one of
+    those gzipped (sorted; hidden files left out)."""
     from pathlib import Path
 
     from wakeline.core.errors import InputError
@@ -616,9 +622,16 @@ def real_files(path) -> list:
         return [p]
     if not p.is_dir():
         raise InputError(f"{p}: no such file or folder")
-    files = sorted(f for f in p.iterdir() if f.name.endswith((".csv", ".csv.gz")))
+    files = sorted(
+        f
+        for f in p.iterdir()
+        if f.is_file()
+        and not f.name.startswith(".")
+        and f.name.lower().removesuffix(".gz").endswith(TRACK_SUFFIXES)
+    )
     if not files:
-        raise InputError(f"{p}: no .csv or .csv.gz files in this folder")
+        kinds = ", ".join(TRACK_SUFFIXES)
+        raise InputError(f"{p}: no track files in this folder ({kinds}, or gzipped)")
     return files
 
 

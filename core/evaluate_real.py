@@ -275,10 +275,12 @@ class RealEvaluation:
     name: str
     folder: Path
     rows: pd.DataFrame  # one row per method: the scores this set supports
+    skipped: tuple = ()  # (file, reason) of a folder's files that gave no track
 
     def format(self) -> str:
         lines = [f"Real set {self.name} ({self.folder})"]
         lines += [self.rows.to_string(index=False, float_format=lambda v: f"{v:.3f}")]
+        lines += [f"skipped {f}: {why}" for f, why in self.skipped]
         return "\n".join(lines)
 
 
@@ -306,29 +308,47 @@ def _split_rows(
     return out
 
 
-def _track_files(
+def _track_files(path: Path, mapping: list[str] | None, read: dict | None = None) -> pd.DataFrame:
+    """The points of :func:`read_track_files` (the bench scripts' use)."""
+    return read_track_files(path, mapping, read)[0]
+
+
+def read_track_files(
     path: Path, mapping: list[str] | None, read: dict | None = None, reading=None
-) -> pd.DataFrame:
-    """The tracks of a file, or of every .csv / .csv.gz in a folder, as import reads them
-    (``read``: more ``read_points`` keywords, e.g. ``skip_rows``); with several files each
-    batch is prefixed by its file's name (MTAD scenes reuse ids). ``reading(file, report)``
-    is told each file's import report (rows imported and quarantined, warnings)."""
+) -> tuple[pd.DataFrame, list]:
+    """The tracks of a file, or of every track file in a folder
+    (:func:`~wakeline.core.evaluate_association.real_files`), as import reads them
+    (``read``: more ``read_points`` keywords, e.g. ``skip_rows``), and the (file, reason)
+    of a folder's files that gave no point (a file alone: the error). With several files
+    each batch is prefixed by its file's name (MTAD scenes reuse ids).
+    ``reading(file, report)`` is told each file's import report (rows imported and
+    quarantined, warnings)."""
     from wakeline.core.evaluate_association import real_files
     from wakeline.core.io import nothing_imported, read_points
 
     files = real_files(path)
-    frames = []
+    frames, skipped = [], []
     for f in files:
-        result = read_points(f, mapping=mapping, **(read or {}))
-        if reading is not None:
-            reading(f, result.report)
+        try:
+            result = read_points(f, mapping=mapping, **(read or {}))
+            if reading is not None:
+                reading(f, result.report)
+            if len(result.points) == 0:
+                raise InputError(nothing_imported(result.report, str(f)))
+        except InputError as e:
+            if len(files) == 1:
+                raise
+            skipped.append((f.name, str(e)))  # a folder's notes or a file of no track
+            continue
         df = result.points
-        if len(df) == 0:
-            raise InputError(nothing_imported(result.report, str(f)))
         if len(files) > 1:
             df = df.assign(batch=f.name + ":" + df["batch"].astype(str))
         frames.append(df)
-    return in_content_order(pd.concat(frames, ignore_index=True))
+    if not frames:
+        raise InputError(
+            "no file could be scored: " + "; ".join(f"{f}: {why}" for f, why in skipped)
+        )
+    return in_content_order(pd.concat(frames, ignore_index=True)), skipped
 
 
 def in_content_order(points: pd.DataFrame) -> pd.DataFrame:
@@ -472,11 +492,12 @@ def evaluate_real(
     params = (params or ManeuverParams()).checked()
     truth = None
     split_rows: list = []
+    skipped: list = []
     if name == "autoferry":
         points, truth = real_sets.read_autoferry(folder, exclusive=exclusive, sensor=sensor)
         faults = gnss_faults(truth, fault_m)
     elif name is None:
-        points = _track_files(folder, mapping, read, reading)
+        points, skipped = read_track_files(folder, mapping, read, reading)
     else:
         points = {
             "greece": real_sets.read_greece,
@@ -546,4 +567,4 @@ def evaluate_real(
     label = name or folder.name
     if sensor != "radar":
         label = f"{label} ({sensor})"
-    return RealEvaluation(label, folder, pd.DataFrame(rows + split_rows))
+    return RealEvaluation(label, folder, pd.DataFrame(rows + split_rows), tuple(skipped))

@@ -120,7 +120,7 @@ def test_evaluate_maneuver_on_a_real_folder(tmp_path, capsys):
     assert set(pd.read_csv(out)["method"]) == {"ours", "paper"}
     (tmp_path / "empty").mkdir()
     assert main(["evaluate", "maneuver", "--real", str(tmp_path / "empty")]) == 2
-    assert "no .csv or .csv.gz files" in capsys.readouterr().err
+    assert "no track files in this folder (.csv, .tsv, .txt, .nmea" in capsys.readouterr().err
 
 
 def test_every_step_reads_a_headerless_file_with_map(tmp_path, capsys):
@@ -150,7 +150,8 @@ def test_a_step_on_a_file_with_no_usable_row_says_why(step, tmp_path, capsys):
     "no usable points" (the reading's quarantine counts were lost); every step now says
     how many rows went to the quarantine, for what, and what to try."""
     src = tmp_path / "us.csv"
-    rows = [f"7,05/01/2024 08:0{m}:00 AM,12.{m},56.0" for m in range(5)]
+    # (was "05/01/2024 08:0m:00 AM", readable since h111's 12-hour clocks)
+    rows = [f"7,08h0{m} on the 1st of May,12.{m},56.0" for m in range(5)]
     src.write_text("mmsi,timestamp,lon,lat\n" + "\n".join(rows) + "\n")
     assert main([step, str(src), "-o", str(tmp_path / "o.csv")]) == 2
     err = capsys.readouterr().err

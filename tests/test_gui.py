@@ -752,13 +752,14 @@ def test_bad_file_shows_a_dialog_not_a_crash(window, tmp_path, monkeypatch):
 
 
 def test_a_file_with_no_usable_row_says_why(window, tmp_path, monkeypatch):
-    """Operator test: a file whose every time is unreadable (US clock times with AM/PM)
-    showed only "no usable points"; the dialog names the reason, how many rows, and what
-    to try, in the window's words (the import dialog, not --map)."""
+    """Operator test: a file whose every time is unreadable (US clock times with AM/PM,
+    until h111 read them; now words) showed only "no usable points"; the dialog names the
+    reason, how many rows, and what to try, in the window's words (the import dialog, not
+    --map)."""
     shown = []
     monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
     us = tmp_path / "us_times.csv"
-    rows = [f"7,05/01/2024 08:0{m}:00 AM,12.{m},56.0" for m in range(5)]
+    rows = [f"7,08h0{m} on the 1st of May,12.{m},56.0" for m in range(5)]
     us.write_text("mmsi,timestamp,lon,lat\n" + "\n".join(rows) + "\n")
     header_only = tmp_path / "header_only.csv"
     header_only.write_text("mmsi,timestamp,lon,lat\n")

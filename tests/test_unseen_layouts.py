@@ -340,3 +340,23 @@ def test_a_date_column_alone_is_the_time_and_beside_clock_times_their_date(tmp_p
     r = read_points(p)
     assert r.report["time_date_column"] is None
     assert r.points["time"].iloc[0] == pd.Timestamp("2023-03-02T00:01:46Z")
+
+
+def test_a_folder_of_tsv_txt_and_nmea_files_with_a_readme_is_scored(atd, tmp_path, capsys):
+    # a folder as an owner hands it over: the tracks as .txt / .nmea (only .csv was read)
+    # and a notes file that holds no track (skipped with the reason, not the end of it)
+    pts, _, _ = atd
+    ids = sorted(pts["batch"].unique())
+    half = pts[pts["batch"].isin(ids[::2])].reset_index(drop=True)
+    (tmp_path / "a").mkdir()
+    lv.utf16_tab(half, tmp_path / "a").path.rename(tmp_path / "tracks.txt")
+    lv.nmea(pts[~pts["batch"].isin(ids[::2])].reset_index(drop=True), tmp_path / "a")
+    (tmp_path / "a" / "ais.nmea").rename(tmp_path / "ais.nmea")
+    (tmp_path / "README.txt").write_text("Exported by the harbour office.\nAsk Per.\n")
+    ev = evaluate_real(tmp_path)
+    assert ev.rows.set_index("method").loc["ours", "points"] == len(pts)
+    assert [f for f, _ in ev.skipped] == ["README.txt"]
+    assert "skipped README.txt: " in ev.format()
+    assoc = evaluate_real_association(tmp_path, methods=("ours, optimal",))
+    assert set(assoc.table["file"]) == {"ais.nmea", "tracks.txt"}
+    assert [f for f, _ in assoc.skipped] == ["README.txt"]
