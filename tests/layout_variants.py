@@ -264,6 +264,26 @@ def twelve_hour(points: pd.DataFrame, folder: Path) -> Variant:
     return Variant("twelve_hour_clock", _write(folder / "ampm.csv", lines))
 
 
+def _dm(values, pos: str, neg: str) -> list[str]:
+    out = []
+    for v in values:
+        a = abs(float(v))
+        deg = int(a)
+        out.append(f"{deg}°{(a - deg) * 60:.7f}'{pos if v >= 0 else neg}")
+    return out
+
+
+def degrees_minutes(points: pd.DataFrame, folder: Path) -> Variant:
+    """Positions in degrees and decimal minutes with a hemisphere (a chart plotter's or a
+    radar console's export): 57°40.0260000'N."""
+    stamps = _utc(points).dt.strftime("%Y-%m-%dT%H:%M:%S.%fZ")
+    lat, lon = _dm(points["lat"], "N", "S"), _dm(points["lon"], "E", "W")
+    lines = ["Target,Time,Latitude,Longitude"] + [
+        f"{b},{s},{la},{lo}" for b, s, la, lo in zip(points["batch"], stamps, lat, lon, strict=True)
+    ]
+    return Variant("degrees_minutes", _write(folder / "plotter.csv", lines))
+
+
 LAYOUTS = (
     marinecadastre,
     dma,
@@ -278,6 +298,7 @@ LAYOUTS = (
     utf16_tab,
     date_and_clock,
     twelve_hour,
+    degrees_minutes,
     nmea,
 )
 

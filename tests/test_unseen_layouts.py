@@ -100,7 +100,7 @@ def test_every_layout_imports_line_for_line_to_the_same_points(atd, name):
     )
     # what is said: times kept relative, decimal commas read as decimal points, clock
     # times joined with their dates
-    said = ("relative", "decimal comma", "clock times")
+    said = ("relative", "decimal comma", "clock times", "degrees and minutes")
     assert not [w for w in rep["warnings"] if not any(k in w for k in said)]
     got = r.points
     if rep.get("time_relative"):  # seconds from the scene's start: the same clock, moved
@@ -360,3 +360,29 @@ def test_a_folder_of_tsv_txt_and_nmea_files_with_a_readme_is_scored(atd, tmp_pat
     assoc = evaluate_real_association(tmp_path, methods=("ours, optimal",))
     assert set(assoc.table["file"]) == {"ais.nmea", "tracks.txt"}
     assert [f for f, _ in assoc.skipped] == ["README.txt"]
+
+
+@pytest.mark.parametrize("kind", ["maneuver", "associate"])
+def test_evaluate_on_a_file_of_no_usable_row_fails_and_says_why(tmp_path, capsys, kind):
+    # before h111: exit 0 and a table of 0 points (associate: P_CA 1.000 over nothing)
+    p = tmp_path / "clock_only.csv"
+    p.write_text("mmsi,time,lat,lon\n1,08h01,57.1,11.2\n1,08h02,57.2,11.2\n")
+    assert main(["evaluate", kind, "--real", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "all 2 rows were quarantined" in err and "unparsable time" in err
+
+
+def test_positions_in_degrees_and_minutes_are_read(tmp_path):
+    # every row was quarantined 'unparsable lon' before h111
+    p = tmp_path / "dm.csv"
+    p.write_text(
+        "mmsi,time,lat,lon\n"
+        "1,2023-03-01T00:00:00Z,57°40.026'N,11°48.270'E\n"
+        "1,2023-03-01T00:01:00Z,S 33 52 18,W 70 30.0\n"
+        "1,2023-03-01T00:02:00Z,57°70'N,11°48.270'E\n"
+    )
+    r = read_points(p)
+    assert r.points["lat"].round(6).tolist() == [57.6671, -33.871667]
+    assert r.points["lon"].round(6).tolist() == [11.8045, -70.5]
+    assert r.quarantine["reason"].tolist() == ["unparsable lat"]  # 70 minutes
+    assert "5 positions were written in degrees and minutes" in r.report["warnings"][0]

@@ -564,11 +564,54 @@ def _with_decimal_comma(text: pd.Series, values: np.ndarray) -> int:
     return int(comma.sum())
 
 
+#: A position in degrees, minutes and seconds as exports write it: ``57°40.026'N``,
+#: ``N 57 40 01.6``, ``-11°12'30"``, ``东经122°24.6′``, ``30度15分N`` (minutes and seconds
+#: optional, a hemisphere letter before or after).
+_DMS = re.compile(
+    r"^\s*(?P<h1>[NSEWnsew]|[东西南北][经纬]?)?\s*(?P<sign>[+-])?\s*(?P<d>\d{1,3}(?:[.,]\d+)?)"
+    r"\s*(?:[°º˚度d:]|\s)\s*(?:(?P<m>\d{1,2}(?:[.,]\d+)?)\s*(?:['′’´m:分]|\s)?\s*"
+    r"(?:(?P<s>\d{1,2}(?:[.,]\d+)?)\s*(?:[\"″”s秒]|'')?)?)?\s*(?P<h2>[NSEWnsew])?\s*$"
+)
+
+
+def _with_dms(text: pd.Series, values: np.ndarray) -> int:
+    """Fill ``values`` (NaN where ``text`` is no plain number) from the texts written in
+    degrees, minutes and seconds (:data:`_DMS`), in place; returns how many."""
+    miss = np.flatnonzero(np.isnan(values))
+    if not len(miss):
+        return 0
+    sub = text.iloc[miss]
+    sub = sub[sub.notna() & (sub != "")]
+    if not len(sub):
+        return 0
+    parts = sub.str.extract(_DMS)
+    ok = parts["d"].notna() & (parts["m"].notna() | parts["h1"].notna() | parts["h2"].notna())
+    if not ok.any():
+        return 0
+    parts = parts[ok]
+
+    def num(col: str) -> pd.Series:
+        return pd.to_numeric(parts[col].str.replace(",", ".", regex=False), errors="coerce")
+
+    d, m, sec = num("d"), num("m").fillna(0.0), num("s").fillna(0.0)
+    good = (m < 60) & (sec < 60)
+    hemi = parts["h1"].fillna("").str[:1].str.upper() + parts["h2"].fillna("").str.upper()
+    south_west = hemi.str.contains("[SW西南]", regex=True) | (parts["sign"] == "-")
+    deg = (d + m / 60.0 + sec / 3600.0).where(good) * np.where(south_west, -1.0, 1.0)
+    rows = text.index.get_indexer(deg.index)
+    values[rows] = deg.to_numpy(dtype="float64")
+    return int(deg.notna().sum())
+
+
 def _numbers(
-    arr: pa.ChunkedArray, decimal_comma: bool = False, counted: dict | None = None
+    arr: pa.ChunkedArray,
+    decimal_comma: bool = False,
+    counted: dict | None = None,
+    angles: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """float64 values and a mask of unparsable (present but not a number) cells. With
-    ``decimal_comma``, ``57,6671`` is 57.6671 (counted in ``counted["decimal_comma"]``)."""
+    ``decimal_comma``, ``57,6671`` is 57.6671 (counted in ``counted["decimal_comma"]``);
+    with ``angles``, ``57°40.026'N`` is 57.6671 (counted in ``counted["dms"]``)."""
     if pa.types.is_floating(arr.type) or pa.types.is_integer(arr.type):
         return arr.to_numpy().astype("float64", copy=False) if arr.null_count == 0 else pc.cast(
             arr, pa.float64()
@@ -579,6 +622,10 @@ def _numbers(
         k = _with_decimal_comma(text, values)
         if counted is not None and k:
             counted["decimal_comma"] = counted.get("decimal_comma", 0) + k
+    if angles:
+        k = _with_dms(text, values)
+        if counted is not None and k:
+            counted["dms"] = counted.get("dms", 0) + k
     present = ~(text.isna() | (text == "")).to_numpy()
     lowered = text.str.lower()
     nan_words = lowered.isin(["nan", "na", "n/a", "null", "none"]).to_numpy()
@@ -1413,6 +1460,11 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"{time_info['decimal_comma']:,} values were written with a decimal comma "
             "(like 57,6671) and read as decimal numbers (57.6671)"
         )
+    if time_info.get("dms"):
+        out.append(
+            f"{time_info['dms']:,} positions were written in degrees and minutes (like "
+            "57°40.026'N) and read as decimal degrees (57.6671)"
+        )
     if time_info.get("naive") and zone is None and header_is_local(time_src):
         out.append(
             f"the time column {time_src!r} says it holds local times but they were read as "
@@ -1903,7 +1955,7 @@ def _to_canonical(
         if _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel):
             floats[name] = arr  # the common case: passes through untouched
             continue
-        v, unparsable = _numbers(arr, comma, counted)
+        v, unparsable = _numbers(arr, comma, counted, angles=name in ("lon", "lat"))
         with np.errstate(invalid="ignore"):
             outside = (v < lo) | (v >= hi if hi_open else v > hi) | np.isinf(v)
         if name in ("lon", "lat"):
@@ -2383,7 +2435,7 @@ def stream_points(
             time_info["date_column"] = info["date_column"]
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
-        for key in ("decimal_comma", "clock_placed"):
+        for key in ("decimal_comma", "clock_placed", "dms"):
             time_info[key] = time_info.get(key, 0) + info.get(key, 0)
         for key in totals:
             totals[key] += counts[key]
