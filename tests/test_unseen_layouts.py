@@ -386,3 +386,22 @@ def test_positions_in_degrees_and_minutes_are_read(tmp_path):
     assert r.points["lon"].round(6).tolist() == [11.8045, -70.5]
     assert r.quarantine["reason"].tolist() == ["unparsable lat"]  # 70 minutes
     assert "5 positions were written in degrees and minutes" in r.report["warnings"][0]
+
+
+def test_dates_that_read_either_way_are_said(tmp_path, capsys):
+    # a US export of 1 March (03/01/2023) is read as 3 January: no date tells; now it says
+    p = tmp_path / "d.csv"
+    head = "mmsi,time,lat,lon\n"
+
+    def warned(*dates: str) -> list[str]:
+        p.write_text(head + "".join(f"1,{d} 08:00:0{k},57.1,11.{k}\n" for k, d in enumerate(dates)))
+        return [w for w in read_points(p).report["warnings"] if "read day first" in w]
+
+    assert "2 could be mm/dd/yyyy" in warned("03/01/2023", "03/01/2023")[0]
+    assert warned("13/01/2023", "03/01/2023") == []  # a day above 12 shows the order
+    assert warned("01/01/2023", "02/02/2023") == []  # day = month: the same either way
+    assert warned("03.01.2023", "03.01.2023") == []  # dotted dates are European
+    out = tmp_path / "o.csv"
+    p.write_text(head + "1,03/01/2023 08:00:00,57.1,11.1\n")
+    assert main(["import", str(p), "-o", str(out)]) == 0  # the streamed read says it too
+    assert "read day first (dd/mm/yyyy)" in capsys.readouterr().err

@@ -1319,6 +1319,17 @@ def parse_times(
                 parsed = _parse_slashed(text, present, _MONTHFIRST_FORMATS, info)
                 info["time_format"] = "month-first text"
                 info["month_first"] = month_first
+        if kind != "dayfirst" and not info.get("month_first"):
+            # read day-first: say so when no date shows it (03/01/2023 is 3 January here,
+            # 1 March in a US export); a piece's days above 12 show it for the whole file
+            parts = text[present].str.extract(r"^\s*(\d{1,2})/(\d{1,2})/\d{4}")  # dots: European
+            first = pd.to_numeric(parts[0], errors="coerce")
+            second = pd.to_numeric(parts[1], errors="coerce")
+            if (first > 12).any():
+                info["dayfirst_shown"] = True
+            else:
+                both = (first != second) & first.notna() & second.notna()
+                info["dates_either_way"] = info.get("dates_either_way", 0) + int(both.sum())
         parsed = _localize(parsed, tz, info) if tz is not None else parsed.dt.tz_localize("UTC")
     elif tz is not None and info["naive"]:
         parsed = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns, UTC]")
@@ -1459,6 +1470,12 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
         out.append(
             f"{time_info['decimal_comma']:,} values were written with a decimal comma "
             "(like 57,6671) and read as decimal numbers (57.6671)"
+        )
+    if time_info.get("dates_either_way") and not time_info.get("dayfirst_shown"):
+        out.append(
+            f"the dates in {time_src!r} were read day first (dd/mm/yyyy), but none shows "
+            f"which comes first ({time_info['dates_either_way']:,} could be mm/dd/yyyy, "
+            "no number above 12 in either place): check the dates"
         )
     if time_info.get("dms"):
         out.append(
@@ -2435,7 +2452,8 @@ def stream_points(
             time_info["date_column"] = info["date_column"]
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
-        for key in ("decimal_comma", "clock_placed", "dms"):
+        time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")
+        for key in ("decimal_comma", "clock_placed", "dms", "dates_either_way"):
             time_info[key] = time_info.get(key, 0) + info.get(key, 0)
         for key in totals:
             totals[key] += counts[key]
