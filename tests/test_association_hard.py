@@ -363,6 +363,7 @@ def test_real_evaluation_on_a_folder_and_its_errors(tmp_path, capsys):
     ev = evaluate_real_association(tmp_path, cut_s=60.0, methods=("ours, optimal",))
     assert ev.table["pieces"].iloc[0] == df["batch"].nunique()  # no gaps: nothing cut
     assert "ours, optimal" in ev.format()
+    assert [f for f, _ in ev.skipped] == ["notes.txt"]  # read since h111, no track in it
     assert main(["evaluate", "associate", "--real", str(tmp_path), "--cut-s", "60"]) == 0
     assert "P_CA" in capsys.readouterr().out
     assert main(["evaluate", "associate", "--real", str(tmp_path / "none")]) == 2
@@ -370,7 +371,7 @@ def test_real_evaluation_on_a_folder_and_its_errors(tmp_path, capsys):
     empty = tmp_path / "empty"
     empty.mkdir()
     assert main(["evaluate", "associate", "--real", str(empty)]) == 2
-    assert "no .csv" in capsys.readouterr().err
+    assert "no track files in this folder" in capsys.readouterr().err
 
 
 @settings(max_examples=40, deadline=None)
