@@ -507,7 +507,7 @@ def evaluate_real(
         points = in_content_order(points)
     match = None
     if gnss is not None:
-        truth = _track_files(Path(gnss), gnss_mapping, read, reading)
+        truth = read_track_files(Path(gnss), gnss_mapping, read, reading)[0]
         faults = pd.DataFrame(columns=["batch", "t_s"])
         match = match_to_truth(points, truth, gate_m)
         if np.isfinite(gnss_fault_m):
