@@ -24,6 +24,7 @@ def _load(name: str):
         ("sampling_sweep", "REAL", "data/real"),
         ("atd_known_gaps", "ATD", "data/real/atd2025-noaa/example_truth.csv.gz"),
         ("overlay_days", "REAL", "data/real"),
+        ("compare_libraries", "REAL", "data/real"),
     ],
 )
 def test_bench_reads_shared_from_the_environment(monkeypatch, tmp_path, name, attr, tail):
