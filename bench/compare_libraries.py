@@ -80,7 +80,11 @@ class Timing:
     summary: object = None
     parts: dict | None = None  # best time of named parts (s)
 
+    failed: str | None = None  # the child's exception or death, when it had no answer
+
     def text(self, cap: float) -> str:
+        if self.best is None and self.failed:
+            return f"failed ({self.failed[:60]})"
         if self.best is None:
             return f"> {cap:g} s"
         return f"{self.best:.3f} s" + (" (cap hit later)" if self.capped else "")
@@ -108,7 +112,7 @@ def timed(prepare, run, summarize, repeat: int, cap: float) -> Timing:
     p = ctx.Process(target=_child, args=(child, prepare, run, summarize, repeat))
     p.start()
     child.close()
-    times, parts, summary, capped = [], {}, None, False
+    times, parts, summary, capped, failed = [], {}, None, False, None
     while True:
         if not parent.poll(cap if len(times) < repeat else 3 * cap):
             capped = True
@@ -116,7 +120,7 @@ def timed(prepare, run, summarize, repeat: int, cap: float) -> Timing:
         try:
             msg = parent.recv()
         except EOFError:
-            summary = "child died"
+            failed = summary = f"child died (exit code {p.join(5) or p.exitcode})"
             break
         if msg[0] == "t":
             times.append(msg[1])
@@ -126,12 +130,13 @@ def timed(prepare, run, summarize, repeat: int, cap: float) -> Timing:
             summary = msg[1]
             break
         else:
-            summary = msg[1]
+            failed = summary = msg[1]
             break
     if p.is_alive():
         p.kill()
     p.join()
-    return Timing(min(times) if times else None, len(times), capped, summary, parts or None)
+    best = min(times) if times else None
+    return Timing(best, len(times), capped, summary, parts or None, failed)
 
 
 class Parts(tuple):
@@ -648,6 +653,8 @@ def sim_scene(n_points: int, hard: bool = False) -> pd.DataFrame:
 
 def ratio(a: Timing, b: Timing, cap: float) -> str:
     if a.best is None:
+        return "-"
+    if b.best is None and b.failed:
         return "-"
     if b.best is None:
         return f"> {cap / a.best:,.0f}x"
