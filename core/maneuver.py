@@ -804,11 +804,8 @@ def _fast_enough(
     j = np.flatnonzero(inside & ~(sure & (yes | no)))
     if len(j):
         with np.errstate(invalid="ignore"):
-            if slow_side >= 1.0:
-                ok[j] = _window_speed_ms(x, y, t, index, p_row[j], rows[j]) >= speed_ms
-            else:
-                lo, hi = _window_speeds_ms(x, y, t, index, p_row[j], rows[j])
-                ok[j] = (lo >= low) & (hi >= speed_ms)
+            lo, hi = _window_speeds_ms(x, y, t, index, p_row[j], rows[j])
+            ok[j] = (lo >= low) & (hi >= speed_ms)
     return ok
 
 
@@ -831,19 +828,20 @@ def _window_speeds_ms(
     t: np.ndarray,
     index: TrackIndex,
     p_row: np.ndarray,
-    rows: np.ndarray,
+    rows: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The slower and the faster straight-line speed (m/s) of the two windows at each of
-    ``rows`` (as :func:`_window_speed_ms`); NaN where a window leaves the track."""
-    a, b, ok = window_ends(index, rows, p_row, len(x))
-    xo, yo, to = x[rows], y[rows], t[rows]
+    """The slower and the faster of the straight-line speeds (m/s) over the window ending
+    at each point and the one starting there (p points each); NaN where a window leaves
+    the track. Per row, or per row of ``rows`` (``p_row`` aligned with them)."""
+    row = np.arange(len(x)) if rows is None else rows
+    a, b, ok = window_ends(index, row, p_row, len(x))
+    xo, yo, to = x[row], y[row], t[row]
     with np.errstate(invalid="ignore", divide="ignore"):
         v_back = np.hypot(xo - x[a], yo - y[a]) / (to - t[a])
         v_fwd = np.hypot(x[b] - xo, y[b] - yo) / (t[b] - to)
-    nan = np.nan
     return (
-        np.where(ok, np.fmin(v_back, v_fwd), nan),
-        np.where(ok, np.fmax(v_back, v_fwd), nan),
+        np.where(ok, np.fmin(v_back, v_fwd), np.nan),
+        np.where(ok, np.fmax(v_back, v_fwd), np.nan),
     )
 
 
@@ -855,16 +853,8 @@ def _window_speed_ms(
     p_row: np.ndarray,
     rows: np.ndarray | None = None,
 ) -> np.ndarray:
-    """The slower of the straight-line speeds (m/s) over the window ending at each point
-    and the one starting there (p points each); NaN where a window leaves the track.
-    Per row, or per row of ``rows`` (``p_row`` aligned with them)."""
-    row = np.arange(len(x)) if rows is None else rows
-    a, b, ok = window_ends(index, row, p_row, len(x))
-    xo, yo, to = x[row], y[row], t[row]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        v_back = np.hypot(xo - x[a], yo - y[a]) / (to - t[a])
-        v_fwd = np.hypot(x[b] - xo, y[b] - yo) / (t[b] - to)
-    return np.where(ok, np.fmin(v_back, v_fwd), np.nan)
+    """The slower of :func:`_window_speeds_ms` (m/s)."""
+    return _window_speeds_ms(x, y, t, index, p_row, rows)[0]
 
 
 def _one_scale(
