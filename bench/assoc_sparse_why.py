@@ -30,6 +30,7 @@ import sampling_sweep as sw  # noqa: E402
 from wakeline.core.associate import LinkParams, counted_gap  # noqa: E402
 from wakeline.core.evaluate_association import (  # noqa: E402
     _truth,
+    consecutive_true_pairs,
     cut_known_gaps,
     run_method,
 )
@@ -47,11 +48,8 @@ def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list
     a = run_method(cut, "ours, optimal", params)
     seg = a.segments
     truth = seg.column("truth").astype(str).to_numpy()[seg.index.starts]
-    order = np.lexsort((seg.t0, truth))
-    same = truth[order][1:] == truth[order][:-1]
-    ti, tj = order[:-1][same], order[1:][same]
-    true = set(zip(ti.tolist(), tj.tolist(), strict=True))
-    succ, pred = set(ti.tolist()), set(tj.tolist())
+    true = consecutive_true_pairs(truth, seg.t0)
+    succ, pred = {i for i, _ in true}, {j for _, j in true}
     pi, pj = a.pairs.i, a.pairs.j
     key = {(int(x), int(y)): k for k, (x, y) in enumerate(zip(pi, pj, strict=True))}
     ch = a.chosen

@@ -69,7 +69,7 @@ def main(argv=None) -> None:
 def baseline(cut, reach_s: float = 7200.0) -> None:
     """Reach of the cut's true pairs, and plain dead reckoning on the reported motion."""
     from wakeline.core import geo
-    from wakeline.core.evaluate_association import pair_scores
+    from wakeline.core.evaluate_association import consecutive_true_pairs, pair_scores
     from wakeline.core.schema import time_seconds
     from wakeline.core.tracks import sort_points, track_index
 
@@ -82,10 +82,9 @@ def baseline(cut, reach_s: float = 7200.0) -> None:
     vx, vy = sog * np.sin(cog), sog * np.cos(cog)
     e, s = ix.ends - 1, ix.starts
     truth = df["truth"].astype(str).to_numpy()
-    order = np.lexsort((t[s], truth[s]))
-    same = truth[s][order][1:] == truth[s][order][:-1]
-    true = set(zip(order[:-1][same].tolist(), order[1:][same].tolist(), strict=True))
-    gap_true = t[s[order[1:][same]]] - t[e[order[:-1][same]]]
+    true = consecutive_true_pairs(truth[s], t[s])
+    ti, tj = np.array(sorted(true)).T
+    gap_true = t[s[tj]] - t[e[ti]]
     print(f"true pairs {len(true)}; within reach by raw gap:")
     for h in (3600, 5400, 7200, 14400):
         print(f"  <= {h:5d} s: {np.mean(gap_true <= h):.3f}")

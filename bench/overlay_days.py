@@ -51,6 +51,7 @@ from wakeline.core import geo, real_sets
 from wakeline.core.associate import LinkParams, counted_gap
 from wakeline.core.evaluate_association import (
     _reachable_scores,
+    consecutive_true_pairs,
     cut_at_gaps,
     cut_known_gaps,
     error_breakdown,
@@ -225,11 +226,8 @@ def anatomy(df_cut: pd.DataFrame, params: LinkParams, label: str, slow_kn: float
     a = run_method(df_cut, "ours, optimal", params)
     seg = a.segments
     truth = seg.column("truth").astype(str).to_numpy()[seg.index.starts]
-    order = np.lexsort((seg.t0, truth))
-    same = truth[order][1:] == truth[order][:-1]
-    ti, tj = order[:-1][same], order[1:][same]
-    true = set(zip(ti.tolist(), tj.tolist(), strict=True))
-    succ, pred = set(ti.tolist()), set(tj.tolist())
+    true = consecutive_true_pairs(truth, seg.t0)
+    succ, pred = {i for i, _ in true}, {j for _, j in true}
     pi, pj = a.pairs.i, a.pairs.j
     ch = a.chosen
     out = {(int(pi[k]), int(pj[k])): int(k) for k in ch}
