@@ -68,6 +68,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
                 fmt=args.format,
                 mapping=parse_mapping(args.map),
                 skip_rows=args.like_skip_rows,
+                origin=getattr(args, "origin", None),  # ORIGINAL is in IN's frame
             )
         except InputError as exc:  # ORIGINAL's lines above its header: --like-skip-rows
             raise InputError(_like_flag(str(exc))) from None

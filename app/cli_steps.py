@@ -308,6 +308,15 @@ def add_read_flags(
                 "help": "sensor name when the file has no sensor column (default S1)",
             },
         ),
+        "origin": (
+            "origin",
+            {
+                "metavar": "LAT,LON",
+                "help": "origin (degrees) of a file whose positions are metres on a local "
+                "plane (columns east/north or x/y, optionally plus own_east/own_north): "
+                "the radar's site or the frame's zero",
+            },
+        ),
         "skip_rows": (
             "skip-rows",
             {

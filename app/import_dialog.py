@@ -68,6 +68,16 @@ class ImportDialog(QtWidgets.QDialog):
                 "a title of up to 10 lines above a header naming known columns."
             )
         )
+        # A file whose positions are metres on a local plane (x/y, east/north): where
+        # they are measured from, as `--origin LAT,LON`.
+        self.origin_edit = QtWidgets.QLineEdit()
+        self.origin_edit.setPlaceholderText(self.tr("LAT, LON (only for x/y metres)"))
+        self.origin_edit.setToolTip(
+            self.tr(
+                "Latitude and longitude (degrees) of the point a file's x/y or east/north "
+                "metres are measured from: the radar's site or the frame's zero."
+            )
+        )
         self.sensor_edit = QtWidgets.QLineEdit()
         self.sensor_edit.setPlaceholderText(self.tr("sensor name when the file has none"))
         self.layout_label = QtWidgets.QLabel()
@@ -104,6 +114,7 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow(self.tr("Encoding"), self.encoding_box)
         form.addRow(self.tr("Time zone"), self.tz_box)
         form.addRow(self.tr("Lines above the header"), self.skip_box)
+        form.addRow(self.tr("Origin of x/y metres"), self.origin_edit)
         form.addRow(self.tr("Sensor"), self.sensor_edit)
         form.addRow(self.tr("Detected"), self.layout_label)
         self.buttons = QtWidgets.QDialogButtonBox(
@@ -133,6 +144,7 @@ class ImportDialog(QtWidgets.QDialog):
         self.format_box.currentIndexChanged.connect(self.refresh)
         self.encoding_box.currentTextChanged.connect(self.refresh)
         self.skip_box.valueChanged.connect(self.refresh)
+        self.origin_edit.editingFinished.connect(self._origin_changed)
         self.tz_box.currentTextChanged.connect(self._update_warning)
         self.refresh()
 
@@ -157,6 +169,13 @@ class ImportDialog(QtWidgets.QDialog):
         value = self.skip_box.value()
         return None if value < 0 else value
 
+    def _origin(self) -> str | None:
+        return self.origin_edit.text().strip() or None
+
+    def _origin_changed(self) -> None:
+        self._recheck()
+        self._update_warning()
+
     def refresh(self) -> None:
         """Detect the layout and mapping again (file, layout, encoding or the lines above
         the header changed); the operator's own choices are dropped."""
@@ -170,6 +189,7 @@ class ImportDialog(QtWidgets.QDialog):
                     fmt=self.format_box.currentText(),
                     encoding=self._encoding(),
                     skip_rows=self._skip_rows(),
+                    origin=self._origin(),
                 )
             except (InputError, OSError) as exc:
                 problem = str(exc)
@@ -233,6 +253,7 @@ class ImportDialog(QtWidgets.QDialog):
                 mapping=self.mapping() or None,
                 encoding=self._encoding(),
                 skip_rows=self._skip_rows(),
+                origin=self._origin(),
             )
         except (InputError, OSError) as exc:
             problem, missing = str(exc), []
@@ -304,6 +325,8 @@ class ImportDialog(QtWidgets.QDialog):
             "tz": None if zone.upper() in ("", "UTC") else zone,
             "skip_rows": self._skip_rows(),
         }
+        if self._origin():
+            out["origin"] = self._origin()
         sensor = self.sensor_edit.text().strip()
         if sensor:
             out["sensor"] = sensor

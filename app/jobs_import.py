@@ -35,12 +35,16 @@ class ImportJobsMixin:
         sensor: str | None = None,
         tz: str | None = None,
         skip_rows: int | None = None,
+        origin: str | None = None,
     ) -> int:
         """Import a file as a new layer, in the worker; returns the job number. ``tz``:
         the zone of naive local times (IANA name or ±HH:MM); ``skip_rows``: lines before
-        the header (None: detected)."""
+        the header (None: detected); ``origin``: ``"LAT,LON"`` of a file whose positions
+        are metres on a local plane."""
         options = {"fmt": fmt, "mapping": mapping or [], "encoding": encoding, "tz": tz}
         options["skip_rows"] = skip_rows
+        if origin:
+            options["origin"] = origin
         if sensor:
             options["sensor"] = sensor
         return self.load_files([Path(path)], options)

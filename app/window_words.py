@@ -27,6 +27,10 @@ _PHRASES = (
     ("give the right --encoding", "choose the right Encoding in the import dialog"),
     ("give --encoding utf-16", "choose the Encoding utf-16 in the import dialog"),
     ("map columns with --map field=column", "map the columns in the import dialog"),
+    (
+        "with --origin LAT,LON",
+        "in the import dialog's Origin of x/y metres field (File ▸ Open tracks…; LAT, LON)",
+    ),
     (" with --set", " in the Parameters panel"),
 )
 _FIELDS = {
@@ -37,6 +41,7 @@ _FIELDS = {
     "sensor": "Sensor",
     "delimiter": "Layout",
     "skip-rows": "Lines above the header",
+    "origin": "Origin of x/y metres",
 }
 _FLAG = re.compile(r"--(" + "|".join(_FIELDS) + r")\b(?:[ =](?!-)[^\s,;:)]+)?")
 

@@ -85,6 +85,8 @@ class BatchOptions:
     tz: str | None = None
     sensor: str = DEFAULT_SENSOR
     skip_rows: int | None = None
+    #: ``--origin LAT,LON``: the local plane of inputs whose positions are east/north metres
+    origin: str | None = None
 
 
 @dataclass
@@ -403,7 +405,7 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     try:
         sn = sniff(target, read["encoding"], read["delimiter"], read["skip_rows"])
         if sn.kind == "csv":
-            resolve_header(sn, read["fmt"], read["mapping"], str(path))  # names --skip-rows
+            resolve_header(sn, read["fmt"], read["mapping"], str(path), read["origin"])
     except InputError as exc:
         raise InputError(str(exc).replace(str(target), str(path))) from None
     finally:
@@ -469,7 +471,9 @@ def _import_file(
             q = None
             if not sn.has_quotes:
                 try:
-                    cols = resolve_header(sn, read["fmt"], read["mapping"], str(src))
+                    cols = resolve_header(
+                        sn, read["fmt"], read["mapping"], str(src), read["origin"]
+                    )
                     zone = parse_zone(read["tz"])
                     res = stream_points(sn, cols, sink, read["sensor"], zone, read["tz"])
                     q, warnings = res.quarantine, res.report.get("warnings", [])
@@ -534,6 +538,7 @@ def _read_options(opts: BatchOptions) -> dict:
         "sensor": opts.sensor,
         "tz": opts.tz,
         "skip_rows": opts.skip_rows,
+        "origin": opts.origin,
     }
 
 
@@ -834,6 +839,7 @@ def run_batch(
                 ("--delimiter", opts.delimiter),
                 ("--tz", opts.tz),
                 ("--skip-rows", opts.skip_rows is not None),
+                ("--origin", opts.origin),
             )
             if value
         ]

@@ -101,12 +101,14 @@ def clean_file(
     tz: str | None = None,
     block_rows: int | None = None,
     skip_rows: int | None = None,
+    origin: str | None = None,
 ) -> FileCleanResult:
     """Clean the track file ``path`` into the canonical CSV ``output`` (and the reject
     trail into ``rejected`` when given) by blocks of whole tracks; see the module
     docstring. ``progress`` may raise :class:`~wakeline.core.errors.Cancelled` to stop:
     nothing is written then and the scratch files are removed. ``skip_rows``: physical
-    lines before the header, skipped and counted (None: detected; ``read_points``). Raises
+    lines before the header, skipped and counted (None: detected; ``read_points``);
+    ``origin``: a local plane's for east/north metres (``read_points``). Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
@@ -127,13 +129,14 @@ def clean_file(
         "sensor": sensor,
         "tz": tz,
         "skip_rows": skip_rows,
+        "origin": origin,
     }
     parse_zone(tz)  # a zone it does not know is refused before anything is read
     sn = sniff(path, encoding, delimiter, skip_rows)
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
     if not piece_safe(sn) or transforms:
         return _clean_whole(path, output, rejected, params, progress, options)
-    res = resolve_header(sn, fmt, mapping, str(path))  # names --skip-rows where it may help
+    res = resolve_header(sn, fmt, mapping, str(path), origin)  # names --skip-rows if it helps
     remove_stale_scratch()
     folder = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
     reached = [0.0]  # the reading's progress so far: a second reading goes on from there

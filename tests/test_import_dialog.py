@@ -181,10 +181,17 @@ def test_the_dialogs_advice_names_its_own_fields_not_cli_flags(qtbot, write):
     dlg = ImportDialog(path=write("detections.csv", head + rows))
     qtbot.addWidget(dlg)
     warning = dlg.warning_label.text()
-    assert "missing required column" in warning and "meas_north" in warning, warning
+    # Since the local-plane reading: the metres are recognised and the origin asked for.
+    assert "'meas_east' east, 'meas_north' north" in warning, warning
     assert "--" not in warning, warning
+    assert "Origin of x/y metres field" in warning, warning
+    assert "without a column" not in warning, warning  # the file names its one track
+    # A file with neither positions nor metres still gets the mapping advice.
+    dlg = ImportDialog(path=write("plots.csv", head.replace("meas_", "m_") + rows))
+    qtbot.addWidget(dlg)
+    warning = dlg.warning_label.text()
+    assert "missing required column" in warning and "--" not in warning, warning
     assert "map the columns in the import dialog" in warning, warning
-    assert "Lines above the header field" in warning, warning
 
 
 def test_the_warning_follows_the_mapping(qtbot, write):
@@ -209,10 +216,13 @@ def test_no_layout_fits_yet_the_recognised_fields_are_mapped(qtbot, write):
     """Operator test (Autoferry detections.csv.gz in File > Open): no layout fits (local
     metres, no track id), and the dialog left every box empty, not even time -> time or
     sensor -> sensor, saying only "Choose the time column." The fields the synonym table
-    knows are mapped; the warning names the required ones still missing."""
+    knows are mapped; the warning names the required ones still missing. (Since the
+    local-plane reading, meas_east/meas_north are known metres: here renamed to names no
+    table knows.)"""
     from wakeline.core.io import inspect_file
 
-    head = "scenario,scan,time,sensor_id,sensor,own_north,own_east,k,meas_north,meas_east\n"
+    head = "scenario,scan,time,sensor_id,sensor,own_n,own_e,k,meas_north,meas_east\n"
+    head = head.replace("meas_north", "rn").replace("meas_east", "re")
     rows = "".join(
         f"2,{k},{1620114891.8 + k},2,radar,-16.6,-390.4,0,{k}.5,-3.25\n" for k in range(9)
     )
@@ -226,12 +236,12 @@ def test_no_layout_fits_yet_the_recognised_fields_are_mapped(qtbot, write):
     warning = dlg.warning_label.text()
     assert "Required fields still without a column: batch, lon, lat." in warning, warning
     assert "Choose the time column" not in warning
-    for field, col in (("batch", "scan"), ("lon", "meas_east")):
+    for field, col in (("batch", "scan"), ("lon", "re")):
         box = dlg.mapping_boxes[field]
         box.setCurrentIndex(box.findText(col))
     assert "without a column: lat." in dlg.warning_label.text(), dlg.warning_label.text()
     box = dlg.mapping_boxes["lat"]
-    box.setCurrentIndex(box.findText("meas_north"))
+    box.setCurrentIndex(box.findText("rn"))
     assert dlg.warning_label.text() == "", dlg.warning_label.text()
 
 
@@ -240,5 +250,35 @@ def test_the_real_autoferry_detections_map_time_and_sensor(qtbot):
 
     dlg = ImportDialog(path=real_file("autoferry-fusion", "detections.csv.gz"))
     qtbot.addWidget(dlg)
-    assert dlg.mapping() == {"sensor": "sensor", "time": "time"}
-    assert "batch, lon, lat" in dlg.warning_label.text()
+    assert dlg.mapping() == {
+        "sensor": "sensor",
+        "time": "time",
+        "east": "meas_east",
+        "north": "meas_north",
+        "east_offset": "own_east",
+        "north_offset": "own_north",
+    }
+    assert "Origin of x/y metres" in dlg.warning_label.text()  # Piren's origin: SOURCE.md
+    dlg.origin_edit.setText("63.4389029083,10.39908278")
+    dlg.origin_edit.editingFinished.emit()
+    assert dlg.warning_label.text() == "", dlg.warning_label.text()
+
+
+def test_x_y_metres_ask_for_the_origin_and_it_reaches_read_points(qtbot, tmp_path):
+    path = tmp_path / "radar_xy.csv"
+    path.write_text("time,track,x,y\n" + "".join(f"{1e9 + k},1,{3 * k},{k}\n" for k in range(20)))
+    dlg = ImportDialog(path=path)
+    qtbot.addWidget(dlg)
+    assert dlg.mapping()["east"] == "x" and dlg.mapping()["north"] == "y"
+    warning = dlg.warning_label.text()
+    assert "Origin of x/y metres" in warning and "--origin" not in warning
+    dlg.origin_edit.setText("63.4389, 10.3991")
+    dlg.origin_edit.editingFinished.emit()
+    assert dlg.warning_label.text() == ""
+    opts = dlg.options()
+    assert opts["origin"] == "63.4389, 10.3991"
+    result = read_points(**opts)
+    assert result.report["rows_imported"] == 20 and result.report["plane_origin"] == [
+        63.4389,
+        10.3991,
+    ]

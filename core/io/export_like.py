@@ -20,6 +20,7 @@ import pyarrow as pa
 import pyarrow.compute as pc
 
 from wakeline.core.errors import InputError
+from wakeline.core.geo import to_local
 from wakeline.core.io.layout import (
     INTERNAL_COLUMNS,
     NUMBER_FIELDS,
@@ -324,8 +325,11 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
     made = made_mask(points)
     any_made = bool(made.any())
     cells = []
+    plane = _plane_metres(points, layout, made) if layout.origin is not None else {}
     for col in layout.columns:
-        if col.field == "time":
+        if col.field in plane:
+            cells.append(plane[col.field])
+        elif col.field == "time":
             cells.append(format_times(points["time"], layout.time))
         elif col.field in NUMBER_FIELDS:
             values = (
@@ -346,6 +350,31 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
             cells.append(arr)
     cells.extend(_text(points[name]) for name in extra)
     return cells
+
+
+def _plane_metres(points: pd.DataFrame, layout: Layout, made: np.ndarray) -> dict[str, pa.Array]:
+    """The cells of a plane layout's east/north columns (and their offsets): the points'
+    lon/lat back on the plane about ``layout.origin`` less the offset each row came with
+    (its own text written back; 0 on a row Wakeline made, which has none)."""
+    lat0, lon0 = layout.origin
+    east, north = to_local(
+        points["lon"].to_numpy(dtype="float64"), points["lat"].to_numpy(dtype="float64"), lon0, lat0
+    )
+    out: dict[str, pa.Array] = {}
+    for axis, metres in (("east", east), ("north", north)):
+        col = layout.field_column(axis)
+        off_col = layout.field_column(f"{axis}_offset")
+        if off_col is not None:
+            key = _extra_key(points, off_col)
+            text = points[key].astype("str") if key else pd.Series("", index=points.index)
+            off = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
+            off = np.where(made | np.isnan(off), 0.0, off)
+            metres = metres - off
+            cells = _text(text) if key else _blank(len(points))
+            out[f"{axis}_offset"] = pc.if_else(pa.array(made | (text.to_numpy() == "")), "0", cells)
+        if col is not None:
+            out[axis] = format_numbers(metres, col.number or NumberFormat())
+    return out
 
 
 def _quote(cells: list[pa.Array], layout: Layout, text: list[bool] | None = None) -> list[pa.Array]:

@@ -12,7 +12,25 @@ from dataclasses import dataclass, field
 from wakeline.core.errors import InputError
 from wakeline.core.schema import REQUIRED_COLUMNS
 
-FIELDS = ("sensor", "batch", "time", "lon", "lat", "speed", "course", "truth")
+FIELDS = (
+    "sensor",
+    "batch",
+    "time",
+    "lon",
+    "lat",
+    "speed",
+    "course",
+    "truth",
+    "east",
+    "north",
+    "east_offset",
+    "north_offset",
+)
+#: Positions in metres on a local plane (a radar's x/y about its site, a NED frame):
+#: ``east``/``north`` (plus ``east_offset``/``north_offset``, e.g. the ownship's place
+#: in the same frame, added to them) stand for lon/lat when the file has no lon/lat
+#: columns and the frame's origin is given (``origin``; :func:`parse_origin`).
+PLANE_FIELDS = ("east", "north", "east_offset", "north_offset")
 
 
 @dataclass(frozen=True)
@@ -134,6 +152,38 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     ),
     "course": ("course", "cog", "cou", "course_deg", "course_over_ground", "航向", "对地航向"),
     "truth": ("truth", "真值"),
+    # Local-plane metres (used only when the file has no lon/lat). Not "easting" /
+    # "northing": those are usually UTM grid coordinates, not metres from an origin.
+    "east": (
+        "east",
+        "x",
+        "pos_x",
+        "posx",
+        "x_pos",
+        "meas_east",
+        "east_m",
+        "x_east",
+        "东",
+        "东向",
+        "东向距离",
+        "x坐标",
+    ),
+    "north": (
+        "north",
+        "y",
+        "pos_y",
+        "posy",
+        "y_pos",
+        "meas_north",
+        "north_m",
+        "y_north",
+        "北",
+        "北向",
+        "北向距离",
+        "y坐标",
+    ),
+    "east_offset": ("own_east", "ownship_east", "own_x", "sensor_east", "sensor_x", "本船东"),
+    "north_offset": ("own_north", "ownship_north", "own_y", "sensor_north", "sensor_y", "本船北"),
 }
 _GENERIC = SYNONYMS
 
@@ -287,10 +337,41 @@ def known_fields(names: list[str] | tuple[str, ...]) -> set[str]:
 
 @dataclass(frozen=True)
 class Resolved:
-    """A format chosen for a file, with the source column of every canonical field."""
+    """A format chosen for a file, with the source column of every canonical field;
+    ``origin`` (lat, lon degrees): the local plane's origin when the positions are
+    ``east``/``north`` metres (``None`` when they are lon/lat)."""
 
     format: Format
     columns: dict[str, str]  # canonical field -> source column name (present fields only)
+    origin: tuple[float, float] | None = None
+
+    @property
+    def on_plane(self) -> bool:
+        """The positions are metres on a local plane (east/north about ``origin``)."""
+        return self.origin is not None and "lon" not in self.columns
+
+
+def parse_origin(value) -> tuple[float, float] | None:
+    """``"63.4389,10.3991"`` (or ``"63.4389 10.3991"``, a pair of numbers) → (lat, lon)
+    degrees; ``None``/``""`` → ``None``. Raises :class:`InputError` on anything else."""
+    if value is None or (isinstance(value, str) and not value.strip()):
+        return None
+    if isinstance(value, str):
+        parts = [p for p in re.split(r"[,;\s]+", value.strip()) if p]
+    else:
+        parts = list(value)
+    try:
+        lat, lon = (float(p) for p in parts)
+    except (TypeError, ValueError):
+        raise InputError(
+            f"--origin {value!r}: expected LAT,LON in degrees (e.g. 63.4389,10.3991)"
+        ) from None
+    if not (-90.0 <= lat <= 90.0 and -180.0 <= lon <= 180.0) or lat != lat or lon != lon:
+        raise InputError(
+            f"--origin {value!r}: latitude must be within ±90° and longitude within ±180° "
+            "(latitude first)"
+        )
+    return lat, lon
 
 
 def _lookup(headers: tuple[str, ...]) -> dict[str, str]:
@@ -322,8 +403,22 @@ def _resolve(
                 columns[name] = src
                 used.add(src)
                 break
-    missing = [f for f in REQUIRED_COLUMNS if f not in columns]
-    return columns, missing
+    return _positions(columns, mapping)
+
+
+def _positions(columns: dict[str, str], mapping: dict[str, str]) -> tuple[dict, list[str]]:
+    """Lon/lat win over local-plane metres: the plane fields found by name are dropped
+    when the file has both lon and lat (they stay extra columns); without lon/lat, east
+    and north stand for them. The required fields still without a column."""
+    if "lon" in columns and "lat" in columns:
+        columns = {k: v for k, v in columns.items() if k not in PLANE_FIELDS or k in mapping}
+    elif "east" in columns and "north" in columns and "lon" not in columns and "lat" not in columns:
+        return columns, [
+            f for f in REQUIRED_COLUMNS if f not in columns and f not in ("lon", "lat")
+        ]
+    else:
+        columns = {k: v for k, v in columns.items() if k not in PLANE_FIELDS or k in mapping}
+    return columns, [f for f in REQUIRED_COLUMNS if f not in columns]
 
 
 def guess_columns(
@@ -360,8 +455,30 @@ def resolve(
     family: str = "auto",
     mapping: dict[str, str] | None = None,
     source: str = "the file",
+    origin=None,
 ) -> Resolved:
-    """Choose the format and map its columns. Raises :class:`InputError` naming what is missing."""
+    """Choose the format and map its columns. Raises :class:`InputError` naming what is
+    missing. ``origin`` (lat, lon degrees, or ``"LAT,LON"``): where a file's east/north
+    metres are measured from (:data:`PLANE_FIELDS`); required when a file has them
+    instead of lon/lat."""
+    found = _resolve_columns(headers, family, mapping, source)
+    origin = parse_origin(origin)
+    if not ("east" in found.columns and "lon" not in found.columns):
+        # lon/lat: an origin given is not used (the reader says so: origin_warnings)
+        return Resolved(found.format, found.columns, origin)
+    if origin is None:
+        east, north = found.columns["east"], found.columns["north"]
+        raise InputError(
+            f"{source}: the positions are metres on a local plane (columns {east!r} east, "
+            f"{north!r} north), not longitude and latitude: give the latitude and longitude "
+            "of the plane's origin (the radar's site, the frame's zero) with --origin LAT,LON"
+        )
+    return Resolved(found.format, found.columns, origin)
+
+
+def _resolve_columns(
+    headers: tuple[str, ...], family: str, mapping: dict[str, str] | None, source: str
+) -> Resolved:
     mapping = dict(mapping or {})
     if family not in FAMILIES:
         raise InputError(f"unknown format {family!r}; choose one of {', '.join(FAMILIES)}")
@@ -406,8 +523,8 @@ def resolve(
     names = {
         "batch": "batch (or MMSI, track_id, nNO)",
         "time": "time (or timestamp, BaseDateTime)",
-        "lon": "lon (or longitude)",
-        "lat": "lat (or latitude)",
+        "lon": "lon (or longitude; or east/x metres with --origin)",
+        "lat": "lat (or latitude; or north/y metres with --origin)",
     }
     raise InputError(
         f"{source}: missing required column {', '.join(names[m] for m in missing)}; "

@@ -26,6 +26,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.formats import PLANE_FIELDS
 from wakeline.core.io.reader import month_first_dates, resolve_header
 from wakeline.core.io.sniff import sniff
 from wakeline.core.schema import CANONICAL_COLUMNS
@@ -250,6 +251,9 @@ class Layout:
     header: bool = True
     #: Lines above the header (a title), written back before it.
     title_lines: tuple[str, ...] = ()
+    #: (lat, lon) degrees of the local plane whose east/north metres the file's positions
+    #: are (None: the file has lon/lat).
+    origin: tuple[float, float] | None = None
 
     def field_column(self, name: str) -> Column | None:
         """The column that carries canonical field ``name``, if any."""
@@ -274,9 +278,14 @@ class Layout:
             )
             for c in data["columns"]
         )
-        rest = {k: v for k, v in data.items() if k not in ("columns", "time", "title_lines")}
+        rest = {
+            k: v for k, v in data.items() if k not in ("columns", "time", "title_lines", "origin")
+        }
         titles = tuple(data.get("title_lines") or ())
-        return Layout(columns=columns, time=TimeFormat(**time), title_lines=titles, **rest)
+        origin = tuple(data["origin"]) if data.get("origin") else None
+        return Layout(
+            columns=columns, time=TimeFormat(**time), title_lines=titles, origin=origin, **rest
+        )
 
     def with_encoding(self, encoding: str | None) -> "Layout":
         """The same layout in another text encoding (None: unchanged)."""
@@ -378,23 +387,28 @@ def describe_layout(
     fmt: str = "auto",
     mapping: dict[str, str] | None = None,
     tz: str | None = None,
+    origin=None,
 ) -> Layout:
     """The layout of a track file, as its import saw it.
 
     ``report`` is the import report (:func:`read_points`): its encoding, delimiter and
     column mapping are used when given, so the layout matches what the import did.
     Otherwise the layout is detected as an import would (``fmt``, ``mapping``).
-    ``tz`` names the zone naive times were read in (default UTC).
+    ``tz`` names the zone naive times were read in (default UTC); ``origin`` (lat, lon)
+    the local plane of a file whose positions are east/north metres (default: the
+    report's ``plane_origin``).
     """
     path = Path(path)
     report = report or {}
+    plane = report.get("plane_origin")
     sn = sniff(path, report.get("encoding"), report.get("delimiter"), report.get("skip_rows_given"))
     if report.get("columns"):
         columns_of = dict(report["columns"])
         name = str(report.get("format", "generic"))
     else:
-        res = resolve_header(sn, fmt, mapping, str(path))
+        res = resolve_header(sn, fmt, mapping, str(path), origin)
         columns_of, name = res.columns, res.format.name
+        plane = res.origin if res.on_plane else None
     tz = tz or report.get("tz") or report.get("time_zone")  # the import report says time_zone
     head = _raw_head(path, sn.compression)
     bom = head.startswith(b"\xef\xbb\xbf")
@@ -440,10 +454,9 @@ def describe_layout(
     cols = []
     for raw, key in zip(raw_names, sn.columns, strict=True):
         f = field_of.get(key)
-        number = (
-            NumberFormat.detect(sample[key], _WIDEN_RANGE.get(f)) if f in NUMBER_FIELDS else None
-        )
-        if f in NUMBER_FIELDS and number is None:
+        numeric = f in NUMBER_FIELDS or f in PLANE_FIELDS
+        number = NumberFormat.detect(sample[key], _WIDEN_RANGE.get(f)) if numeric else None
+        if numeric and number is None:
             number = NumberFormat()
         cols.append(Column(raw, f, number, key))
     time_key = columns_of.get("time")
@@ -465,6 +478,7 @@ def describe_layout(
         source=str(path),
         header=sn.has_header,
         title_lines=_lines_above(sn),
+        origin=tuple(plane) if plane else None,
     )
 
 
@@ -585,10 +599,11 @@ def load_layout(
     fmt: str = "auto",
     mapping: dict[str, str] | None = None,
     skip_rows: int | None = None,
+    origin=None,
 ) -> Layout:
     """A layout from a file: a layout JSON (``Layout.to_dict``) or the original data file
-    (read as an import with ``fmt``, ``mapping`` and ``skip_rows``, the lines above its
-    header, would read it)."""
+    (read as an import with ``fmt``, ``mapping``, ``skip_rows``, the lines above its
+    header, and ``origin``, a local plane's, would read it)."""
     import json
 
     path = Path(path)
@@ -600,7 +615,7 @@ def load_layout(
         except (ValueError, KeyError, TypeError) as exc:
             raise InputError(f"{path}: not a Wakeline layout file ({exc})") from None
     report = None if skip_rows is None else {"skip_rows_given": skip_rows}
-    return describe_layout(path, report, fmt=fmt, mapping=mapping, tz=tz)
+    return describe_layout(path, report, fmt=fmt, mapping=mapping, tz=tz, origin=origin)
 
 
 __all__ = [

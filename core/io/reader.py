@@ -13,6 +13,7 @@ in the report.
 import codecs
 import contextlib
 import csv
+import dataclasses
 import datetime
 import functools
 import gzip
@@ -32,7 +33,9 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
+from wakeline.core.geo import from_local
 from wakeline.core.io.formats import (
+    PLANE_FIELDS,
     Resolved,
     guess_columns,
     header_is_local,
@@ -1386,11 +1389,14 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
-def resolve_header(sn: Sniff, fmt: str, mapping: dict[str, str] | None, source: str) -> Resolved:
+def resolve_header(
+    sn: Sniff, fmt: str, mapping: dict[str, str] | None, source: str, origin=None
+) -> Resolved:
     """:func:`resolve` for a sniffed file; when the header names few known columns, the
-    error says how to skip lines above a header further down (``--skip-rows``)."""
+    error says how to skip lines above a header further down (``--skip-rows``).
+    ``origin``: the local plane's (lat, lon) for east/north metres (:func:`resolve`)."""
     try:
-        return resolve(sn.columns, fmt, mapping, source=source)
+        return resolve(sn.columns, fmt, mapping, source=source, origin=origin)
     except InputError as exc:
         if sn.has_header and len(known_fields(sn.columns)) < 3:
             raise InputError(
@@ -1541,6 +1547,7 @@ def read_points(
     line_by_line: bool = False,
     edges: dict | None = None,
     skip_rows: int | None = None,
+    origin: str | tuple[float, float] | None = None,
 ) -> ImportResult:
     """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
     canonical point table.
@@ -1556,7 +1563,10 @@ def read_points(
     ``line_by_line`` reads it as a file whose quotes do not balance, and ``edges`` says
     what the earlier pieces saw for the edge-row rule (:func:`edge_state`).
     ``skip_rows`` (physical lines before the header) skips a title above the header
-    instead of detecting it (:func:`~wakeline.core.io.sniff.sniff`).
+    instead of detecting it (:func:`~wakeline.core.io.sniff.sniff`). ``origin``
+    (``"LAT,LON"`` degrees) is where a file's east/north metres (x/y on a local plane:
+    a radar's site, a NED frame's zero) are measured from; they are turned into lon/lat
+    by the azimuthal equidistant projection about it (:func:`~wakeline.core.geo.from_local`).
     """
     progress = progress or null_progress
     path = Path(path)
@@ -1569,14 +1579,14 @@ def read_points(
         from wakeline.core.io.nmea import read_nmea
 
         return read_nmea(sn, sensor=sensor, progress=progress)
-    res = resolve_header(sn, fmt, mapping, str(path))
+    res = resolve_header(sn, fmt, mapping, str(path), origin)
     rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
     if "batch" not in res.columns:
         n = rows.table.num_rows
         batch = pa.repeat(pa.scalar(path.name.split(".")[0] or "1"), n).dictionary_encode()
         rows.table = rows.table.append_column(FILE_BATCH, batch)
-        res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
+        res = dataclasses.replace(res, columns={**res.columns, "batch": FILE_BATCH})
         notes.append(NO_BATCH_WARNING)
     progress(0.6, "checking values")
 
@@ -1588,6 +1598,7 @@ def read_points(
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
+    warnings += origin_warnings(res)
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(path),
@@ -1609,6 +1620,7 @@ def read_points(
         "time_date_column": time_info.get("date_column"),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
+        "plane_origin": list(res.origin) if res.on_plane else None,
         **counts,
         "warnings": warnings,
     }
@@ -1794,6 +1806,43 @@ def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list
     return out
 
 
+def origin_warnings(res: Resolved) -> list[str]:
+    """A warning when an origin was given for a file whose positions are lon/lat."""
+    if res.origin is None or res.on_plane:
+        return []
+    lat, lon = res.origin
+    return [
+        f"--origin {lat:g},{lon:g} was not used: the file gives longitude and latitude "
+        f"({res.columns.get('lon')!r}, {res.columns.get('lat')!r}), not metres on a plane"
+    ]
+
+
+def _plane_positions(
+    table: pa.Table, res: Resolved, comma: bool, counted: dict, flag: Callable
+) -> tuple[pa.Array, pa.Array]:
+    """Lon and lat (degrees) of a file whose positions are metres on a local plane: east
+    and north (plus their offsets, e.g. the ownship's place in the same frame) about
+    ``res.origin``, azimuthal equidistant (exact distance and bearing from the origin).
+    A row without a number in any of them is quarantined with the column's name."""
+    cols = res.columns
+    xy = []
+    for axis in ("east", "north"):
+        v, unparsable = _numbers(table[cols[axis]], comma, counted)
+        flag(unparsable, f"unparsable {axis} ({cols[axis]!r}, metres)")
+        flag(np.isnan(v) & ~unparsable, f"missing {axis} ({cols[axis]!r}, metres)")
+        flag(np.isinf(v), f"{axis} infinite")
+        key = f"{axis}_offset"
+        if key in cols:
+            off, bad = _numbers(table[cols[key]], comma, counted)
+            flag(bad, f"unparsable {key} ({cols[key]!r}, metres)")
+            flag(np.isnan(off) & ~bad, f"missing {key} ({cols[key]!r}, metres)")
+            v = v + off
+        xy.append(v)
+    lat0, lon0 = res.origin
+    lon, lat = from_local(xy[0], xy[1], lon0, lat0)
+    return pa.array(lon), pa.array(lat)
+
+
 _RANGES = {
     "lon": (-180.0, 180.0, False),
     "lat": (-90.0, 90.0, False),
@@ -1963,6 +2012,8 @@ def _to_canonical(
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
     blanked: dict[str, int] = {}
     ais = ais_columns(res)
+    if res.on_plane:
+        floats["lon"], floats["lat"] = _plane_positions(table, res, comma, counted, flag)
     for name in _FLOAT_FIELDS:
         if name not in cols:
             continue
@@ -2023,8 +2074,10 @@ def _to_canonical(
         columns[name] = floats[name] if name in floats else pa.nulls(n, pa.float64())
     if "truth" in text:
         columns["truth"] = pc.fill_null(text["truth"].to_arrow(), "")
+    # A plane file's own metres travel on as they came (export --like writes them back).
+    plane_src = {cols[f] for f in PLANE_FIELDS if f in cols} if res.on_plane else set()
     for src in sn.columns:
-        if src not in mapped:
+        if src not in mapped or src in plane_src:
             columns[src if src not in columns else f"{src}_src"] = table[src]
     out = pa.table(
         {k: pa.chunked_array([v]) if isinstance(v, pa.Array) else v for k, v in columns.items()}
@@ -2192,9 +2245,12 @@ def inspect_file(
     encoding: str | None = None,
     delimiter: str | None = None,
     skip_rows: int | None = None,
+    origin=None,
 ) -> dict:
     """What an import of ``path`` would use, from its first 256 KiB (for the import dialog);
-    ``skip_rows``: lines before the header, as :func:`read_points` takes it (None: detected).
+    ``skip_rows``: lines before the header, ``origin``: a local plane's (lat, lon), as
+    :func:`read_points` takes them (None: detected; none). ``plane``: the positions are
+    east/north metres (an ``origin`` is needed).
 
     Returns a plain dict: ``kind`` (csv or nmea), ``columns`` (the file's header names, in
     order), ``mapping`` (canonical field → column, as detected or as ``mapping`` forces
@@ -2223,16 +2279,22 @@ def inspect_file(
         "local_time": False,
         "problem": None,
         "missing": [],
+        "plane": False,
     }
     if sn.kind == "nmea":
         return out
     try:
-        res = resolve_header(sn, fmt, mapping, str(path))
+        res = resolve_header(sn, fmt, mapping, str(path), origin)
     except InputError as exc:
         out["problem"] = str(exc)
         # No layout fits: still every field the synonyms recognise, and what is missing.
         out["mapping"], out["missing"] = guess_columns(sn.columns, mapping)
+        out["plane"] = "east" in out["mapping"] and "lon" not in out["mapping"]
+        if out["missing"] == ["batch"]:  # the import names the one track after the file
+            out["missing"] = []
+            out["mapping"]["batch"] = FILE_BATCH
     else:
+        out["plane"] = res.on_plane
         out["format"], out["format_label"] = res.format.name, res.format.label
         out["mapping"] = dict(res.columns)
         if "batch" not in res.columns:
@@ -2273,6 +2335,7 @@ def import_to_csv(
     tz: str | None = None,
     progress: Progress | None = None,
     skip_rows: int | None = None,
+    origin=None,
 ) -> ImportResult:
     """Import ``path`` and write the canonical CSV ``output`` batch by batch, never
     holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
@@ -2295,14 +2358,23 @@ def import_to_csv(
 
     def whole(target: Path) -> ImportResult:
         result = read_points(
-            path, fmt, mapping, encoding, delimiter, sensor, progress, tz, skip_rows=skip_rows
+            path,
+            fmt,
+            mapping,
+            encoding,
+            delimiter,
+            sensor,
+            progress,
+            tz,
+            skip_rows=skip_rows,
+            origin=origin,
         )
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
 
     if sn.kind != "csv":  # NMEA logs
         return whole(output)
-    res = resolve_header(sn, fmt, mapping, str(path))
+    res = resolve_header(sn, fmt, mapping, str(path), origin)
     progress = progress or null_progress
     # Each part's Arrow copy in the system's temporary folder (nothing of ours is left
     # beside the output).
@@ -2310,7 +2382,7 @@ def import_to_csv(
     try:
         with atomic_path(output) as tmp:
             parts = PointParts(scratch / "parts", tmp)
-            read = {"fmt": fmt, "mapping": mapping, "sensor": sensor, "tz": tz}
+            read = {"fmt": fmt, "mapping": mapping, "sensor": sensor, "tz": tz, "origin": origin}
             try:
                 result = stream_or_pieces(
                     sn, res, read, parts, parts.reset, scratch / "pieces", progress
@@ -2379,7 +2451,7 @@ def stream_points(
     types = _column_types(sn, res, careful=False)
     file_batch = "batch" not in res.columns
     if file_batch:
-        res = Resolved(res.format, {**res.columns, "batch": FILE_BATCH})
+        res = dataclasses.replace(res, columns={**res.columns, "batch": FILE_BATCH})
     totals: dict = {
         "rows_read": 0,
         "rows_imported": 0,
@@ -2521,6 +2593,7 @@ def stream_points(
     warnings += position_warnings(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
     )
+    warnings += origin_warnings(res)
     extra = [c for c in sn.columns if c not in set(res.columns.values())]
     report: dict = {
         "input": str(sn.path),
@@ -2542,6 +2615,7 @@ def stream_points(
         "time_format": time_info.get("time_format"),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
+        "plane_origin": list(res.origin) if res.on_plane else None,
         "rows_read": totals["rows_read"] + len(bad.lines),
         "rows_imported": totals["rows_imported"],
         "rows_quarantined": len(q),

@@ -728,6 +728,18 @@
         <translation>表头上方的行数</translation>
     </message>
     <message>
+        <source>Origin of x/y metres</source>
+        <translation>x/y 米制坐标的原点</translation>
+    </message>
+    <message>
+        <source>LAT, LON (only for x/y metres)</source>
+        <translation>纬度, 经度（仅用于 x/y 米制坐标）</translation>
+    </message>
+    <message>
+        <source>Latitude and longitude (degrees) of the point a file's x/y or east/north metres are measured from: the radar's site or the frame's zero.</source>
+        <translation>文件中 x/y 或东/北向米制坐标所依据的原点的纬度和经度（度）：雷达站址或坐标系零点。</translation>
+    </message>
+    <message>
         <source>Lines before the header (a title or notes), skipped and counted; auto finds a title of up to 10 lines above a header naming known columns.</source>
         <translation>表头之前的行（标题或说明），跳过并计数；“自动”可识别表头（含已知列名）上方最多 10 行的标题。</translation>
     </message>

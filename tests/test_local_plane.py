@@ -1,0 +1,190 @@
+"""Positions in metres on a local plane (a radar's x/y about its site, a NED frame's
+east/north, an ownship's offsets): read with ``--origin LAT,LON`` into lon/lat, every row
+a point or a quarantine row, and written back as they came by ``export --like``."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from conftest import real_file
+from wakeline.core.errors import InputError
+from wakeline.core.geo import haversine_m, to_local
+from wakeline.core.io import read_points
+from wakeline.core.io.export_like import write_layout
+from wakeline.core.io.layout import load_layout
+from wakeline.core.io.reader import import_to_csv, inspect_file
+
+ORIGIN = (63.4389029083, 10.39908278)  # Autoferry's "Piren" frame
+ORIGIN_TEXT = f"{ORIGIN[0]},{ORIGIN[1]}"
+
+
+def _track(n: int = 60, seed: int = 0) -> pd.DataFrame:
+    """Two boats in the harbour, 2 s apart, as lon/lat (the truth the metres came from)."""
+    rng = np.random.default_rng(seed)
+    t = 1_620_000_000 + 2.0 * np.arange(n)
+    rows = []
+    for boat, (lon0, lat0, vx, vy) in enumerate(
+        ((10.395, 63.437, 3.0, 1.0), (10.402, 63.441, -2.0, -2.5)), start=1
+    ):
+        dx = np.cumsum(np.full(n, vx * 2.0)) + rng.normal(0, 0.5, n)
+        dy = np.cumsum(np.full(n, vy * 2.0)) + rng.normal(0, 0.5, n)
+        lat = lat0 + dy / 111_195.0
+        lon = lon0 + dx / (111_195.0 * np.cos(np.radians(lat0)))
+        rows.append(pd.DataFrame({"track": boat, "time": t, "lon": lon, "lat": lat}))
+    return pd.concat(rows, ignore_index=True)
+
+
+def _write_xy(df: pd.DataFrame, path, names=("x", "y"), own=None, lat0_lon0=ORIGIN) -> None:
+    east, north = to_local(df["lon"], df["lat"], lat0_lon0[1], lat0_lon0[0])
+    out = pd.DataFrame({"time": df["time"], "track": df["track"]})
+    if own is not None:  # the ownship's place in the frame; the file holds what is left
+        out[own[0]], out[own[1]] = 25.0, -40.0
+        east, north = east - 25.0, north + 40.0
+    out[names[0]], out[names[1]] = np.round(east, 3), np.round(north, 3)
+    out.to_csv(path, index=False)
+
+
+def _error_m(points: pd.DataFrame, truth: pd.DataFrame) -> np.ndarray:
+    p = points.sort_values(["batch", "time"]).reset_index(drop=True)
+    t = truth.sort_values(["track", "time"]).reset_index(drop=True)
+    return haversine_m(p["lon"], p["lat"], t["lon"], t["lat"])
+
+
+def test_x_y_metres_with_an_origin_read_as_the_positions_they_were(tmp_path):
+    truth = _track()
+    path = tmp_path / "radar_xy.csv"
+    _write_xy(truth, path)
+    res = read_points(path, origin=ORIGIN_TEXT)
+    assert res.report["rows_quarantined"] == 0 and res.report["rows_imported"] == len(truth)
+    assert res.report["plane_origin"] == list(ORIGIN)
+    assert res.report["columns"]["east"] == "x" and res.report["columns"]["north"] == "y"
+    assert _error_m(res.points, truth).max() < 0.01  # written to the millimetre
+    # the file's own metres travel on as extra columns, as they came
+    raw = pd.read_csv(path, dtype=str)
+    assert sorted(res.points["x"]) == sorted(raw["x"]) and sorted(res.points["y"]) == sorted(
+        raw["y"]
+    )
+
+
+def test_without_an_origin_the_message_names_the_columns_and_the_flag(tmp_path):
+    path = tmp_path / "radar_xy.csv"
+    _write_xy(_track(), path)
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    text = str(exc.value)
+    assert "'x' east" in text and "'y' north" in text and "--origin LAT,LON" in text
+    info = inspect_file(path)  # the import dialog: the same problem, the plane noticed
+    assert info["plane"] and "--origin" in info["problem"]
+    assert inspect_file(path, origin=ORIGIN_TEXT)["problem"] is None
+
+
+@pytest.mark.parametrize("bad", ["63.4", "63.4,10.4,5", "north,east", "95,10", "63,200"])
+def test_a_bad_origin_is_refused_with_the_form_it_takes(tmp_path, bad):
+    path = tmp_path / "radar_xy.csv"
+    _write_xy(_track(), path)
+    with pytest.raises(InputError, match="--origin"):
+        read_points(path, origin=bad)
+
+
+def test_chinese_headers_and_ownship_offsets(tmp_path):
+    truth = _track(seed=1)
+    path = tmp_path / "本船.csv"
+    _write_xy(truth, path, names=("东", "北"), own=("own_east", "own_north"))
+    res = read_points(path, origin=ORIGIN_TEXT)
+    cols = res.report["columns"]
+    assert (cols["east"], cols["north"]) == ("东", "北")
+    assert (cols["east_offset"], cols["north_offset"]) == ("own_east", "own_north")
+    assert _error_m(res.points, truth).max() < 0.01
+
+
+def test_lon_lat_win_over_x_y_and_an_unused_origin_is_said(tmp_path):
+    truth = _track()
+    path = tmp_path / "both.csv"
+    df = truth.rename(columns={"track": "batch"}).assign(x=1.0, y=2.0)
+    df.to_csv(path, index=False)
+    plain = read_points(path)
+    assert "east" not in plain.report["columns"]
+    assert {"x", "y"} <= set(plain.report["extra_columns"])
+    given_origin = read_points(path, origin=ORIGIN_TEXT)
+    pd.testing.assert_frame_equal(given_origin.points, plain.points)
+    assert any("--origin" in w and "not used" in w for w in given_origin.report["warnings"])
+
+
+def test_rows_without_metres_are_quarantined_and_counted(tmp_path):
+    path = tmp_path / "gaps.csv"
+    _write_xy(_track(n=10), path)
+    lines = path.read_text().splitlines()
+    lines[3] = lines[3].rsplit(",", 2)[0] + ",,5.0"  # no east
+    lines[5] = lines[5].rsplit(",", 1)[0] + ",abc"  # north not a number
+    path.write_text("\n".join(lines) + "\n")
+    res = read_points(path, origin=ORIGIN_TEXT)
+    rep = res.report
+    assert rep["rows_read"] == 20 == rep["rows_imported"] + rep["rows_quarantined"]
+    assert rep["quarantine_reasons"] == {
+        "missing east ('x', metres)": 1,
+        "unparsable north ('y', metres)": 1,
+    }
+    assert sorted(res.quarantine["line"]) == [4, 6]
+
+
+def test_streamed_import_gives_the_same_points(tmp_path):
+    path = tmp_path / "radar_xy.csv"
+    _write_xy(_track(n=200), path, own=("own_x", "own_y"))
+    whole = read_points(path, origin=ORIGIN_TEXT)
+    out = tmp_path / "out.csv"
+    streamed = import_to_csv(path, out, origin=ORIGIN_TEXT)
+    assert streamed.report["plane_origin"] == list(ORIGIN)
+    again = read_points(out)
+    np.testing.assert_allclose(again.points["lon"], whole.points["lon"], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(again.points["lat"], whole.points["lat"], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("own", [None, ("own_east", "own_north")])
+def test_export_like_writes_the_metres_back_as_they_came(tmp_path, own):
+    path = tmp_path / "radar_xy.csv"
+    _write_xy(_track(), path, own=own)
+    res = read_points(path, origin=ORIGIN_TEXT)
+    layout = load_layout(path, origin=ORIGIN_TEXT)
+    assert layout.origin == ORIGIN
+    out = tmp_path / "back.csv"
+    write_layout(res.points, layout, out)
+    assert out.read_text() == path.read_text()
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    lat0=st.floats(-80, 80),
+    lon0=st.floats(-180, 180),
+    east=st.lists(st.floats(-50_000, 50_000), min_size=2, max_size=20),
+    north=st.floats(-50_000, 50_000),
+)
+def test_any_origin_and_metres_come_back_on_the_plane(tmp_path_factory, lat0, lon0, east, north):
+    path = tmp_path_factory.mktemp("plane") / "p.csv"
+    e = np.round(np.asarray(east), 3)
+    n = np.round(north + np.arange(len(e)) * 10.0, 3)
+    pd.DataFrame({"t": 1e9 + np.arange(len(e)), "id": 7, "x": e, "y": n}).to_csv(path, index=False)
+    pts = read_points(path, origin=f"{lat0!r},{lon0!r}").points
+    x, y = to_local(pts["lon"], pts["lat"], lon0, lat0)
+    np.testing.assert_allclose(x, e, rtol=0, atol=1e-5)
+    np.testing.assert_allclose(y, n, rtol=0, atol=1e-5)
+
+
+def test_autoferry_detections_open_in_the_frame_of_their_truth():
+    """Autoferry's lidar detections (metres from the ownship, which is itself in metres
+    from "Piren") land 4.9 m median from the GNSS truth read the same way (SOURCE.md)."""
+    det = real_file("autoferry-fusion", "detections.csv.gz")
+    truth = real_file("autoferry-fusion", "ground_truth.csv.gz")
+    d = read_points(det, origin=ORIGIN_TEXT)
+    rep = d.report
+    assert rep["rows_read"] == rep["rows_imported"] + rep["rows_quarantined"]
+    assert rep["sensors"] == {"lidar": 3078, "radar": 2952}  # the cameras give bearings
+    g = read_points(truth, origin=ORIGIN_TEXT).points
+    lidar = d.points[d.points["sensor"] == "lidar"]
+    m = lidar.merge(
+        g[["scenario", "scan", "lon", "lat"]], on=["scenario", "scan"], suffixes=("", "_t")
+    )
+    m["d"] = haversine_m(m["lon"], m["lat"], m["lon_t"], m["lat_t"])
+    nearest = m.groupby(["scenario", "scan", "k"])["d"].min()
+    assert 4.0 < float(nearest.median()) < 6.0
