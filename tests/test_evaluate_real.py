@@ -314,3 +314,30 @@ def test_the_autoferry_set_written_out_scores_the_same_with_its_gnss_file(tmp_pa
         for col in ("detections", "turns", "precision", "recall"):
             assert plain.loc[method, col] == native.loc[method, col], (method, col)
     assert plain.loc["ours", "tracks_matched"] == f"{len(names)}/{len(names)}"
+
+
+def test_the_autoferry_set_in_metres_on_its_frame_scores_the_same(tmp_path):
+    """The same two plain files with the positions as metres on Autoferry's own "Piren"
+    frame (x/y, read with --origin): the figures of the set's own reader."""
+    from conftest import real_file
+    from wakeline.core import real_sets
+    from wakeline.core.evaluate_real import evaluate_real
+    from wakeline.core.geo import to_local
+
+    lat0, lon0 = 63.4389029083, 10.39908278
+    folder = real_file("autoferry-fusion")
+    pts, truth = real_sets.read_autoferry(folder, exclusive=True)
+    for df, name in ((pts, "radar.csv"), (truth, "gnss.csv")):
+        x, y = to_local(df["lon"], df["lat"], lon0, lat0)
+        out = pd.DataFrame({"time": df["time"], "batch": df["batch"].astype(str), "x": x, "y": y})
+        out.to_csv(tmp_path / name, index=False, float_format="%.17g")
+    native = evaluate_real(folder).rows.set_index("method")
+    plane = evaluate_real(
+        tmp_path / "radar.csv",
+        gnss=tmp_path / "gnss.csv",
+        gnss_fault_m=0.5,
+        read={"origin": f"{lat0},{lon0}"},
+    ).rows.set_index("method")
+    for method in ("ours", "paper"):
+        for col in ("detections", "turns", "precision", "recall"):
+            assert plane.loc[method, col] == native.loc[method, col], (method, col)
