@@ -24,7 +24,10 @@ def _cmd_gui(args: argparse.Namespace) -> int:
         from wakeline.app.main import run
     except ImportError as exc:
         raise InputError(f"the desktop application cannot start: {exc}") from None
-    return run(args.files, screenshot=args.screenshot)
+    from wakeline.app.cli_steps import read_options
+
+    read = {k: v for k, v in read_options(args).items() if v not in (None, "auto", [], "S1")}
+    return run(args.files, screenshot=args.screenshot, read=read)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -63,6 +66,9 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="PNG",
         help="load, render the main window at 1400x900 to PNG and exit",
     )
+    from wakeline.app.cli_steps import add_read_flags
+
+    add_read_flags(p, description="how FILES are read (the File ▸ Open dialog's fields)")
     p.set_defaults(func=_cmd_gui)
     cli_render.register(sub)
     cli_batch.register(sub)

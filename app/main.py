@@ -73,8 +73,11 @@ def freeze_startup_objects() -> None:
     gc.freeze()
 
 
-def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
-    """Open the main window on ``files`` (default: the demo scene).
+def run(
+    files: list[Path] | None = None, screenshot: Path | None = None, read: dict | None = None
+) -> int:
+    """Open the main window on ``files`` (default: the demo scene), read with ``read``
+    (``read_points`` keywords: the command line's reading flags, e.g. ``origin``).
 
     With ``screenshot``: load, run the default pipeline (clean, maneuvers, compress) on
     the first file, render the window at 1400×900 to that PNG and return.
@@ -99,7 +102,7 @@ def run(files: list[Path] | None = None, screenshot: Path | None = None) -> int:
     if screenshot is None:
         install_excepthook(window)
     paths = [Path(p) for p in files or [demo_path()]]
-    window.load_files(paths)
+    window.load_files(paths, dict(read or {}) if files else None)
     loaded = [True]
     if screenshot is not None:
         wait_for_jobs(window)

@@ -923,11 +923,15 @@ def test_command_line_opens_files_in_the_application(monkeypatch, tmp_path):
 
     seen = {}
     monkeypatch.setattr(
-        "wakeline.app.main.run", lambda files, screenshot=None: seen.update(files=files) or 0
+        "wakeline.app.main.run",
+        lambda files, screenshot=None, read=None: seen.update(files=files, read=read) or 0,
     )
     assert cli.main(["a.csv", "b.csv"]) == 0
-    assert [p.name for p in seen["files"]] == ["a.csv", "b.csv"]
+    assert [p.name for p in seen["files"]] == ["a.csv", "b.csv"] and seen["read"] == {}
     assert cli.main(["--debug"]) == 0 and seen["files"] == []
+    # the reading flags reach the import (a radar's x/y metres need their origin)
+    assert cli.main(["gui", "xy.csv", "--origin", "63.4,10.4", "--tz", "+01:00"]) == 0
+    assert seen["read"] == {"origin": "63.4,10.4", "tz": "+01:00"}
 
 
 def test_pipeline_presets_are_the_cli_json(window, tmp_path):
