@@ -188,3 +188,74 @@ def test_autoferry_detections_open_in_the_frame_of_their_truth():
     m["d"] = haversine_m(m["lon"], m["lat"], m["lon_t"], m["lat_t"])
     nearest = m.groupby(["scenario", "scan", "k"])["d"].min()
     assert 4.0 < float(nearest.median()) < 6.0
+
+
+def _write_polar(df, path, names=("range", "bearing"), scale=1.0, radians=False) -> None:
+    """A radar site's export: range and true bearing of each plot from the origin."""
+    east, north = to_local(df["lon"], df["lat"], ORIGIN[1], ORIGIN[0])
+    b = np.mod(np.arctan2(east, north), 2 * np.pi)
+    out = pd.DataFrame({"time": df["time"], "track": df["track"]})
+    out[names[0]] = np.round(np.hypot(east, north) / scale, 6)
+    out[names[1]] = np.round(b if radians else np.degrees(b), 7)
+    out.to_csv(path, index=False)
+
+
+@pytest.mark.parametrize(
+    "names, scale, radians",
+    [
+        (("range", "bearing"), 1.0, False),
+        (("Range (NM)", "Azimuth"), 1852.0, False),
+        (("range_km", "bearing_rad"), 1000.0, True),
+        (("距离(海里)", "方位"), 1852.0, False),
+    ],
+)
+def test_range_and_bearing_from_the_site_in_the_units_the_header_names(
+    tmp_path, names, scale, radians
+):
+    truth = _track(seed=2)
+    path = tmp_path / "site.csv"
+    _write_polar(truth, path, names, scale, radians)
+    with pytest.raises(InputError, match="range and bearing from a site"):
+        read_points(path)
+    res = read_points(path, origin=ORIGIN_TEXT)
+    assert res.report["rows_quarantined"] == 0
+    assert (res.report["columns"]["range"], res.report["columns"]["bearing"]) == names
+    assert _error_m(res.points, truth).max() < 0.02
+    layout = load_layout(path, origin=ORIGIN_TEXT)
+    out = tmp_path / "back.csv"
+    write_layout(res.points, layout, out)
+    back = pd.read_csv(out)
+    orig = pd.read_csv(path)
+    np.testing.assert_allclose(back[names[0]], orig[names[0]], rtol=0, atol=2e-6)
+    np.testing.assert_allclose(back[names[1]], orig[names[1]], rtol=0, atol=2e-7)
+
+
+def test_x_y_in_kilometres_are_read_as_kilometres(tmp_path):
+    truth = _track(seed=3)
+    path = tmp_path / "km.csv"
+    east, north = to_local(truth["lon"], truth["lat"], ORIGIN[1], ORIGIN[0])
+    pd.DataFrame(
+        {
+            "time": truth["time"].astype("int64"),
+            "track": truth["track"],
+            "x_km": east / 1e3,
+            "y_km": north / 1e3,
+        }
+    ).to_csv(path, index=False, float_format="%.9f")
+    res = read_points(path, origin=ORIGIN_TEXT)
+    assert _error_m(res.points, truth).max() < 0.01
+    out = tmp_path / "back.csv"
+    write_layout(res.points, load_layout(path, origin=ORIGIN_TEXT), out)
+    assert out.read_text() == path.read_text()
+
+
+def test_a_negative_range_is_quarantined(tmp_path):
+    path = tmp_path / "site.csv"
+    _write_polar(_track(n=5), path)
+    lines = path.read_text().splitlines()
+    head, *rest = lines[2].split(",")
+    lines[2] = ",".join([head, rest[0], "-" + rest[1], rest[2]])
+    path.write_text("\n".join(lines) + "\n")
+    res = read_points(path, origin=ORIGIN_TEXT)
+    assert res.report["quarantine_reasons"] == {"range negative ('range')": 1}
+    assert res.report["rows_imported"] + res.report["rows_quarantined"] == 10

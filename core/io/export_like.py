@@ -21,6 +21,7 @@ import pyarrow.compute as pc
 
 from wakeline.core.errors import InputError
 from wakeline.core.geo import to_local
+from wakeline.core.io.formats import angle_unit, length_unit
 from wakeline.core.io.layout import (
     INTERNAL_COLUMNS,
     NUMBER_FIELDS,
@@ -353,27 +354,44 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
 
 
 def _plane_metres(points: pd.DataFrame, layout: Layout, made: np.ndarray) -> dict[str, pa.Array]:
-    """The cells of a plane layout's east/north columns (and their offsets): the points'
-    lon/lat back on the plane about ``layout.origin`` less the offset each row came with
-    (its own text written back; 0 on a row Wakeline made, which has none)."""
+    """The cells of a plane layout's position columns: the points' lon/lat back on the
+    plane about ``layout.origin`` (east/north, or range and bearing), less the offset
+    each row came with (its own text written back; 0 on a row Wakeline made, which has
+    none), in the units the headers name."""
     lat0, lon0 = layout.origin
-    east, north = to_local(
-        points["lon"].to_numpy(dtype="float64"), points["lat"].to_numpy(dtype="float64"), lon0, lat0
+    xy = list(
+        to_local(
+            points["lon"].to_numpy(dtype="float64"),
+            points["lat"].to_numpy(dtype="float64"),
+            lon0,
+            lat0,
+        )
     )
     out: dict[str, pa.Array] = {}
-    for axis, metres in (("east", east), ("north", north)):
-        col = layout.field_column(axis)
+    for k, axis in enumerate(("east", "north")):
         off_col = layout.field_column(f"{axis}_offset")
-        if off_col is not None:
-            key = _extra_key(points, off_col)
-            text = points[key].astype("str") if key else pd.Series("", index=points.index)
-            off = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
-            off = np.where(made | np.isnan(off), 0.0, off)
-            metres = metres - off
-            cells = _text(text) if key else _blank(len(points))
-            out[f"{axis}_offset"] = pc.if_else(pa.array(made | (text.to_numpy() == "")), "0", cells)
-        if col is not None:
-            out[axis] = format_numbers(metres, col.number or NumberFormat())
+        if off_col is None:
+            continue
+        key = _extra_key(points, off_col)
+        text = points[key].astype("str") if key else pd.Series("", index=points.index)
+        off = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
+        scale = length_unit(off_col.name)[0]
+        xy[k] = xy[k] - np.where(made | np.isnan(off), 0.0, off * scale)
+        cells = _text(text) if key else _blank(len(points))
+        out[f"{axis}_offset"] = pc.if_else(pa.array(made | (text.to_numpy() == "")), "0", cells)
+    rng = np.hypot(xy[0], xy[1])
+    values = {
+        "east": xy[0],
+        "north": xy[1],
+        "range": rng,
+        "bearing": np.mod(np.arctan2(xy[0], xy[1]), 2.0 * np.pi),
+    }
+    for name, v in values.items():
+        col = layout.field_column(name)
+        if col is None:
+            continue
+        scale = angle_unit(col.name)[0] if name == "bearing" else length_unit(col.name)[0]
+        out[name] = format_numbers(v / scale, col.number or NumberFormat())
     return out
 
 

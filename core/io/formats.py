@@ -25,12 +25,48 @@ FIELDS = (
     "north",
     "east_offset",
     "north_offset",
+    "range",
+    "bearing",
 )
 #: Positions in metres on a local plane (a radar's x/y about its site, a NED frame):
 #: ``east``/``north`` (plus ``east_offset``/``north_offset``, e.g. the ownship's place
 #: in the same frame, added to them) stand for lon/lat when the file has no lon/lat
-#: columns and the frame's origin is given (``origin``; :func:`parse_origin`).
-PLANE_FIELDS = ("east", "north", "east_offset", "north_offset")
+#: columns and the frame's origin is given (``origin``; :func:`parse_origin`); without
+#: east/north, ``range`` and ``bearing`` (true, clockwise from north) from the origin do.
+PLANE_FIELDS = ("east", "north", "east_offset", "north_offset", "range", "bearing")
+_CARTESIAN = ("east", "north", "east_offset", "north_offset")
+_POLAR = ("range", "bearing", "east_offset", "north_offset")
+
+#: Length units a plane column's header may name, tried in this order (the factor to
+#: metres); a header naming none is in metres.
+_LENGTH_UNITS = (
+    (re.compile(r"(?<![a-z])(km|kilomet(?:er|re)s?)(?![a-z])|公里|千米"), 1000.0, "km"),
+    (
+        re.compile(r"(?<![a-z])(nm|nmi|nautical[ _-]?miles?)(?![a-z])|海里|浬"),
+        1852.0,
+        "nautical miles",
+    ),
+    (re.compile(r"(?<![a-z])(m|met(?:er|re)s?)(?![a-z])|米"), 1.0, "metres"),
+)
+_RADIANS = re.compile(r"(?<![a-z])(rad|radians?)(?![a-z])|弧度")
+
+
+def length_unit(header: str) -> tuple[float, str]:
+    """(metres per unit, unit) a plane column's header names (``x_km``, ``Range (NM)``,
+    ``距离(海里)``); metres when it names none."""
+    text = header.strip().lower()
+    for pattern, factor, name in _LENGTH_UNITS:
+        if pattern.search(text):
+            return factor, name
+    return 1.0, "metres"
+
+
+def angle_unit(header: str) -> tuple[float, str]:
+    """(radians per unit, unit) of a bearing column: radians when its header says so
+    (``bearing_rad``, ``方位(弧度)``), else degrees."""
+    if _RADIANS.search(header.strip().lower()):
+        return 1.0, "radians"
+    return 3.141592653589793 / 180.0, "degrees"
 
 
 @dataclass(frozen=True)
@@ -184,6 +220,33 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     ),
     "east_offset": ("own_east", "ownship_east", "own_x", "sensor_east", "sensor_x", "本船东"),
     "north_offset": ("own_north", "ownship_north", "own_y", "sensor_north", "sensor_y", "本船北"),
+    # From the origin (a radar's site), used only without lon/lat and east/north. Unit
+    # words the names keep (nm, rad) are listed; km, m, deg are dropped by normalising.
+    "range": (
+        "range",
+        "range_nm",
+        "range_nmi",
+        "rng",
+        "slant_range",
+        "distance",
+        "distance_nm",
+        "dist",
+        "dist_nm",
+        "距离",
+        "斜距",
+    ),
+    "bearing": (
+        "bearing",
+        "true_bearing",
+        "azimuth",
+        "az",
+        "brg",
+        "bearing_rad",
+        "azimuth_rad",
+        "方位",
+        "方位角",
+        "真方位",
+    ),
 }
 _GENERIC = SYNONYMS
 
@@ -347,8 +410,21 @@ class Resolved:
 
     @property
     def on_plane(self) -> bool:
-        """The positions are metres on a local plane (east/north about ``origin``)."""
-        return self.origin is not None and "lon" not in self.columns
+        """The positions are on a local plane about ``origin`` (east/north, or range and
+        bearing)."""
+        return self.origin is not None and plane_kind(self.columns) is not None
+
+
+def plane_kind(columns: dict[str, str]) -> str | None:
+    """``"cartesian"`` (east/north), ``"polar"`` (range/bearing) or None (lon/lat, or
+    neither) for a resolved column mapping."""
+    if "lon" in columns or "lat" in columns:
+        return None
+    if "east" in columns and "north" in columns:
+        return "cartesian"
+    if "range" in columns and "bearing" in columns:
+        return "polar"
+    return None
 
 
 def parse_origin(value) -> tuple[float, float] | None:
@@ -407,18 +483,17 @@ def _resolve(
 
 
 def _positions(columns: dict[str, str], mapping: dict[str, str]) -> tuple[dict, list[str]]:
-    """Lon/lat win over local-plane metres: the plane fields found by name are dropped
-    when the file has both lon and lat (they stay extra columns); without lon/lat, east
-    and north stand for them. The required fields still without a column."""
-    if "lon" in columns and "lat" in columns:
-        columns = {k: v for k, v in columns.items() if k not in PLANE_FIELDS or k in mapping}
-    elif "east" in columns and "north" in columns and "lon" not in columns and "lat" not in columns:
-        return columns, [
-            f for f in REQUIRED_COLUMNS if f not in columns and f not in ("lon", "lat")
-        ]
-    else:
-        columns = {k: v for k, v in columns.items() if k not in PLANE_FIELDS or k in mapping}
-    return columns, [f for f in REQUIRED_COLUMNS if f not in columns]
+    """Lon/lat win over local-plane positions: the plane fields found by name are dropped
+    when the file has lon and lat (they stay extra columns); without them east and north
+    stand for them, and without those range and bearing. The required fields still
+    without a column."""
+    kind = plane_kind(columns)
+    keep = {"cartesian": _CARTESIAN, "polar": _POLAR}.get(kind, ())
+    columns = {
+        k: v for k, v in columns.items() if k not in PLANE_FIELDS or k in keep or k in mapping
+    }
+    position = ("lon", "lat") if kind is not None else ()
+    return columns, [f for f in REQUIRED_COLUMNS if f not in columns and f not in position]
 
 
 def guess_columns(
@@ -463,15 +538,21 @@ def resolve(
     instead of lon/lat."""
     found = _resolve_columns(headers, family, mapping, source)
     origin = parse_origin(origin)
-    if not ("east" in found.columns and "lon" not in found.columns):
+    kind = plane_kind(found.columns)
+    if kind is None:
         # lon/lat: an origin given is not used (the reader says so: origin_warnings)
         return Resolved(found.format, found.columns, origin)
     if origin is None:
-        east, north = found.columns["east"], found.columns["north"]
+        c = found.columns
+        what = (
+            f"metres on a local plane (columns {c['east']!r} east, {c['north']!r} north)"
+            if kind == "cartesian"
+            else f"range and bearing from a site (columns {c['range']!r}, {c['bearing']!r})"
+        )
         raise InputError(
-            f"{source}: the positions are metres on a local plane (columns {east!r} east, "
-            f"{north!r} north), not longitude and latitude: give the latitude and longitude "
-            "of the plane's origin (the radar's site, the frame's zero) with --origin LAT,LON"
+            f"{source}: the positions are {what}, not longitude and latitude: give the "
+            "latitude and longitude of the plane's origin (the radar's site, the frame's "
+            "zero) with --origin LAT,LON"
         )
     return Resolved(found.format, found.columns, origin)
 

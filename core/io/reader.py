@@ -37,11 +37,14 @@ from wakeline.core.geo import from_local
 from wakeline.core.io.formats import (
     PLANE_FIELDS,
     Resolved,
+    angle_unit,
     guess_columns,
     header_is_local,
     known_fields,
+    length_unit,
     normalize_header,
     parse_mapping,
+    plane_kind,
     resolve,
 )
 from wakeline.core.io.sniff import Sniff, sniff
@@ -1820,24 +1823,34 @@ def origin_warnings(res: Resolved) -> list[str]:
 def _plane_positions(
     table: pa.Table, res: Resolved, comma: bool, counted: dict, flag: Callable
 ) -> tuple[pa.Array, pa.Array]:
-    """Lon and lat (degrees) of a file whose positions are metres on a local plane: east
-    and north (plus their offsets, e.g. the ownship's place in the same frame) about
-    ``res.origin``, azimuthal equidistant (exact distance and bearing from the origin).
-    A row without a number in any of them is quarantined with the column's name."""
+    """Lon and lat (degrees) of a file whose positions lie on a local plane about
+    ``res.origin``: east and north, or range and bearing (true, clockwise from north)
+    from it, plus the offsets (e.g. the ownship's place in the same frame); lengths in
+    the unit their header names (km, nautical miles; else metres), a bearing in radians
+    when its header says so (else degrees). Azimuthal equidistant: distance and bearing
+    from the origin exact. A row without a number in any of them is quarantined with the
+    column's name."""
     cols = res.columns
-    xy = []
-    for axis in ("east", "north"):
-        v, unparsable = _numbers(table[cols[axis]], comma, counted)
-        flag(unparsable, f"unparsable {axis} ({cols[axis]!r}, metres)")
-        flag(np.isnan(v) & ~unparsable, f"missing {axis} ({cols[axis]!r}, metres)")
-        flag(np.isinf(v), f"{axis} infinite")
-        key = f"{axis}_offset"
-        if key in cols:
-            off, bad = _numbers(table[cols[key]], comma, counted)
-            flag(bad, f"unparsable {key} ({cols[key]!r}, metres)")
-            flag(np.isnan(off) & ~bad, f"missing {key} ({cols[key]!r}, metres)")
-            v = v + off
-        xy.append(v)
+
+    def values(key: str) -> np.ndarray:
+        v, unparsable = _numbers(table[cols[key]], comma, counted)
+        word = "degrees or radians" if key == "bearing" else "metres"
+        flag(unparsable, f"unparsable {key} ({cols[key]!r}, {word})")
+        flag(np.isnan(v) & ~unparsable, f"missing {key} ({cols[key]!r}, {word})")
+        flag(np.isinf(v), f"{key} infinite")
+        if key == "bearing":
+            return v * angle_unit(cols[key])[0]
+        return v * length_unit(cols[key])[0]
+
+    if plane_kind(cols) == "polar":
+        r, b = values("range"), values("bearing")
+        flag(r < 0, f"range negative ({cols['range']!r})")
+        xy = [r * np.sin(b), r * np.cos(b)]
+    else:
+        xy = [values("east"), values("north")]
+    for k, axis in enumerate(("east", "north")):
+        if f"{axis}_offset" in cols:
+            xy[k] = xy[k] + values(f"{axis}_offset")
     lat0, lon0 = res.origin
     lon, lat = from_local(xy[0], xy[1], lon0, lat0)
     return pa.array(lon), pa.array(lat)
@@ -2289,7 +2302,7 @@ def inspect_file(
         out["problem"] = str(exc)
         # No layout fits: still every field the synonyms recognise, and what is missing.
         out["mapping"], out["missing"] = guess_columns(sn.columns, mapping)
-        out["plane"] = "east" in out["mapping"] and "lon" not in out["mapping"]
+        out["plane"] = plane_kind(out["mapping"]) is not None
         if out["missing"] == ["batch"]:  # the import names the one track after the file
             out["missing"] = []
             out["mapping"]["batch"] = FILE_BATCH
