@@ -261,6 +261,9 @@ class ImportDialog(QtWidgets.QDialog):
             problem, missing = info["problem"], info.get("missing", [])
         self._problem = window_words(problem) if problem else None
         self._missing = [m for m in missing if m not in self.mapping()]
+        if not self.mapping() and self._info.get("guessed"):
+            # every box emptied: the import reads no guess (the values chose the boxes)
+            self._missing = ["batch", "time", "lon", "lat"]
 
     def _update_extra(self) -> None:
         columns = self._info.get("columns", []) if self._info.get("kind") != "nmea" else []
@@ -286,6 +289,23 @@ class ImportDialog(QtWidgets.QDialog):
                     "The time column {0} holds local times: choose their time zone, or they "
                     "are read as UTC."
                 ).format(time_col)
+            )
+        guessed = self._info.get("guessed")
+        if guessed and self.mapping() == guessed["mapping"]:
+            problems.append(
+                self.tr(
+                    "The file has no header: its columns were chosen by their values. Check "
+                    "them against the first rows."
+                )
+                + (
+                    ""
+                    if guessed["lon_lat_seen"]
+                    else " "
+                    + self.tr(
+                        "Which degree column is longitude ({0} or {1}) does not show in the "
+                        "values: swap them if the tracks lie in the wrong place."
+                    ).format(guessed["mapping"]["lon"], guessed["mapping"]["lat"])
+                )
             )
         if self._missing:  # no layout fits: the fields recognised are mapped, these are not
             problems.append(

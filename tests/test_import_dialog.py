@@ -201,8 +201,16 @@ def test_the_warning_follows_the_mapping(qtbot, write):
     rows = "".join(f"{k % 3} 23.{k:05d} 37.5 {1722468684 + 60 * k}\n" for k in range(30))
     dlg = ImportDialog(path=write("vessels.csv", rows))
     qtbot.addWidget(dlg)
-    assert "missing required column" in dlg.warning_label.text()
-    for field, col in (("batch", "col1"), ("lon", "col2"), ("lat", "col3"), ("time", "col4")):
+    # Since session 23 the columns are chosen by their values, and the operator is told
+    # to check them (lon/lat: both within ±90, so the order is a guess).
+    guess = {"batch": "col1", "lon": "col2", "lat": "col3", "time": "col4"}
+    assert dlg.mapping() == guess
+    warning = dlg.warning_label.text()
+    assert "no header" in warning and "col2 or col3" in warning, warning
+    for field in guess:
+        dlg.mapping_boxes[field].setCurrentIndex(0)
+    assert "without a column: batch, time, lon, lat" in dlg.warning_label.text()
+    for field, col in (("batch", "col1"), ("lon", "col3"), ("lat", "col2"), ("time", "col4")):
         box = dlg.mapping_boxes[field]
         box.setCurrentIndex(box.findText(col))
     assert dlg.warning_label.text() == "", dlg.warning_label.text()

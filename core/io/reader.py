@@ -1401,12 +1401,67 @@ def resolve_header(
     try:
         return resolve(sn.columns, fmt, mapping, source=source, origin=origin)
     except InputError as exc:
+        if not sn.has_header and sn.preview and "missing required column" in str(exc):
+            guess, sure = content_guess(sn)
+            if guess:
+                flags = " ".join(f"--map {f}={c}" for f, c in guess.items())
+                check = "" if sure else " (check which of the two degree columns is longitude)"
+                raise InputError(
+                    f"{exc}; the file has no header (its first row: "
+                    f"{', '.join(sn.preview[0])}); by their values the columns may be: "
+                    f"{flags}{check}"
+                ) from None
         if sn.has_header and len(known_fields(sn.columns)) < 3:
             raise InputError(
                 f"{exc}; if the header is further down (a title above it), skip the lines "
                 "above it with --skip-rows N"
             ) from None
         raise
+
+
+def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
+    """A headerless file's columns by the values of its first rows (``sn.preview``):
+    field → column for time (a date-time, or Unix seconds or milliseconds), lon and lat
+    (two columns of degrees with decimals; lon the one beyond ±90 somewhere, else the
+    first of the two) and batch (an integer or text column left over), and whether the
+    lon/lat order was seen in the values (not only guessed by order). Empty when the
+    values do not show it. Never used to read a file: a suggestion for --map."""
+    rows = [r for r in sn.preview if len(r) == len(sn.columns)]
+    if not rows:
+        return {}, False
+    cols = list(zip(*rows, strict=True))
+    out: dict[str, str] = {}
+    degrees, ids = [], []
+    for name, cells in zip(sn.columns, cols, strict=True):
+        cells = [c.strip().strip('"') for c in cells]
+        nums = pd.to_numeric(pd.Series(cells), errors="coerce").to_numpy(dtype="float64")
+        if np.isnan(nums).all():
+            if "time" not in out and all(
+                not pd.isna(pd.to_datetime(c, errors="coerce", utc=True)) for c in cells
+            ):
+                out["time"] = name
+            elif all(cells):
+                ids.append(name)
+            continue
+        if np.isnan(nums).any():
+            continue
+        if "time" not in out and ((nums > 1e8) & (nums < 4e12)).all():
+            out["time"] = name
+        elif all("." in c for c in cells) and (np.abs(nums) <= 180).all():
+            degrees.append((name, float(np.abs(nums).max())))
+        elif (nums == np.round(nums)).all():
+            ids.append(name)
+    sure = False
+    if len(degrees) == 2:
+        (a, amax), (b, bmax) = degrees
+        sure = (amax > 90) != (bmax > 90)
+        lon, lat = (b, a) if bmax > 90 >= amax else (a, b)
+        out["lon"], out["lat"] = lon, lat
+    if ids:
+        out["batch"] = ids[0]
+    if not {"time", "lon", "lat"} <= set(out):
+        return {}, False
+    return out, sure
 
 
 #: The reason a line above the header is skipped.
@@ -2270,6 +2325,8 @@ def inspect_file(
     it), ``extra`` (columns no field takes: carried as extra columns), ``format`` and
     ``format_label``, ``encoding``, ``delimiter``, ``header``, ``preview`` (first rows as
     lists of cells), ``local_time`` (the time column's name says local time),
+    ``guessed`` (a file without a header: the columns chosen by the values of its first
+    rows, :func:`content_guess`, and whether the lon/lat order showed in them),
     ``problem`` (why an import would fail, or None) and ``missing`` (the required fields
     still without a column when no layout fits; the fields the synonyms recognise are in
     ``mapping`` all the same). Raises :class:`InputError` only when
@@ -2296,8 +2353,11 @@ def inspect_file(
     }
     if sn.kind == "nmea":
         return out
+    guess, sure = content_guess(sn) if not sn.has_header and not mapping else ({}, False)
     try:
-        res = resolve_header(sn, fmt, mapping, str(path), origin)
+        res = resolve_header(sn, fmt, guess or mapping, str(path), origin)
+        if guess:  # no header: the columns chosen by their values, for the operator to check
+            out["guessed"] = {"mapping": dict(guess), "lon_lat_seen": sure}
     except InputError as exc:
         out["problem"] = str(exc)
         # No layout fits: still every field the synonyms recognise, and what is missing.

@@ -259,6 +259,45 @@ def _title_count(lines: list[str], delimiter: str | None) -> int:
     return 0
 
 
+#: A cell that reads as a date and time (ISO 8601, slashed or dotted dates with a clock).
+_DATETIME = re.compile(
+    r"^\d{4}[-/.]\d{1,2}[-/.]\d{1,2}([T ]\d{1,2}:\d{2}(:\d{2}([.,]\d+)?)?)?"
+    r"\s*([zZ]|[+-]\d{2}:?\d{2}|UTC|GMT)?$"
+    r"|^\d{1,2}[-/.]\d{1,2}[-/.]\d{4}([T ]\d{1,2}:\d{2}(:\d{2}([.,]\d+)?)?)?"
+    r"(\s*[AaPp]\.?[Mm]\.?)?$"
+)
+
+
+def _cell_kind(cell: str) -> str:
+    text = cell.strip().strip('"')
+    if not text:
+        return "blank"
+    if _NUMBER.match(text):
+        return "number"
+    return "time" if _DATETIME.match(text) else "text"
+
+
+def _is_header(first: list[str], rows: list[list[str]]) -> bool:
+    """Whether the first line is a header. A line of numbers is data. A line with a
+    word in it is a header, unless it names no known column and is like the lines
+    below it: a date-time or a number where each of them has one, cell for cell (a
+    file without a header whose first row starts with ``2024-07-31T23:31:24Z``: that
+    row was read as the header, and its fix was lost)."""
+    if not any(f and not _NUMBER.match(f) for f in first):
+        return False
+    from wakeline.core.io.formats import known_fields
+
+    if known_fields(first):
+        return True
+    kinds = [_cell_kind(f) for f in first]
+    if "time" not in kinds and "number" not in kinds:
+        return True  # words only: names
+    rows = [r for r in rows if len(r) == len(first)]
+    if not rows:
+        return True
+    return not all([_cell_kind(c) for c in r] == kinds for r in rows)
+
+
 def _skip_rows_past_end(skip_rows: int, physical: list[str], whole: bool) -> str:
     """The refusal of a ``--skip-rows`` that leaves no line with text to read (the header
     or first row would be past the end): names the flag and the file's line count.
@@ -350,7 +389,7 @@ def sniff(
         lines = lines[titles:]
     delim = delimiter or _pick_delimiter(lines)
     first = [f.strip().strip('"') for f in lines[0].split(delim)]
-    has_header = any(f and not _NUMBER.match(f) for f in first)
+    has_header = _is_header(first, [line.split(delim) for line in lines[1:6]])
     if has_header:
         data_lines = lines[1:6]
         rows = [line.split(delim) for line in data_lines]

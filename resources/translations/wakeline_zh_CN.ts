@@ -728,6 +728,14 @@
         <translation>表头上方的行数</translation>
     </message>
     <message>
+        <source>The file has no header: its columns were chosen by their values. Check them against the first rows.</source>
+        <translation>文件没有表头：各列是按其数值选定的。请对照前几行检查。</translation>
+    </message>
+    <message>
+        <source>Which degree column is longitude ({0} or {1}) does not show in the values: swap them if the tracks lie in the wrong place.</source>
+        <translation>数值看不出哪一列度数是经度（{0} 或 {1}）：如果航迹位置不对，请交换这两列。</translation>
+    </message>
+    <message>
         <source>Origin of x/y metres</source>
         <translation>x/y 米制坐标的原点</translation>
     </message>

@@ -1,0 +1,116 @@
+"""Files without a header: a first row that starts with a date-time is data, not a header
+(it was read as the header, and its fix lost); the message suggests --map flags chosen by
+the values of the first rows; the import dialog fills its boxes with them."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from conftest import real_file
+from wakeline.core.errors import InputError
+from wakeline.core.io import read_points
+from wakeline.core.io.sniff import sniff
+
+
+def _rows(n: int = 6, lon0: float = 23.48, lat0: float = 37.35, ids=("5", "7")) -> list[list]:
+    t = pd.Timestamp("2024-07-31T23:31:24Z")
+    return [
+        [
+            (t + pd.Timedelta(seconds=60 * k)).strftime("%Y-%m-%dT%H:%M:%SZ"),
+            ids[k % len(ids)],
+            f"{lon0 + 0.001 * k:.5f}",
+            f"{lat0 + 0.001 * k:.5f}",
+        ]
+        for k in range(n)
+    ]
+
+
+def _write(path, rows, delim=","):
+    path.write_text("".join(delim.join(r) + "\n" for r in rows))
+    return path
+
+
+def test_a_first_row_starting_with_a_date_time_is_data(tmp_path):
+    path = _write(tmp_path / "nohead.csv", _rows())
+    sn = sniff(path)
+    assert not sn.has_header and sn.columns == ("col1", "col2", "col3", "col4")
+    res = read_points(path, mapping=["time=col1", "batch=col2", "lon=col3", "lat=col4"])
+    assert res.report["rows_imported"] == 6 and res.report["rows_quarantined"] == 0
+
+
+def test_the_message_suggests_the_columns_by_their_values(tmp_path):
+    path = _write(tmp_path / "nohead.csv", _rows())
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    text = str(exc.value)
+    assert "no header" in text
+    for flag in ("--map time=col1", "--map batch=col2", "--map lon=col3", "--map lat=col4"):
+        assert flag in text
+    assert "check which of the two degree columns is longitude" in text
+    # a longitude beyond 90 shows which is which: no doubt left in the message
+    path = _write(tmp_path / "west.csv", _rows(lon0=-122.4, lat0=37.8))
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    assert "--map lon=col3 --map lat=col4" in str(exc.value)
+    assert "check which" not in str(exc.value)
+    path = _write(tmp_path / "latlon.csv", [[r[0], r[1], r[3], r[2]] for r in _rows(lon0=151.2)])
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    assert "--map lon=col4 --map lat=col3" in str(exc.value)
+
+
+@pytest.mark.parametrize(
+    "lines, header",
+    [
+        (["a,b,c,d", "1,2,3,4"], True),  # unknown names over numbers
+        (["when,boat,px,py", "2024-07-31T23:31:24Z,A,1.0,2.0"], True),  # words over data
+        (["SHIP_A,2024-07-31T23:31:24Z,23.4,37.5", "SHIP_B,2024-07-31T23:32:24Z,23.5,37.6"], False),
+        (["31/07/2024 23:31:24,5,23.4,37.5", "31/07/2024 23:32:24,5,23.5,37.6"], False),
+        (["time,id,x,y", "2024-07-31T23:31:24Z,5,1.0,2.0"], True),  # known names
+        (["1722468684,5,23.4,37.5", "1722468744,5,23.5,37.6"], False),  # numbers only
+        (["name,comment", "foo,bar"], True),  # words only
+    ],
+)
+def test_header_or_data(tmp_path, lines, header):
+    path = tmp_path / "f.csv"
+    path.write_text("\n".join(lines) + "\n")
+    assert sniff(path).has_header is header
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    n=st.integers(2, 30),
+    lon0=st.floats(-179, 179),
+    lat0=st.floats(-89, 89),
+    ids=st.lists(
+        st.from_regex(r"[A-Z]{1,4}_?[0-9]{0,6}", fullmatch=True).filter(
+            lambda s: s.upper() not in {"NA", "NAN", "INF", "NULL", "NONE", "N"}
+        ),
+        min_size=1,
+        max_size=4,
+    ),
+    delim=st.sampled_from([",", ";", "\t"]),
+)
+def test_no_headerless_row_is_lost(tmp_path_factory, n, lon0, lat0, ids, delim):
+    """Rows of ISO times, ids and degrees, without a header: every line is a row read."""
+    rows = _rows(n, lon0, lat0, tuple(i or "X" for i in ids))
+    path = _write(tmp_path_factory.mktemp("h") / "f.csv", rows, delim)
+    assert not sniff(path).has_header
+    res = read_points(path, mapping=["time=col1", "batch=col2", "lon=col3", "lat=col4"])
+    rep = res.report
+    assert rep["rows_read"] == n == rep["rows_imported"] + rep["rows_quarantined"]
+    assert rep["rows_imported"] == n
+
+
+def test_the_real_saronic_file_reads_with_the_suggestion():
+    path = real_file("greece-ais-annotated", "vessels.csv")
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    text = str(exc.value)
+    flags = [w for w in text.split() if w.startswith(("batch=", "time=", "lon=", "lat="))]
+    assert sorted(flags) == ["batch=col1", "lat=col3", "lon=col2", "time=col4"]
+    res = read_points(path, mapping=flags)
+    assert res.report["rows_imported"] == 18_834 and res.report["rows_quarantined"] == 0
+    assert np.isclose(res.points["lon"].median(), 23.6, atol=0.5)
