@@ -307,6 +307,37 @@ def test_moored_ship_with_gps_jitter_is_at_rest():
     assert len(ours.points) >= 180  # the voyage is untouched
 
 
+def test_at_rest_does_not_depend_on_how_the_plane_is_turned():
+    """The at-rest box lies in each track's principal axes: turning a track's plane (as a
+    rotation of the globe does) leaves every verdict as it was; the box aligned with north
+    and east (``north_box``, the rule until h115) changes some of the verdicts of jitter
+    clouds near the threshold. Straight motion is judged alike in any direction."""
+    from wakeline.core.clean import at_rest
+    from wakeline.core.tracks import TrackIndex
+
+    rng = np.random.default_rng(3)
+    k, m = 400, 40  # 400 tracks of 40 fixes 10 s apart, jitter of 12-22 m (σ per axis)
+    tr = np.repeat(np.arange(k), m)
+    starts = np.arange(k) * m
+    index = TrackIndex(starts, starts + m, tr, pd.DataFrame(index=range(k)))
+    t = np.tile(np.arange(m) * 10.0, k)
+    sd = rng.uniform(12, 22, k)[tr]
+    x, y = rng.normal(0, 1, (2, k * m)) * sd
+    x[: 10 * m] = np.tile(np.arange(m), 10) * 5.0  # ten tracks moving straight at 0.5 m/s
+    y[: 10 * m] = 0.0
+    base = at_rest(x, y, t, index, 50.0, 180.0)
+    north = at_rest(x, y, t, index, 50.0, 180.0, north_box=True)
+    assert 0.05 < base.mean() < 0.95  # near the threshold: both verdicts occur
+    changed = 0
+    for angle in (0.3, 1.1, 2.5, -0.7):
+        c, s = np.cos(angle), np.sin(angle)
+        xr, yr = c * x - s * y, s * x + c * y
+        assert np.array_equal(at_rest(xr, yr, t, index, 50.0, 180.0), base)
+        changed += int(np.count_nonzero(at_rest(xr, yr, t, index, 50.0, 180.0, True) != north))
+    assert changed > 0
+    assert base[: 10 * m].all() and north[: 10 * m].all()  # 0.5 m/s < 2 r / window
+
+
 def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
     """One MMSI, a ship in the Gulf of Mexico then another in Puget Sound an hour later
     (ATD 338000000, ~1,600 kn): the speed rule's break splits the track (batch, batch#2)
