@@ -14,6 +14,7 @@ import pandas as pd
 
 from wakeline.app.map_frame import PositionSketch, framed_box, position_sketch
 from wakeline.app.models import batch_summary, display_text
+from wakeline.core import geo
 from wakeline.core.geo import EARTH_RADIUS_M
 from wakeline.core.tracks import sort_points, track_index
 
@@ -64,11 +65,22 @@ class LayerView:
         return self.points.iloc[self.track_rows(keys)]
 
 
-def points_box(points: pd.DataFrame) -> tuple[float, float, float, float] | None:
-    """``(west, south, east, north)`` of the finite positions (degrees), None if none."""
+def drawn_lon(points: pd.DataFrame, west: float | None = None) -> np.ndarray:
+    """The points' longitudes in the band the map draws them in (``west``; None: the
+    points' own, :func:`wakeline.core.geo.lon_band_west`: a scene across 180° in [0, 360))."""
+    lon = points["lon"].to_numpy(dtype="float64")
+    west = geo.lon_band_west(lon) if west is None else west
+    return lon if west == -180.0 else geo.into_band(lon, west)
+
+
+def points_box(
+    points: pd.DataFrame, lon_west: float | None = None
+) -> tuple[float, float, float, float] | None:
+    """``(west, south, east, north)`` of the finite positions (degrees; longitudes as
+    the map draws them, :func:`drawn_lon`), None if none."""
     if len(points) == 0:
         return None
-    lon, lat = points["lon"].to_numpy(dtype="float64"), points["lat"].to_numpy(dtype="float64")
+    lon, lat = drawn_lon(points, lon_west), points["lat"].to_numpy(dtype="float64")
     ok = np.isfinite(lon) & np.isfinite(lat)
     if not ok.any():
         return None
@@ -77,10 +89,11 @@ def points_box(points: pd.DataFrame) -> tuple[float, float, float, float] | None
 
 
 def points_sketch(points: pd.DataFrame) -> PositionSketch | None:
-    """Where the points of a table are (:func:`~wakeline.app.map_frame.position_sketch`)."""
+    """Where the points of a table are (:func:`~wakeline.app.map_frame.position_sketch`;
+    longitudes as the map draws them, :func:`drawn_lon`)."""
     if len(points) == 0:
         return None
-    return position_sketch(points["lon"].to_numpy(), points["lat"].to_numpy())
+    return position_sketch(drawn_lon(points), points["lat"].to_numpy())
 
 
 def framed_range(sketches: list) -> tuple[float, float, float, float] | None:
@@ -157,9 +170,12 @@ def plan_view(
     return {"target": target, "shown": shown, "lat0": None if keep else aspect_lat}
 
 
-def fit_view(points: pd.DataFrame) -> tuple[float, float, float, float] | None:
-    """The view (x0, x1, y0, y1, degrees) that :meth:`MapCanvas.fit` would ask for."""
-    return padded_range([points_box(points)])
+def fit_view(
+    points: pd.DataFrame, lon_west: float | None = None
+) -> tuple[float, float, float, float] | None:
+    """The view (x0, x1, y0, y1, degrees) that :meth:`MapCanvas.fit` would ask for
+    (``lon_west``: the band the points are drawn in, None: theirs)."""
+    return padded_range([points_box(points, lon_west)])
 
 
 def prepare_view(
@@ -192,8 +208,11 @@ def prepare_view(
     summary = batch_summary(pts, marks if kind == "maneuvers" else None)
     symbol, width = DRAW_STYLE.get(kind, (0, 1.3))
     drawn = marks if kind == "maneuvers" and marks is not None else pts
+    # the band the layer's tracks are drawn in, decided by all its points (the maneuver
+    # marks alone may lie on one side of 180°)
+    west = geo.lon_band_west(pts["lon"].to_numpy(dtype="float64"))
     if size_px is not None and view is None:
-        view = fit_view(drawn)
+        view = fit_view(drawn, west)
     draw = prepare_layer(
         drawn,
         label or kind,
@@ -206,6 +225,7 @@ def prepare_view(
         size_px=size_px,
         colors=colors,
         kind=kind,
+        lon_west=west,
     )
     return LayerView(pts, summary, ranges, marks, with_paths(draw), display_text(summary))
 

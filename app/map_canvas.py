@@ -165,6 +165,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         for _ in range(SELECTION_POOL):
             self._selection_pool.append(self._new_selection_item())
         self._selected = pd.DataFrame()
+        self._selection_west = -180.0  # the band of the selection's layer
         self._selection_colors: dict[tuple[str, str], str] = {}  # (sensor, batch) -> colour
         self._context_opacity = 1.0  # of the layers' curves (< 1: muted behind a review)
         self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
@@ -501,11 +502,11 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         shows them)."""
         self.show_range(framed_range([d.geometry.sketch() for d in self.visible_draw_data()]))
 
-    def fit(self, points: pd.DataFrame | None = None) -> None:
+    def fit(self, points: pd.DataFrame | None = None, lon_west: float | None = None) -> None:
         """Show ``points`` (default: every point of every visible layer) with a margin:
-        "Fit to data", "Zoom to all"."""
+        "Fit to data", "Zoom to all"; ``lon_west``: the band ``points`` are drawn in."""
         if points is not None:
-            lon, lat = nan_separated(points)
+            lon, lat = nan_separated(points, lon_west)
             boxes = [(np.nanmin(lon), np.nanmin(lat), np.nanmax(lon), np.nanmax(lat))]
         else:
             boxes = [d.geometry.bounds() for d in self.visible_draw_data()]

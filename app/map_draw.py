@@ -3,8 +3,11 @@
 A layer is prepared in two stages:
 
 1. :func:`layer_geometry` (the slow part, once per layer): rows sorted per track,
-   longitudes unwrapped across 180°, per-point time (s) and speed (kn), the track of
-   every point, and a k-d tree for hover/pick built on demand.
+   longitudes unwrapped across 180° and each track moved by whole turns into the layer's
+   band (:func:`wakeline.core.geo.lon_band_west`: [0, 360) for a scene across the
+   antimeridian, so its tracks are drawn side by side, not 360° apart), per-point time
+   (s) and speed (kn), the track of every point, and a k-d tree for hover/pick built on
+   demand.
 2. :func:`decimate` / :func:`prepare_layer` (cheap, again on every zoom): the
    level of detail. Per track, a point is dropped when it falls in the same screen pixel
    as the previous point of its track (so the previous *kept* point too, since a run of
@@ -51,7 +54,10 @@ class LayerStyle:
 class LayerGeometry:
     """Full-resolution points of one layer, sorted per track, ready for drawing.
 
-    ``lon`` is unwrapped along each track (a track crossing 180° stays continuous);
+    ``lon`` is unwrapped along each track (a track crossing 180° stays continuous) and
+    each track's first point lies in [``lon_west``, ``lon_west`` + 360), the layer's band
+    (:func:`wakeline.core.geo.lon_band_west`; a selection or marks of the layer are drawn
+    in it too);
     ``starts``/``ends`` delimit the tracks; ``track`` is the track of every point;
     ``sensor``/``batch`` are per track; ``time_s`` and ``speed_kn`` per point;
     ``group`` is the curve (colour) of each track; ``gap_break`` per point: the leg
@@ -76,6 +82,8 @@ class LayerGeometry:
     #: is drawn one line per target, :func:`drawn_lines`): hover and click name it, not the
     #: line's target. None: each line is one batch.
     point_batch: np.ndarray | None = None
+    #: West edge of the band the layer's tracks start in: -180 ([-180, 180)) or 0.
+    lon_west: float = -180.0
     _tree: cKDTree | None = field(default=None, repr=False)
     _sketch: PositionSketch | None = field(default=None, repr=False)
 
@@ -184,8 +192,12 @@ class DrawData:
 # -- geometry --------------------------------------------------------------------------
 
 
-def unwrap_tracks(lon: np.ndarray, starts: np.ndarray, sizes: np.ndarray) -> np.ndarray:
-    """Longitudes made continuous along each track (±360° steps removed), degrees."""
+def unwrap_tracks(
+    lon: np.ndarray, starts: np.ndarray, sizes: np.ndarray, west: float = -180.0
+) -> np.ndarray:
+    """Longitudes made continuous along each track (±360° steps removed), degrees; with
+    ``west`` other than -180, each track moved by whole turns so its first point lies in
+    [``west``, ``west`` + 360)."""
     if len(lon) == 0:
         return lon.astype("float64")
     step = np.diff(lon, prepend=lon[0])
@@ -193,6 +205,9 @@ def unwrap_tracks(lon: np.ndarray, starts: np.ndarray, sizes: np.ndarray) -> np.
     jumps = np.where(step > 180.0, -360.0, np.where(step < -180.0, 360.0, 0.0))
     cum = np.cumsum(jumps)
     cum -= np.repeat(cum[starts], sizes)
+    if west != -180.0 and len(starts):
+        first = lon[starts]
+        cum += np.repeat(geo.into_band(first, west) - first, sizes)
     return lon + cum
 
 
@@ -224,6 +239,7 @@ def layer_geometry(
     relative: bool | None = None,
     label: str = "",
     colors: tuple[str, ...] | None = None,
+    lon_west: float | None = None,
 ) -> LayerGeometry:
     """Sort, unwrap and describe ``points`` (canonical table) for drawing.
 
@@ -233,6 +249,8 @@ def layer_geometry(
     :data:`BATCH_PALETTE`, neighbours in the table differing). ``colors``: the colours
     the sensors (or batches) take in turn instead (chosen apart from other layers').
     ``relative`` forces elapsed-time display; None decides from the time values.
+    ``lon_west``: the band the tracks are drawn in (-180 or 0); None decides from the
+    points (:func:`wakeline.core.geo.lon_band_west`).
     """
     if by_sensor and color_by == "layer":
         color_by = "sensor"
@@ -252,7 +270,8 @@ def layer_geometry(
         speed = df["speed"].to_numpy(dtype="float64", na_value=np.nan)
     if np.isnan(speed).any():
         speed = np.where(np.isnan(speed), leg_speed_kn(lon, lat, t, index.starts), speed)
-    lon = unwrap_tracks(lon, index.starts, index.sizes)
+    west = geo.lon_band_west(lon) if lon_west is None else float(lon_west)
+    lon = unwrap_tracks(lon, index.starts, index.sizes, west)
     sensor = index.keys["sensor"].to_numpy(dtype=object)
     batch = index.keys["batch"].to_numpy(dtype=object)
     if color_by == "sensor":
@@ -290,6 +309,7 @@ def layer_geometry(
         relative=is_relative_time(t) if relative is None else bool(relative),
         gap_break=gap_breaks(t, index.starts, index.ends, lon, lat),
         point_batch=df["piece_batch"].to_numpy(dtype=object) if "piece_batch" in df else None,
+        lon_west=west,
     )
 
 
@@ -351,6 +371,7 @@ def prepare_layer(
     build_index: bool = True,
     colors: tuple[str, ...] | None = None,
     kind: str = "",
+    lon_west: float | None = None,
 ) -> DrawData:
     """Everything the canvas needs to draw a layer, computed off the GUI thread.
 
@@ -361,12 +382,13 @@ def prepare_layer(
     points are, for the first view) now, else on first use. ``colors``:
     the colours of the sensors (or batches) in turn (see :func:`layer_geometry`).
     ``kind``: the layer's kind (``source``, ``associated``…); see :func:`drawn_lines`.
+    ``lon_west``: the band to draw in (None: the points decide, :func:`layer_geometry`).
     """
     if isinstance(points, LayerGeometry):
         geom = points
     else:
         points = drawn_lines(points, kind)
-        geom = layer_geometry(points, color, by_sensor, color_by, relative, name, colors)
+        geom = layer_geometry(points, color, by_sensor, color_by, relative, name, colors, lon_west)
     if style is not None and not style.gaps and geom.gap_break is not None:
         geom = replace(geom, gap_break=None)
     if build_index and geom.n_points:
@@ -404,12 +426,15 @@ def lod_is_stale(
     return not (0.99 <= ratio <= 1.25)
 
 
-def nan_separated(points: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+def nan_separated(
+    points: pd.DataFrame, lon_west: float | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """lon, lat of all tracks (full resolution), a NaN between consecutive tracks.
 
-    Longitudes are unwrapped along each track so a track crossing 180° stays continuous.
+    Longitudes are unwrapped along each track so a track crossing 180° stays continuous,
+    in the band ``lon_west`` (None: the points decide, :func:`layer_geometry`).
     """
-    geom = layer_geometry(points)
+    geom = layer_geometry(points, lon_west=lon_west)
     keep = np.ones(geom.n_points, dtype=bool)
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True

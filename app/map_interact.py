@@ -13,6 +13,7 @@ from PySide6 import QtCore
 from wakeline.app.map_colors import apart_from
 from wakeline.app.map_legend import short_label
 from wakeline.app.map_selection import SELECTION_PALETTE, selection_curves
+from wakeline.core import geo
 
 KM_PER_DEG = 111.195
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
@@ -22,22 +23,28 @@ class MapInteractMixin:
     """Selection, hover, picking and scale bar of the map canvas."""
 
     def show_selection(
-        self, points: pd.DataFrame, marks: pd.DataFrame | None = None, gaps: bool = True
+        self,
+        points: pd.DataFrame,
+        marks: pd.DataFrame | None = None,
+        gaps: bool = True,
+        lon_west: float = -180.0,
     ) -> None:
         """Highlight ``points`` (the selected tracks, each batch in its own colour) and
-        optional marked points; ``gaps``: break the lines at gaps, as their layer is drawn.
+        optional marked points; ``gaps``: break the lines at gaps, as their layer is drawn;
+        ``lon_west``: the band their layer is drawn in (its geometry's ``lon_west``).
 
         The curve items and their legend lines are kept and reused from one selection to
         the next (making pyqtgraph items and legend labels is the slow part of a click).
         """
         self._selected = points
+        self._selection_west = lon_west
         curves: tuple = ()
         self._selection_colors = {}
         if len(points) == 0:
             self.selection.setData([], [])
         else:
             used = {c.color for d in self.visible_draw_data() for c in d.curves}
-            halo, curves, self._selection_colors = selection_curves(points, used, gaps)
+            halo, curves, self._selection_colors = selection_curves(points, used, gaps, lon_west)
             self.selection.setData(halo.lon, halo.lat, connect="finite")
         pool = self._selection_pool
         while len(pool) < len(curves):
@@ -60,7 +67,10 @@ class MapInteractMixin:
         self._legend_wanted = wanted
         self._legend_timer.start()
         if marks is not None and len(marks):
-            self.marks.setData(marks["lon"].to_numpy(), marks["lat"].to_numpy())
+            lon = marks["lon"].to_numpy(dtype="float64")
+            if lon_west != -180.0:
+                lon = geo.into_band(lon, lon_west)
+            self.marks.setData(lon, marks["lat"].to_numpy())
         else:
             self.marks.setData([], [])
         self.selectionShown.emit()
@@ -85,6 +95,10 @@ class MapInteractMixin:
         """The points last passed to :meth:`show_selection`."""
         return self._selected
 
+    def selection_band(self) -> float:
+        """The band (west edge, -180 or 0) the selection is drawn in: its layer's."""
+        return self._selection_west
+
     def selection_items(self) -> list[pg.PlotDataItem]:
         """The per-batch coloured curves of the selection."""
         return list(self._selection_items)
@@ -105,7 +119,7 @@ class MapInteractMixin:
         """Fit the view to the selected tracks; False when nothing is selected."""
         if len(self._selected) == 0:
             return False
-        self.fit(self._selected)
+        self.fit(self._selected, self._selection_west)
         return True
 
     def _update_scale_bar(self) -> None:

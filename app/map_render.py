@@ -108,7 +108,9 @@ def render_png(
     for data in layers:
         canvas.set_draw_data(data, visible=True)
     if live is not None and len(live.selected_points()):
-        canvas.show_selection(live.selected_points(), _marks_of(live))
+        canvas.show_selection(
+            live.selected_points(), _marks_of(live), lon_west=live.selection_band()
+        )
     canvas.set_true_aspect((south + north) / 2)
     canvas.set_bare(bare)
     if bare:

@@ -24,7 +24,7 @@ class _SelectedTracks:
     full :func:`~wakeline.app.map_draw.layer_geometry` (pandas sort, times, speeds) costs
     the GUI thread tens of ms for a click."""
 
-    def __init__(self, points: pd.DataFrame) -> None:
+    def __init__(self, points: pd.DataFrame, lon_west: float = -180.0) -> None:
         s_code, s_names = pd.factorize(points["sensor"].astype(str), sort=True)
         b_code, b_names = pd.factorize(points["batch"].astype(str), sort=True)
         t = points["time"]
@@ -42,7 +42,7 @@ class _SelectedTracks:
         self.n_points, self.n_tracks = n, len(self.starts)
         self.track = np.cumsum(new) - 1
         lon = points["lon"].to_numpy(dtype="float64")[order]
-        self.lon = unwrap_tracks(lon, self.starts, sizes)
+        self.lon = unwrap_tracks(lon, self.starts, sizes, lon_west)  # in its layer's band
         self.lat = points["lat"].to_numpy(dtype="float64")[order]
         self.sensor = np.asarray(s_names, dtype=object)[s_code[self.starts]]
         self.batch = np.asarray(b_names, dtype=object)[b_code[self.starts]]
@@ -52,15 +52,20 @@ class _SelectedTracks:
 
 
 def selection_curves(
-    points: pd.DataFrame, avoid: set[str] | frozenset[str] = frozenset(), gaps: bool = True
+    points: pd.DataFrame,
+    avoid: set[str] | frozenset[str] = frozenset(),
+    gaps: bool = True,
+    lon_west: float = -180.0,
 ) -> tuple[Curve, tuple[Curve, ...], dict[tuple[str, str], str]]:
     """The halo (every selected track, full resolution), one curve per colour, and the
     colour of every selected track by ``(sensor, batch)``.
 
     A curve's label is ``sensor · batch`` of its first batch (``(+k)`` when k more share
     the colour); empty (no legend line) beyond :data:`LEGEND_BATCHES` colours.
+    ``lon_west``: the band of the layer the tracks are drawn in (its geometry's
+    ``lon_west``), so they lie on it across 180°.
     """
-    geom = _SelectedTracks(points)
+    geom = _SelectedTracks(points, lon_west)
     keep = np.ones(geom.n_points, dtype=bool)
     brk = np.zeros(geom.n_points, dtype=bool)
     brk[geom.starts] = True

@@ -37,6 +37,7 @@ from wakeline.app.review_undo import ReviewController
 from wakeline.app.review_views import GanttView, NetworkView
 from wakeline.app.time_panel import link_gantt
 from wakeline.app.worker import Failed, Finished
+from wakeline.core import geo
 from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
 from wakeline.core.schema import time_seconds
 
@@ -88,8 +89,15 @@ class Bound:
     gantt: GanttView
     network: NetworkView
     cache: dict = field(default_factory=dict)
-    arrays: tuple | None = None  # t, lon, lat of points, time-sorted within each track
+    #: t, lon, lat of points, time-sorted within each track, lon in the band of the map
+    #: (:func:`track_arrays`), and the band's west edge
+    arrays: tuple | None = None
     geometries: dict = field(default_factory=dict)  # (proposal, members) -> geometry
+
+    @property
+    def lon_west(self) -> float:
+        """The band the points are drawn in (-180 or 0, as their layer is drawn)."""
+        return -180.0 if self.arrays is None else self.arrays[3]
 
     def geometry(self, proposal: str, members: list[str]) -> ProposalGeometry:
         """The map geometry of ``proposal`` (:func:`proposal_geometry`) whose target(s)
@@ -101,7 +109,7 @@ class Bound:
             if self.arrays is None:
                 geom = proposal_geometry(st, self.track_points(members), proposal)
             else:
-                t, lon, lat = self.arrays
+                t, lon, lat, _west = self.arrays
                 empty = (0, 0)
                 sl = {m: slice(*self.ranges.get(m, empty)) for m in members}
                 tracks = {m: (t[k], lon[k], lat[k]) for m, k in sl.items()}
@@ -119,7 +127,9 @@ class Bound:
 
 def track_arrays(points: pd.DataFrame, ranges: dict[str, tuple[int, int]]) -> tuple:
     """Time (s), lon and lat of ``points`` (sorted by track, rows ``ranges``), each
-    track's in time order (stable) as :func:`proposal_geometry` orders them (worker)."""
+    track's in time order (stable) as :func:`proposal_geometry` orders them (worker), and
+    the band the map draws them in (:func:`wakeline.core.geo.lon_band_west`: a scene
+    across 180° in [0, 360)); lon is moved into it, so the pieces lie on their layer."""
     t = time_seconds(points["time"]) if len(points) else np.zeros(0)
     code = np.zeros(len(points), dtype="int64")
     for k, (start, end) in enumerate(ranges.values()):
@@ -127,7 +137,10 @@ def track_arrays(points: pd.DataFrame, ranges: dict[str, tuple[int, int]]) -> tu
     order = np.lexsort((t, code))
     lon = points["lon"].to_numpy(dtype="float64")[order]
     lat = points["lat"].to_numpy(dtype="float64")[order]
-    return np.asarray(t, dtype="float64")[order], lon, lat
+    west = geo.lon_band_west(lon)
+    if west != -180.0:
+        lon = geo.into_band(lon, west)
+    return np.asarray(t, dtype="float64")[order], lon, lat, west
 
 
 class ReviewDock(QtCore.QObject):
@@ -624,13 +637,17 @@ class ReviewDock(QtCore.QObject):
             return
         members = sorted({m for text in chosen["members"].astype(str) for m in text.split("+")})
         pts = b.track_points(members)
-        self.before.show_selection(pts)  # its legend names each member's colour
+        west = b.lon_west
+        self.before.show_selection(pts, lon_west=west)  # its legend names each member's colour
         geom = ProposalGeometry("")
         for k, m in enumerate(members):
             one = b.track_points([m])
             sensor, _, batch = m.partition(":")
             color = self.before.selection_color(sensor, batch) or PALETTE[k % len(PALETTE)]
-            geom.pieces.append(Piece(m, one["lon"].to_numpy(), one["lat"].to_numpy(), color))
+            lon = one["lon"].to_numpy(dtype="float64")
+            if west != -180.0:
+                lon = geo.into_band(lon, west)
+            geom.pieces.append(Piece(m, lon, one["lat"].to_numpy(), color))
         self._add_items(geom, "members")
         sensors = chosen["source"].astype(str).value_counts() if "source" in chosen else {}
         text = ", ".join(f"{s}: {n}" for s, n in dict(sensors).items())

@@ -69,7 +69,8 @@ class SelectionMixin:
         keys = self.selected_keys()
         chosen = view.tracks(keys)
         gaps = view.draw.style.gaps if view.draw is not None else True
-        self.canvas.show_selection(chosen, maneuver_table(chosen), gaps)
+        west = view.draw.geometry.lon_west if view.draw is not None else -180.0
+        self.canvas.show_selection(chosen, maneuver_table(chosen), gaps, west)
         # The Detail panel's plots follow on the next event-loop turn (its own paint).
         self._detail_key = (self.active, keys[0]) if keys else None
         if keys:

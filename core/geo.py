@@ -22,6 +22,33 @@ def wrap180(deg: np.ndarray | float) -> np.ndarray:
     return (np.asarray(deg, dtype="float64") + 180.0) % 360.0 - 180.0
 
 
+def lon_band_west(lon: np.ndarray) -> float:
+    """Where a map draws a set of longitudes: the west edge (−180 or 0) of the 360° band
+    they are shown in, [−180, 180) or [0, 360).
+
+    [0, 360) when the longitudes lie closer together there (their span, max − min, is
+    shorter by more than 1e-6°): a scene across the antimeridian (a ship at 179.9° and
+    one at −179.9°) is drawn about 180°, not 360° apart at both edges of the world;
+    anything else, one-sided data included, keeps [−180, 180). The band's edges are
+    fixed (0 or 180), not the scene's circular mean ± 180: two layers of one scene whose
+    means fall on either side of 180° would get bands 360° apart. A layer's subset lying
+    on one side of 180° decides [−180, 180) alone: draw it in its layer's band (pass the
+    layer's ``west`` on), as the map does with a selection and maneuver marks. NaN
+    ignored; no finite value: −180."""
+    lon = np.asarray(lon, dtype="float64")
+    lon = lon[np.isfinite(lon)]
+    if len(lon) == 0:
+        return -180.0
+    a = wrap180(lon)
+    b = a % 360.0
+    return 0.0 if float(b.max() - b.min()) < float(a.max() - a.min()) - 1e-6 else -180.0
+
+
+def into_band(lon: np.ndarray, west: float) -> np.ndarray:
+    """Longitudes moved by whole turns into the band [``west``, ``west`` + 360)."""
+    return (np.asarray(lon, dtype="float64") - west) % 360.0 + west
+
+
 def remainder360(h: np.ndarray) -> np.ndarray:
     """``np.remainder(h, 360.0)`` bit for bit, in place for a float64 array: for values in
     [-360, 720) (and NaN) the floored remainder is h, h + 360 (rounded as the remainder

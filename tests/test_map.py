@@ -770,3 +770,75 @@ def test_a_per_batch_layer_keeps_its_batch_count_beside_a_long_file_name(qapp):
     geo = layer_geometry(pts, label="autoferry_radar_zh_gbk.csv", color_by="batch")
     label = SideLegend().fit_label(geo.labels[0])
     assert label.endswith(" · 37 batches") and label.startswith("autof"), label
+
+
+def test_a_scene_across_the_antimeridian_is_drawn_in_one_piece(window, tmp_path):
+    """The committed ATD sample (42 US ships, ~15° of longitude) moved so its centre lies
+    on 180°: its tracks start on both sides of the antimeridian. The map drew them at
+    x ≈ +180 and x ≈ −180, 360° apart (only each track was unwrapped, from its first
+    point); now the layer is drawn in [0, 360) (``geo.lon_band_west``), all of it within
+    the scene's own span, and the view, hover, selection, maneuver marks, time slider,
+    coastline and the exported image follow it."""
+    from conftest import DATA, load
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.app.map_render import render_png
+    from wakeline.app.map_time import frame_job, index_job
+    from wakeline.core.io import read_points
+
+    pts = read_points(DATA / "atd2025_example_sample.csv").points
+    lon = pts["lon"].to_numpy(float)
+    span = lon.max() - lon.min()
+    moved = geo.wrap180(lon + 180.0 - geo.circular_mean_deg(lon))
+    assert (moved < -170).any() and (moved > 170).any()  # tracks on both sides
+    csv = tmp_path / "atd_on_180.csv"
+    pts.assign(lon=moved).to_csv(csv, index=False)
+    lid = load(window, csv)
+    geom = window.canvas.draw_data(lid).geometry
+    assert geom.lon_west == 0.0
+    assert geom.lon.max() - geom.lon.min() <= span + 1e-9  # was ~360
+    lo, hi = 180.0 - span, 180.0 + span
+    assert lo < geom.lon.min() and geom.lon.max() < hi
+    x0, x1, _, _ = window.canvas.current_view()  # the first view frames it about 180°
+    assert x0 < 180 < x1 and x1 - x0 < 3 * span
+    # hover finds a point where it is drawn, east of 180° (a lon near -171° in the file)
+    east = int(np.argmax(geom.lon))
+    info = window.canvas.nearest(float(geom.lon[east]), float(geom.lat[east]))
+    assert info is not None and info["lon"] > 180.0
+    # a selection on either side lies on its layer
+    keys = [tuple(k) for k in pts[["sensor", "batch"]].astype(str).drop_duplicates().to_numpy()]
+    window.select_tracks(keys)
+    wait_for_jobs(window)
+    halo, _ = window.canvas.selection.getData()
+    assert np.nanmin(halo) >= geom.lon.min() - 1e-9 and np.nanmax(halo) <= geom.lon.max() + 1e-9
+    window.canvas.zoom_to_selection()
+    x0, x1, _, _ = window.canvas.current_view()
+    assert x0 < 180 < x1 and x1 - x0 < 3 * span
+    # the time slider's positions
+    scene = index_job([geom])
+    t = float(np.median(geom.time_s))
+    frame = frame_job(scene.index, t, 3600.0, (1e-3, 1e-3))
+    assert len(frame.lon) and frame.lon.min() > lo and frame.lon.max() < hi
+    # the coastline is there east of 180° too (a copy of the west, one turn on)
+    coast = window.canvas._coast.geometry
+    assert np.nanmax(coast.lon) > 350
+    # the exported image frames the scene about 180°
+    out = render_png(window.canvas, tmp_path / "map.png", size=(400, 300))
+    w, _, e, _ = out["bounds"]
+    assert w < 180 < e and e - w < 3 * span
+    # the maneuvers layer, drawn from its marks alone, keeps the layer's band
+    window.run_step("maneuvers")
+    wait_for_jobs(window)
+    (marks,) = [lay for lay in window.layers.values() if lay.kind == "maneuvers"]
+    g = window.canvas.draw_data(marks.id).geometry
+    assert g.n_points and g.lon_west == 0.0 and lo < g.lon.min() and g.lon.max() < hi
+    assert (g.lon > 180).any() and (g.lon < 180).any()
+
+
+def test_lon_band_keeps_one_sided_and_greenwich_scenes_where_they_are():
+    """[-180, 180) unless the longitudes lie closer together in [0, 360)."""
+    assert geo.lon_band_west(np.array([-100.0, -80.0])) == -180.0  # one side: a tie
+    assert geo.lon_band_west(np.array([-1.0, 2.0])) == -180.0  # across Greenwich
+    assert geo.lon_band_west(np.array([179.9, -179.9, np.nan])) == 0.0
+    assert geo.lon_band_west(np.array([120.0, -120.0])) == 0.0  # across the Pacific
+    assert geo.lon_band_west(np.array([np.nan])) == -180.0
+    assert np.allclose(geo.into_band(np.array([-179.9, 179.9, 0.5]), 0.0), [180.1, 179.9, 0.5])
