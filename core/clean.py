@@ -734,24 +734,52 @@ def track_axes(x: np.ndarray, y: np.ndarray, index: TrackIndex) -> tuple[np.ndar
     n = len(x)
     if n == 0:
         return x, y
-    tr = index.track_of_row
+    tr, k = index.track_of_row, index.n_tracks
+    # rows sorted by track, the tracks one after the other: a per-track value spread to
+    # its rows by np.repeat (a gather by track number costs twice as much)
+    runs = bool(index.sizes.sum() == n) and bool(np.all(index.starts[1:] == index.ends[:-1]))
+
+    has = index.sizes > 0
+    first = index.starts[has]
+
+    def per_row(v: np.ndarray) -> np.ndarray:
+        return np.repeat(v, index.sizes) if runs else v[tr]
+
+    def per_track(v: np.ndarray) -> np.ndarray:  # sums
+        if not runs:
+            return np.bincount(tr, v, k)
+        out = np.zeros(k)
+        out[has] = np.add.reduceat(v, first)
+        return out
+
     ok = np.isfinite(x) & np.isfinite(y)
-    w = ok.astype("float64")
-    xf, yf = np.where(ok, x, 0.0), np.where(ok, y, 0.0)
-    cnt = np.bincount(tr, w, index.n_tracks)
+    if ok.all():
+        xf, yf = x, y
+        cnt = (index.sizes if runs else np.bincount(tr, minlength=k)).astype("float64")
+    else:
+        xf, yf = np.where(ok, x, 0.0), np.where(ok, y, 0.0)
+        cnt = per_track(ok.astype("float64"))
     with np.errstate(invalid="ignore", divide="ignore"):
-        mx = np.bincount(tr, xf, index.n_tracks) / cnt
-        my = np.bincount(tr, yf, index.n_tracks) / cnt
+        mx = per_track(xf) / cnt
+        my = per_track(yf) / cnt
     mx[~np.isfinite(mx)] = 0.0
     my[~np.isfinite(my)] = 0.0
-    dx, dy = xf - mx[tr] * w, yf - my[tr] * w  # 0 where not finite
-    sxx = np.bincount(tr, dx * dx, index.n_tracks)
-    syy = np.bincount(tr, dy * dy, index.n_tracks)
-    sxy = np.bincount(tr, dx * dy, index.n_tracks)
+    dx, dy = xf - per_row(mx), yf - per_row(my)
+    if not ok.all():
+        dx[~ok] = 0.0
+        dy[~ok] = 0.0
+    sxy = per_track(dx * dy)
+    dx *= dx
+    dy *= dy
+    sxx, syy = per_track(dx), per_track(dy)
     phi = 0.5 * np.arctan2(2.0 * sxy, sxx - syy)  # atan2(0, 0) = 0: the x/y directions
     phi[~np.isfinite(phi)] = 0.0
-    c, s = np.cos(phi)[tr], np.sin(phi)[tr]
-    return x * c + y * s, y * c - x * s
+    c, s = per_row(np.cos(phi)), per_row(np.sin(phi))
+    u = x * c
+    u += y * s
+    v = y * c
+    v -= x * s
+    return u, v
 
 
 def at_rest(
