@@ -122,6 +122,7 @@ def geometry_rows(g: LayerGeometry, keep: np.ndarray) -> LayerGeometry:
         colors=g.colors,
         relative=g.relative,
         point_batch=None if g.point_batch is None else g.point_batch[rows],
+        lon_west=g.lon_west,
     )
 
 

@@ -782,7 +782,7 @@ def test_a_scene_across_the_antimeridian_is_drawn_in_one_piece(window, tmp_path)
     from conftest import DATA, load
     from wakeline.app.main import wait_for_jobs
     from wakeline.app.map_render import render_png
-    from wakeline.app.map_time import frame_job, index_job
+    from wakeline.app.map_time import frame_job, index_job, window_geometry
     from wakeline.core.io import read_points
 
     pts = read_points(DATA / "atd2025_example_sample.csv").points
@@ -818,6 +818,7 @@ def test_a_scene_across_the_antimeridian_is_drawn_in_one_piece(window, tmp_path)
     t = float(np.median(geom.time_s))
     frame = frame_job(scene.index, t, 3600.0, (1e-3, 1e-3))
     assert len(frame.lon) and frame.lon.min() > lo and frame.lon.max() < hi
+    assert window_geometry(geom, t, t + 3600.0).lon_west == 0.0  # a time window keeps it
     # the coastline is there east of 180° too (a copy of the west, one turn on)
     coast = window.canvas._coast.geometry
     assert np.nanmax(coast.lon) > 350
