@@ -203,6 +203,12 @@ class ManeuverParams(Params):
         lo=0.0,
         hi=1000.0,
     )
+    rest_north_box: bool = param(
+        False,
+        "",
+        "at rest: the box aligned with north and east (before 2026-12; cleaning's "
+        "stationary.north_box) instead of each track's principal axes",
+    )
     max_step_windows: float = param(
         4.0,
         "at-rest windows",
@@ -920,6 +926,7 @@ def _rest_mask(
     window_s: float,
     steps: float = 0.0,
     med: np.ndarray | None = None,
+    north_box: bool = False,
 ) -> np.ndarray:
     """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`, on sparse tracks over
     ``steps`` sampling intervals: :func:`wakeline.core.clean.rest_frame`, ``med`` each
@@ -936,10 +943,10 @@ def _rest_mask(
     if not possible.any():
         return rest
     if possible.all():
-        return at_rest(x, y, t, index, radius_m, window_s)
+        return at_rest(x, y, t, index, radius_m, window_s, north_box)
     rows = np.flatnonzero(possible[index.track_of_row])
     sub = TrackIndex(*_sub_index(index, possible))
-    rest[rows] = at_rest(x[rows], y[rows], t[rows], sub, radius_m, window_s)
+    rest[rows] = at_rest(x[rows], y[rows], t[rows], sub, radius_m, window_s, north_box)
     return rest
 
 
@@ -1927,7 +1934,15 @@ def _detect_sorted(
     rest = np.zeros(n, dtype=bool)
     if params.rest_radius_m > 0 and n:
         rest = _rest_mask(
-            x, y, t, index, params.rest_radius_m, params.rest_window_s, params.rest_steps, med
+            x,
+            y,
+            t,
+            index,
+            params.rest_radius_m,
+            params.rest_window_s,
+            params.rest_steps,
+            med,
+            params.rest_north_box,
         )
     rest_lo, rest_hi = _runs(rest)
     any_rest = bool(len(rest_lo))

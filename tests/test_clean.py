@@ -336,6 +336,11 @@ def test_at_rest_does_not_depend_on_how_the_plane_is_turned():
         changed += int(np.count_nonzero(at_rest(xr, yr, t, index, 50.0, 180.0, True) != north))
     assert changed > 0
     assert base[: 10 * m].all() and north[: 10 * m].all()  # 0.5 m/s < 2 r / window
+    # the maneuver detector's at-rest spans are the same rule (ManeuverParams.rest_north_box)
+    from wakeline.core.maneuver import _rest_mask
+
+    assert np.array_equal(_rest_mask(x, y, t, index, 50.0, 180.0), base)
+    assert np.array_equal(_rest_mask(x, y, t, index, 50.0, 180.0, north_box=True), north)
 
 
 def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
