@@ -806,15 +806,18 @@ def at_rest(
     ``radius_m`` (about the box's centre) and any window with D ≤ √2·``radius_m`` passes;
     a ship moving straight passes up to 2·radius / window whatever its course (on a line
     d = D: the rule's ≈ 1 kn). Which verdict a window between the two bounds gets (a round
-    cloud of jitter wider than √2·radius) depends on how its spread lies to the box's axes. Until
-    2026-12 the axes were north and east (``north_box``, kept as the option), which turn
-    against the track when the scene is rotated on the globe: a point near the threshold
-    changed its verdict (Saronic, 1 of 18,834). The track's principal axes turn with the
-    track, so the verdict is the same wherever the scene lies; the bound, the cost (four
-    rolling extrema) and the speed meaning are the box's as before. (Widths over K fixed
-    directions would bound D within cos(π/2K) but stay tied to the axes, and loosen the
-    rule for round jitter by up to √2 against the box; the distances to a window's
-    first point or centroid are no rolling extrema.)
+    cloud of jitter wider than √2·radius) depends on how its spread lies to the box's
+    axes. Until 2026-12 the axes were north and east (``north_box``, kept as the option),
+    which turn against the track when the scene is rotated on the globe: a point near the
+    threshold changed its verdict (Saronic, 1 of 18,834). The track's principal axes turn
+    with the track, so the verdict is the same wherever the scene lies; the bound, the
+    cost (four rolling extrema) and the speed meaning are the box's as before. Tried and
+    not taken: the widest of the window's widths across 8 directions (≤ 2·radius; D
+    within cos(π/16) of it, invariant too when the directions turn with these axes)
+    passes round jitter up to √2 wider than the box does, and moved the real sets more
+    (DMA slow share 0.036 → 0.038, ATD example maneuvers 1,422 → 1,416; the box in these
+    axes left both as they were); the distance of every point to the window's first
+    point or centroid is no rolling extremum.
     """
     n = len(x)
     if n == 0:
