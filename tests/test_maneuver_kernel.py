@@ -79,6 +79,7 @@ def _same(df, params):
     ours = detect(df, params)
     fields = dict(params.__dict__)
     fields.pop("max_step_windows")
+    assert not fields.pop("rest_north_box")  # the reference calls at_rest's default box
     ref = reference.detect(df, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
     assert np.array_equal(ours.factor, ref.factor, equal_nan=True)
