@@ -35,6 +35,10 @@ def _cmd_import(args: argparse.Namespace) -> int:
         msg += "\ncolumns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
     if rep.get("extra_columns"):
         msg += "\nextra columns (carried as they are): " + ", ".join(rep["extra_columns"])
+    if rep.get("date_order"):
+        msg += f"\ndates read {rep['date_order']}"
+    if rep.get("time_unit") and rep["time_unit"].startswith("Excel"):
+        msg += f"\ntimes read as {rep['time_unit']}"
     if rep.get("values_blanked"):
         blanked = ", ".join(f"{k} {v:,}" for k, v in rep["values_blanked"].items())
         msg += f"\nvalues blanked, their rows kept: {blanked}"

@@ -69,6 +69,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
                 mapping=parse_mapping(args.map),
                 skip_rows=args.like_skip_rows,
                 origin=getattr(args, "origin", None),  # ORIGINAL is in IN's frame
+                date_order=args.date_order,  # ORIGINAL's dates as IN's were read
+                time_unit=args.time_unit,
             )
         except InputError as exc:  # ORIGINAL's lines above its header: --like-skip-rows
             raise InputError(_like_flag(str(exc))) from None
@@ -231,6 +233,6 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="How IN is read, as `wakeline import` and the steps read it (e.g. "
         "--skip-rows N as given to `wakeline clean`). --format, --map, --encoding and --tz "
         "above are about ORIGINAL and the file written; IN's are --in-format, --in-map, "
-        "--in-encoding, --in-tz.",
+        "--in-encoding, --in-tz. --date-order and --time-unit apply to IN and to ORIGINAL alike.",
     )
     p.set_defaults(func=_cmd_export)

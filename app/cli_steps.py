@@ -273,6 +273,7 @@ def add_read_flags(
     :func:`read_options` gives the ``read_points`` keywords whatever the flags are named.
     """
     from wakeline.core.io import FAMILIES
+    from wakeline.core.io.reader import DATE_ORDERS, TIME_UNITS
 
     flags = {  # read_points keyword -> (flag name, argparse keywords)
         "fmt": (
@@ -324,6 +325,27 @@ def add_read_flags(
                 "metavar": "N",
                 "help": "lines before the header (a title), skipped and counted (default: "
                 "detect a title above a header naming known columns)",
+            },
+        ),
+        "date_order": (
+            "date-order",
+            {
+                "choices": DATE_ORDERS,
+                "default": "auto",
+                "help": "slashed dates (03/04/2025): day-first (dd/mm/yyyy), month-first "
+                "(mm/dd/yyyy), or auto: day first unless a second number above 12 shows the "
+                "month first (default auto; the report says what decided it)",
+            },
+        ),
+        "time_unit": (
+            "time-unit",
+            {
+                "choices": TIME_UNITS,
+                "default": "auto",
+                "help": "numbers in the time column: seconds (unix s or ms, or from a scene "
+                "start), excel-days (Excel serial days, 45658.5 = 2025-01-01 12:00), or "
+                "auto: Excel days when all lie in 20000-80000 and the header says so or they "
+                "step less than 0.01 between rows; else seconds (default auto)",
             },
         ),
     }

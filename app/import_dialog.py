@@ -78,6 +78,37 @@ class ImportDialog(QtWidgets.QDialog):
                 "metres are measured from: the radar's site or the frame's zero."
             )
         )
+        # How slashed dates read (03/04/2025), as `--date-order`.
+        self.date_order_box = QtWidgets.QComboBox()
+        for value, text in (
+            ("auto", self.tr("auto")),
+            ("day-first", self.tr("day first (dd/mm/yyyy)")),
+            ("month-first", self.tr("month first (mm/dd/yyyy)")),
+        ):
+            self.date_order_box.addItem(text, value)
+        self.date_order_box.setToolTip(
+            self.tr(
+                "How dates like 03/04/2025 read: auto reads them day first unless a date "
+                "shows the month first (a second number above 12); the import says what "
+                "decided it."
+            )
+        )
+        # What numbers in the time column count, as `--time-unit`.
+        self.time_unit_box = QtWidgets.QComboBox()
+        for value, text in (
+            ("auto", self.tr("auto")),
+            ("seconds", self.tr("seconds")),
+            ("excel-days", self.tr("Excel serial days")),
+        ):
+            self.time_unit_box.addItem(text, value)
+        self.time_unit_box.setToolTip(
+            self.tr(
+                "Numbers in the time column: seconds (unix, or from a scene start) or Excel "
+                "serial days (45658.5 is 2025-01-01 12:00). Auto takes Excel days when all "
+                "lie between 20000 and 80000 and the header says so or they step less than "
+                "0.01 between rows; the import says which it read."
+            )
+        )
         self.sensor_edit = QtWidgets.QLineEdit()
         self.sensor_edit.setPlaceholderText(self.tr("sensor name when the file has none"))
         self.layout_label = QtWidgets.QLabel()
@@ -115,6 +146,8 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow(self.tr("Time zone"), self.tz_box)
         form.addRow(self.tr("Lines above the header"), self.skip_box)
         form.addRow(self.tr("Origin of x/y metres"), self.origin_edit)
+        form.addRow(self.tr("Date order"), self.date_order_box)
+        form.addRow(self.tr("Time numbers"), self.time_unit_box)
         form.addRow(self.tr("Sensor"), self.sensor_edit)
         form.addRow(self.tr("Detected"), self.layout_label)
         self.buttons = QtWidgets.QDialogButtonBox(
@@ -335,7 +368,8 @@ class ImportDialog(QtWidgets.QDialog):
 
     def options(self) -> dict:
         """Keyword arguments of ``read_points`` (``sensor`` only when one is typed;
-        ``skip_rows`` None: detected)."""
+        ``skip_rows`` None: detected; ``date_order``: auto, day-first or month-first;
+        ``time_unit``: auto, seconds or excel-days)."""
         zone = self.tz_box.currentText().strip()
         out = {
             "path": Path(self.path_edit.text()),
@@ -344,6 +378,8 @@ class ImportDialog(QtWidgets.QDialog):
             "mapping": [f"{k}={v}" for k, v in self.mapping().items()],
             "tz": None if zone.upper() in ("", "UTC") else zone,
             "skip_rows": self._skip_rows(),
+            "date_order": self.date_order_box.currentData(),
+            "time_unit": self.time_unit_box.currentData(),
         }
         if self._origin():
             out["origin"] = self._origin()

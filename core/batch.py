@@ -76,8 +76,9 @@ class BatchOptions:
     buckets: int = 0
     #: how CSV inputs are read, as ``wakeline clean`` reads its input (``--format``,
     #: ``--map FIELD=COLUMN``…, ``--encoding``, ``--delimiter``, ``--tz``, ``--skip-rows``:
-    #: lines before the header, None detected); ``sensor`` names the sensor of inputs
-    #: without a sensor column (CSV and Parquet)
+    #: lines before the header, None detected; ``--date-order``: auto, day-first or
+    #: month-first; ``--time-unit``: auto, seconds or excel-days); ``sensor`` names the sensor of inputs without a sensor column (CSV
+    #: and Parquet)
     fmt: str = "auto"
     mapping: tuple[str, ...] = ()
     encoding: str | None = None
@@ -87,6 +88,8 @@ class BatchOptions:
     skip_rows: int | None = None
     #: ``--origin LAT,LON``: the local plane of inputs whose positions are east/north metres
     origin: str | None = None
+    date_order: str = "auto"
+    time_unit: str = "auto"
 
 
 @dataclass
@@ -475,7 +478,16 @@ def _import_file(
                         sn, read["fmt"], read["mapping"], str(src), read["origin"]
                     )
                     zone = parse_zone(read["tz"])
-                    res = stream_points(sn, cols, sink, read["sensor"], zone, read["tz"])
+                    res = stream_points(
+                        sn,
+                        cols,
+                        sink,
+                        read["sensor"],
+                        zone,
+                        read["tz"],
+                        date_order=read["date_order"],
+                        time_unit=read["time_unit"],
+                    )
                     q, warnings = res.quarantine, res.report.get("warnings", [])
                 except WholeFileNeeded:  # the repeated hour of a clock change
                     forget()
@@ -539,6 +551,8 @@ def _read_options(opts: BatchOptions) -> dict:
         "tz": opts.tz,
         "skip_rows": opts.skip_rows,
         "origin": opts.origin,
+        "date_order": opts.date_order,
+        "time_unit": opts.time_unit,
     }
 
 
@@ -823,8 +837,11 @@ def run_batch(
     )
     if kind == "csv":
         from wakeline.core.io import parse_zone
+        from wakeline.core.io.reader import check_date_order, check_time_unit
 
         parse_zone(opts.tz)  # an unknown zone: one message before any work
+        check_date_order(opts.date_order)
+        check_time_unit(opts.time_unit)
         # Every input checked before any work: one clear message (columns, compression).
         with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
             csv_inputs = [_survey(p, Path(tmp), read) for p in inputs]
@@ -840,6 +857,8 @@ def run_batch(
                 ("--tz", opts.tz),
                 ("--skip-rows", opts.skip_rows is not None),
                 ("--origin", opts.origin),
+                ("--date-order", opts.date_order != "auto"),
+                ("--time-unit", opts.time_unit != "auto"),
             )
             if value
         ]

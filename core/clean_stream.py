@@ -102,13 +102,16 @@ def clean_file(
     block_rows: int | None = None,
     skip_rows: int | None = None,
     origin: str | None = None,
+    date_order: str = "auto",
+    time_unit: str = "auto",
 ) -> FileCleanResult:
     """Clean the track file ``path`` into the canonical CSV ``output`` (and the reject
     trail into ``rejected`` when given) by blocks of whole tracks; see the module
     docstring. ``progress`` may raise :class:`~wakeline.core.errors.Cancelled` to stop:
     nothing is written then and the scratch files are removed. ``skip_rows``: physical
     lines before the header, skipped and counted (None: detected; ``read_points``);
-    ``origin``: a local plane's for east/north metres (``read_points``). Raises
+    ``origin``: a local plane's for east/north metres; ``date_order``, ``time_unit``: how
+    slashed dates and numeric times read (``read_points``). Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
@@ -130,6 +133,8 @@ def clean_file(
         "tz": tz,
         "skip_rows": skip_rows,
         "origin": origin,
+        "date_order": date_order,
+        "time_unit": time_unit,
     }
     parse_zone(tz)  # a zone it does not know is refused before anything is read
     sn = sniff(path, encoding, delimiter, skip_rows)

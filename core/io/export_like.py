@@ -157,6 +157,13 @@ def _strftime(seconds: np.ndarray, pattern: str) -> pa.Array:
 def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
     """Times as text in ``tf``; missing times as empty cells."""
     ns, ok = _epoch_ns(times)
+    if tf.kind == "excel":  # serial days of the wall clock in tf.tz (1900 date system)
+        if tf.tz not in ("UTC", "Z", "+00:00", ""):
+            wall = pd.to_datetime(pd.Series(times), utc=True).dt.tz_convert(_zone(tf.tz))
+            local = (wall.dt.tz_localize(None) - pd.Timestamp(0)).dt.as_unit("ns")
+            ns = np.where(ok, local.to_numpy().view("int64"), 0)
+        days = ns / 86_400e9 + 25_569.0
+        return pc.if_else(pa.array(ok), format_numbers(days, tf.number), tf.number.na)
     if tf.kind == "unix":
         unit_ns = 1_000_000_000 // tf.scale
         d = tf.number.decimals

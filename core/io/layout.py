@@ -27,7 +27,7 @@ import pandas as pd
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.formats import PLANE_FIELDS
-from wakeline.core.io.reader import month_first_dates, resolve_header
+from wakeline.core.io.reader import excel_days_rule, month_first_dates, resolve_header
 from wakeline.core.io.sniff import sniff
 from wakeline.core.schema import CANONICAL_COLUMNS
 
@@ -86,6 +86,14 @@ def _as_month_first(time: "TimeFormat") -> "TimeFormat":
         return time
     ds = time.pattern[2]
     return replace(time, pattern=f"%m{ds}%d{ds}" + time.pattern[6:])
+
+
+def _as_day_first(time: "TimeFormat") -> "TimeFormat":
+    """A month-first text format with the day first (``%m/%d/%Y`` -> ``%d/%m/%Y``)."""
+    if time.kind != "text" or not time.pattern.startswith("%m"):
+        return time
+    ds = time.pattern[2]
+    return replace(time, pattern=f"%d{ds}%m{ds}" + time.pattern[6:])
 
 
 @dataclass(frozen=True)
@@ -153,7 +161,8 @@ class TimeFormat:
     """How times are written.
 
     ``kind``: ``unix`` — a number of seconds (``scale`` 1) or milliseconds (``scale``
-    1000) since 1970 (or since a scene start), formatted by ``number``; ``text`` —
+    1000) since 1970 (or since a scene start), formatted by ``number``; ``excel`` — Excel
+    serial days of the wall clock in ``tz`` (1900 date system), formatted by ``number``; ``text`` —
     ``pattern`` (strftime, up to whole seconds) then ``frac_digits`` fraction digits
     after ``frac_point`` (``.``, or ISO 8601's ``,``; ``frac_trim`` as in
     :class:`NumberFormat`) then ``suffix`` (``Z``, ``+08:00``, `` UTC`` or nothing). ``tz``: the zone whose wall-clock time is written (an IANA name or
@@ -388,6 +397,8 @@ def describe_layout(
     mapping: dict[str, str] | None = None,
     tz: str | None = None,
     origin=None,
+    date_order: str = "auto",
+    time_unit: str = "auto",
 ) -> Layout:
     """The layout of a track file, as its import saw it.
 
@@ -396,7 +407,9 @@ def describe_layout(
     Otherwise the layout is detected as an import would (``fmt``, ``mapping``).
     ``tz`` names the zone naive times were read in (default UTC); ``origin`` (lat, lon)
     the local plane of a file whose positions are east/north metres (default: the
-    report's ``plane_origin``).
+    report's ``plane_origin``); ``date_order`` how its slashed dates were read (``auto``:
+    as the import decides; else day- or month-first); ``time_unit`` what its numeric
+    times are (``auto``: as the import decides).
     """
     path = Path(path)
     report = report or {}
@@ -463,8 +476,21 @@ def describe_layout(
     time = TimeFormat.detect(sample[time_key], tz) if time_key else TimeFormat(tz=tz or "UTC")
     if not whole or len(lines) > SAMPLE_ROWS + 1:  # rows beyond the sample
         cols, time = _widened(path, sn, cols, time, time_key)
-    if report.get("time_format") == "month-first text":  # seen over the whole file
-        time = _as_month_first(time)
+    if time.kind == "unix" and time_key and time_unit != "seconds":
+        fmt = report.get("time_format")
+        numbers = pd.to_numeric(
+            sample[time_key].str.strip().str.replace(",", ".", regex=False), errors="coerce"
+        ).to_numpy(dtype="float64")
+        if (
+            time_unit == "excel-days"
+            or fmt == "Excel serial days"
+            or (fmt is None and excel_days_rule(numbers, time_key, {}))
+        ):
+            time = replace(time, kind="excel", scale=1)
+    if date_order == "day-first":
+        time = _as_day_first(time)
+    elif date_order == "month-first" or report.get("time_format") == "month-first text":
+        time = _as_month_first(time)  # given, or seen over the whole file
     return Layout(
         name=name,
         columns=tuple(cols),
@@ -600,10 +626,13 @@ def load_layout(
     mapping: dict[str, str] | None = None,
     skip_rows: int | None = None,
     origin=None,
+    date_order: str = "auto",
+    time_unit: str = "auto",
 ) -> Layout:
     """A layout from a file: a layout JSON (``Layout.to_dict``) or the original data file
     (read as an import with ``fmt``, ``mapping``, ``skip_rows``, the lines above its
-    header, and ``origin``, a local plane's, would read it)."""
+    header, ``origin``, a local plane's, ``date_order`` and ``time_unit``, how its dates
+    and numeric times read, would read it)."""
     import json
 
     path = Path(path)
@@ -615,7 +644,16 @@ def load_layout(
         except (ValueError, KeyError, TypeError) as exc:
             raise InputError(f"{path}: not a Wakeline layout file ({exc})") from None
     report = None if skip_rows is None else {"skip_rows_given": skip_rows}
-    return describe_layout(path, report, fmt=fmt, mapping=mapping, tz=tz, origin=origin)
+    return describe_layout(
+        path,
+        report,
+        fmt=fmt,
+        mapping=mapping,
+        tz=tz,
+        origin=origin,
+        date_order=date_order,
+        time_unit=time_unit,
+    )
 
 
 __all__ = [

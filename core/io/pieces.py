@@ -127,7 +127,17 @@ def stream_or_pieces(
     try:
         if not sn.has_quotes:  # the streamed reader takes no quotes
             try:
-                return stream_points(sn, res, sink, read["sensor"], parse_zone(tz), tz, progress)
+                return stream_points(
+                    sn,
+                    res,
+                    sink,
+                    read["sensor"],
+                    parse_zone(tz),
+                    tz,
+                    progress,
+                    date_order=read.get("date_order", "auto"),
+                    time_unit=read.get("time_unit", "auto"),
+                )
             except WholeFileNeeded:
                 raise
             except StreamFallback:
@@ -249,6 +259,7 @@ def _read_all(
     quarantines, reports, layouts, keys = [], [], [], []
     edges = edge_state()  # a track's first and last rows: judged in the last piece with rows
     has_rows = blank_bytes(sn.delimiter)
+    units: set[bool] = set()  # numeric times read as Excel days, or not, per piece
     for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn), has_rows)):
         piece_file.write_bytes(piece)
         done += len(piece)
@@ -267,8 +278,16 @@ def _read_all(
         clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
         if clock.any() or any("hour the clock change" in w for w in warnings):
             raise WholeFileNeeded  # a repeated hour is placed over the whole file
-        if res.report.get("time_format") == "month-first text":
+        if (
+            res.report.get("time_format") == "month-first text"
+            and read.get("date_order", "auto") == "auto"
+        ):
             raise WholeFileNeeded  # the other pieces may hold only days up to 12
+        fmt = str(res.report.get("time_format") or "")
+        if fmt.startswith(("unix", "relative", "Excel")):
+            units.add(fmt == "Excel serial days")
+            if len(units) > 1:
+                raise WholeFileNeeded  # pieces judged Excel days apart: one judgement
         if not line_by_line and UNBALANCED_NOTE in warnings:
             raise _Again(quotes=True)
         if strict and any(w.startswith("some bytes are not valid") for w in warnings):
@@ -343,8 +362,12 @@ def merge_import_reports(
     encodings = [r["encoding"] for r in reports]
     encoding = next((e for e in encodings if e != sn.encoding), encodings[0])
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
+    # The order of slashed dates: as a piece that shows it says (else the first piece's).
+    orders = [r.get("date_order") for r in reports if r.get("date_order")]
+    shown = [o for o in orders if "shows it" in o or "given" in o]
     return {
         **first,
+        "date_order": (shown or orders or [None])[0],
         "input": str(sn.path),
         "encoding": encoding,
         "compression": sn.compression,

@@ -79,14 +79,30 @@ _MONTHFIRST_FORMATS = tuple(
 )
 #: The first two numbers of a slashed date (``dd/mm/yyyy`` or ``mm/dd/yyyy``).
 _SLASHED_DATE = r"^\s*(\d{1,2})[/.-](\d{1,2})[/.-]\d{4}"
+#: How slashed dates (``nn/nn/yyyy``) are read: ``auto`` day first unless the file shows
+#: the month first (a second number above 12, none a first), or as the operator says.
+DATE_ORDERS = ("auto", "day-first", "month-first")
+
+
+def check_date_order(value: str) -> str:
+    """``value`` when it is one of :data:`DATE_ORDERS`; else :class:`InputError`."""
+    if value not in DATE_ORDERS:
+        raise InputError(
+            f"unknown date order {value!r}; give one of {', '.join(DATE_ORDERS)} (--date-order)"
+        )
+    return value
+
+
+def _slashed_parts(text: pd.Series) -> tuple[pd.Series, pd.Series]:
+    """The first and second numbers of the slashed dates of ``text`` (NaN elsewhere)."""
+    parts = text.str.extract(_SLASHED_DATE)
+    return pd.to_numeric(parts[0], errors="coerce"), pd.to_numeric(parts[1], errors="coerce")
 
 
 def month_first_dates(text: pd.Series) -> int:
     """How many slashed dates of ``text`` show the month first: none has a first number
     above 12 and these have a second one above 12 (0: day-first, or no evidence)."""
-    parts = text.str.extract(_SLASHED_DATE)
-    first = pd.to_numeric(parts[0], errors="coerce")
-    second = pd.to_numeric(parts[1], errors="coerce")
+    first, second = _slashed_parts(text)
     if (first > 12).any():
         return 0
     return int((second > 12).sum())
@@ -640,6 +656,82 @@ def _numbers(
 
 #: Numeric times below this (seconds; 1973-03-03) are read as seconds from a scene start.
 RELATIVE_BELOW_S = 1e8
+#: What numbers in the time column count: ``auto`` (unix seconds or milliseconds,
+#: relative seconds, or Excel serial days by :func:`excel_days_rule`' rule), ``seconds``
+#: (never days), ``excel-days`` (Excel's serial day numbers, 1900 date system).
+TIME_UNITS = ("auto", "seconds", "excel-days")
+#: Excel serial days that ``auto`` takes for dates: 1954-10-03 to 2119-01-10.
+EXCEL_RANGE = (20_000.0, 80_000.0)
+#: ... when a column's typical step (median of the non-zero steps between rows, file
+#: order) is below this: 0.01 day is 14.4 min, and as seconds a 100 Hz clock.
+EXCEL_STEP = 0.01
+#: Day 0 of Excel's 1900 date system (1899-12-30, after its 1900 leap-year bug) in unix days.
+_EXCEL_EPOCH_DAYS = 25_569
+#: The last day Excel writes (9999-12-31).
+_EXCEL_LAST = 2_958_466
+#: Headers that say a column holds Excel serial days (normalised, as a part).
+_EXCEL_WORDS = ("excel", "serial", "oadate", "days")
+
+
+def check_time_unit(value: str) -> str:
+    """``value`` when it is one of :data:`TIME_UNITS`; else :class:`InputError`."""
+    if value not in TIME_UNITS:
+        raise InputError(
+            f"unknown time unit {value!r}; give one of {', '.join(TIME_UNITS)} (--time-unit)"
+        )
+    return value
+
+
+def excel_days_rule(values: np.ndarray, header: str, info: dict) -> bool:
+    """Whether ``auto`` reads numeric times as Excel serial days. Only when the values
+    (99 % of them: a damaged one does not hide the rest) lie in :data:`EXCEL_RANGE` and either the header names them (``Excel``, ``serial``,
+    ``OADate``, ``days``) or most have a fractional part and the column steps less than
+    :data:`EXCEL_STEP` between rows (a clock of days: seconds step 1.2e-5). A column in
+    the range that is not so taken is read as seconds and ``info["excel_like"]`` says so."""
+    finite = values[np.isfinite(values)]
+    inside = (finite >= EXCEL_RANGE[0]) & (finite < EXCEL_RANGE[1])
+    if not len(finite) or inside.mean() < 0.99:  # a damaged value or two: still judged
+        return False
+    finite = finite[inside]
+    named = any(w in normalize_header(header) for w in _EXCEL_WORDS) if header else False
+    steps = np.abs(np.diff(finite))
+    steps = steps[steps > 0]
+    step = float(np.median(steps)) if len(steps) else np.inf
+    fractional = float(np.mean(finite != np.floor(finite)))
+    if named or (fractional >= 0.5 and step < EXCEL_STEP):
+        info["excel_why"] = (
+            f"the header {header!r} names them"
+            if named
+            else f"all lie in {EXCEL_RANGE[0]:,.0f}-{EXCEL_RANGE[1]:,.0f}, "
+            f"{fractional:.0%} have a fraction and the typical step is {step * 86400:.3g} s "
+            "as days"
+        )
+        return True
+    info["excel_like"] = info.get("excel_like", 0) + len(finite)
+    return False
+
+
+def _excel_ns(
+    days: np.ndarray, tz: datetime.tzinfo | None, info: dict
+) -> tuple[np.ndarray, np.ndarray]:
+    """Excel serial days (wall-clock, naive; in ``tz`` when given, else UTC) to int64 ns
+    since 1970 UTC and validity, to the millisecond (Excel's own resolution)."""
+    info["time_format"] = "Excel serial days"
+    info["excel_days"] = info.get("excel_days", 0) + int(np.isfinite(days).sum())
+    ok = np.isfinite(days) & (days >= 1) & (days < _EXCEL_LAST)
+    ms = np.rint((np.where(ok, days, _EXCEL_EPOCH_DAYS) - _EXCEL_EPOCH_DAYS) * 86_400_000.0)
+    ns = ms.astype("int64") * 1_000_000
+    if tz is None:
+        return ns, ok
+    info["naive"] = True
+    wall = pd.Series(pd.to_datetime(ns, unit="ns")).where(ok)
+    utc = _localize(wall, tz, info)
+    good = utc.notna().to_numpy()
+    out = np.zeros(len(ns), dtype="int64")
+    out[good] = utc[good].dt.tz_convert(None).to_numpy().astype("datetime64[ns]").view("int64")
+    return out, good
+
+
 _ZONE_SUFFIX = r"(?:[zZ]|[+-]\d\d:?\d\d|UTC|GMT)$"
 
 
@@ -1240,20 +1332,41 @@ def _place_repeated_hour(track: np.ndarray, info: dict, ns: np.ndarray, ok: np.n
     return len(placed)
 
 
+def _as_days(values: np.ndarray, kind: str, time_unit: str, header: str, info: dict) -> bool:
+    """Whether numeric times are Excel serial days: as ``time_unit`` says, or (``auto``)
+    as a streamed read's first piece decided (``info["_unit"]``), or by the rule."""
+    if time_unit != "auto":
+        return time_unit == "excel-days"
+    if kind == "unix":
+        return False
+    if "_unit" in info:
+        return info["_unit"] == "excel-days"
+    return excel_days_rule(values, header, info)
+
+
 def parse_times(
     arr: pa.ChunkedArray,
     kind: str,
     tz: datetime.tzinfo | None = None,
     info: dict | None = None,
     decimal_comma: bool = False,
+    date_order: str = "auto",
+    time_unit: str = "auto",
+    header: str = "",
 ) -> tuple[np.ndarray, np.ndarray]:
     """int64 ns since epoch (UTC) and a validity mask.
 
+    Numbers are Excel serial days when ``time_unit`` says so, or (``auto``) by
+    :func:`excel_days_rule`' rule on the column ``header`` and its values.
+
     Times without a zone are UTC unless ``tz`` names their zone; numbers are unix seconds
     or milliseconds (absolute: ``tz`` does not apply), with a decimal comma too when
-    ``decimal_comma``. ``info``, when given, receives ``time_format``, ``naive`` (text
-    without a zone seen), ``relative`` (seconds from a scene start rather than since 1970)
-    and ``decimal_comma`` (how many numbers had one)."""
+    ``decimal_comma``. Slashed dates are read in ``date_order`` (:data:`DATE_ORDERS`).
+    ``info``, when given, receives ``time_format``, ``naive`` (text without a zone seen),
+    ``relative`` (seconds from a scene start rather than since 1970), ``decimal_comma``
+    (how many numbers had one) and what decided the order of slashed dates
+    (``month_first``, ``day_shown``, ``dates_either_way``, ``date_order_given``,
+    ``date_order_refused``)."""
     info = {} if info is None else info
     info["_rows"] = len(arr)
     info.setdefault("naive", False)
@@ -1280,6 +1393,8 @@ def parse_times(
     compact = False  # digits alone, yyyymmddHHMMSS: read as the text they spell
     if pa.types.is_integer(arr.type) or pa.types.is_floating(arr.type):
         seconds = pc.cast(arr, pa.float64()).to_numpy(zero_copy_only=False)
+        if _as_days(seconds, kind, time_unit, header, info):
+            return _excel_ns(seconds, tz, info)
         if kind != "auto" or not _is_compact(seconds):
             return _epoch_ns(seconds, info)
         arr, compact = pa.chunked_array([_compact_iso(seconds)]), True
@@ -1295,6 +1410,8 @@ def parse_times(
             info["decimal_comma"] = info.get("decimal_comma", 0) + k
     n_present = int(present.sum())
     if kind == "unix" or (n_present and np.isfinite(numeric).sum() >= 0.5 * n_present):
+        if _as_days(numeric, kind, time_unit, header, info):
+            return _excel_ns(numeric, tz, info)
         return _epoch_ns(numeric, info)
     sample = text[present].head(50)
     # ISO 8601's decimal comma (08:01:04,123, as Python's logging writes) and a zone
@@ -1311,7 +1428,21 @@ def parse_times(
     info["time_format"] = "day-first text" if dayfirst else "ISO 8601 text"
     if compact:
         info["time_format"] = "yyyymmddHHMMSS text"
-    if dayfirst:
+    if dayfirst and date_order != "auto":
+        # The operator's order: no guessing; a date the other order only reads (a first
+        # number above 12 for month first) is unparsable, and counted.
+        text = text.str.removesuffix("Z")
+        month = date_order == "month-first"
+        formats = _MONTHFIRST_FORMATS if month else _DAYFIRST_FORMATS
+        parsed = _parse_slashed(text, present, formats, info)
+        info["time_format"] = "month-first text" if month else "day-first text"
+        info["date_order_given"] = date_order
+        first, second = _slashed_parts(text[present])
+        refused = int(((first if month else second) > 12).sum())
+        if refused:
+            info["date_order_refused"] = info.get("date_order_refused", 0) + refused
+        parsed = _localize(parsed, tz, info) if tz is not None else parsed.dt.tz_localize("UTC")
+    elif dayfirst:
         text = text.str.removesuffix("Z")  # 01/05/2024 08:01:04 UTC: UTC, as naive
         parsed = _parse_slashed(text, present, _DAYFIRST_FORMATS, info)
         # Dates that day-first cannot read (05/17/2024) and none that only it can: the
@@ -1333,6 +1464,7 @@ def parse_times(
             second = pd.to_numeric(parts[1], errors="coerce")
             if (first > 12).any():
                 info["dayfirst_shown"] = True
+                info["day_shown"] = info.get("day_shown", 0) + int((first > 12).sum())
             else:
                 both = (first != second) & first.notna() & second.notna()
                 info["dates_either_way"] = info.get("dates_either_way", 0) + int(both.sum())
@@ -1528,7 +1660,30 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
         out.append(
             f"the times in {time_src!r} write the month first (mm/dd/yyyy: "
             f"{time_info['month_first']:,} have a second number above 12, none a first): "
-            "read so"
+            "read so (--date-order month-first says it outright)"
+        )
+    if time_info.get("date_order_refused"):
+        given = time_info.get("date_order_given", "")
+        other = "day-first" if given == "month-first" else "month-first"
+        place = "first" if given == "month-first" else "second"
+        out.append(
+            f"{time_info['date_order_refused']:,} dates in {time_src!r} have a {place} number "
+            f"above 12, so they are not {given} as --date-order {given} says: quarantined as "
+            f"unparsable time (are they {other}? try --date-order {other} or auto)"
+        )
+    if time_info.get("excel_days") and time_info.get("excel_why"):  # auto decided
+        out.append(
+            f"{time_info['excel_days']:,} times in {time_src!r} were read as Excel serial "
+            "days (1900 date system: 45658.5 is 2025-01-01 12:00) because "
+            f"{time_info['excel_why']}; if they are seconds, read again with --time-unit "
+            "seconds"
+        )
+    if time_info.get("excel_like") and time_info.get("relative"):
+        out.append(
+            f"the times in {time_src!r} lie between {EXCEL_RANGE[0]:,.0f} and "
+            f"{EXCEL_RANGE[1]:,.0f}: read as seconds from a scene start (their steps are "
+            "those of a clock of seconds, not of days); if they are Excel serial days "
+            "(dates 1954-2119), read again with --time-unit excel-days"
         )
     if time_info.get("decimal_comma"):
         out.append(
@@ -1539,7 +1694,8 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
         out.append(
             f"the dates in {time_src!r} were read day first (dd/mm/yyyy), but none shows "
             f"which comes first ({time_info['dates_either_way']:,} could be mm/dd/yyyy, "
-            "no number above 12 in either place): check the dates"
+            "no number above 12 in either place): check the dates; if the month comes "
+            "first, read again with --date-order month-first"
         )
     if time_info.get("dms"):
         out.append(
@@ -1563,6 +1719,43 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             "such: shown from 1970-01-01T00:00:00Z"
         )
     return out
+
+
+def date_order_note(time_info: dict) -> str | None:
+    """How slashed dates were read and what decided it (for the import report), or None
+    when the times are not slashed dates."""
+    if time_info.get("date_order_given"):
+        return f"{time_info['date_order_given']} (given: --date-order)"
+    if time_info.get("month_first"):
+        return (
+            f"month-first (the file shows it: {time_info['month_first']:,} dates have a "
+            "second number above 12, none a first)"
+        )
+    if time_info.get("day_shown") or time_info.get("dayfirst_shown"):
+        shown = int(time_info.get("day_shown", 0))
+        many = f"{shown:,} dates have" if shown else "a date has"
+        return f"day-first (the file shows it: {many} a first number above 12)"
+    if time_info.get("dates_either_way"):
+        return (
+            f"day-first (assumed: no date shows the order; {time_info['dates_either_way']:,} "
+            "could be month-first: --date-order month-first reads them so)"
+        )
+    if str(time_info.get("time_format", "")).startswith(("day-first", "month-first")):
+        return str(time_info["time_format"]).split()[0]
+    return None
+
+
+def time_unit_note(time_info: dict) -> str | None:
+    """What numbers in the time column were read as, and why (for the import report), or
+    None for text times."""
+    fmt = str(time_info.get("time_format") or "")
+    if fmt == "Excel serial days":
+        return f"Excel serial days ({time_info.get('excel_why') or 'given: --time-unit'})"
+    if fmt.startswith(("unix", "relative")):
+        if time_info.get("excel_like"):
+            return f"{fmt} (in the Excel day range, but steps of a clock of seconds)"
+        return fmt
+    return None
 
 
 def _names_read_errors(fn: Callable) -> Callable:
@@ -1606,6 +1799,8 @@ def read_points(
     edges: dict | None = None,
     skip_rows: int | None = None,
     origin: str | tuple[float, float] | None = None,
+    date_order: str = "auto",
+    time_unit: str = "auto",
 ) -> ImportResult:
     """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
     canonical point table.
@@ -1625,9 +1820,15 @@ def read_points(
     (``"LAT,LON"`` degrees) is where a file's east/north metres (x/y on a local plane:
     a radar's site, a NED frame's zero) are measured from; they are turned into lon/lat
     by the azimuthal equidistant projection about it (:func:`~wakeline.core.geo.from_local`).
+    ``date_order`` (:data:`DATE_ORDERS`) says how slashed dates read (``auto``: day first
+    unless the file shows the month first); ``time_unit`` (:data:`TIME_UNITS`) what
+    numeric times count (``auto``: seconds, or Excel serial days by
+    :func:`excel_days_rule`' rule).
     """
     progress = progress or null_progress
     path = Path(path)
+    check_date_order(date_order)
+    check_time_unit(time_unit)
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
     zone = parse_zone(tz)
@@ -1649,7 +1850,9 @@ def read_points(
     progress(0.6, "checking values")
 
     time_info: dict = {} if edges is None else {"_edges": edges}
-    points, quarantine, counts = _to_canonical(rows, sn, res, sensor, zone, time_info)
+    points, quarantine, counts = _to_canonical(
+        rows, sn, res, sensor, zone, time_info, date_order=date_order, time_unit=time_unit
+    )
     time_info.pop("_edges", None)
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes + _title_warnings(sn)
@@ -1676,6 +1879,8 @@ def read_points(
         "careful_parse": rows.careful,
         "time_format": time_info.get("time_format"),
         "time_date_column": time_info.get("date_column"),
+        "date_order": date_order_note(time_info),
+        "time_unit": time_unit_note(time_info),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
@@ -1951,6 +2156,8 @@ def _to_canonical(
     zone: datetime.tzinfo | None = None,
     time_info: dict | None = None,
     fetch_texts: bool = True,
+    date_order: str = "auto",
+    time_unit: str = "auto",
 ):
     table, bad = rows.table, rows.bad
     n = table.num_rows
@@ -2008,7 +2215,16 @@ def _to_canonical(
             time_info["date_column"] = date_src
     comma = sn.delimiter != ","  # a decimal comma cannot be unquoted in a comma-separated file
     counted = time_info if time_info is not None else {}
-    ns, time_ok = parse_times(time_col, res.format.time_kind, zone, counted, comma)
+    ns, time_ok = parse_times(
+        time_col,
+        res.format.time_kind,
+        zone,
+        counted,
+        comma,
+        date_order,
+        time_unit,
+        cols["time"],
+    )
     early = counted.pop("early_times", None)
     if early is not None:
         flag(early, "time decades before the file's other times (a number cut short?)")
@@ -2409,6 +2625,8 @@ def import_to_csv(
     progress: Progress | None = None,
     skip_rows: int | None = None,
     origin=None,
+    date_order: str = "auto",
+    time_unit: str = "auto",
 ) -> ImportResult:
     """Import ``path`` and write the canonical CSV ``output`` batch by batch, never
     holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
@@ -2427,6 +2645,8 @@ def import_to_csv(
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
     parse_zone(tz)  # a zone it does not know is refused before anything is read
+    check_date_order(date_order)
+    check_time_unit(time_unit)
     sn = sniff(path, encoding, delimiter, skip_rows)
 
     def whole(target: Path) -> ImportResult:
@@ -2441,6 +2661,8 @@ def import_to_csv(
             tz,
             skip_rows=skip_rows,
             origin=origin,
+            date_order=date_order,
+            time_unit=time_unit,
         )
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
@@ -2455,7 +2677,15 @@ def import_to_csv(
     try:
         with atomic_path(output) as tmp:
             parts = PointParts(scratch / "parts", tmp)
-            read = {"fmt": fmt, "mapping": mapping, "sensor": sensor, "tz": tz, "origin": origin}
+            read = {
+                "fmt": fmt,
+                "mapping": mapping,
+                "sensor": sensor,
+                "tz": tz,
+                "origin": origin,
+                "date_order": date_order,
+                "time_unit": time_unit,
+            }
             try:
                 result = stream_or_pieces(
                     sn, res, read, parts, parts.reset, scratch / "pieces", progress
@@ -2513,6 +2743,8 @@ def stream_points(
     zone: datetime.tzinfo | None = None,
     tz: str | None = None,
     progress: Progress | None = None,
+    date_order: str = "auto",
+    time_unit: str = "auto",
 ) -> ImportResult:
     """Read a CSV without quotes in its sampled start piece by piece (``STREAM_BYTES`` of
     whole lines at a time) and hand each piece's canonical points, in file order, to
@@ -2585,20 +2817,45 @@ def stream_points(
         del table
         info: dict = {
             "absolute": time_info.get("absolute", False),
+            **({"_unit": time_info["_unit"]} if "_unit" in time_info else {}),
             "_streaming": True,
             "_edges": {**edges, "final": final},
         }
         points, quarantine, counts = _to_canonical(
-            rows, sn, res, sensor, zone, info, fetch_texts=False
+            rows,
+            sn,
+            res,
+            sensor,
+            zone,
+            info,
+            fetch_texts=False,
+            date_order=date_order,
+            time_unit=time_unit,
         )
         time_info["absolute"] = bool(info.get("absolute"))
+        # The first piece decides numbers in the Excel range for the rest of the file.
+        if "_unit" not in time_info and (info.get("excel_days") or info.get("excel_like")):
+            time_info["_unit"] = "excel-days" if info.get("excel_days") else "seconds"
+        if info.get("excel_why"):
+            time_info["excel_why"] = info["excel_why"]
         time_info.setdefault("time_format", info.get("time_format"))
         if info.get("date_column"):
             time_info["date_column"] = info["date_column"]
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")
-        for key in ("decimal_comma", "clock_placed", "dms", "dates_either_way"):
+        for key in info.keys() & {"month_first", "date_order_given"}:
+            time_info[key] = info[key]
+        for key in (
+            "decimal_comma",
+            "clock_placed",
+            "dms",
+            "dates_either_way",
+            "day_shown",
+            "date_order_refused",
+            "excel_days",
+            "excel_like",
+        ):
             time_info[key] = time_info.get(key, 0) + info.get(key, 0)
         for key in totals:
             totals[key] += counts[key]
@@ -2686,6 +2943,8 @@ def stream_points(
         "careful_parse": False,
         "streamed": True,
         "time_format": time_info.get("time_format"),
+        "date_order": date_order_note(time_info),
+        "time_unit": time_unit_note(time_info),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,

@@ -748,6 +748,38 @@
         <translation>文件中 x/y 或东/北向米制坐标所依据的原点的纬度和经度（度）：雷达站址或坐标系零点。</translation>
     </message>
     <message>
+        <source>Date order</source>
+        <translation>日期顺序</translation>
+    </message>
+    <message>
+        <source>day first (dd/mm/yyyy)</source>
+        <translation>日在前（日/月/年）</translation>
+    </message>
+    <message>
+        <source>month first (mm/dd/yyyy)</source>
+        <translation>月在前（月/日/年）</translation>
+    </message>
+    <message>
+        <source>Time numbers</source>
+        <translation>时间数值</translation>
+    </message>
+    <message>
+        <source>seconds</source>
+        <translation>秒</translation>
+    </message>
+    <message>
+        <source>Excel serial days</source>
+        <translation>Excel 序列日数</translation>
+    </message>
+    <message>
+        <source>Numbers in the time column: seconds (unix, or from a scene start) or Excel serial days (45658.5 is 2025-01-01 12:00). Auto takes Excel days when all lie between 20000 and 80000 and the header says so or they step less than 0.01 between rows; the import says which it read.</source>
+        <translation>时间列中的数值：秒（Unix 时间，或自场景开始起算）或 Excel 序列日数（45658.5 即 2025-01-01 12:00）。“自动”在所有数值均介于 20000 与 80000 之间、且表头注明或相邻行间步长小于 0.01 时按 Excel 日数读取；导入报告会说明按哪种读取。</translation>
+    </message>
+    <message>
+        <source>How dates like 03/04/2025 read: auto reads them day first unless a date shows the month first (a second number above 12); the import says what decided it.</source>
+        <translation>如何读取 03/04/2025 这类日期：“自动”按日在前读取，除非某个日期表明月在前（第二个数大于 12）；导入报告会说明依据。</translation>
+    </message>
+    <message>
         <source>Lines before the header (a title or notes), skipped and counted; auto finds a title of up to 10 lines above a header naming known columns.</source>
         <translation>表头之前的行（标题或说明），跳过并计数；“自动”可识别表头（含已知列名）上方最多 10 行的标题。</translation>
     </message>

@@ -1,0 +1,145 @@
+"""Slashed dates (03/04/2025) read day first, month first, or as the file shows:
+``--date-order`` / ``read_points(date_order=...)`` through every reader."""
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from wakeline.app.cli import main
+from wakeline.core.errors import InputError
+from wakeline.core.io import import_to_csv, read_points
+from wakeline.core.io.layout import describe_layout
+from wakeline.core.io.pieces import read_in_pieces
+from wakeline.core.io.sniff import sniff
+
+#: A US export: month first; March 1-20 every 12 h (days 13-20 show the order).
+US_TIMES = pd.date_range("2025-03-01", periods=40, freq="12h", tz="UTC")
+
+
+def _write(path: Path, times: pd.DatetimeIndex, fmt: str) -> Path:
+    lines = ["MMSI,BaseDateTime,LAT,LON"] + [
+        f"{1 + k % 2},{t.strftime(fmt)},57.{k:03d},11.{k:03d}" for k, t in enumerate(times)
+    ]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _times(points: pd.DataFrame) -> list:
+    return sorted(points["time"].tolist())
+
+
+def test_a_us_file_reads_month_first_with_the_flag_and_by_itself(tmp_path):
+    p = _write(tmp_path / "us.csv", US_TIMES, "%m/%d/%Y %H:%M:%S")
+    given = read_points(p, date_order="month-first")
+    assert len(given.points) == 40 and len(given.quarantine) == 0
+    assert _times(given.points) == list(US_TIMES)
+    assert given.report["date_order"] == "month-first (given: --date-order)"
+    auto = read_points(p)  # days 13-20 decide it
+    assert _times(auto.points) == list(US_TIMES)
+    assert auto.report["date_order"].startswith("month-first (the file shows it: 16 dates")
+    assert any("--date-order month-first" in w for w in auto.report["warnings"])
+
+
+def test_ambiguous_dates_need_the_flag_and_the_warning_names_it(tmp_path):
+    times = US_TIMES[:20]  # March 1-10 only: every date reads either way
+    p = _write(tmp_path / "amb.csv", times, "%m/%d/%Y %H:%M:%S")
+    auto = read_points(p)
+    assert _times(auto.points) != list(times)  # read as 3 January ...: the old default
+    (warning,) = [w for w in auto.report["warnings"] if "read day first" in w]
+    assert "--date-order month-first" in warning
+    assert auto.report["date_order"].startswith("day-first (assumed")
+    assert _times(read_points(p, date_order="month-first").points) == list(times)
+
+
+def test_a_day_above_12_says_the_file_decided_day_first(tmp_path):
+    p = _write(tmp_path / "eu.csv", US_TIMES, "%d/%m/%Y %H:%M:%S")
+    r = read_points(p)
+    assert _times(r.points) == list(US_TIMES)
+    assert (
+        r.report["date_order"]
+        == "day-first (the file shows it: 16 dates have a first number above 12)"
+    )
+    assert not any("day first" in w for w in r.report["warnings"])
+
+
+def test_a_date_the_given_order_cannot_read_is_quarantined_and_counted(tmp_path):
+    p = _write(tmp_path / "us.csv", US_TIMES, "%m/%d/%Y %H:%M:%S")
+    r = read_points(p, date_order="day-first")
+    assert len(r.points) + len(r.quarantine) == 40  # nothing lost
+    assert r.quarantine["reason"].value_counts().to_dict() == {"unparsable time": 16}
+    (w,) = [w for w in r.report["warnings"] if "--date-order day-first says" in w]
+    assert w.startswith("16 dates in 'BaseDateTime' have a second number above 12")
+
+
+def test_an_unknown_order_is_refused(tmp_path):
+    p = _write(tmp_path / "us.csv", US_TIMES, "%m/%d/%Y %H:%M:%S")
+    with pytest.raises(InputError, match="unknown date order 'ymd'"):
+        read_points(p, date_order="ymd")
+
+
+def test_the_streamed_pieces_and_batch_readers_take_the_order(tmp_path, monkeypatch):
+    import wakeline.core.io.reader as reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 256)  # several pieces
+    times = US_TIMES[:20]
+    p = _write(tmp_path / "amb.csv", times, "%m/%d/%Y %H:%M:%S")
+    out = tmp_path / "o.csv"
+    r = import_to_csv(p, out, date_order="month-first")
+    assert r.report.get("streamed") and r.report["date_order"].startswith("month-first (given")
+    got = pd.read_csv(out)["time"]
+    assert sorted(pd.to_datetime(got, utc=True)) == list(times)
+    seen: list[pd.DataFrame] = []
+    read = {"fmt": "auto", "mapping": None, "sensor": "S1", "tz": None}
+    res = read_in_pieces(
+        sniff(p), {**read, "date_order": "month-first"}, seen.append, tmp_path / "s"
+    )
+    assert res.report["pieces"] > 1
+    assert _times(pd.concat(seen)) == list(times)
+
+
+def test_batch_options_and_the_cli_take_the_flag(tmp_path, capsys):
+    from wakeline.core.batch import BatchOptions, _read_options
+
+    assert _read_options(BatchOptions(date_order="month-first"))["date_order"] == "month-first"
+    p = _write(tmp_path / "amb.csv", US_TIMES[:20], "%m/%d/%Y %H:%M:%S")
+    out = tmp_path / "o.csv"
+    assert main(["import", str(p), "-o", str(out), "--date-order", "month-first"]) == 0
+    assert "dates read month-first (given: --date-order)" in capsys.readouterr().err
+    assert sorted(pd.to_datetime(pd.read_csv(out)["time"], utc=True)) == list(US_TIMES[:20])
+
+
+def test_export_like_writes_the_order_given(tmp_path):
+    p = _write(tmp_path / "amb.csv", US_TIMES[:20], "%m/%d/%Y %H:%M:%S")
+    assert describe_layout(p).time.pattern.startswith("%d/%m/%Y")  # as auto reads it
+    assert describe_layout(p, date_order="month-first").time.pattern.startswith("%m/%d/%Y")
+
+
+_DAY = 86_400
+
+
+@settings(
+    max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    st.integers(min_value=946_684_800, max_value=4_070_908_800),  # a start in 2000-2098
+    st.lists(st.integers(min_value=0, max_value=400 * _DAY), min_size=1, max_size=30),
+)
+def test_property_day_and_month_first_writings_read_back_the_same(tmp_path, start, offsets):
+    seconds = start + np.sort(np.asarray(offsets, dtype="int64"))
+    times = pd.DatetimeIndex(pd.to_datetime(seconds, unit="s", utc=True))
+    day = read_points(
+        _write(tmp_path / "d.csv", times, "%d/%m/%Y %H:%M:%S"), date_order="day-first"
+    )
+    month = read_points(
+        _write(tmp_path / "m.csv", times, "%m/%d/%Y %H:%M:%S"), date_order="month-first"
+    )
+    # every row a point or a quarantined row; the same instants either way
+    assert len(day.points) + len(day.quarantine) == len(times)
+    assert len(month.quarantine) == len(day.quarantine)
+    assert _times(day.points) == _times(month.points)
+    if not len(day.quarantine):
+        assert _times(day.points) == list(times)
