@@ -405,3 +405,18 @@ def test_dates_that_read_either_way_are_said(tmp_path, capsys):
     p.write_text(head + "1,03/01/2023 08:00:00,57.1,11.1\n")
     assert main(["import", str(p), "-o", str(out)]) == 0  # the streamed read says it too
     assert "read day first (dd/mm/yyyy)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["date_and_clock", "degrees_minutes"])
+def test_export_like_writes_dates_and_clocks_or_degrees_and_minutes_back(atd, tmp_path, name):
+    # read, export --like the file itself, read again: the same points, the same bytes
+    # (before: one time column, or nothing at all; and decimal degrees)
+    _, _, variants = atd
+    v = next(v for v in variants.values() if v.path.parent.name == name)
+    out = tmp_path / f"back{v.path.suffix}"
+    assert main(["export", str(v.path), "-o", str(out), "--like", str(v.path)]) == 0
+    first, again = read_points(v.path), read_points(out)
+    assert len(again.quarantine) == len(first.quarantine) == 0
+    for col in ("batch", "time", "lon", "lat"):
+        assert again.points[col].astype(str).tolist() == first.points[col].astype(str).tolist()
+    assert out.read_bytes() == v.path.read_bytes()

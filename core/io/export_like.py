@@ -25,6 +25,7 @@ from wakeline.core.io.formats import angle_unit, length_unit
 from wakeline.core.io.layout import (
     INTERNAL_COLUMNS,
     NUMBER_FIELDS,
+    AngleFormat,
     Column,
     Layout,
     NumberFormat,
@@ -154,8 +155,42 @@ def _strftime(seconds: np.ndarray, pattern: str) -> pa.Array:
     return _join(*parts) if len(parts) > 1 else parts[0]
 
 
-def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
-    """Times as text in ``tf``; missing times as empty cells."""
+def format_angles(values: np.ndarray, fmt: AngleFormat, pos: str, neg: str) -> pa.Array:
+    """Degrees as degrees and minutes (and seconds) text in ``fmt`` with the hemisphere
+    letter ``pos`` (values >= 0) or ``neg``; NaN as ``fmt.na``. Rounded once, in units of
+    the last part, so minutes never read 60."""
+    x = np.asarray(values, dtype="float64")
+    finite = np.isfinite(x)
+    a = np.abs(np.where(finite, x, 0.0))
+    unit = 10**fmt.decimals
+    per_deg = (3600 if fmt.seconds else 60) * unit
+    units = np.rint(a * per_deg).astype("int64")
+    rest = units % per_deg
+    text = pc.cast(pa.array(units // per_deg), pa.string())
+    if fmt.deg_width:
+        text = pc.utf8_lpad(text, fmt.deg_width, "0")
+    text = _join(text, fmt.deg_mark)
+    zeros = np.zeros(len(x), dtype=bool)
+    if fmt.seconds:
+        minutes = pc.cast(pa.array(rest // (60 * unit)), pa.string())
+        if fmt.min_width:
+            minutes = pc.utf8_lpad(minutes, fmt.min_width, "0")
+        text = _join(text, minutes, fmt.min_mark)
+        rest = rest % (60 * unit)
+    last = _digits(rest, zeros, fmt.decimals, fmt.trim)
+    width = fmt.sec_width if fmt.seconds else fmt.min_width
+    if width:  # "05.5": the whole part of the last number in two digits
+        last = pc.if_else(pa.array(rest < 10 * unit), _join("0", last), last)
+    text = _join(text, last, fmt.sec_mark if fmt.seconds else fmt.min_mark)
+    letter = pa.array(np.where(x < 0, neg, pos))
+    text = _join(text, fmt.gap, letter) if fmt.suffix else _join(letter, fmt.gap, text)
+    return pc.if_else(pa.array(finite), text, fmt.na)
+
+
+def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Array:
+    """Times as text in ``tf``; missing times as empty cells. ``part`` ``date``: only
+    the date, in ``tf.date_pattern`` (the date column of a ``Date,Time`` layout), of the
+    time rounded as the clock column rounds it."""
     ns, ok = _epoch_ns(times)
     if tf.kind == "excel":  # serial days of the wall clock in tf.tz (1900 date system)
         if tf.tz not in ("UTC", "Z", "+00:00", ""):
@@ -181,6 +216,8 @@ def format_times(times: pd.Series, tf: TimeFormat) -> pa.Array:
     q = 10 ** (9 - d)
     ns = np.floor_divide(ns + q // 2, q) * q
     seconds = np.floor_divide(ns, 1_000_000_000)
+    if part == "date":
+        return pc.if_else(pa.array(ok), _strftime(seconds, tf.date_pattern), "")
     base = _strftime(seconds, tf.pattern)
     if d > 0:
         frac = (ns - seconds * 1_000_000_000) // q
@@ -339,6 +376,12 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
             cells.append(plane[col.field])
         elif col.field == "time":
             cells.append(format_times(points["time"], layout.time))
+        elif col.field == "date":
+            cells.append(format_times(points["time"], layout.time, part="date"))
+        elif col.angle is not None and col.field in ("lon", "lat"):
+            values = points[col.field].to_numpy(dtype="float64")
+            pos, neg = ("E", "W") if col.field == "lon" else ("N", "S")
+            cells.append(format_angles(values, col.angle, pos, neg))
         elif col.field in NUMBER_FIELDS:
             values = (
                 points[col.field].to_numpy(dtype="float64")
@@ -465,7 +508,7 @@ def write_layout(
     except LookupError:
         raise InputError(f"unknown encoding {layout.encoding!r}") from None
     n = len(points)
-    is_text = [c.field not in (*NUMBER_FIELDS, "time") for c in layout.columns]
+    is_text = [c.field not in (*NUMBER_FIELDS, "time", "date") for c in layout.columns]
     is_text += [True] * len(extra)
     with atomic_path(path) as tmp, open(tmp, "wb") as fh:
         try:

@@ -27,7 +27,13 @@ import pandas as pd
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.formats import PLANE_FIELDS
-from wakeline.core.io.reader import excel_days_rule, month_first_dates, resolve_header
+from wakeline.core.io.reader import (
+    CLOCK_ONLY,
+    date_column,
+    excel_days_rule,
+    month_first_dates,
+    resolve_header,
+)
 from wakeline.core.io.sniff import sniff
 from wakeline.core.schema import CANONICAL_COLUMNS
 
@@ -72,6 +78,16 @@ _DAYFIRST = re.compile(
     r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<suffix> ?UTC| ?GMT)?$"
 )
 _OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
+#: Degrees and decimal minutes with a hemisphere letter (``57°40.026'N``, ``N 57 40.026``).
+_DM = re.compile(
+    r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,3})(?P<dm>° ?|º ?| )(?P<m>\d{1,2})"
+    r"(?:\.(?P<mf>\d+))?(?P<mm>['′]?)(?P<g2> ?)(?P<h2>[NSEW])?$"
+)
+#: ... and with seconds (``N 57 40 01.6``, ``57°40'01.6"N``).
+_DMS = re.compile(
+    r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,3})(?P<dm>° ?|º ?| )(?P<m>\d{1,2})"
+    r"(?P<mm>' ?|′ ?| )(?P<s>\d{1,2})(?:\.(?P<sf>\d+))?(?P<sm>\"|″|'')?(?P<g2> ?)(?P<h2>[NSEW])?$"
+)
 
 
 def _month_first(dates: pd.Series) -> bool:
@@ -157,6 +173,67 @@ class NumberFormat:
 
 
 @dataclass(frozen=True)
+class AngleFormat:
+    """A position written in degrees and minutes (and seconds) with a hemisphere letter:
+    ``57°40.0260000'N`` is ``AngleFormat(suffix=True, deg_mark="°", min_mark="'",
+    decimals=7)``. ``decimals`` (and ``trim`` as in :class:`NumberFormat`) are those of
+    the last part (minutes, or seconds when ``seconds``); ``*_width`` pad with zeros (0:
+    none); ``gap`` stands between the letter and the number; ``na`` a missing value."""
+
+    suffix: bool = True
+    gap: str = ""
+    deg_mark: str = "°"
+    min_mark: str = "'"
+    seconds: bool = False
+    sec_mark: str = ""
+    decimals: int = 4
+    trim: str = "none"
+    deg_width: int = 0
+    min_width: int = 0
+    sec_width: int = 0
+    na: str = ""
+
+    @staticmethod
+    def detect(values: pd.Series) -> "AngleFormat | None":
+        """The format of a column of degrees-and-minutes texts with a hemisphere letter;
+        None unless 90 % of the present values are such."""
+        text = values.astype("str").str.strip()
+        present = text[text != ""]
+        if not len(present):
+            return None
+        for regex, seconds in ((_DM, False), (_DMS, True)):
+            parts = present.str.extract(regex)
+            ok = parts["d"].notna() & (parts["h1"].notna() ^ parts["h2"].notna())
+            if ok.mean() < 0.9:
+                continue
+            parts = parts[ok]
+            first = parts.iloc[0]
+            suffix = isinstance(first["h2"], str)
+            frac = parts["sf" if seconds else "mf"].fillna("").str.len()
+            decimals = int(frac.max())
+            trim = "none" if (frac == decimals).all() else "zeros"
+
+            def width(col: pd.Series) -> int:
+                padded = (col.str.len() > 1) & col.str.startswith("0")
+                return int(col.str.len().max()) if padded.any() else 0
+
+            return AngleFormat(
+                suffix=suffix,
+                gap=str(first["g2"] if suffix else first["g1"]),
+                deg_mark=str(first["dm"]),
+                min_mark=str(first["mm"] or ""),
+                seconds=seconds,
+                sec_mark=str(first["sm"]) if seconds and isinstance(first["sm"], str) else "",
+                decimals=decimals,
+                trim=trim,
+                deg_width=width(parts["d"]),
+                min_width=2 if width(parts["m"]) else 0,
+                sec_width=2 if seconds and width(parts["s"]) else 0,
+            )
+        return None
+
+
+@dataclass(frozen=True)
 class TimeFormat:
     """How times are written.
 
@@ -166,7 +243,9 @@ class TimeFormat:
     ``pattern`` (strftime, up to whole seconds) then ``frac_digits`` fraction digits
     after ``frac_point`` (``.``, or ISO 8601's ``,``; ``frac_trim`` as in
     :class:`NumberFormat`) then ``suffix`` (``Z``, ``+08:00``, `` UTC`` or nothing). ``tz``: the zone whose wall-clock time is written (an IANA name or
-    ``UTC``; a fixed offset suffix fixes it).
+    ``UTC``; a fixed offset suffix fixes it). ``date_pattern``: when the date is a
+    column of its own (``Date,Time``), its strftime pattern; ``pattern`` is then the
+    clock's.
     """
 
     kind: str = "text"
@@ -178,6 +257,7 @@ class TimeFormat:
     scale: int = 1
     number: NumberFormat = field(default_factory=lambda: NumberFormat(0, "none"))
     frac_point: str = "."
+    date_pattern: str = ""
 
     @staticmethod
     def detect(values: pd.Series, tz: str | None = None) -> "TimeFormat":
@@ -232,13 +312,16 @@ class TimeFormat:
 @dataclass(frozen=True)
 class Column:
     """One column of a layout: the header text, the canonical ``field`` it carries (None
-    for a column Wakeline carries through unread), and its number format."""
+    for a column Wakeline carries through unread; ``date``: the date of the times, in a
+    column of its own), and its number format."""
 
     name: str
     field: str | None = None
     number: NumberFormat | None = None
     #: the name the importer gave the column in the point table (its header, made unique)
     key: str = ""
+    #: lon/lat written in degrees and minutes (``number`` then unused)
+    angle: AngleFormat | None = None
 
 
 @dataclass(frozen=True)
@@ -284,6 +367,7 @@ class Layout:
                 c.get("field"),
                 NumberFormat(**c["number"]) if c.get("number") else None,
                 c.get("key", c["name"]),
+                AngleFormat(**c["angle"]) if c.get("angle") else None,
             )
             for c in data["columns"]
         )
@@ -469,11 +553,25 @@ def describe_layout(
         f = field_of.get(key)
         numeric = f in NUMBER_FIELDS or f in PLANE_FIELDS
         number = NumberFormat.detect(sample[key], _WIDEN_RANGE.get(f)) if numeric else None
+        angle = AngleFormat.detect(sample[key]) if f in ("lon", "lat") and number is None else None
         if numeric and number is None:
             number = NumberFormat()
-        cols.append(Column(raw, f, number, key))
+        cols.append(Column(raw, f, number, key, angle))
     time_key = columns_of.get("time")
-    time = TimeFormat.detect(sample[time_key], tz) if time_key else TimeFormat(tz=tz or "UTC")
+    # Clock times beside a date column (Date,Time): the reader joins the two; so are
+    # their formats learnt, and written back apart.
+    date_key = date_column(sn.columns, set(columns_of.values())) if time_key else None
+    if date_key is not None:
+        clock = sample[time_key].str.strip()
+        if not (len(clock[clock != ""]) and clock[clock != ""].str.match(CLOCK_ONLY).all()):
+            date_key = None
+    if date_key is not None:
+        joined = sample[date_key].str.strip() + " " + sample[time_key].str.strip()
+        time = TimeFormat.detect(joined[sample[time_key].str.strip() != ""], tz)
+    elif time_key:
+        time = TimeFormat.detect(sample[time_key], tz)
+    else:
+        time = TimeFormat(tz=tz or "UTC")
     if not whole or len(lines) > SAMPLE_ROWS + 1:  # rows beyond the sample
         cols, time = _widened(path, sn, cols, time, time_key)
     if time.kind == "unix" and time_key and time_unit != "seconds":
@@ -487,10 +585,17 @@ def describe_layout(
             or (fmt is None and excel_days_rule(numbers, time_key, {}))
         ):
             time = replace(time, kind="excel", scale=1)
-    if date_order == "day-first":
+    # As given, or as the import read the whole file (what reads back the same).
+    if date_order == "day-first" or (
+        date_order == "auto" and report.get("time_format") == "day-first text"
+    ):
         time = _as_day_first(time)
     elif date_order == "month-first" or report.get("time_format") == "month-first text":
-        time = _as_month_first(time)  # given, or seen over the whole file
+        time = _as_month_first(time)
+    if date_key is not None and time.kind == "text" and " " in time.pattern:
+        date_pattern, clock_pattern = time.pattern.split(" ", 1)
+        time = replace(time, pattern=clock_pattern, date_pattern=date_pattern)
+        cols = [replace(c, field="date") if c.key == date_key else c for c in cols]
     return Layout(
         name=name,
         columns=tuple(cols),

@@ -2129,7 +2129,11 @@ _DATE_NAMES = frozenset({"date", "utcdate", "dateutc", "datum", "fecha", "日期
 _CLOCK = r"^\s*\d{1,2}:\d{2}(?::\d{2}(?:[.,]\d+)?)?(?:\s*[AaPp]\.?[Mm]\.?)?\s*$"
 
 
-def _date_column(columns, mapped: set) -> str | None:
+#: Clock times alone (``08:01:04``, ``8:01 PM``): joined with a date column beside them.
+CLOCK_ONLY = _CLOCK
+
+
+def date_column(columns, mapped: set) -> str | None:
     """The file's column of dates (``Date``, ``日期``...) that no field is mapped to."""
     for name in columns:
         if name not in mapped and normalize_header(name) in _DATE_NAMES:
@@ -2206,7 +2210,7 @@ def _to_canonical(
                 undecodable |= np.asarray(pc.fill_null(hit, False), dtype=bool)
         flag(undecodable, f"bytes not valid {rows.encoding}")
     time_col = table[cols["time"]]
-    date_src = _date_column(sn.columns, mapped)
+    date_src = date_column(sn.columns, mapped)
     if date_src is not None and _clock_only(time_col):
         time_col = pc.binary_join_element_wise(
             pc.cast(table[date_src], pa.string()), pc.cast(time_col, pa.string()), " "
