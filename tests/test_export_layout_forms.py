@@ -109,3 +109,17 @@ def test_the_layout_json_keeps_the_angle_and_the_date_column(tmp_path):
     first, back, out = _round_trip(p, tmp_path)
     assert out.read_text() == p.read_text()
     assert np.array_equal(back[["lon", "lat"]].to_numpy(), first[["lon", "lat"]].to_numpy())
+
+
+def test_a_12_hour_clock_apart_from_its_month_first_date(tmp_path):
+    p = tmp_path / "ampm.csv"
+    p.write_text(
+        "MMSI,Date,Time,LAT,LON\n"
+        "1,05/17/2024,08:01:04 PM,57.1,11.1\n"
+        "1,05/18/2024,12:00:00 AM,57.2,11.2\n"
+        "1,05/18/2024,12:30:00 PM,57.3,11.3\n"
+    )
+    first, again, out = _round_trip(p, tmp_path)
+    assert first["time"].dt.hour.tolist() == [20, 0, 12]
+    assert again["time"].tolist() == first["time"].tolist()
+    assert out.read_text() == p.read_text()

@@ -407,10 +407,11 @@ def test_dates_that_read_either_way_are_said(tmp_path, capsys):
     assert "read day first (dd/mm/yyyy)" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("name", ["date_and_clock", "degrees_minutes"])
+@pytest.mark.parametrize("name", ["date_and_clock", "degrees_minutes", "twelve_hour"])
 def test_export_like_writes_dates_and_clocks_or_degrees_and_minutes_back(atd, tmp_path, name):
     # read, export --like the file itself, read again: the same points, the same bytes
-    # (before: one time column, or nothing at all; and decimal degrees)
+    # (before: the Date,Time and 12-hour layouts stopped export --like; degrees and
+    # minutes were written as decimal degrees)
     _, _, variants = atd
     v = next(v for v in variants.values() if v.path.parent.name == name)
     out = tmp_path / f"back{v.path.suffix}"

@@ -75,7 +75,7 @@ _ISO = re.compile(
 )
 _DAYFIRST = re.compile(
     r"^\d{2}(?P<ds>[/.-])\d{2}(?P=ds)\d{4}(?P<sep>[T ])\d{2}:\d{2}(?P<sec>:\d{2})?"
-    r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<suffix> ?UTC| ?GMT)?$"
+    r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<ampm> [AP]M)?(?P<suffix> ?UTC| ?GMT)?$"
 )
 _OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
 #: Degrees and decimal minutes with a hemisphere letter (``57°40.026'N``, ``N 57 40.026``).
@@ -292,7 +292,11 @@ class TimeFormat:
                 trim = "zeros"
             if regex is _DAYFIRST and _month_first(present):
                 date = "%m{ds}%d{ds}%Y"
-            pattern = date.format(ds=m["ds"]) + m["sep"] + "%H:%M" + (":%S" if m["sec"] else "")
+            twelve = bool(m.groupdict().get("ampm"))
+            if twelve and digits:  # 08:01:04.5 PM: the fraction would follow the AM/PM
+                break
+            clock = ("%I:%M" if twelve else "%H:%M") + (":%S" if m["sec"] else "")
+            pattern = date.format(ds=m["ds"]) + m["sep"] + clock + (" %p" if twelve else "")
             suffix = m["suffix"] or ""
             zone = tz or "UTC"
             off = _OFFSET.match(suffix)
@@ -304,8 +308,8 @@ class TimeFormat:
             return TimeFormat("text", pattern, digits, trim, suffix, zone, frac_point=point)
         raise InputError(
             f"cannot tell the time format from {first!r}; "
-            "expected unix seconds, ISO 8601, dd/mm/yyyy (or mm/dd/yyyy) HH:MM:SS or "
-            "yyyymmddHHMMSS"
+            "expected unix seconds, ISO 8601, dd/mm/yyyy (or mm/dd/yyyy) HH:MM:SS (or "
+            "hh:MM:SS AM/PM, whole seconds) or yyyymmddHHMMSS"
         )
 
 
