@@ -143,3 +143,17 @@ def test_property_day_and_month_first_writings_read_back_the_same(tmp_path, star
     assert _times(day.points) == _times(month.points)
     if not len(day.quarantine):
         assert _times(day.points) == list(times)
+
+
+def test_a_batch_reads_its_csv_inputs_in_the_order_given(tmp_path):
+    pytest.importorskip("dask")
+    from wakeline.core.batch import BatchOptions, run_batch
+    from wakeline.core.pipeline import Pipeline
+
+    times = pd.date_range("2025-03-01", periods=200, freq="60s", tz="UTC")
+    p = _write(tmp_path / "amb.csv", times, "%m/%d/%Y %H:%M:%S")
+    opts = BatchOptions(csv=True, date_order="month-first", time_unit="seconds")
+    rep = run_batch(Pipeline.default(), [p], tmp_path / "out", opts).report
+    assert rep["rows_read"] == 200 and rep["quarantined"] == 0
+    got = pd.to_datetime(pd.read_csv(tmp_path / "out" / "clean.csv")["time"], utc=True)
+    assert got.min() >= times[0] and got.max() <= times[-1]  # March 1, not January 3
