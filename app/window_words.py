@@ -32,6 +32,10 @@ _PHRASES = (
         "in the import dialog's Origin of x/y metres field (File ▸ Open tracks…; LAT, LON)",
     ),
     (" with --set", " in the Parameters panel"),
+    ("--date-order month-first", "the import dialog's Date order set to month first"),
+    ("--date-order day-first", "the import dialog's Date order set to day first"),
+    ("--time-unit excel-days", "the import dialog's Time numbers set to Excel serial days"),
+    ("--time-unit seconds", "the import dialog's Time numbers set to seconds"),
 )
 _FIELDS = {
     "tz": "Time zone",
@@ -42,6 +46,8 @@ _FIELDS = {
     "delimiter": "Layout",
     "skip-rows": "Lines above the header",
     "origin": "Origin of x/y metres",
+    "date-order": "Date order",
+    "time-unit": "Time numbers",
 }
 _FLAG = re.compile(r"--(" + "|".join(_FIELDS) + r")\b(?:[ =](?!-)[^\s,;:)]+)?")
 

@@ -157,3 +157,17 @@ def test_a_batch_reads_its_csv_inputs_in_the_order_given(tmp_path):
     assert rep["rows_read"] == 200 and rep["quarantined"] == 0
     got = pd.to_datetime(pd.read_csv(tmp_path / "out" / "clean.csv")["time"], utc=True)
     assert got.min() >= times[0] and got.max() <= times[-1]  # March 1, not January 3
+
+
+def test_the_window_names_the_dialogs_fields_for_the_flags(tmp_path):
+    from wakeline.app.window_words import window_words
+
+    p = _write(tmp_path / "amb.csv", US_TIMES[:20], "%m/%d/%Y %H:%M:%S")
+    for w in read_points(p).report["warnings"] + [
+        "if they are seconds, read again with --time-unit seconds",
+        "read again with --time-unit excel-days",
+    ]:
+        assert "--" not in window_words(w), window_words(w)
+    assert "Date order set to month first" in window_words(
+        "read again with --date-order month-first"
+    )

@@ -290,3 +290,16 @@ def test_x_y_metres_ask_for_the_origin_and_it_reaches_read_points(qtbot, tmp_pat
         63.4389,
         10.3991,
     ]
+
+
+def test_the_date_order_and_time_numbers_reach_read_points(qtbot, write):
+    rows = "".join(f"1,03/{k + 1:02d}/2025 08:00:00,57.{k},11.{k}\n" for k in range(9))
+    dlg = ImportDialog(path=write("us.csv", "MMSI,BaseDateTime,LAT,LON\n" + rows))
+    qtbot.addWidget(dlg)
+    assert dlg.options()["date_order"] == "auto" and dlg.options()["time_unit"] == "auto"
+    dlg.date_order_box.setCurrentIndex(dlg.date_order_box.findData("month-first"))
+    dlg.time_unit_box.setCurrentIndex(dlg.time_unit_box.findData("seconds"))
+    opts = dlg.options()
+    assert opts["date_order"] == "month-first" and opts["time_unit"] == "seconds"
+    got = read_points(**opts).points["time"]
+    assert got.dt.month.unique().tolist() == [3]  # 03/01 ... 03/09: March, not day 3
