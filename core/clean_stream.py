@@ -115,7 +115,13 @@ def clean_file(
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
-    from wakeline.core.io.reader import nothing_imported, parse_zone, resolve_header
+    from wakeline.core.io.reader import (
+        check_date_order,
+        check_time_unit,
+        nothing_imported,
+        parse_zone,
+        resolve_header,
+    )
     from wakeline.core.io.sniff import sniff
 
     params = (params or CleanParams()).checked()
@@ -137,6 +143,8 @@ def clean_file(
         "time_unit": time_unit,
     }
     parse_zone(tz)  # a zone it does not know is refused before anything is read
+    check_date_order(date_order)
+    check_time_unit(time_unit)
     sn = sniff(path, encoding, delimiter, skip_rows)
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
     if not piece_safe(sn) or transforms:

@@ -131,3 +131,19 @@ def test_export_like_writes_excel_days_back(tmp_path):
     a, b = read_points(p).points, read_points(out).points
     assert a["time"].tolist() == b["time"].tolist()
     assert np.array_equal(a[["lon", "lat"]].to_numpy(), b[["lon", "lat"]].to_numpy())
+
+
+def test_a_unit_given_for_text_times_is_said_and_clean_refuses_an_unknown_one(tmp_path):
+    from wakeline.core.clean_stream import clean_file
+
+    p = tmp_path / "iso.csv"
+    p.write_text(
+        "id,time,lat,lon\n1,2025-01-01T12:00:00Z,57.1,11.1\n1,2025-01-01T12:00:10Z,57.2,11.2\n"
+    )
+    r = read_points(p, time_unit="excel-days")
+    assert len(r.points) == 2 and r.points["time"].iloc[0] == START
+    assert any(
+        w.startswith("--time-unit excel-days applies to numbers") for w in r.report["warnings"]
+    )
+    with pytest.raises(InputError, match="unknown time unit"):
+        clean_file(p, tmp_path / "o.csv", time_unit="days")

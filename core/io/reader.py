@@ -1369,6 +1369,8 @@ def parse_times(
     ``date_order_refused``)."""
     info = {} if info is None else info
     info["_rows"] = len(arr)
+    if time_unit != "auto":
+        info["time_unit_given"] = time_unit  # said when the times are text after all
     info.setdefault("naive", False)
     info.setdefault("relative", False)
     if pa.types.is_timestamp(arr.type):
@@ -1677,6 +1679,11 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             "days (1900 date system: 45658.5 is 2025-01-01 12:00) because "
             f"{time_info['excel_why']}; if they are seconds, read again with --time-unit "
             "seconds"
+        )
+    if time_info.get("time_unit_given") and str(time_info.get("time_format")).endswith("text"):
+        out.append(
+            f"--time-unit {time_info['time_unit_given']} applies to numbers; the times in "
+            f"{time_src!r} are text ({time_info['time_format']}) and were read as such"
         )
     if time_info.get("excel_like") and time_info.get("relative"):
         out.append(
@@ -2756,6 +2763,8 @@ def stream_points(
     :func:`read_points` (points empty). Raises :class:`StreamFallback` when the file needs the
     whole-file reader (a value that does not convert, another encoding, no points)."""
     progress = progress or null_progress
+    check_date_order(date_order)
+    check_time_unit(time_unit)
     bad = _BadRows()  # every refused or blank line of the file, numbered in the file
     types = _column_types(sn, res, careful=False)
     file_batch = "batch" not in res.columns
@@ -2848,7 +2857,7 @@ def stream_points(
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")
-        for key in info.keys() & {"month_first", "date_order_given"}:
+        for key in info.keys() & {"month_first", "date_order_given", "time_unit_given"}:
             time_info[key] = info[key]
         for key in (
             "decimal_comma",
