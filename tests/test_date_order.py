@@ -171,3 +171,28 @@ def test_the_window_names_the_dialogs_fields_for_the_flags(tmp_path):
     assert "Date order set to month first" in window_words(
         "read again with --date-order month-first"
     )
+
+
+@pytest.mark.parametrize("fmt", ["%m/%d/%Y %H:%M:%S", "%d/%m/%Y %H:%M:%S"])
+@pytest.mark.parametrize("order", ["auto", "day-first"])
+def test_a_read_in_pieces_says_what_a_whole_read_says(tmp_path, monkeypatch, fmt, order):
+    # quoted ids: read piece by piece; the pieces' counts are summed, and a day above 12
+    # in one piece shows the order for all (before: one warning per piece, each its count)
+    import wakeline.core.io.reader as reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 300)
+    times = pd.date_range("2025-03-01", periods=40, freq="12h", tz="UTC")
+    lines = ["MMSI,BaseDateTime,LAT,LON"] + [
+        f'"1",{t.strftime(fmt)},57.{k:02d},11.{k:02d}' for k, t in enumerate(times)
+    ]
+    p = tmp_path / "q.csv"
+    p.write_text("\n".join(lines) + "\n")
+    r = import_to_csv(p, tmp_path / "o.csv", date_order=order)
+    whole = read_points(p, date_order=order).report
+    if whole["time_format"] == "month-first text" and order == "auto":
+        assert "pieces" not in r.report  # shown month first in one piece: read whole
+    else:
+        assert r.report["pieces"] > 3
+    assert r.report["warnings"] == whole["warnings"]
+    assert r.report["date_order"] == whole["date_order"]
+    assert r.report.get("date_order_refused") == whole.get("date_order_refused")

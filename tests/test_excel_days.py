@@ -147,3 +147,21 @@ def test_a_unit_given_for_text_times_is_said_and_clean_refuses_an_unknown_one(tm
     )
     with pytest.raises(InputError, match="unknown time unit"):
         clean_file(p, tmp_path / "o.csv", time_unit="days")
+
+
+def test_a_read_in_pieces_decides_on_its_first_piece(tmp_path, monkeypatch):
+    import wakeline.core.io.reader as reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 300)
+    days = _excel(101)  # the last piece: one row, no step to judge by
+    lines = ["id,time,lat,lon"] + [
+        f'"1",{t:.10f},57.{k:03d},11.{k:03d}' for k, t in enumerate(days)
+    ]
+    p = tmp_path / "q.csv"
+    p.write_text("\n".join(lines) + "\n")
+    r = import_to_csv(p, tmp_path / "o.csv")
+    whole = read_points(p)
+    assert r.report["pieces"] > 3 and r.report["excel_days"] == 101
+    assert r.report["warnings"] == whole.report["warnings"]
+    got = pd.to_datetime(pd.read_csv(tmp_path / "o.csv")["time"], utc=True)
+    assert got.tolist() == whole.points["time"].tolist()

@@ -38,17 +38,20 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
+    TIME_COUNTS,
     UNBALANCED_NOTE,
     ImportResult,
     WholeFileNeeded,
     _restart_warnings,
     _time_warnings,
     blank_bytes,
+    date_order_note,
     edge_state,
     empty_quarantine,
     encoding_note,
     line_pieces,
     parse_zone,
+    time_counts,
     with_final,
 )
 from wakeline.core.io.sniff import Sniff
@@ -288,6 +291,9 @@ def _read_all(
             units.add(fmt == "Excel serial days")
             if len(units) > 1:
                 raise WholeFileNeeded  # pieces judged Excel days apart: one judgement
+            if options.get("time_unit", "auto") == "auto":
+                # the first piece of numbers decides for the rest (as the streamed read)
+                options["time_unit"] = "excel-days" if fmt == "Excel serial days" else "seconds"
         if not line_by_line and UNBALANCED_NOTE in warnings:
             raise _Again(quotes=True)
         if strict and any(w.startswith("some bytes are not valid") for w in warnings):
@@ -337,10 +343,22 @@ def merge_import_reports(
     relative = bool(with_rows) and all(r.get("time_relative") for r in with_rows)
     # The warnings that carry a piece's count are made again from the summed counts.
     counted: set[str] = set()
+    # The date order and Excel days: the pieces' counts summed, a day above 12 in any
+    # piece showing the order for the whole file (as a whole read judges it).
+    given = next(
+        (o.split()[0] for o in (r.get("date_order") or "" for r in reports) if "(given" in o),
+        None,
+    )
+    times: dict = {k: sum(int(r.get(k, 0)) for r in reports) for k in TIME_COUNTS}
+    times["dayfirst_shown"] = times["day_shown"]
+    times["excel_why"] = next((r["excel_why"] for r in reports if r.get("excel_why")), None)
+    times["date_order_given"] = given
     for r in reports:
         counted.update(
             _time_warnings(time_src, {"decimal_comma": r.get("decimal_comma_values", 0)}, zone)
         )
+        own = {k: r.get(k, 0) for k in (*TIME_COUNTS, "excel_why")}
+        counted.update(_time_warnings(time_src, {**own, "date_order_given": given}, zone))
         counted.update(_restart_warnings(r.get("restarting_tracks", {}), batch_src))
     relative_note = _time_warnings(time_src, {"relative": True}, zone)
     local_note = _time_warnings(time_src, {"naive": True}, zone)  # local times read as UTC
@@ -352,6 +370,7 @@ def merge_import_reports(
             (timing if w in local_note else notes).append(w)
     warnings = list(dict.fromkeys(notes))
     warnings += _time_warnings(time_src, {"decimal_comma": decimal}, zone)
+    warnings += _time_warnings(time_src, times, zone)
     warnings += list(dict.fromkeys(timing))
     if relative:
         warnings += relative_note
@@ -362,12 +381,11 @@ def merge_import_reports(
     encodings = [r["encoding"] for r in reports]
     encoding = next((e for e in encodings if e != sn.encoding), encodings[0])
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
-    # The order of slashed dates: as a piece that shows it says (else the first piece's).
-    orders = [r.get("date_order") for r in reports if r.get("date_order")]
-    shown = [o for o in orders if "shows it" in o or "given" in o]
+    fmt = (with_rows or reports)[0].get("time_format")
     return {
         **first,
-        "date_order": (shown or orders or [None])[0],
+        "date_order": date_order_note({**times, "time_format": fmt}),
+        **time_counts(times),
         "input": str(sn.path),
         "encoding": encoding,
         "compression": sn.compression,

@@ -1752,6 +1752,20 @@ def date_order_note(time_info: dict) -> str | None:
     return None
 
 
+#: The counts behind the date-order and Excel-days notes, in a report when not zero (a
+#: read in pieces sums them: :func:`~wakeline.core.io.pieces.merge_import_reports`).
+TIME_COUNTS = ("dates_either_way", "day_shown", "excel_days", "date_order_refused")
+
+
+def time_counts(time_info: dict) -> dict:
+    """The non-zero :data:`TIME_COUNTS` of ``time_info`` and the reason Excel days were
+    read (``excel_why``), for the import report."""
+    out: dict = {k: int(time_info[k]) for k in TIME_COUNTS if time_info.get(k)}
+    if time_info.get("excel_why"):
+        out["excel_why"] = time_info["excel_why"]
+    return out
+
+
 def time_unit_note(time_info: dict) -> str | None:
     """What numbers in the time column were read as, and why (for the import report), or
     None for text times."""
@@ -1888,6 +1902,7 @@ def read_points(
         "time_date_column": time_info.get("date_column"),
         "date_order": date_order_note(time_info),
         "time_unit": time_unit_note(time_info),
+        **time_counts(time_info),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
@@ -2846,8 +2861,9 @@ def stream_points(
             time_unit=time_unit,
         )
         time_info["absolute"] = bool(info.get("absolute"))
-        # The first piece decides numbers in the Excel range for the rest of the file.
-        if "_unit" not in time_info and (info.get("excel_days") or info.get("excel_like")):
+        # The first piece of numeric times decides Excel days or seconds for the rest.
+        numeric = str(info.get("time_format")).startswith(("unix", "relative", "Excel"))
+        if "_unit" not in time_info and numeric:
             time_info["_unit"] = "excel-days" if info.get("excel_days") else "seconds"
         if info.get("excel_why"):
             time_info["excel_why"] = info["excel_why"]
@@ -2958,6 +2974,7 @@ def stream_points(
         "time_format": time_info.get("time_format"),
         "date_order": date_order_note(time_info),
         "time_unit": time_unit_note(time_info),
+        **time_counts(time_info),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
