@@ -684,10 +684,11 @@ def check_time_unit(value: str) -> str:
 
 def excel_days_rule(values: np.ndarray, header: str, info: dict) -> bool:
     """Whether ``auto`` reads numeric times as Excel serial days. Only when the values
-    (99 % of them: a damaged one does not hide the rest) lie in :data:`EXCEL_RANGE` and either the header names them (``Excel``, ``serial``,
-    ``OADate``, ``days``) or most have a fractional part and the column steps less than
-    :data:`EXCEL_STEP` between rows (a clock of days: seconds step 1.2e-5). A column in
-    the range that is not so taken is read as seconds and ``info["excel_like"]`` says so."""
+    (99 % of them: a damaged one does not hide the rest) lie in :data:`EXCEL_RANGE` and
+    either the header names them (``Excel``, ``serial``, ``OADate``, ``days``) or half have
+    a fractional part and the column steps less than :data:`EXCEL_STEP` between rows (a
+    clock of days: 1 s is 1.2e-5). A column in the range that is not so taken is read as
+    seconds and ``info["excel_like"]`` says so (docs/import.md)."""
     finite = values[np.isfinite(values)]
     inside = (finite >= EXCEL_RANGE[0]) & (finite < EXCEL_RANGE[1])
     if not len(finite) or inside.mean() < 0.99:  # a damaged value or two: still judged
