@@ -70,6 +70,8 @@ def test_the_message_suggests_the_columns_by_their_values(tmp_path):
         (["31/07/2024 23:31:24,5,23.4,37.5", "31/07/2024 23:32:24,5,23.5,37.6"], False),
         (["time,id,x,y", "2024-07-31T23:31:24Z,5,1.0,2.0"], True),  # known names
         (["1722468684,5,23.4,37.5", "1722468744,5,23.5,37.6"], False),  # numbers only
+        # a track named like a field (hypothesis found "T": time's synonym) is still data
+        (["2024-07-31T23:31:24Z,T,0.0,0.0", "2024-07-31T23:32:24Z,T,0.1,0.1"], False),
         (["name,comment", "foo,bar"], True),  # words only
     ],
 )

@@ -279,19 +279,17 @@ def _cell_kind(cell: str) -> str:
 
 def _is_header(first: list[str], rows: list[list[str]]) -> bool:
     """Whether the first line is a header. A line of numbers is data. A line with a
-    word in it is a header, unless it names no known column and is like the lines
-    below it: a date-time or a number where each of them has one, cell for cell (a
-    file without a header whose first row starts with ``2024-07-31T23:31:24Z``: that
-    row was read as the header, and its fix was lost)."""
+    word in it is a header, unless it holds a date-time or two numbers and is like the
+    lines below it: a date-time or a number where each of them has one, cell for cell
+    (a file without a header whose first row starts with ``2024-07-31T23:31:24Z``: that
+    row was read as the header, and its fix was lost). A header's names are words where
+    its data has numbers or times, so a name that is also a field's (a track called
+    ``T`` or ``x``) does not make a data row a header."""
     if not any(f and not _NUMBER.match(f) for f in first):
         return False
-    from wakeline.core.io.formats import known_fields
-
-    if known_fields(first):
-        return True
     kinds = [_cell_kind(f) for f in first]
-    if "time" not in kinds and "number" not in kinds:
-        return True  # words only: names
+    if "time" not in kinds and kinds.count("number") < 2:
+        return True  # names (or a line of words: a title's "station 4" is no fix)
     rows = [r for r in rows if len(r) == len(first)]
     if not rows:
         return True
