@@ -224,7 +224,14 @@ class ProjectJobsMixin:
         finally:
             self._view_planned = False
         lock_note = self.project.follow(path, proj.read_only)
-        self.log_message(self._opened_text(path, len(proj.layers), len(proj.decisions)))
+        restored = len(proj.decisions) - len(proj.repairs)
+        self.log_message(self._opened_text(path, len(proj.layers), restored))
+        if proj.repairs:
+            # The migration's decisions (core.project's docstring) go into the file at
+            # once, before any new one, so the stored log replays to what is shown.
+            for row in proj.repairs:
+                self.project.add_decision(row)
+            self.log_message(f"{self.tr('Note')}: {self._repaired_text(len(proj.repairs))}")
         bearing = [lid for lid, lay in self.session.layers.items() if lay.kind == BEARING_KIND]
         if bearing and bearing[-1] in self.views:  # the dock and Detail show the last
             self.show_bearing_layer(self.views[bearing[-1]])
@@ -261,6 +268,20 @@ class ProjectJobsMixin:
             else self.tr("{0} review decisions restored").format(f"{decisions:,}")
         )
         return self.tr("Opened project {0}: {1}, {2}").format(str(path), n_layers, n_decided)
+
+    def _repaired_text(self, n: int) -> str:
+        """The log line of the review rows the migration on open accepted."""
+        if n == 1:
+            return self.tr(
+                "1 review row said split or rejected beside a target holding both its "
+                "tracks (a join made by an older Wakeline): it is now accepted, as a "
+                "join accepts such rows (stored as a 'repair' decision)"
+            )
+        return self.tr(
+            "{0} review rows said split or rejected beside a target holding both their "
+            "tracks (joins made by an older Wakeline): they are now accepted, as a join "
+            "accepts such rows (stored as 'repair' decisions)"
+        ).format(f"{n:,}")
 
     def open_project_dialog(self) -> None:
         path, _ = QtWidgets.QFileDialog.getOpenFileName(

@@ -21,6 +21,7 @@ def action_name(action: str) -> str:
         "merge": QtCore.QCoreApplication.translate("ReviewCommand", "merge"),
         "split track": QtCore.QCoreApplication.translate("ReviewCommand", "split track"),
         "split target": QtCore.QCoreApplication.translate("ReviewCommand", "split target"),
+        "repair": QtCore.QCoreApplication.translate("ReviewCommand", "repair"),
     }
     return names.get(action, action)
 

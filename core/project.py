@@ -19,6 +19,12 @@ raises one :class:`InputError` and the caller's session stays untouched. The sta
 only say where the operator was (what the map showed, what was selected): a bad one is
 left out with one warning in :attr:`Project.warnings` and the project opens; a bad data
 row (layers, parameters, decisions) refuses it as damaged.
+
+Migrations on open: a version-1 file's layers and parameter table are read as today's
+(written as today's at the next write of that row, or by Save as), and review decisions
+that left a proposal rejected or split beside a target holding both its tracks (made
+before a join accepted such rows) get one ``repair`` decision each, appended
+(:attr:`Project.repairs`; the window writes them at once).
 """
 
 import hashlib
@@ -43,6 +49,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.io.writer import atomic_path
 from wakeline.core.pipeline import PARAMS_VERSION, params_from_version
 from wakeline.core.project_lock import read_holder
+from wakeline.core.review_session import repair_decisions
 from wakeline.core.session import Layer, MapView, Session, Source
 from wakeline.core.timeline import TimeWindow, current_time_from_json, current_time_to_json
 
@@ -95,6 +102,12 @@ class Project:
     warnings: list[str] = field(default_factory=list)
     #: The time slider's time (the ``current_time`` state row, s; None: none kept).
     current_time: float | None = None
+    #: Decision rows the migration on open added (already in :attr:`decisions`): the
+    #: review rows a join of an older Wakeline left rejected or split beside a target
+    #: holding both their tracks, accepted
+    #: (:func:`wakeline.core.review_session.repair_decisions`). Not in the file yet:
+    #: whoever follows the file writes them (the window does at once), or Save as does.
+    repairs: list[dict] = field(default_factory=list)
 
     def source_problems(self) -> list[str]:
         """One sentence per source that is missing or whose content changed."""
@@ -499,6 +512,9 @@ def load_project(path: str | Path) -> Project:
     if isinstance(params_version, bool) or not isinstance(params_version, int):
         raise InputError(f"{path}: the project is damaged (parameter version {params_version!r})")
     params = params_from_version(params, params_version)
+    # Review decisions made before a join accepted the rows it put inside a target.
+    repairs = repair_decisions(layers, decisions)
+    decisions += repairs
     return Project(
         sources,
         params,
@@ -512,6 +528,7 @@ def load_project(path: str | Path) -> Project:
         ui.active,
         ui.warnings,
         ui.current_time,
+        repairs,
     )
 
 

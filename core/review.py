@@ -729,6 +729,38 @@ def _cut(state: ReviewState, action: str, tracks: list[str], touches) -> Change:
     )
 
 
+def cut_inside_targets(state: ReviewState) -> list[str]:
+    """Proposals rejected or split whose two tracks are in one target now."""
+    tg = state.target_of_track()
+    cut = ~np.isin(state.status, ACTIVE)
+    sel = np.flatnonzero(cut & (tg[state._pa] == tg[state._pb]))
+    return state.proposals["proposal"].to_numpy()[sel].tolist()
+
+
+def repair(state: ReviewState, proposal: str) -> Change:
+    """The change that accepts a rejected or split proposal a join left inside a target
+    (action ``repair``), as :func:`merge` and :func:`accept` do since they accept such
+    rows in the same change; a manual link between its two tracks goes with it (the
+    accepted proposal joins them: the targets do not change). For projects whose
+    decisions were made before that (:func:`wakeline.core.review_session.repair_decisions`,
+    a migration on open: it is a stored decision like any other, not on the undo stack)."""
+    row = state._proposal_row(proposal)
+    a, b = state.track_a[row], state.track_b[row]
+    if state.status[row] in ACTIVE:
+        raise InputError(f"{proposal} is {state.status[row]}: nothing to repair")
+    if state.target(a) != state.target(b):
+        raise InputError(f"{proposal}: its tracks are in two targets: nothing to repair")
+    link = pair_key(a, b)
+    return Change(
+        "repair",
+        proposal,
+        (a, b),
+        {proposal: str(state.status[row])},
+        {proposal: "accepted"},
+        links_removed=frozenset({link} & state.links),
+    )
+
+
 def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:
     """Apply a decisions table in order (the CLI's ``--decisions``): rows
     ``proposal,decision`` with accept | reject | reset, ``decision`` = merge with

@@ -17,7 +17,7 @@ import pandas as pd
 
 from wakeline.core import review as R
 from wakeline.core.errors import InputError
-from wakeline.core.review_store import replay_decisions
+from wakeline.core.review_store import decision_row, replay_decisions
 from wakeline.core.session import Layer, Session
 
 
@@ -148,3 +148,65 @@ def sorted_by_track(points: pd.DataFrame) -> tuple[pd.DataFrame, dict[str, tuple
     starts = np.flatnonzero(np.r_[True, lab[1:] != lab[:-1]])
     ends = np.r_[starts[1:], len(lab)]
     return pts, {str(lab[s]): (int(s), int(e)) for s, e in zip(starts, ends, strict=True)}
+
+
+def repair_decisions(
+    layers: list[Layer], decisions: list[dict], when: str | None = None
+) -> list[dict]:
+    """Migration on open: the decision rows (:func:`decision_row`) that repair the review
+    queues of ``layers`` whose stored ``decisions`` leave a proposal rejected or split
+    beside a target holding both its tracks — what a join made before joins accepted
+    such rows (a project saved by an older Wakeline: a split, then a merge of the two
+    tracks by hand, left the row ``split``). One :func:`~wakeline.core.review.repair`
+    per such row, to append to the decisions (the caller stores them); none when every
+    queue is consistent, so a repaired project reopens without new rows.
+
+    Only what a join left behind is repaired: a row rejected or split while its tracks
+    stayed in one target (other links hold them together) is the operator's decision
+    and is kept. A queue that cannot be bound (its input layer removed) or replayed is
+    left to the review, which reports it."""
+    session = Session()
+    session.layers = {lay.id: lay for lay in layers}
+    out: list[dict] = []
+    for lay in layers:
+        props = proposals_of(lay)
+        if props is None:
+            continue
+        key = queue_key(lay)
+        rows = [r for r in decisions if isinstance(r, dict) and r.get("queue") == key]
+        rows = [r for r in rows if isinstance(r.get("change"), dict)]
+        if not rows:
+            continue
+        try:
+            tracks = R.track_table(input_points(session, lay))
+            changes = [R.Change.from_dict(r["change"]) for r in rows]
+            state = R.ReviewState(tracks, props)
+            for change, row in zip(changes, rows, strict=True):
+                state.apply(change, when=row.get("time"))
+        except (InputError, KeyError, TypeError, ValueError):
+            continue
+        inside = R.cut_inside_targets(state)
+        if not inside:
+            continue
+        left = _left_by_a_join(R.ReviewState(tracks, props), changes, set(inside))
+        for pid in inside:
+            if pid in left:
+                change = state.apply(R.repair(state, pid), when=when)
+                out.append(decision_row(key, change, state.log[-1]))
+    return out
+
+
+def _left_by_a_join(state: R.ReviewState, changes: list[R.Change], rows: set[str]) -> set[str]:
+    """Of ``rows`` (cut, inside one target at the end of ``changes``): those whose tracks
+    were in two targets right after the last change that set their status — a later join
+    put them together and left the row cut."""
+    apart: dict[str, bool] = {}
+    for change in changes:
+        state.apply(change)
+        mine = rows.intersection(change.status_after)
+        if mine:
+            tg = state.target_of_track()
+            for pid in mine:
+                row = state._row[pid]
+                apart[pid] = bool(tg[state._pa[row]] != tg[state._pb[row]])
+    return {pid for pid, was_apart in apart.items() if was_apart}

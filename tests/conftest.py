@@ -58,6 +58,71 @@ def saronic_points(sensor: str = "AIS"):
     )
 
 
+def old_style_review_project(path: Path) -> dict:
+    """A project saved before joins accepted the rows they put inside a target (commit
+    c2e0b20): its decisions are written as that code wrote them. On an associated layer
+    of a simulated scene (proposals with no track in common, picked in id order):
+
+    - ``split_merged``: split (its first track), then its two tracks merged by hand (the
+      old merge: a manual link, the row left ``split``);
+    - ``rejected_merged``: rejected, then merged by hand (left ``rejected``);
+    - ``accepted``: accepted; ``rejected``: rejected (tracks apart: consistent);
+    - ``rejected_in_cycle``: merged by hand while already joined (the old merge added a
+      link anyway), then rejected: rejected while its tracks stayed joined, the
+      operator's own decision (not a join's leftover).
+
+    Returns those names' proposal ids, the layer's id and the old links."""
+    from wakeline.core import review as R
+    from wakeline.core import simulate
+    from wakeline.core.project import save_project
+    from wakeline.core.review_session import bind, queue_key
+    from wakeline.core.review_store import decision_row
+    from wakeline.core.session import Session
+
+    s = Session()
+    src = s.add_layer("seg.csv", "source", simulate.segments_scene(seed=2, n_ships=8, area_km=15))
+    (lay,) = s.apply_result(src.id, s.run_step(src.id, "associate"))
+    st, _ = bind(s, lay)
+    used: set[str] = set()
+    picked = []
+    for pid, a, b in zip(st.proposals["proposal"], st.track_a, st.track_b, strict=True):
+        if a not in used and b not in used:
+            picked.append(pid)
+            used |= {a, b}
+    names = ["split_merged", "rejected_merged", "accepted", "rejected", "rejected_in_cycle"]
+    assert len(picked) >= len(names), "the scene has too few separate proposals"
+    ids = dict(zip(names, picked, strict=False))
+
+    def tracks(pid):
+        k = st._row[pid]
+        return [st.track_a[k], st.track_b[k]]
+
+    def old_set(action, pid, status):  # accept / reject / reset before c2e0b20
+        k = st._row[pid]
+        return R.Change(action, pid, tuple(tracks(pid)), {pid: str(st.status[k])}, {pid: status})
+
+    def old_merge(labels):  # manual links in a chain; no status touched
+        links = {R.pair_key(x, y) for x, y in zip(labels[:-1], labels[1:], strict=True)}
+        return R.Change("merge", "", tuple(labels), links_added=frozenset(links - st.links))
+
+    changes = [
+        lambda: R.split_track(st, tracks(ids["split_merged"])[0]),  # unchanged since
+        lambda: old_merge(tracks(ids["split_merged"])),
+        lambda: old_set("reject", ids["rejected_merged"], "rejected"),
+        lambda: old_merge(tracks(ids["rejected_merged"])),
+        lambda: old_set("accept", ids["accepted"], "accepted"),
+        lambda: old_set("reject", ids["rejected"], "rejected"),
+        lambda: old_merge(tracks(ids["rejected_in_cycle"])),
+        lambda: old_set("reject", ids["rejected_in_cycle"], "rejected"),
+    ]
+    for make in changes:
+        change = make()
+        st.apply(change, when="2026-12-01T10:00:00+00:00")
+        s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    save_project(s, path)
+    return {"ids": ids, "layer": lay.id, "links": set(st.links), "status": list(st.status)}
+
+
 def make_window(qtbot, tmp_path, size: tuple[int, int] = (1400, 900)):
     """A main window in English with settings of its own under ``tmp_path``, ``size`` px;
     :func:`window` yields one and ends its jobs after the test."""

@@ -151,3 +151,93 @@ def test_a_rerun_of_associate_keeps_out_what_the_operator_rejected():
     # Rejections of every run count: the second run's queue has none of its own.
     assert s.rejected_pairs_below(src.id) == {R.pair_key(*labels[0]), R.pair_key(*labels[1])}
     assert "kept out" in STEPS["associate"].summary(res)
+
+
+def test_an_old_project_with_split_rows_beside_joined_tracks_is_repaired_on_open(tmp_path):
+    """A project saved before joins accepted the rows they put inside a target (split or
+    rejected, then merged by hand: the row still said so beside the joined target) opens
+    with those rows accepted by one stored ``repair`` decision each, the links a merge
+    would not have made gone with them, the targets and everything else as they were;
+    stored once, it reopens the same with nothing more to repair."""
+    from conftest import old_style_review_project
+    from wakeline.core.project import ProjectStore
+
+    path = tmp_path / "old.wakeline"
+    old = old_style_review_project(path)
+    ids, lid = old["ids"], old["layer"]
+    with_old_code = load_project(path)  # the rows as the old code reads them back
+    s0 = with_old_code.to_session()
+    s0.decisions = [d for d in s0.decisions if d not in with_old_code.repairs]
+    before, _ = bind(s0, s0.layers[lid])
+    assert list(before.status) == old["status"]
+    assert set(R.cut_inside_targets(before)) == {
+        ids["split_merged"],
+        ids["rejected_merged"],
+        ids["rejected_in_cycle"],
+    }
+
+    proj = load_project(path)
+    assert len(proj.repairs) == 2
+    assert proj.decisions == with_old_code.decisions[: len(proj.decisions) - 2] + proj.repairs
+    assert [r["change"]["proposal"] for r in proj.repairs] == [
+        ids["split_merged"],
+        ids["rejected_merged"],
+    ]
+    assert {r["action"] for r in proj.repairs} == {"repair"}
+    s = proj.to_session()
+    st, _ = bind(s, s.layers[lid])
+    assert st.status_of(ids["split_merged"]) == "accepted"
+    assert st.status_of(ids["rejected_merged"]) == "accepted"
+    # Nothing else moved: other rows, the targets; the links the old merges added
+    # beside the rows now accepted are gone (the rows join those tracks), the others stay.
+    repaired = {st._row[ids["split_merged"]], st._row[ids["rejected_merged"]]}
+    for k, (was, now) in enumerate(zip(before.status, st.status, strict=True)):
+        assert k in repaired or was == now
+    assert st.status_of(ids["rejected_in_cycle"]) == "rejected"  # the operator's, kept
+    assert (st.target_of_track() == before.target_of_track()).all()
+    pair = {
+        k: tuple(sorted((st.track_a[st._row[p]], st.track_b[st._row[p]]))) for k, p in ids.items()
+    }
+    assert st.links == old["links"] - {pair["split_merged"], pair["rejected_merged"]}
+    assert pair["rejected_in_cycle"] in st.links
+    assert R.cut_inside_targets(st) == [ids["rejected_in_cycle"]]
+    # The layers, parameters and sources are read as they were written.
+    for a, b in zip(proj.layers, with_old_code.layers, strict=True):
+        assert a.id == b.id and a.points.equals(b.points)
+    assert proj.params == with_old_code.params and proj.sources == with_old_code.sources
+    # A re-run keeps out only the pairs still rejected.
+    assert s.rejected_pairs_below("L1") == {pair["rejected"], pair["rejected_in_cycle"]}
+
+    # Stored (as the window does at once), the project reopens the same.
+    store = ProjectStore(path, create=False)
+    try:
+        for row in proj.repairs:
+            store.add_decision(row)
+    finally:
+        store.close()
+    again = load_project(path)
+    assert again.repairs == [] and again.decisions == proj.decisions
+    s2 = again.to_session()
+    st2, _ = bind(s2, s2.layers[lid])
+    assert list(st2.status) == list(st.status) and st2.links == st.links
+    assert (st2.target_of_track() == st.target_of_track()).all()
+    assert st2.log_table()["action"].tolist()[-2:] == ["repair", "repair"]
+
+
+def test_no_repair_on_a_consistent_project_or_a_queue_that_cannot_be_bound(pair, tmp_path):
+    """Decisions made by today's joins never call for a repair; a queue whose input layer
+    is gone is left to the review (which says so), and the project opens."""
+    s, lid = _fused_session(pair)
+    lay = s.layers[lid]
+    st, _ = bind(s, lay)
+    a, b = st.proposals["proposal"][:2]
+    ta = st.track_a[st._row[a]]
+    for change in (R.split_track(st, ta), R.merge(st, [ta, st.track_b[st._row[a]]])):
+        st.apply(change)
+        s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    assert R.cut_inside_targets(st) == []
+    save_project(s, tmp_path / "new.wakeline")
+    assert load_project(tmp_path / "new.wakeline").repairs == []
+    s.remove_layer("L2")
+    save_project(s, tmp_path / "gone.wakeline")
+    assert load_project(tmp_path / "gone.wakeline").repairs == []

@@ -741,3 +741,51 @@ def test_opening_a_project_logs_its_file_layers_and_decisions(qtbot, tmp_path):
     finally:
         w2.set_language("en")
     w2.close()
+
+
+def test_an_old_project_opens_with_its_split_rows_beside_joined_tracks_repaired(qtbot, tmp_path):
+    """GUI test: a project whose review rows an older Wakeline left 'split' or 'rejected'
+    beside a target holding both their tracks (split or rejected, then merged by hand)
+    opens with them accepted; the log says how many, the repair is in the file at once
+    (not on the undo stack: there is nothing to undo), and the project reopens the
+    same, with nothing more to repair."""
+    from conftest import old_style_review_project
+    from wakeline.app.review_model import COLUMNS
+    from wakeline.core.project import load_project
+
+    path = tmp_path / "old.wakeline"
+    old = old_style_review_project(path)
+    ids = old["ids"]
+    w = _window(qtbot, tmp_path)
+    w.open_project(path)
+    _settle(w)
+    w.select_layer(old["layer"])
+    _settle(w)
+    text = w.log.toPlainText()
+    assert "8 review decisions restored" in text.splitlines()[0], text
+    assert "Note: 2 review rows said split or rejected beside a target" in text, text
+    b = w.review.bound
+    st = b.controller.state
+    assert st.status_of(ids["split_merged"]) == st.status_of(ids["rejected_merged"]) == "accepted"
+    assert st.status_of(ids["rejected_in_cycle"]) == "rejected"
+    col = [n for n, _ in COLUMNS].index("status")
+    m = b.panel.model
+    for pid in (ids["split_merged"], ids["rejected_merged"]):
+        assert m.data(m.index(m.row_of[pid], col)) == "accepted"
+    assert not w.review.act_undo.isEnabled()
+    assert st.log_table()["action"].tolist()[-2:] == ["repair", "repair"]
+    statuses, links = list(st.status), set(st.links)
+    w.project.flush()
+    w.close()
+
+    again = load_project(path)  # written at once: nothing to repair any more
+    assert again.repairs == [] and len(again.decisions) == 10
+    w2 = _window(qtbot, tmp_path)
+    w2.open_project(path)
+    _settle(w2)
+    w2.select_layer(old["layer"])
+    _settle(w2)
+    assert "review rows said" not in w2.log.toPlainText()
+    st2 = w2.review.bound.controller.state
+    assert list(st2.status) == statuses and st2.links == links
+    w2.close()

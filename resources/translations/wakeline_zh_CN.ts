@@ -328,6 +328,14 @@
         <translation>已打开工程 {0}：{1}，{2}</translation>
     </message>
     <message>
+        <source>1 review row said split or rejected beside a target holding both its tracks (a join made by an older Wakeline): it is now accepted, as a join accepts such rows (stored as a &apos;repair&apos; decision)</source>
+        <translation>1 条审核记录在同时包含其两条航迹的目标旁仍显示“拆分”或“拒绝”（由旧版 Wakeline 的合并造成）：现已改为接受，与当前合并对此类记录的处理一致（记为一条“修复”决策）</translation>
+    </message>
+    <message>
+        <source>{0} review rows said split or rejected beside a target holding both their tracks (joins made by an older Wakeline): they are now accepted, as a join accepts such rows (stored as &apos;repair&apos; decisions)</source>
+        <translation>{0} 条审核记录在同时包含其两条航迹的目标旁仍显示“拆分”或“拒绝”（由旧版 Wakeline 的合并造成）：现已改为接受，与当前合并对此类记录的处理一致（记为“修复”决策）</translation>
+    </message>
+    <message>
         <source>1 layer</source>
         <translation>1 个图层</translation>
     </message>
@@ -1230,6 +1238,10 @@
     <message>
         <source>split target</source>
         <translation>拆分目标</translation>
+    </message>
+    <message>
+        <source>repair</source>
+        <translation>修复</translation>
     </message>
     <message>
         <source>split track</source>
