@@ -56,6 +56,10 @@ REDRAW_MS = 40
 GEOMETRY_CACHE = 64
 #: Items made per event-loop turn ahead of a new queue's first drawing.
 WARM_BATCH = 8
+#: Between two stages of a bind: a real timer, as the window's draw queue
+#: (``window_layers.STEP_MS``); with a zero delay the next stage ran before the paint of
+#: the last one, in the same event-loop block.
+BIND_STEP_MS = 10
 
 
 def tr(text: str) -> str:
@@ -170,7 +174,7 @@ class ReviewDock(QtCore.QObject):
         self._bind_steps = None  # the stages of a bind still to run (_bind_stages)
         self._bind_timer = QtCore.QTimer(self)
         self._bind_timer.setSingleShot(True)
-        self._bind_timer.setInterval(0)
+        self._bind_timer.setInterval(BIND_STEP_MS)
         self._bind_timer.timeout.connect(self._next_bind_step)
         self.group = QtGui.QUndoGroup(self)
         self.sync = ReviewSync(self)
@@ -181,6 +185,8 @@ class ReviewDock(QtCore.QObject):
         self.stack = QtWidgets.QStackedWidget()
         self.empty = QtWidgets.QLabel(tr("No proposals: run Associate or Fuse on a layer."))
         self.stack.addWidget(self.empty)
+        self.blank = QtWidgets.QWidget()  # the dock's first turn, before a queue's widgets
+        self.stack.addWidget(self.blank)
         area = QtCore.Qt.DockWidgetArea
         self.dock = self._dock("review", tr("Review"), self.stack, area.BottomDockWidgetArea)
         # The before map sits beside the main map in the centre (View ▸ Before/after map).
@@ -406,7 +412,14 @@ class ReviewDock(QtCore.QObject):
         yield
         if stale():
             return
-        gantt, network = GanttView(state), NetworkView(state)
+        gantt = GanttView(state)  # a turn each (both in one: 26-39 ms CPU on ATD)
+        yield
+        if stale():
+            return
+        network = NetworkView(state)
+        yield
+        if stale():
+            return
         box = QtWidgets.QSplitter()
         box.addWidget(panel)
         views = QtWidgets.QSplitter()
@@ -447,7 +460,7 @@ class ReviewDock(QtCore.QObject):
             return  # dropped meanwhile (its layer removed or run again)
         active = self.w.active_layer()
         if active is not None and queue_key(active) == key:
-            self._show(bound)
+            yield from self._show_stages(bound)
 
     def _drop(self, key: str) -> None:
         bound = self.queues.pop(key)
@@ -460,6 +473,15 @@ class ReviewDock(QtCore.QObject):
             self._clear_items()
 
     def _show(self, bound: Bound | None) -> None:
+        for _ in self._show_stages(bound):
+            pass
+
+    def _show_stages(self, bound: Bound | None):
+        """Show ``bound``'s queue (None: hide the dock), a generator: the dock, the map of
+        the layers before the step, the first proposal; a binding runs one stage per
+        event-loop turn, each painted before the next (showing the dock, its table and
+        the first proposal in one turn, with their paints, held the GUI thread 100-120
+        ms of CPU on ATD's Run ▸ Associate)."""
         if bound is self.bound and (bound is None) == self.dock.isHidden():
             return
         self.bound = bound
@@ -472,14 +494,39 @@ class ReviewDock(QtCore.QObject):
             self.dock.hide()
             return
         self.group.setActiveStack(bound.controller.stack)
-        self.stack.setCurrentWidget(bound.widget)
         if self.dock.isHidden():
-            self.dock.show()
+            # The dock first, blank, in the log's place; its height (the maps resized
+            # and painted again) on the next turn; the queue's table and views on the
+            # one after.
+            self.stack.setCurrentWidget(self.blank)
             if self.dock not in self.w.tabifiedDockWidgets(self.w.docks["log"]):
-                self.w.tabifyDockWidget(self.w.docks["log"], self.dock)
+                self.w.tabifyDockWidget(self.w.docks["log"], self.dock)  # (one layout)
+            self.dock.show()
+            self.dock.raise_()
+            yield
+            if self.bound is not bound:
+                return
             self.w.resizeDocks([self.dock], [360], QtCore.Qt.Orientation.Vertical)
+            yield
+            if self.bound is not bound:
+                return
+        self.stack.setCurrentWidget(bound.widget)
         self.dock.raise_()
+        yield
+        if self.bound is not bound:  # another queue shown, or the dock hidden, meanwhile
+            return
         self._draw_before(self.w.session.layers[bound.lid])
+        yield
+        if self.bound is not bound:
+            return
+        pid = bound.panel.current()
+        if pid:  # the map zoomed to it (and painted), then the proposal drawn
+            geom = bound.geometry(pid, proposal_members(bound.controller.state, pid))
+            if geom.bounds:
+                self._zoom_to(geom.bounds)
+                yield
+                if self.bound is not bound:
+                    return
         bound.panel._settle.stop()  # a new queue's first row: shown here, not again
         self.show_proposal(bound.panel.current())
 
@@ -598,8 +645,7 @@ class ReviewDock(QtCore.QObject):
         a, c = st.track_a[k], st.track_b[k]
         geom = b.geometry(proposal, proposal_members(st, proposal))
         if geom.bounds:
-            x0, y0, x1, y1 = geom.bounds
-            self.w.canvas.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0.15)
+            self._zoom_to(geom.bounds)
         layer = self.w.session.layers.get(b.lid)
         if layer is not None and layer.step == "fuse":
             keys = [("fused", st.target(a))]
@@ -611,6 +657,11 @@ class ReviewDock(QtCore.QObject):
         self._views_proposal = proposal
         self._views_todo = ["gantt", "network"]
         self._views.start()
+
+    def _zoom_to(self, bounds: tuple[float, float, float, float]) -> None:
+        """The main map's view on a proposal's bounds (lon0, lat0, lon1, lat1)."""
+        x0, y0, x1, y1 = bounds
+        self.w.canvas.vb.setRange(xRange=(x0, x1), yRange=(y0, y1), padding=0.15)
 
     def _draw_views(self) -> None:
         """One of the current proposal's views (Gantt, then network) per event-loop turn."""

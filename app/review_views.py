@@ -188,7 +188,9 @@ class GanttView(pg.PlotWidget):
 
     def __init__(self, state: ReviewState, parent=None) -> None:
         ink.setup()
-        super().__init__(parent, background="w")
+        # No context menus: made and dropped again, pyqtgraph's view-box menu took ~10 ms
+        # of the bind's GUI-thread turn per view.
+        super().__init__(parent, background="w", enableMenu=False)
         self.state = state
         self.setLabel("bottom", self.tr("time"), units=self.tr("min"))
         # Minutes stay minutes: no "kmin" on data spanning days.
@@ -312,7 +314,7 @@ class NetworkView(pg.PlotWidget):
 
     def __init__(self, state: ReviewState, parent=None) -> None:
         ink.setup()
-        super().__init__(parent, background="w")
+        super().__init__(parent, background="w", enableMenu=False)  # as GanttView
         self.state = state
         self.getPlotItem().hideAxis("left")
         self.getPlotItem().hideAxis("bottom")
