@@ -495,18 +495,15 @@ class ReviewDock(QtCore.QObject):
             return
         self.group.setActiveStack(bound.controller.stack)
         if self.dock.isHidden():
-            # The dock first, blank, in the log's place; its height (the maps resized
-            # and painted again) on the next turn; the queue's table and views on the
-            # one after.
+            # The dock first, blank, in the log's place and at its height (the map
+            # resized once: each size costs the map a paint and a new level of detail);
+            # the queue's table and views on the next turn.
             self.stack.setCurrentWidget(self.blank)
             if self.dock not in self.w.tabifiedDockWidgets(self.w.docks["log"]):
                 self.w.tabifyDockWidget(self.w.docks["log"], self.dock)  # (one layout)
             self.dock.show()
-            self.dock.raise_()
-            yield
-            if self.bound is not bound:
-                return
             self.w.resizeDocks([self.dock], [360], QtCore.Qt.Orientation.Vertical)
+            self.dock.raise_()
             yield
             if self.bound is not bound:
                 return

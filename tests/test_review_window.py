@@ -545,7 +545,7 @@ def test_review_redraw_on_the_saronic_association_keeps_within_budget(qtbot, tmp
 #: The most GUI-thread CPU one stage of binding a queue may take, and the most between
 #: two ticks of a 10 ms probe timer (a stage and the paints that follow it) while Run ▸
 #: Associate runs on ATD: thread time, which waiting for a core or the GIL on a loaded
-#: machine does not inflate (much). Measured at load 2.7-3.1 on 2 cores: stages 14-22 ms
+#: machine does not inflate (much). Measured at load 2.6-3.1 on 2 cores: stages 9-22 ms
 #: (26-39 before), probe gaps 37-77 ms (83-135 before: the two views made in one stage,
 #: the dock shown and the first proposal drawn in one, each stage run before the last
 #: one's paint).
