@@ -405,20 +405,37 @@ class ReviewDock(QtCore.QObject):
 
         if stale():
             return
+        # The widgets made between turns are children of the dock's stack from the start
+        # (hidden), never top-level windows held only by this generator: a parentless
+        # widget dropped with it waited for the garbage collector (pyqtgraph's cycles),
+        # which could delete it while Qt listed the top-level widgets (a crash seen in
+        # the GUI tests' teardown). A bind dropped midway deletes what it made.
+        made: list[QtWidgets.QWidget] = []
+
+        def dropped() -> bool:
+            if not stale():
+                return False
+            for widget in made:
+                widget.deleteLater()
+            return True
+
         controller = ReviewController(state, ProjectDecisions(self.w, key), self)
-        panel = ReviewPanel(controller, digest=digest)
+        panel = ReviewPanel(controller, self.stack, digest=digest)
+        made.append(panel)
         for act in panel.actions:  # the window's Review and Edit menus hold the keys
             panel.removeAction(act)
         yield
-        if stale():
+        if dropped():
             return
-        gantt = GanttView(state)  # a turn each (both in one: 26-39 ms CPU on ATD)
+        gantt = GanttView(state, self.stack)  # a turn each (both in one: 26-39 ms CPU on ATD)
+        made.append(gantt)
         yield
-        if stale():
+        if dropped():
             return
-        network = NetworkView(state)
+        network = NetworkView(state, self.stack)
+        made.append(network)
         yield
-        if stale():
+        if dropped():
             return
         box = QtWidgets.QSplitter()
         box.addWidget(panel)
