@@ -14,7 +14,7 @@ from wakeline.core.geo import haversine_m, to_local
 from wakeline.core.io import read_points
 from wakeline.core.io.export_like import write_layout
 from wakeline.core.io.layout import load_layout
-from wakeline.core.io.reader import import_to_csv, inspect_file
+from wakeline.core.io.reader import PLANE_TOO_FAR, import_to_csv, inspect_file
 
 ORIGIN = (63.4389029083, 10.39908278)  # Autoferry's "Piren" frame
 ORIGIN_TEXT = f"{ORIGIN[0]},{ORIGIN[1]}"
@@ -259,3 +259,23 @@ def test_a_negative_range_is_quarantined(tmp_path):
     res = read_points(path, origin=ORIGIN_TEXT)
     assert res.report["quarantine_reasons"] == {"range negative ('range')": 1}
     assert res.report["rows_imported"] + res.report["rows_quarantined"] == 10
+
+
+@pytest.mark.parametrize("far", ["3e7", "-2.1e7", "inf"])
+def test_metres_beyond_half_the_earth_are_quarantined_not_wrapped(tmp_path, far):
+    # The plane is one-to-one only within pi * R of the origin (20,015 km): 3e7 m was read
+    # as a fix at some other place on the globe (and inf warned from numpy).
+    path = tmp_path / "xy.csv"
+    _write_xy(_track(n=5), path)
+    lines = path.read_text().splitlines()
+    cells = lines[3].split(",")
+    cells[2] = far
+    lines[3] = ",".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+    with np.errstate(all="raise"):
+        res = read_points(path, origin=ORIGIN_TEXT)
+    reason = "east infinite" if far == "inf" else PLANE_TOO_FAR
+    assert res.report["quarantine_reasons"] == {reason: 1}
+    assert res.quarantine["line"].tolist() == [4]
+    assert res.report["rows_imported"] == 9
+    assert (haversine_m(res.points["lon"], res.points["lat"], ORIGIN[1], ORIGIN[0]) < 5e3).all()

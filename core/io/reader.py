@@ -33,7 +33,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
-from wakeline.core.geo import from_local
+from wakeline.core.geo import EARTH_RADIUS_M, from_local
 from wakeline.core.io.formats import (
     PLANE_FIELDS,
     Resolved,
@@ -2103,6 +2103,11 @@ def origin_warnings(res: Resolved) -> list[str]:
     ]
 
 
+#: The reason of a plane position farther from the origin than half the earth's
+#: circumference (20,015 km), where the azimuthal equidistant plane stops being one-to-one.
+PLANE_TOO_FAR = "position beyond half the earth from --origin (metres scaled or cut wrongly?)"
+
+
 def _plane_positions(
     table: pa.Table, res: Resolved, comma: bool, counted: dict, flag: Callable
 ) -> tuple[pa.Array, pa.Array]:
@@ -2134,6 +2139,14 @@ def _plane_positions(
     for k, axis in enumerate(("east", "north")):
         if f"{axis}_offset" in cols:
             xy[k] = xy[k] + values(f"{axis}_offset")
+    # The projection is one-to-one only within half the earth's circumference of the
+    # origin: metres beyond it (a value cut or scaled wrongly) would wrap to some other
+    # place on the globe and pass as a fix.
+    with np.errstate(invalid="ignore", over="ignore"):
+        far = ~(np.hypot(xy[0], xy[1]) < np.pi * EARTH_RADIUS_M)
+    flag(far & np.isfinite(xy[0]) & np.isfinite(xy[1]), PLANE_TOO_FAR)
+    if far.any():  # NaN and infinite included: quarantined above, no warnings from them
+        xy = [np.where(far, 0.0, v) for v in xy]
     lat0, lon0 = res.origin
     lon, lat = from_local(xy[0], xy[1], lon0, lat0)
     return pa.array(lon), pa.array(lat)
