@@ -116,3 +116,18 @@ def test_the_real_saronic_file_reads_with_the_suggestion():
     res = read_points(path, mapping=flags)
     assert res.report["rows_imported"] == 18_834 and res.report["rows_quarantined"] == 0
     assert np.isclose(res.points["lon"].median(), 23.6, atol=0.5)
+
+
+def test_the_time_column_is_told_by_the_sniffers_date_time_test(tmp_path, recwarn):
+    # pandas' guess per cell warned on stderr for every dd/mm/yyyy date ("Parsing dates in
+    # %d/%m/%Y format when dayfirst=False") and took a name such as "May 5" for a date
+    rows = [
+        ["May 5", pd.Timestamp(r[0]).strftime("%d/%m/%Y %H:%M:%S"), r[2], r[3]] for r in _rows()
+    ]
+    path = _write(tmp_path / "dayfirst.csv", rows)
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    assert "--map time=col2" in str(exc.value) and "--map batch=col1" in str(exc.value)
+    assert not [w for w in recwarn if issubclass(w.category, UserWarning)]
+    res = read_points(path, mapping=["time=col2", "batch=col1", "lon=col3", "lat=col4"])
+    assert res.report["rows_imported"] == 6

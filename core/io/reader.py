@@ -47,7 +47,7 @@ from wakeline.core.io.formats import (
     plane_kind,
     resolve,
 )
-from wakeline.core.io.sniff import Sniff, sniff
+from wakeline.core.io.sniff import Sniff, cell_kind, sniff
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
 
@@ -1571,9 +1571,9 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
         cells = [c.strip().strip('"') for c in cells]
         nums = pd.to_numeric(pd.Series(cells), errors="coerce").to_numpy(dtype="float64")
         if np.isnan(nums).all():
-            if "time" not in out and all(
-                not pd.isna(pd.to_datetime(c, errors="coerce", utc=True)) for c in cells
-            ):
+            # the sniffer's test of a date-time (pandas' guess per cell warned on stderr
+            # for every dd/mm/yyyy and took "May 5" for a date)
+            if "time" not in out and all(cell_kind(c) == "time" for c in cells):
                 out["time"] = name
             elif all(cells):
                 ids.append(name)

@@ -268,7 +268,10 @@ _DATETIME = re.compile(
 )
 
 
-def _cell_kind(cell: str) -> str:
+def cell_kind(cell: str) -> str:
+    """What a cell of a line holds: ``blank``, ``number``, ``time`` (a date-time, as
+    :data:`_DATETIME` reads one) or ``text``: how a headerless file's rows are told from
+    a header (:func:`_is_header`) and its time column found by its values."""
     text = cell.strip().strip('"')
     if not text:
         return "blank"
@@ -287,13 +290,13 @@ def _is_header(first: list[str], rows: list[list[str]]) -> bool:
     ``T`` or ``x``) does not make a data row a header."""
     if not any(f and not _NUMBER.match(f) for f in first):
         return False
-    kinds = [_cell_kind(f) for f in first]
+    kinds = [cell_kind(f) for f in first]
     if "time" not in kinds and kinds.count("number") < 2:
         return True  # names (or a line of words: a title's "station 4" is no fix)
     rows = [r for r in rows if len(r) == len(first)]
     if not rows:
         return True
-    return not all([_cell_kind(c) for c in r] == kinds for r in rows)
+    return not all([cell_kind(c) for c in r] == kinds for r in rows)
 
 
 def _skip_rows_past_end(skip_rows: int, physical: list[str], whole: bool) -> str:
