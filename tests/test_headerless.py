@@ -73,6 +73,11 @@ def test_the_message_suggests_the_columns_by_their_values(tmp_path):
         # a track named like a field (hypothesis found "T": time's synonym) is still data
         (["2024-07-31T23:31:24Z,T,0.0,0.0", "2024-07-31T23:32:24Z,T,0.1,0.1"], False),
         (["name,comment", "foo,bar"], True),  # words only
+        # a blank cell, in the first row or one below (an optional speed missing), is
+        # like any: the first row was read as the header and its fix lost
+        (["2024-07-31T23:31:24Z,5,23.1,37.1,", "2024-07-31T23:31:25Z,5,23.2,37.2,4.5"], False),
+        (["2024-07-31T23:31:24Z,5,23.1,37.1,4.4", "2024-07-31T23:31:25Z,5,23.2,37.2,"], False),
+        (["time,id,lon,lat,speed", "2024-07-31T23:31:25Z,5,23.2,37.2,"], True),
     ],
 )
 def test_header_or_data(tmp_path, lines, header):

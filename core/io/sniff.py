@@ -287,7 +287,8 @@ def _is_header(first: list[str], rows: list[list[str]]) -> bool:
     (a file without a header whose first row starts with ``2024-07-31T23:31:24Z``: that
     row was read as the header, and its fix was lost). A header's names are words where
     its data has numbers or times, so a name that is also a field's (a track called
-    ``T`` or ``x``) does not make a data row a header."""
+    ``T`` or ``x``) does not make a data row a header. A blank cell, above or below, is
+    like any (an optional value missing in a row is no header's name)."""
     if not any(f and not _NUMBER.match(f) for f in first):
         return False
     kinds = [cell_kind(f) for f in first]
@@ -296,7 +297,13 @@ def _is_header(first: list[str], rows: list[list[str]]) -> bool:
     rows = [r for r in rows if len(r) == len(first)]
     if not rows:
         return True
-    return not all([cell_kind(c) for c in r] == kinds for r in rows)
+
+    def alike(row: list[str]) -> bool:
+        return all(
+            a == b or "blank" in (a, b) for a, b in zip(map(cell_kind, row), kinds, strict=True)
+        )
+
+    return not all(alike(r) for r in rows)
 
 
 def _skip_rows_past_end(skip_rows: int, physical: list[str], whole: bool) -> str:
