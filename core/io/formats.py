@@ -427,7 +427,7 @@ def plane_kind(columns: dict[str, str]) -> str | None:
     return None
 
 
-def parse_origin(value) -> tuple[float, float] | None:
+def parse_origin(value: str | tuple[float, float] | list | None) -> tuple[float, float] | None:
     """``"63.4389,10.3991"`` (or ``"63.4389 10.3991"``, a pair of numbers) → (lat, lon)
     degrees; ``None``/``""`` → ``None``. Raises :class:`InputError` on anything else."""
     if value is None or (isinstance(value, str) and not value.strip()):
@@ -530,7 +530,7 @@ def resolve(
     family: str = "auto",
     mapping: dict[str, str] | None = None,
     source: str = "the file",
-    origin=None,
+    origin: str | tuple[float, float] | None = None,
 ) -> Resolved:
     """Choose the format and map its columns. Raises :class:`InputError` naming what is
     missing. ``origin`` (lat, lon degrees, or ``"LAT,LON"``): where a file's east/north

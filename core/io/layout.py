@@ -484,7 +484,7 @@ def describe_layout(
     fmt: str = "auto",
     mapping: dict[str, str] | None = None,
     tz: str | None = None,
-    origin=None,
+    origin: str | tuple[float, float] | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
 ) -> Layout:
@@ -734,7 +734,7 @@ def load_layout(
     fmt: str = "auto",
     mapping: dict[str, str] | None = None,
     skip_rows: int | None = None,
-    origin=None,
+    origin: str | tuple[float, float] | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
 ) -> Layout:

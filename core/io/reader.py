@@ -1528,7 +1528,11 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
 
 
 def resolve_header(
-    sn: Sniff, fmt: str, mapping: dict[str, str] | None, source: str, origin=None
+    sn: Sniff,
+    fmt: str,
+    mapping: dict[str, str] | None,
+    source: str,
+    origin: str | tuple[float, float] | None = None,
 ) -> Resolved:
     """:func:`resolve` for a sniffed file; when the header names few known columns, the
     error says how to skip lines above a header further down (``--skip-rows``).
@@ -2169,7 +2173,7 @@ _CLOCK = r"^\s*\d{1,2}:\d{2}(?::\d{2}(?:[.,]\d+)?)?(?:\s*[AaPp]\.?[Mm]\.?)?\s*$"
 CLOCK_ONLY = _CLOCK
 
 
-def date_column(columns, mapped: set) -> str | None:
+def date_column(columns: tuple[str, ...] | list[str], mapped: set[str]) -> str | None:
     """The file's column of dates (``Date``, ``日期``...) that no field is mapped to."""
     for name in columns:
         if name not in mapped and normalize_header(name) in _DATE_NAMES:
@@ -2569,7 +2573,7 @@ def inspect_file(
     encoding: str | None = None,
     delimiter: str | None = None,
     skip_rows: int | None = None,
-    origin=None,
+    origin: str | tuple[float, float] | None = None,
 ) -> dict:
     """What an import of ``path`` would use, from its first 256 KiB (for the import dialog);
     ``skip_rows``: lines before the header, ``origin``: a local plane's (lat, lon), as
@@ -2664,7 +2668,7 @@ def import_to_csv(
     tz: str | None = None,
     progress: Progress | None = None,
     skip_rows: int | None = None,
-    origin=None,
+    origin: str | tuple[float, float] | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
 ) -> ImportResult:
