@@ -112,6 +112,20 @@ def test_lon_lat_win_over_x_y_and_an_unused_origin_is_said(tmp_path):
     assert any("--origin" in w and "not used" in w for w in given_origin.report["warnings"])
 
 
+def test_a_plane_column_mapped_on_a_lon_lat_file_is_carried_and_written_back(tmp_path):
+    # --map east=px on a file with lon/lat: px was taken by the mapping, used for nothing
+    # and dropped from the points (export --like then wrote it blank)
+    path = tmp_path / "both.csv"
+    df = _track(n=5).rename(columns={"track": "batch"}).assign(px=np.arange(10) * 1.5)
+    df.to_csv(path, index=False)
+    res = read_points(path, mapping=["east=px"])
+    assert res.points["px"].astype(float).tolist() == (np.arange(10) * 1.5).tolist()
+    assert any(w.startswith("--map east=px was not used") for w in res.report["warnings"])
+    out = tmp_path / "out.csv"
+    write_layout(res.points, load_layout(path, mapping={"east": "px"}), out)
+    assert out.read_bytes() == path.read_bytes()
+
+
 def test_rows_without_metres_are_quarantined_and_counted(tmp_path):
     path = tmp_path / "gaps.csv"
     _write_xy(_track(n=10), path)

@@ -555,6 +555,8 @@ def describe_layout(
     cols = []
     for raw, key in zip(raw_names, sn.columns, strict=True):
         f = field_of.get(key)
+        if f in PLANE_FIELDS and not plane:  # a plane column of a lon/lat file: carried
+            f = None
         numeric = f in NUMBER_FIELDS or f in PLANE_FIELDS
         number = NumberFormat.detect(sample[key], _WIDEN_RANGE.get(f)) if numeric else None
         angle = AngleFormat.detect(sample[key]) if f in ("lon", "lat") and number is None else None

@@ -2097,14 +2097,20 @@ def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list
 
 
 def origin_warnings(res: Resolved) -> list[str]:
-    """A warning when an origin was given for a file whose positions are lon/lat."""
-    if res.origin is None or res.on_plane:
+    """A warning when an origin, or a local-plane column (``--map east=COL``), was given
+    for a file whose positions are lon/lat: not used (the column is carried as an extra
+    column)."""
+    if res.on_plane:
         return []
-    lat, lon = res.origin
-    return [
-        f"--origin {lat:g},{lon:g} was not used: the file gives longitude and latitude "
-        f"({res.columns.get('lon')!r}, {res.columns.get('lat')!r}), not metres on a plane"
-    ]
+    where = f"the file gives longitude and latitude ({res.columns.get('lon')!r}, "
+    where += f"{res.columns.get('lat')!r}), not metres on a plane"
+    out = []
+    if res.origin is not None:
+        out.append(f"--origin {res.origin[0]:g},{res.origin[1]:g} was not used: {where}")
+    mapped = [f"{f}={res.columns[f]}" for f in PLANE_FIELDS if f in res.columns]
+    if mapped and "lon" in res.columns:
+        out.append(f"--map {' '.join(mapped)} was not used: {where}; carried as extra columns")
+    return out
 
 
 #: The reason of a plane position farther from the origin than half the earth's
@@ -2403,7 +2409,8 @@ def _to_canonical(
     if "truth" in text:
         columns["truth"] = pc.fill_null(text["truth"].to_arrow(), "")
     # A plane file's own metres travel on as they came (export --like writes them back).
-    plane_src = {cols[f] for f in PLANE_FIELDS if f in cols} if res.on_plane else set()
+    # (On a file with lon/lat, a plane column mapped by hand is not used: carried too.)
+    plane_src = {cols[f] for f in PLANE_FIELDS if f in cols}
     for src in sn.columns:
         if src not in mapped or src in plane_src:
             columns[src if src not in columns else f"{src}_src"] = table[src]
