@@ -136,3 +136,35 @@ def test_the_time_column_is_told_by_the_sniffers_date_time_test(tmp_path, recwar
     assert not [w for w in recwarn if issubclass(w.category, UserWarning)]
     res = read_points(path, mapping=["time=col2", "batch=col1", "lon=col3", "lat=col4"])
     assert res.report["rows_imported"] == 6
+
+
+@pytest.mark.parametrize(
+    "order, flags",
+    [
+        ((0, 1, 2, 3), "--map time=col2 --map lon=col3 --map lat=col4 --map batch=col1"),
+        ((1, 0, 2, 3), "--map time=col1 --map lon=col3 --map lat=col4 --map batch=col2"),
+    ],
+)
+def test_an_mmsi_beside_unix_seconds_is_the_batch_not_the_time(tmp_path, order, flags):
+    # a nine-digit MMSI lies in the range of Unix seconds: as the first such column it was
+    # suggested as the time, and the real times as the batch
+    t = 1_722_468_684
+    rows = [
+        [
+            ["244660000", "219000123"][k % 2],
+            str(t + 60 * k),
+            f"{11.2 + 0.001 * k:.5f}",
+            f"{57.1 + 0.001 * k:.5f}",
+        ]
+        for k in range(6)
+    ]
+    path = _write(tmp_path / "ais.csv", [[r[i] for i in order] for r in rows])
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    assert flags in str(exc.value)
+    # a date-time text is the time whatever number columns come before it
+    rows = [[r[0], pd.Timestamp(int(r[1]), unit="s").isoformat(), r[2], r[3]] for r in rows]
+    path = _write(tmp_path / "ais_text.csv", rows)
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    assert "--map time=col2 --map lon=col3 --map lat=col4 --map batch=col1" in str(exc.value)

@@ -1560,7 +1560,8 @@ def resolve_header(
 
 def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
     """A headerless file's columns by the values of its first rows (``sn.preview``):
-    field → column for time (a date-time, or Unix seconds or milliseconds), lon and lat
+    field → column for time (a date-time; else Unix seconds or milliseconds, those
+    since 2001 first: a nine-digit MMSI before them is the batch), lon and lat
     (two columns of degrees with decimals; lon the one beyond ±90 somewhere, else the
     first of the two) and batch (an integer or text column left over), and whether the
     lon/lat order was seen in the values (not only guessed by order). Empty when the
@@ -1570,26 +1571,36 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
         return {}, False
     cols = list(zip(*rows, strict=True))
     out: dict[str, str] = {}
-    degrees, ids = [], []
-    for name, cells in zip(sn.columns, cols, strict=True):
+    degrees, ids, texts, stamps = [], [], [], []
+    for k, (name, cells) in enumerate(zip(sn.columns, cols, strict=True)):
         cells = [c.strip().strip('"') for c in cells]
         nums = pd.to_numeric(pd.Series(cells), errors="coerce").to_numpy(dtype="float64")
         if np.isnan(nums).all():
             # the sniffer's test of a date-time (pandas' guess per cell warned on stderr
             # for every dd/mm/yyyy and took "May 5" for a date)
-            if "time" not in out and all(cell_kind(c) == "time" for c in cells):
-                out["time"] = name
+            if all(cell_kind(c) == "time" for c in cells):
+                texts.append(name)
             elif all(cells):
-                ids.append(name)
+                ids.append((k, name))
             continue
         if np.isnan(nums).any():
             continue
-        if "time" not in out and ((nums > 1e8) & (nums < 4e12)).all():
-            out["time"] = name
+        if ((nums > 1e8) & (nums < 4e12)).all():
+            # Unix seconds or ms; nine digits (before 2001 as seconds) may be an MMSI
+            recent = bool((((nums >= 1e9) & (nums < 4e9)) | (nums >= 1e12)).all())
+            stamps.append((not recent, k, name, bool((nums == np.round(nums)).all())))
         elif all("." in c for c in cells) and (np.abs(nums) <= 180).all():
             degrees.append((name, float(np.abs(nums).max())))
         elif (nums == np.round(nums)).all():
-            ids.append(name)
+            ids.append((k, name))
+    # a date-time text first, then the numbers most like recent Unix times; the other
+    # whole numbers of that range (an MMSI before the times) may be the batch
+    stamps.sort()
+    if texts:
+        out["time"] = texts[0]
+    elif stamps:
+        out["time"] = stamps.pop(0)[2]
+    ids = [name for _k, name in sorted(ids + [(k, n) for _o, k, n, whole in stamps if whole])]
     sure = False
     if len(degrees) == 2:
         (a, amax), (b, bmax) = degrees
