@@ -293,3 +293,14 @@ def test_metres_beyond_half_the_earth_are_quarantined_not_wrapped(tmp_path, far)
     assert res.quarantine["line"].tolist() == [4]
     assert res.report["rows_imported"] == 9
     assert (haversine_m(res.points["lon"], res.points["lat"], ORIGIN[1], ORIGIN[0]) < 5e3).all()
+
+
+def test_the_report_names_the_metre_columns_carried(tmp_path):
+    # the points carry x/y as they came, but the report's extra_columns (which `import`
+    # prints as "extra columns (carried as they are)") left them out
+    path = tmp_path / "xy.csv"
+    _write_xy(_track(n=5), path)
+    whole = read_points(path, origin=ORIGIN_TEXT)
+    assert whole.report["extra_columns"] == ["x", "y"] == list(whole.points.columns[-2:])
+    streamed = import_to_csv(path, tmp_path / "s.csv", origin=ORIGIN_TEXT)
+    assert streamed.report.get("streamed") and streamed.report["extra_columns"] == ["x", "y"]

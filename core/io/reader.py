@@ -1897,7 +1897,7 @@ def read_points(
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
     warnings += origin_warnings(res)
-    extra = [c for c in sn.columns if c not in set(res.columns.values())]
+    extra = carried_columns(sn, res)
     report: dict = {
         "input": str(path),
         "format": res.format.name,
@@ -2105,6 +2105,16 @@ def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list
                 f"map; {fix} reads them the other way)"
             )
     return out
+
+
+def carried_columns(sn: Sniff, res: Resolved) -> list[str]:
+    """The file's columns the points carry as they came (the report's
+    ``extra_columns``): those no field takes, and the local-plane ones (a plane file's
+    own metres, which ``export --like`` writes back; a plane column mapped on a file
+    with lon/lat, not used)."""
+    plane = {res.columns[f] for f in PLANE_FIELDS if f in res.columns}
+    mapped = set(res.columns.values())
+    return [c for c in sn.columns if c not in mapped or c in plane]
 
 
 def origin_warnings(res: Resolved) -> list[str]:
@@ -2419,12 +2429,8 @@ def _to_canonical(
         columns[name] = floats[name] if name in floats else pa.nulls(n, pa.float64())
     if "truth" in text:
         columns["truth"] = pc.fill_null(text["truth"].to_arrow(), "")
-    # A plane file's own metres travel on as they came (export --like writes them back).
-    # (On a file with lon/lat, a plane column mapped by hand is not used: carried too.)
-    plane_src = {cols[f] for f in PLANE_FIELDS if f in cols}
-    for src in sn.columns:
-        if src not in mapped or src in plane_src:
-            columns[src if src not in columns else f"{src}_src"] = table[src]
+    for src in carried_columns(sn, res):  # a plane file's own metres among them
+        columns[src if src not in columns else f"{src}_src"] = table[src]
     out = pa.table(
         {k: pa.chunked_array([v]) if isinstance(v, pa.Array) else v for k, v in columns.items()}
     )
@@ -2989,7 +2995,7 @@ def stream_points(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
     )
     warnings += origin_warnings(res)
-    extra = [c for c in sn.columns if c not in set(res.columns.values())]
+    extra = carried_columns(sn, res)
     report: dict = {
         "input": str(sn.path),
         "format": res.format.name,
