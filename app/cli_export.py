@@ -233,6 +233,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="How IN is read, as `wakeline import` and the steps read it (e.g. "
         "--skip-rows N as given to `wakeline clean`). --format, --map, --encoding and --tz "
         "above are about ORIGINAL and the file written; IN's are --in-format, --in-map, "
-        "--in-encoding, --in-tz. --date-order and --time-unit apply to IN and to ORIGINAL alike.",
+        "--in-encoding, --in-tz. --origin, --date-order and --time-unit apply to IN and to "
+        "ORIGINAL alike.",
     )
     p.set_defaults(func=_cmd_export)
