@@ -304,3 +304,18 @@ def test_the_report_names_the_metre_columns_carried(tmp_path):
     assert whole.report["extra_columns"] == ["x", "y"] == list(whole.points.columns[-2:])
     streamed = import_to_csv(path, tmp_path / "s.csv", origin=ORIGIN_TEXT)
     assert streamed.report.get("streamed") and streamed.report["extra_columns"] == ["x", "y"]
+
+
+def test_a_quarantine_reason_names_the_unit_the_header_gives(tmp_path):
+    # "missing range ('Range (NM)', metres)": the reason named metres whatever the header
+    path = tmp_path / "site.csv"
+    _write_polar(_track(n=5), path, names=("Range (NM)", "bearing_rad"), scale=1852.0, radians=True)
+    lines = path.read_text().splitlines()
+    lines[2] = ",".join(lines[2].split(",")[:2] + ["", lines[2].split(",")[3]])
+    lines[4] = ",".join(lines[4].split(",")[:3] + ["x"])
+    path.write_text("\n".join(lines) + "\n")
+    res = read_points(path, origin=ORIGIN_TEXT)
+    assert res.report["quarantine_reasons"] == {
+        "missing range ('Range (NM)', nautical miles)": 1,
+        "unparsable bearing ('bearing_rad', radians)": 1,
+    }

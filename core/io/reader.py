@@ -2153,13 +2153,12 @@ def _plane_positions(
 
     def values(key: str) -> np.ndarray:
         v, unparsable = _numbers(table[cols[key]], comma, counted)
-        word = "degrees or radians" if key == "bearing" else "metres"
+        # the unit the header names ("range_km": km), as the values are read in
+        scale, word = (angle_unit if key == "bearing" else length_unit)(cols[key])
         flag(unparsable, f"unparsable {key} ({cols[key]!r}, {word})")
         flag(np.isnan(v) & ~unparsable, f"missing {key} ({cols[key]!r}, {word})")
         flag(np.isinf(v), f"{key} infinite")
-        if key == "bearing":
-            return v * angle_unit(cols[key])[0]
-        return v * length_unit(cols[key])[0]
+        return v * scale
 
     if plane_kind(cols) == "polar":
         r, b = values("range"), values("bearing")
