@@ -49,7 +49,9 @@ _FIELDS = {
     "date-order": "Date order",
     "time-unit": "Time numbers",
 }
-_FLAG = re.compile(r"--(" + "|".join(_FIELDS) + r")\b(?:[ =](?!-)[^\s,;:)]+)?")
+#: A flag and its value, if any: not a parenthesis after it, and a value's commas kept
+#: when no space follows them (``--origin 60,10``: the whole pair).
+_FLAG = re.compile(r"--(" + "|".join(_FIELDS) + r")\b(?:[ =](?![-(])[^\s,;:)]+(?:,[^\s,;:)]+)*)?")
 
 
 def window_words(text: str) -> str:

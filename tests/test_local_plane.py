@@ -319,3 +319,16 @@ def test_a_quarantine_reason_names_the_unit_the_header_gives(tmp_path):
         "missing range ('Range (NM)', nautical miles)": 1,
         "unparsable bearing ('bearing_rad', radians)": 1,
     }
+
+
+def test_the_window_words_of_the_origin_messages():
+    # "--origin 60,10 was not used" read "the import dialog's Origin of x/y metres
+    # field,10 was not used", and "--origin (metres" lost its "(metres"
+    from wakeline.app.window_words import window_words
+
+    field = "the import dialog's Origin of x/y metres field"
+    assert window_words("--origin 60,10 was not used: x") == f"{field} was not used: x"
+    assert window_words(PLANE_TOO_FAR) == PLANE_TOO_FAR.replace("--origin", field)
+    assert window_words("use --skip-rows 3, then") == (
+        "use the import dialog's Lines above the header field, then"
+    )
