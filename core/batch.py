@@ -77,8 +77,8 @@ class BatchOptions:
     #: how CSV inputs are read, as ``wakeline clean`` reads its input (``--format``,
     #: ``--map FIELD=COLUMN``…, ``--encoding``, ``--delimiter``, ``--tz``, ``--skip-rows``:
     #: lines before the header, None detected; ``--date-order``: auto, day-first or
-    #: month-first; ``--time-unit``: auto, seconds or excel-days); ``sensor`` names the sensor of inputs without a sensor column (CSV
-    #: and Parquet)
+    #: month-first; ``--time-unit``: auto, seconds or excel-days); ``sensor`` names the
+    #: sensor of inputs without a sensor column (CSV and Parquet)
     fmt: str = "auto"
     mapping: tuple[str, ...] = ()
     encoding: str | None = None
@@ -86,7 +86,8 @@ class BatchOptions:
     tz: str | None = None
     sensor: str = DEFAULT_SENSOR
     skip_rows: int | None = None
-    #: ``--origin LAT,LON``: the local plane of inputs whose positions are east/north metres
+    #: ``--origin LAT,LON``: the local plane of inputs whose positions are east/north
+    #: metres or range and bearing from a site
     origin: str | None = None
     date_order: str = "auto"
     time_unit: str = "auto"
