@@ -30,6 +30,16 @@ ZONES = (
 )
 
 
+def _choices(items: tuple[tuple[str, str], ...], tip: str) -> QtWidgets.QComboBox:
+    """A box of (value, shown text) choices, the first chosen, with tooltip ``tip``
+    (``currentData()`` is the chosen value: a ``read_points`` keyword's)."""
+    box = QtWidgets.QComboBox()
+    for value, text in items:
+        box.addItem(text, value)
+    box.setToolTip(tip)
+    return box
+
+
 class ImportDialog(QtWidgets.QDialog):
     """Pick a file; see its first rows; choose layout, encoding, column mapping, zone."""
 
@@ -79,35 +89,31 @@ class ImportDialog(QtWidgets.QDialog):
             )
         )
         # How slashed dates read (03/04/2025), as `--date-order`.
-        self.date_order_box = QtWidgets.QComboBox()
-        for value, text in (
-            ("auto", self.tr("auto")),
-            ("day-first", self.tr("day first (dd/mm/yyyy)")),
-            ("month-first", self.tr("month first (mm/dd/yyyy)")),
-        ):
-            self.date_order_box.addItem(text, value)
-        self.date_order_box.setToolTip(
+        self.date_order_box = _choices(
+            (
+                ("auto", self.tr("auto")),
+                ("day-first", self.tr("day first (dd/mm/yyyy)")),
+                ("month-first", self.tr("month first (mm/dd/yyyy)")),
+            ),
             self.tr(
                 "How dates like 03/04/2025 read: auto reads them day first unless a date "
                 "shows the month first (a second number above 12); the import says what "
                 "decided it."
-            )
+            ),
         )
         # What numbers in the time column count, as `--time-unit`.
-        self.time_unit_box = QtWidgets.QComboBox()
-        for value, text in (
-            ("auto", self.tr("auto")),
-            ("seconds", self.tr("seconds")),
-            ("excel-days", self.tr("Excel serial days")),
-        ):
-            self.time_unit_box.addItem(text, value)
-        self.time_unit_box.setToolTip(
+        self.time_unit_box = _choices(
+            (
+                ("auto", self.tr("auto")),
+                ("seconds", self.tr("seconds")),
+                ("excel-days", self.tr("Excel serial days")),
+            ),
             self.tr(
                 "Numbers in the time column: seconds (unix, or from a scene start) or Excel "
                 "serial days (45658.5 is 2025-01-01 12:00). Auto takes Excel days when all "
                 "lie between 20000 and 80000 and the header says so or they step less than "
                 "0.01 between rows; the import says which it read."
-            )
+            ),
         )
         self.sensor_edit = QtWidgets.QLineEdit()
         self.sensor_edit.setPlaceholderText(self.tr("sensor name when the file has none"))
