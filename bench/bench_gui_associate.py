@@ -30,6 +30,7 @@ from wakeline.app.main_window import MainWindow  # noqa: E402
 
 
 def atd_file() -> Path:
+    """The ATD 2025 example truth file under ``$WAKELINE_SHARED`` (default ../shared)."""
     shared = Path(os.environ.get("WAKELINE_SHARED", Path(__file__).parents[2] / "shared"))
     return shared / "data" / "real" / "atd2025-noaa" / "example_truth.csv.gz"
 
@@ -49,6 +50,10 @@ def settle_window(w: MainWindow, timeout_s: float = 300.0) -> None:
 
 
 def run_once(path: Path, why: bool, profile: bool) -> tuple[float, float, list]:
+    """One window: ``path`` loaded and selected, then Run ▸ Associate under the probe.
+    The longest event-loop block (ms wall), its GUI-thread CPU (ms) and the probe's gaps
+    (start, wall s, CPU s); ``why`` samples the GUI thread's stack, ``profile`` runs
+    cProfile over the step."""
     with tempfile.TemporaryDirectory() as tmp:
         settings = QtCore.QSettings(str(Path(tmp) / "s.ini"), QtCore.QSettings.Format.IniFormat)
         settings.setValue("language", "en")
@@ -95,6 +100,7 @@ def run_once(path: Path, why: bool, profile: bool) -> tuple[float, float, list]:
 
 
 def main() -> int:
+    """``--runs`` windows in turn; prints each and the range of the longest blocks."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--why", action="store_true")
