@@ -168,3 +168,15 @@ def test_an_mmsi_beside_unix_seconds_is_the_batch_not_the_time(tmp_path, order, 
     with pytest.raises(InputError) as exc:
         read_points(path)
     assert "--map time=col2 --map lon=col3 --map lat=col4 --map batch=col1" in str(exc.value)
+
+
+def test_a_date_alone_is_not_suggested_as_the_time(tmp_path):
+    # a headerless Date,Time pair: the date column was suggested as the time (every fix
+    # of a day at midnight) and the clock as the batch; no guess now (the reader joins a
+    # clock only with a column named Date)
+    rows = [[r[0][:10], r[0][11:19], r[1], r[2], r[3]] for r in _rows()]
+    path = _write(tmp_path / "date_time.csv", rows)
+    assert not sniff(path).has_header
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    assert "by their values" not in str(exc.value)

@@ -1577,10 +1577,14 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
         nums = pd.to_numeric(pd.Series(cells), errors="coerce").to_numpy(dtype="float64")
         if np.isnan(nums).all():
             # the sniffer's test of a date-time (pandas' guess per cell warned on stderr
-            # for every dd/mm/yyyy and took "May 5" for a date)
-            if all(cell_kind(c) == "time" for c in cells):
+            # for every dd/mm/yyyy and took "May 5" for a date); a date alone is no time
+            # (its fixes all at midnight) and a clock alone no batch: a headerless
+            # Date,Time pair gets no guess (the reader joins only a column named Date)
+            if all(cell_kind(c) == "time" and ":" in c for c in cells):
                 texts.append(name)
-            elif all(cells):
+            elif all(cells) and not any(
+                cell_kind(c) == "time" or re.match(_CLOCK, c) for c in cells
+            ):
                 ids.append((k, name))
             continue
         if np.isnan(nums).any():
