@@ -80,7 +80,9 @@ def test_without_an_origin_the_message_names_the_columns_and_the_flag(tmp_path):
     assert inspect_file(path, origin=ORIGIN_TEXT)["problem"] is None
 
 
-@pytest.mark.parametrize("bad", ["63.4", "63.4,10.4,5", "north,east", "95,10", "63,200"])
+@pytest.mark.parametrize(
+    "bad", ["63.4", "63.4,10.4,5", "north,east", "95,10", "63,200", 63.4, (63.4,)]
+)
 def test_a_bad_origin_is_refused_with_the_form_it_takes(tmp_path, bad):
     path = tmp_path / "radar_xy.csv"
     _write_xy(_track(), path)

@@ -432,11 +432,11 @@ def parse_origin(value: str | tuple[float, float] | list | None) -> tuple[float,
     degrees; ``None``/``""`` → ``None``. Raises :class:`InputError` on anything else."""
     if value is None or (isinstance(value, str) and not value.strip()):
         return None
-    if isinstance(value, str):
-        parts = [p for p in re.split(r"[,;\s]+", value.strip()) if p]
-    else:
-        parts = list(value)
     try:
+        if isinstance(value, str):
+            parts = [p for p in re.split(r"[,;\s]+", value.strip()) if p]
+        else:
+            parts = list(value)  # a number alone: TypeError, refused as the rest
         lat, lon = (float(p) for p in parts)
     except (TypeError, ValueError):
         raise InputError(
