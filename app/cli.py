@@ -26,8 +26,7 @@ def _cmd_gui(args: argparse.Namespace) -> int:
         raise InputError(f"the desktop application cannot start: {exc}") from None
     from wakeline.app.cli_steps import read_options
 
-    read = {k: v for k, v in read_options(args).items() if v not in (None, "auto", [], "S1")}
-    return run(args.files, screenshot=args.screenshot, read=read)
+    return run(args.files, screenshot=args.screenshot, read=read_options(args, given=True))
 
 
 def build_parser() -> argparse.ArgumentParser:

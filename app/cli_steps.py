@@ -360,13 +360,18 @@ def add_read_flags(
         flag = f"--{prefix}-{name}" if name in rename else f"--{name}"
         dests[keyword] = flag[2:].replace("-", "_")
         group.add_argument(flag, dest=dests[keyword], **kw)
-    p.set_defaults(read_dests=dests)
+    defaults = {k: flags[k][1].get("default") for k in dests}
+    p.set_defaults(read_dests=dests, read_defaults=defaults)
 
 
-def read_options(args: argparse.Namespace) -> dict:
+def read_options(args: argparse.Namespace, given: bool = False) -> dict:
     """The ``read_points`` keywords of :func:`add_read_flags`' flags (those given to
-    the command's parser, under the names it gave them)."""
-    return {keyword: getattr(args, dest) for keyword, dest in args.read_dests.items()}
+    the command's parser, under the names it gave them); ``given``: only those whose
+    value is not the flag's default."""
+    out = {keyword: getattr(args, dest) for keyword, dest in args.read_dests.items()}
+    if given:
+        out = {k: v for k, v in out.items() if v != args.read_defaults.get(k)}
+    return out
 
 
 def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:
