@@ -334,3 +334,56 @@ def test_the_window_words_of_the_origin_messages():
     assert window_words("use --skip-rows 3, then") == (
         "use the import dialog's Lines above the header field, then"
     )
+
+
+def test_a_bearing_beyond_a_full_turn_is_quarantined_and_reasons_name_the_unit(tmp_path):
+    """An operator's shore radar export (h118): a bearing of 365.5° or 720° was read as
+    5.5° or 0° without a word, and a blank range in nautical miles was reported as
+    "missing range (…, metres)"."""
+    path = tmp_path / "site.csv"
+    _write_polar(_track(n=5), path, names=("Range (NM)", "Bearing (deg)"), scale=1852.0)
+    lines = path.read_text().splitlines()
+    for row, col, value in ((1, 3, "365.5"), (2, 3, "720"), (3, 3, "-20"), (4, 2, "")):
+        cells = lines[row].split(",")
+        cells[col] = value
+        lines[row] = ",".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+    res = read_points(path, origin=ORIGIN_TEXT)
+    assert res.report["quarantine_reasons"] == {
+        "bearing beyond ±360° ('Bearing (deg)', degrees)": 2,
+        "missing range ('Range (NM)', nautical miles)": 1,
+    }
+    assert res.report["rows_imported"] + res.report["rows_quarantined"] == 10
+    # a signed bearing (-20°) is a bearing: kept, 340° from the site
+    east, north = to_local(res.points["lon"], res.points["lat"], ORIGIN[1], ORIGIN[0])
+    az = np.degrees(np.arctan2(east, north)) % 360
+    assert np.isclose(az, 340.0, atol=1e-6).sum() == 1
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    bearings=st.lists(
+        st.floats(-800, 800, allow_nan=False).map(lambda v: round(v, 3)), min_size=1, max_size=12
+    ),
+    radians=st.booleans(),
+)
+def test_bearings_within_a_turn_are_read_and_beyond_it_quarantined(
+    tmp_path_factory, bearings, radians
+):
+    path = tmp_path_factory.mktemp("b") / "site.csv"
+    scale = np.pi / 180.0 if radians else 1.0
+    head = "time,track,range_m," + ("bearing_rad" if radians else "bearing")
+    rows = [f"{1_620_000_000 + 10 * k},1,1000,{b * scale!r}" for k, b in enumerate(bearings)]
+    path.write_text("\n".join([head, *rows]) + "\n")
+    res = read_points(path, origin=ORIGIN_TEXT)
+    inside = np.abs(np.array(bearings)) <= 360.0 + 1e-9
+    rep = res.report
+    assert rep["rows_read"] == len(bearings)
+    assert rep["rows_imported"] == inside.sum()
+    assert rep["rows_imported"] + rep["rows_quarantined"] == len(bearings)
+    if inside.any():
+        east, north = to_local(res.points["lon"], res.points["lat"], ORIGIN[1], ORIGIN[0])
+        got = np.degrees(np.arctan2(east, north))
+        want = np.array(bearings)[inside]
+        diff = (got - want + 180.0) % 360.0 - 180.0
+        assert np.abs(diff).max() < 1e-6

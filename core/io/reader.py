@@ -2152,17 +2152,26 @@ def _plane_positions(
     the unit their header names (km, nautical miles; else metres), a bearing in radians
     when its header says so (else degrees). Azimuthal equidistant: distance and bearing
     from the origin exact. A row without a number in any of them is quarantined with the
-    column's name."""
+    column's name and the unit its header gave it; a negative range, and a bearing
+    beyond a full turn either way (365.5°, 720°: no bearing of any convention, 0-360 or
+    signed), are quarantined too."""
     cols = res.columns
 
     def values(key: str) -> np.ndarray:
         v, unparsable = _numbers(table[cols[key]], comma, counted)
-        # the unit the header names ("range_km": km), as the values are read in
-        scale, word = (angle_unit if key == "bearing" else length_unit)(cols[key])
+        factor, word = angle_unit(cols[key]) if key == "bearing" else length_unit(cols[key])
         flag(unparsable, f"unparsable {key} ({cols[key]!r}, {word})")
         flag(np.isnan(v) & ~unparsable, f"missing {key} ({cols[key]!r}, {word})")
         flag(np.isinf(v), f"{key} infinite")
-        return v * scale
+        if key == "bearing":
+            turn = 2.0 * np.pi / factor  # 360 degrees, 2π radians
+            with np.errstate(invalid="ignore"):
+                beyond = np.abs(v) > turn * (1.0 + 1e-12)
+            flag(
+                beyond,
+                f"bearing beyond ±{'360°' if factor != 1.0 else '2π'} ({cols[key]!r}, {word})",
+            )
+        return v * factor
 
     if plane_kind(cols) == "polar":
         r, b = values("range"), values("bearing")
