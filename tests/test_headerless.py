@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from conftest import real_file
 from wakeline.core.errors import InputError
 from wakeline.core.io import read_points
+from wakeline.core.io.reader import content_guess
 from wakeline.core.io.sniff import sniff
 
 
@@ -180,3 +181,36 @@ def test_a_date_alone_is_not_suggested_as_the_time(tmp_path):
     with pytest.raises(InputError) as exc:
         read_points(path)
     assert "by their values" not in str(exc.value)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    order=st.permutations(["time", "mmsi", "lat", "lon", "speed"]),
+    millis=st.booleans(),
+    ships=st.integers(2, 4),
+    lon0=st.floats(-179, 179).filter(lambda v: abs(v) > 1),
+    lat0=st.floats(-80, 80).filter(lambda v: abs(v) > 1),
+)
+def test_the_suggestion_tells_unix_times_from_mmsi_and_positions_from_speeds(
+    tmp_path_factory, order, millis, ships, lon0, lat0
+):
+    """An operator's headerless AIS dumps (h118): a 9-digit MMSI (2e8-8e8) was taken for
+    Unix seconds when its column came first, and a speed column of one decimal beside lon
+    and lat left no suggestion at all."""
+    cells = {
+        "time": lambda k: str((1_772_690_400 + 10 * (k // ships)) * (1000 if millis else 1)),
+        "mmsi": lambda k: str(244_000_100 + k % ships),
+        "lat": lambda k: f"{lat0 + 1e-4 * k:.6f}",
+        "lon": lambda k: f"{lon0 + 1e-4 * k:.6f}",
+        "speed": lambda k: f"{7.2 + k % 3 / 10:.1f}",
+    }
+    rows = [[cells[c](k) for c in order] for k in range(12)]
+    path = _write(tmp_path_factory.mktemp("h") / "f.csv", rows)
+    guess, sure = content_guess(sniff(path))
+    col = {c: f"col{i + 1}" for i, c in enumerate(order)}
+    assert guess["time"] == col["time"] and guess["batch"] == col["mmsi"]
+    assert {guess["lon"], guess["lat"]} == {col["lon"], col["lat"]}
+    if abs(lon0) + 1e-3 > 90 >= abs(lat0) + 1e-3:
+        assert sure and (guess["lon"], guess["lat"]) == (col["lon"], col["lat"])
+    res = read_points(path, mapping=[f"{k}={v}" for k, v in guess.items()])
+    assert res.report["rows_imported"] + res.report["rows_quarantined"] == 12

@@ -1565,7 +1565,13 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
     (two columns of degrees with decimals; lon the one beyond ±90 somewhere, else the
     first of the two) and batch (an integer or text column left over), and whether the
     lon/lat order was seen in the values (not only guessed by order). Empty when the
-    values do not show it. Never used to read a file: a suggestion for --map."""
+    values do not show it. Never used to read a file: a suggestion for --map.
+
+    Of several columns of large whole numbers (Unix seconds beside a 9-digit MMSI, which
+    lies in 1e8-1e9 too) the time is the one that runs forward down the rows, then the
+    one after 2001 (1e9 s); the others are ids. Of more than two columns of degrees (a
+    speed or course of one decimal beside the position) lon and lat are the two written
+    with the most decimals, when those two have more than the rest."""
     rows = [r for r in sn.preview if len(r) == len(sn.columns)]
     if not rows:
         return {}, False
@@ -1590,11 +1596,15 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
         if np.isnan(nums).any():
             continue
         if ((nums > 1e8) & (nums < 4e12)).all():
-            # Unix seconds or ms; nine digits (before 2001 as seconds) may be an MMSI
+            # Unix seconds or ms, or a nine-digit MMSI: the time runs forward down the
+            # rows, and lies after 2001 (sorted below)
+            forward = bool((np.diff(nums) >= 0).all())
             recent = bool((((nums >= 1e9) & (nums < 4e9)) | (nums >= 1e12)).all())
-            stamps.append((not recent, k, name, bool((nums == np.round(nums)).all())))
+            whole = bool((nums == np.round(nums)).all())
+            stamps.append((not forward, not recent, k, name, whole))
         elif all("." in c for c in cells) and (np.abs(nums) <= 180).all():
-            degrees.append((name, float(np.abs(nums).max())))
+            places = min(len(c.split(".")[-1]) for c in cells)
+            degrees.append((name, float(np.abs(nums).max()), places))
         elif (nums == np.round(nums)).all():
             ids.append((k, name))
     # a date-time text first, then the numbers most like recent Unix times; the other
@@ -1603,11 +1613,15 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
     if texts:
         out["time"] = texts[0]
     elif stamps:
-        out["time"] = stamps.pop(0)[2]
-    ids = [name for _k, name in sorted(ids + [(k, n) for _o, k, n, whole in stamps if whole])]
+        out["time"] = stamps.pop(0)[3]
+    ids = [name for _k, name in sorted(ids + [(k, n) for _f, _o, k, n, whole in stamps if whole])]
+    if len(degrees) > 2:
+        top = sorted(degrees, key=lambda d: -d[2])
+        if top[1][2] > top[2][2]:  # two written finer than the rest: the position
+            degrees = [d for d in degrees if d in top[:2]]
     sure = False
     if len(degrees) == 2:
-        (a, amax), (b, bmax) = degrees
+        (a, amax, _), (b, bmax, _) = degrees
         sure = (amax > 90) != (bmax > 90)
         lon, lat = (b, a) if bmax > 90 >= amax else (a, b)
         out["lon"], out["lat"] = lon, lat
