@@ -387,3 +387,44 @@ def test_bearings_within_a_turn_are_read_and_beyond_it_quarantined(
         want = np.array(bearings)[inside]
         diff = (got - want + 180.0) % 360.0 - 180.0
         assert np.abs(diff).max() < 1e-6
+
+
+def test_x_y_beside_range_and_bearing_the_mapped_pair_is_read_and_the_other_said(tmp_path):
+    """An operator's file with x/y (km) and range/bearing columns (h118): x/y were read
+    without a word, and `--map range=… --map bearing=…` was ignored (the report listed
+    range and bearing as mapped while the positions came from x/y)."""
+    truth = _track(n=6, seed=4)
+    east, north = to_local(truth["lon"], truth["lat"], ORIGIN[1], ORIGIN[0])
+    frame = pd.DataFrame(
+        {
+            "time": truth["time"].astype("int64"),
+            "track": truth["track"],
+            "x (km)": np.round(east / 1e3, 7),
+            "y (km)": np.round(north / 1e3, 7),
+            "range": 500.0,  # another plot's place: not the truth
+            "bearing": 45.0,
+        }
+    )
+    path = tmp_path / "both.csv"
+    frame.to_csv(path, index=False)
+    res = read_points(path, origin=ORIGIN_TEXT)
+    assert _error_m(res.points, truth).max() < 0.01
+    (warning,) = [w for w in res.report["warnings"] if "two kinds" in w]
+    assert "--map range=range --map bearing=bearing" in warning
+    for how in ({"mapping": ["range=range", "bearing=bearing"]}, {"stream": True}):
+        if "stream" in how:
+            out = tmp_path / "out.csv"
+            rep = import_to_csv(
+                path, out, origin=ORIGIN_TEXT, mapping=["range=range", "bearing=bearing"]
+            )
+            pts = pd.read_csv(out)
+            assert any(
+                "--map 'east=x (km)' --map 'north=y (km)'" in w for w in rep.report["warnings"]
+            )
+        else:
+            res = read_points(path, origin=ORIGIN_TEXT, **how)
+            pts = res.points
+            assert "east" not in res.report["columns"]
+        e, n = to_local(pts["lon"], pts["lat"], ORIGIN[1], ORIGIN[0])
+        np.testing.assert_allclose(np.hypot(e, n), 500.0, atol=1e-6)
+        np.testing.assert_allclose(np.degrees(np.arctan2(e, n)), 45.0, atol=1e-7)

@@ -485,8 +485,17 @@ def _resolve(
 def _positions(columns: dict[str, str], mapping: dict[str, str]) -> tuple[dict, list[str]]:
     """Lon/lat win over local-plane positions: the plane fields found by name are dropped
     when the file has lon and lat (they stay extra columns); without them east and north
-    stand for them, and without those range and bearing. The required fields still
-    without a column."""
+    stand for them, and without those range and bearing. Positions the operator mapped
+    (``--map range=… --map bearing=…``, or east/north, or lon/lat) win over those found
+    by name: before, a file with x/y and range/bearing columns read x/y even when told
+    to read range and bearing. The required fields still without a column."""
+    given = _mapped_positions(mapping)
+    if given is not None:
+        columns = {
+            k: v
+            for k, v in columns.items()
+            if k in mapping or k not in _POSITION_FIELDS or k in _KIND_FIELDS[given]
+        }
     kind = plane_kind(columns)
     keep = {"cartesian": _CARTESIAN, "polar": _POLAR}.get(kind, ())
     columns = {
@@ -494,6 +503,42 @@ def _positions(columns: dict[str, str], mapping: dict[str, str]) -> tuple[dict, 
     }
     position = ("lon", "lat") if kind is not None else ()
     return columns, [f for f in REQUIRED_COLUMNS if f not in columns and f not in position]
+
+
+#: The position fields of each kind (the offsets go with either plane kind).
+_KIND_FIELDS = {"lonlat": ("lon", "lat"), "cartesian": _CARTESIAN, "polar": _POLAR}
+_POSITION_FIELDS = frozenset(("lon", "lat", *PLANE_FIELDS))
+
+
+def _mapped_positions(mapping: dict[str, str]) -> str | None:
+    """The kind of position the operator's mapping names (both fields of a pair:
+    lon/lat, east/north or range/bearing; the first pair in that order), else None."""
+    for kind, pair in (("lonlat", ("lon", "lat")), ("cartesian", ("east", "north"))):
+        if all(f in mapping for f in pair):
+            return kind
+    if "range" in mapping and "bearing" in mapping:
+        return "polar"
+    return None
+
+
+def unused_position_columns(headers, columns: dict[str, str]) -> dict[str, str]:
+    """Position fields (east/north, range/bearing) the synonyms find in ``headers`` on
+    columns the resolved mapping ``columns`` does not read, when the file's positions
+    are of another kind (a file with both x/y and range/bearing): field → column."""
+    kind = plane_kind(columns)
+    if kind is None:
+        return {}
+    other = ("range", "bearing") if kind == "cartesian" else ("east", "north")
+    lookup = _lookup(tuple(headers))
+    used = set(columns.values())
+    out = {}
+    for name in other:
+        for cand in FORMATS[-1].candidates.get(name, ()):
+            src = lookup.get(cand.lower()) or lookup.get(_key(cand))
+            if src is not None and src not in used:
+                out[name] = src
+                break
+    return out if len(out) == 2 else {}
 
 
 def guess_columns(

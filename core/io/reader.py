@@ -18,6 +18,7 @@ import datetime
 import functools
 import gzip
 import re
+import shlex
 import shutil
 import sys
 import tempfile
@@ -46,6 +47,7 @@ from wakeline.core.io.formats import (
     parse_mapping,
     plane_kind,
     resolve,
+    unused_position_columns,
 )
 from wakeline.core.io.sniff import Sniff, cell_kind, sniff
 from wakeline.core.progress import Progress, null_progress
@@ -1914,7 +1916,7 @@ def read_points(
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
-    warnings += origin_warnings(res)
+    warnings += origin_warnings(res, sn.columns)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(path),
@@ -2135,11 +2137,26 @@ def carried_columns(sn: Sniff, res: Resolved) -> list[str]:
     return [c for c in sn.columns if c not in mapped or c in plane]
 
 
-def origin_warnings(res: Resolved) -> list[str]:
+def origin_warnings(res: Resolved, headers=()) -> list[str]:
     """A warning when an origin, or a local-plane column (``--map east=COL``), was given
     for a file whose positions are lon/lat: not used (the column is carried as an extra
-    column)."""
+    column); and when a file on a plane has positions of the other kind too (x/y beside
+    range and bearing, ``headers`` its columns): which were read, and the --map that
+    reads the others."""
     if res.on_plane:
+        other = unused_position_columns(headers, res.columns)
+        if not other:
+            return []
+        kind = plane_kind(res.columns)
+        read = ("east", "north") if kind == "cartesian" else ("range", "bearing")
+        flags = " ".join(f"--map {shlex.quote(f'{k}={v}')}" for k, v in other.items())
+        return [
+            f"the file has positions of two kinds: {read[0]}/{read[1]} "
+            f"({res.columns[read[0]]!r}, {res.columns[read[1]]!r}) were read, "
+            f"{'/'.join(other)} ({', '.join(repr(v) for v in other.values())}) are carried "
+            f"as extra columns; {flags} reads those instead"
+        ]
+    if res.origin is None and not any(f in res.columns for f in PLANE_FIELDS):
         return []
     where = f"the file gives longitude and latitude ({res.columns.get('lon')!r}, "
     where += f"{res.columns.get('lat')!r}), not metres on a plane"
@@ -3020,7 +3037,7 @@ def stream_points(
     warnings += position_warnings(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
     )
-    warnings += origin_warnings(res)
+    warnings += origin_warnings(res, sn.columns)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(sn.path),
