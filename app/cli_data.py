@@ -33,6 +33,8 @@ def _cmd_import(args: argparse.Namespace) -> int:
         msg += " (write them with --quarantine FILE)"
     if rep.get("columns"):
         msg += "\ncolumns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
+    if rep.get("plane_origin"):
+        msg += "\n" + _plane_line(rep)
     if rep.get("extra_columns"):
         msg += "\nextra columns (carried as they are): " + ", ".join(rep["extra_columns"])
     if rep.get("date_order"):
@@ -52,6 +54,22 @@ def _cmd_import(args: argparse.Namespace) -> int:
         print(f"wakeline: error: {nothing_imported(rep)}", file=sys.stderr)
         return 2
     return 0
+
+
+def _plane_line(rep: dict) -> str:
+    """How positions on a plane were read: each column in the unit its header names,
+    about the origin (so a swapped --origin or a unit read wrong shows at once)."""
+    from wakeline.core.io.formats import angle_unit, length_unit
+
+    cols = rep["columns"]
+    parts = [
+        f"{field} {cols[field]!r} in "
+        + (angle_unit(cols[field]) if field == "bearing" else length_unit(cols[field]))[1]
+        for field in ("east", "north", "range", "bearing", "east_offset", "north_offset")
+        if field in cols
+    ]
+    lat, lon = rep["plane_origin"]
+    return f"positions: {', '.join(parts)}; about the origin lat {lat}, lon {lon}"
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:

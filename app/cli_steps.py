@@ -286,7 +286,8 @@ def add_read_flags(
                 "action": "append",
                 "metavar": "FIELD=COLUMN",
                 "help": "take canonical FIELD (sensor, batch, time, lon, lat, speed, course, "
-                "truth) from COLUMN; repeatable",
+                "truth; with --origin east, north, range, bearing, east_offset, "
+                "north_offset) from COLUMN; repeatable",
             },
         ),
         "encoding": (

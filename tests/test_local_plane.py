@@ -428,3 +428,18 @@ def test_x_y_beside_range_and_bearing_the_mapped_pair_is_read_and_the_other_said
         e, n = to_local(pts["lon"], pts["lat"], ORIGIN[1], ORIGIN[0])
         np.testing.assert_allclose(np.hypot(e, n), 500.0, atol=1e-6)
         np.testing.assert_allclose(np.degrees(np.arctan2(e, n)), 45.0, atol=1e-7)
+
+
+def test_import_says_how_the_plane_positions_were_read(tmp_path, capsys):
+    """`wakeline import` names each plane column's unit and the origin it used (h118: a
+    swapped --origin or a unit read wrong gave no sign in the console)."""
+    from wakeline.app.cli import main
+
+    path = tmp_path / "site.csv"
+    _write_polar(_track(n=5), path, names=("Range (NM)", "bearing_rad"), scale=1852.0, radians=True)
+    out = tmp_path / "o.csv"
+    assert main(["import", str(path), "-o", str(out), "--origin", ORIGIN_TEXT]) == 0
+    assert (
+        "positions: range 'Range (NM)' in nautical miles, bearing 'bearing_rad' in radians; "
+        f"about the origin lat {ORIGIN[0]}, lon {ORIGIN[1]}"
+    ) in capsys.readouterr().err
