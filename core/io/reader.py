@@ -836,7 +836,15 @@ def _epoch_ns(seconds: np.ndarray, info: dict | None = None) -> tuple[np.ndarray
     x = np.where(ok, seconds, 0.0)
     # Whole and fractional parts apart: a float64 of ~1.7e18 ns cannot hold every ns.
     whole = np.floor(x)
-    ns = whole.astype("int64") * per + np.round((x - whole) * per).astype("int64")
+    # The fraction to the finest decimal the float holds at its magnitude: 1620114891.8
+    # is 1620114891.7999999523 as a float64 (a step of 2.4e-7 s there), read to the µs,
+    # not to the ns, so it stays .800 (it was written .799999952, and a resampling grid
+    # started from it kept the error).
+    # (|x| = m·2^e with m in [0.5, 1): a float's step there is 2^(e-53))
+    places = np.clip(np.floor((53 - np.frexp(x)[1]) * np.log10(2.0)), 0, 9)
+    scale = 10.0**places
+    frac = np.round((x - whole) * scale) / scale
+    ns = whole.astype("int64") * per + np.round(frac * per).astype("int64")
     return ns, ok
 
 
