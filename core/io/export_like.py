@@ -206,7 +206,10 @@ def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Arra
             scaled, neg = _round_div(ns, unit_ns // 10**d)
             text = _digits(scaled, neg & (scaled != 0), d, tf.number.trim, tf.number.point)
         else:
-            text = format_numbers(ns / unit_ns, tf.number)
+            # whole units and the rest apart: ns / unit_ns rounds ns to a float first (a
+            # step of 256 ns at today's times), so 1620114894.71274 came back .7127402
+            whole, rest = np.divmod(ns, unit_ns)
+            text = format_numbers(whole.astype("float64") + rest / unit_ns, tf.number)
         return pc.if_else(pa.array(ok), text, tf.number.na)
     if tf.tz not in ("UTC", "Z", "+00:00", ""):
         wall = pd.to_datetime(pd.Series(times), utc=True).dt.tz_convert(_zone(tf.tz))
@@ -441,7 +444,24 @@ def _plane_metres(points: pd.DataFrame, layout: Layout, made: np.ndarray) -> dic
         if col is None:
             continue
         scale = angle_unit(col.name)[0] if name == "bearing" else length_unit(col.name)[0]
-        out[name] = format_numbers(v / scale, col.number or NumberFormat())
+        fmt = col.number or NumberFormat()
+        cells = format_numbers(v / scale, fmt)
+        key = _extra_key(points, col)
+        if key is not None:
+            # A row's own text where it still says where the point is: the plane and
+            # back cost ~1e-9 m, so a full-precision cell (Autoferry's 84.63510099212183)
+            # came back in its last digits (84.6351009920087) on unmoved points.
+            own = points[key].astype("str").fillna("")
+            num = own.str.replace(fmt.point, ".", regex=False) if fmt.point != "." else own
+            was = pd.to_numeric(num, errors="coerce").to_numpy(dtype="float64") * scale
+            gap = np.abs(was - v)
+            if name == "bearing":  # as metres at the range; -20 is 340 (written as came)
+                gap = np.abs(np.mod(was - v + np.pi, 2.0 * np.pi) - np.pi) * np.maximum(rng, 1.0)
+            with np.errstate(invalid="ignore"):
+                same = ~made & (gap <= 1e-6)  # a micrometre: no step moves a point so little
+            if same.any():
+                cells = pc.if_else(pa.array(same), _text(own), cells)
+        out[name] = cells
     return out
 
 
