@@ -477,3 +477,31 @@ def test_full_precision_metres_and_unix_times_come_back_byte_for_byte(tmp_path_f
     out = path.with_name("back.csv")
     write_layout(res.points, load_layout(path, origin=ORIGIN_TEXT), out)
     assert out.read_text() == path.read_text()
+
+
+@pytest.mark.parametrize("quoted", [False, True])
+def test_bearings_beyond_a_turn_are_counted_once_whole_streamed_or_in_pieces(
+    tmp_path, monkeypatch, quoted
+):
+    """Degrees under a radians header (h118: 1,800 of 2,000 rows quarantined with exit 0
+    and no word): one warning with the count and what to do, the same whole, streamed
+    and read in pieces (quoted ids)."""
+    import wakeline.core.io.reader as reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 300)
+    q = '"' if quoted else ""
+    lines = ["time,track,range_km,bearing_rad"] + [
+        f"{1_620_000_000 + 10 * k},{q}7{q},1.5,{(k * 37) % 360}" for k in range(40)
+    ]
+    path = tmp_path / "site.csv"
+    path.write_text("\n".join(lines) + "\n")
+    whole = read_points(path, origin=ORIGIN_TEXT).report
+    streamed = import_to_csv(path, tmp_path / "o.csv", origin=ORIGIN_TEXT).report
+    assert streamed.get("pieces" if quoted else "streamed")
+    beyond = sum(1 for k in range(40) if (k * 37) % 360 > 2 * np.pi)
+    for rep in (whole, streamed):
+        (w,) = [w for w in rep["warnings"] if "beyond a full turn" in w]
+        assert w.startswith(f"{beyond} of 40 rows have a bearing in 'bearing_rad'")
+        assert "look like degrees" in w
+        assert rep["rows_imported"] + rep["rows_quarantined"] == 40
+    assert streamed["warnings"] == whole["warnings"]

@@ -38,12 +38,14 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
+    BEARING_WARNING_MARK,
     TIME_COUNTS,
     UNBALANCED_NOTE,
     ImportResult,
     WholeFileNeeded,
     _restart_warnings,
     _time_warnings,
+    bearing_warnings,
     blank_bytes,
     date_order_note,
     edge_state,
@@ -365,7 +367,7 @@ def merge_import_reports(
     notes, timing = [], []
     for r in reports:
         for w in r.get("warnings", []):
-            if w in counted or w in relative_note:
+            if w in counted or w in relative_note or BEARING_WARNING_MARK in w:
                 continue
             (timing if w in local_note else notes).append(w)
     warnings = list(dict.fromkeys(notes))
@@ -375,6 +377,10 @@ def merge_import_reports(
     if relative:
         warnings += relative_note
     warnings += _restart_warnings(restarting, batch_src)
+    reasons = _sum([r.get("quarantine_reasons", {}) for r in reports])
+    warnings += bearing_warnings(
+        first["columns"], reasons, sum(int(r.get("rows_read", 0)) for r in reports)
+    )
     starts = [pd.Timestamp(r["time_start"]) for r in reports if r.get("time_start")]
     ends = [pd.Timestamp(r["time_end"]) for r in reports if r.get("time_end")]
     # A later piece read in a fallback encoding: the whole file is read in that one.

@@ -1925,6 +1925,7 @@ def read_points(
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
     warnings += origin_warnings(res, sn.columns)
+    warnings += bearing_warnings(res.columns, counts["quarantine_reasons"], counts["rows_read"])
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(path),
@@ -2143,6 +2144,33 @@ def carried_columns(sn: Sniff, res: Resolved) -> list[str]:
     plane = {res.columns[f] for f in PLANE_FIELDS if f in res.columns}
     mapped = set(res.columns.values())
     return [c for c in sn.columns if c not in mapped or c in plane]
+
+
+BEARING_BEYOND = "bearing beyond"
+#: In the warning :func:`bearing_warnings` gives (made again from the summed counts when
+#: a file is read in pieces).
+BEARING_WARNING_MARK = "beyond a full turn ("
+
+
+def bearing_warnings(columns: dict[str, str], reasons: dict, rows_read: int) -> list[str]:
+    """A warning counting the bearings quarantined for lying beyond a full turn, and when
+    they are most of the rows of a column whose header says radians, that they look like
+    degrees (the unit comes from the header alone)."""
+    col = columns.get("bearing")
+    n = sum(int(v) for k, v in (reasons or {}).items() if str(k).startswith(BEARING_BEYOND))
+    if not col or not n:
+        return []
+    radians = angle_unit(col)[1] == "radians"
+    text = (
+        f"{n:,} of {rows_read:,} rows have a bearing in {col!r} beyond a full turn "
+        f"({'±2π: the header says radians' if radians else '±360°'}): quarantined"
+    )
+    if radians and 2 * n > rows_read:
+        text += (
+            "; most bearings are beyond 2π, so they look like degrees: name the column "
+            "without 'rad' (e.g. 'bearing') to read them as degrees"
+        )
+    return [text]
 
 
 def origin_warnings(res: Resolved, headers=()) -> list[str]:
@@ -3046,6 +3074,7 @@ def stream_points(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
     )
     warnings += origin_warnings(res, sn.columns)
+    warnings += bearing_warnings(res.columns, by_reason, totals["rows_read"] + len(bad.lines))
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(sn.path),
