@@ -196,3 +196,33 @@ def test_a_read_in_pieces_says_what_a_whole_read_says(tmp_path, monkeypatch, fmt
     assert r.report["warnings"] == whole["warnings"]
     assert r.report["date_order"] == whole["date_order"]
     assert r.report.get("date_order_refused") == whole.get("date_order_refused")
+
+
+@settings(
+    max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    spelling=st.sampled_from(["{}m", "{}M", "{}.m.", "{}.M.", "{}.m", "{} m", "{}. m."]),
+    upper=st.booleans(),
+    month_first=st.booleans(),
+    seconds=st.lists(st.integers(0, 86_399), min_size=3, max_size=12, unique=True),
+)
+def test_12_hour_clocks_read_however_am_and_pm_are_written(
+    tmp_path, spelling, upper, month_first, seconds
+):
+    """An operator's US export wrote `03/12/2026 09:00:00 p.m.` (h118): every row was
+    quarantined as unparsable time; strptime's %p takes AM/PM only."""
+    start = pd.Timestamp("2026-03-14", tz="UTC")  # day 14: the order matters
+    times = [start + pd.Timedelta(s, "s") for s in sorted(seconds)]
+    rows = []
+    for k, t in enumerate(times):
+        letter = "a" if t.hour < 12 else "p"
+        suffix = spelling.replace("{}", letter.upper() if upper else letter)
+        date = t.strftime("%m/%d/%Y" if month_first else "%d/%m/%Y")
+        rows.append(f"{date} {t.strftime('%I:%M:%S')} {suffix},A,57.{k:03d},11.5")
+    p = tmp_path / "pm.csv"
+    p.write_text("time,id,lat,lon\n" + "\n".join(rows) + "\n")
+    order = "month-first" if month_first else "day-first"
+    res = read_points(p, date_order=order)
+    assert res.report["rows_quarantined"] == 0
+    assert _times(res.points) == list(times)

@@ -118,7 +118,25 @@ def _parse_slashed(text: pd.Series, todo: pd.Series, formats, info: dict) -> pd.
         if not left.any():
             break
         parsed[left] = _as_ns(pd.to_datetime(text[left], format=fmt, errors="coerce"), info)
+    left = parsed.isna() & todo
+    if left.any():
+        # 12-hour clocks written "p.m." / "pm" / "P.M." (strptime's %p takes AM/PM only):
+        # only the rows left over are looked at, so a file without them pays nothing
+        norm = text[left].str.replace(_MERIDIEM, _meridiem, regex=True)
+        changed = norm != text[left]
+        if changed.any():
+            again = parsed.isna() & False
+            again[norm.index[changed.to_numpy()]] = True
+            parsed[again] = _parse_slashed(norm.reindex(text.index), again, formats, info)[again]
     return parsed
+
+
+#: A 12-hour clock's suffix as people write it (``p.m.``, ``pm``, ``P.M``), at the end.
+_MERIDIEM = re.compile(r"(?<=\d)\s*([AaPp])\.?\s?[Mm]\.?\s*$")
+
+
+def _meridiem(m: re.Match) -> str:
+    return " " + m.group(1).upper() + "M"
 
 
 @dataclass
