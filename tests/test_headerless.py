@@ -215,3 +215,26 @@ def test_the_suggestion_tells_unix_times_from_mmsi_and_positions_from_speeds(
         assert sure and (guess["lon"], guess["lat"]) == (col["lon"], col["lat"])
     res = read_points(path, mapping=[f"{k}={v}" for k, v in guess.items()])
     assert res.report["rows_imported"] + res.report["rows_quarantined"] == 12
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    delim=st.sampled_from([";", "\t"]),
+    lon0=st.floats(-179, 179).filter(lambda v: abs(v) > 91),
+    lat0=st.floats(-80, 80),
+    lat_first=st.booleans(),
+)
+def test_the_suggestion_reads_decimal_commas(tmp_path_factory, delim, lon0, lat0, lat_first):
+    """A European headerless export (`2026-03-05 06:00:00;100;30,613482;122,068355`, h118)
+    got no suggestion: its degrees did not parse as numbers."""
+    rows = []
+    for r in _rows(8, lon0, lat0):
+        lon, lat = r[2].replace(".", ","), r[3].replace(".", ",")
+        rows.append([r[0], r[1], *((lat, lon) if lat_first else (lon, lat))])
+    path = _write(tmp_path_factory.mktemp("h") / "f.csv", rows, delim)
+    guess, sure = content_guess(sniff(path))
+    assert sure and guess["time"] == "col1" and guess["batch"] == "col2"
+    assert (guess["lon"], guess["lat"]) == (("col4", "col3") if lat_first else ("col3", "col4"))
+    res = read_points(path, mapping=[f"{k}={v}" for k, v in guess.items()])
+    assert res.report["rows_imported"] == 8
+    assert np.isclose(res.points["lon"].iloc[0], round(lon0, 5))

@@ -1586,6 +1586,9 @@ def resolve_header(
         raise
 
 
+_COMMA_NUMBER = re.compile(r"^([+-]?\d+),(\d+)$")
+
+
 def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
     """A headerless file's columns by the values of its first rows (``sn.preview``):
     field → column for time (a date-time; else Unix seconds or milliseconds, those
@@ -1608,6 +1611,8 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
     degrees, ids, texts, stamps = [], [], [], []
     for k, (name, cells) in enumerate(zip(sn.columns, cols, strict=True)):
         cells = [c.strip().strip('"') for c in cells]
+        if sn.delimiter != ",":  # 30,613482 in a ;-separated export is 30.613482
+            cells = [_COMMA_NUMBER.sub(r"\1.\2", c) for c in cells]
         nums = pd.to_numeric(pd.Series(cells), errors="coerce").to_numpy(dtype="float64")
         if np.isnan(nums).all():
             # the sniffer's test of a date-time (pandas' guess per cell warned on stderr
