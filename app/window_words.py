@@ -49,9 +49,30 @@ _FIELDS = {
     "date-order": "Date order",
     "time-unit": "Time numbers",
 }
-#: A flag and its value, if any: not a parenthesis after it, and a value's commas kept
-#: when no space follows them (``--origin 60,10``: the whole pair).
-_FLAG = re.compile(r"--(" + "|".join(_FIELDS) + r")\b(?:[ =](?![-(])[^\s,;:)]+(?:,[^\s,;:)]+)*)?")
+#: A flag and its value, if any: quoted as the engine quotes what it refuses ('95,10',
+#: kept), or a bare value (dropped: the field holds it) — not a parenthesis after the
+#: flag, and a value's commas kept when no space follows them (``--origin 60,10``: the
+#: whole pair).
+_FLAG = re.compile(
+    r"--(" + "|".join(_FIELDS) + r")\b"
+    r"(?:[ =](?:('[^']*')|(?![-(])[^\s,;:)]+(?:,[^\s,;:)]+)*))?"
+)
+
+
+def _field(m: re.Match) -> str:
+    quoted = f" ({m.group(2)})" if m.group(2) else ""
+    return f"the import dialog's {_FIELDS[m.group(1)]} field{quoted}"
+
+
+# Several --map flags in a row (a suggested mapping): one field, the choices listed.
+_MAP_VALUE = r"(?:'[^']*'|(?!-)[^\s,;:)]+)"
+_MAP_RUN = re.compile(rf"--map[ =]{_MAP_VALUE}(?:\s+--map[ =]{_MAP_VALUE})+")
+
+
+def _map_run(m: re.Match) -> str:
+    values = re.findall(rf"--map[ =]({_MAP_VALUE})", m.group(0))
+    choices = ", ".join(v.strip("'") for v in values)
+    return f"the import dialog's Column mapping ({choices})"
 
 
 def window_words(text: str) -> str:
@@ -60,4 +81,5 @@ def window_words(text: str) -> str:
         return text
     for cli, window in _PHRASES:
         text = text.replace(cli, window)
-    return _FLAG.sub(lambda m: f"the import dialog's {_FIELDS[m.group(1)]} field", text)
+    text = _MAP_RUN.sub(_map_run, text)
+    return _FLAG.sub(_field, text)
