@@ -226,3 +226,23 @@ def test_12_hour_clocks_read_however_am_and_pm_are_written(
     res = read_points(p, date_order=order)
     assert res.report["rows_quarantined"] == 0
     assert _times(res.points) == list(times)
+
+
+def test_nothing_imported_because_of_a_given_order_or_unit_names_the_flag(tmp_path, capsys):
+    """h118: a day-first file read with --date-order month-first, or Unix seconds read
+    with --time-unit excel-days, ended "the time column is not a time Wakeline reads …
+    check --map time=…": the flag that caused it was not named."""
+    p = _write(tmp_path / "eu.csv", US_TIMES[:20] + pd.Timedelta(days=13), "%d/%m/%Y %H:%M:%S")
+    out = tmp_path / "o.csv"
+    assert main(["import", str(p), "-o", str(out), "--date-order", "month-first"]) == 2
+    err = capsys.readouterr().err.splitlines()[-1]
+    assert "20 dates cannot be month-first, as --date-order month-first says" in err
+    assert err.endswith("try --date-order auto")
+    u = tmp_path / "unix.csv"
+    u.write_text(
+        "t,id,lat,lon\n" + "".join(f"{1_700_000_000 + k},A,57.1,11.{k}\n" for k in range(5))
+    )
+    assert main(["import", str(u), "-o", str(out), "--time-unit", "excel-days"]) == 2
+    err = capsys.readouterr().err.splitlines()[-1]
+    assert "read as Excel serial days, as --time-unit excel-days says" in err
+    assert err.endswith("try --time-unit auto")

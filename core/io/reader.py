@@ -199,6 +199,18 @@ def nothing_imported(rep: dict, name: str | None = None) -> str:
             f"{text}; the lat column holds longitudes and lon latitudes, it seems: "
             f"try --map lat={cols['lon']} --map lon={cols['lat']}"
         )
+    unit, order = str(rep.get("time_unit") or ""), str(rep.get("date_order") or "")
+    if reason == "unparsable time" and unit.startswith("Excel") and "(given" in unit:
+        return (
+            f"{text}; they were read as Excel serial days, as --time-unit excel-days says, "
+            "and are none (Excel's days run 1-2,958,465): try --time-unit auto"
+        )
+    if reason == "unparsable time" and rep.get("date_order_refused") and "(given" in order:
+        given = order.split()[0]
+        return (
+            f"{text}; {rep['date_order_refused']:,} dates cannot be {given}, as "
+            f"--date-order {given} says: try --date-order auto"
+        )
     for key, hint in _HINTS.items():
         if reason.startswith(key):
             return f"{text}; {hint}"
