@@ -246,3 +246,38 @@ def test_nothing_imported_because_of_a_given_order_or_unit_names_the_flag(tmp_pa
     err = capsys.readouterr().err.splitlines()[-1]
     assert "read as Excel serial days, as --time-unit excel-days says" in err
     assert err.endswith("try --time-unit auto")
+
+
+@settings(
+    max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    spelling=st.sampled_from(["{}m", "{}M", "{}.m.", "{}.M.", " {}m", " {}.m.", " {}.M."]),
+    upper=st.booleans(),
+    split=st.booleans(),
+    seconds=st.lists(st.integers(0, 86_399), min_size=3, max_size=10, unique=True),
+)
+def test_export_like_writes_am_and_pm_as_the_file_did(tmp_path, spelling, upper, split, seconds):
+    """h118: `export --like` of a file with `09:00:00 p.m.` was refused ("cannot tell the
+    time format"); now the mark comes back as written, also in a Date,Time layout."""
+    from wakeline.core.io.export_like import write_layout
+    from wakeline.core.io.layout import load_layout
+
+    start = pd.Timestamp("2026-03-14", tz="UTC")
+    rows = []
+    for k, s in enumerate(sorted(seconds)):
+        t = start + pd.Timedelta(s, "s")
+        letter = "a" if t.hour < 12 else "p"
+        mark = spelling.replace("{}", letter.upper() if upper else letter)
+        sep = "," if split else " "
+        rows.append(
+            f"{t.strftime('%m/%d/%Y')}{sep}{t.strftime('%I:%M:%S')}{mark},A,57.{k:03d},11.5"
+        )
+    head = "Date,Time,id,lat,lon" if split else "time,id,lat,lon"
+    p = tmp_path / "pm.csv"
+    p.write_text(head + "\n" + "\n".join(rows) + "\n")
+    res = read_points(p)
+    assert res.report["rows_quarantined"] == 0
+    out = tmp_path / "back.csv"
+    write_layout(res.points, load_layout(p), out)
+    assert out.read_text() == p.read_text()

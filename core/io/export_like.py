@@ -233,6 +233,9 @@ def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Arra
         )
     else:
         text = base
+    if tf.meridiem and part != "date":  # " AM" / " PM" as the file wrote them (" p.m.")
+        pm = tf.meridiem.replace("a", "p").replace("A", "P")
+        text = pc.replace_substring(pc.replace_substring(text, " AM", tf.meridiem), " PM", pm)
     if tf.suffix:
         text = _join(text, tf.suffix)
     return pc.if_else(pa.array(ok), text, "")

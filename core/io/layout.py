@@ -75,7 +75,7 @@ _ISO = re.compile(
 )
 _DAYFIRST = re.compile(
     r"^\d{2}(?P<ds>[/.-])\d{2}(?P=ds)\d{4}(?P<sep>[T ])\d{2}:\d{2}(?P<sec>:\d{2})?"
-    r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<ampm> [AP]M)?(?P<suffix> ?UTC| ?GMT)?$"
+    r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<ampm> ?[AaPp]\.? ?[Mm]\.?)?(?P<suffix> ?UTC| ?GMT)?$"
 )
 _OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
 #: Degrees and decimal minutes with a hemisphere letter (``57°40.026'N``, ``N 57 40.026``).
@@ -258,6 +258,9 @@ class TimeFormat:
     number: NumberFormat = field(default_factory=lambda: NumberFormat(0, "none"))
     frac_point: str = "."
     date_pattern: str = ""
+    #: A 12-hour clock's morning mark as the file writes it when not `` AM`` (`` a.m.``,
+    #: ``am``, `` A.M.``); the afternoon's is the same with p for a. Empty: AM/PM.
+    meridiem: str = ""
 
     @staticmethod
     def detect(values: pd.Series, tz: str | None = None) -> "TimeFormat":
@@ -296,6 +299,9 @@ class TimeFormat:
             if twelve and digits:  # 08:01:04.5 PM: the fraction would follow the AM/PM
                 break
             clock = ("%I:%M" if twelve else "%H:%M") + (":%S" if m["sec"] else "")
+            meridiem = ""
+            if twelve and m["ampm"] not in (" AM", " PM"):  # " p.m.": its form, as a.m.
+                meridiem = m["ampm"].replace("p", "a").replace("P", "A")
             pattern = date.format(ds=m["ds"]) + m["sep"] + clock + (" %p" if twelve else "")
             suffix = m["suffix"] or ""
             zone = tz or "UTC"
@@ -305,7 +311,9 @@ class TimeFormat:
             elif suffix.strip() in ("Z", "UTC", "GMT"):
                 zone = "UTC"
             point = m["point"] or "."
-            return TimeFormat("text", pattern, digits, trim, suffix, zone, frac_point=point)
+            return TimeFormat(
+                "text", pattern, digits, trim, suffix, zone, frac_point=point, meridiem=meridiem
+            )
         raise InputError(
             f"cannot tell the time format from {first!r}; "
             "expected unix seconds, ISO 8601, dd/mm/yyyy (or mm/dd/yyyy) HH:MM:SS (or "
