@@ -394,6 +394,11 @@ def _saronic_cut_window(qtbot, tmp_path) -> tuple[MainWindow, str]:
 
     path = tmp_path / "greece_cut.csv"
     write_points(cut_at_gaps(saronic_points("S1"), min_gap_s=600.0).drop(columns="truth"), path)
+    return _window_on(qtbot, tmp_path, path)
+
+
+def _window_on(qtbot, tmp_path, path) -> tuple[MainWindow, str]:
+    """A window with the track file ``path`` loaded and its layer selected; the layer's id."""
     w = _window(qtbot, tmp_path)
     w.load_files([path])
     _settle(w)
@@ -577,13 +582,7 @@ def test_associate_on_atd_binds_the_review_in_short_turns(qtbot, tmp_path, monke
             stages.append(1000 * (time.thread_time() - c0))
 
     monkeypatch.setattr(ReviewDock, "_next_bind_step", timed)
-    path = real_file("atd2025-noaa", "example_truth.csv.gz")
-    w = _window(qtbot, tmp_path)
-    w.load_files([path])
-    _settle(w)
-    src = w.layer_id(path.name)
-    w.select_layer(src)
-    _settle(w)
+    w, src = _window_on(qtbot, tmp_path, real_file("atd2025-noaa", "example_truth.csv.gz"))
     worst = {"wall": 0.0, "cpu": 0.0}
     last = [time.perf_counter(), time.thread_time()]
 
