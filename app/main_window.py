@@ -14,6 +14,7 @@ The window is assembled from mixins: layers and the drawing queue
 :mod:`~wakeline.app.jobs_import` and :mod:`~wakeline.app.jobs_project`).
 """
 
+import weakref
 from pathlib import Path
 
 import numpy as np
@@ -64,9 +65,14 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
 
     layersChanged = QtCore.Signal()
     activeChanged = QtCore.Signal()  # the layer the table and steps work on
+    #: Every window made and not yet deleted (weak): what the GUI tests' teardown ends,
+    #: without listing the application's top-level widgets — that list wraps every one,
+    #: and one a garbage collection was deleting made it segfault (tests/conftest.py).
+    alive: "weakref.WeakSet[MainWindow]" = weakref.WeakSet()
 
     def __init__(self, settings: QtCore.QSettings | None = None) -> None:
         super().__init__()
+        MainWindow.alive.add(self)
         self.settings = settings or QtCore.QSettings("Wakeline", "Wakeline")
         preload()
         self.session = Session()

@@ -197,12 +197,15 @@ def _windows_end_with_their_test(request):
         return
     import gc
 
-    from PySide6 import QtCore, QtWidgets
+    from PySide6 import QtCore
+    from shiboken6 import isValid
 
     from wakeline.app.main_window import MainWindow
 
-    app = QtWidgets.QApplication.instance()
-    windows = [w for w in app.topLevelWidgets() if isinstance(w, MainWindow)]
+    # The windows made, not QApplication.topLevelWidgets(): listing those wraps every
+    # top-level widget, and one that a garbage collection was deleting meanwhile made that
+    # line segfault (about one full run in three, in this teardown).
+    windows = [w for w in list(MainWindow.alive) if isValid(w)]
     for w in windows:
         w.runner.cancel()
         assert w.runner.wait(60_000), "a job did not end within 60 s of the test"
