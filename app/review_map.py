@@ -18,6 +18,7 @@ import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
+from wakeline.app.map_draw import unwrap_tracks
 from wakeline.app.map_selection import SELECTION_PALETTE
 from wakeline.core import geo
 from wakeline.core.review import ReviewState, _labels
@@ -175,11 +176,10 @@ def tracks_geometry(
 
 
 def _continuous(lon: np.ndarray) -> np.ndarray:
-    """Longitudes made continuous from the first (±360° steps removed)."""
+    """Longitudes made continuous from the first (±360° steps removed): one track of
+    :func:`~wakeline.app.map_draw.unwrap_tracks`."""
     lon = np.asarray(lon, dtype="float64")
-    if len(lon) < 2:
-        return lon
-    return lon[0] + np.concatenate([[0.0], np.cumsum(geo.wrap180(np.diff(lon)))])
+    return unwrap_tracks(lon, np.array([0]), np.array([len(lon)]))
 
 
 def proposal_items(geom: ProposalGeometry) -> list[pg.GraphicsObject]:

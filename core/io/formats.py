@@ -473,13 +473,21 @@ def _resolve(
     for name in FIELDS:
         if name in columns:
             continue
-        for cand in fmt.candidates.get(name, ()):
-            src = lookup.get(cand.lower()) or lookup.get(_key(cand))
-            if src is not None and src not in used:
-                columns[name] = src
-                used.add(src)
-                break
+        src = _column_for(fmt, name, lookup, used)
+        if src is not None:
+            columns[name] = src
+            used.add(src)
     return _positions(columns, mapping)
+
+
+def _column_for(fmt: Format, name: str, lookup: dict[str, str], used: set) -> str | None:
+    """The first header (by ``lookup``, :func:`_lookup`) of ``fmt``'s candidates for
+    field ``name`` that no field has taken (``used``), or None."""
+    for cand in fmt.candidates.get(name, ()):
+        src = lookup.get(cand.lower()) or lookup.get(_key(cand))
+        if src is not None and src not in used:
+            return src
+    return None
 
 
 def _positions(columns: dict[str, str], mapping: dict[str, str]) -> tuple[dict, list[str]]:
@@ -513,11 +521,13 @@ _POSITION_FIELDS = frozenset(("lon", "lat", *PLANE_FIELDS))
 def _mapped_positions(mapping: dict[str, str]) -> str | None:
     """The kind of position the operator's mapping names (both fields of a pair:
     lon/lat, east/north or range/bearing; the first pair in that order), else None."""
-    for kind, pair in (("lonlat", ("lon", "lat")), ("cartesian", ("east", "north"))):
+    for kind, pair in (
+        ("lonlat", ("lon", "lat")),
+        ("cartesian", ("east", "north")),
+        ("polar", ("range", "bearing")),
+    ):
         if all(f in mapping for f in pair):
             return kind
-    if "range" in mapping and "bearing" in mapping:
-        return "polar"
     return None
 
 
@@ -533,11 +543,9 @@ def unused_position_columns(headers, columns: dict[str, str]) -> dict[str, str]:
     used = set(columns.values())
     out = {}
     for name in other:
-        for cand in FORMATS[-1].candidates.get(name, ()):
-            src = lookup.get(cand.lower()) or lookup.get(_key(cand))
-            if src is not None and src not in used:
-                out[name] = src
-                break
+        src = _column_for(FORMATS[-1], name, lookup, used)
+        if src is not None:
+            out[name] = src
     return out if len(out) == 2 else {}
 
 
