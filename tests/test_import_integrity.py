@@ -494,7 +494,7 @@ def test_nmea_log():
     assert r.points["lon"].iloc[0] == pytest.approx(-122.341618)
     reasons = dict(zip(r.quarantine["line"], r.quarantine["reason"], strict=True))
     assert reasons[5] == "bad NMEA checksum"
-    assert reasons[7].startswith("not an AIVDM")
+    assert reasons[7].startswith("not an AIS sentence")
     assert reasons[8].startswith("no receive time")
     assert reasons[9] == "incomplete multi-part message"
     assert rep["fragments_assembled"] == 1 and rep["static_messages"] == 1
@@ -507,6 +507,29 @@ def test_nmea_log():
         + sum(rep["messages_ignored_by_type"].values())
     )
     assert accounted == rep["rows_read"] == 8
+
+
+def test_nmea_log_of_base_and_shore_stations(write):
+    """Shore networks log the same sentences under other AIS talkers (``!BSVDM`` in
+    Norway's and Denmark's, ``!ABVDM``, ``!SAVDM``): each is read as ``!AIVDM`` is; a
+    GPS sentence stays a quarantined row."""
+    payload = "1,1,,B,15M67FC000G?ufbE`FepT@3n00Sa,0"
+
+    def sentence(talker: str) -> str:
+        body = f"{talker}VDM,{payload}"
+        check = 0
+        for ch in body:
+            check ^= ord(ch)
+        return f"!{body}*{check:02X}"
+
+    lines = [f"{1671620143 + i},{sentence(t)}" for i, t in enumerate(("AI", "BS", "AB", "SA"))]
+    lines.append("1671620150,$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47")
+    r = read_points(write("shore.nmea", "\n".join(lines) + "\n"))
+    assert r.report["format"] == "ais-nmea"
+    assert len(r.points) == 4 and (r.points["batch"] == "366053209").all()
+    assert r.quarantine["reason"].tolist() == [
+        "not an AIS sentence (!AIVDM, !AIVDO or another AIS talker's VDM/VDO)"
+    ]
 
 
 def test_nmea_names_from_static_data(write):

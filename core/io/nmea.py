@@ -1,4 +1,5 @@
-"""Raw AIS NMEA logs (``!AIVDM`` / ``!AIVDO`` sentences) decoded with pyais.
+"""Raw AIS NMEA logs (``!AIVDM`` / ``!AIVDO`` sentences, or the same from a base or shore
+station: ``!BSVDM``, ``!ABVDM``...) decoded with pyais.
 
 Each line holds one sentence, optionally after a receive time (unix seconds or
 milliseconds, or ISO 8601 text, then a blank, comma, semicolon or tab) or after an
@@ -26,12 +27,12 @@ from pyais import NMEAMessage
 from pyais.exceptions import AISBaseException
 
 from wakeline.core.errors import InputError
-from wakeline.core.io.sniff import Sniff
+from wakeline.core.io.sniff import NMEA_SENTENCE, Sniff
 from wakeline.core.progress import Progress, null_progress
 
 POSITION_TYPES = frozenset((1, 2, 3, 18, 19, 27))
 STATIC_TYPES = frozenset((5, 24))
-_SENTENCE = re.compile(r"[!$]AIVD[MO],")
+_SENTENCE = NMEA_SENTENCE
 _TAG_BLOCK = re.compile(r"^\\([^\\]*)\\")
 _TAG_TIME = re.compile(r"(?:^|,)c:(\d+(?:\.\d+)?)")
 
@@ -63,7 +64,7 @@ def _split(line: str) -> tuple[str | None, float | None, str]:
         line = line[tag.end() :]
     m = _SENTENCE.search(line)
     if m is None:
-        return None, None, "not an AIVDM/AIVDO sentence"
+        return None, None, "not an AIS sentence (!AIVDM, !AIVDO or another AIS talker's VDM/VDO)"
     if t is None:
         t = _receive_time(line[: m.start()])
     return line[m.start() :].strip(), t, ""

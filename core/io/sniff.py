@@ -12,7 +12,12 @@ from wakeline.core.errors import InputError
 SAMPLE_BYTES = 256 * 1024
 ENCODINGS = ("utf-8", "gb18030")
 DELIMITERS = (",", ";", "\t")
-_NMEA = re.compile(r"[!$]AIVD[MO],")
+#: An AIS sentence (``!AIVDM``, ``!AIVDO``) under any AIS talker of IEC 61162-1: AI (mobile),
+#: AB/AD/AS (base stations), AN (aid to navigation), AR (receiver), AT (transmitter), AX
+#: (repeater), BS (base station, older logs) and SA (shore station): Norwegian and Danish
+#: shore networks log ``!BSVDM`` and ``!ABVDM``.
+NMEA_SENTENCE = re.compile(r"[!$](?:A[BDINRSTX]|BS|SA)VD[MO],")
+_NMEA = NMEA_SENTENCE
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 #: A block of NUL bytes (64 or more in a row).
 _NUL_BLOCK = re.compile(rb"\x00{64,}")
