@@ -194,7 +194,7 @@ class ImportDialog(QtWidgets.QDialog):
             self,
             self.tr("Open track file"),
             "",
-            "Track files (*.csv *.csv.gz *.txt *.nmea *.log);;All files (*)",
+            "Track files (*.csv *.csv.gz *.txt *.nmea *.log *.gpx);;All files (*)",
         )
         if path:
             self.path_edit.setText(path)
@@ -257,7 +257,7 @@ class ImportDialog(QtWidgets.QDialog):
 
     def _fill_mapping(self) -> None:
         info = self._info
-        columns = info.get("columns", []) if info.get("kind") != "nmea" else []
+        columns = info.get("columns", []) if info.get("kind") == "csv" else []
         mapping = info.get("mapping", {})
         self._updating = True
         for name, box in self.mapping_boxes.items():
@@ -305,7 +305,7 @@ class ImportDialog(QtWidgets.QDialog):
             self._missing = ["batch", "time", "lon", "lat"]
 
     def _update_extra(self) -> None:
-        columns = self._info.get("columns", []) if self._info.get("kind") != "nmea" else []
+        columns = self._info.get("columns", []) if self._info.get("kind") == "csv" else []
         used = set(self.mapping().values())
         extra = [c for c in columns if c not in used]
         self.extra_label.setText(

@@ -73,6 +73,7 @@ def preload() -> None:
         "shapely",
         "gpxpy.gpx",
         "wakeline.core.io.nmea",
+        "wakeline.core.io.gpx",
         "wakeline.core.io.layout",
         "wakeline.core.io.export_like",
         "wakeline.core.clean",

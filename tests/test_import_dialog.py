@@ -68,6 +68,12 @@ def test_unreadable_file_and_nmea(qtbot, write):
     assert "NMEA" in dlg.layout_label.text()
     assert dlg.mapping() == {}
     assert len(read_points(**dlg.options()).points) == 2
+    from test_gpx_import import OPENCPN
+
+    dlg.path_edit.setText(str(write("track.gpx", OPENCPN)))
+    assert "GPX" in dlg.layout_label.text()
+    assert dlg.mapping() == {} and not dlg.warning_label.text()
+    assert len(read_points(**dlg.options()).points) == 5
 
 
 def test_lines_above_the_header_reach_preview_mapping_and_read_points(qtbot, write):

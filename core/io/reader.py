@@ -1938,6 +1938,10 @@ def read_points(
         from wakeline.core.io.nmea import read_nmea
 
         return read_nmea(sn, sensor=sensor, progress=progress)
+    if sn.kind == "gpx":
+        from wakeline.core.io.gpx import read_gpx
+
+        return read_gpx(sn, sensor=sensor, progress=progress)
     res = resolve_header(sn, fmt, mapping, str(path), origin)
     rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
@@ -2737,8 +2741,10 @@ def inspect_file(
         "columns": list(sn.columns),
         "mapping": {},
         "extra": [],
-        "format": "ais-nmea" if sn.kind == "nmea" else None,
-        "format_label": "Raw AIS NMEA log (!AIVDM/!AIVDO)" if sn.kind == "nmea" else None,
+        "format": {"nmea": "ais-nmea", "gpx": "gpx"}.get(sn.kind),
+        "format_label": {"nmea": "Raw AIS NMEA log (!AIVDM/!AIVDO)", "gpx": "GPX tracks"}.get(
+            sn.kind
+        ),
         "encoding": sn.encoding,
         "delimiter": sn.delimiter,
         "header": sn.has_header,
@@ -2749,7 +2755,7 @@ def inspect_file(
         "missing": [],
         "plane": False,
     }
-    if sn.kind == "nmea":
+    if sn.kind != "csv":  # NMEA, GPX: no columns to map
         return out
     guess, sure = content_guess(sn) if not sn.has_header and not mapping else ({}, False)
     try:
@@ -2849,7 +2855,7 @@ def import_to_csv(
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
 
-    if sn.kind != "csv":  # NMEA logs
+    if sn.kind != "csv":  # NMEA logs, GPX
         return whole(output)
     res = resolve_header(sn, fmt, mapping, str(path), origin)
     progress = progress or null_progress

@@ -1,0 +1,262 @@
+"""GPX tracks (GPX 1.0 and 1.1: OpenCPN's track export, chart plotters, phones, our own
+``export --format gpx``).
+
+Every ``<trk>`` is one track: its ``<name>`` is the batch (``track N`` when it has none;
+a name that two tracks share gets `` (2)``, `` (3)``... on the later ones, with a warning).
+A GPX written by Wakeline names a track ``sensor:batch``: it is read back as that sensor
+and batch. Each ``<trkpt>`` is a point (its ``<time>``, ISO 8601, UTC unless it says
+otherwise; GPX 1.0's ``<speed>`` in m/s becomes knots, its ``<course>`` degrees). Track
+segments are one track: a segment break is a gap the cleaning and association steps see
+by time.
+
+Nothing is lost silently: a track point without a time, with a time or a position that
+cannot be read, or beyond ±90° / ±180°, is a quarantined row (its line number and the
+text of that line). Waypoints (``<wpt>``) and route points (``<rtept>``) are plans, not
+tracks: counted in the report and named in a warning. A file that stops being
+well-formed XML keeps the points before the break; every line from the break on is a
+quarantined row naming the parser's complaint.
+
+Parsing is expat's (the C parser of the standard library), one callback per element; the
+table is built once at the end.
+"""
+
+import gzip
+from xml.parsers import expat
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core.io.sniff import Sniff
+from wakeline.core.progress import Progress, null_progress
+
+KNOTS_PER_MS = 3600.0 / 1852.0
+
+
+def _local(name: str) -> str:
+    """An element's name without its namespace (``{http://…/1/1}trkpt`` → ``trkpt``)."""
+    return name.rsplit("}", 1)[-1].rsplit(":", 1)[-1]
+
+
+def _numbers(texts: list) -> np.ndarray:
+    """Attribute or element texts as float64 (NaN where missing or not a number)."""
+    return pd.to_numeric(pd.Series(texts, dtype="object"), errors="coerce").to_numpy(
+        dtype="float64", na_value=np.nan
+    )
+
+
+def _line_texts(sn: Sniff, wanted: set[int], from_line: int | None) -> dict[int, str]:
+    """The text of the physical lines ``wanted`` (1-based) and of every line from
+    ``from_line`` on, read again from the file."""
+    out: dict[int, str] = {}
+    if not wanted and from_line is None:
+        return out
+    opener = gzip.open if sn.compression == "gzip" else open
+    with opener(sn.path, "rb") as fh:
+        for number, raw in enumerate(fh, start=1):
+            if number in wanted or (from_line is not None and number >= from_line):
+                out[number] = raw.decode(sn.encoding, errors="replace").rstrip("\r\n")
+    return out
+
+
+def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
+    """Read the tracks of a GPX file into the canonical point table (an ``ImportResult``)."""
+    from wakeline.core.io.reader import ImportResult, empty_quarantine
+
+    progress = progress or null_progress
+    parser = expat.ParserCreate(encoding=None)
+    parser.buffer_text = True
+    rows: dict[str, list] = {
+        k: [] for k in ("track", "line", "lat", "lon", "time", "speed", "course")
+    }
+    tracks: list[str] = []  # each <trk>'s name ("" when it has none)
+    counts = {"waypoints": 0, "route_points": 0, "segments": 0}
+    creator = {"text": ""}
+    stack: list[str] = []
+    point: dict | None = None
+    text: list[str] = []
+
+    def start(name: str, attrs: dict) -> None:
+        nonlocal point
+        tag = _local(name)
+        stack.append(tag)
+        text.clear()
+        if tag == "gpx":
+            creator["text"] = str(attrs.get("creator", ""))
+        elif tag == "trk":
+            tracks.append("")
+        elif tag == "trkseg":
+            counts["segments"] += 1
+        elif tag == "trkpt":
+            point = {
+                "track": max(len(tracks) - 1, 0),
+                "line": parser.CurrentLineNumber,
+                "lat": attrs.get("lat"),
+                "lon": attrs.get("lon"),
+                "time": None,
+                "speed": None,
+                "course": None,
+            }
+        elif tag == "wpt":
+            counts["waypoints"] += 1
+        elif tag == "rtept":
+            counts["route_points"] += 1
+
+    def end(name: str) -> None:
+        nonlocal point
+        tag = stack.pop() if stack else _local(name)
+        value = "".join(text).strip()
+        text.clear()
+        parent = stack[-1] if stack else ""
+        if point is not None and parent == "trkpt" and tag in ("time", "speed", "course"):
+            point[tag] = value
+        elif tag == "name" and parent == "trk" and tracks and not tracks[-1]:
+            tracks[-1] = value
+        elif tag == "trkpt" and point is not None:
+            if not tracks:  # a <trkpt> outside any <trk>: one track of its own
+                tracks.append("")
+            for key in rows:
+                rows[key].append(point[key])
+            point = None
+
+    def chars(data: str) -> None:
+        text.append(data)
+
+    parser.StartElementHandler = start
+    parser.EndElementHandler = end
+    parser.CharacterDataHandler = chars
+
+    broken: tuple[int, str] | None = None
+    opener = gzip.open if sn.compression == "gzip" else open
+    with opener(sn.path, "rb") as fh:
+        try:
+            parser.ParseFile(fh)
+        except expat.ExpatError as exc:
+            what = f"{expat.errors.messages[exc.code]} at line {exc.lineno}, column {exc.offset}"
+            broken = (exc.lineno, what)
+            if point is not None:  # a track point the break cut: quarantined from its line
+                broken = (min(exc.lineno, int(point["line"])), what)
+    progress(0.8, "parsed")
+
+    n = len(rows["line"])
+    lat = _numbers(rows["lat"])
+    lon = _numbers(rows["lon"])
+    time_text = pd.Series(rows["time"], dtype="object")
+    times = pd.to_datetime(time_text, errors="coerce", utc=True, format="ISO8601")
+    reason = np.full(n, "", dtype=object)
+    no_time = time_text.isna().to_numpy() | (time_text.fillna("").astype(str) == "").to_numpy()
+    reason[~np.isfinite(lat) | ~np.isfinite(lon)] = "no readable lat/lon"
+    bad_range = np.isfinite(lat) & np.isfinite(lon) & ((np.abs(lat) > 90) | (np.abs(lon) > 180))
+    reason[bad_range & (reason == "")] = "lat beyond ±90° or lon beyond ±180°"
+    reason[no_time & (reason == "")] = "no <time>"
+    reason[times.isna().to_numpy() & (reason == "")] = "unparsable <time>"
+    good = reason == ""
+
+    # Track names: unique, "sensor:batch" back to its parts in Wakeline's own files.
+    names, seen, renamed = [], {}, 0
+    for k, name in enumerate(tracks):
+        name = name or f"track {k + 1}"
+        if name in seen:
+            seen[name] += 1
+            name, renamed = f"{name} ({seen[name]})", renamed + 1
+        else:
+            seen[name] = 1
+        names.append(name)
+    ours = creator["text"].lower().startswith("wakeline")
+    track_sensor = [sensor] * len(names)
+    track_batch = list(names)
+    if ours:
+        for k, name in enumerate(names):
+            if ":" in name:
+                track_sensor[k], track_batch[k] = name.split(":", 1)
+    index = np.asarray(rows["track"], dtype="int64")
+    speed = _numbers(rows["speed"]) * KNOTS_PER_MS
+    course = _numbers(rows["course"])
+    points = pd.DataFrame(
+        {
+            "sensor": pd.Series(np.asarray(track_sensor, dtype=object)[index[good]], dtype="str")
+            if n
+            else pd.Series([], dtype="str"),
+            "batch": pd.Series(np.asarray(track_batch, dtype=object)[index[good]], dtype="str")
+            if n
+            else pd.Series([], dtype="str"),
+            "time": times[good].reset_index(drop=True).dt.as_unit("ns")
+            if n
+            else pd.Series([], dtype="datetime64[ns, UTC]"),
+            "lon": lon[good],
+            "lat": lat[good],
+            "speed": speed[good],
+            "course": course[good],
+        }
+    )
+
+    q_line = np.asarray(rows["line"], dtype="int64")[~good]
+    q_reason = list(reason[~good])
+    later = []
+    if broken is not None:
+        from_line = broken[0]
+        texts = _line_texts(sn, set(q_line.tolist()), from_line)
+        later = sorted(k for k in texts if k >= from_line)
+    else:
+        texts = _line_texts(sn, set(q_line.tolist()), None)
+    lines = q_line.tolist() + later
+    reasons = q_reason + [
+        f"not well-formed XML ({broken[1]}): not read from line {broken[0]} on" for _ in later
+    ]
+    if lines:
+        order = np.argsort(np.asarray(lines), kind="stable")
+        quarantine = pd.DataFrame(
+            {
+                "line": np.asarray(lines, dtype="int64")[order],
+                "reason": pd.Series(np.asarray(reasons, dtype=object)[order], dtype="str"),
+                "text": pd.Series(
+                    [texts.get(int(k), "") for k in np.asarray(lines)[order]], dtype="str"
+                ),
+            }
+        )
+    else:
+        quarantine = empty_quarantine()
+
+    warnings = []
+    if counts["waypoints"] or counts["route_points"]:
+        warnings.append(
+            f"{counts['waypoints']:,} waypoint(s) and {counts['route_points']:,} route point(s) are "
+            "plans, not tracks: not imported"
+        )
+    if renamed:
+        warnings.append(
+            f"{renamed:,} track(s) share a name with an earlier one: numbered (2), (3)... so "
+            "that each stays its own track"
+        )
+    if broken is not None:
+        warnings.append(
+            f"the file stops being well-formed XML ({broken[1]}): the "
+            f"{n:,} track points before it are read, the {len(later):,} lines from line "
+            f"{broken[0]} on are quarantined"
+        )
+    by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
+    progress(1.0, "imported")
+    report = {
+        "input": str(sn.path),
+        "format": "gpx",
+        "format_label": "GPX tracks",
+        "encoding": sn.encoding,
+        "compression": sn.compression,
+        "columns": {},
+        "creator": creator["text"],
+        "rows_read": n + len(later),
+        "rows_imported": len(points),
+        "rows_quarantined": len(quarantine),
+        "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
+        "blank_lines": 0,
+        "gpx_tracks": len(tracks),
+        "gpx_segments": counts["segments"],
+        "waypoints": counts["waypoints"],
+        "route_points": counts["route_points"],
+        "tracks": int(points.groupby(["sensor", "batch"]).ngroups) if len(points) else 0,
+        "sensors": points["sensor"].value_counts().to_dict() if len(points) else {},
+        "time_start": points["time"].min().isoformat() if len(points) else None,
+        "time_end": points["time"].max().isoformat() if len(points) else None,
+        "warnings": warnings,
+    }
+    layout = {"format": "gpx", "encoding": sn.encoding, "compression": sn.compression}
+    return ImportResult(points, quarantine, report, layout)

@@ -1,0 +1,162 @@
+"""GPX tracks read as points (core/io/gpx.py): OpenCPN's track export, our own GPX export
+read back, and every track point a point or a quarantined row."""
+
+import gzip
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from wakeline.core.export_review import export_gpx
+from wakeline.core.io import read_points
+from wakeline.core.io.reader import inspect_file
+
+OPENCPN = """<?xml version="1.0" encoding="utf-8" ?>
+<gpx version="1.1" creator="OpenCPN" xmlns="http://www.topografix.com/GPX/1/1" xmlns:opencpn="http://www.opencpn.org">
+  <wpt lat="60.1" lon="10.1"><name>mark</name></wpt>
+  <trk>
+    <name>Track</name>
+    <extensions><opencpn:guid>abc</opencpn:guid></extensions>
+    <trkseg>
+      <trkpt lat="59.90000" lon="10.60000"><time>2024-05-01T10:00:00Z</time></trkpt>
+      <trkpt lat="59.90010" lon="10.60020"><time>2024-05-01T10:00:10Z</time></trkpt>
+      <trkpt lat="59.90020" lon="10.60040"></trkpt>
+    </trkseg>
+    <trkseg>
+      <trkpt lat="95.0" lon="10.60060"><time>2024-05-01T10:00:30Z</time></trkpt>
+      <trkpt lat="59.90040" lon="10.60080"><time>yesterday</time></trkpt>
+      <trkpt lat="59.90050" lon="10.60100"><time>2024-05-01T12:00:50+02:00</time></trkpt>
+    </trkseg>
+  </trk>
+  <trk><name>Track</name><trkseg>
+    <trkpt lat="59.8" lon="10.5"><time>2024-05-01T11:00:00Z</time><speed>5.0</speed><course>90</course></trkpt>
+    <trkpt lat="59.8" lon="10.5001"><time>2024-05-01T11:00:10Z</time></trkpt>
+  </trkseg></trk>
+  <rte><rtept lat="59" lon="10"/><rtept lat="59.1" lon="10"/></rte>
+</gpx>
+"""
+
+
+def _accounted(r) -> None:
+    rep = r.report
+    assert rep["rows_read"] == rep["rows_imported"] + rep["rows_quarantined"]
+    assert rep["rows_imported"] == len(r.points)
+    assert rep["rows_quarantined"] == len(r.quarantine)
+
+
+def test_an_opencpn_track_export(tmp_path):
+    path = tmp_path / "ocpn.gpx"
+    path.write_text(OPENCPN, encoding="utf-8")
+    r = read_points(path)
+    _accounted(r)
+    assert r.report["format"] == "gpx" and r.report["gpx_tracks"] == 2
+    # two tracks of one name stay two tracks
+    assert r.points.groupby("batch").size().to_dict() == {"Track": 3, "Track (2)": 2}
+    first = r.points[r.points["batch"] == "Track"]
+    assert first["time"].iloc[-1] == pd.Timestamp("2024-05-01T10:00:50Z")  # +02:00 read
+    fast = r.points[r.points["batch"] == "Track (2)"].iloc[0]
+    assert fast["speed"] == pytest.approx(5.0 * 3600 / 1852)  # GPX 1.0 m/s -> knots
+    assert fast["course"] == 90.0
+    assert dict(zip(r.quarantine["line"], r.quarantine["reason"], strict=True)) == {
+        10: "no <time>",
+        13: "lat beyond ±90° or lon beyond ±180°",
+        14: "unparsable <time>",
+    }
+    assert r.quarantine["text"].iloc[0].strip().startswith('<trkpt lat="59.90020"')
+    assert r.report["waypoints"] == 1 and r.report["route_points"] == 2
+    assert any("plans, not tracks" in w for w in r.report["warnings"])
+    assert any("share a name" in w for w in r.report["warnings"])
+
+
+def test_our_own_gpx_export_reads_back(tmp_path):
+    rng = np.random.default_rng(0)
+    n = 40
+    pts = pd.DataFrame(
+        {
+            "sensor": ["radar"] * 20 + ["ais"] * 20,
+            "batch": ["7"] * 20 + ["257000001"] * 20,
+            "time": pd.date_range("2024-01-01", periods=20, freq="10s", tz="UTC").append(
+                pd.date_range("2024-01-01", periods=20, freq="10s", tz="UTC")
+            ),
+            "lon": 10.0 + rng.normal(0, 0.01, n),
+            "lat": 59.0 + rng.normal(0, 0.01, n),
+        }
+    )
+    export_gpx(pts, tmp_path / "out.gpx")
+    back = read_points(tmp_path / "out.gpx").points
+    assert sorted(back.groupby(["sensor", "batch"]).size().items()) == [
+        (("ais", "257000001"), 20),
+        (("radar", "7"), 20),
+    ]
+    want = pts.sort_values(["sensor", "batch", "time"]).reset_index(drop=True)
+    got = back.sort_values(["sensor", "batch", "time"]).reset_index(drop=True)
+    assert (got["time"] == want["time"]).all()
+    assert np.allclose(got["lon"], want["lon"], atol=1e-9)
+
+
+def test_a_gpx_cut_short_keeps_what_came_before(tmp_path):
+    text = OPENCPN.split("  <trk><name>Track</name>")[0] + (
+        '  <trk><trkseg><trkpt lat="59.7" lon="10.4"><time>2024-05-01T12:00:00Z</time>'
+    )
+    path = tmp_path / "cut.gpx.gz"
+    path.write_bytes(gzip.compress(text.encode("utf-8")))
+    r = read_points(path)
+    _accounted(r)
+    assert len(r.points) == 3  # the first track's readable points
+    last = r.quarantine.iloc[-1]
+    assert last["reason"].startswith("not well-formed XML")
+    assert "<trkpt" in last["text"]  # the cut point is a quarantined line, not lost
+    assert any("stops being well-formed" in w for w in r.report["warnings"])
+
+
+def test_the_dialog_sees_a_gpx_without_columns(tmp_path):
+    path = tmp_path / "t.gpx"
+    path.write_text(OPENCPN, encoding="utf-8")
+    info = inspect_file(path)
+    assert info["kind"] == "gpx" and info["format"] == "gpx" and info["problem"] is None
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.lists(
+        st.tuples(
+            st.one_of(st.floats(-100, 100), st.just(float("nan"))),
+            st.one_of(st.floats(-200, 200), st.just(float("nan"))),
+            st.one_of(st.integers(0, 10**6), st.none(), st.just(-1)),
+        ),
+        min_size=0,
+        max_size=12,
+    )
+)
+def test_any_track_points_are_accounted_for(tmp_path_factory, cells):
+    """Each <trkpt>, whatever its position and time, is a point or a quarantined row."""
+    body = []
+    for lat, lon, t in cells:
+        lat_a = "" if lat != lat else f' lat="{lat}"'
+        lon_a = "" if lon != lon else f' lon="{lon}"'
+        if t is None:
+            inner = ""
+        elif t < 0:
+            inner = "<time>not a time</time>"
+        else:
+            inner = f"<time>{pd.Timestamp(1.7e9 + t, unit='s', tz='UTC').isoformat()}</time>"
+        body.append(f"<trkpt{lat_a}{lon_a}>{inner}</trkpt>")
+    text = '<?xml version="1.0"?>\n<gpx version="1.1"><trk><trkseg>\n'
+    text += "\n".join(body) + "\n</trkseg></trk></gpx>\n"
+    path = tmp_path_factory.mktemp("gpx") / "any.gpx"
+    path.write_text(text, encoding="utf-8")
+    r = read_points(path)
+    _accounted(r)
+    assert r.report["rows_read"] == len(cells)
+    ok = [
+        lat == lat
+        and lon == lon
+        and abs(lat) <= 90
+        and abs(lon) <= 180
+        and t is not None
+        and t >= 0
+        for lat, lon, t in cells
+    ]
+    assert len(r.points) == sum(ok)
