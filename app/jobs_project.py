@@ -232,6 +232,8 @@ class ProjectJobsMixin:
             for row in proj.repairs:
                 self.project.add_decision(row)
             self.log_message(f"{self.tr('Note')}: {self._repaired_text(len(proj.repairs))}")
+        if not proj.decisions_checked:  # the next open skips the migration
+            self.project.mark_decisions_checked()
         bearing = [lid for lid, lay in self.session.layers.items() if lay.kind == BEARING_KIND]
         if bearing and bearing[-1] in self.views:  # the dock and Detail show the last
             self.show_bearing_layer(self.views[bearing[-1]])

@@ -184,6 +184,11 @@ class ProjectController(QtCore.QObject):
         self.unsaved = self.unsaved or (self.writer is None and self.path is not None)
         self._submit(lambda st: st.add_decision(decision))
 
+    def mark_decisions_checked(self) -> None:
+        """The file's decisions need no repair (the migration on open ran and its repairs
+        are queued before this): :meth:`ProjectStore.mark_decisions_checked`."""
+        self._submit(lambda st: st.mark_decisions_checked())
+
     def _on_error(self, message: str) -> None:
         self.dirty = True
         self.failures += 1

@@ -24,7 +24,8 @@ Migrations on open: a version-1 file's layers and parameter table are read as to
 (written as today's at the next write of that row, or by Save as), and review decisions
 that left a proposal rejected or split beside a target holding both its tracks (made
 before a join accepted such rows) get one ``repair`` decision each, appended
-(:attr:`Project.repairs`; the window writes them at once).
+(:attr:`Project.repairs`; the window writes them at once, then marks the file's
+decisions checked, so the migration runs once per project, not on every open).
 """
 
 import hashlib
@@ -54,6 +55,10 @@ from wakeline.core.session import Layer, MapView, Session, Source
 from wakeline.core.timeline import TimeWindow, current_time_from_json, current_time_to_json
 
 SCHEMA_VERSION = 2
+#: The ``meta`` row counting the decisions known to need no repair (the migration on
+#: open, :func:`~wakeline.core.review_session.repair_decisions`): the file's decision
+#: count when they all are. Absent in projects of a Wakeline before it.
+DECISIONS_CHECKED = "decisions_checked"
 
 # ``pq.read_table`` imports ``pyarrow.dataset`` on first use. Done first in a worker
 # thread while the GUI thread waits in its event loop, that import was seen to hang the
@@ -108,6 +113,10 @@ class Project:
     #: (:func:`wakeline.core.review_session.repair_decisions`). Not in the file yet:
     #: whoever follows the file writes them (the window does at once), or Save as does.
     repairs: list[dict] = field(default_factory=list)
+    #: The file marks its decisions as needing no repair (the migration was skipped).
+    #: False: whoever follows the file writes :attr:`repairs`, then
+    #: :meth:`ProjectStore.mark_decisions_checked`, so the next open skips it.
+    decisions_checked: bool = False
 
     def source_problems(self) -> list[str]:
         """One sentence per source that is missing or whose content changed."""
@@ -243,6 +252,12 @@ class ProjectStore:
                     "INSERT OR REPLACE INTO meta VALUES (?, ?)",
                     [("schema", str(SCHEMA_VERSION)), ("wakeline", __version__)],
                 )
+                # A file with no decisions has none to repair: its own are checked.
+                self.con.execute(
+                    "INSERT OR IGNORE INTO meta SELECT ?, '0' "
+                    "WHERE NOT EXISTS (SELECT 1 FROM decisions)",
+                    (DECISIONS_CHECKED,),
+                )
         except sqlite3.DatabaseError as exc:
             self.con.close()
             raise InputError(f"{self.path}: not a Wakeline project ({exc})") from None
@@ -335,8 +350,27 @@ class ProjectStore:
         self.put_state("view", view.to_json() if view is not None else None)
 
     def add_decision(self, decision: dict) -> None:
+        """Append a decision; the mark of checked decisions follows it when it covered
+        every row before (a decision of today's review needs no repair)."""
         with self.con:
             self.con.execute("INSERT INTO decisions (json) VALUES (?)", (json.dumps(decision),))
+            self.con.execute(
+                "UPDATE meta SET value = CAST(CAST(value AS INTEGER) + 1 AS TEXT) "
+                "WHERE key = ? AND CAST(value AS INTEGER) = "
+                "(SELECT COUNT(*) FROM decisions) - 1",
+                (DECISIONS_CHECKED,),
+            )
+
+    def mark_decisions_checked(self) -> None:
+        """Record that every decision now in the file needs no repair (the migration on
+        open ran, its repairs written): :func:`load_project` skips the migration while
+        the file holds exactly these decisions (rows a Wakeline without the mark appends
+        bring it back)."""
+        with self.con:
+            self.con.execute(
+                "INSERT OR REPLACE INTO meta SELECT ?, CAST(COUNT(*) AS TEXT) FROM decisions",
+                (DECISIONS_CHECKED,),
+            )
 
     def put_all(self, session: Session, state: dict | None = None) -> None:
         """Everything in ``session`` (used by Save as, on a new file)."""
@@ -353,6 +387,7 @@ class ProjectStore:
             self.put_state(key, value)
         for d in session.decisions:
             self.add_decision(d)
+        self.mark_decisions_checked()  # a session's decisions were repaired when opened
 
 
 def _inode(path: Path) -> tuple[int, int] | None:
@@ -512,8 +547,10 @@ def load_project(path: str | Path) -> Project:
     if isinstance(params_version, bool) or not isinstance(params_version, int):
         raise InputError(f"{path}: the project is damaged (parameter version {params_version!r})")
     params = params_from_version(params, params_version)
-    # Review decisions made before a join accepted the rows it put inside a target.
-    repairs = repair_decisions(layers, decisions)
+    # Review decisions made before a join accepted the rows it put inside a target: once
+    # per file (the mark says every decision there was checked or made since).
+    checked = str(meta.get(DECISIONS_CHECKED, "")) == str(len(decisions))
+    repairs = [] if checked else repair_decisions(layers, decisions)
     decisions += repairs
     return Project(
         sources,
@@ -529,6 +566,7 @@ def load_project(path: str | Path) -> Project:
         ui.warnings,
         ui.current_time,
         repairs,
+        checked,
     )
 
 

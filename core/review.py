@@ -547,6 +547,15 @@ class ReviewState:
             for x, y in zip(p["track_a"][rej].tolist(), p["track_b"][rej].tolist(), strict=True)
         }
 
+    def tracks_apart(self, proposals: Iterable[str]) -> dict[str, bool]:
+        """Per proposal: whether its two tracks are in two targets now."""
+        tg = self.target_of_track()
+        rows = [self._proposal_row(pid) for pid in proposals]
+        return {
+            str(self.proposals["proposal"].iat[k]): bool(tg[self._pa[k]] != tg[self._pb[k]])
+            for k in rows
+        }
+
     def proposals_of_track(self, label: str) -> list[str]:
         sel = (self.track_a == label) | (self.track_b == label)
         return self.proposals["proposal"].to_numpy()[sel].tolist()
@@ -759,6 +768,37 @@ def repair(state: ReviewState, proposal: str) -> Change:
         {proposal: "accepted"},
         links_removed=frozenset({link} & state.links),
     )
+
+
+def cuts_anything(changes: Iterable[Change]) -> bool:
+    """Whether any of ``changes`` sets a proposal rejected or split: without one, no row
+    can be cut inside a target and :func:`replay_repaired` would repair nothing (the
+    check costs no replay)."""
+    return any(s not in ACTIVE for c in changes for s in c.status_after.values())
+
+
+def replay_repaired(
+    state: ReviewState,
+    changes: Iterable[tuple[Change, str | None]],
+    when: str | None = None,
+) -> list[Change]:
+    """Apply stored ``changes`` (each with its log time) in order, then the migration of
+    decisions made before a join accepted the rows it put inside a target: one
+    :func:`repair` (logged at ``when``) per proposal left rejected or split beside a
+    target holding both its tracks whose tracks were in two targets right after the
+    change that last set its status — a later join put them together and left the row
+    cut. A row cut while its tracks stayed in one target (other links hold them) is the
+    operator's decision and is kept. Returns the repairs applied (the last entries of
+    ``state.log``); none for decisions made by today's joins. One pass over the changes
+    (the targets after each are the ones :meth:`ReviewState.apply` computed)."""
+    apart: dict[str, bool] = {}
+    for change, at in changes:
+        state.apply(change, when=at)
+        cut = [pid for pid, s in change.status_after.items() if s not in ACTIVE]
+        if cut:
+            apart.update(state.tracks_apart(cut))
+    left = [pid for pid in cut_inside_targets(state) if apart.get(pid)]
+    return [state.apply(repair(state, pid), when=when) for pid in left]
 
 
 def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:

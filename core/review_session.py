@@ -158,13 +158,18 @@ def repair_decisions(
     beside a target holding both its tracks — what a join made before joins accepted
     such rows (a project saved by an older Wakeline: a split, then a merge of the two
     tracks by hand, left the row ``split``). One :func:`~wakeline.core.review.repair`
-    per such row, to append to the decisions (the caller stores them); none when every
-    queue is consistent, so a repaired project reopens without new rows.
+    per such row (:func:`~wakeline.core.review.replay_repaired`), to append to the
+    decisions (the caller stores them); none when every queue is consistent, so a
+    repaired project reopens without new rows.
 
     Only what a join left behind is repaired: a row rejected or split while its tracks
     stayed in one target (other links hold them together) is the operator's decision
-    and is kept. A queue that cannot be bound (its input layer removed) or replayed is
-    left to the review, which reports it."""
+    and is kept. A queue none of whose decisions rejects or splits a row is not replayed
+    (:func:`~wakeline.core.review.cuts_anything`). A queue that cannot be bound (its
+    input layer removed) or replayed is left to the review, which reports it. The
+    project file remembers that its decisions were checked
+    (:meth:`~wakeline.core.project.ProjectStore.mark_decisions_checked`), so this runs
+    once per project, not on every open."""
     session = Session()
     session.layers = {lay.id: lay for lay in layers}
     out: list[dict] = []
@@ -178,35 +183,14 @@ def repair_decisions(
         if not rows:
             continue
         try:
-            tracks = R.track_table(input_points(session, lay))
             changes = [R.Change.from_dict(r["change"]) for r in rows]
-            state = R.ReviewState(tracks, props)
-            for change, row in zip(changes, rows, strict=True):
-                state.apply(change, when=row.get("time"))
+            if not R.cuts_anything(changes):
+                continue
+            state = R.ReviewState(R.track_table(input_points(session, lay)), props)
+            times = [r.get("time") for r in rows]
+            repairs = R.replay_repaired(state, zip(changes, times, strict=True), when)
         except (InputError, KeyError, TypeError, ValueError):
             continue
-        inside = R.cut_inside_targets(state)
-        if not inside:
-            continue
-        left = _left_by_a_join(R.ReviewState(tracks, props), changes, set(inside))
-        for pid in inside:
-            if pid in left:
-                change = state.apply(R.repair(state, pid), when=when)
-                out.append(decision_row(key, change, state.log[-1]))
+        entries = state.log[len(state.log) - len(repairs) :]
+        out += [decision_row(key, c, e) for c, e in zip(repairs, entries, strict=True)]
     return out
-
-
-def _left_by_a_join(state: R.ReviewState, changes: list[R.Change], rows: set[str]) -> set[str]:
-    """Of ``rows`` (cut, inside one target at the end of ``changes``): those whose tracks
-    were in two targets right after the last change that set their status — a later join
-    put them together and left the row cut."""
-    apart: dict[str, bool] = {}
-    for change in changes:
-        state.apply(change)
-        mine = rows.intersection(change.status_after)
-        if mine:
-            tg = state.target_of_track()
-            for pid in mine:
-                row = state._row[pid]
-                apart[pid] = bool(tg[state._pa[row]] != tg[state._pb[row]])
-    return {pid for pid, was_apart in apart.items() if was_apart}

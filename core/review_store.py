@@ -14,7 +14,19 @@ from pathlib import Path
 import pandas as pd
 
 from wakeline.core.errors import InputError
-from wakeline.core.review import PROPOSAL_COLUMNS, Change, LogEntry, ReviewState, pair_key
+from wakeline.core.review import (
+    PROPOSAL_COLUMNS,
+    Change,
+    LogEntry,
+    ReviewState,
+    cuts_anything,
+    pair_key,
+    replay_repaired,
+)
+
+#: The ``review_meta`` row counting the decisions known to need no repair (see
+#: :meth:`ReviewStore.load`): the decision count when they all are.
+CHECKED = "decisions_checked"
 
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS review_proposals (
@@ -53,6 +65,9 @@ class ReviewStore:
             self._db.execute("PRAGMA journal_mode=DELETE")  # every commit in the file itself
             self._db.execute("PRAGMA synchronous=FULL")
             self._db.executescript(_SCHEMA)
+            # A store with no decisions has none to repair: its own are checked.
+            if self._db.execute("SELECT 1 FROM review_decisions LIMIT 1").fetchone() is None:
+                self._db.execute("INSERT OR IGNORE INTO review_meta VALUES (?, '0')", (CHECKED,))
         except sqlite3.DatabaseError as exc:
             raise InputError(f"{self.path}: not a usable project file ({exc})") from None
 
@@ -94,6 +109,7 @@ class ReviewStore:
                 "INSERT OR REPLACE INTO review_meta VALUES ('params', ?)",
                 (json.dumps(params or {}),),
             )
+            self._db.execute("INSERT OR REPLACE INTO review_meta VALUES (?, '0')", (CHECKED,))
 
     def record(self, change: Change, entry: LogEntry) -> None:
         """Append one decision (the change applied and its log line), committed at once."""
@@ -111,6 +127,12 @@ class ReviewStore:
                     json.dumps(change.to_dict()),
                 ),
             )
+            self._db.execute(  # today's decisions need no repair (see load)
+                "UPDATE review_meta SET value = CAST(CAST(value AS INTEGER) + 1 AS TEXT) "
+                "WHERE key = ? AND CAST(value AS INTEGER) = "
+                "(SELECT COUNT(*) FROM review_decisions) - 1",
+                (CHECKED,),
+            )
 
     def apply(self, state: ReviewState, change: Change) -> Change:
         """Apply ``change`` to ``state`` and record it: the usual way to decide."""
@@ -119,7 +141,14 @@ class ReviewStore:
         return change
 
     def load(self) -> ReviewState:
-        """The stored queue with every stored decision replayed (log times kept)."""
+        """The stored queue with every stored decision replayed (log times kept).
+
+        The migration a project file gets on open
+        (:func:`~wakeline.core.review_session.repair_decisions`) happens here too, once
+        per store: decisions of an older Wakeline that left a row rejected or split
+        beside a target holding both its tracks get one ``repair`` decision each
+        (:func:`~wakeline.core.review.replay_repaired`), applied, logged and written at
+        once; then the store marks its decisions checked, and later loads only replay."""
         tracks = pd.read_sql_query(
             "SELECT track, sensor, batch, t0, t1 FROM review_tracks ORDER BY track", self._db
         )
@@ -129,10 +158,31 @@ class ReviewStore:
         ]
         props = pd.DataFrame(rows, columns=list(PROPOSAL_COLUMNS))
         state = ReviewState(tracks, props)
-        for when, text in self._db.execute(
-            "SELECT time, change_json FROM review_decisions ORDER BY seq"
+        changes = [
+            (Change.from_dict(json.loads(text)), when)
+            for when, text in self._db.execute(
+                "SELECT time, change_json FROM review_decisions ORDER BY seq"
+            )
+        ]
+        row = self._db.execute("SELECT value FROM review_meta WHERE key = ?", (CHECKED,))
+        mark = row.fetchone()
+        if (mark[0] if mark else None) == str(len(changes)) or not cuts_anything(
+            c for c, _ in changes
         ):
-            state.apply(Change.from_dict(json.loads(text)), when=when)
+            for change, when in changes:
+                state.apply(change, when=when)
+        else:
+            repairs = replay_repaired(state, changes)
+            entries = state.log[len(state.log) - len(repairs) :]
+            for change, entry in zip(repairs, entries, strict=True):
+                self.record(change, entry)
+        if (mark[0] if mark else None) != str(len(state.log)):
+            with self._tx():
+                self._db.execute(
+                    "INSERT OR REPLACE INTO review_meta SELECT ?, CAST(COUNT(*) AS TEXT) "
+                    "FROM review_decisions",
+                    (CHECKED,),
+                )
         return state
 
     def params(self) -> dict:

@@ -120,7 +120,21 @@ def old_style_review_project(path: Path) -> dict:
         st.apply(change, when="2026-12-01T10:00:00+00:00")
         s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
     save_project(s, path)
+    unmark_decisions(path)  # that code did not mark its decisions checked
     return {"ids": ids, "layer": lay.id, "links": set(st.links), "status": list(st.status)}
+
+
+def unmark_decisions(path: Path) -> None:
+    """Drop the project's mark of checked review decisions, as a Wakeline before the mark
+    wrote the file (``core.project.DECISIONS_CHECKED``)."""
+    import sqlite3
+
+    from wakeline.core.project import DECISIONS_CHECKED
+
+    con = sqlite3.connect(path)
+    with con:
+        con.execute("DELETE FROM meta WHERE key = ?", (DECISIONS_CHECKED,))
+    con.close()
 
 
 def make_window(qtbot, tmp_path, size: tuple[int, int] = (1400, 900)):

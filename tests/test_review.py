@@ -338,6 +338,48 @@ def test_review_tables_survive_a_project_save_by_rename(state, tmp_path):
     assert copy_review(tmp_path / "absent", new) == 0
 
 
+def test_review_store_load_repairs_an_old_stores_rows_once(state, tmp_path):
+    """ReviewStore.load (the review demo's store) did not migrate: a row rejected, then
+    its tracks merged by hand by an older Wakeline (a manual link, the row left
+    ``rejected``), stayed rejected beside one target. It gets the project's repair: one
+    ``repair`` decision, applied, logged and written at once; the store is then marked
+    checked and reloads with nothing more to repair."""
+    import sqlite3
+
+    from wakeline.core.review_store import CHECKED
+
+    db = tmp_path / "old.wakeline"
+    pid = state.proposals["proposal"][0]
+    a, b = state.track_a[0], state.track_b[0]
+    with ReviewStore(db) as store:
+        store.save_queue(state)
+        store.apply(state, R.reject(state, pid))
+        old_merge = R.Change("merge", "", (a, b), links_added=frozenset({R.pair_key(a, b)}))
+        store.apply(state, old_merge)  # as the old merge stored it
+    assert R.cut_inside_targets(state) == [pid]
+    con = sqlite3.connect(db)
+    with con:
+        con.execute("DELETE FROM review_meta WHERE key = ?", (CHECKED,))  # an old store
+    con.close()
+    with ReviewStore(db) as store:
+        st = store.load()
+        assert store.decision_count() == 3
+    assert st.status_of(pid) == "accepted" and not st.links
+    assert st.log_table()["action"].tolist() == ["reject", "merge", "repair"]
+    assert (st.target_of_track() == state.target_of_track()).all()
+    with ReviewStore(db) as store:
+        again = store.load()
+        assert store.decision_count() == 3
+    assert _snapshot(again) == _snapshot(st)
+    # today's store: the same rows marked checked (as recorded) are replayed, not repaired
+    with ReviewStore(tmp_path / "new.wakeline") as store:
+        fresh = R.ReviewState(state.tracks, state.proposals)
+        store.save_queue(fresh)
+        store.apply(fresh, R.reject(fresh, pid))
+        store.apply(fresh, old_merge)
+        assert store.load().status_of(pid) == "rejected" and store.decision_count() == 2
+
+
 def test_store_reports_a_bad_file(tmp_path):
     bad = tmp_path / "x.wakeline"
     bad.write_bytes(b"not a database at all" * 100)

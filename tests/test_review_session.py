@@ -241,3 +241,73 @@ def test_no_repair_on_a_consistent_project_or_a_queue_that_cannot_be_bound(pair,
     s.remove_layer("L2")
     save_project(s, tmp_path / "gone.wakeline")
     assert load_project(tmp_path / "gone.wakeline").repairs == []
+
+
+def test_the_migration_runs_once_per_project_file(tmp_path, monkeypatch):
+    """The migration on open replayed every queue on every open (ATD, 40 decisions: ~55
+    of ~85 ms). A project written today marks its decisions checked, and a checked file
+    opens without it; an old file is checked once, then marked (the window does it after
+    writing the repairs); a decision appended by a Wakeline without the mark makes the
+    next open check again, while today's decisions keep the mark."""
+    import sqlite3
+
+    from conftest import old_style_review_project
+    from wakeline.core import project as P
+
+    path = tmp_path / "old.wakeline"
+    old_style_review_project(path)
+    proj = load_project(path)
+    assert not proj.decisions_checked and len(proj.repairs) == 2
+    store = P.ProjectStore(path, create=False)
+    for row in proj.repairs:
+        store.add_decision(row)
+    assert not load_project(path).decisions_checked  # repairs alone: not marked
+    store.mark_decisions_checked()
+    store.close()
+
+    def no_migration(*_a, **_k):
+        raise AssertionError("the migration ran on a checked project")
+
+    monkeypatch.setattr(P, "repair_decisions", no_migration)
+    again = load_project(path)
+    assert again.decisions_checked and again.repairs == [] and again.decisions == proj.decisions
+    # today's decisions keep the mark
+    store = P.ProjectStore(path, create=False)
+    store.add_decision(dict(proj.decisions[-1], time="2026-12-04T21:00:00+00:00"))
+    store.close()
+    assert load_project(path).decisions_checked
+    # a row an older Wakeline appends (no mark kept) makes the next open check again
+    con = sqlite3.connect(path)
+    with con:
+        con.execute("INSERT INTO decisions (json) VALUES ('{}')")
+    con.close()
+    monkeypatch.undo()
+    assert not load_project(path).decisions_checked
+    # Save as writes a checked file; a new project is checked from its start
+    save_project(again, tmp_path / "saved.wakeline")
+    assert load_project(tmp_path / "saved.wakeline").decisions_checked
+    save_project(Session(), tmp_path / "empty.wakeline")
+    assert load_project(tmp_path / "empty.wakeline").decisions_checked
+
+
+def test_a_queue_no_decision_of_which_cuts_a_row_is_not_replayed(pair, tmp_path, monkeypatch):
+    """The cheap check: without a reject or split among a queue's decisions no row can be
+    cut inside a target, and the migration does not replay the queue."""
+    from conftest import unmark_decisions
+    from wakeline.core import review_session as RS
+
+    s, lid = _fused_session(pair)
+    lay = s.layers[lid]
+    st, _ = bind(s, lay)
+    for pid in st.proposals["proposal"][:3]:
+        change = R.accept(st, pid)
+        st.apply(change)
+        s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    save_project(s, tmp_path / "p.wakeline")
+    unmark_decisions(tmp_path / "p.wakeline")
+    replayed = []
+    monkeypatch.setattr(RS.R, "replay_repaired", lambda *a, **k: replayed.append(1) or [])
+    proj = load_project(tmp_path / "p.wakeline")
+    assert proj.repairs == [] and not proj.decisions_checked and replayed == []
+    assert not R.cuts_anything([R.accept(st, st.proposals["proposal"][5])])
+    assert R.cuts_anything([R.split_track(st, st.track_a[0])])

@@ -851,6 +851,7 @@ def test_an_old_project_opens_with_its_split_rows_beside_joined_tracks_repaired(
 
     again = load_project(path)  # written at once: nothing to repair any more
     assert again.repairs == [] and len(again.decisions) == 10
+    assert again.decisions_checked  # marked too: the next open skips the migration
     w2 = _window(qtbot, tmp_path)
     w2.open_project(path)
     _settle(w2)
