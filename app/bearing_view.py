@@ -154,6 +154,7 @@ def line_length_m(bearings: pd.DataFrame) -> float:
         ok = np.isfinite(lon) & np.isfinite(lat)
         if ok.any():
             lon, lat = lon[ok], lat[ok]
+            lon = geo.into_band(lon, geo.lon_band_west(lon))  # across 180° as the map has it
             extent = float(
                 geo.haversine_m(
                     np.array([lon.min()]), np.array([lat.min()]),
@@ -198,21 +199,26 @@ def line_layer(
     width: float,
     z: float = 0.0,
     build_index: bool = False,
+    lon_west: float | None = None,
 ) -> DrawData:
     """A map layer of :func:`bearing_line_points`: lines only, never broken.
 
     The map breaks a leg faster than a ship (:func:`~wakeline.app.map_lod.gap_breaks`);
     a bearing line is a long leg between two points of one time, so with the default
-    style every line lost its far end and nothing was drawn (``gaps=False``)."""
+    style every line lost its far end and nothing was drawn (``gaps=False``).
+    ``lon_west``: the scene's band (:func:`scene_band`; None: the lines' own)."""
     style = LayerStyle(width=width, symbol_size=0, z=z, gaps=False)
-    return prepare_layer(points, name, color, style=style, build_index=build_index)
+    return prepare_layer(
+        points, name, color, style=style, build_index=build_index, lon_west=lon_west
+    )
 
 
 def batch_line_geometry(
-    points: pd.DataFrame,
+    points: pd.DataFrame, lon_west: float | None = None
 ) -> tuple[LayerGeometry, dict[str, tuple[str, str]]]:
     """The geometry of :func:`bearing_line_points` with a colour and a legend entry per
-    batch (:func:`batch_colours`): one curve per batch. Returns it and the colours."""
+    batch (:func:`batch_colours`): one curve per batch, in the band ``lon_west`` (the
+    scene's, :func:`scene_band`; None: the lines' own). Returns it and the colours."""
     if "line_batch" in points.columns:  # no string split per point (0.4 s per 100k lines)
         batch = points["line_batch"].astype(str)
     else:
@@ -227,6 +233,7 @@ def batch_line_geometry(
         by_label[labels[0]] if labels else LINE_COLOURS[0],
         color_by="sensor",
         colors=tuple(by_label[lab] for lab in labels) or None,
+        lon_west=lon_west,
     )
     return geom, colours
 
@@ -372,6 +379,16 @@ def scene_range(layers) -> tuple[float, float, float, float] | None:
     return (w - pad_x, e + pad_x, s - pad_y, n + pad_y)
 
 
+def scene_band(bearings: pd.DataFrame, lines: pd.DataFrame) -> float:
+    """The band (-180 or 0) a bearing scene is drawn in: the observer's positions and the
+    lines' (:func:`bearing_line_points`) together decide it
+    (:func:`wakeline.core.geo.lon_band_west`, the map's rule for a layer). Each part
+    deciding its own put an observer east of 180° at −180 and the lines it casts west
+    across 180° at +180: 360° apart, a view of the whole world."""
+    lon = [bearings["obs_lon"].to_numpy(dtype="float64"), lines["lon"].to_numpy(dtype="float64")]
+    return geo.lon_band_west(np.concatenate(lon))
+
+
 def bearing_scene(
     bearings: pd.DataFrame,
     detections: pd.DataFrame,
@@ -386,6 +403,9 @@ def bearing_scene(
     if bearings.empty or not {"obs_lon", "obs_lat"} <= set(bearings.columns):
         return None
     length = float(length_m or line_length_m(bearings))
+    # Every bearing's line; the ones drawn (at most MAX_LINES per batch) chosen from them.
+    every = bearing_line_points(bearings, length, max_lines=max(len(bearings), 1), source=True)
+    west = scene_band(bearings, every)
     obs = bearings.rename(columns={"obs_lon": "lon", "obs_lat": "lat"}).assign(sensor="observer")
     observer = prepare_layer(
         obs[["sensor", "batch", "time", "lon", "lat"]],
@@ -393,10 +413,9 @@ def bearing_scene(
         "#555555",
         style=LayerStyle(width=1.5, symbol_size=3, z=Z_OBSERVER),
         build_index=build_index,
+        lon_west=west,
     )
-    # Every bearing's line; the ones drawn (at most MAX_LINES per batch) chosen from them.
-    every = bearing_line_points(bearings, length, max_lines=max(len(bearings), 1), source=True)
-    all_lines, colours = batch_line_geometry(every)
+    all_lines, colours = batch_line_geometry(every, west)
     line_batch = line_batches(all_lines, every)
     lines = prepare_layer(
         window_lines(all_lines, line_batch),
@@ -408,7 +427,7 @@ def bearing_scene(
     if len(detections):
         at = bearing_line_points(bearings, length, at_times=detections)
         layers.append(
-            line_layer(at, LAYER_NAMES[2], "#d62728", 2.5, Z_MANEUVERS, build_index=build_index)
+            line_layer(at, LAYER_NAMES[2], "#d62728", 2.5, Z_MANEUVERS, build_index, west)
         )
     lat = bearings["obs_lat"].to_numpy(float)
     lat0 = float(np.nanmean(lat)) if np.isfinite(lat).any() else 0.0

@@ -9,6 +9,8 @@ import pyqtgraph as pg
 from PySide6 import QtWidgets
 
 from wakeline.app import ink
+from wakeline.app.map_draw import unwrap_tracks
+from wakeline.core import geo
 from wakeline.core.bearing import BearingParams, auc_statistic
 from wakeline.core.schema import time_seconds
 
@@ -52,6 +54,16 @@ def sequence_curves(
         curve = np.degrees(np.unwrap(np.radians(b)))
         out[str(name)] = ((t - t0) / 60.0, curve, (bt - t0) / 60.0, z, t0)
     return out
+
+
+def drawn_track_lon(track: pd.DataFrame, west: float | None = None) -> np.ndarray:
+    """One track's longitudes as the map draws them: continuous across 180° and in the
+    band ``west`` (None: the track's own) — :func:`~wakeline.app.map_draw.unwrap_tracks`;
+    raw, a track across 180° was a line across the whole world."""
+    lon = track["lon"].to_numpy(dtype="float64")
+    if west is None:
+        west = geo.lon_band_west(lon)
+    return unwrap_tracks(lon, np.zeros(1, dtype="int64"), np.array([len(lon)]), west)
 
 
 #: A time step this many times the track's median step breaks the δ curve.
@@ -248,9 +260,11 @@ class DetailPanel(QtWidgets.QTabWidget):
         compressed: pd.DataFrame | None = None,
         original: pd.DataFrame | None = None,
         dis_e_m: float | None = None,
+        lon_west: float | None = None,
     ) -> None:
         """Plot one track (points of one sensor/batch, time-sorted); ``dis_e_m`` is the
-        compressed track's Dis_e, metres."""
+        compressed track's Dis_e, metres; ``lon_west``: the band the map draws its layer
+        in (-180 or 0; None: the track's own, :func:`wakeline.core.geo.lon_band_west`)."""
         self.clear()
         if "maneuver_factor" in track.columns and len(track):
             t = time_seconds(track["time"])
@@ -277,8 +291,9 @@ class DetailPanel(QtWidgets.QTabWidget):
                 "factor", self.factor_plot, lambda: self.tr("run Maneuvers or Compress to see δ")
             )
         if compressed is not None and original is not None and len(compressed):
-            self.comp_orig.setData(original["lon"].to_numpy(), original["lat"].to_numpy())
-            self.comp_kept.setData(compressed["lon"].to_numpy(), compressed["lat"].to_numpy())
+            olon, klon = drawn_track_lon(original, lon_west), drawn_track_lon(compressed, lon_west)
+            self.comp_orig.setData(olon, original["lat"].to_numpy())
+            self.comp_kept.setData(klon, compressed["lat"].to_numpy())
             lat = float(original["lat"].mean())
             self.comp_plot.getPlotItem().getViewBox().setAspectLocked(
                 True, ratio=max(np.cos(np.radians(lat)), 0.05)

@@ -101,7 +101,9 @@ class Bound:
     @property
     def lon_west(self) -> float:
         """The band the points are drawn in (-180 or 0, as their layer is drawn)."""
-        return -180.0 if self.arrays is None else self.arrays[3]
+        if self.arrays is None:  # before the worker's arrays: the points' band
+            return geo.lon_band_west(self.points["lon"].to_numpy(dtype="float64"))
+        return self.arrays[3]
 
     def geometry(self, proposal: str, members: list[str]) -> ProposalGeometry:
         """The map geometry of ``proposal`` (:func:`proposal_geometry`) whose target(s)
@@ -111,13 +113,14 @@ class Bound:
         if geom is None:
             st = self.controller.state
             if self.arrays is None:
-                geom = proposal_geometry(st, self.track_points(members), proposal)
+                pts = self.track_points(members)
+                geom = proposal_geometry(st, pts, proposal, lon_west=self.lon_west)
             else:
-                t, lon, lat, _west = self.arrays
+                t, lon, lat, west = self.arrays
                 empty = (0, 0)
                 sl = {m: slice(*self.ranges.get(m, empty)) for m in members}
                 tracks = {m: (t[k], lon[k], lat[k]) for m, k in sl.items()}
-                geom = tracks_geometry(st, proposal, tracks)
+                geom = tracks_geometry(st, proposal, tracks, lon_west=west)
             if len(self.geometries) >= GEOMETRY_CACHE:
                 self.geometries.clear()
             self.geometries[key] = geom

@@ -105,11 +105,16 @@ def proposal_geometry(
     points: pd.DataFrame,
     proposal: str,
     colors: dict[str, str] | None = None,
+    lon_west: float | None = None,
 ) -> ProposalGeometry:
     """Pieces (members of the target(s) of the proposal's two tracks): the two tracks in
     ``colors`` (by ``sensor:batch``; default :data:`PAIR_COLORS`, old then new), the other
     members as context in :data:`MUTED`; for a proposal with a gap the connector and
-    predicted path."""
+    predicted path. ``lon_west``: the band their layer is drawn in (-180 or 0); None:
+    the band of ``points`` (:func:`wakeline.core.geo.lon_band_west`, as the map decides a
+    layer's: give the whole layer's points, or its band)."""
+    if lon_west is None:
+        lon_west = geo.lon_band_west(points["lon"].to_numpy(dtype="float64"))
     members = proposal_members(state, proposal)
     lab = _labels(points[["sensor", "batch"]].astype(str))
     sel = pd.Series(lab).isin(members).to_numpy()
@@ -123,7 +128,7 @@ def proposal_geometry(
         idx = np.flatnonzero(lab == m)
         idx = idx[np.argsort(t[idx], kind="stable")]
         tracks[m] = (t[idx], lon[idx], lat[idx])
-    return tracks_geometry(state, proposal, tracks, colors)
+    return tracks_geometry(state, proposal, tracks, colors, lon_west)
 
 
 def proposal_members(state: ReviewState, proposal: str) -> list[str]:
@@ -141,17 +146,19 @@ def tracks_geometry(
     proposal: str,
     tracks: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]],
     colors: dict[str, str] | None = None,
+    lon_west: float = -180.0,
 ) -> ProposalGeometry:
     """:func:`proposal_geometry` from the time-sorted arrays (t, lon, lat) of every track
-    of :func:`proposal_members` (in that order)."""
+    of :func:`proposal_members` (in that order), drawn in the band ``lon_west`` (their
+    layer's: :func:`~wakeline.app.map_draw.unwrap_tracks`, as the map draws it)."""
     k = state._row[proposal]
     track_a, track_b = state.track_a[k], state.track_b[k]
     geom = ProposalGeometry(proposal)
     pair = dict(zip((track_a, track_b), PAIR_COLORS, strict=True))
     pair.update({t: c for t, c in (colors or {}).items() if t in pair})
-    # each track continuous across 180° (from its first point, as the map draws it), not a
-    # line across the whole world
-    tracks = {m: (t, _continuous(lon), lat) for m, (t, lon, lat) in tracks.items()}
+    # each track continuous across 180° and in its layer's band, as the map draws it: not
+    # a line across the whole world, nor two tracks 360° apart
+    tracks = dict(zip(tracks, _in_band(list(tracks.values()), lon_west), strict=True))
     for m, (_t, lon, lat) in tracks.items():
         geom.pieces.append(Piece(m, lon, lat, pair.get(m, MUTED), m not in pair))
     ta, tb = tracks.get(track_a), tracks.get(track_b)
@@ -173,6 +180,20 @@ def tracks_geometry(
             )
             geom.predicted = (_continuous(np.r_[end[1], plon])[1:], plat)
     return geom
+
+
+def _in_band(tracks: list[tuple], west: float) -> list[tuple]:
+    """The tracks (t, lon, lat) with lon as the map draws them in the band ``west``: one
+    :func:`~wakeline.app.map_draw.unwrap_tracks` over all of them."""
+    if not tracks:
+        return []
+    sizes = np.array([len(lon) for _t, lon, _lat in tracks], dtype="int64")
+    starts = np.r_[0, np.cumsum(sizes)[:-1]].astype("int64")
+    lon = np.concatenate([np.asarray(lon, dtype="float64") for _t, lon, _lat in tracks])
+    lon = unwrap_tracks(lon, starts[sizes > 0], sizes[sizes > 0], west)
+    return [
+        (t, lon[k : k + n], lat) for (t, _lon, lat), k, n in zip(tracks, starts, sizes, strict=True)
+    ]
 
 
 def _continuous(lon: np.ndarray) -> np.ndarray:

@@ -125,7 +125,9 @@ class SelectionMixin:
         dis = None
         if comp is not None:
             dis = comp.meta.get("dis_e_by_track", {}).get(f"{key[0]}\x1f{key[1]}")
-        self.detail.show_track(factor, threshold, compressed, factor, dis_e_m=dis)
+        draw = getattr(view, "draw", None)  # the band the map draws the layer in
+        west = draw.geometry.lon_west if draw is not None else None
+        self.detail.show_track(factor, threshold, compressed, factor, dis_e_m=dis, lon_west=west)
 
     def _track_clicked(self, lid: str, sensor: str, batch: str, add: bool) -> None:
         if lid not in self.session.layers:

@@ -36,6 +36,24 @@ def real_file(*parts: str) -> Path:
     return path
 
 
+#: MTAD scene 7 (two_sensor, error 0): first longitudes of AIS:1 and radar:1, and a
+#: longitude AIS:1 crosses (its track runs west from 131.247 to 131.116).
+MTAD7_AIS1_START, MTAD7_RADAR1_START, MTAD7_AIS1_MIDDLE = 131.247119, 131.261266, 131.18
+
+
+def mtad_on_180(centre: float):
+    """MTAD scene 7's AIS and radar tracks (one table, as ``wakeline review`` reads the
+    two files) moved by a constant so the original longitude ``centre`` lies on 180°;
+    skipped when the real data is absent."""
+    from wakeline.app.cli_review import read_inputs
+    from wakeline.core import geo
+
+    ais = real_file("mtad-dtwcm", "two_sensor", "scene-7_error_0_AIS.csv")
+    radar = real_file("mtad-dtwcm", "two_sensor", "scene-7_error_0_radar.csv")
+    pts = read_inputs([ais, radar])
+    return pts.assign(lon=geo.wrap180(pts["lon"].to_numpy(dtype="float64") + 180.0 - centre))
+
+
 def saronic_points(sensor: str = "AIS"):
     """The Saronic Gulf AIS (greece-ais-annotated, headerless: batch lon lat unix-time) as
     canonical points of one sensor; skipped when absent."""

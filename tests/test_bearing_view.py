@@ -579,3 +579,30 @@ def test_main_map_shows_the_bearings_when_no_track_is_loaded(qtbot, tmp_path):
     assert [lay.kind for lay in w.layers.values()].count("bearing") == 1
     w.runner.cancel()
     w.runner.wait()
+
+
+def test_a_bearing_scene_east_of_the_antimeridian_is_drawn_in_one_band():
+    """The observer just east of 180° (−179.999…−179.95°) casting lines west across it:
+    the observer decided its band alone ([−180, 180)) and the lines theirs ([0, 360)),
+    so the scene's parts were drawn 360° apart and the view spanned the world. Now the
+    scene has one band (``scene_band``, the map's rule over all its positions); the
+    lines' length no longer shrinks when the observer's track crosses 180° (its extent
+    was taken from −180 to 180)."""
+    from wakeline.app.bearing_view import bearing_scene, line_length_m, scene_band
+
+    df = simulate_table(seed=4)
+    detections, _ = detect_with_report(df)
+    assert len(detections)
+    east = df.assign(obs_lon=geo.wrap180(df["obs_lon"] + 180.0 - df["obs_lon"].min() + 0.001))
+    assert (east["obs_lon"] < -179.9).all()
+    scene = bearing_scene(east, detections, 20000.0)
+    assert len(scene.layers) == 3
+    assert {d.geometry.lon_west for d in scene.layers} == {0.0}
+    for d in scene.layers:
+        assert 179.5 < d.geometry.lon.min() and d.geometry.lon.max() < 180.5
+    x0, x1, _, _ = scene.target
+    assert x0 < 180.0 < x1 and x1 - x0 < 1.0  # was ~400
+    assert scene_band(df, pd.DataFrame({"lon": [122.0]})) == -180.0  # elsewhere: as before
+    across = df.assign(obs_lon=geo.wrap180(df["obs_lon"] + 180.0 - df["obs_lon"].mean()))
+    assert (across["obs_lon"] > 179.9).any() and (across["obs_lon"] < -179.9).any()
+    assert line_length_m(across) == pytest.approx(line_length_m(df))  # was 8.4 against 20 km

@@ -1092,6 +1092,29 @@ def test_detail_factor_curve_breaks_at_gaps_and_leaves_undefined_ends_out(qtbot)
     assert np.isnan(y[:2]).all() and panel.factor_curve.opts["connect"] == "finite"
 
 
+def test_detail_compression_plot_draws_a_track_across_the_antimeridian_in_its_band(qtbot):
+    """MTAD scene 7 moved so AIS:1 crosses 180°: the Detail panel's compression plot drew
+    raw longitudes, a line from −180 to 180 across the whole plot. Now the original and
+    the compressed track are continuous, in the band the map draws their layer in
+    (given, or the track's own)."""
+    from conftest import MTAD7_AIS1_MIDDLE, mtad_on_180
+    from wakeline.app.detail import DetailPanel
+
+    pts = mtad_on_180(MTAD7_AIS1_MIDDLE)
+    track = pts[(pts["sensor"] == "AIS") & (pts["batch"].astype(str) == "1")]
+    track = track.sort_values("time").reset_index(drop=True)
+    assert (track["lon"] > 179.9).any() and (track["lon"] < -179.9).any()
+    kept = track.iloc[[0, 20, 40, 60, len(track) - 1]]
+    panel = DetailPanel()
+    qtbot.addWidget(panel)
+    for west in (None, 0.0):
+        panel.show_track(track, compressed=kept, original=track, dis_e_m=10.0, lon_west=west)
+        x, _ = panel.comp_orig.getData()
+        k, _ = panel.comp_kept.getData()
+        assert 179.5 < x.min() and x.max() < 180.5 and np.ptp(x) < 0.5  # was ~360
+        assert np.allclose(k, x[[0, 20, 40, 60, len(track) - 1]])
+
+
 def test_screenshot_of_a_file_that_does_not_load_ends_with_an_error(qtbot, tmp_path, capsys):
     """`wakeline gui BAD --screenshot X` returned never: the failure's modal dialog waited
     for a click no one could give. Now the failure is printed and the run ends (exit 2)."""

@@ -695,3 +695,46 @@ def test_proposal_pieces_across_the_antimeridian_stay_continuous():
     out = _continuous(lon)
     assert np.all(np.diff(out) > 0) and out[-1] == pytest.approx(180.3)
     assert _continuous(np.array([5.0]))[0] == 5.0
+
+
+def test_a_proposal_across_the_antimeridian_is_drawn_in_its_layers_band():
+    """MTAD scene 7 moved so 180° lies between the first points of AIS:1 and radar:1
+    (proposal AIS:1 → radar:1): each piece was continuous from its own first point, so
+    the two tracks lay 360° apart (the view zoomed to −200…200°), and off the band its
+    layer is drawn in. Now the pieces are in the layer's band ([0, 360) here, as the map
+    and the demo's context draw the points), however the geometry is made: from the
+    whole table (the review demo), from the members' points with the layer's band (the
+    dock before its arrays), or from the dock's arrays."""
+    from conftest import MTAD7_AIS1_START, MTAD7_RADAR1_START, mtad_on_180
+    from wakeline.app.map_draw import nan_separated
+    from wakeline.app.review_dock import track_arrays
+    from wakeline.app.review_map import proposal_geometry, proposal_members, tracks_geometry
+    from wakeline.core.review_session import sorted_by_track
+
+    pts = mtad_on_180(0.5 * (MTAD7_AIS1_START + MTAD7_RADAR1_START))
+    props = R.fusion_proposals(associate_sensors(pts))[0]
+    state = R.ReviewState(R.track_table(pts), props)
+    (pid,) = [
+        p for p, a, b in zip(props["proposal"], state.track_a, state.track_b, strict=True)
+        if {a, b} == {"AIS:1", "radar:1"}
+    ]  # fmt: skip
+    geom = proposal_geometry(state, pts, pid)
+    lon = np.concatenate([p.lon for p in geom.pieces])
+    assert 179.5 < lon.min() and lon.max() < 180.5  # one band, about 180°
+    x0, _, x1, _ = geom.bounds
+    assert x1 - x0 < 0.5  # was ~360
+    context, _ = nan_separated(pts)  # the demo's grey context, the map's band
+    assert np.nanmin(context) - 1e-9 <= lon.min() and lon.max() <= np.nanmax(context) + 1e-9
+    members = proposal_members(state, pid)
+    lab = pts["sensor"].astype(str) + ":" + pts["batch"].astype(str)
+    before = proposal_geometry(state, pts[lab.isin(members)], pid, lon_west=0.0)
+    sorted_pts, ranges = sorted_by_track(pts)
+    t, alon, alat, west = track_arrays(sorted_pts, ranges)
+    assert west == 0.0
+    arrays = tracks_geometry(
+        state, pid, {m: (t[slice(*ranges[m])], alon[slice(*ranges[m])], alat[slice(*ranges[m])]) for m in members}, lon_west=west
+    )  # fmt: skip
+    for g in (before, arrays):
+        assert [p.track for p in g.pieces] == [p.track for p in geom.pieces]
+        for a, b in zip(g.pieces, geom.pieces, strict=True):
+            assert np.allclose(a.lon, b.lon) and np.allclose(a.lat, b.lat)
