@@ -550,11 +550,8 @@ class ReviewState:
     def tracks_apart(self, proposals: Iterable[str]) -> dict[str, bool]:
         """Per proposal: whether its two tracks are in two targets now."""
         tg = self.target_of_track()
-        rows = [self._proposal_row(pid) for pid in proposals]
-        return {
-            str(self.proposals["proposal"].iat[k]): bool(tg[self._pa[k]] != tg[self._pb[k]])
-            for k in rows
-        }
+        rows = {pid: self._proposal_row(pid) for pid in proposals}
+        return {pid: bool(tg[self._pa[k]] != tg[self._pb[k]]) for pid, k in rows.items()}
 
     def proposals_of_track(self, label: str) -> list[str]:
         sel = (self.track_a == label) | (self.track_b == label)
