@@ -408,7 +408,7 @@ def register(sub) -> None:
         "any file or folder of track files (no turn truth: slow share, at-rest spans, "
         "compression against Douglas-Peucker; read as import reads them, see 'reading the "
         "input' below); "
-        "associate: a file, or every track file in DIR (.csv .tsv .txt .nmea .log .gpx, or "
+        "associate: a file, or every track file in DIR (.csv .tsv .txt .nmea .log .gpx .geojson, or "
         "gzipped; a file of no track is skipped with the reason); each track's id is the truth ("
         "tracks are cut at their gaps, pieces renumbered); one of those four folders is "
         "read as one scene by its own reader (autoferry-fusion: the radar tracks, "

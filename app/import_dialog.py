@@ -194,7 +194,7 @@ class ImportDialog(QtWidgets.QDialog):
             self,
             self.tr("Open track file"),
             "",
-            "Track files (*.csv *.csv.gz *.txt *.nmea *.log *.gpx);;All files (*)",
+            "Track files (*.csv *.csv.gz *.txt *.nmea *.log *.gpx *.geojson);;All files (*)",
         )
         if path:
             self.path_edit.setText(path)

@@ -605,13 +605,13 @@ def evaluate_fusion(
 
 
 #: The names of track files in a folder given to ``--real`` (each also gzipped): what
-#: owners export tracks as (a tab-separated ``.txt`` or ``.tsv``, a raw AIS ``.nmea`` log, GPX).
-TRACK_SUFFIXES = (".csv", ".tsv", ".txt", ".nmea", ".log", ".gpx")
+#: owners export tracks as (a tab-separated ``.txt`` or ``.tsv``, a raw AIS ``.nmea`` log, GPX, GeoJSON).
+TRACK_SUFFIXES = (".csv", ".tsv", ".txt", ".nmea", ".log", ".gpx", ".geojson")
 
 
 def real_files(path) -> list:
     """The track files of a real set: ``path`` itself, or every file directly in the
-    folder ``path`` named ``*.csv``, ``*.tsv``, ``*.txt``, ``*.nmea``, ``*.log`` or ``*.gpx``, or one of
+    folder ``path`` named ``*.csv``, ``*.tsv``, ``*.txt``, ``*.nmea``, ``*.log``, ``*.gpx`` or ``*.geojson``, or one of
     those gzipped (sorted; hidden files left out)."""
     from pathlib import Path
 

@@ -77,10 +77,25 @@ def export_csv(points: pd.DataFrame, path: str | Path) -> None:
     write_csv(spreadsheet_safe(points[written_columns(points)]), path)
 
 
+def _iso_times(times: pd.Series) -> np.ndarray:
+    """ISO 8601 UTC texts (``…Z``), all with the one fraction the finest time needs (whole
+    seconds, ms, µs or ns): one unit for the column, so every text parses alike."""
+    ns = pd.to_datetime(times, utc=True).dt.tz_localize(None).to_numpy("datetime64[ns]")
+    if not len(ns):
+        return np.zeros(0, dtype=str)
+    frac = ns.astype("int64") % 1_000_000_000
+    unit = next(
+        (u for u, step in (("s", 10**9), ("ms", 10**6), ("us", 10**3)) if not (frac % step).any()),
+        "ns",
+    )
+    return np.char.add(np.datetime_as_string(ns, unit=unit), "Z")
+
+
 def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict:
     """A FeatureCollection: one LineString per track (Point for one-point tracks) with
-    sensor, batch, points, start, end and any per-track text columns (target, members,
-    source...), plus one Point per maneuver when given. Coordinates are [lon, lat]."""
+    sensor, batch, points, start, end, ``times`` (one ISO time per vertex, so that the file
+    reads back as tracks) and any per-track text columns (target, members, source...), plus
+    one Point per maneuver when given. Coordinates are [lon, lat]."""
     pts, index = sorted_with_index(points)
     lon = np.round(pts["lon"].to_numpy(dtype="float64"), 7)
     lat = np.round(pts["lat"].to_numpy(dtype="float64"), 7)
@@ -92,6 +107,8 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
     ]
     features = []
     t = time_seconds(times) if len(pts) else np.zeros(0)
+    # one ISO time per vertex (as togeojson's coordTimes): the file reads back as tracks
+    iso = _iso_times(times)
     for k in range(index.n_tracks):  # one feature per track; the coordinates are sliced
         s, e = int(index.starts[k]), int(index.ends[k])
         coords = np.column_stack([lon[s:e], lat[s:e]]).tolist()
@@ -102,6 +119,7 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
             "start": times.iloc[s].isoformat(),
             "end": times.iloc[e - 1].isoformat(),
             "duration_s": float(t[e - 1] - t[s]),
+            "times": iso[s:e].tolist(),
         }
         for c in extra:
             props[c] = str(pts[c].iloc[s])

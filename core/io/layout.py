@@ -512,7 +512,9 @@ def describe_layout(
     plane = report.get("plane_origin")
     sn = sniff(path, report.get("encoding"), report.get("delimiter"), report.get("skip_rows_given"))
     if sn.kind != "csv":
-        what = {"nmea": "a raw AIS NMEA log", "gpx": "a GPX file"}.get(sn.kind, sn.kind)
+        what = {"nmea": "a raw AIS NMEA log", "gpx": "a GPX file", "geojson": "a GeoJSON file"}.get(
+            sn.kind, sn.kind
+        )
         raise InputError(
             f"{path}: {what} has no column layout to copy; export as canonical CSV, a "
             "preset layout, GeoJSON or GPX (.gpx)"

@@ -1942,6 +1942,10 @@ def read_points(
         from wakeline.core.io.gpx import read_gpx
 
         return read_gpx(sn, sensor=sensor, progress=progress)
+    if sn.kind == "geojson":
+        from wakeline.core.io.geojson import read_geojson
+
+        return read_geojson(sn, sensor=sensor, progress=progress)
     res = resolve_header(sn, fmt, mapping, str(path), origin)
     rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
@@ -2741,10 +2745,12 @@ def inspect_file(
         "columns": list(sn.columns),
         "mapping": {},
         "extra": [],
-        "format": {"nmea": "ais-nmea", "gpx": "gpx"}.get(sn.kind),
-        "format_label": {"nmea": "Raw AIS NMEA log (!AIVDM/!AIVDO)", "gpx": "GPX tracks"}.get(
-            sn.kind
-        ),
+        "format": {"nmea": "ais-nmea", "gpx": "gpx", "geojson": "geojson"}.get(sn.kind),
+        "format_label": {
+            "nmea": "Raw AIS NMEA log (!AIVDM/!AIVDO)",
+            "gpx": "GPX tracks",
+            "geojson": "GeoJSON tracks",
+        }.get(sn.kind),
         "encoding": sn.encoding,
         "delimiter": sn.delimiter,
         "header": sn.has_header,
@@ -2855,7 +2861,7 @@ def import_to_csv(
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
 
-    if sn.kind != "csv":  # NMEA logs, GPX
+    if sn.kind != "csv":  # NMEA logs, GPX, GeoJSON
         return whole(output)
     res = resolve_header(sn, fmt, mapping, str(path), origin)
     progress = progress or null_progress

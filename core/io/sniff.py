@@ -18,6 +18,9 @@ DELIMITERS = (",", ";", "\t")
 #: shore networks log ``!BSVDM`` and ``!ABVDM``.
 NMEA_SENTENCE = re.compile(r"[!$](?:A[BDINRSTX]|BS|SA)VD[MO],")
 _NMEA = NMEA_SENTENCE
+#: A GeoJSON document: a JSON object whose sample names a Feature or FeatureCollection.
+GEOJSON_START = re.compile(r"^\s*\{")
+_GEOJSON_TYPE = re.compile(r'"type"\s*:\s*"(FeatureCollection|Feature)"')
 #: The start of a GPX document: an XML declaration and comments, then ``<gpx``.
 GPX_START = re.compile(r"^\s*(<\?xml[^>]*\?>\s*)?(<!--.*?-->\s*)*<gpx[\s>]", re.S)
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
@@ -42,7 +45,7 @@ class Sniff:
     bom: bool = False  # the file starts with a byte order mark
     line_ending: str = "\n"  # "\n", "\r\n" or "\r" (of the first line)
     has_quotes: bool = False  # a '"' occurs in the sample
-    kind: str = "csv"  # "csv", "nmea" (raw AIS sentences) or "gpx" (GPX tracks)
+    kind: str = "csv"  # "csv", "nmea" (raw AIS sentences), "gpx" or "geojson" (tracks)
     encoding_given: bool = False  # the caller named the encoding
     ascii: bool = True  # the sample is plain ASCII (any ASCII-based encoding reads it)
     excel_sep: bool = False  # the file starts with Excel's "sep=;" line (skipped)
@@ -376,6 +379,8 @@ def sniff(
         "ascii": text.isascii(),
         "encoding_given": given,
     }
+    if GEOJSON_START.match(text.lstrip("\ufeff")) and _GEOJSON_TYPE.search(text):
+        return Sniff(path, compression, enc, ",", False, 0, (), (), kind="geojson", **extras)
     if GPX_START.match(text.lstrip("\ufeff")):
         return Sniff(path, compression, enc, ",", False, 0, (), (), kind="gpx", **extras)
     if _NMEA.search(lines[0]) or sum(bool(_NMEA.search(x)) for x in lines[:20]) >= 2:

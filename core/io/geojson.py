@@ -1,0 +1,239 @@
+"""GeoJSON tracks (our own ``.geojson`` export, GIS tools, togeojson's GPX conversions).
+
+A FeatureCollection (or a single Feature) is read feature by feature:
+
+- a ``LineString`` or ``MultiLineString`` with one time per vertex — the property
+  ``times`` (Wakeline's export) or ``coordTimes`` (togeojson, Mapbox) — is one track;
+- a ``Point`` with a time property (``time``, ``timestamp``, ``datetime``… the names the
+  CSV reader knows) is one point of the track its id property names (``batch``, ``mmsi``,
+  ``track_id``…, again the CSV reader's names; one track per file without one);
+- Wakeline's maneuver points (``"kind": "maneuver"``) are results, not input: counted.
+
+The id and sensor come from the feature's properties by the same names as CSV headers
+(``sensor``, ``batch``, ``mmsi``…); a track without an id is ``feature N``.
+
+Nothing is lost silently: a feature without times (a line whose vertices have no time, a
+point without a time property), with another geometry, or whose times do not match its
+vertices is one quarantined row; a vertex with an unreadable time or position, or beyond
+±90° / ±180°, is one quarantined row. A GeoJSON file is one document, not lines: the
+quarantine's ``line`` column holds the feature's number (1-based) and its ``text`` the
+start of the feature's JSON. A file that is not valid JSON is refused with the parser's
+message.
+"""
+
+import gzip
+import json
+
+import numpy as np
+import pandas as pd
+
+from wakeline.core.errors import InputError
+from wakeline.core.io.formats import SYNONYMS, normalize_header
+from wakeline.core.io.sniff import Sniff
+from wakeline.core.progress import Progress, null_progress
+
+#: Per-vertex times of a line feature: ours, then togeojson's.
+TIME_ARRAYS = ("times", "coordTimes")
+_TEXT_CHARS = 200
+
+
+def _field_of(properties: dict, field: str) -> str | None:
+    """The property that names ``field`` (as a CSV header would), or None."""
+    names = {normalize_header(str(k)): k for k in properties}
+    for cand in SYNONYMS.get(field, (field,)):
+        key = names.get(normalize_header(cand))
+        if key is not None:
+            return key
+    return None
+
+
+def _vertices(coords: list) -> tuple[list, list]:
+    """Longitudes and latitudes of a line's vertices (None where a vertex is not a pair of
+    numbers); one numpy conversion for a well-formed line."""
+    try:
+        xy = np.asarray(coords, dtype="float64")
+        if xy.ndim == 2 and xy.shape[1] >= 2:
+            return xy[:, 0].tolist(), xy[:, 1].tolist()
+    except (TypeError, ValueError):
+        pass
+    ok = [isinstance(c, list | tuple) and len(c) >= 2 for c in coords]
+    return (
+        [c[0] if good else None for c, good in zip(coords, ok, strict=True)],
+        [c[1] if good else None for c, good in zip(coords, ok, strict=True)],
+    )
+
+
+def _snippet(feature) -> str:
+    text = json.dumps(feature, ensure_ascii=False)
+    return text if len(text) <= _TEXT_CHARS else text[: _TEXT_CHARS - 1] + "…"
+
+
+def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
+    """Read the tracks of a GeoJSON file into the canonical point table (an
+    ``ImportResult``)."""
+    from wakeline.core.io.reader import ImportResult, empty_quarantine
+
+    progress = progress or null_progress
+    opener = gzip.open if sn.compression == "gzip" else open
+    try:
+        with opener(sn.path, "rb") as fh:
+            doc = json.loads(fh.read().decode(sn.encoding.replace("-sig", "") or "utf-8"))
+    except (ValueError, UnicodeDecodeError) as exc:
+        raise InputError(f"{sn.path}: not valid GeoJSON ({str(exc)[:200]})") from None
+    if isinstance(doc, dict) and doc.get("type") == "FeatureCollection":
+        features = doc.get("features") or []
+    elif isinstance(doc, dict) and doc.get("type") == "Feature":
+        features = [doc]
+    else:
+        raise InputError(f"{sn.path}: GeoJSON without features (a FeatureCollection or a Feature)")
+    progress(0.5, "parsed")
+
+    cols: dict[str, list] = {k: [] for k in ("sensor", "batch", "time", "lon", "lat", "feature")}
+    q_line, q_reason, q_text = [], [], []
+    counts = {"line_features": 0, "point_features": 0, "maneuver_points": 0}
+
+    def bad(k: int, feature, reason: str) -> None:
+        q_line.append(k + 1)
+        q_reason.append(reason)
+        q_text.append(_snippet(feature))
+
+    for k, feature in enumerate(features):
+        if not isinstance(feature, dict):
+            bad(k, feature, "not a GeoJSON feature")
+            continue
+        props = feature.get("properties") or {}
+        geom = feature.get("geometry") or {}
+        kind = geom.get("type") if isinstance(geom, dict) else None
+        if props.get("kind") == "maneuver":
+            counts["maneuver_points"] += 1
+            continue
+        sensor_key = _field_of(props, "sensor")
+        batch_key = _field_of(props, "batch")
+        own_sensor = str(props[sensor_key]) if sensor_key else sensor
+        if kind in ("LineString", "MultiLineString"):
+            counts["line_features"] += 1
+            coords = geom.get("coordinates") or []
+            if kind == "MultiLineString":
+                coords = [c for part in coords for c in (part or [])]
+            key = next((t for t in TIME_ARRAYS if t in props), None)
+            times = props.get(key) if key else None
+            if key is None:
+                bad(k, feature, "a line without per-vertex times (no 'times' or 'coordTimes')")
+                continue
+            if not isinstance(times, list) or len(times) != len(coords):
+                n_t = len(times) if isinstance(times, list) else 0
+                bad(k, feature, f"{len(coords)} vertices but {n_t} times in {key!r}")
+                continue
+            batch = str(props[batch_key]) if batch_key else f"feature {k + 1}"
+            lon_k, lat_k = _vertices(coords)
+            n = len(coords)
+            cols["sensor"].extend([own_sensor] * n)
+            cols["batch"].extend([batch] * n)
+            cols["time"].extend(times)
+            cols["lon"].extend(lon_k)
+            cols["lat"].extend(lat_k)
+            cols["feature"].extend([k] * n)
+        elif kind == "Point":
+            counts["point_features"] += 1
+            time_key = _field_of(props, "time")
+            one = next((props[a] for a in TIME_ARRAYS if isinstance(props.get(a), list)), None)
+            if time_key is None and (one is None or len(one) != 1):
+                bad(k, feature, "a point without a time property")
+                continue
+            stamp = props[time_key] if time_key is not None else one[0]  # ours: times[0]
+            c = geom.get("coordinates") or []
+            ok = isinstance(c, list | tuple) and len(c) >= 2
+            cols["sensor"].append(own_sensor)
+            cols["batch"].append(str(props[batch_key]) if batch_key else "points")
+            cols["time"].append(stamp)
+            cols["lon"].append(c[0] if ok else None)
+            cols["lat"].append(c[1] if ok else None)
+            cols["feature"].append(k)
+        else:
+            bad(k, feature, f"geometry {kind or 'none'}: only LineString and Point are tracks")
+
+    lon = pd.to_numeric(pd.Series(cols["lon"], dtype="object"), errors="coerce").to_numpy(
+        dtype="float64", na_value=np.nan
+    )
+    lat = pd.to_numeric(pd.Series(cols["lat"], dtype="object"), errors="coerce").to_numpy(
+        dtype="float64", na_value=np.nan
+    )
+    raw_t = pd.Series(cols["time"], dtype="object")
+    numeric_t = pd.to_numeric(raw_t, errors="coerce")
+    times = pd.to_datetime(
+        raw_t.where(numeric_t.isna()), errors="coerce", utc=True, format="ISO8601"
+    )
+    unix = numeric_t.notna()
+    if unix.any():  # unix seconds or milliseconds
+        secs = numeric_t[unix].to_numpy(dtype="float64")
+        secs = np.where(np.abs(secs) > 1e11, secs / 1000.0, secs)
+        times[unix] = pd.to_datetime(np.round(secs * 1e6).astype("int64"), unit="us", utc=True)
+    reason = np.full(len(lon), "", dtype=object)
+    reason[~np.isfinite(lon) | ~np.isfinite(lat)] = "no readable lon/lat"
+    out = np.isfinite(lon) & np.isfinite(lat) & ((np.abs(lat) > 90) | (np.abs(lon) > 180))
+    reason[out & (reason == "")] = "lat beyond ±90° or lon beyond ±180°"
+    reason[times.isna().to_numpy() & (reason == "")] = "unparsable time"
+    good = reason == ""
+    feature_of = np.asarray(cols["feature"], dtype="int64")
+    for k, why in zip(feature_of[~good], reason[~good], strict=True):
+        bad(int(k), features[int(k)], f"a vertex or point with {why}")
+
+    points = pd.DataFrame(
+        {
+            "sensor": pd.Series(np.asarray(cols["sensor"], dtype=object)[good], dtype="str"),
+            "batch": pd.Series(np.asarray(cols["batch"], dtype=object)[good], dtype="str"),
+            "time": times[good].reset_index(drop=True).astype("datetime64[ns, UTC]"),
+            "lon": lon[good],
+            "lat": lat[good],
+        }
+    )
+    if q_line:
+        order = np.argsort(np.asarray(q_line), kind="stable")
+        quarantine = pd.DataFrame(
+            {
+                "line": np.asarray(q_line, dtype="int64")[order],
+                "reason": pd.Series(np.asarray(q_reason, dtype=object)[order], dtype="str"),
+                "text": pd.Series(np.asarray(q_text, dtype=object)[order], dtype="str"),
+            }
+        )
+    else:
+        quarantine = empty_quarantine()
+    warnings = []
+    if counts["maneuver_points"]:
+        warnings.append(
+            f"{counts['maneuver_points']:,} maneuver point(s) (a result, not input) not imported"
+        )
+    no_times = sum(r.startswith("a line without per-vertex times") for r in q_reason)
+    if no_times:
+        warnings.append(
+            f"{no_times:,} line(s) have no time per vertex ('times' or 'coordTimes'): a track "
+            "needs one; export tracks as CSV or GPX to keep their times"
+        )
+    if len(quarantine):
+        warnings.append(
+            "the quarantine's 'line' column holds feature numbers (GeoJSON has no rows)"
+        )
+    by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
+    progress(1.0, "imported")
+    report = {
+        "input": str(sn.path),
+        "format": "geojson",
+        "format_label": "GeoJSON tracks",
+        "encoding": sn.encoding,
+        "compression": sn.compression,
+        "columns": {},
+        "rows_read": int(len(lon) + len(q_line) - int((~good).sum())),
+        "rows_imported": len(points),
+        "rows_quarantined": len(quarantine),
+        "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
+        "blank_lines": 0,
+        "features": len(features),
+        **counts,
+        "tracks": int(points.groupby(["sensor", "batch"]).ngroups) if len(points) else 0,
+        "sensors": points["sensor"].value_counts().to_dict() if len(points) else {},
+        "time_start": points["time"].min().isoformat() if len(points) else None,
+        "time_end": points["time"].max().isoformat() if len(points) else None,
+        "warnings": warnings,
+    }
+    layout = {"format": "geojson", "encoding": sn.encoding, "compression": sn.compression}
+    return ImportResult(points, quarantine, report, layout)

@@ -1,0 +1,106 @@
+"""GeoJSON read as tracks (core/io/geojson.py): our own export reads back (one time per
+vertex), foreign point collections by their property names, and every feature or vertex a
+point or a quarantined row."""
+
+import json
+
+import numpy as np
+import pandas as pd
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from wakeline.core.export import export_geojson
+from wakeline.core.io import read_points
+from wakeline.core.io.reader import inspect_file
+
+
+def _accounted(r) -> None:
+    rep = r.report
+    assert rep["rows_read"] == rep["rows_imported"] + rep["rows_quarantined"]
+    assert rep["rows_imported"] == len(r.points)
+
+
+def test_our_geojson_export_reads_back_as_the_same_tracks(tmp_path):
+    rng = np.random.default_rng(1)
+    t = pd.date_range("2024-01-01", periods=30, freq="2500ms", tz="UTC")
+    pts = pd.DataFrame(
+        {
+            "sensor": ["radar"] * 30 + ["ais"] * 30 + ["ais"],
+            "batch": ["7"] * 30 + ["257000001"] * 30 + ["lonely"],
+            "time": t.append(t).append(t[:1]),
+            "lon": 10.0 + rng.normal(0, 0.01, 61),
+            "lat": 59.0 + rng.normal(0, 0.01, 61),
+        }
+    )
+    maneuvers = pts.iloc[[3]].assign(factor=22.0)
+    export_geojson(pts, tmp_path / "out.geojson", maneuvers)
+    r = read_points(tmp_path / "out.geojson")
+    _accounted(r)
+    assert r.report["format"] == "geojson" and r.report["maneuver_points"] == 1
+    key = ["sensor", "batch", "time"]
+    want = pts.sort_values(key).reset_index(drop=True)
+    got = r.points.sort_values(key).reset_index(drop=True)
+    assert (got[["sensor", "batch"]].to_numpy() == want[["sensor", "batch"]].to_numpy()).all()
+    assert (got["time"] == want["time"]).all()  # 2.5 s steps: the fractions kept
+    assert np.allclose(got["lon"], want["lon"], atol=1e-7)
+
+
+def test_foreign_point_features_and_what_cannot_be_a_track(tmp_path):
+    feats = [
+        {
+            "type": "Feature",
+            "geometry": {"type": "Point", "coordinates": [10 + i * 1e-3, 59.0]},
+            "properties": {"MMSI": 257000000 + i % 2, "timestamp": f"2024-01-01T00:00:{i:02d}Z"},
+        }
+        for i in range(10)
+    ]
+    feats += [
+        {
+            "type": "Feature",
+            "geometry": {"type": "LineString", "coordinates": [[10, 59], [10.1, 59]]},
+            "properties": {"name": "a route"},
+        },
+        {"type": "Feature", "geometry": {"type": "Polygon", "coordinates": []}, "properties": {}},
+        {
+            "type": "Feature",
+            "geometry": {"type": "LineString", "coordinates": [[10, 59], [10.1, 95]]},
+            "properties": {"id": "x", "coordTimes": ["2024-01-01T00:00:00Z", 1704067210]},
+        },
+    ]
+    path = tmp_path / "foreign.geojson"
+    path.write_text(json.dumps({"type": "FeatureCollection", "features": feats}), encoding="utf-8")
+    r = read_points(path)
+    _accounted(r)
+    assert r.points["batch"].value_counts().to_dict() == {"257000000": 5, "257000001": 5, "x": 1}
+    assert r.quarantine["line"].tolist() == [11, 12, 13]  # feature numbers
+    assert r.quarantine["reason"].iloc[0].startswith("a line without per-vertex times")
+    assert any("no time per vertex" in w for w in r.report["warnings"])
+    info = inspect_file(path)
+    assert info["kind"] == "geojson" and info["problem"] is None
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    st.lists(
+        st.tuples(
+            st.sampled_from(["LineString", "Point", "Polygon", None]),
+            st.integers(0, 4),
+            st.booleans(),
+            st.one_of(st.floats(-100, 100), st.just(float("nan"))),
+        ),
+        max_size=8,
+    )
+)
+def test_any_feature_collection_is_accounted_for(tmp_path_factory, specs):
+    feats = []
+    for kind, n, with_times, lat in specs:
+        lat_v = None if lat != lat else lat
+        coords = [[10.0 + j * 1e-3, lat_v] for j in range(max(n, 1))]
+        times = [f"2024-01-01T00:00:{j:02d}Z" for j in range(max(n, 1))]
+        props = {"times": times} if with_times else {"name": "no times"}
+        geom = {"type": kind, "coordinates": coords if kind != "Point" else coords[0]}
+        feats.append({"type": "Feature", "geometry": geom if kind else None, "properties": props})
+    path = tmp_path_factory.mktemp("gj") / "any.geojson"
+    path.write_text(json.dumps({"type": "FeatureCollection", "features": feats}), encoding="utf-8")
+    r = read_points(path)
+    _accounted(r)
