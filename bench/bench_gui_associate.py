@@ -74,6 +74,9 @@ def run_once(path: Path, why: bool, profile: bool) -> tuple[float, float, list]:
                 sampler.__enter__()
             if prof is not None:
                 prof.enable()
+            # ATD's ~100 proposals tie different MMSIs, which mmsi_apart keeps apart (none
+            # at all): the rule is off so that the review has a queue to bind.
+            w.params.from_dict({"associate": {"mmsi_apart": False}})
             w.run_step("associate")
             settle_window(w)
             if prof is not None:

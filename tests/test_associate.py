@@ -69,6 +69,28 @@ def test_two_halves_of_one_straight_track_are_joined_by_every_method():
         assert len(set(a.target_of_track)) == 1, method
 
 
+@pytest.mark.parametrize(
+    ("a", "b", "joined"),
+    [
+        ("367128730", "366815430", False),  # two MMSIs: two ships
+        ("413801163-0", "413801163-1", True),  # pieces of one MMSI
+        ("413801163-0", "413825423-1", False),
+        ("17", "18", True),  # radar track numbers
+        ("367128730", "18", True),  # one id is no MMSI: nothing known
+        ("1234567890", "1234567891", True),  # ten digits: not an MMSI
+        ("012345678", "012345679", True),  # first digit 0: not a ship's MMSI
+    ],
+)
+def test_different_mmsis_are_never_joined(a, b, joined):
+    """``mmsi_apart``: two halves of one straight run are joined unless their ids are two
+    different MMSIs; with the rule off they are joined whatever the ids."""
+    df = pd.concat([straight(a, 0, 600, truth="A"), straight(b, 900, 1500, truth="A")])
+    got = associate_interrupted(df)
+    assert (len(set(got.target_of_track)) == 1) == joined
+    off = associate_interrupted(df, LinkParams(mmsi_apart=False))
+    assert len(set(off.target_of_track)) == 1
+
+
 def test_parallel_tracks_side_by_side_are_not_joined():
     # Same course and speed, 2 km apart: at the same time (overlap) and one after the other.
     a1 = straight("1", 0, 1200, course=90.0, truth="A")
