@@ -151,6 +151,9 @@ class ProjectController(QtCore.QObject):
             if layer.kind in ("source", BEARING_KIND):  # "changed": a file read again
                 sources = list(self.session.sources)
                 self._submit(lambda st: st.put_sources(sources))
+        elif event == "tables" and layer is not None:  # kept inputs: not its points
+            pos = self._pos(layer_id)
+            self._submit(lambda st: st.put_tables(layer, pos))
         elif event == "visibility" and layer is not None:
             pos = self._pos(layer_id)
             self._submit(lambda st: st.put_layer(layer, pos, with_data=False))

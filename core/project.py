@@ -275,14 +275,7 @@ class ProjectStore:
 
     def put_layer(self, layer: Layer, pos: int, with_data: bool = True) -> None:
         """Write a layer: its attributes always, its data (and side tables) when asked."""
-        attrs = (
-            layer.name,
-            layer.kind,
-            int(layer.visible),
-            layer.color,
-            json.dumps(layer.meta, default=str),
-            json.dumps(layer.lineage(), default=str),
-        )
+        attrs = _attrs(layer)
         blobs = {name: _to_parquet(t) for name, t in layer.tables.items()} if with_data else {}
         data = _to_parquet(layer.points) if with_data else None
         with self.con:
@@ -297,6 +290,21 @@ class ProjectStore:
                     "lineage=? WHERE id=?",
                     (pos, *attrs, layer.id),
                 )
+
+    def put_tables(self, layer: Layer, pos: int) -> None:
+        """Write a layer's attributes and side tables, not its points (a layer under
+        review keeping the points of an input layer removed:
+        :func:`~wakeline.core.review_session.keep_inputs`)."""
+        blobs = {name: _to_parquet(t) for name, t in layer.tables.items()}
+        with self.con:  # one transaction: the tables and the meta that names them
+            self.con.execute("DELETE FROM layer_tables WHERE layer = ?", (layer.id,))
+            for n, b in blobs.items():
+                _insert_blob(self.con, "layer_tables", (layer.id, n), b)
+            self.con.execute(
+                "UPDATE layers SET pos=?, name=?, kind=?, visible=?, color=?, meta=?, "
+                "lineage=? WHERE id=?",
+                (pos, *_attrs(layer), layer.id),
+            )
 
     def delete_layer(self, layer_id: str) -> None:
         with self.con:
@@ -388,6 +396,19 @@ class ProjectStore:
         for d in session.decisions:
             self.add_decision(d)
         self.mark_decisions_checked()  # a session's decisions were repaired when opened
+
+
+def _attrs(layer: Layer) -> tuple:
+    """A layer's row but its id, position and data: name, kind, visible, colour, meta
+    and lineage (JSON)."""
+    return (
+        layer.name,
+        layer.kind,
+        int(layer.visible),
+        layer.color,
+        json.dumps(layer.meta, default=str),
+        json.dumps(layer.lineage(), default=str),
+    )
 
 
 def _inode(path: Path) -> tuple[int, int] | None:

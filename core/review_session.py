@@ -35,22 +35,96 @@ def queue_key(layer: Layer) -> str:
     return f"{layer.id}@{layer.created}"
 
 
+#: The side table in which a reviewed layer keeps the points of an input layer removed
+#: from the session (``input L1``): the points its proposals were made on stay in the
+#: project with the layer, so its review binds in this window and after a reopen alike.
+KEPT_INPUT = "input "
+#: The ``meta`` key of a layer fused across layers that keeps the names its inputs were
+#: combined under (:func:`fuse_names`), frozen when one of them or an ancestor (the
+#: file a name may be told apart by) was removed.
+KEPT_NAMES = "review_input_names"
+
+
+def review_inputs(layer: Layer) -> list[str]:
+    """The ids of the layers the layer's step ran on (every input of a fuse across
+    layers, else the parent)."""
+    return list(layer.inputs) or ([layer.parent] if layer.parent else [])
+
+
 def input_points(session: Session, layer: Layer) -> pd.DataFrame:
     """The points the layer's step ran on: the parent layer, or the input layers of a
-    fuse across layers combined as the command line combines its files."""
-    ids = layer.inputs or ([layer.parent] if layer.parent else [])
-    missing = [i for i in ids if i not in session.layers]
+    fuse across layers combined as the command line combines its files. An input removed
+    since is read from the copy the layer kept (:func:`keep_inputs`); one removed before
+    Wakeline kept them raises :class:`InputError`."""
+    ids = review_inputs(layer)
+    frames, missing = [], []
+    for i in ids:
+        kept = layer.tables.get(KEPT_INPUT + i)
+        if kept is not None:  # the input removed: never a later layer given its id
+            frames.append(kept)
+        elif i in session.layers:
+            frames.append(session.layers[i].points)
+        else:
+            missing.append(i)
     if not ids or missing:
         raise InputError(
             f"layer {layer.name}: its input layer {', '.join(missing) or '?'} was removed; "
             "the review needs the points the proposals were made on"
         )
     if len(ids) == 1:
-        return session.layers[ids[0]].points
-    names = fuse_names(session, ids)
-    return R.combine_sources(
-        [(name, session.layers[i].points) for name, i in zip(names, ids, strict=True)]
+        return frames[0]
+    names = layer.meta.get(KEPT_NAMES)
+    if not (isinstance(names, list) and len(names) == len(ids)):
+        names = fuse_names(session, ids)
+    return R.combine_sources(list(zip(names, frames, strict=True)))
+
+
+def reads_layer(session: Session, layer: Layer, layer_id: str) -> bool:
+    """Whether the review of ``layer`` (one with proposals) reads layer ``layer_id``: its
+    points (an input), or, fused across layers, the file its input's name is told apart
+    by (an ancestor of an input)."""
+    if proposals_of(layer) is None or layer.id == layer_id:
+        return False
+    ids = review_inputs(layer)
+    if layer_id in ids:
+        return True
+    return len(ids) > 1 and any(
+        layer_id in session.ancestors(i) for i in ids if i in session.layers
     )
+
+
+def review_dependents(session: Session, layer_id: str) -> list[Layer]:
+    """The layers under review (with proposals) whose review reads layer ``layer_id``
+    (:func:`reads_layer`): what removing it would have broken."""
+    if layer_id not in session.layers:
+        return []
+    return [lay for lay in session.layers.values() if reads_layer(session, lay, layer_id)]
+
+
+def keep_inputs(session: Session, layer_id: str) -> list[Layer]:
+    """Before layer ``layer_id`` leaves the session: each layer whose review reads it
+    keeps what the review needs — the input's points as its side table
+    ``input <id>`` (:data:`KEPT_INPUT`; the same table, not a copy in memory) and, fused
+    across layers, the names its inputs were combined under (:data:`KEPT_NAMES`).
+    Returns the layers changed (the project writes their side tables again)."""
+    changed = []
+    for lay in review_dependents(session, layer_id):
+        ids = review_inputs(lay)
+        touched = False
+        if len(ids) > 1 and not isinstance(lay.meta.get(KEPT_NAMES), list):
+            # New dicts, not edits in place: the project writer may be reading the old
+            # ones on its thread.
+            try:
+                lay.meta = {**lay.meta, KEPT_NAMES: fuse_names(session, ids)}
+                touched = True
+            except KeyError:  # another input removed before inputs were kept
+                pass
+        if layer_id in ids and KEPT_INPUT + layer_id not in lay.tables:
+            lay.tables = {**lay.tables, KEPT_INPUT + layer_id: session.layers[layer_id].points}
+            touched = True
+        if touched:
+            changed.append(lay)
+    return changed
 
 
 def fuse_names(session: Session, ids: list[str]) -> list[str]:

@@ -6,7 +6,8 @@ layer's id, the step, the role it plays in the step's output (``cleaned``,
 ``compressed`` …), the parameters and the time it was made. Re-running a step on the same
 input replaces only the layers of that (input, step, role); results of other inputs
 coexist. The GUI is a view over a session: it subscribes to its events
-(``added``, ``changed``, ``removed``, ``visibility``; ``time_window``,
+(``added``, ``changed``, ``removed``, ``visibility``, ``tables`` — a layer's side
+tables or meta changed, not its points; ``time_window``,
 ``current_time``, ``map_view`` and ``active`` with no layer id) and never keeps layers
 of its own. The session also holds what brings an operator back to where they were,
 saved with the project: the map's time window
@@ -234,9 +235,20 @@ class Session:
     # -- layers --------------------------------------------------------------------
 
     def new_id(self) -> str:
+        """A layer id never used in this work: not a layer's, nor one a layer's lineage
+        or a review queue still names (a layer removed, then the project reopened: a new
+        layer under its id was taken for the input of the layers made from it)."""
+        taken = set(self.layers)
+        for lay in self.layers.values():
+            taken.update(lay.inputs)
+            if lay.parent is not None:
+                taken.add(lay.parent)
+        taken.update(
+            str(d.get("queue", "")).split("@")[0] for d in self.decisions if isinstance(d, dict)
+        )
         while True:
             lid = f"L{next(self._ids)}"
-            if lid not in self.layers:
+            if lid not in taken:
                 return lid
 
     def add_layer(
@@ -264,6 +276,19 @@ class Session:
         return layer
 
     def remove_layer(self, layer_id: str) -> None:
+        """Remove a layer. A layer under review made from it keeps what its review reads
+        (:func:`~wakeline.core.review_session.keep_inputs`: the input's points as a side
+        table, with a ``tables`` event for the project to write them) before the
+        ``removed`` event: its decisions bind in this window and after a reopen alike."""
+        if layer_id not in self.layers:
+            return
+        from wakeline.core.review_session import keep_inputs
+
+        for kept in keep_inputs(self, layer_id):
+            self._emit("tables", kept.id)
+        self._drop(layer_id)
+
+    def _drop(self, layer_id: str) -> None:
         if self.layers.pop(layer_id, None) is not None:
             self.selection = [s for s in self.selection if s[0] != layer_id]
             self._emit("removed", layer_id)
@@ -512,7 +537,7 @@ class Session:
 
     def clear(self) -> None:
         for lid in list(self.layers):
-            self.remove_layer(lid)
+            self._drop(lid)  # all of them: nothing to keep for another
         self.sources.clear()
         self.selection.clear()
         self.decisions.clear()

@@ -12,8 +12,16 @@ import pytest
 from wakeline.core import review as R
 from wakeline.core import simulate
 from wakeline.core.pipeline import STEPS
-from wakeline.core.project import load_project, save_project
-from wakeline.core.review_session import bind, decided_points, input_points, queue_key
+from wakeline.core.project import ProjectStore, load_project, save_project
+from wakeline.core.review_session import (
+    KEPT_INPUT,
+    KEPT_NAMES,
+    bind,
+    decided_points,
+    input_points,
+    queue_key,
+    review_dependents,
+)
 from wakeline.core.review_store import decision_row, replay_decisions
 from wakeline.core.session import Session
 
@@ -54,9 +62,140 @@ def test_fuse_across_layers_records_every_input_and_binds_to_them(pair, tmp_path
     save_project(s, tmp_path / "p.wakeline")
     back = load_project(tmp_path / "p.wakeline").to_session()
     assert back.layers[lid].inputs == ["L1", "L2"] and back.layers["L1"].inputs == []
-    s.remove_layer("L2")
+    # Removing an input keeps its points with the layer under review (next test); a
+    # project whose input went before Wakeline kept them says what is missing.
+    del s.layers["L2"]
     with pytest.raises(Exception, match="input layer L2 was removed"):
         input_points(s, lay)
+
+
+def _decide(s: Session, lay, n: int = 3) -> list[str]:
+    """Reject, accept, reject … the first ``n`` proposals of ``lay``'s queue, stored as
+    the window stores them; the statuses of the whole queue."""
+    st, _ = bind(s, lay)
+    for k, pid in enumerate(st.proposals["proposal"][:n]):
+        change = (R.accept if k % 2 else R.reject)(st, pid)
+        st.apply(change)
+        s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    return list(st.status)
+
+
+def test_removing_an_input_of_a_reviewed_layer_keeps_its_review(pair, tmp_path):
+    """Tester's defect (h122): the AIS layer under a fused layer with decisions removed
+    (Layer ▸ Remove), the project reopened: "its input layer L1 was removed; the review
+    needs the points the proposals were made on", the decisions out of reach. The layer
+    under review now keeps the input's points (a side table written with it), so the
+    review binds before and after a reopen alike, with the same statuses; a layer added
+    after the reopen never takes the removed layer's id (it was read as the input)."""
+    s, lid = _fused_session(pair)
+    lay = s.layers[lid]
+    before = input_points(s, lay).copy()
+    want = _decide(s, lay)
+    assert [x.id for x in review_dependents(s, "L1")] == [lid]
+    assert review_dependents(s, lid) == []  # nothing is made from the fused layer
+    events = []
+    s.subscribe(lambda e, i: events.append((e, i)))
+    s.remove_layer("L1")
+    assert events == [("tables", lid), ("removed", "L1")]  # kept first, then removed
+    assert KEPT_INPUT + "L1" in lay.tables and lay.meta[KEPT_NAMES] == ["x_AIS", "x_radar"]
+    pd.testing.assert_frame_equal(input_points(s, lay), before)
+    st, _ = bind(s, lay)
+    assert list(st.status) == want
+    # The project file (Save as) and, as the window writes it, the layer's tables alone.
+    save_project(s, tmp_path / "p.wakeline")
+    back = load_project(tmp_path / "p.wakeline").to_session()
+    assert "L1" not in back.layers
+    st2, pts2 = bind(back, back.layers[lid])
+    assert list(st2.status) == want
+    pd.testing.assert_frame_equal(pts2, before)
+    assert back.add_layer("new.csv", "source", pair[0]["AIS"]).id not in ("L1", "L2", lid)
+    s2, lid2 = _fused_session(pair)
+    _decide(s2, s2.layers[lid2])
+    save_project(s2, tmp_path / "w.wakeline")
+    store = ProjectStore(tmp_path / "w.wakeline", create=False)
+    s2.subscribe(
+        lambda e, i: (
+            store.put_tables(s2.layers[i], list(s2.layers).index(i))
+            if e == "tables"
+            else store.delete_layer(i)
+            if e == "removed"
+            else None
+        )
+    )
+    s2.remove_layer("L2")  # the radar this time
+    store.close()
+    back2 = load_project(tmp_path / "w.wakeline").to_session()
+    assert list(back2.layers) == ["L1", lid2]
+    assert list(bind(back2, back2.layers[lid2])[0].status) == list(
+        bind(s2, s2.layers[lid2])[0].status
+    )
+
+
+def test_removing_a_cleaned_layer_under_a_reviewed_association_keeps_its_review(tmp_path):
+    """The other dependents: source → Clean → Associate (reviewed); the cleaned layer
+    removed keeps its points with the associated layer (and the stitched one: each layer
+    with proposals), the source removed changes nothing for them (not read). A fused
+    layer made from cleaned layers keeps the names its inputs were combined under when
+    a source above them goes (a name may be told apart by that file)."""
+    pts = simulate.segments_scene(seed=2, n_ships=8, area_km=15)
+    s = Session()
+    src = s.add_layer("seg.csv", "source", pts, meta={"file": "/d/seg.csv"})
+    (clean,) = [
+        x for x in s.apply_result(src.id, s.run_step(src.id, "clean")) if x.role == "cleaned"
+    ]
+    made = s.apply_result(clean.id, s.run_step(clean.id, "associate"))
+    reviewed = [
+        x for x in made if x.tables.get("proposals") is not None and len(x.tables["proposals"])
+    ]
+    assert reviewed
+    lay = reviewed[0]
+    want = _decide(s, lay, 2)
+    decided = decided_points(lay, *bind(s, lay))
+    assert {x.id for x in review_dependents(s, src.id)} == set()
+    assert {x.id for x in review_dependents(s, clean.id)} == {x.id for x in reviewed}
+    s.remove_layer(clean.id)
+    save_project(s, tmp_path / "a.wakeline")
+    back = load_project(tmp_path / "a.wakeline").to_session()
+    st, pts2 = bind(back, back.layers[lay.id])
+    assert list(st.status) == want
+    again = decided_points(back.layers[lay.id], st, pts2)
+    if decided is None:
+        assert again is None
+    else:
+        pd.testing.assert_frame_equal(again, decided)
+    # Clean and Associate run again on the source after the reopen make new layers (the
+    # new cleaned layer took the removed one's id before: Associate on it then replaced
+    # the reviewed layer in place); the reviewed one stays as it was.
+    created = back.layers[lay.id].created
+    (clean2,) = [
+        x for x in back.apply_result(src.id, back.run_step(src.id, "clean")) if x.role == "cleaned"
+    ]
+    assert clean2.id != clean.id
+    back.apply_result(clean2.id, back.run_step(clean2.id, "associate"))
+    assert back.layers[lay.id].created == created
+    assert list(bind(back, back.layers[lay.id])[0].status) == want
+
+
+def test_a_fuse_of_cleaned_layers_keeps_its_input_names_when_a_source_goes(pair):
+    """Two files of one stem in two folders fused from their cleaned layers: the folders
+    tell the inputs apart (their root's file). Removing a source above an input freezes
+    the names (meta), not the points (the input layer is still there)."""
+    files, res = pair
+    s = Session()
+    a = s.add_layer("x.csv", "source", files["AIS"], meta={"file": "/d/ais/x.csv"})
+    r = s.add_layer("x.csv", "source", files["R1"], meta={"file": "/d/radar/x.csv"})
+    ca, cr = (
+        s.add_layer("x.csv", "cleaned", src.points, parent=src.id, step="clean", role="cleaned")
+        for src in (a, r)
+    )
+    (lay,) = s.apply_result(ca.id, res, STEPS["fuse"].defaults(), inputs=[ca.id, cr.id])
+    before = input_points(s, lay).copy()
+    assert [x.id for x in review_dependents(s, a.id)] == [lay.id]
+    s.remove_layer(a.id)
+    assert lay.meta[KEPT_NAMES] == ["ais", "radar"] and not any(
+        t.startswith(KEPT_INPUT) for t in lay.tables
+    )
+    pd.testing.assert_frame_equal(input_points(s, lay), before)
 
 
 def test_decisions_replay_per_queue_and_relabel_the_layer(pair):
