@@ -14,6 +14,7 @@ from PySide6 import QtCore, QtWidgets
 from wakeline.app.layer_view import is_part_of, map_layers, prepare_view_apart
 from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
+from wakeline.core.errors import InputError
 from wakeline.core.session import BEARING_KIND, Layer
 
 #: Between two pieces of drawing work: a real timer (not a zero-delay call), so the map's
@@ -27,6 +28,8 @@ FITTED_COLUMNS = ("sensor", "batch", "points", "start", "end")
 
 class LayersMixin:
     """Layers list, the active layer and the drawing queue."""
+
+    TR_CONTEXT = "MainWindow"
 
     @property
     def layers(self) -> dict[str, Layer]:
@@ -280,8 +283,29 @@ class LayersMixin:
             self.layer_list.setCurrentRow(row, flag)
 
     def remove_active_layer(self) -> None:
-        if self.active is not None:
-            self.session.remove_layer(self.active)
+        """Layer ▸ Remove: the active layer leaves the session (and the project). A layer
+        under review made from it keeps the points its proposals were made on (the core
+        does, :func:`~wakeline.core.review_session.keep_inputs`): the log says which, and
+        the review binds in this window and after a reopen alike."""
+        lid = self.active
+        if lid is None or lid not in self.session.layers:
+            return
+        from wakeline.core.review_session import review_dependents
+
+        name = self.session.layers[lid].name
+        try:
+            kept = [lay.name for lay in review_dependents(self.session, lid)]
+            self.session.remove_layer(lid)
+        except (InputError, KeyError, TypeError, ValueError) as exc:  # never into Qt's loop
+            self.log_message(f"{self.tr('Error')}: {name}: {exc}")
+            return
+        if kept:
+            self.log_message(
+                self.tr(
+                    "Removed layer {0}; the review of {1} keeps the points its proposals "
+                    "were made on (in the project): its decisions stay"
+                ).format(name, "; ".join(kept))
+            )
 
     def _layer_item_changed(self, item: QtWidgets.QListWidgetItem) -> None:
         lid = item.data(QtCore.Qt.ItemDataRole.UserRole)

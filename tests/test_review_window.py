@@ -864,3 +864,72 @@ def test_an_old_project_opens_with_its_split_rows_beside_joined_tracks_repaired(
     st2 = w2.review.bound.controller.state
     assert list(st2.status) == statuses and st2.links == links
     w2.close()
+
+
+def test_removing_the_source_of_a_reviewed_layer_keeps_its_review_after_a_reopen(qtbot, tmp_path):
+    """Tester's defect (h122): AIS + radar fused, F0001 rejected, the AIS layer removed
+    (Layer ▸ Remove): no word of it, the review went on in that window, and the reopened
+    project showed no review ("its input layer L1 was removed"). Now the fused layer
+    keeps the points its proposals were made on (written to the project as the removal
+    happens), the log says so, and the reopened project — its radar file moved away
+    meanwhile — binds the review with the same statuses."""
+    files = _sim_pair(tmp_path)
+    w = _window(qtbot, tmp_path)
+    proj = tmp_path / "p.wakeline"
+    w.save_project(proj)
+    _settle(w)
+    w.load_files(files)
+    _settle(w)
+    ais, radar = (w.layer_id(f.name) for f in files)
+    w.layer_list.clearSelection()
+    for lid in (ais, radar):
+        w.layer_list.item(w.layer_row(lid)).setSelected(True)
+    w.actions_["fuse"].trigger()
+    _settle(w)
+    fused = next(i for i, lay in w.layers.items() if lay.step == "fuse")
+    w.select_layer(fused)
+    _settle(w)
+    b = w.review.bound
+    first = b.controller.state.proposals["proposal"].iloc[0]
+    b.panel.set_current(first)
+    b.panel.act_reject.trigger()
+    _settle(w)
+    want = list(b.controller.state.status)
+    assert "rejected" in want
+    w.select_layer(ais)
+    _settle(w)
+    w.actions_["remove_layer"].trigger()
+    _settle(w)
+    assert ais not in w.layers
+    said = w.log.toPlainText().splitlines()[-1]
+    assert said.startswith(f"Removed layer {files[0].name}; the review of ") and "stay" in said
+    w.select_layer(fused)
+    _settle(w)
+    assert w.review.bound is not None and list(w.review.bound.controller.state.status) == want
+    w.close()
+    files[1].rename(tmp_path / "moved_radar.csv")  # the file: the project holds its points
+
+    w2 = _window(qtbot, tmp_path)
+    w2.open_project(proj)
+    _settle(w2)
+    assert list(w2.layers) == [radar, fused]
+    w2.select_layer(fused)
+    _settle(w2)
+    assert "Error" not in w2.log.toPlainText(), w2.log.toPlainText()
+    b2 = w2.review.bound
+    assert b2 is not None and b2.lid == fused and w2.review.dock.isVisible()
+    assert list(b2.controller.state.status) == want
+    # Still a review: one more decision, stored, and back after another reopen.
+    second = b2.controller.state.proposals["proposal"].iloc[1]
+    b2.panel.set_current(second)
+    b2.panel.act_accept.trigger()
+    _settle(w2)
+    want2 = list(b2.controller.state.status)
+    w2.close()
+    w3 = _window(qtbot, tmp_path)
+    w3.open_project(proj)
+    _settle(w3)
+    w3.select_layer(fused)
+    _settle(w3)
+    assert list(w3.review.bound.controller.state.status) == want2
+    w3.close()

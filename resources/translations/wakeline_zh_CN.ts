@@ -4,6 +4,10 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>Removed layer {0}; the review of {1} keeps the points its proposals were made on (in the project): its decisions stay</source>
+        <translation>已移除图层 {0}；{1} 的审核保留了其候选建议所依据的点（保存在项目中）：其决定仍然有效</translation>
+    </message>
+    <message>
         <source>{0} points, {1} tracks</source>
         <translation>{0} 个点，{1} 条航迹</translation>
     </message>
