@@ -235,9 +235,9 @@ class Session:
     # -- layers --------------------------------------------------------------------
 
     def new_id(self) -> str:
-        """A layer id never used in this work: not a layer's, nor one a layer's lineage
-        or a review queue still names (a layer removed, then the project reopened: a new
-        layer under its id was taken for the input of the layers made from it)."""
+        """A layer id that no layer, layer lineage or review queue names (a layer removed,
+        then the project reopened: a new layer given its id was taken for the input of the
+        layers made from it, and a step run on it replaced them in place)."""
         taken = set(self.layers)
         for lay in self.layers.values():
             taken.update(lay.inputs)
