@@ -171,16 +171,24 @@ def test_an_mmsi_beside_unix_seconds_is_the_batch_not_the_time(tmp_path, order, 
     assert "--map time=col2 --map lon=col3 --map lat=col4 --map batch=col1" in str(exc.value)
 
 
-def test_a_date_alone_is_not_suggested_as_the_time(tmp_path):
+def test_a_date_alone_is_not_the_time_but_the_clock_beside_it_joined_with_it(tmp_path):
     # a headerless Date,Time pair: the date column was suggested as the time (every fix
-    # of a day at midnight) and the clock as the batch; no guess now (the reader joins a
-    # clock only with a column named Date)
+    # of a day at midnight) and the clock as the batch; then no guess (the reader joined
+    # a clock only with a column named Date); now the clock column, whose dates the
+    # reader finds beside it by their values (h120)
     rows = [[r[0][:10], r[0][11:19], r[1], r[2], r[3]] for r in _rows()]
     path = _write(tmp_path / "date_time.csv", rows)
     assert not sniff(path).has_header
     with pytest.raises(InputError) as exc:
         read_points(path)
-    assert "by their values" not in str(exc.value)
+    text = str(exc.value)
+    assert "--map time=col2 --map lon=col4 --map lat=col5 --map batch=col3" in text
+    assert "joined with the dates beside them in col1" in text
+    flags = [w for w in text.split() if w.startswith(("batch=", "time=", "lon=", "lat="))]
+    res = read_points(path, mapping=flags)
+    assert res.report["rows_imported"] == 6 and res.report["time_date_column"] == "col1"
+    want = [pd.Timestamp(r[0]) for r in _rows()]
+    assert list(res.points.sort_values("time")["time"]) == sorted(want)
 
 
 @settings(max_examples=40, deadline=None)

@@ -129,6 +129,25 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "ship",
         "object_id",
         "contact_id",
+        # a radar's or tracker's track number, a GPX export's track (ogr2ogr: track_fid)
+        "track_fid",
+        "track_nr",
+        "tracknum",
+        "trk",
+        "trk_id",
+        "trk_no",
+        "tno",
+        "tn",
+        "kennung",
+        "schiff",
+        "schiffs_id",
+        "identifiant",
+        "navire",
+        "buque",
+        "navio",
+        "судно",
+        "船舶",
+        "선박",
         "批号",
         "目标号",
         "目标批号",
@@ -168,13 +187,85 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "时刻",
         "本地时间",
         "北京时间",
+        # other languages (a clock alone, Heure or Uhrzeit, is joined with the date
+        # column beside it: reader._to_canonical)
+        "zeitstempel",
+        "zeit",
+        "uhrzeit",
+        "zeitpunkt",
+        "datum_uhrzeit",
+        "horodatage",
+        "date_heure",
+        "heure",
+        "temps",
+        "fecha_hora",
+        "marca_de_tiempo",
+        "tiempo",
+        "hora",
+        "data_hora",
+        "data_ora",
+        "ora",
+        "tidspunkt",
+        "tidpunkt",
+        "klokkeslett",
+        "время",
+        "дата_время",
+        "日時",
+        "時刻",
+        "時間",
+        "일시",
+        "시각",
+        "시간",
+        # "tid" (Norwegian, Swedish, Danish) is also a "track id": a time only when its
+        # values are times (reader._values_fit)
+        "tid",
         # last: a date column is the time when no column names one (with a column of
         # clock times beside it, the two are joined: reader._date_column)
         "date",
         "日期",
+        "datum",
+        "fecha",
+        "dato",
+        "дата",
+        "日付",
+        "날짜",
     ),
-    "lon": ("lon", "longitude", "lng", "long", "x_lon", "经度"),
-    "lat": ("lat", "latitude", "y_lat", "纬度"),
+    # German "Länge"/"Breite" are a ship's length and beam too: last, and taken only when
+    # the values are degrees with decimals (reader._values_fit)
+    "lon": (
+        "lon",
+        "longitude",
+        "lng",
+        "long",
+        "x_lon",
+        "经度",
+        "längengrad",
+        "laengengrad",
+        "longitud",
+        "longitudine",
+        "lengdegrad",
+        "längdgrad",
+        "længdegrad",
+        "долгота",
+        "経度",
+        "경도",
+        "länge",
+        "laenge",
+    ),
+    "lat": (
+        "lat",
+        "latitude",
+        "y_lat",
+        "纬度",
+        "breitengrad",
+        "latitud",
+        "latitudine",
+        "breddegrad",
+        "широта",
+        "緯度",
+        "위도",
+        "breite",
+    ),
     "speed": (
         "speed",
         "sog",
@@ -185,8 +276,49 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "速度",
         "对地航速",
         "船速",
+        "spd",
+        "ground_speed",
+        "geschwindigkeit",
+        "vitesse",
+        "velocidad",
+        "velocidade",
+        "velocità",
+        "velocita",
+        "hastighet",
+        "hastighed",
+        "скорость",
+        "速力",
+        "対地速力",
+        "속력",
+        "속도",
+        # "Fahrt"/"fart" (German, Norwegian: way, speed) last: a number only (_values_fit)
+        "fahrt",
+        "fart",
     ),
-    "course": ("course", "cog", "cou", "course_deg", "course_over_ground", "航向", "对地航向"),
+    "course": (
+        "course",
+        "cog",
+        "cou",
+        "course_deg",
+        "course_over_ground",
+        "航向",
+        "对地航向",
+        "crs",
+        "kurs",
+        "route_fond",
+        "rumbo",
+        "rumo",
+        "rotta",
+        "курс",
+        "針路",
+        "対地針路",
+        "침로",
+        # French "route" (course) and "cap" (heading; the one angle many French exports
+        # write) last, and only with numbers (reader._values_fit): an English "Route" is
+        # a route's name
+        "route",
+        "cap",
+    ),
     "truth": ("truth", "真值"),
     # Local-plane metres (used only when the file has no lon/lat). Not "easting" /
     # "northing": those are usually UTM grid coordinates, not metres from an origin.
@@ -249,6 +381,23 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     ),
 }
 _GENERIC = SYNONYMS
+
+#: Names of a field by their form, tried (generic layout only) after every synonym of
+#: the field, on the normalised name: the ship's MMSI however prefixed (``sourcemmsi``
+#: of the Brest set, ``vessel_mmsi``; not the receiver's, the own ship's, nor a count
+#: such as ``n_shared_mmsi``), a track's number
+#: however written (``Track Nr``, ``trk_num``, ``tgt_id``), a speed or course over
+#: ground spelled out.
+PATTERNS: dict[str, re.Pattern] = {
+    "batch": re.compile(
+        r"^(?:source|src|vessel|ship|boat|target|tgt|sender|from|user|ais|tx|object|obj"
+        r"|contact|craft)mmsi$"
+        r"|^mmsi(?:no|nr|num|number|id|code)$"
+        r"|^(?:track|trk|tgt|target|contact)(?:no|nr|num|number|id|fid|ident|identifier)$"
+    ),
+    "speed": re.compile(r"^(?:speed|spd)(?:overground|og|ground)$"),
+    "course": re.compile(r"^(?:course|crs)(?:overground|og|ground)$"),
+}
 
 #: Unit and zone suffixes dropped before comparing names: ``_degrees``, ``_knots``,
 #: ``(kn)``, ``（度）``, ``[deg]``, ``(UTC)``...
@@ -395,7 +544,13 @@ _ALIASES = _alias_table()
 def known_fields(names: list[str] | tuple[str, ...]) -> set[str]:
     """The canonical fields that a line's cells name (by synonym or a format's own
     names): how a header line is told from a title line above it."""
-    return {f for n in names if (f := _ALIASES.get(normalize_header(n.strip().strip('"'))))}
+    out = set()
+    for n in names:
+        key = normalize_header(n.strip().strip('"'))
+        f = _ALIASES.get(key) or next((f for f, p in PATTERNS.items() if p.match(key)), None)
+        if f:
+            out.add(f)
+    return out
 
 
 @dataclass(frozen=True)
@@ -407,6 +562,12 @@ class Resolved:
     format: Format
     columns: dict[str, str]  # canonical field -> source column name (present fields only)
     origin: tuple[float, float] | None = None
+    #: The column of dates joined with the time column's clock times, when the values
+    #: show one beside it (``reader.judge_by_values``; a column named Date is found by
+    #: its name when reading).
+    date: str | None = None
+    #: What was decided by the values (an id column adopted): warnings for the report.
+    notes: tuple[str, ...] = ()
 
     @property
     def on_plane(self) -> bool:
@@ -477,6 +638,13 @@ def _resolve(
         if src is not None:
             columns[name] = src
             used.add(src)
+    if fmt.family == "generic":
+        for name, pattern in PATTERNS.items():
+            if name not in columns:
+                src = next((h for h in headers if h not in used and pattern.match(_key(h))), None)
+                if src is not None:
+                    columns[name] = src
+                    used.add(src)
     return _positions(columns, mapping)
 
 

@@ -522,10 +522,12 @@ def describe_layout(
     if report.get("columns"):
         columns_of = dict(report["columns"])
         name = str(report.get("format", "generic"))
+        date_src = report.get("time_date_column")
     else:
         res = resolve_header(sn, fmt, mapping, str(path), origin)
         columns_of, name = res.columns, res.format.name
         plane = res.origin if res.on_plane else None
+        date_src = res.date
     tz = tz or report.get("tz") or report.get("time_zone")  # the import report says time_zone
     head = _raw_head(path, sn.compression)
     bom = head.startswith(b"\xef\xbb\xbf")
@@ -582,7 +584,7 @@ def describe_layout(
     time_key = columns_of.get("time")
     # Clock times beside a date column (Date,Time): the reader joins the two; so are
     # their formats learnt, and written back apart.
-    date_key = date_column(sn.columns, set(columns_of.values())) if time_key else None
+    date_key = (date_src or date_column(sn.columns, set(columns_of.values()))) if time_key else None
     if date_key is not None:
         clock = sample[time_key].str.strip()
         if not (len(clock[clock != ""]) and clock[clock != ""].str.match(CLOCK_ONLY).all()):

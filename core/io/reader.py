@@ -74,6 +74,10 @@ _DAYFIRST_FORMATS = (
     "%d.%m.%Y %H:%M",
     "%d/%m/%Y %I:%M:%S %p",  # 12-hour clocks: 01/05/2024 8:01:04 PM
     "%d/%m/%Y %I:%M %p",
+    # a date alone is midnight, as an ISO 2024-05-01 reads (13/09/2020 was unparsable)
+    "%d/%m/%Y",
+    "%d.%m.%Y",
+    "%d-%m-%Y",
 )
 #: The same with the month first (US exports: 05/17/2024), read only when the file says so.
 _MONTHFIRST_FORMATS = tuple(
@@ -1574,17 +1578,25 @@ def resolve_header(
     source: str,
     origin: str | tuple[float, float] | None = None,
 ) -> Resolved:
-    """:func:`resolve` for a sniffed file; when the header names few known columns, the
+    """:func:`resolve` for a sniffed file, then what its sampled values decide
+    (:func:`judge_by_values`: words of two meanings, a date and a clock column, an MMSI
+    column no name says); when the header names few known columns, the
     error says how to skip lines above a header further down (``--skip-rows``).
     ``origin``: the local plane's (lat, lon) for east/north metres (:func:`resolve`)."""
     try:
-        return resolve(sn.columns, fmt, mapping, source=source, origin=origin)
+        res = resolve(sn.columns, fmt, mapping, source=source, origin=origin)
     except InputError as exc:
         if not sn.has_header and sn.preview and "missing required column" in str(exc):
             guess, sure = content_guess(sn)
             if guess:
                 flags = " ".join(f"--map {f}={c}" for f, c in guess.items())
                 check = "" if sure else " (check which of the two degree columns is longitude)"
+                dates = _beside(sn, guess["time"], set(guess.values()), _DATE_ONLY)
+                if dates is not None and _mostly(_sample_cells(sn, guess["time"]), _CLOCK_RE):
+                    check += (
+                        f" (the clock times in {guess['time']} are joined with the dates "
+                        f"beside them in {dates})"
+                    )
                 raise InputError(
                     f"{exc}; the file has no header (its first row: "
                     f"{', '.join(sn.preview[0])}); by their values the columns may be: "
@@ -1596,6 +1608,7 @@ def resolve_header(
                 "above it with --skip-rows N"
             ) from None
         raise
+    return judge_by_values(sn, res, mapping)
 
 
 _COMMA_NUMBER = re.compile(r"^([+-]?\d+),(\d+)$")
@@ -1603,7 +1616,8 @@ _COMMA_NUMBER = re.compile(r"^([+-]?\d+),(\d+)$")
 
 def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
     """A headerless file's columns by the values of its first rows (``sn.preview``):
-    field → column for time (a date-time; else Unix seconds or milliseconds, those
+    field → column for time (a date-time; else a column of clock times beside a column
+    of dates, which the reader joins with them; else Unix seconds or milliseconds, those
     since 2001 first: a nine-digit MMSI before them is the batch), lon and lat
     (two columns of degrees with decimals; lon the one beyond ±90 somewhere, else the
     first of the two) and batch (an integer or text column left over), and whether the
@@ -1620,7 +1634,7 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
         return {}, False
     cols = list(zip(*rows, strict=True))
     out: dict[str, str] = {}
-    degrees, ids, texts, stamps = [], [], [], []
+    degrees, ids, texts, stamps, clocks, dates = [], [], [], [], [], []
     for k, (name, cells) in enumerate(zip(sn.columns, cols, strict=True)):
         cells = [c.strip().strip('"') for c in cells]
         if sn.delimiter != ",":  # 30,613482 in a ;-separated export is 30.613482
@@ -1629,10 +1643,14 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
         if np.isnan(nums).all():
             # the sniffer's test of a date-time (pandas' guess per cell warned on stderr
             # for every dd/mm/yyyy and took "May 5" for a date); a date alone is no time
-            # (its fixes all at midnight) and a clock alone no batch: a headerless
-            # Date,Time pair gets no guess (the reader joins only a column named Date)
+            # (its fixes all at midnight) and a clock alone no batch: of a Date,Time pair
+            # the clock column is the time (the reader joins the dates beside it)
             if all(cell_kind(c) == "time" and ":" in c for c in cells):
                 texts.append(name)
+            elif all(_CLOCK_RE.match(c) for c in cells):
+                clocks.append(k)
+            elif all(_DATE_ONLY.match(c) for c in cells):
+                dates.append(k)
             elif all(cells) and not any(
                 cell_kind(c) == "time" or re.match(_CLOCK, c) for c in cells
             ):
@@ -1655,11 +1673,19 @@ def content_guess(sn: Sniff) -> tuple[dict[str, str], bool]:
     # a date-time text first, then the numbers most like recent Unix times; the other
     # whole numbers of that range (an MMSI before the times) may be the batch
     stamps.sort()
+    paired = [k for k in clocks if k - 1 in dates or k + 1 in dates]
     if texts:
         out["time"] = texts[0]
+    elif paired:
+        out["time"] = sn.columns[paired[0]]
     elif stamps:
         out["time"] = stamps.pop(0)[3]
-    ids = [name for _k, name in sorted(ids + [(k, n) for _f, _o, k, n, whole in stamps if whole])]
+    ids = sorted(ids + [(k, n) for _f, _o, k, n, whole in stamps if whole])
+    # a column of nine-digit MMSIs before a column of small whole numbers (a course in
+    # whole degrees, a status) that comes first
+    ids = [
+        n for _m, _k, n in sorted((not _mostly(_cells_of(sn, n), _MMSI_CELL), k, n) for k, n in ids)
+    ]
     if len(degrees) > 2:
         top = sorted(degrees, key=lambda d: -d[2])
         if top[1][2] > top[2][2]:  # two written finer than the rest: the position
@@ -1954,7 +1980,8 @@ def read_points(
         batch = pa.repeat(pa.scalar(path.name.split(".")[0] or "1"), n).dictionary_encode()
         rows.table = rows.table.append_column(FILE_BATCH, batch)
         res = dataclasses.replace(res, columns={**res.columns, "batch": FILE_BATCH})
-        notes.append(NO_BATCH_WARNING)
+        notes.append(no_batch_warning(sn, res.columns))
+    notes += res.notes
     progress(0.6, "checking values")
 
     time_info: dict = {} if edges is None else {"_edges": edges}
@@ -2314,7 +2341,21 @@ _RANGES = {
 
 
 #: Headers of a column of dates beside a time column of clock times (normalised).
-_DATE_NAMES = frozenset({"date", "utcdate", "dateutc", "datum", "fecha", "日期", "日期utc"})
+_DATE_NAMES = frozenset(
+    {
+        "date",
+        "utcdate",
+        "dateutc",
+        "datum",
+        "fecha",
+        "日期",
+        "日期utc",
+        "dato",
+        "дата",
+        "日付",
+        "날짜",
+    }
+)
 _CLOCK = r"^\s*\d{1,2}:\d{2}(?::\d{2}(?:[.,]\d+)?)?(?:\s*[AaPp]\.?[Mm]\.?)?\s*$"
 
 
@@ -2331,14 +2372,205 @@ def date_column(columns: tuple[str, ...] | list[str], mapped: set[str]) -> str |
 
 
 def _clock_only(arr: pa.ChunkedArray) -> bool:
-    """Whether a time column holds clock times without a date (``08:01:04``): its first
-    50 values present, every one, or pyarrow typed it a time of day."""
+    """Whether a time column holds clock times without a date (``08:01:04``): at least
+    99 % of its values present (a damaged one among them is its row's problem), or
+    pyarrow typed it a time of day."""
     if pa.types.is_time(arr.type):
         return True
     if not (pa.types.is_string(arr.type) or pa.types.is_large_string(arr.type)):
         return False
-    head = arr.slice(0, 200).drop_null().to_pylist()[:50]
-    return bool(head) and all(re.match(_CLOCK, v) for v in head)
+    present = pc.drop_null(arr)
+    present = present.filter(pc.not_equal(pc.utf8_trim_whitespace(present), ""))
+    if not len(present):
+        return False
+    hits = pc.sum(pc.match_substring_regex(present, _CLOCK)).as_py() or 0
+    return hits >= CLOCK_SHARE * len(present)
+
+
+#: The share of a column's values (present) that must be clock times, dates or MMSIs
+#: for the column to be taken as one by its values.
+CLOCK_SHARE = 0.99
+_CLOCK_RE = re.compile(_CLOCK)
+#: A date without a clock: 2020-09-13, 13/09/2020, 13.09.2020, 09/13/2020.
+_DATE_ONLY = re.compile(r"^\s*(?:\d{4}[-/.]\d{1,2}[-/.]\d{1,2}|\d{1,2}[-/.]\d{1,2}[-/.]\d{4})\s*$")
+_MMSI_CELL = re.compile(r"^\d{9}$")
+_ID_CELL = re.compile(r"^(?:[+-]?\d{1,12}|[A-Za-z0-9][A-Za-z0-9_\-/#]{0,15})$")
+#: Whole-number columns of an AIS or GPX export that are no track's id.
+_NOT_ID = re.compile(
+    r"heading|hdg|status|navstat|turn|^rot$|draught|draft|length|width|beam|type|cargo"
+    r"|class|accuracy|raim|maneuver|manoeuvre|second|^eta|dimension|^to(?:bow|stern|port)"
+    r"|starboard|ele$|altitude|depth|count|seq|index|segid|pointid|^ogcfid$|fishing|msg"
+    r"|message|repeat|flag|valid|quality|sat|hdop|pdop|fix$"
+)
+#: Names that say an id is not the tracked ship's (the receiver, the own ship).
+_NOT_TRACK = re.compile(r"^(?:own|receiver|rx|station|base|dest|sensor|radar)")
+#: Names a field is found by that mean something else too: taken only when the values
+#: fit (German Länge/Breite: also a ship's length and beam; Fahrt/fart: way; French
+#: route: a route's name in English; cap: heading; tid: a "track id").
+_AMBIGUOUS = {
+    "lon": frozenset({"länge", "laenge"}),
+    "lat": frozenset({"breite"}),
+    "speed": frozenset({"fahrt", "fart"}),
+    "course": frozenset({"route", "cap"}),
+    "time": frozenset({"tid"}),
+}
+_DEGREES = re.compile(r"^[+-]?\d{1,3}[.,]\d+$")
+
+
+def _sample_cells(sn: Sniff, name: str) -> list[str]:
+    """The non-blank cells of column ``name`` in the file's sampled rows."""
+    if name not in sn.columns:
+        return []
+    k, width = sn.columns.index(name), len(sn.columns)
+    cells = (r[k].strip() for r in sn.sample if len(r) == width)
+    return [c for c in cells if c]
+
+
+def _cells_of(sn: Sniff, name: str) -> list[str]:
+    """The non-blank cells of column ``name`` in the file's preview rows."""
+    k, width = sn.columns.index(name), len(sn.columns)
+    return [c for r in sn.preview if len(r) == width and (c := r[k].strip().strip('"'))]
+
+
+def _mostly(cells: list[str], pattern: re.Pattern, share: float = CLOCK_SHARE) -> bool:
+    return bool(cells) and sum(bool(pattern.match(c)) for c in cells) >= share * len(cells)
+
+
+def _values_fit(field: str, cells: list[str]) -> bool:
+    """Whether the sampled values of a column found by an ambiguous name fit ``field``."""
+    if not cells:
+        return True  # nothing to judge by: as named
+    if field in ("lon", "lat"):
+        return _mostly(cells, _DEGREES, 0.5)
+    if field == "time":
+        numbers = pd.to_numeric(pd.Series(cells), errors="coerce")
+        return bool(
+            (numbers >= 1e8).mean() >= 0.5
+            or sum(cell_kind(c) == "time" or bool(_CLOCK_RE.match(c)) for c in cells)
+            >= 0.5 * len(cells)
+        )
+    numbers = pd.to_numeric(pd.Series(cells).str.replace(",", "."), errors="coerce")
+    if numbers.notna().mean() < CLOCK_SHARE:
+        return False
+    if field == "course":
+        # a course turns: a route's number (42 on every row) is none
+        inside = ((numbers >= 0) & (numbers <= 360)).mean() >= CLOCK_SHARE
+        return bool(inside and (len(cells) < 10 or numbers.nunique() > 1))
+    return True
+
+
+def _beside(sn: Sniff, name: str, used: set[str], pattern: re.Pattern) -> str | None:
+    """The column next to ``name`` (after it, else before it) that no field reads and
+    whose sampled values are ``pattern``'s (clock times, dates) at 99 %."""
+    k = sn.columns.index(name)
+    for j in (k + 1, k - 1):
+        if 0 <= j < len(sn.columns) and sn.columns[j] not in used:
+            if _mostly(_sample_cells(sn, sn.columns[j]), pattern):
+                return sn.columns[j]
+    return None
+
+
+def id_candidates(sn: Sniff, columns: dict[str, str]) -> list[tuple[str, bool, int, int]]:
+    """Columns no field reads whose sampled values look like track ids: whole numbers or
+    short codes (no decimals, dates or clocks) that repeat over the rows, two or more
+    distinct. (column, MMSI-like: nine digits, distinct values, rows) best first: MMSI
+    -like, then a name that says id or number, then the rest, in file order."""
+    used = set(columns.values())
+    hint = re.compile(r"id|no$|nr|num|code|name|call|ship|vessel|boat|target|track|mmsi")
+    out = []
+    for k, name in enumerate(sn.columns):
+        key = normalize_header(name)
+        if name in used or _NOT_ID.search(key) or known_fields([name]) - {"batch", "sensor"}:
+            continue
+        cells = _sample_cells(sn, name)
+        distinct = len(set(cells))
+        if distinct < 2 or distinct > len(cells) / 2 or not _mostly(cells, _ID_CELL):
+            continue
+        mmsi = _mostly(cells, _MMSI_CELL)
+        rank = 0 if mmsi else 1 if hint.search(key) else 2
+        out.append((rank, k, name, mmsi, distinct, len(cells)))
+    return [(name, mmsi, d, n) for _r, _k, name, mmsi, d, n in sorted(out)]
+
+
+def _runs_up(sn: Sniff, name: str) -> bool:
+    """Whether a column's sampled numbers never go down (a clock's seconds, shared by a
+    radar scan's tracks, repeat too): not adopted as an id, only named."""
+    values = pd.to_numeric(pd.Series(_sample_cells(sn, name)), errors="coerce").to_numpy()
+    return bool(len(values) > 1 and (np.diff(values) >= 0).all())
+
+
+def no_batch_warning(sn: Sniff, columns: dict[str, str]) -> str:
+    """:data:`NO_BATCH_WARNING`, naming the columns whose values look like track ids and
+    the ``--map`` that reads each."""
+    found = id_candidates(sn, columns)[:3]
+    if not found:
+        return NO_BATCH_WARNING
+    said = "; ".join(
+        f"{name!r} ({'nine-digit MMSI-like numbers, ' if mmsi else ''}{d} distinct values "
+        f"in the first {n} rows): --map {shlex.quote(f'batch={name}')}"
+        for name, mmsi, d, n in found
+    )
+    return f"{NO_BATCH_WARNING}; by its values the id may be in {said}"
+
+
+def judge_by_values(sn: Sniff, res: Resolved, mapping: dict[str, str] | None = None) -> Resolved:
+    """What the sampled values (``sn.sample``) decide beyond the names, on a resolved
+    mapping (the operator's ``mapping`` is kept as given):
+
+    - a field found by an ambiguous name (:data:`_AMBIGUOUS`) whose values do not fit it
+      is not read (an optional one travels as an extra column; a required one missing
+      raises :class:`InputError`);
+    - a time column of dates alone with a column of clock times beside it (99 % of its
+      values, whatever its name): the clock column is the time, joined with the dates
+      (``Resolved.date``); a clock-time column with a column of dates beside it (no
+      column named Date): the same;
+    - no batch column, and one column of nine-digit MMSI-like numbers that repeat, two
+      or more distinct, that no field reads (not the receiver's or own ship's by its
+      name): it is the batch, with a warning (``Resolved.notes``)."""
+    if not sn.sample:
+        return res
+    mapping = mapping or {}
+    cols = dict(res.columns)
+    for what, names in _AMBIGUOUS.items():
+        src = cols.get(what)
+        if src is None or what in mapping or normalize_header(src) not in names:
+            continue
+        if not _values_fit(what, _sample_cells(sn, src)):
+            del cols[what]
+            if what in ("time", "lon", "lat"):
+                raise InputError(
+                    f"{sn.path}: the column {src!r} is named like the {what} but its values "
+                    f"are not (a word of two meanings); map the {what} column with "
+                    f"--map {what}=COLUMN; headers found: {', '.join(sn.columns)}"
+                )
+    date = None
+    time_src = cols.get("time")
+    used = set(cols.values())
+    if time_src is not None and time_src in sn.columns:
+        cells = _sample_cells(sn, time_src)
+        if _mostly(cells, _CLOCK_RE):
+            if date_column(sn.columns, used) is None:
+                date = _beside(sn, time_src, used, _DATE_ONLY)
+        elif "time" not in mapping and _mostly(cells, _DATE_ONLY):
+            clock = _beside(sn, time_src, used, _CLOCK_RE)
+            if clock is not None:
+                cols["time"], date = clock, time_src
+    notes = list(res.notes)
+    if "batch" not in cols:
+        mmsi = [
+            c
+            for c in id_candidates(sn, cols)
+            if c[1] and not _NOT_TRACK.match(normalize_header(c[0])) and not _runs_up(sn, c[0])
+        ]
+        if len(mmsi) == 1:
+            name, _m, d, n = mmsi[0]
+            cols["batch"] = name
+            notes.append(
+                f"no column is named as the track's id: {name!r} holds nine-digit MMSI-like "
+                f"numbers ({d} distinct in the first {n} rows) and is read as the batch "
+                "(if another column holds each track's id, map it: --map batch=COLUMN)"
+            )
+    return dataclasses.replace(res, columns=cols, date=date, notes=tuple(notes))
 
 
 def _to_canonical(
@@ -2399,7 +2631,7 @@ def _to_canonical(
                 undecodable |= np.asarray(pc.fill_null(hit, False), dtype=bool)
         flag(undecodable, f"bytes not valid {rows.encoding}")
     time_col = table[cols["time"]]
-    date_src = date_column(sn.columns, mapped)
+    date_src = res.date or date_column(sn.columns, mapped)
     if date_src is not None and _clock_only(time_col):
         time_col = pc.binary_join_element_wise(
             pc.cast(table[date_src], pa.string()), pc.cast(time_col, pa.string()), " "
@@ -3113,7 +3345,8 @@ def stream_points(
         texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], sn.encoding)
         q["text"] = pd.Series(texts, dtype="str")
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
-    warnings = [NO_BATCH_WARNING] if file_batch else []
+    warnings = [no_batch_warning(sn, res.columns)] if file_batch else []
+    warnings += res.notes
     warnings += _title_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(restarting, res.columns["batch"])
@@ -3141,6 +3374,7 @@ def stream_points(
         "careful_parse": False,
         "streamed": True,
         "time_format": time_info.get("time_format"),
+        "time_date_column": time_info.get("date_column"),
         "date_order": date_order_note(time_info),
         "time_unit": time_unit_note(time_info),
         **time_counts(time_info),

@@ -10,6 +10,8 @@ from pathlib import Path
 from wakeline.core.errors import InputError
 
 SAMPLE_BYTES = 256 * 1024
+#: Data rows of the sampled start kept to judge columns by their values (``Sniff.sample``).
+SAMPLE_ROWS = 1000
 ENCODINGS = ("utf-8", "gb18030")
 DELIMITERS = (",", ";", "\t")
 #: An AIS sentence (``!AIVDM``, ``!AIVDO``) under any AIS talker of IEC 61162-1: AI (mobile),
@@ -56,6 +58,10 @@ class Sniff:
     #: Blank lines above the header (or above the first row of a file without one): with
     #: the title lines, Excel's "sep=" line and the header, every line before the data.
     blank_above_header: int = 0
+    #: More data rows than ``preview`` (up to :data:`SAMPLE_ROWS` of the sampled start),
+    #: split the same way: what the reader judges columns by their values with (an id
+    #: column no name says, a column of clock times beside a date).
+    sample: tuple[tuple[str, ...], ...] = ()
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
@@ -422,6 +428,11 @@ def sniff(
         columns = tuple(f"col{i + 1}" for i in range(len(first)))
         data_lines = lines[:5]
     preview = tuple(tuple(f.strip('"') for f in line.split(delim)) for line in data_lines)
+    start = 1 if has_header else 0
+    extras["sample"] = tuple(
+        tuple(f.strip('"') for f in line.split(delim))
+        for line in lines[start : start + SAMPLE_ROWS]
+    )
     skip_rows = leading_blank + (1 if has_header else 0)
     titled = len(extras.get("title_lines", ()))
     extras["blank_above_header"] = leading_blank - titled - int(extras.get("excel_sep", False))
