@@ -316,6 +316,16 @@ def test_ambiguous_words_are_taken_only_with_fitting_values(tmp_path):
     path = _write(tmp_path / "cap.csv", ["time", "mmsi", "lat", "lon", "Cap", "Route"], rows)
     res = read_points(path)
     assert res.report["columns"]["course"] == "Route" and "Cap" in res.report["extra_columns"]
+    # an hour's number under Hora beside full date-times: the date-times are the time
+    rows = [
+        [r.time.strftime("%d/%m/%Y %H:%M:%S"), str(r.time.hour), str(r.mmsi), f"{r.lat:.5f}"]
+        + [f"{r.lon:.5f}"]
+        for r in fx.itertuples()
+    ]
+    path = _write(tmp_path / "hora.csv", ["Fecha", "Hora", "MMSI", "Lat", "Lon"], rows)
+    res = read_points(path)
+    assert res.report["columns"]["time"] == "Fecha" and res.report["time_date_column"] is None
+    assert list(res.points.sort_values("time")["time"]) == list(fx["time"])
     # a "TID" of small whole numbers is a track id, not the Norwegian time
     rows = [[str(k % 2), f"{48 + k / 100:.5f}", "-4.5"] for k in range(10)]
     path = _write(tmp_path / "tid.csv", ["TID", "lat", "lon"], rows)
@@ -340,3 +350,41 @@ def test_any_language_any_delimiter_every_row_read(
     )
     res = read_points(path)
     _check(res, fx, min(ships, n))
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    first=st.sampled_from(["date", "clock"]),
+    rest=st.permutations(["mmsi", "lat", "lon"]),
+    at=st.integers(0, 3),
+    delim=st.sampled_from([",", ";", "\t"]),
+    date_fmt=st.sampled_from(["%d.%m.%Y", "%d/%m/%Y", "%Y-%m-%d"]),
+    ships=st.integers(1, 3),
+)
+def test_a_headerless_date_and_clock_pair_reads_with_the_suggestion(
+    tmp_path_factory, first, rest, at, delim, date_fmt, ships
+):
+    """A headerless file whose date and clock lie in two columns side by side, anywhere
+    among the others: the message's --map flags read every row at its time."""
+    fx = _fixes(12, ships)
+    pair = ["date", "clock"] if first == "date" else ["clock", "date"]
+    order = [*rest[:at], *pair, *rest[at:]]
+    cells = {
+        "date": lambda r: r.time.strftime(date_fmt),
+        "clock": lambda r: r.time.strftime("%H:%M:%S"),
+        "mmsi": lambda r: str(r.mmsi),
+        "lat": lambda r: f"{r.lat:.6f}",
+        "lon": lambda r: f"{r.lon:.6f}",
+    }
+    path = tmp_path_factory.mktemp("h") / "f.csv"
+    path.write_text("".join(delim.join(cells[c](r) for c in order) + "\n" for r in fx.itertuples()))
+    with pytest.raises(InputError) as exc:
+        read_points(path)
+    text = str(exc.value)
+    col = {c: f"col{i + 1}" for i, c in enumerate(order)}
+    assert f"--map time={col['clock']}" in text and f"dates beside them in {col['date']}" in text
+    flags = [w for w in text.split() if w.startswith(("batch=", "time=", "lon=", "lat="))]
+    res = read_points(path, mapping=flags)
+    assert res.report["rows_read"] == 12 == res.report["rows_imported"]
+    assert res.report["time_date_column"] == col["date"]
+    assert list(res.points.sort_values("time", kind="stable")["time"]) == list(fx["time"])

@@ -658,6 +658,12 @@ def _column_for(fmt: Format, name: str, lookup: dict[str, str], used: set) -> st
     return None
 
 
+def next_column(fmt: Format, name: str, headers, used: set[str]) -> str | None:
+    """The column of ``headers`` that ``fmt``'s candidates give field ``name`` when the
+    ``used`` columns are not to be taken (the next choice after one that did not fit)."""
+    return _column_for(fmt, name, _lookup(tuple(headers)), set(used))
+
+
 def _positions(columns: dict[str, str], mapping: dict[str, str]) -> tuple[dict, list[str]]:
     """Lon/lat win over local-plane positions: the plane fields found by name are dropped
     when the file has lon and lat (they stay extra columns); without them east and north

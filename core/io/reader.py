@@ -43,6 +43,7 @@ from wakeline.core.io.formats import (
     header_is_local,
     known_fields,
     length_unit,
+    next_column,
     normalize_header,
     parse_mapping,
     plane_kind,
@@ -2406,13 +2407,15 @@ _NOT_ID = re.compile(
 _NOT_TRACK = re.compile(r"^(?:own|receiver|rx|station|base|dest|sensor|radar)")
 #: Names a field is found by that mean something else too: taken only when the values
 #: fit (German Länge/Breite: also a ship's length and beam; Fahrt/fart: way; French
-#: route: a route's name in English; cap: heading; tid: a "track id").
+#: route: a route's name in English; cap: heading; tid: a "track id"; the words for a
+#: clock, Heure, Hora, Uhrzeit...: an hour's number 0-23 beside a column of date-times).
+#: A time that does not fit gives way to the next column the names give.
 _AMBIGUOUS = {
     "lon": frozenset({"länge", "laenge"}),
     "lat": frozenset({"breite"}),
     "speed": frozenset({"fahrt", "fart"}),
     "course": frozenset({"route", "cap"}),
-    "time": frozenset({"tid"}),
+    "time": frozenset({"tid", "heure", "hora", "ora", "uhrzeit", "klokkeslett"}),
 }
 _DEGREES = re.compile(r"^[+-]?\d{1,3}[.,]\d+$")
 
@@ -2537,6 +2540,13 @@ def judge_by_values(sn: Sniff, res: Resolved, mapping: dict[str, str] | None = N
             continue
         if not _values_fit(what, _sample_cells(sn, src)):
             del cols[what]
+            other = next_column(res.format, what, sn.columns, set(cols.values()) | {src})
+            if what == "time" and other is not None:
+                if normalize_header(other) not in names or _values_fit(
+                    what, _sample_cells(sn, other)
+                ):
+                    cols[what] = other
+                    continue
             if what in ("time", "lon", "lat"):
                 raise InputError(
                     f"{sn.path}: the column {src!r} is named like the {what} but its values "
