@@ -326,6 +326,17 @@ def test_ambiguous_words_are_taken_only_with_fitting_values(tmp_path):
     res = read_points(path)
     assert res.report["columns"]["time"] == "Fecha" and res.report["time_date_column"] is None
     assert list(res.points.sort_values("time")["time"]) == list(fx["time"])
+    # Italian/Portuguese "Data" of date-times is the time; an English "data" payload is not
+    rows = [
+        [r.time.strftime("%d/%m/%Y %H:%M:%S"), str(r.mmsi), f"{r.lat:.5f}", f"{r.lon:.5f}"]
+        for r in fx.itertuples()
+    ]
+    path = _write(tmp_path / "it.csv", ["Data", "MMSI", "Latitudine", "Longitudine"], rows)
+    assert list(read_points(path).points.sort_values("time")["time"]) == list(fx["time"])
+    rows = [["0x1f8b0800", *r[1:]] for r in rows]
+    path = _write(tmp_path / "payload.csv", ["data", "MMSI", "lat", "lon"], rows)
+    with pytest.raises(InputError, match="named like the time"):
+        read_points(path)
     # a "TID" of small whole numbers is a track id, not the Norwegian time
     rows = [[str(k % 2), f"{48 + k / 100:.5f}", "-4.5"] for k in range(10)]
     path = _write(tmp_path / "tid.csv", ["TID", "lat", "lon"], rows)

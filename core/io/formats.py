@@ -229,6 +229,9 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "дата",
         "日付",
         "날짜",
+        # Portuguese and Italian "data" (a date), English "data" (anything): the time only
+        # when its values are times (reader._values_fit)
+        "data",
     ),
     # German "Länge"/"Breite" are a ship's length and beam too: last, and taken only when
     # the values are degrees with decimals (reader._values_fit)

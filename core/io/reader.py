@@ -2408,14 +2408,15 @@ _NOT_TRACK = re.compile(r"^(?:own|receiver|rx|station|base|dest|sensor|radar)")
 #: Names a field is found by that mean something else too: taken only when the values
 #: fit (German Länge/Breite: also a ship's length and beam; Fahrt/fart: way; French
 #: route: a route's name in English; cap: heading; tid: a "track id"; the words for a
-#: clock, Heure, Hora, Uhrzeit...: an hour's number 0-23 beside a column of date-times).
+#: clock, Heure, Hora, Uhrzeit...: an hour's number 0-23 beside a column of date-times;
+#: Portuguese and Italian data: English data).
 #: A time that does not fit gives way to the next column the names give.
 _AMBIGUOUS = {
     "lon": frozenset({"länge", "laenge"}),
     "lat": frozenset({"breite"}),
     "speed": frozenset({"fahrt", "fart"}),
     "course": frozenset({"route", "cap"}),
-    "time": frozenset({"tid", "heure", "hora", "ora", "uhrzeit", "klokkeslett"}),
+    "time": frozenset({"tid", "heure", "hora", "ora", "uhrzeit", "klokkeslett", "data"}),
 }
 _DEGREES = re.compile(r"^[+-]?\d{1,3}[.,]\d+$")
 
