@@ -41,6 +41,9 @@ def _cmd_import(args: argparse.Namespace) -> int:
         msg += f"\ndates read {rep['date_order']}"
     if rep.get("time_unit") and rep["time_unit"].startswith("Excel"):
         msg += f"\ntimes read as {rep['time_unit']}"
+    if "clock_rollovers" in rep:
+        day = rep.get("clock_date") or "1970-01-01 (relative: no --date)"
+        msg += f"\ntimes of day read on {day}, {rep['clock_rollovers']:,} past midnight"
     if rep.get("values_blanked"):
         blanked = ", ".join(f"{k} {v:,}" for k, v in rep["values_blanked"].items())
         msg += f"\nvalues blanked, their rows kept: {blanked}"

@@ -349,6 +349,16 @@ def add_read_flags(
                 "step less than 0.01 between rows; else seconds (default auto)",
             },
         ),
+        "clock_date": (
+            "date",
+            {
+                "metavar": "YYYY-MM-DD",
+                "help": "the day of times written without a date (23:50:00.5, or HHMMSS "
+                "numbers that step as a clock): read as times of day on it, a day later "
+                "after each step back past midnight within a track (default: 1970-01-01, "
+                "as relative times)",
+            },
+        ),
     }
     unknown = (set(rename) | set(omit)) - {name for name, _kw in flags.values()}
     if unknown:

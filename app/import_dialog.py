@@ -115,6 +115,17 @@ class ImportDialog(QtWidgets.QDialog):
                 "0.01 between rows; the import says which it read."
             ),
         )
+        # The day of times of day written without a date (a radar's log), as `--date`.
+        self.date_edit = QtWidgets.QLineEdit()
+        self.date_edit.setPlaceholderText(self.tr("YYYY-MM-DD (only for times without a date)"))
+        self.date_edit.setToolTip(
+            self.tr(
+                "The day of times written without a date (23:50:00.5): they are read on it, "
+                "a day later after each step back past midnight within a track. Empty: "
+                "1970-01-01, as relative times."
+            )
+        )
+        self.date_edit.textChanged.connect(self._update_warning)
         self.sensor_edit = QtWidgets.QLineEdit()
         self.sensor_edit.setPlaceholderText(self.tr("sensor name when the file has none"))
         self.layout_label = QtWidgets.QLabel()
@@ -154,6 +165,7 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow(self.tr("Origin of x/y metres"), self.origin_edit)
         form.addRow(self.tr("Date order"), self.date_order_box)
         form.addRow(self.tr("Time numbers"), self.time_unit_box)
+        form.addRow(self.tr("Date of clock times"), self.date_edit)
         form.addRow(self.tr("Sensor"), self.sensor_edit)
         form.addRow(self.tr("Detected"), self.layout_label)
         self.buttons = QtWidgets.QDialogButtonBox(
@@ -210,6 +222,15 @@ class ImportDialog(QtWidgets.QDialog):
 
     def _origin(self) -> str | None:
         return self.origin_edit.text().strip() or None
+
+    def _clock_date(self) -> str | None:
+        """The Date field as YYYY-MM-DD; None when empty or not a date."""
+        from wakeline.core.io.timetext import check_clock_date
+
+        try:
+            return check_clock_date(self.date_edit.text())
+        except InputError:
+            return None
 
     def _origin_changed(self) -> None:
         self._recheck()
@@ -354,6 +375,16 @@ class ImportDialog(QtWidgets.QDialog):
             )
         elif time_col is None and self._info.get("kind") == "csv":
             problems.append(self.tr("Choose the time column."))
+        day = self.date_edit.text().strip()
+        if day and self._clock_date() is None:
+            problems.append(self.tr("Date of clock times {0}: give it as YYYY-MM-DD.").format(day))
+        elif not day and self._info.get("clock_only") and time_col == self._info["clock_only"]:
+            problems.append(
+                self.tr(
+                    "The times in {0} are times of day without a date: give their Date of "
+                    "clock times, or they are read on 1970-01-01 as relative times."
+                ).format(time_col)
+            )
         self.warning_label.setText("\n".join(problems))
 
     # -- result ------------------------------------------------------------------------
@@ -375,7 +406,8 @@ class ImportDialog(QtWidgets.QDialog):
     def options(self) -> dict:
         """Keyword arguments of ``read_points`` (``sensor`` only when one is typed;
         ``skip_rows`` None: detected; ``date_order``: auto, day-first or month-first;
-        ``time_unit``: auto, seconds or excel-days)."""
+        ``time_unit``: auto, seconds or excel-days; ``clock_date``: the day of times
+        without a date, None: 1970-01-01)."""
         zone = self.tz_box.currentText().strip()
         out = {
             "path": Path(self.path_edit.text()),
@@ -386,6 +418,7 @@ class ImportDialog(QtWidgets.QDialog):
             "skip_rows": self._skip_rows(),
             "date_order": self.date_order_box.currentData(),
             "time_unit": self.time_unit_box.currentData(),
+            "clock_date": self._clock_date(),
         }
         if self._origin():
             out["origin"] = self._origin()

@@ -38,17 +38,20 @@ class ImportJobsMixin:
         origin: str | None = None,
         date_order: str = "auto",
         time_unit: str = "auto",
+        clock_date: str | None = None,
     ) -> int:
         """Import a file as a new layer, in the worker; returns the job number. ``tz``:
         the zone of naive local times (IANA name or ±HH:MM); ``skip_rows``: lines before
         the header (None: detected); ``origin``: ``"LAT,LON"`` of a file whose positions
         are metres on a local plane; ``date_order``: how slashed dates read (auto,
         day-first, month-first); ``time_unit``: what numeric times count (auto,
-        seconds, excel-days)."""
+        seconds, excel-days); ``clock_date``: the day (YYYY-MM-DD) of times written
+        without a date (None: 1970-01-01, relative)."""
         options = {"fmt": fmt, "mapping": mapping or [], "encoding": encoding, "tz": tz}
         options["skip_rows"] = skip_rows
         options["date_order"] = date_order
         options["time_unit"] = time_unit
+        options["clock_date"] = clock_date
         if origin:
             options["origin"] = origin
         if sensor:

@@ -36,6 +36,11 @@ _PHRASES = (
     ("--date-order day-first", "the import dialog's Date order set to day first"),
     ("--time-unit excel-days", "the import dialog's Time numbers set to Excel serial days"),
     ("--time-unit seconds", "the import dialog's Time numbers set to seconds"),
+    (
+        "give their day with --date YYYY-MM-DD",
+        "give their day in the import dialog's Date of clock times field (YYYY-MM-DD)",
+    ),
+    ("(--date)", "(the import dialog's Date of clock times)"),
 )
 _FIELDS = {
     "tz": "Time zone",
@@ -48,6 +53,7 @@ _FIELDS = {
     "origin": "Origin of x/y metres",
     "date-order": "Date order",
     "time-unit": "Time numbers",
+    "date": "Date of clock times",
 }
 #: A flag and its value, if any: quoted as the engine quotes what it refuses ('95,10',
 #: kept), or a bare value (dropped: the field holds it) — not a parenthesis after the

@@ -91,6 +91,9 @@ class BatchOptions:
     origin: str | None = None
     date_order: str = "auto"
     time_unit: str = "auto"
+    #: ``--date YYYY-MM-DD``: the day of times written without a date (None: 1970-01-01,
+    #: relative)
+    clock_date: str | None = None
 
 
 @dataclass
@@ -488,6 +491,7 @@ def _import_file(
                         read["tz"],
                         date_order=read["date_order"],
                         time_unit=read["time_unit"],
+                        clock_date=read["clock_date"],
                     )
                     q, warnings = res.quarantine, res.report.get("warnings", [])
                 except WholeFileNeeded:  # the repeated hour of a clock change
@@ -554,6 +558,7 @@ def _read_options(opts: BatchOptions) -> dict:
         "origin": opts.origin,
         "date_order": opts.date_order,
         "time_unit": opts.time_unit,
+        "clock_date": opts.clock_date,
     }
 
 
@@ -839,10 +844,12 @@ def run_batch(
     if kind == "csv":
         from wakeline.core.io import parse_zone
         from wakeline.core.io.reader import check_date_order, check_time_unit
+        from wakeline.core.io.timetext import check_clock_date
 
         parse_zone(opts.tz)  # an unknown zone: one message before any work
         check_date_order(opts.date_order)
         check_time_unit(opts.time_unit)
+        check_clock_date(opts.clock_date)
         # Every input checked before any work: one clear message (columns, compression).
         with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
             csv_inputs = [_survey(p, Path(tmp), read) for p in inputs]
@@ -860,6 +867,7 @@ def run_batch(
                 ("--origin", opts.origin),
                 ("--date-order", opts.date_order != "auto"),
                 ("--time-unit", opts.time_unit != "auto"),
+                ("--date", opts.clock_date),
             )
             if value
         ]

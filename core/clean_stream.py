@@ -104,6 +104,7 @@ def clean_file(
     origin: str | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
+    clock_date: str | None = None,
 ) -> FileCleanResult:
     """Clean the track file ``path`` into the canonical CSV ``output`` (and the reject
     trail into ``rejected`` when given) by blocks of whole tracks; see the module
@@ -111,11 +112,13 @@ def clean_file(
     nothing is written then and the scratch files are removed. ``skip_rows``: physical
     lines before the header, skipped and counted (None: detected; ``read_points``);
     ``origin``: a local plane's for east/north metres; ``date_order``, ``time_unit``: how
-    slashed dates and numeric times read (``read_points``). Raises
+    slashed dates and numeric times read; ``clock_date``: the day of times without a
+    date (``--date``; ``read_points``). Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
     from wakeline.core.io.reader import (
+        check_clock_date,
         check_date_order,
         check_time_unit,
         nothing_imported,
@@ -141,6 +144,7 @@ def clean_file(
         "origin": origin,
         "date_order": date_order,
         "time_unit": time_unit,
+        "clock_date": check_clock_date(clock_date),
     }
     parse_zone(tz)  # a zone it does not know is refused before anything is read
     check_date_order(date_order)

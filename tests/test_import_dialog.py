@@ -309,3 +309,37 @@ def test_the_date_order_and_time_numbers_reach_read_points(qtbot, write):
     assert opts["date_order"] == "month-first" and opts["time_unit"] == "seconds"
     got = read_points(**opts).points["time"]
     assert got.dt.month.unique().tolist() == [3]  # 03/01 ... 03/09: March, not day 3
+
+
+def test_times_of_day_alone_ask_for_their_date_and_it_reaches_the_import(
+    window, write, monkeypatch
+):
+    """A radar log of times of day (23:50:00.5): the dialog says to give their date; the
+    Date of clock times field reaches read_points through File ▸ Open (``clock_date``)."""
+    from PySide6 import QtWidgets
+
+    from wakeline.app import main_window
+    from wakeline.app.main import wait_for_jobs
+
+    rows = "".join(f"23:5{k}:00.5,{1 + k % 2},37.9{k},23.6{k}\n" for k in range(8))
+    path = write("tod.csv", "Time,Track,Lat,Lon\n" + rows)
+    dlg = ImportDialog(path=path)
+    assert "times of day without a date" in dlg.warning_label.text()
+    dlg.date_edit.setText("2024-13-01")
+    assert "YYYY-MM-DD" in dlg.warning_label.text() and dlg.options()["clock_date"] is None
+    dlg.date_edit.setText("2024-03-05")
+    assert dlg.warning_label.text() == "" and dlg.options()["clock_date"] == "2024-03-05"
+    dlg.deleteLater()
+
+    class Chosen(ImportDialog):
+        def exec(self):
+            self.path_edit.setText(str(path))
+            self.date_edit.setText("2024-03-05")
+            return QtWidgets.QDialog.DialogCode.Accepted
+
+    monkeypatch.setattr(main_window, "ImportDialog", Chosen)
+    window.open_dialog()
+    wait_for_jobs(window)
+    layer = window.session.get(window.layer_id(path.name))
+    assert layer.meta["report"]["clock_date"] == "2024-03-05"
+    assert layer.points["time"].min() == pd.Timestamp("2024-03-05T23:50:00.5Z")

@@ -233,6 +233,10 @@ def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Arra
         )
     else:
         text = base
+    if tf.words == "upper":  # 01-JAN-24: month names in capitals
+        text = pc.utf8_upper(text)
+    elif tf.words == "nopad":  # 2024年1月1日: month and day without a leading zero
+        text = pc.replace_substring_regex(text, "([年月])0", r"\1")
     if tf.meridiem and part != "date":  # " AM" / " PM" as the file wrote them (" p.m.")
         pm = tf.meridiem.replace("a", "p").replace("A", "P")
         text = pc.replace_substring(pc.replace_substring(text, " AM", tf.meridiem), " PM", pm)

@@ -35,6 +35,7 @@ from wakeline.core.io.reader import (
     resolve_header,
 )
 from wakeline.core.io.sniff import sniff
+from wakeline.core.io.timetext import hhmmss_evidence
 from wakeline.core.schema import CANONICAL_COLUMNS
 
 #: Data rows read to learn number and time formats.
@@ -78,6 +79,23 @@ _DAYFIRST = re.compile(
     r"(?:(?P<point>[.,])(?P<frac>\d+))?(?P<ampm> ?[AaPp]\.? ?[Mm]\.?)?(?P<suffix> ?UTC| ?GMT)?$"
 )
 _OFFSET = re.compile(r"^([+-])(\d{2}):?(\d{2})$")
+#: Dates with an English month name written back in their form: ``01-Jan-2024 00:00:05``,
+#: Oracle's ``01-JAN-24 00.00.05``, ``01 January 2024 00:00:05``, web logs'
+#: ``01/Jan/2024:00:00:05 +0000``.
+_NAMED_DMY = re.compile(
+    r"^\d{2}(?P<s1>[-/ ])(?P<mon>[A-Za-z]{3,9})(?P=s1)(?P<y>\d{4}|\d{2})(?P<sep>[ :T])"
+    r"\d{2}(?P<c>[:.])\d{2}(?P<sec>(?P=c)\d{2})?(?:(?P<point>[.,])(?P<frac>\d+))?"
+    r"(?P<suffix>Z| ?[+-]\d{2}:?\d{2}| ?UTC| ?GMT)?$"
+)
+#: C's asctime: ``Mon Jan 01 00:00:05 2024``.
+_ASCTIME = re.compile(r"^[A-Za-z]{3} (?P<mon>[A-Za-z]{3}) \d{2} \d{2}:\d{2}:\d{2} \d{4}$")
+#: Chinese dates: ``2024年1月1日 00:00:05``, ``2024年01月01日 00时00分05秒``.
+_CHINESE = re.compile(
+    r"^\d{4}年(?P<m>\d{1,2})月(?P<d>\d{1,2})日(?P<sep> ?)\d{2}(?P<c1>[:时])\d{2}(?P<c2>[:分])"
+    r"\d{2}(?P<c3>秒?)$"
+)
+#: Clock times alone: ``23:50:00.5`` (read on the day --date gives).
+_CLOCK_ALONE = re.compile(r"^\d{2}:\d{2}(?P<sec>:\d{2})?(?:(?P<point>[.,])(?P<frac>\d+))?$")
 #: Degrees and decimal minutes with a hemisphere letter (``57°40.026'N``, ``N 57 40.026``).
 _DM = re.compile(
     r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,3})(?P<dm>° ?|º ?| )(?P<m>\d{1,2})"
@@ -261,6 +279,10 @@ class TimeFormat:
     #: A 12-hour clock's morning mark as the file writes it when not `` AM`` (`` a.m.``,
     #: ``am``, `` A.M.``); the afternoon's is the same with p for a. Empty: AM/PM.
     meridiem: str = ""
+    #: How ``pattern``'s text is written after strftime: ``upper`` (month names in
+    #: capitals, ``01-JAN-24``), ``nopad`` (a Chinese date's month and day without a
+    #: leading zero, ``2024年1月1日``); empty: as strftime writes it.
+    words: str = ""
 
     @staticmethod
     def detect(values: pd.Series, tz: str | None = None) -> "TimeFormat":
@@ -314,11 +336,83 @@ class TimeFormat:
             return TimeFormat(
                 "text", pattern, digits, trim, suffix, zone, frac_point=point, meridiem=meridiem
             )
+        named = _named_format(present, tz)
+        if named is not None:
+            return named
         raise InputError(
             f"cannot tell the time format from {first!r}; "
             "expected unix seconds, ISO 8601, dd/mm/yyyy (or mm/dd/yyyy) HH:MM:SS (or "
             "hh:MM:SS AM/PM, whole seconds) or yyyymmddHHMMSS"
         )
+
+
+def _fraction_format(parts: pd.DataFrame) -> tuple[int, str]:
+    """The fraction digits and their trim of extracted ``frac`` parts."""
+    frac = parts["frac"].fillna("").str.len() if "frac" in parts else pd.Series([0])
+    digits = int(frac.max()) if len(frac) else 0
+    return digits, "none" if digits == 0 or (frac == digits).all() else "zeros"
+
+
+def _named_format(present: pd.Series, tz: str | None) -> "TimeFormat | None":
+    """The format of month-name, asctime, Chinese or clock-alone time texts, written back
+    in their own form; ISO 8601 for those the importer reads but no pattern here writes
+    (``Jan 1, 2024 12:00:05 PM``: docs/import.md); None for other texts."""
+    from wakeline.core.io.timetext import chinese_iso, is_clock, named_iso
+
+    first = present.iloc[0]
+    zone = tz or "UTC"
+    m = _NAMED_DMY.match(first)
+    if m is not None and m["mon"].lower() in _MONTH_WORDS:
+        parts = present.str.extract(_NAMED_DMY)
+        digits, trim = _fraction_format(parts)
+        month = "%b" if len(m["mon"]) == 3 else "%B"
+        year = "%Y" if len(m["y"]) == 4 else "%y"
+        c = m["c"]
+        clock = f"%H{c}%M" + (f"{c}%S" if m["sec"] else "")
+        pattern = f"%d{m['s1']}{month}{m['s1']}{year}{m['sep']}{clock}"
+        suffix = m["suffix"] or ""
+        off = _OFFSET.match(suffix.strip())
+        if off:
+            zone = f"{off[1]}{off[2]}:{off[3]}"
+        elif suffix.strip() in ("Z", "UTC", "GMT"):
+            zone = "UTC"
+        words = "upper" if m["mon"].isupper() else ""
+        return TimeFormat(
+            "text", pattern, digits, trim, suffix, zone, frac_point=m["point"] or ".", words=words
+        )
+    m = _ASCTIME.match(first)
+    if m is not None and m["mon"].lower() in _MONTH_WORDS:
+        return TimeFormat("text", "%a %b %d %H:%M:%S %Y", 0, "none", "", zone)
+    m = _CHINESE.match(first)
+    if m is not None:
+        parts = present.str.extract(_CHINESE)
+        short = (parts["m"].str.len() == 1) | (parts["d"].str.len() == 1)
+        clock = f"%H{m['c1']}%M{m['c2']}%S{m['c3']}"
+        pattern = f"%Y年%m月%d日{m['sep']}{clock}"
+        return TimeFormat(
+            "text", pattern, 0, "none", "", zone, words="nopad" if short.any() else ""
+        )
+    m = _CLOCK_ALONE.match(first)
+    if m is not None:
+        digits, trim = _fraction_format(present.str.extract(_CLOCK_ALONE))
+        pattern = "%H:%M" + (":%S" if m["sec"] else "")
+        return TimeFormat("text", pattern, digits, trim, "", zone, frac_point=m["point"] or ".")
+    read = named_iso(present).combine_first(chinese_iso(present))
+    if read.notna().mean() >= 0.9 or is_clock(present).mean() >= 0.9:
+        return TimeFormat(tz=zone)  # read, not written back in its form: ISO 8601
+    return None
+
+
+#: English month names (lower case) the forms above write back.
+_MONTH_WORDS = frozenset(
+    [
+        m
+        for full in (
+            "january february march april may june july august september october november december"
+        ).split()
+        for m in (full, full[:3])
+    ]
+)
 
 
 @dataclass(frozen=True)
@@ -609,6 +703,10 @@ def describe_layout(
             or (fmt is None and excel_days_rule(numbers, time_key, {}))
         ):
             time = replace(time, kind="excel", scale=1)
+        elif time_unit == "auto" and (
+            fmt == "HHMMSS clock numbers" or (fmt is None and hhmmss_evidence(numbers))
+        ):
+            time = TimeFormat("text", "%H%M%S", 0, "none", "", time.tz)  # 120059, a clock
     # As given, or as the import read the whole file (what reads back the same).
     if date_order == "day-first" or (
         date_order == "auto" and report.get("time_format") == "day-first text"

@@ -142,6 +142,7 @@ def stream_or_pieces(
                     progress,
                     date_order=read.get("date_order", "auto"),
                     time_unit=read.get("time_unit", "auto"),
+                    clock_date=read.get("clock_date"),
                 )
             except WholeFileNeeded:
                 raise

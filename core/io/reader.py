@@ -51,6 +51,20 @@ from wakeline.core.io.formats import (
     unused_position_columns,
 )
 from wakeline.core.io.sniff import Sniff, cell_kind, sniff
+from wakeline.core.io.timetext import (
+    NAMED_HINT,
+    check_clock_date,
+    chinese_iso,
+    clock_seconds,
+    day_ns,
+    hhmmss_evidence,
+    hhmmss_seconds,
+    is_clock,
+    named_iso,
+    roll_days,
+    sod_ns,
+    valid_hhmmss,
+)
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import DEFAULT_SENSOR
 
@@ -1390,6 +1404,69 @@ def _as_days(values: np.ndarray, kind: str, time_unit: str, header: str, info: d
     return excel_days_rule(values, header, info)
 
 
+def _piece(info: dict) -> bool:
+    """Whether ``info`` is a piece's of a file read in pieces or streamed."""
+    return bool(info.get("_streaming")) or "_edges" in info
+
+
+def _hhmmss(values: np.ndarray, kind: str, time_unit: str, info: dict) -> np.ndarray | None:
+    """Seconds of the day of numbers that are clock times written HHMMSS (values and
+    steps show it: :func:`~wakeline.core.io.timetext.hhmmss_evidence`), else None; only
+    for ``auto`` (a family's unix times, or ``--time-unit seconds``, stay seconds). A piece
+    whose numbers could be HHMMSS leaves the judgement to a whole read (the step that
+    shows it may lie across two pieces)."""
+    if kind != "auto" or time_unit != "auto":
+        return None
+    if _piece(info) and valid_hhmmss(values):
+        raise WholeFileNeeded
+    evidence = hhmmss_evidence(values)
+    if evidence is None:
+        return None
+    info["hhmmss"] = evidence
+    info["time_format"] = "HHMMSS clock numbers"
+    return hhmmss_seconds(values)
+
+
+def _clock_ns(
+    seconds: np.ndarray, clock_date: str | None, info: dict
+) -> tuple[np.ndarray, np.ndarray]:
+    """Seconds of the day (NaN: none) as wall-clock ns from ``clock_date``'s midnight
+    (1970-01-01 when None: relative), and validity; ``info["clock_only"]`` set. A piece
+    of a file leaves them to a whole read: a track's day rolls over midnight from its
+    rows in any piece."""
+    if _piece(info):
+        raise WholeFileNeeded
+    ok = np.isfinite(seconds)
+    info["clock_only"] = True
+    if clock_date is None:
+        info["relative"] = True
+    ns = np.where(ok, day_ns(clock_date) + sod_ns(seconds), 0)
+    return ns, ok
+
+
+def _clock_times(
+    ns: np.ndarray,
+    ok: np.ndarray,
+    track: np.ndarray,
+    zone: datetime.tzinfo | None,
+    clock_date: str | None,
+    info: dict,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Clock times of a day (:func:`_clock_ns`) rolled over midnight by track
+    (:func:`~wakeline.core.io.timetext.roll_days`, counted in ``info["clock_rollovers"]``)
+    and, on a given day, read in ``zone`` (UTC when None)."""
+    ns, rolled = roll_days(track, np.asarray(ns), np.asarray(ok))
+    info["clock_rollovers"] = info.get("clock_rollovers", 0) + rolled
+    if zone is None or clock_date is None:
+        return ns, ok
+    wall = pd.Series(pd.to_datetime(ns, unit="ns")).where(ok)
+    utc = _localize(wall, zone, info)
+    good = utc.notna().to_numpy()
+    out = np.zeros(len(ns), dtype="int64")
+    out[good] = utc[good].dt.tz_convert(None).to_numpy().astype("datetime64[ns]").view("int64")
+    return out, good
+
+
 def parse_times(
     arr: pa.ChunkedArray,
     kind: str,
@@ -1399,8 +1476,16 @@ def parse_times(
     date_order: str = "auto",
     time_unit: str = "auto",
     header: str = "",
+    clock_date: str | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """int64 ns since epoch (UTC) and a validity mask.
+
+    Dates with English month names and Chinese dates are read as ISO text is
+    (:mod:`~wakeline.core.io.timetext`). Clock times without a date (``23:50:00.5``, and
+    numbers whose values and steps show HHMMSS) are times of day on ``clock_date``
+    (``YYYY-MM-DD``; None: 1970-01-01, relative): ``info["clock_only"]`` is then set and
+    the times are wall clock from that day's midnight, not yet rolled over midnight nor
+    put in ``tz`` (:func:`_clock_times` does both, knowing the tracks).
 
     Numbers are Excel serial days when ``time_unit`` says so, or (``auto``) by
     :func:`excel_days_rule`' rule on the column ``header`` and its values.
@@ -1419,6 +1504,10 @@ def parse_times(
         info["time_unit_given"] = time_unit  # said when the times are text after all
     info.setdefault("naive", False)
     info.setdefault("relative", False)
+    if clock_date is not None:
+        info["clock_date_given"] = clock_date  # said when the times have dates after all
+    if pa.types.is_time(arr.type):  # pyarrow typed clock times alone (23:50:00)
+        arr = pc.cast(arr, pa.string())
     if pa.types.is_timestamp(arr.type):
         info["time_format"] = "ISO 8601 text"
         if arr.type.tz is None:
@@ -1443,6 +1532,9 @@ def parse_times(
         seconds = pc.cast(arr, pa.float64()).to_numpy(zero_copy_only=False)
         if _as_days(seconds, kind, time_unit, header, info):
             return _excel_ns(seconds, tz, info)
+        clock = _hhmmss(seconds, kind, time_unit, info)
+        if clock is not None:
+            return _clock_ns(clock, clock_date, info)
         if kind != "auto" or not _is_compact(seconds):
             return _epoch_ns(seconds, info)
         arr, compact = pa.chunked_array([_compact_iso(seconds)]), True
@@ -1460,7 +1552,29 @@ def parse_times(
     if kind == "unix" or (n_present and np.isfinite(numeric).sum() >= 0.5 * n_present):
         if _as_days(numeric, kind, time_unit, header, info):
             return _excel_ns(numeric, tz, info)
+        clock = _hhmmss(numeric, kind, time_unit, info)
+        if clock is not None:
+            return _clock_ns(clock, clock_date, info)
         return _epoch_ns(numeric, info)
+    clock = is_clock(text) & present
+    if n_present and clock.sum() >= 0.5 * n_present:
+        # times of day alone (a radar's log): on the day given, or relative
+        info["time_format"] = "clock time text"
+        info["naive"] = True
+        return _clock_ns(clock_seconds(text).to_numpy(dtype="float64"), clock_date, info)
+    named = named_form = None
+    hint = present & text.str.contains(NAMED_HINT, regex=True).fillna(False).astype(bool)
+    if hint.any():
+        # English month names and Chinese dates: written again as ISO 8601 text
+        months = named_iso(text[hint])
+        han = chinese_iso(text[hint])
+        named = months.combine_first(han)
+        if named.notna().sum() >= 0.5 * n_present:
+            more = "Chinese date text" if han.notna().sum() > months.notna().sum() else None
+            named_form = more or "month-name text"
+        if named.notna().any():
+            text = text.copy()
+            text[named.index] = named.where(named.notna(), text[named.index])
     sample = text[present].head(50)
     # ISO 8601's decimal comma (08:01:04,123, as Python's logging writes) and a zone
     # written as a word (08:01:04 UTC): forms the ISO parser below does not take.
@@ -1468,14 +1582,16 @@ def parse_times(
         text = text.str.replace(r"(:\d\d),(\d)", r"\1.\2", regex=True)
     if sample.str.contains(r"\s(?:UTC|GMT)$", regex=True).any():
         text = text.str.replace(r"\s*(?:UTC|GMT)$", "Z", regex=True)
-    dayfirst = kind == "dayfirst" or bool(
-        sample.str.match(r"^\d{1,2}[/.-]\d{1,2}[/.-]\d{4}").mean() > 0.5
+    dayfirst = named_form is None and (
+        kind == "dayfirst" or bool(sample.str.match(r"^\d{1,2}[/.-]\d{1,2}[/.-]\d{4}").mean() > 0.5)
     )
     zoned = text.str.contains(_ZONE_SUFFIX, regex=True).fillna(False).to_numpy(dtype=bool)
     info["naive"] = bool((present.to_numpy() & ~zoned).any())
     info["time_format"] = "day-first text" if dayfirst else "ISO 8601 text"
     if compact:
         info["time_format"] = "yyyymmddHHMMSS text"
+    elif named_form is not None:
+        info["time_format"] = named_form
     if dayfirst and date_order != "auto":
         # The operator's order: no guessing; a date the other order only reads (a first
         # number above 12 for month first) is unparsable, and counted.
@@ -1826,7 +1942,36 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"in {zone} repeats; each was placed in the first or second pass by its "
             "track's order in the file"
         )
-    if time_info.get("relative"):
+    if time_info.get("hhmmss"):
+        a, b = time_info["hhmmss"]
+        out.append(
+            f"the numbers in {time_src!r} are clock times written HHMMSS (every one is a "
+            f"valid hhmmss and the steps jump as a clock's do, {a:06d} to {b:06d}): read as "
+            "times of day, not as seconds (--time-unit seconds reads them as seconds)"
+        )
+    if time_info.get("clock_only"):
+        given = time_info.get("clock_date_given")
+        if given:
+            out.append(
+                f"the times in {time_src!r} are times of day without a date: read on {given} (--date)"
+            )
+        else:
+            out.append(
+                f"the times in {time_src!r} are times of day without a date: read on "
+                "1970-01-01 as relative times; give their day with --date YYYY-MM-DD"
+            )
+        if time_info.get("clock_rollovers"):
+            out.append(
+                f"the times of day in {time_src!r} step back more than 12 h within a track "
+                f"{time_info['clock_rollovers']:,} times (23:59:59 then 00:00:01): each "
+                "such step passes midnight, into the next day"
+            )
+    elif time_info.get("clock_date_given") and time_info.get("time_format"):
+        out.append(
+            f"--date applies to times of day without a date; the times in {time_src!r} "
+            f"are {time_info['time_format']} and were read as such"
+        )
+    if time_info.get("relative") and not time_info.get("clock_only"):
         out.append(
             f"times in {time_src!r} are seconds from a scene start (relative), kept as "
             "such: shown from 1970-01-01T00:00:00Z"
@@ -1885,6 +2030,22 @@ def time_unit_note(time_info: dict) -> str | None:
     return None
 
 
+def clock_report(time_info: dict) -> dict:
+    """The import report's keys for clock times without a date: ``clock_date`` (the day
+    they were read on; None: 1970-01-01, relative), ``clock_rollovers`` (steps back past
+    midnight read as the next day) and ``hhmmss`` (the step that showed numbers to be
+    HHMMSS clock times); none for other times."""
+    if not time_info.get("clock_only"):
+        return {}
+    out = {
+        "clock_date": time_info.get("clock_date_given"),
+        "clock_rollovers": int(time_info.get("clock_rollovers", 0)),
+    }
+    if time_info.get("hhmmss"):
+        out["hhmmss"] = list(time_info["hhmmss"])
+    return out
+
+
 def _names_read_errors(fn: Callable) -> Callable:
     """Turn a decompression error (a gzip cut short, damaged bz2 data: raised without a
     file name) into an :class:`InputError` that names the file and says what to do."""
@@ -1928,6 +2089,7 @@ def read_points(
     origin: str | tuple[float, float] | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
+    clock_date: str | None = None,
 ) -> ImportResult:
     """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
     canonical point table.
@@ -1950,12 +2112,15 @@ def read_points(
     ``date_order`` (:data:`DATE_ORDERS`) says how slashed dates read (``auto``: day first
     unless the file shows the month first); ``time_unit`` (:data:`TIME_UNITS`) what
     numeric times count (``auto``: seconds, or Excel serial days by
-    :func:`excel_days_rule`' rule).
+    :func:`excel_days_rule`' rule). ``clock_date`` (``YYYY-MM-DD``, ``--date``) is the
+    day of clock times written without a date (``23:50:00.5``); without it they are read
+    on 1970-01-01 as relative times.
     """
     progress = progress or null_progress
     path = Path(path)
     check_date_order(date_order)
     check_time_unit(time_unit)
+    clock_date = check_clock_date(clock_date)
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
     zone = parse_zone(tz)
@@ -1987,7 +2152,15 @@ def read_points(
 
     time_info: dict = {} if edges is None else {"_edges": edges}
     points, quarantine, counts = _to_canonical(
-        rows, sn, res, sensor, zone, time_info, date_order=date_order, time_unit=time_unit
+        rows,
+        sn,
+        res,
+        sensor,
+        zone,
+        time_info,
+        date_order=date_order,
+        time_unit=time_unit,
+        clock_date=clock_date,
     )
     time_info.pop("_edges", None)
     progress(1.0, "imported")
@@ -2019,6 +2192,7 @@ def read_points(
         "date_order": date_order_note(time_info),
         "time_unit": time_unit_note(time_info),
         **time_counts(time_info),
+        **clock_report(time_info),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
@@ -2594,6 +2768,7 @@ def _to_canonical(
     fetch_texts: bool = True,
     date_order: str = "auto",
     time_unit: str = "auto",
+    clock_date: str | None = None,
 ):
     table, bad = rows.table, rows.bad
     n = table.num_rows
@@ -2660,7 +2835,13 @@ def _to_canonical(
         date_order,
         time_unit,
         cols["time"],
+        clock_date,
     )
+    if counted.get("clock_only"):  # times of day: over midnight by track, then the zone
+        track = text["batch"].codes.astype("int64")
+        if "sensor" in text:
+            track = track * (len(text["sensor"].names) + 1) + text["sensor"].codes
+        ns, time_ok = _clock_times(ns, time_ok, track, zone, clock_date, counted)
     early = counted.pop("early_times", None)
     if early is not None:
         flag(early, "time decades before the file's other times (a number cut short?)")
@@ -2976,9 +3157,11 @@ def inspect_file(
     lists of cells), ``local_time`` (the time column's name says local time),
     ``guessed`` (a file without a header: the columns chosen by the values of its first
     rows, :func:`content_guess`, and whether the lon/lat order showed in them),
-    ``problem`` (why an import would fail, or None) and ``missing`` (the required fields
+    ``problem`` (why an import would fail, or None), ``missing`` (the required fields
     still without a column when no layout fits; the fields the synonyms recognise are in
-    ``mapping`` all the same). Raises :class:`InputError` only when
+    ``mapping`` all the same) and ``clock_only`` (the time column's name when its first
+    rows are times of day without a date and no date column stands beside it: the import
+    needs ``--date`` for their day; else None). Raises :class:`InputError` only when
     the file cannot be read at all (missing, empty, binary, undecodable)."""
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
@@ -3003,6 +3186,7 @@ def inspect_file(
         "problem": None,
         "missing": [],
         "plane": False,
+        "clock_only": None,
     }
     if sn.kind != "csv":  # NMEA, GPX: no columns to map
         return out
@@ -3029,6 +3213,12 @@ def inspect_file(
     out["extra"] = [c for c in sn.columns if c not in used]
     time_col = out["mapping"].get("time")
     out["local_time"] = bool(time_col) and header_is_local(time_col)
+    if time_col in sn.columns and date_column(sn.columns, set(out["mapping"].values())) is None:
+        at = list(sn.columns).index(time_col)
+        cells = pd.Series([r[at] for r in sn.preview if len(r) > at], dtype="str").str.strip()
+        cells = cells[cells != ""]
+        if len(cells) and is_clock(cells).all():
+            out["clock_only"] = time_col
     return out
 
 
@@ -3064,6 +3254,7 @@ def import_to_csv(
     origin: str | tuple[float, float] | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
+    clock_date: str | None = None,
 ) -> ImportResult:
     """Import ``path`` and write the canonical CSV ``output`` batch by batch, never
     holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
@@ -3084,6 +3275,7 @@ def import_to_csv(
     parse_zone(tz)  # a zone it does not know is refused before anything is read
     check_date_order(date_order)
     check_time_unit(time_unit)
+    clock_date = check_clock_date(clock_date)
     sn = sniff(path, encoding, delimiter, skip_rows)
 
     def whole(target: Path) -> ImportResult:
@@ -3100,6 +3292,7 @@ def import_to_csv(
             origin=origin,
             date_order=date_order,
             time_unit=time_unit,
+            clock_date=clock_date,
         )
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
@@ -3122,6 +3315,7 @@ def import_to_csv(
                 "origin": origin,
                 "date_order": date_order,
                 "time_unit": time_unit,
+                "clock_date": clock_date,
             }
             try:
                 result = stream_or_pieces(
@@ -3182,6 +3376,7 @@ def stream_points(
     progress: Progress | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
+    clock_date: str | None = None,
 ) -> ImportResult:
     """Read a CSV without quotes in its sampled start piece by piece (``STREAM_BYTES`` of
     whole lines at a time) and hand each piece's canonical points, in file order, to
@@ -3191,6 +3386,7 @@ def stream_points(
     progress = progress or null_progress
     check_date_order(date_order)
     check_time_unit(time_unit)
+    clock_date = check_clock_date(clock_date)
     bad = _BadRows()  # every refused or blank line of the file, numbered in the file
     types = _column_types(sn, res, careful=False)
     file_batch = "batch" not in res.columns
@@ -3270,6 +3466,7 @@ def stream_points(
             fetch_texts=False,
             date_order=date_order,
             time_unit=time_unit,
+            clock_date=clock_date,
         )
         time_info["absolute"] = bool(info.get("absolute"))
         # The first piece of numeric times decides Excel days or seconds for the rest.
@@ -3284,7 +3481,12 @@ def stream_points(
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")
-        for key in info.keys() & {"month_first", "date_order_given", "time_unit_given"}:
+        for key in info.keys() & {
+            "month_first",
+            "date_order_given",
+            "time_unit_given",
+            "clock_date_given",
+        }:
             time_info[key] = info[key]
         for key in (
             "decimal_comma",
@@ -3389,6 +3591,7 @@ def stream_points(
         "date_order": date_order_note(time_info),
         "time_unit": time_unit_note(time_info),
         **time_counts(time_info),
+        **clock_report(time_info),
         "time_zone": tz if zone is not None else "UTC",
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,

@@ -792,6 +792,26 @@
         <translation>如何读取 03/04/2025 这类日期：“自动”按日在前读取，除非某个日期表明月在前（第二个数大于 12）；导入报告会说明依据。</translation>
     </message>
     <message>
+        <source>YYYY-MM-DD (only for times without a date)</source>
+        <translation>YYYY-MM-DD（仅用于不带日期的时间）</translation>
+    </message>
+    <message>
+        <source>The day of times written without a date (23:50:00.5): they are read on it, a day later after each step back past midnight within a track. Empty: 1970-01-01, as relative times.</source>
+        <translation>不带日期的时间（如 23:50:00.5）所在的日期：按此日期读取，同一航迹内时间每回退越过午夜一次即记为次日。留空：按 1970-01-01 读取为相对时间。</translation>
+    </message>
+    <message>
+        <source>Date of clock times</source>
+        <translation>时刻的日期</translation>
+    </message>
+    <message>
+        <source>Date of clock times {0}: give it as YYYY-MM-DD.</source>
+        <translation>时刻的日期 {0}：请按 YYYY-MM-DD 填写。</translation>
+    </message>
+    <message>
+        <source>The times in {0} are times of day without a date: give their Date of clock times, or they are read on 1970-01-01 as relative times.</source>
+        <translation>{0} 中的时间是不带日期的时刻：请填写“时刻的日期”，否则按 1970-01-01 读取为相对时间。</translation>
+    </message>
+    <message>
         <source>Lines before the header (a title or notes), skipped and counted; auto finds a title of up to 10 lines above a header naming known columns.</source>
         <translation>表头之前的行（标题或说明），跳过并计数；“自动”可识别表头（含已知列名）上方最多 10 行的标题。</translation>
     </message>
