@@ -578,6 +578,8 @@ def _relative_times_warning(points: pd.DataFrame, layout: Layout) -> list[str]:
 
     if layout.time.kind != "text" or layout.name == "canonical":  # canonical: as stored
         return []
+    if not re.search(r"%[YymdbBaj]", layout.time.pattern + layout.time.date_pattern):
+        return []  # times of day alone (23:50:00.5, 120059): written as the file had them
     if "time" not in points.columns or not len(points):
         return []
     latest = (pd.to_datetime(points["time"], utc=True).max() - EPOCH).total_seconds()
