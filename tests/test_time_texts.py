@@ -277,7 +277,8 @@ def test_date_given_for_dated_times_is_said(tmp_path):
     p = _write(tmp_path / "m.csv", [t.strftime("%d-%b-%Y %H:%M:%S") for t in TIMES])
     r = read_points(p, clock_date="2023-05-05")
     assert _times(r.points) == list(TIMES)
-    assert any(w.startswith("--date applies to times of day") for w in r.report["warnings"])
+    (said,) = [w for w in r.report["warnings"] if "--date (for times of day" in w]
+    assert "month-name text, with their dates" in said
 
 
 @pytest.mark.parametrize(
@@ -307,13 +308,17 @@ def test_export_like_writes_iso_for_forms_it_reads_only(tmp_path):
     assert describe_layout(p).time.pattern == "%Y-%m-%dT%H:%M:%S"
 
 
-def test_the_window_names_the_dialog_field():
+def test_the_window_names_the_dialog_field(tmp_path):
     from wakeline.app.window_words import window_words
 
     said = window_words(
         "read on 1970-01-01 as relative times; give their day with --date YYYY-MM-DD"
     )
     assert "--" not in said and "Date of clock times" in said
+    p = _write(tmp_path / "m.csv", [t.strftime("%d-%b-%Y %H:%M:%S") for t in TIMES])
+    for w in read_points(p, clock_date="2024-01-01").report["warnings"]:
+        assert "--" not in window_words(w), window_words(w)
+    assert "Date of clock times field (for times of day" in window_words(w)
 
 
 def test_a_batch_reads_times_of_day_on_the_date_given(tmp_path):

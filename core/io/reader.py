@@ -1968,8 +1968,8 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             )
     elif time_info.get("clock_date_given") and time_info.get("time_format"):
         out.append(
-            f"--date applies to times of day without a date; the times in {time_src!r} "
-            f"are {time_info['time_format']} and were read as such"
+            f"the times in {time_src!r} are {time_info['time_format']}, with their dates: "
+            "read as such, --date (for times of day without a date) not used"
         )
     if time_info.get("relative") and not time_info.get("clock_only"):
         out.append(
