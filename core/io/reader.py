@@ -1566,9 +1566,10 @@ def parse_times(
     hint = present & text.str.contains(NAMED_HINT, regex=True).fillna(False).astype(bool)
     if hint.any():
         # English month names and Chinese dates: written again as ISO 8601 text
-        months = named_iso(text[hint])
-        han = chinese_iso(text[hint])
-        named = months.combine_first(han)
+        cn = hint & text.str.contains("年", regex=False).fillna(False).astype(bool)
+        months = named_iso(text[hint & ~cn])
+        han = chinese_iso(text[cn])
+        named = pd.concat([months, han]).reindex(text[hint].index)
         if named.notna().sum() >= 0.5 * n_present:
             more = "Chinese date text" if han.notna().sum() > months.notna().sum() else None
             named_form = more or "month-name text"
