@@ -335,3 +335,18 @@ def test_a_batch_reads_times_of_day_on_the_date_given(tmp_path):
     assert got.min() >= times[0] and got.max() <= times[-1]  # rolled over by track
     with pytest.raises(InputError, match="YYYY-MM-DD"):
         run_batch(Pipeline.default(), [p], tmp_path / "o2", BatchOptions(clock_date="1/2/24"))
+
+
+def test_gui_file_and_evaluate_real_take_date(monkeypatch, capsys):
+    from wakeline.app import cli
+
+    seen = {}
+    monkeypatch.setattr(
+        "wakeline.app.main.run",
+        lambda files, screenshot=None, read=None: seen.update(files=files, read=read) or 0,
+    )
+    assert cli.main(["gui", "tod.csv", "--date", "2024-01-01"]) == 0
+    assert seen["read"] == {"clock_date": "2024-01-01"}
+    # evaluate takes it for --real's files only (as every reading flag)
+    assert main(["evaluate", "maneuver", "--date", "2024-01-01"]) == 2
+    assert "apply to --real's files" in capsys.readouterr().err
