@@ -350,3 +350,25 @@ def test_gui_file_and_evaluate_real_take_date(monkeypatch, capsys):
     # evaluate takes it for --real's files only (as every reading flag)
     assert main(["evaluate", "maneuver", "--date", "2024-01-01"]) == 2
     assert "apply to --real's files" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "head,date",
+    [
+        ("日期,时间,批号,纬度,经度", lambda t: f"{t.year}年{t.month}月{t.day}日"),
+        ("Date,Time,id,lat,lon", lambda t: t.strftime("%d-%b-%y").upper()),
+    ],
+)
+def test_a_date_column_in_words_beside_clock_times_reads_and_writes_back(tmp_path, head, date):
+    rows = [
+        f"{date(t)},{t.strftime('%H:%M:%S')},{1 + k % 2},37.{k:04d},23.{k:04d}"
+        for k, t in enumerate(TIMES)
+    ]
+    p = tmp_path / "dt.csv"
+    p.write_text(head + "\n" + "\n".join(rows) + "\n", encoding="utf-8")
+    r = read_points(p)
+    assert _times(r.points) == list(TIMES) and r.report["time_date_column"]
+    imported, again = tmp_path / "i.csv", tmp_path / "again.csv"
+    assert main(["import", str(p), "-o", str(imported)]) == 0
+    assert main(["export", str(imported), "-o", str(again), "--like", str(p)]) == 0
+    assert again.read_bytes() == p.read_bytes()

@@ -187,6 +187,16 @@ def format_angles(values: np.ndarray, fmt: AngleFormat, pos: str, neg: str) -> p
     return pc.if_else(pa.array(finite), text, fmt.na)
 
 
+def _words(text: pa.Array, tf: TimeFormat) -> pa.Array:
+    """Times as strftime wrote them, in the file's words: month names in capitals
+    (``01-JAN-24``), a Chinese date's month and day without a leading zero (``2024年1月1日``)."""
+    if tf.words == "upper":
+        return pc.utf8_upper(text)
+    if tf.words == "nopad":
+        return pc.replace_substring_regex(text, "([年月])0", r"\1")
+    return text
+
+
 def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Array:
     """Times as text in ``tf``; missing times as empty cells. ``part`` ``date``: only
     the date, in ``tf.date_pattern`` (the date column of a ``Date,Time`` layout), of the
@@ -220,7 +230,7 @@ def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Arra
     ns = np.floor_divide(ns + q // 2, q) * q
     seconds = np.floor_divide(ns, 1_000_000_000)
     if part == "date":
-        return pc.if_else(pa.array(ok), _strftime(seconds, tf.date_pattern), "")
+        return pc.if_else(pa.array(ok), _words(_strftime(seconds, tf.date_pattern), tf), "")
     base = _strftime(seconds, tf.pattern)
     if d > 0:
         frac = (ns - seconds * 1_000_000_000) // q
@@ -233,10 +243,7 @@ def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Arra
         )
     else:
         text = base
-    if tf.words == "upper":  # 01-JAN-24: month names in capitals
-        text = pc.utf8_upper(text)
-    elif tf.words == "nopad":  # 2024年1月1日: month and day without a leading zero
-        text = pc.replace_substring_regex(text, "([年月])0", r"\1")
+    text = _words(text, tf)
     if tf.meridiem and part != "date":  # " AM" / " PM" as the file wrote them (" p.m.")
         pm = tf.meridiem.replace("a", "p").replace("A", "P")
         text = pc.replace_substring(pc.replace_substring(text, " AM", tf.meridiem), " PM", pm)
