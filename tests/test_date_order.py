@@ -55,6 +55,30 @@ def test_ambiguous_dates_need_the_flag_and_the_warning_names_it(tmp_path):
     assert _times(read_points(p, date_order="month-first").points) == list(times)
 
 
+@pytest.mark.parametrize("corrupt", ["31/02/2025 10:00:00", "02/31/2025 10:00:00"])
+def test_a_date_no_calendar_has_is_no_evidence_of_the_order(tmp_path, corrupt):
+    """h122's M2: one corrupt date (31/02, 02/31: no date either way) among ambiguous
+    month-first dates is quarantined and shows no order: the ambiguity warning stays, and a
+    file whose other dates show the month first is still read so."""
+    times = US_TIMES[:20]  # every good date reads either way
+    p = _write(tmp_path / "amb.csv", times, "%m/%d/%Y %H:%M:%S")
+    lines = p.read_text().splitlines()
+    lines[5] = lines[5].split(",")[0] + f",{corrupt}," + ",".join(lines[5].split(",")[2:])
+    p.write_text("\n".join(lines) + "\n")
+    r = read_points(p)
+    assert len(r.points) == 19 and r.quarantine["reason"].tolist() == ["unparsable time"]
+    assert r.report["date_order"].startswith("day-first (assumed"), r.report["date_order"]
+    (warning,) = [w for w in r.report["warnings"] if "read day first" in w]
+    assert "18 could be mm/dd/yyyy" in warning  # 19 good, one of them 03/03
+    us = _write(tmp_path / "us.csv", US_TIMES, "%m/%d/%Y %H:%M:%S")  # days 13-20 show it
+    lines = us.read_text().splitlines()
+    lines[5] = lines[5].split(",")[0] + f",{corrupt}," + ",".join(lines[5].split(",")[2:])
+    us.write_text("\n".join(lines) + "\n")
+    r = read_points(us)
+    assert r.report["date_order"].startswith("month-first (the file shows it")
+    assert len(r.points) == 39
+
+
 def test_a_day_above_12_says_the_file_decided_day_first(tmp_path):
     p = _write(tmp_path / "eu.csv", US_TIMES, "%d/%m/%Y %H:%M:%S")
     r = read_points(p)

@@ -120,13 +120,23 @@ def _slashed_parts(text: pd.Series) -> tuple[pd.Series, pd.Series]:
     return pd.to_numeric(parts[0], errors="coerce"), pd.to_numeric(parts[1], errors="coerce")
 
 
+def real_slashed_dates(text: pd.Series, month_first: bool) -> pd.Series:
+    """Which slashed dates of ``text`` are calendar dates read day first (or month
+    first): 31/02/2023 is none either way, so it shows no order."""
+    parts = text.str.extract(r"^\s*(\d{1,2})[/.-](\d{1,2})[/.-](\d{4})")
+    day, month = (parts[1], parts[0]) if month_first else (parts[0], parts[1])
+    iso = parts[2] + "-" + month.str.zfill(2) + "-" + day.str.zfill(2)
+    return pd.to_datetime(iso, format="%Y-%m-%d", errors="coerce").notna()
+
+
 def month_first_dates(text: pd.Series) -> int:
     """How many slashed dates of ``text`` show the month first: none has a first number
-    above 12 and these have a second one above 12 (0: day-first, or no evidence)."""
+    above 12 and these have a second one above 12 (0: day-first, or no evidence). Only
+    calendar dates count: a corrupt 31/02/2023 is evidence of neither order."""
     first, second = _slashed_parts(text)
-    if (first > 12).any():
+    if ((first > 12) & real_slashed_dates(text, month_first=False)).any():
         return 0
-    return int((second > 12).sum())
+    return int(((second > 12) & real_slashed_dates(text, month_first=True)).sum())
 
 
 def _parse_slashed(text: pd.Series, todo: pd.Series, formats, info: dict) -> pd.Series:
@@ -1627,11 +1637,12 @@ def parse_times(
             parts = text[present].str.extract(r"^\s*(\d{1,2})/(\d{1,2})/\d{4}")  # dots: European
             first = pd.to_numeric(parts[0], errors="coerce")
             second = pd.to_numeric(parts[1], errors="coerce")
-            if (first > 12).any():
+            shown = (first > 12) & parsed[present].notna()  # 31/02 shows no order
+            if shown.any():
                 info["dayfirst_shown"] = True
-                info["day_shown"] = info.get("day_shown", 0) + int((first > 12).sum())
+                info["day_shown"] = info.get("day_shown", 0) + int(shown.sum())
             else:
-                both = (first != second) & first.notna() & second.notna()
+                both = (first != second) & first.notna() & second.notna() & parsed[present].notna()
                 info["dates_either_way"] = info.get("dates_either_way", 0) + int(both.sum())
         parsed = _localize(parsed, tz, info) if tz is not None else parsed.dt.tz_localize("UTC")
     elif tz is not None and info["naive"]:
