@@ -143,7 +143,11 @@ def register(sub) -> None:
         "line number and reason, never dropped silently.",
         epilog=EPILOG,
     )
-    p.add_argument("input", type=Path, help="input CSV (.csv or .csv.gz)")
+    p.add_argument(
+        "input",
+        type=Path,
+        help="input CSV or NMEA log (plain, or gzip, bz2, xz, zstd, a zip of one file)",
+    )
     p.add_argument("-o", "--output", type=Path, required=True, help="canonical CSV to write")
     add_read_flags(p)
     p.add_argument(

@@ -409,7 +409,7 @@ def register(sub) -> None:
         "compression against Douglas-Peucker; read as import reads them, see 'reading the "
         "input' below); "
         "associate: a file, or every track file in DIR (.csv .tsv .txt .nmea .log .gpx .geojson, or "
-        "gzipped; a file of no track is skipped with the reason); each track's id is the truth ("
+        "those compressed: .gz .bz2 .xz .zst, or a .zip of one file; a file of no track is skipped with the reason); each track's id is the truth ("
         "tracks are cut at their gaps, pieces renumbered); one of those four folders is "
         "read as one scene by its own reader (autoferry-fusion: the radar tracks, "
         "1.7 s, e.g. with --cut-s 5)",

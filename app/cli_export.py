@@ -34,6 +34,18 @@ def _like_flag(message: str) -> str:
     return re.sub(r"(?<![\w-])--skip-rows\b", "--like-skip-rows", message)
 
 
+def _packed_original(like: Path | None) -> str | None:
+    """The compression of ``--like ORIGINAL`` (gzip, bz2, xz, zstd, zip), else None."""
+    if like is None or Path(like).suffix.lower() == ".json":
+        return None
+    from wakeline.core.io.compressed import compression_of
+
+    try:
+        return compression_of(like)
+    except (OSError, InputError):
+        return None
+
+
 def _cmd_export(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import say_quarantined
     from wakeline.core.io.export_like import export_like
@@ -134,6 +146,9 @@ def _cmd_export(args: argparse.Namespace) -> int:
         msg += f"; {count(rep['rows_made'], 'row')} made by Wakeline (operator columns left empty)"
     if rep["members"]:
         msg += f"; {count(rep['targets'], 'target')}, members in {rep['members']}"
+    packed = _packed_original(args.like)
+    if packed:  # the layout is its text's: written plain (no .gz/.zip output is written)
+        msg += f"; plain text: {args.like} is {packed}-compressed, its text's layout is written"
     print(msg, file=sys.stderr)
     return 0
 
@@ -162,7 +177,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--like",
         type=Path,
         metavar="ORIGINAL",
-        help="copy the layout of this file (the file the data came from), or of a layout JSON",
+        help="copy the layout of this file (the file the data came from; compressed too: "
+        "its text's layout, written as plain text), or of a layout JSON",
     )
     p.add_argument(
         "--format",

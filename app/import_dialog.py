@@ -206,7 +206,8 @@ class ImportDialog(QtWidgets.QDialog):
             self,
             self.tr("Open track file"),
             "",
-            "Track files (*.csv *.csv.gz *.txt *.nmea *.log *.gpx *.geojson);;All files (*)",
+            "Track files (*.csv *.txt *.tsv *.nmea *.log *.gpx *.geojson *.gz *.bz2 *.xz *.zst *.zip);;"
+            "All files (*)",
         )
         if path:
             self.path_edit.setText(path)

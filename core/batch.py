@@ -33,10 +33,9 @@ import os
 import shutil
 import tempfile
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import BinaryIO
 
 import numpy as np
 import pandas as pd
@@ -275,94 +274,23 @@ PIECES = 1 << 24
 _ESTIMATE_BYTES = 4 << 20
 
 
-def compression_of(path: Path) -> str | None:
-    """``gzip``, ``bz2``, ``xz``, ``zstd``, ``zip`` or None, from the file's first bytes
-    (the name does not matter, as for the importer's gzip; the importer's own test)."""
-    from wakeline.core.io.sniff import packed_kind
-
-    with open(path, "rb") as fh:
-        kind = packed_kind(fh.read(16))
-    if kind == "7z":
-        raise InputError(f"{path}: a 7z archive; unpack it (7z x FILE) and give the CSV files")
-    return kind
-
-
-@contextlib.contextmanager
-def _text_stream(path: Path, kind: str | None) -> Iterator[tuple[BinaryIO, BinaryIO]]:
-    """(decompressed stream, raw file) of ``path``; read errors of the compressed data
-    become one :class:`InputError` naming the file and what to do."""
-    import bz2
-    import gzip
-    import lzma
-    import zipfile
-    import zlib
-
-    import pyarrow as pa
-
-    with contextlib.ExitStack() as stack:
-        raw = stack.enter_context(open(path, "rb"))
-        try:
-            if kind is None:
-                stream = raw
-            elif kind == "gzip":
-                stream = stack.enter_context(gzip.open(raw))
-            elif kind == "bz2":
-                stream = stack.enter_context(bz2.open(raw))
-            elif kind == "xz":
-                stream = stack.enter_context(lzma.open(raw))
-            elif kind == "zstd":
-                stream = stack.enter_context(
-                    pa.CompressedInputStream(pa.PythonFile(raw, mode="r"), "zstd")
-                )
-            else:
-                archive = stack.enter_context(zipfile.ZipFile(raw))
-                members = [m for m in archive.infolist() if not m.is_dir()]
-                if len(members) != 1:
-                    raise InputError(
-                        f"{path}: a zip archive of {len(members)} files; batch reads a zip "
-                        "holding one CSV file: unzip it and give the CSV files"
-                    )
-                stream = stack.enter_context(archive.open(members[0]))
-            yield stream, raw
-        except OSError as exc:
-            if exc.errno:  # the disk, not the data
-                raise
-            raise InputError(_damaged(path, kind, exc)) from None
-        except (EOFError, lzma.LZMAError, zlib.error, zipfile.BadZipFile) as exc:
-            raise InputError(_damaged(path, kind, exc)) from None
-        except pa.ArrowException as exc:
-            raise InputError(_damaged(path, kind, exc)) from None
-
-
 def _damaged(path: Path, kind: str | None, exc: Exception) -> str:
-    text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-    return (
-        f"{path}: the {kind or 'file'} data is cut short or damaged ({text}); nothing was "
-        "read from it. Copy the file again, or decompress what is there and give that"
-    )
+    from wakeline.core.io.compressed import damaged
+
+    return damaged(path, kind, exc)
 
 
 def _head(path: Path, kind: str | None, limit: int) -> tuple[bytes, int, bool]:
-    """The first ``limit`` text bytes of ``path``, the raw bytes they took, and whether
-    that is the whole file."""
-    with _text_stream(path, kind) as (stream, raw):
+    """The first ``limit`` text bytes of ``path`` (decompressed by the importer's opener,
+    :func:`~wakeline.core.io.compressed.open_data`), the bytes on disk they took, and
+    whether that is the whole file."""
+    from wakeline.core.io.compressed import open_data
+
+    opened = open_data(path, kind)
+    with opened as stream:
         data = bytes(stream.read(limit + 1))
-        used = raw.tell()
+        used = opened.raw_bytes()
     return data[:limit], used, len(data) <= limit
-
-
-def _unpack(path: Path, kind: str, dest: Path) -> None:
-    """Decompress ``path`` into ``dest`` in chunks (bounded memory)."""
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    with _text_stream(path, kind) as (stream, _raw), open(dest, "wb") as out:
-        while chunk := stream.read(16 << 20):
-            try:
-                out.write(chunk)
-            except OSError as exc:  # no space left on the stage's disk
-                raise InputError(
-                    f"{path}: cannot decompress into {dest.parent} ({exc.strerror}); give an "
-                    "OUTDIR on a disk with room for the largest input decompressed"
-                ) from None
 
 
 @dataclass(frozen=True)
@@ -379,45 +307,28 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     """Check one CSV input before any work (compression, encoding, columns: the
     importer's one message) and estimate its size as text."""
     from wakeline.core.io import sniff
-    from wakeline.core.io.pieces import local_name
+    from wakeline.core.io.compressed import compression_of, zip_member
     from wakeline.core.io.reader import resolve_header
     from wakeline.core.io.sniff import SAMPLE_BYTES
 
     kind = compression_of(path)
     size = path.stat().st_size
-    if kind == "zip":
-        import zipfile
-
-        with _text_stream(path, kind):  # one member, readable
-            pass
-        with zipfile.ZipFile(path) as archive:
-            text_bytes = sum(m.file_size for m in archive.infolist())
     limit = SAMPLE_BYTES if kind is None else max(SAMPLE_BYTES, _ESTIMATE_BYTES)
-    head, used, whole = _head(path, kind, limit)
+    head, used, whole = _head(path, kind, limit)  # a zip of several files: refused here
     if kind is None:
         text_bytes = size
-    elif kind != "zip":
+    elif kind == "zip":
+        import zipfile
+
+        with zipfile.ZipFile(path) as archive:
+            text_bytes = zip_member(archive, path).file_size
+    else:
         text_bytes = len(head) if whole else int(size * len(head) / max(used, 1))
     if not head.strip():
         return _CsvInput(path, kind, text_bytes, True)
-    target = path
-    if kind not in (None, "gzip"):  # the importer reads these only decompressed
-        sample = head[:SAMPLE_BYTES]
-        if not (whole and len(head) <= SAMPLE_BYTES):
-            cut = max(sample.rfind(b"\n"), sample.rfind(b"\r"))
-            sample = sample if cut < 0 else sample[: cut + 1]
-        target = stage / "survey" / local_name(path)
-        target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_bytes(sample)
-    try:
-        sn = sniff(target, read["encoding"], read["delimiter"], read["skip_rows"])
-        if sn.kind == "csv":
-            resolve_header(sn, read["fmt"], read["mapping"], str(path), read["origin"])
-    except InputError as exc:
-        raise InputError(str(exc).replace(str(target), str(path))) from None
-    finally:
-        if target != path:
-            target.unlink(missing_ok=True)
+    sn = sniff(path, read["encoding"], read["delimiter"], read["skip_rows"])
+    if sn.kind == "csv":
+        resolve_header(sn, read["fmt"], read["mapping"], str(path), read["origin"])
     # A header alone (the whole file was in the sample and has no data line).
     empty = sn.kind == "csv" and not sn.preview and whole and len(head) <= SAMPLE_BYTES
     return _CsvInput(path, kind, text_bytes, empty)
@@ -429,14 +340,15 @@ def _import_file(
     """Pass 1 on one CSV input, read as ``wakeline import`` reads it (every line a point
     or a quarantine row, the same reasons), piece by piece into the buckets: streamed,
     or, where the streamed reader gives up (a value only the careful parse reads, another
-    encoding further on, quotes), each piece read by the importer on its own. A bz2, xz,
-    zstd or zip file is first decompressed into the stage folder. Returns the counts per
+    encoding further on, quotes), each piece read by the importer on its own. A
+    compressed file (gzip, bz2, xz, zstd, a zip of one file) is decompressed as it is
+    read, as the importer reads it (nothing written beside it). Returns the counts per
     piece (``counts``), the importer's ``warnings`` and ``rows`` (points + quarantined)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     from wakeline.core.io import read_points, sniff
-    from wakeline.core.io.pieces import local_name, piece_safe, read_in_pieces
+    from wakeline.core.io.pieces import piece_safe, read_in_pieces
     from wakeline.core.io.reader import (
         StreamFallback,
         WholeFileNeeded,
@@ -466,9 +378,6 @@ def _import_file(
 
     readable = src
     try:
-        if compression not in (None, "gzip"):
-            readable = scratch / local_name(src)
-            _unpack(src, compression, readable)
         sn = sniff(readable, read["encoding"], read["delimiter"], read["skip_rows"])
         if not piece_safe(sn):  # NMEA logs, UTF-16 text: read whole
             res = read_points(readable, **read)

@@ -1017,6 +1017,7 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
     import pyarrow as pa
     import pyarrow.csv as pcsv
 
+    from wakeline.core.io.compressed import open_for_arrow
     from wakeline.core.io.reader import parse_times
     from wakeline.core.io.sniff import sniff
 
@@ -1039,21 +1040,22 @@ def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
         return "skip"
 
     try:
-        table = pcsv.read_csv(
-            pa.input_stream(str(path), compression=sn.compression),
-            read_options=pcsv.ReadOptions(
-                column_names=list(sn.columns),
-                skip_rows=sn.skip_rows,
-                encoding=sn.encoding,
-                use_threads=False,  # line numbers for the refused rows
-            ),
-            parse_options=pcsv.ParseOptions(
-                delimiter=sn.delimiter, invalid_row_handler=invalid, ignore_empty_lines=False
-            ),
-            convert_options=pcsv.ConvertOptions(
-                column_types={c: pa.string() for c in sn.columns}, strings_can_be_null=False
-            ),
-        )
+        with open_for_arrow(path, sn.compression) as stream:
+            table = pcsv.read_csv(
+                stream,
+                read_options=pcsv.ReadOptions(
+                    column_names=list(sn.columns),
+                    skip_rows=sn.skip_rows,
+                    encoding=sn.encoding,
+                    use_threads=False,  # line numbers for the refused rows
+                ),
+                parse_options=pcsv.ParseOptions(
+                    delimiter=sn.delimiter, invalid_row_handler=invalid, ignore_empty_lines=False
+                ),
+                convert_options=pcsv.ConvertOptions(
+                    column_types={c: pa.string() for c in sn.columns}, strings_can_be_null=False
+                ),
+            )
     except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
         raise InputError(f"{path}: cannot read the bearings: {exc}") from None
     df = table.to_pandas().rename(columns={src: f for f, src in names.items()})

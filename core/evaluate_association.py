@@ -604,15 +604,21 @@ def evaluate_fusion(
 # real data with known identities
 
 
-#: The names of track files in a folder given to ``--real`` (each also gzipped): what
-#: owners export tracks as (a tab-separated ``.txt`` or ``.tsv``, a raw AIS ``.nmea`` log, GPX, GeoJSON).
+#: The names of track files in a folder given to ``--real`` (each also compressed:
+#: :data:`PACKED_SUFFIXES`): what owners export tracks as (a tab-separated ``.txt`` or
+#: ``.tsv``, a raw AIS ``.nmea`` log, GPX, GeoJSON).
 TRACK_SUFFIXES = (".csv", ".tsv", ".txt", ".nmea", ".log", ".gpx", ".geojson")
+#: Compressed track files (``day.csv.gz``, ``day.csv.bz2``); a ``.zip`` (one file in it,
+#: as MarineCadastre and the Danish Maritime Authority ship a day) is read whatever it
+#: is named.
+PACKED_SUFFIXES = (".gz", ".bz2", ".xz", ".zst")
 
 
 def real_files(path) -> list:
     """The track files of a real set: ``path`` itself, or every file directly in the
-    folder ``path`` named ``*.csv``, ``*.tsv``, ``*.txt``, ``*.nmea``, ``*.log``, ``*.gpx`` or ``*.geojson``, or one of
-    those gzipped (sorted; hidden files left out)."""
+    folder ``path`` named ``*.csv``, ``*.tsv``, ``*.txt``, ``*.nmea``, ``*.log``, ``*.gpx`` or
+    ``*.geojson``, or one of those compressed (gzip, bz2, xz, zstd), or a ``*.zip`` (sorted;
+    hidden files left out)."""
     from pathlib import Path
 
     from wakeline.core.errors import InputError
@@ -625,14 +631,21 @@ def real_files(path) -> list:
     files = sorted(
         f
         for f in p.iterdir()
-        if f.is_file()
-        and not f.name.startswith(".")
-        and f.name.lower().removesuffix(".gz").endswith(TRACK_SUFFIXES)
+        if f.is_file() and not f.name.startswith(".") and _track_name(f.name.lower())
     )
     if not files:
         kinds = ", ".join(TRACK_SUFFIXES)
-        raise InputError(f"{p}: no track files in this folder ({kinds}, or gzipped)")
+        raise InputError(f"{p}: no track files in this folder ({kinds}, compressed, or .zip)")
     return files
+
+
+def _track_name(name: str) -> bool:
+    """Whether a file's (lower-case) name is a track file's (:func:`real_files`)."""
+    if name.endswith(".zip"):
+        return True
+    for suffix in PACKED_SUFFIXES:
+        name = name.removesuffix(suffix)
+    return name.endswith(TRACK_SUFFIXES)
 
 
 #: The fixed split of the MTAD scenes (mtad-dtwcm/original): the association defaults

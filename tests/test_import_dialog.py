@@ -343,3 +343,39 @@ def test_times_of_day_alone_ask_for_their_date_and_it_reaches_the_import(
     layer = window.session.get(window.layer_id(path.name))
     assert layer.meta["report"]["clock_date"] == "2024-03-05"
     assert layer.points["time"].min() == pd.Timestamp("2024-03-05T23:50:00.5Z")
+
+
+def test_a_zipped_file_previews_and_opens_as_the_plain_one(qtbot, window, tmp_path, monkeypatch):
+    """A zip of one CSV (as MarineCadastre and the Danish Maritime Authority ship a day):
+    the dialog's preview, layout and mapping are the plain file's, and File ▸ Open imports
+    it (the report says zip; the layer keeps the layout export "as it came in" writes)."""
+    import zipfile
+
+    from PySide6 import QtWidgets
+
+    from wakeline.app import main_window
+    from wakeline.app.main import wait_for_jobs
+
+    src = BATTERY / "chinese_gb18030.csv"
+    packed = tmp_path / "day.zip"
+    with zipfile.ZipFile(packed, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.write(src, "day/chinese_gb18030.csv")
+    plain, dlg = ImportDialog(path=src), ImportDialog(path=packed)
+    qtbot.addWidget(plain)
+    qtbot.addWidget(dlg)
+    assert dlg.preview.toPlainText() == plain.preview.toPlainText() != ""
+    assert dlg.mapping() == plain.mapping() and dlg.warning_label.text() == ""
+    assert "gb18030" in dlg.layout_label.text()
+
+    class Chosen(ImportDialog):
+        def exec(self):
+            self.path_edit.setText(str(packed))
+            return QtWidgets.QDialog.DialogCode.Accepted
+
+    monkeypatch.setattr(main_window, "ImportDialog", Chosen)
+    window.open_dialog()
+    wait_for_jobs(window)
+    layer = window.session.get(window.layer_id(packed.name))
+    assert layer.meta["report"]["compression"] == "zip"
+    assert len(layer.points) == len(read_points(src).points) > 0
+    assert layer.meta.get("layout") is not None

@@ -26,6 +26,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.compressed import open_data, open_for_arrow
 from wakeline.core.io.formats import PLANE_FIELDS
 from wakeline.core.io.reader import (
     CLOCK_ONLY,
@@ -498,10 +499,8 @@ class Layout:
 
 
 def _raw_head(path: Path, compression: str | None, n_bytes: int = 1 << 20) -> bytes:
-    import gzip
-
-    opener = gzip.open if compression == "gzip" else open
-    with opener(path, "rb") as fh:
+    """The first ``n_bytes`` of the file's text (decompressed)."""
+    with open_data(path, compression) as fh:
         return fh.read(n_bytes)
 
 
@@ -545,20 +544,21 @@ def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | Non
     if not keys:
         return cols, time
     try:
-        table = pcsv.read_csv(
-            pa.input_stream(str(path), compression=sn.compression),
-            read_options=pcsv.ReadOptions(
-                column_names=list(sn.columns),
-                skip_rows=sn.skip_rows,  # the header included
-                encoding=sn.encoding,
-            ),
-            parse_options=pcsv.ParseOptions(
-                delimiter=sn.delimiter, invalid_row_handler=lambda _row: "skip"
-            ),
-            convert_options=pcsv.ConvertOptions(
-                include_columns=keys, column_types={k: pa.string() for k in keys}
-            ),
-        )
+        with open_for_arrow(path, sn.compression) as stream:
+            table = pcsv.read_csv(
+                stream,
+                read_options=pcsv.ReadOptions(
+                    column_names=list(sn.columns),
+                    skip_rows=sn.skip_rows,  # the header included
+                    encoding=sn.encoding,
+                ),
+                parse_options=pcsv.ParseOptions(
+                    delimiter=sn.delimiter, invalid_row_handler=lambda _row: "skip"
+                ),
+                convert_options=pcsv.ConvertOptions(
+                    include_columns=keys, column_types={k: pa.string() for k in keys}
+                ),
+            )
     except (pa.ArrowInvalid, OSError, UnicodeDecodeError, ValueError):
         return cols, time  # the sample's formats stand
     out = []

@@ -17,7 +17,7 @@ Decoding is one pyais call per sentence (pyais decodes message by message); the 
 built once at the end.
 """
 
-import gzip
+import io
 import re
 from collections import Counter
 
@@ -27,6 +27,7 @@ from pyais import NMEAMessage
 from pyais.exceptions import AISBaseException
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.compressed import open_data
 from wakeline.core.io.sniff import NMEA_SENTENCE, Sniff
 from wakeline.core.progress import Progress, null_progress
 
@@ -75,7 +76,6 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     from wakeline.core.io.reader import ImportResult, empty_quarantine
 
     progress = progress or null_progress
-    opener = gzip.open if sn.compression == "gzip" else open
     q_lines: list[int] = []
     q_reasons: list[str] = []
     q_texts: list[str] = []
@@ -125,7 +125,10 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
         rows["course"].append(np.nan if course is None or course >= 360 else float(course))
 
     progress(0.0, f"reading {sn.path.name} (AIS NMEA)")
-    with opener(sn.path, "rt", encoding=sn.encoding, errors="replace", newline=None) as fh:
+    with (
+        open_data(sn.path, sn.compression) as raw,
+        io.TextIOWrapper(raw, encoding=sn.encoding, errors="replace", newline=None) as fh,
+    ):
         for number, raw in enumerate(fh, start=1):
             line = raw.rstrip("\r\n").removeprefix("\ufeff")
             if not line.strip():

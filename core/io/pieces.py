@@ -24,18 +24,16 @@ whole-file reader then says why). The tracks that start their time again within 
 counts them: a track whose restart falls across two pieces is not seen.
 """
 
-import contextlib
 import dataclasses
-import gzip
 import zlib
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import BinaryIO
 
 import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.compressed import open_data
 from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
     BEARING_WARNING_MARK,
@@ -66,22 +64,13 @@ def local_name(path: Path) -> str:
     return f"{path.name.split('.')[0]}.csv"
 
 
-@contextlib.contextmanager
-def _text(sn: Sniff) -> Iterator[BinaryIO]:
-    """The file's bytes as text (a gzip file decompressed)."""
-    with open(sn.path, "rb") as raw:
-        if sn.compression == "gzip":
-            with gzip.open(raw) as stream:
-                yield stream
-        else:
-            yield raw
-
-
-def pieces(sn: Sniff) -> Iterator[tuple[bytes, int]]:
+def pieces(sn: Sniff, opened: open_data | None = None) -> Iterator[tuple[bytes, int]]:
     """The file in pieces of whole lines (about the importer's ``STREAM_BYTES``), each
     with the physical line (1-based) it starts on. A piece ends where the quotes since its
-    start balance (a quoted cell may hold line ends: it stays in one piece)."""
-    with _text(sn) as stream:
+    start balance (a quoted cell may hold line ends: it stays in one piece). The file is
+    decompressed as it is read (:func:`~wakeline.core.io.compressed.open_data`;
+    ``opened``: that opener, to ask how far it is)."""
+    with opened or open_data(sn.path, sn.compression) as stream:
         yield from line_pieces(stream, cut=lambda buf: cut(buf, True))
 
 
@@ -262,11 +251,12 @@ def _read_all(
     later_sn = dataclasses.replace(first_sn, skip_rows=0)
     size = max(_size(sn), 1)
     done = 0
+    opened = open_data(sn.path, sn.compression)
     quarantines, reports, layouts, keys = [], [], [], []
     edges = edge_state()  # a track's first and last rows: judged in the last piece with rows
     has_rows = blank_bytes(sn.delimiter)
     units: set[bool] = set()  # numeric times read as Excel days, or not, per piece
-    for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn), has_rows)):
+    for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn, opened), has_rows)):
         piece_file.write_bytes(piece)
         done += len(piece)
         del piece
@@ -310,7 +300,8 @@ def _read_all(
             quarantines.append(res.quarantine.assign(line=line))
         reports.append(res.report)
         layouts.append(res.layout)
-        progress(min(0.95, done / size), "importing in pieces")
+        far = done / size if sn.compression is None else opened.fraction()
+        progress(min(0.95, far), "importing in pieces")
     return quarantines, reports, layouts, keys
 
 

@@ -16,7 +16,7 @@ import csv
 import dataclasses
 import datetime
 import functools
-import gzip
+import io
 import re
 import shlex
 import shutil
@@ -35,6 +35,7 @@ import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
 from wakeline.core.geo import EARTH_RADIUS_M, from_local
+from wakeline.core.io.compressed import open_data, open_for_arrow
 from wakeline.core.io.formats import (
     PLANE_FIELDS,
     Resolved,
@@ -294,8 +295,8 @@ class _Utf8Stream:
     CHUNK = 4 * 1024 * 1024
 
     def __init__(self, sn: Sniff, encoding: str, errors: str = "strict") -> None:
-        opener = gzip.open if sn.compression == "gzip" else open
-        self._fh = opener(sn.path, "rb")
+        self._opened = open_data(sn.path, sn.compression)
+        self._fh = self._opened.__enter__()
         self._dec = codecs.getincrementaldecoder(encoding)(errors=errors)
         self._buf = b""
         self._eof = False
@@ -317,20 +318,29 @@ class _Utf8Stream:
             out, self._buf = self._buf[:n], self._buf[n:]
         return out
 
+    def fraction(self) -> float:
+        """How far through the file on disk the reading is (0 to 1)."""
+        return self._opened.fraction()
+
     def close(self) -> None:
-        self.closed = True
-        self._fh.close()
+        if not self.closed:
+            self.closed = True
+            self._opened.__exit__(None, None, None)
 
     def __enter__(self):
         return self
 
     def __exit__(self, *exc) -> None:
-        self.close()
+        self.closed = True
+        self._opened.__exit__(*exc)  # a decompression error: named (InputError)
 
 
 def _open(sn: Sniff, encoding: str, errors: str):
+    """The file's text as UTF-8 bytes, in a ``with`` block: a plain UTF-8 file as Arrow
+    reads it, a compressed one through :func:`~wakeline.core.io.compressed.open_data`
+    (the one opener of every reader), another encoding re-encoded (:class:`_Utf8Stream`)."""
     if encoding in ("utf-8", "utf8") and errors == "strict":
-        return pa.input_stream(str(sn.path), compression=sn.compression)
+        return open_for_arrow(sn.path, sn.compression)
     return _Utf8Stream(sn, encoding, errors)
 
 
@@ -1668,8 +1678,7 @@ def parse_times(
 
 def _one_line(sn: Sniff) -> bool:
     """Whether the file holds one line at most (no line break after its first one)."""
-    opener = gzip.open if sn.compression == "gzip" else open
-    with opener(sn.path, "rb") as fh:
+    with open_data(sn.path, sn.compression) as fh:
         head = fh.read(1 << 16)
     return (
         len(head) < (1 << 16)
@@ -1689,9 +1698,11 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     wanted = set(int(n) for n in line_numbers)
     last = max(wanted)
     found: dict[int, str] = {}
-    opener = gzip.open if sn.compression == "gzip" else open
     enc = encoding or sn.encoding
-    with opener(sn.path, "rt", encoding=enc, errors="replace", newline=None) as fh:
+    with (
+        open_data(sn.path, sn.compression) as raw,
+        io.TextIOWrapper(raw, encoding=enc, errors="replace", newline=None) as fh,
+    ):
         for number, line in enumerate(fh, start=1):
             if number in wanted:
                 found[number] = line.rstrip("\n").removeprefix("\ufeff")
@@ -3420,6 +3431,9 @@ def stream_points(
     edges = edge_state()
     size = max(sn.path.stat().st_size, 1)
     consumed = [0]
+    opened = _open(sn, sn.encoding, "strict")
+    # How far through the file on disk (a compressed file's text is larger than it).
+    done = getattr(opened, "fraction", lambda: consumed[0] / size)
 
     def parse(piece: bytes, skip: int, first_line: int) -> tuple[pa.Table, np.ndarray]:
         """One piece of whole lines: the table and the file line of each row; refused
@@ -3527,10 +3541,10 @@ def stream_points(
             starts.append(points["time"].min())
             ends.append(points["time"].max())
             sink(points)
-        progress(min(0.95, consumed[0] / size), "importing")
+        progress(min(0.95, done()), "importing")
 
     try:
-        with _open(sn, sn.encoding, "strict") as stream, _quiet_undecodable_rows():
+        with opened as stream, _quiet_undecodable_rows():
             # Pieces of whole lines, parsed one at a time: memory stays one piece
             # (the streaming reader would read ahead as far as the file goes).
             skip = sn.skip_rows

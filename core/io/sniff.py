@@ -1,13 +1,17 @@
 """Look at the first bytes of a file: compression, binary or text, encoding, line endings,
 delimiter, header, and whether it is a raw AIS NMEA log rather than a CSV."""
 
-import gzip
 import re
-import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.compressed import (  # noqa: F401  (packed_kind: batch's)
+    compression_of,
+    is_tar,
+    open_data,
+    packed_kind,
+)
 
 SAMPLE_BYTES = 256 * 1024
 #: Data rows of the sampled start kept to judge columns by their values (``Sniff.sample``).
@@ -37,7 +41,7 @@ class Sniff:
     """What the start of a file says about how to read it."""
 
     path: Path
-    compression: str | None  # "gzip" or None
+    compression: str | None  # "gzip", "bz2", "xz", "zstd", "zip" or None (plain text)
     encoding: str  # a Python codec name: "utf-8" (BOM allowed), "gb18030", "utf-16"...
     delimiter: str  # ",", ";", "\t" or " " (runs of spaces are not merged)
     has_header: bool
@@ -65,8 +69,11 @@ class Sniff:
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
+    """The first :data:`SAMPLE_BYTES` of the file's text (decompressed: gzip, bz2, xz,
+    zstd, a zip of one file; :mod:`wakeline.core.io.compressed`) and its compression."""
     try:
-        with open(path, "rb") as fh:
+        kind = compression_of(path)
+        with open_data(path, kind) as fh:
             head = fh.read(SAMPLE_BYTES)
     except FileNotFoundError:
         raise InputError(f"{path}: no such file") from None
@@ -74,53 +81,12 @@ def _read_sample(path: Path) -> tuple[bytes, str | None]:
         raise InputError(f"{path}: is a directory, not a file") from None
     except PermissionError:
         raise InputError(f"{path}: permission denied") from None
-    if head[:2] == b"\x1f\x8b":
-        try:
-            with gzip.open(path, "rb") as fh:
-                return fh.read(SAMPLE_BYTES), "gzip"
-        except (OSError, EOFError, zlib.error) as exc:
-            raise InputError(
-                f"{path}: looks gzip-compressed but cannot be decompressed ({exc}); nothing "
-                "was imported. The copy is probably incomplete: copy the file again, or "
-                "decompress what is there (gzip -dc FILE > part.csv) and import that"
-            ) from None
-    kind = packed_kind(head)
-    if kind is not None:
-        batch = "; `wakeline batch` reads it as it is" if kind != "7z" else ""
+    if kind is not None and is_tar(head):
         raise InputError(
-            f"{path}: compressed ({kind}); Wakeline opens text files and gzip. Decompress it first "
-            f"({_UNPACK[kind]}) and open the CSV{batch}"
+            f"{path}: a tar archive ({kind}-compressed); unpack it (tar xf FILE) and open "
+            "the CSV, or give its files to `wakeline batch`"
         )
-    return head, None
-
-
-def packed_kind(head: bytes) -> str | None:
-    """The compressed format a file's first bytes show (``gzip``, ``bz2``, ``xz``,
-    ``zstd``, ``zip``, ``7z``), or None for text."""
-    if head[:2] == b"\x1f\x8b":
-        return "gzip"
-    kind = next((k for magic, k in _PACKED if head.startswith(magic)), None)
-    if kind == "bz2" and head[4:10] != b"1AY&SY":  # a text starting "BZh": its block magic
-        return None
-    return kind
-
-
-#: First bytes of the compressed formats the importer does not open itself (gzip it does).
-_PACKED = (
-    (b"BZh", "bz2"),
-    (b"\xfd7zXZ\x00", "xz"),
-    (b"\x28\xb5\x2f\xfd", "zstd"),
-    (b"PK\x03\x04", "zip"),
-    (b"PK\x05\x06", "zip"),
-    (b"7z\xbc\xaf\x27\x1c", "7z"),
-)
-_UNPACK = {
-    "bz2": "bunzip2 -k FILE",
-    "xz": "unxz -k FILE",
-    "zstd": "unzstd FILE",
-    "zip": "unzip FILE",
-    "7z": "7z x FILE",
-}
+    return head, kind
 
 
 def _bom_encoding(sample: bytes) -> str | None:
@@ -454,10 +420,10 @@ def read_small_table(
             f"{path}: missing required column {', '.join(missing)} ({what}); "
             f"headers found: {', '.join(sn.columns)}"
         )
-    return pd.read_csv(
-        path,
-        sep=sn.delimiter,
-        encoding=sn.encoding,
-        dtype={c: "str" for c in text_columns},
-        compression="gzip" if sn.compression else None,
-    )
+    with open_data(path, sn.compression) as stream:
+        return pd.read_csv(
+            stream,
+            sep=sn.delimiter,
+            encoding=sn.encoding,
+            dtype={c: "str" for c in text_columns},
+        )

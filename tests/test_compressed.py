@@ -1,0 +1,273 @@
+"""Compressed track files open directly (gzip, bz2, xz, zstd, a zip of one file) through
+every reader: the whole-file read, the streamed import, the reading in pieces, NMEA logs,
+``export --like`` and the import dialog; all through one opener
+(:func:`wakeline.core.io.compressed.open_data`). Before, every compression but gzip was
+refused ("Decompress it first"). A zip of several files, a zip holding a compressed
+file and damaged data give one message naming the file; nothing is written."""
+
+import bz2
+import gzip
+import lzma
+import zipfile
+from pathlib import Path
+
+import pandas as pd
+import pyarrow as pa
+import pytest
+
+from conftest import DATA
+from wakeline.app.cli import main
+from wakeline.core.errors import InputError
+from wakeline.core.io import import_to_csv, inspect_file, read_points, reader
+from wakeline.core.io.compressed import open_data
+
+KINDS = ("gzip", "bz2", "xz", "zstd", "zip")
+
+
+def _pack(path: Path, kind: str, member: str | None = None) -> Path:
+    """``path`` compressed as ``kind``; a zip holds it as ``member`` (default its name),
+    beside a directory entry and a macOS resource fork (both left out when reading)."""
+    data = path.read_bytes()
+    if kind == "zip":
+        out = path.with_suffix(".zip")
+        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
+            archive.writestr("day/", b"")
+            archive.writestr(f"__MACOSX/day/._{path.name}", b"\x00\x05\x16\x07junk")
+            archive.writestr(f"day/{member or path.name}", data)
+        return out
+    out = path.with_name(path.name + {"gzip": ".gz", "bz2": ".bz2", "xz": ".xz"}.get(kind, ".zst"))
+    if kind == "gzip":
+        out.write_bytes(gzip.compress(data))
+    elif kind == "bz2":
+        out.write_bytes(bz2.compress(data))
+    elif kind == "xz":
+        out.write_bytes(lzma.compress(data))
+    else:
+        with pa.output_stream(str(out), compression="zstd") as fh:
+            fh.write(data)
+    return out
+
+
+def _rows(n: int, quoted: bool = False, bad: int | None = None) -> str:
+    lines = [
+        f"S1,{k % 7},2024-05-01T{k // 3600 % 24:02d}:{k // 60 % 60:02d}:{k % 60:02d}Z,"
+        f"{10 + (k * 7919) % 100000 / 1e5:.5f},{57 + k % 13 * 1e-3:.4f}"
+        for k in range(n)
+    ]
+    if quoted:  # quotes in the start: read piece by piece by the importer
+        lines[3] = lines[3].replace("S1,", '"S1",', 1)
+    if bad is not None:  # a value only the careful parse reads (a letter O for a zero)
+        lines[bad] = lines[bad].replace(",10.", ",1O.", 1)
+    return "sensor,batch,time,lon,lat\n" + "\n".join(lines) + "\n"
+
+
+@pytest.fixture
+def plain(tmp_path) -> Path:
+    path = tmp_path / "day.csv"
+    path.write_text(_rows(3000, bad=1700))
+    return path
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_read_points_reads_each_compression_as_the_plain_file(plain, kind):
+    packed = _pack(plain, kind)
+    want, got = read_points(plain), read_points(packed)
+    pd.testing.assert_frame_equal(got.points, want.points)
+    pd.testing.assert_frame_equal(got.quarantine, want.quarantine)
+    assert got.report["compression"] == kind and want.report["compression"] is None
+    assert got.report["rows_imported"] == 2999 and got.report["rows_quarantined"] == 1
+    assert got.points["batch"].nunique() == 7  # the batch column, not the file's name
+    # The inspection behind the import dialog's preview reads it too.
+    info = inspect_file(packed)
+    assert info["preview"] == inspect_file(plain)["preview"] and info["problem"] is None
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("quoted", [False, True], ids=["streamed", "pieces"])
+def test_streamed_and_pieces_import_give_the_plain_files_output(
+    tmp_path, monkeypatch, kind, quoted
+):
+    """``wakeline import``'s streamed reader (no quotes) and the reading in pieces (quotes
+    in the start and one bad value: its piece read carefully), in pieces of 8 KB: the output
+    and quarantine are the plain file's, byte for byte, and the report says the
+    compression; the member is read as it streams (never unpacked beside it)."""
+    monkeypatch.setattr(reader, "STREAM_BYTES", 8 << 10)
+    plain = tmp_path / "day.csv"
+    plain.write_text(_rows(4000, quoted=quoted, bad=2500 if quoted else None))
+    packed = _pack(plain, kind)
+    want = import_to_csv(plain, tmp_path / "want.csv")
+    got = import_to_csv(packed, tmp_path / "got.csv")
+    assert (tmp_path / "got.csv").read_bytes() == (tmp_path / "want.csv").read_bytes()
+    pd.testing.assert_frame_equal(got.quarantine, want.quarantine)
+    assert got.report["compression"] == kind and got.layout["compression"] == kind
+    assert got.report["rows_quarantined"] == int(quoted)
+    assert got.report["rows_imported"] == 4000 - int(quoted)
+    assert want.report.get("pieces", 0) == got.report.get("pieces", 0)
+    if quoted:
+        assert got.report["pieces"] > 1
+    else:
+        assert got.report["streamed"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["day.csv", packed.name, "want.csv", "got.csv"]
+    )
+
+
+@pytest.mark.parametrize("kind", ["zip", "bz2"])
+def test_nmea_log_compressed(tmp_path, kind):
+    src = tmp_path / "ais_log.nmea"
+    src.write_bytes((DATA / "battery" / "ais_log.nmea").read_bytes())
+    want, got = read_points(src), read_points(_pack(src, kind))
+    pd.testing.assert_frame_equal(got.points, want.points)
+    assert got.report["compression"] == kind and len(got.points) == 2
+    assert main(["import", str(_pack(src, kind)), "-o", str(tmp_path / "o.csv")]) == 0
+
+
+def test_a_zip_of_several_files_names_them_and_says_what_to_do(tmp_path, plain, capsys):
+    packed = tmp_path / "days.zip"
+    with zipfile.ZipFile(packed, "w") as archive:
+        archive.writestr("__MACOSX/._a.csv", b"junk")
+        archive.write(plain, "a.csv")
+        archive.write(plain, "b.csv")
+    with pytest.raises(InputError) as err:
+        read_points(packed)
+    text = str(err.value)
+    assert text.startswith(f"{packed}: a zip archive of 2 files (a.csv, b.csv)")
+    assert "unzip it" in text and "`wakeline batch`, which reads them all" in text
+    out = tmp_path / "o.csv"
+    assert main(["import", str(packed), "-o", str(out)]) == 2
+    assert "(a.csv, b.csv)" in capsys.readouterr().err and not out.exists()
+    empty = tmp_path / "empty.zip"
+    with zipfile.ZipFile(empty, "w") as archive:
+        archive.writestr("day/", b"")
+    with pytest.raises(InputError, match="a zip archive with no file in it"):
+        read_points(empty)
+
+
+def test_a_zip_holding_a_compressed_file_says_to_unzip_it(tmp_path, plain):
+    """Decided: a zip holding ``day.csv.gz`` is not opened two levels deep; the message
+    names the file inside to open once unzipped."""
+    inner = _pack(plain, "gzip")
+    packed = tmp_path / "nested.zip"
+    with zipfile.ZipFile(packed, "w") as archive:
+        archive.write(inner, inner.name)
+    with pytest.raises(InputError, match=r"holding day\.csv\.gz, itself compressed \(gzip\)"):
+        read_points(packed)
+
+
+def test_a_zip_method_python_cannot_read_is_named(tmp_path, plain):
+    """Windows writes deflate64 for large files: named, not a traceback."""
+    packed = _pack(plain, "zip")
+    data = bytearray(packed.read_bytes())
+    at = data.rfind(b"PK\x01\x02")  # the last central directory entry: day/day.csv
+    data[at + 10 : at + 12] = (9).to_bytes(2, "little")
+    packed.write_bytes(bytes(data))
+    with pytest.raises(InputError, match="compressed with deflate64, which Wakeline cannot"):
+        read_points(packed)
+
+
+def _big(tmp_path: Path) -> Path:
+    """A file whose text is well past the sniffer's 256 KB sample."""
+    path = tmp_path / "big.csv"
+    path.write_text(_rows(60_000))
+    return path
+
+
+@pytest.mark.parametrize("kind", ["gzip", "bz2", "xz", "zstd", "zip"])
+@pytest.mark.parametrize("how", ["cut", "flipped"])
+def test_damaged_data_is_one_message_and_nothing_is_written(tmp_path, capsys, kind, how):
+    """Data cut short or with a damaged byte past the sniffer's sample: the whole read, the
+    streamed import and the CLI all stop with one message naming the file (no points of
+    the part before the damage pass as the file's); no output is left."""
+    packed = _pack(_big(tmp_path), kind)
+    data = bytearray(packed.read_bytes())
+    if how == "cut":
+        data = data[: len(data) * 9 // 10]
+    else:
+        data[len(data) * 8 // 10] ^= 0x55
+    packed.write_bytes(bytes(data))
+    with pytest.raises(InputError) as err:
+        read_points(packed)
+    text = str(err.value)
+    assert text.startswith(str(packed)) and ("cut short or damaged" in text), text
+    with pytest.raises(InputError, match="cut short or damaged"):
+        import_to_csv(packed, tmp_path / "o.csv")
+    assert not (tmp_path / "o.csv").exists()
+    assert main(["import", str(packed), "-o", str(tmp_path / "o.csv")]) == 2
+    err_text = capsys.readouterr().err
+    assert str(packed) in err_text and err_text.count("\n") == 1
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_tar_gz_and_a_7z_are_named(tmp_path, plain):
+    import tarfile
+
+    tgz = tmp_path / "days.tar.gz"
+    with tarfile.open(tgz, "w:gz") as archive:
+        archive.add(plain, "day.csv")
+    with pytest.raises(InputError, match=r"a tar archive \(gzip-compressed\); unpack it"):
+        read_points(tgz)
+    seven = tmp_path / "day.7z"
+    seven.write_bytes(b"7z\xbc\xaf\x27\x1c" + bytes(100))
+    with pytest.raises(InputError, match=r"a 7z archive; .* \(7z x FILE\)"):
+        read_points(seven)
+
+
+def test_the_opener_streams_a_zip_member_and_tells_its_progress(tmp_path):
+    """The member is decompressed as it is read: a read of 1 MB of a 12 MB member has read
+    a small part of the archive on disk."""
+    packed = _pack(_big(tmp_path), "zip")
+    opened = open_data(packed, "zip")
+    with opened as stream:
+        head = stream.read(1 << 18)
+        assert head.startswith(b"sensor,batch,time,lon,lat\n")
+        assert 0 < opened.fraction() < 0.9
+    assert opened.raw_bytes() == 0  # closed
+
+
+def test_export_like_a_zipped_original_writes_plain_text_in_its_layout(tmp_path, capsys):
+    src = tmp_path / "orig.csv"
+    src.write_text(
+        "MMSI;Time;Lat;Lon\n"
+        + "".join(
+            f"2190{k % 3};01/05/2024 00:{k:02d}:00;57,{k:04d};11,5{k:03d}\n" for k in range(40)
+        )
+    )
+    packed = _pack(src, "zip")
+    out_plain, out_zip = tmp_path / "a.csv", tmp_path / "b.csv"
+    assert main(["export", str(src), "-o", str(out_plain), "--like", str(src)]) == 0
+    capsys.readouterr()
+    assert main(["export", str(packed), "-o", str(out_zip), "--like", str(packed)]) == 0
+    err = capsys.readouterr().err
+    assert f"plain text: {packed} is zip-compressed" in err
+    assert out_zip.read_bytes() == out_plain.read_bytes()
+    assert out_zip.read_bytes().startswith(b"MMSI;Time;Lat;Lon\n")
+
+
+def test_batch_reads_a_zip_through_the_same_opener(tmp_path, plain):
+    """``wakeline batch`` reads compressed inputs as the importer does (before, each was
+    first decompressed into the stage folder)."""
+    from wakeline.core import batch
+
+    assert not hasattr(batch, "_unpack") and not hasattr(batch, "_text_stream")
+    out = tmp_path / "out"
+    pipe = tmp_path / "p.json"
+    from wakeline.core.pipeline import Pipeline
+
+    pipe.write_text(Pipeline.default().to_json())
+    assert main(["batch", str(pipe), str(_pack(plain, "zip")), "-o", str(out)]) == 0
+    import json
+
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["rows_read"] == 3000 and rep["quarantined"] == 1
+
+
+def test_real_files_lists_compressed_track_files(tmp_path, plain):
+    from wakeline.core.evaluate_association import real_files
+
+    folder = tmp_path / "set"
+    folder.mkdir()
+    for kind in ("gzip", "bz2", "zip"):
+        p = _pack(plain, kind)
+        p.rename(folder / p.name)
+    (folder / "notes.pdf").write_bytes(b"%PDF")
+    assert [f.name for f in real_files(folder)] == ["day.csv.bz2", "day.csv.gz", "day.zip"]
