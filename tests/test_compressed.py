@@ -271,3 +271,21 @@ def test_real_files_lists_compressed_track_files(tmp_path, plain):
         p.rename(folder / p.name)
     (folder / "notes.pdf").write_bytes(b"%PDF")
     assert [f.name for f in real_files(folder)] == ["day.csv.bz2", "day.csv.gz", "day.zip"]
+
+
+def test_clean_and_evaluate_real_read_a_zip(tmp_path):
+    """``wakeline clean`` (streamed) and ``evaluate maneuver --real`` on a zip: what they
+    give on the plain file."""
+    from wakeline.core import simulate
+    from wakeline.core.evaluate_real import evaluate_real
+    from wakeline.core.io import write_points
+
+    src = tmp_path / "scene.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=3, area_km=10.0), src)
+    packed = _pack(src, "zip")
+    for name, given in (("a.csv", src), ("b.csv", packed)):
+        assert main(["clean", str(given), "-o", str(tmp_path / name)]) == 0
+    assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
+    want = evaluate_real(src).rows.set_index("method")
+    got = evaluate_real(packed).rows.set_index("method")
+    pd.testing.assert_frame_equal(got, want)
