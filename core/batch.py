@@ -27,6 +27,7 @@ when a batch runs (``pip install wakeline[batch]``).
 """
 
 import contextlib
+import errno
 import json
 import math
 import os
@@ -280,13 +281,15 @@ def _damaged(path: Path, kind: str | None, exc: Exception) -> str:
     return damaged(path, kind, exc)
 
 
-def _head(path: Path, kind: str | None, limit: int) -> tuple[bytes, int, bool]:
+def _head(
+    path: Path, kind: str | None, limit: int, member: str | None = None
+) -> tuple[bytes, int, bool]:
     """The first ``limit`` text bytes of ``path`` (decompressed by the importer's opener,
-    :func:`~wakeline.core.io.compressed.open_data`), the bytes on disk they took, and
-    whether that is the whole file."""
+    :func:`~wakeline.core.io.compressed.open_data`; ``member``: a zip's file), the bytes
+    on disk they took, and whether that is the whole file."""
     from wakeline.core.io.compressed import open_data
 
-    opened = open_data(path, kind)
+    opened = open_data(path, kind, member)
     with opened as stream:
         data = bytes(stream.read(limit + 1))
         used = opened.raw_bytes()
@@ -301,6 +304,68 @@ class _CsvInput:
     compression: str | None
     text_bytes: int  # its size as text (estimated for compressed files)
     empty: bool  # no data rows (empty, or a header only)
+    member: str | None = None  # one file of a zip of several
+
+    @property
+    def name(self) -> str:
+        """How messages and the quarantine name it: the file, or ``days.zip/a.csv``."""
+        return str(self.path) if self.member is None else f"{self.path}/{self.member}"
+
+
+def _survey_all(path: Path, stage: Path, read: dict) -> list[_CsvInput]:
+    """:func:`_survey` of one input; a zip of several files is several inputs, one per
+    file (each checked as the importer would check it on its own)."""
+    from wakeline.core.io.compressed import compression_of, data_members
+
+    if compression_of(path) == "zip":
+        import zipfile
+
+        try:
+            with zipfile.ZipFile(path) as archive:
+                names = [m.filename for m in data_members(archive)]
+        except zipfile.BadZipFile:
+            names = []  # damaged: the survey's opener says so
+        if len(names) > 1:
+            return [_survey_member(path, name, stage, read) for name in names]
+    return [_survey(path, stage, read)]
+
+
+def _survey_member(path: Path, member: str, stage: Path, read: dict) -> _CsvInput:
+    """:func:`_survey` of one file of a zip of several: its start is sniffed from a
+    sample written to the stage (the importer opens a zip of one file only)."""
+    import zipfile
+
+    from wakeline.core.io import sniff
+    from wakeline.core.io.compressed import zip_member
+    from wakeline.core.io.pieces import local_name
+    from wakeline.core.io.reader import resolve_header
+    from wakeline.core.io.sniff import SAMPLE_BYTES
+
+    label = f"{path}/{member}"
+    try:
+        head, _used, whole = _head(path, "zip", SAMPLE_BYTES, member)
+        with zipfile.ZipFile(path) as archive:
+            text_bytes = zip_member(archive, path, member).file_size
+    except InputError as exc:
+        raise InputError(str(exc).replace(f"{path}:", f"{label}:", 1)) from None
+    if not head.strip():
+        return _CsvInput(path, "zip", text_bytes, True, member)
+    if not whole:  # whole lines only
+        cut = max(head.rfind(b"\n"), head.rfind(b"\r"))
+        head = head if cut < 0 else head[: cut + 1]
+    target = stage / "survey" / local_name(Path(member))
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_bytes(head)
+    try:
+        sn = sniff(target, read["encoding"], read["delimiter"], read["skip_rows"])
+        if sn.kind == "csv":
+            resolve_header(sn, read["fmt"], read["mapping"], label, read["origin"])
+    except InputError as exc:
+        raise InputError(str(exc).replace(str(target), label)) from None
+    finally:
+        target.unlink(missing_ok=True)
+    empty = sn.kind == "csv" and not sn.preview and whole
+    return _CsvInput(path, "zip", text_bytes, empty, member)
 
 
 def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
@@ -335,20 +400,29 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
 
 
 def _import_file(
-    path: str, file_no: int, stage: str, n: int, compression: str | None, read: dict
+    path: str,
+    file_no: int,
+    stage: str,
+    n: int,
+    compression: str | None,
+    read: dict,
+    member: str | None = None,
 ) -> dict:
     """Pass 1 on one CSV input, read as ``wakeline import`` reads it (every line a point
     or a quarantine row, the same reasons), piece by piece into the buckets: streamed,
     or, where the streamed reader gives up (a value only the careful parse reads, another
     encoding further on, quotes), each piece read by the importer on its own. A
     compressed file (gzip, bz2, xz, zstd, a zip of one file) is decompressed as it is
-    read, as the importer reads it (nothing written beside it). Returns the counts per
-    piece (``counts``), the importer's ``warnings`` and ``rows`` (points + quarantined)."""
+    read, as the importer reads it (nothing written beside it); one file (``member``) of
+    a zip of several is first decompressed into the stage folder (deleted when read).
+    Returns the counts per piece (``counts``), the importer's ``warnings`` and ``rows``
+    (points + quarantined)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     from wakeline.core.io import read_points, sniff
-    from wakeline.core.io.pieces import piece_safe, read_in_pieces
+    from wakeline.core.io.compressed import open_data
+    from wakeline.core.io.pieces import local_name, piece_safe, read_in_pieces
     from wakeline.core.io.reader import (
         StreamFallback,
         WholeFileNeeded,
@@ -360,6 +434,7 @@ def _import_file(
 
     root, src = Path(stage), Path(path)
     scratch = root / f"file-{file_no:06d}"
+    label = str(src) if member is None else f"{src}/{member}"
     pieces: list[int] = []
 
     def sink(points: pd.DataFrame) -> None:
@@ -378,6 +453,12 @@ def _import_file(
 
     readable = src
     try:
+        if member is not None:
+            readable = scratch / local_name(Path(member))
+            readable.parent.mkdir(parents=True, exist_ok=True)
+            with open_data(src, "zip", member) as stream, open(readable, "wb") as out:
+                while chunk := stream.read(16 << 20):
+                    out.write(chunk)
         sn = sniff(readable, read["encoding"], read["delimiter"], read["skip_rows"])
         if not piece_safe(sn):  # NMEA logs, UTF-16 text: read whole
             res = read_points(readable, **read)
@@ -420,9 +501,14 @@ def _import_file(
                     sink(res.points)
                     q, warnings = res.quarantine, res.report.get("warnings", [])
     except InputError as exc:
-        raise InputError(str(exc).replace(str(readable), str(src))) from None
+        raise InputError(str(exc).replace(str(readable), label)) from None
     except (OSError, EOFError) as exc:  # a gzip cut short, met by the streamed reader
         if isinstance(exc, OSError) and (exc.errno or exc.filename):
+            if member is not None and exc.errno == errno.ENOSPC:
+                raise InputError(
+                    f"{label}: cannot decompress into {scratch} ({exc.strerror}); give an "
+                    "OUTDIR on a disk with room for the largest file of the zip"
+                ) from None
             raise
         raise InputError(_damaged(src, compression, exc)) from None
     finally:
@@ -431,7 +517,7 @@ def _import_file(
     if n_q:
         qdir = root / "quarantine"
         qdir.mkdir(parents=True, exist_ok=True)
-        q = q.assign(file=str(src))[["file", "line", "reason", "text"]].astype(
+        q = q.assign(file=label)[["file", "line", "reason", "text"]].astype(
             {"line": "int64", "reason": "str", "text": "str"}
         )
         pq.write_table(
@@ -482,7 +568,9 @@ def _import_inputs(
 
     todo = [(k, i) for k, i in enumerate(inputs) if not i.empty]
     tasks = [
-        dask.delayed(_import_file, pure=False)(str(i.path), k, str(stage), n, i.compression, read)
+        dask.delayed(_import_file, pure=False)(
+            str(i.path), k, str(stage), n, i.compression, read, i.member
+        )
         for k, i in todo
     ]
     done = dict(zip((k for k, _ in todo), dask.compute(*tasks), strict=True))
@@ -490,10 +578,10 @@ def _import_inputs(
     for k, i in enumerate(inputs):
         d = done.get(k)
         if d is None or not d["rows"]:
-            empty.append(str(i.path))
-            warnings.append(f"{i.path}: warning: no data rows (a header only?); skipped")
+            empty.append(i.name)
+            warnings.append(f"{i.name}: warning: no data rows (a header only?); skipped")
         if d is not None:
-            warnings += [f"{i.path}: warning: {w}" for w in d["warnings"]]
+            warnings += [f"{i.name}: warning: {w}" for w in d["warnings"]]
     counts = [d["counts"] for d in done.values()]
     none = pd.DataFrame({c: pd.Series([], dtype="int64") for c in ("block", "rows", "quarantined")})
     lines = {k: sum(d[k] for d in done.values()) for k in ("skipped_above_header", "blank_lines")}
@@ -761,7 +849,7 @@ def run_batch(
         check_clock_date(opts.clock_date)
         # Every input checked before any work: one clear message (columns, compression).
         with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
-            csv_inputs = [_survey(p, Path(tmp), read) for p in inputs]
+            csv_inputs = [i for p in inputs for i in _survey_all(p, Path(tmp), read)]
         text_bytes = sum(i.text_bytes for i in csv_inputs)
     else:
         given = [

@@ -132,7 +132,7 @@ def test_a_zip_of_several_files_names_them_and_says_what_to_do(tmp_path, plain, 
         read_points(packed)
     text = str(err.value)
     assert text.startswith(f"{packed}: a zip archive of 2 files (a.csv, b.csv)")
-    assert "unzip it" in text and "`wakeline batch`, which reads them all" in text
+    assert "unzip it" in text and "give the zip to `wakeline batch`, which reads them" in text
     out = tmp_path / "o.csv"
     assert main(["import", str(packed), "-o", str(out)]) == 2
     assert "(a.csv, b.csv)" in capsys.readouterr().err and not out.exists()
@@ -243,22 +243,43 @@ def test_export_like_a_zipped_original_writes_plain_text_in_its_layout(tmp_path,
     assert out_zip.read_bytes().startswith(b"MMSI;Time;Lat;Lon\n")
 
 
-def test_batch_reads_a_zip_through_the_same_opener(tmp_path, plain):
-    """``wakeline batch`` reads compressed inputs as the importer does (before, each was
-    first decompressed into the stage folder)."""
-    from wakeline.core import batch
-
-    assert not hasattr(batch, "_unpack") and not hasattr(batch, "_text_stream")
-    out = tmp_path / "out"
-    pipe = tmp_path / "p.json"
-    from wakeline.core.pipeline import Pipeline
-
-    pipe.write_text(Pipeline.default().to_json())
-    assert main(["batch", str(pipe), str(_pack(plain, "zip")), "-o", str(out)]) == 0
+def test_batch_reads_a_zip_of_one_or_several_files(tmp_path, plain):
+    """``wakeline batch`` reads compressed inputs through the importer's opener (before,
+    each was first decompressed into the stage folder), and a zip of several files as
+    those files (before: refused): the same rows, tracks and quarantine (named
+    ``days.zip/b.csv``) as the files given apart."""
     import json
 
-    rep = json.loads((out / "report.json").read_text())
+    from wakeline.core import batch
+    from wakeline.core.pipeline import Pipeline
+
+    assert not hasattr(batch, "_unpack") and not hasattr(batch, "_text_stream")
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+
+    def run(name: str, *inputs: Path) -> dict:
+        out = tmp_path / name
+        assert main(["batch", str(pipe), *map(str, inputs), "-o", str(out), "--csv"]) == 0
+        return json.loads((out / "report.json").read_text())
+
+    rep = run("one", _pack(plain, "zip"))
     assert rep["rows_read"] == 3000 and rep["quarantined"] == 1
+    other = tmp_path / "b.csv"
+    other.write_text(_rows(500).replace("S1,", "S2,"))
+    packed = tmp_path / "days.zip"
+    with zipfile.ZipFile(packed, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("__MACOSX/._a.csv", b"junk")
+        archive.write(plain, "a.csv")
+        archive.write(other, "b.csv")
+    (tmp_path / "a.csv").write_bytes(plain.read_bytes())
+    zipped, apart = run("zipped", packed), run("apart", tmp_path / "a.csv", other)
+    assert zipped["rows_read"] == apart["rows_read"] == 3500
+    assert zipped["quarantined"] == apart["quarantined"] == 1
+    assert (tmp_path / "zipped" / "clean.csv").read_bytes() == (
+        tmp_path / "apart" / "clean.csv"
+    ).read_bytes()
+    q = pd.read_parquet(tmp_path / "zipped" / "quarantine")
+    assert list(q["file"]) == [f"{packed}/a.csv"] and list(q["line"]) == [1702]
 
 
 def test_real_files_lists_compressed_track_files(tmp_path, plain):

@@ -29,14 +29,13 @@ _PACKED = (
 )
 #: The compressions the readers open (7z is refused: no streaming reader in Python).
 OPENED = ("gzip", "bz2", "xz", "zstd", "zip")
-#: How to decompress each by hand (named in the messages).
-UNPACK = {
-    "gzip": "gzip -dc FILE > FILE.csv",
-    "bz2": "bunzip2 -k FILE",
-    "xz": "unxz -k FILE",
-    "zstd": "unzstd FILE",
+#: How to decompress what is there of damaged data by hand (named in the messages).
+SALVAGE = {
+    "gzip": "gzip -dc FILE > part.csv",
+    "bz2": "bzcat FILE > part.csv",
+    "xz": "xzcat FILE > part.csv",
+    "zstd": "zstdcat FILE > part.csv",
     "zip": "unzip FILE",
-    "7z": "7z x FILE",
 }
 #: Zip methods Python reads: stored, deflate, bzip2, lzma (not deflate64, which Windows
 #: writes for large files, nor others).
@@ -76,7 +75,7 @@ def compression_of(path: str | Path) -> str | None:
     if kind == "7z":
         raise InputError(
             f"{path}: a 7z archive; Wakeline opens text files, gzip, bz2, xz, zstd and a zip "
-            f"of one file. Unpack it first ({UNPACK['7z']}) and open the CSV"
+            "of one file. Unpack it first (7z x FILE) and open the CSV"
         )
     return kind
 
@@ -88,10 +87,22 @@ def _skipped(info: zipfile.ZipInfo) -> bool:
     return info.is_dir() or name.startswith("__MACOSX/") or base in (".DS_Store", "Thumbs.db")
 
 
-def zip_member(archive: zipfile.ZipFile, path: str | Path) -> zipfile.ZipInfo:
-    """The one data file of a zip archive; :class:`InputError` for none, several (named),
+def data_members(archive: zipfile.ZipFile) -> list[zipfile.ZipInfo]:
+    """The data files of a zip archive, in its order (directories, ``__MACOSX/`` left out)."""
+    return [m for m in archive.infolist() if not _skipped(m)]
+
+
+def zip_member(
+    archive: zipfile.ZipFile, path: str | Path, name: str | None = None
+) -> zipfile.ZipInfo:
+    """The one data file of a zip archive (or the one named ``name``: ``wakeline batch``
+    reads each file of a zip of several); :class:`InputError` for none, several (named),
     an encrypted one or one compressed with a method Python does not read."""
-    members = [m for m in archive.infolist() if not _skipped(m)]
+    members = data_members(archive)
+    if name is not None:
+        members = [m for m in members if m.filename == name]
+        if not members:
+            raise InputError(f"{path}: no file {name} in this zip archive")
     if not members:
         raise InputError(f"{path}: a zip archive with no file in it; nothing to import")
     if len(members) > 1:
@@ -99,7 +110,7 @@ def zip_member(archive: zipfile.ZipFile, path: str | Path) -> zipfile.ZipInfo:
         more = f" and {len(members) - 6} more" if len(members) > 6 else ""
         raise InputError(
             f"{path}: a zip archive of {len(members)} files ({names}{more}); Wakeline opens a "
-            "zip holding one file: unzip it and open one CSV, or give the unzipped files to "
+            "zip holding one file: unzip it and open one CSV, or give the zip to "
             "`wakeline batch`, which reads them all"
         )
     member = members[0]
@@ -121,7 +132,7 @@ def damaged(path: str | Path, kind: str | None, exc: BaseException) -> str:
     """The message for compressed data that is cut short or damaged: the file, the
     decompressor's words, and what to do. Nothing was read from it."""
     text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-    unpack = UNPACK.get(kind or "", "decompress it").replace("FILE > FILE.csv", "FILE > part.csv")
+    unpack = SALVAGE.get(kind or "", "decompress it")
     return (
         f"{path}: the compressed data is cut short or damaged ({kind}: {text}); nothing was "
         "imported from it. The copy is probably incomplete: copy the file again, or "
@@ -131,7 +142,8 @@ def damaged(path: str | Path, kind: str | None, exc: BaseException) -> str:
 
 class open_data:  # noqa: N801  (used as a function: ``with open_data(p, kind) as stream``)
     """``path``'s text as a binary stream, decompressed as it is read (``compression``:
-    one of :data:`OPENED`, or None for a plain file), in a ``with`` block::
+    one of :data:`OPENED`, or None for a plain file; ``member``: a zip's file by name,
+    default its one file), in a ``with`` block::
 
         with open_data(path, "zip") as stream:
             head = stream.read(1 << 16)
@@ -141,11 +153,14 @@ class open_data:  # noqa: N801  (used as a function: ``with open_data(p, kind) a
     ``OSError`` of the disk (with an ``errno``) passes as it is. :meth:`fraction` tells
     how far through the file on disk the reading is (for progress)."""
 
-    def __init__(self, path: str | Path, compression: str | None) -> None:
+    def __init__(
+        self, path: str | Path, compression: str | None, member: str | None = None
+    ) -> None:
         if compression is not None and compression not in OPENED:
             raise InputError(f"{path}: cannot open {compression}-compressed data")
         self.path = Path(path)
         self.kind = compression
+        self.member = member  # a zip's file by name (default: its one file)
         self._raw: BinaryIO | None = None
         self._closers: list = []
         self._size = 0
@@ -182,7 +197,7 @@ class open_data:  # noqa: N801  (used as a function: ``with open_data(p, kind) a
         else:
             archive = zipfile.ZipFile(raw)
             self._closers.append(archive)
-            stream = archive.open(zip_member(archive, self.path))
+            stream = archive.open(zip_member(archive, self.path, self.member))
             head = stream.peek(16)[:16]
             inner = packed_kind(head)
             if inner is not None:
