@@ -21,13 +21,13 @@ start of the feature's JSON. A file that is not valid JSON is refused with the p
 message.
 """
 
-import gzip
 import json
 
 import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.compressed import open_data
 from wakeline.core.io.formats import SYNONYMS, normalize_header
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.progress import Progress, null_progress
@@ -74,9 +74,8 @@ def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None
     from wakeline.core.io.reader import ImportResult, empty_quarantine
 
     progress = progress or null_progress
-    opener = gzip.open if sn.compression == "gzip" else open
     try:
-        with opener(sn.path, "rb") as fh:
+        with open_data(sn.path, sn.compression) as fh:
             doc = json.loads(fh.read().decode(sn.encoding.replace("-sig", "") or "utf-8"))
     except (ValueError, UnicodeDecodeError) as exc:
         raise InputError(f"{sn.path}: not valid GeoJSON ({str(exc)[:200]})") from None

@@ -20,12 +20,12 @@ Parsing is expat's (the C parser of the standard library), one callback per elem
 table is built once at the end.
 """
 
-import gzip
 from xml.parsers import expat
 
 import numpy as np
 import pandas as pd
 
+from wakeline.core.io.compressed import open_data
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.progress import Progress, null_progress
 
@@ -50,8 +50,7 @@ def _line_texts(sn: Sniff, wanted: set[int], from_line: int | None) -> dict[int,
     out: dict[int, str] = {}
     if not wanted and from_line is None:
         return out
-    opener = gzip.open if sn.compression == "gzip" else open
-    with opener(sn.path, "rb") as fh:
+    with open_data(sn.path, sn.compression) as fh:
         for number, raw in enumerate(fh, start=1):
             if number in wanted or (from_line is not None and number >= from_line):
                 out[number] = raw.decode(sn.encoding, errors="replace").rstrip("\r\n")
@@ -126,8 +125,7 @@ def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     parser.CharacterDataHandler = chars
 
     broken: tuple[int, str] | None = None
-    opener = gzip.open if sn.compression == "gzip" else open
-    with opener(sn.path, "rb") as fh:
+    with open_data(sn.path, sn.compression) as fh:
         try:
             parser.ParseFile(fh)
         except expat.ExpatError as exc:
