@@ -330,12 +330,18 @@ def _needs_quotes(column: pa.ChunkedArray) -> bool:
 
 def _quoted_body(table: pa.Table, quoted: list[bool]) -> pa.Array:
     """The CSV rows as one Arrow text array (each ending in a newline), quoting only the
-    columns that need it; numbers are rendered by the cast Arrow's CSV writer uses."""
+    cells that need it (in the columns marked ``quoted``): one odd value (an unbalanced
+    quote in a bad row) does not quote its whole column; numbers are rendered by the cast
+    Arrow's CSV writer uses."""
     cols = []
     for col, q in zip(table.columns, quoted, strict=True):
         text = col if pa.types.is_string(col.type) else pc.cast(col, pa.string())
         if q:
-            text = pc.binary_join_element_wise('"', pc.replace_substring(text, '"', '""'), '"', "")
+            risky = pc.match_substring_regex(text, _NEEDS_QUOTES)
+            wrapped = pc.binary_join_element_wise(
+                '"', pc.replace_substring(text, '"', '""'), '"', ""
+            )
+            text = pc.if_else(risky, wrapped, text)
         cols.append(text)
     row = pc.binary_join_element_wise(*cols, ",", null_handling="replace", null_replacement="")
     return pc.binary_join_element_wise(row, "", "\n").combine_chunks()
@@ -345,9 +351,10 @@ def write_csv(df: pd.DataFrame, path: str | Path, quote: frozenset[str] = frozen
     """Write any table as UTF-8 CSV atomically.
 
     Timestamps are written as ISO 8601 UTC with milliseconds and ``Z``; floats in their
-    shortest round-trip form; missing values as empty cells; text quoted only in the
-    columns where some value holds a delimiter, a quote, a line break or edge blanks, and
-    in the text columns named in ``quote`` (a table written in parts: the whole's choice).
+    shortest round-trip form; missing values as empty cells; a text cell quoted only when
+    it holds a delimiter, a quote, a line break or edge blanks (``quote``: text columns
+    to check so even where this table's values need no quotes; kept for callers that
+    write a table in parts).
     """
     table = _to_arrow(df)
     header = (",".join(_quote(str(c)) for c in df.columns) + "\n").encode("utf-8")
