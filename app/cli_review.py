@@ -139,7 +139,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         "by `associate --proposals` / `fuse --proposals` (several tables may be given) and "
         "the decisions: rows proposal,decision with decision = accept | reject | reset, or "
         "decision = merge with sensor_a,batch_a,sensor_b,batch_b, or decision = split with "
-        "sensor_a,batch_a (that track leaves its target); applied in order. Proposals without a "
+        "sensor_a,batch_a (that track leaves its target); applied in order; or a decision log (the "
+        "window's Review ▸ Export decision log, or --log: time,action,proposal,tracks,…), "
+        "replayed with its undos as the window made it. Proposals without a "
         "decision count as accepted. Targets are the connected components of the proposals not "
         "rejected plus the manual merges minus the splits, named after the sensor:batch of their "
         "earliest track. OUT by its suffix: .csv every input row with a target column (or the "
@@ -160,7 +162,10 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="proposals table(s): e.g. one from associate and one from fuse",
     )
     p.add_argument(
-        "--decisions", type=Path, metavar="D.csv", help="decisions table (none: accept all)"
+        "--decisions",
+        type=Path,
+        metavar="D.csv",
+        help="decisions table, or a decision log of the window or --log (none: accept all)",
     )
     p.add_argument(
         "--log", type=Path, metavar="LOG.csv", help="write the decision log (time, action, …)"

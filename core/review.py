@@ -802,9 +802,15 @@ def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:
     """Apply a decisions table in order (the CLI's ``--decisions``): rows
     ``proposal,decision`` with accept | reject | reset, ``decision`` = merge with
     ``sensor_a,batch_a,sensor_b,batch_b``, or split with ``sensor_a,batch_a`` (that track
-    leaves its target). A bad row raises :class:`InputError` naming its line."""
+    leaves its target). A decision log (an ``action`` column and no ``decision``: the
+    window's Review ▸ Export log, or ``wakeline review --log``) is replayed
+    (:func:`replay_log`). A bad row raises :class:`InputError` naming its line."""
+    if "decision" not in decisions.columns and "action" in decisions.columns:
+        return replay_log(state, decisions)
     if "decision" not in decisions.columns:
-        raise InputError("decisions table lacks the column 'decision'")
+        raise InputError(
+            "decisions table lacks the column 'decision' (or 'action', as in a decision log)"
+        )
     d = decisions.astype(object).where(decisions.notna(), "")
     for line, row in enumerate(d.to_dict("records"), start=2):
         what = str(row.get("decision", "")).strip().lower()
@@ -828,6 +834,70 @@ def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:
                 )
         except InputError as exc:
             raise InputError(f"decisions line {line}: {exc}") from None
+    return state
+
+
+def _log_tracks(state: ReviewState, text: str) -> list[str]:
+    """The track labels of a log's ``tracks`` cell (joined by spaces; a batch may hold
+    spaces itself: tokens are joined until they name a track)."""
+    labels, part = [], ""
+    for token in str(text).split(" "):
+        part = f"{part} {token}" if part else token
+        if part in state._track_no:
+            labels.append(part)
+            part = ""
+    if part:
+        raise InputError(f"no track {part!r} among the input's tracks")
+    return labels
+
+
+def replay_log(state: ReviewState, log: pd.DataFrame) -> ReviewState:
+    """Replay a decision log (columns ``time,action,proposal,tracks,…``: what the
+    window's Review ▸ Export decision log and ``wakeline review --log`` write) in order,
+    as the window made it: accept, reject, reset, merge, split track, split target and
+    repair are made again on the state as it is then; ``undo X`` undoes the last decision
+    not yet undone (it must be an ``X``); a redo is logged as the decision again. Each
+    change keeps its logged time. A row that does not apply raises :class:`InputError`
+    naming its line."""
+    d = log.astype(object).where(log.notna(), "")
+    done: list[Change] = []
+    for line, row in enumerate(d.to_dict("records"), start=2):
+        action = str(row.get("action", "")).strip()
+        pid = str(row.get("proposal", "")).strip()
+        when = str(row.get("time", "")).strip() or None
+        try:
+            if action.startswith("undo "):
+                if not done or done[-1].action != action[5:]:
+                    last = done[-1].action if done else "nothing"
+                    raise InputError(f"{action!r} but the last decision is {last}")
+                state.apply(done.pop().inverse(), when=when)
+                continue
+            tracks = _log_tracks(state, row.get("tracks", ""))
+            if action in ("accept", "reject", "reset", "repair"):
+                if not pid:
+                    raise InputError(f"{action} needs a proposal id")
+                fn = {"accept": accept, "reject": reject, "reset": reset, "repair": repair}
+                change = fn[action](state, pid)
+            elif action == "merge":
+                change = merge(state, tracks)
+            elif action == "split track":
+                if len(tracks) != 1:
+                    raise InputError("split track needs one track")
+                change = split_track(state, tracks[0])
+            elif action == "split target":
+                if not tracks:
+                    raise InputError("split target needs its tracks")
+                change = split_target(state, state.target(tracks[0]))
+            else:
+                raise InputError(
+                    f"unknown action {action!r} (accept, reject, reset, merge, split track, "
+                    "split target, repair or undo …)"
+                )
+            state.apply(change, when=when)
+            if action != "repair":  # a migration, not on the window's undo stack
+                done.append(change)
+        except InputError as exc:
+            raise InputError(f"decision log line {line}: {exc}") from None
     return state
 
 
