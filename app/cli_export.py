@@ -132,12 +132,14 @@ def _cmd_export(args: argparse.Namespace) -> int:
         layout,
         args.output,
         columns=_split(args.columns),
-        renumber=args.renumber,
+        renumber=True if args.renumber else (False if args.keep_ids else None),
         prefer_sensor=args.id_sensor,
         members_path=args.members,
     )
     for warning in rep.get("warnings", []):
         print(f"{args.output}: warning: {warning}", file=sys.stderr)
+    for note in rep.get("notes", []):
+        print(f"{args.output}: {note}", file=sys.stderr)
     msg = (
         f"exported {count(rep['rows'], 'row')} as {rep['layout']} ({rep['encoding']}, "
         f"{count(len(rep['columns']), 'column')})"
@@ -167,7 +169,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "Wakeline did not use are copied (the latter from the columns the import carried "
         "through; left empty for points Wakeline made, e.g. gap fills). Merged and fused "
         "tracks carry one id per target in the batch column (the first member's batch, or "
-        "fresh numbers with --renumber), with a members CSV beside. Wakeline's internal "
+        "fresh numbers with --renumber, or where the ids would collide), with a members CSV "
+        "beside; merged and fused targets are written target by target in time order. Wakeline's internal "
         "columns are left out unless named in --columns.",
         epilog=EPILOG,
     )
@@ -216,11 +219,20 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="COL[,COL...]",
         help="more columns of IN to append (internal ones included, e.g. target,interpolated)",
     )
-    p.add_argument(
+    ids = p.add_mutually_exclusive_group()
+    ids.add_argument(
         "--renumber",
         action="store_true",
         help="give merged/fused targets fresh batch numbers 1, 2, ... (default: the first "
-        "member's batch)",
+        "member's batch, unless two sensors' tracks would share an id in a layout without "
+        "a sensor column: then renumbered, and a note says so)",
+    )
+    ids.add_argument(
+        "--keep-ids",
+        action="store_true",
+        help="keep the first member's batch even where two sensors' tracks then share an "
+        "id in a layout without a sensor column (read back, they are one track; a warning "
+        "says so)",
     )
     p.add_argument(
         "--id-sensor",

@@ -322,3 +322,5 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.log_message(self.tr("exported {0} to {1}").format(done[1], done[2]))
             for warning in done[3] if len(done) > 3 else []:
                 self.log_message(f"{self.tr('Warning')}: {warning}")
+            for note in done[4] if len(done) > 4 else []:
+                self.log_message(f"    {note}")

@@ -130,8 +130,10 @@ class ProjectJobsMixin:
         points = layer.points
 
         def job(_progress):
+            # ids renumbered where two sensors' tracks would share one in a layout
+            # without a sensor column (a note in the log says so)
             rep = export_like(points, layout, path)
-            return ("export", layer.name, path, rep.get("warnings", []))
+            return ("export", layer.name, path, rep.get("warnings", []), rep.get("notes", []))
 
         return self._start("export", job, ("export", layer.name))
 

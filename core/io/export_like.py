@@ -599,25 +599,57 @@ def _relative_times_warning(points: pd.DataFrame, layout: Layout) -> list[str]:
     ]
 
 
-def _shared_ids_warning(points: pd.DataFrame, layout: Layout) -> list[str]:
+def _shared_ids(ids: pd.DataFrame, layout: Layout) -> pd.Series:
+    """The batch ids written for more than one sensor in a layout without a sensor column
+    (each id's sensors, as a list); empty when the file tells every track apart."""
+    if any(c.field == "sensor" for c in layout.columns) or "sensor" not in ids.columns:
+        return pd.Series(dtype=object)
+    keys = ids[["sensor", "batch"]].astype("str").drop_duplicates()
+    if keys["sensor"].nunique() < 2:
+        return pd.Series(dtype=object)
+    shared = keys.groupby("batch")["sensor"].agg(list)
+    return shared[shared.map(len) > 1]
+
+
+def _shared_ids_warning(ids: pd.DataFrame, layout: Layout) -> list[str]:
     """A warning when tracks of different sensors share a batch id and the layout has no
     sensor column: read back, each such id is one track (the sensors' fixes mixed)."""
-    if any(c.field == "sensor" for c in layout.columns) or "sensor" not in points.columns:
-        return []
-    keys = points[["sensor", "batch"]].astype("str").drop_duplicates()
-    if keys["sensor"].nunique() < 2:
-        return []
-    shared = keys.groupby("batch")["sensor"].agg(list)
-    shared = shared[shared.map(len) > 1]
+    shared = _shared_ids(ids, layout)
     if shared.empty:
         return []
     batch, sensors = shared.index[0], shared.iloc[0]
     return [
         f"{len(shared):,} batch id(s) are used by more than one sensor (e.g. {batch}: "
         f"{', '.join(sensors)}) and the layout {layout.name!r} has no sensor column: read "
-        "back, each is one track with the sensors' fixes mixed; export one sensor at a "
-        "time, or to a layout with a sensor column"
+        "back, each is one track with the sensors' fixes mixed; leave out --keep-ids "
+        "(or give --renumber) for fresh batch numbers, or export one sensor at a time"
     ]
+
+
+def _target_rows_order(ids: pd.DataFrame, given: pd.DataFrame) -> np.ndarray:
+    """The row order of a merged, fused or renumbered table: target by target (in order
+    of their start, then of the id written), each target's rows in time order (rows at
+    one time: by the member's sensor and batch, then as given). Depends on the rows, not
+    on the order they come in: the window's layer (kept in the file's order) and the
+    CLI's canonical CSV of it (track order) are written alike."""
+    n = len(ids)
+    # the target of each row: its written id, numbered in the ids' text order
+    code = (
+        ids.groupby([ids["sensor"].astype("str"), ids["batch"].astype("str")], sort=True)
+        .ngroup()
+        .to_numpy()
+    )
+    t = pd.to_datetime(ids["time"], utc=True)
+    ok = t.notna().to_numpy()
+    ns = np.where(ok, (t - EPOCH).dt.as_unit("ns").to_numpy().view("int64"), 0)
+    ns = np.where(ok, ns, np.iinfo("int64").max)
+    n_targets = int(code.max()) + 1 if n else 0
+    start = pd.Series(ns).groupby(code).min().reindex(np.arange(n_targets)).to_numpy()
+    rank = np.empty(n_targets, dtype="int64")
+    rank[np.lexsort((np.arange(n_targets), start))] = np.arange(n_targets)
+    sensor = pd.factorize(given["sensor"].astype("str"), sort=True)[0]
+    batch = pd.factorize(given["batch"].astype("str"), sort=True)[0]
+    return np.lexsort((np.arange(n), batch, sensor, ns, rank[code]))
 
 
 def export_like(
@@ -625,14 +657,26 @@ def export_like(
     layout: Layout,
     path,
     columns: list[str] | None = None,
-    renumber: bool = False,
+    renumber: bool | None = None,
     members_path=None,
     prefer_sensor: str | None = None,
 ) -> dict:
     """Give merged/fused targets their ids (:func:`assign_target_ids`), write ``points`` in
     ``layout`` and, for merged or fused input, the members table beside (``members_path``,
     default ``<path stem>.members.csv``). Returns the report of :func:`write_layout` plus
-    ``members`` (the sidecar's path, or None) and ``targets``."""
+    ``members`` (the sidecar's path, or None), ``targets``, ``warnings`` and ``notes``.
+
+    ``renumber``: True gives every target a fresh batch number 1, 2, … (in order of
+    start); False keeps the first member's ids; None (default) renumbers only when the
+    ids written would collide in a layout that cannot tell them apart (no sensor column,
+    one batch id used by two sensors: AIS 3 and radar 3 rejected as a pair), so that the
+    file reads back as the targets it was written from (a note says so).
+
+    Row order: an unchanged table is written in its file's order (the window's layers
+    carry each point's file row, :data:`~wakeline.core.schema.FILE_ROW`), else as given;
+    a merged, fused or renumbered table target by target, each in time order
+    (:func:`_target_rows_order`).
+    """
     from pathlib import Path
 
     from wakeline.core.io.writer import write_csv
@@ -641,12 +685,32 @@ def export_like(
     if order is not None and order.notna().all() and order.is_unique:
         points = points.iloc[np.argsort(order.to_numpy(), kind="stable")]  # the file's order
     own = {c.key or c.name for c in layout.columns if c.field is None}
+    notes: list[str] = []
     if own & {"target", "members"}:  # the operator's own columns, not a merge result
         ids, members = points, None
     else:
-        ids, members = assign_target_ids(points, renumber=renumber, prefer_sensor=prefer_sensor)
+        ids, members = assign_target_ids(
+            points, renumber=bool(renumber), prefer_sensor=prefer_sensor
+        )
+        shared = _shared_ids(ids, layout) if renumber is None else pd.Series(dtype=object)
+        if not shared.empty:
+            if members is None:  # tracks of several sensors, not merged: one target each
+                label = points["sensor"].astype("str") + ":" + points["batch"].astype("str")
+                ids, members = assign_target_ids(points.assign(target=label), renumber=True)
+            else:
+                ids, members = assign_target_ids(points, renumber=True, prefer_sensor=prefer_sensor)
+            batch, sensors = shared.index[0], shared.iloc[0]
+            notes.append(
+                f"batch ids renumbered 1–{members['batch'].nunique()}: {len(shared):,} id(s) "
+                f"were used by more than one sensor (e.g. {batch}: {', '.join(sensors)}) and "
+                f"the layout {layout.name!r} has no sensor column, so they would read back "
+                "as one track; the members table maps each number to its tracks"
+            )
+        if members is not None:
+            ids = ids.iloc[_target_rows_order(ids, points)]  # rows as in points
     report = write_layout(ids, layout, path, columns=columns)
     report["warnings"] = _shared_ids_warning(ids, layout) + _relative_times_warning(ids, layout)
+    report["notes"] = notes
     report["members"] = None
     report["targets"] = None
     if members is not None:
