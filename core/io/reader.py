@@ -2968,6 +2968,11 @@ def _to_canonical(
                     blanked[label] = int((na & kept_so_far).sum())
                     v = np.where(na, np.nan, v)
                     outside &= ~na
+            if name == "course":  # a full circle is north (MTAD writes 360.0), not out of range
+                full = v == 360.0
+                if full.any():
+                    v = np.where(full, 0.0, v)
+                    outside &= ~full
             # Attributes, not positions: blank the value, keep the row, count it (a
             # course written "-" cost its fix; speed and course are derived from the
             # positions where missing).
