@@ -300,7 +300,7 @@ def _first_member_order(points: pd.DataFrame, target: pd.Series) -> pd.DataFrame
             "target": target.astype("str").to_numpy(),
             "member_sensor": points["sensor"].astype("str").to_numpy(),
             "member_batch": batch.to_numpy(),
-            "time": pd.to_datetime(points["time"], utc=True).to_numpy(),
+            "time": pd.to_datetime(points["time"], utc=True).dt.tz_localize(None).to_numpy(),
         }
     )[~made]
     first = df.groupby(["target", "member_sensor", "member_batch"], sort=False)["time"].min()
