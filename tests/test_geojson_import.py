@@ -104,3 +104,17 @@ def test_any_feature_collection_is_accounted_for(tmp_path_factory, specs):
     path.write_text(json.dumps({"type": "FeatureCollection", "features": feats}), encoding="utf-8")
     r = read_points(path)
     _accounted(r)
+
+
+def test_a_json_that_is_no_geojson_gets_a_short_message(tmp_path):
+    """h122's M4: a JSON document read as a CSV header quoted the whole file (262 k
+    characters) in the message; the names are cut (40 characters each, 40 at most)."""
+    import pytest
+
+    from wakeline.core.errors import InputError
+
+    path = tmp_path / "rows.json"
+    path.write_text(json.dumps([{"a": i, "b": "x" * 50} for i in range(20000)]), encoding="utf-8")
+    with pytest.raises(InputError, match="headers found") as exc:
+        read_points(path)
+    assert len(str(exc.value)) < 2500

@@ -10,6 +10,7 @@ import re
 from dataclasses import dataclass, field
 
 from wakeline.core.errors import InputError
+from wakeline.core.io.sniff import listed_headers
 from wakeline.core.schema import REQUIRED_COLUMNS
 
 FIELDS = (
@@ -797,7 +798,7 @@ def _resolve_columns(
     if missing_mapped:
         raise InputError(
             f"{source}: mapped column(s) not found: {', '.join(missing_mapped)}; "
-            f"headers found: {', '.join(headers)}"
+            f"headers found: {listed_headers(headers)}"
         )
     lookup = _lookup(headers)
     candidates = [f for f in FORMATS if family in ("auto", f.family)]
@@ -823,7 +824,7 @@ def _resolve_columns(
         fmt, missing = best
         raise InputError(
             f"{source}: not a {fmt.label} file: missing column(s) {', '.join(missing)}; "
-            f"headers found: {', '.join(headers)}"
+            f"headers found: {listed_headers(headers)}"
         )
     # Auto detection failed: report against the generic names.
     columns, missing = guess_columns(headers, mapping)
@@ -839,5 +840,5 @@ def _resolve_columns(
     }
     raise InputError(
         f"{source}: missing required column {', '.join(names[m] for m in missing)}; "
-        f"headers found: {', '.join(headers)}; map columns with --map field=column"
+        f"headers found: {listed_headers(headers)}; map columns with --map field=column"
     )

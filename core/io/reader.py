@@ -51,7 +51,7 @@ from wakeline.core.io.formats import (
     resolve,
     unused_position_columns,
 )
-from wakeline.core.io.sniff import Sniff, cell_kind, sniff
+from wakeline.core.io.sniff import Sniff, cell_kind, listed_headers, sniff
 from wakeline.core.io.timetext import (
     NAMED_HINT,
     check_clock_date,
@@ -2749,7 +2749,7 @@ def judge_by_values(sn: Sniff, res: Resolved, mapping: dict[str, str] | None = N
                 raise InputError(
                     f"{sn.path}: the column {src!r} is named like the {what} but its values "
                     f"are not (a word of two meanings); map the {what} column with "
-                    f"--map {what}=COLUMN; headers found: {', '.join(sn.columns)}"
+                    f"--map {what}=COLUMN; headers found: {listed_headers(sn.columns)}"
                 )
     date = None
     time_src = cols.get("time")

@@ -13,6 +13,16 @@ from wakeline.core.io.compressed import (  # noqa: F401  (packed_kind: batch's)
     packed_kind,
 )
 
+
+def listed_headers(names, most: int = 40, each: int = 40) -> str:
+    """Header names for a message: each cut to ``each`` characters, at most ``most`` of
+    them (a JSON document or a binary file read as a header is one huge "name")."""
+    names = [str(n) for n in names]
+    shown = [n if len(n) <= each else n[: each - 1] + "…" for n in names[:most]]
+    more = f" … and {len(names) - most:,} more" if len(names) > most else ""
+    return ", ".join(shown) + more
+
+
 SAMPLE_BYTES = 256 * 1024
 #: Data rows of the sampled start kept to judge columns by their values (``Sniff.sample``).
 SAMPLE_ROWS = 1000
@@ -418,7 +428,7 @@ def read_small_table(
     if missing:
         raise InputError(
             f"{path}: missing required column {', '.join(missing)} ({what}); "
-            f"headers found: {', '.join(sn.columns)}"
+            f"headers found: {listed_headers(sn.columns)}"
         )
     with open_data(path, sn.compression) as stream:
         return pd.read_csv(
