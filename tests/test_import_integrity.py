@@ -209,6 +209,19 @@ def test_a_header_line_again_is_named_so(write, tmp_path, monkeypatch, streamed)
     assert r.quarantine["reason"].tolist() == ["the header line again (files joined?)"]
 
 
+def test_a_header_line_again_in_another_case_is_named_so(write):
+    """h122's L4: a joined export writing its header upper-case (TIME,ID,LAT,LON) was
+    quarantined as "unparsable time"."""
+    rows = [
+        f"2024-05-01 08:00:{i:02d},{1 + i % 2},{30 + i * 1e-3:.4f},{122 + i * 1e-3:.4f}"
+        for i in range(40)
+    ]
+    text = "\n".join(["time,id,lat,lon", *rows[:20], "TIME,ID,LAT,LON", *rows[20:]]) + "\n"
+    r = read_points(write("joined_case.csv", text))
+    assert_all_accounted(r, 41)
+    assert r.quarantine["reason"].tolist() == ["the header line again (files joined?)"]
+
+
 @pytest.mark.parametrize("streamed", [False, True])
 def test_nul_bytes_and_joined_files_with_a_bom(write, tmp_path, monkeypatch, streamed):
     """Operator test: a logger's file cut short by a power loss ends in a block of NUL

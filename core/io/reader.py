@@ -2281,7 +2281,8 @@ def _text_column(arr: pa.ChunkedArray) -> _Text:
 
 def _header_again(table: pa.Table, cols: dict[str, str], rows: np.ndarray) -> np.ndarray:
     """Which of ``rows`` (a mask) repeat the header: every mapped cell is its column's
-    name (a second file's header where files were joined). Looks at ``rows`` only."""
+    name, in any case (a second file's header where files were joined). Looks at ``rows``
+    only."""
     out = np.zeros(table.num_rows, dtype=bool)
     where = np.flatnonzero(rows)
     if not len(where):
@@ -2292,8 +2293,9 @@ def _header_again(table: pa.Table, cols: dict[str, str], rows: np.ndarray) -> np
         text, _ = _trimmed(sub[src]) if src in sub.column_names else (None, None)
         if text is None:
             continue
-        text = pc.utf8_ltrim(text, "\ufeff")  # a joined file's byte order mark
-        same &= np.asarray(pc.fill_null(pc.equal(text, src.strip()), False), dtype=bool)
+        text = pc.utf8_lower(pc.utf8_ltrim(text, "\ufeff"))  # a joined file's byte order mark
+        # in any case: a joined export may write its header upper-case (TIME,LAT,LON)
+        same &= np.asarray(pc.fill_null(pc.equal(text, src.strip().lower()), False), dtype=bool)
     out[where[same]] = True
     return out
 
