@@ -5,6 +5,7 @@ import collections
 import logging
 from collections.abc import Callable
 
+import shiboken6
 from PySide6 import QtCore
 
 log = logging.getLogger(__name__)
@@ -29,7 +30,15 @@ class _Task(QtCore.QRunnable):
             # Logged, and handed over as None so that the caller stops waiting for it.
             log.exception("map drawing job failed")
             result = None
-        self.signals.done.emit(self.done, result)
+        # The window (and with it the signals' owner) may be gone by now: closed while a
+        # frame was made. Nobody waits for the result then.
+        signals = self.signals
+        if not shiboken6.isValid(signals):
+            return
+        try:
+            signals.done.emit(self.done, result)
+        except RuntimeError:  # deleted between the check and the emit
+            log.debug("map drawing job finished after its window was closed")
 
 
 class LodWorker(QtCore.QObject):

@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pyqtgraph as pg
 import pyqtgraph.graphicsItems.PlotDataItem as _plot_data_item
-from PySide6 import QtCore, QtGui
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.map_draw import Curve, DrawData
 
@@ -76,32 +76,54 @@ class Sprite:
             or pen.color().rgba() != self.rgba
         ):
             return False
-        device = p.device()
-        if device is None or abs(device.devicePixelRatioF() - 1.0) > 1e-6:
-            return False  # made at one device pixel per pixel: a high-DPI paint strokes
-        t = p.transform()
-        x0, x1, y0, y1 = self.view
-        w, h = self.image.width(), self.image.height()
-        if abs(t.m12()) > 1e-12 or abs(t.m21()) > 1e-12:
+        corner = image_corner(p, item, self.view, self.image)
+        if corner is None:
             return False
-        # The map's scale equals the image's to within a pixel across it (the plot size
-        # the worker was given is the plot area's rounded up by its half-pixel border).
-        if abs(t.m11() * (x1 - x0) - w) > SCALE_TOLERANCE_PX or (
-            abs(-t.m22() * (y1 - y0) - h) > SCALE_TOLERANCE_PX
-        ):
-            return False
-        vb = item.getViewBox()
-        if vb is None:
-            return False
-        shown = vb.viewRect()
-        if not self.covers((shown.left(), shown.right(), shown.top(), shown.bottom())):
-            return False  # panned beyond the image: stroke until a new one is made
-        corner = t.map(QtCore.QPointF(x0, y1))
         p.save()
         p.resetTransform()
-        p.drawImage(QtCore.QPointF(round(corner.x()), round(corner.y())), self.image)
+        p.drawImage(corner, self.image)
         p.restore()
         return True
+
+
+def image_corner(
+    p: QtGui.QPainter,
+    item: QtWidgets.QGraphicsItem,
+    view: tuple[float, float, float, float],
+    image: QtGui.QImage,
+) -> QtCore.QPointF | None:
+    """Where (device pixels) to copy ``image``, made by a worker showing ``view`` (x0, x1,
+    y0, y1, degrees) on its pixels, so that it shows ``item``'s data exactly as a paint
+    through ``p`` would; None when it cannot (another scale or device pixel ratio, a
+    rotation, panned beyond the image)."""
+    device = p.device()
+    if device is None or abs(device.devicePixelRatioF() - 1.0) > 1e-6:
+        return None  # made at one device pixel per pixel: a high-DPI paint strokes
+    t = p.transform()
+    x0, x1, y0, y1 = view
+    w, h = image.width(), image.height()
+    if abs(t.m12()) > 1e-12 or abs(t.m21()) > 1e-12:
+        return None
+    # The map's scale equals the image's to within a pixel across it (the plot size
+    # the worker was given is the plot area's rounded up by its half-pixel border).
+    if abs(t.m11() * (x1 - x0) - w) > SCALE_TOLERANCE_PX or (
+        abs(-t.m22() * (y1 - y0) - h) > SCALE_TOLERANCE_PX
+    ):
+        return None
+    vb = item.getViewBox()
+    if vb is None:
+        return None
+    shown = vb.viewRect()
+    tx, ty = (x1 - x0) / w, (y1 - y0) / h  # one pixel, in degrees
+    if not (
+        shown.left() >= x0 - tx
+        and shown.right() <= x1 + tx
+        and shown.top() >= y0 - ty
+        and shown.bottom() <= y1 + ty
+    ):
+        return None  # panned beyond the image: stroke until a new one is made
+    corner = t.map(QtCore.QPointF(x0, y1))
+    return QtCore.QPointF(round(corner.x()), round(corner.y()))
 
 
 def _chunks(lon: np.ndarray, size: int) -> list[tuple[int, int]]:

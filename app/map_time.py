@@ -13,18 +13,19 @@ and the map.
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pyqtgraph as pg
 from PySide6 import QtCore
 
 from wakeline.app.layer_view import is_part_of
-from wakeline.app.map_draw import DrawData, LayerGeometry, prepare_layer
+from wakeline.app.map_draw import Curve, DrawData, LayerGeometry, prepare_layer
+from wakeline.app.map_marks import MarkerItem, render_marks
+from wakeline.app.map_paths import SpriteCurve, render_sprite
 from wakeline.core.timeline import TimeIndex, build_index, mask_rows
 
 TRAIL_COLOR = "#202020"
-MARKER_BRUSH = "#ffcc00"
 #: Trails wider than 1 px only up to this many vertices: Qt's raster engine draws a wide
 #: (or translucent) pen several times slower (see map_canvas).
 WIDE_MAX = 20_000
@@ -35,6 +36,8 @@ _NO_RESTORE = object()
 #: The slider's time is written to the session (and so the project) this long (ms) after
 #: its last move: once a drag or the playback settles, never once per frame.
 SETTLE_MS = 400
+#: A frame is made again for a panned or zoomed map this long (ms) after its last move.
+VIEW_MS = 80
 
 
 def thin_to_pixels(
@@ -148,9 +151,21 @@ def window_draw_data(
     return replace(out, name=data.name)
 
 
+def marker_size(n: int) -> float:
+    """The markers' size (px) when ``n`` are shown: smaller beyond :data:`MANY_MARKERS`."""
+    return 10.0 if n <= MANY_MARKERS else 6.0
+
+
+def trail_width(n: int) -> float:
+    """The trail's pen (px) for ``n`` vertices: 1 px beyond :data:`WIDE_MAX`."""
+    return 3.0 if n <= WIDE_MAX else 1.0
+
+
 @dataclass(frozen=True)
 class Frame:
-    """What one time step draws: the tracks alive at ``t``, their positions, the trail."""
+    """What one time step draws: the tracks alive at ``t``, their positions, the trail;
+    made in a worker for a view: the trail's painter path and the trail and markers
+    drawn into images of that view (None: the paint draws them from the arrays)."""
 
     t: float
     tracks: np.ndarray
@@ -158,13 +173,36 @@ class Frame:
     lat: np.ndarray
     trail_lon: np.ndarray
     trail_lat: np.ndarray
+    trail_path: object = field(default=None, compare=False, repr=False)
+    trail_sprite: object = field(default=None, compare=False, repr=False)
+    marks_sprite: object = field(default=None, compare=False, repr=False)
 
 
-def frame_job(index: TimeIndex, t: float, trail_s: float, px: tuple[float, float]) -> Frame:
-    """Positions at ``t`` and the trails thinned to the pixel ``px`` (pure; a worker)."""
+def frame_job(
+    index: TimeIndex,
+    t: float,
+    trail_s: float,
+    px: tuple[float, float],
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+) -> Frame:
+    """Positions at ``t`` and the trails thinned to the pixel ``px`` (pure; a worker).
+    With ``view`` and ``size_px`` (the map's range and plot size): the trail's path, and
+    the trail and markers drawn into images of that view (:mod:`map_paths`,
+    :mod:`map_marks`), so the GUI thread only copies them."""
     tracks, lon, lat = index.positions_at(t)
     tl, ta = thin_to_pixels(*index.trail(t, trail_s), px)
-    return Frame(float(t), tracks, lon, lat, tl, ta)
+    frame = Frame(float(t), tracks, lon, lat, tl, ta)
+    if view is None or size_px is None:
+        return frame
+    path = pg.arrayToQPath(tl, ta, connect="finite") if len(tl) else None
+    trail_sprite = None
+    if len(tl):
+        antialias = bool(pg.getConfigOption("antialias"))
+        curve = Curve("trail", TRAIL_COLOR, tl, ta)
+        trail_sprite = render_sprite(curve, view, size_px, trail_width(len(tl)), antialias)
+    marks = render_marks(lon, lat, view, size_px, marker_size(len(tracks)))
+    return replace(frame, trail_path=path, trail_sprite=trail_sprite, marks_sprite=marks)
 
 
 def guarded(job):
@@ -181,11 +219,17 @@ def guarded(job):
 
 
 class TimeOverlay(QtCore.QObject):
-    """The markers at ``t`` (one scatter) and the trails (one curve) on a MapCanvas.
+    """The markers at ``t`` (:class:`~wakeline.app.map_marks.MarkerItem`) and the trails
+    (one curve) on a MapCanvas.
 
     With an ``executor`` (the map's LOD worker protocol) frames are computed in a worker
-    and the latest wanted time wins: a slider dragged fast never queues frames; without
-    one, :meth:`show_at` draws at once. ``drawn(t)`` follows every swapped-in frame.
+    and the latest wanted time wins: a slider dragged fast never queues frames, a result
+    for an older time than one asked since is dropped; the worker also builds the
+    trail's path and draws the trail and the markers into images of the view, so a frame
+    costs the GUI thread two ``setData`` of arrays and two image copies. A pan or zoom
+    asks for the frame again for the new view (the paint draws from the arrays until it
+    arrives). Without an executor, :meth:`show_at` draws at once. ``drawn(t)`` follows
+    every swapped-in frame.
     """
 
     drawn = QtCore.Signal(float)
@@ -194,12 +238,10 @@ class TimeOverlay(QtCore.QObject):
         super().__init__(canvas)
         self.canvas = canvas
         self.executor = executor
-        self.trail = pg.PlotDataItem(pen=pg.mkPen(TRAIL_COLOR, width=1.5), connect="finite")
+        self.trail = SpriteCurve(pen=pg.mkPen(TRAIL_COLOR, width=1.5), connect="finite")
         self.trail.setZValue(70)
-        # One brush for all markers: per-point brushes cost pyqtgraph ~30 µs a point.
-        self.markers = pg.ScatterPlotItem(
-            size=10, pen=pg.mkPen("#111", width=1.2), brush=pg.mkBrush(MARKER_BRUSH)
-        )
+        # Drawn from arrays (pyqtgraph's scatter does Python work per spot).
+        self.markers = MarkerItem(size=10)
         self.markers.setZValue(71)
         for item in (self.trail, self.markers):
             canvas.addItem(item, ignoreBounds=True)
@@ -207,10 +249,21 @@ class TimeOverlay(QtCore.QObject):
         self.shown_tracks = np.zeros(0, dtype="int64")
         self._wanted: tuple | None = None
         self._running = False
+        self._asked = 0  # frames asked for; a result older than the last drawn is dropped
+        self._shown_ask = 0
+        self._last: tuple[float, float] | None = None  # (t, trail_s) last asked for
+        # A pan, zoom or resize: the frame again for the new view, once it settles.
+        self._view_timer = QtCore.QTimer(self)
+        self._view_timer.setSingleShot(True)
+        self._view_timer.setInterval(VIEW_MS)
+        self._view_timer.timeout.connect(self._view_changed)
+        if executor is not None:
+            canvas.vb.sigRangeChanged.connect(lambda *_: self._view_timer.start())
+            canvas.vb.sigResized.connect(lambda *_: self._view_timer.start())
 
     @property
     def busy(self) -> bool:
-        return self._running or self._wanted is not None
+        return self._running or self._wanted is not None or self._view_timer.isActive()
 
     def set_scene(self, scene: TimeScene | None) -> None:
         self.scene = scene
@@ -218,20 +271,37 @@ class TimeOverlay(QtCore.QObject):
             self.clear()
 
     def clear(self) -> None:
+        self._wanted = None
+        self._asked += 1  # a frame under way is dropped on arrival
+        self._shown_ask = self._asked
         self.markers.setData([], [])
         self.trail.setData([], [])
+        self.trail.sprite = None
         self.shown_tracks = np.zeros(0, dtype="int64")
 
     def show_at(self, t: float, trail_s: float) -> None:
         """Draw every track's position at ``t`` (s) and its last ``trail_s`` seconds."""
+        self._last = (float(t), float(trail_s))
         if self.scene is None:
             self.clear()
             return
-        self._wanted = (self.scene.index, float(t), float(trail_s), self.canvas.vb.viewPixelSize())
+        vb = self.canvas.vb
+        self._asked += 1
         if self.executor is None:
-            self._apply(frame_job(*self._take()))
-        elif not self._running:
+            self._wanted = (self.scene.index, float(t), float(trail_s), vb.viewPixelSize())
+            self._apply(frame_job(*self._take()), self._asked)
+            return
+        (x0, x1), (y0, y1) = vb.viewRange()
+        r = vb.sceneBoundingRect()
+        size = (max(int(round(r.width())), 1), max(int(round(r.height())), 1))
+        view = (float(x0), float(x1), float(y0), float(y1))
+        self._wanted = (self.scene.index, float(t), float(trail_s), vb.viewPixelSize(), view, size)
+        if not self._running:
             self._submit()
+
+    def _view_changed(self) -> None:
+        if self._last is not None and self.scene is not None and self.markers.isVisible():
+            self.show_at(*self._last)
 
     def _take(self) -> tuple:
         wanted, self._wanted = self._wanted, None
@@ -239,26 +309,33 @@ class TimeOverlay(QtCore.QObject):
 
     def _submit(self) -> None:
         args = self._take()
+        ask = self._asked
         self._running = True
-        self.executor(guarded(lambda: frame_job(*args)), self._done)
+        self.executor(guarded(lambda: frame_job(*args)), lambda f: self._done(f, ask))
 
-    def _done(self, frame: Frame | None) -> None:
+    def _done(self, frame: Frame | None, ask: int) -> None:
         self._running = False
         if self._wanted is not None:
             self._submit()  # a newer time arrived meanwhile: draw that one next
         if self.scene is not None and frame is not None:
-            self._apply(frame)
+            self._apply(frame, ask)
 
-    def _apply(self, frame: Frame) -> None:
+    def _apply(self, frame: Frame, ask: int) -> None:
+        if ask < self._shown_ask:
+            return  # stale: a newer frame (or a clear) is on the map already
+        self._shown_ask = ask
         self.shown_tracks = frame.tracks
-        size = 10 if len(frame.tracks) <= MANY_MARKERS else 6
+        size = marker_size(len(frame.tracks))
         if self.markers.opts["size"] != size:
             self.markers.setSize(size)
-        self.markers.setData(frame.lon, frame.lat)
-        width = 3.0 if len(frame.trail_lon) <= WIDE_MAX else 1.0
+        self.markers.setData(frame.lon, frame.lat, frame.marks_sprite)
+        width = trail_width(len(frame.trail_lon))
         if self.trail.opts["pen"].widthF() != width:
             self.trail.setPen(pg.mkPen(TRAIL_COLOR, width=width))
         self.trail.setData(frame.trail_lon, frame.trail_lat, connect="finite")
+        if frame.trail_path is not None:  # built in the worker: the paint only strokes
+            self.trail.path = frame.trail_path
+        self.trail.sprite = frame.trail_sprite  # drawn in the worker: the paint copies it
         self.drawn.emit(frame.t)
 
     def set_visible(self, on: bool) -> None:
