@@ -37,6 +37,7 @@ from wakeline.core.io.compressed import open_data
 from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
     BEARING_WARNING_MARK,
+    POSITION_COUNTS,
     TIME_COUNTS,
     UNBALANCED_NOTE,
     ImportResult,
@@ -256,6 +257,7 @@ def _read_all(
     edges = edge_state()  # a track's first and last rows: judged in the last piece with rows
     has_rows = blank_bytes(sn.delimiter)
     units: set[bool] = set()  # numeric times read as Excel days, or not, per piece
+    ddmm: set[bool] = set()  # positions read as NMEA's ddmm.mmmm, or not, per piece
     for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn, opened), has_rows)):
         piece_file.write_bytes(piece)
         done += len(piece)
@@ -287,6 +289,10 @@ def _read_all(
             if options.get("time_unit", "auto") == "auto":
                 # the first piece of numbers decides for the rest (as the streamed read)
                 options["time_unit"] = "excel-days" if fmt == "Excel serial days" else "seconds"
+        if res.report.get("rows_imported"):
+            ddmm.add(bool(res.report.get("ddmm")))
+            if len(ddmm) > 1:
+                raise WholeFileNeeded  # pieces judged ddmm.mmmm positions apart: one judgement
         if not line_by_line and UNBALANCED_NOTE in warnings:
             raise _Again(quotes=True)
         if strict and any(w.startswith("some bytes are not valid") for w in warnings):
@@ -343,7 +349,9 @@ def merge_import_reports(
         (o.split()[0] for o in (r.get("date_order") or "" for r in reports) if "(given" in o),
         None,
     )
-    times: dict = {k: sum(int(r.get(k, 0)) for r in reports) for k in TIME_COUNTS}
+    times: dict = {
+        k: sum(int(r.get(k, 0)) for r in reports) for k in (*TIME_COUNTS, *POSITION_COUNTS)
+    }
     times["dayfirst_shown"] = times["day_shown"]
     times["excel_why"] = next((r["excel_why"] for r in reports if r.get("excel_why")), None)
     times["date_order_given"] = given
@@ -351,7 +359,7 @@ def merge_import_reports(
         counted.update(
             _time_warnings(time_src, {"decimal_comma": r.get("decimal_comma_values", 0)}, zone)
         )
-        own = {k: r.get(k, 0) for k in (*TIME_COUNTS, "excel_why")}
+        own = {k: r.get(k, 0) for k in (*TIME_COUNTS, *POSITION_COUNTS, "excel_why")}
         counted.update(_time_warnings(time_src, {**own, "date_order_given": given}, zone))
         counted.update(_restart_warnings(r.get("restarting_tracks", {}), batch_src))
     relative_note = _time_warnings(time_src, {"relative": True}, zone)

@@ -51,7 +51,7 @@ from wakeline.core.io.formats import (
     resolve,
     unused_position_columns,
 )
-from wakeline.core.io.sniff import Sniff, cell_kind, listed_headers, sniff
+from wakeline.core.io.sniff import Sniff, blank_runs, cell_kind, listed_headers, sniff
 from wakeline.core.io.timetext import (
     NAMED_HINT,
     check_clock_date,
@@ -344,6 +344,50 @@ def _open(sn: Sniff, encoding: str, errors: str):
     return _Utf8Stream(sn, encoding, errors)
 
 
+class _BlankRunStream:
+    """The UTF-8 bytes of a blank-aligned file (:attr:`Sniff.blank_runs`) with each run
+    of blanks between cells made one :data:`~wakeline.core.io.sniff.RUN_SEP`, line by
+    line (:func:`~wakeline.core.io.sniff.blank_runs`): what pyarrow parses."""
+
+    def __init__(self, stream, sn: Sniff) -> None:
+        self._stream, self._sn = stream, sn
+        self._buf, self._carry, self._eof = b"", b"", False
+        self.closed = False
+        if hasattr(stream, "fraction"):  # a compressed file's progress, on disk
+            self.fraction = stream.fraction
+
+    def read(self, n: int = -1) -> bytes:
+        while not self._eof and (n < 0 or len(self._buf) < n):
+            raw = bytes(self._stream.read(4 * 1024 * 1024 if n < 0 else max(n, 1 << 16)))
+            self._eof = not raw
+            data = self._carry + raw
+            cut = len(data) if self._eof else last_line_end(data) + 1
+            self._carry = data[cut:]
+            self._buf += blank_runs(data[:cut], self._sn.has_quotes, self._sn.join_date_clock)
+        if n < 0:
+            out, self._buf = self._buf, b""
+        else:
+            out, self._buf = self._buf[:n], self._buf[n:]
+        return out
+
+    def close(self) -> None:
+        self.closed = True
+        self._stream.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.closed = True
+        self._stream.__exit__(*exc)  # the opener's: a decompression error named
+
+
+def _open_parsed(sn: Sniff, encoding: str, errors: str):
+    """:func:`_open`, and for a blank-aligned file its lines as they are parsed."""
+    stream = _open(sn, encoding, errors)
+    return _BlankRunStream(stream, sn) if sn.blank_runs else stream
+
+
 @contextlib.contextmanager
 def _quiet_undecodable_rows() -> Iterator[None]:
     """pyarrow decodes an invalid row's text as UTF-8 before calling the handler; when that
@@ -379,7 +423,7 @@ def _read_table(
         **({"block_size": block_size} if block_size else {}),
     )
     parse = pacsv.ParseOptions(
-        delimiter=sn.delimiter,
+        delimiter=sn.parse_delimiter,
         quote_char='"' if quoting else False,
         invalid_row_handler=bad.handler,
         ignore_empty_lines=False,
@@ -389,7 +433,7 @@ def _read_table(
     # parsed blocks at once, about twice the memory (bench/bench_memory.py). A smaller one
     # is read whole, blocks parsed on every core: about twice as fast.
     whole = threads and sn.compression is None and _file_size(sn) <= READ_WHOLE_MAX_BYTES
-    with _open(sn, encoding or sn.encoding, errors) as stream, _quiet_undecodable_rows():
+    with _open_parsed(sn, encoding or sn.encoding, errors) as stream, _quiet_undecodable_rows():
         if whole:
             table = pacsv.read_csv(
                 stream, read_options=read, parse_options=parse, convert_options=convert
@@ -548,6 +592,8 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
         )
     skipped = sorted(bad.lines + bad.blank_lines)
     lines = _line_numbers(np.arange(table.num_rows), sn.skip_rows, skipped)
+    if sn.blank_runs and bad.lines:  # the refused lines as the file has them, not as parsed
+        bad.texts = _raw_lines(sn, np.asarray(bad.lines), enc)
     if not quoting:
         table, lines = _recover_quoted(sn, table, lines, bad)
         table = _unquote(table)
@@ -563,7 +609,7 @@ def _recover_quoted(
     rec_lines, rec_rows = [], []
     for number, text, _ in bad.quoted:
         try:
-            fields = next(csv.reader([text], delimiter=sn.delimiter))
+            fields = next(csv.reader([text], delimiter=sn.parse_delimiter))
         except (csv.Error, StopIteration):
             continue
         if len(fields) == n_cols:
@@ -659,17 +705,20 @@ def _with_decimal_comma(text: pd.Series, values: np.ndarray) -> int:
 
 #: A position in degrees, minutes and seconds as exports write it: ``57°40.026'N``,
 #: ``N 57 40 01.6``, ``-11°12'30"``, ``东经122°24.6′``, ``30度15分N`` (minutes and seconds
-#: optional, a hemisphere letter before or after).
+#: optional, a hemisphere letter before or after); without minutes, decimal degrees
+#: with a hemisphere letter: ``37.05N``, ``N37.05``, ``W 23.05``, ``37.05 S``.
 _DMS = re.compile(
     r"^\s*(?P<h1>[NSEWnsew]|[东西南北][经纬]?)?\s*(?P<sign>[+-])?\s*(?P<d>\d{1,3}(?:[.,]\d+)?)"
-    r"\s*(?:[°º˚度d:]|\s)\s*(?:(?P<m>\d{1,2}(?:[.,]\d+)?)\s*(?:['′’´m:分]|\s)?\s*"
-    r"(?:(?P<s>\d{1,2}(?:[.,]\d+)?)\s*(?:[\"″”s秒]|'')?)?)?\s*(?P<h2>[NSEWnsew])?\s*$"
+    r"(?:\s*(?:[°º˚度d:]|\s)\s*(?:(?P<m>\d{1,2}(?:[.,]\d+)?)\s*(?:['′’´m:分]|\s)?\s*"
+    r"(?:(?P<s>\d{1,2}(?:[.,]\d+)?)\s*(?:[\"″”s秒]|'')?)?)?)?\s*(?P<h2>[NSEWnsew])?\s*$"
 )
 
 
-def _with_dms(text: pd.Series, values: np.ndarray) -> int:
+def _with_dms(text: pd.Series, values: np.ndarray, counted: dict | None = None) -> int:
     """Fill ``values`` (NaN where ``text`` is no plain number) from the texts written in
-    degrees, minutes and seconds (:data:`_DMS`), in place; returns how many."""
+    degrees, minutes and seconds (:data:`_DMS`), in place; returns how many. Counted in
+    ``counted``: ``dms``, and ``hemisphere_degrees`` those of decimal degrees with a
+    hemisphere letter (no minutes: ``37.05N``)."""
     miss = np.flatnonzero(np.isnan(values))
     if not len(miss):
         return 0
@@ -693,7 +742,11 @@ def _with_dms(text: pd.Series, values: np.ndarray) -> int:
     deg = (d + m / 60.0 + sec / 3600.0).where(good) * np.where(south_west, -1.0, 1.0)
     rows = text.index.get_indexer(deg.index)
     values[rows] = deg.to_numpy(dtype="float64")
-    return int(deg.notna().sum())
+    read, plain = int(deg.notna().sum()), int((deg.notna() & parts["m"].isna()).sum())
+    for key, k in (("dms", read - plain), ("hemisphere_degrees", plain)):
+        if counted is not None and k:
+            counted[key] = counted.get(key, 0) + k
+    return read
 
 
 def _numbers(
@@ -704,7 +757,8 @@ def _numbers(
 ) -> tuple[np.ndarray, np.ndarray]:
     """float64 values and a mask of unparsable (present but not a number) cells. With
     ``decimal_comma``, ``57,6671`` is 57.6671 (counted in ``counted["decimal_comma"]``);
-    with ``angles``, ``57°40.026'N`` is 57.6671 (counted in ``counted["dms"]``)."""
+    with ``angles``, ``57°40.026'N`` is 57.6671 (counted in ``counted["dms"]``; ``37.05N``
+    in ``counted["hemisphere_degrees"]``)."""
     if pa.types.is_floating(arr.type) or pa.types.is_integer(arr.type):
         return arr.to_numpy().astype("float64", copy=False) if arr.null_count == 0 else pc.cast(
             arr, pa.float64()
@@ -716,9 +770,7 @@ def _numbers(
         if counted is not None and k:
             counted["decimal_comma"] = counted.get("decimal_comma", 0) + k
     if angles:
-        k = _with_dms(text, values)
-        if counted is not None and k:
-            counted["dms"] = counted.get("dms", 0) + k
+        _with_dms(text, values, counted)
     present = ~(text.isna() | (text == "")).to_numpy()
     lowered = text.str.lower()
     nan_words = lowered.isin(["nan", "na", "n/a", "null", "none"]).to_numpy()
@@ -1879,6 +1931,23 @@ def _title_warnings(sn: Sniff) -> list[str]:
     ]
 
 
+def _blank_run_warnings(sn: Sniff) -> list[str]:
+    """A note that a file separated by blank space was read with each run of blanks one
+    separator (columns aligned with spaces), and a date and the clock after it one cell."""
+    if not sn.blank_runs:
+        return []
+    text = (
+        f"the columns are aligned with blanks: each run of spaces or tabs was read as one "
+        f"separator ({len(sn.columns)} columns)"
+    )
+    if sn.join_date_clock:
+        text += (
+            "; a date and the clock after it (2024-01-01 00:00:00) were read as one time, "
+            "as the header names one column fewer than the rows have parts"
+        )
+    return [text]
+
+
 def _restart_warnings(restarting: dict[str, int], batch_src: str) -> list[str]:
     """A warning when tracks restart their time in the file (several passes or ships
     under one id)."""
@@ -1953,6 +2022,20 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
         out.append(
             f"{time_info['dms']:,} positions were written in degrees and minutes (like "
             "57°40.026'N) and read as decimal degrees (57.6671)"
+        )
+    if time_info.get("ddmm"):
+        out.append(
+            f"{time_info['ddmm']:,} positions were written as NMEA writes them, degrees and "
+            "minutes run together (ddmm.mmmm, dddmm.mmmm: 3754.0300 is 37°54.03') and read "
+            "as decimal degrees (37.9005)"
+        )
+    if time_info.get("ddmm_note"):
+        out.append(time_info["ddmm_note"])
+    if time_info.get("hemisphere_degrees"):
+        out.append(
+            f"{time_info['hemisphere_degrees']:,} positions were written in decimal degrees "
+            "with a hemisphere letter (like 37.05N, W 23.05) and read as signed decimal "
+            "degrees (S and W negative)"
         )
     if time_info.get("naive") and zone is None and header_is_local(time_src):
         out.append(
@@ -2029,12 +2112,16 @@ def date_order_note(time_info: dict) -> str | None:
 #: The counts behind the date-order and Excel-days notes, in a report when not zero (a
 #: read in pieces sums them: :func:`~wakeline.core.io.pieces.merge_import_reports`).
 TIME_COUNTS = ("dates_either_way", "day_shown", "excel_days", "date_order_refused")
+#: ... and of the positions read from text (in the report as these keys when not zero;
+#: a read in pieces sums them and says each once).
+POSITION_COUNTS = ("dms", "hemisphere_degrees", "ddmm")
 
 
 def time_counts(time_info: dict) -> dict:
     """The non-zero :data:`TIME_COUNTS` of ``time_info`` and the reason Excel days were
     read (``excel_why``), for the import report."""
     out: dict = {k: int(time_info[k]) for k in TIME_COUNTS if time_info.get(k)}
+    out.update({k: int(time_info[k]) for k in POSITION_COUNTS if time_info.get(k)})
     if time_info.get("excel_why"):
         out["excel_why"] = time_info["excel_why"]
     return out
@@ -2187,7 +2274,7 @@ def read_points(
     )
     time_info.pop("_edges", None)
     progress(1.0, "imported")
-    warnings = list(rows.notes) + notes + _title_warnings(sn)
+    warnings = list(rows.notes) + notes + _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
@@ -2538,6 +2625,97 @@ _RANGES = {
     "course": (0.0, 360.0, True),
     "speed": (0.0, np.inf, False),
 }
+
+
+#: Of the present values of a lat (lon) column beside a hemisphere column, the share
+#: that must be degrees and minutes run together (ddmm.mmmm) for the column to be read
+#: so (the others, a damaged cell, are quarantined).
+DDMM_SHARE = 0.99
+DDMM_REASON = "{} not in ddmm.mmmm as the rest of its column (minutes 60 or more)"
+
+
+def _ddmm(v: np.ndarray, top: float) -> np.ndarray:
+    """Degrees of numbers written as NMEA writes them, degrees and minutes run together
+    (``3754.0300`` is 37°54.03', 37.9005; ``-02336.06`` is -23.601); NaN where ``v`` is
+    no such number (minutes 60 or more, or beyond ``top`` degrees)."""
+    a = np.abs(v)
+    deg = np.floor(a / 100.0)
+    minutes = a - 100.0 * deg
+    out = np.round(deg + minutes / 60.0, 10)  # 3754.06 is 37.901, not 37.900999999999996
+    with np.errstate(invalid="ignore"):
+        ok = (minutes < 60.0) & (out <= top)
+    return np.where(ok, np.copysign(out, v), np.nan)
+
+
+def _hemisphere_column(
+    sn: Sniff, table: pa.Table, src: str, mapped: set[str], letters: str
+) -> tuple[str, np.ndarray] | None:
+    """The column beside ``src`` (after it, else before it) mapped to no field that holds
+    nothing but the two hemisphere ``letters`` (``"NS"``, ``"EW"``) and blanks, and per
+    row whether it says the negative one (S, W); None when no column does."""
+    if src not in sn.columns:
+        return None
+    i = sn.columns.index(src)
+    for j in (i + 1, i - 1):
+        if not 0 <= j < len(sn.columns) or sn.columns[j] in mapped:
+            continue
+        col = pc.utf8_upper(pc.utf8_trim_whitespace(pc.cast(table[sn.columns[j]], pa.string())))
+        seen = set(pc.unique(col).to_pylist()) - {"", None}
+        if seen and seen <= set(letters):
+            negative = np.asarray(pc.fill_null(pc.equal(col, letters[1]), False), dtype=bool)
+            return sn.columns[j], negative
+    return None
+
+
+def _ddmm_positions(
+    table: pa.Table, sn: Sniff, res: Resolved, comma: bool, counted: dict
+) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """The lat and lon columns read as NMEA's ddmm.mmmm / dddmm.mmmm, when they are so:
+    ``{field: (degrees, unparsable, not ddmm)}``, else ``{}``. The lat column decides
+    (a lon of 100-180 is plain degrees): with a column of N/S beside it (and E/W beside
+    lon), when 99 % of its present values are ddmm.mmmm and one lies beyond 90; with
+    none, when every lat value lies beyond 90 and is ddmm.mmmm, and every lon value lies
+    beyond 90 too and is dddmm.mmmm (a file whose lat holds its longitudes, the columns
+    swapped, stays as it is). Lon is read so only with lat. The letters give the sign
+    (S, W negative), and a minus sign does. Counted in ``counted["ddmm"]``."""
+    cols = res.columns
+    if res.on_plane or "lat" not in cols or "lon" not in cols:
+        return {}
+    lat_arr, lon_arr = table[cols["lat"]], table[cols["lon"]]
+    if _clean_floats(lat_arr, -90.0, 90.0):
+        return {}  # the common case: degrees
+    mapped = set(cols.values())
+    got = {}
+    for name, arr, top, letters in (("lat", lat_arr, 90.0, "NS"), ("lon", lon_arr, 180.0, "EW")):
+        v, unparsable = _numbers(arr, comma)
+        present = ~np.isnan(v)
+        if not present.any():
+            return {}
+        deg = _ddmm(v, top)
+        ok = ~np.isnan(deg) & present
+        hemi = _hemisphere_column(sn, table, cols[name], mapped, letters)
+        with np.errstate(invalid="ignore"):
+            beyond = np.abs(v) > 90.0
+        if hemi is not None:
+            judged = ok.sum() >= DDMM_SHARE * present.sum() and (name == "lon" or beyond.any())
+            deg = np.where(hemi[1], -np.abs(deg), deg)
+        else:
+            judged = bool(ok[present].all() and beyond[present].all())
+        if not judged:
+            return {}
+        got[name] = (deg, unparsable, present & ~ok, hemi[0] if hemi else None)
+    read = int(sum((~np.isnan(g[0])).sum() for g in got.values()))
+    counted["ddmm"] = counted.get("ddmm", 0) + read
+    letters = [g[3] for g in got.values() if g[3]]
+    counted["ddmm_note"] = (
+        f"lat and lon are ddmm.mmmm; their signs come from the hemisphere letters in "
+        f"{' and '.join(map(repr, letters))} (S and W negative)"
+        if letters
+        else "lat and lon are ddmm.mmmm: no column of hemisphere letters beside them, but "
+        "every lat and every lon lies beyond 90 and reads as degrees and minutes (lon "
+        "is read so only because lat is)"
+    )
+    return {name: g[:3] for name, g in got.items()}
 
 
 #: Headers of a column of dates beside a time column of clock times (normalised).
@@ -2940,16 +3118,21 @@ def _to_canonical(
     ais = ais_columns(res)
     if res.on_plane:
         floats["lon"], floats["lat"] = _plane_positions(table, res, comma, counted, flag)
+    ddmm = _ddmm_positions(table, sn, res, comma, counted)
     for name in _FLOAT_FIELDS:
         if name not in cols:
             continue
         arr = table[cols[name]]
         lo, hi, hi_open = _RANGES[name]
         sentinel = AIS_NOT_AVAILABLE[name] if name in ais else None
-        if _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel):
+        if name in ddmm:  # NMEA's degrees and minutes run together
+            v, unparsable, not_ddmm = ddmm[name]
+            flag(not_ddmm, DDMM_REASON.format(name))
+        elif _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel):
             floats[name] = arr  # the common case: passes through untouched
             continue
-        v, unparsable = _numbers(arr, comma, counted, angles=name in ("lon", "lat"))
+        else:
+            v, unparsable = _numbers(arr, comma, counted, angles=name in ("lon", "lat"))
         with np.errstate(invalid="ignore"):
             outside = (v < lo) | (v >= hi if hi_open else v > hi) | np.isinf(v)
         if name in ("lon", "lat"):
@@ -3438,7 +3621,7 @@ def stream_points(
     edges = edge_state()
     size = max(sn.path.stat().st_size, 1)
     consumed = [0]
-    opened = _open(sn, sn.encoding, "strict")
+    opened = _open_parsed(sn, sn.encoding, "strict")
     # How far through the file on disk (a compressed file's text is larger than it).
     done = getattr(opened, "fraction", lambda: consumed[0] / size)
 
@@ -3456,7 +3639,7 @@ def stream_points(
                     block_size=max(1 << 20, len(piece) // 2 + 1),
                 ),
                 parse_options=pacsv.ParseOptions(
-                    delimiter=sn.delimiter,
+                    delimiter=sn.parse_delimiter,
                     quote_char=False,
                     invalid_row_handler=local.handler,
                     ignore_empty_lines=False,
@@ -3468,7 +3651,8 @@ def stream_points(
         offset = first_line - 1
         bad.lines += [n + offset for n in local.lines]
         bad.reasons += local.reasons
-        bad.texts += local.texts
+        # a blank-aligned file's lines as parsed are not its lines: fetched from the file
+        bad.texts += [""] * len(local.texts) if sn.blank_runs else local.texts
         bad.blank += local.blank
         bad.blank_lines += [n + offset for n in local.blank_lines]
         skipped = sorted(local.lines + local.blank_lines)
@@ -3511,6 +3695,12 @@ def stream_points(
         time_info.setdefault("time_format", info.get("time_format"))
         if info.get("date_column"):
             time_info["date_column"] = info["date_column"]
+        if counts["rows_imported"]:  # pieces that read positions apart: one judgement
+            time_info.setdefault("_ddmm", set()).add(bool(info.get("ddmm")))
+            if len(time_info["_ddmm"]) > 1:
+                raise _Fallback
+        if info.get("ddmm_note"):
+            time_info["ddmm_note"] = info["ddmm_note"]
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")
@@ -3525,6 +3715,8 @@ def stream_points(
             "decimal_comma",
             "clock_placed",
             "dms",
+            "hemisphere_degrees",
+            "ddmm",
             "dates_either_way",
             "day_shown",
             "date_order_refused",
@@ -3555,7 +3747,7 @@ def stream_points(
             # Pieces of whole lines, parsed one at a time: memory stays one piece
             # (the streaming reader would read ahead as far as the file goes).
             skip = sn.skip_rows
-            has_rows = blank_bytes(sn.delimiter)
+            has_rows = blank_bytes(sn.parse_delimiter)
             for (piece, first_line), final in with_final(line_pieces(stream), has_rows):
                 consumed[0] += len(piece)
                 table, lines = parse(piece, skip, first_line)
@@ -3593,7 +3785,7 @@ def stream_points(
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
     warnings = [no_batch_warning(sn, res.columns)] if file_batch else []
     warnings += res.notes
-    warnings += _title_warnings(sn)
+    warnings += _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += _restart_warnings(restarting, res.columns["batch"])
     warnings += position_warnings(

@@ -27,7 +27,7 @@ SAMPLE_BYTES = 256 * 1024
 #: Data rows of the sampled start kept to judge columns by their values (``Sniff.sample``).
 SAMPLE_ROWS = 1000
 ENCODINGS = ("utf-8", "gb18030")
-DELIMITERS = (",", ";", "\t")
+DELIMITERS = (",", ";", "\t", "|")
 #: An AIS sentence (``!AIVDM``, ``!AIVDO``) under any AIS talker of IEC 61162-1: AI (mobile),
 #: AB/AD/AS (base stations), AN (aid to navigation), AR (receiver), AT (transmitter), AX
 #: (repeater), BS (base station, older logs) and SA (shore station): Norwegian and Danish
@@ -53,7 +53,7 @@ class Sniff:
     path: Path
     compression: str | None  # "gzip", "bz2", "xz", "zstd", "zip" or None (plain text)
     encoding: str  # a Python codec name: "utf-8" (BOM allowed), "gb18030", "utf-16"...
-    delimiter: str  # ",", ";", "\t" or " " (runs of spaces are not merged)
+    delimiter: str  # ",", ";", "\t", "|" or " " (see ``blank_runs``)
     has_header: bool
     skip_rows: int  # physical lines before the first data row (blank lines and the header)
     columns: tuple[str, ...]  # header names, or col1..colN when the file has no header
@@ -76,6 +76,18 @@ class Sniff:
     #: split the same way: what the reader judges columns by their values with (an id
     #: column no name says, a column of clock times beside a date).
     sample: tuple[tuple[str, ...], ...] = ()
+    #: A blank-separated file aligned in columns (``delimiter`` " "): each run of blanks
+    #: (spaces, tabs) is one separator, blanks at a line's start and end are none
+    #: (:func:`blank_layout`); the reader parses the lines so changed (:func:`blank_runs`).
+    blank_runs: bool = False
+    #: ... and a date and the clock after it (``2024-01-01 00:00:00``) are one cell.
+    join_date_clock: bool = False
+
+    @property
+    def parse_delimiter(self) -> str:
+        """The delimiter the lines are parsed with: :data:`RUN_SEP` for a file of
+        ``blank_runs`` (the reader puts it between the cells), else ``delimiter``."""
+        return RUN_SEP if self.blank_runs else self.delimiter
 
 
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
@@ -193,6 +205,110 @@ def _pick_delimiter(lines: list[str]) -> str:
     return best
 
 
+#: What the reader puts between the cells of a blank-aligned file's lines (a control
+#: character no text cell holds) and parses them with (:attr:`Sniff.parse_delimiter`).
+RUN_SEP = "\x1f"
+#: Blanks at the start or end of a line.
+_EDGE_BLANKS = r"(?<![^\r\n])[ \t]+|[ \t]+(?=[\r\n]|\Z)"
+#: A run of blanks; ... outside quotes (an even number of quotes after it on its line).
+_BLANK_RUN = r"[ \t]+"
+_BLANK_RUN_UNQUOTED = r'[ \t]+(?=(?:[^"\r\n]*"[^"\r\n]*")*[^"\r\n]*(?:[\r\n]|\Z))'
+#: A date cell and a clock cell after it (``2024-01-01``, ``00:00:00``; ``13/09/2020``,
+#: ``12:00``), and a morning/afternoon or UTC mark after the clock: one time written with
+#: one space inside, in a blank-separated line (cells apart by RUN_SEP).
+_DATE_CLOCK = (
+    r"(?<![^\x1f\r\n])(\d{4}[-/.]\d{1,2}[-/.]\d{1,2}|\d{1,2}[-/.]\d{1,2}[-/.]\d{4})\x1f"
+    r"(\d{1,2}:\d{2}(?::\d{2}(?:[.,]\d+)?)?)"
+)
+_MARK = r"\x1f([AaPp]\.?[Mm]\.?|UTC|GMT|Z)"
+_CELL_END = r"(?=[\x1f\r\n]|\Z)"
+
+
+def _patterns(kind: type) -> dict:
+    def c(p: str) -> re.Pattern:
+        return re.compile(p.encode("ascii") if kind is bytes else p)
+
+    return {
+        "edge": c(_EDGE_BLANKS),
+        "run": c(_BLANK_RUN),
+        "run_q": c(_BLANK_RUN_UNQUOTED),
+        "marked": c(_DATE_CLOCK + _MARK + _CELL_END),
+        "date_clock": c(_DATE_CLOCK + _CELL_END),
+    }
+
+
+_RUNS = {str: _patterns(str), bytes: _patterns(bytes)}
+
+
+def blank_runs(text, quotes: bool = False, join: bool = False):
+    """Lines of a blank-aligned file (``str`` or ``bytes``; whole lines) with each run of
+    blanks between cells made one :data:`RUN_SEP` and the blanks at a line's start and
+    end dropped; with ``quotes``, blanks inside a quoted cell stay; with ``join``, a date
+    and the clock after it (and an AM/PM or UTC mark after that) stay one cell, apart by
+    one space. Line ends are kept: a line stays the line it was."""
+    pat = _RUNS[type(text)]
+    sep, space = (RUN_SEP, " ") if isinstance(text, str) else (b"\x1f", b" ")
+    empty = sep[:0]
+    text = pat["edge"].sub(empty, text)
+    text = pat["run_q" if quotes else "run"].sub(sep, text)
+    if join:
+        g = (lambda k: f"\\{k}") if isinstance(text, str) else (lambda k: f"\\{k}".encode())
+        text = pat["marked"].sub(g(1) + space + g(2) + space + g(3), text)
+        text = pat["date_clock"].sub(g(1) + space + g(2), text)
+    return text
+
+
+def blank_cells(line: str, quotes: bool = False, join: bool = False) -> list[str]:
+    """The cells of one line of a blank-aligned file (:func:`blank_runs`)."""
+    text = blank_runs(line, quotes, join)
+    return text.split(RUN_SEP) if text else [""]
+
+
+#: Data lines a blank-separated file's layout is judged on.
+BLANK_LINES_JUDGED = 20
+
+
+def blank_layout(lines: list[str], quotes: bool = False) -> tuple[bool, bool, list[str] | None]:
+    """How the lines of a file separated by blank space split into cells: ``(runs,
+    join, names)``. ``runs``: runs of blanks are one separator (columns aligned with
+    spaces: pandas' ``to_string``, MATLAB, fixed-width text with a blank between columns)
+    when that gives more of the first :data:`BLANK_LINES_JUDGED` lines below the first
+    as many cells as the first line has names than single spaces do, or as many when
+    the first line split at single spaces has empty cells (a file of single spaces with
+    empty cells in its rows keeps them). ``join``: a date and the clock after it are one
+    cell (``2024-01-01 00:00:00``) because the rows then have as many cells as the header
+    has names (and not otherwise). ``names``: the first line's cells when not its plain
+    split: names apart by two blanks or more (``Track No   Time``), or a first column
+    with no name (its header starts with blanks: pandas' index)."""
+    first, rows = lines[0], lines[1 : BLANK_LINES_JUDGED + 1]
+    if not rows:
+        return False, False, None
+    single = first.split(" ")
+    best = (sum(len(r.split(" ")) == len(single) for r in rows), False, False, None)
+    if "" in single:  # a header (or first row) with empty cells: runs win a tie
+        best = (best[0] - 0.5, *best[1:])
+    # Ties go to the first tried: a date and its clock as one cell (the header fitting
+    # rows so joined is the likelier reading than a header of a nameless first column
+    # or one name split in two), then the plain names before the others.
+    apart = [len(blank_cells(r, quotes)) for r in rows]
+    for join in (True, False):
+        cells = [len(blank_cells(r, quotes, join)) for r in rows] if join else apart
+        if join and cells == apart:
+            continue  # no date and clock apart: nothing to join
+        plain = blank_cells(first, quotes, join)
+        options = [plain]
+        wide = re.split(r"[ \t]{2,}", first.strip(" \t"))
+        if wide != plain:
+            options.append(wide)
+        if first[:1] in (" ", "\t"):  # a first column without a name
+            options += [["", *names] for names in options]
+        for names in options:
+            score = sum(n == len(names) for n in cells)
+            if score > best[0]:
+                best = (score, True, join, None if names is plain else names)
+    return best[1], best[2], best[3]
+
+
 def _unique_names(names: list[str]) -> tuple[str, ...]:
     """Header names made usable: blanks become colN, repeats get a .1, .2 suffix."""
     seen: dict[str, int] = {}
@@ -210,7 +326,14 @@ def _unique_names(names: list[str]) -> tuple[str, ...]:
 
 #: Delimiters as people type them on a command line (a shell passes ``\t`` as two
 #: characters).
-_DELIMITER_WORDS = {"\\t": "\t", "tab": "\t", "space": " ", "comma": ",", "semicolon": ";"}
+_DELIMITER_WORDS = {
+    "\\t": "\t",
+    "tab": "\t",
+    "space": " ",
+    "comma": ",",
+    "semicolon": ";",
+    "pipe": "|",
+}
 
 
 def delimiter_given(delimiter: str | None) -> str | None:
@@ -392,22 +515,34 @@ def sniff(
         leading_blank = nonblank[offset + titles]
         lines = lines[titles:]
     delim = delimiter or _pick_delimiter(lines)
-    first = [f.strip().strip('"') for f in lines[0].split(delim)]
-    has_header = _is_header(first, [line.split(delim) for line in lines[1:6]])
+    names = None
+    if delim == " ":  # columns aligned with runs of blanks?
+        runs, join, names = blank_layout(lines, extras["has_quotes"])
+        extras["blank_runs"], extras["join_date_clock"] = runs, join
+    if extras.get("blank_runs"):
+
+        def split(line: str) -> list[str]:
+            return blank_cells(line, extras["has_quotes"], extras["join_date_clock"])
+    else:
+
+        def split(line: str) -> list[str]:
+            return line.split(delim)
+
+    first = [f.strip().strip('"') for f in (names or split(lines[0]))]
+    has_header = _is_header(first, [split(line) for line in lines[1:6]])
     if has_header:
         data_lines = lines[1:6]
-        rows = [line.split(delim) for line in data_lines]
+        rows = [split(line) for line in data_lines]
         if rows and all(len(r) == len(first) + 1 and not r[-1].strip() for r in rows):
             first.append("")  # every row ends with the delimiter: one more (empty) column
         columns = _unique_names(first)
     else:
         columns = tuple(f"col{i + 1}" for i in range(len(first)))
         data_lines = lines[:5]
-    preview = tuple(tuple(f.strip('"') for f in line.split(delim)) for line in data_lines)
+    preview = tuple(tuple(f.strip('"') for f in split(line)) for line in data_lines)
     start = 1 if has_header else 0
     extras["sample"] = tuple(
-        tuple(f.strip('"') for f in line.split(delim))
-        for line in lines[start : start + SAMPLE_ROWS]
+        tuple(f.strip('"') for f in split(line)) for line in lines[start : start + SAMPLE_ROWS]
     )
     skip_rows = leading_blank + (1 if has_header else 0)
     titled = len(extras.get("title_lines", ()))
