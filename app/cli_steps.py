@@ -294,7 +294,13 @@ def add_read_flags(
             "encoding",
             {"help": "text encoding (default: detect UTF-8 / UTF-16 by BOM / GB18030)"},
         ),
-        "delimiter": ("delimiter", {"help": "field delimiter (default: detect , ; or tab)"}),
+        "delimiter": (
+            "delimiter",
+            {
+                "help": "field delimiter: a character, tab, space or pipe (default: detect "
+                ", ; tab | or columns aligned with blanks)"
+            },
+        ),
         "tz": (
             "tz",
             {

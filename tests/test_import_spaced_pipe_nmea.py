@@ -459,3 +459,78 @@ def test_ddmm_numbers_read_back(deg, minutes, neg):
     got = _ddmm(np.array([-value if neg else value]), 90.0)[0]
     assert got == pytest.approx(-want if neg else want, abs=1e-9)
     assert np.isnan(_ddmm(np.array([deg * 100 + 60.5]), 180.0)[0])  # minutes 60 or more
+
+
+@pytest.mark.parametrize("letters", [True, False])
+def test_export_like_writes_ddmm_back_in_its_own_form(tmp_path, letters):
+    """export --like an NMEA-style file writes ddmm.mmmm back (zero-padded as the file
+    pads; with the hemisphere letters from the signs, or a minus sign without them):
+    read, exported like itself, the same bytes."""
+    from wakeline.app.cli import main
+    from wakeline.core.io.layout import Layout, load_layout
+
+    df = _frame(south_west=True)
+    df.loc[::3, "lat"] *= -1  # both hemispheres
+    df["lat"], df["lon"] = df["lat"].round(6), df["lon"].round(6)
+    src = tmp_path / "nmea.csv"
+    src.write_text(_nmea(df, letters))
+    out = tmp_path / "back.csv"
+    assert main(["export", str(src), "-o", str(out), "--like", str(src)]) == 0
+    assert out.read_bytes() == src.read_bytes()
+    layout = load_layout(src)
+    # lon's zeros show (02336.0600: 5 digits); a lat of 3754 shows none to pad to
+    assert (layout.field_column("lat").ddmm, layout.field_column("lon").ddmm) == (1, 5)
+    assert [c.hemisphere for c in layout.columns if c.hemisphere] == (
+        ["lat", "lon"] if letters else []
+    )
+    assert Layout.from_dict(layout.to_dict()) == layout
+
+
+def test_format_ddmm_carries_minutes_that_round_to_sixty():
+    from wakeline.core.io.export_like import format_ddmm
+    from wakeline.core.io.layout import NumberFormat
+
+    got = format_ddmm(
+        np.array([37.9999999, -5.5, 0.25, np.nan]), NumberFormat(4, "none"), 4, signed=True
+    )
+    assert got.to_pylist() == ["3800.0000", "-0530.0000", "0015.0000", ""]
+
+
+def _reference_runs(data: bytes, quotes: bool) -> bytes:
+    """blank_runs, line by line and character by character (slow, plain)."""
+    import re
+
+    out = []
+    for line in re.split(rb"(\r\n|\r|\n)", data):
+        if line in (b"\r\n", b"\r", b"\n"):
+            out.append(line)
+            continue
+        cells, cell, inside = [], b"", False
+        for ch in (bytes([c]) for c in line):
+            if ch == b'"' and quotes:
+                inside = not inside
+            if ch in b" \t" and not inside:
+                if cell:
+                    cells.append(cell)
+                cell = b""
+                continue
+            cell += ch
+        if cell:
+            cells.append(cell)
+        out.append(b"\x1f".join(cells))
+    return b"".join(out)
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    data=st.lists(st.sampled_from([b" ", b"\t", b"a", b"7", b'"', b"\n", b"\r\n", b"\r"])).map(
+        b"".join
+    ),
+    quotes=st.booleans(),
+)
+def test_blank_runs_agree_with_a_plain_line_by_line_split(data, quotes):
+    """The vectorized separator (numpy over the bytes) gives what splitting each line at
+    its runs of blanks (outside quotes) gives."""
+    from wakeline.core.io.sniff import blank_runs
+
+    assert blank_runs(data, quotes) == _reference_runs(data, quotes)

@@ -91,6 +91,29 @@ def format_numbers(values: np.ndarray, fmt: NumberFormat) -> pa.Array:
     return pc.if_else(pa.array(finite), text, fmt.na)
 
 
+def format_ddmm(values: np.ndarray, fmt: NumberFormat, width: int, signed: bool) -> pa.Array:
+    """Degrees as NMEA writes them, degrees and minutes run together (37.9005 as
+    ``3754.0300``; the minutes rounded to ``fmt``'s decimals first, so they never read
+    60), the digits before the point zero-padded to ``width``; ``signed``: a minus sign
+    for negative values (else none: a column of hemisphere letters gives the sign)."""
+    x = np.asarray(values, dtype="float64")
+    a = np.abs(x)
+    deg = np.floor(a)
+    minutes = np.round((a - deg) * 60.0, fmt.decimals)
+    over = minutes >= 60.0
+    deg, minutes = np.where(over, deg + 1.0, deg), np.where(over, minutes - 60.0, minutes)
+    number = deg * 100.0 + minutes
+    text = format_numbers(number, fmt)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        digits = np.where(number >= 1.0, np.floor(np.log10(np.maximum(number, 1.0))) + 1, 1)
+    pad = np.clip(width - np.nan_to_num(digits, nan=width), 0, width).astype("int64")
+    zeros = np.array(["0" * k for k in range(width + 1)], dtype=object)[pad]
+    if signed:
+        zeros = np.where((x < 0) & (number > 0), "-" + zeros.astype(str), zeros).astype(object)
+    text = pc.binary_join_element_wise(pa.array(zeros, pa.string()), text, "")
+    return pc.if_else(pa.array(np.isfinite(x)), text, fmt.na)
+
+
 def _zone(name: str):
     m = re.match(r"^([+-])(\d{2}):?(\d{2})$", name)
     if m:
@@ -395,6 +418,17 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
             cells.append(format_times(points["time"], layout.time))
         elif col.field == "date":
             cells.append(format_times(points["time"], layout.time, part="date"))
+        elif col.ddmm and col.field in ("lon", "lat"):
+            values = points[col.field].to_numpy(dtype="float64")
+            signed = not any(c.hemisphere == col.field for c in layout.columns)
+            cells.append(
+                format_ddmm(values, col.number or NumberFormat(4, "none"), col.ddmm, signed)
+            )
+        elif col.hemisphere in ("lon", "lat"):
+            values = points[col.hemisphere].to_numpy(dtype="float64")
+            pos, neg = ("E", "W") if col.hemisphere == "lon" else ("N", "S")
+            letters = np.where(np.isnan(values), "", np.where(values < 0, neg, pos))
+            cells.append(pa.array(letters, pa.string()))
         elif col.angle is not None and col.field in ("lon", "lat"):
             values = points[col.field].to_numpy(dtype="float64")
             pos, neg = ("E", "W") if col.field == "lon" else ("N", "S")

@@ -31,11 +31,12 @@ from wakeline.core.io.formats import PLANE_FIELDS
 from wakeline.core.io.reader import (
     CLOCK_ONLY,
     date_column,
+    ddmm_judged,
     excel_days_rule,
     month_first_dates,
     resolve_header,
 )
-from wakeline.core.io.sniff import sniff
+from wakeline.core.io.sniff import blank_runs, sniff
 from wakeline.core.io.timetext import hhmmss_evidence
 from wakeline.core.schema import CANONICAL_COLUMNS
 
@@ -429,6 +430,13 @@ class Column:
     key: str = ""
     #: lon/lat written in degrees and minutes (``number`` then unused)
     angle: AngleFormat | None = None
+    #: lon/lat written as NMEA writes it, degrees and minutes run together (ddmm.mmmm;
+    #: ``number`` the minutes' decimals): the digits before the point, zero-padded
+    #: (``0530.5`` 4; 1 when not padded); 0: not so
+    ddmm: int = 0
+    #: a column of hemisphere letters (N/S, E/W) giving the sign of this field (``lat``,
+    #: ``lon``), written from it; "" for any other column
+    hemisphere: str = ""
 
 
 @dataclass(frozen=True)
@@ -475,6 +483,8 @@ class Layout:
                 NumberFormat(**c["number"]) if c.get("number") else None,
                 c.get("key", c["name"]),
                 AngleFormat(**c["angle"]) if c.get("angle") else None,
+                int(c.get("ddmm", 0)),
+                str(c.get("hemisphere", "")),
             )
             for c in data["columns"]
         )
@@ -649,9 +659,12 @@ def describe_layout(
     else:
         final_newline = True  # not worth decompressing a large file to its end
 
+    body = "\n".join(lines[1 if sn.has_header else 0 : SAMPLE_ROWS + 1])
+    if sn.blank_runs:  # columns aligned with blanks: the lines as the reader parses them
+        body = blank_runs(body, sn.has_quotes, sn.join_date_clock)
     sample = pd.read_csv(
-        io.StringIO("\n".join(lines[1 if sn.has_header else 0 : SAMPLE_ROWS + 1])),
-        sep=sn.delimiter,
+        io.StringIO(body),
+        sep=sn.parse_delimiter,
         header=None,
         names=list(sn.columns),
         dtype="str",
@@ -675,6 +688,7 @@ def describe_layout(
         if numeric and number is None:
             number = NumberFormat()
         cols.append(Column(raw, f, number, key, angle))
+    cols = _with_ddmm(cols, sample, set(columns_of.values()), report)
     time_key = columns_of.get("time")
     # Clock times beside a date column (Date,Time): the reader joins the two; so are
     # their formats learnt, and written back apart.
@@ -733,6 +747,40 @@ def describe_layout(
         title_lines=_lines_above(sn),
         origin=tuple(plane) if plane else None,
     )
+
+
+def _with_ddmm(cols: list, sample: pd.DataFrame, mapped: set[str], report: dict) -> list:
+    """The lon/lat columns written as NMEA writes them (ddmm.mmmm) when the import read
+    them so (its report's ``ddmm``; without a report, by its rule on the sample), and the
+    columns of hemisphere letters beside them written from their signs."""
+    keys = [c.key for c in cols]
+    pos = {c.field: i for i, c in enumerate(cols) if c.field in ("lat", "lon")}
+    if len(pos) < 2 or report.get("columns") and not report.get("ddmm"):
+        return cols
+    found = {}
+    for name, letters in (("lat", "NS"), ("lon", "EW")):
+        col = cols[pos[name]]
+        text = sample[col.key].str.strip()
+        values = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
+        beside = None
+        for j in (pos[name] + 1, pos[name] - 1):
+            if 0 <= j < len(cols) and keys[j] not in mapped:
+                seen = set(sample[keys[j]].str.strip().str.upper()) - {""}
+                if seen and seen <= set(letters):
+                    beside = j
+                    break
+        if not report.get("ddmm") and not ddmm_judged(values, name, beside is not None):
+            return cols
+        whole = text[text != ""].str.lstrip("+-").str.split(".").str[0]
+        padded = bool((whole.str.len() > 1).any() and whole.str.startswith("0").any())
+        found[name] = (int(whole.str.len().max()) if padded and len(whole) else 1, beside)
+    out = list(cols)
+    for name, (width, beside) in found.items():
+        col = out[pos[name]]
+        out[pos[name]] = replace(col, ddmm=width, number=col.number or NumberFormat(4, "none"))
+        if beside is not None:
+            out[beside] = replace(out[beside], hemisphere=name)
+    return out
 
 
 def _lines_above(sn) -> tuple[str, ...]:

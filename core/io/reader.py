@@ -2647,6 +2647,21 @@ def _ddmm(v: np.ndarray, top: float) -> np.ndarray:
     return np.where(ok, np.copysign(out, v), np.nan)
 
 
+def ddmm_judged(values: np.ndarray, name: str, letters: bool) -> bool:
+    """Whether a lat (``name``) or lon column of numbers ``values`` (NaN: none) holds
+    NMEA's ddmm.mmmm, by :func:`_ddmm_positions`' rule (for lon: given that lat does);
+    ``letters``: a column of hemisphere letters stands beside it."""
+    present = ~np.isnan(values)
+    if not present.any():
+        return False
+    ok = ~np.isnan(_ddmm(values, 90.0 if name == "lat" else 180.0)) & present
+    with np.errstate(invalid="ignore"):
+        beyond = np.abs(values) > 90.0
+    if letters:
+        return bool(ok.sum() >= DDMM_SHARE * present.sum() and (name == "lon" or beyond.any()))
+    return bool(ok[present].all() and beyond[present].all())
+
+
 def _hemisphere_column(
     sn: Sniff, table: pa.Table, src: str, mapped: set[str], letters: str
 ) -> tuple[str, np.ndarray] | None:
@@ -2684,26 +2699,22 @@ def _ddmm_positions(
     lat_arr, lon_arr = table[cols["lat"]], table[cols["lon"]]
     if _clean_floats(lat_arr, -90.0, 90.0):
         return {}  # the common case: degrees
+    if pa.types.is_floating(lat_arr.type) or pa.types.is_integer(lat_arr.type):
+        with np.errstate(invalid="ignore"):
+            a = np.abs(lat_arr.to_numpy().astype("float64", copy=False))
+        if not (a > 90.0).any():
+            return {}  # degrees with a value missing: nothing beyond 90
     mapped = set(cols.values())
     got = {}
     for name, arr, top, letters in (("lat", lat_arr, 90.0, "NS"), ("lon", lon_arr, 180.0, "EW")):
         v, unparsable = _numbers(arr, comma)
-        present = ~np.isnan(v)
-        if not present.any():
+        hemi = _hemisphere_column(sn, table, cols[name], mapped, letters)
+        if not ddmm_judged(v, name, hemi is not None):
             return {}
         deg = _ddmm(v, top)
-        ok = ~np.isnan(deg) & present
-        hemi = _hemisphere_column(sn, table, cols[name], mapped, letters)
-        with np.errstate(invalid="ignore"):
-            beyond = np.abs(v) > 90.0
         if hemi is not None:
-            judged = ok.sum() >= DDMM_SHARE * present.sum() and (name == "lon" or beyond.any())
             deg = np.where(hemi[1], -np.abs(deg), deg)
-        else:
-            judged = bool(ok[present].all() and beyond[present].all())
-        if not judged:
-            return {}
-        got[name] = (deg, unparsable, present & ~ok, hemi[0] if hemi else None)
+        got[name] = (deg, unparsable, ~np.isnan(v) & np.isnan(deg), hemi[0] if hemi else None)
     read = int(sum((~np.isnan(g[0])).sum() for g in got.values()))
     counted["ddmm"] = counted.get("ddmm", 0) + read
     letters = [g[3] for g in got.values() if g[3]]
