@@ -25,16 +25,16 @@ def _frame(n: int = 30, south_west: bool = False) -> pd.DataFrame:
     )
 
 
-def _three_ways(src, tmp_path, monkeypatch):
-    """The file read whole, imported streamed (many pieces) and read in pieces: the
-    canonical bytes and quarantines must agree; returns the whole read."""
+def _three_ways(src, tmp_path, monkeypatch, size: int = 300):
+    """The file read whole, imported streamed (pieces of ``size`` bytes) and read in
+    pieces: the canonical bytes and quarantines must agree; returns the whole read."""
     import wakeline.core.io.reader as reader
     from wakeline.core.io import import_to_csv
     from wakeline.core.io.pieces import read_in_pieces
 
     whole = read_points(src)
     write_points(whole.points, tmp_path / "whole.csv")
-    monkeypatch.setattr(reader, "STREAM_BYTES", 300)
+    monkeypatch.setattr(reader, "STREAM_BYTES", size)
     streamed = import_to_csv(src, tmp_path / "streamed.csv")
     assert (tmp_path / "streamed.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
     pd.testing.assert_frame_equal(streamed.quarantine, whole.quarantine)
@@ -534,3 +534,40 @@ def test_blank_runs_agree_with_a_plain_line_by_line_split(data, quotes):
     from wakeline.core.io.sniff import blank_runs
 
     assert blank_runs(data, quotes) == _reference_runs(data, quotes)
+
+
+def test_ddmm_a_damaged_letter_costs_its_row_not_the_signs(tmp_path, monkeypatch):
+    """One letter cell neither E nor W: that row is quarantined, the others keep the
+    signs their letters give (the letter column is still the column of letters)."""
+    df = _frame(n=600, south_west=True)
+    lines = _nmea(df, True).splitlines()
+    lines[250] = lines[250][:-1] + "X"  # lond
+    src = tmp_path / "n.csv"
+    src.write_text("\n".join(lines) + "\n")
+    # pieces of 200 rows or so: the damaged letter is under 1 % of its piece's
+    r = _three_ways(src, tmp_path, monkeypatch, size=10_000)
+    assert r.quarantine["line"].tolist() == [251]
+    assert r.quarantine["reason"].tolist() == ["lon hemisphere letter not E or W"]
+    assert (r.points["lat"] < 0).all() and (r.points["lon"] < 0).all()
+    assert any("'latd' and 'lond'" in w for w in r.report["warnings"])
+
+
+def test_ddmm_pieces_that_take_signs_apart_are_read_as_the_whole(tmp_path, monkeypatch):
+    """Small pieces where a damaged letter is more than 1 % of one: that piece finds no
+    letter column and would take its signs otherwise; the import reads the file as the
+    whole read does."""
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv
+
+    df = _frame(n=120, south_west=True)
+    lines = _nmea(df, True).splitlines()
+    lines[50] = lines[50][:-1] + "X"
+    src = tmp_path / "n.csv"
+    src.write_text("\n".join(lines) + "\n")
+    whole = read_points(src)
+    assert whole.quarantine["reason"].tolist() == ["lon hemisphere letter not E or W"]
+    write_points(whole.points, tmp_path / "whole.csv")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 300)
+    got = import_to_csv(src, tmp_path / "got.csv")
+    assert (tmp_path / "got.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
+    pd.testing.assert_frame_equal(got.quarantine, whole.quarantine)

@@ -37,6 +37,7 @@ from wakeline.core.io.compressed import open_data
 from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
     BEARING_WARNING_MARK,
+    DDMM_NOTE_START,
     POSITION_COUNTS,
     TIME_COUNTS,
     UNBALANCED_NOTE,
@@ -257,7 +258,7 @@ def _read_all(
     edges = edge_state()  # a track's first and last rows: judged in the last piece with rows
     has_rows = blank_bytes(sn.delimiter)
     units: set[bool] = set()  # numeric times read as Excel days, or not, per piece
-    ddmm: set[bool] = set()  # positions read as NMEA's ddmm.mmmm, or not, per piece
+    ddmm: set[tuple] = set()  # positions read as NMEA's ddmm.mmmm, or not, per piece
     for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn, opened), has_rows)):
         piece_file.write_bytes(piece)
         done += len(piece)
@@ -289,8 +290,9 @@ def _read_all(
             if options.get("time_unit", "auto") == "auto":
                 # the first piece of numbers decides for the rest (as the streamed read)
                 options["time_unit"] = "excel-days" if fmt == "Excel serial days" else "seconds"
-        if res.report.get("rows_imported"):
-            ddmm.add(bool(res.report.get("ddmm")))
+        if res.report.get("rows_imported"):  # ddmm.mmmm or not, signs from which letters
+            note = next((w for w in warnings if w.startswith(DDMM_NOTE_START)), None)
+            ddmm.add((bool(res.report.get("ddmm")), note))
             if len(ddmm) > 1:
                 raise WholeFileNeeded  # pieces judged ddmm.mmmm positions apart: one judgement
         if not line_by_line and UNBALANCED_NOTE in warnings:

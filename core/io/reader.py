@@ -2632,6 +2632,10 @@ _RANGES = {
 #: so (the others, a damaged cell, are quarantined).
 DDMM_SHARE = 0.99
 DDMM_REASON = "{} not in ddmm.mmmm as the rest of its column (minutes 60 or more)"
+#: The hemisphere letters of each position field, as a reason names them.
+LETTERS = {"lat": "N or S", "lon": "E or W"}
+#: The start of the warning that says where a ddmm.mmmm file's signs came from.
+DDMM_NOTE_START = "lat and lon are ddmm.mmmm"
 
 
 def _ddmm(v: np.ndarray, top: float) -> np.ndarray:
@@ -2664,10 +2668,12 @@ def ddmm_judged(values: np.ndarray, name: str, letters: bool) -> bool:
 
 def _hemisphere_column(
     sn: Sniff, table: pa.Table, src: str, mapped: set[str], letters: str
-) -> tuple[str, np.ndarray] | None:
-    """The column beside ``src`` (after it, else before it) mapped to no field that holds
-    nothing but the two hemisphere ``letters`` (``"NS"``, ``"EW"``) and blanks, and per
-    row whether it says the negative one (S, W); None when no column does."""
+) -> tuple[str, np.ndarray, np.ndarray] | None:
+    """The column beside ``src`` (after it, else before it) mapped to no field whose
+    present cells are the two hemisphere ``letters`` (``"NS"``, ``"EW"``; 99 % of them:
+    a damaged cell does not hide the column), with per row whether it says the negative
+    one (S, W) and whether it holds something else (that row's sign is unknown); None
+    when no column does."""
     if src not in sn.columns:
         return None
     i = sn.columns.index(src)
@@ -2675,18 +2681,21 @@ def _hemisphere_column(
         if not 0 <= j < len(sn.columns) or sn.columns[j] in mapped:
             continue
         col = pc.utf8_upper(pc.utf8_trim_whitespace(pc.cast(table[sn.columns[j]], pa.string())))
-        seen = set(pc.unique(col).to_pylist()) - {"", None}
-        if seen and seen <= set(letters):
-            negative = np.asarray(pc.fill_null(pc.equal(col, letters[1]), False), dtype=bool)
-            return sn.columns[j], negative
+        col = pc.fill_null(col, "")
+        negative = np.asarray(pc.equal(col, letters[1]), dtype=bool)
+        letter = negative | np.asarray(pc.equal(col, letters[0]), dtype=bool)
+        present = np.asarray(pc.not_equal(col, ""), dtype=bool)
+        if letter.any() and letter.sum() >= DDMM_SHARE * present.sum():
+            return sn.columns[j], negative, present & ~letter
     return None
 
 
 def _ddmm_positions(
     table: pa.Table, sn: Sniff, res: Resolved, comma: bool, counted: dict
-) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]]:
     """The lat and lon columns read as NMEA's ddmm.mmmm / dddmm.mmmm, when they are so:
-    ``{field: (degrees, unparsable, not ddmm)}``, else ``{}``. The lat column decides
+    ``{field: (degrees, unparsable, not ddmm, letter neither hemisphere's or None)}``,
+    else ``{}``. The lat column decides
     (a lon of 100-180 is plain degrees): with a column of N/S beside it (and E/W beside
     lon), when 99 % of its present values are ddmm.mmmm and one lies beyond 90; with
     none, when every lat value lies beyond 90 and is ddmm.mmmm, and every lon value lies
@@ -2714,19 +2723,20 @@ def _ddmm_positions(
         deg = _ddmm(v, top)
         if hemi is not None:
             deg = np.where(hemi[1], -np.abs(deg), deg)
-        got[name] = (deg, unparsable, ~np.isnan(v) & np.isnan(deg), hemi[0] if hemi else None)
+            deg[hemi[2]] = np.nan  # a letter neither N nor S: the sign is unknown
+        not_ddmm = ~np.isnan(v) & np.isnan(deg) & ~(hemi[2] if hemi else False)
+        got[name] = (deg, unparsable, not_ddmm, hemi[2] if hemi else None, hemi and hemi[0])
     read = int(sum((~np.isnan(g[0])).sum() for g in got.values()))
     counted["ddmm"] = counted.get("ddmm", 0) + read
-    letters = [g[3] for g in got.values() if g[3]]
-    counted["ddmm_note"] = (
-        f"lat and lon are ddmm.mmmm; their signs come from the hemisphere letters in "
+    letters = [g[4] for g in got.values() if g[4]]
+    counted["ddmm_note"] = DDMM_NOTE_START + (
+        f"; their signs come from the hemisphere letters in "
         f"{' and '.join(map(repr, letters))} (S and W negative)"
         if letters
-        else "lat and lon are ddmm.mmmm: no column of hemisphere letters beside them, but "
-        "every lat and every lon lies beyond 90 and reads as degrees and minutes (lon "
-        "is read so only because lat is)"
+        else ": no column of hemisphere letters beside them, but every lat and every lon "
+        "lies beyond 90 and reads as degrees and minutes (lon is read so only because lat is)"
     )
-    return {name: g[:3] for name, g in got.items()}
+    return {name: g[:4] for name, g in got.items()}
 
 
 #: Headers of a column of dates beside a time column of clock times (normalised).
@@ -3137,8 +3147,10 @@ def _to_canonical(
         lo, hi, hi_open = _RANGES[name]
         sentinel = AIS_NOT_AVAILABLE[name] if name in ais else None
         if name in ddmm:  # NMEA's degrees and minutes run together
-            v, unparsable, not_ddmm = ddmm[name]
+            v, unparsable, not_ddmm, bad_letter = ddmm[name]
             flag(not_ddmm, DDMM_REASON.format(name))
+            if bad_letter is not None:
+                flag(bad_letter, f"{name} hemisphere letter not {LETTERS[name]}")
         elif _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel):
             floats[name] = arr  # the common case: passes through untouched
             continue
@@ -3707,7 +3719,9 @@ def stream_points(
         if info.get("date_column"):
             time_info["date_column"] = info["date_column"]
         if counts["rows_imported"]:  # pieces that read positions apart: one judgement
-            time_info.setdefault("_ddmm", set()).add(bool(info.get("ddmm")))
+            time_info.setdefault("_ddmm", set()).add(
+                (bool(info.get("ddmm")), info.get("ddmm_note"))
+            )
             if len(time_info["_ddmm"]) > 1:
                 raise _Fallback
         if info.get("ddmm_note"):
