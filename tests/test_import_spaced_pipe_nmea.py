@@ -571,3 +571,28 @@ def test_ddmm_pieces_that_take_signs_apart_are_read_as_the_whole(tmp_path, monke
     got = import_to_csv(src, tmp_path / "got.csv")
     assert (tmp_path / "got.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
     pd.testing.assert_frame_equal(got.quarantine, whole.quarantine)
+
+
+@pytest.mark.parametrize(
+    ("lat_form", "lon_form"),
+    [("{:.2f}{}", "{:.2f}{}"), ("{1}{0:.4f}", "{1} {0:.4f}"), ("{:.3f} {}", "{:.3f} {}")],
+)
+def test_export_like_writes_hemisphere_degrees_back(tmp_path, lat_form, lon_form):
+    """Decimal degrees with a hemisphere letter are written back in the file's form
+    (letter before or after, the gap, the decimals): the same bytes."""
+    from wakeline.app.cli import main
+
+    df = _frame(south_west=True)
+    df.loc[::4, "lon"] *= -1
+    lines = ["time,id,lat,lon"]
+    for k, t, la, lo in zip(df.track, df.time, df.lat, df.lon, strict=True):
+        lat = lat_form.format(abs(la), "S" if la < 0 else "N")
+        lon = lon_form.format(abs(lo), "W" if lo < 0 else "E")
+        lines.append(f"{t},{k},{lat},{lon}")
+    src = tmp_path / "hemi.csv"
+    src.write_text("\n".join(lines) + "\n")
+    first = read_points(src)
+    assert len(first.quarantine) == 0 and first.report["hemisphere_degrees"] == 60
+    out = tmp_path / "back.csv"
+    assert main(["export", str(src), "-o", str(out), "--like", str(src)]) == 0
+    assert out.read_bytes() == src.read_bytes()

@@ -103,6 +103,10 @@ _DM = re.compile(
     r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,3})(?P<dm>° ?|º ?| )(?P<m>\d{1,2})"
     r"(?:\.(?P<mf>\d+))?(?P<mm>['′]?)(?P<g2> ?)(?P<h2>[NSEW])?$"
 )
+#: Decimal degrees with a hemisphere letter (``37.05N``, ``W 23.05``).
+_DEG_LETTER = re.compile(
+    r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,3})(?:\.(?P<df>\d+))?(?P<g2> ?)(?P<h2>[NSEW])?$"
+)
 #: ... and with seconds (``N 57 40 01.6``, ``57°40'01.6"N``).
 _DMS = re.compile(
     r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,3})(?P<dm>° ?|º ?| )(?P<m>\d{1,2})"
@@ -212,6 +216,8 @@ class AngleFormat:
     min_width: int = 0
     sec_width: int = 0
     na: str = ""
+    #: False: decimal degrees with the letter (``37.05N``; ``decimals`` the degrees')
+    minutes: bool = True
 
     @staticmethod
     def detect(values: pd.Series) -> "AngleFormat | None":
@@ -250,7 +256,24 @@ class AngleFormat:
                 min_width=2 if width(parts["m"]) else 0,
                 sec_width=2 if seconds and width(parts["s"]) else 0,
             )
-        return None
+        parts = present.str.extract(_DEG_LETTER)  # decimal degrees with a letter
+        ok = parts["d"].notna() & (parts["h1"].notna() ^ parts["h2"].notna())
+        if ok.mean() < 0.9:
+            return None
+        parts = parts[ok]
+        first = parts.iloc[0]
+        suffix = isinstance(first["h2"], str)
+        frac = parts["df"].fillna("").str.len()
+        decimals = int(frac.max())
+        return AngleFormat(
+            suffix=suffix,
+            gap=str(first["g2"] if suffix else first["g1"]),
+            deg_mark="",
+            min_mark="",
+            decimals=decimals,
+            trim="none" if (frac == decimals).all() else "zeros",
+            minutes=False,
+        )
 
 
 @dataclass(frozen=True)
