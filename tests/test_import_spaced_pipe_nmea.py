@@ -596,3 +596,17 @@ def test_export_like_writes_hemisphere_degrees_back(tmp_path, lat_form, lon_form
     out = tmp_path / "back.csv"
     assert main(["export", str(src), "-o", str(out), "--like", str(src)]) == 0
     assert out.read_bytes() == src.read_bytes()
+
+
+def test_an_unquoted_text_with_a_blank_is_refused_loudly_not_misread(tmp_path):
+    """pandas' to_string of a name with a space (``Ship A``): not supported; every row
+    is quarantined with its field count (it was read as a nameless index column once,
+    every value under the wrong name)."""
+    df = _frame(n=6)
+    df.insert(2, "name", ["Ship A", "Ship B"] * 3)
+    src = tmp_path / "names.txt"
+    src.write_text(df.to_string(index=False) + "\n")
+    r = read_points(src)
+    assert len(r.points) == 0
+    assert set(r.quarantine["reason"]) == {"too many fields: 7 of 5"}
+    assert not any("date and the clock" in w for w in r.report["warnings"])

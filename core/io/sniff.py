@@ -315,14 +315,15 @@ def blank_layout(lines: list[str], quotes: bool = False) -> tuple[bool, bool, li
     cell (``2024-01-01 00:00:00``) because the rows then have as many cells as the header
     has names (and not otherwise). ``names``: the first line's cells when not its plain
     split: names apart by two blanks or more (``Track No   Time``), or a first column
-    with no name (its header starts with blanks: pandas' index)."""
+    with no name (its header starts with blanks and every row's first cell is a whole
+    number: pandas' index)."""
     first, rows = lines[0], lines[1 : BLANK_LINES_JUDGED + 1]
     if not rows:
         return False, False, None
     single = first.split(" ")
     best = (sum(len(r.split(" ")) == len(single) for r in rows), False, False, None)
-    if "" in single:  # a header (or first row) with empty cells: runs win a tie
-        best = (best[0] - 0.5, *best[1:])
+    if "" in single:  # a header (or first row) with empty cells: runs, and they win a tie
+        best = (best[0] - 0.5, True, False, None)
     # Ties go to the first tried: a date and its clock as one cell (the header fitting
     # rows so joined is the likelier reading than a header of a nameless first column
     # or one name split in two), then the plain names before the others.
@@ -336,11 +337,13 @@ def blank_layout(lines: list[str], quotes: bool = False) -> tuple[bool, bool, li
         wide = re.split(r"[ \t]{2,}", first.strip(" \t"))
         if wide != plain:
             options.append(wide)
-        if first[:1] in (" ", "\t"):  # a first column without a name
+        if first[:1] in (" ", "\t") and all(  # a first column without a name: an index
+            blank_cells(r, quotes, join)[0].isdigit() for r in rows
+        ):
             options += [["", *names] for names in options]
         for names in options:
             score = sum(n == len(names) for n in cells)
-            if score > best[0]:
+            if score > max(best[0], 0):  # a reading no row fits is none
                 best = (score, True, join, None if names is plain else names)
     return best[1], best[2], best[3]
 
