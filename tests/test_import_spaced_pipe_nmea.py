@@ -610,3 +610,16 @@ def test_an_unquoted_text_with_a_blank_is_refused_loudly_not_misread(tmp_path):
     assert len(r.points) == 0
     assert set(r.quarantine["reason"]) == {"too many fields: 7 of 5"}
     assert not any("date and the clock" in w for w in r.report["warnings"])
+
+
+def test_degrees_with_letters_and_one_damaged_value_stay_degrees(tmp_path):
+    """A lat in degrees beside N/S letters with one value beyond 90 (damaged): not read
+    as ddmm.mmmm (its 37.9 would be 0°37.9'); that row alone is out of range."""
+    rows = [f"2024-01-01 00:00:{i:02d},1,{37.9 + i / 100:.4f},N,{23.6:.4f},E" for i in range(20)]
+    rows[7] = rows[7].replace(",37.97", ",3757.0", 1)  # reads as ddmm (57 minutes)
+    src = tmp_path / "deg.csv"
+    src.write_text("time,id,lat,latd,lon,lond\n" + "\n".join(rows) + "\n")
+    r = read_points(src)
+    assert "ddmm" not in r.report
+    assert r.quarantine["reason"].tolist() == ["lat out of range"]
+    assert r.points["lat"].between(37.8, 38.2).all() and len(r.points) == 19

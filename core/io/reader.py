@@ -2661,8 +2661,9 @@ def ddmm_judged(values: np.ndarray, name: str, letters: bool) -> bool:
     ok = ~np.isnan(_ddmm(values, 90.0 if name == "lat" else 180.0)) & present
     with np.errstate(invalid="ignore"):
         beyond = np.abs(values) > 90.0
-    if letters:
-        return bool(ok.sum() >= DDMM_SHARE * present.sum() and (name == "lon" or beyond.any()))
+    if letters:  # most lat beyond 90: a degrees column with one damaged value is not ddmm
+        most = name == "lon" or 2 * beyond.sum() > present.sum()
+        return bool(ok.sum() >= DDMM_SHARE * present.sum() and most)
     return bool(ok[present].all() and beyond[present].all())
 
 
@@ -2697,7 +2698,7 @@ def _ddmm_positions(
     ``{field: (degrees, unparsable, not ddmm, letter neither hemisphere's or None)}``,
     else ``{}``. The lat column decides
     (a lon of 100-180 is plain degrees): with a column of N/S beside it (and E/W beside
-    lon), when 99 % of its present values are ddmm.mmmm and one lies beyond 90; with
+    lon), when 99 % of its present values are ddmm.mmmm and most lie beyond 90; with
     none, when every lat value lies beyond 90 and is ddmm.mmmm, and every lon value lies
     beyond 90 too and is dddmm.mmmm (a file whose lat holds its longitudes, the columns
     swapped, stays as it is). Lon is read so only with lat. The letters give the sign
