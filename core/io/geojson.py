@@ -71,7 +71,7 @@ def _snippet(feature) -> str:
 def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     """Read the tracks of a GeoJSON file into the canonical point table (an
     ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, empty_quarantine
+    from wakeline.core.io.reader import ImportResult, quarantine_table
 
     progress = progress or null_progress
     try:
@@ -186,17 +186,7 @@ def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None
             "lat": lat[good],
         }
     )
-    if q_line:
-        order = np.argsort(np.asarray(q_line), kind="stable")
-        quarantine = pd.DataFrame(
-            {
-                "line": np.asarray(q_line, dtype="int64")[order],
-                "reason": pd.Series(np.asarray(q_reason, dtype=object)[order], dtype="str"),
-                "text": pd.Series(np.asarray(q_text, dtype=object)[order], dtype="str"),
-            }
-        )
-    else:
-        quarantine = empty_quarantine()
+    quarantine = quarantine_table(q_line, q_reason, q_text)
     warnings = []
     if counts["maneuver_points"]:
         warnings.append(

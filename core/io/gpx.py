@@ -59,7 +59,7 @@ def _line_texts(sn: Sniff, wanted: set[int], from_line: int | None) -> dict[int,
 
 def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     """Read the tracks of a GPX file into the canonical point table (an ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, empty_quarantine
+    from wakeline.core.io.reader import ImportResult, quarantine_table
 
     progress = progress or null_progress
     parser = expat.ParserCreate(encoding=None)
@@ -200,19 +200,7 @@ def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     reasons = q_reason + [
         f"not well-formed XML ({broken[1]}): not read from line {broken[0]} on" for _ in later
     ]
-    if lines:
-        order = np.argsort(np.asarray(lines), kind="stable")
-        quarantine = pd.DataFrame(
-            {
-                "line": np.asarray(lines, dtype="int64")[order],
-                "reason": pd.Series(np.asarray(reasons, dtype=object)[order], dtype="str"),
-                "text": pd.Series(
-                    [texts.get(int(k), "") for k in np.asarray(lines)[order]], dtype="str"
-                ),
-            }
-        )
-    else:
-        quarantine = empty_quarantine()
+    quarantine = quarantine_table(lines, reasons, [texts.get(int(k), "") for k in lines])
 
     warnings = []
     if counts["waypoints"] or counts["route_points"]:

@@ -73,7 +73,7 @@ def _split(line: str) -> tuple[str | None, float | None, str]:
 
 def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     """Read a raw AIS NMEA log into the canonical point table (an ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, empty_quarantine
+    from wakeline.core.io.reader import ImportResult, quarantine_table
 
     progress = progress or null_progress
     q_lines: list[int] = []
@@ -194,17 +194,7 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     points["time"] = points["time"].dt.as_unit("ns")
     if names:
         points["name"] = points["batch"].map(names).fillna("").astype("str")
-    if q_lines:
-        order = np.argsort(np.asarray(q_lines), kind="stable")
-        quarantine = pd.DataFrame(
-            {
-                "line": np.asarray(q_lines, dtype="int64")[order],
-                "reason": pd.Series(np.asarray(q_reasons, dtype=object)[order], dtype="str"),
-                "text": pd.Series(np.asarray(q_texts, dtype=object)[order], dtype="str"),
-            }
-        )
-    else:
-        quarantine = empty_quarantine()
+    quarantine = quarantine_table(q_lines, q_reasons, q_texts)
     progress(1.0, "imported")
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
     report = {

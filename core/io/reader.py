@@ -183,11 +183,18 @@ class ImportResult:
 
 def empty_quarantine() -> pd.DataFrame:
     """A quarantine table with no rows (columns ``QUARANTINE_COLUMNS``)."""
+    return quarantine_table([], [], [])
+
+
+def quarantine_table(lines, reasons, texts) -> pd.DataFrame:
+    """A quarantine table from parallel lists (line numbers, reasons, texts), in line
+    order (rows of one line keep the order they were given in)."""
+    order = np.argsort(np.asarray(lines, dtype="int64"), kind="stable")
     return pd.DataFrame(
         {
-            "line": pd.Series([], dtype="int64"),
-            "reason": pd.Series([], dtype="str"),
-            "text": pd.Series([], dtype="str"),
+            "line": np.asarray(lines, dtype="int64")[order],
+            "reason": pd.Series(np.asarray(reasons, dtype=object)[order], dtype="str"),
+            "text": pd.Series(np.asarray(texts, dtype=object)[order], dtype="str"),
         }
     )
 
