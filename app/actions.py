@@ -38,7 +38,7 @@ def build_actions(w) -> None:
         act(step, lambda _=False, s=step: w.run_step(s))
     act("save_pipeline", lambda: w._pipeline_dialog(True))
     act("load_pipeline", lambda: w._pipeline_dialog(False))
-    act("cancel", w.runner.cancel, sp.SP_BrowserStop)
+    act("cancel", w.cancel_jobs, sp.SP_BrowserStop)
     act("fit", lambda: w.canvas.fit(), sp.SP_TitleBarMaxButton)
     act("zoom_selection", w.zoom_to_selection)
     act("box", w.canvas.set_box_zoom, checkable=True)

@@ -10,14 +10,14 @@ import dataclasses
 import sys
 from pathlib import Path
 
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.dialogs import step_lines, summarize
 from wakeline.app.jobs_import import ImportJobsMixin
 from wakeline.app.jobs_project import ProjectJobsMixin
 from wakeline.app.layer_view import prepare_view_apart
 from wakeline.app.window_words import window_words
-from wakeline.app.worker import Cancelled, Failed, Finished, Progress, Started
+from wakeline.app.worker import Cancelled, Failed, Finished, Progress, Started, new_job_number
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, Pipeline, StepResult
 from wakeline.core.progress import sub_progress
@@ -216,7 +216,71 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         self._job_context = {job: context}
         return job
 
+    def _start_export(self, path: Path, write, context: tuple) -> int:
+        """Write a file in the export runner: exports queue one after the other and never
+        cancel a step (nor a step them). ``write(target)`` writes to a temporary name
+        beside ``path`` and returns the job's result; the file is moved onto ``path``
+        once complete, so a cancelled export leaves nothing behind, and one that was
+        moved into place is reported as written even if a cancel came after."""
+        import os
+
+        path = Path(path)
+        partial = path.with_name(".~" + path.name)  # same folder and suffixes
+
+        def job(progress):
+            try:
+                result = write(partial)
+                progress(1.0, f"writing {path.name}")  # raises once cancelled
+                os.replace(partial, path)
+            except BaseException:
+                partial.unlink(missing_ok=True)
+                raise
+            return result
+
+        job.keeps_result = True
+        number = new_job_number()
+        self._export_queue.append((number, job, context))
+        if self._export_running is None:
+            self._next_export()
+        else:
+            self.log_message(
+                self.tr("export of {0} waits for the export running").format(context[1])
+            )
+        return number
+
+    def _next_export(self) -> None:
+        self._export_running = None
+        if self._export_queue:
+            number, job, context = self._export_queue.pop(0)
+            self._export_context[number] = context
+            self._export_running = self.export_runner.run("export", job, job=number)
+
+    def cancel_jobs(self) -> None:
+        """The Cancel button: stop the running step and export; queued exports are
+        dropped (said in the log)."""
+        for _number, _job, context in self._export_queue:
+            self.log_message(
+                self.tr("export of {0} cancelled before it started").format(context[1])
+            )
+        self._export_queue.clear()
+        self.runner.cancel()
+        self.export_runner.cancel()
+
+    @property
+    def jobs_busy(self) -> bool:
+        """A step or an export is running (or waits), or a job's result is not applied."""
+        return bool(
+            self.runner.busy
+            or self._job_context
+            or self.export_runner.busy
+            or self._export_context
+            or self._export_queue
+        )
+
     def _on_job_message(self, msg) -> None:
+        if msg.job in self._export_context and isinstance(msg, Progress):
+            if self.runner.busy:  # the step's progress keeps the bar
+                return
         if isinstance(msg, Started):
             self.progress.setValue(0)
             self.progress.show()
@@ -228,10 +292,14 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             if msg.text:
                 self.statusBar().showMessage(msg.text)
             return
-        if msg.job in self._job_context:
+        export = msg.job in self._export_context
+        context = self._export_context if export else self._job_context
+        step, base = context.pop(msg.job, (msg.name, ""))
+        if not (self._job_context or self._export_context):
             self.progress.hide()
             self.cancel_button.hide()
-        step, base = self._job_context.pop(msg.job, (msg.name, ""))
+        if export:  # the next export in the queue starts once this one ended
+            QtCore.QTimer.singleShot(0, self._next_export)
         # A replaced job may end otherwise than cancelled (done before it looked): its
         # entry goes with its last message whatever that is.
         by = self._replaced.pop(msg.job, None)

@@ -67,6 +67,18 @@ class ProjectJobsMixin:
             return False
         return True
 
+    def _whole_layer_note(self, layer: Layer) -> str:
+        """With the time window on, the export's log line says the whole layer is written
+        (the window chooses what the map, the batch table and the figures show; a file
+        holds the layer, as the command line writes it)."""
+        panel = getattr(self, "time_panel", None)
+        if panel is None or panel.time_window() is None:
+            return ""
+        return self.tr(
+            "the whole layer is written ({0} points): the time window applies to the map, "
+            "the batch table and the figures, not to exports"
+        ).format(f"{len(layer.points):,}")
+
     def export(self, kind: str, path: Path) -> int | None:
         """Write the active layer (or its maneuver points) to ``path`` in the worker."""
         from wakeline.app.cli_steps import write_table
@@ -84,18 +96,19 @@ class ProjectJobsMixin:
             text = self.tr("this layer has no maneuver points: run Maneuvers or Compress")
             QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), text)
             return None
-        points = layer.points
+        points, decided = layer.points, self.review.sync.decided_now(layer)
+        note = self._whole_layer_note(layer)
 
-        def job(_progress):
+        def write(target):
             if kind == "csv":
-                export_csv(points, path)
+                export_csv(decided() if decided else points, target)
             elif kind == "geojson":
-                export_geojson(points, path, view.maneuvers)
+                export_geojson(decided() if decided else points, target, view.maneuvers)
             else:  # the same table and writer as `wakeline maneuvers`
-                write_table("maneuvers", table, path)
-            return ("export", layer.name, path)
+                write_table("maneuvers", table, target)
+            return ("export", layer.name, path, [], [note] if note else [])
 
-        return self._start("export", job, ("export", layer.name))
+        return self._start_export(path, write, ("export", layer.name))
 
     def export_as_came_in(self, path: Path | None = None) -> int | None:
         """Export ▸ As it came in: the active layer in its import's layout (issue 19),
@@ -127,15 +140,17 @@ class ProjectJobsMixin:
             path = Path(chosen)
         if not self._text_path_ok(path):
             return None
-        points = layer.points
+        points, decided = layer.points, self.review.sync.decided_now(layer)
+        note = self._whole_layer_note(layer)
 
-        def job(_progress):
+        def write(target):
             # ids renumbered where two sensors' tracks would share one in a layout
             # without a sensor column (a note in the log says so)
-            rep = export_like(points, layout, path)
-            return ("export", layer.name, path, rep.get("warnings", []), rep.get("notes", []))
+            rep = export_like(decided() if decided else points, layout, target)
+            notes = [*rep.get("notes", []), *([note] if note else [])]
+            return ("export", layer.name, path, rep.get("warnings", []), notes)
 
-        return self._start("export", job, ("export", layer.name))
+        return self._start_export(path, write, ("export", layer.name))
 
     def save_project(self, path: Path) -> None:
         """Save the session to ``path`` (in the background) and keep it up to date."""

@@ -22,9 +22,7 @@ def wait_for_jobs(window: MainWindow, timeout_ms: int = 120_000) -> None:
     app = QtWidgets.QApplication.instance()
 
     def busy() -> bool:
-        return bool(
-            window.runner.busy or window._job_context or window.drawing or window.canvas.lod_busy
-        )
+        return bool(window.jobs_busy or window.drawing or window.canvas.lod_busy)
 
     if busy():
         elapsed = QtCore.QElapsedTimer()
@@ -132,6 +130,7 @@ def run(
         # Deleted here, its jobs ended first: a window left behind (frozen above) lived on
         # in the tests until a later test's teardown deleted it.
         window.runner.wait()
+        window.export_runner.wait()
         window.lod_worker.wait()
         window.deleteLater()
         QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.Type.DeferredDelete)

@@ -87,6 +87,12 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.runner.message.connect(self._on_job_message)
         self._job_context: dict[int, tuple] = {}
         self._replaced: dict[int, str] = {}  # a running job -> the job that took its place
+        # Exports run on their own runner, one after the other (jobs._start_export).
+        self.export_runner = JobRunner(self)
+        self.export_runner.message.connect(self._on_job_message)
+        self._export_context: dict[int, tuple] = {}
+        self._export_queue: list[tuple] = []
+        self._export_running: int | None = None
         self._selecting = False
         self._pending_views: dict = {}
         self._draw_queue: list[str] = []
@@ -176,7 +182,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.progress.setRange(0, 1000)
         self.progress.hide()
         self.cancel_button = QtWidgets.QToolButton()
-        self.cancel_button.clicked.connect(self.runner.cancel)
+        self.cancel_button.clicked.connect(self.cancel_jobs)
         self.cancel_button.hide()
         self.cursor_label = QtWidgets.QLabel()
         for widget in (self.progress, self.cancel_button, self.cursor_label):
@@ -402,6 +408,10 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.settings.setValue("state", self.saveState())
         self.runner.cancel()
         self.runner.wait(5000)
+        self._export_queue.clear()  # a file being written is finished (or cancelled)
+        if not self.export_runner.wait(30_000):
+            self.export_runner.cancel()  # its partial file is removed
+            self.export_runner.wait(5000)
         self.review.close()
         self.time_panel.pause()  # no frame asked for after the map's jobs are through
         self.lod_worker.wait(5000)

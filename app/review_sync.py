@@ -94,6 +94,26 @@ class ReviewSync(QtCore.QObject):
 
         self._job = self.runner.run("review", job)
 
+    def decided_now(self, layer):
+        """For File ▸ Export of ``layer``: None when its points show every decision of its
+        review; else a function (for the worker) making the points as the decisions make
+        them now — the layer follows them 300 ms after the last one, and an export in
+        that time wrote the layer without it."""
+        bound = self.dock.queues.get(queue_key(layer))
+        if bound is None or bound.lid != layer.id:
+            return None
+        state = bound.controller.state
+        current = layer.meta.get("review_decisions", 0) == len(state.log)
+        if current and not (self._todo is bound or self._job is not None):
+            return None
+        snap, points, cache = snapshot(state), bound.points, bound.cache
+
+        def decided():
+            pts = decided_points(layer, snap, points, cache)
+            return layer.points if pts is None else pts
+
+        return decided
+
     def _on_message(self, msg) -> None:
         if isinstance(msg, Finished | Failed | Cancelled) and msg.job == self._job:
             self._job = None
@@ -129,17 +149,16 @@ class ReviewSync(QtCore.QObject):
         snap, points, cache = snapshot(bound.controller.state), bound.points, bound.cache
         path = Path(path)
 
-        def job(progress):
-            progress(0.0, f"writing {path.name}")
+        def write(target):
             if log:
                 from wakeline.core.export_review import export_decision_log
 
-                export_decision_log(snap, path, bom=bom)
+                export_decision_log(snap, target, bom=bom)
             else:
-                export_reviewed(layer, snap, points, path, bom=bom, cache=cache)
+                export_reviewed(layer, snap, points, target, bom=bom, cache=cache)
             return ("export", f"{layer.name} (reviewed)", path)
 
-        return self.w._start("export", job, ("export", layer.name))
+        return self.w._start_export(path, write, ("export", layer.name))
 
     def export_dialog(self) -> None:
         path, chosen = QtWidgets.QFileDialog.getSaveFileName(

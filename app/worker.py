@@ -6,9 +6,15 @@ A job is a plain function ``fn(progress) -> result`` calling core code; the core
 The runner reports through one Qt signal carrying typed messages (frozen dataclasses):
 :class:`Started`, :class:`Progress`, :class:`Finished`, :class:`Failed`,
 :class:`Cancelled`. One job at a time: starting a new one cancels the old one, whose
-late messages are dropped.
+late messages are dropped. Job numbers are unique across runners (the window's
+exports run on a runner of their own beside its steps').
+
+A job whose function has ``keeps_result = True`` (an export: the file is written and
+moved into place as its last act) is finished once the function returns, even if a
+cancel came meanwhile: the result exists, so it is reported, not called cancelled.
 """
 
+import itertools
 import threading
 import time
 import traceback
@@ -21,6 +27,9 @@ from PySide6 import QtCore
 
 from wakeline.core.errors import Cancelled as CoreCancelled
 from wakeline.core.errors import InputError
+
+#: Job numbers, shared by every runner so a message names one job in one window.
+_NUMBERS = itertools.count(1)
 
 
 @dataclass(frozen=True)
@@ -58,6 +67,11 @@ class Cancelled:
     name: str
 
 
+def new_job_number() -> int:
+    """A job number no runner has given (for a job queued before it runs)."""
+    return next(_NUMBERS)
+
+
 class _Thread(QtCore.QThread):
     message = QtCore.Signal(object)
 
@@ -77,7 +91,7 @@ class _Thread(QtCore.QThread):
         self.message.emit(Started(self.job, self.name))
         try:
             result = self.fn(self._progress)
-            if self.cancel.is_set():
+            if self.cancel.is_set() and not getattr(self.fn, "keeps_result", False):
                 raise CoreCancelled()
         except CoreCancelled:
             self.message.emit(Cancelled(self.job, self.name))
@@ -103,7 +117,7 @@ class JobRunner(QtCore.QObject):
 
     def __init__(self, parent: QtCore.QObject | None = None) -> None:
         super().__init__(parent)
-        self._next = 0
+        self._next = 0  # the last job number given
         self._current: _Thread | None = None
         self._cancel: threading.Event | None = None
         self._old: list[_Thread] = []
@@ -120,13 +134,16 @@ class JobRunner(QtCore.QObject):
     def _threads(self) -> list["_Thread"]:
         return [t for t in [*self._old, self._current] if t is not None and shiboken6.isValid(t)]
 
-    def run(self, name: str, fn: Callable[[Callable[[float, str], None]], Any]) -> int:
+    def run(
+        self, name: str, fn: Callable[[Callable[[float, str], None]], Any], job: int | None = None
+    ) -> int:
         """Start ``fn(progress)`` in the worker; cancels a running job first. Returns the
-        job number carried by its messages."""
+        job number carried by its messages (``job``: one taken before with
+        :func:`new_job_number`, for a job that waited in a queue)."""
         self.cancel()
         if self._current is not None:  # finished: nothing refers to it any more
             self._current.deleteLater()
-        self._next += 1
+        self._next = job if job is not None else next(_NUMBERS)
         cancel = threading.Event()
         # Threads are children of the runner (Qt owns them) and no Python closure holds
         # them; finished ones are released with deleteLater.
@@ -150,9 +167,13 @@ class JobRunner(QtCore.QObject):
         return all(t.wait(ms) for t in self._threads())
 
     def _relay(self, msg: object) -> None:
-        # Messages of a job that was cancelled or replaced are dropped, except its Cancelled.
+        # Messages of a job that was cancelled or replaced are dropped, except its Cancelled
+        # and the Finished of a job that keeps its result (a file written is reported).
         if getattr(msg, "job", None) != self.current_job and not isinstance(msg, Cancelled):
-            return
+            thread = self.sender()
+            kept = isinstance(msg, Finished) and getattr(thread, "fn", None) is not None
+            if not (kept and getattr(thread.fn, "keeps_result", False)):
+                return
         self.message.emit(msg)
 
     def _reap(self) -> None:

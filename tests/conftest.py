@@ -176,6 +176,7 @@ def window(qtbot, tmp_path):
     yield w
     w.runner.cancel()
     w.runner.wait()
+    w.export_runner.wait()
 
 
 def load(window, path) -> str | None:

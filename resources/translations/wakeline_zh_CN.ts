@@ -519,6 +519,18 @@
         <source>The details are in the log.</source>
         <translation>详细信息见日志。</translation>
     </message>
+    <message>
+        <source>export of {0} waits for the export running</source>
+        <translation>{0} 的导出等待正在进行的导出完成</translation>
+    </message>
+    <message>
+        <source>the whole layer is written ({0} points): the time window applies to the map, the batch table and the figures, not to exports</source>
+        <translation>写出的是整个图层（{0} 个点）：时间窗口只作用于地图、批次表和统计图，不作用于导出</translation>
+    </message>
+    <message>
+        <source>export of {0} cancelled before it started</source>
+        <translation>{0} 的导出在开始前已取消</translation>
+    </message>
 </context>
 <context>
     <name>ParamsPanel</name>

@@ -1,0 +1,154 @@
+"""Exports beside steps (operator test h122, L13/L14/L11): an export never cancels a step
+(nor a step an export), exports queue one after the other, a cancelled export leaves no
+file and one written is reported as written, File ▸ Export right after a review decision
+writes that decision, and with the time window on the log says the whole layer is
+written."""
+
+import threading
+import time
+
+import pandas as pd
+import pytest
+
+pytest.importorskip("pytestqt")
+from PySide6 import QtWidgets  # noqa: E402
+from test_review_window import _settle, _sim_pair, _window  # noqa: E402
+
+from wakeline.app.main import wait_for_jobs  # noqa: E402
+from wakeline.app.worker import Cancelled, Finished, JobRunner  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+
+def _long_step(seen: list, steps: int = 400):
+    def job(progress):
+        for k in range(steps):
+            seen.append(k)
+            progress(k / steps, "working")
+            time.sleep(0.002)
+        return ("export", "step", "nowhere")  # applied as a no-op log line
+
+    return job
+
+
+def _wait_started(seen: list) -> None:
+    deadline = time.time() + 5
+    while not seen and time.time() < deadline:
+        QtWidgets.QApplication.processEvents()
+
+
+def test_an_export_neither_cancels_a_step_nor_is_cancelled_by_one(qtbot, tmp_path):
+    """Run ▸ Clean then File ▸ Export 0.2 s later cancelled the clean ("export took its
+    place"); File ▸ Export then Run ▸ Compress said "export cancelled" although the file
+    was written in full. Both now run to their end, and two exports queue."""
+    w = _window(qtbot, tmp_path)
+    w.load_files(_sim_pair(tmp_path)[:1])
+    _settle(w)
+    seen: list = []
+    w._start("associate", _long_step(seen), ("associate", "sim"))
+    _wait_started(seen)
+    first, second = tmp_path / "a.csv", tmp_path / "b.geojson"
+    assert w.export("csv", first)
+    assert w.export("geojson", second)  # waits for the first
+    wait_for_jobs(w)
+    log = w.log.toPlainText()
+    assert "cancelled" not in log, log
+    assert len(seen) == 400  # the step ran to its end
+    assert "waits for the export running" in log
+    assert f"to {first}" in log and f"to {second}" in log
+    assert first.exists() and second.exists()
+    assert not list(tmp_path.glob(".~*"))  # no temporary file left
+    assert len(pd.read_csv(first)) == len(w.active_layer().points)
+
+
+def test_a_cancelled_export_leaves_no_file_and_says_so(qtbot, tmp_path):
+    w = _window(qtbot, tmp_path)
+    w.load_files(_sim_pair(tmp_path)[:1])
+    _settle(w)
+    started, go = threading.Event(), threading.Event()
+    target = tmp_path / "out.csv"
+
+    def write(partial):
+        partial.write_text("sensor,batch\n")  # half a file
+        started.set()
+        go.wait(5)
+        return ("export", "x", target)
+
+    w._start_export(target, write, ("export", "x"))
+    assert started.wait(5)
+    w.cancel_jobs()
+    go.set()
+    wait_for_jobs(w)
+    assert not target.exists() and not list(tmp_path.glob(".~*"))
+    assert w.log.toPlainText().splitlines()[-1] == "export cancelled"
+
+
+def test_a_job_that_keeps_its_result_is_finished_after_a_late_cancel(qtbot):
+    """The cancel came after the file was in place: that is reported as done."""
+    runner = JobRunner()
+    got = []
+    runner.message.connect(got.append)
+    go = threading.Event()
+
+    def job(_progress):
+        go.wait(5)
+        return "written"
+
+    job.keeps_result = True
+    runner.run("export", job)
+    runner.cancel()
+    go.set()
+    runner.wait(5000)
+    qtbot.waitUntil(lambda: any(isinstance(m, Finished | Cancelled) for m in got), timeout=5000)
+    assert [m.result for m in got if isinstance(m, Finished)] == ["written"]
+    assert not any(isinstance(m, Cancelled) for m in got)
+
+
+def test_export_right_after_a_review_decision_writes_it(qtbot, tmp_path):
+    """The layer follows the decisions 300 ms after the last one; File ▸ Export in that
+    time wrote the layer without the decision (25 batches for 26 targets on Autoferry)."""
+    files = _sim_pair(tmp_path)
+    w = _window(qtbot, tmp_path)
+    w.load_files(files)
+    _settle(w)
+    ids = [w.layer_id(f.name) for f in files]
+    w.layer_list.clearSelection()
+    for lid in ids:
+        w.layer_list.item(w.layer_row(lid)).setSelected(True)
+    w.actions_["fuse"].trigger()
+    _settle(w)
+    fused = next(lay for lay in w.layers.values() if lay.step == "fuse")
+    w.select_layer(fused.id)
+    _settle(w)
+    b = w.review.bound
+    st = b.controller.state
+    before = st.targets()["target"].nunique()
+    b.panel.act_reject.trigger()  # a joined (pending) proposal rejected ...
+    assert st.targets()["target"].nunique() == before + 1
+    out = tmp_path / "layer.csv"
+    assert w.export("csv", out)  # ... and exported at once
+    assert w.review.sync.busy  # the layer has not followed yet
+    _settle(w)
+    assert pd.read_csv(out, dtype=str)["batch"].nunique() == before + 1
+    again = tmp_path / "again.csv"
+    w.export("csv", again)  # once the layer followed: the same file
+    _settle(w)
+    assert again.read_bytes() == out.read_bytes()
+
+
+def test_export_with_the_time_window_on_says_the_whole_layer_is_written(qtbot, tmp_path):
+    w = _window(qtbot, tmp_path)
+    w.load_files(_sim_pair(tmp_path)[:1])
+    _settle(w)
+    tp = w.time_panel
+    tp.set_time_window((tp._lo, tp._lo + 0.1 * (tp._hi - tp._lo)))
+    out = tmp_path / "all.csv"
+    w.export("csv", out)
+    wait_for_jobs(w)
+    n = len(w.active_layer().points)
+    assert len(pd.read_csv(out)) == n
+    assert f"the whole layer is written ({n:,} points)" in w.log.toPlainText()
+    tp.set_time_window(None)
+    w.export("csv", tmp_path / "b.csv")
+    wait_for_jobs(w)
+    assert w.log.toPlainText().count("the whole layer is written") == 1
