@@ -264,11 +264,10 @@ class GanttView(pg.PlotWidget):
             text.setPos(x0[k], y[k])
         self._items = [self._bars, *self._labels.done()]
         self._span = (x0, x1)
-        lo, hi = float(np.min(x0)), float(np.max(x1))
         self._fit_x()
         self.setYRange(float(y.min()) - 0.8, 0.8, padding=0)
-        if not lo <= self.cursor.value() <= hi:
-            self.set_time(self.t_ref + 60.0 * lo)
+        # The cursor stays at the slider's time (it moved to the first bar's start, away
+        # from the slider, which still showed its own time).
 
     def _fit_x(self) -> None:
         """The time range of the shown rows, with room on the left for each row's label

@@ -1,0 +1,43 @@
+"""Review-window details from operator test h122 (Low): the Gantt cursor stays at the
+slider's time when the current proposal changes (L0)."""
+
+import pytest
+
+pytest.importorskip("pytestqt")
+
+from test_review_window import _settle, _sim_pair, _window  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+
+def _fused_review(qtbot, tmp_path):
+    files = _sim_pair(tmp_path)
+    w = _window(qtbot, tmp_path)
+    w.load_files(files)
+    _settle(w)
+    w.layer_list.clearSelection()
+    for f in files:
+        w.layer_list.item(w.layer_row(w.layer_id(f.name))).setSelected(True)
+    w.actions_["fuse"].trigger()
+    _settle(w)
+    fused = next(lay for lay in w.layers.values() if lay.step == "fuse")
+    w.select_layer(fused.id)
+    _settle(w)
+    return w
+
+
+def test_gantt_cursor_stays_at_the_slider_time_when_the_proposal_changes(qtbot, tmp_path):
+    """With the slider at the layer's start, selecting F0005 put the Gantt's cursor at
+    1,518.76 min (the first bar's start) while the slider still read the start."""
+    w = _fused_review(qtbot, tmp_path)
+    b, tp = w.review.bound, w.time_panel
+    tp.set_time(tp._lo)
+    moved = 0
+    for pid in b.controller.state.proposals["proposal"]:
+        b.panel.set_current(pid)
+        _settle(w)
+        assert b.gantt.time() == pytest.approx(tp.time(), abs=1e-3), pid
+        lo = min(b.gantt._span[0])
+        moved += lo * 60.0 + b.gantt.t_ref > tp.time() + 1  # bars after the slider's time
+    assert moved  # some proposal's bars start after it: the old code moved the cursor
+    assert tp.time() == pytest.approx(tp._lo)
