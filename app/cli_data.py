@@ -5,7 +5,7 @@ import sys
 from pathlib import Path
 
 from wakeline.app.cli_common import EPILOG, positive_float, positive_int
-from wakeline.core.words import count
+from wakeline.core.words import count, import_counts
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
@@ -23,12 +23,7 @@ def _cmd_import(args: argparse.Namespace) -> int:
     if args.report:
         write_json(result.report, args.report)
     rep = result.report
-    msg = (
-        f"imported {count(rep['rows_imported'], 'row')} in {count(rep['tracks'], 'track')} "
-        f"({rep['format']}, {rep['encoding']}); {rep['rows_quarantined']:,} quarantined"
-    )
-    if rep.get("blank_lines"):  # so the counts add up to the file's lines
-        msg += f", {count(rep['blank_lines'], 'blank line')} skipped"
+    msg = f"imported {import_counts(rep)}"  # blank lines too: the counts add up to the lines
     if rep["rows_quarantined"] and not args.quarantine:
         msg += " (write them with --quarantine FILE)"
     if rep.get("columns"):

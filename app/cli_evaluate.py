@@ -16,16 +16,10 @@ def _say_read(path, report: dict) -> None:
     """What reading one of --real's files gave, on stderr as ``import`` says it: rows
     imported, quarantined (and why), blank lines, the columns taken, the warnings."""
     from wakeline.app.cli_steps import say_quarantined
-    from wakeline.core.words import count
+    from wakeline.core.words import import_counts
 
     rep = report
-    blank = rep.get("blank_lines", 0)
-    text = (
-        f"{path}: read {count(rep.get('rows_imported', 0), 'row')} in "
-        f"{count(rep.get('tracks', 0), 'track')} ({rep.get('format')}, {rep.get('encoding')}); "
-        f"{rep.get('rows_quarantined', 0):,} quarantined"
-        + (f", {count(blank, 'blank line')} skipped" if blank else "")
-    )
+    text = f"{path}: read {import_counts(rep)}"
     if rep.get("columns"):
         text += "; columns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
     print(text, file=sys.stderr)

@@ -16,7 +16,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.progress import sub_progress
 from wakeline.core.project import file_hash
 from wakeline.core.schema import FILE_ROW
-from wakeline.core.words import count
+from wakeline.core.words import import_counts
 
 
 class ImportJobsMixin:
@@ -110,10 +110,8 @@ class ImportJobsMixin:
 
     def _apply_import(self, path: Path, result, sha: str, view, color: str, layout) -> None:
         rep = result.report
-        self.log_message(
-            f"{path.name}: {count(rep['rows_imported'], 'row')} in {count(rep['tracks'], 'track')} "
-            f"({rep['format_label']}, {rep['encoding']}); {rep['rows_quarantined']:,} quarantined"
-        )
+        # every line of the file accounted for, blank ones too, as `wakeline import` says it
+        self.log_message(f"{path.name}: {import_counts(rep, rep['format_label'])}")
         for reason, n in rep["quarantine_reasons"].items():
             self.log_message(f"    quarantined {n:,}: {reason}")
         for reason, n in rep.get("values_blanked", {}).items():

@@ -41,3 +41,26 @@ def test_gantt_cursor_stays_at_the_slider_time_when_the_proposal_changes(qtbot, 
         moved += lo * 60.0 + b.gantt.t_ref > tp.time() + 1  # bars after the slider's time
     assert moved  # some proposal's bars start after it: the old code moved the cursor
     assert tp.time() == pytest.approx(tp._lo)
+
+
+def test_window_import_message_counts_blank_lines_as_the_cli(qtbot, tmp_path, capsys):
+    """bad.csv: the CLI said "…; 18 quarantined, 2 blank lines skipped", the window's log
+    only "…; 18 quarantined". Both now say it with one sentence (words.import_counts)."""
+    from wakeline.app.cli import main as cli_main
+
+    src = tmp_path / "blank.csv"
+    rows = [f"S1,7,2024-05-01T00:0{k}:00Z,11.5{k},57.6" for k in range(6)]
+    src.write_text(
+        "sensor,batch,time,lon,lat\n"
+        + "\n".join([*rows[:3], "", ",,,,", "S1,7,nonsense,1,2", *rows[3:]])
+        + "\n"
+    )
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    line = next(t for t in w.log.toPlainText().splitlines() if t.startswith("blank.csv: "))
+    assert line.endswith("; 1 quarantined, 2 blank lines skipped"), line
+    assert cli_main(["import", str(src), "-o", str(tmp_path / "o.csv")]) == 0
+    err = capsys.readouterr().err
+    assert "imported 6 rows in 1 track (" in err and "; 1 quarantined, 2 blank lines skipped" in err
+    assert line.startswith("blank.csv: 6 rows in 1 track (")
