@@ -512,12 +512,20 @@ class Session:
                 self._emit("changed", old.id)
                 made.append(old)
             else:
-                made.append(
-                    self.add_layer(
-                        f"{parent_name} · {new.suffix}", new.kind, new.points, new.meta, **lineage
-                    )
+                name = self._step_layer_name(
+                    f"{parent_name} · {new.suffix}", result.step, input_id
                 )
+                made.append(self.add_layer(name, new.kind, new.points, new.meta, **lineage))
         return made
+
+    def _step_layer_name(self, name: str, step: str, parent: str) -> str:
+        """``name``, or with its step when another layer made from ``parent`` has that
+        name: Maneuvers then Compress on one layer made two layers "FILE · maneuvers"
+        (the compress step's maneuver points are "FILE · maneuvers (compress)")."""
+        taken = {lay.name for lay in self.layers.values() if lay.parent == parent}
+        if name not in taken:
+            return name
+        return f"{name} ({step})"
 
     def replace_points(self, layer_id: str, points: pd.DataFrame) -> None:
         """New points for a layer, lineage kept (a review decision relabels targets)."""
