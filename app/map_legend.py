@@ -11,13 +11,15 @@ LABEL_MAX = 32
 #: The legend column is this many characters ("n") wide, from the start and for good;
 #: a label wider than that is shortened in the middle to fit it (by pixels, so wide
 #: glyphs such as Chinese fit too).
-RESERVED_CHARS = 26
+RESERVED_CHARS = 22  # 26 took a third of the map beside the docks (1600 px window)
 #: Room (px) left in the column for a label item's own padding.
 LABEL_PADDING_PX = 10.0
 #: Between a layer's file name and what the layer is ("tracks.csv · cleaned").
 LABEL_SEPARATOR = " · "
 #: Fewest characters of the file's name a shortened label keeps before its "· what".
 MIN_HEAD_CHARS = 8
+#: ... and when the first steps are left out for the last ones ("scene… · … · maneuvers").
+MIN_HEAD_CHARS_STEPS = 5
 #: The most height (px) the legend asks of the plot's layout; a longer one is clipped.
 MIN_HEIGHT_PX = 120.0
 
@@ -71,21 +73,35 @@ class SideLegend(pg.LegendItem):
         """``name`` shortened to fit the column. A layer's name ``FILE · what`` (the steps'
         layers, the input's sensors) keeps ``· what`` whole and shortens the file's name
         in its middle: shortening the whole left "autoferry_{ra…v · maneuvers" beside
-        "autoferry_{ra… · compressed" (the file's end cut at a different place in each)."""
+        "autoferry_{ra… · compressed" (the file's end cut at a different place in each).
+        When the steps do not fit (``FILE · cleaned · maneuvers (compress)``), the last
+        ones are kept — what tells two layers of one file apart — and the first left out
+        ("scene-3… · … · maneuvers (compress)"); the full name is the label's tooltip."""
         middle = QtCore.Qt.TextElideMode.ElideMiddle
         whole = self._metrics.elidedText(short_label(name), middle, self._label_px)
         if whole == name:
             return name
-        head, sep, tail = name.rpartition(LABEL_SEPARATOR)
-        room = self._label_px - self._metrics.horizontalAdvance(sep + tail)
-        if not (head and tail) or room < self._metrics.horizontalAdvance("n" * MIN_HEAD_CHARS):
+        head, sep, what = name.partition(LABEL_SEPARATOR)
+        if not (head and what):
             return whole
-        head = short_label(head, max(LABEL_MAX - len(sep + tail), MIN_HEAD_CHARS))
-        return self._metrics.elidedText(head, middle, room) + sep + tail
+        parts = what.split(LABEL_SEPARATOR)
+        for k in range(len(parts)):
+            tail = LABEL_SEPARATOR.join((["…"] if k else []) + parts[k:])
+            room = self._label_px - self._metrics.horizontalAdvance(sep + tail)
+            least = MIN_HEAD_CHARS if k == 0 else MIN_HEAD_CHARS_STEPS
+            if room >= self._metrics.horizontalAdvance("n" * least):
+                head = short_label(head, max(LABEL_MAX - len(sep + tail), least))
+                return self._metrics.elidedText(head, middle, room) + sep + tail
+        # no room for the file's name beside the last step: the last step alone
+        last = "…" + sep + parts[-1]
+        if self._metrics.horizontalAdvance(last) <= self._label_px:
+            return last
+        return self._metrics.elidedText(parts[-1], middle, self._label_px)
 
     def addItem(self, item, name: str) -> None:  # noqa: N802 - pyqtgraph's name
         super().addItem(item, self.fit_label(str(name)))
-        sample, _label = self.items[-1]
+        sample, label = self.items[-1]
+        label.setToolTip(str(name))  # the whole name, however the label is shortened
         self._rank[id(sample)] = next(self._ranks)
 
     def removeItem(self, item) -> None:  # noqa: N802 - pyqtgraph's name

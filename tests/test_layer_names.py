@@ -26,3 +26,27 @@ def test_maneuvers_then_compress_name_their_maneuver_layers_apart():
     twin = s.add_layer("scene.csv", "source", pts.head(400))
     (made,) = [lay for lay in s.apply_result(twin.id, s.run_step(twin.id, "maneuvers"))]
     assert made.name == "scene.csv · maneuvers"
+
+
+def test_legend_keeps_the_step_that_tells_two_layers_of_one_file_apart(qapp):
+    """h122 L9: "Scene-3...cleaned · maneuvers" beside "Scene-3...cleaned · compressed",
+    the legend a third of the map. The column is narrower, each label keeps its last
+    step whole (the first steps left out before it), and the full name is its tooltip."""
+    import pyqtgraph as pg
+
+    from wakeline.app.map_legend import RESERVED_CHARS, SideLegend
+
+    assert RESERVED_CHARS <= 22
+    legend = SideLegend()
+    base = "scene-3_error_4_radar.csv · cleaned"
+    names = [f"{base} · {w}" for w in ("maneuvers", "compressed", "associated")]
+    names += [f"{base} · maneuvers (compress)", base, "scene-3_error_4_radar.csv · S1"]
+    labels = [legend.fit_label(n) for n in names]
+    for name, label in zip(names, labels, strict=True):
+        assert label.endswith(name.rsplit(" · ", 1)[1]), (name, label)
+        assert legend._metrics.horizontalAdvance(label) <= legend._label_px, label
+    assert len(set(labels)) == len(labels)
+    assert labels[0].startswith("sce") and " · … · " in labels[0]
+    item = pg.PlotDataItem([0, 1], [0, 1])
+    legend.addItem(item, names[0])
+    assert legend.items[-1][1].toolTip() == names[0]
