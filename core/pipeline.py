@@ -343,10 +343,13 @@ def run_associate(
     params: dict,
     progress: Progress = null_progress,
     rejected: set[tuple[str, str]] | frozenset = frozenset(),
+    split: set[tuple[str, str]] | frozenset = frozenset(),
 ):
     """The associate step. ``rejected``: pairs of track labels (``sensor:batch``) the
     operator rejected in an earlier run's review, kept out of this one (the session
-    passes them when the step runs again on the same layer)."""
+    passes them when the step runs again on the same layer); ``split``: pairs the
+    operator split, kept out the same way (and named in the layer's meta, so a later run
+    keeps them out too)."""
     from wakeline.core.associate import (
         LinkParams,
         associate_interrupted,
@@ -372,12 +375,14 @@ def run_associate(
         )
     from wakeline.core.review import association_proposals
 
-    proposals, assoc = association_proposals(assoc, lp, rejected)
+    proposals, assoc = association_proposals(assoc, lp, set(rejected) | set(split))
     out = stitch(assoc, fill=opts.fill) if opts.stitch else assoc.points()
     pairs = assoc.pair_table()
     report = {**assoc.report(), "method": method}
     if rejected:
         report["rejected_kept_out"] = len(rejected)
+    if split:
+        report["split_kept_out"] = len(split)
     if opts.stitch:
         report["points_filled"] = int(out["interpolated"].sum())
     role = "stitched" if opts.stitch else "associated"
@@ -388,7 +393,8 @@ def run_associate(
                 role,
                 "associated",
                 out,
-                {"pairs": int(len(pairs))},
+                {"pairs": int(len(pairs))}
+                | ({"split_kept_out": sorted(map(list, split))} if split else {}),
                 {"pairs": pairs, "proposals": proposals},
             )
         ],
@@ -408,6 +414,8 @@ def _summary_associate(res: StepResult) -> str:
     if rep.get("rejected_kept_out"):
         rej = count(rep["rejected_kept_out"], "pair")
         msg += f"; {rej} rejected in an earlier review kept out"
+    if rep.get("split_kept_out"):
+        msg += f"; {count(rep['split_kept_out'], 'pair')} split in an earlier review kept out"
     if rep.get("long_gap_joins"):
         msg += f"; {rep['long_gap_joins']:,} of the joins across gaps beyond T_gap (second look)"
     if rep.get("rest_joins"):

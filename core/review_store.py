@@ -271,6 +271,30 @@ def rejected_pairs(rows: list[dict], layer_id: str) -> set[tuple[str, str]]:
     return {k for k, v in status.items() if v == "rejected"}
 
 
+def split_pairs(rows: list[dict], queue: str, proposals) -> set[tuple[str, str]]:
+    """The pairs of track labels (order-free) whose proposal the operator left split in
+    ``queue`` — a split says "these are different" as a reject does, so a re-run keeps
+    them out too. A split names its track, not the pair: the pairs come from the queue's
+    own ``proposals`` (``sensor_a``, ``batch_a``, ``sensor_b``, ``batch_b``)."""
+    need = ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b")
+    if proposals is None or not len(proposals) or not set(need) <= set(proposals.columns):
+        return set()
+    p = proposals
+    a = p["sensor_a"].astype(str) + ":" + p["batch_a"].astype(str)
+    b = p["sensor_b"].astype(str) + ":" + p["batch_b"].astype(str)
+    pairs = dict(zip(p["proposal"].astype(str), zip(a, b, strict=True), strict=True))
+    status: dict[tuple[str, str], str] = {}
+    for row in rows:
+        if not (isinstance(row, dict) and row.get("queue") == queue):
+            continue
+        change = row.get("change")
+        after = change.get("status_after") if isinstance(change, dict) else None
+        for pid, value in (after or {}).items():
+            if pid in pairs:
+                status[pair_key(*pairs[pid])] = str(value)
+    return {k for k, v in status.items() if v == "split"}
+
+
 class _Transaction:
     """BEGIN IMMEDIATE … COMMIT (ROLLBACK on error) on an autocommit connection."""
 

@@ -427,10 +427,27 @@ class Session:
         points = self.input_points(ids)
         if step == "associate" and len(ids) == 1:
             rejected = self.rejected_pairs_below(ids[0])
-            if rejected:  # a re-run: what the operator rejected stays out
+            split = self.split_pairs_below(ids[0]) - rejected
+            if rejected or split:  # a re-run: what the operator rejected or split stays out
                 full = {**STEPS[step].defaults(), **(params or {})}
-                return STEPS[step].run(points, full, progress or null_progress, rejected)
+                run = STEPS[step].run
+                return run(points, full, progress or null_progress, rejected, split=split)
         return STEPS[step](points, params, progress)
+
+    def split_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
+        """Pairs of track labels split in the review of an associate layer made from
+        ``layer_id``: its current queue's (through its proposals), and those an earlier
+        run kept out (the layer's ``split_kept_out``, so they stay out run after run)."""
+        from wakeline.core.review_session import queue_key
+        from wakeline.core.review_store import split_pairs
+
+        rows = list(self.decisions)  # a copy: the window may append while a worker reads
+        out: set[tuple[str, str]] = set()
+        for lay in list(self.layers.values()):
+            if lay.parent == layer_id and lay.step == "associate" and not lay.inputs[1:]:
+                out |= split_pairs(rows, queue_key(lay), lay.tables.get("proposals"))
+                out |= {(str(a), str(b)) for a, b in lay.meta.get("split_kept_out", [])}
+        return out
 
     def rejected_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
         """Pairs of track labels rejected in the review of any associate layer made from
@@ -512,9 +529,7 @@ class Session:
                 self._emit("changed", old.id)
                 made.append(old)
             else:
-                name = self._step_layer_name(
-                    f"{parent_name} · {new.suffix}", result.step, input_id
-                )
+                name = self._step_layer_name(f"{parent_name} · {new.suffix}", result.step, input_id)
                 made.append(self.add_layer(name, new.kind, new.points, new.meta, **lineage))
         return made
 
