@@ -38,7 +38,7 @@ from wakeline.app.review_dock import ReviewDock
 from wakeline.app.stats_panel import StatsPanel
 from wakeline.app.time_panel import install_time
 from wakeline.app.view_keeper import MapViewKeeper
-from wakeline.app.window_layers import EMPTY, LayersMixin
+from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.window_words import window_words
 from wakeline.app.worker import JobRunner
@@ -254,6 +254,11 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.bearing_view.retranslate()
         if hasattr(self, "review"):  # built after the first retranslate
             self.review.retranslate()
+        for row in range(self.layer_list.count()):  # the kinds' tags: [source], [fused] …
+            item = self.layer_list.item(row)
+            layer = self.session.layers.get(item.data(QtCore.Qt.ItemDataRole.UserRole))
+            if layer is not None:
+                item.setText(layer_text(layer))
         self.canvas.setLabel("bottom", self.tr("longitude"), units="°")
         self.canvas.setLabel("left", self.tr("latitude"), units="°")
         self._update_stats()

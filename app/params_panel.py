@@ -76,6 +76,7 @@ def _field_param(f: dataclasses.Field, value) -> dict:
             opts["tip"] += f"\nrange: {'' if lo is None else lo} … {'' if hi is None else hi}"
         if unit:
             opts["suffix"] = f" {unit}"
+            opts["unit"] = unit  # the suffix in the window's language: retranslate
         if kind == "float":
             opts["decimals"] = 6
     return opts
@@ -212,6 +213,29 @@ class ParamsPanel(QtWidgets.QWidget):
         ):
             button.setText(text)
         self._show_note(self._note_key)
+        units = self.unit_texts()
+        stack = list(self.root.children())
+        while stack:  # every parameter with a unit: its suffix in the language now
+            item = stack.pop()
+            stack += item.children()
+            unit = item.opts.get("unit")
+            if unit and item.opts.get("suffix") != f" {units.get(unit, unit)}":
+                item.setOpts(suffix=f" {units.get(unit, unit)}")
+        if getattr(self, "_summary", None) is not None:  # the detection limit's paragraph
+            self.show_guidance(self._summary)
+
+    def unit_texts(self) -> dict[str, str]:
+        """The parameters' units as the tree shows them, in the current language (SI
+        symbols stay as they are)."""
+        return {
+            "points": self.tr("points"),
+            "samples": self.tr("samples"),
+            "fixes": self.tr("fixes"),
+            "intervals": self.tr("intervals"),
+            "steps": self.tr("steps"),
+            "at-rest windows": self.tr("at-rest windows"),
+            "deg": self.tr("deg"),
+        }
 
     # -- values --------------------------------------------------------------------
 

@@ -312,6 +312,13 @@ class ReviewDock(QtCore.QObject):
         for name, text, _key, _method in REVIEW_KEYS:
             self.review_actions[name].setText(tr(text))
         self.act_fuse.setText(tr("Fuse &selected layers (two or more)"))
+        # Built before the window's first language was set: the dock's title (its tab)
+        # and the texts made then follow the language too.
+        self.dock.setWindowTitle(tr("Review"))
+        self.empty.setText(tr("No proposals: run Associate or Fuse on a layer."))
+        self.before.setTitle(tr("before: the input pieces"), size="9pt")
+        for bound in self.queues.values():
+            bound.gantt.retranslate()
 
     def _fuse(self) -> None:
         if len(self.w.layer_list.selectedItems()) >= 2:

@@ -212,6 +212,10 @@ class GanttView(pg.PlotWidget):
         self._brush = {c: pg.mkBrush(c) for c in (MEMBER, NEARBY)}
         self._pen = {c: pg.mkPen(c) for c in (MEMBER, NEARBY)}
 
+    def retranslate(self) -> None:
+        """The time axis' title in the current language (a live switch left it English)."""
+        self.setLabel("bottom", self.tr("time"), units=self.tr("min"))
+
     def set_time(self, t_s: float) -> None:
         """Move the cursor to ``t_s`` (s since epoch) without re-emitting."""
         self.cursor.blockSignals(True)

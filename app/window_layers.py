@@ -17,6 +17,23 @@ from wakeline.app.models import batch_summary
 from wakeline.core.errors import InputError
 from wakeline.core.session import BEARING_KIND, Layer
 
+
+def layer_text(layer: Layer) -> str:
+    """A layer's line in the Layers list: its name and its kind in the window's language
+    ("scene.csv  [source]", zh_CN "scene.csv  [源数据]")."""
+    app = QtCore.QCoreApplication
+    kinds = {
+        "source": app.translate("MainWindow", "source"),
+        "cleaned": app.translate("MainWindow", "cleaned"),
+        "maneuvers": app.translate("MainWindow", "maneuvers"),
+        "compressed": app.translate("MainWindow", "compressed"),
+        "associated": app.translate("MainWindow", "associated"),
+        "fused": app.translate("MainWindow", "fused"),
+        "bearing": app.translate("MainWindow", "bearing"),
+    }
+    return f"{layer.name}  [{kinds.get(layer.kind, layer.kind)}]"
+
+
 #: Between two pieces of drawing work: a real timer (not a zero-delay call), so the map's
 #: paint of one piece and the next piece fall in different event-loop turns.
 STEP_MS = 5
@@ -112,9 +129,7 @@ class LayersMixin:
         layer = self.session.layers.get(lid)
         if event == "added":
             self._queue_draw(lid)
-            item = QtWidgets.QListWidgetItem(
-                color_icon(layer.color), f"{layer.name}  [{layer.kind}]"
-            )
+            item = QtWidgets.QListWidgetItem(color_icon(layer.color), layer_text(layer))
             item.setData(QtCore.Qt.ItemDataRole.UserRole, lid)
             item.setFlags(item.flags() | QtCore.Qt.ItemFlag.ItemIsUserCheckable)
             checked = (

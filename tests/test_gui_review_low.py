@@ -64,3 +64,35 @@ def test_window_import_message_counts_blank_lines_as_the_cli(qtbot, tmp_path, ca
     err = capsys.readouterr().err
     assert "imported 6 rows in 1 track (" in err and "; 1 quarantined, 2 blank lines skipped" in err
     assert line.startswith("blank.csv: 6 rows in 1 track (")
+
+
+def test_texts_follow_the_language_started_in_and_switched_to(qtbot, tmp_path):
+    """h122 L10: in 简体中文 the Review dock's title (its tab), the layer tags "[source]" /
+    "[fused]" and the unit "points" stayed English; after a live switch the
+    detection-limit paragraph and the Gantt axis "time (min)" did too."""
+    w = _fused_review(qtbot, tmp_path)
+    b = w.review.bound
+    assert w.review.dock.windowTitle() == "Review"
+    assert b.gantt.getAxis("bottom").labelText == "time"
+    english = w.params.guidance.text()
+    assert english.startswith("Detection limit")
+    w.set_language("zh_CN")
+    try:
+        assert w.review.dock.windowTitle() == "审核"
+        texts = [w.layer_list.item(r).text() for r in range(w.layer_list.count())]
+        assert any(t.endswith("[源数据]") for t in texts), texts
+        assert any(t.endswith("[已融合]") for t in texts), texts
+        assert w.params.guidance.text() not in ("", english)
+        assert "Detection" not in w.params.guidance.text()
+        assert b.gantt.getAxis("bottom").labelText == "时间"
+        stack, suffixes = list(w.params.root.children()), []
+        while stack:
+            item = stack.pop()
+            stack += item.children()
+            if item.opts.get("unit") == "points":
+                suffixes.append(item.opts["suffix"])
+        assert suffixes and set(suffixes) == {" 点"}, suffixes
+    finally:
+        w.set_language("en")
+    assert w.review.dock.windowTitle() == "Review"
+    assert w.params.guidance.text() == english

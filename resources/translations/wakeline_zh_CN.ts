@@ -531,6 +531,34 @@
         <source>export of {0} cancelled before it started</source>
         <translation>{0} 的导出在开始前已取消</translation>
     </message>
+    <message>
+        <source>source</source>
+        <translation>源数据</translation>
+    </message>
+    <message>
+        <source>cleaned</source>
+        <translation>已清洗</translation>
+    </message>
+    <message>
+        <source>maneuvers</source>
+        <translation>机动点</translation>
+    </message>
+    <message>
+        <source>compressed</source>
+        <translation>已压缩</translation>
+    </message>
+    <message>
+        <source>associated</source>
+        <translation>已关联</translation>
+    </message>
+    <message>
+        <source>fused</source>
+        <translation>已融合</translation>
+    </message>
+    <message>
+        <source>bearing</source>
+        <translation>方位</translation>
+    </message>
 </context>
 <context>
     <name>ParamsPanel</name>
@@ -653,6 +681,34 @@
     <message>
         <source>Fusion distance and assignment</source>
         <translation>融合距离与分配</translation>
+    </message>
+    <message>
+        <source>points</source>
+        <translation>点</translation>
+    </message>
+    <message>
+        <source>samples</source>
+        <translation>个样本</translation>
+    </message>
+    <message>
+        <source>fixes</source>
+        <translation>个定位点</translation>
+    </message>
+    <message>
+        <source>intervals</source>
+        <translation>个间隔</translation>
+    </message>
+    <message>
+        <source>steps</source>
+        <translation>步</translation>
+    </message>
+    <message>
+        <source>at-rest windows</source>
+        <translation>个静止窗口</translation>
+    </message>
+    <message>
+        <source>deg</source>
+        <translation>度</translation>
     </message>
 </context>
 <context>
