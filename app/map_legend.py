@@ -11,7 +11,7 @@ LABEL_MAX = 32
 #: The legend column is this many characters ("n") wide, from the start and for good;
 #: a label wider than that is shortened in the middle to fit it (by pixels, so wide
 #: glyphs such as Chinese fit too).
-RESERVED_CHARS = 22  # 26 took a third of the map beside the docks (1600 px window)
+RESERVED_CHARS = 23  # 26 took a third of the map beside the docks (1600 px window)
 #: Room (px) left in the column for a label item's own padding.
 LABEL_PADDING_PX = 10.0
 #: Between a layer's file name and what the layer is ("tracks.csv · cleaned").

@@ -36,7 +36,7 @@ def test_legend_keeps_the_step_that_tells_two_layers_of_one_file_apart(qapp):
 
     from wakeline.app.map_legend import RESERVED_CHARS, SideLegend
 
-    assert RESERVED_CHARS <= 22
+    assert RESERVED_CHARS <= 23
     legend = SideLegend()
     base = "scene-3_error_4_radar.csv · cleaned"
     names = [f"{base} · {w}" for w in ("maneuvers", "compressed", "associated")]
