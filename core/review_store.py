@@ -288,9 +288,12 @@ def split_pairs(rows: list[dict], queue: str, proposals) -> set[tuple[str, str]]
         if not (isinstance(row, dict) and row.get("queue") == queue):
             continue
         change = row.get("change")
-        after = change.get("status_after") if isinstance(change, dict) else None
-        for pid, value in (after or {}).items():
-            if pid in pairs:
+        if not isinstance(change, dict):
+            continue
+        tracks = {str(t) for t in change.get("tracks") or []}
+        for pid, value in (change.get("status_after") or {}).items():
+            # a pair the change touches (a run made in the same second shares the key)
+            if pid in pairs and (not tracks or tracks & set(pairs[pid])):
                 status[pair_key(*pairs[pid])] = str(value)
     return {k for k, v in status.items() if v == "split"}
 
