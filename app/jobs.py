@@ -299,7 +299,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.progress.hide()
             self.cancel_button.hide()
         if export:  # the next export in the queue starts once this one ended
-            QtCore.QTimer.singleShot(0, self._next_export)
+            QtCore.QTimer.singleShot(0, self, self._next_export)  # not once it is deleted
         # A replaced job may end otherwise than cancelled (done before it looked): its
         # entry goes with its last message whatever that is.
         by = self._replaced.pop(msg.job, None)
