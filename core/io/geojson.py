@@ -71,7 +71,7 @@ def _snippet(feature) -> str:
 def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     """Read the tracks of a GeoJSON file into the canonical point table (an
     ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, quarantine_table
+    from wakeline.core.io.reader import ImportResult, points_summary, quarantine_table
 
     progress = progress or null_progress
     try:
@@ -218,10 +218,7 @@ def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None
         "blank_lines": 0,
         "features": len(features),
         **counts,
-        "tracks": int(points.groupby(["sensor", "batch"]).ngroups) if len(points) else 0,
-        "sensors": points["sensor"].value_counts().to_dict() if len(points) else {},
-        "time_start": points["time"].min().isoformat() if len(points) else None,
-        "time_end": points["time"].max().isoformat() if len(points) else None,
+        **points_summary(points),
         "warnings": warnings,
     }
     layout = {"format": "geojson", "encoding": sn.encoding, "compression": sn.compression}

@@ -59,7 +59,7 @@ def _line_texts(sn: Sniff, wanted: set[int], from_line: int | None) -> dict[int,
 
 def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     """Read the tracks of a GPX file into the canonical point table (an ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, quarantine_table
+    from wakeline.core.io.reader import ImportResult, points_summary, quarantine_table
 
     progress = progress or null_progress
     parser = expat.ParserCreate(encoding=None)
@@ -238,10 +238,7 @@ def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
         "gpx_segments": counts["segments"],
         "waypoints": counts["waypoints"],
         "route_points": counts["route_points"],
-        "tracks": int(points.groupby(["sensor", "batch"]).ngroups) if len(points) else 0,
-        "sensors": points["sensor"].value_counts().to_dict() if len(points) else {},
-        "time_start": points["time"].min().isoformat() if len(points) else None,
-        "time_end": points["time"].max().isoformat() if len(points) else None,
+        **points_summary(points),
         "warnings": warnings,
     }
     layout = {"format": "gpx", "encoding": sn.encoding, "compression": sn.compression}

@@ -73,7 +73,7 @@ def _split(line: str) -> tuple[str | None, float | None, str]:
 
 def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     """Read a raw AIS NMEA log into the canonical point table (an ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, quarantine_table
+    from wakeline.core.io.reader import ImportResult, points_summary, quarantine_table
 
     progress = progress or null_progress
     q_lines: list[int] = []
@@ -213,10 +213,7 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
         "fragments_assembled": int(counts["fragments_assembled"]),
         "messages_ignored_by_type": dict(ignored),
         "ship_names": len(names),
-        "tracks": int(points["batch"].nunique()),
-        "sensors": {sensor: len(points)} if len(points) else {},
-        "time_start": points["time"].min().isoformat() if len(points) else None,
-        "time_end": points["time"].max().isoformat() if len(points) else None,
+        **points_summary(points),
         "warnings": [],
     }
     layout = {"format": "ais-nmea", "encoding": sn.encoding, "compression": sn.compression}

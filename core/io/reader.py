@@ -186,6 +186,19 @@ def empty_quarantine() -> pd.DataFrame:
     return quarantine_table([], [], [])
 
 
+def points_summary(points: pd.DataFrame) -> dict:
+    """The report's ``tracks``, ``sensors`` (points per sensor), ``time_start`` and
+    ``time_end`` (ISO) of a point table."""
+    if not len(points):
+        return {"tracks": 0, "sensors": {}, "time_start": None, "time_end": None}
+    return {
+        "tracks": int(points.groupby(["sensor", "batch"]).ngroups),
+        "sensors": {str(k): int(v) for k, v in points["sensor"].value_counts().items()},
+        "time_start": points["time"].min().isoformat(),
+        "time_end": points["time"].max().isoformat(),
+    }
+
+
 def quarantine_table(lines, reasons, texts) -> pd.DataFrame:
     """A quarantine table from parallel lists (line numbers, reasons, texts), in line
     order (rows of one line keep the order they were given in)."""
