@@ -118,3 +118,29 @@ def test_a_json_that_is_no_geojson_gets_a_short_message(tmp_path):
     with pytest.raises(InputError, match="headers found") as exc:
         read_points(path)
     assert len(str(exc.value)) < 2500
+
+
+def test_numeric_and_zoned_times_read_as_the_csv_reader_reads_them(tmp_path):
+    """h130: unix milliseconds and fractional seconds raised a TypeError, a compact
+    yyyymmddHHMMSS too; naive times ignored --tz. The times go through the CSV reader's
+    parse now."""
+    import pandas as pd
+
+    def one(times, **kw):
+        feats = [
+            {
+                "type": "Feature",
+                "geometry": {"type": "LineString", "coordinates": [[10, 59], [10.001, 59]]},
+                "properties": {"batch": "1", "times": times},
+            }
+        ]
+        path = tmp_path / "t.geojson"
+        path.write_text(json.dumps({"type": "FeatureCollection", "features": feats}))
+        return read_points(path, **kw).points["time"].tolist()
+
+    t0 = pd.Timestamp("2024-01-01T00:00:00.123Z")
+    assert one([1704067200123, 1704067210456]) == [t0, pd.Timestamp("2024-01-01T00:00:10.456Z")]
+    assert one([1704067200.5, 1704067210.5])[0] == pd.Timestamp("2024-01-01T00:00:00.5Z")
+    assert one(["20240101120000", "20240101120010"])[0] == pd.Timestamp("2024-01-01T12:00:00Z")
+    zoned = one(["2024-01-01 08:00:00", "2024-01-01 08:00:10"], tz="+08:00")
+    assert zoned[0] == pd.Timestamp("2024-01-01T00:00:00Z")

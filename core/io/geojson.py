@@ -68,10 +68,17 @@ def _snippet(feature) -> str:
     return text if len(text) <= _TEXT_CHARS else text[: _TEXT_CHARS - 1] + "…"
 
 
-def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
+def read_geojson(
+    sn: Sniff, sensor: str = "S1", progress: Progress | None = None, timing: dict | None = None
+):
     """Read the tracks of a GeoJSON file into the canonical point table (an
     ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, points_summary, quarantine_table
+    from wakeline.core.io.reader import (
+        ImportResult,
+        points_summary,
+        quarantine_table,
+        times_of_values,
+    )
 
     progress = progress or null_progress
     try:
@@ -157,16 +164,7 @@ def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None
     lat = pd.to_numeric(pd.Series(cols["lat"], dtype="object"), errors="coerce").to_numpy(
         dtype="float64", na_value=np.nan
     )
-    raw_t = pd.Series(cols["time"], dtype="object")
-    numeric_t = pd.to_numeric(raw_t, errors="coerce")
-    times = pd.to_datetime(
-        raw_t.where(numeric_t.isna()), errors="coerce", utc=True, format="ISO8601"
-    )
-    unix = numeric_t.notna()
-    if unix.any():  # unix seconds or milliseconds
-        secs = numeric_t[unix].to_numpy(dtype="float64")
-        secs = np.where(np.abs(secs) > 1e11, secs / 1000.0, secs)
-        times[unix] = pd.to_datetime(np.round(secs * 1e6).astype("int64"), unit="us", utc=True)
+    times, _ = times_of_values(cols["time"], timing)
     reason = np.full(len(lon), "", dtype=object)
     reason[~np.isfinite(lon) | ~np.isfinite(lat)] = "no readable lon/lat"
     out = np.isfinite(lon) & np.isfinite(lat) & ((np.abs(lat) > 90) | (np.abs(lon) > 180))
@@ -174,8 +172,11 @@ def read_geojson(sn: Sniff, sensor: str = "S1", progress: Progress | None = None
     reason[times.isna().to_numpy() & (reason == "")] = "unparsable time"
     good = reason == ""
     feature_of = np.asarray(cols["feature"], dtype="int64")
+    snippets = {int(k): _snippet(features[int(k)]) for k in np.unique(feature_of[~good])}
     for k, why in zip(feature_of[~good], reason[~good], strict=True):
-        bad(int(k), features[int(k)], f"a vertex or point with {why}")
+        q_line.append(int(k) + 1)
+        q_reason.append(f"a vertex or point with {why}")
+        q_text.append(snippets[int(k)])
 
     points = pd.DataFrame(
         {

@@ -25,11 +25,10 @@ from xml.parsers import expat
 import numpy as np
 import pandas as pd
 
+from wakeline.core import geo
 from wakeline.core.io.compressed import open_data
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.progress import Progress, null_progress
-
-KNOTS_PER_MS = 3600.0 / 1852.0
 
 
 def _local(name: str) -> str:
@@ -57,9 +56,16 @@ def _line_texts(sn: Sniff, wanted: set[int], from_line: int | None) -> dict[int,
     return out
 
 
-def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
+def read_gpx(
+    sn: Sniff, sensor: str = "S1", progress: Progress | None = None, timing: dict | None = None
+):
     """Read the tracks of a GPX file into the canonical point table (an ``ImportResult``)."""
-    from wakeline.core.io.reader import ImportResult, points_summary, quarantine_table
+    from wakeline.core.io.reader import (
+        ImportResult,
+        points_summary,
+        quarantine_table,
+        times_of_values,
+    )
 
     progress = progress or null_progress
     parser = expat.ParserCreate(encoding=None)
@@ -139,7 +145,7 @@ def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     lat = _numbers(rows["lat"])
     lon = _numbers(rows["lon"])
     time_text = pd.Series(rows["time"], dtype="object")
-    times = pd.to_datetime(time_text, errors="coerce", utc=True, format="ISO8601")
+    times, _ = times_of_values(rows["time"], timing)
     reason = np.full(n, "", dtype=object)
     no_time = time_text.isna().to_numpy() | (time_text.fillna("").astype(str) == "").to_numpy()
     reason[~np.isfinite(lat) | ~np.isfinite(lon)] = "no readable lat/lon"
@@ -167,7 +173,7 @@ def read_gpx(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
             if ":" in name:
                 track_sensor[k], track_batch[k] = name.split(":", 1)
     index = np.asarray(rows["track"], dtype="int64")
-    speed = _numbers(rows["speed"]) * KNOTS_PER_MS
+    speed = _numbers(rows["speed"]) / geo.KN_MS
     course = _numbers(rows["course"])
     points = pd.DataFrame(
         {

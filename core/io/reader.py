@@ -199,6 +199,28 @@ def points_summary(points: pd.DataFrame) -> dict:
     }
 
 
+def times_of_values(values: list, timing: dict | None = None) -> tuple[pd.Series, dict]:
+    """Times (UTC, NaT where unreadable) of a list of time values as a GPX or GeoJSON
+    file holds them (ISO or other text, unix seconds or ms as numbers, None), read as a
+    CSV time column is (:func:`parse_times`; ``timing``: ``tz``, ``date_order``,
+    ``clock_date``). Returns the times and what the parse found (``time_format``...)."""
+    timing = timing or {}
+    text = pa.chunked_array(
+        [pa.array([None if v is None else str(v) for v in values], pa.string())]
+    )
+    info: dict = {}
+    ns, ok = parse_times(
+        text,
+        "auto",
+        tz=timing.get("tz"),
+        info=info,
+        date_order=timing.get("date_order", "auto"),
+        clock_date=timing.get("clock_date"),
+    )
+    times = pd.Series(pd.to_datetime(np.where(ok, ns, 0), utc=True)).where(ok)
+    return times.astype("datetime64[ns, UTC]"), info
+
+
 def quarantine_table(lines, reasons, texts) -> pd.DataFrame:
     """A quarantine table from parallel lists (line numbers, reasons, texts), in line
     order (rows of one line keep the order they were given in)."""
@@ -2260,14 +2282,13 @@ def read_points(
         from wakeline.core.io.nmea import read_nmea
 
         return read_nmea(sn, sensor=sensor, progress=progress)
-    if sn.kind == "gpx":
+    if sn.kind in ("gpx", "geojson"):
+        from wakeline.core.io.geojson import read_geojson
         from wakeline.core.io.gpx import read_gpx
 
-        return read_gpx(sn, sensor=sensor, progress=progress)
-    if sn.kind == "geojson":
-        from wakeline.core.io.geojson import read_geojson
-
-        return read_geojson(sn, sensor=sensor, progress=progress)
+        reader = read_gpx if sn.kind == "gpx" else read_geojson
+        timing = {"tz": zone, "date_order": date_order, "clock_date": clock_date}
+        return reader(sn, sensor=sensor, progress=progress, timing=timing)
     res = resolve_header(sn, fmt, mapping, str(path), origin)
     rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
