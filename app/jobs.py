@@ -218,24 +218,14 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
 
     def _start_export(self, path: Path, write, context: tuple) -> int:
         """Write a file in the export runner: exports queue one after the other and never
-        cancel a step (nor a step them). ``write(target)`` writes to a temporary name
-        beside ``path`` and returns the job's result; the file is moved onto ``path``
-        once complete, so a cancelled export leaves nothing behind, and one that was
-        moved into place is reported as written even if a cancel came after."""
-        import os
-
+        cancel a step (nor a step them). ``write(target)`` writes ``path`` (every writer
+        goes through ``core.io.writer.atomic_path``: a temporary file moved into place,
+        a read-only target refused) and returns the job's result; a file written is
+        reported as written even if a cancel came during the write."""
         path = Path(path)
-        partial = path.with_name(".~" + path.name)  # same folder and suffixes
 
-        def job(progress):
-            try:
-                result = write(partial)
-                progress(1.0, f"writing {path.name}")  # raises once cancelled
-                os.replace(partial, path)
-            except BaseException:
-                partial.unlink(missing_ok=True)
-                raise
-            return result
+        def job(_progress):
+            return write(path)
 
         job.keeps_result = True
         number = new_job_number()

@@ -168,10 +168,13 @@ class JobRunner(QtCore.QObject):
 
     def _relay(self, msg: object) -> None:
         # Messages of a job that was cancelled or replaced are dropped, except its Cancelled
-        # and the Finished of a job that keeps its result (a file written is reported).
+        # and the last message (Finished or Failed) of a job that keeps its result: a file
+        # written is reported, and a failure still ends the job for its owner (an export
+        # queue waits for it).
         if getattr(msg, "job", None) != self.current_job and not isinstance(msg, Cancelled):
             thread = self.sender()
-            kept = isinstance(msg, Finished) and getattr(thread, "fn", None) is not None
+            last = isinstance(msg, Finished | Failed)
+            kept = last and getattr(thread, "fn", None) is not None
             if not (kept and getattr(thread.fn, "keeps_result", False)):
                 return
         self.message.emit(msg)
