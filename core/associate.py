@@ -240,9 +240,11 @@ class LinkParams(Params):
     mmsi_apart: bool = param(
         True,
         "",
-        "AIS identities: two tracks whose batch ids are different MMSIs (nine digits, the "
-        "first 2-7, alone or before a separator as in 413801163-1) are two ships and never "
-        "a candidate pair; pieces of one MMSI and ids of any other form are paired as before "
+        "AIS identities: two tracks whose batch ids are different MMSIs (nine digits whose "
+        "first three, the maritime identification digits, are 201-775; alone or before a "
+        "separator as in 413801163-1) are two ships and never a candidate pair; pieces of "
+        "one MMSI and ids of any other form are paired as before. A sensor whose own track "
+        "numbers look like MMSIs (nine digits such as a date-coded 240101001) needs it off "
         "(False = MMSIs are paired like any track numbers)",
         source="ours (session 24: on the uncut ATD example every one of the 13 joins tied two "
         "different MMSIs)",
@@ -568,14 +570,25 @@ def _tree_pairs(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarr
 
 #: A batch id that is an MMSI (nine digits, the first 2-7: ships' maritime identification
 #: digits 201-775), alone or followed by a separator and a piece number.
-_MMSI_ID = r"^\s*([2-7]\d{8})(?:\s*$|[^0-9])"
+_MMSI_ID = r"^\s*((?:20[1-9]|2[1-9]\d|[3-6]\d\d|7[0-6]\d|77[0-5])\d{6})(?:\s*$|[^0-9])"
 
 
 def mmsi_identity(batches: pd.Series) -> np.ndarray:
     """The MMSI each batch id names (int64), or -1 where it names none: ``"367128730"`` and
-    ``"413801163-1"`` give their MMSIs; ``"17"``, ``"p3"``, ``"1234567890"`` give -1."""
+    ``"413801163-1"`` give their MMSIs (maritime identification digits 201-775 first);
+    ``"17"``, ``"p3"``, ``"1234567890"``, ``"200000001"`` give -1."""
     found = batches.astype(str).str.extract(_MMSI_ID, expand=False)
     return pd.to_numeric(found, errors="coerce").fillna(-1).to_numpy(dtype="int64")
+
+
+def _track_identities(seg: Segments) -> np.ndarray:
+    """:func:`mmsi_identity` of a segment table's tracks, once per table (the candidate
+    searches of one run ask it several times)."""
+    out = seg.__dict__.get("_mmsi_identity")
+    if out is None:
+        out = mmsi_identity(seg.index.keys["batch"])
+        object.__setattr__(seg, "_mmsi_identity", out)  # a cache on the frozen table
+    return out
 
 
 def candidate_pairs(
@@ -632,7 +645,7 @@ def candidate_pairs(
             keep &= ~(gap < params.min_gap_steps * np.fmin(seg.step1[i], seg.step0[j]))
     i, j, gap = i[keep], j[keep], gap[keep]
     if params.mmsi_apart and len(i):
-        ident = mmsi_identity(seg.index.keys["batch"])
+        ident = _track_identities(seg)
         keep = ~((ident[i] >= 0) & (ident[j] >= 0) & (ident[i] != ident[j]))
         i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])

@@ -79,6 +79,8 @@ def test_two_halves_of_one_straight_track_are_joined_by_every_method():
         ("367128730", "18", True),  # one id is no MMSI: nothing known
         ("1234567890", "1234567891", True),  # ten digits: not an MMSI
         ("012345678", "012345679", True),  # first digit 0: not a ship's MMSI
+        ("200000001", "200000002", True),  # MID 200: no country
+        ("776000001", "776000002", True),  # MID 776: beyond 775
     ],
 )
 def test_different_mmsis_are_never_joined(a, b, joined):
