@@ -54,8 +54,9 @@ def export_tracks_csv(points: pd.DataFrame, path: str | Path, bom: bool = False)
 
 
 def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline") -> None:
-    """GPX 1.1: one ``<trk>`` per track (name ``sensor:batch``, description its members
-    when known), one segment, points with time; written atomically (UTF-8)."""
+    """GPX 1.1: one ``<trk>`` per track (name ``sensor:batch``, ``<src>`` its sensor,
+    description its members when known), one segment, points with time; written
+    atomically (UTF-8)."""
     import gpxpy.gpx
 
     gpx = gpxpy.gpx.GPX()
@@ -72,10 +73,12 @@ def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline"
         .where(~own, pts["sensor"].astype(str) + ":" + pts["batch"].astype(str))
     )
     codes, names = pd.factorize(keys, sort=False)
+    sensors = pts["sensor"].astype(str).to_numpy()
     bounds = np.flatnonzero(np.diff(codes, prepend=-1, append=-1))
     members = pts["members"].astype(str).to_numpy() if "members" in pts.columns else None
     for s, e in zip(bounds[:-1], bounds[1:], strict=True):  # one object per track, not per point
         trk = gpxpy.gpx.GPXTrack(name=str(names[codes[s]]))
+        trk.source = str(sensors[s])  # <src>: the sensor, so that the file reads back
         if members is not None:
             trk.description = members[s]
         seg = gpxpy.gpx.GPXTrackSegment()

@@ -160,3 +160,26 @@ def test_any_track_points_are_accounted_for(tmp_path_factory, cells):
         for lat, lon, t in cells
     ]
     assert len(r.points) == sum(ok)
+
+
+def test_sensor_names_with_a_colon_and_merged_tracks_read_back(tmp_path):
+    """h130: the name sensor:batch was split at its first ':' (sensor 'AIS:rx1' came back
+    as 'AIS'), and merged tracks, named by their batch alone, came back under S1."""
+    t = pd.date_range("2024-01-01", periods=5, freq="10s", tz="UTC")
+    lon = 10 + np.arange(5) * 1e-3
+    pts = pd.concat(
+        [
+            pd.DataFrame(
+                {"sensor": "AIS:rx1", "batch": "367128730", "time": t, "lon": lon, "lat": 59.0}
+            ),
+            pd.DataFrame(
+                {"sensor": "merged", "batch": "T1", "time": t, "lon": lon + 1, "lat": 59.0}
+            ),
+        ]
+    )
+    export_gpx(pts, tmp_path / "o.gpx")
+    back = read_points(tmp_path / "o.gpx").points
+    assert back.groupby(["sensor", "batch"]).size().to_dict() == {
+        ("AIS:rx1", "367128730"): 5,
+        ("merged", "T1"): 5,
+    }

@@ -74,6 +74,7 @@ def read_gpx(
         k: [] for k in ("track", "line", "lat", "lon", "time", "speed", "course")
     }
     tracks: list[str] = []  # each <trk>'s name ("" when it has none)
+    sources: list[str] = []  # each <trk>'s <src> ("" when it has none)
     counts = {"waypoints": 0, "route_points": 0, "segments": 0}
     creator = {"text": ""}
     stack: list[str] = []
@@ -89,6 +90,7 @@ def read_gpx(
             creator["text"] = str(attrs.get("creator", ""))
         elif tag == "trk":
             tracks.append("")
+            sources.append("")
         elif tag == "trkseg":
             counts["segments"] += 1
         elif tag == "trkpt":
@@ -116,9 +118,12 @@ def read_gpx(
             point[tag] = value
         elif tag == "name" and parent == "trk" and tracks and not tracks[-1]:
             tracks[-1] = value
+        elif tag == "src" and parent == "trk" and sources:
+            sources[-1] = value
         elif tag == "trkpt" and point is not None:
             if not tracks:  # a <trkpt> outside any <trk>: one track of its own
                 tracks.append("")
+                sources.append("")
             for key in rows:
                 rows[key].append(point[key])
             point = None
@@ -168,9 +173,13 @@ def read_gpx(
     ours = creator["text"].lower().startswith("wakeline")
     track_sensor = [sensor] * len(names)
     track_batch = list(names)
-    if ours:
+    if ours:  # Wakeline's own: the sensor in <src> (since session 24), the name sensor:batch
         for k, name in enumerate(names):
-            if ":" in name:
+            src = sources[k] if k < len(sources) else ""
+            if src:
+                track_sensor[k] = src
+                track_batch[k] = name.removeprefix(src + ":")
+            elif ":" in name:
                 track_sensor[k], track_batch[k] = name.split(":", 1)
     index = np.asarray(rows["track"], dtype="int64")
     speed = _numbers(rows["speed"]) / geo.KN_MS
