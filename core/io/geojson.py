@@ -21,6 +21,7 @@ start of the feature's JSON. A file that is not valid JSON is refused with the p
 message.
 """
 
+import functools
 import json
 
 import numpy as np
@@ -38,8 +39,14 @@ _TEXT_CHARS = 200
 
 
 def _field_of(properties: dict, field: str) -> str | None:
-    """The property that names ``field`` (as a CSV header would), or None."""
-    names = {normalize_header(str(k)): k for k in properties}
+    """The property that names ``field`` (as a CSV header would), or None; decided once
+    per set of property names (a collection's features mostly share theirs)."""
+    return _field_among(tuple(properties), field)
+
+
+@functools.lru_cache(maxsize=256)
+def _field_among(keys: tuple, field: str):
+    names = {normalize_header(str(k)): k for k in keys}
     for cand in SYNONYMS.get(field, (field,)):
         key = names.get(normalize_header(cand))
         if key is not None:
