@@ -329,7 +329,27 @@ class _BadRows:
         return "skip"
 
 
-class _Utf8Stream:
+class _ChunkedStream:
+    """``read(n)`` over the bytes a subclass makes chunk by chunk (:meth:`_chunk`, which
+    sets ``_eof`` at the end of its input): what pyarrow's CSV reader reads from."""
+
+    _buf: bytes = b""
+    _eof: bool = False
+
+    def _chunk(self, n: int) -> bytes:
+        raise NotImplementedError
+
+    def read(self, n: int = -1) -> bytes:
+        while not self._eof and (n < 0 or len(self._buf) < n):
+            self._buf += self._chunk(n)
+        if n < 0:
+            out, self._buf = self._buf, b""
+        else:
+            out, self._buf = self._buf[:n], self._buf[n:]
+        return out
+
+
+class _Utf8Stream(_ChunkedStream):
     """A file read as text in ``encoding`` and handed on as UTF-8 bytes, chunk by chunk
     (for pyarrow, which reads UTF-8): undecodable bytes become U+FFFD when ``errors`` is
     ``"replace"`` (those rows are then quarantined), and a byte order mark is dropped."""
@@ -345,20 +365,14 @@ class _Utf8Stream:
         self._first = True
         self.closed = False
 
-    def read(self, n: int = -1) -> bytes:
-        while not self._eof and (n < 0 or len(self._buf) < n):
-            raw = self._fh.read(self.CHUNK)
-            self._eof = not raw
-            text = self._dec.decode(raw, final=self._eof)
-            if self._first and text:
-                text = text.removeprefix("\ufeff")
-                self._first = False
-            self._buf += text.encode("utf-8")
-        if n < 0:
-            out, self._buf = self._buf, b""
-        else:
-            out, self._buf = self._buf[:n], self._buf[n:]
-        return out
+    def _chunk(self, n: int) -> bytes:
+        raw = self._fh.read(self.CHUNK)
+        self._eof = not raw
+        text = self._dec.decode(raw, final=self._eof)
+        if self._first and text:
+            text = text.removeprefix("\ufeff")
+            self._first = False
+        return text.encode("utf-8")
 
     def fraction(self) -> float:
         """How far through the file on disk the reading is (0 to 1)."""
@@ -386,7 +400,7 @@ def _open(sn: Sniff, encoding: str, errors: str):
     return _Utf8Stream(sn, encoding, errors)
 
 
-class _BlankRunStream:
+class _BlankRunStream(_ChunkedStream):
     """The UTF-8 bytes of a blank-aligned file (:attr:`Sniff.blank_runs`) with each run
     of blanks between cells made one :data:`~wakeline.core.io.sniff.RUN_SEP`, line by
     line (:func:`~wakeline.core.io.sniff.blank_runs`): what pyarrow parses."""
@@ -398,19 +412,13 @@ class _BlankRunStream:
         if hasattr(stream, "fraction"):  # a compressed file's progress, on disk
             self.fraction = stream.fraction
 
-    def read(self, n: int = -1) -> bytes:
-        while not self._eof and (n < 0 or len(self._buf) < n):
-            raw = bytes(self._stream.read(4 * 1024 * 1024 if n < 0 else max(n, 1 << 16)))
-            self._eof = not raw
-            data = self._carry + raw
-            cut = len(data) if self._eof else last_line_end(data) + 1
-            self._carry = data[cut:]
-            self._buf += blank_runs(data[:cut], self._sn.has_quotes, self._sn.join_date_clock)
-        if n < 0:
-            out, self._buf = self._buf, b""
-        else:
-            out, self._buf = self._buf[:n], self._buf[n:]
-        return out
+    def _chunk(self, n: int) -> bytes:
+        raw = bytes(self._stream.read(4 * 1024 * 1024 if n < 0 else max(n, 1 << 16)))
+        self._eof = not raw
+        data = self._carry + raw
+        cut = len(data) if self._eof else last_line_end(data) + 1
+        self._carry = data[cut:]
+        return blank_runs(data[:cut], self._sn.has_quotes, self._sn.join_date_clock)
 
     def close(self) -> None:
         self.closed = True
