@@ -49,6 +49,7 @@ def _maneuver_params(args: argparse.Namespace):
         min_window_s=args.min_window_s,
         noise_lag_s=args.noise_lag_s,
         max_step_windows=args.max_step_windows,
+        window_max_s=args.window_max_s,
     ).checked()
 
 
@@ -241,6 +242,14 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.min_window_s,
         help=f"sharp turns close together: windows also halve down to this many seconds where "
         f"3 points fit (radar); 0 = off (default {d.min_window_s:g})",
+    )
+    p.add_argument(
+        "--window-max-s",
+        type=float,
+        default=d.window_max_s,
+        help=f"slow scans: where --window points span more than this many seconds and 3 fit "
+        f"in it, as many points as fit (the first maximum-filter radius at most one window); "
+        f"0 = off (default {d.window_max_s:g})",
     )
     p.add_argument(
         "--noise-lag-s",

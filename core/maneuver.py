@@ -125,6 +125,17 @@ class ManeuverParams(Params):
         hi=1e7,
         source="ours",
     )
+    window_max_s: float = param(
+        0.0,
+        "s",
+        "slow scans: where window_p points would span more than this many seconds (a "
+        "track's median window of window_p points) and 3 points fit in it, the fewest points "
+        "per window is as many as fit, and the first scale's maximum-filter radius is at most "
+        "one window; 0 = off (window_p points whatever they span)",
+        lo=0.0,
+        hi=1e7,
+        source="ours",
+    )
     min_speed_kn: float = param(
         1.0,
         "kn",
@@ -456,6 +467,7 @@ def _p_per_track(
     params: ManeuverParams,
     window_s: float | None = None,
     med: np.ndarray | None = None,
+    step: np.ndarray | None = None,
 ) -> np.ndarray:
     """Points per window for each track: ``window_s`` over the track's median interval
     (``med``, computed when not given), never fewer than ``window_p``; ``window_p`` itself
@@ -464,17 +476,48 @@ def _p_per_track(
     if window_s <= 0:
         return np.full(index.n_tracks, int(params.window_p), dtype="int64")
     med = median_interval_s(t, index) if med is None else med
-    return window_points(window_s, med, params.window_p)
+    return window_points(window_s, med, params.window_p, params.window_max_s, step)
 
 
-def window_points(window_s: float, interval_s: np.ndarray, window_p: int) -> np.ndarray:
+def window_step_s(t: np.ndarray, index: TrackIndex, p: int) -> np.ndarray:
+    """Per track: the median time (s) spanned by its windows of ``p`` points, per step
+    (over ``p`` − 1): the step a window of ``p`` points takes, which the median interval
+    understates on a track whose steps alternate (a 1.68 s radar kept every 4 s steps
+    3.36, 5.04, 3.36, ...: median 3.36 s, windows 4.2 s a step). NaN where no window fits."""
+    out = np.full(index.n_tracks, np.nan)
+    p = max(int(p), 2)
+    n = len(t)
+    if n < p:
+        return out
+    span = t[p - 1 :] - t[: n - p + 1]
+    first = np.arange(n - p + 1)
+    tr = index.track_of_row[first]
+    ok = first + p - 1 < index.ends[tr]
+    has, m = _group_median(span[ok] / (p - 1), tr[ok], index.n_tracks)
+    out[has] = m
+    return out
+
+
+def window_points(
+    window_s: float,
+    interval_s: np.ndarray,
+    window_p: int,
+    window_max_s: float = 0.0,
+    step_s: np.ndarray | None = None,
+) -> np.ndarray:
     """Points per heading window of ``window_s`` seconds at each median sampling interval
     ``interval_s`` (s): ``window_s`` / interval, rounded, never fewer than ``window_p``
     (an unknown interval: ``window_p``), within 2 … 1000."""
     med = np.asarray(interval_s, dtype="float64")
     with np.errstate(invalid="ignore", divide="ignore"):
         chosen = np.where(np.isfinite(med) & (med > 0), np.round(window_s / med), 0)
-    return np.clip(np.maximum(chosen, window_p), 2, 1000).astype("int64")
+        floor = np.full(med.shape, float(window_p))
+        if window_max_s > 0:
+            step = med if step_s is None else np.asarray(step_s, dtype="float64")
+            fit = np.floor(window_max_s / step * (1 + 1e-9))
+            fit = np.where(np.isfinite(fit) & (fit >= 3), fit, window_p)
+            floor = np.minimum(floor, fit)
+    return np.clip(np.maximum(chosen, floor), 2, 1000).astype("int64")
 
 
 def _scales(params: ManeuverParams) -> list[float]:
@@ -1930,6 +1973,9 @@ def _detect_sorted(
     wants_med |= params.rest_radius_m > 0 and params.rest_steps > 0
     wants_med |= params.max_step_windows > 0
     med = median_interval_s(t, index) if wants_med else None
+    step = None
+    if params.window_max_s > 0 and params.window_s > 0:
+        step = window_step_s(t, index, int(params.window_p))
     track_index, med_track = index, med  # the tracks as given (the result's index)
     rest = np.zeros(n, dtype=bool)
     if params.rest_radius_m > 0 and n:
@@ -1955,6 +2001,7 @@ def _detect_sorted(
         index, parent = pieces
         tr = index.track_of_row
         med = med[parent]
+        step = None if step is None else step[parent]
 
     def accept(f_c: np.ndarray, cand: np.ndarray, p_c: np.ndarray, reach: np.ndarray, fine: bool):
         """The candidates (δ ``f_c``) that clear the noise floor (always at a fine scale,
@@ -2020,7 +2067,7 @@ def _detect_sorted(
     for k, duration in enumerate(scales):
         if progress:
             progress(k / n_steps, f"maneuver factor, {duration:g} s windows")
-        p_track = _p_per_track(t, index, params, duration, med)
+        p_track = _p_per_track(t, index, params, duration, med, step)
         if k > 0:
             # tracks whose window did not grow at this duration have nothing new to find
             grew = p_track > prev_p
@@ -2049,6 +2096,8 @@ def _detect_sorted(
             )
         else:
             radius = np.full_like(p_track, params.radius_n)
+            if params.window_max_s > 0:  # the radius reaches no further than one window
+                radius = np.minimum(radius, p_track)
             active = np.ones(index.n_tracks, dtype=bool)
             cand, f_c, factor = _scale_candidates(
                 u, v, index, p_track, radius, params.threshold_deg, active
