@@ -12,6 +12,8 @@ from wakeline.core.maneuver import (
     local_maxima,
     smallest_detectable_turn_deg,
     window_headings,
+    window_points,
+    window_step_s,
 )
 from wakeline.core.tracks import TrackIndex, local_xy, track_index
 
@@ -559,3 +561,59 @@ def test_noise_over_a_window_sees_a_wandering_offset():
         a = detect(data, ManeuverParams(noise_lag_s=10.0))
         b = detect(data, ManeuverParams(noise_lag_s=0.0))
         assert np.array_equal(a.is_maneuver, b.is_maneuver)
+
+
+def test_window_max_s_bounds_the_window_where_three_points_fit():
+    # docs/evaluation.md "Radar at slower scans": window_p points stretch a 10 s window to
+    # 25 s at 5 s scans; with window_max_s 20 as many as fit (>= 3), else window_p
+    steps = np.array([1.68, 3.36, 4.2, 5.04, 6.5, 7.0, 10.0, 60.0, np.nan])
+    off = window_points(10.0, steps, 5)
+    on = window_points(10.0, steps, 5, 20.0)
+    assert off.tolist() == [6, 5, 5, 5, 5, 5, 5, 5, 5]
+    assert on.tolist() == [6, 5, 4, 3, 3, 5, 5, 5, 5]  # AIS (3 points > 20 s): as before
+    # a 1.68 s radar kept every 4 s: steps alternate 3.36 / 5.04 s; the median step (3.36)
+    # understates what a 5-point window spans (16.8 s: 4.2 s a step)
+    t = np.cumsum(np.tile([3.36, 5.04], 20))
+    t = np.concatenate([[0.0], t])
+    idx = TrackIndex(np.array([0]), np.array([len(t)]), np.zeros(len(t), dtype="int64"), None)
+    assert window_step_s(t, idx, 5)[0] == pytest.approx(4.2)
+
+
+def test_window_max_s_finds_turns_25_s_apart_at_5_s_scans():
+    # two 25-degree turns 25 s (5 scans) apart on a small boat at 5 kn seen every 5 s: the
+    # default's 5-point windows and radius (+-25 s) keep one of them, the bounded windows
+    # (3 points, radius 3) both; at 1.68 s and on 10 s AIS nothing changes
+    def course(t):
+        return np.where(t < 40, 0.0, np.where(t < 65, 25.0, 0.0))
+
+    option = ManeuverParams(window_max_s=20.0)
+    for seed in range(5):
+        df, t = _path(course, 5.0, 120.0, 5.0, 0.5, seed)
+        before = t[detect(df).table()["index"].to_numpy()]
+        after = t[detect(df, option).table()["index"].to_numpy()]
+        assert len(before) == 1
+        assert after.tolist() == [40.0, 65.0]
+    for period in (1.68, 10.0):
+        df, _ = _path(course, 5.0 if period < 5 else 12.0, 600.0, period, 0.5, 1)
+        a, b = detect(df), detect(df, option)
+        assert np.array_equal(a.is_maneuver, b.is_maneuver)
+
+
+def test_window_max_s_in_parts_equals_one_pass():
+    # per-track windows and radii: tracks at 1.68, 4.2 (alternating), 5 and 10 s together,
+    # detected in one pass and in parts of whole tracks, with the rule on
+    def course(t):
+        return np.where(t < 40, 0.0, np.where(t < 65, 25.0, 0.0))
+
+    frames = []
+    for k, period in enumerate([1.68, 5.0, 10.0, 5.0, 1.68]):
+        df, _ = _path(course, 5.0, 300.0, period, 0.5, k, batch=f"s{k}")
+        frames.append(df)
+    df, _ = _path(course, 5.0, 300.0, 1.68, 0.5, 9, batch="alt")
+    frames.append(df.iloc[np.flatnonzero(np.arange(len(df)) % 5 != 1)[::2]])  # 3.36 / 5.04
+    scene = pd.concat(frames, ignore_index=True)
+    params = ManeuverParams(window_max_s=20.0)
+    one, split = detect(scene, params, parts=1), detect(scene, params, parts=3)
+    assert np.array_equal(split.is_maneuver, one.is_maneuver)
+    assert np.array_equal(split.factor.view("int64"), one.factor.view("int64"))
+    assert one.window_p.tolist() != detect(scene, parts=1).window_p.tolist()

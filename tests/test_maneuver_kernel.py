@@ -3,7 +3,8 @@
 ``tests/maneuver_reference.py`` is a frozen copy of ``core/maneuver.py`` as it was before
 the kernel was reworked (main at fc44de4, with the gapped and fine windows of s4-15; the
 noise lag ``noise_lag_s`` of session 18 added to both; ``max_step_windows``, the cut at
-long steps, is not in the copy and is compared off): δ of
+long steps, and ``window_max_s`` (h131, off by default) are not in the copy and are compared
+off): δ of
 every row at every window scale, a maximum filter over every row, the rules on the
 candidates. When results change on purpose, change both (or retire this copy). ``detect()`` must give the same maneuver points, the same
 δ bit for bit (NaN where undefined) and the same at-rest mask, on random scenes of several
@@ -75,10 +76,11 @@ PARAMS = [
 
 def _same(df, params):
     # the reference predates max_step_windows (no heading across a long step): that rule off
-    params = params.replace(max_step_windows=0.0)
+    params = params.replace(max_step_windows=0.0, window_max_s=0.0)
     ours = detect(df, params)
     fields = dict(params.__dict__)
     fields.pop("max_step_windows")
+    fields.pop("window_max_s")
     assert not fields.pop("rest_north_box")  # the reference calls at_rest's default box
     ref = reference.detect(df, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
