@@ -418,7 +418,13 @@ class ParamsPanel(QtWidgets.QWidget):
         (core.maneuver.detection_limit), or why none can be given."""
         self._summary = summary
         mp = self._values["maneuver"]
-        limit = detection_limit(summary, mp.window_p, mp.threshold_deg, window_s=mp.window_s)
+        limit = detection_limit(
+            summary,
+            mp.window_p,
+            mp.threshold_deg,
+            window_s=mp.window_s,
+            window_max_s=mp.window_max_s,
+        )
         if limit is None:
             self.guidance.setText("")
             return

@@ -33,7 +33,10 @@ in port has no course across that hour).
 ``ManeuverParams.paper()`` switches all of these off. Option (off by default): ``noise_lag_s``
 measures the track noise of the noise floor against points that many seconds either side,
 not the neighbours, so it sees an offset wandering over a window (radar; docs/evaluation.md
-"Hard radar against real radar").
+"Hard radar against real radar"). Option (off by default): ``window_max_s`` bounds the
+window at slow radar scans — where ``window_p`` points span more than it and 3 fit, as many
+points as fit, and the first scale's maximum filter reaches one window at most
+(docs/evaluation.md "Radar at slower scans (h131)").
 """
 
 import math
@@ -470,8 +473,9 @@ def _p_per_track(
     step: np.ndarray | None = None,
 ) -> np.ndarray:
     """Points per window for each track: ``window_s`` over the track's median interval
-    (``med``, computed when not given), never fewer than ``window_p``; ``window_p`` itself
-    when no duration is given."""
+    (``med``, computed when not given), never fewer than ``window_p`` (or what
+    ``window_max_s`` lowers it to, by the window step ``step``); ``window_p`` itself when
+    no duration is given."""
     window_s = params.window_s if window_s is None else window_s
     if window_s <= 0:
         return np.full(index.n_tracks, int(params.window_p), dtype="int64")
@@ -507,7 +511,9 @@ def window_points(
 ) -> np.ndarray:
     """Points per heading window of ``window_s`` seconds at each median sampling interval
     ``interval_s`` (s): ``window_s`` / interval, rounded, never fewer than ``window_p``
-    (an unknown interval: ``window_p``), within 2 … 1000."""
+    (an unknown interval: ``window_p``), within 2 … 1000. With ``window_max_s`` > 0 the
+    floor is lowered to floor(``window_max_s`` / step) where that is at least 3 (``step_s``,
+    the track's step over a window of ``window_p`` points; default the interval)."""
     med = np.asarray(interval_s, dtype="float64")
     with np.errstate(invalid="ignore", divide="ignore"):
         chosen = np.where(np.isfinite(med) & (med > 0), np.round(window_s / med), 0)
@@ -2254,13 +2260,15 @@ def detection_limit(
     threshold_deg: float,
     eps_m: float = 100.0,
     window_s: float = 0.0,
+    window_max_s: float = 0.0,
 ) -> DetectionLimit | None:
     """The detection limit of seed 000 eq. 10/12 from a :func:`track_summary` table, or
     None when there is nothing to judge (no track with two points). The interval is the
     median over tracks of each one's median sampling interval (its ``interval_s``; the
     detector's own figure, so gaps do not stretch it), the legs ``window_p`` points or, with
     ``window_s`` > 0, the points the detector takes for that many seconds at that interval
-    (never fewer than ``window_p``). When the batches are no tracks — their points share
+    (never fewer than ``window_p``; with ``window_max_s`` > 0 fewer where the detector's
+    rule lowers them, the interval taken as the step). When the batches are no tracks — their points share
     times (radar plots written one batch per scan: median interval below
     :data:`GUIDANCE_MIN_INTERVAL_S`), or their median speed is no ship's (above
     :data:`GUIDANCE_MAX_SPEED_KN`) — ``reason`` says why no limit is given."""
@@ -2300,7 +2308,7 @@ def detection_limit(
         )
     p = int(window_p)
     if window_s > 0:  # as the detector chooses them (:func:`_p_per_track`)
-        p = int(window_points(window_s, np.array([interval]), window_p)[0])
+        p = int(window_points(window_s, np.array([interval]), window_p, window_max_s)[0])
     leg = interval * p
     return DetectionLimit(
         speed,

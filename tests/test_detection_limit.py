@@ -72,6 +72,18 @@ def test_the_interval_and_window_are_the_detectors_own():
     sparse = _ships(dt=60.0)  # 60 s plots: 10 s is under one step, window_p points
     limit = detection_limit(track_summary(_points(sparse, sparse["ship"])), 5, 15.0, window_s=10.0)
     assert limit.window_p == 5 and limit.leg_s == pytest.approx(300.0)
+    # window_max_s (off by default): as many points as fit in 20 s where 3 do (5 s plots:
+    # 4, 6 s plots: 3); 60 s plots keep window_p
+    for dt, p in ((5.0, 4), (6.0, 3)):
+        slow = _ships(dt=dt)
+        limit = detection_limit(
+            track_summary(_points(slow, slow["ship"])), 5, 15.0, window_s=10.0, window_max_s=20.0
+        )
+        assert limit.window_p == p and limit.leg_s == pytest.approx(p * dt)
+    limit = detection_limit(
+        track_summary(_points(sparse, sparse["ship"])), 5, 15.0, window_s=10.0, window_max_s=20.0
+    )
+    assert limit.window_p == 5
 
 
 @pytest.mark.parametrize("jitter_s", [0.0, 0.05])
