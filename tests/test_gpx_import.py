@@ -183,3 +183,137 @@ def test_sensor_names_with_a_colon_and_merged_tracks_read_back(tmp_path):
         ("AIS:rx1", "367128730"): 5,
         ("merged", "T1"): 5,
     }
+
+
+def _read_both(path, monkeypatch):
+    """The file read by the fast reading and by expat's callbacks alone (h135), and
+    whether the fast reading took it."""
+    from wakeline.core.io import gpx
+
+    took = []
+    fast_parse = gpx._fast_parse
+
+    def spy(data):
+        out = fast_parse(data)
+        took.append(out is not None)
+        return out
+
+    monkeypatch.setattr(gpx, "_fast_parse", spy)
+    fast = read_points(path)
+    monkeypatch.setattr(gpx, "_fast_parse", lambda data: None)
+    slow = read_points(path)
+    monkeypatch.setattr(gpx, "_fast_parse", fast_parse)
+    return fast, slow, took[0]
+
+
+def _same(a, b) -> None:
+    pd.testing.assert_frame_equal(a.points, b.points)
+    pd.testing.assert_frame_equal(a.quarantine, b.quarantine)
+    assert a.report == b.report
+
+
+def test_the_fast_reading_reads_as_expat_does(tmp_path, monkeypatch):
+    """h135: the track points cut out by Arrow's string kernels are expat's, to the line
+    numbers of the quarantined ones; our export and OpenCPN's take the fast reading."""
+    path = tmp_path / "ocpn.gpx"
+    path.write_text(OPENCPN.replace("\n", "\r\n"), encoding="utf-8")
+    fast, slow, took = _read_both(path, monkeypatch)
+    assert took
+    _same(fast, slow)
+    rng = np.random.default_rng(1)
+    n = 3000
+    pts = pd.DataFrame(
+        {
+            "sensor": np.where(np.arange(n) < 1000, "AIS:rx1", "radar"),
+            "batch": (np.arange(n) // 500).astype(str),
+            "time": pd.Timestamp("2024-01-01", tz="UTC") + pd.to_timedelta(np.arange(n), "s"),
+            "lon": 10.0 + rng.normal(0, 0.01, n),
+            "lat": 59.0 + rng.normal(0, 0.01, n),
+        }
+    )
+    export_gpx(pts, tmp_path / "ours.gpx")
+    fast, slow, took = _read_both(tmp_path / "ours.gpx", monkeypatch)
+    assert took
+    _same(fast, slow)
+    back = fast.points.sort_values(["sensor", "batch", "time"]).reset_index(drop=True)
+    want = pts.sort_values(["sensor", "batch", "time"]).reset_index(drop=True)
+    assert (back[["sensor", "batch"]] == want[["sensor", "batch"]]).all().all()
+    assert (back["time"] == want["time"]).all()
+    assert np.array_equal(back["lon"].to_numpy(), want["lon"].to_numpy())  # 17 digits
+
+
+#: the first _PLAIN of each list are track points the fast reading takes
+_PLAIN = 8
+_ATTR_LIST = [
+    ' lat="59.5" lon="10.25"',
+    ' lat="-59.5" lon="-170.000000001"',
+    ' lon="10.25" lat="59.5"',
+    ' lat="59.5"',
+    ' lat = "59.5"\n  lon="1e1" ele="3"',
+    ' lat="95" lon="10"',
+    ' lat=" 59.5\t" lon="+.5"',
+    ' lat="5x" lon="10"',
+    ' lat="" lon="0x1"',
+    " lat='59.5' lon='10.25'",
+    ' lat="59.5" lon="10" note="a &amp; b"',
+    ' lat="59.5" lon="10" x:lat="1"',
+]
+_ATTR = st.sampled_from(_ATTR_LIST)
+_CHILD_LIST = [
+    "",
+    "<time>2024-05-01T10:00:00Z</time>",
+    "\n  <time> 2024-05-01T10:00:10Z </time>\n",
+    "<ele>3</ele><time>2024-05-01T10:00:20+02:00</time><speed>2.5</speed><course>90</course>",
+    "<time>yesterday</time>",
+    "<time/>",
+    "<time>1714557600</time><course>-1</course>",
+    "<time>2024-05-01T10:00:30Z</time><extensions><x:speed>9</x:speed></extensions>",
+    "<time>2024-05-01T10:01:20Z</time><speed>fast</speed>",
+    "<time>2024-05-01T10:00:30Z</time><time>2024-05-01T10:00:40Z</time>",
+    "<time>2024-05-01T10:00:50Z</time><name>a &lt; b</name>",
+    "<time><![CDATA[2024-05-01T10:01:00Z]]></time>",
+    "<time>2024-05-01T10:01:10Z</time><!-- a note -->",
+    "<time>2024-05-01T10:01:30Z</time><link><text>x</text></link>",
+]
+_CHILD = st.sampled_from(_CHILD_LIST)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(
+        st.tuples(
+            st.sampled_from(["", "<name>A</name>", "<name>A</name><src>S</src>", "<src>x</src>"]),
+            st.lists(st.tuples(_ATTR, _CHILD, st.booleans()), max_size=6),
+        ),
+        max_size=4,
+    ),
+    st.booleans(),
+    st.sampled_from(["OpenCPN", "Wakeline"]),
+    st.booleans(),
+)
+def test_any_gpx_reads_as_expat_reads_it(tmp_path_factory, tracks, crlf, creator, plain):
+    """h135: whatever the track points look like, the fast reading gives expat's table
+    (or leaves the file to expat)."""
+    import _pytest.monkeypatch
+
+    body = []
+    for head, points in tracks:
+        body.append(f"<trk>{head}<trkseg>")
+        for attrs, child, closed in points:
+            if plain:  # half the files: only what the fast reading takes
+                attrs = _ATTR_LIST[_ATTR_LIST.index(attrs) % _PLAIN]
+                child = _CHILD_LIST[_CHILD_LIST.index(child) % _PLAIN]
+                closed = False
+            body.append(
+                f"<trkpt{attrs}/>" if closed and not child else f"<trkpt{attrs}>{child}</trkpt>"
+            )
+        body.append("</trkseg></trk>")
+    text = f'<?xml version="1.0" encoding="UTF-8"?>\n<gpx creator="{creator}" version="1.1">\n'
+    text += "\n".join(body) + "\n</gpx>\n"
+    if crlf:
+        text = text.replace("\n", "\r\n")
+    path = tmp_path_factory.mktemp("gpx") / "any.gpx"
+    path.write_bytes(text.encode("utf-8"))
+    with _pytest.monkeypatch.MonkeyPatch.context() as mp:
+        fast, slow, _ = _read_both(path, mp)
+    _same(fast, slow)

@@ -199,15 +199,33 @@ def points_summary(points: pd.DataFrame) -> dict:
     }
 
 
+def _numeric_texts(text: pd.Series) -> np.ndarray:
+    """``pd.to_numeric(text, errors="coerce")`` as float64, without converting the texts
+    that begin as an ISO date (``yyyy-mm-dd``: never a number, NaN): a column of ISO
+    times is not turned into Python strings one by one for nothing (h135)."""
+    dated = text.str.match(r"[0-9]{4}-[0-9]{2}-[0-9]{2}", na=False).to_numpy(dtype=bool)
+    if not dated.any():
+        return pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64", copy=True)
+    out = np.full(len(text), np.nan)
+    if not dated.all():
+        rest = pd.to_numeric(text[~dated], errors="coerce")
+        out[~dated] = rest.to_numpy(dtype="float64", na_value=np.nan)
+    return out
+
+
 def times_of_values(values: list, timing: dict | None = None) -> tuple[pd.Series, dict]:
     """Times (UTC, NaT where unreadable) of a list of time values as a GPX or GeoJSON
-    file holds them (ISO or other text, unix seconds or ms as numbers, None), read as a
+    file holds them (ISO or other text, unix seconds or ms as numbers, None; or an Arrow
+    string array), read as a
     CSV time column is (:func:`parse_times`; ``timing``: ``tz``, ``date_order``,
     ``clock_date``). Returns the times and what the parse found (``time_format``...)."""
     timing = timing or {}
-    text = pa.chunked_array(
-        [pa.array([None if v is None else str(v) for v in values], pa.string())]
-    )
+    if isinstance(values, pa.Array):  # texts already (the GPX reader's)
+        text = pa.chunked_array([values.cast(pa.string())])
+    else:
+        text = pa.chunked_array(
+            [pa.array([None if v is None else str(v) for v in values], pa.string())]
+        )
     info: dict = {}
     ns, ok = parse_times(
         text,
@@ -1661,7 +1679,7 @@ def parse_times(
             return _epoch_ns(seconds, info)
         arr, compact = pa.chunked_array([_compact_iso(seconds)]), True
     text = pd.Series(arr.to_pandas(), dtype="str").str.strip()
-    numeric = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64", copy=True)
+    numeric = _numeric_texts(text)
     if kind == "auto" and not compact and _is_compact(numeric):
         text = pd.Series(_compact_iso(numeric).to_pandas(), index=text.index, dtype="str")
         compact, numeric = True, np.full(len(text), np.nan)
