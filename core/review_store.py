@@ -251,51 +251,76 @@ def replay_decisions(state: ReviewState, rows: list[dict], queue: str) -> int:
     return n
 
 
-def rejected_pairs(rows: list[dict], layer_id: str) -> set[tuple[str, str]]:
-    """The pairs of track labels (order-free) the operator left rejected in any queue of
-    layer ``layer_id`` — every run of its step, decisions and undos taken in order — so
-    that a re-run of the step keeps them out (a rejected pair is never proposed again).
-    """
-    prefix = f"{layer_id}@"
-    status: dict[tuple[str, str], str] = {}
-    for row in rows:
-        if not (isinstance(row, dict) and str(row.get("queue", "")).startswith(prefix)):
-            continue
-        change = row.get("change")
-        if not isinstance(change, dict):
-            continue
-        pid, tracks = change.get("proposal"), change.get("tracks") or []
-        after = change.get("status_after") or {}
-        if pid and len(tracks) == 2 and pid in after:
-            status[pair_key(str(tracks[0]), str(tracks[1]))] = str(after[pid])
-    return {k for k, v in status.items() if v == "rejected"}
-
-
-def split_pairs(rows: list[dict], queue: str, proposals) -> set[tuple[str, str]]:
-    """The pairs of track labels (order-free) whose proposal the operator left split in
-    ``queue`` — a split says "these are different" as a reject does, so a re-run keeps
-    them out too. A split names its track, not the pair: the pairs come from the queue's
-    own ``proposals`` (``sensor_a``, ``batch_a``, ``sensor_b``, ``batch_b``)."""
+def _proposal_pairs(proposals) -> dict[str, tuple[str, str]]:
+    """Each proposal's pair of track labels (``sensor:batch``), by proposal id; empty
+    when the table is missing or lacks a column."""
     need = ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b")
     if proposals is None or not len(proposals) or not set(need) <= set(proposals.columns):
-        return set()
+        return {}
     p = proposals
     a = p["sensor_a"].astype(str) + ":" + p["batch_a"].astype(str)
     b = p["sensor_b"].astype(str) + ":" + p["batch_b"].astype(str)
-    pairs = dict(zip(p["proposal"].astype(str), zip(a, b, strict=True), strict=True))
-    status: dict[tuple[str, str], str] = {}
+    return dict(zip(p["proposal"].astype(str), zip(a, b, strict=True), strict=True))
+
+
+def kept_out_pairs(
+    rows: list[dict], queues: list[tuple[str, str, object]]
+) -> tuple[set[tuple[str, str]], set[tuple[str, str]]]:
+    """The pairs of track labels (order-free) a re-run keeps out, read in one pass over
+    the decision log ``rows``: ``(rejected, split)``. ``queues``: one ``(layer id, queue
+    key, proposals)`` per layer. Rejected: the pairs left rejected in any queue of the
+    layer (every run of its step, ``layer_id@…``, decisions and undos taken in order; a
+    rejected pair is never proposed again). Split: the pairs whose proposal was left split
+    in the layer's current ``queue`` — a split says "these are different" as a reject
+    does; it names its track, not the pair, so the pairs come from the queue's own
+    ``proposals`` (``sensor_a``, ``batch_a``, ``sensor_b``, ``batch_b``)."""
+    rejected: dict[str, dict[tuple[str, str], str]] = {lid: {} for lid, _, _ in queues}
+    split: dict[str, list[tuple[dict, dict]]] = {}
+    for _, queue, proposals in queues:
+        pairs = _proposal_pairs(proposals)
+        if pairs:
+            split.setdefault(queue, []).append((pairs, {}))
     for row in rows:
-        if not (isinstance(row, dict) and row.get("queue") == queue):
+        if not isinstance(row, dict):
             continue
         change = row.get("change")
         if not isinstance(change, dict):
             continue
-        tracks = {str(t) for t in change.get("tracks") or []}
-        for pid, value in (change.get("status_after") or {}).items():
-            # a pair the change touches (a run made in the same second shares the key)
-            if pid in pairs and (not tracks or tracks & set(pairs[pid])):
-                status[pair_key(*pairs[pid])] = str(value)
-    return {k for k, v in status.items() if v == "split"}
+        after = change.get("status_after") or {}
+        tracks = change.get("tracks") or []
+        queue = str(row.get("queue", ""))
+        at = queue.find("@")
+        while at >= 0:  # every layer whose id, then '@', begins the queue key
+            status = rejected.get(queue[:at])
+            if status is not None:
+                pid = change.get("proposal")
+                if pid and len(tracks) == 2 and pid in after:
+                    status[pair_key(str(tracks[0]), str(tracks[1]))] = str(after[pid])
+            at = queue.find("@", at + 1)
+        raw = row.get("queue")
+        for pairs, status in split.get(raw, ()) if isinstance(raw, str) else ():
+            named = {str(t) for t in tracks}
+            for pid, value in after.items():
+                # a pair the change touches (a run made in the same second shares the key)
+                if pid in pairs and (not named or named & set(pairs[pid])):
+                    status[pair_key(*pairs[pid])] = str(value)
+    out_rejected = {k for st in rejected.values() for k, v in st.items() if v == "rejected"}
+    out_split = {
+        k for entries in split.values() for _, st in entries for k, v in st.items() if v == "split"
+    }
+    return out_rejected, out_split
+
+
+def rejected_pairs(rows: list[dict], layer_id: str) -> set[tuple[str, str]]:
+    """The pairs of track labels the operator left rejected in any queue of layer
+    ``layer_id`` (:func:`kept_out_pairs`)."""
+    return kept_out_pairs(rows, [(layer_id, "", None)])[0]
+
+
+def split_pairs(rows: list[dict], queue: str, proposals) -> set[tuple[str, str]]:
+    """The pairs of track labels whose proposal the operator left split in ``queue``
+    (:func:`kept_out_pairs`)."""
+    return kept_out_pairs(rows, [("", queue, proposals)])[1]
 
 
 class _Transaction:

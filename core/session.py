@@ -426,40 +426,43 @@ class Session:
         ids = [layer_ids] if isinstance(layer_ids, str) else list(layer_ids)
         points = self.input_points(ids)
         if step == "associate" and len(ids) == 1:
-            rejected = self.rejected_pairs_below(ids[0])
-            split = self.split_pairs_below(ids[0]) - rejected
+            rejected, split = self.kept_out_below(ids[0])
+            split = split - rejected
             if rejected or split:  # a re-run: what the operator rejected or split stays out
                 full = {**STEPS[step].defaults(), **(params or {})}
                 run = STEPS[step].run
                 return run(points, full, progress or null_progress, rejected, split=split)
         return STEPS[step](points, params, progress)
 
-    def split_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
-        """Pairs of track labels split in the review of an associate layer made from
-        ``layer_id``: its current queue's (through its proposals), and those an earlier
-        run kept out (the layer's ``split_kept_out``, so they stay out run after run)."""
+    def kept_out_below(self, layer_id: str) -> tuple[set, set]:
+        """``(rejected, split)``: the pairs of track labels a re-run of Associate on
+        ``layer_id`` keeps out, from the review of each associate layer made from it, in
+        one pass over the decision log. Rejected: in any run's queue of the layer, undos
+        taken into account. Split: in its current queue (through its proposals), and
+        those an earlier run kept out (the layer's ``split_kept_out``, so they stay out
+        run after run)."""
         from wakeline.core.review_session import queue_key
-        from wakeline.core.review_store import split_pairs
+        from wakeline.core.review_store import kept_out_pairs
 
         rows = list(self.decisions)  # a copy: the window may append while a worker reads
-        out: set[tuple[str, str]] = set()
-        for lay in list(self.layers.values()):
-            if lay.parent == layer_id and lay.step == "associate" and not lay.inputs[1:]:
-                out |= split_pairs(rows, queue_key(lay), lay.tables.get("proposals"))
-                out |= {(str(a), str(b)) for a, b in lay.meta.get("split_kept_out", [])}
-        return out
+        below = [
+            lay
+            for lay in list(self.layers.values())
+            if lay.parent == layer_id and lay.step == "associate" and not lay.inputs[1:]
+        ]
+        queues = [(lay.id, queue_key(lay), lay.tables.get("proposals")) for lay in below]
+        rejected, split = kept_out_pairs(rows, queues)
+        for lay in below:
+            split |= {(str(a), str(b)) for a, b in lay.meta.get("split_kept_out", [])}
+        return rejected, split
+
+    def split_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
+        """The split pairs of :meth:`kept_out_below`."""
+        return self.kept_out_below(layer_id)[1]
 
     def rejected_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
-        """Pairs of track labels rejected in the review of any associate layer made from
-        ``layer_id`` (every run's queue, undos taken into account)."""
-        from wakeline.core.review_store import rejected_pairs
-
-        rows = list(self.decisions)  # a copy: the window may append while a worker reads
-        out: set[tuple[str, str]] = set()
-        for lay in list(self.layers.values()):
-            if lay.parent == layer_id and lay.step == "associate" and not lay.inputs[1:]:
-                out |= rejected_pairs(rows, lay.id)
-        return out
+        """The rejected pairs of :meth:`kept_out_below`."""
+        return self.kept_out_below(layer_id)[0]
 
     def input_points(self, layer_ids: list[str]) -> pd.DataFrame:
         """The points of the given layers, concatenated. Raises :class:`InputError` when
