@@ -176,6 +176,8 @@ _PREFIXED_TRK = re.compile(rb"<[A-Za-z_][\w.-]*:trk(?:pt)?[\s/>]")
 #: without '=', '<' or '&' (so that no attribute name can be found inside a value, and no
 #: entity needs decoding).
 _ATTRIBUTES = r'^(?:\s+[A-Za-z_][\w.:-]*\s*=\s*"[^"=<&]*")*\s*$'
+#: The attributes of nearly every <trkpt> written: lat then lon, nothing else.
+_LAT_LON = r'^\s+lat\s*=\s*"(?P<lat>[^"]*)"\s+lon\s*=\s*"(?P<lon>[^"]*)"\s*$'
 #: A <trkpt>'s content as the fast reading takes it: children that hold text only.
 _FLAT = r"^(?:\s*<[A-Za-z_][\w.:-]*(?:\s[^<>]*)?(?:/>|>[^<]*</[A-Za-z_][\w.:-]*\s*>))*\s*$"
 
@@ -199,9 +201,12 @@ def _attribute(parts: pa.Array, name: str) -> pa.Array:
     hit = np.flatnonzero((position % 2 == 0) & named)
     take = np.full(len(parts), -1, dtype="int64")
     take[parent[hit]] = hit + 1
-    values = flat.take(pa.array(take, mask=take < 0))
+    return _normalised(flat.take(pa.array(take, mask=take < 0)))
+
+
+def _normalised(values: pa.Array) -> pa.Array:
+    """Attribute values as expat gives them: each line end or tab a space."""
     if _any(pc.match_substring_regex(values, r"[\t\n\r]")):
-        # expat's attribute-value normalisation: each line end or tab is a space
         values = pc.replace_substring_regex(values, r"\r\n|[\t\n\r]", " ")
     return values
 
@@ -298,10 +303,14 @@ def _fast_parse(data: bytes):
     del tag
     if not _all(pc.match_substring_regex(attrs, _ATTRIBUTES)):
         return None
-    parts = pc.split_pattern(attrs, '"')
-    del attrs
-    lat, lon = _attribute(parts, "lat"), _attribute(parts, "lon")
-    del parts
+    both = pc.extract_regex(attrs, _LAT_LON)  # the usual: lat="…" lon="…", nothing else
+    if both.null_count == 0:
+        lat, lon = _normalised(both.field("lat")), _normalised(both.field("lon"))
+    else:
+        parts = pc.split_pattern(attrs, '"')
+        lat, lon = _attribute(parts, "lat"), _attribute(parts, "lon")
+        del parts
+    del attrs, both
     if _any(pc.match_substring(body, "<extensions")):
         body = pc.replace_substring_regex(
             body, r"(?s)<extensions(?:\s[^<>]*)?>.*?</extensions\s*>", ""
