@@ -497,6 +497,7 @@ def _load_layers(con: sqlite3.Connection) -> list[Layer]:
                 lin.get("created") or "",
                 tables.get(lid, {}),
                 list(lin.get("inputs") or []),
+                str(lin.get("run") or ""),
             )
         )
     return out

@@ -30,9 +30,13 @@ def proposals_of(layer: Layer | None) -> pd.DataFrame | None:
 
 
 def queue_key(layer: Layer) -> str:
-    """Names one run's queue: the layer id and the time its step made it (a re-run makes
-    a new queue; decisions of the old one are not replayed on it)."""
-    return f"{layer.id}@{layer.created}"
+    """Names one run's queue: the layer id, the time its step made it and the run's own
+    token, ``L3@2024-05-01T10:00:00Z#1f2e…`` (a re-run makes a new queue, even within
+    the same second; decisions of the old one are not replayed on it). A layer of a
+    project made before the token (h135) keeps its key ``L3@2024-05-01T10:00:00Z``, so
+    its decisions still load."""
+    key = f"{layer.id}@{layer.created}"
+    return f"{key}#{layer.run}" if layer.run else key
 
 
 #: The side table in which a reviewed layer keeps the points of an input layer removed
