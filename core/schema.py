@@ -58,6 +58,11 @@ def seconds_to_time(seconds: np.ndarray) -> pd.Series:
 #: track order, e.g. the window's source layers): "export as it came in" writes the rows
 #: in that order again. Internal: never exported.
 FILE_ROW = "wl_row"
+#: The courses an import changed (360.0 read as 0; 380.4 or AIS's 360 blanked), as the
+#: file had them, NaN on the other rows; absent when it changed none. ``export --like``
+#: writes them back where no step changed the course since. Internal: not written to the
+#: canonical CSV (h135).
+COURSE_READ = "course_read"
 
 
 #: Rows pandas parses at a time in :func:`to_float`: a slice holds the GIL for ~10 ms.

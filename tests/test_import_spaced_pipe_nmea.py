@@ -3,6 +3,8 @@ of blanks (pandas' to_string, MATLAB, radar logs), ``|`` as the delimiter, decim
 degrees with a hemisphere letter (``37.05N``), and NMEA's degrees and minutes run
 together (``3754.0300,N,02336.0600,E``). Each read whole, streamed and in pieces."""
 
+import re
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -623,3 +625,34 @@ def test_degrees_with_letters_and_one_damaged_value_stay_degrees(tmp_path):
     assert "ddmm" not in r.report
     assert r.quarantine["reason"].tolist() == ["lat out of range"]
     assert r.points["lat"].between(37.8, 38.2).all() and len(r.points) == 19
+
+
+@pytest.mark.parametrize(
+    "kind", ["to_string", "to_string_no_index", "iso", "name_with_a_space", "tabs_crlf_edges"]
+)
+def test_export_like_writes_a_blank_aligned_file_aligned(kind, tmp_path):
+    """h135: export --like a file aligned with blanks wrote its cells one blank apart;
+    now each column is as wide as its widest cell (header included), two blanks apart,
+    numbers and times to the right: every line as long as the header, the cells of a
+    column ending at one place. The file reads back to the same points."""
+    from wakeline.app.cli import main
+
+    df = _frame()
+    src = tmp_path / f"{kind}.txt"
+    src.write_bytes(_aligned(df, kind).encode())
+    out = tmp_path / "back.txt"
+    assert main(["export", str(src), "-o", str(out), "--like", str(src)]) == 0
+    lines = out.read_bytes().decode().replace("\r\n", "\n").rstrip("\n").split("\n")
+    assert len({len(line) for line in lines}) == 1, lines[:3]  # lon, a number, is last
+    # the gaps between columns are blank on every line, header included
+    blank = "".join(
+        " " if all(line[i] == " " for line in lines) else "x" for i in range(len(lines[0]))
+    )
+    assert len(re.findall(r"x {2,}(?=x)", blank)) == len(read_points(src).report["columns"]) - 1 + (
+        kind == "to_string"
+    ), blank
+    assert '"' not in out.read_text()  # a date and clock a blank apart are not quoted
+    a, b = read_points(src), read_points(out)
+    assert len(b.quarantine) == 0
+    cols = ["sensor", "batch", "time", "lon", "lat"]
+    pd.testing.assert_frame_equal(a.points[cols], b.points[cols])

@@ -32,7 +32,7 @@ from wakeline.core.io.layout import (
     TimeFormat,
 )
 from wakeline.core.io.writer import atomic_path
-from wakeline.core.schema import CANONICAL_COLUMNS, EPOCH, FILE_ROW
+from wakeline.core.schema import CANONICAL_COLUMNS, COURSE_READ, EPOCH, FILE_ROW
 
 #: Rows formatted and encoded at a time (bounds the memory of an export).
 CHUNK_ROWS = 500_000
@@ -306,6 +306,26 @@ def made_mask(points: pd.DataFrame) -> np.ndarray:
     return col.astype("str").str.lower().isin(["true", "1", "yes"]).to_numpy()
 
 
+def _as_read(points: pd.DataFrame) -> np.ndarray:
+    if COURSE_READ not in points.columns:
+        return np.full(len(points), np.nan)
+    return pd.to_numeric(points[COURSE_READ], errors="coerce").to_numpy(dtype="float64")
+
+
+def courses_as_read(points: pd.DataFrame) -> np.ndarray:
+    """The rows whose course is written as the file had it: the import changed it (a
+    course of 360.0 read as 0 — north —, one outside [0, 360) such as 380.4 or AIS's
+    "not available" 360 blanked; :data:`COURSE_READ`) and no step changed it since (it is
+    still 0 where 360 was read, still empty where it was blanked); never a point
+    Wakeline made."""
+    read = _as_read(points)
+    if not np.isfinite(read).any() or "course" not in points.columns:
+        return np.zeros(len(points), dtype=bool)
+    course = points["course"].to_numpy(dtype="float64")
+    kept = np.isnan(course) | ((course == 0.0) & (read == 360.0))
+    return np.isfinite(read) & kept & ~made_mask(points)
+
+
 def _extra_key(points: pd.DataFrame, column: Column) -> str | None:
     key = column.key or column.name
     for name in (f"{key}_src", key) if key in _CANONICAL else (key, f"{key}_src"):
@@ -444,6 +464,8 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
                 if col.field in points.columns
                 else np.full(len(points), np.nan)
             )
+            if col.field == "course" and layout.source:  # --like a file, not a preset
+                values = np.where(courses_as_read(points), _as_read(points), values)
             cells.append(format_numbers(values, col.number or NumberFormat()))
         elif col.field is not None:
             cells.append(
@@ -524,9 +546,13 @@ def _quote(cells: list[pa.Array], layout: Layout, text: list[bool] | None = None
     if layout.quoting == "all":
         return [_join('"', pc.replace_substring(c, '"', '""'), '"') for c in cells]
     pattern = "[" + re.escape(layout.delimiter) + '"\r\n]'
+    aligned = layout.aligned and layout.delimiter == " "
+    if aligned and text is None:  # header names, two blanks apart: one blank is no break
+        pattern = '^ | $|  |["\t\r\n]'
     out = []
     for k, c in enumerate(cells):
-        if text is not None and not text[k] and layout.delimiter not in ".:-/+ ":
+        if text is not None and not text[k] and (aligned or layout.delimiter not in ".:-/+ "):
+            # (aligned: the reader joins a date and a clock a blank apart again)
             out.append(c)
             continue
         risky = pc.match_substring_regex(c, pattern)
@@ -554,6 +580,46 @@ def layout_columns(points: pd.DataFrame, layout: Layout, columns: list[str] | No
     return replace(layout, columns=tuple(head + extras))
 
 
+#: Between the columns of a layout aligned with blanks (two: a header name or a cell may
+#: hold one blank, "Track No", "2024-05-01 10:00:00").
+ALIGNED_GAP = "  "
+_FIRST_CHUNK = -1
+
+
+def _widths(
+    points: pd.DataFrame, layout: Layout, extra: list[str], is_text: list[bool], header
+) -> dict:
+    """Each column's width (its widest cell, header included) over every chunk of rows
+    written: a first pass formatting the cells, chunk by chunk, for their lengths only
+    (for one chunk, the cells are kept under ``_FIRST_CHUNK`` and written as they are)."""
+    widths = {k: len(h[0].as_py()) for k, h in enumerate(header)}
+    n = len(points)
+    for start in range(0, n, CHUNK_ROWS):
+        part = points.iloc[start : start + CHUNK_ROWS]
+        cells = _quote(_cells(part, layout, extra), layout, is_text)
+        for k, c in enumerate(cells):
+            longest = pc.max(pc.utf8_length(c)).as_py() if len(c) else 0
+            widths[k] = max(widths[k], int(longest or 0))
+        if n <= CHUNK_ROWS:
+            widths[_FIRST_CHUNK] = cells
+    return widths
+
+
+def _pad(cells: list[pa.Array], widths: dict, is_text: list[bool]) -> list[pa.Array]:
+    """Cells padded with blanks to their column's width: text to the left, numbers and
+    times to the right; the last column's text not padded (no blanks at line ends)."""
+    out = []
+    for k, c in enumerate(cells):
+        c = c.cast(pa.string()) if c.type != pa.string() else c
+        if not is_text[k]:
+            out.append(pc.utf8_lpad(c, widths[k], " "))
+        elif k < len(cells) - 1:
+            out.append(pc.utf8_rpad(c, widths[k], " "))
+        else:
+            out.append(c)
+    return out
+
+
 def write_layout(
     points: pd.DataFrame,
     layout: Layout,
@@ -575,14 +641,21 @@ def write_layout(
     layout = layout_columns(points, layout, extra)
     names = [c.name for c in layout.columns] + extra
     header = _quote([pa.array([n], pa.string()) for n in names], layout)
-    header_line = layout.delimiter.join(h[0].as_py() for h in header)
+    n = len(points)
+    is_text = [c.field not in (*NUMBER_FIELDS, "time", "date") for c in layout.columns]
+    is_text += [True] * len(extra)
+    aligned = layout.aligned and layout.delimiter == " "
+    widths = _widths(points, layout, extra, is_text, header) if aligned else None
+    join = ALIGNED_GAP if aligned else layout.delimiter
+    if widths is not None:
+        header = _pad(header, widths, is_text)
+    header_line = join.join(h[0].as_py() for h in header)
+    if aligned:
+        header_line = header_line.rstrip(" ")
     try:
         encoder = codecs.getincrementalencoder(layout.encoding)()
     except LookupError:
         raise InputError(f"unknown encoding {layout.encoding!r}") from None
-    n = len(points)
-    is_text = [c.field not in (*NUMBER_FIELDS, "time", "date") for c in layout.columns]
-    is_text += [True] * len(extra)
     with atomic_path(path) as tmp, open(tmp, "wb") as fh:
         try:
             if layout.bom and layout.encoding.replace("-", "").lower() in ("utf8", "utf_8"):
@@ -593,8 +666,15 @@ def write_layout(
                 fh.write(encoder.encode(header_line + (layout.line_end if n else "")))
             for start in range(0, n, CHUNK_ROWS):
                 part = points.iloc[start : start + CHUNK_ROWS]
-                cells = _quote(_cells(part, layout, extra), layout, is_text)
-                rows = pc.binary_join_element_wise(*cells, layout.delimiter)
+                if widths is not None and n <= CHUNK_ROWS and _FIRST_CHUNK in widths:
+                    cells = widths.pop(_FIRST_CHUNK)  # formatted once, for the widths
+                else:
+                    cells = _quote(_cells(part, layout, extra), layout, is_text)
+                if widths is not None:
+                    cells = _pad(cells, widths, is_text)
+                rows = pc.binary_join_element_wise(*cells, join)
+                if aligned:
+                    rows = pc.utf8_rtrim(rows, " ")
                 last = start + CHUNK_ROWS >= n
                 text = layout.line_end.join(rows.to_pylist())
                 if not last or layout.final_newline:
@@ -614,6 +694,9 @@ def write_layout(
         "rows": n,
         "columns": names,
         "rows_made": int(made_mask(points).sum()),
+        "courses_as_read": int(courses_as_read(points).sum())
+        if layout.source and layout.field_column("course") is not None
+        else 0,
     }
 
 
@@ -749,6 +832,13 @@ def export_like(
             ids = ids.iloc[_target_rows_order(ids, points)]  # rows as in points
     report = write_layout(ids, layout, path, columns=columns)
     report["warnings"] = _shared_ids_warning(ids, layout) + _relative_times_warning(ids, layout)
+    if report["courses_as_read"]:
+        notes.append(
+            f"{report['courses_as_read']:,} course(s) written as the file had them (360.0, "
+            "or a value outside [0, 360) the import blanked): the point table holds 360.0 "
+            "as 0 (north) and blanks the others; a course a step changed is written as "
+            "the step left it"
+        )
     report["notes"] = notes
     report["members"] = None
     report["targets"] = None

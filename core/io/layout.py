@@ -47,6 +47,7 @@ NUMBER_FIELDS = ("lon", "lat", "speed", "course")
 #: Columns Wakeline adds while it works; never exported unless asked for (``--columns``).
 INTERNAL_COLUMNS = frozenset(
     (
+        "course_read",
         "wl_id",
         "wl_row",
         "target",
@@ -484,6 +485,9 @@ class Layout:
     #: (lat, lon) degrees of the local plane whose east/north metres the file's positions
     #: are (None: the file has lon/lat).
     origin: tuple[float, float] | None = None
+    #: Columns aligned with runs of blanks (``delimiter`` " "): written padded to each
+    #: column's widest cell, two blanks apart, numbers and times to the right.
+    aligned: bool = False
 
     def field_column(self, name: str) -> Column | None:
         """The column that carries canonical field ``name``, if any."""
@@ -769,6 +773,7 @@ def describe_layout(
         header=sn.has_header,
         title_lines=_lines_above(sn),
         origin=tuple(plane) if plane else None,
+        aligned=bool(sn.blank_runs),
     )
 
 

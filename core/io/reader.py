@@ -67,7 +67,7 @@ from wakeline.core.io.timetext import (
     valid_hhmmss,
 )
 from wakeline.core.progress import Progress, null_progress
-from wakeline.core.schema import DEFAULT_SENSOR
+from wakeline.core.schema import COURSE_READ, DEFAULT_SENSOR
 
 QUARANTINE_COLUMNS = ("line", "reason", "text")
 #: The batch "column" of a file without one: its one track is named after the file.
@@ -3204,6 +3204,7 @@ def _to_canonical(
 
     floats: dict[str, pa.ChunkedArray | pa.Array] = {}
     blanked: dict[str, int] = {}
+    course_read = None
     ais = ais_columns(res)
     if res.on_plane:
         floats["lon"], floats["lat"] = _plane_positions(table, res, comma, counted, flag)
@@ -3226,6 +3227,7 @@ def _to_canonical(
             v, unparsable = _numbers(arr, comma, counted, angles=name in ("lon", "lat"))
         with np.errstate(invalid="ignore"):
             outside = (v < lo) | (v >= hi if hi_open else v > hi) | np.isinf(v)
+        as_read = v  # (course: kept below where this import changes it)
         if name in ("lon", "lat"):
             flag(unparsable, f"unparsable {name}")
             flag(np.isnan(v) & ~unparsable, f"missing {name}")
@@ -3260,6 +3262,12 @@ def _to_canonical(
                 )
                 blanked[label] = int((outside & kept_so_far).sum())
                 v = np.where(outside, np.nan, v)
+            if name == "course":
+                # A course this import changed (360.0 → 0, 380.4 or AIS's 360 blanked), as
+                # the file had it, for `export --like` to write back (h135).
+                changed = np.isfinite(as_read) & ~(as_read == v)
+                if changed.any():
+                    course_read = np.where(changed, as_read, np.nan)
         floats[name] = pa.array(v)
 
     blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
@@ -3304,6 +3312,8 @@ def _to_canonical(
     ):
         if name in points.columns and points[name].dtype != "str":
             points[name] = points[name].astype("str")
+    if course_read is not None and np.isfinite(course_read[keep]).any():
+        points[COURSE_READ] = course_read[keep]
 
     bad_idx = np.flatnonzero(bad_rows)
     bad_lines = rows.lines[bad_idx]

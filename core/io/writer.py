@@ -22,7 +22,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
-from wakeline.core.schema import empty_points, ordered_columns
+from wakeline.core.schema import COURSE_READ, empty_points, ordered_columns
 
 _NEEDS_QUOTES = r'[,"\r\n]|^\s|\s$'
 
@@ -382,12 +382,18 @@ def _write_body(table: pa.Table, fh, quote: frozenset[str]) -> None:
         pacsv.write_csv(table, fh, options)
 
 
+def _canonical_columns(points: pd.DataFrame) -> list[str]:
+    """The columns of a canonical CSV: :func:`ordered_columns` without the courses as
+    read (:data:`COURSE_READ`, which a streamed import cannot know before its last piece)."""
+    return [c for c in ordered_columns(points) if c != COURSE_READ]
+
+
 def write_points(
     points: pd.DataFrame, path: str | Path, quote: frozenset[str] = frozenset()
 ) -> None:
     """Write the canonical point table (canonical columns first, extras after);
     ``quote`` as for :func:`write_csv`."""
-    write_csv(points[ordered_columns(points)], path, quote)
+    write_csv(points[_canonical_columns(points)], path, quote)
 
 
 class PointParts:
@@ -409,7 +415,7 @@ class PointParts:
     def __call__(self, points: pd.DataFrame) -> None:
         if not len(points) and self.parts:
             return
-        table = _to_arrow(points[ordered_columns(points)])
+        table = _to_arrow(points[_canonical_columns(points)])
         names, columns = table.column_names, table.columns
         quoted = frozenset(n for n, c in zip(names, columns, strict=True) if _needs_quotes(c))
         if self._fh is None:
