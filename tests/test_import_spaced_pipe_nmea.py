@@ -600,17 +600,19 @@ def test_export_like_writes_hemisphere_degrees_back(tmp_path, lat_form, lon_form
     assert out.read_bytes() == src.read_bytes()
 
 
-def test_an_unquoted_text_with_a_blank_is_refused_loudly_not_misread(tmp_path):
-    """pandas' to_string of a name with a space (``Ship A``): not supported; every row
-    is quarantined with its field count (it was read as a nameless index column once,
-    every value under the wrong name)."""
+def test_an_unquoted_text_with_a_blank_is_read_in_fixed_columns(tmp_path):
+    """pandas' to_string of a name with a space (``Ship A``): refused before h135 (every
+    row quarantined "too many fields: 7 of 5"; once read as a nameless index column,
+    every value under the wrong name); now read by the columns' places, each value under
+    its own name."""
     df = _frame(n=6)
     df.insert(2, "name", ["Ship A", "Ship B"] * 3)
     src = tmp_path / "names.txt"
     src.write_text(df.to_string(index=False) + "\n")
     r = read_points(src)
-    assert len(r.points) == 0
-    assert set(r.quarantine["reason"]) == {"too many fields: 7 of 5"}
+    assert len(r.quarantine) == 0 and len(r.points) == 6
+    assert r.points["name"].tolist() == df["name"].tolist()
+    assert r.points["lat"].round(4).tolist() == df["lat"].round(4).tolist()
     assert not any("date and the clock" in w for w in r.report["warnings"])
 
 
@@ -656,3 +658,58 @@ def test_export_like_writes_a_blank_aligned_file_aligned(kind, tmp_path):
     assert len(b.quarantine) == 0
     cols = ["sensor", "batch", "time", "lon", "lat"]
     pd.testing.assert_frame_equal(a.points[cols], b.points[cols])
+
+
+# --- fixed columns (h135) ---------------------------------------------------------------------
+
+FIXED = (
+    "Track No  Time                       Lat        Lon  Note\n"
+    "       1  2024-01-01 00:00:00  37.900000  23.600000  ab\n"
+    "       2  2024-01-01 00:00:01             23.600100\n"
+    "      12  2024-01-01 00:00:02  37.900200  23.600200  xy\n"
+    "      12  2024-01-01 00:00:03  37.900300  23.600300\n"
+    "\n"
+    "      13  2024-01-01 00:00:04  37.900400  23.600400  cd\n"
+)
+
+
+def test_empty_cells_and_a_name_one_blank_from_the_next_read_in_fixed_columns(
+    tmp_path, monkeypatch
+):
+    """A blank-aligned file with empty cells (a lat, trailing notes) and a header name of
+    two words one blank apart: read by the columns' places, the same whole, streamed and
+    in pieces; before, every row with an empty cell was quarantined as short."""
+    src = tmp_path / "fixed.txt"
+    src.write_text(FIXED)
+    sn = sniff(src)
+    assert sn.fixed_gutters and sn.columns == ("Track No", "Time", "Lat", "Lon", "Note")
+    r = _three_ways(src, tmp_path, monkeypatch, size=90)
+    assert r.quarantine[["line", "reason"]].values.tolist() == [[3, "missing lat"]]
+    assert r.points["batch"].tolist() == ["1", "12", "12", "13"]
+    assert r.points["Note"].tolist() == ["ab", "xy", "", "cd"]
+    assert r.points["lat"].tolist() == [37.9, 37.9002, 37.9003, 37.9004]
+    _lines_accounted(r, src)
+
+
+@pytest.mark.parametrize("note", ["  xy", "  x y", ""])
+def test_a_row_read_today_reads_the_same_in_fixed_columns(tmp_path, monkeypatch, note):
+    """Fixed columns only add rows: every point the blank runs read (emulated: no fixed
+    reading) is read, the same, in fixed columns; a file every judged row of which the
+    runs read is not read in fixed columns at all."""
+    import importlib
+
+    sniff_module = importlib.import_module("wakeline.core.io.sniff")
+    src = tmp_path / "f.txt"
+    src.write_text(FIXED.replace("  xy\n", note + "\n"))
+    now = read_points(src).points
+    with monkeypatch.context() as m:
+        m.setattr(sniff_module, "_fixed_instead", lambda *a, **k: None)
+        today = read_points(src).points
+    key = ["batch", "time"]
+    cols = ["batch", "time", "lon", "lat"]
+    both = today[cols].merge(now[cols], on=key, how="left", suffixes=("", "_now"))
+    assert len(today) <= len(now)
+    assert (both["lat"] == both["lat_now"]).all() and (both["lon"] == both["lon_now"]).all()
+    df = _frame()
+    src.write_text(_aligned(df, "name_with_a_space"))
+    assert sniff(src).fixed_gutters == ()

@@ -688,7 +688,7 @@ def describe_layout(
 
     body = "\n".join(lines[1 if sn.has_header else 0 : SAMPLE_ROWS + 1])
     if sn.blank_runs:  # columns aligned with blanks: the lines as the reader parses them
-        body = blank_runs(body, sn.has_quotes, sn.join_date_clock)
+        body = blank_runs(body, sn.has_quotes, sn.join_date_clock, sn.fixed_gutters)
     sample = pd.read_csv(
         io.StringIO(body),
         sep=sn.parse_delimiter,

@@ -436,7 +436,8 @@ class _BlankRunStream(_ChunkedStream):
         data = self._carry + raw
         cut = len(data) if self._eof else last_line_end(data) + 1
         self._carry = data[cut:]
-        return blank_runs(data[:cut], self._sn.has_quotes, self._sn.join_date_clock)
+        sn = self._sn
+        return blank_runs(data[:cut], sn.has_quotes, sn.join_date_clock, sn.fixed_gutters)
 
     def close(self) -> None:
         self.closed = True
@@ -2004,6 +2005,12 @@ def _blank_run_warnings(sn: Sniff) -> list[str]:
     separator (columns aligned with spaces), and a date and the clock after it one cell."""
     if not sn.blank_runs:
         return []
+    if sn.fixed_gutters:
+        return [
+            f"the columns are aligned with blanks and read by their places under the header "
+            f"({len(sn.columns)} columns): a cell may be empty, a value may hold a blank; a "
+            "row whose text crosses a gap between columns is split at its runs of blanks"
+        ]
     text = (
         f"the columns are aligned with blanks: each run of spaces or tabs was read as one "
         f"separator ({len(sn.columns)} columns)"

@@ -84,6 +84,9 @@ class Sniff:
     blank_runs: bool = False
     #: ... and a date and the clock after it (``2024-01-01 00:00:00``) are one cell.
     join_date_clock: bool = False
+    #: ... or read in fixed columns (h135; :func:`fixed_layout`): the gutters between
+    #: them, character spans ``(lo, hi)`` of each line. Empty: not.
+    fixed_gutters: tuple[tuple[int, int], ...] = ()
 
     @property
     def parse_delimiter(self) -> str:
@@ -278,14 +281,86 @@ def _blank_runs_bytes(data: bytes, quotes: bool) -> bytes:
     return out.tobytes()
 
 
-def blank_runs(text, quotes: bool = False, join: bool = False):
+def _fixed_bytes(data: bytes, gutters: tuple[tuple[int, int], ...]) -> bytes:
+    """:func:`blank_runs` of a file read in fixed columns (:func:`fixed_layout`): on each
+    line whose ``gutters`` (character spans, blank in the header and the judged rows) are
+    blank, each gutter is one :data:`RUN_SEP` and the blanks that pad a cell (a run of
+    blanks touching a gutter or the line's edge) are dropped, so that an empty cell is
+    an empty cell; a line that ends before its last columns gets their separators. A line
+    a gutter of which holds text (or a tab, or a byte beyond ASCII) is split at its runs
+    of blanks as :func:`_blank_runs_bytes` does. Vectorized (numpy)."""
+    a = np.frombuffer(data, dtype=np.uint8)
+    n = len(a)
+    if not n:
+        return data
+    width = gutters[-1][1]
+    in_gutter = np.zeros(width + 1, dtype=bool)  # (the last place: beyond every gutter)
+    opens = np.zeros(width + 1, dtype=bool)
+    for lo, hi in gutters:
+        in_gutter[lo:hi] = True
+        opens[lo] = True
+    ends = (a == 10) | (a == 13)
+    starts = _shifted(ends, 1, True) & ~ends  # a line's first byte
+    small = np.int32 if n < 2**31 else np.int64
+    line = np.cumsum(starts, dtype=small) - 1  # each byte's line among those with a byte
+    lines = int(line[-1]) + 1 if len(line) else 0
+    idx = np.arange(n, dtype=small)
+    pos = idx - np.maximum.accumulate(np.where(starts, idx, small(0)))  # place in its line
+    place = np.minimum(pos, width)
+    g = in_gutter[place] & ~ends
+    sep = opens[place] & ~ends
+    space, blank = a == 32, (a == 32) | (a == 9)
+    body = ~ends & (line >= 0)
+    odd = (g & ~space) | (a == 9) | (a >= 128)
+    held = np.bincount(line[body & odd], minlength=lines) > 0
+    has_text = np.bincount(line[body & ~blank], minlength=lines) > 0
+    ok = ~held & has_text  # the lines read in fixed columns
+    fixed = np.concatenate([[False], ok])[line + 1] & body
+    sep &= fixed
+    # runs of blanks: whether each touches a line's edge, or a gutter
+    keep = ~blank
+    where = np.flatnonzero(blank)
+    if len(where):
+        first = blank & ~(_shifted(blank, 1, False) & ~starts)
+        heads = np.flatnonzero(first[where])
+        edge = starts | _shifted(ends, -1, True)  # a line's first byte, its last
+        at_edge = np.add.reduceat(edge[where].astype(np.int64), heads) > 0
+        at_gutter = np.add.reduceat(g[where].astype(np.int64), heads) > 0
+        run = np.cumsum(first[where]) - 1
+        # a run between cells of a line read by runs: one separator (its first blank)
+        loose = ~fixed[where] & first[where] & ~at_edge[run]
+        # a blank inside a cell of a fixed line (2024-01-01 00:00:00, Track No) stays
+        inner = fixed[where] & ~at_edge[run] & ~at_gutter[run]
+        keep[where[loose | inner]] = True
+    keep |= sep
+    out = a.copy()
+    out[sep | (~fixed & blank & keep)] = 0x1F
+    # the separators a short fixed line lacks, after its last byte
+    lack = np.where(ok, len(gutters) - np.bincount(line[sep], minlength=lines), 0)
+    kept = out[keep]
+    short = np.flatnonzero(lack > 0)
+    if len(short):
+        last = np.zeros(lines, dtype=np.int64)
+        is_last = body & _shifted(ends | ~body, -1, True)
+        last[line[is_last]] = idx[is_last]
+        at = np.cumsum(keep)[last[short]]  # kept bytes up to and with the line's last
+        kept = np.insert(kept, np.repeat(at, lack[short]), np.uint8(0x1F))
+    return kept.tobytes()
+
+
+def blank_runs(text, quotes: bool = False, join: bool = False, gutters=()):
     """Lines of a blank-aligned file (``str`` or ``bytes``; whole lines) with each run of
     blanks (spaces, tabs) between cells made one :data:`RUN_SEP` and the blanks at a
     line's start and end dropped; with ``quotes``, blanks inside a quoted cell stay; with
     ``join``, a date and the clock after it (and an AM/PM or UTC mark after a clock) stay
-    one cell, apart by one space. Line ends are kept: a line stays the line it was."""
+    one cell, apart by one space; with ``gutters``, a file read in fixed columns
+    (:func:`_fixed_bytes`). Line ends are kept: a line stays the line it was."""
     is_str = isinstance(text, str)
-    out = _blank_runs_bytes(text.encode("utf-8") if is_str else bytes(text), quotes)
+    raw = text.encode("utf-8") if is_str else bytes(text)
+    if gutters:
+        out = _fixed_bytes(raw, tuple(tuple(g) for g in gutters))
+        return out.decode("utf-8") if is_str else out
+    out = _blank_runs_bytes(raw, quotes)
     if join:
         pat = _RUNS[bytes]
         out = pat["date_clock"].sub(b" ", out)
@@ -294,10 +369,91 @@ def blank_runs(text, quotes: bool = False, join: bool = False):
     return out.decode("utf-8") if is_str else out
 
 
-def blank_cells(line: str, quotes: bool = False, join: bool = False) -> list[str]:
+def blank_cells(line: str, quotes: bool = False, join: bool = False, gutters=()) -> list[str]:
     """The cells of one line of a blank-aligned file (:func:`blank_runs`)."""
-    text = blank_runs(line, quotes, join)
+    text = blank_runs(line, quotes, join, gutters)
     return text.split(RUN_SEP) if text else [""]
+
+
+def _fixed_instead(lines, runs: bool, join: bool, names, quotes: bool):
+    """The names and gutters of a blank-separated file read in fixed columns, when that
+    reads every judged row and the file's reading does not (a row with an empty cell, a
+    header name one blank from the next), and each judged row that reading does read
+    comes out the same: a file that reads today reads as it did (h135). Else None."""
+    if quotes:
+        return None
+    judged = [x for x in lines[1 : BLANK_LINES_JUDGED + 1] if x.strip(" \t")]
+    if not judged:
+        return None
+    if runs:
+        cells = [blank_cells(x, quotes, join) for x in judged]
+        header = names or blank_cells(lines[0], quotes, join)
+    else:
+        cells = [x.split(" ") for x in judged]
+        header = lines[0].split(" ")
+    fits = [len(c) == len(header) for c in cells]
+    if all(fits):
+        return None
+    found = fixed_layout([lines[0], *judged])
+    if found is None:
+        return None
+    fixed_names, gutters = found
+    again = [blank_cells(x, False, False, gutters) for x in judged]
+    if any(len(c) != len(fixed_names) for c in again):
+        return None
+    same = [
+        [v.strip(" ") for v in c] == a for c, a, fit in zip(cells, again, fits, strict=True) if fit
+    ]
+    if not all(same) or (any(fits) and fixed_names != [h.strip(" ") for h in header]):
+        return None
+    return fixed_names, gutters
+
+
+def fixed_layout(lines: list[str]) -> tuple[list[str], tuple[tuple[int, int], ...]] | None:
+    """A blank-aligned file read in fixed columns (h135): the header's names and the
+    gutters (character spans ``[lo, hi)`` blank on the header and on each of the first
+    :data:`BLANK_LINES_JUDGED` rows, between the header's first and last character) —
+    when every judged row keeps its gutters blank and every column has a name. For a
+    file of plain ASCII without tabs or quotes; None otherwise. What it reads that runs
+    of blanks cannot: empty cells, and a header name one blank from the next."""
+    judged = lines[: BLANK_LINES_JUDGED + 1]
+    if len(judged) < 2 or any(("\t" in x or '"' in x or not x.isascii()) for x in judged):
+        return None
+    head = judged[0].rstrip(" ")
+    lo, hi = len(head) - len(head.lstrip(" ")), len(head)
+    if hi - lo < 3:
+        return None
+    blank = np.ones(hi, dtype=bool)
+    data = np.zeros(hi, dtype=bool)  # a judged row has text there
+    for k, x in enumerate(judged):
+        row = np.frombuffer(x[:hi].ljust(hi).encode("ascii"), dtype=np.uint8) == 32
+        blank &= row
+        if k:
+            data |= ~row
+    blank[:lo] = False
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], blank.astype(np.int8), [0]])))
+    gutters = [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2], strict=True)]
+    # A one-blank gutter inside a column: a date and its clock (the right part has no
+    # name), a name of two words (the left part has no data): no column boundary.
+    k = 0
+    while k < len(gutters):
+        bounds = [0, *[p for g in gutters for p in g], hi]
+        spans = [(bounds[j], bounds[j + 1]) for j in range(0, len(bounds), 2)]
+        left, right = spans[k], spans[k + 1]
+        named = [bool(head[a:b].strip(" ")) for a, b in (left, right)]
+        filled = [bool(data[a:b].any()) for a, b in (left, right)]
+        narrow = gutters[k][1] - gutters[k][0] == 1
+        if narrow and (not named[1] or (not filled[0] and named[0])):
+            del gutters[k]
+        else:
+            k += 1
+    if not gutters:
+        return None
+    bounds = [0, *[p for g in gutters for p in g], None]
+    names = [head[bounds[j] : bounds[j + 1]].strip(" ") for j in range(0, len(bounds), 2)]
+    if not all(names):
+        return None
+    return names, tuple(gutters)
 
 
 #: Data lines a blank-separated file's layout is judged on.
@@ -558,10 +714,19 @@ def sniff(
     if delim == " ":  # columns aligned with runs of blanks?
         runs, join, names = blank_layout(lines, extras["has_quotes"])
         extras["blank_runs"], extras["join_date_clock"] = runs, join
+        fixed = _fixed_instead(lines, runs, join, names, extras["has_quotes"])
+        if fixed is not None:
+            names, extras["fixed_gutters"] = fixed
+            extras["blank_runs"], extras["join_date_clock"] = True, False
     if extras.get("blank_runs"):
 
         def split(line: str) -> list[str]:
-            return blank_cells(line, extras["has_quotes"], extras["join_date_clock"])
+            return blank_cells(
+                line,
+                extras["has_quotes"],
+                extras["join_date_clock"],
+                extras.get("fixed_gutters", ()),
+            )
     else:
 
         def split(line: str) -> list[str]:
