@@ -713,3 +713,30 @@ def test_a_row_read_today_reads_the_same_in_fixed_columns(tmp_path, monkeypatch,
     df = _frame()
     src.write_text(_aligned(df, "name_with_a_space"))
     assert sniff(src).fixed_gutters == ()
+
+
+def test_an_aligned_file_with_empty_cells_round_trips(tmp_path):
+    """Read in fixed columns, exported --like itself (aligned), read back: the same points,
+    an empty speed and an empty note included (h135)."""
+    from wakeline.app.cli import main
+
+    rows = [
+        ("Track No", "Time", "Lat", "Lon", "Speed", "Note"),
+        ("1", "2024-01-01 00:00:00", "37.900000", "23.600000", "5.5", "ab"),
+        ("1", "2024-01-01 00:00:01", "37.900100", "23.600100", "", ""),
+        ("12", "2024-01-01 00:00:02", "37.900200", "23.600200", "", "xy"),
+        ("12", "2024-01-01 00:00:03", "37.900300", "23.600300", "12.0", ""),
+    ]
+    text = "".join(
+        f"{a:>8}  {b:<19}  {c:>9}  {d:>9}  {e:>5}  {f}".rstrip() + "\n" for a, b, c, d, e, f in rows
+    )
+    src = tmp_path / "e.txt"
+    src.write_text(text)
+    a = read_points(src)
+    assert len(a.quarantine) == 0 and np.isnan(a.points["speed"].iloc[[1, 2]]).all()
+    out = tmp_path / "back.txt"
+    assert main(["export", str(src), "-o", str(out), "--like", str(src)]) == 0
+    b = read_points(out)
+    assert len(b.quarantine) == 0, out.read_text()
+    cols = ["batch", "time", "lon", "lat", "speed", "Note"]
+    pd.testing.assert_frame_equal(a.points[cols], b.points[cols])

@@ -378,8 +378,11 @@ def blank_cells(line: str, quotes: bool = False, join: bool = False, gutters=())
 def _fixed_instead(lines, runs: bool, join: bool, names, quotes: bool):
     """The names and gutters of a blank-separated file read in fixed columns, when that
     reads every judged row and the file's reading does not (a row with an empty cell, a
-    header name one blank from the next), and each judged row that reading does read
-    comes out the same: a file that reads today reads as it did (h135). Else None."""
+    header name one blank from the next) and, when that reading fits most judged rows,
+    each of those comes out the same under the same names: a file that reads today reads
+    as it did (h135). (A row that fits only by its count of cells, a minority — a date
+    and clock split and an empty cell making up the count — is no reading to keep.) Else
+    None."""
     if quotes:
         return None
     judged = [x for x in lines[1 : BLANK_LINES_JUDGED + 1] if x.strip(" \t")]
@@ -404,8 +407,10 @@ def _fixed_instead(lines, runs: bool, join: bool, names, quotes: bool):
     same = [
         [v.strip(" ") for v in c] == a for c, a, fit in zip(cells, again, fits, strict=True) if fit
     ]
-    if not all(same) or (any(fits) and fixed_names != [h.strip(" ") for h in header]):
-        return None
+    if 2 * sum(fits) > len(fits) and (
+        not all(same) or fixed_names != [h.strip(" ") for h in header]
+    ):
+        return None  # most rows read today, some otherwise in fixed columns: as today
     return fixed_names, gutters
 
 
@@ -433,8 +438,9 @@ def fixed_layout(lines: list[str]) -> tuple[list[str], tuple[tuple[int, int], ..
     blank[:lo] = False
     edges = np.flatnonzero(np.diff(np.concatenate([[0], blank.astype(np.int8), [0]])))
     gutters = [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2], strict=True)]
-    # A one-blank gutter inside a column: a date and its clock (the right part has no
-    # name), a name of two words (the left part has no data): no column boundary.
+    # A one-blank gutter inside a column: a date and its clock (one part has no name:
+    # the name stands over the date, or right-aligned over the clock), a name of two words
+    # (one part has no data under it): no column boundary.
     k = 0
     while k < len(gutters):
         bounds = [0, *[p for g in gutters for p in g], hi]
@@ -443,7 +449,7 @@ def fixed_layout(lines: list[str]) -> tuple[list[str], tuple[tuple[int, int], ..
         named = [bool(head[a:b].strip(" ")) for a, b in (left, right)]
         filled = [bool(data[a:b].any()) for a, b in (left, right)]
         narrow = gutters[k][1] - gutters[k][0] == 1
-        if narrow and (not named[1] or (not filled[0] and named[0])):
+        if narrow and not (all(named) and all(filled)):
             del gutters[k]
         else:
             k += 1
