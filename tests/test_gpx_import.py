@@ -215,11 +215,15 @@ def _same(a, b) -> None:
 def test_the_fast_reading_reads_as_expat_does(tmp_path, monkeypatch):
     """h135: the track points cut out by Arrow's string kernels are expat's, to the line
     numbers of the quarantined ones; our export and OpenCPN's take the fast reading."""
+    from wakeline.core.io import gpx
+
     path = tmp_path / "ocpn.gpx"
     path.write_text(OPENCPN.replace("\n", "\r\n"), encoding="utf-8")
-    fast, slow, took = _read_both(path, monkeypatch)
-    assert took
-    _same(fast, slow)
+    for chunk in (gpx.FAST_CHUNK_BYTES, 200, 1):  # one part; parts cut before a <trkpt>
+        monkeypatch.setattr(gpx, "FAST_CHUNK_BYTES", chunk)
+        fast, slow, took = _read_both(path, monkeypatch)
+        assert took
+        _same(fast, slow)
     rng = np.random.default_rng(1)
     n = 3000
     pts = pd.DataFrame(
@@ -232,6 +236,7 @@ def test_the_fast_reading_reads_as_expat_does(tmp_path, monkeypatch):
         }
     )
     export_gpx(pts, tmp_path / "ours.gpx")
+    monkeypatch.setattr(gpx, "FAST_CHUNK_BYTES", 50_000)  # tracks cut across parts
     fast, slow, took = _read_both(tmp_path / "ours.gpx", monkeypatch)
     assert took
     _same(fast, slow)
@@ -290,8 +295,9 @@ _CHILD = st.sampled_from(_CHILD_LIST)
     st.booleans(),
     st.sampled_from(["OpenCPN", "Wakeline"]),
     st.booleans(),
+    st.sampled_from([1, 120, 1 << 20]),
 )
-def test_any_gpx_reads_as_expat_reads_it(tmp_path_factory, tracks, crlf, creator, plain):
+def test_any_gpx_reads_as_expat_reads_it(tmp_path_factory, tracks, crlf, creator, plain, chunk):
     """h135: whatever the track points look like, the fast reading gives expat's table
     (or leaves the file to expat)."""
     import _pytest.monkeypatch
@@ -314,6 +320,9 @@ def test_any_gpx_reads_as_expat_reads_it(tmp_path_factory, tracks, crlf, creator
         text = text.replace("\n", "\r\n")
     path = tmp_path_factory.mktemp("gpx") / "any.gpx"
     path.write_bytes(text.encode("utf-8"))
+    from wakeline.core.io import gpx
+
     with _pytest.monkeypatch.MonkeyPatch.context() as mp:
+        mp.setattr(gpx, "FAST_CHUNK_BYTES", chunk)  # parts cut before a <trkpt>
         fast, slow, _ = _read_both(path, mp)
     _same(fast, slow)

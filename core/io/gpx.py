@@ -253,9 +253,10 @@ def _fast_parse(data: bytes):
     """What :func:`_expat_parse` returns, for a well-formed UTF-8 GPX whose track points
     are plain (double-quoted attributes, children that hold text only, no entity, comment
     or CDATA, no namespace prefix on trk/trkpt): the track points are cut out of the text
-    by Arrow's string kernels (one call per field for the whole file), and only the rest
-    of the document (its tracks, names, waypoints) goes through expat's callbacks. None
-    for any other file (read by :func:`_expat_parse`, which gives the same table)."""
+    by Arrow's string kernels (one call per field for each :data:`FAST_CHUNK_BYTES` of
+    the file, :func:`_fast_chunk`), and only the rest of the document (its tracks, names,
+    waypoints) goes through expat's callbacks. None for any other file (read by
+    :func:`_expat_parse`, which gives the same table)."""
     declaration = _DECLARATION.match(data)
     if declaration is not None:
         encoding = _ENCODING.search(declaration.group(0))
@@ -275,17 +276,73 @@ def _fast_parse(data: bytes):
     except expat.ExpatError:
         return None
 
+    buffer = pa.py_buffer(data)
+    chunks, start = [], 0
+    while start < len(data):  # cut before a <trkpt> every FAST_CHUNK_BYTES or so
+        cut = data.find(b"<trkpt", start + FAST_CHUNK_BYTES)
+        stop = len(data) if cut < 0 else cut
+        part = _fast_chunk(buffer.slice(start, stop - start))
+        if part is None:
+            return None
+        chunks.append(part)
+        start = stop
+    if not sum(c["n"] for c in chunks):
+        return None
+    # lines, tracks and the rest of the document, chunk after chunk
+    lines, track, skeleton = [], [], [chunks[0]["head"]]
+    base, opened = 0, chunks[0]["head_trk"]
+    for c in chunks:
+        lines.append(1 + base + np.cumsum(c["newlines"][: c["n"]]))
+        base += int(c["newlines"].sum())
+        if c["n"]:
+            before = opened + np.cumsum(c["rest_trk"])
+            track.append(np.concatenate([[opened], before[:-1]]) - 1)
+            opened = int(before[-1])
+        skeleton.append(c["after"])
+    track_all = np.concatenate(track)
+    if track_all.min() < 0:
+        return None  # a <trkpt> outside any <trk>
+    # The rest of the document, without its track points: expat's callbacks (few).
+    rows0, tracks, sources, counts, creator, broken = _expat_parse(b"".join(skeleton))
+    if broken is not None or rows0["line"] or len(tracks) != opened:
+        return None
+    rows = {"track": track_all, "line": np.concatenate(lines)}
+    for key in ("lat", "lon", "time", "speed", "course"):
+        rows[key] = pa.concat_arrays([c[key].cast(pa.large_string()) for c in chunks])
+    return rows, tracks, sources, counts, creator, None
+
+
+#: The bytes of a GPX the fast reading cuts its track points out of at a time (a cut
+#: falls before a <trkpt>): bounds the memory of the Arrow arrays (about five times this).
+FAST_CHUNK_BYTES = 8 << 20
+_TRK = r"<trk[\s/>]"
+
+
+def _fast_chunk(text: pa.Buffer) -> dict | None:
+    """:func:`_fast_parse` on a part of the document that starts at its beginning or at a
+    ``<trkpt``: each track point's fields (Arrow string arrays), the line ends before
+    each (per piece), the ``<trk>`` starts after each, and the text around the points
+    (``head``: before the first, ``after``: the rest, points cut out). None when a point
+    is not one the fast reading takes."""
     document = pa.LargeStringArray.from_buffers(
-        1, pa.py_buffer(np.array([0, len(data)], dtype="int64")), pa.py_buffer(data)
+        1, pa.py_buffer(np.array([0, text.size], dtype="int64")), text
     )
     pieces = pc.list_flatten(pc.split_pattern(document, "<trkpt"))
     del document
     n = len(pieces) - 1
+    newlines = pc.count_substring(pieces, "\n").to_numpy()
+    head = pieces[0].as_py().encode("utf-8")
+    out = {
+        "n": n,
+        "newlines": newlines,
+        "head": head,
+        "head_trk": len(re.findall(_TRK.encode(), head)),
+    }
     if n == 0:
-        return None
-    # the line of each <trkpt>: 1 + the line ends before it
-    lines = 1 + np.cumsum(pc.count_substring(pieces, "\n").to_numpy()[:n])
-    head, tail = pieces[0].as_py(), pieces.slice(1)
+        empty = pa.array([], pa.large_string())
+        fields = dict.fromkeys(("lat", "lon", "time", "speed", "course"), empty)
+        return {**out, **fields, "rest_trk": np.zeros(0, dtype="int64"), "after": b""}
+    tail = pieces.slice(1)
     del pieces
     closed = pc.split_pattern(tail, "</trkpt", max_splits=1)
     del tail
@@ -321,29 +378,17 @@ def _fast_parse(data: bytes):
     del body
     if any(v is None for v in children.values()):
         return None
-
-    # The rest of the document, without its track points: expat's callbacks (few).
-    trk = r"<trk[\s/>]"
-    opened = len(re.findall(trk.encode(), head.encode("utf-8")))
-    before = opened + np.cumsum(pc.count_substring_regex(rest, trk).to_numpy())
-    track = np.concatenate([[opened], before[:-1]]) - 1
-    if track.min() < 0:
-        return None  # a <trkpt> outside any <trk>
+    rest_trk = pc.count_substring_regex(rest, _TRK).to_numpy()
     after = pc.utf8_slice_codeunits(pc.ascii_ltrim(rest, " \t\r\n"), 1)  # each '>' of </trkpt>
     del rest
-    skeleton = head.encode("utf-8") + _concatenated(after)
-    del after
-    rows0, tracks, sources, counts, creator, broken = _expat_parse(skeleton)
-    if broken is not None or rows0["line"] or len(tracks) != int(before[-1]):
-        return None
-    rows = {
-        "track": track,
-        "line": lines,
+    return {
+        **out,
         "lat": lat,
         "lon": lon,
         **children,
+        "rest_trk": rest_trk,
+        "after": _concatenated(after),
     }
-    return rows, tracks, sources, counts, creator, None
 
 
 _REASONS = (
