@@ -36,7 +36,13 @@ from wakeline.app.map_draw import (
 )
 from wakeline.app.map_interact import MapInteractMixin
 from wakeline.app.map_legend import SideLegend
-from wakeline.app.map_paths import SYMBOLS_MAX, LayerItem, crosses, with_paths
+from wakeline.app.map_paths import (
+    SCALE_TOLERANCE_PX,
+    SYMBOLS_MAX,
+    LayerItem,
+    crosses,
+    with_paths,
+)
 
 __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 
@@ -231,10 +237,13 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         (x0, x1), (y0, y1) = self.vb.viewRange()
         return (float(x0), float(x1), float(y0), float(y1))
 
-    def plot_size_px(self) -> tuple[int, int]:
-        """Width and height of the plot area in device pixels."""
-        r = self.vb.sceneBoundingRect()
-        return (max(int(round(r.width())), 1), max(int(round(r.height())), 1))
+    def plot_size_px(self) -> tuple[float, float]:
+        """Width and height (logical pixels) of the plot area the view is mapped onto:
+        fractional as the layout makes it, so that a sprite made for it is at the map's
+        own scale (one made for the rounded width was off by up to half a pixel across
+        it, and its lines a pixel beside the stroke's at some legend widths)."""
+        r = self.vb.rect()
+        return (max(float(r.width()), 1.0), max(float(r.height()), 1.0))
 
     def set_true_aspect(self, lat_deg: float) -> None:
         """Lock the aspect so one km is as long east-west as north-south at ``lat_deg``."""
@@ -537,12 +546,14 @@ def sprite_is_stale(
     if data.view is None or not sprites:
         return False
     sprite = sprites[0]
-    if abs(sprite.image.width() - size_px[0]) > 1 or abs(sprite.image.height() - size_px[1]) > 1:
+    made = sprite.size or (sprite.image.width(), sprite.image.height())
+    tol = SCALE_TOLERANCE_PX  # as the paint copies it (map_paths.image_corner)
+    if abs(made[0] - size_px[0]) > tol or abs(made[1] - size_px[1]) > tol:
         return True  # the plot area was resized
     x0, x1, y0, y1 = view
     sx0, sx1, sy0, sy1 = sprite.view
     tx, ty = (sx1 - sx0) / max(size_px[0], 1), (sy1 - sy0) / max(size_px[1], 1)
-    zoomed = abs((x1 - x0) - (sx1 - sx0)) > tx or abs((y1 - y0) - (sy1 - sy0)) > ty
+    zoomed = abs((x1 - x0) - (sx1 - sx0)) > tol * tx or abs((y1 - y0) - (sy1 - sy0)) > tol * ty
     return zoomed or not sprite.covers(view)
 
 

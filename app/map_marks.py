@@ -1,4 +1,5 @@
-"""Many markers of one style drawn from arrays: the time slider's positions at ``t``.
+"""Many markers drawn from arrays: the time slider's positions at ``t``, each in its
+layer's colour (a colour code per marker and the colours).
 
 pyqtgraph's ``ScatterPlotItem.setData`` does Python work for every spot (a key, an id
 and a style lookup per spot: 140–200 ms of GUI-thread CPU for the 13k–66k positions of
@@ -8,8 +9,9 @@ and paints them with one ``QPainter.drawPixmapFragments`` call per few thousand 
 
 A worker draws the same stamps into an image of the view (:func:`render_marks`, a
 :class:`MarkSprite`); while the map shows that view at that scale the paint only copies
-the image (< 1 ms). Any other paint (a pan or zoom before the next frame, a high-DPI
-screen) stamps the symbols as above. PySide holds the GIL while ``drawPixmapFragments``
+the image (< 1 ms); on a high-DPI screen the worker draws it at the screen's device pixel
+ratio. Any other paint (a pan or zoom before the next frame) stamps the symbols as
+above. PySide holds the GIL while ``drawPixmapFragments``
 runs, so the worker stamps in pieces of :data:`CHUNK` markers.
 """
 
@@ -20,31 +22,44 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
-from wakeline.app.map_paths import MAX_SPRITE_PIXELS, image_corner
+from wakeline.app.map_paths import MAX_SPRITE_PIXELS, image_corner, image_size
 
 MARKER_PEN = "#111111"
 MARKER_PEN_WIDTH = 1.2
-MARKER_BRUSH = "#ffcc00"
+MARKER_BRUSH = "#ffcc00"  # markers with no colour of their own
 #: Markers stamped per ``drawPixmapFragments`` call (a few ms each).
 CHUNK = 8_000
 
 
-def marker_symbol(size: float) -> QtGui.QImage:
-    """A filled circle ``size`` px across with a dark outline (as pyqtgraph's ``"o"``)
-    on a transparent square image (any thread: a QImage)."""
-    side = int(math.ceil(size + MARKER_PEN_WIDTH)) + 2
+def marker_symbol(size: float, color: str = MARKER_BRUSH, dpr: float = 1.0) -> QtGui.QImage:
+    """A circle filled with ``color``, ``size`` px across with a dark outline (as
+    pyqtgraph's ``"o"``) on a transparent square image, drawn ``dpr`` image pixels per px
+    (any thread: a QImage)."""
+    side = int(math.ceil((size + MARKER_PEN_WIDTH) * dpr)) + 2
     image = QtGui.QImage(side, side, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
     image.fill(QtCore.Qt.GlobalColor.transparent)
     painter = QtGui.QPainter(image)
     try:
         painter.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, True)
-        painter.setPen(pg.mkPen(MARKER_PEN, width=MARKER_PEN_WIDTH))
-        painter.setBrush(pg.mkBrush(MARKER_BRUSH))
-        c = side / 2.0
-        painter.drawEllipse(QtCore.QRectF(c - size / 2.0, c - size / 2.0, size, size))
+        painter.setPen(pg.mkPen(MARKER_PEN, width=MARKER_PEN_WIDTH * dpr))
+        painter.setBrush(pg.mkBrush(color))
+        c, d = side / 2.0, size * dpr
+        painter.drawEllipse(QtCore.QRectF(c - d / 2.0, c - d / 2.0, d, d))
     finally:
         painter.end()
     return image
+
+
+def by_color(codes: np.ndarray | None, n_colors: int, n: int) -> list[tuple[int, np.ndarray]]:
+    """The markers of each colour: (colour code, their indices) for the codes present
+    (one sort, no loop per marker). No codes: every marker of colour 0."""
+    if codes is None or n_colors <= 1:
+        return [(0, np.arange(n))] if n else []
+    codes = np.clip(np.asarray(codes, dtype="int64"), 0, n_colors - 1)
+    order = np.argsort(codes, kind="stable")
+    counts = np.bincount(codes, minlength=n_colors)
+    ends = np.cumsum(counts)
+    return [(k, order[ends[k] - counts[k] : ends[k]]) for k in np.flatnonzero(counts).tolist()]
 
 
 def stamp(p: QtGui.QPainter, x: np.ndarray, y: np.ndarray, symbol: QtGui.QPixmap) -> None:
@@ -68,51 +83,65 @@ def stamp(p: QtGui.QPainter, x: np.ndarray, y: np.ndarray, symbol: QtGui.QPixmap
 @dataclass(frozen=True)
 class MarkSprite:
     """Markers of ``size`` px stamped into ``image``, which shows ``view`` (x0, x1, y0,
-    y1, degrees) on its pixels; ``n`` markers."""
+    y1, degrees) on a plot area of ``plot`` (w, h, logical px) at the image's device pixel
+    ratio; ``n`` markers, in ``colors``."""
 
     image: QtGui.QImage
     view: tuple[float, float, float, float]
     size: float
     n: int
+    plot: tuple[float, float] | None = None
+    colors: tuple[str, ...] = (MARKER_BRUSH,)
 
 
 def render_marks(
     lon: np.ndarray,
     lat: np.ndarray,
     view: tuple[float, float, float, float],
-    size_px: tuple[int, int],
+    size_px: tuple[float, float],
     size: float,
+    codes: np.ndarray | None = None,
+    colors: tuple[str, ...] = (MARKER_BRUSH,),
+    dpr: float = 1.0,
 ) -> MarkSprite | None:
-    """Stamp a marker of ``size`` px at every (lon, lat) into an image of ``size_px``
-    (w, h) showing ``view`` (pure; for a worker thread). None when the view or size
-    cannot make one, or the platform makes no pixmap off the GUI thread."""
+    """Stamp a marker of ``size`` px at every (lon, lat), marker ``i`` filled with
+    ``colors[codes[i]]`` (no codes: the first colour), into an image showing ``view`` on
+    a plot area of ``size_px`` (w, h, logical px, fractional as the map's) at ``dpr``
+    device pixels a px (pure; for a worker thread). None when the view or size cannot
+    make one, or the platform makes no pixmap off the GUI thread."""
     x0, x1, y0, y1 = view
-    w, h = int(size_px[0]), int(size_px[1])
+    w, h = image_size(size_px, dpr)
     if w <= 0 or h <= 0 or w * h > MAX_SPRITE_PIXELS or not (x1 > x0 and y1 > y0):
         return None
-    symbol = QtGui.QPixmap.fromImage(marker_symbol(size))
-    if symbol.isNull():  # no pixmaps outside the GUI thread here: the paint stamps
-        return None
-    sx, sy = w / (x1 - x0), h / (y1 - y0)
+    colors = tuple(colors) or (MARKER_BRUSH,)
+    sx, sy = size_px[0] * dpr / (x1 - x0), size_px[1] * dpr / (y1 - y0)
     px = (np.asarray(lon, dtype=float) - x0) * sx
     py = (y1 - np.asarray(lat, dtype=float)) * sy
-    r = symbol.width()
-    keep = (px > -r) & (px < w + r) & (py > -r) & (py < h + r)
     image = QtGui.QImage(w, h, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
     image.fill(QtCore.Qt.GlobalColor.transparent)
     painter = QtGui.QPainter(image)
     try:
-        stamp(painter, px[keep], py[keep], symbol)
+        for k, rows in by_color(codes, len(colors), len(px)):
+            symbol = QtGui.QPixmap.fromImage(marker_symbol(size, colors[k], dpr))
+            if symbol.isNull():  # no pixmaps outside the GUI thread here: the paint stamps
+                return None
+            r = symbol.width()
+            x, y = px[rows], py[rows]
+            keep = (x > -r) & (x < w + r) & (y > -r) & (y < h + r)
+            stamp(painter, x[keep], y[keep], symbol)
     finally:
         painter.end()
+    image.setDevicePixelRatio(dpr)
     n = int(np.count_nonzero(np.isfinite(px) & np.isfinite(py)))
-    return MarkSprite(image, (x0, x1, y0, y1), float(size), n)
+    plot = (float(size_px[0]), float(size_px[1]))
+    return MarkSprite(image, (x0, x1, y0, y1), float(size), n, plot, colors)
 
 
 class MarkerItem(pg.GraphicsObject):
-    """Markers of one style (``"o"``, :data:`MARKER_BRUSH` with a dark outline) at the
-    points of two arrays, ``size`` px across whatever the zoom. ``setData(x, y,
-    sprite)``: new positions, with the image a worker stamped them into (or None)."""
+    """Markers (``"o"`` with a dark outline) at the points of two arrays, ``size`` px
+    across whatever the zoom, each filled with its colour. ``setData(x, y, sprite,
+    codes, colors)``: new positions, with the image a worker stamped them into (or
+    None), marker ``i`` in ``colors[codes[i]]`` (no codes: :data:`MARKER_BRUSH`)."""
 
     def __init__(self, size: float = 10.0) -> None:
         super().__init__()
@@ -122,15 +151,28 @@ class MarkerItem(pg.GraphicsObject):
         self._data_rect: QtCore.QRectF | None = None
         self._rect: QtCore.QRectF | None = None
         self.sprite: MarkSprite | None = None
-        self._symbols: dict[float, QtGui.QPixmap] = {}
+        self._codes: np.ndarray | None = None
+        self.colors: tuple[str, ...] = (MARKER_BRUSH,)
+        self._symbols: dict[tuple[float, str], QtGui.QPixmap] = {}
 
-    def setData(self, x, y, sprite: MarkSprite | None = None) -> None:  # noqa: N802
+    def setData(  # noqa: N802 - pyqtgraph's name
+        self,
+        x,
+        y,
+        sprite: MarkSprite | None = None,
+        codes: np.ndarray | None = None,
+        colors: tuple[str, ...] | None = None,
+    ) -> None:
         x = np.asarray(x, dtype=float)
         y = np.asarray(y, dtype=float)
+        codes = None if codes is None else np.asarray(codes, dtype="int64")
         ok = np.isfinite(x) & np.isfinite(y)
         if not ok.all():
             x, y = x[ok], y[ok]
+            codes = None if codes is None else codes[ok]
         self._x, self._y = x, y
+        self._codes = codes
+        self.colors = tuple(colors) if colors else (MARKER_BRUSH,)
         self.sprite = sprite
         if len(x):
             x0, x1, y0, y1 = x.min(), x.max(), y.min(), y.max()
@@ -150,11 +192,18 @@ class MarkerItem(pg.GraphicsObject):
         self._rect = None
         self.update()
 
-    def symbol(self) -> QtGui.QPixmap:
-        size = self.opts["size"]
-        pixmap = self._symbols.get(size)
+    def codes(self) -> np.ndarray | None:
+        """The colour code of every marker (an index into :attr:`colors`), or None."""
+        return self._codes
+
+    def symbol(self, color: str = MARKER_BRUSH) -> QtGui.QPixmap:
+        key = (self.opts["size"], color)
+        pixmap = self._symbols.get(key)
         if pixmap is None:
-            pixmap = self._symbols[size] = QtGui.QPixmap.fromImage(marker_symbol(size))
+            if len(self._symbols) > 64:
+                self._symbols.clear()
+            pixmap = QtGui.QPixmap.fromImage(marker_symbol(key[0], color))
+            self._symbols[key] = pixmap
         return pixmap
 
     def viewTransformChanged(self) -> None:  # noqa: N802 - pyqtgraph's hook
@@ -181,7 +230,9 @@ class MarkerItem(pg.GraphicsObject):
             sprite is not None
             and sprite.n == len(self._x)
             and sprite.size == self.opts["size"]
-            and (corner := image_corner(p, self, sprite.view, sprite.image)) is not None
+            and sprite.colors == self.colors
+            and (corner := image_corner(p, self, sprite.view, sprite.image, sprite.plot))
+            is not None
         ):
             p.save()
             p.resetTransform()
@@ -190,7 +241,7 @@ class MarkerItem(pg.GraphicsObject):
             return
         # Stamped here: only the markers in the view, mapped with numpy.
         vb = self.getViewBox()
-        x, y = self._x, self._y
+        x, y, codes = self._x, self._y, self._codes
         if vb is not None:
             r = vb.viewRect()
             px = vb.viewPixelSize()
@@ -202,10 +253,12 @@ class MarkerItem(pg.GraphicsObject):
                 & (y <= r.bottom() + pad)
             )
             x, y = x[keep], y[keep]
+            codes = None if codes is None else codes[keep]
         t = p.transform()
         dx = t.m11() * x + t.m21() * y + t.dx()
         dy = t.m12() * x + t.m22() * y + t.dy()
         p.save()
         p.resetTransform()
-        stamp(p, dx, dy, self.symbol())
+        for k, rows in by_color(codes, len(self.colors), len(dx)):
+            stamp(p, dx[rows], dy[rows], self.symbol(self.colors[k]))
         p.restore()

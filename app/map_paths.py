@@ -15,7 +15,8 @@ redone, another pen) strokes the path as pyqtgraph does. PySide holds the GIL wh
 vertices: the GUI thread waits at most one piece for the GIL.
 """
 
-from dataclasses import dataclass, replace
+import math
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pyqtgraph as pg
@@ -33,7 +34,11 @@ SYMBOLS_MAX = 3_000
 CHUNK_VERTICES = 12_000
 #: Largest difference (pixels, across the image) between the map's scale and the image's
 #: for the image to be copied unscaled: a line is off by at most this at the far edge.
-SCALE_TOLERANCE_PX = 1.01
+#: The worker draws at the map's own scale (the plot area's fractional size, not a
+#: rounded one), so only a view changed since differs: an image made for a plot 0.5 px
+#: narrower than its rounded width was copied 0.5 px off across it, and with the corner's
+#: rounding a line was drawn up to a pixel beside its stroke (h136).
+SCALE_TOLERANCE_PX = 0.25
 #: Largest sprite (pixels): a bigger plot area is stroked on the GUI thread as before.
 MAX_SPRITE_PIXELS = 4096 * 4096
 
@@ -49,6 +54,9 @@ class Sprite:
     width: float
     antialias: bool
     n: int  # length of the curve's arrays (NaN separators included)
+    #: The plot area (w, h, logical px, fractional) the image shows ``view`` on; its
+    #: pixels are device pixels (``image.devicePixelRatio()`` of them per logical one).
+    size: tuple[float, float] | None = field(default=None, compare=False)
 
     def covers(self, view: tuple[float, float, float, float]) -> bool:
         """``view`` (x0, x1, y0, y1, degrees) lies within the image, to a pixel."""
@@ -76,7 +84,7 @@ class Sprite:
             or pen.color().rgba() != self.rgba
         ):
             return False
-        corner = image_corner(p, item, self.view, self.image)
+        corner = image_corner(p, item, self.view, self.image, self.size)
         if corner is None:
             return False
         p.save()
@@ -91,30 +99,38 @@ def image_corner(
     item: QtWidgets.QGraphicsItem,
     view: tuple[float, float, float, float],
     image: QtGui.QImage,
+    size: tuple[float, float] | None = None,
 ) -> QtCore.QPointF | None:
-    """Where (device pixels) to copy ``image``, made by a worker showing ``view`` (x0, x1,
-    y0, y1, degrees) on its pixels, so that it shows ``item``'s data exactly as a paint
-    through ``p`` would; None when it cannot (another scale or device pixel ratio, a
-    rotation, panned beyond the image)."""
+    """Where (logical pixels of ``p`` with its transform reset) to copy ``image``, made
+    by a worker showing ``view`` (x0, x1, y0, y1, degrees) on a plot area of ``size`` (w,
+    h, logical px; None: the image's size) at the image's device pixel ratio, so that it
+    shows ``item``'s data exactly as a paint through ``p`` would: its pixels on the
+    device's, its corner on a device pixel. None when it cannot (another scale or device
+    pixel ratio, a rotation, panned beyond the image)."""
     device = p.device()
-    if device is None or abs(device.devicePixelRatioF() - 1.0) > 1e-6:
-        return None  # made at one device pixel per pixel: a high-DPI paint strokes
+    dpr = image.devicePixelRatio()
+    if device is None or abs(device.devicePixelRatioF() - dpr) > 1e-6:
+        return None  # made for another pixel ratio: the paint strokes
+    # Logical pixels (not p.deviceTransform(): a grab of the whole window paints the map
+    # redirected, the redirection's offset in the device transform but not in the one a
+    # reset leaves, and the image landed that offset away).
     t = p.transform()
     x0, x1, y0, y1 = view
     w, h = image.width(), image.height()
+    sw, sh = (w / dpr, h / dpr) if size is None else size
+    tolerance = 1.01 if size is None else SCALE_TOLERANCE_PX
     if abs(t.m12()) > 1e-12 or abs(t.m21()) > 1e-12:
         return None
-    # The map's scale equals the image's to within a pixel across it (the plot size
-    # the worker was given is the plot area's rounded up by its half-pixel border).
-    if abs(t.m11() * (x1 - x0) - w) > SCALE_TOLERANCE_PX or (
-        abs(-t.m22() * (y1 - y0) - h) > SCALE_TOLERANCE_PX
+    # The map's scale equals the image's to within ``tolerance`` device px across it.
+    if abs(t.m11() * (x1 - x0) - sw) * dpr > tolerance or (
+        abs(-t.m22() * (y1 - y0) - sh) * dpr > tolerance
     ):
         return None
     vb = item.getViewBox()
     if vb is None:
         return None
     shown = vb.viewRect()
-    tx, ty = (x1 - x0) / w, (y1 - y0) / h  # one pixel, in degrees
+    tx, ty = (x1 - x0) / sw, (y1 - y0) / sh  # one logical pixel, in degrees
     if not (
         shown.left() >= x0 - tx
         and shown.right() <= x1 + tx
@@ -122,8 +138,17 @@ def image_corner(
         and shown.bottom() <= y1 + ty
     ):
         return None  # panned beyond the image: stroke until a new one is made
-    corner = t.map(QtCore.QPointF(x0, y1))
-    return QtCore.QPointF(round(corner.x()), round(corner.y()))
+    corner = t.map(QtCore.QPointF(x0, y1))  # on a device pixel
+    return QtCore.QPointF(round(corner.x() * dpr) / dpr, round(corner.y() * dpr) / dpr)
+
+
+def image_size(size_px: tuple[float, float], dpr: float = 1.0) -> tuple[int, int]:
+    """The image (device pixels) that covers a plot area of ``size_px`` (logical px,
+    fractional) at the pixel ratio ``dpr``."""
+    return (
+        int(math.ceil(float(size_px[0]) * dpr - 1e-6)),
+        int(math.ceil(float(size_px[1]) * dpr - 1e-6)),
+    )
 
 
 def _chunks(lon: np.ndarray, size: int) -> list[tuple[int, int]]:
@@ -160,18 +185,21 @@ def render_sprite(
     width: float = 1.0,
     antialias: bool = False,
     connect: str = "finite",
+    dpr: float = 1.0,
 ) -> Sprite | None:
-    """Stroke ``curve`` into an image of ``size_px`` (w, h) showing ``view`` (pure; for a
-    worker thread). None when the view or size cannot make one. ``connect="pairs"``:
-    the curve is segments (crosses), stroked in pieces of whole segments."""
+    """Stroke ``curve`` into an image showing ``view`` on a plot area of ``size_px`` (w,
+    h, logical px; fractional as the map's) at the map's scale, ``dpr`` device pixels a
+    logical one (pure; for a worker thread). None when the view or size cannot make one.
+    ``connect="pairs"``: the curve is segments (crosses), stroked in pieces of whole
+    segments."""
     x0, x1, y0, y1 = view
-    w, h = int(size_px[0]), int(size_px[1])
+    w, h = image_size(size_px, dpr)
     if w <= 0 or h <= 0 or w * h > MAX_SPRITE_PIXELS or not (x1 > x0 and y1 > y0):
         return None
     image = QtGui.QImage(w, h, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
     image.fill(QtCore.Qt.GlobalColor.transparent)
-    sx, sy = w / (x1 - x0), h / (y1 - y0)
-    pen = pg.mkPen(curve.color, width=width)
+    sx, sy = size_px[0] * dpr / (x1 - x0), size_px[1] * dpr / (y1 - y0)
+    pen = pg.mkPen(curve.color, width=width * dpr)
     painter = QtGui.QPainter(image)
     try:
         painter.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, antialias)
@@ -186,8 +214,10 @@ def render_sprite(
             painter.drawPath(pg.arrayToQPath(curve.lon[a:b], curve.lat[a:b], connect=connect))
     finally:
         painter.end()
+    image.setDevicePixelRatio(dpr)
     rgba = pen.color().rgba()
-    return Sprite(image, (x0, x1, y0, y1), rgba, float(width), antialias, len(curve.lon))
+    size = (float(size_px[0]), float(size_px[1]))
+    return Sprite(image, (x0, x1, y0, y1), rgba, float(width), antialias, len(curve.lon), size)
 
 
 def with_paths(data: DrawData, sprites: bool = True) -> DrawData:
@@ -196,7 +226,7 @@ def with_paths(data: DrawData, sprites: bool = True) -> DrawData:
     size = None
     if sprites and data.view is not None and data.px is not None:
         x0, x1, y0, y1 = data.view
-        size = (round((x1 - x0) / data.px[0]), round((y1 - y0) / data.px[1]))
+        size = ((x1 - x0) / data.px[0], (y1 - y0) / data.px[1])  # the map's, fractional
     antialias = bool(pg.getConfigOption("antialias"))
     if not data.style.width:
         # Markers only: symbols while few, else 1-px crosses (one path) whose sprite is

@@ -121,7 +121,7 @@ def render_png(
     if bare:
         # Grow the widget until the plot area itself is w x h.
         for _ in range(3):
-            vw, vh = canvas.plot_size_px()
+            vw, vh = (round(v) for v in canvas.plot_size_px())
             if (vw, vh) == (w, h):
                 break
             canvas.resize(canvas.width() + w - vw, canvas.height() + h - vh)

@@ -176,6 +176,9 @@ class Frame:
     trail_path: object = field(default=None, compare=False, repr=False)
     trail_sprite: object = field(default=None, compare=False, repr=False)
     marks_sprite: object = field(default=None, compare=False, repr=False)
+    #: The colour code of every position (an index into ``colors``), or None.
+    codes: np.ndarray | None = field(default=None, compare=False, repr=False)
+    colors: tuple[str, ...] = ()
 
 
 def frame_job(
@@ -184,15 +187,23 @@ def frame_job(
     trail_s: float,
     px: tuple[float, float],
     view: tuple[float, float, float, float] | None = None,
-    size_px: tuple[int, int] | None = None,
+    size_px: tuple[float, float] | None = None,
+    colors: tuple[np.ndarray, tuple[str, ...]] | None = None,
+    dpr: float = 1.0,
 ) -> Frame:
-    """Positions at ``t`` and the trails thinned to the pixel ``px`` (pure; a worker).
-    With ``view`` and ``size_px`` (the map's range and plot size): the trail's path, and
-    the trail and markers drawn into images of that view (:mod:`map_paths`,
-    :mod:`map_marks`), so the GUI thread only copies them."""
+    """Positions at ``t`` and the trails thinned to the pixel ``px`` (pure; a worker);
+    ``colors``: the colour code of every track of ``index`` and the colours (the
+    :class:`TimeScene`'s), each position's marker in its track's (its layer's) colour.
+    With ``view`` and ``size_px`` (the map's range and plot size, logical px) and ``dpr``
+    (the map's device pixel ratio): the trail's path, and the trail and markers drawn
+    into images of that view at that ratio (:mod:`map_paths`, :mod:`map_marks`), so the
+    GUI thread only copies them (on a high-DPI screen too)."""
     tracks, lon, lat = index.positions_at(t)
     tl, ta = thin_to_pixels(*index.trail(t, trail_s), px)
-    frame = Frame(float(t), tracks, lon, lat, tl, ta)
+    codes, names = None, ()
+    if colors is not None and len(colors[1]):
+        codes, names = np.asarray(colors[0], dtype="int64")[tracks], tuple(colors[1])
+    frame = Frame(float(t), tracks, lon, lat, tl, ta, codes=codes, colors=names)
     if view is None or size_px is None:
         return frame
     path = pg.arrayToQPath(tl, ta, connect="finite") if len(tl) else None
@@ -200,8 +211,13 @@ def frame_job(
     if len(tl):
         antialias = bool(pg.getConfigOption("antialias"))
         curve = Curve("trail", TRAIL_COLOR, tl, ta)
-        trail_sprite = render_sprite(curve, view, size_px, trail_width(len(tl)), antialias)
-    marks = render_marks(lon, lat, view, size_px, marker_size(len(tracks)))
+        width = trail_width(len(tl))
+        trail_sprite = render_sprite(curve, view, size_px, width, antialias, dpr=dpr)
+    size = marker_size(len(tracks))
+    if names:
+        marks = render_marks(lon, lat, view, size_px, size, codes, names, dpr)
+    else:
+        marks = render_marks(lon, lat, view, size_px, size, dpr=dpr)
     return replace(frame, trail_path=path, trail_sprite=trail_sprite, marks_sprite=marks)
 
 
@@ -287,17 +303,25 @@ class TimeOverlay(QtCore.QObject):
             return
         vb = self.canvas.vb
         self._asked += 1
+        colors = (self.scene.color_of_track, self.scene.colors)
         if self.executor is None:
-            self._wanted = (self.scene.index, float(t), float(trail_s), vb.viewPixelSize())
+            px = vb.viewPixelSize()
+            self._wanted = (self.scene.index, float(t), float(trail_s), px, None, None, colors)
             self._apply(frame_job(*self._take()), self._asked)
             return
         (x0, x1), (y0, y1) = vb.viewRange()
-        r = vb.sceneBoundingRect()
-        size = (max(int(round(r.width())), 1), max(int(round(r.height())), 1))
+        r = vb.rect()  # the area the view is mapped onto (fractional: the map's scale)
+        size = (max(float(r.width()), 1.0), max(float(r.height()), 1.0))
         view = (float(x0), float(x1), float(y0), float(y1))
-        self._wanted = (self.scene.index, float(t), float(trail_s), vb.viewPixelSize(), view, size)
+        dpr = self.device_ratio()  # drawn at it (a high-DPI screen)
+        px = vb.viewPixelSize()
+        self._wanted = (self.scene.index, float(t), float(trail_s), px, view, size, colors, dpr)
         if not self._running:
             self._submit()
+
+    def device_ratio(self) -> float:
+        """The map's device pixels per logical pixel (> 1 on a high-DPI screen)."""
+        return float(self.canvas.devicePixelRatioF())
 
     def _view_changed(self) -> None:
         if self._last is not None and self.scene is not None and self.markers.isVisible():
@@ -328,7 +352,7 @@ class TimeOverlay(QtCore.QObject):
         size = marker_size(len(frame.tracks))
         if self.markers.opts["size"] != size:
             self.markers.setSize(size)
-        self.markers.setData(frame.lon, frame.lat, frame.marks_sprite)
+        self.markers.setData(frame.lon, frame.lat, frame.marks_sprite, frame.codes, frame.colors)
         width = trail_width(len(frame.trail_lon))
         if self.trail.opts["pen"].widthF() != width:
             self.trail.setPen(pg.mkPen(TRAIL_COLOR, width=width))

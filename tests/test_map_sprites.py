@@ -9,7 +9,7 @@ pytest.importorskip("pytestqt")
 from PySide6 import QtGui, QtWidgets  # noqa: E402
 
 from conftest import canvas_rgb  # noqa: E402
-from wakeline.app import map_paths  # noqa: E402
+from wakeline.app import map_legend, map_paths  # noqa: E402
 from wakeline.app.map_canvas import MapCanvas, sprite_is_stale  # noqa: E402
 from wakeline.app.map_draw import LayerStyle, prepare_layer  # noqa: E402
 from wakeline.app.map_paths import _chunks, with_paths  # noqa: E402
@@ -89,9 +89,16 @@ def _no_sprites(data):
     return replace(data, curves=tuple(replace(c, sprite=None) for c in data.curves))
 
 
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize(
+    ("seed", "chars"),
+    [(2, map_legend.RESERVED_CHARS)] + [(1, chars) for chars in range(12, 41)],
+)
 @pytest.mark.parametrize("kind", ["line", "marks"])
-def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind, sprite_calls):
+def test_a_sprite_draws_what_the_stroke_draws(qtbot, seed, kind, chars, sprite_calls, monkeypatch):
+    """At every legend width (12-40 characters): the plot area's width is then fractional
+    in many ways, and a sprite made for its rounded width was copied up to a pixel off
+    (fails at 20, 22, 24 before h136)."""
+    monkeypatch.setattr(map_legend, "RESERVED_CHARS", chars)
     df = many_tracks(seed)
     if kind == "marks":
         df = df.iloc[::5].reset_index(drop=True)

@@ -11,8 +11,8 @@ from conftest import canvas_rgb
 from wakeline.app.map_draw import LayerGeometry
 
 
-def _geometry(k: int = 300, per: int = 60) -> LayerGeometry:
-    rng = np.random.default_rng(1)
+def _geometry(k: int = 300, per: int = 60, color: str = "#1f77b4", seed: int = 1) -> LayerGeometry:
+    rng = np.random.default_rng(seed)
     t = (rng.integers(0, 600, k)[:, None] + 10.0 * np.arange(per)).ravel() + 1.7e9
     lon = (122 + rng.uniform(0, 1.0, k)[:, None] + 1e-4 * np.arange(per)).ravel()
     lat = (30 + rng.uniform(0, 0.6, k)[:, None] + 0.0 * np.arange(per)).ravel()
@@ -20,23 +20,43 @@ def _geometry(k: int = 300, per: int = 60) -> LayerGeometry:
     return LayerGeometry(
         lon, lat, starts, starts + per, np.repeat(np.arange(k), per), np.full(k, "R1", object),
         np.arange(k).astype(str).astype(object), t, np.zeros(k * per), np.zeros(k, "int64"),
-        ("R1",), ("#1f77b4",), False,
+        ("R1",), (color,), False,
     )  # fmt: skip
 
 
-def _yellow_at(rgb: np.ndarray, canvas, lon: np.ndarray, lat: np.ndarray) -> float:
-    """Share of the positions with a marker's yellow within 2 px of their pixel."""
+BLUE, RED = "#1f77b4", "#d62728"
+
+
+def _two_layers():
+    """Two layers' scene: 300 tracks in blue, 300 in red (the layers' colours)."""
+    from wakeline.app.map_time import index_job
+
+    return index_job([_geometry(color=BLUE), _geometry(color=RED, seed=2)])
+
+
+def _color_at(
+    rgb: np.ndarray, canvas, lon: np.ndarray, lat: np.ndarray, color: str, ratio: float = 1.0
+) -> float:
+    """Share of the positions with a marker pixel of ``color`` (within 24 of each
+    channel) within 2 px of their pixel (``rgb`` at ``ratio`` pixels a px)."""
     from PySide6 import QtCore
 
+    want = np.array([int(color[i : i + 2], 16) for i in (1, 3, 5)])
     vb = canvas.vb
     hits = 0
+    r = int(round(2 * ratio))
     for x, y in zip(lon, lat, strict=True):
         pt = canvas.mapFromScene(vb.mapViewToScene(QtCore.QPointF(x, y)))
-        px, py = pt.x(), pt.y()
-        patch = rgb[max(py - 2, 0) : py + 3, max(px - 2, 0) : px + 3].astype(int)
-        yellow = (patch[..., 0] > 200) & (patch[..., 1] > 160) & (patch[..., 2] < 90)
-        hits += bool(yellow.any())
+        px, py = int(round(pt.x() * ratio)), int(round(pt.y() * ratio))
+        patch = rgb[max(py - r, 0) : py + r + 1, max(px - r, 0) : px + r + 1].astype(int)
+        hits += bool((np.abs(patch - want).max(axis=2) <= 24).any())
     return hits / max(len(lon), 1)
+
+
+def _yellow_at(rgb: np.ndarray, canvas, lon: np.ndarray, lat: np.ndarray) -> float:
+    """Share of the positions with their layer's marker colour (blue: :func:`_geometry`)
+    within 2 px of their pixel."""
+    return _color_at(rgb, canvas, lon, lat, BLUE)
 
 
 @pytest.mark.gui
@@ -90,6 +110,139 @@ def test_markers_are_copied_from_the_workers_image_and_stamped_when_panned(qtbot
     stamped.clear()
     rgb = canvas_rgb(canvas)
     assert not stamped and _yellow_at(rgb, canvas, x, y) > 0.95
+
+
+@pytest.mark.gui
+def test_each_layers_markers_are_in_its_colour(qtbot, monkeypatch):
+    """The markers at t are each filled with their layer's colour (they were all one
+    yellow), in the worker's image and when the paint stamps them (panned)."""
+    from PySide6 import QtGui, QtWidgets
+
+    from wakeline.app import map_marks
+    from wakeline.app.lod_worker import LodWorker
+    from wakeline.app.map_canvas import MapCanvas
+    from wakeline.app.map_time import TimeOverlay
+
+    scene = _two_layers()
+    holder = QtWidgets.QWidget()  # the map inside a window, away from its corner
+    qtbot.addWidget(holder)
+    layout = QtWidgets.QVBoxLayout(holder)
+    layout.setContentsMargins(37, 23, 5, 5)
+    canvas = MapCanvas()
+    layout.addWidget(canvas)
+    holder.resize(942, 678)
+    holder.show()
+    qtbot.waitExposed(canvas)
+    canvas.vb.setRange(xRange=(121.9, 123.2), yRange=(29.9, 30.7), padding=0)
+    overlay = TimeOverlay(canvas, LodWorker(canvas))
+    overlay.set_scene(scene)
+    t = 1.7e9 + 500.0
+    with qtbot.waitSignal(overlay.drawn, timeout=10_000):
+        overlay.show_at(t, 300.0)
+    qtbot.waitUntil(lambda: not overlay.busy, timeout=5000)
+    stamped = []
+    real = map_marks.stamp
+    monkeypatch.setattr(
+        map_marks, "stamp", lambda p, x, y, s: (stamped.append(1), real(p, x, y, s))
+    )
+    tracks, lon, lat = scene.index.positions_at(t)
+    color = np.asarray(scene.colors)[scene.color_of_track[tracks]]
+    blue, red = color == BLUE, color == RED
+    assert blue.sum() > 100 and red.sum() > 100
+    codes = overlay.markers.codes()
+    assert codes is not None and set(np.asarray(overlay.markers.colors)[codes]) == {BLUE, RED}
+    for panned in (False, True):
+        if panned:  # stamped on the GUI thread until the frame for the view is in
+            canvas.vb.setRange(xRange=(121.95, 123.25), yRange=(29.9, 30.7), padding=0)
+        rgb = canvas_rgb(canvas)
+        assert bool(stamped) == panned
+        # a marker may lie under another layer's: most, not all
+        assert _color_at(rgb, canvas, lon[blue], lat[blue], BLUE) > 0.9
+        assert _color_at(rgb, canvas, lon[red], lat[red], RED) > 0.9
+        yellow = (rgb[..., 0] > 200) & (rgb[..., 1] > 160) & (rgb[..., 2] < 90)
+        assert yellow.sum() == 0  # no marker in the old single colour
+    # A grab of the whole window: the worker's image where the map is (the paint once
+    # placed it by the device transform, which holds the map's offset in the window).
+    canvas.vb.setRange(xRange=(121.9, 123.2), yRange=(29.9, 30.7), padding=0)
+    qtbot.waitUntil(lambda: not overlay.busy, timeout=5000)
+    stamped.clear()
+    image = holder.grab().toImage().convertToFormat(QtGui.QImage.Format.Format_RGB888)
+    raw = np.frombuffer(image.constBits(), np.uint8).reshape(image.height(), image.bytesPerLine())
+    whole = raw[:, : image.width() * 3].reshape(image.height(), image.width(), 3)
+    g = canvas.geometry()
+    rgb = whole[g.top() : g.bottom() + 1, g.left() : g.right() + 1]
+    assert not stamped and overlay.markers.sprite is not None
+    assert _color_at(rgb, canvas, lon[blue], lat[blue], BLUE) > 0.9
+    assert _color_at(rgb, canvas, lon[red], lat[red], RED) > 0.9
+
+
+_HIGH_DPI = """
+import sys
+import numpy as np
+sys.path.insert(0, {tests!r})
+from PySide6 import QtWidgets
+app = QtWidgets.QApplication([])
+from wakeline.app import map_marks
+from wakeline.app.lod_worker import LodWorker
+from wakeline.app.map_canvas import MapCanvas
+from wakeline.app.map_time import TimeOverlay
+from conftest import canvas_rgb
+from test_time_marks import BLUE, RED, _color_at, _two_layers
+
+scene = _two_layers()
+canvas = MapCanvas()
+canvas.resize(900, 650)
+canvas.show()
+canvas.vb.setRange(xRange=(121.9, 123.2), yRange=(29.9, 30.7), padding=0)
+overlay = TimeOverlay(canvas, LodWorker(canvas))
+overlay.set_scene(scene)
+drawn = []
+overlay.drawn.connect(drawn.append)
+def wait(ok):
+    import time
+    end = time.monotonic() + 20
+    while not ok() and time.monotonic() < end:
+        app.processEvents()
+wait(lambda: not overlay.busy)
+t = 1.7e9 + 500.0
+overlay.show_at(t, 300.0)
+wait(lambda: drawn and not overlay.busy)
+stamped = []
+real = map_marks.stamp
+map_marks.stamp = lambda p, x, y, s: (stamped.append(1), real(p, x, y, s))
+ratio = canvas.devicePixelRatioF()
+sprite = overlay.markers.sprite
+rgb = canvas_rgb(canvas)
+tracks, lon, lat = scene.index.positions_at(t)
+color = np.asarray(scene.colors)[scene.color_of_track[tracks]]
+print(ratio, sprite.image.devicePixelRatio(), overlay.trail.sprite.image.devicePixelRatio(),
+      rgb.shape[1], len(stamped),
+      round(_color_at(rgb, canvas, lon[color == BLUE], lat[color == BLUE], BLUE, ratio), 3),
+      round(_color_at(rgb, canvas, lon[color == RED], lat[color == RED], RED, ratio), 3))
+"""
+
+
+@pytest.mark.gui
+def test_on_a_high_dpi_screen_the_worker_draws_the_markers(tmp_path):
+    """Device pixel ratio 2 (QT_SCALE_FACTOR=2): the worker draws the markers and the
+    trail at that ratio, and the paint copies them (it stamped them on the GUI thread)."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = tmp_path / "high_dpi.py"
+    script.write_text(_HIGH_DPI.format(tests=str(Path(__file__).parent)))
+    env = dict(os.environ, QT_SCALE_FACTOR="2", QT_QPA_PLATFORM="offscreen")
+    out = subprocess.run(
+        [sys.executable, str(script)], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert out.returncode == 0, out.stderr
+    ratio, marks, trail, width, stamped, blue, red = out.stdout.split()[-7:]
+    assert float(ratio) == float(marks) == float(trail) == 2.0
+    assert int(width) == 1800  # the grab has the device's pixels
+    assert int(stamped) == 0, "the markers were stamped on the GUI thread"
+    assert float(blue) > 0.9 and float(red) > 0.9
 
 
 @pytest.mark.gui
