@@ -4,9 +4,10 @@ dialog itself is app/import_dialog.py)."""
 import json
 
 import pandas as pd
-from PySide6 import QtWidgets
+from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.models import FrameModel
+from wakeline.core.words import CONTEXT, render
 
 #: Quarantined rows kept with a source layer (and in the project) for viewing.
 QUARANTINE_KEPT = 10_000
@@ -31,17 +32,25 @@ def summarize(report: dict) -> str:
     return ", ".join(parts)
 
 
+def translated(text) -> str:
+    """A core summary (:class:`~wakeline.core.words.Text`: English with its phrases) in
+    the window's language: each phrase's template through the translator (context
+    ``Summary`` of the .ts file), filled with its values; a plain ``str`` as it is."""
+    return render(text, lambda template: QtCore.QCoreApplication.translate(CONTEXT, template))
+
+
 def step_lines(result) -> list[str]:
     """What a finished step did, as the log shows it: the step's own summary (the line
-    ``wakeline STEP`` prints: where the points went, rule by rule, why nothing was paired),
-    for a pipeline one line per stage (``clean: …``); the figures of :func:`summarize`
-    where a step has no summary of its own. (The log puts command-line advice in the
-    window's words: :meth:`MainWindow.log_message`.)"""
+    ``wakeline STEP`` prints: where the points went, rule by rule, why nothing was paired)
+    in the window's language (:func:`translated`), for a pipeline one line per stage
+    (``clean: …``); the figures of :func:`summarize` where a step has no summary of its
+    own. (The log puts command-line advice in the window's words:
+    :meth:`MainWindow.log_message`.)"""
     from wakeline.core.pipeline import STEPS
 
     def one(res) -> str:
         try:
-            return STEPS[res.step].summary(res)
+            return translated(STEPS[res.step].summary(res))
         except (KeyError, TypeError, ValueError):  # a report the summary cannot read
             return summarize(res.report)
 

@@ -349,7 +349,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             _, lid, result, views, params = done
             self._apply_step(lid, result, views, params)
             name = self.session.layers[lid].name if lid in self.session.layers else lid
-            self.log_lines(f"{result.step} on {name}", step_lines(result))
+            self.log_lines(self.tr("{0} on {1}").format(result.step, name), step_lines(result))
         elif kind == "bearing":
             _, path, quarantine, result, view, sha, plan = done
             if len(quarantine):

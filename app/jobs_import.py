@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtWidgets
 
-from wakeline.app.dialogs import QUARANTINE_KEPT
+from wakeline.app.dialogs import QUARANTINE_KEPT, translated
 from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.app.map_time import guarded
 from wakeline.core.errors import InputError
@@ -111,11 +111,11 @@ class ImportJobsMixin:
     def _apply_import(self, path: Path, result, sha: str, view, color: str, layout) -> None:
         rep = result.report
         # every line of the file accounted for, blank ones too, as `wakeline import` says it
-        self.log_message(f"{path.name}: {import_counts(rep, rep['format_label'])}")
+        self.log_message(f"{path.name}: {translated(import_counts(rep, rep['format_label']))}")
         for reason, n in rep["quarantine_reasons"].items():
-            self.log_message(f"    quarantined {n:,}: {reason}")
+            self.log_message("    " + self.tr("quarantined {0:,}: {1}").format(n, reason))
         for reason, n in rep.get("values_blanked", {}).items():
-            self.log_message(f"    blanked {n:,} (row kept): {reason}")
+            self.log_message("    " + self.tr("blanked {0:,} (row kept): {1}").format(n, reason))
         for warning in rep.get("warnings", []):
             self.log_message(f"    {self.tr('Warning')}: {warning}")
         self.session.note_source(str(path.resolve()), sha)

@@ -264,4 +264,4 @@ def apply_fused(w, ids: list[str], result, views: dict, params) -> None:
     finally:
         w._pending_views = {}
     names = " + ".join(w.session.layers[i].name for i in ids)
-    w.log_lines(f"fuse on {names}", step_lines(result))
+    w.log_lines(tr("{0} on {1}").format("fuse", names), step_lines(result))

@@ -24,7 +24,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, finite_number, param
 from wakeline.core.progress import Progress, null_progress, sub_progress
-from wakeline.core.words import count
+from wakeline.core.words import Phrase, Text, joined, phrase
 
 
 @dataclass(frozen=True)
@@ -185,18 +185,28 @@ def clean_counts(report: dict) -> dict[str, dict[str, int]]:
     return out
 
 
-def _summary_clean(res: StepResult) -> str:
+def _summary_clean(res: StepResult) -> Text:
     """Where the points went: kept, then removed, changed (kept, with new values) and
     replaced, each with its rules (the removed add up to what was not kept)."""
     rep = res.report
-    parts = []
+    parts = [
+        phrase(
+            "kept {kept:,} of {points:#point} in {tracks:#track}",
+            kept=rep["points_out"],
+            points=rep["points_in"],
+            tracks=rep["tracks_out"],
+        )
+    ]
     for action, per in clean_counts(rep).items():
-        rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())
-        parts.append(f"{action} {sum(per.values()):,} ({rules})")
-    return (
-        f"kept {rep['points_out']:,} of {count(rep['points_in'], 'point')} "
-        f"in {count(rep['tracks_out'], 'track')}" + (f"; {'; '.join(parts)}" if parts else "")
-    )
+        rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())  # the rules' names
+        n = sum(per.values())
+        if action == "removed":
+            parts.append(phrase("; removed {n:,} ({rules})", n=n, rules=rules))
+        elif action == "changed":
+            parts.append(phrase("; changed {n:,} ({rules})", n=n, rules=rules))
+        else:
+            parts.append(phrase("; replaced {n:,} ({rules})", n=n, rules=rules))
+    return Text(parts)
 
 
 def _detect(points: pd.DataFrame, params: dict, progress: Progress):
@@ -262,11 +272,17 @@ def run_maneuvers(points: pd.DataFrame, params: dict, progress: Progress = null_
     )
 
 
-def _summary_maneuvers(res: StepResult) -> str:
+def _summary_maneuvers(res: StepResult) -> Text:
     r = res.report
-    return (
-        f"{count(r['maneuvers'], 'maneuver point')} in {count(r['tracks'], 'track')} "
-        f"({r['method']})"
+    return Text(
+        [
+            phrase(
+                "{maneuvers:#maneuver point} in {tracks:#track} ({method})",
+                maneuvers=r["maneuvers"],
+                tracks=r["tracks"],
+                method=r["method"],
+            )
+        ]
     )
 
 
@@ -321,20 +337,29 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     return StepResult("compress", layers, report, {"points": kept})
 
 
-def _summary_compress(res: StepResult) -> str:
+def _summary_compress(res: StepResult) -> Text:
     o = res.report["overall"]
-    extra = f", Dis_e against truth {o['dis_e_true_m']:.1f} m" if "dis_e_true_m" in o else ""
-    repeats = (
-        f" ({count(o['repeated_rows'], 'row')} repeating the time and place of the row before "
-        "set aside)"
-        if o.get("repeated_rows")
-        else ""
-    )
     found = res.report.get("maneuvers")
-    turns = "" if found is None else f"{count(found, 'maneuver point')}; "
-    return (
-        f"{turns}kept {o['kept']:,} of {count(o['points'], 'point')} ({o['ratio']:.1%})"
-        f"{repeats}; Dis_e {o['dis_e_m']:.1f} m{extra}"
+    return Text(
+        [
+            None if found is None else phrase("{n:#maneuver point}; ", n=found),
+            phrase(
+                "kept {kept:,} of {points:#point} ({ratio:.1%})",
+                kept=o["kept"],
+                points=o["points"],
+                ratio=o["ratio"],
+            ),
+            phrase(
+                " ({rows:#row} repeating the time and place of the row before set aside)",
+                rows=o["repeated_rows"],
+            )
+            if o.get("repeated_rows")
+            else None,
+            phrase("; Dis_e {dis_e:.1f} m", dis_e=o["dis_e_m"]),
+            phrase(", Dis_e against truth {dis_e:.1f} m", dis_e=o["dis_e_true_m"])
+            if "dis_e_true_m" in o
+            else None,
+        ]
     )
 
 
@@ -403,33 +428,52 @@ def run_associate(
     )
 
 
-def _summary_associate(res: StepResult) -> str:
+def _summary_associate(res: StepResult) -> Text:
     rep = res.report
-    msg = (
-        f"{count(rep['tracks'], 'track')} -> {count(rep['targets'], 'target')} "
-        f"({count(rep['pairs_chosen'], 'join')} of "
-        f"{count(rep['candidate_pairs'], 'candidate pair')}, "
-        f"{rep['method']})"
-    )
+    parts = [
+        phrase(
+            "{tracks:#track} -> {targets:#target} ({joins:#join} of "
+            "{candidates:#candidate pair}, {method})",
+            tracks=rep["tracks"],
+            targets=rep["targets"],
+            joins=rep["pairs_chosen"],
+            candidates=rep["candidate_pairs"],
+            method=rep["method"],
+        )
+    ]
     if rep.get("rejected_kept_out"):
-        rej = count(rep["rejected_kept_out"], "pair")
-        msg += f"; {rej} rejected in an earlier review kept out"
+        parts.append(
+            phrase("; {n:#pair} rejected in an earlier review kept out", n=rep["rejected_kept_out"])
+        )
     if rep.get("split_kept_out"):
-        msg += f"; {count(rep['split_kept_out'], 'pair')} split in an earlier review kept out"
+        parts.append(
+            phrase("; {n:#pair} split in an earlier review kept out", n=rep["split_kept_out"])
+        )
     if rep.get("long_gap_joins"):
-        msg += f"; {rep['long_gap_joins']:,} of the joins across gaps beyond T_gap (second look)"
+        parts.append(
+            phrase(
+                "; {n:,} of the joins across gaps beyond T_gap (second look)",
+                n=rep["long_gap_joins"],
+            )
+        )
     if rep.get("rest_joins"):
-        msg += f"; {rep['rest_joins']:,} between ends at rest (moored or at anchor)"
+        parts.append(
+            phrase("; {n:,} between ends at rest (moored or at anchor)", n=rep["rest_joins"])
+        )
     if "points_filled" in rep:
-        msg += f"; {count(rep['points_filled'], 'point')} filled"
+        parts.append(phrase("; {n:#point} filled", n=rep["points_filled"]))
     single = rep.get("single_fix_tracks", 0)
     if rep["tracks"] >= 100 and single > 0.5 * rep["tracks"]:
-        msg += (
-            f"; warning: {single:,} of the {rep['tracks']:,} tracks are single fixes (a file "
-            "of radar plots?): each join rests on distance and time alone, so expect wrong "
-            "joins where ships are close; a tracker belongs before this step"
+        parts.append(
+            phrase(
+                "; warning: {single:,} of the {tracks:,} tracks are single fixes (a file of "
+                "radar plots?): each join rests on distance and time alone, so expect wrong "
+                "joins where ships are close; a tracker belongs before this step",
+                single=single,
+                tracks=rep["tracks"],
+            )
         )
-    return msg
+    return Text(parts)
 
 
 def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
@@ -476,85 +520,115 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
     )
 
 
-def _summary_fuse(res: StepResult) -> str:
+def _summary_fuse(res: StepResult) -> Text:
     rep = res.report
-    return (
-        f"{count(rep['tracks'], 'track')} of {count(rep['sensors'], 'sensor')} -> "
-        f"{count(rep['targets'], 'target')} "
-        f"({count(rep['pairs_chosen'], 'pair')} of {count(rep['candidate_pairs'], 'candidate')}, "
-        f"{rep['distance']}, {rep['method']}); {count(rep['fused_points'], 'fused point')}"
-        + (f" from {count(rep['points_in'], 'input point')}" if "points_in" in rep else "")
-        + (
-            " (points of two sensors at one time become one)"
-            if rep.get("points_in", 0) > rep["fused_points"]
-            else ""
+    parts = [
+        phrase(
+            "{tracks:#track} of {sensors:#sensor} -> {targets:#target} ({pairs:#pair} of "
+            "{candidates:#candidate}, {distance}, {method}); {fused:#fused point}",
+            tracks=rep["tracks"],
+            sensors=rep["sensors"],
+            targets=rep["targets"],
+            pairs=rep["pairs_chosen"],
+            candidates=rep["candidate_pairs"],
+            distance=rep["distance"],
+            method=rep["method"],
+            fused=rep["fused_points"],
         )
-        + (
-            f"; {count(rep['repeated_rows'], 'row')} repeating the time and place of the row "
-            "before set aside"
-            if rep.get("repeated_rows")
-            else ""
+    ]
+    if "points_in" in rep:
+        parts.append(phrase(" from {n:#input point}", n=rep["points_in"]))
+    if rep.get("points_in", 0) > rep["fused_points"]:
+        parts.append(phrase(" (points of two sensors at one time become one)"))
+    if rep.get("repeated_rows"):
+        parts.append(
+            phrase(
+                "; {rows:#row} repeating the time and place of the row before set aside",
+                rows=rep["repeated_rows"],
+            )
         )
-        + (_no_pair_reason(rep) if not rep.get("pairs_chosen") and "max_distance_m" in rep else "")
-    )
+    if not rep.get("pairs_chosen") and "max_distance_m" in rep:
+        parts.extend(_no_pair_reason(rep))
+    return Text(parts)
 
 
-def _short_overlap_text(rep: dict) -> str:
-    """The overlap gate as the summary names it: min_overlap_s, and min_overlap_fixes over
-    a span of at least half of it (values when the report has them)."""
+def _short_overlap_text(rep: dict, n: int) -> Phrase:
+    """The ``n`` pairs the overlap gate refused, as the summary names the gate:
+    min_overlap_s, and min_overlap_fixes over a span of at least half of it (values when
+    the report has them)."""
     span = rep.get("min_overlap_s")
     fixes = rep.get("min_overlap_fixes")
-    s = f" ({span:g} s)" if span is not None else ""
+    s = Text([phrase(" ({span:g} s)", span=span)]) if span is not None else ""
     if fixes == 0:
-        return f"for a common span under min_overlap_s{s}"
-    half = f" ({span / 2:g} s)" if span is not None else ""
-    n = f" ({fixes:,})" if fixes is not None else ""
-    return (
-        f"for a common span under min_overlap_s{s} without min_overlap_fixes{n} of each "
-        f"track in at least half of it{half}"
+        return phrase("{n:,} for a common span under min_overlap_s{span}", n=n, span=s)
+    half = Text([phrase(" ({span:g} s)", span=span / 2)]) if span is not None else ""
+    fx = f" ({fixes:,})" if fixes is not None else ""
+    return phrase(
+        "{n:,} for a common span under min_overlap_s{span} without min_overlap_fixes{fixes} "
+        "of each track in at least half of it{half}",
+        n=n,
+        span=s,
+        fixes=fx,
+        half=half,
     )
 
 
-def _no_pair_reason(rep: dict) -> str:
+def _no_pair_reason(rep: dict) -> list[Phrase]:
     """Why fusion paired nothing: the gate that refused the pairs found near each other."""
     probed = rep.get("probed_pairs", 0)
     if not probed:
-        return (
-            f"; no candidate was close enough: the tracks of different sensors are farther "
-            f"apart than max_distance_m ({rep['max_distance_m']:g} m) or their times are "
-            f"further apart than max_interp_s ({rep['max_interp_s']:g} s) — raise them with "
-            "--set if the sensors are that noisy or sparse"
-        )
-    parts = [
-        f"{rep[key]:,} {what}"
-        for key, what in (
-            ("refused_short_overlap", _short_overlap_text(rep)),
-            (
-                "refused_count_ratio",
-                "for a point-count ratio over count_ratio_max (or under 2 points in the "
-                "common span)",
-            ),
-        )
-        if rep.get(key)
-    ]
-    refused = "; ".join(parts) if parts else "none by the gates"
-    rest = probed - rep.get("refused_short_overlap", 0) - rep.get("refused_count_ratio", 0)
-    far = ""
-    if rest:
-        if rest == 1:
-            who = "it was" if probed == 1 else "the other one was"
-        else:
-            who = f"{'all' if rest == probed else 'the other'} {rest:,} were"
-        far = f"; {who} farther apart on average than the gate"
-        if rep.get("nearest_m") is not None:
-            far += (
-                f" (the nearest {rep['nearest_m']:,.0f} m apart on average: raise "
-                "max_distance_m with --set if the sensors are that noisy)"
+        return [
+            phrase(
+                "; no candidate was close enough: the tracks of different sensors are farther "
+                "apart than max_distance_m ({max_distance:g} m) or their times are further "
+                "apart than max_interp_s ({max_interp:g} s) — raise them with --set if the "
+                "sensors are that noisy or sparse",
+                max_distance=rep["max_distance_m"],
+                max_interp=rep["max_interp_s"],
             )
-    return (
-        f"; {count(probed, 'pair')} of tracks came within max_distance_m "
-        f"({rep['max_distance_m']:g} m) of each other, refused: {refused}" + far
-    )
+        ]
+    parts = []
+    if rep.get("refused_short_overlap"):
+        parts.append(_short_overlap_text(rep, rep["refused_short_overlap"]))
+    if rep.get("refused_count_ratio"):
+        parts.append(
+            phrase(
+                "{n:,} for a point-count ratio over count_ratio_max (or under 2 points in the "
+                "common span)",
+                n=rep["refused_count_ratio"],
+            )
+        )
+    refused = Text(joined(parts) if parts else [phrase("none by the gates")])
+    out = [
+        phrase(
+            "; {probed:#pair} of tracks came within max_distance_m ({max_distance:g} m) of "
+            "each other, refused: {refused}",
+            probed=probed,
+            max_distance=rep["max_distance_m"],
+            refused=refused,
+        )
+    ]
+    rest = probed - rep.get("refused_short_overlap", 0) - rep.get("refused_count_ratio", 0)
+    if rest:
+        if rest == 1 and probed == 1:
+            out.append(phrase("; it was farther apart on average than the gate"))
+        elif rest == 1:
+            out.append(phrase("; the other one was farther apart on average than the gate"))
+        elif rest == probed:
+            out.append(phrase("; all {n:,} were farther apart on average than the gate", n=rest))
+        else:
+            out.append(
+                phrase("; the other {n:,} were farther apart on average than the gate", n=rest)
+            )
+        if rep.get("nearest_m") is not None:
+            out.append(
+                phrase(
+                    " (the nearest {nearest:,.0f} m apart on average: raise max_distance_m "
+                    "with --set if the sensors are that noisy)",
+                    nearest=rep["nearest_m"],
+                )
+            )
+    return out
 
 
 @dataclass(frozen=True)
@@ -565,7 +639,7 @@ class Step:
     title: str
     params: tuple[tuple[str, type], ...]  # (key, parameter class), as run() reads them
     run: Callable[[pd.DataFrame, dict, Progress], StepResult]
-    summary: Callable[[StepResult], str]
+    summary: Callable[[StepResult], Text]  # English as a str; phrases for a translator
     output: str = "points"  # the table written with -o
     outputs: tuple[tuple[str, str], ...] = ()  # (table, flag) written on request
     primary: str = ""  # the role of the layer the next pipeline stage reads

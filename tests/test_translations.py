@@ -334,3 +334,114 @@ def test_the_chinese_window_finds_its_mixins_and_bearing_dock_texts(qtbot, tmp_p
     assert bv.length_label.text() == "Line length"
     assert bv.map.getAxis("left").labelText == "latitude"
     i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+CORE = Path(__file__).resolve().parents[1] / "core"
+
+
+def core_templates() -> set[str]:
+    """The templates of the core's summaries: the literal first argument of every
+    ``phrase("…")`` call in core (found, not listed)."""
+    out = set()
+    for path in sorted(CORE.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if (
+                isinstance(node, ast.Call)
+                and _name(node.func) == "phrase"
+                and node.args
+                and isinstance(node.args[0], ast.Constant)
+                and isinstance(node.args[0].value, str)
+            ):
+                out.add(node.args[0].value)
+    return out
+
+
+def _fields(template: str) -> set[str]:
+    import string
+
+    return {f for _, f, _, _ in string.Formatter().parse(template) if f}
+
+
+def test_every_core_summary_template_has_a_zh_entry_with_its_values():
+    """The step summaries (import, clean, maneuvers, compress, associate, fuse) are the
+    core's phrases; each template has a zh_CN entry (context ``Summary``) naming the same
+    values, and renders."""
+    from wakeline.core.words import CONTEXT, Text, phrase, render
+
+    templates = core_templates()
+    assert len(templates) > 30
+    assert "kept {kept:,} of {points:#point} in {tracks:#track}" in templates
+    table = zh_table()
+    missing = sorted(t for t in templates if (CONTEXT, t) not in table)
+    assert not missing, f"no zh_CN entry for {missing}"
+    for t in templates:
+        zh = table[(CONTEXT, t)]
+        assert _fields(zh) == _fields(t), (t, zh)
+        values = dict.fromkeys(_fields(t), 1234)
+        text = Text([phrase(t, **values)])
+        rendered = render(text, lambda s: table.get((CONTEXT, s)))
+        assert rendered == render(Text([phrase(zh, **values)])) and "{" not in rendered
+
+
+def _english_pieces() -> list[str]:
+    """The words of the summaries' templates between their values (two words or more)."""
+    import re
+    import string
+
+    pieces = set()
+    for t in core_templates():
+        for literal, *_ in string.Formatter().parse(t):
+            for piece in re.split(r"[();:,\d]|->|—", literal):
+                piece = piece.strip()
+                words = [w for w in re.findall(r"[A-Za-z_]+", piece) if "_" not in w]
+                if len(words) >= 2:  # not a parameter's name (Dis_e, max_distance_m)
+                    pieces.add(piece)
+    return sorted(pieces)
+
+
+def test_the_pipeline_log_in_chinese_has_no_english_summary(qtbot, tmp_path):
+    """Import, the pipeline, each step (clean, maneuvers, compress, associate, fuse) and
+    an export in the zh_CN window: the log's lines carry no English sentence of a
+    summary (they were built in core, in English, and stayed English)."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore, QtWidgets
+
+    from conftest import load
+    from wakeline.app import i18n
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.app.main_window import MainWindow
+    from wakeline.core.words import CONTEXT
+    from wakeline.resources import demo_path
+
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "zh_CN")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    w.resize(1200, 800)
+    zh = zh_table()
+    try:
+        source = load(w, demo_path())
+        assert source is not None
+        for step in ("pipeline", "clean", "maneuvers", "compress", "associate", "fuse"):
+            w.select_layer(source)
+            w.run_step(step)
+            wait_for_jobs(w)
+        w.export("csv", tmp_path / "out.csv")
+        qtbot.waitUntil(lambda: (tmp_path / "out.csv").exists(), timeout=20_000)
+        w.export_runner.wait()
+        qtbot.waitUntil(lambda: "out.csv" in w.log.toPlainText(), timeout=5000)
+        log = w.log.toPlainText()
+        lines = log.splitlines()
+        # every step logged its summary (in Chinese)
+        kept = zh[(CONTEXT, "kept {kept:,} of {points:#point} in {tracks:#track}")]
+        assert any(kept.split(" ")[0] in line for line in lines), log
+        for step in ("clean", "maneuvers", "compress", "associate", "fuse"):
+            assert any(f" 上的 {step}" in line for line in lines), (step, log)
+        english = [p for p in _english_pieces() if p in log]
+        assert not english, (english, log)
+        for word in (" on ", "kept ", " tracks", " points", " rows ", "quarantined"):
+            assert word not in log, (word, log)
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)

@@ -4,6 +4,18 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>{0} on {1}</source>
+        <translation>{1} 上的 {0}</translation>
+    </message>
+    <message>
+        <source>quarantined {0:,}: {1}</source>
+        <translation>隔离 {0:,} 行：{1}</translation>
+    </message>
+    <message>
+        <source>blanked {0:,} (row kept): {1}</source>
+        <translation>清空 {0:,} 个值（保留该行）：{1}</translation>
+    </message>
+    <message>
         <source>Removed layer {0}; the review of {1} keeps the points its proposals were made on (in the project): its decisions stay</source>
         <translation>已移除图层 {0}；{1} 的审核保留了其候选建议所依据的点（保存在项目中）：其决定仍然有效</translation>
     </message>
@@ -1428,6 +1440,10 @@
 <context>
     <name>ReviewSync</name>
     <message>
+        <source>{0} on {1}</source>
+        <translation>{1} 上的 {0}</translation>
+    </message>
+    <message>
         <source>Error</source>
         <translation>错误</translation>
     </message>
@@ -1609,6 +1625,153 @@
     <message>
         <source>km²</source>
         <translation>平方千米</translation>
+    </message>
+</context>
+<context>
+    <name>Summary</name>
+    <message>
+        <source>{rows:#row} in {tracks:#track} ({label}, {encoding}); {quarantined:,} quarantined</source>
+        <translation>{rows:,} 行，{tracks:,} 条航迹（{label}，{encoding}）；隔离 {quarantined:,} 行</translation>
+    </message>
+    <message>
+        <source>, {blank:#blank line} skipped</source>
+        <translation>，跳过 {blank:,} 个空行</translation>
+    </message>
+    <message>
+        <source>kept {kept:,} of {points:#point} in {tracks:#track}</source>
+        <translation>保留 {points:,} 个点中的 {kept:,} 个，共 {tracks:,} 条航迹</translation>
+    </message>
+    <message>
+        <source>; removed {n:,} ({rules})</source>
+        <translation>；移除 {n:,} 个（{rules}）</translation>
+    </message>
+    <message>
+        <source>; changed {n:,} ({rules})</source>
+        <translation>；修改 {n:,} 个（{rules}）</translation>
+    </message>
+    <message>
+        <source>; replaced {n:,} ({rules})</source>
+        <translation>；替换 {n:,} 个（{rules}）</translation>
+    </message>
+    <message>
+        <source>{maneuvers:#maneuver point} in {tracks:#track} ({method})</source>
+        <translation>{tracks:,} 条航迹中有 {maneuvers:,} 个机动点（{method}）</translation>
+    </message>
+    <message>
+        <source>{n:#maneuver point}; </source>
+        <translation>{n:,} 个机动点；</translation>
+    </message>
+    <message>
+        <source>kept {kept:,} of {points:#point} ({ratio:.1%})</source>
+        <translation>保留 {points:,} 个点中的 {kept:,} 个（{ratio:.1%}）</translation>
+    </message>
+    <message>
+        <source> ({rows:#row} repeating the time and place of the row before set aside)</source>
+        <translation>（{rows:,} 行与上一行的时间和位置相同，已剔除）</translation>
+    </message>
+    <message>
+        <source>; Dis_e {dis_e:.1f} m</source>
+        <translation>；Dis_e {dis_e:.1f} 米</translation>
+    </message>
+    <message>
+        <source>, Dis_e against truth {dis_e:.1f} m</source>
+        <translation>，相对真值的 Dis_e {dis_e:.1f} 米</translation>
+    </message>
+    <message>
+        <source>{tracks:#track} -&gt; {targets:#target} ({joins:#join} of {candidates:#candidate pair}, {method})</source>
+        <translation>{tracks:,} 条航迹 -&gt; {targets:,} 个目标（{candidates:,} 个候选对中连接 {joins:,} 个，{method}）</translation>
+    </message>
+    <message>
+        <source>; {n:#pair} rejected in an earlier review kept out</source>
+        <translation>；{n:,} 对在先前的审核中被拒绝，已排除</translation>
+    </message>
+    <message>
+        <source>; {n:#pair} split in an earlier review kept out</source>
+        <translation>；{n:,} 对在先前的审核中被拆分，已排除</translation>
+    </message>
+    <message>
+        <source>; {n:,} of the joins across gaps beyond T_gap (second look)</source>
+        <translation>；其中 {n:,} 个连接跨越超过 T_gap 的间隙（二次查看）</translation>
+    </message>
+    <message>
+        <source>; {n:,} between ends at rest (moored or at anchor)</source>
+        <translation>；{n:,} 个连接位于静止的端点之间（系泊或锚泊）</translation>
+    </message>
+    <message>
+        <source>; {n:#point} filled</source>
+        <translation>；填补 {n:,} 个点</translation>
+    </message>
+    <message>
+        <source>; warning: {single:,} of the {tracks:,} tracks are single fixes (a file of radar plots?): each join rests on distance and time alone, so expect wrong joins where ships are close; a tracker belongs before this step</source>
+        <translation>；警告：{tracks:,} 条航迹中有 {single:,} 条只有单个定位点（雷达点迹文件？）：每个连接只依据距离和时间，船舶相近处可能连接错误；这一步之前应先经过跟踪器</translation>
+    </message>
+    <message>
+        <source>{tracks:#track} of {sensors:#sensor} -&gt; {targets:#target} ({pairs:#pair} of {candidates:#candidate}, {distance}, {method}); {fused:#fused point}</source>
+        <translation>{sensors:,} 个传感器的 {tracks:,} 条航迹 -&gt; {targets:,} 个目标（{candidates:,} 个候选中配对 {pairs:,} 对，{distance}，{method}）；{fused:,} 个融合点</translation>
+    </message>
+    <message>
+        <source> from {n:#input point}</source>
+        <translation>，来自 {n:,} 个输入点</translation>
+    </message>
+    <message>
+        <source> (points of two sensors at one time become one)</source>
+        <translation>（两个传感器同一时刻的点合并为一个）</translation>
+    </message>
+    <message>
+        <source>; {rows:#row} repeating the time and place of the row before set aside</source>
+        <translation>；{rows:,} 行与上一行的时间和位置相同，已剔除</translation>
+    </message>
+    <message>
+        <source>; no candidate was close enough: the tracks of different sensors are farther apart than max_distance_m ({max_distance:g} m) or their times are further apart than max_interp_s ({max_interp:g} s) — raise them with --set if the sensors are that noisy or sparse</source>
+        <translation>；没有足够接近的候选：不同传感器的航迹相距超过 max_distance_m（{max_distance:g} 米），或其时间相差超过 max_interp_s（{max_interp:g} 秒）——若传感器噪声大或数据稀疏，请在参数面板中调大它们</translation>
+    </message>
+    <message>
+        <source>; {probed:#pair} of tracks came within max_distance_m ({max_distance:g} m) of each other, refused: {refused}</source>
+        <translation>；{probed:,} 对航迹彼此相距在 max_distance_m（{max_distance:g} 米）以内，被拒绝：{refused}</translation>
+    </message>
+    <message>
+        <source>{n:,} for a common span under min_overlap_s{span}</source>
+        <translation>{n:,} 对因共同时段短于 min_overlap_s{span}</translation>
+    </message>
+    <message>
+        <source>{n:,} for a common span under min_overlap_s{span} without min_overlap_fixes{fixes} of each track in at least half of it{half}</source>
+        <translation>{n:,} 对因共同时段短于 min_overlap_s{span}，且在其至少一半时长{half}内每条航迹不足 min_overlap_fixes{fixes} 个点</translation>
+    </message>
+    <message>
+        <source> ({span:g} s)</source>
+        <translation>（{span:g} 秒）</translation>
+    </message>
+    <message>
+        <source>{n:,} for a point-count ratio over count_ratio_max (or under 2 points in the common span)</source>
+        <translation>{n:,} 对因点数比超过 count_ratio_max（或共同时段内不足 2 个点）</translation>
+    </message>
+    <message>
+        <source>none by the gates</source>
+        <translation>门限未拒绝任何一对</translation>
+    </message>
+    <message>
+        <source>; </source>
+        <translation>；</translation>
+    </message>
+    <message>
+        <source>; it was farther apart on average than the gate</source>
+        <translation>；它的平均距离超出门限</translation>
+    </message>
+    <message>
+        <source>; the other one was farther apart on average than the gate</source>
+        <translation>；另外一对的平均距离超出门限</translation>
+    </message>
+    <message>
+        <source>; all {n:,} were farther apart on average than the gate</source>
+        <translation>；全部 {n:,} 对的平均距离都超出门限</translation>
+    </message>
+    <message>
+        <source>; the other {n:,} were farther apart on average than the gate</source>
+        <translation>；其余 {n:,} 对的平均距离超出门限</translation>
+    </message>
+    <message>
+        <source> (the nearest {nearest:,.0f} m apart on average: raise max_distance_m with --set if the sensors are that noisy)</source>
+        <translation>（最近的一对平均相距 {nearest:,.0f} 米：若传感器噪声这么大，请在参数面板中调大 max_distance_m）</translation>
     </message>
 </context>
 </TS>
