@@ -419,6 +419,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             self.export_runner.wait(5000)
         self.review.close()
         self.time_panel.pause()  # no frame asked for after the map's jobs are through
+        self.time_controller.overlay.stop()  # nor one queued behind the running one
         self.lod_worker.wait(5000)
         if self.view_keeper.pending:  # the last zoom is kept too
             self.view_keeper.store()

@@ -268,6 +268,7 @@ class TimeOverlay(QtCore.QObject):
         self._asked = 0  # frames asked for; a result older than the last drawn is dropped
         self._shown_ask = 0
         self._last: tuple[float, float] | None = None  # (t, trail_s) last asked for
+        self._stopped = False  # the window closed: no frame asked for or drawn
         # A pan, zoom or resize: the frame again for the new view, once it settles.
         self._view_timer = QtCore.QTimer(self)
         self._view_timer.setSingleShot(True)
@@ -295,8 +296,20 @@ class TimeOverlay(QtCore.QObject):
         self.trail.sprite = None
         self.shown_tracks = np.zeros(0, dtype="int64")
 
+    def stop(self) -> None:
+        """No frame after this (the window closes): the one wanted next is dropped, the
+        one under way is dropped on arrival, and neither a view change nor a time asks
+        for another (a frame queued behind the running one was drawn after the close)."""
+        self._stopped = True
+        self._wanted = None
+        self._view_timer.stop()
+        self._asked += 1
+        self._shown_ask = self._asked
+
     def show_at(self, t: float, trail_s: float) -> None:
         """Draw every track's position at ``t`` (s) and its last ``trail_s`` seconds."""
+        if self._stopped:
+            return
         self._last = (float(t), float(trail_s))
         if self.scene is None:
             self.clear()

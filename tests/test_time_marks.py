@@ -336,7 +336,9 @@ def test_closing_the_window_while_playing_stops_the_frames(qtbot, tmp_path):
     end = time.perf_counter() + 0.3
     while time.perf_counter() < end:
         QtCore.QCoreApplication.processEvents()
-    assert not overlay._running and len(drawn) <= n + 1
+    # none after the close (a frame queued behind the running one was drawn after it,
+    # two frames in all, on a loaded machine in the full run)
+    assert not overlay._running and len(drawn) == n
     shiboken6.delete(w)
     assert QtCore.QThreadPool.globalInstance().waitForDone(5000)
     qtbot.wait(50)
