@@ -10,6 +10,7 @@ import numpy as np
 from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.layer_view import maneuver_table
+from wakeline.core import sorted_sets
 
 
 class SelectionMixin:
@@ -27,7 +28,7 @@ class SelectionMixin:
         parts = [np.arange(r.top(), r.bottom() + 1) for r in ranges if r.isValid()]
         if not parts:
             return []
-        return self.batch_model.keys_of_rows(np.unique(np.concatenate(parts)))
+        return self.batch_model.keys_of_rows(sorted_sets.distinct(np.concatenate(parts)))
 
     def select_tracks(self, keys: list[tuple[str, str]], add: bool = False) -> None:
         """Select rows of the batch table by (sensor, batch); the map follows. Rows next

@@ -48,7 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from wakeline.core import geo
+from wakeline.core import geo, sorted_sets
 from wakeline.core.params import Params, param
 from wakeline.core.tracks import (
     TrackIndex,
@@ -1501,7 +1501,7 @@ def _exact_at(u: np.ndarray, v: np.ndarray, p: int, j: np.ndarray) -> np.ndarray
     windows needed (ending at j and at j + p − 1) only, from :func:`_gathered_moments`."""
     if not len(j):
         return np.zeros(0)
-    ends = np.union1d(j, j + (p - 1))  # sorted, each window once
+    ends = sorted_sets.union(j, j + (p - 1))  # sorted, each window once
     h = _axis_headings(*_gathered_moments(u, v, p, ends))
     return _angle_diff(h[np.searchsorted(ends, j)], h[np.searchsorted(ends, j + (p - 1))])
 

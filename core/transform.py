@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from wakeline.core import geo
+from wakeline.core import geo, sorted_sets
 from wakeline.core.params import Params, param
 from wakeline.core.schema import seconds_to_time, time_seconds
 from wakeline.core.tracks import (
@@ -264,7 +264,7 @@ def greedy_sample(t: np.ndarray, index: TrackIndex, dt: float) -> np.ndarray:
     chain = index.starts.copy()
     steps = 1
     while steps < n:
-        chain = np.union1d(chain, jump[chain])
+        chain = sorted_sets.union(chain, jump[chain])
         jump = jump[jump]
         steps *= 2
         if np.all(jump[chain] == n):  # every chain member now jumps past its track

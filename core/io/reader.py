@@ -33,6 +33,7 @@ import pyarrow as pa
 import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
+from wakeline.core import sorted_sets
 from wakeline.core.errors import InputError
 from wakeline.core.geo import EARTH_RADIUS_M, from_local
 from wakeline.core.io.compressed import open_data, open_for_arrow
@@ -1085,7 +1086,7 @@ def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray
     if not cand.any():
         return out
     # Same-track neighbours in file order (valid rows only), for the candidates' tracks.
-    rows = np.flatnonzero(ok & np.isin(track, np.unique(track[cand])))
+    rows = np.flatnonzero(ok & np.isin(track, sorted_sets.distinct(track[cand])))
     order = rows[np.argsort(track[rows], kind="stable")]
     tr, tt = track[order], t[order]
     same_prev = np.r_[False, tr[1:] == tr[:-1]]
@@ -1280,7 +1281,7 @@ def _edge_times(
         return out
     # Candidates' tracks, in file order within each track: steps, typical step, the span
     # of the track's other rows.
-    cand_tracks = np.unique(code[edge_i])
+    cand_tracks = sorted_sets.distinct(code[edge_i])
     rows = np.flatnonzero(np.isin(code, cand_tracks))
     rows = rows[np.argsort(code[rows], kind="stable")]
     tr, tt = code[rows], t[rows]
@@ -1525,7 +1526,7 @@ def _place_repeated_hour(track: np.ndarray, info: dict, ns: np.ndarray, ok: np.n
     members = np.flatnonzero(in_two)
     sub = pd.DataFrame({"track": track[members], "t": trial[members]})
     forward = sub.groupby("track")["t"].diff().fillna(0).to_numpy() >= 0
-    bad_tracks = np.unique(sub["track"].to_numpy()[~forward])
+    bad_tracks = sorted_sets.distinct(sub["track"].to_numpy()[~forward])
     placed = placed[~np.isin(track[placed], bad_tracks)]
     ns[placed] = trial[placed]
     ok[placed] = True
@@ -3447,7 +3448,7 @@ def _count_tracks(
         tracks = int(np.count_nonzero(per_key))
         per_sensor = per_key.sum(axis=1)
     else:
-        uniq = np.unique(key)
+        uniq = sorted_sets.distinct(key)
         tracks = len(uniq)
         per_sensor = np.bincount(sensor_codes, minlength=n_sensors)
     return {

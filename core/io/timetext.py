@@ -16,6 +16,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from wakeline.core import sorted_sets
 from wakeline.core.errors import InputError
 
 #: English month names as written (lower case): full, three letters, and "sept".
@@ -357,7 +358,7 @@ def hhmmss_evidence(values: np.ndarray) -> tuple[int, int] | None:
     finite = values[np.isfinite(values)]
     if len(finite) < 3 or not valid_hhmmss(finite):
         return None
-    distinct = np.unique(finite.astype("int64"))
+    distinct = sorted_sets.distinct(finite.astype("int64"))
     if len(distinct) < 3:
         return None
     clock = (distinct // 10000) * 3600 + ((distinct // 100) % 100) * 60 + distinct % 100
