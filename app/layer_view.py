@@ -186,11 +186,13 @@ def prepare_view(
     view: tuple[float, float, float, float] | None = None,
     size_px: tuple[int, int] | None = None,
     colors: tuple[str, ...] | None = None,
+    previous: "LayerView | None" = None,
 ) -> LayerView:
     """Everything the window shows of a layer; pure, for a worker thread. ``view`` and
     ``size_px`` (the map's, or None for the data's extent) set the first level of detail.
     ``colors``: a source layer's sensors' colours in turn (default: ``color`` and the
-    source colours after it)."""
+    source colours after it). ``previous``: the layer's view before a change that keeps
+    most tracks' rows (a review decision): their summary rows are kept."""
     from wakeline.app.map_draw import LayerStyle, prepare_layer
     from wakeline.app.map_paths import with_paths
 
@@ -205,7 +207,8 @@ def prepare_view(
         for s, b, a, e in zip(sensors, batches, index.starts, index.ends, strict=True)
     }
     marks = maneuver_table(pts)
-    summary = batch_summary(pts, marks if kind == "maneuvers" else None)
+    before = (previous.points, previous.summary) if previous is not None else None
+    summary = batch_summary(pts, marks if kind == "maneuvers" else None, before)
     symbol, width = DRAW_STYLE.get(kind, (0, 1.3))
     drawn = marks if kind == "maneuvers" and marks is not None else pts
     # the band the layer's tracks are drawn in, decided by all its points (the maneuver

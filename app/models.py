@@ -7,12 +7,24 @@ from PySide6 import QtCore
 from wakeline.app.time_text import is_relative_time
 from wakeline.core import sorted_sets
 from wakeline.core.timeline import overlapping
-from wakeline.core.tracks import track_summary
+from wakeline.core.tracks import sort_points, summary_update, track_index, track_summary
 
 
-def batch_summary(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> pd.DataFrame:
-    """The core's track summary plus maneuvers per track, target and status."""
-    summary = track_summary(points)
+def batch_summary(
+    points: pd.DataFrame,
+    maneuvers: pd.DataFrame | None = None,
+    previous: tuple[pd.DataFrame, pd.DataFrame] | None = None,
+) -> pd.DataFrame:
+    """The core's track summary plus maneuvers per track, target and status.
+    ``previous``: (points, summary) of an earlier view of the layer; only the tracks whose
+    rows changed are summarized again (:func:`~wakeline.core.tracks.summary_update`)."""
+    summary = None
+    if previous is not None:
+        summary = summary_update(points, previous[0], previous[1])
+        if summary is not None:
+            summary = summary.drop(columns=["maneuvers", "target", "status"], errors="ignore")
+    if summary is None:
+        summary = track_summary(points)
     if summary.empty:
         for col in ("maneuvers", "target", "status"):
             summary[col] = []
@@ -26,8 +38,7 @@ def batch_summary(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -
     else:
         summary["maneuvers"] = np.nan
     if "target" in points.columns:
-        first = points.astype({"sensor": str, "batch": str}).groupby(keys)["target"].first()
-        summary["target"] = first.reindex(pd.MultiIndex.from_frame(summary[keys])).to_numpy()
+        summary["target"] = _first_per_track(points, "target")
         size = summary.groupby("target")["batch"].transform("size")
         summary["status"] = np.where(size > 1, "joined", "")
     elif "members" in points.columns:
@@ -39,6 +50,21 @@ def batch_summary(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -
         summary["target"] = ""
         summary["status"] = ""
     return summary
+
+
+def _first_per_track(points: pd.DataFrame, col: str) -> np.ndarray:
+    """The first non-null ``col`` of every track (NaN for none), in the order of
+    :func:`track_summary`'s rows: by the track index, not a group-by over the points as
+    text (a million points' keys turned into Python strings held the GIL ~1 s)."""
+    pts = sort_points(points)
+    index = track_index(pts)
+    n = len(pts)
+    v = pts[col]
+    pos = np.where(v.notna().to_numpy(), np.arange(n), n)
+    first = np.minimum.reduceat(pos, index.starts) if n else np.zeros(0, dtype="int64")
+    out = np.array(v.iloc[np.minimum(first, max(n - 1, 0))].to_numpy(dtype=object))
+    out[first >= n] = np.nan
+    return out
 
 
 def display_text(df: pd.DataFrame) -> dict[str, np.ndarray]:

@@ -21,7 +21,7 @@ from PySide6 import QtCore, QtGui
 from wakeline.app.map_draw import unwrap_tracks
 from wakeline.app.map_selection import SELECTION_PALETTE
 from wakeline.core import geo
-from wakeline.core.review import ReviewState, _labels
+from wakeline.core.review import ReviewState, _point_label_codes
 from wakeline.core.schema import time_seconds
 
 PALETTE = (
@@ -116,10 +116,10 @@ def proposal_geometry(
     if lon_west is None:
         lon_west = geo.lon_band_west(points["lon"].to_numpy(dtype="float64"))
     members = proposal_members(state, proposal)
-    lab = _labels(points[["sensor", "batch"]].astype(str))
-    sel = pd.Series(lab).isin(members).to_numpy()
+    codes, labels = _point_label_codes(points)  # text per track, not per point
+    sel = np.isin(labels, np.asarray(list(members), dtype=str))[codes]
     pts = points[sel]
-    lab = lab[sel]
+    lab = labels[codes[sel]]
     t = time_seconds(pts["time"]) if len(pts) else np.zeros(0)
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")

@@ -83,13 +83,16 @@ class ReviewSync(QtCore.QObject):
         snap = snapshot(bound.controller.state)
         canvas_view, size_px = self.w.canvas.current_view(), self.w.canvas.plot_size_px()
         key, points, cache = bound.key, bound.points, bound.cache
+        previous = self.w.views.get(bound.lid)  # its tracks' summaries are kept
 
         def job(progress):
             progress(0.0, "applying the decisions to the layer")
             pts = decided_points(layer, snap, points, cache)
             if pts is None:
                 return key, None, 0
-            view = prepare_view(pts, layer.kind, layer.color, layer.name, canvas_view, size_px)
+            view = prepare_view(
+                pts, layer.kind, layer.color, layer.name, canvas_view, size_px, previous=previous
+            )
             return key, view, len(snap.log)
 
         self._job = self.runner.run("review", job)

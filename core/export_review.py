@@ -16,7 +16,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.export import export_geojson, spreadsheet_safe
 from wakeline.core.io.writer import atomic_path, write_csv
-from wakeline.core.review import ReviewState, _labels
+from wakeline.core.review import ReviewState, _labels, point_labels
 from wakeline.core.schema import written_columns
 
 EXPORT_FORMATS = ("csv", "geojson", "gpx")
@@ -27,7 +27,7 @@ def merged_tracks(state: ReviewState, points: pd.DataFrame) -> pd.DataFrame:
     target, ``members`` = the target's tracks (``sensor:batch`` joined by ``+``, as
     fusion writes it) and ``source_track`` = the row's own ``sensor:batch``."""
     pts = state.label_points(points)
-    pts["source_track"] = _labels(pts[["sensor", "batch"]].astype(str))
+    pts["source_track"] = point_labels(pts)
     members = pts.groupby("target")["source_track"].agg(lambda s: "+".join(sorted(set(s))))
     pts["members"] = members.reindex(pts["target"]).to_numpy()
     pts["sensor"] = "merged"

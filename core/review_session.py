@@ -19,6 +19,7 @@ from wakeline.core import review as R
 from wakeline.core.errors import InputError
 from wakeline.core.review_store import decision_row, replay_decisions
 from wakeline.core.session import Layer, Session
+from wakeline.core.tracks import known_order, remember_order
 
 
 def proposals_of(layer: Layer | None) -> pd.DataFrame | None:
@@ -190,7 +191,11 @@ def decided_points(
     if layer.role == "stitched":
         return None
     own = layer.points.drop(columns=["target"], errors="ignore")
-    return state.label_points(own)
+    out = state.label_points(own)
+    known = known_order(layer.points)  # the same rows in the same order: no sort again
+    if known is not None and isinstance(out.index, pd.RangeIndex) and out.index.start == 0:
+        remember_order(out, *known)
+    return out
 
 
 def export_reviewed(
@@ -217,7 +222,7 @@ def export_reviewed(
 def sorted_by_track(points: pd.DataFrame) -> tuple[pd.DataFrame, dict[str, tuple[int, int]]]:
     """Points sorted by track label (stable: the order within a track is kept) and each
     label's rows."""
-    lab = R._labels(points[["sensor", "batch"]].astype(str))
+    lab = R.point_labels(points)
     order = np.argsort(lab, kind="stable")
     lab = lab[order]
     pts = points.iloc[order].reset_index(drop=True)

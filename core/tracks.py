@@ -709,3 +709,42 @@ def rows_of(pts: pd.DataFrame, rows: np.ndarray) -> tuple[pd.DataFrame, "TrackIn
     """The given rows (ascending) of a table in track order, and their index: still in
     track order, so no sort (used to set aside :func:`repeated_rows`)."""
     return sorted_with_index(pts.iloc[rows].reset_index(drop=True))
+
+
+def summary_update(
+    df: pd.DataFrame, previous: pd.DataFrame, previous_summary: pd.DataFrame
+) -> pd.DataFrame | None:
+    """:func:`track_summary` of ``df`` from ``previous_summary`` (that of ``previous``):
+    only the tracks whose rows differ in time or position are summarized again (a review
+    decision relabels targets and leaves every track's rows as they were). None when the
+    two tables do not hold the same tracks with the same numbers of rows (then summarize
+    ``df`` whole)."""
+    df, previous = sort_points(df), sort_points(previous)
+    index, before = track_index(df), track_index(previous)
+    if (
+        len(df) != len(previous)
+        or index.n_tracks != before.n_tracks
+        or len(previous_summary) != index.n_tracks
+        or not np.array_equal(index.starts, before.starts)
+        or not np.array_equal(index.ends, before.ends)
+        or not index.keys.reset_index(drop=True).equals(before.keys.reset_index(drop=True))
+    ):
+        return None
+    changed = np.zeros(len(df), dtype=bool)
+    pairs = [(track_seconds(df), track_seconds(previous))]
+    pairs += [
+        (df[c].to_numpy(dtype="float64"), previous[c].to_numpy(dtype="float64"))
+        for c in ("lon", "lat")
+    ]
+    for a, b in pairs:
+        changed |= (a != b) & ~(np.isnan(a) & np.isnan(b))
+    out = previous_summary.reset_index(drop=True).copy()
+    if not changed.any():
+        return out
+    touched = np.flatnonzero(np.add.reduceat(changed.astype("int64"), index.starts) > 0)
+    rows = concat_ranges(index.starts[touched], index.sizes[touched])
+    part = track_summary(df.iloc[rows].reset_index(drop=True))
+    for col in part.columns:
+        if col in out.columns:
+            out.loc[touched, col] = part[col].to_numpy()
+    return out
