@@ -193,7 +193,8 @@ def decided_points(
     own = layer.points.drop(columns=["target"], errors="ignore")
     out = state.label_points(own)
     known = known_order(layer.points)  # the same rows in the same order: no sort again
-    if known is not None and isinstance(out.index, pd.RangeIndex) and out.index.start == 0:
+    fresh = isinstance(out.index, pd.RangeIndex) and out.index.start == 0 and out.index.step == 1
+    if known is not None and fresh:
         remember_order(out, *known)
     return out
 

@@ -132,7 +132,12 @@ def _extent(lon: np.ndarray, lat: np.ndarray) -> Extent | None:
         cell = float(mag * next(m for m in (1, 2, 5, 10) if m * mag >= cell))
         ix = np.floor((lon - x0) * KM_PER_DEG * coslat / cell).astype("int64")
         iy = np.floor((lat - y0) * KM_PER_DEG / cell).astype("int64")
-        cells = np.unique(ix * (int(iy.max()) + 1) + iy).size
+        # Distinct cells by a mask over the few cell numbers (~100 x 100), not np.unique
+        # (numpy 2.4 hashes: 1M points 80-1,060 ms against ~1 ms, holding the GIL).
+        code = ix * (int(iy.max()) + 1) + iy
+        seen = np.zeros(int(code.max()) + 1, dtype=bool)
+        seen[code] = True
+        cells = int(np.count_nonzero(seen))
         # Cells on the box's east and north edges reach past it: never more than the box.
         covered = min(cells * cell * cell, width * height)
     else:
