@@ -15,7 +15,13 @@ is noticed at the next write, which fails with a message instead of writing else
 background thread and reports failures through a callback. "Save as" writes a complete
 new file beside the target and renames it over, so a crash never leaves a half-written
 project. Opening checks everything before anything is returned: a damaged or newer file
-raises one :class:`InputError` and the caller's session stays untouched. The state rows
+raises one :class:`InputError` and the caller's session stays untouched. A project left in
+the middle of a write (a crash or power loss: its hot ``-journal`` beside it) is rolled
+back to its last complete write once, read-write, with its lock held (a read-only
+connection cannot), and opens with a warning saying so; in a read-only file or folder a
+copy is rolled back and read instead; held by a process that still runs, it is left alone
+and the message says who holds it. A file that cannot be read is "not a Wakeline project"
+only when it is not one (garbage, empty, another database); an I/O problem says so. The state rows
 only say where the operator was (what the map showed, what was selected): a bad one is
 left out with one warning in :attr:`Project.warnings` and the project opens; a bad data
 row (layers, parameters, decisions) refuses it as damaged.
@@ -49,7 +55,7 @@ from wakeline.core import __version__
 from wakeline.core.errors import InputError
 from wakeline.core.io.writer import atomic_path
 from wakeline.core.pipeline import PARAMS_VERSION, params_from_version
-from wakeline.core.project_lock import read_holder
+from wakeline.core.project_lock import ProjectLocks, lock_path, read_holder
 from wakeline.core.review_session import repair_decisions
 from wakeline.core.session import Layer, MapView, Session, Source
 from wakeline.core.timeline import TimeWindow, current_time_from_json, current_time_to_json
@@ -260,7 +266,7 @@ class ProjectStore:
                 )
         except sqlite3.DatabaseError as exc:
             self.con.close()
-            raise InputError(f"{self.path}: not a Wakeline project ({exc})") from None
+            raise InputError(_sqlite_problem(self.path, exc, "opened for writing")) from None
 
     def close(self) -> None:
         self.con.close()
@@ -511,21 +517,33 @@ def load_project(path: str | Path) -> Project:
     if not path.exists():
         raise InputError(f"{path}: no such project file")
     writable = os.access(path, os.W_OK) and os.access(path.parent, os.W_OK)
+    notes: list[str] = []
     try:
         try:
             con = _open_read_only(path)
-        except sqlite3.OperationalError:
-            if writable:
+        except sqlite3.OperationalError as exc:
+            side = [s for s in ("-journal", "-wal") if _side_file(path, s)]
+            if not side:
                 raise
-            # A project left in WAL mode (older Wakeline, or a crash) in a folder that
-            # cannot be written: SQLite cannot open it there; read a copy.
-            with tempfile.TemporaryDirectory(prefix="wakeline-ro-") as tmp:
-                for suffix in ("", "-wal"):
-                    if Path(f"{path}{suffix}").exists():
-                        shutil.copyfile(f"{path}{suffix}", Path(tmp) / f"p.wakeline{suffix}")
-                project = load_project(Path(tmp) / "p.wakeline")
-            project.read_only = True
-            return project
+            hot = "-journal" in side
+            _refuse_if_held(path, exc, hot)
+            if writable:
+                notes += _roll_back(path, hot)
+                con = _open_read_only(path)
+            else:
+                # A read-only file or folder: SQLite cannot roll a hot journal back (or
+                # open a project left in WAL mode, older Wakeline) there. The project
+                # and its side files are copied and read there; the file is untouched.
+                with tempfile.TemporaryDirectory(prefix="wakeline-ro-") as tmp:
+                    copy = Path(tmp) / "p.wakeline"
+                    for suffix in ("", *side):
+                        shutil.copyfile(f"{path}{suffix}", f"{copy}{suffix}")
+                    _replay(copy)  # a private copy: no lock to take
+                    project = load_project(copy)
+                project.read_only = True
+                if hot:
+                    project.warnings.insert(0, _left_mid_write(path, read_only=True))
+                return project
         try:
             meta = dict(con.execute("SELECT key, value FROM meta").fetchall())
             schema = int(meta.get("schema", "0"))
@@ -561,7 +579,7 @@ def load_project(path: str | Path) -> Project:
     except InputError:
         raise
     except sqlite3.DatabaseError as exc:
-        raise InputError(f"{path}: not a Wakeline project ({exc})") from None
+        raise InputError(_sqlite_problem(path, exc)) from None
     except (ValueError, TypeError, KeyError, OSError, pa.ArrowException) as exc:
         raise InputError(f"{path}: the project is damaged ({type(exc).__name__}: {exc})") from None
     if not isinstance(params, dict) or not all(isinstance(v, dict) for v in params.values()):
@@ -585,7 +603,7 @@ def load_project(path: str | Path) -> Project:
         ui.time_window,
         ui.map_view,
         ui.active,
-        ui.warnings,
+        [*notes, *ui.warnings],
         ui.current_time,
         repairs,
         checked,
@@ -665,6 +683,113 @@ def _read_state(rows: list[tuple[str, str]], layer_ids: list[str]) -> _ViewState
         else:
             out.state[key] = value
     return out
+
+
+def _side_file(path: Path, suffix: str) -> bool:
+    """Whether SQLite's ``-journal`` (non-empty: an empty one holds nothing to roll
+    back) or ``-wal`` file is beside ``path``."""
+    try:
+        size = os.path.getsize(f"{path}{suffix}")
+    except OSError:
+        return False
+    return size > 0 or suffix == "-wal"
+
+
+def _left_mid_write(path: Path, read_only: bool = False) -> str:
+    """The note of a project whose last write was cut off (a crash or power loss left
+    its ``-journal`` file): rolled back, it is as of its last complete write."""
+    if read_only:
+        return (
+            f"the project was left in the middle of a write (a crash or power loss left "
+            f"{path.name}-journal) and its file or folder is read-only, so the unfinished "
+            "write cannot be rolled back in it: it opened read-only, read from a copy "
+            "rolled back to its last complete write"
+        )
+    return (
+        f"the project was left in the middle of a write (a crash or power loss left "
+        f"{path.name}-journal): the unfinished write was rolled back; it opened as of its "
+        "last complete write"
+    )
+
+
+def _refuse_if_held(path: Path, exc: sqlite3.Error, hot: bool) -> None:
+    """Raise :class:`InputError` when a process that still runs (or one on another host,
+    which cannot be checked) holds ``path``'s lock: the side file may be its write in
+    progress, not a crash's; it is not touched."""
+    holder = read_holder(path)
+    if holder is None or holder.alive() is False:
+        return
+    what = "left in the middle of a write" if hot else "left in WAL mode"
+    raise InputError(
+        f"{path}: the project cannot be read now ({exc}): it was {what} and is open in "
+        f"{holder.describe()}; close it there and open it again (if no Wakeline has it "
+        f"open, remove {lock_path(path)})"
+    )
+
+
+def _replay(path: Path) -> None:
+    """Open ``path`` read-write and read it: SQLite rolls back a hot journal beside it
+    (or recovers its WAL) on the first read."""
+    con = sqlite3.connect(path, timeout=10)
+    try:
+        con.execute("SELECT count(*) FROM sqlite_master").fetchone()
+    finally:
+        con.close()
+
+
+def _roll_back(path: Path, hot: bool) -> list[str]:
+    """Let SQLite roll back the hot journal beside ``path`` (or recover its WAL): one
+    read-write connection reads the file, with the project's lock held meanwhile
+    (:mod:`~wakeline.core.project_lock`), so no other window opens it half-way. Returns
+    the notes for the operator; :class:`InputError` when it cannot be done."""
+    locks = ProjectLocks()
+    ok, note = locks.acquire(path)
+    if not ok:
+        raise InputError(
+            f"{path}: the project was left in the middle of a write and is open in {note}; "
+            "the unfinished write can be rolled back only where no other Wakeline has it open"
+        )
+    try:
+        _replay(path)
+    except sqlite3.DatabaseError as exc:
+        side = f"{path.name}-journal" if hot else f"{path.name}-wal"
+        raise InputError(
+            f"{path}: the project was left in the middle of a write ({side} beside it) and "
+            f"the unfinished write could not be rolled back ({exc})"
+        ) from None
+    finally:
+        locks.release(path)
+    return [_left_mid_write(path)] + ([note] if note else []) if hot else []
+
+
+#: SQLite's primary result codes that say what is wrong with a file (the extended
+#: code's low byte is the primary one).
+_SQLITE_CORRUPT, _SQLITE_NOTADB = 11, 26
+_SQLITE_ERROR, _SQLITE_BUSY, _SQLITE_LOCKED = 1, 5, 6
+
+
+def _sqlite_problem(path: Path, exc: sqlite3.DatabaseError, doing: str = "read") -> str:
+    """The operator's sentence for a project SQLite could not read: a file that is not
+    one (garbage, empty, another database) is "not a Wakeline project"; a damaged one
+    says so; anything else (disk, permissions, locks, a journal) is an I/O problem with
+    a real project, never called "not a project"."""
+    code = getattr(exc, "sqlite_errorcode", None)
+    primary = code & 0xFF if isinstance(code, int) else None
+    try:
+        empty = os.path.getsize(path) == 0
+    except OSError:
+        empty = False
+    if empty:
+        return f"{path}: the file is empty (not a Wakeline project)"
+    if primary == _SQLITE_NOTADB:
+        return f"{path}: not a Wakeline project (not an SQLite database: {exc})"
+    if primary == _SQLITE_ERROR and "no such table" in str(exc):
+        return f"{path}: not a Wakeline project ({exc})"
+    if primary in (_SQLITE_CORRUPT, _SQLITE_ERROR):
+        return f"{path}: the project is damaged ({exc})"
+    if primary in (_SQLITE_BUSY, _SQLITE_LOCKED):
+        return f"{path}: the project is being written by another program ({exc}); try again"
+    return f"{path}: the project file could not be {doing} ({exc})"
 
 
 def _open_read_only(path: Path) -> sqlite3.Connection:
