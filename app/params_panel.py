@@ -91,6 +91,12 @@ def _group(name: str, title: str, params: Params) -> dict:
     }
 
 
+def _seconds(value: float) -> str:
+    """A time in the guidance: whole seconds, or two digits below one (GNSS at 10 Hz
+    read "interval 0 s")."""
+    return f"{value:.0f}" if value >= 1 else f"{value:.2g}"
+
+
 class ReleasedParameterTree(ParameterTree):
     """pyqtgraph's :class:`ParameterTree` that lets go of its root item with its life.
 
@@ -428,24 +434,39 @@ class ParamsPanel(QtWidgets.QWidget):
         if limit is None:
             self.guidance.setText("")
             return
+        repeats = ""
+        if limit.repeats:
+            repeats = " " + (
+                self.tr(
+                    "1 row repeats an earlier row of its track (same time and position): "
+                    "not counted here; Clean's duplicates rule removes it."
+                )
+                if limit.repeats == 1
+                else self.tr(
+                    "{0} rows repeat an earlier row of their track (same time and "
+                    "position): not counted here; Clean's duplicates rule removes them."
+                ).format(f"{limit.repeats:,}")
+            )
         if limit.reason is not None:
             self.guidance.setText(
                 self.tr("Detection limit (seed 000): none for this data: {0}.").format(limit.reason)
+                + repeats
             )
             return
         self.guidance.setText(
             self.tr(
                 "Detection limit (seed 000) for this data: median speed {0:.1f} kn, "
-                "interval {1:.0f} s, legs of p = {2} points ({3:.0f} s). A {4:.0f}° turn "
+                "interval {1} s, legs of p = {2} points ({3} s). A {4:.0f}° turn "
                 "stands out from position errors up to {5:.0f} m; with 100 m errors the "
                 "smallest turn found is {6:.1f}°."
             ).format(
                 limit.speed_kn,
-                limit.interval_s,
+                _seconds(limit.interval_s),
                 limit.window_p,
-                limit.leg_s,
+                _seconds(limit.leg_s),
                 mp.threshold_deg,
                 limit.eps_m,
                 limit.turn_deg,
             )
+            + repeats
         )

@@ -2230,7 +2230,8 @@ def largest_tolerable_error_m(threshold_deg: float, speed_kn: float, leg_s: floa
     return v * leg_s / (2.0 * math.tan(math.radians(180.0 - threshold_deg) / 2.0))
 
 
-#: Below this median sampling interval (s) the batches are not tracks sampled in time.
+#: Below this median time per point (s), batches all at one time or moving faster than a
+#: ship are radar plots, not tracks sampled in time (fast tracks, GNSS at 10 Hz, are tracks).
 GUIDANCE_MIN_INTERVAL_S = 1.0
 #: Above this median speed (kn) the batches are not one ship each (no ship goes faster;
 #: AIS itself tops out at 102.2 kn).
@@ -2252,6 +2253,8 @@ class DetectionLimit:
     reason: str | None = None
     #: Points per heading window at that interval, as the detector chooses them.
     window_p: int = 0
+    #: Rows repeating an earlier row of their track (same time and position), left out.
+    repeats: int = 0
 
 
 def detection_limit(
@@ -2268,31 +2271,51 @@ def detection_limit(
     detector's own figure, so gaps do not stretch it), the legs ``window_p`` points or, with
     ``window_s`` > 0, the points the detector takes for that many seconds at that interval
     (never fewer than ``window_p``; with ``window_max_s`` > 0 fewer where the detector's
-    rule lowers them, the interval taken as the step). When the batches are no tracks — their points share
-    times (radar plots written one batch per scan: median interval below
-    :data:`GUIDANCE_MIN_INTERVAL_S`), or their median speed is no ship's (above
-    :data:`GUIDANCE_MAX_SPEED_KN`) — ``reason`` says why no limit is given."""
+    rule lowers them, the interval taken as the step). When the batches are no tracks —
+    their points share times (radar plots written one batch per scan: each batch's time
+    per point, median over batches, below :data:`GUIDANCE_MIN_INTERVAL_S`, and half the
+    batches at one time or moving faster than :data:`GUIDANCE_MAX_SPEED_KN`), or their
+    median speed is no ship's (above :data:`GUIDANCE_MAX_SPEED_KN`) — ``reason`` says why
+    no limit is given.
+
+    Rows that repeat an earlier row of their batch (same time and position: a file
+    writing each fix again, as Autoferry's GNSS truth does once per radar scan; the
+    summary's ``repeats``) are no evidence of plots: they are not counted. Fast tracks
+    (GNSS at 5–12 Hz: steps of 0.08–0.2 s) are tracks: their median step is the
+    interval, below 1 s (it was read as "radar plots" once the gaps were left out)."""
     if summary.empty:
         return None
     points = summary["points"].to_numpy(dtype="float64")
+    repeats = 0
+    if "repeats" in summary.columns:
+        repeated = summary["repeats"].to_numpy(dtype="float64")
+        points = points - repeated
+        repeats = int(repeated.sum())
     duration = summary["duration_s"].to_numpy(dtype="float64")
     moving = points > 1
     if not moving.any():
         return None
-    interval = float(np.nanmedian(duration[moving] / (points[moving] - 1)))
-    if "interval_s" in summary.columns:
-        steps = summary["interval_s"].to_numpy(dtype="float64")[moving]
-        if np.isfinite(steps).any() and interval >= GUIDANCE_MIN_INTERVAL_S:
-            interval = float(np.nanmedian(steps))
+    span = float(np.nanmedian(duration[moving] / (points[moving] - 1)))
     speeds = summary["mean_speed_kn"].to_numpy(dtype="float64")[moving]
     speed = float(np.nanmedian(speeds)) if np.isfinite(speeds).any() else float("nan")
+    shared = int(np.count_nonzero(duration[moving] <= 0))
+    # Plots: batches close in time whose points are all at one time (half of them at
+    # least) or far apart for that time (no ship's speed); fast tracks move as ships do.
+    plots = not span >= GUIDANCE_MIN_INTERVAL_S and (
+        2 * shared >= int(moving.sum())
+        or not (np.isfinite(speed) and speed <= GUIDANCE_MAX_SPEED_KN)
+    )
+    interval = span
+    if "interval_s" in summary.columns and not plots:
+        steps = summary["interval_s"].to_numpy(dtype="float64")[moving]
+        if np.isfinite(steps).any():
+            interval = float(np.nanmedian(steps))
     nan = float("nan")
 
     def none_because(reason: str) -> DetectionLimit:
-        return DetectionLimit(speed, interval, nan, nan, nan, reason)
+        return DetectionLimit(speed, interval, nan, nan, nan, reason, repeats=repeats)
 
-    shared = int(np.count_nonzero(duration[moving] <= 0))
-    if not interval >= GUIDANCE_MIN_INTERVAL_S:
+    if plots:
         return none_because(
             f"points share times (median interval {interval:.1f} s; {shared:,} of "
             f"{int(moving.sum()):,} batches have all their points at one time): these look "
@@ -2317,4 +2340,5 @@ def detection_limit(
         largest_tolerable_error_m(threshold_deg, speed, leg),
         smallest_detectable_turn_deg(eps_m, speed, leg),
         window_p=p,
+        repeats=repeats,
     )

@@ -487,8 +487,9 @@ def fill_motion(df: pd.DataFrame) -> pd.DataFrame:
 
 def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     """One row per track: sensor, batch, points, start, end, duration_s, length_m,
-    mean_speed_kn and interval_s (its median sampling interval, :func:`median_interval_s`;
-    NaN for a one-point track)."""
+    mean_speed_kn, interval_s (its median sampling interval, :func:`median_interval_s`;
+    NaN for a one-point track) and repeats (its rows that repeat an earlier row of it:
+    same time and position, :func:`repeated_rows`; counted in ``points``)."""
     df = sort_points(df)
     index = track_index(df)
     if index.n_tracks == 0:
@@ -503,6 +504,7 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
                 "length_m",
                 "mean_speed_kn",
                 "interval_s",
+                "repeats",
             ]
         )
     dist, _, _, _ = step_motion(df, index)
@@ -522,6 +524,7 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     out["length_m"] = length
     out["mean_speed_kn"] = mean_speed
     out["interval_s"] = median_interval_s(t, index)
+    out["repeats"] = np.add.reduceat(repeated_rows(df, index).astype("int64"), index.starts)
     return out
 
 

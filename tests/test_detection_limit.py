@@ -144,3 +144,45 @@ def test_the_panel_follows_the_window_it_is_given(qtbot):
     assert "legs of p = 10 points (10 s)" in panel.guidance.text()
     assert panel.from_dict({"maneuver": {"window_s": 20.0}}) == []
     assert "legs of p = 20 points (20 s)" in panel.guidance.text()
+
+
+def test_repeated_rows_are_no_evidence_of_plots():
+    """Tester h133 (item 9): Autoferry's GNSS truth repeats each fix once per radar scan
+    (same id, time and position); its two tracks were called "radar plots (one batch per
+    scan)". A row repeating an earlier one is not counted, and says so."""
+    df = _ships(dt=1.0, n_scans=120)
+    thrice = pd.concat([df, df, df]).sort_values(["ship", "scan"], kind="stable")
+    summary = track_summary(_points(thrice, thrice["ship"]))
+    assert (summary["repeats"] == 2 * 120).all()
+    limit = detection_limit(summary, 5, 15.0)
+    assert limit.reason is None and limit.repeats == 12 * 240
+    assert limit.interval_s == pytest.approx(1.0) and limit.speed_kn == pytest.approx(12.0, 1e-3)
+    # Radar plots written twice are still radar plots.
+    plots = pd.concat([df, df])
+    limit = detection_limit(track_summary(_points(plots, plots["scan"])), 5, 15.0)
+    assert limit.reason is not None and "points share times" in limit.reason
+
+
+def test_fast_tracks_with_gaps_are_tracks():
+    """GNSS at 10 Hz (Autoferry's truth: steps of 0.08-0.2 s) with gaps between runs: the
+    median step (0.1 s) is the interval, not a sign of plots."""
+    df = _ships(n_ships=2, dt=0.1, n_scans=2000, kn=6.0)
+    df = df[(df["scan"] % 500) < 100]  # 10 s runs, 40 s gaps
+    summary = track_summary(_points(df, df["ship"]))
+    limit = detection_limit(summary, 5, 15.0)
+    assert limit.reason is None
+    assert limit.interval_s == pytest.approx(0.1)
+
+
+def test_the_panel_names_fast_intervals_and_repeats(qtbot):
+    from wakeline.app.params_panel import ParamsPanel
+
+    panel = ParamsPanel()
+    qtbot.addWidget(panel)
+    df = _ships(n_ships=2, dt=0.1, n_scans=2000, kn=6.0)
+    df = df[(df["scan"] % 500) < 100]
+    twice = pd.concat([df, df.iloc[:7]]).sort_values(["ship", "scan"], kind="stable")
+    panel.show_guidance(track_summary(_points(twice, twice["ship"])))
+    text = panel.guidance.text()
+    assert "interval 0.1 s" in text and "plots" not in text
+    assert "7 rows repeat an earlier row of their track" in text

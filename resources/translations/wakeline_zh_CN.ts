@@ -603,12 +603,20 @@
         <translation>预设已载入（有问题）</translation>
     </message>
     <message>
-        <source>Detection limit (seed 000) for this data: median speed {0:.1f} kn, interval {1:.0f} s, legs of p = {2} points ({3:.0f} s). A {4:.0f}° turn stands out from position errors up to {5:.0f} m; with 100 m errors the smallest turn found is {6:.1f}°.</source>
-        <translation>本数据的检测极限（种子文献 000）：航速中位数 {0:.1f} 节，采样间隔 {1:.0f} 秒，窗口 p = {2} 点（{3:.0f} 秒）。位置误差不超过 {5:.0f} 米时，{4:.0f}° 的转向可被检出；误差为 100 米时，可检出的最小转向为 {6:.1f}°。</translation>
+        <source>Detection limit (seed 000) for this data: median speed {0:.1f} kn, interval {1} s, legs of p = {2} points ({3} s). A {4:.0f}° turn stands out from position errors up to {5:.0f} m; with 100 m errors the smallest turn found is {6:.1f}°.</source>
+        <translation>本数据的检测极限（种子文献 000）：航速中位数 {0:.1f} 节，采样间隔 {1} 秒，窗口 p = {2} 点（{3} 秒）。位置误差不超过 {5:.0f} 米时，{4:.0f}° 的转向可被检出；误差为 100 米时，可检出的最小转向为 {6:.1f}°。</translation>
     </message>
     <message>
         <source>Detection limit (seed 000): none for this data: {0}.</source>
         <translation>本数据无法给出检测极限（种子文献 000）：{0}。</translation>
+    </message>
+    <message>
+        <source>1 row repeats an earlier row of its track (same time and position): not counted here; Clean&apos;s duplicates rule removes it.</source>
+        <translation>有 1 行与其航迹中较早的一行重复（时间和位置相同）：此处不计入；清洗的重复点规则会将其删除。</translation>
+    </message>
+    <message>
+        <source>{0} rows repeat an earlier row of their track (same time and position): not counted here; Clean&apos;s duplicates rule removes them.</source>
+        <translation>有 {0} 行与其航迹中较早的一行重复（时间和位置相同）：此处不计入；清洗的重复点规则会将其删除。</translation>
     </message>
     <message>
         <source>resample: max_gap_steps is now 0, so the max_gap_s you set is the gap limit on every track (as with --max-gap). Set max_gap_steps to use the adaptive limit again.</source>
