@@ -10,6 +10,7 @@ from pathlib import Path
 
 from wakeline.app.cli_common import positive_float, positive_int
 from wakeline.core.errors import InputError
+from wakeline.core.words import count
 
 EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
 
@@ -52,9 +53,13 @@ def _cmd_batch(args: argparse.Namespace) -> int:
     steps = "; ".join(
         f"{name} {s['rows_in']:,} -> {s['rows_out']:,}" for name, s in rep["steps"].items()
     )
+    skipped = len(rep["empty_inputs"]) + len(rep["skipped_inputs"])
+    skipped_text = ""
+    if skipped:
+        skipped_text = f"; {count(skipped, 'input')} skipped (above)"
     print(
         f"batch: {rep['rows_read']:,} rows ({rep['quarantined']:,} quarantined) in "
-        f"{rep['buckets']} partitions; {steps}; wrote {args.outdir}",
+        f"{rep['buckets']} partitions; {steps}{skipped_text}; wrote {args.outdir}",
         file=sys.stderr,
     )
     return 0
@@ -70,12 +75,15 @@ def register(sub: argparse._SubParsersAction) -> None:
         "import` reads (read as it reads them, with the same --format/--map/--encoding/"
         "--delimiter/--tz/--sensor/--skip-rows; gzip, bz2, xz, zstd too, and a zip: each file "
         "in it an input), or Parquet "
-        "files with the canonical columns. Rows are partitioned by (sensor, batch) so every "
+        "files with the canonical columns; a folder gives its data files (as `wakeline "
+        "evaluate --real` reads a folder), or its Parquet files. Rows are partitioned by "
+        "(sensor, batch) so every "
         "track is processed whole by the same step functions as `wakeline "
         "clean|maneuvers|compress`; interrupted association runs once over every track's end "
         "points and maps the targets back (docs/batch.md). Writes OUTDIR/<step>/ as Parquet "
         "partitions, OUTDIR/report.json, and with --csv OUTDIR/<step>.csv in canonical CSV. An "
-        "input without a data row (a header only) is skipped with a warning.",
+        "input without a data row (empty, or a header only) is skipped with a warning; so is, "
+        "among several inputs, one the importer refuses (a README.txt: no known columns).",
         epilog=EPILOG,
     )
     p.add_argument("pipeline", type=Path, nargs="?", help="pipeline JSON")
@@ -83,7 +91,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "input",
         type=Path,
         nargs="*",
-        help="CSV files (any layout `wakeline import` reads), or Parquet files (canonical columns)",
+        help="CSV files (any layout `wakeline import` reads), or Parquet files (canonical "
+        "columns), or folders of them",
     )
     # dest outdir: the command line's output check is for files, OUTDIR is a folder.
     p.add_argument(

@@ -137,15 +137,44 @@ def check_pipeline(pipe: Pipeline) -> tuple[list, tuple | None]:
     return per_track, assoc
 
 
-def _input_kind(paths: Sequence[Path]) -> str:
-    kinds = {"parquet" if p.suffix.lower() in (".parquet", ".pq") else "csv" for p in paths}
-    if len(kinds) > 1:
-        raise InputError("batch: give either CSV or Parquet inputs, not both")
-    for p in paths:
+PARQUET_SUFFIXES = (".parquet", ".pq")
+
+
+def _is_parquet(path: Path) -> bool:
+    return path.suffix.lower() in PARQUET_SUFFIXES
+
+
+def expand_inputs(paths: Sequence[Path]) -> list[Path]:
+    """The inputs with each folder replaced by its data files, as ``evaluate --real``
+    reads a folder (:func:`~wakeline.core.evaluate_association.real_files`: the track
+    files directly in it, compressed ones and zips too; hidden files left out), or by
+    its Parquet files when it holds those and no track file. A folder named ``*.parquet``
+    is one Parquet input (Dask reads its parts)."""
+    from wakeline.core.evaluate_association import real_files
+
+    out: list[Path] = []
+    for p in map(Path, paths):
         if not p.exists():
             raise InputError(f"{p}: no such file")
-        if p.is_dir() and kinds == {"csv"}:
-            raise InputError(f"{p}: is a folder; give the CSV files")
+        if not p.is_dir() or _is_parquet(p):
+            out.append(p)
+            continue
+        parquet = sorted(
+            f for f in p.iterdir() if f.is_file() and not f.name.startswith(".") and _is_parquet(f)
+        )
+        try:
+            out += real_files(p)
+        except InputError:
+            if not parquet:
+                raise
+            out += parquet
+    return out
+
+
+def _input_kind(paths: Sequence[Path]) -> str:
+    kinds = {"parquet" if _is_parquet(p) else "csv" for p in paths}
+    if len(kinds) > 1:
+        raise InputError("batch: give either CSV or Parquet inputs, not both")
     return kinds.pop()
 
 
@@ -305,11 +334,36 @@ class _CsvInput:
     text_bytes: int  # its size as text (estimated for compressed files)
     empty: bool  # no data rows (empty, or a header only)
     member: str | None = None  # one file of a zip of several
+    blank: bool = False  # nothing but blank space (import: "the file is empty")
 
     @property
     def name(self) -> str:
         """How messages and the quarantine name it: the file, or ``days.zip/a.csv``."""
         return str(self.path) if self.member is None else f"{self.path}/{self.member}"
+
+
+def _survey_inputs(
+    inputs: Sequence[Path], read: dict
+) -> tuple[list[_CsvInput], list[tuple[str, str]]]:
+    """:func:`_survey_all` of every input. Of several, one the importer refuses (a
+    README.txt among the exports, a file of no known columns) is left out, as ``evaluate
+    --real`` leaves it out: returned as (file, why) for a note; one input alone, or none
+    left, is the importer's message (refused before any work)."""
+    out, not_read = [], []
+    with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
+        for p in inputs:
+            try:
+                out += _survey_all(p, Path(tmp), read)
+            except InputError as exc:
+                if len(inputs) == 1:
+                    raise
+                why = str(exc)
+                not_read.append((str(p), why.removeprefix(f"{p}: ")))
+    if not out:
+        shown = "; ".join(f"{p}: {why}" for p, why in not_read[:3])
+        more = f"; and {len(not_read) - 3:,} more" if len(not_read) > 3 else ""
+        raise InputError(f"batch: no input could be read: {shown}{more}")
+    return out, not_read
 
 
 def _survey_all(path: Path, stage: Path, read: dict) -> list[_CsvInput]:
@@ -349,7 +403,7 @@ def _survey_member(path: Path, member: str, stage: Path, read: dict) -> _CsvInpu
     except InputError as exc:
         raise InputError(str(exc).replace(f"{path}:", f"{label}:", 1)) from None
     if not head.strip():
-        return _CsvInput(path, "zip", text_bytes, True, member)
+        return _CsvInput(path, "zip", text_bytes, True, member, blank=True)
     if not whole:  # whole lines only
         cut = max(head.rfind(b"\n"), head.rfind(b"\r"))
         head = head if cut < 0 else head[: cut + 1]
@@ -390,7 +444,7 @@ def _survey(path: Path, stage: Path, read: dict) -> _CsvInput:
     else:
         text_bytes = len(head) if whole else int(size * len(head) / max(used, 1))
     if not head.strip():
-        return _CsvInput(path, kind, text_bytes, True)
+        return _CsvInput(path, kind, text_bytes, True, blank=True)
     sn = sniff(path, read["encoding"], read["delimiter"], read["skip_rows"])
     if sn.kind == "csv":
         resolve_header(sn, read["fmt"], read["mapping"], str(path), read["origin"])
@@ -574,12 +628,15 @@ def _import_inputs(
         for k, i in todo
     ]
     done = dict(zip((k for k, _ in todo), dask.compute(*tasks), strict=True))
+    from wakeline.core.io.sniff import EMPTY_FILE
+
     warnings, empty = [], []
     for k, i in enumerate(inputs):
         d = done.get(k)
         if d is None or not d["rows"]:
             empty.append(i.name)
-            warnings.append(f"{i.name}: warning: no data rows (a header only?); skipped")
+            why = EMPTY_FILE if i.blank else "no data rows (a header only?)"
+            warnings.append(f"{i.name}: warning: {why}; skipped")
         if d is not None:
             warnings += [f"{i.name}: warning: {w}" for w in d["warnings"]]
     counts = [d["counts"] for d in done.values()]
@@ -829,10 +886,10 @@ def run_batch(
     """
     opts = options or BatchOptions()
     log = log or (lambda _msg: None)
-    inputs = [Path(p) for p in inputs]
     if not inputs:
         raise InputError("batch: give at least one input file")
     per_track, assoc = check_pipeline(pipeline)
+    inputs = expand_inputs(inputs)
     kind = _input_kind(inputs)
     read = _read_options(opts)
     in_bytes = sum(p.stat().st_size for p in inputs if p.is_file()) or sum(
@@ -848,10 +905,10 @@ def run_batch(
         check_time_unit(opts.time_unit)
         check_clock_date(opts.clock_date)
         # Every input checked before any work: one clear message (columns, compression).
-        with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
-            csv_inputs = [i for p in inputs for i in _survey_all(p, Path(tmp), read)]
+        csv_inputs, not_read = _survey_inputs(inputs, read)
         text_bytes = sum(i.text_bytes for i in csv_inputs)
     else:
+        not_read = []
         given = [
             flag
             for flag, value in (
@@ -919,6 +976,8 @@ def run_batch(
         if rows_read == 0:
             shutil.rmtree(outdir, ignore_errors=True)
             raise InputError("batch: the inputs hold no data rows (headers only?)")
+        for name, why in not_read:
+            log(f"{name}: warning: {why}; skipped")
         for warning in warnings:
             log(warning)
         log(f"read {rows_read:,} rows into {n} buckets ({quarantined:,} quarantined)")
@@ -986,6 +1045,7 @@ def run_batch(
         "quarantined": quarantined,
         **lines,
         "empty_inputs": empty,
+        "skipped_inputs": [{"input": name, "reason": why} for name, why in not_read],
         "warnings": warnings,
         "steps": stages_rep,
         "timings_s": {k: round(v, 3) for k, v in timings.items()},

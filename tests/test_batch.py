@@ -545,3 +545,56 @@ def test_later_lines_in_another_encoding_are_read_as_import_reads_them(tmp_path,
     q = pd.read_parquet(tmp_path / "out" / "quarantine").drop(columns="file")
     pd.testing.assert_frame_equal(q, whole.quarantine, check_dtype=False)
     assert res.report["warnings"] == [f"{src}: warning: {w}" for w in whole.report["warnings"]]
+
+
+def test_stray_and_empty_inputs_and_folders(tmp_path, capsys):
+    """Tester h133 (item 10): a README.txt among the inputs aborted the whole batch (exit
+    2; evaluate --real skips it with a note); a 0-byte file was "no data rows (a header
+    only?)" where import says "the file is empty"; a folder was refused ("give the CSV
+    files")."""
+    folder = tmp_path / "exports"
+    folder.mkdir()
+    for k in range(2):
+        rows = [
+            f"S1,T{k},2024-01-01T00:{i // 60:02d}:{i % 60:02d}Z,{10 + i * 1e-3:.4f},{50 + k}"
+            for i in range(200)
+        ]
+        (folder / f"day{k}.csv").write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    (folder / "README.txt").write_text("notes\nexported by hand\n")
+    (folder / "zero.csv").write_bytes(b"")
+    (folder / "notes.md").write_text("# not a track file by its name: not read\n")
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    out = tmp_path / "out"
+    files = sorted(folder.glob("*.csv")) + [folder / "README.txt"]
+    assert main(["batch", str(pipe), *map(str, files), "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert f"{folder / 'README.txt'}: warning: missing required column" in err
+    assert f"{folder / 'zero.csv'}: warning: the file is empty; skipped" in err
+    assert "2 inputs skipped" in err.splitlines()[-1]
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["rows_read"] == 400
+    assert [d["input"] for d in rep["skipped_inputs"]] == [str(folder / "README.txt")]
+    assert rep["empty_inputs"] == [str(folder / "zero.csv")]
+    # The folder itself: its data files, read by the rule of evaluate --real.
+    out2 = tmp_path / "out2"
+    assert main(["batch", str(pipe), str(folder), "-o", str(out2)]) == 0
+    err = capsys.readouterr().err
+    rep2 = json.loads((out2 / "report.json").read_text())
+    assert rep2["rows_read"] == 400 and "notes.md" not in err
+    assert rep2["inputs"] == [str(p) for p in sorted(folder.iterdir()) if p.suffix != ".md"]
+    assert (out2 / "clean").is_dir()
+    # One input alone is still refused with the importer's message; none readable: exit 2.
+    assert main(["batch", str(pipe), str(folder / "README.txt"), "-o", str(tmp_path / "o3")]) == 2
+    assert "missing required column" in capsys.readouterr().err
+    both = [str(folder / "README.txt"), str(folder / "notes.md")]
+    assert main(["batch", str(pipe), *both, "-o", str(tmp_path / "o4")]) == 2
+    assert "batch: no input could be read" in capsys.readouterr().err
+
+
+def test_an_empty_file_says_what_import_says(tmp_path, capsys):
+    zero = tmp_path / "zero.csv"
+    zero.write_bytes(b"")
+    assert main(["import", str(zero), "-o", str(tmp_path / "x.csv")]) == 2
+    said = capsys.readouterr().err.strip()
+    assert said.endswith(f"{zero}: the file is empty")

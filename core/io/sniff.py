@@ -641,6 +641,10 @@ def _skip_rows_past_end(skip_rows: int, physical: list[str], whole: bool) -> str
     )
 
 
+#: What a file with nothing but blank space is (import, and batch's skipped inputs).
+EMPTY_FILE = "the file is empty"
+
+
 def sniff(
     path: str | Path,
     encoding: str | None = None,
@@ -656,7 +660,7 @@ def sniff(
     delimiter = delimiter_given(delimiter)
     sample, compression = _read_sample(path)
     if not sample.strip():
-        raise InputError(f"{path}: the file is empty")
+        raise InputError(f"{path}: {EMPTY_FILE}")
     given = encoding is not None
     bom_enc = _bom_encoding(sample)
     if encoding is None:
@@ -677,7 +681,7 @@ def sniff(
     leading_blank = next((i for i, line in enumerate(physical) if line.strip()), len(physical))
     lines = [line for line in physical if line.strip()]
     if not lines:
-        raise InputError(f"{path}: the file is empty")
+        raise InputError(f"{path}: {EMPTY_FILE}")
     extras = {
         "bom": bom_enc is not None,
         "line_ending": line_ending,
