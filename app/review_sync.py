@@ -18,6 +18,7 @@ from wakeline.app.worker import Cancelled, Failed, Finished, JobRunner
 from wakeline.core import review as R
 from wakeline.core.review_session import decided_points, export_reviewed, queue_key, snapshot
 from wakeline.core.review_store import decision_row
+from wakeline.core.words import joined_names
 
 TR_CONTEXT = "ReviewSync"
 
@@ -249,7 +250,7 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
         )
         return ("fuse_layers", ids, prepared, views, params)
 
-    names = " + ".join(n for n, _ in named)
+    names = joined_names(n for n, _ in named)
     return w._start("fuse", job, ("fuse", names))
 
 

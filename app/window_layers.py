@@ -5,6 +5,7 @@ hide or remove a layer; prepared arrays are swapped into the map one layer per
 event-loop turn so a result of several layers never blocks in one piece.
 """
 
+import html
 from collections.abc import Iterable
 
 import numpy as np
@@ -32,6 +33,19 @@ def layer_text(layer: Layer) -> str:
         "bearing": app.translate("MainWindow", "bearing"),
     }
     return f"{layer.name}  [{kinds.get(layer.kind, layer.kind)}]"
+
+
+def layer_tip(session, layer: Layer) -> str:
+    """The Layers list's tooltip of a layer made from several (a fuse across layers): the
+    name of every input, which its own name counts beyond the first two
+    (:func:`wakeline.core.words.joined_names`); empty for others. Rich text, so Qt wraps it."""
+    names = [session.layers[i].name for i in layer.inputs if i in session.layers]
+    if len(names) < 2:
+        return ""
+    text = QtCore.QCoreApplication.translate("MainWindow", "Made from {0} layers: {1}").format(
+        f"{len(names):,}", " + ".join(names)
+    )
+    return f"<p>{html.escape(text)}</p>"
 
 
 #: Between two pieces of drawing work: a real timer (not a zero-delay call), so the map's
@@ -131,6 +145,9 @@ class LayersMixin:
             self._queue_draw(lid)
             item = QtWidgets.QListWidgetItem(color_icon(layer.color), layer_text(layer))
             item.setData(QtCore.Qt.ItemDataRole.UserRole, lid)
+            tip = layer_tip(self.session, layer)
+            if tip:
+                item.setToolTip(tip)
             item.setFlags(item.flags() | QtCore.Qt.ItemFlag.ItemIsUserCheckable)
             checked = (
                 QtCore.Qt.CheckState.Checked if layer.visible else QtCore.Qt.CheckState.Unchecked

@@ -30,6 +30,7 @@ from wakeline.core.params import finite_number
 from wakeline.core.pipeline import STEPS, StepResult, params_to_json
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.timeline import TimeWindow, check_current_time
+from wakeline.core.words import joined_names
 
 #: Colours per result kind (the map's defaults); sources take the palette in turn.
 KIND_COLORS = {
@@ -513,7 +514,8 @@ class Session:
         parent_name = self.layers[input_id].name if input_id in self.layers else base
         inputs = list(inputs) if inputs and len(inputs) > 1 else []
         if inputs:
-            parent_name = " + ".join(self.layers[i].name for i in inputs if i in self.layers)
+            # Many inputs: the first names and how many more (the lineage keeps them all).
+            parent_name = joined_names(self.layers[i].name for i in inputs if i in self.layers)
         pjson = _params_json(params)
         made = []
         for new in result.layers:

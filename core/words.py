@@ -124,3 +124,17 @@ def joined(parts: list[Phrase]) -> list[Phrase]:
             out.append(phrase("; "))
         out.append(part)
     return out
+
+
+#: Names :func:`joined_names` shows before it counts the rest.
+JOINED_SHOWN = 2
+
+
+def joined_names(names, shown: int = JOINED_SHOWN) -> str:
+    """Names joined by " + ", the first ``shown`` and how many more when there are more
+    than one past them: "a.csv + b.csv + c.csv", "f000.csv + f001.csv and 198 more" (a
+    fuse of 200 layers was named by all 200, 2,205 characters)."""
+    names = [str(n) for n in names]
+    if len(names) <= shown + 1:
+        return " + ".join(names)
+    return f"{' + '.join(names[:shown])} and {len(names) - shown:,} more"

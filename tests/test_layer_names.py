@@ -50,3 +50,32 @@ def test_legend_keeps_the_step_that_tells_two_layers_of_one_file_apart(qapp):
     item = pg.PlotDataItem([0, 1], [0, 1])
     legend.addItem(item, names[0])
     assert legend.items[-1][1].toolTip() == names[0]
+
+
+def test_a_fuse_of_many_layers_is_named_by_the_first_two(qapp):
+    """Tester h133 (item 11): fusing 200 layers made a name of 2,205 characters ("f000.csv
+    + f001.csv + …") that filled the log line; the first two names and how many more, the
+    full list in the lineage and in the Layers list's tooltip."""
+    from wakeline.app.window_layers import layer_tip
+    from wakeline.core import review as R
+    from wakeline.core.pipeline import STEPS
+    from wakeline.core.words import joined_names
+
+    pts = simulate.demo_scene(seed=7)
+    t = pts["time"]
+    pts = pts[t < t.min() + (t.max() - t.min()) / 20]
+    ais, radar = (pts[pts["sensor"] == s].assign(sensor="S1") for s in ("AIS", "R1"))
+    res = STEPS["fuse"](R.combine_sources([("a", ais), ("r", radar)]))
+    s = Session()
+    ids = [s.add_layer(f"f{k:03d}.csv", "source", ais if k % 2 else radar).id for k in range(200)]
+    (made,) = s.apply_result(ids[0], res, STEPS["fuse"].defaults(), inputs=ids)
+    assert made.name == "f000.csv + f001.csv and 198 more · fused"
+    assert made.inputs == ids  # every input in the lineage
+    tip = layer_tip(s, made)
+    assert "Made from 200 layers" in tip and "f199.csv" in tip and "f100.csv" in tip
+    # Two or three inputs are named in full, as before.
+    assert joined_names(["a", "b", "c"]) == "a + b + c"
+    assert joined_names(["a", "b"]) == "a + b"
+    (two,) = s.apply_result(ids[0], res, STEPS["fuse"].defaults(), inputs=ids[:2])
+    assert two.name == "f000.csv + f001.csv · fused"
+    assert layer_tip(s, s.layers[ids[0]]) == ""

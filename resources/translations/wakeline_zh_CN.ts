@@ -568,6 +568,10 @@
         <translation>已融合</translation>
     </message>
     <message>
+        <source>Made from {0} layers: {1}</source>
+        <translation>由 {0} 个图层生成：{1}</translation>
+    </message>
+    <message>
         <source>bearing</source>
         <translation>方位</translation>
     </message>
