@@ -58,8 +58,8 @@ def _cmd_batch(args: argparse.Namespace) -> int:
     if skipped:
         skipped_text = f"; {count(skipped, 'input')} skipped (above)"
     print(
-        f"batch: {rep['rows_read']:,} rows ({rep['quarantined']:,} quarantined) in "
-        f"{rep['buckets']} partitions; {steps}{skipped_text}; wrote {args.outdir}",
+        f"batch: {count(rep['rows_read'], 'row')} ({rep['quarantined']:,} quarantined) in "
+        f"{count(rep['buckets'], 'partition')}; {steps}{skipped_text}; wrote {args.outdir}",
         file=sys.stderr,
     )
     return 0

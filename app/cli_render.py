@@ -11,6 +11,7 @@ from pathlib import Path
 
 from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
+from wakeline.core.words import count
 
 #: Steps ``--step`` runs, in the order given, each on the last layer of the one before.
 STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
@@ -183,7 +184,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
     info = render_png(layers, args.output, size=args.size, bounds=args.bounds, bare=args.bare)
     w, s, e, n = info["bounds"]
     print(
-        f"rendered {info['layers']} layer(s), {info['points']:,} points as "
+        f"rendered {count(info['layers'], 'layer')}, {count(info['points'], 'point')} as "
         f"{info['vertices']:,} drawn vertices, to {args.output} "
         f"({info['size'][0]}x{info['size'][1]} px, bounds {w:.5f},{s:.5f},{e:.5f},{n:.5f})"
     )

@@ -317,7 +317,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         window how many of its tracks overlap it (as the batch table counts them)."""
         view = self.views.get(layer.id)
         tracks = len(view.summary) if view is not None else 0
-        text = self.tr("{0} points, {1} tracks").format(f"{len(layer.points):,}", f"{tracks:,}")
+        text = self.tr("{0}, {1}").format(
+            self.points_text(len(layer.points)), self.tracks_text(tracks)
+        )
         overlap = self.batch_model.tracks_overlapping(window) if view is not None else None
         if overlap is None:
             return text
@@ -325,22 +327,32 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             text, f"{overlap:,}"
         )
 
+    def tracks_text(self, n: int) -> str:
+        """'1 track', '2 tracks' in the window's language (tester: "1 tracks")."""
+        return self.tr("1 track") if n == 1 else self.tr("{0} tracks").format(f"{n:,}")
+
+    def points_text(self, n: int) -> str:
+        """'1 point', '2 points' in the window's language."""
+        return self.tr("1 point") if n == 1 else self.tr("{0} points").format(f"{n:,}")
+
     def update_batch_count(self) -> None:
         """The line under the batch table: how many tracks it shows and why not all."""
         shown, total = self.batch_model.counts()
         filtered, windowed = self.batch_model.shown_because()
         if not (filtered or windowed):
-            self.batch_count.setText(self.tr("{0} tracks").format(f"{total:,}"))
+            self.batch_count.setText(self.tracks_text(total))
             return
         why = []
         if filtered:
             why.append(self.tr("matching the filter"))
         if windowed:
             why.append(self.tr("whose time span overlaps the time window"))
+        those = self.tr(" and ").join(why)
+        if total == 1:
+            self.batch_count.setText(self.tr("{0} of 1 track: those {1}").format(shown, those))
+            return
         self.batch_count.setText(
-            self.tr("{0} of {1} tracks: those {2}").format(
-                f"{shown:,}", f"{total:,}", self.tr(" and ").join(why)
-            )
+            self.tr("{0} of {1} tracks: those {2}").format(f"{shown:,}", f"{total:,}", those)
         )
 
     def _result_rows(self, layer) -> list[tuple[str, str]]:

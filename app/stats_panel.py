@@ -36,6 +36,16 @@ def tr(text: str) -> str:
     return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
 
 
+def _tracks(n: int) -> str:
+    """'1 track', '2 tracks' (tester: "1 tracks")."""
+    return tr("1 track") if n == 1 else tr("{0} tracks").format(f"{n:,}")
+
+
+def _points(n: int) -> str:
+    """'1 point', '2 points'."""
+    return tr("1 point") if n == 1 else tr("{0} points").format(f"{n:,}")
+
+
 def duration_unit(seconds: float) -> tuple[float, str]:
     """The divisor and translated unit that show ``seconds`` as a figure of a few digits:
     s below 2 min, min below 2 h, h below 2 days, else days."""
@@ -105,8 +115,8 @@ def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
         rows.append(
             (
                 tr("Sensor {0}").format(r.sensor),
-                tr("{0} tracks, {1} points, median interval {2}").format(
-                    f"{r.tracks:,}", f"{r.points:,}", interval
+                tr("{0}, {1}, median interval {2}").format(
+                    _tracks(r.tracks), _points(r.points), interval
                 ),
             )
         )
@@ -149,9 +159,9 @@ def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
         rows.append(
             (
                 tr("At-rest spans"),
-                tr("{0} in {1} tracks, total {2}, median {3}").format(
+                tr("{0} in {1}, total {2}, median {3}").format(
                     f"{r['spans']:,}",
-                    f"{r['tracks']:,}",
+                    _tracks(r["tracks"]),
                     duration_text(r["total_s"]),
                     duration_text(r["median_s"]),
                 ),
@@ -162,7 +172,7 @@ def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
         rows.append(
             (
                 tr("Maneuvers"),
-                tr("{0} points in {1} tracks").format(f"{m['points']:,}", f"{m['tracks']:,}"),
+                tr("{0} in {1}").format(_points(m["points"]), _tracks(m["tracks"])),
             )
         )
     return rows

@@ -27,6 +27,7 @@ from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import seconds_to_time
 from wakeline.core.segments import Segments, chain_refit, ecef, order_by, segment_stats
 from wakeline.core.tracks import concat_ranges, track_seconds
+from wakeline.core.words import count as count_of
 
 SEGMENT_METHODS = ("motion", "area", "dtw", "hausdorff")
 INTERRUPT_METHODS = ("optimal", "greedy")
@@ -1996,7 +1997,7 @@ def associate_interrupted(
         base, pairs0, cost0, params, method, normalize, priced=priced
     )
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
-    progress(1.0, f"{len(chosen):,} pairs joined")
+    progress(1.0, f"{count_of(len(chosen), 'pair')} joined")
     return Association(
         seg, pairs, cost, chosen, targets, method, base, pairs0, cost0, params, normalize
     )
@@ -2188,7 +2189,10 @@ def associate_segments(
     progress(0.7, "clustering")
     chosen = _cluster(seg, pairs, dist, limit, params)
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
-    progress(1.0, f"{len(np.unique(targets)):,} targets from {len(seg):,} segments")
+    progress(
+        1.0,
+        f"{count_of(len(np.unique(targets)), 'target')} from {count_of(len(seg), 'segment')}",
+    )
     return Association(seg, pairs, dist, chosen, targets, method)
 
 

@@ -44,6 +44,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, Pipeline, params_to_json
 from wakeline.core.schema import DEFAULT_SENSOR, TIME_DTYPE, ordered_columns
+from wakeline.core.words import count as count_of
 
 #: Steps that run bucket by bucket (each track on its own).
 PER_TRACK = ("clean", "maneuvers", "compress")
@@ -980,7 +981,10 @@ def run_batch(
             log(f"{name}: warning: {why}; skipped")
         for warning in warnings:
             log(warning)
-        log(f"read {rows_read:,} rows into {n} buckets ({quarantined:,} quarantined)")
+        log(
+            f"read {count_of(rows_read, 'row')} into {count_of(n, 'bucket')} "
+            f"({quarantined:,} quarantined)"
+        )
         if (stage / "quarantine").exists():
             shutil.move(str(stage / "quarantine"), str(outdir / "quarantine"))
 

@@ -53,6 +53,7 @@ from wakeline.core.tracks import (
     sorted_with_index,
     track_index,
 )
+from wakeline.core.words import count as count_of
 
 DISTANCES = ("sync", "dtw", "dtw_whole")
 ASSIGNMENTS = ("optimal", "greedy")
@@ -423,7 +424,7 @@ def associate_sensors(
                 )
     chosen = np.concatenate(chosen) if chosen else np.zeros(0, dtype="int64")
     target = _target_labels(index, t0, a[chosen], b[chosen])
-    progress(1.0, f"{len(chosen):,} pairs")
+    progress(1.0, count_of(len(chosen), "pair"))
     return SensorAssociation(
         pts, index, a, b, dist, overlap, ratio, chosen, target, distance, method, repeats, gates
     )

@@ -61,6 +61,7 @@ from wakeline.core.tracks import (
     sorted_with_index,
     track_seconds,
 )
+from wakeline.core.words import count as count_of
 
 #: Tables of at least this many rows are detected in parts of whole tracks on threads
 #: (numpy releases the GIL in its passes); every rule is per track, so the result is the
@@ -2318,7 +2319,8 @@ def detection_limit(
     if plots:
         return none_because(
             f"points share times (median interval {interval:.1f} s; {shared:,} of "
-            f"{int(moving.sum()):,} batches have all their points at one time): these look "
+            f"{count_of(int(moving.sum()), 'batch', 'batches')} have all their points at one "
+            "time): these look "
             "like radar plots (one batch per scan), not tracks; no detection limit can be "
             "given until the plots are joined into tracks"
         )

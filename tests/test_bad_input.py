@@ -546,3 +546,13 @@ def test_tracks_of_three_or_four_daily_rows_are_kept(tmp_path):
     src.write_text("\n".join(["sensor,batch,time,lon,lat", *_track_rows("A", typo, 10)]) + "\n")
     res = read_points(src)
     assert res.quarantine["line"].tolist() == [4] and len(res.points) == 2
+
+
+def test_one_row_is_counted_in_the_singular():
+    """Tester h133 (item 12), the core's messages: "all 1 rows were quarantined"."""
+    from wakeline.core.io import nothing_imported
+
+    rep = {"rows_read": 1, "quarantine_reasons": {"unparsable time": 1}}
+    assert "nothing imported: the one row was quarantined, 1 as" in nothing_imported(rep, "x")
+    rep = {"rows_read": 2, "quarantine_reasons": {"unparsable time": 2}}
+    assert "all 2 rows were quarantined" in nothing_imported(rep, "x")

@@ -508,12 +508,12 @@ def test_render_runs_steps_first(qapp, tmp_path, capsys):
         == 0
     )
     out = capsys.readouterr().out
-    assert "rendered 4 layer(s)" in out  # source, cleaned, maneuvers, compressed
+    assert "rendered 4 layers" in out  # source, cleaned, maneuvers, compressed
     assert png.stat().st_size > 0
     # Operator test: the flag given twice ran the last step only (no cleaned layer).
     argv = ["render", str(csv), "-o", str(png), "--size", "300x200"]
     assert main([*argv, "--step", "clean", "--step", "compress"]) == 0
-    assert "rendered 4 layer(s)" in capsys.readouterr().out
+    assert "rendered 4 layers" in capsys.readouterr().out
 
 
 def test_render_help(capsys):

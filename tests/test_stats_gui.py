@@ -275,3 +275,19 @@ def test_each_track_count_says_what_it_counts_under_a_time_window(window, qtbot,
     assert window.batch_count.text() == (
         "1 of 3 tracks: those matching the filter and whose time span overlaps the time window"
     )
+
+
+def test_one_track_and_one_point_are_counted_in_the_singular(window, qtbot, write):
+    """Tester h133 (item 12): a one-row file showed "1 tracks" under the batch table and
+    "1 points, 1 tracks" in the status bar (and the Statistics dock "1 tracks, 1 points")."""
+    path = write("one.csv", "sensor,batch,time,lon,lat\nS1,A,2024-01-01T00:00:00Z,10.0,55.0\n")
+    lid = load(window, path)
+    window.select_layer(lid)
+    panel = window.stats
+    qtbot.waitUntil(lambda: panel.stats is not None and panel.stats.tracks == 1, timeout=20_000)
+    assert window.batch_count.text() == "1 track"
+    assert window.statusBar().currentMessage() == "1 point, 1 track"
+    assert dict(panel.rows())["Sensor S1"].startswith("1 track, 1 point, median interval")
+    window.filter_edit.setText("zzz")
+    assert window.batch_count.text() == "0 of 1 track: those matching the filter"
+    assert window.tracks_text(2_000) == "2,000 tracks" and window.points_text(0) == "0 points"

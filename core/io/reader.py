@@ -281,7 +281,9 @@ def nothing_imported(rep: dict, name: str | None = None) -> str:
         return f"{prefix}nothing imported"
     reason, count = max(reasons.items(), key=lambda kv: kv[1])
     text = (
-        f"{prefix}nothing imported: all {rep['rows_read']:,} rows were quarantined, "
+        f"{prefix}nothing imported: "
+        + ("the one row was" if rep["rows_read"] == 1 else f"all {rep['rows_read']:,} rows were")
+        + f" quarantined, "
         f"{count:,} as '{reason}'"
     )
     cols = rep.get("columns") or {}

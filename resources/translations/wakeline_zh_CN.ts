@@ -20,8 +20,20 @@
         <translation>已移除图层 {0}；{1} 的审核保留了其候选建议所依据的点（保存在项目中）：其决定仍然有效</translation>
     </message>
     <message>
-        <source>{0} points, {1} tracks</source>
-        <translation>{0} 个点，{1} 条航迹</translation>
+        <source>{0}, {1}</source>
+        <translation>{0}，{1}</translation>
+    </message>
+    <message>
+        <source>1 point</source>
+        <translation>1 个点</translation>
+    </message>
+    <message>
+        <source>{0} points</source>
+        <translation>{0} 个点</translation>
+    </message>
+    <message>
+        <source>1 track</source>
+        <translation>1 条航迹</translation>
     </message>
     <message>
         <source>{0} · {1} of the tracks overlap the time window</source>
@@ -42,6 +54,10 @@
     <message>
         <source>{0} of {1} tracks: those {2}</source>
         <translation>显示 {1} 条航迹中的 {0} 条：{2}的航迹</translation>
+    </message>
+    <message>
+        <source>{0} of 1 track: those {1}</source>
+        <translation>显示 1 条航迹中的 {0} 条：{1}的航迹</translation>
     </message>
     <message>
         <source> and </source>
@@ -1515,8 +1531,24 @@
         <translation>传感器 {0}</translation>
     </message>
     <message>
-        <source>{0} tracks, {1} points, median interval {2}</source>
-        <translation>{0} 条航迹，{1} 个点，采样间隔中位数 {2}</translation>
+        <source>{0}, {1}, median interval {2}</source>
+        <translation>{0}，{1}，采样间隔中位数 {2}</translation>
+    </message>
+    <message>
+        <source>1 track</source>
+        <translation>1 条航迹</translation>
+    </message>
+    <message>
+        <source>{0} tracks</source>
+        <translation>{0} 条航迹</translation>
+    </message>
+    <message>
+        <source>1 point</source>
+        <translation>1 个点</translation>
+    </message>
+    <message>
+        <source>{0} points</source>
+        <translation>{0} 个点</translation>
     </message>
     <message>
         <source>Targets</source>
@@ -1575,16 +1607,16 @@
         <translation>静止时段</translation>
     </message>
     <message>
-        <source>{0} in {1} tracks, total {2}, median {3}</source>
-        <translation>{0} 段，分布于 {1} 条航迹，合计 {2}，中位数 {3}</translation>
+        <source>{0} in {1}, total {2}, median {3}</source>
+        <translation>{0} 段，分布于 {1}，合计 {2}，中位数 {3}</translation>
     </message>
     <message>
         <source>Maneuvers</source>
         <translation>机动</translation>
     </message>
     <message>
-        <source>{0} points in {1} tracks</source>
-        <translation>{0} 个机动点，分布于 {1} 条航迹</translation>
+        <source>{0} in {1}</source>
+        <translation>{0}，分布于 {1}</translation>
     </message>
     <message>
         <source>Computing…</source>
