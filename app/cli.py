@@ -143,8 +143,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"wakeline: error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:
+        from wakeline.core.io.sniff import open_problem
+
         name = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
-        print(f"wakeline: error: {name}{exc.strerror or exc}", file=sys.stderr)
+        words = (open_problem(exc) if name else None) or exc.strerror or exc
+        print(f"wakeline: error: {name}{words}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("wakeline: interrupted", file=sys.stderr)

@@ -31,9 +31,11 @@ def _cmd_batch(args: argparse.Namespace) -> int:
             "batch needs Dask: pip install 'wakeline[batch]' (dask[dataframe], distributed)"
         ) from None
     from wakeline.core.batch import BatchOptions, run_batch
+    from wakeline.core.io.sniff import opening
 
     try:
-        text = args.pipeline.read_text(encoding="utf-8")
+        with opening(args.pipeline):
+            text = args.pipeline.read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise InputError(f"{args.pipeline}: not UTF-8 text") from None
     pipe = Pipeline.from_json(text)

@@ -52,8 +52,10 @@ def read_table(path: Path, what: str) -> pd.DataFrame:
     """A small CSV (proposals or decisions) with every column as text, blanks kept."""
     import csv
 
+    from wakeline.core.io.sniff import opening
+
     try:
-        with open(path, encoding="utf-8-sig", newline="") as fh:
+        with opening(path), open(path, encoding="utf-8-sig", newline="") as fh:
             reader = csv.reader(fh)
             header = next((row for row in reader if row), None)  # blank lines skipped
             for row in reader:  # a few thousand proposals at most

@@ -556,3 +556,20 @@ def test_one_row_is_counted_in_the_singular():
     assert "nothing imported: the one row was quarantined, 1 as" in nothing_imported(rep, "x")
     rep = {"rows_read": 2, "quarantine_reasons": {"unparsable time": 2}}
     assert "all 2 rows were quarantined" in nothing_imported(rep, "x")
+
+
+def test_every_missing_input_says_no_such_file(write, tmp_path, capsys):
+    """Tester h133 (item 13): `wakeline review x.csv -o y.csv --proposals nonexist.csv`
+    printed Python's "No such file or directory", as did a missing batch pipeline; every
+    other input said "no such file" (one check, core.io.sniff.opening)."""
+    path, _ = _file_with(write, {})
+    gone = tmp_path / "nonexist.csv"
+    out = str(tmp_path / "y.csv")
+    for args in (
+        ("review", str(path), "-o", out, "--proposals", str(gone)),
+        ("batch", str(tmp_path / "nonexist.json"), str(path), "-o", str(tmp_path / "o")),
+        ("clean", str(gone), "-o", out),
+    ):
+        code, _, err = _run(capsys, *args)
+        assert code == 2 and err.strip().endswith(": no such file"), (args, err)
+        assert "No such file or directory" not in err, (args, err)

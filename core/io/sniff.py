@@ -1,7 +1,9 @@
 """Look at the first bytes of a file: compression, binary or text, encoding, line endings,
 delimiter, header, and whether it is a raw AIS NMEA log rather than a CSV."""
 
+import contextlib
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -95,19 +97,42 @@ class Sniff:
         return RUN_SEP if self.blank_runs else self.delimiter
 
 
+#: An input that cannot be opened, in the operator's words (every subcommand's).
+_OPEN_WORDS = (
+    (FileNotFoundError, "no such file"),
+    (IsADirectoryError, "is a directory, not a file"),
+    (PermissionError, "permission denied"),
+)
+
+
+def open_problem(exc: OSError) -> str | None:
+    """What an error opening a file says to the operator ("no such file"), or None when
+    it is not one of those (a disk error: its own text)."""
+    return next((words for kind, words in _OPEN_WORDS if isinstance(exc, kind)), None)
+
+
+@contextlib.contextmanager
+def opening(path: str | Path) -> Iterator[None]:
+    """Around opening an input file: a file that is not there, a folder or one that may
+    not be read is one :class:`InputError` in the operator's words (:func:`open_problem`:
+    "no such file", not Python's "No such file or directory"), for every input of every
+    subcommand."""
+    try:
+        yield
+    except OSError as exc:
+        words = open_problem(exc)
+        if words is None:
+            raise
+        raise InputError(f"{path}: {words}") from None
+
+
 def _read_sample(path: Path) -> tuple[bytes, str | None]:
     """The first :data:`SAMPLE_BYTES` of the file's text (decompressed: gzip, bz2, xz,
     zstd, a zip of one file; :mod:`wakeline.core.io.compressed`) and its compression."""
-    try:
+    with opening(path):
         kind = compression_of(path)
         with open_data(path, kind) as fh:
             head = fh.read(SAMPLE_BYTES)
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise InputError(f"{path}: is a directory, not a file") from None
-    except PermissionError:
-        raise InputError(f"{path}: permission denied") from None
     if kind is not None and is_tar(head):
         raise InputError(
             f"{path}: a tar archive ({kind}-compressed); unpack it (tar xf FILE) and open "
