@@ -247,6 +247,25 @@ def test_the_fast_reading_reads_as_expat_does(tmp_path, monkeypatch):
     assert np.array_equal(back["lon"].to_numpy(), want["lon"].to_numpy())  # 17 digits
 
 
+def test_a_prefixed_child_reads_as_expat_reads_it(tmp_path, monkeypatch):
+    """expat reads <g:time>, <g:speed> directly under a <trkpt> by their local names: the
+    fast reading leaves such a file to expat rather than lose the time (a point
+    quarantined) or the speed (h141)."""
+    text = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        '<gpx creator="x" version="1.1" xmlns:g="urn:g">\n<trk><name>A</name><trkseg>\n'
+        '<trkpt lat="59.5" lon="10.25"><time>2024-05-01T10:00:00Z</time>'
+        "<g:speed>5</g:speed></trkpt>\n"
+        '<trkpt lat="59.6" lon="10.25"><g:time>2024-05-01T10:00:10Z</g:time></trkpt>\n'
+        "</trkseg></trk>\n</gpx>\n"
+    )
+    path = tmp_path / "prefixed.gpx"
+    path.write_text(text, encoding="utf-8")
+    fast, slow, _ = _read_both(path, monkeypatch)
+    _same(fast, slow)
+    assert len(fast.points) == 2 and fast.points["speed"].notna().sum() == 1
+
+
 #: the first _PLAIN of each list are track points the fast reading takes
 _PLAIN = 8
 _ATTR_LIST = [
@@ -279,6 +298,8 @@ _CHILD_LIST = [
     "<time><![CDATA[2024-05-01T10:01:00Z]]></time>",
     "<time>2024-05-01T10:01:10Z</time><!-- a note -->",
     "<time>2024-05-01T10:01:30Z</time><link><text>x</text></link>",
+    "<time>2024-05-01T10:01:40Z</time><x:speed>4</x:speed>",
+    "<x:time>2024-05-01T10:01:50Z</x:time>",
 ]
 _CHILD = st.sampled_from(_CHILD_LIST)
 

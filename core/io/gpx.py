@@ -178,6 +178,8 @@ _PREFIXED_TRK = re.compile(rb"<[A-Za-z_][\w.-]*:trk(?:pt)?[\s/>]")
 _ATTRIBUTES = r'^(?:\s+[A-Za-z_][\w.:-]*\s*=\s*"[^"=<&]*")*\s*$'
 #: The attributes of nearly every <trkpt> written: lat then lon, nothing else.
 _LAT_LON = r'^\s+lat\s*=\s*"(?P<lat>[^"]*)"\s+lon\s*=\s*"(?P<lon>[^"]*)"\s*$'
+#: A child with a namespace prefix that expat reads by its local name (<g:time>).
+_PREFIXED_FIELD = r"<[A-Za-z_][\w.-]*:(?:time|speed|course)[\s/>]"
 #: A <trkpt>'s content as the fast reading takes it: children that hold text only.
 _FLAT = r"^(?:\s*<[A-Za-z_][\w.:-]*(?:\s[^<>]*)?(?:/>|>[^<]*</[A-Za-z_][\w.:-]*\s*>))*\s*$"
 
@@ -372,7 +374,9 @@ def _fast_chunk(text: pa.Buffer) -> dict | None:
         body = pc.replace_substring_regex(
             body, r"(?s)<extensions(?:\s[^<>]*)?>.*?</extensions\s*>", ""
         )
-    if not _all(pc.match_substring_regex(body, _FLAT)):
+    if not _all(pc.match_substring_regex(body, _FLAT)) or _any(
+        pc.match_substring_regex(body, _PREFIXED_FIELD)
+    ):
         return None
     children = {tag: _child(body, tag) for tag in ("time", "speed", "course")}
     del body
