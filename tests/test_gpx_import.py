@@ -266,6 +266,29 @@ def test_a_prefixed_child_reads_as_expat_reads_it(tmp_path, monkeypatch):
     assert len(fast.points) == 2 and fast.points["speed"].notna().sum() == 1
 
 
+@pytest.mark.parametrize(
+    "inside", ["<trk><name>x</name></trk>", "<x:wpt lat='1' lon='1'/>", "<x:trkseg/>"]
+)
+def test_a_document_element_in_a_points_extensions_reads_as_expat_reads_it(
+    tmp_path, monkeypatch, inside
+):
+    """expat counts a <trk>, <wpt> or <trkseg> wherever it stands, by its local name, in
+    a point's <extensions> too (a new track for the points after it, a waypoint or a
+    segment in the report): the fast reading leaves such a file to expat (h141)."""
+    point = '<trkpt lat="59.5" lon="10.25"><time>2024-05-01T10:00:00Z</time>{}</trkpt>'
+    text = (
+        '<gpx creator="x"><trk><trkseg>'
+        + point.format("")
+        + point.format(f"<extensions>{inside}</extensions>")
+        + point.format("")
+        + "</trkseg></trk></gpx>"
+    )
+    path = tmp_path / "inside.gpx"
+    path.write_text(text, encoding="utf-8")
+    fast, slow, _ = _read_both(path, monkeypatch)
+    _same(fast, slow)
+
+
 #: the first _PLAIN of each list are track points the fast reading takes
 _PLAIN = 8
 _ATTR_LIST = [

@@ -178,6 +178,9 @@ _PREFIXED_TRK = re.compile(rb"<[A-Za-z_][\w.-]*:trk(?:pt)?[\s/>]")
 _ATTRIBUTES = r'^(?:\s+[A-Za-z_][\w.:-]*\s*=\s*"[^"=<&]*")*\s*$'
 #: The attributes of nearly every <trkpt> written: lat then lon, nothing else.
 _LAT_LON = r'^\s+lat\s*=\s*"(?P<lat>[^"]*)"\s+lon\s*=\s*"(?P<lon>[^"]*)"\s*$'
+#: An element expat counts wherever it stands, by its local name (a track, a segment,
+#: a waypoint, a route point, the document's creator), as it may stand in a point.
+_DOCUMENT_TAG = r"<(?:[A-Za-z_][\w.-]*:)?(?:gpx|trk|trkseg|wpt|rtept)[\s/>]"
 #: A child with a namespace prefix that expat reads by its local name (<g:time>).
 _PREFIXED_FIELD = r"<[A-Za-z_][\w.-]*:(?:time|speed|course)[\s/>]"
 #: A <trkpt>'s content as the fast reading takes it: children that hold text only.
@@ -370,6 +373,8 @@ def _fast_chunk(text: pa.Buffer) -> dict | None:
         lat, lon = _attribute(parts, "lat"), _attribute(parts, "lon")
         del parts
     del attrs, both
+    if _any(pc.match_substring_regex(body, _DOCUMENT_TAG)):
+        return None  # a <trk>, <wpt>... in a point (its extensions): expat counts it
     if _any(pc.match_substring(body, "<extensions")):
         body = pc.replace_substring_regex(
             body, r"(?s)<extensions(?:\s[^<>]*)?>.*?</extensions\s*>", ""
