@@ -20,7 +20,6 @@ Parsing is expat's (the C parser of the standard library), one callback per elem
 table is built once at the end.
 """
 
-import re
 from xml.parsers import expat
 
 import numpy as np
@@ -83,9 +82,9 @@ def _line_texts(sn: Sniff, wanted: set[int], from_line: int | None) -> dict[int,
     return out
 
 
-def _expat_parse(data: bytes):
-    """The track points of a GPX document by expat's callbacks (one per element): the
-    reading of record, for any file :func:`_fast_parse` does not vouch for. Returns
+def _expat_parse(fh, chunk: int = 1 << 20):
+    """The track points of the GPX document in the binary file ``fh``, by expat's
+    callbacks (one per element), fed ``chunk`` bytes at a time. Returns
     ``(rows, tracks, sources, counts, creator, broken)``: ``rows`` lists per field (one
     item per ``<trkpt>``: its track's index, line, lat, lon, time, speed, course texts),
     each ``<trk>``'s name and ``<src>``, the waypoint/route point/segment counts, the
@@ -159,245 +158,15 @@ def _expat_parse(data: bytes):
 
     broken: tuple[int, str] | None = None
     try:
-        parser.Parse(data, True)
+        while block := fh.read(chunk):
+            parser.Parse(block, False)
+        parser.Parse(b"", True)
     except expat.ExpatError as exc:
         what = f"{expat.errors.messages[exc.code]} at line {exc.lineno}, column {exc.offset}"
         broken = (exc.lineno, what)
         if point is not None:  # a track point the break cut: quarantined from its line
             broken = (min(exc.lineno, int(point["line"])), what)
     return rows, tracks, sources, counts, creator["text"], broken
-
-
-_DECLARATION = re.compile(rb"^(?:\xef\xbb\xbf)?<\?xml\b[^>]*\?>")
-_ENCODING = re.compile(rb"""\bencoding\s*=\s*["']([^"']*)["']""")
-_UTF8 = (b"utf-8", b"utf8", b"us-ascii", b"ascii")
-_PREFIXED_TRK = re.compile(rb"<[A-Za-z_][\w.-]*:trk(?:pt)?[\s/>]")
-#: A <trkpt>'s attributes as the fast reading takes them: names, double-quoted values
-#: without '=', '<' or '&' (so that no attribute name can be found inside a value, and no
-#: entity needs decoding).
-_ATTRIBUTES = r'^(?:\s+[A-Za-z_][\w.:-]*\s*=\s*"[^"=<&]*")*\s*$'
-#: The attributes of nearly every <trkpt> written: lat then lon, nothing else.
-_LAT_LON = r'^\s+lat\s*=\s*"(?P<lat>[^"]*)"\s+lon\s*=\s*"(?P<lon>[^"]*)"\s*$'
-#: An element expat counts wherever it stands, by its local name (a track, a segment,
-#: a waypoint, a route point, the document's creator), as it may stand in a point.
-_DOCUMENT_TAG = r"<(?:[A-Za-z_][\w.-]*:)?(?:gpx|trk|trkseg|wpt|rtept)[\s/>]"
-#: A child with a namespace prefix that expat reads by its local name (<g:time>).
-_PREFIXED_FIELD = r"<[A-Za-z_][\w.-]*:(?:time|speed|course)[\s/>]"
-#: A <trkpt>'s content as the fast reading takes it: children that hold text only.
-_FLAT = r"^(?:\s*<[A-Za-z_][\w.:-]*(?:\s[^<>]*)?(?:/>|>[^<]*</[A-Za-z_][\w.:-]*\s*>))*\s*$"
-
-
-def _all(mask) -> bool:
-    return bool(pc.all(pc.fill_null(mask, False)).as_py()) if len(mask) else True
-
-
-def _any(mask) -> bool:
-    return bool(pc.any(pc.fill_null(mask, False)).as_py()) if len(mask) else False
-
-
-def _attribute(parts: pa.Array, name: str) -> pa.Array:
-    """The value of attribute ``name`` of each ``<trkpt>`` (null where it has none), from
-    its attributes split at '"' (``[' lat=', value, ' lon=', value, '']``)."""
-    flat = pc.list_flatten(parts)
-    parent = pc.list_parent_indices(parts).to_numpy()
-    offsets = parts.offsets.to_numpy()
-    position = np.arange(len(flat)) - (offsets[parent] - offsets[0])
-    named = pc.equal(pc.utf8_trim(flat, " \t\r\n="), name).to_numpy(zero_copy_only=False)
-    hit = np.flatnonzero((position % 2 == 0) & named)
-    take = np.full(len(parts), -1, dtype="int64")
-    take[parent[hit]] = hit + 1
-    return _normalised(flat.take(pa.array(take, mask=take < 0)))
-
-
-def _normalised(values: pa.Array) -> pa.Array:
-    """Attribute values as expat gives them: each line end or tab a space."""
-    if _any(pc.match_substring_regex(values, r"[\t\n\r]")):
-        values = pc.replace_substring_regex(values, r"\r\n|[\t\n\r]", " ")
-    return values
-
-
-def _child(body: pa.Array, tag: str) -> pa.Array | None:
-    """The stripped text of each ``<trkpt>``'s ``<tag>`` child (null where it has none),
-    or None when a child is one the fast reading does not take (twice, with attributes,
-    with an entity or other than ASCII)."""
-    if not _any(pc.match_substring(body, f"<{tag}")):
-        return pa.nulls(len(body), pa.large_string())
-    if _any(pc.greater(pc.count_substring_regex(body, rf"<{tag}[\s/>]"), 1)):
-        return None
-    if _any(pc.match_substring_regex(body, rf"<{tag}\s+[^\s/>]")):
-        return None
-    found = pc.extract_regex(body, rf"<{tag}\s*(?:/>|>(?P<v>[^<]*)</{tag}\s*>)")
-    values = pc.if_else(
-        pc.is_valid(found), found.field("v"), pa.scalar(None, found.type.field(0).type)
-    )
-    if _any(pc.match_substring(values, "&")) or not _all(
-        pc.or_kleene(pc.string_is_ascii(values), pc.is_null(values))
-    ):
-        return None
-    if _any(pc.match_substring(values, "\r")):
-        values = pc.replace_substring(values, "\r\n", "\n")
-    return pc.ascii_trim_whitespace(values)
-
-
-def _halves(pairs: pa.Array) -> tuple[pa.Array, pa.Array]:
-    """The first and second items of lists of two (a take each: ``list_element`` copies
-    value by value, several times slower)."""
-    flat = pc.list_flatten(pairs)
-    return flat.take(np.arange(0, len(flat), 2)), flat.take(np.arange(1, len(flat), 2))
-
-
-def _concatenated(texts: pa.Array) -> bytes:
-    """The values of a large string array without nulls, one after the other."""
-    texts = texts.cast(pa.large_string())
-    _, offsets, values = texts.buffers()
-    bounds = np.frombuffer(offsets, dtype="int64")[texts.offset : texts.offset + len(texts) + 1]
-    return bytes(memoryview(values)[bounds[0] : bounds[-1]]) if len(texts) else b""
-
-
-def _fast_parse(data: bytes):
-    """What :func:`_expat_parse` returns, for a well-formed UTF-8 GPX whose track points
-    are plain (double-quoted attributes, children that hold text only, no entity, comment
-    or CDATA, no namespace prefix on trk/trkpt): the track points are cut out of the text
-    by Arrow's string kernels (one call per field for each :data:`FAST_CHUNK_BYTES` of
-    the file, :func:`_fast_chunk`), and only the rest of the document (its tracks, names,
-    waypoints) goes through expat's callbacks. None for any other file (read by
-    :func:`_expat_parse`, which gives the same table)."""
-    declaration = _DECLARATION.match(data)
-    if declaration is not None:
-        encoding = _ENCODING.search(declaration.group(0))
-        if encoding is not None and encoding.group(1).lower() not in _UTF8:
-            return None
-    body_from = declaration.end() if declaration is not None else 0
-    if (
-        b"\x00" in data
-        or data.find(b"<?", body_from) >= 0
-        or b"<!" in data
-        or data.count(b"\r") != data.count(b"\r\n")
-        or _PREFIXED_TRK.search(data) is not None
-    ):
-        return None
-    try:  # well-formed (tags that match, UTF-8, no duplicate attribute...): no callbacks
-        expat.ParserCreate(encoding=None).Parse(data, True)
-    except expat.ExpatError:
-        return None
-
-    buffer = pa.py_buffer(data)
-    chunks, start = [], 0
-    while start < len(data):  # cut before a <trkpt> every FAST_CHUNK_BYTES or so
-        cut = data.find(b"<trkpt", start + FAST_CHUNK_BYTES)
-        stop = len(data) if cut < 0 else cut
-        part = _fast_chunk(buffer.slice(start, stop - start))
-        if part is None:
-            return None
-        chunks.append(part)
-        start = stop
-    if not sum(c["n"] for c in chunks):
-        return None
-    # lines, tracks and the rest of the document, chunk after chunk
-    lines, track, skeleton = [], [], [chunks[0]["head"]]
-    base, opened = 0, chunks[0]["head_trk"]
-    for c in chunks:
-        lines.append(1 + base + np.cumsum(c["newlines"][: c["n"]]))
-        base += int(c["newlines"].sum())
-        if c["n"]:
-            before = opened + np.cumsum(c["rest_trk"])
-            track.append(np.concatenate([[opened], before[:-1]]) - 1)
-            opened = int(before[-1])
-        skeleton.append(c["after"])
-    track_all = np.concatenate(track)
-    if track_all.min() < 0:
-        return None  # a <trkpt> outside any <trk>
-    # The rest of the document, without its track points: expat's callbacks (few).
-    rows0, tracks, sources, counts, creator, broken = _expat_parse(b"".join(skeleton))
-    if broken is not None or rows0["line"] or len(tracks) != opened:
-        return None
-    rows = {"track": track_all, "line": np.concatenate(lines)}
-    for key in ("lat", "lon", "time", "speed", "course"):
-        rows[key] = pa.concat_arrays([c[key].cast(pa.large_string()) for c in chunks])
-    return rows, tracks, sources, counts, creator, None
-
-
-#: The bytes of a GPX the fast reading cuts its track points out of at a time (a cut
-#: falls before a <trkpt>): bounds the memory of the Arrow arrays (about five times this).
-FAST_CHUNK_BYTES = 8 << 20
-_TRK = r"<trk[\s/>]"
-
-
-def _fast_chunk(text: pa.Buffer) -> dict | None:
-    """:func:`_fast_parse` on a part of the document that starts at its beginning or at a
-    ``<trkpt``: each track point's fields (Arrow string arrays), the line ends before
-    each (per piece), the ``<trk>`` starts after each, and the text around the points
-    (``head``: before the first, ``after``: the rest, points cut out). None when a point
-    is not one the fast reading takes."""
-    document = pa.LargeStringArray.from_buffers(
-        1, pa.py_buffer(np.array([0, text.size], dtype="int64")), text
-    )
-    pieces = pc.list_flatten(pc.split_pattern(document, "<trkpt"))
-    del document
-    n = len(pieces) - 1
-    newlines = pc.count_substring(pieces, "\n").to_numpy()
-    head = pieces[0].as_py().encode("utf-8")
-    out = {
-        "n": n,
-        "newlines": newlines,
-        "head": head,
-        "head_trk": len(re.findall(_TRK.encode(), head)),
-    }
-    if n == 0:
-        empty = pa.array([], pa.large_string())
-        fields = dict.fromkeys(("lat", "lon", "time", "speed", "course"), empty)
-        return {**out, **fields, "rest_trk": np.zeros(0, dtype="int64"), "after": b""}
-    tail = pieces.slice(1)
-    del pieces
-    closed = pc.split_pattern(tail, "</trkpt", max_splits=1)
-    del tail
-    if not _all(pc.equal(pc.list_value_length(closed), 2)):
-        return None  # a self-closed <trkpt/>, or one that holds another
-    block, rest = _halves(closed)
-    del closed
-    if not _all(pc.match_substring_regex(rest, r"^\s*>")):
-        return None
-    tag = pc.split_pattern(block, ">", max_splits=1)
-    del block
-    if not _all(pc.equal(pc.list_value_length(tag), 2)):
-        return None
-    attrs, body = _halves(tag)
-    del tag
-    if not _all(pc.match_substring_regex(attrs, _ATTRIBUTES)):
-        return None
-    both = pc.extract_regex(attrs, _LAT_LON)  # the usual: lat="…" lon="…", nothing else
-    if both.null_count == 0:
-        lat, lon = _normalised(both.field("lat")), _normalised(both.field("lon"))
-    else:
-        parts = pc.split_pattern(attrs, '"')
-        lat, lon = _attribute(parts, "lat"), _attribute(parts, "lon")
-        del parts
-    del attrs, both
-    if _any(pc.match_substring_regex(body, _DOCUMENT_TAG)):
-        return None  # a <trk>, <wpt>... in a point (its extensions): expat counts it
-    if _any(pc.match_substring(body, "<extensions")):
-        body = pc.replace_substring_regex(
-            body, r"(?s)<extensions(?:\s[^<>]*)?>.*?</extensions\s*>", ""
-        )
-    if not _all(pc.match_substring_regex(body, _FLAT)) or _any(
-        pc.match_substring_regex(body, _PREFIXED_FIELD)
-    ):
-        return None
-    children = {tag: _child(body, tag) for tag in ("time", "speed", "course")}
-    del body
-    if any(v is None for v in children.values()):
-        return None
-    rest_trk = pc.count_substring_regex(rest, _TRK).to_numpy()
-    after = pc.utf8_slice_codeunits(pc.ascii_ltrim(rest, " \t\r\n"), 1)  # each '>' of </trkpt>
-    del rest
-    return {
-        **out,
-        "lat": lat,
-        "lon": lon,
-        **children,
-        "rest_trk": rest_trk,
-        "after": _concatenated(after),
-    }
 
 
 _REASONS = (
@@ -422,13 +191,7 @@ def read_gpx(
 
     progress = progress or null_progress
     with open_data(sn.path, sn.compression) as fh:
-        data = fh.read()
-    fast = _fast_parse(data)
-    if fast is not None:
-        rows, tracks, sources, counts, creator, broken = fast
-    else:  # anything the fast reading does not vouch for: expat's callbacks, per element
-        rows, tracks, sources, counts, creator, broken = _expat_parse(data)
-    del data
+        rows, tracks, sources, counts, creator, broken = _expat_parse(fh)
     progress(0.8, "parsed")
 
     n = len(rows["line"])
