@@ -521,8 +521,9 @@ def test_later_lines_in_another_encoding_are_read_as_import_reads_them(tmp_path,
     """An ASCII start, a bad value (the streamed reader gives up) and, further on, many
     Latin-1 lines: before, the piece of those lines sniffed its own encoding and stopped
     the batch ("cannot decode"); now every piece is read as `read_points` reads the whole
-    file (UTF-8, then GB18030, then UTF-8 with those rows quarantined: core/io/pieces.py),
-    still in pieces, and the quarantine equals `wakeline import`'s."""
+    file (UTF-8, then as the whole file's evidence says: UTF-8 with those lines read as
+    Windows-1252 and reported, core/io/decoding.py), still in pieces, and the quarantine
+    and warnings equal `wakeline import`'s."""
     import sys
 
     from wakeline.core.io import read_points, reader
@@ -538,7 +539,9 @@ def test_later_lines_in_another_encoding_are_read_as_import_reads_them(tmp_path,
     src.write_bytes(data)
     monkeypatch.setattr(sys.modules["wakeline.core.io.sniff"], "SAMPLE_BYTES", 4096)
     whole = read_points(src)
-    assert len(whole.quarantine) > 600
+    assert len(whole.quarantine) == 1  # the bad lon; the Latin-1 lines are points
+    assert whole.report["encoding_fallback"]["cp1252"]["lines"] > 600
+    assert (whole.points["remark"].iloc[-1]) == "café"
     monkeypatch.setattr(reader, "STREAM_BYTES", 8192)
     res = run_batch(Pipeline.default(), [src], tmp_path / "out", BatchOptions(threads=1))
     assert res.report["blocks"] > 5  # pieces, not one whole read

@@ -326,7 +326,7 @@ def _damaged_track_file(path, case: str) -> int:
     data = ("\n".join(lines) + "\n").encode()
     if case == "gb18030":  # Chinese text after an ASCII start: the file reads as GB18030
         data = data[:20000] + data[20000:].replace(b",ok\n", ",船\n".encode("gb18030"))
-    if case == "latin1":  # one byte neither UTF-8 nor GB18030 reads: its row quarantined
+    if case == "latin1":  # one line neither UTF-8 nor GB18030 reads: read as Windows-1252
         at = data.index(b",ok\n", 30000)
         data = data[:at] + b",caf\xe9\n" + data[at + 4 :]
     path.write_bytes(data)
@@ -358,7 +358,9 @@ def test_pieces_equal_the_whole_table_way(tmp_path, monkeypatch, case):
     if case == "gb18030":
         assert got.read_report["encoding"] == "gb18030" and not len(got.quarantine) > 1
     if case == "latin1":
-        assert got.read_report["quarantine_reasons"]["bytes not valid utf-8"] == 1
+        assert got.read_report["encoding"] == "utf-8" and len(got.quarantine) == 1
+        assert got.read_report["encoding_fallback"]["cp1252"]["lines"] == 1
+        assert any("read as Windows-1252" in w for w in got.read_report["warnings"])
     if case == "quoted":
         assert got.read_report["quarantine_reasons"] == {"unparsable lon": 1}
     if case == "unbalanced":

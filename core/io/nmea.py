@@ -28,6 +28,7 @@ from pyais.exceptions import AISBaseException
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.compressed import open_data
+from wakeline.core.io.decoding import lines_codec
 from wakeline.core.io.sniff import NMEA_SENTENCE, Sniff
 from wakeline.core.progress import Progress, null_progress
 
@@ -69,6 +70,12 @@ def _split(line: str) -> tuple[str | None, float | None, str]:
     if t is None:
         t = _receive_time(line[: m.start()])
     return line[m.start() :].strip(), t, ""
+
+
+def _codec(sn: Sniff) -> str:
+    """The codec the log's lines are decoded with: as every reader decodes (a line not
+    valid UTF-8 in the fallback: wakeline.core.io.decoding)."""
+    return lines_codec(sn.encoding, sn.encoding_given)
 
 
 def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
@@ -127,7 +134,7 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     progress(0.0, f"reading {sn.path.name} (AIS NMEA)")
     with (
         open_data(sn.path, sn.compression) as raw,
-        io.TextIOWrapper(raw, encoding=sn.encoding, errors="replace", newline=None) as fh,
+        io.TextIOWrapper(raw, encoding=_codec(sn), errors="replace", newline=None) as fh,
     ):
         for number, raw in enumerate(fh, start=1):
             line = raw.rstrip("\r\n").removeprefix("\ufeff")

@@ -34,6 +34,13 @@ import pandas as pd
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.compressed import open_data
+from wakeline.core.io.decoding import (
+    FALLBACK_MARK,
+    decide_file,
+    fallback_warning,
+    line_decodable,
+    merge_fallbacks,
+)
 from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
     BEARING_WARNING_MARK,
@@ -178,19 +185,25 @@ def read_in_pieces(
     scratch.mkdir(parents=True, exist_ok=True)
     piece_file = scratch / local_name(sn.path)
     line_by_line = False
-    # The whole-file reader's encodings in turn (reader._read_rows; strict: a piece that
-    # does not decode sends every piece to the next one).
-    encodings = [(sn.encoding, False)]
-    if sn.encoding == "utf-8" and sn.ascii and not sn.encoding_given:
-        encodings = [(sn.encoding, True), ("gb18030", True), (sn.encoding, False)]
+    # The whole-file reader's decodings in turn (reader._read_rows): strictly (a piece that
+    # does not decode sends every piece to the next), then as the whole file's evidence
+    # says, line by line (decoding.py); an encoding the user named, replacing.
+    judge = not sn.encoding_given and line_decodable(sn.encoding) and not sn.line_fallback
+    encodings = [(sn.encoding, "lines" if sn.line_fallback else "strict")]
+    if not judge:
+        encodings.append((sn.encoding, "replace"))
     step = 0
     try:
         while True:
-            encoding, strict = encodings[step]
-            # given: each piece decodes in this encoding, replacing what does not
-            piece_sn = dataclasses.replace(sn, encoding=encoding, encoding_given=True)
+            encoding, mode = encodings[step]
+            # given: each piece decodes in this encoding as the whole file was judged
+            piece_sn = dataclasses.replace(
+                sn, encoding=encoding, encoding_given=True, line_fallback=mode == "lines"
+            )
             try:
-                parts = _read_all(piece_sn, read, line_by_line, strict, sink, piece_file, progress)
+                parts = _read_all(
+                    piece_sn, read, line_by_line, mode == "strict", sink, piece_file, progress
+                )
                 break
             except _Again as again:
                 if reset is None:
@@ -199,14 +212,23 @@ def read_in_pieces(
                 if again.quotes:
                     line_by_line = True
                 else:
+                    if judge and step == 0:
+                        encodings.append((decide_file(sn.path, sn.compression), "lines"))
                     step += 1
     finally:
         piece_file.unlink(missing_ok=True)
     quarantines, reports, layouts, keys = parts
-    if encoding != sn.encoding:  # as the whole-file reader notes it, after the quotes
+    fallback = merge_fallbacks([(r.get("encoding_fallback", {}), 1) for r in reports])
+    reports = [
+        {**r, "warnings": [w for w in r.get("warnings", []) if not w.startswith(FALLBACK_MARK)]}
+        for r in reports
+    ]
+    if encoding != sn.encoding or fallback:  # as the whole-file reader notes it
         first = [w for w in reports[0].get("warnings", []) if w != UNBALANCED_NOTE]
         notes = [UNBALANCED_NOTE] if line_by_line else []
-        notes.append(encoding_note(sn.encoding, encoding))
+        if encoding != sn.encoding:
+            notes.append(encoding_note(sn.encoding, encoding))
+        notes += fallback_warning(encoding, fallback)
         reports[0] = {**reports[0], "warnings": notes + first}
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
     q = q.sort_values("line", kind="stable", ignore_index=True)
@@ -306,6 +328,9 @@ def _read_all(
         if len(res.quarantine):
             line = res.quarantine["line"] + (first_line - 1)
             quarantines.append(res.quarantine.assign(line=line))
+        if res.report.get("encoding_fallback"):  # its line numbers made the file's
+            info = merge_fallbacks([(res.report["encoding_fallback"], first_line)])
+            res.report["encoding_fallback"] = info
         reports.append(res.report)
         layouts.append(res.layout)
         far = done / size if sn.compression is None else opened.fraction()
@@ -336,6 +361,7 @@ def merge_import_reports(
     quarantine's reasons, the first piece's columns and formats, the time span over all,
     and the warnings once each (those with counts made again from the summed counts)."""
     first = reports[0]
+    fallback = merge_fallbacks([(r.get("encoding_fallback", {}), 1) for r in reports])
     zone = parse_zone(tz)
     time_src = first["columns"]["time"]
     batch_src = first["columns"].get("batch", "")
@@ -414,5 +440,6 @@ def merge_import_reports(
         "time_start": min(starts).isoformat() if starts else None,
         "time_end": max(ends).isoformat() if ends else None,
         "pieces": len(reports),
+        **({"encoding_fallback": fallback} if fallback else {}),
         "warnings": warnings,
     }

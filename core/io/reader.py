@@ -37,6 +37,13 @@ from wakeline.core import sorted_sets
 from wakeline.core.errors import InputError
 from wakeline.core.geo import EARTH_RADIUS_M, from_local
 from wakeline.core.io.compressed import open_data, open_for_arrow
+from wakeline.core.io.decoding import (
+    LineDecoder,
+    decide_file,
+    fallback_warning,
+    line_decodable,
+    lines_codec,
+)
 from wakeline.core.io.formats import (
     PLANE_FIELDS,
     Resolved,
@@ -321,6 +328,7 @@ class _BadRows:
     blank: int = 0
     blank_lines: list[int] = field(default_factory=list)
     quoted: list[tuple[int, str, int]] = field(default_factory=list)  # line, text, fields
+    decoder: LineDecoder | None = None  # lines decoded one by one (errors "lines")
 
     def in_file_order(self) -> None:
         """Sort the bad rows (and the blank lines) by line number."""
@@ -373,14 +381,19 @@ class _ChunkedStream:
 class _Utf8Stream(_ChunkedStream):
     """A file read as text in ``encoding`` and handed on as UTF-8 bytes, chunk by chunk
     (for pyarrow, which reads UTF-8): undecodable bytes become U+FFFD when ``errors`` is
-    ``"replace"`` (those rows are then quarantined), and a byte order mark is dropped."""
+    ``"replace"`` (those rows are then quarantined); with ``"lines"`` a line that does
+    not decode is read in a fallback encoding (``decoder.fallbacks``:
+    :class:`~wakeline.core.io.decoding.LineDecoder`); a byte order mark is dropped."""
 
     CHUNK = 4 * 1024 * 1024
 
     def __init__(self, sn: Sniff, encoding: str, errors: str = "strict") -> None:
         self._opened = open_data(sn.path, sn.compression)
         self._fh = self._opened.__enter__()
-        self._dec = codecs.getincrementaldecoder(encoding)(errors=errors)
+        if errors == "lines":
+            self._dec = self.decoder = LineDecoder(encoding)
+        else:
+            self._dec = codecs.getincrementaldecoder(encoding)(errors=errors)
         self._buf = b""
         self._eof = False
         self._first = True
@@ -505,14 +518,17 @@ def _read_table(
     # parsed blocks at once, about twice the memory (bench/bench_memory.py). A smaller one
     # is read whole, blocks parsed on every core: about twice as fast.
     whole = threads and sn.compression is None and _file_size(sn) <= READ_WHOLE_MAX_BYTES
-    with _open_parsed(sn, encoding or sn.encoding, errors) as stream, _quiet_undecodable_rows():
+    opened = _open(sn, encoding or sn.encoding, errors)
+    stream = _BlankRunStream(opened, sn) if sn.blank_runs else opened
+    bad.decoder = getattr(opened, "decoder", None)  # the lines read in a fallback
+    with stream as handle, _quiet_undecodable_rows():
         if whole:
             table = pacsv.read_csv(
-                stream, read_options=read, parse_options=parse, convert_options=convert
+                handle, read_options=read, parse_options=parse, convert_options=convert
             )
         else:
             reader = pacsv.open_csv(
-                stream, read_options=read, parse_options=parse, convert_options=convert
+                handle, read_options=read, parse_options=parse, convert_options=convert
             )
             table = pa.Table.from_batches(list(reader), schema=reader.schema)
     bad.in_file_order()  # parallel parsing may report the bad rows out of order
@@ -566,6 +582,8 @@ class _Rows:
     replaced: bool  # undecodable bytes were replaced by U+FFFD (those rows are quarantined)
     line_by_line: bool  # quotes did not balance: read without quoting, quoted cells unquoted
     notes: list[str]
+    #: Lines read in a fallback encoding (report's ``encoding_fallback``; decoding.py).
+    fallback: dict = field(default_factory=dict)
 
 
 def _is_decode_error(exc: Exception) -> bool:
@@ -587,15 +605,18 @@ def encoding_note(start: str, enc: str) -> str:
 
 def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
     """Parse the whole file, falling back (never failing for the file's sake) through:
-    the careful all-text parse when a value does not convert; GB18030 when UTF-8 breaks
-    after the sampled start; replacement characters (rows quarantined) when no encoding
-    reads every byte; bigger blocks for very long lines; and a line-by-line parse when a
-    stray quote swallowed lines (checked by counting the physical lines; ``unbalanced``:
-    known beforehand, a piece of such a file)."""
-    attempts = [(sn.encoding, "strict")]
-    if sn.encoding == "utf-8" and sn.ascii and not sn.encoding_given:
-        attempts.append(("gb18030", "strict"))
-    attempts.append((sn.encoding, "replace"))
+    the careful all-text parse when a value does not convert; when the text does not
+    decode strictly, the encoding that explains the whole file best, its failing lines
+    decoded one by one (:mod:`wakeline.core.io.decoding`: UTF-8 with Windows-1252 lines,
+    or GB18030), or for an encoding the user named (and UTF-16) replacement characters
+    (rows quarantined); bigger blocks for very long lines; and a line-by-line parse when
+    a stray quote swallowed lines (checked by counting the physical lines;
+    ``unbalanced``: known beforehand, a piece of such a file)."""
+    if sn.line_fallback:  # judged already (a piece of a file)
+        attempts = [(sn.encoding, "lines")]
+    else:
+        attempts = [(sn.encoding, "strict"), (sn.encoding, "replace")]
+    judge = not sn.encoding_given and line_decodable(sn.encoding) and not sn.line_fallback
     notes: list[str] = []
     careful = False
     # No quote in the sampled start: a quote later on is text, and each line is one row.
@@ -620,7 +641,10 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
         except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
             text = str(exc)
             # "CSV parse error": the invalid-row handler could not even decode the row.
-            if _is_decode_error(exc) or ("CSV parse error" in text and errors != "replace"):
+            decoding = errors != "lines" and _is_decode_error(exc)  # "lines" cannot fail
+            if decoding or ("CSV parse error" in text and errors == "strict"):
+                if judge and errors == "strict":  # the whole file's evidence decides
+                    attempts[step + 1] = (decide_file(sn.path, sn.compression), "lines")
                 if step + 1 < len(attempts):
                     step += 1
                     continue
@@ -657,7 +681,12 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
         break
     if enc != sn.encoding:
         notes.append(encoding_note(sn.encoding, enc))
-    if errors == "replace":
+    fallback = bad.decoder.fallbacks.report() if bad.decoder else {}
+    notes += fallback_warning(enc, fallback)
+    replaced = errors == "replace" or bool(
+        bad.decoder and bad.decoder.fallbacks.counts.get("replaced")
+    )
+    if replaced:
         notes.append(
             f"some bytes are not valid {enc}: their rows are quarantined "
             "(give the right --encoding to read them)"
@@ -669,7 +698,7 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
     if not quoting:
         table, lines = _recover_quoted(sn, table, lines, bad)
         table = _unquote(table)
-    return _Rows(table, lines, bad, careful, enc, errors == "replace", not quoting, notes)
+    return _Rows(table, lines, bad, careful, enc, replaced, not quoting, notes, fallback)
 
 
 def _recover_quoted(
@@ -1822,7 +1851,8 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     wanted = set(int(n) for n in line_numbers)
     last = max(wanted)
     found: dict[int, str] = {}
-    enc = encoding or sn.encoding
+    # decoded as the reader decoded them (a line not valid UTF-8 in its fallback)
+    enc = lines_codec(encoding or sn.encoding, sn.encoding_given and not sn.line_fallback)
     with (
         open_data(sn.path, sn.compression) as raw,
         io.TextIOWrapper(raw, encoding=enc, errors="replace", newline=None) as fh,
@@ -2384,6 +2414,7 @@ def read_points(
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
         **counts,
+        **({"encoding_fallback": rows.fallback} if rows.fallback else {}),
         "warnings": warnings,
     }
     layout = {

@@ -16,6 +16,7 @@ from wakeline.core.io.compressed import (  # noqa: F401  (packed_kind: batch's)
     open_data,
     packed_kind,
 )
+from wakeline.core.io.decoding import decide, decide_file, decode_text, lines_codec
 
 
 def listed_headers(names, most: int = 40, each: int = 40) -> str:
@@ -89,6 +90,10 @@ class Sniff:
     #: ... or read in fixed columns (h135; :func:`fixed_layout`): the gutters between
     #: them, character spans ``(lo, hi)`` of each line. Empty: not.
     fixed_gutters: tuple[tuple[int, int], ...] = ()
+    #: Decode line by line: a line not valid in ``encoding`` in a fallback, reported
+    #: (:mod:`wakeline.core.io.decoding`); set once the whole file was judged so (the
+    #: reader, the pieces of a file), never by :func:`sniff`.
+    line_fallback: bool = False
 
     @property
     def parse_delimiter(self) -> str:
@@ -181,18 +186,28 @@ def _looks_binary(sample: bytes) -> bool:
     return control > 0.01 * max(len(sample), 1)
 
 
-def _decode(sample: bytes, path: Path, encoding: str | None) -> tuple[str, str]:
+def _decode(
+    sample: bytes, path: Path, encoding: str | None, compression: str | None = None
+) -> tuple[str, str]:
     # The sample may end inside a multi-byte character: cut at the last line end.
     full = len(sample) < SAMPLE_BYTES
-    candidates = (encoding,) if encoding else ENCODINGS
+    body = sample
+    if not full and not _is_wide(encoding):
+        cut = max(sample.rfind(b"\n"), sample.rfind(b"\r"))
+        body = sample if cut < 0 else sample[: cut + 1]
+    if encoding is None:
+        # Judged on the evidence, one line at a time (wakeline.core.io.decoding): UTF-8,
+        # its failing lines read as Windows-1252 and reported, or GB18030 when that
+        # explains the text better. What neither reads keeps U+FFFD (quarantined).
+        enc, text, _ = decide(body)
+        if enc != "utf-8" and not full and decide_file(path, compression) == "utf-8":
+            # the start looks like GB18030, the whole file is better read as UTF-8
+            enc, (text, _) = "utf-8", decode_text(body, "utf-8")
+        return _refuse_damaged(text, path, ENCODINGS, enc), enc
+    candidates = (encoding,)
     for enc in candidates:
-        body = sample
-        if not full:
-            if _is_wide(enc):
-                body = sample[: len(sample) - len(sample) % 4]
-            else:
-                cut = max(sample.rfind(b"\n"), sample.rfind(b"\r"))
-                body = sample if cut < 0 else sample[: cut + 1]
+        if _is_wide(enc) and not full:
+            body = sample[: len(sample) - len(sample) % 4]
         try:
             text = body.decode(enc, errors="strict" if full or not _is_wide(enc) else "ignore")
         except UnicodeDecodeError:
@@ -203,20 +218,26 @@ def _decode(sample: bytes, path: Path, encoding: str | None) -> tuple[str, str]:
     # A few damaged lines in otherwise good text: read it, the reader quarantines the rows
     # that hold bad bytes. A damaged header, or more damaged lines than good, means the
     # encoding is wrong: refuse, naming --encoding.
-    enc = encoding or "utf-8"
+    enc = encoding
     try:
         text = sample.decode(enc, errors="replace")
     except LookupError:
         raise InputError(f"{path}: unknown encoding {enc!r}") from None
-    lines = [x for x in text.replace("\r", "\n").split("\n") if x.strip()]
-    damaged = sum("\ufffd" in x for x in lines[1:])
-    if lines and "\ufffd" not in lines[0] and damaged <= 0.5 * (len(lines) - 1):
-        return text.removeprefix("\ufeff"), enc
-    tried = " or ".join(candidates)
-    raise InputError(
-        f"{path}: cannot decode the text as {tried}; choose the file's encoding "
-        "(--encoding, e.g. gb18030, utf-16, latin-1)"
-    )
+    return _refuse_damaged(text, path, candidates, enc), enc
+
+
+def _refuse_damaged(text: str, path: Path, tried: tuple[str, ...], enc: str) -> str:
+    """``text`` without its BOM, unless its header or more than half of its other lines
+    hold undecodable bytes (U+FFFD): then the encoding is wrong, and that is said."""
+    if "\ufffd" in text:
+        lines = [x for x in text.replace("\r", "\n").split("\n") if x.strip()]
+        damaged = sum("\ufffd" in x for x in lines[1:])
+        if not lines or "\ufffd" in lines[0] or damaged > 0.5 * (len(lines) - 1):
+            raise InputError(
+                f"{path}: cannot decode the text as {' or '.join(tried)}; choose the file's "
+                "encoding (--encoding, e.g. gb18030, utf-16, latin-1)"
+            )
+    return text.removeprefix("\ufeff")
 
 
 def _pick_delimiter(lines: list[str]) -> str:
@@ -697,7 +718,7 @@ def sniff(
             f"{path}: this is a binary file, not a CSV text file "
             "(for UTF-16 text without a byte order mark give --encoding utf-16)"
         )
-    text, enc = _decode(sample, path, encoding)
+    text, enc = _decode(sample, path, encoding, compression)
     if _is_wide(enc) and _looks_binary(text.encode("utf-8", errors="replace")):
         raise InputError(f"{path}: this is a binary file, not a CSV text file")
     first_end = re.search(r"\r\n|\n|\r", text)
@@ -808,6 +829,6 @@ def read_small_table(
         return pd.read_csv(
             stream,
             sep=sn.delimiter,
-            encoding=sn.encoding,
+            encoding=lines_codec(sn.encoding, sn.encoding_given),
             dtype={c: "str" for c in text_columns},
         )

@@ -1,0 +1,341 @@
+"""How a text file's bytes become text: one decision per file and one line decoder, for
+every reader (sniff's sample and the import dialog's preview, the whole-file reader, the
+streamed and piece readers of import, clean and batch, the quarantine's line texts, NMEA
+logs and small tables).
+
+The decision (:func:`decide`, over a sample or :func:`decide_file` over the whole file):
+text valid UTF-8 is UTF-8. Otherwise the lines that are not valid UTF-8 are weighed
+against those that are: GB18030 when the failing lines hold most of the non-ASCII bytes
+*and* at least :data:`GB_SHARE` of their non-ASCII bytes pair up as GB2312 characters
+(lead A1-A9 or B0-F7, trail A1-FE: Chinese text, whose characters are two high bytes). A
+Latin-1 line fails that: its accented letters are single high bytes beside ASCII
+(``Bjørn`` is ``F8 72``, which GB18030 reads as 鴕, one character eating the ``r``).
+Otherwise UTF-8, and each line that is not valid UTF-8 is decoded on its own as
+Windows-1252 ("Latin-1" as Windows writes it; it is Latin-1 for every printable
+character) and reported: how many lines and the first line numbers
+(:func:`fallback_warning`). A line that neither reads (a byte Windows-1252 leaves
+undefined: 81, 8D, 8F, 90, 9D) keeps U+FFFD for its bad bytes and its row is quarantined
+("bytes not valid utf-8"), as before.
+
+Why a reported fallback rather than quarantining those lines: a Latin-1 line in a UTF-8
+file is a whole, good row (an export appended by a Windows tool); the fallback keeps its
+point, reads its text right (``Bjørn`` stays one sensor), and the warning names the
+lines, so nothing is lost and nothing is garbled silently. A UTF-8 line is never read
+otherwise: valid UTF-8 with non-ASCII bytes is almost never an accident of another
+encoding. Reading the whole file as GB18030 (what the importer did) garbled even the
+valid lines.
+
+The line decoder (:class:`LineDecoder`) decodes whole lines chunk by chunk with the
+codec's C decoder; only a chunk that fails is looked into, and only its failing lines
+are decoded one by one (a clean file pays nothing: the UTF-8 fast path never comes
+here). It is also a Python codec (``codec_name``): ``wakeline-lines-utf-8`` decodes
+as above wherever a codec name is taken (``io.TextIOWrapper``, ``pandas.read_csv``).
+UTF-16 and UTF-32 text (a byte order mark) and an encoding the user names are decoded
+as they were: strictly, undecodable bytes quarantined.
+"""
+
+import codecs
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+#: The encoding a line that is not valid UTF-8 is read in (then reported).
+FALLBACK = "cp1252"
+#: What the warning calls it.
+FALLBACK_LABEL = "Windows-1252 (Latin-1)"
+#: Line numbers kept (and named in the warning) per fallback.
+FIRST_LINES = 5
+#: The share of the failing lines' non-ASCII bytes that must pair as GB2312 characters
+#: for GB18030 to explain the file.
+GB_SHARE = 0.8
+#: Failing lines looked at before the whole-file judgement stops (a GB18030 file after an
+#: ASCII start fails on every Chinese line: enough is enough).
+EVIDENCE_LINES = 20_000
+CHUNK = 4 * 1024 * 1024
+#: The prefix of the codecs this module registers (``wakeline-lines-utf-8``).
+PREFIX = "wakeline-lines-"
+
+_HIGH = bytes(range(128, 256))
+_GB2312_PAIR = re.compile(rb"[\xa1-\xa9\xb0-\xf7][\xa1-\xfe]")
+_LINE_END = re.compile(rb"[\r\n]")
+
+
+def _high(data: bytes) -> int:
+    """Bytes of ``data`` above ASCII."""
+    return 0 if data.isascii() else len(data) - len(data.translate(None, _HIGH))
+
+
+@dataclass
+class Evidence:
+    """What the lines said about the encoding: non-ASCII bytes in lines that decoded in
+    the primary encoding (``good``), in lines that did not (``bad``), and of those in
+    lines that read as GB18030 in GB2312's characters (``gb``)."""
+
+    good: int = 0
+    bad: int = 0
+    gb: int = 0
+    bad_lines: int = 0
+
+    def choice(self, primary: str = "utf-8") -> str:
+        """The encoding that explains the text best (``primary`` or ``gb18030``)."""
+        if primary != "utf-8" or not self.bad:
+            return primary
+        if self.bad > self.good and self.gb >= GB_SHARE * self.bad:
+            return "gb18030"
+        return primary
+
+
+@dataclass
+class Fallbacks:
+    """The lines decoded otherwise than in the primary encoding: per fallback encoding
+    (or ``"replaced"``: U+FFFD for their bad bytes, quarantined) the count and the first
+    :data:`FIRST_LINES` line numbers (1-based physical lines of the decoded input)."""
+
+    counts: dict[str, int] = field(default_factory=dict)
+    first: dict[str, list[int]] = field(default_factory=dict)
+
+    def add(self, how: str, line: int) -> None:
+        self.counts[how] = self.counts.get(how, 0) + 1
+        kept = self.first.setdefault(how, [])
+        if len(kept) < FIRST_LINES:
+            kept.append(line)
+
+    def report(self) -> dict:
+        """For the import report: ``{encoding: {"lines": n, "first_lines": [...]}}``."""
+        return {
+            how: {"lines": n, "first_lines": list(self.first[how])}
+            for how, n in self.counts.items()
+            if how != "replaced"
+        }
+
+
+def fallback_warning(primary: str, info: dict) -> list[str]:
+    """The import's warnings for the lines read in a fallback encoding (``info``: the
+    report's ``encoding_fallback``); one per fallback encoding."""
+    out = []
+    for how, got in info.items():
+        n, first = int(got["lines"]), sorted(got["first_lines"])[:FIRST_LINES]
+        label = FALLBACK_LABEL if how == FALLBACK else how
+        some = ", ".join(f"{k:,}" for k in first) + (", …" if n > len(first) else "")
+        lines = "line" if n == 1 else "lines"
+        out.append(
+            f"{FALLBACK_MARK} {n:,} {lines} not valid {primary} were read as {label} "
+            f"({lines} {some}); if that is wrong, give the file's encoding "
+            "(--encoding, e.g. gb18030, utf-16, latin-1)"
+        )
+    return out
+
+
+#: How every fallback warning starts (pieces make it again from summed counts).
+FALLBACK_MARK = "text encoding:"
+
+
+def merge_fallbacks(infos: list[tuple[dict, int]]) -> dict:
+    """One ``encoding_fallback`` of the pieces' (each with the file line its piece starts
+    on, 1-based): counts summed, first line numbers made file lines."""
+    out: dict = {}
+    for info, first_line in infos:
+        for how, got in info.items():
+            have = out.setdefault(how, {"lines": 0, "first_lines": []})
+            have["lines"] += int(got["lines"])
+            have["first_lines"] += [k + first_line - 1 for k in got["first_lines"]]
+    for have in out.values():
+        have["first_lines"] = sorted(have["first_lines"])[:FIRST_LINES]
+    return out
+
+
+class LineDecoder(codecs.IncrementalDecoder):
+    """Bytes to text in ``encoding``, whole lines at a time; a line that does not decode
+    is decoded by the first of ``fallbacks`` that reads it (recorded in ``fallbacks``),
+    else with U+FFFD for its bad bytes (recorded as ``"replaced"``). ``evidence``
+    gathers what the lines said (:class:`Evidence`). A UTF-8 byte order mark at the
+    start is decoded as U+FEFF (the readers drop it)."""
+
+    def __init__(self, encoding: str = "utf-8", errors: str = "strict") -> None:
+        super().__init__(errors)
+        self.encoding = codecs.lookup(encoding).name
+        self._decode = codecs.lookup(encoding).decode  # takes a memoryview: no copy
+        self.chain = (FALLBACK,) if self.encoding == "utf-8" else ("utf-8", FALLBACK)
+        self.reset()
+
+    def reset(self) -> None:
+        self._parts: list[bytes] = []
+        self._start = True
+        self._last_cr = False
+        self.line = 0  # line ends passed: the next line's number is line + 1
+        self.fallbacks = Fallbacks()
+        self.evidence = Evidence()
+
+    def getstate(self) -> tuple[bytes, int]:
+        return b"".join(self._parts), 0
+
+    def setstate(self, state: tuple[bytes, int]) -> None:
+        self._parts = [state[0]] if state[0] else []
+
+    def decode(self, data: bytes = b"", final: bool = False) -> str:
+        data = bytes(data)
+        if self._start and (data or final):
+            if not self._parts and len(data) < 3 and not final and codecs.BOM_UTF8.startswith(data):
+                self._parts.append(data)  # maybe the start of a BOM: wait for more
+                return ""
+            data, self._parts = b"".join(self._parts) + data, []
+            self._start = False
+            if self.encoding == "utf-8" and data.startswith(codecs.BOM_UTF8):
+                return "\ufeff" + self.decode(data[3:], final)
+        if final:
+            whole, self._parts = b"".join(self._parts) + data, []
+            return self._lines(whole)
+        ends = max(data.rfind(b"\n"), data.rfind(b"\r"))
+        if ends < 0:
+            if data:
+                self._parts.append(data)
+            return ""
+        whole = b"".join(self._parts) + data[: ends + 1]
+        self._parts = [data[ends + 1 :]] if ends + 1 < len(data) else []
+        return self._lines(whole)
+
+    def _count(self, seg: bytes, a: int, b: int) -> None:
+        """Pass the line ends of ``seg[a:b]`` (LF, CRLF, CR; a CRLF across two parts once)."""
+        if a >= b:
+            return
+        n = seg.count(b"\n", a, b) + seg.count(b"\r", a, b) - seg.count(b"\r\n", a, b)
+        if self._last_cr and seg[a] == 0x0A:
+            n -= 1
+        self.line += n
+        self._last_cr = seg[b - 1] == 0x0D
+
+    def _lines(self, seg: bytes) -> str:
+        """Whole lines decoded: at C speed, and where that fails line by line from the
+        failing line on (a memoryview: no copy of the rest per failing line)."""
+        try:
+            text = self._decode(seg)[0]
+        except UnicodeDecodeError as exc:
+            at = exc.start
+        else:
+            self.evidence.good += _high(seg)
+            self._count(seg, 0, len(seg))
+            return text
+        view, out, pos = memoryview(seg), [], 0
+        bad_before = self.evidence.bad
+        while True:
+            start = max(pos - 1, seg.rfind(b"\n", pos, at), seg.rfind(b"\r", pos, at)) + 1
+            out.append(self._decode(view[pos:start])[0])
+            self._count(seg, pos, start)
+            end = _LINE_END.search(seg, at)
+            pos = end.start() if end else len(seg)
+            out.append(self._bad(seg[start:pos]))
+            try:
+                text = self._decode(view[pos:])[0]
+            except UnicodeDecodeError as exc:
+                at = pos + exc.start
+                continue
+            out.append(text)
+            self._count(seg, pos, len(seg))
+            self.evidence.good += _high(seg) - (self.evidence.bad - bad_before)
+            return "".join(out)
+
+    def _bad(self, line: bytes) -> str:
+        """One line (no line end) that does not decode in the primary encoding."""
+        number = self.line + 1
+        self._last_cr = False
+        high = _high(line)
+        ev = self.evidence
+        ev.bad += high
+        ev.bad_lines += 1
+        if ev.bad_lines <= EVIDENCE_LINES and 2 * len(_GB2312_PAIR.findall(line)) == high:
+            try:
+                line.decode("gb18030")
+                ev.gb += high
+            except UnicodeDecodeError:
+                pass
+        for enc in self.chain:
+            try:
+                text = line.decode(enc)
+            except UnicodeDecodeError:
+                continue
+            self.fallbacks.add(enc, number)
+            return text
+        self.fallbacks.add("replaced", number)
+        return line.decode(self.encoding, errors="replace")
+
+
+def codec_name(encoding: str) -> str:
+    """The codec that decodes as :class:`LineDecoder` in ``encoding``."""
+    return PREFIX + codecs.lookup(encoding).name
+
+
+def lines_codec(encoding: str, given: bool) -> str:
+    """The codec name a reader decodes ``encoding`` with: the line decoder's for an
+    encoding the file was judged in (UTF-8, GB18030), else ``encoding`` itself (one the
+    user named, UTF-16 and UTF-32)."""
+    if given or not line_decodable(encoding):
+        return encoding
+    return codec_name(encoding)
+
+
+def line_decodable(encoding: str) -> bool:
+    """Whether the line decoder takes ``encoding`` (ASCII-based: line ends are bytes)."""
+    try:
+        name = codecs.lookup(encoding).name
+    except LookupError:
+        return False
+    return not name.startswith(("utf-16", "utf-32")) and "\n".encode(name) == b"\n"
+
+
+def _search(name: str) -> codecs.CodecInfo | None:
+    name = name.replace("_", "-")
+    if not name.startswith(PREFIX):
+        return None
+    encoding = codecs.lookup(name[len(PREFIX) :]).name
+    base = codecs.lookup(encoding)
+
+    class Decoder(LineDecoder):
+        def __init__(self, errors: str = "strict") -> None:
+            super().__init__(encoding, errors)
+
+    def decode(data: bytes, errors: str = "strict") -> tuple[str, int]:
+        return Decoder(errors).decode(data, final=True), len(data)
+
+    return codecs.CodecInfo(
+        name=PREFIX + encoding,
+        encode=base.encode,
+        decode=decode,
+        incrementalencoder=base.incrementalencoder,
+        incrementaldecoder=Decoder,
+        streamreader=base.streamreader,
+        streamwriter=base.streamwriter,
+    )
+
+
+codecs.register(_search)
+
+
+def decode_text(data: bytes, encoding: str) -> tuple[str, LineDecoder]:
+    """``data`` (whole lines) decoded by the line decoder, and the decoder (what fell back)."""
+    dec = LineDecoder(encoding)
+    return dec.decode(data, final=True), dec
+
+
+def decide(data: bytes) -> tuple[str, str, LineDecoder]:
+    """The encoding that explains ``data`` (a sample of whole lines) best, its text, and
+    the decoder that made it (its ``fallbacks``)."""
+    text, dec = decode_text(data, "utf-8")
+    enc = dec.evidence.choice()
+    if enc != "utf-8":
+        text, dec = decode_text(data, enc)
+    return enc, text, dec
+
+
+def decide_file(path: Path, compression: str | None) -> str:
+    """:func:`decide` over the whole file, read in chunks (only its failing lines are
+    looked at one by one; after :data:`EVIDENCE_LINES` of them it stops)."""
+    from wakeline.core.io.compressed import open_data
+
+    dec = LineDecoder("utf-8")
+    with open_data(path, compression) as fh:
+        while True:
+            raw = fh.read(CHUNK)
+            dec.decode(raw, final=not raw)
+            if not raw or dec.evidence.bad_lines >= EVIDENCE_LINES:
+                break
+    return dec.evidence.choice()

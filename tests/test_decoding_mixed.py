@@ -1,0 +1,216 @@
+"""h133's #4: a CSV mixing UTF-8 and Latin-1 lines was read entirely as GB18030, garbling
+even its valid lines. The encoding is now judged on evidence (core/io/decoding.py): UTF-8
+with each line that is not valid UTF-8 read as Windows-1252 and reported, GB18030 only
+when it explains the file better; every reader decodes the same way."""
+
+import tempfile
+from pathlib import Path
+from unittest import mock
+
+import pandas as pd
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from wakeline.core.io import import_to_csv, read_points, reader, sniff
+from wakeline.core.io.decoding import decide, decode_text
+from wakeline.core.io.sniff import read_small_table
+
+HEADER = "sensor,batch,time,lon,lat,name"
+
+
+def _row(i: int, name: str, sensor: str = "S1") -> str:
+    return f"{sensor},{i % 3},2024-01-01T00:{i // 60 % 60:02d}:{i % 60:02d}Z,{10 + i * 1e-4:.4f},60.0,{name}"
+
+
+def _file(tmp: Path, lines: list[bytes], name: str = "m.csv", head: bytes = b"") -> Path:
+    path = tmp / name
+    path.write_bytes(head + HEADER.encode() + b"\n" + b"\n".join(lines) + b"\n")
+    return path
+
+
+def _fallback_warnings(report: dict) -> list[str]:
+    return [w for w in report["warnings"] if "were read as" in w]
+
+
+def test_utf8_and_latin1_lines_one_sensor_each_line_right(tmp_path):
+    """h133's repro: 15 UTF-8 rows of sensor "Bjørn", then 15 Latin-1 rows: one sensor,
+    3 tracks, a warning naming the Latin-1 lines; before: GB18030, Bj酶rn and Bj鴕n."""
+    lines = [_row(i, "x", "Bjørn").encode() for i in range(15)]
+    lines += [_row(i, "x", "Bjørn").encode("latin-1") for i in range(15, 30)]
+    path = _file(tmp_path, lines)
+    assert sniff(path).encoding == "utf-8"
+    assert sniff(path).preview[0][0] == "Bjørn"
+    r = read_points(path)
+    assert r.report["encoding"] == "utf-8"
+    assert r.points["sensor"].unique().tolist() == ["Bjørn"]
+    assert r.report["tracks"] == 3 and len(r.quarantine) == 0
+    assert r.report["encoding_fallback"] == {
+        "cp1252": {"lines": 15, "first_lines": [17, 18, 19, 20, 21]}
+    }
+    (warning,) = _fallback_warnings(r.report)
+    assert "15 lines not valid utf-8 were read as Windows-1252" in warning
+    assert "lines 17, 18, 19, 20, 21, …" in warning
+
+
+def test_late_mixed_lines_after_an_ascii_start_whole_and_streamed(tmp_path):
+    """bad/mixed_big.csv's shape: an ASCII start longer than the sample, then UTF-8 and
+    Latin-1 lines: the valid UTF-8 rows are read right (before: garbled as GB18030), the
+    Latin-1 ones too, by the whole-file and the streamed (pieces) reader alike."""
+    lines = [_row(i, "Plain").encode() for i in range(6000)]
+    lines += [_row(i, "Bjørnøya").encode() for i in range(6000, 6050)]
+    lines += [_row(i, "Bjørnøya").encode("latin-1") for i in range(6050, 6100)]
+    path = _file(tmp_path, lines)
+    with mock.patch("wakeline.core.io.sniff.SAMPLE_BYTES", 4096):
+        whole = read_points(path)
+        with mock.patch.object(reader, "STREAM_BYTES", 8192):
+            streamed = import_to_csv(path, tmp_path / "out.csv")
+    assert whole.points["name"].iloc[6000:].eq("Bjørnøya").all()
+    assert whole.report["encoding_fallback"]["cp1252"]["first_lines"][0] == 6052
+    out = pd.read_csv(tmp_path / "out.csv")
+    assert out["name"].iloc[6000:].eq("Bjørnøya").all() and len(out) == 6100
+    assert streamed.report["pieces"] > 5
+    assert streamed.report["encoding_fallback"] == whole.report["encoding_fallback"]
+    assert _fallback_warnings(streamed.report) == _fallback_warnings(whole.report)
+
+
+def test_chinese_gb18030_still_gb18030(tmp_path):
+    """GB18030 text (a Chinese header and names) is GB18030 as before: no fallback."""
+    text = "批号,时间,经度,纬度,船名\n" + "".join(
+        f"{i},2024-05-01 08:00:{i:02d},122.{i:02d},30.0,浙渔号{i}\n" for i in range(40)
+    )
+    path = tmp_path / "zh.csv"
+    path.write_bytes(text.encode("gb18030"))
+    r = read_points(path, tz="Asia/Shanghai")
+    assert r.report["encoding"] == "gb18030" and "encoding_fallback" not in r.report
+    assert r.points["船名"].iloc[3] == "浙渔号3"
+
+
+def test_utf8_bom_with_a_latin1_line(tmp_path):
+    lines = [_row(0, "Å").encode(), _row(1, "Å").encode("latin-1"), _row(2, "ok").encode()]
+    path = _file(tmp_path, lines, head=b"\xef\xbb\xbf")
+    sn = sniff(path)
+    assert sn.bom and sn.columns[0] == "sensor"
+    r = read_points(path)
+    assert r.points["name"].tolist() == ["Å", "Å", "ok"]
+    assert r.report["encoding_fallback"]["cp1252"]["first_lines"] == [3]
+
+
+def test_utf16_with_bom_is_utf16(tmp_path):
+    text = HEADER + "\n" + "\n".join(_row(i, "Bjørn 浙") for i in range(10)) + "\n"
+    path = tmp_path / "u16.csv"
+    path.write_bytes(text.encode("utf-16"))
+    r = read_points(path)
+    assert r.report["encoding"] == "utf-16" and "encoding_fallback" not in r.report
+    assert r.points["name"].eq("Bjørn 浙").all()
+
+
+def test_a_line_neither_reads_is_quarantined_and_a_quarantined_latin1_line_keeps_its_text(
+    tmp_path,
+):
+    lines = [_row(0, "é").encode(), _row(1, "\x81").encode("latin-1")]
+    lines += [_row(2, "é").encode("latin-1").replace(b",10.", b",1O.")]
+    r = read_points(_file(tmp_path, lines))
+    assert r.report["rows_imported"] + r.report["rows_quarantined"] == 3
+    q = r.quarantine.set_index("line")
+    assert q.loc[3, "reason"] == "bytes not valid utf-8"
+    assert q.loc[4, "reason"] == "unparsable lon" and q.loc[4, "text"].endswith(",é")
+
+
+def test_the_explicit_encoding_is_obeyed(tmp_path):
+    """--encoding utf-8 on a mixed file: as named, the Latin-1 lines quarantined."""
+    lines = [_row(0, "é").encode(), _row(1, "é").encode("latin-1")]
+    r = read_points(_file(tmp_path, lines), encoding="utf-8")
+    assert r.quarantine["line"].tolist() == [3] and "encoding_fallback" not in r.report
+
+
+def test_small_tables_decode_the_same_way(tmp_path):
+    path = tmp_path / "t.csv"
+    path.write_bytes("a,b\n1,Bjørn\n".encode() + "2,Bjørn\n".encode("latin-1"))
+    assert read_small_table(path, ("a",), "test")["b"].tolist() == ["Bjørn", "Bjørn"]
+
+
+def test_pure_latin1_text_reads_as_windows_1252():
+    data = "a,b\n1,Bjørn\n2,Ærø\n3,ok\n".encode("latin-1")
+    enc, text, dec = decide(data)
+    assert enc == "utf-8" and text == data.decode("latin-1")
+    assert dec.fallbacks.counts == {"cp1252": 2}
+
+
+def test_line_decoder_is_the_same_in_any_chunks():
+    data = "x\r\nBjørn\r\n".encode() + "Bjørn\r\nø\rø\n".encode("latin-1") + "中\n".encode()
+    whole, dec = decode_text(data, "utf-8")
+    for size in (1, 2, 3, 5, 7):
+        from wakeline.core.io.decoding import LineDecoder
+
+        d = LineDecoder("utf-8")
+        parts = [d.decode(data[k : k + size]) for k in range(0, len(data), size)]
+        assert "".join(parts) + d.decode(b"", final=True) == whole
+        assert d.fallbacks.first == dec.fallbacks.first == {"cp1252": [3, 4, 5]}
+
+
+# --- properties ------------------------------------------------------------------------
+
+_UTF8_NAMES = st.sampled_from(["Bjørn", "Ærøskøbing", "São Tomé", "海巡", "Ålesund °", "naïve"])
+_LATIN1_NAMES = st.sampled_from(["Bjørn", "Tromsø", "Málaga", "Müller", "Åre", "Façade"])
+_GB_NAMES = st.sampled_from(["浙渔号", "东海航迹", "船", "闽渔"])
+_LINE = st.tuples(st.sampled_from(["ascii", "utf8", "latin1", "gb"]), st.integers(0, 5))
+
+
+def _mixed_file(kinds: list[tuple[str, str]]) -> tuple[list[bytes], list[str]]:
+    raw, texts = [], []
+    for i, (kind, name) in enumerate(kinds):
+        text = _row(i, name)
+        enc = {"ascii": "ascii", "utf8": "utf-8", "latin1": "latin-1", "gb": "gb18030"}[kind]
+        raw.append(text.encode(enc))
+        texts.append(name)
+    return raw, texts
+
+
+@st.composite
+def _kinds(draw):
+    n = draw(st.integers(1, 60))
+    out = []
+    for _ in range(n):
+        kind = draw(st.sampled_from(["ascii", "utf8", "latin1", "gb"]))
+        names = {"ascii": st.just("ok"), "utf8": _UTF8_NAMES}
+        names.update({"latin1": _LATIN1_NAMES, "gb": _GB_NAMES})
+        out.append((kind, draw(names[kind])))
+    return out
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(kinds=_kinds(), sample=st.sampled_from([1 << 18, 600]), stream=st.sampled_from([0, 2000]))
+def test_mixed_lines_never_lose_a_line_nor_garble_utf8(kinds, sample, stream):
+    """Random mixtures of ASCII, UTF-8, Latin-1 and GB18030 lines: points + quarantine =
+    lines, whole or streamed in pieces; when most non-ASCII bytes are in UTF-8 lines,
+    every UTF-8 line reads exactly, every Latin-1 line reads as Latin-1, and a warning
+    names the lines read in the fallback."""
+    raw, names = _mixed_file(kinds)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = _file(Path(tmp), raw)
+        with mock.patch("wakeline.core.io.sniff.SAMPLE_BYTES", sample):
+            if stream:
+                with mock.patch.object(reader, "STREAM_BYTES", stream):
+                    res = import_to_csv(path, Path(tmp) / "o.csv")
+                rep = res.report
+                got = pd.read_csv(Path(tmp) / "o.csv", keep_default_na=False)["name"].tolist()
+            else:
+                res = read_points(path)
+                rep = res.report
+                got = res.points["name"].tolist()
+    assert rep["rows_imported"] + rep["rows_quarantined"] == len(kinds)
+    high = {k: 0 for k in ("utf8", "latin1", "gb")}
+    for (kind, _), line in zip(kinds, raw, strict=True):
+        if kind != "ascii":
+            high[kind] += sum(b >= 0x80 for b in line)
+    if high["utf8"] > high["latin1"] + high["gb"]:  # mostly UTF-8: UTF-8 decides
+        assert rep["encoding"] == "utf-8"
+        assert rep["rows_quarantined"] == 0 and len(got) == len(kinds)
+        for (kind, name), read in zip(kinds, got, strict=True):
+            if kind in ("ascii", "utf8", "latin1"):
+                assert read == name, (kind, name, read)
+        fell = sum(kind in ("latin1", "gb") for kind, _ in kinds)
+        assert rep.get("encoding_fallback", {}).get("cp1252", {}).get("lines", 0) == fell
+        assert bool(_fallback_warnings(rep)) == bool(fell)
+    if high["gb"] and not high["utf8"] and not high["latin1"]:  # GB18030 only: as before
+        assert rep["encoding"] == "gb18030" and got == names
