@@ -58,6 +58,8 @@ PREFIX = "wakeline-lines-"
 _HIGH = bytes(range(128, 256))
 _GB2312_PAIR = re.compile(rb"[\xa1-\xa9\xb0-\xf7][\xa1-\xfe]")
 _LINE_END = re.compile(rb"[\r\n]")
+#: The first window decoded after a failing line (bytes; then 4 times larger each time).
+_WINDOW = 256
 
 
 def _high(data: bytes) -> int:
@@ -206,7 +208,9 @@ class LineDecoder(codecs.IncrementalDecoder):
 
     def _lines(self, seg: bytes) -> str:
         """Whole lines decoded: at C speed, and where that fails line by line from the
-        failing line on (a memoryview: no copy of the rest per failing line)."""
+        failing line on. After a failing line the rest is decoded in windows of whole
+        lines that grow while they decode (a failed decode copies its input into the
+        exception: a window, not the rest of the chunk, per failing line)."""
         try:
             text = self._decode(seg)[0]
         except UnicodeDecodeError as exc:
@@ -224,15 +228,20 @@ class LineDecoder(codecs.IncrementalDecoder):
             end = _LINE_END.search(seg, at)
             pos = end.start() if end else len(seg)
             out.append(self._bad(seg[start:pos]))
-            try:
-                text = self._decode(view[pos:])[0]
-            except UnicodeDecodeError as exc:
-                at = pos + exc.start
-                continue
-            out.append(text)
-            self._count(seg, pos, len(seg))
-            self.evidence.good += _high(seg) - (self.evidence.bad - bad_before)
-            return "".join(out)
+            window = _WINDOW
+            while pos < len(seg):
+                end = _LINE_END.search(seg, pos + window)
+                stop = end.end() if end else len(seg)
+                try:
+                    out.append(self._decode(view[pos:stop])[0])
+                except UnicodeDecodeError as exc:
+                    at = pos + exc.start
+                    break
+                self._count(seg, pos, stop)
+                pos, window = stop, window * 4
+            else:
+                self.evidence.good += _high(seg) - (self.evidence.bad - bad_before)
+                return "".join(out)
 
     def _bad(self, line: bytes) -> str:
         """One line (no line end) that does not decode in the primary encoding."""
