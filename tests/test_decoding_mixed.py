@@ -214,3 +214,23 @@ def test_mixed_lines_never_lose_a_line_nor_garble_utf8(kinds, sample, stream):
         assert bool(_fallback_warnings(rep)) == bool(fell)
     if high["gb"] and not high["utf8"] and not high["latin1"]:  # GB18030 only: as before
         assert rep["encoding"] == "gb18030" and got == names
+
+
+def test_a_large_gb18030_file_stays_gb18030(tmp_path):
+    """A GB18030 file larger than the sample, Chinese on every line: more failing lines
+    than are looked at (EVIDENCE_LINES) in one chunk; their share stands for the rest
+    (the first cut judged it UTF-8 and garbled the header)."""
+    rows = "批号,时间,经度,纬度,船名\n" + "".join(
+        f"{i % 50},2024-05-01 08:{i // 60 % 60:02d}:{i % 60:02d},122.{i % 100:02d},30.0,浙渔号\n"
+        for i in range(3000)
+    )
+    path = tmp_path / "gb.csv"
+    path.write_bytes(rows.encode("gb18030"))
+    with (
+        mock.patch("wakeline.core.io.sniff.SAMPLE_BYTES", 4096),
+        mock.patch("wakeline.core.io.decoding.EVIDENCE_LINES", 100),
+    ):
+        assert sniff(path).columns[0] == "批号"
+        r = read_points(path, tz="Asia/Shanghai")
+    assert r.report["encoding"] == "gb18030" and "encoding_fallback" not in r.report
+    assert r.points["船名"].eq("浙渔号").all() and len(r.points) == 3000

@@ -50,8 +50,9 @@ FIRST_LINES = 5
 GB_SHARE = 0.8
 #: Failing lines looked at before the whole-file judgement stops (a GB18030 file after an
 #: ASCII start fails on every Chinese line: enough is enough).
-EVIDENCE_LINES = 20_000
-CHUNK = 4 * 1024 * 1024
+EVIDENCE_LINES = 5_000
+#: Bytes :func:`decide_file` reads at a time.
+JUDGE_CHUNK = 256 * 1024
 #: The prefix of the codecs this module registers (``wakeline-lines-utf-8``).
 PREFIX = "wakeline-lines-"
 
@@ -75,7 +76,7 @@ class Evidence:
 
     good: int = 0
     bad: int = 0
-    gb: int = 0
+    gb: float = 0
     bad_lines: int = 0
 
     def choice(self, primary: str = "utf-8") -> str:
@@ -251,7 +252,9 @@ class LineDecoder(codecs.IncrementalDecoder):
         ev = self.evidence
         ev.bad += high
         ev.bad_lines += 1
-        if ev.bad_lines <= EVIDENCE_LINES and 2 * len(_GB2312_PAIR.findall(line)) == high:
+        if ev.bad_lines > EVIDENCE_LINES:  # enough looked at: their share stands for the rest
+            ev.gb += high * ev.gb / max(ev.bad - high, 1)
+        elif 2 * len(_GB2312_PAIR.findall(line)) == high:
             try:
                 line.decode("gb18030")
                 ev.gb += high
@@ -343,7 +346,7 @@ def decide_file(path: Path, compression: str | None) -> str:
     dec = LineDecoder("utf-8")
     with open_data(path, compression) as fh:
         while True:
-            raw = fh.read(CHUNK)
+            raw = fh.read(JUDGE_CHUNK)  # small: it stops soon after EVIDENCE_LINES
             dec.decode(raw, final=not raw)
             if not raw or dec.evidence.bad_lines >= EVIDENCE_LINES:
                 break
