@@ -466,6 +466,8 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
             )
             if col.field == "course" and layout.source:  # --like a file, not a preset
                 values = np.where(courses_as_read(points), _as_read(points), values)
+            if any(c.hemisphere == col.field for c in layout.columns):
+                values = np.abs(values)  # the letter column beside says the sign
             cells.append(format_numbers(values, col.number or NumberFormat()))
         elif col.field is not None:
             cells.append(

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.compressed import open_data, open_for_arrow
@@ -33,6 +34,7 @@ from wakeline.core.io.reader import (
     date_column,
     ddmm_judged,
     excel_days_rule,
+    hemisphere_column,
     month_first_dates,
     resolve_header,
 )
@@ -780,34 +782,40 @@ def describe_layout(
 def _with_ddmm(cols: list, sample: pd.DataFrame, mapped: set[str], report: dict) -> list:
     """The lon/lat columns written as NMEA writes them (ddmm.mmmm) when the import read
     them so (its report's ``ddmm``; without a report, by its rule on the sample), and the
-    columns of hemisphere letters beside them written from their signs."""
+    columns of hemisphere letters beside them (the reader's rule,
+    :func:`~wakeline.core.io.reader.hemisphere_column`) written from their signs, of
+    ddmm.mmmm or of plain decimal degrees (then written without a sign)."""
     keys = [c.key for c in cols]
     pos = {c.field: i for i, c in enumerate(cols) if c.field in ("lat", "lon")}
-    if len(pos) < 2 or report.get("columns") and not report.get("ddmm"):
+    if len(pos) < 2:
         return cols
-    found = {}
+
+    def cells(key: str) -> pa.Array:
+        return pa.array(sample[key].to_numpy(dtype=object), pa.string())
+
+    besides = {}
     for name, letters in (("lat", "NS"), ("lon", "EW")):
-        col = cols[pos[name]]
-        text = sample[col.key].str.strip()
+        hemi = hemisphere_column(keys, keys[pos[name]], mapped, cells, letters)
+        if hemi is not None:
+            besides[name] = keys.index(hemi[0])
+    out = list(cols)
+    ddmm = not (report.get("columns") and not report.get("ddmm"))
+    found = {}
+    for name in ("lat", "lon") if ddmm else ():
+        text = sample[cols[pos[name]].key].str.strip()
         values = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
-        beside = None
-        for j in (pos[name] + 1, pos[name] - 1):
-            if 0 <= j < len(cols) and keys[j] not in mapped:
-                seen = set(sample[keys[j]].str.strip().str.upper()) - {""}
-                if seen and seen <= set(letters):
-                    beside = j
-                    break
-        if not report.get("ddmm") and not ddmm_judged(values, name, beside is not None):
-            return cols
+        if not report.get("ddmm") and not ddmm_judged(values, name, name in besides):
+            found = {}
+            break
         whole = text[text != ""].str.lstrip("+-").str.split(".").str[0]
         padded = bool((whole.str.len() > 1).any() and whole.str.startswith("0").any())
-        found[name] = (int(whole.str.len().max()) if padded and len(whole) else 1, beside)
-    out = list(cols)
-    for name, (width, beside) in found.items():
+        found[name] = int(whole.str.len().max()) if padded and len(whole) else 1
+    for name, width in found.items():
         col = out[pos[name]]
         out[pos[name]] = replace(col, ddmm=width, number=col.number or NumberFormat(4, "none"))
-        if beside is not None:
-            out[beside] = replace(out[beside], hemisphere=name)
+    if found or report.get("letter_signs") or not report.get("columns"):
+        for name, j in besides.items():
+            out[j] = replace(out[j], hemisphere=name)
     return out
 
 

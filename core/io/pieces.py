@@ -45,6 +45,7 @@ from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
     BEARING_WARNING_MARK,
     DDMM_NOTE_START,
+    LETTER_NOTE_START,
     POSITION_COUNTS,
     TIME_COUNTS,
     UNBALANCED_NOTE,
@@ -313,8 +314,8 @@ def _read_all(
                 # the first piece of numbers decides for the rest (as the streamed read)
                 options["time_unit"] = "excel-days" if fmt == "Excel serial days" else "seconds"
         if res.report.get("rows_imported"):  # ddmm.mmmm or not, signs from which letters
-            note = next((w for w in warnings if w.startswith(DDMM_NOTE_START)), None)
-            ddmm.add((bool(res.report.get("ddmm")), note))
+            notes = tuple(w for w in warnings if w.startswith((DDMM_NOTE_START, LETTER_NOTE_START)))
+            ddmm.add((bool(res.report.get("ddmm")), notes))
             if len(ddmm) > 1:
                 raise WholeFileNeeded  # pieces judged ddmm.mmmm positions apart: one judgement
         if not line_by_line and UNBALANCED_NOTE in warnings:

@@ -815,11 +815,25 @@ _DMS = re.compile(
 )
 
 
-def _with_dms(text: pd.Series, values: np.ndarray, counted: dict | None = None) -> int:
+#: NMEA's degrees and minutes run together with the hemisphere letter in the cell:
+#: ``3754.03N``, ``02342.10E``, ``N 3754.03``, ``3754,03 S`` (four or five digits before
+#: the point: ddmm, dddmm).
+_DDMM_CELL = re.compile(
+    r"^\s*(?P<h1>[NSEWnsew])?\s*(?P<sign>[+-])?\s*(?P<d>\d{4,5}(?:[.,]\d+)?)\s*"
+    r"(?P<h2>[NSEWnsew])?\s*$"
+)
+
+
+def _with_dms(
+    text: pd.Series, values: np.ndarray, counted: dict | None = None, top: float | None = None
+) -> int:
     """Fill ``values`` (NaN where ``text`` is no plain number) from the texts written in
     degrees, minutes and seconds (:data:`_DMS`), in place; returns how many. Counted in
     ``counted``: ``dms``, and ``hemisphere_degrees`` those of decimal degrees with a
-    hemisphere letter (no minutes: ``37.05N``)."""
+    hemisphere letter (no minutes: ``37.05N``). With ``top`` (90 for lat, 180 for lon),
+    a number with a letter and four or five digits before its point (``3754.03N``,
+    ``02342.10E``), or beyond ``top`` (``942.1E``), is NMEA's ddmm.mmmm (counted in
+    ``ddmm_in_cell``); minutes of 60 or more leave it unread."""
     miss = np.flatnonzero(np.isnan(values))
     if not len(miss):
         return 0
@@ -829,9 +843,17 @@ def _with_dms(text: pd.Series, values: np.ndarray, counted: dict | None = None) 
         return 0
     parts = sub.str.extract(_DMS)
     ok = parts["d"].notna() & (parts["m"].notna() | parts["h1"].notna() | parts["h2"].notna())
-    if not ok.any():
+    nmea = None
+    if top is not None:
+        rest = sub[~ok.to_numpy()]
+        if len(rest):
+            nmea = rest.str.extract(_DDMM_CELL)
+            nmea = nmea[nmea["d"].notna() & (nmea["h1"].notna() | nmea["h2"].notna())]
+    if not ok.any() and (nmea is None or not len(nmea)):
         return 0
     parts = parts[ok]
+    if nmea is not None and len(nmea):
+        parts = pd.concat([parts, nmea.reindex(columns=parts.columns)])
 
     def num(col: str) -> pd.Series:
         return pd.to_numeric(parts[col].str.replace(",", ".", regex=False), errors="coerce")
@@ -840,11 +862,25 @@ def _with_dms(text: pd.Series, values: np.ndarray, counted: dict | None = None) 
     good = (m < 60) & (sec < 60)
     hemi = parts["h1"].fillna("").str[:1].str.upper() + parts["h2"].fillna("").str.upper()
     south_west = hemi.str.contains("[SW西南]", regex=True) | (parts["sign"] == "-")
-    deg = (d + m / 60.0 + sec / 3600.0).where(good) * np.where(south_west, -1.0, 1.0)
+    deg = d + m / 60.0 + sec / 3600.0
+    in_cell = pd.Series(False, index=parts.index)
+    if top is not None:  # NMEA's ddmm.mmmm with its letter: 4-5 digits, or beyond top
+        lettered = parts["m"].isna() & (hemi != "")
+        digits = parts["d"].str.split(r"[.,]", regex=True).str[0].str.len()
+        in_cell = lettered & ((digits >= 4) | (d > top))
+        if in_cell.any():
+            deg = deg.where(~in_cell, pd.Series(_ddmm(d.to_numpy(), top), index=d.index))
+    deg = deg.where(good) * np.where(south_west, -1.0, 1.0)
     rows = text.index.get_indexer(deg.index)
     values[rows] = deg.to_numpy(dtype="float64")
-    read, plain = int(deg.notna().sum()), int((deg.notna() & parts["m"].isna()).sum())
-    for key, k in (("dms", read - plain), ("hemisphere_degrees", plain)):
+    read = int(deg.notna().sum())
+    nmea_read = int((deg.notna() & in_cell).sum())
+    plain = int((deg.notna() & parts["m"].isna() & ~in_cell).sum())
+    for key, k in (
+        ("dms", read - plain - nmea_read),
+        ("hemisphere_degrees", plain),
+        ("ddmm_in_cell", nmea_read),
+    ):
         if counted is not None and k:
             counted[key] = counted.get(key, 0) + k
     return read
@@ -855,11 +891,13 @@ def _numbers(
     decimal_comma: bool = False,
     counted: dict | None = None,
     angles: bool = False,
+    top: float | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """float64 values and a mask of unparsable (present but not a number) cells. With
     ``decimal_comma``, ``57,6671`` is 57.6671 (counted in ``counted["decimal_comma"]``);
     with ``angles``, ``57°40.026'N`` is 57.6671 (counted in ``counted["dms"]``; ``37.05N``
-    in ``counted["hemisphere_degrees"]``)."""
+    in ``counted["hemisphere_degrees"]``; with ``top``, ``3754.03N`` is NMEA's ddmm.mmmm:
+    :func:`_with_dms`)."""
     if pa.types.is_floating(arr.type) or pa.types.is_integer(arr.type):
         return arr.to_numpy().astype("float64", copy=False) if arr.null_count == 0 else pc.cast(
             arr, pa.float64()
@@ -871,7 +909,7 @@ def _numbers(
         if counted is not None and k:
             counted["decimal_comma"] = counted.get("decimal_comma", 0) + k
     if angles:
-        _with_dms(text, values, counted)
+        _with_dms(text, values, counted, top)
     present = ~(text.isna() | (text == "")).to_numpy()
     lowered = text.str.lower()
     nan_words = lowered.isin(["nan", "na", "n/a", "null", "none"]).to_numpy()
@@ -2139,6 +2177,15 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
         )
     if time_info.get("ddmm_note"):
         out.append(time_info["ddmm_note"])
+    if time_info.get("letter_note"):
+        out.append(time_info["letter_note"])
+    if time_info.get("ddmm_in_cell"):
+        out.append(
+            f"{time_info['ddmm_in_cell']:,} positions were written as NMEA writes them with "
+            "the hemisphere letter in the cell (3754.03N, 02342.10E: degrees and minutes "
+            "run together, four or five digits before the point) and read as signed decimal "
+            "degrees (3754.03N is 37.9005)"
+        )
     if time_info.get("hemisphere_degrees"):
         out.append(
             f"{time_info['hemisphere_degrees']:,} positions were written in decimal degrees "
@@ -2222,7 +2269,7 @@ def date_order_note(time_info: dict) -> str | None:
 TIME_COUNTS = ("dates_either_way", "day_shown", "excel_days", "date_order_refused")
 #: ... and of the positions read from text (in the report as these keys when not zero;
 #: a read in pieces sums them and says each once).
-POSITION_COUNTS = ("dms", "hemisphere_degrees", "ddmm")
+POSITION_COUNTS = ("dms", "hemisphere_degrees", "ddmm", "letter_signs", "ddmm_in_cell")
 
 
 def time_counts(time_info: dict) -> dict:
@@ -2775,38 +2822,124 @@ def ddmm_judged(values: np.ndarray, name: str, letters: bool) -> bool:
     return bool(ok[present].all() and beyond[present].all())
 
 
-def _hemisphere_column(
-    sn: Sniff, table: pa.Table, src: str, mapped: set[str], letters: str
-) -> tuple[str, np.ndarray, np.ndarray] | None:
-    """The column beside ``src`` (after it, else before it) mapped to no field whose
-    present cells are the two hemisphere ``letters`` (``"NS"``, ``"EW"``; 99 % of them:
-    a damaged cell does not hide the column), with per row whether it says the negative
-    one (S, W) and whether it holds something else (that row's sign is unknown); None
-    when no column does."""
-    if src not in sn.columns:
+def hemisphere_letters(
+    cells: pa.Array | pa.ChunkedArray, letters: str
+) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Whether a column's cells are the two hemisphere ``letters`` (``"NS"``, ``"EW"``;
+    case and edge blanks aside): at least one is, and 99 % of its present cells are (a
+    damaged cell does not hide the column). Then per row whether it says the negative one
+    (S, W), whether it holds something else (that row's sign is unknown) and whether it
+    says the positive one; else None.
+    A column of numbers is none (no cast: the common case costs nothing)."""
+    if not (
+        pa.types.is_string(cells.type)
+        or pa.types.is_large_string(cells.type)
+        or pa.types.is_dictionary(cells.type)
+        or pa.types.is_null(cells.type)
+    ):
         return None
-    i = sn.columns.index(src)
-    for j in (i + 1, i - 1):
-        if not 0 <= j < len(sn.columns) or sn.columns[j] in mapped:
-            continue
-        col = pc.utf8_upper(pc.utf8_trim_whitespace(pc.cast(table[sn.columns[j]], pa.string())))
-        col = pc.fill_null(col, "")
-        negative = np.asarray(pc.equal(col, letters[1]), dtype=bool)
-        letter = negative | np.asarray(pc.equal(col, letters[0]), dtype=bool)
-        present = np.asarray(pc.not_equal(col, ""), dtype=bool)
-        if letter.any() and letter.sum() >= DDMM_SHARE * present.sum():
-            return sn.columns[j], negative, present & ~letter
+    col = pc.utf8_upper(pc.utf8_trim_whitespace(pc.cast(cells, pa.string())))
+    col = pc.fill_null(col, "")
+    negative = np.asarray(pc.equal(col, letters[1]), dtype=bool)
+    letter = negative | np.asarray(pc.equal(col, letters[0]), dtype=bool)
+    present = np.asarray(pc.not_equal(col, ""), dtype=bool)
+    if letter.any() and letter.sum() >= DDMM_SHARE * present.sum():
+        return negative, present & ~letter, letter & ~negative
     return None
 
 
+def hemisphere_column(
+    columns: tuple[str, ...] | list[str],
+    src: str,
+    mapped: set[str],
+    cells: Callable[[str], pa.Array | pa.ChunkedArray],
+    letters: str,
+) -> tuple[str, np.ndarray, np.ndarray, np.ndarray] | None:
+    """The column beside ``src`` (after it, else before it) mapped to no field whose
+    cells (``cells(name)``) are the hemisphere ``letters`` (:func:`hemisphere_letters`),
+    with its per-row negative, other-letter and positive masks; None when no column is. One rule
+    for the reader and for the layout ``export --like`` learns."""
+    if src not in columns:
+        return None
+    i = list(columns).index(src)
+    for j in (i + 1, i - 1):
+        if not 0 <= j < len(columns) or columns[j] in mapped:
+            continue
+        got = hemisphere_letters(cells(columns[j]), letters)
+        if got is not None:
+            return (columns[j], *got)
+    return None
+
+
+def _hemisphere_column(
+    sn: Sniff, table: pa.Table, src: str, mapped: set[str], letters: str
+) -> tuple[str, np.ndarray, np.ndarray, np.ndarray] | None:
+    """:func:`hemisphere_column` over a parsed table's columns."""
+    return hemisphere_column(sn.columns, src, mapped, lambda name: table[name], letters)
+
+
+#: The start of the warning that says a file's decimal degrees take their signs from
+#: columns of hemisphere letters beside them.
+LETTER_NOTE_START = "the signs of"
+#: Quarantine reason of a negative value whose letter says the positive hemisphere.
+SIGN_REASON = "{} negative but its hemisphere letter says {}"
+
+
+def _letter_signs(
+    v: np.ndarray, hemi: tuple[str, np.ndarray, np.ndarray, np.ndarray]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Degrees ``v`` signed by a column of hemisphere letters ``hemi``
+    (:func:`hemisphere_column`): S and W make a value negative (``-37.9`` with ``S`` is
+    -37.9 too), N and E and a blank letter keep it; NaN where the letter is another (its
+    sign is unknown) and where a negative value has N (E), a contradiction, returned as
+    a mask for its own reason."""
+    _, negative, other, positive = hemi
+    with np.errstate(invalid="ignore"):
+        clash = positive & (v < 0)
+    signed = np.where(negative, -np.abs(v), v)
+    signed[other | clash] = np.nan
+    return signed, clash
+
+
+def _letter_columns(
+    table: pa.Table, sn: Sniff, res: Resolved
+) -> dict[str, tuple[str, np.ndarray, np.ndarray, np.ndarray]]:
+    """The columns of hemisphere letters beside lat (N/S) and lon (E/W), by field
+    (:func:`hemisphere_column`); none on a local plane."""
+    cols = res.columns
+    if res.on_plane or "lat" not in cols or "lon" not in cols:
+        return {}
+    mapped = set(cols.values())
+    out = {}
+    for name, letters in (("lat", "NS"), ("lon", "EW")):
+        hemi = _hemisphere_column(sn, table, cols[name], mapped, letters)
+        if hemi is not None:
+            out[name] = hemi
+    return out
+
+
+def _letter_note(hemis: dict, counted: dict, ddmm: bool) -> None:
+    """Say in ``counted["letter_note"]`` which columns of hemisphere letters gave plain
+    decimal degrees their signs (a ddmm.mmmm file says it in its own note)."""
+    if ddmm or not hemis:
+        return
+    fields = " and ".join(hemis)
+    cols = " and ".join(repr(h[0]) for h in hemis.values())
+    counted["letter_note"] = (
+        f"{LETTER_NOTE_START} {fields} come from the hemisphere letters in {cols} "
+        "(S and W negative)"
+    )
+
+
 def _ddmm_positions(
-    table: pa.Table, sn: Sniff, res: Resolved, comma: bool, counted: dict
-) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]]:
+    table: pa.Table, sn: Sniff, res: Resolved, comma: bool, counted: dict, hemis: dict
+) -> dict[str, tuple]:
     """The lat and lon columns read as NMEA's ddmm.mmmm / dddmm.mmmm, when they are so:
-    ``{field: (degrees, unparsable, not ddmm, letter neither hemisphere's or None)}``,
-    else ``{}``. The lat column decides
+    ``{field: (degrees, unparsable, not ddmm, letter neither hemisphere's or None, sign
+    against the letter or None)}``, else ``{}``. The lat column decides
     (a lon of 100-180 is plain degrees): with a column of N/S beside it (and E/W beside
-    lon), when 99 % of its present values are ddmm.mmmm and most lie beyond 90; with
+    lon: ``hemis``, :func:`_letter_columns`), when 99 % of its present values are
+    ddmm.mmmm and most lie beyond 90; with
     none, when every lat value lies beyond 90 and is ddmm.mmmm, and every lon value lies
     beyond 90 too and is dddmm.mmmm (a file whose lat holds its longitudes, the columns
     swapped, stays as it is). Lon is read so only with lat. The letters give the sign
@@ -2822,22 +2955,21 @@ def _ddmm_positions(
             a = np.abs(lat_arr.to_numpy().astype("float64", copy=False))
         if not (a > 90.0).any():
             return {}  # degrees with a value missing: nothing beyond 90
-    mapped = set(cols.values())
     got = {}
-    for name, arr, top, letters in (("lat", lat_arr, 90.0, "NS"), ("lon", lon_arr, 180.0, "EW")):
+    for name, arr, top in (("lat", lat_arr, 90.0), ("lon", lon_arr, 180.0)):
         v, unparsable = _numbers(arr, comma)
-        hemi = _hemisphere_column(sn, table, cols[name], mapped, letters)
+        hemi = hemis.get(name)
         if not ddmm_judged(v, name, hemi is not None):
             return {}
         deg = _ddmm(v, top)
+        clash = None
         if hemi is not None:
-            deg = np.where(hemi[1], -np.abs(deg), deg)
-            deg[hemi[2]] = np.nan  # a letter neither N nor S: the sign is unknown
-        not_ddmm = ~np.isnan(v) & np.isnan(deg) & ~(hemi[2] if hemi else False)
-        got[name] = (deg, unparsable, not_ddmm, hemi[2] if hemi else None, hemi and hemi[0])
+            deg, clash = _letter_signs(deg, hemi)
+        not_ddmm = ~np.isnan(v) & np.isnan(_ddmm(v, top)) & ~(hemi[2] if hemi else False)
+        got[name] = (deg, unparsable, not_ddmm, hemi[2] if hemi else None, clash, hemi and hemi[0])
     read = int(sum((~np.isnan(g[0])).sum() for g in got.values()))
     counted["ddmm"] = counted.get("ddmm", 0) + read
-    letters = [g[4] for g in got.values() if g[4]]
+    letters = [g[5] for g in got.values() if g[5]]
     counted["ddmm_note"] = DDMM_NOTE_START + (
         f"; their signs come from the hemisphere letters in "
         f"{' and '.join(map(repr, letters))} (S and W negative)"
@@ -2845,7 +2977,7 @@ def _ddmm_positions(
         else ": no column of hemisphere letters beside them, but every lat and every lon "
         "lies beyond 90 and reads as degrees and minutes (lon is read so only because lat is)"
     )
-    return {name: g[:4] for name, g in got.items()}
+    return {name: g[:5] for name, g in got.items()}
 
 
 #: Headers of a column of dates beside a time column of clock times (normalised).
@@ -3249,7 +3381,9 @@ def _to_canonical(
     ais = ais_columns(res)
     if res.on_plane:
         floats["lon"], floats["lat"] = _plane_positions(table, res, comma, counted, flag)
-    ddmm = _ddmm_positions(table, sn, res, comma, counted)
+    hemis = _letter_columns(table, sn, res)
+    ddmm = _ddmm_positions(table, sn, res, comma, counted, hemis)
+    _letter_note(hemis, counted, bool(ddmm))
     for name in _FLOAT_FIELDS:
         if name not in cols:
             continue
@@ -3257,15 +3391,29 @@ def _to_canonical(
         lo, hi, hi_open = _RANGES[name]
         sentinel = AIS_NOT_AVAILABLE[name] if name in ais else None
         if name in ddmm:  # NMEA's degrees and minutes run together
-            v, unparsable, not_ddmm, bad_letter = ddmm[name]
+            v, unparsable, not_ddmm, bad_letter, clash = ddmm[name]
             flag(not_ddmm, DDMM_REASON.format(name))
             if bad_letter is not None:
                 flag(bad_letter, f"{name} hemisphere letter not {LETTERS[name]}")
-        elif _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel):
+                flag(clash, SIGN_REASON.format(name, LETTERS[name][0]))
+        elif (
+            name not in hemis and _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel)
+        ):
             floats[name] = arr  # the common case: passes through untouched
             continue
         else:
-            v, unparsable = _numbers(arr, comma, counted, angles=name in ("lon", "lat"))
+            v, unparsable = _numbers(
+                arr, comma, counted, angles=name in ("lon", "lat"), top=_RANGES[name][1]
+            )
+            if name in hemis:  # decimal degrees with a column of hemisphere letters
+                hemi = hemis[name]
+                given = ~np.isnan(v)
+                v, clash = _letter_signs(v, hemi)
+                flag(unparsable, f"unparsable {name}")
+                flag(hemi[2] & given, f"{name} hemisphere letter not {LETTERS[name]}")
+                flag(clash, SIGN_REASON.format(name, LETTERS[name][0]))
+                signed = given & (hemi[1] | hemi[3]) & ~clash
+                counted["letter_signs"] = counted.get("letter_signs", 0) + int(signed.sum())
         with np.errstate(invalid="ignore"):
             outside = (v < lo) | (v >= hi if hi_open else v > hi) | np.isinf(v)
         as_read = v  # (course: kept below where this import changes it)
@@ -3839,12 +3987,13 @@ def stream_points(
             time_info["date_column"] = info["date_column"]
         if counts["rows_imported"]:  # pieces that read positions apart: one judgement
             time_info.setdefault("_ddmm", set()).add(
-                (bool(info.get("ddmm")), info.get("ddmm_note"))
+                (bool(info.get("ddmm")), info.get("ddmm_note"), info.get("letter_note"))
             )
             if len(time_info["_ddmm"]) > 1:
                 raise _Fallback
-        if info.get("ddmm_note"):
-            time_info["ddmm_note"] = info["ddmm_note"]
+        for key in ("ddmm_note", "letter_note"):
+            if info.get(key):
+                time_info[key] = info[key]
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")
@@ -3861,6 +4010,8 @@ def stream_points(
             "dms",
             "hemisphere_degrees",
             "ddmm",
+            "letter_signs",
+            "ddmm_in_cell",
             "dates_either_way",
             "day_shown",
             "date_order_refused",
