@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from wakeline.core.io import read_points
 from tests.test_import_spaced_pipe_nmea import _lines_accounted, _three_ways
+from wakeline.core.io import read_points
 
 
 def _letters_file(lat, lon, header=("time", "id", "lat", "ns", "lon", "ew")) -> str:

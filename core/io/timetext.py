@@ -40,6 +40,27 @@ _MONTHS = {
     )
     for name in (full, full[:3])
 } | {"sept": 9}
+#: Month names in German, French, Spanish, Portuguese, Italian, Dutch, Norwegian, Swedish
+#: and Danish as written (lower case; full, and the abbreviations their locales write,
+#: with and without accents): month by month, every name means the same month in every
+#: language that writes it (``mar`` March, ``mai`` May, ``des`` December).
+_OTHER_MONTHS = (
+    "januar januari janvier janv enero ene janeiro gennaio gen",
+    "februar februari février fevrier févr fevr fév fev febrero fevereiro febbraio",
+    "märz maerz mär maer mars marts marzo março marco maart mrt",
+    "avril avr abril abr aprile",
+    "mai mayo maio maggio mag mei maj",
+    "juni juin junio junho giugno giu",
+    "juli juillet juil julio julho luglio lug",
+    "augusti août aout aoû aou agosto ago augustus",
+    "septembre septiembre setiembre setembro settembre set",
+    "oktober octobre octubre outubro out ottobre ott okt",
+    "novembre noviembre novembro",
+    "dezember décembre decembre déc dezembro diciembre dicembre dic dez desember des",
+)
+_MONTHS |= {name: k + 1 for k, names in enumerate(_OTHER_MONTHS) for name in names.split()}
+#: A month's word in the patterns below (lower-cased text; letters with accents too).
+_MON = r"[a-zà-ɏ]{3,10}"
 
 #: A weekday before a date (``Mon``, ``Monday,``): read past, not checked against the date.
 _WEEKDAY = r"(?:(?:mon|tue|tues|wed|thu|thur|thurs|fri|sat|sun)[a-z]*\.?,?\s+)?"
@@ -57,7 +78,10 @@ _NAMED = tuple(
     for p in (
         # 01-Jan-2024 00:00:05, 01-JAN-24 00.00.05, 1 January 2024 00:00:05,
         # Mon, 01 Jan 2024 00:00:05 +0000 (e-mail), 01/Jan/2024:00:00:05 +0000 (web logs)
-        r"^\s*" + _WEEKDAY + r"(?P<d>\d{1,2})(?:st|nd|rd|th)?[-/ .]\s*(?P<mon>[a-z]{3,9})\.?"
+        # other languages: 01-Mär-2024, 1 janv. 2024, 3. März 2024, 1er janvier 2024,
+        # 15 de enero de 2024 (Spanish, Portuguese)
+        r"^\s*" + _WEEKDAY + r"(?P<d>\d{1,2})(?:st|nd|rd|th|er|º|ª)?[-/ .]\s*(?:de\s+)?"
+        r"(?P<mon>" + _MON + r")\.?(?:\s+de)?"
         r"[-/ .,]\s*(?P<y>\d{4}|\d{2})(?:(?:\s+|t|:|,\s*)" + _TIME + r")?" + _ZONE + _END,
         # Jan 1, 2024 12:00:05 PM, January 01 2024 00:00:05, Monday, January 1, 2024 ...
         r"^\s*" + _WEEKDAY + r"(?P<mon>[a-z]{3,9})\.?\s+(?P<d>\d{1,2})(?:st|nd|rd|th)?,?\s+"
@@ -70,7 +94,9 @@ _NAMED = tuple(
         + r"(?:\s+(?P<Z>utc|gmt|z))?\s+(?P<y>\d{4})"
         + _END,
         # 2024-Jan-01 00:00:05
-        r"^\s*(?P<y>\d{4})[-/ ](?P<mon>[a-z]{3,9})[-/ ](?P<d>\d{1,2})(?:(?:\s+|t)"
+        r"^\s*(?P<y>\d{4})[-/ ](?P<mon>"
+        + _MON
+        + r")[-/ ](?P<d>\d{1,2})(?:(?:\s+|t)"
         + _TIME
         + r")?"
         + _ZONE
@@ -254,7 +280,7 @@ def chinese_iso(text: pd.Series) -> pd.Series:
 
 
 #: Text that may hold a month name or a Chinese date (rows without it are not looked at).
-NAMED_HINT = r"[A-Za-z]{3}|年"
+NAMED_HINT = r"[A-Za-zÀ-ɏ]{3}|年"
 
 
 def clock_seconds(text: pd.Series) -> pd.Series:
