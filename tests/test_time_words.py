@@ -146,3 +146,100 @@ def test_every_month_of_every_language(lang):
         assert ok.all(), cells
         got = pd.to_datetime(np.asarray(ns), utc=True).month.tolist()
         assert got == list(range(1, 13)), (lang, full)
+
+
+# --- zone words after a time ---------------------------------------------------------
+
+
+def test_zone_words_and_offsets_after_a_time(tmp_path, monkeypatch):
+    cells = {
+        "2024-01-01 00:00:05 CET": "2023-12-31 23:00:05",
+        "2024-07-01 00:00:05 CEST": "2024-06-30 22:00:05",
+        "2024-01-01 00:00:05 EST": "2024-01-01 05:00:05",
+        "2024-07-01 00:00:05 EDT": "2024-07-01 04:00:05",
+        "2024-01-01 00:00:05 PST": "2024-01-01 08:00:05",
+        "2024-01-01 00:00:05 JST": "2023-12-31 15:00:05",
+        "2024-01-01 00:00:05 UTC+8": "2023-12-31 16:00:05",
+        "2024-01-01 00:00:05 GMT+01:00": "2023-12-31 23:00:05",
+        "2024-01-01 00:00:05 utc-0330": "2024-01-01 03:30:05",
+        "2024-01-01 00:00:05 Z": "2024-01-01 00:00:05",
+        "2024-01-01T00:00:05 (CET)": "2023-12-31 23:00:05",
+        "01-Jan-2024 00:00:05 CET": "2023-12-31 23:00:05",
+        "1 janv. 2024 12:00 PM EST": "2024-01-01 17:00:00",
+        "Mon Jan  1 00:00:05 CET 2024": "2023-12-31 23:00:05",
+    }
+    src = tmp_path / "z.csv"
+    src.write_text(
+        "time,id,lat,lon\n"
+        + "".join(f"{c},{k},37.{k:04d},23.6\n" for k, c in enumerate(list(cells) * 2))
+    )
+    r = _three_ways(src, tmp_path, monkeypatch, size=200)
+    assert r.report["rows_quarantined"] == 0, r.quarantine
+    got = r.points.sort_values("lat")["time"].tolist()
+    assert got == [pd.Timestamp(w, tz="UTC") for w in list(cells.values()) * 2]
+    assert any("end in a zone word" in w for w in r.report["warnings"])
+    # --tz for the times without a word; those with one keep theirs
+    r = read_points(src, tz="Asia/Tokyo")
+    got = r.points.sort_values("lat")["time"].tolist()
+    assert got == [pd.Timestamp(w, tz="UTC") for w in list(cells.values()) * 2]
+    assert any("--tz applies only to the times without one" in w for w in r.report["warnings"])
+
+
+def test_an_ambiguous_zone_word_is_refused_without_tz_and_read_in_it(tmp_path, monkeypatch):
+    src = tmp_path / "cst.csv"
+    lines = [f"2024-01-01 00:{k:02d}:00 CST,1,37.{k:04d},23.6" for k in range(20)]
+    lines[3] = "2024-01-01 00:03:00 CET,1,37.0003,23.6"
+    lines[5] = "2024-01-01 00:05:00 XYZ,1,37.0005,23.6"  # no zone: unparsable as before
+    src.write_text("time,id,lat,lon\n" + "\n".join(lines) + "\n")
+    r = _three_ways(src, tmp_path, monkeypatch, size=200)
+    _lines_accounted(r, src)
+    assert len(r.points) == 1  # the CET row
+    reasons = r.quarantine.set_index("line")["reason"]
+    assert reasons[7] == "unparsable time"
+    assert reasons[2] == (
+        "time zone CST is ambiguous (US Central -06:00, China +08:00, Cuba -05:00): "
+        "give the zone with --tz"
+    )
+    assert (reasons.drop([4, 7], errors="ignore").str.startswith("time zone CST")).all()
+    r = read_points(src, tz="Asia/Shanghai")
+    assert len(r.points) == 19 and r.quarantine["line"].tolist() == [7]
+    assert r.points["time"].iloc[0] == pd.Timestamp("2023-12-31 16:00:00", tz="UTC")
+    assert any("CST" in w and "read in --tz Asia/Shanghai" in w for w in r.report["warnings"])
+
+
+@_SETTINGS
+@given(
+    seconds=st.lists(st.integers(0, 40 * 365 * 86_400), min_size=1, max_size=12, unique=True),
+    word=st.sampled_from(["CET", "CEST", "EST", "EDT", "PST", "PDT", "JST", "AEST", "NZDT"]),
+    form=st.sampled_from(
+        ["%Y-%m-%d %H:%M:%S {w}", "%d-%b-%Y %H:%M:%S {w}", "%Y-%m-%dT%H:%M:%S{w}"]
+    ),
+)
+def test_zone_words_read_back_any_time(seconds, word, form):
+    from wakeline.core.io.timetext import ZONE_WORDS
+
+    times = [pd.Timestamp("2000-01-01", tz="UTC") + pd.Timedelta(seconds=s) for s in seconds]
+    offset = pd.Timedelta(hours=int(ZONE_WORDS[word][:3]), minutes=int(ZONE_WORDS[word][4:]))
+    cells = [(t + offset).strftime(form.format(w=" " + word)) for t in times]
+    ns, ok = parse_times(pa.chunked_array([pa.array(cells)]), "auto")
+    assert ok.all(), cells
+    assert (np.asarray(ns) == np.array([t.value for t in times])).all(), cells
+
+
+@_SETTINGS
+@given(
+    seconds=st.integers(0, 40 * 365 * 86_400),
+    hours=st.integers(-12, 14),
+    minutes=st.sampled_from([0, 30, 45]),
+    word=st.sampled_from(["UTC", "GMT", "utc"]),
+    colon=st.booleans(),
+)
+def test_utc_offsets_read_back_any_time(seconds, hours, minutes, word, colon):
+    t = pd.Timestamp("2000-01-01", tz="UTC") + pd.Timedelta(seconds=seconds)
+    sign = "-" if hours < 0 else "+"
+    offset = pd.Timedelta(hours=abs(hours), minutes=minutes) * (-1 if hours < 0 else 1)
+    tail = f"{sign}{abs(hours)}" + (f"{':' if colon else ''}{minutes:02d}" if minutes else "")
+    cell = f"{(t + offset):%Y-%m-%d %H:%M:%S} {word}{tail}"
+    ns, ok = parse_times(pa.chunked_array([pa.array([cell])]), "auto")
+    assert ok.all(), cell
+    assert ns[0] == t.value, cell

@@ -61,6 +61,7 @@ from wakeline.core.io.formats import (
 )
 from wakeline.core.io.sniff import Sniff, blank_runs, cell_kind, listed_headers, sniff
 from wakeline.core.io.timetext import (
+    AMBIGUOUS_ZONES,
     NAMED_HINT,
     check_clock_date,
     chinese_iso,
@@ -73,6 +74,7 @@ from wakeline.core.io.timetext import (
     roll_days,
     sod_ns,
     valid_hhmmss,
+    zone_words,
 )
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import COURSE_READ, DEFAULT_SENSOR
@@ -1776,6 +1778,18 @@ def parse_times(
     named = named_form = None
     hint = present & text.str.contains(NAMED_HINT, regex=True).fillna(False).astype(bool)
     if hint.any():
+        # Zone words after the clock (CET, EST, UTC+8): written as their offsets
+        worded, words, left = zone_words(text[hint], tz is not None)
+        if words or left:
+            text = text.copy()
+            text[hint] = worded
+            for word, k in words.items():
+                info.setdefault("zone_words", {})
+                info["zone_words"][word] = info["zone_words"].get(word, 0) + k
+            for word, rows in left.items():
+                mask = np.zeros(len(text), dtype=bool)
+                mask[np.flatnonzero(hint.to_numpy())[rows]] = True
+                info.setdefault("zone_ambiguous", {})[word] = mask
         # English month names and Chinese dates: written again as ISO 8601 text
         cn = hint & text.str.contains("年", regex=False).fillna(False).astype(bool)
         months = named_iso(text[hint & ~cn])
@@ -2191,6 +2205,19 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"{time_info['hemisphere_degrees']:,} positions were written in decimal degrees "
             "with a hemisphere letter (like 37.05N, W 23.05) and read as signed decimal "
             "degrees (S and W negative)"
+        )
+    words = time_info.get("zone_words") or {}
+    if any(not w.endswith(AS_TZ) for w in words):
+        out.append(
+            f"times in {time_src!r} end in a zone word or offset (CET, EST, JST, UTC+8 …): "
+            "each was read at that zone's offset from UTC"
+            + ("; --tz applies only to the times without one" if zone is not None else "")
+        )
+    for w in sorted(w for w in words if w.endswith(AS_TZ)):
+        word = w.removesuffix(AS_TZ)
+        out.append(
+            f"the zone word {word} in {time_src!r} names more than one zone "
+            f"({AMBIGUOUS_ZONES[word]}): those times were read in --tz {zone}"
         )
     if time_info.get("naive") and zone is None and header_is_local(time_src):
         out.append(
@@ -2878,6 +2905,9 @@ def _hemisphere_column(
     return hemisphere_column(sn.columns, src, mapped, lambda name: table[name], letters)
 
 
+#: How :func:`~wakeline.core.io.timetext.zone_words` counts an ambiguous zone word read
+#: in --tz.
+AS_TZ = " (as --tz)"
 #: The start of the warning that says a file's decimal degrees take their signs from
 #: columns of hemisphere letters beside them.
 LETTER_NOTE_START = "the signs of"
@@ -3324,6 +3354,11 @@ def _to_canonical(
             ns, time_ok = np.array(ns), np.array(time_ok)  # writable copies
             placed = _place_repeated_hour(track, counted, ns, time_ok)
             counted["clock_placed"] = counted.get("clock_placed", 0) + placed
+        for word, where in counted.pop("zone_ambiguous", {}).items():
+            flag(
+                where,
+                f"time zone {word} is ambiguous ({AMBIGUOUS_ZONES[word]}): give the zone with --tz",
+            )
         changed = counted.pop("clock_change", None)
         if changed is not None:
             flag(changed, f"local time skipped or repeated by a clock change in {zone}")
@@ -3994,6 +4029,9 @@ def stream_points(
         for key in ("ddmm_note", "letter_note"):
             if info.get(key):
                 time_info[key] = info[key]
+        for word, k in (info.get("zone_words") or {}).items():
+            merged = time_info.setdefault("zone_words", {})
+            merged[word] = merged.get(word, 0) + k
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")

@@ -91,7 +91,7 @@ _NAMED = tuple(
         + _WEEKDAY
         + r"(?P<mon>[a-z]{3,9})\s+(?P<d>\d{1,2})\s+"
         + _TIME
-        + r"(?:\s+(?P<Z>utc|gmt|z))?\s+(?P<y>\d{4})"
+        + r"(?:\s*(?P<Z>utc|gmt|z|[+-]\d\d:?\d\d))?\s+(?P<y>\d{4})"
         + _END,
         # 2024-Jan-01 00:00:05
         r"^\s*(?P<y>\d{4})[-/ ](?P<mon>"
@@ -279,6 +279,104 @@ def chinese_iso(text: pd.Series) -> pd.Series:
     return _series(iso, text.index)
 
 
+#: Zone words after a clock and the offset from UTC each stands for (upper case).
+ZONE_WORDS = {
+    **dict.fromkeys(("UTC", "GMT", "UT", "Z", "WET"), "+00:00"),  # UTC+8: the offset
+    **dict.fromkeys(("CET", "MEZ", "WEST"), "+01:00"),
+    **dict.fromkeys(("CEST", "MESZ", "EET", "CAT", "SAST"), "+02:00"),
+    **dict.fromkeys(("EEST", "MSK", "EAT"), "+03:00"),
+    "PKT": "+05:00",
+    **dict.fromkeys(("ICT", "WIB"), "+07:00"),
+    **dict.fromkeys(("HKT", "SGT", "AWST", "MYT", "PHT"), "+08:00"),
+    **dict.fromkeys(("JST", "KST"), "+09:00"),
+    "ACST": "+09:30",
+    "AEST": "+10:00",
+    "ACDT": "+10:30",
+    "AEDT": "+11:00",
+    "NZST": "+12:00",
+    "NZDT": "+13:00",
+    "NDT": "-02:30",
+    **dict.fromkeys(("BRT", "ART", "ADT"), "-03:00"),
+    "NST": "-03:30",
+    "EDT": "-04:00",
+    **dict.fromkeys(("EST", "CDT"), "-05:00"),
+    "MDT": "-06:00",
+    **dict.fromkeys(("MST", "PDT"), "-07:00"),
+    **dict.fromkeys(("PST", "AKDT"), "-08:00"),
+    "AKST": "-09:00",
+    "HST": "-10:00",
+}
+#: Zone words that name more than one zone: not read without --tz (then read in it).
+AMBIGUOUS_ZONES = {
+    "CST": "US Central -06:00, China +08:00, Cuba -05:00",
+    "IST": "India +05:30, Ireland +01:00, Israel +02:00",
+    "AST": "Atlantic -04:00, Arabia +03:00",
+    "BST": "British Summer +01:00, Bangladesh +06:00",
+    "GST": "Gulf +04:00, South Georgia -02:00",
+    "SST": "Samoa -11:00, Singapore +08:00",
+    "ECT": "Ecuador -05:00, Eastern Caribbean -04:00",
+}
+#: A zone word after a clock (``00:00:05 CET``, ``12:00 PM EST``, ``00:00:05 UTC+8``,
+#: ``GMT+01:00``), before a year too (``date``'s ``Mon Jan  1 00:00:05 CET 2024``).
+_ZONE_WORD = (
+    r"^(?P<pre>.*\d[:.]\d\d(?:[.,]\d+)?(?:\s*[AaPp]\.?\s?[Mm]\.?)?)\s*\(?(?P<w>[A-Za-z]{1,5})\)?"
+    r"(?:\s*(?P<o>[+-])\s*(?P<oh>\d{1,2})(?::?(?P<om>\d\d))?)?(?P<post>\s+\d{4})?\s*$"
+)
+
+
+def zone_words(text: pd.Series, tz_given: bool) -> tuple[pd.Series, dict, dict]:
+    """``text`` with each zone word after a clock (:data:`ZONE_WORDS`) written as its
+    offset (``2024-01-01 00:00:05 CET`` is ``2024-01-01 00:00:05+01:00``; ``UTC+8``
+    ``+08:00``); an ambiguous one (:data:`AMBIGUOUS_ZONES`) dropped when ``tz_given``
+    (the time is then read in --tz), else left as it is. Returns the text, the words
+    read by count, and the ambiguous words left by a mask of their rows (positions in
+    ``text``). Unknown words stay (the row is unparsable as before)."""
+    arr = _arrow(text)
+    parts, matched = _extract(arr, _ZONE_WORD)
+    if not matched.any():
+        return text, {}, {}
+    word = pc.utf8_upper(parts["w"])
+    sign, hours, mins = parts["o"], parts["oh"], parts["om"]
+    utc = np.asarray(pc.fill_null(pc.is_in(word, pa.array(["UTC", "GMT", "UT"])), False))
+    with_offset = _given(sign)
+    offset = pc.binary_join_element_wise(
+        sign,
+        pc.utf8_lpad(hours, 2, "0"),
+        ":",
+        pc.if_else(pa.array(_given(mins)), mins, pa.scalar("00", pa.string())),
+        "",
+    )
+    named = pc.fill_null(pc.index_in(word, value_set=pa.array(list(ZONE_WORDS))), -1).to_numpy(
+        zero_copy_only=False
+    )
+    fixed = np.asarray(list(ZONE_WORDS.values()) + [""], dtype=object)[named]
+    hour_ok = np.nan_to_num(_num(hours), nan=99) <= 14
+    read = matched & (named >= 0) & (~with_offset | (utc & hour_ok))
+    ambiguous = (
+        np.asarray(pc.fill_null(pc.is_in(word, pa.array(list(AMBIGUOUS_ZONES))), False))
+        & matched
+        & ~with_offset
+    )
+    new = pc.if_else(pa.array(with_offset), offset, pa.array(fixed, pa.string()))
+    if tz_given:  # the ambiguous word dropped: the time is read in --tz
+        new = pc.if_else(pa.array(ambiguous), "", new)
+    rewritten = pc.binary_join_element_wise(parts["pre"], new, parts["post"], "")
+    use = read | (ambiguous & tz_given)
+    out = text.copy()
+    if use.any():
+        out[use] = np.asarray(rewritten.to_numpy(zero_copy_only=False), dtype=object)[use]
+    words = pd.Series(np.asarray(word.to_numpy(zero_copy_only=False), dtype=object))
+    counts = words[read & ~utc].value_counts().to_dict()
+    left = (
+        {} if tz_given else {w: (words == w).to_numpy() & ambiguous for w in set(words[ambiguous])}
+    )
+    if tz_given:
+        counts.update({f"{w} (as --tz)": k for w, k in words[ambiguous].value_counts().items()})
+    if (read & utc & with_offset).any():
+        counts["UTC±hh"] = int((read & utc & with_offset).sum())
+    return out, counts, left
+
+
 #: Text that may hold a month name or a Chinese date (rows without it are not looked at).
 NAMED_HINT = r"[A-Za-zÀ-ɏ]{3}|年"
 
@@ -408,7 +506,9 @@ def hhmmss_seconds(values: np.ndarray) -> np.ndarray:
 
 
 __all__ = [
+    "AMBIGUOUS_ZONES",
     "NAMED_HINT",
+    "ZONE_WORDS",
     "ROLLOVER_BACK_S",
     "check_clock_date",
     "chinese_iso",
@@ -421,4 +521,5 @@ __all__ = [
     "roll_days",
     "sod_ns",
     "valid_hhmmss",
+    "zone_words",
 ]
