@@ -7,7 +7,7 @@ required fields are all present. ``--map field=column`` overrides any field.
 """
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.sniff import listed_headers
@@ -572,6 +572,10 @@ class Resolved:
     date: str | None = None
     #: What was decided by the values (an id column adopted): warnings for the report.
     notes: tuple[str, ...] = ()
+    #: The time column holds GPS seconds (no column names a time): of the week in the
+    #: column ``gps_week`` names, or since the GPS epoch (1980-01-06) when it is ``""``;
+    #: None: not GPS time (:func:`gps_columns`).
+    gps_week: str | None = None
 
     @property
     def on_plane(self) -> bool:
@@ -772,7 +776,7 @@ def resolve(
     kind = plane_kind(found.columns)
     if kind is None:
         # lon/lat: an origin given is not used (the reader says so: origin_warnings)
-        return Resolved(found.format, found.columns, origin)
+        return replace(found, origin=origin)
     if origin is None:
         c = found.columns
         what = (
@@ -785,7 +789,28 @@ def resolve(
             "latitude and longitude of the plane's origin (the radar's site, the frame's "
             "zero) with --origin LAT,LON"
         )
-    return Resolved(found.format, found.columns, origin)
+    return replace(found, origin=origin)
+
+
+#: A GPS week number's header (``gps_week``, ``GPSWeek``, ``week``, ``WN``).
+_GPS_WEEK = re.compile(r"^(?:gps[\s_\-.]*)?(?:week|wk|wn)(?:[\s_\-.]*(?:no|nr|num|number))?$")
+#: GPS seconds: of the week (``tow``, ``gps_tow``, ``time_of_week``, ``gps_seconds`` beside
+#: a week) or since the GPS epoch (``gps_time``, ``gps_seconds`` alone); a unit after.
+_GPS_SECONDS = re.compile(
+    r"^(?:gps[\s_\-.]*(?:seconds?|secs?|time|tow|sow|ms)"
+    r"|(?:gps[\s_\-.]*)?(?:tow|sow|time[\s_\-.]*of[\s_\-.]*week|seconds?[\s_\-.]*of[\s_\-.]*week"
+    r"|week[\s_\-.]*seconds?))(?:[\s_\-.]*\(?(?:s|sec|seconds)\)?)?$"
+)
+
+
+def gps_columns(headers: tuple[str, ...] | list[str]) -> tuple[str | None, str | None]:
+    """The GPS week column and the GPS seconds column of a header (either None when
+    none is named so)."""
+    week = next((h for h in headers if _GPS_WEEK.match(h.strip().lower())), None)
+    seconds = next(
+        (h for h in headers if h != week and _GPS_SECONDS.match(h.strip().lower())), None
+    )
+    return week, seconds
 
 
 def _resolve_columns(
@@ -828,10 +853,18 @@ def _resolve_columns(
         )
     # Auto detection failed: report against the generic names.
     columns, missing = guess_columns(headers, mapping)
+    gps_week = None
+    if "time" in missing:  # GPS week and seconds of the week, or GPS seconds
+        week, seconds = gps_columns(headers)
+        if seconds is not None and seconds not in columns.values():
+            columns["time"], gps_week = seconds, week or ""
+            missing.remove("time")
+    if not missing and gps_week is not None:
+        return Resolved(FORMATS[-1], columns, gps_week=gps_week)
     if missing == ["batch"]:
         # One ship's export (time and position, no id column): the reader names the one
         # track after the file.
-        return Resolved(FORMATS[-1], columns)
+        return Resolved(FORMATS[-1], columns, gps_week=gps_week)
     names = {
         "batch": "batch (or MMSI, track_id, nNO)",
         "time": "time (or timestamp, BaseDateTime)",

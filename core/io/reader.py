@@ -1881,6 +1881,75 @@ def parse_times(
     return ns, ok
 
 
+#: The GPS epoch (1980-01-06T00:00:00 UTC) in unix seconds, and a week's seconds.
+GPS_EPOCH_S = 315_964_800
+GPS_WEEK_S = 604_800
+#: GPS - UTC (s) from each leap second on (UTC dates): 18 s since 2017-01-01.
+GPS_LEAPS = (
+    ("1981-07-01", 1),
+    ("1982-07-01", 2),
+    ("1983-07-01", 3),
+    ("1985-07-01", 4),
+    ("1988-01-01", 5),
+    ("1990-01-01", 6),
+    ("1991-01-01", 7),
+    ("1992-07-01", 8),
+    ("1993-07-01", 9),
+    ("1994-07-01", 10),
+    ("1996-01-01", 11),
+    ("1997-07-01", 12),
+    ("1999-01-01", 13),
+    ("2006-01-01", 14),
+    ("2009-01-01", 15),
+    ("2012-07-01", 16),
+    ("2015-07-01", 17),
+    ("2017-01-01", 18),
+)
+#: ... the same as GPS seconds since the GPS epoch at which each offset starts.
+_LEAP_AT_GPS = np.array(
+    [pd.Timestamp(d, tz="UTC").timestamp() - GPS_EPOCH_S + k for d, k in GPS_LEAPS]
+)
+_LEAP_S = np.array([0] + [k for _, k in GPS_LEAPS], dtype="float64")
+GPS_NO_WEEK = (
+    "GPS seconds of the week in {!r} (below 604,800) without a week column (gps_week): "
+    "the week is unknown"
+)
+
+
+def gps_ns(
+    seconds: np.ndarray, week: np.ndarray | None, info: dict | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """UTC ns since 1970 of GPS times: ``week`` numbers (full, not modulo 1024) and
+    ``seconds`` of the week (0 to 604,800), or, without ``week``, seconds since the GPS
+    epoch; GPS time runs ahead of UTC by the leap seconds since 1980 (18 s since 2017,
+    :data:`GPS_LEAPS`). Returns ns, a validity mask and the rows whose seconds look like
+    seconds of a week with no week to count from (below 604,800 without ``week``)."""
+    if info is not None:
+        info["time_format"] = (
+            "GPS week and seconds of week" if week is not None else "GPS seconds since 1980-01-06"
+        )
+    with np.errstate(invalid="ignore"):
+        if week is not None:
+            ok = (
+                np.isfinite(week)
+                & (week >= 0)
+                & (week == np.floor(week))
+                & (seconds >= 0)
+                & (seconds < GPS_WEEK_S)
+            )
+            gps = np.where(ok, week, 0.0) * GPS_WEEK_S + np.where(ok, seconds, 0.0)
+            no_week = np.zeros(len(seconds), dtype=bool)
+        else:
+            no_week = (seconds >= 0) & (seconds < GPS_WEEK_S)
+            ok = np.isfinite(seconds) & (seconds >= GPS_WEEK_S) & (seconds < 9e9)
+            gps = np.where(ok, seconds, 0.0)
+    leap = _LEAP_S[np.searchsorted(_LEAP_AT_GPS, gps, side="right")]
+    whole = np.floor(gps)
+    ns = (whole - leap + GPS_EPOCH_S).astype("int64") * 1_000_000_000
+    ns += np.round((gps - whole) * 1e9).astype("int64")  # the fraction to the ns a float holds
+    return np.where(ok, ns, 0), ok, no_week & ~ok
+
+
 def _one_line(sn: Sniff) -> bool:
     """Whether the file holds one line at most (no line break after its first one)."""
     with open_data(sn.path, sn.compression) as fh:
@@ -2206,6 +2275,18 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             "with a hemisphere letter (like 37.05N, W 23.05) and read as signed decimal "
             "degrees (S and W negative)"
         )
+    if str(time_info.get("time_format", "")).startswith("GPS"):
+        out.append(
+            f"the times in {time_src!r} are {time_info['time_format']} (GPS time, which "
+            "runs ahead of UTC by the leap seconds since 1980: 18 s since 2017): read as UTC"
+            + ("; --tz does not apply to them" if zone is not None else "")
+        )
+        if time_info.get("gps_ten_bit"):
+            out.append(
+                "every GPS week number is below 1024: if the receiver writes weeks modulo "
+                "1024 (10 bits), the times are 19.6 or 39.2 years early; add 1024 or 2048 "
+                "to the week column"
+            )
     words = time_info.get("zone_words") or {}
     if any(not w.endswith(AS_TZ) for w in words):
         out.append(
@@ -3321,17 +3402,33 @@ def _to_canonical(
             time_info["date_column"] = date_src
     comma = sn.delimiter != ","  # a decimal comma cannot be unquoted in a comma-separated file
     counted = time_info if time_info is not None else {}
-    ns, time_ok = parse_times(
-        time_col,
-        res.format.time_kind,
-        zone,
-        counted,
-        comma,
-        date_order,
-        time_unit,
-        cols["time"],
-        clock_date,
-    )
+    if res.gps_week is not None:  # GPS week and seconds of the week, or GPS seconds
+        week = _numbers(table[res.gps_week], comma)[0] if res.gps_week else None
+        sec = _numbers(time_col, comma)[0]
+        ns, time_ok, no_week = gps_ns(sec, week, counted)
+        flag(no_week, GPS_NO_WEEK.format(cols["time"]))
+        if week is not None:
+            flag(np.isnan(week) & ~np.isnan(sec), f"missing GPS week ({res.gps_week!r})")
+            flag(
+                ~np.isnan(week) & ~np.isnan(sec) & ~time_ok,
+                "GPS week or seconds of the week out of range (a whole week from 0; "
+                "seconds 0 to 604,800)",
+            )
+            low = week[time_ok]
+            if len(low) and (low < 1024).all():
+                counted["gps_ten_bit"] = True
+    else:
+        ns, time_ok = parse_times(
+            time_col,
+            res.format.time_kind,
+            zone,
+            counted,
+            comma,
+            date_order,
+            time_unit,
+            cols["time"],
+            clock_date,
+        )
     if counted.get("clock_only"):  # times of day: over midnight by track, then the zone
         track = text["batch"].codes.astype("int64")
         if "sensor" in text:

@@ -1,0 +1,111 @@
+"""GPS times (h134): a GPS week column with seconds of the week (``gps_week`` +
+``gps_seconds`` / ``tow``), or GPS seconds since 1980-01-06 (``gps_time``), read as UTC
+with the leap seconds (GPS - UTC = 18 s since 2017-01-01)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from tests.test_import_spaced_pipe_nmea import _lines_accounted, _three_ways
+from wakeline.core.io import read_points
+
+#: Leap seconds (UTC dates after which GPS - UTC grew by one), written out apart from the
+#: reader's table.
+LEAP_DATES = (
+    "1981-07-01 1982-07-01 1983-07-01 1985-07-01 1988-01-01 1990-01-01 1991-01-01 "
+    "1992-07-01 1993-07-01 1994-07-01 1996-01-01 1997-07-01 1999-01-01 2006-01-01 "
+    "2009-01-01 2012-07-01 2015-07-01 2017-01-01"
+).split()
+
+
+def _gps(t: pd.Timestamp) -> float:
+    leap = sum(t >= pd.Timestamp(d, tz="UTC") for d in LEAP_DATES)
+    return (t - pd.Timestamp("1980-01-06", tz="UTC")).total_seconds() + leap
+
+
+def test_week_and_seconds_of_the_week(tmp_path, monkeypatch):
+    times = pd.date_range("2024-01-01", periods=40, freq="7s", tz="UTC")
+    rows = ["gps_week,gps_seconds,id,lat,lon"]
+    for k, t in enumerate(times):
+        g = _gps(t)
+        rows.append(f"{int(g // 604800)},{g % 604800:.1f},{1 + k % 2},37.{k:04d},23.6")
+    src = tmp_path / "gps.csv"
+    src.write_text("\n".join(rows) + "\n")
+    r = _three_ways(src, tmp_path, monkeypatch)
+    assert r.report["rows_quarantined"] == 0
+    assert sorted(r.points["time"]) == list(times)
+    assert rows[1].startswith("2295,86418.0")  # 2024-01-01 00:00:00 UTC is 00:00:18 GPS
+    assert r.report["time_format"] == "GPS week and seconds of week"
+    assert any("18 s since 2017" in w for w in r.report["warnings"])
+
+
+@pytest.mark.parametrize(
+    "header", ["GPSWeek,TOW (s)", "week,time_of_week", "gps_wk,gps_tow", "WN,sow"]
+)
+def test_headers_that_name_gps_week_and_seconds(tmp_path, header):
+    src = tmp_path / "gps.csv"
+    src.write_text(f"{header},id,lat,lon\n2295,86418.5,1,37.9,23.6\n")
+    r = read_points(src)
+    assert r.points["time"].tolist() == [pd.Timestamp("2024-01-01 00:00:00.5", tz="UTC")]
+
+
+def test_gps_seconds_since_the_epoch_and_bad_rows(tmp_path):
+    src = tmp_path / "gps.csv"
+    src.write_text(
+        "gps_time,id,lat,lon\n"
+        "1356998418,1,37.9,23.6\n"  # 2023-01-06 00:00:18 GPS
+        "86418.0,1,37.9,23.6\n"  # seconds of a week, but which week?
+        ",1,37.9,23.6\n"
+    )
+    r = read_points(src)
+    _lines_accounted(r, src)
+    assert r.points["time"].tolist() == [pd.Timestamp("2023-01-06", tz="UTC")]
+    assert r.quarantine["reason"].tolist() == [
+        "GPS seconds of the week in 'gps_time' (below 604,800) without a week column "
+        "(gps_week): the week is unknown",
+        "missing time",
+    ]
+
+
+def test_bad_weeks_and_seconds_are_quarantined(tmp_path):
+    src = tmp_path / "gps.csv"
+    src.write_text(
+        "gps_week,tow,id,lat,lon\n"
+        "2295,86418,1,37.9,23.6\n"
+        ",86428,1,37.9,23.6\n"
+        "2295,604800,1,37.9,23.6\n"
+        "2295.5,10,1,37.9,23.6\n"
+        "2295,,1,37.9,23.6\n"
+        "2295,abc,1,37.9,23.6\n"
+    )
+    r = read_points(src)
+    _lines_accounted(r, src)
+    assert len(r.points) == 1
+    reasons = r.quarantine.set_index("line")["reason"].to_dict()
+    assert reasons[3] == "missing GPS week ('gps_week')"
+    assert reasons[4].startswith("GPS week or seconds of the week out of range")
+    assert reasons[5].startswith("GPS week or seconds of the week out of range")
+    assert reasons[6] == "missing time"
+    assert reasons[7] == "unparsable time"
+
+
+def test_ten_bit_weeks_are_said(tmp_path):
+    src = tmp_path / "gps.csv"
+    src.write_text("gps_week,tow,id,lat,lon\n247,86418,1,37.9,23.6\n")  # 2295 - 2048
+    r = read_points(src)
+    assert any("modulo 1024" in w for w in r.report["warnings"])
+
+
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seconds=st.integers(0, 45 * 365 * 86_400), ms=st.integers(0, 999))
+def test_any_instant_reads_back(seconds, ms):
+    from wakeline.core.io.reader import gps_ns
+
+    t = pd.Timestamp("1981-01-01", tz="UTC") + pd.Timedelta(seconds=seconds, milliseconds=ms)
+    g = round(_gps(t), 3)
+    ns, ok, _ = gps_ns(np.array([g % 604800]), np.array([float(g // 604800)]))
+    assert ok.all() and abs(int(ns[0]) - t.value) < 1_000  # to the µs a float holds
+    ns, ok, _ = gps_ns(np.array([g]), None)
+    assert ok.all() and abs(int(ns[0]) - t.value) < 1_000
