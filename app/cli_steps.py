@@ -273,6 +273,7 @@ def add_read_flags(
     :func:`read_options` gives the ``read_points`` keywords whatever the flags are named.
     """
     from wakeline.core.io import FAMILIES
+    from wakeline.core.io.formats import DISTANCE_UNITS, SPEED_UNITS
     from wakeline.core.io.reader import DATE_ORDERS, TIME_UNITS
 
     flags = {  # read_points keyword -> (flag name, argparse keywords)
@@ -353,6 +354,25 @@ def add_read_flags(
                 "start), excel-days (Excel serial days, 45658.5 = 2025-01-01 12:00), or "
                 "auto: Excel days when all lie in 20000-80000 and the header says so or they "
                 "step less than 0.01 between rows; else seconds (default auto)",
+            },
+        ),
+        "speed_unit": (
+            "speed-unit",
+            {
+                "choices": tuple(SPEED_UNITS),
+                "default": "auto",
+                "help": "unit of a speed column whose header names none (a header such as "
+                "speed_mps, sog_kmh, Speed (m/s), 速度(km/h) names its own; default auto: "
+                "knots); speeds are converted to knots",
+            },
+        ),
+        "distance_unit": (
+            "distance-unit",
+            {
+                "choices": tuple(DISTANCE_UNITS),
+                "default": "auto",
+                "help": "unit of local-plane x/y, offsets and range whose headers name none "
+                "(x_km, range_nm, y_yd name their own; default auto: metres)",
             },
         ),
         "clock_date": (

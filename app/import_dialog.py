@@ -115,6 +115,34 @@ class ImportDialog(QtWidgets.QDialog):
                 "0.01 between rows; the import says which it read."
             ),
         )
+        # The units of a speed column and of x/y metres whose headers name none, as
+        # `--speed-unit` and `--distance-unit` (a header such as speed_mps names its own).
+        self.speed_unit_box = _choices(
+            (
+                ("auto", self.tr("auto (knots)")),
+                ("knots", self.tr("knots")),
+                ("m/s", self.tr("m/s")),
+                ("km/h", self.tr("km/h")),
+                ("mph", self.tr("mph")),
+            ),
+            self.tr(
+                "Unit of a speed column whose header names none; a header such as speed_mps, "
+                "sog_kmh or Speed (m/s) names its own. Speeds are converted to knots."
+            ),
+        )
+        self.distance_unit_box = _choices(
+            (
+                ("auto", self.tr("auto (metres)")),
+                ("m", self.tr("metres")),
+                ("km", self.tr("km")),
+                ("nm", self.tr("nautical miles")),
+                ("yd", self.tr("yards")),
+            ),
+            self.tr(
+                "Unit of x/y, offsets and range on a local plane whose headers name none; "
+                "a header such as x_km, range_nm or y_yd names its own."
+            ),
+        )
         # The day of times of day written without a date (a radar's log), as `--date`.
         self.date_edit = QtWidgets.QLineEdit()
         self.date_edit.setPlaceholderText(self.tr("YYYY-MM-DD (only for times without a date)"))
@@ -165,6 +193,8 @@ class ImportDialog(QtWidgets.QDialog):
         form.addRow(self.tr("Origin of x/y metres"), self.origin_edit)
         form.addRow(self.tr("Date order"), self.date_order_box)
         form.addRow(self.tr("Time numbers"), self.time_unit_box)
+        form.addRow(self.tr("Speed unit"), self.speed_unit_box)
+        form.addRow(self.tr("Distance unit"), self.distance_unit_box)
         form.addRow(self.tr("Date of clock times"), self.date_edit)
         form.addRow(self.tr("Sensor"), self.sensor_edit)
         form.addRow(self.tr("Detected"), self.layout_label)
@@ -408,7 +438,8 @@ class ImportDialog(QtWidgets.QDialog):
         """Keyword arguments of ``read_points`` (``sensor`` only when one is typed;
         ``skip_rows`` None: detected; ``date_order``: auto, day-first or month-first;
         ``time_unit``: auto, seconds or excel-days; ``clock_date``: the day of times
-        without a date, None: 1970-01-01)."""
+        without a date, None: 1970-01-01; ``speed_unit``, ``distance_unit``: of columns
+        whose header names none)."""
         zone = self.tz_box.currentText().strip()
         out = {
             "path": Path(self.path_edit.text()),
@@ -420,6 +451,8 @@ class ImportDialog(QtWidgets.QDialog):
             "date_order": self.date_order_box.currentData(),
             "time_unit": self.time_unit_box.currentData(),
             "clock_date": self._clock_date(),
+            "speed_unit": self.speed_unit_box.currentData(),
+            "distance_unit": self.distance_unit_box.currentData(),
         }
         if self._origin():
             out["origin"] = self._origin()

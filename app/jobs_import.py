@@ -39,6 +39,8 @@ class ImportJobsMixin:
         date_order: str = "auto",
         time_unit: str = "auto",
         clock_date: str | None = None,
+        speed_unit: str = "auto",
+        distance_unit: str = "auto",
     ) -> int:
         """Import a file as a new layer, in the worker; returns the job number. ``tz``:
         the zone of naive local times (IANA name or ±HH:MM); ``skip_rows``: lines before
@@ -46,12 +48,15 @@ class ImportJobsMixin:
         are metres on a local plane; ``date_order``: how slashed dates read (auto,
         day-first, month-first); ``time_unit``: what numeric times count (auto,
         seconds, excel-days); ``clock_date``: the day (YYYY-MM-DD) of times written
-        without a date (None: 1970-01-01, relative)."""
+        without a date (None: 1970-01-01, relative); ``speed_unit``, ``distance_unit``:
+        of a speed column and plane lengths whose headers name none."""
         options = {"fmt": fmt, "mapping": mapping or [], "encoding": encoding, "tz": tz}
         options["skip_rows"] = skip_rows
         options["date_order"] = date_order
         options["time_unit"] = time_unit
         options["clock_date"] = clock_date
+        options["speed_unit"] = speed_unit
+        options["distance_unit"] = distance_unit
         if origin:
             options["origin"] = origin
         if sensor:

@@ -95,6 +95,10 @@ class BatchOptions:
     #: ``--date YYYY-MM-DD``: the day of times written without a date (None: 1970-01-01,
     #: relative)
     clock_date: str | None = None
+    #: units of a speed column / plane lengths whose header names none (--speed-unit,
+    #: --distance-unit: auto, or knots m/s km/h mph / m km nm yd)
+    speed_unit: str = "auto"
+    distance_unit: str = "auto"
 
 
 @dataclass
@@ -537,6 +541,8 @@ def _import_file(
                         date_order=read["date_order"],
                         time_unit=read["time_unit"],
                         clock_date=read["clock_date"],
+                        speed_unit=read["speed_unit"],
+                        distance_unit=read["distance_unit"],
                     )
                     q, warnings = res.quarantine, res.report.get("warnings", [])
                 except WholeFileNeeded:  # the repeated hour of a clock change
@@ -609,6 +615,8 @@ def _read_options(opts: BatchOptions) -> dict:
         "date_order": opts.date_order,
         "time_unit": opts.time_unit,
         "clock_date": opts.clock_date,
+        "speed_unit": opts.speed_unit,
+        "distance_unit": opts.distance_unit,
     }
 
 
@@ -898,12 +906,13 @@ def run_batch(
     )
     if kind == "csv":
         from wakeline.core.io import parse_zone
-        from wakeline.core.io.reader import check_date_order, check_time_unit
+        from wakeline.core.io.reader import check_date_order, check_time_unit, check_units
         from wakeline.core.io.timetext import check_clock_date
 
         parse_zone(opts.tz)  # an unknown zone: one message before any work
         check_date_order(opts.date_order)
         check_time_unit(opts.time_unit)
+        check_units(opts.speed_unit, opts.distance_unit)
         check_clock_date(opts.clock_date)
         # Every input checked before any work: one clear message (columns, compression).
         csv_inputs, not_read = _survey_inputs(inputs, read)
@@ -923,6 +932,8 @@ def run_batch(
                 ("--date-order", opts.date_order != "auto"),
                 ("--time-unit", opts.time_unit != "auto"),
                 ("--date", opts.clock_date),
+                ("--speed-unit", opts.speed_unit != "auto"),
+                ("--distance-unit", opts.distance_unit != "auto"),
             )
             if value
         ]

@@ -105,6 +105,8 @@ def clean_file(
     date_order: str = "auto",
     time_unit: str = "auto",
     clock_date: str | None = None,
+    speed_unit: str = "auto",
+    distance_unit: str = "auto",
 ) -> FileCleanResult:
     """Clean the track file ``path`` into the canonical CSV ``output`` (and the reject
     trail into ``rejected`` when given) by blocks of whole tracks; see the module
@@ -113,7 +115,8 @@ def clean_file(
     lines before the header, skipped and counted (None: detected; ``read_points``);
     ``origin``: a local plane's for east/north metres; ``date_order``, ``time_unit``: how
     slashed dates and numeric times read; ``clock_date``: the day of times without a
-    date (``--date``; ``read_points``). Raises
+    date (``--date``; ``read_points``); ``speed_unit``, ``distance_unit``: of columns
+    whose header names none (``--speed-unit``, ``--distance-unit``). Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
@@ -121,6 +124,7 @@ def clean_file(
         check_clock_date,
         check_date_order,
         check_time_unit,
+        check_units,
         nothing_imported,
         parse_zone,
         resolve_header,
@@ -145,10 +149,13 @@ def clean_file(
         "date_order": date_order,
         "time_unit": time_unit,
         "clock_date": check_clock_date(clock_date),
+        "speed_unit": speed_unit,
+        "distance_unit": distance_unit,
     }
     parse_zone(tz)  # a zone it does not know is refused before anything is read
     check_date_order(date_order)
     check_time_unit(time_unit)
+    check_units(speed_unit, distance_unit)
     sn = sniff(path, encoding, delimiter, skip_rows)
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
     if not piece_safe(sn) or transforms:

@@ -379,3 +379,17 @@ def test_a_zipped_file_previews_and_opens_as_the_plain_one(qtbot, window, tmp_pa
     assert layer.meta["report"]["compression"] == "zip"
     assert len(layer.points) == len(read_points(src).points) > 0
     assert layer.meta.get("layout") is not None
+
+
+def test_the_speed_and_distance_units_reach_read_points(qtbot, write):
+    rows = "".join(f"1,2025-03-01 08:00:0{k},57.{k},11.{k},{k}\n" for k in range(5))
+    dlg = ImportDialog(path=write("v.csv", "MMSI,BaseDateTime,LAT,LON,SOG\n" + rows))
+    qtbot.addWidget(dlg)
+    opts = dlg.options()
+    assert opts["speed_unit"] == "auto" and opts["distance_unit"] == "auto"
+    dlg.speed_unit_box.setCurrentIndex(dlg.speed_unit_box.findData("km/h"))
+    dlg.distance_unit_box.setCurrentIndex(dlg.distance_unit_box.findData("yd"))
+    opts = dlg.options()
+    assert opts["speed_unit"] == "km/h" and opts["distance_unit"] == "yd"
+    got = read_points(**opts).points["speed"]
+    assert got.tolist() == pytest.approx([k * 1000 / 1852 for k in range(5)])

@@ -39,7 +39,7 @@ _CARTESIAN = ("east", "north", "east_offset", "north_offset")
 _POLAR = ("range", "bearing", "east_offset", "north_offset")
 
 #: Length units a plane column's header may name, tried in this order (the factor to
-#: metres); a header naming none is in metres.
+#: metres); a header naming none is in metres (or in ``--distance-unit``).
 _LENGTH_UNITS = (
     (re.compile(r"(?<![a-z])(km|kilomet(?:er|re)s?)(?![a-z])|公里|千米"), 1000.0, "km"),
     (
@@ -47,19 +47,65 @@ _LENGTH_UNITS = (
         1852.0,
         "nautical miles",
     ),
+    (re.compile(r"(?<![a-z])(yd|yds|yards?)(?![a-z])|码"), 0.9144, "yards"),
     (re.compile(r"(?<![a-z])(m|met(?:er|re)s?)(?![a-z])|米"), 1.0, "metres"),
 )
-_RADIANS = re.compile(r"(?<![a-z])(rad|radians?)(?![a-z])|弧度")
+#: ``--distance-unit`` values: ``auto`` (a header names its unit, else metres) or the
+#: unit of plane columns whose header names none.
+DISTANCE_UNITS = {"auto": None, "m": (1.0, "metres"), "km": (1000.0, "km")}
+DISTANCE_UNITS |= {"nm": (1852.0, "nautical miles"), "yd": (0.9144, "yards")}
+#: Speed units a speed column's header may name (metres per hour of one unit).
+_SPEED_UNITS = (
+    (re.compile(r"(?<![a-z])(kn|kt|kts|knots?)(?![a-z])|节"), 1852.0, "knots"),
+    (
+        re.compile(
+            r"km/h|km/hr|(?<![a-z])(kmh|kph|kmph|km_h|kilomet(?:er|re)s?[ _]per[ _]hour)"
+            r"(?![a-z])|公里/小时|千米/小时|公里每小时|千米每小时|公里/时|千米/时"
+        ),
+        1000.0,
+        "km/h",
+    ),
+    (re.compile(r"(?<![a-z])(mph|miles?[ _]per[ _]hour)(?![a-z])"), 1609.344, "mph"),
+    (
+        re.compile(
+            r"m/s|m s-1|m·s|(?<![a-z])(mps|ms|m_s|ms-1|met(?:er|re)s?[ _]per[ _]second)"
+            r"(?![a-z])|米/秒|米每秒"
+        ),
+        3600.0,
+        "m/s",
+    ),
+)
+#: ``--speed-unit`` values: ``auto`` (a header names its unit, else knots) or the unit of
+#: a speed column whose header names none.
+SPEED_UNITS = {"auto": None, "knots": (1852.0, "knots"), "m/s": (3600.0, "m/s")}
+SPEED_UNITS |= {"km/h": (1000.0, "km/h"), "mph": (1609.344, "mph")}
 
 
-def length_unit(header: str) -> tuple[float, str]:
-    """(metres per unit, unit) a plane column's header names (``x_km``, ``Range (NM)``,
-    ``距离(海里)``); metres when it names none."""
+def _named_unit(header: str, units) -> tuple[float, str] | None:
     text = header.strip().lower()
-    for pattern, factor, name in _LENGTH_UNITS:
+    for pattern, factor, name in units:
         if pattern.search(text):
             return factor, name
-    return 1.0, "metres"
+    return None
+
+
+def length_unit(header: str, given: str = "auto") -> tuple[float, str]:
+    """(metres per unit, unit) a plane column's header names (``x_km``, ``Range (NM)``,
+    ``距离(海里)``, ``y_yd``); else ``given`` (:data:`DISTANCE_UNITS`), metres for auto."""
+    return _named_unit(header, _LENGTH_UNITS) or DISTANCE_UNITS[given] or (1.0, "metres")
+
+
+def speed_unit(header: str, given: str = "auto") -> tuple[float, str, bool]:
+    """(metres per hour of one unit, unit, whether the header named it) of a speed column: the unit
+    its header names (``speed_mps``, ``sog_kmh``, ``速度(km/h)``, ``Speed (m/s)``,
+    ``speed_kn``), else ``given`` (:data:`SPEED_UNITS`), knots for auto."""
+    named = _named_unit(header, _SPEED_UNITS)
+    if named is not None:
+        return (*named, True)
+    return (*(SPEED_UNITS[given] or (1852.0, "knots")), False)
+
+
+_RADIANS = re.compile(r"(?<![a-z])(rad|radians?)(?![a-z])|弧度")
 
 
 def angle_unit(header: str) -> tuple[float, str]:
@@ -408,6 +454,7 @@ PATTERNS: dict[str, re.Pattern] = {
 _BRACKETED = re.compile(r"\s*[\(\[（【]([^\)\]）】]*)[\)\]）】]\s*$")
 _UNIT_WORD = re.compile(
     r"[\s_\-.]+(degrees|degree|deg|knots|knot|kn|kts|kt|meters|metres|m|km|seconds|sec|s|ms"
+    r"|mps|kmh|kph|kmph|mph|km/h|m/s|yd|yds|yards|nm|nmi"
     r"|utc|°|度|节|秒)$"
 )
 _LOCAL_WORDS = ("local", "本地", "北京", "bj", "cst", "lt")
@@ -576,6 +623,10 @@ class Resolved:
     #: column ``gps_week`` names, or since the GPS epoch (1980-01-06) when it is ``""``;
     #: None: not GPS time (:func:`gps_columns`).
     gps_week: str | None = None
+    #: The units of a speed column and of plane lengths whose headers name none
+    #: (``--speed-unit``, ``--distance-unit``: :data:`SPEED_UNITS`, :data:`DISTANCE_UNITS`).
+    speed_unit: str = "auto"
+    distance_unit: str = "auto"
 
     @property
     def on_plane(self) -> bool:

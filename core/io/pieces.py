@@ -142,6 +142,8 @@ def stream_or_pieces(
                     date_order=read.get("date_order", "auto"),
                     time_unit=read.get("time_unit", "auto"),
                     clock_date=read.get("clock_date"),
+                    speed_unit=read.get("speed_unit", "auto"),
+                    distance_unit=read.get("distance_unit", "auto"),
                 )
             except WholeFileNeeded:
                 raise

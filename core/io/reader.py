@@ -45,7 +45,9 @@ from wakeline.core.io.decoding import (
     lines_codec,
 )
 from wakeline.core.io.formats import (
+    DISTANCE_UNITS,
     PLANE_FIELDS,
+    SPEED_UNITS,
     Resolved,
     angle_unit,
     guess_columns,
@@ -57,6 +59,7 @@ from wakeline.core.io.formats import (
     parse_mapping,
     plane_kind,
     resolve,
+    speed_unit,
     unused_position_columns,
 )
 from wakeline.core.io.sniff import Sniff, blank_runs, cell_kind, listed_headers, sniff
@@ -935,6 +938,15 @@ _EXCEL_EPOCH_DAYS = 25_569
 _EXCEL_LAST = 2_958_466
 #: Headers that say a column holds Excel serial days (normalised, as a part).
 _EXCEL_WORDS = ("excel", "serial", "oadate", "days")
+
+
+def check_units(speed: str = "auto", distance: str = "auto") -> None:
+    """:class:`InputError` unless ``speed`` is one of :data:`SPEED_UNITS` and
+    ``distance`` one of :data:`DISTANCE_UNITS`."""
+    if speed not in SPEED_UNITS:
+        raise InputError(f"--speed-unit {speed!r}: choose one of {', '.join(SPEED_UNITS)}")
+    if distance not in DISTANCE_UNITS:
+        raise InputError(f"--distance-unit {distance!r}: choose one of {', '.join(DISTANCE_UNITS)}")
 
 
 def check_time_unit(value: str) -> str:
@@ -2275,6 +2287,15 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             "with a hemisphere letter (like 37.05N, W 23.05) and read as signed decimal "
             "degrees (S and W negative)"
         )
+    if time_info.get("speed_unit"):
+        unit, named = time_info["speed_unit"]
+        why = "its header says so" if named else "--speed-unit"
+        out.append(f"speeds were given in {unit} ({why}): converted to knots")
+    if time_info.get("speed_unit_refused"):
+        out.append(
+            f"--speed-unit {time_info['speed_unit_refused']} not used: the speed column's "
+            "header names its own unit"
+        )
     if str(time_info.get("time_format", "")).startswith("GPS"):
         out.append(
             f"the times in {time_src!r} are {time_info['time_format']} (GPS time, which "
@@ -2463,6 +2484,8 @@ def read_points(
     date_order: str = "auto",
     time_unit: str = "auto",
     clock_date: str | None = None,
+    speed_unit: str = "auto",
+    distance_unit: str = "auto",
 ) -> ImportResult:
     """Read a track file (CSV of any supported layout, or a raw AIS NMEA log) into the
     canonical point table.
@@ -2493,6 +2516,7 @@ def read_points(
     path = Path(path)
     check_date_order(date_order)
     check_time_unit(time_unit)
+    check_units(speed_unit, distance_unit)
     clock_date = check_clock_date(clock_date)
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
@@ -2511,6 +2535,7 @@ def read_points(
         timing = {"tz": zone, "date_order": date_order, "clock_date": clock_date}
         return reader(sn, sensor=sensor, progress=progress, timing=timing)
     res = resolve_header(sn, fmt, mapping, str(path), origin)
+    res = dataclasses.replace(res, speed_unit=speed_unit, distance_unit=distance_unit)
     rows = _read_rows(sn, res, unbalanced=line_by_line)
     notes = []
     if "batch" not in res.columns:
@@ -2846,7 +2871,9 @@ def _plane_positions(
 
     def values(key: str) -> np.ndarray:
         v, unparsable = _numbers(table[cols[key]], comma, counted)
-        factor, word = angle_unit(cols[key]) if key == "bearing" else length_unit(cols[key])
+        factor, word = (
+            angle_unit(cols[key]) if key == "bearing" else length_unit(cols[key], res.distance_unit)
+        )
         flag(unparsable, f"unparsable {key} ({cols[key]!r}, {word})")
         flag(np.isnan(v) & ~unparsable, f"missing {key} ({cols[key]!r}, {word})")
         flag(np.isinf(v), f"{key} infinite")
@@ -2880,6 +2907,19 @@ def _plane_positions(
     lat0, lon0 = res.origin
     lon, lat = from_local(xy[0], xy[1], lon0, lat0)
     return pa.array(lon), pa.array(lat)
+
+
+def _in_knots(arr, header: str, given: str, counted: dict):
+    """A speed column in knots: as it is when its header names knots or no unit (and
+    ``given`` is auto or knots), else in the unit's metres per hour over 1852 (vectorized);
+    the unit and what named it in ``counted["speed_unit"]``."""
+    per_hour, unit, named = speed_unit(header, given)
+    if named and given not in ("auto", unit):
+        counted["speed_unit_refused"] = given
+    if unit == "knots":
+        return arr
+    counted["speed_unit"] = (unit, named)
+    return pc.divide(pc.multiply(arr, pa.scalar(per_hour)), pa.scalar(1852.0))
 
 
 _RANGES = {
@@ -3532,6 +3572,8 @@ def _to_canonical(
             name not in hemis and _clean_floats(arr, lo, hi, hi_open) and not _holds(arr, sentinel)
         ):
             floats[name] = arr  # the common case: passes through untouched
+            if name == "speed":
+                floats[name] = _in_knots(arr, cols[name], res.speed_unit, counted)
             continue
         else:
             v, unparsable = _numbers(
@@ -3590,6 +3632,8 @@ def _to_canonical(
                 if changed.any():
                     course_read = np.where(changed, as_read, np.nan)
         floats[name] = pa.array(v)
+        if name == "speed":
+            floats[name] = _in_knots(floats[name], cols[name], res.speed_unit, counted)
 
     blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
     swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
@@ -3890,6 +3934,8 @@ def import_to_csv(
     date_order: str = "auto",
     time_unit: str = "auto",
     clock_date: str | None = None,
+    speed_unit: str = "auto",
+    distance_unit: str = "auto",
 ) -> ImportResult:
     """Import ``path`` and write the canonical CSV ``output`` batch by batch, never
     holding the whole table: memory stays about one piece of ``STREAM_BYTES`` of the file.
@@ -3910,6 +3956,7 @@ def import_to_csv(
     parse_zone(tz)  # a zone it does not know is refused before anything is read
     check_date_order(date_order)
     check_time_unit(time_unit)
+    check_units(speed_unit, distance_unit)
     clock_date = check_clock_date(clock_date)
     sn = sniff(path, encoding, delimiter, skip_rows)
 
@@ -3928,6 +3975,8 @@ def import_to_csv(
             date_order=date_order,
             time_unit=time_unit,
             clock_date=clock_date,
+            speed_unit=speed_unit,
+            distance_unit=distance_unit,
         )
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
@@ -3951,6 +4000,8 @@ def import_to_csv(
                 "date_order": date_order,
                 "time_unit": time_unit,
                 "clock_date": clock_date,
+                "speed_unit": speed_unit,
+                "distance_unit": distance_unit,
             }
             try:
                 result = stream_or_pieces(
@@ -4012,6 +4063,8 @@ def stream_points(
     date_order: str = "auto",
     time_unit: str = "auto",
     clock_date: str | None = None,
+    speed_unit: str = "auto",
+    distance_unit: str = "auto",
 ) -> ImportResult:
     """Read a CSV without quotes in its sampled start piece by piece (``STREAM_BYTES`` of
     whole lines at a time) and hand each piece's canonical points, in file order, to
@@ -4021,7 +4074,9 @@ def stream_points(
     progress = progress or null_progress
     check_date_order(date_order)
     check_time_unit(time_unit)
+    check_units(speed_unit, distance_unit)
     clock_date = check_clock_date(clock_date)
+    res = dataclasses.replace(res, speed_unit=speed_unit, distance_unit=distance_unit)
     bad = _BadRows()  # every refused or blank line of the file, numbered in the file
     types = _column_types(sn, res, careful=False)
     file_batch = "batch" not in res.columns
@@ -4123,7 +4178,7 @@ def stream_points(
             )
             if len(time_info["_ddmm"]) > 1:
                 raise _Fallback
-        for key in ("ddmm_note", "letter_note"):
+        for key in ("ddmm_note", "letter_note", "speed_unit", "speed_unit_refused"):
             if info.get(key):
                 time_info[key] = info[key]
         for word, k in (info.get("zone_words") or {}).items():

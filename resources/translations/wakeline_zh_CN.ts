@@ -884,6 +884,62 @@
         <translation>时间数值</translation>
     </message>
     <message>
+        <source>auto (knots)</source>
+        <translation>自动（节）</translation>
+    </message>
+    <message>
+        <source>knots</source>
+        <translation>节</translation>
+    </message>
+    <message>
+        <source>m/s</source>
+        <translation>米/秒</translation>
+    </message>
+    <message>
+        <source>km/h</source>
+        <translation>公里/小时</translation>
+    </message>
+    <message>
+        <source>mph</source>
+        <translation>英里/小时</translation>
+    </message>
+    <message>
+        <source>Unit of a speed column whose header names none; a header such as speed_mps, sog_kmh or Speed (m/s) names its own. Speeds are converted to knots.</source>
+        <translation>表头未注明单位的航速列的单位；speed_mps、sog_kmh 或 Speed (m/s) 这样的表头自带单位。航速换算为节。</translation>
+    </message>
+    <message>
+        <source>auto (metres)</source>
+        <translation>自动（米）</translation>
+    </message>
+    <message>
+        <source>metres</source>
+        <translation>米</translation>
+    </message>
+    <message>
+        <source>km</source>
+        <translation>公里</translation>
+    </message>
+    <message>
+        <source>nautical miles</source>
+        <translation>海里</translation>
+    </message>
+    <message>
+        <source>yards</source>
+        <translation>码</translation>
+    </message>
+    <message>
+        <source>Unit of x/y, offsets and range on a local plane whose headers name none; a header such as x_km, range_nm or y_yd names its own.</source>
+        <translation>表头未注明单位的局部平面 x/y、偏移量和距离的单位；x_km、range_nm 或 y_yd 这样的表头自带单位。</translation>
+    </message>
+    <message>
+        <source>Speed unit</source>
+        <translation>航速单位</translation>
+    </message>
+    <message>
+        <source>Distance unit</source>
+        <translation>距离单位</translation>
+    </message>
+    <message>
         <source>seconds</source>
         <translation>秒</translation>
     </message>
