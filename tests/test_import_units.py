@@ -149,3 +149,12 @@ def test_cli_flags(tmp_path, capsys):
     assert main(["clean", str(src), "-o", str(tmp_path / "c.csv"), "--speed-unit", "mph"]) == 0
     with pytest.raises(SystemExit):
         main(["import", str(src), "-o", str(out), "--distance-unit", "furlongs"])
+
+
+@pytest.mark.parametrize("header", ["speed_mps", "sog_kmh", "速度(km/h)", "speed"])
+def test_export_like_writes_speeds_back_in_the_unit_of_their_header(tmp_path, header):
+    src = tmp_path / "s.csv"
+    _speeds(src, header, [0.0, 5.5, 12.25, 18.5])
+    out = tmp_path / "back.csv"
+    assert main(["export", str(src), "-o", str(out), "--like", str(src)]) == 0
+    assert out.read_text(encoding="utf-8") == src.read_text(encoding="utf-8")

@@ -21,7 +21,7 @@ import pyarrow.compute as pc
 
 from wakeline.core.errors import InputError
 from wakeline.core.geo import to_local
-from wakeline.core.io.formats import angle_unit, length_unit
+from wakeline.core.io.formats import angle_unit, length_unit, speed_unit
 from wakeline.core.io.layout import (
     INTERNAL_COLUMNS,
     NUMBER_FIELDS,
@@ -468,6 +468,10 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
                 values = np.where(courses_as_read(points), _as_read(points), values)
             if any(c.hemisphere == col.field for c in layout.columns):
                 values = np.abs(values)  # the letter column beside says the sign
+            if col.field == "speed":  # back in the unit its header names (speed_mps)
+                per_hour = speed_unit(col.name)[0]
+                if per_hour != 1852.0:
+                    values = values * 1852.0 / per_hour
             cells.append(format_numbers(values, col.number or NumberFormat()))
         elif col.field is not None:
             cells.append(
