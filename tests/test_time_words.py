@@ -243,3 +243,10 @@ def test_utc_offsets_read_back_any_time(seconds, hours, minutes, word, colon):
     ns, ok = parse_times(pa.chunked_array([pa.array([cell])]), "auto")
     assert ok.all(), cell
     assert ns[0] == t.value, cell
+
+
+def test_austrian_january_and_a_dotted_month_between_year_and_day():
+    cells = ["01-Jän-2024 00:00:05", "1. Jänner 2024 00:00:05", "2024-janv.-01 00:00:05"]
+    ns, ok = parse_times(pa.chunked_array([pa.array(cells)]), "auto")
+    assert ok.all()
+    assert set(np.asarray(ns)) == {pd.Timestamp("2024-01-01 00:00:05", tz="UTC").value}

@@ -45,7 +45,7 @@ _MONTHS = {
 #: with and without accents): month by month, every name means the same month in every
 #: language that writes it (``mar`` March, ``mai`` May, ``des`` December).
 _OTHER_MONTHS = (
-    "januar januari janvier janv enero ene janeiro gennaio gen",
+    "januar januari jänner jaenner jän jaen janvier janv enero ene janeiro gennaio gen",
     "februar februari février fevrier févr fevr fév fev febrero fevereiro febbraio",
     "märz maerz mär maer mars marts marzo março marco maart mrt",
     "avril avr abril abr aprile",
@@ -96,7 +96,7 @@ _NAMED = tuple(
         # 2024-Jan-01 00:00:05
         r"^\s*(?P<y>\d{4})[-/ ](?P<mon>"
         + _MON
-        + r")[-/ ](?P<d>\d{1,2})(?:(?:\s+|t)"
+        + r")\.?[-/ ](?P<d>\d{1,2})(?:(?:\s+|t)"
         + _TIME
         + r")?"
         + _ZONE
@@ -324,6 +324,10 @@ _ZONE_WORD = (
 )
 
 
+#: What a text with a zone word ends in (a letter, a bracket, an offset, a year after).
+_ZONE_TAIL = r"[A-Za-z]\)?\s*(?:[+-]\s*\d{1,2}(?::?\d\d)?)?(?:\s+\d{4})?\s*$"
+
+
 def zone_words(text: pd.Series, tz_given: bool) -> tuple[pd.Series, dict, dict]:
     """``text`` with each zone word after a clock (:data:`ZONE_WORDS`) written as its
     offset (``2024-01-01 00:00:05 CET`` is ``2024-01-01 00:00:05+01:00``; ``UTC+8``
@@ -332,6 +336,10 @@ def zone_words(text: pd.Series, tz_given: bool) -> tuple[pd.Series, dict, dict]:
     read by count, and the ambiguous words left by a mask of their rows (positions in
     ``text``). Unknown words stay (the row is unparsable as before)."""
     arr = _arrow(text)
+    # a quick look first: most texts (01-Jan-2024 00:00:05) end in no word
+    tail = pc.match_substring_regex(arr, _ZONE_TAIL)
+    if not pc.any(pc.fill_null(tail, False)).as_py():
+        return text, {}, {}
     parts, matched = _extract(arr, _ZONE_WORD)
     if not matched.any():
         return text, {}, {}
