@@ -47,6 +47,9 @@ class StepResult:
     tables: dict[str, pd.DataFrame] = field(default_factory=dict)
     #: for a pipeline: each stage's result, in order (its layers are the stages' layers)
     stages: list["StepResult"] = field(default_factory=list)
+    #: a re-run of a reviewed step in a session: what it carries over from the review of
+    #: the layer it replaces (:class:`wakeline.core.review_session.Carry`)
+    carry: Any = None
 
 
 # -- step options (choices beside the algorithms' parameters) --------------------------
@@ -441,14 +444,7 @@ def _summary_associate(res: StepResult) -> Text:
             method=rep["method"],
         )
     ]
-    if rep.get("rejected_kept_out"):
-        parts.append(
-            phrase("; {n:#pair} rejected in an earlier review kept out", n=rep["rejected_kept_out"])
-        )
-    if rep.get("split_kept_out"):
-        parts.append(
-            phrase("; {n:#pair} split in an earlier review kept out", n=rep["split_kept_out"])
-        )
+    parts.extend(_review_kept(res))
     if rep.get("long_gap_joins"):
         parts.append(
             phrase(
@@ -476,7 +472,38 @@ def _summary_associate(res: StepResult) -> Text:
     return Text(parts)
 
 
-def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progress):
+def kept_out_phrases(rejected: int, split: int) -> list[Phrase]:
+    """The words for the pairs a re-run kept out (rejected, split in an earlier review):
+    the summaries' and a re-run's carry (:meth:`~wakeline.core.review_session.Carry.text`)."""
+    parts = []
+    if rejected:
+        parts.append(phrase("{n:#pair} rejected in an earlier review kept out", n=rejected))
+    if split:
+        parts.append(phrase("{n:#pair} split in an earlier review kept out", n=split))
+    return parts
+
+
+def _review_kept(res: StepResult) -> list[Phrase]:
+    """The summary's words on an earlier review: what a re-run kept out and carried
+    over (:class:`wakeline.core.review_session.Carry`), or the pairs kept out."""
+    carry = getattr(res, "carry", None)
+    if carry is not None:
+        return [phrase("; review of the earlier run: {carry}", carry=carry.text())]
+    rep = res.report
+    kept = kept_out_phrases(rep.get("rejected_kept_out", 0), rep.get("split_kept_out", 0))
+    return [p for k in kept for p in (phrase("; "), k)]
+
+
+def run_fuse(
+    points: pd.DataFrame,
+    params: dict,
+    progress: Progress = null_progress,
+    rejected: set[tuple[str, str]] | frozenset = frozenset(),
+    split: set[tuple[str, str]] | frozenset = frozenset(),
+):
+    """The fuse step. ``rejected``, ``split``: pairs of track labels the operator
+    rejected or split in an earlier run's review, kept out of this one as
+    :func:`run_associate` keeps them (the fused points are made without them)."""
     from wakeline.core.fuse import FuseParams, associate_sensors, fuse
 
     fp = _p(params, "fuse", FuseParams)
@@ -490,9 +517,9 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
     )
     from wakeline.core.review import fusion_proposals
 
+    proposals, assoc = fusion_proposals(assoc, fp, set(rejected) | set(split))
     fused = fuse(assoc, fp, sub_progress(progress, 0.6, 1.0))
     pairs = assoc.pair_table()
-    proposals = fusion_proposals(assoc, fp)[0]
     report = {
         **assoc.report(),
         "points_in": int(len(points)),
@@ -504,6 +531,10 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
         "distance": opts.distance,
         "method": opts.method,
     }
+    if rejected:
+        report["rejected_kept_out"] = len(rejected)
+    if split:
+        report["split_kept_out"] = len(split)
     return StepResult(
         "fuse",
         [
@@ -511,7 +542,8 @@ def run_fuse(points: pd.DataFrame, params: dict, progress: Progress = null_progr
                 "fused",
                 "fused",
                 fused,
-                {"pairs": int(len(pairs))},
+                {"pairs": int(len(pairs))}
+                | ({"split_kept_out": sorted(map(list, split))} if split else {}),
                 {"pairs": pairs, "proposals": proposals},
             )
         ],
@@ -540,6 +572,7 @@ def _summary_fuse(res: StepResult) -> Text:
         parts.append(phrase(" from {n:#input point}", n=rep["points_in"]))
     if rep.get("points_in", 0) > rep["fused_points"]:
         parts.append(phrase(" (points of two sensors at one time become one)"))
+    parts.extend(_review_kept(res))
     if rep.get("repeated_rows"):
         parts.append(
             phrase(

@@ -39,6 +39,11 @@ if TYPE_CHECKING:  # the engine's modules load only when proposals are made
     from wakeline.core import associate as _assoc
 
 STATUSES = ("pending", "accepted", "rejected", "split")
+#: The action of the marker a re-run of a reviewed step puts first in its new queue: an
+#: empty change (nothing moves); its log line names the run it replaces (``before``) and
+#: says what was carried over (``after``). Decisions above it in a log belong to the
+#: earlier run (:func:`replay_log` starts after the last one).
+RERUN = "re-run"
 ACTIVE = ("pending", "accepted")  # statuses whose link counts in the targets
 PROPOSAL_COLUMNS = (
     "proposal",
@@ -485,6 +490,10 @@ class ReviewState:
         self.status = np.array(["pending"] * len(self.proposals), dtype=object)
         self.links: set[tuple[str, str]] = set()
         self.log: list[LogEntry] = []
+        #: Log lines of the earlier runs of this queue's step on the same layer (their
+        #: decisions, not replayed here: the append-only record the log export begins
+        #: with, :meth:`log_table`).
+        self.history: list[LogEntry] = []
         self._targets: np.ndarray | None = None
         self.version = 0  # counts applied changes (views cache per version)
 
@@ -615,9 +624,11 @@ class ReviewState:
         return [f"{t}={'+'.join(self.members(t))}" for t in names]
 
     def log_table(self) -> pd.DataFrame:
-        """The decision log: time, action, proposal, tracks, before, after."""
+        """The decision log: time, action, proposal, tracks, before, after — the earlier
+        runs' lines (:attr:`history`) first, then this queue's."""
         cols = ["time", "action", "proposal", "tracks", "before", "after"]
-        return pd.DataFrame([dataclasses.astuple(e) for e in self.log], columns=cols)
+        rows = [dataclasses.astuple(e) for e in [*self.history, *self.log]]
+        return pd.DataFrame(rows, columns=cols)
 
 
 def _set(state: ReviewState, action: str, proposal: str, status: str) -> Change:
@@ -879,10 +890,15 @@ def replay_log(state: ReviewState, log: pd.DataFrame) -> ReviewState:
     repair are made again on the state as it is then; ``undo X`` undoes the last decision
     not yet undone (it must be an ``X``); a redo is logged as the decision again. Each
     change keeps its logged time. A row that does not apply raises :class:`InputError`
-    naming its line."""
+    naming its line. A log that went through re-runs of its step (rows ``re-run``) is
+    replayed from its last ``re-run`` row on: the rows above it are the earlier runs'
+    decisions, on other proposals; the ones below it carry what still applies."""
     d = log.astype(object).where(log.notna(), "")
+    rows = d.to_dict("records")
+    marks = [k for k, row in enumerate(rows) if str(row.get("action", "")).strip() == RERUN]
+    start = marks[-1] + 1 if marks else 0
     done: list[Change] = []
-    for line, row in enumerate(d.to_dict("records"), start=2):
+    for line, row in enumerate(rows[start:], start=2 + start):
         action = str(row.get("action", "")).strip()
         pid = str(row.get("proposal", "")).strip()
         when = str(row.get("time", "")).strip() or None

@@ -10,6 +10,7 @@ of those layers named by their file stems, as the CLI names its input files.
 """
 
 import copy
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -17,9 +18,17 @@ import pandas as pd
 
 from wakeline.core import review as R
 from wakeline.core.errors import InputError
-from wakeline.core.review_store import decision_row, replay_decisions
+from wakeline.core.pipeline import kept_out_phrases
+from wakeline.core.review_store import (
+    decision_row,
+    earlier_entries,
+    proposal_pairs,
+    queue_outcome,
+    replay_decisions,
+)
 from wakeline.core.session import Layer, Session
 from wakeline.core.tracks import known_order, remember_order
+from wakeline.core.words import Text, joined, phrase
 
 
 def proposals_of(layer: Layer | None) -> pd.DataFrame | None:
@@ -148,8 +157,144 @@ def bind(session: Session, layer: Layer) -> tuple[R.ReviewState, pd.DataFrame]:
         raise InputError(f"layer {layer.name} has no proposals to review")
     points = input_points(session, layer)
     state = R.ReviewState(R.track_table(points), props)
-    replay_decisions(state, session.decisions, queue_key(layer))
+    rows = list(session.decisions)  # a copy: the window may append while a worker reads
+    state.history = earlier_entries(rows, queue_key(layer))
+    replay_decisions(state, rows, queue_key(layer))
     return state, points
+
+
+#: The steps whose layers carry proposals under review: a re-run of one carries the
+#: review of the run it replaces over (:func:`carry_over`).
+REVIEWED_STEPS = ("associate", "fuse")
+
+
+@dataclass
+class Carry:
+    """What a re-run of a reviewed step carries over from the layer it replaces
+    (:func:`carry_over`, in the worker): the decisions to store first in the new queue,
+    and the counts its log line gives."""
+
+    old: str  # the id of the layer the run replaces
+    queue: str  # that layer's queue (:func:`queue_key`) when the step read it
+    seen: int  # its decision rows the step read
+    changes: list = field(default_factory=list)  # (Change, LogEntry), applied in order
+    rejected: int = 0  # pairs rejected in an earlier review, kept out of the proposals
+    split: int = 0  # pairs split in an earlier review, kept out the same way
+    accepted: int = 0  # accepted pairs the run proposes again: accepted again
+    linked: int = 0  # accepted pairs it no longer proposes and hand merges: operator links
+    gone: int = 0  # accepts and links naming a track the run's input no longer holds
+    late: int = 0  # decisions made on the old queue while the step ran (not carried)
+
+    def text(self) -> Text:
+        """The log's words: what was kept out, carried and dropped (phrases the window
+        translates, :mod:`wakeline.core.words`)."""
+        parts = kept_out_phrases(self.rejected, self.split)
+        if self.accepted:
+            parts.append(phrase("{n:#accepted pair} proposed again, accepted", n=self.accepted))
+        if self.linked == 1:
+            parts.append(phrase("1 accepted pair or hand merge kept as an operator link"))
+        elif self.linked:
+            parts.append(
+                phrase("{n:,} accepted pairs or hand merges kept as operator links", n=self.linked)
+            )
+        if self.gone == 1:
+            parts.append(phrase("1 decision no longer applies (a track is gone)"))
+        elif self.gone:
+            parts.append(phrase("{n:,} decisions no longer apply (a track is gone)", n=self.gone))
+        if self.late:
+            parts.append(
+                phrase(
+                    "{n:#decision} made while the step ran not carried (in the decision log)",
+                    n=self.late,
+                )
+            )
+        return Text(joined(parts) or [phrase("no decision to carry over")])
+
+
+def carry_over(
+    old: Layer,
+    rows: list[dict],
+    points: pd.DataFrame,
+    proposals: pd.DataFrame | None,
+    rejected: int = 0,
+    split: int = 0,
+) -> Carry:
+    """What a re-run carries over from the review of ``old`` (the layer it replaces) to
+    its new ``proposals`` made on ``points``: each pair ``old``'s queue left accepted is
+    accepted again when the run proposes it, else kept as an operator link (a manual
+    link, as a hand merge makes), and each manual link is kept; a pair naming a track the
+    input no longer holds counts as gone. Rejected and split pairs are kept out of the
+    run itself (``rejected``, ``split``: their counts). The changes are made on the new
+    queue's state here (the caller stores them under the new queue's key)."""
+    key = queue_key(old)
+    mine = [r for r in rows if isinstance(r, dict) and r.get("queue") == key]
+    carry = Carry(old.id, key, len(mine), rejected=rejected, split=split)
+    status, links = queue_outcome(mine, key)
+    props = proposals_of(old)
+    pairs = proposal_pairs(props)
+    keep = {R.pair_key(*pairs[p]) for p, st in status.items() if st == "accepted" and p in pairs}
+    if proposals is None or not len(proposals):  # nothing to review: none applies
+        carry.gone = len(keep | links)
+        return carry
+    if not (keep or links):
+        return carry
+    state = R.ReviewState(R.track_table(points), proposals)
+    proposed = {
+        R.pair_key(x, y): pid
+        for pid, x, y in zip(state.proposals["proposal"], state.track_a, state.track_b, strict=True)
+    }
+    link = set(links)
+    for pair in sorted(keep):
+        pid = proposed.get(pair)
+        if pid is None:
+            link.add(pair)
+            continue
+        change = R.accept(state, pid)
+        if not change.empty:
+            state.apply(change)
+            carry.changes.append((change, state.log[-1]))
+        carry.accepted += 1
+    for x, y in sorted(link):
+        if x not in state._track_no or y not in state._track_no:
+            carry.gone += 1
+            continue
+        pair = R.pair_key(x, y)
+        if pair not in state.links:
+            change = R.Change("merge", "", (x, y), links_added=frozenset({pair}))
+            state.apply(change)
+            carry.changes.append((change, state.log[-1]))
+        carry.linked += 1
+    return carry
+
+
+def carried_rows(carry: Carry, queue: str, when: str | None = None) -> list[dict]:
+    """The decision rows that open the new queue ``queue`` of a re-run: its marker
+    (:data:`~wakeline.core.review.RERUN`: the queue it follows and what was carried),
+    then the carried decisions."""
+    import datetime as dt
+
+    when = when or dt.datetime.now(dt.UTC).isoformat(timespec="seconds")
+    mark = R.LogEntry(when, R.RERUN, "", "", carry.queue, carry.text())
+    rows = [decision_row(queue, R.Change(R.RERUN), mark)]
+    return rows + [decision_row(queue, c, e) for c, e in carry.changes]
+
+
+def decision_counts(layers: list[Layer], decisions: list[dict]) -> tuple[int, int]:
+    """The decision rows replayed on the layers' current queues (the review decisions a
+    reopen restores), and the others kept in the log (earlier runs' decisions, those of
+    removed layers); re-run markers are no decisions."""
+    current = {queue_key(lay) for lay in layers if proposals_of(lay) is not None}
+    now = other = 0
+    for row in decisions:
+        if not isinstance(row, dict) or not isinstance(row.get("change"), dict):
+            continue
+        if row.get("action") == R.RERUN or row["change"].get("action") == R.RERUN:
+            continue
+        if row.get("queue") in current:
+            now += 1
+        else:
+            other += 1
+    return now, other
 
 
 def snapshot(state: R.ReviewState) -> R.ReviewState:

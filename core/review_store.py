@@ -16,6 +16,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.review import (
     PROPOSAL_COLUMNS,
+    RERUN,
     Change,
     LogEntry,
     ReviewState,
@@ -242,16 +243,66 @@ def decision_row(queue: str, change: Change, entry: LogEntry) -> dict:
 
 def replay_decisions(state: ReviewState, rows: list[dict], queue: str) -> int:
     """Apply, in order, the stored decisions of ``queue`` (rows of :func:`decision_row`);
-    returns how many. Rows of other queues (other layers, older runs) are skipped."""
+    returns how many. Rows of other queues (other layers, older runs) are skipped. A
+    re-run's marker (:data:`~wakeline.core.review.RERUN`, an empty change) logs the
+    text it was stored with."""
     n = 0
     for row in rows:
         if isinstance(row, dict) and row.get("queue") == queue and "change" in row:
-            state.apply(Change.from_dict(row["change"]), when=row.get("time"))
+            change = Change.from_dict(row["change"])
+            state.apply(change, when=row.get("time"))
+            if change.action == RERUN:
+                e = state.log[-1]
+                state.log[-1] = LogEntry(
+                    e.time, e.action, e.proposal, e.tracks, str(row.get("before", "")),
+                    str(row.get("after", "")),
+                )  # fmt: skip
             n += 1
     return n
 
 
-def _proposal_pairs(proposals) -> dict[str, tuple[str, str]]:
+def earlier_entries(rows: list[dict], queue: str) -> list[LogEntry]:
+    """The log lines of the earlier runs of ``queue``'s layer (its other queues, in the
+    order they were made): what the decision log of a re-run begins with, never
+    replayed on its proposals."""
+    lid, _, _ = queue.partition("@")
+    prefix = f"{lid}@"
+    out = []
+    for row in rows:
+        if not isinstance(row, dict):
+            continue
+        q = str(row.get("queue", ""))
+        if q != queue and q.startswith(prefix):
+            out.append(
+                LogEntry(
+                    *(str(row.get(k, "") or "") for k in ("time", "action", "proposal")),
+                    *(str(row.get(k, "") or "") for k in ("tracks", "before", "after")),
+                )
+            )
+    return out
+
+
+def queue_outcome(rows: list[dict], queue: str) -> tuple[dict[str, str], set[tuple[str, str]]]:
+    """The last status of each proposal of ``queue`` that a decision set, and the manual
+    links left, from its stored rows in order (undos taken as the changes they are; no
+    points needed: what a re-run reads of the run it replaces)."""
+    status: dict[str, str] = {}
+    links: set[tuple[str, str]] = set()
+    for row in rows:
+        if not (isinstance(row, dict) and row.get("queue") == queue):
+            continue
+        change = row.get("change")
+        if not isinstance(change, dict):
+            continue
+        status.update({str(k): str(v) for k, v in (change.get("status_after") or {}).items()})
+        for lk in change.get("links_removed") or []:
+            links.discard(pair_key(str(lk[0]), str(lk[1])))
+        for lk in change.get("links_added") or []:
+            links.add(pair_key(str(lk[0]), str(lk[1])))
+    return status, links
+
+
+def proposal_pairs(proposals) -> dict[str, tuple[str, str]]:
     """Each proposal's pair of track labels (``sensor:batch``), by proposal id; empty
     when the table is missing or lacks a column."""
     need = ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b")
@@ -277,7 +328,7 @@ def kept_out_pairs(
     rejected: dict[str, dict[tuple[str, str], str]] = {lid: {} for lid, _, _ in queues}
     split: dict[str, list[tuple[dict, dict]]] = {}
     for _, queue, proposals in queues:
-        pairs = _proposal_pairs(proposals)
+        pairs = proposal_pairs(proposals)
         if pairs:
             split.setdefault(queue, []).append((pairs, {}))
     for row in rows:

@@ -7,8 +7,9 @@ layer's id, the step, the role it plays in the step's output (``cleaned``,
 input replaces only the layers of that (input, step, role); results of other inputs
 coexist. The GUI is a view over a session: it subscribes to its events
 (``added``, ``changed``, ``removed``, ``visibility``, ``tables`` — a layer's side
-tables or meta changed, not its points; ``time_window``,
-``current_time``, ``map_view`` and ``active`` with no layer id) and never keeps layers
+tables or meta changed, not its points; ``decisions`` — a re-run's carried review
+decisions, rows of the layer's new queue, were appended to ``decisions``;
+``time_window``, ``current_time``, ``map_view`` and ``active`` with no layer id) and never keeps layers
 of its own. The session also holds what brings an operator back to where they were,
 saved with the project: the map's time window
 (:class:`~wakeline.core.timeline.TimeWindow`, s), the time slider's time (s), the map's
@@ -433,24 +434,66 @@ class Session:
         step: str,
         params: dict | None = None,
         progress: Progress | None = None,
+        points: pd.DataFrame | None = None,
     ) -> StepResult:
-        """Run a registered step on one layer (or several, concatenated); pure: nothing
-        changes until :meth:`apply_result`. Safe to call from a worker thread."""
-        ids = [layer_ids] if isinstance(layer_ids, str) else list(layer_ids)
-        points = self.input_points(ids)
-        if step == "associate" and len(ids) == 1:
-            rejected, split = self.kept_out_below(ids[0])
-            split = split - rejected
-            if rejected or split:  # a re-run: what the operator rejected or split stays out
-                full = {**STEPS[step].defaults(), **(params or {})}
-                run = STEPS[step].run
-                return run(points, full, progress or null_progress, rejected, split=split)
-        return STEPS[step](points, params, progress)
+        """Run a registered step on one layer (or several, concatenated; ``points``: the
+        input as the caller combined it, a fuse across layers); pure: nothing changes
+        until :meth:`apply_result`. Safe to call from a worker thread.
 
-    def kept_out_below(self, layer_id: str) -> tuple[set, set]:
+        A re-run of a reviewed step (Associate, Fuse) on the same input(s) keeps the
+        review: pairs rejected or split in an earlier review stay out of the proposals,
+        and what the layer it replaces was decided is carried over
+        (:func:`~wakeline.core.review_session.carry_over`, the result's ``carry``;
+        :meth:`apply_result` stores it as the new queue's first decisions)."""
+        from wakeline.core.review_session import REVIEWED_STEPS, carry_over
+
+        ids = [layer_ids] if isinstance(layer_ids, str) else list(layer_ids)
+        if points is None:
+            points = self.input_points(ids)
+        if step not in REVIEWED_STEPS:
+            return STEPS[step](points, params, progress)
+        inputs = ids if len(ids) > 1 else []
+        rows = list(self.decisions)  # a copy: the window may append while a worker reads
+        rejected, split = self.kept_out_below(ids[0], step, inputs)
+        split = split - rejected
+        full = {**STEPS[step].defaults(), **(params or {})}
+        run = STEPS[step].run
+        result = run(points, full, progress or null_progress, rejected, split=split)
+        for new in result.layers:
+            old = self._replaced(ids[0], step, new.suffix, inputs)
+            if old is not None and any(
+                str(r.get("queue", "")).startswith(f"{old.id}@")
+                for r in rows
+                if isinstance(r, dict)
+            ):  # a re-run of a layer with a review: it carries over
+                carry = carry_over(
+                    old, rows, points, new.tables.get("proposals"), len(rejected), len(split)
+                )
+                return dataclasses.replace(result, carry=carry)
+        return result
+
+    def _replaced(self, parent: str, step: str, role: str, inputs: list[str]) -> Layer | None:
+        """The layer a result of ``step`` (role ``role``) on ``parent`` (and ``inputs``)
+        replaces in place (:meth:`apply_result`), if any."""
+        return next(
+            (
+                lay
+                for lay in self.layers.values()
+                if lay.parent == parent
+                and lay.step == step
+                and lay.role == role
+                and lay.inputs == inputs
+            ),
+            None,
+        )
+
+    def kept_out_below(
+        self, layer_id: str, step: str = "associate", inputs: list[str] | None = None
+    ) -> tuple[set, set]:
         """``(rejected, split)``: the pairs of track labels a re-run of Associate on
         ``layer_id`` keeps out, from the review of each associate layer made from it, in
-        one pass over the decision log. Rejected: in any run's queue of the layer, undos
+        one pass over the decision log (``step``, ``inputs``: those of another reviewed
+        step, a fuse across ``inputs``). Rejected: in any run's queue of the layer, undos
         taken into account. Split: in its current queue (through its proposals), and
         those an earlier run kept out (the layer's ``split_kept_out``, so they stay out
         run after run)."""
@@ -461,7 +504,7 @@ class Session:
         below = [
             lay
             for lay in list(self.layers.values())
-            if lay.parent == layer_id and lay.step == "associate" and not lay.inputs[1:]
+            if lay.parent == layer_id and lay.step == step and _same_inputs(lay, inputs)
         ]
         queues = [(lay.id, queue_key(lay), lay.tables.get("proposals")) for lay in below]
         rejected, split = kept_out_pairs(rows, queues)
@@ -469,13 +512,17 @@ class Session:
             split |= {(str(a), str(b)) for a, b in lay.meta.get("split_kept_out", [])}
         return rejected, split
 
-    def split_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
+    def split_pairs_below(
+        self, layer_id: str, step: str = "associate", inputs: list[str] | None = None
+    ) -> set[tuple[str, str]]:
         """The split pairs of :meth:`kept_out_below`."""
-        return self.kept_out_below(layer_id)[1]
+        return self.kept_out_below(layer_id, step, inputs)[1]
 
-    def rejected_pairs_below(self, layer_id: str) -> set[tuple[str, str]]:
+    def rejected_pairs_below(
+        self, layer_id: str, step: str = "associate", inputs: list[str] | None = None
+    ) -> set[tuple[str, str]]:
         """The rejected pairs of :meth:`kept_out_below`."""
-        return self.kept_out_below(layer_id)[0]
+        return self.kept_out_below(layer_id, step, inputs)[0]
 
     def input_points(self, layer_ids: list[str]) -> pd.DataFrame:
         """The points of the given layers, concatenated. Raises :class:`InputError` when
@@ -541,15 +588,49 @@ class Session:
                 "inputs": inputs,
             }
             if old is not None:
+                carry = self._carry(old, result, new, inputs)
                 old.points, old.meta, old.kind = new.points, dict(new.meta), new.kind
                 for key, value in lineage.items():
                     setattr(old, key, value)
+                if carry is not None:  # before "changed": a review bound on it reads them
+                    from wakeline.core.review_session import carried_rows, queue_key
+
+                    self.decisions.extend(carried_rows(carry, queue_key(old)))
                 self._emit("changed", old.id)
+                if carry is not None:
+                    self._emit("decisions", old.id)
                 made.append(old)
             else:
                 name = self._step_layer_name(f"{parent_name} · {new.suffix}", result.step, input_id)
                 made.append(self.add_layer(name, new.kind, new.points, new.meta, **lineage))
         return made
+
+    def _carry(self, old: Layer, result: StepResult, new, inputs: list[str]):
+        """What the re-run ``result`` carries over from the review of ``old`` (the layer
+        it replaces): the carry :meth:`run_step` made (decisions made on ``old`` since
+        counted as late), or, for a result made elsewhere (a pipeline's stage), one made
+        now; None when ``old`` was never reviewed (no decision row of its queues)."""
+        from wakeline.core.review_session import carry_over, queue_key
+
+        prefix = f"{old.id}@"
+        rows = list(self.decisions)
+        if not any(
+            isinstance(r, dict) and str(r.get("queue", "")).startswith(prefix) for r in rows
+        ):
+            return None
+        carry = getattr(result, "carry", None)
+        if carry is not None and carry.old == old.id:
+            now = sum(1 for r in rows if isinstance(r, dict) and r.get("queue") == carry.queue)
+            carry.late = max(0, now - carry.seen) if carry.queue == queue_key(old) else now
+            return carry
+        try:
+            points = self.input_points(inputs or [old.parent])
+        except InputError:
+            points = None
+        props = new.tables.get("proposals")
+        if points is None:
+            props = None
+        return carry_over(old, rows, points, props)
 
     def _step_layer_name(self, name: str, step: str, parent: str) -> str:
         """``name``, or with its step when another layer made from ``parent`` has that
@@ -586,6 +667,12 @@ class Session:
         self.set_current_time(None)
         self.set_map_view(None)
         self.set_active(None)
+
+
+def _same_inputs(layer: Layer, inputs: list[str] | None) -> bool:
+    """Whether ``layer`` was made from ``inputs`` (several: a step across layers; None
+    or empty: a step on its parent alone)."""
+    return list(layer.inputs) == list(inputs) if inputs else not layer.inputs[1:]
 
 
 def _params_json(params: dict | None) -> dict:

@@ -1782,12 +1782,44 @@
         <translation>{tracks:,} 条航迹 -&gt; {targets:,} 个目标（{candidates:,} 个候选对中连接 {joins:,} 个，{method}）</translation>
     </message>
     <message>
-        <source>; {n:#pair} rejected in an earlier review kept out</source>
-        <translation>；{n:,} 对在先前的审核中被拒绝，已排除</translation>
+        <source>{n:#pair} rejected in an earlier review kept out</source>
+        <translation>{n:,} 对在先前的审核中被拒绝，已排除</translation>
     </message>
     <message>
-        <source>; {n:#pair} split in an earlier review kept out</source>
-        <translation>；{n:,} 对在先前的审核中被拆分，已排除</translation>
+        <source>{n:#pair} split in an earlier review kept out</source>
+        <translation>{n:,} 对在先前的审核中被拆分，已排除</translation>
+    </message>
+    <message>
+        <source>; review of the earlier run: {carry}</source>
+        <translation>；先前运行的审核：{carry}</translation>
+    </message>
+    <message>
+        <source>{n:#accepted pair} proposed again, accepted</source>
+        <translation>{n:,} 个已接受的配对再次被提出，已接受</translation>
+    </message>
+    <message>
+        <source>1 accepted pair or hand merge kept as an operator link</source>
+        <translation>1 个已接受的配对或手动合并保留为操作员链接</translation>
+    </message>
+    <message>
+        <source>{n:,} accepted pairs or hand merges kept as operator links</source>
+        <translation>{n:,} 个已接受的配对或手动合并保留为操作员链接</translation>
+    </message>
+    <message>
+        <source>1 decision no longer applies (a track is gone)</source>
+        <translation>1 项决定不再适用（某条航迹已不存在）</translation>
+    </message>
+    <message>
+        <source>{n:,} decisions no longer apply (a track is gone)</source>
+        <translation>{n:,} 项决定不再适用（某条航迹已不存在）</translation>
+    </message>
+    <message>
+        <source>{n:#decision} made while the step ran not carried (in the decision log)</source>
+        <translation>{n:,} 项在步骤运行期间做出的决定未沿用（见决定日志）</translation>
+    </message>
+    <message>
+        <source>no decision to carry over</source>
+        <translation>没有可沿用的决定</translation>
     </message>
     <message>
         <source>; {n:,} of the joins across gaps beyond T_gap (second look)</source>

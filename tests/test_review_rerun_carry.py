@@ -1,0 +1,182 @@
+"""A re-run of a reviewed step (Associate on one layer, Fuse across layers) keeps the
+review (tester h133, defects 2 and 3): rejected and split pairs stay out, accepted pairs
+proposed again stay accepted, accepted pairs no longer proposed and hand merges are kept
+as operator links (counted when a track is gone), the decision log keeps every earlier
+line with a ``re-run`` marker, and a reopen restores the same and counts what is in
+effect."""
+
+import pandas as pd
+import pytest
+
+from wakeline.core import review as R
+from wakeline.core import simulate
+from wakeline.core.pipeline import STEPS
+from wakeline.core.project import load_project, save_project
+from wakeline.core.review_session import (
+    bind,
+    decision_counts,
+    fuse_names,
+    input_points,
+    queue_key,
+)
+from wakeline.core.review_store import decision_row
+from wakeline.core.session import Session
+
+
+def _do(s: Session, lay, st: R.ReviewState, change: R.Change) -> R.Change:
+    """Apply ``change`` and store it as the window does."""
+    st.apply(change)
+    s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    return change
+
+
+def _pairs(st: R.ReviewState) -> dict[tuple[str, str], str]:
+    return {
+        R.pair_key(a, b): str(v) for a, b, v in zip(st.track_a, st.track_b, st.status, strict=True)
+    }
+
+
+def _review(s: Session, lay) -> dict:
+    """Accept, reject, split, a hand merge, a reject undone: what the operator did, and
+    the pairs each left (track labels)."""
+    st, _ = bind(s, lay)
+    p = st.proposals
+    pair = {
+        pid: R.pair_key(a, b)
+        for pid, a, b in zip(p["proposal"], st.track_a, st.track_b, strict=True)
+    }
+    pids = list(p["proposal"])
+    _do(s, lay, st, R.accept(st, pids[0]))
+    _do(s, lay, st, R.reject(st, pids[1]))
+    # A reject taken back (undo): the pair is proposed again, pending.
+    undone = _do(s, lay, st, R.reject(st, pids[3]))
+    _do(s, lay, st, undone.inverse())
+    # A track split off: every pair the split cut stays out.
+    cut = _do(s, lay, st, R.split_track(st, st.track_a[2]))
+    split = {pair[pid] for pid in cut.status_after}
+    # A hand merge of two tracks in two targets, not a proposed pair.
+    tg = st.targets().set_index("track")["target"]
+    lone = [t for t in tg.index if t not in set(cut.tracks) and (tg == tg[t]).sum() == 1]
+    assert len(lone) >= 2, "the scene needs two unpaired tracks"
+    merged = _do(s, lay, st, R.merge(st, lone[:2]))
+    assert merged.links_added
+    return {
+        "state": st,
+        "accepted": pair[pids[0]],
+        "rejected": pair[pids[1]],
+        "undone": pair[pids[3]],
+        "split": split,
+        "merged": R.pair_key(*lone[:2]),
+        "rows": len(s.decisions),
+    }
+
+
+def _check_rerun(s: Session, lay, done: dict, res) -> R.ReviewState:
+    """The re-run's queue as the operator expects it; returns its state."""
+    assert res.carry is not None
+    old_key = queue_key(lay)  # the layer is replaced in place
+    (lay2,) = s.apply_result(lay.parent, res, None, inputs=lay.inputs)
+    st, _ = bind(s, lay2)
+    now = _pairs(st)
+    assert done["rejected"] not in now
+    assert not done["split"] & set(now)
+    assert now.get(done["undone"], "pending") == "pending"
+    if done["accepted"] in now:
+        assert now[done["accepted"]] == "accepted"
+    else:
+        assert done["accepted"] in st.links
+    a, b = done["merged"]
+    assert st.target(a) == st.target(b)
+    assert res.carry.linked >= 1 and res.carry.gone == 0
+    # The log: every earlier line, the marker, then the carried decisions.
+    log = st.log_table()
+    assert len(st.history) == done["rows"]
+    assert list(log["action"][: done["rows"]]) == [e.action for e in done["state"].log]
+    mark = log.iloc[done["rows"]]
+    assert mark["action"] == R.RERUN and mark["before"] == old_key
+    assert "kept out" in mark["after"] and "kept as" in mark["after"]
+    text = STEPS[lay2.step].summary(res)
+    assert "review of the earlier run" in text and "kept as" in text, text
+    # The log replays (wakeline review --log) from its marker to the same targets.
+    again = R.replay_log(R.ReviewState(st.tracks, st.proposals), log)
+    assert (again.target_of_track() == st.target_of_track()).all()
+    return st
+
+
+def _check_reopen(s: Session, lid: str, st: R.ReviewState, tmp_path) -> None:
+    save_project(s, tmp_path / "p.wakeline")
+    proj = load_project(tmp_path / "p.wakeline")
+    back = proj.to_session()
+    st2, _ = bind(back, back.layers[lid])
+    assert list(st2.status) == list(st.status) and st2.links == st.links
+    assert (st2.target_of_track() == st.target_of_track()).all()
+    assert len(st2.log_table()) == len(st.log_table())
+    now, earlier = decision_counts(proj.layers, proj.decisions)
+    assert now == len(st.log) - 1  # the marker is no decision
+    assert earlier == len(st.history)
+
+
+def test_a_rerun_of_associate_keeps_every_decision_that_still_applies(tmp_path):
+    pts = simulate.segments_scene(seed=2, n_ships=8, area_km=15)
+    s = Session()
+    src = s.add_layer("seg.csv", "source", pts)
+    (lay,) = s.apply_result(src.id, s.run_step(src.id, "associate"))
+    done = _review(s, lay)
+    res = s.run_step(src.id, "associate")
+    assert res.carry.rejected == 1 and res.carry.split == len(done["split"] - {done["rejected"]})
+    st = _check_rerun(s, lay, done, res)
+    # A decision on the new queue, then a third run: the log keeps growing.
+    lay2 = s.layers[lay.id]
+    _do(s, lay2, st, R.reject(st, st.proposals["proposal"].iloc[-1]))
+    _check_reopen(s, lay.id, st, tmp_path)
+    third = s.run_step(src.id, "associate")
+    (lay3,) = s.apply_result(src.id, third)
+    st3, _ = bind(s, lay3)
+    assert len(st3.history) == len(st.history) + len(st.log)
+    assert done["rejected"] not in _pairs(st3) and not done["split"] & set(_pairs(st3))
+    a, b = done["merged"]
+    assert st3.target(a) == st3.target(b)
+
+
+def test_decisions_whose_track_is_gone_are_counted(tmp_path):
+    pts = simulate.segments_scene(seed=2, n_ships=8, area_km=15)
+    s = Session()
+    src = s.add_layer("seg.csv", "source", pts)
+    (lay,) = s.apply_result(src.id, s.run_step(src.id, "associate"))
+    done = _review(s, lay)
+    gone = done["merged"][0].split(":", 1)[1]
+    s.replace_points(src.id, pts[pts["batch"].astype(str) != gone].reset_index(drop=True))
+    res = s.run_step(src.id, "associate")
+    assert res.carry.gone == 1
+    s.apply_result(src.id, res)
+    assert "1 decision no longer applies (a track is gone)" in STEPS["associate"].summary(res)
+
+
+@pytest.fixture(scope="module")
+def two_files():
+    pts = simulate.demo_scene(seed=7)
+    t = pd.to_datetime(pts["time"])
+    pts = pts[t < t.min() + pd.Timedelta("30min")]
+    return {s: part.assign(sensor="S1").reset_index(drop=True) for s, part in pts.groupby("sensor")}
+
+
+def _fuse(s: Session, ids: list[str]):
+    named = list(zip(fuse_names(s, ids), [s.layers[i].points for i in ids], strict=True))
+    points = R.combine_sources(named)
+    return s.run_step(ids, "fuse", STEPS["fuse"].defaults(), points=points)
+
+
+def test_a_rerun_of_fuse_across_layers_keeps_every_decision_that_still_applies(two_files, tmp_path):
+    s = Session()
+    a = s.add_layer("x_AIS.csv", "source", two_files["AIS"])
+    r = s.add_layer("x_radar.csv", "source", two_files["R1"])
+    ids = [a.id, r.id]
+    (lay,) = s.apply_result(a.id, _fuse(s, ids), STEPS["fuse"].defaults(), inputs=ids)
+    assert _fuse(s, ids).carry is None  # nothing reviewed yet: nothing to carry
+    done = _review(s, lay)
+    res = _fuse(s, ids)
+    assert res.report["rejected_kept_out"] == 1
+    st = _check_rerun(s, lay, done, res)
+    # The fused layer follows the decisions through the same points as before.
+    assert len(input_points(s, s.layers[lay.id]))
+    _check_reopen(s, lay.id, st, tmp_path)
