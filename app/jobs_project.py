@@ -241,8 +241,13 @@ class ProjectJobsMixin:
         finally:
             self._view_planned = False
         lock_note = self.project.follow(path, proj.read_only)
-        restored = len(proj.decisions) - len(proj.repairs)
-        self.log_message(self._opened_text(path, len(proj.layers), restored))
+        from wakeline.core.review_session import decision_counts
+
+        repairs = {id(row) for row in proj.repairs}
+        restored, earlier = decision_counts(
+            proj.layers, [d for d in proj.decisions if id(d) not in repairs]
+        )
+        self.log_message(self._opened_text(path, len(proj.layers), restored, earlier))
         if proj.repairs:
             # The migration's decisions (core.project's docstring) go into the file at
             # once, before any new one, so the stored log replays to what is shown.
@@ -277,15 +282,25 @@ class ProjectJobsMixin:
                 self, self.tr("Project opened with warnings"), "\n".join(warnings + problems)
             )
 
-    def _opened_text(self, path: Path, layers: int, decisions: int) -> str:
+    def _opened_text(self, path: Path, layers: int, decisions: int, earlier: int = 0) -> str:
         """The log line of an opened project: its file, its layers and the review
-        decisions restored from it (as opening a file logs its import summary)."""
+        decisions restored from it (as opening a file logs its import summary): those
+        in effect (replayed on the layers' current reviews), and those the decision log
+        keeps of earlier runs or removed layers."""
         n_layers = self.tr("1 layer") if layers == 1 else self.tr("{0} layers").format(layers)
         n_decided = (
             self.tr("1 review decision restored")
             if decisions == 1
             else self.tr("{0} review decisions restored").format(f"{decisions:,}")
         )
+        if earlier:
+            n_decided += " " + (
+                self.tr("(and 1 of an earlier run or a removed layer, kept in the decision log)")
+                if earlier == 1
+                else self.tr(
+                    "(and {0} of earlier runs or removed layers, kept in the decision log)"
+                ).format(f"{earlier:,}")
+            )
         return self.tr("Opened project {0}: {1}, {2}").format(str(path), n_layers, n_decided)
 
     def _repaired_text(self, n: int) -> str:

@@ -157,6 +157,13 @@ class ProjectController(QtCore.QObject):
         elif event == "visibility" and layer is not None:
             pos = self._pos(layer_id)
             self._submit(lambda st: st.put_layer(layer, pos, with_data=False))
+        elif event == "decisions" and layer is not None:  # a re-run's carried review
+            from wakeline.core.review_session import queue_key
+
+            key = queue_key(layer)
+            rows = self.session.decisions
+            for row in [d for d in rows if isinstance(d, dict) and d.get("queue") == key]:
+                self.add_decision(row)
         elif event == "removed":
             self._submit(lambda st: st.delete_layer(layer_id))
         elif event == "reordered":

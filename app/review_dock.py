@@ -38,6 +38,7 @@ from wakeline.app.review_views import GanttView, NetworkView
 from wakeline.app.time_panel import link_gantt
 from wakeline.app.worker import Failed, Finished
 from wakeline.core import geo
+from wakeline.core.review import RERUN
 from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
 from wakeline.core.schema import time_seconds
 
@@ -97,6 +98,8 @@ class Bound:
     #: (:func:`track_arrays`), and the band's west edge
     arrays: tuple | None = None
     geometries: dict = field(default_factory=dict)  # (proposal, members) -> geometry
+    #: the queue of a re-run: it opens with the carried decisions, its undo stack empty
+    rerun: bool = False
 
     @property
     def lon_west(self) -> float:
@@ -272,6 +275,12 @@ class ReviewDock(QtCore.QObject):
         self.act_redo.setShortcuts(
             [QtGui.QKeySequence("Ctrl+Shift+Z"), QtGui.QKeySequence("Ctrl+Y")]
         )
+        for signal in (
+            self.group.activeStackChanged,
+            self.group.canUndoChanged,
+            self.group.undoTextChanged,
+        ):  # after the action's own slot, which sets its text
+            signal.connect(self._undo_note)
         self.edit_menu.addActions([self.act_undo, self.act_redo])
         bar.insertMenu(w.menus["run"].menuAction(), self.edit_menu)
         self.review_menu = QtWidgets.QMenu(tr("Re&view"), w)
@@ -308,6 +317,7 @@ class ReviewDock(QtCore.QObject):
         self.edit_menu.setTitle(tr("&Edit"))
         self.act_undo.setText(tr("&Undo"))
         self.act_redo.setText(tr("&Redo"))
+        self._undo_note()
         self.review_menu.setTitle(tr("Re&view"))
         for name, text, _key, _method in REVIEW_KEYS:
             self.review_actions[name].setText(tr(text))
@@ -325,6 +335,23 @@ class ReviewDock(QtCore.QObject):
             fuse_selected(self.w)
         else:
             self.w.run_step("fuse")
+
+    def _undo_note(self, *_args) -> None:
+        """Edit ▸ Undo says why it has nothing to undo in the queue of a re-run: a step
+        run is not undone (no layer edit is), and the earlier run's undo history went
+        with its queue; what still applied was carried over (the log says what)."""
+        b = self.bound
+        if b is not None and b.rerun and not self.group.canUndo():
+            self.act_undo.setText(tr("&Undo (nothing since the step ran again)"))
+            self.act_undo.setToolTip(
+                tr(
+                    "Running a step again is not undone by Undo (no layer edit is): the "
+                    "decisions of the earlier run that still apply were carried over, and "
+                    "the decision log keeps every one."
+                )
+            )
+        else:
+            self.act_undo.setToolTip("")  # the action's text
 
     def _enable(self, on: bool) -> None:
         for act in self.review_actions.values():
@@ -456,6 +483,7 @@ class ReviewDock(QtCore.QObject):
         box.setSizes([560, 700])
         bound = Bound(lid, key, controller, pts, ranges, box, panel, gantt, network)
         bound.arrays = arrays
+        bound.rerun = any(e.action == RERUN for e in state.log)
         # Only the shown queue's panel draws (a queue still binding waits for _show).
         panel.current_settled.connect(
             lambda pid, b=bound: self.bound is b and self.show_proposal(pid)

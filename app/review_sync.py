@@ -187,7 +187,6 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
     the command line names its files), in the worker; the result's lineage lists every
     input layer."""
     from wakeline.app.jobs import _prepared
-    from wakeline.core.pipeline import STEPS
     from wakeline.core.progress import sub_progress
 
     if ids is None:
@@ -242,9 +241,12 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
     }
     in_use = w.colors_in_use(exclude=rerun)
 
+    session = w.session
+
     def job(progress):
         points = R.combine_sources(named)
-        result = STEPS["fuse"](points, params, sub_progress(progress, 0.0, 0.85))
+        # Through the session: a re-run keeps the review of the layer it replaces.
+        result = session.run_step(ids, "fuse", params, sub_progress(progress, 0.0, 0.85), points)
         prepared, views = _prepared(
             result, sub_progress(progress, 0.85, 1.0), canvas_view, size_px, in_use
         )

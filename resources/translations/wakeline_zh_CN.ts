@@ -384,6 +384,14 @@
         <translation>恢复了 {0} 条审核决策</translation>
     </message>
     <message>
+        <source>(and 1 of an earlier run or a removed layer, kept in the decision log)</source>
+        <translation>（另有 1 条属于先前的运行或已移除的图层，保留在决策日志中）</translation>
+    </message>
+    <message>
+        <source>(and {0} of earlier runs or removed layers, kept in the decision log)</source>
+        <translation>（另有 {0} 条属于先前的运行或已移除的图层，保留在决策日志中）</translation>
+    </message>
+    <message>
         <source>Open project</source>
         <translation>打开工程</translation>
     </message>
@@ -1487,6 +1495,14 @@
     <message>
         <source>&amp;Undo</source>
         <translation>撤销(&amp;U)</translation>
+    </message>
+    <message>
+        <source>&amp;Undo (nothing since the step ran again)</source>
+        <translation>撤销(&amp;U)（重新运行步骤后尚无可撤销的操作）</translation>
+    </message>
+    <message>
+        <source>Running a step again is not undone by Undo (no layer edit is): the decisions of the earlier run that still apply were carried over, and the decision log keeps every one.</source>
+        <translation>重新运行步骤不能用“撤销”撤回（图层编辑都不能撤销）：先前运行中仍然适用的决策已沿用，决策日志保留全部决策。</translation>
     </message>
     <message>
         <source>Error</source>
