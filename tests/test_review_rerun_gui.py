@@ -12,6 +12,7 @@ pytest.importorskip("pytestqt")
 
 from test_review_window import _settle, _sim_pair, _window  # noqa: E402
 
+from conftest import real_file  # noqa: E402
 from wakeline.core import review as R  # noqa: E402
 from wakeline.core import simulate  # noqa: E402
 from wakeline.core.io import write_points  # noqa: E402
@@ -49,8 +50,19 @@ def _apart(st, avoid: list[str]) -> list[str]:
     raise AssertionError("no two tracks apart")
 
 
-def test_fuse_again_keeps_the_review_undo_says_why_and_the_log_keeps_it(qtbot, tmp_path):
-    files = _sim_pair(tmp_path)
+def _mtad6_pair(_tmp_path) -> list:
+    """The tester's files: MTAD scene 6, error 0, AIS and radar (skipped when absent)."""
+    return [
+        real_file("mtad-dtwcm", "two_sensor", "scene-6_error_0_AIS.csv"),
+        real_file("mtad-dtwcm", "two_sensor", "scene-6_error_0_radar.csv"),
+    ]
+
+
+@pytest.mark.parametrize("make_files", [_sim_pair, _mtad6_pair], ids=["sim", "mtad6"])
+def test_fuse_again_keeps_the_review_undo_says_why_and_the_log_keeps_it(
+    qtbot, tmp_path, make_files
+):
+    files = make_files(tmp_path)
     w = _window(qtbot, tmp_path)
     w.load_files(files)
     _settle(w)
