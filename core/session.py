@@ -461,11 +461,7 @@ class Session:
         result = run(points, full, progress or null_progress, rejected, split=split)
         for new in result.layers:
             old = self._replaced(ids[0], step, new.suffix, inputs)
-            if old is not None and any(
-                str(r.get("queue", "")).startswith(f"{old.id}@")
-                for r in rows
-                if isinstance(r, dict)
-            ):  # a re-run of a layer with a review: it carries over
+            if old is not None and _reviewed(old, rows):  # a re-run of a layer with a review
                 carry = carry_over(
                     old, rows, points, new.tables.get("proposals"), len(rejected), len(split)
                 )
@@ -566,17 +562,7 @@ class Session:
         pjson = _params_json(params)
         made = []
         for new in result.layers:
-            old = next(  # the same step on the same input(s), same role
-                (
-                    lay
-                    for lay in self.layers.values()
-                    if lay.parent == input_id
-                    and lay.step == result.step
-                    and lay.role == new.suffix
-                    and lay.inputs == inputs
-                ),
-                None,
-            )
+            old = self._replaced(input_id, result.step, new.suffix, inputs)
             lineage = {
                 "parent": input_id,
                 "step": result.step,
@@ -612,11 +598,8 @@ class Session:
         now; None when ``old`` was never reviewed (no decision row of its queues)."""
         from wakeline.core.review_session import carry_over, queue_key
 
-        prefix = f"{old.id}@"
         rows = list(self.decisions)
-        if not any(
-            isinstance(r, dict) and str(r.get("queue", "")).startswith(prefix) for r in rows
-        ):
+        if not _reviewed(old, rows):
             return None
         carry = getattr(result, "carry", None)
         if carry is not None and carry.old == old.id:
@@ -667,6 +650,12 @@ class Session:
         self.set_current_time(None)
         self.set_map_view(None)
         self.set_active(None)
+
+
+def _reviewed(layer: Layer, rows: list) -> bool:
+    """Whether the decision log ``rows`` holds a row of any run's queue of ``layer``."""
+    prefix = f"{layer.id}@"
+    return any(isinstance(r, dict) and str(r.get("queue", "")).startswith(prefix) for r in rows)
 
 
 def _same_inputs(layer: Layer, inputs: list[str] | None) -> bool:

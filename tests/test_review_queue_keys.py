@@ -52,7 +52,10 @@ def test_two_runs_in_one_second_are_two_queues():
     again.created = created  # the same second, whatever the clock did
     assert queue_key(again) != key and queue_key(again).startswith(f"{lay.id}@{created}#")
     fresh, _ = bind(s, again)
-    assert fresh.status_of(first) == "pending" and not fresh.log
+    # the reject is not replayed on the new queue: its log opens with the re-run's marker
+    # alone (h138: a re-run carries accepts and links over, none here)
+    assert fresh.status_of(first) == "pending"
+    assert [e.action for e in fresh.log] == [R.RERUN]
 
 
 def test_a_project_saved_before_the_token_keeps_its_queue(tmp_path):

@@ -180,3 +180,41 @@ def test_a_rerun_of_fuse_across_layers_keeps_every_decision_that_still_applies(t
     # The fused layer follows the decisions through the same points as before.
     assert len(input_points(s, s.layers[lay.id]))
     _check_reopen(s, lay.id, st, tmp_path)
+
+
+def test_the_carry_and_kept_out_words_are_phrases_with_zh_cn_entries():
+    """h136's summaries are phrases the window translates: a re-run's words (what it kept
+    out, carried and dropped) are too, so the zh_CN log has no English piece of them;
+    the English (what the command line prints) is unchanged."""
+    from test_translations import zh_table
+
+    from wakeline.core.pipeline import StepResult
+    from wakeline.core.review_session import Carry
+    from wakeline.core.words import CONTEXT, render
+
+    table = zh_table()
+
+    def zh(t: str) -> str | None:
+        return table.get((CONTEXT, t))
+
+    for n in (1, 3):
+        carry = Carry("L3", "L3@t#x", 0, [], n, n, n, n, n, n)
+        english = carry.text()
+        plural = "s" if n > 1 else ""
+        assert english.startswith(f"{n} pair{plural} rejected in an earlier review kept out; ")
+        assert "operator link" in english and "a track is gone" in english
+        chinese = render(carry.text(), zh)
+        assert chinese != english
+        assert not any(w in chinese for w in ("pair", "kept", "decision", "operator", "; "))
+        rep = {
+            "tracks": 4,
+            "targets": 2,
+            "pairs_chosen": 2,
+            "candidate_pairs": 3,
+            "method": "optimal",
+        }
+        res = StepResult("associate", [], rep, carry=carry)
+        line = STEPS["associate"].summary(res)
+        assert f"; review of the earlier run: {english}" in line
+        assert "review of the earlier run" not in render(line, zh)
+    assert render(Carry("L3", "q", 0).text(), zh) == zh("no decision to carry over")

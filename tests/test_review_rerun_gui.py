@@ -203,3 +203,46 @@ def test_associate_again_keeps_accepts_and_hand_merges(qtbot, tmp_path):
     st3 = w3.review.bound.controller.state
     assert (list(st3.status), set(st3.links)) == state
     w3.close()
+
+
+def test_the_re_run_line_in_the_zh_cn_log_is_chinese(qtbot, tmp_path):
+    """The re-run's words (kept out, carried over) are the core's phrases (h136): in the
+    zh_CN window the log line of Associate run again carries none of their English."""
+    from PySide6 import QtWidgets
+    from test_translations import zh_table
+
+    from wakeline.app import i18n
+    from wakeline.core.words import CONTEXT
+
+    src = tmp_path / "seg.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=8, area_km=15), src)
+    w = _window(qtbot, tmp_path)
+    w.set_language("zh_CN")
+    try:
+        w.load_files([src])
+        _settle(w)
+        lid = w.layer_id(src.name)
+        w.select_layer(lid)
+        w.run_step("associate")
+        _settle(w)
+        a1 = w.session.find(lid, "associate")
+        w.select_layer(a1.id)
+        _settle(w)
+        c = w.review.bound.controller
+        pids = list(c.state.proposals["proposal"])
+        c.accept(pids[0])
+        c.reject(pids[1])
+        _settle(w)
+        w.select_layer(lid)
+        _settle(w)
+        w.run_step("associate")
+        _settle(w)
+        line = w.log.toPlainText().splitlines()[-1]
+        zh = zh_table()
+        assert zh[(CONTEXT, "; review of the earlier run: {carry}")].split("{")[0] in line, line
+        for english in ("review of the earlier run", "kept out", "proposed again", "pair"):
+            assert english not in line, line
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)
