@@ -350,8 +350,21 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         for item in items:
             item.setVisible(self._visible[name])
         self.legend.show_entries(items, self._visible[name])
-        if data.px is None and data.geometry.n_points > 50_000:
+        if data.px is None:
+            if data.geometry.n_points > 50_000:
+                self._lod_timer.start()
+        elif self._made_for_another_view(data):
+            # Decimated (and its sprites stroked) by a job for the view the map showed
+            # when the job started: a review decision's points swapped in after the
+            # Before/after map, a zoom or the next proposal moved the view kept the old
+            # view's clipping (tracks beyond it not drawn) until another view change.
             self._lod_timer.start()
+
+    def _made_for_another_view(self, data: DrawData) -> bool:
+        """``data`` was decimated, or its sprites made, for a view or plot size other
+        than the map's now."""
+        view, size = self.current_view(), self.plot_size_px()
+        return lod_is_stale(data, view, size) or sprite_is_stale(data, view, size)
 
     def _swap_curves(self, data: DrawData) -> None:
         for item, curve in zip(self._items.get(data.name, []), data.curves, strict=False):
