@@ -470,11 +470,12 @@ class Session:
 
     def _replaced(self, parent: str, step: str, role: str, inputs: list[str]) -> Layer | None:
         """The layer a result of ``step`` (role ``role``) on ``parent`` (and ``inputs``)
-        replaces in place (:meth:`apply_result`), if any."""
+        replaces in place (:meth:`apply_result`), if any. Read by :meth:`run_step` in a
+        worker while the window may add or remove layers: over a copy of the layers."""
         return next(
             (
                 lay
-                for lay in self.layers.values()
+                for lay in list(self.layers.values())
                 if lay.parent == parent
                 and lay.step == step
                 and lay.role == role
