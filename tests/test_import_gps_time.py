@@ -109,3 +109,14 @@ def test_any_instant_reads_back(seconds, ms):
     assert ok.all() and abs(int(ns[0]) - t.value) < 1_000  # to the µs a float holds
     ns, ok, _ = gps_ns(np.array([g]), None)
     assert ok.all() and abs(int(ns[0]) - t.value) < 1_000
+
+
+def test_milliseconds_of_the_week_are_not_read_as_seconds(tmp_path):
+    """``gps_ms`` (u-blox's iTOW is milliseconds of the week) is no GPS seconds column:
+    300,000 ms (5 min into the week) read as seconds was 3.5 days into it, silently."""
+    from wakeline.core.errors import InputError
+
+    src = tmp_path / "itow.csv"
+    src.write_text("gps_week,gps_ms,id,lat,lon\n2295,300000,1,37.9,23.6\n")
+    with pytest.raises(InputError, match="time"):
+        read_points(src)

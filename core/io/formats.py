@@ -847,8 +847,9 @@ def resolve(
 _GPS_WEEK = re.compile(r"^(?:gps[\s_\-.]*)?(?:week|wk|wn)(?:[\s_\-.]*(?:no|nr|num|number))?$")
 #: GPS seconds: of the week (``tow``, ``gps_tow``, ``time_of_week``, ``gps_seconds`` beside
 #: a week) or since the GPS epoch (``gps_time``, ``gps_seconds`` alone); a unit after.
+#: Not ``gps_ms``: milliseconds (u-blox's iTOW) read as seconds were times a thousand off.
 _GPS_SECONDS = re.compile(
-    r"^(?:gps[\s_\-.]*(?:seconds?|secs?|time|tow|sow|ms)"
+    r"^(?:gps[\s_\-.]*(?:seconds?|secs?|time|tow|sow)"
     r"|(?:gps[\s_\-.]*)?(?:tow|sow|time[\s_\-.]*of[\s_\-.]*week|seconds?[\s_\-.]*of[\s_\-.]*week"
     r"|week[\s_\-.]*seconds?))(?:[\s_\-.]*\(?(?:s|sec|seconds)\)?)?$"
 )
