@@ -131,7 +131,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             pipe = self.pipeline()
 
             def run(progress):
-                return pipe.run(self.session.input_points([lid]), progress)
+                # Through the session: a reviewed stage keeps the review it replaces.
+                return self.session.run_pipeline(lid, pipe, progress)
 
             params = None
             steps = [name for name, _ in pipe.stages]

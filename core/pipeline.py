@@ -912,14 +912,23 @@ class Pipeline:
             raise InputError(f"not a Wakeline pipeline: {exc}") from None
         return cls(stages)
 
-    def run(self, points: pd.DataFrame, progress: Progress | None = None) -> StepResult:
-        """Run the stages in order, each on the previous stage's primary output."""
+    def run(
+        self,
+        points: pd.DataFrame,
+        progress: Progress | None = None,
+        run_stage: Callable[[str, dict, pd.DataFrame, Progress], StepResult] | None = None,
+    ) -> StepResult:
+        """Run the stages in order, each on the previous stage's primary output.
+        ``run_stage(name, params, points, progress)``: runs one stage in place of the
+        step itself (a session's, which keeps a reviewed stage's review:
+        :meth:`wakeline.core.session.Session.run_pipeline`)."""
         progress = progress or null_progress
         stages, current = [], points
         n = len(self.stages)
         for k, (name, params) in enumerate(self.stages):
             step = STEPS[name]
-            res = step(current, params, sub_progress(progress, k / n, (k + 1) / n))
+            sub = sub_progress(progress, k / n, (k + 1) / n)
+            res = run_stage(name, params, current, sub) if run_stage else step(current, params, sub)
             stages.append(res)
             nxt = [lay for lay in res.layers if lay.suffix == step.primary]
             current = nxt[0].points if nxt else res.tables.get("points", current)

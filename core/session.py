@@ -28,7 +28,7 @@ import pandas as pd
 
 from wakeline.core.errors import InputError
 from wakeline.core.params import finite_number
-from wakeline.core.pipeline import STEPS, StepResult, params_to_json
+from wakeline.core.pipeline import STEPS, Pipeline, StepResult, params_to_json
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.timeline import TimeWindow, check_current_time
 from wakeline.core.words import joined_names
@@ -444,29 +444,91 @@ class Session:
         review: pairs rejected or split in an earlier review stay out of the proposals,
         and what the layer it replaces was decided is carried over
         (:func:`~wakeline.core.review_session.carry_over`, the result's ``carry``;
-        :meth:`apply_result` stores it as the new queue's first decisions)."""
-        from wakeline.core.review_session import REVIEWED_STEPS, carry_over
+        :meth:`apply_result` stores it as the new queue's first decisions). Several
+        layers given in another order than a layer already made from them: in its order
+        (:meth:`rerun_inputs`), so the run replaces it."""
+        from wakeline.core.review_session import REVIEWED_STEPS
 
         ids = [layer_ids] if isinstance(layer_ids, str) else list(layer_ids)
+        if step in REVIEWED_STEPS:
+            ids = self.rerun_inputs(ids, step)
         if points is None:
             points = self.input_points(ids)
         if step not in REVIEWED_STEPS:
             return STEPS[step](points, params, progress)
-        inputs = ids if len(ids) > 1 else []
+        return self._run_reviewed(
+            ids[0], ids if len(ids) > 1 else [], step, points, params, progress
+        )
+
+    def _run_reviewed(
+        self,
+        parent: str,
+        inputs: list[str],
+        step: str,
+        points: pd.DataFrame,
+        params: dict | None,
+        progress: Progress | None,
+    ) -> StepResult:
+        """Run reviewed ``step`` on ``points`` (the points of ``parent``, or of ``inputs``
+        combined) as a re-run keeps the review: the pairs rejected or split under
+        ``parent`` kept out, and the carry of the layer it replaces (:meth:`run_step`,
+        and a pipeline's stage: :meth:`run_pipeline`)."""
+        from wakeline.core.review_session import carry_over
+
         rows = list(self.decisions)  # a copy: the window may append while a worker reads
-        rejected, split = self.kept_out_below(ids[0], step, inputs)
+        rejected, split = self.kept_out_below(parent, step, inputs)
         split = split - rejected
         full = {**STEPS[step].defaults(), **(params or {})}
         run = STEPS[step].run
         result = run(points, full, progress or null_progress, rejected, split=split)
         for new in result.layers:
-            old = self._replaced(ids[0], step, new.suffix, inputs)
+            old = self._replaced(parent, step, new.suffix, inputs)
             if old is not None and _reviewed(old, rows):  # a re-run of a layer with a review
                 carry = carry_over(
                     old, rows, points, new.tables.get("proposals"), len(rejected), len(split)
                 )
                 return dataclasses.replace(result, carry=carry)
         return result
+
+    def run_pipeline(
+        self, layer_id: str, pipe: Pipeline, progress: Progress | None = None
+    ) -> StepResult:
+        """Run ``pipe`` on layer ``layer_id`` as :meth:`apply_result` will apply it, each
+        stage a child of the previous stage's output; a reviewed stage (Associate) whose
+        layer replaces a reviewed one keeps its review as :meth:`run_step` does (rejected
+        and split pairs kept out, the rest carried). Pure, like :meth:`run_step`."""
+        from wakeline.core.review_session import REVIEWED_STEPS
+
+        parent: list[str | None] = [layer_id]  # the next stage's parent, None: a new layer
+
+        def stage(name: str, params: dict, points: pd.DataFrame, sub: Progress) -> StepResult:
+            under = parent[0]
+            if name in REVIEWED_STEPS and under is not None:
+                res = self._run_reviewed(under, [], name, points, params, sub)
+            else:
+                res = STEPS[name](points, params, sub)
+            primary = STEPS[name].primary
+            if any(new.suffix == primary for new in res.layers):
+                old = self._replaced(under, name, primary, []) if under is not None else None
+                parent[0] = old.id if old is not None else None
+            return res
+
+        return pipe.run(self.input_points([layer_id]), progress, stage)
+
+    def rerun_inputs(self, ids: list[str], step: str = "fuse") -> list[str]:
+        """``ids`` (several layers a step runs across) in the order of the layer of
+        ``step`` already made from the same layers, whichever order they were selected
+        in: a run of Fuse on them again replaces that layer and keeps its review (the
+        fused points, pairs and proposals do not depend on the order, the points being
+        sorted by sensor and track first); as given when there is none."""
+        ids = list(ids)
+        if len(ids) < 2:
+            return ids
+        want = sorted(ids)
+        for lay in list(self.layers.values()):
+            if lay.step == step and sorted(lay.inputs) == want:
+                return list(lay.inputs)
+        return ids
 
     def _replaced(self, parent: str, step: str, role: str, inputs: list[str]) -> Layer | None:
         """The layer a result of ``step`` (role ``role``) on ``parent`` (and ``inputs``)
@@ -558,6 +620,9 @@ class Session:
         parent_name = self.layers[input_id].name if input_id in self.layers else base
         inputs = list(inputs) if inputs and len(inputs) > 1 else []
         if inputs:
+            # Another order of the same layers: the layer made from them is replaced.
+            inputs = self.rerun_inputs(inputs, result.step)
+            input_id = inputs[0]
             # Many inputs: the first names and how many more (the lineage keeps them all).
             parent_name = joined_names(self.layers[i].name for i in inputs if i in self.layers)
         pjson = _params_json(params)

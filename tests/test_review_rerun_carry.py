@@ -218,3 +218,73 @@ def test_the_carry_and_kept_out_words_are_phrases_with_zh_cn_entries():
         assert f"; review of the earlier run: {english}" in line
         assert "review of the earlier run" not in render(line, zh)
     assert render(Carry("L3", "q", 0).text(), zh) == zh("no decision to carry over")
+
+
+def test_fusing_the_same_layers_in_another_order_replaces_the_layer_and_keeps_the_review(
+    two_files,
+):
+    """Fuse's output does not depend on the order of its inputs (points sorted by sensor
+    and track first), so the same layers selected in another order (Layers list rows)
+    re-run the layer made from them, in its order, review kept."""
+    s = Session()
+    a = s.add_layer("x_AIS.csv", "source", two_files["AIS"])
+    r = s.add_layer("x_radar.csv", "source", two_files["R1"])
+    ids = [a.id, r.id]
+    first = _fuse(s, ids)
+    (lay,) = s.apply_result(a.id, first, STEPS["fuse"].defaults(), inputs=ids)
+    other = _fuse(s, ids[::-1])  # nothing reviewed yet: the same result either way
+    for key in ("points", "pairs", "proposals"):
+        assert other.tables[key].reset_index(drop=True).equals(first.tables[key])
+    done = _review(s, lay)
+    res = _fuse(s, ids[::-1])
+    assert res.carry is not None and res.carry.old == lay.id
+    assert res.report["rejected_kept_out"] == 1
+    made = s.apply_result(r.id, res, STEPS["fuse"].defaults(), inputs=ids[::-1])
+    assert [m.id for m in made] == [lay.id]
+    assert [x.id for x in s.layers.values() if x.step == "fuse"] == [lay.id]
+    assert s.layers[lay.id].inputs == ids and s.layers[lay.id].parent == a.id
+    st, _ = bind(s, s.layers[lay.id])
+    now = _pairs(st)
+    assert done["rejected"] not in now and not done["split"] & set(now)
+    a_, b_ = done["merged"]
+    assert st.target(a_) == st.target(b_)
+    assert s.rerun_inputs(ids[::-1]) == ids
+
+
+def test_a_pipeline_rerun_keeps_rejected_and_split_pairs_out():
+    """A pipeline whose Associate stage replaces a reviewed layer keeps its review as a
+    run of Associate alone does: rejected and split pairs stay out (they came back as
+    pending), accepted pairs and hand merges carried."""
+    from wakeline.core.pipeline import Pipeline
+
+    pts = simulate.segments_scene(seed=2, n_ships=8, area_km=15)
+    s = Session()
+    src = s.add_layer("seg.csv", "source", pts)
+    pipe = Pipeline(
+        (("clean", STEPS["clean"].defaults()), ("associate", STEPS["associate"].defaults()))
+    )
+    made = s.apply_result(src.id, s.run_pipeline(src.id, pipe))
+    (lay,) = [m for m in made if m.step == "associate"]
+    done = _review(s, lay)
+    res = s.run_pipeline(src.id, pipe)
+    stage = res.stages[-1]
+    assert stage.report["rejected_kept_out"] == 1
+    assert stage.carry is not None and stage.carry.old == lay.id
+    assert stage.carry.rejected == 1
+    assert stage.carry.split == len(done["split"] - {done["rejected"]})
+    again = s.apply_result(src.id, res)
+    assert lay.id in [m.id for m in again]
+    assert len([x for x in s.layers.values() if x.step == "associate"]) == 1
+    st, _ = bind(s, s.layers[lay.id])
+    now = _pairs(st)
+    assert done["rejected"] not in now
+    assert not done["split"] & set(now)
+    if done["accepted"] in now:
+        assert now[done["accepted"]] == "accepted"
+    else:
+        assert done["accepted"] in st.links
+    a, b = done["merged"]
+    assert st.target(a) == st.target(b)
+    # The same stage result as Associate run alone on the cleaned layer.
+    alone = s.run_step(lay.parent, "associate")
+    assert alone.tables["proposals"].equals(stage.tables["proposals"])
