@@ -231,6 +231,9 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
             return None
     from wakeline.core.review_session import fuse_names
 
+    # The same layers selected in another order: the order of the layer made from them
+    # (the fused result does not depend on it), so the run replaces it, review kept.
+    ids = w.session.rerun_inputs(ids, "fuse")
     named = list(zip(fuse_names(w.session, ids), [layers[i].points for i in ids], strict=True))
     params = w.step_params("fuse")
     canvas_view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()

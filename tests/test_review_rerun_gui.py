@@ -246,3 +246,36 @@ def test_the_re_run_line_in_the_zh_cn_log_is_chinese(qtbot, tmp_path):
         w.set_language("en")
         w.close()
     i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+def test_fuse_again_with_the_layers_in_another_order_keeps_the_review(qtbot, tmp_path):
+    """The same two layers fused again, selected in the other order (the Layers list's
+    rows, moved): the fused layer is re-run in its order, not a second layer made, and
+    its review is kept."""
+    from wakeline.app.review_sync import fuse_selected
+
+    files = _sim_pair(tmp_path)
+    w = _window(qtbot, tmp_path)
+    w.load_files(files)
+    _settle(w)
+    ids = [w.layer_id(f.name) for f in files]
+    _fuse(w, ids)
+    fused = next(lay for lay in w.session.layers.values() if lay.step == "fuse")
+    w.select_layer(fused.id)
+    _settle(w)
+    c = w.review.bound.controller
+    st = c.state
+    pid = st.proposals["proposal"].iloc[0]
+    rejected = R.pair_key(st.track_a[0], st.track_b[0])
+    c.reject(pid)
+    _settle(w)
+    fuse_selected(w, ids[::-1])
+    _settle(w)
+    again = [lay for lay in w.session.layers.values() if lay.step == "fuse"]
+    assert [lay.id for lay in again] == [fused.id]
+    assert w.session.layers[fused.id].inputs == ids
+    w.select_layer(fused.id)
+    _settle(w)
+    assert rejected not in _pairs(w.review.bound.controller.state)
+    assert "1 pair rejected in an earlier review kept out" in w.log.toPlainText()
+    w.close()
