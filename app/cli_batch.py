@@ -85,7 +85,10 @@ def register(sub: argparse._SubParsersAction) -> None:
         "points and maps the targets back (docs/batch.md). Writes OUTDIR/<step>/ as Parquet "
         "partitions, OUTDIR/report.json, and with --csv OUTDIR/<step>.csv in canonical CSV. An "
         "input without a data row (empty, or a header only) is skipped with a warning; so is, "
-        "among several inputs, one the importer refuses (a README.txt: no known columns).",
+        "among several inputs, one that is not track data (a README.txt: binary, or a header "
+        "of no known column and no --map column). Any other refusal (a --map column missing "
+        "from a data file, known columns but a required one missing) fails the batch, exit 2, "
+        "before any work: nothing is left out silently.",
         epilog=EPILOG,
     )
     p.add_argument("pipeline", type=Path, nargs="?", help="pipeline JSON")

@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from wakeline.core.errors import InputError
+from wakeline.core.errors import InputError, NotTrackData
 from wakeline.core.pipeline import STEPS, Pipeline, params_to_json
 from wakeline.core.schema import DEFAULT_SENSOR, TIME_DTYPE, ordered_columns
 from wakeline.core.words import count as count_of
@@ -350,16 +350,19 @@ class _CsvInput:
 def _survey_inputs(
     inputs: Sequence[Path], read: dict
 ) -> tuple[list[_CsvInput], list[tuple[str, str]]]:
-    """:func:`_survey_all` of every input. Of several, one the importer refuses (a
-    README.txt among the exports, a file of no known columns) is left out, as ``evaluate
-    --real`` leaves it out: returned as (file, why) for a note; one input alone, or none
-    left, is the importer's message (refused before any work)."""
+    """:func:`_survey_all` of every input. Of several, one that is not track data at all
+    (:class:`NotTrackData`: a README.txt among the exports, binary, a header of no known
+    column) is left out, as ``evaluate --real`` leaves it out: returned as (file, why) for
+    a note. Any other refusal (a data file whose ``--map`` names a missing column, known
+    columns but a required one missing, no such file) fails the batch with the importer's
+    message before any work: its rows would be neither points nor quarantine rows. One
+    input alone, or none left, is the importer's message too."""
     out, not_read = [], []
     with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
         for p in inputs:
             try:
                 out += _survey_all(p, Path(tmp), read)
-            except InputError as exc:
+            except NotTrackData as exc:
                 if len(inputs) == 1:
                     raise
                 why = str(exc)
@@ -406,7 +409,7 @@ def _survey_member(path: Path, member: str, stage: Path, read: dict) -> _CsvInpu
         with zipfile.ZipFile(path) as archive:
             text_bytes = zip_member(archive, path, member).file_size
     except InputError as exc:
-        raise InputError(str(exc).replace(f"{path}:", f"{label}:", 1)) from None
+        raise type(exc)(str(exc).replace(f"{path}:", f"{label}:", 1)) from None
     if not head.strip():
         return _CsvInput(path, "zip", text_bytes, True, member, blank=True)
     if not whole:  # whole lines only
@@ -420,7 +423,7 @@ def _survey_member(path: Path, member: str, stage: Path, read: dict) -> _CsvInpu
         if sn.kind == "csv":
             resolve_header(sn, read["fmt"], read["mapping"], label, read["origin"])
     except InputError as exc:
-        raise InputError(str(exc).replace(str(target), label)) from None
+        raise type(exc)(str(exc).replace(str(target), label)) from None
     finally:
         target.unlink(missing_ok=True)
     empty = sn.kind == "csv" and not sn.preview and whole

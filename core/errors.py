@@ -11,3 +11,10 @@ class InputError(Exception):
 
 class Cancelled(Exception):
     """Raised by a progress callback to stop a running job."""
+
+
+class NotTrackData(InputError):
+    """An :class:`InputError` for a file that is not track data at all: binary, no
+    table, a header that names no known column (and no ``--map`` column). ``wakeline
+    batch`` skips such a file among several inputs with a note (a README.txt among the
+    exports); any other refusal of a file fails the batch."""

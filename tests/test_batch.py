@@ -595,6 +595,53 @@ def test_stray_and_empty_inputs_and_folders(tmp_path, capsys):
     assert "batch: no input could be read" in capsys.readouterr().err
 
 
+def test_a_refused_data_file_fails_the_batch_a_stray_file_is_skipped(tmp_path, capsys):
+    """Review: among several inputs any refused file was skipped with a note and the batch
+    exited 0, a real data file refused only for a wrong --map too (its rows neither points
+    nor quarantine rows). Now only files that are not track data (NotTrackData: binary, a
+    header of no known column and no --map column) are skipped; any other refusal fails
+    the batch (exit 2) with the importer's message, before any output."""
+    rows = [f"S1,T1,2024-01-01T00:00:{i:02d}Z,{10 + i * 1e-3:.4f},50" for i in range(50)]
+    good = tmp_path / "good.csv"
+    good.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    other = tmp_path / "other.csv"  # the same columns under another time name
+    other.write_text("sensor,batch,ts,lon,lat\n" + "\n".join(rows) + "\n")
+    partial = tmp_path / "partial.csv"  # known columns, lat missing
+    partial.write_text("sensor,batch,time,lon\nS1,T1,2024-01-01T00:00:00Z,10\n")
+    readme = tmp_path / "README.txt"
+    readme.write_text("notes\nexported by hand\n")
+    binary = tmp_path / "logo.csv"
+    binary.write_bytes(bytes(range(256)) * 4)
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    # A wrong --map: names a column good.csv lacks; good.csv is track data: refused.
+    out = tmp_path / "o1"
+    code = main(["batch", str(pipe), str(other), str(good), "--map", "time=ts", "-o", str(out)])
+    assert code == 2
+    err = capsys.readouterr().err
+    assert f"{good}: " in err and "ts" in err and "warning" not in err
+    assert not (out / "report.json").exists()
+    # Known columns, a required one missing: refused.
+    code = main(["batch", str(pipe), str(good), str(partial), "-o", str(tmp_path / "o2")])
+    assert code == 2
+    assert f"{partial}: missing required column lat" in capsys.readouterr().err
+    # Not track data: skipped with a note, the batch completes (exit 0), listed.
+    out = tmp_path / "o3"
+    files = [good, readme, binary]
+    assert main(["batch", str(pipe), *map(str, files), "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert f"{readme}: warning: " in err and f"{binary}: warning: this is a binary" in err
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["rows_read"] == 50
+    assert [d["input"] for d in rep["skipped_inputs"]] == [str(readme), str(binary)]
+    # With --map, a README (no known column, no --map column) is still skipped.
+    out = tmp_path / "o4"
+    files = [other, readme]
+    assert main(["batch", str(pipe), *map(str, files), "--map", "time=ts", "-o", str(out)]) == 0
+    assert json.loads((out / "report.json").read_text())["rows_read"] == 50
+    capsys.readouterr()
+
+
 def test_an_empty_file_says_what_import_says(tmp_path, capsys):
     zero = tmp_path / "zero.csv"
     zero.write_bytes(b"")

@@ -34,7 +34,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core import sorted_sets
-from wakeline.core.errors import InputError
+from wakeline.core.errors import InputError, NotTrackData
 from wakeline.core.geo import EARTH_RADIUS_M, from_local
 from wakeline.core.io.compressed import open_data, open_for_arrow
 from wakeline.core.io.decoding import (
@@ -2013,6 +2013,16 @@ def resolve_header(
     try:
         res = resolve(sn.columns, fmt, mapping, source=source, origin=origin)
     except InputError as exc:
+        # Not track data (batch skips it among several inputs): a header of no known
+        # column and no --map column, or one line alone (no row to lose: a note whose
+        # words happen to name a column); a headerless table of values may be data.
+        named = {str(c).strip().lower() for c in (mapping or {}).values()}
+        stray = sn.has_header and (
+            not sn.preview
+            or (
+                not known_fields(sn.columns) and not named & {c.strip().lower() for c in sn.columns}
+            )
+        )
         if not sn.has_header and sn.preview and "missing required column" in str(exc):
             guess, sure = content_guess(sn)
             if guess:
@@ -2029,11 +2039,14 @@ def resolve_header(
                     f"{', '.join(sn.preview[0])}); by their values the columns may be: "
                     f"{flags}{check}"
                 ) from None
+        refused = NotTrackData if stray else InputError
         if sn.has_header and len(known_fields(sn.columns)) < 3:
-            raise InputError(
+            raise refused(
                 f"{exc}; if the header is further down (a title above it), skip the lines "
                 "above it with --skip-rows N"
             ) from None
+        if stray and not isinstance(exc, NotTrackData):
+            raise NotTrackData(str(exc)) from None
         raise
     return judge_by_values(sn, res, mapping)
 

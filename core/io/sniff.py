@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wakeline.core.errors import InputError
+from wakeline.core.errors import InputError, NotTrackData
 from wakeline.core.io.compressed import (  # noqa: F401  (packed_kind: batch's)
     compression_of,
     is_tar,
@@ -714,13 +714,13 @@ def sniff(
         if encoding == "utf-8":
             encoding = None  # UTF-8 with BOM: the usual candidates (BOM removed below)
     if not _is_wide(encoding) and _looks_binary(sample):
-        raise InputError(
+        raise NotTrackData(
             f"{path}: this is a binary file, not a CSV text file "
             "(for UTF-16 text without a byte order mark give --encoding utf-16)"
         )
     text, enc = _decode(sample, path, encoding, compression)
     if _is_wide(enc) and _looks_binary(text.encode("utf-8", errors="replace")):
-        raise InputError(f"{path}: this is a binary file, not a CSV text file")
+        raise NotTrackData(f"{path}: this is a binary file, not a CSV text file")
     first_end = re.search(r"\r\n|\n|\r", text)
     line_ending = first_end.group(0) if first_end else "\n"
     physical = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
