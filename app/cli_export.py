@@ -83,6 +83,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
                 origin=getattr(args, "origin", None),  # ORIGINAL is in IN's frame
                 date_order=args.date_order,  # ORIGINAL's dates as IN's were read
                 time_unit=args.time_unit,
+                speed_unit=args.like_speed_unit,
+                distance_unit=args.like_distance_unit,
             )
         except InputError as exc:  # ORIGINAL's lines above its header: --like-skip-rows
             raise InputError(_like_flag(str(exc))) from None
@@ -157,7 +159,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
 def register(sub: argparse._SubParsersAction) -> None:
     """Add the ``export`` subcommand to the ``wakeline`` parser."""
-    from wakeline.core.io.formats import FAMILIES
+    from wakeline.core.io.formats import DISTANCE_UNITS, FAMILIES, SPEED_UNITS
     from wakeline.core.io.layout import PRESETS
 
     p = sub.add_parser(
@@ -200,6 +202,22 @@ def register(sub: argparse._SubParsersAction) -> None:
         type=int,
         metavar="N",
         help="lines before ORIGINAL's header (a title), as given to import (default: detect)",
+    )
+    p.add_argument(
+        "--like-speed-unit",
+        choices=tuple(SPEED_UNITS),
+        default="auto",
+        help="unit of ORIGINAL's speed column when its header names none, as given to "
+        "import with --speed-unit: speeds are written back in it (default auto: knots; "
+        "--speed-unit is IN's unit only)",
+    )
+    p.add_argument(
+        "--like-distance-unit",
+        choices=tuple(DISTANCE_UNITS),
+        default="auto",
+        help="unit of ORIGINAL's plane x/y, offsets and range when their headers name none, "
+        "as given to import with --distance-unit (default auto: metres; --distance-unit is "
+        "IN's unit only)",
     )
     p.add_argument(
         "--layout",
@@ -262,6 +280,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--skip-rows N as given to `wakeline clean`). --format, --map, --encoding and --tz "
         "above are about ORIGINAL and the file written; IN's are --in-format, --in-map, "
         "--in-encoding, --in-tz. --origin, --date-order and --time-unit apply to IN and to "
-        "ORIGINAL alike.",
+        "ORIGINAL alike; --speed-unit and --distance-unit to IN only (ORIGINAL's: "
+        "--like-speed-unit, --like-distance-unit).",
     )
     p.set_defaults(func=_cmd_export)

@@ -48,3 +48,41 @@ def test_layer_without_a_source_file_gives_a_clear_message():
     s.add_layer("sim", "source", read_points(RADAR).points, {})
     with pytest.raises(InputError, match="no imported file behind this layer"):
         layer_layout(s.layers, "L1")
+
+
+def test_like_units_round_trip_a_file_read_with_unit_flags(tmp_path, capsys):
+    """Review: a file read with --speed-unit m/s (no unit in its header) was exported
+    --like itself in knots (its header names none: knots assumed); --speed-unit given to
+    export is IN's unit (a second conversion, 18.9 -> 36.7). --like-speed-unit and
+    --like-distance-unit say ORIGINAL's: the round trip is byte-identical."""
+    from wakeline.app.cli import main
+
+    rows = [
+        f"S1,T1,2024-01-01T00:00:{i:02d}Z,{10 + i * 1e-4:.4f},{50 + i * 1e-4:.4f},"
+        f"{9.7 + i * 0.1:.1f}"
+        for i in range(20)
+    ]
+    f = tmp_path / "f.csv"
+    f.write_text("sensor,batch,time,lon,lat,speed\n" + "\n".join(rows) + "\n")
+    canon = tmp_path / "canon.csv"
+    assert main(["import", str(f), "--speed-unit", "m/s", "-o", str(canon)]) == 0
+    out = tmp_path / "out.csv"
+    args = ["export", str(canon), "--like", str(f), "-o", str(out)]
+    assert main([*args, "--like-speed-unit", "m/s"]) == 0
+    assert out.read_bytes() == f.read_bytes()
+    assert main(args) == 0  # without it: knots under "speed"
+    assert out.read_text().splitlines()[1].endswith(",18.9")
+    # A plane file in km (x/y headers name no unit), read with --distance-unit km.
+    xy = tmp_path / "xy.csv"
+    lines = [
+        f"T1,2024-01-01T00:00:{i:02d}Z,{1.5 + i * 0.25:.2f},{-2.0 + i * 0.5:.2f}" for i in range(20)
+    ]
+    xy.write_text("track,time,x,y\n" + "\n".join(lines) + "\n")
+    plane = ["--origin", "63.4,10.4"]
+    assert main(["import", str(xy), *plane, "--distance-unit", "km", "-o", str(canon)]) == 0
+    args = ["export", str(canon), "--like", str(xy), *plane, "-o", str(out)]
+    assert main([*args, "--like-distance-unit", "km"]) == 0
+    assert out.read_bytes() == xy.read_bytes()
+    assert main(args) == 0  # without it: metres under x
+    assert out.read_text().splitlines()[1] == "T1,2024-01-01T00:00:00Z,1500.00,-2000.00"
+    capsys.readouterr()

@@ -469,7 +469,7 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
             if any(c.hemisphere == col.field for c in layout.columns):
                 values = np.abs(values)  # the letter column beside says the sign
             if col.field == "speed":  # back in the unit its header names (speed_mps)
-                per_hour = speed_unit(col.name)[0]
+                per_hour = speed_unit(col.name, layout.speed_unit)[0]
                 if per_hour != 1852.0:
                     values = values * 1852.0 / per_hour
             cells.append(format_numbers(values, col.number or NumberFormat()))
@@ -509,7 +509,7 @@ def _plane_metres(points: pd.DataFrame, layout: Layout, made: np.ndarray) -> dic
         key = _extra_key(points, off_col)
         text = points[key].astype("str") if key else pd.Series("", index=points.index)
         off = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
-        scale = length_unit(off_col.name)[0]
+        scale = length_unit(off_col.name, layout.distance_unit)[0]
         xy[k] = xy[k] - np.where(made | np.isnan(off), 0.0, off * scale)
         cells = _text(text) if key else _blank(len(points))
         out[f"{axis}_offset"] = pc.if_else(pa.array(made | (text.to_numpy() == "")), "0", cells)
@@ -524,7 +524,11 @@ def _plane_metres(points: pd.DataFrame, layout: Layout, made: np.ndarray) -> dic
         col = layout.field_column(name)
         if col is None:
             continue
-        scale = angle_unit(col.name)[0] if name == "bearing" else length_unit(col.name)[0]
+        scale = (
+            angle_unit(col.name)[0]
+            if name == "bearing"
+            else length_unit(col.name, layout.distance_unit)[0]
+        )
         fmt = col.number or NumberFormat()
         cells = format_numbers(v / scale, fmt)
         key = _extra_key(points, col)

@@ -490,6 +490,11 @@ class Layout:
     #: Columns aligned with runs of blanks (``delimiter`` " "): written padded to each
     #: column's widest cell, two blanks apart, numbers and times to the right.
     aligned: bool = False
+    #: The unit of the file's speed column, and of its plane lengths (x/y, offsets,
+    #: range), where the header names none (as ``--speed-unit``/``--distance-unit`` read
+    #: it; auto: knots, metres): written back in it.
+    speed_unit: str = "auto"
+    distance_unit: str = "auto"
 
     def field_column(self, name: str) -> Column | None:
         """The column that carries canonical field ``name``, if any."""
@@ -939,32 +944,45 @@ def load_layout(
     origin: str | tuple[float, float] | None = None,
     date_order: str = "auto",
     time_unit: str = "auto",
+    speed_unit: str = "auto",
+    distance_unit: str = "auto",
 ) -> Layout:
     """A layout from a file: a layout JSON (``Layout.to_dict``) or the original data file
     (read as an import with ``fmt``, ``mapping``, ``skip_rows``, the lines above its
     header, ``origin``, a local plane's, ``date_order`` and ``time_unit``, how its dates
-    and numeric times read, would read it)."""
+    and numeric times read, would read it). ``speed_unit``/``distance_unit``: the unit
+    of its speed and plane columns whose headers name none, as the import was told
+    (``--speed-unit``); written back in it (not auto: over a layout JSON's too)."""
     import json
 
+    from wakeline.core.io.reader import check_units
+
+    check_units(speed_unit, distance_unit)
     path = Path(path)
     if path.suffix.lower() == ".json":
         try:
-            return Layout.from_dict(json.loads(path.read_text(encoding="utf-8")))
+            layout = Layout.from_dict(json.loads(path.read_text(encoding="utf-8")))
         except FileNotFoundError:
             raise InputError(f"{path}: no such file") from None
         except (ValueError, KeyError, TypeError) as exc:
             raise InputError(f"{path}: not a Wakeline layout file ({exc})") from None
-    report = None if skip_rows is None else {"skip_rows_given": skip_rows}
-    return describe_layout(
-        path,
-        report,
-        fmt=fmt,
-        mapping=mapping,
-        tz=tz,
-        origin=origin,
-        date_order=date_order,
-        time_unit=time_unit,
-    )
+    else:
+        report = None if skip_rows is None else {"skip_rows_given": skip_rows}
+        layout = describe_layout(
+            path,
+            report,
+            fmt=fmt,
+            mapping=mapping,
+            tz=tz,
+            origin=origin,
+            date_order=date_order,
+            time_unit=time_unit,
+        )
+    if speed_unit != "auto":
+        layout = replace(layout, speed_unit=speed_unit)
+    if distance_unit != "auto":
+        layout = replace(layout, distance_unit=distance_unit)
+    return layout
 
 
 __all__ = [
