@@ -91,7 +91,10 @@ class ImportJobsMixin:
                 sub(0.85, f"hashing {path.name}")
                 sha = file_hash(path)
                 sub(0.95, "learning the layout for export")
-                read.append((path, result, sha, layout_meta(path, result.report)))
+                units = {
+                    k: options.get(k) or "auto" for k in ("speed_unit", "distance_unit")
+                }  # what the import was told of columns whose headers name no unit
+                read.append((path, result, sha, layout_meta(path, result.report, **units)))
             # The view the map will show once these are added: each layer's level of
             # detail is made for it here, so the map strokes each layer once.
             plan = None

@@ -86,3 +86,9 @@ def test_like_units_round_trip_a_file_read_with_unit_flags(tmp_path, capsys):
     assert main(args) == 0  # without it: metres under x
     assert out.read_text().splitlines()[1] == "T1,2024-01-01T00:00:00Z,1500.00,-2000.00"
     capsys.readouterr()
+    # The window's layer: the import's units kept in its layout (layout_meta), written
+    # back by "as it came" (before: knots).
+    result = read_points(f, speed_unit="m/s")
+    meta = layout_meta(f, result.report, speed_unit="m/s")
+    export_like(result.points, Layout.from_dict(meta), out)
+    assert out.read_bytes() == f.read_bytes()

@@ -199,3 +199,21 @@ def test_export_with_the_time_window_on_says_the_whole_layer_is_written(qtbot, t
     w.export("csv", tmp_path / "b.csv")
     wait_for_jobs(w)
     assert w.log.toPlainText().count("the whole layer is written") == 1
+
+
+def test_as_came_in_writes_back_the_speed_unit_the_open_dialog_gave(qtbot, tmp_path):
+    """A file opened with Speed unit m/s (no unit in its header): its layer's export as it
+    came wrote knots under "speed" (the layout learnt at import did not know the unit)."""
+    rows = [
+        f"S1,T1,2024-01-01T00:00:{i:02d}Z,{10 + i * 1e-4:.4f},50.0000,{9.7 + i * 0.1:.1f}"
+        for i in range(20)
+    ]
+    src = tmp_path / "f.csv"
+    src.write_text("sensor,batch,time,lon,lat,speed\n" + "\n".join(rows) + "\n")
+    w = _window(qtbot, tmp_path)
+    w.load_file(src, speed_unit="m/s")
+    _settle(w)
+    out = tmp_path / "out.csv"
+    assert w.export_as_came_in(out)
+    wait_for_jobs(w)
+    assert out.read_bytes() == src.read_bytes()

@@ -861,19 +861,29 @@ def export_like(
     return report
 
 
-def layout_meta(path, report: dict | None = None, tz: str | None = None) -> dict | None:
+def layout_meta(
+    path,
+    report: dict | None = None,
+    tz: str | None = None,
+    speed_unit: str = "auto",
+    distance_unit: str = "auto",
+) -> dict | None:
     """The layout of an imported file as JSON-able data, for ``layer.meta["layout"]``
     (stored in the project with the layer). ``report`` is the import report. None when
     the layout cannot be learnt (e.g. a time format only the importer's fallback parser
     reads): the import must not fail for it, and the layer can still be exported in a
     preset layout. ``tz``: the zone naive times were read in (default: ``report["tz"]``,
-    else UTC)."""
+    else UTC). ``speed_unit``/``distance_unit``: the units the import was given for
+    columns whose headers name none (written back in them)."""
+    from dataclasses import replace
+
     from wakeline.core.io.layout import describe_layout
 
     try:
-        return describe_layout(path, report, tz=tz).to_dict()
+        layout = describe_layout(path, report, tz=tz)
     except (InputError, OSError, ValueError, KeyError):
         return None
+    return replace(layout, speed_unit=speed_unit, distance_unit=distance_unit).to_dict()
 
 
 def layer_layout(layers, name: str) -> Layout:
