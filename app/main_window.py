@@ -35,7 +35,7 @@ from wakeline.app.models import BatchTableModel
 from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
 from wakeline.app.review_dock import ReviewDock
-from wakeline.app.stats_panel import StatsPanel
+from wakeline.app.stats_panel import StatsPanel, points_text, tracks_text
 from wakeline.app.time_panel import install_time
 from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
@@ -317,9 +317,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         window how many of its tracks overlap it (as the batch table counts them)."""
         view = self.views.get(layer.id)
         tracks = len(view.summary) if view is not None else 0
-        text = self.tr("{0}, {1}").format(
-            self.points_text(len(layer.points)), self.tracks_text(tracks)
-        )
+        text = self.tr("{0}, {1}").format(points_text(len(layer.points)), tracks_text(tracks))
         overlap = self.batch_model.tracks_overlapping(window) if view is not None else None
         if overlap is None:
             return text
@@ -327,20 +325,12 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             text, f"{overlap:,}"
         )
 
-    def tracks_text(self, n: int) -> str:
-        """'1 track', '2 tracks' in the window's language (tester: "1 tracks")."""
-        return self.tr("1 track") if n == 1 else self.tr("{0} tracks").format(f"{n:,}")
-
-    def points_text(self, n: int) -> str:
-        """'1 point', '2 points' in the window's language."""
-        return self.tr("1 point") if n == 1 else self.tr("{0} points").format(f"{n:,}")
-
     def update_batch_count(self) -> None:
         """The line under the batch table: how many tracks it shows and why not all."""
         shown, total = self.batch_model.counts()
         filtered, windowed = self.batch_model.shown_because()
         if not (filtered or windowed):
-            self.batch_count.setText(self.tracks_text(total))
+            self.batch_count.setText(tracks_text(total))
             return
         why = []
         if filtered:

@@ -36,12 +36,12 @@ def tr(text: str) -> str:
     return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
 
 
-def _tracks(n: int) -> str:
+def tracks_text(n: int) -> str:
     """'1 track', '2 tracks' (tester: "1 tracks")."""
     return tr("1 track") if n == 1 else tr("{0} tracks").format(f"{n:,}")
 
 
-def _points(n: int) -> str:
+def points_text(n: int) -> str:
     """'1 point', '2 points'."""
     return tr("1 point") if n == 1 else tr("{0} points").format(f"{n:,}")
 
@@ -116,7 +116,7 @@ def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
             (
                 tr("Sensor {0}").format(r.sensor),
                 tr("{0}, {1}, median interval {2}").format(
-                    _tracks(r.tracks), _points(r.points), interval
+                    tracks_text(r.tracks), points_text(r.points), interval
                 ),
             )
         )
@@ -161,7 +161,7 @@ def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
                 tr("At-rest spans"),
                 tr("{0} in {1}, total {2}, median {3}").format(
                     f"{r['spans']:,}",
-                    _tracks(r["tracks"]),
+                    tracks_text(r["tracks"]),
                     duration_text(r["total_s"]),
                     duration_text(r["median_s"]),
                 ),
@@ -172,7 +172,7 @@ def stats_rows(s: LayerStats) -> list[tuple[str, str]]:
         rows.append(
             (
                 tr("Maneuvers"),
-                tr("{0} in {1}").format(_points(m["points"]), _tracks(m["tracks"])),
+                tr("{0} in {1}").format(points_text(m["points"]), tracks_text(m["tracks"])),
             )
         )
     return rows

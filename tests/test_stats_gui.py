@@ -13,7 +13,7 @@ pytest.importorskip("pytestqt")
 
 from conftest import load, real_file  # noqa: E402
 from wakeline.app.lod_worker import LodWorker  # noqa: E402
-from wakeline.app.stats_panel import StatsPanel  # noqa: E402
+from wakeline.app.stats_panel import StatsPanel, points_text, tracks_text  # noqa: E402
 from wakeline.core.io import read_points  # noqa: E402
 from wakeline.core.stats import layer_stats  # noqa: E402
 
@@ -290,4 +290,4 @@ def test_one_track_and_one_point_are_counted_in_the_singular(window, qtbot, writ
     assert dict(panel.rows())["Sensor S1"].startswith("1 track, 1 point, median interval")
     window.filter_edit.setText("zzz")
     assert window.batch_count.text() == "0 of 1 track: those matching the filter"
-    assert window.tracks_text(2_000) == "2,000 tracks" and window.points_text(0) == "0 points"
+    assert tracks_text(2_000) == "2,000 tracks" and points_text(0) == "0 points"

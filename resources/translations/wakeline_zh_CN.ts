@@ -24,24 +24,8 @@
         <translation>{0}，{1}</translation>
     </message>
     <message>
-        <source>1 point</source>
-        <translation>1 个点</translation>
-    </message>
-    <message>
-        <source>{0} points</source>
-        <translation>{0} 个点</translation>
-    </message>
-    <message>
-        <source>1 track</source>
-        <translation>1 条航迹</translation>
-    </message>
-    <message>
         <source>{0} · {1} of the tracks overlap the time window</source>
         <translation>{0} · 其中 {1} 条航迹的时间跨度与时间窗重叠</translation>
-    </message>
-    <message>
-        <source>{0} tracks</source>
-        <translation>{0} 条航迹</translation>
     </message>
     <message>
         <source>matching the filter</source>
