@@ -7,6 +7,7 @@ changes in order (undo and redo are stored as the changes they are), which resto
 statuses, the manual links and the decision log exactly.
 """
 
+import dataclasses
 import json
 import sqlite3
 from pathlib import Path
@@ -241,6 +242,11 @@ def decision_row(queue: str, change: Change, entry: LogEntry) -> dict:
     }
 
 
+def entry_of_row(row: dict) -> LogEntry:
+    """The log line a stored decision row (:func:`decision_row`) was written with."""
+    return LogEntry(*(str(row.get(f.name, "") or "") for f in dataclasses.fields(LogEntry)))
+
+
 def replay_decisions(state: ReviewState, rows: list[dict], queue: str) -> int:
     """Apply, in order, the stored decisions of ``queue`` (rows of :func:`decision_row`);
     returns how many. Rows of other queues (other layers, older runs) are skipped. A
@@ -253,10 +259,9 @@ def replay_decisions(state: ReviewState, rows: list[dict], queue: str) -> int:
             state.apply(change, when=row.get("time"))
             if change.action == RERUN:
                 e = state.log[-1]
-                state.log[-1] = LogEntry(
-                    e.time, e.action, e.proposal, e.tracks, str(row.get("before", "")),
-                    str(row.get("after", "")),
-                )  # fmt: skip
+                state.log[-1] = dataclasses.replace(
+                    e, before=str(row.get("before", "")), after=str(row.get("after", ""))
+                )
             n += 1
     return n
 
@@ -273,12 +278,7 @@ def earlier_entries(rows: list[dict], queue: str) -> list[LogEntry]:
             continue
         q = str(row.get("queue", ""))
         if q != queue and q.startswith(prefix):
-            out.append(
-                LogEntry(
-                    *(str(row.get(k, "") or "") for k in ("time", "action", "proposal")),
-                    *(str(row.get(k, "") or "") for k in ("tracks", "before", "after")),
-                )
-            )
+            out.append(entry_of_row(row))
     return out
 
 
