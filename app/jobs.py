@@ -215,7 +215,34 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         for old in running:
             self._replaced[old] = name
         self._job_context = {job: context}
+        # What to run again when its result comes back stale (Session.stale).
+        self._job_fns = {job: (name, fn, context)}
         return job
+
+    def _run_again_if_stale(self, msg) -> bool:
+        """A re-run of Associate or Fuse (a pipeline's too) whose result decisions made
+        on the layer it replaces while it ran put out of date — a pair rejected or split,
+        or a reject taken back, changes the pairs it keeps out (``Session.stale``): the
+        same job runs again, reading the decisions as they are now, and nothing is
+        applied. Decisions of other kinds made meanwhile are carried at the swap."""
+        job = self._job_fns.pop(msg.job, None)
+        done = msg.result
+        if job is None or not (
+            isinstance(done, tuple) and done[:1] in (("step",), ("fuse_layers",))
+        ):
+            return False
+        result = done[2]
+        if not self.session.stale(result):
+            return False
+        name, fn, context = job
+        self.log_message(
+            self.tr(
+                "{0}: decisions made while it ran change the pairs it keeps out; it runs "
+                "again with them"
+            ).format(name)
+        )
+        self._start(name, fn, context)
+        return True
 
     def _start_export(self, path: Path, write, context: tuple) -> int:
         """Write a file in the export runner: exports queue one after the other and never
@@ -294,6 +321,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         # A replaced job may end otherwise than cancelled (done before it looked): its
         # entry goes with its last message whatever that is.
         by = self._replaced.pop(msg.job, None)
+        if isinstance(msg, Finished) and self._run_again_if_stale(msg):
+            return
         if isinstance(msg, Finished):
             self._apply(msg.result)
             self.statusBar().showMessage(

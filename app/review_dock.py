@@ -346,8 +346,8 @@ class ReviewDock(QtCore.QObject):
             self.act_undo.setToolTip(
                 tr(
                     "Running a step again is not undone by Undo (no layer edit is): the "
-                    "decisions of the earlier run that still apply were carried over, and "
-                    "the decision log keeps every one."
+                    "decisions of the earlier run that still apply, those made while it "
+                    "ran included, were carried over, and the decision log keeps every one."
                 )
             )
         else:

@@ -18,3 +18,11 @@ class NotTrackData(InputError):
     table, a header that names no known column (and no ``--map`` column). ``wakeline
     batch`` skips such a file among several inputs with a note (a README.txt among the
     exports); any other refusal of a file fails the batch."""
+
+
+class StaleResult(InputError):
+    """A re-run of a reviewed step (Associate, Fuse) whose result the decisions made on
+    the layer it replaces while it ran have put out of date: they change the pairs the
+    run keeps out (a pair rejected or split, or a reject taken back, meanwhile). Nothing
+    was applied; the step runs again on the decisions as they are now (the window does
+    so by itself). Decisions of any other kind made meanwhile are carried, not stale."""

@@ -487,7 +487,7 @@ def _review_kept(res: StepResult) -> list[Phrase]:
     """The summary's words on an earlier review: what a re-run kept out and carried
     over (:class:`wakeline.core.review_session.Carry`), or the pairs kept out."""
     carry = getattr(res, "carry", None)
-    if carry is not None:
+    if carry is not None and getattr(carry, "reviewed", True):
         return [phrase("; review of the earlier run: {carry}", carry=carry.text())]
     rep = res.report
     kept = kept_out_phrases(rep.get("rejected_kept_out", 0), rep.get("split_kept_out", 0))

@@ -172,7 +172,10 @@ REVIEWED_STEPS = ("associate", "fuse")
 class Carry:
     """What a re-run of a reviewed step carries over from the layer it replaces
     (:func:`carry_over`, in the worker): the decisions to store first in the new queue,
-    and the counts its log line gives."""
+    and the counts its log line gives. The worker makes one for every run that replaces
+    a layer (``reviewed`` False while that layer has no decision): it also records what
+    the run read — the pairs kept out, the new queue's tracks — so that the carry is made
+    again at the swap from the decisions present then (:meth:`refresh`)."""
 
     old: str  # the id of the layer the run replaces
     queue: str  # that layer's queue (:func:`queue_key`) when the step read it
@@ -183,7 +186,19 @@ class Carry:
     accepted: int = 0  # accepted pairs the run proposes again: accepted again
     linked: int = 0  # accepted pairs it no longer proposes and hand merges: operator links
     gone: int = 0  # accepts and links naming a track the run's input no longer holds
-    late: int = 0  # decisions made on the old queue while the step ran (not carried)
+    late: int = 0  # decisions made on the old queue while the step ran (taken into account)
+    #: whether the layer it replaces was reviewed (a decision row of any of its queues)
+    reviewed: bool = True
+    #: the pairs the run kept out, ``(rejected, split)`` as
+    #: :meth:`~wakeline.core.session.Session.kept_out_below` gave them when it started
+    kept: tuple = (frozenset(), frozenset())
+    #: the run's parent and inputs (what :meth:`Session.kept_out_below` reads them under)
+    parent: str = ""
+    inputs: list = field(default_factory=list)
+    step: str = ""
+    #: :func:`~wakeline.core.review.track_table` of the run's input (made in the worker,
+    #: so a carry made again at the swap reads no points)
+    tracks: pd.DataFrame | None = None
 
     def text(self) -> Text:
         """The log's words: what was kept out, carried and dropped (phrases the window
@@ -204,11 +219,31 @@ class Carry:
         if self.late:
             parts.append(
                 phrase(
-                    "{n:#decision} made while the step ran not carried (in the decision log)",
+                    "{n:#decision} made while the step ran taken into account",
                     n=self.late,
                 )
             )
         return Text(joined(parts) or [phrase("no decision to carry over")])
+
+    def refresh(self, old: Layer, rows: list[dict], proposals: pd.DataFrame | None) -> None:
+        """Make the carry again from the decision rows ``rows`` present now (at the swap:
+        decisions made on ``old``'s queue while the step ran are carried as those made
+        before it). The pairs kept out must not have changed meanwhile
+        (:func:`kept_out_changed`; the caller checks)."""
+        key = queue_key(old)
+        now = sum(1 for r in rows if isinstance(r, dict) and r.get("queue") == key)
+        late = max(0, now - self.seen) if key == self.queue else now
+        if not late:
+            return
+        rejected, split = self.kept
+        split = set(split) - set(rejected)
+        again = carry_over(
+            old, rows, None, proposals, len(rejected), len(split), tracks=self.tracks
+        )
+        for f in ("queue", "seen", "changes", "accepted", "linked", "gone"):
+            setattr(self, f, getattr(again, f))
+        self.reviewed = True
+        self.late = late
 
 
 def carry_over(
@@ -218,6 +253,7 @@ def carry_over(
     proposals: pd.DataFrame | None,
     rejected: int = 0,
     split: int = 0,
+    tracks: pd.DataFrame | None = None,
 ) -> Carry:
     """What a re-run carries over from the review of ``old`` (the layer it replaces) to
     its new ``proposals`` made on ``points``: each pair ``old``'s queue left accepted is
@@ -225,7 +261,9 @@ def carry_over(
     link, as a hand merge makes), and each manual link is kept; a pair naming a track the
     input no longer holds counts as gone. Rejected and split pairs are kept out of the
     run itself (``rejected``, ``split``: their counts). The changes are made on the new
-    queue's state here (the caller stores them under the new queue's key)."""
+    queue's state here (the caller stores them under the new queue's key). ``tracks``:
+    :func:`~wakeline.core.review.track_table` of ``points``, when made already (then
+    ``points`` is not read)."""
     key = queue_key(old)
     mine = [r for r in rows if isinstance(r, dict) and r.get("queue") == key]
     carry = Carry(old.id, key, len(mine), rejected=rejected, split=split)
@@ -238,7 +276,7 @@ def carry_over(
         return carry
     if not (keep or links):
         return carry
-    state = R.ReviewState(R.track_table(points), proposals)
+    state = R.ReviewState(R.track_table(points) if tracks is None else tracks, proposals)
     proposed = {
         R.pair_key(x, y): pid
         for pid, x, y in zip(state.proposals["proposal"], state.track_a, state.track_b, strict=True)

@@ -26,7 +26,7 @@ from typing import Any
 
 import pandas as pd
 
-from wakeline.core.errors import InputError
+from wakeline.core.errors import InputError, StaleResult
 from wakeline.core.params import finite_number
 from wakeline.core.pipeline import STEPS, Pipeline, StepResult, params_to_json
 from wakeline.core.progress import Progress, null_progress
@@ -473,21 +473,34 @@ class Session:
         combined) as a re-run keeps the review: the pairs rejected or split under
         ``parent`` kept out, and the carry of the layer it replaces (:meth:`run_step`,
         and a pipeline's stage: :meth:`run_pipeline`)."""
-        from wakeline.core.review_session import carry_over
+        from wakeline.core import review as R
+        from wakeline.core.review_session import Carry, carry_over, queue_key
 
         rows = list(self.decisions)  # a copy: the window may append while a worker reads
         rejected, split = self.kept_out_below(parent, step, inputs)
+        kept = (frozenset(rejected), frozenset(split))
         split = split - rejected
         full = {**STEPS[step].defaults(), **(params or {})}
         run = STEPS[step].run
         result = run(points, full, progress or null_progress, rejected, split=split)
         for new in result.layers:
             old = self._replaced(parent, step, new.suffix, inputs)
-            if old is not None and _reviewed(old, rows):  # a re-run of a layer with a review
+            if old is None:
+                continue
+            # A re-run: what it read is recorded, so that decisions made on the old
+            # layer while it ran are carried too (apply_result), or found to change the
+            # pairs kept out (stale).
+            props = new.tables.get("proposals")
+            tracks = R.track_table(points) if props is not None and len(props) else None
+            if _reviewed(old, rows):
                 carry = carry_over(
-                    old, rows, points, new.tables.get("proposals"), len(rejected), len(split)
+                    old, rows, points, props, len(rejected), len(split), tracks=tracks
                 )
-                return dataclasses.replace(result, carry=carry)
+            else:
+                carry = Carry(old.id, queue_key(old), 0, reviewed=False)
+            carry.kept, carry.parent, carry.inputs = kept, parent, list(inputs)
+            carry.step, carry.tracks = step, tracks
+            return dataclasses.replace(result, carry=carry)
         return result
 
     def run_pipeline(
@@ -605,7 +618,19 @@ class Session:
         the same input replaces (in place, same id) the layer of the same role. A pipeline
         result is applied stage by stage, each stage a child of the previous output.
         ``inputs``: every input layer of a step run on several layers concatenated
-        (``input_id`` is the first); recorded in the lineage and in the layer's name."""
+        (``input_id`` is the first); recorded in the lineage and in the layer's name.
+
+        A re-run of a reviewed step is reconciled with the decisions present now, not
+        those its worker read: decisions made on the layer it replaces while it ran are
+        carried as the ones made before (:meth:`Carry.refresh
+        <wakeline.core.review_session.Carry.refresh>`). When they change the pairs the
+        run kept out (:meth:`stale`), nothing is applied and :class:`StaleResult` is
+        raised: the step must run again."""
+        if self.stale(result):
+            raise StaleResult(
+                f"decisions made while {result.step} ran change the pairs it keeps out; "
+                f"run {result.step} again"
+            )
         if result.stages:
             out: list[Layer] = []
             current = input_id
@@ -657,21 +682,44 @@ class Session:
                 made.append(self.add_layer(name, new.kind, new.points, new.meta, **lineage))
         return made
 
+    def stale(self, result: StepResult) -> bool:
+        """Whether ``result`` (a step's or a pipeline's) re-runs a reviewed step whose
+        decisions changed, while it ran, the pairs it keeps out: a pair rejected or split
+        on the layer it replaces, or a reject or split undone (:meth:`kept_out_below` now
+        against what the run read). Such a result cannot be reconciled by carrying
+        decisions: the step runs again. Other decisions made meanwhile are carried."""
+        from wakeline.core.review_session import queue_key
+
+        for stage in result.stages or [result]:
+            carry = getattr(stage, "carry", None)
+            old = self.layers.get(carry.old) if carry is not None else None
+            if old is None or not carry.step:
+                continue
+            key = queue_key(old)
+            now = sum(1 for r in self.decisions if isinstance(r, dict) and r.get("queue") == key)
+            if now == (carry.seen if key == carry.queue else 0):
+                continue  # nothing decided on it since the run read its decisions
+            rejected, split = self.kept_out_below(carry.parent, carry.step, carry.inputs)
+            if (frozenset(rejected), frozenset(split)) != carry.kept:
+                return True
+        return False
+
     def _carry(self, old: Layer, result: StepResult, new, inputs: list[str]):
         """What the re-run ``result`` carries over from the review of ``old`` (the layer
-        it replaces): the carry :meth:`run_step` made (decisions made on ``old`` since
-        counted as late), or, for a result made elsewhere (a pipeline's stage), one made
-        now; None when ``old`` was never reviewed (no decision row of its queues)."""
-        from wakeline.core.review_session import carry_over, queue_key
+        it replaces): the carry :meth:`run_step` made, made again from the decisions
+        present now when some were made on ``old`` while the step ran
+        (:meth:`Carry.refresh <wakeline.core.review_session.Carry.refresh>`), or, for a
+        result made elsewhere, one made now; None when ``old`` was never reviewed (no
+        decision row of its queues)."""
+        from wakeline.core.review_session import carry_over
 
         rows = list(self.decisions)
-        if not _reviewed(old, rows):
-            return None
         carry = getattr(result, "carry", None)
         if carry is not None and carry.old == old.id:
-            now = sum(1 for r in rows if isinstance(r, dict) and r.get("queue") == carry.queue)
-            carry.late = max(0, now - carry.seen) if carry.queue == queue_key(old) else now
-            return carry
+            carry.refresh(old, rows, new.tables.get("proposals"))
+            return carry if carry.reviewed else None
+        if not _reviewed(old, rows):
+            return None
         try:
             points = self.input_points(inputs or [old.parent])
         except InputError:

@@ -172,7 +172,7 @@ def test_a_rerun_of_fuse_across_layers_keeps_every_decision_that_still_applies(t
     r = s.add_layer("x_radar.csv", "source", two_files["R1"])
     ids = [a.id, r.id]
     (lay,) = s.apply_result(a.id, _fuse(s, ids), STEPS["fuse"].defaults(), inputs=ids)
-    assert _fuse(s, ids).carry is None  # nothing reviewed yet: nothing to carry
+    assert not _fuse(s, ids).carry.reviewed  # nothing reviewed yet: nothing to carry
     done = _review(s, lay)
     res = _fuse(s, ids)
     assert res.report["rejected_kept_out"] == 1

@@ -4,6 +4,10 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>{0}: decisions made while it ran change the pairs it keeps out; it runs again with them</source>
+        <translation>{0}：运行期间做出的决策改变了要排除的配对；将按这些决策重新运行</translation>
+    </message>
+    <message>
         <source>{0} on {1}</source>
         <translation>{1} 上的 {0}</translation>
     </message>
@@ -1485,8 +1489,8 @@
         <translation>撤销(&amp;U)（重新运行步骤后尚无可撤销的操作）</translation>
     </message>
     <message>
-        <source>Running a step again is not undone by Undo (no layer edit is): the decisions of the earlier run that still apply were carried over, and the decision log keeps every one.</source>
-        <translation>重新运行步骤不能用“撤销”撤回（图层编辑都不能撤销）：先前运行中仍然适用的决策已沿用，决策日志保留全部决策。</translation>
+        <source>Running a step again is not undone by Undo (no layer edit is): the decisions of the earlier run that still apply, those made while it ran included, were carried over, and the decision log keeps every one.</source>
+        <translation>重新运行步骤不能用“撤销”撤回（图层编辑都不能撤销）：先前运行中仍然适用的决策（包括运行期间做出的决策）已沿用，决策日志保留全部决策。</translation>
     </message>
     <message>
         <source>Error</source>
@@ -1814,8 +1818,8 @@
         <translation>{n:,} 项决定不再适用（某条航迹已不存在）</translation>
     </message>
     <message>
-        <source>{n:#decision} made while the step ran not carried (in the decision log)</source>
-        <translation>{n:,} 项在步骤运行期间做出的决定未沿用（见决定日志）</translation>
+        <source>{n:#decision} made while the step ran taken into account</source>
+        <translation>{n:,} 项在步骤运行期间做出的决定已一并计入</translation>
     </message>
     <message>
         <source>no decision to carry over</source>
