@@ -5,6 +5,8 @@ from PySide6 import QtGui, QtWidgets
 from wakeline.app import i18n
 
 STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
+#: The stages the operator may add to Run ▸ pipeline after Clean, in their order.
+PIPELINE_CHOICES = ("compress", "associate")
 #: The translation context of the texts here: :func:`retranslate` calls the window's ``tr``.
 TR_CONTEXT = "MainWindow"
 
@@ -34,6 +36,8 @@ def build_actions(w) -> None:
     act("export_map", lambda: w.export_map_image())
     act("quit", w.close, None, keys.Quit)
     act("pipeline", lambda: w.run_step("pipeline"), sp.SP_MediaPlay)
+    for stage in PIPELINE_CHOICES:  # the stages Run ▸ pipeline runs after Clean
+        act(f"pipeline_{stage}", lambda on, s=stage: w.set_pipeline_stage(s, on), checkable=True)
     for step in STEPS:
         act(step, lambda _=False, s=step: w.run_step(s))
     act("save_pipeline", lambda: w._pipeline_dialog(True))
@@ -46,7 +50,7 @@ def build_actions(w) -> None:
     act("import_report", w.show_import_report)
     w.actions_ = a
 
-    m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "view", "lang")}
+    m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "stages", "view", "lang")}
     w.menus = m
     for key in ("open", "open_bearings", "open_project", "save_project"):
         m["file"].addAction(a[key])
@@ -62,6 +66,9 @@ def build_actions(w) -> None:
     m["file"].addSeparator()
     m["file"].addAction(a["quit"])
     m["run"].addAction(a["pipeline"])
+    m["run"].addMenu(m["stages"])
+    for stage in PIPELINE_CHOICES:
+        m["stages"].addAction(a[f"pipeline_{stage}"])
     m["run"].addSeparator()
     for step in STEPS:
         m["run"].addAction(a[step])
@@ -94,6 +101,20 @@ def build_actions(w) -> None:
             w.toolbar.addAction(a[key])
 
 
+def pipeline_text(w) -> str:
+    """Run ▸ pipeline's text: the stages it runs (``w.pipeline_stages``)."""
+    tr = w.tr
+    texts = {
+        ("clean", "compress"): tr("Run &pipeline (clean, maneuvers, compress)"),
+        ("clean", "compress", "associate"): tr(
+            "Run &pipeline (clean, maneuvers, compress, associate)"
+        ),
+        ("clean", "associate"): tr("Run &pipeline (clean, associate)"),
+        ("clean",): tr("Run &pipeline (clean)"),
+    }
+    return texts[tuple(w.pipeline_stages)]
+
+
 def retranslate(w) -> None:
     """Set every action, menu and dock text (called again when the language changes)."""
     tr = w.tr
@@ -108,7 +129,9 @@ def retranslate(w) -> None:
         "export_map": tr("Map &image (PNG)…"),
         "export_as_came_in": tr("Active layer &as it came in (layout, encoding, times)…"),
         "quit": tr("&Quit"),
-        "pipeline": tr("Run &pipeline (clean, maneuvers, compress)"),
+        "pipeline": pipeline_text(w),
+        "pipeline_compress": tr("&Compress (maneuvers and compression)"),
+        "pipeline_associate": tr("&Associate (one sensor; proposals to review)"),
         "clean": tr("&Clean"),
         "maneuvers": tr("&Maneuvers"),
         "compress": tr("C&ompress"),
@@ -129,6 +152,7 @@ def retranslate(w) -> None:
         "file": tr("&File"),
         "export": tr("&Export"),
         "run": tr("&Run"),
+        "stages": tr("Pipeline &stages"),
         "view": tr("&View"),
         "lang": tr("&Language"),
     }

@@ -23,6 +23,11 @@ from wakeline.core.pipeline import STEPS, Pipeline, StepResult
 from wakeline.core.progress import sub_progress
 from wakeline.core.session import BEARING_KIND
 
+#: Run ▸ pipeline's stages in a new window: clean, then maneuvers and compress.
+DEFAULT_STAGES = ("clean", "compress")
+#: The project's state row holding Run ▸ pipeline's stages (a list of step names).
+PIPELINE_STATE = "pipeline"
+
 
 def _prepared(
     result: StepResult,
@@ -168,9 +173,38 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         finally:
             self._pending_views = {}
 
+    #: The stages Run ▸ pipeline runs (Clean, then those of Run ▸ Pipeline stages).
+    pipeline_stages: tuple[str, ...] = DEFAULT_STAGES
+
     def pipeline(self) -> Pipeline:
-        """The pipeline Run ▸ pipeline runs: clean, then maneuvers and compress."""
-        return Pipeline(tuple((s, self.step_params(s)) for s in ("clean", "compress")))
+        """The pipeline Run ▸ pipeline runs: clean, then (as Run ▸ Pipeline stages says)
+        maneuvers and compress, and associate; each with the panel's parameters. A
+        pipeline ending with Associate makes the proposals to review; run again, it
+        keeps the review of the layer it replaces (``Session.run_pipeline``)."""
+        return Pipeline(tuple((s, self.step_params(s)) for s in self.pipeline_stages))
+
+    def set_pipeline_stages(self, stages, store: bool = True) -> None:
+        """Run ▸ pipeline runs Clean then ``stages`` (of ``compress``, ``associate``, in
+        that order; others are not the window's). Stored in the project (its
+        ``pipeline`` state row) unless ``store`` is False (a project being opened)."""
+        from wakeline.app.actions import PIPELINE_CHOICES, pipeline_text
+
+        stages = ("clean", *(s for s in PIPELINE_CHOICES if s in stages))
+        changed = stages != self.pipeline_stages
+        self.pipeline_stages = stages
+        for s in PIPELINE_CHOICES:
+            act = self.actions_[f"pipeline_{s}"]
+            was = act.blockSignals(True)
+            act.setChecked(s in stages)
+            act.blockSignals(was)
+        self.actions_["pipeline"].setText(pipeline_text(self))
+        if changed and store:
+            self.project.put_state(PIPELINE_STATE, list(stages))
+
+    def set_pipeline_stage(self, stage: str, on: bool) -> None:
+        """Run ▸ Pipeline stages ▸ ``stage`` checked (``on``) or not."""
+        rest = [s for s in self.pipeline_stages if s != stage]
+        self.set_pipeline_stages([*rest, stage] if on else rest)
 
     def save_pipeline(self, path: Path) -> None:
         """Write the pipeline with the panel's parameters as JSON (``wakeline batch`` and
@@ -179,7 +213,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         self.log_message(self.tr("pipeline saved to {0}").format(path))
 
     def load_pipeline(self, path: Path) -> list[str]:
-        """Put a saved pipeline's parameters into the panel; returns the problems."""
+        """Put a saved pipeline's parameters into the panel and its stages into Run ▸
+        Pipeline stages (a Maneuvers stage is run as part of Compress); returns the
+        problems."""
         from wakeline.core.pipeline import params_to_json
 
         try:
@@ -192,6 +228,17 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         for _name, params in pipe.stages:
             data = params_to_json(params)
             problems += self.params.from_dict({k: v for k, v in data.items() if k in keys})
+        names = [name for name, _ in pipe.stages]
+        for name in dict.fromkeys(names):
+            if name not in ("clean", "maneuvers", "compress", "associate"):
+                problems.append(
+                    self.tr(
+                        "the pipeline's {0} stage is not run by Run ▸ pipeline (clean, "
+                        "compress, associate); its parameters are loaded"
+                    ).format(name)
+                )
+        stages = ["compress"] if {"maneuvers", "compress"} & set(names) else []
+        self.set_pipeline_stages(stages + (["associate"] if "associate" in names else []))
         for text in problems:
             self.log_message(f"{self.tr('Warning')}: {text}")
         return problems

@@ -159,7 +159,9 @@ class ProjectJobsMixin:
         # The panel's values: the session holds a project's table from when it was opened
         # (none before a first save), and Save as wrote that, not what the panel held.
         self.session.params = self.params.to_dict()
-        ok, note = self.project.save_as(Path(path))
+        from wakeline.app.jobs import PIPELINE_STATE
+
+        ok, note = self.project.save_as(Path(path), {PIPELINE_STATE: list(self.pipeline_stages)})
         if note:
             self.log_message(f"{self.tr('Warning') if ok else self.tr('Error')}: {note}")
         if not ok:
@@ -235,6 +237,12 @@ class ProjectJobsMixin:
         self.session.clear()
         self.views.update(views)
         problems = self.params.from_dict(proj.params)
+        from wakeline.app.jobs import DEFAULT_STAGES, PIPELINE_STATE
+
+        stages = proj.state.get(PIPELINE_STATE)  # none in a project saved before
+        if not (isinstance(stages, list) and all(isinstance(x, str) for x in stages)):
+            stages = DEFAULT_STAGES
+        self.set_pipeline_stages(stages, store=False)
         self._plan_view(plan)  # the view the layers' level of detail was made for
         try:
             proj.to_session(self.session)

@@ -190,6 +190,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             self.statusBar().addPermanentWidget(widget)
 
         build_actions(self)
+        self.set_pipeline_stages(self.pipeline_stages, store=False)  # Run ▸ Pipeline stages
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
         self.set_language(self.settings.value("language", i18n.system_language()))
         for key, restore in (("geometry", self.restoreGeometry), ("state", self.restoreState)):

@@ -50,6 +50,9 @@ class StepResult:
     #: a re-run of a reviewed step in a session: what it carries over from the review of
     #: the layer it replaces (:class:`wakeline.core.review_session.Carry`)
     carry: Any = None
+    #: a pipeline's stage: the parameter sets it ran with (its layers' lineage records
+    #: them, :meth:`wakeline.core.session.Session.apply_result`)
+    params: dict | None = None
 
 
 # -- step options (choices beside the algorithms' parameters) --------------------------
@@ -929,7 +932,7 @@ class Pipeline:
             step = STEPS[name]
             sub = sub_progress(progress, k / n, (k + 1) / n)
             res = run_stage(name, params, current, sub) if run_stage else step(current, params, sub)
-            stages.append(res)
+            stages.append(dataclasses.replace(res, params={**step.defaults(), **params}))
             nxt = [lay for lay in res.layers if lay.suffix == step.primary]
             current = nxt[0].points if nxt else res.tables.get("points", current)
         return StepResult(

@@ -635,7 +635,7 @@ class Session:
             out: list[Layer] = []
             current = input_id
             for stage in result.stages:
-                made = self.apply_result(current, stage, None)
+                made = self.apply_result(current, stage, stage.params)
                 out += made
                 primary = STEPS[stage.step].primary
                 nxt = [lay for lay in made if lay.role == primary]

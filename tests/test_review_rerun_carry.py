@@ -265,6 +265,9 @@ def test_a_pipeline_rerun_keeps_rejected_and_split_pairs_out():
     )
     made = s.apply_result(src.id, s.run_pipeline(src.id, pipe))
     (lay,) = [m for m in made if m.step == "associate"]
+    assert (
+        lay.params["associate"]["max_gap_s"] == STEPS["associate"].defaults()["associate"].max_gap_s
+    )
     done = _review(s, lay)
     res = s.run_pipeline(src.id, pipe)
     stage = res.stages[-1]

@@ -4,6 +4,34 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>the pipeline's {0} stage is not run by Run ▸ pipeline (clean, compress, associate); its parameters are loaded</source>
+        <translation>流程中的 {0} 步骤不由“运行 ▸ 流程”执行（清洗、压缩、关联）；其参数已载入</translation>
+    </message>
+    <message>
+        <source>Pipeline &amp;stages</source>
+        <translation>流程步骤(&amp;S)</translation>
+    </message>
+    <message>
+        <source>&amp;Associate (one sensor; proposals to review)</source>
+        <translation>单源关联(&amp;A)（生成待审核的候选建议）</translation>
+    </message>
+    <message>
+        <source>&amp;Compress (maneuvers and compression)</source>
+        <translation>压缩(&amp;C)（机动检测与压缩）</translation>
+    </message>
+    <message>
+        <source>Run &amp;pipeline (clean)</source>
+        <translation>运行流程(&amp;P)（清洗）</translation>
+    </message>
+    <message>
+        <source>Run &amp;pipeline (clean, associate)</source>
+        <translation>运行流程(&amp;P)（清洗、关联）</translation>
+    </message>
+    <message>
+        <source>Run &amp;pipeline (clean, maneuvers, compress, associate)</source>
+        <translation>运行流程(&amp;P)（清洗、机动检测、压缩、关联）</translation>
+    </message>
+    <message>
         <source>{0}: decisions made while it ran change the pairs it keeps out; it runs again with them</source>
         <translation>{0}：运行期间做出的决策改变了要排除的配对；将按这些决策重新运行</translation>
     </message>
