@@ -253,7 +253,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
 
     # -- messages ------------------------------------------------------------------
 
-    def _start(self, name: str, fn, context: tuple) -> int:
+    def _start(self, name: str, fn, context: tuple, again=None) -> int:
+        """Run ``fn`` in the worker (one job at a time). ``again``: the job to run again
+        when its result comes back stale (``fn`` itself when None)."""
         running = list(self._job_context) if self.runner.busy else []
         job = self.runner.run(name, fn)
         # One job at a time: an older job's result will never be applied; its
@@ -263,15 +265,22 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self._replaced[old] = name
         self._job_context = {job: context}
         # What to run again when its result comes back stale (Session.stale).
-        self._job_fns = {job: (name, fn, context)}
+        self._job_fns = {job: (name, again or fn, context)}
         return job
 
-    def _run_again_if_stale(self, msg) -> bool:
-        """A re-run of Associate or Fuse (a pipeline's too) whose result decisions made
-        on the layer it replaces while it ran put out of date — a pair rejected or split,
-        or a reject taken back, changes the pairs it keeps out (``Session.stale``): the
-        same job runs again, reading the decisions as they are now, and nothing is
-        applied. Decisions of other kinds made meanwhile are carried at the swap."""
+    def _follow_up(self, msg) -> bool:
+        """A re-run of Associate or Fuse (a pipeline's too) on a layer the operator went
+        on reviewing while it ran is reconciled with the decisions as they are now, not
+        applied as the worker made it:
+
+        - decisions that change the pairs it keeps out (a pair rejected or split, or a
+          reject taken back: ``Session.stale``) put it out of date: the same job runs
+          again, reading the decisions as they are now;
+        - any other decisions made meanwhile (``Session.late_decisions``) are carried:
+          the carry is made again in the worker (``Session.reconcile``; hundreds of
+          carried accepts take longer than a GUI turn may), then this check repeats.
+
+        Returns True when a job took the result's place (nothing applied yet)."""
         job = self._job_fns.pop(msg.job, None)
         done = msg.result
         if job is None or not (
@@ -279,16 +288,26 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         ):
             return False
         result = done[2]
-        if not self.session.stale(result):
-            return False
         name, fn, context = job
-        self.log_message(
-            self.tr(
-                "{0}: decisions made while it ran change the pairs it keeps out; it runs "
-                "again with them"
-            ).format(name)
-        )
-        self._start(name, fn, context)
+        if self.session.stale(result):
+            self.log_message(
+                self.tr(
+                    "{0}: decisions made while it ran change the pairs it keeps out; it "
+                    "runs again with them"
+                ).format(name)
+            )
+            self._start(name, fn, context)
+            return True
+        if not self.session.late_decisions(result):
+            return False
+        session = self.session
+
+        def reconcile(progress):
+            progress(0.0, "carrying the decisions made while it ran")
+            session.reconcile(result)
+            return done
+
+        self._start(name, reconcile, context, again=fn)
         return True
 
     def _start_export(self, path: Path, write, context: tuple) -> int:
@@ -368,7 +387,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         # A replaced job may end otherwise than cancelled (done before it looked): its
         # entry goes with its last message whatever that is.
         by = self._replaced.pop(msg.job, None)
-        if isinstance(msg, Finished) and self._run_again_if_stale(msg):
+        if isinstance(msg, Finished) and self._follow_up(msg):
             return
         if isinstance(msg, Finished):
             self._apply(msg.result)

@@ -86,7 +86,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.runner = JobRunner(self)
         self.runner.message.connect(self._on_job_message)
         self._job_context: dict[int, tuple] = {}
-        self._job_fns: dict[int, tuple] = {}  # the running job, to run again when stale
+        self._job_fns: dict[
+            int, tuple
+        ] = {}  # the running job, to run again when stale (_follow_up)
         self._replaced: dict[int, str] = {}  # a running job -> the job that took its place
         # Exports run on their own runner, one after the other (jobs._start_export).
         self.export_runner = JobRunner(self)

@@ -229,7 +229,11 @@ class Carry:
         """Make the carry again from the decision rows ``rows`` present now (at the swap:
         decisions made on ``old``'s queue while the step ran are carried as those made
         before it). The pairs kept out must not have changed meanwhile
-        (:func:`kept_out_changed`; the caller checks)."""
+        (:meth:`Session.stale <wakeline.core.session.Session.stale>`; the caller
+        checks). Safe in a worker (it reads ``rows``, a copy, and ``old``'s proposals):
+        with many carried decisions it takes a while (one accept after the other, about
+        1 ms each at 600 tracks), so the window makes it there
+        (:meth:`Session.reconcile <wakeline.core.session.Session.reconcile>`)."""
         key = queue_key(old)
         now = sum(1 for r in rows if isinstance(r, dict) and r.get("queue") == key)
         late = max(0, now - self.seen) if key == self.queue else now
@@ -243,7 +247,7 @@ class Carry:
         for f in ("queue", "seen", "changes", "accepted", "linked", "gone"):
             setattr(self, f, getattr(again, f))
         self.reviewed = True
-        self.late = late
+        self.late += late  # made again after more decisions: all of them count
 
 
 def carry_over(

@@ -704,6 +704,40 @@ class Session:
                 return True
         return False
 
+    def late_decisions(self, result: StepResult) -> int:
+        """The decision rows made on the layers ``result`` (a step's or a pipeline's)
+        re-runs since its carry was made: what :meth:`apply_result` reconciles it with
+        (0: nothing made meanwhile)."""
+        from wakeline.core.review_session import queue_key
+
+        n = 0
+        for stage in result.stages or [result]:
+            carry = getattr(stage, "carry", None)
+            old = self.layers.get(carry.old) if carry is not None else None
+            if old is None or not carry.step:
+                continue
+            key = queue_key(old)
+            now = sum(1 for r in self.decisions if isinstance(r, dict) and r.get("queue") == key)
+            n += max(0, now - (carry.seen if key == carry.queue else 0))
+        return n
+
+    def reconcile(self, result: StepResult) -> None:
+        """Make the carry of ``result`` again from the decisions present now (decisions
+        made on the layer it replaces while it ran), as :meth:`apply_result` would at
+        the swap; safe in a worker (the window runs it there: with hundreds of carried
+        decisions it takes longer than a GUI turn may). A result that is :meth:`stale`
+        must run again instead."""
+        rows = list(self.decisions)  # a copy: the window may append while a worker reads
+        for stage in result.stages or [result]:
+            carry = getattr(stage, "carry", None)
+            old = self.layers.get(carry.old) if carry is not None else None
+            if old is None or not carry.step:
+                continue
+            props = next(
+                (n.tables["proposals"] for n in stage.layers if "proposals" in n.tables), None
+            )
+            carry.refresh(old, rows, props)
+
     def _carry(self, old: Layer, result: StepResult, new, inputs: list[str]):
         """What the re-run ``result`` carries over from the review of ``old`` (the layer
         it replaces): the carry :meth:`run_step` made, made again from the decisions

@@ -7,8 +7,9 @@ back) make the result stale: nothing is applied (``StaleResult``) and the step r
 again. Headless: the worker is simulated by computing the step, then deciding, then
 swapping in; each case is compared with the same decisions made before the run."""
 
+import pandas as pd
 import pytest
-from test_review_rerun_carry import _do, _pairs, _review
+from test_review_rerun_carry import _do, _fuse, _pairs, _review
 
 from wakeline.core import review as R
 from wakeline.core import simulate
@@ -190,3 +191,77 @@ def test_a_pipeline_rerun_carries_late_decisions_and_a_stale_one_applies_nothing
     with pytest.raises(StaleResult):
         s.apply_result(src.id, res)
     assert {lid: x.run for lid, x in s.layers.items()} == runs
+
+
+@pytest.fixture(scope="module")
+def two_files():
+    """The demo scene's first 30 min, one layer per sensor, both named S1 (as MTAD's)."""
+    pts = simulate.demo_scene(seed=7)
+    t = pd.to_datetime(pts["time"])
+    pts = pts[t < t.min() + pd.Timedelta("30min")]
+    return {s: part.assign(sensor="S1").reset_index(drop=True) for s, part in pts.groupby("sensor")}
+
+
+def test_fuse_across_layers_carries_late_decisions(two_files):
+    """Run ▸ Fuse selected layers again: the same reconciliation at the swap."""
+
+    def decide(s, lay, st):
+        pending = [p for p, v in zip(st.proposals["proposal"], st.status, strict=True)
+                   if v == "pending"]  # fmt: skip
+        _do(s, lay, st, R.accept(st, pending[0]))
+        _do(s, lay, st, R.merge(st, _lone(st)))
+
+    def run(late: bool):
+        s = Session()
+        a = s.add_layer("x_AIS.csv", "source", two_files["AIS"])
+        r = s.add_layer("x_radar.csv", "source", two_files["R1"])
+        ids = [a.id, r.id]
+        (lay,) = s.apply_result(a.id, _fuse(s, ids), STEPS["fuse"].defaults(), inputs=ids)
+        _review(s, lay)
+        st, _ = bind(s, lay)
+        if not late:
+            decide(s, lay, st)
+        res = _fuse(s, ids)
+        if late:
+            decide(s, lay, st)
+        assert not s.stale(res)
+        (lay2,) = s.apply_result(a.id, res, STEPS["fuse"].defaults(), inputs=ids)
+        assert lay2.id == lay.id
+        return bind(s, lay2)[0], res
+
+    before, _ = run(late=False)
+    after, res = run(late=True)
+    _same(after, before)
+    assert res.carry.late == 2
+
+
+def test_the_carry_made_again_in_a_worker_then_more_decisions(scene):
+    """The window makes the carry again in the worker (``Session.reconcile``) and
+    checks again at the swap: decisions made in both spans are carried, all counted."""
+
+    def first(s, lay, st):
+        _do(s, lay, st, R.merge(st, _lone(st)))
+
+    def second(s, lay, st):
+        pending = [p for p, v in zip(st.proposals["proposal"], st.status, strict=True)
+                   if v == "pending"]  # fmt: skip
+        _do(s, lay, st, R.accept(st, pending[0]))
+
+    s1, src1, lay1, st1, _ = _start(scene)
+    first(s1, lay1, st1)
+    second(s1, lay1, st1)
+    (l1,) = s1.apply_result(src1.id, s1.run_step(src1.id, "associate"))
+    before, _ = bind(s1, l1)
+
+    s2, src2, lay2, st2, _ = _start(scene)
+    res = s2.run_step(src2.id, "associate")
+    first(s2, lay2, st2)
+    assert s2.late_decisions(res) == 1 and not s2.stale(res)
+    s2.reconcile(res)  # in the worker
+    assert s2.late_decisions(res) == 0
+    second(s2, lay2, st2)  # while it reconciled
+    assert s2.late_decisions(res) == 1 and not s2.stale(res)
+    (l2,) = s2.apply_result(src2.id, res)
+    after, _ = bind(s2, l2)
+    _same(after, before)
+    assert res.carry.late == 2

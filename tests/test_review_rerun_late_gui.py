@@ -49,6 +49,16 @@ def _pending(st) -> list[str]:
 
 
 def test_decisions_made_while_associate_runs_again_are_carried(qtbot, tmp_path, monkeypatch):
+    from wakeline.core.session import Session
+
+    threads = []
+    reconcile = Session.reconcile
+
+    def spy(self, result):
+        threads.append(threading.current_thread() is threading.main_thread())
+        return reconcile(self, result)
+
+    monkeypatch.setattr(Session, "reconcile", spy)
     gate = Gate(STEPS["associate"].run)
     gate.release()  # the first run is not held
     monkeypatch.setitem(STEPS, "associate", dataclasses.replace(STEPS["associate"], run=gate))
@@ -92,6 +102,7 @@ def test_decisions_made_while_associate_runs_again_are_carried(qtbot, tmp_path, 
     assert w.runner.busy  # still held
     gate.release()
     _settle(w)
+    assert threads == [False]  # the carry made again in the worker, not at the swap
     line = w.log.toPlainText().splitlines()[-1]
     assert "2 decisions made while the step ran taken into account" in line, line
     assert "1 pair rejected in an earlier review kept out" in line, line
