@@ -682,22 +682,31 @@ class Session:
                 made.append(self.add_layer(name, new.kind, new.points, new.meta, **lineage))
         return made
 
-    def stale(self, result: StepResult) -> bool:
-        """Whether ``result`` (a step's or a pipeline's) re-runs a reviewed step whose
-        decisions changed, while it ran, the pairs it keeps out: a pair rejected or split
-        on the layer it replaces, or a reject or split undone (:meth:`kept_out_below` now
-        against what the run read). Such a result cannot be reconciled by carrying
-        decisions: the step runs again. Other decisions made meanwhile are carried."""
+    def _reruns(self, result: StepResult) -> list[tuple[StepResult, Any, Layer, int]]:
+        """``(stage, carry, old layer, late rows)`` for each stage of ``result`` (a step's
+        or a pipeline's) that re-runs a reviewed step on a layer still in the session:
+        the decision rows made on that layer's queue since the carry was made."""
         from wakeline.core.review_session import queue_key
 
+        out, rows = [], list(self.decisions)  # a copy: read in a worker too (reconcile)
         for stage in result.stages or [result]:
             carry = getattr(stage, "carry", None)
             old = self.layers.get(carry.old) if carry is not None else None
             if old is None or not carry.step:
                 continue
             key = queue_key(old)
-            now = sum(1 for r in self.decisions if isinstance(r, dict) and r.get("queue") == key)
-            if now == (carry.seen if key == carry.queue else 0):
+            now = sum(1 for r in rows if isinstance(r, dict) and r.get("queue") == key)
+            out.append((stage, carry, old, max(0, now - (carry.seen if key == carry.queue else 0))))
+        return out
+
+    def stale(self, result: StepResult) -> bool:
+        """Whether ``result`` (a step's or a pipeline's) re-runs a reviewed step whose
+        decisions changed, while it ran, the pairs it keeps out: a pair rejected or split
+        on the layer it replaces, or a reject or split undone (:meth:`kept_out_below` now
+        against what the run read). Such a result cannot be reconciled by carrying
+        decisions: the step runs again. Other decisions made meanwhile are carried."""
+        for _stage, carry, _old, late in self._reruns(result):
+            if not late:
                 continue  # nothing decided on it since the run read its decisions
             rejected, split = self.kept_out_below(carry.parent, carry.step, carry.inputs)
             if (frozenset(rejected), frozenset(split)) != carry.kept:
@@ -708,18 +717,7 @@ class Session:
         """The decision rows made on the layers ``result`` (a step's or a pipeline's)
         re-runs since its carry was made: what :meth:`apply_result` reconciles it with
         (0: nothing made meanwhile)."""
-        from wakeline.core.review_session import queue_key
-
-        n = 0
-        for stage in result.stages or [result]:
-            carry = getattr(stage, "carry", None)
-            old = self.layers.get(carry.old) if carry is not None else None
-            if old is None or not carry.step:
-                continue
-            key = queue_key(old)
-            now = sum(1 for r in self.decisions if isinstance(r, dict) and r.get("queue") == key)
-            n += max(0, now - (carry.seen if key == carry.queue else 0))
-        return n
+        return sum(late for *_, late in self._reruns(result))
 
     def reconcile(self, result: StepResult) -> None:
         """Make the carry of ``result`` again from the decisions present now (decisions
@@ -728,15 +726,13 @@ class Session:
         decisions it takes longer than a GUI turn may). A result that is :meth:`stale`
         must run again instead."""
         rows = list(self.decisions)  # a copy: the window may append while a worker reads
-        for stage in result.stages or [result]:
-            carry = getattr(stage, "carry", None)
-            old = self.layers.get(carry.old) if carry is not None else None
-            if old is None or not carry.step:
-                continue
-            props = next(
-                (n.tables["proposals"] for n in stage.layers if "proposals" in n.tables), None
-            )
-            carry.refresh(old, rows, props)
+        for stage, carry, old, late in self._reruns(result):
+            if late:
+                props = next(
+                    (n.tables["proposals"] for n in stage.layers if "proposals" in n.tables),
+                    None,
+                )
+                carry.refresh(old, rows, props)
 
     def _carry(self, old: Layer, result: StepResult, new, inputs: list[str]):
         """What the re-run ``result`` carries over from the review of ``old`` (the layer
