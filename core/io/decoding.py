@@ -39,6 +39,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 #: The encoding a line that is not valid UTF-8 is read in (then reported).
 FALLBACK = "cp1252"
 #: What the warning calls it.
@@ -63,21 +65,135 @@ _LINE_END = re.compile(rb"[\r\n]")
 _WINDOW = 256
 
 
+def _table(*spans: tuple[int, int], dtype=bool, value=True) -> np.ndarray:
+    out = np.zeros(256, dtype)
+    for lo, hi in spans:
+        out[lo : hi + 1] = value
+    return out
+
+
+#: UTF-8: the length of the sequence a byte starts (1: a continuation byte; 0: a byte
+#: UTF-8 never has), and the range of the byte after a lead (E0, ED, F0, F4 narrow it:
+#: no overlong forms, no surrogates, nothing above U+10FFFF).
+_SEQ = _table((0x80, 0xBF), dtype=np.int8, value=1)
+_SEQ[0xC2:0xE0], _SEQ[0xE0:0xF0], _SEQ[0xF0:0xF5] = 2, 3, 4
+_SEQ_LO, _SEQ_HI = np.full(256, 0x80, np.uint8), np.full(256, 0xBF, np.uint8)
+_SEQ_LO[0xE0], _SEQ_HI[0xED], _SEQ_LO[0xF0], _SEQ_HI[0xF4] = 0xA0, 0x9F, 0x90, 0x8F
+#: GB2312's characters: lead A1-A9 or B0-F7, trail A1-FE (as :data:`_GB2312_PAIR`).
+_GB_LEAD = _table((0xA1, 0xA9), (0xB0, 0xF7))
+_GB_TRAIL = _table((0xA1, 0xFE))
+#: The bytes Windows-1252 leaves undefined.
+_CP1252_UNDEFINED = _table((0x81, 0x81), (0x8D, 0x8D), (0x8F, 0x90), (0x9D, 0x9D))
+#: What a failing line is read as (:meth:`LineDecoder._lines_fast`).
+_AS_FALLBACK, _AS_REPLACED = 0, 1
+
+
+def _distinct(sorted_values: np.ndarray) -> np.ndarray:
+    """The distinct values of a sorted array."""
+    return sorted_values[np.r_[True, sorted_values[1:] != sorted_values[:-1]]]
+
+
+class _Bytes:
+    """A segment of whole lines as numpy sees it: its non-ASCII bytes (``high``: their
+    positions, ``value``: the bytes, ``line``: their lines) and its line ends (``ends``:
+    positions of CR and LF; a line lies between two, an empty one between CR and LF)."""
+
+    def __init__(self, seg: bytes) -> None:
+        arr = np.frombuffer(seg, np.uint8)
+        self.n = len(arr)
+        self.arr = arr
+        self.high = np.flatnonzero(arr >= 0x80)
+        self.value = arr[self.high]
+        self.ends = np.flatnonzero((arr == 0x0A) | (arr == 0x0D))
+        self.line = np.searchsorted(self.ends, self.high)  # 0-based, in this segment
+
+    def span(self, lines: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Start and end (its line end, or the segment's end) of each line."""
+        ends = np.append(self.ends, self.n)
+        starts = np.append(0, self.ends + 1)
+        return starts[lines], ends[lines]
+
+    def per_line(self, where=None) -> np.ndarray:
+        """Non-ASCII bytes (those ``where`` is true) per line."""
+        lines = self.line if where is None else self.line[where]
+        return np.bincount(lines, minlength=len(self.ends) + 1)
+
+    def utf8_errors(self) -> np.ndarray:
+        """Which non-ASCII bytes make their line invalid UTF-8: a line with none is valid
+        UTF-8 (every non-ASCII byte in a well-formed sequence), a line with any is not."""
+        pad = np.zeros(self.n + 6, np.uint8)
+        pad[3 : self.n + 3] = self.arr
+        at = self.high + 3
+        seq = _SEQ[self.value]
+        nxt = [pad[at + k] for k in (1, 2, 3)]
+        cont = [(b & 0xC0) == 0x80 for b in nxt]
+        lead = (
+            ((seq == 2) & cont[0])
+            | ((seq == 3) & cont[0] & cont[1])
+            | ((seq == 4) & cont[0] & cont[1] & cont[2])
+        )
+        lead &= (nxt[0] >= _SEQ_LO[self.value]) & (nxt[0] <= _SEQ_HI[self.value])
+        prev = [_SEQ[pad[at - k]] for k in (1, 2, 3)]
+        claimed = (
+            (prev[0] >= 2)
+            | ((prev[1] >= 3) & (prev[0] == 1))
+            | ((prev[2] == 4) & (prev[1] == 1) & (prev[0] == 1))
+        )
+        ok = np.where(seq == 1, claimed, lead)  # seq 0 (never UTF-8): lead is false
+        return ~ok
+
+    def gb2312_misses(self) -> np.ndarray:
+        """Which non-ASCII bytes keep their line from reading as GB2312 characters only: its
+        non-ASCII bytes, run by run, pair up as lead and trail (what ``2 *
+        len(_GB2312_PAIR.findall(line)) == high`` says)."""
+        pos, value = self.high, self.value
+        if not len(pos):
+            return np.zeros(0, bool)
+        joined = pos[1:] == pos[:-1] + 1  # byte k+1 follows byte k
+        first = np.flatnonzero(np.r_[True, ~joined])
+        run = np.cumsum(np.r_[True, ~joined]) - 1
+        even = (np.arange(len(pos)) - first[run]) % 2 == 0
+        paired = _GB_LEAD[value] & np.r_[joined, False] & _GB_TRAIL[np.r_[value[1:], 0]]
+        return even & ~paired
+
+
 def _high(data: bytes) -> int:
     """Bytes of ``data`` above ASCII."""
     return 0 if data.isascii() else len(data) - len(data.translate(None, _HIGH))
 
 
-@dataclass
 class Evidence:
     """What the lines said about the encoding: non-ASCII bytes in lines that decoded in
     the primary encoding (``good``), in lines that did not (``bad``), and of those in
-    lines that read as GB18030 in GB2312's characters (``gb``)."""
+    lines that read as GB18030 in GB2312's characters (``gb``).
 
-    good: int = 0
-    bad: int = 0
-    gb: float = 0
-    bad_lines: int = 0
+    After :data:`EVIDENCE_LINES` failing lines each further one adds its share at the
+    rate so far (``gb += high * gb / bad_before``); those lines are kept (``_tail``) and
+    added up, in order, when ``gb`` is read (the whole-file reader never reads it)."""
+
+    def __init__(self) -> None:
+        self.good = 0
+        self.bad = 0
+        self._gb: float = 0
+        self.bad_lines = 0
+        self._tail: list[np.ndarray] = []
+
+    @property
+    def gb(self) -> float:
+        if self._tail:
+            highs = np.concatenate(self._tail).tolist()
+            before, g = self.bad - sum(highs), self._gb
+            if g:  # 0 stays 0
+                for high in highs:
+                    before += high
+                    g += high * g / max(before - high, 1)
+            self._gb, self._tail = g, []
+        return self._gb
+
+    @gb.setter
+    def gb(self, value: float) -> None:
+        self.gb  # noqa: B018 (the tail first)
+        self._gb = value
 
     def choice(self, primary: str = "utf-8") -> str:
         """The encoding that explains the text best (``primary`` or ``gb18030``)."""
@@ -102,6 +218,12 @@ class Fallbacks:
         kept = self.first.setdefault(how, [])
         if len(kept) < FIRST_LINES:
             kept.append(line)
+
+    def add_many(self, how: str, lines: np.ndarray) -> None:
+        """:meth:`add` for each of ``lines`` (in order)."""
+        self.counts[how] = self.counts.get(how, 0) + len(lines)
+        kept = self.first.setdefault(how, [])
+        kept += lines[: max(FIRST_LINES - len(kept), 0)].tolist()
 
     def report(self) -> dict:
         """For the import report: ``{encoding: {"lines": n, "first_lines": [...]}}``."""
@@ -208,10 +330,9 @@ class LineDecoder(codecs.IncrementalDecoder):
         self._last_cr = seg[b - 1] == 0x0D
 
     def _lines(self, seg: bytes) -> str:
-        """Whole lines decoded: at C speed, and where that fails line by line from the
-        failing line on. After a failing line the rest is decoded in windows of whole
-        lines that grow while they decode (a failed decode copies its input into the
-        exception: a window, not the rest of the chunk, per failing line)."""
+        """Whole lines decoded: at C speed; where that fails, in UTF-8 the failing lines
+        are found at once (:meth:`_lines_fast`), in another encoding one by one
+        (:meth:`_lines_scan`)."""
         try:
             text = self._decode(seg)[0]
         except UnicodeDecodeError as exc:
@@ -220,6 +341,78 @@ class LineDecoder(codecs.IncrementalDecoder):
             self.evidence.good += _high(seg)
             self._count(seg, 0, len(seg))
             return text
+        if self.encoding == "utf-8":
+            text = self._lines_fast(seg)
+            if text is not None:
+                return text
+        return self._lines_scan(seg, at)
+
+    def _lines_fast(self, seg: bytes) -> str | None:
+        """Whole UTF-8 lines some of which fail, decoded without a step per line: numpy
+        finds the failing lines (:meth:`_Bytes.utf8_errors`) and what each is read as;
+        the runs of lines between them are decoded as UTF-8 and the runs of failing lines
+        read alike (with only ASCII between them) as one, each at C speed. The same text,
+        line numbers and evidence as :meth:`_lines_scan` (tests/test_decoding_fast.py);
+        None (then that is used) if a run that should decode does not."""
+        b = _Bytes(seg)
+        bad = _distinct(b.line[b.utf8_errors()])
+        if not len(bad):
+            return None
+        starts, stops = b.span(bad)
+        per_line = b.per_line()
+        high = per_line[bad]
+        undefined = b.per_line(_CP1252_UNDEFINED[b.value])[bad]
+        how = np.where(undefined > 0, _AS_REPLACED, _AS_FALLBACK)
+        # runs: failing lines read alike, with only ASCII (line ends) between them
+        before = np.r_[0, np.cumsum(per_line)]  # non-ASCII bytes before each line
+        gap_high = before[bad[1:]] - before[bad[:-1] + 1]
+        alike = (how[1:] == how[:-1]) & (how[1:] != _AS_REPLACED) & (gap_high == 0)
+        first = np.flatnonzero(np.r_[True, ~alike])
+        last = np.r_[first[1:] - 1, len(bad) - 1]
+        view, out, pos = memoryview(seg), [], 0
+        try:
+            for a, z, h in zip(
+                starts[first].tolist(), stops[last].tolist(), how[first].tolist(), strict=True
+            ):
+                out.append(self._decode(view[pos:a])[0])
+                if h == _AS_REPLACED:
+                    out.append(seg[a:z].decode(self.encoding, errors="replace"))
+                else:
+                    out.append(seg[a:z].decode(FALLBACK))
+                pos = z
+            out.append(self._decode(view[pos:])[0])
+        except UnicodeDecodeError:
+            return None
+        # line numbers: 1 + the line ends before (CRLF once, also across chunks)
+        ends = b.ends
+        prev = ends - 1
+        after_cr = b.arr[np.maximum(prev, 0)] == 0x0D
+        after_cr[prev < 0] = self._last_cr
+        passed = np.r_[0, np.cumsum(~((b.arr[ends] == 0x0A) & after_cr))]
+        numbers = self.line + 1 + passed[bad]
+        for h in dict.fromkeys(how[np.r_[True, how[1:] != how[:-1]]].tolist()):
+            name = FALLBACK if h == _AS_FALLBACK else "replaced"
+            self.fallbacks.add_many(name, numbers[how == h])
+        # evidence, as line by line
+        ev = self.evidence
+        exact = min(max(EVIDENCE_LINES - ev.bad_lines, 0), len(bad))
+        if exact:
+            gb = b.per_line(b.gb2312_misses())[bad[:exact]] == 0
+            ev.gb += int(high[:exact][gb].sum())  # GB2312 pairs decode as GB18030
+        ev.bad += int(high.sum())
+        ev.bad_lines += len(bad)
+        if exact < len(bad):
+            ev._tail.append(high[exact:])
+        ev.good += len(b.high) - int(high.sum())
+        self.line += int(passed[-1])
+        self._last_cr = seg[-1] == 0x0D
+        return "".join(out)
+
+    def _lines_scan(self, seg: bytes, at: int) -> str:
+        """Whole lines decoded line by line from the failing line (``at``) on. After a
+        failing line the rest is decoded in windows of whole lines that grow while they
+        decode (a failed decode copies its input into the exception: a window, not the
+        rest of the chunk, per failing line)."""
         view, out, pos = memoryview(seg), [], 0
         bad_before = self.evidence.bad
         while True:
