@@ -2,7 +2,12 @@
 from the first failing line on. The reference the fast decoder is compared with
 (tests/test_decoding_fast.py, bench/bench_decoding.py): the same text, line numbers and
 evidence for every input. Its module constants are read from core's (EVIDENCE_LINES may
-be patched there)."""
+be patched there).
+
+With h148's two rules, line by line: in UTF-8 a failing line whose non-ASCII bytes pair
+as GB2312 characters is read as GB18030 (``_bad``); in GB18030 every line is looked at
+(``_lines_each``): one valid UTF-8 whose non-ASCII bytes do not pair so is read as
+UTF-8."""
 
 import codecs
 import re
@@ -143,7 +148,36 @@ class LineDecoder(codecs.IncrementalDecoder):
         self.line += n
         self._last_cr = seg[b - 1] == 0x0D
 
+    def _lines_each(self, seg: bytes) -> str:
+        out, pos = [], 0
+        while pos < len(seg):
+            end = _LINE_END.search(seg, pos)
+            stop = end.start() if end else len(seg)
+            line = seg[pos:stop]
+            try:
+                text = line.decode(self.encoding)
+            except UnicodeDecodeError:
+                text = self._bad(line)
+            else:
+                high = _high(line)
+                self.evidence.good += high
+                if high and 2 * len(_GB2312_PAIR.findall(line)) != high:
+                    try:
+                        text = line.decode("utf-8")
+                        self.fallbacks.add("utf-8", self.line + 1)
+                    except UnicodeDecodeError:
+                        pass
+                self._count(seg, pos, stop)
+            out.append(text)
+            if end:
+                out.append(seg[stop : stop + 1].decode())
+                self._count(seg, stop, stop + 1)
+            pos = stop + 1
+        return "".join(out)
+
     def _lines(self, seg: bytes) -> str:
+        if self.encoding == "gb18030":
+            return self._lines_each(seg)
         """Whole lines decoded: at C speed, and where that fails line by line from the
         failing line on. After a failing line the rest is decoded in windows of whole
         lines that grow while they decode (a failed decode copies its input into the
@@ -196,7 +230,10 @@ class LineDecoder(codecs.IncrementalDecoder):
                 ev.gb += high
             except UnicodeDecodeError:
                 pass
-        for enc in self.chain:
+        chain = self.chain
+        if self.encoding == "utf-8" and 2 * len(_GB2312_PAIR.findall(line)) == high:
+            chain = ("gb18030", *chain)
+        for enc in chain:
             try:
                 text = line.decode(enc)
             except UnicodeDecodeError:

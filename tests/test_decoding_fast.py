@@ -72,18 +72,18 @@ def _state(dec) -> tuple:
     )
 
 
-def _chunked(cls, data: bytes, size: int) -> tuple[str, tuple]:
-    dec = cls("utf-8")
+def _chunked(cls, data: bytes, size: int, enc: str = "utf-8") -> tuple[str, tuple]:
+    dec = cls(enc)
     text = "".join(dec.decode(data[k : k + size]) for k in range(0, len(data), size))
     return text + dec.decode(b"", final=True), _state(dec)
 
 
-def _pieces(cls, data: bytes, lines_per_piece: int) -> tuple[list[str], dict]:
+def _pieces(cls, data: bytes, lines_per_piece: int, enc: str) -> tuple[list[str], dict]:
     """A fresh decoder per piece of whole lines (the streamed reader's pieces)."""
     lines = data.splitlines(keepends=True)
     texts, infos = [], []
     for k in range(0, len(lines), lines_per_piece):
-        dec = cls("utf-8")
+        dec = cls(enc)
         texts.append(dec.decode(b"".join(lines[k : k + lines_per_piece]), final=True))
         first = {h: v for h, v in dec.fallbacks.first.items() if h != "replaced"}
         counts = {h: v for h, v in dec.fallbacks.counts.items() if h != "replaced"}
@@ -97,15 +97,24 @@ def _pieces(cls, data: bytes, lines_per_piece: int) -> tuple[list[str], dict]:
     size=st.sampled_from([1, 3, 7, 64, 1 << 20]),
     evidence_lines=st.sampled_from([5000, 2, 0]),
     per_piece=st.integers(1, 9),
+    enc=st.sampled_from(["utf-8", "gb18030"]),
 )
-@example(data=b"a\r\nb\xf8\r\n\xf8\r\r\n\xc6\xd8\n", size=1, evidence_lines=1, per_piece=2)
-def test_the_fast_decoder_decodes_as_the_line_by_line_one(data, size, evidence_lines, per_piece):
+@example(
+    data=b"a\r\nb\xf8\r\n\xf8\r\r\n\xc6\xd8\n", size=1, evidence_lines=1, per_piece=2, enc="utf-8"
+)
+def test_the_fast_decoder_decodes_as_the_line_by_line_one(
+    data, size, evidence_lines, per_piece, enc
+):
     with mock.patch.object(decoding, "EVIDENCE_LINES", evidence_lines):
-        whole_new = _chunked(LineDecoder, data, len(data) + 1)
-        whole_old = _chunked(ref.LineDecoder, data, len(data) + 1)
+        whole_new = _chunked(LineDecoder, data, len(data) + 1, enc)
+        whole_old = _chunked(ref.LineDecoder, data, len(data) + 1, enc)
         assert whole_new == whole_old
-        assert _chunked(LineDecoder, data, size) == _chunked(ref.LineDecoder, data, size)
-        assert _pieces(LineDecoder, data, per_piece) == _pieces(ref.LineDecoder, data, per_piece)
+        assert _chunked(LineDecoder, data, size, enc) == _chunked(ref.LineDecoder, data, size, enc)
+        new, old = (
+            _pieces(LineDecoder, data, per_piece, enc),
+            _pieces(ref.LineDecoder, data, per_piece, enc),
+        )
+        assert new == old
 
 
 def test_a_windows_1252_file_is_one_decode_per_run(tmp_path):

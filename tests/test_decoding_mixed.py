@@ -29,7 +29,7 @@ def _file(tmp: Path, lines: list[bytes], name: str = "m.csv", head: bytes = b"")
 
 
 def _fallback_warnings(report: dict) -> list[str]:
-    return [w for w in report["warnings"] if "were read as" in w]
+    return [w for w in report["warnings"] if w.startswith("text encoding:")]
 
 
 def test_utf8_and_latin1_lines_one_sensor_each_line_right(tmp_path):
@@ -183,8 +183,9 @@ def _kinds(draw):
 def test_mixed_lines_never_lose_a_line_nor_garble_utf8(kinds, sample, stream):
     """Random mixtures of ASCII, UTF-8, Latin-1 and GB18030 lines: points + quarantine =
     lines, whole or streamed in pieces; when most non-ASCII bytes are in UTF-8 lines,
-    every UTF-8 line reads exactly, every Latin-1 line reads as Latin-1, and a warning
-    names the lines read in the fallback."""
+    every UTF-8 line reads exactly, every Latin-1 line reads as Latin-1, every GB18030
+    line as GB18030 (h148; before: garbled as Windows-1252), and a warning per fallback
+    names its lines."""
     raw, names = _mixed_file(kinds)
     with tempfile.TemporaryDirectory() as tmp:
         path = _file(Path(tmp), raw)
@@ -207,11 +208,17 @@ def test_mixed_lines_never_lose_a_line_nor_garble_utf8(kinds, sample, stream):
         assert rep["encoding"] == "utf-8"
         assert rep["rows_quarantined"] == 0 and len(got) == len(kinds)
         for (kind, name), read in zip(kinds, got, strict=True):
-            if kind in ("ascii", "utf8", "latin1"):
-                assert read == name, (kind, name, read)
-        fell = sum(kind in ("latin1", "gb") for kind, _ in kinds)
-        assert rep.get("encoding_fallback", {}).get("cp1252", {}).get("lines", 0) == fell
-        assert bool(_fallback_warnings(rep)) == bool(fell)
+            assert read == name, (kind, name, read)  # GB18030 lines too (h148)
+        fell = rep.get("encoding_fallback", {})
+        for kind, enc, label in (
+            ("latin1", "cp1252", "Windows-1252"),
+            ("gb", "gb18030", "GB18030"),
+        ):
+            lines = sum(k == kind for k, _ in kinds)
+            assert fell.get(enc, {}).get("lines", 0) == lines
+            said = [w for w in _fallback_warnings(rep) if f"read as {label}" in w]
+            assert len(said) == bool(lines)
+        assert len(_fallback_warnings(rep)) == len(fell)
     if high["gb"] and not high["utf8"] and not high["latin1"]:  # GB18030 only: as before
         assert rep["encoding"] == "gb18030" and got == names
 
@@ -234,3 +241,110 @@ def test_a_large_gb18030_file_stays_gb18030(tmp_path):
         r = read_points(path, tz="Asia/Shanghai")
     assert r.report["encoding"] == "gb18030" and "encoding_fallback" not in r.report
     assert r.points["船名"].eq("浙渔号").all() and len(r.points) == 3000
+
+
+# --- h148: Chinese lines in GBK inside UTF-8, UTF-8 lines inside GB18030 ----------------
+
+_SHIPS = ["浙岱渔03856", "鲁荣渔2682", "闽狮渔06677", "苏连渔128", "辽大金渔1515"]
+
+
+def _ships_file(tmp: Path, gbk_rows: set[int], n: int = 60) -> Path:
+    """A UTF-8 export (Chinese ship names) with some rows appended by a GBK tool."""
+    out = [b"sensor,batch,time,lon,lat,name,note"]
+    for i in range(n):
+        name = _SHIPS[i % len(_SHIPS)]
+        row = _row(i, name, "AIS") + ",渔船"
+        out.append(row.encode("gbk" if i in gbk_rows else "utf-8"))
+    path = tmp / "ships.csv"
+    path.write_bytes(b"\r\n".join(out) + b"\r\n")
+    return path
+
+
+def test_gbk_rows_in_a_utf8_file_are_read_as_gb18030_and_named(tmp_path):
+    """Rows a GBK tool appended to a UTF-8 file: each read as GB18030 (its non-ASCII
+    bytes pair as GB2312 characters), named in a warning with the encoding; whole and
+    streamed alike (before: garbled as Windows-1252, "Õã´ÔÓæ")."""
+    gbk = {7, 8, 30, 31, 32, 59}
+    path = _ships_file(tmp_path, gbk)
+    whole = read_points(path)
+    assert whole.report["encoding"] == "utf-8" and len(whole.quarantine) == 0
+    names = whole.points["name"].tolist()
+    assert names == [_SHIPS[i % len(_SHIPS)] for i in range(60)]
+    assert whole.points["note"].eq("渔船").all()
+    assert whole.report["encoding_fallback"] == {
+        "gb18030": {"lines": 6, "first_lines": [9, 10, 32, 33, 34]}
+    }
+    (warning,) = _fallback_warnings(whole.report)
+    assert "6 lines not valid utf-8 were read as GB18030 (Chinese)" in warning
+    assert "(lines 9, 10, 32, 33, 34, …)" in warning
+    with mock.patch.object(reader, "STREAM_BYTES", 1500):
+        streamed = import_to_csv(path, tmp_path / "out.csv")
+    assert streamed.report["pieces"] > 2
+    assert pd.read_csv(tmp_path / "out.csv")["name"].tolist() == names
+    assert streamed.report["encoding_fallback"] == whole.report["encoding_fallback"]
+    assert _fallback_warnings(streamed.report) == [warning]
+
+
+def test_a_latin1_line_beside_gbk_lines_stays_windows_1252(tmp_path):
+    """A line whose non-ASCII bytes do not pair as GB2312 (Latin-1 letters alone, or
+    a GBK character outside GB2312) is Windows-1252 as before: two warnings."""
+    lines = [_row(0, "浙渔").encode(), _row(1, "浙渔").encode("gbk")]
+    lines += [_row(2, "Bjørn").encode("latin-1"), _row(3, "Ærø").encode("latin-1")]
+    lines += [_row(4, "镕").encode("gbk")]  # 镕 (E946): GBK, not GB2312
+    r = read_points(_file(tmp_path, lines))
+    assert r.points["name"].tolist()[:4] == ["浙渔", "浙渔", "Bjørn", "Ærø"]
+    assert r.report["encoding_fallback"] == {
+        "gb18030": {"lines": 1, "first_lines": [3]},
+        "cp1252": {"lines": 3, "first_lines": [4, 5, 6]},
+    }
+    assert len(_fallback_warnings(r.report)) == 2
+
+
+def _gb_file(tmp: Path, utf8_rows: dict[int, str], n: int = 80) -> Path:
+    out = ["批号,时间,经度,纬度,船名".encode("gb18030")]
+    for i in range(n):
+        name = utf8_rows.get(i, "浙渔号")
+        row = f"{i % 5},2024-05-01 08:{i // 60:02d}:{i % 60:02d},122.{i:02d},30.0,{name}"
+        out.append(row.encode("utf-8" if i in utf8_rows else "gb18030"))
+    path = tmp / "gb.csv"
+    path.write_bytes(b"\n".join(out) + b"\n")
+    return path
+
+
+def test_utf8_rows_in_a_gb18030_file_are_read_as_utf8_and_named(tmp_path):
+    """UTF-8 rows in a file judged GB18030: read as UTF-8 where, read as GB18030, their
+    non-ASCII bytes would not pair as GB2312 characters, and named in a warning; whole,
+    streamed and in the sniff's preview alike (before: garbled, no warning). A UTF-8
+    name that happens to pair (海巡, 3 % of two-character names) stays GB18030."""
+    rows = {5: "Ålesund", 6: "浙渔", 40: "Tromsø Ø", 41: "海巡"}
+    path = _gb_file(tmp_path, rows)
+    assert sniff(path).encoding == "gb18030"
+    whole = read_points(path, tz="Asia/Shanghai")
+    assert whole.report["encoding"] == "gb18030" and len(whole.quarantine) == 0
+    got = whole.points["船名"].tolist()
+    assert [got[i] for i in (5, 6, 40)] == ["Ålesund", "浙渔", "Tromsø Ø"]
+    assert got[41] == "海巡".encode().decode("gb18030") and got[0] == "浙渔号"
+    assert whole.report["encoding_fallback"] == {"utf-8": {"lines": 3, "first_lines": [7, 8, 42]}}
+    (warning,) = _fallback_warnings(whole.report)
+    assert "3 lines valid UTF-8 (as gb18030 not Chinese text) were read as UTF-8" in warning
+    assert "(lines 7, 8, 42)" in warning
+    with mock.patch.object(reader, "STREAM_BYTES", 1000):
+        streamed = import_to_csv(path, tmp_path / "out.csv", tz="Asia/Shanghai")
+    assert streamed.report["pieces"] > 2
+    assert pd.read_csv(tmp_path / "out.csv")["船名"].tolist() == got
+    assert streamed.report["encoding_fallback"] == whole.report["encoding_fallback"]
+
+
+def test_a_gb18030_file_whose_lines_fail_is_judged_again_as_before(tmp_path):
+    """Read strictly first: a line not valid GB18030 still sends the file to the whole
+    file's judgement (here: GB18030, that line read as Windows-1252)."""
+    path = _gb_file(tmp_path, {})
+    path.write_bytes(
+        path.read_bytes()
+        + _row(0, "x").encode()[:0]
+        + "9,2024-05-01 09:00:00,122.5,30.0,\xd8\n".encode("latin-1")
+    )
+    r = read_points(path, tz="Asia/Shanghai")
+    assert r.report["encoding"] == "gb18030"
+    assert r.report["encoding_fallback"] == {"cp1252": {"lines": 1, "first_lines": [82]}}
+    assert r.points["船名"].iloc[-1] == "Ø"

@@ -10,12 +10,19 @@ against those that are: GB18030 when the failing lines hold most of the non-ASCI
 (lead A1-A9 or B0-F7, trail A1-FE: Chinese text, whose characters are two high bytes). A
 Latin-1 line fails that: its accented letters are single high bytes beside ASCII
 (``Bjørn`` is ``F8 72``, which GB18030 reads as 鴕, one character eating the ``r``).
-Otherwise UTF-8, and each line that is not valid UTF-8 is decoded on its own as
-Windows-1252 ("Latin-1" as Windows writes it; it is Latin-1 for every printable
-character) and reported: how many lines and the first line numbers
-(:func:`fallback_warning`). A line that neither reads (a byte Windows-1252 leaves
-undefined: 81, 8D, 8F, 90, 9D) keeps U+FFFD for its bad bytes and its row is quarantined
-("bytes not valid utf-8"), as before.
+Otherwise UTF-8, and each line that is not valid UTF-8 is decoded on its own: as GB18030
+when its non-ASCII bytes pair as GB2312 characters (the same test, line by line: rows a
+GBK tool appended), else as Windows-1252 ("Latin-1" as Windows writes it; it is Latin-1
+for every printable character), and reported: per encoding how many lines and the first
+line numbers (:func:`fallback_warning`). A line that none reads (a byte Windows-1252
+leaves undefined: 81, 8D, 8F, 90, 9D) keeps U+FFFD for its bad bytes and its row is
+quarantined ("bytes not valid utf-8"), as before. In a file read as GB18030 a line that
+is valid UTF-8 and whose non-ASCII bytes do not pair as GB2312 characters is read as
+UTF-8, reported the same way (GB18030 reads nearly any byte pair, so UTF-8 text decodes
+as GB18030 too, garbled; GB2312 pairs in valid UTF-8 are rare: ``é`` is ``C3 A9``, one,
+and about 3 % of two-character Chinese names in UTF-8 pair whole, so those stay
+GB18030); a line that is not valid GB18030 is read as UTF-8 if it is valid UTF-8, else
+as Windows-1252.
 
 Why a reported fallback rather than quarantining those lines: a Latin-1 line in a UTF-8
 file is a whole, good row (an export appended by a Windows tool); the fallback keeps its
@@ -26,12 +33,17 @@ encoding. Reading the whole file as GB18030 (what the importer did) garbled even
 valid lines.
 
 The line decoder (:class:`LineDecoder`) decodes whole lines chunk by chunk with the
-codec's C decoder; only a chunk that fails is looked into, and only its failing lines
-are decoded one by one (a clean file pays nothing: the UTF-8 fast path never comes
-here). It is also a Python codec (``codec_name``): ``wakeline-lines-utf-8`` decodes
-as above wherever a codec name is taken (``io.TextIOWrapper``, ``pandas.read_csv``).
-UTF-16 and UTF-32 text (a byte order mark) and an encoding the user names are decoded
-as they were: strictly, undecodable bytes quarantined.
+codec's C decoder; only a chunk that fails (or in GB18030 holds non-ASCII bytes) is
+looked into: numpy finds the lines read otherwise (in GB18030 the failing ones by
+decoding on from each), and the runs between them and the runs of lines read alike are
+decoded at C speed, not line by line (h148: a file wholly Windows-1252, 2 M rows, about
+20 times faster; bench/bench_decoding.py). A clean UTF-8 file pays nothing. It is also
+a Python codec (``codec_name``): ``wakeline-lines-utf-8`` decodes as above wherever a
+codec name is taken (``io.TextIOWrapper``, ``pandas.read_csv``). UTF-16 and UTF-32 text
+(a byte order mark) and an encoding the user names are decoded as they were: strictly,
+undecodable bytes quarantined. A file judged GB18030 is read first strictly but for its
+UTF-8 lines (``fail``: a line not valid GB18030 sends it to the whole file's judgement,
+as before).
 """
 
 import codecs
@@ -84,8 +96,10 @@ _GB_LEAD = _table((0xA1, 0xA9), (0xB0, 0xF7))
 _GB_TRAIL = _table((0xA1, 0xFE))
 #: The bytes Windows-1252 leaves undefined.
 _CP1252_UNDEFINED = _table((0x81, 0x81), (0x8D, 0x8D), (0x8F, 0x90), (0x9D, 0x9D))
-#: What a failing line is read as (:meth:`LineDecoder._lines_fast`).
-_AS_FALLBACK, _AS_REPLACED = 0, 1
+#: What a line is read as otherwise than in the primary encoding (the fallbacks' names;
+#: :meth:`LineDecoder._lines_fast`).
+_READ_AS = (FALLBACK, "gb18030", "utf-8", "replaced")
+_CP, _GB, _U8, _REP = range(4)
 
 
 def _distinct(sorted_values: np.ndarray) -> np.ndarray:
@@ -236,21 +250,26 @@ class Fallbacks:
 
 def fallback_warning(primary: str, info: dict) -> list[str]:
     """The import's warnings for the lines read in a fallback encoding (``info``: the
-    report's ``encoding_fallback``); one per fallback encoding."""
+    report's ``encoding_fallback``); one per fallback encoding, naming it and the lines."""
     out = []
     for how, got in info.items():
         n, first = int(got["lines"]), sorted(got["first_lines"])[:FIRST_LINES]
-        label = FALLBACK_LABEL if how == FALLBACK else how
+        label = LABELS.get(how, how)
         some = ", ".join(f"{k:,}" for k in first) + (", …" if n > len(first) else "")
-        lines = "line" if n == 1 else "lines"
+        lines, were = ("line", "was") if n == 1 else ("lines", "were")
+        if how == "utf-8" and primary != "utf-8":
+            what = f"{lines} valid UTF-8 (as {primary} not Chinese text) {were} read as {label}"
+        else:
+            what = f"{lines} not valid {primary} {were} read as {label}"
         out.append(
-            f"{FALLBACK_MARK} {n:,} {lines} not valid {primary} were read as {label} "
-            f"({lines} {some}); if that is wrong, give the file's encoding "
-            "(--encoding, e.g. gb18030, utf-16, latin-1)"
+            f"{FALLBACK_MARK} {n:,} {what} ({lines} {some}); if that is wrong, give the "
+            "file's encoding (--encoding, e.g. gb18030, utf-16, latin-1)"
         )
     return out
 
 
+#: What the warnings call the fallback encodings.
+LABELS = {FALLBACK: FALLBACK_LABEL, "gb18030": "GB18030 (Chinese)", "utf-8": "UTF-8"}
 #: How every fallback warning starts (pieces make it again from summed counts).
 FALLBACK_MARK = "text encoding:"
 
@@ -271,13 +290,15 @@ def merge_fallbacks(infos: list[tuple[dict, int]]) -> dict:
 
 class LineDecoder(codecs.IncrementalDecoder):
     """Bytes to text in ``encoding``, whole lines at a time; a line that does not decode
-    is decoded by the first of ``fallbacks`` that reads it (recorded in ``fallbacks``),
-    else with U+FFFD for its bad bytes (recorded as ``"replaced"``). ``evidence``
-    gathers what the lines said (:class:`Evidence`). A UTF-8 byte order mark at the
-    start is decoded as U+FEFF (the readers drop it)."""
+    (or is better read so: module docstring) is decoded in a fallback encoding (recorded
+    in ``fallbacks``), else with U+FFFD for its bad bytes (recorded as ``"replaced"``).
+    ``evidence`` gathers what the lines said (:class:`Evidence`). ``fail``: a line that
+    does not decode raises UnicodeDecodeError instead (the strict first reading). A
+    UTF-8 byte order mark at the start is decoded as U+FEFF (the readers drop it)."""
 
-    def __init__(self, encoding: str = "utf-8", errors: str = "strict") -> None:
+    def __init__(self, encoding: str = "utf-8", errors: str = "strict", fail: bool = False) -> None:
         super().__init__(errors)
+        self.fail = fail
         self.encoding = codecs.lookup(encoding).name
         self._decode = codecs.lookup(encoding).decode  # takes a memoryview: no copy
         self.chain = (FALLBACK,) if self.encoding == "utf-8" else ("utf-8", FALLBACK)
@@ -330,55 +351,79 @@ class LineDecoder(codecs.IncrementalDecoder):
         self._last_cr = seg[b - 1] == 0x0D
 
     def _lines(self, seg: bytes) -> str:
-        """Whole lines decoded: at C speed; where that fails, in UTF-8 the failing lines
-        are found at once (:meth:`_lines_fast`), in another encoding one by one
-        (:meth:`_lines_scan`)."""
+        """Whole lines decoded: at C speed; where that fails (or in GB18030, where a
+        line may be UTF-8) the lines read otherwise are found at once and decoded in runs
+        (:meth:`_lines_fast`); in another encoding one by one (:meth:`_lines_scan`)."""
         try:
             text = self._decode(seg)[0]
         except UnicodeDecodeError as exc:
             at = exc.start
         else:
+            if self.encoding != "gb18030" or seg.isascii():
+                self.evidence.good += _high(seg)
+                self._count(seg, 0, len(seg))
+                return text
+            at = None
+        if self.encoding in ("utf-8", "gb18030"):
+            out = self._lines_fast(seg, at)
+            if out is not None:
+                return out
+        if at is None:  # GB18030 that reads well as it is
             self.evidence.good += _high(seg)
             self._count(seg, 0, len(seg))
             return text
-        if self.encoding == "utf-8":
-            text = self._lines_fast(seg)
-            if text is not None:
-                return text
         return self._lines_scan(seg, at)
 
-    def _lines_fast(self, seg: bytes) -> str | None:
-        """Whole UTF-8 lines some of which fail, decoded without a step per line: numpy
-        finds the failing lines (:meth:`_Bytes.utf8_errors`) and what each is read as;
-        the runs of lines between them are decoded as UTF-8 and the runs of failing lines
-        read alike (with only ASCII between them) as one, each at C speed. The same text,
-        line numbers and evidence as :meth:`_lines_scan` (tests/test_decoding_fast.py);
-        None (then that is used) if a run that should decode does not."""
+    def _lines_fast(self, seg: bytes, at: int | None) -> str | None:
+        """Whole lines, some of which are read otherwise than in the primary encoding,
+        decoded without a step per line. The lines that fail: in UTF-8 found by numpy
+        (:meth:`_Bytes.utf8_errors`), in GB18030 by decoding from each failing line on
+        (``at``: the first; None: none fail). Each is read as GB18030 when its non-ASCII
+        bytes pair as GB2312 characters (the whole-file evidence's test, line by line),
+        as UTF-8 when valid UTF-8 (in GB18030), else as Windows-1252, else with U+FFFD
+        (quarantined). In GB18030 a line that decodes but is valid UTF-8 and does not
+        pair as GB2312 is read as UTF-8 too. The runs of lines between them are decoded
+        in the primary encoding, the runs of lines read alike (with only ASCII between
+        them) as one, each at C speed; line numbers and evidence as
+        :meth:`_lines_scan` (tests/test_decoding_fast.py). None if nothing is read
+        otherwise, or if a run that should decode does not (then that is used)."""
         b = _Bytes(seg)
-        bad = _distinct(b.line[b.utf8_errors()])
-        if not len(bad):
-            return None
-        starts, stops = b.span(bad)
+        utf8_errors = b.per_line(b.utf8_errors())
+        misses = b.per_line(b.gb2312_misses())
         per_line = b.per_line()
-        high = per_line[bad]
-        undefined = b.per_line(_CP1252_UNDEFINED[b.value])[bad]
-        how = np.where(undefined > 0, _AS_REPLACED, _AS_FALLBACK)
-        # runs: failing lines read alike, with only ASCII (line ends) between them
+        undefined = b.per_line(_CP1252_UNDEFINED[b.value])
+        if self.encoding == "utf-8":
+            failing = np.flatnonzero(utf8_errors)
+            lines = failing
+            how = np.where(misses[lines] == 0, _GB, np.where(undefined[lines] > 0, _REP, _CP))
+        else:
+            failing = np.zeros(0, np.int64) if at is None else self._failing(seg, at, b)
+            better = (per_line > 0) & (utf8_errors == 0) & (misses > 0)
+            better[failing] = False
+            lines = np.union1d(failing, np.flatnonzero(better))
+            how = np.where(utf8_errors[lines] == 0, _U8, np.where(undefined[lines] > 0, _REP, _CP))
+        if not len(lines):
+            return None
+        if self.fail and len(failing):
+            start = int(b.span(failing[:1])[0][0])
+            raise UnicodeDecodeError(self.encoding, seg, start, start + 1, "a line not valid")
+        starts, stops = b.span(lines)
+        # runs: lines read alike, with only ASCII (line ends) between them
         before = np.r_[0, np.cumsum(per_line)]  # non-ASCII bytes before each line
-        gap_high = before[bad[1:]] - before[bad[:-1] + 1]
-        alike = (how[1:] == how[:-1]) & (how[1:] != _AS_REPLACED) & (gap_high == 0)
+        gap_high = before[lines[1:]] - before[lines[:-1] + 1]
+        alike = (how[1:] == how[:-1]) & (how[1:] != _REP) & (gap_high == 0)
         first = np.flatnonzero(np.r_[True, ~alike])
-        last = np.r_[first[1:] - 1, len(bad) - 1]
+        last = np.r_[first[1:] - 1, len(lines) - 1]
         view, out, pos = memoryview(seg), [], 0
         try:
             for a, z, h in zip(
                 starts[first].tolist(), stops[last].tolist(), how[first].tolist(), strict=True
             ):
                 out.append(self._decode(view[pos:a])[0])
-                if h == _AS_REPLACED:
+                if h == _REP:
                     out.append(seg[a:z].decode(self.encoding, errors="replace"))
                 else:
-                    out.append(seg[a:z].decode(FALLBACK))
+                    out.append(seg[a:z].decode(_READ_AS[h]))
                 pos = z
             out.append(self._decode(view[pos:])[0])
         except UnicodeDecodeError:
@@ -389,24 +434,46 @@ class LineDecoder(codecs.IncrementalDecoder):
         after_cr = b.arr[np.maximum(prev, 0)] == 0x0D
         after_cr[prev < 0] = self._last_cr
         passed = np.r_[0, np.cumsum(~((b.arr[ends] == 0x0A) & after_cr))]
-        numbers = self.line + 1 + passed[bad]
+        numbers = self.line + 1 + passed[lines]
         for h in dict.fromkeys(how[np.r_[True, how[1:] != how[:-1]]].tolist()):
-            name = FALLBACK if h == _AS_FALLBACK else "replaced"
-            self.fallbacks.add_many(name, numbers[how == h])
-        # evidence, as line by line
+            self.fallbacks.add_many(_READ_AS[h], numbers[how == h])
+        # evidence: of the failing lines, as line by line
         ev = self.evidence
-        exact = min(max(EVIDENCE_LINES - ev.bad_lines, 0), len(bad))
-        if exact:
-            gb = b.per_line(b.gb2312_misses())[bad[:exact]] == 0
-            ev.gb += int(high[:exact][gb].sum())  # GB2312 pairs decode as GB18030
+        high = per_line[failing]
+        exact = min(max(EVIDENCE_LINES - ev.bad_lines, 0), len(failing))
+        if exact:  # GB2312 pairs all decode as GB18030
+            ev.gb += int(high[:exact][misses[failing[:exact]] == 0].sum())
         ev.bad += int(high.sum())
-        ev.bad_lines += len(bad)
-        if exact < len(bad):
+        ev.bad_lines += len(failing)
+        if exact < len(failing):
             ev._tail.append(high[exact:])
         ev.good += len(b.high) - int(high.sum())
         self.line += int(passed[-1])
         self._last_cr = seg[-1] == 0x0D
         return "".join(out)
+
+    def _failing(self, seg: bytes, at: int, b: "_Bytes") -> np.ndarray:
+        """The lines (of ``b``) that do not decode, the first at byte ``at``: decoded
+        from each failing line's end on in windows of whole lines that grow while they
+        decode (a failed decode copies its input into the exception: a window, not the
+        rest of the chunk, per failing line)."""
+        view, found = memoryview(seg), []
+        while True:
+            found.append(at)
+            end = _LINE_END.search(seg, at)
+            pos = end.start() if end else len(seg)
+            window = _WINDOW
+            while pos < len(seg):
+                end = _LINE_END.search(seg, pos + window)
+                stop = end.end() if end else len(seg)
+                try:
+                    self._decode(view[pos:stop])
+                except UnicodeDecodeError as exc:
+                    at = pos + exc.start
+                    break
+                pos, window = stop, window * 4
+            else:
+                return np.searchsorted(b.ends, np.array(found, np.int64))
 
     def _lines_scan(self, seg: bytes, at: int) -> str:
         """Whole lines decoded line by line from the failing line (``at``) on. After a
@@ -439,6 +506,8 @@ class LineDecoder(codecs.IncrementalDecoder):
 
     def _bad(self, line: bytes) -> str:
         """One line (no line end) that does not decode in the primary encoding."""
+        if self.fail:
+            raise UnicodeDecodeError(self.encoding, line, 0, len(line), "a line not valid")
         number = self.line + 1
         self._last_cr = False
         high = _high(line)
@@ -453,7 +522,10 @@ class LineDecoder(codecs.IncrementalDecoder):
                 ev.gb += high
             except UnicodeDecodeError:
                 pass
-        for enc in self.chain:
+        chain = self.chain
+        if self.encoding == "utf-8" and 2 * len(_GB2312_PAIR.findall(line)) == high:
+            chain = ("gb18030", *chain)  # Chinese text, as the evidence's test says
+        for enc in chain:
             try:
                 text = line.decode(enc)
             except UnicodeDecodeError:

@@ -61,6 +61,7 @@ from wakeline.core.io.reader import (
     encoding_note,
     line_pieces,
     parse_zone,
+    strict_mode,
     time_counts,
     with_final,
 )
@@ -192,7 +193,7 @@ def read_in_pieces(
     # does not decode sends every piece to the next), then as the whole file's evidence
     # says, line by line (decoding.py); an encoding the user named, replacing.
     judge = not sn.encoding_given and line_decodable(sn.encoding) and not sn.line_fallback
-    encodings = [(sn.encoding, "lines" if sn.line_fallback else "strict")]
+    encodings = [(sn.encoding, "lines" if sn.line_fallback else strict_mode(sn))]
     if not judge:
         encodings.append((sn.encoding, "replace"))
     step = 0
@@ -201,12 +202,15 @@ def read_in_pieces(
             encoding, mode = encodings[step]
             # given: each piece decodes in this encoding as the whole file was judged
             piece_sn = dataclasses.replace(
-                sn, encoding=encoding, encoding_given=True, line_fallback=mode == "lines"
+                sn,
+                encoding=encoding,
+                encoding_given=True,
+                line_fallback=mode != "strict",
+                line_strict=mode == "strict-lines",
             )
             try:
-                parts = _read_all(
-                    piece_sn, read, line_by_line, mode == "strict", sink, piece_file, progress
-                )
+                strict = mode in ("strict", "strict-lines")
+                parts = _read_all(piece_sn, read, line_by_line, strict, sink, piece_file, progress)
                 break
             except _Again as again:
                 if reset is None:

@@ -386,8 +386,9 @@ class _ChunkedStream:
 class _Utf8Stream(_ChunkedStream):
     """A file read as text in ``encoding`` and handed on as UTF-8 bytes, chunk by chunk
     (for pyarrow, which reads UTF-8): undecodable bytes become U+FFFD when ``errors`` is
-    ``"replace"`` (those rows are then quarantined); with ``"lines"`` a line that does
-    not decode is read in a fallback encoding (``decoder.fallbacks``:
+    ``"replace"`` (those rows are then quarantined); with ``"strict-lines"`` (a file
+    judged GB18030) strictly, but a line better read as UTF-8 is (``decoder.fallbacks``);
+    with ``"lines"`` a line that does not decode is read in a fallback encoding (``decoder.fallbacks``:
     :class:`~wakeline.core.io.decoding.LineDecoder`); a byte order mark is dropped."""
 
     CHUNK = 4 * 1024 * 1024
@@ -395,8 +396,8 @@ class _Utf8Stream(_ChunkedStream):
     def __init__(self, sn: Sniff, encoding: str, errors: str = "strict") -> None:
         self._opened = open_data(sn.path, sn.compression)
         self._fh = self._opened.__enter__()
-        if errors == "lines":
-            self._dec = self.decoder = LineDecoder(encoding)
+        if errors in ("lines", "strict-lines"):
+            self._dec = self.decoder = LineDecoder(encoding, fail=errors == "strict-lines")
         else:
             self._dec = codecs.getincrementaldecoder(encoding)(errors=errors)
         self._buf = b""
@@ -591,6 +592,15 @@ class _Rows:
     fallback: dict = field(default_factory=dict)
 
 
+def strict_mode(sn: Sniff) -> str:
+    """How the file is first read: strictly, and for a file judged GB18030 (or a piece of
+    one) with its lines that are UTF-8 rather than GB18030 read as UTF-8, reported
+    (``"strict-lines"``: :mod:`wakeline.core.io.decoding`)."""
+    judged = sn.line_strict or not (sn.encoding_given or sn.line_fallback)
+    gb = line_decodable(sn.encoding) and codecs.lookup(sn.encoding).name == "gb18030"
+    return "strict-lines" if judged and gb else "strict"
+
+
 def _is_decode_error(exc: Exception) -> bool:
     text = str(exc)
     return isinstance(exc, UnicodeDecodeError) or "UTF8" in text or "UTF-8" in text
@@ -617,10 +627,10 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
     (rows quarantined); bigger blocks for very long lines; and a line-by-line parse when
     a stray quote swallowed lines (checked by counting the physical lines;
     ``unbalanced``: known beforehand, a piece of such a file)."""
-    if sn.line_fallback:  # judged already (a piece of a file)
+    if sn.line_fallback and not sn.line_strict:  # judged already (a piece of a file)
         attempts = [(sn.encoding, "lines")]
     else:
-        attempts = [(sn.encoding, "strict"), (sn.encoding, "replace")]
+        attempts = [(sn.encoding, strict_mode(sn)), (sn.encoding, "replace")]
     judge = not sn.encoding_given and line_decodable(sn.encoding) and not sn.line_fallback
     notes: list[str] = []
     careful = False
@@ -647,8 +657,9 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
             text = str(exc)
             # "CSV parse error": the invalid-row handler could not even decode the row.
             decoding = errors != "lines" and _is_decode_error(exc)  # "lines" cannot fail
-            if decoding or ("CSV parse error" in text and errors == "strict"):
-                if judge and errors == "strict":  # the whole file's evidence decides
+            strict = errors in ("strict", "strict-lines")
+            if decoding or ("CSV parse error" in text and strict):
+                if judge and strict:  # the whole file's evidence decides
                     attempts[step + 1] = (decide_file(sn.path, sn.compression), "lines")
                 if step + 1 < len(attempts):
                     step += 1
@@ -4111,7 +4122,7 @@ def stream_points(
     edges = edge_state()
     size = max(sn.path.stat().st_size, 1)
     consumed = [0]
-    opened = _open_parsed(sn, sn.encoding, "strict")
+    opened = _open_parsed(sn, sn.encoding, strict_mode(sn))
     # How far through the file on disk (a compressed file's text is larger than it).
     done = getattr(opened, "fraction", lambda: consumed[0] / size)
 
@@ -4255,6 +4266,9 @@ def stream_points(
                 skip = 0
             if totals["rows_imported"] == 0:
                 raise _Fallback  # nothing imported: let the whole-file path say why
+            decoder = getattr(getattr(opened, "_stream", opened), "decoder", None)
+            if decoder is not None and decoder.fallbacks.counts:
+                raise _Fallback  # lines read as UTF-8: the whole-file path reports them
     except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
         raise _Fallback from exc
 

@@ -94,6 +94,9 @@ class Sniff:
     #: (:mod:`wakeline.core.io.decoding`); set once the whole file was judged so (the
     #: reader, the pieces of a file), never by :func:`sniff`.
     line_fallback: bool = False
+    #: ... and yet strictly, but for the lines better read as UTF-8 (a piece of a file
+    #: judged GB18030, read first so: reader.strict_mode).
+    line_strict: bool = False
 
     @property
     def parse_delimiter(self) -> str:
