@@ -112,13 +112,15 @@ class _Bytes:
     positions, ``value``: the bytes, ``line``: their lines) and its line ends (``ends``:
     positions of CR and LF; a line lies between two, an empty one between CR and LF)."""
 
-    def __init__(self, seg: bytes) -> None:
+    def __init__(self, seg: bytes, lines_only: bool = False) -> None:
         arr = np.frombuffer(seg, np.uint8)
         self.n = len(arr)
         self.arr = arr
+        self.ends = np.flatnonzero((arr == 0x0A) | (arr == 0x0D))
+        if lines_only:
+            return
         self.high = np.flatnonzero(arr >= 0x80)
         self.value = arr[self.high]
-        self.ends = np.flatnonzero((arr == 0x0A) | (arr == 0x0D))
         self.line = np.searchsorted(self.ends, self.high)  # 0-based, in this segment
 
     def span(self, lines: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -387,21 +389,16 @@ class LineDecoder(codecs.IncrementalDecoder):
         them) as one, each at C speed; line numbers and evidence as
         :meth:`_lines_scan` (tests/test_decoding_fast.py). None if nothing is read
         otherwise, or if a run that should decode does not (then that is used)."""
-        b = _Bytes(seg)
-        utf8_errors = b.per_line(b.utf8_errors())
-        misses = b.per_line(b.gb2312_misses())
-        per_line = b.per_line()
-        undefined = b.per_line(_CP1252_UNDEFINED[b.value])
         if self.encoding == "utf-8":
-            failing = np.flatnonzero(utf8_errors)
-            lines = failing
-            how = np.where(misses[lines] == 0, _GB, np.where(undefined[lines] > 0, _REP, _CP))
+            b = _Bytes(seg)
+            per_line = b.per_line()
+            lines = failing = np.flatnonzero(b.per_line(b.utf8_errors()))
+            paired = b.per_line(b.gb2312_misses())[failing] == 0
+            undefined = b.per_line(_CP1252_UNDEFINED[b.value])[failing]
+            how = np.where(paired, _GB, np.where(undefined > 0, _REP, _CP))
         else:
-            failing = np.zeros(0, np.int64) if at is None else self._failing(seg, at, b)
-            better = (per_line > 0) & (utf8_errors == 0) & (misses > 0)
-            better[failing] = False
-            lines = np.union1d(failing, np.flatnonzero(better))
-            how = np.where(utf8_errors[lines] == 0, _U8, np.where(undefined[lines] > 0, _REP, _CP))
+            b, per_line, failing, lines, how = self._gb_lines(seg, at)
+            paired = np.zeros(len(failing), bool)  # GB2312 pairs decode: these do not
         if not len(lines):
             return None
         if self.fail and len(failing):
@@ -442,15 +439,74 @@ class LineDecoder(codecs.IncrementalDecoder):
         high = per_line[failing]
         exact = min(max(EVIDENCE_LINES - ev.bad_lines, 0), len(failing))
         if exact:  # GB2312 pairs all decode as GB18030
-            ev.gb += int(high[:exact][misses[failing[:exact]] == 0].sum())
+            ev.gb += int(high[:exact][paired[:exact]].sum())
         ev.bad += int(high.sum())
         ev.bad_lines += len(failing)
         if exact < len(failing):
             ev._tail.append(high[exact:])
-        ev.good += len(b.high) - int(high.sum())
+        ev.good += int(per_line.sum()) - int(high.sum())
         self.line += int(passed[-1])
         self._last_cr = seg[-1] == 0x0D
         return "".join(out)
+
+    def _gb_lines(self, seg: bytes, at: int | None) -> tuple:
+        """In GB18030: the lines that fail (``at``: the first; None: none) and those valid
+        UTF-8 whose non-ASCII bytes do not pair as GB2312 characters, and what each is
+        read as. A line is looked at one by one only if no byte rules UTF-8 out (a lead
+        byte not followed by a continuation byte, or a continuation byte after ASCII:
+        nearly every line of Chinese text in GB18030 has one)."""
+        b = _Bytes(seg, lines_only=True)
+        arr = b.arr
+        high = arr >= 0x80
+        # non-ASCII bytes per line, from its runs of them (few: Chinese text is runs)
+        edge = np.empty(b.n + 1, bool)
+        edge[0], edge[-1] = high[0], high[-1]
+        np.not_equal(high[1:], high[:-1], out=edge[1:-1])
+        run = np.flatnonzero(edge).reshape(-1, 2)  # [start, end) of each run
+        run_line = np.searchsorted(b.ends, run[:, 0])
+        lines = len(b.ends) + 1
+        per_line = np.bincount(run_line, run[:, 1] - run[:, 0], lines).astype(np.int64)
+        failing = np.zeros(0, np.int64) if at is None else self._failing(seg, at, b)
+        lead, cont = arr >= 0xC0, (arr & 0xC0) == 0x80
+        broken = np.empty(b.n, bool)  # only ever inside a run
+        broken[:-1] = lead[:-1] & ~cont[1:]
+        broken[-1] = lead[-1]
+        broken[1:] |= cont[1:] & ~high[:-1]
+        broken[0] |= cont[0]
+        maybe = per_line > 0
+        if len(run):
+            broken_runs = np.logical_or.reduceat(broken, run[:, 0])
+            maybe &= np.bincount(run_line, broken_runs, lines) == 0
+        maybe[failing] = False
+        better = []
+        maybe = np.flatnonzero(maybe)
+        starts, stops = b.span(maybe)
+        for j, s, e in zip(maybe.tolist(), starts.tolist(), stops.tolist(), strict=True):
+            line = seg[s:e]
+            try:
+                line.decode("utf-8")
+            except UnicodeDecodeError:
+                continue
+            if 2 * len(_GB2312_PAIR.findall(line)) != per_line[j]:
+                better.append(j)
+        lines = np.union1d(failing, np.array(better, np.int64))
+        how = np.full(len(lines), _U8)
+        fails = np.flatnonzero(np.isin(lines, failing))
+        starts, stops = b.span(lines[fails])
+        for k, s, e in zip(fails.tolist(), starts.tolist(), stops.tolist(), strict=True):
+            how[k] = self._read_as(seg[s:e])
+        return b, per_line, failing, lines, how
+
+    @staticmethod
+    def _read_as(line: bytes) -> int:
+        """What a line not valid GB18030 is read as: UTF-8, Windows-1252 or neither."""
+        for how in (_U8, _CP):
+            try:
+                line.decode(_READ_AS[how])
+                return how
+            except UnicodeDecodeError:
+                pass
+        return _REP
 
     def _failing(self, seg: bytes, at: int, b: "_Bytes") -> np.ndarray:
         """The lines (of ``b``) that do not decode, the first at byte ``at``: decoded
