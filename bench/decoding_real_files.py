@@ -3,6 +3,11 @@ $WAKELINE_SHARED/data/real and tests/data, judged (``decide_file``) and decoded 
 line decoder as UTF-8 and as GB18030 (``decode_text``): a digest of each text and its
 fallback lines, saved once and compared after a change.
 
+``python bench/decoding_real_files.py chinese``: how often the GB18030 rule for UTF-8
+lines misjudges real Chinese text (the zh_CN translations, line by line): lines that in
+GB18030 are valid UTF-8 not pairing as GB2312 (would be misread as UTF-8), and lines that
+in UTF-8 pair whole as GB2312 (would stay garbled as GB18030).
+
 Run: ``python bench/decoding_real_files.py save before.json`` (before the change), then
 ``python bench/decoding_real_files.py compare before.json``: prints the files compared,
 those whose reading changed (the encoding judged, the text in it, its fallback lines),
@@ -41,7 +46,36 @@ def digest(path: Path) -> dict:
     return out
 
 
+def chinese() -> None:
+    import re
+
+    from wakeline.core.io.decoding import _GB2312_PAIR, _high
+
+    def pairs(data: bytes) -> bool:
+        return 2 * len(_GB2312_PAIR.findall(data)) == _high(data)
+
+    ts = (ROOT / "resources/translations/wakeline_zh_CN.ts").read_text(encoding="utf-8")
+    texts = re.findall(r"<translation[^>]*>(.*?)</translation>", ts, re.S)
+    lines = [x for t in texts for x in t.splitlines() if not x.isascii()]
+    misread = stay = valid = 0
+    for line in lines:
+        gb, u8 = line.encode("gb18030"), line.encode("utf-8")
+        try:
+            gb.decode("utf-8")
+            valid += 1
+            misread += not pairs(gb)
+        except UnicodeDecodeError:
+            pass
+        stay += pairs(u8)
+    print(f"{len(lines)} lines of Chinese text; as GB18030 valid UTF-8: {valid}, of those read")
+    print(f"as UTF-8 by the rule (wrong): {misread}; as UTF-8 pairing whole as GB2312 (left")
+    print(f"as GB18030, garbled): {stay}")
+
+
 def main() -> None:
+    if sys.argv[1] == "chinese":
+        chinese()
+        return
     what, where = sys.argv[1], Path(sys.argv[2])
     got = {str(p): digest(p) for p in files()}
     if what == "save":
