@@ -43,7 +43,7 @@ import pandas as pd
 
 from wakeline.core.errors import InputError, NotTrackData
 from wakeline.core.pipeline import STEPS, Pipeline, params_to_json
-from wakeline.core.schema import DEFAULT_SENSOR, TIME_DTYPE, ordered_columns
+from wakeline.core.schema import COURSE_READ, DEFAULT_SENSOR, TIME_DTYPE, ordered_columns
 from wakeline.core.words import count as count_of
 
 #: Steps that run bucket by bucket (each track on its own).
@@ -833,17 +833,23 @@ def read_parts_file(path: Path) -> pd.DataFrame | None:
 def parts_to_csv(folder: Path, path: Path, points: bool = True) -> int:
     """Write a step's partitions as one CSV, partition after partition (bounded memory),
     with the writer the command line uses. Returns the rows written."""
+    import pyarrow.parquet as pq
+
     from wakeline.core.io import write_csv, write_points
     from wakeline.core.io.writer import atomic_path
 
     files = sorted(folder.glob("*.parquet"))
     rows, header, columns = 0, None, None
+    # the courses as read (COURSE_READ) in every partition's rows when one holds them
+    course_read = points and any(COURSE_READ in pq.read_schema(f).names for f in files)
     one = path.with_name(path.name + ".one.part")
     with atomic_path(path) as tmp, open(tmp, "wb") as fh:
         for f in files:
             df = read_parts_file(f)
             if columns is None:
                 columns = ordered_columns(df) if points else list(df.columns)
+                if course_read and COURSE_READ not in columns:
+                    columns.append(COURSE_READ)
             df = df.reindex(columns=columns)
             (write_points if points else write_csv)(df, one)
             with open(one, "rb") as src:

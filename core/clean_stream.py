@@ -68,7 +68,7 @@ from wakeline.core.clean import (
 from wakeline.core.errors import Cancelled, InputError
 from wakeline.core.io.writer import _NEEDS_QUOTES, needs_quotes
 from wakeline.core.progress import Progress, null_progress
-from wakeline.core.schema import DEFAULT_SENSOR
+from wakeline.core.schema import COURSE_READ, DEFAULT_SENSOR
 from wakeline.core.tracks import sorted_with_index
 
 #: Scratch column: a point's row number in the file's point table (its default wl_id).
@@ -255,9 +255,13 @@ class _Spill:
         # block written if a value that needs it is kept (the whole table's writer's choice)
         self.quote: set[str] = set()
         self.quote_keys: dict[str, list[np.ndarray]] = {}
+        # whether some piece holds a course the import changed (COURSE_READ): every block
+        # then carries the column (empty where none), as the whole table does
+        self.course_read = False
 
     def __call__(self, points: pd.DataFrame) -> None:
         n = len(points)
+        self.course_read |= COURSE_READ in points.columns
         points[ROW] = np.arange(self.rows, self.rows + n, dtype="int64")
         self.rows += n
         if ID in points.columns:
@@ -420,6 +424,8 @@ def _clean_runs(
         order = np.argsort(src[ROW].to_numpy(), kind="stable")  # file order again
         src = src.take(order).reset_index(drop=True)
         row = src.pop(ROW).to_numpy()
+        if spill.course_read and COURSE_READ not in src.columns:
+            src[COURSE_READ] = np.nan  # a block of tracks whose courses were all kept
         src[ID] = pd.to_numeric(src[ID]).astype("int64") if given else row
         pts, index = sorted_with_index(src)
         del src

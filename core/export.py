@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.io.writer import atomic_path, write_csv
-from wakeline.core.schema import time_seconds, written_columns
+from wakeline.core.schema import in_file_order, time_seconds, written_columns
 from wakeline.core.tracks import sorted_with_index
 
 _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
@@ -72,8 +72,11 @@ def check_text_path(path: str | Path) -> None:
 
 def export_csv(points: pd.DataFrame, path: str | Path) -> None:
     """Canonical CSV (canonical columns first), spreadsheet-safe, written atomically;
-    a name :func:`check_text_path` refuses raises InputError and writes nothing."""
+    a name :func:`check_text_path` refuses raises InputError and writes nothing. A layer
+    that carries its file's rows (the window's) is written in the file's order
+    (:func:`~wakeline.core.schema.in_file_order`)."""
     check_text_path(path)
+    points = in_file_order(points)
     write_csv(spreadsheet_safe(points[written_columns(points)]), path)
 
 

@@ -58,10 +58,30 @@ def seconds_to_time(seconds: np.ndarray) -> pd.Series:
 #: track order, e.g. the window's source layers): "export as it came in" writes the rows
 #: in that order again. Internal: never exported.
 FILE_ROW = "wl_row"
+
+
+def in_file_order(points: pd.DataFrame) -> pd.DataFrame:
+    """``points`` in its file's order when it carries a usable file row
+    (:data:`FILE_ROW` on every row, no value twice: a source layer of the window, or one
+    a step made from it without adding points), else as given. The window's File ▸
+    Export CSV and Export ▸ As it came in write a layer's rows so, and
+    ``wakeline export --like`` of the CSV writes IN's order: the same bytes as the
+    window's As it came in (h155)."""
+    if FILE_ROW not in points.columns:
+        return points
+    rows = pd.to_numeric(points[FILE_ROW], errors="coerce")
+    if not (rows.notna().all() and rows.is_unique):
+        return points
+    order = np.argsort(rows.to_numpy(), kind="stable")
+    if (order[1:] > order[:-1]).all():
+        return points
+    return points.iloc[order]
+
+
 #: The courses an import changed (360.0 read as 0; 380.4 or AIS's 360 blanked), as the
 #: file had them, NaN on the other rows; absent when it changed none. ``export --like``
-#: writes them back where no step changed the course since. Internal: not written to the
-#: canonical CSV (h135).
+#: writes them back where no step changed the course since. Written to the canonical CSV
+#: (so ``import`` then ``export --like`` gives the file back, h155), never by a layout.
 COURSE_READ = "course_read"
 
 

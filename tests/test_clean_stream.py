@@ -384,3 +384,28 @@ def test_a_repeated_hour_read_in_pieces_falls_back_to_the_whole_file(tmp_path, m
     assert len(sizes) > 2 and sizes[-1] == src.stat().st_size > 3 * max(sizes[:-1])
     monkeypatch.undo()
     _same_as_in_memory(tmp_path, src, got, 200, tz="Europe/Oslo")
+
+
+@pytest.mark.parametrize("block_rows", [150, 10**6])
+def test_a_late_course_as_read_is_in_every_block(tmp_path, monkeypatch, block_rows):
+    """h155: the canonical CSV carries the courses the import changed (course_read); a
+    streamed clean whose only changed courses (380.4, 360.0) come in later pieces wrote
+    blocks without the column under a header with it (a row one cell short)."""
+    src = tmp_path / "scattered.csv"
+    scattered_file(src, damaged=False)
+    lines = src.read_text().splitlines()
+    for k, value in ((len(lines) - 30, "380.4"), (len(lines) - 300, "360.0")):
+        cells = lines[k].split(",")
+        cells[6] = value
+        lines[k] = ",".join(cells)
+    src.write_text("\n".join(lines) + "\n")
+    monkeypatch.setattr("wakeline.core.clean.BLOCK_ROWS", block_rows)
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)  # a dozen pieces
+    got = clean_file(src, tmp_path / "b.csv", tmp_path / "b_rej.csv", block_rows=block_rows)
+    assert got.streamed
+    want = clean(read_points(src).points)
+    write_points(want.points, tmp_path / "a.csv")
+    write_csv(want.rejected, tmp_path / "a_rej.csv")
+    assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
+    assert (tmp_path / "b_rej.csv").read_bytes() == (tmp_path / "a_rej.csv").read_bytes()
+    assert "course_read" in (tmp_path / "b.csv").read_text().splitlines()[0]

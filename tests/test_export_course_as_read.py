@@ -3,6 +3,7 @@ step did since (h135; h122's L2: a course of 380.4 came back empty and 360.0 as 
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from wakeline.core.io import read_points
 from wakeline.core.io.export_like import courses_as_read, export_like
@@ -61,13 +62,61 @@ def test_a_course_a_step_changed_is_written_as_the_step_left_it(tmp_path):
     assert rep["courses_as_read"] == 1
 
 
-def test_the_canonical_csv_and_presets_hold_the_table_values(tmp_path):
+def test_the_canonical_csv_carries_the_courses_as_read_presets_the_table_values(tmp_path):
     src = tmp_path / "c.csv"
     src.write_text(TEXT)
     pts = read_points(src).points
     write_points(pts, tmp_path / "canon.csv")
-    head = (tmp_path / "canon.csv").read_text().splitlines()[0]
-    assert COURSE_READ not in head  # internal: a streamed import could not know it
+    lines = (tmp_path / "canon.csv").read_text().splitlines()
+    assert lines[0].split(",")[-2:] == ["course", COURSE_READ]  # for export --like (h155)
+    assert [line.split(",")[-2:] for line in lines[1:]] == [
+        ["0", "360"],
+        ["", "380.4"],
+        ["90", ""],
+        ["", "-5.5"],
+        ["0", ""],
+    ]
     rep = export_like(pts, preset_layout("canonical"), tmp_path / "preset.csv")
     assert rep["courses_as_read"] == 0
     assert COURSE_READ not in (tmp_path / "preset.csv").read_text().splitlines()[0]
+
+
+def _late_course_file(tmp_path, quoted=False):
+    """300 rows; the only course the import changes (380.4) on the last but one."""
+    rows = [
+        f"{1 + k % 3},2024-05-01T10:{k // 60:02d}:{k % 60:02d}Z,{59 + k * 1e-4:.4f},"
+        f"{10 + k * 1e-4:.4f},5.0,{'380.4' if k == 298 else f'{(k * 7) % 360}.5'},n{k}"
+        for k in range(300)
+    ]
+    if quoted:  # quotes in the file's start: read in pieces by the importer
+        rows[0] = rows[0].replace(",n0", ',"n,0"')
+    src = tmp_path / ("q.csv" if quoted else "late.csv")
+    src.write_text("track,time,lat,lon,speed,course,note\n" + "\n".join(rows) + "\n")
+    return src
+
+
+@pytest.mark.parametrize("quoted", [False, True])
+def test_import_then_export_like_gives_the_file_back_when_streamed(
+    tmp_path, monkeypatch, capsys, quoted
+):
+    """Operator test h150 (4a): `wakeline import` wrote its canonical CSV without the
+    courses as read, so `wakeline export --like` of it wrote ATD's 380.4 (line 72,509)
+    empty. The canonical CSV carries them, also when the first changed course comes in a
+    later piece of a streamed import (the file is written again with the column): the
+    same bytes as the whole read's, and the round trip is byte for byte."""
+    from wakeline.app.cli import main
+    from wakeline.core.io import import_to_csv, reader
+
+    src = _late_course_file(tmp_path, quoted)
+    whole = tmp_path / "whole.csv"
+    write_points(read_points(src).points, whole)
+    monkeypatch.setattr(reader, "STREAM_BYTES", 1000)  # many pieces
+    canon = tmp_path / "canon.csv"
+    import_to_csv(src, canon)
+    assert canon.read_bytes() == whole.read_bytes()
+    assert canon.read_text().splitlines()[0].endswith(",course,note," + COURSE_READ)
+    back = tmp_path / "back.csv"
+    assert main(["import", str(src), "-o", str(canon)]) == 0
+    assert main(["export", str(canon), "-o", str(back), "--like", str(src)]) == 0
+    assert back.read_bytes() == src.read_bytes()
+    assert "1 course(s) written as the file had them" in capsys.readouterr().err

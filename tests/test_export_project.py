@@ -105,3 +105,19 @@ def test_the_window_s_file_row_is_never_written(tmp_path):
         out = tmp_path / f"{write.__name__}.csv"
         write(pts, out)
         assert "wl_row" not in out.read_text().splitlines()[0]
+
+
+def test_a_table_with_its_file_rows_is_exported_in_the_file_s_order(tmp_path):
+    """h155: the window's layers are kept in track order with each point's file row; the
+    canonical CSV of one is written in the file's order (a table whose file rows repeat
+    or are missing, e.g. points a step added, as given)."""
+    pts = simulate.demo_scene(seed=1).head(60).reset_index(drop=True)
+    shuffled = pts.assign(wl_row=range(len(pts))).sample(frac=1.0, random_state=2)
+    out, plain = tmp_path / "out.csv", tmp_path / "plain.csv"
+    export_csv(shuffled, out)
+    export_csv(pts, plain)
+    assert out.read_bytes() == plain.read_bytes()
+    repeated = shuffled.assign(wl_row=[0] + list(range(len(pts) - 1)))
+    export_csv(repeated, out)
+    export_csv(shuffled.drop(columns="wl_row"), plain)
+    assert out.read_bytes() == plain.read_bytes()

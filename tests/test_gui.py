@@ -1005,6 +1005,37 @@ def test_an_untouched_layer_comes_back_as_it_came_in_row_order_and_all(window, t
     assert "wl_row" not in csv_out.read_text().splitlines()[0]
 
 
+def test_canonical_export_of_an_untouched_layer_exports_like_as_it_came_in(window, tmp_path):
+    """Operator test h150 (4b): File ▸ Export CSV of an unchanged source layer wrote its
+    rows in track order (the window keeps layers sorted), so `wakeline export --like` of
+    it wrote the file's lines in batch/time order, not the file's (docs/export.md: the
+    same bytes as the window's As it came in). The canonical CSV of a layer that carries
+    its file rows is written in the file's order; a course the import blanked (380.4)
+    comes back too."""
+    from wakeline.app.cli import main
+
+    src = tmp_path / "radar.csv"
+    df = simulate.demo_scene(seed=3).head(400).sort_values("time", kind="stable")
+    lines = ["SendTime,nNO,lon,lat,course,SendShipNO"]
+    secs = (df["time"] - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds().astype(int)
+    for k, (s, t, b, lon, lat) in enumerate(
+        zip(df["sensor"], secs, df["batch"], df["lon"], df["lat"], strict=True)
+    ):
+        course = "380.4" if k == 250 else f"{(k * 7) % 360}.5"
+        lines.append(f"{t},{b},{lon:.6f},{lat:.6f},{course},{s}")
+    src.write_text("\n".join(lines) + "\n")
+    lid = load(window, src)
+    assert not window.layers[lid].points["wl_row"].is_monotonic_increasing  # stored sorted
+    came, canon, like = tmp_path / "came.csv", tmp_path / "canonical.csv", tmp_path / "like.csv"
+    assert window.export_as_came_in(came) is not None
+    assert window.export("csv", canon) is not None
+    wait_for_jobs(window)
+    assert came.read_bytes() == src.read_bytes()
+    assert "wl_row" not in canon.read_text().splitlines()[0]
+    assert main(["export", str(canon), "-o", str(like), "--like", str(src)]) == 0
+    assert like.read_bytes() == came.read_bytes()
+
+
 def test_map_image_and_relative_times(window, tmp_path):
     src = tmp_path / "scene.csv"
     df = simulate.demo_scene().head(400)

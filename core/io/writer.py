@@ -382,18 +382,22 @@ def _write_body(table: pa.Table, fh, quote: frozenset[str]) -> None:
         pacsv.write_csv(table, fh, options)
 
 
-def _canonical_columns(points: pd.DataFrame) -> list[str]:
-    """The columns of a canonical CSV: :func:`ordered_columns` without the courses as
-    read (:data:`COURSE_READ`, which a streamed import cannot know before its last piece)."""
-    return [c for c in ordered_columns(points) if c != COURSE_READ]
-
-
 def write_points(
     points: pd.DataFrame, path: str | Path, quote: frozenset[str] = frozenset()
 ) -> None:
-    """Write the canonical point table (canonical columns first, extras after);
-    ``quote`` as for :func:`write_csv`."""
-    write_csv(points[_canonical_columns(points)], path, quote)
+    """Write the canonical point table (canonical columns first, extras after, the
+    courses as the file had them, :data:`COURSE_READ`, among them when the import changed
+    some: ``export --like`` of the file writes them back); ``quote`` as for
+    :func:`write_csv`."""
+    write_csv(points[ordered_columns(points)], path, quote)
+
+
+def _with_courses_read(table: pa.Table, names: list[str]) -> pa.Table:
+    """A part of a canonical CSV in the header's columns ``names``: the courses as read
+    (:data:`COURSE_READ`) empty where the part has none (it changed no course)."""
+    if COURSE_READ not in table.column_names:
+        table = table.append_column(COURSE_READ, pa.nulls(table.num_rows, pa.float64()))
+    return table.select(names)
 
 
 class PointParts:
@@ -401,8 +405,10 @@ class PointParts:
     written to ``out`` as :func:`write_points` writes the whole table: a text column is
     quoted in every part when a value anywhere needs quotes. Each part is appended to
     ``out`` at once and kept as Arrow IPC in ``folder``; when some part's quoting differs
-    from the whole table's (rare: a value needing quotes after the others), :meth:`finish`
-    writes every part again from its IPC with the whole table's quoting. Memory: one
+    from the whole table's (rare: a value needing quotes after the others), or the first
+    course the import changed (:data:`COURSE_READ`) comes after the first part,
+    :meth:`finish` writes every part again from its IPC with the whole table's quoting
+    and columns. Memory: one
     part; scratch: about a fifth of the output's size (LZ4)."""
 
     def __init__(self, folder: Path, out: Path) -> None:
@@ -411,18 +417,30 @@ class PointParts:
         self.parts: list[tuple[Path, frozenset[str]]] = []
         self._fh = None
         self.header = b""
+        self.names: list[str] = []  # the columns of the header
+        self.late = False  # a column (COURSE_READ) came after the header: write again
 
     def __call__(self, points: pd.DataFrame) -> None:
         if not len(points) and self.parts:
             return
-        table = _to_arrow(points[_canonical_columns(points)])
+        table = _to_arrow(points[ordered_columns(points)])
+        if self.parts and COURSE_READ in self.names:
+            table = _with_courses_read(table, self.names)
         names, columns = table.column_names, table.columns
         quoted = frozenset(n for n, c in zip(names, columns, strict=True) if _needs_quotes(c))
         if self._fh is None:
             self._fh = open(self.out, "wb")  # noqa: SIM115 - closed by finish/close
+            self.names = list(names)
             self.header = (",".join(_quote(n) for n in names) + "\n").encode("utf-8")
             self._fh.write(self.header)
-        _write_body(table, self._fh, frozenset())
+        if COURSE_READ in names and COURSE_READ not in self.names:
+            # The first course the import changed came after the header: the file is
+            # written again in finish, every part with the column (empty where none).
+            self.names.append(COURSE_READ)
+            self.header = (",".join(_quote(n) for n in self.names) + "\n").encode("utf-8")
+            self.late = True
+        if not self.late:
+            _write_body(table, self._fh, frozenset())
         ipc_path = self.folder / f"part{len(self.parts):05d}.arrow"
         # LZ4: as fast as writing it plain (2 M rows: 0.05 s against 1 s of CSV), a fifth of
         # the output's size in scratch.
@@ -437,6 +455,7 @@ class PointParts:
         for ipc_path, _ in self.parts:
             ipc_path.unlink(missing_ok=True)
         self.parts.clear()
+        self.names, self.late = [], False
 
     def close(self) -> None:
         if self._fh is not None:
@@ -455,12 +474,15 @@ class PointParts:
             )
             return
         union = frozenset().union(*(q for _, q in self.parts))
-        if any(q != union for _, q in self.parts):
+        if self.late or any(q != union for _, q in self.parts):
             with open(self.out, "wb") as fh:
                 fh.write(self.header)
                 for ipc_path, _ in self.parts:
                     with pa.ipc.open_file(str(ipc_path)) as src:
-                        _write_body(src.read_all(), fh, union)
+                        table = src.read_all()
+                    if COURSE_READ in self.names:
+                        table = _with_courses_read(table, self.names)
+                    _write_body(table, fh, union)
         for ipc_path, _ in self.parts:
             ipc_path.unlink(missing_ok=True)
 
