@@ -21,10 +21,11 @@ import pyarrow.compute as pc
 
 from wakeline.core.errors import InputError
 from wakeline.core.geo import to_local
-from wakeline.core.io.formats import angle_unit, length_unit, speed_unit
+from wakeline.core.io.formats import angle_unit, carried_speed, length_unit, speed_unit
 from wakeline.core.io.layout import (
     INTERNAL_COLUMNS,
     NUMBER_FIELDS,
+    SAMPLE_ROWS,
     AngleFormat,
     Column,
     Layout,
@@ -32,7 +33,7 @@ from wakeline.core.io.layout import (
     TimeFormat,
 )
 from wakeline.core.io.writer import atomic_path
-from wakeline.core.schema import CANONICAL_COLUMNS, COURSE_READ, EPOCH, FILE_ROW
+from wakeline.core.schema import CANONICAL_COLUMNS, COURSE_READ, EPOCH, in_file_order
 
 #: Rows formatted and encoded at a time (bounds the memory of an export).
 CHUNK_ROWS = 500_000
@@ -482,9 +483,70 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
             arr = _text(points[key]) if key else _blank(len(points))
             if any_made:
                 arr = pc.if_else(pa.array(made), "", arr)
+            speed = _carried_speed_cells(points, layout, col, key, made)
+            if speed is not None:
+                arr = pc.if_else(pa.array(speed[0]), speed[1], arr)
             cells.append(arr)
     cells.extend(_text(points[name]) for name in extra)
     return cells
+
+
+def speeds_missing(points: pd.DataFrame, col: Column, key: str | None) -> np.ndarray | None:
+    """The rows that carry no value of ``col``, a speed column the importer carried unread
+    (:func:`~wakeline.core.io.formats.carried_speed`: MTAD's ``vel``), but have a speed:
+    points Wakeline fused or merged, whose rows have no extra columns (h150: a fused MTAD
+    layer's ``vel`` written empty in all 547 rows). None for another column. Points
+    Wakeline made (``interpolated``) are not among them (their columns are left empty)."""
+    if carried_speed(col.name) is None or "speed" not in points.columns:
+        return None
+    absent = points[key].isna().to_numpy() if key else np.ones(len(points), dtype=bool)
+    speed = points["speed"].to_numpy(dtype="float64")
+    return absent & np.isfinite(speed) & ~made_mask(points)
+
+
+def _carried_speed_cells(
+    points: pd.DataFrame, layout: Layout, col: Column, key: str | None, made: np.ndarray
+) -> tuple[np.ndarray, pa.Array] | None:
+    """Where a carried speed column (``vel``, ``sog_kmh``) has no value but the point has
+    a speed: the speed in the unit the column's header names (its rows and cells), in the
+    number style of the column's other cells (else of the mapped speed's, else 2
+    decimals). None when there is none, or the unit is not known (the export's notes say
+    so: :func:`speeds_not_written`)."""
+    rows = speeds_missing(points, col, key)
+    if rows is None or not rows.any():
+        return None
+    per_hour, _ = carried_speed(col.name)
+    if not np.isfinite(per_hour):
+        return None
+    present = points[key].dropna().head(SAMPLE_ROWS) if key is not None else None
+    fmt = NumberFormat.detect(present) if present is not None and len(present) else None
+    if fmt is None:
+        mapped = layout.field_column("speed")
+        fmt = (mapped.number if mapped is not None else None) or NumberFormat(2, "zeros")
+    values = points["speed"].to_numpy(dtype="float64") * 1852.0 / per_hour
+    return rows, format_numbers(values, fmt)
+
+
+def speeds_not_written(points: pd.DataFrame, layout: Layout) -> list[str]:
+    """Notes for the carried speed columns left empty on rows that have a speed: the
+    column's unit is not known (MTAD's ``vel``: m/s on some tracks, knots on others), so
+    the points' speed (knots) is not written there."""
+    notes = []
+    for col in layout.columns:
+        if col.field is not None:
+            continue
+        key = _extra_key(points, col)
+        rows = speeds_missing(points, col, key)
+        if rows is None or not rows.any() or np.isfinite(carried_speed(col.name)[0]):
+            continue
+        notes.append(
+            f"column {col.name!r} left empty on {int(rows.sum()):,} row(s) that carry none "
+            "of its values (points Wakeline fused, or read from a file without the column) although they have a speed: "
+            "it is a speed of no known unit (the file's own values were carried as they "
+            f"came), so the speed in knots is not written there; to have it written, import "
+            f"with --map speed={col.name} (and --speed-unit)"
+        )
+    return notes
 
 
 def _plane_metres(points: pd.DataFrame, layout: Layout, made: np.ndarray) -> dict[str, pa.Array]:
@@ -813,9 +875,7 @@ def export_like(
 
     from wakeline.core.io.writer import write_csv
 
-    order = points[FILE_ROW] if FILE_ROW in points.columns else None
-    if order is not None and order.notna().all() and order.is_unique:
-        points = points.iloc[np.argsort(order.to_numpy(), kind="stable")]  # the file's order
+    points = in_file_order(points)
     own = {c.key or c.name for c in layout.columns if c.field is None}
     notes: list[str] = []
     if own & {"target", "members"}:  # the operator's own columns, not a merge result
@@ -849,6 +909,7 @@ def export_like(
             "as 0 (north) and blanks the others; a course a step changed is written as "
             "the step left it"
         )
+    notes.extend(speeds_not_written(ids, layout))
     report["notes"] = notes
     report["members"] = None
     report["targets"] = None

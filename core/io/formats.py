@@ -105,6 +105,22 @@ def speed_unit(header: str, given: str = "auto") -> tuple[float, str, bool]:
     return (*(SPEED_UNITS[given] or (1852.0, "knots")), False)
 
 
+#: Speed columns a format names but the importer carries as they are, their unit not
+#: known: MTAD's ``vel`` is SOG in m/s on its AIS-clean tracks and about knots on noisy
+#: ones (data/real/mtad-dtwcm/SOURCE.md), so it is not read as the speed.
+SPEEDS_CARRIED = ("vel",)
+
+
+def carried_speed(header: str) -> tuple[float, str] | None:
+    """For a column the importer carries unread: None when it is no speed; else (metres
+    per hour of one unit, unit) when its header names the unit (``sog_kmh`` beside the
+    mapped speed), (nan, "") when it does not (MTAD's ``vel``, a second ``speed``)."""
+    key = normalize_header(header.strip().strip('"'))
+    if key not in SPEEDS_CARRIED and known_fields([header]) != {"speed"}:
+        return None
+    return _named_unit(header, _SPEED_UNITS) or (float("nan"), "")
+
+
 _RADIANS = re.compile(r"(?<![a-z])(rad|radians?)(?![a-z])|弧度")
 
 
