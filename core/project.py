@@ -36,12 +36,14 @@ decisions checked, so the migration runs once per project, not on every open).
 
 import hashlib
 import json
+import logging
 import os
 import queue
 import shutil
 import sqlite3
 import tempfile
 import threading
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -803,12 +805,64 @@ def _open_read_only(path: Path) -> sqlite3.Connection:
     return con
 
 
+#: Seconds the interpreter's exit waits for each project writer to write its queue.
+SHUTDOWN_WAIT_S = 60.0
+_LOG = logging.getLogger("wakeline.project")
+_WRITERS: "weakref.WeakSet[ProjectWriter]" = weakref.WeakSet()
+_exit_hook = threading.Lock()
+_exit_hooked = False
+
+
+def _hook_exit() -> None:
+    """Once: at the interpreter's exit, every project writer writes what is queued
+    (:func:`_write_queues_at_exit`). Hooked with the threading module's exit calls, which
+    run before ``concurrent.futures`` refuses new work (pyarrow's ``from_pandas`` uses a
+    pool: a layer written later failed, "cannot schedule new futures after interpreter
+    shutdown", h150) — and, run in reverse order of hooking, this one runs first: the
+    pool's own is hooked by the import below."""
+    global _exit_hooked
+    with _exit_hook:
+        if _exit_hooked:
+            return
+        import concurrent.futures.thread  # noqa: F401 - its exit call hooked before ours
+
+        register = getattr(threading, "_register_atexit", None)
+        try:
+            if register is None:
+                raise RuntimeError("no threading exit hook")
+            register(_write_queues_at_exit)
+        except RuntimeError:  # an older Python, or already shutting down
+            import atexit
+
+            atexit.register(_write_queues_at_exit)
+        _exit_hooked = True
+
+
+def _write_queues_at_exit() -> None:
+    """The program ends (a script that never closed its window; the window's close
+    writes its queue itself): each writer still running finishes its queue, waited for
+    up to :data:`SHUTDOWN_WAIT_S`; one that does not is logged, not waited for."""
+    writers = [w for w in list(_WRITERS) if w.busy()]
+    for writer in writers:
+        writer.finish()
+    for writer in writers:
+        if not writer.wait(SHUTDOWN_WAIT_S):
+            _LOG.error(
+                "%s: the program ended while writes were still queued (waited %.0f s); "
+                "the last changes may be missing from the project",
+                writer.path,
+                SHUTDOWN_WAIT_S,
+            )
+
+
 class ProjectWriter:
     """Writes to a project file on a background thread, one task at a time, in order.
 
     ``submit(fn)`` queues ``fn(store)``; a failure is passed to ``on_error(exc)`` (called
     on the writer thread: a GUI must hand it to its own thread) and the writer goes on
-    with the next task. ``flush()`` waits until the queue is empty.
+    with the next task; an ``on_error`` that raises itself (its window gone) is logged,
+    never raised in the thread. ``flush()`` waits until the queue is empty. When the
+    program ends with tasks queued, they are written first (h155).
     """
 
     def __init__(
@@ -822,6 +876,8 @@ class ProjectWriter:
         self.create = create
         self._queue: queue.Queue = queue.Queue()
         self._thread = threading.Thread(target=self._run, name="wakeline-project", daemon=True)
+        _hook_exit()
+        _WRITERS.add(self)
         self._thread.start()
 
     def submit(self, task: Callable[[ProjectStore], None]) -> None:
@@ -856,6 +912,14 @@ class ProjectWriter:
         self._thread.join(timeout)
         return not self._thread.is_alive()
 
+    def _report(self, exc: Exception) -> None:
+        try:
+            self.on_error(exc)
+        except Exception as err:  # noqa: BLE001 - the caller is gone: logged, not raised
+            _LOG.error(
+                "%s: a project write failed (%s); it could not be reported: %s", self.path, exc, err
+            )
+
     def _run(self) -> None:
         store: ProjectStore | None = None
         while True:
@@ -881,6 +945,6 @@ class ProjectWriter:
                 if store is not None:
                     store.close()
                     store = None
-                self.on_error(exc)
+                self._report(exc)
         if store is not None:
             store.close()
