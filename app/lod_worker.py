@@ -24,8 +24,11 @@ class _Task(QtCore.QRunnable):
         self.job, self.done, self.signals = job, done, signals
 
     def run(self) -> None:
+        # The job's closure holds what it reads (a layer's points): let go once it has run,
+        # not when the pool drops this task's wrapper (defect #8).
+        job, self.job = self.job, None
         try:
-            result = self.job()
+            result = job()
         except Exception:  # noqa: BLE001 - a failed decimation keeps the old drawing
             # Logged, and handed over as None so that the caller stops waiting for it.
             log.exception("map drawing job failed")

@@ -41,7 +41,7 @@ from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.window_words import window_words
-from wakeline.app.worker import JobRunner
+from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
 from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
@@ -432,6 +432,13 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         if self.time_controller.time_pending:  # and the slider's last move
             self.time_controller.store_time()
         self.project.detach()
+        # Nothing of the work stays in memory: the window's objects were frozen at start
+        # (main.freeze_startup_objects) and a closed window is not collected (nor, in the
+        # tests, deleted windows: conftest), so its layers, their prepared views and what the
+        # map drew of them are let go here, by reference (defect #8: a second window held
+        # the first one's 2 GB).
+        self.session.clear()
+        give_back_free_memory()  # and what the allocators kept of it goes back to the system
         super().closeEvent(event)
 
     def _close_unsaved(self) -> bool:

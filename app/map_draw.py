@@ -308,9 +308,17 @@ def layer_geometry(
         colors=colors,
         relative=is_relative_time(t) if relative is None else bool(relative),
         gap_break=gap_breaks(t, index.starts, index.ends, lon, lat),
-        point_batch=df["piece_batch"].to_numpy(dtype=object) if "piece_batch" in df else None,
+        point_batch=shared_strings(df["piece_batch"]) if "piece_batch" in df else None,
         lon_west=west,
     )
+
+
+def shared_strings(values: pd.Series) -> np.ndarray:
+    """``values`` as an object array in which equal values are one Python object (a
+    batch name per point: 1 M points of a few thousand batches made 1 M strings, 65 MB,
+    where each batch's one string will do)."""
+    codes, uniques = pd.factorize(values, use_na_sentinel=False)
+    return np.asarray(uniques, dtype=object)[codes]
 
 
 def curves_for(

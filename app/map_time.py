@@ -305,6 +305,7 @@ class TimeOverlay(QtCore.QObject):
         self._view_timer.stop()
         self._asked += 1
         self._shown_ask = self._asked
+        self.scene = None  # its arrays are the layers' size: not kept by a closed window
 
     def show_at(self, t: float, trail_s: float) -> None:
         """Draw every track's position at ``t`` (s) and its last ``trail_s`` seconds."""

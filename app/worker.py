@@ -14,6 +14,8 @@ moved into place as its last act) is finished once the function returns, even if
 cancel came meanwhile: the result exists, so it is reported, not called cancelled.
 """
 
+import contextlib
+import ctypes
 import itertools
 import threading
 import time
@@ -22,6 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+import pyarrow as pa
 import shiboken6
 from PySide6 import QtCore
 
@@ -67,6 +70,28 @@ class Cancelled:
     name: str
 
 
+def _malloc_trim() -> Callable[[int], int] | None:
+    """glibc's ``malloc_trim`` (None elsewhere: macOS, Windows, musl)."""
+    try:
+        return ctypes.CDLL(None).malloc_trim
+    except (OSError, AttributeError, TypeError):
+        return None
+
+
+_MALLOC_TRIM = _malloc_trim()
+
+
+def give_back_free_memory() -> None:
+    """Return to the system what the allocators keep of memory freed: a step on a million
+    points frees hundreds of MB of temporaries that glibc's malloc (its arenas) and Arrow's
+    pool keep for later, in the window's resident size (defect #8, 1 M points: 1.75 GB
+    after the pipeline, 1.38 GB with this). Called in the worker thread after each job
+    (ctypes releases the GIL; 4–110 ms measured there)."""
+    pa.default_memory_pool().release_unused()
+    if _MALLOC_TRIM is not None:
+        _MALLOC_TRIM(0)
+
+
 def new_job_number() -> int:
     """A job number no runner has given (for a job queued before it runs)."""
     return next(_NUMBERS)
@@ -80,6 +105,9 @@ class _Thread(QtCore.QThread):
     ) -> None:
         super().__init__(parent)
         self.job, self.name, self.fn, self.cancel = job, name, fn, cancel
+        #: Whether its Finished or Failed is relayed though the job was replaced (read by
+        #: the runner after the job: ``fn``, which keeps its inputs, is dropped then).
+        self.keeps_result = bool(getattr(fn, "keeps_result", False))
 
     def _progress(self, fraction: float, text: str = "") -> None:
         if self.cancel.is_set():
@@ -91,7 +119,7 @@ class _Thread(QtCore.QThread):
         self.message.emit(Started(self.job, self.name))
         try:
             result = self.fn(self._progress)
-            if self.cancel.is_set() and not getattr(self.fn, "keeps_result", False):
+            if self.cancel.is_set() and not self.keeps_result:
                 raise CoreCancelled()
         except CoreCancelled:
             self.message.emit(Cancelled(self.job, self.name))
@@ -108,6 +136,12 @@ class _Thread(QtCore.QThread):
             )
         else:
             self.message.emit(Finished(self.job, self.name, result, time.perf_counter() - t0))
+        finally:
+            # The job's closure holds what it read (a layer's points, its views): not kept
+            # by the finished thread until the next job replaces it (defect #8).
+            self.fn = result = None
+            with contextlib.suppress(Exception):  # memory given back is never an error
+                give_back_free_memory()
 
 
 class JobRunner(QtCore.QObject):
@@ -174,8 +208,7 @@ class JobRunner(QtCore.QObject):
         if getattr(msg, "job", None) != self.current_job and not isinstance(msg, Cancelled):
             thread = self.sender()
             last = isinstance(msg, Finished | Failed)
-            kept = last and getattr(thread, "fn", None) is not None
-            if not (kept and getattr(thread.fn, "keeps_result", False)):
+            if not (last and getattr(thread, "keeps_result", False)):
                 return
         self.message.emit(msg)
 

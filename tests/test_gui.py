@@ -368,7 +368,9 @@ def test_project_reopens_where_the_operator_was(qtbot, tmp_path, monkeypatch):
     px = ((view[1] - view[0]) / size[0], (view[3] - view[2]) / size[1])
     for k in range(4):
         assert abs(got[k] - view[k]) <= px[k // 2], (got, view)
-    w2.close()
+    reopened = list(w2.layers)
+    w2.close()  # a closed window lets its layers go (defect #8)
+    assert not w2.layers
 
     # A bad time-window row: one warning, and the project opens with the rest.
     con = sqlite3.connect(proj)
@@ -383,7 +385,7 @@ def test_project_reopens_where_the_operator_was(qtbot, tmp_path, monkeypatch):
     qtbot.waitUntil(lambda: not w3.drawing and not w3.time_controller.busy, timeout=20_000)
     assert len(shown) == 1 and "time window" in shown[0] and "left out" in shown[0]
     assert "time window" in w3.log.toPlainText()
-    assert list(w3.layers) == list(w2.layers) and w3.active == cleaned
+    assert list(w3.layers) == reopened and w3.active == cleaned
     assert w3.time_panel.time_window() is None and w3.selected_keys() == keys
     w3.close()
 
