@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 import pyqtgraph as pg
+import shiboken6
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.map_canvas import MapCanvas
@@ -68,15 +69,34 @@ def tr(text: str) -> str:
     return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
 
 
-REVIEW_KEYS = (  # (action, text, key, panel method)
-    ("next", "&Next proposal", "J", "next"),
-    ("previous", "&Previous proposal", "K", "previous"),
-    ("accept", "&Accept", "A", "accept"),
-    ("reject", "&Reject", "R", "reject"),
-    ("split", "&Split track", "S", "split"),
-    ("split_target", "Split &target", "Shift+S", "split_target"),
-    ("merge", "&Merge selected rows", "M", "merge"),
+REVIEW_KEYS = (  # (action, key, panel method); the texts: review_texts()
+    ("next", "J", "next"),
+    ("previous", "K", "previous"),
+    ("accept", "A", "accept"),
+    ("reject", "R", "reject"),
+    ("split", "S", "split"),
+    ("split_target", "Shift+S", "split_target"),
+    ("merge", "M", "merge"),
 )
+
+
+def review_texts() -> dict[str, str]:
+    """The Review menu's texts in the current language (each a ``tr`` of a literal: the
+    translations test finds them; a text kept in a table was missed, and stayed English)."""
+    return {
+        "next": tr("&Next proposal"),
+        "previous": tr("&Previous proposal"),
+        "accept": tr("&Accept"),
+        "reject": tr("&Reject"),
+        "split": tr("&Split track"),
+        "split_target": tr("Split &target"),
+        "merge": tr("&Merge selected rows"),
+    }
+
+
+def undo_text(prefix: str, command: str) -> str:
+    """Edit ▸ Undo/Redo's text: ``prefix`` (translated) and the command's own text."""
+    return f"{prefix} {command}" if command else prefix
 
 
 @dataclass
@@ -269,9 +289,15 @@ class ReviewDock(QtCore.QObject):
         w = self.w
         bar = w.menuBar()
         self.edit_menu = QtWidgets.QMenu(tr("&Edit"), w)
-        self.act_undo = self.group.createUndoAction(w, tr("&Undo"))
+        # Not QUndoGroup.createUndoAction: its prefix is fixed when it is made (English,
+        # before the window's language is set), and every change of the stack wrote it
+        # back over the translated text (operator test h150). These set the text in the
+        # current language each time (_undo_note).
+        self.act_undo = QtGui.QAction(w)
+        self.act_undo.triggered.connect(self.group.undo)
         self.act_undo.setShortcut(QtGui.QKeySequence("Ctrl+Z"))
-        self.act_redo = self.group.createRedoAction(w, tr("&Redo"))
+        self.act_redo = QtGui.QAction(w)
+        self.act_redo.triggered.connect(self.group.redo)
         self.act_redo.setShortcuts(
             [QtGui.QKeySequence("Ctrl+Shift+Z"), QtGui.QKeySequence("Ctrl+Y")]
         )
@@ -279,14 +305,17 @@ class ReviewDock(QtCore.QObject):
             self.group.activeStackChanged,
             self.group.canUndoChanged,
             self.group.undoTextChanged,
-        ):  # after the action's own slot, which sets its text
+            self.group.canRedoChanged,
+            self.group.redoTextChanged,
+        ):
             signal.connect(self._undo_note)
         self.edit_menu.addActions([self.act_undo, self.act_redo])
         bar.insertMenu(w.menus["run"].menuAction(), self.edit_menu)
         self.review_menu = QtWidgets.QMenu(tr("Re&view"), w)
         self.review_actions: dict[str, QtGui.QAction] = {}
-        for name, text, key, method in REVIEW_KEYS:
-            act = QtGui.QAction(tr(text), w)
+        texts = review_texts()
+        for name, key, method in REVIEW_KEYS:
+            act = QtGui.QAction(texts[name], w)
             act.setShortcut(QtGui.QKeySequence(key))
             act.triggered.connect(lambda _=False, m=method: self._panel_call(m))
             self.review_menu.addAction(act)
@@ -303,25 +332,25 @@ class ReviewDock(QtCore.QObject):
         w.actions_["fuse"].triggered.connect(self._fuse)
         w.menus["view"].addAction(self.act_before)
         w.menus["export"].addSeparator()
-        for text, slot in (
-            (tr("&Reviewed tracks (decisions honoured)…"), self.sync.export_dialog),
-            (tr("&Decision log…"), self.sync.export_log_dialog),
-        ):
-            act = QtGui.QAction(text, w)
-            act.triggered.connect(slot)
-            w.menus["export"].addAction(act)
+        self.act_export = QtGui.QAction(w)
+        self.act_export.triggered.connect(self.sync.export_dialog)
+        self.act_export_log = QtGui.QAction(w)
+        self.act_export_log.triggered.connect(self.sync.export_log_dialog)
+        w.menus["export"].addActions([self.act_export, self.act_export_log])
         self._enable(False)
+        self.retranslate()
 
     def retranslate(self) -> None:
         """The menus' texts again (the language changed while the window runs)."""
         self.edit_menu.setTitle(tr("&Edit"))
-        self.act_undo.setText(tr("&Undo"))
-        self.act_redo.setText(tr("&Redo"))
         self._undo_note()
         self.review_menu.setTitle(tr("Re&view"))
-        for name, text, _key, _method in REVIEW_KEYS:
-            self.review_actions[name].setText(tr(text))
+        for name, text in review_texts().items():
+            self.review_actions[name].setText(text)
         self.act_fuse.setText(tr("Fuse &selected layers (two or more)"))
+        self.act_before.setText(tr("&Before/after map (linked)"))
+        self.act_export.setText(tr("&Reviewed tracks (decisions honoured)…"))
+        self.act_export_log.setText(tr("&Decision log…"))
         # Built before the window's first language was set: the dock's title (its tab)
         # and the texts made then follow the language too.
         self.dock.setWindowTitle(tr("Review"))
@@ -340,8 +369,15 @@ class ReviewDock(QtCore.QObject):
         """Edit ▸ Undo says why it has nothing to undo in the queue of a re-run: a step
         run is not undone (no layer edit is), and the earlier run's undo history went
         with its queue; what still applied was carried over (the log says what)."""
+        group = self.group
+        if not (shiboken6.isValid(group) and shiboken6.isValid(self.act_undo)):
+            return  # the window is going
+        self.act_undo.setEnabled(group.canUndo())
+        self.act_undo.setText(undo_text(tr("&Undo"), group.undoText()))
+        self.act_redo.setEnabled(group.canRedo())
+        self.act_redo.setText(undo_text(tr("&Redo"), group.redoText()))
         b = self.bound
-        if b is not None and b.rerun and not self.group.canUndo():
+        if b is not None and b.rerun and not group.canUndo():
             self.act_undo.setText(tr("&Undo (nothing since the step ran again)"))
             self.act_undo.setToolTip(
                 tr(

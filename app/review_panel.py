@@ -7,6 +7,7 @@ decision goes through a :class:`~wakeline.app.review_undo.ReviewController`.
 """
 
 import numpy as np
+import shiboken6
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app import review_text as T
@@ -151,10 +152,23 @@ class ReviewPanel(QtWidgets.QWidget):
             self.act_split_target,
             self.act_merge,
         ) = (act(t, k, f, tip) for (t, tip), k, f in zip(texts, keys, slots, strict=True))
-        self.act_undo = self.controller.stack.createUndoAction(self, self.tr("Undo"))
+        # Not QUndoStack.createUndoAction: its prefix stays in the language it was made
+        # in after a switch (each change of the stack writes it back); _undo_texts.
+        stack = self.controller.stack
+        self.act_undo = QtGui.QAction(self)
+        self.act_undo.triggered.connect(stack.undo)
         self.act_undo.setShortcut(QtGui.QKeySequence.StandardKey.Undo)
-        self.act_redo = self.controller.stack.createRedoAction(self, self.tr("Redo"))
+        self.act_redo = QtGui.QAction(self)
+        self.act_redo.triggered.connect(stack.redo)
         self.act_redo.setShortcut(QtGui.QKeySequence.StandardKey.Redo)
+        for signal in (
+            stack.canUndoChanged,
+            stack.undoTextChanged,
+            stack.canRedoChanged,
+            stack.redoTextChanged,
+        ):
+            signal.connect(self._undo_texts)
+        self._undo_texts()
         for a in (self.act_undo, self.act_redo):
             a.setShortcutContext(QtCore.Qt.ShortcutContext.WidgetWithChildrenShortcut)
         return [
@@ -168,6 +182,18 @@ class ReviewPanel(QtWidgets.QWidget):
             self.act_undo,
             self.act_redo,
         ]
+
+    def _undo_texts(self, *_args) -> None:
+        """Undo/Redo: enabled as the stack says, the text in the current language."""
+        stack = self.controller.stack
+        if not (shiboken6.isValid(stack) and shiboken6.isValid(self.act_undo)):
+            return  # the stack going with its queue says it is empty: nothing to show
+        for action, prefix, can, text in (
+            (self.act_undo, self.tr("Undo"), stack.canUndo(), stack.undoText()),
+            (self.act_redo, self.tr("Redo"), stack.canRedo(), stack.redoText()),
+        ):
+            action.setEnabled(can)
+            action.setText(f"{prefix} {text}" if text else prefix)
 
     def _action_texts(self) -> list[tuple[str, str]]:
         """(text, tooltip) of next, previous, accept, reject, split, split target, merge."""
@@ -339,6 +365,7 @@ class ReviewPanel(QtWidgets.QWidget):
         for action, (text, tip) in zip(self.actions, self._action_texts(), strict=False):
             action.setText(text)
             action.setToolTip(tip)
+        self._undo_texts()
         self.model.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(COLUMNS) - 1)
         self.fit_columns()
         self._after_change([])

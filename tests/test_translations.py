@@ -445,3 +445,94 @@ def test_the_pipeline_log_in_chinese_has_no_english_summary(qtbot, tmp_path):
         w.set_language("en")
         w.close()
     i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+def _latin_actions(w) -> list[str]:
+    """Every action of every menu of the window (submenus too) whose text or tooltip has
+    no Chinese character: "menu > text" (the language names are themselves)."""
+    import re
+
+    han = re.compile(r"[\u4e00-\u9fff]")
+    names = set(__import__("wakeline.app.i18n", fromlist=["LANGUAGES"]).LANGUAGES.values())
+    out = []
+
+    def walk(menu, path):
+        for a in menu.actions():
+            if a.isSeparator():
+                continue
+            text = a.text()
+            if a.menu() is not None:
+                walk(a.menu(), f"{path}{text} > ")
+            if text in names:
+                continue
+            for what, value in (("text", text), ("tooltip", a.toolTip())):
+                if value and not han.search(value):
+                    out.append(f"{path}{text} ({what}: {value})")
+
+    for top in w.menuBar().actions():
+        if not han.search(top.text()):
+            out.append(f"menu {top.text()}")
+        walk(top.menu(), f"{top.text()} > ")
+    return out
+
+
+def test_every_menu_action_of_the_chinese_window_is_chinese_with_a_review_bound(qtbot, tmp_path):
+    """Operator test h150: with a review bound, the Review menu, View ▸ Before/after map,
+    Edit ▸ Undo/Redo and File ▸ Export ▸ Reviewed tracks / Decision log (and their
+    tooltips) stayed English in zh_CN, at start and after a switch en → zh_CN. Every
+    action of every menu is walked (found, not listed): each reads Chinese."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore, QtWidgets
+
+    from conftest import load
+    from wakeline.app import i18n
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.app.main_window import MainWindow
+    from wakeline.resources import demo_path
+
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "zh_CN")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    w.resize(1400, 900)
+    w.show()
+    app = QtWidgets.QApplication.instance()
+
+    def settle():
+        for _ in range(1500):
+            wait_for_jobs(w)
+            if not (w.review.busy or w.drawing or w.runner.busy):
+                app.processEvents()
+                if not (w.review.busy or w.drawing or w.runner.busy or w._job_context):
+                    return
+            qtbot.wait(20)
+        raise AssertionError("the window did not settle")
+
+    try:
+        source = load(w, demo_path())
+        w.select_layer(source)
+        w.run_step("associate")
+        settle()
+        assoc = next(lay for lay in w.layers.values() if lay.step == "associate")
+        w.select_layer(assoc.id)
+        settle()
+        assert w.review.bound is not None
+        w.review.bound.panel.accept()  # Undo now names a decision
+        settle()
+        assert w.review.act_undo.isEnabled()
+        assert not _latin_actions(w), _latin_actions(w)
+        w.set_language("en")
+        assert "&Next proposal" in [a.text() for a in w.review.review_menu.actions()]
+        assert w.review.act_undo.text().startswith("&Undo ")
+        w.set_language("zh_CN")
+        assert not _latin_actions(w), _latin_actions(w)
+        w.review.act_undo.trigger()  # the stack changes: the text stays Chinese
+        settle()
+        assert w.review.act_redo.text().startswith("重做"), w.review.act_redo.text()
+        assert not _latin_actions(w), _latin_actions(w)
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)
+    # The Review menu's texts are tr() of literals: the scan above checks their entries.
+    assert ("ReviewDock", "&Next proposal") in scan(APP / "review_dock.py")[0]

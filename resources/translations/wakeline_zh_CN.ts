@@ -36,6 +36,34 @@
         <translation>{0}：运行期间做出的决策改变了要排除的配对；将按这些决策重新运行</translation>
     </message>
     <message>
+        <source>Clean</source>
+        <translation>清洗</translation>
+    </message>
+    <message>
+        <source>Compress</source>
+        <translation>压缩</translation>
+    </message>
+    <message>
+        <source>Associate</source>
+        <translation>关联</translation>
+    </message>
+    <message>
+        <source>Fuse</source>
+        <translation>融合</translation>
+    </message>
+    <message>
+        <source>Open bearings</source>
+        <translation>打开方位数据</translation>
+    </message>
+    <message>
+        <source>Review</source>
+        <translation>审核</translation>
+    </message>
+    <message>
+        <source>Open {0}</source>
+        <translation>打开 {0}</translation>
+    </message>
+    <message>
         <source>{0} on {1}</source>
         <translation>{1} 上的 {0}</translation>
     </message>
@@ -794,8 +822,20 @@
         <translation>1 个机动点；阈值 {1:g}°</translation>
     </message>
     <message>
-        <source>run Maneuvers or Compress to see δ</source>
-        <translation>运行机动检测或压缩以查看 δ</translation>
+        <source>No track selected: click one on the map or in the table</source>
+        <translation>未选择航迹：请在地图或表中点选一条</translation>
+    </message>
+    <message>
+        <source>No track selected</source>
+        <translation>未选择航迹</translation>
+    </message>
+    <message>
+        <source>No δ for a fused track: run Maneuvers on its layer</source>
+        <translation>融合航迹没有 δ：请对其图层运行机动检测</translation>
+    </message>
+    <message>
+        <source>No δ for this track: run Maneuvers on its layer</source>
+        <translation>此航迹没有 δ：请对其图层运行机动检测</translation>
     </message>
     <message>
         <source>{0} of {1} points kept, Dis_e {2:.0f} m</source>
@@ -1488,6 +1528,34 @@
 </context>
 <context>
     <name>ReviewDock</name>
+    <message>
+        <source>&amp;Next proposal</source>
+        <translation>下一条建议(&amp;N)</translation>
+    </message>
+    <message>
+        <source>&amp;Previous proposal</source>
+        <translation>上一条建议(&amp;P)</translation>
+    </message>
+    <message>
+        <source>&amp;Accept</source>
+        <translation>接受(&amp;A)</translation>
+    </message>
+    <message>
+        <source>&amp;Reject</source>
+        <translation>拒绝(&amp;R)</translation>
+    </message>
+    <message>
+        <source>&amp;Split track</source>
+        <translation>拆出航迹(&amp;S)</translation>
+    </message>
+    <message>
+        <source>Split &amp;target</source>
+        <translation>拆分目标(&amp;T)</translation>
+    </message>
+    <message>
+        <source>&amp;Merge selected rows</source>
+        <translation>合并所选行(&amp;M)</translation>
+    </message>
     <message>
         <source>&amp;Before/after map (linked)</source>
         <translation>前后对照地图（联动）(&amp;B)</translation>
