@@ -100,6 +100,29 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
     #: ``type(self).__mro__``, which starts at the window (``MainWindow``).
     TR_CONTEXT = "MainWindow"
 
+    def job_title(self, name: str) -> str:
+        """A job's title for the operator (a dialog's title, the log), in the current
+        language: the job's internal name ("export", "open project", "bearing", a step)
+        made "{0} failed" titles like "export 失败" (operator test h150)."""
+        tr = self.tr
+        titles = {
+            "pipeline": tr("Pipeline"),
+            "clean": tr("Clean"),
+            "maneuvers": tr("Maneuvers"),
+            "compress": tr("Compress"),
+            "associate": tr("Associate"),
+            "fuse": tr("Fuse"),
+            "export": tr("Export"),
+            "open project": tr("Open project"),
+            "bearing": tr("Open bearings"),
+            "review": tr("Review"),
+        }
+        if name in titles:
+            return titles[name]
+        if name.startswith("open "):  # an import: "open FILE"
+            return tr("Open {0}").format(name[len("open ") :])
+        return name
+
     # -- steps ---------------------------------------------------------------------
 
     def step_params(self, step: str) -> dict:
@@ -395,11 +418,11 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self.tr("{0} done in {1:.1f} s").format(msg.name, msg.seconds), 8000
             )
         elif isinstance(msg, Failed):
-            self.statusBar().showMessage(self.tr("{0} failed").format(msg.name), 8000)
-            self.log_message(f"{self.tr('Error')} ({msg.name}): {msg.message}")
+            title = self.tr("{0} failed").format(self.job_title(msg.name))
+            self.statusBar().showMessage(title, 8000)
+            self.log_message(f"{self.tr('Error')} ({self.job_title(msg.name)}): {msg.message}")
             if msg.detail:
                 self.log_message(msg.detail)
-            title = self.tr("{0} failed").format(msg.name)
             if getattr(self, "interactive", True):
                 QtWidgets.QMessageBox.warning(self, title, window_words(msg.message))
             else:  # a screenshot run: nobody to close a dialog; say it and go on

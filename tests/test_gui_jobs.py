@@ -217,3 +217,37 @@ def test_as_came_in_writes_back_the_speed_unit_the_open_dialog_gave(qtbot, tmp_p
     assert w.export_as_came_in(out)
     wait_for_jobs(w)
     assert out.read_bytes() == src.read_bytes()
+
+
+def test_a_failed_job_s_dialog_is_titled_in_words_not_by_its_job_id(qtbot, tmp_path, monkeypatch):
+    """Operator test h150: the dialog of a failed job was titled by the job's internal
+    name ("open project failed", "bearing failed"; in zh_CN "export 失败"). It is titled
+    "Open project failed", "Open bearings failed", in Chinese in the Chinese window; the
+    log line names the job the same way."""
+    from PySide6 import QtWidgets
+
+    from wakeline.app import i18n
+
+    shown = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[1]))
+    w = _window(qtbot, tmp_path)
+    not_bearings = tmp_path / "tracks.csv"
+    not_bearings.write_text("mmsi,time,lon,lat\n1,0,10.0,55.0\n")
+    try:
+        w.open_project(tmp_path / "nowhere.wakeline")
+        wait_for_jobs(w)
+        w.load_bearings(not_bearings)
+        wait_for_jobs(w)
+        qtbot.waitUntil(lambda: len(shown) == 2, timeout=10_000)
+        assert shown == ["Open project failed", "Open bearings failed"]
+        assert "Error (Open project): " in w.log.toPlainText()
+        w.set_language("zh_CN")
+        w.open_project(tmp_path / "nowhere.wakeline")
+        wait_for_jobs(w)
+        qtbot.waitUntil(lambda: len(shown) == 3, timeout=10_000)
+        assert shown[2] == "打开工程 失败"
+        assert "job" not in w.job_title("export") and w.job_title("export") == "导出"
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)

@@ -189,7 +189,7 @@ def test_the_window_opens_a_project_left_mid_write(good, tmp_path, qtbot, monkey
     )
     w.open_project(other)
     wait_for_jobs(w)
-    assert shown[-1][0] == "open project failed"
+    assert shown[-1][0] == "Open project failed"  # a title, not the job's internal name
     assert "middle of a write" in shown[-1][1] and "not a Wakeline project" not in shown[-1][1]
     assert w.project.path == path  # the open session is left as it was
     w.project.flush()
