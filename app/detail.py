@@ -85,6 +85,10 @@ def gaps_broken(minutes: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np
     return np.insert(x, cut, np.nan), np.insert(y, cut, np.nan)
 
 
+#: A plot's title (pyqtgraph's default) and a reason's, shown instead of a figure.
+TITLE_PT, REASON_PT = "11pt", "9pt"
+
+
 class DetailPanel(QtWidgets.QTabWidget):
     """Plots for one selected track."""
 
@@ -165,13 +169,20 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.z_plot.setLabel("left", self._z_label())
         self.z_plot.setLabel("bottom", self.tr("time"), units=minutes)
         for plot, make in self._titles.values():
-            plot.setTitle(make())
+            self._write_title(plot, make)
 
-    def _set_title(self, name: str, plot, make: Callable[[], str]) -> None:
+    def _set_title(self, name: str, plot, make: Callable[[], str], size: str | None = None) -> None:
         """Title ``plot`` with ``make()`` (a text through ``self.tr``), kept for
-        :meth:`retranslate`."""
-        self._titles[name] = (plot, make)
-        plot.setTitle(make())
+        :meth:`retranslate`; ``size``: a smaller font (a reason, not a figure)."""
+        write = make if size is None else (lambda: (make(), size))
+        self._titles[name] = (plot, write)
+        self._write_title(plot, write)
+
+    @staticmethod
+    def _write_title(plot, make) -> None:
+        made = make()  # the size is given each time: the label keeps the last one
+        text, size = made if isinstance(made, tuple) else (made, TITLE_PT)
+        plot.setTitle(text, size=size)
 
     def _z_label(self) -> str:
         """The z axis's name: the detector's statistic (GLR or AUC)."""
@@ -250,8 +261,16 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.factor_plot.enableAutoRange(axis="x")
         self.comp_orig.setData([], [])
         self.comp_kept.setData([], [])
-        self._set_title("factor", self.factor_plot, str)
-        self._set_title("compression", self.comp_plot, str)
+        # No track: say so, not empty axes with no text (operator test h150).
+        self._set_title(
+            "factor",
+            self.factor_plot,
+            lambda: self.tr("No track selected: click one on the map or in the table"),
+            REASON_PT,
+        )
+        self._set_title(
+            "compression", self.comp_plot, lambda: self.tr("No track selected"), REASON_PT
+        )
 
     def show_track(
         self,
@@ -261,10 +280,12 @@ class DetailPanel(QtWidgets.QTabWidget):
         original: pd.DataFrame | None = None,
         dis_e_m: float | None = None,
         lon_west: float | None = None,
+        fused: bool = False,
     ) -> None:
         """Plot one track (points of one sensor/batch, time-sorted); ``dis_e_m`` is the
         compressed track's Dis_e, metres; ``lon_west``: the band the map draws its layer
-        in (-180 or 0; None: the track's own, :func:`wakeline.core.geo.lon_band_west`)."""
+        in (-180 or 0; None: the track's own, :func:`wakeline.core.geo.lon_band_west`);
+        ``fused``: the track is a fused target's (its reason for no δ says so)."""
         self.clear()
         if "maneuver_factor" in track.columns and len(track):
             t = time_seconds(track["time"])
@@ -286,9 +307,19 @@ class DetailPanel(QtWidgets.QTabWidget):
                     else self.tr("{0} maneuvers; threshold {1:g}°")
                 ).format(n_hits, threshold_deg or 0),
             )
+        elif fused:  # a fused target's points are the sensors' points merged: no δ
+            self._set_title(
+                "factor",
+                self.factor_plot,
+                lambda: self.tr("No δ for a fused track: run Maneuvers on its layer"),
+                REASON_PT,
+            )
         else:
             self._set_title(
-                "factor", self.factor_plot, lambda: self.tr("run Maneuvers or Compress to see δ")
+                "factor",
+                self.factor_plot,
+                lambda: self.tr("No δ for this track: run Maneuvers on its layer"),
+                REASON_PT,
             )
         if compressed is not None and original is not None and len(compressed):
             olon, klon = drawn_track_lon(original, lon_west), drawn_track_lon(compressed, lon_west)
@@ -307,5 +338,5 @@ class DetailPanel(QtWidgets.QTabWidget):
             )
         else:
             self._set_title(
-                "compression", self.comp_plot, lambda: self.tr("run Compress to compare")
+                "compression", self.comp_plot, lambda: self.tr("run Compress to compare"), REASON_PT
             )

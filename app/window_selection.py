@@ -128,7 +128,10 @@ class SelectionMixin:
             dis = comp.meta.get("dis_e_by_track", {}).get(f"{key[0]}\x1f{key[1]}")
         draw = getattr(view, "draw", None)  # the band the map draws the layer in
         west = draw.geometry.lon_west if draw is not None else None
-        self.detail.show_track(factor, threshold, compressed, factor, dis_e_m=dis, lon_west=west)
+        fused = self.session.layers[lid].kind == "fused"
+        self.detail.show_track(
+            factor, threshold, compressed, factor, dis_e_m=dis, lon_west=west, fused=fused
+        )
 
     def _track_clicked(self, lid: str, sensor: str, batch: str, add: bool) -> None:
         if lid not in self.session.layers:

@@ -1098,6 +1098,40 @@ def test_detail_time_axis_of_a_track_without_factor_is_not_the_last_tracks(qtbot
     assert 2000 < panel.factor_plot.viewRange()[0][1] < 3000
 
 
+def test_detail_says_why_its_factor_plot_is_empty(qtbot):
+    """Operator test h150: with no track selected, and on a fused track (no δ), the
+    maneuver-factor plot was empty axes with no text. It says why, in the language set,
+    in a smaller font than a figure's title (which keeps its own size after a reason)."""
+    from wakeline.app.detail import DetailPanel
+
+    panel = DetailPanel()
+    qtbot.addWidget(panel)
+
+    def title() -> tuple[str, str]:
+        label = panel.factor_plot.getPlotItem().titleLabel
+        return label.text, label.opts["size"]
+
+    panel.clear()
+    assert title() == ("No track selected: click one on the map or in the table", "9pt")
+    t0 = pd.Timestamp("2024-08-01", tz="UTC")
+    fused = pd.DataFrame({"time": t0 + pd.to_timedelta(np.arange(5), unit="min")})
+    panel.show_track(fused, fused=True)
+    assert title()[0] == "No δ for a fused track: run Maneuvers on its layer"
+    panel.show_track(fused)
+    assert title()[0] == "No δ for this track: run Maneuvers on its layer"
+    app = QtWidgets.QApplication.instance()
+    translator = i18n.install(app, "zh_CN", None)
+    try:
+        panel.retranslate()
+        assert title()[0] == "此航迹没有 δ：请对其图层运行机动检测"
+    finally:
+        i18n.install(app, "en", translator)
+    panel.retranslate()
+    with_factor = fused.assign(maneuver_factor=1.0, is_maneuver=np.arange(5) == 2)
+    panel.show_track(with_factor, threshold_deg=15.0)
+    assert title() == ("1 maneuver; threshold 15°", "11pt")
+
+
 def test_detail_factor_curve_breaks_at_gaps_and_leaves_undefined_ends_out(qtbot):
     """Operator test: the DMA ship's δ (its hours at rest cleaned away) was drawn as
     straight ramps from 50° to 125° across 4-hour gaps, and the ends where δ is undefined
