@@ -1,6 +1,7 @@
 """A legend that lives in the plot's layout, beside the view box: it never covers data."""
 
 import itertools
+import re
 
 import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
@@ -22,6 +23,12 @@ MIN_HEAD_CHARS = 8
 MIN_HEAD_CHARS_STEPS = 5
 #: The most height (px) the legend asks of the plot's layout; a longer one is clipped.
 MIN_HEIGHT_PX = 120.0
+
+
+#: A file name's extension, left out of a shortened label (the tooltip keeps it).
+EXTENSION = re.compile(
+    r"\.(csv|tsv|txt|dat|json|geojson|gpx|nmea|log|xlsx?)(\.(gz|bz2|xz|zip))?$", re.I
+)
 
 
 def short_label(text: str, limit: int = LABEL_MAX) -> str:
@@ -75,8 +82,9 @@ class SideLegend(pg.LegendItem):
         in its middle: shortening the whole left "autoferry_{ra…v · maneuvers" beside
         "autoferry_{ra… · compressed" (the file's end cut at a different place in each).
         When the steps do not fit (``FILE · cleaned · maneuvers (compress)``), the last
-        ones are kept — what tells two layers of one file apart — and the first left out
-        ("scene-3… · … · maneuvers (compress)"); the full name is the label's tooltip."""
+        ones are kept — what tells two layers of one file apart — and the first left out,
+        as is the file's extension ("scene-3…_radar · maneuvers (compress)"); the full
+        name is the label's tooltip."""
         middle = QtCore.Qt.TextElideMode.ElideMiddle
         whole = self._metrics.elidedText(short_label(name), middle, self._label_px)
         if whole == name:
@@ -84,9 +92,14 @@ class SideLegend(pg.LegendItem):
         head, sep, what = name.partition(LABEL_SEPARATOR)
         if not (head and what):
             return whole
+        # Shortened, a label leaves out what never tells two files apart — the files'
+        # extensions and the first steps, with no "…" for them — so that the file's
+        # own name keeps its start and end: "Sce…csv · … · maneuvers" beside
+        # "Sce…csv · … · compressed" named no file (operator test h150).
+        head = " + ".join(EXTENSION.sub("", piece) for piece in head.split(" + "))
         parts = what.split(LABEL_SEPARATOR)
         for k in range(len(parts)):
-            tail = LABEL_SEPARATOR.join((["…"] if k else []) + parts[k:])
+            tail = LABEL_SEPARATOR.join(parts[k:])
             room = self._label_px - self._metrics.horizontalAdvance(sep + tail)
             least = MIN_HEAD_CHARS if k == 0 else MIN_HEAD_CHARS_STEPS
             if room >= self._metrics.horizontalAdvance("n" * least):

@@ -46,10 +46,30 @@ def test_legend_keeps_the_step_that_tells_two_layers_of_one_file_apart(qapp):
         assert label.endswith(name.rsplit(" · ", 1)[1]), (name, label)
         assert legend._metrics.horizontalAdvance(label) <= legend._label_px, label
     assert len(set(labels)) == len(labels)
-    assert labels[0].startswith("sce") and " · … · " in labels[0]
+    # the first step and the extension left out: the file's name keeps start and end
+    assert labels[0].startswith("sce") and labels[0].endswith("radar · maneuvers"), labels[0]
     item = pg.PlotDataItem([0, 1], [0, 1])
     legend.addItem(item, names[0])
     assert legend.items[-1][1].toolTip() == names[0]
+
+
+def test_legend_labels_of_two_files_name_the_files(qapp):
+    """Operator test h150: "Sce…csv · … · maneuvers" and "sa…sv · … · compressed": with
+    two files open the legend did not say which file. A shortened label leaves out the
+    extension and the first steps (not the file's name): a short file name stays whole,
+    two long ones keep their distinct ends."""
+    from wakeline.app.map_legend import SideLegend
+
+    legend = SideLegend()
+    assert legend.fit_label("Scene-7.csv · cleaned · maneuvers") == "Scene-7 · maneuvers"
+    assert legend.fit_label("sample_ship.csv · cleaned · compressed") == (
+        "sample_ship · compressed"
+    )
+    names = [f"scene-6_error_0_{s}.csv · cleaned · maneuvers" for s in ("AIS", "radar")]
+    labels = [legend.fit_label(n) for n in names]
+    assert labels[0].endswith("AIS · maneuvers") and labels[1].endswith("radar · maneuvers")
+    assert all(lb.startswith("scene") for lb in labels), labels
+    assert all(legend._metrics.horizontalAdvance(lb) <= legend._label_px for lb in labels)
 
 
 def test_a_fuse_of_many_layers_is_named_by_the_first_two(qapp):

@@ -644,7 +644,8 @@ def test_legend_shortens_the_file_name_and_keeps_what_the_layer_is(qapp):
         label = legend.fit_label(f"{name} · {what}")
         head, sep, tail = label.rpartition(" · ")
         assert tail == what and "…" in head, label
-        assert head.startswith("auto") and head.endswith(".csv"), label  # narrower: h129
+        # narrower (h129); the extension left out, the name's own end kept (h150)
+        assert head.startswith("auto") and head.endswith("_zh"), label
         assert legend._metrics.horizontalAdvance(label) <= legend._label_px
     assert legend.fit_label("a.csv · cleaned") == "a.csv · cleaned"
     assert legend.fit_label("x" * 60).count("…") == 1  # no separator: shortened whole
