@@ -46,6 +46,8 @@ from wakeline.core import geo
 from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
 
+#: Rows of the batch table always in sight (its least height).
+BATCH_MIN_ROWS = 5
 #: Between two recomputations of the Statistics figures while the time window moves (ms).
 STATS_WINDOW_MS = 300
 
@@ -151,6 +153,16 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         header.setResizeContentsPrecision(50)  # size columns from 50 rows, not all
         self.batch_view.selectionModel().selectionChanged.connect(self._table_selection_changed)
         self.batch_model.modelReset.connect(self._reselect)  # after the view dropped it
+        # At least BATCH_MIN_ROWS rows under the header: beside the Review dock at
+        # 1400x900 the table was one row of 15 (operator test h150); the Detail dock
+        # beside it gives way instead.
+        scroll = self.batch_view.horizontalScrollBar().sizeHint().height()
+        self.batch_view.setMinimumHeight(
+            header.sizeHint().height()
+            + BATCH_MIN_ROWS * self.batch_view.verticalHeader().defaultSectionSize()
+            + scroll
+            + 2 * self.batch_view.frameWidth()
+        )
         self.filter_edit = QtWidgets.QLineEdit()
         self.filter_edit.setClearButtonEnabled(True)
         self.filter_edit.textChanged.connect(self.batch_model.set_filter)
@@ -217,6 +229,12 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             dock.setWidget(widget)
             self.addDockWidget(where, dock)
             self.docks[key] = dock
+        # The right column (batch table, Detail/Bearing-only) runs down to the status
+        # bar; the bottom docks (Statistics, Log, Review) sit under the map and the left
+        # column. Across the whole width, the Review dock left the batch table one row
+        # of 15 at 1400x900 (operator test h150): the right column's docks have least
+        # heights (the Bearing-only dock's map and table) that it could not share.
+        self.setCorner(QtCore.Qt.Corner.BottomRightCorner, area.RightDockWidgetArea)
         self.tabifyDockWidget(self.docks["stats"], self.docks["log"])
         # The lifetime histogram keeps a readable height while the Statistics tab is up.
         self.docks["stats"].visibilityChanged.connect(self.stats.set_raised)

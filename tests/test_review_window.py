@@ -933,3 +933,30 @@ def test_removing_the_source_of_a_reviewed_layer_keeps_its_review_after_a_reopen
     _settle(w3)
     assert list(w3.review.bound.controller.state.status) == want2
     w3.close()
+
+
+def test_the_batch_table_keeps_rows_beside_the_review_dock_at_1400x900(qtbot, tmp_path):
+    """Operator test h150: at 1400x900 with the Review dock shown, the batch table showed
+    one row of 15 (the bottom docks spanned the whole width, and the right column's
+    least heights could not share what was left). The right column runs down to the
+    status bar, the batch table keeps at least 5 rows, and the review's queue shows
+    several proposals."""
+    from wakeline.app.main_window import BATCH_MIN_ROWS
+    from wakeline.resources import demo_path
+
+    w = _window(qtbot, tmp_path)
+    w.resize(1400, 900)
+    w.load_file(demo_path())
+    _settle(w)
+    w.run_step("associate")
+    _settle(w)
+    assert w.review.bound is not None and w.review.dock.isVisible()
+    table = w.batch_view
+    rows = table.viewport().height() / table.verticalHeader().defaultSectionSize()
+    assert rows >= BATCH_MIN_ROWS, rows
+    queue = w.review.bound.panel.view
+    assert queue.viewport().height() / queue.verticalHeader().defaultSectionSize() >= 4
+    assert (
+        w.corner(QtCore.Qt.Corner.BottomRightCorner) == QtCore.Qt.DockWidgetArea.RightDockWidgetArea
+    )
+    w.close()
