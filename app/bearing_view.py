@@ -41,7 +41,6 @@ from wakeline.core.timeline import spread_picks
 
 from .layer_view import LayerView, shown_range
 from .map_canvas import MapCanvas
-from .map_colors import BATCH_PALETTE
 from .map_draw import DrawData, LayerGeometry, LayerStyle, layer_geometry, prepare_layer, relod
 from .map_legend import LABEL_PADDING_PX, short_label
 from .map_paths import with_paths
@@ -64,10 +63,33 @@ SPLIT_WEIGHTS = (3000, 2000)
 #: Stacking of the layers: the observer's track over the maneuver lines over the fan of
 #: bearing lines (which otherwise hid the track they start from).
 Z_OBSERVER, Z_MANEUVERS, Z_LINES = 2.0, 1.0, 0.0
-#: Colours of the batches' bearing lines, in turn: the batch palette less the maneuvers'
-#: reds and the observer's greys.
-LINE_COLOURS = tuple(
-    c for c in BATCH_PALETTE if c not in ("#d62728", "#ad494a", "#7f7f7f", "#636363")
+#: On the main map the fan of bearing lines lies under every track layer (z 0) and the
+#: selection's halo (-1), over the coastline (-10): drawn over them, a fan of 60 lines a
+#: batch hid the truth tracks and the plots (operator test h150).
+Z_MAIN_LINES = -2.0
+#: Colours of the batches' bearing lines, in turn. The first eight (the batches with a
+#: colour of their own) are the eight farthest apart (least CIE76 ΔE 40) of the batch
+#: palette and a few Dark2/Paired colours, keeping ΔE 30 or more from the colours the
+#: first three source layers take (blue, brown, pink), the maneuvers' red, the observer's
+#: and the other batches' greys, and no light colour for thin lines. The palette's own
+#: order had orange beside orange (ΔE 18), navy beside purple (25) and a track layer's
+#: brown (operator test h150). Then the others.
+LINE_COLOURS = (
+    "#ff7f0e",
+    "#7b4173",
+    "#17becf",
+    "#2ca02c",
+    "#bcbd22",
+    "#637939",
+    "#e7298a",
+    "#000000",
+    "#31a354",
+    "#008080",
+    "#6a3d9a",
+    "#b15928",
+    "#1b9e77",
+    "#66a61e",
+    "#a6761d",
 )
 #: Batches with a colour (and legend entry) of their own; the others share OTHER_COLOUR.
 MAX_LINE_COLOURS = 8
@@ -452,6 +474,8 @@ def main_map_layers(
     out = []
     for data, part in zip(scene.layers, PARTS, strict=False):
         main = dataclasses.replace(data, name=part)
+        if part == "lines":  # under the tracks and plots (Z_MAIN_LINES)
+            main = dataclasses.replace(main, style=dataclasses.replace(data.style, z=Z_MAIN_LINES))
         out.append(with_paths(relod(main, shown, size_px)) if shown is not None else main)
     return out
 

@@ -621,3 +621,43 @@ def test_a_hidden_layers_entries_leave_the_legend(qtbot, tmp_path):
     w2.runner.cancel()
     w2.runner.wait()
     w2.close()
+
+
+@pytest.mark.gui
+def test_bearing_lines_lie_under_the_tracks_in_colours_of_their_own(qtbot, tmp_path):
+    """Operator test h150: on the main map the bearing fan (60 lines a batch) was drawn
+    over the truth tracks and the plots, which could not be seen; a batch's lines had a
+    track layer's brown, and two batches navy and purple (ΔE 25) or two oranges (ΔE 18).
+    The lines lie under every track layer (and the selection's halo); the batches'
+    colours are far apart and apart from the first sources'."""
+    import itertools
+
+    from wakeline.app.bearing_view import LINE_COLOURS, MAX_LINE_COLOURS
+    from wakeline.app.map_colors import SOURCE_COLORS, delta_e
+
+    own = LINE_COLOURS[:MAX_LINE_COLOURS]
+    assert min(delta_e(a, b) for a, b in itertools.combinations(own, 2)) >= 39
+    assert min(delta_e(a, s) for a in own for s in SOURCE_COLORS[:3]) >= 30
+    w = _window(qtbot, tmp_path)
+    df = harbour_table()
+    tracks = tmp_path / "tracks.csv"
+    pd.DataFrame(
+        {
+            "mmsi": 1,
+            "time": df["time"].iloc[:50],
+            "lon": df["obs_lon"].iloc[:50] + 0.01,
+            "lat": df["obs_lat"].iloc[:50],
+        }
+    ).to_csv(tracks, index=False)
+    from conftest import load
+
+    src = load(w, tracks)
+    path = tmp_path / "bearings.csv"
+    df.to_csv(path, index=False)
+    lid = _open_bearings(w, qtbot, path)
+    qtbot.waitUntil(lambda: bool(w.canvas._items.get(f"{lid}/lines")), timeout=10_000)
+    lines = w.canvas._items[f"{lid}/lines"]
+    track = w.canvas._items[src]
+    assert max(it.zValue() for it in lines) < min(it.zValue() for it in track)
+    assert max(it.zValue() for it in lines) < w.canvas.selection.zValue()
+    w.close()
