@@ -42,6 +42,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core import geo, real_sets
+from wakeline.core.associate import LinkParams
 from wakeline.core.clean import clean
 from wakeline.core.evaluate_association import real_files, scene_scores
 from wakeline.core.evaluate_real import (
@@ -131,14 +132,17 @@ def read_set(name: str) -> tuple[pd.DataFrame, list]:
     return points, [(real_sets.association_tracks(folder), "")]
 
 
-def association(scenes: list, rate_s: float | None, jitter: float, gaps, every) -> tuple:
+def association(
+    scenes: list, rate_s: float | None, jitter: float, gaps, every, link: LinkParams | None = None
+) -> tuple:
     """Mean P_CA, P_FA (ours, optimal) over the scenes with a true pair, decimated alike;
-    the true pairs and those within T_gap (``max_gap_s``), summed."""
+    the true pairs and those within T_gap (``max_gap_s``), summed. ``link``: the
+    association's parameters (None: the defaults)."""
     rows = []
     for pts, sep in scenes:  # a handful of scenes
         if rate_s is not None:
             pts = decimate(pts, rate_s, jitter)
-        r = scene_scores(pts, gaps=gaps, gaps_every=every, truth_sep=sep)[0]
+        r = scene_scores(pts, params=link, gaps=gaps, gaps_every=every, truth_sep=sep)[0]
         if r["true_pairs"] > 0:
             rows.append((r["p_ca"], r["p_fa"], r["true_pairs"], r["reachable"]))
     if not rows:
@@ -210,8 +214,16 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
         default=ManeuverParams().max_step_windows,
         help="the detector's max_step_windows (0 = headings across any step, as before)",
     )
+    ap.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="the association's LinkParams changed (as evaluate associate --set)",
+    )
     a = ap.parse_args(argv)
     params = ManeuverParams(max_step_windows=a.max_step_windows)
+    link = LinkParams().replace(**dict(kv.split("=", 1) for kv in a.set)) if a.set else None
     rates = a.rates or (QUICK_RATES if a.quick else RATES)
     variants = [0.0] if a.quick or a.jitter <= 0 else [0.0, a.jitter]
     cpu0, wall0 = time.process_time(), time.time()
@@ -233,7 +245,7 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
             row = {"set": name, "rate": label, **one_row(pts, hours, turns, r, params)}
             if gaps is not None and scenes and not a.no_assoc:
                 row["P_CA"], row["P_FA"], row["pairs"], row["reach"] = association(
-                    scenes, r, j, *gaps
+                    scenes, r, j, *gaps, link
                 )
             rows.append(row)
             print(_line(row), flush=True)

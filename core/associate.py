@@ -330,6 +330,30 @@ class LinkParams(Params):
         5.0,
         "the 1/σ² of a position likelihood",
     )
+    motion_shown: float = param(
+        0.0,
+        "",
+        "an end not at rest (rest_kn) whose fitted speed is below this many standard errors "
+        "of its velocity (per axis) shows no motion of its own to the pricing: its course and "
+        "speed terms are unknown and the prediction takes the other end's velocity where "
+        "that one shows its motion, as for a single fix (1: a course error of 45° or more; "
+        "0 = off: every fitted velocity counts)",
+        0.0,
+        10.0,
+        "ours (session 26, MTAD decimated: two fixes 180 s apart at 450-700 m noise fit a "
+        "course of noise at an inflated speed): docs/prereg/session26_mtad_sparse.md",
+    )
+    course_debias: bool = param(
+        True,
+        "",
+        "the course tolerance's angle arctan(velocity error / speed) takes the fitted speed "
+        "less its noise, sqrt(max(speed² - 2·error², 0)) (a fitted speed's expected square "
+        "is the true one's plus twice the error's), so a course of noise gets the wide "
+        "tolerance its error allows (False: the fitted speed, the rule before)",
+        source="ours (session 26, adopted by its pre-set rule: MTAD tuning half at 180 s "
+        "0.906 / 0.027 -> 0.910 / 0.021, 600 s 0.838 / 0.093 -> 0.842 / 0.090): "
+        "docs/prereg/session26_mtad_sparse.md",
+    )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
     w1: float = param(
@@ -971,6 +995,32 @@ def _gap_accel(
     return np.fmax(params.accel_ms2, np.fmax(seg.accel1[i], seg.accel0[j]))
 
 
+def _motion_shown(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.ndarray]:
+    """Per track: whether its start and its end show their motion to the pricing —
+    the motion flags, less (``motion_shown`` > 0) ends not at rest whose fitted speed is
+    below ``motion_shown`` standard errors of their velocity (a course of noise)."""
+    if params.motion_shown <= 0:
+        return seg.motion0, seg.motion1
+    slow = params.rest_kn * geo.KN_MS
+    out = []
+    for vx, vy, sd, known in (
+        (seg.vx0, seg.vy0, seg.vel_sd0, seg.motion0),
+        (seg.vx1, seg.vy1, seg.vel_sd1, seg.motion1),
+    ):
+        speed = np.hypot(vx, vy)
+        with np.errstate(invalid="ignore"):
+            still = (speed < slow) & (sd < slow)
+            noise = ~still & ~(speed >= params.motion_shown * sd)
+        out.append(known & ~noise)
+    return out[0], out[1]
+
+
+def _debiased_speed(speed_ms: np.ndarray, sd_ms: np.ndarray) -> np.ndarray:
+    """The fitted speed (m/s) less its noise's share: sqrt(max(speed² − 2·sd², 0))."""
+    sd = np.nan_to_num(sd_ms, nan=0.0, posinf=0.0)
+    return np.sqrt(np.fmax(speed_ms**2 - 2.0 * sd**2, 0.0))
+
+
 def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np.ndarray, ...]:
     """Position miss (m) of each pair against the one-course-change prediction, its
     standard deviation (m), and whether neither end shows its motion (``blind``).
@@ -984,6 +1034,14 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
     """
     i, j, gap = pairs.i, pairs.j, pairs.gap_s
     known_i, known_j = seg.motion1[i], seg.motion0[j]
+    blind = ~known_i & ~known_j
+    if params.motion_shown > 0:
+        # An end whose velocity is noise borrows the other end's where that one shows its
+        # motion (both such: each keeps its own, as before).
+        shown0, shown1 = _motion_shown(seg, params)
+        one = shown1[i] ^ shown0[j]
+        known_i = np.where(one, shown1[i], known_i)
+        known_j = np.where(one, shown0[j], known_j)
     # the new piece's velocity in the old end's plane (:func:`pair_features`)
     turn = geo.plane_turn(seg.lon0[j], seg.lat0[j], seg.lon1[i], seg.lat1[i])
     vx0j, vy0j = geo.turn_into_plane(seg.vx0[j], seg.vy0[j], turn)
@@ -995,7 +1053,6 @@ def prediction_miss(seg: Segments, pairs: Pairs, params: LinkParams) -> tuple[np
     miss = _miss_one_turn(px, py, vxi * gap, vyi * gap, vxj * gap, vyj * gap)
     vsd_i = np.where(known_i, seg.vel_sd1[i], np.nan)
     vsd_j = np.where(known_j, seg.vel_sd0[j], np.nan)
-    blind = ~known_i & ~known_j
     vsd = np.sqrt(np.where(known_i & known_j, (vsd_i**2 + vsd_j**2) / 2, 0.0))
     vsd = np.where(known_i & ~known_j, vsd_i, np.where(known_j & ~known_i, vsd_j, vsd))
     var = (
@@ -1167,15 +1224,21 @@ def _pricing(
         if params.log_sigma > 0:
             log_sd = np.log(sigma)
         known = seg.motion1[i] & seg.motion0[j]
+        if params.motion_shown > 0:
+            shown0, shown1 = _motion_shown(seg, params)
+            known = known & shown1[i] & shown0[j]
         # Course and speed tolerances grow with the ends' velocity errors (noisy tracks
-        # give noisy velocities): the error in knots, and in degrees as seen at the speed.
+        # give noisy velocities): the error in knots, and in degrees as seen at the speed
+        # (with course_debias, at the speed less its noise).
         vi, vj = seg.vel_sd1[i], seg.vel_sd0[j]
+        si, sj = seg.speed1_kn[i] * geo.KN_MS, seg.speed0_kn[j] * geo.KN_MS
+        if params.course_debias:
+            si, sj = _debiased_speed(si, vi), _debiased_speed(sj, vj)
         with np.errstate(invalid="ignore", divide="ignore"):
             v_kn2 = np.where(known, vi**2 + vj**2, 0.0) / geo.KN_MS**2
             c_deg2 = np.where(
                 known,
-                np.degrees(np.arctan2(vi, seg.speed1_kn[i] * geo.KN_MS)) ** 2
-                + np.degrees(np.arctan2(vj, seg.speed0_kn[j] * geo.KN_MS)) ** 2,
+                np.degrees(np.arctan2(vi, si)) ** 2 + np.degrees(np.arctan2(vj, sj)) ** 2,
                 0.0,
             )
         course_tol = np.sqrt(params.course_tol_deg**2 + c_deg2)

@@ -10,6 +10,7 @@ from wakeline.app.cli import main
 from wakeline.core import geo, simulate
 from wakeline.core.associate import (
     LinkParams,
+    _debiased_speed,
     _largest_allowance,
     _sampling_step,
     associate_interrupted,
@@ -1120,3 +1121,61 @@ def test_a_track_reported_every_half_hour_does_not_reach_the_next_report_of_anot
         ignore_index=True,
     )
     assert len(candidate_pairs(segment_stats(df10, 10, end_span_s=450.0), p).i) == 1
+
+
+def _noisy_lanes(seed: int) -> pd.DataFrame:
+    """Session 26's toy of decimated MTAD (fixes scattered 400 m): ship A east at 5 m/s
+    seen every 60 s for 30 min (a1), then after a 15-min gap two fixes 180 s apart (a2);
+    ship C appears 1.5 km north of A's lane at a2's time, east at 5 m/s (c1), alone."""
+    rng = np.random.default_rng(seed)
+
+    def lane(batch, t, y, truth):
+        t = np.asarray(t, float)
+        return track(
+            batch, t, 5.0 * t + rng.normal(0, 400, len(t)), y + rng.normal(0, 400, len(t)), truth
+        )
+
+    return pd.concat(
+        [
+            lane("a1", np.arange(0, 1801, 60), 0.0, "A"),
+            lane("a2", [2700, 2880], 0.0, "A"),
+            lane("c1", np.arange(2700, 3301, 60), 1500.0, "C"),
+        ],
+        ignore_index=True,
+    )
+
+
+def _noisy_joins(seed: int, params: LinkParams) -> list:
+    pt = associate_interrupted(_noisy_lanes(seed), params).pair_table()
+    return sorted(zip(pt["batch_a"], pt["batch_b"], strict=True))
+
+
+def test_a_course_fitted_from_noise_gets_the_tolerance_its_error_allows():
+    """``course_debias`` (session 26, adopted by docs/prereg/session26_mtad_sparse.md): two
+    fixes 180 s apart scattered 400 m give a velocity error of ~3 m/s per axis and a speed
+    inflated by it, and the course tolerance arctan(error / speed) took the inflated speed,
+    so a course of noise counted as known. At the speed less its noise a2's course is
+    priced as the noise it is: A keeps its own next piece (seed 8; before: left loose),
+    and C's start, on A's course but 1.5 km off, is no longer A's (seed 36). Over seeds
+    0–199 of this toy the rule joins a1 → a2 in 8 more and a1 → c1 in 3 fewer, and
+    loses or adds no other join. ``course_debias=False`` is the rule before."""
+    old = LinkParams(course_debias=False)
+    assert LinkParams().course_debias
+    assert _noisy_joins(8, old) == [] and _noisy_joins(8, LinkParams()) == [("a1", "a2")]
+    assert _noisy_joins(36, old) == [("a1", "c1")] and _noisy_joins(36, LinkParams()) == []
+    # the speed less its noise: unchanged without noise, 0 where noise explains it all
+    sd = np.array([0.0, 1.0, 3.0, np.inf])
+    got = _debiased_speed(np.array([5.0, 5.0, 4.0, 5.0]), sd)
+    assert np.allclose(got, [5.0, np.sqrt(23.0), 0.0, 5.0])
+
+
+def test_an_end_whose_motion_is_noise_can_borrow_the_other_ends_velocity_as_an_option():
+    """``motion_shown`` (session 26, candidate A; failed its pre-set guard on MTAD's own
+    cuts by 0.0003 of P_CA, so off by default): an end not at rest whose speed is below its
+    velocity's standard error is priced as a single fix is. In the toy above it turns the
+    wrong join a1 → c1 into a1 → a2 (seed 190); off, nothing changes."""
+    assert LinkParams().motion_shown == 0.0
+    off = LinkParams(course_debias=False)
+    assert _noisy_joins(190, off) == [("a1", "c1")]
+    assert _noisy_joins(190, off.replace(motion_shown=1.0)) == [("a1", "a2")]
+    assert _noisy_joins(190, off.replace(motion_shown=0.0)) == _noisy_joins(190, off)
