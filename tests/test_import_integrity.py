@@ -1038,3 +1038,92 @@ def test_a_last_row_typo_with_few_rows_of_its_track_in_the_last_piece(
     size = _size_with_last(src, here)
     whole, got = _whole_and_in_pieces(src, tmp_path, monkeypatch, size, way, len(rows))
     assert whole == got == [len(rows) + 1]
+
+
+# --- a track whose times jump by months, read whole and in pieces (h149) -------------------
+
+_LONE = "time days away from its track's rows before and after it"
+
+
+def test_a_track_jumping_by_months_reads_alike_whole_and_in_pieces(tmp_path, monkeypatch):
+    """One id over a year, its rows out of time order by months (h134's `lone.csv`): a
+    whole read keeps every row (the track is not written in time order, so no row of it
+    is judged lone), while pieces of 200 bytes judged each piece's few rows in order and
+    quarantined 5 as "time days away from its track's rows". A piece now leaves such rows
+    to the whole file (WholeFileNeeded): the same points and quarantine every way."""
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv, write_points
+    from wakeline.core.io.pieces import read_in_pieces
+
+    days = ["03-01", "01-01", "01-15", "02-01", "03-03", "02-15", "03-15", "12-15", "03-15"]
+    days += ["12-15", "12-15", "05-15"]
+    for way in ("streamed", "in pieces"):
+        note = '"a, b"' if way == "in pieces" else "ab"  # quotes: read in pieces
+        lines = ["time,id,lat,lon,note"]
+        for k in range(36):
+            lines.append(f"2024-{days[k % 12]} 10:00:0{k % 3},1,{37 + k * 1e-4:.4f},23.6,{note}")
+        src = tmp_path / f"lone_{way[:2]}.csv"
+        src.write_text("\n".join(lines) + "\n")
+        whole = read_points(src)
+        assert whole.report["rows_quarantined"] == 0 and whole.report["rows_imported"] == 36
+        write_points(whole.points, tmp_path / "whole.csv")
+        monkeypatch.setattr(reader, "STREAM_BYTES", 200)
+        got = import_to_csv(src, tmp_path / "out.csv")
+        assert (tmp_path / "out.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
+        assert got.report["rows_quarantined"] == 0, got.quarantine["reason"].tolist()
+        monkeypatch.undo()
+        with pytest.raises(reader.WholeFileNeeded):  # a piece leaves it to the whole file
+            read = {"fmt": "auto", "mapping": None, "sensor": "S1", "tz": None}
+            monkeypatch.setattr(reader, "STREAM_BYTES", 200)
+            read_in_pieces(sniff(src), read, lambda p: None, tmp_path / "scratch")
+        monkeypatch.undo()
+
+
+@settings(
+    max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    tracks=st.lists(
+        st.lists(st.integers(0, 365), min_size=2, max_size=25),  # each row's day of the year
+        min_size=1,
+        max_size=3,
+    ),
+    in_order=st.booleans(),
+    typo=st.one_of(st.none(), st.tuples(st.integers(0, 2), st.integers(0, 24), st.integers(1, 9))),
+    size=st.integers(200, 2000),
+    way=st.sampled_from(["streamed", "in pieces"]),
+)
+def test_lone_rows_in_pieces_are_the_whole_reads_when_times_jump_by_months(
+    tmp_path, monkeypatch, tracks, in_order, typo, size, way
+):
+    """Tracks whose rows lie days to months apart (in time order or not), one row's year
+    perhaps mistyped, read streamed or in pieces of any size: the rows quarantined as lone
+    ("time days away from its track's rows…") are exactly the whole read's, the rest of
+    the quarantine a part of the whole read's (the edge-row rule may miss a typo in
+    pieces), and every row is a point or a quarantine row."""
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv
+
+    t0 = pd.Timestamp("2024-01-01 10:00:00")
+    rows = []
+    for b, days in enumerate(tracks):
+        days = sorted(days) if in_order else days
+        times = [t0 + pd.Timedelta(days=d, seconds=k) for k, d in enumerate(days)]
+        if typo is not None and typo[0] % len(tracks) == b:
+            i = typo[1] % len(times)
+            times[i] = times[i] + pd.DateOffset(years=typo[2])
+        rows += [(str(b), t) for t in times]
+    src = tmp_path / "m.csv"
+    src.write_text("\n".join([HEADER, *_edge_rows(rows, way)]) + "\n")
+    whole = read_points(src)
+    assert len(whole.points) + len(whole.quarantine) == len(rows)
+    monkeypatch.setattr(reader, "STREAM_BYTES", size)
+    got = import_to_csv(src, tmp_path / "out.csv")
+    assert got.report["rows_imported"] + got.report["rows_quarantined"] == len(rows)
+    assert len(pd.read_csv(tmp_path / "out.csv")) == got.report["rows_imported"]
+
+    def lone(q):
+        return q.loc[q["reason"].str.startswith(_LONE), "line"].tolist()
+
+    assert lone(got.quarantine) == lone(whole.quarantine)
+    assert set(got.quarantine["line"]) <= set(whole.quarantine["line"])

@@ -1159,15 +1159,33 @@ def _in_file_order(tr: np.ndarray, tt: np.ndarray) -> np.ndarray:
     return np.minimum(fwd, back) <= 0.1 * steps + 2
 
 
-def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray:
+def _lone_times(
+    ns: np.ndarray,
+    ok: np.ndarray,
+    track: np.ndarray,
+    piece: tuple[bool, Callable[[np.ndarray], np.ndarray]] | None = None,
+) -> np.ndarray:
     """Rows whose time is days from both rows of their track before and after them in the
     file while those two are close (a mistyped year or month: 2032 or 2013 in a 2023
     track; the decades rule misses them). Only such a lone row: a real gap, a track's
     first or last row, or rows out of order together are left alone. The rows of other
-    tracks around it screen first (O(n)); only candidates are checked by track."""
+    tracks around it screen first (O(n)); only candidates are checked by track.
+
+    ``piece`` (a piece of a file read streamed or in pieces): whether it is the last
+    piece with rows, and track codes → the time (s) of each track's last valid row in the
+    earlier pieces (NaN: none). Whether a track is written in time order is judged over
+    all its rows in the file, and a row's track neighbours may lie in another piece, so
+    a piece does not judge: when a candidate of the screen could be lone in the whole
+    file — its track's order aside, its row before taken from the earlier pieces where
+    the piece has none, and where its row after lies in a later piece, when it is days
+    from its row before — :class:`WholeFileNeeded` is raised and the whole file judges;
+    else no row of the piece is lone in the whole file either (h149: a track whose times
+    jump by months had 5 rows quarantined in pieces of 200 bytes, none whole). The
+    screen passes a row only when the rows of the file around it are days from it, so
+    an ordinary file never meets this."""
     n = len(ns)
     out = np.zeros(n, dtype=bool)
-    if n < 3:
+    if n < 3 and piece is None:
         return out
     t = np.where(ok, np.asarray(ns, dtype="float64") / 1e9, np.nan)
     far = LONE_MIN_S
@@ -1185,6 +1203,22 @@ def _lone_times(ns: np.ndarray, ok: np.ndarray, track: np.ndarray) -> np.ndarray
     tr, tt = track[order], t[order]
     same_prev = np.r_[False, tr[1:] == tr[:-1]]
     same_next = np.r_[tr[:-1] == tr[1:], False]
+    if piece is not None:  # judged over the file: its track's order, rows in other pieces
+        final, carried_last = piece
+        at = np.flatnonzero(cand[order])
+        prev = np.where(same_prev[at], tt[np.maximum(at - 1, 0)], np.nan)
+        first = ~same_prev[at]
+        if first.any():
+            prev[first] = carried_last(tr[at[first]])
+        nxt = np.where(same_next[at], tt[np.minimum(at + 1, len(tt) - 1)], np.nan)
+        t_at = tt[at]
+        with np.errstate(invalid="ignore"):
+            limit = np.maximum(far, LONE_RATIO * np.abs(nxt - prev))
+            both = (np.abs(t_at - prev) > limit) & (np.abs(t_at - nxt) > limit)
+            later = ~same_next[at] & ~final & (np.abs(t_at - prev) > far)
+        if (both | later).any():
+            raise WholeFileNeeded
+        return out
     # Only a track written in time order (either way) has neighbours to judge by: in a
     # file of rows in random order every row's neighbours are anywhere in its span.
     same_prev &= _in_file_order(tr, tt)[tr]
@@ -3536,16 +3570,7 @@ def _to_canonical(
         track = text["batch"].codes.astype("int64")
         if "sensor" in text:
             track = track * (len(text["sensor"].names) + 1) + text["sensor"].codes
-        flag(
-            _lone_times(np.asarray(ns), np.asarray(time_ok) & (reasons == 0) & ~blank, track),
-            "time days away from its track's rows before and after it in the file "
-            "(a mistyped date?)",
-        )
-        # A track's first or last row: judged by a whole read, and by a read in pieces in
-        # its last piece with rows (a track's last row there is its last in the file),
-        # with what the earlier pieces carried of each track (EdgeCarry).
         edges = counted.get("_edges")
-        valid = np.asarray(time_ok) & (reasons == 0) & ~blank
         carry = None if edges is None else edges["carry"]
 
         def keys(codes: np.ndarray) -> np.ndarray:
@@ -3553,6 +3578,28 @@ def _to_canonical(
             b = text["batch"].names[codes // width]
             s = text["sensor"].names[codes % width] if "sensor" in text else [sensor] * len(b)
             return np.array([f"{x}\x1f{y}" for x, y in zip(s, b, strict=True)], dtype=object)
+
+        def carried_last(codes: np.ndarray) -> np.ndarray:
+            if carry is None or not len(carry):
+                return np.full(len(codes), np.nan)
+            return carry.lookup(keys(codes))["last"]
+
+        # A piece of a file read streamed or in pieces leaves lone rows to the whole file
+        # (a track's order and neighbours lie over the file): _lone_times raises.
+        flag(
+            _lone_times(
+                np.asarray(ns),
+                np.asarray(time_ok) & (reasons == 0) & ~blank,
+                track,
+                piece=None if edges is None else (bool(edges.get("final")), carried_last),
+            ),
+            "time days away from its track's rows before and after it in the file "
+            "(a mistyped date?)",
+        )
+        # A track's first or last row: judged by a whole read, and by a read in pieces in
+        # its last piece with rows (a track's last row there is its last in the file),
+        # with what the earlier pieces carried of each track (EdgeCarry).
+        valid = np.asarray(time_ok) & (reasons == 0) & ~blank
 
         if edges is None or edges.get("final"):
             earlier = None
