@@ -13,7 +13,7 @@ from PySide6 import QtCore, QtGui, QtWidgets
 from wakeline.app.window_words import window_words
 from wakeline.core.errors import InputError
 from wakeline.core.io import FAMILIES, inspect_file
-from wakeline.core.io.formats import FIELDS
+from wakeline.core.io.formats import MAP_FIELDS
 from wakeline.core.io.reader import FILE_BATCH
 
 NONE = "—"
@@ -162,7 +162,7 @@ class ImportDialog(QtWidgets.QDialog):
         # One row per canonical field: a list of the file's columns (never free text).
         self.mapping_boxes: dict[str, QtWidgets.QComboBox] = {}
         mapping_form = QtWidgets.QFormLayout()
-        for name in FIELDS:
+        for name in MAP_FIELDS:  # gps_week, gps_seconds: a GPS time in place of time
             box = QtWidgets.QComboBox()
             box.currentIndexChanged.connect(self._mapping_changed)
             self.mapping_boxes[name] = box
@@ -404,7 +404,11 @@ class ImportDialog(QtWidgets.QDialog):
                     ", ".join(self._missing)
                 )
             )
-        elif time_col is None and self._info.get("kind") == "csv":
+        elif (
+            time_col is None
+            and "gps_seconds" not in self.mapping()
+            and self._info.get("kind") == "csv"
+        ):
             problems.append(self.tr("Choose the time column."))
         day = self.date_edit.text().strip()
         if day and self._clock_date() is None:

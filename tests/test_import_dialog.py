@@ -393,3 +393,32 @@ def test_the_speed_and_distance_units_reach_read_points(qtbot, write):
     assert opts["speed_unit"] == "km/h" and opts["distance_unit"] == "yd"
     got = read_points(**opts).points["speed"]
     assert got.tolist() == pytest.approx([k * 1000 / 1852 for k in range(5)])
+
+
+def test_gps_week_and_seconds_are_mapping_fields_that_reach_read_points(qtbot, tmp_path):
+    """The dialog's mapping rows come from the fields `--map` takes: gps_week and
+    gps_seconds among them (h149). A GPS file shows them filled (not time), and columns
+    no name shows as GPS time read so when chosen in them."""
+    src = tmp_path / "gps.csv"
+    src.write_text("gps_week,tow,id,lat,lon\n2295,86418,1,37.9,23.6\n")
+    dlg = ImportDialog(path=src)
+    qtbot.addWidget(dlg)
+    assert dlg.mapping() == {
+        "batch": "id",
+        "lon": "lon",
+        "lat": "lat",
+        "gps_week": "gps_week",
+        "gps_seconds": "tow",
+    }
+    assert "time column" not in dlg.warning_label.text()
+    got = read_points(**dlg.options())
+    assert got.points["time"].tolist() == [pd.Timestamp("2024-01-01", tz="UTC")]
+    other = tmp_path / "plain.csv"
+    other.write_text("W,S,id,lat,lon\n2295,86418,1,37.9,23.6\n")
+    dlg = ImportDialog(path=other)
+    qtbot.addWidget(dlg)
+    dlg.mapping_boxes["gps_week"].setCurrentText("W")
+    dlg.mapping_boxes["gps_seconds"].setCurrentText("S")
+    assert dlg.warning_label.text() == ""
+    got = read_points(**dlg.options())
+    assert got.points["time"].tolist() == [pd.Timestamp("2024-01-01", tz="UTC")]

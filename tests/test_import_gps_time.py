@@ -120,3 +120,82 @@ def test_milliseconds_of_the_week_are_not_read_as_seconds(tmp_path):
     src.write_text("gps_week,gps_ms,id,lat,lon\n2295,300000,1,37.9,23.6\n")
     with pytest.raises(InputError, match="time"):
         read_points(src)
+
+
+# --- --map gps_week=COLUMN, gps_seconds=COLUMN (h149) ---------------------------------------
+
+_PLAIN_NAMES = "W,S,id,lat,lon\n2295,86418,1,37.9,23.6\n2295,86428.5,1,37.9,23.6\n"
+_T = [pd.Timestamp("2024-01-01", tz="UTC"), pd.Timestamp("2024-01-01 00:00:10.5", tz="UTC")]
+
+
+def test_week_and_seconds_columns_are_mapped(tmp_path, monkeypatch):
+    """Columns no name shows as GPS time (`W`, `S`) are read so when mapped: before, the
+    only way to read them was to rename the columns (`--map` knew no week field, and
+    `--map time=S` read seconds of the week as relative seconds)."""
+    src = tmp_path / "gps.csv"
+    src.write_text(_PLAIN_NAMES)
+    r = read_points(src, mapping=["gps_week=W", "gps_seconds=S"])
+    assert r.points["time"].tolist() == _T
+    assert r.report["time_format"] == "GPS week and seconds of week"
+    assert r.points["W"].tolist() == ["2295", "2295"]  # the week travels as an extra column
+    # GPS seconds since 1980-01-06 alone
+    src.write_text("S,id,lat,lon\n1356998418,1,37.9,23.6\n")
+    r = read_points(src, mapping=["gps_seconds=S"])
+    assert r.points["time"].tolist() == [pd.Timestamp("2023-01-06", tz="UTC")]
+    assert r.report["time_format"] == "GPS seconds since 1980-01-06"
+
+
+def test_one_of_the_pair_mapped_takes_the_other_by_its_name(tmp_path):
+    src = tmp_path / "gps.csv"
+    src.write_text("gps_week,S,id,lat,lon\n2295,86418,1,37.9,23.6\n")
+    r = read_points(src, mapping=["gps_seconds=S"])
+    assert r.points["time"].tolist() == _T[:1]
+    src.write_text("W,tow,id,lat,lon\n2295,86418,1,37.9,23.6\n")
+    r = read_points(src, mapping=["gps_week=W"])
+    assert r.points["time"].tolist() == _T[:1]
+
+
+def test_gps_mappings_that_cannot_be_read_are_refused(tmp_path):
+    from wakeline.core.errors import InputError
+
+    src = tmp_path / "gps.csv"
+    src.write_text(_PLAIN_NAMES)
+    with pytest.raises(InputError, match="add --map gps_seconds=COLUMN"):
+        read_points(src, mapping=["gps_week=W"])
+    with pytest.raises(InputError, match="the time is one or the other"):
+        read_points(src, mapping=["gps_seconds=S", "time=S"])
+    with pytest.raises(InputError, match="mapped column.*not found: gps_week=X"):
+        read_points(src, mapping=["gps_week=X", "gps_seconds=S"])
+    with pytest.raises(InputError, match="fields are .*gps_week, gps_seconds"):
+        read_points(src, mapping=["gps=W"])
+
+
+def test_cli_map_gps_columns(tmp_path, capsys):
+    from wakeline.app.cli import main
+
+    src = tmp_path / "gps.csv"
+    src.write_text(_PLAIN_NAMES)
+    out = tmp_path / "out.csv"
+    main(["import", str(src), "-o", str(out), "--map", "gps_week=W", "--map", "gps_seconds=S"])
+    said = capsys.readouterr()
+    assert "GPS week and seconds of week" in said.out + said.err
+    assert pd.read_csv(out)["time"].tolist() == [
+        "2024-01-01T00:00:00.000Z",
+        "2024-01-01T00:00:10.500Z",
+    ]
+
+
+def test_the_detected_mapping_names_gps_fields_so_mapping_it_again_reads_gps(tmp_path):
+    """`inspect_file` (the File ▸ Open dialog's detection) gave a GPS file's mapping as
+    `time=tow`; the dialog hands every box to the import, and `--map time=tow` read the
+    seconds of the week as relative seconds (1970-01-02). It now gives gps_week and
+    gps_seconds, which read GPS time."""
+    from wakeline.core.io.reader import inspect_file
+
+    src = tmp_path / "gps.csv"
+    src.write_text("gps_week,tow,id,lat,lon\n2295,86418,1,37.9,23.6\n")
+    mapping = inspect_file(src)["mapping"]
+    assert mapping["gps_week"] == "gps_week" and mapping["gps_seconds"] == "tow"
+    assert "time" not in mapping
+    r = read_points(src, mapping=[f"{k}={v}" for k, v in mapping.items()])
+    assert r.points["time"].tolist() == _T[:1]

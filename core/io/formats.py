@@ -29,6 +29,12 @@ FIELDS = (
     "range",
     "bearing",
 )
+#: Fields ``--map`` takes besides :data:`FIELDS`: a GPS week column and a column of GPS
+#: seconds (of the week beside a week, else since 1980-01-06), found by name when no
+#: column names a time (:func:`gps_columns`); mapped, they are the time (h149).
+GPS_FIELDS = ("gps_week", "gps_seconds")
+#: Every field ``--map`` (and the import dialog's column mapping) takes.
+MAP_FIELDS = FIELDS + GPS_FIELDS
 #: Positions in metres on a local plane (a radar's x/y about its site, a NED frame):
 #: ``east``/``north`` (plus ``east_offset``/``north_offset``, e.g. the ownship's place
 #: in the same frame, added to them) stand for lon/lat when the file has no lon/lat
@@ -645,6 +651,17 @@ class Resolved:
     distance_unit: str = "auto"
 
     @property
+    def mapping(self) -> dict[str, str]:
+        """``columns`` as ``--map`` names them: a GPS time as ``gps_seconds`` (and
+        ``gps_week``), so that mapping them again reads GPS time (the import dialog)."""
+        out = dict(self.columns)
+        if self.gps_week is not None and "time" in out:
+            out["gps_seconds"] = out.pop("time")
+            if self.gps_week:
+                out["gps_week"] = self.gps_week
+        return out
+
+    @property
     def on_plane(self) -> bool:
         """The positions are on a local plane about ``origin`` (east/north, or range and
         bearing)."""
@@ -819,9 +836,9 @@ def parse_mapping(items: list[str] | None) -> dict[str, str]:
         name, col = name.strip(), col.strip()
         if not sep or not name or not col:
             raise InputError(f"--map {item!r}: expected field=column, e.g. batch=MMSI")
-        if name not in FIELDS:
+        if name not in MAP_FIELDS:
             raise InputError(
-                f"--map {item!r}: unknown field {name!r}; fields are {', '.join(FIELDS)}"
+                f"--map {item!r}: unknown field {name!r}; fields are {', '.join(MAP_FIELDS)}"
             )
         out[name] = col
     return out
@@ -893,6 +910,38 @@ def _resolve_columns(
             f"{source}: mapped column(s) not found: {', '.join(missing_mapped)}; "
             f"headers found: {listed_headers(headers)}"
         )
+    gps = {k: mapping.pop(k) for k in GPS_FIELDS if k in mapping}
+    if not gps:
+        return _resolve_mapped(headers, family, mapping, source)
+    # --map gps_week=W and/or gps_seconds=S: S (or the GPS seconds column its name gives)
+    # is the time, read as GPS seconds of the week in W (or the week column its name
+    # gives; none: GPS seconds since 1980-01-06).
+    if "time" in mapping:
+        raise InputError(
+            f"--map time={mapping['time']} and --map "
+            + ", ".join(f"{k}={v}" for k, v in gps.items())
+            + ": the time is one or the other (GPS week and seconds are the time)"
+        )
+    week, seconds = gps_columns([h for h in headers if h not in mapping.values()])
+    week = gps.get("gps_week", None if week == gps.get("gps_seconds") else week)
+    seconds = gps.get("gps_seconds") or next(
+        (h for h in headers if h != week and _GPS_SECONDS.match(h.strip().lower())), None
+    )
+    if seconds is None:
+        raise InputError(
+            f"{source}: --map gps_week={week} needs the column of GPS seconds of the week: "
+            f"add --map gps_seconds=COLUMN; headers found: {listed_headers(headers)}"
+        )
+    if seconds == week:
+        raise InputError(f"--map gps_week and gps_seconds name one column: {week!r}")
+    mapping["time"] = seconds
+    found = _resolve_mapped(headers, family, mapping, source)
+    return replace(found, gps_week=week or "")
+
+
+def _resolve_mapped(
+    headers: tuple[str, ...], family: str, mapping: dict[str, str], source: str
+) -> Resolved:
     lookup = _lookup(headers)
     candidates = [f for f in FORMATS if family in ("auto", f.family)]
     if family == "auto":

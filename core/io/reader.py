@@ -3956,7 +3956,7 @@ def inspect_file(
     else:
         out["plane"] = res.on_plane
         out["format"], out["format_label"] = res.format.name, res.format.label
-        out["mapping"] = dict(res.columns)
+        out["mapping"] = res.mapping  # a GPS time as gps_week/gps_seconds
         if "batch" not in res.columns:
             out["mapping"]["batch"] = FILE_BATCH
     used = set(out["mapping"].values())
