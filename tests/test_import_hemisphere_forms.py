@@ -181,16 +181,24 @@ def test_ddmm_cells_edge_forms(tmp_path):
         "2024-01-01T00:00:10,1,0030.5000S,942.1W\n"  # lat under a degree; unpadded lon > 180
         "2024-01-01T00:00:20,1,3754,03S,02342.10E\n"  # decimal comma (quoted or ; files)
         "2024-01-01T00:00:30,1,3775.05S,02342.12W\n"  # minutes 75: no position
-        "2024-01-01T00:00:40,1,37.5S,123.5W\n"  # three digits: decimal degrees
+        "2024-01-01T00:00:40,1,37.5S,123.5W\n"  # unpadded, in ddmm.mmmm columns (h149)
     )
     r = read_points(src)
     _lines_accounted(r, src)
     got = r.points.set_index(r.points["time"].dt.second)["lat"].to_dict()
     assert got[0] == pytest.approx(37.9005) and got[10] == pytest.approx(-0.508333, abs=1e-6)
-    assert got[40] == -37.5
+    # one form a column (h149): before, 37.5S was -37.5 beside 3754.03N (-37.9005) and
+    # 123.5W -123.5 beside 02342.10E, each cell judged alone
+    assert got[40] == pytest.approx(-0.625)
     lon = r.points.set_index(r.points["time"].dt.second)["lon"].to_dict()
-    assert lon[10] == pytest.approx(-9.701667, abs=1e-6) and lon[40] == -123.5
+    assert lon[10] == pytest.approx(-9.701667, abs=1e-6)
+    assert lon[40] == pytest.approx(-(1 + 23.5 / 60))
     assert set(r.quarantine["line"]) == {4, 5}  # the comma splits the row; minutes 75
+    assert r.quarantine.set_index("line")["reason"][5] == (
+        "lat not in ddmm.mmmm as the rest of its column (minutes 60 or more)"
+    )
+    assert r.report["ddmm_unpadded"] == 3  # 37.5S, 942.1W, 123.5W
+    assert r.report["lettered_forms"] == {"lat": "ddmm", "lon": "ddmm"}
 
 
 @settings(max_examples=100, deadline=None)

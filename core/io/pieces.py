@@ -288,6 +288,7 @@ def _read_all(
     has_rows = blank_bytes(sn.delimiter)
     units: set[bool] = set()  # numeric times read as Excel days, or not, per piece
     ddmm: set[tuple] = set()  # positions read as NMEA's ddmm.mmmm, or not, per piece
+    forms: dict[str, str] = {}  # lettered lat/lon columns: ddmm.mmmm or degrees (h149)
     for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn, opened), has_rows)):
         piece_file.write_bytes(piece)
         done += len(piece)
@@ -324,6 +325,9 @@ def _read_all(
             ddmm.add((bool(res.report.get("ddmm")), notes))
             if len(ddmm) > 1:
                 raise WholeFileNeeded  # pieces judged ddmm.mmmm positions apart: one judgement
+        for name, form in (res.report.get("lettered_forms") or {}).items():
+            if forms.setdefault(name, form) != form:
+                raise WholeFileNeeded  # 3754.03N in one piece, 37.5N in another: one form
         if not line_by_line and UNBALANCED_NOTE in warnings:
             raise _Again(quotes=True)
         if strict and any(w.startswith("some bytes are not valid") for w in warnings):
@@ -388,6 +392,9 @@ def merge_import_reports(
         k: sum(int(r.get(k, 0)) for r in reports) for k in (*TIME_COUNTS, *POSITION_COUNTS)
     }
     times["dayfirst_shown"] = times["day_shown"]
+    times["lettered_forms"] = {  # the pieces agree (else the file was read whole)
+        k: v for r in reports for k, v in (r.get("lettered_forms") or {}).items()
+    }
     times["excel_why"] = next((r["excel_why"] for r in reports if r.get("excel_why")), None)
     times["date_order_given"] = given
     for r in reports:

@@ -840,16 +840,51 @@ _DDMM_CELL = re.compile(
 )
 
 
+#: The reason of a cell of a lettered lat/lon column not in the column's form: ddmm.mmmm
+#: (degrees and minutes run together, ``3754.03N``) where the column is decimal degrees.
+DDMM_CELL_CLASH = (
+    "{} in ddmm.mmmm (degrees and minutes run together, like 3754.03N) where the rest of "
+    "its column is decimal degrees with a letter"
+)
+
+
+def lettered_form(d: pd.Series, digits: pd.Series, top: float) -> tuple[bool, pd.Series]:
+    """How a column writes its numbers with a hemisphere letter and no minutes (``d``:
+    the numbers, ``digits``: how many digits stand before their point): NMEA's ddmm.mmmm
+    (True) or decimal degrees, and the numbers read as ddmm.mmmm (NaN: none such).
+
+    Judged over the column, never cell by cell (h149: ``123.5W`` is 1°23.5' unpadded or
+    123.5°): a cell shows ddmm.mmmm when it reads as such (minutes below 60) and has four
+    or five digits before its point or lies beyond ``top`` as degrees (``942.1W``); a
+    cell shows degrees when it cannot be ddmm.mmmm (``165.3W``, ``85.5N``: minutes 60 or
+    more). The column is ddmm.mmmm when more cells show it than show degrees."""
+    as_ddmm = pd.Series(_ddmm(d.to_numpy(dtype="float64"), top), index=d.index)
+    shows = as_ddmm.notna() & ((digits >= 4) | (d > top))
+    against = as_ddmm.isna() & (d <= top)
+    return bool(shows.sum() > against.sum()), as_ddmm
+
+
 def _with_dms(
-    text: pd.Series, values: np.ndarray, counted: dict | None = None, top: float | None = None
+    text: pd.Series,
+    values: np.ndarray,
+    counted: dict | None = None,
+    top: float | None = None,
+    name: str | None = None,
 ) -> int:
     """Fill ``values`` (NaN where ``text`` is no plain number) from the texts written in
     degrees, minutes and seconds (:data:`_DMS`), in place; returns how many. Counted in
     ``counted``: ``dms``, and ``hemisphere_degrees`` those of decimal degrees with a
     hemisphere letter (no minutes: ``37.05N``). With ``top`` (90 for lat, 180 for lon),
-    a number with a letter and four or five digits before its point (``3754.03N``,
-    ``02342.10E``), or beyond ``top`` (``942.1E``), is NMEA's ddmm.mmmm (counted in
-    ``ddmm_in_cell``); minutes of 60 or more leave it unread."""
+    the numbers with a letter and no minutes are NMEA's ddmm.mmmm (``3754.03N``,
+    ``02342.10E``, ``942.1E``; counted in ``ddmm_in_cell``) or decimal degrees, one form
+    for the column (:func:`lettered_form`): in a ddmm.mmmm column a cell without the
+    zero padding (``123.5W``, 1°23.5') is read so too (counted in ``ddmm_unpadded``) and
+    one that cannot be (minutes 60 or more) is not read; in a column of degrees, a cell
+    in ddmm.mmmm is not read (its rows: ``counted["_form_clash"][name]``, a mask over
+    ``text``) and one with three digits that could be ddmm.mmmm unpadded (``123.5W``) is
+    read as degrees and counted in ``ddmm_ambiguous``. ``counted["lettered_forms"]
+    [name]``: ``ddmm`` or ``degrees`` when the column has such cells (pieces of a file
+    must agree)."""
     miss = np.flatnonzero(np.isnan(values))
     if not len(miss):
         return 0
@@ -880,12 +915,30 @@ def _with_dms(
     south_west = hemi.str.contains("[SW西南]", regex=True) | (parts["sign"] == "-")
     deg = d + m / 60.0 + sec / 3600.0
     in_cell = pd.Series(False, index=parts.index)
-    if top is not None:  # NMEA's ddmm.mmmm with its letter: 4-5 digits, or beyond top
+    unpadded = ambiguous = 0
+    if top is not None:  # NMEA's ddmm.mmmm with its letter, or degrees: one form a column
         lettered = parts["m"].isna() & (hemi != "")
         digits = parts["d"].str.split(r"[.,]", regex=True).str[0].str.len()
-        in_cell = lettered & ((digits >= 4) | (d > top))
-        if in_cell.any():
-            deg = deg.where(~in_cell, pd.Series(_ddmm(d.to_numpy(), top), index=d.index))
+        if lettered.any():
+            is_ddmm, as_ddmm = lettered_form(d[lettered], digits[lettered], top)
+            if counted is not None and name is not None:
+                counted.setdefault("lettered_forms", {})[name] = "ddmm" if is_ddmm else "degrees"
+            if is_ddmm:
+                in_cell = lettered
+                deg = deg.where(~in_cell, as_ddmm.reindex(deg.index))
+                unpadded = int((as_ddmm.notna() & (digits[lettered] < 4)).sum())
+                clash, reason = as_ddmm.isna(), DDMM_REASON  # minutes 60 or more
+            else:
+                clash = as_ddmm.notna() & ((digits[lettered] >= 4) | (d[lettered] > top))
+                reason = DDMM_CELL_CLASH
+                ambiguous = int(
+                    (as_ddmm.notna() & (digits[lettered] == 3) & (d[lettered] <= top)).sum()
+                )
+                deg = deg.where(~clash.reindex(deg.index, fill_value=False))
+            if clash.any() and counted is not None and name is not None:
+                mask = np.zeros(len(text), dtype=bool)
+                mask[text.index.get_indexer(clash.index[clash.to_numpy()])] = True
+                counted.setdefault("_form_clash", {})[name] = (mask, reason.format(name))
     deg = deg.where(good) * np.where(south_west, -1.0, 1.0)
     rows = text.index.get_indexer(deg.index)
     values[rows] = deg.to_numpy(dtype="float64")
@@ -896,6 +949,8 @@ def _with_dms(
         ("dms", read - plain - nmea_read),
         ("hemisphere_degrees", plain),
         ("ddmm_in_cell", nmea_read),
+        ("ddmm_unpadded", unpadded),
+        ("ddmm_ambiguous", ambiguous),
     ):
         if counted is not None and k:
             counted[key] = counted.get(key, 0) + k
@@ -908,6 +963,7 @@ def _numbers(
     counted: dict | None = None,
     angles: bool = False,
     top: float | None = None,
+    name: str | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """float64 values and a mask of unparsable (present but not a number) cells. With
     ``decimal_comma``, ``57,6671`` is 57.6671 (counted in ``counted["decimal_comma"]``);
@@ -925,7 +981,7 @@ def _numbers(
         if counted is not None and k:
             counted["decimal_comma"] = counted.get("decimal_comma", 0) + k
     if angles:
-        _with_dms(text, values, counted, top)
+        _with_dms(text, values, counted, top, name)
     present = ~(text.isna() | (text == "")).to_numpy()
     lowered = text.str.lower()
     nan_words = lowered.isin(["nan", "na", "n/a", "null", "none"]).to_numpy()
@@ -2339,6 +2395,21 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             "run together, four or five digits before the point) and read as signed decimal "
             "degrees (3754.03N is 37.9005)"
         )
+    if time_info.get("ddmm_unpadded"):
+        out.append(
+            f"{time_info['ddmm_unpadded']:,} positions were written without NMEA's zero "
+            "padding (123.5W, 942.1N) in a column of ddmm.mmmm with letters: read as "
+            "degrees and minutes like the rest of their column (123.5W is 1°23.5' W, "
+            "-1.391667)"
+        )
+    if time_info.get("ddmm_ambiguous"):
+        out.append(
+            f"{time_info['ddmm_ambiguous']:,} positions with a hemisphere letter and three "
+            "digits before the point (like 123.5W) were read as decimal degrees (123.5°); "
+            "they could be NMEA's dddmm.mm without its zero padding (1°23.5'), and no cell "
+            "of their column shows which: if they are degrees and minutes, pad them "
+            "(00123.5W)"
+        )
     if time_info.get("hemisphere_degrees"):
         out.append(
             f"{time_info['hemisphere_degrees']:,} positions were written in decimal degrees "
@@ -2456,7 +2527,15 @@ def date_order_note(time_info: dict) -> str | None:
 TIME_COUNTS = ("dates_either_way", "day_shown", "excel_days", "date_order_refused")
 #: ... and of the positions read from text (in the report as these keys when not zero;
 #: a read in pieces sums them and says each once).
-POSITION_COUNTS = ("dms", "hemisphere_degrees", "ddmm", "letter_signs", "ddmm_in_cell")
+POSITION_COUNTS = (
+    "dms",
+    "hemisphere_degrees",
+    "ddmm",
+    "letter_signs",
+    "ddmm_in_cell",
+    "ddmm_unpadded",
+    "ddmm_ambiguous",
+)
 
 
 def time_counts(time_info: dict) -> dict:
@@ -2464,6 +2543,8 @@ def time_counts(time_info: dict) -> dict:
     read (``excel_why``), for the import report."""
     out: dict = {k: int(time_info[k]) for k in TIME_COUNTS if time_info.get(k)}
     out.update({k: int(time_info[k]) for k in POSITION_COUNTS if time_info.get(k)})
+    if time_info.get("lettered_forms"):  # lat/lon with letters: ddmm.mmmm or degrees
+        out["lettered_forms"] = dict(time_info["lettered_forms"])
     if time_info.get("excel_why"):
         out["excel_why"] = time_info["excel_why"]
     return out
@@ -3648,8 +3729,11 @@ def _to_canonical(
             continue
         else:
             v, unparsable = _numbers(
-                arr, comma, counted, angles=name in ("lon", "lat"), top=_RANGES[name][1]
+                arr, comma, counted, angles=name in ("lon", "lat"), top=_RANGES[name][1], name=name
             )
+            clash = counted.get("_form_clash", {}).pop(name, None)
+            if clash is not None:  # a cell not in its column's form: neither form guessed
+                flag(*clash)
             if name in hemis:  # decimal degrees with a column of hemisphere letters
                 hemi = hemis[name]
                 given = ~np.isnan(v)
@@ -3706,6 +3790,7 @@ def _to_canonical(
         if name == "speed":
             floats[name] = _in_knots(floats[name], cols[name], res.speed_unit, counted)
 
+    counted.pop("_form_clash", None)
     blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
     swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
     bad_rows = reasons != 0
@@ -4249,6 +4334,10 @@ def stream_points(
             )
             if len(time_info["_ddmm"]) > 1:
                 raise _Fallback
+        forms = time_info.setdefault("lettered_forms", {})
+        for name, form in (info.get("lettered_forms") or {}).items():
+            if forms.setdefault(name, form) != form:
+                raise _Fallback  # ddmm.mmmm with letters in one piece, degrees in another
         for key in ("ddmm_note", "letter_note", "speed_unit", "speed_unit_refused"):
             if info.get(key):
                 time_info[key] = info[key]
@@ -4273,6 +4362,8 @@ def stream_points(
             "ddmm",
             "letter_signs",
             "ddmm_in_cell",
+            "ddmm_unpadded",
+            "ddmm_ambiguous",
             "dates_either_way",
             "day_shown",
             "date_order_refused",
