@@ -186,6 +186,11 @@ def format_angles(values: np.ndarray, fmt: AngleFormat, pos: str, neg: str) -> p
     x = np.asarray(values, dtype="float64")
     finite = np.isfinite(x)
     a = np.abs(np.where(finite, x, 0.0))
+    if fmt.ddmm:  # NMEA's degrees and minutes run together with the letter: 3754.03N
+        text = format_ddmm(a, NumberFormat(fmt.decimals, fmt.trim), fmt.deg_width, False)
+        letter = pa.array(np.where(x < 0, neg, pos))
+        text = _join(text, fmt.gap, letter) if fmt.suffix else _join(letter, fmt.gap, text)
+        return pc.if_else(pa.array(finite), text, fmt.na)
     if not fmt.minutes:  # decimal degrees with the letter: 37.05N
         text = format_numbers(a, NumberFormat(fmt.decimals, fmt.trim))
         letter = pa.array(np.where(x < 0, neg, pos))

@@ -35,6 +35,7 @@ from wakeline.core.io.reader import (
     ddmm_judged,
     excel_days_rule,
     hemisphere_column,
+    lettered_form,
     month_first_dates,
     resolve_header,
 )
@@ -109,6 +110,12 @@ _DM = re.compile(
 #: Decimal degrees with a hemisphere letter (``37.05N``, ``W 23.05``).
 _DEG_LETTER = re.compile(
     r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,3})(?:\.(?P<df>\d+))?(?P<g2> ?)(?P<h2>[NSEW])?$"
+)
+#: NMEA's degrees and minutes run together with the letter in the cell (``3754.03N``,
+#: ``N 02342.10``, ``123.5W`` unpadded): read so when its column is (the import's
+#: ``lettered_forms``, :func:`~wakeline.core.io.reader.lettered_form`).
+_DDMM_LETTER = re.compile(
+    r"^(?P<h1>[NSEW])?(?P<g1> ?)(?P<d>\d{1,5})(?:\.(?P<df>\d+))?(?P<g2> ?)(?P<h2>[NSEW])?$"
 )
 #: ... and with seconds (``N 57 40 01.6``, ``57°40'01.6"N``).
 _DMS = re.compile(
@@ -221,15 +228,41 @@ class AngleFormat:
     na: str = ""
     #: False: decimal degrees with the letter (``37.05N``; ``decimals`` the degrees')
     minutes: bool = True
+    #: NMEA's degrees and minutes run together with the letter (``3754.03N``; h149):
+    #: ``deg_width`` pads the digits before the point (4, 5; 0: not padded, ``123.5W``),
+    #: ``decimals`` and ``trim`` are the minutes'.
+    ddmm: bool = False
 
     @staticmethod
-    def detect(values: pd.Series) -> "AngleFormat | None":
+    def detect(values: pd.Series, ddmm: bool = False) -> "AngleFormat | None":
         """The format of a column of degrees-and-minutes texts with a hemisphere letter;
-        None unless 90 % of the present values are such."""
+        None unless 90 % of the present values are such. ``ddmm``: the import read the
+        column's numbers with a letter as NMEA's ddmm.mmmm (``3754.03N``)."""
         text = values.astype("str").str.strip()
         present = text[text != ""]
         if not len(present):
             return None
+        if ddmm:
+            parts = present.str.extract(_DDMM_LETTER)
+            ok = parts["d"].notna() & (parts["h1"].notna() ^ parts["h2"].notna())
+            if ok.mean() >= 0.9:
+                parts = parts[ok]
+                first = parts.iloc[0]
+                suffix = isinstance(first["h2"], str)
+                frac = parts["df"].fillna("").str.len()
+                decimals = int(frac.max())
+                whole = parts["d"]
+                padded = bool(((whole.str.len() > 1) & whole.str.startswith("0")).any())
+                return AngleFormat(
+                    suffix=suffix,
+                    gap=str(first["g2"] if suffix else first["g1"]),
+                    deg_mark="",
+                    min_mark="",
+                    decimals=decimals,
+                    trim="none" if (frac == decimals).all() else "zeros",
+                    deg_width=int(whole.str.len().max()) if padded else 0,
+                    ddmm=True,
+                )
         for regex, seconds in ((_DM, False), (_DMS, True)):
             parts = present.str.extract(regex)
             ok = parts["d"].notna() & (parts["h1"].notna() ^ parts["h2"].notna())
@@ -718,7 +751,11 @@ def describe_layout(
             f = None
         numeric = f in NUMBER_FIELDS or f in PLANE_FIELDS
         number = NumberFormat.detect(sample[key], _WIDEN_RANGE.get(f)) if numeric else None
-        angle = AngleFormat.detect(sample[key]) if f in ("lon", "lat") and number is None else None
+        angle = (
+            AngleFormat.detect(sample[key], _lettered_ddmm(sample[key], f, report))
+            if f in ("lon", "lat") and number is None
+            else None
+        )
         if numeric and number is None:
             number = NumberFormat()
         cols.append(Column(raw, f, number, key, angle))
@@ -782,6 +819,22 @@ def describe_layout(
         origin=tuple(plane) if plane else None,
         aligned=bool(sn.blank_runs),
     )
+
+
+def _lettered_ddmm(values: pd.Series, name: str, report: dict) -> bool:
+    """Whether the import read the lat/lon column ``name``'s numbers with a letter as
+    NMEA's ddmm.mmmm (``3754.03N``): its report's ``lettered_forms``; without them (a
+    report of before h149, or none), by the reader's rule on the sample's cells."""
+    forms = report.get("lettered_forms")
+    if forms is not None or report.get("ddmm_in_cell"):
+        return (forms or {}).get(name, "ddmm" if report.get("ddmm_in_cell") else "") == "ddmm"
+    parts = values.astype("str").str.strip().str.extract(_DDMM_LETTER)
+    parts = parts[parts["d"].notna() & (parts["h1"].notna() ^ parts["h2"].notna())]
+    if not len(parts):
+        return False
+    number = parts["d"] + ("." + parts["df"]).fillna("")
+    d = pd.to_numeric(number, errors="coerce")
+    return lettered_form(d, parts["d"].str.len(), 90.0 if name == "lat" else 180.0)[0]
 
 
 def _with_ddmm(cols: list, sample: pd.DataFrame, mapped: set[str], report: dict) -> list:
