@@ -215,6 +215,10 @@ def test_a_read_in_pieces_says_what_a_whole_read_says(tmp_path, monkeypatch, fmt
     whole = read_points(p, date_order=order).report
     if whole["time_format"] == "month-first text" and order == "auto":
         assert "pieces" not in r.report  # shown month first in one piece: read whole
+    elif order == "day-first" and fmt.startswith("%m"):
+        # month-first dates read day first jump by months between rows, days from the
+        # rows around them: a piece leaves such rows (lone or not) to a whole read (h149)
+        assert "pieces" not in r.report
     else:
         assert r.report["pieces"] > 3
     assert r.report["warnings"] == whole["warnings"]
