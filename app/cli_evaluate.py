@@ -297,18 +297,24 @@ def _bearing_params(args: argparse.Namespace):
 
 
 def _cmd_bearing(args: argparse.Namespace) -> int:
-    from wakeline.app.cli_steps import say_quarantined
-    from wakeline.core.bearing import detect_with_report, read_bearings_checked, report_lines
+    from wakeline.app.cli_steps import read_options, say_quarantined
+    from wakeline.core.bearing import detect_with_report, report_lines
+    from wakeline.core.bearing_read import read_bearing_file, summary_lines
     from wakeline.core.io import write_csv, write_json
 
     params = _bearing_params(args)
-    bearings, quarantine = read_bearings_checked(args.input)
-    q = quarantine["reason"].value_counts().to_dict()
+    got = read_bearing_file(args.input, **read_options(args))
+    bearings, quarantine = got.bearings, got.quarantine
+    q = got.report["quarantined"]
     read = {
         "rows_imported": len(bearings),
         "rows_quarantined": int(sum(q.values())),
         "quarantine_reasons": q,
+        "rows_not_bearings": got.report["set_aside"],
+        "file": got.report,
     }
+    for line in summary_lines(got.report):
+        print(f"{args.input.name}: {line}", file=sys.stderr)
     say_quarantined(args.input, read, "bearing")
     if args.quarantine:
         write_csv(quarantine, args.quarantine)
@@ -362,7 +368,8 @@ def register(sub) -> None:
     p = sub.add_parser(
         "bearing",
         help="detect target maneuvers in bearing-only sequences (seed 002)",
-        description="Input: batch,time,bearing[,obs_lon,obs_lat] (degrees; the observer's positions "
+        description="Input: batch,time,bearing[,obs_lon,obs_lat or obs_east,obs_north with "
+        "--origin] (degrees, or radians for a bearing_rad header; the observer's positions "
         "enter the motion fit, through its own turns; --exclude-observer-turns skips the spans where "
         "it maneuvers instead). Two sliding windows X and Y (seconds); by default a "
         "likelihood-ratio test of a bearing-rate change fitted with a constant-velocity target "
@@ -383,6 +390,32 @@ def register(sub) -> None:
         type=Path,
         metavar="Q.csv",
         help="the input lines not read as bearings: line, reason, text",
+    )
+    from wakeline.app.cli_steps import add_read_flags
+    from wakeline.core.bearing_read import BEARING_FIELDS
+
+    add_read_flags(
+        p,
+        omit=(
+            "format",
+            "tz",
+            "sensor",
+            "date-order",
+            "time-unit",
+            "speed-unit",
+            "distance-unit",
+            "date",
+        ),  # fmt: skip
+        description="the track reader's --map and --origin, for bearing fields; a known "
+        "layout (the Autoferry camera detections) needs neither",
+        helps={
+            "map": f"take bearing FIELD ({', '.join(BEARING_FIELDS)}) from COLUMN; batch=A+B "
+            "joins two columns (a scenario and a camera: A/B); target=COLUMN splits each "
+            "series by a target id; repeatable",
+            "origin": "origin (degrees) of the plane the observer's east/north metres "
+            "(obs_east/obs_north, own_east/own_north, or --map obs_east=… obs_north=…) are "
+            "measured from; turned into lon/lat as the track reader does",
+        },
     )
     _add_bearing_options(p)
     p.set_defaults(func=_cmd_bearing)

@@ -262,6 +262,7 @@ def add_read_flags(
     omit: tuple[str, ...] = (),
     prefix: str = "in",
     description: str | None = None,
+    helps: dict[str, str] | None = None,
 ) -> None:
     """How to read the input, for `wakeline import` and every command reading track files
     (a reading error names --map, so every one takes it), in a group of their own.
@@ -269,7 +270,9 @@ def add_read_flags(
     A command whose own flags already use some of these names (``export``'s --format,
     --map, --encoding, --tz shape the file it writes) gets those as ``--PREFIX-NAME``
     (``rename``); ``omit`` leaves flags out (``evaluate``'s --sensor is another thing);
-    ``description`` says under the group's title what the flags apply to.
+    ``description`` says under the group's title what the flags apply to; ``helps``
+    (flag name → text) says what a flag means for a command that reads another kind of
+    file (``bearing``'s --map takes the bearing fields).
     :func:`read_options` gives the ``read_points`` keywords whatever the flags are named.
     """
     from wakeline.core.io import FAMILIES
@@ -386,7 +389,7 @@ def add_read_flags(
             },
         ),
     }
-    unknown = (set(rename) | set(omit)) - {name for name, _kw in flags.values()}
+    unknown = (set(rename) | set(omit) | set(helps or ())) - {n for n, _kw in flags.values()}
     if unknown:
         raise ValueError(f"no reading flag {sorted(unknown)}")
     group = p.add_argument_group("reading the input", description)
@@ -396,6 +399,8 @@ def add_read_flags(
             continue
         flag = f"--{prefix}-{name}" if name in rename else f"--{name}"
         dests[keyword] = flag[2:].replace("-", "_")
+        if helps and name in helps:
+            kw = {**kw, "help": helps[name]}
         group.add_argument(flag, dest=dests[keyword], **kw)
     defaults = {k: flags[k][1].get("default") for k in dests}
     p.set_defaults(read_dests=dests, read_defaults=defaults)

@@ -62,7 +62,13 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core import geo
-from wakeline.core.errors import InputError
+from wakeline.core.bearing_read import (  # noqa: F401 - the reader, re-exported
+    BEARING_FIELDS,
+    BEARING_NAMES,
+    read_bearing_file,
+    read_bearings,
+    read_bearings_checked,
+)
 from wakeline.core.params import Params, param
 from wakeline.core.schema import seconds_to_time, time_seconds
 
@@ -972,161 +978,6 @@ def _finite(x: float) -> float | None:
 # tables
 
 
-def read_bearings(path) -> pd.DataFrame:
-    """Read ``batch,time,bearing[,obs_lon,obs_lat]`` (any delimiter/encoding import reads;
-    Chinese and other common header names, :data:`BEARING_NAMES`; ``bearing_rad`` in
-    radians): the usable bearings only.
-
-    Every line is a bearing or a quarantine row (line, reason, text), which
-    :func:`read_bearings_checked` returns beside the bearings: a line with the wrong number
-    of fields, no batch, an unreadable time, a bearing that is not a finite number or an
-    observer position out of range. Raises :class:`InputError` for missing columns or when
-    no line is usable."""
-    return read_bearings_checked(path)[0]
-
-
-#: Header names a bearing file may use for each field (lower case; a ``_rad`` bearing is
-#: in radians).
-BEARING_NAMES = {
-    "batch": ("batch", "批号", "目标号", "航迹号", "目标", "target", "track", "id", "mmsi"),
-    "time": ("time", "时间", "时刻", "timestamp", "datetime", "utc"),
-    "bearing": ("bearing", "方位", "方位角", "azimuth", "brg", "bearing_deg", "bearing_rad"),
-    "obs_lon": ("obs_lon", "observer_lon", "own_lon", "本舰经度", "观测点经度"),
-    "obs_lat": ("obs_lat", "observer_lat", "own_lat", "本舰纬度", "观测点纬度"),
-}
-
-
-def _bearing_columns(columns) -> dict[str, str]:
-    """Field → the file's column, by :data:`BEARING_NAMES` (first match wins; a unit in
-    brackets, as in ``方位(度)``, is ignored)."""
-    import re
-
-    plain = {c: re.sub(r"[(（\[].*?[)）\]]", "", str(c)).strip().lower() for c in columns}
-    out: dict[str, str] = {}
-    for name, options in BEARING_NAMES.items():
-        for option in options:
-            hit = [c for c in columns if plain[c] == option]
-            if hit and hit[0] not in out.values():
-                out[name] = hit[0]
-                break
-    return out
-
-
-def read_bearings_checked(path) -> tuple[pd.DataFrame, pd.DataFrame]:
-    """The bearings of ``path`` and its quarantine (see :func:`read_bearings`)."""
-    import pyarrow as pa
-    import pyarrow.csv as pcsv
-
-    from wakeline.core.io.compressed import open_for_arrow
-    from wakeline.core.io.reader import parse_times
-    from wakeline.core.io.sniff import sniff
-
-    sn = sniff(path)
-    names = _bearing_columns(sn.columns)
-    missing = [c for c in ("batch", "time", "bearing") if c not in names]
-    if missing:
-        raise InputError(
-            f"{path}: missing required column {', '.join(missing)} (bearings); "
-            f"headers found: {', '.join(sn.columns)}"
-        )
-    refused: list[tuple[int, str, str]] = []
-    skipped: list[int] = []  # every line the reader left out, blank or refused
-
-    def invalid(row) -> str:
-        skipped.append(int(row.number or 0))
-        if row.text.strip():
-            refused.append((int(row.number or 0), f"{row.actual_columns} fields, not "
-                            f"{row.expected_columns}", row.text))  # fmt: skip
-        return "skip"
-
-    try:
-        with open_for_arrow(path, sn.compression) as stream:
-            table = pcsv.read_csv(
-                stream,
-                read_options=pcsv.ReadOptions(
-                    column_names=list(sn.columns),
-                    skip_rows=sn.skip_rows,
-                    encoding=sn.encoding,
-                    use_threads=False,  # line numbers for the refused rows
-                ),
-                parse_options=pcsv.ParseOptions(
-                    delimiter=sn.delimiter, invalid_row_handler=invalid, ignore_empty_lines=False
-                ),
-                convert_options=pcsv.ConvertOptions(
-                    column_types={c: pa.string() for c in sn.columns}, strings_can_be_null=False
-                ),
-            )
-    except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read the bearings: {exc}") from None
-    df = table.to_pandas().rename(columns={src: f for f, src in names.items()})
-    if names.get("bearing", "").lower().endswith("_rad"):  # radians: to degrees
-        rad = pd.to_numeric(df["bearing"].str.strip(), errors="coerce")
-        df["bearing"] = np.degrees(rad).astype(str).where(rad.notna(), df["bearing"])
-    n = len(df)
-    # each table row's line: the lines after the header, less those the reader left out
-    taken = set(skipped)
-    lines = [
-        k for k in range(sn.skip_rows + 1, sn.skip_rows + 1 + n + len(taken)) if k not in taken
-    ]
-    line = np.asarray(lines[:n], dtype="int64")
-    blank = (
-        (df.apply(lambda c: c.str.strip()) == "").all(axis=1).to_numpy() if n else np.zeros(0, bool)
-    )
-    reason = np.full(n, "", dtype=object)
-
-    def flag(mask: np.ndarray, why: str) -> None:
-        reason[mask & (reason == "") & ~blank] = why
-
-    batch = df["batch"].str.strip()
-    flag((batch == "").to_numpy(), "missing batch")
-    ns, ok = parse_times(pa.chunked_array([pa.array(df["time"].str.strip())]), "auto")
-    flag(~ok, "unparsable time")
-    bearing = pd.to_numeric(df["bearing"].str.strip(), errors="coerce").to_numpy(dtype="float64")
-    flag(~np.isfinite(bearing), "bearing not a finite number")
-    obs = {}
-    for col, lim in (("obs_lon", 180.0), ("obs_lat", 90.0)):
-        if col in df.columns:
-            text = df[col].str.strip()
-            v = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64")
-            flag((text != "").to_numpy() & ~(np.abs(v) <= lim), f"{col} out of range or unreadable")
-            obs[col] = v
-    # A second bearing of one batch at one time (a line logged twice, two detections in
-    # one camera frame): the first is kept, the others are quarantined, not the file.
-    sound = np.flatnonzero((reason == "") & ~blank)
-    again = pd.DataFrame({"b": batch.to_numpy()[sound], "t": ns[sound]}).duplicated()
-    repeated = np.zeros(n, dtype=bool)
-    repeated[sound[again.to_numpy()]] = True
-    flag(repeated, "repeated time in its batch (one bearing per time)")
-    keep = (reason == "") & ~blank
-    quarantine = pd.DataFrame(
-        {
-            "line": np.concatenate([line[~keep & ~blank], [r[0] for r in refused]]).astype("int64"),
-            "reason": list(reason[~keep & ~blank]) + [r[1] for r in refused],
-            "text": [  # the quarantined rows only (few): their fields as read
-                sn.delimiter.join(r) for r in df[~keep & ~blank].itertuples(index=False)
-            ]
-            + [r[2] for r in refused],
-        }
-    )
-    quarantine = quarantine.sort_values("line", kind="stable", ignore_index=True)
-    if not keep.any():
-        why = quarantine["reason"].value_counts().head(3).to_dict()
-        raise InputError(f"{path}: no usable bearing: {len(quarantine):,} lines quarantined {why}")
-    out = pd.DataFrame(
-        {
-            "batch": batch[keep].to_numpy().astype(str),
-            "time": pd.Series(ns[keep].view("datetime64[ns]")).dt.tz_localize("UTC"),
-            "bearing": bearing[keep] % 360.0,
-        }
-    )
-    for col, v in obs.items():
-        out[col] = v[keep]
-    for col in df.columns:  # other columns as read
-        if col not in out.columns and col not in ("bearing",):
-            out[col] = df[col].to_numpy()[keep]
-    return out, quarantine
-
-
 def detect_with_report(
     bearings: pd.DataFrame, params: BearingParams | None = None
 ) -> tuple[pd.DataFrame, list[dict]]:
@@ -1149,7 +1000,8 @@ def detect_with_statistic(
         g = g.sort_values("time", kind="stable")
         t = time_seconds(g["time"])
         if np.any(np.diff(t) <= 0):
-            raise InputError(f"batch {batch}: repeated time stamps; bearings must be one per time")
+            report.append(several_per_time(str(batch), t, params))
+            continue
         excluded, static, observer = None, True, "not given (taken as static)"
         xy, maneuvering = None, 0
         if {"obs_lon", "obs_lat"} <= set(g.columns):
@@ -1220,6 +1072,41 @@ def detect_with_statistic(
         }
     )
     return table, report, statistic_table
+
+
+def several_per_time(batch: str, t: np.ndarray, params: BearingParams) -> dict:
+    """The report of a series holding several bearings at one time (a camera frame's
+    several targets or clutter): not one target's sequence (SPEC §4's input), so not
+    tested; the reason says how many times and what splits it."""
+    _, counts = np.unique(t, return_counts=True)
+    shared = counts[counts > 1]
+    why = (
+        f"{int(shared.sum()):,} of its {len(t):,} bearings share a time with another "
+        f"({len(shared):,} times, up to {int(shared.max())} at one time): not one target's "
+        "sequence; split it by a target column (--map target=COLUMN) or associate the "
+        "bearings with each target first"
+    )
+    return {
+        "batch": batch,
+        "test": "GLR" if params.glr else "AUC-mean (eq. 15)" if params.auc_mean else "AUC",
+        "x_s": round(float(params.window_x_s), 1),
+        "min_x_s": round(float(params.min_window_x_s), 1),
+        "y_spans_s": [round(float(v), 1) for v in y_spans(params)],
+        "window_rule": params.windows,
+        "samples": int(len(t)),
+        "duration_s": round(float(t[-1] - t[0]), 3) if len(t) else 0.0,
+        "median_interval_s": None,
+        "observer": "",
+        "windows": 0,
+        "tested": 0,
+        "excluded": {r: 0 for r in EXCLUSION_REASONS},
+        "too_short": why,
+        "several_per_time": int(len(shared)),
+        "detections": 0,
+        "noise_deg": None,
+        "min_rate_change_deg_min": None,
+        "min_turn_deg": None,
+    }
 
 
 def detect(bearings: pd.DataFrame, params: BearingParams | None = None) -> pd.DataFrame:

@@ -198,10 +198,10 @@ def test_bad_bearing_input(tmp_path, capsys):
     assert main(["bearing", str(p), "-o", str(tmp_path / "o.csv")]) == 2
     assert "no usable bearing" in capsys.readouterr().err
     p.write_text("batch,time,bearing\n1,2024-01-01T00:00:00Z,10\n1,2024-01-01T00:00:00Z,11\n")
-    got, q = read_bearings_checked(p)  # the file: the second is a quarantine row
-    assert len(got) == 1 and q["line"].tolist() == [3]
-    with pytest.raises(InputError, match="repeated time"):  # a table made in code
-        detect(pd.concat([got, got]))
+    got, q = read_bearings_checked(p)  # two bearings at one time (a frame's two targets): kept
+    assert len(got) == 2 and len(q) == 0
+    _, report = detect_with_report(got)  # not one target's sequence: not tested, and why
+    assert report[0]["tested"] == 0 and "--map target=COLUMN" in report[0]["too_short"]
     with pytest.raises(InputError, match="window_y_s must be at least"):
         BearingParams(window_y_s=0.5).checked()
 
@@ -437,16 +437,17 @@ def test_bearing_line_numbers_count_blank_and_whitespace_lines(tmp_path):
     assert q["text"].tolist()[0] == "1,2024-01-01T00:00:20Z,x"
 
 
-def test_a_repeated_time_is_a_quarantine_row_not_a_refused_file(tmp_path):
+def test_a_repeated_line_is_a_quarantine_row_not_a_refused_file(tmp_path):
     """Operator test: one line logged twice refused the whole file ("repeated time
-    stamps"); now the second is quarantined with its line and the rest is detected on."""
+    stamps"); now the second is quarantined with its line and the rest is detected on
+    (a second, different bearing at one time is kept: several targets in one frame)."""
     rows = [f"A,2024-01-01T00:{k // 60:02d}:{k % 60:02d}Z,{10 + 0.01 * k:.2f}" for k in range(300)]
     rows.insert(100, rows[99])
     p = tmp_path / "dup.csv"
     p.write_text("batch,time,bearing\n" + "\n".join(rows) + "\n")
     got, q = read_bearings_checked(p)
     assert len(got) == 300 and q["line"].tolist() == [102]
-    assert q["reason"].tolist() == ["repeated time in its batch (one bearing per time)"]
+    assert q["reason"].tolist() == ["repeated line (same batch, time and bearing)"]
     assert main(["bearing", str(p), "-o", str(tmp_path / "o.csv")]) == 0
 
 

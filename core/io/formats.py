@@ -828,17 +828,18 @@ def guess_columns(
     return _resolve(FORMATS[-1], headers, kept)
 
 
-def parse_mapping(items: list[str] | None) -> dict[str, str]:
-    """``["batch=MMSI", "time=t"]`` → ``{"batch": "MMSI", "time": "t"}``; checks the field names."""
+def parse_mapping(items: list[str] | None, fields: tuple[str, ...] = MAP_FIELDS) -> dict[str, str]:
+    """``["batch=MMSI", "time=t"]`` → ``{"batch": "MMSI", "time": "t"}``; checks the field
+    names against ``fields`` (the track reader's; the bearing reader passes its own)."""
     out: dict[str, str] = {}
     for item in items or ():
         name, sep, col = item.partition("=")
         name, col = name.strip(), col.strip()
         if not sep or not name or not col:
             raise InputError(f"--map {item!r}: expected field=column, e.g. batch=MMSI")
-        if name not in MAP_FIELDS:
+        if name not in fields:
             raise InputError(
-                f"--map {item!r}: unknown field {name!r}; fields are {', '.join(MAP_FIELDS)}"
+                f"--map {item!r}: unknown field {name!r}; fields are {', '.join(fields)}"
             )
         out[name] = col
     return out
