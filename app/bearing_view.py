@@ -548,6 +548,9 @@ def layer_meta(file: str, sha256: str, view: LayerView) -> dict:
         "sha256": sha256,
         "report": view.extra.get("report", []),
         "length_m": scene.length_m if scene is not None else None,
+        # how the file was read (--map, --origin) and where its lines went
+        "read_options": view.extra.get("read_options", {}),
+        "read": view.extra.get("read", {}),
     }
 
 

@@ -313,6 +313,17 @@ def _cmd_bearing(args: argparse.Namespace) -> int:
         "rows_not_bearings": got.report["set_aside"],
         "file": got.report,
     }
+    if args.tracks:
+        from wakeline.core.bearing_read import gate_to_tracks
+        from wakeline.core.io import read_points
+
+        origin = got.report["origin"]  # the bearings' plane, for a track file in metres
+        tracks = read_points(
+            args.tracks,
+            mapping=args.tracks_map,
+            origin=",".join(map(repr, origin)) if origin else None,
+        ).points
+        bearings, got.report["gated"] = gate_to_tracks(bearings, tracks, args.gate)
     for line in summary_lines(got.report):
         print(f"{args.input.name}: {line}", file=sys.stderr)
     say_quarantined(args.input, read, "bearing")
@@ -390,6 +401,29 @@ def register(sub) -> None:
         type=Path,
         metavar="Q.csv",
         help="the input lines not read as bearings: line, reason, text",
+    )
+    p.add_argument(
+        "--tracks",
+        type=Path,
+        metavar="FILE",
+        help="a track file of the targets (GNSS truth, AIS; read as `wakeline import` reads "
+        "it, in metres on the bearings' --origin plane if it has no lon/lat): each bearing "
+        "goes to the track whose bearing from the observer is within --gate, the nearest "
+        "per series, track and time; one sequence per series and track (several targets "
+        "or clutter in one camera frame: SPEC §4 wants one target's sequence)",
+    )
+    p.add_argument(
+        "--tracks-map",
+        action="append",
+        metavar="FIELD=COLUMN",
+        help="--map for the --tracks file (track fields); repeatable",
+    )
+    p.add_argument(
+        "--gate",
+        type=positive_float,
+        default=3.0,
+        metavar="DEG",
+        help="with --tracks: largest bearing difference to a track (default 3°)",
     )
     from wakeline.app.cli_steps import add_read_flags
     from wakeline.core.bearing_read import BEARING_FIELDS

@@ -40,6 +40,43 @@ def _choices(items: tuple[tuple[str, str], ...], tip: str) -> QtWidgets.QComboBo
     return box
 
 
+def _tr(text: str) -> str:
+    """``text`` in the import dialog's translation context (shared with the bearing one)."""
+    return QtCore.QCoreApplication.translate("ImportDialog", text)
+
+
+def origin_edit() -> QtWidgets.QLineEdit:
+    """The origin field of a file whose positions are metres on a local plane, as
+    ``--origin LAT,LON`` (the track and the bearing import dialogs)."""
+    edit = QtWidgets.QLineEdit()
+    edit.setPlaceholderText(_tr("LAT, LON (only for x/y metres)"))
+    edit.setToolTip(
+        _tr(
+            "Latitude and longitude (degrees) of the point a file's x/y or east/north "
+            "metres are measured from: the radar's site or the frame's zero."
+        )
+    )
+    return edit
+
+
+def mapping_group_of(
+    fields: tuple[str, ...], changed
+) -> tuple[dict[str, QtWidgets.QComboBox], QtWidgets.QGroupBox]:
+    """One box per field (``--map``'s fields: the track reader's or the bearing reader's),
+    each to list the file's columns (never free text), in a "Column mapping" group;
+    ``changed`` is called when one is changed."""
+    boxes: dict[str, QtWidgets.QComboBox] = {}
+    form = QtWidgets.QFormLayout()
+    for name in fields:
+        box = QtWidgets.QComboBox()
+        box.currentIndexChanged.connect(changed)
+        boxes[name] = box
+        form.addRow(name, box)
+    group = QtWidgets.QGroupBox(_tr("Column mapping"))
+    group.setLayout(form)
+    return boxes, group
+
+
 class ImportDialog(QtWidgets.QDialog):
     """Pick a file; see its first rows; choose layout, encoding, column mapping, zone."""
 
@@ -80,14 +117,7 @@ class ImportDialog(QtWidgets.QDialog):
         )
         # A file whose positions are metres on a local plane (x/y, east/north): where
         # they are measured from, as `--origin LAT,LON`.
-        self.origin_edit = QtWidgets.QLineEdit()
-        self.origin_edit.setPlaceholderText(self.tr("LAT, LON (only for x/y metres)"))
-        self.origin_edit.setToolTip(
-            self.tr(
-                "Latitude and longitude (degrees) of the point a file's x/y or east/north "
-                "metres are measured from: the radar's site or the frame's zero."
-            )
-        )
+        self.origin_edit = origin_edit()
         # How slashed dates read (03/04/2025), as `--date-order`.
         self.date_order_box = _choices(
             (
@@ -160,15 +190,8 @@ class ImportDialog(QtWidgets.QDialog):
         self.layout_label.setWordWrap(True)
 
         # One row per canonical field: a list of the file's columns (never free text).
-        self.mapping_boxes: dict[str, QtWidgets.QComboBox] = {}
-        mapping_form = QtWidgets.QFormLayout()
-        for name in MAP_FIELDS:  # gps_week, gps_seconds: a GPS time in place of time
-            box = QtWidgets.QComboBox()
-            box.currentIndexChanged.connect(self._mapping_changed)
-            self.mapping_boxes[name] = box
-            mapping_form.addRow(name, box)
-        mapping_group = QtWidgets.QGroupBox(self.tr("Column mapping"))
-        mapping_group.setLayout(mapping_form)
+        # MAP_FIELDS: the track fields plus gps_week, gps_seconds (a GPS time for time)
+        self.mapping_boxes, mapping_group = mapping_group_of(MAP_FIELDS, self._mapping_changed)
         self.extra_label = QtWidgets.QLabel()
         self.extra_label.setWordWrap(True)
         self.warning_label = QtWidgets.QLabel()

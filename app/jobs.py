@@ -471,7 +471,12 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.log_lines(self.tr("{0} on {1}").format(result.step, name), step_lines(result))
         elif kind == "bearing":
             _, path, quarantine, result, view, sha, plan = done
-            if len(quarantine):
+            from wakeline.core.bearing_read import summary_lines
+
+            lines = summary_lines(view.extra.get("read") or {})  # every line, and where
+            for line in lines:
+                self.log_message(f"{path.name}: {window_words(line)}")
+            if len(quarantine) and not lines:
                 reasons = "; ".join(
                     f"{n:,} {why}" for why, n in quarantine["reason"].value_counts().items()
                 )

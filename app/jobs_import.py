@@ -162,16 +162,28 @@ class ImportJobsMixin:
             k += 1
         return name
 
-    def load_bearings(self, path: Path) -> int | None:
+    def load_bearings(
+        self,
+        path: Path,
+        mapping: list[str] | None = None,
+        origin: str | None = None,
+        encoding: str | None = None,
+        tracks: str | None = None,
+        gate_deg: float = 3.0,
+    ) -> int | None:
         """Read ``batch,time,bearing[,obs_lon,obs_lat]`` and run seed 002's detector on it
         in the worker; the result is a bearing layer of the session (the Layers list, the
         project, the time window: :meth:`_apply_bearings`), drawn on the main map (the
         observer and the bearing lines, prepared here, in the worker:
         :func:`~wakeline.app.bearing_view.bearing_scene`); the Detail panel shows the
         sequences, z and the detections, the Bearing-only dock its map and table. The same
-        file opened again replaces its layer."""
+        file opened again replaces its layer. ``mapping`` (``field=column`` items),
+        ``origin`` (``"LAT,LON"`` of an observer in metres) and ``encoding``: as
+        ``wakeline bearing``'s --map, --origin and --encoding (the Open bearings dialog);
+        ``tracks``: the id of a track layer to gate the bearings on (``--tracks``), within
+        ``gate_deg`` (``--gate``)."""
         from wakeline.app.bearing_view import bearing_layer_view, bearing_scene, main_map_layers
-        from wakeline.core.bearing import read_bearings_checked
+        from wakeline.core.bearing_read import read_bearing_file
         from wakeline.core.pipeline import step_bearing
 
         params = self.params.params("bearing")
@@ -179,6 +191,9 @@ class ImportJobsMixin:
         path = Path(path)
         # The main map is framed on the bearings when it shows no other layer (else it
         # keeps its view): the layers' level of detail is made for that view.
+        gate_on = None
+        if tracks is not None and tracks in self.session.layers:
+            gate_on = self.session.layers[tracks]
         again = self.session.bearing_layer(str(path.resolve()))
         frame = not any(lay.visible and lay is not again for lay in self.session.layers.values())
         view, size_px, lat0 = self.canvas.current_view(), self.canvas.plot_size_px(), None
@@ -186,7 +201,13 @@ class ImportJobsMixin:
             lat0 = self.canvas._lat0
 
         def job(progress):
-            bearings, quarantine = read_bearings_checked(path)
+            got = read_bearing_file(path, mapping=mapping, origin=origin, encoding=encoding)
+            bearings, quarantine = got.bearings, got.quarantine
+            if gate_on is not None:  # one sequence per series and track
+                from wakeline.core.bearing_read import gate_to_tracks
+
+                bearings, got.report["gated"] = gate_to_tracks(bearings, gate_on.points, gate_deg)
+                got.report["gated"]["layer"] = gate_on.name
             result = step_bearing(bearings, params, sub_progress(progress, 0.0, 0.85))
             progress(0.85, f"hashing {path.name}")
             sha = file_hash(path)
@@ -207,6 +228,10 @@ class ImportJobsMixin:
                 params,
                 statistic=result.tables["statistic"],  # z is not computed again
             )
+            lview.extra["read"] = got.report  # where the file's lines went (the log)
+            lview.extra["read_options"] = {"mapping": list(mapping or []), "origin": origin}
+            if gate_on is not None:
+                lview.extra["read_options"].update(tracks=gate_on.name, gate_deg=gate_deg)
             return ("bearing", path, quarantine, result, lview, sha, plan)
 
         return self._start("bearing", job, ("bearing", path.name))
@@ -272,8 +297,11 @@ class ImportJobsMixin:
             self._view_planned = False
 
     def open_bearings_dialog(self) -> None:
-        path, _ = QtWidgets.QFileDialog.getOpenFileName(
-            self, self.tr("Open bearings"), "", "CSV (*.csv *.txt);;All files (*)"
-        )
-        if path:
-            self.load_bearings(Path(path))
+        """The Open bearings dialog (file, columns, encoding, origin), then the read."""
+        from wakeline.app.bearing_dialog import BearingDialog
+
+        layers = [(lid, lay.name) for lid, lay in self.session.layers.items()]
+        tracks = [(lid, name) for lid, name in layers if self.session.layers[lid].kind != "bearing"]
+        dialog = BearingDialog(self, tracks=tracks)
+        if dialog.exec() == QtWidgets.QDialog.DialogCode.Accepted and dialog.path().is_file():
+            self.load_bearings(dialog.path(), **dialog.options(), **dialog.gate())

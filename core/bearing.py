@@ -1083,8 +1083,8 @@ def several_per_time(batch: str, t: np.ndarray, params: BearingParams) -> dict:
     why = (
         f"{int(shared.sum()):,} of its {len(t):,} bearings share a time with another "
         f"({len(shared):,} times, up to {int(shared.max())} at one time): not one target's "
-        "sequence; split it by a target column (--map target=COLUMN) or associate the "
-        "bearings with each target first"
+        "sequence; split it by a target column (--map target=COLUMN) or gate it on the "
+        "targets' tracks (--tracks FILE)"
     )
     return {
         "batch": batch,

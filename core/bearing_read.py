@@ -17,6 +17,7 @@ time and bearing) is quarantined.
 
 import re
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -426,7 +427,10 @@ def read_bearing_file(
 
 
 def summary_lines(report: dict) -> list[str]:
-    """Where every line of a bearing file went, and why (for the CLI and the window's log)."""
+    """Where every line of a bearing file went, and why (for the CLI and the window's log;
+    none for an empty report)."""
+    if not report:
+        return []
     out = [
         f"{report['lines']:,} lines: {report['bearings']:,} bearings in "
         f"{report['series']:,} series"
@@ -437,13 +441,150 @@ def summary_lines(report: dict) -> list[str]:
     cols = ", ".join(f"{f}={c}" for f, c in report["columns"].items())
     out.append(f"columns: {cols}")
     sev = report["several"]
-    if sev["times"]:
+    if sev["times"] and "gated" in report:
+        out.append(
+            f"{sev['rows']:,} bearings share their time with another of their series "
+            f"({sev['times']:,} of {sev['of_times']:,} times, up to {sev['most']} at one "
+            "time: a frame's several targets or clutter): kept, and gated on the tracks"
+        )
+        out += gate_lines(report["gated"])
+    elif sev["times"]:
         out.append(
             f"{sev['rows']:,} bearings share their time with another of their series "
             f"({sev['times']:,} of {sev['of_times']:,} times in {sev['series']} series, up to "
             f"{sev['most']} at one time: a frame's several targets or clutter): kept, not "
             "quarantined; such a series is not one target's sequence, so the detector does "
-            "not test it: split it by a target column (--map target=COLUMN) or associate "
-            "the bearings with each target first"
+            "not test it: split it by a target column (--map target=COLUMN) or gate it on "
+            "the targets' tracks (--tracks FILE)"
         )
     return out
+
+
+def inspect_bearings(
+    path, mapping: dict[str, str] | list[str] | None = None, origin=None, encoding=None
+) -> dict:
+    """What reading ``path`` as bearings would use, from its first rows (for the Open
+    bearings dialog): ``columns``, ``preview`` (first rows, lists of cells), ``encoding``,
+    ``delimiter``, ``mapping`` (field → column; a joined batch as ``A+B``), ``layout`` (a
+    known layout's label or None), ``origin`` ((lat, lon) used, or None), ``notes`` and
+    ``problem`` (why reading would fail, or None). Raises :class:`InputError` only when
+    the file cannot be read at all."""
+    from wakeline.core.io.formats import parse_mapping
+    from wakeline.core.io.sniff import sniff
+
+    if not isinstance(mapping, dict):
+        mapping = parse_mapping(mapping, BEARING_FIELDS)
+    sn = sniff(path, encoding)
+    out = {
+        "columns": list(sn.columns),
+        "preview": [list(r) for r in sn.preview],
+        "encoding": sn.encoding,
+        "delimiter": sn.delimiter,
+        "header": sn.has_header,
+        "mapping": {},
+        "layout": None,
+        "origin": None,
+        "notes": [],
+        "problem": None,
+    }
+    try:
+        res = resolve_bearings(sn.columns, mapping, origin, Path(path).name)
+    except InputError as exc:
+        out["problem"] = str(exc)
+        found = _bearing_columns(sn.columns)  # what the names alone give, for the boxes
+        lay = known_layout(sn.columns)
+        out["mapping"] = {**found, **mapping}
+        out["layout"] = lay.label if lay is not None else None
+        return out
+    out["mapping"] = {
+        f: "+".join(v) if isinstance(v, tuple) else v for f, v in res["columns"].items()
+    }
+    out["layout"] = res["layout"].label if res["layout"] is not None else None
+    out["origin"] = res["origin"]
+    out["notes"] = res["notes"]
+    return out
+
+
+def gate_to_tracks(
+    bearings: pd.DataFrame, tracks: pd.DataFrame, gate_deg: float = 3.0, max_gap_s: float = 10.0
+) -> tuple[pd.DataFrame, dict]:
+    """One target's sequence per series and track, from bearings of several targets in one
+    series (a camera's detections): a bearing goes to a track (``batch, time, lon, lat``:
+    GNSS truth, AIS) when the track's bearing from the observer at that time lies within
+    ``gate_deg``; per series, track and time the nearest one is kept (the rule of
+    :func:`~wakeline.core.real_sets.autoferry_bearings`, which gates on the Autoferry
+    truth). The track is interpolated between fixes at most ``max_gap_s`` apart (outside
+    its span, or in a longer gap, it takes no bearing). New series ``SERIES/TRACK``, with
+    ``track_bearing`` (degrees) beside; bearings no track is near are left out and counted.
+    Returns the table and ``{"gate_deg", "tracks", "bearings_in", "kept", "series",
+    "no_track", "in_two"}``."""
+    from wakeline.core import geo
+    from wakeline.core.schema import time_seconds
+
+    if not {"obs_lon", "obs_lat"} <= set(bearings.columns):
+        raise InputError(
+            "gating bearings on tracks needs the observer's positions (obs_lon/obs_lat, "
+            "or obs_east/obs_north with --origin)"
+        )
+    t = time_seconds(bearings["time"])
+    olon = bearings["obs_lon"].to_numpy(dtype="float64")
+    olat = bearings["obs_lat"].to_numpy(dtype="float64")
+    b = bearings["bearing"].to_numpy(dtype="float64")
+    rows, names, errs, truth = [], [], [], []
+    tracks = tracks.sort_values(["batch", "time"], kind="stable")
+    for name, tr in tracks.groupby("batch", sort=True):  # per track, all bearings at once
+        tt = time_seconds(tr["time"])
+        keep = np.concatenate([[True], np.diff(tt) > 0])  # one fix per time
+        tt = tt[keep]
+        if len(tt) < 2:
+            continue
+        lon = tr["lon"].to_numpy(dtype="float64")[keep]
+        lat = tr["lat"].to_numpy(dtype="float64")[keep]
+        k = np.clip(np.searchsorted(tt, t), 1, len(tt) - 1)
+        inside = (t >= tt[0]) & (t <= tt[-1]) & (tt[k] - tt[k - 1] <= max_gap_s)
+        plon, plat = np.interp(t, tt, lon), np.interp(t, tt, lat)
+        true_b = geo.initial_bearing_deg(olon, olat, plon, plat)
+        err = np.abs(geo.angle_diff(b, true_b))
+        hit = np.flatnonzero(inside & (err < gate_deg) & np.isfinite(olon) & np.isfinite(olat))
+        rows.append(hit)
+        names.append(np.full(len(hit), str(name), dtype=object))
+        errs.append(err[hit])
+        truth.append(true_b[hit] % 360.0)
+    cat = lambda xs, dtype: np.concatenate(xs) if xs else np.zeros(0, dtype)  # noqa: E731
+    row, track = cat(rows, "int64"), cat(names, object)
+    cand = pd.DataFrame(
+        {
+            "row": row,
+            "track": track,
+            "err": cat(errs, "float64"),
+            "track_bearing": cat(truth, "float64"),
+            "series": bearings["batch"].to_numpy()[row],
+            "t": t[row],
+        }
+    )
+    cand = cand.sort_values(["err", "row"], kind="stable").drop_duplicates(["series", "track", "t"])
+    cand = cand.sort_values(["series", "track", "t"], kind="stable")
+    out = bearings.iloc[cand["row"].to_numpy()].reset_index(drop=True)
+    out["batch"] = (cand["series"].astype(str) + "/" + cand["track"].astype(str)).to_numpy()
+    out["track_bearing"] = cand["track_bearing"].to_numpy()
+    used = cand["row"].value_counts()
+    report = {
+        "gate_deg": float(gate_deg),
+        "tracks": int(tracks["batch"].nunique()),
+        "bearings_in": int(len(bearings)),
+        "kept": int(len(out)),
+        "series": int(out["batch"].nunique()),
+        "no_track": int(len(bearings) - len(used)),
+        "in_two": int((used > 1).sum()),
+    }
+    return out, report
+
+
+def gate_lines(report: dict) -> list[str]:
+    """The gating's summary (:func:`gate_to_tracks`), for the CLI and the window's log."""
+    return [
+        f"gated on {report['tracks']} track(s) within {report['gate_deg']:g}°: "
+        f"{report['kept']:,} bearings in {report['series']} series (the nearest per series, "
+        f"track and time); {report['no_track']:,} of {report['bearings_in']:,} bearings near "
+        f"no track, left out; {report['in_two']:,} taken by two tracks"
+    ]

@@ -2006,4 +2006,31 @@
         <translation>（最近的一对平均相距 {nearest:,.0f} 米：若传感器噪声这么大，请在参数面板中调大 max_distance_m）</translation>
     </message>
 </context>
+<context>
+    <name>BearingDialog</name>
+    <message>
+        <source>columns by their names</source>
+        <translation>按列名识别各列</translation>
+    </message>
+    <message>
+        <source>none</source>
+        <translation>无</translation>
+    </message>
+    <message>
+        <source>A track layer of the targets (GNSS truth, AIS): each bearing goes to the track whose bearing from the observer lies within the gate, the nearest per series, track and time. A camera's series holds several targets and clutter; the detector needs one target's sequence.</source>
+        <translation>目标的航迹图层（GNSS 真值、AIS）：每条方位归给从观测点看方位差在波门之内的航迹，每个序列、航迹和时刻取最近的一条。相机的序列包含多个目标和杂波；检测器需要单个目标的序列。</translation>
+    </message>
+    <message>
+        <source>Largest bearing difference to a track</source>
+        <translation>与航迹的最大方位差</translation>
+    </message>
+    <message>
+        <source>Gate on tracks</source>
+        <translation>按航迹波门关联</translation>
+    </message>
+    <message>
+        <source>Gate</source>
+        <translation>波门</translation>
+    </message>
+</context>
 </TS>
