@@ -32,6 +32,11 @@ _PHRASES = (
         "in the import dialog's Origin of x/y metres field (File ▸ Open tracks…; LAT, LON)",
     ),
     (" with --set", " in the Parameters panel"),
+    ("(--tracks FILE)", "(File ▸ Open bearings…, Gate on tracks)"),
+    (
+        "split it by a target column (--map target=COLUMN)",
+        "split it by a target column (Open bearings' Column mapping, target)",
+    ),
     ("--date-order month-first", "the import dialog's Date order set to month first"),
     ("--date-order day-first", "the import dialog's Date order set to day first"),
     ("--time-unit excel-days", "the import dialog's Time numbers set to Excel serial days"),

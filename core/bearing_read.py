@@ -53,7 +53,20 @@ BEARING_NAMES = {
 #: Words in a header that make it a likely column for a missing field (the suggestion in
 #: the missing-column message; never used to read a file).
 _HINTS = {
-    "batch": ("batch", "target", "track", "scenario", "sensor", "mmsi", "id", "name", "批", "目标"),
+    "batch": (
+        "batch",
+        "target",
+        "track",
+        "series",
+        "scenario",
+        "run",
+        "sensor",
+        "mmsi",
+        "id",
+        "name",
+        "批",
+        "目标",
+    ),  # fmt: skip
     "time": ("time", "date", "utc", "stamp", "时"),
     "bearing": ("bearing", "brg", "azim", "方位", "angle", "az"),
 }
