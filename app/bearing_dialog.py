@@ -173,7 +173,7 @@ class BearingDialog(QtWidgets.QDialog):
             self.layout_label.setText(self.tr("columns by their names"))
         else:
             self.layout_label.setText("")
-        self.notes_label.setText("\n".join(info.get("notes", [])))
+        self.notes_label.setText("\n".join(window_words(n) for n in info.get("notes", [])))
         problem = info.get("problem")
         self.warning_label.setText(window_words(problem) if problem else "")
         ok = self.buttons.button(QtWidgets.QDialogButtonBox.StandardButton.Ok)

@@ -222,7 +222,8 @@ def resolve_bearings(
             given = layout.origin
             notes.append(
                 f"observer {found['obs_east']}/{found['obs_north']} in metres from the "
-                f"set's origin {given[0]},{given[1]} ({layout.source}); --origin overrides"
+                f"set's origin {given[0]},{given[1]} ({layout.source}); --origin LAT,LON "
+                "overrides it"
             )
         elif given is None:
             raise InputError(
