@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.app.map_frame import PositionSketch, framed_box, position_sketch
-from wakeline.app.models import batch_summary, display_text
+from wakeline.app.models import batch_summary, display_text, table_index
 from wakeline.core import geo
 from wakeline.core.geo import EARTH_RADIUS_M
 from wakeline.core.tracks import sort_points, track_index
@@ -230,7 +230,9 @@ def prepare_view(
         kind=kind,
         lon_west=west,
     )
-    return LayerView(pts, summary, ranges, marks, with_paths(draw), display_text(summary))
+    text = display_text(summary)
+    extra = {"table_index": table_index(summary.reset_index(drop=True), text)}
+    return LayerView(pts, summary, ranges, marks, with_paths(draw), text, extra)
 
 
 def prepare_view_apart(

@@ -1,5 +1,7 @@
 """Qt models over core data: the batch table of a layer's tracks."""
 
+from dataclasses import dataclass
+
 import numpy as np
 import pandas as pd
 from PySide6 import QtCore
@@ -154,6 +156,33 @@ def track_span_s(df: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     )
 
 
+@dataclass(frozen=True)
+class TableIndex:
+    """What :meth:`BatchTableModel.set_summary` derives from a summary besides its text:
+    row of each (sensor, batch), every row's first and last time (s), and whether those
+    are scene-relative. Made in the worker with the layer's view (:func:`table_index`),
+    so a layer swapped in (a review decision applied) costs the GUI thread no pass over
+    its tracks."""
+
+    rows: int
+    keys: dict
+    span_s: tuple[np.ndarray, np.ndarray]
+    relative: bool
+
+
+#: Off only for bench/bench_review_keys.py's "before" figures: set_summary makes the
+#: index itself (on the GUI thread) even when the worker prepared it.
+TABLE_INDEX_IN_WORKER = True
+
+
+def table_index(df: pd.DataFrame, text: dict) -> TableIndex:
+    """The :class:`TableIndex` of summary ``df`` (index 0..n-1) with display ``text``."""
+    pairs = zip(text["sensor"].tolist(), text["batch"].tolist(), strict=True)
+    keys = dict(zip(pairs, range(len(df)), strict=True))
+    span = track_span_s(df)
+    return TableIndex(len(df), keys, span, bool(is_relative_time(np.concatenate(span))))
+
+
 #: Rows of a Python-text column :meth:`BatchTableModel.widest_text` looks at.
 WIDEST_ROWS = 1000
 
@@ -206,17 +235,17 @@ class BatchTableModel(QtCore.QAbstractTableModel):
             self._relative_titles = dict(relative)
         self.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(titles) - 1)
 
-    def set_summary(self, df: pd.DataFrame, text: dict | None = None) -> None:
-        """Show a summary (``text``: its display columns, when prepared in a worker)."""
+    def set_summary(
+        self, df: pd.DataFrame, text: dict | None = None, index: "TableIndex | None" = None
+    ) -> None:
+        """Show a summary (``text``: its display columns, and ``index``: its
+        :func:`table_index`, when prepared in a worker; else made here)."""
         self.beginResetModel()
         self._df = df.reset_index(drop=True)
         self._text = text if text is not None else display_text(self._df)
-        self._keys = {
-            (s, b): k
-            for k, (s, b) in enumerate(zip(self._text["sensor"], self._text["batch"], strict=True))
-        }
-        self._span_s = track_span_s(self._df)
-        self.relative = is_relative_time(np.concatenate(self._span_s))
+        if index is None or index.rows != len(self._df) or not TABLE_INDEX_IN_WORKER:
+            index = table_index(self._df, self._text)
+        self._keys, self._span_s, self.relative = index.keys, index.span_s, index.relative
         self._order = self._visible_rows()
         self.endResetModel()
 

@@ -360,7 +360,7 @@ class LayersMixin:
         self.detail.clear()
         view = self.views.get(self.active) if self.active else None
         if view is not None:
-            self.batch_model.set_summary(view.summary, view.text)
+            self.batch_model.set_summary(view.summary, view.text, view.extra.get("table_index"))
         else:
             self.batch_model.set_summary(batch_summary(EMPTY))
         self._fit_time_columns()

@@ -96,3 +96,41 @@ def test_texts_follow_the_language_started_in_and_switched_to(qtbot, tmp_path):
         w.set_language("en")
     assert w.review.dock.windowTitle() == "Review"
     assert w.params.guidance.text() == english
+
+
+def test_a_decision_swapped_in_costs_the_gui_thread_no_pass_over_the_tracks(
+    qtbot, tmp_path, monkeypatch
+):
+    """Defect 9 of operator test h150: a decision's layer swapped in made the batch
+    table's index (row of each track, first and last times) on the GUI thread, a pass
+    over the layer's tracks per key (5,620 on ATD dataset1). It is made in the worker
+    with the layer's view; the table holds what a GUI-thread pass would give."""
+    import threading
+
+    import numpy as np
+
+    from wakeline.app import models
+
+    w = _fused_review(qtbot, tmp_path)
+    b = w.review.bound
+    layer = w.layers[b.lid]
+    made_on = []
+    real = models.table_index
+
+    def spy(df, text):
+        made_on.append(threading.current_thread() is threading.main_thread())
+        return real(df, text)
+
+    monkeypatch.setattr(models, "table_index", spy)
+    monkeypatch.setattr("wakeline.app.layer_view.table_index", spy)
+    before = layer.meta.get("review_decisions", 0)
+    b.panel.act_accept.trigger()
+    _settle(w)
+    assert layer.meta.get("review_decisions", 0) == before + 1  # the layer was swapped in
+    assert made_on and not any(made_on)  # in the worker only
+    m = w.batch_model
+    fresh = real(m.frame, m._text)
+    assert m._keys == fresh.keys and m.relative == fresh.relative
+    for got, want in zip(m._span_s, fresh.span_s, strict=True):
+        np.testing.assert_array_equal(got, want)
+    assert w.selected_keys() == [] or all(k in m._keys for k in w.selected_keys())
