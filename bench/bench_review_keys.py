@@ -3,9 +3,9 @@ makes of ATD dataset1 (102,861 points, 5,620 tracks): each key and everything it
 off on the GUI thread (the queue's views, the decision's layer swapped in 300 ms later:
 batch table, map, selection) until the window is idle again, by ``time.thread_time`` of
 the GUI thread (the machine's load does not count, unlike a wall-clock probe), after
-two keys not counted; then "select source" the same way. The keys are timed with the batch table's index made on
-the GUI thread ("before": ``models.TABLE_INDEX_IN_WORKER = False``) and made in the
-worker with the layer's view ("after"), alternating in one run.
+two keys not counted; then "select source" the same way. The keys are timed with the
+batch table's index made on the GUI thread ("before": ``models.TABLE_INDEX_IN_WORKER =
+False``) and made in the worker with the layer's view ("after"), alternating in one run.
 
     WAKELINE_SHARED=/work/shared QT_QPA_PLATFORM=offscreen python bench/bench_review_keys.py [keys]
 """
