@@ -23,6 +23,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.geo import to_local
 from wakeline.core.io.formats import angle_unit, carried_speed, length_unit, speed_unit
 from wakeline.core.io.layout import (
+    GPS_KINDS,
     INTERNAL_COLUMNS,
     NUMBER_FIELDS,
     SAMPLE_ROWS,
@@ -231,10 +232,44 @@ def _words(text: pa.Array, tf: TimeFormat) -> pa.Array:
     return text
 
 
+def format_gps(times: pd.Series, tf: TimeFormat, week: NumberFormat | None = None) -> pa.Array:
+    """Times as GPS seconds in ``tf.number``'s style (``tf.kind`` ``gps_week``: of the
+    week; ``gps``: since 1980-01-06), the leap seconds added back as the reader took them
+    off; ``week`` given: the GPS week numbers instead, in that format. The time is
+    rounded to the seconds' decimals first, so 604,799.9996 s at three decimals is 0.000
+    of the next week. Missing times: the format's missing-value text."""
+    from wakeline.core.io.reader import GPS_WEEK_S, gps_of_utc_ns
+
+    ns, ok = _epoch_ns(times)
+    gps = gps_of_utc_ns(np.where(ok, ns, 0))
+    fmt = tf.number
+    d = fmt.decimals
+    week_ns = GPS_WEEK_S * 1_000_000_000
+    if fmt.trim.startswith("repr") or d > 9:  # the float's shortest text: no rounding here
+        weeks = np.floor_divide(gps, week_ns) if tf.kind == "gps_week" else np.zeros_like(gps)
+        rest = gps - weeks * week_ns
+        whole, frac = np.divmod(rest, 1_000_000_000)
+        text = format_numbers(whole.astype("float64") + frac / 1e9, fmt)
+    else:
+        q = 10 ** (9 - d)
+        scaled = np.floor_divide(gps + q // 2, q)  # rounded half up to the decimals
+        weeks = np.zeros_like(scaled)
+        if tf.kind == "gps_week":
+            weeks = np.floor_divide(scaled, GPS_WEEK_S * 10**d)
+            scaled = scaled - weeks * (GPS_WEEK_S * 10**d)
+        neg = scaled < 0
+        text = _digits(np.abs(scaled), neg, d, fmt.trim, fmt.point)
+    if week is not None:
+        return pc.if_else(pa.array(ok), format_numbers(weeks.astype("float64"), week), week.na)
+    return pc.if_else(pa.array(ok), text, fmt.na)
+
+
 def format_times(times: pd.Series, tf: TimeFormat, part: str = "all") -> pa.Array:
     """Times as text in ``tf``; missing times as empty cells. ``part`` ``date``: only
     the date, in ``tf.date_pattern`` (the date column of a ``Date,Time`` layout), of the
     time rounded as the clock column rounds it."""
+    if tf.kind in GPS_KINDS:
+        return format_gps(times, tf)
     ns, ok = _epoch_ns(times)
     if tf.kind == "excel":  # serial days of the wall clock in tf.tz (1900 date system)
         if tf.tz not in ("UTC", "Z", "+00:00", ""):
@@ -449,6 +484,12 @@ def _cells(points: pd.DataFrame, layout: Layout, extra: list[str]) -> list[pa.Ar
             cells.append(format_times(points["time"], layout.time))
         elif col.field == "date":
             cells.append(format_times(points["time"], layout.time, part="date"))
+        elif col.field == "gps_week":
+            week = col.number or NumberFormat(0, "none")
+            if layout.time.kind == "gps_week":
+                cells.append(format_gps(points["time"], layout.time, week))
+            else:  # a layout edited by hand: the week of GPS seconds of the week
+                cells.append(format_gps(points["time"], TimeFormat("gps_week"), week))
         elif col.ddmm and col.field in ("lon", "lat"):
             values = points[col.field].to_numpy(dtype="float64")
             signed = not any(c.hemisphere == col.field for c in layout.columns)
@@ -719,7 +760,7 @@ def write_layout(
     names = [c.name for c in layout.columns] + extra
     header = _quote([pa.array([n], pa.string()) for n in names], layout)
     n = len(points)
-    is_text = [c.field not in (*NUMBER_FIELDS, "time", "date") for c in layout.columns]
+    is_text = [c.field not in (*NUMBER_FIELDS, "time", "date", "gps_week") for c in layout.columns]
     is_text += [True] * len(extra)
     aligned = layout.aligned and layout.delimiter == " "
     widths = _widths(points, layout, extra, is_text, header) if aligned else None

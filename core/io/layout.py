@@ -28,7 +28,7 @@ import pyarrow as pa
 
 from wakeline.core.errors import InputError
 from wakeline.core.io.compressed import open_data, open_for_arrow
-from wakeline.core.io.formats import PLANE_FIELDS
+from wakeline.core.io.formats import PLANE_FIELDS, gps_columns
 from wakeline.core.io.reader import (
     CLOCK_ONLY,
     date_column,
@@ -43,6 +43,8 @@ from wakeline.core.io.sniff import blank_runs, sniff
 from wakeline.core.io.timetext import hhmmss_evidence
 from wakeline.core.schema import CANONICAL_COLUMNS
 
+#: Time kinds of GPS seconds (:class:`TimeFormat`), written as numbers.
+GPS_KINDS = ("gps_week", "gps")
 #: Data rows read to learn number and time formats.
 SAMPLE_ROWS = 5000
 #: Canonical fields written as numbers.
@@ -324,7 +326,10 @@ class TimeFormat:
     :class:`NumberFormat`) then ``suffix`` (``Z``, ``+08:00``, `` UTC`` or nothing). ``tz``: the zone whose wall-clock time is written (an IANA name or
     ``UTC``; a fixed offset suffix fixes it). ``date_pattern``: when the date is a
     column of its own (``Date,Time``), its strftime pattern; ``pattern`` is then the
-    clock's.
+    clock's. ``gps_week``: GPS seconds of the week, the week in the layout's column of
+    field ``gps_week``; ``gps``: GPS seconds since 1980-01-06; both formatted by
+    ``number``, GPS time ahead of UTC by the leap seconds the reader took off
+    (:func:`~wakeline.core.io.reader.gps_of_utc_ns`).
     """
 
     kind: str = "text"
@@ -480,7 +485,8 @@ _MONTH_WORDS = frozenset(
 class Column:
     """One column of a layout: the header text, the canonical ``field`` it carries (None
     for a column Wakeline carries through unread; ``date``: the date of the times, in a
-    column of its own), and its number format."""
+    column of its own; ``gps_week``: the GPS week of the times, whose seconds of the week
+    the time column holds), and its number format."""
 
     name: str
     field: str | None = None
@@ -616,7 +622,7 @@ def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | Non
     import pyarrow.csv as pcsv
 
     keys = [c.key for c in cols if c.number is not None and c.number.trim not in ("repr", "repr1")]
-    if time_key and time.kind == "text":
+    if time_key and time.kind in ("text", *GPS_KINDS):
         keys.append(time_key)
     if not keys:
         return cols, time
@@ -649,7 +655,14 @@ def _widened(path: Path, sn, cols: list, time: "TimeFormat", time_key: str | Non
                 trim = "none" if c.number.trim == "none" else "zeros"
                 c = replace(c, number=replace(c.number, decimals=d, trim=trim))
         out.append(c)
-    if time_key in keys:
+    if time_key in keys and time.kind in GPS_KINDS:  # GPS seconds: a number's decimals
+        sep = "," if time.number.point == "," else r"\."
+        regex = rf"^\s*[-+]?\d*{sep}(?P<f>\d+)\s*$"
+        d = _fraction_digits(table[time_key], regex, None, time.number.decimals)
+        if d > time.number.decimals and not time.number.trim.startswith("repr"):
+            trim = "none" if time.number.trim == "none" else "zeros"
+            time = replace(time, number=replace(time.number, decimals=min(d, 9), trim=trim))
+    elif time_key in keys:
         d = _fraction_digits(table[time_key], r":\d{2}[.,](?P<f>\d+)")
         if d > time.frac_digits:
             trim = "zeros" if time.frac_digits == 0 else time.frac_trim
@@ -690,6 +703,7 @@ def describe_layout(
             f"{path}: {what} has no column layout to copy; export as canonical CSV, a "
             "preset layout, GeoJSON or GPX (.gpx)"
         )
+    res = None  # the header resolved again, when no report says how the import read it
     if report.get("columns"):
         columns_of = dict(report["columns"])
         name = str(report.get("format", "generic"))
@@ -775,6 +789,16 @@ def describe_layout(
         time = TimeFormat.detect(sample[time_key], tz)
     else:
         time = TimeFormat(tz=tz or "UTC")
+    gps_week = _gps_week(sn, columns_of, report, res)
+    if gps_week is not None and time_key:  # GPS week and seconds, or GPS seconds (h159)
+        number = NumberFormat.detect(sample[time_key]) or NumberFormat()
+        time = TimeFormat("gps_week" if gps_week else "gps", suffix="", number=number)
+        cols = [
+            replace(c, field="gps_week", number=NumberFormat.detect(sample[c.key]) or _WHOLE)
+            if c.key == gps_week and c.field is None
+            else c
+            for c in cols
+        ]
     if not whole or len(lines) > SAMPLE_ROWS + 1:  # rows beyond the sample
         cols, time = _widened(path, sn, cols, time, time_key)
     if time.kind == "unix" and time_key and time_unit != "seconds":
@@ -819,6 +843,24 @@ def describe_layout(
         origin=tuple(plane) if plane else None,
         aligned=bool(sn.blank_runs),
     )
+
+
+def _gps_week(sn, columns_of: dict, report: dict, res) -> str | None:
+    """The column of GPS weeks when the import read the time as GPS week and seconds of
+    the week (its name), ``""`` when as GPS seconds since 1980-01-06, None when not GPS
+    time: the import's report (``time_gps_week``; a report without it, by the reader's
+    rule on the headers), or without a report the header resolved again (``res``)."""
+    if res is not None:
+        return res.gps_week
+    fmt = str(report.get("time_format") or "")
+    if not fmt.startswith("GPS"):
+        return None
+    if "time_gps_week" in report:
+        return report["time_gps_week"] or ""
+    if fmt != "GPS week and seconds of week":
+        return ""
+    week = gps_columns([h for h in sn.columns if h not in columns_of.values()])[0]
+    return week or ""
 
 
 def _lettered_ddmm(values: pd.Series, name: str, report: dict) -> bool:
@@ -889,6 +931,7 @@ def _lines_above(sn) -> tuple[str, ...]:
 
 
 _DEG = NumberFormat(6, "none")
+_WHOLE = NumberFormat(0, "none")
 _ONE = NumberFormat(1, "none")
 
 #: Layouts of the formats Wakeline imports, for data that did not come from such a file.

@@ -2063,6 +2063,26 @@ def gps_ns(
     return np.where(ok, ns, 0), ok, no_week & ~ok
 
 
+#: UTC seconds since the GPS epoch (ns) from which each offset of :data:`GPS_LEAPS` holds.
+_LEAP_AT_UTC_NS = np.array(
+    [
+        int(pd.Timestamp(d, tz="UTC").timestamp() - GPS_EPOCH_S) * 1_000_000_000
+        for d, _ in GPS_LEAPS
+    ],
+    dtype="int64",
+)
+
+
+def gps_of_utc_ns(ns: np.ndarray) -> np.ndarray:
+    """GPS ns since the GPS epoch (1980-01-06) of UTC ns since 1970: :func:`gps_ns`
+    inverted, the leap seconds added as it takes them off (a time read from the GPS
+    second of a leap second, which :func:`gps_ns` gives the UTC of the second after it,
+    comes back as that second's)."""
+    since = np.asarray(ns, dtype="int64") - GPS_EPOCH_S * 1_000_000_000
+    leap = _LEAP_S[np.searchsorted(_LEAP_AT_UTC_NS, since, side="right")].astype("int64")
+    return since + leap * 1_000_000_000
+
+
 def _one_line(sn: Sniff) -> bool:
     """Whether the file holds one line at most (no line break after its first one)."""
     with open_data(sn.path, sn.compression) as fh:
@@ -2725,6 +2745,8 @@ def read_points(
         "careful_parse": rows.careful,
         "time_format": time_info.get("time_format"),
         "time_date_column": time_info.get("date_column"),
+        # GPS time: the week column ("" for GPS seconds since 1980), for export --like
+        **({"time_gps_week": res.gps_week} if res.gps_week is not None else {}),
         "date_order": date_order_note(time_info),
         "time_unit": time_unit_note(time_info),
         **time_counts(time_info),
@@ -4463,6 +4485,8 @@ def stream_points(
         "streamed": True,
         "time_format": time_info.get("time_format"),
         "time_date_column": time_info.get("date_column"),
+        # GPS time: the week column ("" for GPS seconds since 1980), for export --like
+        **({"time_gps_week": res.gps_week} if res.gps_week is not None else {}),
         "date_order": date_order_note(time_info),
         "time_unit": time_unit_note(time_info),
         **time_counts(time_info),
