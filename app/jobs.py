@@ -392,7 +392,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.progress.setValue(0)
             self.progress.show()
             self.cancel_button.show()
-            self.statusBar().showMessage(self.tr("Running {0}…").format(msg.name))
+            self.statusBar().showMessage(self.tr("Running {0}…").format(self.job_title(msg.name)))
             return
         if isinstance(msg, Progress):
             self.progress.setValue(int(msg.fraction * 1000))
@@ -415,7 +415,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         if isinstance(msg, Finished):
             self._apply(msg.result)
             self.statusBar().showMessage(
-                self.tr("{0} done in {1:.1f} s").format(msg.name, msg.seconds), 8000
+                self.tr("{0} done in {1:.1f} s").format(self.job_title(msg.name), msg.seconds),
+                8000,
             )
         elif isinstance(msg, Failed):
             title = self.tr("{0} failed").format(self.job_title(msg.name))
@@ -428,15 +429,17 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             else:  # a screenshot run: nobody to close a dialog; say it and go on
                 print(f"wakeline: {title}: {msg.message}", file=sys.stderr)
         elif isinstance(msg, Cancelled):
+            # the jobs by their titles, as the failed dialog names them (not "pipeline")
+            name = self.job_title(msg.name)
             if by is None:
-                self.log_message(self.tr("{0} cancelled").format(msg.name))
+                self.log_message(self.tr("{0} cancelled").format(name))
             else:
                 text = self.tr(
                     "{0} cancelled: {1} took its place (one job at a time); run {0} again "
                     "once it is done"
                 )
-                self.log_message(text.format(msg.name, by))
-            self.statusBar().showMessage(self.tr("{0} cancelled").format(msg.name), 5000)
+                self.log_message(text.format(name, self.job_title(by)))
+            self.statusBar().showMessage(self.tr("{0} cancelled").format(name), 5000)
 
     def show_bearing_layer(self, view) -> None:
         """A bearing layer's data in the Bearing-only dock (its map and detections) and

@@ -1264,13 +1264,14 @@ def test_a_job_cancelled_by_the_next_one_says_so(window, tmp_path):
     write_points(simulate.demo_scene(seed=5), src)
     load(window, src)
     log = window.log.toPlainText()
-    assert "associate cancelled: open other.csv took its place" in log, log
-    assert "run associate again" in log, log
+    # the jobs by their titles (job_title), not their internal names (h159)
+    assert "Associate cancelled: Open other.csv took its place" in log, log
+    assert "run Associate again" in log, log
     window.runner.cancel()  # a job cancelled by hand says only that
     window._start("associate", long_job, ("associate", "demo"))
     window.runner.cancel()
     wait_for_jobs(window)
-    assert window.log.toPlainText().splitlines()[-1] == "associate cancelled"
+    assert window.log.toPlainText().splitlines()[-1] == "Associate cancelled"
     assert window._replaced == {}
     # a replaced job that ends before it sees the cancel leaves no entry behind (review)
     from wakeline.app.worker import Failed

@@ -251,3 +251,39 @@ def test_a_failed_job_s_dialog_is_titled_in_words_not_by_its_job_id(qtbot, tmp_p
         w.set_language("en")
         w.close()
     i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+def test_done_and_cancelled_say_the_job_s_title_not_its_id(qtbot, tmp_path):
+    """The status bar and log said "pipeline done in 0.4 s", "pipeline cancelled",
+    "associate cancelled: open x.csv took its place" (the jobs' internal names; in
+    zh_CN "pipeline 已取消") while the failed dialog said "Pipeline failed" (h159). They
+    now name the job by its title, in the window's language."""
+    from wakeline.app import i18n
+
+    w = _window(qtbot, tmp_path)
+    seen: list = []
+    try:
+        w._start("pipeline", _long_step(seen, 1), ("pipeline", "demo"))
+        wait_for_jobs(w)
+        assert w.statusBar().currentMessage().startswith("Pipeline done in "), (
+            w.statusBar().currentMessage()
+        )
+        w._start("pipeline", _long_step(seen, 2000), ("pipeline", "demo"))
+        _wait_started(seen)
+        w.runner.cancel()
+        wait_for_jobs(w)
+        assert w.log.toPlainText().splitlines()[-1] == "Pipeline cancelled"
+        assert w.statusBar().currentMessage() == "Pipeline cancelled"
+        w.set_language("zh_CN")
+        seen.clear()
+        w._start("pipeline", _long_step(seen, 2000), ("pipeline", "demo"))
+        _wait_started(seen)
+        w._start("open x.csv", _long_step([], 1), ("import", "x.csv"))  # takes its place
+        wait_for_jobs(w)
+        log = w.log.toPlainText()
+        assert "流程 已取消：打开 x.csv 取代了它" in log and "请重新运行 流程" in log, log
+        assert w.statusBar().currentMessage().startswith("打开 x.csv 完成，用时 ")
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)
