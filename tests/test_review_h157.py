@@ -1,0 +1,66 @@
+"""Reviewer h157's findings on session 26's core changes: each a failing test, xfail
+with its reason, until the defect is fixed."""
+
+import pandas as pd
+import pytest
+
+from wakeline.core.io.reader import read_points
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="h157: since 6355de8 a Latin-1 line in a UTF-8 file whose only accented letters "
+    "are an adjacent pair in GB2312's lead/trail ranges (Portuguese 'ÇÃO' C7 C3, 'ção' "
+    "E7 E3, German 'öß' F6 DF) is read as GB18030: 'NAVEGAÇÃO' becomes 'NAVEGA敲O'; before "
+    "it was read as Windows-1252",
+)
+def test_a_portuguese_latin1_line_in_a_utf8_file_reads_as_windows_1252(tmp_path):
+    p = tmp_path / "pt.csv"
+    rows = [f"2024-01-01 01:{k:02d}:00,9,37.{k:02d},23.60,São Bento Ø" for k in range(40)]
+    body = ("time,id,lat,lon,name\n" + "\n".join(rows) + "\n").encode("utf-8")
+    body += "2024-01-01 00:03:00,2,37.30,23.60,NAVEGAÇÃO\n".encode("cp1252")
+    body += "2024-01-01 00:04:00,3,37.40,23.60,Associação\n".encode("cp1252")
+    p.write_bytes(body)
+    names = read_points(p).points.drop_duplicates("batch").set_index("batch")["name"]
+    assert names["2"] == "NAVEGAÇÃO" and names["3"] == "Associação"
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="h157: since 6355de8 a GB18030 line whose characters all have a lead C2-DF and "
+    "a trail 80-BF and one of them is a GBK (not GB2312) character (職 = C2 9A, 聯 = C2 93; "
+    "位 = CE BB) is valid UTF-8 by accident and read as UTF-8: '職位' becomes '\\x9aλ'",
+)
+def test_gbk_traditional_characters_in_a_gb18030_file_stay_chinese(tmp_path):
+    p = tmp_path / "gb.csv"
+    names = ["远洋一号", "海丰号", "中远之星", "職位"]
+    lines = ["time,id,lat,lon,name"]
+    for k in range(40):
+        lines.append(f"2024-01-01 00:{k:02d}:00,{k % 4},37.{k:02d},23.60,{names[k % 4]}")
+    p.write_bytes(("\n".join(lines) + "\n").encode("gb18030"))
+    got = read_points(p).points.drop_duplicates("batch").set_index("batch")["name"]
+    assert got["3"] == "職位"
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="h157: since 070b708 any piece whose track's last row is more than a day after "
+    "its row before raises WholeFileNeeded (the 'later' rule), so every file of sparse "
+    "tracks (a fix per day or rarer) is read whole, never streamed; it was read in pieces "
+    "before",
+)
+def test_a_file_of_daily_fixes_is_still_read_in_pieces(tmp_path, monkeypatch):
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io.pieces import read_in_pieces
+    from wakeline.core.io.sniff import sniff
+
+    t0 = pd.Timestamp("2020-01-01")
+    lines = ["time,id,lat,lon"]
+    for k in range(600):
+        for v in range(3):
+            lines.append(f"{t0 + pd.Timedelta(days=2 * k, minutes=v)},{v},{37 + k * 1e-3:.4f},23.6")
+    src = tmp_path / "sparse.csv"
+    src.write_text("\n".join(lines) + "\n")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 8_000)
+    read = {"fmt": "auto", "mapping": None, "sensor": "S1", "tz": None}
+    read_in_pieces(sniff(src), read, lambda p: None, tmp_path / "scratch")  # no WholeFileNeeded
