@@ -44,30 +44,6 @@ def test_gbk_traditional_characters_in_a_gb18030_file_stay_chinese(tmp_path):
 
 @pytest.mark.xfail(
     strict=True,
-    reason="h157: since 070b708 any piece whose track's last row is more than a day after "
-    "its row before raises WholeFileNeeded (the 'later' rule), so every file of sparse "
-    "tracks (a fix per day or rarer) is read whole, never streamed; it was read in pieces "
-    "before",
-)
-def test_a_file_of_daily_fixes_is_still_read_in_pieces(tmp_path, monkeypatch):
-    import wakeline.core.io.reader as reader
-    from wakeline.core.io.pieces import read_in_pieces
-    from wakeline.core.io.sniff import sniff
-
-    t0 = pd.Timestamp("2020-01-01")
-    lines = ["time,id,lat,lon"]
-    for k in range(600):
-        for v in range(3):
-            lines.append(f"{t0 + pd.Timedelta(days=2 * k, minutes=v)},{v},{37 + k * 1e-3:.4f},23.6")
-    src = tmp_path / "sparse.csv"
-    src.write_text("\n".join(lines) + "\n")
-    monkeypatch.setattr(reader, "STREAM_BYTES", 8_000)
-    read = {"fmt": "auto", "mapping": None, "sensor": "S1", "tz": None}
-    read_in_pieces(sniff(src), read, lambda p: None, tmp_path / "scratch")  # no WholeFileNeeded
-
-
-@pytest.mark.xfail(
-    strict=True,
     reason="h157: since 070b708 one vessel's last fix more than a day after its row before "
     "(and days from the next vessel's first row) in an archive written vessel by vessel "
     "raises WholeFileNeeded in its piece, so the whole file is read in memory; the whole "
