@@ -11,7 +11,13 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from wakeline.app.import_dialog import ENCODINGS, NONE, mapping_group_of, origin_edit
+from wakeline.app.import_dialog import (
+    ENCODINGS,
+    NONE,
+    lay_out_dialog,
+    mapping_group_of,
+    origin_edit,
+)
 from wakeline.app.window_words import window_words
 from wakeline.core.bearing_read import BEARING_FIELDS, inspect_bearings
 from wakeline.core.errors import InputError
@@ -89,22 +95,14 @@ class BearingDialog(QtWidgets.QDialog):
         )
         self.buttons.accepted.connect(self.accept)
         self.buttons.rejected.connect(self.reject)
-        left = QtWidgets.QVBoxLayout()
-        left.addLayout(form)
-        left.addWidget(QtWidgets.QLabel(_tr("ImportDialog", "First rows of the file:")))
-        left.addWidget(self.preview, 1)
-        right = QtWidgets.QVBoxLayout()
-        right.addWidget(mapping_group)
-        right.addWidget(self.notes_label)
-        right.addWidget(self.warning_label)
-        right.addStretch(1)
-        body = QtWidgets.QHBoxLayout()
-        body.addLayout(left, 3)
-        body.addLayout(right, 2)
-        lay = QtWidgets.QVBoxLayout(self)
-        lay.addLayout(body, 1)
-        lay.addWidget(self.buttons)
-        self.resize(1000, 520)
+        lay_out_dialog(
+            self,
+            form,
+            self.preview,
+            [mapping_group, self.notes_label, self.warning_label],
+            self.buttons,
+            520,
+        )
         self.path_edit.textChanged.connect(self.refresh)
         self.encoding_box.currentTextChanged.connect(self.refresh)
         self.origin_edit.editingFinished.connect(self._changed)

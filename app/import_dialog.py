@@ -77,6 +77,33 @@ def mapping_group_of(
     return boxes, group
 
 
+def lay_out_dialog(
+    dialog: QtWidgets.QDialog,
+    form: QtWidgets.QLayout,
+    preview: QtWidgets.QWidget,
+    right_widgets: list[QtWidgets.QWidget],
+    buttons: QtWidgets.QWidget,
+    height: int,
+) -> None:
+    """The file dialogs' common body: the form and the file's first rows on the left
+    (3 parts), the mapping group and notes on the right (2 parts), the buttons below."""
+    left = QtWidgets.QVBoxLayout()
+    left.addLayout(form)
+    left.addWidget(QtWidgets.QLabel(_tr("First rows of the file:")))
+    left.addWidget(preview, 1)
+    right = QtWidgets.QVBoxLayout()
+    for widget in right_widgets:
+        right.addWidget(widget)
+    right.addStretch(1)
+    body = QtWidgets.QHBoxLayout()
+    body.addLayout(left, 3)
+    body.addLayout(right, 2)
+    lay = QtWidgets.QVBoxLayout(dialog)
+    lay.addLayout(body, 1)
+    lay.addWidget(buttons)
+    dialog.resize(1000, height)
+
+
 class ImportDialog(QtWidgets.QDialog):
     """Pick a file; see its first rows; choose layout, encoding, column mapping, zone."""
 
@@ -227,22 +254,14 @@ class ImportDialog(QtWidgets.QDialog):
         )
         self.buttons.accepted.connect(self.accept)
         self.buttons.rejected.connect(self.reject)
-        left = QtWidgets.QVBoxLayout()
-        left.addLayout(form)
-        left.addWidget(QtWidgets.QLabel(self.tr("First rows of the file:")))
-        left.addWidget(self.preview, 1)
-        right = QtWidgets.QVBoxLayout()
-        right.addWidget(mapping_group)
-        right.addWidget(self.extra_label)
-        right.addWidget(self.warning_label)
-        right.addStretch(1)
-        body = QtWidgets.QHBoxLayout()
-        body.addLayout(left, 3)
-        body.addLayout(right, 2)
-        lay = QtWidgets.QVBoxLayout(self)
-        lay.addLayout(body, 1)
-        lay.addWidget(self.buttons)
-        self.resize(1000, 560)
+        lay_out_dialog(
+            self,
+            form,
+            self.preview,
+            [mapping_group, self.extra_label, self.warning_label],
+            self.buttons,
+            560,
+        )
 
         self.path_edit.textChanged.connect(self.refresh)
         self.format_box.currentIndexChanged.connect(self.refresh)
