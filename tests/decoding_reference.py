@@ -7,7 +7,9 @@ be patched there).
 With h148's two rules, line by line: in UTF-8 a failing line whose non-ASCII bytes pair
 as GB2312 characters is read as GB18030 (``_bad``); in GB18030 every line is looked at
 (``_lines_each``): one valid UTF-8 whose non-ASCII bytes do not pair so is read as
-UTF-8."""
+UTF-8. With h160's stronger evidence: the UTF-8 failing line also holds 4 non-ASCII bytes
+in a row (two Chinese characters; else Windows-1252), and the GB18030 line read as UTF-8
+also holds a 3- or 4-byte sequence (lead E0-F4) and no C1 control character as UTF-8."""
 
 import codecs
 import re
@@ -163,10 +165,16 @@ class LineDecoder(codecs.IncrementalDecoder):
                 self.evidence.good += high
                 if high and 2 * len(_GB2312_PAIR.findall(line)) != high:
                     try:
-                        text = line.decode("utf-8")
-                        self.fallbacks.add("utf-8", self.line + 1)
+                        as_utf8 = line.decode("utf-8")
                     except UnicodeDecodeError:
-                        pass
+                        as_utf8 = None
+                    if (
+                        as_utf8 is not None
+                        and re.search(rb"[\xe0-\xf4]", line)
+                        and not re.search("[\x80-\x9f]", as_utf8)
+                    ):
+                        text = as_utf8
+                        self.fallbacks.add("utf-8", self.line + 1)
                 self._count(seg, pos, stop)
             out.append(text)
             if end:
@@ -231,7 +239,11 @@ class LineDecoder(codecs.IncrementalDecoder):
             except UnicodeDecodeError:
                 pass
         chain = self.chain
-        if self.encoding == "utf-8" and 2 * len(_GB2312_PAIR.findall(line)) == high:
+        if (
+            self.encoding == "utf-8"
+            and 2 * len(_GB2312_PAIR.findall(line)) == high
+            and re.search(rb"[\x80-\xff]{4}", line)
+        ):
             chain = ("gb18030", *chain)
         for enc in chain:
             try:

@@ -14,8 +14,9 @@ from wakeline.core.io import decoding
 from wakeline.core.io.decoding import LineDecoder, merge_fallbacks
 
 _UTF8 = ["Bjørn", "Ærøskøbing", "海巡 01", "𝔘 ship", "São Tomé", "naïve", "€uro"]
-_CP1252 = ["Bjørn", "Tromsø", "Málaga", "ÆØ", "Façade €", "œuvre", "“quoted”"]
-_GB = ["浙渔号", "东海航迹", "闽渔", "船 1", "鱻", "€"]
+_CP1252 = ["Bjørn", "Tromsø", "Málaga", "ÆØ", "Façade €", "œuvre", "“quoted”", "NAVEGAÇÃO"]
+_CP1252 += ["Associação", "öß", "ÇÃÇÃ"]  # GB2312 pairs, 2 or 4 in a row (h160)
+_GB = ["浙渔号", "东海航迹", "闽渔", "船 1", "鱻", "€", "職位", "聯位"]  # 職: valid UTF-8 C2 9A
 _ODD = [  # not valid UTF-8 in ways a lead/continuation count alone does not see
     b"\xc0\xaf",  # overlong /
     b"\xe0\x80\xaf",  # overlong

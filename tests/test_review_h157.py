@@ -7,13 +7,6 @@ import pytest
 from wakeline.core.io.reader import read_points
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="h157: since 6355de8 a Latin-1 line in a UTF-8 file whose only accented letters "
-    "are an adjacent pair in GB2312's lead/trail ranges (Portuguese 'ÇÃO' C7 C3, 'ção' "
-    "E7 E3, German 'öß' F6 DF) is read as GB18030: 'NAVEGAÇÃO' becomes 'NAVEGA敲O'; before "
-    "it was read as Windows-1252",
-)
 def test_a_portuguese_latin1_line_in_a_utf8_file_reads_as_windows_1252(tmp_path):
     p = tmp_path / "pt.csv"
     rows = [f"2024-01-01 01:{k:02d}:00,9,37.{k:02d},23.60,São Bento Ø" for k in range(40)]
@@ -25,12 +18,6 @@ def test_a_portuguese_latin1_line_in_a_utf8_file_reads_as_windows_1252(tmp_path)
     assert names["2"] == "NAVEGAÇÃO" and names["3"] == "Associação"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="h157: since 6355de8 a GB18030 line whose characters all have a lead C2-DF and "
-    "a trail 80-BF and one of them is a GBK (not GB2312) character (職 = C2 9A, 聯 = C2 93; "
-    "位 = CE BB) is valid UTF-8 by accident and read as UTF-8: '職位' becomes '\\x9aλ'",
-)
 def test_gbk_traditional_characters_in_a_gb18030_file_stay_chinese(tmp_path):
     p = tmp_path / "gb.csv"
     names = ["远洋一号", "海丰号", "中远之星", "職位"]

@@ -12,16 +12,21 @@ Latin-1 line fails that: its accented letters are single high bytes beside ASCII
 (``Bjørn`` is ``F8 72``, which GB18030 reads as 鴕, one character eating the ``r``).
 Otherwise UTF-8, and each line that is not valid UTF-8 is decoded on its own: as GB18030
 when its non-ASCII bytes pair as GB2312 characters (the same test, line by line: rows a
-GBK tool appended), else as Windows-1252 ("Latin-1" as Windows writes it; it is Latin-1
+GBK tool appended) and it holds :data:`GB_RUN` (4) of them in a row (two Chinese
+characters: Latin-1 accents pair too, ``NAVEGAÇÃO`` has ``C7 C3``, ``Associação`` ``E7
+E3``, but rarely four in a row; h160), else as Windows-1252 ("Latin-1" as Windows writes it; it is Latin-1
 for every printable character), and reported: per encoding how many lines and the first
 line numbers (:func:`fallback_warning`). A line that none reads (a byte Windows-1252
 leaves undefined: 81, 8D, 8F, 90, 9D) keeps U+FFFD for its bad bytes and its row is
 quarantined ("bytes not valid utf-8"), as before. In a file read as GB18030 a line that
-is valid UTF-8 and whose non-ASCII bytes do not pair as GB2312 characters is read as
-UTF-8, reported the same way (GB18030 reads nearly any byte pair, so UTF-8 text decodes
-as GB18030 too, garbled; GB2312 pairs in valid UTF-8 are rare: ``é`` is ``C3 A9``, one,
-and about 3 % of two-character Chinese names in UTF-8 pair whole, so those stay
-GB18030); a line that is not valid GB18030 is read as UTF-8 if it is valid UTF-8, else
+is valid UTF-8, whose non-ASCII bytes do not pair as GB2312 characters, that holds a 3-
+or 4-byte UTF-8 sequence (lead E0-F4) and whose UTF-8 text has no C1 control character
+(U+0080-U+009F) is read as UTF-8, reported the same way (GB18030 reads nearly any byte
+pair, so UTF-8 text decodes as GB18030 too, garbled). Anything less stays GB18030
+(h160): GBK characters outside GB2312 are valid 2-byte UTF-8 by chance (``職`` is ``C2
+9A``, a C1 control), so UTF-8 of Latin letters only stays GB18030, garbled; so do ``é``
+(``C3 A9``, one GB2312 pair) and about 3 % of two-character Chinese names in UTF-8 (they
+pair whole); a line that is not valid GB18030 is read as UTF-8 if it is valid UTF-8, else
 as Windows-1252.
 
 Why a reported fallback rather than quarantining those lines: a Latin-1 line in a UTF-8
@@ -72,6 +77,12 @@ PREFIX = "wakeline-lines-"
 
 _HIGH = bytes(range(128, 256))
 _GB2312_PAIR = re.compile(rb"[\xa1-\xa9\xb0-\xf7][\xa1-\xfe]")
+#: A run of :data:`GB_RUN` non-ASCII bytes (with every byte paired as GB2312: two Chinese
+#: characters in a row).
+GB_RUN = 4
+_HIGH_RUN = re.compile(rb"[\x80-\xff]{%d}" % GB_RUN)
+#: C1 control characters: in text read as UTF-8 they say it was not UTF-8.
+_C1 = re.compile("[\x80-\x9f]")
 _LINE_END = re.compile(rb"[\r\n]")
 #: The first window decoded after a failing line (bytes; then 4 times larger each time).
 _WINDOW = 256
@@ -158,6 +169,16 @@ class _Bytes:
         ok = np.where(seq == 1, claimed, lead)  # seq 0 (never UTF-8): lead is false
         return ~ok
 
+    def long_runs(self) -> np.ndarray:
+        """Runs of at least :data:`GB_RUN` consecutive non-ASCII bytes per line."""
+        pos = self.high
+        if not len(pos):
+            return np.zeros(len(self.ends) + 1, np.int64)
+        start = np.flatnonzero(np.r_[True, pos[1:] != pos[:-1] + 1])
+        length = np.diff(np.r_[start, len(pos)])
+        long = start[length >= GB_RUN]
+        return np.bincount(self.line[long], minlength=len(self.ends) + 1)
+
     def gb2312_misses(self) -> np.ndarray:
         """Which non-ASCII bytes keep their line from reading as GB2312 characters only: its
         non-ASCII bytes, run by run, pair up as lead and trail (what ``2 *
@@ -171,6 +192,26 @@ class _Bytes:
         even = (np.arange(len(pos)) - first[run]) % 2 == 0
         paired = _GB_LEAD[value] & np.r_[joined, False] & _GB_TRAIL[np.r_[value[1:], 0]]
         return even & ~paired
+
+
+def _gb_line(line: bytes, high: int) -> bool:
+    """Whether a line not valid UTF-8 is read as GB18030: its non-ASCII bytes pair as
+    GB2312 characters and it holds :data:`GB_RUN` of them in a row (two Chinese
+    characters; Latin-1 pairs by chance: ``ÇÃ`` is ``C7 C3``, ``çã`` ``E7 E3``)."""
+    return 2 * len(_GB2312_PAIR.findall(line)) == high and _HIGH_RUN.search(line) is not None
+
+
+def _utf8_line(line: bytes) -> str | None:
+    """A line valid in GB18030 read as UTF-8, if it is plainly UTF-8: valid, with a
+    sequence of 3 or 4 bytes (lead E0-F4) and no C1 control character in its text (GBK
+    characters outside GB2312, ``職`` = ``C2 9A``, are valid 2-byte UTF-8 by chance)."""
+    if max(line, default=0) < 0xE0:
+        return None
+    try:
+        text = line.decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    return None if _C1.search(text) else text
 
 
 def _high(data: bytes) -> int:
@@ -383,8 +424,10 @@ class LineDecoder(codecs.IncrementalDecoder):
         (``at``: the first; None: none fail). Each is read as GB18030 when its non-ASCII
         bytes pair as GB2312 characters (the whole-file evidence's test, line by line),
         as UTF-8 when valid UTF-8 (in GB18030), else as Windows-1252, else with U+FFFD
-        (quarantined). In GB18030 a line that decodes but is valid UTF-8 and does not
-        pair as GB2312 is read as UTF-8 too. The runs of lines between them are decoded
+        (quarantined); in UTF-8 GB18030 only with 4 non-ASCII bytes in a row
+        (:meth:`_Bytes.long_runs`). In GB18030 a line that decodes but is valid UTF-8,
+        does not pair as GB2312 and is plainly UTF-8 (:func:`_utf8_line`) is read as
+        UTF-8 too. The runs of lines between them are decoded
         in the primary encoding, the runs of lines read alike (with only ASCII between
         them) as one, each at C speed; line numbers and evidence as
         :meth:`_lines_scan` (tests/test_decoding_fast.py). None if nothing is read
@@ -393,9 +436,10 @@ class LineDecoder(codecs.IncrementalDecoder):
             b = _Bytes(seg)
             per_line = b.per_line()
             lines = failing = np.flatnonzero(b.per_line(b.utf8_errors()))
-            paired = b.per_line(b.gb2312_misses())[failing] == 0
+            paired = b.per_line(b.gb2312_misses())[failing] == 0  # the evidence's test
+            chinese = paired & (b.long_runs()[failing] > 0)  # not Latin-1 pairs by chance
             undefined = b.per_line(_CP1252_UNDEFINED[b.value])[failing]
-            how = np.where(paired, _GB, np.where(undefined > 0, _REP, _CP))
+            how = np.where(chinese, _GB, np.where(undefined > 0, _REP, _CP))
         else:
             b, per_line, failing, lines, how = self._gb_lines(seg, at)
             paired = np.zeros(len(failing), bool)  # GB2312 pairs decode: these do not
@@ -451,7 +495,8 @@ class LineDecoder(codecs.IncrementalDecoder):
 
     def _gb_lines(self, seg: bytes, at: int | None) -> tuple:
         """In GB18030: the lines that fail (``at``: the first; None: none) and those valid
-        UTF-8 whose non-ASCII bytes do not pair as GB2312 characters, and what each is
+        UTF-8 whose non-ASCII bytes do not pair as GB2312 characters and that are plainly
+        UTF-8 (:func:`_utf8_line`), and what each is
         read as. A line is looked at one by one only if no byte rules UTF-8 out (a lead
         byte not followed by a continuation byte, or a continuation byte after ASCII:
         nearly every line of Chinese text in GB18030 has one)."""
@@ -483,11 +528,7 @@ class LineDecoder(codecs.IncrementalDecoder):
         starts, stops = b.span(maybe)
         for j, s, e in zip(maybe.tolist(), starts.tolist(), stops.tolist(), strict=True):
             line = seg[s:e]
-            try:
-                line.decode("utf-8")
-            except UnicodeDecodeError:
-                continue
-            if 2 * len(_GB2312_PAIR.findall(line)) != per_line[j]:
+            if 2 * len(_GB2312_PAIR.findall(line)) != per_line[j] and _utf8_line(line):
                 better.append(j)
         lines = np.union1d(failing, np.array(better, np.int64))
         how = np.full(len(lines), _U8)
@@ -579,8 +620,8 @@ class LineDecoder(codecs.IncrementalDecoder):
             except UnicodeDecodeError:
                 pass
         chain = self.chain
-        if self.encoding == "utf-8" and 2 * len(_GB2312_PAIR.findall(line)) == high:
-            chain = ("gb18030", *chain)  # Chinese text, as the evidence's test says
+        if self.encoding == "utf-8" and _gb_line(line, high):
+            chain = ("gb18030", *chain)  # Chinese text: two characters in a row at least
         for enc in chain:
             try:
                 text = line.decode(enc)
