@@ -999,9 +999,15 @@ def detect_with_statistic(
     for batch, g in bearings.groupby("batch", sort=True):  # one pass per target
         g = g.sort_values("time", kind="stable")
         t = time_seconds(g["time"])
+        left_out = 0
         if np.any(np.diff(t) <= 0):
-            report.append(several_per_time(str(batch), t, params))
-            continue
+            first = np.r_[True, np.diff(t) > 0]  # the first bearing (in file order) per time
+            repeated = int((~first[1:] & first[:-1]).sum())  # times holding more than one
+            if repeated > REPEATED_TIMES_TESTED * int(first.sum()):
+                report.append(several_per_time(str(batch), t, params))
+                continue
+            left_out = int((~first).sum())  # a rare glitch: test the first bearing per time
+            g, t = g[first], t[first]
         excluded, static, observer = None, True, "not given (taken as static)"
         xy, maneuvering = None, 0
         if {"obs_lon", "obs_lat"} <= set(g.columns):
@@ -1051,6 +1057,7 @@ def detect_with_statistic(
                 "excluded": counts,
                 "too_short": win.too_short or None,
                 "detections": len(found),
+                "repeated_left_out": left_out,
                 **min_detectable(st, used, static),
             }
         )
@@ -1072,6 +1079,14 @@ def detect_with_statistic(
         }
     )
     return table, report, statistic_table
+
+
+REPEATED_TIMES_TESTED = 0.01
+"""A series with bearings at a repeated time is still tested when at most this fraction
+of its distinct times hold more than one bearing (a logging glitch, not a camera frame's
+several targets): the first bearing at each time is tested, the others left out and
+counted in the report (``repeated_left_out``). More repeats than that: not one target's
+sequence, not tested (:func:`several_per_time`)."""
 
 
 def several_per_time(batch: str, t: np.ndarray, params: BearingParams) -> dict:
@@ -1131,11 +1146,17 @@ def report_lines(report: list[dict]) -> list[str]:
             what = f"noise not estimated, {see}{turn}"
         else:
             what = f"noise ≈ {r['noise_deg']}°, {see}{turn}"
+        rep = r.get("repeated_left_out") or 0
         lines.append(
             f"batch {r['batch']}: {r['detections']} detection(s); {r['tested']} of "
             f"{r['windows']} windows tested"
             + (f" (skipped: {skipped})" if skipped else "")
             + f"; {what}"
+            + (
+                f"; {rep} bearing(s) at an already-taken time left out (first per time tested)"
+                if rep
+                else ""
+            )
         )
     return lines
 

@@ -64,13 +64,6 @@ def test_an_archive_written_vessel_by_vessel_is_read_in_pieces(tmp_path, monkeyp
     read_in_pieces(sniff(src), read, lambda p: None, tmp_path / "scratch")  # no WholeFileNeeded
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="h157: since 9c7d22d a series with one line at a time already taken (a different "
-    "bearing: a logging glitch, 1 of 901 lines) is kept whole and the detector leaves the "
-    "whole series untested (several_per_time): its maneuver, detected before (the second "
-    "line quarantined), is no longer detected",
-)
 def test_one_repeated_time_does_not_cost_a_series_its_detection(tmp_path):
     from wakeline.core.bearing import detect_with_report, read_bearings
     from wakeline.core.bearing_eval import simulate_table
