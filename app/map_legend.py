@@ -17,6 +17,10 @@ RESERVED_CHARS = 23  # 26 took a third of the map beside the docks (1600 px wind
 LABEL_PADDING_PX = 10.0
 #: Between a layer's file name and what the layer is ("tracks.csv · cleaned").
 LABEL_SEPARATOR = " · "
+#: In place of the first steps a shortened label leaves out ("scene…radar ·…· maneuvers"):
+#: two spaces narrower than " · … · ", and it keeps "F · cleaned · maneuvers" apart from
+#: "F · maneuvers" (review h158).
+STEPS_LEFT_OUT = " … "
 #: Fewest characters of the file's name a shortened label keeps before its "· what".
 MIN_HEAD_CHARS = 8
 #: ... and when the first steps are left out for the last ones ("scene… · … · maneuvers").
@@ -82,9 +86,9 @@ class SideLegend(pg.LegendItem):
         in its middle: shortening the whole left "autoferry_{ra…v · maneuvers" beside
         "autoferry_{ra… · compressed" (the file's end cut at a different place in each).
         When the steps do not fit (``FILE · cleaned · maneuvers (compress)``), the last
-        ones are kept — what tells two layers of one file apart — and the first left out,
-        as is the file's extension ("scene-3…_radar · maneuvers (compress)"); the full
-        name is the label's tooltip."""
+        ones are kept — what tells two layers of one file apart — and the first replaced
+        by "·…·" (STEPS_LEFT_OUT), and the file's extension left out ("scene…radar ·…·
+        maneuvers (compress)"); the full name is the label's tooltip."""
         middle = QtCore.Qt.TextElideMode.ElideMiddle
         whole = self._metrics.elidedText(short_label(name), middle, self._label_px)
         if whole == name:
@@ -92,19 +96,20 @@ class SideLegend(pg.LegendItem):
         head, sep, what = name.partition(LABEL_SEPARATOR)
         if not (head and what):
             return whole
-        # Shortened, a label leaves out what never tells two files apart — the files'
-        # extensions and the first steps, with no "…" for them — so that the file's
-        # own name keeps its start and end: "Sce…csv · … · maneuvers" beside
-        # "Sce…csv · … · compressed" named no file (operator test h150).
+        # Shortened, a label leaves out the files' extensions (which never tell two
+        # files apart) so that the file's own name keeps its start and end:
+        # "Sce…csv · … · maneuvers" beside "Sce…csv · … · compressed" named no file
+        # (operator test h150). Left-out first steps leave STEPS_LEFT_OUT: without it
+        # "F · cleaned · maneuvers" and "F · maneuvers" got one label (review h158).
         head = " + ".join(EXTENSION.sub("", piece) for piece in head.split(" + "))
         parts = what.split(LABEL_SEPARATOR)
         for k in range(len(parts)):
-            tail = LABEL_SEPARATOR.join(parts[k:])
-            room = self._label_px - self._metrics.horizontalAdvance(sep + tail)
+            tail = (STEPS_LEFT_OUT if k else sep) + LABEL_SEPARATOR.join(parts[k:])
+            room = self._label_px - self._metrics.horizontalAdvance(tail)
             least = MIN_HEAD_CHARS if k == 0 else MIN_HEAD_CHARS_STEPS
             if room >= self._metrics.horizontalAdvance("n" * least):
-                head = short_label(head, max(LABEL_MAX - len(sep + tail), least))
-                return self._metrics.elidedText(head, middle, room) + sep + tail
+                head = short_label(head, max(LABEL_MAX - len(tail), least))
+                return self._metrics.elidedText(head, middle, room) + tail
         # no room for the file's name beside the last step: the last step alone
         last = "…" + sep + parts[-1]
         if self._metrics.horizontalAdvance(last) <= self._label_px:

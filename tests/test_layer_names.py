@@ -46,8 +46,9 @@ def test_legend_keeps_the_step_that_tells_two_layers_of_one_file_apart(qapp):
         assert label.endswith(name.rsplit(" · ", 1)[1]), (name, label)
         assert legend._metrics.horizontalAdvance(label) <= legend._label_px, label
     assert len(set(labels)) == len(labels)
-    # the first step and the extension left out: the file's name keeps start and end
-    assert labels[0].startswith("sce") and labels[0].endswith("radar · maneuvers"), labels[0]
+    # the first step (marked " … ", h158) and the extension left out: the file's name
+    # keeps start and end
+    assert labels[0].startswith("scen") and labels[0].endswith("adar … maneuvers"), labels[0]
     item = pg.PlotDataItem([0, 1], [0, 1])
     legend.addItem(item, names[0])
     assert legend.items[-1][1].toolTip() == names[0]
@@ -56,19 +57,18 @@ def test_legend_keeps_the_step_that_tells_two_layers_of_one_file_apart(qapp):
 def test_legend_labels_of_two_files_name_the_files(qapp):
     """Operator test h150: "Sce…csv · … · maneuvers" and "sa…sv · … · compressed": with
     two files open the legend did not say which file. A shortened label leaves out the
-    extension and the first steps (not the file's name): a short file name stays whole,
-    two long ones keep their distinct ends."""
+    extension and the first steps (not the file's name; " … " in their place, h158): a
+    short file name stays whole, two long ones keep their distinct ends."""
     from wakeline.app.map_legend import SideLegend
 
     legend = SideLegend()
-    assert legend.fit_label("Scene-7.csv · cleaned · maneuvers") == "Scene-7 · maneuvers"
-    assert legend.fit_label("sample_ship.csv · cleaned · compressed") == (
-        "sample_ship · compressed"
-    )
+    assert legend.fit_label("Scene-7.csv · cleaned · maneuvers") == "Scene-7 … maneuvers"
+    # h158: the " … " for the left-out step costs "sample_ship" two letters
+    assert legend.fit_label("sample_ship.csv · cleaned · compressed") == ("samp…ship … compressed")
     names = [f"scene-6_error_0_{s}.csv · cleaned · maneuvers" for s in ("AIS", "radar")]
     labels = [legend.fit_label(n) for n in names]
-    assert labels[0].endswith("AIS · maneuvers") and labels[1].endswith("radar · maneuvers")
-    assert all(lb.startswith("scene") for lb in labels), labels
+    assert labels[0].endswith("AIS … maneuvers") and labels[1].endswith("adar … maneuvers")
+    assert all(lb.startswith("scen") for lb in labels), labels
     assert all(legend._metrics.horizontalAdvance(lb) <= legend._label_px for lb in labels)
 
 

@@ -13,11 +13,6 @@ pytest.importorskip("PySide6")
 pytestmark = pytest.mark.gui
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="h158: fit_label drops the first steps without a mark: "
-    "'F · cleaned · maneuvers' and 'F · maneuvers' get one label",
-)
 def test_layers_differing_in_a_first_step_keep_apart_in_the_legend(qtbot):
     from wakeline.app.map_legend import SideLegend
 
