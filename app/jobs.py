@@ -412,6 +412,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         by = self._replaced.pop(msg.job, None)
         if isinstance(msg, Finished) and self._follow_up(msg):
             return
+        # Its function (kept for a stale re-run) goes with the job's end, whatever it is:
+        # a Failed or Cancelled job's closure held its inputs' points (Fuse: every layer
+        # fused) after the window closed (review h158).
+        self._job_fns.pop(msg.job, None)
         if isinstance(msg, Finished):
             self._apply(msg.result)
             self.statusBar().showMessage(

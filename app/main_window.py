@@ -437,6 +437,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.settings.setValue("state", self.saveState())
         self.runner.cancel()
         self.runner.wait(5000)
+        self._job_fns.clear()  # the job's function, kept to run it again, holds its inputs
         self._export_queue.clear()  # a file being written is finished (or cancelled)
         if not self.export_runner.wait(30_000):
             self.export_runner.cancel()  # its partial file is removed

@@ -19,11 +19,6 @@ from wakeline.core.pipeline import STEPS  # noqa: E402
 pytestmark = pytest.mark.gui
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="h158: _job_fns keeps a cancelled job's closure (Fuse: its inputs' points) "
-    "after the window closed; popped only when the job Finished",
-)
 def test_a_job_cancelled_by_close_lets_its_inputs_go(qtbot, tmp_path, monkeypatch):
     go, entered = threading.Event(), threading.Event()
     run = STEPS["fuse"].run
@@ -52,3 +47,19 @@ def test_a_job_cancelled_by_close_lets_its_inputs_go(qtbot, tmp_path, monkeypatc
     gc.collect()
     assert not w.session.layers
     assert [r() is None for r in refs] == [True, True]
+
+
+def test_a_failed_job_lets_its_function_go(qtbot, tmp_path, monkeypatch):
+    """A job that fails (no window closed) drops its kept function too, not only one
+    that finished."""
+    monkeypatch.setattr("wakeline.app.main_window.QtWidgets.QMessageBox.warning", lambda *a: 0)
+    w = _window(qtbot, tmp_path)
+
+    def boom(progress):
+        raise RuntimeError("boom")
+
+    w._start("fuse", boom, ("fuse", ""))
+    assert w._job_fns
+    qtbot.waitUntil(lambda: not w.runner.busy, timeout=30_000)
+    _settle(w)
+    assert not w._job_fns
