@@ -343,6 +343,9 @@ class ReviewDock(QtCore.QObject):
     def retranslate(self) -> None:
         """The menus' texts again (the language changed while the window runs)."""
         self.edit_menu.setTitle(tr("&Edit"))
+        for bound in self.queues.values():  # each command's own text (accept A0001 …)
+            if shiboken6.isValid(bound.controller.stack):
+                bound.controller.retranslate()
         self._undo_note()
         self.review_menu.setTitle(tr("Re&view"))
         for name, text in review_texts().items():

@@ -365,6 +365,8 @@ class ReviewPanel(QtWidgets.QWidget):
         for action, (text, tip) in zip(self.actions, self._action_texts(), strict=False):
             action.setText(text)
             action.setToolTip(tip)
+        if shiboken6.isValid(self.controller.stack):
+            self.controller.retranslate()  # the commands' own texts (accept A0001 …)
         self._undo_texts()
         self.model.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(COLUMNS) - 1)
         self.fit_columns()

@@ -30,14 +30,19 @@ class ReviewCommand(QtGui.QUndoCommand):
     """One decision on the undo stack."""
 
     def __init__(self, controller: "ReviewController", change: R.Change) -> None:
+        self.controller = controller
+        self.change = change
+        super().__init__(self.title())
+
+    def title(self) -> str:
+        """The command's text in the current language (Edit ▸ Undo/Redo show it)."""
+        change = self.change
         tracks = ", ".join(change.tracks[:3]) + ("…" if len(change.tracks) > 3 else "")
-        super().__init__(
+        return (
             QtCore.QCoreApplication.translate("ReviewCommand", "{0} {1}")
             .format(action_name(change.action), change.proposal or tracks)
             .strip()
         )
-        self.controller = controller
-        self.change = change
 
     def redo(self) -> None:
         self.controller._apply(self.change)
@@ -66,6 +71,13 @@ class ReviewController(QtCore.QObject):
         else:
             self.state.apply(change)
         self.changed.emit(sorted(change.status_after))
+
+    def retranslate(self) -> None:
+        """Every command's text again in the current language (after a switch)."""
+        for k in range(self.stack.count()):
+            cmd = self.stack.command(k)
+            if isinstance(cmd, ReviewCommand):
+                cmd.setText(cmd.title())
 
     def do(self, change: R.Change) -> None:
         """Apply a decision through the undo stack; one that changes nothing is not

@@ -1,7 +1,7 @@
-"""h158 review finding: Edit ▸ Undo/Redo (h153: own QActions set "in the current language
-on every stack change") keep each command's own text in the language it was made in:
-a decision made in English reads "撤销(&U) accept A0001" after en -> zh_CN, and one made
-in Chinese "&Redo 拒绝 A0002" after zh_CN -> en."""
+"""h158 review finding, fixed in session 27: Edit ▸ Undo/Redo kept each command's own
+text in the language it was made in (a decision made in English read "撤销(&U) accept
+A0001" after en -> zh_CN, one made in Chinese "&Redo 拒绝 A0002" after zh_CN -> en). Now
+every command is retitled on a switch (ReviewController.retranslate)."""
 
 import pytest
 
@@ -12,11 +12,6 @@ from test_review_window import _settle, _window  # noqa: E402
 pytestmark = pytest.mark.gui
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="h158: the undo command's text (QUndoCommand.text) is made once, in the "
-    "language of the moment; Edit > Undo/Redo show it after a language switch",
-)
 def test_undo_and_redo_texts_follow_a_language_switch(qtbot, tmp_path):
     from PySide6 import QtWidgets
 
