@@ -1,5 +1,5 @@
-"""Reviewer h157's findings on session 26's core changes: each a failing test, xfail
-with its reason, until the defect is fixed."""
+"""Reviewer h157's findings on session 26's core changes: each was a failing test (xfail
+with its reason) until its defect was fixed."""
 
 import pandas as pd
 import pytest
@@ -29,13 +29,6 @@ def test_gbk_traditional_characters_in_a_gb18030_file_stay_chinese(tmp_path):
     assert got["3"] == "職位"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="h157: since 070b708 one vessel's last fix more than a day after its row before "
-    "(and days from the next vessel's first row) in an archive written vessel by vessel "
-    "raises WholeFileNeeded in its piece, so the whole file is read in memory; the whole "
-    "read flags nothing there (a track's last row is never lone)",
-)
 def test_an_archive_written_vessel_by_vessel_is_read_in_pieces(tmp_path, monkeypatch):
     import numpy as np
 
@@ -76,3 +69,44 @@ def test_one_repeated_time_does_not_cost_a_series_its_detection(tmp_path):
     pd.concat([df, row]).sort_values("time", kind="stable").to_csv(p, index=False)
     table, _ = detect_with_report(read_bearings(p))
     assert len(table) == 1  # the clean series' one detection
+
+
+def test_a_late_fix_lone_by_its_track_rows_in_a_later_piece_is_read_whole(tmp_path, monkeypatch):
+    """The carried row is judged when its track comes back in a later piece: vessel 7's
+    fix three days late, then vessel 7's run going on after other vessels, is lone in the
+    whole file, so the pieces leave it to the whole read, and the import quarantines it
+    as the whole read does."""
+    import numpy as np
+
+    import wakeline.core.io.reader as reader
+    from wakeline.core.io import import_to_csv, write_points
+    from wakeline.core.io.pieces import read_in_pieces
+    from wakeline.core.io.sniff import sniff
+
+    t0 = pd.Timestamp("2024-01-01")
+    rng = np.random.default_rng(2)
+    lines = ["mmsi,time,lat,lon"]
+
+    def run(v: int, start: pd.Timestamp, k0: int) -> None:
+        for k in range(k0, k0 + 40):
+            t = start + pd.Timedelta(seconds=10 * k)
+            lines.append(f"{200000000 + v},{t},{37 + v * 0.01 + k * 1e-4:.5f},23.6")
+
+    starts = [t0 + pd.Timedelta(days=int(rng.integers(0, 30))) for _ in range(60)]
+    for v in range(60):
+        run(v, starts[v], 0)
+        if v == 7:
+            lines.append(f"{200000000 + v},{starts[v] + pd.Timedelta(days=3)},37.07,23.6")
+    run(7, starts[7], 40)  # vessel 7 again, right after its first run
+    src = tmp_path / "late.csv"
+    src.write_text("\n".join(lines) + "\n")
+    whole = read_points(src)
+    assert len(whole.quarantine) == 1 and "days away" in whole.quarantine["reason"].iloc[0]
+    write_points(whole.points, tmp_path / "whole.csv")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 20_000)
+    read = {"fmt": "auto", "mapping": None, "sensor": "S1", "tz": None}
+    with pytest.raises(reader.WholeFileNeeded):
+        read_in_pieces(sniff(src), read, lambda p: None, tmp_path / "scratch")
+    got = import_to_csv(src, tmp_path / "out.csv")
+    assert got.report["rows_quarantined"] == 1
+    assert (tmp_path / "out.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()

@@ -1219,7 +1219,7 @@ def _lone_times(
     ns: np.ndarray,
     ok: np.ndarray,
     track: np.ndarray,
-    piece: tuple[bool, Callable[[np.ndarray], np.ndarray]] | None = None,
+    piece: tuple[bool, Callable[[np.ndarray], np.ndarray], "LonePending | None"] | None = None,
 ) -> np.ndarray:
     """Rows whose time is days from both rows of their track before and after them in the
     file while those two are close (a mistyped year or month: 2032 or 2013 in a 2023
@@ -1238,7 +1238,12 @@ def _lone_times(
     else no row of the piece is lone in the whole file either (h149: a track whose times
     jump by months had 5 rows quarantined in pieces of 200 bytes, none whole). The
     screen passes a row only when the rows of the file around it are days from it, so
-    an ordinary file never meets this."""
+    an ordinary file never meets this. With a :class:`LonePending` (the piece tuple's
+    third item), a track's last row in a piece that is days from its row before is not
+    a reason yet: it is carried, and judged by the track's next row in a later piece
+    (the whole file is read only if that shows it lone); a track with no later row
+    ends there, and a track's last row is never lone (h157: one vessel's late fix in an
+    archive written vessel by vessel had the whole file read in memory)."""
     n = len(ns)
     out = np.zeros(n, dtype=bool)
     if n < 3 and piece is None:
@@ -1251,6 +1256,9 @@ def _lone_times(
         cand[1:] &= ~(step <= far)  # NaN (an invalid neighbour) does not clear it
         cand[:-1] &= ~(step <= far)
     cand &= ok
+    pending = piece[2] if piece is not None and len(piece) > 2 else None
+    if pending is not None and len(pending):
+        pending.judge(t, ok, track)  # carried rows, by their track's first row here
     if not cand.any():
         return out
     # Same-track neighbours in file order (valid rows only), for the candidates' tracks.
@@ -1260,7 +1268,7 @@ def _lone_times(
     same_prev = np.r_[False, tr[1:] == tr[:-1]]
     same_next = np.r_[tr[:-1] == tr[1:], False]
     if piece is not None:  # judged over the file: its track's order, rows in other pieces
-        final, carried_last = piece
+        final, carried_last = piece[0], piece[1]
         at = np.flatnonzero(cand[order])
         prev = np.where(same_prev[at], tt[np.maximum(at - 1, 0)], np.nan)
         first = ~same_prev[at]
@@ -1271,9 +1279,11 @@ def _lone_times(
         with np.errstate(invalid="ignore"):
             limit = np.maximum(far, LONE_RATIO * np.abs(nxt - prev))
             both = (np.abs(t_at - prev) > limit) & (np.abs(t_at - nxt) > limit)
-            later = ~same_next[at] & ~final & (np.abs(t_at - prev) > far)
-        if (both | later).any():
+            later = ~same_next[at] & (not final) & (np.abs(t_at - prev) > far)
+        if both.any() or (later.any() and pending is None):
             raise WholeFileNeeded
+        if later.any():
+            pending.put(tr[at[later]], t_at[later], prev[later])
         return out
     # Only a track written in time order (either way) has neighbours to judge by: in a
     # file of rows in random order every row's neighbours are anywhere in its span.
@@ -1321,6 +1331,41 @@ def _track_summary(
         "last": tt[end - 1],
         "steps": np.add.reduceat(step, start),
     }
+
+
+class LonePending:
+    """A read in pieces: rows that ended their track's run in a piece days from their
+    track's row before (:func:`_lone_times`), each waiting for the track's next row in
+    a later piece. Keyed by the piece's track codes through ``keys`` (set per piece);
+    a few rows per file at most (the screen passes only rows days from the file's rows
+    around them), so a dict."""
+
+    def __init__(self) -> None:
+        self.rows: dict[str, tuple[float, float]] = {}
+        self.keys: Callable[[np.ndarray], np.ndarray] = lambda codes: codes.astype(str)
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def put(self, codes: np.ndarray, t: np.ndarray, prev: np.ndarray) -> None:
+        """Carry these rows (track codes of this piece, times and their rows before, s)."""
+        for key, a, b in zip(self.keys(np.asarray(codes)), t, prev, strict=True):
+            self.rows[str(key)] = (float(a), float(b))
+
+    def judge(self, t: np.ndarray, ok: np.ndarray, track: np.ndarray) -> None:
+        """Judge the carried rows of the tracks with a valid row in this piece (times
+        ``t``, s, file order) by that next row; raise :class:`WholeFileNeeded` where one
+        is lone (days from both its neighbours), else let it go."""
+        good = np.flatnonzero(ok & (track >= 0))
+        codes, first = np.unique(track[good], return_index=True)
+        names = self.keys(codes)
+        hit = np.flatnonzero(np.isin(names, np.array(list(self.rows), dtype=object)))
+        for k in hit:
+            row_t, row_prev = self.rows.pop(str(names[k]))
+            nxt = t[good[first[k]]]
+            limit = max(LONE_MIN_S, LONE_RATIO * abs(nxt - row_prev))
+            if abs(row_t - row_prev) > limit and abs(row_t - nxt) > limit:
+                raise WholeFileNeeded
 
 
 class EdgeCarry:
@@ -1592,8 +1637,9 @@ def edge_state() -> dict:
     """What a read in pieces carries from piece to piece for the edge-row rule: each
     track's :class:`EdgeCarry` numbers (``carry``, filled by the pieces before the last
     one with rows). The piece's reader is told ``final`` for the file's last piece with
-    rows (:func:`with_final`), where the rule runs."""
-    return {"carry": EdgeCarry(), "final": False}
+    rows (:func:`with_final`), where the rule runs; and the rows the lone-time rule
+    waits to judge by a later piece (``lone``, :class:`LonePending`)."""
+    return {"carry": EdgeCarry(), "lone": LonePending(), "final": False}
 
 
 def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
@@ -3682,6 +3728,10 @@ def _to_canonical(
             s = text["sensor"].names[codes % width] if "sensor" in text else [sensor] * len(b)
             return np.array([f"{x}\x1f{y}" for x, y in zip(s, b, strict=True)], dtype=object)
 
+        lone_pending = None if edges is None else edges.get("lone")
+        if lone_pending is not None:
+            lone_pending.keys = keys
+
         def carried_last(codes: np.ndarray) -> np.ndarray:
             if carry is None or not len(carry):
                 return np.full(len(codes), np.nan)
@@ -3694,7 +3744,9 @@ def _to_canonical(
                 np.asarray(ns),
                 np.asarray(time_ok) & (reasons == 0) & ~blank,
                 track,
-                piece=None if edges is None else (bool(edges.get("final")), carried_last),
+                piece=None
+                if edges is None
+                else (bool(edges.get("final")), carried_last, lone_pending),
             ),
             "time days away from its track's rows before and after it in the file "
             "(a mistyped date?)",
