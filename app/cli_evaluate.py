@@ -50,6 +50,8 @@ def _maneuver_params(args: argparse.Namespace):
         noise_lag_s=args.noise_lag_s,
         max_step_windows=args.max_step_windows,
         window_max_s=args.window_max_s,
+        radius_s=args.radius_s,
+        edge_s=args.edge_s,
     ).checked()
 
 
@@ -250,6 +252,21 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         help=f"slow scans: where --window points span more than this many seconds and 3 fit "
         f"in it, as many points as fit (the first maximum-filter radius at most one window); "
         f"0 = off (default {d.window_max_s:g})",
+    )
+    p.add_argument(
+        "--radius-s",
+        type=float,
+        default=d.radius_s,
+        help=f"the maximum filter's radius at most this many seconds of the track's median "
+        f"steps where 2 or more fit (--radius points at most); 0 = off (default {d.radius_s:g})",
+    )
+    p.add_argument(
+        "--edge-s",
+        type=float,
+        default=d.edge_s,
+        help=f"turns at a track's ends: where the first window spans more than this many "
+        f"seconds and 3 points at most, 3-point windows at its ends; 0 = off "
+        f"(default {d.edge_s:g})",
     )
     p.add_argument(
         "--noise-lag-s",

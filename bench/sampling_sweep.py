@@ -221,8 +221,21 @@ def main(argv: list[str] | None = None) -> pd.DataFrame:
         metavar="NAME=VALUE",
         help="the association's LinkParams changed (as evaluate associate --set)",
     )
+    ap.add_argument(
+        "--maneuver-set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="the detector's ManeuverParams changed (e.g. radius_s=15), for a candidate "
+        "against the defaults",
+    )
     a = ap.parse_args(argv)
     params = ManeuverParams(max_step_windows=a.max_step_windows)
+    if a.maneuver_set:
+        changes = dict(kv.split("=", 1) for kv in a.maneuver_set)
+        params = params.replace(
+            **{k: type(getattr(params, k))(float(v)) for k, v in changes.items()}
+        ).checked()
     link = LinkParams().replace(**dict(kv.split("=", 1) for kv in a.set)) if a.set else None
     rates = a.rates or (QUICK_RATES if a.quick else RATES)
     variants = [0.0] if a.quick or a.jitter <= 0 else [0.0, a.jitter]

@@ -140,6 +140,29 @@ class ManeuverParams(Params):
         hi=1e7,
         source="ours",
     )
+    radius_s: float = param(
+        0.0,
+        "s",
+        "the maximum filter's radius in seconds: at every scale the radius_n points it reaches "
+        "at least are at most as many of the track's median steps as fit in this many seconds, "
+        "where 2 or more fit (a radius of one step is no filter); 0 = off (radius_n points "
+        "whatever they span)",
+        lo=0.0,
+        hi=1e7,
+        source="ours (h162, docs/prereg/session27_radar_edges.md)",
+    )
+    edge_s: float = param(
+        0.0,
+        "s",
+        "turns at a track's ends: where the first scale's window (p points) spans more than "
+        "this many seconds (p - 1 median steps) and 3 points at most, the ends it leaves "
+        "without a heading (its first and last p - 1 points) get windows of 3 points; such a turn clears the noise floor "
+        "of 3-point windows (higher) and needs no turn already found within one first-scale "
+        "window; 0 = off",
+        lo=0.0,
+        hi=1e7,
+        source="ours (h162, docs/prereg/session27_radar_edges.md)",
+    )
     min_speed_kn: float = param(
         1.0,
         "kn",
@@ -1979,6 +2002,7 @@ def _detect_sorted(
     wants_med = params.window_s > 0 or params.noise_lag_s > 0
     wants_med |= params.rest_radius_m > 0 and params.rest_steps > 0
     wants_med |= params.max_step_windows > 0
+    wants_med |= params.radius_s > 0 or params.edge_s > 0
     med = median_interval_s(t, index) if wants_med else None
     step = None
     if params.window_max_s > 0 and params.window_s > 0:
@@ -2063,6 +2087,8 @@ def _detect_sorted(
 
     scales = _scales(params)
     fine_scales = _fine_scales(params)
+    r_first = _radius_per_track(med, index.n_tracks, params)
+    edge_med = med
     med = med if params.window_s > 0 else None
     found = np.zeros(n, dtype=bool)
     found_rows = [np.zeros(0, dtype="int64")]  # the rows of ``found``, sorted
@@ -2080,7 +2106,7 @@ def _detect_sorted(
             grew = p_track > prev_p
             if not grew.any():
                 continue
-            radius = np.maximum(p_track, params.radius_n)
+            radius = np.maximum(p_track, r_first)
             # rows where a new turn may count: none found within one window, no at-rest
             # span within one window less one (the tests below, as rows)
             f_rows = found_rows[0]
@@ -2102,7 +2128,7 @@ def _detect_sorted(
                 u, v, index, p_track, radius, params.threshold_deg, grew, interest
             )
         else:
-            radius = np.full_like(p_track, params.radius_n)
+            radius = r_first.copy()
             if params.window_max_s > 0:  # the radius reaches no further than one window
                 radius = np.minimum(radius, p_track)
             active = np.ones(index.n_tracks, dtype=bool)
@@ -2153,11 +2179,65 @@ def _detect_sorted(
         p_c = p_track[tr[cand]]
         add(f_k[cand], cand, accept(f_k[cand], cand, p_c, p_c, fine=True), p_c)
         shortest = np.where(active, p_track, shortest)
+    if params.edge_s > 0 and edge_med is not None and n:
+        f_e, cand = _edge_candidates(x, y, index, p_first, edge_med, params)
+        p_c = np.full(len(cand), EDGE_P, dtype="int64")
+        add(f_e, cand, accept(f_e, cand, p_c, p_c, fine=False), p_first[tr[cand]])
     if progress:
         progress(1.0, "maneuvers found")
     if parent is not None:  # each track's p: its first piece's (every piece has the same)
         p_first = p_first[np.searchsorted(parent, np.arange(track_index.n_tracks))]
     return ManeuverResult(pts, track_index, factor, found, p_first, rest, params)
+
+
+#: Points per window at a track's ends (``edge_s``): the fewest that have a heading and a
+#: noise floor.
+EDGE_P = 3
+
+
+def _radius_per_track(med: np.ndarray | None, n_tracks: int, params: ManeuverParams) -> np.ndarray:
+    """The maximum filter's radius (points) per track at the first scale: ``radius_n``, or
+    with ``radius_s`` > 0 as many of the track's median steps ``med`` as fit in ``radius_s``
+    seconds where that is fewer and at least 2."""
+    r = np.full(n_tracks, int(params.radius_n), dtype="int64")
+    if params.radius_s <= 0 or med is None:
+        return r
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fit = np.floor(params.radius_s / med * (1 + 1e-9))
+        fit = np.where(np.isfinite(fit) & (fit >= 2), fit, params.radius_n)
+    return np.minimum(r, fit).astype("int64")
+
+
+def _edge_candidates(
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p_first: np.ndarray,
+    med: np.ndarray,
+    params: ManeuverParams,
+) -> tuple[np.ndarray, np.ndarray]:
+    """``edge_s``: δ of 3-point windows at the rows where the first scale's window (``p_first``
+    points) leaves the track, on the tracks where that window spans more than ``edge_s``
+    ((p − 1) median steps ``med``) and 3 points at most (2 steps); the rows among those where δ > t is the
+    largest within one 3-point window (one per plateau). Returns their δ and rows."""
+    tr = index.track_of_row
+    with np.errstate(invalid="ignore"):
+        fits = np.isfinite(med) & ((EDGE_P - 1) * med <= params.edge_s * (1 + 1e-9))
+        fits &= (p_first - 1) * med > params.edge_s * (1 + 1e-9)
+    active = fits & (index.sizes >= 2 * EDGE_P - 1)
+    none = np.zeros(0), np.zeros(0, dtype="int64")
+    if not active.any():
+        return none
+    p3 = np.full(index.n_tracks, EDGE_P, dtype="int64")
+    f3, _ = _one_scale(x, y, index, p3, p3, active)
+    pos = np.arange(len(x)) - index.starts[tr]
+    pf = p_first[tr]
+    edge = active[tr] & ((pos < pf - 1) | (pos > index.sizes[tr] - pf))
+    f3[~edge] = np.nan
+    peaks = local_maxima(f3, index, EDGE_P)
+    with np.errstate(invalid="ignore"):
+        cand = np.flatnonzero(peaks & (f3 > params.threshold_deg))
+    return f3[cand], cand
 
 
 def _noise_lag(med: np.ndarray | None, params: ManeuverParams) -> "np.ndarray | int":
