@@ -6,6 +6,7 @@ from wakeline.core import baselines, geo, simulate
 from wakeline.core.errors import InputError
 from wakeline.core.maneuver import (
     ManeuverParams,
+    _radius_per_track,
     _scales,
     detect,
     largest_tolerable_error_m,
@@ -617,3 +618,80 @@ def test_window_max_s_in_parts_equals_one_pass():
     assert np.array_equal(split.is_maneuver, one.is_maneuver)
     assert np.array_equal(split.factor.view("int64"), one.factor.view("int64"))
     assert one.window_p.tolist() != detect(scene, parts=1).window_p.tolist()
+
+
+# --- h162: the maximum filter's radius and the track's ends in seconds (radius_s, edge_s) ---
+
+
+def test_radius_s_bounds_the_filter_where_two_steps_fit():
+    # docs/prereg/session27_radar_edges.md: radius_n points reach +-25 s at 5 s scans; with
+    # radius_s 15 as many median steps as fit (>= 2), never more than radius_n
+    steps = np.array([1.68, 3.0, 3.36, 4.2, 5.04, 7.5, 8.0, 10.0, 60.0, np.nan])
+    assert _radius_per_track(steps, len(steps), ManeuverParams()).tolist() == [5] * 10
+    on = _radius_per_track(steps, len(steps), ManeuverParams(radius_s=15.0))
+    assert on.tolist() == [5, 5, 4, 3, 2, 2, 5, 5, 5, 5]  # one step (> 7.5 s): as before
+    assert _radius_per_track(None, 3, ManeuverParams(radius_s=15.0)).tolist() == [5, 5, 5]
+
+
+def test_radius_s_finds_turns_25_s_apart_at_5_s_scans():
+    # two 25-degree turns 25 s (5 scans) apart at 5 kn seen every 5 s: the +-5-point filter
+    # (+-25 s) keeps one, radius_s 15 (+-2 points) both; at 1.68 s and on 10 s AIS the same
+    def course(t):
+        return np.where(t < 40, 0.0, np.where(t < 65, 25.0, 0.0))
+
+    option = ManeuverParams(radius_s=15.0)
+    for seed in range(6):
+        df, t = _path(course, 5.0, 120.0, 5.0, 0.5, seed)
+        before = t[detect(df).table()["index"].to_numpy()]
+        after = t[detect(df, option).table()["index"].to_numpy()]
+        assert len(before) == 1
+        assert after.tolist() == [40.0, 65.0]
+    for period in (1.68, 10.0):
+        df, _ = _path(course, 5.0 if period < 5 else 12.0, 600.0, period, 0.5, 1)
+        a, b = detect(df), detect(df, option)
+        assert np.array_equal(a.is_maneuver, b.is_maneuver)
+
+
+def test_edge_s_finds_a_turn_in_a_tracks_first_and_last_15_s_at_5_s_scans():
+    # a 25-degree turn 10 s after the first plot and one 10 s before the last, 5 kn, a plot
+    # every 5 s: the first window (5 points, 20 s) has no delta there, edge_s 12's 3-point
+    # windows do; a straight track gets none; at 1.68 s and 10 s steps nothing changes
+    def course(t):
+        return np.where(t < 10, 0.0, np.where(t < 110, 25.0, 0.0))
+
+    option = ManeuverParams(edge_s=12.0)
+    for seed in range(6):
+        df, t = _path(course, 5.0, 125.0, 5.0, 0.5, seed)
+        assert len(t) == 25
+        assert detect(df).table().empty
+        assert t[detect(df, option).table()["index"].to_numpy()].tolist() == [10.0, 110.0]
+        straight, _ = _path(lambda t: 0.0 * t, 5.0, 125.0, 5.0, 0.5, seed)
+        assert detect(straight, option).table().empty
+    for period in (1.68, 10.0):
+        df, _ = _path(course, 5.0 if period < 5 else 12.0, 125.0 * period / 5, period, 0.5, 2)
+        a, b = detect(df), detect(df, option)
+        assert np.array_equal(a.is_maneuver, b.is_maneuver)
+
+
+def test_radius_s_edge_s_in_parts_equal_one_pass():
+    def course(t):
+        return np.where(t < 10, 0.0, np.where(t < 65, 25.0, 0.0))
+
+    frames = []
+    for k, period in enumerate([1.68, 5.0, 10.0, 4.0, 3.36]):
+        df, _ = _path(course, 5.0, 200.0, period, 0.5, k, batch=f"s{k}")
+        frames.append(df)
+    scene = pd.concat(frames, ignore_index=True)
+    params = ManeuverParams(radius_s=15.0, edge_s=12.0)
+    one, split = detect(scene, params, parts=1), detect(scene, params, parts=3)
+    assert np.array_equal(split.is_maneuver, one.is_maneuver)
+    assert np.array_equal(split.factor.view("int64"), one.factor.view("int64"))
+
+
+@pytest.mark.parametrize("field", ["radius_s", "edge_s"])
+def test_radius_s_edge_s_validation(field):
+    assert getattr(ManeuverParams(), field) == 0.0  # off by default (h162's guards failed)
+    ManeuverParams(**{field: 15.0}).checked()
+    for bad in (-1.0, 1e8, float("nan")):
+        with pytest.raises(InputError, match=field):
+            ManeuverParams(**{field: bad}).checked()

@@ -113,11 +113,13 @@ PARAMS = [
 def _reference_params(params: ManeuverParams):
     """The reference's parameters: it predates ``max_step_windows`` (headings not taken
     across a long step), so it is compared with that rule off, and ``window_max_s`` (h131,
-    off by default), and ``rest_north_box`` (it calls cleaning's at_rest with its default,
+    off by default), ``radius_s`` and ``edge_s`` (h162, off by default), and ``rest_north_box`` (it calls cleaning's at_rest with its default,
     the box in the track's axes)."""
     fields = dict(params.__dict__)
     assert fields.pop("max_step_windows") == 0
     assert fields.pop("window_max_s") == 0
+    assert fields.pop("radius_s") == 0
+    assert fields.pop("edge_s") == 0
     assert not fields.pop("rest_north_box")
     return reference.ManeuverParams(**fields)
 
