@@ -36,7 +36,10 @@ not the neighbours, so it sees an offset wandering over a window (radar; docs/ev
 "Hard radar against real radar"). Option (off by default): ``window_max_s`` bounds the
 window at slow radar scans — where ``window_p`` points span more than it and 3 fit, as many
 points as fit, and the first scale's maximum filter reaches one window at most
-(docs/evaluation.md "Radar at slower scans (h131)").
+(docs/evaluation.md "Radar at slower scans (h131)"). Options (off by default): ``radius_s``
+bounds the maximum filter's radius to that many seconds of median steps (where 2 or more
+fit), and ``edge_s`` gives a track's first and last p − 1 plots 3-point windows where the
+first window spans more than it (docs/evaluation.md "Radar at slower scans (h162)").
 """
 
 import math
