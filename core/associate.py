@@ -354,6 +354,20 @@ class LinkParams(Params):
         "0.906 / 0.027 -> 0.910 / 0.021, 600 s 0.838 / 0.093 -> 0.842 / 0.090): "
         "docs/prereg/session26_mtad_sparse.md",
     )
+    margin_displaced: float = param(
+        0.0,
+        "",
+        "margin test: a rival that another join claims (more dearly than the rival costs) "
+        "counts only when taking it would cost the assignment less than this much more: "
+        "the rival's cost, plus the cheaper of leaving its claimer and the freed piece "
+        "loose (no_join) or joining the two (a candidate within the gate), less the two "
+        "joins it undoes; unclaimed rivals count as before (0 = off: every such rival "
+        "within margin counts, the rule before)",
+        0.0,
+        10.0,
+        "ours (session 27, MTAD decimated: joins dropped for a rival whose taking would "
+        "undo a cheaper join elsewhere): docs/prereg/session27_mtad.md",
+    )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
     w1: float = param(
@@ -1413,7 +1427,12 @@ def optimal_assign(
 
 
 def margin_test(
-    seg: Segments, pairs: Pairs, cost: np.ndarray, chosen: np.ndarray, margin: float
+    seg: Segments,
+    pairs: Pairs,
+    cost: np.ndarray,
+    chosen: np.ndarray,
+    margin: float,
+    displaced: tuple[float, float, float] | None = None,
 ) -> np.ndarray:
     """The chosen pairs that pass the margin test (indices into ``pairs``).
 
@@ -1421,6 +1440,9 @@ def margin_test(
     time — the two cannot both be this ship's continuation — or (i′, j) with i′
     overlapping i, that is not claimed by a chosen pair of lower cost. A join whose rival
     costs less than ``margin`` more is ambiguous and dropped: both ends stay loose.
+    ``displaced`` (``no_join``, ``gate``, ``margin_displaced``): a rival another chosen
+    pair claims counts only where taking it would cost the assignment less than
+    ``margin_displaced`` more (:func:`_displacement_holds`).
     """
     if len(chosen) == 0 or margin <= 0:
         return chosen
@@ -1448,8 +1470,65 @@ def margin_test(
         lo = np.maximum(seg.t0[r], seg.t0[o])
         hi = np.minimum(seg.t1[r], seg.t1[o])
         rival = (r != o) & (hi >= lo) & (c_r < c_all[k] + margin) & ~(claim[r] < c_r)
+        if displaced is not None:
+            rival &= ~_displacement_holds(
+                seg, pairs, cost, chosen, own is pairs.i, sel, k, r, o, displaced
+            )
         bad[k[rival]] = True
     return chosen[~bad]
+
+
+def _displacement_holds(
+    seg: Segments,
+    pairs: Pairs,
+    cost: np.ndarray,
+    chosen: np.ndarray,
+    old_side: bool,
+    sel: np.ndarray,
+    k: np.ndarray,
+    r: np.ndarray,
+    o: np.ndarray,
+    prices: tuple[float, float, float],
+) -> np.ndarray:
+    """Per rival row of :func:`margin_test` (candidate ``sel`` sharing its end with chosen
+    pair ``chosen[k]``; ``r`` the rival's other piece, ``o`` the chosen pair's): whether a
+    rival that another chosen pair claims is outweighed by what taking it would displace
+    (``margin_displaced``). Taking the rival (cost c_r instead of the chosen c) frees
+    ``o`` and takes ``r`` from its claimer x (claim c_x): x then goes loose with ``o``
+    (the two halves of ``no_join``) or takes ``o`` (the candidate x–o, within the gate),
+    whichever is cheaper. The rival holds as ambiguous only when that rearrangement costs
+    less than ``prices[2]`` (``margin_displaced``) more than the assignment's:
+    c_r + min(no_join, c_xo) − c − c_x < margin_displaced. ``prices``: (``no_join``,
+    ``gate``, ``margin_displaced``). Unclaimed rivals are not looked at (they hold, as
+    before); nor is the margin test of joins that share an end (:func:`_margin_test_joined`)."""
+    no_join, gate, need = prices
+    n = len(seg)
+    holder = np.full(n, -1, dtype=np.int64)
+    # who claims r: the chosen pair whose piece on the rival's side is r
+    side_of = pairs.j if old_side else pairs.i
+    holder[side_of[chosen]] = chosen
+    h = holder[r]
+    claimed = h >= 0
+    out = np.zeros(len(sel), dtype=bool)
+    if not claimed.any():
+        return out
+    idx = np.flatnonzero(claimed)
+    hc = h[idx]
+    x = (pairs.i if old_side else pairs.j)[hc]  # the claimer's other piece
+    # the candidate x–o (x old and o new when the rival shares the old end)
+    a, b = (x, o[idx]) if old_side else (o[idx], x)
+    keys = pairs.i.astype(np.int64) * n + pairs.j
+    order = np.argsort(keys, kind="stable")
+    want = a.astype(np.int64) * n + b
+    at = np.searchsorted(keys[order], want)
+    at = np.minimum(at, len(order) - 1)
+    hit = keys[order][at] == want
+    c_xo = np.where(hit, cost[order[at]], np.inf)
+    c_xo = np.where(c_xo <= gate, c_xo, np.inf)
+    rearranged = cost[sel[idx]] + np.fmin(no_join, c_xo)
+    assigned = cost[chosen[k[idx]]] + cost[hc]
+    out[idx] = rearranged >= assigned + need
+    return out
 
 
 def _margin_test_joined(
@@ -1639,7 +1718,16 @@ def _assign_scaled(seg: Segments, pairs: Pairs, cost: np.ndarray, params: LinkPa
         cost = cost + _gap_price(pairs, params)
     chosen = assign(pairs.i, pairs.j, cost, params.gate, params.no_join)
     chosen = insert_skipped(seg, pairs, cost, chosen, min(params.gate, params.no_join))
-    chosen = margin_test(seg, pairs, cost, chosen, params.margin)
+    chosen = margin_test(
+        seg,
+        pairs,
+        cost,
+        chosen,
+        params.margin,
+        (params.no_join, params.gate, params.margin_displaced)
+        if params.margin_displaced > 0
+        else None,
+    )
     return soft_gap_test(pairs, cost, chosen, params, len(seg))
 
 
