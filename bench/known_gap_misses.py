@@ -46,8 +46,8 @@ def recorded(log: dict):
     their last call's input and output are kept in ``log``; restored afterwards."""
     margin, soft = A.margin_test, A.soft_gap_test
 
-    def margin_rec(seg, pairs, cost, chosen, m):
-        out = margin(seg, pairs, cost, chosen, m)
+    def margin_rec(seg, pairs, cost, chosen, m, displaced=None):
+        out = margin(seg, pairs, cost, chosen, m, displaced)
         log["margin"] = (pairs, chosen, out)
         return out
 
