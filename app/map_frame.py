@@ -6,12 +6,15 @@ quantiles of longitude and latitude over the visible layers, with the margin of 
 A tail beyond a quantile is still shown whole when it is near (within a quarter of the
 quantiles' span): so only far-flung points are left out — three West-Coast positions of
 the ATD set's Gulf traffic no longer make the traffic a speck — and a set without such
-points is framed exactly as a fit frames it.
+points is framed exactly as a fit frames it. A tail that runs on past a quantile without
+an empty stretch wider than a tenth of the span (routes going on: the ATD set's Florida
+Atlantic and Bahamas traffic, 58 tracks east of 78° W) is shown as far as it runs.
 
-Each layer keeps a small :class:`PositionSketch` (its quantiles at every 0.1 %, from at
-most :data:`SAMPLE_MAX` points), made in the worker with the layer's geometry; the
-sketches of several layers are merged, weighted by their points, on the GUI thread in
-well under a millisecond.
+Each layer keeps a small :class:`PositionSketch` (its quantiles at every 0.1 %, every
+0.01 % in the outer 1 % of each side, from at most :data:`SAMPLE_MAX` points), made in
+the worker with the layer's geometry; the sketches of several layers are merged,
+weighted by the share of points each quantile stands for, on the GUI thread in well
+under a millisecond.
 """
 
 from dataclasses import dataclass
@@ -22,8 +25,16 @@ import numpy as np
 FRAME_QUANTILES = (0.005, 0.995)
 #: A tail beyond a quantile nearer than this fraction of the quantiles' span is shown.
 NEAR_TAIL = 0.25
-#: Quantiles kept per layer: 0, 0.1 %, …, 100 %.
-SKETCH_PROBS = np.linspace(0.0, 1.0, 1001)
+#: A tail beyond a quantile is shown as far as it runs on without an empty stretch wider
+#: than this fraction of the quantiles' span (routes that go on past the quantile).
+TAIL_GAP = 0.1
+#: Quantiles kept per layer: every 0.01 % in the outer 1 % of each side (where the
+#: tails are judged), every 0.1 % between.
+SKETCH_PROBS = np.unique(
+    np.r_[np.linspace(0.0, 0.01, 101), np.linspace(0.01, 0.99, 981), np.linspace(0.99, 1.0, 101)]
+)
+#: The share of a layer's points each sketch value stands for (sums to 1).
+_SKETCH_WEIGHT = np.gradient(SKETCH_PROBS) / np.gradient(SKETCH_PROBS).sum()
 #: Points a sketch is made from at most (an even stride through the layer).
 SAMPLE_MAX = 200_000
 
@@ -75,9 +86,7 @@ def framed_box(
     edges = []
     for axis in ("lon", "lat"):
         values = np.concatenate([getattr(s, axis) for s in sketches])
-        weight = np.concatenate(
-            [np.full(len(SKETCH_PROBS), s.n / len(SKETCH_PROBS)) for s in sketches]
-        )
+        weight = np.concatenate([s.n * _SKETCH_WEIGHT for s in sketches])
         order = np.argsort(values, kind="stable")
         values, cum = values[order], np.cumsum(weight[order])
         cum /= cum[-1]
@@ -85,8 +94,24 @@ def framed_box(
         lo = values[min(int(np.searchsorted(cum, FRAME_QUANTILES[0])), last)]
         hi = values[min(int(np.searchsorted(cum, FRAME_QUANTILES[1])), last)]
         reach = NEAR_TAIL * (hi - lo)
-        lo = values[0] if lo - values[0] <= reach else lo
-        hi = values[-1] if values[-1] - hi <= reach else hi
+        lo = values[0] if lo - values[0] <= reach else _tail_end(values, lo, hi, -1)
+        hi = values[-1] if values[-1] - hi <= reach else _tail_end(values, lo, hi, 1)
         edges.append((float(lo), float(hi)))
     (w, e), (s, n) = edges
     return (w, s, e, n)
+
+
+def _tail_end(values: np.ndarray, lo: float, hi: float, side: int) -> float:
+    """How far the tail beyond ``lo`` (``side`` -1) or ``hi`` (+1) runs on from the
+    quantile without an empty stretch wider than :data:`TAIL_GAP` × (hi − lo) between
+    consecutive sketch values (``values`` sorted): a route going on past the quantile
+    is shown, positions far off beyond a gap are not."""
+    gap = TAIL_GAP * (hi - lo)
+    if side < 0:
+        tail = values[values <= lo][::-1]  # from the quantile outwards
+    else:
+        tail = values[values >= hi]
+    if len(tail) < 2:
+        return lo if side < 0 else hi
+    wide = np.flatnonzero(np.abs(np.diff(tail)) > gap)
+    return float(tail[wide[0]] if len(wide) else tail[-1])
