@@ -310,3 +310,36 @@ def test_clean_and_evaluate_real_read_a_zip(tmp_path):
     want = evaluate_real(src).rows.set_index("method")
     got = evaluate_real(packed).rows.set_index("method")
     pd.testing.assert_frame_equal(got, want)
+
+
+@pytest.mark.parametrize(
+    ("members", "says"),
+    [
+        (
+            ["[Content_Types].xml", "_rels/.rels", "xl/workbook.xml", "xl/worksheets/sheet1.xml"],
+            "Excel workbook (.xlsx)",
+        ),
+        (["mimetype", "content.xml", "styles.xml"], "OpenDocument"),
+        (["[Content_Types].xml", "word/document.xml"], "Word document"),
+    ],
+)
+@pytest.mark.parametrize("suffix", [".xlsx", ".csv"])
+def test_an_office_document_is_named_with_how_to_save_it_as_csv(tmp_path, members, says, suffix):
+    """Operator test 4 (D-import-3): a workbook was refused as "a zip archive of 5 files …
+    unzip it … or give the zip to `wakeline batch`", advice that does not apply."""
+    p = tmp_path / f"ship{suffix}"
+    with zipfile.ZipFile(p, "w") as z:
+        for m in members:
+            z.writestr(m, "<x/>")
+    with pytest.raises(InputError) as got:
+        read_points(p)
+    text = str(got.value)
+    assert says in text and "CSV" in text and "unzip" not in text and "batch" not in text
+
+
+def test_an_excel_97_workbook_is_named_with_how_to_save_it_as_csv(tmp_path):
+    p = tmp_path / "ship.xls"
+    p.write_bytes(bytes.fromhex("D0CF11E0A1B11AE1") + bytes(range(256)) * 4)
+    with pytest.raises(InputError) as got:
+        read_points(p)
+    assert "Excel 97-2003" in str(got.value) and "Save As" in str(got.value)

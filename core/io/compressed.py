@@ -87,6 +87,29 @@ def _skipped(info: zipfile.ZipInfo) -> bool:
     return info.is_dir() or name.startswith("__MACOSX/") or base in (".DS_Store", "Thumbs.db")
 
 
+#: Office documents are zip archives: the member that names each, what it is, and how
+#: to save it as a CSV file.
+_OFFICE = (
+    ("xl/workbook.xml", "an Excel workbook (.xlsx)", "in Excel: File ▸ Save As ▸ CSV UTF-8"),
+    ("xl/workbook.bin", "an Excel binary workbook (.xlsb)", "in Excel: File ▸ Save As ▸ CSV UTF-8"),
+    (
+        "content.xml",
+        "an OpenDocument file (.ods)",
+        "in LibreOffice Calc: File ▸ Save As ▸ Text CSV",
+    ),
+    ("word/document.xml", "a Word document (.docx)", "copy its table into a spreadsheet first"),
+)
+
+
+def _office_document(names: set[str]) -> tuple[str, str] | None:
+    """(what it is, how to save it as CSV) when the archive's member ``names`` make an
+    office document, else None."""
+    for member, kind, save_as in _OFFICE:
+        if member in names and (member != "content.xml" or "mimetype" in names):
+            return kind, save_as
+    return None
+
+
 def data_members(archive: zipfile.ZipFile) -> list[zipfile.ZipInfo]:
     """The data files of a zip archive, in its order (directories, ``__MACOSX/`` left out)."""
     return [m for m in archive.infolist() if not _skipped(m)]
@@ -99,6 +122,13 @@ def zip_member(
     reads each file of a zip of several); :class:`InputError` for none, several (named),
     an encrypted one or one compressed with a method Python does not read."""
     members = data_members(archive)
+    office = _office_document({m.filename for m in members})
+    if office is not None:
+        kind, save_as = office
+        raise InputError(
+            f"{path}: {kind}, not a text file of rows; Wakeline reads CSV and text tables: "
+            f"save it as CSV ({save_as}) and open that file"
+        )
     if name is not None:
         members = [m for m in members if m.filename == name]
         if not members:

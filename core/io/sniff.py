@@ -28,6 +28,9 @@ def listed_headers(names, most: int = 40, each: int = 40) -> str:
     return ", ".join(shown) + more
 
 
+#: The first bytes of an OLE2 compound file (Excel .xls, Word .doc of Office 97-2003).
+OLE2_MAGIC = bytes.fromhex("D0CF11E0A1B11AE1")
+
 SAMPLE_BYTES = 256 * 1024
 #: Data rows of the sampled start kept to judge columns by their values (``Sniff.sample``).
 SAMPLE_ROWS = 1000
@@ -717,6 +720,12 @@ def sniff(
         if encoding == "utf-8":
             encoding = None  # UTF-8 with BOM: the usual candidates (BOM removed below)
     if not _is_wide(encoding) and _looks_binary(sample):
+        if sample.startswith(OLE2_MAGIC):  # the compound file of Excel 97-2003 and Word
+            raise NotTrackData(
+                f"{path}: an Excel 97-2003 workbook (.xls) or another Office 97-2003 file, "
+                "not a text file of rows; Wakeline reads CSV and text tables: save it as CSV "
+                "(in Excel: File ▸ Save As ▸ CSV UTF-8) and open that file"
+            )
         raise NotTrackData(
             f"{path}: this is a binary file, not a CSV text file "
             "(for UTF-16 text without a byte order mark give --encoding utf-16)"
