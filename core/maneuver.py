@@ -205,6 +205,27 @@ class ManeuverParams(Params):
         hi=1e7,
         source="ours (session 18: hard radar scenes, docs/evaluation.md)",
     )
+    noise_min_span: float = param(
+        0.0,
+        "sigma",
+        "the noise floor holds where each of a turn's two windows spans at least this many "
+        "of the track's position-noise sigma (first to last point, straight line); a shorter "
+        "window tests no turn (longer scales still do): there the heading error is far from "
+        "the normal law noise_k assumes (at 3 sigma a window pair's delta passes 4 of its sd "
+        "in 4 % of the windows, not 0.006 %); 0 = off",
+        lo=0.0,
+        hi=1000.0,
+        source="ours (session 27, h170: docs/prereg/session27_false_turns.md)",
+    )
+    noise_k_windows: bool = param(
+        False,
+        "",
+        "the noise floor's k grows with the independent windows a track offers: k = "
+        "max(noise_k, sqrt(2 ln N)), N = the track's points / the window's points (the "
+        "largest of N normal deviates, an extreme-value bound), so false turns are held per "
+        "track, not per window",
+        source="ours (session 27, h170: docs/prereg/session27_false_turns.md)",
+    )
     gap_s: float = param(
         10.0,
         "s",
@@ -815,14 +836,14 @@ def _clears_noise(
     sigma: np.ndarray,
     rows: np.ndarray,
     delta: np.ndarray,
-    k: float,
+    k: "float | np.ndarray",
     threshold: float,
 ) -> np.ndarray:
     """Per row of ``rows``: ``delta > max(k · _heading_noise_deg(…), threshold)``, the same
     booleans, with the three hypots taken as square roots of sums of squares where that
     decides (δ beyond the noise floor by more than :data:`HYPOT_MARGIN`, relative); the
     few rows within the margin, or with lengths or σ out of the safe range, take the exact
-    floor. ``k`` > 0."""
+    floor. ``k`` > 0 (one value, or one per row of ``rows``)."""
     n = len(x)
     a = np.clip(rows - p_row + 1, 0, n - 1)
     b = np.clip(rows + p_row - 1, 0, n - 1)
@@ -843,11 +864,41 @@ def _clears_noise(
     j = np.flatnonzero(~(sure & decided))
     if len(j):
         with np.errstate(invalid="ignore"):
+            kj = k if np.ndim(k) == 0 else np.asarray(k)[j]
             exact = np.maximum(
-                k * _heading_noise_deg(x, y, index, p_row[j], sigma, rows[j]), threshold
+                kj * _heading_noise_deg(x, y, index, p_row[j], sigma, rows[j]), threshold
             )
             ok[j] = delta[j] > exact
     return ok
+
+
+def _spans_noise(
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p_row: np.ndarray,
+    sigma: np.ndarray,
+    rows: np.ndarray,
+    spans: float,
+) -> np.ndarray:
+    """Per row of ``rows``: both windows of ``p_row`` points (those of
+    :func:`_heading_noise_deg`) span at least ``spans`` × the track's noise σ, first to last
+    point (``noise_min_span``); σ not known (NaN): True."""
+    n = len(x)
+    a = np.clip(rows - p_row + 1, 0, n - 1)
+    b = np.clip(rows + p_row - 1, 0, n - 1)
+    back, fwd, _ = _lengths_sq(x, y, rows, a, b)
+    reach = spans * sigma[index.track_of_row[rows]]
+    reach *= reach
+    with np.errstate(invalid="ignore"):
+        return ~((back < reach) | (fwd < reach))
+
+
+def _k_windows(k: float, points: np.ndarray, p_row: np.ndarray) -> np.ndarray:
+    """``noise_k_windows``: max(k, sqrt(2 ln N)) with N = ``points`` / ``p_row`` (the
+    track's independent windows), per row."""
+    n_win = np.maximum(points / np.maximum(p_row, 1), 1.0)
+    return np.maximum(k, np.sqrt(2.0 * np.log(n_win)))
 
 
 def _fast_enough(
@@ -2050,19 +2101,24 @@ def _detect_sorted(
                 lag = _noise_lag(med_track if params.window_s > 0 else None, params)
                 sigma = position_noise_m(x, y, t, track_index, lag)
                 noise.append(sigma if parent is None else sigma[parent])
+            k = params.noise_k
+            if params.noise_k > 0 and params.noise_k_windows:
+                pt = index.track_of_row[cand]
+                points = track_index.sizes[pt if parent is None else parent[pt]]
+                k = _k_windows(params.noise_k, points, p_c)
+            if params.noise_k > 0 and params.noise_min_span > 0:
+                ok &= _spans_noise(x, y, index, p_c, noise[0], cand, params.noise_min_span)
             if fine:  # the floor itself is wanted below
                 with np.errstate(invalid="ignore"):
                     floor = np.maximum(
-                        params.noise_k * _heading_noise_deg(x, y, index, p_c, noise[0], cand),
+                        k * _heading_noise_deg(x, y, index, p_c, noise[0], cand),
                         params.threshold_deg,
                     )
                     ok &= f_c > floor
                     j = np.flatnonzero(ok)
                     ok[j] = _leave_one_out_deg(x, y, index, p_c[j], cand[j]) > floor[j]
             else:
-                ok &= _clears_noise(
-                    x, y, index, p_c, noise[0], cand, f_c, params.noise_k, params.threshold_deg
-                )
+                ok &= _clears_noise(x, y, index, p_c, noise[0], cand, f_c, k, params.threshold_deg)
         if params.min_speed_kn > 0:
             j = np.flatnonzero(ok)
             ok[j] = _fast_enough(
