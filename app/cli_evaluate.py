@@ -48,6 +48,8 @@ def _maneuver_params(args: argparse.Namespace):
         gap_s=args.gap_s,
         min_window_s=args.min_window_s,
         noise_lag_s=args.noise_lag_s,
+        noise_min_span=args.noise_min_span,
+        noise_k_windows=args.noise_k_windows,
         max_step_windows=args.max_step_windows,
         window_max_s=args.window_max_s,
         radius_s=args.radius_s,
@@ -275,6 +277,20 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         help=f"the track noise of the noise floor: each point against the points this many "
         f"seconds either side (sees an offset wandering over a window); 0 = its neighbours "
         f"(default {d.noise_lag_s:g})",
+    )
+    p.add_argument(
+        "--noise-min-span",
+        type=float,
+        default=d.noise_min_span,
+        help=f"the noise floor only where each window spans this many track-noise sigma; "
+        f"0 = off (default {d.noise_min_span:g})",
+    )
+    p.add_argument(
+        "--noise-k-windows",
+        action=argparse.BooleanOptionalAction,
+        default=d.noise_k_windows,
+        help="the noise floor's k grows with the track's independent windows: "
+        "max(noise_k, sqrt(2 ln N))",
     )
     p.add_argument(
         "--max-step-windows",
