@@ -120,6 +120,12 @@ class ManeuverParams(Params):
     noise_lag_s: float = param(
         0.0, "s", "noise against the points this many seconds either side; 0 = neighbours"
     )
+    noise_min_span: float = param(
+        0.0, "sigma", "each window spans this many track-noise sigma, else no turn; 0 = off"
+    )
+    noise_k_windows: bool = param(
+        False, "", "k = max(noise_k, sqrt(2 ln N)), N = track points / window points"
+    )
     gap_s: float = param(
         10.0,
         "s",
@@ -653,12 +659,23 @@ def detect(
                         lag = np.where(ok_, np.round(params.noise_lag_s / med_), 1)
                     lag = np.clip(lag, 1, 1000).astype("int64")
                 noise.append(position_noise_m(x, y, t, index, lag))
+            k = params.noise_k
+            if params.noise_k > 0 and params.noise_k_windows:  # h170, session 27
+                n_win = np.maximum(index.sizes[index.track_of_row[cand]] / p_c, 1.0)
+                k = np.maximum(params.noise_k, np.sqrt(2.0 * np.log(n_win)))
             with np.errstate(invalid="ignore"):
                 floor = np.maximum(
-                    params.noise_k * _heading_noise_deg(x, y, index, p_c, noise[0], cand),
+                    k * _heading_noise_deg(x, y, index, p_c, noise[0], cand),
                     params.threshold_deg,
                 )
                 ok &= f[cand] > floor
+                if params.noise_k > 0 and params.noise_min_span > 0:  # h170, session 27
+                    a = np.clip(cand - p_c + 1, 0, len(x) - 1)
+                    b = np.clip(cand + p_c - 1, 0, len(x) - 1)
+                    span_m = params.noise_min_span * noise[0][index.track_of_row[cand]]
+                    lb = np.hypot(x[cand] - x[a], y[cand] - y[a])
+                    lf = np.hypot(x[b] - x[cand], y[b] - y[cand])
+                    ok &= ~((lb < span_m) | (lf < span_m))
                 if fine:
                     ok &= _leave_one_out_deg(x, y, index, p_c, cand) > floor
         if params.min_speed_kn > 0:

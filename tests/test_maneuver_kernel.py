@@ -71,6 +71,7 @@ PARAMS = [
     ManeuverParams(window_s=30.0, max_window_s=2000.0, radius_n=9, noise_k=0.0),
     ManeuverParams(threshold_deg=60.0, min_speed_kn=0.0, rest_radius_m=10.0),
     ManeuverParams(noise_lag_s=10.0, noise_k=4.0),
+    ManeuverParams(noise_min_span=3.0, noise_k_windows=True),  # h170, options
 ]
 
 

@@ -129,3 +129,20 @@ def test_options_change_nothing_on_a_clean_ais_track():
     base = detect(pts, ManeuverParams()).is_maneuver
     for option in (ManeuverParams(noise_min_span=10.0), ManeuverParams(noise_k_windows=True)):
         assert np.array_equal(detect(pts, option).is_maneuver, base)
+
+
+@pytest.mark.parametrize(
+    "options", [{"noise_min_span": 10.0}, {"noise_min_span": 8.0, "noise_k_windows": True}]
+)
+def test_options_equal_the_straightforward_detector(options):
+    import maneuver_reference as reference
+
+    pts, _ = long_noisy_track(4, hours=0.5)
+    params = ManeuverParams(max_step_windows=0.0, **options)
+    ours = detect(pts, params)
+    fields = dict(params.__dict__)
+    for gone in ("max_step_windows", "window_max_s", "radius_s", "edge_s", "rest_north_box"):
+        fields.pop(gone)
+    ref = reference.detect(pts, reference.ManeuverParams(**fields))
+    assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
+    assert ref.is_maneuver.sum() > 0
