@@ -283,19 +283,23 @@ def read_bearing_file(
     from wakeline.core import geo
     from wakeline.core.io.compressed import open_for_arrow
     from wakeline.core.io.formats import angle_unit, length_unit
-    from wakeline.core.io.reader import parse_times
+    from wakeline.core.io.reader import line_ends_in, parse_times, record_lines
     from wakeline.core.io.sniff import sniff
 
     sn = sniff(path, encoding, delimiter, skip_rows)
     res = resolve_bearings(sn.columns, mapping, origin, str(path))
     names, layout = res["columns"], res["layout"]
-    refused: list[tuple[int, str, str]] = []
-    skipped: list[int] = []  # every line the reader left out, blank or refused
+    # pyarrow numbers a row as if each record were one line: a quoted cell over a line
+    # end shifts every number after it (record_lines makes them the file's lines)
+    refused: list[tuple[int, str, str]] = []  # (index in skipped, reason, text)
+    skipped: list[int] = []  # every record the reader left out, blank or refused
+    skipped_breaks: list[int] = []  # the line ends inside each
 
     def invalid(row) -> str:
         skipped.append(int(row.number or 0))
+        skipped_breaks.append(row.text.count("\n") + row.text.count("\r") - row.text.count("\r\n"))
         if row.text.strip():
-            refused.append((int(row.number or 0), f"{row.actual_columns} fields, not "
+            refused.append((len(skipped) - 1, f"{row.actual_columns} fields, not "
                             f"{row.expected_columns}", row.text))  # fmt: skip
         return "skip"
 
@@ -329,12 +333,21 @@ def read_bearing_file(
             return joined.where(~pd.concat(parts, axis=1).eq("").any(axis=1), "")
         return df[src].str.strip()
 
-    # each table row's line: the lines after the header, less those the reader left out
+    # each table row's record: those after the header, less those the reader left out;
+    # then every record's first physical line
     taken = set(skipped)
     lines = [
         k for k in range(sn.skip_rows + 1, sn.skip_rows + 1 + n + len(taken)) if k not in taken
     ]
-    line = np.asarray(lines[:n], dtype="int64")
+    breaks = np.zeros(n, dtype="int64")
+    for col in table.columns:
+        breaks += line_ends_in(col)
+    physical = record_lines(
+        np.concatenate([np.asarray(lines[:n], dtype="int64"), np.asarray(skipped, "int64")]),
+        np.concatenate([breaks, np.asarray(skipped_breaks, dtype="int64")]),
+    )
+    line, refused_line = physical[:n], physical[n:]
+    refused = [(int(refused_line[k]), why, row) for k, why, row in refused]
     blank = (
         (df.apply(lambda c: c.str.strip()) == "").all(axis=1).to_numpy() if n else np.zeros(0, bool)
     )
@@ -421,6 +434,9 @@ def read_bearing_file(
     report = {
         "lines": int(n - blank.sum() + len(refused)),
         "blank": int(blank.sum()),
+        # lines that continue a record (a quoted cell's line breaks): with the header(s),
+        # lines and blank, every physical line of the file
+        "continued_lines": int(breaks.sum() + sum(skipped_breaks)),
         "bearings": int(len(out)),
         "series": int(out["batch"].nunique()),
         "layout": layout.label if layout is not None else None,
@@ -450,6 +466,11 @@ def summary_lines(report: dict) -> list[str]:
         f"{report['series']:,} series"
         + "".join(f"; {k:,} {r}" for r, k in report["set_aside"].items())
         + "".join(f"; {k:,} quarantined: {r}" for r, k in report["quarantined"].items())
+        + (
+            f"; {n:,} {'line continues' if n == 1 else 'lines continue'} a quoted cell"
+            if (n := report.get("continued_lines", 0))
+            else ""
+        )
     ]
     out += report["notes"]
     cols = ", ".join(f"{f}={c}" for f, c in report["columns"].items())

@@ -800,6 +800,33 @@ def _line_numbers(rows: np.ndarray, skip_rows: int, invalid_lines: list[int]) ->
     return rows + skip_rows + 1
 
 
+def line_ends_in(values: pa.Array | pa.ChunkedArray) -> np.ndarray:
+    """Line ends (LF, CRLF, CR) inside each string of ``values``: a quoted cell's line
+    breaks (0 where null)."""
+    out = np.zeros(len(values), dtype="int64")
+    for end, sign in (("\n", 1), ("\r", 1), ("\r\n", -1)):
+        n = pc.fill_null(pc.count_substring(values, end), 0)
+        out += sign * np.asarray(n.to_numpy(zero_copy_only=False), dtype="int64")
+    return out
+
+
+def record_lines(records: np.ndarray, breaks: np.ndarray) -> np.ndarray:
+    """The physical 1-based first line of each record, from its number as pyarrow counts
+    (a record one line, as :func:`_line_numbers` gives for the parsed rows and the
+    invalid-row handler's ``row.number`` for the refused ones) and the line ends inside
+    it (:func:`line_ends_in`; a quoted cell over a line end). ``records`` and ``breaks``
+    cover every record after the header (rows and refused rows, any order)."""
+    records = np.asarray(records, dtype="int64")
+    breaks = np.asarray(breaks, dtype="int64")
+    if not breaks.any():
+        return records
+    order = np.argsort(records, kind="stable")
+    before = np.cumsum(breaks[order]) - breaks[order]  # line ends in the records above
+    out = np.empty_like(records)
+    out[order] = records[order] + before
+    return out
+
+
 #: A number written with a decimal comma (``57,6671``, ``-0,5``, ``1,5e3``): European
 #: spreadsheets' exports, read as such when the file's delimiter is not the comma.
 _COMMA_NUMBER = r"[+-]?\d*,\d+(?:[eE][+-]?\d+)?"
