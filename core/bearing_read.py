@@ -561,30 +561,49 @@ def gate_to_tracks(
             "gating bearings on tracks needs the observer's positions (obs_lon/obs_lat, "
             "or obs_east/obs_north with --origin)"
         )
-    t = time_seconds(bearings["time"])
-    olon = bearings["obs_lon"].to_numpy(dtype="float64")
-    olat = bearings["obs_lat"].to_numpy(dtype="float64")
-    b = bearings["bearing"].to_numpy(dtype="float64")
+    t_all = time_seconds(bearings["time"])
+    # Bearings sorted by time once: a track is compared only with the bearings within
+    # its time span (searchsorted), not with every bearing (h157: ~9 ms a track at 65k).
+    by_time = np.argsort(t_all, kind="stable")
+    t_sorted = t_all[by_time]
+    olon_all = bearings["obs_lon"].to_numpy(dtype="float64")
+    olat_all = bearings["obs_lat"].to_numpy(dtype="float64")
+    b_all = bearings["bearing"].to_numpy(dtype="float64")
     rows, names, errs, truth = [], [], [], []
     tracks = tracks.sort_values(["batch", "time"], kind="stable")
-    for name, tr in tracks.groupby("batch", sort=True):  # per track, all bearings at once
-        tt = time_seconds(tr["time"])
+    # each track's rows (in groupby's order of tracks), its times and positions at once
+    code = tracks.groupby("batch", sort=True).ngroup().to_numpy()
+    in_track = np.argsort(code, kind="stable")
+    bounds = np.searchsorted(code[in_track], np.arange(code.max(initial=-1) + 2))
+    track_names = tracks["batch"].to_numpy()
+    track_t = time_seconds(tracks["time"])
+    track_lon = tracks["lon"].to_numpy(dtype="float64")
+    track_lat = tracks["lat"].to_numpy(dtype="float64")
+    for a, z in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):  # per track
+        rows_of = in_track[a:z]
+        name = track_names[rows_of[0]]
+        tt = track_t[rows_of]
         keep = np.concatenate([[True], np.diff(tt) > 0])  # one fix per time
         tt = tt[keep]
         if len(tt) < 2:
             continue
-        lon = tr["lon"].to_numpy(dtype="float64")[keep]
-        lat = tr["lat"].to_numpy(dtype="float64")[keep]
+        lo = np.searchsorted(t_sorted, tt[0], side="left")
+        hi = np.searchsorted(t_sorted, tt[-1], side="right")
+        at = np.sort(by_time[lo:hi])  # the span's bearings, in table order
+        t, olon, olat, b = t_all[at], olon_all[at], olat_all[at], b_all[at]
+        lon, lat = track_lon[rows_of][keep], track_lat[rows_of][keep]
         k = np.clip(np.searchsorted(tt, t), 1, len(tt) - 1)
         inside = (t >= tt[0]) & (t <= tt[-1]) & (tt[k] - tt[k - 1] <= max_gap_s)
         plon, plat = np.interp(t, tt, lon), np.interp(t, tt, lat)
         true_b = geo.initial_bearing_deg(olon, olat, plon, plat)
         err = np.abs(geo.angle_diff(b, true_b))
-        hit = np.flatnonzero(inside & (err < gate_deg) & np.isfinite(olon) & np.isfinite(olat))
+        sel = np.flatnonzero(inside & (err < gate_deg) & np.isfinite(olon) & np.isfinite(olat))
+        hit = at[sel]
+        err, true_b = err[sel], true_b[sel]
         rows.append(hit)
         names.append(np.full(len(hit), str(name), dtype=object))
-        errs.append(err[hit])
-        truth.append(true_b[hit] % 360.0)
+        errs.append(err)
+        truth.append(true_b % 360.0)
     cat = lambda xs, dtype: np.concatenate(xs) if xs else np.zeros(0, dtype)  # noqa: E731
     row, track = cat(rows, "int64"), cat(names, object)
     cand = pd.DataFrame(
@@ -594,7 +613,7 @@ def gate_to_tracks(
             "err": cat(errs, "float64"),
             "track_bearing": cat(truth, "float64"),
             "series": bearings["batch"].to_numpy()[row],
-            "t": t[row],
+            "t": t_all[row],
         }
     )
     cand = cand.sort_values(["err", "row"], kind="stable").drop_duplicates(["series", "track", "t"])
