@@ -48,11 +48,13 @@ codec name is taken (``io.TextIOWrapper``, ``pandas.read_csv``). UTF-16 and UTF-
 (a byte order mark) and an encoding the user names are decoded as they were: strictly,
 undecodable bytes quarantined. A file judged GB18030 is read first strictly but for its
 UTF-8 lines (``fail``: a line not valid GB18030 sends it to the whole file's judgement,
-as before).
+as before; the decoder asks it there, ``judge``, and when it says GB18030 goes on line by
+line: the text the reading again gave, without reading the file again, h167).
 """
 
 import codecs
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -336,12 +338,23 @@ class LineDecoder(codecs.IncrementalDecoder):
     (or is better read so: module docstring) is decoded in a fallback encoding (recorded
     in ``fallbacks``), else with U+FFFD for its bad bytes (recorded as ``"replaced"``).
     ``evidence`` gathers what the lines said (:class:`Evidence`). ``fail``: a line that
-    does not decode raises UnicodeDecodeError instead (the strict first reading). A
-    UTF-8 byte order mark at the start is decoded as U+FEFF (the readers drop it)."""
+    does not decode raises UnicodeDecodeError instead (the strict first reading), unless
+    ``judge`` (the whole file's judgement, :func:`decide_file`), asked at the first such
+    line, names this encoding: then that line and the rest are decoded as without
+    ``fail`` — the text the reader's next reading (the judged encoding, line by line)
+    gives, without decoding the file again (h157). A UTF-8 byte order mark at the start
+    is decoded as U+FEFF (the readers drop it)."""
 
-    def __init__(self, encoding: str = "utf-8", errors: str = "strict", fail: bool = False) -> None:
+    def __init__(
+        self,
+        encoding: str = "utf-8",
+        errors: str = "strict",
+        fail: bool = False,
+        judge: Callable[[], str] | None = None,
+    ) -> None:
         super().__init__(errors)
         self.fail = fail
+        self.judge = judge
         self.encoding = codecs.lookup(encoding).name
         self._decode = codecs.lookup(encoding).decode  # takes a memoryview: no copy
         self.chain = (FALLBACK,) if self.encoding == "utf-8" else ("utf-8", FALLBACK)
@@ -445,7 +458,7 @@ class LineDecoder(codecs.IncrementalDecoder):
             paired = np.zeros(len(failing), bool)  # GB2312 pairs decode: these do not
         if not len(lines):
             return None
-        if self.fail and len(failing):
+        if len(failing) and self._fails():
             start = int(b.span(failing[:1])[0][0])
             raise UnicodeDecodeError(self.encoding, seg, start, start + 1, "a line not valid")
         starts, stops = b.span(lines)
@@ -601,9 +614,16 @@ class LineDecoder(codecs.IncrementalDecoder):
                 self.evidence.good += _high(seg) - (self.evidence.bad - bad_before)
                 return "".join(out)
 
+    def _fails(self) -> bool:
+        """Whether a line that does not decode raises (``fail``; asks ``judge`` once)."""
+        if self.fail and self.judge is not None:
+            judge, self.judge = self.judge, None
+            self.fail = codecs.lookup(judge()).name != self.encoding
+        return self.fail
+
     def _bad(self, line: bytes) -> str:
         """One line (no line end) that does not decode in the primary encoding."""
-        if self.fail:
+        if self._fails():
             raise UnicodeDecodeError(self.encoding, line, 0, len(line), "a line not valid")
         number = self.line + 1
         self._last_cr = False

@@ -397,7 +397,10 @@ class _Utf8Stream(_ChunkedStream):
         self._opened = open_data(sn.path, sn.compression)
         self._fh = self._opened.__enter__()
         if errors in ("lines", "strict-lines"):
-            self._dec = self.decoder = LineDecoder(encoding, fail=errors == "strict-lines")
+            strict = errors == "strict-lines"
+            self._dec = self.decoder = LineDecoder(
+                encoding, fail=strict, judge=_judge(sn) if strict else None
+            )
         else:
             self._dec = codecs.getincrementaldecoder(encoding)(errors=errors)
         self._buf = b""
@@ -429,6 +432,16 @@ class _Utf8Stream(_ChunkedStream):
     def __exit__(self, *exc) -> None:
         self.closed = True
         self._opened.__exit__(*exc)  # a decompression error: named (InputError)
+
+
+def _judge(sn: Sniff) -> Callable[[], str] | None:
+    """The whole file's judgement of its encoding (:func:`decide_file`) when the readers
+    ask for it (an encoding judged from the file's start, not one the user named); a
+    strict reading's decoder asks it at the first line that does not decode, and goes on
+    when it confirms the encoding instead of failing the reading (:class:`LineDecoder`)."""
+    if sn.encoding_given or sn.line_fallback or not line_decodable(sn.encoding):
+        return None
+    return functools.partial(decide_file, sn.path, sn.compression)
 
 
 def _open(sn: Sniff, encoding: str, errors: str):
@@ -4499,9 +4512,13 @@ def stream_points(
                 skip = 0
             if totals["rows_imported"] == 0:
                 raise _Fallback  # nothing imported: let the whole-file path say why
+            # Lines of a GB18030 file read as UTF-8: reported as the whole-file reader
+            # reports them (the file is not decoded again; h157). Replaced bytes (their
+            # rows quarantined) are the whole-file reader's.
             decoder = getattr(getattr(opened, "_stream", opened), "decoder", None)
-            if decoder is not None and decoder.fallbacks.counts:
-                raise _Fallback  # lines read as UTF-8: the whole-file path reports them
+            fallback = decoder.fallbacks.report() if decoder is not None else {}
+            if decoder is not None and decoder.fallbacks.counts.get("replaced"):
+                raise _Fallback
     except (pa.ArrowInvalid, UnicodeDecodeError) as exc:
         raise _Fallback from exc
 
@@ -4528,7 +4545,8 @@ def stream_points(
         texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], sn.encoding)
         q["text"] = pd.Series(texts, dtype="str")
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
-    warnings = [no_batch_warning(sn, res.columns)] if file_batch else []
+    warnings = fallback_warning(sn.encoding, fallback)
+    warnings += [no_batch_warning(sn, res.columns)] if file_batch else []
     warnings += res.notes
     warnings += _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
@@ -4556,6 +4574,7 @@ def stream_points(
         "extra_columns": extra,
         "careful_parse": False,
         "streamed": True,
+        **({"encoding_fallback": fallback} if fallback else {}),
         "time_format": time_info.get("time_format"),
         "time_date_column": time_info.get("date_column"),
         # GPS time: the week column ("" for GPS seconds since 1980), for export --like
