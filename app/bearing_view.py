@@ -122,6 +122,47 @@ MIN_TABLE_ROWS = 3
 #: The parts of a bearing layer on the main map (the scene's layers, in this order): the
 #: map names them ``<layer id>/<part>`` and the legend ``<layer name> · <label>``.
 PARTS = ("observer", "lines", "maneuvers")
+#: The fixed legend words each part's labels may hold (the scene's layers are made in a
+#: worker, in English: these are their label keys, put in the window's language where
+#: they are drawn, :func:`in_language`); the lines' other labels are batch names, kept.
+PART_WORDS = {
+    "observer": (LAYER_NAMES[0],),
+    "lines": (OTHER_LABEL,),
+    "maneuvers": (LAYER_NAMES[2],),
+}
+
+
+def legend_words() -> dict[str, str]:
+    """The bearing map's fixed legend words (:data:`LAYER_NAMES`, :data:`OTHER_LABEL`)
+    in the window's language (the translator installed now; context ``BearingView``)."""
+    app = QtCore.QCoreApplication
+    return {
+        LAYER_NAMES[0]: app.translate("BearingView", "observer"),
+        LAYER_NAMES[1]: app.translate("BearingView", "bearing lines"),
+        LAYER_NAMES[2]: app.translate("BearingView", "maneuvers"),
+        OTHER_LABEL: app.translate("BearingView", "other batches"),
+    }
+
+
+def in_language(data: DrawData, part: str, words: dict[str, str] | None = None) -> DrawData:
+    """``data``, the bearing scene's ``part`` (:data:`PARTS`), with its fixed legend words
+    (:data:`PART_WORDS`) in the window's language (:func:`legend_words`): the geometry's
+    labels (a new level of detail makes the curves from them) and the curves'."""
+    keys = PART_WORDS.get(part, ())
+    if not any(label in keys for label in data.geometry.labels):
+        return data
+    words = legend_words() if words is None else words
+
+    def word(text: str) -> str:
+        return words.get(text, text) if text in keys else text
+
+    geometry = dataclasses.replace(
+        data.geometry, labels=tuple(word(t) for t in data.geometry.labels)
+    )
+    curves = tuple(dataclasses.replace(c, label=word(c.label)) for c in data.curves)
+    return dataclasses.replace(data, geometry=geometry, curves=curves)
+
+
 #: Columns of an empty points table (a bearing layer has no tracks in the batch table).
 EMPTY_POINTS = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
 
@@ -896,8 +937,9 @@ class BearingView(QtWidgets.QWidget):
     def draw_layers(self, layers) -> None:
         """Swap in the map's layers (the scene's, or those cut to a time window:
         :func:`window_scene_layers`); the view is kept."""
-        for data in layers:
-            self.map.set_draw_data(data)
+        words = legend_words()
+        for data, part in zip(layers, PARTS, strict=False):  # the scene's order
+            self.map.set_draw_data(in_language(data, part, words))
 
     def clear(self) -> None:
         """Show nothing (the bearing layer shown was removed)."""

@@ -299,11 +299,14 @@ def map_layers(view: LayerView, layer_id: str, label: str) -> list:
     if parts is None:
         return [draw_as(view, layer_id, label)] if view.draw is not None else []
 
+    from wakeline.app.bearing_view import in_language, legend_words
+
     def relabel(text: str) -> str:
         return f"{label} · {text}" if text else text
 
-    out = []
+    out, words = [], legend_words()
     for data in parts:
+        data = in_language(data, data.name, words)  # its legend words in the window's language
         geometry = dataclasses.replace(
             data.geometry, labels=tuple(relabel(t) for t in data.geometry.labels)
         )

@@ -1166,6 +1166,22 @@
         <source>Cannot export</source>
         <translation>无法导出</translation>
     </message>
+    <message>
+        <source>observer</source>
+        <translation>观测平台</translation>
+    </message>
+    <message>
+        <source>bearing lines</source>
+        <translation>方位线</translation>
+    </message>
+    <message>
+        <source>maneuvers</source>
+        <translation>机动点</translation>
+    </message>
+    <message>
+        <source>other batches</source>
+        <translation>其他批次</translation>
+    </message>
 </context>
 <context>
     <name>TimePanel</name>
