@@ -71,12 +71,15 @@ def quoted_files(draw):
     n = draw(st.integers(3, 25))
     rows = []
     for k in range(n):
-        kind = draw(st.sampled_from(["ok", "ok", "quoted", "extra", "bad", "blank"]))
+        kind = draw(
+            st.sampled_from(["ok", "ok", "quoted", "quoted_extra", "extra", "bad", "blank"])
+        )
         t = _TIME.format(k // 60, k % 60)
-        if kind == "quoted":
+        if kind.startswith("quoted"):
             parts = draw(st.lists(st.sampled_from(["A", "B c", "d,e", 'x""y']), min_size=2))
             end = draw(st.sampled_from(["\n", "\r\n"]))
-            rows.append((kind, f'{t},"{end.join(parts)}",{10 + k}'))
+            extra = ",9" if kind == "quoted_extra" else ""  # a refused record over lines
+            rows.append((kind, f'{t},"{end.join(parts)}",{10 + k}{extra}'))
         elif kind == "extra":
             rows.append((kind, f"{t},A,{10 + k},9"))
         elif kind == "bad":
@@ -88,10 +91,13 @@ def quoted_files(draw):
     return rows
 
 
+BAD = ("extra", "bad", "quoted_extra")
+
+
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(rows=quoted_files())
 def test_bearing_line_numbers_are_the_record_starts(tmp_path_factory, rows):
-    if all(kind in ("extra", "bad", "blank") for kind, _ in rows):
+    if all(kind in (*BAD, "blank") for kind, _ in rows):
         rows = [*rows, ("ok", f"{_TIME.format(59, 59)},A,1")]
     p = tmp_path_factory.mktemp("q") / "b.csv"
     text = "time,batch,bearing\n" + "".join(r + "\n" for _, r in rows)
@@ -100,7 +106,7 @@ def test_bearing_line_numbers_are_the_record_starts(tmp_path_factory, rows):
     for _, r in rows:
         starts.append(line)
         line += r.count("\n") + 1
-    bad = [s for (kind, _), s in zip(rows, starts, strict=True) if kind in ("extra", "bad")]
+    bad = [s for (kind, _), s in zip(rows, starts, strict=True) if kind in BAD]
     got = read_bearing_file(p)
     assert got.quarantine["line"].tolist() == bad
     ok = [kind in ("ok", "quoted") for kind, _ in rows]
@@ -113,3 +119,22 @@ def test_bearing_line_numbers_are_the_record_starts(tmp_path_factory, rows):
     assert 1 + rep["lines"] + rep["blank"] + rep["continued_lines"] == physical
     # the quarantine's texts are the records' own fields
     assert all(isinstance(t, str) for t in pd.Series(got.quarantine["text"]))
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(rows=quoted_files())
+def test_track_reader_line_numbers_are_the_physical_lines(tmp_path_factory, rows):
+    """The track reader reads a file with a quoted line break line by line: each
+    quarantine row is the physical line it names, and every line is counted once."""
+    rows = [(kind, r + ",5" if r else r) for kind, r in rows]
+    rows.append(("ok", f"{_TIME.format(59, 59)},A,1,5"))
+    p = tmp_path_factory.mktemp("t") / "t.csv"
+    text = "time,batch,lat,lon\n" + "".join(r + "\n" for _, r in rows)
+    p.write_bytes(text.encode())
+    got = read_points(p)
+    physical = text.replace("\r\n", "\n").split("\n")[:-1]
+    rep = got.report
+    assert 1 + rep["rows_read"] + rep["blank_lines"] == len(physical)
+    assert rep["rows_imported"] + rep["rows_quarantined"] == rep["rows_read"]
+    for line, raw in zip(got.quarantine["line"], got.quarantine["text"], strict=True):
+        assert physical[line - 1].strip() == raw.strip()
