@@ -132,16 +132,36 @@ PART_WORDS = {
 }
 
 
+#: Every word :func:`legend_words` gave for each key (in any language shown so far): what a
+#: language switch renames (:func:`reworded`).
+_SHOWN: dict[str, set[str]] = {}
+
+
 def legend_words() -> dict[str, str]:
     """The bearing map's fixed legend words (:data:`LAYER_NAMES`, :data:`OTHER_LABEL`)
     in the window's language (the translator installed now; context ``BearingView``)."""
     app = QtCore.QCoreApplication
-    return {
+    words = {
         LAYER_NAMES[0]: app.translate("BearingView", "observer"),
         LAYER_NAMES[1]: app.translate("BearingView", "bearing lines"),
         LAYER_NAMES[2]: app.translate("BearingView", "maneuvers"),
         OTHER_LABEL: app.translate("BearingView", "other batches"),
     }
+    for key, word in words.items():
+        _SHOWN.setdefault(key, {key}).add(word)
+    return words
+
+
+def reworded(label: str, part: str, words: dict[str, str] | None = None) -> str:
+    """A legend label of the bearing scene's ``part`` ("word", or "layer · word" on the
+    main map) with its fixed word in the window's language now (a language switch);
+    other labels (batch names) as they are."""
+    words = legend_words() if words is None else words
+    head, sep, word = label.rpartition(" · ")
+    for key in PART_WORDS.get(part, ()):
+        if word in _SHOWN.get(key, ()):
+            return f"{head}{sep}{words[key]}"
+    return label
 
 
 def in_language(data: DrawData, part: str, words: dict[str, str] | None = None) -> DrawData:
@@ -781,6 +801,10 @@ class BearingView(QtWidgets.QWidget):
         )
         self.map.setLabel("bottom", self.tr("longitude"), units="°")
         self.map.setLabel("left", self.tr("latitude"), units="°")
+        words = legend_words()  # the legend's fixed words, as drawn, in the new language
+        for name, part in zip(LAYER_NAMES, PARTS, strict=True):
+            if name in self.map.layer_names():
+                self.map.relabel_layer(name, functools.partial(reworded, part=part, words=words))
 
     def _length_box(self) -> QtWidgets.QDoubleSpinBox:
         """The line length's spin box, from the core's parameter

@@ -283,6 +283,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
                 item.setText(layer_text(layer))
         self.canvas.setLabel("bottom", self.tr("longitude"), units="°")
         self.canvas.setLabel("left", self.tr("latitude"), units="°")
+        self.legend_in_language()
         self._update_stats()
 
     def set_language(self, code: str) -> None:

@@ -14,6 +14,7 @@ selection colours each batch differently. Hovering shows sensor, batch, time (el
 ``T+…`` for scene-relative times) and speed of the nearest point.
 """
 
+import dataclasses
 import math
 from collections.abc import Callable
 
@@ -508,6 +509,19 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
 
     def layer_items(self, name: str) -> list[pg.PlotDataItem]:
         return self._items[name]
+
+    def relabel_layer(self, name: str, rename) -> None:
+        """Layer ``name``'s legend entries and labels renamed by ``rename`` (a label → the
+        new one: the words of a language switch), its data kept as drawn."""
+        for item in self._items.get(name, []):
+            self.legend.rename(item, rename)
+        data = self._data.get(name)
+        if data is not None:
+            geometry = dataclasses.replace(
+                data.geometry, labels=tuple(rename(t) for t in data.geometry.labels)
+            )
+            curves = tuple(dataclasses.replace(c, label=rename(c.label)) for c in data.curves)
+            self._data[name] = dataclasses.replace(data, geometry=geometry, curves=curves)
 
     def draw_data(self, name: str) -> DrawData:
         """The prepared data of layer ``name`` as drawn now."""

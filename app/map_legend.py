@@ -122,6 +122,18 @@ class SideLegend(pg.LegendItem):
         label.setToolTip(str(name))  # the whole name, however the label is shortened
         self._rank[id(sample)] = next(self._ranks)
 
+    def rename(self, item, rename) -> None:
+        """The entry of ``item`` (shown or left out) renamed by ``rename`` (its whole
+        name → the new one; a language switch's words)."""
+        pairs = [*self.items, *self._hidden.values()]
+        for sample, label in pairs:
+            if sample.item is item:
+                name = rename(label.toolTip())
+                if name != label.toolTip():
+                    label.setText(self.fit_label(name))
+                    label.setToolTip(name)
+                return
+
     def removeItem(self, item) -> None:  # noqa: N802 - pyqtgraph's name
         """Remove ``item``'s entry, shown or left out (:meth:`show_entries`)."""
         pair = self._hidden.pop(id(item), None)

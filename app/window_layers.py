@@ -5,6 +5,7 @@ hide or remove a layer; prepared arrays are swapped into the map one layer per
 event-loop turn so a result of several layers never blocks in one piece.
 """
 
+import functools
 import html
 from collections.abc import Iterable
 
@@ -65,6 +66,20 @@ class LayersMixin:
     @property
     def layers(self) -> dict[str, Layer]:
         return self.session.layers
+
+    def legend_in_language(self) -> None:
+        """The bearing layers' fixed legend words (observer, other batches, …) as drawn,
+        in the window's language now (a language switch; new drawings take it anyway)."""
+        from wakeline.app.bearing_view import legend_words, reworded
+        from wakeline.app.layer_view import PART_SEP
+
+        words = legend_words()
+        for name in self.canvas.layer_names():
+            lid, sep, part = name.rpartition(PART_SEP)
+            layer = self.session.layers.get(lid) if sep else None
+            if layer is not None and layer.kind == BEARING_KIND:
+                rename = functools.partial(reworded, part=part, words=words)
+                self.canvas.relabel_layer(name, rename)
 
     def colors_in_use(self, exclude: Iterable[str] = ()) -> tuple[set[str], set[str]]:
         """The colours the layers are drawn in: those of the visible layers and those of

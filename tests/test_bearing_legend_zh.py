@@ -61,6 +61,27 @@ def test_the_chinese_window_shows_the_bearing_legend_in_chinese(qtbot, tmp_path)
         assert observer in dock and other in dock, dock
         assert "observer" not in dock and "other batches" not in dock, dock
         assert "b00" in dock  # batch names stay as they are
+
+        # a language switch renames the entries drawn (their data kept); the whole
+        # names are the entries' tooltips (a long label is shortened to fit)
+        def names(legend):
+            return [label.toolTip() for _s, label in legend.items]
+
+        zh_main, zh_dock = names(w.canvas.legend), names(w.bearing_view.map.legend)
+        w.set_language("en")
+        english = {observer: "observer", other: "other batches"}
+        assert names(w.canvas.legend) == [
+            f"{t.rpartition(' · ')[0]} · {english.get(t.rpartition(' · ')[2], t.rpartition(' · ')[2])}"
+            for t in zh_main
+        ]
+        dock_en = names(w.bearing_view.map.legend)
+        assert dock_en == [english.get(t, t) for t in zh_dock]
+        assert "observer" in dock_en and "other batches" in dock_en and "b00" in dock_en
+        w.set_language("zh_CN")
+        assert names(w.canvas.legend) == zh_main
+        assert names(w.bearing_view.map.legend) == zh_dock
+        lines = next(n for n in w.canvas.layer_names() if n.endswith("/lines"))
+        assert f"bearings.csv · {other}" in w.canvas.draw_data(lines).geometry.labels
     finally:
         w.runner.cancel()
         w.runner.wait()
