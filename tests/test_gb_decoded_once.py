@@ -99,3 +99,31 @@ def test_a_file_the_whole_judgement_reads_as_utf8_is_still_read_again(tmp_path, 
     p.write_bytes(head.encode("gb18030") + rest.encode())
     whole = read_points(p)
     assert set(whole.points["name"]) == {"Ålesund – Bjørn", "远洋"}
+
+
+def test_a_quoted_file_read_in_pieces_decodes_once(tmp_path, decoded, monkeypatch):
+    """Quotes in the start: the import reads in pieces; the first piece with the line not
+    valid GB18030 asks the whole file's judgement once, and no piece is read again."""
+    import wakeline.core.io.reader as reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 200_000)
+
+    def quoted(tail):
+        p = _file(tmp_path, 20_000, tail)  # every time quoted
+        lines = p.read_bytes().split(b"\n")
+        body = [lines[0]] + [b'"' + line[:19] + b'"' + line[19:] for line in lines[1:] if line]
+        p.write_bytes(b"\n".join(body) + b"\n")
+        return p
+
+    clean = quoted([])
+    import_to_csv(clean, tmp_path / "o.csv")
+    cost, decoded["bytes"] = decoded["bytes"], 0
+    p = quoted([LINES["not_gb"]])
+    got = import_to_csv(p, tmp_path / "o.csv")
+    assert got.report["pieces"] > 3
+    assert decoded["bytes"] < cost + 0.5 * p.stat().st_size  # before: + 2 sizes
+    whole = read_points(p)
+    write_points(whole.points, tmp_path / "w.csv")
+    assert (tmp_path / "o.csv").read_bytes() == (tmp_path / "w.csv").read_bytes()
+    assert got.report["warnings"] == whole.report["warnings"]
+    assert got.report["encoding_fallback"] == whole.report["encoding_fallback"]

@@ -196,6 +196,16 @@ def read_in_pieces(
     encodings = [(sn.encoding, "lines" if sn.line_fallback else strict_mode(sn))]
     if not judge:
         encodings.append((sn.encoding, "replace"))
+    # The whole file's judgement, asked once: by the first piece with a line not valid in
+    # the encoding of the file's start (its decoder goes on when the judgement confirms
+    # that encoding, the pieces not read again: h167), else here.
+    judged: dict[str, str] = {}
+
+    def judgement() -> str:
+        if "encoding" not in judged:
+            judged["encoding"] = decide_file(sn.path, sn.compression)
+        return judged["encoding"]
+
     step = 0
     try:
         while True:
@@ -207,6 +217,7 @@ def read_in_pieces(
                 encoding_given=True,
                 line_fallback=mode != "strict",
                 line_strict=mode == "strict-lines",
+                judge=judgement if judge and mode == "strict-lines" else None,
             )
             try:
                 strict = mode in ("strict", "strict-lines")
@@ -220,7 +231,7 @@ def read_in_pieces(
                     line_by_line = True
                 else:
                     if judge and step == 0:
-                        encodings.append((decide_file(sn.path, sn.compression), "lines"))
+                        encodings.append((judgement(), "lines"))
                     step += 1
     finally:
         piece_file.unlink(missing_ok=True)

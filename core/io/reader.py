@@ -439,6 +439,8 @@ def _judge(sn: Sniff) -> Callable[[], str] | None:
     ask for it (an encoding judged from the file's start, not one the user named); a
     strict reading's decoder asks it at the first line that does not decode, and goes on
     when it confirms the encoding instead of failing the reading (:class:`LineDecoder`)."""
+    if sn.judge is not None:  # a piece's: the whole file's
+        return sn.judge
     if sn.encoding_given or sn.line_fallback or not line_decodable(sn.encoding):
         return None
     return functools.partial(decide_file, sn.path, sn.compression)

@@ -3,8 +3,8 @@ delimiter, header, and whether it is a raw AIS NMEA log rather than a CSV."""
 
 import contextlib
 import re
-from collections.abc import Iterator
-from dataclasses import dataclass
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -100,6 +100,11 @@ class Sniff:
     #: ... and yet strictly, but for the lines better read as UTF-8 (a piece of a file
     #: judged GB18030, read first so: reader.strict_mode).
     line_strict: bool = False
+    #: ... and asking, at a line not valid in ``encoding``, the whole file's judgement of
+    #: its encoding (a piece of a file judged from its start: the file's
+    #: :func:`~wakeline.core.io.decoding.decide_file`, asked once for all its pieces;
+    #: reader._judge). None: the reader's own (a whole file), or none.
+    judge: Callable[[], str] | None = field(default=None, compare=False, repr=False)
 
     @property
     def parse_delimiter(self) -> str:
