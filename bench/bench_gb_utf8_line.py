@@ -5,7 +5,8 @@ first reading: the streamed import read the file again in pieces (strictly, then
 line after the whole file's judgement) and the whole-file reader read it again line by
 line. Now the decoder asks the judgement at that line and goes on. Prints the times, how
 many file sizes went through the line decoder, and a digest of the output and warnings
-(the same before and after).
+(the same before and after). ``gb1_quoted.csv``: the same with every time quoted,
+which the import reads in pieces.
 
 Run: ``python bench/bench_gb_utf8_line.py [--rows 1000000] [--repeat 2] [--base DIR]``
 (``--base``: a copy of an older tree, ``DIR/wakeline/{core,app,resources}``, to time it).
@@ -23,7 +24,7 @@ NAMES = ["远洋一号", "海丰号", "中远之星"]
 UTF8_LINE = "2024-01-02 00:00:00,u,37.5,23.6,Bjørn – Ålesund\n".encode()
 
 
-def make(folder: Path, rows: int) -> tuple[Path, Path]:
+def make(folder: Path, rows: int) -> tuple[Path, Path, Path]:
     clean, mixed = folder / "gb0.csv", folder / "gb1.csv"
     with open(clean, "wb") as fh:
         fh.write(b"time,id,lat,lon,name\n")
@@ -36,7 +37,12 @@ def make(folder: Path, rows: int) -> tuple[Path, Path]:
                 ).encode("gb18030")
             )
     mixed.write_bytes(clean.read_bytes() + UTF8_LINE)
-    return clean, mixed
+    # every time quoted: the import reads it in pieces (quotes in the start)
+    quoted = folder / "gb1_quoted.csv"
+    lines = mixed.read_bytes().split(b"\n")
+    body = [lines[0]] + [b'"' + line[:19] + b'"' + line[19:] for line in lines[1:] if line]
+    quoted.write_bytes(b"\n".join(body) + b"\n")
+    return clean, mixed, quoted
 
 
 def main() -> None:
