@@ -1966,6 +1966,34 @@
         <translation>（两个传感器同一时刻的点合并为一个）</translation>
     </message>
     <message>
+        <source>; fused on every sensor's times (time_base union)</source>
+        <translation>；融合于所有传感器的时刻（time_base union）</translation>
+    </message>
+    <message>
+        <source>{sensor}'s {dt:g} s times</source>
+        <translation>{sensor} 的 {dt:g} 秒时刻</translation>
+    </message>
+    <message>
+        <source>{sensor}'s times</source>
+        <translation>{sensor} 的时刻</translation>
+    </message>
+    <message>
+        <source>the times of {sensors}</source>
+        <translation>{sensors} 的时刻</translation>
+    </message>
+    <message>
+        <source>; fused on {on}</source>
+        <translation>；融合于{on}</translation>
+    </message>
+    <message>
+        <source>; fused on {on} (time_base {rule}): {lost} fix between them not kept (--time-base union keeps it)</source>
+        <translation>；融合于{on}（time_base {rule}）：其间 {lost} 的定位点未保留（--time-base union 可保留）</translation>
+    </message>
+    <message>
+        <source>; fused on {on} (time_base {rule}): {lost} fixes between them not kept (--time-base union keeps them)</source>
+        <translation>；融合于{on}（time_base {rule}）：其间 {lost} 的定位点未保留（--time-base union 可保留）</translation>
+    </message>
+    <message>
         <source>; {rows:#row} repeating the time and place of the row before set aside</source>
         <translation>；{rows:,} 行与上一行的时间和位置相同，已剔除</translation>
     </message>
