@@ -4,10 +4,21 @@ double loop does) on a subset both can run.
 
 Run: ``python bench/bench_fuse.py [--ships 2000] [--dense-ships 300]``.
 Goal (issue 7): 2 × 2,000 tracks associated in < 30 s.
+
+``--atd`` (session 27, h168 D-fuse-2): the probe grid of the two ATD 2025 files as two
+sensors, made over each track's whole span then filtered (before) against made from the
+fixes' short intervals (after, ``core/fuse._probe_grid``): probes, time and peak memory
+(tracemalloc) of grid + positions, with ratios; then associate + fuse of the pair.
+``--time-base`` (session 27, h168 D-fuse-1): the h168 1 s radar + 30 s AIS of one ship fused
+with each ``time_base``: points, radar fixes kept, mean distance from the AIS path.
+Both need WAKELINE_SHARED (and /work/scratch/s27/h168 for the second).
 """
 
 import argparse
+import os
 import time
+import tracemalloc
+from pathlib import Path
 
 import numpy as np
 
@@ -17,12 +28,13 @@ from wakeline.core.evaluate_association import fusion_errors, sensor_pair_scores
 from wakeline.core.fuse import (
     FuseParams,
     _count_in,
+    _probe_grid,
     _spans,
     _sync_distance,
     associate_sensors,
     fuse,
 )
-from wakeline.core.tracks import sorted_with_index
+from wakeline.core.tracks import concat_ranges, interp_positions, sorted_with_index
 
 
 def scene(ships: int, seed: int = 0):
@@ -61,12 +73,112 @@ def dense_baseline(df, params: FuseParams) -> tuple[float, int]:
     return time.perf_counter() - t, len(chosen)
 
 
+def _whole_span_probes(pts, index, t0, t1, params: FuseParams):
+    """The probe grid as it was made before session 27: every grid time over each track's
+    span (plus half a step), positions for all, then the ones in long gaps dropped."""
+    p = params.probe_s
+    g0 = np.ceil((t0 - p / 2) / p).astype("int64")
+    g1 = np.floor((t1 + p / 2) / p).astype("int64")
+    count = np.maximum(g1 - g0 + 1, 1)
+    track = np.repeat(np.arange(index.n_tracks), count)
+    grid = concat_ranges(g0, count)
+    lon, lat, ok = interp_positions(pts, index, track, grid * p, params.max_interp_s)
+    near_end = (grid * p >= t0[track] - p) & (grid * p <= t1[track] + p)
+    ok |= near_end & ((grid * p < t0[track]) | (grid * p > t1[track]))
+    return track[ok], grid[ok], lon[ok], lat[ok]
+
+
+def _new_probes(pts, index, t0, t1, params: FuseParams):
+    t = _spans(pts, index)[0]
+    track, grid = _probe_grid(t, index, t0, t1, params)
+    lon, lat, _ = interp_positions(pts, index, track, grid * params.probe_s)
+    return track, grid, lon, lat
+
+
+def _measured(fn, *args):
+    tracemalloc.start()
+    t = time.perf_counter()
+    out = fn(*args)
+    el = time.perf_counter() - t
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return out, el, peak
+
+
+def atd(params: FuseParams) -> None:
+    from wakeline.app.cli_review import read_inputs
+
+    d = Path(os.environ.get("WAKELINE_SHARED", "/work/shared")) / "data/real/atd2025-noaa"
+    df = read_inputs([d / "example_truth.csv.gz", d / "dataset1_truth.csv.gz"])
+    pts, index = sorted_with_index(df)
+    _, t0, t1 = _spans(pts, index)
+    old, t_old, m_old = _measured(_whole_span_probes, pts, index, t0, t1, params)
+    new, t_new, m_new = _measured(_new_probes, pts, index, t0, t1, params)
+    same = all(np.array_equal(a, b) for a, b in zip(old, new, strict=True))
+    p = params.probe_s
+    made = int(np.maximum(np.floor((t1 + p / 2) / p) - np.ceil((t0 - p / 2) / p) + 1, 1).sum())
+    print(f"whole-span grid: {made:,} probes interpolated before the long-gap filter")
+    print(
+        f"ATD 2025 pair ({len(df):,} points, {index.n_tracks:,} tracks): probes {len(old[0]):,} "
+        f"(before) / {len(new[0]):,} (after), identical: {same}; "
+        f"time {t_old:.2f} s -> {t_new:.2f} s ({t_old / t_new:.0f}x); "
+        f"peak {m_old / 1e6:,.0f} MB -> {m_new / 1e6:,.0f} MB ({m_old / m_new:.0f}x)"
+    )
+    t = time.perf_counter()
+    a = associate_sensors(df, params)
+    t_a = time.perf_counter() - t
+    t = time.perf_counter()
+    f = fuse(a, params)
+    t_f = time.perf_counter() - t
+    print(
+        f"  associate {t_a:.2f} s ({len(a.chosen)} pairs of {len(a.a):,} candidates), "
+        f"fuse {t_f:.2f} s ({len(f):,} points)"
+    )
+
+
+def time_bases(params: FuseParams) -> None:
+    from wakeline.app.cli_review import read_inputs
+    from wakeline.core import geo
+    from wakeline.core.schema import time_seconds
+    from wakeline.core.tracks import track_index
+
+    d = Path("/work/scratch/s27/h168/in")
+    df = read_inputs([d / "ship_radar_1s.csv", d / "ship_ais_30s.csv"])
+    ais = df[df["sensor"] != "RADAR1"].sort_values("time")
+    radar_times = set(time_seconds(df.loc[df["sensor"] == "RADAR1", "time"]))
+    a = associate_sensors(df, params)
+    for mode in ("weight", "densest", "union"):
+        p = params.replace(time_base=mode)
+        t = time.perf_counter()
+        f = fuse(a, p)
+        el = time.perf_counter() - t
+        ft = time_seconds(f["time"])
+        ai = ais.reset_index(drop=True)
+        lon, lat, ok = interp_positions(ai, track_index(ai), np.zeros(len(f), "int64"), ft)
+        dist = geo.haversine_m(f["lon"].to_numpy(), f["lat"].to_numpy(), lon, lat)[ok]
+        kept = len(radar_times & set(ft))
+        print(
+            f"  time_base {mode:8s} {len(f):6,} fused points, radar fix times in it {kept:6,} of "
+            f"{len(radar_times):,}; from the AIS path (where it covers): mean "
+            f"{dist.mean():.1f} m, p95 {np.percentile(dist, 95):.1f} m; fuse {el:.2f} s"
+        )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--ships", type=int, default=2000)
     ap.add_argument("--dense-ships", type=int, default=300)
+    ap.add_argument("--atd", action="store_true", help="the ATD pair's probe grid, before/after")
+    ap.add_argument("--time-base", action="store_true", help="the h168 pair, each time_base")
     args = ap.parse_args()
     params = FuseParams()
+    if args.atd or args.time_base:
+        if args.atd:
+            atd(params)
+        if args.time_base:
+            print("h168 1 s radar + 30 s AIS of one ship:")
+            time_bases(params)
+        return
 
     df = scene(args.dense_ships)
     t = time.perf_counter()

@@ -617,19 +617,24 @@ def fuse(
     # every row is, but one point per time (a member with a point at that very time and a
     # larger weight keeps it).
     wins = (w[k_idx] > own_w[r_idx]) | ((w[k_idx] == own_w[r_idx]) & (k_idx < row_track[r_idx]))
+    same = _has_point_at(t, index, k_idx, t[r_idx])
     if params.time_base == "densest":
         rate = (index.sizes - 1) / np.maximum(t1 - t0, 1e-9)
         rk, rr = rate[k_idx], rate[row_track[r_idx]]
         beats = (rk > rr) | ((rk == rr) & wins)
     elif params.time_base == "union":
-        same = _has_point_at(t, index, k_idx, t[r_idx])
         beats = same & wins
     else:
         beats = wins
     keep_row = np.ones(n_rows, dtype=bool)
     keep_row[r_idx[beats]] = False
     if report is not None:
-        report.update(_time_base_report(index, row_track, keep_row, r_idx, params.time_base, t))
+        # a row dropped for a member's point at its very time is blended there, not lost
+        merged = np.zeros(n_rows, dtype=bool)
+        merged[r_idx[beats & same]] = True
+        report.update(
+            _time_base_report(index, row_track, keep_row, merged, r_idx, params.time_base, t)
+        )
     progress(0.3, "averaging where sensors overlap")
     dx, dy = geo.to_local(kl, ka, lon[r_idx], lat[r_idx])
     sum_w = own_w + np.bincount(r_idx, w[k_idx], n_rows)
@@ -734,6 +739,7 @@ def _time_base_report(
     index: TrackIndex,
     row_track: np.ndarray,
     keep_row: np.ndarray,
+    merged: np.ndarray,
     r_idx: np.ndarray,
     mode: str,
     t: np.ndarray,
@@ -741,7 +747,8 @@ def _time_base_report(
     """The fused track's time base in numbers: ``time_base`` (the rule), ``base_fixes``
     (per sensor: its kept fixes where another member covers them), ``base_interval_s``
     (per sensor: their median interval), ``not_kept`` (per sensor: fixes dropped for
-    another member's times)."""
+    another member's times, between them; a fix at the very time of a kept point
+    (``merged``) is blended into it and not counted)."""
     sensor = index.keys["sensor"].to_numpy().astype(str)[row_track]
     covered = np.zeros(len(keep_row), dtype=bool)
     covered[r_idx] = True
@@ -754,7 +761,7 @@ def _time_base_report(
             same = row_track[rows[1:]] == row_track[rows[:-1]]
             dt = np.diff(t[rows])[same]
             interval[str(s)] = float(np.median(dt)) if len(dt) else float("nan")
-        dropped = int((covered & ~keep_row & (sensor == s)).sum())
+        dropped = int((covered & ~keep_row & ~merged & (sensor == s)).sum())
         if dropped:
             not_kept[str(s)] = dropped
     return {
