@@ -443,3 +443,82 @@ def test_a_short_stretch_between_fused_parts_lies_between_their_offsets():
     assert (lone["shift"] <= apart + 0.5).all() and (lone["shift"] > 50.0).all()
     dx, _ = geo.to_local(lone["lon"], lone["lat"], lone["lon_own"], lone["lat_own"])
     assert (dx < 0).all()  # toward the fused track, west of the radar
+
+
+def test_time_base_weight_densest_union_and_the_summary_says_what_was_not_kept():
+    """h168 D-fuse-1: a 1 s radar (noisy) and a 30 s AIS (quiet) of one ship. ``weight``
+    fuses on the AIS's times and drops the radar's fixes between them, and the summary
+    says so (sensor, interval, count, how to keep them); ``densest`` and ``union`` keep
+    every radar time; ``union`` also every AIS time, one point per time."""
+    from wakeline.core.pipeline import STEPS
+
+    # (an hour: over 20 min the AIS's noise estimate is mostly the smoothing's ends)
+    radar = observe("R1", "1", 0, 3600, 1.0, 30.0, 1)
+    ais = observe("AIS", "2", 7, 3600, 30.0, 3.0, 2)  # at radar times: one point per time
+    ais_off = observe("AIS", "2", 7.5, 3600, 30.0, 3.0, 2)  # between radar times
+    df = pd.concat([radar, ais], ignore_index=True)
+    a = associate_sensors(df, FuseParams())
+    n_r, n_a = len(radar), len(ais)
+    rep = {}
+    f = fuse(a, FuseParams(), report=rep)
+    assert len(f) == n_a + 30  # AIS times, and the radar's 7 s before and 23 s after AIS
+    assert rep["base_fixes"] == {"AIS": n_a} and rep["base_interval_s"]["AIS"] == 30.0
+    assert rep["not_kept"] == {"R1": n_r - 30 - n_a}  # radar fixes at AIS times are blended
+    assert len(fuse(a, FuseParams(time_base="densest"))) == n_r
+    assert len(fuse(a, FuseParams(time_base="union"))) == n_r
+    df2 = pd.concat([radar, ais_off], ignore_index=True)
+    a2 = associate_sensors(df2, FuseParams())
+    fu = fuse(a2, FuseParams(time_base="union"))
+    assert len(fu) == n_r + len(ais_off) and not fu["time"].duplicated().any()
+    err = geo.haversine_m(fu["lon"], fu["lat"], fu["true_lon"], fu["true_lat"])
+    r_err = geo.haversine_m(radar["lon"], radar["lat"], radar["true_lon"], radar["true_lat"])
+    assert err.mean() < 0.5 * r_err.mean()  # the quiet AIS dominates the blend
+    step = STEPS["fuse"]
+    text = step.summary(step(df, {"fuse": FuseParams()}))
+    assert f"fused on AIS's 30 s times (time_base weight): {n_r - 30 - n_a:,} R1 fixes" in text
+    assert "--time-base union keeps them" in text, text
+    text = step.summary(step(df, {"fuse": FuseParams(time_base="union")}))
+    assert "fused on every sensor's times" in text and "not kept" not in text, text
+    with pytest.raises(InputError):
+        FuseParams(time_base="fastest").checked()
+
+
+def test_probe_grid_from_short_intervals_is_the_whole_span_grid_filtered():
+    """h168 D-fuse-2: the probes made from the fixes' short intervals are exactly those
+    of every grid time over each span kept after the long-gap filter (which over ATD's
+    day-long sparse tracks made 3.4 GB of probes to throw away)."""
+    from wakeline.core.fuse import _probe_grid, _spans
+    from wakeline.core.tracks import concat_ranges
+
+    rng = np.random.default_rng(3)
+    parts = []
+    for k in range(12):  # tracks with gaps of 5 s .. 2 h
+        t = np.cumsum(rng.choice([5.0, 30.0, 60.0, 700.0, 7200.0], 40)) + rng.uniform(0, 90)
+        parts.append(
+            pd.DataFrame(
+                {
+                    "sensor": f"S{k % 2}",
+                    "batch": str(k),
+                    "time": T0 + pd.to_timedelta(np.round(t, 1), unit="s"),
+                    "lon": 122.5 + rng.normal(0, 0.01, 40),
+                    "lat": 30.5 + rng.normal(0, 0.01, 40),
+                }
+            )
+        )
+    pts, index = sorted_with_index(pd.concat(parts, ignore_index=True))
+    t, t0, t1 = _spans(pts, index)
+    params = FuseParams()
+    p = params.probe_s
+    g0 = np.ceil((t0 - p / 2) / p).astype("int64")
+    count = np.maximum(np.floor((t1 + p / 2) / p).astype("int64") - g0 + 1, 1)
+    track = np.repeat(np.arange(index.n_tracks), count)
+    grid = concat_ranges(g0, count)
+    _, _, ok = interp_positions(pts, index, track, grid * p, params.max_interp_s)
+    ok |= (
+        (grid * p >= t0[track] - p)
+        & (grid * p <= t1[track] + p)
+        & ((grid * p < t0[track]) | (grid * p > t1[track]))
+    )
+    new_track, new_grid = _probe_grid(t, index, t0, t1, params)
+    assert np.array_equal(new_track, track[ok]) and np.array_equal(new_grid, grid[ok])
+    assert len(new_grid) < 0.2 * len(grid)
