@@ -54,6 +54,9 @@ def layer_tip(session, layer: Layer) -> str:
 STEP_MS = 5
 
 EMPTY = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
+#: layer kinds whose points are a sampling of their own (not the source layer's times):
+#: the Detection-limit text describes them, not their source
+OWN_SAMPLING_KINDS = ("fused",)
 #: Batch table columns sized to their text when a layer is shown.
 FITTED_COLUMNS = ("sensor", "batch", "points", "start", "end")
 
@@ -380,8 +383,12 @@ class LayersMixin:
             self.batch_model.set_summary(batch_summary(EMPTY))
         self._fit_time_columns()
         if view is not None:
-            # The detection limit depends on the raw sampling: take it from the source layer.
-            root = self.views.get(self.session.root(self.active).id, view)
+            # The detection limit depends on the raw sampling: take it from the source
+            # layer, except for a fused layer, whose points are a sampling of their own
+            # (a 1 s radar fused on a 30 s AIS's times is a 30 s track: h168 D-gui-2).
+            layer = self.session.get(self.active)
+            own = layer is not None and layer.kind in OWN_SAMPLING_KINDS
+            root = view if own else self.views.get(self.session.root(self.active).id, view)
             self.params.show_guidance(root.summary)
         layer = self.session.get(self.active)
         if view is not None and layer.kind == BEARING_KIND and self.bearings is not view.points:

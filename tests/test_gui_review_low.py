@@ -134,3 +134,14 @@ def test_a_decision_swapped_in_costs_the_gui_thread_no_pass_over_the_tracks(
     for got, want in zip(m._span_s, fresh.span_s, strict=True):
         np.testing.assert_array_equal(got, want)
     assert w.selected_keys() == [] or all(k in m._keys for k in w.selected_keys())
+
+
+def test_detection_limit_describes_the_active_fused_layer(qtbot, tmp_path):
+    """h168 D-gui-2: with the fused layer active the Detection-limit text gave the 1 s
+    radar's interval (its source layer's), not the fused track's own sampling."""
+    w = _fused_review(qtbot, tmp_path)
+    fused = next(lay for lay in w.layers.values() if lay.step == "fuse")
+    shown = w.params.guidance.text()
+    assert shown.startswith("Detection limit")
+    w.params.show_guidance(w.views[fused.id].summary)
+    assert w.params.guidance.text() == shown
