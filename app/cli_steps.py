@@ -66,10 +66,13 @@ TEXTS = {
         "Tracks of different sensors that overlap in time, were near each other at some moment "
         "and have comparable point counts are compared by their mean synchronized distance (or "
         "DTW over positions) and paired one-to-one (optimal, or seed 003's greedy) up to "
-        "max_distance_m. Each target becomes one track: sensor 'fused', batch = target id; "
+        "max_distance_m. Each target becomes one track: sensor 'fused', batch = the target, "
+        "named after its earliest track (sensor:batch, as the review names it); "
         "where several sensors cover the time, the positions are averaged with weights from "
-        "each track's sampling regularity and noise; elsewhere the single sensor's points; "
-        "junctions blended. Columns added: source, n_sources, weight_base, members.",
+        "each track's sampling regularity and noise, on the times --time-base says (default: "
+        "the highest-weight track's; the summary counts the other tracks' fixes not kept); "
+        "elsewhere the single sensor's points; junctions blended. Columns added: source, "
+        "n_sources, weight_base, members.",
     ),
 }
 OUTPUT_HELP = {

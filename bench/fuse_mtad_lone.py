@@ -4,9 +4,10 @@ included), per error level, with the test's set-up (batches renumbered, gate 50 
 optimal). MTAD's noise is about 1.28 km x level (p95 twice that); level 0 is the
 original's ~460 m.
 
-    WAKELINE_SHARED=/work/shared python bench/fuse_mtad_lone.py
+    WAKELINE_SHARED=/work/shared python bench/fuse_mtad_lone.py [--time-base union]
 """
 
+import argparse
 import glob
 import os
 import re
@@ -19,7 +20,7 @@ from wakeline.core.fuse import FuseParams, associate_sensors, fuse
 from wakeline.core.io import read_points
 
 
-def scene_shifts(path: str) -> dict:
+def scene_shifts(path: str, time_base: str = "weight") -> dict:
     """Largest and 99th-percentile distance (m) of a one-sensor fused point from its fix."""
     parts = []
     for k, sensor in enumerate(("AIS", "radar")):
@@ -28,7 +29,7 @@ def scene_shifts(path: str) -> dict:
         perm = np.random.default_rng(k).permutation(codes.max() + 1) + 500 * k
         d["batch"] = perm[codes].astype(str)
         parts.append(d)
-    params = FuseParams(max_distance_m=50_000.0)
+    params = FuseParams(max_distance_m=50_000.0, time_base=time_base)
     a = associate_sensors(pd.concat(parts, ignore_index=True), params)
     f = fuse(a, params)
     s = single_sensor_shifts(a.points, f)
@@ -36,18 +37,24 @@ def scene_shifts(path: str) -> dict:
 
 
 def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--time-base", default="weight", help="FuseParams.time_base")
+    args = ap.parse_args()
     shared = os.environ.get("WAKELINE_SHARED", "../shared")
     folder = os.path.join(shared, "data", "real", "mtad-dtwcm", "two_sensor")
     rows = []
     for path in sorted(glob.glob(os.path.join(folder, "scene-*_AIS.csv"))):
         scene, err = re.search(r"scene-(\d+)_error_(\d+)_AIS", path).groups()
-        rows.append({"scene": int(scene), "level": int(err), **scene_shifts(path)})
+        rows.append({"scene": int(scene), "level": int(err), **scene_shifts(path, args.time_base)})
     df = pd.DataFrame(rows)
     table = df.groupby("level").agg(
         largest_km=("max_m", lambda v: v.max() / 1000.0),
         p99_km=("p99_m", lambda v: v.median() / 1000.0),
     )
-    print("distance of a one-sensor fused point from its own fix, over the 4 scenes")
+    print(
+        f"time_base {args.time_base}: distance of a one-sensor fused point from its own "
+        "fix, over the 4 scenes"
+    )
     print("(largest; median over the scenes of each scene's 99th percentile)")
     print(table.round(2).to_string())
 

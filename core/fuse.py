@@ -531,13 +531,26 @@ def _assign_rounds(
 
 
 def _target_labels(index: TrackIndex, t0: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Targets T0001, T0002, … numbered by their earliest start; linked tracks share one."""
+    """Target label per track: the ``sensor:batch`` of the earliest track of its linked
+    group (ties: the smaller label), as the review names a target
+    (:meth:`wakeline.core.review.ReviewState.target_of_track`) and single-sensor
+    association does: one name for one target whether its join is pending or accepted
+    (it was T0001 while pending and RADAR1:17 once accepted: h168 D-review-2), and a
+    decision elsewhere does not renumber it."""
     comp = components(index.n_tracks, a, b)
-    first = pd.Series(t0).groupby(comp).min()
-    rank = first.rank(method="first").astype("int64").to_numpy()
-    width = max(4, len(str(len(first))))
-    labels = np.array([f"T{r:0{width}d}" for r in rank])
-    return labels[comp]
+    keys = index.keys
+    labels = np.char.add(
+        np.char.add(keys["sensor"].to_numpy().astype(str), ":"),
+        keys["batch"].to_numpy().astype(str),
+    )
+    if index.n_tracks == 0:
+        return labels
+    order = np.lexsort((labels, t0, comp))
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = comp[order][1:] != comp[order][:-1]
+    leader = np.empty(comp.max() + 1, dtype="int64")
+    leader[comp[order][first]] = order[first]
+    return labels[leader[comp]]
 
 
 # --------------------------------------------------------------------------------------

@@ -52,7 +52,8 @@ def test_a_ship_seen_by_two_sensors_is_paired_and_fused_between_them():
     a = associate_sensors(pd.concat([ais, radar]))
     assert a.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["7", "300"]]
     f = fuse(a)
-    assert set(f["batch"]) == {"T0001"} and f["members"].iloc[0] == "AIS:7+R1:300"
+    # named after its earliest track, as the review names it (h168 D-review-2)
+    assert set(f["batch"]) == {"AIS:7"} and f["members"].iloc[0] == "AIS:7+R1:300"
     both = f[f["n_sources"] == 2]
     assert len(both) > 200
     # Each fused point lies on the segment between the AIS point and the radar track

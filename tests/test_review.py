@@ -24,7 +24,7 @@ from wakeline.core.export_review import (
     fused_tracks,
     merged_tracks,
 )
-from wakeline.core.fuse import associate_sensors
+from wakeline.core.fuse import associate_sensors, fuse
 from wakeline.core.io import write_points
 from wakeline.core.review_store import ReviewStore
 from wakeline.core.simulate import multisensor_scene, segments_scene
@@ -385,6 +385,22 @@ def test_store_reports_a_bad_file(tmp_path):
     bad.write_bytes(b"not a database at all" * 100)
     with pytest.raises(InputError, match="not a usable project"):
         ReviewStore(bad)
+
+
+def test_a_fused_target_keeps_one_name_pending_accepted_and_reopened(scene):
+    """h168 D-review-2: a fused target was "T0001" while its proposal was pending (the
+    engine's name) and "RADAR1:17" once accepted (the review's): both now name it after
+    its earliest track."""
+    _, multi = scene
+    sa = associate_sensors(multi)
+    fp, _ = R.fusion_proposals(sa)
+    st = R.ReviewState(R.track_table(multi), fp)
+    engine = fuse(sa)
+    pending = fused_tracks(st, sa)
+    assert set(engine["batch"]) == set(pending["batch"]) == set(st.target_of_track())
+    pid = fp["proposal"][0]
+    st.apply(R.accept(st, pid))
+    assert set(fused_tracks(st, sa)["batch"]) == set(engine["batch"])
 
 
 def test_export_honours_decisions(scene, tmp_path):
