@@ -145,3 +145,6 @@ def test_detection_limit_describes_the_active_fused_layer(qtbot, tmp_path):
     assert shown.startswith("Detection limit")
     w.params.show_guidance(w.views[fused.id].summary)
     assert w.params.guidance.text() == shown
+    # the window's log says whose times the fused track took, as the command line does
+    # (h168 D-fuse-1)
+    assert "; fused on " in w.log.toPlainText() and "time_base weight" in w.log.toPlainText()
