@@ -212,6 +212,16 @@ def _summary_clean(res: StepResult) -> Text:
             parts.append(phrase("; changed {n:,} ({rules})", n=n, rules=rules))
         else:
             parts.append(phrase("; replaced {n:,} ({rules})", n=n, rules=rules))
+    same_time = rep["rules"].get("same_time", {})
+    if same_time.get("removed"):
+        parts.append(
+            phrase(
+                "; same time, another place: {rows:#row}, median {m:,.0f} m from the row kept "
+                "(several targets in one batch, or times cut to the minute?)",
+                rows=same_time["removed"],
+                m=same_time.get("median_m", 0.0),
+            )
+        )
     return Text(parts)
 
 

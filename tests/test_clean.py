@@ -3,6 +3,8 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from conftest import DATA, real_file
 from wakeline.app.cli import main
@@ -141,14 +143,75 @@ def test_speed_outliers_replaced_and_flagged():
 def test_duplicates_keep_first_or_mean():
     df = straight(20)
     dup = df.iloc[[5]].copy()
-    dup["lat"] += 0.001
+    dup["lat"] += 0.00005  # 5.6 m: within same_place_m
     both = pd.concat([df, dup], ignore_index=True)
     first = clean(both)
     assert removed(first, "duplicates") == [20]
     mean = clean(both, CleanParams().with_settings(["duplicates.keep_mean=true"]))
     kept = mean.points.set_index("wl_id").loc[5]
-    assert kept.lat == pytest.approx(df.lat[5] + 0.0005)
+    assert kept.lat == pytest.approx(df.lat[5] + 0.000025)
     assert mean.rejected.query("action == 'changed'").wl_id.tolist() == [5]
+
+
+def test_same_time_another_place_is_no_duplicate():
+    """Operator test 4 (D-clean-1): a row at the time of another but 200 m away (a second
+    target of one scan, or a time cut to the minute) is removed — the first row of a time
+    stays, as before — under its own reason, same_time, with the distance and a hint."""
+    from wakeline.core.pipeline import _summary_clean, run_clean
+
+    df = straight(20)
+    near, far = df.iloc[[5]].copy(), df.iloc[[8]].copy()
+    near["lat"] += 0.00005  # 5.6 m
+    far["lat"] += 0.0018  # 200 m
+    both = pd.concat([df, near, far], ignore_index=True)
+    result = clean(both)
+    assert removed(result, "duplicates") == [20]
+    assert removed(result, "same_time") == [21]
+    same_time = result.report["rules"]["same_time"]
+    assert same_time["removed"] == 1 and same_time["median_m"] == pytest.approx(200, abs=1)
+    assert result.rejected.set_index("wl_id").loc[21, "params"]  # the duplicates' params
+    paper = clean(both, CleanParams().with_settings(["duplicates.paper_rule=true"]))
+    assert removed(paper, "duplicates") == [20, 21] and not removed(paper, "same_time")
+    assert sorted(paper.points.wl_id) == sorted(result.points.wl_id)  # the same rows kept
+    mean = clean(both, CleanParams().with_settings(["duplicates.keep_mean=true"]))
+    kept = mean.points.set_index("wl_id")
+    assert kept.loc[8].lat == pytest.approx(df.lat[8])  # the far row is not averaged in
+    text = _summary_clean(run_clean(both, {}))
+    assert "same_time 1" in text and "same time, another place: 1 row, median 200 m" in text
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.lists(
+        st.tuples(st.integers(0, 19), st.floats(0, 500), st.floats(0, 360)),
+        min_size=1,
+        max_size=12,
+    ),
+    st.floats(0, 100),
+)
+def test_same_time_rows_keep_the_first_and_split_by_distance(extra, same_place_m):
+    """Whatever the same-time rows, the rows kept are those the paper's rule keeps (the
+    first of each time), and each removed row is a duplicate or same_time by its distance
+    from the row kept."""
+    df = straight(20)
+    rows = []
+    for i, dist, bearing in extra:
+        row = df.iloc[[i]].copy()
+        lon, lat = geo.destination(row.lon.to_numpy(), row.lat.to_numpy(), bearing, dist)
+        rows.append(row.assign(lon=lon, lat=lat))
+    both = pd.concat([df, *rows], ignore_index=True)
+    off = ["stationary", "speed", "turn", "isolated", "short_tracks"]
+    base = [f"{r}.enabled=false" for r in off] + [f"duplicates.same_place_m={same_place_m}"]
+    ours = clean(both, CleanParams().with_settings(base))
+    paper = clean(both, CleanParams().with_settings([*base, "duplicates.paper_rule=true"]))
+    assert sorted(ours.points.wl_id) == sorted(paper.points.wl_id) == list(range(20))
+    dist = np.array([d for _, d, _ in extra])
+    ids = np.arange(20, 20 + len(extra))
+    far = ids[dist > same_place_m + 1e-6]
+    near = ids[dist < same_place_m - 1e-6]
+    assert set(far) <= set(removed(ours, "same_time"))
+    assert set(near) <= set(removed(ours, "duplicates"))
+    assert len(removed(ours)) == len(extra)
 
 
 def test_short_tracks_set_aside_and_restored():

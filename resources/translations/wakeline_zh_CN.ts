@@ -1858,6 +1858,10 @@
         <translation>保留 {points:,} 个点中的 {kept:,} 个，共 {tracks:,} 条航迹</translation>
     </message>
     <message>
+        <source>; same time, another place: {rows:#row}, median {m:,.0f} m from the row kept (several targets in one batch, or times cut to the minute?)</source>
+        <translation>；同一时间、另一位置：{rows:,} 行，距保留的行中位数 {m:,.0f} 米（一个批号里有多个目标，还是时间被截到了分钟？）</translation>
+    </message>
+    <message>
         <source>; removed {n:,} ({rules})</source>
         <translation>；移除 {n:,} 个（{rules}）</translation>
     </message>
