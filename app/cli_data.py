@@ -44,7 +44,8 @@ def _cmd_import(args: argparse.Namespace) -> int:
         msg += f"\nvalues blanked, their rows kept: {blanked}"
     for warning in rep.get("warnings", []):
         msg += f"\nwarning: {warning}"
-    print(msg, file=sys.stderr)
+    if rep.get("rows_read") or rep.get("blank_lines"):
+        print(msg, file=sys.stderr)  # a header alone: the error alone says it
     if rep["rows_imported"] == 0:
         # no header-only CSV left behind to be taken for a result (a pipe stays a pipe)
         if Path(args.output).is_file():

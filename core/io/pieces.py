@@ -43,7 +43,9 @@ from wakeline.core.io.decoding import (
 )
 from wakeline.core.io.formats import Resolved
 from wakeline.core.io.reader import (
+    BEARING_ROWS_MARK,
     BEARING_WARNING_MARK,
+    CUT_SHORT_MARK,
     DDMM_NOTE_START,
     LETTER_NOTE_START,
     POSITION_COUNTS,
@@ -51,10 +53,12 @@ from wakeline.core.io.reader import (
     UNBALANCED_NOTE,
     ImportResult,
     WholeFileNeeded,
+    _coarse_time_warnings,
     _restart_warnings,
     _time_warnings,
     bearing_warnings,
     blank_bytes,
+    cut_short_warnings,
     date_order_note,
     edge_state,
     empty_quarantine,
@@ -408,10 +412,28 @@ def merge_import_reports(
     }
     times["excel_why"] = next((r["excel_why"] for r in reports if r.get("excel_why")), None)
     times["date_order_given"] = given
+    example = next(
+        (r["decimal_comma_example"] for r in reports if r.get("decimal_comma_example")), None
+    )
+    comma = {"decimal_comma": decimal, "decimal_comma_example": example}
+    with_rows_whole = [r.get("times_whole") for r in reports if r.get("rows_imported")]
+    coarse = {
+        "times_fine": not with_rows_whole or None in with_rows_whole,
+        "times_sub_hour": "minute" in with_rows_whole,
+        "coarse_shared": sum(int(r.get("coarse_shared", 0)) for r in reports),
+    }
     for r in reports:
-        counted.update(
-            _time_warnings(time_src, {"decimal_comma": r.get("decimal_comma_values", 0)}, zone)
-        )
+        own_comma = {
+            "decimal_comma": r.get("decimal_comma_values", 0),
+            "decimal_comma_example": r.get("decimal_comma_example"),
+        }
+        counted.update(_time_warnings(time_src, own_comma, zone))
+        own_coarse = {
+            "times_fine": not r.get("times_whole"),
+            "times_sub_hour": r.get("times_whole") == "minute",
+            "coarse_shared": r.get("coarse_shared", 0),
+        }
+        counted.update(_coarse_time_warnings(time_src, own_coarse))
         own = {k: r.get(k, 0) for k in (*TIME_COUNTS, *POSITION_COUNTS, "excel_why")}
         counted.update(_time_warnings(time_src, {**own, "date_order_given": given}, zone))
         counted.update(_restart_warnings(r.get("restarting_tracks", {}), batch_src))
@@ -422,10 +444,13 @@ def merge_import_reports(
         for w in r.get("warnings", []):
             if w in counted or w in relative_note or BEARING_WARNING_MARK in w:
                 continue
+            if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w:
+                continue  # said again below from the whole file's quarantine and reasons
             (timing if w in local_note else notes).append(w)
     warnings = list(dict.fromkeys(notes))
-    warnings += _time_warnings(time_src, {"decimal_comma": decimal}, zone)
+    warnings += _time_warnings(time_src, comma, zone)
     warnings += _time_warnings(time_src, times, zone)
+    warnings += _coarse_time_warnings(time_src, coarse)
     warnings += list(dict.fromkeys(timing))
     if relative:
         warnings += relative_note
@@ -434,6 +459,7 @@ def merge_import_reports(
     warnings += bearing_warnings(
         first["columns"], reasons, sum(int(r.get("rows_read", 0)) for r in reports)
     )
+    warnings += cut_short_warnings(sn, quarantine)
     starts = [pd.Timestamp(r["time_start"]) for r in reports if r.get("time_start")]
     ends = [pd.Timestamp(r["time_end"]) for r in reports if r.get("time_end")]
     # A later piece read in a fallback encoding: the whole file is read in that one.

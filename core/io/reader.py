@@ -112,6 +112,8 @@ _DAYFIRST_FORMATS = (
 _MONTHFIRST_FORMATS = tuple(
     f.replace("%d", "{d}").replace("%m", "%d").replace("{d}", "%m") for f in _DAYFIRST_FORMATS
 )
+#: A time that ends with a 12-hour clock's AM/PM (``3/1/2023 12:01:46 AM``, ``8:01 p.m.``).
+_AMPM_END = r"\d\s*[AaPp]\.?\s?[Mm]\.?\s*$"
 #: The first two numbers of a slashed date (``dd/mm/yyyy`` or ``mm/dd/yyyy``).
 _SLASHED_DATE = r"^\s*(\d{1,2})[/.-](\d{1,2})[/.-]\d{4}"
 #: How slashed dates (``nn/nn/yyyy``) are read: ``auto`` day first unless the file shows
@@ -847,9 +849,10 @@ def record_lines(records: np.ndarray, breaks: np.ndarray) -> np.ndarray:
 _COMMA_NUMBER = r"[+-]?\d*,\d+(?:[eE][+-]?\d+)?"
 
 
-def _with_decimal_comma(text: pd.Series, values: np.ndarray) -> int:
+def _with_decimal_comma(text: pd.Series, values: np.ndarray, info: dict | None = None) -> int:
     """Fill ``values`` (NaN where ``text`` is no plain number) from the texts written with
-    a decimal comma, in place; returns how many."""
+    a decimal comma, in place; returns how many. The first such text goes to
+    ``info["decimal_comma_example"]`` (the warning quotes the file)."""
     miss = np.flatnonzero(np.isnan(values) & text.notna().to_numpy())
     if not len(miss):
         return 0
@@ -859,6 +862,8 @@ def _with_decimal_comma(text: pd.Series, values: np.ndarray) -> int:
         return 0
     fixed = pd.to_numeric(sub[comma].str.replace(",", ".", regex=False), errors="coerce")
     values[miss[comma]] = fixed.to_numpy(dtype="float64")
+    if info is not None:
+        info.setdefault("decimal_comma_example", str(sub[comma].iloc[0]))
     return int(comma.sum())
 
 
@@ -1019,7 +1024,7 @@ def _numbers(
     text = pd.Series(arr.to_pandas(), dtype="str").str.strip()
     values = pd.to_numeric(text, errors="coerce").to_numpy(dtype="float64", copy=True)
     if decimal_comma:
-        k = _with_decimal_comma(text, values)
+        k = _with_decimal_comma(text, values, counted)
         if counted is not None and k:
             counted["decimal_comma"] = counted.get("decimal_comma", 0) + k
     if angles:
@@ -1959,7 +1964,7 @@ def parse_times(
         compact, numeric = True, np.full(len(text), np.nan)
     present = ~(text.isna() | (text == ""))
     if decimal_comma:
-        k = _with_decimal_comma(text, numeric)
+        k = _with_decimal_comma(text, numeric, info)
         if k:
             info["decimal_comma"] = info.get("decimal_comma", 0) + k
     n_present = int(present.sum())
@@ -2054,7 +2059,16 @@ def parse_times(
             first = pd.to_numeric(parts[0], errors="coerce")
             second = pd.to_numeric(parts[1], errors="coerce")
             shown = (first > 12) & parsed[present].notna()  # 31/02 shows no order
-            if shown.any():
+            # a 12-hour clock (8:01:04 PM) is a US export's: month first, unless a date
+            # shows the day first (the whole file's evidence, as above)
+            ampm = text[present].str.contains(_AMPM_END, regex=True).fillna(False)
+            if not shown.any() and ampm.any():
+                if info.get("_streaming"):
+                    raise WholeFileNeeded
+                parsed = _parse_slashed(text, present, _MONTHFIRST_FORMATS, info)
+                info["time_format"] = "month-first text"
+                info["month_first_ampm"] = int(ampm.sum())
+            elif shown.any():
                 info["dayfirst_shown"] = True
                 info["day_shown"] = info.get("day_shown", 0) + int(shown.sum())
             else:
@@ -2247,6 +2261,22 @@ def resolve_header(
                     f"{exc}; the file has no header (its first row: "
                     f"{', '.join(sn.preview[0])}); by their values the columns may be: "
                     f"{flags}{check}"
+                ) from None
+        if sn.has_header and sn.preview and "missing required column time" in str(exc):
+            # a headed file whose time column has a name no layout knows ("Date/Time"):
+            # suggested by its values, as a headerless file's columns are
+            taken = {str(c) for c in (mapping or {}).values()}
+            found = [
+                name
+                for name in sn.columns
+                if name not in taken
+                and (cells := _cells_of(sn, name))
+                and all(cell_kind(c) == "time" and ":" in c for c in cells)
+            ]
+            if found:
+                raise InputError(
+                    f"{exc}; by its values the time may be in {found[0]!r}: "
+                    f"--map {shlex.quote(f'time={found[0]}')}"
                 ) from None
         refused = NotTrackData if stray else InputError
         if sn.has_header and len(known_fields(sn.columns)) < 3:
@@ -2441,6 +2471,14 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"{time_info['month_first']:,} have a second number above 12, none a first): "
             "read so (--date-order month-first says it outright)"
         )
+    if time_info.get("month_first_ampm"):
+        out.append(
+            f"the dates in {time_src!r} were read month first (m/d/yyyy) because the times "
+            f"use a 12-hour clock with AM/PM ({time_info['month_first_ampm']:,} of them), as "
+            "US exports (Excel en-US) write, and no date shows the order (no number above "
+            "12 in either place): if the day comes first, read again with --date-order "
+            "day-first"
+        )
     if time_info.get("date_order_refused"):
         given = time_info.get("date_order_given", "")
         other = "day-first" if given == "month-first" else "month-first"
@@ -2470,9 +2508,15 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             "(dates 1954-2119), read again with --time-unit excel-days"
         )
     if time_info.get("decimal_comma"):
+        example = time_info.get("decimal_comma_example")
+        like = (
+            f" ({example} as {example.replace(',', '.')})"
+            if isinstance(example, str) and example
+            else ""
+        )
         out.append(
-            f"{time_info['decimal_comma']:,} values were written with a decimal comma "
-            "(like 57,6671) and read as decimal numbers (57.6671)"
+            f"{time_info['decimal_comma']:,} values were written with a decimal comma and "
+            f"read as decimal numbers{like}"
         )
     if time_info.get("dates_either_way") and not time_info.get("dayfirst_shown"):
         out.append(
@@ -2616,6 +2660,12 @@ def date_order_note(time_info: dict) -> str | None:
             f"month-first (the file shows it: {time_info['month_first']:,} dates have a "
             "second number above 12, none a first)"
         )
+    if time_info.get("month_first_ampm"):
+        return (
+            f"month-first (assumed from the 12-hour AM/PM clock of "
+            f"{time_info['month_first_ampm']:,} times, as US exports write; no date shows "
+            "the order: --date-order day-first reads them day first)"
+        )
     if time_info.get("day_shown") or time_info.get("dayfirst_shown"):
         shown = int(time_info.get("day_shown", 0))
         many = f"{shown:,} dates have" if shown else "a date has"
@@ -2655,6 +2705,14 @@ def time_counts(time_info: dict) -> dict:
         out["lettered_forms"] = dict(time_info["lettered_forms"])
     if time_info.get("excel_why"):
         out["excel_why"] = time_info["excel_why"]
+    if time_info.get("decimal_comma_example"):
+        out["decimal_comma_example"] = str(time_info["decimal_comma_example"])
+    if time_info.get("month_first_ampm"):
+        out["month_first_ampm"] = int(time_info["month_first_ampm"])
+    if "times_fine" in time_info and not time_info["times_fine"]:
+        out["times_whole"] = "minute" if time_info.get("times_sub_hour") else "hour"
+        if time_info.get("coarse_shared"):
+            out["coarse_shared"] = int(time_info["coarse_shared"])
     return out
 
 
@@ -2810,10 +2868,12 @@ def read_points(
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes + _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
+    warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, counts["quarantine_reasons"], counts["rows_read"])
+    warnings += cut_short_warnings(sn, quarantine)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(path),
@@ -3046,14 +3106,54 @@ BEARING_BEYOND = "bearing beyond"
 BEARING_WARNING_MARK = "beyond a full turn ("
 
 
+def cut_short_warnings(sn: Sniff, quarantine: pd.DataFrame) -> list[str]:
+    """A warning when the file's last line is a short row: the file was cut short (still
+    being written or copied when it was read). One pass over the file, only when a short
+    row was quarantined."""
+    if not len(quarantine) or "reason" not in quarantine.columns:
+        return []
+    reason = quarantine["reason"].astype(str)
+    short = quarantine[reason.str.startswith("short row")]
+    if not len(short):
+        return []
+    line = int(short["line"].max())
+    why = str(short.loc[short["line"] == line, "reason"].iloc[0])
+    try:
+        with (
+            open_data(sn.path, sn.compression) as raw,
+            io.TextIOWrapper(raw, encoding="latin-1", newline=None) as fh,
+        ):
+            after = any(line_text.strip() for k, line_text in enumerate(fh, 1) if k > line)
+    except OSError:
+        return []
+    if after:
+        return []
+    fields = why.removeprefix("short row: ")
+    return [
+        f"line {line:,}{CUT_SHORT_MARK}{fields}: the file may be cut short (still "
+        "being written or copied when it was read); open it again once it is complete"
+    ]
+
+
 def bearing_warnings(columns: dict[str, str], reasons: dict, rows_read: int) -> list[str]:
     """A warning counting the bearings quarantined for lying beyond a full turn, and when
     they are most of the rows of a column whose header says radians, that they look like
     degrees (the unit comes from the header alone)."""
+    out = []
+    rows = {k: int(v) for k, v in (reasons or {}).items() if str(k).startswith("a bearing (")}
+    if rows:
+        empty = int((reasons or {}).get(EMPTY_SCAN, 0))
+        name = next(iter(rows)).split("'")[1]
+        out.append(
+            f"{sum(rows.values()):,} of {rows_read:,} rows carry a bearing ({name!r}){BEARING_ROWS_MARK}"
+            "a bearing-only sensor's (a camera's), quarantined here; read them with "
+            "`wakeline bearing` (in the window: File > Open bearings)"
+            + (f"; empty scans (nothing detected): {empty:,}" if empty else "")
+        )
     col = columns.get("bearing")
     n = sum(int(v) for k, v in (reasons or {}).items() if str(k).startswith(BEARING_BEYOND))
     if not col or not n:
-        return []
+        return out
     radians = angle_unit(col)[1] == "radians"
     text = (
         f"{n:,} of {rows_read:,} rows have a bearing in {col!r} beyond a full turn "
@@ -3064,7 +3164,7 @@ def bearing_warnings(columns: dict[str, str], reasons: dict, rows_read: int) -> 
             "; most bearings are beyond 2π, so they look like degrees: name the column "
             "without 'rad' (e.g. 'bearing') to read them as degrees"
         )
-    return [text]
+    return [*out, text]
 
 
 def origin_warnings(res: Resolved, headers=()) -> list[str]:
@@ -3141,6 +3241,7 @@ def _plane_positions(
         flag(r < 0, f"range negative ({cols['range']!r})")
         xy = [r * np.sin(b), r * np.cos(b)]
     else:
+        _bearing_rows(table, cols, flag)
         xy = [values("east"), values("north")]
     for k, axis in enumerate(("east", "north")):
         if f"{axis}_offset" in cols:
@@ -3156,6 +3257,49 @@ def _plane_positions(
     lat0, lon0 = res.origin
     lon, lat = from_local(xy[0], xy[1], lon0, lat0)
     return pa.array(lon), pa.array(lat)
+
+
+#: The reason of a row of a bearing-only sensor (a camera) in a file read as positions.
+BEARING_NO_POSITION = (
+    "a bearing ({0!r}) and no position: a bearing-only sensor's row; read these rows with "
+    "`wakeline bearing` (in the window: File > Open bearings)"
+)
+#: In the warning counting such rows (a read in pieces says it once, from the sums).
+BEARING_ROWS_MARK = " and no position: "
+#: The reason of a row with neither position nor bearing (a scan that detected nothing).
+EMPTY_SCAN = "an empty scan (no position, no bearing: nothing detected)"
+
+
+def _bearing_rows(table: pa.Table, cols: dict[str, str], flag: Callable) -> None:
+    """Rows of east/north plane positions where both are blank: a bearing in a column the
+    track import does not read (a camera's rows of a multi-sensor detection file) says
+    which sensor they are and where to read them; no bearing either is an empty scan."""
+    if "east" not in cols or "north" not in cols:
+        return
+    used = set(cols.values())
+    found = [
+        name
+        for name in table.column_names
+        if name not in used and known_fields([name]) == {"bearing"}
+    ]
+    if not found:
+        return
+    east, north = table[cols["east"]], table[cols["north"]]
+
+    def blank(arr) -> np.ndarray:
+        if pa.types.is_floating(arr.type) or pa.types.is_integer(arr.type):
+            return np.asarray(arr.is_null().to_numpy(zero_copy_only=False), dtype=bool) | (
+                np.isnan(arr.to_numpy(zero_copy_only=False).astype("float64"))
+            )
+        text = pd.Series(arr.to_pandas(), dtype="str").str.strip()
+        return (text.isna() | (text == "")).to_numpy()
+
+    none = blank(east) & blank(north)
+    if not none.any():
+        return
+    bearing = ~blank(table[found[0]])
+    flag(none & bearing, BEARING_NO_POSITION.format(found[0]))
+    flag(none & ~bearing, EMPTY_SCAN)
 
 
 def _in_knots(arr, header: str, given: str, counted: dict):
@@ -3524,6 +3668,8 @@ def id_candidates(sn: Sniff, columns: dict[str, str]) -> list[tuple[str, bool, i
     for k, name in enumerate(sn.columns):
         key = normalize_header(name)
         if name in used or _NOT_ID.search(key) or known_fields([name]) - {"batch", "sensor"}:
+            continue
+        if "sensor" in columns and "sensor" in key:  # sensor_id beside the sensor: no track id
             continue
         cells = _sample_cells(sn, name)
         distinct = len(set(cells))
@@ -3975,6 +4121,7 @@ def _to_canonical(
     sensor_codes = None if sensor_text is None else sensor_text.codes
     sensor_names = np.asarray([sensor], dtype=object) if sensor_text is None else sensor_text.names
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
+    _coarse_times(sensor_codes, text["batch"].codes, ns, time_ok & ~bad_rows, counted)
     counts = {
         "rows_read": int(n - int(blank.sum()) + len(bad.lines)),
         "rows_imported": int(len(points)),
@@ -4006,6 +4153,57 @@ _CANONICAL_SET = frozenset(("sensor", "batch", "time", "lon", "lat", "speed", "c
 #: A track whose time jumps back by at least this much (s) in file order, a few times,
 #: holds several runs: passes or ships that share one id.
 RESTART_BACK_S = 600.0
+
+
+def _coarse_times(
+    sensor_codes: np.ndarray | None,
+    batch_codes: np.ndarray,
+    ns: np.ndarray,
+    ok: np.ndarray,
+    counted: dict,
+) -> None:
+    """Whether every time is a whole minute (or hour), and how many rows then share
+    their minute with their track's row before: a file whose seconds were lost (Excel's
+    m/d/yyyy h:mm cells) while its tracks report several times a minute. Counted in
+    ``counted``: ``times_fine`` / ``times_sub_hour`` (some time is not a whole minute /
+    hour) and ``coarse_shared``."""
+    use = np.flatnonzero(ok & (batch_codes >= 0))
+    if not len(use):
+        return
+    t = np.asarray(ns)[use].astype("int64", copy=False)
+    fine = bool((t % 60_000_000_000).any())
+    counted["times_fine"] = bool(counted.get("times_fine")) or fine
+    counted["times_sub_hour"] = bool(counted.get("times_sub_hour")) or bool(
+        (t % 3_600_000_000_000).any()
+    )
+    if counted["times_fine"] or len(use) < 2:
+        return
+    key = batch_codes[use].astype("int64")
+    if sensor_codes is not None:
+        key = sensor_codes[use].astype("int64") * (int(batch_codes.max()) + 1) + key
+    order = np.lexsort((t, key))
+    k, t = key[order], t[order]
+    shared = int(((k[1:] == k[:-1]) & (t[1:] == t[:-1])).sum())
+    counted["coarse_shared"] = counted.get("coarse_shared", 0) + shared
+
+
+#: The start of the warning of :func:`cut_short_warnings` (a read in pieces says it once,
+#: from the whole file's quarantine).
+CUT_SHORT_MARK = ", the file's last line, has "
+
+
+def _coarse_time_warnings(time_src: str, time_info: dict) -> list[str]:
+    """A file whose times are whole minutes (hours) while its tracks report more often:
+    were the seconds lost? (Operator test 4: Excel en-US saves m/d/yyyy h:mm.)"""
+    shared = int(time_info.get("coarse_shared", 0) or 0)
+    if time_info.get("times_fine") or not shared:
+        return []
+    unit = "minute" if time_info.get("times_sub_hour") else "hour"
+    return [
+        f"the times in {time_src!r} are whole {unit}s and {shared:,} rows share a {unit} "
+        f"with their track's row before: were the seconds lost (Excel saves m/d/yyyy h:mm)? "
+        "Export the file again with seconds; clean keeps only the first row of each time"
+    ]
 
 
 def _restarting_tracks(
@@ -4470,7 +4668,12 @@ def stream_points(
             "clock_date_given",
         }:
             time_info[key] = info[key]
+        for key in ("times_fine", "times_sub_hour"):
+            time_info[key] = bool(time_info.get(key)) or bool(info.get(key))
+        if info.get("decimal_comma_example"):
+            time_info.setdefault("decimal_comma_example", info["decimal_comma_example"])
         for key in (
+            "coarse_shared",
             "decimal_comma",
             "clock_placed",
             *POSITION_COUNTS,
@@ -4552,12 +4755,14 @@ def stream_points(
     warnings += res.notes
     warnings += _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
+    warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(restarting, res.columns["batch"])
     warnings += position_warnings(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
     )
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, by_reason, totals["rows_read"] + len(bad.lines))
+    warnings += cut_short_warnings(sn, q)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(sn.path),
