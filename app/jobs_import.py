@@ -120,8 +120,21 @@ class ImportJobsMixin:
         rep = result.report
         # every line of the file accounted for, blank ones too, as `wakeline import` says it
         self.log_message(f"{path.name}: {translated(import_counts(rep, rep['format_label']))}")
+        q = result.quarantine
         for reason, n in rep["quarantine_reasons"].items():
-            self.log_message("    " + self.tr("quarantined {0:,}: {1}").format(n, reason))
+            lines = (
+                q.loc[q["reason"] == reason, "line"].head(4).tolist()
+                if n <= 3 and "line" in q.columns
+                else []
+            )
+            if len(lines) == 1:  # a few: where they are (the file's last line cut short?)
+                text = self.tr("quarantined {0:,}: {1} (line {2})").format(n, reason, lines[0])
+            elif 1 < len(lines) <= 3:
+                where = ", ".join(str(k) for k in lines)
+                text = self.tr("quarantined {0:,}: {1} (lines {2})").format(n, reason, where)
+            else:
+                text = self.tr("quarantined {0:,}: {1}").format(n, reason)
+            self.log_message("    " + text)
         for reason, n in rep.get("values_blanked", {}).items():
             self.log_message("    " + self.tr("blanked {0:,} (row kept): {1}").format(n, reason))
         for warning in rep.get("warnings", []):

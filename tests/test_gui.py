@@ -741,6 +741,19 @@ def test_quarantined_rows_are_viewable(window, tmp_path):
     dialog.close()
 
 
+def test_a_last_line_cut_short_is_logged_with_its_line(window, tmp_path):
+    """Operator test 4 (D-import-5): the window's log named a cut last line "short row: 5
+    of 12 fields" without its line or what it means."""
+    src = tmp_path / "cut.csv"
+    write_points(simulate.demo_scene().head(50), src)
+    with open(src, "a") as fh:
+        fh.write("AIS,9,2024-05-01T00:00:00Z\n")
+    assert load(window, src)
+    log = window.log.toPlainText()
+    assert "short row: 3 of 10 fields (line 52)" in log
+    assert "line 52, the file's last line, has 3 of 10 fields: the file may be cut short" in log
+
+
 def test_bad_file_shows_a_dialog_not_a_crash(window, tmp_path, monkeypatch):
     shown = []
     monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))

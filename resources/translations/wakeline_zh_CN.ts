@@ -72,6 +72,14 @@
         <translation>隔离 {0:,} 行：{1}</translation>
     </message>
     <message>
+        <source>quarantined {0:,}: {1} (line {2})</source>
+        <translation>隔离 {0:,} 行：{1}（第 {2} 行）</translation>
+    </message>
+    <message>
+        <source>quarantined {0:,}: {1} (lines {2})</source>
+        <translation>隔离 {0:,} 行：{1}（第 {2} 行）</translation>
+    </message>
+    <message>
         <source>blanked {0:,} (row kept): {1}</source>
         <translation>清空 {0:,} 个值（保留该行）：{1}</translation>
     </message>
