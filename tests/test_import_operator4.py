@@ -101,6 +101,10 @@ def test_am_pm_clocks_read_month_first(tmp_path):
     assert (times.dt.month == 3).all() and (times.dt.day == 1).all()  # 1 March, not 3 Jan
     assert "month-first (assumed from the 12-hour AM/PM clock" in res.report["date_order"]
     assert any("12-hour clock with AM/PM" in w for w in res.report["warnings"])
+    # 1/1/2023 reads the same either way: nothing to assume, nothing said
+    same = [line.replace("3/1/2023", "1/1/2023") for line in _ampm_lines()]
+    res = read_points(_write(tmp_path, "same.csv", same), mapping={"time": "Date/Time"})
+    assert not any("12-hour clock" in w for w in res.report["warnings"])
     # a day above 12 shows day first: AM/PM does not override it
     lines = _ampm_lines() + ["219000001,13/1/2023 1:00:00 PM,57.6,11.9"]
     res = read_points(_write(tmp_path, "eu.csv", lines), mapping={"time": "Date/Time"})

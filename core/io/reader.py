@@ -2062,7 +2062,8 @@ def parse_times(
             # a 12-hour clock (8:01:04 PM) is a US export's: month first, unless a date
             # shows the day first (the whole file's evidence, as above)
             ampm = text[present].str.contains(_AMPM_END, regex=True).fillna(False)
-            if not shown.any() and ampm.any():
+            either = (first != second) & first.notna() & second.notna()  # the order matters
+            if not shown.any() and ampm.any() and either.any():
                 if info.get("_streaming"):
                     raise WholeFileNeeded
                 parsed = _parse_slashed(text, present, _MONTHFIRST_FORMATS, info)
