@@ -368,6 +368,17 @@ class LinkParams(Params):
         "ours (session 27, MTAD decimated: joins dropped for a rival whose taking would "
         "undo a cheaper join elsewhere): docs/prereg/session27_mtad.md",
     )
+    margin_displaced_charge: str = param(
+        "no_join",
+        "",
+        "what margin_displaced charges for the two pieces a rearrangement frees when they "
+        "are not joined to each other: no_join (both loose), or alternative (each half of "
+        "its own cheapest other candidate within the gate, or half of no_join if it has "
+        "none or a dearer one)",
+        source="ours (session 27, h169: no_join overprices leaving a track's last piece or "
+        "clutter loose in dense radar scenes): docs/prereg/session27_mtad_b.md",
+        choices=("no_join", "alternative"),
+    )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
     w1: float = param(
@@ -1432,7 +1443,7 @@ def margin_test(
     cost: np.ndarray,
     chosen: np.ndarray,
     margin: float,
-    displaced: tuple[float, float, float] | None = None,
+    displaced: tuple[float, float, float, bool] | None = None,
 ) -> np.ndarray:
     """The chosen pairs that pass the margin test (indices into ``pairs``).
 
@@ -1440,7 +1451,8 @@ def margin_test(
     time — the two cannot both be this ship's continuation — or (i′, j) with i′
     overlapping i, that is not claimed by a chosen pair of lower cost. A join whose rival
     costs less than ``margin`` more is ambiguous and dropped: both ends stay loose.
-    ``displaced`` (``no_join``, ``gate``, ``margin_displaced``): a rival another chosen
+    ``displaced`` (``no_join``, ``gate``, ``margin_displaced``, charge by alternatives): a
+    rival another chosen
     pair claims counts only where taking it would cost the assignment less than
     ``margin_displaced`` more (:func:`_displacement_holds`).
     """
@@ -1488,7 +1500,7 @@ def _displacement_holds(
     k: np.ndarray,
     r: np.ndarray,
     o: np.ndarray,
-    prices: tuple[float, float, float],
+    prices: tuple[float, float, float, bool],
 ) -> np.ndarray:
     """Per rival row of :func:`margin_test` (candidate ``sel`` sharing its end with chosen
     pair ``chosen[k]``; ``r`` the rival's other piece, ``o`` the chosen pair's): whether a
@@ -1499,9 +1511,14 @@ def _displacement_holds(
     whichever is cheaper. The rival holds as ambiguous only when that rearrangement costs
     less than ``prices[2]`` (``margin_displaced``) more than the assignment's:
     c_r + min(no_join, c_xo) − c − c_x < margin_displaced. ``prices``: (``no_join``,
-    ``gate``, ``margin_displaced``). Unclaimed rivals are not looked at (they hold, as
-    before); nor is the margin test of joins that share an end (:func:`_margin_test_joined`)."""
-    no_join, gate, need = prices
+    ``gate``, ``margin_displaced``, ``alternative``). With ``alternative``
+    (``margin_displaced_charge``) the loose reading charges each freed piece half of
+    min(no_join, its cheapest other candidate within the gate — partners other than the
+    four pieces of the rearrangement) instead of half of ``no_join``: a piece with a cheap
+    other reading loses little by being freed. Unclaimed rivals are not looked at (they
+    hold, as before); nor is the margin test of joins that share an end
+    (:func:`_margin_test_joined`)."""
+    no_join, gate, need, alternative = prices
     n = len(seg)
     holder = np.full(n, -1, dtype=np.int64)
     # who claims r: the chosen pair whose piece on the rival's side is r
@@ -1525,7 +1542,17 @@ def _displacement_holds(
     hit = keys[order][at] == want
     c_xo = np.where(hit, cost[order[at]], np.inf)
     c_xo = np.where(c_xo <= gate, c_xo, np.inf)
-    rearranged = cost[sel[idx]] + np.fmin(no_join, c_xo)
+    loose = no_join
+    if alternative:
+        own_piece = (pairs.i if old_side else pairs.j)[sel[idx]]
+        rr = r[idx]
+        oo = o[idx]
+        # x on the claimer's side, o on the chosen pair's; each excludes the four pieces
+        x_old = old_side
+        ax = _best_alternative(pairs, cost, gate, n, x, x_old, (rr, oo))
+        ao = _best_alternative(pairs, cost, gate, n, oo, not x_old, (own_piece, x))
+        loose = 0.5 * (np.fmin(no_join, ax) + np.fmin(no_join, ao))
+    rearranged = cost[sel[idx]] + np.fmin(loose, c_xo)
     assigned = cost[chosen[k[idx]]] + cost[hc]
     out[idx] = rearranged >= assigned + need
     return out
@@ -1710,6 +1737,36 @@ def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndar
     return label[leader[comp]]
 
 
+def _best_alternative(
+    pairs: Pairs,
+    cost: np.ndarray,
+    gate: float,
+    n: int,
+    p: np.ndarray,
+    as_old: bool,
+    exclude: tuple[np.ndarray, np.ndarray],
+) -> np.ndarray:
+    """Per query piece ``p`` (an old end when ``as_old``, else a new start): the cost of
+    its cheapest candidate within ``gate`` whose other piece is neither of ``exclude``
+    (inf when none). From each piece's three cheapest candidates (two exclusions)."""
+    mine, other = (pairs.i, pairs.j) if as_old else (pairs.j, pairs.i)
+    ok = np.flatnonzero(np.isfinite(cost) & (cost <= gate))
+    top_c = np.full((n, 3), np.inf)
+    top_p = np.full((n, 3), -1, dtype=np.int64)
+    if len(ok):
+        order = ok[np.lexsort((cost[ok], mine[ok]))]
+        m = mine[order]
+        start = np.r_[0, np.flatnonzero(np.diff(m)) + 1]
+        rank = np.arange(len(m)) - np.repeat(start, np.diff(np.r_[start, len(m)]))
+        keep = rank < 3
+        top_c[m[keep], rank[keep]] = cost[order[keep]]
+        top_p[m[keep], rank[keep]] = other[order[keep]]
+    c = top_c[p]
+    q = top_p[p]
+    c = np.where((q == exclude[0][:, None]) | (q == exclude[1][:, None]), np.inf, c)
+    return c.min(axis=1)
+
+
 def _assign_scaled(seg: Segments, pairs: Pairs, cost: np.ndarray, params: LinkParams, assign):
     """Assignment with the loose-end price, the short-piece rule and the margin test; pairs
     beyond ``max_gap_s`` (soft T_gap) pay the gap price and must pass
@@ -1724,7 +1781,12 @@ def _assign_scaled(seg: Segments, pairs: Pairs, cost: np.ndarray, params: LinkPa
         cost,
         chosen,
         params.margin,
-        (params.no_join, params.gate, params.margin_displaced)
+        (
+            params.no_join,
+            params.gate,
+            params.margin_displaced,
+            params.margin_displaced_charge == "alternative",
+        )
         if params.margin_displaced > 0
         else None,
     )
