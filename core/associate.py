@@ -355,7 +355,7 @@ class LinkParams(Params):
         "docs/prereg/session26_mtad_sparse.md",
     )
     margin_displaced: float = param(
-        0.0,
+        0.4,
         "",
         "margin test: a rival that another join claims (more dearly than the rival costs) "
         "counts only when taking it would cost the assignment less than this much more: "
@@ -366,17 +366,20 @@ class LinkParams(Params):
         0.0,
         10.0,
         "ours (session 27, MTAD decimated: joins dropped for a rival whose taking would "
-        "undo a cheaper join elsewhere): docs/prereg/session27_mtad.md",
+        "undo a cheaper join elsewhere; 0.6 with the no_join charge failed its pre-set "
+        "rule, docs/prereg/session27_mtad.md; 0.4 with the alternative charge adopted by "
+        "it: MTAD tuning half at 600 s 0.842 / 0.090 -> 0.854 / 0.086, hard very dense "
+        "P_FA 0.088 -> 0.090 at the bound): docs/prereg/session27_mtad_b.md",
     )
     margin_displaced_charge: str = param(
-        "no_join",
+        "alternative",
         "",
         "what margin_displaced charges for the two pieces a rearrangement frees when they "
         "are not joined to each other: no_join (both loose), or alternative (each half of "
         "its own cheapest other candidate within the gate, or half of no_join if it has "
-        "none or a dearer one)",
-        source="ours (session 27, h169: no_join overprices leaving a track's last piece or "
-        "clutter loose in dense radar scenes): docs/prereg/session27_mtad_b.md",
+        "none or a dearer one; no_join: the rule of session27_mtad.md)",
+        source="ours (session 27, h169: no_join overprices leaving a piece loose that has "
+        "another reading; adopted with margin_displaced 0.4): docs/prereg/session27_mtad_b.md",
         choices=("no_join", "alternative"),
     )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)

@@ -10,6 +10,7 @@ from wakeline.app.cli import main
 from wakeline.core import geo, simulate
 from wakeline.core.associate import (
     LinkParams,
+    Pairs,
     _debiased_speed,
     _largest_allowance,
     _sampling_step,
@@ -20,6 +21,7 @@ from wakeline.core.associate import (
     dtw_batch,
     first_pass_pairs,
     greedy_assign,
+    margin_test,
     optimal_assign,
     polygon_area,
     stitch,
@@ -1219,27 +1221,65 @@ def _claimed_joins(seed: int, params: LinkParams, sep: float, crossable: bool) -
     return sorted(zip(pt["batch_a"], pt["batch_b"], strict=True))
 
 
-def test_a_rival_claimed_by_a_join_it_would_undo_can_be_let_pass_as_an_option():
-    """``margin_displaced`` (session 27, docs/prereg/session27_mtad.md; failed its pre-set
-    guard on the hard very dense scenes, P_FA 0.088 -> 0.093, so off by default): the
-    margin test dropped a1 → a2 for the rival a1 → b2 although b2 is B's own next piece,
-    joined to b1 — taking it would leave b1 loose (b1 → a2 is no candidate: b1 runs on
-    after a2 begins), a rearrangement that costs the assignment far more than the margin.
-    With the option such a claimed rival counts only when the rearrangement costs less
-    than ``margin_displaced`` more. Over seeds 0–29 of the toy (lanes 600 m apart) the
-    option keeps both true joins in every seed (default: 6 seeds lose one) and makes no
-    wrong join; where the claimer could take the freed piece (a swap, lanes 1.2 km apart
-    with pieces alike in time) nothing changes."""
-    assert LinkParams().margin_displaced == 0.0
-    on = LinkParams(margin_displaced=0.6)
+def test_a_rival_claimed_by_a_join_it_would_undo_does_not_drop_a_join():
+    """``margin_displaced`` (session 27): the margin test dropped a1 → a2 for the rival
+    a1 → b2 although b2 is B's own next piece, joined to b1 — taking it would leave b1
+    loose (b1 → a2 is no candidate: b1 runs on after a2 begins), a rearrangement that costs
+    the assignment far more than the margin. Such a claimed rival counts only when the
+    rearrangement costs less than ``margin_displaced`` more. h164's charge for the freed
+    pieces (``no_join``, 0.6; docs/prereg/session27_mtad.md) failed its pre-set guard on the
+    hard very dense scenes; the default since docs/prereg/session27_mtad_b.md (h169) is 0.4
+    with each freed piece charged by its own cheapest other candidate (``alternative``;
+    here b1 and a2 have none, so both charges agree). Over seeds 0–29 of the toy (lanes
+    600 m apart) both keep both true joins in every seed (off: 6 seeds lose one) and make
+    no wrong join; where the claimer could take the freed piece (a swap, lanes 1.2 km
+    apart with pieces alike in time) nothing changes."""
+    assert LinkParams().margin_displaced == 0.4
+    assert LinkParams().margin_displaced_charge == "alternative"
+    off = LinkParams(margin_displaced=0.0)
     both = [("a1", "a2"), ("b1", "b2")]
-    off_runs = [_claimed_joins(s, LinkParams(), 600.0, False) for s in range(30)]
-    on_runs = [_claimed_joins(s, on, 600.0, False) for s in range(30)]
-    assert all(r == both for r in on_runs)
+    off_runs = [_claimed_joins(s, off, 600.0, False) for s in range(30)]
     lost = [s for s, r in enumerate(off_runs) if r != both]
     assert len(lost) == 6 and all(set(off_runs[s]) < set(both) for s in lost)
-    for s in range(10):
-        assert _claimed_joins(s, on, 1200.0, True) == _claimed_joins(s, LinkParams(), 1200.0, True)
+    for on in (LinkParams(), LinkParams(margin_displaced=0.6, margin_displaced_charge="no_join")):
+        assert all(_claimed_joins(s, on, 600.0, False) == both for s in range(30))
+        for s in range(10):
+            assert _claimed_joins(s, on, 1200.0, True) == _claimed_joins(s, off, 1200.0, True)
+
+
+class _Spans:
+    """The two fields of :class:`Segments` the margin test reads, and its length."""
+
+    def __init__(self, t0, t1):
+        self.t0, self.t1 = np.asarray(t0, float), np.asarray(t1, float)
+
+    def __len__(self):
+        return len(self.t0)
+
+
+def test_a_freed_piece_with_a_cheap_other_reading_is_charged_that_reading():
+    """``margin_displaced_charge`` (docs/prereg/session27_mtad_b.md): chosen 0 → 2 (0.5) and
+    1 → 3 (0.7); the rival 0 → 3 (0.6) would undo 1 → 3 and free 1 and 2, which cannot
+    join each other. Charged ``no_join`` (1.5) the rearrangement costs 0.6 + 1.5 − 0.5 −
+    0.7 = 0.9 more, beyond ``margin_displaced`` 0.4: the rival is excused and 0 → 2 kept.
+    But 1 has another candidate 1 → 4 at 0.2 and 2 has 5 → 2 at 0.3 (neither a rival in
+    time): charged half of each, 0.25, the rearrangement costs 0.6 + 0.25 − 1.2 < 0.4
+    more, so the rival holds and 0 → 2 is dropped, as without the option."""
+    seg = _Spans([0, 0, 1000, 1000, 2000, 200], [100, 100, 1100, 1100, 2100, 300])
+    i = np.array([0, 1, 0, 1, 5])
+    j = np.array([2, 3, 3, 4, 2])
+    z = np.zeros(len(i))
+    pairs = Pairs(i, j, z, z, z, z, z)
+    cost = np.array([0.5, 0.7, 0.6, 0.2, 0.3])
+    chosen = np.array([0, 1])
+    assert list(margin_test(seg, pairs, cost, chosen, 0.25)) == [1]
+    kept = margin_test(seg, pairs, cost, chosen, 0.25, (1.5, 1.5, 0.4, False))
+    assert list(kept) == [0, 1]
+    assert list(margin_test(seg, pairs, cost, chosen, 0.25, (1.5, 1.5, 0.4, True))) == [1]
+    # without the cheap other readings both charges agree: no_join
+    far = cost.copy()
+    far[3:] = 1.6  # beyond the gate
+    assert list(margin_test(seg, pairs, far, chosen, 0.25, (1.5, 1.5, 0.4, True))) == [0, 1]
 
 
 def test_margin_displaced_is_validated():
@@ -1248,3 +1288,5 @@ def test_margin_displaced_is_validated():
         with pytest.raises(InputError, match="margin_displaced"):
             associate_interrupted(one, LinkParams(margin_displaced=bad))
     assert LinkParams(margin_displaced=10.0).checked().margin_displaced == 10.0
+    with pytest.raises(InputError, match="margin_displaced_charge"):
+        associate_interrupted(one, LinkParams(margin_displaced_charge="half"))
