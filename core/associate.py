@@ -1751,13 +1751,18 @@ def _best_alternative(
 ) -> np.ndarray:
     """Per query piece ``p`` (an old end when ``as_old``, else a new start): the cost of
     its cheapest candidate within ``gate`` whose other piece is neither of ``exclude``
-    (inf when none). From each piece's three cheapest candidates (two exclusions)."""
+    (inf when none). From each piece's three cheapest candidates (two exclusions), over the
+    pairs of the asked pieces only."""
     mine, other = (pairs.i, pairs.j) if as_old else (pairs.j, pairs.i)
-    ok = np.flatnonzero(np.isfinite(cost) & (cost <= gate))
+    asked = np.zeros(n, dtype=bool)
+    asked[p] = True
+    ok = np.flatnonzero(asked[mine] & np.isfinite(cost) & (cost <= gate))
     top_c = np.full((n, 3), np.inf)
     top_p = np.full((n, 3), -1, dtype=np.int64)
     if len(ok):
-        order = ok[np.lexsort((cost[ok], mine[ok]))]
+        # by piece, then by cost (two stable sorts of the asked pieces' pairs, no lexsort)
+        order = ok[np.argsort(cost[ok], kind="stable")]
+        order = order[np.argsort(mine[order], kind="stable")]
         m = mine[order]
         start = np.r_[0, np.flatnonzero(np.diff(m)) + 1]
         rank = np.arange(len(m)) - np.repeat(start, np.diff(np.r_[start, len(m)]))
