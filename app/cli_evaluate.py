@@ -45,6 +45,8 @@ def _maneuver_params(args: argparse.Namespace):
         max_window_s=args.max_window_s,
         min_speed_kn=args.min_speed,
         slow_side=args.slow_side,
+        slow_side_step_s=args.slow_side_step_s,
+        slow_side_span_s=args.slow_side_span_s,
         gap_s=args.gap_s,
         min_window_s=args.min_window_s,
         noise_lag_s=args.noise_lag_s,
@@ -312,6 +314,21 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.slow_side,
         help=f"share of --min-speed the slower window needs (the faster one all of it); "
         f"1 = both windows (default {d.slow_side:g})",
+    )
+    p.add_argument(
+        "--slow-side-step-s",
+        type=float,
+        default=d.slow_side_step_s,
+        help=f"s: --slow-side only where no step of the slower window is longer (its speed "
+        f"measured, not a chord over an unobserved step); 0 = any step "
+        f"(default {d.slow_side_step_s:g})",
+    )
+    p.add_argument(
+        "--slow-side-span-s",
+        type=float,
+        default=d.slow_side_span_s,
+        help=f"s: --slow-side only where the slower window lasts at most this long; 0 = any "
+        f"length (default {d.slow_side_span_s:g})",
     )
     p.add_argument(
         "--paper",

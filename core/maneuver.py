@@ -184,6 +184,28 @@ class ManeuverParams(Params):
         hi=1.0,
         source="ours",
     )
+    slow_side_step_s: float = param(
+        0.0,
+        "s",
+        "slow_side applies only where no step of the slower window is longer than this: its "
+        "speed then is measured, not a chord over an unobserved step that may hide a stop or "
+        "a reversal (180 s = the at-rest window, within which a stay would be seen); "
+        "elsewhere the slower window needs all of min_speed_kn; 0 = any step",
+        lo=0.0,
+        hi=1e7,
+        source="ours (session 27: ATD's 30-min posits, docs/prereg/session27_slow_side.md)",
+    )
+    slow_side_span_s: float = param(
+        0.0,
+        "s",
+        "slow_side applies only where the slower window lasts at most this long: a creep "
+        "measured within one at-rest window (180 s), not a mean over a longer span that may "
+        "hold a stop and a run; elsewhere the slower window needs all of min_speed_kn; "
+        "0 = any length",
+        lo=0.0,
+        hi=1e7,
+        source="ours (session 27: ATD's 30-min posits, docs/prereg/session27_slow_side.md)",
+    )
     noise_k: float = param(
         2.0,
         "",
@@ -910,10 +932,15 @@ def _fast_enough(
     rows: np.ndarray,
     speed_ms: float,
     slow_side: float = 1.0,
+    side_step_s: float = 0.0,
+    side_span_s: float = 0.0,
 ) -> np.ndarray:
     """Per row of ``rows``: the faster of the two windows' straight-line speeds (m/s) is at
     least ``speed_ms`` and the slower at least ``slow_side`` × ``speed_ms`` (with 1:
-    ``_window_speed_ms(…) >= speed_ms``, the same booleans). The two hypots are taken as
+    ``_window_speed_ms(…) >= speed_ms``, the same booleans) — the relief only where the
+    slower window is measured (:func:`_slow_side_measured`: no step in it longer than
+    ``side_step_s``, it lasts at most ``side_span_s``; 0 = no bound), elsewhere it needs
+    ``speed_ms`` too. The two hypots are taken as
     square roots of sums of squares where that decides (every speed beyond its bound by
     more than :data:`HYPOT_MARGIN`, relative, or one below it); the others (within the
     margin, a time step ≤ 0 or not finite, lengths out of the safe range) take the exact
@@ -921,6 +948,7 @@ def _fast_enough(
     a, b, inside = window_ends(index, rows, p_row, len(x))
     back, fwd, sure = _lengths_sq(x, y, rows, a, b)
     to = t[rows]
+    bounded = slow_side < 1 and (side_step_s > 0 or side_span_s > 0)
     low = speed_ms * slow_side
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         dt_back, dt_fwd = to - t[a], t[b] - to
@@ -929,6 +957,12 @@ def _fast_enough(
         v_back /= dt_back
         v_fwd = np.sqrt(fwd, out=fwd)
         v_fwd /= dt_fwd
+        if bounded:  # the slower window (by these speeds) unmeasured: all of speed_ms
+            low = np.where(
+                _slow_side_measured(t, rows, a, b, v_back <= v_fwd, side_step_s, side_span_s),
+                low,
+                speed_ms,
+            )
         v_lo, v_hi = np.fmin(v_back, v_fwd), np.fmax(v_back, v_fwd)
         no = (v_lo < low * (1 - HYPOT_MARGIN)) | (v_hi < speed_ms * (1 - HYPOT_MARGIN))
         yes = (v_lo >= low * (1 + HYPOT_MARGIN)) & (v_hi >= speed_ms * (1 + HYPOT_MARGIN))
@@ -937,8 +971,46 @@ def _fast_enough(
     j = np.flatnonzero(inside & ~(sure & (yes | no)))
     if len(j):
         with np.errstate(invalid="ignore"):
-            lo, hi = _window_speeds_ms(x, y, t, index, p_row[j], rows[j])
-            ok[j] = (lo >= low) & (hi >= speed_ms)
+            r, aj, bj = rows[j], a[j], b[j]
+            v_b = np.hypot(x[r] - x[aj], y[r] - y[aj]) / (t[r] - t[aj])
+            v_f = np.hypot(x[bj] - x[r], y[bj] - y[r]) / (t[bj] - t[r])
+            low_j = speed_ms * slow_side
+            if bounded:  # the slower window by the exact speeds
+                measured = _slow_side_measured(t, r, aj, bj, v_b <= v_f, side_step_s, side_span_s)
+                low_j = np.where(measured, low_j, speed_ms)
+            ok[j] = (np.fmin(v_b, v_f) >= low_j) & (np.fmax(v_b, v_f) >= speed_ms)
+    return ok
+
+
+def _slow_side_measured(
+    t: np.ndarray,
+    rows: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    back_slower: np.ndarray,
+    step_s: float,
+    span_s: float,
+) -> np.ndarray:
+    """Per row: the slower window (the one ending at the row, rows ``a`` … row, where
+    ``back_slower``, else the one starting there, row … ``b``) has no step longer than
+    ``step_s`` and lasts at most ``span_s`` (each bound 0 = none). Windows are inside their
+    track (the caller's ``inside``; elsewhere the answer does not matter)."""
+    lo = np.where(back_slower, a, rows)
+    hi = np.where(back_slower, rows, b)
+    ok = np.ones(len(rows), dtype=bool)
+    with np.errstate(invalid="ignore"):
+        if span_s > 0:
+            ok &= t[hi] - t[lo] <= span_s
+        if step_s > 0 and len(rows):
+            # the longest step of each window: steps lo … hi − 1, step[i] = t[i + 1] − t[i]
+            # (one more, 0, at the end so that every bound hi ≤ n − 1 is a valid index)
+            step = np.append(np.diff(t), 0.0)
+            bounds = np.empty(2 * len(rows), dtype="int64")
+            bounds[0::2], bounds[1::2] = lo, np.maximum(hi, lo + 1)
+            # reduceat reduces step[bounds[i]:bounds[i + 1]] (step[bounds[i]] alone where
+            # the next bound is not larger): the even positions are the windows
+            longest = np.maximum.reduceat(step, bounds)[0::2]
+            ok &= longest <= step_s
     return ok
 
 
@@ -2130,6 +2202,8 @@ def _detect_sorted(
                 cand[j],
                 params.min_speed_kn * geo.KN_MS,
                 params.slow_side,
+                params.slow_side_step_s,
+                params.slow_side_span_s,
             )
         if any_rest:
             j = np.flatnonzero(ok)

@@ -695,3 +695,79 @@ def test_radius_s_edge_s_validation(field):
     for bad in (-1.0, 1e8, float("nan")):
         with pytest.raises(InputError, match=field):
             ManeuverParams(**{field: bad}).checked()
+def _slow_then_away(seed: int, period_s: float = 1800.0, noise_m: float = 70.0) -> pd.DataFrame:
+    """A ship reported every ``period_s`` (ATD's ~30 min, ~70 m of noise): 0.7 kn north for 8
+    fixes (over 30-min steps a chord that may hide a stop and a run), then 90 deg to the
+    east at 8 kn for 8 fixes."""
+    rng = np.random.default_rng(seed)
+    slow = 0.7 * geo.KN_MS * period_s * np.arange(1, 9)
+    fast = 8.0 * geo.KN_MS * period_s * np.arange(1, 9)
+    x = np.concatenate([np.zeros(8), fast])
+    y = np.concatenate([slow, np.full(8, slow[-1])])
+    x += rng.normal(0, noise_m, len(x))
+    y += rng.normal(0, noise_m, len(y))
+    return track_from_xy(x, y, period_s=period_s, batch=f"s{seed}")
+
+
+@pytest.mark.parametrize(
+    "bound", [{"slow_side_step_s": 180.0}, {"slow_side_span_s": 180.0}], ids=["step", "span"]
+)
+def test_slow_side_needs_a_measured_slower_window(bound):
+    # Session 27: the relief of slow_side only where the slower window is measured. At radar
+    # rate (1 s fixes, the 10 s window) a turn leaving a creep still counts ...
+    side = ManeuverParams(slow_side=0.5)
+    bounded = ManeuverParams(slow_side=0.5, **bound)
+    found = 0
+    for seed in range(10):
+        df = _leaving_rest(seed)
+        t = (df["time"] - df["time"].iloc[0]).dt.total_seconds().to_numpy()
+        near = (t > 55) & (t < 70)
+        res = detect(df, bounded)
+        assert (res.is_maneuver == detect(df, side).is_maneuver).all()
+        found += bool(res.is_maneuver[near].any())
+    assert found >= 9
+    # ... while over 30-min steps (a 2 h slower window) the slow chord is no measured creep:
+    # slow_side alone counts the turn, bounded it needs 1 kn of both windows as by default
+    n_side = n_bounded = n_default = 0
+    for seed in range(8):
+        df = _slow_then_away(seed)
+        n_side += int(detect(df, side).is_maneuver[6:11].any())
+        n_bounded += int(detect(df, bounded).is_maneuver[6:11].any())
+        n_default += int(detect(df).is_maneuver[6:11].any())
+    assert n_side >= 6
+    assert n_bounded == n_default == 0
+
+
+def test_slow_side_bounds_at_the_bound_and_validated():
+    from wakeline.core.maneuver import _slow_side_measured
+
+    # windows over rows 0-4 (back) and 4-8 (forward) of one track: steps of 1 s but one of
+    # 200 s in the back window
+    t = np.array([0, 1, 2, 202, 203, 204, 205, 206, 207], float)
+    rows, a, b = np.array([4, 4]), np.array([0, 0]), np.array([8, 8])
+    back = np.array([True, False])
+    assert _slow_side_measured(t, rows, a, b, back, 0.0, 0.0).all()
+    assert (_slow_side_measured(t, rows, a, b, back, 199.9, 0.0) == [False, True]).all()
+    assert _slow_side_measured(t, rows, a, b, back, 200.0, 0.0).all()  # at most the bound
+    assert (_slow_side_measured(t, rows, a, b, back, 0.0, 10.0) == [False, True]).all()
+    # the last rows of the table: the forward window ends at the last fix
+    t2 = np.array([0, 1, 2, 3, 500], float)
+    assert not _slow_side_measured(
+        t2, np.array([2]), np.array([0]), np.array([4]), np.array([False]), 180.0, 0.0
+    )[0]
+    # against a per-window loop on random rows
+    rng = np.random.default_rng(0)
+    tt = np.cumsum(rng.exponential(5.0, 400))
+    r = np.sort(rng.integers(10, 390, 60))
+    p = rng.integers(2, 10, 60)
+    aa, bb = r - p + 1, r + p - 1
+    bk = rng.random(60) < 0.5
+    got = _slow_side_measured(tt, r, aa, bb, bk, 12.0, 0.0)
+    want = [
+        np.diff(tt[(a_ if k else r_) : (r_ if k else b_) + 1]).max() <= 12.0
+        for r_, a_, b_, k in zip(r, aa, bb, bk, strict=True)
+    ]
+    assert (got == np.array(want)).all()
+    for field in ("slow_side_step_s", "slow_side_span_s"):
+        with pytest.raises(InputError, match=field):
+            ManeuverParams(**{field: -1.0}).checked()

@@ -120,6 +120,7 @@ def _reference_params(params: ManeuverParams):
     assert fields.pop("window_max_s") == 0
     assert fields.pop("radius_s") == 0
     assert fields.pop("edge_s") == 0
+    assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("rest_north_box")
     return reference.ManeuverParams(**fields)
 
