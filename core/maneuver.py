@@ -23,8 +23,10 @@ t at the neighbouring points). Sharp turns close together (radar): the window al
 down to ``min_window_s`` on tracks sampled fast enough for 3 points in it; such a turn must
 clear the noise floor (at least t) with its own point left out too, so one stray plot is
 no turn. Each added turn needs no turn already found within its reach.
-No maneuver where the ship covers either window slower
-than ``min_speed_kn`` or where a window touches an at-rest span (cleaning's stationary
+No maneuver where the ship covers the faster window slower than ``min_speed_kn``, the
+slower one slower than ``slow_side`` (0.5) × it — where that window is measured, no step in
+it longer than ``slow_side_step_s`` (180 s), else all of it too — or where a window touches
+an at-rest span (cleaning's stationary
 rule: positions within ``rest_radius_m`` for ``rest_window_s``, on sparse tracks for
 ``rest_steps`` of their median intervals with the radius grown alike). No heading window
 spans a step longer than ``max_step_windows`` (4) such at-rest windows, the at-rest rule's
@@ -175,17 +177,19 @@ class ManeuverParams(Params):
         source="ours; seed 001 eq. 1's 1 kn",
     )
     slow_side: float = param(
-        1.0,
+        0.5,
         "",
         "the slower of the two windows needs only this share of min_speed_kn (the faster "
-        "one all of it): 1 = both windows at min speed; below 1 a ship turning as it leaves "
-        "or comes to rest counts while a ship slow on both sides still does not",
+        "one all of it) where it is measured (slow_side_step_s): 1 = both windows at min "
+        "speed; below 1 a ship turning as it leaves or comes to rest counts while a ship "
+        "slow on both sides still does not",
         lo=0.0,
         hi=1.0,
-        source="ours",
+        source="ours (session 22; default since session 27 with slow_side_step_s, "
+        "docs/prereg/session27_slow_side.md)",
     )
     slow_side_step_s: float = param(
-        0.0,
+        180.0,
         "s",
         "slow_side applies only where no step of the slower window is longer than this: its "
         "speed then is measured, not a chord over an unobserved step that may hide a stop or "

@@ -373,9 +373,10 @@ def _leaving_rest(seed: int, creep_ms: float = 0.35, period_s: float = 1.0) -> p
 
 
 def test_slow_side_lets_a_turn_that_leaves_rest_count():
-    # The window before the turn creeps at 0.35 m/s (0.7 kn): the default asks 1 kn of both
-    # windows and finds nothing; slow_side 0.5 asks 0.5 kn of the slower one.
-    both, side = ManeuverParams(), ManeuverParams(slow_side=0.5)
+    # The window before the turn creeps at 0.35 m/s (0.7 kn): slow_side 1 (the default until
+    # session 27) asks 1 kn of both windows and finds nothing; the default slow_side 0.5 asks
+    # 0.5 kn of the slower one (measured: 1 s steps, within slow_side_step_s).
+    both, side = ManeuverParams(slow_side=1.0), ManeuverParams()
     found_both = found_side = 0
     for seed in range(10):
         df = _leaving_rest(seed)
@@ -715,8 +716,8 @@ def _slow_then_away(seed: int, period_s: float = 1800.0, noise_m: float = 70.0) 
 def test_slow_side_needs_a_measured_slower_window(bound):
     # Session 27: the relief of slow_side only where the slower window is measured. At radar
     # rate (1 s fixes, the 10 s window) a turn leaving a creep still counts ...
-    side = ManeuverParams(slow_side=0.5)
-    bounded = ManeuverParams(slow_side=0.5, **bound)
+    side = ManeuverParams(slow_side=0.5, slow_side_step_s=0.0)
+    bounded = side.replace(**bound)
     found = 0
     for seed in range(10):
         df = _leaving_rest(seed)
@@ -727,15 +728,16 @@ def test_slow_side_needs_a_measured_slower_window(bound):
         found += bool(res.is_maneuver[near].any())
     assert found >= 9
     # ... while over 30-min steps (a 2 h slower window) the slow chord is no measured creep:
-    # slow_side alone counts the turn, bounded it needs 1 kn of both windows as by default
-    n_side = n_bounded = n_default = 0
+    # slow_side unbounded counts the turn, bounded it needs 1 kn of both windows as slow_side 1
+    side = side.replace(slow_side_step_s=0.0)
+    n_side = n_bounded = n_both = 0
     for seed in range(8):
         df = _slow_then_away(seed)
         n_side += int(detect(df, side).is_maneuver[6:11].any())
         n_bounded += int(detect(df, bounded).is_maneuver[6:11].any())
-        n_default += int(detect(df).is_maneuver[6:11].any())
+        n_both += int(detect(df, ManeuverParams(slow_side=1.0)).is_maneuver[6:11].any())
     assert n_side >= 6
-    assert n_bounded == n_default == 0
+    assert n_bounded == n_both == 0
 
 
 def test_slow_side_bounds_at_the_bound_and_validated():
@@ -771,3 +773,32 @@ def test_slow_side_bounds_at_the_bound_and_validated():
     for field in ("slow_side_step_s", "slow_side_span_s"):
         with pytest.raises(InputError, match=field):
             ManeuverParams(**{field: -1.0}).checked()
+
+
+def test_fast_enough_with_the_bound_equals_the_plain_rule():
+    # _fast_enough's square-root fast path and exact fallback against the rule written out:
+    # the slower window at slow_side x speed where measured, else both at speed
+    from wakeline.core.maneuver import _fast_enough, _slow_side_measured, _window_speeds_ms
+
+    rng = np.random.default_rng(3)
+    n = 3000
+    t = np.cumsum(np.where(rng.random(n) < 0.05, rng.uniform(100, 400, n), 2.0))
+    v = rng.choice([0.1, 0.3, 0.5, 1.0, 2.0], n)  # m/s, in runs
+    v = np.repeat(v[::30], 30)[:n]
+    dt = np.diff(t, prepend=t[0])
+    x, y = np.cumsum(v * dt), rng.normal(0, 0.05, n)
+    index = TrackIndex(np.array([0]), np.array([n]), np.zeros(n, dtype="int64"), None)
+    rows = np.arange(20, n - 20)
+    p_row = rng.integers(3, 8, len(rows))
+    speed = 1.0 * geo.KN_MS
+    for step_s in (0.0, 180.0, 300.0):
+        got = _fast_enough(x, y, t, index, p_row, rows, speed, 0.5, step_s, 0.0)
+        lo, hi = _window_speeds_ms(x, y, t, index, p_row, rows)
+        a, b = rows - p_row + 1, rows + p_row - 1
+        vb = np.hypot(x[rows] - x[a], y[rows] - y[a]) / (t[rows] - t[a])
+        vf = np.hypot(x[b] - x[rows], y[b] - y[rows]) / (t[b] - t[rows])
+        measured = _slow_side_measured(t, rows, a, b, vb <= vf, step_s, 0.0)
+        with np.errstate(invalid="ignore"):
+            want = (lo >= np.where(measured, 0.5 * speed, speed)) & (hi >= speed)
+        assert (got == want).all()
+        assert want.sum() > 100 and (~want).sum() > 100

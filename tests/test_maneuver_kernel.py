@@ -76,8 +76,9 @@ PARAMS = [
 
 
 def _same(df, params):
-    # the reference predates max_step_windows (no heading across a long step): that rule off
-    params = params.replace(max_step_windows=0.0, window_max_s=0.0)
+    # the reference predates max_step_windows (no heading across a long step) and
+    # slow_side_step_s (slow_side's bound, tested in test_maneuver.py): those rules off
+    params = params.replace(max_step_windows=0.0, window_max_s=0.0, slow_side_step_s=0.0)
     ours = detect(df, params)
     fields = dict(params.__dict__)
     fields.pop("max_step_windows")
