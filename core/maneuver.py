@@ -961,13 +961,17 @@ def _fast_enough(
         v_back /= dt_back
         v_fwd = np.sqrt(fwd, out=fwd)
         v_fwd /= dt_fwd
-        if bounded:  # the slower window (by these speeds) unmeasured: all of speed_ms
-            low = np.where(
-                _slow_side_measured(t, rows, a, b, v_back <= v_fwd, side_step_s, side_span_s),
-                low,
-                speed_ms,
-            )
         v_lo, v_hi = np.fmin(v_back, v_fwd), np.fmax(v_back, v_fwd)
+        if bounded:  # the slower window (by these speeds) unmeasured: all of speed_ms
+            low = np.full(len(rows), low)
+            # it matters only where the slower speed is not beyond both bounds (few rows)
+            k = np.flatnonzero(
+                ~(v_lo >= speed_ms * (1 + HYPOT_MARGIN)) & ~(v_lo < low * (1 - HYPOT_MARGIN))
+            )
+            measured = _slow_side_measured(
+                t, rows[k], a[k], b[k], v_back[k] <= v_fwd[k], side_step_s, side_span_s
+            )
+            low[k[~measured]] = speed_ms
         no = (v_lo < low * (1 - HYPOT_MARGIN)) | (v_hi < speed_ms * (1 - HYPOT_MARGIN))
         yes = (v_lo >= low * (1 + HYPOT_MARGIN)) & (v_hi >= speed_ms * (1 + HYPOT_MARGIN))
     ok = yes & sure & inside
@@ -1006,14 +1010,14 @@ def _slow_side_measured(
         if span_s > 0:
             ok &= t[hi] - t[lo] <= span_s
         if step_s > 0 and len(rows):
-            # the longest step of each window: steps lo … hi − 1, step[i] = t[i + 1] − t[i]
-            # (one more, 0, at the end so that every bound hi ≤ n − 1 is a valid index)
-            step = np.append(np.diff(t), 0.0)
-            bounds = np.empty(2 * len(rows), dtype="int64")
-            bounds[0::2], bounds[1::2] = lo, np.maximum(hi, lo + 1)
-            # reduceat reduces step[bounds[i]:bounds[i + 1]] (step[bounds[i]] alone where
-            # the next bound is not larger): the even positions are the windows
-            longest = np.maximum.reduceat(step, bounds)[0::2]
+            # the longest step of each window, steps lo … hi − 1: a loop over the offsets
+            # (the window's points), never over windows
+            width = hi - lo
+            longest = np.zeros(len(rows))
+            for k in range(int(width.max(initial=0))):
+                j = np.flatnonzero(width > k)
+                i = lo[j] + k
+                longest[j] = np.fmax(longest[j], t[i + 1] - t[i])
             ok &= longest <= step_s
     return ok
 
