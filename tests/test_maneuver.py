@@ -696,6 +696,8 @@ def test_radius_s_edge_s_validation(field):
     for bad in (-1.0, 1e8, float("nan")):
         with pytest.raises(InputError, match=field):
             ManeuverParams(**{field: bad}).checked()
+
+
 def _slow_then_away(seed: int, period_s: float = 1800.0, noise_m: float = 70.0) -> pd.DataFrame:
     """A ship reported every ``period_s`` (ATD's ~30 min, ~70 m of noise): 0.7 kn north for 8
     fixes (over 30-min steps a chord that may hide a stop and a run), then 90 deg to the
