@@ -14,6 +14,7 @@ import pyqtgraph as pg
 from PySide6 import QtCore, QtGui
 
 from wakeline.app import ink
+from wakeline.app import review_text as T
 from wakeline.core.review import ReviewState
 
 MEMBER = "#1f77b4"
@@ -339,10 +340,13 @@ class NetworkView(pg.PlotWidget):
         self._name_px: tuple[float, float] | None = None  # widest name, line height (px)
         self.getPlotItem().getViewBox().sigResized.connect(self._resized)
         self.scene().sigMouseClicked.connect(self._clicked)
+        self.scene().sigMouseMoved.connect(self._hover)
+        self._plan: list = []
 
     @staticmethod
     def _cost_item() -> pg.TextItem:
         item = pg.TextItem("", anchor=(0.5, 0.5), fill=pg.mkBrush(255, 255, 255, 225))
+        item.textItem.document().setDocumentMargin(1)  # a tight box: room in a small circle
         item.setZValue(5)
         return item
 
@@ -367,6 +371,7 @@ class NetworkView(pg.PlotWidget):
                 pool.done()
             self._dots.setVisible(False)
             self._items = []
+            self._plan = []
             return
         # Circle, members first (so they sit together), in time order.
         ang = 2 * np.pi * np.arange(len(nodes)) / len(nodes) + np.pi / 2
@@ -385,21 +390,31 @@ class NetworkView(pg.PlotWidget):
             line = self._lines.take()
             line.setData([xa, xb], [ya, yb], pen=pg.mkPen(color, width=width, style=style))
             if r.kind not in ("manual", "runner-up") and r.cost == r.cost:
-                labels.append((r.proposal == proposal, (xa + xb) / 2, (ya + yb) / 2, r, color))
+                labels.append((r.proposal == proposal, r, color, (xa, ya, xb, yb)))
         xy = np.array([self.pos[n] for n in nodes])
         in_target = set(members)
         brushes = [self._node_brush[MEMBER if n in in_target else "#ffffff"] for n in nodes]
         self._dots.setData(xy[:, 0], xy[:, 1], brush=brushes)
         self._dots.setVisible(True)
-        self._cost_labels(labels)
-        # Track labels outside the circle, each pointing away from it (below the node
-        # they sat on the edges' lines and on each other).
+        # Labels: planned here, placed by _frame -> _place_labels once the view's size in
+        # pixels is known (names and costs are pixels: on a narrow dock the chords' middles
+        # and the names crowd a circle some tens of pixels wide).
+        k = self.state._row.get(proposal)
+        pair = {self.state.track_a[k], self.state.track_b[k]} if k is not None else set()
+        plan: list = []
         for n, a in zip(nodes, ang, strict=True):
             c, s = float(np.cos(a)), float(np.sin(a))
             t = self._names.take()
             t.setText(n)
-            t.setAnchor((0.5 - 0.5 * c, 0.5 + 0.5 * s))
-            t.setPos(NAME_AT * c, NAME_AT * s)
+            anchor = (0.5 - 0.5 * c, 0.5 + 0.5 * s)
+            t.setAnchor(anchor)
+            rank = 1 if n in pair else (2 if n in in_target else 3)
+            plan.append((rank, t, [(NAME_AT * c, NAME_AT * s)], anchor))
+        for current, r, color, (xa, ya, xb, yb) in labels:
+            lab = self._costs.take()
+            lab.setText(f"{r.cost:.3g}", color)
+            plan.append((0 if current else 4, lab, (xa, ya, xb, yb), (0.5, 0.5)))
+        self._plan = sorted(plan, key=lambda item: item[0])  # stable: time order within
         self._items = [
             *self._lines.done(),
             self._dots,
@@ -429,23 +444,81 @@ class NetworkView(pg.PlotWidget):
         # One call: the locked aspect then widens whichever axis needs it (two calls
         # narrowed the first to fit the second).
         self.setRange(xRange=(-x_half, x_half), yRange=(-y_half, y_half), padding=0)
+        if w_px > 0 and h_px > 0:
+            # The locked aspect widens one axis: pixels per unit are the smaller ratio.
+            self._place_labels(min(w_px / (2 * x_half), h_px / (2 * y_half)))
 
     def _resized(self, *_args) -> None:
         if self._name_px is not None:  # a proposal shown: keep its names in view
             self._frame()
 
-    def _cost_labels(self, labels: list) -> None:
-        """Each proposal edge's cost on a white box at its middle; the current proposal's
-        first, then the others only where they keep clear of labels already placed (on a
-        dense neighbourhood the chords' middles crowd the centre). Tens of labels."""
-        placed: list[tuple[float, float]] = []
-        for current, x, y, r, color in sorted(labels, key=lambda item: not item[0]):
-            if not current and any(abs(x - px) < 0.3 and abs(y - py) < 0.12 for px, py in placed):
-                continue
-            lab = self._costs.take()
-            lab.setText(f"{r.cost:.3g}", color)
-            lab.setPos(x, y)
-            placed.append((x, y))
+    def _place_labels(self, px: float) -> None:
+        """Show the planned names and costs where their boxes (pixels) do not overlap,
+        most important first: the current proposal's cost, its two track names, the other
+        members' names, the nearby tracks' names, the other costs. A cost tries its edge's
+        middle, then beside it along the edge's normal, then a third of the way from either
+        end; a name its node's side, then further out or slid along the circle; a label
+        with no free place in the view is hidden (every cost is in the queue table and in
+        the edge's tooltip; the proposal's own names and cost are shown even so).
+        ``px``: pixels per view unit. Tens of labels, tens of boxes each."""
+        taken: list[QtCore.QRectF] = []
+        vb = self.getPlotItem().getViewBox()
+        w_px, h_px = float(vb.width()), float(vb.height())
+        view = QtCore.QRectF(-w_px / 2, -h_px / 2, w_px, h_px).adjusted(-1, -1, 1, 1)
+        for rank, item, where, anchor in self._plan:
+            br = item.textItem.boundingRect()
+            w, h = float(br.width()), float(br.height())
+            if len(where) == 4:  # an edge: candidate places along and beside it
+                xa, ya, xb, yb = where
+                ex, ey = (xb - xa) * px, (yb - ya) * px
+                norm = float(np.hypot(ex, ey)) or 1.0
+                nx, ny = -ey / norm, ex / norm  # unit normal (pixels)
+                step = 0.5 * abs(nx) * w + 0.5 * abs(ny) * h + 1.0  # half a box off the line
+                spots = []
+                for u in (0.5, 0.35, 0.65):
+                    for off in (0.0, step, -step, 1.5 * step, -1.5 * step):
+                        spots.append(
+                            (
+                                (xa + u * (xb - xa)) * px + off * nx,
+                                -(ya + u * (yb - ya)) * px + off * ny,
+                            )
+                        )
+            else:  # a name: beside its node, else further out or slid along the circle
+                ((x, y),) = where
+                r = float(np.hypot(x, y)) or 1.0
+                ux, uy = x / r, -y / r  # outwards (pixels, y down)
+                spots = [
+                    (x * px + out * ux - slide * uy, -y * px + out * uy + slide * ux)
+                    for out in (0.0, 0.5 * h, h)
+                    for slide in (0.0, 0.6 * h, -0.6 * h)
+                ]
+            chosen = None
+            for cx, cy in spots:
+                rect = QtCore.QRectF(cx - anchor[0] * w, cy - anchor[1] * h, w, h)
+                if view.contains(rect) and not any(rect.intersects(o) for o in taken):
+                    chosen = (cx, cy, rect)
+                    break
+            if chosen is None and rank <= 1:  # the proposal's own names and cost: always
+                cx, cy = spots[0]
+                chosen = (cx, cy, QtCore.QRectF(cx - anchor[0] * w, cy - anchor[1] * h, w, h))
+            item.setVisible(chosen is not None)
+            if chosen is not None:
+                item.setPos(chosen[0] / px, -chosen[1] / px)
+                taken.append(chosen[2])
+
+    def _hover(self, scene_pos) -> None:
+        """An edge's proposal, tracks and cost as the tooltip (a cost hidden when crowded)."""
+        vb = self.getPlotItem().getViewBox()
+        p = vb.mapSceneToView(scene_pos)
+        pid = self.edge_at(float(p.x()), float(p.y()))
+        tip = ""
+        if pid:
+            r = self.edges[(self.edges["proposal"] == pid) & (self.edges["kind"] != "runner-up")]
+            if len(r):
+                r = r.iloc[0]
+                tip = f"{pid}: {r['a']} → {r['b']}, {T.tr('cost')} {T.cost_text(r['cost'])}"
+        if tip != self.toolTip():
+            self.setToolTip(tip)
 
     def edge_at(self, x: float, y: float, tol: float = 0.08) -> str:
         """The proposal of the nearest proposal edge within ``tol`` (view units) of (x, y);

@@ -593,3 +593,54 @@ def test_a_queue_sorted_by_status_moves_a_row_when_its_status_changes(qtbot, con
     assert shown()[0] == last
     controller.stack.undo()
     assert shown()[-1] == last
+
+
+def _overlaps(items) -> list:
+    rects = [(t.toPlainText(), t.sceneBoundingRect()) for t in items]
+    return [
+        (a, b) for k, (a, ra) in enumerate(rects) for b, rb in rects[k + 1 :] if ra.intersects(rb)
+    ]
+
+
+@pytest.mark.parametrize("size", [(175, 250), (300, 260), (500, 400)])
+def test_network_labels_do_not_overlap(qtbot, controller, size):
+    """Operator test 4 (D-review-1): on Saronic split at gaps, proposal A0009 in the
+    Review dock's network view (about 175 × 250 px beside the Gantt chart) drew its edge
+    costs and track names on top of each other ("S1:200", "1.16", "0.167 0.00662"). The
+    labels are laid out in pixels now: a cost moves beside its edge or is left out (the
+    queue has it, and the edge's tooltip); no two shown labels' boxes meet. The proposal
+    with the most tracks around it; its own cost always shown."""
+    st = controller.state
+    net = NetworkView(st)
+    qtbot.addWidget(net)
+    net.resize(*size)
+    net.show()
+    qtbot.waitExposed(net)
+    pid = max(st.proposals["proposal"], key=lambda p: len(net._nodes(p, 2)[1]))
+    assert len(net._nodes(pid, 2)[1]) >= 5
+    net.show_proposal(pid)
+    QtWidgets.QApplication.processEvents()
+    names = [t for t in net._names.items if t.isVisible() and t.toPlainText()]
+    costs = [t for t in net._costs.items if t.isVisible() and t.toPlainText()]
+    assert costs and names
+    k = st._row[pid]
+    own = f"{float(st.proposals['cost'].iloc[k]):.3g}"
+    assert own in [t.toPlainText() for t in costs]
+    assert {st.track_a[k], st.track_b[k]} <= {t.toPlainText() for t in names}
+    assert _overlaps(names + costs) == []
+    # Each cost stays by its edge: its box's centre within a box's size of the line.
+    vb = net.getPlotItem().getViewBox()
+    for _rank, item, where, _anchor in net._plan:
+        if len(where) == 4 and item.isVisible():
+            a = vb.mapViewToScene(QtCore.QPointF(where[0], where[1]))
+            b = vb.mapViewToScene(QtCore.QPointF(where[2], where[3]))
+            c = item.sceneBoundingRect().center()
+            d = np.array([b.x() - a.x(), b.y() - a.y()])
+            u = np.clip(np.dot([c.x() - a.x(), c.y() - a.y()], d) / max(d @ d, 1e-9), 0, 1)
+            miss = np.hypot(a.x() + u * d[0] - c.x(), a.y() + u * d[1] - c.y())
+            box = item.sceneBoundingRect()
+            assert miss <= box.width() + box.height(), (item.toPlainText(), miss)
+    # Hovering the proposal's edge names it and its cost.
+    x, y = net.edge_midpoint(pid)
+    net._hover(net.getPlotItem().getViewBox().mapViewToScene(QtCore.QPointF(x, y)))
+    assert pid in net.toolTip() and own in net.toolTip()
