@@ -516,7 +516,7 @@ class NetworkView(pg.PlotWidget):
             r = self.edges[(self.edges["proposal"] == pid) & (self.edges["kind"] != "runner-up")]
             if len(r):
                 r = r.iloc[0]
-                tip = f"{pid}: {r['a']} → {r['b']}, {T.tr('cost')} {T.cost_text(r['cost'])}"
+                tip = f"{pid}: {r['a']} → {r['b']}, {T.column_titles()['cost']} {T.cost_text(r['cost'])}"
         if tip != self.toolTip():
             self.setToolTip(tip)
 
