@@ -650,6 +650,7 @@ def candidate_pairs(
     ends: np.ndarray | None = None,
     starts: np.ndarray | None = None,
     min_gap_s: float = 0.0,
+    apart: list | None = None,
 ) -> Pairs:
     """Pairs of one sensor with ``min_gap_s < start(j) − end(i) ≤ max_gap_s`` (``min_gap_s``
     0 by default; the gap as the time limits count it, :func:`counted_gap`: less the
@@ -664,6 +665,9 @@ def candidate_pairs(
     work linear in the pairs it looks at); a k-d tree over (position, scaled time)
     stands in when the grid's cell keys would not fit in 64 bits (tracks spread over
     the globe with a short reach).
+
+    ``apart``: a list to which the number of pairs ``mmsi_apart`` refused is appended
+    (pairs otherwise candidates, reachable, whose batch ids are different MMSIs).
     """
     n = len(seg)
     if n < 2:
@@ -697,13 +701,16 @@ def candidate_pairs(
         with np.errstate(invalid="ignore"):
             keep &= ~(gap < params.min_gap_steps * np.fmin(seg.step1[i], seg.step0[j]))
     i, j, gap = i[keep], j[keep], gap[keep]
-    if params.mmsi_apart and len(i):
-        ident = _track_identities(seg)
-        keep = ~((ident[i] >= 0) & (ident[j] >= 0) & (ident[i] != ident[j]))
-        i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     v = np.maximum(params.v_max_kn, np.maximum(fast_end[i], fast_start[j])) * geo.KN_MS
     keep = dist <= v * gap + params.position_tol_m
+    if params.mmsi_apart and len(i):
+        # after the reach test, so that what it refused is counted as pairs it kept apart
+        ident = _track_identities(seg)
+        two_ships = (ident[i] >= 0) & (ident[j] >= 0) & (ident[i] != ident[j])
+        if apart is not None:
+            apart.append(int((keep & two_ships).sum()))
+        keep &= ~two_ships
     i, j, dist = i[keep], j[keep], dist[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
     return pair_features(
@@ -790,7 +797,7 @@ def _in_first(gap_s: np.ndarray, fitted: np.ndarray | None, params: LinkParams) 
 
 
 def first_pass_pairs(
-    seg: Segments, params: LinkParams, normalize: str = "scaled"
+    seg: Segments, params: LinkParams, normalize: str = "scaled", apart: list | None = None
 ) -> "tuple[Pairs, _Priced, np.ndarray]":
     """The first pass's candidates, their pricing and costs: :func:`candidate_pairs`
     within ``max_gap_s`` and, with the soft T_gap (``soft_gap_s``), the pairs up to it
@@ -799,9 +806,10 @@ def first_pass_pairs(
     piece with a cheaper one has nothing to gain from a longer look (a join beyond
     ``max_gap_s`` must be its cheapest by ``long_margin``, :func:`soft_gap_test`), and
     leaving it out keeps the search near the size of the hard wall's. Ordered by (i, j);
-    min-max (seed 003 as written) keeps its hard T_gap."""
+    min-max (seed 003 as written) keeps its hard T_gap. ``apart``: as
+    :func:`candidate_pairs`' (both searches: the pairs they kept apart, none twice)."""
     n = len(seg)
-    pairs = candidate_pairs(seg, params)
+    pairs = candidate_pairs(seg, params, apart=apart)
     priced = _pricing(pairs, params, normalize, seg)
     cost = priced.total(pairs, params, n)
     soft = _soft_gap(params)
@@ -815,7 +823,12 @@ def first_pass_pairs(
     ends &= best_end >= params.long_margin
     starts &= best_start >= params.long_margin
     more = candidate_pairs(
-        seg, replace(params, max_gap_s=soft), ends=ends, starts=starts, min_gap_s=params.max_gap_s
+        seg,
+        replace(params, max_gap_s=soft),
+        ends=ends,
+        starts=starts,
+        min_gap_s=params.max_gap_s,
+        apart=apart,
     )
     more = more.take(_fitted(seg, more, params))
     extra = _pricing(more, params, normalize, seg)
@@ -1649,6 +1662,9 @@ class Association:
     base_cost: np.ndarray | None = None
     params: LinkParams | None = None
     normalize: str = "scaled"
+    #: Candidate pairs of the first pass (within ``max_gap_s``, and the soft T_gap's
+    #: look) that ``mmsi_apart`` kept apart (different MMSIs); the second look's not counted.
+    mmsi_apart_pairs: int = 0
 
     def without(self, blocked: np.ndarray) -> "Association":
         """The association run again with the pairs ``blocked`` refused (int64 keys
@@ -1710,6 +1726,7 @@ class Association:
             "rest_joins": int(self.rest_joins().sum()),
             "targets": n_targets,
             "single_fix_tracks": int((self.segments.n == 1).sum()),
+            "mmsi_apart_pairs": self.mmsi_apart_pairs,
         }
 
     def rest_joins(self) -> np.ndarray:
@@ -2212,7 +2229,8 @@ def associate_interrupted(
         end_span_s=params.end_span_s,
     )
     progress(0.3, "finding candidate pairs")
-    pairs0, priced, cost0 = first_pass_pairs(base, params, normalize)
+    apart: list = []
+    pairs0, priced, cost0 = first_pass_pairs(base, params, normalize, apart)
     progress(0.6, f"assigning {len(pairs0):,} candidate pairs")
     seg, pairs, cost, chosen = assign_interrupted(
         base, pairs0, cost0, params, method, normalize, priced=priced
@@ -2220,7 +2238,18 @@ def associate_interrupted(
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
     progress(1.0, f"{count_of(len(chosen), 'pair')} joined")
     return Association(
-        seg, pairs, cost, chosen, targets, method, base, pairs0, cost0, params, normalize
+        seg,
+        pairs,
+        cost,
+        chosen,
+        targets,
+        method,
+        base,
+        pairs0,
+        cost0,
+        params,
+        normalize,
+        sum(apart),
     )
 
 
@@ -2386,7 +2415,8 @@ def associate_segments(
     # Seed 001's features as the paper has them: ends over end_points fixes, not longer.
     seg = segment_stats(points, params.end_points)
     progress(0.2, "finding candidate pairs")
-    pairs = candidate_pairs(seg, params)
+    apart: list = []
+    pairs = candidate_pairs(seg, params, apart=apart)
     progress(0.4, f"scoring {len(pairs):,} candidate pairs")
     if method == "motion":
         dist = pair_cost(pairs, params, "scaled")
@@ -2414,7 +2444,7 @@ def associate_segments(
         1.0,
         f"{count_of(len(np.unique(targets)), 'target')} from {count_of(len(seg), 'segment')}",
     )
-    return Association(seg, pairs, dist, chosen, targets, method)
+    return Association(seg, pairs, dist, chosen, targets, method, mmsi_apart_pairs=sum(apart))
 
 
 # --------------------------------------------------------------------------------------

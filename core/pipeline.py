@@ -457,6 +457,15 @@ def _summary_associate(res: StepResult) -> Text:
             method=rep["method"],
         )
     ]
+    if rep.get("mmsi_apart_pairs"):
+        # Said, so that "0 joins of 0 candidate pairs" on AIS does not read as nothing found.
+        parts.append(
+            phrase(
+                "; {n:#pair} of different MMSIs kept apart (mmsi_apart; off with --set "
+                "mmsi_apart=false if the ids are a sensor's own numbers)",
+                n=rep["mmsi_apart_pairs"],
+            )
+        )
     parts.extend(_review_kept(res))
     if rep.get("long_gap_joins"):
         parts.append(

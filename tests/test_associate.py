@@ -92,8 +92,30 @@ def test_different_mmsis_are_never_joined(a, b, joined):
     df = pd.concat([straight(a, 0, 600, truth="A"), straight(b, 900, 1500, truth="A")])
     got = associate_interrupted(df)
     assert (len(set(got.target_of_track)) == 1) == joined
+    # Operator test 4 (D-assoc-1): the pair it kept apart is counted and said.
+    assert got.report()["mmsi_apart_pairs"] == (0 if joined else 1)
     off = associate_interrupted(df, LinkParams(mmsi_apart=False))
     assert len(set(off.target_of_track)) == 1
+    assert off.report()["mmsi_apart_pairs"] == 0
+
+
+def test_the_summary_says_how_many_pairs_mmsi_apart_kept_apart():
+    """Operator test 4 (D-assoc-1): on ATD (batch ids are MMSIs) associate said "3,324
+    tracks -> 3,324 targets (0 joins of 0 candidate pairs, optimal)" and nothing said
+    that mmsi_apart had kept every pair apart. The summary says it and how to turn it off;
+    with it off (or nothing kept apart) nothing is added."""
+    from wakeline.core.pipeline import STEPS, step_associate
+
+    df = pd.concat(
+        [straight("367128730", 0, 600, truth="A"), straight("366815430", 900, 1500, truth="A")]
+    )
+    res = step_associate(df, LinkParams())
+    assert res.report["mmsi_apart_pairs"] == 1 and res.report["candidate_pairs"] == 0
+    text = str(STEPS["associate"].summary(res))
+    assert "0 joins of 0 candidate pairs" in text
+    assert "1 pair of different MMSIs kept apart (mmsi_apart; off with --set " in text
+    off = step_associate(df, LinkParams(mmsi_apart=False))
+    assert "MMSI" not in str(STEPS["associate"].summary(off))
 
 
 def test_parallel_tracks_side_by_side_are_not_joined():

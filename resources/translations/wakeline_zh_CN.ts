@@ -1950,6 +1950,10 @@
         <translation>没有可沿用的决定</translation>
     </message>
     <message>
+        <source>; {n:#pair} of different MMSIs kept apart (mmsi_apart; off with --set mmsi_apart=false if the ids are a sensor&apos;s own numbers)</source>
+        <translation>；{n:,} 对 MMSI 不同的航迹未作候选（mmsi_apart；若批号是传感器自己的编号，用 --set mmsi_apart=false 关闭）</translation>
+    </message>
+    <message>
         <source>; {n:,} of the joins across gaps beyond T_gap (second look)</source>
         <translation>；其中 {n:,} 个连接跨越超过 T_gap 的间隙（二次查看）</translation>
     </message>
