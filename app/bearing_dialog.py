@@ -11,6 +11,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app.core_text import shown
 from wakeline.app.import_dialog import (
     ENCODINGS,
     NONE,
@@ -18,7 +19,6 @@ from wakeline.app.import_dialog import (
     mapping_group_of,
     origin_edit,
 )
-from wakeline.app.window_words import window_words
 from wakeline.core.bearing_read import BEARING_FIELDS, inspect_bearings
 from wakeline.core.errors import InputError
 
@@ -171,9 +171,9 @@ class BearingDialog(QtWidgets.QDialog):
             self.layout_label.setText(self.tr("columns by their names"))
         else:
             self.layout_label.setText("")
-        self.notes_label.setText("\n".join(window_words(n) for n in info.get("notes", [])))
+        self.notes_label.setText("\n".join(shown(n) for n in info.get("notes", [])))
         problem = info.get("problem")
-        self.warning_label.setText(window_words(problem) if problem else "")
+        self.warning_label.setText(shown(problem) if problem else "")
         ok = self.buttons.button(QtWidgets.QDialogButtonBox.StandardButton.Ok)
         ok.setEnabled(bool(info.get("columns")) and not problem)
 

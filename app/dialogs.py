@@ -6,6 +6,7 @@ import json
 import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
+from wakeline.app.core_text import shown
 from wakeline.app.models import FrameModel
 from wakeline.core.words import CONTEXT, render
 
@@ -69,7 +70,10 @@ class ImportReportDialog(QtWidgets.QDialog):
         text = QtWidgets.QPlainTextEdit(readOnly=True)
         text.setPlainText(json.dumps(rep, indent=2, ensure_ascii=False, default=str))
         self.table = QtWidgets.QTableView()
-        self.table.setModel(FrameModel(pd.DataFrame(layer.meta.get("quarantine", [])), self))
+        rows = pd.DataFrame(layer.meta.get("quarantine", []))
+        if "reason" in rows.columns:  # in the window's language (app/core_text.py)
+            rows["reason"] = rows["reason"].map(shown)
+        self.table.setModel(FrameModel(rows, self))
         self.table.horizontalHeader().setStretchLastSection(True)
         lay = QtWidgets.QVBoxLayout(self)
         lay.addWidget(text, 1)

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from PySide6 import QtCore
 
+from wakeline.app import core_text
 from wakeline.resources import translations_dir
 
 LANGUAGES = {"en": "English", "zh_CN": "简体中文"}
@@ -52,6 +53,7 @@ def install(app: QtCore.QCoreApplication, language: str, current: TsTranslator |
     """Swap the installed translator for ``language``; returns the new one (or None)."""
     if current is not None:
         app.removeTranslator(current)
+    core_text.set_language(language)  # the core's messages too (app/core_text.py)
     if language == "en":
         return None
     path = translations_dir() / f"wakeline_{language}.ts"

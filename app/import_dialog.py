@@ -10,7 +10,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
-from wakeline.app.window_words import window_words
+from wakeline.app.core_text import shown
 from wakeline.core.errors import InputError
 from wakeline.core.io import FAMILIES, inspect_file
 from wakeline.core.io.formats import MAP_FIELDS
@@ -336,7 +336,9 @@ class ImportDialog(QtWidgets.QDialog):
         self._fill_mapping()
         if info:
             delim = {"\t": "tab", " ": "space"}.get(info["delimiter"], info["delimiter"])
-            label = info["format_label"] or self.tr("no layout fits")
+            label = (
+                shown(info["format_label"]) if info["format_label"] else self.tr("no layout fits")
+            )
             text = f"{label}; {info['encoding']}; " + self.tr("delimiter") + f" {delim}"
             above = len(info.get("lines_above_header") or ())
             if above:
@@ -345,7 +347,7 @@ class ImportDialog(QtWidgets.QDialog):
         else:
             self.layout_label.setText("")
         # The engine's advice names command-line flags; here it names this dialog's fields.
-        self._problem = window_words(problem) if problem else problem
+        self._problem = shown(problem) if problem else problem
         self._missing = list(info.get("missing", [])) if info else []
         self._update_warning()
 
@@ -392,7 +394,7 @@ class ImportDialog(QtWidgets.QDialog):
             problem, missing = str(exc), []
         else:
             problem, missing = info["problem"], info.get("missing", [])
-        self._problem = window_words(problem) if problem else None
+        self._problem = shown(problem) if problem else None
         self._missing = [m for m in missing if m not in self.mapping()]
         if not self.mapping() and self._info.get("guessed"):
             # every box emptied: the import reads no guess (the values chose the boxes)

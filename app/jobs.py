@@ -12,11 +12,11 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
 
+from wakeline.app.core_text import shown
 from wakeline.app.dialogs import step_lines, summarize
 from wakeline.app.jobs_import import ImportJobsMixin
 from wakeline.app.jobs_project import ProjectJobsMixin
 from wakeline.app.layer_view import prepare_view_apart
-from wakeline.app.window_words import window_words
 from wakeline.app.worker import Cancelled, Failed, Finished, Progress, Started, new_job_number
 from wakeline.core.errors import InputError
 from wakeline.core.pipeline import STEPS, Pipeline, StepResult
@@ -425,11 +425,13 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         elif isinstance(msg, Failed):
             title = self.tr("{0} failed").format(self.job_title(msg.name))
             self.statusBar().showMessage(title, 8000)
-            self.log_message(f"{self.tr('Error')} ({self.job_title(msg.name)}): {msg.message}")
+            self.log_message(
+                f"{self.tr('Error')} ({self.job_title(msg.name)}): {shown(msg.message)}"
+            )
             if msg.detail:
                 self.log_message(msg.detail)
             if getattr(self, "interactive", True):
-                QtWidgets.QMessageBox.warning(self, title, window_words(msg.message))
+                QtWidgets.QMessageBox.warning(self, title, shown(msg.message))
             else:  # a screenshot run: nobody to close a dialog; say it and go on
                 print(f"wakeline: {title}: {msg.message}", file=sys.stderr)
         elif isinstance(msg, Cancelled):
@@ -467,9 +469,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             finally:
                 self._view_planned = False
             for text in done[2]:
-                self.log_message(f"{self.tr('Error')}: {text}")
+                self.log_message(f"{self.tr('Error')}: {shown(text)}")
             if done[2]:
-                text = window_words("\n".join(done[2]))
+                text = "\n".join(shown(t) for t in done[2])
                 QtWidgets.QMessageBox.warning(self, self.tr("Cannot open file"), text)
         elif kind == "step":
             _, lid, result, views, params = done
@@ -482,10 +484,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
 
             lines = summary_lines(view.extra.get("read") or {})  # every line, and where
             for line in lines:
-                self.log_message(f"{path.name}: {window_words(line)}")
+                self.log_message(f"{path.name}: {shown(line)}")
             if len(quarantine) and not lines:
                 reasons = "; ".join(
-                    f"{n:,} {why}" for why, n in quarantine["reason"].value_counts().items()
+                    f"{n:,} {shown(why)}" for why, n in quarantine["reason"].value_counts().items()
                 )
                 self.log_message(f"bearing: {len(quarantine):,} lines quarantined ({reasons})")
             self.log_message(f"bearing: {summarize(result.report)}")

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtWidgets
 
+from wakeline.app.core_text import shown
 from wakeline.app.dialogs import QUARANTINE_KEPT, translated
 from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.app.map_time import guarded
@@ -119,7 +120,9 @@ class ImportJobsMixin:
     def _apply_import(self, path: Path, result, sha: str, view, color: str, layout) -> None:
         rep = result.report
         # every line of the file accounted for, blank ones too, as `wakeline import` says it
-        self.log_message(f"{path.name}: {translated(import_counts(rep, rep['format_label']))}")
+        self.log_message(
+            f"{path.name}: {translated(import_counts(rep, shown(rep['format_label'])))}"
+        )
         q = result.quarantine
         for reason, n in rep["quarantine_reasons"].items():
             lines = (
@@ -128,17 +131,21 @@ class ImportJobsMixin:
                 else []
             )
             if len(lines) == 1:  # a few: where they are (the file's last line cut short?)
-                text = self.tr("quarantined {0:,}: {1} (line {2})").format(n, reason, lines[0])
+                text = self.tr("quarantined {0:,}: {1} (line {2})").format(
+                    n, shown(reason), lines[0]
+                )
             elif 1 < len(lines) <= 3:
                 where = ", ".join(str(k) for k in lines)
-                text = self.tr("quarantined {0:,}: {1} (lines {2})").format(n, reason, where)
+                text = self.tr("quarantined {0:,}: {1} (lines {2})").format(n, shown(reason), where)
             else:
-                text = self.tr("quarantined {0:,}: {1}").format(n, reason)
+                text = self.tr("quarantined {0:,}: {1}").format(n, shown(reason))
             self.log_message("    " + text)
         for reason, n in rep.get("values_blanked", {}).items():
-            self.log_message("    " + self.tr("blanked {0:,} (row kept): {1}").format(n, reason))
+            self.log_message(
+                "    " + self.tr("blanked {0:,} (row kept): {1}").format(n, shown(reason))
+            )
         for warning in rep.get("warnings", []):
-            self.log_message(f"    {self.tr('Warning')}: {warning}")
+            self.log_message(f"    {self.tr('Warning')}: {shown(warning)}")
         self.session.note_source(str(path.resolve()), sha)
         quarantine = result.quarantine.head(QUARANTINE_KEPT).astype(str).to_dict("records")
         meta = {"file": str(path), "report": rep, "quarantine": quarantine, "layout": layout}

@@ -24,6 +24,7 @@ from PySide6 import QtCore, QtWidgets
 from wakeline.app import i18n
 from wakeline.app.actions import build_actions, retranslate
 from wakeline.app.bearing_view import BearingView, bearing_stats
+from wakeline.app.core_text import shown
 from wakeline.app.detail import DetailPanel
 from wakeline.app.dialogs import ImportReportDialog
 from wakeline.app.import_dialog import ImportDialog
@@ -40,7 +41,6 @@ from wakeline.app.time_panel import install_time
 from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
-from wakeline.app.window_words import window_words
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
 from wakeline.core.session import BEARING_KIND, Session
@@ -403,7 +403,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         return rows
 
     def log_message(self, text: str) -> None:
-        self.log.appendPlainText(window_words(text))
+        self.log.appendPlainText(shown(text))
 
     def log_lines(self, head: str, lines: list[str]) -> None:
         """``head: line`` for one line; ``head:`` and the lines indented under it for more

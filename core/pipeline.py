@@ -191,6 +191,36 @@ def clean_counts(report: dict) -> dict[str, dict[str, int]]:
     return out
 
 
+def _rule_count(rule: str, n: int):
+    """A clean rule's name and count, "speed 23" (the rule's name as the command line and
+    the report say it; a phrase of its own, so the window shows the rule's name in its
+    language)."""
+    known = {
+        "duplicates": phrase("duplicates {n:,}", n=n),
+        "same_time": phrase("same_time {n:,}", n=n),
+        "stationary": phrase("stationary {n:,}", n=n),
+        "speed": phrase("speed {n:,}", n=n),
+        "turn": phrase("turn {n:,}", n=n),
+        "speed_outliers": phrase("speed_outliers {n:,}", n=n),
+        "isolated": phrase("isolated {n:,}", n=n),
+        "short_tracks": phrase("short_tracks {n:,}", n=n),
+        "bspline": phrase("bspline {n:,}", n=n),
+        "resample": phrase("resample {n:,}", n=n),
+        "smooth": phrase("smooth {n:,}", n=n),
+    }
+    return known.get(rule) or phrase("{rule} {n:,}", rule=rule, n=n)
+
+
+def joined_counts(parts: list) -> list:
+    """``parts`` with a ", " phrase between each two."""
+    out: list = []
+    for k, part in enumerate(parts):
+        if k:
+            out.append(phrase(", "))
+        out.append(part)
+    return out
+
+
 def _summary_clean(res: StepResult) -> Text:
     """Where the points went: kept, then removed, changed (kept, with new values) and
     replaced, each with its rules (the removed add up to what was not kept)."""
@@ -204,7 +234,7 @@ def _summary_clean(res: StepResult) -> Text:
         )
     ]
     for action, per in clean_counts(rep).items():
-        rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())  # the rules' names
+        rules = Text(joined_counts([_rule_count(rule, n) for rule, n in per.items()]))
         n = sum(per.values())
         if action == "removed":
             parts.append(phrase("; removed {n:,} ({rules})", n=n, rules=rules))

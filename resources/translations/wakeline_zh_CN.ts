@@ -2046,6 +2046,58 @@
         <translation>；</translation>
     </message>
     <message>
+        <source>, </source>
+        <translation>，</translation>
+    </message>
+    <message>
+        <source>duplicates {n:,}</source>
+        <translation>重复点 {n:,}</translation>
+    </message>
+    <message>
+        <source>same_time {n:,}</source>
+        <translation>同时异地 {n:,}</translation>
+    </message>
+    <message>
+        <source>stationary {n:,}</source>
+        <translation>静止点 {n:,}</translation>
+    </message>
+    <message>
+        <source>speed {n:,}</source>
+        <translation>速度跳变 {n:,}</translation>
+    </message>
+    <message>
+        <source>turn {n:,}</source>
+        <translation>转向异常 {n:,}</translation>
+    </message>
+    <message>
+        <source>speed_outliers {n:,}</source>
+        <translation>速度离群点 {n:,}</translation>
+    </message>
+    <message>
+        <source>isolated {n:,}</source>
+        <translation>孤立点 {n:,}</translation>
+    </message>
+    <message>
+        <source>short_tracks {n:,}</source>
+        <translation>短航迹 {n:,}</translation>
+    </message>
+    <message>
+        <source>bspline {n:,}</source>
+        <translation>B 样条 {n:,}</translation>
+    </message>
+    <message>
+        <source>resample {n:,}</source>
+        <translation>重采样 {n:,}</translation>
+    </message>
+    <message>
+        <source>smooth {n:,}</source>
+        <translation>平滑 {n:,}</translation>
+    </message>
+    <message>
+        <source>{rule} {n:,}</source>
+        <translation>{rule} {n:,}</translation>
+    </message>
+    <message>
         <source>; it was farther apart on average than the gate</source>
         <translation>；它的平均距离超出门限</translation>
     </message>

@@ -1,0 +1,302 @@
+"""The core's messages in the window's language (operator test 4, D-i18n-1): the errors,
+quarantine reasons, import warnings and layout names a Chinese operator must act on are
+shown in Chinese (app/core_text.py over resources/translations/core_zh_CN.json)."""
+
+import bz2
+import json
+import lzma
+import re
+import zipfile
+
+import pytest
+
+from conftest import SHARED_REAL
+from wakeline.app.core_text import catalog, translate
+from wakeline.app.window_words import window_words
+from wakeline.core.errors import InputError
+from wakeline.core.io import read_points
+from wakeline.core.io.formats import FORMATS
+from wakeline.core.io.reader import nothing_imported
+from wakeline.resources import translations_dir
+
+GOOD = "S1,1,2024-01-01T00:00:{s:02d}Z,122.5,30.{s:02d}"
+BAD_ROWS = [
+    "S1,1,2024-01-01T00:01:00Z,122.5",
+    "S1,1,2024-01-01T00:01:00Z,122.5,30,9",
+    "S1,1,not a time,122.5,30",
+    "S1,1,,122.5,30",
+    "S1,1,2024-01-01T00:01:00Z,east,30",
+    "S1,1,2024-01-01T00:01:00Z,122.5,",
+    "S1,1,2024-01-01T00:01:00Z,190.5,30",
+    "S1,1,2024-01-01T00:01:00Z,122.5,-91",
+    "S1,,2024-01-01T00:01:00Z,122.5,30",
+    "S1,1,2024-01-01T00:01:00Z,east,",
+    "S1,1,2024-01-01T00:01:00Z,,30",
+]
+
+#: Python's own words inside a message (a decompressor's), kept as they are.
+_PYTHONS = re.compile(r"（(?:gzip|bz2|xz|zstd|File is not a zip file)[^）]*）")
+
+
+def _bad_inputs(tmp_path) -> list[tuple]:
+    """(file, read_points options) of the operator's common mistakes."""
+
+    def w(name, data):
+        p = tmp_path / name
+        p.write_bytes(data if isinstance(data, bytes) else data.encode("utf-8"))
+        return p
+
+    mixed = "sensor,batch,time,lon,lat\n" + "".join(
+        f"{GOOD.format(s=k)}\n{row}\n" for k, row in enumerate(BAD_ROWS)
+    )
+    several = tmp_path / "two.zip"
+    with zipfile.ZipFile(several, "w") as z:
+        for name in ("a.csv", "b.csv"):
+            z.writestr(name, "mmsi,time,lat,lon\n1,2024-01-01T00:00:00Z,1,2\n")
+    xlsx = tmp_path / "ship.xlsx"
+    with zipfile.ZipFile(xlsx, "w") as z:
+        z.writestr("[Content_Types].xml", "<Types/>")
+        z.writestr("xl/workbook.xml", "<workbook/>")
+        z.writestr("xl/worksheets/sheet1.xml", "<worksheet/>")
+    restart = "mmsi,time,lat,lon\n" + "".join(
+        f"265041000,2024-01-01T{h:02d}:{m:02d}:00Z,55.{m:02d},12.{m:02d}\n"
+        for h in (3, 1, 2)
+        for m in range(0, 40, 5)
+    )
+    relative = "mmsi,time,lat,lon\n" + "".join(
+        f"1,{t},55.{t:03d},12.{t:03d}\n" for t in range(10, 200, 10)
+    )
+    comma = "mmsi;time;lat;lon\n" + "".join(
+        f"1;2024-01-01T00:{m:02d}:00Z;55,{m:02d}1;12,{m:02d}1\n" for m in range(20)
+    )
+    day_first = "mmsi,time,lat,lon\n" + "".join(
+        f"1,0{d}/0{d + 1}/2024 10:00:00,55.{d},12.{d}\n" for d in range(1, 8)
+    )
+    return [
+        (w("empty.csv", b""), {}),
+        (w("blank.csv", b"\n\n  \n"), {}),
+        (w("png.csv", b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(256)) * 4), {}),
+        (w("zipcut.csv", b"PK\x03\x04" + bytes(200)), {}),
+        (w("bz.csv", bz2.compress(b"batch,time,lon,lat\n" * 50)[:-20]), {}),
+        (w("xz.csv", lzma.compress(b"batch,time,lon,lat\n" * 50)[:-20]), {}),
+        (w("gz.csv", b"\x1f\x8b\x08\x00garbage-not-gzip" * 10), {}),
+        (w("7z.csv", b"7z\xbc\xaf\x27\x1c" + bytes(200)), {}),
+        (several, {}),
+        (xlsx, {}),
+        (w("nocol.csv", "name,when,x\na,1,2\n"), {}),
+        (w("notime.csv", "MMSI,Date/Time,Lat,Lon\n1,3/1/2023 12:01:46 AM,55,12\n"), {}),
+        (
+            w("headerless.csv", "5,23.48402,37.35515,1722468684\n5,23.48502,37.35615,1722468694\n"),
+            {},
+        ),
+        (w("header_only.csv", "mmsi,time,lat,lon\n"), {}),
+        (
+            w(
+                "latin.csv",
+                b"sensor,batch,time,lon,lat\n" + b"S1,\xe9t\xe9,2024-01-01T00:00:00Z,1,2\n" * 3,
+            ),
+            {"encoding": "ascii"},
+        ),
+        (w("mixed.csv", mixed), {}),
+        (w("mapped.csv", mixed), {"mapping": {"batch": "MMSI"}}),
+        (w("unknown.csv", mixed), {"mapping": {"vessel": "MMSI"}}),
+        (tmp_path / "nothere.csv", {}),
+        (w("plane.csv", "track_id,time,east,north\n1,2024-01-01T00:00:00Z,10,20\n"), {}),
+        (w("restart.csv", restart), {}),
+        (w("relative.csv", relative), {}),
+        (w("comma.csv", comma), {}),
+        (w("day_first.csv", day_first), {}),
+        (
+            w(
+                "truncated.csv",
+                "mmsi,time,lat,lon,sog\n"
+                + "".join(
+                    f"1,2024-01-01T00:{m:02d}:00Z,55.{m:02d},12.{m:02d},3\n" for m in range(20)
+                )
+                + "1,2024-01-01T00:21:00Z,55",
+            ),
+            {},
+        ),
+    ]
+
+
+def core_messages(tmp_path) -> list[tuple[str, str]]:
+    """(kind, message) of every error, quarantine reason, warning and layout name the bad
+    inputs give, as the core says them."""
+    out: dict[tuple[str, str], None] = {}
+    for path, options in _bad_inputs(tmp_path):
+        try:
+            result = read_points(path, **options)
+        except InputError as exc:
+            out[("error", str(exc))] = None
+            continue
+        rep = result.report
+        if not rep.get("rows_imported"):
+            out[("error", nothing_imported(rep, path.name))] = None
+        for text in rep.get("warnings", []):
+            out[("warning", text)] = None
+        for text in rep.get("quarantine_reasons", {}):
+            out[("reason", text)] = None
+        out[("layout", rep["format_label"])] = None
+    return list(out)
+
+
+def english_left(text: str) -> list[str]:
+    """Runs of three English words or more left in a translated text (a file's path, a
+    column's quoted name, a command in backticks, a name such as "Excel en-US" and Python's
+    own words not counted)."""
+    text = _PYTHONS.sub("", text)
+    text = re.sub(r"`[^`]*`|'[^']*'|\S*/\S*|\S+\.(?:csv|zip|xlsx|gz|bz2|xz)\b", " ", text)
+    runs = re.findall(r"[A-Za-z]{2,}(?:[ -]+[A-Za-z]{2,}){2,}", text)
+    return [r for r in runs if re.search(r"\b[a-z]{3,}\b", r)]  # not a name: Excel en-US
+
+
+def test_every_core_message_of_the_bad_inputs_is_in_chinese(tmp_path):
+    messages = core_messages(tmp_path)
+    kinds = {k for k, _ in messages}
+    assert kinds == {"error", "warning", "reason", "layout"}
+    assert len(messages) >= 35
+    left = {}
+    for kind, text in messages:
+        zh = translate(window_words(text), "zh_CN")
+        assert zh != text, (kind, text)
+        if english_left(zh):
+            left[text] = (zh, english_left(zh))
+    assert not left, json.dumps(left, ensure_ascii=False, indent=1)
+
+
+@pytest.mark.skipif(not SHARED_REAL.exists(), reason="real data not present")
+def test_the_real_sets_messages_are_in_chinese():
+    """The messages of h168's operator test on the real sets (headerless Saronic, MTAD's
+    relative times, Autoferry's plane metres)."""
+    files = [
+        SHARED_REAL / "greece-ais-annotated/vessels.csv",
+        SHARED_REAL / "mtad-dtwcm/two_sensor/scene-7_error_0_AIS.csv",
+        SHARED_REAL / "autoferry-fusion/detections.csv.gz",
+    ]
+    seen = 0
+    for path in (p for p in files if p.exists()):
+        try:
+            rep = read_points(path).report
+            texts = [*rep["warnings"], *rep["quarantine_reasons"], rep["format_label"]]
+        except InputError as exc:
+            texts = [str(exc)]
+        for text in texts:
+            zh = translate(window_words(text), "zh_CN")
+            assert not english_left(zh), (text, zh)
+            seen += 1
+    assert seen >= 3
+
+
+def test_a_pattern_keeps_the_numbers_names_and_paths():
+    text = (
+        "12,345 track(s) start their time again within the file (batch 265041000: 4 runs, "
+        "each going forward, the next starting at least 10 min earlier): several passes or "
+        "ships may share one id in 'MMSI 号'; they are joined into one track sorted by time. "
+        "If a column tells them apart, map it: --map batch=COLUMN, or --map sensor=COLUMN"
+    )
+    zh = translate(window_words(text), "zh_CN")
+    for kept in ("12,345", "265041000", "4 段", "10 分钟", "'MMSI 号'"):
+        assert kept in zh, zh
+    path = "/data/船舶 2024/ais_10.csv"
+    zh = translate(f"{path}: short row: 5 of 12 fields", "zh_CN")
+    assert zh == f"{path}: short row: 5 of 12 fields"  # a reason is translated alone ...
+    assert translate("short row: 5 of 12 fields", "zh_CN") == "行过短：5 个字段（应为 12 个）"
+    zh = translate(f"{path}: the file is empty", "zh_CN")  # ... an error with its file
+    assert zh == f"{path}: 文件是空的"
+    text = window_words(
+        f"{path}: cannot decode the text as utf-8 or gb18030; choose the file's encoding "
+        "(--encoding, e.g. gb18030, utf-16, latin-1)"
+    )
+    zh = translate(text, "zh_CN")
+    assert zh.startswith(f"{path}: 无法按 utf-8 or gb18030 解码") and "gb18030、utf-16" in zh
+    # a quoted reason inside a sentence is itself translated
+    zh = translate(
+        "cut.csv: nothing imported: all 1,234 rows were quarantined, 1,200 as 'unparsable time'",
+        "zh_CN",
+    )
+    assert (
+        zh == "cut.csv: 未导入任何内容：全部 1,234 行均被隔离，其中 1,200 行原因为“无法解析的时间”"
+    )
+
+
+def test_a_text_without_an_entry_stays_english_and_whole():
+    text = "a message no catalog entry knows (42 rows, 'x.csv')"
+    assert translate(text, "zh_CN") == text
+    assert translate("the file is empty", "en") == "the file is empty"  # no core_en.json
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        # h171's new texts (operator test 4), as its branch wrote them on 2026-12-05
+        "line 665, the file's last line, has 5 of 12 fields: the file may be cut short (still "
+        "being written or copied when it was read); open it again once it is complete",
+        "66,092 of 66,763 rows carry a bearing ('bearing_rad') and no position: a bearing-only "
+        "sensor's (a camera's), quarantined here; read them with `wakeline bearing` (in the "
+        "window: File > Open bearings); empty scans (nothing detected): 671",
+        "a bearing ('bearing_rad') and no position: a bearing-only sensor's row; read these rows "
+        "with `wakeline bearing` (in the window: File > Open bearings)",
+        "an empty scan (no position, no bearing: nothing detected)",
+        "3,320 values were written with a decimal comma and read as decimal numbers "
+        "(12,6219 as 12.6219)",
+        "the times in 'Date/Time' are whole minutes and 3,000 rows share a minute with their "
+        "track's row before: were the seconds lost (Excel saves m/d/yyyy h:mm)? Export the file "
+        "again with seconds; clean keeps only the first row of each time",
+        "the dates in 'Date/Time' were read month first (m/d/yyyy) because the times use a "
+        "12-hour clock with AM/PM (3,300 of them), as US exports (Excel en-US) write, and no "
+        "date shows the order (no number above 12 in either place): if the day comes first, "
+        "read again with --date-order day-first",
+    ],
+)
+def test_the_new_operator_test_4_texts_are_in_chinese(text):
+    zh = translate(window_words(text), "zh_CN")
+    assert not english_left(zh), zh
+    for number in re.findall(r"\d[\d,.]*\d", text):
+        assert number in zh, (number, zh)
+
+
+def test_every_layout_name_is_in_chinese():
+    for fmt in FORMATS:
+        assert not english_left(translate(fmt.label, "zh_CN")), fmt.label
+
+
+def test_the_catalog_entries_fill_with_their_own_groups():
+    """Each template names only its pattern's groups; each pattern compiles."""
+    entries = json.loads((translations_dir() / "core_zh_CN.json").read_text("utf-8"))["entries"]
+    assert len(entries) == len(catalog("zh_CN")) > 80
+    for e in entries:
+        groups = set(re.compile(e["en"]).groupindex)
+        names = set(re.findall(r"\{(\w+)[?}]", e["zh"]))
+        assert names <= groups, e["id"]
+        assert len({x["id"] for x in entries}) == len(entries)
+
+
+def test_clean_rule_names_are_phrases_the_window_translates():
+    """The clean summary's rule names ("speed 23, turn 33, short_tracks 8") are phrases of
+    their own: English on the command line as before, Chinese in the window."""
+    from wakeline.app.i18n import TsTranslator
+    from wakeline.core.pipeline import _summary_clean
+    from wakeline.core.words import CONTEXT, render
+
+    class Res:
+        report = {
+            "points_in": 245,
+            "points_out": 181,
+            "tracks_out": 5,
+            "rules": {
+                "speed": {"removed": 23},
+                "turn": {"removed": 33},
+                "short_tracks": {"removed": 8},
+                "smooth": {"changed": 4},
+            },
+        }
+
+    text = _summary_clean(Res())
+    assert str(text) == (
+        "kept 181 of 245 points in 5 tracks; removed 64 (speed 23, turn 33, short_tracks 8); "
+        "changed 4 (smooth 4)"
+    )
+    table = TsTranslator(translations_dir() / "wakeline_zh_CN.ts")
+    zh = render(text, lambda t: table.translate(CONTEXT, t))
+    assert "速度跳变 23，转向异常 33，短航迹 8" in zh and "平滑 4" in zh, zh
