@@ -73,7 +73,9 @@ class ImportReportDialog(QtWidgets.QDialog):
         rows = pd.DataFrame(layer.meta.get("quarantine", []))
         if "reason" in rows.columns:  # in the window's language (app/core_text.py)
             rows["reason"] = rows["reason"].map(shown)
-        self.table.setModel(FrameModel(rows, self))
+        heads = {"line": self.tr("line"), "reason": self.tr("reason"), "text": self.tr("text")}
+        self.table.setModel(FrameModel(rows.rename(columns=heads), self))
+        self.table.resizeColumnsToContents()  # the reason whole, not "short row: 5 …"
         self.table.horizontalHeader().setStretchLastSection(True)
         lay = QtWidgets.QVBoxLayout(self)
         lay.addWidget(text, 1)

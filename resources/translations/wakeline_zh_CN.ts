@@ -912,6 +912,18 @@
         <source>Quarantined rows ({0:,}; the first {1:,} are kept):</source>
         <translation>隔离行（{0:,} 行；保留前 {1:,} 行）：</translation>
     </message>
+    <message>
+        <source>line</source>
+        <translation>行号</translation>
+    </message>
+    <message>
+        <source>reason</source>
+        <translation>原因</translation>
+    </message>
+    <message>
+        <source>text</source>
+        <translation>原文</translation>
+    </message>
 </context>
 <context>
     <name>ImportDialog</name>
