@@ -396,8 +396,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             return
         if isinstance(msg, Progress):
             self.progress.setValue(int(msg.fraction * 1000))
-            if msg.text:
-                self.statusBar().showMessage(msg.text)
+            if msg.text:  # the core's words, in the window's language
+                self.statusBar().showMessage(shown(msg.text))
             return
         export = msg.job in self._export_context
         context = self._export_context if export else self._job_context

@@ -300,3 +300,14 @@ def test_clean_rule_names_are_phrases_the_window_translates():
     table = TsTranslator(translations_dir() / "wakeline_zh_CN.ts")
     zh = render(text, lambda t: table.translate(CONTEXT, t))
     assert "速度跳变 23，转向异常 33，短航迹 8" in zh and "平滑 4" in zh, zh
+
+
+def test_the_status_bars_progress_texts_are_in_chinese():
+    for en, zh in [
+        ("reading ais_2024.csv", "正在读取 ais_2024.csv"),
+        ("reading log.nmea (AIS NMEA)", "正在读取 log.nmea（AIS NMEA）"),
+        ("cleaning: 3 of 12 blocks done", "清洗：已完成 12 块中的 3 块"),
+        ("short_tracks", "短航迹"),
+        ("cleaned", "已清洗"),
+    ]:
+        assert translate(en, "zh_CN") == zh
