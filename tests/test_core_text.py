@@ -148,7 +148,8 @@ def english_left(text: str) -> list[str]:
     text = _PYTHONS.sub("", text)
     text = re.sub(r"`[^`]*`|'[^']*'|\S*/\S*|\S+\.(?:csv|zip|xlsx|gz|bz2|xz)\b", " ", text)
     runs = re.findall(r"[A-Za-z]{2,}(?:[ -]+[A-Za-z]{2,}){2,}", text)
-    return [r for r in runs if re.search(r"\b[a-z]{3,}\b", r)]  # not a name: Excel en-US
+    # not a name (Excel en-US) nor a command (tar xf FILE)
+    return [r for r in runs if re.search(r"\b[a-z]{3,}\b", r) and "FILE" not in r]
 
 
 def test_every_core_message_of_the_bad_inputs_is_in_chinese(tmp_path):
@@ -311,3 +312,50 @@ def test_the_status_bars_progress_texts_are_in_chinese():
         ("cleaned", "已清洗"),
     ]:
         assert translate(en, "zh_CN") == zh
+
+
+#: The 15 most frequent import warnings and the 15 most frequent quarantine reasons of the
+#: import tests (test_bad_input, test_import, test_headerless, test_date_order,
+#: test_excel_days, test_import_title_lines, test_import_units, test_import_swapped_positions,
+#: test_import_not_available, test_import_integrity, test_decoding_mixed, test_time_texts,
+#: test_compressed, test_local_plane: every read_points report recorded, 2026-12-05, h173),
+#: one text of each kind.
+TOP_TEXTS = [
+    "16 values were written with a decimal comma (like 57,6671) and read as decimal numbers (57.6671)",
+    "the times in 'timestamp' write the month first (mm/dd/yyyy: 60 have a second number above 12, none a first): read so (--date-order month-first says it outright)",
+    "no batch column: the file is one track named after the file (if a column holds each track's id, map it: --map batch=COLUMN)",
+    "2 track(s) start their time again within the file (batch 265041000: 4 runs, each going forward, the next starting at least 10 min earlier): several passes or ships may share one id in 'mmsi'; they are joined into one track sorted by time. If a column tells them apart, map it: --map batch=COLUMN, or --map sensor=COLUMN",
+    "the dates in 'time' were read day first (dd/mm/yyyy), but none shows which comes first (45 could be mm/dd/yyyy, no number above 12 in either place): check the dates; if the month comes first, read again with --date-order month-first",
+    "text encoding: 15 lines not valid utf-8 were read as Windows-1252 (Latin-1) (lines 17, 18, 19, 20, 21, …); if that is wrong, give the file's encoding (--encoding, e.g. gb18030, utf-16, latin-1)",
+    "some bytes are not valid utf-8: their rows are quarantined (give the right --encoding to read them)",
+    "quotes do not balance (a quoted cell ran over line ends): the file was read line by line, quoted cells unquoted",
+    "6 of 12 rows have a bearing in 'bearing_rad' beyond a full turn (±2π: the header says radians): quarantined",
+    "times in 'time' are seconds from a scene start (relative), kept as such: shown from 1970-01-01T00:00:00Z",
+    "2 of 10 rows have a bearing in 'Bearing (deg)' beyond a full turn (±360°): quarantined",
+    "the times in 'Time' are clock times: each joined with its row's date in 'Date'",
+    "60 times in 'time' were read as Excel serial days (1900 date system: 45658.5 is 2025-01-01 12:00) because all lie in 20,000-80,000, 100% have a fraction and the typical step is 10 s as days; if they are seconds, read again with --time-unit seconds",
+    "column 'lat' (read as latitude) is beyond ±90° in most rows while 'lon' lies within ±90° (lat_beyond_90_lon_within in the report counts them): the columns look swapped (longitudes under 'lat'); those rows are quarantined. If so, import again with --map lat=lon --map lon=lat",
+    "time outside 1677-2262 (more than a ns clock holds)",
+    "unparsable lon",
+    "lat out of range",
+    "time days from the rest of its track, at its start or end, where the file has no other track (a mistyped date?)",
+    "unparsable time",
+    "position not available (lon 181 / lat 91)",
+    "bearing beyond ±2π ('bearing_rad', radians)",
+    "too many fields: 6 of 5",
+    "short row: 4 of 5 fields",
+    "bytes not valid utf-8",
+    "bearing beyond ±360° ('Bearing (deg)', degrees)",
+    "not an AIS sentence (!AIVDM, !AIVDO or another AIS talker's VDM/VDO)",
+    "bad NMEA checksum",
+    "no receive time (no leading time stamp or tag block c:)",
+    "incomplete multi-part message",
+]
+
+
+@pytest.mark.parametrize("text", TOP_TEXTS)
+def test_the_test_suites_most_frequent_warnings_and_reasons_are_in_chinese(text):
+    zh = translate(window_words(text), "zh_CN")
+    assert zh != text and not english_left(zh), zh
+    for number in re.findall(r"\d[\d,]*\d", text):
+        assert number in zh, (number, zh)
