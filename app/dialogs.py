@@ -56,7 +56,7 @@ def step_lines(result) -> list[str]:
             return summarize(res.report)
 
     if result.stages:
-        return [f"{res.step}: {one(res)}" for res in result.stages]
+        return [f"{shown(res.step)}: {one(res)}" for res in result.stages]
     return [one(result)]
 
 

@@ -154,7 +154,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         lid = self.session.step_input(layer.id)
         if lid != layer.id:
             layer = self.session.layers[lid]
-            self.log_message(self.tr("{0} runs on {1}").format(step, layer.name))
+            self.log_message(self.tr("{0} runs on {1}").format(shown(step), layer.name))
         if step == "pipeline":
             pipe = self.pipeline()
 
@@ -477,7 +477,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             _, lid, result, views, params = done
             self._apply_step(lid, result, views, params)
             name = self.session.layers[lid].name if lid in self.session.layers else lid
-            self.log_lines(self.tr("{0} on {1}").format(result.step, name), step_lines(result))
+            self.log_lines(
+                self.tr("{0} on {1}").format(shown(result.step), name), step_lines(result)
+            )
         elif kind == "bearing":
             _, path, quarantine, result, view, sha, plan = done
             from wakeline.core.bearing_read import summary_lines

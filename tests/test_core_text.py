@@ -310,6 +310,8 @@ def test_the_status_bars_progress_texts_are_in_chinese():
         ("cleaning: 3 of 12 blocks done", "清洗：已完成 12 块中的 3 块"),
         ("short_tracks", "短航迹"),
         ("cleaned", "已清洗"),
+        ("clean", "清洗"),  # a step's name in "clean on demo.csv"
+        ("associate", "单源关联"),
     ]:
         assert translate(en, "zh_CN") == zh
 
@@ -359,3 +361,37 @@ def test_the_test_suites_most_frequent_warnings_and_reasons_are_in_chinese(text)
     assert zh != text and not english_left(zh), zh
     for number in re.findall(r"\d[\d,]*\d", text):
         assert number in zh, (number, zh)
+
+
+@pytest.mark.gui
+def test_a_chinese_window_shows_the_cores_messages_in_chinese(window, tmp_path, monkeypatch):
+    """Operator test 4 (h168 png/gui_zh_CN.png): the open-failed box, the log's quarantine
+    reason, warnings and layout name, the import report's reason column, in zh_CN."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtWidgets
+
+    from conftest import load
+    from wakeline.app.dialogs import ImportReportDialog
+
+    boxes = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: boxes.append(a[2]))
+    path = tmp_path / "cut.csv"
+    rows = "".join(f"1,{t},55.{t:03d},12.{t:03d},3\n" for t in range(10, 200, 10))
+    path.write_text("mmsi,time,lat,lon,sog\n" + rows + "1,200,55", encoding="utf-8")
+    window.set_language("zh_CN")
+    try:
+        lid = load(window, path)
+        load(window, tmp_path / "nothere.csv")
+        log = window.log.toPlainText()
+        assert "行过短：3 个字段（应为 5 个）" in log, log
+        assert "'time' 列的时间是从场景开始起算的秒数" in log, log
+        assert "通用 CSV（按列名识别）" in log, log
+        assert boxes and boxes[-1].endswith("nothere.csv: 文件不存在"), boxes
+        dialog = ImportReportDialog(window.session.layers[lid], window)
+        model = dialog.table.model()
+        assert model.index(0, 1).data() == "行过短：3 个字段（应为 5 个）"
+        dialog.close()
+    finally:
+        window.set_language("en")
+    load(window, tmp_path / "nothere.csv")
+    assert window.log.toPlainText().rstrip().endswith("nothere.csv: no such file")
