@@ -395,3 +395,16 @@ def test_a_chinese_window_shows_the_cores_messages_in_chinese(window, tmp_path, 
         window.set_language("en")
     load(window, tmp_path / "nothere.csv")
     assert window.log.toPlainText().rstrip().endswith("nothere.csv: no such file")
+
+
+def test_a_steps_refusal_and_the_bearing_summary_are_in_chinese():
+    assert (
+        translate(
+            "multi-sensor association needs tracks of at least two sensors; found R1", "zh_CN"
+        )
+        == "多源关联需要至少两个传感器的航迹；只找到：R1"
+    )
+    zh = translate(
+        "1,200 lines: 1,100 bearings in 3 series; 100 quarantined: missing time", "zh_CN"
+    )
+    assert zh == "1,200 行：3 个序列中共 1,100 个方位；隔离 100 行：缺少时间"
