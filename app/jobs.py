@@ -27,6 +27,9 @@ from wakeline.core.session import BEARING_KIND
 DEFAULT_STAGES = ("clean", "compress")
 #: The project's state row holding Run ▸ pipeline's stages (a list of step names).
 PIPELINE_STATE = "pipeline"
+#: The steps of a saved pipeline Run ▸ pipeline runs, in the order it runs them
+#: (maneuvers as part of compress).
+WINDOW_ORDER = ("clean", "maneuvers", "compress", "associate")
 
 
 def _prepared(
@@ -235,10 +238,18 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         Path(path).write_text(self.pipeline().to_json(), encoding="utf-8")
         self.log_message(self.tr("pipeline saved to {0}").format(path))
 
-    def load_pipeline(self, path: Path) -> list[str]:
+    def load_pipeline(self, path: Path, tell: bool = False) -> list[str]:
         """Put a saved pipeline's parameters into the panel and its stages into Run ▸
         Pipeline stages (a Maneuvers stage is run as part of Compress); returns the
-        problems."""
+        problems, each also in the log, and says in the status bar whether there are any
+        (``tell``: Run ▸ Load pipeline; the problems in a dialog too).
+
+        Run ▸ pipeline's stages are check boxes in a fixed order (Clean, then Compress
+        with its maneuvers, then Associate): a file whose stages come in another order
+        (valid for ``wakeline batch``, which runs them as written: ``core.batch.
+        check_pipeline`` takes the per-track stages in any order), or twice, or without
+        Clean, is not run as written; each such change is a problem (review h158: a file
+        of compress, clean ran clean, compress without a word)."""
         from wakeline.core.pipeline import params_to_json
 
         try:
@@ -253,7 +264,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             problems += self.params.from_dict({k: v for k, v in data.items() if k in keys})
         names = [name for name, _ in pipe.stages]
         for name in dict.fromkeys(names):
-            if name not in ("clean", "maneuvers", "compress", "associate"):
+            if name not in WINDOW_ORDER:
                 problems.append(
                     self.tr(
                         "the pipeline's {0} stage is not run by Run ▸ pipeline (clean, "
@@ -262,17 +273,72 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 )
         stages = ["compress"] if {"maneuvers", "compress"} & set(names) else []
         self.set_pipeline_stages(stages + (["associate"] if "associate" in names else []))
+        problems += self._pipeline_changes(names)
         for text in problems:
             self.log_message(f"{self.tr('Warning')}: {text}")
+        runs = ", ".join(self.job_title(s) for s in self.pipeline_stages)
+        if problems:
+            text = self.tr("Pipeline loaded, not as written ({0} changes, see the Log): runs {1}")
+            self.statusBar().showMessage(text.format(len(problems), runs))
+            if tell and getattr(self, "interactive", True):
+                QtWidgets.QMessageBox.information(
+                    self,
+                    self.tr("Pipeline loaded, not as written"),
+                    window_words("\n\n".join(problems)),
+                )
+        else:
+            self.statusBar().showMessage(self.tr("Pipeline loaded: runs {0}").format(runs), 8000)
         return problems
+
+    def _pipeline_changes(self, names: list[str]) -> list[str]:
+        """What Run ▸ pipeline (``self.pipeline_stages``, just set) runs otherwise than a
+        file's stages ``names`` say: a stage added, merged, run once or moved."""
+        tr, title = self.tr, self.job_title
+        out = []
+        known = [n for n in names if n in WINDOW_ORDER]
+        if "clean" not in known:
+            out.append(
+                tr("the pipeline has no clean stage; Run ▸ pipeline cleans first all the same")
+            )
+        if "maneuvers" in known and "compress" not in known:
+            out.append(
+                tr(
+                    "the pipeline's maneuvers stage is run as Compress (maneuvers, then "
+                    "compress): Run ▸ pipeline has no maneuvers-only stage"
+                )
+            )
+        for name in dict.fromkeys(known):
+            if known.count(name) > 1:
+                text = tr(
+                    "the pipeline's {0} stage comes {1} times; Run ▸ pipeline runs it once, "
+                    "with the parameters of the last"
+                )
+                out.append(text.format(title(name), known.count(name)))
+        order = list(dict.fromkeys(known))
+        if order != sorted(order, key=WINDOW_ORDER.index):
+            text = tr(
+                "Run ▸ pipeline runs its stages in the order {0}, not as the file has them "
+                "({1}): its stages have a fixed order (wakeline batch runs the file as written)"
+            )
+            out.append(
+                text.format(
+                    ", ".join(title(s) for s in self.pipeline_stages),
+                    ", ".join(title(s) for s in order),
+                )
+            )
+        return out
 
     def _pipeline_dialog(self, save: bool) -> None:
         dialog = (
             QtWidgets.QFileDialog.getSaveFileName if save else QtWidgets.QFileDialog.getOpenFileName
         )
         path, _ = dialog(self, self.tr("Pipeline"), "", "Wakeline pipeline (*.json)")
-        if path:
-            (self.save_pipeline if save else self.load_pipeline)(Path(path))
+        if not path:
+            return
+        if save:
+            self.save_pipeline(Path(path))
+            return
+        self.load_pipeline(Path(path), tell=True)
 
     # -- messages ------------------------------------------------------------------
 

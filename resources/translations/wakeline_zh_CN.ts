@@ -4,6 +4,34 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>Pipeline loaded, not as written</source>
+        <translation>流程已载入，但未按文件原样执行</translation>
+    </message>
+    <message>
+        <source>Pipeline loaded, not as written ({0} changes, see the Log): runs {1}</source>
+        <translation>流程已载入，但未按文件原样执行（{0} 处改动，见日志）：执行 {1}</translation>
+    </message>
+    <message>
+        <source>Pipeline loaded: runs {0}</source>
+        <translation>流程已载入：执行 {0}</translation>
+    </message>
+    <message>
+        <source>Run ▸ pipeline runs its stages in the order {0}, not as the file has them ({1}): its stages have a fixed order (wakeline batch runs the file as written)</source>
+        <translation>“运行 ▸ 流程”按 {0} 的顺序执行各步骤，而不是文件中的顺序（{1}）：其步骤顺序固定（wakeline batch 按文件原样执行）</translation>
+    </message>
+    <message>
+        <source>the pipeline has no clean stage; Run ▸ pipeline cleans first all the same</source>
+        <translation>流程中没有清洗步骤；“运行 ▸ 流程”仍会先清洗</translation>
+    </message>
+    <message>
+        <source>the pipeline's maneuvers stage is run as Compress (maneuvers, then compress): Run ▸ pipeline has no maneuvers-only stage</source>
+        <translation>流程中的机动步骤按压缩执行（先检测机动，再压缩）：“运行 ▸ 流程”没有单独的机动步骤</translation>
+    </message>
+    <message>
+        <source>the pipeline's {0} stage comes {1} times; Run ▸ pipeline runs it once, with the parameters of the last</source>
+        <translation>流程中的 {0} 步骤出现 {1} 次；“运行 ▸ 流程”只执行一次，使用最后一次的参数</translation>
+    </message>
+    <message>
         <source>the pipeline's {0} stage is not run by Run ▸ pipeline (clean, compress, associate); its parameters are loaded</source>
         <translation>流程中的 {0} 步骤不由“运行 ▸ 流程”执行（清洗、压缩、关联）；其参数已载入</translation>
     </message>
