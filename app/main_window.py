@@ -206,6 +206,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         build_actions(self)
         self.set_pipeline_stages(self.pipeline_stages, store=False)  # Run ▸ Pipeline stages
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
+        self._fit_timer = QtCore.QTimer(self, singleShot=True, interval=0)
+        self._fit_timer.timeout.connect(self.review.fit_to_window)
         self.set_language(self.settings.value("language", i18n.system_language()))
         for key, restore in (("geometry", self.restoreGeometry), ("state", self.restoreState)):
             value = self.settings.value(key)
@@ -429,6 +431,13 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.update_title()
         if self.project.failures == 1:
             QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 - Qt API
+        super().resizeEvent(event)
+        # Smaller: the Review dock gives the map back its share once the layout settled
+        # (ReviewDock.fit_to_window); a timer, so that a drag's sizes make one fit.
+        if event.size().height() < event.oldSize().height() and hasattr(self, "review"):
+            self._fit_timer.start()
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt API
         if (self.project.unsaved or self.project.dirty) and not self._close_unsaved():

@@ -62,6 +62,12 @@ WARM_BATCH = 8
 #: (``window_layers.STEP_MS``); with a zero delay the next stage ran before the paint of
 #: the last one, in the same event-loop block.
 BIND_STEP_MS = 10
+#: The Review dock's height when it comes up (px), unless the map would keep less than
+#: MAP_MIN_SHARE of the window's height: at 1280x720 the dock at 360 px left the map
+#: 200-214 px of 720 (review h158; 436 before the right column ran down to the status
+#: bar); at 1400x900 the map keeps 379 px, as before.
+REVIEW_DOCK_PX = 360
+MAP_MIN_SHARE = 0.42
 
 
 def tr(text: str) -> str:
@@ -570,6 +576,36 @@ class ReviewDock(QtCore.QObject):
         for _ in self._show_stages(bound):
             pass
 
+    def height_to_show(self) -> int:
+        """The dock's height as it comes up in the bottom docks' place: REVIEW_DOCK_PX,
+        or less so that the map keeps MAP_MIN_SHARE of the window's height (not less
+        than the dock's least height)."""
+        w = self.w
+        # The bottom area now, down to the status bar (its tab bar too: resizeDocks
+        # sizes the area of tabbed docks, the dock itself gets that less the tab bar).
+        bottom = w.statusBar().geometry().top()
+        # (A dock tabbed behind another is "visible", moved out of the window.)
+        tops = [w.docks[k].geometry().top() for k in ("stats", "log") if w.docks[k].isVisible()]
+        below = [bottom - top for top in tops if 0 <= top < bottom]
+        room = max(below, default=0) + w.canvas.height() - round(MAP_MIN_SHARE * w.height())
+        return max(self.dock.minimumSizeHint().height(), min(REVIEW_DOCK_PX, room))
+
+    def fit_to_window(self) -> None:
+        """The window made smaller: the dock gives the map back what it took below
+        MAP_MIN_SHARE of the window's height (Qt takes a smaller window's height from the
+        map alone), down to the dock's least height; it never grows here."""
+        w = self.w
+        if not self.dock.isVisible() or self.dock.isFloating():
+            return
+        short = round(MAP_MIN_SHARE * w.height()) - w.canvas.height()
+        least = self.dock.minimumSizeHint().height()
+        if short > 2 and self.dock.height() > least:
+            # resizeDocks sizes the area (the dock and its tab bar): height_to_show
+            area = w.statusBar().geometry().top() - self.dock.geometry().top()
+            tabs = max(0, area - self.dock.height())
+            height = max(least, self.dock.height() - short) + tabs
+            w.resizeDocks([self.dock], [height], QtCore.Qt.Orientation.Vertical)
+
     def _show_stages(self, bound: Bound | None):
         """Show ``bound``'s queue (None: hide the dock), a generator: the dock, the map of
         the layers before the step, the first proposal; a binding runs one stage per
@@ -595,8 +631,9 @@ class ReviewDock(QtCore.QObject):
             self.stack.setCurrentWidget(self.blank)
             if self.dock not in self.w.tabifiedDockWidgets(self.w.docks["log"]):
                 self.w.tabifyDockWidget(self.w.docks["log"], self.dock)  # (one layout)
+            height = self.height_to_show()
             self.dock.show()
-            self.w.resizeDocks([self.dock], [360], QtCore.Qt.Orientation.Vertical)
+            self.w.resizeDocks([self.dock], [height], QtCore.Qt.Orientation.Vertical)
             self.dock.raise_()
             yield
             if self.bound is not bound:

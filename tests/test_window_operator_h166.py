@@ -8,7 +8,7 @@ import pytest
 
 pytest.importorskip("pytestqt")
 
-from test_review_window import _window  # noqa: E402
+from test_review_window import _settle, _window  # noqa: E402
 
 from wakeline.core.pipeline import STEPS, Pipeline  # noqa: E402
 
@@ -44,4 +44,44 @@ def test_load_pipeline_says_what_it_runs_otherwise_than_the_file(qtbot, tmp_path
     for names in (("clean", "compress", "associate"), ("clean", "maneuvers", "compress")):
         assert w.load_pipeline(_pipeline_file(tmp_path, *names)) == []
         assert w.statusBar().currentMessage().startswith("Pipeline loaded: runs Clean, Compress")
+    w.close()
+
+
+def _rows(view) -> float:
+    return view.viewport().height() / view.verticalHeader().defaultSectionSize()
+
+
+def test_the_review_dock_leaves_the_map_its_height_at_1280x720(qtbot, tmp_path):
+    """Review h158: at 1280x720 the Review dock came up 333 px high and left the map 200
+    of 720 px (214 when made smaller from 1400x900; 436 before the right column ran down
+    to the status bar). The dock comes up lower so that the map keeps MAP_MIN_SHARE of
+    the window's height, and gives it back when the window is made smaller; the batch
+    table and the review's queue keep at least 3 rows each."""
+    from wakeline.app.review_dock import MAP_MIN_SHARE
+    from wakeline.resources import demo_path
+
+    def shown(size):
+        w = _window(qtbot, tmp_path)
+        w.resize(*size)
+        w.load_file(demo_path())
+        _settle(w)
+        w.run_step("associate")
+        _settle(w)
+        assert w.review.dock.isVisible()
+        return w
+
+    def check(w):
+        share = w.canvas.height() / w.height()
+        assert share >= MAP_MIN_SHARE - 0.01, (w.canvas.height(), w.height())
+        assert _rows(w.batch_view) >= 3
+        assert _rows(w.review.bound.panel.view) >= 3
+
+    w = shown((1280, 720))
+    check(w)
+    w.close()
+    w = shown((1400, 900))  # as before: the dock at its full height
+    assert w.review.dock.height() >= 320 and w.canvas.height() >= 370
+    w.resize(1280, 720)
+    qtbot.waitUntil(lambda: w.canvas.height() / w.height() >= MAP_MIN_SHARE - 0.01)
+    check(w)
     w.close()
