@@ -342,9 +342,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
 
     # -- messages ------------------------------------------------------------------
 
-    def _start(self, name: str, fn, context: tuple, again=None) -> int:
+    def _start(self, name: str, fn, context: tuple, again=None, automatic=False) -> int:
         """Run ``fn`` in the worker (one job at a time). ``again``: the job to run again
-        when its result comes back stale (``fn`` itself when None)."""
+        when its result comes back stale (``fn`` itself when None). ``automatic``: the
+        window starts it by itself (``_follow_up``), not the operator."""
         running = list(self._job_context) if self.runner.busy else []
         job = self.runner.run(name, fn)
         # One job at a time: an older job's result will never be applied; its
@@ -355,6 +356,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         self._job_context = {job: context}
         # What to run again when its result comes back stale (Session.stale).
         self._job_fns = {job: (name, again or fn, context)}
+        if automatic:
+            self._automatic.add(job)
         return job
 
     def _follow_up(self, msg) -> bool:
@@ -385,7 +388,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                     "runs again with them"
                 ).format(name)
             )
-            self._start(name, fn, context)
+            self._start(name, fn, context, automatic=True)
             return True
         if not self.session.late_decisions(result):
             return False
@@ -396,7 +399,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             session.reconcile(result)
             return done
 
-        self._start(name, reconcile, context, again=fn)
+        self._start(name, reconcile, context, again=fn, automatic=True)
         return True
 
     def _start_export(self, path: Path, write, context: tuple) -> int:
@@ -455,6 +458,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             if self.runner.busy:  # the step's progress keeps the bar
                 return
         if isinstance(msg, Started):
+            if msg.name == self.stale_label.property("step"):
+                self.stale_label.hide()  # the step runs again
             self.progress.setValue(0)
             self.progress.show()
             self.cancel_button.show()
@@ -476,6 +481,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         # A replaced job may end otherwise than cancelled (done before it looked): its
         # entry goes with its last message whatever that is.
         by = self._replaced.pop(msg.job, None)
+        automatic = msg.job in self._automatic
+        self._automatic.discard(msg.job)
         if isinstance(msg, Finished) and self._follow_up(msg):
             return
         # Its function (kept for a stale re-run) goes with the job's end, whatever it is:
@@ -488,6 +495,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self.tr("{0} done in {1:.1f} s").format(self.job_title(msg.name), msg.seconds),
                 8000,
             )
+        elif isinstance(msg, Failed) and automatic:
+            self._automatic_failed(msg)
         elif isinstance(msg, Failed):
             title = self.tr("{0} failed").format(self.job_title(msg.name))
             self.statusBar().showMessage(title, 8000)
@@ -512,6 +521,26 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 )
                 self.log_message(text.format(name, self.job_title(by)))
             self.statusBar().showMessage(self.tr("{0} cancelled").format(name), 5000)
+
+    def _automatic_failed(self, msg) -> None:
+        """A job the window ran again by itself (decisions made while the step ran put
+        its result out of date) failed: the status bar and the log say so, and that the
+        out-of-date result was not applied; no dialog the operator did not ask for
+        (review h158). The layers stay as they were before the run."""
+        name = self.job_title(msg.name)
+        text = self.tr(
+            "{0}, run again by itself for the decisions made while it ran, failed: its "
+            "result is out of date (stale) and was not applied; run {0} again"
+        ).format(name)
+        self.statusBar().showMessage(text)
+        self.stale_label.setText(self.tr("{0}: out of date, its re-run failed").format(name))
+        self.stale_label.setToolTip(f"{text}\n{window_words(msg.message)}")
+        self.stale_label.setProperty("step", msg.name)
+        self.stale_label.show()
+        self.log_message(f"{self.tr('Error')} ({name}): {msg.message}")
+        if msg.detail:
+            self.log_message(msg.detail)
+        self.log_message(text)
 
     def show_bearing_layer(self, view) -> None:
         """A bearing layer's data in the Bearing-only dock (its map and detections) and

@@ -92,6 +92,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             int, tuple
         ] = {}  # the running job, to run again when stale (_follow_up)
         self._replaced: dict[int, str] = {}  # a running job -> the job that took its place
+        # Jobs the window started by itself (a stale re-run, a carry made again): their
+        # failure is said in the status bar and the log, not in a dialog (_follow_up).
+        self._automatic: set[int] = set()
         # Exports run on their own runner, one after the other (jobs._start_export).
         self.export_runner = JobRunner(self)
         self.export_runner.message.connect(self._on_job_message)
@@ -200,7 +203,12 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.cancel_button.clicked.connect(self.cancel_jobs)
         self.cancel_button.hide()
         self.cursor_label = QtWidgets.QLabel()
-        for widget in (self.progress, self.cancel_button, self.cursor_label):
+        # A step the window ran again by itself failed: said until that step runs again
+        # (jobs._automatic_failed); the status bar's messages come and go.
+        self.stale_label = QtWidgets.QLabel()
+        self.stale_label.setStyleSheet("color: #b00000")
+        self.stale_label.hide()
+        for widget in (self.stale_label, self.progress, self.cancel_button, self.cursor_label):
             self.statusBar().addPermanentWidget(widget)
 
         build_actions(self)

@@ -8,6 +8,7 @@ import pytest
 
 pytest.importorskip("pytestqt")
 
+from PySide6 import QtWidgets  # noqa: E402
 from test_review_window import _settle, _window  # noqa: E402
 
 from wakeline.core.pipeline import STEPS, Pipeline  # noqa: E402
@@ -84,4 +85,76 @@ def test_the_review_dock_leaves_the_map_its_height_at_1280x720(qtbot, tmp_path):
     w.resize(1280, 720)
     qtbot.waitUntil(lambda: w.canvas.height() / w.height() >= MAP_MIN_SHARE - 0.01)
     check(w)
+    w.close()
+
+
+def test_a_failed_automatic_rerun_is_said_without_a_dialog(qtbot, tmp_path, monkeypatch):
+    """Review h158: a reject made while Associate ran again put its result out of date;
+    the window ran it again by itself, and when that run failed a modal error dialog came
+    up that the operator had not started. Now the status bar and the log say it (the
+    result out of date, not applied); a run the operator started still gets its dialog."""
+    import dataclasses
+
+    from test_review_rerun_late_gui import Gate, _pending
+
+    from wakeline.core import simulate
+    from wakeline.core.errors import InputError
+    from wakeline.core.io import write_points
+    from wakeline.core.review_session import queue_key
+
+    class FailingGate(Gate):
+        fail = False
+
+        def __call__(self, *args, **kwargs):
+            if self.fail:
+                self.runs += 1
+                raise InputError("injected failure")
+            return super().__call__(*args, **kwargs)
+
+    dialogs = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a, **k: dialogs.append(a[1]))
+    gate = FailingGate(STEPS["associate"].run)
+    gate.release()
+    monkeypatch.setitem(STEPS, "associate", dataclasses.replace(STEPS["associate"], run=gate))
+    src = tmp_path / "seg.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=8, area_km=15), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    lid = w.layer_id(src.name)
+    w.select_layer(lid)
+    w.run_step("associate")
+    _settle(w)
+    a1 = w.session.find(lid, "associate")
+    w.select_layer(a1.id)
+    _settle(w)
+    key = queue_key(a1)
+    # Run ▸ Associate again, held; a reject on the old layer meanwhile puts it out of date.
+    gate.hold()
+    w.select_layer(lid)
+    w.run_step("associate")
+    qtbot.waitUntil(gate.entered.is_set, timeout=30_000)
+    w.select_layer(a1.id)
+    qtbot.waitUntil(lambda: w.review.bound is not None and w.review.bound.key == key)
+    runs = gate.runs
+    w.review.bound.controller.reject(_pending(w.review.bound.controller.state)[0])
+    gate.fail = True  # the run the window starts by itself fails
+    gate.release()
+    _settle(w)
+    assert gate.runs == runs + 1  # it did run again
+    assert dialogs == []
+    assert w.stale_label.isVisible()
+    assert w.stale_label.text() == "Associate: out of date, its re-run failed"
+    said = w.stale_label.toolTip()
+    assert "run again by itself" in said and "injected failure" in said, said
+    log = w.log.toPlainText()
+    assert "injected failure" in log and said.splitlines()[0] in log
+    assert w.session.find(lid, "associate").id == a1.id and queue_key(a1) == key  # as it was
+    assert not w._automatic and not w._job_fns
+    # A run the operator starts gets its dialog.
+    w.select_layer(lid)
+    w.run_step("associate")
+    _settle(w)
+    assert dialogs == ["Associate failed"]
+    assert not w.stale_label.isVisible()  # the step ran again
     w.close()

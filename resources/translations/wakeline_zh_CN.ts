@@ -4,6 +4,14 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>{0}, run again by itself for the decisions made while it ran, failed: its result is out of date (stale) and was not applied; run {0} again</source>
+        <translation>{0} 因运行期间所做的决定而自动重新运行，但失败了：其结果已过时，未被采用；请重新运行 {0}</translation>
+    </message>
+    <message>
+        <source>{0}: out of date, its re-run failed</source>
+        <translation>{0}：结果已过时，自动重新运行失败</translation>
+    </message>
+    <message>
         <source>Pipeline loaded, not as written</source>
         <translation>流程已载入，但未按文件原样执行</translation>
     </message>
