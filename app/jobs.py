@@ -27,6 +27,8 @@ from wakeline.core.session import BEARING_KIND
 DEFAULT_STAGES = ("clean", "compress")
 #: The project's state row holding Run ▸ pipeline's stages (a list of step names).
 PIPELINE_STATE = "pipeline"
+#: The settings key (QSettings) holding them for the next window, project or not.
+PIPELINE_SETTING = "pipeline_stages"
 #: The steps of a saved pipeline Run ▸ pipeline runs, in the order it runs them
 #: (maneuvers as part of compress).
 WINDOW_ORDER = ("clean", "maneuvers", "compress", "associate")
@@ -212,7 +214,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
     def set_pipeline_stages(self, stages, store: bool = True) -> None:
         """Run ▸ pipeline runs Clean then ``stages`` (of ``compress``, ``associate``, in
         that order; others are not the window's). Stored in the project (its
-        ``pipeline`` state row) unless ``store`` is False (a project being opened)."""
+        ``pipeline`` state row) and in the settings (the next window starts with them,
+        a project open or not) unless ``store`` is False (a project being opened)."""
         from wakeline.app.actions import PIPELINE_CHOICES, pipeline_text
 
         stages = ("clean", *(s for s in PIPELINE_CHOICES if s in stages))
@@ -226,6 +229,29 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         self.actions_["pipeline"].setText(pipeline_text(self))
         if changed and store:
             self.project.put_state(PIPELINE_STATE, list(stages))
+            self.settings.setValue(PIPELINE_SETTING, list(stages))
+
+    def stored_pipeline_stages(self) -> tuple[str, ...]:
+        """Run ▸ Pipeline stages as the settings keep them (DEFAULT_STAGES when they keep
+        none); a name the window does not know is dropped, with a warning in the log."""
+        from wakeline.app.actions import PIPELINE_CHOICES
+
+        value = self.settings.value(PIPELINE_SETTING)
+        if value is None:
+            return DEFAULT_STAGES
+        # An INI file gives a list of one back as a string.
+        names = [value] if isinstance(value, str) else value
+        if not isinstance(names, list):
+            names = [str(names)]
+        known = ("clean", *PIPELINE_CHOICES)
+        for name in names:
+            if name not in known:
+                text = self.tr(
+                    "the settings' pipeline stage {0} is not one of Run ▸ Pipeline stages "
+                    "(clean, compress, associate); dropped"
+                )
+                self.log_message(f"{self.tr('Warning')}: {text.format(name)}")
+        return tuple(n for n in names if n in known)
 
     def set_pipeline_stage(self, stage: str, on: bool) -> None:
         """Run ▸ Pipeline stages ▸ ``stage`` checked (``on``) or not."""

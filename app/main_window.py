@@ -212,11 +212,13 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             self.statusBar().addPermanentWidget(widget)
 
         build_actions(self)
-        self.set_pipeline_stages(self.pipeline_stages, store=False)  # Run ▸ Pipeline stages
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
         self._fit_timer = QtCore.QTimer(self, singleShot=True, interval=0)
         self._fit_timer.timeout.connect(self.review.fit_to_window)
         self.set_language(self.settings.value("language", i18n.system_language()))
+        # Run ▸ Pipeline stages, as the last window left them (a project brings its own);
+        # after the language: a name dropped is said in it.
+        self.set_pipeline_stages(self.stored_pipeline_stages(), store=False)
         for key, restore in (("geometry", self.restoreGeometry), ("state", self.restoreState)):
             value = self.settings.value(key)
             if value is not None:

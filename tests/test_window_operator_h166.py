@@ -158,3 +158,32 @@ def test_a_failed_automatic_rerun_is_said_without_a_dialog(qtbot, tmp_path, monk
     assert dialogs == ["Associate failed"]
     assert not w.stale_label.isVisible()  # the step ran again
     w.close()
+
+
+def test_pipeline_stages_are_remembered_without_a_project(qtbot, tmp_path):
+    """Review h158: the stages chosen in Run ▸ Pipeline stages were lost on restart when
+    no project was open. They are kept in the settings; read back, a name the window
+    does not know is dropped with a warning in the log."""
+    from wakeline.app.jobs import PIPELINE_SETTING
+
+    w = _window(qtbot, tmp_path)
+    assert w.pipeline_stages == ("clean", "compress")  # a first window: the default
+    w.actions_["pipeline_associate"].trigger()
+    w.actions_["pipeline_compress"].trigger()
+    assert w.pipeline_stages == ("clean", "associate")
+    w.close()
+    w2 = _window(qtbot, tmp_path)  # the same settings file, no project
+    assert w2.pipeline_stages == ("clean", "associate")
+    assert w2.actions_["pipeline_associate"].isChecked()
+    assert not w2.actions_["pipeline_compress"].isChecked()
+    assert w2.actions_["pipeline"].text() == "Run &pipeline (clean, associate)"
+    w2.actions_["pipeline_associate"].trigger()  # a list of one ("clean",) in the INI
+    w2.close()
+    w3 = _window(qtbot, tmp_path)
+    assert w3.pipeline_stages == ("clean",)
+    w3.settings.setValue(PIPELINE_SETTING, ["clean", "fuse", "associate"])
+    w3.close()
+    w4 = _window(qtbot, tmp_path)
+    assert w4.pipeline_stages == ("clean", "associate")
+    assert "pipeline stage fuse is not one of Run ▸ Pipeline stages" in w4.log.toPlainText()
+    w4.close()

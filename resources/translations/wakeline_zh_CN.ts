@@ -4,6 +4,10 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>the settings' pipeline stage {0} is not one of Run ▸ Pipeline stages (clean, compress, associate); dropped</source>
+        <translation>设置中的流程步骤 {0} 不属于“运行 ▸ 流程步骤”（清洗、压缩、关联）；已舍弃</translation>
+    </message>
+    <message>
         <source>{0}, run again by itself for the decisions made while it ran, failed: its result is out of date (stale) and was not applied; run {0} again</source>
         <translation>{0} 因运行期间所做的决定而自动重新运行，但失败了：其结果已过时，未被采用；请重新运行 {0}</translation>
     </message>
