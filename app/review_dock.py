@@ -786,6 +786,28 @@ class ReviewDock(QtCore.QObject):
         self._views_todo = ["gantt", "network"]
         self._views.start()
 
+    def hold_map(self) -> None:
+        """The main map paints once when the decision's layer is swapped in (the layer,
+        its level of detail, the time index, the proposal drawn again), not at each turn
+        of it: a key painted the map about 8 times (ATD dataset1), now twice (the key's
+        own change, then the swap). Not for a proposal shown (a key that moves the
+        view): held there, the map painted 9 times a key on ATD dataset1, up to 1.3 s
+        late."""
+        w = self.w
+        if w.time_panel.is_playing:  # the slider's frames keep coming
+            return
+        w.canvas.hold_paints(
+            lambda: (
+                not (
+                    w.drawing
+                    or w.canvas.lod_busy
+                    or w.lod_worker.pending
+                    or w.time_controller.busy
+                    or self._redraw.isActive()
+                )
+            )
+        )
+
     def _zoom_to(self, bounds: tuple[float, float, float, float]) -> None:
         """The main map's view on a proposal's bounds (lon0, lat0, lon1, lat1)."""
         x0, y0, x1, y1 = bounds

@@ -131,7 +131,9 @@ class ReviewSync(QtCore.QObject):
         if view is None or layer is None or queue_key(layer) != key:
             return
         layer.meta["review_decisions"] = n_decisions  # the points show this many
-        self.w._pending_views = {(layer.step, layer.role): view}
+        # The swap goes over several turns (the layer, its level of detail, the time
+        # index, the proposal drawn again): the map paints once at its end, not at each.
+        self.dock.hold_map()
         if lid == self.w.active:  # the batch table is rebuilt: keep its selection
             self.w._restore_selection = self.w.selected_keys() or None
         try:

@@ -8,7 +8,7 @@ import pytest
 
 pytest.importorskip("pytestqt")
 
-from PySide6 import QtWidgets  # noqa: E402
+from PySide6 import QtCore, QtWidgets  # noqa: E402
 from test_review_window import _settle, _window  # noqa: E402
 
 from wakeline.core.pipeline import STEPS, Pipeline  # noqa: E402
@@ -187,3 +187,57 @@ def test_pipeline_stages_are_remembered_without_a_project(qtbot, tmp_path):
     assert w4.pipeline_stages == ("clean", "associate")
     assert "pipeline stage fuse is not one of Run ▸ Pipeline stages" in w4.log.toPlainText()
     w4.close()
+
+
+def test_a_decision_swapped_into_the_map_paints_it_once(qtbot, tmp_path):
+    """Review h158: a review key painted the map about 8 times (ATD dataset1): the key's
+    own change, then the decision's layer swapped in over several turns (the layer, its
+    level of detail, the time index, the proposal drawn again), each turn a paint. The
+    swap holds the map's paints and paints once at its end (ReviewDock.hold_map).
+    Counted here: the paints from the swap (Session.replace_points) on."""
+    from test_review_rerun_late_gui import _pending
+
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+
+    class Paints(QtCore.QObject):
+        n = 0
+
+        def eventFilter(self, obj, event):  # noqa: N802 (Qt API)
+            self.n += event.type() == QtCore.QEvent.Type.Paint
+            return False
+
+    src = tmp_path / "seg.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=8, area_km=15), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    w.select_layer(w.layer_id(src.name))
+    w.run_step("associate")
+    _settle(w)
+    a1 = w.session.find(w.layer_id(src.name), "associate")
+    w.select_layer(a1.id)
+    _settle(w)
+    paints = Paints()
+    w.canvas.viewport().installEventFilter(paints)
+    swaps = []
+    replace = w.session.replace_points
+
+    def replace_points(*args, **kwargs):
+        swaps.append(paints.n)
+        return replace(*args, **kwargs)
+
+    w.session.replace_points = replace_points
+    panel = w.review.bound.panel
+    counts = []
+    for act in (panel.act_accept, panel.act_reject, panel.act_accept):
+        assert _pending(w.review.bound.controller.state)
+        swaps.clear()
+        act.trigger()
+        qtbot.waitUntil(lambda: bool(swaps), timeout=30_000)
+        _settle(w)
+        qtbot.waitUntil(lambda: not w.canvas.holding_paints)
+        qtbot.wait(300)  # anything late
+        counts.append(paints.n - swaps[0])
+    assert counts == [1, 1, 1], counts
+    w.close()
