@@ -134,6 +134,7 @@ class ReviewSync(QtCore.QObject):
         # The swap goes over several turns (the layer, its level of detail, the time
         # index, the proposal drawn again): the map paints once at its end, not at each.
         self.dock.hold_map()
+        self.w._pending_views = {(layer.step, layer.role): view}
         if lid == self.w.active:  # the batch table is rebuilt: keep its selection
             self.w._restore_selection = self.w.selected_keys() or None
         try:
