@@ -310,7 +310,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 QtWidgets.QMessageBox.information(
                     self,
                     self.tr("Pipeline loaded, not as written"),
-                    window_words("\n\n".join(problems)),
+                    shown("\n\n".join(problems)),
                 )
         else:
             self.statusBar().showMessage(self.tr("Pipeline loaded: runs {0}").format(runs), 8000)
@@ -560,10 +560,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         ).format(name)
         self.statusBar().showMessage(text)
         self.stale_label.setText(self.tr("{0}: out of date, its re-run failed").format(name))
-        self.stale_label.setToolTip(f"{text}\n{window_words(msg.message)}")
+        self.stale_label.setToolTip(f"{text}\n{shown(msg.message)}")
         self.stale_label.setProperty("step", msg.name)
         self.stale_label.show()
-        self.log_message(f"{self.tr('Error')} ({name}): {msg.message}")
+        self.log_message(f"{self.tr('Error')} ({name}): {shown(msg.message)}")
         if msg.detail:
             self.log_message(msg.detail)
         self.log_message(text)
