@@ -382,6 +382,30 @@ class LinkParams(Params):
         "another reading; adopted with margin_displaced 0.4): docs/prereg/session27_mtad_b.md",
         choices=("no_join", "alternative"),
     )
+    speed_change_ms2: float = param(
+        0.0,
+        "m/s²",
+        "the speed tolerance grows with the gap: a ship may change speed by this much per "
+        "second of gap (it arrived at or left a berth unseen), added in squares to "
+        "speed_tol_kn and the ends' velocity errors; pairs at rest at both ends keep no "
+        "speed term (0 = off: the tolerance whatever the gap)",
+        0.0,
+        1.0,
+        "ours (session 27, Saronic's days overlaid: true pairs across 600-1,800 s gaps "
+        "left loose at speed differences of 15-31 kn): docs/prereg/session27_overlay.md",
+    )
+    rivals_reach: float = param(
+        2.0,
+        "",
+        "long_rivals: how far beyond a join's end and start a loose piece is looked for as "
+        "a cheaper continuation, in max_gap_s (at most long_gap_s); 2 = twice max_gap_s, "
+        "the rule before",
+        1.0,
+        100.0,
+        "ours (session 27, Saronic's days overlaid: moored ends joined within T_gap to "
+        "another ship's berth while their own next piece lay 1,440-2,000 s on): "
+        "docs/prereg/session27_overlay.md",
+    )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
     speed_tol_kn: float = param(5.0, "kn", "speed difference worth one unit of distance", 0.1)
     w1: float = param(
@@ -1056,6 +1080,14 @@ def _motion_shown(seg: Segments, params: LinkParams) -> tuple[np.ndarray, np.nda
     return out[0], out[1]
 
 
+def _speed_change_kn2(pairs: Pairs, params: LinkParams) -> np.ndarray | float:
+    """Per pair: the square (kn²) of the speed change its gap allows
+    (``speed_change_ms2`` × the gap), added to the speed tolerance's square; 0 when off."""
+    if params.speed_change_ms2 <= 0:
+        return 0.0
+    return (params.speed_change_ms2 * pairs.gap_s / geo.KN_MS) ** 2
+
+
 def _debiased_speed(speed_ms: np.ndarray, sd_ms: np.ndarray) -> np.ndarray:
     """The fitted speed (m/s) less its noise's share: sqrt(max(speed² − 2·sd², 0))."""
     sd = np.nan_to_num(sd_ms, nan=0.0, posinf=0.0)
@@ -1283,7 +1315,7 @@ def _pricing(
                 0.0,
             )
         course_tol = np.sqrt(params.course_tol_deg**2 + c_deg2)
-        speed_tol = np.sqrt(params.speed_tol_kn**2 + v_kn2)
+        speed_tol = np.sqrt(params.speed_tol_kn**2 + v_kn2 + _speed_change_kn2(pairs, params))
         # At rest at both ends, course means nothing and equal (zero) speeds are the
         # premise, not evidence: the position alone decides.
         dcourse = np.where(known & ~rest, dcourse, np.nan)
@@ -2087,7 +2119,7 @@ def _released(
     (a rival costs at least 0)."""
     n = len(seg)
     m = params.long_margin
-    near = replace(params, max_gap_s=min(params.long_gap_s, 2.0 * params.max_gap_s))
+    near = replace(params, max_gap_s=min(params.long_gap_s, params.rivals_reach * params.max_gap_s))
     open_ = chosen[cost[chosen] >= m]
     end_open = np.zeros(n, dtype=bool)
     end_open[pairs.i[open_]] = True
