@@ -254,7 +254,7 @@ class LinkParams(Params):
         True,
         "",
         "second look: a join of the assignment gives way where a loose piece beyond "
-        "max_gap_s (up to twice it) would continue either of its pieces cheaper by "
+        "max_gap_s (up to rivals_reach times it) would continue either of its pieces cheaper by "
         "long_margin (the assignment cannot see it), and comes back if the second look "
         "does not take it",
     )
@@ -395,15 +395,16 @@ class LinkParams(Params):
         "left loose at speed differences of 15-31 kn): docs/prereg/session27_overlay.md",
     )
     rivals_reach: float = param(
-        2.0,
+        5.0,
         "",
         "long_rivals: how far beyond a join's end and start a loose piece is looked for as "
-        "a cheaper continuation, in max_gap_s (at most long_gap_s); 2 = twice max_gap_s, "
-        "the rule before",
+        "a cheaper continuation, in max_gap_s (at most long_gap_s): 5 = long_gap_s at the "
+        "defaults, the second look's own reach (2: twice max_gap_s, the rule before)",
         1.0,
         100.0,
-        "ours (session 27, Saronic's days overlaid: moored ends joined within T_gap to "
-        "another ship's berth while their own next piece lay 1,440-2,000 s on): "
+        "ours (session 27, adopted by its pre-set rule: Saronic's days overlaid, tuning "
+        "split at 600-1,800 s 0.810 / 0.069 -> 0.828 / 0.056; moored ends joined within "
+        "T_gap to another ship's berth while their own next piece lay 1,440-2,000 s on): "
         "docs/prereg/session27_overlay.md",
     )
     course_tol_deg: float = param(45.0, "deg", "course difference worth one unit of distance", 1.0)
@@ -2112,10 +2113,10 @@ def _released(
     free_end: np.ndarray,
     free_start: np.ndarray,
 ) -> np.ndarray:
-    """``long_rivals``: the joins of ``chosen`` that a loose piece just beyond max_gap_s
-    (up to twice it) would continue cheaper by ``long_margin`` — the assignment could not
-    see it — priced by ``price`` (the second look's; its spread reference among the
-    candidates up to twice max_gap_s). Only a join dearer than the margin can be beaten
+    """``long_rivals``: the joins of ``chosen`` that a loose piece beyond max_gap_s (up to
+    ``rivals_reach`` times it, at most ``long_gap_s``) would continue cheaper by
+    ``long_margin`` — the assignment could not see it — priced by ``price`` (the second
+    look's; its spread reference among the candidates up to that reach). Only a join dearer than the margin can be beaten
     (a rival costs at least 0)."""
     n = len(seg)
     m = params.long_margin
