@@ -1238,6 +1238,28 @@ def _claimed_lanes(seed: int, sep: float, crossable: bool) -> pd.DataFrame:
     )
 
 
+def _berth_late_return(seed: int) -> pd.DataFrame:
+    """:func:`_berth_and_newcomer` with the ship silent 25-33 min: back at its berth after
+    1,500-2,000 s, beyond twice T_gap (1,440 s), while the newcomer 100 m off switches its
+    AIS on 10-12 min after the ship fell silent."""
+    rng = np.random.default_rng(seed)
+    t1 = 60.0 * np.arange(8)
+    t2 = t1[-1] + rng.uniform(1500, 2000) + 60.0 * np.arange(30)
+    tb = t1[-1] + rng.uniform(600, 700) + 60.0 * np.arange(40)
+
+    def jitter(n: int) -> np.ndarray:
+        return rng.normal(0, 2.0, n)
+
+    return pd.concat(
+        [
+            track("a1", t1, jitter(8), jitter(8), truth="A"),
+            track("a2", t2, jitter(30), jitter(30), truth="A"),
+            track("b", tb, 100 + jitter(40), jitter(40), truth="B"),
+        ],
+        ignore_index=True,
+    )
+
+
 def _claimed_joins(seed: int, params: LinkParams, sep: float, crossable: bool) -> list:
     pt = associate_interrupted(_claimed_lanes(seed, sep, crossable), params).pair_table()
     return sorted(zip(pt["batch_a"], pt["batch_b"], strict=True))
@@ -1312,3 +1334,65 @@ def test_margin_displaced_is_validated():
     assert LinkParams(margin_displaced=10.0).checked().margin_displaced == 10.0
     with pytest.raises(InputError, match="margin_displaced_charge"):
         associate_interrupted(one, LinkParams(margin_displaced_charge="half"))
+
+
+def test_a_moored_end_gives_way_to_its_own_piece_beyond_twice_t_gap():
+    """``rivals_reach`` (session 27, adopted by docs/prereg/session27_overlay.md): the
+    newcomer at the next berth, within T_gap, took the moored end in every seed, because
+    ``long_rivals`` looked for a cheaper continuation only up to twice T_gap and the ship's
+    own next piece lay beyond (Saronic's days overlaid, 600-1,800 s gaps: 16 of 22 such
+    misses). Looking as far as the second look reaches, the join gives way and the second
+    look joins the ship to itself. ``rivals_reach=2`` is the rule before."""
+    assert LinkParams().rivals_reach == 5.0
+    new = np.array([_joins(_berth_late_return(s)) for s in range(8)]).sum(axis=0)
+    old = np.array(
+        [_joins(_berth_late_return(s), LinkParams(rivals_reach=2.0)) for s in range(8)]
+    ).sum(axis=0)
+    assert new.tolist() == [8, 0]
+    assert old.tolist() == [0, 8]
+    # never beyond the second look: long_gap_s caps the reach
+    short = LinkParams(long_gap_s=1440.0)
+    capped = np.array([_joins(_berth_late_return(s), short) for s in range(8)]).sum(axis=0)
+    assert capped.tolist() == old.tolist()
+
+
+def _ferry_into_port(seed: int) -> pd.DataFrame:
+    """A ferry at 25 kn heading east, seen every 60 s for 10 min (f1), silent 20-25 min
+    while it slows evenly to 3 kn and turns north into port, then seen at 3 kn heading
+    north (f2); GPS jitter 5 m."""
+    rng = np.random.default_rng(seed)
+    v1, v2 = 25 * geo.KN_MS, 3 * geo.KN_MS
+    t1 = 60.0 * np.arange(11)
+    gap = rng.uniform(1200, 1500)
+    # slowing evenly in the gap: the mean speed of the two
+    x_gap = t1[-1] * v1 + 0.5 * (v1 + v2) * gap
+    t2 = t1[-1] + gap + 60.0 * np.arange(10)
+    y2 = v2 * (t2 - t2[0])
+    return pd.concat(
+        [
+            track("f1", t1, v1 * t1 + rng.normal(0, 5, 11), rng.normal(0, 5, 11), truth="F"),
+            track("f2", t2, x_gap + rng.normal(0, 5, 10), y2 + rng.normal(0, 5, 10), truth="F"),
+        ],
+        ignore_index=True,
+    )
+
+
+def test_a_speed_change_across_a_long_gap_can_be_allowed_as_an_option():
+    """``speed_change_ms2`` (session 27, candidate A; failed its pre-set guard on MTAD's
+    tuning half at 180 s, P_FA +0.0057, so off by default): the speed tolerance grows with
+    the gap. A ferry seen at 25 kn and again at 3 kn, turned 90°, after 20-25 min differs by
+    22 kn, 4 tolerances of 5 kn, and is left loose; 0.01 m/s² allows 23-29 kn over such a
+    gap and it is joined."""
+    assert LinkParams().speed_change_ms2 == 0.0
+    off = [_joins(_ferry_into_port(s)) for s in range(6)]
+    on = [_joins(_ferry_into_port(s), LinkParams(speed_change_ms2=0.01)) for s in range(6)]
+    assert np.array(off).sum(axis=0).tolist() == [0, 0]
+    assert np.array(on).sum(axis=0).tolist() == [6, 0]
+
+
+def test_the_session_27_parameters_are_validated():
+    for bad in ({"speed_change_ms2": -0.01}, {"speed_change_ms2": 2.0}, {"rivals_reach": 0.5}):
+        with pytest.raises(InputError):
+            LinkParams(**bad).checked()
+    p = LinkParams(speed_change_ms2=0.01, rivals_reach=3.0).checked()
+    assert p.speed_change_ms2 == 0.01 and p.rivals_reach == 3.0
