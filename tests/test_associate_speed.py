@@ -50,7 +50,9 @@ def test_narrowed_search_equals_a_new_search(rerun_scene):
 
 #: The scene's released joins come back and the second look runs again with the end fits
 #: of 10 fixes it was chosen with (its 60 s tracks take 9 under end_span_s).
-REPLAY = LinkParams().replace(end_span_s=0.0)
+#: ``rivals_reach`` 2: long_rivals' own searches (up to twice T_gap) are told apart from
+#: the second look's (up to long_gap_s, which long_rivals also reaches since session 27).
+REPLAY = LinkParams().replace(end_span_s=0.0, rivals_reach=2.0)
 
 
 def test_second_look_reuses_the_first_looks_searches(rerun_scene, monkeypatch):
