@@ -2116,8 +2116,8 @@ def _released(
     """``long_rivals``: the joins of ``chosen`` that a loose piece beyond max_gap_s (up to
     ``rivals_reach`` times it, at most ``long_gap_s``) would continue cheaper by
     ``long_margin`` — the assignment could not see it — priced by ``price`` (the second
-    look's; its spread reference among the candidates up to that reach). Only a join dearer than the margin can be beaten
-    (a rival costs at least 0)."""
+    look's; its spread reference among the candidates up to that reach). Only a join
+    dearer than the margin can be beaten (a rival costs at least 0)."""
     n = len(seg)
     m = params.long_margin
     near = replace(params, max_gap_s=min(params.long_gap_s, params.rivals_reach * params.max_gap_s))
