@@ -94,9 +94,9 @@ def framed_box(
         lo = values[min(int(np.searchsorted(cum, FRAME_QUANTILES[0])), last)]
         hi = values[min(int(np.searchsorted(cum, FRAME_QUANTILES[1])), last)]
         reach = NEAR_TAIL * (hi - lo)
-        lo = values[0] if lo - values[0] <= reach else _tail_end(values, lo, hi, -1)
-        hi = values[-1] if values[-1] - hi <= reach else _tail_end(values, lo, hi, 1)
-        edges.append((float(lo), float(hi)))
+        west = values[0] if lo - values[0] <= reach else _tail_end(values, lo, hi, -1)
+        east = values[-1] if values[-1] - hi <= reach else _tail_end(values, lo, hi, 1)
+        edges.append((float(west), float(east)))  # both tails judged by the quantiles
     (w, e), (s, n) = edges
     return (w, s, e, n)
 

@@ -3,6 +3,7 @@ empty stretch are left out, routes running on past the quantiles are shown (oper
 test 4, D-map-1: 58 ATD routes east of 78° W were cut off)."""
 
 import numpy as np
+import pytest
 
 from wakeline.app.map_frame import framed_box, position_sketch
 
@@ -42,3 +43,17 @@ def test_two_layers_merge_by_their_points():
     b = position_sketch(rng.uniform(-90.0, -89.0, 500), rng.uniform(25.0, 26.0, 500))
     box = framed_box([a, b])
     assert box is not None and -98.0 <= box[0] < -97.5 and -78.5 < box[2] <= -78.0
+
+
+def test_the_frame_of_mirrored_points_is_mirrored():
+    # h175 review F1: the upper tail was judged with the lower edge already extended, so a
+    # near lower tail widened the gap allowed above (east 1.3 framed, 1.15 mirrored)
+    rng = np.random.default_rng(0)
+    core = rng.uniform(0.0, 1.0, 100_000)
+    low_tail = np.linspace(-0.24, 0.0, 600)  # within NEAR_TAIL: shown whole
+    high = np.r_[np.linspace(1.0, 1.15, 150), np.linspace(1.265, 1.30, 50)]  # gap 0.115
+    lon = np.r_[core, low_tail, high]
+    lat = rng.uniform(0.0, 1.0, len(lon))
+    w, _, e, _ = framed_box([position_sketch(lon, lat)])
+    mw, _, me, _ = framed_box([position_sketch(-lon, lat)])
+    assert (-me, -mw) == pytest.approx((w, e), abs=1e-9)
