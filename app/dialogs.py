@@ -72,7 +72,8 @@ class ImportReportDialog(QtWidgets.QDialog):
         self.table = QtWidgets.QTableView()
         rows = pd.DataFrame(layer.meta.get("quarantine", []))
         if "reason" in rows.columns:  # in the window's language (app/core_text.py)
-            rows["reason"] = rows["reason"].map(shown)
+            said = {r: shown(r) for r in rows["reason"].unique()}  # once per reason, not row
+            rows["reason"] = rows["reason"].map(said)
         heads = {"line": self.tr("line"), "reason": self.tr("reason"), "text": self.tr("text")}
         self.table.setModel(FrameModel(rows.rename(columns=heads), self))
         self.table.resizeColumnsToContents()  # the reason whole, not "short row: 5 …"
