@@ -1774,11 +1774,7 @@ def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndar
     ``sensor:batch`` when the table holds several sensors, so batch 7 of R1 and batch 7
     of R2 never become one target."""
     comp = components(len(seg), links_i, links_j)
-    order = order_by(comp, seg.t0_rank)
-    first = np.ones(len(order), dtype=bool)
-    first[1:] = comp[order][1:] != comp[order][:-1]
-    leader = np.empty(comp.max() + 1 if len(comp) else 0, dtype="int64")
-    leader[comp[order][first]] = order[first]
+    leader = group_leaders(comp, order_by(comp, seg.t0_rank))
     keys = seg.index.keys
     label = keys["batch"].to_numpy().astype(str)
     # One sensor code, one sensor (the text of each is compared only when there are more).
@@ -1787,7 +1783,20 @@ def _targets(seg: Segments, links_i: np.ndarray, links_j: np.ndarray) -> np.ndar
         sensors = keys["sensor"].to_numpy().astype(str)
         if len(np.unique(sensors)) > 1:
             label = np.char.add(np.char.add(sensors, ":"), label)
-    return label[leader[comp]]
+    return label[leader]
+
+
+def group_leaders(comp: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """Per item, the index of its group's first item in ``order`` (a permutation sorting
+    the items by their group ``comp`` first, then by what makes a leader: the earliest
+    track names a target in association, review and fusion alike)."""
+    if not len(order):
+        return np.zeros(0, dtype="int64")
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = comp[order][1:] != comp[order][:-1]
+    leader = np.empty(comp.max() + 1, dtype="int64")
+    leader[comp[order][first]] = order[first]
+    return leader[comp]
 
 
 def _best_alternative(

@@ -37,7 +37,13 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core import geo
-from wakeline.core.associate import components, dtw_batch, greedy_assign, optimal_assign
+from wakeline.core.associate import (
+    components,
+    dtw_batch,
+    greedy_assign,
+    group_leaders,
+    optimal_assign,
+)
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
@@ -545,12 +551,7 @@ def _target_labels(index: TrackIndex, t0: np.ndarray, a: np.ndarray, b: np.ndarr
     )
     if index.n_tracks == 0:
         return labels
-    order = np.lexsort((labels, t0, comp))
-    first = np.ones(len(order), dtype=bool)
-    first[1:] = comp[order][1:] != comp[order][:-1]
-    leader = np.empty(comp.max() + 1, dtype="int64")
-    leader[comp[order][first]] = order[first]
-    return labels[leader[comp]]
+    return labels[group_leaders(comp, np.lexsort((labels, t0, comp)))]
 
 
 # --------------------------------------------------------------------------------------

@@ -527,7 +527,7 @@ class ReviewState:
         return self._targets
 
     def _compute_targets(self) -> np.ndarray:
-        from wakeline.core.associate import components
+        from wakeline.core.associate import components, group_leaders
 
         active = np.isin(self.status, ACTIVE)
         la = [self._track_no[x] for x, _ in self.links]
@@ -537,11 +537,7 @@ class ReviewState:
         n = len(self.tracks)
         comp = components(n, a, b)
         order = np.lexsort((self._labels_arr, self._t0_arr, comp))
-        first = np.ones(n, dtype=bool)
-        first[1:] = comp[order][1:] != comp[order][:-1]
-        leader = np.empty(comp.max() + 1 if n else 0, dtype="int64")
-        leader[comp[order][first]] = order[first]
-        return self._labels_arr[leader[comp]] if n else np.zeros(0)
+        return self._labels_arr[group_leaders(comp, order)] if n else np.zeros(0)
 
     def target(self, label: str) -> str:
         return str(self.target_of_track()[self._track(label)])
