@@ -548,6 +548,10 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self.log_message(text.format(name, self.job_title(by)))
             self.statusBar().showMessage(self.tr("{0} cancelled").format(name), 5000)
 
+    def stale_text(self, step: str) -> str:
+        """The red status label's text for ``step``'s failed automatic re-run."""
+        return self.tr("{0}: out of date, its re-run failed").format(self.job_title(step))
+
     def _automatic_failed(self, msg) -> None:
         """A job the window ran again by itself (decisions made while the step ran put
         its result out of date) failed: the status bar and the log say so, and that the
@@ -559,7 +563,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             "result is out of date (stale) and was not applied; run {0} again"
         ).format(name)
         self.statusBar().showMessage(text)
-        self.stale_label.setText(self.tr("{0}: out of date, its re-run failed").format(name))
+        self.stale_label.setText(self.stale_text(msg.name))
         self.stale_label.setToolTip(f"{text}\n{shown(msg.message)}")
         self.stale_label.setProperty("step", msg.name)
         self.stale_label.show()

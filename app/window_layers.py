@@ -200,6 +200,13 @@ class LayersMixin:
                 self.layer_list.takeItem(row)
             if not self.session.layers:
                 self.set_active(None)
+            step = self.stale_label.property("step")
+            if step and not any(
+                layer.step == step or (step == "pipeline" and layer.step)
+                for layer in self.session.layers.values()
+            ):  # no layer left that its re-run failure speaks of (h175 review F7)
+                self.stale_label.hide()
+                self.stale_label.setProperty("step", None)
         elif event == "visibility":
             for name in self.map_names(lid):
                 self.canvas.set_visible(name, layer.visible)
