@@ -369,7 +369,8 @@ class LinkParams(Params):
         "undo a cheaper join elsewhere; 0.6 with the no_join charge failed its pre-set "
         "rule, docs/prereg/session27_mtad.md; 0.4 with the alternative charge adopted by "
         "it: MTAD tuning half at 600 s 0.842 / 0.090 -> 0.854 / 0.086, hard very dense "
-        "P_FA 0.088 -> 0.090 at the bound): docs/prereg/session27_mtad_b.md",
+        "P_FA 0.088 -> 0.090 at the bound; with rivals_reach 5 as well 0.851 / 0.090 and "
+        "0.088): docs/prereg/session27_mtad_b.md",
     )
     margin_displaced_charge: str = param(
         "alternative",
