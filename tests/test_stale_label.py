@@ -11,7 +11,9 @@ from test_review_window import _settle, _window  # noqa: E402
 from wakeline.core.pipeline import STEPS  # noqa: E402
 
 
-def test_the_stale_label_goes_with_its_layers_and_follows_the_language(qtbot, tmp_path, monkeypatch):
+def test_the_stale_label_goes_with_its_layers_and_follows_the_language(
+    qtbot, tmp_path, monkeypatch
+):
     import dataclasses
 
     from test_review_rerun_late_gui import Gate, _pending
