@@ -5,63 +5,14 @@ and its source), and kept the language it was made in."""
 import pytest
 
 pytest.importorskip("pytestqt")
-from PySide6 import QtWidgets  # noqa: E402
-from test_review_window import _settle, _window  # noqa: E402
-
-from wakeline.core.pipeline import STEPS  # noqa: E402
+from test_review_window import _settle  # noqa: E402
+from test_window_operator_h166 import failed_automatic_rerun  # noqa: E402
 
 
 def test_the_stale_label_goes_with_its_layers_and_follows_the_language(
     qtbot, tmp_path, monkeypatch
 ):
-    import dataclasses
-
-    from test_review_rerun_late_gui import Gate, _pending
-
-    from wakeline.core import simulate
-    from wakeline.core.errors import InputError
-    from wakeline.core.io import write_points
-    from wakeline.core.review_session import queue_key
-
-    class FailingGate(Gate):
-        fail = False
-
-        def __call__(self, *args, **kwargs):
-            if self.fail:
-                self.runs += 1
-                raise InputError("injected failure")
-            return super().__call__(*args, **kwargs)
-
-    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a, **k: None)
-    monkeypatch.setattr(
-        QtWidgets.QMessageBox, "question", lambda *a, **k: QtWidgets.QMessageBox.StandardButton.Yes
-    )
-    gate = FailingGate(STEPS["associate"].run)
-    gate.release()
-    monkeypatch.setitem(STEPS, "associate", dataclasses.replace(STEPS["associate"], run=gate))
-    src = tmp_path / "seg.csv"
-    write_points(simulate.segments_scene(seed=2, n_ships=8, area_km=15), src)
-    w = _window(qtbot, tmp_path)
-    w.load_files([src])
-    _settle(w)
-    lid = w.layer_id(src.name)
-    w.select_layer(lid)
-    w.run_step("associate")
-    _settle(w)
-    a1 = w.session.find(lid, "associate")
-    w.select_layer(a1.id)
-    _settle(w)
-    key = queue_key(a1)
-    gate.hold()
-    w.select_layer(lid)
-    w.run_step("associate")
-    qtbot.waitUntil(gate.entered.is_set, timeout=30_000)
-    w.select_layer(a1.id)
-    qtbot.waitUntil(lambda: w.review.bound is not None and w.review.bound.key == key)
-    w.review.bound.controller.reject(_pending(w.review.bound.controller.state)[0])
-    gate.fail = True
-    gate.release()
-    _settle(w)
+    w, lid, a1, *_ = failed_automatic_rerun(qtbot, tmp_path, monkeypatch, [])
     assert w.stale_label.isVisible()
     w.set_language("zh_CN")
     _settle(w)

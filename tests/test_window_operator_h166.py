@@ -88,11 +88,11 @@ def test_the_review_dock_leaves_the_map_its_height_at_1280x720(qtbot, tmp_path):
     w.close()
 
 
-def test_a_failed_automatic_rerun_is_said_without_a_dialog(qtbot, tmp_path, monkeypatch):
-    """Review h158: a reject made while Associate ran again put its result out of date;
-    the window ran it again by itself, and when that run failed a modal error dialog came
-    up that the operator had not started. Now the status bar and the log say it (the
-    result out of date, not applied); a run the operator started still gets its dialog."""
+def failed_automatic_rerun(qtbot, tmp_path, monkeypatch, dialogs: list):
+    """A window whose Associate ran again by itself (a reject made while it ran put its
+    result out of date) and failed: (window, source layer id, the old associate layer,
+    its queue key, the gate's runs before the re-run, the gate). Dialogs' titles go to
+    ``dialogs``; a question is answered Yes (Layer ▸ Remove)."""
     import dataclasses
 
     from test_review_rerun_late_gui import Gate, _pending
@@ -111,8 +111,10 @@ def test_a_failed_automatic_rerun_is_said_without_a_dialog(qtbot, tmp_path, monk
                 raise InputError("injected failure")
             return super().__call__(*args, **kwargs)
 
-    dialogs = []
     monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a, **k: dialogs.append(a[1]))
+    monkeypatch.setattr(
+        QtWidgets.QMessageBox, "question", lambda *a, **k: QtWidgets.QMessageBox.StandardButton.Yes
+    )
     gate = FailingGate(STEPS["associate"].run)
     gate.release()
     monkeypatch.setitem(STEPS, "associate", dataclasses.replace(STEPS["associate"], run=gate))
@@ -141,6 +143,18 @@ def test_a_failed_automatic_rerun_is_said_without_a_dialog(qtbot, tmp_path, monk
     gate.fail = True  # the run the window starts by itself fails
     gate.release()
     _settle(w)
+    return w, lid, a1, key, runs, gate
+
+
+def test_a_failed_automatic_rerun_is_said_without_a_dialog(qtbot, tmp_path, monkeypatch):
+    """Review h158: a reject made while Associate ran again put its result out of date;
+    the window ran it again by itself, and when that run failed a modal error dialog came
+    up that the operator had not started. Now the status bar and the log say it (the
+    result out of date, not applied); a run the operator started still gets its dialog."""
+    from wakeline.core.review_session import queue_key
+
+    dialogs = []
+    w, lid, a1, key, runs, gate = failed_automatic_rerun(qtbot, tmp_path, monkeypatch, dialogs)
     assert gate.runs == runs + 1  # it did run again
     assert dialogs == []
     assert w.stale_label.isVisible()
