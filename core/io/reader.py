@@ -1266,7 +1266,7 @@ def _lone_times(
     ns: np.ndarray,
     ok: np.ndarray,
     track: np.ndarray,
-    piece: tuple[bool, Callable[[np.ndarray], np.ndarray], "LonePending | None"] | None = None,
+    piece: tuple[bool, Callable[[np.ndarray], np.ndarray], "LonePending"] | None = None,
 ) -> np.ndarray:
     """Rows whose time is days from both rows of their track before and after them in the
     file while those two are close (a mistyped year or month: 2032 or 2013 in a 2023
@@ -1303,7 +1303,7 @@ def _lone_times(
         cand[1:] &= ~(step <= far)  # NaN (an invalid neighbour) does not clear it
         cand[:-1] &= ~(step <= far)
     cand &= ok
-    pending = piece[2] if piece is not None and len(piece) > 2 else None
+    pending = None if piece is None else piece[2]
     if pending is not None and len(pending):
         pending.judge(t, ok, track)  # carried rows, by their track's first row here
     if not cand.any():
@@ -1315,7 +1315,7 @@ def _lone_times(
     same_prev = np.r_[False, tr[1:] == tr[:-1]]
     same_next = np.r_[tr[:-1] == tr[1:], False]
     if piece is not None:  # judged over the file: its track's order, rows in other pieces
-        final, carried_last = piece[0], piece[1]
+        final, carried_last, _ = piece
         at = np.flatnonzero(cand[order])
         prev = np.where(same_prev[at], tt[np.maximum(at - 1, 0)], np.nan)
         first = ~same_prev[at]
@@ -1327,7 +1327,7 @@ def _lone_times(
             limit = np.maximum(far, LONE_RATIO * np.abs(nxt - prev))
             both = (np.abs(t_at - prev) > limit) & (np.abs(t_at - nxt) > limit)
             later = ~same_next[at] & (not final) & (np.abs(t_at - prev) > far)
-        if both.any() or (later.any() and pending is None):
+        if both.any():
             raise WholeFileNeeded
         if later.any():
             pending.put(tr[at[later]], t_at[later], prev[later])
@@ -3917,7 +3917,7 @@ def _to_canonical(
             s = text["sensor"].names[codes % width] if "sensor" in text else [sensor] * len(b)
             return np.array([f"{x}\x1f{y}" for x, y in zip(s, b, strict=True)], dtype=object)
 
-        lone_pending = None if edges is None else edges.get("lone")
+        lone_pending = None if edges is None else edges["lone"]
         if lone_pending is not None:
             lone_pending.keys = keys
 
