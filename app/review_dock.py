@@ -444,9 +444,11 @@ class ReviewDock(QtCore.QObject):
 
     @property
     def busy(self) -> bool:
-        """Binding or updating the layer is under way (tests wait on it)."""
+        """Binding or updating the layer is under way (tests wait on it), the map's paints
+        held for a swap included (hold_map: the map shows the swap only when it ends)."""
         settling = self.bound is not None and self.bound.panel._settle.isActive()
         drawing = self._redraw.isActive() or bool(self._views_todo) or self._bind_steps is not None
+        drawing = drawing or self.w.canvas.holding_paints
         return (
             self.binder.busy or self._binding is not None or self.sync.busy or settling or drawing
         )
