@@ -429,6 +429,18 @@ class LinkParams(Params):
         0.0,
         source="seed 001 §5",
     )
+    rivals_rounds: int = param(
+        1,
+        "",
+        "long_rivals: how many times the release test is made, each time with the pieces "
+        "that the rounds before released counted loose (a moored end joined to another "
+        "ship's berth whose own continuation was itself joined wrongly, and released, in "
+        "the round before); 1 = once, the rule before",
+        1,
+        10,
+        "ours (session 28, Saronic's days overlaid: swapped joins at one berth that free "
+        "each other's true continuation only in turn): docs/prereg/session28_overlay.md",
+    )
 
 
 @dataclass(frozen=True)
@@ -2068,7 +2080,7 @@ def long_gap_pass(
 
     released = np.zeros(0, dtype="int64")
     if params.long_rivals:
-        released = _released(seg, pairs, cost, chosen, params, price, free_end, free_start)
+        released = _released_rounds(seg, pairs, cost, chosen, params, price, free_end, free_start)
     joined = chosen[~np.isin(chosen, released)]
     found, c_found, ok = look(joined)
     if len(released):
@@ -2164,6 +2176,32 @@ def _released(
     np.minimum.at(of_start, rivals.j[~joined_i], c_riv[~joined_i])
     beaten = np.minimum(of_end[pairs.i[chosen]], of_start[pairs.j[chosen]]) + m
     return chosen[beaten <= cost[chosen]]
+
+
+def _released_rounds(
+    seg: Segments,
+    pairs: Pairs,
+    cost: np.ndarray,
+    chosen: np.ndarray,
+    params: LinkParams,
+    price,
+    free_end: np.ndarray,
+    free_start: np.ndarray,
+) -> np.ndarray:
+    """:func:`_released` made ``rivals_rounds`` times: each round looks again at the joins
+    still made, with the pieces the rounds before released counted loose (a join whose
+    cheaper continuation was itself joined wrongly gives way once that one has)."""
+    released = _released(seg, pairs, cost, chosen, params, price, free_end, free_start)
+    for _ in range(params.rivals_rounds - 1):
+        if not len(released):
+            break
+        kept = chosen[~np.isin(chosen, released)]
+        fe, fs = _free(pairs, kept, len(seg))
+        more = _released(seg, pairs, cost, kept, params, price, fe, fs)
+        if not len(more):
+            break
+        released = np.concatenate([released, more])
+    return released
 
 
 def assign_interrupted(
