@@ -430,7 +430,7 @@ class LinkParams(Params):
         source="seed 001 §5",
     )
     rivals_rounds: int = param(
-        1,
+        2,
         "",
         "long_rivals: how many times the release test is made, each time with the pieces "
         "that the rounds before released counted loose (a moored end joined to another "
@@ -438,8 +438,10 @@ class LinkParams(Params):
         "the round before); 1 = once, the rule before",
         1,
         10,
-        "ours (session 28, Saronic's days overlaid: swapped joins at one berth that free "
-        "each other's true continuation only in turn): docs/prereg/session28_overlay.md",
+        "ours (session 28, adopted by its pre-set rule: Saronic's days overlaid, tuning "
+        "split at 600-1,800 s 0.828 / 0.056 -> 0.834 / 0.051; swapped joins at one berth "
+        "that free each other's true continuation only in turn): "
+        "docs/prereg/session28_overlay.md",
     )
 
 
