@@ -15,6 +15,7 @@ from pathlib import Path
 
 from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
+from wakeline.core.params import shown_source
 from wakeline.core.words import count
 
 #: Older flag spellings kept beside the generated ones: (parameter set, field) -> flags.
@@ -119,7 +120,7 @@ def _field_help(f: dataclasses.Field) -> str:
         rng = (
             f", {'' if m.get('lo') is None else m['lo']}..{'' if m.get('hi') is None else m['hi']}"
         )
-    src = f"; {m['source']}" if m.get("source") else ""
+    src = f"; {shown_source(m['source'])}" if m.get("source") else ""
     default = f.default if f.default != "" else "auto"
     return f"{m.get('doc', '')}{unit} (default {default}{rng}{src})".replace("%", "%%")
 
@@ -130,7 +131,7 @@ def _clean_help() -> str:
     lines = []
     for d in CleanParams.describe():
         unit = f" [{d['unit']}]" if d.get("unit") else ""
-        source = f" ({d['source']})" if d.get("source") else ""
+        source = f" ({shown_source(d['source'])})" if d.get("source") else ""
         lines.append(f"{d['rule']}.{d['name']}={d['default']}{unit}: {d['doc']}{source}")
     return "Rules and parameters (--set rule.param=value):\n  " + "\n  ".join(lines)
 

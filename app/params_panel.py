@@ -26,7 +26,7 @@ from wakeline.core.maneuver import (
     ManeuverParams,
     detection_limit,
 )
-from wakeline.core.params import Params
+from wakeline.core.params import Params, shown_source
 from wakeline.core.pipeline import (
     PARAMS_VERSION,
     AssociateOptions,
@@ -62,7 +62,7 @@ def _field_param(f: dataclasses.Field, value) -> dict:
     if unit:
         tip += f" [{unit}]"
     if meta.get("source"):
-        tip += f"\nsource: {meta['source']}"
+        tip += f"\nsource: {shown_source(meta['source'])}"
     tip += f"\ndefault: {f.default}"
     opts = {"name": f.name, "type": kind, "value": value, "tip": tip, "default": f.default}
     if meta.get("choices"):

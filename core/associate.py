@@ -378,7 +378,7 @@ class LinkParams(Params):
         "what margin_displaced charges for the two pieces a rearrangement frees when they "
         "are not joined to each other: no_join (both loose), or alternative (each half of "
         "its own cheapest other candidate within the gate, or half of no_join if it has "
-        "none or a dearer one; no_join: the rule of session27_mtad.md)",
+        "none or a dearer one; no_join: each freed piece charged no_join)",
         source="ours (session 27, h169: no_join overprices leaving a piece loose that has "
         "another reading; adopted with margin_displaced 0.4): docs/prereg/session27_mtad_b.md",
         choices=("no_join", "alternative"),

@@ -8,6 +8,7 @@ the same field metadata.
 import dataclasses
 import math
 import numbers
+import re
 from typing import Any
 
 from wakeline.core.errors import InputError
@@ -40,6 +41,24 @@ def param(
             "flags": flags,
         },
     )
+
+
+# The team's history in a source (sessions, helper branches, pre-registrations): for the
+# maintainers, kept in the field; an operator's help and tooltips show the label before it.
+_HISTORY = re.compile(r"session ?\d|session\d+_|\bh\d{2,3}\b|prereg")
+
+
+def shown_source(source: str) -> str:
+    """A field's source as the command-line help and the parameter panel show it.
+
+    A paper reference stays as written; a source that tells how the team came to a value
+    (sessions, branches, pre-registration files) shows its label ("ours") and where the
+    measurement is written, docs/evaluation.md.
+    """
+    if not _HISTORY.search(source):
+        return source
+    head = re.split(r"\s*[(;:]", source, maxsplit=1)[0].strip()
+    return f"{head} (docs/evaluation.md)" if head else "docs/evaluation.md"
 
 
 @dataclasses.dataclass(frozen=True)
