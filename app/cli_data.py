@@ -161,7 +161,10 @@ def register(sub) -> None:
         description="Seeded simulators writing canonical CSV with truth, true_lon and true_lat columns. "
         "maneuver: seed 000's protocol (16 kn, a point every 5 min, random 15-45 deg turns); "
         "segments: one radar breaking ships into several batches; multisensor: radar R1 and AIS "
-        "seeing the same ships; demo: the bundled demo scene.",
+        "seeing the same ships; bearing: seed 002's named observer/target scenarios, each with a "
+        "50 deg target turn at 450 s and once without, bearings with 0.6 deg noise (columns "
+        "batch, time, bearing, obs_lon, obs_lat, true_maneuver_time, true_turn_deg; read by "
+        "`wakeline bearing`); demo: the bundled demo scene.",
         epilog=EPILOG,
     )
     p.add_argument("kind", choices=KINDS)
