@@ -443,6 +443,21 @@ class LinkParams(Params):
         "that free each other's true continuation only in turn): "
         "docs/prereg/session28_overlay.md",
     )
+    min_gap_least_steps: float = param(
+        0.0,
+        "",
+        "a pair's gap must also be at least this many of the shortest time step either "
+        "piece shows between its own end fixes (the old end's last end_points fixes, the "
+        "new start's first; a single fix shows none, the other's counts): a ship seen "
+        "again every 600 s at the soonest does not reappear after 300 s, while sampling "
+        "that jitters shows its short steps and is held to them (0 = off: min_gap_steps "
+        "on the median step alone)",
+        0.0,
+        10.0,
+        "ours (session 28, MTAD decimated to 600 s: wrong joins across gaps of 0.5-0.8 "
+        "of a step, the median rule's 0.5 kept for jittered sampling): "
+        "docs/prereg/session28_mtad.md",
+    )
 
 
 @dataclass(frozen=True)
@@ -740,6 +755,7 @@ def candidate_pairs(
     if params.min_gap_steps > 0 and seg.step1 is not None and seg.step0 is not None:
         with np.errstate(invalid="ignore"):
             keep &= ~(gap < params.min_gap_steps * np.fmin(seg.step1[i], seg.step0[j]))
+    keep &= ~_sooner_than_seen(seg, i, j, gap, params)
     i, j, gap = i[keep], j[keep], gap[keep]
     dist = geo.haversine_m(seg.lon1[i], seg.lat1[i], seg.lon0[j], seg.lat0[j])
     v = np.maximum(params.v_max_kn, np.maximum(fast_end[i], fast_start[j])) * geo.KN_MS
@@ -756,6 +772,21 @@ def candidate_pairs(
     return pair_features(
         seg, i[order], j[order], dist[order], params.step_allowance_s, params.max_gap_s
     )
+
+
+def _sooner_than_seen(
+    seg: Segments, i: np.ndarray, j: np.ndarray, gap: np.ndarray, params: LinkParams
+) -> np.ndarray:
+    """Per pair: its gap is shorter than ``min_gap_least_steps`` × the shortest time
+    step either piece shows at the ends that meet (the smaller of the two; a piece that
+    shows none, a single fix, is judged by the other's; neither shows one: no test). All
+    False when off."""
+    k = params.min_gap_least_steps
+    if k <= 0 or seg.least_step1 is None or seg.least_step0 is None or len(i) == 0:
+        return np.zeros(len(i), dtype=bool)
+    least = np.fmin(seg.least_step1[i], seg.least_step0[j])  # NaN only when neither shows
+    with np.errstate(invalid="ignore"):
+        return gap < k * least
 
 
 def _narrowed(

@@ -84,6 +84,11 @@ class Segments:
     span1: np.ndarray | None = None
     source: pd.DataFrame | None = None
     source_row: np.ndarray | None = None
+    #: Shortest positive time step (s) between the first / last ``end_points`` fixes of
+    #: the piece (NaN for a single fix, or fixes all at one instant): how soon its ship
+    #: has been seen again, jitter included (``LinkParams.min_gap_least_steps``).
+    least_step0: np.ndarray | None = None
+    least_step1: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.t0)
@@ -339,6 +344,17 @@ def _end_rows(
     return rows, valid, anchor
 
 
+def _end_least_step(t: np.ndarray, rows: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """Per end: the shortest positive time step (s) between its fixes (``rows``/``valid``
+    as :func:`_end_rows` gives them); NaN where it has none (a single fix, or fixes at
+    one instant: no evidence of its own, and no sensor's figure put in its place)."""
+    tt = np.where(valid, t[rows], np.nan)
+    steps = np.abs(np.diff(tt, axis=1))
+    steps = np.where(steps > 0, steps, np.inf)  # NaN (not a fix) and copies alike
+    least = steps.min(axis=1, initial=np.inf)
+    return np.where(np.isfinite(least), least, np.nan)
+
+
 def _end_step(
     t: np.ndarray, rows: np.ndarray, valid: np.ndarray, sensor_code: np.ndarray
 ) -> np.ndarray:
@@ -558,6 +574,7 @@ def segment_stats(
     tail, _, _ = _end_rows(index, everyone, k, head=False)
     sensor_code = pd.factorize(index.keys["sensor"])[0].astype("int64")
     step0, step1 = (_end_step(t, rows, valid, sensor_code) for rows in (head, tail))
+    least0, least1 = (_end_least_step(t, rows, valid) for rows in (head, tail))
     widths = [(k, k_max), (k, k_max)]
     if end_span_s > 0:
         widths = [_span_widths(step, end_span_s, k, k_max) for step in (step0, step1)]
@@ -641,6 +658,8 @@ def segment_stats(
         span1=span1,
         source=source,
         source_row=source_row,
+        least_step0=least0,
+        least_step1=least1,
     )
 
 
