@@ -784,7 +784,10 @@ def test_a_ship_seen_every_half_hour_does_not_reappear_three_minutes_later():
     b = track("b", b_t, 2.0 * t[-1] + 300.0 + 2.0 * (b_t - b_t[0]), rng.normal(0, 30, 6))
     df = pd.concat([a, b], ignore_index=True)
     assert len(associate_interrupted(df).chosen) == 0
-    assert len(associate_interrupted(df, LinkParams(min_gap_steps=0.0)).chosen) == 1
+    # (both step rules off: min_gap_least_steps holds it apart as well, 200 s < 0.9 × ~1,700 s)
+    off = LinkParams(min_gap_steps=0.0, min_gap_least_steps=0.0)
+    assert len(associate_interrupted(df, off).chosen) == 1
+    assert len(associate_interrupted(df, LinkParams(min_gap_steps=0.0)).chosen) == 0
     # A radar batch that changes after one missed scan (20 s at a 10 s period), or after
     # none at all (one period), is still continued.
     for gap in (10.0, 20.0):
@@ -1396,3 +1399,78 @@ def test_the_session_27_parameters_are_validated():
             LinkParams(**bad).checked()
     p = LinkParams(speed_change_ms2=0.01, rivals_reach=3.0).checked()
     assert p.speed_change_ms2 == 0.01 and p.rivals_reach == 3.0
+
+
+def _sampled(batch, t, speed=5.0, course=60.0, noise=0.0, rng=None, truth=None):
+    """A straight track at fix times ``t`` (s), positions with ``noise`` m per axis."""
+    rad = np.radians(course)
+    e = rng.normal(0, noise, (2, len(t))) if noise > 0 else np.zeros((2, len(t)))
+    x = speed * np.sin(rad) * t + e[0]
+    y = speed * np.cos(rad) * t + e[1]
+    return track(batch, t, x, y, truth=truth)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_a_piece_seen_every_600_s_is_not_continued_300_s_on(seed):
+    # Session 28 (min_gap_least_steps 0.9): a ship seen every 600 s at the soonest does not
+    # reappear 300-500 s after its last fix; min_gap_steps 0.5 (of the median step) lets
+    # such a pair through, the shortest step the pieces show does not.
+    rng = np.random.default_rng(seed)
+    t_a = np.cumsum(rng.uniform(600, 640, 8))
+    gap = rng.uniform(300, 500)
+    t_b = t_a[-1] + gap + np.r_[0.0, np.cumsum(rng.uniform(600, 640, 7))]
+    df = pd.concat([_sampled("a", t_a, rng=rng), _sampled("b", t_b, rng=rng, truth="a")])
+    seg = segment_stats(df)
+    assert np.all(seg.least_step1[seg.n > 1] >= 600) and np.all(seg.least_step0 >= 600)
+    assert len(associate_interrupted(df).chosen) == 0
+    off = associate_interrupted(df, LinkParams(min_gap_least_steps=0.0))
+    assert off.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["a", "b"]]
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_jittered_sampling_is_held_to_the_short_steps_it_shows(seed):
+    # ±30 % jitter about 180 s: a piece continued after one step (no fix lost, the batch
+    # renumbered) is still joined when that step is no shorter than 0.9 x the shortest
+    # step its ends show; median-step rules at 0.9 would cut it (the step is 0.7-1.0 of
+    # the median), which is why the rule asks the shortest step.
+    rng = np.random.default_rng(seed)
+    steps = rng.uniform(126, 234, 20)
+    t = np.cumsum(steps)
+    shortest = min(np.diff(t[:10]).min(), np.diff(t[10:]).min())
+    t[10:] += 0.95 * shortest - (t[10] - t[9])  # the renumbering step: 0.95 x the shortest
+    df = pd.concat([_sampled("a", t[:10], rng=rng), _sampled("b", t[10:], rng=rng, truth="a")])
+    a = associate_interrupted(df)
+    assert a.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["a", "b"]]
+    # the same gap at 0.8 x the shortest step: not this ship seen again
+    t2 = t.copy()
+    t2[10:] -= 0.15 * shortest
+    df2 = pd.concat([_sampled("a", t2[:10], rng=rng), _sampled("b", t2[10:], rng=rng)])
+    assert len(associate_interrupted(df2).chosen) == 0
+    assert len(associate_interrupted(df2, LinkParams(min_gap_least_steps=0.0)).chosen) == 1
+
+
+def test_a_single_fix_shows_no_step_and_is_judged_by_its_partner():
+    # A single fix has no step of its own (NaN); a pair of which one piece is a single fix
+    # is held to the other's shortest step, two single fixes to none.
+    t_a = 600.0 * np.arange(6)
+    lone = np.array([t_a[-1] + 400.0])
+    df = pd.concat([_sampled("a", t_a), _sampled("p", lone, truth="a")])
+    seg = segment_stats(df)
+    one = seg.n == 1
+    assert np.isnan(seg.least_step0[one]).all() and np.isnan(seg.least_step1[one]).all()
+    assert len(associate_interrupted(df).chosen) == 0  # 400 s < 0.9 x 600 s
+    assert len(associate_interrupted(df, LinkParams(min_gap_least_steps=0.0)).chosen) == 1
+    # copies at one instant show no step either
+    dup = pd.concat([_sampled("a", np.r_[t_a, t_a[-1]]), _sampled("p", lone, truth="a")])
+    assert np.isfinite(segment_stats(dup).least_step1[0])  # the others still show 600 s
+    assert segment_stats(dup).least_step1[0] == 600.0
+    two = pd.concat([_sampled("x", np.array([0.0])), _sampled("y", np.array([200.0]), truth="x")])
+    s2 = segment_stats(two)
+    assert np.isnan(s2.least_step1).all() and np.isnan(s2.least_step0).all()
+
+
+def test_min_gap_least_steps_is_validated():
+    for bad in (-0.1, 10.5):
+        with pytest.raises(InputError, match="min_gap_least_steps"):
+            LinkParams(min_gap_least_steps=bad).checked()
+    assert LinkParams().min_gap_least_steps == 0.9
