@@ -444,7 +444,7 @@ class LinkParams(Params):
         "docs/prereg/session28_overlay.md",
     )
     min_gap_least_steps: float = param(
-        0.9,
+        0.0,
         "",
         "a pair's gap must also be at least this many of the shortest time step either "
         "piece shows between its own end fixes (the old end's last end_points fixes, the "
@@ -458,7 +458,8 @@ class LinkParams(Params):
         "of a step, the median rule's 0.5 kept for jittered sampling; adopted by its pre-set "
         "rule: MTAD tuning half 600 s 0.851 / 0.090 -> 0.858 / 0.081, 180 s unchanged; "
         "Oresund 180 s +-30 % lost 1 of 10 pairs, at rule 6's bound; held out, once, P_FA "
-        "+0.009 / +0.017): docs/prereg/session28_mtad.md",
+        "+0.009 / +0.017, so returned to an option by the lead; 0.9 is the candidate): "
+        "docs/prereg/session28_mtad.md",
     )
 
 

@@ -784,10 +784,11 @@ def test_a_ship_seen_every_half_hour_does_not_reappear_three_minutes_later():
     b = track("b", b_t, 2.0 * t[-1] + 300.0 + 2.0 * (b_t - b_t[0]), rng.normal(0, 30, 6))
     df = pd.concat([a, b], ignore_index=True)
     assert len(associate_interrupted(df).chosen) == 0
-    # (both step rules off: min_gap_least_steps holds it apart as well, 200 s < 0.9 × ~1,700 s)
+    # (the option min_gap_least_steps 0.9 holds it apart as well, 200 s < 0.9 × ~1,700 s)
     off = LinkParams(min_gap_steps=0.0, min_gap_least_steps=0.0)
     assert len(associate_interrupted(df, off).chosen) == 1
-    assert len(associate_interrupted(df, LinkParams(min_gap_steps=0.0)).chosen) == 0
+    least = LinkParams(min_gap_steps=0.0, min_gap_least_steps=0.9)
+    assert len(associate_interrupted(df, least).chosen) == 0
     # A radar batch that changes after one missed scan (20 s at a 10 s period), or after
     # none at all (one period), is still continued.
     for gap in (10.0, 20.0):
@@ -1422,7 +1423,8 @@ def test_a_piece_seen_every_600_s_is_not_continued_300_s_on(seed):
     df = pd.concat([_sampled("a", t_a, rng=rng), _sampled("b", t_b, rng=rng, truth="a")])
     seg = segment_stats(df)
     assert np.all(seg.least_step1[seg.n > 1] >= 600) and np.all(seg.least_step0 >= 600)
-    assert len(associate_interrupted(df).chosen) == 0
+    on = LinkParams(min_gap_least_steps=0.9)
+    assert len(associate_interrupted(df, on).chosen) == 0
     off = associate_interrupted(df, LinkParams(min_gap_least_steps=0.0))
     assert off.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["a", "b"]]
 
@@ -1439,13 +1441,14 @@ def test_jittered_sampling_is_held_to_the_short_steps_it_shows(seed):
     shortest = min(np.diff(t[:10]).min(), np.diff(t[10:]).min())
     t[10:] += 0.95 * shortest - (t[10] - t[9])  # the renumbering step: 0.95 x the shortest
     df = pd.concat([_sampled("a", t[:10], rng=rng), _sampled("b", t[10:], rng=rng, truth="a")])
-    a = associate_interrupted(df)
+    on = LinkParams(min_gap_least_steps=0.9)
+    a = associate_interrupted(df, on)
     assert a.pair_table()[["batch_a", "batch_b"]].values.tolist() == [["a", "b"]]
     # the same gap at 0.8 x the shortest step: not this ship seen again
     t2 = t.copy()
     t2[10:] -= 0.15 * shortest
     df2 = pd.concat([_sampled("a", t2[:10], rng=rng), _sampled("b", t2[10:], rng=rng)])
-    assert len(associate_interrupted(df2).chosen) == 0
+    assert len(associate_interrupted(df2, on).chosen) == 0
     assert len(associate_interrupted(df2, LinkParams(min_gap_least_steps=0.0)).chosen) == 1
 
 
@@ -1458,7 +1461,8 @@ def test_a_single_fix_shows_no_step_and_is_judged_by_its_partner():
     seg = segment_stats(df)
     one = seg.n == 1
     assert np.isnan(seg.least_step0[one]).all() and np.isnan(seg.least_step1[one]).all()
-    assert len(associate_interrupted(df).chosen) == 0  # 400 s < 0.9 x 600 s
+    on = LinkParams(min_gap_least_steps=0.9)
+    assert len(associate_interrupted(df, on).chosen) == 0  # 400 s < 0.9 x 600 s
     assert len(associate_interrupted(df, LinkParams(min_gap_least_steps=0.0)).chosen) == 1
     # copies at one instant show no step either
     dup = pd.concat([_sampled("a", np.r_[t_a, t_a[-1]]), _sampled("p", lone, truth="a")])
@@ -1473,4 +1477,4 @@ def test_min_gap_least_steps_is_validated():
     for bad in (-0.1, 10.5):
         with pytest.raises(InputError, match="min_gap_least_steps"):
             LinkParams(min_gap_least_steps=bad).checked()
-    assert LinkParams().min_gap_least_steps == 0.9
+    assert LinkParams().min_gap_least_steps == 0.0  # an option (session 28: held out worse)
