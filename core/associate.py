@@ -461,6 +461,29 @@ class LinkParams(Params):
         "+0.009 / +0.017, so returned to an option by the lead; 0.9 is the candidate): "
         "docs/prereg/session28_mtad.md",
     )
+    slow_change_ms2: float = param(
+        0.0,
+        "m/s²",
+        "where one end of a moving pair is slow (fitted speed below slow_end_kn: the ship "
+        "arriving at or leaving a berth), the speed tolerance grows with the gap by this "
+        "acceleration × the gap, added in squares to speed_tol_kn and the ends' velocity "
+        "errors; pairs with both ends faster keep the tolerance whatever the gap (0 = off)",
+        0.0,
+        1.0,
+        "ours (session 28, Saronic's days overlaid: a fast ferry slowing into or leaving "
+        "port across 15-30 min gaps, the slower end under 5 kn in 57 of the 74 misses "
+        "over 10 kn apart): docs/prereg/session28_overlay_b.md",
+    )
+    slow_end_kn: float = param(
+        5.0,
+        "kn",
+        "slow_change_ms2: an end slower than this (fitted speed) lets the speed change with "
+        "the gap",
+        0.0,
+        50.0,
+        "ours (session 28, Saronic's days overlaid: the slower end of the misses over 10 kn "
+        "apart, median 1.9 kn, under 5 kn in 57 of 74): docs/prereg/session28_overlay_b.md",
+    )
 
 
 @dataclass(frozen=True)
@@ -1138,6 +1161,16 @@ def _speed_change_kn2(pairs: Pairs, params: LinkParams) -> np.ndarray | float:
     return (params.speed_change_ms2 * pairs.gap_s / geo.KN_MS) ** 2
 
 
+def _slow_change_kn2(seg: Segments, pairs: Pairs, params: LinkParams) -> np.ndarray | float:
+    """Per pair: the square (kn²) of the speed change its gap allows where one end is slow
+    (``slow_change_ms2`` × the gap, where the end's or the start's fitted speed is below
+    ``slow_end_kn``), added to the speed tolerance's square; 0 elsewhere and when off."""
+    if params.slow_change_ms2 <= 0:
+        return 0.0
+    slow = np.minimum(seg.speed1_kn[pairs.i], seg.speed0_kn[pairs.j]) < params.slow_end_kn
+    return np.where(slow, (params.slow_change_ms2 * pairs.gap_s / geo.KN_MS) ** 2, 0.0)
+
+
 def _debiased_speed(speed_ms: np.ndarray, sd_ms: np.ndarray) -> np.ndarray:
     """The fitted speed (m/s) less its noise's share: sqrt(max(speed² − 2·sd², 0))."""
     sd = np.nan_to_num(sd_ms, nan=0.0, posinf=0.0)
@@ -1365,7 +1398,12 @@ def _pricing(
                 0.0,
             )
         course_tol = np.sqrt(params.course_tol_deg**2 + c_deg2)
-        speed_tol = np.sqrt(params.speed_tol_kn**2 + v_kn2 + _speed_change_kn2(pairs, params))
+        speed_tol = np.sqrt(
+            params.speed_tol_kn**2
+            + v_kn2
+            + _speed_change_kn2(pairs, params)
+            + _slow_change_kn2(seg, pairs, params)
+        )
         # At rest at both ends, course means nothing and equal (zero) speeds are the
         # premise, not evidence: the position alone decides.
         dcourse = np.where(known & ~rest, dcourse, np.nan)
