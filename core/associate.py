@@ -472,7 +472,8 @@ class LinkParams(Params):
         1.0,
         "ours (session 28, Saronic's days overlaid: a fast ferry slowing into or leaving "
         "port across 15-30 min gaps, the slower end under 5 kn in 57 of the 74 misses "
-        "over 10 kn apart): docs/prereg/session28_overlay_b.md",
+        "over 10 kn apart; 0.01 failed its pre-set rule 2, MTAD held-out own cuts P_CA "
+        "0.919 -> 0.905 at 5 kn, 0.904 at 10 kn): docs/prereg/session28_overlay_b.md",
     )
     slow_end_kn: float = param(
         5.0,
