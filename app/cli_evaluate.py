@@ -52,6 +52,7 @@ def _maneuver_params(args: argparse.Namespace):
         noise_lag_s=args.noise_lag_s,
         noise_min_span=args.noise_min_span,
         noise_k_windows=args.noise_k_windows,
+        noise_min_windows=args.noise_min_windows,
         max_step_windows=args.max_step_windows,
         window_max_s=args.window_max_s,
         radius_s=args.radius_s,
@@ -293,6 +294,14 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.noise_k_windows,
         help="the noise floor's k grows with the track's independent windows: "
         "max(noise_k, sqrt(2 ln N))",
+    )
+    p.add_argument(
+        "--noise-min-windows",
+        type=float,
+        default=d.noise_min_windows,
+        help=f"--noise-min-span and --noise-k-windows only on tracks offering at least this "
+        f"many windows of the tested size (points / window points); 0 = every track "
+        f"(default {d.noise_min_windows:g})",
     )
     p.add_argument(
         "--max-step-windows",

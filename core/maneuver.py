@@ -252,6 +252,17 @@ class ManeuverParams(Params):
         "track, not per window",
         source="ours (session 27, h170: docs/prereg/session27_false_turns.md)",
     )
+    noise_min_windows: float = param(
+        0.0,
+        "windows",
+        "noise_min_span and noise_k_windows apply only on tracks that offer at least this "
+        "many windows of the first scale (the track's points / the first window's points), "
+        "at every scale: a short track gives few windows, few chances for a false turn, and "
+        "stays as without them; 0 = every track",
+        lo=0.0,
+        hi=1e9,
+        source="ours (session 28, h178: docs/prereg/session28_false_turns.md)",
+    )
     gap_s: float = param(
         10.0,
         "s",
@@ -925,6 +936,12 @@ def _k_windows(k: float, points: np.ndarray, p_row: np.ndarray) -> np.ndarray:
     track's independent windows), per row."""
     n_win = np.maximum(points / np.maximum(p_row, 1), 1.0)
     return np.maximum(k, np.sqrt(2.0 * np.log(n_win)))
+
+
+def _enough_windows(points: np.ndarray, p_first: np.ndarray, n_min: float) -> np.ndarray:
+    """``noise_min_windows``: per row, the track's ``points`` / its first scale's window
+    points ``p_first`` is at least ``n_min`` (the track offers that many windows)."""
+    return points >= n_min * np.maximum(p_first, 1)
 
 
 def _fast_enough(
@@ -2182,12 +2199,19 @@ def _detect_sorted(
                 sigma = position_noise_m(x, y, t, track_index, lag)
                 noise.append(sigma if parent is None else sigma[parent])
             k = params.noise_k
-            if params.noise_k > 0 and params.noise_k_windows:
+            gate = None  # noise_min_windows: the rows whose track offers enough windows
+            if params.noise_k > 0 and (params.noise_k_windows or params.noise_min_span > 0):
                 pt = index.track_of_row[cand]
                 points = track_index.sizes[pt if parent is None else parent[pt]]
+                if params.noise_min_windows > 0:
+                    gate = _enough_windows(points, p_first[pt], params.noise_min_windows)
+            if params.noise_k > 0 and params.noise_k_windows:
                 k = _k_windows(params.noise_k, points, p_c)
+                if gate is not None:
+                    k = np.where(gate, k, params.noise_k)
             if params.noise_k > 0 and params.noise_min_span > 0:
-                ok &= _spans_noise(x, y, index, p_c, noise[0], cand, params.noise_min_span)
+                spans = _spans_noise(x, y, index, p_c, noise[0], cand, params.noise_min_span)
+                ok &= spans if gate is None else spans | ~gate
             if fine:  # the floor itself is wanted below
                 with np.errstate(invalid="ignore"):
                     floor = np.maximum(

@@ -126,6 +126,9 @@ class ManeuverParams(Params):
     noise_k_windows: bool = param(
         False, "", "k = max(noise_k, sqrt(2 ln N)), N = track points / window points"
     )
+    noise_min_windows: float = param(
+        0.0, "windows", "the two above only where track points / window points >= this"
+    )
     gap_s: float = param(
         10.0,
         "s",
@@ -660,9 +663,15 @@ def detect(
                     lag = np.clip(lag, 1, 1000).astype("int64")
                 noise.append(position_noise_m(x, y, t, index, lag))
             k = params.noise_k
+            # h178, session 28: the two h170 options only on tracks with enough windows
+            # (the track's points / its first scale's window points)
+            p_one = _p_per_track(t, index, params, scales[0], med)[index.track_of_row[cand]]
+            size = index.sizes[index.track_of_row[cand]]
+            gated = size >= params.noise_min_windows * np.maximum(p_one, 1)
             if params.noise_k > 0 and params.noise_k_windows:  # h170, session 27
                 n_win = np.maximum(index.sizes[index.track_of_row[cand]] / p_c, 1.0)
                 k = np.maximum(params.noise_k, np.sqrt(2.0 * np.log(n_win)))
+                k = np.where(gated, k, params.noise_k)
             with np.errstate(invalid="ignore"):
                 floor = np.maximum(
                     k * _heading_noise_deg(x, y, index, p_c, noise[0], cand),
@@ -675,7 +684,7 @@ def detect(
                     span_m = params.noise_min_span * noise[0][index.track_of_row[cand]]
                     lb = np.hypot(x[cand] - x[a], y[cand] - y[a])
                     lf = np.hypot(x[b] - x[cand], y[b] - y[cand])
-                    ok &= ~((lb < span_m) | (lf < span_m))
+                    ok &= ~((lb < span_m) | (lf < span_m)) | ~gated
                 if fine:
                     ok &= _leave_one_out_deg(x, y, index, p_c, cand) > floor
         if params.min_speed_kn > 0:

@@ -72,6 +72,7 @@ PARAMS = [
     ManeuverParams(threshold_deg=60.0, min_speed_kn=0.0, rest_radius_m=10.0),
     ManeuverParams(noise_lag_s=10.0, noise_k=4.0),
     ManeuverParams(noise_min_span=3.0, noise_k_windows=True),  # h170, options
+    ManeuverParams(noise_min_span=3.0, noise_k_windows=True, noise_min_windows=40.0),  # h178
 ]
 
 
