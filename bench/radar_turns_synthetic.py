@@ -107,7 +107,11 @@ def main() -> None:
     args = ap.parse_args()
     variants = dict(VARIANTS)
     if args.set:
-        changes = {k: float(v) for k, v in (item.split("=", 1) for item in args.set)}
+        base = ManeuverParams()  # a field's own type (a bool takes true/false or 1/0)
+        changes = {
+            k: (v.lower() in ("true", "1")) if isinstance(getattr(base, k), bool) else float(v)
+            for k, v in (item.split("=", 1) for item in args.set)
+        }
         variants["default, " + " ".join(args.set)] = changes
     print(
         f"{'seed':>4} {'variant':24} {'detections':>10} {'turns':>6} {'precision':>9} {'recall':>7}"
