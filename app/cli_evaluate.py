@@ -53,6 +53,7 @@ def _maneuver_params(args: argparse.Namespace):
         noise_min_span=args.noise_min_span,
         noise_k_windows=args.noise_k_windows,
         noise_min_windows=args.noise_min_windows,
+        noise_k_law=args.noise_k_law,
         max_step_windows=args.max_step_windows,
         window_max_s=args.window_max_s,
         radius_s=args.radius_s,
@@ -299,9 +300,16 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         "--noise-min-windows",
         type=float,
         default=d.noise_min_windows,
-        help=f"--noise-min-span and --noise-k-windows only on tracks offering at least this "
+        help=f"--noise-min-span, --noise-k-windows and --noise-k-law only on tracks offering at least this "
         f"many windows of the tested size (points / window points); 0 = every track "
         f"(default {d.noise_min_windows:g})",
+    )
+    p.add_argument(
+        "--noise-k-law",
+        action=argparse.BooleanOptionalAction,
+        default=d.noise_k_law,
+        help="the noise floor's k at the same false-alarm probability under the heading "
+        "change's real law at the window's span in sigma (heavy tails at a few sigma)",
     )
     p.add_argument(
         "--max-step-windows",

@@ -255,13 +255,24 @@ class ManeuverParams(Params):
     noise_min_windows: float = param(
         0.0,
         "windows",
-        "noise_min_span and noise_k_windows apply only on tracks that offer at least this "
+        "noise_min_span, noise_k_windows and noise_k_law apply only on tracks that offer at least this "
         "many windows of the first scale (the track's points / the first window's points), "
         "at every scale: a short track gives few windows, few chances for a false turn, and "
         "stays as without them; 0 = every track",
         lo=0.0,
         hi=1e9,
         source="ours (session 28, h178: docs/prereg/session28_false_turns.md)",
+    )
+    noise_k_law: bool = param(
+        False,
+        "",
+        "the noise floor's k is taken at the same false-alarm probability under the heading "
+        "change's real law at the window's span in track-noise sigma and its points (a table "
+        "simulated on straight noisy windows), not the normal law: k grows where the windows "
+        "span a few sigma (there the law's tails are heavy) and stays where they span tens; "
+        "with noise_min_windows only on tracks offering that many windows",
+        source="ours (session 28, h185: docs/prereg/session28_false_turns_b.md, "
+        "bench/noise_law_table.py)",
     )
     gap_s: float = param(
         10.0,
@@ -936,6 +947,29 @@ def _k_windows(k: float, points: np.ndarray, p_row: np.ndarray) -> np.ndarray:
     track's independent windows), per row."""
     n_win = np.maximum(points / np.maximum(p_row, 1), 1.0)
     return np.maximum(k, np.sqrt(2.0 * np.log(n_win)))
+
+
+def _k_law(
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    p_row: np.ndarray,
+    sigma: np.ndarray,
+    rows: np.ndarray,
+    k: "float | np.ndarray",
+) -> np.ndarray:
+    """``noise_k_law``: k per row of ``rows`` times :func:`noise_law.law_factor` at its
+    windows' shorter span (first to last point, those of :func:`_heading_noise_deg`) in the
+    track's σ and its ``p_row`` points."""
+    from wakeline.core.noise_law import law_factor
+
+    n = len(x)
+    a = np.clip(rows - p_row + 1, 0, n - 1)
+    b = np.clip(rows + p_row - 1, 0, n - 1)
+    back, fwd, _ = _lengths_sq(x, y, rows, a, b)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = np.sqrt(np.minimum(back, fwd)) / sigma[index.track_of_row[rows]]
+    return k * law_factor(k, p_row, r)
 
 
 def _enough_windows(points: np.ndarray, p_first: np.ndarray, n_min: float) -> np.ndarray:
@@ -2200,7 +2234,8 @@ def _detect_sorted(
                 noise.append(sigma if parent is None else sigma[parent])
             k = params.noise_k
             gate = None  # noise_min_windows: the rows whose track offers enough windows
-            if params.noise_k > 0 and (params.noise_k_windows or params.noise_min_span > 0):
+            options = params.noise_k_windows or params.noise_min_span > 0 or params.noise_k_law
+            if params.noise_k > 0 and options:
                 pt = index.track_of_row[cand]
                 points = track_index.sizes[pt if parent is None else parent[pt]]
                 if params.noise_min_windows > 0:
@@ -2209,6 +2244,9 @@ def _detect_sorted(
                 k = _k_windows(params.noise_k, points, p_c)
                 if gate is not None:
                     k = np.where(gate, k, params.noise_k)
+            if params.noise_k > 0 and params.noise_k_law:
+                law = _k_law(x, y, index, p_c, noise[0], cand, k)
+                k = law if gate is None else np.where(gate, law, k)
             if params.noise_k > 0 and params.noise_min_span > 0:
                 spans = _spans_noise(x, y, index, p_c, noise[0], cand, params.noise_min_span)
                 ok &= spans if gate is None else spans | ~gate

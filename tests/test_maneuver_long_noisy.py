@@ -142,7 +142,7 @@ def test_options_equal_the_straightforward_detector(options):
     ours = detect(pts, params)
     fields = dict(params.__dict__)
     off = ("max_step_windows", "window_max_s", "radius_s", "edge_s", "rest_north_box")
-    for gone in (*off, "slow_side_step_s", "slow_side_span_s"):
+    for gone in (*off, "slow_side_step_s", "slow_side_span_s", "noise_k_law"):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)

@@ -89,7 +89,7 @@ def test_gate_equals_the_straightforward_detector():
     ours = detect(pts, params)
     fields = dict(params.__dict__)
     off = ("max_step_windows", "window_max_s", "radius_s", "edge_s", "rest_north_box")
-    for gone in (*off, "slow_side_step_s", "slow_side_span_s"):
+    for gone in (*off, "slow_side_step_s", "slow_side_span_s", "noise_k_law"):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
