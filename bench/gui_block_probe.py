@@ -1,0 +1,321 @@
+"""What blocks the window's event loop while a big file loads, is cleaned, and the active
+layer is switched (SPEC §7: no block over 100 ms at a million points).
+
+A 10 ms QTimer on the GUI thread records every gap between two ticks; a watchdog thread
+samples the other threads' Python stacks while the GUI thread is over 100 ms late; a
+``gc.callbacks`` hook records every collection over 20 ms (generation, duration, thread,
+objects tracked by the collector when it started). Two baselines in the same run, with
+nothing of ours loading: the idle loop, and the loop beside a CPU-bound pure-Python
+thread (the GIL handed back and forth every 5 ms, as to a worker), so that the figures
+of the actions read as ratios against what the machine and the GIL alone give.
+
+    QT_QPA_PLATFORM=offscreen .venv/bin/python bench/gui_block_probe.py \
+        [--file /work/scratch/s27/h168/in/atd_1M.csv] [--runs 3] [--why]
+
+Each run is a new process (``--runs`` starts them one after the other), so that the
+collector and the allocators start as the application's do.
+"""
+
+import argparse
+import collections
+import gc
+import mmap
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import traceback
+from pathlib import Path
+
+import numpy as np
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
+from PySide6 import QtCore, QtWidgets  # noqa: E402
+
+from wakeline.app.main import freeze_startup_objects, wait_for_jobs  # noqa: E402
+from wakeline.app.main_window import MainWindow  # noqa: E402
+
+PERIOD_MS = 10
+DEFAULT_FILE = Path("/work/scratch/s27/h168/in/atd_1M.csv")
+
+
+class Probe:
+    """The 10 ms timer, the watchdog and the collector hook, for one action at a time."""
+
+    def __init__(self, why: bool) -> None:
+        self.why = why
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(PERIOD_MS)
+        self.timer.timeout.connect(self._tick)
+        self.last = time.perf_counter()
+        self.last_cpu = time.thread_time()
+        self.gaps: list[float] = []
+        self.cpus: list[float] = []  # the GUI thread's own CPU time in each gap
+        self.main = threading.get_ident()
+        self.samples: collections.Counter = collections.Counter()
+        #: (generation, wall ms, the collecting thread's CPU ms, thread, tracked, collected)
+        self.collections: list[tuple] = []
+        self.by_gen = [0, 0, 0]  # collections of each generation during the action
+        self._gc_start: dict[int, tuple[float, float, int]] = {}
+        self.stop = threading.Event()
+        self.beat: mmap.mmap | None = None
+        gc.callbacks.append(self._gc)
+        if why:
+            threading.Thread(target=self._watch, daemon=True).start()
+
+    def _tick(self) -> None:
+        if self.beat is not None:
+            self.beat[:8] = struct.pack("d", time.monotonic())
+        now, cpu = time.perf_counter(), time.thread_time()
+        self.gaps.append(now - self.last)
+        self.cpus.append(cpu - self.last_cpu)
+        self.last, self.last_cpu = now, cpu
+
+    def _gc(self, phase: str, info: dict) -> None:
+        me = threading.get_ident()
+        if phase == "stop":
+            self.by_gen[info["generation"]] += 1
+        if phase == "start":
+            tracked = len(gc.get_objects(2)) if info["generation"] == 2 and self.why else -1
+            self._gc_start[me] = (time.perf_counter(), time.thread_time(), tracked)
+            return
+        t0, c0, tracked = self._gc_start.pop(me, (time.perf_counter(), time.thread_time(), -1))
+        ms = (time.perf_counter() - t0) * 1000
+        if ms > 20:
+            who = "GUI" if me == self.main else threading.current_thread().name
+            cpu = (time.thread_time() - c0) * 1000
+            self.collections.append((info["generation"], ms, cpu, who, tracked, info["collected"]))
+
+    def _watch(self) -> None:
+        me = threading.get_ident()
+        while not self.stop.wait(0.01):
+            if time.perf_counter() - self.last < 0.1:
+                continue
+            for ident, frame in sys._current_frames().items():
+                if ident == me:
+                    continue
+                stack = traceback.extract_stack(frame)
+                if ident != self.main and stack and stack[-1].name in ("wait", "get", "_wait"):
+                    continue
+                who = "GUI  " if ident == self.main else "other"
+                key = " <- ".join(
+                    f"{Path(f.filename).stem}:{f.lineno}:{f.name}" for f in reversed(stack[-7:])
+                )
+                self.samples[f"{who} {key}"] += 1
+
+    def start(self, label: str = "") -> None:
+        if self.beat is not None:
+            self.beat[8:72] = label.encode()[:64].ljust(64, b"\0")
+        self.gaps.clear()
+        self.cpus.clear()
+        self.samples.clear()
+        self.collections.clear()
+        self.by_gen = [0, 0, 0]
+        self.last, self.last_cpu = time.perf_counter(), time.thread_time()
+        self.timer.start()
+
+    def end(self) -> dict:
+        self.timer.stop()
+        gaps = np.array(self.gaps or [0.0]) * 1000
+        cpus = np.array(self.cpus or [0.0]) * 1000
+        return {
+            "longest": max(float(gaps.max()) - PERIOD_MS, 0.0),
+            "longest_cpu": float(cpus[int(gaps.argmax())]),
+            "most_cpu": float(cpus.max()),
+            "p95": float(np.percentile(gaps, 95)),
+            "over100": int((gaps > 100 + PERIOD_MS).sum()),
+            "ticks": len(gaps),
+            "gc": list(self.collections),
+            "by_gen": list(self.by_gen),
+            "samples": self.samples.most_common(8),
+        }
+
+
+def monitor(pid: int, beat_path: str, out_path: str) -> None:
+    """(Another process.) While the GUI thread of ``pid`` is over 60 ms late, dump every
+    thread's stack with ``py-spy dump --nonblocking`` (which tells the thread holding the
+    GIL), once per late stretch, at most every 40 ms: a thread holding the GIL in one long
+    C call cannot be sampled from inside the process."""
+    spy = shutil.which("py-spy") or str(Path(sys.executable).with_name("py-spy"))
+    with open(beat_path, "r+b") as f, open(out_path, "a") as out:
+        beat = mmap.mmap(f.fileno(), 128)
+        while True:
+            time.sleep(0.01)
+            (last,) = struct.unpack("d", beat[:8])
+            if last < 0:
+                return
+            late = time.monotonic() - last
+            if last == 0 or late < 0.06:
+                continue
+            label = beat[8:72].rstrip(b"\0").decode()
+            got = subprocess.run(
+                [spy, "dump", "--nonblocking", "--pid", str(pid)], capture_output=True, text=True
+            )
+            out.write(f"=== {label} late {late * 1000:.0f} ms\n{got.stdout}\n")
+            out.flush()
+            time.sleep(0.03)
+
+
+def gil_holders(text: str, label: str) -> collections.Counter:
+    """From the monitor's dumps of ``label``: the stack (7 frames) of the thread holding
+    the GIL in each, counted."""
+    counts: collections.Counter = collections.Counter()
+    for dump in text.split("=== ")[1:]:
+        head, _, body = dump.partition("\n")
+        if not head.startswith(label + " late"):
+            continue
+        holder = None
+        for block in body.split("\nThread ")[1:]:
+            lines = block.splitlines()
+            if "+gil" in lines[0]:
+                who = "GUI" if "MainThread" in lines[0] else "worker"
+                frames = [ln.strip() for ln in lines[1:8] if ln.startswith("    ")]
+                frames = [f.replace(str(Path.cwd()) + "/", "") for f in frames]
+                holder = f"{who}: " + " <- ".join(frames)
+        counts[holder or "no thread holds the GIL (waiting for a core, or in C)"] += 1
+    return counts
+
+
+def settle(ms: int) -> None:
+    app = QtWidgets.QApplication.instance()
+    end = time.perf_counter() + ms / 1000
+    while time.perf_counter() < end:
+        app.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 5)
+        QtCore.QThread.msleep(1)
+
+
+def busy_thread(seconds: float) -> threading.Thread:
+    """A pure-Python CPU-bound thread: it holds the GIL but for the interpreter's switch
+    interval (5 ms), as a worker in Python code does."""
+
+    def spin() -> None:
+        end = time.perf_counter() + seconds
+        x = 0
+        while time.perf_counter() < end:
+            for k in range(1000):
+                x += k * k
+
+    t = threading.Thread(target=spin, name="busy-baseline", daemon=True)
+    t.start()
+    return t
+
+
+def wait_window(window: MainWindow) -> None:
+    """Until the window has no job, drawing, level of detail or review work left."""
+    for _ in range(3):
+        wait_for_jobs(window, 900_000)
+        settle(300)
+        if not (window.jobs_busy or window.drawing or window.canvas.lod_busy):
+            if not window.review.busy:
+                return
+
+
+def show(label: str, r: dict, seconds: float, why: bool, dumps: str = "") -> None:
+    gcs = sorted(r["gc"], key=lambda g: -g[1])
+    text = ", ".join(
+        f"g{g} {ms:.0f} ms (CPU {cpu:.0f}) {who} collected {got:,}"
+        + (f" of {n:,}" if n >= 0 else "")
+        for g, ms, cpu, who, n, got in gcs[:4]
+    )
+    print(
+        f"{label:<22} longest block {r['longest']:6.0f} ms (GUI CPU {r['longest_cpu']:4.0f}; "
+        f"most in a gap {r['most_cpu']:4.0f})  p95 gap {r['p95']:5.1f} ms  "
+        f"gaps > 110 ms {r['over100']:3d}  ({seconds:5.1f} s, load {os.getloadavg()[0]:.1f})"
+        f"  collections g0/g1/g2 {'/'.join(map(str, r['by_gen']))}, over 20 ms: {len(gcs)} {text}",
+        flush=True,
+    )
+    if why:
+        for key, n in r["samples"]:
+            print(f"      {n * 10:5d} ms  {key[:400]}")
+    if dumps:
+        for key, n in gil_holders(dumps, label).most_common(6):
+            print(f"      {n:3d} dumps  GIL held by {key[:600]}")
+
+
+def one_run(path: Path, why: bool, spy: bool = False) -> dict:
+    app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
+    out = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        beat_path, dump_path = Path(tmp) / "beat", Path(tmp) / "dumps.txt"
+        beat_path.write_bytes(bytes(128))
+        dump_path.write_text("")
+        settings = QtCore.QSettings(str(Path(tmp) / "s.ini"), QtCore.QSettings.Format.IniFormat)
+        settings.setValue("language", "en")
+        window = MainWindow(settings)
+        window.resize(1600, 1000)
+        window.show()
+        freeze_startup_objects()  # as `wakeline gui` does
+        settle(1000)
+        probe = Probe(why)
+        watcher = None
+        if spy:
+            beat_file = open(beat_path, "r+b")  # noqa: SIM115 - kept open for the run
+            probe.beat = mmap.mmap(beat_file.fileno(), 128)
+            cmd = [sys.executable, __file__, "--monitor", str(os.getpid()), str(beat_path)]
+            watcher = subprocess.Popen([*cmd, str(dump_path)])
+
+        def measure(label, action, wait) -> None:
+            t0 = time.perf_counter()
+            probe.start(label)
+            action()
+            wait()
+            r = probe.end()
+            show(label, r, time.perf_counter() - t0, why, dump_path.read_text() if spy else "")
+            out[label] = r
+
+        measure("baseline: idle", lambda: None, lambda: settle(3000))
+        spin = []
+        measure(
+            "baseline: busy thread",
+            lambda: spin.append(busy_thread(3.0)),
+            lambda: (settle(3000), spin[0].join()),
+        )
+        measure("load", lambda: window.load_files([path]), lambda: wait_window(window))
+        src = window.layer_id(path.name)
+        window.select_layer(src)
+        settle(300)
+        measure("clean", lambda: window.run_step("clean"), lambda: wait_window(window))
+        cleaned = next(i for i, lay in window.layers.items() if lay.kind == "cleaned")
+        measure("switch layer", lambda: window.select_layer(cleaned), lambda: wait_window(window))
+        measure("switch back", lambda: window.select_layer(src), lambda: wait_window(window))
+        probe.stop.set()
+        if watcher is not None:
+            probe.beat[:8] = struct.pack("d", -1.0)
+            watcher.wait(10)
+        window.close()
+    return out
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--file", type=Path, default=DEFAULT_FILE)
+    ap.add_argument("--runs", type=int, default=1)
+    ap.add_argument("--why", action="store_true", help="sample stacks; count gen-2 objects")
+    ap.add_argument(
+        "--spy", action="store_true", help="py-spy dumps (which thread holds the GIL) while late"
+    )
+    ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--monitor", nargs=3, help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    if args.monitor:
+        monitor(int(args.monitor[0]), args.monitor[1], args.monitor[2])
+        return 0
+    if args.one or args.runs == 1:
+        print(f"{args.file} ({os.path.getsize(args.file) / 1e6:.0f} MB); probe {PERIOD_MS} ms")
+        one_run(args.file, args.why, args.spy)
+        return 0
+    flags = [f for f, on in (("--why", args.why), ("--spy", args.spy)) if on]
+    for k in range(args.runs):
+        print(f"--- run {k + 1} of {args.runs}", flush=True)
+        cmd = [sys.executable, __file__, "--one", "--file", str(args.file)]
+        subprocess.run(cmd + flags, check=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
