@@ -238,7 +238,7 @@ def show(label: str, r: dict, seconds: float, why: bool, dumps: str = "") -> Non
 
 
 def one_run(path: Path, why: bool, spy: bool = False) -> dict:
-    app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
+    _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
         beat_path, dump_path = Path(tmp) / "beat", Path(tmp) / "dumps.txt"
