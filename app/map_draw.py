@@ -34,6 +34,7 @@ from wakeline.app.map_lod import decimate, gap_breaks, lod_box, nan_join, split_
 from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core import geo
 from wakeline.core.schema import time_seconds
+from wakeline.core.sorted_sets import repeat_runs
 from wakeline.core.tracks import sorted_with_index
 
 
@@ -204,10 +205,10 @@ def unwrap_tracks(
     step[starts] = 0.0
     jumps = np.where(step > 180.0, -360.0, np.where(step < -180.0, 360.0, 0.0))
     cum = np.cumsum(jumps)
-    cum -= np.repeat(cum[starts], sizes)
+    cum -= repeat_runs(cum[starts], sizes)
     if west != -180.0 and len(starts):
         first = lon[starts]
-        cum += np.repeat(geo.into_band(first, west) - first, sizes)
+        cum += repeat_runs(geo.into_band(first, west) - first, sizes)
     return lon + cum
 
 

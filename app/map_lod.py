@@ -11,6 +11,7 @@ curve is broken there, so no false straight line joins the two sides of a gap.
 import numpy as np
 
 from wakeline.core import geo
+from wakeline.core.sorted_sets import repeat_runs
 
 #: A leg is not drawn when the ship went unseen longer than this (s) and than
 #: :data:`GAP_FACTOR` times its track's median time step, or longer than
@@ -45,7 +46,7 @@ def gap_breaks(
     np.subtract(time_s[1:], time_s[:-1], out=step[1:])
     step[starts] = np.nan
     sizes = ends - starts
-    track = np.repeat(np.arange(len(starts)), sizes)
+    track = repeat_runs(None, sizes)
     # Median step of each track (the lower middle of its steps): steps sorted per track,
     # NaN last, and the middle of the finite ones taken.
     finite = np.isfinite(step)

@@ -23,6 +23,7 @@ from wakeline.app.layer_view import is_part_of
 from wakeline.app.map_draw import Curve, DrawData, LayerGeometry, prepare_layer
 from wakeline.app.map_marks import MarkerItem, render_marks
 from wakeline.app.map_paths import SpriteCurve, render_sprite
+from wakeline.core.sorted_sets import repeat_runs
 from wakeline.core.timeline import TimeIndex, build_index, mask_rows
 
 TRAIL_COLOR = "#202020"
@@ -115,7 +116,7 @@ def geometry_rows(g: LayerGeometry, keep: np.ndarray) -> LayerGeometry:
         lat=g.lat[rows],
         starts=starts,
         ends=ends,
-        track=np.repeat(np.arange(len(kept)), ends - starts),
+        track=repeat_runs(None, ends - starts),
         sensor=g.sensor[kept],
         batch=g.batch[kept],
         time_s=g.time_s[rows],

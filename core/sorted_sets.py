@@ -23,3 +23,30 @@ def distinct(a: np.ndarray) -> np.ndarray:
 def union(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Sorted distinct values in either integer array (``np.union1d``)."""
     return distinct(np.concatenate([np.asarray(a).ravel(), np.asarray(b).ravel()]))
+
+
+def repeat_runs(values: np.ndarray | None, sizes: np.ndarray) -> np.ndarray:
+    """``np.repeat(values, sizes)`` for a 1-D ``values`` and non-negative integer
+    ``sizes`` (one per value); ``values`` None: each item's run number
+    (``np.repeat(np.arange(len(sizes)), sizes)``), as intp.
+
+    ``np.repeat`` holds the GIL while it fills its output, and the output's fresh pages
+    are part of that: at a million points 50–300 ms on the shared test machine, a worker
+    stalling the window's event loop all that time (bench/gui_block_probe.py). Here the
+    output is filled by ``fill``, ``cumsum`` and ``take``, which release it."""
+    sizes = np.asarray(sizes)
+    if values is not None:
+        values = np.asarray(values)
+        if values.dtype.hasobject or values.ndim != 1:
+            return np.repeat(values, sizes)
+    n = int(sizes.sum()) if len(sizes) else 0
+    if n == 0:
+        return np.repeat(np.arange(len(sizes)) if values is None else values, sizes)
+    nonempty = np.flatnonzero(sizes)
+    ends = np.cumsum(sizes[nonempty])
+    run = np.empty(n, dtype=np.intp)
+    run.fill(0)  # not np.zeros: calloc may clear the pages with the GIL held
+    run[ends[:-1]] = np.diff(nonempty)
+    run[0] = nonempty[0]
+    np.cumsum(run, out=run)
+    return run if values is None else values.take(run)

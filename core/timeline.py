@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wakeline.core.params import Params, finite_number, param
+from wakeline.core.sorted_sets import repeat_runs
 
 
 @dataclass(frozen=True)
@@ -255,7 +256,7 @@ def mask_rows(
     """The points ``keep`` (bool per point) of tracks (rows ``starts[k]:ends[k]``, end to
     end): (kept rows, kept tracks, their new starts, their new ends) over the kept rows."""
     rows = np.flatnonzero(keep)
-    track = np.repeat(np.arange(len(starts)), ends - starts)
+    track = repeat_runs(None, ends - starts)
     per = np.bincount(track[rows], minlength=len(starts)) if len(rows) else np.zeros(len(starts))
     kept = np.flatnonzero(per > 0)
     sizes = per[kept].astype("int64")
@@ -294,7 +295,8 @@ def _per_point(values: np.ndarray, first: np.ndarray, n: int) -> np.ndarray:
     ``np.repeat`` holds the GIL while it fills its output, and at a million points the
     output's fresh pages alone took 50–120 ms on the shared test machine (the GUI
     thread stopped meanwhile, e.g. right after an Open project); ``cumsum`` releases it."""
-    out = np.zeros(n, dtype="int64")
+    out = np.empty(n, dtype="int64")
+    out.fill(0)  # not np.zeros: calloc may clear the pages with the GIL held
     out[first] = np.diff(np.asarray(values, dtype="int64"), prepend=0)
     return np.cumsum(out, out=out)
 

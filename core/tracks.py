@@ -15,6 +15,7 @@ import pyarrow.compute as pc
 
 from wakeline.core import geo
 from wakeline.core.schema import ordered_columns, time_seconds
+from wakeline.core.sorted_sets import repeat_runs
 
 
 @dataclass(frozen=True)
@@ -213,7 +214,7 @@ def _reorder_runs(
         return None  # a track in several runs: the rows must be sorted
     sizes = sizes[run_order]
     order = concat_ranges(starts[run_order], sizes)
-    run = np.repeat(np.arange(len(sizes)), sizes)
+    run = repeat_runs(None, sizes)
     out = df.drop(columns=["sensor", "batch"]).iloc[order].reset_index(drop=True)
     for name, values in sorted(
         (("sensor", run_sensor), ("batch", run_batch)), key=lambda nv: df.columns.get_loc(nv[0])
@@ -416,7 +417,7 @@ def local_xy(df: pd.DataFrame, index: TrackIndex) -> tuple[np.ndarray, np.ndarra
         return np.zeros(0), np.zeros(0)
     sizes = index.sizes  # per-track values spread by repeat, not by a gather per row
     per_track = (*geo.sin_cos_deg(lon0), *geo.sin_cos_lat(lat0))
-    sl0, cl0, sp0, cp0 = (np.repeat(v, sizes) for v in per_track)
+    sl0, cl0, sp0, cp0 = (repeat_runs(v, sizes) for v in per_track)
     return geo.plane_xy(sl, cl, sp, cp, sl0, cl0, sp0, cp0)
 
 
@@ -622,7 +623,7 @@ def run_medians(values: np.ndarray, first: np.ndarray, count: np.ndarray) -> np.
     if rest.any():
         g = np.flatnonzero(rest)
         rows = concat_ranges(first[g], count[g])
-        med = pd.Series(values[rows]).groupby(np.repeat(g, count[g])).median()
+        med = pd.Series(values[rows]).groupby(repeat_runs(g, count[g])).median()
         out[med.index.to_numpy()] = med.to_numpy()
     return out
 
