@@ -139,7 +139,7 @@ def decimate(
         clipped = ~near
         keep &= near
         # Break before a kept point when points were clipped since the previous kept one.
-        c = np.cumsum(clipped)
+        c = np.cumsum(clipped, dtype=np.intp)  # a bool cumsum holds the GIL
         kept_idx = np.flatnonzero(keep)
         gap = np.zeros(len(kept_idx), dtype=bool)
         gap[1:] = c[kept_idx[1:]] != c[kept_idx[:-1]]
@@ -156,7 +156,7 @@ def nan_join(
         return np.zeros(0), np.zeros(0)
     b = brk[idx]
     b[0] = False
-    pieces = np.cumsum(b)
+    pieces = np.cumsum(b, dtype=np.intp)
     out_lon = np.full(len(idx) + int(pieces[-1]), np.nan)
     out_lat = np.full(len(out_lon), np.nan)
     dest = np.arange(len(idx)) + pieces

@@ -91,7 +91,7 @@ def _integer_text_codes(col: pd.Series) -> tuple[np.ndarray, object] | None:
         present = np.zeros(hi - lo + 1, dtype=bool)
         present[v - lo] = True
         values = np.flatnonzero(present) + lo
-        codes = (np.cumsum(present) - 1)[v - lo]
+        codes = (np.cumsum(present, dtype=np.intp) - 1)[v - lo]
     else:
         values, codes = np.unique(v, return_inverse=True)
     text = pa.array(values).cast(pa.string())  # the plain text of each distinct value
@@ -376,7 +376,9 @@ def _index(change: np.ndarray, sensor, batch) -> TrackIndex:
     """The index of a sorted table from its track-start mask and each track's keys."""
     starts = np.flatnonzero(change).astype("int64")
     ends = np.append(starts[1:], len(change)).astype("int64")
-    track_of_row = np.cumsum(change).astype("int64") - 1
+    # a bool cumsum casts through a buffer with the GIL held (10 ms at 1.1 M points, the
+    # window stalled); counted as integers it releases it
+    track_of_row = np.cumsum(change, dtype="int64") - 1
     keys = pd.DataFrame(
         {"sensor": np.asarray(sensor, dtype=object), "batch": np.asarray(batch, dtype=object)}
     ).astype("str")
