@@ -215,7 +215,9 @@ def wait_window(window: MainWindow) -> None:
                 return
 
 
-def show(label: str, r: dict, seconds: float, why: bool, dumps: str = "") -> None:
+def show(
+    label: str, r: dict, seconds: float, why: bool, dumps: str = "", base: dict | None = None
+) -> None:
     gcs = sorted(r["gc"], key=lambda g: -g[1])
     text = ", ".join(
         f"g{g} {ms:.0f} ms (CPU {cpu:.0f}) {who} collected {got:,}"
@@ -226,7 +228,13 @@ def show(label: str, r: dict, seconds: float, why: bool, dumps: str = "") -> Non
         f"{label:<22} longest block {r['longest']:6.0f} ms (GUI CPU {r['longest_cpu']:4.0f}; "
         f"most in a gap {r['most_cpu']:4.0f})  p95 gap {r['p95']:5.1f} ms  "
         f"gaps > 110 ms {r['over100']:3d}  ({seconds:5.1f} s, load {os.getloadavg()[0]:.1f})"
-        f"  collections g0/g1/g2 {'/'.join(map(str, r['by_gen']))}, over 20 ms: {len(gcs)} {text}",
+        + (
+            f"  vs busy-thread baseline: longest x{r['longest'] / max(base['longest'], 1):.1f}"
+            f", p95 x{r['p95'] / max(base['p95'], 1):.2f}"
+            if base
+            else ""
+        )
+        + f"  collections g0/g1/g2 {'/'.join(map(str, r['by_gen']))}, over 20 ms: {len(gcs)} {text}",
         flush=True,
     )
     if why:
@@ -265,7 +273,8 @@ def one_run(path: Path, why: bool, spy: bool = False) -> dict:
             action()
             wait()
             r = probe.end()
-            show(label, r, time.perf_counter() - t0, why, dump_path.read_text() if spy else "")
+            dumps = dump_path.read_text() if spy else ""
+            show(label, r, time.perf_counter() - t0, why, dumps, out.get("baseline: busy thread"))
             out[label] = r
 
         measure("baseline: idle", lambda: None, lambda: settle(3000))
