@@ -308,17 +308,26 @@ def main() -> int:
     ap.add_argument(
         "--spy", action="store_true", help="py-spy dumps (which thread holds the GIL) while late"
     )
+    ap.add_argument(
+        "--arrow-threads", type=int, help="Arrow's CPU thread pool size (default: the cores)"
+    )
     ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--monitor", nargs=3, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.monitor:
         monitor(int(args.monitor[0]), args.monitor[1], args.monitor[2])
         return 0
+    if args.arrow_threads:
+        import pyarrow as pa
+
+        pa.set_cpu_count(args.arrow_threads)
     if args.one or args.runs == 1:
         print(f"{args.file} ({os.path.getsize(args.file) / 1e6:.0f} MB); probe {PERIOD_MS} ms")
         one_run(args.file, args.why, args.spy)
         return 0
     flags = [f for f, on in (("--why", args.why), ("--spy", args.spy)) if on]
+    if args.arrow_threads:
+        flags += ["--arrow-threads", str(args.arrow_threads)]
     for k in range(args.runs):
         print(f"--- run {k + 1} of {args.runs}", flush=True)
         cmd = [sys.executable, __file__, "--one", "--file", str(args.file)]
