@@ -129,6 +129,12 @@ def _cmd_export(args: argparse.Namespace) -> int:
     say_quarantined(args.input, result.report)
     if len(result.points) == 0:
         raise InputError(f"{args.input}: no usable points: nothing to export")
+    from wakeline.core.export import carries_targets
+
+    # The canonical CSV keeps tracks and targets as GeoJSON and GPX do (docs/export.md);
+    # a layout (--like, --layout) or the id options write one id per target.
+    ids_asked = args.renumber or args.keep_ids or args.members or args.id_sensor
+    keep = not (args.like or args.layout or ids_asked) and carries_targets(result.points)
     rep = export_like(
         result.points,
         layout,
@@ -137,6 +143,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
         renumber=True if args.renumber else (False if args.keep_ids else None),
         prefer_sensor=args.id_sensor,
         members_path=args.members,
+        keep_targets=keep,
     )
     for warning in rep.get("warnings", []):
         print(f"{args.output}: warning: {warning}", file=sys.stderr)
@@ -150,6 +157,11 @@ def _cmd_export(args: argparse.Namespace) -> int:
         msg += f"; {count(rep['rows_made'], 'row')} made by Wakeline (operator columns left empty)"
     if rep["members"]:
         msg += f"; {count(rep['targets'], 'target')}, members in {rep['members']}"
+    if keep:
+        n = result.points["target"].nunique()
+        msg += (
+            f"; {count(n, 'target')} in the 'target' column (--layout canonical: one id per target)"
+        )
     packed = _packed_original(args.like)
     if packed:  # the layout is its text's: written plain (no .gz/.zip output is written)
         msg += f"; plain text: {args.like} is {packed}-compressed, its text's layout is written"
@@ -169,7 +181,10 @@ def register(sub: argparse._SubParsersAction) -> None:
         "merged, fused) in a chosen layout. With --like ORIGINAL the original file's column "
         "names and order, delimiter, encoding, time format, number precision and the columns "
         "Wakeline did not use are copied (the latter from the columns the import carried "
-        "through; left empty for points Wakeline made, e.g. gap fills). Merged and fused "
+        "through; left empty for points Wakeline made, e.g. gap fills). Without --like or "
+        "--layout, tracks with targets (an associated or reviewed layer) keep their own ids "
+        "and a target column, as .geojson and .gpx keep them (read back: the same tracks "
+        "and targets). With a layout, merged and fused "
         "tracks carry one id per target in the batch column (the first member's batch, or "
         "fresh numbers with --renumber, or where the ids would collide), with a members CSV "
         "beside; merged and fused targets are written target by target in time order. Wakeline's internal "

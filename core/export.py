@@ -80,6 +80,25 @@ def export_csv(points: pd.DataFrame, path: str | Path) -> None:
     write_csv(spreadsheet_safe(points[written_columns(points)]), path)
 
 
+def member_labels(points: pd.DataFrame) -> pd.Series:
+    """Each row's own track as ``sensor:batch``: merged tracks keep it in
+    ``source_track``; other rows are their own."""
+    if "source_track" in points.columns and points["sensor"].astype(str).eq("merged").all():
+        return points["source_track"].astype(str)
+    return points["sensor"].astype(str) + ":" + points["batch"].astype(str)
+
+
+def carries_targets(points: pd.DataFrame) -> bool:
+    """Whether ``points`` are member tracks with their targets (an associated or reviewed
+    layer, or merged tracks that keep ``source_track``): written as targets of tracks in
+    every format. Fused tracks are targets themselves (their points are made)."""
+    if "target" not in points.columns or not len(points):
+        return False
+    if points["target"].isna().any():
+        return False
+    return not points["sensor"].astype(str).eq("fused").any()
+
+
 def _iso_times(times: pd.Series) -> np.ndarray:
     """ISO 8601 UTC texts (``…Z``), all with the one fraction the finest time needs (whole
     seconds, ms, µs or ns): one unit for the column, so every text parses alike."""
@@ -98,7 +117,13 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
     """A FeatureCollection: one LineString per track (Point for one-point tracks) with
     sensor, batch, points, start, end, ``times`` (one ISO time per vertex, so that the file
     reads back as tracks) and any per-track text columns (target, members, source...), plus
-    one Point per maneuver when given. Coordinates are [lon, lat]."""
+    one Point per maneuver when given. Coordinates are [lon, lat]. Tracks with targets
+    keep their own sensor and batch and carry ``target`` (merged tracks are written per
+    member track, from ``source_track``): the GeoJSON reader gives the target back."""
+    if carries_targets(points) and "source_track" in points.columns:
+        # merged tracks: one feature per member track, as every format writes targets
+        label = member_labels(points).str.split(":", n=1)
+        points = points.assign(sensor=label.str[0], batch=label.str[1])
     pts, index = sorted_with_index(points)
     lon = np.round(pts["lon"].to_numpy(dtype="float64"), 7)
     lat = np.round(pts["lat"].to_numpy(dtype="float64"), 7)

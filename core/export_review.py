@@ -14,7 +14,13 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError
-from wakeline.core.export import export_geojson, spreadsheet_safe
+from wakeline.core.export import (
+    carries_targets,
+    export_geojson,
+    member_labels,
+    spreadsheet_safe,
+)
+from wakeline.core.io.gpx import GPX_TARGET_TYPE
 from wakeline.core.io.writer import atomic_path, write_csv
 from wakeline.core.review import ReviewState, _labels, point_labels
 from wakeline.core.schema import written_columns
@@ -54,39 +60,71 @@ def export_tracks_csv(points: pd.DataFrame, path: str | Path, bom: bool = False)
 
 
 def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline") -> None:
-    """GPX 1.1: one ``<trk>`` per track (name ``sensor:batch``, ``<src>`` its sensor,
-    description its members when known), one segment, points with time; written
-    atomically (UTF-8)."""
+    """GPX 1.1, written atomically (UTF-8). Tracks with targets (an associated or reviewed
+    layer: a ``target`` column): one ``<trk>`` per target (name the target, ``<type>``
+    :data:`GPX_TARGET_TYPE`, ``<desc>`` its member tracks ``sensor:batch`` joined by
+    ``+``, ``<src>`` their sensors joined by ``+``) with one ``<trkseg>`` per
+    member track, in the order the description names them. Other tracks: one ``<trk>``
+    per track (name ``sensor:batch``, ``<src>`` its sensor, description its members when
+    known), one segment. Points with time."""
     import gpxpy.gpx
 
     gpx = gpxpy.gpx.GPX()
     gpx.creator = creator
-    pts = points.sort_values(["sensor", "batch", "time"], kind="stable")
+    targets = carries_targets(points)
+    if targets:
+        member = member_labels(points)
+        pts = points.assign(_member=member.to_numpy(), _target=points["target"].astype(str))
+        pts = pts.sort_values(["_target", "_member", "time"], kind="stable")
+        keys = pts["_target"]
+    else:
+        pts = points.sort_values(["sensor", "batch", "time"], kind="stable")
+        # Merged and fused tracks are named by their target; others by sensor:batch.
+        own = ~pts["sensor"].astype(str).isin(["merged", "fused"])
+        keys = (
+            pts["batch"]
+            .astype(str)
+            .where(~own, pts["sensor"].astype(str) + ":" + pts["batch"].astype(str))
+        )
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
     times = pd.to_datetime(pts["time"], utc=True).dt.to_pydatetime()
-    # Merged and fused tracks are named by their target; others by sensor:batch.
-    own = ~pts["sensor"].astype(str).isin(["merged", "fused"])
-    keys = (
-        pts["batch"]
-        .astype(str)
-        .where(~own, pts["sensor"].astype(str) + ":" + pts["batch"].astype(str))
-    )
     codes, names = pd.factorize(keys, sort=False)
     sensors = pts["sensor"].astype(str).to_numpy()
     bounds = np.flatnonzero(np.diff(codes, prepend=-1, append=-1))
+    if targets:
+        m_codes = pd.factorize(pts["_member"], sort=False)[0]
+        cuts = np.flatnonzero(np.diff(m_codes, prepend=-1, append=-1))  # member starts
+        labels = pts["_member"].to_numpy()
+        merged = pts["sensor"].astype(str).eq("merged").all()  # members in source_track
+        own_sensor = (
+            pts["_member"].str.split(":", n=1).str[0] if merged else pts["sensor"].astype(str)
+        ).to_numpy()
     members = pts["members"].astype(str).to_numpy() if "members" in pts.columns else None
-    for s, e in zip(bounds[:-1], bounds[1:], strict=True):  # one object per track, not per point
-        trk = gpxpy.gpx.GPXTrack(name=str(names[codes[s]]))
-        trk.source = str(sensors[s])  # <src>: the sensor, so that the file reads back
-        if members is not None:
-            trk.description = members[s]
+
+    def segment(s: int, e: int):
         seg = gpxpy.gpx.GPXTrackSegment()
         seg.points = [
             gpxpy.gpx.GPXTrackPoint(la, lo, time=tm)
             for lo, la, tm in zip(lon[s:e], lat[s:e], times[s:e], strict=True)
         ]
-        trk.segments.append(seg)
+        return seg
+
+    for s, e in zip(bounds[:-1], bounds[1:], strict=True):  # one object per track, not per point
+        trk = gpxpy.gpx.GPXTrack(name=str(names[codes[s]]))
+        if targets:
+            parts = cuts[(cuts >= s) & (cuts <= e)]
+            trk.type = GPX_TARGET_TYPE
+            trk.description = "+".join(str(labels[a]) for a in parts[:-1])
+            # <src>: the members' sensors (joined by '+'), so a sensor with a ':' reads back
+            trk.source = "+".join(sorted(set(own_sensor[s:e].tolist())))
+            for a, b in zip(parts[:-1], parts[1:], strict=True):
+                trk.segments.append(segment(int(a), int(b)))
+        else:
+            trk.source = str(sensors[s])  # <src>: the sensor, so that the file reads back
+            if members is not None:
+                trk.description = members[s]
+            trk.segments.append(segment(int(s), int(e)))
         gpx.tracks.append(trk)
     text = gpx.to_xml(version="1.1")
     with atomic_path(path) as tmp:

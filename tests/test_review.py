@@ -421,7 +421,9 @@ def test_export_honours_decisions(scene, tmp_path):
     assert sum(len(t.segments[0].points) for t in g.tracks) == len(fused)
     export_tracks(merged, tmp_path / "m.geojson")
     gj = json.loads((tmp_path / "m.geojson").read_text(encoding="utf-8"))
-    assert {f["properties"]["batch"] for f in gj["features"]} == set(st.target_of_track())
+    # one feature per member track, with its target (h186: every format alike)
+    assert {f["properties"]["target"] for f in gj["features"]} == set(st.target_of_track())
+    assert len(gj["features"]) == multi.groupby(["sensor", "batch"]).ngroups
     named = merged.assign(members="船" + merged["members"])
     export_tracks(named, tmp_path / "m.csv", bom=True)
     raw = (tmp_path / "m.csv").read_bytes()

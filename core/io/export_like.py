@@ -900,6 +900,7 @@ def export_like(
     renumber: bool | None = None,
     members_path=None,
     prefer_sensor: str | None = None,
+    keep_targets: bool = False,
 ) -> dict:
     """Give merged/fused targets their ids (:func:`assign_target_ids`), write ``points`` in
     ``layout`` and, for merged or fused input, the members table beside (``members_path``,
@@ -911,6 +912,11 @@ def export_like(
     ids written would collide in a layout that cannot tell them apart (no sensor column,
     one batch id used by two sensors: AIS 3 and radar 3 rejected as a pair), so that the
     file reads back as the targets it was written from (a note says so).
+
+    ``keep_targets``: tracks with targets are written as they are, each row with its
+    ``target`` in a column after the layout's (as GeoJSON and GPX write them,
+    docs/export.md "Targets in every format"): read back, the same tracks with the same
+    targets; no ids are given, no members table written.
 
     Row order: an unchanged table is written in its file's order (the window's layers
     carry each point's file row, :data:`~wakeline.core.schema.FILE_ROW`), else as given;
@@ -924,8 +930,11 @@ def export_like(
     points = in_file_order(points)
     own = {c.key or c.name for c in layout.columns if c.field is None}
     notes: list[str] = []
-    if own & {"target", "members"}:  # the operator's own columns, not a merge result
+    if own & {"target", "members"} or keep_targets:
+        # the operator's own columns, not a merge result; or the targets kept as a column
         ids, members = points, None
+        if keep_targets and "target" not in own:
+            columns = [*(c for c in columns or () if c != "target"), "target"]
     else:
         ids, members = assign_target_ids(
             points, renumber=bool(renumber), prefer_sensor=prefer_sensor

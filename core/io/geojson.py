@@ -11,6 +11,8 @@ A FeatureCollection (or a single Feature) is read feature by feature:
 
 The id and sensor come from the feature's properties by the same names as CSV headers
 (``sensor``, ``batch``, ``mmsi``…); a track without an id is ``feature N``.
+A ``target`` property (Wakeline's export of tracks with targets) is read back as the
+points' ``target``.
 
 Nothing is lost silently: a feature without times (a line whose vertices have no time, a
 point without a time property), with another geometry, or whose times do not match its
@@ -36,6 +38,24 @@ from wakeline.core.progress import Progress, null_progress
 #: Per-vertex times of a line feature: ours, then togeojson's.
 TIME_ARRAYS = ("times", "coordTimes")
 _TEXT_CHARS = 200
+
+
+def targets_note(points: pd.DataFrame, csv: bool = False) -> list[str]:
+    """The note an import gives for a file that carries Wakeline's targets (a ``target``
+    column, property or GPX ``<trk>`` whose tracks it groups): the tracks are read as
+    they were and keep their target, as every export writes them (docs/export.md). For a
+    CSV, how to read one track per target instead."""
+    if "target" not in points.columns or not len(points):
+        return []
+    n_tracks = len(points[["sensor", "batch"]].drop_duplicates())
+    n_targets = int(points["target"].nunique())
+    if n_targets >= n_tracks:
+        return []
+    how = "; --map batch=target reads one track per target" if csv else ""
+    return [
+        f"this file carries targets: {n_tracks:,} tracks in {n_targets:,} targets "
+        f"(column 'target'), read with their target{how}"
+    ]
 
 
 def _field_of(properties: dict, field: str) -> str | None:
@@ -101,7 +121,9 @@ def read_geojson(
         raise InputError(f"{sn.path}: GeoJSON without features (a FeatureCollection or a Feature)")
     progress(0.5, "parsed")
 
-    cols: dict[str, list] = {k: [] for k in ("sensor", "batch", "time", "lon", "lat", "feature")}
+    cols: dict[str, list] = {
+        k: [] for k in ("sensor", "batch", "time", "lon", "lat", "feature", "target")
+    }
     q_line, q_reason, q_text = [], [], []
     counts = {"line_features": 0, "point_features": 0, "maneuver_points": 0}
 
@@ -123,6 +145,8 @@ def read_geojson(
         sensor_key = _field_of(props, "sensor")
         batch_key = _field_of(props, "batch")
         own_sensor = str(props[sensor_key]) if sensor_key else sensor
+        target = props.get("target")  # Wakeline's associated tracks: the track's target
+        target = None if target is None else str(target)
         if kind in ("LineString", "MultiLineString"):
             counts["line_features"] += 1
             coords = geom.get("coordinates") or []
@@ -139,13 +163,14 @@ def read_geojson(
                 continue
             batch = str(props[batch_key]) if batch_key else f"feature {k + 1}"
             lon_k, lat_k = _vertices(coords)
-            n = len(coords)
+            n = len(lon_k)
             cols["sensor"].extend([own_sensor] * n)
             cols["batch"].extend([batch] * n)
             cols["time"].extend(times)
             cols["lon"].extend(lon_k)
             cols["lat"].extend(lat_k)
             cols["feature"].extend([k] * n)
+            cols["target"].extend([target] * n)
         elif kind == "Point":
             counts["point_features"] += 1
             time_key = _field_of(props, "time")
@@ -162,6 +187,7 @@ def read_geojson(
             cols["lon"].append(c[0] if ok else None)
             cols["lat"].append(c[1] if ok else None)
             cols["feature"].append(k)
+            cols["target"].append(target)
         else:
             bad(k, feature, f"geometry {kind or 'none'}: only LineString and Point are tracks")
 
@@ -194,6 +220,11 @@ def read_geojson(
             "lat": lat[good],
         }
     )
+    target = np.asarray(cols["target"], dtype=object)[good]
+    if len(target) and any(t is not None for t in target):
+        # a track without one is its own target (its batch)
+        own = np.asarray(points["batch"], dtype=object)
+        points["target"] = pd.Series(np.where(pd.isna(target), own, target), dtype="str")
     quarantine = quarantine_table(q_line, q_reason, q_text)
     warnings = []
     if counts["maneuver_points"]:
@@ -210,6 +241,7 @@ def read_geojson(
         warnings.append(
             "the quarantine's 'line' column holds feature numbers (GeoJSON has no rows)"
         )
+    warnings += targets_note(points)
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
     progress(1.0, "imported")
     report = {

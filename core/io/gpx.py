@@ -4,7 +4,9 @@
 Every ``<trk>`` is one track: its ``<name>`` is the batch (``track N`` when it has none;
 a name that two tracks share gets `` (2)``, `` (3)``... on the later ones, with a warning).
 A GPX written by Wakeline names a track ``sensor:batch``: it is read back as that sensor
-and batch. Each ``<trkpt>`` is a point (its ``<time>``, ISO 8601, UTC unless it says
+and batch. Wakeline's targets (``<type>wakeline target</type>``: one ``<trk>`` per
+target, one ``<trkseg>`` per member track named in order by ``<desc>``) are read back as
+the member tracks with the ``<trk>``'s name as their ``target``. Each ``<trkpt>`` is a point (its ``<time>``, ISO 8601, UTC unless it says
 otherwise; GPX 1.0's ``<speed>`` in m/s becomes knots, its ``<course>`` degrees). Track
 segments are one track: a segment break is a gap the cleaning and association steps see
 by time.
@@ -31,6 +33,11 @@ from wakeline.core import geo
 from wakeline.core.io.compressed import open_data
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.progress import Progress, null_progress
+
+#: ``<type>`` of a ``<trk>`` that is one target of Wakeline's, its ``<trkseg>``s the member
+#: tracks named (in order) by the ``<desc>``: the GPX reader gives them back as tracks
+#: with their ``target``.
+GPX_TARGET_TYPE = "wakeline target"
 
 
 def _local(name: str) -> str:
@@ -86,16 +93,19 @@ def _expat_parse(fh, chunk: int = 1 << 20):
     """The track points of the GPX document in the binary file ``fh``, by expat's
     callbacks (one per element), fed ``chunk`` bytes at a time. Returns
     ``(rows, tracks, sources, counts, creator, broken)``: ``rows`` lists per field (one
-    item per ``<trkpt>``: its track's index, line, lat, lon, time, speed, course texts),
-    each ``<trk>``'s name and ``<src>``, the waypoint/route point/segment counts, the
+    item per ``<trkpt>``: its track's index, its segment's number (1-based, over the
+    file), line, lat, lon, time, speed, course texts), each ``<trk>``'s name, and its
+    ``<src>``, ``<type>`` and ``<desc>`` (``sources`` as three lists), the waypoint/route point/segment counts, the
     ``creator`` and, for a file that stops being well-formed, ``(line, complaint)``."""
     parser = expat.ParserCreate(encoding=None)
     parser.buffer_text = True
     rows: dict[str, list] = {
-        k: [] for k in ("track", "line", "lat", "lon", "time", "speed", "course")
+        k: [] for k in ("track", "segment", "line", "lat", "lon", "time", "speed", "course")
     }
     tracks: list[str] = []  # each <trk>'s name ("" when it has none)
     sources: list[str] = []  # each <trk>'s <src> ("" when it has none)
+    kinds: list[str] = []  # each <trk>'s <type> ("" when it has none)
+    descs: list[str] = []  # each <trk>'s <desc> ("" when it has none)
     counts = {"waypoints": 0, "route_points": 0, "segments": 0}
     creator = {"text": ""}
     stack: list[str] = []
@@ -112,11 +122,14 @@ def _expat_parse(fh, chunk: int = 1 << 20):
         elif tag == "trk":
             tracks.append("")
             sources.append("")
+            kinds.append("")
+            descs.append("")
         elif tag == "trkseg":
             counts["segments"] += 1
         elif tag == "trkpt":
             point = {
                 "track": max(len(tracks) - 1, 0),
+                "segment": counts["segments"],
                 "line": parser.CurrentLineNumber,
                 "lat": attrs.get("lat"),
                 "lon": attrs.get("lon"),
@@ -141,10 +154,16 @@ def _expat_parse(fh, chunk: int = 1 << 20):
             tracks[-1] = value
         elif tag == "src" and parent == "trk" and sources:
             sources[-1] = value
+        elif tag == "type" and parent == "trk" and kinds:
+            kinds[-1] = value
+        elif tag == "desc" and parent == "trk" and descs:
+            descs[-1] = value
         elif tag == "trkpt" and point is not None:
             if not tracks:  # a <trkpt> outside any <trk>: one track of its own
                 tracks.append("")
                 sources.append("")
+                kinds.append("")
+                descs.append("")
             for key in rows:
                 rows[key].append(point[key])
             point = None
@@ -166,7 +185,44 @@ def _expat_parse(fh, chunk: int = 1 << 20):
         broken = (exc.lineno, what)
         if point is not None:  # a track point the break cut: quarantined from its line
             broken = (min(exc.lineno, int(point["line"])), what)
-    return rows, tracks, sources, counts, creator["text"], broken
+    return rows, tracks, (sources, kinds, descs), counts, creator["text"], broken
+
+
+def _targets_of(rows, names, trk_texts, track_sensor, track_batch, index):
+    """Wakeline's own tracks with targets: every ``<trk>`` of ``<type>`` "wakeline
+    target" whose ``<desc>`` names as many member tracks (``sensor:batch`` joined by
+    ``+``) as it has segments gives one track per segment, named by the member, with the
+    ``<trk>``'s name as its target. Returns ``(target, sensor, batch, index)`` per track
+    (``index``: each point's track), ``target`` None when no ``<trk>`` is a target (the
+    file reads as before); other ``<trk>``s are their own target."""
+    sources, kinds, descs = trk_texts
+    segment = np.asarray(rows["segment"], dtype="int64")
+    wanted = [k for k, kind in enumerate(kinds) if kind == GPX_TARGET_TYPE]
+    if not wanted or not len(segment):
+        return None, track_sensor, track_batch, index
+    target = list(track_batch)
+    sensor, batch = list(track_sensor), list(track_batch)
+    new_index = index.copy()
+    lo = np.searchsorted(index, wanted, side="left")  # points are in document order
+    hi = np.searchsorted(index, wanted, side="right")
+    for k, a, e in zip(wanted, lo, hi, strict=True):  # one pass per target, not per point
+        mine = slice(int(a), int(e))
+        segs = np.unique(segment[mine])
+        labels = descs[k].split("+") if descs[k] else []
+        if len(labels) != len(segs) or not all(":" in lab for lab in labels):
+            continue  # not as Wakeline writes it: the <trk> stays one track
+        first = len(target)
+        # <src>: the members' sensors joined by '+' (a sensor may hold a ':')
+        known = sorted(filter(None, (sources[k] if k < len(sources) else "").split("+")), key=len)
+        for lab in labels:
+            s = next((c for c in reversed(known) if lab.startswith(c + ":")), None)
+            s, b = (s, lab[len(s) + 1 :]) if s else lab.split(":", 1)
+            sensor.append(s)
+            batch.append(b)
+            target.append(names[k])
+        new_index[mine] = first + np.searchsorted(segs, segment[mine])
+        target[k] = names[k]
+    return target, sensor, batch, new_index
 
 
 _REASONS = (
@@ -191,7 +247,7 @@ def read_gpx(
 
     progress = progress or null_progress
     with open_data(sn.path, sn.compression) as fh:
-        rows, tracks, sources, counts, creator, broken = _expat_parse(fh)
+        rows, tracks, (sources, kinds, descs), counts, creator, broken = _expat_parse(fh)
     progress(0.8, "parsed")
 
     n = len(rows["line"])
@@ -230,6 +286,11 @@ def read_gpx(
             elif ":" in name:
                 track_sensor[k], track_batch[k] = name.split(":", 1)
     index = np.asarray(rows["track"], dtype="int64")
+    target = None
+    if ours:  # Wakeline's targets: a <trk> per target, a <trkseg> per member (D-export-2)
+        target, track_sensor, track_batch, index = _targets_of(
+            rows, names, (sources, kinds, descs), track_sensor, track_batch, index
+        )
     speed = _numbers(rows["speed"]) / geo.KN_MS
     course = _numbers(rows["course"])
     points = pd.DataFrame(
@@ -249,6 +310,8 @@ def read_gpx(
             "course": course[good],
         }
     )
+    if target is not None:
+        points["target"] = pd.Series(np.asarray(target, dtype=object)[index[good]], dtype="str")
 
     q_line = np.asarray(rows["line"], dtype="int64")[~good]
     q_reason = list(np.asarray(_REASONS, dtype=object)[code[~good]])
@@ -276,6 +339,9 @@ def read_gpx(
             f"{renamed:,} track(s) share a name with an earlier one: numbered (2), (3)... so "
             "that each stays its own track"
         )
+    from wakeline.core.io.geojson import targets_note
+
+    warnings += targets_note(points)
     if broken is not None:
         warnings.append(
             f"the file stops being well-formed XML ({broken[1]}): the "

@@ -2875,6 +2875,9 @@ def read_points(
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, counts["quarantine_reasons"], counts["rows_read"])
     warnings += cut_short_warnings(sn, quarantine)
+    from wakeline.core.io.geojson import targets_note
+
+    warnings += targets_note(points, csv=True)  # Wakeline's targets (D-export-2)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(path),
@@ -4484,9 +4487,27 @@ def import_to_csv(
                 parts.reset()
                 return whole(tmp)
             parts.finish(result.report.get("extra_columns") or ())
+            if "target" in (result.report.get("extra_columns") or ()):
+                result.report["warnings"] += _written_targets_note(tmp)
             return result
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
+
+
+def _written_targets_note(csv_path: Path) -> list[str]:
+    """:func:`~wakeline.core.io.geojson.targets_note` of a canonical CSV just written
+    (its sensor, batch and target columns read back: the streamed import holds no
+    points)."""
+    from pyarrow import csv as pacsv
+
+    from wakeline.core.io.geojson import targets_note
+
+    names = ["sensor", "batch", "target"]
+    opts = pacsv.ConvertOptions(
+        include_columns=names, column_types=dict.fromkeys(names, pa.string())
+    )
+    table = pacsv.read_csv(csv_path, convert_options=opts)
+    return targets_note(table.to_pandas(), csv=True)
 
 
 def last_line_end(buf: bytes) -> int:

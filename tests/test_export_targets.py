@@ -1,0 +1,125 @@
+"""Operator test 5's D-export-2: one associated layer exported as CSV, GeoJSON and GPX
+re-imported as 5, 6 and 6 tracks (the GPX lost the target). Every format now keeps the
+member tracks and carries their targets (docs/export.md "Targets in every format"): read
+back, the same points and the same targets."""
+
+import numpy as np
+import pandas as pd
+
+from wakeline.app.cli import main
+from wakeline.core.export import export_geojson
+from wakeline.core.export_review import export_gpx, export_tracks
+from wakeline.core.io import read_points, write_points
+
+
+def _associated() -> pd.DataFrame:
+    """Three tracks in two targets: AIS:rx1/367 (a sensor with a colon) and R/12 one
+    target, R/13 alone; times to the millisecond, positions of 7 decimals."""
+    t0 = pd.Timestamp("2024-08-02T00:00:00.123Z")
+    rows = []
+    for sensor, batch, target, start, lat in (
+        ("AIS:rx1", "367", "367", 0, 38.0),
+        ("R", "12", "367", 600, 38.01),
+        ("R", "13", "R:13", 100, 38.2),
+    ):
+        for k in range(4):
+            rows.append(
+                (
+                    sensor,
+                    batch,
+                    t0 + pd.Timedelta(seconds=start + 10 * k),
+                    23.5 + k * 1e-4,
+                    lat,
+                    target,
+                )
+            )
+    cols = ["sensor", "batch", "time", "lon", "lat", "target"]
+    return pd.DataFrame(rows, columns=cols).assign(speed=np.nan, course=np.nan)
+
+
+def _key(p: pd.DataFrame) -> pd.DataFrame:
+    p = p.assign(sensor=p["sensor"].astype(str), batch=p["batch"].astype(str))
+    p = p.assign(target=p["target"].astype(str))
+    cols = ["sensor", "batch", "time", "lon", "lat", "target"]
+    return p.sort_values(["sensor", "batch", "time"]).reset_index(drop=True)[cols]
+
+
+def _same(a: pd.DataFrame, b: pd.DataFrame) -> None:
+    a, b = _key(a), _key(b)
+    assert a[["sensor", "batch", "target"]].equals(b[["sensor", "batch", "target"]])
+    assert (a["time"].to_numpy() == b["time"].to_numpy()).all()
+    assert np.array_equal(a["lon"].to_numpy(), b["lon"].to_numpy())
+    assert np.array_equal(a["lat"].to_numpy(), b["lat"].to_numpy())
+
+
+def test_cli_export_of_an_associated_layer_round_trips_in_every_format(tmp_path, capsys):
+    pts = _associated()
+    src = tmp_path / "assoc.csv"
+    write_points(pts, src)
+    for suffix in ("csv", "geojson", "gpx"):
+        out = tmp_path / f"x.{suffix}"
+        assert main(["export", str(src), "-o", str(out)]) == 0
+        back = read_points(out)
+        assert back.points.groupby(["sensor", "batch"]).ngroups == 3, suffix
+        _same(pts, back.points)
+        note = [w for w in back.report["warnings"] if "carries targets" in w]
+        assert note and "3 tracks in 2 targets" in note[0], suffix
+        assert ("--map batch=target" in note[0]) == (suffix == "csv")
+    err = capsys.readouterr().err
+    assert "2 targets in the 'target' column" in err
+    assert not (tmp_path / "x.members.csv").exists()
+    gpx = (tmp_path / "x.gpx").read_text()
+    assert gpx.count("<trk>") == 2 and gpx.count("<trkseg>") == 3  # a <trk> per target
+    # the streamed import says it too
+    assert main(["import", str(tmp_path / "x.csv"), "-o", str(tmp_path / "y.csv")]) == 0
+    assert "--map batch=target reads one track per target" in capsys.readouterr().err
+
+
+def test_a_layout_still_writes_one_id_per_target(tmp_path, capsys):
+    src = tmp_path / "assoc.csv"
+    write_points(_associated(), src)
+    out = tmp_path / "x.csv"
+    assert main(["export", str(src), "-o", str(out), "--layout", "canonical"]) == 0
+    assert "members in" in capsys.readouterr().err
+    assert read_points(out).points.groupby(["sensor", "batch"]).ngroups == 2
+    assert (tmp_path / "x.members.csv").exists()
+
+
+def test_merged_tracks_of_a_review_are_written_per_member(tmp_path):
+    """`wakeline review` and the window write merged tracks (sensor 'merged', batch the
+    target, source_track the member) to GeoJSON and GPX: read back as the member tracks
+    with their targets, as the reviewed CSV reads."""
+    pts = _associated().query("sensor == 'R'").reset_index(drop=True)
+    merged = pts.assign(
+        source_track=pts["sensor"] + ":" + pts["batch"],
+        members="R:12",
+        sensor="merged",
+        batch=pts["target"],
+    )
+    for suffix in ("geojson", "gpx"):
+        out = tmp_path / f"m.{suffix}"
+        export_tracks(merged, out)
+        _same(pts, read_points(out).points)
+
+
+def test_tracks_without_targets_are_written_as_before(tmp_path):
+    pts = _associated().drop(columns="target")
+    export_gpx(pts, tmp_path / "a.gpx")
+    export_geojson(pts, tmp_path / "a.geojson")
+    for name in ("a.gpx", "a.geojson"):
+        back = read_points(tmp_path / name)
+        assert "target" not in back.points.columns
+        assert back.points.groupby(["sensor", "batch"]).ngroups == 3
+    assert "wakeline target" not in (tmp_path / "a.gpx").read_text()
+
+
+def test_a_gpx_target_whose_segments_do_not_match_stays_one_track(tmp_path):
+    """A <trk> typed as our target but edited (a segment removed) reads as one track."""
+    export_gpx(_associated(), tmp_path / "a.gpx")
+    text = (tmp_path / "a.gpx").read_text()
+    cut = text.index("</trkseg>") + len("</trkseg>")
+    edited = text[: text.index("<trkseg>")] + text[cut:]
+    (tmp_path / "b.gpx").write_text(edited)
+    back = read_points(tmp_path / "b.gpx").points
+    assert len(back) == 8
+    assert back.groupby(["sensor", "batch"]).ngroups == 2
