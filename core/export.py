@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from wakeline.core.io.geojson import CUT_VERTICES
 from wakeline.core.io.writer import atomic_path, write_csv
 from wakeline.core.schema import in_file_order, time_seconds, written_columns
 from wakeline.core.tracks import sorted_with_index
@@ -99,18 +100,63 @@ def carries_targets(points: pd.DataFrame) -> bool:
     return not points["sensor"].astype(str).eq("fused").any()
 
 
-def _iso_times(times: pd.Series) -> np.ndarray:
+_UNIT_NS = {"s": 10**9, "ms": 10**6, "us": 10**3, "ns": 1}
+
+
+def _iso_times(times: pd.Series) -> tuple[np.ndarray, str]:
     """ISO 8601 UTC texts (``…Z``), all with the one fraction the finest time needs (whole
-    seconds, ms, µs or ns): one unit for the column, so every text parses alike."""
+    seconds, ms, µs or ns): one unit for the column, so every text parses alike. Returns
+    the texts and the unit."""
     ns = pd.to_datetime(times, utc=True).dt.tz_localize(None).to_numpy("datetime64[ns]")
     if not len(ns):
-        return np.zeros(0, dtype=str)
+        return np.zeros(0, dtype=str), "s"
     frac = ns.astype("int64") % 1_000_000_000
-    unit = next(
-        (u for u, step in (("s", 10**9), ("ms", 10**6), ("us", 10**3)) if not (frac % step).any()),
-        "ns",
-    )
-    return np.char.add(np.datetime_as_string(ns, unit=unit), "Z")
+    unit = next((u for u in ("s", "ms", "us") if not (frac % _UNIT_NS[u]).any()), "ns")
+    return np.char.add(np.datetime_as_string(ns, unit=unit), "Z"), unit
+
+
+def antimeridian_parts(
+    lon: np.ndarray, lat: np.ndarray, ns: np.ndarray, unit: str
+) -> tuple[list[np.ndarray], np.ndarray, list[int]] | None:
+    """A line whose steps cross the antimeridian (|Δlon| > 180°) cut there into parts
+    (RFC 7946 §3.1.9): each crossing ends one part on ±180° and starts the next on ∓180°
+    at the latitude and time interpolated along the step (the time rounded to ``unit``).
+    Returns the parts (arrays of [lon, lat]), the time (ns) of every vertex in order and
+    the indices of the added vertices; None when no step crosses."""
+    jumps = np.flatnonzero(np.abs(np.diff(lon)) > 180.0)
+    if not len(jumps):
+        return None
+    a, b = jumps, jumps + 1
+    east = lon[a] > 0  # east-going over 180: the next fix is at -179.x
+    edge = np.where(east, 180.0, -180.0)
+    far = lon[b] + np.where(east, 360.0, -360.0)  # the next fix unwrapped
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = np.where(far != lon[a], (edge - lon[a]) / (far - lon[a]), 0.0)
+    f = np.clip(f, 0.0, 1.0)
+    lat_x = lat[a] + f * (lat[b] - lat[a])
+    step = _UNIT_NS[unit]
+    t_x = ns[a] + np.round(f * (ns[b] - ns[a]) / step).astype("int64") * step
+    xy = np.column_stack([lon, lat])
+    parts, times, added = [], [], []
+    start, n_done = 0, 0
+    for k in range(len(jumps)):  # one slice per crossing (a handful per track)
+        end = int(b[k])
+        part = np.vstack([xy[start:end], [[edge[k], lat_x[k]]]])
+        if k:
+            part = np.vstack([[[-edge[k - 1], lat_x[k - 1]]], part])
+        parts.append(part)
+        before = t_x[k - 1 : k] if k else t_x[:0]  # int64 throughout (ns exceed 2**53)
+        times.append(np.concatenate([before, ns[start:end], t_x[k : k + 1]]))
+        if k:
+            added.append(n_done)
+        added.append(n_done + len(part) - 1)
+        n_done += len(part)
+        start = end
+    last = np.vstack([[[-edge[-1], lat_x[-1]]], xy[start:]])
+    parts.append(last)
+    times.append(np.concatenate([t_x[-1:], ns[start:]]))
+    added.append(n_done)
+    return parts, np.concatenate(times).astype("int64"), added
 
 
 def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict:
@@ -136,7 +182,10 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
     features = []
     t = time_seconds(times) if len(pts) else np.zeros(0)
     # one ISO time per vertex (as togeojson's coordTimes): the file reads back as tracks
-    iso = _iso_times(times)
+    iso, unit = _iso_times(times)
+    ns = (pd.to_datetime(times, utc=True).dt.tz_localize(None).to_numpy("datetime64[ns]")).astype(
+        "int64"
+    )
     for k in range(index.n_tracks):  # one feature per track; the coordinates are sliced
         s, e = int(index.starts[k]), int(index.ends[k])
         coords = np.column_stack([lon[s:e], lat[s:e]]).tolist()
@@ -151,11 +200,22 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
         }
         for c in extra:
             props[c] = str(pts[c].iloc[s])
-        geom = (
-            {"type": "Point", "coordinates": coords[0]}
-            if e - s == 1
-            else {"type": "LineString", "coordinates": coords}
-        )
+        cut = antimeridian_parts(lon[s:e], lat[s:e], ns[s:e], unit) if e - s > 1 else None
+        if cut is not None:  # RFC 7946 §3.1.9: cut at ±180°, the added vertices named
+            parts, cut_ns, added = cut
+            geom = {
+                "type": "MultiLineString",
+                "coordinates": [np.round(p, 7).tolist() for p in parts],
+            }
+            text = np.datetime_as_string(cut_ns.astype("datetime64[ns]"), unit=unit)
+            props["times"] = np.char.add(text, "Z").tolist()
+            props[CUT_VERTICES] = added
+        else:
+            geom = (
+                {"type": "Point", "coordinates": coords[0]}
+                if e - s == 1
+                else {"type": "LineString", "coordinates": coords}
+            )
         features.append({"type": "Feature", "geometry": geom, "properties": props})
     if maneuvers is not None:
         for row in maneuvers.itertuples(index=False):

@@ -12,7 +12,8 @@ A FeatureCollection (or a single Feature) is read feature by feature:
 The id and sensor come from the feature's properties by the same names as CSV headers
 (``sensor``, ``batch``, ``mmsi``…); a track without an id is ``feature N``.
 A ``target`` property (Wakeline's export of tracks with targets) is read back as the
-points' ``target``.
+points' ``target``; the vertices a cut at the antimeridian added (``antimeridian_vertices``,
+on ±180° between two fixes) are left out, so the file reads back to its fixes.
 
 Nothing is lost silently: a feature without times (a line whose vertices have no time, a
 point without a time property), with another geometry, or whose times do not match its
@@ -37,6 +38,10 @@ from wakeline.core.progress import Progress, null_progress
 
 #: Per-vertex times of a line feature: ours, then togeojson's.
 TIME_ARRAYS = ("times", "coordTimes")
+#: Property of a line Wakeline cut at the antimeridian (RFC 7946 §3.1.9): the vertices
+#: the cut added on ±180° between two fixes (0-based, over the line's vertices in order).
+#: They are not fixes: left out on reading.
+CUT_VERTICES = "antimeridian_vertices"
 _TEXT_CHARS = 200
 
 
@@ -125,7 +130,7 @@ def read_geojson(
         k: [] for k in ("sensor", "batch", "time", "lon", "lat", "feature", "target")
     }
     q_line, q_reason, q_text = [], [], []
-    counts = {"line_features": 0, "point_features": 0, "maneuver_points": 0}
+    counts = {"line_features": 0, "point_features": 0, "maneuver_points": 0, "cut_vertices": 0}
 
     def bad(k: int, feature, reason: str) -> None:
         q_line.append(k + 1)
@@ -163,6 +168,15 @@ def read_geojson(
                 continue
             batch = str(props[batch_key]) if batch_key else f"feature {k + 1}"
             lon_k, lat_k = _vertices(coords)
+            added = props.get(CUT_VERTICES)
+            if isinstance(added, list) and added:
+                # ours: vertices on ±180° the antimeridian cut added, not fixes
+                drop = {int(i) for i in added if isinstance(i, int) and 0 <= i < len(coords)}
+                keep = [i for i in range(len(coords)) if i not in drop]
+                lon_k = [lon_k[i] for i in keep]
+                lat_k = [lat_k[i] for i in keep]
+                times = [times[i] for i in keep]
+                counts["cut_vertices"] += len(drop)
             n = len(lon_k)
             cols["sensor"].extend([own_sensor] * n)
             cols["batch"].extend([batch] * n)
