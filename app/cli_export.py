@@ -144,6 +144,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
         prefer_sensor=args.id_sensor,
         members_path=args.members,
         keep_targets=keep,
+        sort=args.sort,
     )
     for warning in rep.get("warnings", []):
         print(f"{args.output}: warning: {warning}", file=sys.stderr)
@@ -162,6 +163,10 @@ def _cmd_export(args: argparse.Namespace) -> int:
         msg += (
             f"; {count(n, 'target')} in the 'target' column (--layout canonical: one id per target)"
         )
+    if rep.get("row_order") in ("time", "track"):
+        how = "by time" if rep["row_order"] == "time" else "track by track"
+        why = f"--sort {args.sort}" if args.sort else f"as {args.like or 'the layout'}"
+        msg += f"; rows {how} ({why})"
     packed = _packed_original(args.like)
     if packed:  # the layout is its text's: written plain (no .gz/.zip output is written)
         msg += f"; plain text: {args.like} is {packed}-compressed, its text's layout is written"
@@ -279,6 +284,14 @@ def register(sub: argparse._SubParsersAction) -> None:
         metavar="M.csv",
         help="where to write the id → member batches table (default OUT.members.csv; only "
         "for merged or fused input)",
+    )
+    p.add_argument(
+        "--sort",
+        choices=("time", "track"),
+        help="row order: time (every track's rows interleaved by time, as a system that "
+        "requires ascending time reads them) or track (track by track); default: "
+        "ORIGINAL's order as its first rows show it (a layout JSON keeps it as row_order), "
+        "else IN's",
     )
     p.add_argument(
         "--save-layout",

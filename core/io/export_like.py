@@ -34,7 +34,7 @@ from wakeline.core.io.layout import (
     TimeFormat,
 )
 from wakeline.core.io.writer import atomic_path
-from wakeline.core.schema import CANONICAL_COLUMNS, COURSE_READ, EPOCH, in_file_order
+from wakeline.core.schema import CANONICAL_COLUMNS, COURSE_READ, EPOCH, FILE_ROW, in_file_order
 
 #: Rows formatted and encoded at a time (bounds the memory of an export).
 CHUNK_ROWS = 500_000
@@ -892,6 +892,29 @@ def _target_rows_order(ids: pd.DataFrame, given: pd.DataFrame) -> np.ndarray:
     return np.lexsort((np.arange(n), batch, sensor, ns, rank[code]))
 
 
+def _has_file_rows(points: pd.DataFrame) -> bool:
+    """Whether ``points`` carry their file's rows (:data:`FILE_ROW`, usable as
+    :func:`~wakeline.core.schema.in_file_order` uses it): written in that order."""
+    if FILE_ROW not in points.columns:
+        return False
+    rows = pd.to_numeric(points[FILE_ROW], errors="coerce")
+    return bool(rows.notna().all() and rows.is_unique)
+
+
+def _rows_in(points: pd.DataFrame, order: str) -> pd.DataFrame:
+    """``points`` in time order (``time``, stable) or track by track (``track``: tracks
+    in order of first appearance, each track's rows as they come); else as given."""
+    if order == "time":
+        ns = pd.to_datetime(points["time"], utc=True).dt.tz_localize(None)
+        return points.iloc[np.argsort(ns.to_numpy("datetime64[ns]"), kind="stable")]
+    if order == "track":
+        sensor = pd.factorize(points["sensor"].astype("str"))[0]
+        batch = pd.factorize(points["batch"].astype("str"))[0]
+        first = pd.factorize(sensor * (batch.max(initial=0) + 1) + batch)[0]
+        return points.iloc[np.argsort(first, kind="stable")]
+    return points
+
+
 def export_like(
     points: pd.DataFrame,
     layout: Layout,
@@ -901,6 +924,7 @@ def export_like(
     members_path=None,
     prefer_sensor: str | None = None,
     keep_targets: bool = False,
+    sort: str | None = None,
 ) -> dict:
     """Give merged/fused targets their ids (:func:`assign_target_ids`), write ``points`` in
     ``layout`` and, for merged or fused input, the members table beside (``members_path``,
@@ -917,6 +941,12 @@ def export_like(
     ``target`` in a column after the layout's (as GeoJSON and GPX write them,
     docs/export.md "Targets in every format"): read back, the same tracks with the same
     targets; no ids are given, no members table written.
+
+    ``sort``: ``time`` writes the rows in time order (tracks interleaved; ties keep
+    their order), ``track`` track by track (each track's rows as they come, tracks in
+    order of first appearance); None (default) the layout's ``row_order`` (ORIGINAL's,
+    as its first rows show it) for a table without its file's rows, else as below. The
+    report's ``row_order`` says which was written.
 
     Row order: an unchanged table is written in its file's order (the window's layers
     carry each point's file row, :data:`~wakeline.core.schema.FILE_ROW`), else as given;
@@ -955,7 +985,11 @@ def export_like(
             )
         if members is not None:
             ids = ids.iloc[_target_rows_order(ids, points)]  # rows as in points
+    from_file = _has_file_rows(points)
+    order = sort or ("" if from_file else layout.row_order)
+    ids = _rows_in(ids, order)
     report = write_layout(ids, layout, path, columns=columns)
+    report["row_order"] = order or ("file" if from_file else "as given")
     report["warnings"] = _shared_ids_warning(ids, layout) + _relative_times_warning(ids, layout)
     if report["courses_as_read"]:
         notes.append(

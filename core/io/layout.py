@@ -38,6 +38,7 @@ from wakeline.core.io.reader import (
     lettered_form,
     month_first_dates,
     resolve_header,
+    times_of_values,
 )
 from wakeline.core.io.sniff import blank_runs, sniff
 from wakeline.core.io.timetext import hhmmss_evidence
@@ -534,6 +535,11 @@ class Layout:
     #: it; auto: knots, metres): written back in it.
     speed_unit: str = "auto"
     distance_unit: str = "auto"
+    #: The order of the file's rows, as its first rows show it: ``time`` (the tracks'
+    #: rows interleaved by time, as an annotator that "requires ascending time" wants
+    #: them), ``track`` (track by track) or "" (cannot tell: one track, or neither);
+    #: ``export --like`` writes rows in it (h186, D-export-4).
+    row_order: str = ""
 
     def field_column(self, name: str) -> Column | None:
         """The column that carries canonical field ``name``, if any."""
@@ -823,6 +829,7 @@ def describe_layout(
         time = _as_day_first(time)
     elif date_order == "month-first" or report.get("time_format") == "month-first text":
         time = _as_month_first(time)
+    order = _row_order(sample, columns_of, time_key, date_key)
     if date_key is not None and time.kind == "text" and " " in time.pattern:
         date_pattern, clock_pattern = time.pattern.split(" ", 1)
         time = replace(time, pattern=clock_pattern, date_pattern=date_pattern)
@@ -842,7 +849,40 @@ def describe_layout(
         title_lines=_lines_above(sn),
         origin=tuple(plane) if plane else None,
         aligned=bool(sn.blank_runs),
+        row_order=order,
     )
+
+
+def _row_order(
+    sample: pd.DataFrame, columns_of: dict, time_key: str | None, date_key: str | None
+) -> str:
+    """``time`` when the sample's rows step between tracks more often than track by
+    track would and their times never go back; ``track`` when each track's rows come
+    together; "" when it cannot tell (one track, unreadable times, neither)."""
+    ids = [columns_of[f] for f in ("sensor", "batch") if columns_of.get(f) in sample.columns]
+    if not time_key or not ids or len(sample) < 3:
+        return ""
+    track = np.zeros(len(sample), dtype="int64")
+    for key in ids:  # sensor, batch: one code per pair
+        codes, uniques = pd.factorize(sample[key])
+        track = track * (len(uniques) + 1) + codes
+    track = pd.factorize(track)[0]
+    n_tracks = int(track.max()) + 1
+    if n_tracks < 2:
+        return ""
+    changes = int((np.diff(track) != 0).sum())
+    if changes == n_tracks - 1:
+        return "track"
+    text = sample[time_key].str.strip()
+    if date_key is not None:
+        text = sample[date_key].str.strip() + " " + text
+    times, _ = times_of_values(pa.array(text.tolist(), pa.string()))
+    if times.isna().any():
+        return ""
+    ns = pd.to_datetime(times, utc=True).dt.tz_localize(None).to_numpy("datetime64[ns]")
+    if (np.diff(ns.astype("int64")) < 0).any():
+        return ""
+    return "time"
 
 
 def _gps_week(sn, columns_of: dict, report: dict, res) -> str | None:
