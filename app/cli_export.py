@@ -46,6 +46,56 @@ def _packed_original(like: Path | None) -> str | None:
         return None
 
 
+def _in_flags_without_original(args: argparse.Namespace) -> None:
+    """Without ``--like ORIGINAL`` there is no file for ``--map``/``--format`` to
+    describe: they are IN's, as in every other command (D-cli-1; before, they were
+    ignored without a word). Given with ``--in-map``/``--in-format`` too: refused."""
+    moved = []
+    for flag, own, keyword, unset in (
+        ("--map", "map", "mapping", None),
+        ("--format", "format", "fmt", "auto"),
+    ):
+        value = getattr(args, own)
+        if value == unset:
+            continue
+        dest = args.read_dests[keyword]
+        if getattr(args, dest) != unset:
+            raise InputError(
+                f"{flag} describes ORIGINAL (--like) and --in-{own} IN: without --like "
+                f"give IN's once, with --in-{own}"
+            )
+        setattr(args, dest, value)
+        setattr(args, own, unset)
+        moved.append(f"{flag} as --in-{own}")
+    if moved:
+        print(
+            f"{args.input}: no --like ORIGINAL: {' and '.join(moved)} (IN's columns, as "
+            "in the other commands)",
+            file=sys.stderr,
+        )
+
+
+def _map_on_in_only(args: argparse.Namespace, message: str) -> str:
+    """A reading error about ORIGINAL's --map: when a column it names is IN's (and not
+    ORIGINAL's), say that --map describes ORIGINAL and IN's columns take --in-map."""
+    if "mapped column" not in message or not args.map:
+        return message
+    from wakeline.core.io import sniff
+
+    try:
+        in_columns = set(sniff(args.input).columns)
+    except (InputError, OSError):
+        return message
+    on_in = [m for m in _split(args.map) if m.partition("=")[2].strip() in in_columns]
+    if not on_in:
+        return message
+    given = " ".join(f"--in-map {m}" for m in on_in)
+    return (
+        f"{message}; with --like, --map names ORIGINAL's columns ({args.like}); "
+        f"{', '.join(on_in)} names IN's ({args.input}): {given}"
+    )
+
+
 def _cmd_export(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import say_quarantined
     from wakeline.core.io.export_like import export_like
@@ -53,6 +103,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
     if args.like and args.layout:
         raise InputError("give either --like ORIGINAL or --layout NAME, not both")
+    if not args.like:
+        _in_flags_without_original(args)
     suffix = args.output.suffix.lower()
     if suffix in (".geojson", ".json", ".gpx"):
         # The map formats: tracks as lines, not a CSV layout.
@@ -87,7 +139,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
                 distance_unit=args.like_distance_unit,
             )
         except InputError as exc:  # ORIGINAL's lines above its header: --like-skip-rows
-            raise InputError(_like_flag(str(exc))) from None
+            raise InputError(_map_on_in_only(args, _like_flag(str(exc)))) from None
     else:
         layout = preset_layout(args.layout or "canonical")
     if args.like and not args.tz and layout.time.kind == "text" and not layout.time.suffix:
@@ -209,13 +261,15 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--format",
         choices=FAMILIES,
         default="auto",
-        help="the layout family of ORIGINAL, as given to import (default: auto-detect)",
+        help="the layout family of ORIGINAL, as given to import (default: auto-detect); "
+        "without --like, IN's (as --in-format)",
     )
     p.add_argument(
         "--map",
         action="append",
         metavar="FIELD=COLUMN",
-        help="ORIGINAL's column for canonical FIELD, as given to import; repeatable",
+        help="ORIGINAL's column for canonical FIELD, as given to import; repeatable. "
+        "IN's columns take --in-map; without --like, --map is IN's (as --in-map)",
     )
     p.add_argument(
         "--like-skip-rows",
@@ -244,12 +298,15 @@ def register(sub: argparse._SubParsersAction) -> None:
         choices=tuple(PRESETS),
         help="a built-in layout (default canonical when --like is not given)",
     )
-    p.add_argument("--encoding", help="text encoding to write (default: the layout's)")
+    p.add_argument(
+        "--encoding",
+        help="text encoding to write (default: the layout's; IN's: --in-encoding)",
+    )
     p.add_argument(
         "--tz",
         metavar="ZONE",
         help="write naive times in this zone (IANA name or +08:00; default: the zone "
-        "the original was read in, UTC)",
+        "the original was read in, UTC; IN's zone: --in-tz)",
     )
     p.add_argument(
         "--columns",
@@ -306,7 +363,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         rename=("format", "map", "encoding", "tz"),
         description="How IN is read, as `wakeline import` and the steps read it (e.g. "
         "--skip-rows N as given to `wakeline clean`). --format, --map, --encoding and --tz "
-        "above are about ORIGINAL and the file written; IN's are --in-format, --in-map, "
+        "above are about ORIGINAL and the file written (without --like, --map and --format "
+        "are IN's, with a note); IN's are --in-format, --in-map, "
         "--in-encoding, --in-tz. --origin, --date-order and --time-unit apply to IN and to "
         "ORIGINAL alike; --speed-unit and --distance-unit to IN only (ORIGINAL's: "
         "--like-speed-unit, --like-distance-unit).",
