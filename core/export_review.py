@@ -113,7 +113,7 @@ def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline"
     for s, e in zip(bounds[:-1], bounds[1:], strict=True):  # one object per track, not per point
         trk = gpxpy.gpx.GPXTrack(name=str(names[codes[s]]))
         if targets:
-            parts = cuts[(cuts >= s) & (cuts <= e)]
+            parts = cuts[np.searchsorted(cuts, s) : np.searchsorted(cuts, e, side="right")]
             trk.type = GPX_TARGET_TYPE
             trk.description = "+".join(str(labels[a]) for a in parts[:-1])
             # <src>: the members' sensors (joined by '+'), so a sensor with a ':' reads back
