@@ -94,7 +94,12 @@ def _cmd_review(args: argparse.Namespace) -> int:
     from wakeline.core.review import ReviewState, apply_decisions, track_table
 
     points = read_inputs(args.input, **read_options(args))
-    props = pd.concat([_proposals(p) for p in args.proposals], ignore_index=True)
+    if args.proposals:
+        props = pd.concat([_proposals(p) for p in args.proposals], ignore_index=True)
+    else:  # joins by hand only (decision = merge / join): no proposal to decide
+        from wakeline.core.review_join import empty_proposals
+
+        props = empty_proposals()
     state = ReviewState(track_table(points), props)
     if args.decisions:
         apply_decisions(state, read_table(args.decisions, "decisions"))
@@ -140,7 +145,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Reads the points (one or several files, as `fuse` does), the proposals written "
         "by `associate --proposals` / `fuse --proposals` (several tables may be given) and "
         "the decisions: rows proposal,decision with decision = accept | reject | reset, or "
-        "decision = merge with sensor_a,batch_a,sensor_b,batch_b, or decision = split with "
+        "decision = merge (or join) with sensor_a,batch_a,sensor_b,batch_b (two tracks joined by "
+        "hand, whether or not a proposal links them), or decision = split with "
         "sensor_a,batch_a (that track leaves its target); applied in order; or a decision log (the "
         "window's Review ▸ Export decision log, or --log: time,action,proposal,tracks,…), "
         "replayed with its undos as the window made it. Proposals without a "
@@ -159,9 +165,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         type=Path,
         nargs="+",
         action="extend",  # the flag given twice: both tables (was the last, silently)
-        required=True,
         metavar="P.csv",
-        help="proposals table(s): e.g. one from associate and one from fuse",
+        help="proposals table(s): e.g. one from associate and one from fuse (none: the "
+        "decisions join tracks by hand only, rows decision = merge or join)",
     )
     p.add_argument(
         "--decisions",

@@ -828,7 +828,7 @@ def replay_repaired(
 
 def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:
     """Apply a decisions table in order (the CLI's ``--decisions``): rows
-    ``proposal,decision`` with accept | reject | reset, ``decision`` = merge with
+    ``proposal,decision`` with accept | reject | reset, ``decision`` = merge (or join) with
     ``sensor_a,batch_a,sensor_b,batch_b``, or split with ``sensor_a,batch_a`` (that track
     leaves its target). A decision log (an ``action`` column and no ``decision``: the
     window's Review ▸ Export log, or ``wakeline review --log``) is replayed
@@ -849,7 +849,7 @@ def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:
                     raise InputError(f"{what} needs a proposal id")
                 fn = {"accept": accept, "reject": reject, "reset": reset}[what]
                 state.apply(fn(state, pid))
-            elif what == "merge":
+            elif what in ("merge", "join"):  # join: a hand join (Join selected tracks)
                 a = track_label(row.get("sensor_a", ""), _batch(row.get("batch_a", "")))
                 b = track_label(row.get("sensor_b", ""), _batch(row.get("batch_b", "")))
                 state.apply(merge(state, [a, b]))
@@ -858,7 +858,7 @@ def apply_decisions(state: ReviewState, decisions: pd.DataFrame) -> ReviewState:
                 state.apply(split_track(state, a))
             else:
                 raise InputError(
-                    f"unknown decision {what!r} (accept, reject, reset, merge or split)"
+                    f"unknown decision {what!r} (accept, reject, reset, merge, join or split)"
                 )
         except InputError as exc:
             raise InputError(f"decisions line {line}: {exc}") from None

@@ -39,6 +39,20 @@ def proposals_of(layer: Layer | None) -> pd.DataFrame | None:
     return props if props is not None and len(props) else None
 
 
+def reviewable(layer: Layer | None) -> bool:
+    """Whether the layer has a review: proposals to decide (:func:`proposals_of`), or an
+    associated or fused layer whose step proposed nothing (an empty proposals table)
+    whose tracks may still be joined by hand (:mod:`wakeline.core.review_join`)."""
+    if proposals_of(layer) is not None:
+        return True
+    return (
+        layer is not None
+        and layer.step in REVIEWED_STEPS
+        and layer.role != "stitched"
+        and layer.tables.get("proposals") is not None
+    )
+
+
 def queue_key(layer: Layer) -> str:
     """Names one run's queue: the layer id, the time its step made it and the run's own
     token, ``L3@2024-05-01T10:00:00Z#1f2e…`` (a re-run makes a new queue, even within
@@ -153,6 +167,10 @@ def bind(session: Session, layer: Layer) -> tuple[R.ReviewState, pd.DataFrame]:
     """The review state of ``layer`` (stored decisions of its queue replayed) and the
     points its proposals were made on."""
     props = proposals_of(layer)
+    if props is None and reviewable(layer):  # nothing proposed: joins by hand only
+        from wakeline.core.review_join import empty_proposals
+
+        props = empty_proposals()
     if props is None:
         raise InputError(f"layer {layer.name} has no proposals to review")
     points = input_points(session, layer)
@@ -325,7 +343,7 @@ def decision_counts(layers: list[Layer], decisions: list[dict]) -> tuple[int, in
     """The decision rows replayed on the layers' current queues (the review decisions a
     reopen restores), and the others kept in the log (earlier runs' decisions, those of
     removed layers); re-run markers are no decisions."""
-    current = {queue_key(lay) for lay in layers if proposals_of(lay) is not None}
+    current = {queue_key(lay) for lay in layers if reviewable(lay)}
     now = other = 0
     for row in decisions:
         if not isinstance(row, dict) or not isinstance(row.get("change"), dict):
