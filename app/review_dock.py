@@ -40,7 +40,7 @@ from wakeline.app.time_panel import link_gantt
 from wakeline.app.worker import Failed, Finished
 from wakeline.core import geo
 from wakeline.core.review import RERUN
-from wakeline.core.review_session import proposals_of, queue_key, sorted_by_track
+from wakeline.core.review_session import queue_key, reviewable, sorted_by_track
 from wakeline.core.schema import time_seconds
 
 TR_CONTEXT = "ReviewDock"
@@ -344,6 +344,9 @@ class ReviewDock(QtCore.QObject):
         self.act_export_log.triggered.connect(self.sync.export_log_dialog)
         w.menus["export"].addActions([self.act_export, self.act_export_log])
         self._enable(False)
+        from wakeline.app.review_join import TrackJoin
+
+        self.join = TrackJoin(self)  # Review ▸ Join selected tracks (no proposal needed)
         self.retranslate()
 
     def retranslate(self) -> None:
@@ -354,6 +357,7 @@ class ReviewDock(QtCore.QObject):
                 bound.controller.retranslate()
         self._undo_note()
         self.review_menu.setTitle(tr("Re&view"))
+        self.join.retranslate()
         for name, text in review_texts().items():
             self.review_actions[name].setText(text)
         self.act_fuse.setText(tr("Fuse &selected layers (two or more)"))
@@ -418,7 +422,7 @@ class ReviewDock(QtCore.QObject):
             if b.lid not in layers or queue_key(layers[b.lid]) != k
         ]:
             self._drop(key)  # the layer was removed or its step run again: a new queue
-        if proposals_of(layer) is None:
+        if not reviewable(layer):  # an empty queue too: its tracks are joined by hand
             self._show(None)
             return
         key = queue_key(layer)

@@ -2197,4 +2197,59 @@
         <translation>波门</translation>
     </message>
 </context>
+<context>
+    <name>ReviewJoin</name>
+    <message>
+        <source>&amp;Join selected tracks</source>
+        <translation>合并所选航迹(&amp;J)</translation>
+    </message>
+    <message>
+        <source>Split selected tracks' &amp;target</source>
+        <translation>拆分所选航迹的目标(&amp;T)</translation>
+    </message>
+    <message>
+        <source>Join: tracks are joined in an associated layer (Run ▸ Associate first, then select its tracks)</source>
+        <translation>合并：航迹在关联图层中合并（请先运行 ▸ 关联，再选择其航迹）</translation>
+    </message>
+    <message>
+        <source>Join: the layer's review is still being read; try again</source>
+        <translation>合并：仍在读取该图层的审核，请稍后再试</translation>
+    </message>
+    <message>
+        <source>Join: select two tracks (or more) in the table</source>
+        <translation>合并：请在表中选择两条（或更多）航迹</translation>
+    </message>
+    <message>
+        <source>Join</source>
+        <translation>合并</translation>
+    </message>
+    <message>
+        <source>Join: the tracks are one target already</source>
+        <translation>合并：这些航迹已是同一目标</translation>
+    </message>
+    <message>
+        <source>Joined {0} by hand (Ctrl+Z undoes)</source>
+        <translation>已手动合并 {0}（Ctrl+Z 撤销）</translation>
+    </message>
+    <message>
+        <source>Join overlapping tracks?</source>
+        <translation>合并时间重叠的航迹？</translation>
+    </message>
+    <message>
+        <source>{0}. Join them anyway?</source>
+        <translation>{0}。仍然合并？</translation>
+    </message>
+    <message>
+        <source>Split: select a track of the target in the table</source>
+        <translation>拆分：请在表中选择该目标的一条航迹</translation>
+    </message>
+    <message>
+        <source>Split</source>
+        <translation>拆分</translation>
+    </message>
+    <message>
+        <source>Split: the track is a target of its own</source>
+        <translation>拆分：该航迹本身即为一个目标</translation>
+    </message>
+</context>
 </TS>
