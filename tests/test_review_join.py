@@ -1,0 +1,251 @@
+"""Joining two tracks by hand where no proposal links them (operator test 5, D-review-7):
+the core's command and its inverse, the overlap rule, the split that cuts it again, the
+replay from the decision log and from a decisions table, ``wakeline review`` without
+proposals, and the review of an associated layer whose step proposed nothing."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from wakeline.app.cli import main as cli_main
+from wakeline.core import review as R
+from wakeline.core.errors import InputError
+from wakeline.core.io import write_points
+from wakeline.core.review_join import empty_proposals, join_tracks, overlap_problem, overlaps
+
+T0 = pd.Timestamp("2024-08-02T10:00:00Z")
+
+
+def _line(sensor, batch, start_s, end_s, lon0, lat0, step_s=60):
+    t = np.arange(start_s, end_s + 1, step_s, dtype=float)
+    return pd.DataFrame(
+        {
+            "sensor": sensor,
+            "batch": batch,
+            "time": T0 + pd.to_timedelta(t, unit="s"),
+            "lon": lon0 + 1e-4 * (t - start_s) / 60,
+            "lat": lat0 + 0.0 * t,
+        }
+    )
+
+
+@pytest.fixture
+def typo_points():
+    """Ship 1 under MMSI 237000001 until 12:00 and 237000010 after (typed wrong), ship 2
+    all the time, and a radar track of ship 1 over the whole day (another sensor)."""
+    return pd.concat(
+        [
+            _line("S1", "237000001", 0, 7200, 23.50, 38.00),
+            _line("S1", "237000010", 7260, 14400, 23.5121, 38.00),
+            _line("S1", "237000002", 0, 14400, 23.70, 37.90),
+            _line("R1", "7", 0, 14400, 23.50, 38.0005),
+        ],
+        ignore_index=True,
+    )
+
+
+@pytest.fixture
+def state(typo_points):
+    return R.ReviewState(R.track_table(typo_points), empty_proposals())
+
+
+A, B, OTHER, RADAR = "S1:237000001", "S1:237000010", "S1:237000002", "R1:7"
+
+
+def test_join_without_a_proposal_and_its_inverse(state):
+    assert len(state.proposals) == 0
+    change = join_tracks(state, [A, B])
+    assert change.action == "merge" and change.links_added == {R.pair_key(A, B)}
+    state.apply(change)
+    assert state.target(A) == state.target(B) == A  # named after the earliest track
+    assert state.targets()["target"].nunique() == 3
+    state.apply(change.inverse())
+    assert state.target(B) == B and not state.links
+    state.apply(change)  # redo
+    assert state.target(B) == A
+    split = R.split_target(state, A)  # the split of a hand join cuts its link
+    assert split.links_removed == {R.pair_key(A, B)}
+    state.apply(split)
+    assert state.target(B) == B
+    # joined already: nothing to do (an empty change, nothing logged by the window)
+    state.apply(join_tracks(state, [A, B]))
+    assert join_tracks(state, [B, A]).empty
+
+
+def test_one_sensor_overlapping_in_time_is_refused_unless_allowed(state):
+    assert overlaps(state, [A, B]) == []
+    problem = overlap_problem(state, [A, OTHER])
+    assert "S1:237000001 and S1:237000002 are both tracks of sensor S1" in problem
+    assert "2024-08-02 10:00:00 to 2024-08-02 12:00:00 UTC (2 h 00 min)" in problem
+    with pytest.raises(InputError, match="join refused: S1:237000001 and S1:237000002"):
+        join_tracks(state, [A, OTHER])
+    state.apply(join_tracks(state, [A, OTHER], overlap_ok=True))
+    assert state.target(OTHER) == state.target(A)
+    # Two sensors overlap by nature (radar and AIS of one ship): no question asked.
+    assert overlap_problem(state, [B, RADAR]) == ""
+    # A join checks every member of the targets it joins: B overlaps OTHER (A's target now).
+    assert overlaps(state, [B, A])[0][:2] == (B, OTHER) or overlaps(state, [B, A])[0][:2] == (
+        OTHER,
+        B,
+    )
+    with pytest.raises(InputError, match="select two tracks"):
+        join_tracks(state, [A, A])
+    with pytest.raises(InputError, match="no track"):
+        join_tracks(state, [A, "S1:999"])
+
+
+def test_the_log_and_a_decisions_table_replay_the_join(state, typo_points):
+    state.apply(join_tracks(state, [A, B]))
+    state.apply(R.split_target(state, A))
+    state.apply(join_tracks(state, [B, A]))
+    undo_me = join_tracks(state, [A, OTHER], overlap_ok=True)
+    state.apply(undo_me)
+    state.apply(undo_me.inverse())
+    log = state.log_table()
+    again = R.replay_log(R.ReviewState(R.track_table(typo_points), empty_proposals()), log)
+    assert again.targets().equals(state.targets())
+    assert again.links == state.links == {R.pair_key(A, B)}
+    table = pd.DataFrame(
+        [{"decision": "join", "sensor_a": "S1", "batch_a": "237000001", "sensor_b": "S1",
+          "batch_b": "237000010"}]
+    )  # fmt: skip
+    third = R.apply_decisions(R.ReviewState(R.track_table(typo_points), empty_proposals()), table)
+    assert third.targets().equals(state.targets())
+
+
+def test_cli_review_without_proposals_replays_a_hand_join(tmp_path, typo_points, state):
+    pts = tmp_path / "day.csv"
+    write_points(typo_points, pts)
+    dec = tmp_path / "d.csv"
+    dec.write_text("decision,sensor_a,batch_a,sensor_b,batch_b\njoin,S1,237000001,S1,237000010\n")
+    out, log = tmp_path / "out.csv", tmp_path / "log.csv"
+    args = ["review", str(pts), "-o", str(out), "--decisions", str(dec), "--log", str(log)]
+    assert cli_main(args) == 0
+    got = pd.read_csv(out, dtype=str)
+    assert got.groupby("batch")["target"].first().to_dict() == {
+        "237000001": A,
+        "237000010": A,
+        "237000002": OTHER,
+        "7": RADAR,
+    }
+    # The log written (as the window's Review ▸ Export decision log) replays the same.
+    out2 = tmp_path / "out2.csv"
+    assert cli_main(["review", str(pts), "-o", str(out2), "--decisions", str(log)]) == 0
+    assert pd.read_csv(out2, dtype=str)["target"].equals(got["target"])
+    # The window's own log (a join, undone, joined again) too.
+    state.apply(join_tracks(state, [A, B]))
+    state.apply(R.split_target(state, A))
+    state.apply(join_tracks(state, [B, A]))
+    wlog = tmp_path / "wlog.csv"
+    state.log_table().to_csv(wlog, index=False)
+    out3 = tmp_path / "out3.csv"
+    assert cli_main(["review", str(pts), "-o", str(out3), "--decisions", str(wlog)]) == 0
+    assert pd.read_csv(out3, dtype=str)["target"].equals(got["target"])
+
+
+def test_an_associated_layer_without_proposals_is_reviewable(typo_points):
+    from wakeline.core.associate import LinkParams
+    from wakeline.core.pipeline import step_associate
+    from wakeline.core.review_session import (
+        bind,
+        decision_counts,
+        proposals_of,
+        queue_key,
+        reviewable,
+    )
+    from wakeline.core.review_store import decision_row
+    from wakeline.core.session import Session
+
+    ais = typo_points[typo_points["sensor"] == "S1"].reset_index(drop=True)
+    session = Session()
+    src = session.add_layer("day.csv", "source", ais)
+    new = step_associate(ais, LinkParams()).layers[0]
+    lay = session.add_layer(
+        "day.csv · associated",
+        "associated",
+        new.points,
+        parent=src.id,
+        step="associate",
+        role=new.suffix,
+        tables=new.tables,
+    )
+    assert proposals_of(lay) is None  # mmsi_apart: the two MMSIs are not proposed
+    assert reviewable(lay) and not reviewable(src)
+    state, _points = bind(session, lay)
+    change = join_tracks(state, [A, B])
+    state.apply(change)
+    session.decisions.append(decision_row(queue_key(lay), change, state.log[-1]))
+    again, _ = bind(session, lay)  # a reopen replays the join
+    assert again.target(B) == A and again.links == {R.pair_key(A, B)}
+    assert decision_counts([src, lay], session.decisions) == (1, 0)
+
+
+@pytest.mark.gui
+def test_join_selected_tracks_in_the_window_undo_redo_and_reopen(qtbot, tmp_path, typo_points):
+    """GUI test: the Saronic-like day with an MMSI typed wrong from noon: Run ▸ Associate
+    proposes nothing (mmsi_apart); the two tracks selected in the batch table are joined
+    by Review ▸ Join selected tracks, undone (Ctrl+Z), redone, saved at once; a reopened
+    project shows the join; the split cuts it again; an overlapping pair of one sensor
+    asks first."""
+    pytest.importorskip("pytestqt")
+    from test_review_window import _settle, _window
+
+    from wakeline.core.review_session import proposals_of
+
+    src = tmp_path / "day.csv"
+    write_points(typo_points[typo_points["sensor"] == "S1"], src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    proj = tmp_path / "day.wakeline"
+    w.save_project(proj)
+    _settle(w)
+    w.run_step("associate")
+    _settle(w)
+    assoc = w.session.find(w.layer_id(src.name), "associate")
+    assert proposals_of(assoc) is None
+    w.select_layer(assoc.id)
+    _settle(w)
+    b = w.review.bound
+    assert b is not None and b.lid == assoc.id  # an empty queue binds: joins by hand
+    join = w.review.join
+    w.select_tracks([("S1", "237000001"), ("S1", "237000010")])
+    assert join.actions["join"].shortcut().toString() == "Ctrl+J"
+    join.actions["join"].trigger()
+    _settle(w)
+    st = b.controller.state
+    assert st.target(B) == A and len(w.session.decisions) == 1
+    assert w.session.decisions[-1]["action"] == "merge"
+    assert set(w.session.layers[assoc.id].points.groupby("batch")["target"].first()) == {A, OTHER}
+    w.review.act_undo.trigger()
+    _settle(w)
+    assert st.target(B) == B and len(w.session.decisions) == 2
+    w.review.act_redo.trigger()
+    _settle(w)
+    assert st.target(B) == A and len(w.session.decisions) == 3
+    # One sensor, overlapping times: the operator is asked; "No" joins nothing.
+    asked = []
+    join.ask_overlap = lambda problem: asked.append(problem) or False
+    w.select_tracks([("S1", "237000001"), ("S1", "237000002")])
+    assert not join.join_selected()
+    assert "both tracks of sensor S1" in asked[0] and st.target(OTHER) == OTHER
+    w.project.flush()
+    w.close()
+
+    w2 = _window(qtbot, tmp_path)
+    w2.open_project(proj)
+    _settle(w2)
+    lay = w2.session.find(w2.layer_id(src.name), "associate")
+    w2.select_layer(lay.id)
+    _settle(w2)
+    b2 = w2.review.bound
+    assert b2 is not None and b2.controller.state.target(B) == A
+    assert b2.controller.state.links == {R.pair_key(A, B)}
+    w2.select_tracks([("S1", "237000010")])
+    assert w2.review.join.split_selected()
+    _settle(w2)
+    assert b2.controller.state.target(B) == B
+    w2.review.act_undo.trigger()
+    _settle(w2)
+    assert b2.controller.state.target(B) == A
+    w2.close()
