@@ -33,6 +33,17 @@ def join_texts() -> dict[str, str]:
     }
 
 
+def hand_joins_text(state: R.ReviewState) -> str:
+    """The queue's note of the manual links (joins by hand: Join selected tracks, the
+    queue's merge): "" when there is none, else "; 1 joined by hand: A + B" (the first
+    three pairs named), appended to the queue's counts."""
+    links = sorted(state.links)
+    if not links:
+        return ""
+    named = ", ".join(f"{a} + {b}" for a, b in links[:3]) + ("…" if len(links) > 3 else "")
+    return tr("; {0} joined by hand: {1}").format(len(links), named)
+
+
 #: Shortcuts (window-wide; the Review keys are single letters, these are not).
 JOIN_KEYS = {"join": "Ctrl+J", "split_join": "Ctrl+Shift+J"}
 

@@ -338,7 +338,10 @@ class ReviewPanel(QtWidgets.QWidget):
         st = self.controller.state.status
         vals, n = np.unique(st.astype(str), return_counts=True) if len(st) else ([], [])
         c = dict(zip(vals, n, strict=True))
-        self.counts.setText(T.counts_text(len(st), c))
+        from wakeline.app.review_join import hand_joins_text
+
+        text = T.counts_text(len(st), c) + hand_joins_text(self.controller.state)
+        self.counts.setText(text)
 
     def _show_evidence(self, pid: str) -> None:
         if not pid:

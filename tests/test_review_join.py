@@ -215,11 +215,17 @@ def test_join_selected_tracks_in_the_window_undo_redo_and_reopen(qtbot, tmp_path
     _settle(w)
     st = b.controller.state
     assert st.target(B) == A and len(w.session.decisions) == 1
+    # The queue (no proposal) says what was joined by hand.
+    assert b.panel.counts.text() == (
+        "0 proposals: 0 pending, 0 accepted, 0 rejected, 0 split; "
+        "1 joined by hand: S1:237000001 + S1:237000010"
+    )
     assert w.session.decisions[-1]["action"] == "merge"
     assert set(w.session.layers[assoc.id].points.groupby("batch")["target"].first()) == {A, OTHER}
     w.review.act_undo.trigger()
     _settle(w)
     assert st.target(B) == B and len(w.session.decisions) == 2
+    assert "joined by hand" not in b.panel.counts.text()
     w.review.act_redo.trigger()
     _settle(w)
     assert st.target(B) == A and len(w.session.decisions) == 3

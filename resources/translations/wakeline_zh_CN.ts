@@ -2200,6 +2200,10 @@
 <context>
     <name>ReviewJoin</name>
     <message>
+        <source>; {0} joined by hand: {1}</source>
+        <translation>；手动合并 {0} 对：{1}</translation>
+    </message>
+    <message>
         <source>&amp;Join selected tracks</source>
         <translation>合并所选航迹(&amp;J)</translation>
     </message>
