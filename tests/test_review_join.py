@@ -255,3 +255,39 @@ def test_join_selected_tracks_in_the_window_undo_redo_and_reopen(qtbot, tmp_path
     _settle(w2)
     assert b2.controller.state.target(B) == A
     w2.close()
+
+
+@pytest.mark.real
+def test_the_saronic_day_with_an_mmsi_typed_wrong_is_joined_by_hand(tmp_path):
+    """Operator test 5's file (h181 make_inputs.py): the Saronic AIS of 2024-08-02 with
+    vessel 1's MMSI typed 237000010 from 12:00. Associate keeps the two MMSIs apart and
+    proposes nothing; the hand join makes 5 targets of the 6 tracks, no overlap to ask
+    about, and ``wakeline review`` without proposals gives the same targets."""
+    from conftest import saronic_points
+    from wakeline.core.associate import LinkParams
+    from wakeline.core.pipeline import step_associate
+
+    pts = saronic_points("S1")
+    day = pts[(pts["time"] >= "2024-08-02") & (pts["time"] < "2024-08-03")].copy()
+    day["batch"] = (237000000 + day["batch"].astype(int)).astype(str)
+    typo = (day["batch"] == "237000001") & (day["time"] >= "2024-08-02 12:00")
+    day.loc[typo, "batch"] = "237000010"
+    day = day.reset_index(drop=True)
+    res = step_associate(day, LinkParams())
+    assert len(res.tables["proposals"]) == 0
+    assert res.report["mmsi_apart_pairs"] == 1  # the pair the operator joins
+    state = R.ReviewState(R.track_table(day), empty_proposals())
+    assert len(state.tracks) == 6 and overlap_problem(state, [A, B]) == ""
+    state.apply(join_tracks(state, [A, B]))
+    assert state.targets()["target"].nunique() == 5 and state.target(B) == A
+    src = tmp_path / "day.csv"
+    write_points(day, src)
+    dec = tmp_path / "d.csv"
+    dec.write_text("decision,sensor_a,batch_a,sensor_b,batch_b\njoin,S1,237000001,S1,237000010\n")
+    out = tmp_path / "out.csv"
+    assert cli_main(["review", str(src), "-o", str(out), "--decisions", str(dec)]) == 0
+    got = pd.read_csv(out, dtype=str)
+    assert (
+        got.groupby("batch")["target"].first().to_dict()
+        == state.targets().set_index("batch")["target"].to_dict()
+    )
