@@ -40,7 +40,7 @@ from wakeline.app.time_panel import link_gantt
 from wakeline.app.worker import Failed, Finished
 from wakeline.core import geo
 from wakeline.core.review import RERUN
-from wakeline.core.review_session import queue_key, reviewable, sorted_by_track
+from wakeline.core.review_session import queue_key, review_bindable, sorted_by_track
 from wakeline.core.schema import time_seconds
 
 TR_CONTEXT = "ReviewDock"
@@ -422,7 +422,7 @@ class ReviewDock(QtCore.QObject):
             if b.lid not in layers or queue_key(layers[b.lid]) != k
         ]:
             self._drop(key)  # the layer was removed or its step run again: a new queue
-        if not reviewable(layer):  # an empty queue too: its tracks are joined by hand
+        if not review_bindable(self.w.session, layer):  # an empty queue too: hand joins
             self._show(None)
             return
         key = queue_key(layer)

@@ -53,6 +53,19 @@ def reviewable(layer: Layer | None) -> bool:
     )
 
 
+def review_bindable(session: Session, layer: Layer | None) -> bool:
+    """Whether the window binds a review to the layer: it is :func:`reviewable`, and an
+    empty queue (hand joins only) has the points it was made on (a layer whose input was
+    removed before empty queues were reviewable kept none: it has no review, as before,
+    rather than an error each time it is selected)."""
+    if not reviewable(layer):
+        return False
+    if proposals_of(layer) is not None:
+        return True
+    ids = review_inputs(layer)
+    return bool(ids) and all(KEPT_INPUT + i in layer.tables or i in session.layers for i in ids)
+
+
 def queue_key(layer: Layer) -> str:
     """Names one run's queue: the layer id, the time its step made it and the run's own
     token, ``L3@2024-05-01T10:00:00Z#1f2e…`` (a re-run makes a new queue, even within
@@ -111,7 +124,7 @@ def reads_layer(session: Session, layer: Layer, layer_id: str) -> bool:
     """Whether the review of ``layer`` (one with proposals) reads layer ``layer_id``: its
     points (an input), or, fused across layers, the file its input's name is told apart
     by (an ancestor of an input)."""
-    if proposals_of(layer) is None or layer.id == layer_id:
+    if not reviewable(layer) or layer.id == layer_id:  # an empty queue: its hand joins
         return False
     ids = review_inputs(layer)
     if layer_id in ids:

@@ -151,6 +151,7 @@ def test_an_associated_layer_without_proposals_is_reviewable(typo_points):
         decision_counts,
         proposals_of,
         queue_key,
+        review_bindable,
         reviewable,
     )
     from wakeline.core.review_store import decision_row
@@ -178,6 +179,15 @@ def test_an_associated_layer_without_proposals_is_reviewable(typo_points):
     again, _ = bind(session, lay)  # a reopen replays the join
     assert again.target(B) == A and again.links == {R.pair_key(A, B)}
     assert decision_counts([src, lay], session.decisions) == (1, 0)
+    # Its source removed, the layer keeps the points its hand joins were made on.
+    assert review_bindable(session, lay)
+    session.remove_layer(src.id)
+    assert "input " + src.id in lay.tables and review_bindable(session, lay)
+    third, _ = bind(session, lay)
+    assert third.target(B) == A
+    # A layer that lost its input before (nothing kept) has no review, not an error.
+    lay.tables = {k: v for k, v in lay.tables.items() if k != "input " + src.id}
+    assert reviewable(lay) and not review_bindable(session, lay)
 
 
 @pytest.mark.gui
