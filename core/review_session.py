@@ -306,11 +306,15 @@ def carry_over(
     props = proposals_of(old)
     pairs = proposal_pairs(props)
     keep = {R.pair_key(*pairs[p]) for p, st in status.items() if st == "accepted" and p in pairs}
-    if proposals is None or not len(proposals):  # nothing to review: none applies
-        carry.gone = len(keep | links)
+    if proposals is None or (not len(proposals) and (points is None and tracks is None)):
+        carry.gone = len(keep | links)  # nothing to review: none applies
         return carry
     if not (keep or links):
         return carry
+    if not len(proposals):  # a run that proposes nothing: its hand joins still apply
+        from wakeline.core.review_join import empty_proposals
+
+        proposals = empty_proposals()
     state = R.ReviewState(R.track_table(points) if tracks is None else tracks, proposals)
     proposed = {
         R.pair_key(x, y): pid

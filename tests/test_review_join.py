@@ -301,3 +301,27 @@ def test_the_saronic_day_with_an_mmsi_typed_wrong_is_joined_by_hand(tmp_path):
         got.groupby("batch")["target"].first().to_dict()
         == state.targets().set_index("batch")["target"].to_dict()
     )
+
+
+def test_a_rerun_that_proposes_nothing_again_keeps_the_hand_join(typo_points):
+    """Associate run again (a parameter changed) on the layer whose tracks were joined by
+    hand: the run proposes nothing again, and the join is carried as an operator link
+    (it was dropped as 'a track is gone' when the run had no proposal)."""
+    from wakeline.core.pipeline import STEPS
+    from wakeline.core.review_session import bind, queue_key
+    from wakeline.core.review_store import decision_row
+    from wakeline.core.session import Session
+
+    ais = typo_points[typo_points["sensor"] == "S1"].reset_index(drop=True)
+    s = Session()
+    src = s.add_layer("day.csv", "source", ais)
+    (lay,) = s.apply_result(src.id, s.run_step(src.id, "associate"))
+    st, _ = bind(s, lay)
+    change = st.apply(join_tracks(st, [A, B]))
+    s.decisions.append(decision_row(queue_key(lay), change, st.log[-1]))
+    res = s.run_step(src.id, "associate")
+    assert res.carry.linked == 1 and res.carry.gone == 0
+    assert "kept as an operator link" in STEPS["associate"].summary(res)
+    (new,) = s.apply_result(src.id, res)
+    again, _ = bind(s, new)
+    assert len(again.proposals) == 0 and again.target(B) == A
