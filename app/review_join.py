@@ -12,6 +12,7 @@ that overlap in time are joined only when the operator says so in the question a
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app.core_text import shown
 from wakeline.core import review as R
 from wakeline.core.errors import InputError
 from wakeline.core.review_join import join_tracks, overlap_problem
@@ -119,7 +120,7 @@ class TrackJoin(QtCore.QObject):
                 return False
             change = join_tracks(state, labels, overlap_ok=True)
         except InputError as exc:
-            self.w.log_message(f"{tr('Join')}: {exc}")
+            self.w.log_message(f"{tr('Join')}: {shown(exc)}")
             return False
         if change.empty:
             self.w.log_message(tr("Join: the tracks are one target already"))
@@ -134,7 +135,7 @@ class TrackJoin(QtCore.QObject):
         answer = QtWidgets.QMessageBox.question(
             self.w,
             tr("Join overlapping tracks?"),
-            tr("{0}. Join them anyway?").format(problem),
+            tr("{0}. Join them anyway?").format(shown(problem)),
             buttons.Yes | buttons.No,
             buttons.No,
         )
@@ -153,7 +154,7 @@ class TrackJoin(QtCore.QObject):
         try:
             change = R.split_target(state, state.target(labels[0]))
         except InputError as exc:
-            self.w.log_message(f"{tr('Split')}: {exc}")
+            self.w.log_message(f"{tr('Split')}: {shown(exc)}")
             return False
         if change.empty:
             self.w.log_message(tr("Split: the track is a target of its own"))

@@ -325,3 +325,14 @@ def test_a_rerun_that_proposes_nothing_again_keeps_the_hand_join(typo_points):
     (new,) = s.apply_result(src.id, res)
     again, _ = bind(s, new)
     assert len(again.proposals) == 0 and again.target(B) == A
+
+
+def test_the_overlap_message_reads_in_chinese(state):
+    from wakeline.app.core_text import translate
+
+    with pytest.raises(InputError) as err:
+        join_tracks(state, [A, OTHER])
+    zh = translate(str(err.value), "zh_CN")
+    assert zh.startswith("拒绝合并：S1:237000001 与 S1:237000002 都是传感器 S1 的航迹")
+    assert "2024-08-02 10:00:00 至 2024-08-02 12:00:00 UTC 时间重叠（2 h 00 min）：" in zh
+    assert "another" not in zh and "one sensor" not in zh
