@@ -218,6 +218,10 @@ def test_join_selected_tracks_in_the_window_undo_redo_and_reopen(qtbot, tmp_path
     _settle(w)
     b = w.review.bound
     assert b is not None and b.lid == assoc.id  # an empty queue binds: joins by hand
+    for act in w.review.review_actions.values():  # the queue's keys on an empty queue
+        act.trigger()
+    _settle(w)
+    assert w.session.decisions == []
     join = w.review.join
     w.select_tracks([("S1", "237000001"), ("S1", "237000010")])
     assert join.actions["join"].shortcut().toString() == "Ctrl+J"
