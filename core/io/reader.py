@@ -2967,6 +2967,13 @@ def _text_column(arr: pa.ChunkedArray) -> _Text:
     return _Text(codes, names.astype(object), arr if unchanged else None)
 
 
+def _tables_in(rows: _Rows, sn: Sniff, res: Resolved, time_ok) -> bool:
+    """Whether a piece's rows hold a header line of other columns (tables.py)."""
+    from wakeline.core.io.tables import has_second_table
+
+    return has_second_table(rows, sn, res, ~np.asarray(time_ok, dtype=bool))
+
+
 def _header_again(table: pa.Table, cols: dict[str, str], rows: np.ndarray) -> np.ndarray:
     """Which of ``rows`` (a mask) repeat the header: every mapped cell is its column's
     name, in any case (a second file's header where files were joined). Looks at ``rows``
@@ -3784,11 +3791,14 @@ def _to_canonical(
     date_order: str = "auto",
     time_unit: str = "auto",
     clock_date: str | None = None,
+    tables_read: bool = False,
 ):
     table, bad = rows.table, rows.bad
     n = table.num_rows
     cols = res.columns
     mapped = set(cols.values())
+    # what the time parse adds, forgotten when a second table is read by its own header
+    time_start = dict(time_info) if time_info is not None else None
 
     # Reasons as small codes: 0 = fine; the first reason found for a row wins.
     reason_names = [""]
@@ -3868,6 +3878,39 @@ def _to_canonical(
             cols["time"],
             clock_date,
         )
+    if not tables_read and (not np.all(time_ok) or bad.lines):
+        # A second header line (two exports pasted into one file): its rows under the
+        # first header's columns, then everything read again (tables.py).
+        from wakeline.core.io.tables import second_tables
+
+        if counted.get("_streaming") or counted.get("_edges") is not None:
+            if _tables_in(rows, sn, res, time_ok):
+                raise WholeFileNeeded  # a piece's line numbers and blocks are not the file's
+        else:
+            found = second_tables(
+                rows,
+                sn,
+                res,
+                ~np.asarray(time_ok, dtype=bool),
+                lambda lines: _raw_lines(sn, lines, rows.encoding),
+            )
+            if found is not None:
+                rows.notes += found
+                time_info.clear()
+                time_info.update(time_start)
+                return _to_canonical(
+                    rows,
+                    sn,
+                    res,
+                    sensor,
+                    zone,
+                    time_info,
+                    fetch_texts,
+                    date_order,
+                    time_unit,
+                    clock_date,
+                    tables_read=True,
+                )
     if counted.get("clock_only"):  # times of day: over midnight by track, then the zone
         track = text["batch"].codes.astype("int64")
         if "sensor" in text:
@@ -4563,6 +4606,8 @@ def stream_points(
     ``sink``; memory stays about one piece. Returns the quarantine, report and layout of
     :func:`read_points` (points empty). Raises :class:`StreamFallback` when the file needs the
     whole-file reader (a value that does not convert, another encoding, no points)."""
+    from wakeline.core.io.tables import header_line
+
     progress = progress or null_progress
     check_date_order(date_order)
     check_time_unit(time_unit)
@@ -4618,6 +4663,8 @@ def stream_points(
             if not local.unnumbered:
                 break
         offset = first_line - 1
+        if local.lines and header_line(local.texts, sn.parse_delimiter, list(sn.columns)):
+            raise WholeFileNeeded  # a second table's header (tables.py): read whole
         bad.lines += [n + offset for n in local.lines]
         bad.reasons += local.reasons
         # a blank-aligned file's lines as parsed are not its lines: fetched from the file
