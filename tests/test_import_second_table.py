@@ -63,9 +63,15 @@ def _accounted(r, n_lines: int) -> None:
     "second, said",
     [
         (["index", "mmsi", "position_timestamp", "longitude", "latitude"], "in another order"),
-        (FIRST + ["sog"], "changed (also sog, not read)"),
-        (["index", "position_timestamp", "mmsi", "lat", "lon"], "lat for latitude"),
-        (["mmsi", "position_timestamp", "longitude", "latitude"], "changed (without index)"),
+        (
+            FIRST + ["sog"],
+            "changed (+sog): read by its own header (30 rows; columns it adds not read)",
+        ),
+        (
+            ["index", "position_timestamp", "mmsi", "lat", "lon"],
+            "changed (latitude \u2192 lat; longitude \u2192 lon)",
+        ),
+        (["mmsi", "position_timestamp", "longitude", "latitude"], "changed (\u2212index)"),
     ],
 )
 def test_a_second_table_is_read_by_its_own_header(write, tmp_path, monkeypatch, how, second, said):
@@ -77,7 +83,7 @@ def test_a_second_table_is_read_by_its_own_header(write, tmp_path, monkeypatch, 
     assert r.quarantine["reason"].iloc[0].startswith("the header of a second table")
     note = [w for w in r.report["warnings"] if "second table" in w]
     assert len(note) == 1 and note[0].startswith("line 42 starts a second table")
-    assert said in note[0] and "read by its own header (30 rows)" in note[0]
+    assert said in note[0] and "read by its own header (30 rows" in note[0]
     one = read_points(write("one.csv", "\n".join(_block(FIRST, _rows(70))) + "\n")).points
     points = points.sort_values(["batch", "time"], ignore_index=True)
     one = one.sort_values(["batch", "time"], ignore_index=True)

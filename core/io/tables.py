@@ -92,13 +92,9 @@ class _Header:
             if n not in self.names and (self.take is None or self.take[j] is None)
         ]
         parts = list(self.renamed) if self.kind in ("reordered", "other") else []
-        if more:
-            unread = ", not read" if self.kind == "other" else ""
-            parts.append("also " + ", ".join(more) + unread)
-        if less:
-            parts.append("without " + ", ".join(less))
+        parts += [f"+{n}" for n in more] + [f"\u2212{c}" for c in less]
         if not parts:
-            parts.append("in another order")
+            parts.append("a column named twice" if self.kind == "split" else "in another order")
         return "; ".join(parts)
 
 
@@ -159,7 +155,7 @@ def _judge(h: _Header, sn, res) -> None:
             same = [i for i in free if field_of[n] in known_fields([h.names[i]])]
             if len(same) == 1:
                 h.take[j] = same[0]
-                h.renamed.append(f"{h.names[same[0]]} for {n}")
+                h.renamed.append(f"{sn.columns[j]} \u2192 {h.names[same[0]]}")
     needed = _needed(sn, res)
     if any(h.take[j] is None for j, n in enumerate(own) if n in needed):
         h.kind = "split"
@@ -240,7 +236,11 @@ def second_tables(rows, sn, res, candidates: np.ndarray, raw_lines) -> list[str]
                 "file and import each table on its own"
             )
             continue
-        moved_reasons.append(f"the header of a second table ({what}): its rows read by it")
+        moved_reasons.append(
+            "the header of a second table, its columns in another order: its rows read by it"
+            if h.kind == "reordered"
+            else f"the header of a second table ({what}): its rows read by it"
+        )
         width = len(h.names)
         read = 0
         if width == len(first):
@@ -276,7 +276,8 @@ def second_tables(rows, sn, res, candidates: np.ndarray, raw_lines) -> list[str]
         notes.append(
             f"line {h.line:,} starts a second table with its columns "
             f"{'in another order' if h.kind == 'reordered' else f'changed ({what})'}: "
-            f"read by its own header ({read:,} rows)"
+            f"read by its own header ({read:,} rows"
+            f"{'; columns it adds not read' if any(w.startswith('+') for w in what.split('; ')) else ''})"
         )
     out = {name: columns[name] for name in first}
     for name in table.column_names:
