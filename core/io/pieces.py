@@ -42,6 +42,7 @@ from wakeline.core.io.decoding import (
     merge_fallbacks,
 )
 from wakeline.core.io.formats import Resolved
+from wakeline.core.io.grid import GRID_MARK, GRID_MIN_ROWS
 from wakeline.core.io.reader import (
     BEARING_ROWS_MARK,
     BEARING_WARNING_MARK,
@@ -447,6 +448,16 @@ def merge_import_reports(
             if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w:
                 continue  # said again below from the whole file's quarantine and reasons
             (timing if w in local_note else notes).append(w)
+    # positions on a grid (grid.py): said when every piece with rows is on one
+    # (a piece of fewer rows than GRID_MIN_ROWS is not judged on its own)
+    grid = [
+        next((w for w in r.get("warnings", []) if w.startswith(GRID_MARK)), None)
+        for r in with_rows
+        if r["rows_imported"] >= GRID_MIN_ROWS
+    ]
+    notes = [w for w in notes if not w.startswith(GRID_MARK)]
+    if grid and None not in grid:
+        notes.append(grid[0])
     warnings = list(dict.fromkeys(notes))
     warnings += _time_warnings(time_src, comma, zone)
     warnings += _time_warnings(time_src, times, zone)

@@ -2090,6 +2090,12 @@ def parse_times(
         parsed = pd.to_datetime(text, format="ISO8601", errors="coerce", utc=True)
     parsed = _as_ns(pd.Series(parsed), info)
     ok = parsed.notna().to_numpy()
+    if tz is None:  # zoned and zone-less times in one column: the latter read as UTC
+        with_zone = int((ok & zoned).sum())
+        without = int((ok & ~zoned).sum())
+        if with_zone and without:
+            info["zoneless_times"] = info.get("zoneless_times", 0) + without
+            info["zoned_times"] = info.get("zoned_times", 0) + with_zone
     ns = np.zeros(len(parsed), dtype="int64")
     ns[ok] = (
         (parsed[ok] - pd.Timestamp(0, tz="UTC")).to_numpy().astype("timedelta64[ns]").view("int64")
@@ -2603,6 +2609,13 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"the zone word {word} in {time_src!r} names more than one zone "
             f"({AMBIGUOUS_ZONES[word]}): those times were read in --tz {zone}"
         )
+    if time_info.get("zoneless_times") and time_info.get("zoned_times") and zone is None:
+        without, with_zone = int(time_info["zoneless_times"]), int(time_info["zoned_times"])
+        out.append(
+            f"{without:,} of {without + with_zone:,} times in {time_src!r} carry no zone and "
+            f"{with_zone:,} do: those without were read as UTC; if they are local times, "
+            "give their zone with --tz (e.g. --tz Asia/Shanghai; times with a zone keep it)"
+        )
     if time_info.get("naive") and zone is None and header_is_local(time_src):
         out.append(
             f"the time column {time_src!r} says it holds local times but they were read as "
@@ -2651,6 +2664,34 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     return out
 
 
+#: Encodings of Chinese systems (a file in one, or with Chinese headers, was written
+#: on a machine whose clock is likely Beijing time).
+_CHINESE_CODECS = ("gb18030", "gbk", "gb2312", "hz", "big5", "big5hkscs")
+_CJK = re.compile(r"[\u4e00-\u9fff]")
+
+
+def zone_note(sn: Sniff, time_src: str, time_info: dict, zone) -> list[str]:
+    """D-import-8: times without a zone in a file plainly from a Chinese system (its
+    encoding or its headers) were read as UTC: one line saying so, with the --tz that
+    reads them as Beijing time. (Not said for every zone-less file: most exports write
+    UTC without a zone, and the note would be noise there.)"""
+    if zone is not None or not time_info.get("naive") or time_info.get("relative"):
+        return []
+    if header_is_local(time_src) or time_info.get("zoneless_times"):
+        return []  # said already: the header says local; zoned and zone-less mixed
+    try:
+        codec = codecs.lookup(sn.encoding).name
+    except (LookupError, TypeError):
+        codec = ""
+    chinese = codec in _CHINESE_CODECS or any(_CJK.search(str(c)) for c in sn.columns)
+    if not chinese:
+        return []
+    return [
+        f"the times in {time_src!r} carry no zone: read as UTC (this file looks written on "
+        "a Chinese system: if they are local times, --tz Asia/Shanghai)"
+    ]
+
+
 def date_order_note(time_info: dict) -> str | None:
     """How slashed dates were read and what decided it (for the import report), or None
     when the times are not slashed dates."""
@@ -2683,7 +2724,14 @@ def date_order_note(time_info: dict) -> str | None:
 
 #: The counts behind the date-order and Excel-days notes, in a report when not zero (a
 #: read in pieces sums them: :func:`~wakeline.core.io.pieces.merge_import_reports`).
-TIME_COUNTS = ("dates_either_way", "day_shown", "excel_days", "date_order_refused")
+TIME_COUNTS = (
+    "dates_either_way",
+    "day_shown",
+    "excel_days",
+    "date_order_refused",
+    "zoneless_times",
+    "zoned_times",
+)
 #: ... and of the positions read from text (in the report as these keys when not zero;
 #: a read in pieces sums them and says each once).
 POSITION_COUNTS = (
@@ -2869,6 +2917,7 @@ def read_points(
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes + _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
+    warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
@@ -2878,6 +2927,7 @@ def read_points(
     from wakeline.core.io.geojson import targets_note
 
     warnings += targets_note(points, csv=True)  # Wakeline's targets (D-export-2)
+    warnings += _grid_warnings(points)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(path),
@@ -2929,6 +2979,16 @@ def read_points(
         "time_relative": bool(time_info.get("relative")),
     }
     return ImportResult(points, quarantine, report, layout)
+
+
+def _grid_warnings(points: pd.DataFrame) -> list[str]:
+    """Positions on a grid of 2 decimals or fewer (grid.py), said once."""
+    from wakeline.core.io.grid import grid_decimals, grid_warning
+
+    if not len(points):
+        return []
+    k = grid_decimals(points["lon"].to_numpy(), points["lat"].to_numpy())
+    return [] if k is None else [grid_warning(k, points["lat"].to_numpy())]
 
 
 @dataclass
@@ -4606,6 +4666,7 @@ def stream_points(
     ``sink``; memory stays about one piece. Returns the quarantine, report and layout of
     :func:`read_points` (points empty). Raises :class:`StreamFallback` when the file needs the
     whole-file reader (a value that does not convert, another encoding, no points)."""
+    from wakeline.core.io.grid import GridSeen, grid_warning
     from wakeline.core.io.tables import header_line
 
     progress = progress or null_progress
@@ -4632,6 +4693,7 @@ def stream_points(
     quarantines: list[pd.DataFrame] = []
     starts, ends = [], []
     time_info: dict = {}
+    grid = GridSeen()  # the positions' grid over the pieces (grid.py)
     edges = edge_state()
     size = max(sn.path.stat().st_size, 1)
     consumed = [0]
@@ -4749,6 +4811,8 @@ def stream_points(
             "dates_either_way",
             "day_shown",
             "date_order_refused",
+            "zoneless_times",
+            "zoned_times",
             "excel_days",
             "excel_like",
         ):
@@ -4768,6 +4832,7 @@ def stream_points(
             pairs.update(zip(keys["sensor"].astype(str), keys["batch"].astype(str), strict=True))
             starts.append(points["time"].min())
             ends.append(points["time"].max())
+            grid.add(points["lon"].to_numpy(), points["lat"].to_numpy())
             sink(points)
         progress(min(0.95, done()), "importing")
 
@@ -4824,6 +4889,7 @@ def stream_points(
     warnings += res.notes
     warnings += _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
+    warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(restarting, res.columns["batch"])
     warnings += position_warnings(
@@ -4832,6 +4898,8 @@ def stream_points(
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, by_reason, totals["rows_read"] + len(bad.lines))
     warnings += cut_short_warnings(sn, q)
+    if grid.decimals() is not None:
+        warnings.append(grid_warning(grid.decimals(), grid.lat))
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(sn.path),

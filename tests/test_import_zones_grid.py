@@ -1,0 +1,112 @@
+"""Operator test 5's import notes: a time column mixing zoned and zone-less times
+(D-import-10), zone-less times in a file from a Chinese system (D-import-8), positions
+rounded to 2 decimals or fewer (D-import-7). Each said once, whole, streamed or in
+pieces, with the counts and what to do."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from wakeline.core.io import import_to_csv, read_points, reader
+from wakeline.core.io.grid import GRID_MARK, grid_decimals
+
+
+def _ship(n: int, naive_every: int = 0, decimals: int = 4) -> str:
+    rows = ["mmsi,time,lat,lon"]
+    for i in range(n):
+        t = pd.Timestamp("2023-03-01T00:00:00Z") + pd.Timedelta(seconds=10 * i)
+        if naive_every and i % naive_every == 0:
+            stamp = (t + pd.Timedelta(hours=8)).strftime("%Y-%m-%d %H:%M:%S")  # Beijing clock
+        else:
+            stamp = t.strftime("%Y-%m-%dT%H:%M:%SZ")
+        lat, lon = 57.6 + i * 4e-4, 11.7 + i * 3e-4
+        rows.append(f"220614000,{stamp},{lat:.{decimals}f},{lon:.{decimals}f}")
+    return "\n".join(rows) + "\n"
+
+
+def _read(path, how, tmp_path, monkeypatch):
+    if how == "whole":
+        return read_points(path)
+    monkeypatch.setattr(reader, "STREAM_BYTES", 2000)
+    return import_to_csv(path, tmp_path / f"out_{how}.csv")
+
+
+@pytest.mark.parametrize("how", ["whole", "streamed"])
+def test_zoned_and_zone_less_times_mixed_are_counted_and_the_tz_hint_given(
+    write, tmp_path, monkeypatch, how
+):
+    r = _read(write("mixed.csv", _ship(300, naive_every=2)), how, tmp_path, monkeypatch)
+    said = [w for w in r.report["warnings"] if "carry no zone" in w]
+    assert said == [
+        "150 of 300 times in 'time' carry no zone and 150 do: those without were read as UTC; "
+        "if they are local times, give their zone with --tz (e.g. --tz Asia/Shanghai; times "
+        "with a zone keep it)"
+    ]
+    assert r.report["zoneless_times"] == 150 and r.report["zoned_times"] == 150
+
+
+def test_no_zone_note_for_one_kind_of_times_or_with_tz(write):
+    for text in (_ship(100), _ship(100, naive_every=1)):
+        r = read_points(write("one.csv", text))
+        assert not [w for w in r.report["warnings"] if "zone" in w]
+    r = read_points(write("mixed.csv", _ship(100, naive_every=2)), tz="Asia/Shanghai")
+    assert not [w for w in r.report["warnings"] if "carry no zone" in w]
+    # with --tz the Beijing clock times are the same instants as the zoned ones
+    assert r.points["time"].diff().dropna().dt.total_seconds().eq(10).all()
+
+
+@pytest.mark.parametrize("encoding", ["gb18030", "utf-8"])
+def test_zone_less_times_from_a_chinese_system_get_one_note(write, encoding):
+    text = _ship(60, naive_every=1).replace("mmsi,time,lat,lon", "批号,时间,纬度,经度")
+    r = read_points(write("cn.csv", text, encoding=encoding))
+    said = [w for w in r.report["warnings"] if "carry no zone" in w]
+    assert said == [
+        "the times in '时间' carry no zone: read as UTC (this file looks written on a Chinese "
+        "system: if they are local times, --tz Asia/Shanghai)"
+    ]
+    r = read_points(write("cn.csv", text, encoding=encoding), tz="Asia/Shanghai")
+    assert not [w for w in r.report["warnings"] if "zone" in w]
+    # an English file of zone-less times: no note (most exports write UTC so)
+    r = read_points(write("en.csv", _ship(60, naive_every=1)))
+    assert not [w for w in r.report["warnings"] if "zone" in w]
+
+
+@pytest.mark.parametrize("how", ["whole", "streamed"])
+@pytest.mark.parametrize("decimals, said", [(2, True), (1, True), (3, False), (5, False)])
+def test_positions_on_a_coarse_grid_are_named_with_the_step(
+    write, tmp_path, monkeypatch, how, decimals, said
+):
+    r = _read(write("grid.csv", _ship(400, decimals=decimals)), how, tmp_path, monkeypatch)
+    grid = [w for w in r.report["warnings"] if w.startswith(GRID_MARK)]
+    if not said:
+        assert grid == []
+        return
+    assert len(grid) == 1
+    metres = {2: "1,112 m north–south", 1: "11,119 m north–south"}[decimals]
+    assert f"at most {decimals} decimal" in grid[0] and metres in grid[0]
+    assert "stationary rule" in grid[0]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    decimals=st.integers(0, 6),
+    lat=st.floats(-80, 80),
+    lon=st.floats(-179, 179),
+    n=st.integers(50, 400),
+    step=st.floats(1e-5, 0.05),
+)
+def test_grid_decimals_finds_the_rounding(decimals, lat, lon, n, step):
+    """Property: positions rounded to k decimals are judged on a grid of k decimals (or
+    fewer) when k <= 2 and they take three values or more; finer ones never."""
+    i = np.arange(n)
+    la = np.round(lat + i * step, decimals)
+    lo = np.round(lon + i * step * 0.7, decimals)
+    got = grid_decimals(lo, la)
+    spread = len(np.unique(la)) >= 3 or len(np.unique(lo)) >= 3
+    if decimals <= 2 and spread:
+        assert got is not None and got <= decimals
+    if decimals > 2 and got is not None:
+        # a finer rounding judged coarse only when its values happen to lie on the grid
+        assert np.allclose(la * 10**got, np.round(la * 10**got), atol=1e-6)
