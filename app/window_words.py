@@ -12,6 +12,15 @@ _PHRASES = (
         "e.g. Asia/Shanghai or +08:00)",
     ),
     (
+        "give their zone with --tz (e.g. --tz Asia/Shanghai; times with a zone keep it)",
+        "choose their zone in the import dialog's Time zone field (File ▸ Open tracks…; "
+        "e.g. Asia/Shanghai; times with a zone keep it)",
+    ),
+    (
+        "if they are local times, --tz Asia/Shanghai)",
+        "if they are local times, choose Asia/Shanghai in the import dialog's Time zone field)",
+    ),
+    (
         "map it: --map batch=COLUMN, or --map sensor=COLUMN",
         "map it to batch or sensor in the import dialog's Column mapping (File ▸ Open tracks…)",
     ),
