@@ -64,6 +64,14 @@ def _cmd_batch(args: argparse.Namespace) -> int:
         f"{count(rep['buckets'], 'partition')}; {steps}{skipped_text}; wrote {args.outdir}",
         file=sys.stderr,
     )
+    refused = rep.get("refused_inputs") or []
+    if refused:  # listed above, each with its reason; the rest were processed
+        print(
+            f"batch: {count(len(refused), 'input')} refused (above, each with its reason); "
+            "the other inputs were processed; exit status 2",
+            file=sys.stderr,
+        )
+        return 2
     return 0
 
 
@@ -86,9 +94,11 @@ def register(sub: argparse._SubParsersAction) -> None:
         "partitions, OUTDIR/report.json, and with --csv OUTDIR/<step>.csv in canonical CSV. An "
         "input without a data row (empty, or a header only) is skipped with a warning; so is, "
         "among several inputs, one that is not track data (a README.txt: binary, or a header "
-        "of no known column and no --map column). Any other refusal (a --map column missing "
-        "from a data file, known columns but a required one missing) fails the batch, exit 2, "
-        "before any work: nothing is left out silently.",
+        "of no known column and no --map column). Every other refusal (a --map column missing "
+        "from a data file, known columns but a required one missing) is listed with its "
+        "reason, the other inputs are processed, and the batch ends with exit status 2: "
+        "nothing is left out silently. The reading flags apply to every input: a file that "
+        "needs its own is run apart, or imported to canonical CSV first (`wakeline import`).",
         epilog=EPILOG,
     )
     p.add_argument("pipeline", type=Path, nargs="?", help="pipeline JSON")

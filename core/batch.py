@@ -349,15 +349,16 @@ class _CsvInput:
 
 def _survey_inputs(
     inputs: Sequence[Path], read: dict
-) -> tuple[list[_CsvInput], list[tuple[str, str]]]:
+) -> tuple[list[_CsvInput], list[tuple[str, str]], list[tuple[str, str]]]:
     """:func:`_survey_all` of every input. Of several, one that is not track data at all
     (:class:`NotTrackData`: a README.txt among the exports, binary, a header of no known
     column) is left out, as ``evaluate --real`` leaves it out: returned as (file, why) for
     a note. Any other refusal (a data file whose ``--map`` names a missing column, known
-    columns but a required one missing, no such file) fails the batch with the importer's
-    message before any work: its rows would be neither points nor quarantine rows. One
-    input alone, or none left, is the importer's message too."""
-    out, not_read = [], []
+    columns but a required one missing, metres without an origin) is returned as (file,
+    why) too, every one of them (:func:`refusal`): the batch runs on the rest and ends
+    with exit status 2, saying so (D-batch-2, operator test 5: it stopped at the first).
+    One input alone, or none left, is the importer's message."""
+    out, not_read, refused = [], [], []
     with tempfile.TemporaryDirectory(prefix="wakeline-batch-") as tmp:
         for p in inputs:
             try:
@@ -367,11 +368,35 @@ def _survey_inputs(
                     raise
                 why = str(exc)
                 not_read.append((str(p), why.removeprefix(f"{p}: ")))
+            except InputError as exc:
+                if len(inputs) == 1:
+                    raise
+                refused.append((str(p), refusal(str(exc), str(p))))
     if not out:
-        shown = "; ".join(f"{p}: {why}" for p, why in not_read[:3])
-        more = f"; and {len(not_read) - 3:,} more" if len(not_read) > 3 else ""
+        gone = not_read + refused
+        shown = "; ".join(f"{p}: {why}" for p, why in gone[:3])
+        more = f"; and {len(gone) - 3:,} more" if len(gone) > 3 else ""
         raise InputError(f"batch: no input could be read: {shown}{more}")
-    return out, not_read
+    return out, not_read, refused
+
+
+#: What a refused input's message gets in a batch of several (D-batch-2, operator test
+#: 5): the reading flags apply to every input, so a file that needs its own cannot be
+#: given them here.
+OWN_FLAGS_ADVICE = (
+    "the reading flags (--map, --origin, --encoding, …) apply to every input of a batch: "
+    "run this file apart with its own, or `wakeline import` it to canonical CSV first and "
+    "batch that"
+)
+
+
+def refusal(message: str, name: str) -> str:
+    """An input's refusal as a batch of several lists it: the importer's message without
+    the file's name, and where it asks for a reading flag, :data:`OWN_FLAGS_ADVICE`."""
+    why = message.removeprefix(f"{name}: ").removeprefix(f"{name}/")
+    if "--" in why or "mapped column" in why:
+        why = f"{why}; {OWN_FLAGS_ADVICE}"
+    return why
 
 
 def _survey_all(path: Path, stage: Path, read: dict) -> list[_CsvInput]:
@@ -498,11 +523,13 @@ def _import_file(
     scratch = root / f"file-{file_no:06d}"
     label = str(src) if member is None else f"{src}/{member}"
     pieces: list[int] = []
+    spans: list[pd.DataFrame] = []  # each piece's tracks and their time spans
 
     def sink(points: pd.DataFrame) -> None:
         if not len(points):
             return
         part = file_no * PIECES + len(pieces)
+        spans.append(track_spans(points))
         _to_buckets(points, root, n, part, f"block-{part:012d}")
         pieces.append(len(points))
 
@@ -512,6 +539,7 @@ def _import_file(
             for f in root.glob(f"bucket-*/block-{file_no * PIECES + k:012d}.parquet"):
                 f.unlink()
         pieces.clear()
+        spans.clear()
 
     readable = src
     try:
@@ -599,7 +627,55 @@ def _import_file(
         "skipped_above_header": skipped_above_header(res.report),
         "blank_lines": int(res.report.get("blank_lines", 0)),
     }
-    return {"counts": counts, "warnings": list(warnings), "rows": int(rows.sum()), **lines}
+    return {
+        "counts": counts,
+        "warnings": list(warnings),
+        "rows": int(rows.sum()),
+        "spans": track_spans(pd.concat(spans, ignore_index=True)) if spans else None,
+        **lines,
+    }
+
+
+def track_spans(points: pd.DataFrame) -> pd.DataFrame:
+    """(sensor, batch) of ``points`` (or of spans already) with their first and last time."""
+    if "start" not in points.columns:
+        points = points.assign(start=points["time"], end=points["time"])
+    g = points.groupby(["sensor", "batch"], observed=True, sort=False)
+    return pd.DataFrame({"start": g["start"].min(), "end": g["end"].max()}).reset_index()
+
+
+def shared_tracks(spans: dict[str, pd.DataFrame]) -> list[str]:
+    """D-batch-1/D-batch-3 (operator test 5): inputs read as one stream join every equal
+    (sensor, batch), so two exports of the same data (or a file and our own GeoJSON of it)
+    make duplicates. One warning per pair of inputs whose tracks share (sensor, batch)
+    with overlapping times, in input order."""
+    if len(spans) < 2:
+        return []
+    order = {name: k for k, name in enumerate(spans)}
+    frames = [df.assign(file=order[name]) for name, df in spans.items() if len(df)]
+    if len(frames) < 2:
+        return []
+    all_spans = pd.concat(frames, ignore_index=True)
+    all_spans["sensor"] = all_spans["sensor"].astype(str)
+    all_spans["batch"] = all_spans["batch"].astype(str)
+    many = all_spans.groupby(["sensor", "batch"])["file"].transform("nunique") > 1
+    both = all_spans[many]
+    if not len(both):
+        return []
+    pairs = both.merge(both, on=["sensor", "batch"], suffixes=("_a", "_b"))
+    pairs = pairs[pairs["file_a"] < pairs["file_b"]]
+    overlap = (pairs["start_a"] <= pairs["end_b"]) & (pairs["start_b"] <= pairs["end_a"])
+    shared = pairs[overlap].groupby(["file_a", "file_b"]).size()
+    names = list(spans)
+    out = []
+    for (a, b), k in shared.items():
+        ids = f"{k:,} track id" + ("s" if k != 1 else "")
+        out.append(
+            f"warning: {names[a]} and {names[b]} share {ids} with overlapping times: the "
+            "same export twice? Read as one stream their rows join into one track each "
+            "(duplicates); give each its own sensor (a sensor column), or run them apart"
+        )
+    return out
 
 
 def _read_options(opts: BatchOptions) -> dict:
@@ -623,8 +699,23 @@ def _read_options(opts: BatchOptions) -> dict:
     }
 
 
+def _import_or_refuse(path: str, file_no: int, stage: str, *args, alone: bool = True) -> dict:
+    """:func:`_import_file`; of several inputs, one the importer refuses on the way (a
+    refusal the survey of its start could not see) is ``{"refused": why}``, what it
+    wrote to the buckets removed."""
+    try:
+        return _import_file(path, file_no, stage, *args)
+    except InputError as exc:
+        if alone:
+            raise
+        for f in Path(stage).glob("bucket-*/block-*.parquet"):
+            if int(f.stem.split("-")[1]) // PIECES == file_no:
+                f.unlink()
+        return {"refused": str(exc)}
+
+
 def _import_inputs(
-    inputs: Sequence[_CsvInput], stage: Path, n: int, read: dict
+    inputs: Sequence[_CsvInput], stage: Path, n: int, read: dict, alone: bool = True
 ) -> tuple[pd.DataFrame, list[str], list[str], dict[str, int]]:
     """Pass 1 over CSV inputs: each file read by the importer, one Dask task per file.
     Returns the counts per piece, the warnings (``FILE: warning: …``, in input order),
@@ -634,17 +725,22 @@ def _import_inputs(
 
     todo = [(k, i) for k, i in enumerate(inputs) if not i.empty]
     tasks = [
-        dask.delayed(_import_file, pure=False)(
-            str(i.path), k, str(stage), n, i.compression, read, i.member
+        dask.delayed(_import_or_refuse, pure=False)(
+            str(i.path), k, str(stage), n, i.compression, read, i.member, alone=alone
         )
         for k, i in todo
     ]
     done = dict(zip((k for k, _ in todo), dask.compute(*tasks), strict=True))
     from wakeline.core.io.sniff import EMPTY_FILE
 
+    refused = {k: d.pop("refused") for k, d in list(done.items()) if "refused" in d}
+    for k in refused:
+        del done[k]
     warnings, empty = [], []
     for k, i in enumerate(inputs):
         d = done.get(k)
+        if k in refused:
+            continue
         if d is None or not d["rows"]:
             empty.append(i.name)
             why = EMPTY_FILE if i.blank else "no data rows (a header only?)"
@@ -654,6 +750,9 @@ def _import_inputs(
     counts = [d["counts"] for d in done.values()]
     none = pd.DataFrame({c: pd.Series([], dtype="int64") for c in ("block", "rows", "quarantined")})
     lines = {k: sum(d[k] for d in done.values()) for k in ("skipped_above_header", "blank_lines")}
+    gone = [(inputs[k].name, refusal(why, inputs[k].name)) for k, why in sorted(refused.items())]
+    spans = {inputs[k].name: d["spans"] for k, d in done.items() if d.get("spans") is not None}
+    lines |= {"refused": gone, "spans": spans}
     return pd.concat([none, *counts], ignore_index=True), warnings, empty, lines
 
 
@@ -924,10 +1023,10 @@ def run_batch(
         check_units(opts.speed_unit, opts.distance_unit)
         check_clock_date(opts.clock_date)
         # Every input checked before any work: one clear message (columns, compression).
-        csv_inputs, not_read = _survey_inputs(inputs, read)
+        csv_inputs, not_read, refused = _survey_inputs(inputs, read)
         text_bytes = sum(i.text_bytes for i in csv_inputs)
     else:
-        not_read = []
+        not_read, refused = [], []
         given = [
             flag
             for flag, value in (
@@ -980,7 +1079,10 @@ def run_batch(
         lines: dict[str, int] = {}  # CSV inputs: lines skipped above headers, blank lines
         try:
             if kind == "csv":
-                counts, warnings, empty, lines = _import_inputs(csv_inputs, stage, n, read)
+                alone = len(csv_inputs) + len(refused) + len(not_read) == 1
+                counts, warnings, empty, lines = _import_inputs(csv_inputs, stage, n, read, alone)
+                refused += lines.pop("refused")
+                warnings += shared_tracks(lines.pop("spans"))
             else:
                 counts = _read_parquet_inputs(inputs, stage, n, opts)
         except (InputError, OSError):
@@ -996,7 +1098,12 @@ def run_batch(
         blocks = len(counts)  # pass 1's read tasks' pieces (CSV) or blocks (Parquet)
         if rows_read == 0:
             shutil.rmtree(outdir, ignore_errors=True)
+            if refused:
+                shown = "; ".join(f"{p}: {why}" for p, why in refused)
+                raise InputError(f"batch: no input could be read: {shown}")
             raise InputError("batch: the inputs hold no data rows (headers only?)")
+        for name, why in refused:
+            log(f"{name}: refused: {why}")
         for name, why in not_read:
             log(f"{name}: warning: {why}; skipped")
         for warning in warnings:
@@ -1070,6 +1177,8 @@ def run_batch(
         **lines,
         "empty_inputs": empty,
         "skipped_inputs": [{"input": name, "reason": why} for name, why in not_read],
+        # inputs the importer refused (each with its reason): the rest were processed
+        "refused_inputs": [{"input": name, "reason": why} for name, why in refused],
         "warnings": warnings,
         "steps": stages_rep,
         "timings_s": {k: round(v, 3) for k, v in timings.items()},

@@ -595,12 +595,14 @@ def test_stray_and_empty_inputs_and_folders(tmp_path, capsys):
     assert "batch: no input could be read" in capsys.readouterr().err
 
 
-def test_a_refused_data_file_fails_the_batch_a_stray_file_is_skipped(tmp_path, capsys):
+def test_a_refused_data_file_is_listed_the_rest_run_a_stray_file_is_skipped(tmp_path, capsys):
     """Review: among several inputs any refused file was skipped with a note and the batch
     exited 0, a real data file refused only for a wrong --map too (its rows neither points
-    nor quarantine rows). Now only files that are not track data (NotTrackData: binary, a
-    header of no known column and no --map column) are skipped; any other refusal fails
-    the batch (exit 2) with the importer's message, before any output."""
+    nor quarantine rows). Then any refusal failed the batch before any output, so an
+    operator met one refused file per run (operator test 5, D-batch-2). Now only files
+    that are not track data (NotTrackData: binary, a header of no known column and no
+    --map column) are skipped with a warning; every other refusal is listed with the
+    importer's message, the rest is processed, and the batch exits 2 saying so."""
     rows = [f"S1,T1,2024-01-01T00:00:{i:02d}Z,{10 + i * 1e-3:.4f},50" for i in range(50)]
     good = tmp_path / "good.csv"
     good.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
@@ -619,12 +621,15 @@ def test_a_refused_data_file_fails_the_batch_a_stray_file_is_skipped(tmp_path, c
     code = main(["batch", str(pipe), str(other), str(good), "--map", "time=ts", "-o", str(out)])
     assert code == 2
     err = capsys.readouterr().err
-    assert f"{good}: " in err and "ts" in err and "warning" not in err
-    assert not (out / "report.json").exists()
-    # Known columns, a required one missing: refused.
+    assert f"{good}: refused: " in err and "ts" in err and "run this file apart" in err
+    assert "1 input refused (above, each with its reason)" in err and "exit status 2" in err
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["rows_read"] == 50  # other.csv's rows
+    assert [d["input"] for d in rep["refused_inputs"]] == [str(good)]
+    # Known columns, a required one missing: refused, listed; good.csv read.
     code = main(["batch", str(pipe), str(good), str(partial), "-o", str(tmp_path / "o2")])
     assert code == 2
-    assert f"{partial}: missing required column lat" in capsys.readouterr().err
+    assert f"{partial}: refused: missing required column lat" in capsys.readouterr().err
     # Not track data: skipped with a note, the batch completes (exit 0), listed.
     out = tmp_path / "o3"
     files = [good, readme, binary]
