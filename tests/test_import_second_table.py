@@ -4,6 +4,8 @@ first header: ids as times, latitudes as longitudes, exit status 0. A line of co
 names starts a second table, read by its own header or quarantined with "split the
 file"; every line is a point or a quarantine row, whole, streamed or in pieces."""
 
+import re
+
 import pandas as pd
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -117,6 +119,26 @@ def test_the_time_format_is_not_judged_on_the_other_table(write):
     assert r.report["time_format"] != "unix s"
     assert r.points["time"].dt.year.eq(2023).all()
     assert r.points["lat"].between(57, 58).all() and r.points["lon"].between(11, 12).all()
+
+
+def test_each_table_s_times_are_read_in_their_own_form(write):
+    """The first table writes ISO times, the second (longer) day-first dates: each read
+    in its own form, said once (before: one form judged on both, the other quarantined)."""
+    second = ["index", "mmsi", "position_timestamp", "longitude", "latitude"]
+    text = _file(second, 20, 60)
+    head, _, tail = text.partition("\n" + ",".join(second) + "\n")
+    tail = re.sub(
+        r"(\d{4})-(\d\d)-(\d\d)T([\d:]+)Z", lambda m: f"{m[3]}/{m[2]}/{m[1]} {m[4]}", tail
+    )
+    r = read_points(write("forms.csv", head + "\n" + ",".join(second) + "\n" + tail))
+    assert r.report["rows_imported"] == 80
+    one = read_points(write("one.csv", "\n".join(_block(FIRST, _rows(80))) + "\n")).points
+    assert (r.points["time"].to_numpy() == one["time"].to_numpy()).all()
+    said = [w for w in r.report["warnings"] if "in 2 forms" in w]
+    assert said == [
+        "the tables of this file write the times in 'position_timestamp' in 2 forms (ISO 8601 "
+        "text, day-first text): each table's read in its own"
+    ]
 
 
 _HEADERS = st.permutations(FIRST).flatmap(

@@ -607,6 +607,8 @@ class _Rows:
     notes: list[str]
     #: Lines read in a fallback encoding (report's ``encoding_fallback``; decoding.py).
     fallback: dict = field(default_factory=dict)
+    #: Each row's table in a file of several (tables.py; -1 the first), or None.
+    blocks: np.ndarray | None = None
 
 
 def strict_mode(sn: Sniff) -> str:
@@ -2609,6 +2611,12 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"the zone word {word} in {time_src!r} names more than one zone "
             f"({AMBIGUOUS_ZONES[word]}): those times were read in --tz {zone}"
         )
+    if len(time_info.get("time_formats_by_table") or ()) > 1:
+        forms = time_info["time_formats_by_table"]
+        out.append(
+            f"the tables of this file write the times in {time_src!r} in {len(forms)} forms "
+            f"({', '.join(forms)}): each table's read in its own"
+        )
     if time_info.get("zoneless_times") and time_info.get("zoned_times") and zone is None:
         without, with_zone = int(time_info["zoneless_times"]), int(time_info["zoned_times"])
         out.append(
@@ -3025,6 +3033,78 @@ def _text_column(arr: pa.ChunkedArray) -> _Text:
     codes = remap[pc.fill_null(indices, -1).to_numpy()]
     unchanged = bool(np.all(raw == values))
     return _Text(codes, names.astype(object), arr if unchanged else None)
+
+
+#: Counts of the time parse summed over a file's tables (the rest: the first table's).
+_SUMMED_TIME_KEYS = (
+    "dates_either_way",
+    "day_shown",
+    "excel_days",
+    "date_order_refused",
+    "zoneless_times",
+    "zoned_times",
+    "decimal_comma",
+    "excel_like",
+    "clock_rollovers",
+    "month_first",
+    "month_first_ampm",
+)
+
+
+def _times_by_table(time_col, blocks: np.ndarray, counted: dict, times: dict):
+    """The times of a file of several tables (tables.py), each table's read on its own
+    (its format judged on its rows only: an ISO table and a day-first one both read).
+    What each parse notes is merged into ``counted``: per-row marks put back in file
+    rows, counts summed, flags OR-ed, the rest (the time format) the first table's."""
+    n = len(blocks)
+    ns = np.zeros(n, dtype="int64")
+    ok = np.zeros(n, dtype=bool)
+    start = dict(counted)
+    formats: list[str] = []
+    for b in np.unique(blocks):
+        idx = np.flatnonzero(blocks == b)
+        info = dict(start)
+        col = time_col.take(pa.array(idx))
+        ns_b, ok_b = parse_times(col, info=info, **times)
+        ns[idx], ok[idx] = np.asarray(ns_b), np.asarray(ok_b)
+        fmt = info.get("time_format")
+        if fmt and fmt not in formats:
+            formats.append(fmt)
+        for key, value in info.items():
+            if key == "_rows":
+                continue
+            if isinstance(value, (np.ndarray, pd.Series)) and len(value) == len(idx):
+                full = counted.get(key)
+                if not isinstance(full, np.ndarray) or len(full) != n:
+                    full = np.zeros(n, dtype=bool)
+                full[idx] |= np.asarray(value, dtype=bool)
+                counted[key] = full
+            elif (
+                isinstance(value, dict)
+                and value
+                and all(isinstance(v, (np.ndarray, pd.Series)) for v in value.values())
+            ):
+                merged = counted.setdefault(key, {})
+                for word, mask in value.items():
+                    full = merged.get(word)
+                    if not isinstance(full, np.ndarray) or len(full) != n:
+                        full = np.zeros(n, dtype=bool)
+                    full[idx] |= np.asarray(mask, dtype=bool)
+                    merged[word] = full
+            elif key in _SUMMED_TIME_KEYS and not isinstance(value, bool):
+                counted[key] = counted.get(key, 0) + value - start.get(key, 0)
+            elif isinstance(value, bool):
+                counted[key] = bool(counted.get(key)) or value
+            elif key == "zone_words" and isinstance(value, dict):
+                merged = counted.setdefault(key, {})
+                for word, k in value.items():
+                    merged[word] = merged.get(word, 0) + k
+            else:
+                counted.setdefault(key, value)
+    if len(formats) > 1:
+        counted["time_formats_by_table"] = formats
+    counted["_rows"] = n
+    return ns, ok
 
 
 def _tables_in(rows: _Rows, sn: Sniff, res: Resolved, time_ok) -> bool:
@@ -3927,17 +4007,19 @@ def _to_canonical(
             if len(low) and (low < 1024).all():
                 counted["gps_ten_bit"] = True
     else:
-        ns, time_ok = parse_times(
-            time_col,
-            res.format.time_kind,
-            zone,
-            counted,
-            comma,
-            date_order,
-            time_unit,
-            cols["time"],
-            clock_date,
+        times = dict(
+            kind=res.format.time_kind,
+            tz=zone,
+            decimal_comma=comma,
+            date_order=date_order,
+            time_unit=time_unit,
+            header=cols["time"],
+            clock_date=clock_date,
         )
+        if rows.blocks is not None and len(np.unique(rows.blocks)) > 1:
+            ns, time_ok = _times_by_table(time_col, rows.blocks, counted, times)
+        else:
+            ns, time_ok = parse_times(time_col, info=counted, **times)
     if not tables_read and (not np.all(time_ok) or bad.lines):
         # A second header line (two exports pasted into one file): its rows under the
         # first header's columns, then everything read again (tables.py).

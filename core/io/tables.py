@@ -200,6 +200,7 @@ def second_tables(rows, sn, res, candidates: np.ndarray, raw_lines) -> list[str]
     moved_reasons: list[str] = []
     added: list[list[str | None]] = []
     added_lines: list[int] = []
+    added_block: list[int] = []
     keep_bad = np.ones(len(bad_lines), dtype=bool)
     relabel: dict[int, str] = {}
     notes: list[str] = []
@@ -272,6 +273,7 @@ def second_tables(rows, sn, res, candidates: np.ndarray, raw_lines) -> list[str]
             keep_bad[k] = False
             added.append([None if src is None else cells[src] for src in h.take])
             added_lines.append(int(bad_lines[k]))
+            added_block.append(b)
             read += 1
         notes.append(
             f"line {h.line:,} starts a second table with its columns "
@@ -319,6 +321,8 @@ def second_tables(rows, sn, res, candidates: np.ndarray, raw_lines) -> list[str]
     order = order[~drop_all[order]]
     rows.table = new.take(pa.array(order))
     rows.lines = new_lines[order]
+    # each row's table (-1 the first): its times are read by their own table's format
+    rows.blocks = np.concatenate([block, np.asarray(added_block, dtype="int64")])[order]
     rows.careful = rows.careful or as_text
     # Refused lines: the rows read by their header leave; header lines and the rows of a
     # table not read join, each with its reason.
