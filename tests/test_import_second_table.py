@@ -141,6 +141,17 @@ def test_each_table_s_times_are_read_in_their_own_form(write):
     ]
 
 
+def test_zoned_times_in_one_table_and_zone_less_in_the_other_are_counted(write):
+    second = ["index", "mmsi", "position_timestamp", "longitude", "latitude"]
+    text = _file(second, 20, 30)
+    head, _, tail = text.partition("\n" + ",".join(second) + "\n")
+    tail = re.sub(r"(\d{4}-\d\d-\d\d)T([\d:]+)Z", r"\1 \2", tail)  # no zone
+    r = read_points(write("zones.csv", head + "\n" + ",".join(second) + "\n" + tail))
+    assert r.report["rows_imported"] == 50
+    said = [w for w in r.report["warnings"] if "carry no zone" in w]
+    assert len(said) == 1 and said[0].startswith("30 of 50 times in 'position_timestamp'")
+
+
 _HEADERS = st.permutations(FIRST).flatmap(
     lambda order: st.sampled_from(
         [list(order), list(order) + ["sog"], [c for c in order if c != "index"]]

@@ -2095,7 +2095,9 @@ def parse_times(
     if tz is None:  # zoned and zone-less times in one column: the latter read as UTC
         with_zone = int((ok & zoned).sum())
         without = int((ok & ~zoned).sum())
-        if with_zone and without:
+        if info.get("_by_table"):  # a table of several: judged over the file's tables
+            info["_zoned_n"], info["_naive_n"] = with_zone, without
+        elif with_zone and without:
             info["zoneless_times"] = info.get("zoneless_times", 0) + without
             info["zoned_times"] = info.get("zoned_times", 0) + with_zone
     ns = np.zeros(len(parsed), dtype="int64")
@@ -3061,17 +3063,20 @@ def _times_by_table(time_col, blocks: np.ndarray, counted: dict, times: dict):
     ok = np.zeros(n, dtype=bool)
     start = dict(counted)
     formats: list[str] = []
+    zoned = naive = 0
     for b in np.unique(blocks):
         idx = np.flatnonzero(blocks == b)
-        info = dict(start)
+        info = {**start, "_by_table": True}
         col = time_col.take(pa.array(idx))
         ns_b, ok_b = parse_times(col, info=info, **times)
         ns[idx], ok[idx] = np.asarray(ns_b), np.asarray(ok_b)
         fmt = info.get("time_format")
         if fmt and fmt not in formats:
             formats.append(fmt)
+        zoned += info.pop("_zoned_n", 0)
+        naive += info.pop("_naive_n", 0)
         for key, value in info.items():
-            if key == "_rows":
+            if key in ("_rows", "_by_table"):
                 continue
             if isinstance(value, (np.ndarray, pd.Series)) and len(value) == len(idx):
                 full = counted.get(key)
@@ -3101,6 +3106,8 @@ def _times_by_table(time_col, blocks: np.ndarray, counted: dict, times: dict):
                     merged[word] = merged.get(word, 0) + k
             else:
                 counted.setdefault(key, value)
+    if zoned and naive:  # zoned times in one table, zone-less in another (or both mixed)
+        counted["zoned_times"], counted["zoneless_times"] = zoned, naive
     if len(formats) > 1:
         counted["time_formats_by_table"] = formats
     counted["_rows"] = n
