@@ -3,6 +3,8 @@
 rounded to 2 decimals or fewer (D-import-7). Each said once, whole, streamed or in
 pieces, with the counts and what to do."""
 
+import re
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -110,3 +112,15 @@ def test_grid_decimals_finds_the_rounding(decimals, lat, lon, n, step):
     if decimals > 2 and got is not None:
         # a finer rounding judged coarse only when its values happen to lie on the grid
         assert np.allclose(la * 10**got, np.round(la * 10**got), atol=1e-6)
+
+
+@pytest.mark.parametrize("how", ["whole", "streamed"])
+def test_zoned_then_zone_less_pieces_are_counted_over_the_file(write, tmp_path, monkeypatch, how):
+    """The first half of the file zoned, the second zone-less: a streamed read sees each
+    piece with one kind only; the counts are the file's."""
+    lines = _ship(300).splitlines()
+    naive = [re.sub(r"T([\d:]+)Z", r" \1", x) for x in lines[151:]]
+    path = write("halves.csv", "\n".join(lines[:151] + naive) + "\n")
+    r = _read(path, how, tmp_path, monkeypatch)
+    said = [w for w in r.report["warnings"] if "carry no zone" in w]
+    assert len(said) == 1 and said[0].startswith("150 of 300 times in 'time' carry no zone")

@@ -412,6 +412,11 @@ def merge_import_reports(
         k: v for r in reports for k, v in (r.get("lettered_forms") or {}).items()
     }
     times["excel_why"] = next((r["excel_why"] for r in reports if r.get("excel_why")), None)
+    # zoned and zone-less times: counted by each piece, judged over the file
+    zoned = sum(r.get("_zones", (0, 0))[0] for r in reports)
+    naive = sum(r.get("_zones", (0, 0))[1] for r in reports)
+    if zoned and naive:
+        times["zoned_times"], times["zoneless_times"] = zoned, naive
     times["date_order_given"] = given
     example = next(
         (r["decimal_comma_example"] for r in reports if r.get("decimal_comma_example")), None
@@ -478,6 +483,7 @@ def merge_import_reports(
     encoding = next((e for e in encodings if e != sn.encoding), encodings[0])
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
     fmt = (with_rows or reports)[0].get("time_format")
+    first = {k: v for k, v in first.items() if k != "_zones"}
     return {
         **first,
         "date_order": date_order_note({**times, "time_format": fmt}),

@@ -1931,6 +1931,9 @@ def parse_times(
         arr = pc.cast(arr, pa.string())
     if pa.types.is_timestamp(arr.type):
         info["time_format"] = "ISO 8601 text"
+        if info.get("_by_table") and tz is None:  # a piece typed by pyarrow: one kind
+            valid_n = len(arr) - arr.null_count
+            info["_zoned_n" if arr.type.tz is not None else "_naive_n"] = valid_n
         if arr.type.tz is None:
             info["naive"] = True
             if tz is not None:
@@ -2095,7 +2098,7 @@ def parse_times(
     if tz is None:  # zoned and zone-less times in one column: the latter read as UTC
         with_zone = int((ok & zoned).sum())
         without = int((ok & ~zoned).sum())
-        if info.get("_by_table"):  # a table of several: judged over the file's tables
+        if info.get("_by_table"):  # a table or piece of several: judged over them all
             info["_zoned_n"], info["_naive_n"] = with_zone, without
         elif with_zone and without:
             info["zoneless_times"] = info.get("zoneless_times", 0) + without
@@ -2911,7 +2914,8 @@ def read_points(
     notes += res.notes
     progress(0.6, "checking values")
 
-    time_info: dict = {} if edges is None else {"_edges": edges}
+    # a piece of a file: zoned and zone-less times counted for the whole file (pieces.py)
+    time_info: dict = {} if edges is None else {"_edges": edges, "_by_table": True}
     points, quarantine, counts = _to_canonical(
         rows,
         sn,
@@ -2924,6 +2928,8 @@ def read_points(
         clock_date=clock_date,
     )
     time_info.pop("_edges", None)
+    time_info.pop("_by_table", None)
+    zones = [time_info.pop("_zoned_n", 0), time_info.pop("_naive_n", 0)]
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes + _title_warnings(sn) + _blank_run_warnings(sn)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
@@ -2968,6 +2974,7 @@ def read_points(
         "plane_origin": list(res.origin) if res.on_plane else None,
         **counts,
         **({"encoding_fallback": rows.fallback} if rows.fallback else {}),
+        **({"_zones": zones} if edges is not None and any(zones) else {}),
         "warnings": warnings,
     }
     layout = {
@@ -4839,6 +4846,7 @@ def stream_points(
             **({"_unit": time_info["_unit"]} if "_unit" in time_info else {}),
             "_streaming": True,
             "_edges": {**edges, "final": final},
+            "_by_table": True,  # zoned and zone-less times counted over the pieces
         }
         points, quarantine, counts = _to_canonical(
             rows,
@@ -4879,6 +4887,8 @@ def stream_points(
             merged = time_info.setdefault("zone_words", {})
             merged[word] = merged.get(word, 0) + k
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
+        for key in ("_zoned_n", "_naive_n"):
+            time_info[key] = time_info.get(key, 0) + info.get(key, 0)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
         time_info["dayfirst_shown"] = time_info.get("dayfirst_shown") or info.get("dayfirst_shown")
         for key in info.keys() & {
@@ -4973,6 +4983,9 @@ def stream_points(
         texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], sn.encoding)
         q["text"] = pd.Series(texts, dtype="str")
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
+    zoned, naive = time_info.pop("_zoned_n", 0), time_info.pop("_naive_n", 0)
+    if zoned and naive:  # zoned and zone-less times in the file (any pieces)
+        time_info["zoned_times"], time_info["zoneless_times"] = zoned, naive
     warnings = fallback_warning(sn.encoding, fallback)
     warnings += [no_batch_warning(sn, res.columns)] if file_batch else []
     warnings += res.notes
