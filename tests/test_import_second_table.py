@@ -110,6 +110,32 @@ def test_a_second_table_without_a_column_read_is_quarantined(write, tmp_path, mo
     assert len(note) == 1 and "its 30 rows quarantined; split the file" in note[0]
 
 
+@pytest.mark.parametrize("how", ["whole", "streamed"])
+def test_a_second_table_with_another_delimiter_or_chinese_names(write, tmp_path, monkeypatch, how):
+    """The tester's not-tried cases: Chinese headers under English ones are read by their
+    own header (their fields known); a second table separated by ';' is quarantined with
+    the line named (before: 31 "short row" and "the file may be cut short")."""
+    cn = ["批号", "时间", "纬度", "经度"]
+    rows = _rows(60)
+    eng = ["mmsi", "position_timestamp", "latitude", "longitude"]
+    lines = _block(eng, rows[:30]) + [",".join(cn)] + _block(eng, rows[30:])[1:]
+    r, _ = _read(write("cn.csv", "\n".join(lines) + "\n"), how, tmp_path, monkeypatch)
+    _accounted(r, 61)
+    assert r.report["rows_imported"] == 60
+    semi = _block(eng, rows[:30]) + [x.replace(",", ";") for x in _block(eng, rows[30:])]
+    r, _ = _read(write("semi.csv", "\n".join(semi) + "\n"), how, tmp_path, monkeypatch)
+    _accounted(r, 61)
+    assert r.report["rows_imported"] == 30
+    assert r.quarantine["reason"].iloc[0] == (
+        "the header of a second table separated by ';': split the file"
+    )
+    note = [w for w in r.report["warnings"] if "second table" in w or "cut short" in w]
+    assert note == [
+        "line 32 starts a second table separated by ';': its 30 rows quarantined; split the "
+        "file and import each table on its own"
+    ]
+
+
 def test_the_time_format_is_not_judged_on_the_other_table(write):
     """The tester's case: the longer second table put ids (220614000) in the first
     header's time column, which then parsed as unix seconds for every row."""

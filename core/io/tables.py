@@ -59,14 +59,32 @@ def split_cells(text: str, delimiter: str) -> list[str]:
         return text.split(delimiter)
 
 
+#: Delimiters a second table may be written with (another export's).
+_DELIMITERS = (",", ";", "\t", "|")
+
+
+def header_cells(text: str, delimiter: str, first: list[str]) -> tuple[list[str], str] | None:
+    """A refused line's cells and delimiter when it is a header line: split by the file's
+    delimiter, or by another (a second table written with ``;``); else None."""
+    for delim in (delimiter, *(d for d in _DELIMITERS if d != delimiter)):
+        if delim not in text:
+            continue
+        cells = split_cells(text, delim)
+        if is_header_cells(cells, first):
+            return cells, delim
+    return None
+
+
 def header_line(texts: list[str], delimiter: str, first: list[str]) -> bool:
     """Whether one of ``texts`` (lines the parser refused for their field count) is a
     header line of other columns than ``first``: the streamed reader then hands the file
     to the whole-file reader, which reads the second table by its header."""
     firsts = [cell_name(c) for c in first]
     for text in texts:
-        cells = split_cells(text, delimiter)
-        if is_header_cells(cells, first) and [cell_name(c) for c in cells] != firsts:
+        found = header_cells(text, delimiter, first)
+        if found is not None and (
+            found[1] != delimiter or [cell_name(c) for c in found[0]] != firsts
+        ):
             return True
     return False
 
@@ -79,6 +97,7 @@ class _Header:
     bad_at: int | None  # its index among the refused lines, or None
     kind: str = ""  # "same", "reordered", "other" (read by its header) or "split"
     take: list[int | None] | None = None  # per first-header column: its index here
+    delimiter: str = ""  # another delimiter than the file's (a table not read)
     renamed: list[str] = field(default_factory=list)  # "lat for latitude"
 
     def describe(self, first: list[str]) -> str:
@@ -124,10 +143,11 @@ def _find(rows, sn, candidates: np.ndarray) -> list[_Header]:
     for k, text in enumerate(bad.texts):
         if not text:
             continue
-        cells = split_cells(text, sn.parse_delimiter)
-        if is_header_cells(cells, first):
-            names = [cell_name(c) for c in cells]
-            found.append(_Header(int(bad.lines[k]), names, None, k))
+        got = header_cells(text, sn.parse_delimiter, first)
+        if got is not None:
+            names = [cell_name(c) for c in got[0]]
+            other = got[1] if got[1] != sn.parse_delimiter else ""
+            found.append(_Header(int(bad.lines[k]), names, None, k, delimiter=other))
     return sorted(found, key=lambda h: h.line)
 
 
@@ -140,10 +160,10 @@ def _needed(sn, res) -> set[str]:
 
 def _judge(h: _Header, sn, res) -> None:
     own = [cell_name(c) for c in sn.columns]
-    if h.names == own:
+    if h.names == own and not h.delimiter:
         h.kind = "same"
         return
-    if len(set(h.names)) != len(h.names):
+    if h.delimiter or len(set(h.names)) != len(h.names):
         h.kind = "split"
         return
     h.take = [h.names.index(n) if n in h.names else None for n in own]
@@ -220,7 +240,9 @@ def second_tables(rows, sn, res, candidates: np.ndarray, raw_lines) -> list[str]
         under_bad = (bad_block == b) & (bad_lines != h.line)
         if h.kind == "split":
             moved_reasons.append(
-                f"the header of a second table ({what}) without a column this import "
+                f"the header of a second table separated by {h.delimiter!r}: split the file"
+                if h.delimiter
+                else f"the header of a second table ({what}) without a column this import "
                 "reads: split the file"
             )
             reason = f"under the second table's header at line {h.line:,} (other columns): split the file"
@@ -231,10 +253,14 @@ def second_tables(rows, sn, res, candidates: np.ndarray, raw_lines) -> list[str]
             for k in np.flatnonzero(under_bad):
                 relabel[int(k)] = reason
             n = int(under_table.sum() + under_bad.sum())
+            how = (
+                f"separated by {h.delimiter!r}"
+                if h.delimiter
+                else f"with other columns ({what}), without a column this import reads"
+            )
             notes.append(
-                f"line {h.line:,} starts a second table with other columns ({what}), "
-                f"without a column this import reads: its {n:,} rows quarantined; split the "
-                "file and import each table on its own"
+                f"line {h.line:,} starts a second table {how}: its {n:,} rows quarantined; "
+                "split the file and import each table on its own"
             )
             continue
         moved_reasons.append(
