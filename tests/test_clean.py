@@ -423,7 +423,8 @@ def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
     rows = leg(-90.0, 28.0, 8, 0) + leg(-122.5, 48.4, 8, 3600)
     rows[13] = (rows[13][0] + 1.0, rows[13][1], rows[13][2])  # an outlier inside piece 2
     pts = pd.DataFrame(rows, columns=["lon", "lat", "time"]).assign(sensor="S1", batch="338")
-    res = clean(pts)
+    # pieces of 8 points: short tracks (10) are judged after the split since h179
+    res = clean(pts, CleanParams().with_settings(["short_tracks.min_points=5"]))
     sp = res.report["rules"]["speed"]
     assert sp["splits"] == 1
     assert sorted(res.points["batch"].unique()) == ["338", "338#2"]
@@ -434,7 +435,9 @@ def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
     assert removed["batch"].tolist() == ["338#2"]
     back, _ = restore(res.points, res.rejected, removed["wl_id"])
     assert (back["batch"] == "338#2").sum() == 8
-    single = clean(pts, CleanParams().with_settings(["speed.split_factor=0"]))
+    single = clean(
+        pts, CleanParams().with_settings(["speed.split_factor=0", "short_tracks.min_points=5"])
+    )
     assert single.points["batch"].nunique() == 1
     # 0.4 km in 10 s (80 kn) then steady: a break by the speed rule, not two ships
     near = leg(0.0, 0.0, 6, 0, 10.0, 0.0003) + leg(0.0036, 0.0, 6, 60, 10.0, 0.0003)
@@ -442,6 +445,44 @@ def test_two_ships_under_one_id_are_split_at_the_jump_no_ship_could_make():
     r2 = clean(near)
     assert r2.report["rules"]["speed"]["splits"] == 0
     assert r2.points["batch"].unique().tolist() == ["9"]
+
+
+def test_short_tracks_are_judged_after_the_split():
+    """Operator test 4 (D-clean-2): the short-track rule judged a track before clean split
+    it at a jump no ship could make, so a 10-day file kept 1,681 pieces of at most 3
+    points that the one-day file of the same ships set aside. Now each piece is judged:
+    a 5-point piece after a 20-point one is set aside (restorable, under its own batch),
+    the report counts one track out; ``after_split=false`` judges the 25-point track as it
+    came in and keeps both pieces, as before."""
+    t0 = pd.Timestamp("2024-01-01T00:00:00Z")
+
+    def leg(lon0, lat0, n, start_s):
+        return [
+            (lon0 + k * 0.002, lat0, t0 + pd.Timedelta(seconds=start_s + k * 60.0))
+            for k in range(n)
+        ]
+
+    rows = leg(-90.0, 28.0, 20, 0) + leg(-122.5, 48.4, 5, 7200)
+    pts = pd.DataFrame(rows, columns=["lon", "lat", "time"]).assign(sensor="S1", batch="338")
+    res = clean(pts)
+    assert res.report["rules"]["speed"]["splits"] == 1
+    assert res.points["batch"].unique().tolist() == ["338"] and len(res.points) == 20
+    assert removed(res, "short_tracks") == [20, 21, 22, 23, 24]
+    gone = res.rejected[res.rejected["rule"] == "short_tracks"]
+    assert gone["batch"].unique().tolist() == ["338#2"]
+    assert res.report["tracks_in"] == 1 and res.report["tracks_out"] == 1
+    back, _ = restore(res.points, res.rejected, gone["wl_id"])
+    assert back.groupby("batch").size().to_dict() == {"338": 20, "338#2": 5}
+    before = clean(pts, CleanParams().with_settings(["short_tracks.after_split=false"]))
+    assert before.points.groupby("batch").size().to_dict() == {"338": 20, "338#2": 5}
+    assert before.report["tracks_out"] == 2
+    assert before.report["rules"]["short_tracks"]["removed"] == 0
+    # a first piece of 5 points before a long one goes too, and the split still names
+    # the long one 338#2 (a restored point returns to its own piece)
+    rows = leg(-90.0, 28.0, 5, 0) + leg(-122.5, 48.4, 20, 7200)
+    res = clean(pd.DataFrame(rows, columns=["lon", "lat", "time"]).assign(sensor="S1", batch="338"))
+    assert res.points["batch"].unique().tolist() == ["338#2"] and len(res.points) == 20
+    assert removed(res, "short_tracks") == [0, 1, 2, 3, 4] and res.report["tracks_out"] == 1
 
 
 def test_a_ship_moored_all_capture_keeps_its_span_ends():
