@@ -748,8 +748,9 @@ def candidate_pairs(
     stands in when the grid's cell keys would not fit in 64 bits (tracks spread over
     the globe with a short reach).
 
-    ``apart``: a list to which the number of pairs ``mmsi_apart`` refused is appended
-    (pairs otherwise candidates, reachable, whose batch ids are different MMSIs).
+    ``apart``: a list to which the pairs ``mmsi_apart`` refused are appended, as int64
+    keys ``i·n + j`` (pairs otherwise candidates, reachable, whose batch ids are different
+    MMSIs): :func:`apart_count` counts them, each pair once however many searches met it.
     """
     n = len(seg)
     if n < 2:
@@ -792,7 +793,8 @@ def candidate_pairs(
         ident = _track_identities(seg)
         two_ships = (ident[i] >= 0) & (ident[j] >= 0) & (ident[i] != ident[j])
         if apart is not None:
-            apart.append(int((keep & two_ships).sum()))
+            refused = keep & two_ships
+            apart.append(i[refused].astype("int64") * n + j[refused])
         keep &= ~two_ships
     i, j, dist = i[keep], j[keep], dist[keep]
     order = np.argsort(i * n + j)  # (i, j) order; keys are unique
@@ -816,12 +818,20 @@ def _sooner_than_seen(
         return gap < k * least
 
 
+def apart_count(apart: list) -> int:
+    """How many different pairs the searches that filled ``apart`` (:func:`candidate_pairs`)
+    kept apart: a pair the first pass and the second look both met counts once."""
+    keys = [k for k in apart if len(k)]
+    return int(len(np.unique(np.concatenate(keys)))) if keys else 0
+
+
 def _narrowed(
     seg: Segments,
     params: LinkParams,
     ends: np.ndarray | None,
     starts: np.ndarray | None,
     before: tuple | None,
+    apart: list | None = None,
 ) -> tuple[Pairs, tuple]:
     """:func:`candidate_pairs` (``seg``, ``params``, ``ends``, ``starts``) with the help of
     ``before``, what this returned for an earlier search on the same ``seg`` and
@@ -829,26 +839,27 @@ def _narrowed(
     exact tests per pair), so the pairs of ends and starts that the earlier search had
     are its pairs, filtered; ends (or starts) it did not have are searched apart and
     merged in, in (i, j) order. The same pairs, features and order as a new search.
-    Returns the pairs and what to pass as ``before`` next time."""
+    Returns the pairs and what to pass as ``before`` next time. ``apart``: as
+    :func:`candidate_pairs`' (the pairs a reused search refused were counted when it ran)."""
     n = len(seg)
     e = np.ones(n, dtype=bool) if ends is None else ends.copy()
     s = np.ones(n, dtype=bool) if starts is None else starts.copy()
     if before is None:
-        found = candidate_pairs(seg, params, ends, starts)
+        found = candidate_pairs(seg, params, ends, starts, apart=apart)
         return found, (e, s, found)
     e0, s0, p0 = before
     new_e, new_s = e & ~e0, s & ~s0
     if new_e.any() and new_s.any():
-        found = candidate_pairs(seg, params, ends, starts)
+        found = candidate_pairs(seg, params, ends, starts, apart=apart)
         return found, (e, s, found)
     if np.array_equal(e, e0) and np.array_equal(s, s0):
         return p0, before  # the same search: the same pairs (the same object)
     found = p0.take(e[p0.i] & s[p0.j])
     if new_e.any() or new_s.any():
         more = (
-            candidate_pairs(seg, params, new_e, starts)
+            candidate_pairs(seg, params, new_e, starts, apart=apart)
             if new_e.any()
-            else candidate_pairs(seg, params, ends, new_s)
+            else candidate_pairs(seg, params, ends, new_s, apart=apart)
         )
         found = found.concat(more)
         found = found.take(np.argsort(found.i * n + found.j, kind="stable"))
@@ -1783,9 +1794,14 @@ class Association:
     base_cost: np.ndarray | None = None
     params: LinkParams | None = None
     normalize: str = "scaled"
-    #: Candidate pairs of the first pass (within ``max_gap_s``, and the soft T_gap's
-    #: look) that ``mmsi_apart`` kept apart (different MMSIs); the second look's not counted.
+    #: Candidate pairs that ``mmsi_apart`` kept apart (different MMSIs), each once: the
+    #: first pass's (within ``max_gap_s``, and the soft T_gap's look) and the second
+    #: look's across long gaps, its rivals' searches included (h179; until then the first
+    #: pass's only).
     mmsi_apart_pairs: int = 0
+    #: Their keys ``i·n + j`` from the first pass's searches (:meth:`without` runs the
+    #: second look again and counts with them).
+    mmsi_apart_first: np.ndarray | None = None
 
     def without(self, blocked: np.ndarray) -> "Association":
         """The association run again with the pairs ``blocked`` refused (int64 keys
@@ -1793,6 +1809,7 @@ class Association:
         chain passes and second look, so the remaining tracks may find other partners."""
         if self.base is None or self.base_pairs is None or self.base_cost is None:
             raise InputError("this association cannot be run again (no starting state kept)")
+        apart: list = [] if self.mmsi_apart_first is None else [self.mmsi_apart_first]
         seg, pairs, cost, chosen = assign_interrupted(
             self.base,
             self.base_pairs,
@@ -1801,10 +1818,17 @@ class Association:
             self.method,
             self.normalize,
             blocked,
+            apart=apart,
         )
         targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
         return replace(
-            self, segments=seg, pairs=pairs, cost=cost, chosen=chosen, target_of_track=targets
+            self,
+            segments=seg,
+            pairs=pairs,
+            cost=cost,
+            chosen=chosen,
+            target_of_track=targets,
+            mmsi_apart_pairs=apart_count(apart),
         )
 
     def points(self) -> pd.DataFrame:
@@ -2029,6 +2053,7 @@ def long_gap_pass(
     params: LinkParams,
     blocked: np.ndarray | None = None,
     priced: _Priced | None = None,
+    apart: list | None = None,
 ) -> tuple[Pairs, np.ndarray, np.ndarray]:
     """Second look across long gaps (``long_gap_s``): an old end and a new start that the
     assignment left loose are joined across a gap in (``max_gap_s``, ``long_gap_s``] when
@@ -2040,7 +2065,8 @@ def long_gap_pass(
     Returns the candidates with the long candidates of the pieces looked at appended,
     their costs and the chosen indices with the accepted ones added (mutually cheapest
     pairs never conflict). ``priced``: the pricing of ``pairs`` on ``seg`` (the spread
-    term's references come from it; priced here when not given).
+    term's references come from it; priced here when not given). ``apart``: as
+    :func:`candidate_pairs`' (every search of this look and of its rivals).
     """
     n = len(seg)
     if params.long_gap_s <= params.max_gap_s or n < 2:
@@ -2081,7 +2107,7 @@ def long_gap_pass(
     searched: dict[str, tuple] = {}
 
     def search(name: str, ends: np.ndarray | None = None, starts: np.ndarray | None = None):
-        found, searched[name] = _narrowed(seg, wide, ends, starts, searched.get(name))
+        found, searched[name] = _narrowed(seg, wide, ends, starts, searched.get(name), apart=apart)
         return found
 
     def look(joined: np.ndarray) -> tuple[Pairs, np.ndarray, np.ndarray]:
@@ -2155,7 +2181,9 @@ def long_gap_pass(
 
     released = np.zeros(0, dtype="int64")
     if params.long_rivals:
-        released = _released_rounds(seg, pairs, cost, chosen, params, price, free_end, free_start)
+        released = _released_rounds(
+            seg, pairs, cost, chosen, params, price, free_end, free_start, apart
+        )
     joined = chosen[~np.isin(chosen, released)]
     found, c_found, ok = look(joined)
     if len(released):
@@ -2209,6 +2237,7 @@ def _released(
     price,
     free_end: np.ndarray,
     free_start: np.ndarray,
+    apart: list | None = None,
 ) -> np.ndarray:
     """``long_rivals``: the joins of ``chosen`` that a loose piece beyond max_gap_s (up to
     ``rivals_reach`` times it, at most ``long_gap_s``) would continue cheaper by
@@ -2223,8 +2252,8 @@ def _released(
     end_open[pairs.i[open_]] = True
     start_open = np.zeros(n, dtype=bool)
     start_open[pairs.j[open_]] = True
-    rivals = candidate_pairs(seg, near, ends=end_open, starts=free_start).concat(
-        candidate_pairs(seg, near, ends=free_end, starts=start_open)
+    rivals = candidate_pairs(seg, near, ends=end_open, starts=free_start, apart=apart).concat(
+        candidate_pairs(seg, near, ends=free_end, starts=start_open, apart=apart)
     )
     # A join across the soft T_gap is itself long: its pieces' rivals are looked for as
     # far as the second look reaches (few joins, so few searches).
@@ -2236,8 +2265,8 @@ def _released(
         start_far = np.zeros(n, dtype=bool)
         start_far[pairs.j[far]] = True
         beyond = near.max_gap_s
-        more = candidate_pairs(seg, wide, end_far, free_start, beyond).concat(
-            candidate_pairs(seg, wide, free_end, start_far, beyond)
+        more = candidate_pairs(seg, wide, end_far, free_start, beyond, apart).concat(
+            candidate_pairs(seg, wide, free_end, start_far, beyond, apart)
         )
         rivals = rivals.concat(more)
     rivals = rivals.take(counted_gap(rivals) > params.max_gap_s)
@@ -2262,17 +2291,18 @@ def _released_rounds(
     price,
     free_end: np.ndarray,
     free_start: np.ndarray,
+    apart: list | None = None,
 ) -> np.ndarray:
     """:func:`_released` made ``rivals_rounds`` times: each round looks again at the joins
     still made, with the pieces the rounds before released counted loose (a join whose
     cheaper continuation was itself joined wrongly gives way once that one has)."""
-    released = _released(seg, pairs, cost, chosen, params, price, free_end, free_start)
+    released = _released(seg, pairs, cost, chosen, params, price, free_end, free_start, apart)
     for _ in range(params.rivals_rounds - 1):
         if not len(released):
             break
         kept = chosen[~np.isin(chosen, released)]
         fe, fs = _free(pairs, kept, len(seg))
-        more = _released(seg, pairs, cost, kept, params, price, fe, fs)
+        more = _released(seg, pairs, cost, kept, params, price, fe, fs, apart)
         if not len(more):
             break
         released = np.concatenate([released, more])
@@ -2288,6 +2318,7 @@ def assign_interrupted(
     normalize: str = "scaled",
     blocked: np.ndarray | None = None,
     priced: _Priced | None = None,
+    apart: list | None = None,
 ) -> tuple[Segments, Pairs, np.ndarray, np.ndarray]:
     """The assignment stage of :func:`associate_interrupted`, from the candidates and
     their costs: one-to-one assignment with the loose-end price, the short-piece rule and
@@ -2295,6 +2326,7 @@ def assign_interrupted(
     ``blocked``: pairs refused (keys ``i·n + j``; the operator's rejections).
     ``priced``: the pricing of ``pairs`` on ``base`` behind ``cost``, when the caller has
     it (the chain passes price only the pairs they touch; without it, every pair once).
+    ``apart``: as :func:`candidate_pairs`' (the second look's searches).
 
     Returns the summaries (chain-refitted), the candidates (long pairs appended), their
     costs and the indices of the chosen pairs.
@@ -2356,7 +2388,7 @@ def assign_interrupted(
         cost = _blocked_cost(pairs, cost, n, blocked)
         chosen = _assign_scaled(seg, pairs, cost, params, assign)
     pairs, cost, chosen = long_gap_pass(
-        seg, pairs, cost, chosen, params, blocked, priced if spread else None
+        seg, pairs, cost, chosen, params, blocked, priced if spread else None, apart
     )
     return seg, pairs, cost, chosen
 
@@ -2387,9 +2419,11 @@ def associate_interrupted(
     progress(0.3, "finding candidate pairs")
     apart: list = []
     pairs0, priced, cost0 = first_pass_pairs(base, params, normalize, apart)
+    first = [k for k in apart if len(k)]
+    first_keys = np.unique(np.concatenate(first)) if first else np.zeros(0, dtype="int64")
     progress(0.6, f"assigning {len(pairs0):,} candidate pairs")
     seg, pairs, cost, chosen = assign_interrupted(
-        base, pairs0, cost0, params, method, normalize, priced=priced
+        base, pairs0, cost0, params, method, normalize, priced=priced, apart=apart
     )
     targets = _targets(seg, pairs.i[chosen], pairs.j[chosen])
     progress(1.0, f"{count_of(len(chosen), 'pair')} joined")
@@ -2405,7 +2439,8 @@ def associate_interrupted(
         cost0,
         params,
         normalize,
-        sum(apart),
+        apart_count(apart),
+        first_keys,
     )
 
 
@@ -2600,7 +2635,9 @@ def associate_segments(
         1.0,
         f"{count_of(len(np.unique(targets)), 'target')} from {count_of(len(seg), 'segment')}",
     )
-    return Association(seg, pairs, dist, chosen, targets, method, mmsi_apart_pairs=sum(apart))
+    return Association(
+        seg, pairs, dist, chosen, targets, method, mmsi_apart_pairs=apart_count(apart)
+    )
 
 
 # --------------------------------------------------------------------------------------

@@ -99,6 +99,25 @@ def test_different_mmsis_are_never_joined(a, b, joined):
     assert off.report()["mmsi_apart_pairs"] == 0
 
 
+def test_mmsi_apart_pairs_counts_the_second_look_too():
+    """h179: ``mmsi_apart_pairs`` counted only the first pass's searches, so two MMSIs
+    silent 2,000 s apart (beyond max_gap_s 720 s and the soft T_gap 1,200 s, within the
+    second look's long_gap_s 3,600 s) were kept apart by the second look and the summary
+    said nothing. Every search counts, each pair once (the 300 s gap of the test above is
+    met by the first pass and the second look: still 1). ``without`` counts again."""
+    df = pd.concat(
+        [straight("367128730", 0, 600, truth="A"), straight("366815430", 2600, 3200, truth="A")]
+    )
+    off = associate_interrupted(df, LinkParams(mmsi_apart=False))
+    assert len(set(off.target_of_track)) == 1  # the second look joins them when allowed
+    got = associate_interrupted(df)
+    assert len(set(got.target_of_track)) == 2
+    assert got.report()["candidate_pairs"] == 0
+    assert got.report()["mmsi_apart_pairs"] == 1  # was 0
+    again = got.without(np.zeros(0, dtype="int64"))
+    assert again.report()["mmsi_apart_pairs"] == 1
+
+
 def test_the_summary_says_how_many_pairs_mmsi_apart_kept_apart():
     """Operator test 4 (D-assoc-1): on ATD (batch ids are MMSIs) associate said "3,324
     tracks -> 3,324 targets (0 joins of 0 candidate pairs, optimal)" and nothing said

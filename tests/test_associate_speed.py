@@ -81,7 +81,9 @@ def test_second_look_reuses_the_first_looks_searches(rerun_scene, monkeypatch):
     assert searches.count(look) == 3  # one look's
     reused = len(priced)
 
-    monkeypatch.setattr(assoc_mod, "_narrowed", lambda s, p, e, st, before: _fresh(s, p, e, st))
+    monkeypatch.setattr(
+        assoc_mod, "_narrowed", lambda s, p, e, st, before, **_: _fresh(s, p, e, st)
+    )
     searches.clear()
     priced.clear()
     b = associate_interrupted(rerun_scene, REPLAY)
