@@ -552,20 +552,35 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         """The red status label's text for ``step``'s failed automatic re-run."""
         return self.tr("{0}: out of date, its re-run failed").format(self.job_title(step))
 
+    def stale_message(self, step: str) -> str:
+        """The status bar's (and the red label's tooltip's) sentence for ``step``'s failed
+        automatic re-run."""
+        return self.tr(
+            "{0}, run again by itself for the decisions made while it ran, failed: its "
+            "result is out of date (stale) and was not applied; run {0} again"
+        ).format(self.job_title(step))
+
+    def restale(self) -> None:
+        """The red label and its tooltip in the window's language: a language switch
+        redoes both (h179; the tooltip kept the language it was made in)."""
+        step = self.stale_label.property("step")
+        if not step:
+            return
+        self.stale_label.setText(self.stale_text(step))
+        error = shown(self.stale_label.property("error"))
+        self.stale_label.setToolTip(f"{self.stale_message(step)}\n{error}")
+
     def _automatic_failed(self, msg) -> None:
         """A job the window ran again by itself (decisions made while the step ran put
         its result out of date) failed: the status bar and the log say so, and that the
         out-of-date result was not applied; no dialog the operator did not ask for
         (review h158). The layers stay as they were before the run."""
         name = self.job_title(msg.name)
-        text = self.tr(
-            "{0}, run again by itself for the decisions made while it ran, failed: its "
-            "result is out of date (stale) and was not applied; run {0} again"
-        ).format(name)
+        text = self.stale_message(msg.name)
         self.statusBar().showMessage(text)
-        self.stale_label.setText(self.stale_text(msg.name))
-        self.stale_label.setToolTip(f"{text}\n{shown(msg.message)}")
         self.stale_label.setProperty("step", msg.name)
+        self.stale_label.setProperty("error", str(msg.message))
+        self.restale()
         self.stale_label.show()
         self.log_message(f"{self.tr('Error')} ({name}): {shown(msg.message)}")
         if msg.detail:

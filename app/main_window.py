@@ -297,8 +297,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.canvas.setLabel("left", self.tr("latitude"), units="°")
         self.legend_in_language()
         self._update_stats()
-        if self.stale_label.property("step"):
-            self.stale_label.setText(self.stale_text(self.stale_label.property("step")))
+        self.restale()
 
     def set_language(self, code: str) -> None:
         code = code if code in i18n.LANGUAGES else "en"
