@@ -36,7 +36,6 @@ from wakeline.core.errors import InputError
 from wakeline.core.io.compressed import open_data
 from wakeline.core.io.decoding import (
     FALLBACK_MARK,
-    decide_file,
     fallback_warning,
     line_decodable,
     merge_fallbacks,
@@ -55,6 +54,7 @@ from wakeline.core.io.reader import (
     ImportResult,
     WholeFileNeeded,
     _coarse_time_warnings,
+    _judged,
     _restart_warnings,
     _time_warnings,
     bearing_warnings,
@@ -208,7 +208,7 @@ def read_in_pieces(
 
     def judgement() -> str:
         if "encoding" not in judged:
-            judged["encoding"] = decide_file(sn.path, sn.compression)
+            judged["encoding"] = _judged(sn.path, sn.compression)  # the reader's too
         return judged["encoding"]
 
     step = 0

@@ -17,6 +17,7 @@ import dataclasses
 import datetime
 import functools
 import io
+import os
 import re
 import shlex
 import shutil
@@ -395,13 +396,16 @@ class _Utf8Stream(_ChunkedStream):
 
     CHUNK = 4 * 1024 * 1024
 
-    def __init__(self, sn: Sniff, encoding: str, errors: str = "strict") -> None:
+    def __init__(
+        self, sn: Sniff, encoding: str, errors: str = "strict", switch: bool = False
+    ) -> None:
         self._opened = open_data(sn.path, sn.compression)
         self._fh = self._opened.__enter__()
+        self.decoder = None
         if errors in ("lines", "strict-lines"):
             strict = errors == "strict-lines"
             self._dec = self.decoder = LineDecoder(
-                encoding, fail=strict, judge=_judge(sn) if strict else None
+                encoding, fail=strict, judge=_judge(sn) if strict else None, switch=switch
             )
         else:
             self._dec = codecs.getincrementaldecoder(encoding)(errors=errors)
@@ -413,6 +417,12 @@ class _Utf8Stream(_ChunkedStream):
     def _chunk(self, n: int) -> bytes:
         raw = self._fh.read(self.CHUNK)
         self._eof = not raw
+        if self.decoder is not None:  # lines valid UTF-8 handed on as they are (h179)
+            out = self._dec.decode_utf8(raw, final=self._eof)
+            if self._first and out:
+                out = out.removeprefix(codecs.BOM_UTF8)
+                self._first = False
+            return out
         text = self._dec.decode(raw, final=self._eof)
         if self._first and text:
             text = text.removeprefix("\ufeff")
@@ -445,16 +455,36 @@ def _judge(sn: Sniff) -> Callable[[], str] | None:
         return sn.judge
     if sn.encoding_given or sn.line_fallback or not line_decodable(sn.encoding):
         return None
-    return functools.partial(decide_file, sn.path, sn.compression)
+    return functools.partial(_judged, sn.path, sn.compression)
 
 
-def _open(sn: Sniff, encoding: str, errors: str):
+def _judged(path: Path, compression: str | None) -> str:
+    """:func:`decide_file`, asked once per file as it is (the streamed import's decoder,
+    then the whole-file reader's, or its next reading, ask it again: h179)."""
+    try:
+        st = os.stat(path)
+        key = (str(path), compression, st.st_mtime_ns, st.st_size)
+    except OSError:
+        return decide_file(path, compression)
+    if key not in _JUDGED:
+        if len(_JUDGED) >= 8:
+            _JUDGED.pop(next(iter(_JUDGED)))
+        _JUDGED[key] = decide_file(path, compression)
+    return _JUDGED[key]
+
+
+_JUDGED: dict[tuple, str] = {}
+
+
+def _open(sn: Sniff, encoding: str, errors: str, switch: bool = False):
     """The file's text as UTF-8 bytes, in a ``with`` block: a plain UTF-8 file as Arrow
     reads it, a compressed one through :func:`~wakeline.core.io.compressed.open_data`
-    (the one opener of every reader), another encoding re-encoded (:class:`_Utf8Stream`)."""
+    (the one opener of every reader), another encoding re-encoded (:class:`_Utf8Stream`).
+    ``switch``: a UTF-8 reading may go on as GB18030 (the whole-file reader's, which says
+    so: :func:`_read_rows`)."""
     if encoding in ("utf-8", "utf8") and errors == "strict":
         return open_for_arrow(sn.path, sn.compression)
-    return _Utf8Stream(sn, encoding, errors)
+    return _Utf8Stream(sn, encoding, errors, switch)
 
 
 class _BlankRunStream(_ChunkedStream):
@@ -490,9 +520,9 @@ class _BlankRunStream(_ChunkedStream):
         self._stream.__exit__(*exc)  # the opener's: a decompression error named
 
 
-def _open_parsed(sn: Sniff, encoding: str, errors: str):
+def _open_parsed(sn: Sniff, encoding: str, errors: str, switch: bool = False):
     """:func:`_open`, and for a blank-aligned file its lines as they are parsed."""
-    stream = _open(sn, encoding, errors)
+    stream = _open(sn, encoding, errors, switch)
     return _BlankRunStream(stream, sn) if sn.blank_runs else stream
 
 
@@ -541,7 +571,7 @@ def _read_table(
     # parsed blocks at once, about twice the memory (bench/bench_memory.py). A smaller one
     # is read whole, blocks parsed on every core: about twice as fast.
     whole = threads and sn.compression is None and _file_size(sn) <= READ_WHOLE_MAX_BYTES
-    opened = _open(sn, encoding or sn.encoding, errors)
+    opened = _open(sn, encoding or sn.encoding, errors, switch=sn.judge is None)
     stream = _BlankRunStream(opened, sn) if sn.blank_runs else opened
     bad.decoder = getattr(opened, "decoder", None)  # the lines read in a fallback
     with stream as handle, _quiet_undecodable_rows():
@@ -614,10 +644,53 @@ class _Rows:
 def strict_mode(sn: Sniff) -> str:
     """How the file is first read: strictly, and for a file judged GB18030 (or a piece of
     one) with its lines that are UTF-8 rather than GB18030 read as UTF-8, reported
-    (``"strict-lines"``: :mod:`wakeline.core.io.decoding`)."""
+    (``"strict-lines"``: :mod:`wakeline.core.io.decoding`). A file judged UTF-8 from its
+    start and not valid UTF-8 throughout (:func:`_valid_utf8`) is read so too (h179): at
+    its first line that is not UTF-8 the decoder asks the whole file's judgement and goes
+    on — in UTF-8 with that line read otherwise, or, the text so far all ASCII, in GB18030
+    — instead of the whole file being read again."""
     judged = sn.line_strict or not (sn.encoding_given or sn.line_fallback)
-    gb = line_decodable(sn.encoding) and codecs.lookup(sn.encoding).name == "gb18030"
-    return "strict-lines" if judged and gb else "strict"
+    name = codecs.lookup(sn.encoding).name if line_decodable(sn.encoding) else ""
+    if judged and name == "utf-8" and _valid_utf8(sn):
+        return "strict"  # Arrow reads it as it is (no Python in the way)
+    return "strict-lines" if judged and name in ("gb18030", "utf-8") else "strict"
+
+
+def _valid_utf8(sn: Sniff) -> bool:
+    """Whether a plain file is valid UTF-8 throughout: a scan of its bytes at C speed
+    (ASCII blocks only checked as such), stopping at the first block that is not; a
+    compressed file is not scanned (its text reaches Arrow through Python anyway, where
+    the decoder's check costs little). Kept per file as it is (size, time)."""
+    if sn.compression is not None:
+        return False
+    try:
+        st = os.stat(sn.path)
+    except OSError:
+        return False
+    key = (str(sn.path), st.st_mtime_ns, st.st_size)
+    if key not in _VALID_UTF8:
+        dec = codecs.getincrementaldecoder("utf-8")()
+        ok = True
+        with open(sn.path, "rb") as fh:
+            while block := fh.read(_Utf8Stream.CHUNK):
+                if block.isascii() and not dec.getstate()[0]:
+                    continue
+                try:
+                    dec.decode(block)
+                except UnicodeDecodeError:
+                    ok = False
+                    break
+        try:
+            dec.decode(b"", final=True)
+        except UnicodeDecodeError:
+            ok = False
+        if len(_VALID_UTF8) >= 8:
+            _VALID_UTF8.pop(next(iter(_VALID_UTF8)))
+        _VALID_UTF8[key] = ok
+    return _VALID_UTF8[key]
+
+
+_VALID_UTF8: dict[tuple, bool] = {}
 
 
 def _is_decode_error(exc: Exception) -> bool:
@@ -678,8 +751,8 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
             decoding = errors != "lines" and _is_decode_error(exc)  # "lines" cannot fail
             strict = errors in ("strict", "strict-lines")
             if decoding or ("CSV parse error" in text and strict):
-                if judge and strict:  # the whole file's evidence decides
-                    attempts[step + 1] = (decide_file(sn.path, sn.compression), "lines")
+                if judge and strict:  # the whole file's evidence decides (asked once)
+                    attempts[step + 1] = (_judged(sn.path, sn.compression), "lines")
                 if step + 1 < len(attempts):
                     step += 1
                     continue
@@ -704,6 +777,8 @@ def _read_rows(sn: Sniff, res: Resolved, unbalanced: bool = False) -> _Rows:
                 careful = True
                 continue
             raise InputError(f"{sn.path}: cannot read the file ({text})") from None
+        if bad.decoder is not None and bad.decoder.encoding != codecs.lookup(enc).name:
+            enc = bad.decoder.encoding  # an ASCII start, then GB18030 (LineDecoder._switch)
         if bad.unnumbered and threads:
             threads = False  # only a single-threaded parse numbers the skipped rows
             continue
@@ -4793,7 +4868,15 @@ def stream_points(
     edges = edge_state()
     size = max(sn.path.stat().st_size, 1)
     consumed = [0]
-    opened = _open_parsed(sn, sn.encoding, strict_mode(sn))
+    # switch: an ASCII start read as UTF-8 goes on as GB18030 where the whole file's
+    # judgement says so (h179), reported below as the whole-file reader reports it.
+    opened = _open_parsed(sn, sn.encoding, strict_mode(sn), switch=True)
+    line_decoder = getattr(getattr(opened, "_stream", opened), "decoder", None)
+
+    def text_encoding() -> str:
+        """The encoding the text is read in (so far): the file's start's, or GB18030."""
+        return line_decoder.encoding if line_decoder is not None else sn.encoding
+
     # How far through the file on disk (a compressed file's text is larger than it).
     done = getattr(opened, "fraction", lambda: consumed[0] / size)
 
@@ -4839,7 +4922,7 @@ def stream_points(
             table = table.append_column(
                 FILE_BATCH, pa.repeat(pa.scalar(name), n).dictionary_encode()
             )
-        rows = _Rows(table, lines, _BadRows(), False, sn.encoding, False, False, [])
+        rows = _Rows(table, lines, _BadRows(), False, text_encoding(), False, False, [])
         del table
         info: dict = {
             "absolute": time_info.get("absolute", False),
@@ -4980,13 +5063,15 @@ def stream_points(
     missing = (q["text"] == "").to_numpy()
     if missing.any():
         texts = q["text"].to_numpy(dtype=object)
-        texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], sn.encoding)
+        texts[missing] = _raw_lines(sn, q["line"].to_numpy()[missing], text_encoding())
         q["text"] = pd.Series(texts, dtype="str")
     by_reason = q["reason"].value_counts().to_dict() if len(q) else {}
     zoned, naive = time_info.pop("_zoned_n", 0), time_info.pop("_naive_n", 0)
     if zoned and naive:  # zoned and zone-less times in the file (any pieces)
         time_info["zoned_times"], time_info["zoneless_times"] = zoned, naive
-    warnings = fallback_warning(sn.encoding, fallback)
+    enc = text_encoding()
+    warnings = [encoding_note(sn.encoding, enc)] if enc != codecs.lookup(sn.encoding).name else []
+    warnings += fallback_warning(enc, fallback)
     warnings += [no_batch_warning(sn, res.columns)] if file_batch else []
     warnings += res.notes
     warnings += _title_warnings(sn) + _blank_run_warnings(sn)
@@ -5007,7 +5092,7 @@ def stream_points(
         "input": str(sn.path),
         "format": res.format.name,
         "format_label": res.format.label,
-        "encoding": sn.encoding,
+        "encoding": enc,
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
@@ -5048,7 +5133,7 @@ def stream_points(
     }
     layout = {
         "delimiter": sn.delimiter,
-        "encoding": sn.encoding,
+        "encoding": enc,
         "bom": sn.bom,
         "line_ending": sn.line_ending,
         "compression": sn.compression,
