@@ -667,27 +667,32 @@ def _valid_utf8(sn: Sniff) -> bool:
         st = os.stat(sn.path)
     except OSError:
         return False
+    if sn.judge is not None:  # a piece (one scratch file rewritten): not kept
+        return _scan_utf8(sn.path)
     key = (str(sn.path), st.st_mtime_ns, st.st_size)
     if key not in _VALID_UTF8:
-        dec = codecs.getincrementaldecoder("utf-8")()
-        ok = True
-        with open(sn.path, "rb") as fh:
-            while block := fh.read(_Utf8Stream.CHUNK):
-                if block.isascii() and not dec.getstate()[0]:
-                    continue
-                try:
-                    dec.decode(block)
-                except UnicodeDecodeError:
-                    ok = False
-                    break
-        try:
-            dec.decode(b"", final=True)
-        except UnicodeDecodeError:
-            ok = False
         if len(_VALID_UTF8) >= 8:
             _VALID_UTF8.pop(next(iter(_VALID_UTF8)))
-        _VALID_UTF8[key] = ok
+        _VALID_UTF8[key] = _scan_utf8(sn.path)
     return _VALID_UTF8[key]
+
+
+def _scan_utf8(path: Path) -> bool:
+    """Whether the file's bytes are valid UTF-8 (:func:`_valid_utf8`)."""
+    dec = codecs.getincrementaldecoder("utf-8")()
+    with open(path, "rb") as fh:
+        while block := fh.read(_Utf8Stream.CHUNK):
+            if block.isascii() and not dec.getstate()[0]:
+                continue
+            try:
+                dec.decode(block)
+            except UnicodeDecodeError:
+                return False
+    try:
+        dec.decode(b"", final=True)
+    except UnicodeDecodeError:
+        return False
+    return True
 
 
 _VALID_UTF8: dict[tuple, bool] = {}
