@@ -62,6 +62,12 @@ def format_dms(value: float, positive: str, negative: str) -> str:
     return f"{d}°{m:02d}'{s:04.1f}\"{hemi}"
 
 
+#: The least width (px) of the map (with its legend column) in the main window: with
+#: the Parameters dock (291 px) and the Bearing-only dock (380 px, tabbed with Detail)
+#: beside it, the window stays under 1,280 px wide (h179).
+MAP_MIN_WIDTH_PX = 480
+
+
 class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     """Wakeline's main window."""
 
@@ -119,6 +125,10 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.session.subscribe(self._on_session_event)
 
         self.canvas = MapCanvas(self)
+        # The map keeps MAP_MIN_WIDTH_PX when the window is narrow: the docks beside it
+        # give way first (h179: with the time panel's controls wrapping, the window may
+        # be narrower than 1,368 px, and the map alone took the loss, to a 45-px plot).
+        self.canvas.setMinimumWidth(MAP_MIN_WIDTH_PX)
         self.lod_worker = LodWorker(self)
         self.canvas.lod_executor = self.lod_worker
         self.setCentralWidget(self.canvas)
@@ -255,7 +265,10 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.docks["log"].raise_()
         d = self.docks
         horizontal, vertical = QtCore.Qt.Orientation.Horizontal, QtCore.Qt.Orientation.Vertical
-        self.resizeDocks([d["layers"], d["batches"]], [300, 560], horizontal)
+        # 395: the right column as it was at 1400x900 (412 px) while the time panel's
+        # controls held the map at 685 px at least; asked 560 with the controls wrapping,
+        # the map would be 528 px at 1400x900 on two lines of controls (h179).
+        self.resizeDocks([d["layers"], d["batches"]], [300, 395], horizontal)
         # The detail/bearing tabs get the larger share of the right column: the bearing
         # dock's map and its detections table under it (a 142-px map, one clipped row).
         self.resizeDocks(

@@ -16,6 +16,7 @@ import time
 from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.time_text import format_time
+from wakeline.app.wrap_row import WrapRow
 from wakeline.core.timeline import PlaybackParams
 
 SLIDER_STEPS = 10_000
@@ -83,7 +84,10 @@ class TimePanel(QtWidgets.QWidget):
             row1.addWidget(w)
         row1.addWidget(self.slider, 1)
         row1.addWidget(self.time_label)
-        row2 = QtWidgets.QHBoxLayout()
+        # Wrapped onto a second line where the map is narrower than the row (h179: one
+        # row of at least 685 px, with the docks beside the map, kept the window 1,368 px
+        # wide at least, wider than a 1280x720 screen).
+        row2 = WrapRow()
         for w in (
             self.speed_label,
             self.speed,
@@ -97,7 +101,6 @@ class TimePanel(QtWidgets.QWidget):
             self.to_button,
         ):
             row2.addWidget(w)
-        row2.addStretch(1)
         # The window's range on a line of its own, always there: beside the buttons it had
         # the row's leftover width, none at the default layout (ATD: "2024-0" of
         # "2024-01-01 06:00:00 UTC to 2024-01-01 12:00:00 UTC"). Its text never changes its
