@@ -55,6 +55,9 @@ _PHRASES = (
         "give their day in the import dialog's Date of clock times field (YYYY-MM-DD)",
     ),
     ("(--date)", "(the import dialog's Date of clock times)"),
+    ("read them with --speed-unit km/h", "choose km/h in the import dialog's Speed unit field"),
+    ("read them with --speed-unit m/s", "choose m/s in the import dialog's Speed unit field"),
+    ("read them with --speed-unit mph", "choose mph in the import dialog's Speed unit field"),
 )
 _FIELDS = {
     "tz": "Time zone",

@@ -3024,6 +3024,7 @@ def read_points(
 
     warnings += targets_note(points, csv=True)  # Wakeline's targets (D-export-2)
     warnings += _grid_warnings(points)
+    warnings += _unit_check(points, res)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(path),
@@ -3545,6 +3546,38 @@ def _bearing_rows(table: pa.Table, cols: dict[str, str], flag: Callable) -> None
     bearing = ~blank(table[found[0]])
     flag(none & bearing, BEARING_NO_POSITION.format(found[0]))
     flag(none & ~bearing, EMPTY_SCAN)
+
+
+#: Rows of a streamed import the speed-unit check looks at (the first ones, in pieces).
+UNIT_CHECK_ROWS = 500_000
+
+
+def _unit_checked(res) -> bool:
+    """Whether the speed column is read as knots only because its header names no unit and
+    none was given (not Wakeline's own canonical table)."""
+    header = res.columns.get("speed")
+    if not header or res.format.name == "canonical" or res.speed_unit != "auto":
+        return False
+    return not speed_unit(header, res.speed_unit)[2]  # [2]: its header names its unit
+
+
+def _keep_for_unit_check(checked: list, points: pd.DataFrame, res) -> None:
+    """A streamed piece's rows for :func:`_unit_check`, up to :data:`UNIT_CHECK_ROWS`."""
+    room = UNIT_CHECK_ROWS - sum(len(c) for c in checked)
+    if room > 0 and _unit_checked(res):
+        cols = [c for c in ("sensor", "batch", "time", "lon", "lat", "speed") if c in points]
+        checked.append(points[cols].iloc[:room])
+
+
+def _unit_check(points: pd.DataFrame | None, res) -> list[str]:
+    """:func:`~wakeline.core.io.speed_check.speed_unit_warnings` for a speed column read
+    as knots only because its header names no unit and none was given (D-import-14)."""
+    if points is None or not _unit_checked(res):
+        return []
+    header = res.columns["speed"]
+    from wakeline.core.io.speed_check import speed_unit_warnings
+
+    return speed_unit_warnings(points, header, "knots")
 
 
 def _in_knots(arr, header: str, given: str, counted: dict):
@@ -4865,6 +4898,7 @@ def stream_points(
     blanked: dict[str, int] = {}
     restarting: dict[str, int] = {}
     pairs: set[tuple[str, str]] = set()
+    checked: list[pd.DataFrame] = []  # the rows the speed-unit check looks at
     per_sensor: dict[str, int] = {}
     quarantines: list[pd.DataFrame] = []
     starts, ends = [], []
@@ -5020,6 +5054,7 @@ def stream_points(
             starts.append(points["time"].min())
             ends.append(points["time"].max())
             grid.add(points["lon"].to_numpy(), points["lat"].to_numpy())
+            _keep_for_unit_check(checked, points, res)
             sink(points)
         progress(min(0.95, done()), "importing")
 
@@ -5092,6 +5127,7 @@ def stream_points(
     warnings += cut_short_warnings(sn, q)
     if grid.decimals() is not None:
         warnings.append(grid_warning(grid.decimals(), grid.lat))
+    warnings += _unit_check(pd.concat(checked, ignore_index=True) if checked else None, res)
     extra = carried_columns(sn, res)
     report: dict = {
         "input": str(sn.path),
