@@ -37,6 +37,15 @@ STATIC_TYPES = frozenset((5, 24))
 _SENTENCE = NMEA_SENTENCE
 _TAG_BLOCK = re.compile(r"^\\([^\\]*)\\")
 _TAG_TIME = re.compile(r"(?:^|,)c:(\d+(?:\.\d+)?)")
+_TAG_SOURCE = re.compile(r"(?:^|,)s:([^,*\\]+)")
+
+
+def tag_source(line: str) -> str:
+    """The source (``s:``, the receiving station or sensor) of a line's IEC 61162-450 tag
+    block, "" when the line has none (D-import-13: the log's own name for its sensor)."""
+    tag = _TAG_BLOCK.match(line)
+    m = _TAG_SOURCE.search(tag.group(1)) if tag else None
+    return m.group(1).strip() if m else ""
 
 
 def _receive_time(prefix: str) -> float | None:
@@ -78,8 +87,19 @@ def _codec(sn: Sniff) -> str:
     return lines_codec(sn.encoding, sn.encoding_given)
 
 
+def _sensors(sources: list[str], sensor: str) -> np.ndarray:
+    """Each point's sensor: ``sensor`` when one was given (not the default ``S1``), else
+    its line's tag block source where there is one, ``S1`` where not."""
+    out = np.asarray(sources, dtype=object)
+    if sensor != "S1" or not len(out):
+        return np.full(len(out), sensor, dtype=object)
+    return np.where(out != "", out, sensor)
+
+
 def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
-    """Read a raw AIS NMEA log into the canonical point table (an ``ImportResult``)."""
+    """Read a raw AIS NMEA log into the canonical point table (an ``ImportResult``). The
+    sensor is ``sensor`` when given, else the tag block's source (``s:``) of each line that
+    has one, else ``S1``."""
     from wakeline.core.io.reader import ImportResult, points_summary, quarantine_table
 
     progress = progress or null_progress
@@ -87,6 +107,7 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     q_reasons: list[str] = []
     q_texts: list[str] = []
     rows: dict[str, list] = {k: [] for k in ("batch", "t", "lon", "lat", "speed", "course")}
+    sources: list[str] = []  # each point's tag block s:, "" when its line has none
     names: dict[str, str] = {}
     pending: dict[tuple, list] = {}  # (seq id, channel, count) -> [(line, text, message)]
     ignored: Counter = Counter()
@@ -125,6 +146,7 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
         speed = getattr(decoded, "speed", None)
         course = getattr(decoded, "course", None)
         rows["batch"].append(mmsi)
+        sources.append(tag_source(text))
         rows["t"].append(t)
         rows["lon"].append(float(lon))
         rows["lat"].append(float(lat))
@@ -189,7 +211,7 @@ def read_nmea(sn: Sniff, sensor: str = "S1", progress: Progress | None = None):
     seconds = np.asarray(rows["t"], dtype="float64")
     points = pd.DataFrame(
         {
-            "sensor": pd.Series([sensor] * len(seconds), dtype="str"),
+            "sensor": pd.Series(_sensors(sources, sensor), dtype="str"),
             "batch": pd.Series(rows["batch"], dtype="str"),
             "time": pd.to_datetime(np.round(seconds * 1e9).astype("int64"), utc=True),
             "lon": np.asarray(rows["lon"], dtype="float64"),
