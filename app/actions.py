@@ -3,6 +3,7 @@
 from PySide6 import QtGui, QtWidgets
 
 from wakeline.app import i18n
+from wakeline.app.display_zone import install_zone_menu, retranslate_zone_menu
 
 STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
 #: The stages the operator may add to Run ▸ pipeline after Clean, in their order.
@@ -82,6 +83,8 @@ def build_actions(w) -> None:
     m["view"].addSeparator()
     for dock in w.docks.values():
         m["view"].addAction(dock.toggleViewAction())
+    m["view"].addSeparator()
+    install_zone_menu(w)  # View ▸ Time zone (h191)
     group = QtGui.QActionGroup(w)
     w.lang_actions = {}
     for code, label in i18n.LANGUAGES.items():
@@ -148,6 +151,7 @@ def retranslate(w) -> None:
     }
     for key, text in texts.items():
         w.actions_[key].setText(text)
+    retranslate_zone_menu(w)
     menus = {
         "file": tr("&File"),
         "export": tr("&Export"),

@@ -159,9 +159,11 @@ class ProjectJobsMixin:
         # The panel's values: the session holds a project's table from when it was opened
         # (none before a first save), and Save as wrote that, not what the panel held.
         self.session.params = self.params.to_dict()
+        from wakeline.app.display_zone import STATE as ZONE_STATE
         from wakeline.app.jobs import PIPELINE_STATE
 
-        ok, note = self.project.save_as(Path(path), {PIPELINE_STATE: list(self.pipeline_stages)})
+        state = {PIPELINE_STATE: list(self.pipeline_stages), ZONE_STATE: self.zone_choice}
+        ok, note = self.project.save_as(Path(path), state)
         if note:
             self.log_message(f"{self.tr('Warning') if ok else self.tr('Error')}: {note}")
         if not ok:
@@ -243,6 +245,12 @@ class ProjectJobsMixin:
         if not (isinstance(stages, list) and all(isinstance(x, str) for x in stages)):
             stages = DEFAULT_STAGES
         self.set_pipeline_stages(stages, store=False)
+        from wakeline.app.display_zone import STATE as ZONE_STATE
+        from wakeline.app.display_zone import set_zone_choice
+
+        zone_choice = proj.state.get(ZONE_STATE)  # none in a project saved before: as it was
+        if isinstance(zone_choice, str):
+            set_zone_choice(self, zone_choice, store=False)
         self._plan_view(plan)  # the view the layers' level of detail was made for
         try:
             proj.to_session(self.session)

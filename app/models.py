@@ -105,12 +105,14 @@ def display_text(df: pd.DataFrame) -> dict[str, np.ndarray]:
 
 
 def date_text(values) -> np.ndarray:
-    """``YYYY-MM-DD HH:MM:SS`` of each time (its own zone's wall clock, as ``strftime``),
+    """``YYYY-MM-DD HH:MM:SS`` of each time (a zoned time: the display zone's wall clock),
     "" for NaT; by ``np.datetime_as_string`` over the whole column (pandas' ``strftime``
     is a Python call per value: 1.7 s for a million, holding the GIL in a worker)."""
     s = pd.to_datetime(pd.Series(values))
     if getattr(s.dt, "tz", None) is not None:
-        s = s.dt.tz_localize(None)
+        from wakeline.app.time_text import wall_clock
+
+        s = wall_clock(s)  # the display zone's wall clock (View ▸ Time zone; UTC by default)
     a = s.to_numpy(dtype="datetime64[ns]").astype("datetime64[s]")
     text = np.strings.replace(np.datetime_as_string(a, unit="s"), "T", " ")
     return np.where(np.isnat(a), "", text).astype(str)
@@ -375,7 +377,9 @@ class BatchTableModel(QtCore.QAbstractTableModel):
             key = self.COLUMNS[section][0]
             if self.relative and key in self._relative_titles:
                 return self._relative_titles[key]
-            return self._titles[section]
+            from wakeline.app.time_text import zone_title
+
+            return zone_title(self._titles[section])  # "Start (UTC+8)": View ▸ Time zone
         return None
 
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):

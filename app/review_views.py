@@ -199,6 +199,7 @@ class GanttView(pg.PlotWidget):
         self.getPlotItem().hideAxis("left")
         self.getPlotItem().setMenuEnabled(False)
         self.t_ref = float(state.tracks["t0"].min()) if len(state.tracks) else 0.0
+        self.retranslate()  # the axis names its zero in the display zone (h191)
         self.cursor = pg.InfiniteLine(angle=90, movable=True, pen=pg.mkPen("#d62728", width=1.5))
         self.cursor.sigPositionChanged.connect(self._cursor_moved)
         self.rows: list[str] = []
@@ -214,8 +215,12 @@ class GanttView(pg.PlotWidget):
         self._pen = {c: pg.mkPen(c) for c in (MEMBER, NEARBY)}
 
     def retranslate(self) -> None:
-        """The time axis' title in the current language (a live switch left it English)."""
-        self.setLabel("bottom", self.tr("time"), units=self.tr("min"))
+        """The time axis' title in the current language (a live switch left it English),
+        with its zero as a date in View ▸ Time zone's zone (``0 = 2026-12-05 08:00:00 UTC+8``)."""
+        from wakeline.app.time_text import format_time, is_relative_time
+
+        zero = format_time(self.t_ref, is_relative_time(np.asarray([self.t_ref])))
+        self.setLabel("bottom", f"{self.tr('time')} (0 = {zero})", units=self.tr("min"))
 
     def set_time(self, t_s: float) -> None:
         """Move the cursor to ``t_s`` (s since epoch) without re-emitting."""

@@ -384,6 +384,9 @@ class LayersMixin:
             self.canvas.show_selection(EMPTY)
         self.detail.clear()
         view = self.views.get(self.active) if self.active else None
+        from wakeline.app.display_zone import apply_zone
+
+        apply_zone(self)  # this layer's data may have come in another zone (View ▸ Time zone)
         if view is not None:
             self.batch_model.set_summary(view.summary, view.text, view.extra.get("table_index"))
         else:

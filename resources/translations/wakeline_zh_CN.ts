@@ -236,6 +236,22 @@
         <translation>框选缩放(&amp;B)</translation>
     </message>
     <message>
+        <source>&amp;Time zone</source>
+        <translation>时区(&amp;T)</translation>
+    </message>
+    <message>
+        <source>&amp;UTC</source>
+        <translation>协调世界时 UTC(&amp;U)</translation>
+    </message>
+    <message>
+        <source>The zone the &amp;data came in (the import's time zone)</source>
+        <translation>数据的时区(&amp;D)（导入时指定的时区）</translation>
+    </message>
+    <message>
+        <source>This &amp;computer's zone</source>
+        <translation>本机时区(&amp;C)</translation>
+    </message>
+    <message>
         <source>&amp;Remove active layer</source>
         <translation>移除当前图层(&amp;R)</translation>
     </message>
@@ -452,11 +468,11 @@
         <translation>已打开工程 {0}：{1}，{2}</translation>
     </message>
     <message>
-        <source>1 review row said split or rejected beside a target holding both its tracks (a join made by an older Wakeline): it is now accepted, as a join accepts such rows (stored as a &apos;repair&apos; decision)</source>
+        <source>1 review row said split or rejected beside a target holding both its tracks (a join made by an older Wakeline): it is now accepted, as a join accepts such rows (stored as a 'repair' decision)</source>
         <translation>1 条审核记录在同时包含其两条航迹的目标旁仍显示“拆分”或“拒绝”（由旧版 Wakeline 的合并造成）：现已改为接受，与当前合并对此类记录的处理一致（记为一条“修复”决策）</translation>
     </message>
     <message>
-        <source>{0} review rows said split or rejected beside a target holding both their tracks (joins made by an older Wakeline): they are now accepted, as a join accepts such rows (stored as &apos;repair&apos; decisions)</source>
+        <source>{0} review rows said split or rejected beside a target holding both their tracks (joins made by an older Wakeline): they are now accepted, as a join accepts such rows (stored as 'repair' decisions)</source>
         <translation>{0} 条审核记录在同时包含其两条航迹的目标旁仍显示“拆分”或“拒绝”（由旧版 Wakeline 的合并造成）：现已改为接受，与当前合并对此类记录的处理一致（记为“修复”决策）</translation>
     </message>
     <message>
@@ -731,11 +747,11 @@
         <translation>本数据无法给出检测极限（种子文献 000）：{0}。</translation>
     </message>
     <message>
-        <source>1 row repeats an earlier row of its track (same time and position): not counted here; Clean&apos;s duplicates rule removes it.</source>
+        <source>1 row repeats an earlier row of its track (same time and position): not counted here; Clean's duplicates rule removes it.</source>
         <translation>有 1 行与其航迹中较早的一行重复（时间和位置相同）：此处不计入；清洗的重复点规则会将其删除。</translation>
     </message>
     <message>
-        <source>{0} rows repeat an earlier row of their track (same time and position): not counted here; Clean&apos;s duplicates rule removes them.</source>
+        <source>{0} rows repeat an earlier row of their track (same time and position): not counted here; Clean's duplicates rule removes them.</source>
         <translation>有 {0} 行与其航迹中较早的一行重复（时间和位置相同）：此处不计入；清洗的重复点规则会将其删除。</translation>
     </message>
     <message>
@@ -2002,7 +2018,7 @@
         <translation>没有可沿用的决定</translation>
     </message>
     <message>
-        <source>; {n:#pair} of different MMSIs kept apart (mmsi_apart; off with --set mmsi_apart=false if the ids are a sensor&apos;s own numbers)</source>
+        <source>; {n:#pair} of different MMSIs kept apart (mmsi_apart; off with --set mmsi_apart=false if the ids are a sensor's own numbers)</source>
         <translation>；{n:,} 对 MMSI 不同的航迹未作候选（mmsi_apart；若批号是传感器自己的编号，用 --set mmsi_apart=false 关闭）</translation>
     </message>
     <message>
