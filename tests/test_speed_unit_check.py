@@ -140,3 +140,28 @@ def test_the_warning_in_the_window_and_in_chinese():
 def test_no_warning_on_the_real_sets(parts, mapping):
     r = read_points(real_file(*parts), mapping=mapping)
     assert not [w for w in r.report["warnings"] if "look like" in w]
+
+
+@pytest.mark.parametrize("quoted", [False, True])
+def test_streamed_and_pieced_imports_warn_once(tmp_path, monkeypatch, quoted):
+    """``wakeline import`` of a file read in pieces (streamed, or quoted: in pieces) says
+    the speed warning once, as the whole-file reader does."""
+    from wakeline.core.io import reader
+    from wakeline.core.io.reader import import_to_csv
+
+    df = tracks("km/h", n_tracks=6, n=200).sort_values(["batch", "time"])
+    q = '"' if quoted else ""
+    lines = ["批号,时间,经度,纬度,航速"] + [
+        f"{q}{b}{q},{t:%Y-%m-%d %H:%M:%S},{x:.6f},{y:.6f},{v:.2f}"
+        for b, t, x, y, v in zip(df.batch, df.time, df.lon, df.lat, df.speed, strict=True)
+    ]
+    src = tmp_path / "big.csv"
+    src.write_bytes(("\r\n".join(lines) + "\r\n").encode("gb18030"))
+    whole = read_points(src)
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)
+    assert src.stat().st_size > 8 * (4 << 10)
+    got = import_to_csv(src, tmp_path / "out.csv")
+    said = [w for w in got.report["warnings"] if "look like km/h" in w]
+    assert len(said) == 1
+    assert [w for w in whole.report["warnings"] if "look like km/h" in w]
+    assert got.report["rows_imported"] == len(df)

@@ -71,6 +71,7 @@ from wakeline.core.io.reader import (
     with_final,
 )
 from wakeline.core.io.sniff import Sniff
+from wakeline.core.io.speed_check import SPEED_UNIT_MARK
 from wakeline.core.progress import Progress, null_progress
 
 
@@ -446,10 +447,15 @@ def merge_import_reports(
     relative_note = _time_warnings(time_src, {"relative": True}, zone)
     local_note = _time_warnings(time_src, {"naive": True}, zone)  # local times read as UTC
     notes, timing = [], []
+    speed_said = False  # the speed-unit check (h191): the first piece's verdict, once
     for r in reports:
         for w in r.get("warnings", []):
             if w in counted or w in relative_note or BEARING_WARNING_MARK in w:
                 continue
+            if SPEED_UNIT_MARK in w:
+                if speed_said:
+                    continue
+                speed_said = True
             if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w:
                 continue  # said again below from the whole file's quarantine and reasons
             (timing if w in local_note else notes).append(w)

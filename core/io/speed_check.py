@@ -11,6 +11,8 @@ the flag that reads it. Vectorized: one sort, then whole-column differences.
 import numpy as np
 import pandas as pd
 
+#: What every warning of :func:`speed_unit_warnings` holds (a read in pieces says it once).
+SPEED_UNIT_MARK = ", not knots: over "
 #: (factor a speed in this unit read as knots is of the true speed, unit, --speed-unit)
 LIKELY_UNITS = (
     (1852.0 / 1000.0, "km/h", "km/h"),  # 1.852
