@@ -175,6 +175,10 @@ class TableIndex:
 #: Off only for bench/bench_review_keys.py's "before" figures: set_summary makes the
 #: index itself (on the GUI thread) even when the worker prepared it.
 TABLE_INDEX_IN_WORKER = True
+#: A layer's new points with the same tracks (a review decision) update the batch table's
+#: cells in place (:meth:`BatchTableModel.update_summary`); False: a model reset, as
+#: before session 28 (bench/review_keys.py compares the two in one run).
+TABLE_UPDATE_IN_PLACE = True
 
 
 def table_index(df: pd.DataFrame, text: dict) -> TableIndex:
@@ -250,6 +254,32 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         self._keys, self._span_s, self.relative = index.keys, index.span_s, index.relative
         self._order = self._visible_rows()
         self.endResetModel()
+
+    def update_summary(
+        self, df: pd.DataFrame, text: dict | None = None, index: "TableIndex | None" = None
+    ) -> bool:
+        """The same tracks in the same rows with new figures (a review decision relabels
+        targets): the cells change in place (one ``dataChanged``), no reset, so the
+        view keeps its selection, scroll and column widths. False (nothing done) when
+        the tracks, their visible order or the time kind differ: :meth:`set_summary`."""
+        df = df.reset_index(drop=True)
+        if not TABLE_UPDATE_IN_PLACE or len(df) != len(self._df) or not len(df):
+            return False
+        text = text if text is not None else display_text(df)
+        if index is None or index.rows != len(df) or not TABLE_INDEX_IN_WORKER:
+            index = table_index(df, text)
+        if index.relative != self.relative or index.keys != self._keys:
+            return False
+        old = (self._df, self._text, self._span_s)
+        self._df, self._text, self._span_s = df, text, index.span_s
+        order = self._visible_rows()
+        if not np.array_equal(order, self._order):  # sorted or filtered by what changed
+            self._df, self._text, self._span_s = old
+            return False
+        self.dataChanged.emit(
+            self.index(0, 0), self.index(max(len(order) - 1, 0), len(self.COLUMNS) - 1)
+        )
+        return True
 
     def _visible_rows(self) -> np.ndarray:
         n = len(self._df)

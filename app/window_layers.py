@@ -267,7 +267,8 @@ class LayersMixin:
             lid, self._make_current = self._make_current, None
             if lid in self.session.layers:
                 if lid == self.active:
-                    self.set_active(lid)
+                    if not self._refresh_active(lid):
+                        self.set_active(lid)
                 else:
                     self.select_layer(lid)
             self._after_current = True
@@ -405,6 +406,32 @@ class LayersMixin:
             self.show_bearing_layer(view)  # its map and detections in the dock
         self._update_stats()
 
+    def _refresh_active(self, lid: str) -> bool:
+        """The active layer's points replaced with the same tracks (a review decision
+        relabels targets): the batch table's cells are updated in place, so its selection
+        is kept, and the map's selection and the Detail panel are drawn again only when
+        the selected tracks' points changed in more than their target; before, each
+        decision cleared them, reset the table and selected its rows again (the map's
+        selection and the Detail plots drawn twice). False when the tracks differ (or a
+        bearing layer): :meth:`set_active` does the whole."""
+        view = self.views.get(lid)
+        layer = self.session.get(lid)
+        if view is None or layer is None or layer.kind == BEARING_KIND:
+            return False
+        if not self.batch_model.update_summary(
+            view.summary, view.text, view.extra.get("table_index")
+        ):
+            return False
+        keys = self.selected_keys()
+        if keys and not _same_but_targets(view.tracks(keys), self.canvas.selected_points()):
+            self._selecting = True  # the selection drawn from the new points (kept)
+            try:
+                self._table_selection_changed()
+            finally:
+                self._selecting = False
+        self._update_stats()
+        return True
+
     def _fit_time_columns(self) -> None:
         """The batch table's first columns (Sensor … End) as wide as their longest text
         or title (font metrics of one string per column, not a pass over the rows): Start
@@ -423,3 +450,12 @@ class LayersMixin:
 
     def active_layer(self) -> Layer | None:
         return self.session.get(self.active)
+
+
+def _same_but_targets(a: pd.DataFrame | None, b: pd.DataFrame | None) -> bool:
+    """Whether two tracks' points are the same but for their ``target`` (the map's
+    selection and the Detail panel, which do not show it, need no new drawing)."""
+    if a is None or b is None or len(a) != len(b) or list(a.columns) != list(b.columns):
+        return False
+    cols = [c for c in a.columns if c != "target"]
+    return a[cols].reset_index(drop=True).equals(b[cols].reset_index(drop=True))

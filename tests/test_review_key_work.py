@@ -1,0 +1,132 @@
+"""Work per review key (h187, operator test 5 D-gui-3: a key blocked the window 166-623 ms).
+
+A decision's layer is swapped in 300 ms after the key (ReviewSync): the same tracks with
+new targets. The batch table used to be reset for it (and its selection dropped and
+selected again, the map's selection and the Detail panel drawn twice more); now its cells
+change in place. Counted per key, not timed: batch-table model resets, whole-layer
+``set_active`` passes, the map's selection redrawn and the Detail panel cleared after
+the swap. bench/review_keys.py times the same on real files.
+"""
+
+import pytest
+
+pytest.importorskip("pytestqt")
+
+from PySide6 import QtCore  # noqa: E402
+from test_review_rerun_late_gui import _pending  # noqa: E402
+from test_review_window import _settle, _window  # noqa: E402
+
+pytestmark = pytest.mark.gui
+KEYS = 4
+
+
+def _associated_window(qtbot, tmp_path):
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+
+    src = tmp_path / "seg.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=8, area_km=15), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    w.select_layer(w.layer_id(src.name))
+    w.run_step("associate")
+    _settle(w)
+    layer = w.session.find(w.layer_id(src.name), "associate")
+    w.select_layer(layer.id)
+    _settle(w)
+    return w, layer
+
+
+def test_a_key_updates_the_batch_table_in_place(qtbot, tmp_path, monkeypatch):
+    w, layer = _associated_window(qtbot, tmp_path)
+    bound = w.review.bound
+    assert len(_pending(bound.controller.state)) > KEYS
+    counts = {"reset": 0, "cells": 0, "set_active": 0, "selection": 0, "detail_clear": 0}
+    swaps: list[int] = []
+
+    def count(name):
+        def bump(*_args):
+            counts[name] += 1
+
+        return bump
+
+    w.batch_model.modelReset.connect(count("reset"))
+    w.batch_model.dataChanged.connect(count("cells"))
+    for name, obj, attr in (
+        ("set_active", w, "set_active"),
+        ("selection", w.canvas, "show_selection"),
+        ("detail_clear", w.detail, "clear"),
+    ):
+        real = getattr(obj, attr)
+
+        def wrapped(*args, _real=real, _name=name, **kwargs):
+            if swaps:  # from the swap on: what the decision's new points set off
+                counts[_name] += 1
+            return _real(*args, **kwargs)
+
+        monkeypatch.setattr(obj, attr, wrapped)
+    replace = w.session.replace_points
+
+    def replace_points(*args, **kwargs):
+        swaps.append(1)
+        return replace(*args, **kwargs)
+
+    monkeypatch.setattr(w.session, "replace_points", replace_points)
+    bound.panel.view.setFocus()
+    selected = []
+    for i in range(KEYS):
+        swaps.clear()
+        before = dict(counts)
+        n_pending = len(_pending(bound.controller.state))
+        key = QtCore.Qt.Key.Key_R if i == 2 else QtCore.Qt.Key.Key_A
+        qtbot.keyClick(bound.panel.view, key)
+        assert len(_pending(bound.controller.state)) == n_pending - 1  # decided by the key
+        qtbot.waitUntil(lambda: bool(swaps), timeout=30_000)
+        _settle(w)
+        per_key = {k: counts[k] - before[k] for k in counts}
+        # the same tracks: their cells change in place, once; nothing reset, no whole
+        # active-layer pass, the selection and the Detail panel left as they are
+        assert per_key == {
+            "reset": 0,
+            "cells": 1,
+            "set_active": 0,
+            "selection": 0,
+            "detail_clear": 0,
+        }, (i, per_key)
+        selected.append(w.selected_keys())
+        assert selected[-1]  # the next proposal's tracks stay selected through the swap
+    # the table shows the decided targets (its cells follow the layer's points)
+    frame = w.batch_model.frame
+    shown = dict(zip(zip(frame["sensor"], frame["batch"], strict=True), frame["target"],
+                     strict=True))  # fmt: skip
+    pts = w.session.layers[layer.id].points
+    want = pts.groupby(["sensor", "batch"])["target"].first().to_dict()
+    assert {k: str(v) for k, v in shown.items()} == {
+        (str(s), str(b)): str(t) for (s, b), t in want.items()
+    }
+    w.close()
+
+
+def test_other_tracks_still_reset_the_table(qtbot, tmp_path):
+    """New points with other tracks (or another order) are not patched in place."""
+    import pandas as pd
+
+    from wakeline.app.models import BatchTableModel, batch_summary
+
+    model = BatchTableModel()
+    pts = pd.DataFrame(
+        {
+            "sensor": ["S1"] * 4,
+            "batch": ["1", "1", "2", "2"],
+            "time": pd.to_datetime([0, 10, 0, 10], unit="s", utc=True),
+            "lon": [0.0, 0.001, 0.01, 0.011],
+            "lat": [0.0, 0.0, 0.0, 0.0],
+        }
+    )
+    model.set_summary(batch_summary(pts.assign(target="A")))
+    assert model.update_summary(batch_summary(pts.assign(target="B")))
+    assert set(model.frame["target"]) == {"B"}
+    assert not model.update_summary(batch_summary(pts[pts["batch"] == "1"]))
+    renamed = pts.assign(batch=pts["batch"].map({"1": "3", "2": "2"}))
+    assert not model.update_summary(batch_summary(renamed))
