@@ -267,6 +267,8 @@ class ReviewDock(QtCore.QObject):
             width = self.split.width()
             self.split.setSizes([width * 2 // 5, width - width * 2 // 5])
             self._link(self.w.canvas, self.before)
+            if self._geom is not None:  # the current proposal, not drawn while hidden
+                self._draw_proposal()
         if self.act_before.isChecked() != on:
             self.act_before.setChecked(on)
 
@@ -698,10 +700,16 @@ class ReviewDock(QtCore.QObject):
                     canvas.mute_layers(1.0)
 
     def _add_items(self, geom: ProposalGeometry, group: str) -> None:
-        """Show ``geom`` in the group's items on both maps (they replace what they showed)."""
+        """Show ``geom`` in the group's items on both maps (they replace what they showed);
+        the proposal on the before map only while it is shown (:meth:`show_before` draws
+        it then): a hidden map's curves were set at every key for nothing."""
         shown = []
         for canvas in (self.w.canvas, self.before):
-            shown += [(canvas, item) for item in self._pool(group, canvas).show(geom)]
+            pool = self._pool(group, canvas)
+            if group == "proposal" and canvas is self.before and canvas.isHidden():
+                pool.clear()
+                continue
+            shown += [(canvas, item) for item in pool.show(geom)]
         self._items[group] = shown
 
     def _sync_lines(self, wanted: dict) -> None:

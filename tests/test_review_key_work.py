@@ -5,7 +5,8 @@ new targets. The batch table used to be reset for it (and its selection dropped 
 selected again, the map's selection and the Detail panel drawn twice more); now its cells
 change in place. Counted per key, not timed: batch-table model resets, whole-layer
 ``set_active`` passes, the map's selection redrawn and the Detail panel cleared after
-the swap. bench/review_keys.py times the same on real files.
+the swap; and the hidden before map gets no proposal curves (drawn when shown).
+bench/review_keys.py times the same on real files.
 """
 
 import pytest
@@ -105,6 +106,15 @@ def test_a_key_updates_the_batch_table_in_place(qtbot, tmp_path, monkeypatch):
     assert {k: str(v) for k, v in shown.items()} == {
         (str(s), str(b)): str(t) for (s, b), t in want.items()
     }
+    # the hidden before map gets no proposal curves at each key; shown, it draws the
+    # current proposal at once
+    dock = w.review
+    assert not [it for c, it in dock._items["proposal"] if c is dock.before]
+    dock.act_before.trigger()
+    _settle(w)
+    on_before = [it for c, it in dock._items["proposal"] if c is dock.before]
+    assert on_before and all(it.isVisible() for it in on_before)
+    assert len(on_before) == len([it for c, it in dock._items["proposal"] if c is w.canvas])
     w.close()
 
 
