@@ -457,5 +457,17 @@ def _same_but_targets(a: pd.DataFrame | None, b: pd.DataFrame | None) -> bool:
     selection and the Detail panel, which do not show it, need no new drawing)."""
     if a is None or b is None or len(a) != len(b) or list(a.columns) != list(b.columns):
         return False
-    cols = [c for c in a.columns if c != "target"]
-    return a[cols].reset_index(drop=True).equals(b[cols].reset_index(drop=True))
+    for col in a.columns:  # column by column in numpy (DataFrame.equals took ~10 ms)
+        if col == "target":
+            continue
+        x, y = a[col].to_numpy(), b[col].to_numpy()
+        if x is y:
+            continue
+        if x.dtype != y.dtype:
+            return False
+        if x.dtype.kind == "f":
+            if not np.array_equal(x, y, equal_nan=True):
+                return False
+        elif not np.array_equal(x, y):  # NaT or None unequal: drawn again, as before
+            return False
+    return True
