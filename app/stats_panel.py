@@ -286,6 +286,9 @@ class StatsPanel(QtWidgets.QWidget):
         if key == self._key:
             self._fill()
             return False
+        shown = self.shown_key
+        # the same layer (first item) and time window (last item) with new data
+        same_layer = shown is not None and (shown[:1], shown[-1:]) == (key[:1], key[-1:])
         self._key = key
         self._token += 1
         token = self._token
@@ -293,9 +296,13 @@ class StatsPanel(QtWidgets.QWidget):
         def job():
             return token, threading.get_ident(), layer_stats(points, tables, window)
 
-        self._message = tr("Computing…")
-        self.note.setText(self._message)
-        self.note.show()  # above the figures of the last layer until the new ones come
+        if not same_layer or self.stats is None:
+            # Above the figures of the last layer until the new ones come; the same
+            # layer's new points in the same window (a review decision) keep its figures
+            # until then: the note shown and hidden again laid the dock out twice a key.
+            self._message = tr("Computing…")
+            self.note.setText(self._message)
+            self.note.show()
         if self.executor is None:
             self._arrived(job())
         elif self._busy:

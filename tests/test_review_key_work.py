@@ -140,3 +140,33 @@ def test_other_tracks_still_reset_the_table(qtbot, tmp_path):
     assert not model.update_summary(batch_summary(pts[pts["batch"] == "1"]))
     renamed = pts.assign(batch=pts["batch"].map({"1": "3", "2": "2"}))
     assert not model.update_summary(batch_summary(renamed))
+
+
+def test_the_same_layers_new_figures_keep_the_old_until_they_come(qtbot):
+    """A decision's new points recompute the Statistics dock's figures; the layer's
+    figures stay shown meanwhile (the "Computing…" note shown and hidden again laid the
+    dock out twice per key). Another layer still says "Computing…"."""
+    from test_stats_gui import _scene
+
+    from wakeline.app.stats_panel import StatsPanel
+
+    panel = StatsPanel()
+    qtbot.addWidget(panel)
+    jobs = []
+    panel.executor = lambda job, done: jobs.append((job, done))
+    a = _scene(3, 20)
+    panel.compute(("a", 1, None), a)
+    job, done = jobs.pop()
+    done(job())
+    assert panel.stats.tracks == 3 and not panel.note.isVisibleTo(panel)
+    panel.compute(("a", 2, None), a.assign(target="t"))  # the same layer, new points
+    assert not panel.note.isVisibleTo(panel) and panel.stats.tracks == 3
+    job, done = jobs.pop()
+    done(job())
+    assert panel.shown_key == ("a", 2, None) and not panel.note.isVisibleTo(panel)
+    panel.compute(("a", 2, (0.0, 60.0)), a)  # a time window: computing
+    assert panel.note.isVisibleTo(panel) and panel.note.text() == "Computing…"
+    job, done = jobs.pop()
+    done(job())
+    panel.compute(("b", 1, None), _scene(5, 20))  # another layer
+    assert panel.note.isVisibleTo(panel) and panel.note.text() == "Computing…"
