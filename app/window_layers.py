@@ -422,6 +422,9 @@ class LayersMixin:
             view.summary, view.text, view.extra.get("table_index")
         ):
             return False
+        root = self.session.root(lid)
+        if layer.kind in OWN_SAMPLING_KINDS or root is None or root.id == lid:
+            self.params.show_guidance(view.summary)  # its own sampling changed (set_active)
         keys = self.selected_keys()
         if keys and not _same_but_targets(view.tracks(keys), self.canvas.selected_points()):
             self._selecting = True  # the selection drawn from the new points (kept)
