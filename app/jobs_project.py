@@ -188,6 +188,7 @@ class ProjectJobsMixin:
             )
 
             proj = load_project(path)
+            proj.locate_sources(path)  # a project folder moved with its data files
             warnings = [*proj.warnings, *proj.source_problems()]
             # A bearing layer's scene (observer, lines, maneuvers) is made again from its
             # stored table, detections and line length.
@@ -272,6 +273,12 @@ class ProjectJobsMixin:
             self.log_message(f"{self.tr('Note')}: {self._repaired_text(len(proj.repairs))}")
         if not proj.decisions_checked:  # the next open skips the migration
             self.project.mark_decisions_checked()
+        for note in proj.located:  # sources used from beside the moved project
+            self.log_message(f"{self.tr('Note')}: {note}")
+        if proj.located:  # the file keeps where they are now
+            self.project.put_sources(list(self.session.sources))
+            for lid in proj.relocated_layers:
+                self.project.put_layer_attrs(lid)
         bearing = [lid for lid, lay in self.session.layers.items() if lay.kind == BEARING_KIND]
         if bearing and bearing[-1] in self.views:  # the dock and Detail show the last
             self.show_bearing_layer(self.views[bearing[-1]])

@@ -186,6 +186,17 @@ class ProjectController(QtCore.QObject):
         """A small state row (the selection)."""
         self._submit(lambda st: st.put_state(key, value))
 
+    def put_sources(self, sources: list) -> None:
+        """The sources table (a source found beside a moved project)."""
+        self._submit(lambda st: st.put_sources(sources))
+
+    def put_layer_attrs(self, layer_id: str) -> None:
+        """A layer's attributes (its meta), not its points."""
+        layer = self.session.layers.get(layer_id)
+        if layer is not None:
+            pos = self._pos(layer_id)
+            self._submit(lambda st: st.put_layer(layer, pos, with_data=False))
+
     def put_params(self, params: dict) -> None:
         params = dict(params)
         self._submit(lambda st: st.put_params(params))

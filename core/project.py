@@ -125,6 +125,39 @@ class Project:
     #: False: whoever follows the file writes :attr:`repairs`, then
     #: :meth:`ProjectStore.mark_decisions_checked`, so the next open skips it.
     decisions_checked: bool = False
+    #: Layers whose ``meta["file"]`` :meth:`locate_sources` changed (to be written).
+    relocated_layers: list[str] = field(default_factory=list)
+    #: The sentences of :meth:`locate_sources` (one per source found beside the project).
+    located: list[str] = field(default_factory=list)
+
+    def locate_sources(self, project_path: str | Path) -> list[str]:
+        """Sources missing at their stored path but found beside the project file (same
+        name, same SHA-256: a project folder moved or copied with its data files) are
+        used from there: the source's path and its layers' ``meta["file"]`` follow.
+        One sentence per source found so; :meth:`source_problems` then passes them.
+        Returns the sentences; the ids of the layers changed are in
+        :attr:`relocated_layers`."""
+        notes = []
+        folder = Path(project_path).resolve().parent
+        for k, s in enumerate(self.sources):
+            old = Path(s.path)
+            if old.exists():
+                continue
+            beside = folder / old.name
+            if not beside.is_file() or file_hash(beside) != s.sha256:
+                continue
+            self.sources[k] = Source(str(beside), s.sha256)
+            for lay in self.layers:
+                file = lay.meta.get("file")
+                if file and (file == s.path or str(Path(str(file)).resolve()) == s.path):
+                    lay.meta["file"] = str(beside)
+                    self.relocated_layers.append(lay.id)
+            notes.append(
+                f"source file found beside the project: {beside} (same content as "
+                f"{s.path}, which is no longer there)"
+            )
+        self.located += notes
+        return notes
 
     def source_problems(self) -> list[str]:
         """One sentence per source that is missing or whose content changed."""

