@@ -451,7 +451,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         """A write to the project failed: logged each time, one dialog (the first since
         the file was saved or opened — not one per change); closing offers Save as."""
         text = self.tr("Saving the project failed: {0}").format(message)
-        self.log_message(f"{self.tr('Error')}: {text}")
+        if not self.project.repeated:  # the other writes of the same change: said once
+            self.log_message(f"{self.tr('Error')}: {text}")
         self.update_title()
         if self.project.failures == 1:
             QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)

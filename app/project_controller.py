@@ -14,10 +14,12 @@ One writer per file: the controller holds the project's lock
 process holds opens read-only, and "Save as" onto it is refused.
 """
 
+import time
 from pathlib import Path
 
 from PySide6 import QtCore
 
+from wakeline.core.errors import InputError
 from wakeline.core.project import ProjectWriter, save_project
 from wakeline.core.project_lock import ProjectLocks
 from wakeline.core.session import BEARING_KIND, Session
@@ -34,6 +36,10 @@ class ProjectController(QtCore.QObject):
         self.read_only = False
         self.dirty = False  # a write failed since the file was saved or opened
         self.failures = 0  # writes failed since then (the window shows the first)
+        #: The last failure repeats the one before within 2 s (the other writes of
+        #: one change: a decision, then the layer's points): the window logs it once.
+        self.repeated = False
+        self._last_failure: tuple[str, float] = ("", 0.0)
         self.unsaved = False  # changes made while following a read-only file
         self.locks = ProjectLocks()
         self._held: Path | None = None  # the path whose lock the current writer holds
@@ -213,6 +219,10 @@ class ProjectController(QtCore.QObject):
     def _on_error(self, message: str) -> None:
         self.dirty = True
         self.failures += 1
+        now = time.monotonic()
+        last, when = self._last_failure
+        self.repeated = message == last and now - when < 2.0
+        self._last_failure = (message, now)
         self.failed.emit(message)
 
 
@@ -224,6 +234,8 @@ def _put_active(store, active: str | None, selection: list) -> None:
 
 
 def _describe(exc: Exception) -> str:
+    if isinstance(exc, InputError):  # written for the operator (a project moved while open)
+        return str(exc)
     if isinstance(exc, OSError):
         name = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
         return f"{name}{exc.strerror or exc}"

@@ -26,3 +26,9 @@ class StaleResult(InputError):
     run keeps out (a pair rejected or split, or a reject taken back, meanwhile). Nothing
     was applied; the step runs again on the decisions as they are now (the window does
     so by itself). Decisions of any other kind made meanwhile are carried, not stale."""
+
+
+class ProjectMoved(InputError):
+    """A write to a project file that was moved, renamed or removed while open (the
+    path no longer names the file that was opened): nothing is written there; the work
+    is saved with Save as. The window reports it once, not once per queued write."""

@@ -54,7 +54,8 @@ import pyarrow.dataset  # noqa: F401 - imported here, on the main thread: see be
 import pyarrow.parquet as pq
 
 from wakeline.core import __version__
-from wakeline.core.errors import InputError
+from wakeline.core.errors import InputError, ProjectMoved
+from wakeline.core.file_identity import check_identity, file_identity, moved_message
 from wakeline.core.io.writer import atomic_path
 from wakeline.core.pipeline import PARAMS_VERSION, params_from_version
 from wakeline.core.project_lock import ProjectLocks, lock_path, read_holder
@@ -279,7 +280,7 @@ class ProjectStore:
         :class:`InputError`: the project was moved or removed while open)."""
         self.path = Path(path)
         if not create and not self.path.exists():
-            raise InputError(_moved(self.path))
+            raise ProjectMoved(_moved(self.path))
         self.con = sqlite3.connect(self.path, timeout=10)
         self._ino = _inode(self.path)
         try:
@@ -309,8 +310,7 @@ class ProjectStore:
     def check_path(self) -> None:
         """Raise :class:`InputError` when the file at :attr:`path` is no longer the one
         open (renamed, moved or removed since): a write would go to a file nobody opens."""
-        if _inode(self.path) != self._ino:
-            raise InputError(_moved(self.path))
+        check_identity(self.path, self._ino)
 
     # -- writes --------------------------------------------------------------------
 
@@ -452,20 +452,8 @@ def _attrs(layer: Layer) -> tuple:
     )
 
 
-def _inode(path: Path) -> tuple[int, int] | None:
-    try:
-        st = os.stat(path)
-    except OSError:
-        return None
-    return st.st_dev, st.st_ino
-
-
-def _moved(path: Path) -> str:
-    return (
-        f"{path}: the project file was moved, renamed or removed while open (or never "
-        "written: a failed Save as); this change is not saved: use Save as to write the "
-        "work to a file"
-    )
+_inode = file_identity
+_moved = moved_message
 
 
 def save_project(
@@ -976,6 +964,10 @@ class ProjectWriter:
                 fn(store)
             except Exception as exc:  # noqa: BLE001 - reported to the caller, never lost
                 if store is not None:
+                    # Renamed between the check and the write: SQLite's own words
+                    # ("attempt to write a readonly database") would hide what happened.
+                    if isinstance(exc, sqlite3.Error) and _inode(self.path) != store._ino:
+                        exc = ProjectMoved(_moved(self.path))
                     store.close()
                     store = None
                 self._report(exc)

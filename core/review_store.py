@@ -15,6 +15,7 @@ from pathlib import Path
 import pandas as pd
 
 from wakeline.core.errors import InputError
+from wakeline.core.file_identity import check_identity, file_identity
 from wakeline.core.review import (
     PROPOSAL_COLUMNS,
     RERUN,
@@ -67,6 +68,7 @@ class ReviewStore:
             self._db.execute("PRAGMA journal_mode=DELETE")  # every commit in the file itself
             self._db.execute("PRAGMA synchronous=FULL")
             self._db.executescript(_SCHEMA)
+            self._ino = file_identity(self.path)  # a write once it was moved is refused
             # A store with no decisions has none to repair: its own are checked.
             if self._db.execute("SELECT 1 FROM review_decisions LIMIT 1").fetchone() is None:
                 self._db.execute("INSERT OR IGNORE INTO review_meta VALUES (?, '0')", (CHECKED,))
@@ -195,6 +197,9 @@ class ReviewStore:
         return int(self._db.execute("SELECT COUNT(*) FROM review_decisions").fetchone()[0])
 
     def _tx(self):
+        # As the project's own connection (ProjectStore.check_path): a file renamed,
+        # moved or removed while open is not written (SQLite would say "readonly").
+        check_identity(self.path, self._ino)
         return _Transaction(self._db)
 
 

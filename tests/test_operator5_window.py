@@ -55,3 +55,27 @@ def test_a_moved_project_folder_uses_the_data_file_beside_it(qtbot, tmp_path, mo
     assert back.sources[0].path == str((tmp_path / "B" / "scene.csv").resolve())
     assert back.source_problems() == []
     w2.close()
+
+
+def test_a_project_renamed_while_open_says_so_once(qtbot, tmp_path, monkeypatch):
+    shown = _record(monkeypatch)
+    src = tmp_path / "scene.csv"
+    write_points(simulate.demo_scene(), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    proj = tmp_path / "p.wakeline"
+    w.save_project(proj)
+    _settle(w)
+    assert w.project.flush(30)
+    proj.rename(tmp_path / "renamed.wakeline")
+    w.run_step("clean")  # one change: a layer, the active layer, the selection …
+    _settle(w)
+    w.project.flush(30)
+    qtbot.waitUntil(lambda: w.project.failures >= 2, timeout=5000)
+    QtWidgets.QApplication.processEvents()
+    assert len(shown) == 1 and "moved, renamed or removed" in shown[0] and "Save as" in shown[0]
+    assert "Error" not in shown[0] and "readonly" not in shown[0]
+    lines = [t for t in w.log.toPlainText().splitlines() if "Saving the project failed" in t]
+    assert len(lines) == 1, lines
+    w.close()
