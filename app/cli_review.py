@@ -91,7 +91,7 @@ def _cmd_review(args: argparse.Namespace) -> int:
         fused_tracks,
         merged_tracks,
     )
-    from wakeline.core.review import ReviewState, apply_decisions, track_table
+    from wakeline.core.review import ReviewState, apply_decisions, track_table, unreviewed_note
 
     points = read_inputs(args.input, **read_options(args))
     if args.proposals:
@@ -132,6 +132,9 @@ def _cmd_review(args: argparse.Namespace) -> int:
         f"{count(n_targets, 'target')}; wrote {fmt}",
         file=sys.stderr,
     )
+    note = unreviewed_note(state)  # the pending ones are joined in the file written
+    if note:
+        print(note, file=sys.stderr)
     return 0
 
 

@@ -98,6 +98,7 @@ class ProjectJobsMixin:
             return None
         points, decided = layer.points, self.review.sync.decided_now(layer)
         note = self._whole_layer_note(layer)
+        pending = self.review.sync.unreviewed_note(layer)  # joined as the engine proposed
 
         def write(target):
             if kind == "csv":
@@ -106,7 +107,7 @@ class ProjectJobsMixin:
                 export_geojson(decided() if decided else points, target, view.maneuvers)
             else:  # the same table and writer as `wakeline maneuvers`
                 write_table("maneuvers", table, target)
-            return ("export", layer.name, path, [], [note] if note else [])
+            return ("export", layer.name, path, [], [n for n in (pending, note) if n])
 
         return self._start_export(path, write, ("export", layer.name))
 
@@ -142,12 +143,13 @@ class ProjectJobsMixin:
             return None
         points, decided = layer.points, self.review.sync.decided_now(layer)
         note = self._whole_layer_note(layer)
+        pending = self.review.sync.unreviewed_note(layer)  # joined as the engine proposed
 
         def write(target):
             # ids renumbered where two sensors' tracks would share one in a layout
             # without a sensor column (a note in the log says so)
             rep = export_like(decided() if decided else points, layout, target)
-            notes = [*rep.get("notes", []), *([note] if note else [])]
+            notes = [*rep.get("notes", []), *[n for n in (pending, note) if n]]
             return ("export", layer.name, path, rep.get("warnings", []), notes)
 
         return self._start_export(path, write, ("export", layer.name))

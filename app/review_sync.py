@@ -144,6 +144,20 @@ class ReviewSync(QtCore.QObject):
 
     # -- export ---------------------------------------------------------------------
 
+    def unreviewed_note(self, layer) -> str:
+        """For an export of ``layer``: "N of M proposals not reviewed: counted as
+        accepted" while its review (bound in the dock) has pending proposals, else ""."""
+        bound = self.dock.queues.get(queue_key(layer)) if layer is not None else None
+        if bound is None or bound.lid != layer.id:
+            return ""
+        status = bound.controller.state.status
+        pending, total = int((status == "pending").sum()), len(status)
+        if not pending:
+            return ""
+        return tr("{0} of {1} proposals not reviewed: counted as accepted").format(
+            f"{pending:,}", f"{total:,}"
+        )
+
     def export(self, path: Path, bom: bool = False, log: bool = False) -> int | None:
         """Write the active review's tracks (or its decision log) in the window's worker."""
         bound = self.dock.bound
@@ -155,6 +169,9 @@ class ReviewSync(QtCore.QObject):
         layer = self.w.session.layers[bound.lid]
         snap, points, cache = snapshot(bound.controller.state), bound.points, bound.cache
         path = Path(path)
+        note = "" if log else self.unreviewed_note(layer)
+        what = tr("{0}: decision log") if log else tr("{0} (reviewed tracks)")
+        what = what.format(layer.name)
 
         def write(target):
             if log:
@@ -163,7 +180,7 @@ class ReviewSync(QtCore.QObject):
                 export_decision_log(snap, target, bom=bom)
             else:
                 export_reviewed(layer, snap, points, target, bom=bom, cache=cache)
-            return ("export", f"{layer.name} (reviewed)", path)
+            return ("export", what, path, [], [note] if note else [])
 
         return self.w._start_export(path, write, ("export", layer.name))
 

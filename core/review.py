@@ -627,6 +627,19 @@ class ReviewState:
         return pd.DataFrame(rows, columns=cols)
 
 
+def unreviewed_note(state: ReviewState) -> str:
+    """The sentence an export of the reviewed tracks carries while proposals are still
+    pending ("N of M proposals not reviewed: counted as accepted", the rule of
+    docs/review.md: a proposal without a decision counts as the engine proposed it), or
+    "" when every proposal has a decision."""
+    pending = int((state.status == "pending").sum())
+    if not pending:
+        return ""
+    total = len(state.status)
+    noun = "proposal" if total == 1 else "proposals"
+    return f"{pending:,} of {total:,} {noun} not reviewed: counted as accepted"
+
+
 def _set(state: ReviewState, action: str, proposal: str, status: str) -> Change:
     row = state._proposal_row(proposal)
     p = state.proposals.iloc[row]

@@ -8,9 +8,11 @@ import pytest
 
 pytest.importorskip("pytestqt")
 
-from PySide6 import QtWidgets  # noqa: E402
-from test_review_window import _settle, _window  # noqa: E402
+from PySide6 import QtCore, QtWidgets  # noqa: E402
+from PySide6.QtTest import QTest  # noqa: E402
 
+from test_gui_review_low import _fused_review  # noqa: E402
+from test_review_window import _settle, _window  # noqa: E402
 from wakeline.core import simulate  # noqa: E402
 from wakeline.core.io import write_points  # noqa: E402
 from wakeline.core.project import load_project  # noqa: E402
@@ -78,4 +80,32 @@ def test_a_project_renamed_while_open_says_so_once(qtbot, tmp_path, monkeypatch)
     assert "Error" not in shown[0] and "readonly" not in shown[0]
     lines = [t for t in w.log.toPlainText().splitlines() if "Saving the project failed" in t]
     assert len(lines) == 1, lines
+    w.close()
+
+
+def test_reviewed_exports_say_how_many_proposals_were_not_reviewed(qtbot, tmp_path):
+    w = _fused_review(qtbot, tmp_path)
+    b = w.review.bound
+    total = len(b.controller.state.status)
+    assert total >= 2
+    b.panel.view.setFocus()
+    QTest.keyClick(b.panel.view, QtCore.Qt.Key.Key_A)
+    _settle(w)
+    pending = int((b.controller.state.status == "pending").sum())
+    assert 0 < pending < total
+    note = f"{pending} of {total} proposals not reviewed: counted as accepted"
+    w.review.sync.export(tmp_path / "rev.csv")
+    _settle(w)
+    log = w.log.toPlainText().splitlines()
+    at = next(k for k, t in enumerate(log) if "(reviewed tracks) to" in t and "rev.csv" in t)
+    assert note in log[at + 1]
+    w.export("csv", tmp_path / "layer.csv")  # the layer's own export: the same rule
+    _settle(w)
+    log = w.log.toPlainText().splitlines()
+    at = next(k for k, t in enumerate(log) if t.endswith("layer.csv"))
+    assert note in log[at + 1]
+    w.review.sync.export(tmp_path / "log.csv", log=True)
+    _settle(w)
+    last = [t for t in w.log.toPlainText().splitlines() if "log.csv" in t][-1]
+    assert ": decision log to" in last and "reviewed tracks" not in last
     w.close()

@@ -1716,6 +1716,18 @@
 <context>
     <name>ReviewSync</name>
     <message>
+        <source>{0} of {1} proposals not reviewed: counted as accepted</source>
+        <translation>{1} 个提议中有 {0} 个未审核：按接受计</translation>
+    </message>
+    <message>
+        <source>{0}: decision log</source>
+        <translation>{0}：决策日志</translation>
+    </message>
+    <message>
+        <source>{0} (reviewed tracks)</source>
+        <translation>{0}（审核后的航迹）</translation>
+    </message>
+    <message>
         <source>{0} on {1}</source>
         <translation>{1} 上的 {0}</translation>
     </message>
