@@ -49,14 +49,20 @@ def read_inputs(paths: list[Path], counts: dict | None = None, **options) -> pd.
 
 
 def read_table(path: Path, what: str) -> pd.DataFrame:
-    """A small CSV (proposals or decisions) with every column as text, blanks kept."""
+    """A small CSV (proposals or decisions) with every column as text, blanks kept. The
+    delimiter is the header line's most frequent of ``,`` ``;`` and tab (a table saved by
+    a European-locale spreadsheet is ``;``-separated), as for track files."""
     import csv
 
     from wakeline.core.io.sniff import opening
 
     try:
         with opening(path), open(path, encoding="utf-8-sig", newline="") as fh:
-            reader = csv.reader(fh)
+            first = next((line for line in fh if line.strip()), "")
+            sep = max((",", ";", "\t"), key=first.count) if first else ","
+            sep = sep if first.count(sep) else ","
+            fh.seek(0)
+            reader = csv.reader(fh, delimiter=sep)
             header = next((row for row in reader if row), None)  # blank lines skipped
             for row in reader:  # a few thousand proposals at most
                 if row and len(row) != len(header):
@@ -65,7 +71,7 @@ def read_table(path: Path, what: str) -> pd.DataFrame:
                         f"fields, the header {len(header)}"
                     )
         return pd.read_csv(
-            path, dtype=str, keep_default_na=False, encoding="utf-8-sig", index_col=False
+            path, sep=sep, dtype=str, keep_default_na=False, encoding="utf-8-sig", index_col=False
         )
     except pd.errors.EmptyDataError:
         raise InputError(f"{path}: the {what} file is empty") from None
