@@ -260,13 +260,14 @@ class ProjectJobsMixin:
         finally:
             self._view_planned = False
         lock_note = self.project.follow(path, proj.read_only)
-        from wakeline.core.review_session import decision_counts
+        from wakeline.core.review_session import decision_counts, decisions_in_effect
 
         repairs = {id(row) for row in proj.repairs}
-        restored, earlier = decision_counts(
+        steps, earlier = decision_counts(
             proj.layers, [d for d in proj.decisions if id(d) not in repairs]
         )
-        self.log_message(self._opened_text(path, len(proj.layers), restored, earlier))
+        in_effect = decisions_in_effect(proj.layers, proj.decisions)
+        self.log_message(self._opened_text(path, len(proj.layers), in_effect, earlier, steps))
         if proj.repairs:
             # The migration's decisions (core.project's docstring) go into the file at
             # once, before any new one, so the stored log replays to what is shown.
@@ -307,11 +308,14 @@ class ProjectJobsMixin:
                 self, self.tr("Project opened with warnings"), "\n".join(warnings + problems)
             )
 
-    def _opened_text(self, path: Path, layers: int, decisions: int, earlier: int = 0) -> str:
+    def _opened_text(
+        self, path: Path, layers: int, decisions: int, earlier: int = 0, steps: int | None = None
+    ) -> str:
         """The log line of an opened project: its file, its layers and the review
         decisions restored from it (as opening a file logs its import summary): those
-        in effect (replayed on the layers' current reviews), and those the decision log
-        keeps of earlier runs or removed layers."""
+        in effect (replayed on the layers' current reviews: proposals decided and manual
+        links, not the log's rows), the decision log's steps when they are more (undos
+        and redos), and those the decision log keeps of earlier runs or removed layers."""
         n_layers = self.tr("1 layer") if layers == 1 else self.tr("{0} layers").format(layers)
         n_decided = (
             self.tr("1 review decision restored")
@@ -326,6 +330,10 @@ class ProjectJobsMixin:
                     "(and {0} of earlier runs or removed layers, kept in the decision log)"
                 ).format(f"{earlier:,}")
             )
+        if steps is not None and steps != decisions:
+            n_decided += " " + self.tr(
+                "(from {0} steps of the decision log, undos and redos included)"
+            ).format(f"{steps:,}")
         return self.tr("Opened project {0}: {1}, {2}").format(str(path), n_layers, n_decided)
 
     def _repaired_text(self, n: int) -> str:

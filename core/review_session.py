@@ -374,6 +374,19 @@ def decision_counts(layers: list[Layer], decisions: list[dict]) -> tuple[int, in
     return now, other
 
 
+def decisions_in_effect(layers: list[Layer], decisions: list[dict]) -> int:
+    """The review decisions in effect on the layers' current queues once the stored rows
+    are replayed: proposals left accepted, rejected or split, and manual links left —
+    not the rows (50 decisions, 30 undos and 20 redos leave 40 in effect, not 100)."""
+    n = 0
+    for lay in layers:
+        if proposals_of(lay) is None:
+            continue
+        status, links = queue_outcome(decisions, queue_key(lay))
+        n += sum(1 for v in status.values() if v != "pending") + len(links)
+    return n
+
+
 def snapshot(state: R.ReviewState) -> R.ReviewState:
     """A copy of the decisions as they are now, for a worker to read while the operator
     goes on deciding (proposals and tracks are shared, never mutated)."""

@@ -10,9 +10,9 @@ pytest.importorskip("pytestqt")
 
 from PySide6 import QtCore, QtWidgets  # noqa: E402
 from PySide6.QtTest import QTest  # noqa: E402
-
 from test_gui_review_low import _fused_review  # noqa: E402
 from test_review_window import _settle, _window  # noqa: E402
+
 from wakeline.core import simulate  # noqa: E402
 from wakeline.core.io import write_points  # noqa: E402
 from wakeline.core.project import load_project  # noqa: E402

@@ -4,6 +4,10 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>(from {0} steps of the decision log, undos and redos included)</source>
+        <translation>（来自决策日志中的 {0} 步，含撤销与重做）</translation>
+    </message>
+    <message>
         <source>the settings' pipeline stage {0} is not one of Run ▸ Pipeline stages (clean, compress, associate); dropped</source>
         <translation>设置中的流程步骤 {0} 不属于“运行 ▸ 流程步骤”（清洗、压缩、关联）；已舍弃</translation>
     </message>
