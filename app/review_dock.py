@@ -221,6 +221,9 @@ class ReviewDock(QtCore.QObject):
         self.stack.addWidget(self.blank)
         area = QtCore.Qt.DockWidgetArea
         self.dock = self._dock("review", tr("Review"), self.stack, area.BottomDockWidgetArea)
+        self.echo = QtWidgets.QLabel()  # the last review decision (_echo)
+        self.echo.setMinimumWidth(1)  # a long text is cut, never widens the window
+        w.statusBar().addPermanentWidget(self.echo)
         # The before map sits beside the main map in the centre (View ▸ Before/after map).
         self.before = MapCanvas(w)
         self.before.lod_executor = w.lod_worker
@@ -325,13 +328,19 @@ class ReviewDock(QtCore.QObject):
         for name, key, method in REVIEW_KEYS:
             act = QtGui.QAction(texts[name], w)
             act.setShortcut(QtGui.QKeySequence(key))
+            # h181 D-review-5: the letters act where the operator reviews — the Review
+            # dock (queue, Gantt, evidence) and the maps — not in the batch table, the
+            # log or the Parameters (a stray A there decided the current proposal).
+            act.setShortcutContext(QtCore.Qt.ShortcutContext.WidgetWithChildrenShortcut)
             act.triggered.connect(lambda _=False, m=method: self._panel_call(m))
             self.review_menu.addAction(act)
             self.review_actions[name] = act
         self.review_menu.addSeparator()
         self.review_menu.addAction(self.dock.toggleViewAction())
         bar.insertMenu(w.menus["view"].menuAction(), self.review_menu)
-        w.addActions(list(self.review_actions.values()) + [self.act_undo, self.act_redo])
+        for widget in (self.dock, w.canvas, self.before):
+            widget.addActions(list(self.review_actions.values()))
+        w.addActions([self.act_undo, self.act_redo])
         self.act_fuse = QtGui.QAction(tr("Fuse &selected layers (two or more)"), w)
         self.act_fuse.triggered.connect(lambda: fuse_selected(w))
         w.menus["run"].insertAction(w.actions_["save_pipeline"], self.act_fuse)
@@ -401,16 +410,52 @@ class ReviewDock(QtCore.QObject):
                     "ran included, were carried over, and the decision log keeps every one."
                 )
             )
+        elif b is not None and not group.canUndo() and self._restored_only(b):
+            # h181 D-review-3: the undo history of a session ends when it is closed.
+            self.act_undo.setText(tr("&Undo (nothing since the project was opened)"))
+            self.act_undo.setToolTip(
+                tr(
+                    "The undo history ends when the project is closed: the decisions "
+                    "restored from the file are changed by deciding again (Accept, "
+                    "Reject, Reset), and the decision log keeps every one."
+                )
+            )
         else:
             self.act_undo.setToolTip("")  # the action's text
+
+    @staticmethod
+    def _restored_only(b) -> bool:
+        """The queue holds decisions read from the project and none made since."""
+        return b.controller.stack.count() == 0 and len(b.controller.state.log) > 0
 
     def _enable(self, on: bool) -> None:
         for act in self.review_actions.values():
             act.setEnabled(on)
 
     def _panel_call(self, method: str) -> None:
-        if self.bound is not None:
-            getattr(self.bound.panel, method)()
+        b = self.bound
+        if b is None:
+            return
+        getattr(b.panel, method)()
+
+    def _echo(self, b) -> None:
+        """A decision (by key, menu, undo or redo) said in the status bar (a label of
+        its own: the points' count message follows at once) and in the Log dock (h181
+        D-review-5: a stray key changed a decision without a word)."""
+        from wakeline.app.review_undo import action_name
+
+        log = b.controller.state.log
+        if not log or not shiboken6.isValid(self.echo):
+            return
+        entry = log[-1]
+        action = entry.action
+        if action.startswith("undo "):
+            name = tr("undo {0}").format(action_name(action[5:]))
+        else:
+            name = action_name(action)
+        text = tr("Review: {0} {1}").format(name, entry.proposal or entry.tracks)
+        self.echo.setText(text)
+        self.w.log_message(text)
 
     # -- binding --------------------------------------------------------------------
 
@@ -545,6 +590,7 @@ class ReviewDock(QtCore.QObject):
         if getattr(self.w, "time_panel", None) is not None:  # the slider's cursor in the Gantt
             link_gantt(self.w.time_panel, gantt)
         controller.changed.connect(lambda _p, b=bound: self.sync.schedule(b))
+        controller.changed.connect(lambda _p, b=bound: self._echo(b))
         self.group.addStack(controller.stack)
         self.stack.addWidget(box)
         self.queues[key] = bound

@@ -109,3 +109,56 @@ def test_reviewed_exports_say_how_many_proposals_were_not_reviewed(qtbot, tmp_pa
     last = [t for t in w.log.toPlainText().splitlines() if "log.csv" in t][-1]
     assert ": decision log to" in last and "reviewed tracks" not in last
     w.close()
+
+
+def _press(w, widget, key):
+    widget.setFocus()
+    QtWidgets.QApplication.processEvents()
+    QTest.keyClick(QtWidgets.QApplication.focusWidget() or widget, key)
+    _settle(w)
+
+
+def test_review_letters_act_in_the_review_dock_and_the_map_and_are_echoed(qtbot, tmp_path):
+    """D-review-5: A with the focus on the batch table or the log decided the current
+    proposal, with no word in the Log dock."""
+    w = _fused_review(qtbot, tmp_path)
+    st = w.review.bound.controller.state
+    n0 = int((st.status == "pending").sum())
+    _press(w, w.batch_view, QtCore.Qt.Key.Key_A)
+    _press(w, w.log, QtCore.Qt.Key.Key_A)
+    assert int((st.status == "pending").sum()) == n0  # not from the table nor the log
+    _press(w, w.review.bound.panel.view, QtCore.Qt.Key.Key_A)
+    assert int((st.status == "pending").sum()) == n0 - 1
+    entry = st.log[-1]
+    said = f"Review: accept {entry.proposal}"
+    assert w.review.echo.text() == said
+    assert w.log.toPlainText().splitlines()[-1] == said
+    _press(w, w.canvas, QtCore.Qt.Key.Key_R)  # the map: the operator looks there
+    assert st.log[-1].action == "reject" and len(st.log) == 2
+    w.close()
+
+
+def test_undo_says_its_history_ends_at_close(qtbot, tmp_path, monkeypatch):
+    """D-review-3: after reopening, Edit ▸ Undo was disabled without a word."""
+    _record(monkeypatch)
+    w = _fused_review(qtbot, tmp_path)
+    fused = w.review.bound.lid
+    proj = tmp_path / "p.wakeline"
+    w.save_project(proj)
+    _settle(w)
+    w.review.review_actions["accept"].trigger()
+    _settle(w)
+    assert w.project.flush(30)
+    w.close()
+    w2 = _window(qtbot, tmp_path)
+    w2.open_project(proj)
+    _settle(w2)
+    w2.select_layer(fused)
+    _settle(w2)
+    act = w2.review.act_undo
+    assert not act.isEnabled() and "nothing since the project was opened" in act.text()
+    assert "undo history ends when the project is closed" in act.toolTip()
+    w2.review.review_actions["reject"].trigger()
+    _settle(w2)
+    assert act.isEnabled() and "history ends" not in act.toolTip() and "reject" in act.text()
+    w2.close()
