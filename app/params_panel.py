@@ -132,6 +132,7 @@ class ParamsPanel(QtWidgets.QWidget):
         # operator stated, for the core's max_gap rule (core.transform.stated_max_gap).
         self._stated: set[str] = set()
         self._note_key = ""  # the note under the tree (_show_note)
+        self._just_refused = ""  # a refusal said this turn (_tree_changed)
         self._summary: pd.DataFrame | None = None  # the data the guidance is about
         children = [
             {
@@ -296,6 +297,7 @@ class ParamsPanel(QtWidgets.QWidget):
             }
         )
         self._stated.clear()  # nothing stated: the defaults' adaptive limit again
+        self.problem.setText("")  # every value is a default: the last refusal is gone
 
     def _set_value(self, path: tuple[str, ...], value) -> list[str]:
         try:
@@ -321,13 +323,21 @@ class ParamsPanel(QtWidgets.QWidget):
                 param.setValue(self._current(path))
                 self._guard = False
                 self.problem.setText(str(exc))
-                self.refused.emit(str(exc))
+                # The spin box echoes the refused value back once more in the same turn
+                # (pyqtgraph: widget -> param): one refusal, one log line (h181 D-params-2).
+                if self._just_refused != str(exc):
+                    self._just_refused = str(exc)
+                    QtCore.QTimer.singleShot(0, self._forget_refusal)
+                    self.refused.emit(str(exc))
             else:
                 self.problem.setText("")
                 self._show_note("" if self._loading else note)
                 if path[0] == "maneuver" and self._summary is not None:
                     self.show_guidance(self._summary)  # its window and threshold changed
                 self.changed.emit(path[0])
+
+    def _forget_refusal(self) -> None:
+        self._just_refused = ""
 
     def _current(self, path: list[str]):
         if path[0] == "clean":
