@@ -103,6 +103,19 @@ class LongitudeAxis(pg.AxisItem):
         m = round(major / 10 ** math.floor(math.log10(major)), 6)
         return [(major, 0.0), (major / (2.0 if m == 2 else 5.0), 0.0)]
 
+    def tickStrings(self, values, scale, spacing):  # noqa: N802 - pyqtgraph's name
+        """Longitudes as they are read: a track drawn across the antimeridian runs on
+        past 180° (continuous), its labels wrap (180.2 -> -179.8; h181 D-map-3)."""
+        return super().tickStrings([wrap_longitude(v) for v in values], scale, spacing)
+
+
+def wrap_longitude(value: float) -> float:
+    """``value`` in [-180, 180] (180 stays 180, 540 is 180, -180 stays -180)."""
+    if -180.0 <= value <= 180.0:
+        return value
+    w = (value + 180.0) % 360.0 - 180.0
+    return 180.0 if w == -180.0 and value > 0 else w
+
 
 class MapCanvas(MapInteractMixin, pg.PlotWidget):
     """A pyqtgraph plot set up as a lon/lat chart with layers, selection, hover, picking."""

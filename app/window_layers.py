@@ -210,6 +210,8 @@ class LayersMixin:
         elif event == "visibility":
             for name in self.map_names(lid):
                 self.canvas.set_visible(name, layer.visible)
+            if lid == self.active:  # its selected tracks hide and show with it
+                self._table_selection_changed()
         self.layersChanged.emit()
 
     def _view_state(self, replace_all: bool = False) -> dict:

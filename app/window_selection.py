@@ -71,7 +71,13 @@ class SelectionMixin:
         chosen = view.tracks(keys)
         gaps = view.draw.style.gaps if view.draw is not None else True
         west = view.draw.geometry.lon_west if view.draw is not None else -180.0
-        self.canvas.show_selection(chosen, maneuver_table(chosen), gaps, west)
+        layer = self.session.layers.get(self.active)
+        if layer is not None and not layer.visible:
+            # Its layer unticked: no selected track on the map nor in its legend (h181
+            # D-map-2); the table keeps the selection, shown again with the layer.
+            self.canvas.show_selection(chosen.iloc[:0])
+        else:
+            self.canvas.show_selection(chosen, maneuver_table(chosen), gaps, west)
         # The Detail panel's plots follow on the next event-loop turn (its own paint).
         self._detail_key = (self.active, keys[0]) if keys else None
         if keys:
