@@ -29,7 +29,11 @@ def build_actions(w) -> None:
     act("open", w.open_dialog, sp.SP_DialogOpenButton, keys.Open)
     act("open_bearings", w.open_bearings_dialog)
     act("open_project", w.open_project_dialog)
-    act("save_project", w.save_project_dialog, sp.SP_DialogSaveButton, keys.Save)
+    # Ctrl+S: a project followed is saved as it changes (the status bar says so and
+    # where); Save as is its own action (h181 D-ui-1).
+    act("save", w.save_or_say_saved, None, keys.Save)
+    act("save_project", w.save_project_dialog, sp.SP_DialogSaveButton, keys.SaveAs)
+    act("close_project", w.close_project)
     act("export_csv", lambda: w.export_dialog("csv"))
     act("export_geojson", lambda: w.export_dialog("geojson"))
     act("export_maneuvers", lambda: w.export_dialog("maneuvers"))
@@ -53,7 +57,7 @@ def build_actions(w) -> None:
 
     m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "stages", "view", "lang")}
     w.menus = m
-    for key in ("open", "open_bearings", "open_project", "save_project"):
+    for key in ("open", "open_bearings", "open_project", "save", "save_project", "close_project"):
         m["file"].addAction(a[key])
     m["file"].addMenu(m["export"])
     for key in (
@@ -125,7 +129,9 @@ def retranslate(w) -> None:
         "open": tr("&Open tracks…"),
         "open_project": tr("Open &project…"),
         "open_bearings": tr("Open &bearings (bearing-only detection)…"),
-        "save_project": tr("&Save project as…"),
+        "save": tr("&Save project"),
+        "save_project": tr("Save project &as…"),
+        "close_project": tr("&Close project"),
         "export_csv": tr("Active layer as &CSV…"),
         "export_geojson": tr("Active layer as &GeoJSON…"),
         "export_maneuvers": tr("&Maneuver points as CSV…"),

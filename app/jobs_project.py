@@ -357,6 +357,36 @@ class ProjectJobsMixin:
         if path:
             self.open_project(Path(path))
 
+    def save_or_say_saved(self) -> None:
+        """File ▸ Save project (Ctrl+S): a project this window writes is saved as it
+        changes, so there is nothing to save — the status bar says so, and where; with
+        no project, a read-only one or a failed write, Save as."""
+        p = self.project
+        if p.path is None or p.read_only or p.dirty or p.writer is None:
+            self.save_project_dialog()
+            return
+        self.statusBar().showMessage(
+            self.tr(
+                "Everything is saved as it happens in {0}: nothing to save "
+                "(File ▸ Save project as… writes a copy under another name)"
+            ).format(str(p.path)),
+            10000,
+        )
+
+    def close_project(self) -> None:
+        """File ▸ Close project: stop following the project file (its writes finish,
+        its lock goes) and empty the window; changes not in a file are offered Save as."""
+        if self.project.path is None:
+            self.statusBar().showMessage(self.tr("No project is open"), 5000)
+            return
+        if (self.project.unsaved or self.project.dirty) and not self._close_unsaved():
+            return
+        path = self.project.path
+        self.project.release()  # the window's clearing is not written
+        self.session.clear()
+        self.update_title()
+        self.log_message(self.tr("Closed project {0}").format(str(path)))
+
     def save_project_dialog(self) -> None:
         path, _ = QtWidgets.QFileDialog.getSaveFileName(
             self, self.tr("Save project"), "", "Wakeline (*.wakeline)"

@@ -8,7 +8,7 @@ import pytest
 
 pytest.importorskip("pytestqt")
 
-from PySide6 import QtCore, QtWidgets  # noqa: E402
+from PySide6 import QtCore, QtGui, QtWidgets  # noqa: E402
 from PySide6.QtTest import QTest  # noqa: E402
 from test_gui_review_low import _fused_review  # noqa: E402
 from test_review_window import _settle, _window  # noqa: E402
@@ -162,3 +162,37 @@ def test_undo_says_its_history_ends_at_close(qtbot, tmp_path, monkeypatch):
     _settle(w2)
     assert act.isEnabled() and "history ends" not in act.toolTip() and "reject" in act.text()
     w2.close()
+
+
+def test_ctrl_s_says_the_project_is_saved_and_close_project_empties_the_window(
+    qtbot, tmp_path, monkeypatch
+):
+    """D-ui-1: Ctrl+S always opened a Save-as dialog, and there was no Close project."""
+    _record(monkeypatch)
+    asked = []
+    monkeypatch.setattr(
+        QtWidgets.QFileDialog, "getSaveFileName", lambda *a, **k: (asked.append(a), ("", ""))[1]
+    )
+    src = tmp_path / "scene.csv"
+    write_points(simulate.demo_scene(), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    w.actions_["save"].trigger()  # no project yet: Save as
+    assert len(asked) == 1
+    proj = tmp_path / "p.wakeline"
+    w.save_project(proj)
+    _settle(w)
+    assert w.actions_["save"].shortcut() == QtGui.QKeySequence("Ctrl+S")
+    w.actions_["save"].trigger()
+    assert len(asked) == 1  # no dialog
+    said = w.statusBar().currentMessage()
+    assert "saved as it happens" in said and str(proj) in said
+    w.actions_["close_project"].trigger()
+    _settle(w)
+    assert not w.session.layers and w.project.path is None
+    assert w.windowTitle() == "Wakeline"
+    assert f"Closed project {proj}" in w.log.toPlainText()
+    qtbot.waitUntil(lambda: not (tmp_path / "p.wakeline.lock").exists(), timeout=5000)
+    assert [lay.name for lay in load_project(proj).layers] == ["scene.csv"]  # kept
+    w.close()

@@ -4,6 +4,30 @@
 <context>
     <name>MainWindow</name>
     <message>
+        <source>&amp;Save project</source>
+        <translation>保存工程(&amp;S)</translation>
+    </message>
+    <message>
+        <source>Save project &amp;as…</source>
+        <translation>工程另存为(&amp;A)…</translation>
+    </message>
+    <message>
+        <source>&amp;Close project</source>
+        <translation>关闭工程(&amp;C)</translation>
+    </message>
+    <message>
+        <source>Everything is saved as it happens in {0}: nothing to save (File ▸ Save project as… writes a copy under another name)</source>
+        <translation>所有更改已随时保存在 {0}：无需保存（文件 ▸ 工程另存为… 可另存副本）</translation>
+    </message>
+    <message>
+        <source>No project is open</source>
+        <translation>没有打开的工程</translation>
+    </message>
+    <message>
+        <source>Closed project {0}</source>
+        <translation>已关闭工程 {0}</translation>
+    </message>
+    <message>
         <source>(from {0} steps of the decision log, undos and redos included)</source>
         <translation>（来自决策日志中的 {0} 步，含撤销与重做）</translation>
     </message>
@@ -182,10 +206,6 @@
     <message>
         <source>Open bearings</source>
         <translation>打开方位数据</translation>
-    </message>
-    <message>
-        <source>&amp;Save project as…</source>
-        <translation>工程另存为(&amp;S)…</translation>
     </message>
     <message>
         <source>Active layer as &amp;CSV…</source>
