@@ -1,6 +1,6 @@
 """The main window's actions, menus and toolbar, and their texts in the current language."""
 
-from PySide6 import QtGui, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app import i18n
 from wakeline.app.display_zone import install_zone_menu, retranslate_zone_menu
@@ -179,6 +179,11 @@ def retranslate(w) -> None:
     }
     for key, title in titles.items():
         w.docks[key].setWindowTitle(title)
+    w.toolbar.setWindowTitle(tr("Main toolbar"))  # its name on the toolbars' right-click menu
+    export = QtCore.QCoreApplication.translate("GraphicsScene", "Export...")
+    for view in w.findChildren(QtWidgets.QGraphicsView):  # the plots' right-click Export...
+        for action in getattr(view.scene(), "contextMenu", None) or ():
+            action.setText(export)
     w.filter_edit.setPlaceholderText(tr("Filter batches (any column)…"))
     w.cancel_button.setText(tr("Cancel"))
     w.batch_model.set_titles(

@@ -7,6 +7,7 @@ import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.core_text import shown
+from wakeline.app.layer_names import shown_name
 from wakeline.app.models import FrameModel
 from wakeline.core.words import CONTEXT, render
 
@@ -65,7 +66,7 @@ class ImportReportDialog(QtWidgets.QDialog):
 
     def __init__(self, layer, parent=None) -> None:
         super().__init__(parent)
-        self.setWindowTitle(self.tr("Import report: {0}").format(layer.name))
+        self.setWindowTitle(self.tr("Import report: {0}").format(shown_name(layer.name)))
         rep = layer.meta.get("report", {})
         text = QtWidgets.QPlainTextEdit(readOnly=True)
         text.setPlainText(json.dumps(rep, indent=2, ensure_ascii=False, default=str))

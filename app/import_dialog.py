@@ -59,6 +59,35 @@ def origin_edit() -> QtWidgets.QLineEdit:
     return edit
 
 
+def field_labels() -> dict[str, str]:
+    """The mapping's fields as the dialogs label them, in the current language beside the
+    field's name ("经度 lon", as the errors name a missing column; English: the name),
+    operator test 6 (D-i18n-2)."""
+    return {
+        "sensor": QtCore.QCoreApplication.translate("FieldName", "sensor"),
+        "batch": QtCore.QCoreApplication.translate("FieldName", "batch"),
+        "time": QtCore.QCoreApplication.translate("FieldName", "time"),
+        "lon": QtCore.QCoreApplication.translate("FieldName", "lon"),
+        "lat": QtCore.QCoreApplication.translate("FieldName", "lat"),
+        "speed": QtCore.QCoreApplication.translate("FieldName", "speed"),
+        "course": QtCore.QCoreApplication.translate("FieldName", "course"),
+        "truth": QtCore.QCoreApplication.translate("FieldName", "truth"),
+        "east": QtCore.QCoreApplication.translate("FieldName", "east"),
+        "north": QtCore.QCoreApplication.translate("FieldName", "north"),
+        "east_offset": QtCore.QCoreApplication.translate("FieldName", "east_offset"),
+        "north_offset": QtCore.QCoreApplication.translate("FieldName", "north_offset"),
+        "range": QtCore.QCoreApplication.translate("FieldName", "range"),
+        "bearing": QtCore.QCoreApplication.translate("FieldName", "bearing"),
+        "gps_week": QtCore.QCoreApplication.translate("FieldName", "gps_week"),
+        "gps_seconds": QtCore.QCoreApplication.translate("FieldName", "gps_seconds"),
+        "target": QtCore.QCoreApplication.translate("FieldName", "target"),
+        "obs_lon": QtCore.QCoreApplication.translate("FieldName", "obs_lon"),
+        "obs_lat": QtCore.QCoreApplication.translate("FieldName", "obs_lat"),
+        "obs_east": QtCore.QCoreApplication.translate("FieldName", "obs_east"),
+        "obs_north": QtCore.QCoreApplication.translate("FieldName", "obs_north"),
+    }
+
+
 def mapping_group_of(
     fields: tuple[str, ...], changed
 ) -> tuple[dict[str, QtWidgets.QComboBox], QtWidgets.QGroupBox]:
@@ -67,11 +96,12 @@ def mapping_group_of(
     ``changed`` is called when one is changed."""
     boxes: dict[str, QtWidgets.QComboBox] = {}
     form = QtWidgets.QFormLayout()
+    labels = field_labels()
     for name in fields:
         box = QtWidgets.QComboBox()
         box.currentIndexChanged.connect(changed)
         boxes[name] = box
-        form.addRow(name, box)
+        form.addRow(labels.get(name, name), box)
     group = QtWidgets.QGroupBox(_tr("Column mapping"))
     group.setLayout(form)
     return boxes, group
@@ -445,7 +475,7 @@ class ImportDialog(QtWidgets.QDialog):
         if self._missing:  # no layout fits: the fields recognised are mapped, these are not
             problems.append(
                 self.tr("Required fields still without a column: {0}.").format(
-                    ", ".join(self._missing)
+                    ", ".join(field_labels().get(m, m) for m in self._missing)
                 )
             )
         elif (
@@ -465,6 +495,19 @@ class ImportDialog(QtWidgets.QDialog):
                 ).format(time_col)
             )
         self.warning_label.setText("\n".join(problems))
+        # OK only once every required field has a column (D-import-12): an OK pressed
+        # before failed in an error box that sent the operator back to a fresh dialog.
+        box = getattr(self, "buttons", None)  # (not made yet while the dialog builds)
+        ok = box.button(QtWidgets.QDialogButtonBox.StandardButton.Ok) if box else None
+        if ok is not None:
+            ok.setEnabled(not self._missing)
+            ok.setToolTip(
+                self.tr("Map a column to each required field first: {0}").format(
+                    ", ".join(field_labels().get(m, m) for m in self._missing)
+                )
+                if self._missing
+                else ""
+            )
 
     # -- result ------------------------------------------------------------------------
 

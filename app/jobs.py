@@ -16,6 +16,7 @@ from wakeline.app.core_text import shown
 from wakeline.app.dialogs import step_lines, summarize
 from wakeline.app.jobs_import import ImportJobsMixin
 from wakeline.app.jobs_project import ProjectJobsMixin
+from wakeline.app.layer_names import shown_name
 from wakeline.app.layer_view import prepare_view_apart
 from wakeline.app.worker import Cancelled, Failed, Finished, Progress, Started, new_job_number
 from wakeline.core.errors import InputError
@@ -159,7 +160,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         lid = self.session.step_input(layer.id)
         if lid != layer.id:
             layer = self.session.layers[lid]
-            self.log_message(self.tr("{0} runs on {1}").format(shown(step), layer.name))
+            self.log_message(self.tr("{0} runs on {1}").format(shown(step), shown_name(layer.name)))
         if step == "pipeline":
             pipe = self.pipeline()
 
@@ -187,7 +188,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             )
             return ("step", lid, prepared, views, params)
 
-        return self._start(step, job, (step, layer.name))
+        return self._start(step, job, (step, shown_name(layer.name)))
 
     def _apply_step(self, lid: str, result: StepResult, views: dict, params) -> None:
         if lid not in self.session.layers:
@@ -616,7 +617,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         elif kind == "step":
             _, lid, result, views, params = done
             self._apply_step(lid, result, views, params)
-            name = self.session.layers[lid].name if lid in self.session.layers else lid
+            name = shown_name(self.session.layers[lid].name) if lid in self.session.layers else lid
             self.log_lines(
                 self.tr("{0} on {1}").format(shown(result.step), name), step_lines(result)
             )
@@ -652,7 +653,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
 
             apply_fused(self, *done[1:])
         elif kind == "export":
-            self.log_message(self.tr("exported {0} to {1}").format(done[1], done[2]))
+            self.log_message(self.tr("exported {0} to {1}").format(shown_name(done[1]), done[2]))
             for warning in done[3] if len(done) > 3 else []:
                 self.log_message(f"{self.tr('Warning')}: {warning}")
             for note in done[4] if len(done) > 4 else []:

@@ -29,6 +29,7 @@ from wakeline.app.detail import DetailPanel
 from wakeline.app.dialogs import ImportReportDialog
 from wakeline.app.import_dialog import ImportDialog
 from wakeline.app.jobs import JobsMixin, preload
+from wakeline.app.layer_names import shown_name
 from wakeline.app.layer_view import LayerView, maneuver_table
 from wakeline.app.lod_worker import LodWorker
 from wakeline.app.map_canvas import MapCanvas
@@ -349,10 +350,11 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         if layer.kind == BEARING_KIND:
             self.stats.show_message(bearing_stats(layer, self.tr))
             return
-        head = [(self.tr("Layer"), f"{layer.name} [{layer.kind}]  ({layer.id})")]
+        head = [(self.tr("Layer"), f"{layer_text(layer)}  ({layer.id})")]
         if layer.parent:
             parent = self.session.get(layer.parent)
-            made = f"{layer.step} ← {parent.name if parent else layer.parent}, {layer.created}"
+            source = shown_name(parent.name) if parent else layer.parent
+            made = f"{shown(layer.step)} ← {source}, {layer.created}"
             head.append((self.tr("Made by"), made))
         head += self._result_rows(layer)
         tw = self.session.time_window

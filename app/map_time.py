@@ -19,6 +19,7 @@ import numpy as np
 import pyqtgraph as pg
 from PySide6 import QtCore
 
+from wakeline.app.layer_names import shown_name
 from wakeline.app.layer_view import is_part_of
 from wakeline.app.map_draw import Curve, DrawData, LayerGeometry, prepare_layer
 from wakeline.app.map_marks import MarkerItem, render_marks
@@ -471,7 +472,9 @@ class TimeController(QtCore.QObject):
             parts = view.extra.get("parts")
             sources = parts if parts is not None else [view.draw]
             cuts = view.extra.get("cuts", {})
-            for data, src in zip(map_layers(view, lid, layer.name), sources, strict=True):
+            for data, src in zip(
+                map_layers(view, lid, shown_name(layer.name)), sources, strict=True
+            ):
                 indexed = parts is None or src.name == "observer"
                 out[data.name] = (data, src, indexed, cuts.get(src.name) if parts else None)
         return out

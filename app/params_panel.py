@@ -180,6 +180,38 @@ class ParamsPanel(QtWidgets.QWidget):
         lay.addWidget(self.guidance)
         lay.addLayout(buttons)
 
+    @staticmethod
+    def field_titles() -> dict[str, str]:
+        """The parameters whose name is one English word, titled in the current language
+        beside that name ("启用 enabled"; English: the name), as the error messages name a
+        column ("经度 lon"); a name with an underscore is the parameter's identifier, as
+        on the command line and in a preset (operator test 6, D-i18n-2)."""
+        return {
+            "enabled": QtCore.QCoreApplication.translate("ParamName", "enabled"),
+            "steps": QtCore.QCoreApplication.translate("ParamName", "steps"),
+            "bridge": QtCore.QCoreApplication.translate("ParamName", "bridge"),
+            "window": QtCore.QCoreApplication.translate("ParamName", "window"),
+            "refine": QtCore.QCoreApplication.translate("ParamName", "refine"),
+            "alpha": QtCore.QCoreApplication.translate("ParamName", "alpha"),
+            "beta": QtCore.QCoreApplication.translate("ParamName", "beta"),
+            "gamma": QtCore.QCoreApplication.translate("ParamName", "gamma"),
+            "predict": QtCore.QCoreApplication.translate("ParamName", "predict"),
+            "gate": QtCore.QCoreApplication.translate("ParamName", "gate"),
+            "sigmas": QtCore.QCoreApplication.translate("ParamName", "sigmas"),
+            "margin": QtCore.QCoreApplication.translate("ParamName", "margin"),
+            "limit": QtCore.QCoreApplication.translate("ParamName", "limit"),
+            "pieces": QtCore.QCoreApplication.translate("ParamName", "pieces"),
+            "windows": QtCore.QCoreApplication.translate("ParamName", "windows"),
+            "method": QtCore.QCoreApplication.translate("ParamName", "method"),
+            "sigma": QtCore.QCoreApplication.translate("ParamName", "sigma"),
+            "mode": QtCore.QCoreApplication.translate("ParamName", "mode"),
+            "normalize": QtCore.QCoreApplication.translate("ParamName", "normalize"),
+            "stitch": QtCore.QCoreApplication.translate("ParamName", "stitch"),
+            "fill": QtCore.QCoreApplication.translate("ParamName", "fill"),
+            "distance": QtCore.QCoreApplication.translate("ParamName", "distance"),
+            "glr": QtCore.QCoreApplication.translate("ParamName", "glr"),
+        }
+
     def group_titles(self) -> dict[str, str]:
         """The tree's group titles in the current language, by group name (the pipeline
         steps of :data:`GROUPS`, ``clean`` and its rules)."""
@@ -208,11 +240,19 @@ class ParamsPanel(QtWidgets.QWidget):
 
     def retranslate(self) -> None:
         titles = self.group_titles()
+        fields = self.field_titles()
         for grp in self.root.children():
             grp.setOpts(title=titles.get(grp.name(), grp.opts.get("title")))
             for sub in grp.children():
                 if sub.hasChildren() and sub.name() in titles:
                     sub.setOpts(title=titles[sub.name()])
+        stack = [c for grp in self.root.children() for c in grp.children()]
+        while stack:  # a field named by one word: titled in the language now
+            item = stack.pop()
+            stack += item.children()
+            if item.name() in fields and item.name() not in titles:
+                if item.opts.get("title") != fields[item.name()]:
+                    item.setOpts(title=fields[item.name()])
         for button, text in zip(
             self.buttons,
             (self.tr("Save preset…"), self.tr("Load preset…"), self.tr("Defaults")),
@@ -242,6 +282,8 @@ class ParamsPanel(QtWidgets.QWidget):
             "steps": self.tr("steps"),
             "at-rest windows": self.tr("at-rest windows"),
             "deg": self.tr("deg"),
+            "sigma": self.tr("sigma"),
+            "windows": self.tr("windows"),
         }
 
     # -- values --------------------------------------------------------------------

@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
+from wakeline.app.layer_names import shown_name
 from wakeline.app.layer_view import is_part_of, map_layers, prepare_view_apart
 from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
@@ -33,14 +34,14 @@ def layer_text(layer: Layer) -> str:
         "fused": app.translate("MainWindow", "fused"),
         "bearing": app.translate("MainWindow", "bearing"),
     }
-    return f"{layer.name}  [{kinds.get(layer.kind, layer.kind)}]"
+    return f"{shown_name(layer.name)}  [{kinds.get(layer.kind, layer.kind)}]"
 
 
 def layer_tip(session, layer: Layer) -> str:
     """The Layers list's tooltip of a layer made from several (a fuse across layers): the
     name of every input, which its own name counts beyond the first two
     (:func:`wakeline.core.words.joined_names`); empty for others. Rich text, so Qt wraps it."""
-    names = [session.layers[i].name for i in layer.inputs if i in session.layers]
+    names = [shown_name(session.layers[i].name) for i in layer.inputs if i in session.layers]
     if len(names) < 2:
         return ""
     text = QtCore.QCoreApplication.translate("MainWindow", "Made from {0} layers: {1}").format(
@@ -251,7 +252,7 @@ class LayersMixin:
             lid = self._draw_queue.pop(0)
             layer = self.session.layers.get(lid)
             if layer is not None and lid in self.views:
-                drawn = map_layers(self.views[lid], lid, layer.name)
+                drawn = map_layers(self.views[lid], lid, shown_name(layer.name))
                 keep = {d.name for d in drawn}
                 for name in self.map_names(lid):  # a part the layer has no more
                     if name not in keep:

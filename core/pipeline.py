@@ -484,7 +484,7 @@ def _summary_associate(res: StepResult) -> Text:
             targets=rep["targets"],
             joins=rep["pairs_chosen"],
             candidates=rep["candidate_pairs"],
-            method=rep["method"],
+            method=option_word(rep["method"]),
         )
     ]
     if rep.get("mmsi_apart_pairs"):
@@ -606,6 +606,35 @@ def run_fuse(
     )
 
 
+#: The option values a summary names (associate's and fuse's method, fuse's distance and
+#: time_base), each a phrase so that the window says it in its language (operator test 6,
+#: D-i18n-2); the command line prints the value itself.
+_OPTION_WORDS = {
+    "optimal": phrase("optimal"),
+    "greedy": phrase("greedy"),
+    "sync": phrase("sync"),
+    "dtw": phrase("dtw"),
+    "dtw_whole": phrase("dtw_whole"),
+    "weight": phrase("weight"),
+    "densest": phrase("densest"),
+    "union": phrase("union"),
+}
+
+
+def option_word(value) -> "Text | str":
+    """``value`` (an option's value in a report) as a summary names it: a Text the window
+    translates when it is one of :data:`_OPTION_WORDS`, else the value as it is."""
+    word = _OPTION_WORDS.get(value) if isinstance(value, str) else None
+    return Text([word]) if word is not None else value
+
+
+def _and_names(names: list[str]) -> "Text | str":
+    """Names joined as a sentence does ("AIS and radar", "A, B and C"), the "and" a phrase."""
+    if len(names) < 2:
+        return "".join(names)
+    return Text([phrase("{first} and {last}", first=", ".join(names[:-1]), last=names[-1])])
+
+
 def _summary_fuse(res: StepResult) -> Text:
     rep = res.report
     parts = [
@@ -617,8 +646,8 @@ def _summary_fuse(res: StepResult) -> Text:
             targets=rep["targets"],
             pairs=rep["pairs_chosen"],
             candidates=rep["candidate_pairs"],
-            distance=rep["distance"],
-            method=rep["method"],
+            distance=option_word(rep["distance"]),
+            method=option_word(rep["method"]),
             fused=rep["fused_points"],
         )
     ]
@@ -660,12 +689,12 @@ def _time_base_phrases(rep: dict) -> list[Phrase]:
             else phrase("{sensor}'s times", sensor=name)
         )
     else:
-        on = phrase("the times of {sensors}", sensors=" and ".join(sorted(base)))
+        on = phrase("the times of {sensors}", sensors=_and_names(sorted(base)))
     dropped = rep.get("not_kept") or {}
     if not dropped:
         return [phrase("; fused on {on}", on=Text([on]))]
     lost = " + ".join(f"{n:,} {s}" for s, n in sorted(dropped.items()))
-    values = {"on": Text([on]), "rule": rep["time_base"], "lost": lost}
+    values = {"on": Text([on]), "rule": option_word(rep["time_base"]), "lost": lost}
     if sum(dropped.values()) == 1:
         return [
             phrase(

@@ -32,6 +32,10 @@
         <translation>（来自决策日志中的 {0} 步，含撤销与重做）</translation>
     </message>
     <message>
+        <source>Main toolbar</source>
+        <translation>主工具栏</translation>
+    </message>
+    <message>
         <source>the settings' pipeline stage {0} is not one of Run ▸ Pipeline stages (clean, compress, associate); dropped</source>
         <translation>设置中的流程步骤 {0} 不属于“运行 ▸ 流程步骤”（清洗、压缩、关联）；已舍弃</translation>
     </message>
@@ -735,6 +739,14 @@
 <context>
     <name>ParamsPanel</name>
     <message>
+        <source>sigma</source>
+        <translation>倍标准差</translation>
+    </message>
+    <message>
+        <source>windows</source>
+        <translation>个窗口</translation>
+    </message>
+    <message>
         <source>Save preset…</source>
         <translation>保存预设…</translation>
     </message>
@@ -1007,6 +1019,10 @@
 </context>
 <context>
     <name>ImportDialog</name>
+    <message>
+        <source>Map a column to each required field first: {0}</source>
+        <translation>请先为每个必填字段指定列：{0}</translation>
+    </message>
     <message>
         <source>Lines above the header</source>
         <translation>表头上方的行数</translation>
@@ -1974,6 +1990,42 @@
 <context>
     <name>Summary</name>
     <message>
+        <source>optimal</source>
+        <translation>最优</translation>
+    </message>
+    <message>
+        <source>greedy</source>
+        <translation>贪心</translation>
+    </message>
+    <message>
+        <source>sync</source>
+        <translation>同步距离</translation>
+    </message>
+    <message>
+        <source>dtw</source>
+        <translation>DTW</translation>
+    </message>
+    <message>
+        <source>dtw_whole</source>
+        <translation>整航迹 DTW</translation>
+    </message>
+    <message>
+        <source>weight</source>
+        <translation>权重</translation>
+    </message>
+    <message>
+        <source>densest</source>
+        <translation>最密</translation>
+    </message>
+    <message>
+        <source>union</source>
+        <translation>并集</translation>
+    </message>
+    <message>
+        <source>{first} and {last}</source>
+        <translation>{first} 和 {last}</translation>
+    </message>
+    <message>
         <source>{rows:#row} in {tracks:#track} ({label}, {encoding}); {quarantined:,} quarantined</source>
         <translation>{rows:,} 行，{tracks:,} 条航迹（{label}，{encoding}）；隔离 {quarantined:,} 行</translation>
     </message>
@@ -2103,7 +2155,7 @@
     </message>
     <message>
         <source>; fused on every sensor's times (time_base union)</source>
-        <translation>；融合于所有传感器的时刻（time_base union）</translation>
+        <translation>；融合于所有传感器的时刻（time_base：并集）</translation>
     </message>
     <message>
         <source>{sensor}'s {dt:g} s times</source>
@@ -2123,11 +2175,11 @@
     </message>
     <message>
         <source>; fused on {on} (time_base {rule}): {lost} fix between them not kept (--time-base union keeps it)</source>
-        <translation>；融合于{on}（time_base {rule}）：其间 {lost} 的定位点未保留（--time-base union 可保留）</translation>
+        <translation>；融合于{on}（time_base：{rule}）：其间 {lost} 的定位点未保留（在参数面板中把多源融合的 time_base 设为 union（并集）可保留）</translation>
     </message>
     <message>
         <source>; fused on {on} (time_base {rule}): {lost} fixes between them not kept (--time-base union keeps them)</source>
-        <translation>；融合于{on}（time_base {rule}）：其间 {lost} 的定位点未保留（--time-base union 可保留）</translation>
+        <translation>；融合于{on}（time_base：{rule}）：其间 {lost} 的定位点未保留（在参数面板中把多源融合的 time_base 设为 union（并集）可保留）</translation>
     </message>
     <message>
         <source>; {rows:#row} repeating the time and place of the row before set aside</source>
@@ -2236,6 +2288,254 @@
     <message>
         <source> (the nearest {nearest:,.0f} m apart on average: raise max_distance_m with --set if the sensors are that noisy)</source>
         <translation>（最近的一对平均相距 {nearest:,.0f} 米：若传感器噪声这么大，请在参数面板中调大 max_distance_m）</translation>
+    </message>
+</context>
+<context>
+    <name>LayerName</name>
+    <message>
+        <source>cleaned</source>
+        <translation>已清洗</translation>
+    </message>
+    <message>
+        <source>maneuvers</source>
+        <translation>机动点</translation>
+    </message>
+    <message>
+        <source>compressed</source>
+        <translation>已压缩</translation>
+    </message>
+    <message>
+        <source>associated</source>
+        <translation>已关联</translation>
+    </message>
+    <message>
+        <source>stitched</source>
+        <translation>已拼接</translation>
+    </message>
+    <message>
+        <source>fused</source>
+        <translation>已融合</translation>
+    </message>
+    <message>
+        <source>clean</source>
+        <translation>清洗</translation>
+    </message>
+    <message>
+        <source>compress</source>
+        <translation>压缩</translation>
+    </message>
+    <message>
+        <source>associate</source>
+        <translation>单源关联</translation>
+    </message>
+    <message>
+        <source>fuse</source>
+        <translation>多源融合</translation>
+    </message>
+    <message>
+        <source>pipeline</source>
+        <translation>流程</translation>
+    </message>
+    <message>
+        <source>reviewed</source>
+        <translation>已审核</translation>
+    </message>
+    <message>
+        <source>{0} ({1})</source>
+        <translation>{0}（{1}）</translation>
+    </message>
+    <message>
+        <source>{0} and {1} more</source>
+        <translation>{0} 等另 {1} 个</translation>
+    </message>
+</context>
+<context>
+    <name>ParamName</name>
+    <message>
+        <source>enabled</source>
+        <translation>启用 enabled</translation>
+    </message>
+    <message>
+        <source>steps</source>
+        <translation>步骤 steps</translation>
+    </message>
+    <message>
+        <source>bridge</source>
+        <translation>桥接 bridge</translation>
+    </message>
+    <message>
+        <source>window</source>
+        <translation>窗口 window</translation>
+    </message>
+    <message>
+        <source>refine</source>
+        <translation>细化 refine</translation>
+    </message>
+    <message>
+        <source>alpha</source>
+        <translation>系数 alpha</translation>
+    </message>
+    <message>
+        <source>beta</source>
+        <translation>系数 beta</translation>
+    </message>
+    <message>
+        <source>gamma</source>
+        <translation>系数 gamma</translation>
+    </message>
+    <message>
+        <source>predict</source>
+        <translation>预测 predict</translation>
+    </message>
+    <message>
+        <source>gate</source>
+        <translation>波门 gate</translation>
+    </message>
+    <message>
+        <source>sigmas</source>
+        <translation>标准差倍数 sigmas</translation>
+    </message>
+    <message>
+        <source>margin</source>
+        <translation>余量 margin</translation>
+    </message>
+    <message>
+        <source>limit</source>
+        <translation>上限 limit</translation>
+    </message>
+    <message>
+        <source>pieces</source>
+        <translation>分段数 pieces</translation>
+    </message>
+    <message>
+        <source>windows</source>
+        <translation>窗口数 windows</translation>
+    </message>
+    <message>
+        <source>method</source>
+        <translation>方法 method</translation>
+    </message>
+    <message>
+        <source>sigma</source>
+        <translation>标准差 sigma</translation>
+    </message>
+    <message>
+        <source>mode</source>
+        <translation>模式 mode</translation>
+    </message>
+    <message>
+        <source>normalize</source>
+        <translation>归一化 normalize</translation>
+    </message>
+    <message>
+        <source>stitch</source>
+        <translation>拼接 stitch</translation>
+    </message>
+    <message>
+        <source>fill</source>
+        <translation>填补 fill</translation>
+    </message>
+    <message>
+        <source>distance</source>
+        <translation>距离 distance</translation>
+    </message>
+    <message>
+        <source>glr</source>
+        <translation>广义似然比 glr</translation>
+    </message>
+</context>
+<context>
+    <name>GraphicsScene</name>
+    <message>
+        <source>Export...</source>
+        <translation>导出…</translation>
+    </message>
+</context>
+<context>
+    <name>FieldName</name>
+    <message>
+        <source>sensor</source>
+        <translation>传感器 sensor</translation>
+    </message>
+    <message>
+        <source>batch</source>
+        <translation>批号 batch</translation>
+    </message>
+    <message>
+        <source>time</source>
+        <translation>时间 time</translation>
+    </message>
+    <message>
+        <source>lon</source>
+        <translation>经度 lon</translation>
+    </message>
+    <message>
+        <source>lat</source>
+        <translation>纬度 lat</translation>
+    </message>
+    <message>
+        <source>speed</source>
+        <translation>航速 speed</translation>
+    </message>
+    <message>
+        <source>course</source>
+        <translation>航向 course</translation>
+    </message>
+    <message>
+        <source>truth</source>
+        <translation>真值 truth</translation>
+    </message>
+    <message>
+        <source>east</source>
+        <translation>东向坐标 east</translation>
+    </message>
+    <message>
+        <source>north</source>
+        <translation>北向坐标 north</translation>
+    </message>
+    <message>
+        <source>east_offset</source>
+        <translation>东向偏移 east_offset</translation>
+    </message>
+    <message>
+        <source>north_offset</source>
+        <translation>北向偏移 north_offset</translation>
+    </message>
+    <message>
+        <source>range</source>
+        <translation>距离 range</translation>
+    </message>
+    <message>
+        <source>bearing</source>
+        <translation>方位 bearing</translation>
+    </message>
+    <message>
+        <source>gps_week</source>
+        <translation>GPS 周 gps_week</translation>
+    </message>
+    <message>
+        <source>gps_seconds</source>
+        <translation>GPS 周内秒 gps_seconds</translation>
+    </message>
+    <message>
+        <source>target</source>
+        <translation>目标 target</translation>
+    </message>
+    <message>
+        <source>obs_lon</source>
+        <translation>观测站经度 obs_lon</translation>
+    </message>
+    <message>
+        <source>obs_lat</source>
+        <translation>观测站纬度 obs_lat</translation>
+    </message>
+    <message>
+        <source>obs_east</source>
+        <translation>观测站东向坐标 obs_east</translation>
+    </message>
+    <message>
+        <source>obs_north</source>
+        <translation>观测站北向坐标 obs_north</translation>
     </message>
 </context>
 <context>
