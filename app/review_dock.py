@@ -33,7 +33,7 @@ from wakeline.app.review_map import (
 )
 from wakeline.app.review_model import queue_digest
 from wakeline.app.review_panel import ReviewPanel
-from wakeline.app.review_sync import ProjectDecisions, ReviewSync, fuse_selected
+from wakeline.app.review_sync import ProjectDecisions, ReviewSync, fuse_active, fuse_selected
 from wakeline.app.review_undo import ReviewController
 from wakeline.app.review_views import GanttView, NetworkView
 from wakeline.app.time_panel import link_gantt
@@ -387,7 +387,7 @@ class ReviewDock(QtCore.QObject):
         if len(self.w.layer_list.selectedItems()) >= 2:
             fuse_selected(self.w)
         else:
-            self.w.run_step("fuse")
+            fuse_active(self.w)
 
     def _undo_note(self, *_args) -> None:
         """Edit ▸ Undo says why it has nothing to undo in the queue of a re-run: a step

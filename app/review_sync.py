@@ -201,6 +201,66 @@ class ReviewSync(QtCore.QObject):
             self.export(Path(path), bom=True, log=True)
 
 
+def fuse_partners(w, lid: str) -> list[str]:
+    """The loaded track layers ``lid`` could be fused with: those of other files (no
+    source layer shared, no layer made from several), in the Layers list's order."""
+    from wakeline.core.session import BEARING_KIND
+
+    mine = w.session.sources_of(lid)
+    out = []
+    for r in range(w.layer_list.count()):
+        other = w.layer_list.item(r).data(QtCore.Qt.ItemDataRole.UserRole)
+        layer = w.session.layers.get(other)
+        if layer is None or other == lid or layer.kind == BEARING_KIND or layer.inputs:
+            continue
+        if not (w.session.sources_of(other) & mine):
+            out.append(other)
+    return out
+
+
+def fuse_active(w) -> int | None:
+    """Run ▸ Fuse on one layer (operator test 6, D-gui-4): the fuse step on the active
+    layer when it holds two sensors or more; when it holds one, the offer to fuse it with
+    another loaded file's layer (Run ▸ Fuse selected layers on the two), or, with none
+    loaded or the offer declined, the way to fuse files (select two or more layers)."""
+    from wakeline.app.layer_names import shown_name
+    from wakeline.core.session import BEARING_KIND
+
+    layer = w.active_layer()
+    if layer is None or layer.kind == BEARING_KIND or "sensor" not in layer.points.columns:
+        return w.run_step("fuse")
+    sensors = [str(s) for s in layer.points["sensor"].unique()]
+    if len(sensors) >= 2:
+        return w.run_step("fuse")
+    title = tr("Fuse")
+    one = tr("Fuse needs tracks of two sensors or more: {0} holds only {1}.").format(
+        shown_name(layer.name), ", ".join(sensors) or "—"
+    )
+    how = tr(
+        "To fuse files (e.g. radar and AIS), select two or more layers in the Layers list "
+        "(Ctrl+click) and choose Run ▸ Fuse selected layers."
+    )
+    partners = fuse_partners(w, layer.id)
+    if partners:
+        names = [shown_name(w.session.layers[i].name) for i in partners]
+        if len(partners) == 1:
+            answer = QtWidgets.QMessageBox.question(
+                w, title, one + "\n\n" + tr("Fuse it with {0}?").format(names[0])
+            )
+            if answer == QtWidgets.QMessageBox.StandardButton.Yes:
+                return fuse_selected(w, [layer.id, partners[0]])
+        else:
+            name, ok = QtWidgets.QInputDialog.getItem(
+                w, title, one + "\n\n" + tr("Fuse it with:"), names, 0, False
+            )
+            if ok and name in names:
+                return fuse_selected(w, [layer.id, partners[names.index(name)]])
+        w.log_message(f"{one} {how}")
+        return None
+    QtWidgets.QMessageBox.information(w, title, one + "\n\n" + how)
+    return None
+
+
 def fuse_selected(w, ids: list[str] | None = None) -> int | None:
     """Run ▸ Fuse selected layers: the registry's fuse step on the selected layers'
     points combined (:func:`wakeline.core.review.combine_sources`, named by file stem as

@@ -1784,6 +1784,26 @@
         <translation>{0}（审核后的航迹）</translation>
     </message>
     <message>
+        <source>Fuse</source>
+        <translation>多源融合</translation>
+    </message>
+    <message>
+        <source>Fuse needs tracks of two sensors or more: {0} holds only {1}.</source>
+        <translation>多源融合需要至少两个传感器的航迹：{0} 只有 {1}。</translation>
+    </message>
+    <message>
+        <source>To fuse files (e.g. radar and AIS), select two or more layers in the Layers list (Ctrl+click) and choose Run ▸ Fuse selected layers.</source>
+        <translation>要融合多个文件（如雷达和 AIS），请在图层列表中选择两个或以上图层（Ctrl+单击），再选择 运行 ▸ 融合所选图层。</translation>
+    </message>
+    <message>
+        <source>Fuse it with {0}?</source>
+        <translation>与 {0} 融合吗？</translation>
+    </message>
+    <message>
+        <source>Fuse it with:</source>
+        <translation>与以下图层融合：</translation>
+    </message>
+    <message>
         <source>{0} on {1}</source>
         <translation>{1} 上的 {0}</translation>
     </message>
