@@ -162,7 +162,7 @@ def retranslate(w) -> None:
         "file": tr("&File"),
         "export": tr("&Export"),
         "run": tr("&Run"),
-        "stages": tr("Pipeline &stages"),
+        "stages": tr("Pipeline s&tages"),
         "view": tr("&View"),
         "lang": tr("&Language"),
     }

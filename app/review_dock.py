@@ -243,7 +243,7 @@ class ReviewDock(QtCore.QObject):
         self.split.addWidget(w.canvas)
         self.before.hide()
         self._linking = False
-        self.act_before = QtGui.QAction(tr("&Before/after map (linked)"), w, checkable=True)
+        self.act_before = QtGui.QAction(tr("Before/after &map (linked)"), w, checkable=True)
         self.act_before.toggled.connect(self.show_before)
         self._before_layers: list[str] = []
         self._build_menus()
@@ -322,7 +322,7 @@ class ReviewDock(QtCore.QObject):
             signal.connect(self._undo_note)
         self.edit_menu.addActions([self.act_undo, self.act_redo])
         bar.insertMenu(w.menus["run"].menuAction(), self.edit_menu)
-        self.review_menu = QtWidgets.QMenu(tr("Re&view"), w)
+        self.review_menu = QtWidgets.QMenu(tr("Revie&w"), w)
         self.review_actions: dict[str, QtGui.QAction] = {}
         texts = review_texts()
         for name, key, method in REVIEW_KEYS:
@@ -341,7 +341,7 @@ class ReviewDock(QtCore.QObject):
         for widget in (self.dock, w.canvas, self.before):
             widget.addActions(list(self.review_actions.values()))
         w.addActions([self.act_undo, self.act_redo])
-        self.act_fuse = QtGui.QAction(tr("Fuse &selected layers (two or more)"), w)
+        self.act_fuse = QtGui.QAction(tr("Fuse selected la&yers (two or more)"), w)
         self.act_fuse.triggered.connect(lambda: fuse_selected(w))
         w.menus["run"].insertAction(w.actions_["save_pipeline"], self.act_fuse)
         # Run ▸ Fuse with two or more layers selected fuses those layers.
@@ -367,12 +367,12 @@ class ReviewDock(QtCore.QObject):
             if shiboken6.isValid(bound.controller.stack):
                 bound.controller.retranslate()
         self._undo_note()
-        self.review_menu.setTitle(tr("Re&view"))
+        self.review_menu.setTitle(tr("Revie&w"))
         self.join.retranslate()
         for name, text in review_texts().items():
             self.review_actions[name].setText(text)
-        self.act_fuse.setText(tr("Fuse &selected layers (two or more)"))
-        self.act_before.setText(tr("&Before/after map (linked)"))
+        self.act_fuse.setText(tr("Fuse selected la&yers (two or more)"))
+        self.act_before.setText(tr("Before/after &map (linked)"))
         self.act_export.setText(tr("&Reviewed tracks (decisions honoured)…"))
         self.act_export_log.setText(tr("&Decision log…"))
         # Built before the window's first language was set: the dock's title (its tab)

@@ -80,8 +80,8 @@
         <translation>流程中的 {0} 步骤不由“运行 ▸ 流程”执行（清洗、压缩、关联）；其参数已载入</translation>
     </message>
     <message>
-        <source>Pipeline &amp;stages</source>
-        <translation>流程步骤(&amp;S)</translation>
+        <source>Pipeline s&amp;tages</source>
+        <translation>流程步骤(&amp;T)</translation>
     </message>
     <message>
         <source>&amp;Associate (one sensor; proposals to review)</source>
@@ -1705,8 +1705,8 @@
         <translation>合并所选行(&amp;M)</translation>
     </message>
     <message>
-        <source>&amp;Before/after map (linked)</source>
-        <translation>前后对照地图（联动）(&amp;B)</translation>
+        <source>Before/after &amp;map (linked)</source>
+        <translation>前后对照地图（联动）(&amp;M)</translation>
     </message>
     <message>
         <source>&amp;Decision log…</source>
@@ -1741,16 +1741,16 @@
         <translation>错误</translation>
     </message>
     <message>
-        <source>Fuse &amp;selected layers (two or more)</source>
-        <translation>融合所选图层（两个或以上）(&amp;S)</translation>
+        <source>Fuse selected la&amp;yers (two or more)</source>
+        <translation>融合所选图层（两个或以上）(&amp;Y)</translation>
     </message>
     <message>
         <source>No proposals: run Associate or Fuse on a layer.</source>
         <translation>没有候选：请对图层运行关联或融合。</translation>
     </message>
     <message>
-        <source>Re&amp;view</source>
-        <translation>审核(&amp;V)</translation>
+        <source>Revie&amp;w</source>
+        <translation>审核(&amp;W)</translation>
     </message>
     <message>
         <source>Review</source>
