@@ -26,7 +26,10 @@ def _cmd_gui(args: argparse.Namespace) -> int:
         raise InputError(f"the desktop application cannot start: {exc}") from None
     from wakeline.app.cli_steps import read_options
 
-    return run(args.files, screenshot=args.screenshot, read=read_options(args, given=True))
+    language = {"language": args.language} if args.language else {}
+    return run(
+        args.files, screenshot=args.screenshot, read=read_options(args, given=True), **language
+    )
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -64,6 +67,12 @@ def build_parser() -> argparse.ArgumentParser:
         type=Path,
         metavar="PNG",
         help="load, render the main window at 1400x900 to PNG and exit",
+    )
+    p.add_argument(
+        "--language",
+        choices=("en", "zh_CN"),
+        help="the window's language (default: the one last chosen in the Language menu, "
+        "else the system's, $LANG; a --screenshot: the system's)",
     )
     from wakeline.app.cli_steps import add_read_flags
 

@@ -9,6 +9,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app import i18n
 from wakeline.app.main_window import MainWindow
 from wakeline.resources import demo_path, resource_path
 
@@ -72,13 +73,20 @@ def freeze_startup_objects() -> None:
 
 
 def run(
-    files: list[Path] | None = None, screenshot: Path | None = None, read: dict | None = None
+    files: list[Path] | None = None,
+    screenshot: Path | None = None,
+    read: dict | None = None,
+    language: str | None = None,
 ) -> int:
     """Open the main window on ``files`` (default: the demo scene), read with ``read``
     (``read_points`` keywords: the command line's reading flags, e.g. ``origin``).
 
     With ``screenshot``: load, run the default pipeline (clean, maneuvers, compress) on
     the first file, render the window at 1400×900 to that PNG and return.
+
+    ``language`` (``en``, ``zh_CN``): the window's; None: the saved choice, or the
+    system's ($LANG) — a screenshot the system's, so that it shows what the operator sees
+    (operator test 6, D-gui-5; tests give it).
     """
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
     app.setApplicationName("Wakeline")
@@ -92,7 +100,10 @@ def run(
             str(Path(scratch) / "settings.ini"), QtCore.QSettings.Format.IniFormat
         )
         settings.clear()
-        settings.setValue("language", "en")
+        settings.setValue("language", language or i18n.system_language())
+    elif language:  # the interactive window: as if chosen in the Language menu
+        settings = QtCore.QSettings("Wakeline", "Wakeline")
+        settings.setValue("language", language)
     window = MainWindow(settings)
     window.interactive = screenshot is None  # no modal dialogs while making a screenshot
     window.resize(1400, 900)

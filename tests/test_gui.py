@@ -859,7 +859,7 @@ def _main_windows() -> int:
 def test_screenshot_runs_the_pipeline(qapp, tmp_path):
     png = tmp_path / "shot.png"
     before = _main_windows()
-    assert run([demo_path()], screenshot=png) == 0
+    assert run([demo_path()], screenshot=png, language="en") == 0
     # Its window is deleted before run() returns (a test with no qtbot has no teardown
     # that would end it; it lived on into later tests).
     assert _main_windows() == before
@@ -1205,7 +1205,7 @@ def test_screenshot_of_a_file_that_does_not_load_ends_with_an_error(qtbot, tmp_p
     empty = tmp_path / "empty.csv"
     empty.write_text("")
     started = time.perf_counter()
-    assert run([empty], screenshot=tmp_path / "x.png") == 2
+    assert run([empty], screenshot=tmp_path / "x.png", language="en") == 2
     assert time.perf_counter() - started < 60
     assert "the file is empty" in capsys.readouterr().err
 
