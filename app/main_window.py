@@ -40,7 +40,7 @@ from wakeline.app.review_dock import ReviewDock
 from wakeline.app.stats_panel import StatsPanel, points_text, tracks_text
 from wakeline.app.time_panel import install_time
 from wakeline.app.view_keeper import MapViewKeeper
-from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
+from wakeline.app.window_layers import EMPTY, LayersMixin, kind_text, layer_text
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
@@ -350,7 +350,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         if layer.kind == BEARING_KIND:
             self.stats.show_message(bearing_stats(layer, self.tr))
             return
-        head = [(self.tr("Layer"), f"{layer_text(layer)}  ({layer.id})")]
+        name = f"{shown_name(layer.name)} [{kind_text(layer.kind)}]"
+        head = [(self.tr("Layer"), f"{name}  ({layer.id})")]
         if layer.parent:
             parent = self.session.get(layer.parent)
             source = shown_name(parent.name) if parent else layer.parent

@@ -210,6 +210,10 @@ class StatsPanel(QtWidgets.QWidget):
         self.table.horizontalHeader().setStretchLastSection(True)
         self.table.setEditTriggers(QtWidgets.QAbstractItemView.EditTrigger.NoEditTriggers)
         self.table.setWordWrap(False)
+        # A long layer name or figure keeps both ends (the name's end is what differs
+        # between a layer and the next: "scene.csv · cleaned · compressed"); the tooltip
+        # holds the whole (operator test 6, D-stats-1).
+        self.table.setTextElideMode(QtCore.Qt.TextElideMode.ElideMiddle)
         self.table.verticalHeader().setDefaultSectionSize(self.table.fontMetrics().height() + 4)
         self.hist = pg.PlotWidget(background="w")
         self.hist.setMouseEnabled(x=False, y=False)
@@ -258,6 +262,23 @@ class StatsPanel(QtWidgets.QWidget):
     def busy(self) -> bool:
         """A job is running or waiting."""
         return self._busy or self._waiting is not None
+
+    #: The share of the table's width the labels may take at most (their text elided in
+    #: the middle beyond it): a long label left the values a few characters.
+    LABEL_SHARE = 0.45
+
+    def fit_label_column(self) -> None:
+        """The labels' column as wide as its texts, at most :data:`LABEL_SHARE` of the
+        table; the values take the rest."""
+        self.table.resizeColumnToContents(0)
+        cap = max(60, int(self.table.viewport().width() * self.LABEL_SHARE))
+        if self.table.columnWidth(0) > cap:
+            self.table.setColumnWidth(0, cap)
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().resizeEvent(event)
+        if self.table.rowCount():
+            self.fit_label_column()
 
     def show_message(self, text: str) -> None:
         """Text instead of figures (no layer; a bearing layer's summary)."""
@@ -352,7 +373,7 @@ class StatsPanel(QtWidgets.QWidget):
                 item = QtWidgets.QTableWidgetItem(text)
                 item.setToolTip(text)
                 self.table.setItem(i, j, item)
-        self.table.resizeColumnToContents(0)
+        self.fit_label_column()
         s = self.stats
         div, unit = duration_unit(float(s.hist_edges_s[-1]) if len(s.hist_edges_s) else 0.0)
         edges = s.hist_edges_s / div

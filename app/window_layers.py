@@ -24,6 +24,11 @@ from wakeline.core.session import BEARING_KIND, Layer
 def layer_text(layer: Layer) -> str:
     """A layer's line in the Layers list: its name and its kind in the window's language
     ("scene.csv  [source]", zh_CN "scene.csv  [源数据]")."""
+    return f"{shown_name(layer.name)}  [{kind_text(layer.kind)}]"
+
+
+def kind_text(kind: str) -> str:
+    """A layer's kind in the window's language ("source", zh_CN "源数据")."""
     app = QtCore.QCoreApplication
     kinds = {
         "source": app.translate("MainWindow", "source"),
@@ -34,7 +39,7 @@ def layer_text(layer: Layer) -> str:
         "fused": app.translate("MainWindow", "fused"),
         "bearing": app.translate("MainWindow", "bearing"),
     }
-    return f"{shown_name(layer.name)}  [{kinds.get(layer.kind, layer.kind)}]"
+    return kinds.get(kind, kind)
 
 
 def layer_tip(session, layer: Layer) -> str:
