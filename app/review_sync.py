@@ -267,6 +267,7 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
     the command line names its files), in the worker; the result's lineage lists every
     input layer."""
     from wakeline.app.jobs import _prepared
+    from wakeline.app.layer_names import shown_name
     from wakeline.core.progress import sub_progress
 
     if ids is None:
@@ -335,6 +336,17 @@ def fuse_selected(w, ids: list[str] | None = None) -> int | None:
         )
         return ("fuse_layers", ids, prepared, views, params)
 
+    renamed = [
+        tr("{0}: {1} → {2}").format(shown_name(layers[i].name), *new)
+        for i, new in zip(ids, R.sensor_renames(named), strict=True)
+        if new is not None
+    ]
+    if renamed:  # one name per sensor between the source layers and the fused one
+        w.log_message(
+            tr("Sensors of one name in several files fuse as the files' names: {0}").format(
+                "; ".join(renamed)
+            )
+        )
     names = joined_names(n for n, _ in named)
     return w._start("fuse", job, ("fuse", names))
 
@@ -352,5 +364,8 @@ def apply_fused(w, ids: list[str], result, views: dict, params) -> None:
         w.session.apply_result(ids[0], result, params, inputs=ids)
     finally:
         w._pending_views = {}
-    names = " + ".join(w.session.layers[i].name for i in ids)
-    w.log_lines(tr("{0} on {1}").format("fuse", names), step_lines(result))
+    from wakeline.app.core_text import shown
+    from wakeline.app.layer_names import shown_name
+
+    names = " + ".join(shown_name(w.session.layers[i].name) for i in ids)
+    w.log_lines(tr("{0} on {1}").format(shown("fuse"), names), step_lines(result))

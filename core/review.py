@@ -965,21 +965,32 @@ def combine_sources(named: list[tuple[str, pd.DataFrame]]) -> pd.DataFrame:
     """
     if not named:
         raise InputError("no input to combine")
+    renamed = sensor_renames(named)
+    out = []
+    for (_, df), new in zip(named, renamed, strict=True):
+        if new is not None:
+            df = df.copy()
+            df["sensor"] = new[1]
+        out.append(df)
+    both = pd.concat(out, ignore_index=True)
+    return both
+
+
+def sensor_renames(named: list[tuple[str, pd.DataFrame]]) -> list[tuple[str, str] | None]:
+    """Per source of :func:`combine_sources`: ``(old, new)`` when its one sensor is
+    renamed after the differing part of its name (its sensor's name clashes with another
+    source's), else None — the window says so, so that a source layer's "S1" and the
+    fused layer's "AIS" read as one sensor (operator test 6, D-gui-6)."""
     sensors = [set(df["sensor"].astype(str).unique()) for _, df in named]
     seen: dict[str, int] = {}
     for s in sensors:
         for x in s:
             seen[x] = seen.get(x, 0) + 1
-    clash = [len(s) == 1 and seen[next(iter(s))] > 1 for s in sensors]
     names = _distinct_parts([n for n, _ in named])
-    out = []
-    for (_, df), bad, new in zip(named, clash, names, strict=True):
-        if bad:
-            df = df.copy()
-            df["sensor"] = new
-        out.append(df)
-    both = pd.concat(out, ignore_index=True)
-    return both
+    return [
+        (next(iter(s)), new) if len(s) == 1 and seen[next(iter(s))] > 1 else None
+        for s, new in zip(sensors, names, strict=True)
+    ]
 
 
 def source_names(names: list[str], paths: list[str | None]) -> list[str]:

@@ -60,6 +60,11 @@ def test_fuse_on_one_sensor_offers_the_other_file_and_fuses_both(qtbot, tmp_path
         fused = [lay for lay in w.session.layers.values() if lay.kind == "fused"]
         assert len(fused) == 1 and set(fused[0].inputs) == {ais, radar}, fused
         assert len(fused[0].points) > 0
+        # D-gui-6: the fused tracks are named by the files' names ("ais:3"); the log says
+        # which source layer's S1 each name is
+        log = w.log.toPlainText()
+        assert "console_ais.csv: S1 → ais" in log and "console_radar.csv: S1 → radar" in log, log
+        assert "fuse on console_ais.csv + console_radar.csv" in log, log
     finally:
         w.close()
 

@@ -1784,6 +1784,14 @@
         <translation>{0}（审核后的航迹）</translation>
     </message>
     <message>
+        <source>{0}: {1} → {2}</source>
+        <translation>{0}：{1} → {2}</translation>
+    </message>
+    <message>
+        <source>Sensors of one name in several files fuse as the files&apos; names: {0}</source>
+        <translation>多个文件中同名的传感器按文件名区分后融合：{0}</translation>
+    </message>
+    <message>
         <source>Fuse</source>
         <translation>多源融合</translation>
     </message>
