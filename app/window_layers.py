@@ -55,6 +55,11 @@ def layer_tip(session, layer: Layer) -> str:
     return f"<p>{html.escape(text)}</p>"
 
 
+def _relabelled(text: str, old: str, new: str) -> str:
+    """A legend label drawn with a layer's name ``old`` (one language) with ``new``."""
+    return new + text[len(old) :] if text.startswith(old) else text
+
+
 #: Between two pieces of drawing work: a real timer (not a zero-delay call), so the map's
 #: paint of one piece and the next piece fall in different event-loop turns.
 STEP_MS = 5
@@ -89,6 +94,17 @@ class LayersMixin:
             if layer is not None and layer.kind == BEARING_KIND:
                 rename = functools.partial(reworded, part=part, words=words)
                 self.canvas.relabel_layer(name, rename)
+        # A layer's name's step words (D-i18n-2): the label it was drawn with, said anew.
+        drawn = getattr(self, "_drawn_labels", {})
+        for lid, old in list(drawn.items()):
+            layer = self.session.layers.get(lid)
+            if layer is None:
+                del drawn[lid]
+                continue
+            new = shown_name(layer.name)
+            if old and new != old and lid in self.canvas.layer_names():
+                self.canvas.relabel_layer(lid, functools.partial(_relabelled, old=old, new=new))
+                drawn[lid] = new
 
     def colors_in_use(self, exclude: Iterable[str] = ()) -> tuple[set[str], set[str]]:
         """The colours the layers are drawn in: those of the visible layers and those of
@@ -257,7 +273,11 @@ class LayersMixin:
             lid = self._draw_queue.pop(0)
             layer = self.session.layers.get(lid)
             if layer is not None and lid in self.views:
-                drawn = map_layers(self.views[lid], lid, shown_name(layer.name))
+                label = shown_name(layer.name)
+                drawn = map_layers(self.views[lid], lid, label)
+                if not hasattr(self, "_drawn_labels"):
+                    self._drawn_labels: dict[str, str] = {}
+                self._drawn_labels[lid] = label
                 keep = {d.name for d in drawn}
                 for name in self.map_names(lid):  # a part the layer has no more
                     if name not in keep:

@@ -146,3 +146,36 @@ def test_zh_import_dialog_labels_fields_and_holds_ok_until_lon_lat_are_mapped(qt
         assert ok.isEnabled(), d.warning_label.text()
     finally:
         i18n.install(app, "en", zh)
+
+
+def test_the_legend_follows_a_language_switch(qtbot, tmp_path):
+    """The legend's layer names are drawn with their step words in the window's language;
+    Language ▸ English says them again without a redraw."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore, QtWidgets
+
+    from conftest import load
+    from wakeline.app import i18n
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.app.main_window import MainWindow
+    from wakeline.resources import demo_path
+
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "zh_CN")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    try:
+        source = load(w, demo_path())
+        w.select_layer(source)
+        w.run_step("clean")
+        wait_for_jobs(w)
+        QtWidgets.QApplication.processEvents()
+        labels = [lab.text for _, lab in w.canvas.legend.items]
+        assert "demo.csv · 已清洗" in labels, labels
+        w.set_language("en")
+        labels = [lab.text for _, lab in w.canvas.legend.items]
+        assert "demo.csv · cleaned" in labels and "demo.csv · 已清洗" not in labels, labels
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)
