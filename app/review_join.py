@@ -30,7 +30,7 @@ def join_texts() -> dict[str, str]:
     """The actions' texts in the current language."""
     return {
         "join": tr("&Join selected tracks"),
-        "split_join": tr("Split selected tracks' &target"),
+        "split_join": tr("Split selected tracks' tar&get"),
     }
 
 

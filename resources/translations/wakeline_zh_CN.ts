@@ -2604,8 +2604,8 @@
         <translation>合并所选航迹(&amp;J)</translation>
     </message>
     <message>
-        <source>Split selected tracks' &amp;target</source>
-        <translation>拆分所选航迹的目标(&amp;T)</translation>
+        <source>Split selected tracks' tar&amp;get</source>
+        <translation>拆分所选航迹的目标(&amp;G)</translation>
     </message>
     <message>
         <source>Join: tracks are joined in an associated layer (Run ▸ Associate first, then select its tracks)</source>
