@@ -48,6 +48,7 @@ def _cmd_batch(args: argparse.Namespace) -> int:
         scheduler=args.scheduler or "",
         workers=args.workers or 0,
         csv=args.csv,
+        sensor_per_file=args.sensor_per_file,
         **read | {"mapping": tuple(read["mapping"] or ())},
     )
     result = run_batch(pipe, args.input, args.outdir, opts, log=lambda m: print(m, file=sys.stderr))
@@ -127,6 +128,13 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="start a local cluster of N worker processes (default: Dask's local threads)",
     )
     p.add_argument("--csv", action="store_true", help="also write OUTDIR/<step>.csv")
+    p.add_argument(
+        "--sensor-per-file",
+        action="store_true",
+        help="each CSV input without a sensor column is its own sensor, named by its file "
+        "name (radar.csv -> radar): two consoles that number their tracks alike stay apart "
+        "instead of joining into one track each (default: every input is --sensor, S1)",
+    )
     p.add_argument(
         "--partition-mb",
         type=positive_float,

@@ -86,6 +86,9 @@ class BatchOptions:
     delimiter: str | None = None
     tz: str | None = None
     sensor: str = DEFAULT_SENSOR
+    #: ``--sensor-per-file``: each CSV input without a sensor column is its own sensor, named
+    #: by its file name's stem (two consoles numbering their tracks alike stay apart)
+    sensor_per_file: bool = False
     skip_rows: int | None = None
     #: ``--origin LAT,LON``: the local plane of inputs whose positions are east/north
     #: metres or range and bearing from a site
@@ -520,6 +523,9 @@ def _import_file(
     )
 
     root, src = Path(stage), Path(path)
+    read = dict(read)
+    if read.pop("sensor_per_file", False):  # this file's own sensor: its name's stem
+        read["sensor"] = file_sensor(src if member is None else Path(member))
     scratch = root / f"file-{file_no:06d}"
     label = str(src) if member is None else f"{src}/{member}"
     pieces: list[int] = []
@@ -673,9 +679,19 @@ def shared_tracks(spans: dict[str, pd.DataFrame]) -> list[str]:
         out.append(
             f"warning: {names[a]} and {names[b]} share {ids} with overlapping times: the "
             "same export twice? Read as one stream their rows join into one track each "
-            "(duplicates); give each its own sensor (a sensor column), or run them apart"
+            "(duplicates); give each its own sensor (--sensor-per-file, or a sensor column), "
+            "or run them apart"
         )
     return out
+
+
+def file_sensor(path: Path) -> str:
+    """The sensor a file names with ``--sensor-per-file``: its name without the data and
+    compression suffixes (``radar.csv.gz`` → ``radar``)."""
+    name = path.name
+    for suffix in (".gz", ".bz2", ".xz", ".zst", ".zip"):
+        name = name.removesuffix(suffix)
+    return Path(name).stem or DEFAULT_SENSOR
 
 
 def _read_options(opts: BatchOptions) -> dict:
@@ -696,6 +712,7 @@ def _read_options(opts: BatchOptions) -> dict:
         "clock_date": opts.clock_date,
         "speed_unit": opts.speed_unit,
         "distance_unit": opts.distance_unit,
+        "sensor_per_file": opts.sensor_per_file,
     }
 
 
@@ -1009,6 +1026,10 @@ def run_batch(
     inputs = expand_inputs(inputs)
     kind = _input_kind(inputs)
     read = _read_options(opts)
+    if opts.sensor_per_file and kind != "csv":
+        raise InputError(
+            "batch: --sensor-per-file: for CSV inputs only; Parquet inputs hold their sensor"
+        )
     in_bytes = sum(p.stat().st_size for p in inputs if p.is_file()) or sum(
         f.stat().st_size for p in inputs if p.is_dir() for f in p.rglob("*") if f.is_file()
     )

@@ -3,6 +3,7 @@ input, one per run (D-batch-2); two inputs sharing track ids with overlapping ti
 joined without a word (D-batch-1, D-batch-3)."""
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -101,7 +102,7 @@ def test_inputs_sharing_track_ids_with_overlapping_times_are_named_once_per_pair
     assert said == [
         f"warning: {a} and {b} share 3 track ids with overlapping times: the same export "
         "twice? Read as one stream their rows join into one track each (duplicates); give "
-        "each its own sensor (a sensor column), or run them apart"
+        "each its own sensor (--sensor-per-file, or a sensor column), or run them apart"
     ]
     rep = json.loads((out / "report.json").read_text())
     assert said[0] in rep["warnings"]
@@ -123,6 +124,49 @@ def test_shared_tracks_counts_overlaps_only():
     assert shared_tracks(spans) == [
         "warning: x and y share 1 track id with overlapping times: the same export twice? "
         "Read as one stream their rows join into one track each (duplicates); give each its "
-        "own sensor (a sensor column), or run them apart"
+        "own sensor (--sensor-per-file, or a sensor column), or run them apart"
     ]
     assert shared_tracks({"x": spans["x"]}) == []
+
+
+def test_sensor_per_file_keeps_two_consoles_apart(tmp_path, capsys):
+    # Operator test 6 (h189 D-batch-3): an AIS console and a radar console both number
+    # their tracks 1..3 over the same hour; read as one stream, each pair of equal ids
+    # became one track. With --sensor-per-file each file is its own sensor (its name).
+    head = "mmsi,time,lon,lat\n"
+    ais = tmp_path / "ais.csv"
+    ais.write_text(head + "\n".join(_rows("1", 0) + _rows("2", 0) + _rows("3", 0)) + "\n")
+    radar = tmp_path / "radar.csv.gz"
+    import gzip
+
+    radar.write_bytes(
+        gzip.compress(
+            (head + "\n".join(_rows("1", 5) + _rows("2", 5) + _rows("3", 5)) + "\n").encode()
+        )
+    )
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    out = tmp_path / "out"
+    args = ["batch", str(pipe), str(ais), str(radar), "-o", str(out), "--csv"]
+    assert main([*args, "--sensor-per-file"]) == 0
+    err = capsys.readouterr().err
+    assert not [x for x in err.splitlines() if "share" in x]
+    import pandas as pd
+
+    clean = pd.read_csv(out / "clean.csv", dtype=str)
+    assert sorted(clean["sensor"].unique()) == ["ais", "radar"]
+    assert clean.groupby("sensor")["batch"].nunique().to_dict() == {"ais": 3, "radar": 3}
+    # without it: one stream, the same ids joined, and the warning says how to keep them apart
+    out2 = tmp_path / "out2"
+    assert main([*args[:-3], "-o", str(out2), "--csv"]) == 0
+    err = capsys.readouterr().err
+    assert [x for x in err.splitlines() if "--sensor-per-file" in x]
+    assert set(pd.read_csv(out2 / "clean.csv", dtype=str)["sensor"]) == {"S1"}
+
+
+def test_file_sensor_names():
+    from wakeline.core.batch import file_sensor
+
+    assert file_sensor(Path("a/radar.csv")) == "radar"
+    assert file_sensor(Path("ais_day.csv.gz")) == "ais_day"
+    assert file_sensor(Path("x.zst")) == "x"
