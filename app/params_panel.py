@@ -9,6 +9,8 @@ reason shown. Presets are the values as JSON. A resample ``max_gap_s`` set here 
 
 import dataclasses
 import json
+import logging
+from functools import lru_cache
 from pathlib import Path
 
 import pandas as pd
@@ -16,6 +18,7 @@ import shiboken6
 from pyqtgraph.parametertree import Parameter, ParameterTree
 from PySide6 import QtCore, QtWidgets
 
+from wakeline.app import core_text
 from wakeline.core.associate import LinkParams
 from wakeline.core.bearing import BearingParams
 from wakeline.core.clean import STEPS, CleanParams
@@ -36,6 +39,9 @@ from wakeline.core.pipeline import (
     params_from_version,
 )
 from wakeline.core.transform import stated_max_gap
+from wakeline.resources import translations_dir
+
+log = logging.getLogger(__name__)
 
 #: A preset file's version key (its table is the panel's form, :data:`PARAMS_VERSION`).
 PRESET_VERSION_KEY = "wakeline_params"
@@ -54,26 +60,82 @@ GROUPS = (
 )
 
 
-def _field_param(f: dataclasses.Field, value) -> dict:
+def panel_classes() -> list[type]:
+    """Every parameter class the panel shows: the clean rules', then :data:`GROUPS`'."""
+    clean = CleanParams()
+    return [type(getattr(clean, step)) for step in STEPS] + [cls for _, _, cls in GROUPS]
+
+
+@lru_cache(maxsize=4)
+def doc_table(code: str) -> dict:
+    """The parameters' help in language ``code`` (``params_<code>.json``: ``docs`` by
+    "ClassName.field", ``labels`` for the tooltip's source/default/range); empty for a
+    language without one. The core's ``doc`` stays English (operator test 6, D-i18n-2 c)."""
+    path = translations_dir() / f"params_{code}.json"
+    if not path.exists():
+        return {}
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+#: Every field the panel shows, by "ClassName.field" (the tooltips' retranslation).
+_FIELDS: dict[str, tuple[type, dataclasses.Field]] = {}
+
+_noted: set[str] = set()  # keys already logged as missing (one note each)
+
+
+def field_doc(owner: type, f: dataclasses.Field, code: str | None = None) -> str:
+    """The help of ``owner``'s field ``f`` in ``code`` (the window's language by default):
+    the table's entry, or the core's English with a logged note when it has none."""
+    code = core_text.language() if code is None else code
+    english = f.metadata.get("doc", "")
+    if code == "en":
+        return english
+    table = doc_table(code)
+    key = f"{owner.__name__}.{f.name}"
+    text = table.get("docs", {}).get(key)
+    if text is None:
+        if table and key not in _noted:
+            _noted.add(key)
+            log.warning("params_%s.json has no help for %s: shown in English", code, key)
+        return english
+    return text
+
+
+def field_tip(owner: type, f: dataclasses.Field, code: str | None = None) -> str:
+    """A field's tooltip: its help, unit, source, default and range, in ``code``."""
+    code = core_text.language() if code is None else code
+    labels = doc_table(code).get("labels", {}) if code != "en" else {}
     meta = f.metadata
-    kind = "bool" if isinstance(f.default, bool) else type(f.default).__name__
     unit = meta.get("unit", "")
-    tip = meta.get("doc", "")
+    tip = field_doc(owner, f, code)
     if unit:
         tip += f" [{unit}]"
     if meta.get("source"):
-        tip += f"\nsource: {shown_source(meta['source'])}"
-    tip += f"\ndefault: {f.default}"
+        tip += f"\n{labels.get('source', 'source: ')}{shown_source(meta['source'])}"
+    tip += f"\n{labels.get('default', 'default: ')}{f.default}"
+    kind = "bool" if isinstance(f.default, bool) else type(f.default).__name__
+    lo, hi = meta.get("lo"), meta.get("hi")
+    if kind in ("int", "float") and (lo is not None or hi is not None):
+        tip += f"\n{labels.get('range', 'range: ')}{'' if lo is None else lo} … "
+        tip += f"{'' if hi is None else hi}"
+    return tip
+
+
+def _field_param(owner: type, f: dataclasses.Field, value) -> dict:
+    meta = f.metadata
+    kind = "bool" if isinstance(f.default, bool) else type(f.default).__name__
+    unit = meta.get("unit", "")
+    tip = field_tip(owner, f)
     opts = {"name": f.name, "type": kind, "value": value, "tip": tip, "default": f.default}
+    # its tooltip in the window's language: retranslate (a plain string in the opts)
+    opts["doc_key"] = f"{owner.__name__}.{f.name}"
+    _FIELDS[opts["doc_key"]] = (owner, f)
     if meta.get("choices"):
         opts["type"] = "list"
         opts["limits"] = list(meta["choices"])
     if kind in ("int", "float"):
         # No spin-box limits: an out-of-range value reaches the core's validation, which
         # refuses it with the reason (a clamped value would hide the mistake).
-        lo, hi = meta.get("lo"), meta.get("hi")
-        if lo is not None or hi is not None:
-            opts["tip"] += f"\nrange: {'' if lo is None else lo} … {'' if hi is None else hi}"
         if unit:
             opts["suffix"] = f" {unit}"
             opts["unit"] = unit  # the suffix in the window's language: retranslate
@@ -87,7 +149,10 @@ def _group(name: str, title: str, params: Params) -> dict:
         "name": name,
         "title": title,
         "type": "group",
-        "children": [_field_param(f, getattr(params, f.name)) for f in dataclasses.fields(params)],
+        "children": [
+            _field_param(type(params), f, getattr(params, f.name))
+            for f in dataclasses.fields(params)
+        ],
     }
 
 
@@ -268,6 +333,14 @@ class ParamsPanel(QtWidgets.QWidget):
             unit = item.opts.get("unit")
             if unit and item.opts.get("suffix") != f" {units.get(unit, unit)}":
                 item.setOpts(suffix=f" {units.get(unit, unit)}")
+        stack = list(self.root.children())
+        while stack:  # every parameter's tooltip in the language now (D-i18n-2 c)
+            item = stack.pop()
+            stack += item.children()
+            if item.opts.get("doc_key") in _FIELDS:
+                tip = field_tip(*_FIELDS[item.opts["doc_key"]])
+                if item.opts.get("tip") != tip:
+                    item.setOpts(tip=tip)
         if getattr(self, "_summary", None) is not None:  # the detection limit's paragraph
             self.show_guidance(self._summary)
 
