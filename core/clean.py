@@ -155,6 +155,17 @@ class StationaryParams(Params):
         "the box of the at-rest test aligned with north and east (before 2026-12) instead of "
         "each track's principal axes (the same wherever the scene lies on the globe)",
     )
+    noise_sigmas: float = param(
+        0.0,
+        "sigma",
+        "at rest: the radius grows, per track, to this many of the track's position-noise "
+        "sigma (per axis, the maneuver detector's noise estimate) where that is larger than "
+        "radius_m, so a moored ship seen with tens of metres of noise stays at rest; "
+        "0 = off (radius_m on every track)",
+        lo=0,
+        hi=100,
+        source="ours (session 28, h193: docs/prereg/session28_at_rest_noise.md)",
+    )
     paper_rule: bool = param(
         False,
         "",
@@ -769,6 +780,43 @@ def rest_frame(
     return x, y, t
 
 
+def rest_radius(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    radius_m: float,
+    sigmas: float,
+    window_s: float,
+    steps: float,
+    med: np.ndarray | None = None,
+    lag: "np.ndarray | int" = 1,
+    sigma: np.ndarray | None = None,
+) -> "float | np.ndarray":
+    """The at-rest radius :func:`at_rest` takes in :func:`rest_frame`'s frame: ``radius_m``
+    (a float) when ``sigmas`` is 0, else per track max(``radius_m``, ``sigmas`` · σ / f), σ
+    the track's position noise per axis (:func:`wakeline.core.maneuver.position_noise_m`
+    with ``lag``, or ``sigma`` when the caller has it) and f the factor by which
+    :func:`rest_frame` shrinks a sparse track (its radius there is f · ``radius_m`` in
+    metres; the noise's share, ``sigmas`` · σ metres, is not a speed and does not grow).
+    ``x``/``y`` metres before :func:`rest_frame`."""
+    if sigmas <= 0 or index.n_tracks == 0:
+        return radius_m
+    if sigma is None:
+        from wakeline.core.maneuver import position_noise_m  # the noise floor's estimate
+
+        sigma = position_noise_m(x, y, t, index, lag)
+    f = np.ones(index.n_tracks)
+    if steps > 0 and len(t) >= 2:
+        if med is None:
+            med = median_interval_s(t, index)
+        with np.errstate(invalid="ignore"):
+            f = np.fmax(steps * med / window_s, 1.0)
+        f[~np.isfinite(f)] = 1.0
+    grown = np.where(np.isfinite(sigma), sigmas * np.asarray(sigma, dtype="float64"), 0.0) / f
+    return np.fmax(float(radius_m), grown)
+
+
 def track_axes(x: np.ndarray, y: np.ndarray, index: TrackIndex) -> tuple[np.ndarray, np.ndarray]:
     """``x``/``y`` turned, per track, into the track's own principal axes (about its mean
     position: u along the direction of its largest spread, v across it).
@@ -834,12 +882,12 @@ def at_rest(
     y: np.ndarray,
     t: np.ndarray,
     index: TrackIndex,
-    radius_m: float,
+    radius_m: "float | np.ndarray",
     window_s: float,
     north_box: bool = False,
 ) -> np.ndarray:
     """Per point: does it lie in a stay of at least ``window_s`` seconds whose positions
-    all fit in a circle of ``radius_m`` metres (their bounding box's diagonal ≤ 2·radius,
+    all fit in a circle of ``radius_m`` metres (a float, or one per track) (their bounding box's diagonal ≤ 2·radius,
     the box aligned with the track's own principal axes, :func:`track_axes`)?
 
     Tolerates position jitter, unlike an identical-position test. ``x``/``y`` are metres in
@@ -899,7 +947,8 @@ def at_rest(
     dy = np.fmax(rolling(y, "max"), py) - np.fmin(rolling(y, "min"), py)
     stay = ts - ts[prev]
     # a stay: at least window_s long, two fixes or more, small enough
-    ends_rest = (np.hypot(dx, dy) <= 2.0 * radius_m) & (stay >= window_s) & (row > prev)
+    reach = 2.0 * radius_m if np.ndim(radius_m) == 0 else 2.0 * np.asarray(radius_m)[tr]
+    ends_rest = (np.hypot(dx, dy) <= reach) & (stay >= window_s) & (row > prev)
     # every point of such a window is at rest
     mark = np.zeros(n + 1, dtype="int64")
     np.add.at(mark, prev[ends_rest], 1)
@@ -1038,8 +1087,11 @@ def _clean_block(
         else:
             sub = TrackIndex(*_sub_index_rows(track[rows], index.n_tracks))
             x, y = _local_xy_rows(lon[rows], lat[rows], sub)
+            radius = rest_radius(
+                x, y, t[rows], sub, sp.radius_m, sp.noise_sigmas, sp.window_s, sp.steps
+            )
             x, y, t_rest = rest_frame(x, y, t[rows], sub, sp.window_s, sp.steps)
-            rest = at_rest(x, y, t_rest, sub, sp.radius_m, sp.window_s, sp.north_box)
+            rest = at_rest(x, y, t_rest, sub, radius, sp.window_s, sp.north_box)
             spans = rest_spans(rest, sub)
             inside = rest.copy()
             inside[spans[:, 0]] = False  # a span's first and last point stay: where and

@@ -313,6 +313,17 @@ class ManeuverParams(Params):
         lo=0.0,
         hi=1000.0,
     )
+    rest_noise_sigmas: float = param(
+        0.0,
+        "sigma",
+        "at rest: the radius grows, per track, to this many of the track's position-noise "
+        "sigma (the noise floor's estimate) where that is larger than rest_radius_m, so a "
+        "moored ship seen with tens of metres of noise is at rest, not turning (cleaning's "
+        "stationary.noise_sigmas); 0 = off",
+        lo=0.0,
+        hi=100.0,
+        source="ours (session 28, h193: docs/prereg/session28_at_rest_noise.md)",
+    )
     rest_north_box: bool = param(
         False,
         "",
@@ -1185,17 +1196,22 @@ def _rest_mask(
     steps: float = 0.0,
     med: np.ndarray | None = None,
     north_box: bool = False,
+    sigmas: float = 0.0,
+    lag: "np.ndarray | int" = 1,
+    sigma: np.ndarray | None = None,
 ) -> np.ndarray:
     """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`, on sparse tracks over
     ``steps`` sampling intervals: :func:`wakeline.core.clean.rest_frame`, ``med`` each
     track's median interval when known), run only on the tracks that can hold a stay
-    (:func:`_rest_possible`; same result, less work)."""
-    from wakeline.core.clean import at_rest, rest_frame  # the same rule cleaning uses
+    (:func:`_rest_possible`; same result, less work). ``sigmas`` > 0: the radius grown
+    per track with its noise (:func:`wakeline.core.clean.rest_radius`)."""
+    from wakeline.core.clean import at_rest, rest_frame, rest_radius  # cleaning's rule
 
     n = len(x)
     rest = np.zeros(n, dtype=bool)
     if n == 0:
         return rest
+    radius_m = rest_radius(x, y, t, index, radius_m, sigmas, window_s, steps, med, lag, sigma)
     x, y, t = rest_frame(x, y, t, index, window_s, steps, med)
     possible = _rest_possible(x, y, t, index, radius_m, window_s)
     if not possible.any():
@@ -1204,7 +1220,8 @@ def _rest_mask(
         return at_rest(x, y, t, index, radius_m, window_s, north_box)
     rows = np.flatnonzero(possible[index.track_of_row])
     sub = TrackIndex(*_sub_index(index, possible))
-    rest[rows] = at_rest(x[rows], y[rows], t[rows], sub, radius_m, window_s, north_box)
+    r_sub = radius_m if np.ndim(radius_m) == 0 else np.asarray(radius_m)[possible]
+    rest[rows] = at_rest(x[rows], y[rows], t[rows], sub, r_sub, window_s, north_box)
     return rest
 
 
@@ -1248,7 +1265,7 @@ def _rest_strides(t: np.ndarray, index: TrackIndex, window_s: float) -> np.ndarr
 
 
 def _rest_possible(
-    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m: float, window_s: float
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m, window_s: float
 ) -> np.ndarray:
     """Per track: can it hold a stay of :func:`wakeline.core.clean.at_rest` (a screen: False
     only where it surely holds none)?
@@ -1261,7 +1278,7 @@ def _rest_possible(
     tr = index.track_of_row
     possible = np.zeros(index.n_tracks, dtype=bool)
     stride = _rest_strides(t, index, window_s)
-    reach = 2.0 * radius_m * (1 + 1e-9) + 1e-6
+    reach = 2.0 * np.asarray(radius_m, dtype="float64") * (1 + 1e-9) + 1e-6  # or per track
     limit = reach * reach * (1 + 1e-9)  # a margin far above the rounding of d²
     for k in np.unique(stride[stride >= 2]):  # a few distinct strides
         k = int(k)
@@ -1272,7 +1289,7 @@ def _rest_possible(
         dy *= dy
         d2 += dy
         with np.errstate(invalid="ignore"):
-            close = ~(d2 > limit)  # NaN: possible
+            close = ~(d2 > (limit if np.ndim(limit) == 0 else limit[ts[:-1]]))  # NaN: possible
         close &= ts[1:] == ts[:-1]
         hit = ts[:-1][close]
         possible[hit[stride[hit] == k]] = True
@@ -1282,12 +1299,13 @@ def _rest_possible(
     if other.any():
         rows = np.flatnonzero(other[tr])
         sub = TrackIndex(*_sub_index(index, other))
-        possible[other] = _rest_screen(x[rows], y[rows], t[rows], sub, radius_m, window_s)
+        r_sub = radius_m if np.ndim(radius_m) == 0 else np.asarray(radius_m)[other]
+        possible[other] = _rest_screen(x[rows], y[rows], t[rows], sub, r_sub, window_s)
     return possible
 
 
 def _rest_screen(
-    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m: float, window_s: float
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, radius_m, window_s: float
 ) -> np.ndarray:
     """Per track, :func:`_rest_possible` by the window before each point: a stay ending at a
     point covers every fix of the last ``window_s`` before it, so somewhere the point and
@@ -1308,7 +1326,7 @@ def _rest_screen(
     ts = np.repeat(offset, sizes)
     ts += rel
     step = span / np.maximum(sizes - 1, 1)
-    reach = 2.0 * radius_m * (1 + 1e-9) + 1e-6
+    reach = 2.0 * np.asarray(radius_m, dtype="float64") * (1 + 1e-9) + 1e-6  # or per track
     finite = bool(np.isfinite(ts).all())
     for first in range(0, n, BLOCK):  # blocks: no row-sized temporaries
         s = slice(first, min(n, first + BLOCK))
@@ -1324,7 +1342,8 @@ def _rest_screen(
         d2 += dy * dy
         # squared distances with a margin far above their rounding: a screen keeps a
         # track that may hold a stay, never drops one
-        close = (d2 <= reach * reach * (1 + 1e-9)) & (rel[s] >= window_s * (1 - 1e-9))
+        r = reach if np.ndim(reach) == 0 else reach[tr[s]]
+        close = (d2 <= r * r * (1 + 1e-9)) & (rel[s] >= window_s * (1 - 1e-9))
         possible[tr[s][close]] = True
     return possible
 
@@ -2194,7 +2213,11 @@ def _detect_sorted(
         step = window_step_s(t, index, int(params.window_p))
     track_index, med_track = index, med  # the tracks as given (the result's index)
     rest = np.zeros(n, dtype=bool)
+    sigma_track = None  # the track noise, when the at-rest radius wants it first
     if params.rest_radius_m > 0 and n:
+        lag_track = _noise_lag(med if params.window_s > 0 else None, params)
+        if params.rest_noise_sigmas > 0:
+            sigma_track = position_noise_m(x, y, t, index, lag_track)
         rest = _rest_mask(
             x,
             y,
@@ -2205,6 +2228,9 @@ def _detect_sorted(
             params.rest_steps,
             med,
             params.rest_north_box,
+            params.rest_noise_sigmas,
+            lag_track,
+            sigma_track,
         )
     rest_lo, rest_hi = _runs(rest)
     any_rest = bool(len(rest_lo))
@@ -2230,7 +2256,9 @@ def _detect_sorted(
         if params.noise_k > 0 or fine:
             if not noise:
                 lag = _noise_lag(med_track if params.window_s > 0 else None, params)
-                sigma = position_noise_m(x, y, t, track_index, lag)
+                sigma = sigma_track
+                if sigma is None:
+                    sigma = position_noise_m(x, y, t, track_index, lag)
                 noise.append(sigma if parent is None else sigma[parent])
             k = params.noise_k
             gate = None  # noise_min_windows: the rows whose track offers enough windows
