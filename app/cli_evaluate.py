@@ -54,6 +54,7 @@ def _maneuver_params(args: argparse.Namespace):
         noise_k_windows=args.noise_k_windows,
         noise_min_windows=args.noise_min_windows,
         noise_k_law=args.noise_k_law,
+        rest_noise_sigmas=args.rest_noise_sigmas,
         max_step_windows=args.max_step_windows,
         window_max_s=args.window_max_s,
         radius_s=args.radius_s,
@@ -310,6 +311,13 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.noise_k_law,
         help="the noise floor's k at the same false-alarm probability under the heading "
         "change's real law at the window's span in sigma (heavy tails at a few sigma)",
+    )
+    p.add_argument(
+        "--rest-noise-sigmas",
+        type=float,
+        default=d.rest_noise_sigmas,
+        help=f"the at-rest radius grows, per track, to this many of its position-noise sigma "
+        f"where that exceeds 50 m; 0 = off (default {d.rest_noise_sigmas:g})",
     )
     p.add_argument(
         "--max-step-windows",

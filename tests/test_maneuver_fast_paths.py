@@ -125,6 +125,7 @@ def _reference_params(params: ManeuverParams):
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("rest_north_box")
     assert not fields.pop("noise_k_law")  # h185, off by default
+    assert not fields.pop("rest_noise_sigmas")  # h193, off by default
     return reference.ManeuverParams(**fields)
 
 
