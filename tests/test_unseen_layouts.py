@@ -180,7 +180,9 @@ def test_rows_in_random_order_are_not_taken_for_mistyped_dates(tmp_path):
     rows = []
     for b in range(5):
         t = np.sort(rng.uniform(0, 9 * 86400, 600)) + 1.72e9
-        rows.append(pd.DataFrame({"batch": str(b), "t": t, "lon": 23.5 + b * 0.01, "lat": 37.8}))
+        # positions with decimals a receiver writes (a 0.01° grid is warned about since h183)
+        lon = 23.5 + b * 0.01 + rng.normal(0, 1e-4, 600)
+        rows.append(pd.DataFrame({"batch": str(b), "t": t, "lon": lon, "lat": 37.8 + 1e-5 * b}))
     df = pd.concat(rows).sample(frac=1.0, random_state=2)
     p = tmp_path / "shuffled.csv"
     df.to_csv(p, index=False)
