@@ -1228,6 +1228,8 @@ def _clean_block(
         short = (counts < params.short_tracks.min_points)[judged] & alive
         removed_by["short_tracks"] = short
         alive &= ~short
+        if not params.short_tracks.after_split:
+            split &= alive  # the order before: a track set aside whole is not split
     progress(1.0, "cleaned")
 
     if split.any():

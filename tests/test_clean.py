@@ -485,6 +485,26 @@ def test_short_tracks_are_judged_after_the_split():
     assert removed(res, "short_tracks") == [0, 1, 2, 3, 4] and res.report["tracks_out"] == 1
 
 
+@pytest.mark.parametrize("sizes", [(5, 4), (4, 5), (6, 3)])
+def test_after_split_false_sets_a_short_track_aside_whole_unsplit(sizes):
+    """``short_tracks.after_split=false`` is the order before h179: a track short as a
+    whole (fewer than 10 points) that the speed rule would split is set aside under its
+    own batch, unsplit, and the report counts no split (h192: it said 1 split and named
+    the rejected piece 338#2)."""
+    t0 = pd.Timestamp("2024-01-01T00:00:00Z")
+    rows = [(-90.0 + k * 0.002, 28.0, t0 + pd.Timedelta(seconds=k * 60.0)) for k in range(sizes[0])]
+    rows += [
+        (-122.5 + k * 0.002, 48.4, t0 + pd.Timedelta(seconds=7200 + k * 60.0))
+        for k in range(sizes[1])
+    ]
+    pts = pd.DataFrame(rows, columns=["lon", "lat", "time"]).assign(sensor="S1", batch="338")
+    before = clean(pts, CleanParams().with_settings(["short_tracks.after_split=false"]))
+    assert len(before.points) == 0
+    assert before.report["rules"]["speed"]["splits"] == 0
+    assert before.report["tracks_out"] == 0
+    assert set(before.rejected["batch"]) == {"338"}
+
+
 def test_a_ship_moored_all_capture_keeps_its_span_ends():
     """Moored for the whole capture with GPS jitter: the stationary rule takes the span's
     inside out and leaves its two ends; the short-track rule counts what was seen at
