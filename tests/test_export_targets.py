@@ -123,3 +123,27 @@ def test_a_gpx_target_whose_segments_do_not_match_stays_one_track(tmp_path):
     back = read_points(tmp_path / "b.gpx").points
     assert len(back) == 8
     assert back.groupby(["sensor", "batch"]).ngroups == 2
+
+
+def test_a_file_read_in_pieces_says_its_targets_once(tmp_path, monkeypatch):
+    """``wakeline import`` of a quoted CSV with a target column, read in pieces: the
+    targets note once, with the whole file's counts (h192: a piece's '2 tracks in 1
+    targets' came before it)."""
+    from wakeline.core.io import import_to_csv, reader
+
+    lines = ["sensor,batch,time,lon,lat,target"]
+    for b in range(6):
+        for k in range(300):
+            s = b * 300 + k
+            stamp = f"2024-01-01T{s // 3600:02d}:{s // 60 % 60:02d}:{s % 60:02d}Z"
+            lines.append(
+                f'"S1","{b}",{stamp},{23 + b * 0.01 + k * 1e-4:.6f},{37.5 + k * 1e-4:.6f},{b // 2}'
+            )
+    src = tmp_path / "t.csv"
+    src.write_text("\n".join(lines) + "\n")
+    whole = [w for w in read_points(src).report["warnings"] if "carries targets" in w]
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)
+    got = import_to_csv(src, tmp_path / "out.csv")
+    assert got.report.get("pieces", 0) > 2
+    assert [w for w in got.report["warnings"] if "carries targets" in w] == whole
+    assert len(whole) == 1 and "6 tracks in 3 targets" in whole[0]

@@ -124,3 +124,24 @@ def test_zoned_then_zone_less_pieces_are_counted_over_the_file(write, tmp_path, 
     r = _read(path, how, tmp_path, monkeypatch)
     said = [w for w in r.report["warnings"] if "carry no zone" in w]
     assert len(said) == 1 and said[0].startswith("150 of 300 times in 'time' carry no zone")
+
+
+def test_pieces_say_the_mixed_zones_once_not_the_chinese_note_too(tmp_path, monkeypatch):
+    """A quoted GB18030 file (read in pieces) zoned in its first half and zone-less in its
+    second: the whole-file reader says only the zones-mixed warning; the pieces said the
+    Chinese system's note too (a zone-less piece's), h192."""
+    lines = ["批号,时间,经度,纬度"]
+    for b in range(4):
+        for k in range(300):
+            s = b * 300 + k
+            zone = "+08:00" if b < 2 else ""
+            stamp = f"2024-01-01T{s // 3600:02d}:{s // 60 % 60:02d}:{s % 60:02d}{zone}"
+            lines.append(f'"{b}",{stamp},{120 + b * 0.01 + k * 1e-4:.6f},{30 + k * 1e-4:.6f}')
+    src = tmp_path / "zones_gb.csv"
+    src.write_bytes(("\n".join(lines) + "\n").encode("gb18030"))
+    whole = [w for w in read_points(src).report["warnings"] if "zone" in w]
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)
+    got = import_to_csv(src, tmp_path / "out.csv")
+    assert got.report.get("pieces", 0) > 2
+    assert [w for w in got.report["warnings"] if "zone" in w] == whole
+    assert len(whole) == 1 and "600 of 1,200 times" in whole[0]

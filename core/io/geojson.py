@@ -42,6 +42,8 @@ TIME_ARRAYS = ("times", "coordTimes")
 #: the cut added on ±180° between two fixes (0-based, over the line's vertices in order).
 #: They are not fixes: left out on reading.
 CUT_VERTICES = "antimeridian_vertices"
+#: The start of :func:`targets_note` (a read in pieces says it once, for the whole file).
+TARGETS_MARK = "this file carries targets: "
 _TEXT_CHARS = 200
 
 
@@ -58,7 +60,7 @@ def targets_note(points: pd.DataFrame, csv: bool = False) -> list[str]:
         return []
     how = "; --map batch=target reads one track per target" if csv else ""
     return [
-        f"this file carries targets: {n_tracks:,} tracks in {n_targets:,} targets "
+        f"{TARGETS_MARK}{n_tracks:,} tracks in {n_targets:,} targets "
         f"(column 'target'), read with their target{how}"
     ]
 

@@ -41,6 +41,7 @@ from wakeline.core.io.decoding import (
     merge_fallbacks,
 )
 from wakeline.core.io.formats import Resolved
+from wakeline.core.io.geojson import TARGETS_MARK
 from wakeline.core.io.grid import GRID_MARK, GRID_MIN_ROWS
 from wakeline.core.io.reader import (
     BEARING_ROWS_MARK,
@@ -51,6 +52,7 @@ from wakeline.core.io.reader import (
     POSITION_COUNTS,
     TIME_COUNTS,
     UNBALANCED_NOTE,
+    ZONE_NOTE_MARK,
     ImportResult,
     WholeFileNeeded,
     _coarse_time_warnings,
@@ -458,6 +460,10 @@ def merge_import_reports(
                 speed_said = True
             if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w:
                 continue  # said again below from the whole file's quarantine and reasons
+            if w.startswith(TARGETS_MARK):
+                continue  # a piece's counts: import_to_csv says the whole file's (h192)
+            if ZONE_NOTE_MARK in w and zoned and naive:
+                continue  # the zones-mixed warning below says it, as a whole read (h192)
             (timing if w in local_note else notes).append(w)
     # positions on a grid (grid.py): said when every piece with rows is on one
     # (a piece of fewer rows than GRID_MIN_ROWS is not judged on its own)

@@ -2763,6 +2763,10 @@ _CHINESE_CODECS = ("gb18030", "gbk", "gb2312", "hz", "big5", "big5hkscs")
 _CJK = re.compile(r"[\u4e00-\u9fff]")
 
 
+#: Words of :func:`zone_note` (a read in pieces drops it where zones are mixed over the file).
+ZONE_NOTE_MARK = "carry no zone: read as UTC (this file looks written on a Chinese system"
+
+
 def zone_note(sn: Sniff, time_src: str, time_info: dict, zone) -> list[str]:
     """D-import-8: times without a zone in a file plainly from a Chinese system (its
     encoding or its headers) were read as UTC: one line saying so, with the --tz that
@@ -2780,8 +2784,7 @@ def zone_note(sn: Sniff, time_src: str, time_info: dict, zone) -> list[str]:
     if not chinese:
         return []
     return [
-        f"the times in {time_src!r} carry no zone: read as UTC (this file looks written on "
-        "a Chinese system: if they are local times, --tz Asia/Shanghai)"
+        f"the times in {time_src!r} {ZONE_NOTE_MARK}: if they are local times, --tz Asia/Shanghai)"
     ]
 
 
