@@ -126,6 +126,8 @@ class Bound:
     geometries: dict = field(default_factory=dict)  # (proposal, members) -> geometry
     #: the queue of a re-run: it opens with the carried decisions, its undo stack empty
     rerun: bool = False
+    #: the decision log's length when a decision was last echoed (ReviewDock._echo)
+    echoed: int = -1
 
     @property
     def lon_west(self) -> float:
@@ -447,6 +449,9 @@ class ReviewDock(QtCore.QObject):
         log = b.controller.state.log
         if not log or not shiboken6.isValid(self.echo):
             return
+        if len(log) == b.echoed:  # a decision that changed nothing: not logged, not said
+            return
+        b.echoed = len(log)
         entry = log[-1]
         action = entry.action
         if action.startswith("undo "):
@@ -590,6 +595,7 @@ class ReviewDock(QtCore.QObject):
         if getattr(self.w, "time_panel", None) is not None:  # the slider's cursor in the Gantt
             link_gantt(self.w.time_panel, gantt)
         controller.changed.connect(lambda _p, b=bound: self.sync.schedule(b))
+        bound.echoed = len(controller.state.log)  # restored decisions are not echoed
         controller.changed.connect(lambda _p, b=bound: self._echo(b))
         self.group.addStack(controller.stack)
         self.stack.addWidget(box)

@@ -196,3 +196,26 @@ def test_ctrl_s_says_the_project_is_saved_and_close_project_empties_the_window(
     qtbot.waitUntil(lambda: not (tmp_path / "p.wakeline.lock").exists(), timeout=5000)
     assert [lay.name for lay in load_project(proj).layers] == ["scene.csv"]  # kept
     w.close()
+
+
+def test_a_decision_that_changes_nothing_is_not_echoed_as_the_last_one(qtbot, tmp_path):
+    """h192: A on a proposal accepted already changes nothing, but the echo said the last
+    decision again ('Review: accept F0002' after accepting F0001 twice) in the status bar
+    and as a new Log line."""
+    w = _fused_review(qtbot, tmp_path)
+    c = w.review.bound.controller
+    st = c.state
+    first, second = st.proposals["proposal"][st.status == "pending"].tolist()[:2]
+    c.accept(first)
+    c.accept(second)
+    _settle(w)
+    assert w.review.echo.text() == f"Review: accept {second}"
+    before = w.log.toPlainText().splitlines()
+    c.accept(first)  # accepted already: no change, nothing logged
+    _settle(w)
+    assert len(st.log) == 2
+    assert w.log.toPlainText().splitlines() == before
+    c.reject(first)  # a real change is echoed
+    _settle(w)
+    assert w.review.echo.text() == f"Review: reject {first}"
+    w.close()
