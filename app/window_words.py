@@ -37,6 +37,10 @@ _PHRASES = (
     ("give --encoding utf-16", "choose the Encoding utf-16 in the import dialog"),
     ("map columns with --map field=column", "map the columns in the import dialog"),
     (
+        "; --map batch=target reads one track per target",
+        "; the import dialog's Column mapping with batch = target reads one track per target",
+    ),
+    (
         "with --origin LAT,LON",
         "in the import dialog's Origin of x/y metres field (File ▸ Open tracks…; LAT, LON)",
     ),
