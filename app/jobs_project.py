@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 from PySide6 import QtWidgets
 
+from wakeline.app.core_text import shown
 from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.project import Project, load_project
@@ -277,7 +278,7 @@ class ProjectJobsMixin:
         if not proj.decisions_checked:  # the next open skips the migration
             self.project.mark_decisions_checked()
         for note in proj.located:  # sources used from beside the moved project
-            self.log_message(f"{self.tr('Note')}: {note}")
+            self.log_message(f"{self.tr('Note')}: {shown(note)}")
         if proj.located:  # the file keeps where they are now
             self.project.put_sources(list(self.session.sources))
             for lid in proj.relocated_layers:

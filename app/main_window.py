@@ -453,7 +453,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     def _save_failed(self, message: str) -> None:
         """A write to the project failed: logged each time, one dialog (the first since
         the file was saved or opened — not one per change); closing offers Save as."""
-        text = self.tr("Saving the project failed: {0}").format(message)
+        text = self.tr("Saving the project failed: {0}").format(shown(message))
         if not self.project.repeated:  # the other writes of the same change: said once
             self.log_message(f"{self.tr('Error')}: {text}")
         self.update_title()

@@ -78,3 +78,18 @@ def test_the_tester_s_cases_read_in_chinese(text):
     zh = translate(window_words(text), "zh_CN")
     assert not english_left(zh) and zh != text, zh
     assert "Asia/Shanghai" in zh or "1,800" in zh or "日在前" in zh or "';'" in zh or "6 条" in zh
+
+
+def test_operator_5_project_messages_are_in_chinese():
+    """h192: h184's two project sentences (a source found beside a moved project, a write
+    to a project moved while open) reached the zh_CN window in English."""
+    from wakeline.core.file_identity import moved_message
+
+    for text in (
+        "source file found beside the project: /a/b/x.csv (same content as /c/x.csv, which "
+        "is no longer there)",
+        moved_message("/p/x.wakeline"),
+    ):
+        zh = translate(window_words(text), "zh_CN")
+        assert zh != text and not english_left(zh), zh
+        assert "/a/b/x.csv" in zh or "/p/x.wakeline" in zh
