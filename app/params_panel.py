@@ -10,6 +10,7 @@ reason shown. Presets are the values as JSON. A resample ``max_gap_s`` set here 
 import dataclasses
 import json
 import logging
+import re
 from functools import lru_cache
 from pathlib import Path
 
@@ -101,6 +102,10 @@ def field_doc(owner: type, f: dataclasses.Field, code: str | None = None) -> str
     return text
 
 
+_OURS = re.compile(r"\bours\b")
+_SEED = re.compile(r"\bseed (\d{3})\b")
+
+
 def field_tip(owner: type, f: dataclasses.Field, code: str | None = None) -> str:
     """A field's tooltip: its help, unit, source, default and range, in ``code``."""
     code = core_text.language() if code is None else code
@@ -111,7 +116,10 @@ def field_tip(owner: type, f: dataclasses.Field, code: str | None = None) -> str
     if unit:
         tip += f" [{unit}]"
     if meta.get("source"):
-        tip += f"\n{labels.get('source', 'source: ')}{shown_source(meta['source'])}"
+        src = shown_source(meta["source"])
+        if code != "en":  # the source's labels (the rest is a measurement, kept as written)
+            src = _SEED.sub(r"种子文献 \1", _OURS.sub("本项目", src))
+        tip += f"\n{labels.get('source', 'source: ')}{src}"
     tip += f"\n{labels.get('default', 'default: ')}{f.default}"
     kind = "bool" if isinstance(f.default, bool) else type(f.default).__name__
     lo, hi = meta.get("lo"), meta.get("hi")

@@ -100,3 +100,16 @@ def test_the_zh_window_tooltip_is_chinese_and_follows_a_language_switch(qtbot):
     finally:
         i18n.install(app, "en", zh)
         core_text.set_language("en")
+
+
+def test_the_source_line_names_ours_and_the_papers_in_chinese():
+    from wakeline.core.associate import LinkParams
+    from wakeline.core.clean import SpeedParams
+
+    alpha = next(f for f in dataclasses.fields(LinkParams) if f.name == "rivals_rounds")
+    zh = params_panel.field_tip(LinkParams, alpha, "zh_CN")
+    assert "本项目 (docs/evaluation.md)" in zh and "ours" not in zh
+    assert "ours (docs/evaluation.md)" in params_panel.field_tip(LinkParams, alpha, "en")
+    v_max = next(f for f in dataclasses.fields(SpeedParams) if f.name == "v_max_kn")
+    assert "种子文献 001" in params_panel.field_tip(SpeedParams, v_max, "zh_CN")
+    assert "seed 001" in params_panel.field_tip(SpeedParams, v_max, "en")
