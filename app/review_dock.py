@@ -100,6 +100,19 @@ def review_texts() -> dict[str, str]:
     }
 
 
+def undo_stack_of(session, key: str, state) -> tuple[list, int]:
+    """The undo stack to push again for queue ``key`` whose state ``state`` replayed the
+    stored rows (:func:`~wakeline.core.review_store.undo_history`; in the bind's worker).
+    Empty when the rows read now are not the ones replayed (a row appended meanwhile)."""
+    from wakeline.core.review_store import undo_history
+
+    rows = list(session.decisions)
+    mine = sum(1 for r in rows if isinstance(r, dict) and r.get("queue") == key and "change" in r)
+    if mine != len(state.log):
+        return [], 0
+    return undo_history(rows, key)
+
+
 def undo_text(prefix: str, command: str) -> str:
     """Edit ▸ Undo/Redo's text: ``prefix`` (translated) and the command's own text."""
     return f"{prefix} {command}" if command else prefix
@@ -412,23 +425,26 @@ class ReviewDock(QtCore.QObject):
                     "ran included, were carried over, and the decision log keeps every one."
                 )
             )
-        elif b is not None and not group.canUndo() and self._restored_only(b):
-            # h181 D-review-3: the undo history of a session ends when it is closed.
-            self.act_undo.setText(tr("&Undo (nothing since the project was opened)"))
+        elif b is not None and not group.canUndo() and self._repaired_only(b):
+            # h196: a reopen rebuilds the undo stack from the stored rows (undo_history);
+            # a repair made on opening is a barrier it does not cross.
+            self.act_undo.setText(tr("&Undo (nothing since the repair made on opening)"))
             self.act_undo.setToolTip(
                 tr(
-                    "The undo history ends when the project is closed: the decisions "
-                    "restored from the file are changed by deciding again (Accept, "
-                    "Reject, Reset), and the decision log keeps every one."
+                    "Opening the project repaired decisions an older Wakeline left "
+                    "inconsistent; decisions made before the repair are changed by deciding "
+                    "again (Accept, Reject, Reset), and the decision log keeps every one."
                 )
             )
         else:
             self.act_undo.setToolTip("")  # the action's text
 
     @staticmethod
-    def _restored_only(b) -> bool:
-        """The queue holds decisions read from the project and none made since."""
-        return b.controller.stack.count() == 0 and len(b.controller.state.log) > 0
+    def _repaired_only(b) -> bool:
+        """The queue's undo stack is empty after a repair made on opening (a barrier of
+        :func:`~wakeline.core.review_store.undo_history`)."""
+        log = b.controller.state.log
+        return b.controller.stack.count() == 0 and any(e.action == "repair" for e in log)
 
     def _enable(self, on: bool) -> None:
         for act in self.review_actions.values():
@@ -491,10 +507,11 @@ class ReviewDock(QtCore.QObject):
             def job(progress):
                 progress(0.0, "reading the proposals")
                 state, points = bind(session, session.layers[lid])
+                history = undo_stack_of(session, key, state)
                 pts, ranges = sorted_by_track(points)
                 state.target_of_track()  # cached: the first proposal's evidence names it
                 arrays = track_arrays(pts, ranges)
-                return key, lid, state, pts, ranges, arrays, queue_digest(state)
+                return key, lid, state, pts, ranges, arrays, queue_digest(state), history
 
             self.binder.run("review", job)
 
@@ -531,7 +548,7 @@ class ReviewDock(QtCore.QObject):
             return
         self._bind_timer.start()
 
-    def _bind_stages(self, key, lid, state, pts, ranges, arrays, digest):
+    def _bind_stages(self, key, lid, state, pts, ranges, arrays, digest, history=([], 0)):
         """Bind a queue the worker read, one stage per event-loop turn (a generator);
         a layer removed or run again meanwhile drops it."""
 
@@ -560,6 +577,10 @@ class ReviewDock(QtCore.QObject):
             return True
 
         controller = ReviewController(state, ProjectDecisions(self.w, key), self)
+        # The undo stack the session that made the stored decisions left (h196: Undo
+        # after a reopen undoes the last decision made before the close); no row is
+        # written and nothing applied again (500 commands: a few ms).
+        controller.restore(*history)
         panel = ReviewPanel(controller, self.stack, digest=digest)
         made.append(panel)
         for act in panel.actions:  # the window's Review and Edit menus hold the keys

@@ -42,9 +42,11 @@ class ProjectDecisions:
     def __init__(self, w, key: str) -> None:
         self.w, self.key = w, key
 
-    def apply(self, state: R.ReviewState, change: R.Change) -> R.Change:
+    def apply(self, state: R.ReviewState, change: R.Change, how: str = "do") -> R.Change:
+        """``how``: "do", "undo" or "redo" (the row's ``stack`` mark: a reopen rebuilds
+        the undo stack from it, :func:`~wakeline.core.review_store.undo_history`)."""
         state.apply(change)
-        row = decision_row(self.key, change, state.log[-1])
+        row = decision_row(self.key, change, state.log[-1], stack=how)
         self.w.session.decisions.append(row)
         self.w.project.add_decision(row)
         return change

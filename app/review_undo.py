@@ -32,6 +32,7 @@ class ReviewCommand(QtGui.QUndoCommand):
     def __init__(self, controller: "ReviewController", change: R.Change) -> None:
         self.controller = controller
         self.change = change
+        self.done = False  # redo() ran once: the next is a Redo, not the decision
         super().__init__(self.title())
 
     def title(self) -> str:
@@ -45,10 +46,12 @@ class ReviewCommand(QtGui.QUndoCommand):
         )
 
     def redo(self) -> None:
-        self.controller._apply(self.change)
+        how = "redo" if self.done else "do"
+        self.done = True
+        self.controller._apply(self.change, how)
 
     def undo(self) -> None:
-        self.controller._apply(self.change.inverse())
+        self.controller._apply(self.change.inverse(), "undo")
 
 
 class ReviewController(QtCore.QObject):
@@ -64,13 +67,32 @@ class ReviewController(QtCore.QObject):
         self.state = state
         self.store = store
         self.stack = QtGui.QUndoStack(self)
+        self._restoring = False  # restore(): the commands move, nothing is applied
 
-    def _apply(self, change: R.Change) -> None:
-        if self.store is not None:
-            self.store.apply(self.state, change)
+    def _apply(self, change: R.Change, how: str = "do") -> None:
+        if self._restoring:
+            return
+        if self.store is not None:  # how: the row says how it came (a reopen reads it)
+            self.store.apply(self.state, change, how)
         else:
             self.state.apply(change)
         self.changed.emit(sorted(change.status_after))
+
+    def restore(self, changes: list[R.Change], index: int) -> None:
+        """Push again the undo stack a reopened project's decisions left
+        (:func:`~wakeline.core.review_store.undo_history`): the commands and the index
+        where the session that made them left it, so Undo and Redo go on as there. The
+        state has them applied already (replayed from the rows): nothing is applied,
+        written to the project or emitted per command."""
+        self._restoring = True
+        try:
+            for change in changes:
+                cmd = ReviewCommand(self, change)
+                self.stack.push(cmd)  # its redo() does nothing now
+                cmd.done = True  # the next redo() is a Redo
+            self.stack.setIndex(index)  # the undone ones' undo() does nothing either
+        finally:
+            self._restoring = False
 
     def retranslate(self) -> None:
         """Every command's text again in the current language (after a switch)."""

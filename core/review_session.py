@@ -353,7 +353,7 @@ def carried_rows(carry: Carry, queue: str, when: str | None = None) -> list[dict
     when = when or dt.datetime.now(dt.UTC).isoformat(timespec="seconds")
     mark = R.LogEntry(when, R.RERUN, "", "", carry.queue, carry.text())
     rows = [decision_row(queue, R.Change(R.RERUN), mark)]
-    return rows + [decision_row(queue, c, e) for c, e in carry.changes]
+    return rows + [decision_row(queue, c, e, stack="carried") for c, e in carry.changes]
 
 
 def decision_counts(layers: list[Layer], decisions: list[dict]) -> tuple[int, int]:

@@ -138,8 +138,9 @@ class ReviewStore:
                 (CHECKED,),
             )
 
-    def apply(self, state: ReviewState, change: Change) -> Change:
-        """Apply ``change`` to ``state`` and record it: the usual way to decide."""
+    def apply(self, state: ReviewState, change: Change, how: str = "do") -> Change:
+        """Apply ``change`` to ``state`` and record it: the usual way to decide. ``how``
+        (do, undo, redo: the window's ``stack`` mark) is not kept in this store."""
         state.apply(change)
         self.record(change, state.log[-1])
         return change
@@ -231,11 +232,19 @@ def copy_review(src: str | Path, dst: str | Path) -> int:
         db.close()
 
 
-def decision_row(queue: str, change: Change, entry: LogEntry) -> dict:
+#: A decision row's ``stack`` mark (:func:`decision_row`): how the change came — a new
+#: decision pushed on the undo stack, an Undo, a Redo — or carried over by a re-run (off
+#: the stack). Rows written before h196 have none (:func:`undo_history` infers it).
+STACK_MARKS = ("do", "undo", "redo", "carried")
+
+
+def decision_row(queue: str, change: Change, entry: LogEntry, stack: str | None = None) -> dict:
     """One decision as the project's ``decisions`` table stores it (JSON): the queue it
     belongs to (:func:`wakeline.core.review_session.queue_key`), the change applied and
-    its log line. The window writes each one through the project's writer at once."""
-    return {
+    its log line, and (``stack``, one of :data:`STACK_MARKS`) how it came, from which a
+    reopen rebuilds the undo stack (:func:`undo_history`). The window writes each one
+    through the project's writer at once."""
+    row = {
         "queue": queue,
         "time": entry.time,
         "action": entry.action,
@@ -245,6 +254,57 @@ def decision_row(queue: str, change: Change, entry: LogEntry) -> dict:
         "after": entry.after,
         "change": change.to_dict(),
     }
+    if stack is not None:
+        row["stack"] = stack
+    return row
+
+
+def undo_history(rows: list[dict], queue: str) -> tuple[list[Change], int]:
+    """The undo stack the session that wrote ``queue``'s decision rows left: its
+    commands (the changes, oldest first) and its index (how many are done; those above
+    it are the Redo history) — what a reopen pushes again so that Undo undoes the last
+    decision made before the close and Redo redoes what was undone.
+
+    The rows are replayed as stack moves: an Undo row (the inverse of the command below
+    the index) moves the index down, a Redo row (the command at the index) moves it up,
+    a new decision drops the Redo history and is pushed. A re-run's marker
+    (:data:`~wakeline.core.review.RERUN`), the decisions it carried over and a
+    ``repair`` (the migration on open) are barriers: the stack is emptied there (the
+    session that wrote them had nothing to undo across them: a step run is not undone,
+    a repair is made at open). A row marked ``undo``/``redo`` that does not match the
+    stack (a log edited by hand) is a barrier too, so an Undo never meets a change that
+    no longer applies. Rows written before the marks (:data:`STACK_MARKS`) are read by
+    their change alone: an ``undo …`` row that inverts the command below the index is an
+    Undo, a row equal to the command at the index a Redo (a new decision equal to it has
+    the same effect, keeping the Redo history above it), any other a new decision. Pure
+    and fast (no state is touched: the rows were replayed by :func:`replay_decisions`)."""
+    stack: list[Change] = []
+    index = 0
+    for row in rows:
+        if not (isinstance(row, dict) and row.get("queue") == queue and "change" in row):
+            continue
+        change = Change.from_dict(row["change"])
+        mark = row.get("stack")
+        if change.action in (RERUN, "repair") or mark == "carried":
+            stack, index = [], 0
+            continue
+        undo = index > 0 and change == stack[index - 1].inverse()
+        redo = index < len(stack) and change == stack[index]
+        if mark == "undo" or (mark is None and undo and change.action.startswith("undo ")):
+            if undo:
+                index -= 1
+            else:
+                stack, index = [], 0
+        elif mark == "redo" or (mark is None and redo):
+            if redo:
+                index += 1
+            else:
+                stack, index = [], 0
+        else:
+            del stack[index:]
+            stack.append(change)
+            index += 1
+    return stack, index
 
 
 def entry_of_row(row: dict) -> LogEntry:

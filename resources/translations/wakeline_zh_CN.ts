@@ -1669,12 +1669,12 @@
         <translation>审核：{0} {1}</translation>
     </message>
     <message>
-        <source>&amp;Undo (nothing since the project was opened)</source>
-        <translation>撤销(&amp;U)（打开工程以来没有可撤销的）</translation>
+        <source>&amp;Undo (nothing since the repair made on opening)</source>
+        <translation>撤销(&amp;U)（打开时修复以来没有可撤销的）</translation>
     </message>
     <message>
-        <source>The undo history ends when the project is closed: the decisions restored from the file are changed by deciding again (Accept, Reject, Reset), and the decision log keeps every one.</source>
-        <translation>撤销历史在关闭工程时结束：从文件恢复的决策可通过重新决策（接受、拒绝、重置）来更改，决策日志保留每一条。</translation>
+        <source>Opening the project repaired decisions an older Wakeline left inconsistent; decisions made before the repair are changed by deciding again (Accept, Reject, Reset), and the decision log keeps every one.</source>
+        <translation>打开工程时修复了旧版 Wakeline 留下的不一致决策；修复之前的决策可通过重新决策（接受、拒绝、重置）来更改，决策日志保留每一条。</translation>
     </message>
     <message>
         <source>&amp;Next proposal</source>
