@@ -214,3 +214,25 @@ def test_an_old_project_without_marks_gets_its_stack_too(qtbot, tmp_path, monkey
     added = _rows_of(proj)[len(before) :]
     assert [(r["action"], r["stack"]) for r in added] == [(cs[4 - undo].inverse().action, "undo")]
     w.close()
+
+
+@pytest.mark.gui
+def test_a_stack_emptied_by_a_repair_says_so_in_both_languages(qtbot, tmp_path, monkeypatch):
+    """The one barrier a reopen leaves Undo empty at without a re-run: the repair made on
+    opening (a queue whose last rows are repairs; the log entry stands in for one)."""
+    _record(monkeypatch)
+    w = _fused_review(qtbot, tmp_path)
+    b = w.review.bound
+    assert b.controller.stack.count() == 0 and not b.rerun
+    w.review._undo_note()
+    assert "nothing since" not in w.review.act_undo.text()  # no decision: a plain Undo
+    b.controller.state.log.append(R.LogEntry("t", "repair", "A0001", "", "", ""))
+    w.review._undo_note()
+    act = w.review.act_undo
+    assert not act.isEnabled() and "nothing since the repair made on opening" in act.text()
+    assert "repaired decisions an older Wakeline left inconsistent" in act.toolTip()
+    w.set_language("zh_CN")
+    w.review._undo_note()
+    assert "打开时修复以来" in act.text() and "旧版" in act.toolTip()
+    w.set_language("en")
+    w.close()
