@@ -55,6 +55,7 @@ def _maneuver_params(args: argparse.Namespace):
         noise_min_windows=args.noise_min_windows,
         noise_k_law=args.noise_k_law,
         rest_noise_sigmas=args.rest_noise_sigmas,
+        rest_noise_cap_m=args.rest_noise_cap_m,
         max_step_windows=args.max_step_windows,
         window_max_s=args.window_max_s,
         radius_s=args.radius_s,
@@ -318,6 +319,13 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.rest_noise_sigmas,
         help=f"the at-rest radius grows, per track, to this many of its position-noise sigma "
         f"where that exceeds 50 m; 0 = off (default {d.rest_noise_sigmas:g})",
+    )
+    p.add_argument(
+        "--rest-noise-cap-m",
+        type=float,
+        default=d.rest_noise_cap_m,
+        help=f"--rest-noise-sigmas' share of the at-rest radius at most this many metres, so a "
+        f"sparse noisy ship under way is not at rest; 0 = no cap (default {d.rest_noise_cap_m:g})",
     )
     p.add_argument(
         "--max-step-windows",

@@ -792,13 +792,15 @@ def rest_radius(
     med: np.ndarray | None = None,
     lag: "np.ndarray | int" = 1,
     sigma: np.ndarray | None = None,
+    cap_m: float = 0.0,
 ) -> "float | np.ndarray":
     """The at-rest radius :func:`at_rest` takes in :func:`rest_frame`'s frame: ``radius_m``
     (a float) when ``sigmas`` is 0, else per track max(``radius_m``, ``sigmas`` · σ / f), σ
     the track's position noise per axis (:func:`wakeline.core.maneuver.position_noise_m`
     with ``lag``, or ``sigma`` when the caller has it) and f the factor by which
     :func:`rest_frame` shrinks a sparse track (its radius there is f · ``radius_m`` in
-    metres; the noise's share, ``sigmas`` · σ metres, is not a speed and does not grow).
+    metres; the noise's share, ``sigmas`` · σ metres, is not a speed and does not grow;
+    ``cap_m`` > 0: that share at most ``cap_m`` metres, session 28 h195).
     ``x``/``y`` metres before :func:`rest_frame`."""
     if sigmas <= 0 or index.n_tracks == 0:
         return radius_m
@@ -813,7 +815,10 @@ def rest_radius(
         with np.errstate(invalid="ignore"):
             f = np.fmax(steps * med / window_s, 1.0)
         f[~np.isfinite(f)] = 1.0
-    grown = np.where(np.isfinite(sigma), sigmas * np.asarray(sigma, dtype="float64"), 0.0) / f
+    grown = np.where(np.isfinite(sigma), sigmas * np.asarray(sigma, dtype="float64"), 0.0)
+    if cap_m > 0:
+        grown = np.fmin(grown, float(cap_m))
+    grown = grown / f
     return np.fmax(float(radius_m), grown)
 
 

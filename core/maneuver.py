@@ -324,6 +324,17 @@ class ManeuverParams(Params):
         hi=100.0,
         source="ours (session 28, h193: docs/prereg/session28_at_rest_noise.md)",
     )
+    rest_noise_cap_m: float = param(
+        0.0,
+        "m",
+        "at rest: the radius grown by rest_noise_sigmas is at most this many metres (the "
+        "noise's share; on sparse tracks it does not grow with the window), so a sparse "
+        "track with hundreds of metres of noise moving at speed is not taken as at rest; "
+        "0 = no cap",
+        lo=0.0,
+        hi=1e5,
+        source="ours (session 28, h195: docs/prereg/session28_at_rest_noise_b.md)",
+    )
     rest_north_box: bool = param(
         False,
         "",
@@ -1199,19 +1210,23 @@ def _rest_mask(
     sigmas: float = 0.0,
     lag: "np.ndarray | int" = 1,
     sigma: np.ndarray | None = None,
+    cap_m: float = 0.0,
 ) -> np.ndarray:
     """Cleaning's at-rest rule (:func:`wakeline.core.clean.at_rest`, on sparse tracks over
     ``steps`` sampling intervals: :func:`wakeline.core.clean.rest_frame`, ``med`` each
     track's median interval when known), run only on the tracks that can hold a stay
     (:func:`_rest_possible`; same result, less work). ``sigmas`` > 0: the radius grown
-    per track with its noise (:func:`wakeline.core.clean.rest_radius`)."""
+    per track with its noise (:func:`wakeline.core.clean.rest_radius`; its noise share at
+    most ``cap_m`` metres when ``cap_m`` > 0)."""
     from wakeline.core.clean import at_rest, rest_frame, rest_radius  # cleaning's rule
 
     n = len(x)
     rest = np.zeros(n, dtype=bool)
     if n == 0:
         return rest
-    radius_m = rest_radius(x, y, t, index, radius_m, sigmas, window_s, steps, med, lag, sigma)
+    radius_m = rest_radius(
+        x, y, t, index, radius_m, sigmas, window_s, steps, med, lag, sigma, cap_m
+    )
     x, y, t = rest_frame(x, y, t, index, window_s, steps, med)
     possible = _rest_possible(x, y, t, index, radius_m, window_s)
     if not possible.any():
@@ -2231,6 +2246,7 @@ def _detect_sorted(
             params.rest_noise_sigmas,
             lag_track,
             sigma_track,
+            params.rest_noise_cap_m,
         )
     rest_lo, rest_hi = _runs(rest)
     any_rest = bool(len(rest_lo))

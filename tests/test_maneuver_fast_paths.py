@@ -126,6 +126,7 @@ def _reference_params(params: ManeuverParams):
     assert not fields.pop("rest_north_box")
     assert not fields.pop("noise_k_law")  # h185, off by default
     assert not fields.pop("rest_noise_sigmas")  # h193, off by default
+    assert not fields.pop("rest_noise_cap_m")  # h195, off by default
     return reference.ManeuverParams(**fields)
 
 

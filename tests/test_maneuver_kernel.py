@@ -88,6 +88,7 @@ def _same(df, params):
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("noise_k_law")  # h185, off by default
     assert not fields.pop("rest_noise_sigmas")  # h193, off by default
+    assert not fields.pop("rest_noise_cap_m")  # h195, off by default
     assert not fields.pop("rest_north_box")  # the reference calls at_rest's default box
     ref = reference.detect(df, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
