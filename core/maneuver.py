@@ -314,7 +314,7 @@ class ManeuverParams(Params):
         hi=1000.0,
     )
     rest_noise_sigmas: float = param(
-        0.0,
+        5.0,
         "sigma",
         "at rest: the radius grows, per track, to this many of the track's position-noise "
         "sigma (the noise floor's estimate) where that is larger than rest_radius_m, so a "
@@ -322,10 +322,11 @@ class ManeuverParams(Params):
         "stationary.noise_sigmas); 0 = off",
         lo=0.0,
         hi=100.0,
-        source="ours (session 28, h193: docs/prereg/session28_at_rest_noise.md)",
+        source="ours (session 28, h193: docs/prereg/session28_at_rest_noise.md; default 5 "
+        "with rest_noise_cap_m 100 since h195: docs/prereg/session28_at_rest_noise_b.md)",
     )
     rest_noise_cap_m: float = param(
-        0.0,
+        100.0,
         "m",
         "at rest: the radius grown by rest_noise_sigmas is at most this many metres (the "
         "noise's share; on sparse tracks it does not grow with the window), so a sparse "
@@ -333,7 +334,8 @@ class ManeuverParams(Params):
         "0 = no cap",
         lo=0.0,
         hi=1e5,
-        source="ours (session 28, h195: docs/prereg/session28_at_rest_noise_b.md)",
+        source="ours (session 28, h195: docs/prereg/session28_at_rest_noise_b.md, all nine "
+        "guards held)",
     )
     rest_north_box: bool = param(
         False,

@@ -5,9 +5,11 @@ On a 1 s track with 15-20 m of noise per axis the 180 fixes of a 180 s window sp
 a box whose diagonal is 7-8 sigma, beyond the 2 x 50 m the at-rest rule allows, so a moored
 ship is not at rest and its noise reads as turns. With the radius max(50 m, c sigma) the
 berth is at rest; a track whose c sigma is below 50 m is as without the option, bit for
-bit. Both stay off (docs/prereg/session28_at_rest_noise.md: c 5 and c 4 failed guard (6),
+bit. Uncapped, c 5 and c 4 failed guard (6) (docs/prereg/session28_at_rest_noise.md:
 seed 000's 5-min tracks with 300-600 m noise, where c sigma over a 300 s window tolerates
-more than the ships' 16 kn).
+more than the ships' 16 kn); with the noise's share capped at 100 m
+(``rest_noise_cap_m``, h195, tests/test_at_rest_noise_cap.py) c 5 is the detector's
+default. Here "off" is ``rest_noise_sigmas`` 0 and "grown" c 5 without the cap.
 """
 
 import numpy as np
@@ -19,6 +21,9 @@ from wakeline.core.clean import CleanParams, clean
 from wakeline.core.errors import InputError
 from wakeline.core.maneuver import ManeuverParams, detect
 from wakeline.core.schema import time_seconds
+
+OFF = ManeuverParams(rest_noise_sigmas=0.0)  # before h195's default
+GROWN = ManeuverParams(rest_noise_sigmas=5.0, rest_noise_cap_m=0.0)
 
 MOOR_S = 1200.0
 
@@ -59,8 +64,8 @@ def _berth(pts):
 def test_moored_noisy_ship_is_at_rest(seed):
     pts, spans = moored_then_moving(seed, sigma=20.0)
     berth = _berth(pts)
-    base = detect(pts, ManeuverParams())
-    grown = detect(pts, ManeuverParams(rest_noise_sigmas=5.0))
+    base = detect(pts, OFF)
+    grown = detect(pts, GROWN)
     # today: the noise keeps most of the berth out of the at-rest spans, turns appear there
     assert base.at_rest[berth].mean() < 0.5
     assert base.is_maneuver[berth].sum() > 0
@@ -81,8 +86,8 @@ def test_moored_noisy_ship_is_at_rest(seed):
 def test_quiet_track_is_bit_identical(seed):
     # 3 m of noise: 5 sigma = 15 m < 50 m, the radius stays 50 m on this track
     pts, _ = moored_then_moving(seed, sigma=3.0)
-    base = detect(pts, ManeuverParams())
-    grown = detect(pts, ManeuverParams(rest_noise_sigmas=5.0))
+    base = detect(pts, OFF)
+    grown = detect(pts, GROWN)
     assert np.array_equal(base.at_rest, grown.at_rest)
     assert np.array_equal(base.is_maneuver, grown.is_maneuver)
     assert np.array_equal(base.factor, grown.factor, equal_nan=True)
@@ -93,8 +98,8 @@ def test_per_track_radius_mixed_tracks():
     noisy, _ = moored_then_moving(0, sigma=20.0)
     quiet, _ = moored_then_moving(1, sigma=3.0)
     both = pd.concat([noisy, quiet], ignore_index=True)
-    grown = detect(both, ManeuverParams(rest_noise_sigmas=5.0))
-    alone = [detect(p, ManeuverParams(rest_noise_sigmas=5.0)) for p in (noisy, quiet)]
+    grown = detect(both, GROWN)
+    alone = [detect(p, GROWN) for p in (noisy, quiet)]
     tab = grown.table()
     for part, res in zip(("s0", "s1"), alone, strict=True):
         assert int((tab["batch"] == part).sum()) == len(res.table())

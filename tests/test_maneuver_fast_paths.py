@@ -125,8 +125,8 @@ def _reference_params(params: ManeuverParams):
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("rest_north_box")
     assert not fields.pop("noise_k_law")  # h185, off by default
-    assert not fields.pop("rest_noise_sigmas")  # h193, off by default
-    assert not fields.pop("rest_noise_cap_m")  # h195, off by default
+    assert not fields.pop("rest_noise_sigmas")  # h193; default 5 since h195, set 0 above
+    fields.pop("rest_noise_cap_m")  # h195: no effect with rest_noise_sigmas 0 (set above)
     return reference.ManeuverParams(**fields)
 
 
@@ -134,7 +134,9 @@ def _reference_params(params: ManeuverParams):
 @pytest.mark.parametrize("which", range(len(PARAMS)))
 def test_detect_equals_the_straightforward_detector(scene, which):
     df = SCENES[scene]()
-    params = PARAMS[which].replace(max_step_windows=0.0, slow_side_step_s=0.0)
+    params = PARAMS[which].replace(
+        max_step_windows=0.0, slow_side_step_s=0.0, rest_noise_sigmas=0.0
+    )
     ours = detect(df, params)
     ref = reference.detect(df, _reference_params(params))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)

@@ -79,7 +79,9 @@ PARAMS = [
 def _same(df, params):
     # the reference predates max_step_windows (no heading across a long step) and
     # slow_side_step_s (slow_side's bound, tested in test_maneuver.py): those rules off
-    params = params.replace(max_step_windows=0.0, window_max_s=0.0, slow_side_step_s=0.0)
+    params = params.replace(
+        max_step_windows=0.0, window_max_s=0.0, slow_side_step_s=0.0, rest_noise_sigmas=0.0
+    )
     ours = detect(df, params)
     fields = dict(params.__dict__)
     fields.pop("max_step_windows")
@@ -87,8 +89,8 @@ def _same(df, params):
     assert fields.pop("radius_s") == 0 and fields.pop("edge_s") == 0  # h162, off by default
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("noise_k_law")  # h185, off by default
-    assert not fields.pop("rest_noise_sigmas")  # h193, off by default
-    assert not fields.pop("rest_noise_cap_m")  # h195, off by default
+    assert not fields.pop("rest_noise_sigmas")  # h193; default 5 since h195, set 0 above
+    fields.pop("rest_noise_cap_m")  # h195: no effect with rest_noise_sigmas 0 (set above)
     assert not fields.pop("rest_north_box")  # the reference calls at_rest's default box
     ref = reference.detect(df, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
