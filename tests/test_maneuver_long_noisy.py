@@ -138,11 +138,14 @@ def test_options_equal_the_straightforward_detector(options):
     import maneuver_reference as reference
 
     pts, _ = long_noisy_track(4, hours=0.5)
-    params = ManeuverParams(max_step_windows=0.0, slow_side_step_s=0.0, **options)
+    params = ManeuverParams(
+        max_step_windows=0.0, slow_side_step_s=0.0, rest_noise_sigmas=0.0, **options
+    )
     ours = detect(pts, params)
     fields = dict(params.__dict__)
     off = ("max_step_windows", "window_max_s", "radius_s", "edge_s", "rest_north_box")
-    for gone in (*off, "slow_side_step_s", "slow_side_span_s", "noise_k_law"):
+    assert not fields.pop("rest_noise_sigmas")  # h193/h195: off here, the reference predates it
+    for gone in (*off, "slow_side_step_s", "slow_side_span_s", "noise_k_law", "rest_noise_cap_m"):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)
