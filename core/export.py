@@ -89,6 +89,24 @@ def member_labels(points: pd.DataFrame) -> pd.Series:
     return points["sensor"].astype(str) + ":" + points["batch"].astype(str)
 
 
+def member_sensor_batch(points: pd.DataFrame) -> tuple[pd.Series, pd.Series]:
+    """Each row's own track as (sensor, batch). Merged tracks keep it in ``source_track``
+    (``sensor:batch``) and, since session 29, the sensor alone in ``source_sensor``, so that a
+    sensor with a ``:`` in its name splits right; without that column the first ``:`` splits."""
+    label = member_labels(points)
+    if "source_sensor" in points.columns and points["sensor"].astype(str).eq("merged").all():
+        sensor = points["source_sensor"].astype(str)
+        codes, uniq = pd.factorize(label + "\x00" + sensor)  # per track, not per point
+        own = []
+        for key in uniq:
+            lab, sen = key.split("\x00", 1)
+            own.append(lab[len(sen) + 1 :] if lab.startswith(sen + ":") else lab)
+        batch = pd.Series(np.asarray(own, dtype=object)[codes], index=points.index)
+        return sensor, batch
+    parts = label.str.split(":", n=1)
+    return parts.str[0], parts.str[1]
+
+
 def carries_targets(points: pd.DataFrame) -> bool:
     """Whether ``points`` are member tracks with their targets (an associated or reviewed
     layer, or merged tracks that keep ``source_track``): written as targets of tracks in
@@ -168,8 +186,8 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
     member track, from ``source_track``): the GeoJSON reader gives the target back."""
     if carries_targets(points) and "source_track" in points.columns:
         # merged tracks: one feature per member track, as every format writes targets
-        label = member_labels(points).str.split(":", n=1)
-        points = points.assign(sensor=label.str[0], batch=label.str[1])
+        sensor, batch = member_sensor_batch(points)
+        points = points.assign(sensor=sensor, batch=batch)
     pts, index = sorted_with_index(points)
     lon = np.round(pts["lon"].to_numpy(dtype="float64"), 7)
     lat = np.round(pts["lat"].to_numpy(dtype="float64"), 7)

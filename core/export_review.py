@@ -18,6 +18,7 @@ from wakeline.core.export import (
     carries_targets,
     export_geojson,
     member_labels,
+    member_sensor_batch,
     spreadsheet_safe,
 )
 from wakeline.core.io.gpx import GPX_TARGET_TYPE
@@ -34,6 +35,7 @@ def merged_tracks(state: ReviewState, points: pd.DataFrame) -> pd.DataFrame:
     fusion writes it) and ``source_track`` = the row's own ``sensor:batch``."""
     pts = state.label_points(points)
     pts["source_track"] = point_labels(pts)
+    pts["source_sensor"] = pts["sensor"].astype(str)  # splits source_track when a sensor has ':'
     members = pts.groupby("target")["source_track"].agg(lambda s: "+".join(sorted(set(s))))
     pts["members"] = members.reindex(pts["target"]).to_numpy()
     pts["sensor"] = "merged"
@@ -98,7 +100,7 @@ def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline"
         labels = pts["_member"].to_numpy()
         merged = pts["sensor"].astype(str).eq("merged").all()  # members in source_track
         own_sensor = (
-            pts["_member"].str.split(":", n=1).str[0] if merged else pts["sensor"].astype(str)
+            member_sensor_batch(pts)[0] if merged else pts["sensor"].astype(str)
         ).to_numpy()
     members = pts["members"].astype(str).to_numpy() if "members" in pts.columns else None
 

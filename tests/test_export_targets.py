@@ -102,6 +102,26 @@ def test_merged_tracks_of_a_review_are_written_per_member(tmp_path):
         _same(pts, read_points(out).points)
 
 
+def test_merged_tracks_with_a_colon_in_a_sensor_split_by_their_source_sensor(tmp_path):
+    """Merged tracks keep each row's own sensor in ``source_sensor`` (as
+    :func:`merged_tracks` writes them): a sensor named ``AIS:rx1`` comes back as that
+    sensor with batch ``367`` from GeoJSON and GPX, not as sensor ``AIS``, batch ``rx1:367``."""
+    pts = _associated()
+    merged = pts.assign(
+        source_track=pts["sensor"] + ":" + pts["batch"],
+        source_sensor=pts["sensor"],
+        members="AIS:rx1:367+R:12",
+        sensor="merged",
+        batch=pts["target"],
+    )
+    for suffix in ("geojson", "gpx"):
+        out = tmp_path / f"m.{suffix}"
+        export_tracks(merged, out)
+        back = read_points(out).points
+        assert set(back["sensor"]) == {"AIS:rx1", "R"}
+        _same(pts, back)
+
+
 def test_tracks_without_targets_are_written_as_before(tmp_path):
     pts = _associated().drop(columns="target")
     export_gpx(pts, tmp_path / "a.gpx")

@@ -415,6 +415,10 @@ def test_export_honours_decisions(scene, tmp_path):
     assert set(fused["batch"]) == set(st.target_of_track())
     merged = merged_tracks(st, multi)
     assert len(merged) == len(multi) and (merged["sensor"] == "merged").all()
+    # each row's own sensor kept beside source_track (a sensor may hold a ':')
+    own = merged["source_track"].str.split(":", n=1).str[0]
+    assert (merged["source_sensor"] == own).all()
+    assert set(merged["source_sensor"]) == set(multi["sensor"].astype(str))
     export_tracks(fused, tmp_path / "f.gpx")
     g = gpxpy.parse((tmp_path / "f.gpx").read_text(encoding="utf-8"))
     assert len(g.tracks) == fused["batch"].nunique()
