@@ -59,7 +59,7 @@ def _false_and_found(pts, spans, params, tol=30.0):
 
 def test_off_by_default():
     d = ManeuverParams()
-    assert d.confirm_z == 0.0 or d.confirm_z == 4.0  # 4.0 only if the prereg rule adopts it
+    assert d.confirm_z == 0.0  # docs/prereg/session29_confirm.md: not adopted
     pts, _ = track(0, 1.0, 15.0, 20)
     off = detect(pts, ManeuverParams(confirm_z=0.0))
     assert np.array_equal(off.is_maneuver, detect(pts, d.replace(confirm_z=0.0)).is_maneuver)
