@@ -8,6 +8,13 @@ detector's defaults, on the raw points of bench/real_set_points.py), once per
 ``compress.error_cap_m`` (0 = no cap, the default): ours kept / Dis_e, DP kept at the same
 Dis_e, whether 2b holds, the farthest point from our compressed track, and the error
 bound's median and largest over the tracks (with the number of tracks the cap lowered).
+
+    python bench/compress_error_cap.py --seed000 [--caps ...]
+
+Seed 000's protocol instead (the tracks of ``wakeline evaluate maneuver --tracks 100 --seed
+0``): that command's tables compress to the maneuver points alone and do not use the error
+bound, so this prints what ``wakeline compress``'s defaults (turning_keep: the bound on)
+give on the same tracks per cap: share kept, Dis_e against the true path and the observed.
 """
 
 import argparse
@@ -31,7 +38,10 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--sets", nargs="+", default=[s for s in SETS if s != "atd_dataset1"])
     ap.add_argument("--caps", nargs="+", type=float, default=[0, 200, 500, 1000, 2000])
+    ap.add_argument("--seed000", action="store_true", help="seed 000's simulated tracks")
     args = ap.parse_args()
+    if args.seed000:
+        return seed000(args.caps)
     print(
         "set           cap_m  ours_kept  ours_dis_e   dp_kept  dp_dis_e  2b  ours_max_err  "
         "tol_median  tol_max  capped"
@@ -54,6 +64,28 @@ def main() -> None:
                 f"{b['error_tol_m'].max():8,.0f} {capped:7,}",
                 flush=True,
             )
+
+
+def seed000(caps: list[float]) -> None:
+    from wakeline.core import simulate
+
+    print("sigma class    cap_m  kept_share  dis_e_true  dis_e_obs  max_err")
+    k = 0
+    for sigma in (300.0, 600.0):
+        for cls in ("short", "medium", "long"):
+            df = simulate.maneuver_tracks(100, cls, sigma, seed=0 + 1000 * k)
+            k += 1
+            res = detect(df, ManeuverParams())
+            for cap in caps:
+                cp = CompressParams(error_cap_m=cap)
+                o = compress_with(
+                    None, turning_keep(res, cp), refine=cp.refine, sorted_points=res.points
+                ).report()["overall"]
+                print(
+                    f"{sigma:5g} {cls:<7} {cap:6g} {o['ratio']:11.3f} {o['dis_e_true_m']:11.1f} "
+                    f"{o['dis_e_m']:10.1f} {o['max_error_m']:8,.0f}",
+                    flush=True,
+                )
 
 
 if __name__ == "__main__":
