@@ -699,7 +699,7 @@ def merge_reports(reports: list[dict]) -> dict:
     if "break_legs" in report["rules"].get("speed", {}):  # every block's, the fastest first
         legs = [leg for r in reports for leg in r["rules"]["speed"]["break_legs"]]
         legs.sort(key=lambda leg: -(leg["kn"] if leg["kn"] is not None else np.inf))
-        report["rules"]["speed"]["break_legs"] = legs
+        report["rules"]["speed"]["break_legs"] = legs[:BREAK_LEGS_LISTED]
     if "same_time" in report["rules"]:
         # the blocks' medians, each weighted by its rows (the median of a block of tracks)
         pairs = sorted(
@@ -1285,8 +1285,10 @@ def _clean_block(
         report["rules"]["speed"]["breaks"] = int(speed_breaks[alive].sum())
         report["rules"]["speed"]["splits"] = int(split.sum())
         # the impossible legs left inside a track (not split): D3, operator test 7
-        legs_kept = _kept_break_legs(pts, speed_breaks, alive, piece, lon, lat, t, params.speed)
-        report["rules"]["speed"]["breaks_kept"] = len(legs_kept)
+        n_kept, legs_kept = _kept_break_legs(
+            pts, speed_breaks, alive, piece, lon, lat, t, params.speed
+        )
+        report["rules"]["speed"]["breaks_kept"] = n_kept
         report["rules"]["speed"]["break_legs"] = legs_kept
     if split.any():  # each piece with a point left is a track (batch#2 …)
         report["tracks_out"] = int(len(np.unique(piece[alive])))
@@ -1340,6 +1342,11 @@ def _break_legs(
     return rows, prev, has, d, dt
 
 
+BREAK_LEGS_LISTED = 100
+"""The clean report lists at most this many impossible legs kept (the fastest); its
+``breaks_kept`` counts them all (MTAD's noise gives 1,343, some 200 KB of JSON)."""
+
+
 def _kept_break_legs(
     pts: pd.DataFrame,
     breaks: np.ndarray,
@@ -1349,19 +1356,20 @@ def _kept_break_legs(
     lat: np.ndarray,
     t: np.ndarray,
     sp: "SpeedParams",
-) -> list[dict]:
+) -> tuple[int, list[dict]]:
     """The breaks whose impossible leg stayed inside an output track (not split, its
     leg from the last kept point of the same piece still longer than v_max · dt +
-    tolerance): one record each (sensor, batch as written out, time, from_time, km, s,
-    kn), the fastest first."""
+    tolerance): how many, and one record each for the fastest :data:`BREAK_LEGS_LISTED`
+    (sensor, batch as written out, time, from_time, km, s, kn), the fastest first."""
     rows, prev, has, d, dt = _break_legs(breaks, alive, piece, lon, lat, t)
     with np.errstate(invalid="ignore", divide="ignore"):
         bad = has & (d > sp.v_max_kn * geo.KN_MS * dt + sp.tolerance_m)
         kn = np.where(dt > 0, d / dt / geo.KN_MS, np.inf)
     rows, prev, d, dt, kn = rows[bad], prev[bad], d[bad], dt[bad], kn[bad]
-    order = np.argsort(-kn, kind="stable")
+    n_kept = int(len(rows))
+    order = np.argsort(-kn, kind="stable")[:BREAK_LEGS_LISTED]
     rows, prev, d, dt, kn = rows[order], prev[order], d[order], dt[order], kn[order]
-    return [
+    return n_kept, [
         {
             "sensor": sensor,
             "batch": batch,

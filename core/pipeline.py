@@ -239,7 +239,8 @@ def _break_phrases(speed: dict) -> list:
             track=f"{worst['sensor']}:{worst['batch']}",
             time=str(worst["from_time"]).removesuffix("+00:00"),
         )
-        if len(legs) == 1:
+        n_kept = int(speed.get("breaks_kept", len(legs)) or len(legs))
+        if n_kept == 1:
             out.append(
                 phrase(
                     "; 1 break kept: {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} "
@@ -252,7 +253,7 @@ def _break_phrases(speed: dict) -> list:
                 phrase(
                     "; {n:#break} kept, the fastest {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, "
                     "track {track} at {time}",
-                    n=len(legs),
+                    n=n_kept,
                     **values,
                 )
             )

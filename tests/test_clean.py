@@ -739,3 +739,23 @@ def test_break_legs_and_splits_add_up_over_blocks(monkeypatch):
     assert len(blocks.report["rules"]["speed"]["break_legs"]) == 3
     on = CleanParams().with_settings(["speed.split_at_breaks=true"])
     assert clean(pts, on).report["rules"]["speed"]["splits"] == 3
+
+
+def test_the_report_lists_the_fastest_kept_breaks_and_counts_them_all(monkeypatch):
+    """The report's ``break_legs`` is capped (MTAD's noise gave 1,343 records); ``breaks_kept``
+    and the summary count them all."""
+    import wakeline.core.clean as C
+    from wakeline.core.pipeline import STEPS, StepResult
+
+    monkeypatch.setattr(C, "BREAK_LEGS_LISTED", 1)
+    parts = []
+    for batch, lon0 in (("5", 122.04), ("6", 122.08)):  # two tracks, each with a jump
+        a = straight(60, speed_kn=12, period_s=10.0, batch=batch)
+        b = straight(60, speed_kn=12, period_s=10.0, batch=batch, lon0=lon0, lat0=30.01)
+        b["time"] = b["time"] + pd.Timedelta(seconds=600)
+        parts += [a, b]
+    pts = pd.concat(parts, ignore_index=True)
+    rep = C.clean(pts).report
+    speed = rep["rules"]["speed"]
+    assert speed["breaks_kept"] == 2 and len(speed["break_legs"]) == 1
+    assert "2 breaks kept" in STEPS["clean"].summary(StepResult("clean", [], rep, {}))
