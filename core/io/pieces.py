@@ -69,6 +69,7 @@ from wakeline.core.io.reader import (
     line_pieces,
     parse_zone,
     strict_mode,
+    swapped_file,
     time_counts,
     with_final,
 )
@@ -493,6 +494,12 @@ def merge_import_reports(
     # A later piece read in a fallback encoding: the whole file is read in that one.
     encodings = [r["encoding"] for r in reports]
     encoding = next((e for e in encodings if e != sn.encoding), encodings[0])
+    read_all = {
+        "rows_read": sum(int(r["rows_read"]) for r in reports),
+        "lat_beyond_90_lon_within": sum(int(r.get("lat_beyond_90_lon_within", 0)) for r in reports),
+    }
+    if swapped_file(read_all):  # the whole-file reader quarantines every row of it (D2)
+        raise WholeFileNeeded
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
     fmt = (with_rows or reports)[0].get("time_format")
     first = {k: v for k, v in first.items() if k != "_zones"}

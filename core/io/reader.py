@@ -44,6 +44,7 @@ from wakeline.core.io.decoding import (
     fallback_warning,
     line_decodable,
     lines_codec,
+    plain_encoding,
 )
 from wakeline.core.io.formats import (
     DISTANCE_UNITS,
@@ -708,6 +709,19 @@ UNBALANCED_NOTE = (
     "quotes do not balance (a quoted cell ran over line ends): the file was read line by "
     "line, quoted cells unquoted"
 )
+
+
+def bom_warnings(sn: Sniff, enc: str) -> list[str]:
+    """A warning when the file starts with a UTF-8 byte order mark and its text is in
+    another encoding (GBK saved by a tool that adds the mark, operator test 7 D1): the
+    mark was dropped and the text read as ``enc``."""
+    name = plain_encoding(codecs.lookup(enc).name) if line_decodable(enc) else ""
+    if not sn.bom or not name or name.startswith("utf-"):
+        return []
+    return [
+        f"the file starts with a UTF-8 byte order mark but its text is not UTF-8: the mark "
+        f"was dropped and the text read as {name}"
+    ]
 
 
 def encoding_note(start: str, enc: str) -> str:
@@ -2315,6 +2329,23 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
+def _garbled_header(columns: tuple[str, ...]) -> bool:
+    """Whether header names look read in the wrong encoding: undecodable bytes (U+FFFD),
+    or Latin-1 letters whose bytes are Chinese text in GB18030 (``ÅúºÅ`` is 批号)."""
+    from wakeline.core.io.decoding import _gb_line, _high
+
+    text = ",".join(columns).lstrip("\ufeff").removeprefix("ï»¿")
+    if "\ufffd" in text:
+        return True
+    if text.isascii():
+        return False
+    try:
+        raw = text.encode("cp1252")
+    except UnicodeEncodeError:
+        return False
+    return _gb_line(raw, _high(raw))
+
+
 def resolve_header(
     sn: Sniff,
     fmt: str,
@@ -2372,11 +2403,22 @@ def resolve_header(
                     f"{exc}; by its values the time may be in {found[0]!r}: "
                     f"--map {shlex.quote(f'time={found[0]}')}"
                 ) from None
+        garbled = sn.has_header and _garbled_header(sn.columns)
+        if garbled:
+            # not "not track data": a header read in the wrong encoding (operator test 7
+            # D1: batch skipped such a file with exit status 0, its rows lost)
+            stray = False
         refused = NotTrackData if stray else InputError
         if sn.has_header and len(known_fields(sn.columns)) < 3:
             raise refused(
                 f"{exc}; if the header is further down (a title above it), skip the lines "
                 "above it with --skip-rows N"
+                + (
+                    f"; the header looks read in the wrong encoding (read as {plain_encoding(sn.encoding)}):"
+                    " give the file's encoding (--encoding, e.g. gb18030)"
+                    if garbled
+                    else ""
+                )
             ) from None
         if stray and not isinstance(exc, NotTrackData):
             raise NotTrackData(str(exc)) from None
@@ -3015,6 +3057,7 @@ def read_points(
     zones = [time_info.pop("_zoned_n", 0), time_info.pop("_naive_n", 0)]
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes + _title_warnings(sn) + _blank_run_warnings(sn)
+    warnings += bom_warnings(sn, rows.encoding)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
@@ -3033,7 +3076,7 @@ def read_points(
         "input": str(path),
         "format": res.format.name,
         "format_label": res.format.label,
-        "encoding": rows.encoding,
+        "encoding": plain_encoding(rows.encoding),
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
@@ -3063,7 +3106,7 @@ def read_points(
     }
     layout = {
         "delimiter": sn.delimiter,
-        "encoding": rows.encoding,
+        "encoding": plain_encoding(rows.encoding),
         "bom": sn.bom,
         "line_ending": sn.line_ending,
         "compression": sn.compression,
@@ -3297,6 +3340,18 @@ def _looks_swapped(lon, lat) -> int:
     return int(pc.sum(pc.cast(pc.fill_null(hit, False), pa.int64())).as_py() or 0)
 
 
+#: The quarantine reason of a row of a file whose lat and lon columns look swapped (most
+#: rows' lat beyond ±90° with lon within ±90°) that is not out of range itself.
+SWAPPED_REASON = "in a file whose lat and lon columns look swapped"
+
+
+def swapped_file(report: dict) -> bool:
+    """Whether a read's counts judge the file's lat and lon columns swapped (most rows
+    read have lat beyond ±90° and lon within ±90°)."""
+    rows = int(report.get("rows_read", 0) or 0)
+    return bool(rows) and int(report.get("lat_beyond_90_lon_within", 0) or 0) > rows / 2
+
+
 #: The layouts that fix the order of the position columns (format name → the field that
 #: comes first): a file of such a layout with the other order may have its names swapped.
 POSITION_ORDER = {
@@ -3323,7 +3378,8 @@ def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list
             f"column {lat!r} (read as latitude) is beyond ±90° in most rows while {lon!r} "
             f"lies within ±90° (lat_beyond_90_lon_within in the report counts them): the "
             f"columns look swapped (longitudes under "
-            f"{lat!r}); those rows are quarantined. If so, import again with {fix}"
+            f"{lat!r}); every row is quarantined (none is kept at a mirrored place). If so, "
+            f"import again with {fix}"
         )
     first = POSITION_ORDER.get(res.format.name)
     if first is not None and lat in sn.columns and lon in sn.columns:
@@ -4374,6 +4430,13 @@ def _to_canonical(
     counted.pop("_form_clash", None)
     blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
     swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
+    if "_edges" not in (time_info or {}):  # a whole file (a piece's is judged over the file)
+        read_n = int(n - int(blank.sum()) + len(bad.lines))
+        if read_n and swapped > read_n / 2:
+            # The file is judged swapped: no row of it is kept at the place its names
+            # give (a lon within ±90 under lat would be a point mirrored across the
+            # diagonal: operator test 7, D2); every row not quarantined already is, so.
+            flag(np.ones(n, dtype=bool), SWAPPED_REASON)
     bad_rows = reasons != 0
     keep = ~bad_rows & ~blank
     all_kept = bool(keep.all())
@@ -5087,6 +5150,14 @@ def stream_points(
         raise _Fallback from exc
 
     # Rows the parser refused (field counts), blank lines, and the texts of the rest.
+    read_all = {
+        "rows_read": totals["rows_read"] + len(bad.lines),
+        "lat_beyond_90_lon_within": totals["lat_beyond_90_lon_within"],
+    }
+    if swapped_file(read_all):
+        # judged over the whole file: its rows within range were handed on as points;
+        # the whole-file reader quarantines every row of it (D2)
+        raise WholeFileNeeded
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
     if bad.lines:
         q = pd.concat(
@@ -5115,6 +5186,7 @@ def stream_points(
     enc = text_encoding()
     warnings = [encoding_note(sn.encoding, enc)] if enc != codecs.lookup(sn.encoding).name else []
     warnings += fallback_warning(enc, fallback)
+    warnings += bom_warnings(sn, enc)
     warnings += [no_batch_warning(sn, res.columns)] if file_batch else []
     warnings += res.notes
     warnings += _title_warnings(sn) + _blank_run_warnings(sn)
@@ -5136,7 +5208,7 @@ def stream_points(
         "input": str(sn.path),
         "format": res.format.name,
         "format_label": res.format.label,
-        "encoding": enc,
+        "encoding": plain_encoding(enc),
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
@@ -5177,7 +5249,7 @@ def stream_points(
     }
     layout = {
         "delimiter": sn.delimiter,
-        "encoding": enc,
+        "encoding": plain_encoding(enc),
         "bom": sn.bom,
         "line_ending": sn.line_ending,
         "compression": sn.compression,

@@ -1,6 +1,7 @@
 """Look at the first bytes of a file: compression, binary or text, encoding, line endings,
 delimiter, header, and whether it is a raw AIS NMEA log rather than a CSV."""
 
+import codecs
 import contextlib
 import re
 from collections.abc import Callable, Iterator
@@ -16,7 +17,7 @@ from wakeline.core.io.compressed import (  # noqa: F401  (packed_kind: batch's)
     open_data,
     packed_kind,
 )
-from wakeline.core.io.decoding import decide, decide_file, decode_text, lines_codec
+from wakeline.core.io.decoding import bom_codec, decide, decide_file, decode_text, lines_codec
 
 
 def listed_headers(names, most: int = 40, each: int = 40) -> str:
@@ -234,6 +235,15 @@ def _decode(
         text = sample.decode(enc, errors="replace")
     except LookupError:
         raise InputError(f"{path}: unknown encoding {enc!r}") from None
+    if sample.startswith(codecs.BOM_UTF8) and codecs.lookup(enc).name.startswith("utf-8"):
+        try:
+            _refuse_damaged(text, path, candidates, enc)
+        except InputError:
+            raise InputError(
+                f"{path}: a UTF-8 byte order mark followed by text that is not UTF-8; "
+                "give the file's encoding (--encoding, e.g. gb18030 for Chinese text: the "
+                "mark is dropped)"
+            ) from None
     return _refuse_damaged(text, path, candidates, enc), enc
 
 
@@ -724,6 +734,10 @@ def sniff(
         encoding = _utf16_without_bom(sample) if bom_enc is None else bom_enc
         if encoding == "utf-8":
             encoding = None  # UTF-8 with BOM: the usual candidates (BOM removed below)
+    elif bom_enc == "utf-8":
+        # A UTF-8 BOM before text the user says is GBK (a GBK file saved by a tool that
+        # adds one, operator test 7 D1): the mark is dropped, the rest read as named.
+        encoding = bom_codec(encoding)
     if not _is_wide(encoding) and _looks_binary(sample):
         if sample.startswith(OLE2_MAGIC):  # the compound file of Excel 97-2003 and Word
             raise NotTrackData(

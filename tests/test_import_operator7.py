@@ -1,0 +1,146 @@
+"""Operator test 7's import defects (h204): a GBK file behind a UTF-8 byte order mark (D1),
+swapped lat/lon columns (D2), backward time steps within a track (D3, the import's
+warning), a last line cut inside its last cell (D7), Chinese course headers (D13), and
+the batch-column hint (D14). Each input line is a point or a quarantine row."""
+
+import codecs
+import json
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from wakeline.app.cli import main
+from wakeline.core.io import import_to_csv, read_points
+from wakeline.core.io.formats import known_fields
+
+ZH_HEADER = "批号,时间,经度,纬度,航速(节),航迹向"
+
+
+def _zh_rows(n: int = 40, batches: int = 2) -> list[str]:
+    out = []
+    for b in range(batches):
+        for i in range(n):
+            out.append(
+                f"{b + 1},2024-01-01 00:{i // 6:02d}:{i % 6 * 10:02d},"
+                f"{120.1 + 0.0005 * i + b:.5f},{30.1 + 0.0003 * i:.5f},12.3,{45.5 + i:.1f}"
+            )
+    return out
+
+
+def _bom_gbk(tmp: Path, name: str = "bomgbk.csv", newline: str = "\r\n") -> Path:
+    path = tmp / name
+    text = newline.join([ZH_HEADER, *_zh_rows()]) + newline
+    path.write_bytes(codecs.BOM_UTF8 + text.encode("gbk"))
+    return path
+
+
+def _every_line_counted(report: dict, lines: int) -> None:
+    assert 1 + report["rows_imported"] + report["rows_quarantined"] + report["blank_lines"] == lines
+
+
+# --- D1: a UTF-8 byte order mark before GBK text -------------------------------------
+
+
+@pytest.mark.parametrize("encoding", [None, "gbk", "gb18030"])
+def test_gbk_after_a_utf8_bom_is_read_and_said(tmp_path, encoding):
+    """It was refused with "missing required column … headers found: ï»¿ÅúºÅ" (no flag)
+    or "cannot decode the text as gbk" (--encoding gbk/gb18030)."""
+    path = _bom_gbk(tmp_path)
+    res = read_points(path, encoding=encoding)
+    assert len(res.points) == 80 and res.report["rows_quarantined"] == 0
+    assert res.report["columns"]["batch"] == "批号"
+    assert res.report["encoding"] == (encoding or "gb18030")
+    assert any("UTF-8 byte order mark" in w and "dropped" in w for w in res.report["warnings"])
+    assert res.report["columns"].get("course") == "航迹向"  # D13 as well
+    out = tmp_path / "o.csv"
+    streamed = import_to_csv(path, out, encoding=encoding)
+    assert streamed.report["rows_imported"] == 80
+    _every_line_counted(streamed.report, 81)
+
+
+def test_utf8_sig_on_gbk_after_a_bom_names_the_mark(tmp_path, capsys):
+    path = _bom_gbk(tmp_path)
+    code = main(["import", str(path), "-o", str(tmp_path / "o.csv"), "--encoding", "utf-8-sig"])
+    assert code == 2
+    assert "a UTF-8 byte order mark followed by text that is not UTF-8" in capsys.readouterr().err
+
+
+def test_a_utf8_file_with_a_bom_says_nothing_of_it(tmp_path):
+    path = tmp_path / "u.csv"
+    path.write_bytes(codecs.BOM_UTF8 + ("\n".join([ZH_HEADER, *_zh_rows()]) + "\n").encode())
+    res = read_points(path)
+    assert res.report["encoding"] == "utf-8" and len(res.points) == 80
+    assert not any("byte order mark" in w for w in res.report["warnings"])
+
+
+def test_batch_refuses_a_data_file_whose_header_reads_garbled(tmp_path, capsys):
+    """batch skipped a GBK file whose header read as Latin-1 mojibake as "not track data"
+    and exited 0 with its rows lost; now it is refused (exit 2) and named as an encoding
+    problem, while a README is still skipped."""
+    from wakeline.core.pipeline import Pipeline
+
+    good = tmp_path / "good.csv"
+    good.write_text(
+        "sensor,batch,time,lon,lat\n"
+        + "\n".join(f"S1,T1,2024-01-01T00:00:{i:02d}Z,{10 + i * 1e-3:.4f},50" for i in range(30))
+        + "\n"
+    )
+    gbk = tmp_path / "gbk.csv"
+    gbk.write_bytes(("\n".join([ZH_HEADER, *_zh_rows()]) + "\n").encode("gbk"))
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    out = tmp_path / "o"
+    args = ["batch", str(pipe), str(good), str(gbk), "-o", str(out), "--encoding", "cp1252"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert f"{gbk}: refused: " in err and "wrong encoding" in err
+    rep = json.loads((out / "report.json").read_text())
+    assert [d["input"] for d in rep["refused_inputs"]] == [str(gbk)]
+    assert rep["skipped_inputs"] == []
+    # the same file behind a BOM, no flag: read (it was skipped, exit 0, 80 rows lost)
+    out2 = tmp_path / "o2"
+    bom = _bom_gbk(tmp_path)
+    assert main(["batch", str(pipe), str(good), str(bom), "-o", str(out2)]) == 0
+    assert json.loads((out2 / "report.json").read_text())["rows_read"] == 30 + 80
+    capsys.readouterr()
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    n=st.integers(1, 30),
+    newline=st.sampled_from(["\n", "\r\n"]),
+    encoding=st.sampled_from([None, "gbk", "gb18030"]),
+)
+def test_bom_gbk_every_line_a_point(n, newline, encoding):
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "f.csv"
+        text = newline.join([ZH_HEADER, *_zh_rows(n, 1)]) + newline
+        path.write_bytes(codecs.BOM_UTF8 + text.encode("gbk"))
+        res = read_points(path, encoding=encoding)
+        assert len(res.points) == n
+        _every_line_counted(res.report, n + 1)
+
+
+# --- D13: Chinese course headers ----------------------------------------------------------
+
+
+@pytest.mark.parametrize("header", ["航迹向", "航迹向(度)", "航迹向（度）", "航向角", "航向角(°)"])
+def test_chinese_course_headers_are_course(header):
+    assert known_fields([header]) == {"course"}
+
+
+def test_track_number_headers_stay_batch():
+    assert known_fields(["航迹号"]) == {"batch"} and known_fields(["航迹批号"]) == {"batch"}
+
+
+def test_a_console_file_with_a_course_in_track_direction_reads_it(tmp_path):
+    path = tmp_path / "zh.csv"
+    path.write_text("\n".join([ZH_HEADER.replace("航迹向", "航迹向(度)"), *_zh_rows()]) + "\n")
+    res = read_points(path)
+    assert res.points["course"].notna().all()
+    assert res.report["extra_columns"] == []
+    assert res.points["course"].iloc[0] == pytest.approx(45.5)
