@@ -144,3 +144,44 @@ def test_a_console_file_with_a_course_in_track_direction_reads_it(tmp_path):
     assert res.points["course"].notna().all()
     assert res.report["extra_columns"] == []
     assert res.points["course"].iloc[0] == pytest.approx(45.5)
+
+
+# --- D14: the batch-column hint prefers ids that persist over time -----------------------
+
+
+def _scans(n_scans: int = 40, fixed: bool = False) -> str:
+    """A detections-like file without a batch column: per time a scan number (a counter),
+    ``k`` the index of the detection within its scan (0..m-1, m varying unless
+    ``fixed``) and ``seen_obj`` the id of what was seen (persists over the scans)."""
+    lines = ["scan,time,k,seen_obj,lon,lat"]
+    for s in range(n_scans):
+        seen = [101, 102, 103] if fixed else [101, 102, 103][: 1 + s % 3]
+        for k, tgt in enumerate(seen):
+            lines.append(
+                f"{s},2024-01-01T00:{s // 60:02d}:{s % 60:02d}Z,{k},{tgt},"
+                f"{10 + 0.001 * s + 0.1 * k:.5f},{60 + 0.0005 * s:.5f}"
+            )
+    return "\n".join(lines) + "\n"
+
+
+def _hint(report: dict) -> str:
+    return next((w for w in report["warnings"] if w.startswith("no batch column")), "")
+
+
+def test_the_batch_hint_names_the_persisting_id_not_a_counter_nor_a_per_scan_index(tmp_path):
+    """The Autoferry raw file's hint offered 'scan' (480 distinct values) and 'k'; 'scan'
+    is a message counter and 'k' the index within a scan."""
+    path = tmp_path / "det.csv"
+    path.write_text(_scans())
+    hint = _hint(read_points(path).report)
+    assert "--map batch=seen_obj" in hint
+    assert "batch=scan" not in hint and "batch=k" not in hint
+
+
+def test_a_fixed_set_of_small_ids_seen_at_every_time_is_still_offered(tmp_path):
+    """Ids 0..2 at every time (a simulation's fixed targets) look like an index too, but
+    their number never varies: no evidence against them, still offered."""
+    path = tmp_path / "sim.csv"
+    path.write_text(_scans(fixed=True))
+    hint = _hint(read_points(path).report)
+    assert "batch=k" in hint and "batch=scan" not in hint

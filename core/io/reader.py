@@ -4012,10 +4012,59 @@ def id_candidates(sn: Sniff, columns: dict[str, str]) -> list[tuple[str, bool, i
         distinct = len(set(cells))
         if distinct < 2 or distinct > len(cells) / 2 or not _mostly(cells, _ID_CELL):
             continue
+        if _not_an_id_over_time(sn, name, columns.get("time")):
+            continue
         mmsi = _mostly(cells, _MMSI_CELL)
         rank = 0 if mmsi else 1 if hint.search(key) else 2
         out.append((rank, k, name, mmsi, distinct, len(cells)))
     return [(name, mmsi, d, n) for _r, _k, name, mmsi, d, n in sorted(out)]
+
+
+#: The share of a column's sampled values that must show the counter's (or the per-time
+#: index's) pattern for it not to be offered as the track id.
+COUNTER_SHARE = 0.9
+
+
+def _not_an_id_over_time(sn: Sniff, name: str, time_src: str | None) -> bool:
+    """Whether a column's sampled values do not persist over time as a track's id does
+    (operator test 7, D14: the Autoferry detections' ``scan`` and ``k`` were offered as
+    the batch): a counter, each value at one time only (a message or scan number, new
+    with every time step), or an index within each time (``k``: each time's values
+    exactly 0..m-1 or 1..m, m varying between times: the m-th detection of a scan, not
+    the same object from one time to the next). Judged only with evidence: the sample
+    spans several times, and the index rule several times of two or more rows."""
+    if time_src is None or time_src not in sn.columns or name not in sn.columns:
+        return False
+    k, t, width = sn.columns.index(name), sn.columns.index(time_src), len(sn.columns)
+    pairs = [
+        (r[t].strip(), r[k].strip().strip('"'))
+        for r in sn.sample
+        if len(r) == width and r[t].strip() and r[k].strip().strip('"')
+    ]
+    times: dict[str, set[str]] = {}  # value → its times
+    by_time: dict[str, list[str]] = {}  # time → its values
+    for when, value in pairs:
+        times.setdefault(value, set()).add(when)
+        by_time.setdefault(when, []).append(value)
+    if len(by_time) < 3:
+        return False
+    once = sum(len(ts) == 1 for ts in times.values())
+    if len(times) >= 3 and once >= COUNTER_SHARE * len(times):
+        return True  # a counter: no value is seen again at a later time
+    shared = [vs for vs in by_time.values() if len(vs) >= 2]
+    if len(shared) < 3:
+        return False
+
+    def index_like(values: list[str]) -> bool:
+        try:
+            got = sorted(int(v) for v in values)
+        except ValueError:
+            return False
+        return got in (list(range(len(got))), list(range(1, len(got) + 1)))
+
+    sizes = {len(vs) for vs in by_time.values()}
+    hits = sum(index_like(vs) for vs in shared)
+    return len(sizes) > 1 and hits >= COUNTER_SHARE * len(shared)
 
 
 def _runs_up(sn: Sniff, name: str) -> bool:
