@@ -3062,6 +3062,7 @@ def read_points(
     warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
+    warnings += _back_warnings(counts["time_steps_back"], res.columns["time"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, counts["quarantine_reasons"], counts["rows_read"])
@@ -3411,13 +3412,26 @@ BEARING_BEYOND = "bearing beyond"
 BEARING_WARNING_MARK = "beyond a full turn ("
 
 
+#: The quarantine reason of a last line cut inside its last cell (sniff.cut_last_cell).
+CUT_LAST_REASON = "cut last line"
+
+
 def cut_short_warnings(sn: Sniff, quarantine: pd.DataFrame) -> list[str]:
-    """A warning when the file's last line is a short row: the file was cut short (still
-    being written or copied when it was read). One pass over the file, only when a short
-    row was quarantined."""
+    """A warning when the file's last line is a short row, or was cut inside its last
+    cell (``sn.cut_last``, quarantined as :data:`CUT_LAST_REASON`): the file was cut
+    short (still being written or copied when it was read). One pass over the file, only
+    when a short row was quarantined."""
     if not len(quarantine) or "reason" not in quarantine.columns:
         return []
     reason = quarantine["reason"].astype(str)
+    cut = quarantine[reason == CUT_LAST_REASON]
+    if len(cut) and sn.cut_last:
+        return [
+            f"line {int(cut['line'].max()):,}{CUT_SHORT_MARK}no line end and its last value "
+            f"looks cut ({sn.cut_last}): quarantined as {CUT_LAST_REASON!r}; the file may "
+            "be cut short (still being written or copied when it was read); open it again "
+            "once it is complete"
+        ]
     short = quarantine[reason.str.startswith("short row")]
     if not len(short):
         return []
@@ -4478,6 +4492,12 @@ def _to_canonical(
 
     counted.pop("_form_clash", None)
     blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
+    edges_in = (time_info or {}).get("_edges")
+    if sn.cut_last and n and (edges_in is None or edges_in.get("final")):
+        # the file's last line, cut inside its last cell (sniff.cut_last_cell): the last
+        # row of the whole file or of its final piece (operator test 7, D7)
+        lines_arr = np.asarray(rows.lines)
+        flag(lines_arr == lines_arr.max(), CUT_LAST_REASON)
     swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
     if "_edges" not in (time_info or {}):  # a whole file (a piece's is judged over the file)
         read_n = int(n - int(blank.sum()) + len(bad.lines))
@@ -4564,6 +4584,14 @@ def _to_canonical(
         "decimal_comma_values": int(counted.get("decimal_comma", 0)),
         "restarting_tracks": _restarting_tracks(
             sensor_codes, text["batch"].codes, text["batch"].names, ns, time_ok & ~bad_rows
+        ),
+        "time_steps_back": _steps_back(
+            sensor_codes,
+            text["batch"].codes,
+            text["batch"].names,
+            ns,
+            time_ok & ~bad_rows,
+            rows.lines,
         ),
         **_count_tracks(
             sensor_codes,
@@ -4679,6 +4707,106 @@ def _restarting_tracks(
     hit = np.flatnonzero((backs > 0) & (loose_n <= 0.1 * steps))
     n_batch = int(batch_codes.max()) + 1
     return {str(batch_names[h % n_batch]): int(backs[h]) + 1 for h in hit}
+
+
+#: In the warning of :func:`_back_warnings` (a read in pieces says it again from the
+#: summed counts).
+BACK_MARK = " back within a track ("
+#: Line numbers of steps back kept (and named in the warning).
+BACK_FIRST_LINES = 5
+
+
+def _steps_back(
+    sensor_codes: np.ndarray | None,
+    batch_codes: np.ndarray,
+    batch_names: np.ndarray,
+    ns: np.ndarray,
+    ok: np.ndarray,
+    lines: np.ndarray,
+) -> dict:
+    """Steps back in time within a track, in file order (operator test 7, D3: a clock set
+    back 10 min in 20 rows of a track; the import said nothing, clean then kept a 282 kn
+    leg): a row whose time lies more than :data:`ORDER_JITTER_S` and less than
+    :data:`RESTART_BACK_S` (a restart, warned of apart) before its track's row before,
+    in tracks that otherwise run forward (at most a tenth of their steps go back beyond
+    the jitter: a file in no time order is not meant). ``{"tracks": {batch: steps},
+    "first_lines": [line, …], "max_s": largest step back}``; {} when none."""
+    use = np.flatnonzero(ok & (batch_codes >= 0))
+    if len(use) < 2:
+        return {}
+    t = ns[use]
+    if np.all(t[1:] >= t[:-1]):  # a time-ordered file: no track can go back
+        return {}
+    key = batch_codes[use].astype("int64")
+    if sensor_codes is not None:
+        key = sensor_codes[use].astype("int64") * (int(batch_codes.max()) + 1) + key
+    line = np.asarray(lines)[use]
+    if not np.all(key[1:] >= key[:-1]):
+        from wakeline.core.tracks import _stable_code_order
+
+        sort = _stable_code_order(key)  # radix passes: linear; each track in file order
+        if sort is None:
+            sort = np.argsort(key, kind="stable")
+        key, t, line = key[sort], t[sort], line[sort]
+    same = key[1:] == key[:-1]
+    step = t[:-1].astype("int64") - t[1:].astype("int64")  # > 0: back
+    loose = same & (step > int(ORDER_JITTER_S * 1e9))
+    if not loose.any():
+        return {}
+    back = loose & (step < int(RESTART_BACK_S * 1e9))
+    n_keys = int(key.max()) + 1
+    steps = np.bincount(key[1:][same], minlength=n_keys)
+    loose_n = np.bincount(key[1:][loose], minlength=n_keys)
+    forward = loose_n <= 0.1 * steps
+    back &= forward[key[1:]]
+    if not back.any():
+        return {}
+    backs = np.bincount(key[1:][back], minlength=n_keys)
+    n_batch = int(batch_codes.max()) + 1
+    hit = np.flatnonzero(backs)
+    return {
+        "tracks": {str(batch_names[h % n_batch]): int(backs[h]) for h in hit},
+        "first_lines": sorted(int(x) for x in line[1:][back])[:BACK_FIRST_LINES],
+        "max_s": float(step[back].max()) / 1e9,
+    }
+
+
+def merge_steps_back(infos: list[tuple[dict, int]]) -> dict:
+    """One :func:`_steps_back` of the pieces' (each with the file line its piece starts
+    on, 1-based, its lines the piece's): steps summed per track, lines made file lines."""
+    out: dict = {}
+    for info, first_line in infos:
+        if not info:
+            continue
+        tracks = out.setdefault("tracks", {})
+        for k, v in info.get("tracks", {}).items():
+            tracks[k] = tracks.get(k, 0) + int(v)
+        out["first_lines"] = sorted(
+            out.get("first_lines", []) + [x + first_line - 1 for x in info.get("first_lines", [])]
+        )[:BACK_FIRST_LINES]
+        out["max_s"] = max(out.get("max_s", 0.0), float(info.get("max_s", 0.0)))
+    return out
+
+
+def _back_warnings(info: dict, time_src: str, batch_src: str) -> list[str]:
+    """The warning for :func:`_steps_back`'s count: how many steps back, in how many
+    tracks, the lines and the largest."""
+    tracks = info.get("tracks") if info else None
+    if not tracks:
+        return []
+    n = sum(tracks.values())
+    first = info.get("first_lines", [])
+    some = ", ".join(f"{k:,}" for k in first) + (", …" if n > len(first) else "")
+    name, most = max(tracks.items(), key=lambda kv: kv[1])
+    steps = "time step goes" if n == 1 else "time steps go"
+    return [
+        f"{n:,} {steps} back within a track ({len(tracks):,} track(s); the most in batch "
+        f"{name}: {most:,}; line{'s' if len(first) != 1 else ''} {some}; the largest "
+        f"{info.get('max_s', 0.0):,.0f} s): a clock set back, or rows out of order? Each "
+        f"track is sorted by its time ({time_src!r}), so a clock set back puts those rows "
+        f"among the earlier ones (a jump in speed that clean reports as a break); check "
+        f"the times of those rows in {batch_src!r}"
+    ]
 
 
 def _count_tracks(
@@ -5012,6 +5140,7 @@ def stream_points(
     }
     blanked: dict[str, int] = {}
     restarting: dict[str, int] = {}
+    backs: list[tuple[dict, int]] = []
     pairs: set[tuple[str, str]] = set()
     checked: list[pd.DataFrame] = []  # the rows the speed-unit check looks at
     per_sensor: dict[str, int] = {}
@@ -5159,6 +5288,7 @@ def stream_points(
             blanked[k] = blanked.get(k, 0) + v
         for k, v in counts["restarting_tracks"].items():
             restarting[k] = restarting.get(k, 0) + v
+        backs.append((counts["time_steps_back"], 1))  # the piece's lines are the file's
         if len(quarantine):
             quarantines.append(quarantine)
         if len(points):
@@ -5243,6 +5373,8 @@ def stream_points(
     warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(restarting, res.columns["batch"])
+    steps_back = merge_steps_back(backs)
+    warnings += _back_warnings(steps_back, res.columns["time"], res.columns["batch"])
     warnings += position_warnings(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
     )
@@ -5290,6 +5422,7 @@ def stream_points(
         "values_blanked": blanked,
         "decimal_comma_values": int(time_info.get("decimal_comma", 0)),
         "restarting_tracks": restarting,
+        "time_steps_back": steps_back,
         "tracks": len(pairs),
         "sensors": per_sensor,
         "time_start": min(starts).isoformat() if starts else None,
