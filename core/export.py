@@ -94,17 +94,25 @@ def member_sensor_batch(points: pd.DataFrame) -> tuple[pd.Series, pd.Series]:
     (``sensor:batch``) and, since session 29, the sensor alone in ``source_sensor``, so that a
     sensor with a ``:`` in its name splits right; without that column the first ``:`` splits."""
     label = member_labels(points)
-    if "source_sensor" in points.columns and points["sensor"].astype(str).eq("merged").all():
-        sensor = points["source_sensor"].astype(str)
-        codes, uniq = pd.factorize(label + "\x00" + sensor)  # per track, not per point
-        own = []
-        for key in uniq:
-            lab, sen = key.split("\x00", 1)
-            own.append(lab[len(sen) + 1 :] if lab.startswith(sen + ":") else lab)
-        batch = pd.Series(np.asarray(own, dtype=object)[codes], index=points.index)
-        return sensor, batch
     parts = label.str.split(":", n=1)
-    return parts.str[0], parts.str[1]
+    sensor, batch = parts.str[0], parts.str[1]
+    if "source_sensor" in points.columns and points["sensor"].astype(str).eq("merged").all():
+        # the kept sensor where it is a prefix of the row's own track; else the first ':'
+        # (a row from an older merged file, a blank or missing cell)
+        kept = points["source_sensor"]
+        key = label + "\x00" + kept.astype(str).where(kept.notna(), "")
+        codes, uniq = pd.factorize(key, use_na_sentinel=False)
+        own_sensor, own_batch = [], []
+        for k in uniq:  # per track, not per point
+            lab, sen = k.split("\x00", 1)
+            usable = bool(sen) and lab.startswith(sen + ":")
+            own_sensor.append(sen if usable else None)
+            own_batch.append(lab[len(sen) + 1 :] if usable else None)
+        own_sensor = pd.Series(np.asarray(own_sensor, dtype=object)[codes], index=label.index)
+        own_batch = pd.Series(np.asarray(own_batch, dtype=object)[codes], index=label.index)
+        ok = own_sensor.notna()
+        sensor, batch = own_sensor.where(ok, sensor), own_batch.where(ok, batch)
+    return sensor, batch
 
 
 def carries_targets(points: pd.DataFrame) -> bool:

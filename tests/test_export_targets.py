@@ -167,3 +167,25 @@ def test_a_file_read_in_pieces_says_its_targets_once(tmp_path, monkeypatch):
     assert got.report.get("pieces", 0) > 2
     assert [w for w in got.report["warnings"] if "carries targets" in w] == whole
     assert len(whole) == 1 and "6 tracks in 3 targets" in whole[0]
+
+
+def test_merged_rows_without_source_sensor_keep_their_own_track():
+    """Review h209: a merged layer where some rows have no ``source_sensor`` (an older
+    merged file read with a new one) or a blank one: those rows split at the first ':'
+    and keep their own track (pd.factorize's NaN code -1 gave them another track's batch)."""
+    from wakeline.core.export import member_sensor_batch
+
+    pts = _associated()
+    merged = pts.assign(
+        source_track=pts["sensor"] + ":" + pts["batch"],
+        source_sensor=pts["sensor"],
+        sensor="merged",
+        batch=pts["target"],
+    )
+    old = merged.drop(columns="source_sensor").iloc[:4]
+    mixed = pd.concat([old, merged.iloc[4:]], ignore_index=True)
+    blank = merged.assign(source_sensor=merged["source_sensor"].where(merged.index >= 4, ""))
+    for frame in (mixed, blank):
+        sensor, batch = member_sensor_batch(frame)
+        assert (sensor + ":" + batch).tolist() == frame["source_track"].tolist()
+        assert set(sensor.iloc[4:]) == {"R"} and set(batch.iloc[4:]) == {"12", "13"}
