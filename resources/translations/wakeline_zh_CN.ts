@@ -1772,6 +1772,18 @@
 <context>
     <name>ReviewSync</name>
     <message>
+        <source>{0} points of {1} (reviewed tracks)</source>
+        <translation>{1} 的 {0} 个点（审核后的航迹）</translation>
+    </message>
+    <message>
+        <source>{0} points of {1} (reviewed tracks, from the {2} layer)</source>
+        <translation>{1} 的 {0} 个点（审核后的航迹，由{2}图层生成）</translation>
+    </message>
+    <message>
+        <source>: the {0} layer holds {1} points</source>
+        <translation>；{0}图层有 {1} 个点</translation>
+    </message>
+    <message>
         <source>{0} of {1} proposals not reviewed: counted as accepted</source>
         <translation>{1} 个提议中有 {0} 个未审核：按接受计</translation>
     </message>
