@@ -739,6 +739,14 @@
 <context>
     <name>ParamsPanel</name>
     <message>
+        <source>Parameter</source>
+        <translation>参数</translation>
+    </message>
+    <message>
+        <source>Value</source>
+        <translation>值</translation>
+    </message>
+    <message>
         <source>sigma</source>
         <translation>倍标准差</translation>
     </message>
@@ -1247,6 +1255,18 @@
 <context>
     <name>BearingView</name>
     <message>
+        <source>batch</source>
+        <translation>批号</translation>
+    </message>
+    <message>
+        <source>detect_time</source>
+        <translation>检测时间</translation>
+    </message>
+    <message>
+        <source>maneuver_time</source>
+        <translation>机动时间</translation>
+    </message>
+    <message>
         <source>Export detections…</source>
         <translation>导出检测结果…</translation>
     </message>
@@ -1396,6 +1416,38 @@
 </context>
 <context>
     <name>ReviewPanel</name>
+    <message>
+        <source>optimal</source>
+        <translation>最优分配</translation>
+    </message>
+    <message>
+        <source>greedy</source>
+        <translation>贪心分配</translation>
+    </message>
+    <message>
+        <source>motion</source>
+        <translation>运动</translation>
+    </message>
+    <message>
+        <source>area</source>
+        <translation>面积</translation>
+    </message>
+    <message>
+        <source>hausdorff</source>
+        <translation>豪斯多夫</translation>
+    </message>
+    <message>
+        <source>DTW, whole tracks</source>
+        <translation>DTW（整条航迹）</translation>
+    </message>
+    <message>
+        <source>sync</source>
+        <translation>同步</translation>
+    </message>
+    <message>
+        <source>second look (gap beyond T_gap)</source>
+        <translation>第二次查看（间隙超过 T_gap）</translation>
+    </message>
     <message>
         <source>(scaled)</source>
         <translation>（归一化）</translation>
@@ -2662,6 +2714,21 @@
     <message>
         <source>Split: the track is a target of its own</source>
         <translation>拆分：该航迹本身即为一个目标</translation>
+    </message>
+</context>
+<context>
+    <name>BatchTable</name>
+    <message>
+        <source>joined</source>
+        <translation>已连接</translation>
+    </message>
+    <message>
+        <source>fused</source>
+        <translation>已融合</translation>
+    </message>
+    <message>
+        <source>single</source>
+        <translation>单传感器</translation>
     </message>
 </context>
 </TS>
