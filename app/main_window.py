@@ -148,6 +148,11 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.view_keeper = MapViewKeeper(self.canvas, self.session, self)
 
         self.layer_list = QtWidgets.QListWidget()
+        # A long name wraps at its " · " onto a second line, in the dock's width: it was
+        # cut ("… · cleaned  [cleaned", operator test 7, D16) behind a scroll bar.
+        self.layer_list.setWordWrap(True)
+        self.layer_list.setResizeMode(QtWidgets.QListView.ResizeMode.Adjust)
+        self.layer_list.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self.layer_list.itemChanged.connect(self._layer_item_changed)
         self.layer_list.currentItemChanged.connect(self._layer_current_changed)
         self.params = ParamsPanel()

@@ -202,7 +202,7 @@ class ReviewSync(QtCore.QObject):
         layers = self.w.session.layers
         parent = layers.get(layer.parent) if layer.parent else None
         text = tr("{0} points of {1} (reviewed tracks)").format("\x00", shown_name(layer.name))
-        if parent is None:
+        if parent is None or layer.inputs:  # a fused layer: made from several (its name)
             return text
         role = parent.role or ""
         word = _words().get(role) or shown_name(parent.name)

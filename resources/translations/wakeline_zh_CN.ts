@@ -914,6 +914,10 @@
 <context>
     <name>DetailPanel</name>
     <message>
+        <source>Compression</source>
+        <translation>压缩</translation>
+    </message>
+    <message>
         <source>Maneuver factor</source>
         <translation>机动因子</translation>
     </message>
