@@ -60,6 +60,8 @@ def _maneuver_params(args: argparse.Namespace):
         window_max_s=args.window_max_s,
         radius_s=args.radius_s,
         edge_s=args.edge_s,
+        confirm_z=args.confirm_z,
+        confirm_legs=args.confirm_legs,
     ).checked()
 
 
@@ -275,6 +277,21 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         help=f"turns at a track's ends: where the first window spans more than this many "
         f"seconds and 3 points at most, 3-point windows at its ends; 0 = off "
         f"(default {d.edge_s:g})",
+    )
+    p.add_argument(
+        "--confirm-z",
+        type=float,
+        default=d.confirm_z,
+        help=f"a confirmation test per turn: lines fitted to the legs before and after it; "
+        f"the turn counts only where their courses differ by more than this many standard "
+        f"errors; 0 = off (default {d.confirm_z:g})",
+    )
+    p.add_argument(
+        "--confirm-legs",
+        type=float,
+        default=d.confirm_legs,
+        help=f"--confirm-z: each leg spans this many of the turn's windows "
+        f"(default {d.confirm_legs:g})",
     )
     p.add_argument(
         "--noise-lag-s",

@@ -226,6 +226,16 @@ class SpeedParams(Params):
         lo=0,
         hi=1e5,
     )
+    split_at_breaks: bool = param(
+        False,
+        "",
+        "also split (batch#2 …) at every break whose leg stays impossible after the other "
+        "rules (longer than v_max * dt + tolerance_m from the last kept point), so that no "
+        "later step (maneuvers, compress, associate) takes the jump for motion; off: only "
+        "the jumps beyond split_factor and split_km split, the others stay in the track "
+        "(the report and the summary list them)",
+        source="ours (operator test 7, D3: a clock set back 10 min left an 8.7 km leg in 60 s)",
+    )
 
 
 @dataclass(frozen=True)
@@ -678,13 +688,18 @@ def merge_reports(reports: list[dict]) -> dict:
         rule: {
             key: (
                 sum(r["rules"][rule][key] for r in reports)
-                if key in ("removed", "changed", "breaks", "spans", "at_rest_s")
+                if key
+                in ("removed", "changed", "breaks", "splits", "breaks_kept", "spans", "at_rest_s")
                 else value
             )
             for key, value in info.items()
         }
         for rule, info in first["rules"].items()
     }
+    if "break_legs" in report["rules"].get("speed", {}):  # every block's, the fastest first
+        legs = [leg for r in reports for leg in r["rules"]["speed"]["break_legs"]]
+        legs.sort(key=lambda leg: -(leg["kn"] if leg["kn"] is not None else np.inf))
+        report["rules"]["speed"]["break_legs"] = legs[:BREAK_LEGS_LISTED]
     if "same_time" in report["rules"]:
         # the blocks' medians, each weighted by its rows (the median of a block of tracks)
         pairs = sorted(
@@ -1269,6 +1284,12 @@ def _clean_block(
     if params.speed.enabled:
         report["rules"]["speed"]["breaks"] = int(speed_breaks[alive].sum())
         report["rules"]["speed"]["splits"] = int(split.sum())
+        # the impossible legs left inside a track (not split): D3, operator test 7
+        n_kept, legs_kept = _kept_break_legs(
+            pts, speed_breaks, alive, piece, lon, lat, t, params.speed
+        )
+        report["rules"]["speed"]["breaks_kept"] = n_kept
+        report["rules"]["speed"]["break_legs"] = legs_kept
     if split.any():  # each piece with a point left is a track (batch#2 …)
         report["tracks_out"] = int(len(np.unique(piece[alive])))
     order = ordered_columns(cleaned)
@@ -1287,8 +1308,30 @@ def _split_rows(
     sp: "SpeedParams",
 ) -> np.ndarray:
     """The breaks no ship could make: a jump from the last kept point of the same track
-    longer than ``split_km`` and than ``split_factor`` × v_max × the time between."""
-    rows = np.flatnonzero(breaks)
+    longer than ``split_km`` and than ``split_factor`` × v_max × the time between; with
+    ``split_at_breaks`` also every break whose leg is still impossible (longer than
+    v_max × dt + ``tolerance_m``)."""
+    rows, prev, has, d, dt = _break_legs(breaks, alive, track, lon, lat, t)
+    v_max = sp.v_max_kn * geo.KN_MS
+    far = (d > sp.split_km * 1000.0) & (d > sp.split_factor * v_max * dt)
+    if sp.split_at_breaks:
+        far |= d > v_max * dt + sp.tolerance_m
+    out = np.zeros(len(alive), dtype=bool)
+    out[rows[has & far]] = True
+    return out
+
+
+def _break_legs(
+    breaks: np.ndarray,
+    alive: np.ndarray,
+    track: np.ndarray,
+    lon: np.ndarray,
+    lat: np.ndarray,
+    t: np.ndarray,
+) -> tuple[np.ndarray, ...]:
+    """For each kept break row: the previous kept row, whether it is of the same track
+    (``track``: a number per track or per piece), and the leg's length (m) and time (s)."""
+    rows = np.flatnonzero(breaks & alive)
     kept = np.flatnonzero(alive)
     pos = np.searchsorted(kept, rows)  # rows are kept: the previous kept row is at pos - 1
     has = pos > 0
@@ -1296,10 +1339,57 @@ def _split_rows(
     has &= track[prev] == track[rows]
     d = geo.haversine_m(lon[prev], lat[prev], lon[rows], lat[rows])
     dt = t[rows] - t[prev]
-    far = has & (d > sp.split_km * 1000.0) & (d > sp.split_factor * sp.v_max_kn * geo.KN_MS * dt)
-    out = np.zeros(len(alive), dtype=bool)
-    out[rows[far]] = True
-    return out
+    return rows, prev, has, d, dt
+
+
+BREAK_LEGS_LISTED = 100
+"""The clean report lists at most this many impossible legs kept (the fastest); its
+``breaks_kept`` counts them all (MTAD's noise gives 1,343, some 200 KB of JSON)."""
+
+
+def _kept_break_legs(
+    pts: pd.DataFrame,
+    breaks: np.ndarray,
+    alive: np.ndarray,
+    piece: np.ndarray,
+    lon: np.ndarray,
+    lat: np.ndarray,
+    t: np.ndarray,
+    sp: "SpeedParams",
+) -> tuple[int, list[dict]]:
+    """The breaks whose impossible leg stayed inside an output track (not split, its
+    leg from the last kept point of the same piece still longer than v_max · dt +
+    tolerance): how many, and one record each for the fastest :data:`BREAK_LEGS_LISTED`
+    (sensor, batch as written out, time, from_time, km, s, kn), the fastest first."""
+    rows, prev, has, d, dt = _break_legs(breaks, alive, piece, lon, lat, t)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        bad = has & (d > sp.v_max_kn * geo.KN_MS * dt + sp.tolerance_m)
+        kn = np.where(dt > 0, d / dt / geo.KN_MS, np.inf)
+    rows, prev, d, dt, kn = rows[bad], prev[bad], d[bad], dt[bad], kn[bad]
+    n_kept = int(len(rows))
+    order = np.argsort(-kn, kind="stable")[:BREAK_LEGS_LISTED]
+    rows, prev, d, dt, kn = rows[order], prev[order], d[order], dt[order], kn[order]
+    return n_kept, [
+        {
+            "sensor": sensor,
+            "batch": batch,
+            "time": time,
+            "from_time": before,
+            "km": round(float(km), 3),
+            "s": float(s),
+            "kn": round(float(v), 1) if np.isfinite(v) else None,
+        }
+        for sensor, batch, time, before, km, s, v in zip(
+            pts["sensor"].iloc[rows].astype(str),
+            pts["batch"].iloc[rows].astype(str),
+            time_texts(pts["time"].iloc[rows]),
+            time_texts(pts["time"].iloc[prev]),
+            d / 1000.0,
+            dt,
+            kn,
+            strict=True,
+        )
+    ]
 
 
 def _split_batches(

@@ -87,6 +87,16 @@ class CompressParams(Params):
         hi=1e6,
         source="ours",
     )
+    error_cap_m: float = param(
+        0.0,
+        "m",
+        "the error bound is never above this (metres; at least error_floor_m): on sparse "
+        "tracks (30-min AIS posits) the track's \"noise\" is the ship's own motion between "
+        "fixes and error_sigmas times it is kilometres; 0 = no cap",
+        lo=0.0,
+        hi=1e7,
+        source="ours (operator test 7, D9)",
+    )
 
     @classmethod
     def paper(cls) -> "CompressParams":
@@ -179,11 +189,14 @@ class Compressed:
         per["kept"] = kept_n
         per["ratio"] = kept_n / idx.sizes
         per["dis_e_m"] = np.add.reduceat(err_obs, idx.starts) / idx.sizes if idx.n_tracks else []
+        # the farthest original point from the compressed track (synchronized distance)
+        per["max_error_m"] = np.maximum.reduceat(err_obs, idx.starts) if idx.n_tracks else []
         overall = {
             "points": int(idx.sizes.sum()),
             "kept": int(self.kept.sum()),
             "ratio": float(self.kept.sum() / max(idx.sizes.sum(), 1)),
             "dis_e_m": float(err_obs.mean()) if len(err_obs) else 0.0,
+            "max_error_m": float(err_obs.max()) if len(err_obs) else 0.0,
         }
         if self.repeats:
             overall["repeated_rows"] = self.repeats
@@ -351,12 +364,45 @@ def turning_keep(result, params: CompressParams | None = None) -> np.ndarray:
             peaks[rows] = local_maxima(dv[rows], sub, int(p))
         keep |= big & peaks & ~_near(rest, index, p_row - 1)
     if params.error_sigmas > 0:
-        from wakeline.core.maneuver import position_noise_m
-
-        sigma = position_noise_m(x, y, t, index)
-        tol = np.maximum(params.error_sigmas * sigma, params.error_floor_m)
+        _, tol = _error_bound(x, y, t, index, params)
         keep = synchronized_split_mask(x, y, t, index, keep, tol)
     return keep
+
+
+def _error_bound(
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, params: CompressParams
+) -> tuple[np.ndarray, np.ndarray]:
+    """Per track: the position-noise estimate (m, per axis; the maneuver detector's) and
+    the error bound the top-down split uses: ``error_sigmas`` × noise, at least
+    ``error_floor_m``, at most ``error_cap_m`` when that is set."""
+    from wakeline.core.maneuver import position_noise_m
+
+    sigma = position_noise_m(x, y, t, index)
+    tol = np.maximum(params.error_sigmas * sigma, params.error_floor_m)
+    if params.error_cap_m > 0:
+        tol = np.minimum(tol, max(params.error_cap_m, params.error_floor_m))
+    return sigma, tol
+
+
+def error_bounds(result, params: CompressParams | None = None) -> pd.DataFrame:
+    """Per track of ``result.index`` (a :class:`ManeuverResult`): sensor, batch, the
+    noise estimate ``noise_m`` and the error bound ``error_tol_m`` :func:`turning_keep`
+    splits at (both NaN when ``error_sigmas`` is 0: no bound)."""
+    params = params or CompressParams()
+    pts, index = result.points, result.index
+    out = index.keys.reset_index(drop=True).copy()
+    if params.error_sigmas <= 0 or not len(pts):
+        out["noise_m"] = np.nan
+        out["error_tol_m"] = np.nan
+        return out
+    repeat = repeated_rows(pts, index)
+    if repeat.any():  # as turning_keep: the rows repeating their predecessor left out
+        pts, index = rows_of(pts, np.flatnonzero(~repeat))
+    x, y = local_xy(pts, index)
+    sigma, tol = _error_bound(x, y, time_seconds(pts["time"]), index, params)
+    out["noise_m"] = sigma
+    out["error_tol_m"] = tol
+    return out
 
 
 def synchronized_split_mask(

@@ -343,6 +343,29 @@ class ManeuverParams(Params):
         "at rest: the box aligned with north and east (before 2026-12; cleaning's "
         "stationary.north_box) instead of each track's principal axes",
     )
+    confirm_z: float = param(
+        0.0,
+        "sd",
+        "a confirmation test per turn: a straight line fitted (least squares on time) to "
+        "the leg before the turn and to the leg after it (confirm_legs windows of the "
+        "turn's scale each side, clipped at the track's ends, gaps and at-rest spans); the "
+        "turn counts only when the two legs' courses differ by more than this many standard "
+        "errors, sqrt(se_before^2 + se_after^2), se = the track's position noise / (speed "
+        "* sqrt(sum (t - mean t)^2)) rad, the leg's speed taken as at least min_speed_kn; "
+        "0 = off",
+        lo=0.0,
+        hi=100.0,
+        source="ours (session 29, h203: docs/prereg/session29_confirm.md)",
+    )
+    confirm_legs: float = param(
+        2.0,
+        "windows",
+        "confirm_z: each leg spans this many of the turn's windows (its scale's points, at "
+        "least 2 points), the turn's own point shared by both legs",
+        lo=0.5,
+        hi=100.0,
+        source="ours (session 29, h203)",
+    )
     max_step_windows: float = param(
         4.0,
         "at-rest windows",
@@ -1062,6 +1085,72 @@ def _fast_enough(
                 measured = _slow_side_measured(t, r, aj, bj, v_b <= v_f, side_step_s, side_span_s)
                 low_j = np.where(measured, low_j, speed_ms)
             ok[j] = (np.fmin(v_b, v_f) >= low_j) & (np.fmax(v_b, v_f) >= speed_ms)
+    return ok
+
+
+def _confirmed(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    rows: np.ndarray,
+    legs: np.ndarray,
+    sigma: np.ndarray,
+    rest_rows: np.ndarray,
+    z: float,
+    min_speed_ms: float = 0.0,
+) -> np.ndarray:
+    """``confirm_z``: per row of ``rows``, a line fitted (least squares of x and y on time)
+    to each of its two legs of ``legs`` points (the row shared, clipped at its track's ends
+    and at the at-rest rows ``rest_rows``, sorted) gives a course and its standard error
+    σ / (max(|v|, ``min_speed_ms``) · sqrt(Σ (t − t̄)²)) rad, σ the track's position noise; True where the courses
+    differ by more than ``z`` · sqrt(se_b² + se_a²), or where a leg cannot be fitted
+    (fewer than 2 points or times, σ not known: the test does not apply). Gathered array
+    operations over the legs' points, no loop per row."""
+    m = len(rows)
+    ok = np.ones(m, dtype=bool)
+    if not m:
+        return ok
+    tr = index.track_of_row[rows]
+    lo = np.maximum(rows - legs + 1, index.starts[tr])
+    hi = np.minimum(rows + legs, index.ends[tr])  # one past the last row
+    if len(rest_rows):
+        k = np.searchsorted(rest_rows, rows)
+        before = np.where(k > 0, rest_rows[np.maximum(k - 1, 0)] + 1, 0)
+        after = np.where(k < len(rest_rows), rest_rows[np.minimum(k, len(rest_rows) - 1)], hi)
+        lo = np.maximum(lo, np.minimum(before, rows))
+        hi = np.minimum(hi, np.maximum(after, rows + 1))
+    # the legs' points, gathered: leg 2i before row i (lo .. row), 2i + 1 after (row .. hi)
+    first = np.empty(2 * m, dtype="int64")
+    first[0::2], first[1::2] = lo, rows
+    count = np.empty(2 * m, dtype="int64")
+    count[0::2], count[1::2] = rows - lo + 1, hi - rows
+    leg = np.repeat(np.arange(2 * m), count)
+    start = np.cumsum(count) - count
+    at = np.arange(int(count.sum())) - np.repeat(start, count) + np.repeat(first, count)
+    centre = np.repeat(np.repeat(rows, 2), count)  # each point against its turn's point
+    dt, dx, dy = t[at] - t[centre], x[at] - x[centre], y[at] - y[centre]
+    nl = count.astype(float)
+
+    def total(w):
+        return np.bincount(leg, weights=w, minlength=2 * m)
+
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tm = total(dt) / nl
+        ctt = total(dt * dt) - nl * tm * tm
+        vx = (total(dx * dt) - tm * total(dx)) / ctt
+        vy = (total(dy * dt) - tm * total(dy)) / ctt
+        # a leg slower than the detector's minimum speed (a ship leaving or coming to
+        # rest, which slow_side lets turn) is taken at that speed: its course is then as
+        # certain as the detector's own speed rule assumes, not lost in the noise
+        speed = np.maximum(np.hypot(vx, vy), min_speed_ms)
+        se = sigma[np.repeat(tr, 2)] / (speed * np.sqrt(ctt))
+        course = np.arctan2(vx, vy)
+        d = np.abs(np.angle(np.exp(1j * (course[1::2] - course[0::2]))))
+        bound = z * np.hypot(se[0::2], se[1::2])
+        fits = (count[0::2] >= 2) & (count[1::2] >= 2) & np.isfinite(bound)
+        fits &= (ctt[0::2] > 0) & (ctt[1::2] > 0)
+        ok[fits] = d[fits] > bound[fits]
     return ok
 
 
@@ -2263,6 +2352,18 @@ def _detect_sorted(
         med = med[parent]
         step = None if step is None else step[parent]
 
+    rest_rows = np.flatnonzero(rest) if params.confirm_z > 0 else None
+
+    def track_noise() -> np.ndarray:
+        """Each track's (piece's) position noise, computed when first needed."""
+        if not noise:
+            lag = _noise_lag(med_track if params.window_s > 0 else None, params)
+            sigma = sigma_track
+            if sigma is None:
+                sigma = position_noise_m(x, y, t, track_index, lag)
+            noise.append(sigma if parent is None else sigma[parent])
+        return noise[0]
+
     def accept(f_c: np.ndarray, cand: np.ndarray, p_c: np.ndarray, reach: np.ndarray, fine: bool):
         """The candidates (δ ``f_c``) that clear the noise floor (always at a fine scale,
         with the candidate's own point left out too), the minimum speed over ``reach``
@@ -2272,12 +2373,7 @@ def _detect_sorted(
             return ok
         # each test runs on the candidates still standing only (a candidate out stays out)
         if params.noise_k > 0 or fine:
-            if not noise:
-                lag = _noise_lag(med_track if params.window_s > 0 else None, params)
-                sigma = sigma_track
-                if sigma is None:
-                    sigma = position_noise_m(x, y, t, track_index, lag)
-                noise.append(sigma if parent is None else sigma[parent])
+            track_noise()
             k = params.noise_k
             gate = None  # noise_min_windows: the rows whose track offers enough windows
             options = params.noise_k_windows or params.noise_min_span > 0 or params.noise_k_law
@@ -2324,6 +2420,21 @@ def _detect_sorted(
         if any_rest:
             j = np.flatnonzero(ok)
             ok[j] = ~_near(rest, index, reach[j] - 1, cand[j])
+        if params.confirm_z > 0:
+            j = np.flatnonzero(ok)
+            legs = np.maximum(np.round(params.confirm_legs * p_c[j]), 2).astype("int64")
+            ok[j] = _confirmed(
+                x,
+                y,
+                t,
+                index,
+                cand[j],
+                legs,
+                track_noise(),
+                rest_rows,
+                params.confirm_z,
+                params.min_speed_kn * geo.KN_MS,
+            )
         return ok
 
     def add(f_c: np.ndarray, cand: np.ndarray, ok: np.ndarray, reach: np.ndarray) -> None:

@@ -221,6 +221,47 @@ def joined_counts(parts: list) -> list:
     return out
 
 
+def _break_phrases(speed: dict) -> list:
+    """The speed rule's breaks (an impossible leg followed by plausible ones: another ship,
+    or a clock set back), whatever the rule removed: how many split the track, and the
+    impossible legs left inside a track with the fastest (operator test 7, D3)."""
+    out: list = []
+    splits = int(speed.get("splits", 0) or 0)
+    if splits:
+        out.append(phrase("; {n:#break} split into new tracks (batch#2 …)", n=splits))
+    legs = speed.get("break_legs") or []
+    if legs:
+        worst = legs[0]
+        values = dict(
+            km=worst["km"],
+            s=worst["s"],
+            kn=worst["kn"] if worst["kn"] is not None else float("inf"),
+            track=f"{worst['sensor']}:{worst['batch']}",
+            time=str(worst["from_time"]).removesuffix("+00:00"),
+        )
+        n_kept = int(speed.get("breaks_kept", len(legs)) or len(legs))
+        if n_kept == 1:
+            out.append(
+                phrase(
+                    "; 1 break kept: {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} "
+                    "at {time}",
+                    **values,
+                )
+            )
+        else:
+            out.append(
+                phrase(
+                    "; {n:#break} kept, the fastest {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, "
+                    "track {track} at {time}",
+                    n=n_kept,
+                    **values,
+                )
+            )
+        if not speed.get("params", {}).get("split_at_breaks", False):
+            out.append(phrase(" (--set speed.split_at_breaks=true splits there)"))
+    return out
+
+
 def _summary_clean(res: StepResult) -> Text:
     """Where the points went: kept, then removed, changed (kept, with new values) and
     replaced, each with its rules (the removed add up to what was not kept)."""
@@ -242,6 +283,7 @@ def _summary_clean(res: StepResult) -> Text:
             parts.append(phrase("; changed {n:,} ({rules})", n=n, rules=rules))
         else:
             parts.append(phrase("; replaced {n:,} ({rules})", n=n, rules=rules))
+    parts += _break_phrases(rep["rules"].get("speed", {}))
     same_time = rep["rules"].get("same_time", {})
     if same_time.get("removed"):
         parts.append(
@@ -369,6 +411,7 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     report["refined_vertices"] = refine
     if opts.method != "dp":  # the turning points it kept around, as the maneuvers layer has
         report["maneuvers"] = int(len(table))
+        _add_error_bounds(report, res, cp)
     kept = comp.kept_points()
     per_track = {f"{t['sensor']}\x1f{t['batch']}": t["dis_e_m"] for t in report["tracks"]}
     layers.append(
@@ -381,6 +424,58 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     )
     progress(1.0, "compressed")
     return StepResult("compress", layers, report, {"points": kept})
+
+
+#: Tracks with the largest error bound named in the compress report's ``error_bound``.
+WORST_BOUNDS = 5
+
+
+def _add_error_bounds(report: dict, res, cp) -> None:
+    """Each track's noise estimate and the error bound used between kept points
+    (``noise_m``, ``error_tol_m`` in ``tracks``), and their spread with the tracks of
+    the largest bound in ``error_bound`` (operator test 7, D9: on 30-min posits the
+    bound is kilometres)."""
+    from wakeline.core.compress import error_bounds
+
+    bounds = error_bounds(res, cp)
+    if cp.error_sigmas <= 0 or not len(bounds):
+        report["error_bound"] = None
+        return
+    by_key = {
+        (str(s), str(b)): (n, tol)
+        for s, b, n, tol in zip(
+            bounds["sensor"], bounds["batch"], bounds["noise_m"], bounds["error_tol_m"], strict=True
+        )
+    }
+    for row in report["tracks"]:
+        n, tol = by_key.get((str(row["sensor"]), str(row["batch"])), (np.nan, np.nan))
+        row["noise_m"] = float(n)
+        row["error_tol_m"] = float(tol)
+    tol = bounds["error_tol_m"].to_numpy(dtype="float64")
+    worst = bounds.assign(_t=tol).sort_values("_t", ascending=False, kind="stable")
+    dis = {(str(r["sensor"]), str(r["batch"])): r for r in report["tracks"]}
+    report["error_bound"] = {
+        "error_sigmas": cp.error_sigmas,
+        "error_floor_m": cp.error_floor_m,
+        "error_cap_m": cp.error_cap_m,
+        "capped_tracks": int((cp.error_sigmas * bounds["noise_m"] > tol + 1e-9).sum()),
+        "tol_m": {
+            "min": float(tol.min()),
+            "median": float(np.median(tol)),
+            "p90": float(np.quantile(tol, 0.9)),
+            "max": float(tol.max()),
+        },
+        "largest": [
+            {
+                "sensor": str(r.sensor),
+                "batch": str(r.batch),
+                "noise_m": float(r.noise_m),
+                "error_tol_m": float(r.error_tol_m),
+                "max_error_m": float(dis[(str(r.sensor), str(r.batch))]["max_error_m"]),
+            }
+            for r in worst.head(WORST_BOUNDS).itertuples()
+        ],
+    }
 
 
 def _summary_compress(res: StepResult) -> Text:
@@ -405,8 +500,37 @@ def _summary_compress(res: StepResult) -> Text:
             phrase(", Dis_e against truth {dis_e:.1f} m", dis_e=o["dis_e_true_m"])
             if "dis_e_true_m" in o
             else None,
+            *_bound_phrases(res.report.get("error_bound"), o),
         ]
     )
+
+
+def _bound_phrases(bound: dict | None, overall: dict) -> list:
+    """The largest error bound used between kept points and the farthest point left off
+    the compressed track (operator test 7, D9)."""
+    if not bound or not bound.get("largest"):
+        return []
+    top = bound["largest"][0]
+    out = [
+        phrase(
+            "; largest error bound {tol:,.0f} m (track {track}, noise {noise:,.0f} m; "
+            "median {median:,.0f} m), farthest point {far:,.0f} m off",
+            tol=top["error_tol_m"],
+            track=f"{top['sensor']}:{top['batch']}",
+            noise=top["noise_m"],
+            median=bound["tol_m"]["median"],
+            far=overall.get("max_error_m", 0.0),
+        )
+    ]
+    if bound.get("error_cap_m"):
+        out.append(
+            phrase(
+                " (capped at {cap:,.0f} m on {n:#track})",
+                cap=max(bound["error_cap_m"], bound["error_floor_m"]),
+                n=bound["capped_tracks"],
+            )
+        )
+    return out
 
 
 def run_associate(

@@ -126,7 +126,8 @@ class LineDecoder(codecs.IncrementalDecoder):
                 return ""
             data, self._parts = b"".join(self._parts) + data, []
             self._start = False
-            if self.encoding == "utf-8" and data.startswith(codecs.BOM_UTF8):
+            # a UTF-8 BOM before GB18030 text is dropped too (operator test 7, D1)
+            if self.encoding in ("utf-8", "gb18030") and data.startswith(codecs.BOM_UTF8):
                 return "\ufeff" + self.decode(data[3:], final)
         if final:
             whole, self._parts = b"".join(self._parts) + data, []

@@ -628,3 +628,134 @@ def test_the_summary_says_where_every_point_went():
     assert kept + removed == total == len(pts), text
     assert re.search(r"changed 1 \(speed_outliers 1\)", text), text
     assert "duplicates 2" in text
+
+
+def _impossible_legs(points, params=None):
+    """Legs between consecutive output points of one track faster than the speed rule
+    allows (v_max · dt + tolerance): (batch, km, s) each."""
+    sp = (params or CleanParams()).speed
+    pts = sort_points(points)
+    from wakeline.core.schema import time_seconds
+
+    t = time_seconds(pts["time"])
+    lon, lat, batch = pts["lon"].to_numpy(), pts["lat"].to_numpy(), pts["batch"].to_numpy()
+    same = batch[1:] == batch[:-1]
+    d = geo.haversine_m(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    dt = t[1:] - t[:-1]
+    bad = same & (d > sp.v_max_kn * geo.KN_MS * dt + sp.tolerance_m)
+    return [(b, km, s) for b, km, s in zip(batch[1:][bad], d[bad] / 1000, dt[bad], strict=True)]
+
+
+def _clock_back(pts, first, rows=20, back_s=600.0):
+    """``rows`` rows from ``first`` on with their times set back ``back_s`` seconds (a
+    clock that went back: operator test 7, D3)."""
+    out = pts.copy()
+    idx = out.index[first : first + rows]
+    out.loc[idx, "time"] = out.loc[idx, "time"] - pd.Timedelta(seconds=back_s)
+    return out
+
+
+def test_a_kept_break_is_reported_with_its_leg_and_split_on_request():
+    """Operator test 7, D3: a jump of a few km in seconds followed by plausible legs is a
+    break (the speed rule removes nothing), under split_km, so the impossible leg stayed in
+    the cleaned track; the only trace was "breaks": 1 in the report. Now the report lists
+    each impossible leg kept and the summary names the fastest, whatever the rule removed;
+    speed.split_at_breaks splits there, so no output track holds an impossible leg."""
+    from wakeline.core.pipeline import STEPS, StepResult
+
+    a = straight(60, speed_kn=12, period_s=10.0, batch="5")
+    b = straight(60, speed_kn=12, period_s=10.0, batch="5", lon0=122.04, lat0=30.01)
+    b["time"] = b["time"] + pd.Timedelta(seconds=600)
+    pts = pd.concat([a, b], ignore_index=True)
+    res = clean(pts)
+    sp = res.report["rules"]["speed"]
+    assert sp["removed"] == 0 and sp["breaks"] == 1 and sp["splits"] == 0
+    legs = _impossible_legs(res.points)
+    assert len(legs) == 1 == sp["breaks_kept"] == len(sp["break_legs"])
+    leg = sp["break_legs"][0]
+    assert leg["batch"] == "5" and leg["km"] == pytest.approx(legs[0][1], abs=5e-4)
+    assert leg["s"] == legs[0][2] and leg["kn"] == pytest.approx(
+        legs[0][1] * 1000 / legs[0][2] / geo.KN_MS, abs=0.1
+    )
+    text = STEPS["clean"].summary(StepResult("clean", [], res.report, {}))
+    assert f"1 break kept: {leg['km']:,.1f} km in {leg['s']:,.0f} s, {leg['kn']:,.0f} kn" in text
+    assert "track R1:5 at 2024-05-01 00:09:50" in text and "split_at_breaks" in text
+    on = clean(pts, CleanParams().with_settings(["speed.split_at_breaks=true"]))
+    assert _impossible_legs(on.points) == []
+    assert sorted(on.points["batch"].unique()) == ["5", "5#2"]
+    assert on.report["rules"]["speed"]["splits"] == 1
+    assert on.report["rules"]["speed"]["breaks_kept"] == 0
+    assert sorted(on.points["wl_id"]) == sorted(res.points["wl_id"])  # split, nothing lost
+    text = STEPS["clean"].summary(StepResult("clean", [], on.report, {}))
+    assert "1 break split into new tracks" in text and "kept:" not in text
+
+
+@pytest.mark.real
+def test_a_clock_set_back_leaves_no_unreported_impossible_leg():
+    """D3 as the operator met it: Saronic ferry vessel 3 with 20 moving rows set back 10
+    min. Every impossible leg left in the cleaned track is in the report's break_legs, and
+    with split_at_breaks none is left."""
+    pts = read_points(real_file("greece-ais-annotated", "vessel_3_id_annotated.csv")).points
+    pts = sort_points(pts)
+    moving = np.flatnonzero(pts["speed"].to_numpy() > 15)
+    first = int(moving[np.flatnonzero(np.diff(moving) == 1)[20]])
+    faulty = _clock_back(pts, first)
+    res = clean(faulty)
+    legs = _impossible_legs(res.points)
+    sp = res.report["rules"]["speed"]
+    assert len(legs) >= 1
+    assert sp["breaks_kept"] == len(legs) == len(sp["break_legs"])
+    assert sorted(round(leg["km"], 3) for leg in sp["break_legs"]) == sorted(
+        round(km, 3) for _, km, _ in legs
+    )
+    on = clean(faulty, CleanParams().with_settings(["speed.split_at_breaks=true"]))
+    assert _impossible_legs(on.points) == []
+    assert on.report["tracks_out"] > res.report["tracks_out"]
+    # the ship's own file has no impossible leg: the option changes nothing there
+    base = clean(pts)
+    same = clean(pts, CleanParams().with_settings(["speed.split_at_breaks=true"]))
+    assert base.report["rules"]["speed"].get("breaks_kept", 0) == 0
+    pd.testing.assert_frame_equal(base.points, same.points)
+
+
+def test_break_legs_and_splits_add_up_over_blocks(monkeypatch):
+    """Tracks cleaned in blocks (large tables) report every block's splits and kept
+    impossible legs, not the first block's."""
+    import wakeline.core.clean as clean_mod
+
+    def two(batch):
+        a = straight(40, speed_kn=12, period_s=10.0, batch=batch)
+        b = straight(40, speed_kn=12, period_s=10.0, batch=batch, lon0=122.04, lat0=30.01)
+        b["time"] = b["time"] + pd.Timedelta(seconds=400)
+        return pd.concat([a, b], ignore_index=True)
+
+    pts = pd.concat([two("1"), two("2"), two("3")], ignore_index=True)
+    whole = clean(pts)
+    monkeypatch.setattr(clean_mod, "BLOCK_ROWS", 100)
+    blocks = clean(pts)
+    for key in ("breaks", "splits", "breaks_kept"):
+        assert blocks.report["rules"]["speed"][key] == whole.report["rules"]["speed"][key]
+    assert whole.report["rules"]["speed"]["breaks_kept"] == 3
+    assert len(blocks.report["rules"]["speed"]["break_legs"]) == 3
+    on = CleanParams().with_settings(["speed.split_at_breaks=true"])
+    assert clean(pts, on).report["rules"]["speed"]["splits"] == 3
+
+
+def test_the_report_lists_the_fastest_kept_breaks_and_counts_them_all(monkeypatch):
+    """The report's ``break_legs`` is capped (MTAD's noise gave 1,343 records); ``breaks_kept``
+    and the summary count them all."""
+    import wakeline.core.clean as C
+    from wakeline.core.pipeline import STEPS, StepResult
+
+    monkeypatch.setattr(C, "BREAK_LEGS_LISTED", 1)
+    parts = []
+    for batch, lon0 in (("5", 122.04), ("6", 122.08)):  # two tracks, each with a jump
+        a = straight(60, speed_kn=12, period_s=10.0, batch=batch)
+        b = straight(60, speed_kn=12, period_s=10.0, batch=batch, lon0=lon0, lat0=30.01)
+        b["time"] = b["time"] + pd.Timedelta(seconds=600)
+        parts += [a, b]
+    pts = pd.concat(parts, ignore_index=True)
+    rep = C.clean(pts).report
+    speed = rep["rules"]["speed"]
+    assert speed["breaks_kept"] == 2 and len(speed["break_legs"]) == 1
+    assert "2 breaks kept" in STEPS["clean"].summary(StepResult("clean", [], rep, {}))

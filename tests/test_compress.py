@@ -346,3 +346,64 @@ def test_a_stay_of_a_sparse_track_is_simplified_at_its_own_radius():
     at_50 = douglas_peucker_mask(x[8:20], y[8:20], span, 50.0)
     assert at_50[1:-1].sum() >= 6  # what the 3-min stay's radius keeps of the noise
     assert not detect(result.points, ManeuverParams(rest_steps=0)).at_rest.any()
+
+
+def _sparse_curving_tracks(seed=0, n_tracks=4):
+    """Ships at 14–18 kn reported every 30 min (ATD 2025's posits) on slow curves (radius
+    60–150 km, a few degrees per fix), 30 m of position noise. The
+    interpolation of a fix's neighbours misses it by the curve's sagitta, about a km, so
+    the track's "noise" estimate is the ship's motion (operator test 7, D9)."""
+    rng = np.random.default_rng(seed)
+    frames = []
+    for k in range(n_tracks):
+        n = int(rng.integers(30, 50))
+        v = rng.uniform(14, 18) * 0.5144
+        radius = rng.uniform(60e3, 150e3) * rng.choice([-1, 1])
+        s = np.arange(n) * v * 1800.0
+        ang = s / radius
+        x = radius * (1 - np.cos(ang)) + rng.normal(0, 30, n)
+        y = abs(radius) * np.sin(np.abs(ang)) + rng.normal(0, 30, n)
+        frames.append(track_from_xy(x, y, period_s=1800.0, batch=f"s{k}"))
+    return pd.concat(frames, ignore_index=True)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_the_error_bound_is_reported_per_track_and_can_be_capped(seed):
+    """D9: on 30-min posits 10× the "noise" is kilometres, and fixes lay kilometres off the
+    compressed track with nothing saying why. The report now gives each track's noise
+    estimate and bound (and the largest), the summary the largest bound and the farthest
+    fix; ``error_cap_m`` caps the bound, and with raw vertices no fix is then farther than
+    the cap from the compressed track."""
+    from wakeline.core.compress import CompressParams, turning_keep
+    from wakeline.core.pipeline import STEPS
+
+    df = _sparse_curving_tracks(seed)
+    result = detect(df)
+    cap = 300.0
+    res = STEPS["compress"](df)
+    rep = res.report
+    bound = rep["error_bound"]
+    for track in rep["tracks"]:
+        assert track["error_tol_m"] == pytest.approx(max(10 * track["noise_m"], 50.0))
+    assert bound["tol_m"]["max"] == max(t["error_tol_m"] for t in rep["tracks"]) > 1000
+    top = bound["largest"][0]
+    assert top["error_tol_m"] == bound["tol_m"]["max"] and bound["capped_tracks"] == 0
+    assert rep["overall"]["max_error_m"] == max(t["max_error_m"] for t in rep["tracks"]) > cap
+    text = STEPS["compress"].summary(res)
+    assert f"largest error bound {top['error_tol_m']:,.0f} m (track S1:{top['batch']}" in text
+    assert f"farthest point {rep['overall']['max_error_m']:,.0f} m off" in text
+    json.dumps(rep, allow_nan=False)  # the report stays plain JSON
+
+    capped = STEPS["compress"](df, {"compress": CompressParams(error_cap_m=cap)}).report
+    assert all(t["error_tol_m"] <= cap for t in capped["tracks"])
+    assert capped["error_bound"]["capped_tracks"] == len(capped["tracks"])
+    assert capped["overall"]["kept"] > rep["overall"]["kept"]
+    assert capped["overall"]["dis_e_m"] < rep["overall"]["dis_e_m"]
+    assert "(capped at 300 m on 4 tracks)" in STEPS["compress"].summary(
+        STEPS["compress"](df, {"compress": CompressParams(error_cap_m=cap)})
+    )
+    raw = CompressParams(error_cap_m=cap, refine=False)
+    comp = compress_with(None, turning_keep(result, raw), refine=False, sorted_points=result.points)
+    assert comp.point_errors().max() <= cap + 1e-6
+    # no cap (the default): the same kept points as before the option
+    assert np.array_equal(turning_keep(result), turning_keep(result, CompressParams(error_cap_m=0)))

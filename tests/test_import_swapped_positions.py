@@ -96,3 +96,58 @@ def test_the_swap_warning_follows_the_values(tmp_path_factory, values):
     assert warned == (expect > len(values) / 2)
     # never swapped: every point is where its names put it
     assert (r.points["lat"].abs() <= 90).all()
+    if warned:  # a file judged swapped keeps no row at a mirrored place (D2)
+        assert len(r.points) == 0 and rep["rows_quarantined"] == len(values)
+
+
+def _half_swapped(n: int = 100, in_range: int = 40, quoted: bool = False) -> str:
+    """Lat/lon swapped in every row; ``in_range`` rows have a longitude within ±90 (so
+    their lat "fits"), the others a longitude beyond 90 (out of range as lat)."""
+    q = '"' if quoted else ""
+    lines = ["track_id,time,lat,lon"]
+    for k in range(n):
+        lon = -80.0 - k * 0.01 if k < in_range else 120.0 + k * 0.01
+        lines.append(
+            f"{q}{k % 7}{q},2024-05-01T08:{k // 60:02d}:{k % 60:02d}Z,{lon:.5f},{30.5:.5f}"
+        )
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("how", ["whole", "streamed", "pieces"])
+def test_a_file_judged_swapped_keeps_no_row_at_a_mirrored_place(write, tmp_path, how, capsys):
+    """Operator test 7, D2: 2,098 of 2,999 rows were quarantined as 'lat out of range'
+    and the other 901 (longitudes between -90 and -76) imported at latitudes -76 to -90
+    with exit 0. Now every row of a file judged swapped is quarantined, counted, and the
+    import fails naming the --map; read with it, every row is a point."""
+    path = write("half.csv", _half_swapped(quoted=how == "pieces"))
+    if how == "whole":
+        r = read_points(path)
+    else:
+        r = import_to_csv(path, tmp_path / "o.csv")
+    rep = r.report
+    assert rep["rows_imported"] == 0 and rep["rows_quarantined"] == 100
+    assert rep["quarantine_reasons"] == {
+        "lat out of range": 60,
+        "in a file whose lat and lon columns look swapped": 40,
+    }
+    assert main(["import", str(path), "-o", str(tmp_path / "c.csv")]) == 2
+    assert "--map lat=lon --map lon=lat" in capsys.readouterr().err
+    fixed = read_points(path, mapping=["lat=lon", "lon=lat"])
+    assert len(fixed.points) == 100 and (fixed.points["lat"] == 30.5).all()
+
+
+def test_batch_keeps_no_row_of_a_swapped_file(write, tmp_path, capsys):
+    pytest.importorskip("dask.dataframe")
+    import json
+
+    from wakeline.core.pipeline import Pipeline
+
+    good = write("good.csv", _generic([(30.0 + k * 1e-3, 20.0) for k in range(30)]))
+    half = write("half.csv", _half_swapped())
+    pipe = tmp_path / "p.json"
+    pipe.write_text(Pipeline.default().to_json())
+    out = tmp_path / "o"
+    main(["batch", str(pipe), str(good), str(half), "-o", str(out)])
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["rows_read"] == 130 and rep["quarantined"] == 100  # none of half.csv kept
+    capsys.readouterr()

@@ -127,6 +127,8 @@ def _reference_params(params: ManeuverParams):
     assert not fields.pop("noise_k_law")  # h185, off by default
     assert not fields.pop("rest_noise_sigmas")  # h193; default 5 since h195, set 0 above
     fields.pop("rest_noise_cap_m")  # h195: no effect with rest_noise_sigmas 0 (set above)
+    assert fields.pop("confirm_z") == 0  # h203, off by default
+    fields.pop("confirm_legs")  # h203: no effect with confirm_z 0
     return reference.ManeuverParams(**fields)
 
 
@@ -135,7 +137,7 @@ def _reference_params(params: ManeuverParams):
 def test_detect_equals_the_straightforward_detector(scene, which):
     df = SCENES[scene]()
     params = PARAMS[which].replace(
-        max_step_windows=0.0, slow_side_step_s=0.0, rest_noise_sigmas=0.0
+        max_step_windows=0.0, slow_side_step_s=0.0, rest_noise_sigmas=0.0, confirm_z=0.0
     )
     ours = detect(df, params)
     ref = reference.detect(df, _reference_params(params))

@@ -80,7 +80,11 @@ def _same(df, params):
     # the reference predates max_step_windows (no heading across a long step) and
     # slow_side_step_s (slow_side's bound, tested in test_maneuver.py): those rules off
     params = params.replace(
-        max_step_windows=0.0, window_max_s=0.0, slow_side_step_s=0.0, rest_noise_sigmas=0.0
+        max_step_windows=0.0,
+        window_max_s=0.0,
+        slow_side_step_s=0.0,
+        rest_noise_sigmas=0.0,
+        confirm_z=0.0,
     )
     ours = detect(df, params)
     fields = dict(params.__dict__)
@@ -91,6 +95,8 @@ def _same(df, params):
     assert not fields.pop("noise_k_law")  # h185, off by default
     assert not fields.pop("rest_noise_sigmas")  # h193; default 5 since h195, set 0 above
     fields.pop("rest_noise_cap_m")  # h195: no effect with rest_noise_sigmas 0 (set above)
+    assert fields.pop("confirm_z") == 0  # h203, off by default (set 0 above)
+    fields.pop("confirm_legs")  # h203: no effect with confirm_z 0
     assert not fields.pop("rest_north_box")  # the reference calls at_rest's default box
     ref = reference.detect(df, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)

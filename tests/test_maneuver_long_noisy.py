@@ -145,7 +145,15 @@ def test_options_equal_the_straightforward_detector(options):
     fields = dict(params.__dict__)
     off = ("max_step_windows", "window_max_s", "radius_s", "edge_s", "rest_north_box")
     assert not fields.pop("rest_noise_sigmas")  # h193/h195: off here, the reference predates it
-    for gone in (*off, "slow_side_step_s", "slow_side_span_s", "noise_k_law", "rest_noise_cap_m"):
+    assert not fields.pop("confirm_z")  # h203: off by default, the reference predates it
+    for gone in (
+        *off,
+        "slow_side_step_s",
+        "slow_side_span_s",
+        "noise_k_law",
+        "rest_noise_cap_m",
+        "confirm_legs",
+    ):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)

@@ -313,6 +313,34 @@ def fallback_warning(primary: str, info: dict) -> list[str]:
     return out
 
 
+#: The encodings (codec names) whose text a UTF-8 byte order mark may stand before: the
+#: mark is dropped, not read as characters (``EF BB BF`` is 锘 and half a character in
+#: GB18030, "ï»¿" in Windows-1252).
+BOM_DROPPED = frozenset(("gb18030", "gbk", "gb2312", "cp1252", "latin-1", "iso8859-1", "cp936"))
+#: The prefix of the codecs that drop a leading UTF-8 byte order mark, then decode in an
+#: encoding the user named (``--encoding gbk`` on a GBK file with a UTF-8 BOM:
+#: ``wakeline-bom-gbk``).
+BOM_PREFIX = "wakeline-bom-"
+
+
+def bom_codec(encoding: str) -> str:
+    """The codec name that reads ``encoding`` after a UTF-8 byte order mark (dropped):
+    ``encoding`` itself when it is UTF-8 (whose codecs drop it or read it as U+FEFF,
+    which the readers drop), UTF-16/32 or not ASCII-based."""
+    try:
+        name = codecs.lookup(encoding).name
+    except LookupError:
+        return encoding
+    if name.startswith(("utf-8", "utf-16", "utf-32", BOM_PREFIX)) or not line_decodable(name):
+        return encoding
+    return BOM_PREFIX + name
+
+
+def plain_encoding(encoding: str) -> str:
+    """``encoding`` without :data:`BOM_PREFIX` (what the report names)."""
+    return encoding.removeprefix(BOM_PREFIX)
+
+
 #: What the warnings call the fallback encodings.
 LABELS = {FALLBACK: FALLBACK_LABEL, "gb18030": "GB18030 (Chinese)", "utf-8": "UTF-8"}
 #: How every fallback warning starts (pieces make it again from summed counts).
@@ -385,6 +413,8 @@ class LineDecoder(codecs.IncrementalDecoder):
         self.fallbacks = Fallbacks()
         self.evidence = Evidence()
         self._ascii = True  # every byte decoded so far was ASCII
+        #: A UTF-8 byte order mark was dropped before text in another encoding.
+        self.bom_dropped = False
 
     def getstate(self) -> tuple[bytes, int]:
         return b"".join(self._parts), 0
@@ -400,7 +430,12 @@ class LineDecoder(codecs.IncrementalDecoder):
                 return ""
             data, self._parts = b"".join(self._parts) + data, []
             self._start = False
-            if self.encoding == "utf-8" and data.startswith(codecs.BOM_UTF8):
+            if data.startswith(codecs.BOM_UTF8) and (
+                self.encoding == "utf-8" or self.encoding in BOM_DROPPED
+            ):
+                # UTF-8's byte order mark; before GB18030 text (a GBK file saved by a tool
+                # that adds a UTF-8 BOM, operator test 7 D1) it is no character either
+                self.bom_dropped = self.encoding != "utf-8"
                 self._ascii = False
                 rest = self.decode(data[3:], final)
                 return "\ufeff" + (rest.decode("utf-8") if isinstance(rest, bytes) else rest)
@@ -719,8 +754,60 @@ def line_decodable(encoding: str) -> bool:
     return not name.startswith(("utf-16", "utf-32")) and "\n".encode(name) == b"\n"
 
 
+class _BomDecoder(codecs.IncrementalDecoder):
+    """Drops a leading UTF-8 byte order mark, then decodes in ``base``."""
+
+    base = "utf-8"
+
+    def __init__(self, errors: str = "strict") -> None:
+        super().__init__(errors)
+        self._inner = codecs.getincrementaldecoder(self.base)(errors)
+        self._head = b""  # the start, until it is known whether it is the mark
+
+    def decode(self, data: bytes = b"", final: bool = False) -> str:
+        if self._head is not None:
+            head = self._head + bytes(data)
+            if len(head) < 3 and not final and codecs.BOM_UTF8.startswith(head):
+                self._head = head
+                return ""
+            self._head = None
+            data = head.removeprefix(codecs.BOM_UTF8)
+        return self._inner.decode(data, final)
+
+    def reset(self) -> None:
+        self._inner.reset()
+        self._head = b""
+
+    def getstate(self) -> tuple[bytes, int]:
+        return self._head or b"", 0
+
+    def setstate(self, state: tuple[bytes, int]) -> None:
+        self._head = state[0] if state[0] else (b"" if self._head is not None else None)
+
+
+def _search_bom(name: str) -> codecs.CodecInfo | None:
+    encoding = codecs.lookup(name[len(BOM_PREFIX) :]).name
+    base = codecs.lookup(encoding)
+    decoder = type("Decoder", (_BomDecoder,), {"base": encoding})
+
+    def decode(data: bytes, errors: str = "strict") -> tuple[str, int]:
+        return base.decode(bytes(data).removeprefix(codecs.BOM_UTF8), errors)[0], len(data)
+
+    return codecs.CodecInfo(
+        name=BOM_PREFIX + encoding,
+        encode=base.encode,
+        decode=decode,
+        incrementalencoder=base.incrementalencoder,
+        incrementaldecoder=decoder,
+        streamreader=base.streamreader,
+        streamwriter=base.streamwriter,
+    )
+
+
 def _search(name: str) -> codecs.CodecInfo | None:
     name = name.replace("_", "-")
+    if name.startswith(BOM_PREFIX):
+        return _search_bom(name)
     if not name.startswith(PREFIX):
         return None
     encoding = codecs.lookup(name[len(PREFIX) :]).name

@@ -389,6 +389,10 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
         "course_over_ground",
         "航向",
         "对地航向",
+        # course over ground as Chinese radar consoles head it (航迹向(度)); 航向角 the
+        # course angle (operator test 7, D13)
+        "航迹向",
+        "航向角",
         "crs",
         "kurs",
         "route_fond",

@@ -44,6 +44,7 @@ from wakeline.core.io.formats import Resolved
 from wakeline.core.io.geojson import TARGETS_MARK
 from wakeline.core.io.grid import GRID_MARK, GRID_MIN_ROWS
 from wakeline.core.io.reader import (
+    BACK_MARK,
     BEARING_ROWS_MARK,
     BEARING_WARNING_MARK,
     CUT_SHORT_MARK,
@@ -55,6 +56,7 @@ from wakeline.core.io.reader import (
     ZONE_NOTE_MARK,
     ImportResult,
     WholeFileNeeded,
+    _back_warnings,
     _coarse_time_warnings,
     _judged,
     _restart_warnings,
@@ -67,8 +69,10 @@ from wakeline.core.io.reader import (
     empty_quarantine,
     encoding_note,
     line_pieces,
+    merge_steps_back,
     parse_zone,
     strict_mode,
+    swapped_file,
     time_counts,
     with_final,
 )
@@ -358,6 +362,10 @@ def _read_all(
         if len(res.quarantine):
             line = res.quarantine["line"] + (first_line - 1)
             quarantines.append(res.quarantine.assign(line=line))
+        if res.report.get("time_steps_back"):  # its line numbers made the file's
+            res.report["time_steps_back"] = merge_steps_back(
+                [(res.report["time_steps_back"], first_line)]
+            )
         if res.report.get("encoding_fallback"):  # its line numbers made the file's
             info = merge_fallbacks([(res.report["encoding_fallback"], first_line)])
             res.report["encoding_fallback"] = info
@@ -458,7 +466,7 @@ def merge_import_reports(
                 if speed_said:
                     continue
                 speed_said = True
-            if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w:
+            if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w or BACK_MARK in w:
                 continue  # said again below from the whole file's quarantine and reasons
             if w.startswith(TARGETS_MARK):
                 continue  # a piece's counts: import_to_csv says the whole file's (h192)
@@ -483,6 +491,8 @@ def merge_import_reports(
     if relative:
         warnings += relative_note
     warnings += _restart_warnings(restarting, batch_src)
+    steps_back = merge_steps_back([(r.get("time_steps_back", {}), 1) for r in reports])
+    warnings += _back_warnings(steps_back, time_src, batch_src)
     reasons = _sum([r.get("quarantine_reasons", {}) for r in reports])
     warnings += bearing_warnings(
         first["columns"], reasons, sum(int(r.get("rows_read", 0)) for r in reports)
@@ -493,6 +503,12 @@ def merge_import_reports(
     # A later piece read in a fallback encoding: the whole file is read in that one.
     encodings = [r["encoding"] for r in reports]
     encoding = next((e for e in encodings if e != sn.encoding), encodings[0])
+    read_all = {
+        "rows_read": sum(int(r["rows_read"]) for r in reports),
+        "lat_beyond_90_lon_within": sum(int(r.get("lat_beyond_90_lon_within", 0)) for r in reports),
+    }
+    if swapped_file(read_all):  # the whole-file reader quarantines every row of it (D2)
+        raise WholeFileNeeded
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
     fmt = (with_rows or reports)[0].get("time_format")
     first = {k: v for k, v in first.items() if k != "_zones"}
@@ -515,6 +531,7 @@ def merge_import_reports(
         "lat_beyond_90_lon_within": sum(int(r.get("lat_beyond_90_lon_within", 0)) for r in reports),
         "decimal_comma_values": decimal,
         "restarting_tracks": restarting,
+        "time_steps_back": steps_back,
         "tracks": int(tracks),
         "sensors": _sum([r.get("sensors", {}) for r in reports]),
         "time_start": min(starts).isoformat() if starts else None,

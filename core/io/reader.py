@@ -44,6 +44,7 @@ from wakeline.core.io.decoding import (
     fallback_warning,
     line_decodable,
     lines_codec,
+    plain_encoding,
 )
 from wakeline.core.io.formats import (
     DISTANCE_UNITS,
@@ -708,6 +709,19 @@ UNBALANCED_NOTE = (
     "quotes do not balance (a quoted cell ran over line ends): the file was read line by "
     "line, quoted cells unquoted"
 )
+
+
+def bom_warnings(sn: Sniff, enc: str) -> list[str]:
+    """A warning when the file starts with a UTF-8 byte order mark and its text is in
+    another encoding (GBK saved by a tool that adds the mark, operator test 7 D1): the
+    mark was dropped and the text read as ``enc``."""
+    name = plain_encoding(codecs.lookup(enc).name) if line_decodable(enc) else ""
+    if not sn.bom or not name or name.startswith("utf-"):
+        return []
+    return [
+        f"the file starts with a UTF-8 byte order mark but its text is not UTF-8: the mark "
+        f"was dropped and the text read as {name}"
+    ]
 
 
 def encoding_note(start: str, enc: str) -> str:
@@ -2315,6 +2329,23 @@ def _raw_lines(sn: Sniff, line_numbers: np.ndarray, encoding: str | None = None)
     return [found.get(int(n), "") for n in line_numbers]
 
 
+def _garbled_header(columns: tuple[str, ...]) -> bool:
+    """Whether header names look read in the wrong encoding: undecodable bytes (U+FFFD),
+    or Latin-1 letters whose bytes are Chinese text in GB18030 (``ÅúºÅ`` is 批号)."""
+    from wakeline.core.io.decoding import _gb_line, _high
+
+    text = ",".join(columns).lstrip("\ufeff").removeprefix("ï»¿")
+    if "\ufffd" in text:
+        return True
+    if text.isascii():
+        return False
+    try:
+        raw = text.encode("cp1252")
+    except UnicodeEncodeError:
+        return False
+    return _gb_line(raw, _high(raw))
+
+
 def resolve_header(
     sn: Sniff,
     fmt: str,
@@ -2372,11 +2403,22 @@ def resolve_header(
                     f"{exc}; by its values the time may be in {found[0]!r}: "
                     f"--map {shlex.quote(f'time={found[0]}')}"
                 ) from None
+        garbled = sn.has_header and _garbled_header(sn.columns)
+        if garbled:
+            # not "not track data": a header read in the wrong encoding (operator test 7
+            # D1: batch skipped such a file with exit status 0, its rows lost)
+            stray = False
         refused = NotTrackData if stray else InputError
         if sn.has_header and len(known_fields(sn.columns)) < 3:
             raise refused(
                 f"{exc}; if the header is further down (a title above it), skip the lines "
                 "above it with --skip-rows N"
+                + (
+                    f"; the header looks read in the wrong encoding (read as {plain_encoding(sn.encoding)}):"
+                    " give the file's encoding (--encoding, e.g. gb18030)"
+                    if garbled
+                    else ""
+                )
             ) from None
         if stray and not isinstance(exc, NotTrackData):
             raise NotTrackData(str(exc)) from None
@@ -3015,10 +3057,12 @@ def read_points(
     zones = [time_info.pop("_zoned_n", 0), time_info.pop("_naive_n", 0)]
     progress(1.0, "imported")
     warnings = list(rows.notes) + notes + _title_warnings(sn) + _blank_run_warnings(sn)
+    warnings += bom_warnings(sn, rows.encoding)
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
+    warnings += _back_warnings(counts["time_steps_back"], res.columns["time"], res.columns["batch"])
     warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, counts["quarantine_reasons"], counts["rows_read"])
@@ -3033,7 +3077,7 @@ def read_points(
         "input": str(path),
         "format": res.format.name,
         "format_label": res.format.label,
-        "encoding": rows.encoding,
+        "encoding": plain_encoding(rows.encoding),
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
@@ -3063,7 +3107,7 @@ def read_points(
     }
     layout = {
         "delimiter": sn.delimiter,
-        "encoding": rows.encoding,
+        "encoding": plain_encoding(rows.encoding),
         "bom": sn.bom,
         "line_ending": sn.line_ending,
         "compression": sn.compression,
@@ -3297,6 +3341,18 @@ def _looks_swapped(lon, lat) -> int:
     return int(pc.sum(pc.cast(pc.fill_null(hit, False), pa.int64())).as_py() or 0)
 
 
+#: The quarantine reason of a row of a file whose lat and lon columns look swapped (most
+#: rows' lat beyond ±90° with lon within ±90°) that is not out of range itself.
+SWAPPED_REASON = "in a file whose lat and lon columns look swapped"
+
+
+def swapped_file(report: dict) -> bool:
+    """Whether a read's counts judge the file's lat and lon columns swapped (most rows
+    read have lat beyond ±90° and lon within ±90°)."""
+    rows = int(report.get("rows_read", 0) or 0)
+    return bool(rows) and int(report.get("lat_beyond_90_lon_within", 0) or 0) > rows / 2
+
+
 #: The layouts that fix the order of the position columns (format name → the field that
 #: comes first): a file of such a layout with the other order may have its names swapped.
 POSITION_ORDER = {
@@ -3323,7 +3379,8 @@ def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list
             f"column {lat!r} (read as latitude) is beyond ±90° in most rows while {lon!r} "
             f"lies within ±90° (lat_beyond_90_lon_within in the report counts them): the "
             f"columns look swapped (longitudes under "
-            f"{lat!r}); those rows are quarantined. If so, import again with {fix}"
+            f"{lat!r}); every row is quarantined (none is kept at a mirrored place). If so, "
+            f"import again with {fix}"
         )
     first = POSITION_ORDER.get(res.format.name)
     if first is not None and lat in sn.columns and lon in sn.columns:
@@ -3355,13 +3412,26 @@ BEARING_BEYOND = "bearing beyond"
 BEARING_WARNING_MARK = "beyond a full turn ("
 
 
+#: The quarantine reason of a last line cut inside its last cell (sniff.cut_last_cell).
+CUT_LAST_REASON = "cut last line"
+
+
 def cut_short_warnings(sn: Sniff, quarantine: pd.DataFrame) -> list[str]:
-    """A warning when the file's last line is a short row: the file was cut short (still
-    being written or copied when it was read). One pass over the file, only when a short
-    row was quarantined."""
+    """A warning when the file's last line is a short row, or was cut inside its last
+    cell (``sn.cut_last``, quarantined as :data:`CUT_LAST_REASON`): the file was cut
+    short (still being written or copied when it was read). One pass over the file, only
+    when a short row was quarantined."""
     if not len(quarantine) or "reason" not in quarantine.columns:
         return []
     reason = quarantine["reason"].astype(str)
+    cut = quarantine[reason == CUT_LAST_REASON]
+    if len(cut) and sn.cut_last:
+        return [
+            f"line {int(cut['line'].max()):,}{CUT_SHORT_MARK}no line end and its last value "
+            f"looks cut ({sn.cut_last}): quarantined as {CUT_LAST_REASON!r}; the file may "
+            "be cut short (still being written or copied when it was read); open it again "
+            "once it is complete"
+        ]
     short = quarantine[reason.str.startswith("short row")]
     if not len(short):
         return []
@@ -3956,10 +4026,59 @@ def id_candidates(sn: Sniff, columns: dict[str, str]) -> list[tuple[str, bool, i
         distinct = len(set(cells))
         if distinct < 2 or distinct > len(cells) / 2 or not _mostly(cells, _ID_CELL):
             continue
+        if _not_an_id_over_time(sn, name, columns.get("time")):
+            continue
         mmsi = _mostly(cells, _MMSI_CELL)
         rank = 0 if mmsi else 1 if hint.search(key) else 2
         out.append((rank, k, name, mmsi, distinct, len(cells)))
     return [(name, mmsi, d, n) for _r, _k, name, mmsi, d, n in sorted(out)]
+
+
+#: The share of a column's sampled values that must show the counter's (or the per-time
+#: index's) pattern for it not to be offered as the track id.
+COUNTER_SHARE = 0.9
+
+
+def _not_an_id_over_time(sn: Sniff, name: str, time_src: str | None) -> bool:
+    """Whether a column's sampled values do not persist over time as a track's id does
+    (operator test 7, D14: the Autoferry detections' ``scan`` and ``k`` were offered as
+    the batch): a counter, each value at one time only (a message or scan number, new
+    with every time step), or an index within each time (``k``: each time's values
+    exactly 0..m-1 or 1..m, m varying between times: the m-th detection of a scan, not
+    the same object from one time to the next). Judged only with evidence: the sample
+    spans several times, and the index rule several times of two or more rows."""
+    if time_src is None or time_src not in sn.columns or name not in sn.columns:
+        return False
+    k, t, width = sn.columns.index(name), sn.columns.index(time_src), len(sn.columns)
+    pairs = [
+        (r[t].strip(), r[k].strip().strip('"'))
+        for r in sn.sample
+        if len(r) == width and r[t].strip() and r[k].strip().strip('"')
+    ]
+    times: dict[str, set[str]] = {}  # value → its times
+    by_time: dict[str, list[str]] = {}  # time → its values
+    for when, value in pairs:
+        times.setdefault(value, set()).add(when)
+        by_time.setdefault(when, []).append(value)
+    if len(by_time) < 3:
+        return False
+    once = sum(len(ts) == 1 for ts in times.values())
+    if len(times) >= 3 and once >= COUNTER_SHARE * len(times):
+        return True  # a counter: no value is seen again at a later time
+    shared = [vs for vs in by_time.values() if len(vs) >= 2]
+    if len(shared) < 3:
+        return False
+
+    def index_like(values: list[str]) -> bool:
+        try:
+            got = sorted(int(v) for v in values)
+        except ValueError:
+            return False
+        return got in (list(range(len(got))), list(range(1, len(got) + 1)))
+
+    sizes = {len(vs) for vs in by_time.values()}
+    hits = sum(index_like(vs) for vs in shared)
+    return len(sizes) > 1 and hits >= COUNTER_SHARE * len(shared)
 
 
 def _runs_up(sn: Sniff, name: str) -> bool:
@@ -4373,7 +4492,20 @@ def _to_canonical(
 
     counted.pop("_form_clash", None)
     blanked = {k: v for k, v in blanked.items() if v}  # values of quarantined rows only
+    edges_in = (time_info or {}).get("_edges")
+    if sn.cut_last and n and (edges_in is None or edges_in.get("final")):
+        # the file's last line, cut inside its last cell (sniff.cut_last_cell): the last
+        # row of the whole file or of its final piece (operator test 7, D7)
+        lines_arr = np.asarray(rows.lines)
+        flag(lines_arr == lines_arr.max(), CUT_LAST_REASON)
     swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
+    if "_edges" not in (time_info or {}):  # a whole file (a piece's is judged over the file)
+        read_n = int(n - int(blank.sum()) + len(bad.lines))
+        if read_n and swapped > read_n / 2:
+            # The file is judged swapped: no row of it is kept at the place its names
+            # give (a lon within ±90 under lat would be a point mirrored across the
+            # diagonal: operator test 7, D2); every row not quarantined already is, so.
+            flag(np.ones(n, dtype=bool), SWAPPED_REASON)
     bad_rows = reasons != 0
     keep = ~bad_rows & ~blank
     all_kept = bool(keep.all())
@@ -4452,6 +4584,14 @@ def _to_canonical(
         "decimal_comma_values": int(counted.get("decimal_comma", 0)),
         "restarting_tracks": _restarting_tracks(
             sensor_codes, text["batch"].codes, text["batch"].names, ns, time_ok & ~bad_rows
+        ),
+        "time_steps_back": _steps_back(
+            sensor_codes,
+            text["batch"].codes,
+            text["batch"].names,
+            ns,
+            time_ok & ~bad_rows,
+            rows.lines,
         ),
         **_count_tracks(
             sensor_codes,
@@ -4567,6 +4707,106 @@ def _restarting_tracks(
     hit = np.flatnonzero((backs > 0) & (loose_n <= 0.1 * steps))
     n_batch = int(batch_codes.max()) + 1
     return {str(batch_names[h % n_batch]): int(backs[h]) + 1 for h in hit}
+
+
+#: In the warning of :func:`_back_warnings` (a read in pieces says it again from the
+#: summed counts).
+BACK_MARK = " back within a track ("
+#: Line numbers of steps back kept (and named in the warning).
+BACK_FIRST_LINES = 5
+
+
+def _steps_back(
+    sensor_codes: np.ndarray | None,
+    batch_codes: np.ndarray,
+    batch_names: np.ndarray,
+    ns: np.ndarray,
+    ok: np.ndarray,
+    lines: np.ndarray,
+) -> dict:
+    """Steps back in time within a track, in file order (operator test 7, D3: a clock set
+    back 10 min in 20 rows of a track; the import said nothing, clean then kept a 282 kn
+    leg): a row whose time lies more than :data:`ORDER_JITTER_S` and less than
+    :data:`RESTART_BACK_S` (a restart, warned of apart) before its track's row before,
+    in tracks that otherwise run forward (at most a tenth of their steps go back beyond
+    the jitter: a file in no time order is not meant). ``{"tracks": {batch: steps},
+    "first_lines": [line, …], "max_s": largest step back}``; {} when none."""
+    use = np.flatnonzero(ok & (batch_codes >= 0))
+    if len(use) < 2:
+        return {}
+    t = ns[use]
+    if np.all(t[1:] >= t[:-1]):  # a time-ordered file: no track can go back
+        return {}
+    key = batch_codes[use].astype("int64")
+    if sensor_codes is not None:
+        key = sensor_codes[use].astype("int64") * (int(batch_codes.max()) + 1) + key
+    line = np.asarray(lines)[use]
+    if not np.all(key[1:] >= key[:-1]):
+        from wakeline.core.tracks import _stable_code_order
+
+        sort = _stable_code_order(key)  # radix passes: linear; each track in file order
+        if sort is None:
+            sort = np.argsort(key, kind="stable")
+        key, t, line = key[sort], t[sort], line[sort]
+    same = key[1:] == key[:-1]
+    step = t[:-1].astype("int64") - t[1:].astype("int64")  # > 0: back
+    loose = same & (step > int(ORDER_JITTER_S * 1e9))
+    if not loose.any():
+        return {}
+    back = loose & (step < int(RESTART_BACK_S * 1e9))
+    n_keys = int(key.max()) + 1
+    steps = np.bincount(key[1:][same], minlength=n_keys)
+    loose_n = np.bincount(key[1:][loose], minlength=n_keys)
+    forward = loose_n <= 0.1 * steps
+    back &= forward[key[1:]]
+    if not back.any():
+        return {}
+    backs = np.bincount(key[1:][back], minlength=n_keys)
+    n_batch = int(batch_codes.max()) + 1
+    hit = np.flatnonzero(backs)
+    return {
+        "tracks": {str(batch_names[h % n_batch]): int(backs[h]) for h in hit},
+        "first_lines": sorted(int(x) for x in line[1:][back])[:BACK_FIRST_LINES],
+        "max_s": float(step[back].max()) / 1e9,
+    }
+
+
+def merge_steps_back(infos: list[tuple[dict, int]]) -> dict:
+    """One :func:`_steps_back` of the pieces' (each with the file line its piece starts
+    on, 1-based, its lines the piece's): steps summed per track, lines made file lines."""
+    out: dict = {}
+    for info, first_line in infos:
+        if not info:
+            continue
+        tracks = out.setdefault("tracks", {})
+        for k, v in info.get("tracks", {}).items():
+            tracks[k] = tracks.get(k, 0) + int(v)
+        out["first_lines"] = sorted(
+            out.get("first_lines", []) + [x + first_line - 1 for x in info.get("first_lines", [])]
+        )[:BACK_FIRST_LINES]
+        out["max_s"] = max(out.get("max_s", 0.0), float(info.get("max_s", 0.0)))
+    return out
+
+
+def _back_warnings(info: dict, time_src: str, batch_src: str) -> list[str]:
+    """The warning for :func:`_steps_back`'s count: how many steps back, in how many
+    tracks, the lines and the largest."""
+    tracks = info.get("tracks") if info else None
+    if not tracks:
+        return []
+    n = sum(tracks.values())
+    first = info.get("first_lines", [])
+    some = ", ".join(f"{k:,}" for k in first) + (", …" if n > len(first) else "")
+    name, most = max(tracks.items(), key=lambda kv: kv[1])
+    steps = "time step goes" if n == 1 else "time steps go"
+    return [
+        f"{n:,} {steps} back within a track ({len(tracks):,} track(s); the most in batch "
+        f"{name}: {most:,}; line{'s' if len(first) != 1 else ''} {some}; the largest "
+        f"{info.get('max_s', 0.0):,.0f} s): a clock set back, or rows out of order? Each "
+        f"track is sorted by its time ({time_src!r}), so a clock set back puts those rows "
+        f"among the earlier ones (a jump in speed that clean reports as a break); check "
+        f"the times of those rows in {batch_src!r}"
+    ]
 
 
 def _count_tracks(
@@ -4900,6 +5140,7 @@ def stream_points(
     }
     blanked: dict[str, int] = {}
     restarting: dict[str, int] = {}
+    backs: list[tuple[dict, int]] = []
     pairs: set[tuple[str, str]] = set()
     checked: list[pd.DataFrame] = []  # the rows the speed-unit check looks at
     per_sensor: dict[str, int] = {}
@@ -5047,6 +5288,7 @@ def stream_points(
             blanked[k] = blanked.get(k, 0) + v
         for k, v in counts["restarting_tracks"].items():
             restarting[k] = restarting.get(k, 0) + v
+        backs.append((counts["time_steps_back"], 1))  # the piece's lines are the file's
         if len(quarantine):
             quarantines.append(quarantine)
         if len(points):
@@ -5087,6 +5329,14 @@ def stream_points(
         raise _Fallback from exc
 
     # Rows the parser refused (field counts), blank lines, and the texts of the rest.
+    read_all = {
+        "rows_read": totals["rows_read"] + len(bad.lines),
+        "lat_beyond_90_lon_within": totals["lat_beyond_90_lon_within"],
+    }
+    if swapped_file(read_all):
+        # judged over the whole file: its rows within range were handed on as points;
+        # the whole-file reader quarantines every row of it (D2)
+        raise WholeFileNeeded
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
     if bad.lines:
         q = pd.concat(
@@ -5115,6 +5365,7 @@ def stream_points(
     enc = text_encoding()
     warnings = [encoding_note(sn.encoding, enc)] if enc != codecs.lookup(sn.encoding).name else []
     warnings += fallback_warning(enc, fallback)
+    warnings += bom_warnings(sn, enc)
     warnings += [no_batch_warning(sn, res.columns)] if file_batch else []
     warnings += res.notes
     warnings += _title_warnings(sn) + _blank_run_warnings(sn)
@@ -5122,6 +5373,8 @@ def stream_points(
     warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(restarting, res.columns["batch"])
+    steps_back = merge_steps_back(backs)
+    warnings += _back_warnings(steps_back, res.columns["time"], res.columns["batch"])
     warnings += position_warnings(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
     )
@@ -5136,7 +5389,7 @@ def stream_points(
         "input": str(sn.path),
         "format": res.format.name,
         "format_label": res.format.label,
-        "encoding": enc,
+        "encoding": plain_encoding(enc),
         "delimiter": sn.delimiter,
         "compression": sn.compression,
         "header": sn.has_header,
@@ -5169,6 +5422,7 @@ def stream_points(
         "values_blanked": blanked,
         "decimal_comma_values": int(time_info.get("decimal_comma", 0)),
         "restarting_tracks": restarting,
+        "time_steps_back": steps_back,
         "tracks": len(pairs),
         "sensors": per_sensor,
         "time_start": min(starts).isoformat() if starts else None,
@@ -5177,7 +5431,7 @@ def stream_points(
     }
     layout = {
         "delimiter": sn.delimiter,
-        "encoding": enc,
+        "encoding": plain_encoding(enc),
         "bom": sn.bom,
         "line_ending": sn.line_ending,
         "compression": sn.compression,

@@ -1,6 +1,7 @@
 """Look at the first bytes of a file: compression, binary or text, encoding, line endings,
 delimiter, header, and whether it is a raw AIS NMEA log rather than a CSV."""
 
+import codecs
 import contextlib
 import re
 from collections.abc import Callable, Iterator
@@ -16,7 +17,7 @@ from wakeline.core.io.compressed import (  # noqa: F401  (packed_kind: batch's)
     open_data,
     packed_kind,
 )
-from wakeline.core.io.decoding import decide, decide_file, decode_text, lines_codec
+from wakeline.core.io.decoding import bom_codec, decide, decide_file, decode_text, lines_codec
 
 
 def listed_headers(names, most: int = 40, each: int = 40) -> str:
@@ -105,6 +106,12 @@ class Sniff:
     #: :func:`~wakeline.core.io.decoding.decide_file`, asked once for all its pieces;
     #: reader._judge). None: the reader's own (a whole file), or none.
     judge: Callable[[], str] | None = field(default=None, compare=False, repr=False)
+    #: The file's last line looks cut inside its last cell (no line end after it, and its
+    #: last value has fewer decimals than that column has on every row before it: the
+    #: file is still being written or was copied cut short; :func:`cut_last_cell`): what
+    #: was seen ("'25.1' where the column's 40 rows before it have 5 decimals at least"),
+    #: or "". Its row is quarantined ("cut last line").
+    cut_last: str = ""
 
     @property
     def parse_delimiter(self) -> str:
@@ -234,6 +241,15 @@ def _decode(
         text = sample.decode(enc, errors="replace")
     except LookupError:
         raise InputError(f"{path}: unknown encoding {enc!r}") from None
+    if sample.startswith(codecs.BOM_UTF8) and codecs.lookup(enc).name.startswith("utf-8"):
+        try:
+            _refuse_damaged(text, path, candidates, enc)
+        except InputError:
+            raise InputError(
+                f"{path}: a UTF-8 byte order mark followed by text that is not UTF-8; "
+                "give the file's encoding (--encoding, e.g. gb18030 for Chinese text: the "
+                "mark is dropped)"
+            ) from None
     return _refuse_damaged(text, path, candidates, enc), enc
 
 
@@ -724,6 +740,10 @@ def sniff(
         encoding = _utf16_without_bom(sample) if bom_enc is None else bom_enc
         if encoding == "utf-8":
             encoding = None  # UTF-8 with BOM: the usual candidates (BOM removed below)
+    elif bom_enc == "utf-8":
+        # A UTF-8 BOM before text the user says is GBK (a GBK file saved by a tool that
+        # adds one, operator test 7 D1): the mark is dropped, the rest read as named.
+        encoding = bom_codec(encoding)
     if not _is_wide(encoding) and _looks_binary(sample):
         if sample.startswith(OLE2_MAGIC):  # the compound file of Excel 97-2003 and Word
             raise NotTrackData(
@@ -824,7 +844,84 @@ def sniff(
     skip_rows = leading_blank + (1 if has_header else 0)
     titled = len(extras.get("title_lines", ()))
     extras["blank_above_header"] = leading_blank - titled - int(extras.get("excel_sep", False))
+    if not extras.get("blank_runs"):
+        full = len(sample) < SAMPLE_BYTES
+        extras["cut_last"] = cut_last_cell(
+            path, compression, enc, split, len(columns), text if full else None
+        )
     return Sniff(path, compression, enc, delim, has_header, skip_rows, columns, preview, **extras)
+
+
+#: Bytes read from the end of a file to judge its last line (:func:`cut_last_cell`).
+TAIL_BYTES = 64 * 1024
+#: Rows before the last whose last cell it is compared with (at least the first number).
+CUT_EVIDENCE = (5, 200)
+_NUMBER_CELL = re.compile(r"^[+-]?\d+(?:[.,](\d*))?$")
+
+
+def cut_last_cell(
+    path: Path,
+    compression: str | None,
+    enc: str,
+    split: Callable[[str], list[str]],
+    width: int,
+    text: str | None = None,
+) -> str:
+    """Whether the file's last line looks cut inside its last cell (operator test 7, D7:
+    ``…,25.1`` from ``…,25.13487``, imported 3 km off): the file ends without a line end,
+    the line has all its fields, and its last value is a number with fewer decimals than
+    that column has on each of the (at least 5, at most 200) rows before it. A file
+    without a final line end is common: the evidence is the column's own precision, so a
+    column written with varying decimals (``%g``: 25.1 beside 25.13487) never judges its
+    last value cut. ``text``: the whole file when the sample holds it; else the end of a
+    plain file is read (a compressed file's is not: ""). Returns what was seen, or ""."""
+    if text is None:
+        if compression is not None or enc.lower().startswith(("utf-16", "utf-32")):
+            return ""
+        try:
+            with open(path, "rb") as fh:
+                fh.seek(0, 2)
+                size = fh.tell()
+                fh.seek(max(0, size - TAIL_BYTES))
+                raw = fh.read()
+        except OSError:
+            return ""
+        if not raw or raw.endswith((b"\n", b"\r")):
+            return ""
+        try:
+            text = raw.decode(enc, errors="replace")
+        except LookupError:
+            return ""
+        lines = text.splitlines()[1:]  # the first may start mid-line
+    else:
+        if not text or text.endswith(("\n", "\r")):
+            return ""
+        lines = text.splitlines()
+    if len(lines) < 2:
+        return ""
+    cells = split(lines[-1])
+    if len(cells) != width:
+        return ""  # a short row: quarantined as such, and warned of
+    last = _NUMBER_CELL.match(cells[-1].strip().strip('"'))
+    if last is None:
+        return ""
+    places = []
+    for line in reversed(lines[:-1]):
+        if len(places) >= CUT_EVIDENCE[1]:
+            break
+        row = split(line)
+        if len(row) != width:
+            continue
+        m = _NUMBER_CELL.match(row[-1].strip().strip('"'))
+        if m is not None:
+            places.append(len(m.group(1) or ""))
+    have = len(last.group(1) or "")
+    if len(places) < CUT_EVIDENCE[0] or have >= min(places):
+        return ""
+    return (
+        f"{cells[-1].strip()!r} where the column's {len(places):,} rows before it have "
+        f"{min(places)} decimals at least"
+    )
 
 
 def read_small_table(

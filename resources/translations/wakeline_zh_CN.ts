@@ -2138,6 +2138,30 @@
         <translation>；同一时间、另一位置：{rows:,} 行，距保留的行中位数 {m:,.0f} 米（一个批号里有多个目标，还是时间被截到了分钟？）</translation>
     </message>
     <message>
+        <source>; {n:#break} split into new tracks (batch#2 …)</source>
+        <translation>；{n:,} 个断点处拆分为新航迹（batch#2 …）</translation>
+    </message>
+    <message>
+        <source>; 1 break kept: {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} at {time}</source>
+        <translation>；保留了 1 个断点：{s:,.0f} 秒内 {km:,.1f} 公里，{kn:,.0f} 节，航迹 {track}，时间 {time}</translation>
+    </message>
+    <message>
+        <source>; {n:#break} kept, the fastest {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} at {time}</source>
+        <translation>；保留了 {n:,} 个断点，最快的：{s:,.0f} 秒内 {km:,.1f} 公里，{kn:,.0f} 节，航迹 {track}，时间 {time}</translation>
+    </message>
+    <message>
+        <source> (--set speed.split_at_breaks=true splits there)</source>
+        <translation>（--set speed.split_at_breaks=true 会在此拆分）</translation>
+    </message>
+    <message>
+        <source>; largest error bound {tol:,.0f} m (track {track}, noise {noise:,.0f} m; median {median:,.0f} m), farthest point {far:,.0f} m off</source>
+        <translation>；最大误差界 {tol:,.0f} 米（航迹 {track}，噪声 {noise:,.0f} 米；中位数 {median:,.0f} 米），最远的点偏离 {far:,.0f} 米</translation>
+    </message>
+    <message>
+        <source> (capped at {cap:,.0f} m on {n:#track})</source>
+        <translation>（{n:,} 条航迹上限定为 {cap:,.0f} 米）</translation>
+    </message>
+    <message>
         <source>; removed {n:,} ({rules})</source>
         <translation>；移除 {n:,} 个（{rules}）</translation>
     </message>
