@@ -650,6 +650,17 @@ def layer_scene(layer, build_index: bool = True) -> BearingScene | None:
     return bearing_scene(layer.points, detections, layer.meta.get("length_m"), build_index)
 
 
+def detection_titles() -> dict[str, str]:
+    """The detections table's column titles in the current language, by column (the
+    Chinese window showed the column names: "batch", operator test 7, D11)."""
+    return {
+        "batch": QtCore.QCoreApplication.translate("BearingView", "batch"),
+        "detect_time": QtCore.QCoreApplication.translate("BearingView", "detect_time"),
+        "maneuver_time": QtCore.QCoreApplication.translate("BearingView", "maneuver_time"),
+        "z": "z",
+    }
+
+
 class DetectionsModel(QtCore.QAbstractTableModel):
     """A thin table model over the detections the core returned."""
 
@@ -684,7 +695,8 @@ class DetectionsModel(QtCore.QAbstractTableModel):
         if role == QtCore.Qt.ItemDataRole.DisplayRole and (
             orientation == QtCore.Qt.Orientation.Horizontal
         ):
-            return str(self.table.columns[section])
+            name = str(self.table.columns[section])
+            return detection_titles().get(name, name)
         return None
 
     def sort(self, column: int, order=QtCore.Qt.SortOrder.AscendingOrder) -> None:
@@ -801,6 +813,9 @@ class BearingView(QtWidgets.QWidget):
         )
         self.map.setLabel("bottom", self.tr("longitude"), units="°")
         self.map.setLabel("left", self.tr("latitude"), units="°")
+        n = self.model.columnCount()
+        if n:  # the detections' column titles in the new language
+            self.model.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, n - 1)
         words = legend_words()  # the legend's fixed words, as drawn, in the new language
         for name, part in zip(LAYER_NAMES, PARTS, strict=True):
             if name in self.map.layer_names():

@@ -48,13 +48,15 @@ def parse_bounds(text: str) -> tuple[float, float, float, float]:
 
 def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
     """Run ``steps`` from the step registry with default parameters: ``[(name, kind,
-    points), …]`` of every new layer, each step on the primary layer of the one before."""
-    from wakeline.core.pipeline import STEPS
+    points), …]`` of every new layer, each step on the primary layer of the one before (a
+    step joining tracks on the tracks before any compress: ``StageChain``)."""
+    from wakeline.core.pipeline import STEPS, StageChain
 
     out: dict[str, tuple[str, str, object]] = {}
-    current = points
+    chain = StageChain(points)  # associate after compress reads the cleaned tracks
     for name in steps:
         step = STEPS[name]
+        current = chain.input(name)
         result = step(current)
         for layer in result.layers:
             # A step that makes a layer an earlier one made (compress makes the maneuvers
@@ -62,8 +64,7 @@ def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
             # its own (an operator's report: the input drawn brown beside the red line).
             out[layer.suffix] = (layer.suffix, layer.kind, layer.points)
         primary = [lay for lay in result.layers if lay.suffix == step.primary]
-        if primary:
-            current = primary[0].points
+        chain.done(name, primary[0].points if primary else current)
     return list(out.values())
 
 

@@ -158,7 +158,11 @@ class DetailPanel(QtWidgets.QTabWidget):
     def retranslate(self) -> None:
         """Tab titles and axis labels in the current language."""
         self.setTabText(0, self.tr("Maneuver factor"))
-        self.setTabText(1, self.tr("Compressed over original"))
+        # one word on the tab, the whole title in its tooltip: the three tabs' titles
+        # did not fit the dock at the window's default size ("Bearing-", operator test
+        # 7, D16)
+        self.setTabText(1, self.tr("Compression"))
+        self.setTabToolTip(1, self.tr("Compressed over original"))
         self.setTabText(2, self.tr("Bearing-only"))
         minutes = self.tr("min")
         self.factor_plot.setLabel("bottom", self.tr("time since track start"), units=minutes)

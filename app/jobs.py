@@ -535,7 +535,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             if getattr(self, "interactive", True):
                 QtWidgets.QMessageBox.warning(self, title, shown(msg.message))
             else:  # a screenshot run: nobody to close a dialog; say it and go on
-                print(f"wakeline: {title}: {msg.message}", file=sys.stderr)
+                # in the window's language, as its title (operator test 7, D11)
+                print(f"wakeline: {title}: {shown(msg.message)}", file=sys.stderr)
         elif isinstance(msg, Cancelled):
             # the jobs by their titles, as the failed dialog names them (not "pipeline")
             name = self.job_title(msg.name)

@@ -153,6 +153,27 @@ class ImportJobsMixin:
         self.views[lid] = view
         name = self._source_name(path)
         self.session.add_layer(name, "source", view.points, meta, color=color, layer_id=lid)
+        if not self._cjk_checked and self._holds_cjk(path, view.points):
+            self.check_cjk_font()
+
+    @staticmethod
+    def _holds_cjk(path: Path, points) -> bool:
+        """Whether a loaded file shows Chinese text in the window: its name, its column
+        names, its sensors' or track ids' values (each distinct value once)."""
+        import pandas as pd
+
+        from wakeline.app.cjk_font import needs_cjk
+
+        values = []
+        for c in ("sensor", "batch"):
+            col = points[c] if c in points.columns else None
+            if col is None or pd.api.types.is_numeric_dtype(col.dtype):
+                continue
+            if isinstance(col.dtype, pd.CategoricalDtype):
+                values.append(col.cat.categories.astype(str))
+            else:
+                values.append(col.astype(str).unique())
+        return needs_cjk(path.name, [str(c) for c in points.columns], *values)
 
     def _source_name(self, path: Path) -> str:
         """A new source layer's name: the file's name, with its folder where a layer

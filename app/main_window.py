@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
-from wakeline.app import i18n
+from wakeline.app import cjk_font, i18n
 from wakeline.app.actions import build_actions, retranslate
 from wakeline.app.bearing_view import BearingView, bearing_stats
 from wakeline.app.core_text import shown
@@ -148,6 +148,11 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.view_keeper = MapViewKeeper(self.canvas, self.session, self)
 
         self.layer_list = QtWidgets.QListWidget()
+        # A long name wraps at its " · " onto a second line, in the dock's width: it was
+        # cut ("… · cleaned  [cleaned", operator test 7, D16) behind a scroll bar.
+        self.layer_list.setWordWrap(True)
+        self.layer_list.setResizeMode(QtWidgets.QListView.ResizeMode.Adjust)
+        self.layer_list.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self.layer_list.itemChanged.connect(self._layer_item_changed)
         self.layer_list.currentItemChanged.connect(self._layer_current_changed)
         self.params = ParamsPanel()
@@ -321,6 +326,28 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.lang_actions[code].setChecked(True)
         self.settings.setValue("language", code)
         self.retranslate()
+        if code in cjk_font.CJK_LANGUAGES:
+            self.check_cjk_font()
+
+    #: Whether the window asked the font database for a CJK font (it asks once).
+    _cjk_checked = False
+
+    def check_cjk_font(self) -> bool:
+        """Whether Chinese text can be drawn (a font covers Simplified Chinese); asked
+        the first time the window needs Chinese glyphs (a zh_CN start or switch, a log
+        line or loaded data holding Chinese text). Without one, says so once in the log
+        and the status bar, naming the package to install (operator test 7, D4: every
+        Chinese text was boxes, with no word)."""
+        if self._cjk_checked:
+            return True
+        self._cjk_checked = True
+        if cjk_font.has_cjk_font():
+            return True
+        # English in either language: a Chinese message would be boxes too.
+        text = cjk_font.missing_font_text()
+        self.log.appendPlainText(f"Warning: {text}")
+        self.statusBar().showMessage(text, 60_000)
+        return False
 
     # -- dialogs -------------------------------------------------------------------
 
@@ -432,7 +459,10 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         return rows
 
     def log_message(self, text: str) -> None:
-        self.log.appendPlainText(shown(text))
+        text = shown(text)
+        self.log.appendPlainText(text)
+        if not self._cjk_checked and cjk_font.needs_cjk(text):
+            self.check_cjk_font()  # a file's Chinese headers quoted in an English window
 
     def log_lines(self, head: str, lines: list[str]) -> None:
         """``head: line`` for one line; ``head:`` and the lines indented under it for more

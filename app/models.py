@@ -193,6 +193,16 @@ def table_index(df: pd.DataFrame, text: dict) -> TableIndex:
 WIDEST_ROWS = 1000
 
 
+def status_words() -> dict[str, str]:
+    """The batch table's status values (:func:`batch_summary`) in the current language
+    (the Chinese window showed "joined", operator test 7, D11)."""
+    return {
+        "joined": QtCore.QCoreApplication.translate("BatchTable", "joined"),
+        "fused": QtCore.QCoreApplication.translate("BatchTable", "fused"),
+        "single": QtCore.QCoreApplication.translate("BatchTable", "single"),
+    }
+
+
 class BatchTableModel(QtCore.QAbstractTableModel):
     """The batch table over :func:`batch_summary`, with sorting and a text filter done by
     numpy over whole columns (no per-cell Python calls while sorting or filtering): the
@@ -415,7 +425,10 @@ class BatchTableModel(QtCore.QAbstractTableModel):
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
         if role == QtCore.Qt.ItemDataRole.DisplayRole:
             key = self.COLUMNS[index.column()][0]
-            return self._text[key][self._order[index.row()]]
+            text = self._text[key][self._order[index.row()]]
+            if key == "status" and text:  # "joined", "fused": in the window's language
+                return status_words().get(text, text)
+            return text
         if role == QtCore.Qt.ItemDataRole.TextAlignmentRole:
             if self.COLUMNS[index.column()][0] in self.TEXT:
                 return None

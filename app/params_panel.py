@@ -102,6 +102,19 @@ def field_doc(owner: type, f: dataclasses.Field, code: str | None = None) -> str
     return text
 
 
+def field_title(owner: type, f: dataclasses.Field, code: str | None = None) -> str | None:
+    """The row title of a field whose name is an identifier (``window_p``) in ``code``
+    (the window's language by default): the table's ``titles`` entry by
+    "ClassName.field", else by field name; None in English or without an entry (the
+    row shows the identifier). Its identifier, shared with the command line and the
+    presets, is in its tooltip's last line (operator test 7, D11)."""
+    code = core_text.language() if code is None else code
+    if code == "en":
+        return None
+    titles = doc_table(code).get("titles", {})
+    return titles.get(f"{owner.__name__}.{f.name}") or titles.get(f.name)
+
+
 _OURS = re.compile(r"\bours\b")
 _SEED = re.compile(r"\bseed (\d{3})\b")
 
@@ -126,6 +139,8 @@ def field_tip(owner: type, f: dataclasses.Field, code: str | None = None) -> str
     if kind in ("int", "float") and (lo is not None or hi is not None):
         tip += f"\n{labels.get('range', 'range: ')}{'' if lo is None else lo} … "
         tip += f"{'' if hi is None else hi}"
+    if field_title(owner, f, code):  # the row says it in Chinese: its identifier here
+        tip += f"\n{labels.get('name', 'name: ')}{f.name}"
     return tip
 
 
@@ -135,6 +150,9 @@ def _field_param(owner: type, f: dataclasses.Field, value) -> dict:
     unit = meta.get("unit", "")
     tip = field_tip(owner, f)
     opts = {"name": f.name, "type": kind, "value": value, "tip": tip, "default": f.default}
+    title = field_title(owner, f)
+    if title:
+        opts["title"] = title
     # its tooltip in the window's language: retranslate (a plain string in the opts)
     opts["doc_key"] = f"{owner.__name__}.{f.name}"
     _FIELDS[opts["doc_key"]] = (owner, f)
@@ -312,6 +330,8 @@ class ParamsPanel(QtWidgets.QWidget):
         }
 
     def retranslate(self) -> None:
+        # the tree's (hidden) column titles: pyqtgraph's English ones were left
+        self.tree.setHeaderLabels([self.tr("Parameter"), self.tr("Value")])
         titles = self.group_titles()
         fields = self.field_titles()
         for grp in self.root.children():
@@ -349,6 +369,10 @@ class ParamsPanel(QtWidgets.QWidget):
                 tip = field_tip(*_FIELDS[item.opts["doc_key"]])
                 if item.opts.get("tip") != tip:
                     item.setOpts(tip=tip)
+                if item.name() not in fields:  # an identifier: its title, or itself
+                    title = field_title(*_FIELDS[item.opts["doc_key"]]) or item.name()
+                    if item.opts.get("title") != title:
+                        item.setOpts(title=title)
         if getattr(self, "_summary", None) is not None:  # the detection limit's paragraph
             self.show_guidance(self._summary)
 

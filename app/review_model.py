@@ -187,6 +187,8 @@ class ProposalModel(QtCore.QAbstractTableModel):
         name = COLUMNS[index.column()][0]
         v = self.value(index.row(), name)
         if role == QtCore.Qt.ItemDataRole.DisplayRole:
+            if name == "method":
+                return T.method_text(v)
             return T.status_name(v) if name == "status" else cell_text(v)
         if role == SORT_ROLE:
             if isinstance(v, float | np.floating):

@@ -16,7 +16,7 @@ from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.worker import Cancelled, Failed, Finished, JobRunner
 from wakeline.core import review as R
-from wakeline.core.review_session import decided_points, export_reviewed, queue_key, snapshot
+from wakeline.core.review_session import decided_points, queue_key, reviewed_points, snapshot
 from wakeline.core.review_store import decision_row
 from wakeline.core.words import joined_names
 
@@ -172,19 +172,49 @@ class ReviewSync(QtCore.QObject):
         snap, points, cache = snapshot(bound.controller.state), bound.points, bound.cache
         path = Path(path)
         note = "" if log else self.unreviewed_note(layer)
-        what = tr("{0}: decision log") if log else tr("{0} (reviewed tracks)")
-        what = what.format(layer.name)
+        what = tr("{0}: decision log").format(layer.name)
+        written = self.written_text(layer)
 
         def write(target):
             if log:
                 from wakeline.core.export_review import export_decision_log
 
                 export_decision_log(snap, target, bom=bom)
-            else:
-                export_reviewed(layer, snap, points, target, bom=bom, cache=cache)
-            return ("export", what, path, [], [note] if note else [])
+                return ("export", what, path, [], [])
+            from wakeline.core.export_review import export_tracks
+
+            out = reviewed_points(layer, snap, points, target, cache)
+            export_tracks(out, target, bom=bom)
+            text = written.replace("\x00", f"{len(out):,}")
+            return ("export", text, path, [], [note] if note else [])
 
         return self.w._start_export(path, write, ("export", layer.name))
+
+    def written_text(self, layer) -> str:
+        """The export's log words for the reviewed tracks of ``layer``: how many points
+        (``\x00``, filled in when written) of which layer, and the layer the step read
+        (operator test 7, D5: an associate of the compressed layer wrote 55 of the 491
+        cleaned points and the log said only "reviewed tracks"). "N points of L (reviewed
+        tracks, from the cleaned layer)"; of a compressed layer, also how many points
+        the cleaned layer it was made from holds."""
+        from wakeline.app.layer_names import _words, shown_name
+
+        layers = self.w.session.layers
+        parent = layers.get(layer.parent) if layer.parent else None
+        text = tr("{0} points of {1} (reviewed tracks)").format("\x00", shown_name(layer.name))
+        if parent is None or layer.inputs:  # a fused layer: made from several (its name)
+            return text
+        role = parent.role or ""
+        word = _words().get(role) or shown_name(parent.name)
+        text = tr("{0} points of {1} (reviewed tracks, from the {2} layer)").format(
+            "\x00", shown_name(layer.name), word
+        )
+        above = layers.get(parent.parent) if parent.parent else None
+        if role == "compressed" and above is not None:
+            text += tr(": the {0} layer holds {1} points").format(
+                _words().get(above.role or "") or shown_name(above.name), f"{len(above.points):,}"
+            )
+        return text
 
     def export_dialog(self) -> None:
         path, chosen = QtWidgets.QFileDialog.getSaveFileName(

@@ -34,6 +34,32 @@ def column_titles() -> dict[str, str]:
     }
 
 
+def method_words() -> dict[str, str]:
+    """The words of a proposal's ``method`` (``optimal``; ``optimal, second look (gap
+    beyond T_gap)``; a fusion's ``sync/optimal``) in the current language; the core's
+    values stay English (operator test 7, D11)."""
+    return {
+        "optimal": tr("optimal"),
+        "greedy": tr("greedy"),
+        "motion": tr("motion"),
+        "area": tr("area"),
+        "hausdorff": tr("hausdorff"),
+        "dtw": "DTW",
+        "dtw_whole": tr("DTW, whole tracks"),
+        "sync": tr("sync"),
+        "second look (gap beyond T_gap)": tr("second look (gap beyond T_gap)"),
+    }
+
+
+def method_text(value) -> str:
+    """A proposal's ``method`` as the queue and the evidence show it: each of its words
+    (between ", " and "/") said in the current language, an unknown one as it is."""
+    words = method_words()
+    return ", ".join(
+        "/".join(words.get(w, w) for w in part.split("/")) for part in str(value).split(", ")
+    )
+
+
 def status_names() -> dict[str, str]:
     return {
         "pending": tr("pending"),
@@ -113,7 +139,7 @@ def evidence_text(state, pid: str, p: pd.Series) -> str:
         status_name(state.status_of(pid)),
         p["track_a"],
         p["track_b"],
-        p["method"],
+        method_text(p["method"]),
         cost_text(p["cost"]),
         unit,
         cost_text(p["gate"]),

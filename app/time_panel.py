@@ -60,7 +60,9 @@ class TimePanel(QtWidgets.QWidget):
         self.time_label = QtWidgets.QLabel("—")
         # Fixed widths: a text that grows must never re-lay out the window (a resized map
         # redoes its level of detail and repaints a million points).
-        wide = self.fontMetrics().horizontalAdvance("2024-01-01 00:00:00.000 UTC  ")
+        # Wide enough for the longest zone offset (UTC-09:30): a display zone's "UTC+2"
+        # was cut to "UTC+" (operator test 7, D16).
+        wide = self.fontMetrics().horizontalAdvance("2024-01-01 00:00:00.000 UTC-09:30  ")
         self.time_label.setFixedWidth(wide)
         self.speed = self._spin("speed", 0)
         self.trail = self._spin("trail_min", 1)

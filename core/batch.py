@@ -42,7 +42,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.core.errors import InputError, NotTrackData
-from wakeline.core.pipeline import STEPS, Pipeline, params_to_json
+from wakeline.core.pipeline import STEPS, Pipeline, StageChain, params_to_json
 from wakeline.core.schema import COURSE_READ, DEFAULT_SENSOR, TIME_DTYPE, ordered_columns
 from wakeline.core.words import count as count_of
 
@@ -891,6 +891,9 @@ def _run_bucket(
         current = current.drop(columns=BLOCK)
     rows_in = len(current)
     info: dict = {"bucket": bucket, "rows_in": rows_in, "stages": [], "summary": None}
+    # The association's input: the per-track stages' tracks whole (the cleaned tracks,
+    # not compress's few points per track: StageChain, as Pipeline.run chains them).
+    chain = StageChain(current)
     if per_track and rows_in:
         res = Pipeline(tuple(per_track)).run(current)
         for (step_name, _params), sres in zip(per_track, res.stages, strict=True):
@@ -910,6 +913,8 @@ def _run_bucket(
             )
             primary = [lay for lay in sres.layers if lay.suffix == step.primary]
             current = primary[0].points if primary else sres.tables.get("points", current)
+            chain.done(step_name, current)
+    current = chain.input("associate")
     if assoc_k:
         # The association's input, kept whole for pass 3, and its small end summary.
         _write_part(current, root / "assoc_in", name)

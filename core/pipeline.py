@@ -928,6 +928,14 @@ class Step:
     outputs: tuple[tuple[str, str], ...] = ()  # (table, flag) written on request
     primary: str = ""  # the role of the layer the next pipeline stage reads
     many_inputs: bool = False  # takes several files (one per sensor) on the command line
+    #: its output keeps a few points per track (compress): a later stage that joins
+    #: tracks does not read it (see ``joins_tracks``)
+    simplifies: bool = False
+    #: joins tracks (associate, fuse): in a pipeline it reads the tracks whole, the output
+    #: of the last stage before it that does not simplify (the cleaned tracks after clean
+    #: → compress), not a compressed layer (operator test 7, D5: associate on the
+    #: compressed tracks joined worse)
+    joins_tracks: bool = False
 
     def defaults(self) -> dict[str, Any]:
         return {key: cls() for key, cls in self.params}
@@ -979,6 +987,7 @@ def _steps() -> dict[str, Step]:
                 run_compress,
                 _summary_compress,
                 primary="compressed",
+                simplifies=True,
             ),
             Step(
                 "associate",
@@ -988,6 +997,7 @@ def _steps() -> dict[str, Step]:
                 _summary_associate,
                 outputs=(("pairs", "--pairs"), ("proposals", "--proposals")),
                 primary="associated",
+                joins_tracks=True,
             ),
             Step(
                 "fuse",
@@ -998,6 +1008,7 @@ def _steps() -> dict[str, Step]:
                 outputs=(("pairs", "--pairs"), ("proposals", "--proposals")),
                 primary="fused",
                 many_inputs=True,
+                joins_tracks=True,
             ),
         )
     }
@@ -1126,6 +1137,38 @@ def _v1(step: str, data: dict, old: bool) -> dict:
     }
 
 
+class StageChain:
+    """What each stage of a pipeline reads: the previous stage's primary output, or, for
+    a stage that joins tracks (``Step.joins_tracks``: associate, fuse), the output of the
+    last stage before it that does not simplify the tracks (``Step.simplifies``:
+    compress), so that clean → compress → associate associates the cleaned tracks
+    (operator test 7, D5). Holds any kind of value: points (:meth:`Pipeline.run`, batch)
+    or layer ids (the session)."""
+
+    def __init__(self, start: Any) -> None:
+        self.last = start
+        self.whole = start
+
+    def input(self, name: str) -> Any:
+        """What stage ``name`` (next) reads."""
+        return self.whole if STEPS[name].joins_tracks else self.last
+
+    def done(self, name: str, output: Any) -> None:
+        """Stage ``name`` made ``output`` (its primary output, or what it read)."""
+        self.last = output
+        if not STEPS[name].simplifies:
+            self.whole = output
+
+
+def stage_input(names: list[str] | tuple[str, ...], k: int) -> int:
+    """The index of the stage whose output stage ``k`` of ``names`` reads (-1: the
+    pipeline's input), by :class:`StageChain`'s rule."""
+    chain = StageChain(-1)
+    for j, name in enumerate(names[:k]):
+        chain.done(name, j)
+    return chain.input(names[k])
+
+
 @dataclass(frozen=True)
 class Pipeline:
     """A saved sequence of steps with their parameters (the GUI's presets, ``batch``)."""
@@ -1169,20 +1212,25 @@ class Pipeline:
         progress: Progress | None = None,
         run_stage: Callable[[str, dict, pd.DataFrame, Progress], StepResult] | None = None,
     ) -> StepResult:
-        """Run the stages in order, each on the previous stage's primary output.
-        ``run_stage(name, params, points, progress)``: runs one stage in place of the
-        step itself (a session's, which keeps a reviewed stage's review:
-        :meth:`wakeline.core.session.Session.run_pipeline`)."""
+        """Run the stages in order, each on the previous stage's primary output, except
+        that a stage joining tracks (associate, fuse) reads the tracks whole: the output
+        of the last stage before it that does not simplify them (:func:`stage_input`;
+        clean → compress → associate associates the cleaned tracks, compress's layer
+        stays beside them). ``run_stage(name, params, points, progress)``: runs one
+        stage in place of the step itself (a session's, which keeps a reviewed stage's
+        review: :meth:`wakeline.core.session.Session.run_pipeline`)."""
         progress = progress or null_progress
-        stages, current = [], points
+        stages = []
+        chain = StageChain(points)
         n = len(self.stages)
         for k, (name, params) in enumerate(self.stages):
             step = STEPS[name]
             sub = sub_progress(progress, k / n, (k + 1) / n)
+            current = chain.input(name)
             res = run_stage(name, params, current, sub) if run_stage else step(current, params, sub)
             stages.append(dataclasses.replace(res, params={**step.defaults(), **params}))
             nxt = [lay for lay in res.layers if lay.suffix == step.primary]
-            current = nxt[0].points if nxt else res.tables.get("points", current)
+            chain.done(name, nxt[0].points if nxt else res.tables.get("points", current))
         return StepResult(
             "pipeline",
             [lay for res in stages for lay in res.layers],

@@ -444,15 +444,26 @@ def export_reviewed(
 ) -> str:
     """Write the decided tracks as ``wakeline review`` does (by suffix: .csv, .geojson,
     .gpx; fused tracks for a fused layer, merged tracks otherwise); returns the format."""
-    from wakeline.core.export_review import export_tracks, merged_tracks
+    from wakeline.core.export_review import export_tracks
+
+    return export_tracks(reviewed_points(layer, state, points, path, cache), path, bom=bom)
+
+
+def reviewed_points(
+    layer: Layer,
+    state: R.ReviewState,
+    points: pd.DataFrame,
+    path: str | Path,
+    cache: dict | None = None,
+) -> pd.DataFrame:
+    """The points :func:`export_reviewed` writes to ``path`` (its suffix chooses)."""
+    from wakeline.core.export_review import merged_tracks
 
     if layer.step == "fuse":
-        out = decided_points(layer, state, points, cache)
-    elif Path(path).suffix.lower() in (".gpx", ".geojson", ".json"):
-        out = merged_tracks(state, points)
-    else:
-        out = state.label_points(points)
-    return export_tracks(out, path, bom=bom)
+        return decided_points(layer, state, points, cache)
+    if Path(path).suffix.lower() in (".gpx", ".geojson", ".json"):
+        return merged_tracks(state, points)
+    return state.label_points(points)
 
 
 def sorted_by_track(points: pd.DataFrame) -> tuple[pd.DataFrame, dict[str, tuple[int, int]]]:

@@ -510,20 +510,24 @@ class Session:
         stage a child of the previous stage's output; a reviewed stage (Associate) whose
         layer replaces a reviewed one keeps its review as :meth:`run_step` does (rejected
         and split pairs kept out, the rest carried). Pure, like :meth:`run_step`."""
+        from wakeline.core.pipeline import StageChain
         from wakeline.core.review_session import REVIEWED_STEPS
 
-        parent: list[str | None] = [layer_id]  # the next stage's parent, None: a new layer
+        # each stage's parent (a layer id; None: a new layer), as Pipeline.run chains them
+        parents = StageChain(layer_id)
 
         def stage(name: str, params: dict, points: pd.DataFrame, sub: Progress) -> StepResult:
-            under = parent[0]
+            under = parents.input(name)
             if name in REVIEWED_STEPS and under is not None:
                 res = self._run_reviewed(under, [], name, points, params, sub)
             else:
                 res = STEPS[name](points, params, sub)
             primary = STEPS[name].primary
+            out = under
             if any(new.suffix == primary for new in res.layers):
                 old = self._replaced(under, name, primary, []) if under is not None else None
-                parent[0] = old.id if old is not None else None
+                out = old.id if old is not None else None
+            parents.done(name, out)
             return res
 
         return pipe.run(self.input_points([layer_id]), progress, stage)
@@ -632,14 +636,17 @@ class Session:
                 f"run {result.step} again"
             )
         if result.stages:
+            from wakeline.core.pipeline import StageChain
+
             out: list[Layer] = []
-            current = input_id
+            chain = StageChain(input_id)  # each stage's parent, as Pipeline.run chains them
             for stage in result.stages:
+                current = chain.input(stage.step)
                 made = self.apply_result(current, stage, stage.params)
                 out += made
                 primary = STEPS[stage.step].primary
                 nxt = [lay for lay in made if lay.role == primary]
-                current = nxt[0].id if nxt else current
+                chain.done(stage.step, nxt[0].id if nxt else current)
             return out
         base = self.root(input_id).name if input_id in self.layers else ""
         parent_name = self.layers[input_id].name if input_id in self.layers else base

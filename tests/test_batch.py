@@ -653,3 +653,24 @@ def test_an_empty_file_says_what_import_says(tmp_path, capsys):
     assert main(["import", str(zero), "-o", str(tmp_path / "x.csv")]) == 2
     said = capsys.readouterr().err.strip()
     assert said.endswith(f"{zero}: the file is empty")
+
+
+def test_associate_after_compress_reads_the_cleaned_tracks(tmp_path):
+    """Operator test 7, D5: a pipeline clean → compress → associate (as Run ▸ pipeline
+    saves it with Compress and Associate ticked) associates the cleaned tracks, not the
+    compressed ones: the same associate.csv and pairs as clean → associate, with the
+    compress tables written beside them."""
+    df = simulate.segments_scene(seed=4, n_ships=6)
+    paths = _split(df, tmp_path, 2)
+    names = {"plain": ("clean", "associate"), "comp": ("clean", "compress", "associate")}
+    for key, stages in names.items():
+        pipe = Pipeline(tuple((n, STEPS[n].defaults()) for n in stages))
+        run_batch(pipe, paths, tmp_path / key, BatchOptions(csv=True, buckets=3, threads=1))
+    comp, plain = (
+        _rows(tmp_path / "comp" / "associate.csv"),
+        _rows(tmp_path / "plain" / "associate.csv"),
+    )
+    pd.testing.assert_frame_equal(comp, plain)
+    assert len(_rows(tmp_path / "comp" / "compress.csv")) < len(comp)
+    pairs = [pd.read_csv(tmp_path / k / "associate_pairs.csv", dtype=str) for k in names]
+    pd.testing.assert_frame_equal(pairs[0], pairs[1])

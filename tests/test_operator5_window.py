@@ -4,6 +4,7 @@ proposals (D-export-1) and the decision log's export line (D-review-4)."""
 
 import shutil
 
+import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
@@ -97,7 +98,13 @@ def test_reviewed_exports_say_how_many_proposals_were_not_reviewed(qtbot, tmp_pa
     w.review.sync.export(tmp_path / "rev.csv")
     _settle(w)
     log = w.log.toPlainText().splitlines()
-    at = next(k for k, t in enumerate(log) if "(reviewed tracks) to" in t and "rev.csv" in t)
+    # "exported N points of L (reviewed tracks) to …" (operator test 7, D5: the count)
+    rows = len(pd.read_csv(tmp_path / "rev.csv"))
+    at = next(
+        k
+        for k, t in enumerate(log)
+        if f"exported {rows:,} points of " in t and "(reviewed tracks) to" in t and "rev.csv" in t
+    )
     assert note in log[at + 1]
     w.export("csv", tmp_path / "layer.csv")  # the layer's own export: the same rule
     _settle(w)

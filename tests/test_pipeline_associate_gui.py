@@ -4,6 +4,7 @@ review of the layer it replaces (a rejected pair stays out); Save pipeline write
 stage (the JSON ``wakeline batch`` reads), Load pipeline sets the stages it holds, and
 the project keeps them."""
 
+import pandas as pd
 import pytest
 
 pytest.importorskip("pytestqt")
@@ -105,3 +106,57 @@ def test_a_pipeline_ending_with_associate_makes_proposals_to_review(qtbot, tmp_p
     assert w2.pipeline_stages == ("clean",)
     assert w2.actions_["pipeline"].text() == "Run &pipeline (clean)"
     w2.close()
+
+
+def test_pipeline_with_compress_associates_the_cleaned_layer_and_the_export_says_so(
+    qtbot, tmp_path
+):
+    """Operator test 7, D5: Run ▸ pipeline with Compress and Associate ticked associates
+    the cleaned layer (compress's layer is made beside it), and the reviewed export's
+    log line says how many points it wrote, of which layer; an Associate the operator
+    runs on the compressed layer is exported with the cleaned layer's count beside."""
+    src = tmp_path / "seg.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=8, area_km=15), src)
+    w = _window(qtbot, tmp_path)
+    w.load_files([src])
+    _settle(w)
+    lid = w.layer_id(src.name)
+    w.actions_["pipeline_associate"].trigger()
+    assert w.pipeline_stages == ("clean", "compress", "associate")
+    w.select_layer(lid)
+    w.actions_["pipeline"].trigger()
+    _settle(w)
+    cleaned = w.session.find(lid, "clean")
+    comp = w.session.find(cleaned.id, "compress", "compressed")
+    assoc = w.session.find(cleaned.id, "associate")
+    assert comp is not None and assoc is not None
+    assert w.session.find(comp.id, "associate") is None
+    assert len(assoc.points) == len(cleaned.points) > len(comp.points)
+    alone = w.session.run_step(cleaned.id, "associate", w.step_params("associate"))
+    assert alone.tables["proposals"].equals(assoc.tables["proposals"])
+    assert w.active == assoc.id and w.review.bound.lid == assoc.id
+    out = tmp_path / "reviewed.csv"
+    w.review.sync.export(out)
+    _settle(w)
+    rows = len(pd.read_csv(out))
+    assert rows == len(cleaned.points)
+    line = [t for t in w.log.toPlainText().splitlines() if t.startswith("exported")][-1]
+    assert f"{rows:,} points of seg.csv · cleaned · associated" in line, line
+    assert "from the cleaned layer" in line, line
+    # Run ▸ Associate on the compressed layer: the export says it is that layer's points.
+    w.select_layer(comp.id)
+    w.run_step("associate")
+    _settle(w)
+    on_comp = w.session.find(comp.id, "associate")
+    w.select_layer(on_comp.id)
+    _settle(w)
+    assert w.review.bound.lid == on_comp.id
+    out2 = tmp_path / "reviewed2.csv"
+    w.review.sync.export(out2)
+    _settle(w)
+    line = [t for t in w.log.toPlainText().splitlines() if t.startswith("exported")][-1]
+    n2 = len(pd.read_csv(out2))
+    assert n2 == len(comp.points), (n2, len(comp.points))
+    assert f"{n2:,} points of" in line and "from the compressed layer" in line, line
+    assert f"the cleaned layer holds {len(cleaned.points):,} points" in line, line
+    w.close()

@@ -436,3 +436,63 @@ def test_axis_and_legend_text_read_on_the_white_plots(qtbot):
     qtbot.addWidget(detail)
     axis = detail.factor_plot.getAxis("left")
     assert contrast(axis.textPen().color().getRgb()[:3], white) >= 4.5
+
+
+def test_default_window_shows_long_names_tabs_and_zoned_times_whole(qtbot, tmp_path):
+    """Operator test 7, D16: at the default size (1400x900) with a file of a long name
+    after Run ▸ pipeline, the legend draws each layer's name whole (two lines where one
+    is too narrow), the Layers list wraps a long name instead of cutting it, the Detail
+    dock's tabs fit its width (no "Bearing-"), and the time label holds a time with a
+    zone offset ("… UTC+2" was cut to "UTC+")."""
+    import html
+    import re
+
+    from PySide6 import QtCore
+    from test_review_window import _settle
+
+    from wakeline.app.main_window import MainWindow
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+
+    src = tmp_path / "a_radar_console_zh.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=4, area_km=5), src)
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "en")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    w.resize(1400, 900)
+    w.show()
+    try:
+        w.load_files([src])
+        _settle(w)
+        w.select_layer(w.layer_id(src.name))
+        w.run_step("pipeline")
+        _settle(w)
+        legend = w.canvas.legend
+        names = [lab.toolTip() for _, lab in legend.items]
+        assert any("cleaned · compressed" in n for n in names), names
+        for _, lab in legend.items:
+            lines = [html.unescape(t) for t in re.split(r"<br>", lab.text)]
+            drawn = " ".join(t.replace("\xa0", " ").strip() for t in lines)
+            assert drawn == lab.toolTip(), (drawn, lab.toolTip())  # whole, not shortened
+            for line in lines:
+                assert legend._metrics.horizontalAdvance(line) <= legend._label_px + 1, line
+        view = w.layer_list
+        width = view.viewport().width()
+        for row in range(view.count()):
+            rect = view.visualItemRect(view.item(row))
+            assert rect.right() <= width, (view.item(row).text(), rect, width)
+        assert view.horizontalScrollBar().maximum() == 0
+        assert any(
+            view.visualItemRect(view.item(r)).height() > view.visualItemRect(view.item(0)).height()
+            for r in range(view.count())
+        )  # a long name on two lines
+        bar = w.detail.tabBar()
+        assert bar.tabRect(bar.count() - 1).right() <= bar.width(), [
+            bar.tabText(k) for k in range(bar.count())
+        ]
+        label = w.time_panel.time_label
+        widest = label.fontMetrics().horizontalAdvance("2021-05-04 09:54:53.033 UTC+12:45")
+        assert label.width() >= widest
+    finally:
+        w.close()

@@ -291,3 +291,40 @@ def test_a_pipeline_rerun_keeps_rejected_and_split_pairs_out():
     # The same stage result as Associate run alone on the cleaned layer.
     alone = s.run_step(lay.parent, "associate")
     assert alone.tables["proposals"].equals(stage.tables["proposals"])
+
+
+def test_a_pipeline_with_compress_associates_the_cleaned_tracks_and_keeps_the_review():
+    """Operator test 7, D5: clean → compress → associate associates the cleaned tracks
+    (whole), not compress's few points per track; the compressed layer is made beside
+    it from the same cleaned layer. A re-run keeps the review (the associated layer is
+    found again under the cleaned layer). ``batch``'s and ``render``'s chains agree."""
+    from wakeline.core.pipeline import Pipeline, stage_input
+
+    names = ("clean", "compress", "associate")
+    assert [stage_input(names, k) for k in range(3)] == [-1, 0, 0]
+    assert stage_input(("compress", "associate"), 1) == -1  # no clean: the input whole
+    assert stage_input(("clean", "maneuvers", "associate"), 2) == 1  # maneuvers keeps all
+    pts = simulate.segments_scene(seed=2, n_ships=8, area_km=15)
+    s = Session()
+    src = s.add_layer("seg.csv", "source", pts)
+    pipe = Pipeline(tuple((n, STEPS[n].defaults()) for n in names))
+    res = s.run_pipeline(src.id, pipe)
+    made = s.apply_result(src.id, res)
+    by_role = {m.role: m for m in made}
+    cleaned, comp, lay = by_role["cleaned"], by_role["compressed"], by_role["associated"]
+    assert comp.parent == cleaned.id and lay.parent == cleaned.id
+    assert len(comp.points) < len(cleaned.points) == len(lay.points)
+    assert lay.name == "seg.csv · cleaned · associated"
+    alone = s.run_step(cleaned.id, "associate")
+    assert alone.tables["proposals"].equals(res.stages[-1].tables["proposals"])
+    # the same as a pipeline without compress (the doc's scene: 9 targets, not 10)
+    short = Pipeline(tuple((n, STEPS[n].defaults()) for n in ("clean", "associate"))).run(pts)
+    assert short.stages[-1].tables["proposals"].equals(res.stages[-1].tables["proposals"])
+    done = _review(s, lay)
+    again = s.run_pipeline(src.id, pipe)
+    assert again.stages[-1].carry is not None and again.stages[-1].carry.old == lay.id
+    assert again.stages[-1].report["rejected_kept_out"] == 1
+    s.apply_result(src.id, again)
+    assert len([x for x in s.layers.values() if x.step == "associate"]) == 1
+    st, _ = bind(s, s.layers[lay.id])
+    assert done["rejected"] not in _pairs(st)

@@ -179,3 +179,112 @@ def test_the_legend_follows_a_language_switch(qtbot, tmp_path):
         w.set_language("en")
         w.close()
     i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+#: English-only texts of the Chinese window operator test 7 found (D11): the review
+#: queue's method values, the Bearing-only dock's column title, the batch table's status,
+#: the parameter tree's column titles, an open-failed message.
+OPERATOR7_ALONE = {"batch", "joined", "fused", "single", "Parameter", "Value", "optimal", "greedy"}
+OPERATOR7_PHRASES = re.compile(r"\boptimal\b|second look|missing required column|headers found")
+
+
+def test_zh_window_after_pipeline_associate_leaves_no_operator7_english(qtbot, tmp_path, write):
+    """Operator test 7, D11: after Run ▸ pipeline with Associate (Compress on) and a file
+    that cannot be opened, the Chinese window's visible texts (labels, titles, table
+    headers and cells), the review queue's method column and evidence, the Bearing-only
+    dock's column titles and the parameter rows hold no English of the defect's list; the
+    parameter rows named by an identifier show a Chinese title, the identifier in their
+    tooltip's last line; the English window keeps the identifiers as titles."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore, QtWidgets
+    from test_review_window import _settle, _window
+
+    from wakeline.app import i18n
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+
+    src = tmp_path / "seg.csv"
+    write_points(simulate.segments_scene(seed=2, n_ships=8, area_km=15), src)
+    bad = write("notes.csv", "名称,备注,数值\nx,y,1\nz,w,2\n")
+    w = _window(qtbot, tmp_path)
+    w.interactive = False  # the open-failed dialog: in the log and on stderr
+    try:
+        w.load_files([src])
+        _settle(w)
+        w.actions_["pipeline_associate"].trigger()
+        w.select_layer(w.layer_id(src.name))
+        w.actions_["pipeline"].trigger()
+        _settle(w)
+        bound = w.review.bound
+        assert bound is not None and len(bound.controller.state.proposals)
+        params = {}
+        stack = list(w.params.root.children())
+        while stack:
+            item = stack.pop()
+            stack += item.children()
+            params[item.name()] = item
+        assert params["window_p"].title() == "window_p"  # English: the identifier
+        w.set_language("zh_CN")
+        _settle(w)
+        w.load_files([bad])
+        _settle(w)
+        failed = [t for t in w.log.toPlainText().splitlines() if "notes.csv" in t]
+        assert failed and all(HAN.search(t) for t in failed), failed
+        texts = [t for t in failed]
+        # the review queue: every column title and cell, and the evidence line
+        model = bound.panel.view.model()
+        for c in range(model.columnCount()):
+            texts.append(str(model.headerData(c, QtCore.Qt.Orientation.Horizontal)))
+            for r in range(model.rowCount()):
+                texts.append(str(model.index(r, c).data()))
+        texts.append(bound.panel.evidence.text())
+        assert any("最优分配" in t for t in texts), texts
+        # the Bearing-only dock's detections table (no bearings: its one column)
+        bm = w.bearing_view.model
+        texts += [
+            str(bm.headerData(c, QtCore.Qt.Orientation.Horizontal)) for c in range(bm.columnCount())
+        ]
+        # the parameter tree's column titles and rows
+        tree = w.params.tree
+        texts += [tree.headerItem().text(c) for c in range(tree.columnCount())]
+        for item in params.values():
+            texts.append(str(item.title()))
+        assert params["window_p"].title() == "窗口点数 p"
+        assert params["window_p"].opts["tip"].splitlines()[-1].endswith("window_p")
+        # every visible widget's texts and its tables' headers and first rows
+        for wid in w.findChildren(QtWidgets.QWidget):
+            if not wid.isVisibleTo(w):
+                continue
+            for attr in ("text", "title", "windowTitle", "placeholderText"):
+                f = getattr(wid, attr, None)
+                if callable(f):
+                    try:
+                        value = f()
+                    except TypeError:
+                        continue
+                    if isinstance(value, str):
+                        texts.append(value)
+            if isinstance(wid, QtWidgets.QAbstractItemView) and wid.model() is not None:
+                m = wid.model()
+                try:
+                    ncol = m.columnCount()
+                except TypeError:
+                    continue
+                for c in range(ncol):
+                    texts.append(str(m.headerData(c, QtCore.Qt.Orientation.Horizontal)))
+                    for r in range(min(m.rowCount(), 30)):
+                        texts.append(str(m.index(r, c).data()))
+        left = sorted(
+            {t for t in texts if t.strip() in OPERATOR7_ALONE or OPERATOR7_PHRASES.search(t)}
+        )
+        assert not left, left
+        # the parameter rows: an identifier alone is left only where no title is known
+        bare = [n for n, item in params.items() if "_" in n and item.title() == n]
+        assert not bare, bare
+        w.set_language("en")
+        assert params["window_p"].title() == "window_p"
+        assert not params["window_p"].opts["tip"].splitlines()[-1].endswith("window_p")
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)

@@ -739,6 +739,14 @@
 <context>
     <name>ParamsPanel</name>
     <message>
+        <source>Parameter</source>
+        <translation>参数</translation>
+    </message>
+    <message>
+        <source>Value</source>
+        <translation>值</translation>
+    </message>
+    <message>
         <source>sigma</source>
         <translation>倍标准差</translation>
     </message>
@@ -905,6 +913,10 @@
 </context>
 <context>
     <name>DetailPanel</name>
+    <message>
+        <source>Compression</source>
+        <translation>压缩</translation>
+    </message>
     <message>
         <source>Maneuver factor</source>
         <translation>机动因子</translation>
@@ -1247,6 +1259,18 @@
 <context>
     <name>BearingView</name>
     <message>
+        <source>batch</source>
+        <translation>批号</translation>
+    </message>
+    <message>
+        <source>detect_time</source>
+        <translation>检测时间</translation>
+    </message>
+    <message>
+        <source>maneuver_time</source>
+        <translation>机动时间</translation>
+    </message>
+    <message>
         <source>Export detections…</source>
         <translation>导出检测结果…</translation>
     </message>
@@ -1396,6 +1420,38 @@
 </context>
 <context>
     <name>ReviewPanel</name>
+    <message>
+        <source>optimal</source>
+        <translation>最优分配</translation>
+    </message>
+    <message>
+        <source>greedy</source>
+        <translation>贪心分配</translation>
+    </message>
+    <message>
+        <source>motion</source>
+        <translation>运动</translation>
+    </message>
+    <message>
+        <source>area</source>
+        <translation>面积</translation>
+    </message>
+    <message>
+        <source>hausdorff</source>
+        <translation>豪斯多夫</translation>
+    </message>
+    <message>
+        <source>DTW, whole tracks</source>
+        <translation>DTW（整条航迹）</translation>
+    </message>
+    <message>
+        <source>sync</source>
+        <translation>同步</translation>
+    </message>
+    <message>
+        <source>second look (gap beyond T_gap)</source>
+        <translation>第二次查看（间隙超过 T_gap）</translation>
+    </message>
     <message>
         <source>(scaled)</source>
         <translation>（归一化）</translation>
@@ -1771,6 +1827,18 @@
 </context>
 <context>
     <name>ReviewSync</name>
+    <message>
+        <source>{0} points of {1} (reviewed tracks)</source>
+        <translation>{1} 的 {0} 个点（审核后的航迹）</translation>
+    </message>
+    <message>
+        <source>{0} points of {1} (reviewed tracks, from the {2} layer)</source>
+        <translation>{1} 的 {0} 个点（审核后的航迹，由{2}图层生成）</translation>
+    </message>
+    <message>
+        <source>: the {0} layer holds {1} points</source>
+        <translation>；{0}图层有 {1} 个点</translation>
+    </message>
     <message>
         <source>{0} of {1} proposals not reviewed: counted as accepted</source>
         <translation>{1} 个提议中有 {0} 个未审核：按接受计</translation>
@@ -2674,6 +2742,21 @@
     <message>
         <source>Split: the track is a target of its own</source>
         <translation>拆分：该航迹本身即为一个目标</translation>
+    </message>
+</context>
+<context>
+    <name>BatchTable</name>
+    <message>
+        <source>joined</source>
+        <translation>已连接</translation>
+    </message>
+    <message>
+        <source>fused</source>
+        <translation>已融合</translation>
+    </message>
+    <message>
+        <source>single</source>
+        <translation>单传感器</translation>
     </message>
 </context>
 </TS>
