@@ -279,7 +279,14 @@ class RealEvaluation:
 
     def format(self) -> str:
         lines = [f"Real set {self.name} ({self.folder})"]
-        lines += [self.rows.to_string(index=False, float_format=lambda v: f"{v:.3f}")]
+        # counts as integers (Int64 columns), scores with 3 decimals, a blank where a
+        # row has no such figure (the split rows: no compression counts)
+        shown = self.rows.copy()
+        for name in shown.columns:
+            if isinstance(shown[name].dtype, pd.Int64Dtype):
+                shown[name] = shown[name].astype(object).where(shown[name].notna(), "")
+        text = shown.to_string(index=False, float_format=lambda v: f"{v:.3f}", na_rep="")
+        lines += [text]
         lines += [f"skipped {f}: {why}" for f, why in self.skipped]
         return "\n".join(lines)
 
@@ -567,4 +574,20 @@ def evaluate_real(
     label = name or folder.name
     if sensor != "radar":
         label = f"{label} ({sensor})"
-    return RealEvaluation(label, folder, pd.DataFrame(rows + split_rows), tuple(skipped))
+    return RealEvaluation(label, folder, counts_as_integers(rows + split_rows), tuple(skipped))
+
+
+def counts_as_integers(rows: list[dict]) -> pd.DataFrame:
+    """The rows as a table whose counts stay integers: a column whose every value is an
+    integer (points, maneuvers, kept points) is ``Int64`` even where some rows lack it
+    (the split rows have no compression counts), so it prints and writes as ``1009``, not
+    ``1009.000`` (operator test 7, D17); the missing cells print as ``<NA>``."""
+    table = pd.DataFrame(rows)
+    for name in table.columns:
+        values = [r[name] for r in rows if name in r and r[name] is not None]
+        ints = all(
+            isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)) for v in values
+        )
+        if values and ints:
+            table[name] = table[name].astype("Int64")
+    return table

@@ -341,3 +341,24 @@ def test_the_autoferry_set_in_metres_on_its_frame_scores_the_same(tmp_path):
     for method in ("ours", "paper"):
         for col in ("detections", "turns", "precision", "recall"):
             assert plane.loc[method, col] == native.loc[method, col], (method, col)
+
+
+def test_real_scores_print_counts_as_integers():
+    """Operator test 7, D17: `evaluate maneuver --real` printed `points 1009.000` because
+    the split rows lack the counts (NaN made the columns float): counts stay integers in
+    the table (and its CSV), blank where a row has none; scores keep 3 decimals."""
+    from pathlib import Path
+
+    from wakeline.core.evaluate_real import RealEvaluation, counts_as_integers
+
+    rows = [
+        {"method": "ours", "points": 1009, "maneuvers": 31, "precision": 0.9032, "kept": 69},
+        {"method": "ours, tuning 2-6", "precision": 0.947, "detections": 19},
+    ]
+    table = counts_as_integers(rows)
+    assert str(table["points"].dtype) == "Int64" and str(table["detections"].dtype) == "Int64"
+    assert table["precision"].dtype == "float64"
+    text = RealEvaluation("x", Path("x"), table).format()
+    assert "1009" in text and "1009.0" not in text and " 31 " in text
+    assert "0.903" in text and "0.947" in text
+    assert "NaN" not in text and "<NA>" not in text
