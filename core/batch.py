@@ -963,6 +963,8 @@ def parts_to_csv(folder: Path, path: Path, points: bool = True) -> int:
     rows, header, columns = 0, None, None
     # the courses as read (COURSE_READ) in every partition's rows when one holds them
     course_read = points and any(COURSE_READ in pq.read_schema(f).names for f in files)
+    if not points and files:  # a table (the quarantine): every partition's columns
+        columns = list(dict.fromkeys(n for f in files for n in pq.read_schema(f).names))
     one = path.with_name(path.name + ".one.part")
     with atomic_path(path) as tmp, open(tmp, "wb") as fh:
         for f in files:
@@ -1185,8 +1187,6 @@ def run_batch(
     if opts.csv:
         t = time.perf_counter()
         for name, folder in list(outputs.items()):
-            if name == "quarantine":
-                continue
             is_points = name in ("clean", "compress", "associate")
             parts_to_csv(folder, outdir / f"{name}.csv", points=is_points)
             outputs[f"{name}.csv"] = outdir / f"{name}.csv"

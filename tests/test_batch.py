@@ -674,3 +674,27 @@ def test_associate_after_compress_reads_the_cleaned_tracks(tmp_path):
     assert len(_rows(tmp_path / "comp" / "compress.csv")) < len(comp)
     pairs = [pd.read_csv(tmp_path / k / "associate_pairs.csv", dtype=str) for k in names]
     pd.testing.assert_frame_equal(pairs[0], pairs[1])
+
+
+def test_csv_output_holds_the_quarantine_too(tmp_path):
+    """Operator test 7, D8: with --csv every output folder is one CSV, the quarantine's
+    too (before, its lines were only in quarantine/*.parquet): one row per quarantined
+    line of every input, with its file, line, reason and text."""
+    df = simulate.maneuver_tracks(4, "short", 50.0, seed=3)
+    inputs = []
+    for k in range(2):
+        part = df.iloc[k * len(df) // 2 : (k + 1) * len(df) // 2].astype(str).copy()
+        bad = part.iloc[:2].copy()
+        bad.loc[:, "lat"] = ["95.0", "x"]
+        path = tmp_path / f"in{k}.csv"
+        pd.concat([part, bad], ignore_index=True).to_csv(path, index=False)
+        inputs.append(path)
+    res = run_batch(Pipeline.default(), inputs, tmp_path / "out", BatchOptions(csv=True))
+    q = pd.read_csv(tmp_path / "out" / "quarantine.csv", dtype=str)
+    assert list(q.columns) == ["file", "line", "reason", "text"]
+    assert len(q) == res.report["quarantined"] == 4
+    assert set(q["file"]) == {str(p) for p in inputs}
+    assert sorted(q["reason"]) == sorted(["lat out of range", "unparsable lat"] * 2)
+    parts = pd.read_parquet(tmp_path / "out" / "quarantine")
+    assert sorted(q["text"]) == sorted(parts["text"].astype(str))
+    assert "quarantine.csv" in res.outputs
