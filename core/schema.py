@@ -125,7 +125,15 @@ def ordered_columns(df: pd.DataFrame) -> list[str]:
     return head + [c for c in df.columns if c not in head]
 
 
+#: Clean's row id (``core/clean.py``): it keys the reject trail (``--rejected`` keeps
+#: it) and the in-memory restore, and is never written with points (operator test 7,
+#: D18: it showed in the clean, associate and review CSVs and the window's Export CSV).
+ROW_ID = "wl_id"
+#: Columns Wakeline keeps on its points while it works and a points file never gets.
+UNWRITTEN = frozenset((FILE_ROW, ROW_ID))
+
+
 def written_columns(df: pd.DataFrame) -> list[str]:
     """The columns a points file gets: :func:`ordered_columns` without the window's
-    internal file row (:data:`FILE_ROW`)."""
-    return [c for c in ordered_columns(df) if c != FILE_ROW]
+    internal file row (:data:`FILE_ROW`) and clean's row id (:data:`ROW_ID`)."""
+    return [c for c in ordered_columns(df) if c not in UNWRITTEN]

@@ -97,11 +97,17 @@ def test_streamed_clean_equals_in_memory(tmp_path, monkeypatch, block_rows):
 
 
 def test_streamed_clean_keeps_the_files_ids(tmp_path, monkeypatch):
-    """Cleaning a cleaned file again keeps its wl_id (as the in-memory clean does)."""
+    """Cleaning a file that carries wl_id (a cleaned file of an earlier version: clean's
+    points are written without it since D18) keeps its ids (as the in-memory clean does)."""
     src = tmp_path / "scattered.csv"
     scattered_file(src, seed=1, damaged=False)
     first = tmp_path / "first.csv"
     clean_file(src, first, params=CleanParams().with_settings(["turn.enabled=false"]))
+    assert "wl_id" not in first.read_text().splitlines()[0].split(",")
+    cleaned = read_points(first).points
+    rng = np.random.default_rng(1)
+    ids = rng.permutation(len(cleaned)) * 3 + 7  # ids of some earlier cleaning
+    write_csv(cleaned.assign(wl_id=ids), first)
     monkeypatch.setattr("wakeline.core.clean.BLOCK_ROWS", 250)
     want_report, _ = in_memory(first, tmp_path / "a.csv", tmp_path / "a_rej.csv")
     monkeypatch.setattr(reader, "STREAM_BYTES", 8 << 10)
@@ -110,6 +116,8 @@ def test_streamed_clean_keeps_the_files_ids(tmp_path, monkeypatch):
     assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
     assert (tmp_path / "b_rej.csv").read_bytes() == (tmp_path / "a_rej.csv").read_bytes()
     assert as_json(got.report) == as_json(want_report)
+    trail = pd.read_csv(tmp_path / "b_rej.csv")
+    assert len(trail) and set(trail["wl_id"]) <= set(ids)  # the file's ids, not row numbers
 
 
 def test_streamed_clean_cancels_cleanly(tmp_path, monkeypatch):
@@ -163,10 +171,9 @@ def test_clean_file_falls_back_for_transforms_and_quotes(tmp_path):
     assert not got.streamed
     read = read_points(src)
     want = clean(read.points, params)
-    pd.testing.assert_frame_equal(
-        read_points(tmp_path / "b.csv").points.drop(columns="wl_id"),
-        read_points_of(want.points, tmp_path).drop(columns="wl_id"),
-    )
+    got_points = read_points(tmp_path / "b.csv").points
+    assert "wl_id" not in got_points.columns  # clean's row id is not written (D18)
+    pd.testing.assert_frame_equal(got_points, read_points_of(want.points, tmp_path))
 
 
 def read_points_of(points: pd.DataFrame, folder) -> pd.DataFrame:

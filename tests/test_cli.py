@@ -283,3 +283,31 @@ def test_summaries_count_one_track_in_the_singular(tmp_path, capsys):
     assert main(["associate", str(src), "-o", str(tmp_path / "a.csv")]) == 0
     err = capsys.readouterr().err
     assert "1 track -> 1 target (0 joins of 0 candidate pairs" in err, err
+
+
+def test_no_written_points_file_carries_clean_s_row_id(tmp_path):
+    """Operator test 7, D18: clean's internal row id `wl_id` showed in the clean,
+    associate and review CSVs and the window's File > Export CSV. Points files leave it
+    out; the reject trail keeps it (it keys the rejected rows); the rows are the same."""
+    from wakeline.core.clean import clean
+    from wakeline.core.export import export_csv
+    from wakeline.core.io import read_points
+
+    src = tmp_path / "scene.csv"
+    assert main(["simulate", "segments", "--seed", "4", "--ships", "4", "-o", str(src)]) == 0
+    cleaned, rej = tmp_path / "clean.csv", tmp_path / "rej.csv"
+    assert main(["clean", str(src), "-o", str(cleaned), "--rejected", str(rej)]) == 0
+    assoc, gui = tmp_path / "assoc.csv", tmp_path / "gui.csv"
+    assert main(["associate", str(cleaned), "-o", str(assoc)]) == 0
+    reviewed = tmp_path / "reviewed.csv"
+    assert main(["review", str(assoc), "-o", str(reviewed)]) == 0
+    step = clean(read_points(src).points)
+    assert "wl_id" in step.points.columns  # in memory it is there
+    export_csv(step.points, gui)
+    for path in (cleaned, assoc, reviewed, gui):
+        header = path.read_text(encoding="utf-8-sig").splitlines()[0].split(",")
+        assert "wl_id" not in header, path.name
+    assert "wl_id" in rej.read_text().splitlines()[0].split(",")
+    got = pd.read_csv(cleaned)
+    assert len(got) == len(step.points)
+    assert set(got.columns) == set(step.points.columns) - {"wl_id"}

@@ -22,7 +22,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from wakeline.core.errors import InputError
-from wakeline.core.schema import COURSE_READ, empty_points, ordered_columns
+from wakeline.core.schema import COURSE_READ, empty_points, written_columns
 
 _NEEDS_QUOTES = r'[,"\r\n]|^\s|\s$'
 
@@ -388,8 +388,9 @@ def write_points(
     """Write the canonical point table (canonical columns first, extras after, the
     courses as the file had them, :data:`COURSE_READ`, among them when the import changed
     some: ``export --like`` of the file writes them back); ``quote`` as for
-    :func:`write_csv`."""
-    write_csv(points[ordered_columns(points)], path, quote)
+    :func:`write_csv`. Wakeline's working ids (:data:`~wakeline.core.schema.UNWRITTEN`:
+    clean's ``wl_id``, the window's file row) are not written."""
+    write_csv(points[written_columns(points)], path, quote)
 
 
 def _with_courses_read(table: pa.Table, names: list[str]) -> pa.Table:
@@ -423,7 +424,7 @@ class PointParts:
     def __call__(self, points: pd.DataFrame) -> None:
         if not len(points) and self.parts:
             return
-        table = _to_arrow(points[ordered_columns(points)])
+        table = _to_arrow(points[written_columns(points)])
         if self.parts and COURSE_READ in self.names:
             table = _with_courses_read(table, self.names)
         names, columns = table.column_names, table.columns
