@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from wakeline.core.io.geojson import CUT_VERTICES
+from wakeline.core.io.geojson import CUT_VERTICES, VERTEX_PROPERTIES
 from wakeline.core.io.writer import atomic_path, write_csv
 from wakeline.core.schema import in_file_order, time_seconds, written_columns
 from wakeline.core.tracks import sorted_with_index
@@ -185,10 +185,55 @@ def antimeridian_parts(
     return parts, np.concatenate(times).astype("int64"), added
 
 
+#: Columns a GeoJSON feature carries otherwise (its geometry, ``times`` and per-track
+#: properties), or that name the feature's own track: not written per vertex.
+_NOT_PER_VERTEX = frozenset(
+    ("sensor", "batch", "time", "lon", "lat", "target", "members", "truth", "source_track")
+    + ("source_sensor",)
+)
+
+
+def vertex_columns(points: pd.DataFrame) -> tuple[list[str], list[str]]:
+    """The columns :func:`geojson` writes per vertex (speed, course and the columns the
+    import carried: in ``coordinateProperties``, as togeojson writes a GPX track's
+    per-point values) and the columns it leaves out (Wakeline's internal ones,
+    :data:`~wakeline.core.io.layout.INTERNAL_COLUMNS`; the log and docs/export.md say so)."""
+    from wakeline.core.io.layout import INTERNAL_COLUMNS
+    from wakeline.core.schema import UNWRITTEN
+
+    cols = [c for c in written_columns(points) if c not in _NOT_PER_VERTEX]
+    kept = [c for c in cols if c not in INTERNAL_COLUMNS]
+    left = [c for c in cols if c in INTERNAL_COLUMNS and c not in UNWRITTEN]
+    return kept, left
+
+
+def _json_values(col: pd.Series) -> list:
+    """A column as JSON values: numbers as numbers, text as text, missing as null."""
+    missing = col.isna().to_numpy()
+    if isinstance(col.dtype, pd.DatetimeTZDtype) or pd.api.types.is_datetime64_any_dtype(col.dtype):
+        out = np.empty(len(col), dtype=object)
+        if (~missing).any():
+            out[~missing] = _iso_times(col[~missing])[0]
+    elif pd.api.types.is_bool_dtype(col.dtype):
+        out = col.astype(object).to_numpy()
+    elif pd.api.types.is_numeric_dtype(col.dtype):
+        x = col.to_numpy(dtype="float64", na_value=np.nan)
+        out = x.astype(object)
+        if pd.api.types.is_integer_dtype(col.dtype):
+            out[~missing] = x[~missing].astype("int64").astype(object)
+        missing = missing | ~np.isfinite(x)
+    else:
+        out = col.astype("str").to_numpy(dtype=object)
+    out[missing] = None
+    return out.tolist()
+
+
 def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict:
     """A FeatureCollection: one LineString per track (Point for one-point tracks) with
     sensor, batch, points, start, end, ``times`` (one ISO time per vertex, so that the file
-    reads back as tracks) and any per-track text columns (target, members, source...), plus
+    reads back as tracks), ``coordinateProperties`` (speed, course and the carried columns,
+    one value per vertex: :func:`vertex_columns`) and any per-track text columns (target,
+    members, source...), plus
     one Point per maneuver when given. Coordinates are [lon, lat]. Tracks with targets
     keep their own sensor and batch and carry ``target`` (merged tracks are written per
     member track, from ``source_track``): the GeoJSON reader gives the target back."""
@@ -212,6 +257,8 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
     ns = (pd.to_datetime(times, utc=True).dt.tz_localize(None).to_numpy("datetime64[ns]")).astype(
         "int64"
     )
+    # speed, course and the carried columns, one value per vertex (D12: they were dropped)
+    per_vertex = {c: _json_values(pts[c]) for c in vertex_columns(pts)[0]}
     for k in range(index.n_tracks):  # one feature per track; the coordinates are sliced
         s, e = int(index.starts[k]), int(index.ends[k])
         coords = np.column_stack([lon[s:e], lat[s:e]]).tolist()
@@ -226,6 +273,7 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
         }
         for c in extra:
             props[c] = str(pts[c].iloc[s])
+        values = {c: v[s:e] for c, v in per_vertex.items()}
         cut = antimeridian_parts(lon[s:e], lat[s:e], ns[s:e], unit) if e - s > 1 else None
         if cut is not None:  # RFC 7946 §3.1.9: cut at ±180°, the added vertices named
             parts, cut_ns, added = cut
@@ -236,12 +284,17 @@ def geojson(points: pd.DataFrame, maneuvers: pd.DataFrame | None = None) -> dict
             text = np.datetime_as_string(cut_ns.astype("datetime64[ns]"), unit=unit)
             props["times"] = np.char.add(text, "Z").tolist()
             props[CUT_VERTICES] = added
+            for v in values.values():  # the added vertices are no fixes: null
+                for i in added:
+                    v.insert(i, None)
         else:
             geom = (
                 {"type": "Point", "coordinates": coords[0]}
                 if e - s == 1
                 else {"type": "LineString", "coordinates": coords}
             )
+        if values:
+            props[VERTEX_PROPERTIES] = values
         features.append({"type": "Feature", "geometry": geom, "properties": props})
     if maneuvers is not None:
         for row in maneuvers.itertuples(index=False):

@@ -144,3 +144,51 @@ def test_numeric_and_zoned_times_read_as_the_csv_reader_reads_them(tmp_path):
     assert one(["20240101120000", "20240101120010"])[0] == pd.Timestamp("2024-01-01T12:00:00Z")
     zoned = one(["2024-01-01 08:00:00", "2024-01-01 08:00:10"], tz="+08:00")
     assert zoned[0] == pd.Timestamp("2024-01-01T00:00:00Z")
+
+
+def test_speed_course_and_carried_columns_go_per_vertex_and_read_back(tmp_path):
+    """Operator test 7, D12: the GeoJSON export dropped speed, course and the columns the
+    import carried. They are written per vertex in ``coordinateProperties`` (one value per
+    vertex, null where missing; null on the vertices an antimeridian cut adds) and read
+    back; Wakeline's internal columns are left out and named by the command line."""
+    from wakeline.app.cli import main
+    from wakeline.core.io import write_points
+
+    rng = np.random.default_rng(4)
+    n = 12
+    t = pd.date_range("2024-03-01", periods=n, freq="10s", tz="UTC")
+    lon = np.r_[179.997 + 0.0005 * np.arange(6), -179.9995 + 0.0005 * np.arange(6)]
+    pts = pd.DataFrame(
+        {
+            "sensor": ["ais"] * n + ["radar"] * 3,
+            "batch": ["1"] * n + ["9"] * 3,
+            "time": t.append(t[:3]),
+            "lon": np.r_[lon, 20.0 + rng.normal(0, 0.001, 3)],
+            "lat": 60.0 + rng.normal(0, 0.001, n + 3),
+            "speed": np.r_[rng.uniform(5, 15, n), [np.nan, 7.5, 8.0]],
+            "course": np.r_[rng.uniform(0, 359, n), [90.0, np.nan, 91.0]],
+            "航迹向": pd.Series([f"{v:.1f}" for v in rng.uniform(0, 359, n + 3)], dtype="str"),
+            "course_read": np.nan,
+        }
+    )
+    src = tmp_path / "in.csv"
+    write_points(pts, src)
+    out = tmp_path / "out.geojson"
+    assert main(["export", str(src), "-o", str(out)]) == 0
+    doc = json.loads(out.read_text(encoding="utf-8"))
+    ais = next(f for f in doc["features"] if f["properties"]["sensor"] == "ais")
+    per = ais["properties"]["coordinateProperties"]
+    assert set(per) == {"speed", "course", "航迹向"}
+    assert ais["geometry"]["type"] == "MultiLineString"  # cut at ±180°: two added vertices
+    n_vertices = sum(len(p) for p in ais["geometry"]["coordinates"])
+    assert all(len(v) == n_vertices == n + 2 for v in per.values())
+    assert sum(v is None for v in per["speed"]) == 2  # the added vertices
+    back = read_points(out).points
+    key = ["sensor", "batch", "time"]
+    want = pts.sort_values(key).reset_index(drop=True)
+    got = back.sort_values(key).reset_index(drop=True)
+    assert len(got) == len(want)
+    for col in ("speed", "course"):
+        np.testing.assert_allclose(got[col], want[col], equal_nan=True)
+    assert got["航迹向"].tolist() == want["航迹向"].tolist()
+    assert "course_read" not in got.columns

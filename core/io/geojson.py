@@ -42,6 +42,10 @@ TIME_ARRAYS = ("times", "coordTimes")
 #: the cut added on ±180° between two fixes (0-based, over the line's vertices in order).
 #: They are not fixes: left out on reading.
 CUT_VERTICES = "antimeridian_vertices"
+#: Property of a line holding its per-vertex values, one array per column (togeojson's
+#: name for a GPX track's per-point values): Wakeline writes speed, course and the columns
+#: the import carried there (operator test 7, D12) and reads them back.
+VERTEX_PROPERTIES = "coordinateProperties"
 #: The start of :func:`targets_note` (a read in pieces says it once, for the whole file).
 TARGETS_MARK = "this file carries targets: "
 _TEXT_CHARS = 200
@@ -134,6 +138,24 @@ def read_geojson(
     q_line, q_reason, q_text = [], [], []
     counts = {"line_features": 0, "point_features": 0, "maneuver_points": 0, "cut_vertices": 0}
 
+    vertex: dict[str, list] = {}  # per-vertex values (coordinateProperties) by column
+
+    def add_vertex_values(props: dict, n_coords: int, keep: list | None) -> None:
+        """The feature's per-vertex arrays (those with one value per vertex) after the
+        rows added so far; columns it lacks get nulls."""
+        done = len(cols["lon"])
+        n = n_coords if keep is None else len(keep)
+        given = props.get(VERTEX_PROPERTIES)
+        if isinstance(given, dict):
+            for name, arr in given.items():
+                if name in TIME_ARRAYS or not isinstance(arr, list) or len(arr) != n_coords:
+                    continue
+                col = vertex.setdefault(str(name), [])
+                col.extend([None] * (done - len(col)))
+                col.extend(arr if keep is None else [arr[i] for i in keep])
+        for col in vertex.values():
+            col.extend([None] * (done + n - len(col)))
+
     def bad(k: int, feature, reason: str) -> None:
         q_line.append(k + 1)
         q_reason.append(reason)
@@ -161,6 +183,10 @@ def read_geojson(
                 coords = [c for part in coords for c in (part or [])]
             key = next((t for t in TIME_ARRAYS if t in props), None)
             times = props.get(key) if key else None
+            inner = props.get(VERTEX_PROPERTIES)
+            if key is None and isinstance(inner, dict):  # togeojson 5: the times in there
+                key = next((t for t in TIME_ARRAYS if t in inner), None)
+                times = inner.get(key) if key else None
             if key is None:
                 bad(k, feature, "a line without per-vertex times (no 'times' or 'coordTimes')")
                 continue
@@ -171,6 +197,7 @@ def read_geojson(
             batch = str(props[batch_key]) if batch_key else f"feature {k + 1}"
             lon_k, lat_k = _vertices(coords)
             added = props.get(CUT_VERTICES)
+            keep = None
             if isinstance(added, list) and added:
                 # ours: vertices on ±180° the antimeridian cut added, not fixes
                 drop = {int(i) for i in added if isinstance(i, int) and 0 <= i < len(coords)}
@@ -180,6 +207,7 @@ def read_geojson(
                 times = [times[i] for i in keep]
                 counts["cut_vertices"] += len(drop)
             n = len(lon_k)
+            add_vertex_values(props, len(coords), keep)
             cols["sensor"].extend([own_sensor] * n)
             cols["batch"].extend([batch] * n)
             cols["time"].extend(times)
@@ -197,6 +225,7 @@ def read_geojson(
             stamp = props[time_key] if time_key is not None else one[0]  # ours: times[0]
             c = geom.get("coordinates") or []
             ok = isinstance(c, list | tuple) and len(c) >= 2
+            add_vertex_values(props, 1, None)
             cols["sensor"].append(own_sensor)
             cols["batch"].append(str(props[batch_key]) if batch_key else "points")
             cols["time"].append(stamp)
@@ -236,6 +265,15 @@ def read_geojson(
             "lat": lat[good],
         }
     )
+    for name, values in vertex.items():  # speed and course as numbers, the rest as text
+        values = values + [None] * (len(good) - len(values))
+        arr = np.asarray(values, dtype=object)[good]
+        if name in ("speed", "course"):
+            points[name] = pd.to_numeric(pd.Series(arr, dtype="object"), errors="coerce").astype(
+                "float64"
+            )
+        elif name not in points.columns:
+            points[name] = pd.Series(arr, dtype="str")
     target = np.asarray(cols["target"], dtype=object)[good]
     if len(target) and any(t is not None for t in target):
         # a track without one is its own target (its batch)
