@@ -96,6 +96,53 @@ def _map_on_in_only(args: argparse.Namespace, message: str) -> str:
     )
 
 
+def _zone_of_import(args: argparse.Namespace, layout, points):
+    """``layout`` with the zone the import read ``--like ORIGINAL``'s naive times in,
+    when ORIGINAL's first rows show one offset against IN's times (a note says so), and
+    whether a note or warning was printed. Two offsets (a zone with summer time in those
+    rows): a warning asks for --tz; none: the layout as it is (UTC clock times)."""
+    from dataclasses import replace
+
+    from wakeline.core.io.export_like import import_offsets, offset_text
+    from wakeline.core.io.formats import parse_mapping
+
+    read = {
+        "fmt": args.format,
+        "mapping": parse_mapping(args.map),
+        "skip_rows": args.like_skip_rows,
+        "origin": getattr(args, "origin", None),
+        "date_order": args.date_order,
+        "time_unit": args.time_unit,
+    }
+    found = import_offsets(args.like, points, read)
+    hits, rows = found["hits"], found["rows"]
+    if not hits or set(hits) == {0}:
+        return layout, bool(hits)  # as UTC: nothing to say; no common rows: the old note
+    shown = ", ".join(
+        f"UTC{offset_text(m)} ({hits[m]:,} of {rows:,} rows)"
+        for m in sorted(hits, key=lambda m: -hits[m])
+    )
+    if len(hits) == 1:
+        (minutes,) = hits
+        zone = offset_text(minutes)
+        print(
+            f"{args.like}: its times carry no zone; its first rows are IN's times at "
+            f"{shown}: the import read them in that zone (--tz), so they are written in "
+            f"UTC{zone} (give --tz ZONE, the import's, where the zone has summer time and "
+            "the data span a change)",
+            file=sys.stderr,
+        )
+        return replace(layout, time=replace(layout.time, tz=zone)), True
+    print(
+        f"{args.like}: warning: its times carry no zone; its first rows are IN's times at "
+        f"{shown}: the import read them in a zone with summer time (--tz); they are written "
+        "as UTC clock times unless --tz gives that zone (the one the import was given, "
+        "e.g. --tz Europe/Oslo)",
+        file=sys.stderr,
+    )
+    return layout, True
+
+
 def _cmd_export(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import say_quarantined
     from wakeline.core.io.export_like import export_like
@@ -117,7 +164,16 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
         result = _read_in(args)
         kind = export_tracks(result.points, args.output)
-        print(f"exported {count(len(result.points), 'row')} as {kind}", file=sys.stderr)
+        msg = f"exported {count(len(result.points), 'row')} as {kind}"
+        if kind == "geojson":
+            from wakeline.core.export import vertex_columns
+
+            kept, left = vertex_columns(result.points)
+            if kept:
+                msg += f"; per vertex in coordinateProperties: {', '.join(kept)}"
+            if left:
+                msg += f"; not written: {', '.join(left)} (Wakeline's internal columns)"
+        print(msg, file=sys.stderr)
         return 0
     from wakeline.core.export import check_text_path
 
@@ -142,7 +198,16 @@ def _cmd_export(args: argparse.Namespace) -> int:
             raise InputError(_map_on_in_only(args, _like_flag(str(exc)))) from None
     else:
         layout = preset_layout(args.layout or "canonical")
-    if args.like and not args.tz and layout.time.kind == "text" and not layout.time.suffix:
+    result = None
+    naive = layout.time.kind == "text" and not layout.time.suffix
+    if args.like and not args.tz and naive and Path(args.like).suffix.lower() != ".json":
+        # the zone the import read ORIGINAL's naive times in, from ORIGINAL's first rows
+        # against IN's times (D15: they were written as UTC clock times, 2 h off)
+        result = _read_in(args)
+        layout, said = _zone_of_import(args, layout, result.points)
+    else:
+        said = False
+    if args.like and not args.tz and naive and not said:
         from wakeline.core.io.formats import header_is_local
 
         names = [c.name for c in layout.columns if c.field == "time"]
@@ -177,7 +242,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
         from wakeline.core.io import write_json
 
         write_json(layout.to_dict(), args.save_layout)
-    result = _read_in(args)
+    if result is None:
+        result = _read_in(args)
     say_quarantined(args.input, result.report)
     if len(result.points) == 0:
         raise InputError(f"{args.input}: no usable points: nothing to export")
@@ -202,6 +268,12 @@ def _cmd_export(args: argparse.Namespace) -> int:
         print(f"{args.output}: warning: {warning}", file=sys.stderr)
     for note in rep.get("notes", []):
         print(f"{args.output}: {note}", file=sys.stderr)
+    if args.like and Path(args.like).suffix.lower() != ".json":
+        from wakeline.core.io.layout import mixed_decimals_note
+
+        mixed = mixed_decimals_note(layout, args.like_skip_rows)
+        if mixed:  # some rows with a decimal comma, others with a point (D10)
+            print(f"{args.output}: {mixed}", file=sys.stderr)
     msg = (
         f"exported {count(rep['rows'], 'row')} as {rep['layout']} ({rep['encoding']}, "
         f"{count(len(rep['columns']), 'column')})"

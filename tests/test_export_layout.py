@@ -697,3 +697,87 @@ def test_sensors_sharing_an_id_in_a_layout_without_sensor_column_are_warned(tmp_
     assert "used by more than one sensor (e.g. 007: AIS, R1, R2)" in err
     assert main(["export", str(src), "--layout", "canonical", "-o", str(tmp_path / "c.csv")]) == 0
     assert "more than one sensor" not in capsys.readouterr().err
+
+
+def _semicolon_file(path, comma_every: int | None, rng) -> None:
+    """An AIS export with ';' between columns, fixed decimals (``23.00``, ``291.0``) and,
+    every ``comma_every``-th row, decimal commas (a spreadsheet's locale on some rows)."""
+    lines = ["MMSI;BaseDateTime;LAT;LON;SOG;COG"]
+    t0 = pd.Timestamp("2024-08-02T00:56:14")
+    for k in range(90):
+        mmsi = 3 if k < 45 else 7
+        row = [
+            f"{37 + 0.00271 * k + rng.uniform(0, 1e-4):.5f}",
+            f"{25 - 0.00712 * k:.5f}",
+            f"{rng.choice([22.0, 23.0, 22.5]) + (k % 3) * 0.01:.2f}",
+            f"{rng.uniform(280, 300):.1f}",
+        ]
+        if comma_every and k % comma_every == 0:
+            row = [v.replace(".", ",") for v in row]
+        when = (t0 + pd.Timedelta(minutes=k)).strftime("%Y-%m-%dT%H:%M:%S")
+        lines.append(";".join([str(mmsi), when, *row]))
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+def test_like_a_file_with_some_decimal_comma_rows_keeps_every_columns_digits(tmp_path, capsys):
+    """Operator test 7, D10: a file whose every third row writes decimal commas lost every
+    column's number format on `export --like` (`37.38980` → `37.3898`, `23.00` → `23`,
+    `291.0` → `291`: 473 of 600 lines differed). Now each column keeps its digits; the
+    separator most rows use is written on every row, and a note says so; only the comma
+    rows differ, by their separator alone."""
+    rng = np.random.default_rng(7)
+    src, dots = tmp_path / "mixed.csv", tmp_path / "dots.csv"
+    _semicolon_file(src, 3, rng)
+    text = src.read_text(encoding="utf-8")
+    dots.write_text(
+        "\n".join(
+            ln if k == 0 else ";".join(c.replace(",", ".") for c in ln.split(";"))
+            for k, ln in enumerate(text.splitlines())
+        )
+        + "\n",
+        encoding="utf-8",
+    )
+    imp, out = tmp_path / "imp.csv", tmp_path / "out.csv"
+    assert main(["import", str(src), "-o", str(imp)]) == 0
+    capsys.readouterr()
+    assert main(["export", str(imp), "-o", str(out), "--like", str(src)]) == 0
+    err = capsys.readouterr().err
+    assert "30 of the first 90 rows" in err and "written with a point on every row" in err
+    got = out.read_text(encoding="utf-8").splitlines()
+    want = text.splitlines()
+    differ = [k for k, (a, b) in enumerate(zip(got, want, strict=True)) if a != b]
+    assert differ == [k for k in range(1, 91) if (k - 1) % 3 == 0]
+    assert out.read_text(encoding="utf-8") == dots.read_text(encoding="utf-8")
+
+
+def test_like_a_file_imported_with_tz_writes_the_zone_it_was_read_in(tmp_path, capsys):
+    """Operator test 7, D15: `export --like` of a file imported with --tz wrote UTC clock
+    times (2 h off) unless --tz was given again. Its first rows are IN's tracks at the
+    same places one offset apart: that offset is written (a note says so), and the file
+    comes back byte for byte, after clean too (IN a subset of the rows); a file read
+    as UTC gets no offset."""
+    rng = np.random.default_rng(8)
+    src = tmp_path / "local.csv"
+    _semicolon_file(src, None, rng)
+    imp, out = tmp_path / "imp.csv", tmp_path / "out.csv"
+    assert main(["import", str(src), "--tz", "Europe/Oslo", "-o", str(imp)]) == 0
+    first = pd.read_csv(imp)["time"].iloc[0]
+    assert first.startswith("2024-08-01T22:56:14")  # read as Oslo summer time
+    capsys.readouterr()
+    assert main(["export", str(imp), "-o", str(out), "--like", str(src)]) == 0
+    err = capsys.readouterr().err
+    assert "written in UTC+02:00" in err
+    assert out.read_bytes() == src.read_bytes()
+    # a subset of the rows (every other one) still tells the zone
+    half = tmp_path / "half.csv"
+    pd.read_csv(imp, dtype=str).iloc[::2].to_csv(half, index=False)
+    assert main(["export", str(half), "-o", str(out), "--like", str(src)]) == 0
+    assert "written in UTC+02:00" in capsys.readouterr().err
+    kept = out.read_text().splitlines()
+    assert set(kept) <= set(src.read_text().splitlines()) and len(kept) == 46
+    # read as UTC: written as UTC, no zone note
+    assert main(["import", str(src), "-o", str(imp)]) == 0
+    capsys.readouterr()
+    assert main(["export", str(imp), "-o", str(out), "--like", str(src)]) == 0
+    assert "UTC+" not in capsys.readouterr().err
+    assert out.read_bytes() == src.read_bytes()

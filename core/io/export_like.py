@@ -1061,3 +1061,81 @@ def layer_layout(layers, name: str) -> Layout:
         f"{name}: no imported file behind this layer, so there is no layout to copy; "
         "export as canonical CSV or choose a layout"
     )
+
+
+#: The offsets tried for ORIGINAL's naive times against IN's (UTC): every quarter hour
+#: from −14 h to +14 h (every zone in use).
+_OFFSETS_MIN = np.arange(-14 * 60, 14 * 60 + 1, 15)
+
+
+def _row_keys(points: pd.DataFrame, shift_ns: int = 0) -> np.ndarray:
+    """A 64-bit hash of each row's (sensor, batch, lon, lat, time − ``shift_ns``)."""
+    ns, ok = _epoch_ns(points["time"])
+    key = pd.DataFrame(
+        {
+            "track": points["sensor"].astype("str") + "\x00" + points["batch"].astype("str"),
+            "lon": np.round(points["lon"].to_numpy(dtype="float64"), 7),
+            "lat": np.round(points["lat"].to_numpy(dtype="float64"), 7),
+            "ns": np.where(ok, ns - shift_ns, -1),
+        }
+    )
+    return pd.util.hash_pandas_object(key, index=False).to_numpy()
+
+
+def import_offsets(original, points: pd.DataFrame, read: dict | None = None) -> dict:
+    """The UTC offsets the import seems to have read ``original``'s naive times in, found
+    by comparing its first lines (1 MB of text, read as UTC by the importer with
+    ``read``: ``read_points`` keywords) with IN's ``points``: the same track at the same
+    place (to 1e-7°) at a time one offset apart (operator test 7, D15: ``export
+    --like`` of a file imported with ``--tz`` wrote UTC clock times, 2 h off, unless
+    ``--tz`` was given again). Returns ``{"rows": n, "hits": {minutes: rows}}``: how many
+    of those first rows, read as UTC and moved back by each offset, are times IN holds
+    (offsets that explain at least a tenth of the rows). Empty ``hits`` when nothing can
+    be told (ORIGINAL unreadable, no common rows)."""
+    import tempfile
+    from pathlib import Path
+
+    from wakeline.core.io.compressed import compression_of
+    from wakeline.core.io.reader import read_points
+
+    original = Path(original)
+    try:
+        packed = compression_of(original)
+    except (OSError, InputError):
+        packed = None
+    from wakeline.core.io.layout import _raw_head
+
+    try:
+        head = _raw_head(original, packed)
+    except OSError:
+        return {"rows": 0, "hits": {}}
+    if len(head) >= (1 << 20):
+        head = head[: head.rfind(b"\n") + 1]
+    keywords = {k: v for k, v in (read or {}).items() if v is not None and k != "tz"}
+    with tempfile.TemporaryDirectory(prefix="wakeline-zone-") as tmp:
+        inner = Path(original.stem) if packed else original  # radar.csv.gz: radar.csv
+        sample = Path(tmp) / ("head" + (inner.suffix or ".csv"))
+        sample.write_bytes(head)
+        try:
+            first = read_points(sample, **keywords).points
+        except (InputError, ValueError, KeyError, OSError):
+            return {"rows": 0, "hits": {}}
+    first = first[first["time"].notna()]
+    if not len(first) or not len(points):
+        return {"rows": 0, "hits": {}}
+    have = np.unique(_row_keys(points))
+    hits = {}
+    for minutes in _OFFSETS_MIN:
+        moved = _row_keys(first, int(minutes) * 60_000_000_000)
+        pos = np.clip(np.searchsorted(have, moved), 0, len(have) - 1)
+        n = int((have[pos] == moved).sum())
+        if n * 10 >= len(first):
+            hits[int(minutes)] = n
+    return {"rows": int(len(first)), "hits": hits}
+
+
+def offset_text(minutes: int) -> str:
+    """``+02:00`` for 120 minutes, ``-03:30`` for −210."""
+    sign = "+" if minutes >= 0 else "-"
+    h, m = divmod(abs(int(minutes)), 60)
+    return f"{sign}{h:02d}:{m:02d}"

@@ -175,12 +175,19 @@ class NumberFormat:
         text = values.astype("str").str.strip()
         present = text[text != ""]
         point = "."
-        if (
-            present.str.contains(",", regex=False).any()
-            and not present.str.contains(".", regex=False).any()
-        ):
+        comma = present.str.contains(",", regex=False)
+        dot = present.str.contains(".", regex=False)
+        if comma.any() and not dot.any():
             point = ","  # a decimal comma: read as a point, written back as a comma
             present = present.str.replace(",", ".", regex=False)
+        elif (comma & ~dot).any():
+            # Some rows with a decimal comma, others with a point (operator test 7, D10: a
+            # file of both lost every column's format): their digits count alike, and the
+            # separator most rows use is written on every row.
+            lone = comma & ~dot & (present.str.count(",") == 1)
+            if lone.sum() > (dot & ~comma).sum():
+                point = ","
+            present = present.where(~lone, present.str.replace(",", ".", regex=False))
         m = present.str.extract(_NUMBER)
         numeric = m[0].notna() & ((m[0].str.len() > 0) | (m[1].str.len() > 0))
         if len(present) == 0 or numeric.mean() < 0.9:
@@ -1132,3 +1139,50 @@ __all__ = [
     "load_layout",
     "preset_layout",
 ]
+
+
+def mixed_decimals_note(layout: Layout, skip_rows: int | None = None) -> str | None:
+    """A note for ``export --like`` when the numbers of ``layout``'s source file use a
+    decimal comma on some rows and a point on others (operator test 7, D10): which
+    separator is written on every row (:meth:`NumberFormat.detect` takes the one most
+    rows use; the digits of both count). None when the file uses one (its first 5,000
+    rows) or cannot be read again."""
+    if not layout.source:
+        return None
+    path = Path(layout.source)
+    try:
+        sn = sniff(path, layout.encoding, layout.delimiter, skip_rows)
+        head = _raw_head(path, sn.compression)
+    except (InputError, OSError):
+        return None
+    text = head.decode(sn.encoding, errors="replace").removeprefix("\ufeff")
+    lines = [ln for ln in re.split(r"\r\n|\r|\n", text) if ln.strip()]
+    lines = lines[int(sn.excel_sep) + len(sn.title_lines) + int(sn.has_header) :]
+    if sn.blank_runs or not lines:
+        return None
+    rows = list(csv.reader(lines[:SAMPLE_ROWS], delimiter=sn.delimiter))
+    index = {key: k for k, key in enumerate(sn.columns)}
+    comma_rows = np.zeros(len(rows), dtype=bool)
+    dot_rows = np.zeros(len(rows), dtype=bool)
+    names = []
+    for col in layout.columns:
+        k = index.get(col.key)
+        if col.number is None or k is None or col.field not in (*NUMBER_FIELDS, None):
+            continue
+        cells = pd.Series([r[k].strip() if k < len(r) else "" for r in rows], dtype="str")
+        comma = cells.str.fullmatch(r"[-+]?\d+,\d+").to_numpy()
+        dot = cells.str.fullmatch(r"[-+]?\d*\.\d+").to_numpy()
+        if comma.any() and dot.any():
+            names.append(col.name)
+        comma_rows |= comma
+        dot_rows |= dot
+    if not names:
+        return None
+    used = {c.number.point for c in layout.columns if c.name in names and c.number}
+    written = "a decimal comma" if used == {","} else "a point"
+    return (
+        f"{int(comma_rows.sum()):,} of the first {len(rows):,} rows of {path.name} write "
+        f"numbers with a decimal comma and {int((dot_rows & ~comma_rows).sum()):,} with a "
+        f"point ({', '.join(names)}): written with {written} on every row (the separator "
+        "most rows use), each column with its digits"
+    )
