@@ -519,7 +519,12 @@ def read_input(path: Path, counts: dict | None = None, **options):
 def write_table(name: str, table, path: Path) -> None:
     """How every step table is written (the GUI's export uses the same function)."""
     from wakeline.core.io import write_csv, write_points
+    from wakeline.core.tracks import natural_track_order
 
+    # tracks in natural order (batch 21 before 161), as clean writes them (D19); other
+    # tables keep their order (clean's reject trail: by wl_id)
+    if name in ("points", "maneuvers"):
+        table = natural_track_order(table)
     (write_points if name == "points" else write_csv)(table, path)
 
 

@@ -69,7 +69,7 @@ from wakeline.core.errors import Cancelled, InputError
 from wakeline.core.io.writer import _NEEDS_QUOTES, needs_quotes
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import COURSE_READ, DEFAULT_SENSOR
-from wakeline.core.tracks import sorted_with_index
+from wakeline.core.tracks import natural_order, natural_track_order, sorted_with_index
 
 #: Scratch column: a point's row number in the file's point table (its default wl_id).
 ROW = "__wl_row"
@@ -227,7 +227,7 @@ def _clean_whole(path, output, rejected, params, progress, options) -> FileClean
         raise InputError(nothing_imported(read.report, str(path)))
     result = clean(read.points, params, lambda f, text: progress(0.3 + 0.65 * f, text))
     del read.points
-    write_points(result.points, output)
+    write_points(natural_track_order(result.points), output)  # as every step writes (D19)
     if rejected is not None:
         write_csv(result.rejected, rejected)
     progress(1.0, "cleaned")
@@ -439,6 +439,13 @@ def _clean_runs(
         return result, path
 
     quote = _kept_quotes(spill, rank, block_keys, work, progress)
+    # The file gets its tracks in natural order (batch 21 before 161: D19, as every step's
+    # output is written, natural_track_order); the blocks are cut in the steps' text
+    # order. Where the two differ, each cleaned block goes to scratch and the tracks are
+    # written from there in natural order (memory: one chunk of rows).
+    nat = natural_order(sensors, batches)
+    reorder = not np.array_equal(nat, order)
+    held = _HeldBlocks(spill, nat) if reorder else None
     reports: list[dict] = []
     reject_paths: list[Path] = []
     reject_template: pd.DataFrame | None = None
@@ -459,13 +466,19 @@ def _clean_runs(
                     progress(0.4 + 0.55 * k / len(blocks), text)
                     wait([future], timeout=0.1)
                 result, path = future.result()
-                out.add(result.points)
+                if held is None:
+                    out.add(result.points)
+                else:
+                    held.add(result.points)
                 reports.append(result.report)
                 if reject_template is None:
                     reject_template = result.rejected.iloc[:0]
                 if path is not None:
                     reject_paths.append(path)
                 del result, future
+            if held is not None:
+                progress(0.95, "writing the tracks in natural order")
+                held.write(out)
     except BaseException:
         stop.set()
         pool.shutdown(wait=True, cancel_futures=True)
@@ -476,6 +489,79 @@ def _clean_runs(
         _merge_rejected(reject_paths, reject_template, rejected, scratch, rows)
     progress(1.0, "cleaned")
     return reports[0] if len(reports) == 1 else merge_reports(reports)
+
+
+class _HeldBlocks:
+    """Cleaned blocks kept in scratch (Arrow IPC) with where each track's rows lie, then
+    written track by track in natural order (:func:`~wakeline.core.tracks.natural_order`
+    over the spill's registry of tracks), in chunks of about :data:`CHUNK_ROWS` rows;
+    neighbouring tracks of one block are read as one slice."""
+
+    def __init__(self, spill: _Spill, nat: np.ndarray) -> None:
+        self.spill = spill
+        self.rank = np.empty(len(nat), dtype="int64")
+        self.rank[nat] = np.arange(len(nat))
+        self.paths: list[Path] = []
+        self.tracks: list[np.ndarray] = []  # per block: (rank, block, start, end) rows
+
+    def add(self, points: pd.DataFrame) -> None:
+        k = len(self.paths)
+        path = self.spill.folder / f"cleaned{k:05d}.arrow"
+        table = pa.Table.from_pandas(points, preserve_index=False)
+        with ipc.new_file(str(path), table.schema) as writer:
+            writer.write_table(table)
+        self.paths.append(path)
+        n = len(points)
+        if not n:
+            return
+        sensor = points["sensor"].astype("str").to_numpy(dtype=object)
+        batch = points["batch"].astype("str").to_numpy(dtype=object)
+        change = np.ones(n, dtype=bool)
+        change[1:] = (sensor[1:] != sensor[:-1]) | (batch[1:] != batch[:-1])
+        starts = np.flatnonzero(change)
+        ends = np.append(starts[1:], n)
+        keys = pd.Index(sensor[starts].astype(str)) + "\x00" + pd.Index(batch[starts].astype(str))
+        known = self.spill.registry.get_indexer(keys)
+        if (known < 0).any():
+            raise RuntimeError("streamed clean: a cleaned track the reading did not see")
+        rows = np.column_stack([self.rank[known], np.full(len(starts), k), starts, ends])
+        self.tracks.append(rows.astype("int64"))
+
+    def write(self, out: _Appender) -> None:
+        if not self.tracks:
+            if self.paths:  # every track removed: the header of an empty table
+                with pa.memory_map(str(self.paths[0])) as src:
+                    out.add(_text_columns(ipc.open_file(src).read_all().to_pandas()))
+            return
+        rows = np.concatenate(self.tracks)
+        rows = rows[np.argsort(rows[:, 0], kind="stable")]
+        # neighbouring tracks of one block (contiguous rows) read as one slice
+        joined = np.ones(len(rows), dtype=bool)
+        joined[1:] = (rows[1:, 1] != rows[:-1, 1]) | (rows[1:, 2] != rows[:-1, 3])
+        first = np.flatnonzero(joined)
+        last = np.append(first[1:], len(rows)) - 1
+        slices = [
+            (int(rows[a, 1]), int(rows[a, 2]), int(rows[b, 3]))
+            for a, b in zip(first, last, strict=True)
+        ]
+        chunk: list[tuple[int, int, int]] = []
+        size = 0
+        for piece in slices:
+            chunk.append(piece)
+            size += piece[2] - piece[1]
+            if size >= CHUNK_ROWS:
+                self._emit(chunk, out)
+                chunk, size = [], 0
+        if chunk:
+            self._emit(chunk, out)
+
+    def _emit(self, chunk: list[tuple[int, int, int]], out: _Appender) -> None:
+        table = _open_slices([self.paths[k] for k, _, _ in chunk], [(a, b) for _, a, b in chunk])
+        out.add(_text_columns(table.to_pandas()))
+
+
+#: Rows written at a time when cleaned blocks are written again in natural order.
+CHUNK_ROWS = 1 << 20
 
 
 def _kept_quotes(

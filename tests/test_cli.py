@@ -311,3 +311,41 @@ def test_no_written_points_file_carries_clean_s_row_id(tmp_path):
     got = pd.read_csv(cleaned)
     assert len(got) == len(step.points)
     assert set(got.columns) == set(step.points.columns) - {"wl_id"}
+
+
+def test_step_outputs_list_tracks_in_natural_order(tmp_path):
+    """Operator test 7, D19: the maneuvers CSV listed batches as text (161, 162, 21, …),
+    and so did clean's, compress's and associate's. Every step's file now lists tracks
+    in natural order (numbers by value, before other ids), each track's rows as the step
+    gave them; the rows are the same."""
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+    from wakeline.core.tracks import natural_ranks
+
+    df = simulate.maneuver_tracks(6, "short", 50.0, seed=5)
+    ids = {
+        b: new
+        for b, new in zip(
+            sorted(df["batch"].unique()), ["161", "21", "9", "1000", "x", "22"], strict=True
+        )
+    }
+    df["batch"] = df["batch"].map(ids)
+    src = tmp_path / "in.csv"
+    write_points(df.sample(frac=1.0, random_state=3), src)  # rows shuffled
+    outs = {}
+    for step, extra in (("clean", []), ("maneuvers", []), ("compress", []), ("associate", [])):
+        out = tmp_path / f"{step}.csv"
+        assert main([step, str(src), "-o", str(out), *extra]) == 0
+        outs[step] = pd.read_csv(out, dtype=str)
+    for step, got in outs.items():
+        runs = got["batch"][got["batch"] != got["batch"].shift()].tolist()
+        assert len(runs) == len(set(runs)), step  # each track's rows together
+        rank = natural_ranks(pd.Series(runs))[0]
+        assert (rank[1:] > rank[:-1]).all(), (step, runs)
+    assert outs["clean"]["batch"].unique().tolist()[:4] == ["9", "21", "22", "161"]
+    for step, got in outs.items():  # within a track: time order, as the step writes it
+        assert (
+            got.groupby("batch", sort=False)["time"]
+            .apply(lambda t: t.is_monotonic_increasing)
+            .all()
+        ), step
