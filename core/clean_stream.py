@@ -445,7 +445,7 @@ def _clean_runs(
     # written from there in natural order (memory: one chunk of rows).
     nat = natural_order(sensors, batches)
     reorder = not np.array_equal(nat, order)
-    held = _HeldBlocks(spill, nat) if reorder else None
+    held = _HeldBlocks(spill.folder) if reorder else None
     reports: list[dict] = []
     reject_paths: list[Path] = []
     reject_template: pd.DataFrame | None = None
@@ -466,8 +466,8 @@ def _clean_runs(
                     progress(0.4 + 0.55 * k / len(blocks), text)
                     wait([future], timeout=0.1)
                 result, path = future.result()
-                if held is None:
-                    out.add(result.points)
+                if held is None:  # the blocks follow the natural order: each in it
+                    out.add(natural_track_order(result.points))
                 else:
                     held.add(result.points)
                 reports.append(result.report)
@@ -494,19 +494,22 @@ def _clean_runs(
 class _HeldBlocks:
     """Cleaned blocks kept in scratch (Arrow IPC) with where each track's rows lie, then
     written track by track in natural order (:func:`~wakeline.core.tracks.natural_order`
-    over the spill's registry of tracks), in chunks of about :data:`CHUNK_ROWS` rows;
-    neighbouring tracks of one block are read as one slice."""
+    of the cleaned tracks: those clean split, ``338000000#2``, among them), in chunks of
+    about :data:`CHUNK_ROWS` rows; neighbouring tracks of one block are read as one
+    slice."""
 
-    def __init__(self, spill: _Spill, nat: np.ndarray) -> None:
-        self.spill = spill
-        self.rank = np.empty(len(nat), dtype="int64")
-        self.rank[nat] = np.arange(len(nat))
+    def __init__(self, folder: Path) -> None:
+        self.folder = folder
         self.paths: list[Path] = []
-        self.tracks: list[np.ndarray] = []  # per block: (rank, block, start, end) rows
+        # per block: its tracks' sensor and batch, and (block, start, end) of their rows
+        self.sensors: list[np.ndarray] = []
+        self.batches: list[np.ndarray] = []
+        self.rows: list[np.ndarray] = []
+        self.open: dict[int, pa.Table] = {}  # blocks mapped while writing
 
     def add(self, points: pd.DataFrame) -> None:
         k = len(self.paths)
-        path = self.spill.folder / f"cleaned{k:05d}.arrow"
+        path = self.folder / f"cleaned{k:05d}.arrow"
         table = pa.Table.from_pandas(points, preserve_index=False)
         with ipc.new_file(str(path), table.schema) as writer:
             writer.write_table(table)
@@ -520,33 +523,30 @@ class _HeldBlocks:
         change[1:] = (sensor[1:] != sensor[:-1]) | (batch[1:] != batch[:-1])
         starts = np.flatnonzero(change)
         ends = np.append(starts[1:], n)
-        keys = pd.Index(sensor[starts].astype(str)) + "\x00" + pd.Index(batch[starts].astype(str))
-        known = self.spill.registry.get_indexer(keys)
-        if (known < 0).any():
-            raise RuntimeError("streamed clean: a cleaned track the reading did not see")
-        rows = np.column_stack([self.rank[known], np.full(len(starts), k), starts, ends])
-        self.tracks.append(rows.astype("int64"))
+        self.sensors.append(sensor[starts])
+        self.batches.append(batch[starts])
+        self.rows.append(np.column_stack([np.full(len(starts), k), starts, ends]).astype("int64"))
 
     def write(self, out: _Appender) -> None:
-        if not self.tracks:
+        if not self.rows:
             if self.paths:  # every track removed: the header of an empty table
                 with pa.memory_map(str(self.paths[0])) as src:
                     out.add(_text_columns(ipc.open_file(src).read_all().to_pandas()))
             return
-        rows = np.concatenate(self.tracks)
-        rows = rows[np.argsort(rows[:, 0], kind="stable")]
+        order = natural_order(
+            pd.Series(np.concatenate(self.sensors), dtype="str"),
+            pd.Series(np.concatenate(self.batches), dtype="str"),
+        )
+        rows = np.concatenate(self.rows)[order]
         # neighbouring tracks of one block (contiguous rows) read as one slice
         joined = np.ones(len(rows), dtype=bool)
-        joined[1:] = (rows[1:, 1] != rows[:-1, 1]) | (rows[1:, 2] != rows[:-1, 3])
+        joined[1:] = (rows[1:, 0] != rows[:-1, 0]) | (rows[1:, 1] != rows[:-1, 2])
         first = np.flatnonzero(joined)
         last = np.append(first[1:], len(rows)) - 1
-        slices = [
-            (int(rows[a, 1]), int(rows[a, 2]), int(rows[b, 3]))
-            for a, b in zip(first, last, strict=True)
-        ]
         chunk: list[tuple[int, int, int]] = []
         size = 0
-        for piece in slices:
+        for a, b in zip(first, last, strict=True):
+            piece = (int(rows[a, 0]), int(rows[a, 1]), int(rows[b, 2]))
             chunk.append(piece)
             size += piece[2] - piece[1]
             if size >= CHUNK_ROWS:
@@ -554,9 +554,13 @@ class _HeldBlocks:
                 chunk, size = [], 0
         if chunk:
             self._emit(chunk, out)
+        self.open.clear()  # the maps close with their tables
 
     def _emit(self, chunk: list[tuple[int, int, int]], out: _Appender) -> None:
-        table = _open_slices([self.paths[k] for k, _, _ in chunk], [(a, b) for _, a, b in chunk])
+        for k in {k for k, _, _ in chunk} - set(self.open):  # each block mapped once
+            self.open[k] = ipc.open_file(pa.memory_map(str(self.paths[k]))).read_all()
+        parts = [self.open[k].slice(a, b - a) for k, a, b in chunk]
+        table = pa.concat_tables(parts, promote_options="permissive")
         out.add(_text_columns(table.to_pandas()))
 
 

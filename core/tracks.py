@@ -335,23 +335,27 @@ def _stable_code_order(code: np.ndarray) -> np.ndarray | None:
     return None
 
 
-#: Batch ids read as numbers in :func:`natural_ranks`: plain integers of at most 18 digits.
-_PLAIN_INTEGER = r"[+-]?\d{1,18}"
+#: The number an id starts with, read by :func:`natural_ranks` (at most 18 digits).
+_LEADING_INTEGER = r"^([+-]?\d{1,18})(.*)$"
 
 
 def natural_ranks(values) -> tuple[np.ndarray, int]:
     """Each value's rank in natural order and the number of distinct values: ids that
-    are plain integers by their number (``2`` before ``10``), before every other id, in
-    text order (ties of equal numbers, ``7`` and ``007``, in text order). A total order
-    of the values themselves, whatever table holds them, so pieces of one file order
-    alike. Operator test 7, D19: the maneuvers CSV listed batches 161, 162, 21, … ."""
+    start with a number by that number (``2`` before ``10``; ``338000000#2``, a track
+    clean split, after ``338000000`` and before ``338000001``), then by the rest of the
+    id, before every id that starts otherwise (in text order); ties (``7``, ``007``) in
+    text order. A total order of the values themselves, whatever table holds them, so
+    pieces of one file order alike. Operator test 7, D19: the maneuvers CSV listed
+    batches 161, 162, 21, … ."""
     codes, uniques = pd.factorize(pd.Series(values), sort=False, use_na_sentinel=False)
     text = pd.Series(uniques, dtype=object).astype(str)
-    is_int = text.str.fullmatch(_PLAIN_INTEGER).to_numpy(dtype=bool)
+    parts = text.str.extract(_LEADING_INTEGER)
+    has = parts[0].notna().to_numpy(dtype=bool)
     number = np.zeros(len(text), dtype="int64")
-    if is_int.any():
-        number[is_int] = text[is_int].astype("int64").to_numpy()
-    order = np.lexsort((text.to_numpy(dtype=str), number, ~is_int))
+    if has.any():
+        number[has] = parts[0][has].astype("int64").to_numpy()
+    rest = parts[1].fillna("").to_numpy(dtype=str)
+    order = np.lexsort((text.to_numpy(dtype=str), rest, number, ~has))
     rank = np.empty(len(text), dtype="int64")
     rank[order] = np.arange(len(text))
     return rank[codes.astype("int64")], len(text)

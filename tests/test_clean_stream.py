@@ -52,9 +52,12 @@ def scattered_file(path, seed: int = 0, damaged: bool = True) -> None:
 
 
 def in_memory(path, out, rej, params=None):
+    """The step in memory, written as `wakeline clean` writes it (tracks in natural order)."""
+    from wakeline.core.tracks import natural_track_order
+
     read = read_points(path)
     result = clean(read.points, params)
-    write_points(result.points, out)
+    write_points(natural_track_order(result.points), out)
     write_csv(result.rejected, rej)
     return result.report, read
 
@@ -416,3 +419,43 @@ def test_a_late_course_as_read_is_in_every_block(tmp_path, monkeypatch, block_ro
     assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
     assert (tmp_path / "b_rej.csv").read_bytes() == (tmp_path / "a_rej.csv").read_bytes()
     assert "course_read" in (tmp_path / "b.csv").read_text().splitlines()[0]
+
+
+@pytest.mark.parametrize("block_rows", [120, 10**6])
+def test_streamed_clean_writes_tracks_in_natural_order(tmp_path, monkeypatch, block_rows):
+    """D19: `wakeline clean` lists tracks in natural order (9, 9#2, 10, 100, not 10, 100,
+    9) however the file is read: streamed in pieces and blocks cut in the steps' text
+    order, the blocks are written again in natural order (with a track clean split at an
+    impossible jump, `9#2`), byte for byte as the whole table is written."""
+    rng = np.random.default_rng(5)
+    rows = []
+    t0 = pd.Timestamp("2024-05-01T00:00:00Z")
+    for k, batch in enumerate(["100", "9", "10", "1000", "22", "x7"]):
+        n = 90
+        lon = 10.0 + 0.01 * k + 0.0001 * np.arange(n) + rng.normal(0, 1e-6, n)
+        lat = 59.0 + 0.0001 * np.arange(n)
+        if batch == "9":
+            lat[45:] += 0.9  # 100 km in 10 s: clean splits the track (9#2)
+        for i in range(n):
+            rows.append(("R1", batch, t0 + pd.Timedelta(seconds=10 * i), lon[i], lat[i]))
+    df = pd.DataFrame(rows, columns=["sensor", "batch", "time", "lon", "lat"])
+    src = tmp_path / "ids.csv"
+    write_points(df.sort_values("time", kind="stable"), src)  # tracks interleaved by time
+    monkeypatch.setattr("wakeline.core.clean.BLOCK_ROWS", block_rows)
+    in_memory(src, tmp_path / "a.csv", tmp_path / "a_rej.csv")
+    monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)
+    got = clean_file(src, tmp_path / "b.csv", tmp_path / "b_rej.csv", block_rows=block_rows)
+    assert got.streamed
+    assert (tmp_path / "b.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()
+    batches = pd.read_csv(tmp_path / "b.csv", dtype=str)["batch"]
+    assert batches[batches != batches.shift()].tolist() == [
+        "9",
+        "9#2",
+        "10",
+        "22",
+        "100",
+        "1000",
+        "x7",
+    ]
+    assert main(["clean", str(src), "-o", str(tmp_path / "c.csv")]) == 0
+    assert (tmp_path / "c.csv").read_bytes() == (tmp_path / "a.csv").read_bytes()

@@ -181,3 +181,19 @@ def test_interpolation_follows_the_great_circle():
         0.5 * geo.haversine_m(10.0, 72.0, 11.2, 72.0),
     )  # fmt: skip
     assert geo.haversine_m(lon[1], lat[1], *mid) < 0.01
+
+
+def test_natural_ranks_order_ids_by_their_leading_number():
+    """D19's order: ids by the number they start with, then the rest (a track clean split,
+    `338000000#2`, right after its own), ids without a number after, in text order; a
+    total order of the values, whatever order they come in."""
+    from wakeline.core.tracks import natural_ranks
+
+    want = ["-3", "2", "007", "7", "9#2", "10", "21", "161", "338000000", "338000000#2"]
+    want += ["338000001", "A2", "x"]
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        values = list(rng.permutation(np.array(want, dtype=object)))
+        rank, n = natural_ranks(values)
+        assert n == len(want)
+        assert [v for _, v in sorted(zip(rank, values, strict=True))] == want
