@@ -116,8 +116,10 @@ def _zone_of_import(args: argparse.Namespace, layout, points):
     }
     found = import_offsets(args.like, points, read)
     hits, rows = found["hits"], found["rows"]
-    if not hits or set(hits) == {0}:
-        return layout, bool(hits)  # as UTC: nothing to say; no common rows: the old note
+    if not hits:
+        return layout, False  # no common rows: the old note
+    if set(hits) == {0}:
+        return layout, True  # read as UTC: nothing to say
     shown = ", ".join(
         f"UTC{offset_text(m)} ({hits[m]:,} of {rows:,} rows)"
         for m in sorted(hits, key=lambda m: -hits[m])

@@ -781,3 +781,26 @@ def test_like_a_file_imported_with_tz_writes_the_zone_it_was_read_in(tmp_path, c
     assert main(["export", str(imp), "-o", str(out), "--like", str(src)]) == 0
     assert "UTC+" not in capsys.readouterr().err
     assert out.read_bytes() == src.read_bytes()
+
+
+def test_like_a_file_whose_rows_span_summer_time_asks_for_the_zone(tmp_path, capsys):
+    """D15, the other case: ORIGINAL's first rows span a change to summer time (two
+    offsets, neither dominant), so no fixed offset would give them back: a warning asks
+    for --tz; with it, the file comes back byte for byte."""
+    lines = ["MMSI;BaseDateTime;LAT;LON;SOG;COG"]
+    t0 = pd.Timestamp("2024-03-30T13:00:00")  # Oslo: summer time from 31 March 02:00
+    for k in range(40):  # every 2 h: 01:00 then 03:00 (02:00-03:00 is not a clock time)
+        when = (t0 + pd.Timedelta(hours=2 * k)).strftime("%Y-%m-%dT%H:%M:%S")
+        lines.append(f"5;{when};{59 + 0.01 * k:.5f};{10 + 0.01 * k:.5f};12.00;45.0")
+    src = tmp_path / "dst.csv"
+    src.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    imp, out = tmp_path / "imp.csv", tmp_path / "out.csv"
+    assert main(["import", str(src), "--tz", "Europe/Oslo", "-o", str(imp)]) == 0
+    capsys.readouterr()
+    assert main(["export", str(imp), "-o", str(out), "--like", str(src)]) == 0
+    err = capsys.readouterr().err
+    assert "warning:" in err and "UTC+01:00" in err and "UTC+02:00" in err and "--tz" in err
+    assert (
+        main(["export", str(imp), "-o", str(out), "--like", str(src), "--tz", "Europe/Oslo"]) == 0
+    )
+    assert out.read_bytes() == src.read_bytes()

@@ -1089,9 +1089,10 @@ def import_offsets(original, points: pd.DataFrame, read: dict | None = None) -> 
     place (to 1e-7°) at a time one offset apart (operator test 7, D15: ``export
     --like`` of a file imported with ``--tz`` wrote UTC clock times, 2 h off, unless
     ``--tz`` was given again). Returns ``{"rows": n, "hits": {minutes: rows}}``: how many
-    of those first rows, read as UTC and moved back by each offset, are times IN holds
-    (offsets that explain at least a tenth of the rows). Empty ``hits`` when nothing can
-    be told (ORIGINAL unreadable, no common rows)."""
+    of those first rows, read as UTC and moved back by each offset (and by no other: a
+    ship at rest matches itself at other times), are rows IN holds; offsets that explain
+    at least 1 % of such rows (and 2). Two offsets: a zone with summer time. Empty
+    ``hits`` when nothing can be told (ORIGINAL unreadable, no common rows)."""
     import tempfile
     from pathlib import Path
 
@@ -1124,13 +1125,16 @@ def import_offsets(original, points: pd.DataFrame, read: dict | None = None) -> 
     if not len(first) or not len(points):
         return {"rows": 0, "hits": {}}
     have = np.unique(_row_keys(points))
-    hits = {}
-    for minutes in _OFFSETS_MIN:
+    match = np.zeros((len(_OFFSETS_MIN), len(first)), dtype=bool)
+    for k, minutes in enumerate(_OFFSETS_MIN):
         moved = _row_keys(first, int(minutes) * 60_000_000_000)
         pos = np.clip(np.searchsorted(have, moved), 0, len(have) - 1)
-        n = int((have[pos] == moved).sum())
-        if n * 10 >= len(first):
-            hits[int(minutes)] = n
+        match[k] = have[pos] == moved
+    # a row at rest matches itself at other times too: only rows one offset explains count
+    one = match.sum(axis=0) == 1
+    counts = match[:, one].sum(axis=1)
+    floor = max(2, int(np.ceil(0.01 * one.sum())))
+    hits = {int(m): int(n) for m, n in zip(_OFFSETS_MIN, counts, strict=True) if n >= floor}
     return {"rows": int(len(first)), "hits": hits}
 
 
