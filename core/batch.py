@@ -951,13 +951,16 @@ def read_parts_file(path: Path) -> pd.DataFrame | None:
 # -- canonical CSV of a step's partitions -------------------------------------------------
 
 
-def parts_to_csv(folder: Path, path: Path, points: bool = True) -> int:
+def parts_to_csv(folder: Path, path: Path, points: bool = True, tracks: bool = False) -> int:
     """Write a step's partitions as one CSV, partition after partition (bounded memory),
-    with the writer the command line uses. Returns the rows written."""
+    with the writer the command line uses; ``tracks``: each partition's tracks in natural
+    order (:func:`~wakeline.core.tracks.natural_track_order`, as the command line writes
+    a step's file). Returns the rows written."""
     import pyarrow.parquet as pq
 
     from wakeline.core.io import write_csv, write_points
     from wakeline.core.io.writer import atomic_path
+    from wakeline.core.tracks import natural_track_order
 
     files = sorted(folder.glob("*.parquet"))
     rows, header, columns = 0, None, None
@@ -974,6 +977,8 @@ def parts_to_csv(folder: Path, path: Path, points: bool = True) -> int:
                 if course_read and COURSE_READ not in columns:
                     columns.append(COURSE_READ)
             df = df.reindex(columns=columns)
+            if tracks:
+                df = natural_track_order(df)
             (write_points if points else write_csv)(df, one)
             with open(one, "rb") as src:
                 first = src.readline()
@@ -1188,7 +1193,8 @@ def run_batch(
         t = time.perf_counter()
         for name, folder in list(outputs.items()):
             is_points = name in ("clean", "compress", "associate")
-            parts_to_csv(folder, outdir / f"{name}.csv", points=is_points)
+            tracks = is_points or name == "maneuvers"
+            parts_to_csv(folder, outdir / f"{name}.csv", points=is_points, tracks=tracks)
             outputs[f"{name}.csv"] = outdir / f"{name}.csv"
         timings["csv_s"] = time.perf_counter() - t
     shutil.rmtree(stage, ignore_errors=True)
