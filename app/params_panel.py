@@ -389,6 +389,7 @@ class ParamsPanel(QtWidgets.QWidget):
             "deg": self.tr("deg"),
             "sigma": self.tr("sigma"),
             "windows": self.tr("windows"),
+            "doublings": self.tr("doublings"),
         }
 
     # -- values --------------------------------------------------------------------

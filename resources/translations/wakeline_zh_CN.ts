@@ -755,6 +755,10 @@
         <translation>个窗口</translation>
     </message>
     <message>
+        <source>doublings</source>
+        <translation>次加倍</translation>
+    </message>
+    <message>
         <source>Save preset…</source>
         <translation>保存预设…</translation>
     </message>
