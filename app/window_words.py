@@ -33,6 +33,11 @@ _PHRASES = (
         "(--encoding, e.g. gb18030, utf-16, latin-1)",
         "(the import dialog's Encoding field, File ▸ Open tracks…; e.g. gb18030, utf-16, latin-1)",
     ),
+    (
+        "give the file's encoding (--encoding, e.g. gb18030",
+        "choose the file's encoding in the import dialog's Encoding field (File ▸ Open "
+        "tracks…; e.g. gb18030",
+    ),
     ("give the right --encoding", "choose the right Encoding in the import dialog"),
     ("give --encoding utf-16", "choose the Encoding utf-16 in the import dialog"),
     ("map columns with --map field=column", "map the columns in the import dialog"),

@@ -21,8 +21,9 @@ way. What no reading in pieces gives raises
 by each track's order over the whole file), or a piece the importer refuses (the
 whole-file reader then says why). The tracks that start their time again within the file
 (``restarting_tracks``) are counted within each piece and summed, as the streamed reader
-counts them: a track whose restart falls across two pieces is not seen.
-"""
+counts them: a track whose restart falls across two pieces is not seen. Steps back in time
+(``time_steps_back``) are not lost so: each track's last time is carried into the next
+piece (:class:`~wakeline.core.io.reader.LastTimes`)."""
 
 import dataclasses
 import zlib
