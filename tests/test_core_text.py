@@ -78,7 +78,14 @@ def _bad_inputs(tmp_path) -> list[tuple]:
     zh = "批号,时间,经度,纬度\r\n" + "".join(
         f"{b},2024-01-01 00:00:{s:02d},120.{s:02d},30.{s:02d}\r\n" for b in (1, 2) for s in range(9)
     )
+    # one sensor's lat and lon swapped, the other's right (review h209, finding 6)
+    swapped = "sensor,batch,time,lat,lon\n" + "".join(
+        f"{s},1,2024-01-01T00:00:{k:02d}Z,{a}.{k:02d},{b}.{k:02d}\n"
+        for s, a, b in (("R1", 120, 30), ("R2", 30, 120))
+        for k in range(10)
+    )
     return [
+        (w("swapped_sensor.csv", swapped), {}),
         (w("bom_gbk.csv", codecs.BOM_UTF8 + zh.encode("gbk")), {}),
         (w("bom_gbk_utf8.csv", codecs.BOM_UTF8 + zh.encode("gbk")), {"encoding": "utf-8"}),
         (w("gbk_cp1252.csv", zh.encode("gbk")), {"encoding": "cp1252"}),

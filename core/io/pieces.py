@@ -327,6 +327,8 @@ def _read_all(
             )
         except InputError:
             raise WholeFileNeeded from None  # the whole-file reader says what it is
+        if edges["swapped"]:
+            raise WholeFileNeeded  # a sensor (track) looks swapped: judged over the file
         warnings = res.report.get("warnings", [])
         clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
         if clock.any() or any("hour the clock change" in w for w in warnings):

@@ -1782,8 +1782,15 @@ def edge_state() -> dict:
     one with rows). The piece's reader is told ``final`` for the file's last piece with
     rows (:func:`with_final`), where the rule runs; and the rows the lone-time rule
     waits to judge by a later piece (``lone``, :class:`LonePending`); each track's last
-    time for the steps back (``back``, :class:`LastTimes`)."""
-    return {"carry": EdgeCarry(), "lone": LonePending(), "back": LastTimes(), "final": False}
+    time for the steps back (``back``, :class:`LastTimes`); whether a piece found a
+    sensor (track) whose lat and lon look swapped (``swapped``: the whole file judges it)."""
+    return {
+        "carry": EdgeCarry(),
+        "lone": LonePending(),
+        "back": LastTimes(),
+        "swapped": [],
+        "final": False,
+    }
 
 
 def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
@@ -3064,7 +3071,13 @@ def read_points(
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += _back_warnings(counts["time_steps_back"], res.columns["time"], res.columns["batch"])
-    warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
+    warnings += position_warnings(
+        sn,
+        res,
+        counts["lat_beyond_90_lon_within"],
+        counts["rows_read"],
+        time_info.pop("_swapped_in", None),
+    )
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, counts["quarantine_reasons"], counts["rows_read"])
     warnings += cut_short_warnings(sn, quarantine)
@@ -3325,21 +3338,38 @@ def _holds(arr: pa.ChunkedArray, value: float | None) -> bool:
     return bool(hit)
 
 
-def _looks_swapped(lon, lat) -> int:
+def _swapped_rows(lon, lat) -> np.ndarray | None:
     """Rows whose lat lies beyond ±90 (within ±180) while their lon lies within ±90: a
     longitude under the lat name and a latitude under lon (one vectorized pass; NaN and
-    null count as no)."""
+    null count as no). None when there is nothing to judge."""
     if lon is None or lat is None or len(lat) == 0:
-        return 0
+        return None
     try:
         a_lat, a_lon = pc.abs(pc.cast(lat, pa.float64())), pc.abs(pc.cast(lon, pa.float64()))
     except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
-        return 0
+        return None
     hit = pc.and_(
         pc.and_(pc.greater(a_lat, 90.0), pc.less_equal(a_lat, 180.0)),
         pc.less_equal(a_lon, 90.0),
     )
-    return int(pc.sum(pc.cast(pc.fill_null(hit, False), pa.int64())).as_py() or 0)
+    return np.asarray(pc.fill_null(hit, False), dtype=bool)
+
+
+def _looks_swapped(lon, lat) -> int:
+    """How many rows :func:`_swapped_rows` finds."""
+    hit = _swapped_rows(lon, lat)
+    return 0 if hit is None else int(hit.sum())
+
+
+def _swapped_groups(hit: np.ndarray | None, codes: np.ndarray, n_names: int) -> np.ndarray:
+    """Per name (sensor, or track where the file has no sensor column): whether most of
+    its rows look swapped (:func:`_swapped_rows`)."""
+    if hit is None or not n_names:
+        return np.zeros(n_names, dtype=bool)
+    ok = codes >= 0
+    rows = np.bincount(codes[ok], minlength=n_names)
+    hits = np.bincount(codes[ok & hit], minlength=n_names)
+    return hits > rows / 2
 
 
 #: The quarantine reason of a row of a file whose lat and lon columns look swapped (most
@@ -3365,17 +3395,31 @@ POSITION_ORDER = {
 }
 
 
-def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list[str]:
+def position_warnings(
+    sn: Sniff, res: Resolved, swapped: int, rows: int, groups: tuple | None = None
+) -> list[str]:
     """Warnings that the lat and lon columns may hold each other's values: most rows have
-    lat beyond ±90 and lon within ±90 (``swapped`` of ``rows``), or a known layout's
-    position columns come in the other order. Nothing is swapped: that is the user's
-    call (``--map lat=… --map lon=…``)."""
+    lat beyond ±90 and lon within ±90 (``swapped`` of ``rows``; or of some sensors', or
+    tracks', rows in a file of several: ``groups``, (kind, names, how many in the file)),
+    or a known layout's position columns come in the other order. Nothing is swapped:
+    that is the user's call (``--map lat=… --map lon=…``)."""
     lat, lon = res.columns.get("lat"), res.columns.get("lon")
     if lat is None or lon is None:
         return []
     out = []
     fix = f"--map lat={lon} --map lon={lat}"
-    if rows and swapped > rows / 2:
+    if groups:
+        kind, names, of = groups
+        said = ", ".join(names[:5]) + (", …" if len(names) > 5 else "")
+        out.append(
+            f"column {lat!r} (read as latitude) is beyond ±90° in most rows of {len(names):,} "
+            f"{kind}(s) of {of:,} ({kind} {said}) while {lon!r} lies within ±90° there "
+            f"(lat_beyond_90_lon_within in the report counts them): their columns look "
+            f"swapped (longitudes under {lat!r}); their rows are quarantined (none is kept "
+            f"at a mirrored place), the other {kind}s' rows are read. If so, import their "
+            f"rows again with {fix}"
+        )
+    elif rows and swapped > rows / 2:
         out.append(
             f"column {lat!r} (read as latitude) is beyond ±90° in most rows while {lon!r} "
             f"lies within ±90° (lat_beyond_90_lon_within in the report counts them): the "
@@ -4511,14 +4555,33 @@ def _to_canonical(
         # row of the whole file or of its final piece (operator test 7, D7)
         lines_arr = np.asarray(rows.lines)
         flag(lines_arr == lines_arr.max(), CUT_LAST_REASON)
-    swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
+    hit = _swapped_rows(floats.get("lon"), floats.get("lat"))
+    swapped = 0 if hit is None else int(hit.sum())
+    # Judged per sensor (per track where the file has no sensor column) when it has
+    # several: one sensor's columns swapped do not quarantine another's (review h209).
+    group = text["sensor"] if "sensor" in text else text["batch"]
+    judged = _swapped_groups(hit, group.codes, len(group.names)) if swapped else None
     if "_edges" not in (time_info or {}):  # a whole file (a piece's is judged over the file)
         read_n = int(n - int(blank.sum()) + len(bad.lines))
-        if read_n and swapped > read_n / 2:
-            # The file is judged swapped: no row of it is kept at the place its names
-            # give (a lon within ±90 under lat would be a point mirrored across the
-            # diagonal: operator test 7, D2); every row not quarantined already is, so.
+        present = np.unique(group.codes[group.codes >= 0])
+        if len(present) > 1:
+            if judged is not None and judged.any():
+                # no row of such a sensor (track) is kept at the place its names give
+                # (a lon within ±90 under lat would be a point mirrored across the
+                # diagonal: operator test 7, D2); every row not quarantined already is, so
+                inside = judged[np.maximum(group.codes, 0)] & (group.codes >= 0)
+                flag(inside, SWAPPED_REASON)
+                counted["_swapped_in"] = (
+                    "sensor" if "sensor" in text else "track",
+                    [str(x) for x in group.names[np.flatnonzero(judged)]],
+                    len(present),
+                )
+        elif read_n and swapped > read_n / 2:
+            # The file is judged swapped: every row not quarantined already is (D2).
             flag(np.ones(n, dtype=bool), SWAPPED_REASON)
+    elif judged is not None and judged.any():
+        # a piece with a sensor (track) that looks swapped: the whole file judges it
+        time_info["_edges"].get("swapped", []).append(True)
     bad_rows = reasons != 0
     keep = ~bad_rows & ~blank
     all_kept = bool(keep.all())
@@ -5423,9 +5486,9 @@ def stream_points(
         "rows_read": totals["rows_read"] + len(bad.lines),
         "lat_beyond_90_lon_within": totals["lat_beyond_90_lon_within"],
     }
-    if swapped_file(read_all):
+    if swapped_file(read_all) or edges["swapped"]:
         # judged over the whole file: its rows within range were handed on as points;
-        # the whole-file reader quarantines every row of it (D2)
+        # the whole-file reader quarantines every row of it, or of a sensor (track) (D2)
         raise WholeFileNeeded
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
     if bad.lines:
