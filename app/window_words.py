@@ -4,6 +4,8 @@ warning told a window user to "give the zone with --tz")."""
 
 import re
 
+from wakeline.core.clean import STEPS
+
 # Whole phrases first (they read best), then any flag left over.
 _PHRASES = (
     (
@@ -48,6 +50,10 @@ _PHRASES = (
     (
         "with --origin LAT,LON",
         "in the import dialog's Origin of x/y metres field (File ▸ Open tracks…; LAT, LON)",
+    ),
+    (
+        " (--set speed.split_at_breaks=true splits there)",
+        " (turning on Parameters ▸ Cleaning ▸ speed ▸ split_at_breaks splits there)",
     ),
     (" with --set", " in the Parameters panel"),
     ("(--tracks FILE)", "(File ▸ Open bearings…, Gate on tracks)"),
@@ -107,11 +113,22 @@ def _map_run(m: re.Match) -> str:
     return f"the import dialog's Column mapping ({choices})"
 
 
+#: ``--set RULE.PARAM=VALUE`` of a cleaning rule: its place in the Parameters panel (in
+#: a summary already in the window's language, whose sentence around it is translated).
+_SET_CLEAN = re.compile(r"--set (" + "|".join(STEPS) + r")\.(\w+)=([\w.+-]+)")
+
+
+def _set_clean(m: re.Match) -> str:
+    return f"Parameters ▸ Cleaning ▸ {m.group(1)} ▸ {m.group(2)} = {m.group(3)}"
+
+
 def window_words(text: str) -> str:
-    """``text`` with command-line flags replaced by the import dialog's fields."""
+    """``text`` with command-line flags replaced by the import dialog's fields (and a
+    cleaning rule's ``--set`` by its place in the Parameters panel)."""
     if "--" not in text:
         return text
     for cli, window in _PHRASES:
         text = text.replace(cli, window)
+    text = _SET_CLEAN.sub(_set_clean, text)
     text = _MAP_RUN.sub(_map_run, text)
     return _FLAG.sub(_field, text)

@@ -1147,7 +1147,7 @@ def _clean_block(
         d_out[last] = np.nan
         turn = geo.angle_diff(course, c_out)
         radius = params.turn.radius_factor * params.turn.ship_length_m
-        with np.errstate(invalid="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore"):  # a leg at one time: inf
             v = dist / dt  # m/s on the leg arriving
             err = params.turn.position_error_m
             slack = np.degrees(np.arctan2(err, dist) + np.arctan2(err, d_out))

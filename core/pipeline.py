@@ -240,7 +240,24 @@ def _break_phrases(speed: dict) -> list:
             time=str(worst["from_time"]).removesuffix("+00:00"),
         )
         n_kept = int(speed.get("breaks_kept", len(legs)) or len(legs))
-        if n_kept == 1:
+        same_time = worst["kn"] is None or not worst["s"]  # a jump at one time: no speed
+        if same_time and n_kept == 1:
+            out.append(
+                phrase(
+                    "; 1 break kept: {km:,.1f} km at the same time, track {track} at {time}",
+                    **values,
+                )
+            )
+        elif same_time:
+            out.append(
+                phrase(
+                    "; {n:#break} kept, the fastest {km:,.1f} km at the same time, track "
+                    "{track} at {time}",
+                    n=n_kept,
+                    **values,
+                )
+            )
+        elif n_kept == 1:
             out.append(
                 phrase(
                     "; 1 break kept: {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} "

@@ -309,6 +309,20 @@ def test_a_cut_last_line_of_a_file_read_in_pieces_is_quarantined(tmp_path, monke
     assert r.report["quarantine_reasons"] == {"cut last line": 1}
     assert r.report["rows_imported"] == 299
     _every_line_counted(r.report, 301)
+    # the value as read, without the cut cell's opening quote (review h209)
+    value = cut[cut.rindex('"') + 1 :]
+    warned = [w for w in r.report["warnings"] if "looks cut" in w]
+    assert len(warned) == 1 and f"({value!r} where" in warned[0]
+
+
+def test_a_cut_value_of_a_one_decimal_column_says_1_decimal(tmp_path):
+    rows = _fixed_rows(30, places=1)
+    path = tmp_path / "one.csv"
+    path.write_text("\n".join([_header(), *rows[:-1], rows[-1][: rows[-1].rindex(".")]]))
+    rep = read_points(path).report
+    assert rep["quarantine_reasons"] == {"cut last line": 1}
+    warned = [w for w in rep["warnings"] if "looks cut" in w]
+    assert len(warned) == 1 and "have 1 decimal at least" in warned[0]
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])

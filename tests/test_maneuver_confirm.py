@@ -156,6 +156,14 @@ def test_legs_stop_at_rest_rows():
     rest = np.arange(30, 40)
     # the 90 deg turn at row 20 is confirmed with the rest rows out of the leg after
     assert m._confirmed(x, y, t, index, rows, legs, sigma, rest, 4.0, 0.0).all()
+    # no turn at row 20 (north before and after), the rows from 25 on at rest drifting far
+    # east: in the leg after they would make a turn of it (review h209: the case above
+    # passes with the rest rows in the leg too); left out, the turn is not confirmed
+    x = np.where(t <= 24, 0.0, 10.0 * (t - 24))
+    y = np.minimum(t, 24.0)
+    rest = np.arange(25, 40)
+    assert not m._confirmed(x, y, t, index, rows, legs, sigma, rest, 4.0, 0.0).any()
+    assert m._confirmed(x, y, t, index, rows, legs, sigma, rest[:0], 4.0, 0.0).all()
 
 
 def test_validation():

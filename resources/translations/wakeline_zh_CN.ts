@@ -2150,6 +2150,14 @@
         <translation>；保留了 1 个断点：{s:,.0f} 秒内 {km:,.1f} 公里，{kn:,.0f} 节，航迹 {track}，时间 {time}</translation>
     </message>
     <message>
+        <source>; 1 break kept: {km:,.1f} km at the same time, track {track} at {time}</source>
+        <translation>；保留了 1 个断点：同一时刻相距 {km:,.1f} 公里，航迹 {track}，时间 {time}</translation>
+    </message>
+    <message>
+        <source>; {n:#break} kept, the fastest {km:,.1f} km at the same time, track {track} at {time}</source>
+        <translation>；保留了 {n:,} 个断点，最快的：同一时刻相距 {km:,.1f} 公里，航迹 {track}，时间 {time}</translation>
+    </message>
+    <message>
         <source>; {n:#break} kept, the fastest {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} at {time}</source>
         <translation>；保留了 {n:,} 个断点，最快的：{s:,.0f} 秒内 {km:,.1f} 公里，{kn:,.0f} 节，航迹 {track}，时间 {time}</translation>
     </message>
