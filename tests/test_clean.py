@@ -785,3 +785,12 @@ def test_a_break_at_an_identical_time_is_said_at_the_same_time():
     text = STEPS["clean"].summary(StepResult("clean", [], rep, {}))
     assert f"1 break kept: {leg['km']:,.1f} km at the same time, track R1:5" in text
     assert "inf" not in text and " 0 s" not in text
+
+
+def test_points_without_a_position_are_refused_with_a_clear_message():
+    """Review h209: a NaN longitude went through clean into compress (which crashed);
+    clean refuses such a table as it refuses rows without a time."""
+    pts = straight(30)
+    pts.loc[5, "lon"] = np.nan
+    with pytest.raises(InputError, match="1 points have no position"):
+        clean(pts)

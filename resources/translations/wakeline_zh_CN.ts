@@ -2198,6 +2198,10 @@
         <translation>保留 {points:,} 个点中的 {kept:,} 个（{ratio:.1%}）</translation>
     </message>
     <message>
+        <source> ({rows:#row} without a position left out)</source>
+        <translation>（{rows:,} 行没有位置，未计入）</translation>
+    </message>
+    <message>
         <source> ({rows:#row} repeating the time and place of the row before set aside)</source>
         <translation>（{rows:,} 行与上一行的时间和位置相同，已剔除）</translation>
     </message>
