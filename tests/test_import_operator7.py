@@ -483,6 +483,8 @@ def test_a_step_back_on_a_streamed_pieces_first_row_is_seen(tmp_path, monkeypatc
     streamed = import_to_csv(path, tmp_path / "o.csv").report
     assert streamed.get("streamed")
     assert streamed["time_steps_back"] == whole
+    # a key the streamed report lacked (review h209: report keys whole vs streamed)
+    assert streamed["lat_beyond_90_lon_within"] == 0
 
 
 def test_a_step_back_anywhere_in_a_file_read_in_pieces_is_seen(tmp_path, monkeypatch):

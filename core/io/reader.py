@@ -5574,6 +5574,8 @@ def stream_points(
         "blank_lines": totals["blank_lines"] + bad.blank,
         "values_blanked": blanked,
         "decimal_comma_values": int(time_info.get("decimal_comma", 0)),
+        # as the whole-file reader and the reader in pieces report it (review h209)
+        "lat_beyond_90_lon_within": int(totals["lat_beyond_90_lon_within"]),
         "restarting_tracks": restarting,
         "time_steps_back": steps_back,
         "tracks": len(pairs),
