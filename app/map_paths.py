@@ -32,6 +32,11 @@ MIN_VERTICES = 2_000
 SYMBOLS_MAX = 3_000
 #: Vertices stroked per ``drawPath`` call when a worker makes a sprite (~5 ms each).
 CHUNK_VERTICES = 12_000
+#: A longer curve's path is built in pieces of about this many vertices (cut at NaN
+#: separators) appended to one path: pyqtgraph reads the whole path in from a byte
+#: stream in one call with the GIL held (25 ms per million vertices here, 60-300 ms
+#: of a stalled window when its pages are fresh; S29).
+PATH_PIECE_VERTICES = 100_000
 #: Largest difference (pixels, across the image) between the map's scale and the image's
 #: for the image to be copied unscaled: a line is off by at most this at the far edge.
 #: The worker draws at the map's own scale (the plot area's fractional size, not a
@@ -165,6 +170,21 @@ def _chunks(lon: np.ndarray, size: int) -> list[tuple[int, int]]:
     return [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
 
 
+def curve_path(lon: np.ndarray, lat: np.ndarray) -> QtGui.QPainterPath:
+    """``pg.arrayToQPath(lon, lat, connect="finite")``, built in pieces of about
+    ``PATH_PIECE_VERTICES`` vertices cut at NaN separators, so that no single call holds
+    the GIL for the whole curve. It strokes the same pixels (each piece starts a new
+    subpath where the whole one would; tests/test_map_sprites.py)."""
+    pieces = _chunks(lon, PATH_PIECE_VERTICES)
+    if len(pieces) == 1:
+        return pg.arrayToQPath(lon, lat, connect="finite")
+    path = QtGui.QPainterPath()
+    path.reserve(len(lon))
+    for a, b in pieces:
+        path.addPath(pg.arrayToQPath(lon[a:b], lat[a:b], connect="finite"))
+    return path
+
+
 def crosses(
     lon: np.ndarray, lat: np.ndarray, px: tuple[float, float], size_px: float
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -248,7 +268,7 @@ def with_paths(data: DrawData, sprites: bool = True) -> DrawData:
         if len(c.lon) < MIN_VERTICES:
             return c
         if c.path is None:
-            c = replace(c, path=pg.arrayToQPath(c.lon, c.lat, connect="finite"))
+            c = replace(c, path=curve_path(c.lon, c.lat))
         if size is not None and c.sprite is None and c.n_vertices > SYMBOLS_MAX:
             c = replace(c, sprite=render_sprite(c, data.view, size, 1.0, antialias))
         return c

@@ -395,3 +395,43 @@ def test_a_swap_sets_symbols_once_per_curve_never_spot_by_spot(qtbot, monkeypatc
             assert np.array_equal(item.scatter.data["x"], curve.lon, equal_nan=True)
     assert largest[0] <= map_paths.SYMBOLS_MAX + 1000  # never the old long curve
     assert sum(looked_up) <= len(few)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("antialias", [False, True])
+def test_a_path_built_in_pieces_strokes_what_the_whole_one_strokes(
+    qtbot, monkeypatch, seed, antialias
+):
+    """map_paths.curve_path (pieces cut at NaN separators, S29) against pyqtgraph's one
+    call: the same pixels, on random tracks with single and repeated separators, a
+    separator first and last, and pieces as small as a few vertices."""
+    import pyqtgraph as pg
+    from PySide6 import QtCore
+
+    rng = np.random.default_rng(seed)
+    parts = []
+    for _ in range(60):
+        k = int(rng.integers(1, 40))
+        xy = rng.normal(0, 1, (k, 2)).cumsum(axis=0) + rng.uniform(-40, 40, 2)
+        parts.append(xy)
+        parts.append(np.full((int(rng.integers(1, 3)), 2), np.nan))
+    xy = np.concatenate([np.full((1, 2), np.nan), *parts])
+    lon, lat = xy[:, 0].copy(), xy[:, 1].copy()
+    monkeypatch.setattr(map_paths, "PATH_PIECE_VERTICES", int(rng.integers(5, 60)))
+    assert len(map_paths._chunks(lon, map_paths.PATH_PIECE_VERTICES)) > 5
+
+    def stroke(path) -> bytes:
+        image = QtGui.QImage(400, 400, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
+        image.fill(QtCore.Qt.GlobalColor.transparent)
+        p = QtGui.QPainter(image)
+        p.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, antialias)
+        p.setPen(pg.mkPen("#d02020", width=1))
+        p.setTransform(QtGui.QTransform(4.0, 0.0, 0.0, -4.0, 200.0, 200.0))
+        p.drawPath(path)
+        p.end()
+        return bytes(image.constBits())
+
+    whole = pg.arrayToQPath(lon, lat, connect="finite")
+    pieces = map_paths.curve_path(lon, lat)
+    assert stroke(pieces) == stroke(whole)
+    assert pieces.boundingRect() == whole.boundingRect()
