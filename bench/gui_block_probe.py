@@ -92,6 +92,34 @@ def atd_million(
     return out
 
 
+EVENTS: list[tuple] = []  # with --events: (start, wall ms, CPU ms, receiver, type, depth)
+
+
+class TimedApp(QtWidgets.QApplication):
+    """With ``--events``: every event the GUI thread handles for over 4 ms (at the top
+    level or one below) is logged with its start, wall and CPU ms, receiver and type,
+    so that the longest gap can be told apart into the events within it."""
+
+    depth = 0
+
+    def notify(self, obj, event) -> bool:
+        TimedApp.depth += 1
+        t, c = time.perf_counter(), time.thread_time()
+        try:
+            return super().notify(obj, event)
+        finally:
+            TimedApp.depth -= 1
+            ms = (time.perf_counter() - t) * 1000
+            if ms > 4 and TimedApp.depth <= 1:
+                name = type(obj).__name__
+                parent = obj.parent() if isinstance(obj, QtCore.QObject) else None
+                if parent is not None:
+                    name += f" in {type(parent).__name__}"
+                kind = str(event.type()).rsplit(".", 1)[-1]
+                cpu = (time.thread_time() - c) * 1000
+                EVENTS.append((t, ms, cpu, name, kind, TimedApp.depth))
+
+
 class Probe:
     """The 10 ms timer, the watchdog and the collector hook, for one action at a time."""
 
@@ -103,6 +131,7 @@ class Probe:
         self.last = time.perf_counter()
         self.last_cpu = time.thread_time()
         self.gaps: list[float] = []
+        self.worst = (0.0, 0.0)  # the longest gap's (start, end)
         self.cpus: list[float] = []  # the GUI thread's own CPU time in each gap
         self.main = threading.get_ident()
         self.samples: collections.Counter = collections.Counter()
@@ -120,6 +149,8 @@ class Probe:
         if self.beat is not None:
             self.beat[:8] = struct.pack("d", time.monotonic())
         now, cpu = time.perf_counter(), time.thread_time()
+        if now - self.last > self.worst[1] - self.worst[0]:
+            self.worst = (self.last, now)
         self.gaps.append(now - self.last)
         self.cpus.append(cpu - self.last_cpu)
         self.last, self.last_cpu = now, cpu
@@ -161,6 +192,8 @@ class Probe:
             self.beat[8:72] = label.encode()[:64].ljust(64, b"\0")
         self.gaps.clear()
         self.cpus.clear()
+        self.worst = (0.0, 0.0)
+        EVENTS.clear()
         self.samples.clear()
         self.collections.clear()
         self.by_gen = [0, 0, 0]
@@ -181,6 +214,8 @@ class Probe:
             "gc": list(self.collections),
             "by_gen": list(self.by_gen),
             "samples": self.samples.most_common(8),
+            "events": [e for e in EVENTS if self.worst[0] - 0.001 <= e[0] <= self.worst[1]],
+            "worst_at": self.worst[0],
         }
 
 
@@ -288,6 +323,9 @@ def show(
     if why:
         for key, n in r["samples"]:
             print(f"      {n * 10:5d} ms  {key[:400]}")
+    for t, ms, cpu, name, kind, depth in r.get("events", [])[:12]:
+        print(f"      event at +{(t - r['worst_at']) * 1000:4.0f} ms: {ms:5.0f} ms (CPU {cpu:4.0f}) "
+              f"{'  ' * depth}{kind} to {name}")  # fmt: skip
     if dumps:
         for key, n in gil_holders(dumps, label).most_common(6):
             print(f"      {n:3d} dumps  GIL held by {key[:600]}")
@@ -304,8 +342,11 @@ def wait_written(window: MainWindow) -> None:
             settle(20)
 
 
-def one_run(path: Path, why: bool, spy: bool = False, review: Path | None = None) -> dict:
-    _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
+def one_run(
+    path: Path, why: bool, spy: bool = False, review: Path | None = None, events: bool = False
+) -> dict:
+    kind = TimedApp if events else QtWidgets.QApplication
+    _app = QtWidgets.QApplication.instance() or kind(sys.argv[:1])
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
         beat_path, dump_path = Path(tmp) / "beat", Path(tmp) / "dumps.txt"
@@ -478,6 +519,9 @@ def main() -> int:
     ap.add_argument(
         "--short", action="store_true", help="only the load, Clean and the layer switch"
     )
+    ap.add_argument(
+        "--events", action="store_true", help="the events over 4 ms within each longest gap"
+    )
     ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--monitor", nargs=3, help=argparse.SUPPRESS)
     args = ap.parse_args()
@@ -492,10 +536,18 @@ def main() -> int:
         args.file = atd_million()
     if args.one or args.runs == 1:
         print(f"{args.file} ({os.path.getsize(args.file) / 1e6:.0f} MB); probe {PERIOD_MS} ms")
-        one_run(args.file, args.why, args.spy, None if args.short else atd_million(by_day=True))
+        review = None if args.short else atd_million(by_day=True)
+        one_run(args.file, args.why, args.spy, review, args.events)
         return 0
     flags = [
-        f for f, on in (("--why", args.why), ("--spy", args.spy), ("--short", args.short)) if on
+        f
+        for f, on in (
+            ("--why", args.why),
+            ("--spy", args.spy),
+            ("--short", args.short),
+            ("--events", args.events),
+        )
+        if on
     ]
     if args.arrow_threads:
         flags += ["--arrow-threads", str(args.arrow_threads)]
