@@ -478,6 +478,10 @@ def more_actions(window: MainWindow, src: str, review: Path, tmp: Path, measure)
     measure("associate", lambda: window.run_step("associate"), wait)
     assoc = next(i for i, lay in window.layers.items() if lay.step == "associate")
     measure("switch to queue layer", lambda: window.select_layer(assoc), wait)
+    for _ in range(300):  # the queue is bound a few event-loop turns after the layer
+        if window.review.bound is not None:
+            break
+        settle(100)
     bound = window.review.bound
     print(f"      queue: {len(bound.controller.state.proposals):,} proposals", flush=True)
 
