@@ -105,17 +105,22 @@ class TimedApp(QtWidgets.QApplication):
     def notify(self, obj, event) -> bool:
         TimedApp.depth += 1
         t, c = time.perf_counter(), time.thread_time()
+        name = type(obj).__name__
+        try:
+            parent = obj.parent() if isinstance(obj, QtCore.QObject) else None
+            kind = str(event.type()).rsplit(".", 1)[-1]
+        except (RuntimeError, AttributeError):  # a C++ object already deleted
+            parent, kind = None, "?"
+        if parent is not None:
+            name += f" in {type(parent).__name__}"
         try:
             return super().notify(obj, event)
+        except TypeError:  # PySide hands a few internal events over oddly: not timed
+            return False
         finally:
             TimedApp.depth -= 1
             ms = (time.perf_counter() - t) * 1000
             if ms > 4 and TimedApp.depth <= 1:
-                name = type(obj).__name__
-                parent = obj.parent() if isinstance(obj, QtCore.QObject) else None
-                if parent is not None:
-                    name += f" in {type(parent).__name__}"
-                kind = str(event.type()).rsplit(".", 1)[-1]
                 cpu = (time.thread_time() - c) * 1000
                 EVENTS.append((t, ms, cpu, name, kind, TimedApp.depth))
 
