@@ -1010,7 +1010,7 @@ def _client(opts: BatchOptions):
             n_workers=opts.workers,
             threads_per_worker=1,
             processes=opts.processes,
-            dashboard_address=None,
+            dashboard_address=":0",  # any free port: 8787 may be taken (a notebook, another run)
         )
         return Client(cluster)
     return None

@@ -93,7 +93,7 @@ def test_association_across_partitions_equals_single_process(tmp_path):
     from distributed import LocalCluster
 
     # A running cluster reached by its address, as `--scheduler ADDRESS` does.
-    with LocalCluster(n_workers=2, processes=False, dashboard_address=None) as cluster:
+    with LocalCluster(n_workers=2, processes=False, dashboard_address=":0") as cluster:
         opts = BatchOptions(scheduler=cluster.scheduler_address, csv=True, buckets=6)
         rep = run_batch(pipe, paths, tmp_path / "out", opts).report
     assert rep["scheduler"].startswith(("tcp://", "inproc://"))
