@@ -607,8 +607,8 @@ class ReviewState:
                 change.action,
                 change.proposal,
                 " ".join(change.tracks),
-                " ".join(before),
-                " ".join(after),
+                _logged(change.status_before, before),
+                _logged(change.status_after, after),
             )
         )
         return change
@@ -625,6 +625,19 @@ class ReviewState:
         cols = ["time", "action", "proposal", "tracks", "before", "after"]
         rows = [dataclasses.astuple(e) for e in [*self.history, *self.log]]
         return pd.DataFrame(rows, columns=cols)
+
+
+def _logged(status: Mapping[str, str], targets: list[str]) -> str:
+    """A decision log's before or after cell: the statuses the change sets, then the
+    targets of its tracks, ``F0002 pending; radar:1=radar:1+AIS:1``. Without the
+    statuses an accept's two cells were the same (a pending proposal counts as joined
+    already: operator test 8, D9); a change of no status (merge, split target) logs
+    the targets alone, as before."""
+    cells = " ".join(targets)
+    if not status:
+        return cells
+    moved = ", ".join(f"{pid} {s}" for pid, s in status.items())
+    return f"{moved}; {cells}" if cells else moved
 
 
 def unreviewed_note(state: ReviewState) -> str:

@@ -186,6 +186,41 @@ def test_targets_follow_decisions(state):
         st.apply(stale)
 
 
+def test_an_accepts_log_row_says_the_status_it_moved(state):
+    """Operator test 8, D9: a pending proposal counts as joined already, so an accept's
+    targets before and after are the same; the row says the status change (pending →
+    accepted) and its undo the way back, as every change of a status does."""
+    st = state
+    pid = st.proposals["proposal"][0]
+    a, b = st.proposals["track_a"][0], st.proposals["track_b"][0]
+    target = st.target(a)
+    cell = f"{target}={'+'.join(st.members(target))}"
+    st.apply(R.accept(st, pid))
+    change = R.reject(st, pid)
+    st.apply(change)
+    st.apply(change.inverse())
+    st.apply(R.split_track(st, b))
+    st.apply(R.merge(st, [a, b]))
+    log = st.log_table()
+    acc, rej, undo, split, merge = log.to_dict("records")
+    assert acc["before"] == f"{pid} pending; {cell}"
+    assert acc["after"] == f"{pid} accepted; {cell}"
+    assert acc["before"] != acc["after"]
+    assert rej["before"].startswith(f"{pid} accepted; ") and rej["after"].startswith(
+        f"{pid} rejected; "
+    )
+    assert undo["action"] == "undo reject" and undo["before"].startswith(f"{pid} rejected; ")
+    assert undo["after"].startswith(f"{pid} accepted; ")
+    # a split cuts every proposal touching the track: each one's status is named
+    assert split["before"].startswith(f"{pid} accepted") and f"{pid} split" in split["after"]
+    # merge re-accepts the split proposal: its row says so too
+    assert f"{pid} split" in merge["before"] and f"{pid} accepted" in merge["after"]
+    # the log still replays to the same targets (replay reads action, proposal, tracks)
+    again = R.ReviewState(st.tracks, st.proposals)
+    R.replay_log(again, log)
+    assert again.target(b) == st.target(b)
+
+
 def test_a_rejection_runs_the_same_association_again():
     # Two ships side by side, both silent for 5 min: either start could be either's, so
     # the margin test leaves all four ends loose. A clean join elsewhere is rejected: the
