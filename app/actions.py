@@ -53,9 +53,11 @@ def build_actions(w) -> None:
     act("box", w.canvas.set_box_zoom, checkable=True)
     act("remove_layer", w.remove_active_layer)
     act("import_report", w.show_import_report)
+    act("about", w.show_about)
+    act("docs", w.open_documentation)
     w.actions_ = a
 
-    m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "stages", "view", "lang")}
+    m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "stages", "view", "lang", "help")}
     w.menus = m
     for key in ("open", "open_bearings", "open_project", "save", "save_project", "close_project"):
         m["file"].addAction(a[key])
@@ -97,7 +99,9 @@ def build_actions(w) -> None:
         group.addAction(lang)
         m["lang"].addAction(lang)
         w.lang_actions[code] = lang
-    for key in ("file", "run", "view", "lang"):
+    m["help"].addAction(a["docs"])
+    m["help"].addAction(a["about"])
+    for key in ("file", "run", "view", "lang", "help"):
         w.menuBar().addMenu(m[key])
     w.toolbar = w.addToolBar("main")
     w.toolbar.setObjectName("toolbar")
@@ -154,6 +158,8 @@ def retranslate(w) -> None:
         "box": tr("&Box zoom"),
         "remove_layer": tr("&Remove active layer"),
         "import_report": tr("&Import report and quarantined rows…"),
+        "about": tr("&About Wakeline"),
+        "docs": tr("&Documentation"),
     }
     for key, text in texts.items():
         w.actions_[key].setText(text)
@@ -165,6 +171,7 @@ def retranslate(w) -> None:
         "stages": tr("Pipeline s&tages"),
         "view": tr("&View"),
         "lang": tr("&Language"),
+        "help": tr("&Help"),
     }
     for key, text in menus.items():
         w.menus[key].setTitle(text)

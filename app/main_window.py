@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
-from wakeline.app import cjk_font, i18n
+from wakeline.app import about, cjk_font, i18n
 from wakeline.app.actions import build_actions, retranslate
 from wakeline.app.bearing_view import BearingView, bearing_stats
 from wakeline.app.core_text import shown
@@ -44,6 +44,7 @@ from wakeline.app.window_layers import EMPTY, LayersMixin, kind_text, layer_text
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
+from wakeline.core.schema import time_seconds
 from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
 
@@ -364,6 +365,24 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         dialog.show()
         return dialog
 
+    def show_about(self) -> QtWidgets.QDialog:
+        """Help ▸ About Wakeline (version, licence, papers, data notices, Qt versions)."""
+        dialog = about.AboutDialog(self)
+        dialog.show()
+        return dialog
+
+    def open_documentation(self) -> Path | None:
+        """Help ▸ Documentation: the README (it links every page of docs/) in the
+        browser; the log says where it is (all it does without a desktop: offscreen)."""
+        path, opened = about.open_documentation()
+        if path is None:
+            self.log_message(self.tr("Documentation: not installed with this copy of Wakeline"))
+        elif opened:
+            self.log_message(self.tr("Documentation opened in the browser: {0}").format(path))
+        else:
+            self.log_message(self.tr("Documentation: {0}").format(path))
+        return path
+
     # -- misc ----------------------------------------------------------------------
 
     def _update_stats(self) -> None:
@@ -392,17 +411,34 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.statusBar().showMessage(self.counts_message(layer, window))
 
     def counts_message(self, layer, window: tuple[float, float] | None) -> str:
-        """The status bar's counts: the whole layer's points and tracks, and with a time
-        window how many of its tracks overlap it (as the batch table counts them)."""
+        """The status bar's counts: the layer's points and tracks; with a time window,
+        what the window shows of them: "In the time window: 0 of 1 track, 0 of 1,131
+        points" (its tracks counted as the batch table counts them, those whose span
+        overlaps the window; operator test 8, D4: the table said "0 of 1" while the
+        status bar still said "1,131 points, 1 track")."""
         view = self.views.get(layer.id)
         tracks = len(view.summary) if view is not None else 0
         text = self.tr("{0}, {1}").format(points_text(len(layer.points)), tracks_text(tracks))
         overlap = self.batch_model.tracks_overlapping(window) if view is not None else None
-        if overlap is None:
+        if overlap is None or window is None:
             return text
-        return self.tr("{0} · {1} of the tracks overlap the time window").format(
-            text, f"{overlap:,}"
+        inside = 0
+        if "time" in layer.points and len(layer.points):
+            t = time_seconds(layer.points["time"])
+            inside = int(np.count_nonzero((t >= window[0]) & (t <= window[1])))
+        return self.tr("In the time window: {0} of {1}, {2} of {3}").format(
+            f"{overlap:,}", tracks_text(tracks), f"{inside:,}", points_text(len(layer.points))
         )
+
+    def show_counts(self) -> None:
+        """The status bar's counts of the active layer now (the time window moved: the
+        batch table's count changed at once, the Statistics dock follows on its timer)."""
+        layer = self.active_layer()
+        if layer is None or layer.kind == BEARING_KIND:
+            return
+        tw = self.session.time_window
+        window = (tw.start_s, tw.end_s) if tw is not None else None
+        self.statusBar().showMessage(self.counts_message(layer, window))
 
     def update_batch_count(self) -> None:
         """The line under the batch table: how many tracks it shows and why not all."""

@@ -20,7 +20,7 @@ import pyqtgraph as pg
 from PySide6 import QtCore
 
 from wakeline.app.layer_names import shown_name
-from wakeline.app.layer_view import is_part_of
+from wakeline.app.layer_view import PART_SEP, is_part_of
 from wakeline.app.map_draw import Curve, DrawData, LayerGeometry, prepare_layer
 from wakeline.app.map_marks import MarkerItem, render_marks
 from wakeline.app.map_paths import SpriteCurve, render_sprite
@@ -86,6 +86,20 @@ def one_clock(geometries: dict[str, LayerGeometry], active: str | None) -> list[
     mine = [k for name, k in kinds.items() if active is not None and is_part_of(name, active)]
     keep = mine[0] if mine else sum(kinds.values()) * 2 > len(kinds)
     return [g for name, g in geometries.items() if kinds[name] == keep]
+
+
+def left_out(geometries: dict[str, LayerGeometry], kept: list[LayerGeometry]) -> tuple[int, bool]:
+    """The layers :func:`one_clock` leaves off the slider: how many (session layers, a
+    layer drawn in parts counted once) and whether their times are elapsed from a scene
+    start (``T+…``; else dates). (0, False) when every layer is on it (operator test 8,
+    D4: the slider over dates left an MTAD scene out and nothing said so)."""
+    ids = {id(g) for g in kept}
+    out = {
+        name.split(PART_SEP, 1)[0]: g.relative for name, g in geometries.items() if id(g) not in ids
+    }
+    if not out:
+        return 0, False
+    return len(out), bool(next(iter(out.values())))
 
 
 def index_job(geometries: list[LayerGeometry]) -> TimeScene:
@@ -486,14 +500,13 @@ class TimeController(QtCore.QObject):
         self._gen += 1
         gen = self._indexing = self._gen
         originals = self._originals()
-        lines = one_clock(
-            {
-                name: d.geometry
-                for name, (d, _, indexed, _) in originals.items()
-                if indexed and d.style.width > 0
-            },
-            self.window.active,
-        )
+        drawn = {
+            name: d.geometry
+            for name, (d, _, indexed, _) in originals.items()
+            if indexed and d.style.width > 0
+        }
+        lines = one_clock(drawn, self.window.active)
+        self.panel.set_left_out(*left_out(drawn, lines))
         self._run(lambda: index_job(lines), lambda scene: self._scene_done(gen, scene))
         self._apply_window(originals)
 
@@ -639,6 +652,8 @@ class TimeController(QtCore.QObject):
         finally:
             self._writing = False
         self.window.batch_model.set_time_window(window)
+        if hasattr(self.window, "show_counts"):
+            self.window.show_counts()  # the status bar agrees with the table at once
         self._window_owed = True
         self._apply_window(self._originals())
         self._cut_dock()

@@ -39,6 +39,7 @@ class TimePanel(QtWidgets.QWidget):
         self._t = math.nan
         self._relative = False
         self._from = self._to = math.nan
+        self._left_out = (0, False)  # layers on the other clock: (how many, scene times)
         self._timer = QtCore.QTimer(self)
         self._timer.timeout.connect(self._tick)
         self._last_tick = 0.0
@@ -138,7 +139,7 @@ class TimePanel(QtWidgets.QWidget):
         self.back_button.setToolTip(tr("Step back"))
         self.forward_button.setToolTip(tr("Step forward"))
         self.play_button.setToolTip(tr("Play / pause"))
-        self.slider.setToolTip(tr("Time: every visible track is shown at its position then"))
+        self._slider_tip()
         self.speed_label.setText(tr("Speed"))
         self.speed.setPrefix("×")
         self.speed.setToolTip(tr("Scene seconds per second of playback"))
@@ -177,7 +178,56 @@ class TimePanel(QtWidgets.QWidget):
                 format_time(a, self._relative), format_time(b, self._relative)
             )
             self.window_label.setText(self.tr("Time window: {0}").format(span))
+        note = self.left_out_text()
+        if note:
+            self.window_label.setText(f"{self.window_label.text()} · {note}")
         self.window_label.setToolTip(self.window_label.text())
+
+    def left_out_text(self) -> str:
+        """What the slider leaves out, or "": layers on the other clock (scene times
+        beside dates) are neither on the slider nor cut by the window (docs/time.md)."""
+        n, relative = self._left_out
+        if not n:
+            return ""
+        if relative:
+            text = (
+                self.tr(
+                    "1 layer with scene times (T+…) is off this slider and its window; "
+                    "select it to use its times"
+                )
+                if n == 1
+                else self.tr(
+                    "{0} layers with scene times (T+…) are off this slider and its "
+                    "window; select one to use their times"
+                )
+            )
+        else:
+            text = (
+                self.tr(
+                    "1 layer with dates is off this slider and its window; select it to "
+                    "use its times"
+                )
+                if n == 1
+                else self.tr(
+                    "{0} layers with dates are off this slider and its window; select "
+                    "one to use their times"
+                )
+            )
+        return text.format(n)
+
+    def set_left_out(self, n: int, relative: bool = False) -> None:
+        """How many layers the slider leaves out (on the other clock) and whether their
+        times are scene times; said under the buttons and in the slider's tooltip."""
+        if (n, relative) == self._left_out:
+            return
+        self._left_out = (n, relative)
+        self._slider_tip()
+        self._update_labels()
+
+    def _slider_tip(self) -> None:
+        tip = self.tr("Time: every visible track is shown at its position then")
+        note = self.left_out_text()
+        self.slider.setToolTip(f"{tip}\n{note}" if note else tip)
 
     def _enable(self, on: bool) -> None:
         for w in (self, self.slider, self.play_button, self.back_button, self.forward_button):

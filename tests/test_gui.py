@@ -1415,3 +1415,55 @@ def test_detail_title_counts_one_maneuver_in_the_singular(qtbot):
     assert panel.factor_plot.getPlotItem().titleLabel.text == "1 maneuver; threshold 15°"
     panel.show_track(track.assign(is_maneuver=track["maneuver_factor"] > 1), threshold_deg=15.0)
     assert panel.factor_plot.getPlotItem().titleLabel.text == "3 maneuvers; threshold 15°"
+
+
+@pytest.mark.parametrize("language", ["en", "zh_CN"])
+def test_help_menu_about_and_documentation(window, monkeypatch, language):
+    """Operator test 8, D10: no Help menu, nothing showed the version, the licence or the
+    data credits. Help (the last menu) ▸ About Wakeline names the version, the licence,
+    Qt and PySide6, the four seed papers, the bundled data's notices (links to their
+    files) and the real data sets; Help ▸ Documentation gives the README, which links
+    docs/, and never asks for a browser on a screen without a desktop (offscreen)."""
+    import importlib.metadata
+
+    import PySide6
+    from PySide6 import QtGui
+
+    from wakeline.app import about
+
+    opened = []
+    monkeypatch.setattr(QtGui.QDesktopServices, "openUrl", lambda url: opened.append(url) or True)
+    window.set_language(language)
+    try:
+        bar = [a.menu() for a in window.menuBar().actions()]
+        assert bar[-1] is window.menus["help"]
+        help_actions = window.menus["help"].actions()
+        assert help_actions == [window.actions_["docs"], window.actions_["about"]]
+        dialog = window.show_about()
+        text = dialog.text.toPlainText()
+        version = importlib.metadata.version("wakeline")
+        assert f"Wakeline {version}" in text and "MIT" in text
+        assert QtCore.qVersion() in text and PySide6.__version__ in text
+        for seed in ("000", "001", "002", "003"):
+            assert seed in text
+        for name in ("Natural Earth", "Autoferry", "MTAD"):
+            assert name in text
+        html = dialog.text.toHtml()
+        for notice in ("NOTICE.md", "README.md"):  # the bundled files, linked
+            assert notice in html
+        assert about.resource_path("coastline", "NOTICE.md").exists()
+        if language == "zh_CN":
+            assert dialog.windowTitle() == "关于 Wakeline"
+            assert window.menus["help"].title() == "帮助(&H)" and "许可证" in text
+            assert "种子文献 000：" in text and "未声明" in text
+        else:
+            assert dialog.windowTitle() == "About Wakeline" and "Licence: MIT" in text
+        dialog.close()
+        window.actions_["docs"].trigger()
+        path = window.open_documentation()
+        assert path is not None and path.name == "README.md" and path.exists()
+        assert (path.parent / "docs" / "review.md").exists()
+        assert not opened  # offscreen: the log says where it is, no browser asked
+        assert str(path) in window.log.toPlainText().splitlines()[-1]
+    finally:
+        window.set_language("en")

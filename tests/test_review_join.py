@@ -340,3 +340,90 @@ def test_the_overlap_message_reads_in_chinese(state):
     assert zh.startswith("拒绝合并：S1:237000001 与 S1:237000002 都是传感器 S1 的航迹")
     assert "2024-08-02 10:00:00 至 2024-08-02 12:00:00 UTC 时间重叠（2 h 00 min）：" in zh
     assert "another" not in zh and "one sensor" not in zh
+
+
+def _fused_window(qtbot, tmp_path, language="en"):
+    """The simulated radar/AIS pair fused across layers in the window, the fused layer
+    active: (window, fused layer, its review's state)."""
+    from test_review_window import _settle, _sim_pair, _window
+
+    files = _sim_pair(tmp_path)
+    w = _window(qtbot, tmp_path)
+    if language != "en":
+        w.set_language(language)
+    w.load_files(files)
+    _settle(w)
+    w.layer_list.clearSelection()
+    for f in files:
+        w.layer_list.item(w.layer_row(w.layer_id(f.name))).setSelected(True)
+    w.actions_["fuse"].trigger()
+    _settle(w)
+    fused = next(lay for lay in w.layers.values() if lay.step == "fuse")
+    w.select_layer(fused.id)
+    _settle(w)
+    return w, fused, w.review.bound.controller.state
+
+
+def _members(layer, key):
+    pts = layer.points
+    rows = (pts["sensor"].astype(str) == key[0]) & (pts["batch"].astype(str) == key[1])
+    return pts.loc[rows, "members"].astype(str).iloc[0].split("+")
+
+
+@pytest.mark.parametrize("language", ["en", "zh_CN"])
+def test_join_and_split_from_a_fused_layers_rows(qtbot, tmp_path, language):
+    """Operator test 8, D2: the batch table of a fused layer lists fused targets (sensor
+    ``fused``), not their member tracks. Split selected tracks' target on a fused row cuts
+    that target into its member tracks; Ctrl+J on two fused rows joins their targets;
+    Ctrl+Z undoes each. Never the internal "no track 'fused:…'" in the log."""
+    pytest.importorskip("pytestqt")
+    from test_review_window import _settle
+
+    w, fused, st = _fused_window(qtbot, tmp_path, language)
+    join = w.review.join
+    keys = w.batch_model.frame[["sensor", "batch"]].astype(str).values.tolist()
+    assert keys and all(s == "fused" for s, _ in keys)
+    pair = next(
+        tuple(k)
+        for k in keys
+        if "+"
+        in fused.points.loc[fused.points["batch"].astype(str) == k[1], "members"]
+        .astype(str)
+        .iloc[0]
+    )
+    members = _members(fused, pair)
+    assert len({st.target(m) for m in members}) == 1  # one fused target of two sensors
+    n_targets = st.targets()["target"].nunique()
+
+    # Split: the fused target falls back into its member tracks.
+    w.select_tracks([pair])
+    assert join.split_selected()
+    _settle(w)
+    assert len({st.target(m) for m in members}) == len(members)
+    assert st.targets()["target"].nunique() == n_targets + len(members) - 1
+    w.review.act_undo.trigger()
+    _settle(w)
+    assert len({st.target(m) for m in members}) == 1
+
+    # Join: two fused rows (targets) become one target; the fused layer shows it.
+    fused = w.layers[fused.id]
+    keys = w.batch_model.frame[["sensor", "batch"]].astype(str).values.tolist()
+    two = [tuple(k) for k in keys[:2]]
+    tracks = [m for k in two for m in _members(fused, k)]
+    assert len({st.target(m) for m in tracks}) == 2
+    join.ask_overlap = lambda problem: True  # two ships' radar tracks may overlap in time
+    w.select_tracks(two)
+    assert join.actions["join"].shortcut().toString() == "Ctrl+J"
+    join.actions["join"].trigger()
+    _settle(w)
+    assert len({st.target(m) for m in tracks}) == 1
+    assert st.targets()["target"].nunique() == n_targets - 1
+    assert w.session.decisions[-1]["action"] == "merge"
+    fused = w.layers[fused.id]
+    assert fused.points["batch"].nunique() == n_targets - 1
+    w.review.act_undo.trigger()
+    _settle(w)
+    assert len({st.target(m) for m in tracks}) == 2
+    log = w.log.toPlainText()
+    assert "no track" not in log and "fused:" not in log
+    w.close()

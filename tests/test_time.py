@@ -654,6 +654,44 @@ def test_dates_and_scene_times_open_together_the_slider_follows_the_active_layer
 
 
 @pytest.mark.gui
+def test_the_status_bar_counts_the_window_and_the_slider_names_the_layers_it_leaves_out(
+    window, qtbot, tmp_path
+):
+    """Operator test 8, D4: with a time window set the batch table said "0 of 1 track"
+    while the status bar still said "1,131 points, 1 track"; and the slider over dates
+    left a scene-time (T+…) layer out without a word. Now the status bar counts what
+    the window shows as soon as it is set, and the panel says what the slider leaves out
+    (under the buttons and in the slider's tooltip), in both directions."""
+    _scene_csv(tmp_path / "rel.csv", relative=True)
+    t0 = _scene_csv(tmp_path / "abs.csv")
+    rel = _load(window, qtbot, tmp_path / "rel.csv")
+    panel = window.time_panel
+    assert panel.left_out_text() == "" and "off this slider" not in panel.window_label.text()
+    ab = _load(window, qtbot, tmp_path / "abs.csv")
+    window.select_layer(ab)
+    qtbot.waitUntil(lambda: panel._lo >= t0 and not window.time_controller.busy, timeout=10_000)
+    note = panel.left_out_text()
+    assert note.startswith("1 layer with scene times (T+…) is off this slider and its window")
+    assert note in panel.window_label.text() and note in panel.slider.toolTip()
+    # Only track 2 (700 … 990 s, 30 of the 170 points) is in the window.
+    panel.set_time_window((t0 + 695.0, t0 + 1000.0))
+    shown, total = window.batch_model.counts()
+    assert (shown, total) == (1, 4)
+    status = window.statusBar().currentMessage()  # at once, not on the stats timer
+    assert status == "In the time window: 1 of 4 tracks, 30 of 170 points"
+    panel.set_time_window(None)
+    assert window.statusBar().currentMessage() == "170 points, 4 tracks"
+    window.select_layer(rel)
+    qtbot.waitUntil(lambda: panel._hi < 3600 and not window.time_controller.busy, timeout=10_000)
+    assert panel.left_out_text().startswith("1 layer with dates is off this slider")
+    window.set_language("zh_CN")
+    try:
+        assert panel.left_out_text().startswith("1 个日期时间图层不在此滑块及时间窗上")
+    finally:
+        window.set_language("en")
+
+
+@pytest.mark.gui
 def test_an_active_bearing_layer_takes_the_slider_to_its_clock(window, qtbot, tmp_path):
     """The slider's clock follows the active layer when dates and scene times are both
     open, but a bearing layer is drawn as parts (``L3/observer``) and the active id

@@ -2775,4 +2775,116 @@
         <translation>单传感器</translation>
     </message>
 </context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>&amp;About Wakeline</source>
+        <translation>关于 Wakeline(&amp;A)</translation>
+    </message>
+    <message>
+        <source>&amp;Documentation</source>
+        <translation>文档(&amp;D)</translation>
+    </message>
+    <message>
+        <source>&amp;Help</source>
+        <translation>帮助(&amp;H)</translation>
+    </message>
+    <message>
+        <source>Documentation opened in the browser: {0}</source>
+        <translation>已在浏览器中打开文档：{0}</translation>
+    </message>
+    <message>
+        <source>Documentation: not installed with this copy of Wakeline</source>
+        <translation>文档：此 Wakeline 副本未安装文档</translation>
+    </message>
+    <message>
+        <source>Documentation: {0}</source>
+        <translation>文档：{0}</translation>
+    </message>
+    <message>
+        <source>In the time window: {0} of {1}, {2} of {3}</source>
+        <translation>时间窗内：{1}中的 {0} 条，{3}中的 {2} 个</translation>
+    </message>
+</context>
+<context>
+    <name>About</name>
+    <message>
+        <source>A desktop workbench for maritime track data: clean, detect maneuvers, compress, associate, fuse and review radar and AIS tracks.</source>
+        <translation>海上航迹数据桌面工作台：对雷达与 AIS 航迹进行清洗、机动检测、压缩、关联、融合与审核。</translation>
+    </message>
+    <message>
+        <source>About Wakeline</source>
+        <translation>关于 Wakeline</translation>
+    </message>
+    <message>
+        <source>Close</source>
+        <translation>关闭</translation>
+    </message>
+    <message>
+        <source>Data shipped with Wakeline</source>
+        <translation>随 Wakeline 附带的数据</translation>
+    </message>
+    <message>
+        <source>Demo scene: simulated (no real ships), made by wakeline simulate demo.</source>
+        <translation>演示场景：模拟数据（无真实船舶），由 wakeline simulate demo 生成。</translation>
+    </message>
+    <message>
+        <source>Licence: {0}</source>
+        <translation>许可证：{0}</translation>
+    </message>
+    <message>
+        <source>Real data Wakeline was tested on (not shipped with it)</source>
+        <translation>Wakeline 测试所用的真实数据（不随软件附带）</translation>
+    </message>
+    <message>
+        <source>Runs on: {0}</source>
+        <translation>运行环境：{0}</translation>
+    </message>
+    <message>
+        <source>Seed {0}: {1}</source>
+        <translation>种子文献 {0}：{1}</translation>
+    </message>
+    <message>
+        <source>{0}: {1}; licence: {2}</source>
+        <translation>{0}：{1}；许可证：{2}</translation>
+    </message>
+    <message>
+        <source>none stated (kept out of the product)</source>
+        <translation>未声明（不随产品分发）</translation>
+    </message>
+    <message>
+        <source>The papers its methods come from</source>
+        <translation>方法所依据的论文</translation>
+    </message>
+    <message>
+        <source>World coastline: Natural Earth 1:50m, public domain (no attribution required); made with Natural Earth.</source>
+        <translation>世界海岸线：Natural Earth 1:50m，公有领域（无需署名）；Made with Natural Earth。</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewJoin</name>
+    <message>
+        <source>{0}: {1} is not a track of this layer's review</source>
+        <translation>{0}：{1} 不是本图层审核中的航迹</translation>
+    </message>
+</context>
+<context>
+    <name>TimePanel</name>
+    <message>
+        <source>1 layer with dates is off this slider and its window; select it to use its times</source>
+        <translation>1 个日期时间图层不在此滑块及时间窗上；选中它可改用其时间</translation>
+    </message>
+    <message>
+        <source>1 layer with scene times (T+…) is off this slider and its window; select it to use its times</source>
+        <translation>1 个场景相对时间（T+…）图层不在此滑块及时间窗上；选中它可改用其时间</translation>
+    </message>
+    <message>
+        <source>{0} layers with dates are off this slider and its window; select one to use their times</source>
+        <translation>{0} 个日期时间图层不在此滑块及时间窗上；选中其一可改用其时间</translation>
+    </message>
+    <message>
+        <source>{0} layers with scene times (T+…) are off this slider and its window; select one to use their times</source>
+        <translation>{0} 个场景相对时间（T+…）图层不在此滑块及时间窗上；选中其一可改用其时间</translation>
+    </message>
+</context>
 </TS>
