@@ -44,7 +44,6 @@ from wakeline.app.window_layers import EMPTY, LayersMixin, kind_text, layer_text
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
-from wakeline.core.schema import time_seconds
 from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
 
@@ -68,6 +67,18 @@ def format_dms(value: float, positive: str, negative: str) -> str:
 #: the Parameters dock (291 px) and the Bearing-only dock (380 px, tabbed with Detail)
 #: beside it, the window stays under 1,280 px wide (h179).
 MAP_MIN_WIDTH_PX = 480
+
+
+def points_inside(points: pd.DataFrame, window: tuple[float, float]) -> int:
+    """How many of ``points`` have a time in ``window`` (s since 1970, both ends kept):
+    the times compared as datetime64 to the window's ends in ns (2 M points: a few ms;
+    through seconds as floats it took 80 ms on the GUI thread)."""
+    if "time" not in points or not len(points):
+        return 0
+    times = points["time"].array
+    t = np.asarray(times.tz_convert(None) if getattr(times, "tz", None) else times)
+    lo, hi = (np.datetime64(round(x * 1e9), "ns") for x in window)
+    return int(np.count_nonzero((t >= lo) & (t <= hi)))
 
 
 class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
@@ -422,10 +433,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         overlap = self.batch_model.tracks_overlapping(window) if view is not None else None
         if overlap is None or window is None:
             return text
-        inside = 0
-        if "time" in layer.points and len(layer.points):
-            t = time_seconds(layer.points["time"])
-            inside = int(np.count_nonzero((t >= window[0]) & (t <= window[1])))
+        inside = points_inside(layer.points, window)
         return self.tr("In the time window: {0} of {1}, {2} of {3}").format(
             f"{overlap:,}", tracks_text(tracks), f"{inside:,}", points_text(len(layer.points))
         )
