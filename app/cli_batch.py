@@ -19,7 +19,12 @@ def _cmd_batch(args: argparse.Namespace) -> int:
     from wakeline.core.pipeline import Pipeline
 
     if args.print_pipeline:
-        print(Pipeline.default().to_json())
+        pipe = Pipeline.default()
+        if args.preset:
+            from wakeline.core.presets import preset_pipeline
+
+            pipe = preset_pipeline(pipe, args.preset)
+        print(pipe.to_json())
         return 0
     if args.pipeline is None or not args.input or args.outdir is None:
         raise InputError("batch needs PIPELINE.json, at least one input and -o OUTDIR")
@@ -39,6 +44,10 @@ def _cmd_batch(args: argparse.Namespace) -> int:
     except UnicodeDecodeError:
         raise InputError(f"{args.pipeline}: not UTF-8 text") from None
     pipe = Pipeline.from_json(text)
+    if args.preset:  # over the pipeline file's values, stage by stage
+        from wakeline.core.presets import preset_pipeline
+
+        pipe = preset_pipeline(pipe, args.preset)
     from wakeline.app.cli_steps import read_options
 
     read = read_options(args)  # BatchOptions names its fields as read_points does
@@ -157,7 +166,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         action="store_true",
         help="print the default pipeline (clean, compress) as JSON and exit",
     )
-    from wakeline.app.cli_steps import add_read_flags
+    from wakeline.app.cli_steps import add_preset_flag, add_read_flags
 
+    add_preset_flag(p)  # every stage's parameter sets the preset changes, over the file's
     add_read_flags(p)  # how CSV inputs are read: the same flags as `wakeline clean`
     p.set_defaults(func=_cmd_batch)

@@ -29,6 +29,26 @@ def _say_read(path, report: dict) -> None:
 
 
 def _maneuver_params(args: argparse.Namespace):
+    """The detector's parameters from the flags; with ``--preset`` its changes to the
+    maneuver set where the flag is left at its default (a flag given still applies)."""
+    from wakeline.core.maneuver import ManeuverParams
+
+    params = _flag_params(args)
+    name = getattr(args, "preset", None)
+    if not name:
+        return params
+    from wakeline.core.presets import preset
+
+    default = ManeuverParams()
+    changes = {
+        field: value
+        for field, value in preset(name).changes.get("maneuver", {}).items()
+        if getattr(params, field) == getattr(default, field)
+    }
+    return params.replace(**changes).checked()
+
+
+def _flag_params(args: argparse.Namespace):
     from wakeline.core.maneuver import ManeuverParams
 
     if getattr(args, "paper", False):
@@ -87,6 +107,8 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         raise InputError("--gnss applies to maneuver --real (a file or folder of tracks)")
     if args.gnss_map and not args.gnss:
         raise InputError("--gnss-map needs --gnss")
+    if getattr(args, "preset", None) and args.kind != "maneuver":
+        raise InputError(f"--preset applies to evaluate maneuver, not to {args.kind}")
     from wakeline.app.cli_steps import read_options
 
     read = read_options(args)  # --real's track files: read as import reads them
@@ -648,6 +670,9 @@ def register(sub) -> None:
         metavar="NAME=VALUE",
         help="associate, fuse: change a parameter",
     )
+    from wakeline.app.cli_steps import add_preset_flag
+
+    add_preset_flag(p, ["maneuver"])  # evaluate maneuver: the detector's (ours)
     p.add_argument(
         "--runs", type=positive_int, default=20, help="bearing: runs per scenario (default 20)"
     )

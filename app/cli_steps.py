@@ -26,7 +26,7 @@ ALIASES = {
     ("compress", "dp_tolerance_m"): ("--tolerance",),
     ("maneuver", "min_speed_kn"): ("--min-speed",),
 }
-RESERVED = {"input", "output", "report", "set", "help"}
+RESERVED = {"input", "output", "report", "set", "help", "preset"}
 
 TEXTS = {
     "clean": (
@@ -213,10 +213,64 @@ def add_step_parsers(sub) -> None:
                 "in points, one scale, no speed, noise or rest rules, raw vertices); "
                 "flags given still apply",
             )
+        add_preset_flag(p, [key for key, _cls in step.params])
         if name == "clean":
             _add_clean_flags(p)
         add_read_flags(p)
         p.set_defaults(func=run_step_command, step=name)
+    p = sub.add_parser(
+        "presets",
+        help="list the built-in parameter presets (--preset NAME)",
+        description="The built-in parameter presets: measured settings that are options, not "
+        "defaults (each failed a guard fixed before its runs somewhere), for the data each "
+        "suits; their purpose, changes and evidence (docs/evaluation.md). The "
+        "step commands, `evaluate maneuver` and `batch` take --preset NAME; flags given still "
+        "apply.",
+        epilog=EPILOG,
+    )
+    p.set_defaults(func=_cmd_presets)
+
+
+def _cmd_presets(_args: argparse.Namespace) -> int:
+    from wakeline.core.presets import preset_lines
+
+    print("\n".join(preset_lines()))
+    return 0
+
+
+class _PresetAction(argparse.Action):
+    """``--preset NAME``; ``--preset list`` prints the presets and exits (as ``--version``
+    does: before the required arguments are missed)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        if values == "list":
+            from wakeline.core.presets import preset_lines
+
+            print("\n".join(preset_lines()))
+            parser.exit()
+        setattr(namespace, self.dest, values)
+
+
+def add_preset_flag(p: argparse.ArgumentParser, keys: list[str] | None = None) -> None:
+    """``--preset NAME`` on a command whose parameter sets (``keys``; None: any) some
+    built-in preset changes (:mod:`wakeline.core.presets`); nothing otherwise."""
+    from wakeline.core.presets import presets
+
+    names = [
+        name
+        for name, pr in presets().items()
+        if keys is None or any(pr.changes.get(key) for key in keys)
+    ]
+    if not names:
+        return
+    p.add_argument(
+        "--preset",
+        action=_PresetAction,
+        choices=[*names, "list"],
+        metavar="NAME",
+        help=f"start from a built-in preset: {', '.join(names)} (`wakeline presets` or "
+        "--preset list gives their purpose and evidence); flags given still apply",
+    )
 
 
 def _add_clean_flags(p: argparse.ArgumentParser) -> None:
@@ -465,9 +519,13 @@ def step_params(step, args: argparse.Namespace) -> dict:
             settings += ["bspline.enabled=true"]
     out = {}
     paper = getattr(args, "paper", False)
-    for key, cls in flat:
-        base = cls.paper() if paper and hasattr(cls, "paper") else cls()
-        out[key] = base.replace(**values[key]).checked()
+    base = {key: cls.paper() if paper and hasattr(cls, "paper") else cls() for key, cls in flat}
+    if getattr(args, "preset", None):  # over the defaults (or --paper), under the flags
+        from wakeline.core.presets import apply_preset
+
+        base = apply_preset(args.preset, base)
+    for key, _cls in flat:
+        out[key] = base[key].replace(**values[key]).checked()
     for key, cls in nested:
         out[key] = cls().with_settings(settings).checked()
     return out

@@ -1,0 +1,261 @@
+"""Built-in parameter presets (session 29, h215): core.presets' registry, the command
+line's ``--preset`` and ``wakeline presets``, and the guidance's suggestion rules."""
+
+import dataclasses
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import SHARED_REAL
+from wakeline.app.cli import build_parser, main
+from wakeline.core import geo
+from wakeline.core.compress import CompressParams
+from wakeline.core.errors import InputError
+from wakeline.core.maneuver import ManeuverParams
+from wakeline.core.pipeline import STEPS, Pipeline
+from wakeline.core.presets import (
+    apply_preset,
+    noise_floor_ratio,
+    preset,
+    preset_pipeline,
+    presets,
+    suggested_presets,
+)
+
+#: Every parameter class a preset may change, by the pipeline's key.
+CLASSES = {key: cls for step in STEPS.values() for key, cls in step.params}
+
+
+def test_the_registry_holds_the_three_measured_presets():
+    assert list(presets()) == ["noisy-tracks", "slow-radar", "paper"]
+    for p in presets().values():
+        assert p.title and p.purpose and p.evidence
+        assert "docs/evaluation.md" in p.evidence or p.name == "paper"
+    assert preset("noisy-tracks").changes == {"maneuver": {"confirm_z": 4.0, "confirm_grow": 4}}
+    assert preset("slow-radar").changes == {"maneuver": {"radius_s": 15.0, "edge_s": 12.0}}
+
+
+@pytest.mark.parametrize("name", ["noisy-tracks", "slow-radar", "paper"])
+def test_every_change_names_a_field_and_applies_over_the_defaults(name):
+    p = preset(name)
+    assert p.changes, "a preset changes something"
+    for key, values in p.changes.items():
+        assert key in CLASSES, key
+        fields = {f.name for f in dataclasses.fields(CLASSES[key])}
+        assert set(values) <= fields
+        default = CLASSES[key]()
+        # each change is a change (no value equal to the default's)
+        assert all(getattr(default, n) != v for n, v in values.items())
+    for step in STEPS.values():
+        before = step.defaults()
+        after = apply_preset(name, before)
+        for key, value in after.items():
+            changes = p.changes.get(key, {})
+            for f in dataclasses.fields(value):
+                want = changes.get(f.name, getattr(before[key], f.name))
+                assert getattr(value, f.name) == want, (key, f.name)
+            assert value.problems() == []
+        # the defaults themselves are unchanged
+        assert step.defaults() == before
+
+
+def test_the_defaults_are_unchanged_by_the_registry():
+    presets()
+    assert ManeuverParams().confirm_z == 0.0 and ManeuverParams().confirm_grow == 0
+    assert ManeuverParams().radius_s == 0.0 and ManeuverParams().edge_s == 0.0
+    assert CompressParams().refine is True
+
+
+def test_the_paper_preset_is_each_steps_paper_parameters():
+    out = apply_preset("paper", {"maneuver": ManeuverParams(), "compress": CompressParams()})
+    assert out["maneuver"] == ManeuverParams.paper()
+    assert out["compress"] == CompressParams.paper()
+    assert set(preset("paper").changes) == {k for k, c in CLASSES.items() if hasattr(c, "paper")}
+
+
+def test_an_unknown_preset_is_refused_with_the_names():
+    with pytest.raises(InputError, match="noisy-tracks, slow-radar, paper"):
+        preset("quiet")
+    assert preset("Noisy tracks").name == "noisy-tracks"  # its title, any case
+
+
+def test_a_preset_pipeline_changes_every_stage_it_names():
+    pipe = preset_pipeline(Pipeline.default(), "slow-radar")
+    (clean_name, clean), (name, params) = pipe.stages
+    assert clean == Pipeline.default().stages[0][1]
+    assert params["maneuver"].radius_s == 15.0 and params["maneuver"].edge_s == 12.0
+    assert params["compress"] == CompressParams()
+
+
+# -- the command line ---------------------------------------------------------------------
+
+
+def _track_file(tmp_path, dt=10.0, n=120, sigma=0.0, batch="1", sensor="S1", seed=0):
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) * dt
+    heading = np.where(t < t[n // 2], 0.0, np.pi / 2)
+    v = 10 * geo.KN_MS
+    x = np.cumsum(v * np.sin(heading) * dt) + rng.normal(0, sigma, n) if sigma else None
+    y = np.cumsum(v * np.cos(heading) * dt) + rng.normal(0, sigma, n) if sigma else None
+    if x is None:
+        x = np.cumsum(v * np.sin(heading) * dt)
+        y = np.cumsum(v * np.cos(heading) * dt)
+    lon, lat = geo.from_local(x, y, 11.0, 57.0)
+    pts = pd.DataFrame(
+        {
+            "sensor": sensor,
+            "batch": batch,
+            "time": pd.to_datetime(1.6e9 + t, unit="s", utc=True),
+            "lon": lon,
+            "lat": lat,
+        }
+    )
+    path = tmp_path / "track.csv"
+    from wakeline.core.io import write_points
+
+    write_points(pts, path)
+    return path, pts
+
+
+def _report_params(tmp_path, argv):
+    rep = tmp_path / "r.json"
+    assert main([*argv, "--report", str(rep)]) == 0
+    return json.loads(rep.read_text(encoding="utf-8"))["params"]
+
+
+@pytest.mark.parametrize("step", ["maneuvers", "compress"])
+def test_preset_on_a_step_command_and_a_flag_over_it(tmp_path, step):
+    src, _ = _track_file(tmp_path)
+    out = str(tmp_path / "out.csv")
+    base = [step, str(src), "-o", out]
+    plain = _report_params(tmp_path, base)["maneuver"]
+    assert plain["confirm_z"] == 0.0
+    got = _report_params(tmp_path, [*base, "--preset", "noisy-tracks"])["maneuver"]
+    assert got["confirm_z"] == 4.0 and got["confirm_grow"] == 4
+    assert {k: v for k, v in got.items() if k not in ("confirm_z", "confirm_grow")} == {
+        k: v for k, v in plain.items() if k not in ("confirm_z", "confirm_grow")
+    }
+    over = _report_params(tmp_path, [*base, "--preset", "noisy-tracks", "--confirm-z", "3"])
+    assert over["maneuver"]["confirm_z"] == 3.0 and over["maneuver"]["confirm_grow"] == 4
+    over = _report_params(tmp_path, [*base, "--preset", "slow-radar", "--set", "edge_s=0"])
+    assert over["maneuver"]["radius_s"] == 15.0 and over["maneuver"]["edge_s"] == 0.0
+
+
+def test_paper_preset_on_compress_is_the_paper_flag(tmp_path):
+    src, _ = _track_file(tmp_path)
+    base = ["compress", str(src), "-o", str(tmp_path / "o.csv")]
+    assert _report_params(tmp_path, [*base, "--preset", "paper"]) == _report_params(
+        tmp_path, [*base, "--paper"]
+    )
+
+
+def test_preset_flag_only_where_a_preset_changes_the_step():
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command").choices
+    for name, step in STEPS.items():
+        has = any(a.dest == "preset" for a in sub[name]._actions)
+        keys = {key for key, _ in step.params}
+        assert has == any(set(p.changes) & keys for p in presets().values()), name
+    for name in ("batch", "evaluate"):
+        assert any(a.dest == "preset" for a in sub[name]._actions)
+
+
+def test_presets_command_and_preset_list(capsys):
+    assert main(["presets"]) == 0
+    out = capsys.readouterr().out
+    with pytest.raises(SystemExit) as exc:
+        main(["maneuvers", "--preset", "list"])  # no input needed
+    assert exc.value.code == 0
+    assert capsys.readouterr().out == out
+    for p in presets().values():
+        assert p.name in out and p.purpose in out and p.evidence in out
+
+
+def test_unknown_preset_on_the_command_line(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["maneuvers", "x.csv", "-o", "y.csv", "--preset", "quiet"])
+    assert exc.value.code == 2
+    assert "noisy-tracks" in capsys.readouterr().err
+
+
+def test_batch_print_pipeline_with_a_preset(capsys):
+    assert main(["batch", "--print-pipeline", "--preset", "noisy-tracks"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    compress = next(s for s in data["steps"] if s["step"] == "compress")
+    assert compress["params"]["maneuver"]["confirm_z"] == 4.0
+    assert main(["batch", "--print-pipeline"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    compress = next(s for s in data["steps"] if s["step"] == "compress")
+    assert compress["params"]["maneuver"]["confirm_z"] == 0.0
+
+
+def test_evaluate_maneuver_takes_the_preset_under_its_flags(capsys):
+    from wakeline.app.cli_evaluate import _maneuver_params
+
+    parser = build_parser()
+    args = parser.parse_args(["evaluate", "maneuver", "--preset", "slow-radar"])
+    mp = _maneuver_params(args)
+    assert mp.radius_s == 15.0 and mp.edge_s == 12.0
+    args = parser.parse_args(["evaluate", "maneuver", "--preset", "slow-radar", "--edge-s", "6"])
+    assert _maneuver_params(args).edge_s == 6.0
+    assert _maneuver_params(parser.parse_args(["evaluate", "maneuver"])) == ManeuverParams()
+    assert main(["evaluate", "fuse", "--preset", "noisy-tracks"]) == 2
+    assert "--preset applies to evaluate maneuver" in capsys.readouterr().err
+
+
+# -- the suggestions -----------------------------------------------------------------------
+
+
+def _names(pts):
+    return [s.name for s in suggested_presets(pts)]
+
+
+def test_noisy_tracks_suggested_where_the_noise_floor_exceeds_the_threshold(tmp_path):
+    # 1 s plots at 15 m noise, 10 kn: the first scale's floor is several times t
+    noisy = pd.concat(
+        [_track_file(tmp_path, dt=1.0, n=900, sigma=15.0, batch=str(s), seed=s)[1] for s in (1, 2)]
+    )
+    assert noise_floor_ratio(noisy) > 1
+    assert "noisy-tracks" in _names(noisy)
+    # the same ships with 2 m noise: no suggestion
+    clean = pd.concat(
+        [_track_file(tmp_path, dt=1.0, n=900, sigma=2.0, batch=str(s), seed=s)[1] for s in (1, 2)]
+    )
+    assert noise_floor_ratio(clean) < 1
+    assert "noisy-tracks" not in _names(clean)
+
+
+def test_slow_radar_suggested_at_3_to_7_s_unless_ais(tmp_path):
+    for dt, want in ((2.0, False), (4.0, True), (6.5, True), (10.0, False)):
+        _, pts = _track_file(tmp_path, dt=dt, sensor="radar", batch="7")
+        assert ("slow-radar" in _names(pts)) == want, dt
+    _, pts = _track_file(tmp_path, dt=4.0, sensor="S1", batch="209351000")  # an MMSI
+    assert "slow-radar" not in _names(pts)
+    _, pts = _track_file(tmp_path, dt=4.0, sensor="AIS", batch="7")
+    assert "slow-radar" not in _names(pts)
+
+
+@pytest.mark.skipif(not SHARED_REAL.exists(), reason="shared real sets not present")
+def test_on_the_real_sets_noisy_fires_on_mtad_not_on_the_ais_sets():
+    from wakeline.core import real_sets
+    from wakeline.core.evaluate_real import read_track_files
+
+    for pts in (
+        real_sets.read_greece(SHARED_REAL / "greece-ais-annotated"),
+        real_sets.read_dma(SHARED_REAL / "dma-single-ship"),
+        real_sets.read_oresund(SHARED_REAL / "oresund-encounters"),
+    ):
+        assert _names(pts) == []
+    mtad = read_track_files(SHARED_REAL / "mtad-dtwcm" / "original", None)[0]
+    assert _names(mtad) == ["noisy-tracks"]
+    radar, _ = real_sets.read_autoferry(SHARED_REAL / "autoferry-fusion", exclusive=True)
+    assert "slow-radar" not in _names(radar)  # 1.68 s
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    from sampling_sweep import decimate
+
+    assert "slow-radar" in _names(decimate(radar, 5))
