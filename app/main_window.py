@@ -170,6 +170,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.params = ParamsPanel()
         self.params.changed.connect(lambda _k: self.project.put_params(self.params.to_dict()))
         self.params.refused.connect(lambda text: self.log_message(f"{self.tr('Refused')}: {text}"))
+        self.params.message.connect(self.log_message)
         self.batch_model = BatchTableModel(self)
         self.batch_view = QtWidgets.QTableView()
         self.batch_view.setModel(self.batch_model)

@@ -2,7 +2,9 @@
 
 Every field of a :class:`~wakeline.core.params.Params` becomes an editable row with its
 unit, range and tooltip (meaning and source). A value the core refuses is put back and the
-reason shown. Presets are the values as JSON. A resample ``max_gap_s`` set here without
+reason shown. Presets are the values as JSON; the built-in presets
+(:mod:`wakeline.core.presets`: measured settings for some kinds of data) are a menu beside
+them, and the guidance under the tree suggests the one that suits the active layer. A resample ``max_gap_s`` set here without
 ``max_gap_steps`` is the gap limit, as on the command line (core.transform.stated_max_gap):
 ``max_gap_steps`` shows 0 and a note says why.
 """
@@ -11,13 +13,14 @@ import dataclasses
 import json
 import logging
 import re
+import weakref
 from functools import lru_cache
 from pathlib import Path
 
 import pandas as pd
 import shiboken6
 from pyqtgraph.parametertree import Parameter, ParameterTree
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app import core_text
 from wakeline.core.associate import LinkParams
@@ -39,6 +42,7 @@ from wakeline.core.pipeline import (
     ManeuverOptions,
     params_from_version,
 )
+from wakeline.core.presets import menu_table, preset, presets, suggested_presets
 from wakeline.core.transform import stated_max_gap
 from wakeline.resources import translations_dir
 
@@ -188,6 +192,13 @@ def _seconds(value: float) -> str:
     return f"{value:.0f}" if value >= 1 else f"{value:.2g}"
 
 
+def _value_text(value) -> str:
+    """A parameter value in the log: numbers without a needless ".0"."""
+    if isinstance(value, float) and value.is_integer():
+        return str(int(value))
+    return str(value)
+
+
 class ReleasedParameterTree(ParameterTree):
     """pyqtgraph's :class:`ParameterTree` that lets go of its root item with its life.
 
@@ -212,6 +223,8 @@ class ParamsPanel(QtWidgets.QWidget):
 
     changed = QtCore.Signal(str)
     refused = QtCore.Signal(str)
+    #: a line for the log (a built-in preset applied: what it changed)
+    message = QtCore.Signal(str)
 
     def __init__(self, parent: QtWidgets.QWidget | None = None) -> None:
         super().__init__(parent)
@@ -225,6 +238,8 @@ class ParamsPanel(QtWidgets.QWidget):
         self._note_key = ""  # the note under the tree (_show_note)
         self._just_refused = ""  # a refusal said this turn (_tree_changed)
         self._summary: pd.DataFrame | None = None  # the data the guidance is about
+        self._points = None  # weak reference to its points (the presets' suggestion)
+        self._suggested: tuple = ((), [])  # (key, suggestions) of the last points
         children = [
             {
                 "name": "clean",
@@ -260,9 +275,21 @@ class ParamsPanel(QtWidgets.QWidget):
         save.clicked.connect(self._save_dialog)
         load.clicked.connect(self._load_dialog)
         reset.clicked.connect(self.reset)
-        buttons = QtWidgets.QHBoxLayout()
-        for b in (save, load, reset):
-            buttons.addWidget(b)
+        # the built-in presets: a menu of the measured settings, each one's purpose and
+        # evidence in its tooltip (core.presets)
+        self.builtin = QtWidgets.QPushButton()
+        self.builtin_menu = QtWidgets.QMenu(self.builtin)
+        self.builtin_menu.setToolTipsVisible(True)
+        self.builtin_actions: dict[str, QtGui.QAction] = {}
+        for name in presets():
+            action = self.builtin_menu.addAction(name)
+            action.triggered.connect(lambda _checked=False, n=name: self.apply_builtin(n))
+            self.builtin_actions[name] = action
+        self.builtin.setMenu(self.builtin_menu)
+        # two by two: four in a row widened the dock (the window fits 1280 px)
+        buttons = QtWidgets.QGridLayout()
+        for k, b in enumerate((save, load, reset, self.builtin)):
+            buttons.addWidget(b, k // 2, k % 2)
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(2, 2, 2, 2)
         lay.addWidget(self.tree, 1)
@@ -352,6 +379,18 @@ class ParamsPanel(QtWidgets.QWidget):
             strict=True,
         ):
             button.setText(text)
+        self.builtin.setText(self.tr("Built-in presets"))
+        self.builtin.setToolTip(
+            self.tr(
+                "Measured settings for some kinds of data (options, not defaults): choosing "
+                "one sets its values and puts the other built-in presets' values back to "
+                "their defaults; the log says what changed"
+            )
+        )
+        for name, action in self.builtin_actions.items():
+            p = preset(name)
+            action.setText(core_text.shown(p.title))
+            action.setToolTip(core_text.shown(p.purpose) + "\n" + core_text.shown(p.evidence))
         self._show_note(self._note_key)
         units = self.unit_texts()
         stack = list(self.root.children())
@@ -374,7 +413,7 @@ class ParamsPanel(QtWidgets.QWidget):
                     if item.opts.get("title") != title:
                         item.setOpts(title=title)
         if getattr(self, "_summary", None) is not None:  # the detection limit's paragraph
-            self.show_guidance(self._summary)
+            self.show_guidance(self._summary, self._guided_points())
 
     def unit_texts(self) -> dict[str, str]:
         """The parameters' units as the tree shows them, in the current language (SI
@@ -481,7 +520,8 @@ class ParamsPanel(QtWidgets.QWidget):
                 self.problem.setText("")
                 self._show_note("" if self._loading else note)
                 if path[0] == "maneuver" and self._summary is not None:
-                    self.show_guidance(self._summary)  # its window and threshold changed
+                    # its window and threshold changed
+                    self.show_guidance(self._summary, self._guided_points())
                 self.changed.emit(path[0])
 
     def _forget_refusal(self) -> None:
@@ -575,12 +615,93 @@ class ParamsPanel(QtWidgets.QWidget):
                 self, self.tr("Preset loaded with problems"), "\n".join(problems)
             )
 
+    def apply_builtin(self, name: str) -> list[str]:
+        """Apply the built-in preset ``name`` (:func:`wakeline.core.presets.menu_table`: its
+        values, the other built-in presets' values back at their defaults, the rest kept);
+        the log is told what changed. Returns the problems (values not applied)."""
+        p = preset(name)
+        before = self.to_dict()
+        problems = self.from_dict(menu_table(p))
+        after = self.to_dict()
+        titles = self.group_titles()
+        parts = []
+        for key, values in after.items():
+            if key == "clean":
+                continue
+            diff = [
+                f"{field} {_value_text(before[key][field])} → {_value_text(value)}"
+                for field, value in values.items()
+                if before[key][field] != value
+            ]
+            if diff:
+                parts.append(f"{titles.get(key, key)}: {', '.join(diff)}")
+        title = core_text.shown(p.title)
+        if parts:
+            text = self.tr("Built-in preset “{0}” applied: {1}").format(title, "; ".join(parts))
+        else:
+            text = self.tr("Built-in preset “{0}”: every value was already set").format(title)
+        if problems:
+            text += " " + self.tr("Not applied: {0}").format("; ".join(problems))
+        self.message.emit(text)
+        return problems
+
     # -- guidance ------------------------------------------------------------------
 
-    def show_guidance(self, summary: pd.DataFrame) -> None:
+    def _guided_points(self):
+        return self._points() if self._points is not None else None
+
+    def _suggestions(self, points) -> list:
+        """The built-in presets suggested for ``points`` (core.presets.suggested_presets),
+        kept while the points and the maneuver values they depend on stay the same."""
+        if points is None or len(points) == 0:
+            return []
+        mp = self._values["maneuver"]
+        key = (id(points), len(points), mp.window_p, mp.window_s, mp.window_max_s)
+        key += (mp.threshold_deg, mp.noise_k, mp.noise_lag_s)
+        if self._suggested[0] != key:
+            try:
+                found = suggested_presets(points, mp)
+            except (InputError, KeyError, ValueError) as exc:  # no tracks to judge
+                log.info("no preset suggestion: %s", exc)
+                found = []
+            self._suggested = (key, found)
+        return self._suggested[1]
+
+    def _suggestion_text(self, points) -> str:
+        texts = []
+        for s in self._suggestions(points):
+            title = core_text.shown(preset(s.name).title)
+            if s.name == "noisy-tracks":
+                texts.append(
+                    self.tr(
+                        "The position noise is large for this sampling (the noise floor of "
+                        "the first windows is {1:.1f} × the threshold on a typical track): "
+                        "the built-in preset “{0}” finds far fewer false turns."
+                    ).format(title, s.value)
+                )
+            elif s.name == "slow-radar":
+                texts.append(
+                    self.tr(
+                        "Plots every {1} s, not AIS: the built-in preset “{0}” finds more "
+                        "of the turns at slow radar scans."
+                    ).format(title, _seconds(s.value))
+                )
+        return " ".join(texts)
+
+    def show_guidance(self, summary: pd.DataFrame, points: pd.DataFrame | None = None) -> None:
         """Seed 000's detection limit for the loaded data: typical speed and interval
-        (core.maneuver.detection_limit), or why none can be given."""
+        (core.maneuver.detection_limit), or why none can be given; with the layer's
+        ``points``, the built-in presets that suit them (core.presets.suggested_presets)."""
         self._summary = summary
+        if points is not None:
+            self._points = weakref.ref(points)
+        suggestion = self._suggestion_text(self._guided_points())
+        self._show_limit(summary)
+        if suggestion:
+            text = self.guidance.text()
+            self.guidance.setText(f"{text} {suggestion}" if text else suggestion)
+
+    def _show_limit(self, summary: pd.DataFrame) -> None:
         mp = self._values["maneuver"]
         limit = detection_limit(
             summary,

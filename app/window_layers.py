@@ -428,7 +428,7 @@ class LayersMixin:
             layer = self.session.get(self.active)
             own = layer is not None and layer.kind in OWN_SAMPLING_KINDS
             root = view if own else self.views.get(self.session.root(self.active).id, view)
-            self.params.show_guidance(root.summary)
+            self.params.show_guidance(root.summary, root.points)
         layer = self.session.get(self.active)
         if view is not None and layer.kind == BEARING_KIND and self.bearings is not view.points:
             self.show_bearing_layer(view)  # its map and detections in the dock
@@ -452,7 +452,8 @@ class LayersMixin:
             return False
         root = self.session.root(lid)
         if layer.kind in OWN_SAMPLING_KINDS or root is None or root.id == lid:
-            self.params.show_guidance(view.summary)  # its own sampling changed (set_active)
+            # its own sampling changed (set_active)
+            self.params.show_guidance(view.summary, view.points)
         keys = self.selected_keys()
         if keys and not _same_but_targets(view.tracks(keys), self.canvas.selected_points()):
             self._selecting = True  # the selection drawn from the new points (kept)

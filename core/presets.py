@@ -133,6 +133,23 @@ def apply_preset(which: "Preset | str", params: Mapping[str, Any]) -> dict[str, 
     return out
 
 
+def menu_table(which: "Preset | str") -> dict[str, dict[str, Any]]:
+    """What choosing the preset in the parameter panel sets: its changes, and every field
+    another built-in preset changes back at its default (switching from one preset to
+    another leaves nothing of the first); the operator's other values are kept."""
+    from wakeline.core.pipeline import STEPS
+
+    p = preset(which) if isinstance(which, str) else which
+    classes = {key: cls for step in STEPS.values() for key, cls in step.params}
+    out = p.table()
+    for other in presets().values():
+        for key, values in other.changes.items():
+            default = classes[key]()
+            for name in values:
+                out.setdefault(key, {}).setdefault(name, getattr(default, name))
+    return out
+
+
 def preset_pipeline(pipe, which: "Preset | str"):
     """A :class:`~wakeline.core.pipeline.Pipeline` with the preset applied to every
     stage's parameter sets (over the file's values: ``wakeline batch --preset``)."""

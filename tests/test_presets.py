@@ -3,6 +3,7 @@ line's ``--preset`` and ``wakeline presets``, and the guidance's suggestion rule
 
 import dataclasses
 import json
+import re
 
 import numpy as np
 import pandas as pd
@@ -17,6 +18,7 @@ from wakeline.core.maneuver import ManeuverParams
 from wakeline.core.pipeline import STEPS, Pipeline
 from wakeline.core.presets import (
     apply_preset,
+    menu_table,
     noise_floor_ratio,
     preset,
     preset_pipeline,
@@ -79,6 +81,16 @@ def test_an_unknown_preset_is_refused_with_the_names():
     with pytest.raises(InputError, match="noisy-tracks, slow-radar, paper"):
         preset("quiet")
     assert preset("Noisy tracks").name == "noisy-tracks"  # its title, any case
+
+
+def test_the_menus_table_sets_the_other_presets_fields_back_to_their_defaults():
+    table = menu_table("noisy-tracks")
+    assert table["maneuver"]["confirm_z"] == 4.0
+    assert table["maneuver"]["radius_s"] == 0.0 and table["maneuver"]["edge_s"] == 0.0
+    assert table["maneuver"]["window_s"] == ManeuverParams().window_s  # the paper's, undone
+    assert table["compress"]["refine"] is True
+    paper = menu_table("paper")
+    assert paper["maneuver"]["window_s"] == 0.0 and paper["maneuver"]["confirm_z"] == 0.0
 
 
 def test_a_preset_pipeline_changes_every_stage_it_names():
@@ -259,3 +271,112 @@ def test_on_the_real_sets_noisy_fires_on_mtad_not_on_the_ais_sets():
     from sampling_sweep import decimate
 
     assert "slow-radar" in _names(decimate(radar, 5))
+
+
+# -- the parameter panel ---------------------------------------------------------------------
+
+
+def _panel(qtbot):
+    pytest.importorskip("pytestqt")
+    from wakeline.app.params_panel import ParamsPanel
+
+    panel = ParamsPanel()
+    qtbot.addWidget(panel)
+    panel.retranslate()
+    return panel
+
+
+def test_the_panels_built_in_presets_menu_applies_and_logs(qtbot):
+    panel = _panel(qtbot)
+    assert panel.builtin.text() == "Built-in presets"
+    assert panel.builtin.menu() is panel.builtin_menu
+    actions = panel.builtin_menu.actions()
+    assert [a.text() for a in actions] == [p.title for p in presets().values()]
+    for a, p in zip(actions, presets().values(), strict=True):
+        assert a.toolTip().startswith(p.purpose) and p.evidence in a.toolTip()
+    said, changed = [], []
+    panel.message.connect(said.append)
+    panel.changed.connect(changed.append)
+    panel.builtin_actions["noisy-tracks"].trigger()
+    mp = panel.params("maneuver")
+    assert (mp.confirm_z, mp.confirm_grow) == (4.0, 4)
+    assert said[-1].startswith("Built-in preset “Noisy tracks” applied: ")
+    assert "confirm_z 0 → 4" in said[-1] and "confirm_grow 0 → 4" in said[-1]
+    assert "maneuver" in changed  # the project is told, as for an edit
+    panel.from_dict({"maneuver": {"threshold_deg": 20.0}})  # the operator's own value
+    panel.apply_builtin("slow-radar")
+    mp = panel.params("maneuver")
+    assert (mp.radius_s, mp.edge_s, mp.confirm_z, mp.confirm_grow) == (15.0, 12.0, 0.0, 0)
+    assert mp.threshold_deg == 20.0  # kept
+    assert "confirm_z 4 → 0" in said[-1] and "radius_s 0 → 15" in said[-1]
+    panel.apply_builtin("slow-radar")
+    assert said[-1] == "Built-in preset “Slow radar scans (3-7 s)”: every value was already set"
+    panel.apply_builtin("paper")
+    assert panel.params("maneuver") == ManeuverParams.paper().replace(threshold_deg=20.0)
+    assert panel.params("compress") == CompressParams.paper()
+    panel.reset()
+    assert panel.params("maneuver") == ManeuverParams()
+
+
+def test_the_built_in_presets_in_chinese(qtbot):
+    from PySide6 import QtWidgets
+
+    from wakeline.app import core_text, i18n
+
+    panel = _panel(qtbot)
+    app = QtWidgets.QApplication.instance()
+    translator = i18n.install(app, "zh_CN", None)
+    said = []
+    panel.message.connect(said.append)
+    han = re.compile(r"[\u4e00-\u9fff]")
+    english = re.compile(r"[A-Za-z_]{3,}")
+    try:
+        core_text.set_language("zh_CN")
+        panel.retranslate()
+        assert panel.builtin.text() == "内置预设"
+        for name, action in panel.builtin_actions.items():
+            p = preset(name)
+            for text, en in ((action.text(), p.title), (action.toolTip(), p.purpose)):
+                assert han.search(text) and en not in text, text
+            # what stays English in a tooltip: identifiers, the sets' names, the doc's
+            # section titles (after docs/evaluation.md)
+            head = action.toolTip().split("docs/evaluation.md")[0]
+            words = {w for w in english.findall(head) if "_" not in w}
+            words -= {"Autoferry", "MTAD", "DMA", "AIS", "paper"}
+            assert not words, (name, words)
+        panel.apply_builtin("noisy-tracks")
+        assert (
+            said[-1].startswith("已应用内置预设“噪声大的航迹”：") and "confirm_z 0 → 4" in said[-1]
+        )
+    finally:
+        core_text.set_language("en")
+        i18n.install(app, "en", translator)
+
+
+def test_the_guidance_suggests_the_preset_that_suits_the_layer(qtbot, tmp_path):
+    from wakeline.core.tracks import track_summary
+
+    panel = _panel(qtbot)
+    noisy = pd.concat(
+        [_track_file(tmp_path, dt=1.0, n=900, sigma=15.0, batch=str(s), seed=s)[1] for s in (1, 2)]
+    )
+    panel.show_guidance(track_summary(noisy), noisy)
+    text = panel.guidance.text()
+    assert text.startswith("Detection limit (seed 000)")
+    assert "the built-in preset “Noisy tracks” finds far fewer false turns" in text
+    assert "Slow radar" not in text
+    _, slow = _track_file(tmp_path, dt=5.0, sensor="radar", batch="3")
+    panel.show_guidance(track_summary(slow), slow)
+    text = panel.guidance.text()
+    assert "Plots every 5 s, not AIS: the built-in preset “Slow radar scans (3-7 s)”" in text
+    assert "Noisy tracks" not in text
+    # a parameter change shows the guidance again, the suggestion with it
+    panel.from_dict({"maneuver": {"threshold_deg": 20.0}})
+    assert "Slow radar scans (3-7 s)" in panel.guidance.text()
+    _, ais = _track_file(tmp_path, dt=5.0, sensor="AIS", batch="3")
+    panel.show_guidance(track_summary(ais), ais)
+    assert "built-in preset" not in panel.guidance.text()
+    # without points (a caller that gives none): the limit only, as before
+    panel2 = _panel(qtbot)
+    panel2.show_guidance(track_summary(noisy))
+    assert "built-in preset" not in panel2.guidance.text()

@@ -771,6 +771,34 @@
         <translation>恢复默认</translation>
     </message>
     <message>
+        <source>Built-in presets</source>
+        <translation>内置预设</translation>
+    </message>
+    <message>
+        <source>Measured settings for some kinds of data (options, not defaults): choosing one sets its values and puts the other built-in presets' values back to their defaults; the log says what changed</source>
+        <translation>针对某类数据实测过的设置（可选项，不是默认值）：选择一个即设置其参数值，并把其他内置预设的参数值恢复为默认值；日志会列出改动</translation>
+    </message>
+    <message>
+        <source>Built-in preset “{0}” applied: {1}</source>
+        <translation>已应用内置预设“{0}”：{1}</translation>
+    </message>
+    <message>
+        <source>Built-in preset “{0}”: every value was already set</source>
+        <translation>内置预设“{0}”：所有参数值均已是该设置</translation>
+    </message>
+    <message>
+        <source>Not applied: {0}</source>
+        <translation>未应用：{0}</translation>
+    </message>
+    <message>
+        <source>The position noise is large for this sampling (the noise floor of the first windows is {1:.1f} × the threshold on a typical track): the built-in preset “{0}” finds far fewer false turns.</source>
+        <translation>相对于此采样，位置噪声较大（典型航迹上，第一级窗口的噪声下限是阈值的 {1:.1f} 倍）：内置预设“{0}”误报的转向少得多。</translation>
+    </message>
+    <message>
+        <source>Plots every {1} s, not AIS: the built-in preset “{0}” finds more of the turns at slow radar scans.</source>
+        <translation>每 {1} 秒一个点迹，且不是 AIS：内置预设“{0}”在慢速雷达扫描下能找到更多转向。</translation>
+    </message>
+    <message>
         <source>Save preset</source>
         <translation>保存预设</translation>
     </message>
