@@ -658,7 +658,7 @@ class ParamsPanel(QtWidgets.QWidget):
         mp = self._values["maneuver"]
         key = (id(points), len(points), mp.window_p, mp.window_s, mp.window_max_s)
         key += (mp.threshold_deg, mp.noise_k, mp.noise_lag_s)
-        if self._suggested[0] != key:
+        if self._suggested[0] != key or self._guided_points() is not points:
             try:
                 found = suggested_presets(points, mp)
             except (InputError, KeyError, ValueError) as exc:  # no tracks to judge
