@@ -20,6 +20,7 @@ _TEXT = (
     "batch_b",
     "runner_up",
     "runner_up_side",
+    "plot_tracks",
 )
 
 

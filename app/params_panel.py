@@ -726,25 +726,45 @@ class ParamsPanel(QtWidgets.QWidget):
                     "position): not counted here; Clean's duplicates rule removes them."
                 ).format(f"{limit.repeats:,}")
             )
+        if limit.gap_tracks:
+            # operator test 8, D5: a track spanning days of runs gave a speed over its gaps
+            repeats += " " + self.tr(
+                "{0} of {1} tracks span {2} h, {3:.0%} of it in long gaps: the speed is "
+                "taken between the gaps; reading the file with one track per run (a column "
+                "such as scenario as batch) gives tracks without them."
+            ).format(
+                f"{limit.gap_tracks:,}",
+                f"{limit.tracks:,}",
+                f"{limit.gap_span_s / 3600:,.1f}",
+                limit.gap_share,
+            )
         if limit.reason is not None:
             self.guidance.setText(
                 self.tr("Detection limit (seed 000): none for this data: {0}.").format(limit.reason)
                 + repeats
             )
             return
+        if not limit.eps_m >= 1.0:
+            # "position errors up to 0 m" promised nothing (operator test 8, D5)
+            errors = self.tr(
+                "A {0:.0f}° turn stands out only from position errors under 1 m ({1:.2f} m) at "
+                "this speed and leg"
+            ).format(mp.threshold_deg, limit.eps_m)
+        else:
+            errors = self.tr(
+                "A {0:.0f}° turn stands out from position errors up to {1:.0f} m"
+            ).format(mp.threshold_deg, limit.eps_m)
         self.guidance.setText(
             self.tr(
                 "Detection limit (seed 000) for this data: median speed {0:.1f} kn, "
-                "interval {1} s, legs of p = {2} points ({3} s). A {4:.0f}° turn "
-                "stands out from position errors up to {5:.0f} m; with 100 m errors the "
-                "smallest turn found is {6:.1f}°."
+                "interval {1} s, legs of p = {2} points ({3} s). {4}; with 100 m errors the "
+                "smallest turn found is {5:.1f}°."
             ).format(
                 limit.speed_kn,
                 _seconds(limit.interval_s),
                 limit.window_p,
                 _seconds(limit.leg_s),
-                mp.threshold_deg,
-                limit.eps_m,
+                errors,
                 limit.turn_deg,
             )
             + repeats

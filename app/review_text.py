@@ -128,6 +128,16 @@ def evidence_text(state, pid: str, p: pd.Series) -> str:
             continue  # the join's own prediction is the tightest: nothing to say
         if v == v and v is not None:  # not NaN
             parts.append(label.format(float(v)))
+    plots = p.get("plot_tracks", "")
+    if isinstance(plots, str) and plots:
+        # operator test 8, D1: a pair of plots read as a comfortable join
+        parts.insert(
+            0,
+            tr(
+                "<b>plots, not tracks</b>: {0} (several positions at one time: several "
+                "targets and clutter), so the distance and margin say little"
+            ).format(", ".join(plots.split("+"))),
+        )
     rival = (
         tr("runner-up {0} at {1}").format(p["runner_up"], cost_text(p["runner_up_cost"]))
         if p["runner_up"]

@@ -56,10 +56,13 @@ import pandas as pd
 from wakeline.core import geo, sorted_sets
 from wakeline.core.params import Params, param
 from wakeline.core.tracks import (
+    PLOT_MAX_SPEED_KN,
+    PLOT_MIN_INTERVAL_S,
     TrackIndex,
     concat_ranges,
     local_xy,
     median_interval_s,
+    plot_like,
     remember_order,
     repeated_rows,
     run_medians,
@@ -2826,10 +2829,10 @@ def largest_tolerable_error_m(threshold_deg: float, speed_kn: float, leg_s: floa
 
 #: Below this median time per point (s), batches all at one time or moving faster than a
 #: ship are radar plots, not tracks sampled in time (fast tracks, GNSS at 10 Hz, are tracks).
-GUIDANCE_MIN_INTERVAL_S = 1.0
+GUIDANCE_MIN_INTERVAL_S = PLOT_MIN_INTERVAL_S
 #: Above this median speed (kn) the batches are not one ship each (no ship goes faster;
 #: AIS itself tops out at 102.2 kn).
-GUIDANCE_MAX_SPEED_KN = 100.0
+GUIDANCE_MAX_SPEED_KN = PLOT_MAX_SPEED_KN
 
 
 @dataclass(frozen=True)
@@ -2849,6 +2852,13 @@ class DetectionLimit:
     window_p: int = 0
     #: Rows repeating an earlier row of their track (same time and position), left out.
     repeats: int = 0
+    #: Tracks (of ``tracks`` with two points or more) most of whose span is long gaps
+    #: (:func:`wakeline.core.tracks._long_gaps`): the speed is taken between the gaps.
+    gap_tracks: int = 0
+    tracks: int = 0
+    #: Their median span (s) and the share of it in gaps.
+    gap_span_s: float = float("nan")
+    gap_share: float = float("nan")
 
 
 def detection_limit(
@@ -2890,15 +2900,38 @@ def detection_limit(
     if not moving.any():
         return None
     span = float(np.nanmedian(duration[moving] / (points[moving] - 1)))
-    speeds = summary["mean_speed_kn"].to_numpy(dtype="float64")[moving]
+    speeds = summary["mean_speed_kn"].to_numpy(dtype="float64")
+    gaps = {}
+    if "gap_s" in summary.columns:
+        # the speed between the long gaps (a track spanning days of runs: Autoferry's truth
+        # read 0.1 kn over its 2 days), and how many tracks are mostly gaps
+        gap_s = summary["gap_s"].to_numpy(dtype="float64")
+        gap_m = summary["gap_m"].to_numpy(dtype="float64")
+        length = summary["length_m"].to_numpy(dtype="float64")
+        run = duration - gap_s
+        with np.errstate(divide="ignore", invalid="ignore"):
+            speeds = np.where((gap_s > 0) & (run > 0), (length - gap_m) / run / geo.KN_MS, speeds)
+        gappy = moving & (gap_s > 0.5 * duration)
+        if gappy.any():
+            gaps = {
+                "gap_tracks": int(gappy.sum()),
+                "gap_span_s": float(np.median(duration[gappy])),
+                "gap_share": float(gap_s[gappy].sum() / duration[gappy].sum()),
+            }
+    speeds = speeds[moving]
     speed = float(np.nanmedian(speeds)) if np.isfinite(speeds).any() else float("nan")
     shared = int(np.count_nonzero(duration[moving] <= 0))
     # Plots: batches close in time whose points are all at one time (half of them at
     # least) or far apart for that time (no ship's speed); fast tracks move as ships do.
-    plots = not span >= GUIDANCE_MIN_INTERVAL_S and (
-        2 * shared >= int(moving.sum())
-        or not (np.isfinite(speed) and speed <= GUIDANCE_MAX_SPEED_KN)
-    )
+    # Or half the batches plots by :func:`~wakeline.core.tracks.plot_like` (several
+    # positions at one time), the test fusion and association warn with.
+    plots = (
+        not span >= GUIDANCE_MIN_INTERVAL_S
+        and (
+            2 * shared >= int(moving.sum())
+            or not (np.isfinite(speed) and speed <= GUIDANCE_MAX_SPEED_KN)
+        )
+    ) or 2 * int(plot_like(summary)[moving].sum()) >= int(moving.sum())
     interval = span
     if "interval_s" in summary.columns and not plots:
         steps = summary["interval_s"].to_numpy(dtype="float64")[moving]
@@ -2906,9 +2939,21 @@ def detection_limit(
             interval = float(np.nanmedian(steps))
     nan = float("nan")
 
-    def none_because(reason: str) -> DetectionLimit:
-        return DetectionLimit(speed, interval, nan, nan, nan, reason, repeats=repeats)
+    tracks = int(moving.sum())
 
+    def none_because(reason: str) -> DetectionLimit:
+        return DetectionLimit(
+            speed, interval, nan, nan, nan, reason, repeats=repeats, tracks=tracks, **gaps
+        )
+
+    n_plot = int(plot_like(summary)[moving].sum())
+    if plots and 2 * shared < tracks and n_plot:
+        return none_because(
+            f"points share times ({n_plot:,} of {count_of(tracks, 'batch', 'batches')} hold "
+            f"several positions at one time; median interval {interval:.1f} s): these look "
+            "like radar plots (one batch per scan), not tracks; no detection limit can be "
+            "given until the plots are joined into tracks"
+        )
     if plots:
         return none_because(
             f"points share times (median interval {interval:.1f} s; {shared:,} of "
@@ -2936,4 +2981,6 @@ def detection_limit(
         smallest_detectable_turn_deg(eps_m, speed, leg),
         window_p=p,
         repeats=repeats,
+        tracks=tracks,
+        **gaps,
     )

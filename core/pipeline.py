@@ -604,12 +604,17 @@ def run_associate(
         assoc = associate_interrupted(
             points, lp, method=method, normalize=opts.normalize, progress=progress
         )
-    from wakeline.core.review import association_proposals
+    from wakeline.core.review import association_proposals, mark_plot_tracks
+    from wakeline.core.tracks import plot_tracks
 
     proposals, assoc = association_proposals(assoc, lp, set(rejected) | set(split))
+    plots, _ = plot_tracks(points)
+    proposals = mark_plot_tracks(proposals, plots)
     out = stitch(assoc, fill=opts.fill) if opts.stitch else assoc.points()
     pairs = assoc.pair_table()
     report = {**assoc.report(), "method": method}
+    if plots:
+        report["plot_tracks"] = len(plots)
     if rejected:
         report["rejected_kept_out"] = len(rejected)
     if split:
@@ -670,6 +675,17 @@ def _summary_associate(res: StepResult) -> Text:
         )
     if "points_filled" in rep:
         parts.append(phrase("; {n:#point} filled", n=rep["points_filled"]))
+    if rep.get("plot_tracks"):
+        parts.append(
+            phrase(
+                "; warning: {plots:,} of the {tracks:,} tracks are plots, not tracks (several "
+                "positions at one time: detections of several targets and clutter): their "
+                "joins rest on points of different targets; join the plots into tracks first "
+                "(a tracker), or read the file with batch from a column that names one target",
+                plots=rep["plot_tracks"],
+                tracks=rep["tracks"],
+            )
+        )
     single = rep.get("single_fix_tracks", 0)
     if rep["tracks"] >= 100 and single > 0.5 * rep["tracks"]:
         parts.append(
@@ -727,12 +743,24 @@ def run_fuse(
         method=opts.method,
         progress=sub_progress(progress, 0.0, 0.6),
     )
-    from wakeline.core.review import fusion_proposals
+    from wakeline.core.review import fusion_proposals, mark_plot_tracks
+    from wakeline.core.tracks import plot_tracks
 
     proposals, assoc = fusion_proposals(assoc, fp, set(rejected) | set(split))
+    plots, _ = plot_tracks(points)
+    proposals = mark_plot_tracks(proposals, plots)
     base = {}
     fused = fuse(assoc, fp, sub_progress(progress, 0.6, 1.0), base)
     pairs = assoc.pair_table()
+    if plots:
+        # fused and said (operator test 8, D1): a fused track of plots holds several
+        # points at one time; the summary counts them and names what to do
+        base["plot_tracks"] = len(plots)
+        several = fused.duplicated(["batch", "time"], keep=False)
+        base["fused_times"] = int(len(fused) - fused.duplicated(["batch", "time"]).sum())
+        base["fused_shared_times"] = int(
+            (several & ~fused.duplicated(["batch", "time"], keep="first")).sum()
+        )
     report = {
         **base,
         **assoc.report(),
@@ -827,6 +855,20 @@ def _summary_fuse(res: StepResult) -> Text:
         )
     if not rep.get("pairs_chosen") and "max_distance_m" in rep:
         parts.extend(_no_pair_reason(rep))
+    if rep.get("plot_tracks"):
+        parts.append(
+            phrase(
+                "; warning: {plots:,} of the {tracks:,} tracks are plots, not tracks (several "
+                "positions at one time: detections of several targets and clutter), so the "
+                "fused tracks zig-zag between them and hold several points at {shared:,} of "
+                "their {times:,} times; join the plots into tracks first (a tracker), or read "
+                "the file with batch from a column that names one target",
+                plots=rep["plot_tracks"],
+                tracks=rep["tracks"],
+                shared=rep.get("fused_shared_times", 0),
+                times=rep.get("fused_times", 0),
+            )
+        )
     return Text(parts)
 
 

@@ -68,6 +68,9 @@ PROPOSAL_COLUMNS = (
     "margin",
     "margin_rel",
     "gate",
+    # the pair's tracks that are plots, not tracks (several positions at one time:
+    # :func:`wakeline.core.tracks.plot_like`), labels joined by "+"; "" for none
+    "plot_tracks",
 )
 
 
@@ -158,8 +161,24 @@ def _finish(df: pd.DataFrame, prefix: str, gate: float) -> pd.DataFrame:
     df.insert(0, "proposal", [f"{prefix}{k + 1:04d}" for k in range(len(df))])
     for c in PROPOSAL_COLUMNS:
         if c not in df.columns:
-            df[c] = np.nan
+            df[c] = "" if c == "plot_tracks" else np.nan
     return df[list(PROPOSAL_COLUMNS)].reset_index(drop=True)
+
+
+def mark_plot_tracks(proposals: pd.DataFrame, plots: Iterable[str]) -> pd.DataFrame:
+    """``proposals`` with ``plot_tracks`` naming each pair's tracks among ``plots`` (track
+    labels that are plots, not tracks: :func:`wakeline.core.tracks.plot_like`)."""
+    plots = set(plots)
+    out = proposals.copy()
+    if not len(out):
+        out["plot_tracks"] = pd.Series([], dtype=object)
+        return out
+    a = [track_label(s, b) for s, b in zip(out["sensor_a"], out["batch_a"], strict=True)]
+    b = [track_label(s, b) for s, b in zip(out["sensor_b"], out["batch_b"], strict=True)]
+    out["plot_tracks"] = [
+        "+".join(x for x in (la, lb) if x in plots) for la, lb in zip(a, b, strict=True)
+    ]
+    return out
 
 
 def _excluded(labels: np.ndarray, a: np.ndarray, b: np.ndarray, rejected: Iterable) -> np.ndarray:
@@ -359,7 +378,7 @@ def read_proposals(df: pd.DataFrame) -> pd.DataFrame:
         raise InputError(f"proposals table lacks the column(s) {', '.join(missing)}")
     out = df.copy()
     names = ("proposal", "sensor_a", "batch_a", "sensor_b", "batch_b", "kind", "method")
-    optional = ("runner_up", "runner_up_side")  # empty where there is none
+    optional = ("runner_up", "runner_up_side", "plot_tracks")  # empty where there is none
     for c in PROPOSAL_COLUMNS:
         if c not in out.columns:
             out[c] = "" if c in ("kind", "method", *optional) else np.nan

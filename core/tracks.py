@@ -556,6 +556,9 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
                 "mean_speed_kn",
                 "interval_s",
                 "repeats",
+                "shared_times",
+                "gap_s",
+                "gap_m",
             ]
         )
     dist, _, _, _ = step_motion(df, index)
@@ -575,8 +578,98 @@ def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     out["length_m"] = length
     out["mean_speed_kn"] = mean_speed
     out["interval_s"] = median_interval_s(t, index)
-    out["repeats"] = np.add.reduceat(repeated_rows(df, index).astype("int64"), index.starts)
+    repeated = repeated_rows(df, index)
+    out["repeats"] = np.add.reduceat(repeated.astype("int64"), index.starts)
+    out["shared_times"] = _shared_times(t, index, repeated)
+    gap_s, gap_m = _long_gaps(t, dist, index, out["interval_s"].to_numpy(dtype="float64"))
+    out["gap_s"] = gap_s
+    out["gap_m"] = gap_m
     return out
+
+
+#: A step is a long gap when it is longer than this many of its track's median intervals
+#: and than :data:`GAP_MIN_S` (Autoferry's GNSS truth: 0.1 s steps inside each 79-152 s
+#: scenario, 292 s to 24 h between them).
+GAP_FACTOR = 20.0
+GAP_MIN_S = 60.0
+#: Below this time per point (s), a track whose points share times or that moves faster
+#: than :data:`PLOT_MAX_SPEED_KN` is radar plots, not a track sampled in time (fast tracks,
+#: GNSS at 10 Hz, are tracks).
+PLOT_MIN_INTERVAL_S = 1.0
+#: Above this speed (kn) a track is not one ship (AIS itself tops out at 102.2 kn).
+PLOT_MAX_SPEED_KN = 100.0
+
+
+def _shared_times(t: np.ndarray, index: "TrackIndex", repeated: np.ndarray) -> np.ndarray:
+    """Per track: its rows (repeats of an earlier row left out) whose time another such
+    row of the track also has: several positions at one time."""
+    rows = np.flatnonzero(~repeated)
+    out = np.zeros(index.n_tracks, dtype="int64")
+    if len(rows) < 2:
+        return out
+    tr, tt = index.track_of_row[rows], t[rows]
+    eq = (tt[1:] == tt[:-1]) & (tr[1:] == tr[:-1])
+    shared = np.zeros(len(rows), dtype=bool)
+    shared[1:] |= eq
+    shared[:-1] |= eq
+    return np.bincount(tr[shared], minlength=index.n_tracks).astype("int64")
+
+
+def _long_gaps(t: np.ndarray, dist: np.ndarray, index: "TrackIndex", interval: np.ndarray):
+    """Per track: the time (s) and the straight-line length (m) of its long gaps (steps
+    over :data:`GAP_FACTOR` median intervals and :data:`GAP_MIN_S`)."""
+    n = index.n_tracks
+    if len(t) < 2:
+        return np.zeros(n), np.zeros(n)
+    dt = np.zeros(len(t))
+    dt[1:] = t[1:] - t[:-1]
+    dt[index.starts] = 0.0
+    limit = np.maximum(GAP_MIN_S, GAP_FACTOR * np.nan_to_num(interval, nan=np.inf))
+    gap = dt > limit[index.track_of_row]
+    gap_s = np.add.reduceat(np.where(gap, dt, 0.0), index.starts)
+    gap_m = np.add.reduceat(np.where(gap, dist, 0.0), index.starts)
+    return gap_s, gap_m
+
+
+def plot_tracks(points: pd.DataFrame) -> tuple[list[str], int]:
+    """The ``sensor:batch`` labels of the tracks of ``points`` that are plots
+    (:func:`plot_like`), and the number of tracks."""
+    summary = track_summary(points)
+    like = plot_like(summary)
+    labels = (
+        summary["sensor"].astype(str).to_numpy()[like]
+        + ":"
+        + summary["batch"].astype(str).to_numpy()[like]
+    )
+    return [str(x) for x in labels], int(len(summary))
+
+
+def plot_like(summary: pd.DataFrame) -> np.ndarray:
+    """Per track of a :func:`track_summary`: whether it is plots (detections of a scan,
+    of several targets and clutter), not one ship's track. Its rows (repeats left out)
+    are at least two and either half of them share their time with another of its rows
+    (several positions at one time), or they come under :data:`PLOT_MIN_INTERVAL_S`
+    apart on average while all at one time or faster than :data:`PLOT_MAX_SPEED_KN`. The
+    one test of the parameter guidance (:func:`wakeline.core.maneuver.detection_limit`),
+    fusion's and association's warnings and the review's marks."""
+    if summary.empty:
+        return np.zeros(0, dtype=bool)
+    points = summary["points"].to_numpy(dtype="float64")
+    if "repeats" in summary.columns:
+        points = points - summary["repeats"].to_numpy(dtype="float64")
+    duration = summary["duration_s"].to_numpy(dtype="float64")
+    speed = summary["mean_speed_kn"].to_numpy(dtype="float64")
+    shared = (
+        summary["shared_times"].to_numpy(dtype="float64")
+        if "shared_times" in summary.columns
+        else np.zeros(len(points))
+    )
+    moving = points > 1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        span = duration / np.maximum(points - 1, 1)
+        ship = np.isfinite(speed) & (speed <= PLOT_MAX_SPEED_KN)
+    fast = (span < PLOT_MIN_INTERVAL_S) & ((duration <= 0) | ~ship)
+    return moving & ((2 * shared >= points) | fast)
 
 
 def concat_ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:

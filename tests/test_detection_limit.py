@@ -186,3 +186,73 @@ def test_the_panel_names_fast_intervals_and_repeats(qtbot):
     text = panel.guidance.text()
     assert "interval 0.1 s" in text and "plots" not in text
     assert "7 rows repeat an earlier row of their track" in text
+
+
+def _runs_over_days(repeat: int = 1):
+    """Two boats seen at 10 Hz in 100 s runs at 6 kn, one run a day (as Autoferry's GNSS
+    truth read as one track per target: 2 days of 79-152 s scenarios), each fix written
+    ``repeat`` times (the truth repeats a fix once per radar scan)."""
+    runs = []
+    for day in range(3):
+        run = _ships(n_ships=2, dt=0.1, n_scans=1000, kn=6.0)
+        run["time"] = run["time"] + pd.Timedelta(days=day)
+        run["lat"] = run["lat"] + 0.01 * day  # each run starts where the boat is that day
+        runs.append(run)
+    df = pd.concat(runs * repeat).sort_values(["ship", "time"], kind="stable")
+    return df.reset_index(drop=True)
+
+
+def test_tracks_spanning_days_give_the_speed_between_their_gaps_and_say_so():
+    """Operator test 8, D5: the guidance on Autoferry's truth (2 tracks of 2 days, 17,852
+    repeated rows) said "median speed 0.1 kn" and "position errors up to 0 m": the speed
+    was taken over the days between the runs."""
+    df = _runs_over_days(repeat=2)
+    summary = track_summary(_points(df, df["ship"]))
+    assert (summary["gap_s"] > 0.9 * summary["duration_s"]).all()
+    limit = detection_limit(summary, 5, 15.0, window_s=10.0)
+    assert limit.reason is None and limit.repeats == 2 * 3000
+    assert limit.speed_kn == pytest.approx(6.0, rel=1e-3)  # was 0.01 kn over the days
+    assert limit.gap_tracks == 2 and limit.tracks == 2
+    assert limit.gap_span_s == pytest.approx(2 * 86400 + 99.9, abs=1.0)
+    assert limit.gap_share > 0.99
+    # one run: no gaps, nothing said
+    one = df[df["time"] < T0 + pd.Timedelta(hours=1)]
+    limit = detection_limit(track_summary(_points(one, one["ship"])), 5, 15.0)
+    assert limit.gap_tracks == 0 and limit.speed_kn == pytest.approx(6.0, rel=1e-3)
+
+
+def test_the_panel_says_the_tracks_span_days_and_promises_no_turn_at_0_m(qtbot):
+    from wakeline.app.params_panel import ParamsPanel
+
+    panel = ParamsPanel()
+    qtbot.addWidget(panel)
+    df = _runs_over_days(repeat=2)
+    panel.show_guidance(track_summary(_points(df, df["ship"])))
+    text = panel.guidance.text()
+    assert "median speed 6.0 kn" in text, text
+    assert "2 of 2 tracks span 48.0 h, 100% of it in long gaps" in text, text
+    assert "6,000 rows repeat an earlier row" in text
+    # 0.5 kn, 0.1 s fixes, 10 s legs: no error of 1 m or more lets a 15° turn through
+    slow = _ships(n_ships=2, dt=0.1, n_scans=1000, kn=0.5)
+    panel.show_guidance(track_summary(_points(slow, slow["ship"])))
+    text = panel.guidance.text()
+    assert "up to 0 m" not in text and "only from position errors under 1 m" in text, text
+
+
+def test_plot_like_is_per_track_and_spares_tracks_with_a_few_shared_times():
+    """One test of plots (core.tracks.plot_like) for the guidance, fusion, association
+    and the review: a batch holding two ships at every scan is plots; a ship's track is
+    not, even with some fixes sharing a time stamp (AIS repeats a time stamp)."""
+    from wakeline.core.tracks import plot_like
+
+    df = _ships(n_ships=2, dt=10.0, n_scans=60)
+    scenario = pd.Series("all", index=df.index)
+    assert plot_like(track_summary(_points(df, scenario))).tolist() == [True]
+    assert plot_like(track_summary(_points(df, df["ship"]))).tolist() == [False, False]
+    one = df[df["ship"] == 0].copy()
+    stamps = one["time"].copy()
+    stamps.iloc[1:10:2] = stamps.iloc[0:9:2].to_numpy()  # 5 of 60 fixes share a stamp
+    one["time"] = stamps
+    assert plot_like(track_summary(_points(one, one["ship"]))).tolist() == [False]
+    limit = detection_limit(track_summary(_points(df, scenario)), 5, 15.0)
+    assert limit.reason is not None and "hold several positions at one time" in limit.reason

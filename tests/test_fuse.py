@@ -523,3 +523,68 @@ def test_probe_grid_from_short_intervals_is_the_whole_span_grid_filtered():
     new_track, new_grid = _probe_grid(t, index, t0, t1, params)
     assert np.array_equal(new_track, track[ok]) and np.array_equal(new_grid, grid[ok])
     assert len(new_grid) < 0.2 * len(grid)
+
+
+def _plots(sensor: str, period: float, sigma: float, seed: int) -> pd.DataFrame:
+    """Two ships 150 m apart seen by one sensor, written as plots: every detection of a
+    scan in one batch (as Autoferry's radar and lidar read with --map batch=scenario)."""
+    one = observe(sensor, "1", 0, 600, period, sigma, seed, truth="A")
+    two = observe(sensor, "1", 0, 600, period, sigma, seed + 1, truth="B", bias=(150.0, 0.0))
+    return pd.concat([one, two], ignore_index=True)
+
+
+def test_plots_are_fused_with_a_warning_marked_proposals_and_their_scan_interval():
+    """Operator test 8, D1: fusing the Autoferry radar and lidar plots (one "track" per
+    scenario holding two boats and clutter) made zig-zag tracks with several points at one
+    time, said "fused on lidar's 0 s times" and showed the pairs as comfortable joins. The
+    summary now says how many tracks are plots and how many fused times hold several
+    points, names what to do, gives the scan interval, and marks the proposals."""
+    from wakeline.core.pipeline import STEPS
+
+    lidar = _plots("lidar", 2.0, 3.0, 1)
+    radar = _plots("radar", 2.5, 20.0, 3)
+    ship = observe("AIS", "9", 0, 600, 10.0, 3.0, 5, course=200.0)  # a track, paired with none
+    step = STEPS["fuse"]
+    res = step(pd.concat([lidar, radar, ship], ignore_index=True), {"fuse": FuseParams()})
+    rep = res.report
+    fused = res.tables["points"]
+    props = res.tables["proposals"]
+    assert rep["plot_tracks"] == 2 and rep["tracks"] == 3
+    several = fused.duplicated(["batch", "time"], keep=False)
+    assert several.any()  # fused and said, not silently
+    assert rep["fused_shared_times"] == fused[several].drop_duplicates(["batch", "time"]).shape[0]
+    assert rep["fused_times"] == fused.drop_duplicates(["batch", "time"]).shape[0]
+    text = step.summary(res)
+    assert "2 of the 3 tracks are plots, not tracks" in text, text
+    assert f"several points at {rep['fused_shared_times']:,} of their" in text
+    assert "join the plots into tracks first" in text
+    assert " 0 s times" not in text
+    base = next(iter(rep["base_interval_s"].values()))
+    assert base in (2.0, 2.5), rep["base_interval_s"]  # the scan's, not the plots' 0 s
+    assert list(props["plot_tracks"]) == ["lidar:1+radar:1"]
+    # tracks of one ship each: no warning, no mark
+    ok = step(
+        pd.concat(
+            [observe("AIS", "7", 0, 600, 6.0, 5.0, 1), observe("R1", "3", 0, 600, 10.0, 30.0, 2)]
+        ),
+        {"fuse": FuseParams()},
+    )
+    assert "plot_tracks" not in ok.report and "plots" not in step.summary(ok)
+    assert list(ok.tables["proposals"]["plot_tracks"]) == [""]
+
+
+def test_associate_warns_of_plots_and_marks_their_proposals():
+    """Operator test 8, D1: the associate summary says nothing of plots either."""
+    from wakeline.core.associate import LinkParams
+    from wakeline.core.pipeline import STEPS
+
+    first = _plots("R1", 2.0, 3.0, 1)
+    first = first[first["time"] < T0 + pd.Timedelta(seconds=300)]
+    later = _plots("R1", 2.0, 3.0, 1)
+    later = later[later["time"] > T0 + pd.Timedelta(seconds=330)].assign(batch="2")
+    step = STEPS["associate"]
+    res = step(pd.concat([first, later], ignore_index=True), {"associate": LinkParams()})
+    assert res.report["plot_tracks"] == 2
+    assert "2 of the 2 tracks are plots, not tracks" in step.summary(res)
+    props = res.tables["proposals"]
+    assert len(props) == 1 and (props["plot_tracks"] == "R1:1+R1:2").all()

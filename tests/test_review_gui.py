@@ -644,3 +644,28 @@ def test_network_labels_do_not_overlap(qtbot, controller, size):
     x, y = net.edge_midpoint(pid)
     net._hover(net.getPlotItem().getViewBox().mapViewToScene(QtCore.QPointF(x, y)))
     assert pid in net.toolTip() and own in net.toolTip()
+
+
+def test_the_evidence_marks_a_pair_of_plots_and_the_mark_survives_a_project(scene, qtbot, tmp_path):
+    """Operator test 8, D1: the review showed the Autoferry plot pairs as comfortable
+    joins (margins 731-876 of 1,000) and said nothing of plots."""
+    pts, ap = scene
+    pid = ap["proposal"].iat[0]
+    a = R.track_label(ap["sensor_a"].iat[0], ap["batch_a"].iat[0])
+    marked = R.mark_plot_tracks(ap, [a])
+    assert marked["plot_tracks"].iat[0] == a and (marked["plot_tracks"].iloc[1:] == "").all()
+    state = R.ReviewState(R.track_table(pts), marked)
+    path = tmp_path / "q.wakeline"
+    with ReviewStore(path) as store:
+        store.save_queue(state)
+    with ReviewStore(path) as store:
+        state = store.load()
+    assert state.proposals["plot_tracks"].iat[0] == a
+    panel = ReviewPanel(ReviewController(state))
+    qtbot.addWidget(panel)
+    assert panel.set_current(pid)
+    assert "plots, not tracks" in panel.evidence.text() and a in panel.evidence.text()
+    other = ap["proposal"].iat[1]
+    assert panel.set_current(other) and "plots" not in panel.evidence.text()
+    # a queue saved before the mark existed reads as unmarked
+    assert (R.read_proposals(ap.drop(columns=["plot_tracks"]))["plot_tracks"] == "").all()

@@ -815,8 +815,20 @@
         <translation>预设已载入（有问题）</translation>
     </message>
     <message>
-        <source>Detection limit (seed 000) for this data: median speed {0:.1f} kn, interval {1} s, legs of p = {2} points ({3} s). A {4:.0f}° turn stands out from position errors up to {5:.0f} m; with 100 m errors the smallest turn found is {6:.1f}°.</source>
-        <translation>本数据的检测极限（种子文献 000）：航速中位数 {0:.1f} 节，采样间隔 {1} 秒，窗口 p = {2} 点（{3} 秒）。位置误差不超过 {5:.0f} 米时，{4:.0f}° 的转向可被检出；误差为 100 米时，可检出的最小转向为 {6:.1f}°。</translation>
+        <source>Detection limit (seed 000) for this data: median speed {0:.1f} kn, interval {1} s, legs of p = {2} points ({3} s). {4}; with 100 m errors the smallest turn found is {5:.1f}°.</source>
+        <translation>本数据的检测极限（种子文献 000）：航速中位数 {0:.1f} 节，采样间隔 {1} 秒，窗口 p = {2} 点（{3} 秒）。{4}；误差为 100 米时，可检出的最小转向为 {5:.1f}°。</translation>
+    </message>
+    <message>
+        <source>A {0:.0f}° turn stands out from position errors up to {1:.0f} m</source>
+        <translation>位置误差不超过 {1:.0f} 米时，{0:.0f}° 的转向可被检出</translation>
+    </message>
+    <message>
+        <source>A {0:.0f}° turn stands out only from position errors under 1 m ({1:.2f} m) at this speed and leg</source>
+        <translation>在此航速和窗口长度下，只有位置误差小于 1 米（{1:.2f} 米）时，{0:.0f}° 的转向才可被检出</translation>
+    </message>
+    <message>
+        <source>{0} of {1} tracks span {2} h, {3:.0%} of it in long gaps: the speed is taken between the gaps; reading the file with one track per run (a column such as scenario as batch) gives tracks without them.</source>
+        <translation>{1} 条航迹中有 {0} 条跨越 {2} 小时，其中 {3:.0%} 为长时间间断：航速按间断之间的航段计算；读取文件时以每次航行为一条航迹（把 scenario 等列映射为批号）可得到没有间断的航迹。</translation>
     </message>
     <message>
         <source>Detection limit (seed 000): none for this data: {0}.</source>
@@ -1609,6 +1621,10 @@
         <translation>重叠 {0:.0f} s</translation>
     </message>
     <message>
+        <source>&lt;b&gt;plots, not tracks&lt;/b&gt;: {0} (several positions at one time: several targets and clutter), so the distance and margin say little</source>
+        <translation>&lt;b&gt;是点迹而非航迹&lt;/b&gt;：{0}（同一时刻有多个位置：多个目标和杂波），因此距离和裕度意义不大</translation>
+    </message>
+    <message>
         <source>pending</source>
         <translation>待审</translation>
     </message>
@@ -2300,6 +2316,14 @@
     <message>
         <source>; {n:#point} filled</source>
         <translation>；填补 {n:,} 个点</translation>
+    </message>
+    <message>
+        <source>; warning: {plots:,} of the {tracks:,} tracks are plots, not tracks (several positions at one time: detections of several targets and clutter): their joins rest on points of different targets; join the plots into tracks first (a tracker), or read the file with batch from a column that names one target</source>
+        <translation>；警告：{tracks:,} 条航迹中有 {plots:,} 条是点迹而非航迹（同一时刻有多个位置：多个目标的探测和杂波）：其连接依据的是不同目标的点；请先把点迹关联成航迹（跟踪器），或读取文件时把能标识单个目标的列作为批号</translation>
+    </message>
+    <message>
+        <source>; warning: {plots:,} of the {tracks:,} tracks are plots, not tracks (several positions at one time: detections of several targets and clutter), so the fused tracks zig-zag between them and hold several points at {shared:,} of their {times:,} times; join the plots into tracks first (a tracker), or read the file with batch from a column that names one target</source>
+        <translation>；警告：{tracks:,} 条航迹中有 {plots:,} 条是点迹而非航迹（同一时刻有多个位置：多个目标的探测和杂波），因此融合航迹在它们之间来回跳动，且在 {times:,} 个时刻中的 {shared:,} 个时刻有多个点；请先把点迹关联成航迹（跟踪器），或读取文件时把能标识单个目标的列作为批号</translation>
     </message>
     <message>
         <source>; warning: {single:,} of the {tracks:,} tracks are single fixes (a file of radar plots?): each join rests on distance and time alone, so expect wrong joins where ships are close; a tracker belongs before this step</source>
