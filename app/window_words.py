@@ -45,6 +45,12 @@ _PHRASES = (
         "in the import dialog's Origin of x/y metres field (File ▸ Open tracks…; LAT, LON)",
     ),
     (" with --set", " in the Parameters panel"),
+    (
+        " (--set speed.split_at_breaks=true splits there)",
+        " (Parameters ▸ Cleaning ▸ speed ▸ split_at_breaks on splits there)",
+    ),
+    ("(--time-base union keeps it)", "(time_base union in the Parameters panel keeps it)"),
+    ("(--time-base union keeps them)", "(time_base union in the Parameters panel keeps them)"),
     ("(--tracks FILE)", "(File ▸ Open bearings…, Gate on tracks)"),
     (
         "split it by a target column (--map target=COLUMN)",
