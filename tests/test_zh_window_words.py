@@ -515,6 +515,28 @@ def test_zh_statistics_review_and_import_dialog_words(qtbot, tmp_path):
         assert right <= view.viewport().width() + 1, (right, view.viewport().width())
         cell = str(model.index(0, method).data())
         assert view.fontMetrics().horizontalAdvance(cell) < view.columnWidth(method), cell
+        # D8: the batch table's 批号 column holds its widest drawn name (measured, not
+        # the longest in characters: "radar:16" was cut beside "lidar:16")
+        w.select_layer(fused)
+        _settle(w)
+        bm, bv = w.batch_model, w.batch_view
+        col = next(c for c, (key, _) in enumerate(bm.COLUMNS) if key == "batch")
+        fm = bv.fontMetrics()
+        widest = max(
+            fm.horizontalAdvance(str(bm.index(r, col).data())) for r in range(bm.rowCount())
+        )
+        assert widest < bv.columnWidth(col), (widest, bv.columnWidth(col))
+        # D8: the batch table's 批号 column holds its widest drawn name (measured, not
+        # the longest in characters: "radar:16" was cut beside "lidar:16")
+        w.select_layer(fused)
+        _settle(w)
+        bm, bv = w.batch_model, w.batch_view
+        col = next(c for c, (key, _) in enumerate(bm.COLUMNS) if key == "batch")
+        fm = bv.fontMetrics()
+        widest = max(
+            fm.horizontalAdvance(str(bm.index(r, col).data())) for r in range(bm.rowCount())
+        )
+        assert widest < bv.columnWidth(col), (widest, bv.columnWidth(col))
         d = ImportDialog()
         qtbot.addWidget(d)
         d.path_edit.setText(str(files[0]))
