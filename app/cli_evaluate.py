@@ -62,6 +62,8 @@ def _maneuver_params(args: argparse.Namespace):
         edge_s=args.edge_s,
         confirm_z=args.confirm_z,
         confirm_legs=args.confirm_legs,
+        confirm_grow=args.confirm_grow,
+        confirm_grow_deg=args.confirm_grow_deg,
     ).checked()
 
 
@@ -292,6 +294,20 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         default=d.confirm_legs,
         help=f"--confirm-z: each leg spans this many of the turn's windows "
         f"(default {d.confirm_legs:g})",
+    )
+    p.add_argument(
+        "--confirm-grow",
+        type=int,
+        default=d.confirm_grow,
+        help=f"--confirm-z: a turn not confirmed is tested again with both legs doubled, up "
+        f"to this many times, kept when any test confirms it (default {d.confirm_grow})",
+    )
+    p.add_argument(
+        "--confirm-grow-deg",
+        action=argparse.BooleanOptionalAction,
+        default=d.confirm_grow_deg,
+        help="--confirm-grow: a grown test confirms only where the legs' courses differ by "
+        "--threshold as well (default: %(default)s)",
     )
     p.add_argument(
         "--noise-lag-s",

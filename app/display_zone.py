@@ -66,8 +66,9 @@ def data_zone(w) -> str | None:
     return None if not zone or str(zone).upper() == "UTC" else str(zone)
 
 
-def set_zone_choice(w, choice: str, store: bool = True) -> None:
-    """View ▸ Time zone ▸ ``choice``: kept (settings and project when ``store``), shown."""
+def set_zone_choice(w, choice: str, store: bool = True, force: bool = True) -> None:
+    """View ▸ Time zone ▸ ``choice``: kept (settings and project when ``store``), shown:
+    every date drawn again, or (``force`` false) only when the zone shown changes."""
     if choice not in time_text.ZONE_CHOICES:
         choice = time_text.DEFAULT_ZONE_CHOICE
     w.zone_choice = choice
@@ -80,7 +81,7 @@ def set_zone_choice(w, choice: str, store: bool = True) -> None:
         project = getattr(w, "project", None)
         if project is not None:
             project.put_state(STATE, choice)
-    apply_zone(w, force=True)
+    apply_zone(w, force=force)
 
 
 def apply_zone(w, force: bool = False) -> bool:

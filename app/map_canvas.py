@@ -417,6 +417,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 pen = pg.mkPen(curve.color, width=1)
                 item.setData(xs, ys, connect="pairs", symbol=None, pen=pen)
             item.curve.sprite = None if few else curve.sprite
+            item.curve.remaking = self._remaking
             return
         style = {}
         if data.style.symbol_size and data.style.width:
@@ -432,8 +433,10 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         item.setData(curve.lon, curve.lat, connect="finite", **style)
         if curve.path is not None:  # built in a worker (map_paths): paint only strokes
             item.curve.path = curve.path
-        # Stroked in a worker for this view: the paint copies it while it fits.
+        # Stroked in a worker for this view: the paint copies it while it fits (a long
+        # curve's, scaled, while the worker makes the next: map_paths.STAND_IN_VERTICES).
         item.curve.sprite = curve.sprite
+        item.curve.remaking = self._remaking
 
     def _crosses(self, curve, size_px: float) -> tuple[np.ndarray, np.ndarray]:
         """A small cross (two segments, ``size_px`` wide) at every finite vertex."""
@@ -549,6 +552,13 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             self._hold_timer.stop()
         elif self._hold_clock.elapsed() >= HOLD_MAX_MS or self._hold_until():
             self.release_paints()
+
+    def _remaking(self) -> bool:
+        """A new level of detail or sprite is on its way (a job is out, or the timer
+        that asks for one runs), so a stale sprite may stand in meanwhile."""
+        return self.lod_executor is not None and (
+            bool(self._lod_pending) or self._lod_timer.isActive()
+        )
 
     @property
     def lod_busy(self) -> bool:

@@ -32,6 +32,11 @@ MIN_VERTICES = 2_000
 SYMBOLS_MAX = 3_000
 #: Vertices stroked per ``drawPath`` call when a worker makes a sprite (~5 ms each).
 CHUNK_VERTICES = 12_000
+#: A longer curve's path is built in pieces of about this many vertices (cut at NaN
+#: separators) appended to one path: pyqtgraph reads the whole path in from a byte
+#: stream in one call with the GIL held (25 ms per million vertices here, 60-300 ms
+#: of a stalled window when its pages are fresh; S29).
+PATH_PIECE_VERTICES = 100_000
 #: Largest difference (pixels, across the image) between the map's scale and the image's
 #: for the image to be copied unscaled: a line is off by at most this at the far edge.
 #: The worker draws at the map's own scale (the plot area's fractional size, not a
@@ -41,6 +46,13 @@ CHUNK_VERTICES = 12_000
 SCALE_TOLERANCE_PX = 0.25
 #: Largest sprite (pixels): a bigger plot area is stroked on the GUI thread as before.
 MAX_SPRITE_PIXELS = 4096 * 4096
+#: A curve of at least this many vertices whose sprite no longer fits the view (a
+#: resize, a zoom, a pan, the map refitted to a new layer) paints its old sprite
+#: scaled and moved onto the view while the worker makes the new one, instead of
+#: stroking it on the GUI thread: 15-60 ms a curve of 650 k vertices, 19 strokes
+#: (0.3 s) when the review dock opened beside a million points (S29). Shorter curves
+#: stroke as before; the new sprite is exact.
+STAND_IN_VERTICES = 100_000
 
 
 @dataclass(frozen=True)
@@ -67,12 +79,11 @@ class Sprite:
             view[0] >= x0 - tx and view[1] <= x1 + tx and view[2] >= y0 - ty and view[3] <= y1 + ty
         )
 
-    def draw(self, p: QtGui.QPainter, item: pg.PlotCurveItem) -> bool:
-        """Copy the image onto ``p`` if it shows ``item`` exactly as a stroke would;
-        False (nothing painted) otherwise."""
+    def shows(self, item: pg.PlotCurveItem) -> bool:
+        """The image is of ``item``'s data with ``item``'s pen (at some view)."""
         opts = item.opts
         pen = opts.get("pen")
-        if (
+        return not (
             pen is None
             or item.xData is None
             or len(item.xData) != self.n
@@ -82,7 +93,36 @@ class Sprite:
             or pen.widthF() != self.width
             or pen.style() != QtCore.Qt.PenStyle.SolidLine
             or pen.color().rgba() != self.rgba
-        ):
+        )
+
+    def draw_scaled(self, p: QtGui.QPainter, item: pg.PlotCurveItem) -> bool:
+        """Copy the image onto ``p`` scaled and moved to where its view lies in
+        ``item``'s view now (a stand-in while a new one is made: lines a little thicker
+        or thinner, nothing beyond the image's view); False (nothing painted) when it
+        is not of ``item``'s data and pen, or ``p`` is rotated or of another pixel
+        ratio."""
+        if not self.shows(item):
+            return False
+        device = p.device()
+        if device is None or abs(device.devicePixelRatioF() - self.image.devicePixelRatio()) > 1e-6:
+            return False
+        t = p.transform()
+        if abs(t.m12()) > 1e-12 or abs(t.m21()) > 1e-12:
+            return False
+        x0, x1, y0, y1 = self.view
+        target = QtCore.QRectF(t.map(QtCore.QPointF(x0, y1)), t.map(QtCore.QPointF(x1, y0)))
+        if not (target.width() > 0 and target.height() > 0):
+            return False
+        p.save()
+        p.resetTransform()
+        p.drawImage(target, self.image, QtCore.QRectF(self.image.rect()))
+        p.restore()
+        return True
+
+    def draw(self, p: QtGui.QPainter, item: pg.PlotCurveItem) -> bool:
+        """Copy the image onto ``p`` if it shows ``item`` exactly as a stroke would;
+        False (nothing painted) otherwise."""
+        if not self.shows(item):
             return False
         corner = image_corner(p, item, self.view, self.image, self.size)
         if corner is None:
@@ -163,6 +203,21 @@ def _chunks(lon: np.ndarray, size: int) -> list[tuple[int, int]]:
     cuts = np.unique(gaps[np.minimum(np.searchsorted(gaps, want), len(gaps) - 1)])
     bounds = np.concatenate([[0], cuts + 1, [n]])
     return [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
+
+
+def curve_path(lon: np.ndarray, lat: np.ndarray) -> QtGui.QPainterPath:
+    """``pg.arrayToQPath(lon, lat, connect="finite")``, built in pieces of about
+    ``PATH_PIECE_VERTICES`` vertices cut at NaN separators, so that no single call holds
+    the GIL for the whole curve. It strokes the same pixels (each piece starts a new
+    subpath where the whole one would; tests/test_map_sprites.py)."""
+    pieces = _chunks(lon, PATH_PIECE_VERTICES)
+    if len(pieces) == 1:
+        return pg.arrayToQPath(lon, lat, connect="finite")
+    path = QtGui.QPainterPath()
+    path.reserve(len(lon))
+    for a, b in pieces:
+        path.addPath(pg.arrayToQPath(lon[a:b], lat[a:b], connect="finite"))
+    return path
 
 
 def crosses(
@@ -248,7 +303,7 @@ def with_paths(data: DrawData, sprites: bool = True) -> DrawData:
         if len(c.lon) < MIN_VERTICES:
             return c
         if c.path is None:
-            c = replace(c, path=pg.arrayToQPath(c.lon, c.lat, connect="finite"))
+            c = replace(c, path=curve_path(c.lon, c.lat))
         if size is not None and c.sprite is None and c.n_vertices > SYMBOLS_MAX:
             c = replace(c, sprite=render_sprite(c, data.view, size, 1.0, antialias))
         return c
@@ -257,13 +312,25 @@ def with_paths(data: DrawData, sprites: bool = True) -> DrawData:
 
 
 class SpriteCurve(pg.PlotCurveItem):
-    """A curve item that copies its :class:`Sprite` when it fits, else strokes."""
+    """A curve item that copies its :class:`Sprite` when it fits, else strokes — or,
+    a curve of ``STAND_IN_VERTICES`` or more while ``remaking()`` says a new sprite is
+    on its way, copies the old one scaled to the view (:meth:`Sprite.draw_scaled`)."""
 
     sprite: Sprite | None = None
+    #: Set by the map: true while a level of detail or sprite job is asked for or runs.
+    remaking = None
 
     def paint(self, p, opt, widget) -> None:
         sprite = self.sprite
         if sprite is not None and sprite.draw(p, self):
+            return
+        if (
+            sprite is not None
+            and sprite.n >= STAND_IN_VERTICES
+            and self.remaking is not None
+            and self.remaking()
+            and sprite.draw_scaled(p, self)
+        ):
             return
         super().paint(p, opt, widget)
 

@@ -395,6 +395,7 @@ class ParamsPanel(QtWidgets.QWidget):
             "deg": self.tr("deg"),
             "sigma": self.tr("sigma"),
             "windows": self.tr("windows"),
+            "doublings": self.tr("doublings"),
         }
 
     # -- values --------------------------------------------------------------------

@@ -4,6 +4,8 @@ warning told a window user to "give the zone with --tz")."""
 
 import re
 
+from wakeline.core.clean import STEPS
+
 # Whole phrases first (they read best), then any flag left over.
 _PHRASES = (
     (
@@ -33,6 +35,11 @@ _PHRASES = (
         "(--encoding, e.g. gb18030, utf-16, latin-1)",
         "(the import dialog's Encoding field, File ▸ Open tracks…; e.g. gb18030, utf-16, latin-1)",
     ),
+    (
+        "give the file's encoding (--encoding, e.g. gb18030",
+        "choose the file's encoding in the import dialog's Encoding field (File ▸ Open "
+        "tracks…; e.g. gb18030",
+    ),
     ("give the right --encoding", "choose the right Encoding in the import dialog"),
     ("give --encoding utf-16", "choose the Encoding utf-16 in the import dialog"),
     ("map columns with --map field=column", "map the columns in the import dialog"),
@@ -44,11 +51,11 @@ _PHRASES = (
         "with --origin LAT,LON",
         "in the import dialog's Origin of x/y metres field (File ▸ Open tracks…; LAT, LON)",
     ),
-    (" with --set", " in the Parameters panel"),
     (
         " (--set speed.split_at_breaks=true splits there)",
-        " (Parameters ▸ Cleaning ▸ speed ▸ split_at_breaks on splits there)",
+        " (turning on Parameters ▸ Cleaning ▸ speed ▸ split_at_breaks splits there)",
     ),
+    (" with --set", " in the Parameters panel"),
     ("(--time-base union keeps it)", "(time_base union in the Parameters panel keeps it)"),
     ("(--time-base union keeps them)", "(time_base union in the Parameters panel keeps them)"),
     ("(--tracks FILE)", "(File ▸ Open bearings…, Gate on tracks)"),
@@ -108,11 +115,22 @@ def _map_run(m: re.Match) -> str:
     return f"the import dialog's Column mapping ({choices})"
 
 
+#: ``--set RULE.PARAM=VALUE`` of a cleaning rule: its place in the Parameters panel (in
+#: a summary already in the window's language, whose sentence around it is translated).
+_SET_CLEAN = re.compile(r"--set (" + "|".join(STEPS) + r")\.(\w+)=([\w.+-]+)")
+
+
+def _set_clean(m: re.Match) -> str:
+    return f"Parameters ▸ Cleaning ▸ {m.group(1)} ▸ {m.group(2)} = {m.group(3)}"
+
+
 def window_words(text: str) -> str:
-    """``text`` with command-line flags replaced by the import dialog's fields."""
+    """``text`` with command-line flags replaced by the import dialog's fields (and a
+    cleaning rule's ``--set`` by its place in the Parameters panel)."""
     if "--" not in text:
         return text
     for cli, window in _PHRASES:
         text = text.replace(cli, window)
+    text = _SET_CLEAN.sub(_set_clean, text)
     text = _MAP_RUN.sub(_map_run, text)
     return _FLAG.sub(_field, text)

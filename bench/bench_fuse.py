@@ -11,7 +11,10 @@ fixes' short intervals (after, ``core/fuse._probe_grid``): probes, time and peak
 (tracemalloc) of grid + positions, with ratios; then associate + fuse of the pair.
 ``--time-base`` (session 27, h168 D-fuse-1): the h168 1 s radar + 30 s AIS of one ship fused
 with each ``time_base``: points, radar fixes kept, mean distance from the AIS path.
-Both need WAKELINE_SHARED (and /work/scratch/s27/h168 for the second).
+Both need WAKELINE_SHARED; the second also the h168 pair (``ship_radar_1s.csv``,
+``ship_ais_30s.csv``, made by operator test 4 from the DMA sample ship and not kept in
+the repo or in shared/): ``--pair-dir DIR`` (default $WAKELINE_H168_DIR); without it the
+run says so and stops.
 """
 
 import argparse
@@ -136,13 +139,12 @@ def atd(params: FuseParams) -> None:
     )
 
 
-def time_bases(params: FuseParams) -> None:
+def time_bases(params: FuseParams, d: Path) -> None:
     from wakeline.app.cli_review import read_inputs
     from wakeline.core import geo
     from wakeline.core.schema import time_seconds
     from wakeline.core.tracks import track_index
 
-    d = Path("/work/scratch/s27/h168/in")
     df = read_inputs([d / "ship_radar_1s.csv", d / "ship_ais_30s.csv"])
     ais = df[df["sensor"] != "RADAR1"].sort_values("time")
     radar_times = set(time_seconds(df.loc[df["sensor"] == "RADAR1", "time"]))
@@ -170,14 +172,26 @@ def main() -> None:
     ap.add_argument("--dense-ships", type=int, default=300)
     ap.add_argument("--atd", action="store_true", help="the ATD pair's probe grid, before/after")
     ap.add_argument("--time-base", action="store_true", help="the h168 pair, each time_base")
+    ap.add_argument(
+        "--pair-dir",
+        type=Path,
+        default=os.environ.get("WAKELINE_H168_DIR"),
+        help="folder with ship_radar_1s.csv and ship_ais_30s.csv (for --time-base)",
+    )
     args = ap.parse_args()
     params = FuseParams()
     if args.atd or args.time_base:
         if args.atd:
             atd(params)
         if args.time_base:
+            d = args.pair_dir
+            if d is None or not (Path(d) / "ship_radar_1s.csv").exists():
+                raise SystemExit(
+                    "--time-base needs the h168 pair: --pair-dir DIR with ship_radar_1s.csv "
+                    "and ship_ais_30s.csv (session 27's scratch copy is gone)"
+                )
             print("h168 1 s radar + 30 s AIS of one ship:")
-            time_bases(params)
+            time_bases(params, Path(d))
         return
 
     df = scene(args.dense_ships)

@@ -9,8 +9,13 @@ nothing of ours loading: the idle loop, and the loop beside a CPU-bound pure-Pyt
 thread (the GIL handed back and forth every 5 ms, as to a worker), so that the figures
 of the actions read as ratios against what the machine and the GIL alone give.
 
-    QT_QPA_PLATFORM=offscreen .venv/bin/python bench/gui_block_probe.py \
-        [--file /work/scratch/s27/h168/in/atd_1M.csv] [--runs 3] [--why]
+    WAKELINE_SHARED=/work/shared QT_QPA_PLATFORM=offscreen .venv/bin/python \
+        bench/gui_block_probe.py [--file PATH] [--runs 3] [--why]
+
+Without ``--file`` it reads the ATD example truth repeated over 10 days (1,102,900 points,
+one track per ship across the days, as session 27's ``atd_1M.csv``), which it writes once
+into a cache directory (``$XDG_CACHE_HOME/wakeline-bench`` or ``~/.cache/wakeline-bench``)
+and names when it starts.
 
 Each run is a new process (``--runs`` starts them one after the other), so that the
 collector and the allocators start as the application's do.
@@ -41,7 +46,83 @@ from wakeline.app.main import freeze_startup_objects, wait_for_jobs  # noqa: E40
 from wakeline.app.main_window import MainWindow  # noqa: E402
 
 PERIOD_MS = 10
-DEFAULT_FILE = Path("/work/scratch/s27/h168/in/atd_1M.csv")
+SHARED = Path(os.environ.get("WAKELINE_SHARED", Path(__file__).resolve().parents[2] / "shared"))
+ATD_EXAMPLE = SHARED / "data/real/atd2025-noaa/example_truth.csv.gz"
+DAYS = 10
+
+
+def cache_dir() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    return Path(base) / "wakeline-bench"
+
+
+def atd_million(
+    days: int = DAYS, by_day: bool = False, source: Path = ATD_EXAMPLE, folder: Path | None = None
+) -> Path:
+    """The ATD example truth (110,290 points of 2024-01-01) repeated over ``days`` days:
+    copy k has its times moved k days later and its point ids moved past the others'; the
+    ships keep their ids, so each ship is one track across the days; ``by_day``: a ship's
+    track of day k is ``track_id * 10 + k`` instead (a track per ship and day, so that
+    Associate with ``mmsi_apart`` off proposes joins within each day, as on the example
+    itself). Written once (the name says which); later calls return the file there."""
+    import gzip
+
+    folder = folder or cache_dir()
+    out = folder / f"atd_example_x{days}{'_by_day' if by_day else ''}.csv"
+    if out.exists():
+        return out
+    folder.mkdir(parents=True, exist_ok=True)
+    with gzip.open(source, "rt", encoding="utf-8", newline="") as f:
+        header, *rows = f.read().splitlines()
+    n = len(rows)
+    tmp = out.with_suffix(".part")
+    with open(tmp, "w", encoding="utf-8", newline="\n") as f:
+        f.write(header + "\n")
+        for k in range(days):
+            day = f"2024-01-{k + 1:02d}T"
+            for row in rows:
+                pid, orig, track, rest = row.split(",", 3)
+                if by_day:
+                    track = str(int(track) * 10 + k)
+                rest = rest.replace("2024-01-01T", day, 1)
+                f.write(f"{int(pid) + k * n},{orig},{track},{rest}\n")
+    tmp.replace(out)
+    how = "a track per ship and day" if by_day else "a track per ship"
+    print(f"made {out}: {source.name} x {days} days, {days * n:,} points, {how}", flush=True)
+    return out
+
+
+EVENTS: list[tuple] = []  # with --events: (start, wall ms, CPU ms, receiver, type, depth)
+
+
+class TimedApp(QtWidgets.QApplication):
+    """With ``--events``: every event the GUI thread handles for over 4 ms (at the top
+    level or one below) is logged with its start, wall and CPU ms, receiver and type,
+    so that the longest gap can be told apart into the events within it."""
+
+    depth = 0
+
+    def notify(self, obj, event) -> bool:
+        TimedApp.depth += 1
+        t, c = time.perf_counter(), time.thread_time()
+        name = type(obj).__name__
+        try:
+            parent = obj.parent() if isinstance(obj, QtCore.QObject) else None
+            kind = str(event.type()).rsplit(".", 1)[-1]
+        except (RuntimeError, AttributeError):  # a C++ object already deleted
+            parent, kind = None, "?"
+        if parent is not None:
+            name += f" in {type(parent).__name__}"
+        try:
+            return super().notify(obj, event)
+        except TypeError:  # PySide hands a few internal events over oddly: not timed
+            return False
+        finally:
+            TimedApp.depth -= 1
+            ms = (time.perf_counter() - t) * 1000
+            if ms > 4 and TimedApp.depth <= 1:
+                cpu = (time.thread_time() - c) * 1000
+                EVENTS.append((t, ms, cpu, name, kind, TimedApp.depth))
 
 
 class Probe:
@@ -55,6 +136,7 @@ class Probe:
         self.last = time.perf_counter()
         self.last_cpu = time.thread_time()
         self.gaps: list[float] = []
+        self.worst = (0.0, 0.0)  # the longest gap's (start, end)
         self.cpus: list[float] = []  # the GUI thread's own CPU time in each gap
         self.main = threading.get_ident()
         self.samples: collections.Counter = collections.Counter()
@@ -72,6 +154,8 @@ class Probe:
         if self.beat is not None:
             self.beat[:8] = struct.pack("d", time.monotonic())
         now, cpu = time.perf_counter(), time.thread_time()
+        if now - self.last > self.worst[1] - self.worst[0]:
+            self.worst = (self.last, now)
         self.gaps.append(now - self.last)
         self.cpus.append(cpu - self.last_cpu)
         self.last, self.last_cpu = now, cpu
@@ -113,6 +197,8 @@ class Probe:
             self.beat[8:72] = label.encode()[:64].ljust(64, b"\0")
         self.gaps.clear()
         self.cpus.clear()
+        self.worst = (0.0, 0.0)
+        EVENTS.clear()
         self.samples.clear()
         self.collections.clear()
         self.by_gen = [0, 0, 0]
@@ -133,6 +219,8 @@ class Probe:
             "gc": list(self.collections),
             "by_gen": list(self.by_gen),
             "samples": self.samples.most_common(8),
+            "events": [e for e in EVENTS if self.worst[0] - 0.001 <= e[0] <= self.worst[1]],
+            "worst_at": self.worst[0],
         }
 
 
@@ -240,13 +328,30 @@ def show(
     if why:
         for key, n in r["samples"]:
             print(f"      {n * 10:5d} ms  {key[:400]}")
+    for t, ms, cpu, name, kind, depth in r.get("events", [])[:12]:
+        print(f"      event at +{(t - r['worst_at']) * 1000:4.0f} ms: {ms:5.0f} ms (CPU {cpu:4.0f}) "
+              f"{'  ' * depth}{kind} to {name}")  # fmt: skip
     if dumps:
         for key, n in gil_holders(dumps, label).most_common(6):
             print(f"      {n:3d} dumps  GIL held by {key[:600]}")
 
 
-def one_run(path: Path, why: bool, spy: bool = False) -> dict:
-    _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication(sys.argv[:1])
+def wait_written(window: MainWindow) -> None:
+    """Until the project writer has written what was handed to it (the loop running)."""
+    wait_window(window)
+    writer = window.project.writer
+    if writer is not None:
+        written = threading.Event()
+        writer.submit(lambda _store: written.set())
+        while not written.is_set():
+            settle(20)
+
+
+def one_run(
+    path: Path, why: bool, spy: bool = False, review: Path | None = None, events: bool = False
+) -> dict:
+    kind = TimedApp if events else QtWidgets.QApplication
+    _app = QtWidgets.QApplication.instance() or kind(sys.argv[:1])
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
         beat_path, dump_path = Path(tmp) / "beat", Path(tmp) / "dumps.txt"
@@ -292,17 +397,126 @@ def one_run(path: Path, why: bool, spy: bool = False) -> dict:
         cleaned = next(i for i, lay in window.layers.items() if lay.kind == "cleaned")
         measure("switch layer", lambda: window.select_layer(cleaned), lambda: wait_window(window))
         measure("switch back", lambda: window.select_layer(src), lambda: wait_window(window))
+        if review is not None:
+            more_actions(window, src, review, Path(tmp), measure)
         probe.stop.set()
         if watcher is not None:
             probe.beat[:8] = struct.pack("d", -1.0)
             watcher.wait(10)
         window.close()
+        if review is not None:
+            settings.setValue("language", "en")
+            window2 = MainWindow(settings)
+            window2.resize(1600, 1000)
+            window2.show()
+            settle(1000)
+            probe.stop.clear()
+            if why:
+                threading.Thread(target=probe._watch, daemon=True).start()
+            measure(
+                "reopen project",
+                lambda: window2.open_project(Path(tmp) / "p.wakeline"),
+                lambda: wait_window(window2),
+            )
+            probe.stop.set()
+            window2.close()
     return out
+
+
+def more_actions(window: MainWindow, src: str, review: Path, tmp: Path, measure) -> None:
+    """The rest of SPEC §7's actions after the load, Clean and the layer switch: the
+    pipeline, a re-run swapping its result in, selection in the table and on the map, a
+    drag of the time slider, the project's save; then ``review`` (a file Associate makes
+    a queue of) loaded, Associate run, its queue decided by keys (A, R, Ctrl+Z) and the
+    project saved with the decisions. ``measure(label, action, wait)``; each label covers
+    several repetitions (its longest block is the longest of them)."""
+    from PySide6.QtTest import QTest
+
+    def wait() -> None:
+        wait_window(window)
+
+    window.select_layer(src)
+    settle(300)
+    measure("pipeline", lambda: window.run_step("pipeline"), wait)
+    window.select_layer(src)
+    settle(300)
+    measure("re-run clean (swap)", lambda: window.run_step("clean"), wait)
+    window.select_layer(src)
+    settle(300)
+
+    def table_clicks() -> None:
+        view = window.batch_view
+        for row in range(0, 100, 10):
+            view.scrollTo(window.batch_model.index(row, 0))
+            rect = view.visualRect(window.batch_model.index(row, 0))
+            QTest.mouseClick(view.viewport(), QtCore.Qt.MouseButton.LeftButton,
+                             QtCore.Qt.KeyboardModifier.NoModifier, rect.center())  # fmt: skip
+            settle(150)
+
+    measure("select in table x10", table_clicks, wait)
+    keys = [window.batch_model.key_of_row(r) for r in range(5, 200, 20)]
+
+    def map_clicks() -> None:
+        for sensor, batch in keys:
+            window._track_clicked(src, sensor, batch, False)  # the canvas' track_clicked
+            settle(150)
+
+    measure("click track on map x10", map_clicks, wait)
+
+    def drag() -> None:
+        slider = window.time_panel.slider
+        for k in range(60):  # the handle dragged across, a step per 20 ms
+            slider.setValue(int(slider.maximum() * (k + 1) / 60))
+            settle(20)
+
+    measure("time slider drag", drag, wait)
+    measure(
+        "save project",
+        lambda: window.save_project(tmp / "p.wakeline"),
+        lambda: wait_written(window),
+    )
+    measure("load review file", lambda: window.load_files([review]), wait)
+    rsrc = window.layer_id(review.name)
+    window.select_layer(rsrc)
+    window.params.root.child("associate", "mmsi_apart").setValue(False)
+    settle(300)
+    measure("associate", lambda: window.run_step("associate"), wait)
+    assoc = next(i for i, lay in window.layers.items() if lay.step == "associate")
+    measure("switch to queue layer", lambda: window.select_layer(assoc), wait)
+    for _ in range(300):  # the queue is bound a few event-loop turns after the layer
+        if window.review.bound is not None:
+            break
+        settle(100)
+    bound = window.review.bound
+    print(f"      queue: {len(bound.controller.state.proposals):,} proposals", flush=True)
+
+    def press(key, mod=QtCore.Qt.KeyboardModifier.NoModifier, times: int = 5):
+        def go() -> None:
+            for _ in range(times):
+                bound.panel.view.setFocus()
+                target = QtWidgets.QApplication.focusWidget() or window
+                QTest.keyClick(target, key, mod)
+                wait_window(window)
+                settle(100)
+
+        return go
+
+    Key = QtCore.Qt.Key
+    measure("review key A x5", press(Key.Key_A), wait)
+    measure("review key R x5", press(Key.Key_R), wait)
+    measure("undo Ctrl+Z x5", press(Key.Key_Z, QtCore.Qt.KeyboardModifier.ControlModifier), wait)
+    measure(
+        "save project (queue)",
+        lambda: window.save_project(tmp / "p.wakeline"),
+        lambda: wait_written(window),
+    )
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--file", type=Path, default=DEFAULT_FILE)
+    ap.add_argument(
+        "--file", type=Path, help="default: the ATD example over 10 days, made once in the cache"
+    )
     ap.add_argument("--runs", type=int, default=1)
     ap.add_argument("--why", action="store_true", help="sample stacks; count gen-2 objects")
     ap.add_argument(
@@ -310,6 +524,12 @@ def main() -> int:
     )
     ap.add_argument(
         "--arrow-threads", type=int, help="Arrow's CPU thread pool size (default: the cores)"
+    )
+    ap.add_argument(
+        "--short", action="store_true", help="only the load, Clean and the layer switch"
+    )
+    ap.add_argument(
+        "--events", action="store_true", help="the events over 4 ms within each longest gap"
     )
     ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--monitor", nargs=3, help=argparse.SUPPRESS)
@@ -321,11 +541,23 @@ def main() -> int:
         import pyarrow as pa
 
         pa.set_cpu_count(args.arrow_threads)
+    if args.file is None:
+        args.file = atd_million()
     if args.one or args.runs == 1:
         print(f"{args.file} ({os.path.getsize(args.file) / 1e6:.0f} MB); probe {PERIOD_MS} ms")
-        one_run(args.file, args.why, args.spy)
+        review = None if args.short else atd_million(by_day=True)
+        one_run(args.file, args.why, args.spy, review, args.events)
         return 0
-    flags = [f for f, on in (("--why", args.why), ("--spy", args.spy)) if on]
+    flags = [
+        f
+        for f, on in (
+            ("--why", args.why),
+            ("--spy", args.spy),
+            ("--short", args.short),
+            ("--events", args.events),
+        )
+        if on
+    ]
     if args.arrow_threads:
         flags += ["--arrow-threads", str(args.arrow_threads)]
     for k in range(args.runs):

@@ -18,11 +18,13 @@ was busy ~50 ms in one piece. Printed per run:
 ``--profile FILE`` writes a cProfile of the GUI thread during the "after" keys (pstats).
 
     WAKELINE_SHARED=/work/shared QT_QPA_PLATFORM=offscreen \\
-        python bench/review_keys.py [--file saronic|atd|PATH] [--keys 20] [--profile F]
+        python bench/review_keys.py [--file atd|saronic|PATH] [--keys 20] [--profile F]
 
-``saronic`` is /work/scratch/s28/h181/in/saronic_split.csv (the Saronic day split at
-gaps > 600 s by /work/scratch/s27/h168/make_split.py: 111 tracks, 77 proposals), ``atd``
-the ATD example truth with mmsi_apart off (106 proposals on 5,405 tracks).
+``atd`` (the default) is the ATD example truth in shared/ with mmsi_apart off (106
+proposals on 5,405 tracks). ``saronic`` was session 28's scratch file (the Saronic day
+split at gaps > 600 s: 111 tracks, 77 proposals), no longer kept: give it as a PATH
+(or $WAKELINE_SARONIC_SPLIT). For a million points see bench/gui_block_probe.py, which
+makes its own queue of 1,699 proposals on 1.1 M points.
 """
 
 import argparse
@@ -39,7 +41,7 @@ from PySide6 import QtCore, QtWidgets  # noqa: E402
 from PySide6.QtTest import QTest  # noqa: E402
 
 FILES = {
-    "saronic": Path("/work/scratch/s28/h181/in/saronic_split.csv"),
+    "saronic": Path(os.environ.get("WAKELINE_SARONIC_SPLIT", "saronic_split.csv")),
     "atd": Path("data/real/atd2025-noaa/example_truth.csv.gz"),
 }
 
@@ -68,7 +70,7 @@ def pct(values: list[float], q: float) -> float:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--file", default="saronic")
+    ap.add_argument("--file", default="atd")
     ap.add_argument("--keys", type=int, default=20)
     ap.add_argument("--profile")
     a = ap.parse_args()
@@ -76,6 +78,8 @@ def main() -> None:
     path = FILES.get(a.file, Path(a.file))
     if a.file == "atd":
         path = shared / path
+    if not path.exists():
+        raise SystemExit(f"{path} not found (see the docstring: --file atd needs no scratch file)")
     app = QtWidgets.QApplication.instance() or QtWidgets.QApplication([])
     from wakeline.app.main import freeze_startup_objects
     from wakeline.app.main_window import MainWindow

@@ -26,6 +26,7 @@ from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import seconds_to_time
 from wakeline.core.segments import Segments, chain_refit, ecef, order_by, segment_stats
+from wakeline.core.sorted_sets import member, repeat_runs
 from wakeline.core.tracks import concat_ranges, track_seconds
 from wakeline.core.words import count as count_of
 
@@ -625,9 +626,7 @@ def _grid_pairs(
     width = float(max(t0.max(), t1.max()) - tmin) + gmax + 10.0
     if len(cells) * width > 2.0**52 / 1e3:  # millisecond resolution of the sweep key
         return None
-    sweep = np.repeat(np.arange(len(cells)), np.diff(np.append(first, n_s))) * width + (
-        t0[order] - tmin
-    )
+    sweep = repeat_runs(None, np.diff(np.append(first, n_s))) * width + (t0[order] - tmin)
     # Ends in (cube, time) order too: the queries of each look-up come sorted and every
     # gather below walks both tables forwards (the cache decides the speed at 100 k).
     ke = key(ce)
@@ -667,7 +666,7 @@ def _grid_pairs(
         base = cq[cube[e]] * width + tq[e]
         lo = np.searchsorted(sweep, base + soon - slack, side="left")
         cnt = np.maximum(np.searchsorted(sweep, base + gmax + slack, side="right") - lo, 0)
-        i = np.repeat(e, cnt)
+        i = repeat_runs(e, cnt)  # np.repeat holds the GIL (sorted_sets)
         j = concat_ranges(lo, cnt)
         gap = t0_s[j] - (tq[i] + tmin)
         d2 = (pe_s[0][i] - ps_s[0][j]) ** 2
@@ -2008,7 +2007,7 @@ def _two_cheapest(owner: np.ndarray, cost: np.ndarray, n: int) -> tuple[np.ndarr
 def _blocked_cost(pairs: Pairs, cost: np.ndarray, n: int, blocked: np.ndarray | None):
     if blocked is None or len(blocked) == 0 or len(pairs) == 0:
         return cost
-    return np.where(np.isin(pairs.i * n + pairs.j, blocked), np.inf, cost)
+    return np.where(member(pairs.i * n + pairs.j, blocked), np.inf, cost)
 
 
 def _skips(
@@ -2042,7 +2041,7 @@ def _skips(
     m = a.merge(b, on="p")
     n = len(chain)
     keys = m["i"].to_numpy() * n + m["j"].to_numpy()
-    return np.isin(cand.i * n + cand.j, keys)
+    return member(cand.i * n + cand.j, keys)
 
 
 def long_gap_pass(
@@ -2167,9 +2166,9 @@ def long_gap_pass(
         # (already continued) are no rivals when that last end is a candidate too — and
         # likewise for an end, through a joined track's first start.
         key_j = cand.j * n + chain[cand.i]
-        inner_i = ~free_end[cand.i] & np.isin(key_j, key_j[free_end[cand.i]])
+        inner_i = ~free_end[cand.i] & member(key_j, key_j[free_end[cand.i]])
         key_i = cand.i * n + chain[cand.j]
-        inner_j = ~free_start[cand.j] & np.isin(key_i, key_i[free_start[cand.j]])
+        inner_j = ~free_start[cand.j] & member(key_i, key_i[free_start[cand.j]])
         ok = mutual(cand, rank, np.where(inner_j, np.inf, rank), np.where(inner_i, np.inf, rank))
         ok &= ends[cand.i] & starts[cand.j]
         if not ok.any():
@@ -2184,7 +2183,7 @@ def long_gap_pass(
         released = _released_rounds(
             seg, pairs, cost, chosen, params, price, free_end, free_start, apart
         )
-    joined = chosen[~np.isin(chosen, released)]
+    joined = chosen[~member(chosen, released)]
     found, c_found, ok = look(joined)
     if len(released):
         # A join gives way only to a long join the second look makes: the others come
@@ -2194,7 +2193,7 @@ def long_gap_pass(
         kept = released[~left_i[pairs.i[released]] | ~left_j[pairs.j[released]]]
         if len(kept) < len(released):
             released = kept
-            joined = chosen[~np.isin(chosen, released)]
+            joined = chosen[~member(chosen, released)]
             found, c_found, ok = look(joined)
     if not ok.any():
         return pairs, cost, chosen
@@ -2300,7 +2299,7 @@ def _released_rounds(
     for _ in range(params.rivals_rounds - 1):
         if not len(released):
             break
-        kept = chosen[~np.isin(chosen, released)]
+        kept = chosen[~member(chosen, released)]
         fe, fs = _free(pairs, kept, len(seg))
         more = _released(seg, pairs, cost, kept, params, price, fe, fs, apart)
         if not len(more):

@@ -535,6 +535,12 @@ def clean(
             f"{int(points['time'].isna().sum()):,} points have no time: read the file with "
             "import, which sets such rows aside in its quarantine"
         )
+    lost = without_position(points)
+    if lost:
+        raise InputError(
+            f"{lost:,} points have no position (lon or lat missing or not a number): read "
+            "the file with import, which sets such rows aside in its quarantine"
+        )
     progress = progress or null_progress
     enabled = [name for name in TRANSFORMS if getattr(params, name).enabled]
     share = 1.0 / (1 + len(enabled))
@@ -544,6 +550,16 @@ def clean(
         result = _transform(result, name, getattr(params, name))
     progress(1.0, "cleaned")
     return result
+
+
+def without_position(points: pd.DataFrame) -> int:
+    """How many rows of ``points`` have no position: lon or lat missing, NaN or infinite
+    (the importers quarantine such rows; a table made otherwise may hold them)."""
+    if not len(points) or "lon" not in points.columns or "lat" not in points.columns:
+        return 0
+    lon = pd.to_numeric(points["lon"], errors="coerce").to_numpy(dtype="float64")
+    lat = pd.to_numeric(points["lat"], errors="coerce").to_numpy(dtype="float64")
+    return int((~(np.isfinite(lon) & np.isfinite(lat))).sum())
 
 
 def _transform(result: CleanResult, name: str, step_params) -> CleanResult:
@@ -1147,7 +1163,7 @@ def _clean_block(
         d_out[last] = np.nan
         turn = geo.angle_diff(course, c_out)
         radius = params.turn.radius_factor * params.turn.ship_length_m
-        with np.errstate(invalid="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore"):  # a leg at one time: inf
             v = dist / dt  # m/s on the leg arriving
             err = params.turn.position_error_m
             slack = np.degrees(np.arctan2(err, dist) + np.arctan2(err, d_out))

@@ -387,7 +387,8 @@ def _error_bound(
 def error_bounds(result, params: CompressParams | None = None) -> pd.DataFrame:
     """Per track of ``result.index`` (a :class:`ManeuverResult`): sensor, batch, the
     noise estimate ``noise_m`` and the error bound ``error_tol_m`` :func:`turning_keep`
-    splits at (both NaN when ``error_sigmas`` is 0: no bound)."""
+    splits at (both NaN when ``error_sigmas`` is 0: no bound; ``noise_m`` NaN for a
+    track of fewer than 3 points, whose bound is the floor)."""
     params = params or CompressParams()
     pts, index = result.points, result.index
     out = index.keys.reset_index(drop=True).copy()
@@ -400,7 +401,9 @@ def error_bounds(result, params: CompressParams | None = None) -> pd.DataFrame:
         pts, index = rows_of(pts, np.flatnonzero(~repeat))
     x, y = local_xy(pts, index)
     sigma, tol = _error_bound(x, y, time_seconds(pts["time"]), index, params)
-    out["noise_m"] = sigma
+    # a track of one or two points has no noise estimate (no point between two others):
+    # its bound is the floor, its noise not known (NaN), not 0
+    out["noise_m"] = np.where(index.sizes >= 3, sigma, np.nan)
     out["error_tol_m"] = tol
     return out
 

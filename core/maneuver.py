@@ -366,6 +366,29 @@ class ManeuverParams(Params):
         hi=100.0,
         source="ours (session 29, h203)",
     )
+    confirm_grow: int = param(
+        0,
+        "doublings",
+        "confirm_z: a turn its legs do not confirm is tested again with both legs twice as "
+        "long, up to this many times, and kept when a test confirms it: the grown legs' "
+        "courses differ by more than confirm_z standard errors, and so do the grown leg "
+        "before and the course at the turn's point (a line over both first legs) and that "
+        "course and the grown leg after, all the same way round (a gradual turn's change "
+        "lies mostly outside legs of a few windows; a change in one leg only is another "
+        "turn further off); grown legs stop at the turns already confirmed; 0 = off",
+        lo=0,
+        hi=8,
+        source="ours (session 29, h208: the true turns the first test lost on the hard "
+        "scenes' tuning seeds were gradual, 0.04-0.2 deg/s; docs/prereg/session29_confirm_b.md)",
+    )
+    confirm_grow_deg: bool = param(
+        False,
+        "",
+        "confirm_grow: a grown test confirms a turn only where the grown legs' courses also "
+        "differ by threshold_deg (the turn itself, not only a change the noise does not "
+        "explain)",
+        source="ours (session 29, h208)",
+    )
     max_step_windows: float = param(
         4.0,
         "at-rest windows",
@@ -1088,6 +1111,85 @@ def _fast_enough(
     return ok
 
 
+def _leg_bounds(
+    index: TrackIndex,
+    rows: np.ndarray,
+    legs_b: np.ndarray,
+    legs_a: np.ndarray,
+    rest_rows: np.ndarray,
+    stops: np.ndarray | None = None,
+    base: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The legs about each of ``rows``: the first row of the leg before (``legs_b`` points,
+    the row included) and one past the last of the leg after (``legs_a`` points, the row
+    included), clipped at the row's track's ends and at the at-rest rows ``rest_rows``
+    (sorted); with ``stops`` (sorted rows of turns already confirmed) also at the nearest
+    stop either side, the stop's point included, but never within ``base`` points of the
+    row."""
+    tr = index.track_of_row[rows]
+    lo = np.maximum(rows - legs_b + 1, index.starts[tr])
+    hi = np.minimum(rows + legs_a, index.ends[tr])  # one past the last row
+    if len(rest_rows):
+        k = np.searchsorted(rest_rows, rows)
+        before = np.where(k > 0, rest_rows[np.maximum(k - 1, 0)] + 1, 0)
+        after = np.where(k < len(rest_rows), rest_rows[np.minimum(k, len(rest_rows) - 1)], hi)
+        lo = np.maximum(lo, np.minimum(before, rows))
+        hi = np.minimum(hi, np.maximum(after, rows + 1))
+    if stops is not None and len(stops):
+        # the nearest stop either side of each row (a row that is a stop itself is not
+        # its own neighbour); the leg stops there, but not short of its base length
+        k0 = np.searchsorted(stops, rows, side="left")
+        k1 = np.searchsorted(stops, rows, side="right")
+        before = np.where(k0 > 0, stops[np.maximum(k0 - 1, 0)], lo)
+        after = np.where(k1 < len(stops), stops[np.minimum(k1, len(stops) - 1)] + 1, hi)
+        reach_b = legs_b if base is None else np.minimum(base, legs_b)
+        reach_a = legs_a if base is None else np.minimum(base, legs_a)
+        lo = np.maximum(lo, np.minimum(before, rows - reach_b + 1))
+        hi = np.minimum(hi, np.maximum(after, rows + reach_a))
+    return lo, hi
+
+
+def _leg_fits(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    first: np.ndarray,
+    count: np.ndarray,
+    centre: np.ndarray,
+    sigma: np.ndarray,
+    min_speed_ms: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per leg (rows ``first`` … ``first + count − 1``): the course (rad) of a line fitted
+    by least squares of x and y on time, its standard error σ / (max(|v|, ``min_speed_ms``)
+    · sqrt(Σ (t − t̄)²)) (``sigma`` per leg) and whether it could be fitted (2 or more
+    points and times). Sums taken against the row ``centre`` (the leg's turn), gathered
+    over all legs' points at once (``np.bincount``)."""
+    m = len(first)
+    leg = np.repeat(np.arange(m), count)
+    start = np.cumsum(count) - count
+    at = np.arange(int(count.sum())) - np.repeat(start, count) + np.repeat(first, count)
+    c = np.repeat(centre, count)  # each point against its turn's point
+    dt, dx, dy = t[at] - t[c], x[at] - x[c], y[at] - y[c]
+    nl = count.astype(float)
+
+    def total(w):
+        return np.bincount(leg, weights=w, minlength=m)
+
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tm = total(dt) / nl
+        ctt = total(dt * dt) - nl * tm * tm
+        vx = (total(dx * dt) - tm * total(dx)) / ctt
+        vy = (total(dy * dt) - tm * total(dy)) / ctt
+        # a leg slower than the detector's minimum speed (a ship leaving or coming to
+        # rest, which slow_side lets turn) is taken at that speed: its course is then as
+        # certain as the detector's own speed rule assumes, not lost in the noise
+        speed = np.maximum(np.hypot(vx, vy), min_speed_ms)
+        se = sigma / (speed * np.sqrt(ctt))
+        course = np.arctan2(vx, vy)
+        fits = (count >= 2) & (ctt > 0) & np.isfinite(se)
+    return course, se, fits
+
+
 def _confirmed(
     x: np.ndarray,
     y: np.ndarray,
@@ -1103,54 +1205,90 @@ def _confirmed(
     """``confirm_z``: per row of ``rows``, a line fitted (least squares of x and y on time)
     to each of its two legs of ``legs`` points (the row shared, clipped at its track's ends
     and at the at-rest rows ``rest_rows``, sorted) gives a course and its standard error
-    σ / (max(|v|, ``min_speed_ms``) · sqrt(Σ (t − t̄)²)) rad, σ the track's position noise; True where the courses
-    differ by more than ``z`` · sqrt(se_b² + se_a²), or where a leg cannot be fitted
-    (fewer than 2 points or times, σ not known: the test does not apply). Gathered array
-    operations over the legs' points, no loop per row."""
+    σ / (max(|v|, ``min_speed_ms``) · sqrt(Σ (t − t̄)²)) rad, σ the track's position
+    noise; True where the courses differ by more than ``z`` · sqrt(se_b² + se_a²), or
+    where a leg cannot be fitted (fewer than 2 points or times, σ not known: the test does
+    not apply). Gathered array operations over the legs' points, no loop per row."""
     m = len(rows)
     ok = np.ones(m, dtype=bool)
     if not m:
         return ok
-    tr = index.track_of_row[rows]
-    lo = np.maximum(rows - legs + 1, index.starts[tr])
-    hi = np.minimum(rows + legs, index.ends[tr])  # one past the last row
-    if len(rest_rows):
-        k = np.searchsorted(rest_rows, rows)
-        before = np.where(k > 0, rest_rows[np.maximum(k - 1, 0)] + 1, 0)
-        after = np.where(k < len(rest_rows), rest_rows[np.minimum(k, len(rest_rows) - 1)], hi)
-        lo = np.maximum(lo, np.minimum(before, rows))
-        hi = np.minimum(hi, np.maximum(after, rows + 1))
-    # the legs' points, gathered: leg 2i before row i (lo .. row), 2i + 1 after (row .. hi)
+    lo, hi = _leg_bounds(index, rows, legs, legs, rest_rows)
+    # leg 2i before row i (lo .. row), 2i + 1 after (row .. hi)
     first = np.empty(2 * m, dtype="int64")
     first[0::2], first[1::2] = lo, rows
     count = np.empty(2 * m, dtype="int64")
     count[0::2], count[1::2] = rows - lo + 1, hi - rows
-    leg = np.repeat(np.arange(2 * m), count)
-    start = np.cumsum(count) - count
-    at = np.arange(int(count.sum())) - np.repeat(start, count) + np.repeat(first, count)
-    centre = np.repeat(np.repeat(rows, 2), count)  # each point against its turn's point
-    dt, dx, dy = t[at] - t[centre], x[at] - x[centre], y[at] - y[centre]
-    nl = count.astype(float)
-
-    def total(w):
-        return np.bincount(leg, weights=w, minlength=2 * m)
-
-    with np.errstate(invalid="ignore", divide="ignore"):
-        tm = total(dt) / nl
-        ctt = total(dt * dt) - nl * tm * tm
-        vx = (total(dx * dt) - tm * total(dx)) / ctt
-        vy = (total(dy * dt) - tm * total(dy)) / ctt
-        # a leg slower than the detector's minimum speed (a ship leaving or coming to
-        # rest, which slow_side lets turn) is taken at that speed: its course is then as
-        # certain as the detector's own speed rule assumes, not lost in the noise
-        speed = np.maximum(np.hypot(vx, vy), min_speed_ms)
-        se = sigma[np.repeat(tr, 2)] / (speed * np.sqrt(ctt))
-        course = np.arctan2(vx, vy)
-        d = np.abs(np.angle(np.exp(1j * (course[1::2] - course[0::2]))))
+    s2 = np.repeat(sigma[index.track_of_row[rows]], 2)
+    course, se, fits = _leg_fits(x, y, t, first, count, np.repeat(rows, 2), s2, min_speed_ms)
+    d = np.abs(np.angle(np.exp(1j * (course[1::2] - course[0::2]))))
+    with np.errstate(invalid="ignore"):
         bound = z * np.hypot(se[0::2], se[1::2])
-        fits = (count[0::2] >= 2) & (count[1::2] >= 2) & np.isfinite(bound)
-        fits &= (ctt[0::2] > 0) & (ctt[1::2] > 0)
-        ok[fits] = d[fits] > bound[fits]
+    both = fits[0::2] & fits[1::2]
+    ok[both] = d[both] > bound[both]
+    return ok
+
+
+def _confirmed_grown(
+    x: np.ndarray,
+    y: np.ndarray,
+    t: np.ndarray,
+    index: TrackIndex,
+    rows: np.ndarray,
+    base: np.ndarray,
+    sigma: np.ndarray,
+    rest_rows: np.ndarray,
+    params: "ManeuverParams",
+    stops: np.ndarray,
+) -> np.ndarray:
+    """``confirm_grow``: the turns at ``rows`` whose legs of ``base`` points did not confirm
+    them, tested again with both legs doubled, ``confirm_grow`` times at most; True where a
+    test confirms. A grown test confirms where, by more than ``confirm_z`` standard errors
+    each and all three the same way round, (a) the grown legs' courses differ (and by
+    ``threshold_deg`` as well with ``confirm_grow_deg``), (b) the grown leg before differs
+    from the course at the row and (c) the course at the row from the grown leg after: the
+    course changes on both sides of the row (a point inside a gradual turn), not only far
+    off in one leg (a straight stretch before another turn). The course at the row: a line
+    fitted to both base legs together. Grown legs stop at ``stops`` (the turns already
+    confirmed, sorted), never shorter than ``base``. A loop over the doublings, each test
+    on all the rows still out at once."""
+    ok = np.zeros(len(rows), dtype=bool)
+    if not len(rows):
+        return ok
+    v_min = params.min_speed_kn * geo.KN_MS
+    z = params.confirm_z
+    min_rad = np.radians(params.threshold_deg) if params.confirm_grow_deg else 0.0
+    lo0, hi0 = _leg_bounds(index, rows, base, base, rest_rows)  # the course at the row
+    s_row = sigma[index.track_of_row[rows]]
+    j = np.arange(len(rows))
+    legs = base.copy()
+    for _ in range(int(params.confirm_grow)):
+        if not len(j):
+            break
+        legs = legs * 2
+        r = rows[j]
+        lo, hi = _leg_bounds(index, r, legs, legs, rest_rows, stops, base[j])
+        # legs 3i: grown before (lo .. r), 3i + 1: at the row, 3i + 2: grown after (r .. hi)
+        first = np.column_stack([lo, lo0[j], r]).ravel()
+        count = np.column_stack([r - lo + 1, hi0[j] - lo0[j], hi - r]).ravel()
+        c, se, fits = _leg_fits(
+            x, y, t, first, count, np.repeat(r, 3), np.repeat(s_row[j], 3), v_min
+        )
+        c, se, fits = c.reshape(-1, 3), se.reshape(-1, 3), fits.reshape(-1, 3)
+
+        # the course changes: grown before to after, before to the row, the row to after
+        d, d1, d2 = (
+            np.angle(np.exp(1j * (c[:, b] - c[:, a]))) for a, b in ((0, 2), (0, 1), (1, 2))
+        )
+        with np.errstate(invalid="ignore"):
+            hit = fits.all(axis=1) & (
+                np.abs(d) > np.maximum(z * np.hypot(se[:, 0], se[:, 2]), min_rad)
+            )
+            hit &= np.abs(d1) > z * np.hypot(se[:, 0], se[:, 1])
+            hit &= np.abs(d2) > z * np.hypot(se[:, 1], se[:, 2])
+        hit &= (np.sign(d1) == np.sign(d)) & (np.sign(d2) == np.sign(d))
+        ok[j[hit]] = True
+        j, legs = j[~hit], legs[~hit]
     return ok
 
 
@@ -2435,6 +2573,21 @@ def _detect_sorted(
                 params.confirm_z,
                 params.min_speed_kn * geo.KN_MS,
             )
+            if params.confirm_grow > 0:  # the turns not confirmed: legs grown
+                out = ~ok[j]
+                j = j[out]
+                ok[j] = _confirmed_grown(
+                    x,
+                    y,
+                    t,
+                    index,
+                    cand[j],
+                    legs[out],
+                    track_noise(),
+                    rest_rows,
+                    params,
+                    np.union1d(found_rows[0], cand[ok]),
+                )
         return ok
 
     def add(f_c: np.ndarray, cand: np.ndarray, ok: np.ndarray, reach: np.ndarray) -> None:

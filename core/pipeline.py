@@ -240,7 +240,24 @@ def _break_phrases(speed: dict) -> list:
             time=str(worst["from_time"]).removesuffix("+00:00"),
         )
         n_kept = int(speed.get("breaks_kept", len(legs)) or len(legs))
-        if n_kept == 1:
+        same_time = worst["kn"] is None or not worst["s"]  # a jump at one time: no speed
+        if same_time and n_kept == 1:
+            out.append(
+                phrase(
+                    "; 1 break kept: {km:,.1f} km at the same time, track {track} at {time}",
+                    **values,
+                )
+            )
+        elif same_time:
+            out.append(
+                phrase(
+                    "; {n:#break} kept, the fastest {km:,.1f} km at the same time, track "
+                    "{track} at {time}",
+                    n=n_kept,
+                    **values,
+                )
+            )
+        elif n_kept == 1:
             out.append(
                 phrase(
                     "; 1 break kept: {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} "
@@ -382,6 +399,14 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     cp = _p(params, "compress", CompressParams)
     opts = _p(params, "compress_options", CompressOptions)
     layers = []
+    from wakeline.core.clean import without_position
+
+    # rows without a position (a table not read by import nor cleaned): left out, counted
+    no_position = without_position(points)
+    if no_position:
+        lon = pd.to_numeric(points["lon"], errors="coerce").to_numpy(dtype="float64")
+        lat = pd.to_numeric(points["lat"], errors="coerce").to_numpy(dtype="float64")
+        points = points[np.isfinite(lon) & np.isfinite(lat)].reset_index(drop=True)
     if opts.method == "dp":
         pts = sort_points(points)
         index = track_index(pts)
@@ -409,6 +434,8 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     report = comp.report()
     report["method"] = opts.method
     report["refined_vertices"] = refine
+    if no_position:
+        report["rows_without_position"] = no_position
     if opts.method != "dp":  # the turning points it kept around, as the maneuvers layer has
         report["maneuvers"] = int(len(table))
         _add_error_bounds(report, res, cp)
@@ -449,10 +476,13 @@ def _add_error_bounds(report: dict, res, cp) -> None:
     }
     for row in report["tracks"]:
         n, tol = by_key.get((str(row["sensor"]), str(row["batch"])), (np.nan, np.nan))
-        row["noise_m"] = float(n)
+        row["noise_m"] = float(n) if np.isfinite(n) else None  # None: too short to tell
         row["error_tol_m"] = float(tol)
     tol = bounds["error_tol_m"].to_numpy(dtype="float64")
-    worst = bounds.assign(_t=tol).sort_values("_t", ascending=False, kind="stable")
+    # the tracks of the largest bound, among those with a noise estimate (a track of one
+    # or two points has the floor and no noise to show)
+    known = np.isfinite(bounds["noise_m"].to_numpy(dtype="float64"))
+    worst = bounds.assign(_t=tol)[known].sort_values("_t", ascending=False, kind="stable")
     dis = {(str(r["sensor"]), str(r["batch"])): r for r in report["tracks"]}
     report["error_bound"] = {
         "error_sigmas": cp.error_sigmas,
@@ -495,6 +525,12 @@ def _summary_compress(res: StepResult) -> Text:
                 rows=o["repeated_rows"],
             )
             if o.get("repeated_rows")
+            else None,
+            phrase(
+                " ({rows:#row} without a position left out)",
+                rows=res.report["rows_without_position"],
+            )
+            if res.report.get("rows_without_position")
             else None,
             phrase("; Dis_e {dis_e:.1f} m", dis_e=o["dis_e_m"]),
             phrase(", Dis_e against truth {dis_e:.1f} m", dis_e=o["dis_e_true_m"])

@@ -30,3 +30,36 @@ def _load(name: str):
 def test_bench_reads_shared_from_the_environment(monkeypatch, tmp_path, name, attr, tail):
     monkeypatch.setenv("WAKELINE_SHARED", str(tmp_path))
     assert getattr(_load(name), attr) == tmp_path / tail
+
+
+def test_gui_block_probe_makes_its_own_million_file(monkeypatch, tmp_path):
+    """bench/gui_block_probe.py without --file (S29: its scratch default was gone) writes
+    the ATD example repeated over days once: copy k k days later, point ids after the
+    others', ship ids kept (or ``* 10 + k`` by day); a second call reuses the file."""
+    import gzip
+
+    monkeypatch.setenv("WAKELINE_SHARED", str(tmp_path))
+    mod = _load("gui_block_probe")
+    assert mod.ATD_EXAMPLE == tmp_path / "data/real/atd2025-noaa/example_truth.csv.gz"
+    src = tmp_path / "ex.csv.gz"
+    rows = [
+        "point_id,point_id_original,track_id,time,lat,lon,speed,course",
+        "0,7,215726000,2024-01-01T00:00:00,23.6,-83.6,10.7,280.9",
+        "1,3,563093400,2024-01-01T23:59:59,24.0,-82.1,13.6,279.0",
+    ]
+    with gzip.open(src, "wt") as f:
+        f.write("\n".join(rows) + "\n")
+    out = mod.atd_million(days=3, source=src, folder=tmp_path / "cache")
+    lines = out.read_text().splitlines()
+    assert lines[0] == rows[0] and len(lines) == 1 + 3 * 2
+    assert [ln.split(",")[0] for ln in lines[1:]] == ["0", "1", "2", "3", "4", "5"]
+    assert lines[5] == "4,7,215726000,2024-01-03T00:00:00,23.6,-83.6,10.7,280.9"
+    assert lines[6].split(",")[3] == "2024-01-03T23:59:59"
+    by_day = mod.atd_million(days=3, by_day=True, source=src, folder=tmp_path / "cache")
+    assert by_day != out
+    assert [ln.split(",")[2] for ln in by_day.read_text().splitlines()[1::2]] == [
+        "2157260000", "2157260001", "2157260002",
+    ]  # fmt: skip
+    stamp = out.stat().st_mtime_ns
+    assert mod.atd_million(days=3, source=src, folder=tmp_path / "cache") == out
+    assert out.stat().st_mtime_ns == stamp  # made once

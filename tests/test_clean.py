@@ -755,7 +755,42 @@ def test_the_report_lists_the_fastest_kept_breaks_and_counts_them_all(monkeypatc
         b["time"] = b["time"] + pd.Timedelta(seconds=600)
         parts += [a, b]
     pts = pd.concat(parts, ignore_index=True)
-    rep = C.clean(pts).report
+    res = C.clean(pts)
+    rep = res.report
     speed = rep["rules"]["speed"]
     assert speed["breaks_kept"] == 2 and len(speed["break_legs"]) == 1
-    assert "2 breaks kept" in STEPS["clean"].summary(StepResult("clean", [], rep, {}))
+    # the one listed is the fastest of the impossible legs kept (track 6's, the longer
+    # jump, second in the file), whichever the tracks' order
+    legs = _impossible_legs(res.points)
+    batch, km, s = max(legs, key=lambda leg: leg[1] / leg[2])
+    assert batch == "6" and len({b for b, *_ in legs}) == 2
+    listed = speed["break_legs"][0]
+    assert listed["batch"] == batch and listed["km"] == pytest.approx(km, abs=5e-4)
+    assert listed["kn"] == pytest.approx(km * 1000 / s / geo.KN_MS, abs=0.1)
+    text = STEPS["clean"].summary(StepResult("clean", [], rep, {}))
+    assert f"2 breaks kept, the fastest {km:,.1f} km" in text and "track R1:6" in text
+
+
+def test_a_break_at_an_identical_time_is_said_at_the_same_time():
+    """Review h209: a jump whose two rows share their time read "0 s, inf kn"."""
+    from wakeline.core.pipeline import STEPS, StepResult
+
+    a = straight(60, speed_kn=12, period_s=10.0, batch="5")
+    b = straight(60, speed_kn=12, period_s=10.0, batch="5", lon0=122.04, lat0=30.01)
+    b["time"] = b["time"] + (a["time"].iloc[-1] - b["time"].iloc[0])  # b starts at a's end
+    params = CleanParams().with_settings(["duplicates.enabled=false"])
+    rep = clean(pd.concat([a, b], ignore_index=True), params).report
+    leg = rep["rules"]["speed"]["break_legs"][0]
+    assert leg["s"] == 0 and leg["kn"] is None
+    text = STEPS["clean"].summary(StepResult("clean", [], rep, {}))
+    assert f"1 break kept: {leg['km']:,.1f} km at the same time, track R1:5" in text
+    assert "inf" not in text and " 0 s" not in text
+
+
+def test_points_without_a_position_are_refused_with_a_clear_message():
+    """Review h209: a NaN longitude went through clean into compress (which crashed);
+    clean refuses such a table as it refuses rows without a time."""
+    pts = straight(30)
+    pts.loc[5, "lon"] = np.nan
+    with pytest.raises(InputError, match="1 points have no position"):
+        clean(pts)

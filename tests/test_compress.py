@@ -407,3 +407,46 @@ def test_the_error_bound_is_reported_per_track_and_can_be_capped(seed):
     assert comp.point_errors().max() <= cap + 1e-6
     # no cap (the default): the same kept points as before the option
     assert np.array_equal(turning_keep(result), turning_keep(result, CompressParams(error_cap_m=0)))
+
+
+def test_tracks_too_short_for_a_noise_estimate_report_none_and_are_not_the_largest():
+    """Review h209: one- and two-point tracks reported noise_m 0.0 and could head the
+    "largest" bounds ("noise 0 m" in the summary); their noise is not known."""
+    from wakeline.core.pipeline import STEPS
+
+    rng = np.random.default_rng(5)
+    big = track_from_xy(np.arange(200) * 50.0 + rng.normal(0, 5, 200), np.zeros(200), batch="big")
+    one = track_from_xy(np.array([0.0]), np.array([0.0]), batch="one")
+    two = track_from_xy(np.array([0.0, 50.0]), np.array([0.0, 0.0]), batch="two")
+    for df, named in (
+        (pd.concat([one, big, two], ignore_index=True), ["big"]),
+        (pd.concat([one, two]), []),
+    ):
+        res = STEPS["compress"](df.reset_index(drop=True))
+        rep = res.report
+        noise = {t["batch"]: t["noise_m"] for t in rep["tracks"]}
+        assert noise["one"] is None and noise["two"] is None
+        assert all(noise[b] > 0 for b in named)
+        assert [r["batch"] for r in rep["error_bound"]["largest"]] == named
+        assert rep["error_bound"]["tol_m"]["min"] == 50.0  # their bound: the floor
+        json.dumps(rep, allow_nan=False)
+        text = STEPS["compress"].summary(res)
+        assert "noise 0 m" not in text
+        assert ("largest error bound" in text) == bool(named)
+
+
+def test_rows_without_a_position_are_left_out_of_compress_and_counted():
+    """Review h209: a NaN longitude (a table not read by import nor cleaned) crashed
+    compress (ValueError in _least_squares_knots); the rows are left out and counted."""
+    from wakeline.core.pipeline import STEPS, CompressOptions
+
+    df = track_from_xy(np.arange(60) * 50.0, np.arange(60) * 20.0, batch="a")
+    df.loc[10, "lon"] = np.nan
+    df.loc[20, "lat"] = np.inf
+    for method in ("maneuver", "dp"):
+        res = STEPS["compress"](df, {"compress_options": CompressOptions(method=method)})
+        rep = res.report
+        assert rep["rows_without_position"] == 2 and rep["overall"]["points"] == 58
+        assert "(2 rows without a position left out)" in STEPS["compress"].summary(res)
+    full = STEPS["compress"](df.drop(index=[10, 20]).reset_index(drop=True)).report
+    assert "rows_without_position" not in full

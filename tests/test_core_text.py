@@ -3,6 +3,7 @@ quarantine reasons, import warnings and layout names a Chinese operator must act
 shown in Chinese (app/core_text.py over resources/translations/core_zh_CN.json)."""
 
 import bz2
+import codecs
 import json
 import lzma
 import re
@@ -72,7 +73,22 @@ def _bad_inputs(tmp_path) -> list[tuple]:
     day_first = "mmsi,time,lat,lon\n" + "".join(
         f"1,0{d}/0{d + 1}/2024 10:00:00,55.{d},12.{d}\n" for d in range(1, 8)
     )
+    # operator test 7 D1: GBK text behind a UTF-8 byte order mark (read, and said), the
+    # same with utf-8 named (refused), and a GBK header read as cp1252 (refused)
+    zh = "批号,时间,经度,纬度\r\n" + "".join(
+        f"{b},2024-01-01 00:00:{s:02d},120.{s:02d},30.{s:02d}\r\n" for b in (1, 2) for s in range(9)
+    )
+    # one sensor's lat and lon swapped, the other's right (review h209, finding 6)
+    swapped = "sensor,batch,time,lat,lon\n" + "".join(
+        f"{s},1,2024-01-01T00:00:{k:02d}Z,{a}.{k:02d},{b}.{k:02d}\n"
+        for s, a, b in (("R1", 120, 30), ("R2", 30, 120))
+        for k in range(10)
+    )
     return [
+        (w("swapped_sensor.csv", swapped), {}),
+        (w("bom_gbk.csv", codecs.BOM_UTF8 + zh.encode("gbk")), {}),
+        (w("bom_gbk_utf8.csv", codecs.BOM_UTF8 + zh.encode("gbk")), {"encoding": "utf-8"}),
+        (w("gbk_cp1252.csv", zh.encode("gbk")), {"encoding": "cp1252"}),
         (w("empty.csv", b""), {}),
         (w("blank.csv", b"\n\n  \n"), {}),
         (w("png.csv", b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(256)) * 4), {}),

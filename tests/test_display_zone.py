@@ -154,6 +154,8 @@ def test_window_follows_the_choice_and_keeps_it(qtbot, tmp_path):
     wait_for_jobs(w2)
     qtbot.waitUntil(lambda: not w2.time_controller.busy, timeout=20_000)
     assert w2.zone_choice == "data" and _header(w2, "start") == "Start (UTC+8)"
+    # the worker wrote the dates in UTC, the window's zone then: written again in UTC+8
+    assert min(_cell(w2, "start", r) for r in range(2)) == "2026-12-05 08:00:00"
     w2.runner.cancel()
     w2.runner.wait()
 
@@ -184,3 +186,48 @@ def test_zh_titles_and_stats_say_the_zone(qtbot, tmp_path):
     w.set_language("en")
     w.runner.cancel()
     w.runner.wait()
+
+
+@pytest.mark.gui
+def test_opening_a_project_writes_its_dates_once(qtbot, tmp_path, monkeypatch):
+    """A project whose zone choice shows the zone the window already shows: the batch
+    table's dates come from the worker's views and are not written again on the GUI
+    thread (S29: 0.3 s of GUI-thread work at a million points). (One whose choice shows
+    another zone is written again: test_window_follows_the_choice_and_keeps_it.)"""
+    import threading
+
+    from wakeline.app import layer_view, models
+    from wakeline.app.main import wait_for_jobs
+
+    path = _beijing_csv(tmp_path / "console.csv")
+    w = make_window(qtbot, tmp_path, (1200, 800))
+    _load_tz(w, qtbot, path, "Asia/Shanghai")
+    w.zone_actions["utc"].trigger()
+    proj = tmp_path / "work.wakeline"
+    w.save_project(proj)
+    assert w.project.flush(30)
+    w.runner.cancel()
+    w.runner.wait()
+    w.close()
+    time_text.set_display_zone(None, "UTC")
+
+    on_gui = []
+    real = models.display_text
+
+    def counted(df):
+        on_gui.append(threading.current_thread() is threading.main_thread())
+        return real(df)
+
+    monkeypatch.setattr(models, "display_text", counted)  # display_zone.redraw's
+    monkeypatch.setattr(layer_view, "display_text", counted)  # the worker's views'
+    w2 = make_window(qtbot, tmp_path / "other", (1200, 800))
+    w2.zone_actions["utc"].trigger()
+    on_gui.clear()
+    w2.open_project(proj)
+    wait_for_jobs(w2)
+    qtbot.waitUntil(lambda: not w2.time_controller.busy, timeout=20_000)
+    assert w2.zone_choice == "utc" and _header(w2, "start") == "Start (UTC)"
+    assert min(_cell(w2, "start", r) for r in range(2)) == "2026-12-05 00:00:00"
+    assert on_gui and not any(on_gui), on_gui  # made in the worker only
+    w2.runner.cancel()
+    w2.runner.wait()

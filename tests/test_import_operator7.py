@@ -187,6 +187,55 @@ def test_a_fixed_set_of_small_ids_seen_at_every_time_is_still_offered(tmp_path):
     assert "batch=k" in hint and "batch=scan" not in hint
 
 
+def _scan_rows(ids_at, n_scans: int = 60) -> str:
+    """Radar-like rows without a batch column: at scan ``s`` the tracks ``ids_at(s)``."""
+    rows = [
+        f"{k},2024-01-01 00:{s // 6:02d}:{s % 6 * 10:02d},"
+        f"{10 + 0.001 * s + 0.1 * k:.5f},{55 + 0.0005 * s:.5f}"
+        for s in range(n_scans)
+        for k in ids_at(s)
+    ]
+    return "obj,time,lon,lat\n" + "\n".join(rows) + "\n"
+
+
+def _candidates(tmp: Path, text: str) -> list[str]:
+    from wakeline.core.io.reader import id_candidates
+    from wakeline.core.io.sniff import sniff
+
+    path = tmp / "scans.csv"
+    path.write_text(text)
+    found = id_candidates(sniff(path), {"time": "time", "lon": "lon", "lat": "lat"})
+    return [name for name, *_ in found]
+
+
+def test_the_batch_hint_offers_track_numbers_that_grow_over_time(tmp_path):
+    """Review h209: radar track numbers 1..m with a new track now and then (none ending
+    in the sample) looked like 'an index within each time' and were left out."""
+    text = _scan_rows(lambda s: range(1, min(2 + s // 4, 8) + 1))
+    assert _candidates(tmp_path, text) == ["obj"]
+
+
+@pytest.mark.parametrize("missed", [[17], [17, 40]])
+def test_the_batch_hint_offers_fixed_track_numbers_with_a_missed_detection(tmp_path, missed):
+    """Review h209: five tracks 1..5 over 60 scans, track 5 missed in one scan (its
+    values 1..4: 'index-like', m varying) were left out."""
+    text = _scan_rows(lambda s: [k for k in range(1, 6) if not (k == 5 and s in missed)])
+    assert _candidates(tmp_path, text) == ["obj"]
+
+
+def test_index_like_ids_that_recur_are_offered_after_the_others(tmp_path):
+    """Not sure (each time's values 1..m, m varying, but seen again at the next time): a
+    column named as a track id is offered, after a column of ids with no such doubt."""
+    lines = ["track,time,tag,lon,lat"]
+    for s in range(60):
+        for k in range(1, min(2 + s // 4, 8) + 1):
+            lines.append(
+                f"{k},2024-01-01 00:{s // 6:02d}:{s % 6 * 10:02d},V{k + 10},"
+                f"{10 + 0.001 * s + 0.1 * k:.5f},{55 + 0.0005 * s:.5f}"
+            )
+    assert _candidates(tmp_path, "\n".join(lines) + "\n") == ["tag", "track"]
+
+
 # --- D7: a last line cut inside its last cell ---------------------------------------------
 
 
@@ -260,6 +309,20 @@ def test_a_cut_last_line_of_a_file_read_in_pieces_is_quarantined(tmp_path, monke
     assert r.report["quarantine_reasons"] == {"cut last line": 1}
     assert r.report["rows_imported"] == 299
     _every_line_counted(r.report, 301)
+    # the value as read, without the cut cell's opening quote (review h209)
+    value = cut[cut.rindex('"') + 1 :]
+    warned = [w for w in r.report["warnings"] if "looks cut" in w]
+    assert len(warned) == 1 and f"({value!r} where" in warned[0]
+
+
+def test_a_cut_value_of_a_one_decimal_column_says_1_decimal(tmp_path):
+    rows = _fixed_rows(30, places=1)
+    path = tmp_path / "one.csv"
+    path.write_text("\n".join([_header(), *rows[:-1], rows[-1][: rows[-1].rindex(".")]]))
+    rep = read_points(path).report
+    assert rep["quarantine_reasons"] == {"cut last line": 1}
+    warned = [w for w in rep["warnings"] if "looks cut" in w]
+    assert len(warned) == 1 and "have 1 decimal at least" in warned[0]
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -369,3 +432,72 @@ def test_steps_back_count_as_a_plain_count_says(back):
         info = read_points(path).report["time_steps_back"]
     assert info.get("tracks", {}).get("A", 0) == len(want)
     assert info.get("first_lines", []) == [2 + 2 * k for k in want][:5]
+
+
+def test_time_steps_back_are_counted_per_track_not_per_batch_name(tmp_path):
+    """Review h209: two sensors whose tracks share the batch name '1', each with one
+    clock step back: the count keyed by batch name kept one of them."""
+    rows = []
+    for s in ("R1", "R2"):
+        for i in range(60):
+            t = 1_700_000_000 + 60 * i - (300 if i == 30 else 0)
+            rows.append(f"{s},1,{t},{10 + 0.001 * i:.5f},{55 + 0.001 * i:.5f}")
+    path = tmp_path / "two.csv"
+    path.write_text("sensor,id,t,lon,lat\n" + "\n".join(rows) + "\n")
+    rep = read_points(path).report
+    info = rep["time_steps_back"]
+    assert info["tracks"] == {"R1:1": 1, "R2:1": 1}
+    assert info["first_lines"] == [32, 92]
+    warned = [w for w in rep["warnings"] if "back within a track" in w]
+    assert warned and warned[0].startswith("2 time steps go back")
+
+
+def test_restarting_tracks_are_counted_per_sensor_and_batch(tmp_path):
+    """The same pattern in the restart count: R1's batch 1 restarts, R2's batch 1 does not."""
+    rows = [f"R1,1,{60 * m},{11 + run + m * 1e-3:.4f},57.5" for run in range(3) for m in range(50)]
+    rows += [f"R2,1,{60 * m},12.0,{57 + m * 1e-3:.4f}" for m in range(40)]
+    path = tmp_path / "r.csv"
+    path.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
+    assert read_points(path).report["restarting_tracks"] == {"R1:1": 3}
+
+
+def _one_track_back_at(i0: int, n: int = 400, quoted: bool = False) -> str:
+    """One track a minute a row, rows ``i0``..``i0 + 4`` set back 5 min."""
+    rows, tid = [], '"A"' if quoted else "A"
+    for i in range(n):
+        t = 1_700_000_000 + 60 * i - (300 if i0 <= i < i0 + 5 else 0)
+        rows.append(f"{tid},{t},{10 + 0.001 * i:.5f},{55 + 0.001 * i:.5f}")
+    return "id,t,lon,lat\n" + "\n".join(rows) + "\n"
+
+
+def test_a_step_back_on_a_streamed_pieces_first_row_is_seen(tmp_path, monkeypatch):
+    """Review h209: each piece's count started afresh, so a step back on a piece's first
+    row was lost (whole: found)."""
+    from wakeline.core.io import reader
+
+    path = tmp_path / "one.csv"
+    path.write_text(_one_track_back_at(197))
+    whole = read_points(path).report["time_steps_back"]
+    assert whole["first_lines"] == [199]
+    monkeypatch.setattr(reader, "STREAM_BYTES", 1024)  # a piece starts on line 199
+    streamed = import_to_csv(path, tmp_path / "o.csv").report
+    assert streamed.get("streamed")
+    assert streamed["time_steps_back"] == whole
+    # a key the streamed report lacked (review h209: report keys whole vs streamed)
+    assert streamed["lat_beyond_90_lon_within"] == 0
+
+
+def test_a_step_back_anywhere_in_a_file_read_in_pieces_is_seen(tmp_path, monkeypatch):
+    """The reading in pieces (a quoted file) carries each track's last time too: wherever
+    the step back falls (one of these offsets starts a piece), what a whole read says."""
+    from wakeline.core.io import reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 1024)
+    path = tmp_path / "q.csv"
+    for i0 in range(180, 215):
+        path.write_text(_one_track_back_at(i0, quoted=True))
+        whole = read_points(path).report["time_steps_back"]
+        assert whole["first_lines"] == [i0 + 2]
+        r = import_to_csv(path, tmp_path / "o.csv").report
+        assert r.get("pieces", 0) > 1
+        assert r["time_steps_back"] == whole, i0

@@ -151,3 +151,54 @@ def test_batch_keeps_no_row_of_a_swapped_file(write, tmp_path, capsys):
     rep = json.loads((out / "report.json").read_text())
     assert rep["rows_read"] == 130 and rep["quarantined"] == 100  # none of half.csv kept
     capsys.readouterr()
+
+
+def _two_sensors(sensor_column: bool = True, quoted: bool = False) -> str:
+    """R1: lat/lon swapped in all 300 rows (200 of them out of range as lat, 100 within:
+    they would be mirrored); R2: 60 rows with its columns right. Most of the file's rows
+    look swapped."""
+    q = '"' if quoted else ""
+    lines = ["sensor,track_id,time,lat,lon" if sensor_column else "track_id,time,lat,lon"]
+    for k in range(360):
+        own, tid = ("R1", 1) if k < 300 else ("R2", 2)
+        if own == "R1":
+            lat, lon = (-80.0 - k * 0.01 if k < 100 else 120.0 + k * 0.01), 30.5
+        else:
+            lat, lon = 30.5 + k * 1e-4, 120.0 + k * 1e-4
+        head = f"{q}{own}{q},{tid}" if sensor_column else f"{q}{own}{q}"
+        lines.append(
+            f"{head},2024-05-01T{k // 3600:02d}:{k // 60 % 60:02d}:{k % 60:02d}Z,{lat:.5f},{lon:.5f}"
+        )
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("how", ["whole", "streamed", "pieces"])
+@pytest.mark.parametrize("sensor_column", [True, False])
+def test_swapped_columns_are_judged_per_sensor_or_track(
+    write, tmp_path, how, sensor_column, monkeypatch
+):
+    """Review h209: judged over the whole file, a sensor whose columns are right was
+    quarantined with the one whose columns are swapped (and with fewer rows swapped a
+    swapped sensor's in-range rows were kept, mirrored). Judged per sensor (per track
+    without a sensor column): R1 quarantined, R2 read; the warning names R1."""
+    from wakeline.core.io import reader
+
+    if how == "pieces":
+        monkeypatch.setattr(reader, "STREAM_BYTES", 2048)
+    elif how == "streamed":
+        monkeypatch.setattr(reader, "STREAM_BYTES", 4096)
+    path = write("two.csv", _two_sensors(sensor_column, quoted=how == "pieces"))
+    r = read_points(path) if how == "whole" else import_to_csv(path, tmp_path / "o.csv")
+    rep = r.report
+    assert rep["rows_imported"] == 60 and rep["rows_quarantined"] == 300
+    assert rep["quarantine_reasons"] == {
+        "lat out of range": 200,
+        "in a file whose lat and lon columns look swapped": 100,
+    }
+    kind = "sensor" if sensor_column else "track"
+    warned = [w for w in rep["warnings"] if "look swapped" in w]
+    assert len(warned) == 1 and f"1 {kind}(s) of 2 ({kind} R1)" in warned[0]
+    if how == "whole":
+        assert (r.points["lat"] < 90).all() and set(
+            r.points["sensor" if sensor_column else "batch"]
+        ) == {"R2"}

@@ -129,6 +129,8 @@ def _reference_params(params: ManeuverParams):
     fields.pop("rest_noise_cap_m")  # h195: no effect with rest_noise_sigmas 0 (set above)
     assert fields.pop("confirm_z") == 0  # h203, off by default
     fields.pop("confirm_legs")  # h203: no effect with confirm_z 0
+    fields.pop("confirm_grow")  # h208: no effect with confirm_z 0
+    fields.pop("confirm_grow_deg")  # h208: no effect with confirm_z 0
     return reference.ManeuverParams(**fields)
 
 

@@ -97,6 +97,8 @@ def _same(df, params):
     fields.pop("rest_noise_cap_m")  # h195: no effect with rest_noise_sigmas 0 (set above)
     assert fields.pop("confirm_z") == 0  # h203, off by default (set 0 above)
     fields.pop("confirm_legs")  # h203: no effect with confirm_z 0
+    fields.pop("confirm_grow")  # h208: no effect with confirm_z 0
+    fields.pop("confirm_grow_deg")  # h208: no effect with confirm_z 0
     assert not fields.pop("rest_north_box")  # the reference calls at_rest's default box
     ref = reference.detect(df, reference.ManeuverParams(**fields))
     assert np.array_equal(ours.is_maneuver, ref.is_maneuver)

@@ -153,6 +153,8 @@ def test_options_equal_the_straightforward_detector(options):
         "noise_k_law",
         "rest_noise_cap_m",
         "confirm_legs",
+        "confirm_grow",
+        "confirm_grow_deg",
     ):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))

@@ -102,6 +102,8 @@ def test_gate_equals_the_straightforward_detector():
         "noise_k_law",
         "rest_noise_cap_m",
         "confirm_legs",
+        "confirm_grow",
+        "confirm_grow_deg",
     ):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))

@@ -395,3 +395,113 @@ def test_a_swap_sets_symbols_once_per_curve_never_spot_by_spot(qtbot, monkeypatc
             assert np.array_equal(item.scatter.data["x"], curve.lon, equal_nan=True)
     assert largest[0] <= map_paths.SYMBOLS_MAX + 1000  # never the old long curve
     assert sum(looked_up) <= len(few)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("antialias", [False, True])
+def test_a_path_built_in_pieces_strokes_what_the_whole_one_strokes(
+    qtbot, monkeypatch, seed, antialias
+):
+    """map_paths.curve_path (pieces cut at NaN separators, S29) against pyqtgraph's one
+    call: the same pixels, on random tracks with single and repeated separators, a
+    separator first and last, and pieces as small as a few vertices."""
+    import pyqtgraph as pg
+    from PySide6 import QtCore
+
+    rng = np.random.default_rng(seed)
+    parts = []
+    for _ in range(60):
+        k = int(rng.integers(1, 40))
+        xy = rng.normal(0, 1, (k, 2)).cumsum(axis=0) + rng.uniform(-40, 40, 2)
+        parts.append(xy)
+        parts.append(np.full((int(rng.integers(1, 3)), 2), np.nan))
+    xy = np.concatenate([np.full((1, 2), np.nan), *parts])
+    lon, lat = xy[:, 0].copy(), xy[:, 1].copy()
+    monkeypatch.setattr(map_paths, "PATH_PIECE_VERTICES", int(rng.integers(5, 60)))
+    assert len(map_paths._chunks(lon, map_paths.PATH_PIECE_VERTICES)) > 5
+
+    def stroke(path) -> bytes:
+        image = QtGui.QImage(400, 400, QtGui.QImage.Format.Format_ARGB32_Premultiplied)
+        image.fill(QtCore.Qt.GlobalColor.transparent)
+        p = QtGui.QPainter(image)
+        p.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing, antialias)
+        p.setPen(pg.mkPen("#d02020", width=1))
+        p.setTransform(QtGui.QTransform(4.0, 0.0, 0.0, -4.0, 200.0, 200.0))
+        p.drawPath(path)
+        p.end()
+        return bytes(image.constBits())
+
+    whole = pg.arrayToQPath(lon, lat, connect="finite")
+    pieces = map_paths.curve_path(lon, lat)
+    assert stroke(pieces) == stroke(whole)
+    assert pieces.boundingRect() == whole.boundingRect()
+
+
+@pytest.mark.parametrize("move", ["zoom in", "zoom out", "pan", "resize"])
+def test_a_long_curve_stands_in_its_old_sprite_while_the_new_one_is_made(
+    qtbot, monkeypatch, sprite_calls, move
+):
+    """S29: a curve of STAND_IN_VERTICES or more whose sprite no longer fits paints the
+    old image scaled onto the view while a new one is on its way (no stroke on the GUI
+    thread: 15-60 ms per 650 k-vertex curve), its tracks where the stroke puts them;
+    without a job on its way it strokes; the new sprite is copied exactly."""
+    import pyqtgraph as pg
+
+    strokes = []
+    original = pg.PlotCurveItem.paint
+
+    def counted(self, p, opt, widget):
+        if isinstance(self, map_paths.SpriteCurve) and self.sprite is not None:
+            strokes.append(len(self.xData))
+        return original(self, p, opt, widget)
+
+    monkeypatch.setattr(pg.PlotCurveItem, "paint", counted)
+    df = many_tracks(5)
+    canvas = shown(qtbot, df, sprites=True)
+    (curve,) = [c for c in canvas.draw_data("L").curves if c.sprite is not None]
+    monkeypatch.setattr(map_paths, "STAND_IN_VERTICES", curve.sprite.n)  # this one
+    jobs = []
+    canvas.lod_executor = lambda job, done: jobs.append((job, done))
+    (x0, x1), (y0, y1) = canvas.vb.viewRange()
+    w = x1 - x0
+    if move == "zoom in":
+        canvas.vb.scaleBy((0.8, 0.8))
+    elif move == "zoom out":
+        canvas.vb.scaleBy((1.2, 1.2))
+    elif move == "pan":
+        canvas.vb.setRange(xRange=(x0 + 0.2 * w, x1 + 0.2 * w), yRange=(y0, y1), padding=0)
+    else:
+        canvas.resize(640, 470)
+        qtbot.wait(20)
+    assert sprite_is_stale(canvas.draw_data("L"), canvas.current_view(), canvas.plot_size_px())
+    assert canvas.lod_busy
+    strokes.clear()
+    sprite_calls.clear()
+    stand_in = ink(canvas_rgb(canvas))
+    assert sprite_calls and not any(sprite_calls)  # the old image does not fit as it is
+    assert not strokes, "a long curve was stroked while its new sprite was on its way"
+    qtbot.wait(100)  # the level-of-detail timer asks for the new one
+    assert jobs
+    # Where the stroke puts the tracks (the same view, no job on its way: strokes).
+    executor, canvas.lod_executor = canvas.lod_executor, None
+    stroked = ink(canvas_rgb(canvas))
+    assert strokes, "without a job on its way the curve strokes"
+    canvas.lod_executor = executor
+    near = stroked.copy()
+    for _ in range(3):  # within 3 px (lines scaled by up to 1.25)
+        near[1:] |= near[:-1].copy()
+        near[:-1] |= near[1:].copy()
+        near[:, 1:] |= near[:, :-1].copy()
+        near[:, :-1] |= near[:, 1:].copy()
+    assert stand_in.sum() > 1000
+    assert (stand_in & ~near).sum() <= 0.02 * stand_in.sum()
+    if move in ("zoom in", "resize"):  # the old image covers the view: all of it drawn
+        assert stand_in.sum() >= 0.6 * stroked.sum()
+    while jobs:
+        job, done = jobs.pop(0)
+        done(job())
+    assert not sprite_is_stale(canvas.draw_data("L"), canvas.current_view(), canvas.plot_size_px())
+    strokes.clear()
+    sprite_calls.clear()
+    canvas_rgb(canvas)
+    assert sprite_calls and all(sprite_calls) and not strokes

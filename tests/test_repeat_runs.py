@@ -36,3 +36,21 @@ def test_million_points_and_object_values():
     assert np.array_equal(repeat_runs(values, sizes), np.repeat(values, sizes))
     text = np.array(["a", None, "c"], dtype=object)  # object values: np.repeat itself
     assert list(repeat_runs(text, [2, 0, 1])) == ["a", "a", "c"]
+
+
+def test_member_equals_isin():
+    """core.sorted_sets.member is np.isin for integer arrays (by sort and searchsorted,
+    which release the GIL; np.isin's hash table holds it): many random draws, empty
+    arrays, duplicates, negatives, keys beyond every value."""
+    from wakeline.core.sorted_sets import member
+
+    rng = np.random.default_rng(3)
+    for _ in range(500):
+        x = rng.integers(-20, 20, int(rng.integers(0, 30)))
+        keys = rng.integers(-25, 25, int(rng.integers(0, 30)))
+        got, want = member(x, keys), np.isin(x, keys)
+        assert got.dtype == bool and got.shape == want.shape
+        assert np.array_equal(got, want)
+    x = rng.integers(0, 2**40, 1_000_000)
+    keys = np.concatenate([x[::3], rng.integers(0, 2**40, 100_000)])
+    assert np.array_equal(member(x, keys), np.isin(x, keys))

@@ -36,3 +36,40 @@ def test_a_suggested_mapping_is_one_field_with_its_choices(pairs):
     want = ", ".join(f"{k}={v}" for k, v in pairs)
     assert text == f"the columns may be: the import dialog's Column mapping ({want}) (check them)"
     assert "--" not in text
+
+
+def test_the_clean_summarys_set_flag_names_the_parameters_place_in_the_window():
+    """Review h209: the window's log said "--set speed.split_at_breaks=true" (a command
+    line's flag); the window names the parameter's place, in English and in Chinese."""
+    import pandas as pd
+
+    from wakeline.app.core_text import translate
+    from wakeline.core.clean import clean
+    from wakeline.core.pipeline import STEPS, StepResult
+    from wakeline.core.words import render
+
+    rows = [(k * 10.0, 122.0, 30.0 + k * 6e-4) for k in range(60)]
+    rows += [(600 + k * 10.0, 122.04, 30.01 + k * 6e-4) for k in range(60)]
+    t0 = pd.Timestamp("2024-05-01", tz="UTC")
+    pts = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": "5",
+            "time": [t0 + pd.Timedelta(seconds=s) for s, _, _ in rows],
+            "lon": [x for _, x, _ in rows],
+            "lat": [y for _, _, y in rows],
+        }
+    )
+    summary = STEPS["clean"].summary(StepResult("clean", [], clean(pts).report, {}))
+    english = render(summary, lambda t: t)
+    assert "--set speed.split_at_breaks=true" in english  # the command line's words
+    shown = window_words(english)
+    assert "--set" not in shown
+    assert "(turning on Parameters ▸ Cleaning ▸ speed ▸ split_at_breaks splits there)" in shown
+    zh = translate(shown, "zh_CN")
+    assert "参数 ▸ 清洗 ▸ speed ▸ split_at_breaks" in zh and "Parameters" not in zh
+    # the summary already in Chinese (Qt's catalog), then the window's words
+    zh_summary = "；保留了 1 个断点（--set speed.split_at_breaks=true 会在此拆分）"
+    assert translate(window_words(zh_summary), "zh_CN") == (
+        "；保留了 1 个断点（参数 ▸ 清洗 ▸ speed ▸ split_at_breaks = true 会在此拆分）"
+    )

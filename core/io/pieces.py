@@ -21,8 +21,9 @@ way. What no reading in pieces gives raises
 by each track's order over the whole file), or a piece the importer refuses (the
 whole-file reader then says why). The tracks that start their time again within the file
 (``restarting_tracks``) are counted within each piece and summed, as the streamed reader
-counts them: a track whose restart falls across two pieces is not seen.
-"""
+counts them: a track whose restart falls across two pieces is not seen. Steps back in time
+(``time_steps_back``) are not lost so: each track's last time is carried into the next
+piece (:class:`~wakeline.core.io.reader.LastTimes`)."""
 
 import dataclasses
 import zlib
@@ -326,6 +327,8 @@ def _read_all(
             )
         except InputError:
             raise WholeFileNeeded from None  # the whole-file reader says what it is
+        if edges["swapped"]:
+            raise WholeFileNeeded  # a sensor (track) looks swapped: judged over the file
         warnings = res.report.get("warnings", [])
         clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
         if clock.any() or any("hour the clock change" in w for w in warnings):

@@ -1781,8 +1781,16 @@ def edge_state() -> dict:
     track's :class:`EdgeCarry` numbers (``carry``, filled by the pieces before the last
     one with rows). The piece's reader is told ``final`` for the file's last piece with
     rows (:func:`with_final`), where the rule runs; and the rows the lone-time rule
-    waits to judge by a later piece (``lone``, :class:`LonePending`)."""
-    return {"carry": EdgeCarry(), "lone": LonePending(), "final": False}
+    waits to judge by a later piece (``lone``, :class:`LonePending`); each track's last
+    time for the steps back (``back``, :class:`LastTimes`); whether a piece found a
+    sensor (track) whose lat and lon look swapped (``swapped``: the whole file judges it)."""
+    return {
+        "carry": EdgeCarry(),
+        "lone": LonePending(),
+        "back": LastTimes(),
+        "swapped": [],
+        "final": False,
+    }
 
 
 def _decades_away(ns: np.ndarray, ok: np.ndarray) -> np.ndarray:
@@ -3063,7 +3071,13 @@ def read_points(
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
     warnings += _restart_warnings(counts["restarting_tracks"], res.columns["batch"])
     warnings += _back_warnings(counts["time_steps_back"], res.columns["time"], res.columns["batch"])
-    warnings += position_warnings(sn, res, counts["lat_beyond_90_lon_within"], counts["rows_read"])
+    warnings += position_warnings(
+        sn,
+        res,
+        counts["lat_beyond_90_lon_within"],
+        counts["rows_read"],
+        time_info.pop("_swapped_in", None),
+    )
     warnings += origin_warnings(res, sn.columns)
     warnings += bearing_warnings(res.columns, counts["quarantine_reasons"], counts["rows_read"])
     warnings += cut_short_warnings(sn, quarantine)
@@ -3324,21 +3338,38 @@ def _holds(arr: pa.ChunkedArray, value: float | None) -> bool:
     return bool(hit)
 
 
-def _looks_swapped(lon, lat) -> int:
+def _swapped_rows(lon, lat) -> np.ndarray | None:
     """Rows whose lat lies beyond ±90 (within ±180) while their lon lies within ±90: a
     longitude under the lat name and a latitude under lon (one vectorized pass; NaN and
-    null count as no)."""
+    null count as no). None when there is nothing to judge."""
     if lon is None or lat is None or len(lat) == 0:
-        return 0
+        return None
     try:
         a_lat, a_lon = pc.abs(pc.cast(lat, pa.float64())), pc.abs(pc.cast(lon, pa.float64()))
     except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
-        return 0
+        return None
     hit = pc.and_(
         pc.and_(pc.greater(a_lat, 90.0), pc.less_equal(a_lat, 180.0)),
         pc.less_equal(a_lon, 90.0),
     )
-    return int(pc.sum(pc.cast(pc.fill_null(hit, False), pa.int64())).as_py() or 0)
+    return np.asarray(pc.fill_null(hit, False), dtype=bool)
+
+
+def _looks_swapped(lon, lat) -> int:
+    """How many rows :func:`_swapped_rows` finds."""
+    hit = _swapped_rows(lon, lat)
+    return 0 if hit is None else int(hit.sum())
+
+
+def _swapped_groups(hit: np.ndarray | None, codes: np.ndarray, n_names: int) -> np.ndarray:
+    """Per name (sensor, or track where the file has no sensor column): whether most of
+    its rows look swapped (:func:`_swapped_rows`)."""
+    if hit is None or not n_names:
+        return np.zeros(n_names, dtype=bool)
+    ok = codes >= 0
+    rows = np.bincount(codes[ok], minlength=n_names)
+    hits = np.bincount(codes[ok & hit], minlength=n_names)
+    return hits > rows / 2
 
 
 #: The quarantine reason of a row of a file whose lat and lon columns look swapped (most
@@ -3364,17 +3395,31 @@ POSITION_ORDER = {
 }
 
 
-def position_warnings(sn: Sniff, res: Resolved, swapped: int, rows: int) -> list[str]:
+def position_warnings(
+    sn: Sniff, res: Resolved, swapped: int, rows: int, groups: tuple | None = None
+) -> list[str]:
     """Warnings that the lat and lon columns may hold each other's values: most rows have
-    lat beyond ±90 and lon within ±90 (``swapped`` of ``rows``), or a known layout's
-    position columns come in the other order. Nothing is swapped: that is the user's
-    call (``--map lat=… --map lon=…``)."""
+    lat beyond ±90 and lon within ±90 (``swapped`` of ``rows``; or of some sensors', or
+    tracks', rows in a file of several: ``groups``, (kind, names, how many in the file)),
+    or a known layout's position columns come in the other order. Nothing is swapped:
+    that is the user's call (``--map lat=… --map lon=…``)."""
     lat, lon = res.columns.get("lat"), res.columns.get("lon")
     if lat is None or lon is None:
         return []
     out = []
     fix = f"--map lat={lon} --map lon={lat}"
-    if rows and swapped > rows / 2:
+    if groups:
+        kind, names, of = groups
+        said = ", ".join(names[:5]) + (", …" if len(names) > 5 else "")
+        out.append(
+            f"column {lat!r} (read as latitude) is beyond ±90° in most rows of {len(names):,} "
+            f"{kind}(s) of {of:,} ({kind} {said}) while {lon!r} lies within ±90° there "
+            f"(lat_beyond_90_lon_within in the report counts them): their columns look "
+            f"swapped (longitudes under {lat!r}); their rows are quarantined (none is kept "
+            f"at a mirrored place), the other {kind}s' rows are read. If so, import their "
+            f"rows again with {fix}"
+        )
+    elif rows and swapped > rows / 2:
         out.append(
             f"column {lat!r} (read as latitude) is beyond ±90° in most rows while {lon!r} "
             f"lies within ±90° (lat_beyond_90_lon_within in the report counts them): the "
@@ -4026,10 +4071,12 @@ def id_candidates(sn: Sniff, columns: dict[str, str]) -> list[tuple[str, bool, i
         distinct = len(set(cells))
         if distinct < 2 or distinct > len(cells) / 2 or not _mostly(cells, _ID_CELL):
             continue
-        if _not_an_id_over_time(sn, name, columns.get("time")):
+        doubt = _not_an_id_over_time(sn, name, columns.get("time"))
+        if doubt == 2:
             continue
         mmsi = _mostly(cells, _MMSI_CELL)
         rank = 0 if mmsi else 1 if hint.search(key) else 2
+        rank += 3 * doubt  # an index within each time, maybe: after the others
         out.append((rank, k, name, mmsi, distinct, len(cells)))
     return [(name, mmsi, d, n) for _r, _k, name, mmsi, d, n in sorted(out)]
 
@@ -4039,16 +4086,20 @@ def id_candidates(sn: Sniff, columns: dict[str, str]) -> list[tuple[str, bool, i
 COUNTER_SHARE = 0.9
 
 
-def _not_an_id_over_time(sn: Sniff, name: str, time_src: str | None) -> bool:
-    """Whether a column's sampled values do not persist over time as a track's id does
+def _not_an_id_over_time(sn: Sniff, name: str, time_src: str | None) -> int:
+    """How surely a column's sampled values do not persist over time as a track's id does
     (operator test 7, D14: the Autoferry detections' ``scan`` and ``k`` were offered as
-    the batch): a counter, each value at one time only (a message or scan number, new
-    with every time step), or an index within each time (``k``: each time's values
-    exactly 0..m-1 or 1..m, m varying between times: the m-th detection of a scan, not
-    the same object from one time to the next). Judged only with evidence: the sample
-    spans several times, and the index rule several times of two or more rows."""
+    the batch): 2 (left out of the hint) for a counter, each value at one time only (a
+    message or scan number, new with every time step), or an index within each time
+    (``k``: each time's values exactly 0..m-1 or 1..m, m varying between times) whose
+    values do not recur from one time to the next (fewer than :data:`COUNTER_SHARE` of a
+    time's values are seen at the next time: the m-th detection of a scan, m going up
+    and down); 1 (offered after the others) for values that look like such an index but
+    recur (track numbers 1..m, a new track now and then, or one missed in a scan: real
+    ids, most likely); 0 otherwise. Judged only with evidence: the sample spans several
+    times, and the index rule several times of two or more rows."""
     if time_src is None or time_src not in sn.columns or name not in sn.columns:
-        return False
+        return 0
     k, t, width = sn.columns.index(name), sn.columns.index(time_src), len(sn.columns)
     pairs = [
         (r[t].strip(), r[k].strip().strip('"'))
@@ -4056,18 +4107,18 @@ def _not_an_id_over_time(sn: Sniff, name: str, time_src: str | None) -> bool:
         if len(r) == width and r[t].strip() and r[k].strip().strip('"')
     ]
     times: dict[str, set[str]] = {}  # value → its times
-    by_time: dict[str, list[str]] = {}  # time → its values
+    by_time: dict[str, list[str]] = {}  # time → its values (times in file order)
     for when, value in pairs:
         times.setdefault(value, set()).add(when)
         by_time.setdefault(when, []).append(value)
     if len(by_time) < 3:
-        return False
+        return 0
     once = sum(len(ts) == 1 for ts in times.values())
     if len(times) >= 3 and once >= COUNTER_SHARE * len(times):
-        return True  # a counter: no value is seen again at a later time
+        return 2  # a counter: no value is seen again at a later time
     shared = [vs for vs in by_time.values() if len(vs) >= 2]
     if len(shared) < 3:
-        return False
+        return 0
 
     def index_like(values: list[str]) -> bool:
         try:
@@ -4078,7 +4129,13 @@ def _not_an_id_over_time(sn: Sniff, name: str, time_src: str | None) -> bool:
 
     sizes = {len(vs) for vs in by_time.values()}
     hits = sum(index_like(vs) for vs in shared)
-    return len(sizes) > 1 and hits >= COUNTER_SHARE * len(shared)
+    if len(sizes) < 2 or hits < COUNTER_SHARE * len(shared):
+        return 0
+    # a track's id is seen again at the next time; an index's values come and go with m
+    sets = [set(vs) for vs in by_time.values()]
+    seen = sum(len(a) for a in sets[:-1])
+    again = sum(len(a & b) for a, b in zip(sets, sets[1:], strict=False))
+    return 2 if again < COUNTER_SHARE * seen else 1
 
 
 def _runs_up(sn: Sniff, name: str) -> bool:
@@ -4498,14 +4555,33 @@ def _to_canonical(
         # row of the whole file or of its final piece (operator test 7, D7)
         lines_arr = np.asarray(rows.lines)
         flag(lines_arr == lines_arr.max(), CUT_LAST_REASON)
-    swapped = _looks_swapped(floats.get("lon"), floats.get("lat"))
+    hit = _swapped_rows(floats.get("lon"), floats.get("lat"))
+    swapped = 0 if hit is None else int(hit.sum())
+    # Judged per sensor (per track where the file has no sensor column) when it has
+    # several: one sensor's columns swapped do not quarantine another's (review h209).
+    group = text["sensor"] if "sensor" in text else text["batch"]
+    judged = _swapped_groups(hit, group.codes, len(group.names)) if swapped else None
     if "_edges" not in (time_info or {}):  # a whole file (a piece's is judged over the file)
         read_n = int(n - int(blank.sum()) + len(bad.lines))
-        if read_n and swapped > read_n / 2:
-            # The file is judged swapped: no row of it is kept at the place its names
-            # give (a lon within ±90 under lat would be a point mirrored across the
-            # diagonal: operator test 7, D2); every row not quarantined already is, so.
+        present = np.unique(group.codes[group.codes >= 0])
+        if len(present) > 1:
+            if judged is not None and judged.any():
+                # no row of such a sensor (track) is kept at the place its names give
+                # (a lon within ±90 under lat would be a point mirrored across the
+                # diagonal: operator test 7, D2); every row not quarantined already is, so
+                inside = judged[np.maximum(group.codes, 0)] & (group.codes >= 0)
+                flag(inside, SWAPPED_REASON)
+                counted["_swapped_in"] = (
+                    "sensor" if "sensor" in text else "track",
+                    [str(x) for x in group.names[np.flatnonzero(judged)]],
+                    len(present),
+                )
+        elif read_n and swapped > read_n / 2:
+            # The file is judged swapped: every row not quarantined already is (D2).
             flag(np.ones(n, dtype=bool), SWAPPED_REASON)
+    elif judged is not None and judged.any():
+        # a piece with a sensor (track) that looks swapped: the whole file judges it
+        time_info["_edges"].get("swapped", []).append(True)
     bad_rows = reasons != 0
     keep = ~bad_rows & ~blank
     all_kept = bool(keep.all())
@@ -4583,15 +4659,22 @@ def _to_canonical(
         "lat_beyond_90_lon_within": swapped,
         "decimal_comma_values": int(counted.get("decimal_comma", 0)),
         "restarting_tracks": _restarting_tracks(
-            sensor_codes, text["batch"].codes, text["batch"].names, ns, time_ok & ~bad_rows
+            sensor_codes,
+            sensor_names,
+            text["batch"].codes,
+            text["batch"].names,
+            ns,
+            time_ok & ~bad_rows,
         ),
         "time_steps_back": _steps_back(
             sensor_codes,
+            sensor_names,
             text["batch"].codes,
             text["batch"].names,
             ns,
             time_ok & ~bad_rows,
             rows.lines,
+            None if edges_in is None else edges_in.get("back"),
         ),
         **_count_tracks(
             sensor_codes,
@@ -4665,17 +4748,37 @@ def _coarse_time_warnings(time_src: str, time_info: dict) -> list[str]:
     ]
 
 
+def _track_names(
+    key: np.ndarray,
+    sensor_codes: np.ndarray | None,
+    sensor_names: np.ndarray,
+    batch_codes: np.ndarray,
+    batch_names: np.ndarray,
+) -> np.ndarray:
+    """The names of the tracks ``key`` (``sensor_code * n_batch + batch_code``) as the
+    import's reports name them: the batch where the file has no sensor column, else
+    ``sensor:batch`` (two sensors' tracks may share a batch name)."""
+    n_batch = int(batch_codes.max()) + 1
+    b = np.asarray(batch_names, dtype=object)[key % n_batch].astype(str)
+    if sensor_codes is None:
+        return b.astype(object)
+    s = np.asarray(sensor_names, dtype=object)[key // n_batch].astype(str)
+    return np.char.add(np.char.add(s, ":"), b).astype(object)
+
+
 def _restarting_tracks(
     sensor_codes: np.ndarray | None,
+    sensor_names: np.ndarray,
     batch_codes: np.ndarray,
     batch_names: np.ndarray,
     ns: np.ndarray,
     ok: np.ndarray,
 ) -> dict[str, int]:
-    """Batches whose rows, in file order, run forward in time and then start again
+    """Tracks whose rows, in file order, run forward in time and then start again
     (backward by at least :data:`RESTART_BACK_S`, on at most a tenth of their steps: a
-    shuffled file is not meant): batch name → runs. Several encounters of one ship or
-    several ships under one id, which sorting by time would interleave into a zig-zag."""
+    shuffled file is not meant): track name (:func:`_track_names`) → runs. Several
+    encounters of one ship or several ships under one id, which sorting by time would
+    interleave into a zig-zag."""
     use = np.flatnonzero(ok & (batch_codes >= 0))
     if len(use) < 3:
         return {}
@@ -4705,8 +4808,8 @@ def _restarting_tracks(
     loose = same & (t[1:] < t[:-1] - int(ORDER_JITTER_S * 1e9))
     loose_n = np.bincount(k[1:][loose], minlength=int(k.max()) + 1)
     hit = np.flatnonzero((backs > 0) & (loose_n <= 0.1 * steps))
-    n_batch = int(batch_codes.max()) + 1
-    return {str(batch_names[h % n_batch]): int(backs[h]) + 1 for h in hit}
+    names = _track_names(hit, sensor_codes, sensor_names, batch_codes, batch_names)
+    return {str(name): int(backs[h]) + 1 for name, h in zip(names, hit, strict=True)}
 
 
 #: In the warning of :func:`_back_warnings` (a read in pieces says it again from the
@@ -4716,26 +4819,60 @@ BACK_MARK = " back within a track ("
 BACK_FIRST_LINES = 5
 
 
+class LastTimes:
+    """What a streamed read or a read in pieces carries from piece to piece for
+    :func:`_steps_back`: each track's last valid time (ns) in file order, so that a step
+    back on a piece's first row of a track is seen. Keyed ``sensor\x1fbatch``."""
+
+    def __init__(self) -> None:
+        self.last = pd.Series([], dtype="int64", index=pd.Index([], dtype=object))
+
+    def __len__(self) -> int:
+        return len(self.last)
+
+    def lookup(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(carried last time, whether carried) for each key."""
+        at = (
+            self.last.index.get_indexer(pd.Index(keys, dtype=object))
+            if len(self.last)
+            else np.full(len(keys), -1)
+        )
+        seen = at >= 0
+        got = np.zeros(len(keys), dtype="int64")
+        got[seen] = self.last.to_numpy()[at[seen]]
+        return got, seen
+
+    def update(self, keys: np.ndarray, last: np.ndarray) -> None:
+        new = pd.Series(np.asarray(last, dtype="int64"), index=pd.Index(keys, dtype=object))
+        old = self.last[~self.last.index.isin(new.index)]
+        self.last = pd.concat([old, new]) if len(old) else new
+
+
 def _steps_back(
     sensor_codes: np.ndarray | None,
+    sensor_names: np.ndarray,
     batch_codes: np.ndarray,
     batch_names: np.ndarray,
     ns: np.ndarray,
     ok: np.ndarray,
     lines: np.ndarray,
+    carry: LastTimes | None = None,
 ) -> dict:
     """Steps back in time within a track, in file order (operator test 7, D3: a clock set
     back 10 min in 20 rows of a track; the import said nothing, clean then kept a 282 kn
     leg): a row whose time lies more than :data:`ORDER_JITTER_S` and less than
     :data:`RESTART_BACK_S` (a restart, warned of apart) before its track's row before,
     in tracks that otherwise run forward (at most a tenth of their steps go back beyond
-    the jitter: a file in no time order is not meant). ``{"tracks": {batch: steps},
-    "first_lines": [line, …], "max_s": largest step back}``; {} when none."""
+    the jitter: a file in no time order is not meant). ``{"tracks": {track: steps},
+    "first_lines": [line, …], "max_s": largest step back}`` (tracks named by
+    :func:`_track_names`); {} when none. A piece of a file read streamed or in pieces
+    gives ``carry``: each track's last time in the pieces before (its first row here
+    steps from it), updated with this piece's."""
     use = np.flatnonzero(ok & (batch_codes >= 0))
-    if len(use) < 2:
+    if not len(use):
         return {}
-    t = ns[use]
-    if np.all(t[1:] >= t[:-1]):  # a time-ordered file: no track can go back
+    t = ns[use].astype("int64", copy=False)
+    if carry is None and np.all(t[1:] >= t[:-1]):  # a time-ordered file: none goes back
         return {}
     key = batch_codes[use].astype("int64")
     if sensor_codes is not None:
@@ -4748,25 +4885,41 @@ def _steps_back(
         if sort is None:
             sort = np.argsort(key, kind="stable")
         key, t, line = key[sort], t[sort], line[sort]
-    same = key[1:] == key[:-1]
-    step = t[:-1].astype("int64") - t[1:].astype("int64")  # > 0: back
+    # each row's step from its track's row before (> 0: back); a track's first row here
+    # steps from its carried last time, if any
+    same = np.r_[False, key[1:] == key[:-1]]
+    prev = np.r_[t[:1], t[:-1]]
+    if carry is not None:
+        first = np.flatnonzero(~same)
+        last = np.r_[first[1:] - 1, len(key) - 1]
+        names = _track_names(key[first], None, sensor_names, batch_codes, batch_names)
+        n_batch = int(batch_codes.max()) + 1
+        sensors = np.asarray(sensor_names, dtype=object)[
+            key[first] // n_batch if sensor_codes is not None else np.zeros(len(first), "int64")
+        ].astype(str)
+        carried_keys = np.char.add(np.char.add(sensors, "\x1f"), names.astype(str))
+        before, seen = carry.lookup(carried_keys)
+        prev[first[seen]] = before[seen]
+        same[first[seen]] = True
+        carry.update(carried_keys, t[last])
+    step = prev - t
     loose = same & (step > int(ORDER_JITTER_S * 1e9))
     if not loose.any():
         return {}
     back = loose & (step < int(RESTART_BACK_S * 1e9))
     n_keys = int(key.max()) + 1
-    steps = np.bincount(key[1:][same], minlength=n_keys)
-    loose_n = np.bincount(key[1:][loose], minlength=n_keys)
+    steps = np.bincount(key[same], minlength=n_keys)
+    loose_n = np.bincount(key[loose], minlength=n_keys)
     forward = loose_n <= 0.1 * steps
-    back &= forward[key[1:]]
+    back &= forward[key]
     if not back.any():
         return {}
-    backs = np.bincount(key[1:][back], minlength=n_keys)
-    n_batch = int(batch_codes.max()) + 1
+    backs = np.bincount(key[back], minlength=n_keys)
     hit = np.flatnonzero(backs)
+    names = _track_names(hit, sensor_codes, sensor_names, batch_codes, batch_names)
     return {
-        "tracks": {str(batch_names[h % n_batch]): int(backs[h]) for h in hit},
-        "first_lines": sorted(int(x) for x in line[1:][back])[:BACK_FIRST_LINES],
+        "tracks": {str(name): int(backs[h]) for name, h in zip(names, hit, strict=True)},
+        "first_lines": sorted(int(x) for x in line[back])[:BACK_FIRST_LINES],
         "max_s": float(step[back].max()) / 1e9,
     }
 
@@ -5333,9 +5486,9 @@ def stream_points(
         "rows_read": totals["rows_read"] + len(bad.lines),
         "lat_beyond_90_lon_within": totals["lat_beyond_90_lon_within"],
     }
-    if swapped_file(read_all):
+    if swapped_file(read_all) or edges["swapped"]:
         # judged over the whole file: its rows within range were handed on as points;
-        # the whole-file reader quarantines every row of it (D2)
+        # the whole-file reader quarantines every row of it, or of a sensor (track) (D2)
         raise WholeFileNeeded
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
     if bad.lines:
@@ -5421,6 +5574,8 @@ def stream_points(
         "blank_lines": totals["blank_lines"] + bad.blank,
         "values_blanked": blanked,
         "decimal_comma_values": int(time_info.get("decimal_comma", 0)),
+        # as the whole-file reader and the reader in pieces report it (review h209)
+        "lat_beyond_90_lon_within": int(totals["lat_beyond_90_lon_within"]),
         "restarting_tracks": restarting,
         "time_steps_back": steps_back,
         "tracks": len(pairs),

@@ -918,9 +918,10 @@ def cut_last_cell(
     have = len(last.group(1) or "")
     if len(places) < CUT_EVIDENCE[0] or have >= min(places):
         return ""
-    return (
-        f"{cells[-1].strip()!r} where the column's {len(places):,} rows before it have "
-        f"{min(places)} decimals at least"
+    fewest = min(places)
+    return (  # the value as read (a quoted cell cut short has only its opening quote)
+        f"{cells[-1].strip().strip(chr(34))!r} where the column's {len(places):,} rows "
+        f"before it have {fewest} decimal{'' if fewest == 1 else 's'} at least"
     )
 
 

@@ -775,6 +775,10 @@
         <translation>个窗口</translation>
     </message>
     <message>
+        <source>doublings</source>
+        <translation>次加倍</translation>
+    </message>
+    <message>
         <source>Save preset…</source>
         <translation>保存预设…</translation>
     </message>
@@ -2198,6 +2202,14 @@
         <translation>；保留了 1 个断点：{s:,.0f} 秒内 {km:,.1f} 公里，{kn:,.0f} 节，航迹 {track}，时间 {time}</translation>
     </message>
     <message>
+        <source>; 1 break kept: {km:,.1f} km at the same time, track {track} at {time}</source>
+        <translation>；保留了 1 个断点：同一时刻相距 {km:,.1f} 公里，航迹 {track}，时间 {time}</translation>
+    </message>
+    <message>
+        <source>; {n:#break} kept, the fastest {km:,.1f} km at the same time, track {track} at {time}</source>
+        <translation>；保留了 {n:,} 个断点，最快的：同一时刻相距 {km:,.1f} 公里，航迹 {track}，时间 {time}</translation>
+    </message>
+    <message>
         <source>; {n:#break} kept, the fastest {km:,.1f} km in {s:,.0f} s, {kn:,.0f} kn, track {track} at {time}</source>
         <translation>；保留了 {n:,} 个断点，最快的：{s:,.0f} 秒内 {km:,.1f} 公里，{kn:,.0f} 节，航迹 {track}，时间 {time}</translation>
     </message>
@@ -2236,6 +2248,10 @@
     <message>
         <source>kept {kept:,} of {points:#point} ({ratio:.1%})</source>
         <translation>保留 {points:,} 个点中的 {kept:,} 个（{ratio:.1%}）</translation>
+    </message>
+    <message>
+        <source> ({rows:#row} without a position left out)</source>
+        <translation>（{rows:,} 行没有位置，未计入）</translation>
     </message>
     <message>
         <source> ({rows:#row} repeating the time and place of the row before set aside)</source>
