@@ -42,7 +42,8 @@ class BearingDialog(QtWidgets.QDialog):
         browse = QtWidgets.QPushButton(_tr("ImportDialog", "Browse…"))
         browse.clicked.connect(self._browse)
         self.encoding_box = QtWidgets.QComboBox()
-        self.encoding_box.addItems(list(ENCODINGS))
+        for enc in ENCODINGS:  # "auto" in the window's language
+            self.encoding_box.addItem(_tr("ImportDialog", "auto") if enc == "auto" else enc, enc)
         self.encoding_box.setEditable(True)
         self.origin_edit = origin_edit()
         # Several targets in one series (a camera's frame): one sequence per target by
@@ -120,7 +121,7 @@ class BearingDialog(QtWidgets.QDialog):
 
     def _encoding(self) -> str | None:
         enc = self.encoding_box.currentText().strip()
-        return None if enc in ("", "auto") else enc
+        return None if enc in ("", "auto", _tr("ImportDialog", "auto")) else enc
 
     def _origin(self) -> str | None:
         return self.origin_edit.text().strip() or None

@@ -39,6 +39,7 @@ from wakeline.core.io import write_csv
 from wakeline.core.schema import time_seconds
 from wakeline.core.timeline import spread_picks
 
+from .core_text import shown
 from .layer_view import LayerView, shown_range
 from .map_canvas import MapCanvas
 from .map_draw import DrawData, LayerGeometry, LayerStyle, layer_geometry, prepare_layer, relod
@@ -799,10 +800,20 @@ class BearingView(QtWidgets.QWidget):
         self._building = False  # one is being made by the executor
         self.retranslate()
 
+    def report_text(self) -> str:
+        """The detector's line per batch (tested windows, or why none was) in the
+        window's language: the only explanation of a batch without detections."""
+        return "\n".join(shown(line) for line in report_lines(self._report or []))
+
     def retranslate(self) -> None:
         """Set the texts in the current language (the main window calls it again when the
         language changes: this view is made before the window installs its translator)."""
         self.export_button.setText(self.tr("Export detections…"))
+        self.length_box.setSuffix(" " + self.tr("m"))
+        if self._report:
+            self.log.setPlainText(self.report_text())
+            if self.scene is None:
+                self.log.appendPlainText(self.tr("No observer position: no bearing lines to draw."))
         self.length_label.setText(self.tr("Line length"))
         self.length_box.setSpecialValueText(self.tr("from the data"))
         self.length_box.setToolTip(
@@ -959,7 +970,7 @@ class BearingView(QtWidgets.QWidget):
         self.bearings, self.detections, self._report = bearings, detections, report or []
         self.model.set_table(detections)
         self.table.resizeColumnsToContents()
-        self.log.setPlainText("\n".join(report_lines(report or [])))
+        self.log.setPlainText(self.report_text())
         for name in list(self.map.layer_names()):
             self.map.remove_layer(name)
         self.scene = scene

@@ -57,7 +57,8 @@ def step_lines(result) -> list[str]:
             return summarize(res.report)
 
     if result.stages:
-        return [f"{shown(res.step)}: {one(res)}" for res in result.stages]
+        said = QtCore.QCoreApplication.translate("MainWindow", "{0}: {1}")  # zh "{0}：{1}"
+        return [said.format(shown(res.step), one(res)) for res in result.stages]
     return [one(result)]
 
 

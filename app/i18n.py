@@ -53,6 +53,9 @@ def install(app: QtCore.QCoreApplication, language: str, current: TsTranslator |
     """Swap the installed translator for ``language``; returns the new one (or None)."""
     if current is not None:
         app.removeTranslator(current)
+        qt_own = getattr(current, "qt_own", None)
+        if qt_own is not None:
+            app.removeTranslator(qt_own)
     core_text.set_language(language)  # the core's messages too (app/core_text.py)
     if language == "en":
         return None
@@ -60,5 +63,12 @@ def install(app: QtCore.QCoreApplication, language: str, current: TsTranslator |
     if not path.exists():
         return None
     translator = TsTranslator(path, app)
+    # Qt's own texts (the dialog buttons' OK, Cancel, Yes, No; the context menus): Qt's
+    # catalog for the language, installed first so that ours is asked before it
+    qt_own = QtCore.QTranslator(app)
+    where = QtCore.QLibraryInfo.path(QtCore.QLibraryInfo.LibraryPath.TranslationsPath)
+    if qt_own.load(f"qtbase_{language}", where):
+        app.installTranslator(qt_own)
+        translator.qt_own = qt_own
     app.installTranslator(translator)
     return translator

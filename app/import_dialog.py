@@ -146,10 +146,13 @@ class ImportDialog(QtWidgets.QDialog):
         self.path_edit = QtWidgets.QLineEdit(str(path or ""))
         browse = QtWidgets.QPushButton(self.tr("Browse…"))
         browse.clicked.connect(self._browse)
+        # "auto" shown in the window's language, the value kept as the item's data
         self.format_box = QtWidgets.QComboBox()
-        self.format_box.addItems(list(FAMILIES))
+        for family in FAMILIES:
+            self.format_box.addItem(self.tr("auto") if family == "auto" else family, family)
         self.encoding_box = QtWidgets.QComboBox()
-        self.encoding_box.addItems(list(ENCODINGS))
+        for enc in ENCODINGS:
+            self.encoding_box.addItem(self.tr("auto") if enc == "auto" else enc, enc)
         self.encoding_box.setEditable(True)
         self.tz_box = QtWidgets.QComboBox()
         self.tz_box.setEditable(True)
@@ -316,7 +319,11 @@ class ImportDialog(QtWidgets.QDialog):
 
     def _encoding(self) -> str | None:
         enc = self.encoding_box.currentText().strip()
-        return None if enc in ("", "auto") else enc
+        return None if enc in ("", "auto", self.tr("auto")) else enc
+
+    def _format(self) -> str:
+        """The layout chosen (``auto``: detected), whatever the language shows."""
+        return str(self.format_box.currentData() or self.format_box.currentText())
 
     def _skip_rows(self) -> int | None:
         """Lines before the header as chosen; None: detected ("auto")."""
@@ -349,7 +356,7 @@ class ImportDialog(QtWidgets.QDialog):
             try:
                 self._info = inspect_file(
                     path,
-                    fmt=self.format_box.currentText(),
+                    fmt=self._format(),
                     encoding=self._encoding(),
                     skip_rows=self._skip_rows(),
                     origin=self._origin(),
@@ -414,7 +421,7 @@ class ImportDialog(QtWidgets.QDialog):
         try:
             info = inspect_file(
                 path,
-                fmt=self.format_box.currentText(),
+                fmt=self._format(),
                 mapping=self.mapping() or None,
                 encoding=self._encoding(),
                 skip_rows=self._skip_rows(),
@@ -534,7 +541,7 @@ class ImportDialog(QtWidgets.QDialog):
         zone = self.tz_box.currentText().strip()
         out = {
             "path": Path(self.path_edit.text()),
-            "fmt": self.format_box.currentText(),
+            "fmt": self._format(),
             "encoding": self._encoding(),
             "mapping": [f"{k}={v}" for k, v in self.mapping().items()],
             "tz": None if zone.upper() in ("", "UTC") else zone,

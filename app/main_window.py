@@ -40,7 +40,7 @@ from wakeline.app.review_dock import ReviewDock
 from wakeline.app.stats_panel import StatsPanel, points_text, tracks_text
 from wakeline.app.time_panel import install_time
 from wakeline.app.view_keeper import MapViewKeeper
-from wakeline.app.window_layers import EMPTY, LayersMixin, kind_text, layer_text
+from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
@@ -408,13 +408,15 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         if layer.kind == BEARING_KIND:
             self.stats.show_message(bearing_stats(layer, self.tr))
             return
-        name = f"{shown_name(layer.name)} [{kind_text(layer.kind)}]"
-        head = [(self.tr("Layer"), f"{name}  ({layer.id})")]
+        head = [(self.tr("Layer"), f"{layer_text(layer, ' ')}  ({layer.id})")]
         if layer.parent:
             parent = self.session.get(layer.parent)
             source = shown_name(parent.name) if parent else layer.parent
-            made = f"{shown(layer.step)} ← {source}, {layer.created}"
-            head.append((self.tr("Made by"), made))
+            # the step and its input; when, in a row of its own (elided in the middle
+            # beside the input's name it read "vessel_3_id...-12-05T22:12:47Z": D7)
+            head.append((self.tr("Made by"), f"{shown(layer.step)} ← {source}"))
+            made_at = str(layer.created).replace("T", " ").removesuffix("Z")
+            head.append((self.tr("Made at"), f"{made_at} UTC" if made_at else "–"))
         head += self._result_rows(layer)
         tw = self.session.time_window
         window = (tw.start_s, tw.end_s) if tw is not None else None
@@ -477,7 +479,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         meta, rows = layer.meta, []
         if meta.get("dis_e_m") is not None:
             label = self.tr("Dis_e (mean synchronized distance)")
-            rows.append((label, f"{meta['dis_e_m']:,.1f} m"))
+            rows.append((label, self.tr("{0} m").format(f"{meta['dis_e_m']:,.1f}")))
         if meta.get("threshold_deg") is not None:
             rows.append((self.tr("Maneuver threshold"), f"{meta['threshold_deg']:g}°"))
         labels = {
@@ -496,7 +498,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             counts = {a: dict(p.droplevel(0).items()) for a, p in per.groupby(level=0, sort=False)}
         if counts:
             for action, per in counts.items():
-                rules = ", ".join(f"{rule} {n:,}" for rule, n in per.items())
+                # each rule by its name in the window's language (as the log says it)
+                rules = self.tr(", ").join(f"{shown(rule)} {n:,}" for rule, n in per.items())
                 label = labels.get(action, action)
                 rows.append((label, f"{sum(per.values()):,} ({rules})"))
         elif meta.get("rejected") is not None:
@@ -513,9 +516,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         """``head: line`` for one line; ``head:`` and the lines indented under it for more
         (a pipeline's stages)."""
         if len(lines) == 1:
-            self.log_message(f"{head}: {lines[0]}")
+            self.log_message(self.tr("{0}: {1}").format(head, lines[0]))
             return
-        self.log_message(f"{head}:")
+        self.log_message(self.tr("{0}:").format(head))
         for line in lines:
             self.log_message(f"    {line}")
 

@@ -138,6 +138,15 @@ class SideLegend(pg.LegendItem):
             return one
         middle = QtCore.Qt.TextElideMode.ElideMiddle
         first = self._metrics.elidedText(head + sep.rstrip(), middle, self._label_px)
+        pieces = head.split(" + ")
+        if first != head + sep.rstrip() and len(pieces) > 1:
+            # several files (a fuse across layers): one line each, so that each keeps
+            # its name ("scene-0_erro..._radar.csv" named neither: operator test 8, D8)
+            ends = [" +"] * (len(pieces) - 1) + [sep.rstrip()]
+            first = "\n".join(
+                self._metrics.elidedText(piece + end, middle, self._label_px)
+                for piece, end in zip(pieces, ends, strict=True)
+            )
         room = self._label_px - self._metrics.horizontalAdvance(INDENT)
         parts = what.split(LABEL_SEPARATOR)
         second = ""
@@ -148,7 +157,8 @@ class SideLegend(pg.LegendItem):
                 break
         if not second:
             second = self._metrics.elidedText(parts[-1], middle, room)
-        return f"{html.escape(first)}<br>{INDENT_HTML}{html.escape(second)}"
+        first = "<br>".join(html.escape(line) for line in first.split("\n"))
+        return f"{first}<br>{INDENT_HTML}{html.escape(second)}"
 
     def addItem(self, item, name: str) -> None:  # noqa: N802 - pyqtgraph's name
         super().addItem(item, self.shown_label(str(name)))

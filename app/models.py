@@ -394,14 +394,26 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         column must fit). Numpy text (elapsed times ``T+…``) is read whole in one pass;
         other text from its first :data:`WIDEST_ROWS` rows (dates are all of one width,
         "2024-01-01 00:00:00"; sensors and batches much alike)."""
+        texts = self.wide_texts(key)
+        return max(texts, key=len) if texts else ""
+
+    def wide_texts(self, key: str, keep: int = 8) -> list[str]:
+        """The ``keep`` longest display texts of column ``key`` (digits as "0"), for the
+        caller to measure: the longest in characters is not always the widest drawn
+        ("lidar:00" is narrower than "radar:00": the fused targets' batch names were cut
+        to "radar:…", operator test 8 D8)."""
         texts = self._text.get(key, np.zeros(0, str))
         if not len(texts):
-            return ""
+            return []
+        zero = str.maketrans("123456789", "000000000")
         if texts.dtype.kind == "U":
-            longest = str(texts[int(np.argmax(np.char.str_len(texts)))])
+            lengths = np.char.str_len(texts)
+            n = min(4 * keep, len(texts))  # the longest few, in one linear pass
+            top = np.argpartition(-lengths, n - 1)[:n] if n < len(texts) else np.arange(n)
+            found = {str(texts[i]).translate(zero) for i in top}
         else:
-            longest = max((str(t) for t in texts[:WIDEST_ROWS]), key=len)
-        return longest.translate(str.maketrans("123456789", "000000000"))
+            found = {str(t).translate(zero) for t in texts[:WIDEST_ROWS]}
+        return sorted(found, key=len, reverse=True)[:keep]
 
     def rowCount(self, parent=None) -> int:  # noqa: N802 - Qt API
         return 0 if parent is not None and parent.isValid() else len(self._order)

@@ -416,9 +416,15 @@ class ParamsPanel(QtWidgets.QWidget):
             self.show_guidance(self._summary, self._guided_points())
 
     def unit_texts(self) -> dict[str, str]:
-        """The parameters' units as the tree shows them, in the current language (SI
-        symbols stay as they are)."""
+        """The parameters' units as the tree shows them, in the current language (in
+        Chinese the unit words 秒/米/公里/节 the rest of the window uses, operator test 8 D6)."""
         return {
+            "s": self.tr("s"),
+            "m": self.tr("m"),
+            "km": self.tr("km"),
+            "kn": self.tr("kn"),
+            "m/s": self.tr("m/s"),
+            "m/s²": self.tr("m/s²"),
             "points": self.tr("points"),
             "samples": self.tr("samples"),
             "fixes": self.tr("fixes"),
@@ -740,7 +746,9 @@ class ParamsPanel(QtWidgets.QWidget):
             )
         if limit.reason is not None:
             self.guidance.setText(
-                self.tr("Detection limit (seed 000): none for this data: {0}.").format(limit.reason)
+                self.tr("Detection limit (seed 000): none for this data: {0}.").format(
+                    core_text.shown(limit.reason)
+                )
                 + repeats
             )
             return

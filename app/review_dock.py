@@ -604,7 +604,12 @@ class ReviewDock(QtCore.QObject):
         views.addWidget(gantt)
         views.addWidget(network)
         box.addWidget(views)
-        box.setSizes([560, 700])
+        views.setSizes([420, 280])  # the Gantt's time axis and its title need the room
+        # The queue as wide as its columns (the method column was past the edge at
+        # 1600 x 950, "同步/最优…": operator test 8 D8); the views take what changes.
+        box.setSizes([max(560, panel.table_width()), 700])
+        box.setStretchFactor(0, 0)
+        box.setStretchFactor(1, 1)
         bound = Bound(lid, key, controller, pts, ranges, box, panel, gantt, network)
         bound.arrays = arrays
         bound.rerun = any(e.action == RERUN for e in state.log)

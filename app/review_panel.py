@@ -117,9 +117,19 @@ class ReviewPanel(QtWidgets.QWidget):
         statuses = list(T.status_names().values())
         for col, (name, _) in enumerate(COLUMNS):
             texts = statuses if name == "status" else self.digest.widest.get(name, [])
+            if name == "method":  # as shown: in the window's language ("同步/最优分配")
+                texts = [T.method_text(t) for t in texts]
             cell = max((cell_fm.horizontalAdvance(t) for t in texts), default=0) + pad
             title = head_fm.horizontalAdvance(titles[name]) + head_pad
             head.resizeSection(col, min(max(cell, title), self.MAX_COLUMN_PX))
+
+    def table_width(self) -> int:
+        """Width (px) the queue needs to show every column: their sum, the frame, the
+        vertical scroll bar and the panel's margins."""
+        view = self.view
+        columns = sum(view.columnWidth(c) for c in range(self.proxy.columnCount()))
+        bar = view.style().pixelMetric(QtWidgets.QStyle.PixelMetric.PM_ScrollBarExtent)
+        return columns + bar + 2 * view.frameWidth() + 8
 
     # -- actions ------------------------------------------------------------------------
 

@@ -157,4 +157,4 @@ def evidence_text(state, pid: str, p: pd.Series) -> str:
     tail = tr("margin {0}. Target {1}: {2}").format(
         cost_text(p["margin"]), target, " + ".join(state.members(target))
     )
-    return "; ".join([head, *parts, rival, tail])
+    return tr("; ").join([head, *parts, rival, tail])

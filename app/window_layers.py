@@ -21,10 +21,15 @@ from wakeline.core.errors import InputError
 from wakeline.core.session import BEARING_KIND, Layer
 
 
-def layer_text(layer: Layer) -> str:
+def layer_text(layer: Layer, gap: str = "  ") -> str:
     """A layer's line in the Layers list: its name and its kind in the window's language
-    ("scene.csv  [source]", zh_CN "scene.csv  [源数据]")."""
-    return f"{shown_name(layer.name)}  [{kind_text(layer.kind)}]"
+    ("scene.csv  [source]", zh_CN "scene.csv  [源数据]"); a name whose last step word
+    says the kind already is not followed by it again ("a.csv · fused", not "a.csv ·
+    fused  [fused]": operator test 8, D7)."""
+    name, kind = shown_name(layer.name), kind_text(layer.kind)
+    if " · " in name and name.rsplit(" · ", 1)[1].startswith(kind):
+        return name
+    return f"{name}{gap}[{kind}]"
 
 
 def kind_text(kind: str) -> str:
@@ -477,7 +482,8 @@ class LayersMixin:
         for col, (key, _title) in enumerate(model.COLUMNS):
             if key not in FITTED_COLUMNS:
                 continue
-            text = fm.horizontalAdvance(model.widest_text(key)) + margin + 6
+            widest = max((fm.horizontalAdvance(t) for t in model.wide_texts(key)), default=0)
+            text = widest + margin + 6
             view.setColumnWidth(col, max(text, header.sectionSizeHint(col)))
 
     def active_layer(self) -> Layer | None:

@@ -56,6 +56,8 @@ _PHRASES = (
         " (turning on Parameters ▸ Cleaning ▸ speed ▸ split_at_breaks splits there)",
     ),
     (" with --set", " in the Parameters panel"),
+    ("(--time-base union keeps it)", "(time_base union in the Parameters panel keeps it)"),
+    ("(--time-base union keeps them)", "(time_base union in the Parameters panel keeps them)"),
     ("(--tracks FILE)", "(File ▸ Open bearings…, Gate on tracks)"),
     (
         "split it by a target column (--map target=COLUMN)",

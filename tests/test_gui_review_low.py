@@ -81,7 +81,9 @@ def test_texts_follow_the_language_started_in_and_switched_to(qtbot, tmp_path):
         assert w.review.dock.windowTitle() == "审核"
         texts = [w.layer_list.item(r).text() for r in range(w.layer_list.count())]
         assert any(t.endswith("[源数据]") for t in texts), texts
-        assert any(t.endswith("[已融合]") for t in texts), texts
+        # the fused layer's name says its kind once (operator test 8, D7: not "已融合 [已融合]")
+        fused = [t for t in texts if "已融合" in t]
+        assert fused and all(t.count("已融合") == 1 for t in fused), texts
         assert w.params.guidance.text() not in ("", english)
         assert "Detection" not in w.params.guidance.text()
         assert b.gantt.getAxis("bottom").labelText.split(" (0 = ")[0] == "时间"

@@ -96,7 +96,7 @@ def test_zh_window_after_pipeline_associate_fuse_has_no_english_words(qtbot, tmp
         texts += [
             line
             for line in w.log.toPlainText().splitlines()
-            if " 上的 " in line or "运行于" in line
+            if line.startswith("对 ") or "运行于" in line
         ]
         bad = {t: _english(t, allowed) for t in texts if _english(t, allowed)}
         assert not bad, bad
@@ -284,6 +284,269 @@ def test_zh_window_after_pipeline_associate_leaves_no_operator7_english(qtbot, t
         w.set_language("en")
         assert params["window_p"].title() == "window_p"
         assert not params["window_p"].opts["tip"].splitlines()[-1].endswith("window_p")
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+#: Operator test 8 (D3, D6, D7): English phrases the Chinese window left in the texts an
+#: operator reads most, and unit symbols beside Chinese words ("间隔 0 s", "2514 m").
+OPERATOR8_PHRASES = re.compile(
+    r"no window tested|share a time|too short|detection\(s\)|windows tested|bearings? |"
+    r"stationary|speed \d|--set|points share times|radar plots|not tracks|"
+    r"\bOK\b|\bCancel\b|\bauto\b|上的|[\u4e00-\u9fff] ?\d[\d,.]* ?[sm]\b|"
+    r"\d [sm](?:\b|$)"
+)
+
+
+def _operator8_left(texts) -> list[str]:
+    return sorted({t for t in texts if OPERATOR8_PHRASES.search(TRACK_LABEL.sub("", t))})
+
+
+def test_zh_bearing_dock_and_log_say_why_nothing_was_tested_in_chinese(qtbot, tmp_path):
+    """Operator test 8, D3/D6: the detector's line per batch (the log and the Bearing-only
+    dock: the only explanation of 0 detections), ungated (several bearings per time) and
+    gated on a truth layer (series too short), the line-length box's unit and the gating
+    summary are Chinese, the units 秒/米; the menu named is the one the File menu shows."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore, QtWidgets
+    from test_bearing_import import PIREN, SAMPLE, TRUTH
+
+    from wakeline.app import i18n
+    from wakeline.app.main import wait_for_jobs
+    from wakeline.app.main_window import MainWindow
+
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "zh_CN")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    w.resize(1600, 950)
+    try:
+        w.load_bearings(SAMPLE)
+        wait_for_jobs(w)
+        qtbot.waitUntil(lambda: bool(w.bearing_view.log.toPlainText()), timeout=20_000)
+        ungated = w.bearing_view.log.toPlainText().splitlines()
+        assert ungated and all(t.startswith("批号 ") and "未检验任何窗口" in t for t in ungated)
+        assert any("与其他方位时刻相同" in t for t in ungated), ungated
+        w.load_file(TRUTH, origin=PIREN)
+        wait_for_jobs(w)
+        truth = w.layer_id(TRUTH.name)
+        w.load_bearings(SAMPLE, tracks=truth, gate_deg=3.0)
+        wait_for_jobs(w)
+        qtbot.waitUntil(lambda: "/1" in w.bearing_view.log.toPlainText(), timeout=20_000)
+        gated = w.bearing_view.log.toPlainText().splitlines()
+        assert gated and all(t.startswith("批号 ") for t in gated), gated
+        log = w.log.toPlainText().splitlines()
+        menu = (
+            w.actions_["open_bearings"].text().replace("(&B)", "")
+            if "open_bearings" in (w.actions_)
+            else None
+        )
+        texts = ungated + gated + log + [w.bearing_view.length_box.suffix()]
+        assert w.bearing_view.length_box.suffix() == " 米"
+        assert any("按 1 条航迹" in t or "条航迹在 3° 内波门关联" in t for t in log), log
+        hints = [t for t in log if "打开方位" in t and "文件 ▸" in t]
+        assert all("文件 ▸ 打开方位数据（纯方位机动检测）…" in t for t in hints), hints
+        if menu:
+            assert "打开方位数据" in menu
+        english = [t for t in texts if re.search(r"[A-Za-z]{4,} [a-z]{3,} [a-z]{3,}", t)]
+        assert not english, english
+        left = _operator8_left(texts)
+        assert not left, left
+        w.set_language("en")  # the dock's lines follow a switch of language
+        assert w.bearing_view.log.toPlainText().startswith("batch ")
+        assert w.bearing_view.length_box.suffix() == " m"
+    finally:
+        w.set_language("en")
+        w.close()
+    i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+def test_bearing_report_lines_in_chinese_for_every_kind_of_line():
+    """Every line :func:`~wakeline.core.bearing.report_lines` writes (tested, with
+    windows skipped, noise, the smallest change and turn, repeated times left out;
+    none tested) reads Chinese through the core catalog, figures kept."""
+    from wakeline.app.core_text import translate
+    from wakeline.core.bearing import report_lines
+
+    base = {
+        "too_short": None,
+        "detections": 2,
+        "tested": 40,
+        "windows": 52,
+        "excluded": {"gap": 7, "sparse": 0, "observer_maneuvering": 5},
+        "noise_deg": 0.31,
+        "min_rate_change_deg_min": 0.52,
+        "min_turn_deg": 12.0,
+        "repeated_left_out": 3,
+    }
+    reports = [
+        dict(base, batch="a"),
+        dict(base, batch="b", noise_deg=None, min_rate_change_deg_min=None, min_turn_deg=None),
+        dict(base, batch="c", tested=0, excluded={"gap": 52}, repeated_left_out=0),
+    ]
+    lines = [translate(line, "zh_CN") for line in report_lines(reports)]
+    assert lines[0].startswith("批号 a：2 个检测；52 个窗口中检验了 40 个"), lines[0]
+    for figure in (
+        "（跳过：有间断 7 个，观测平台机动 5 个）",
+        "0.31°",
+        "0.52°/分钟",
+        "12°",
+        "3 个方位",
+    ):
+        assert figure in lines[0], (figure, lines[0])
+    assert "无可检出的变化" in lines[1] and "未估计噪声" in lines[1], lines[1]
+    assert "没有检验任何窗口" in lines[2], lines[2]
+    for line in lines:
+        assert not re.search(
+            r"[A-Za-z]{3,}", line.replace("批号 a", "").replace("批号 b", "").replace("批号 c", "")
+        ), line
+
+
+def test_zh_plots_guidance_is_chinese():
+    """Operator test 8, D3: the Parameters guidance's reason why no detection limit can
+    be given (radar plots; tracks that do not move; a speed no ship has) is Chinese."""
+    import pandas as pd
+
+    from wakeline.app.core_text import translate
+    from wakeline.core.maneuver import detection_limit
+
+    plots = pd.DataFrame(
+        {
+            "points": [5] * 12,
+            "duration_s": [0.0] * 10 + [2.0, 2.0],
+            "mean_speed_kn": [float("nan")] * 10 + [500.0, 500.0],
+        }
+    )
+    still = pd.DataFrame(
+        {"points": [9, 9], "duration_s": [600.0, 900.0], "mean_speed_kn": [0.0, 0.0]}
+    )
+    fast = pd.DataFrame(
+        {"points": [9, 9], "duration_s": [600.0, 900.0], "mean_speed_kn": [190.0, 195.0]}
+    )
+    for summary in (plots, still, fast):
+        reason = detection_limit(summary, 5, 15.0).reason
+        assert reason, summary
+        zh = translate(reason, "zh_CN")
+        assert not re.search(r"[A-Za-z]{4,}", zh), (reason, zh)
+
+
+def test_zh_statistics_review_and_import_dialog_words(qtbot, tmp_path):
+    """Operator test 8, D3/D6/D7: after Clean and a fuse, the Statistics dock's clean row
+    names the rules in Chinese ("静止点 …", not "stationary"), the made-by row keeps the
+    input's name whole (the time in a row of its own), a layer's kind is said once; the
+    log's step lines read "对 X 运行清洗：" with no CLI flag; the review queue and evidence
+    say 秒/米; the import dialog's buttons and "auto" values are Chinese."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore, QtWidgets
+    from test_review_window import _settle, _sim_pair
+
+    from wakeline.app import i18n
+    from wakeline.app.import_dialog import ImportDialog
+    from wakeline.app.main_window import MainWindow
+    from wakeline.resources import demo_path
+
+    settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
+    settings.setValue("language", "zh_CN")
+    w = MainWindow(settings)
+    qtbot.addWidget(w)
+    w.resize(1600, 950)
+    w.show()
+    try:
+        files = _sim_pair(tmp_path)
+        w.load_files([*files, demo_path()])  # the demo: Clean removes points by rules
+        _settle(w)
+        ids = [w.layer_id(f.name) for f in files]
+        w.select_layer(w.layer_id(demo_path().name))
+        w.run_step("clean")
+        _settle(w)
+        cleaned = next(lid for lid, lay in w.session.layers.items() if lay.step == "clean")
+        w.layer_list.clearSelection()
+        for lid in ids:
+            w.layer_list.item(w.layer_row(lid)).setSelected(True)
+        w.actions_["fuse"].trigger()
+        _settle(w)
+        fused = next(lid for lid, lay in w.session.layers.items() if lay.step == "fuse")
+        texts = []
+        rows = {}
+        for lid in (cleaned, fused):
+            w.select_layer(lid)
+            _settle(w)
+            qtbot.waitUntil(lambda: w.stats.table.rowCount() > 3, timeout=10_000)
+            QtWidgets.QApplication.processEvents()
+            table = w.stats.table
+            for r in range(table.rowCount()):
+                label, value = table.item(r, 0), table.item(r, 1)
+                if label is not None and value is not None:
+                    rows[(lid, label.text())] = value.toolTip() or value.text()
+                    texts.append(value.toolTip() or value.text())
+        name = w.session.layers[cleaned].name
+        parent = w.session.layers[w.session.layers[cleaned].parent].name
+        assert rows[(cleaned, "生成方式")] == f"清洗 ← {parent}", rows
+        assert rows[(cleaned, "生成时间")].endswith(" UTC"), rows
+        removed = rows.get((cleaned, "清洗删除"), "")
+        assert removed and not re.search(r"[A-Za-z]{3,}", removed), removed
+        kinds = [rows[(lid, "图层")] for lid in (cleaned, fused)]
+        assert kinds[0].count("已清洗") == 1 and kinds[1].count("已融合") == 1, kinds
+        assert name.endswith(" · cleaned")  # stored in English
+        items = [w.layer_list.item(r).text() for r in range(w.layer_list.count())]
+        assert all(t.count("已融合") <= 1 and t.count("已清洗") <= 1 for t in items), items
+        log = w.log.toPlainText().splitlines()
+        steps = [t for t in log if t.startswith("对 ") and " 运行" in t]
+        assert any("运行清洗：" in t for t in steps) and any(
+            "运行多源融合：" in t for t in steps
+        ), log
+        texts += log
+        bound = w.review.bound
+        model = bound.panel.view.model()
+        titles = [
+            str(model.headerData(c, QtCore.Qt.Orientation.Horizontal))
+            for c in range(model.columnCount())
+        ]
+        assert "间隔 (秒)" in titles and "距离 (米)" in titles, titles
+        texts += titles + [bound.panel.evidence.text()]
+        assert "米" in bound.panel.evidence.text()
+        # D8: the queue shows every column, the method's cells whole, at 1600 x 950
+        view = bound.panel.view
+        method = next(c for c, t in enumerate(titles) if t == "方法")
+        right = view.columnViewportPosition(method) + view.columnWidth(method)
+        assert right <= view.viewport().width() + 1, (right, view.viewport().width())
+        cell = str(model.index(0, method).data())
+        assert view.fontMetrics().horizontalAdvance(cell) < view.columnWidth(method), cell
+        # D8: the batch table's 批号 column holds its widest drawn name (measured, not
+        # the longest in characters: "radar:16" was cut beside "lidar:16")
+        w.select_layer(fused)
+        _settle(w)
+        bm, bv = w.batch_model, w.batch_view
+        col = next(c for c, (key, _) in enumerate(bm.COLUMNS) if key == "batch")
+        fm = bv.fontMetrics()
+        widest = max(
+            fm.horizontalAdvance(str(bm.index(r, col).data())) for r in range(bm.rowCount())
+        )
+        assert widest < bv.columnWidth(col), (widest, bv.columnWidth(col))
+        # D8: the batch table's 批号 column holds its widest drawn name (measured, not
+        # the longest in characters: "radar:16" was cut beside "lidar:16")
+        w.select_layer(fused)
+        _settle(w)
+        bm, bv = w.batch_model, w.batch_view
+        col = next(c for c, (key, _) in enumerate(bm.COLUMNS) if key == "batch")
+        fm = bv.fontMetrics()
+        widest = max(
+            fm.horizontalAdvance(str(bm.index(r, col).data())) for r in range(bm.rowCount())
+        )
+        assert widest < bv.columnWidth(col), (widest, bv.columnWidth(col))
+        d = ImportDialog()
+        qtbot.addWidget(d)
+        d.path_edit.setText(str(files[0]))
+        buttons = [b.text() for b in d.buttons.buttons()]
+        assert "确定" in buttons and "取消" in buttons, buttons
+        assert d.format_box.currentText() == "自动" and d.encoding_box.currentText() == "自动"
+        assert d._format() == "auto" and d._encoding() is None
+        texts += buttons + [d.format_box.currentText(), d.encoding_box.currentText()]
+        left = _operator8_left(texts)
+        assert not left, left
+        d.close()
     finally:
         w.set_language("en")
         w.close()

@@ -137,7 +137,7 @@
     </message>
     <message>
         <source>{0} on {1}</source>
-        <translation>{1} 上的 {0}</translation>
+        <translation>对 {1} 运行{0}</translation>
     </message>
     <message>
         <source>quarantined {0:,}: {1}</source>
@@ -373,7 +373,7 @@
     </message>
     <message>
         <source>Length (km)</source>
-        <translation>长度 (千米)</translation>
+        <translation>长度 (公里)</translation>
     </message>
     <message>
         <source>Speed (kn)</source>
@@ -735,6 +735,26 @@
         <source>bearing</source>
         <translation>方位</translation>
     </message>
+    <message>
+        <source>{0}: {1}</source>
+        <translation>{0}：{1}</translation>
+    </message>
+    <message>
+        <source>{0}:</source>
+        <translation>{0}：</translation>
+    </message>
+    <message>
+        <source>{0} m</source>
+        <translation>{0} 米</translation>
+    </message>
+    <message>
+        <source>, </source>
+        <translation>，</translation>
+    </message>
+    <message>
+        <source>Made at</source>
+        <translation>生成时间</translation>
+    </message>
 </context>
 <context>
     <name>ParamsPanel</name>
@@ -953,6 +973,30 @@
     <message>
         <source>deg</source>
         <translation>度</translation>
+    </message>
+    <message>
+        <source>s</source>
+        <translation>秒</translation>
+    </message>
+    <message>
+        <source>m</source>
+        <translation>米</translation>
+    </message>
+    <message>
+        <source>km</source>
+        <translation>公里</translation>
+    </message>
+    <message>
+        <source>kn</source>
+        <translation>节</translation>
+    </message>
+    <message>
+        <source>m/s</source>
+        <translation>米/秒</translation>
+    </message>
+    <message>
+        <source>m/s²</source>
+        <translation>米/秒²</translation>
     </message>
 </context>
 <context>
@@ -1366,6 +1410,10 @@
         <source>other batches</source>
         <translation>其他批次</translation>
     </message>
+    <message>
+        <source>m</source>
+        <translation>米</translation>
+    </message>
 </context>
 <context>
     <name>TimePanel</name>
@@ -1562,19 +1610,19 @@
     </message>
     <message>
         <source>distance m</source>
-        <translation>距离 m</translation>
+        <translation>距离 (米)</translation>
     </message>
     <message>
         <source>distance {0:.0f} m</source>
-        <translation>距离 {0:.0f} m</translation>
+        <translation>距离 {0:.0f} 米</translation>
     </message>
     <message>
         <source>gap s</source>
-        <translation>间隔 s</translation>
+        <translation>间隔 (秒)</translation>
     </message>
     <message>
         <source>gap {0:.0f} s</source>
-        <translation>间隔 {0:.0f} s</translation>
+        <translation>间隔 {0:.0f} 秒</translation>
     </message>
     <message>
         <source>highest cost first</source>
@@ -1590,7 +1638,7 @@
     </message>
     <message>
         <source>m</source>
-        <translation>m</translation>
+        <translation>米</translation>
     </message>
     <message>
         <source>margin</source>
@@ -1618,7 +1666,7 @@
     </message>
     <message>
         <source>overlap {0:.0f} s</source>
-        <translation>重叠 {0:.0f} s</translation>
+        <translation>重叠 {0:.0f} 秒</translation>
     </message>
     <message>
         <source>&lt;b&gt;plots, not tracks&lt;/b&gt;: {0} (several positions at one time: several targets and clutter), so the distance and margin say little</source>
@@ -1630,7 +1678,7 @@
     </message>
     <message>
         <source>position misfit {0:.0f} m</source>
-        <translation>位置偏差 {0:.0f} m</translation>
+        <translation>位置偏差 {0:.0f} 米</translation>
     </message>
     <message>
         <source>previous proposal</source>
@@ -1694,7 +1742,7 @@
     </message>
     <message>
         <source>Δspeed {0:.1f} kn</source>
-        <translation>航速差 {0:.1f} kn</translation>
+        <translation>航速差 {0:.1f} 节</translation>
     </message>
     <message>
         <source>spread of the prediction +{0:.2f}</source>
@@ -1702,7 +1750,11 @@
     </message>
     <message>
         <source>an end turns or changes speed ({0:.2g} m/s²): wider gate</source>
-        <translation>航迹端点在转向或变速（{0:.2g} m/s²）：门限放宽</translation>
+        <translation>航迹端点在转向或变速（{0:.2g} 米/秒²）：门限放宽</translation>
+    </message>
+    <message>
+        <source>; </source>
+        <translation>；</translation>
     </message>
 </context>
 <context>
@@ -1929,7 +1981,7 @@
     </message>
     <message>
         <source>{0} on {1}</source>
-        <translation>{1} 上的 {0}</translation>
+        <translation>对 {1} 运行{0}</translation>
     </message>
     <message>
         <source>Error</source>
@@ -2044,7 +2096,7 @@
     </message>
     <message>
         <source>{0} (cells of {1} holding a point)</source>
-        <translation>{0}（按边长 {1} 的网格中有点的格子计）</translation>
+        <translation>{0}（按边长 {1}的网格中有点的格子计）</translation>
     </message>
     <message>
         <source>Time</source>
@@ -2120,7 +2172,7 @@
     </message>
     <message>
         <source>km</source>
-        <translation>千米</translation>
+        <translation>公里</translation>
     </message>
     <message>
         <source>m²</source>
@@ -2128,7 +2180,7 @@
     </message>
     <message>
         <source>km²</source>
-        <translation>平方千米</translation>
+        <translation>平方公里</translation>
     </message>
 </context>
 <context>
@@ -2207,7 +2259,7 @@
     </message>
     <message>
         <source> (--set speed.split_at_breaks=true splits there)</source>
-        <translation>（--set speed.split_at_breaks=true 会在此拆分）</translation>
+        <translation>（勾选 参数 ▸ 清洗 ▸ 速度跳变 ▸ 在断点处拆分 会在此拆分）</translation>
     </message>
     <message>
         <source>; largest error bound {tol:,.0f} m (track {track}, noise {noise:,.0f} m; median {median:,.0f} m), farthest point {far:,.0f} m off</source>
@@ -2359,15 +2411,15 @@
     </message>
     <message>
         <source>; fused on {on}</source>
-        <translation>；融合于{on}</translation>
+        <translation>；融合于 {on}</translation>
     </message>
     <message>
         <source>; fused on {on} (time_base {rule}): {lost} fix between them not kept (--time-base union keeps it)</source>
-        <translation>；融合于{on}（time_base：{rule}）：其间 {lost} 的定位点未保留（在参数面板中把多源融合的 time_base 设为 union（并集）可保留）</translation>
+        <translation>；融合于 {on}（time_base：{rule}）：其间 {lost} 的定位点未保留（在参数面板中把多源融合的 time_base 设为 union（并集）可保留）</translation>
     </message>
     <message>
         <source>; fused on {on} (time_base {rule}): {lost} fixes between them not kept (--time-base union keeps them)</source>
-        <translation>；融合于{on}（time_base：{rule}）：其间 {lost} 的定位点未保留（在参数面板中把多源融合的 time_base 设为 union（并集）可保留）</translation>
+        <translation>；融合于 {on}（time_base：{rule}）：其间 {lost} 的定位点未保留（在参数面板中把多源融合的 time_base 设为 union（并集）可保留）</translation>
     </message>
     <message>
         <source>; {rows:#row} repeating the time and place of the row before set aside</source>
