@@ -24,6 +24,7 @@ import pandas as pd
 from wakeline.core.errors import InputError
 from wakeline.core.params import Params, finite_number, param
 from wakeline.core.progress import Progress, null_progress, sub_progress
+from wakeline.core.timeline import format_elapsed, is_relative_time
 from wakeline.core.words import Phrase, Text, joined, phrase
 
 
@@ -221,6 +222,18 @@ def joined_counts(parts: list) -> list:
     return out
 
 
+def _said_time(text: str) -> str:
+    """A report's time as a summary says it: ``T+h:mm:ss`` for a scene-relative time (MTAD,
+    Øresund: seconds from a scene start, as the window shows them), else the UTC time."""
+    try:
+        seconds = pd.Timestamp(text).value / 1e9
+    except (ValueError, TypeError):
+        return str(text)
+    if is_relative_time(np.array([seconds])):
+        return format_elapsed(seconds)
+    return str(text).removesuffix("+00:00")
+
+
 def _break_phrases(speed: dict) -> list:
     """The speed rule's breaks (an impossible leg followed by plausible ones: another ship,
     or a clock set back), whatever the rule removed: how many split the track, and the
@@ -237,7 +250,7 @@ def _break_phrases(speed: dict) -> list:
             s=worst["s"],
             kn=worst["kn"] if worst["kn"] is not None else float("inf"),
             track=f"{worst['sensor']}:{worst['batch']}",
-            time=str(worst["from_time"]).removesuffix("+00:00"),
+            time=_said_time(worst["from_time"]),
         )
         n_kept = int(speed.get("breaks_kept", len(legs)) or len(legs))
         same_time = worst["kn"] is None or not worst["s"]  # a jump at one time: no speed

@@ -8,12 +8,39 @@ increases through the whole array, so one :func:`numpy.searchsorted` answers "wh
 Python loop per track.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from wakeline.core.params import Params, finite_number, param
 from wakeline.core.sorted_sets import repeat_runs
+
+#: Times below this many seconds since 1970 (i.e. before 1980) are read as elapsed time
+#: from a scene start (MTAD, Øresund), not as dates: no radar/AIS export is that old.
+RELATIVE_LIMIT_S = 10 * 365.25 * 86400.0
+
+
+def is_relative_time(time_s: np.ndarray) -> bool:
+    """True when times (s since 1970) are small: elapsed time from a scene start."""
+    finite = time_s[np.isfinite(time_s)]
+    return bool(len(finite)) and float(finite.max()) < RELATIVE_LIMIT_S
+
+
+def format_elapsed(seconds: float) -> str:
+    """``T+h:mm:ss`` (``T+2 d 03:04:05`` beyond a day; tenths when not whole)."""
+    if not math.isfinite(seconds):
+        return "—"
+    sign = "-" if seconds < 0 else "+"
+    s = abs(seconds)
+    days, rest = divmod(s, 86400.0)
+    h, rest = divmod(rest, 3600.0)
+    m, sec = divmod(rest, 60.0)
+    sec_text = f"{sec:04.1f}" if abs(sec - round(sec)) > 0.05 else f"{round(sec) % 60:02d}"
+    clock = f"{int(h):d}:{int(m):02d}:{sec_text}"
+    if days:
+        clock = f"{int(days)} d {int(h):02d}:{int(m):02d}:{sec_text}"
+    return f"T{sign}{clock}"
 
 
 @dataclass(frozen=True)

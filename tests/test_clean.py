@@ -794,3 +794,12 @@ def test_points_without_a_position_are_refused_with_a_clear_message():
     pts.loc[5, "lon"] = np.nan
     with pytest.raises(InputError, match="1 points have no position"):
         clean(pts)
+
+
+def test_a_kept_breaks_time_is_said_as_the_window_says_it():
+    """A scene-relative time (MTAD: seconds from a scene start) is said T+h:mm:ss in the
+    clean summary, as on the time slider; a date stays a UTC date."""
+    from wakeline.core.pipeline import _said_time
+
+    assert _said_time("1970-01-01 00:09:09+00:00") == "T+0:09:09"
+    assert _said_time("2024-08-02 04:39:14+00:00") == "2024-08-02 04:39:14"
