@@ -226,9 +226,12 @@ def _said_time(text: str) -> str:
     """A report's time as a summary says it: ``T+h:mm:ss`` for a scene-relative time (MTAD,
     Øresund: seconds from a scene start, as the window shows them), else the UTC time."""
     try:
-        seconds = pd.Timestamp(text).value / 1e9
+        stamp = pd.Timestamp(text)
     except (ValueError, TypeError):
         return str(text)
+    if pd.isna(stamp):
+        return str(text)
+    seconds = stamp.value / 1e9
     if is_relative_time(np.array([seconds])):
         return format_elapsed(seconds)
     return str(text).removesuffix("+00:00")

@@ -31,6 +31,8 @@ def member(x: np.ndarray, keys: np.ndarray) -> np.ndarray:
     (0.3-0.7 s of a worker's Associate on 1.1 M points stalled the window); sorting,
     searching and taking release it."""
     x = np.asarray(x)
+    if x.dtype == object or np.asarray(keys).dtype == object or x.ndim == 0:
+        return np.isin(x, keys)  # mixed objects do not sort; a scalar has no take
     ks = distinct(keys)
     if len(ks) == 0 or x.size == 0:
         return np.zeros(x.shape, dtype=bool)

@@ -32,11 +32,12 @@ def format_elapsed(seconds: float) -> str:
     if not math.isfinite(seconds):
         return "—"
     sign = "-" if seconds < 0 else "+"
-    s = abs(seconds)
+    tenths = round(abs(seconds) * 10)  # rounded first: 59.97 s is 0:01:00, not 0:00:00
+    s = tenths / 10.0
     days, rest = divmod(s, 86400.0)
     h, rest = divmod(rest, 3600.0)
     m, sec = divmod(rest, 60.0)
-    sec_text = f"{sec:04.1f}" if abs(sec - round(sec)) > 0.05 else f"{round(sec) % 60:02d}"
+    sec_text = f"{sec:04.1f}" if tenths % 10 else f"{round(sec):02d}"
     clock = f"{int(h):d}:{int(m):02d}:{sec_text}"
     if days:
         clock = f"{int(days)} d {int(h):02d}:{int(m):02d}:{sec_text}"

@@ -598,6 +598,9 @@ GAP_MIN_S = 60.0
 PLOT_MIN_INTERVAL_S = 1.0
 #: Above this speed (kn) a track is not one ship (AIS itself tops out at 102.2 kn).
 PLOT_MAX_SPEED_KN = 100.0
+#: A track is called plots for its shared times only when at least this many of its rows
+#: share a time (review h216: 2 of a 3-fix AIS track stamped alike are no scan).
+PLOT_MIN_SHARED_ROWS = 6
 
 
 def _shared_times(t: np.ndarray, index: "TrackIndex", repeated: np.ndarray) -> np.ndarray:
@@ -647,8 +650,8 @@ def plot_tracks(points: pd.DataFrame) -> tuple[list[str], int]:
 def plot_like(summary: pd.DataFrame) -> np.ndarray:
     """Per track of a :func:`track_summary`: whether it is plots (detections of a scan,
     of several targets and clutter), not one ship's track. Its rows (repeats left out)
-    are at least two and either half of them share their time with another of its rows
-    (several positions at one time), or they come under :data:`PLOT_MIN_INTERVAL_S`
+    are at least two and either half of them (and at least :data:`PLOT_MIN_SHARED_ROWS`)
+    share their time with another of its rows (several positions at one time), or they come under :data:`PLOT_MIN_INTERVAL_S`
     apart on average while all at one time or faster than :data:`PLOT_MAX_SPEED_KN`. The
     one test of the parameter guidance (:func:`wakeline.core.maneuver.detection_limit`),
     fusion's and association's warnings and the review's marks."""
@@ -669,7 +672,8 @@ def plot_like(summary: pd.DataFrame) -> np.ndarray:
         span = duration / np.maximum(points - 1, 1)
         ship = np.isfinite(speed) & (speed <= PLOT_MAX_SPEED_KN)
     fast = (span < PLOT_MIN_INTERVAL_S) & ((duration <= 0) | ~ship)
-    return moving & ((2 * shared >= points) | fast)
+    shared_half = (2 * shared >= points) & (shared >= PLOT_MIN_SHARED_ROWS)
+    return moving & (shared_half | fast)
 
 
 def concat_ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:

@@ -256,3 +256,8 @@ def test_plot_like_is_per_track_and_spares_tracks_with_a_few_shared_times():
     assert plot_like(track_summary(_points(one, one["ship"]))).tolist() == [False]
     limit = detection_limit(track_summary(_points(df, scenario)), 5, 15.0)
     assert limit.reason is not None and "hold several positions at one time" in limit.reason
+    # a short AIS track with two fixes stamped alike (review h216): 2 of 3 or 4 rows share
+    for n in (3, 4):
+        short = one.iloc[:n].copy()
+        short["time"] = short["time"].iloc[[0, 0, *range(2, n)]].to_numpy()
+        assert plot_like(track_summary(_points(short, short["ship"]))).tolist() == [False]

@@ -54,3 +54,12 @@ def test_member_equals_isin():
     x = rng.integers(0, 2**40, 1_000_000)
     keys = np.concatenate([x[::3], rng.integers(0, 2**40, 100_000)])
     assert np.array_equal(member(x, keys), np.isin(x, keys))
+
+
+def test_member_takes_scalars_and_object_arrays_as_np_isin_does():
+    """Review h216: a scalar and object arrays (None beside ints) go to np.isin."""
+    from wakeline.core.sorted_sets import member
+
+    assert bool(member(np.int64(3), np.array([1, 3])))
+    mixed = np.array([None, 1, "a"], dtype=object)
+    assert member(mixed, np.array([1, "a"], dtype=object)).tolist() == [False, True, True]

@@ -827,3 +827,17 @@ def test_the_time_windows_range_can_be_read_in_the_default_layout(window, qtbot,
     assert "2024-05-01 00:11:35" in text and "2024-05-01 00:16:40" in text, text
     assert label.isVisible() and label.fontMetrics().horizontalAdvance(text) <= label.width()
     assert panel.height() == height
+
+
+def test_elapsed_times_round_before_they_are_cut():
+    """Review h216: 59.97 s is T+0:01:00, not T+0:00:00 (a minute lost below each whole
+    minute); NaT and empty texts are not scene times in the clean summary."""
+    from wakeline.core.pipeline import _said_time
+    from wakeline.core.timeline import format_elapsed
+
+    assert format_elapsed(59.97) == "T+0:01:00"
+    assert format_elapsed(3599.97) == "T+1:00:00"
+    assert format_elapsed(86399.97) == "T+1 d 00:00:00"
+    assert format_elapsed(61.5) == "T+0:01:01.5"
+    assert format_elapsed(-30.0) == "T-0:00:30"
+    assert _said_time("NaT") == "NaT" and _said_time("") == ""
