@@ -240,6 +240,10 @@ def _windows_end_with_their_test(request):
     # line segfault (about one full run in three, in this teardown).
     windows = [w for w in list(MainWindow.alive) if isValid(w)]
     for w in windows:
+        if getattr(w, "language", "en") != "en":
+            # a test that switched the window to Chinese and did not switch back would
+            # leave the application's translator (and the core's language) to the next
+            w.set_language("en")
         w.runner.cancel()
         assert w.runner.wait(60_000), "a job did not end within 60 s of the test"
         w.close()  # as the application does: closeEvent stops the jobs and the docks
