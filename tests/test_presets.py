@@ -380,3 +380,21 @@ def test_the_guidance_suggests_the_preset_that_suits_the_layer(qtbot, tmp_path):
     panel2 = _panel(qtbot)
     panel2.show_guidance(track_summary(noisy))
     assert "built-in preset" not in panel2.guidance.text()
+
+
+@pytest.mark.parametrize(
+    "flags, field",
+    [
+        (["--preset", "noisy-tracks", "--confirm-z", "0"], "confirm_z"),
+        (["--preset", "noisy-tracks", "--confirm-grow", "0"], "confirm_grow"),
+        (["--preset", "slow-radar", "--radius-s", str(ManeuverParams().radius_s)], "radius_s"),
+    ],
+)
+def test_evaluate_maneuver_flag_given_at_its_default_beats_the_preset(flags, field):
+    """Review h216: a flag given at the default's value still applies over the preset, as
+    on the step commands (`maneuvers --preset noisy-tracks --confirm-z 0` keeps 0)."""
+    from wakeline.app.cli_evaluate import _maneuver_params
+
+    args = build_parser().parse_args(["evaluate", "maneuver", *flags])
+    given = type(getattr(ManeuverParams(), field))(flags[-1])
+    assert getattr(_maneuver_params(args), field) == given
