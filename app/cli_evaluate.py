@@ -28,22 +28,47 @@ def _say_read(path, report: dict) -> None:
     say_quarantined(path, rep)
 
 
+#: The namespace's attribute holding the detector flags given on the command line (their
+#: dests): a flag given wins over ``--preset``, whatever its value (review h216: one given at
+#: the default's value, ``--confirm-z 0``, was overridden).
+GIVEN = "given_detector_flags"
+#: ManeuverParams fields whose flag's dest is another name (the others: the field's name).
+_FIELD_DEST = {
+    "window_p": "window",
+    "radius_n": "radius",
+    "threshold_deg": "threshold",
+    "min_speed_kn": "min_speed",
+}
+
+
+def _recording(cls: type) -> type:
+    """``cls`` (an argparse action class) that also records its dest in :data:`GIVEN`."""
+
+    class Given(cls):
+        def __call__(self, parser, namespace, values, option_string=None):
+            super().__call__(parser, namespace, values, option_string)
+            given = set(getattr(namespace, GIVEN, None) or ())
+            setattr(namespace, GIVEN, given | {self.dest})
+
+    Given.__name__ = f"Given{cls.__name__}"
+    return Given
+
+
 def _maneuver_params(args: argparse.Namespace):
     """The detector's parameters from the flags; with ``--preset`` its changes to the
-    maneuver set where the flag is left at its default (a flag given still applies)."""
-    from wakeline.core.maneuver import ManeuverParams
-
+    maneuver set where the flag is not given (a flag given applies, even at the default's
+    value, as on the step commands)."""
     params = _flag_params(args)
     name = getattr(args, "preset", None)
     if not name:
         return params
     from wakeline.core.presets import preset
 
-    default = ManeuverParams()
+    given = getattr(args, GIVEN, None) or set()
     changes = {
         field: value
         for field, value in preset(name).changes.get("maneuver", {}).items()
-        if getattr(params, field) == getattr(default, field)
+        if _FIELD_DEST.get(field, field) not in given
     }
     return params.replace(**changes).checked()
 
@@ -233,6 +258,7 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
     from wakeline.core.maneuver import ManeuverParams
 
     d = ManeuverParams()
+    first = len(p._actions)
     p.add_argument(
         "--window",
         type=positive_int,
@@ -424,6 +450,9 @@ def _add_detector_options(p: argparse.ArgumentParser) -> None:
         help="seed 000 as written: --window points per window, one scale, no speed, noise or "
         "at-rest rule (compress: maneuver points only, raw vertices)",
     )
+    for action in p._actions[first:]:  # each one records that it was given (GIVEN)
+        if action.dest != "paper":
+            action.__class__ = _recording(type(action))
 
 
 def _bearing_params(args: argparse.Namespace):
