@@ -383,8 +383,9 @@ class ParamsPanel(QtWidgets.QWidget):
         self.builtin.setToolTip(
             self.tr(
                 "Measured settings for some kinds of data (options, not defaults): choosing "
-                "one sets its values and puts the other built-in presets' values back to "
-                "their defaults; the log says what changed"
+                "one sets its values and puts the other built-in presets' values still in "
+                "effect back to their defaults (values you set are kept); the log says what "
+                "changed"
             )
         )
         for name, action in self.builtin_actions.items():
@@ -623,11 +624,12 @@ class ParamsPanel(QtWidgets.QWidget):
 
     def apply_builtin(self, name: str) -> list[str]:
         """Apply the built-in preset ``name`` (:func:`wakeline.core.presets.menu_table`: its
-        values, the other built-in presets' values back at their defaults, the rest kept);
+        values; another built-in preset's values back at their defaults where they are still
+        that preset's; the rest, and the operator's own values, kept);
         the log is told what changed. Returns the problems (values not applied)."""
         p = preset(name)
         before = self.to_dict()
-        problems = self.from_dict(menu_table(p))
+        problems = self.from_dict(menu_table(p, before))
         after = self.to_dict()
         titles = self.group_titles()
         parts = []

@@ -133,20 +133,35 @@ def apply_preset(which: "Preset | str", params: Mapping[str, Any]) -> dict[str, 
     return out
 
 
-def menu_table(which: "Preset | str") -> dict[str, dict[str, Any]]:
-    """What choosing the preset in the parameter panel sets: its changes, and every field
-    another built-in preset changes back at its default (switching from one preset to
-    another leaves nothing of the first); the operator's other values are kept."""
+def menu_table(
+    which: "Preset | str", current: Mapping[str, Mapping[str, Any]] | None = None
+) -> dict[str, dict[str, Any]]:
+    """What choosing the preset in the parameter panel sets: its changes, and each field
+    another built-in preset changes back at its default where that preset is still in
+    effect, i.e. where the ``current`` value (the panel's table, parameter set -> field ->
+    value) is that preset's value (switching from one preset to another leaves nothing of
+    the first); a value the operator set (any other) is kept, and so are the fields no
+    preset touches. Without ``current`` every other preset's field is set back (review
+    h216: with every field, choosing "Noisy tracks" after "Paper" was right but it also
+    reset the operator's own window_s, 14 fields in all)."""
     from wakeline.core.pipeline import STEPS
 
     p = preset(which) if isinstance(which, str) else which
     classes = {key: cls for step in STEPS.values() for key, cls in step.params}
     out = p.table()
     for other in presets().values():
+        if other.name == p.name:
+            continue
         for key, values in other.changes.items():
             default = classes[key]()
-            for name in values:
-                out.setdefault(key, {}).setdefault(name, getattr(default, name))
+            for name, value in values.items():
+                if name in out.get(key, {}):
+                    continue  # the chosen preset's own value
+                if current is not None:
+                    now = current.get(key, {}).get(name, getattr(default, name))
+                    if now != value:
+                        continue  # the operator's value, or the default already
+                out.setdefault(key, {})[name] = getattr(default, name)
     return out
 
 

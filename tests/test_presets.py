@@ -398,3 +398,31 @@ def test_evaluate_maneuver_flag_given_at_its_default_beats_the_preset(flags, fie
     args = build_parser().parse_args(["evaluate", "maneuver", *flags])
     given = type(getattr(ManeuverParams(), field))(flags[-1])
     assert getattr(_maneuver_params(args), field) == given
+
+
+def test_choosing_a_preset_keeps_the_operators_values_and_undoes_the_preset_in_effect(qtbot):
+    """Review h216: choosing a preset set 14 other fields back to their defaults (every
+    field any preset touches); now only another preset's values still in effect go back."""
+    panel = _panel(qtbot)
+    own = ManeuverParams().window_s + 7.0
+    panel.from_dict({"maneuver": {"window_s": own}, "compress": {"refine": False}})
+    panel.apply_builtin("noisy-tracks")
+    mp = panel.params("maneuver")
+    assert mp.window_s == own and (mp.confirm_z, mp.confirm_grow) == (4.0, 4)
+    # refine False is the paper's value too: "Paper" is taken to be in effect there
+    assert panel.params("compress").refine is True
+    panel.reset()
+    panel.apply_builtin("paper")
+    assert panel.params("maneuver").window_s == 0.0
+    panel.apply_builtin("noisy-tracks")
+    expected = ManeuverParams().replace(confirm_z=4.0, confirm_grow=4)
+    assert panel.params("maneuver") == expected  # the paper's fields went back
+    assert panel.params("compress") == CompressParams()
+    # a field that differs from both the default and the preset's value is the operator's
+    panel.apply_builtin("paper")
+    panel.from_dict({"maneuver": {"min_speed_kn": 0.5}})
+    panel.apply_builtin("noisy-tracks")
+    mp = panel.params("maneuver")
+    assert mp.min_speed_kn == 0.5 and mp.window_s == ManeuverParams().window_s
+    table = menu_table("slow-radar", panel.to_dict())
+    assert table["maneuver"]["confirm_z"] == 0.0 and "window_s" not in table["maneuver"]

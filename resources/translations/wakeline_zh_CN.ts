@@ -795,8 +795,8 @@
         <translation>内置预设</translation>
     </message>
     <message>
-        <source>Measured settings for some kinds of data (options, not defaults): choosing one sets its values and puts the other built-in presets' values back to their defaults; the log says what changed</source>
-        <translation>针对某类数据实测过的设置（可选项，不是默认值）：选择一个即设置其参数值，并把其他内置预设的参数值恢复为默认值；日志会列出改动</translation>
+        <source>Measured settings for some kinds of data (options, not defaults): choosing one sets its values and puts the other built-in presets' values still in effect back to their defaults (values you set are kept); the log says what changed</source>
+        <translation>针对某类数据实测过的设置（可选项，不是默认值）：选择一个即设置其参数值，并把其他内置预设仍在生效的参数值恢复为默认值（您自己设置的值保留）；日志会列出改动</translation>
     </message>
     <message>
         <source>Built-in preset “{0}” applied: {1}</source>
