@@ -168,6 +168,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.layer_list.itemChanged.connect(self._layer_item_changed)
         self.layer_list.currentItemChanged.connect(self._layer_current_changed)
         self.params = ParamsPanel()
+        self.params.executor = self.lod_worker  # the preset suggestion: off this thread
         self.params.changed.connect(lambda _k: self.project.put_params(self.params.to_dict()))
         self.params.refused.connect(lambda text: self.log_message(f"{self.tr('Refused')}: {text}"))
         self.params.message.connect(self.log_message)

@@ -42,7 +42,15 @@ from wakeline.core.pipeline import (
     ManeuverOptions,
     params_from_version,
 )
-from wakeline.core.presets import menu_table, preset, presets, suggested_presets
+from wakeline.core.presets import (
+    NOISE_FIELDS,
+    SuggestInputs,
+    menu_table,
+    preset,
+    presets,
+    suggest_from,
+    suggest_inputs,
+)
 from wakeline.core.transform import stated_max_gap
 from wakeline.resources import translations_dir
 
@@ -239,7 +247,17 @@ class ParamsPanel(QtWidgets.QWidget):
         self._just_refused = ""  # a refusal said this turn (_tree_changed)
         self._summary: pd.DataFrame | None = None  # the data the guidance is about
         self._points = None  # weak reference to its points (the presets' suggestion)
-        self._suggested: tuple = ((), [])  # (key, suggestions) of the last points
+        # The suggestion's points part (core.presets.suggest_inputs) by (layer, the maneuver
+        # fields it reads): computed once per layer, off the GUI thread with an executor;
+        # the threshold is compared here (review h216: 120 ms at 1.1 M points on every
+        # layer activation and every maneuver value change).
+        self._layer: object = None  # the guided layer's key (show_guidance)
+        self._version = 0  # a key for points given without one
+        self._inputs: dict[tuple, SuggestInputs | None] = {}
+        self._pending: set[tuple] = set()
+        #: ``executor(job, done)``: runs ``job()`` off the GUI thread and calls
+        #: ``done(result)`` on it (the window's LodWorker); None: run here (tests).
+        self.executor = None
         children = [
             {
                 "name": "clean",
@@ -658,22 +676,52 @@ class ParamsPanel(QtWidgets.QWidget):
     def _guided_points(self):
         return self._points() if self._points is not None else None
 
+    def _suggest_key(self) -> tuple:
+        mp = self._values["maneuver"]
+        return (self._layer, tuple(getattr(mp, f) for f in NOISE_FIELDS))
+
     def _suggestions(self, points) -> list:
-        """The built-in presets suggested for ``points`` (core.presets.suggested_presets),
-        kept while the points and the maneuver values they depend on stay the same."""
+        """The built-in presets suggested for ``points`` (core.presets.suggest_from): the
+        points' part (core.presets.suggest_inputs) kept by layer and the maneuver fields it
+        reads, made by :attr:`executor` (off the GUI thread; none yet: no suggestion until it
+        arrives, then the guidance is shown again); the threshold compared here."""
         if points is None or len(points) == 0:
             return []
+        key = self._suggest_key()
+        if key in self._inputs:
+            found = self._inputs[key]
+            return (
+                [] if found is None else suggest_from(found, self._values["maneuver"].threshold_deg)
+            )
         mp = self._values["maneuver"]
-        key = (id(points), len(points), mp.window_p, mp.window_s, mp.window_max_s)
-        key += (mp.threshold_deg, mp.noise_k, mp.noise_lag_s)
-        if self._suggested[0] != key or self._guided_points() is not points:
+
+        def job(points=points, mp=mp):
             try:
-                found = suggested_presets(points, mp)
+                return suggest_inputs(points, mp)
             except (InputError, KeyError, ValueError) as exc:  # no tracks to judge
                 log.info("no preset suggestion: %s", exc)
-                found = []
-            self._suggested = (key, found)
-        return self._suggested[1]
+                return None
+
+        if self.executor is None:
+            self._store_inputs(key, job())
+            return self._suggestions(points)
+        if key not in self._pending:
+            self._pending.add(key)
+            self.executor(job, lambda found, key=key: self._inputs_arrived(key, found))
+        return []
+
+    def _store_inputs(self, key: tuple, found: SuggestInputs | None) -> None:
+        if len(self._inputs) >= 16:  # a few layers' worth
+            self._inputs.pop(next(iter(self._inputs)))
+        self._inputs[key] = found
+
+    def _inputs_arrived(self, key: tuple, found: SuggestInputs | None) -> None:
+        self._pending.discard(key)
+        if not shiboken6.isValid(self):
+            return
+        self._store_inputs(key, found)
+        if key == self._suggest_key() and self._summary is not None:
+            self.show_guidance(self._summary)  # the suggestion with it now
 
     def _suggestion_text(self, points) -> str:
         texts = []
@@ -696,12 +744,22 @@ class ParamsPanel(QtWidgets.QWidget):
                 )
         return " ".join(texts)
 
-    def show_guidance(self, summary: pd.DataFrame, points: pd.DataFrame | None = None) -> None:
+    def show_guidance(
+        self, summary: pd.DataFrame, points: pd.DataFrame | None = None, layer: object = None
+    ) -> None:
         """Seed 000's detection limit for the loaded data: typical speed and interval
         (core.maneuver.detection_limit), or why none can be given; with the layer's
-        ``points``, the built-in presets that suit them (core.presets.suggested_presets)."""
+        ``points``, the built-in presets that suit them (core.presets.suggested_presets),
+        kept by ``layer`` (a key that changes with the layer's points: the window gives its
+        id and run; None: these points, while they live)."""
         self._summary = summary
         if points is not None:
+            if layer is None and self._guided_points() is points:
+                layer = self._layer  # the same points: the same layer
+            elif layer is None:  # other points, no key: a new version
+                self._version += 1
+                layer = ("points", self._version)
+            self._layer = layer
             self._points = weakref.ref(points)
         suggestion = self._suggestion_text(self._guided_points())
         self._show_limit(summary)

@@ -432,8 +432,9 @@ class LayersMixin:
             # (a 1 s radar fused on a 30 s AIS's times is a 30 s track: h168 D-gui-2).
             layer = self.session.get(self.active)
             own = layer is not None and layer.kind in OWN_SAMPLING_KINDS
-            root = view if own else self.views.get(self.session.root(self.active).id, view)
-            self.params.show_guidance(root.summary, root.points)
+            source = layer if own else self.session.root(self.active)
+            root = view if own else self.views.get(source.id, view)
+            self.params.show_guidance(root.summary, root.points, _guide_key(source, root))
         layer = self.session.get(self.active)
         if view is not None and layer.kind == BEARING_KIND and self.bearings is not view.points:
             self.show_bearing_layer(view)  # its map and detections in the dock
@@ -458,7 +459,7 @@ class LayersMixin:
         root = self.session.root(lid)
         if layer.kind in OWN_SAMPLING_KINDS or root is None or root.id == lid:
             # its own sampling changed (set_active)
-            self.params.show_guidance(view.summary, view.points)
+            self.params.show_guidance(view.summary, view.points, _guide_key(layer, view))
         keys = self.selected_keys()
         if keys and not _same_but_targets(view.tracks(keys), self.canvas.selected_points()):
             self._selecting = True  # the selection drawn from the new points (kept)
@@ -509,3 +510,10 @@ def _same_but_targets(a: pd.DataFrame | None, b: pd.DataFrame | None) -> bool:
         elif not np.array_equal(x, y):  # NaT or None unequal: drawn again, as before
             return False
     return True
+
+
+def _guide_key(layer, view) -> tuple:
+    """The parameter panel's key for a layer's guidance (its preset suggestion is computed
+    once per key): the layer's id and run, and its points' length (a review decision
+    replaces them with the same tracks)."""
+    return (layer.id, layer.run, len(view.points))

@@ -227,7 +227,17 @@ def looks_like_ais(points: pd.DataFrame) -> bool:
 
 def noise_floor_ratio(points: pd.DataFrame, params=None) -> float:
     """The median over tracks of the detector's noise floor at the first scale over its
-    threshold: k · σ_δ / threshold_deg, σ_δ = √2 · σ √(12 / p) / L rad (the δ error of two
+    threshold: :func:`noise_floor_deg` / threshold_deg (the threshold a scalar, the median
+    of the ratio is the ratio of the median)."""
+    from wakeline.core.maneuver import ManeuverParams
+
+    mp = params or ManeuverParams()
+    return noise_floor_deg(points, mp) / mp.threshold_deg
+
+
+def noise_floor_deg(points: pd.DataFrame, params=None) -> float:
+    """The median over tracks of the detector's noise floor at the first scale (°):
+    k · σ_δ, σ_δ = √2 · σ √(12 / p) / L rad (the δ error of two
     windows of p points, :func:`~wakeline.core.maneuver._heading_noise_deg`), σ the track's
     position noise as the detector measures it (:func:`~wakeline.core.maneuver.position_noise_m`),
     p the first scale's points at the track's median interval, L the median over the
@@ -276,9 +286,62 @@ def noise_floor_ratio(points: pd.DataFrame, params=None) -> float:
     with np.errstate(invalid="ignore", divide="ignore"):
         k = mp.noise_k if mp.noise_k > 0 else ManeuverParams().noise_k
         noise = k * np.degrees(np.sqrt(2.0) * sigma * np.sqrt(12.0 / p) / leg)
-        ratio = noise / mp.threshold_deg
-    ok = (index.sizes >= 2 * p - 1) & np.isfinite(ratio) & (leg > 0)
-    return float(np.median(ratio[ok])) if ok.any() else float("nan")
+    ok = (index.sizes >= 2 * p - 1) & np.isfinite(noise) & (leg > 0)
+    return float(np.median(noise[ok])) if ok.any() else float("nan")
+
+
+#: The maneuver fields :func:`noise_floor_deg` reads (the threshold is not one of them):
+#: a change of one of these needs :func:`suggest_inputs` again, of the threshold not.
+NOISE_FIELDS = (
+    "window_p",
+    "window_s",
+    "window_max_s",
+    "noise_k",
+    "noise_lag_s",
+)
+
+
+@dataclass(frozen=True)
+class SuggestInputs:
+    """What the suggestion reads of the points (:func:`suggest_inputs`, the slow part, run
+    once per layer and set of :data:`NOISE_FIELDS`); :func:`suggest_from` compares it
+    with a threshold (cheap)."""
+
+    #: :func:`noise_floor_deg` (NaN: no track to judge)
+    noise_deg: float
+    #: the median over tracks of each one's median interval (s); NaN: none
+    interval_s: float
+    #: :func:`looks_like_ais`
+    ais: bool
+
+
+def suggest_inputs(points: pd.DataFrame, params=None) -> SuggestInputs:
+    """The points' part of :func:`suggested_presets` (with maneuver parameters ``params``,
+    default the defaults; only :data:`NOISE_FIELDS` matter)."""
+    from wakeline.core.tracks import median_interval_s, sorted_with_index, track_seconds
+
+    if points.empty:
+        return SuggestInputs(float("nan"), float("nan"), False)
+    noise = noise_floor_deg(points, params)
+    pts, index = sorted_with_index(points)
+    med = median_interval_s(track_seconds(pts), index)
+    med = med[(index.sizes > 1) & np.isfinite(med)]
+    interval = float(np.median(med)) if len(med) else float("nan")
+    return SuggestInputs(noise, interval, looks_like_ais(points))
+
+
+def suggest_from(inputs: SuggestInputs, threshold_deg: float) -> list[Suggestion]:
+    """The presets :func:`suggested_presets` names, from the points' part ``inputs`` and
+    the detector's threshold (°)."""
+    out: list[Suggestion] = []
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = inputs.noise_deg / threshold_deg
+    if np.isfinite(ratio) and ratio >= 1.0:
+        out.append(Suggestion("noisy-tracks", float(ratio)))
+    lo, hi = SLOW_RADAR_S
+    if lo <= inputs.interval_s <= hi and not inputs.ais:
+        out.append(Suggestion("slow-radar", inputs.interval_s))
+    return out
 
 
 def suggested_presets(points: pd.DataFrame, params=None) -> list[Suggestion]:
@@ -290,21 +353,12 @@ def suggested_presets(points: pd.DataFrame, params=None) -> list[Suggestion]:
     - ``slow-radar`` where the median over tracks of each one's median interval is within
       :data:`SLOW_RADAR_S` and the data are not AIS (:func:`looks_like_ais`).
 
-    docs/evaluation.md "Built-in presets (session 29)" gives the real sets each fires on."""
-    from wakeline.core.tracks import median_interval_s, sorted_with_index, track_seconds
+    :func:`suggest_inputs` then :func:`suggest_from` (the panel runs the first off the GUI
+    thread, once per layer). docs/evaluation.md "Built-in presets (session 29)" gives the
+    real sets each fires on."""
+    from wakeline.core.maneuver import ManeuverParams
 
-    out: list[Suggestion] = []
+    mp = params or ManeuverParams()
     if points.empty:
-        return out
-    ratio = noise_floor_ratio(points, params)
-    if np.isfinite(ratio) and ratio >= 1.0:
-        out.append(Suggestion("noisy-tracks", ratio))
-    pts, index = sorted_with_index(points)
-    med = median_interval_s(track_seconds(pts), index)
-    med = med[(index.sizes > 1) & np.isfinite(med)]
-    if len(med):
-        interval = float(np.median(med))
-        lo, hi = SLOW_RADAR_S
-        if lo <= interval <= hi and not looks_like_ais(points):
-            out.append(Suggestion("slow-radar", interval))
-    return out
+        return []
+    return suggest_from(suggest_inputs(points, mp), mp.threshold_deg)

@@ -23,6 +23,8 @@ from wakeline.core.presets import (
     preset,
     preset_pipeline,
     presets,
+    suggest_from,
+    suggest_inputs,
     suggested_presets,
 )
 
@@ -426,3 +428,45 @@ def test_choosing_a_preset_keeps_the_operators_values_and_undoes_the_preset_in_e
     assert mp.min_speed_kn == 0.5 and mp.window_s == ManeuverParams().window_s
     table = menu_table("slow-radar", panel.to_dict())
     assert table["maneuver"]["confirm_z"] == 0.0 and "window_s" not in table["maneuver"]
+
+
+def test_the_suggestion_is_computed_once_per_layer_off_the_gui_thread(qtbot, tmp_path, monkeypatch):
+    """Review h216: the suggestion ran on the GUI thread (120 ms at 1.1 M points) on every
+    layer activation and every maneuver value change. Its points part runs in the
+    executor, once per layer and set of the fields it reads; a threshold change compares."""
+    import threading
+
+    from wakeline.app import params_panel
+    from wakeline.app.lod_worker import LodWorker
+    from wakeline.core.tracks import track_summary
+
+    threads = []
+
+    def counted(points, params=None):
+        threads.append(threading.get_ident())
+        return suggest_inputs(points, params)
+
+    monkeypatch.setattr(params_panel, "suggest_inputs", counted)
+    panel = _panel(qtbot)
+    worker = LodWorker(panel)
+    panel.executor = worker
+    noisy = pd.concat(
+        [_track_file(tmp_path, dt=1.0, n=900, sigma=15.0, batch=str(s), seed=s)[1] for s in (1, 2)]
+    )
+    summary = track_summary(noisy)
+    panel.show_guidance(summary, noisy, "layer-1")
+    assert "built-in preset" not in panel.guidance.text()  # not yet: it is computed
+    qtbot.waitUntil(lambda: "“Noisy tracks”" in panel.guidance.text(), timeout=10_000)
+    assert len(threads) == 1 and threads[0] != threading.get_ident()
+    said = panel.guidance.text()
+    for value in (31.0, 32.0, 33.0):  # the threshold: compared here, nothing recomputed
+        panel.from_dict({"maneuver": {"threshold_deg": value}})
+    ratio = suggest_from(suggest_inputs(noisy, panel.params("maneuver")), 33.0)[0].value
+    assert f"{ratio:.1f} × the threshold" in panel.guidance.text() != said
+    panel.show_guidance(summary, noisy, "layer-1")  # the layer activated again
+    assert len(threads) == 1
+    # a field the noise estimate reads: computed again, off the GUI thread too
+    panel.from_dict({"maneuver": {"window_s": 20.0}})
+    qtbot.waitUntil(lambda: len(threads) == 2, timeout=10_000)
+    assert threads[1] != threading.get_ident()
+    worker.wait()
