@@ -793,8 +793,14 @@ def _search_bom(name: str) -> codecs.CodecInfo | None:
     def decode(data: bytes, errors: str = "strict") -> tuple[str, int]:
         return base.decode(bytes(data).removeprefix(codecs.BOM_UTF8), errors)[0], len(data)
 
+    return _codec(BOM_PREFIX + encoding, base, decode, decoder)
+
+
+def _codec(name: str, base: codecs.CodecInfo, decode, decoder) -> codecs.CodecInfo:
+    """A codec named ``name`` that decodes with ``decode`` / ``decoder`` and encodes (and
+    streams) as ``base``."""
     return codecs.CodecInfo(
-        name=BOM_PREFIX + encoding,
+        name=name,
         encode=base.encode,
         decode=decode,
         incrementalencoder=base.incrementalencoder,
@@ -820,15 +826,7 @@ def _search(name: str) -> codecs.CodecInfo | None:
     def decode(data: bytes, errors: str = "strict") -> tuple[str, int]:
         return Decoder(errors).decode(data, final=True), len(data)
 
-    return codecs.CodecInfo(
-        name=PREFIX + encoding,
-        encode=base.encode,
-        decode=decode,
-        incrementalencoder=base.incrementalencoder,
-        incrementaldecoder=Decoder,
-        streamreader=base.streamreader,
-        streamwriter=base.streamwriter,
-    )
+    return _codec(PREFIX + encoding, base, decode, Decoder)
 
 
 codecs.register(_search)
