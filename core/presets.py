@@ -199,6 +199,11 @@ def preset_lines() -> list[str]:
 SUGGEST_MAX_ROWS = 200_000
 #: Median scan interval (s) for which the slow-radar preset is suggested.
 SLOW_RADAR_S = (3.0, 7.0)
+#: Above this median interval (s) the noise-tracks preset is not suggested: between fixes
+#: this far apart the track's measured "noise" (its neighbours' interpolation) is the
+#: ship's own motion (ATD's 30-min posits gave ratios 2.4–2.7 and the preset changed
+#: little there: 1,422 → 1,387 maneuvers).
+NOISY_MAX_INTERVAL_S = 600.0
 #: A track's id that is an AIS MMSI (9 digits, 2-7 first: a ship station), alone or in a
 #: longer name ("Scene-0.csv:209351000-0").
 _MMSI = re.compile(r"(?:^|\D)[2-7]\d{8}(?:\D|$)")
@@ -336,7 +341,8 @@ def suggest_from(inputs: SuggestInputs, threshold_deg: float) -> list[Suggestion
     out: list[Suggestion] = []
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = inputs.noise_deg / threshold_deg
-    if np.isfinite(ratio) and ratio >= 1.0:
+    sparse = np.isfinite(inputs.interval_s) and inputs.interval_s > NOISY_MAX_INTERVAL_S
+    if np.isfinite(ratio) and ratio >= 1.0 and not sparse:
         out.append(Suggestion("noisy-tracks", float(ratio)))
     lo, hi = SLOW_RADAR_S
     if lo <= inputs.interval_s <= hi and not inputs.ais:
@@ -349,7 +355,8 @@ def suggested_presets(points: pd.DataFrame, params=None) -> list[Suggestion]:
     the defaults):
 
     - ``noisy-tracks`` where :func:`noise_floor_ratio` is at least 1: on a typical track
-      the detector's noise floor at its first scale is above its threshold;
+      the detector's noise floor at its first scale is above its threshold (not where the
+      median interval is over :data:`NOISY_MAX_INTERVAL_S`);
     - ``slow-radar`` where the median over tracks of each one's median interval is within
       :data:`SLOW_RADAR_S` and the data are not AIS (:func:`looks_like_ais`).
 

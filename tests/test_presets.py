@@ -470,3 +470,18 @@ def test_the_suggestion_is_computed_once_per_layer_off_the_gui_thread(qtbot, tmp
     qtbot.waitUntil(lambda: len(threads) == 2, timeout=10_000)
     assert threads[1] != threading.get_ident()
     worker.wait()
+
+
+def test_noisy_tracks_is_not_suggested_for_fixes_minutes_apart():
+    """Between fixes over NOISY_MAX_INTERVAL_S apart the measured 'noise' is the ship's own
+    motion (ATD's 30-min posits: ratio 2.4–2.7): no noisy-tracks suggestion there; the same
+    ratio at a minute's interval (MTAD) suggests it."""
+    from wakeline.core.presets import NOISY_MAX_INTERVAL_S, SuggestInputs, suggest_from
+
+    def names(interval_s: float) -> list[str]:
+        inputs = SuggestInputs(noise_deg=40.0, interval_s=interval_s, ais=True)
+        return [s.name for s in suggest_from(inputs, 15.0)]
+
+    assert names(65.0) == ["noisy-tracks"]
+    assert names(NOISY_MAX_INTERVAL_S) == ["noisy-tracks"]
+    assert names(1762.0) == []
