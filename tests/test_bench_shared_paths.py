@@ -25,6 +25,7 @@ def _load(name: str):
         ("atd_known_gaps", "ATD", "data/real/atd2025-noaa/example_truth.csv.gz"),
         ("overlay_days", "REAL", "data/real"),
         ("compare_libraries", "REAL", "data/real"),
+        ("radar_slow_extra", "REAL", "data/real"),
     ],
 )
 def test_bench_reads_shared_from_the_environment(monkeypatch, tmp_path, name, attr, tail):
@@ -63,3 +64,39 @@ def test_gui_block_probe_makes_its_own_million_file(monkeypatch, tmp_path):
     stamp = out.stat().st_mtime_ns
     assert mod.atd_million(days=3, source=src, folder=tmp_path / "cache") == out
     assert out.stat().st_mtime_ns == stamp  # made once
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_radar_slow_extra_statistic_is_the_confirmation_test(seed):
+    """bench/radar_slow_extra.py prints the confirmation test's statistic per detection
+    (session 30): it exceeds z exactly where the detector's ``_confirmed`` says so, legs
+    clipped at the tracks' ends included."""
+    import numpy as np
+    import pandas as pd
+
+    from wakeline.core import maneuver as m
+    from wakeline.core.tracks import TrackIndex
+
+    bench = _load("radar_slow_extra")
+    rng = np.random.default_rng(seed)
+    sizes = rng.integers(15, 40, 3)
+    ends = np.cumsum(sizes)
+    starts = ends - sizes
+    tr = np.repeat(np.arange(3), sizes)
+    n = int(sizes.sum())
+    t = np.concatenate([np.cumsum(rng.uniform(3.0, 5.5, s)) for s in sizes])
+    heading = np.cumsum(rng.normal(0, 0.2, n))
+    x = np.cumsum(10 * np.sin(heading)) + rng.normal(0, 1.5, n)
+    y = np.cumsum(10 * np.cos(heading)) + rng.normal(0, 1.5, n)
+    keys = pd.DataFrame({"sensor": ["R"] * 3, "batch": [str(k) for k in range(3)]})
+    index = TrackIndex(starts, ends, tr, keys)
+    sigma = rng.uniform(0.5, 2.0, 3)
+    rows = np.arange(n)[(np.arange(n) > starts[tr]) & (np.arange(n) < ends[tr] - 1)]
+    for legs in (6, 10):
+        stat = np.array([bench.confirm_stat(x, y, t, index, r, legs, sigma, 0.5) for r in rows])
+        for z in (2.0, 4.0):
+            ours = m._confirmed(
+                x, y, t, index, rows, np.full(len(rows), legs), sigma, np.zeros(0, "int64"), z, 0.5
+            )
+            assert np.array_equal(stat > z, ours)
+            assert 0 < ours.sum() < len(rows)  # both outcomes occur
