@@ -27,7 +27,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import assoc_rates as ar  # noqa: E402
 import sampling_sweep as sw  # noqa: E402
 
-from wakeline.core.associate import LinkParams, counted_gap  # noqa: E402
+from wakeline.core.associate import (  # noqa: E402
+    LinkParams,
+    _both_moving,
+    _gap_price,
+    counted_gap,
+)
 from wakeline.core.evaluate_association import (  # noqa: E402
     _truth,
     consecutive_true_pairs,
@@ -40,7 +45,9 @@ def _fixes(n: int) -> str:
     return str(n) if n < 4 else "4+"
 
 
-def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list]:
+def scene_rows(
+    pts, params: LinkParams, gaps, seed: int = 0, loose: bool = True
+) -> tuple[list, list]:
     """(true pair rows, wrong join rows) of one scene cut at known ``gaps`` (lo, hi) s."""
     ship = pts["batch"].astype(str).str.split("-").str[0]
     df = pts.assign(truth=_truth(pts.assign(batch=ship)))
@@ -73,6 +80,71 @@ def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list
             miss=float(a.pairs.miss_m[k]) if k is not None else np.nan,
         )
 
+    pi0, pj0 = a.base_pairs.i, a.base_pairs.j
+    first = {(int(x), int(y)) for x, y in zip(pi0, pj0, strict=True)}
+    counted_all = counted_gap(a.pairs)
+    price_all = _gap_price(a.pairs, params)
+    total = np.asarray(a.cost, dtype=float) + price_all
+    claim_i = {i: float(total[k]) for (i, _j), k in out.items()}
+    claim_j = {j: float(total[k]) for (_i, j), k in out.items()}
+    moving = _both_moving(a.segments, a.pairs, params)
+
+    def loose_row(i: int, j: int, k: int) -> dict:
+        """What decides a loose true pair: its cost, gap price and counted gap, the best
+        rival of either piece (not claimed more cheaply by a chosen pair), and the first
+        test that would drop it."""
+        c = float(total[k])
+        ri = [
+            q
+            for q in np.flatnonzero(pi == i)
+            if q != k and claim_j.get(int(pj[q]), np.inf) >= total[q]
+        ]
+        rj = [
+            q
+            for q in np.flatnonzero(pj == j)
+            if q != k and claim_i.get(int(pi[q]), np.inf) >= total[q]
+        ]
+        best_i = min((float(total[q]) for q in ri), default=np.inf)
+        best_j = min((float(total[q]) for q in rj), default=np.inf)
+        rival = min(best_i, best_j)
+
+        # the cheapest rival: which ship (s: the pair's own, o: another), its gap, fixes
+        def who(q, side):
+            o = int(pj[q]) if side == "i" else int(pi[q])
+            return (
+                f"{side}:{'s' if truth[o] == truth[i] else 'o'}"
+                f"{(seg.t0[o] - seg.t1[i]) if side == 'i' else (seg.t0[j] - seg.t1[o]):+.0f}s"
+                f"/{int(n[o])}f"
+            )
+
+        qs = [(float(total[q]), q, "i") for q in ri] + [(float(total[q]), q, "j") for q in rj]
+        best_who = who(min(qs)[1], min(qs)[2]) if qs else "-"
+        long = counted_all[k] > params.max_gap_s
+        lim = min(params.gate, params.no_join)
+        lm = params.long_margin_moving if moving[k] else params.long_margin
+        m = params.long_margin if long else params.margin
+        if (i, j) not in first:
+            why = "2nd look only"
+        elif c > lim:
+            why = "gap price" if a.cost[k] <= lim else "over no_join"
+        elif rival < c:
+            why = "rival cheaper"
+        elif rival < c + m:
+            why = "within margin"
+        else:
+            why = "other"
+        return dict(
+            counted=float(counted_all[k]),
+            price=float(price_all[k]),
+            total=c,
+            rival_i=best_i,
+            rival_j=best_j,
+            first=(i, j) in first,
+            lm=lm,
+            decide=why,
+            best_who=best_who,
+        )
+
     trues = []
     for i, j in sorted(true):
         gap = seg.t0[j] - seg.t1[i]
@@ -85,7 +157,10 @@ def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list
             why = "taken"
         else:
             why = "loose"
-        trues.append(dict(**pair_row(i, j, k), why=why))
+        row = dict(**pair_row(i, j, k), why=why)
+        if why == "loose" and loose:
+            row.update(loose_row(i, j, k))
+        trues.append(row)
     wrongs = []
     counted = counted_gap(a.pairs)
     for (i, j), k in out.items():
@@ -109,18 +184,51 @@ def scene_rows(pts, params: LinkParams, gaps, seed: int = 0) -> tuple[list, list
     return trues, wrongs
 
 
+#: Counterfactuals of ``--loose``: each term of the decision taken away alone (LinkParams
+#: changes); a loose true pair that one of them joins was decided by that term.
+COUNTERFACTUALS = {
+    "price": dict(gap_price=0.0),
+    "margin": dict(margin=0.0),
+    "nojoin": dict(no_join=5.0, gate=5.0),
+    "long_m": dict(long_margin=0.0, long_margin_moving=0.0),
+}
+
+
+def joined_under(pts, params: LinkParams, gaps, seed: int = 0) -> dict:
+    """Per counterfactual: the set of true pairs (i, j) joined with that change."""
+    out = {}
+    for name, change in COUNTERFACTUALS.items():
+        rows, _w = scene_rows(pts, params.replace(**change), gaps, seed, loose=False)
+        out[name] = {(r["i"], r["j"]) for r in rows if r["why"] == "joined"}
+    return out
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--set", default="mtad-tune", help="mtad-tune or mtad-held")
     ap.add_argument("--rate", type=float, default=180.0)
     ap.add_argument("--set-param", action="append", default=[], help="LinkParams NAME=VALUE")
     ap.add_argument("--list", action="store_true", help="print every wrong join and miss")
+    ap.add_argument(
+        "--loose",
+        action="store_true",
+        help="per loose true pair: counted gap, cost + gap price, best rivals, the deciding test",
+    )
     a = ap.parse_args(argv)
     params = LinkParams().replace(**dict(kv.split("=", 1) for kv in a.set_param))
     scenes, (gaps, _every) = ar.scenes_of(a.set)
     trues, wrongs = [], []
     for s, (pts, _sep) in enumerate(scenes):
-        t, w = scene_rows(sw.decimate(pts, a.rate), params, gaps)
+        cut = sw.decimate(pts, a.rate)
+        t, w = scene_rows(cut, params, gaps)
+        if a.loose:
+            cf = joined_under(cut, params, gaps)
+            for r in t:
+                if r["why"] == "loose":
+                    r["cf"] = "".join(
+                        name[0].upper() if (r["i"], r["j"]) in got else "."
+                        for name, got in cf.items()
+                    )
         trues += [dict(r, scene=s) for r in t]
         wrongs += [dict(r, scene=s) for r in w]
     print(f"{a.set} at {a.rate:g} s: {len(trues)} true pairs, {len(wrongs)} wrong joins")
@@ -139,6 +247,25 @@ def main(argv=None) -> None:
         dict(sorted(Counter(_fixes(min(r["ni"], r["nj"])) for r in wrongs).items())),
     )
     print("wrong joins, gap < 1 step of the old end:", sum(r["steps"] < 1.0 for r in wrongs))
+    if a.loose:
+        rs = [r for r in trues if r["why"] == "loose"]
+        print("\nloose true pairs by their cheapest rival:", dict(Counter(r["decide"] for r in rs)))
+        print(
+            "joined with one term taken away (P gap_price 0, M margin 0, N no_join = gate = 5,"
+            " L long margins 0):",
+            {n: sum(r["cf"][q] != "." for r in rs) for q, n in enumerate(COUNTERFACTUALS)},
+        )
+        print(
+            "  sc  gap s counted steps  n_i->n_j first  cost price total rival_i rival_j  "
+            "by             PMNL  cheapest rival (side:ship gap/fixes)"
+        )
+        for r in sorted(rs, key=lambda r: (r["decide"], r["scene"], r["gap"])):
+            print(
+                f"  {r['scene']:2d} {r['gap']:6.0f} {r['counted']:7.0f} {r['steps']:5.1f}"
+                f" {r['ni']:4d}->{r['nj']:<4d} {'y' if r['first'] else 'n':>4}"
+                f" {r['cost']:5.2f} {r['price']:5.2f} {r['total']:5.2f}"
+                f" {r['rival_i']:7.2f} {r['rival_j']:7.2f}  {r['decide']:<14} {r['cf']}  {r['best_who']}"
+            )
     if a.list:
         print("\nwrong joins:")
         for r in sorted(wrongs, key=lambda r: (r["band"], r["scene"])):
