@@ -2,6 +2,7 @@
 missed true pair, at any gap, with what decided it.
 
     python bench/assoc_sparse_why.py --set mtad-tune --rate 180 [--set-param NAME=VALUE] [--list]
+    python bench/assoc_sparse_why.py --rate 180 --loose     # what keeps each loose pair loose
 
 Per true pair (consecutive pieces of one track, any gap): joined, or missed because
 ``beyond`` (not a candidate of any pass: gap over ``soft_gap_s`` and the second look did not
@@ -14,6 +15,13 @@ step allowance, ``step_allowance_s``), and whether the old end has a true
 successor / the new start a true predecessor at all (``loose``: one of them has none —
 a track's last or first piece joined; ``swap``: both had one).
 Tallies by the fixes of the smaller piece (1, 2, 3, 4+).
+
+``--loose`` (session 30): per ``loose`` true pair its gap as the time limits count it, its
+cost and gap price, the cheapest rival of either piece not claimed more cheaply (its
+piece's ship: ``s`` the pair's own, ``o`` another; gap; fixes), the first of: the second
+look's only, over ``no_join`` (or by the gap price), a rival cheaper, a rival within the
+margin; and which of four terms, taken away alone, joins it (``P`` gap_price 0, ``M``
+margin 0, ``N`` no_join = gate = 5, ``L`` the long margins 0; the scene run again each).
 """
 
 import argparse

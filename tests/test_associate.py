@@ -1112,6 +1112,40 @@ def test_t_gap_counts_the_outage_not_the_sampling():
     assert candidate_pairs(segment_stats(dense), LinkParams()).allow_s is None
 
 
+def test_step_allowance_of_one_step_joins_a_longer_outage_and_leaves_a_lone_end():
+    """Session 30's option ``step_allowance_s`` 60 (one 60-s step allowed for, not two; not
+    the default: MTAD's held-out half at 600 s lost P_CA, docs/prereg/session30_sparse.md).
+    At 3-min sampling a 1,000-s gap counts 1,000 − (360 − 120) = 760 s today, beyond
+    T_gap, and 1,000 − (360 − 60) = 700 s with it. With the soft T_gap and the second look
+    off, only T_gap decides: the pair stays loose today and is joined with the option, for
+    every noise seed; a ship's last piece with no piece after it stays loose either way."""
+    off = dict(soft_gap_s=0.0, long_gap_s=0.0)
+    for seed in range(4):
+        df = pd.concat(
+            [
+                _lane("a1", 0, 1800, 0.0, "A", 10 * seed),
+                _lane("a2", 2800, 4600, 0.0, "A", 10 * seed + 1),
+                # C's last piece: nothing after it anywhere near (its lane 20 km north)
+                _lane("c1", 0, 1800, 20_000.0, "C", 10 * seed + 2),
+            ],
+            ignore_index=True,
+        )
+        today = associate_interrupted(df, LinkParams(**off))
+        one = associate_interrupted(df, LinkParams(step_allowance_s=60.0, **off))
+        assert len(today.chosen) == 0
+        pt = one.pair_table()
+        assert sorted(zip(pt["batch_a"], pt["batch_b"], strict=True)) == [("a1", "a2")]
+        seg = segment_stats(df, 10, end_span_s=450.0)
+        names = seg.index.keys["batch"].to_numpy()
+        wide = LinkParams(max_gap_s=1500.0, step_allowance_s=0.0, **off)
+        for allow, counted in ((120.0, 760.0), (60.0, 700.0)):
+            pairs = candidate_pairs(seg, replace(wide, step_allowance_s=allow))
+            k = np.flatnonzero((names[pairs.i] == "a1") & (names[pairs.j] == "a2"))
+            assert len(k) == 1 and counted_gap(pairs)[k[0]] == counted
+            # the lone end has no candidate at all: it stays loose
+            assert not (names[pairs.i] == "c1").any()
+
+
 def test_a_step_longer_than_t_gap_is_an_outage_not_sampling():
     """Review of session 20: the step allowance had no bound. A piece reported every 2 h
     made any gap of its own "within T_gap" (a1 → a2 over 1 h counted −3,480 s), and the
