@@ -523,3 +523,68 @@ def _dp_line_mask(
         wide = seg_b - seg_a >= 2
         seg_a, seg_b = seg_a[wide], seg_b[wide]
     return keep
+
+
+def douglas_peucker_count_mask(
+    x: np.ndarray,
+    y: np.ndarray,
+    index: TrackIndex,
+    kept_per_track: np.ndarray,
+    distance: str = "segment",
+) -> np.ndarray:
+    """Douglas–Peucker keeping a given number of points per track, all tracks at once.
+
+    The recursion's tree is built without a tolerance (every segment with a point inside
+    is split at its first farthest point); a split point's weight is the smallest split
+    distance on its path from the root (its own included), so that Douglas–Peucker at a
+    tolerance keeps exactly the points weighing more than it. Each track keeps its two
+    ends and the ``kept_per_track[i] - 2`` heaviest points (ties: the shallower, then the
+    earlier): Douglas–Peucker at the tolerance that keeps that many, where one does.
+    Compares a compressor with Douglas–Peucker at equal points kept. ``distance`` as in
+    :func:`douglas_peucker_mask` (``segment``: to the chord segment; ``line``: to its line).
+    """
+    if distance not in DP_DISTANCES:
+        raise ValueError(f"distance must be one of {', '.join(DP_DISTANCES)}")
+    n = len(x)
+    weight = np.full(n, -np.inf)
+    depth = np.zeros(n, dtype="int64")
+    weight[index.starts] = np.inf
+    weight[index.ends - 1] = np.inf
+    seg_a = index.starts[index.sizes >= 3]
+    seg_b = (index.ends - 1)[index.sizes >= 3]
+    seg_w = np.full(len(seg_a), np.inf)  # the smallest split distance above the segment
+    level = 1
+    while len(seg_a):  # rounds = depth of the recursion
+        counts = seg_b - seg_a - 1
+        seg_of = np.repeat(np.arange(len(seg_a)), counts)
+        first = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        rows = seg_a[seg_of] + 1 + (np.arange(counts.sum()) - first[seg_of])
+        ax, ay = x[seg_a][seg_of], y[seg_a][seg_of]
+        dx, dy = x[seg_b][seg_of] - ax, y[seg_b][seg_of] - ay
+        px, py = x[rows] - ax, y[rows] - ay
+        norm2 = dx * dx + dy * dy
+        with np.errstate(invalid="ignore", divide="ignore"):
+            if distance == "line":
+                dist = np.where(
+                    norm2 > 0, np.abs(dx * py - dy * px) / np.sqrt(norm2), np.hypot(px, py)
+                )
+            else:
+                u = np.where(norm2 > 0, np.clip((px * dx + py * dy) / norm2, 0.0, 1.0), 0.0)
+                dist = np.hypot(px - u * dx, py - u * dy)
+        seg_max = np.maximum.reduceat(dist, first)
+        is_max = dist == seg_max[np.repeat(np.arange(len(seg_a)), counts)]
+        arg = np.minimum.reduceat(np.where(is_max, rows, np.iinfo(np.int64).max), first)
+        w = np.minimum(seg_w, seg_max)
+        weight[arg] = w
+        depth[arg] = level
+        level += 1
+        seg_a, seg_b = np.concatenate([seg_a, arg]), np.concatenate([arg, seg_b])
+        seg_w = np.concatenate([w, w])
+        wide = seg_b - seg_a >= 2
+        seg_a, seg_b, seg_w = seg_a[wide], seg_b[wide], seg_w[wide]
+    track = index.track_of_row
+    order = np.lexsort((np.arange(n), depth, -weight, track))  # by track, heaviest first
+    rank = np.empty(n, dtype="int64")
+    rank[order] = np.arange(n) - index.starts[track[order]]
+    want = np.asarray(kept_per_track, dtype="int64")
+    return rank < np.maximum(want, 2)[track]

@@ -223,12 +223,17 @@ def _speed_either_side_kn(pts: pd.DataFrame, index) -> np.ndarray:
     return v / geo.KN_MS
 
 
+def slow_maneuvers(res, slow_kn: float = 1.0) -> int:
+    """Issue 15 goal 1's count: a detection's maneuver points where the ship is slower than
+    ``slow_kn`` (knots) over the legs either side."""
+    v = _speed_either_side_kn(res.points, res.index)
+    return int((res.is_maneuver & (v < slow_kn)).sum())
+
+
 def slow_share(res, slow_kn: float = 1.0) -> float:
     """Issue 15's measure: the share of a detection's maneuver points where the ship is
     slower than ``slow_kn`` (knots) over the legs either side (0 when there is none)."""
-    is_m = res.is_maneuver
-    v = _speed_either_side_kn(res.points, res.index)
-    return float((is_m & (v < slow_kn)).sum() / max(is_m.sum(), 1))
+    return float(slow_maneuvers(res, slow_kn) / max(res.is_maneuver.sum(), 1))
 
 
 def compression_against_dp(
@@ -538,6 +543,7 @@ def evaluate_real(
         is_m = res.is_maneuver
         row["maneuvers"] = int(is_m.sum())
         row["slow_share"] = slow_share(res)
+        row["slow_maneuvers"] = slow_maneuvers(res)
         if truth is not None:
             turns = truth_turns(truth, mp.threshold_deg, max(mp.min_speed_kn, 1.0))
             tab = res.table()

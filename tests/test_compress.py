@@ -7,7 +7,11 @@ from test_maneuver import legs, track_from_xy
 
 from wakeline.app.cli import main
 from wakeline.core import simulate
-from wakeline.core.compress import compress_with, douglas_peucker_mask
+from wakeline.core.compress import (
+    compress_with,
+    douglas_peucker_count_mask,
+    douglas_peucker_mask,
+)
 from wakeline.core.evaluate import SEED000_TABLE1, evaluate_maneuver, match_turns
 from wakeline.core.maneuver import detect
 from wakeline.core.tracks import TrackIndex, local_xy, sort_points, track_index
@@ -105,6 +109,31 @@ def test_douglas_peucker_matches_recursive_reference(distance):
             ref[a] = ref[b - 1] = True
             reference(x, y, a, b - 1, tol, ref)
         assert np.array_equal(got, ref)
+
+
+@pytest.mark.parametrize("distance", ["line", "segment"])
+def test_douglas_peucker_count_keeps_the_count_and_matches_tolerances(distance):
+    """At equal points kept: exactly k per track (2 at least, all at most); where a
+    tolerance keeps k, the same points as Douglas–Peucker at that tolerance; one more
+    point allowed keeps the same points and one more (nested, as tolerances are)."""
+    rng = np.random.default_rng(3)
+    for seed in (5, 6):
+        pts = sort_points(simulate.maneuver_tracks(6, "short", 300.0, seed=seed))
+        index = track_index(pts)
+        x, y = local_xy(pts, index)
+        for tol in (100.0, 600.0, 3000.0):
+            at_tol = douglas_peucker_mask(x, y, index, tol, distance)
+            k = np.bincount(index.track_of_row[at_tol], minlength=index.n_tracks)
+            got = douglas_peucker_count_mask(x, y, index, k, distance)
+            assert np.array_equal(got, at_tol)
+        k = rng.integers(0, index.sizes + 3)
+        got = douglas_peucker_count_mask(x, y, index, k, distance)
+        kept = np.bincount(index.track_of_row[got], minlength=index.n_tracks)
+        assert np.array_equal(kept, np.clip(k, 2, index.sizes))
+        more = douglas_peucker_count_mask(x, y, index, k + 1, distance)
+        assert not (got & ~more).any()
+        grown = np.bincount(index.track_of_row[more], minlength=index.n_tracks)
+        assert np.array_equal(grown, np.clip(k + 1, 2, index.sizes))
 
 
 def test_douglas_peucker_distances_differ_beyond_the_chord():

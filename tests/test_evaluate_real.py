@@ -2,6 +2,7 @@
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from wakeline.core import geo
 from wakeline.core.evaluate_real import gnss_faults, score_turns, sound_turns, truth_turns
@@ -77,6 +78,11 @@ def test_any_track_file_or_folder_is_scored_without_turn_truth(tmp_path):
     for col in ("slow_share", "ours_kept", "dp_kept", "at_rest_spans"):
         assert col in one.columns
     assert one.loc["ours", "ours_kept"] <= one.loc["ours", "points"]
+    # goal 1's count beside its share (session 30): the share is the count over maneuvers
+    for method in ("ours", "paper"):
+        count, total = both.loc[method, "slow_maneuvers"], both.loc[method, "maneuvers"]
+        assert 0 <= count <= total
+        assert both.loc[method, "slow_share"] == pytest.approx(count / max(total, 1))
 
 
 def test_hard_scene_scoring_tolerance_per_track_and_unseen_turns():
