@@ -28,88 +28,28 @@ def _say_read(path, report: dict) -> None:
     say_quarantined(path, rep)
 
 
-#: The namespace's attribute holding the detector flags given on the command line (their
-#: dests): a flag given wins over ``--preset``, whatever its value (review h216: one given at
-#: the default's value, ``--confirm-z 0``, was overridden).
-GIVEN = "given_detector_flags"
-#: ManeuverParams fields whose flag's dest is another name (the others: the field's name).
-_FIELD_DEST = {
-    "window_p": "window",
-    "radius_n": "radius",
-    "threshold_deg": "threshold",
-    "min_speed_kn": "min_speed",
-}
+def _maneuver_sets() -> list:
+    """The detector's parameter set as the step commands name it (flags ``--window-s`` …,
+    dests ``p__maneuver__FIELD``; :func:`wakeline.app.cli_steps.add_param_flags`)."""
+    from wakeline.core.maneuver import ManeuverParams
 
-
-def _recording(cls: type) -> type:
-    """``cls`` (an argparse action class) that also records its dest in :data:`GIVEN`."""
-
-    class Given(cls):
-        def __call__(self, parser, namespace, values, option_string=None):
-            super().__call__(parser, namespace, values, option_string)
-            given = set(getattr(namespace, GIVEN, None) or ())
-            setattr(namespace, GIVEN, given | {self.dest})
-
-    Given.__name__ = f"Given{cls.__name__}"
-    return Given
+    return [("maneuver", ManeuverParams)]
 
 
 def _maneuver_params(args: argparse.Namespace):
-    """The detector's parameters from the flags; with ``--preset`` its changes to the
-    maneuver set where the flag is not given (a flag given applies, even at the default's
-    value, as on the step commands)."""
-    params = _flag_params(args)
-    name = getattr(args, "preset", None)
-    if not name:
-        return params
-    from wakeline.core.presets import preset
-
-    given = getattr(args, GIVEN, None) or set()
-    changes = {
-        field: value
-        for field, value in preset(name).changes.get("maneuver", {}).items()
-        if _FIELD_DEST.get(field, field) not in given
-    }
-    return params.replace(**changes).checked()
-
-
-def _flag_params(args: argparse.Namespace):
+    """The detector's parameters as the ``maneuvers`` command makes them: the defaults (or
+    ``--paper``'s), ``--preset``'s changes over them, and the flags given over both (a flag
+    given applies, even at the default's value)."""
+    from wakeline.app.cli_steps import given_params
     from wakeline.core.maneuver import ManeuverParams
 
-    if getattr(args, "paper", False):
-        return (
-            ManeuverParams.paper()
-            .replace(window_p=args.window, radius_n=args.radius, threshold_deg=args.threshold)
-            .checked()
-        )
-    return ManeuverParams(
-        window_p=args.window,
-        radius_n=args.radius,
-        threshold_deg=args.threshold,
-        window_s=args.window_s,
-        max_window_s=args.max_window_s,
-        min_speed_kn=args.min_speed,
-        slow_side=args.slow_side,
-        slow_side_step_s=args.slow_side_step_s,
-        slow_side_span_s=args.slow_side_span_s,
-        gap_s=args.gap_s,
-        min_window_s=args.min_window_s,
-        noise_lag_s=args.noise_lag_s,
-        noise_min_span=args.noise_min_span,
-        noise_k_windows=args.noise_k_windows,
-        noise_min_windows=args.noise_min_windows,
-        noise_k_law=args.noise_k_law,
-        rest_noise_sigmas=args.rest_noise_sigmas,
-        rest_noise_cap_m=args.rest_noise_cap_m,
-        max_step_windows=args.max_step_windows,
-        window_max_s=args.window_max_s,
-        radius_s=args.radius_s,
-        edge_s=args.edge_s,
-        confirm_z=args.confirm_z,
-        confirm_legs=args.confirm_legs,
-        confirm_grow=args.confirm_grow,
-        confirm_grow_deg=args.confirm_grow_deg,
-    ).checked()
+    params = ManeuverParams.paper() if getattr(args, "paper", False) else ManeuverParams()
+    name = getattr(args, "preset", None)
+    if name:
+        from wakeline.core.presets import apply_preset
+
+        params = apply_preset(name, {"maneuver": params})["maneuver"]
+    return params.replace(**given_params(args, _maneuver_sets())["maneuver"]).checked()
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
@@ -255,204 +195,17 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
 
 
 def _add_detector_options(p: argparse.ArgumentParser) -> None:
-    from wakeline.core.maneuver import ManeuverParams
+    """One flag per ManeuverParams field, generated as on the ``maneuvers`` command (and
+    its older spellings --window, --radius, --threshold, --min-speed), and ``--paper``."""
+    from wakeline.app.cli_steps import add_param_flags
 
-    d = ManeuverParams()
-    first = len(p._actions)
-    p.add_argument(
-        "--window",
-        type=positive_int,
-        default=d.window_p,
-        help=f"p: points per heading window (default {d.window_p})",
-    )
-    p.add_argument(
-        "--radius",
-        type=positive_int,
-        default=d.radius_n,
-        help=f"n: maximum-filter radius, points (default {d.radius_n})",
-    )
-    p.add_argument(
-        "--threshold",
-        type=float,
-        default=d.threshold_deg,
-        help=f"t: smallest heading change counted, degrees (default {d.threshold_deg:g})",
-    )
-    p.add_argument(
-        "--window-s",
-        type=float,
-        default=d.window_s,
-        help=f"heading window, seconds: p per track = this / its median sampling interval, at "
-        f"least --window points; 0 = --window points whatever they span (default {d.window_s:g})",
-    )
-    p.add_argument(
-        "--max-window-s",
-        type=float,
-        default=d.max_window_s,
-        help=f"gradual turns: the longest window, seconds (windows double from --window-s while "
-        f"within it and end with it); 0 = one window (default {d.max_window_s:g})",
-    )
-    p.add_argument(
-        "--gap-s",
-        type=float,
-        default=d.gap_s,
-        help=f"turns that take a while: the first windows also compared this many seconds "
-        f"apart; 0 = off (default {d.gap_s:g})",
-    )
-    p.add_argument(
-        "--min-window-s",
-        type=float,
-        default=d.min_window_s,
-        help=f"sharp turns close together: windows also halve down to this many seconds where "
-        f"3 points fit (radar); 0 = off (default {d.min_window_s:g})",
-    )
-    p.add_argument(
-        "--window-max-s",
-        type=float,
-        default=d.window_max_s,
-        help=f"slow scans: where --window points span more than this many seconds and 3 fit "
-        f"in it, as many points as fit (the first maximum-filter radius at most one window); "
-        f"0 = off (default {d.window_max_s:g})",
-    )
-    p.add_argument(
-        "--radius-s",
-        type=float,
-        default=d.radius_s,
-        help=f"the maximum filter's radius at most this many seconds of the track's median "
-        f"steps where 2 or more fit (--radius points at most); 0 = off (default {d.radius_s:g})",
-    )
-    p.add_argument(
-        "--edge-s",
-        type=float,
-        default=d.edge_s,
-        help=f"turns at a track's ends: where the first window spans more than this many "
-        f"seconds and 3 points at most, 3-point windows at its ends; 0 = off "
-        f"(default {d.edge_s:g})",
-    )
-    p.add_argument(
-        "--confirm-z",
-        type=float,
-        default=d.confirm_z,
-        help=f"a confirmation test per turn: lines fitted to the legs before and after it; "
-        f"the turn counts only where their courses differ by more than this many standard "
-        f"errors; 0 = off (default {d.confirm_z:g})",
-    )
-    p.add_argument(
-        "--confirm-legs",
-        type=float,
-        default=d.confirm_legs,
-        help=f"--confirm-z: each leg spans this many of the turn's windows "
-        f"(default {d.confirm_legs:g})",
-    )
-    p.add_argument(
-        "--confirm-grow",
-        type=int,
-        default=d.confirm_grow,
-        help=f"--confirm-z: a turn not confirmed is tested again with both legs doubled, up "
-        f"to this many times, kept when any test confirms it (default {d.confirm_grow})",
-    )
-    p.add_argument(
-        "--confirm-grow-deg",
-        action=argparse.BooleanOptionalAction,
-        default=d.confirm_grow_deg,
-        help="--confirm-grow: a grown test confirms only where the legs' courses differ by "
-        "--threshold as well (default: %(default)s)",
-    )
-    p.add_argument(
-        "--noise-lag-s",
-        type=float,
-        default=d.noise_lag_s,
-        help=f"the track noise of the noise floor: each point against the points this many "
-        f"seconds either side (sees an offset wandering over a window); 0 = its neighbours "
-        f"(default {d.noise_lag_s:g})",
-    )
-    p.add_argument(
-        "--noise-min-span",
-        type=float,
-        default=d.noise_min_span,
-        help=f"the noise floor only where each window spans this many track-noise sigma; "
-        f"0 = off (default {d.noise_min_span:g})",
-    )
-    p.add_argument(
-        "--noise-k-windows",
-        action=argparse.BooleanOptionalAction,
-        default=d.noise_k_windows,
-        help="the noise floor's k grows with the track's independent windows: "
-        "max(noise_k, sqrt(2 ln N))",
-    )
-    p.add_argument(
-        "--noise-min-windows",
-        type=float,
-        default=d.noise_min_windows,
-        help=f"--noise-min-span, --noise-k-windows and --noise-k-law only on tracks offering at least this "
-        f"many windows of the tested size (points / window points); 0 = every track "
-        f"(default {d.noise_min_windows:g})",
-    )
-    p.add_argument(
-        "--noise-k-law",
-        action=argparse.BooleanOptionalAction,
-        default=d.noise_k_law,
-        help="the noise floor's k at the same false-alarm probability under the heading "
-        "change's real law at the window's span in sigma (heavy tails at a few sigma)",
-    )
-    p.add_argument(
-        "--rest-noise-sigmas",
-        type=float,
-        default=d.rest_noise_sigmas,
-        help=f"the at-rest radius grows, per track, to this many of its position-noise sigma "
-        f"where that exceeds 50 m; 0 = off (default {d.rest_noise_sigmas:g})",
-    )
-    p.add_argument(
-        "--rest-noise-cap-m",
-        type=float,
-        default=d.rest_noise_cap_m,
-        help=f"--rest-noise-sigmas' share of the at-rest radius at most this many metres, so a "
-        f"sparse noisy ship under way is not at rest; 0 = no cap (default {d.rest_noise_cap_m:g})",
-    )
-    p.add_argument(
-        "--max-step-windows",
-        type=float,
-        default=d.max_step_windows,
-        help=f"no heading window spans a step longer than this many at-rest windows (180 s, "
-        f"on sparse tracks one median interval): the at-rest rule's reach; 0 = any step "
-        f"(default {d.max_step_windows:g})",
-    )
-    p.add_argument(
-        "--min-speed",
-        type=float,
-        default=d.min_speed_kn,
-        help=f"kn: no maneuver where the ship is slower over a window (default {d.min_speed_kn:g})",
-    )
-    p.add_argument(
-        "--slow-side",
-        type=float,
-        default=d.slow_side,
-        help=f"share of --min-speed the slower window needs (the faster one all of it); "
-        f"1 = both windows (default {d.slow_side:g})",
-    )
-    p.add_argument(
-        "--slow-side-step-s",
-        type=float,
-        default=d.slow_side_step_s,
-        help=f"s: --slow-side only where no step of the slower window is longer (its speed "
-        f"measured, not a chord over an unobserved step); 0 = any step "
-        f"(default {d.slow_side_step_s:g})",
-    )
-    p.add_argument(
-        "--slow-side-span-s",
-        type=float,
-        default=d.slow_side_span_s,
-        help=f"s: --slow-side only where the slower window lasts at most this long; 0 = any "
-        f"length (default {d.slow_side_span_s:g})",
-    )
+    add_param_flags(p, _maneuver_sets())
     p.add_argument(
         "--paper",
         action="store_true",
         help="seed 000 as written: --window points per window, one scale, no speed, noise or "
-        "at-rest rule (compress: maneuver points only, raw vertices)",
+        "at-rest rule (compress: maneuver points only, raw vertices); flags given still apply",
     )
-    for action in p._actions[first:]:  # each one records that it was given (GIVEN)
-        if action.dest != "paper":
-            action.__class__ = _recording(type(action))
 
 
 def _bearing_params(args: argparse.Namespace):

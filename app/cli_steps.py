@@ -92,9 +92,10 @@ def _is_flat(cls: type) -> bool:
     return dataclasses.is_dataclass(cls) and not hasattr(cls, "with_settings")
 
 
-def _flag_table(step) -> list[tuple[str, dataclasses.Field, list[str]]]:
-    """(parameter set, field, flags) for every flat field of the step's parameter sets."""
-    sets = [(key, cls) for key, cls in step.params if _is_flat(cls)]
+def param_flag_table(sets) -> list[tuple[str, dataclasses.Field, list[str]]]:
+    """(parameter set, field, flags) for every field of ``sets`` ((key, dataclass) pairs):
+    ``--field-name``, or ``--key-field-name`` where a later set or a reserved name has it,
+    and the older spellings of :data:`ALIASES`."""
     owner: dict[str, str] = {}
     for key, cls in reversed(sets):  # later sets (the step's options) keep the plain name
         for f in dataclasses.fields(cls):
@@ -110,6 +111,37 @@ def _flag_table(step) -> list[tuple[str, dataclasses.Field, list[str]]]:
             flags += [a for a in ALIASES.get((key, f.name), ()) if a not in flags]
             out.append((key, f, flags))
     return out
+
+
+def add_param_flags(p: argparse.ArgumentParser, sets) -> None:
+    """One flag per field of ``sets`` ((key, dataclass) pairs; :func:`param_flag_table`),
+    dest ``p__KEY__FIELD`` and no default: a flag given is in the namespace, whatever its
+    value, and one not given is not (:func:`given_params`)."""
+    for key, f, flags in param_flag_table(sets):
+        kw = {
+            "dest": f"p__{key}__{f.name}",
+            "default": argparse.SUPPRESS,
+            "help": _field_help(f),
+        }
+        if isinstance(f.default, bool):
+            kw["action"] = argparse.BooleanOptionalAction
+        else:
+            kw["metavar"] = f.metadata.get("unit") or type(f.default).__name__
+            if f.metadata.get("choices"):
+                kw["choices"] = [c for c in f.metadata["choices"] if c]
+                kw["metavar"] = None
+        p.add_argument(*flags, **kw)
+
+
+def given_params(args: argparse.Namespace, sets) -> dict[str, dict[str, object]]:
+    """The fields of ``sets`` whose flag (:func:`add_param_flags`) was given: key -> {field:
+    value as typed}."""
+    values: dict[str, dict[str, object]] = {key: {} for key, _cls in sets}
+    for key, f, _flags in param_flag_table(sets):
+        dest = f"p__{key}__{f.name}"
+        if hasattr(args, dest):
+            values[key][f.name] = getattr(args, dest)
+    return values
 
 
 def _field_help(f: dataclasses.Field) -> str:
@@ -183,20 +215,7 @@ def add_step_parsers(sub) -> None:
             metavar="NAME=VALUE",
             help="change a parameter (clean: RULE.PARAM=VALUE); repeatable",
         )
-        for key, f, flags in _flag_table(step):
-            kw = {
-                "dest": f"p__{key}__{f.name}",
-                "default": argparse.SUPPRESS,
-                "help": _field_help(f),
-            }
-            if isinstance(f.default, bool):
-                kw["action"] = argparse.BooleanOptionalAction
-            else:
-                kw["metavar"] = f.metadata.get("unit") or type(f.default).__name__
-                if f.metadata.get("choices"):
-                    kw["choices"] = [c for c in f.metadata["choices"] if c]
-                    kw["metavar"] = None
-            p.add_argument(*flags, **kw)
+        add_param_flags(p, [(key, cls) for key, cls in step.params if _is_flat(cls)])
         if name == "compress":
             p.add_argument(
                 "--raw-vertices",
@@ -487,10 +506,7 @@ def _split_settings(settings: list[str] | None) -> list[tuple[str, str]]:
 def step_params(step, args: argparse.Namespace) -> dict:
     """The step's parameter sets from the generated flags, ``--set`` and clean's extras."""
     values: dict[str, dict[str, object]] = {key: {} for key, _ in step.params}
-    for key, f, _flags in _flag_table(step):
-        dest = f"p__{key}__{f.name}"
-        if hasattr(args, dest):
-            values[key][f.name] = getattr(args, dest)
+    values.update(given_params(args, [(k, c) for k, c in step.params if _is_flat(c)]))
     if hasattr(args, "p__compress__refine"):
         values["compress"]["refine"] = args.p__compress__refine
     flat = [(key, cls) for key, cls in step.params if _is_flat(cls)]

@@ -349,3 +349,46 @@ def test_step_outputs_list_tracks_in_natural_order(tmp_path):
             .apply(lambda t: t.is_monotonic_increasing)
             .all()
         ), step
+
+
+def test_evaluate_maneuver_flags_are_the_maneuvers_commands():
+    """Session 29's leftover: `evaluate maneuver`'s detector flags were hand-written (and
+    recorded as given through argparse internals). Now generated as on `maneuvers`: every
+    ManeuverParams field has the same flags on both, the older spellings parse, and a flag
+    given applies over --paper as on the step command."""
+    import dataclasses
+
+    from wakeline.app.cli_evaluate import _maneuver_params
+    from wakeline.app.cli_steps import step_params
+    from wakeline.core.maneuver import ManeuverParams
+    from wakeline.core.pipeline import STEPS
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
+
+    def flags(command):
+        return {o for a in sub.choices[command]._actions for o in a.option_strings}
+
+    ours = flags("evaluate")
+    for f in dataclasses.fields(ManeuverParams):
+        flag = "--" + f.name.replace("_", "-")
+        assert flag in ours and flag in flags("maneuvers"), flag
+    assert {"--window", "--radius", "--threshold", "--min-speed", "--paper"} <= ours
+
+    d = ManeuverParams()
+    cases = [
+        ["--window", "7", "--threshold", "20", "--min-speed", "2.5"],
+        ["--paper", "--min-speed", "2.5", "--confirm-z", "3"],
+        ["--rest-radius-m", str(d.rest_radius_m * 2), "--no-confirm-grow-deg"],
+    ]
+    for extra in cases:
+        evaluated = _maneuver_params(parser.parse_args(["evaluate", "maneuver", *extra]))
+        stepped = step_params(
+            STEPS["maneuvers"], parser.parse_args(["maneuvers", "x.csv", "-o", "y.csv", *extra])
+        )["maneuver"]
+        assert evaluated == stepped, extra
+        assert evaluated != d
+    paper = _maneuver_params(
+        parser.parse_args(["evaluate", "maneuver", "--paper", "--window", "9"])
+    )
+    assert paper == ManeuverParams.paper().replace(window_p=9)
