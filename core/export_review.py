@@ -61,6 +61,53 @@ def export_tracks_csv(points: pd.DataFrame, path: str | Path, bom: bool = False)
     export_table_csv(points[written_columns(points)], path, bom)
 
 
+#: Garmin's TrackPointExtension v2: ``<gpxtpx:speed>`` (m/s) and ``<gpxtpx:course>``
+#: (degrees true, 0-360) per ``<trkpt>`` in its ``<extensions>``, as OpenCPN, Garmin and
+#: others read them (GPX 1.1 has no speed or course of its own; GPX 1.0 had).
+GPXTPX_NS = "http://www.garmin.com/xmlschemas/TrackPointExtension/v2"
+GPXTPX_PREFIX = "gpxtpx"
+
+
+def _speed_course(pts: pd.DataFrame) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """The points' speed in m/s (from knots) and course in degrees [0, 360), NaN where
+    missing; None for a column absent or empty throughout."""
+    from wakeline.core import geo
+
+    out = []
+    for col in ("speed", "course"):
+        if col not in pts.columns:
+            out.append(None)
+            continue
+        x = pd.to_numeric(pts[col], errors="coerce").to_numpy(dtype="float64", na_value=np.nan)
+        x = np.where(np.isfinite(x), x, np.nan)
+        if not np.isfinite(x).any():
+            out.append(None)
+            continue
+        out.append(x * geo.KN_MS if col == "speed" else np.mod(x, 360.0))
+    return out[0], out[1]
+
+
+def _add_speed_course(points: list, speed, course, s: int, e: int) -> None:
+    """``<extensions><gpxtpx:TrackPointExtension>`` with speed and course (full digits:
+    they read back as written) on each of ``points`` (rows ``s:e``) that has either."""
+    from xml.etree.ElementTree import Element, SubElement
+
+    ext = f"{{{GPXTPX_NS}}}TrackPointExtension"
+    sp, co = f"{{{GPXTPX_NS}}}speed", f"{{{GPXTPX_NS}}}course"
+    n = e - s
+    v = speed[s:e] if speed is not None else np.full(n, np.nan)
+    c = course[s:e] if course is not None else np.full(n, np.nan)
+    for point, vk, ck in zip(points, v.tolist(), c.tolist(), strict=True):
+        if vk != vk and ck != ck:  # both NaN: no extension
+            continue
+        el = Element(ext)
+        if vk == vk:  # the schema's order: speed, then course
+            SubElement(el, sp).text = repr(vk)
+        if ck == ck:
+            SubElement(el, co).text = repr(ck)
+        point.extensions.append(el)
+
+
 def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline") -> None:
     """GPX 1.1, written atomically (UTF-8). Tracks with targets (an associated or reviewed
     layer: a ``target`` column): one ``<trk>`` per target (name the target, ``<type>``
@@ -68,7 +115,9 @@ def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline"
     ``+``, ``<src>`` their sensors joined by ``+``) with one ``<trkseg>`` per
     member track, in the order the description names them. Other tracks: one ``<trk>``
     per track (name ``sensor:batch``, ``<src>`` its sensor, description its members when
-    known), one segment. Points with time."""
+    known), one segment. Points with time; speed and course where known as Garmin's
+    TrackPointExtension v2 (``gpxtpx:speed`` m/s, ``gpxtpx:course`` degrees), which the
+    GPX reader takes back."""
     import gpxpy.gpx
 
     gpx = gpxpy.gpx.GPX()
@@ -104,12 +153,18 @@ def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline"
         ).to_numpy()
     members = pts["members"].astype(str).to_numpy() if "members" in pts.columns else None
 
+    speed, course = _speed_course(pts)
+    if speed is not None or course is not None:
+        gpx.nsmap[GPXTPX_PREFIX] = GPXTPX_NS
+
     def segment(s: int, e: int):
         seg = gpxpy.gpx.GPXTrackSegment()
         seg.points = [
             gpxpy.gpx.GPXTrackPoint(la, lo, time=tm)
             for lo, la, tm in zip(lon[s:e], lat[s:e], times[s:e], strict=True)
         ]
+        if speed is not None or course is not None:
+            _add_speed_course(seg.points, speed, course, s, e)
         return seg
 
     for s, e in zip(bounds[:-1], bounds[1:], strict=True):  # one object per track, not per point

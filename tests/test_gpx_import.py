@@ -244,3 +244,66 @@ def test_a_document_element_in_a_points_extensions_loses_no_point(tmp_path, insi
     got = read_points(path)
     assert len(got.points) + len(got.quarantine) == 3
     assert len(got.points) == 3
+
+
+def test_our_gpx_keeps_speed_and_course(tmp_path):
+    """Session 29's leftover: the GPX export dropped speed and course. They are written per
+    point as Garmin's TrackPointExtension v2 (gpxtpx:speed m/s, gpxtpx:course degrees) and
+    read back to their precision; a point without them has no extension, a course of
+    360 or more is written in [0, 360)."""
+    rng = np.random.default_rng(7)
+    n = 600
+    pts = pd.DataFrame(
+        {
+            "sensor": "AIS",
+            "batch": (np.arange(n) // 200).astype(str),
+            "time": pd.Timestamp("2024-01-01", tz="UTC") + pd.to_timedelta(np.arange(n), "s"),
+            "lon": 10.0 + rng.normal(0, 0.01, n),
+            "lat": 59.0 + rng.normal(0, 0.01, n),
+            "speed": rng.uniform(0, 30, n),
+            "course": rng.uniform(0, 360, n),
+        }
+    )
+    pts.loc[5, "speed"] = np.nan
+    pts.loc[6, "course"] = np.nan
+    pts.loc[7, ["speed", "course"]] = np.nan
+    pts.loc[8, "course"] = 370.0
+    path = tmp_path / "sc.gpx"
+    export_gpx(pts, path)
+    text = path.read_text(encoding="utf-8")
+    assert "http://www.garmin.com/xmlschemas/TrackPointExtension/v2" in text
+    assert text.count("<gpxtpx:speed>") == n - 2 and text.count("<gpxtpx:course>") == n - 2
+    back = read_points(path).points.sort_values(["batch", "time"]).reset_index(drop=True)
+    want = pts.sort_values(["batch", "time"]).reset_index(drop=True)
+    want.loc[want["course"] >= 360, "course"] -= 360
+    for col in ("speed", "course"):
+        got, exp = back[col].to_numpy(), want[col].to_numpy()
+        assert np.array_equal(np.isnan(got), np.isnan(exp)), col
+        assert np.allclose(got, exp, rtol=1e-12, atol=1e-12, equal_nan=True), col
+    assert back.loc[8, "course"] == pytest.approx(10.0)
+
+
+def test_speed_and_course_read_from_a_points_extensions(tmp_path):
+    """Another program's GPX 1.1: gpxtpx:speed/course under TrackPointExtension, or a bare
+    <speed> in <extensions>, are m/s and degrees; GPX 1.0's own <speed> comes first."""
+    ns = 'xmlns:gpxtpx="http://www.garmin.com/xmlschemas/TrackPointExtension/v2"'
+    point = '<trkpt lat="59.5" lon="10.25"><time>2024-05-01T10:0{}:00Z</time>{}</trkpt>'
+    tpx = (
+        "<extensions><gpxtpx:TrackPointExtension><gpxtpx:speed>{}</gpxtpx:speed>"
+        "<gpxtpx:course>{}</gpxtpx:course></gpxtpx:TrackPointExtension></extensions>"
+    )
+    body = [
+        point.format(0, tpx.format(5.144444, 45.5)),
+        point.format(1, "<extensions><speed>2.5</speed></extensions>"),
+        point.format(2, "<speed>1</speed>" + tpx.format(9, 90)),
+        point.format(3, ""),
+    ]
+    text = f'<gpx creator="x" version="1.1" {ns}><trk><trkseg>{"".join(body)}</trkseg></trk></gpx>'
+    path = tmp_path / "ext.gpx"
+    path.write_text(text, encoding="utf-8")
+    got = read_points(path).points.sort_values("time").reset_index(drop=True)
+    kn = 3600 / 1852
+    assert got["speed"].tolist()[:3] == pytest.approx([5.144444 * kn, 2.5 * kn, 1 * kn])
+    assert np.isnan(got["speed"].iloc[3])
+    assert got["course"].iloc[0] == 45.5 and got["course"].iloc[2] == 90.0
+    assert got["course"].iloc[[1, 3]].isna().all()

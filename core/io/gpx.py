@@ -7,7 +7,10 @@ A GPX written by Wakeline names a track ``sensor:batch``: it is read back as tha
 and batch. Wakeline's targets (``<type>wakeline target</type>``: one ``<trk>`` per
 target, one ``<trkseg>`` per member track named in order by ``<desc>``) are read back as
 the member tracks with the ``<trk>``'s name as their ``target``. Each ``<trkpt>`` is a point (its ``<time>``, ISO 8601, UTC unless it says
-otherwise; GPX 1.0's ``<speed>`` in m/s becomes knots, its ``<course>`` degrees). Track
+otherwise; GPX 1.0's ``<speed>`` in m/s becomes knots, its ``<course>`` degrees; in GPX 1.1
+the same from the point's ``<extensions>``: Garmin's TrackPointExtension v2
+``<gpxtpx:speed>``/``<gpxtpx:course>``, as our export writes them, or a bare
+``<speed>``/``<course>`` there). Track
 segments are one track: a segment break is a gap the cleaning and association steps see
 by time.
 
@@ -38,6 +41,12 @@ from wakeline.core.progress import Progress, null_progress
 #: tracks named (in order) by the ``<desc>``: the GPX reader gives them back as tracks
 #: with their ``target``.
 GPX_TARGET_TYPE = "wakeline target"
+
+
+#: The elements whose ``<speed>`` (m/s) and ``<course>`` (degrees) are a track point's
+#: (by local name): Garmin's ``<gpxtpx:TrackPointExtension>`` (v2; our export writes it,
+#: OpenCPN and others read it) and a point's ``<extensions>`` itself (OsmAnd's ``<speed>``).
+_EXTENSION_PARENTS = ("TrackPointExtension", "extensions")
 
 
 def _local(name: str) -> str:
@@ -150,6 +159,9 @@ def _expat_parse(fh, chunk: int = 1 << 20):
         parent = stack[-1] if stack else ""
         if point is not None and parent == "trkpt" and tag in ("time", "speed", "course"):
             point[tag] = value
+        elif point is not None and tag in ("speed", "course") and parent in _EXTENSION_PARENTS:
+            if not point[tag]:  # GPX 1.0's own <speed>/<course> first, then an extension's
+                point[tag] = value
         elif tag == "name" and parent == "trk" and tracks and not tracks[-1]:
             tracks[-1] = value
         elif tag == "src" and parent == "trk" and sources:
