@@ -501,3 +501,61 @@ def test_a_step_back_anywhere_in_a_file_read_in_pieces_is_seen(tmp_path, monkeyp
         r = import_to_csv(path, tmp_path / "o.csv").report
         assert r.get("pieces", 0) > 1
         assert r["time_steps_back"] == whole, i0
+
+
+def _exports(runs: int, pad: int, quoted: bool = False) -> str:
+    """``pad`` rows of a track C, then tracks A and B interleaved a minute a row, written
+    ``runs`` times over (a file made of several exports: each starts the time again)."""
+    out = [f"C,{1_700_000_000 + 60 * i},12.0,56.0" for i in range(pad)]
+    for run in range(runs):
+        for i in range(60):
+            for tid in ("A", "B"):
+                q = f'"{tid}"' if quoted else tid
+                out.append(f"{q},{1_700_000_000 + 60 * i},{10 + run + 0.001 * i:.5f},55.0")
+    return "id,t,lon,lat\n" + "\n".join(out) + "\n"
+
+
+@pytest.mark.parametrize("quoted", [False, True], ids=["streamed", "pieces"])
+def test_a_restart_on_a_pieces_first_row_is_seen(tmp_path, monkeypatch, quoted):
+    """Session 29's leftover: a file of exports, each starting the time again, read
+    streamed (or in pieces, a quoted file) at 1 kB a piece: where a piece began on a
+    restart's row, that track's restart was not seen (pad 14-17 of 40: {'A': 2}, {} …).
+    Each track's last time is carried into the next piece, as for the steps back: what a
+    whole read says, wherever the pieces are cut, and the runs summed right."""
+    from wakeline.core.io import reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 1024)
+    path = tmp_path / "exports.csv"
+    for runs in (2, 3):
+        for pad in range(0, 40, 1 if runs == 2 else 3):
+            path.write_text(_exports(runs, pad, quoted))
+            whole = read_points(path).report
+            assert whole["restarting_tracks"] == {"A": runs, "B": runs}
+            r = import_to_csv(path, tmp_path / "o.csv").report
+            assert r.get("pieces", 0) > 1 if quoted else r.get("streamed")
+            assert r["restarting_tracks"] == whole["restarting_tracks"], (runs, pad)
+            assert r["time_steps_back"] == whole["time_steps_back"] == {}
+            said = [w for w in r["warnings"] if "start their time again" in w]
+            assert said == [w for w in whole["warnings"] if "start their time again" in w]
+
+
+@pytest.mark.parametrize("size", [500, 2000, 8192])
+def test_oresund_restarts_and_steps_back_streamed_as_whole(tmp_path, monkeypatch, size):
+    """Øresund's encounters (two ships whose mmsi starts its time again, one with two
+    steps back): streamed in small pieces each ship has a few rows a piece, and judged per
+    piece it looked like a track in no time order (2 kB: {'265041000': 2, '219230000': 3}
+    restarts and 1 step back for whole's 4, 3 and 2). Each track's steps are now counted
+    over the pieces and judged once, as the whole read judges them."""
+    from conftest import real_file
+    from wakeline.core.io import reader
+
+    path = real_file("oresund-encounters", "encounters.csv")
+    whole = read_points(path, mapping={"batch": "mmsi"}).report
+    assert whole["restarting_tracks"] == {"219230000": 3, "265041000": 4}
+    assert whole["time_steps_back"]["tracks"] == {"219230000": 2}
+    monkeypatch.setattr(reader, "STREAM_BYTES", size)
+    r = import_to_csv(path, tmp_path / "o.csv", mapping={"batch": "mmsi"}).report
+    assert r.get("streamed")
+    assert r["restarting_tracks"] == whole["restarting_tracks"]
+    assert r["time_steps_back"] == whole["time_steps_back"]
+    assert r["warnings"] == whole["warnings"]

@@ -20,10 +20,11 @@ way. What no reading in pieces gives raises
 :class:`~wakeline.core.io.reader.WholeFileNeeded`: a clock change's repeated hour (placed
 by each track's order over the whole file), or a piece the importer refuses (the
 whole-file reader then says why). The tracks that start their time again within the file
-(``restarting_tracks``) are counted within each piece and summed, as the streamed reader
-counts them: a track whose restart falls across two pieces is not seen. Steps back in time
-(``time_steps_back``) are not lost so: each track's last time is carried into the next
-piece (:class:`~wakeline.core.io.reader.LastTimes`)."""
+(``restarting_tracks``) and the steps back in time (``time_steps_back``) are judged as a
+whole read judges them: each track's last time is carried into the next piece, so that a
+restart or a step back on a piece's first row is seen, and its steps are counted over the
+pieces (:class:`~wakeline.core.io.reader.LastTimes`), so that a track's few rows in one
+piece do not make it a track in no time order."""
 
 import dataclasses
 import zlib
@@ -248,7 +249,7 @@ def read_in_pieces(
                     step += 1
     finally:
         piece_file.unlink(missing_ok=True)
-    quarantines, reports, layouts, keys = parts
+    quarantines, reports, layouts, keys, order = parts
     fallback = merge_fallbacks([(r.get("encoding_fallback", {}), 1) for r in reports])
     reports = [
         {**r, "warnings": [w for w in r.get("warnings", []) if not w.startswith(FALLBACK_MARK)]}
@@ -264,7 +265,7 @@ def read_in_pieces(
     q = pd.concat(quarantines, ignore_index=True) if quarantines else empty_quarantine()
     q = q.sort_values("line", kind="stable", ignore_index=True)
     tracks = len(pd.concat(keys).drop_duplicates()) if keys else 0
-    report = merge_import_reports(sn, reports, q, tracks, read.get("tz"))
+    report = merge_import_reports(sn, reports, q, tracks, read.get("tz"), order)
     layout = {**layouts[0], "compression": sn.compression} if layouts else {}
     if layout:
         layout.update(
@@ -314,6 +315,7 @@ def _read_all(
     ddmm: set[tuple] = set()  # positions read as NMEA's ddmm.mmmm, or not, per piece
     forms: dict[str, str] = {}  # lettered lat/lon columns: ddmm.mmmm or degrees (h149)
     for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn, opened), has_rows)):
+        edges["back"].line_offset = first_line - 1  # its steps back named by file line
         piece_file.write_bytes(piece)
         done += len(piece)
         del piece
@@ -376,7 +378,7 @@ def _read_all(
         layouts.append(res.layout)
         far = done / size if sn.compression is None else opened.fraction()
         progress(min(0.95, far), "importing in pieces")
-    return quarantines, reports, layouts, keys
+    return quarantines, reports, layouts, keys, edges["back"].judged()
 
 
 def _size(sn: Sniff) -> int:
@@ -395,7 +397,12 @@ def _sum(dicts: list[dict]) -> dict:
 
 
 def merge_import_reports(
-    sn: Sniff, reports: list[dict], quarantine: pd.DataFrame, tracks: int, tz: str | None
+    sn: Sniff,
+    reports: list[dict],
+    quarantine: pd.DataFrame,
+    tracks: int,
+    tz: str | None,
+    order: tuple[dict, dict] | None = None,
 ) -> dict:
     """One import report of the pieces' reports, as :func:`read_points` gives it for the
     whole file: counts summed (tracks: ``tracks``, counted over the pieces' keys), the
@@ -407,7 +414,11 @@ def merge_import_reports(
     time_src = first["columns"]["time"]
     batch_src = first["columns"].get("batch", "")
     decimal = sum(int(r.get("decimal_comma_values", 0)) for r in reports)
-    restarting = _sum([r.get("restarting_tracks", {}) for r in reports])
+    # restarts and steps back: judged over the file (``order``, LastTimes.judged), else
+    # the pieces' summed
+    restarting = (
+        order[0] if order is not None else _sum([r.get("restarting_tracks", {}) for r in reports])
+    )
     with_rows = [r for r in reports if r.get("rows_imported")]
     relative = bool(with_rows) and all(r.get("time_relative") for r in with_rows)
     # The warnings that carry a piece's count are made again from the summed counts.
@@ -494,7 +505,11 @@ def merge_import_reports(
     if relative:
         warnings += relative_note
     warnings += _restart_warnings(restarting, batch_src)
-    steps_back = merge_steps_back([(r.get("time_steps_back", {}), 1) for r in reports])
+    steps_back = (
+        order[1]
+        if order is not None
+        else merge_steps_back([(r.get("time_steps_back", {}), 1) for r in reports])
+    )
     warnings += _back_warnings(steps_back, time_src, batch_src)
     reasons = _sum([r.get("quarantine_reasons", {}) for r in reports])
     warnings += bearing_warnings(

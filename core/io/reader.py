@@ -4658,6 +4658,7 @@ def _to_canonical(
         "values_blanked": blanked,
         "lat_beyond_90_lon_within": swapped,
         "decimal_comma_values": int(counted.get("decimal_comma", 0)),
+        # before _steps_back, which moves the carried last times on to this piece's
         "restarting_tracks": _restarting_tracks(
             sensor_codes,
             sensor_names,
@@ -4665,6 +4666,7 @@ def _to_canonical(
             text["batch"].names,
             ns,
             time_ok & ~bad_rows,
+            None if edges_in is None else edges_in.get("back"),
         ),
         "time_steps_back": _steps_back(
             sensor_codes,
@@ -4773,20 +4775,26 @@ def _restarting_tracks(
     batch_names: np.ndarray,
     ns: np.ndarray,
     ok: np.ndarray,
+    carry: "LastTimes | None" = None,
 ) -> dict[str, int]:
     """Tracks whose rows, in file order, run forward in time and then start again
     (backward by at least :data:`RESTART_BACK_S`, on at most a tenth of their steps: a
     shuffled file is not meant): track name (:func:`_track_names`) → runs. Several
     encounters of one ship or several ships under one id, which sorting by time would
-    interleave into a zig-zag."""
+    interleave into a zig-zag. A piece of a file read streamed or in pieces gives
+    ``carry`` (:func:`_steps_back`'s, read here before that moves it on): a track's first
+    row here steps from its last time in the pieces before, so a restart on a piece's
+    first row is seen (a file of two exports cut between them). This is the piece's own
+    count (its report's); the file's is :meth:`LastTimes.judged`, over every piece."""
     use = np.flatnonzero(ok & (batch_codes >= 0))
-    if len(use) < 3:
+    if len(use) < (1 if carry is not None and len(carry) else 3):
         return {}
     key = batch_codes[use].astype("int64")
     if sensor_codes is not None:
         key = sensor_codes[use].astype("int64") * (int(batch_codes.max()) + 1) + key
-    t = ns[use]
-    if np.all(t[1:] >= t[:-1]):  # a time-ordered file: no track can go back
+    t = ns[use].astype("int64", copy=False)
+    carried = carry is not None and len(carry) > 0
+    if not carried and np.all(t[1:] >= t[:-1]):  # a time-ordered file: no track can go back
         return {}
     if np.all(key[1:] >= key[:-1]):  # grouped by track already
         k = key
@@ -4797,16 +4805,26 @@ def _restarting_tracks(
         if sort is None:
             sort = np.argsort(key, kind="stable")
         k, t = key[sort], t[sort]
-    same = k[1:] == k[:-1]
-    back = same & (t[1:] < t[:-1] - int(RESTART_BACK_S * 1e9))
+    # each row's step from its track's row before; a track's first row here steps from
+    # its carried last time, if any
+    same = np.r_[False, k[1:] == k[:-1]]
+    prev = np.r_[t[:1], t[:-1]]
+    if carried:
+        first = np.flatnonzero(~same)
+        before, seen = carry.lookup(
+            _carried_keys(k[first], sensor_codes, sensor_names, batch_codes, batch_names)
+        )
+        prev[first[seen]] = before[seen]
+        same[first[seen]] = True
+    back = same & (t < prev - int(RESTART_BACK_S * 1e9))
     if not back.any():
         return {}
-    steps = np.bincount(k[1:][same], minlength=int(k.max()) + 1)
-    backs = np.bincount(k[1:][back], minlength=int(k.max()) + 1)
+    steps = np.bincount(k[same], minlength=int(k.max()) + 1)
+    backs = np.bincount(k[back], minlength=int(k.max()) + 1)
     # each run going forward: any step back (beyond jitter) is one of the few restarts; a
     # short track in random order has steps back of every size, few of them 10 min long
-    loose = same & (t[1:] < t[:-1] - int(ORDER_JITTER_S * 1e9))
-    loose_n = np.bincount(k[1:][loose], minlength=int(k.max()) + 1)
+    loose = same & (t < prev - int(ORDER_JITTER_S * 1e9))
+    loose_n = np.bincount(k[loose], minlength=int(k.max()) + 1)
     hit = np.flatnonzero((backs > 0) & (loose_n <= 0.1 * steps))
     names = _track_names(hit, sensor_codes, sensor_names, batch_codes, batch_names)
     return {str(name): int(backs[h]) + 1 for name, h in zip(names, hit, strict=True)}
@@ -4821,31 +4839,118 @@ BACK_FIRST_LINES = 5
 
 class LastTimes:
     """What a streamed read or a read in pieces carries from piece to piece for
-    :func:`_steps_back`: each track's last valid time (ns) in file order, so that a step
-    back on a piece's first row of a track is seen. Keyed ``sensor\x1fbatch``."""
+    :func:`_steps_back` and :func:`_restarting_tracks`: each track's last valid time (ns)
+    in file order, so that a step back or a restart on a piece's first row of a track is
+    seen, and each track's steps counted over the pieces, judged at the end as a whole
+    read judges them (:meth:`judged`). Keyed ``sensor\x1fbatch``; one row per track in
+    arrays, found by the keys' index."""
+
+    #: The counts :meth:`add` sums per track over the pieces: steps (rows after a track's
+    #: first), loose (steps back beyond the jitter), restarts, backs (the steps back
+    #: warned of), and the largest step back warned of (s; its maximum, not a sum).
+    COUNTS = ("steps", "loose", "restarts", "backs", "max_s")
 
     def __init__(self) -> None:
-        self.last = pd.Series([], dtype="int64", index=pd.Index([], dtype=object))
+        self.keys = pd.Index([], dtype=object)
+        self.last = np.zeros(0, dtype="int64")
+        self.seen = np.zeros(0, dtype=bool)  # whether a last time was given (update)
+        self.counts = np.zeros((0, len(self.COUNTS)))  # per track (add)
+        self.names = np.zeros(0, dtype=object)  # each track's name as the reports give it
+        self.kept = np.zeros(0, dtype="int64")  # each track's lines kept in ``lines``
+        self.lines: list[tuple[np.ndarray, np.ndarray]] = []  # (track rows, lines) of backs
+        #: Added to a piece's line numbers (a read in pieces: the line its piece starts on - 1).
+        self.line_offset = 0
 
     def __len__(self) -> int:
-        return len(self.last)
+        return int(self.seen.sum())
+
+    def _rows(self, keys: np.ndarray, grow: bool) -> np.ndarray:
+        """Each key's row (-1 where unknown, unless ``grow`` adds it)."""
+        keys = pd.Index(keys, dtype=object)
+        at = self.keys.get_indexer(keys) if len(self.keys) else np.full(len(keys), -1)
+        if grow and (at < 0).any():
+            fresh = keys[at < 0]
+            at[at < 0] = len(self.keys) + np.arange(len(fresh))
+            self.keys = self.keys.append(fresh)
+            n = len(fresh)
+            self.last = np.r_[self.last, np.zeros(n, dtype="int64")]
+            self.seen = np.r_[self.seen, np.zeros(n, dtype=bool)]
+            self.counts = np.vstack([self.counts, np.zeros((n, len(self.COUNTS)))])
+            self.names = np.r_[self.names, np.asarray(fresh, dtype=object)]
+            self.kept = np.r_[self.kept, np.zeros(n, dtype="int64")]
+        return at
 
     def lookup(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(carried last time, whether carried) for each key."""
-        at = (
-            self.last.index.get_indexer(pd.Index(keys, dtype=object))
-            if len(self.last)
-            else np.full(len(keys), -1)
-        )
+        at = self._rows(keys, grow=False)
         seen = at >= 0
+        seen[seen] = self.seen[at[seen]]
         got = np.zeros(len(keys), dtype="int64")
-        got[seen] = self.last.to_numpy()[at[seen]]
+        got[seen] = self.last[at[seen]]
         return got, seen
 
     def update(self, keys: np.ndarray, last: np.ndarray) -> None:
-        new = pd.Series(np.asarray(last, dtype="int64"), index=pd.Index(keys, dtype=object))
-        old = self.last[~self.last.index.isin(new.index)]
-        self.last = pd.concat([old, new]) if len(old) else new
+        at = self._rows(keys, grow=True)
+        self.last[at] = np.asarray(last, dtype="int64")
+        self.seen[at] = True
+
+    def add(self, keys, names, counts: dict, back_keys, back_lines) -> None:
+        """A piece's counts per track (``keys`` as :meth:`lookup`'s, ``names`` as the
+        reports name them) and the file lines of its steps back (``back_keys``: their
+        tracks), for :meth:`judged`."""
+        at = self._rows(keys, grow=True)
+        self.names[at] = np.asarray(names, dtype=object)
+        for j, name in enumerate(self.COUNTS):
+            values = np.asarray(counts[name], dtype="float64")
+            if name == "max_s":
+                self.counts[at, j] = np.fmax(self.counts[at, j], values)
+            else:
+                self.counts[at, j] += values
+        if len(back_lines):  # a track's first few lines are all a judgement names
+            rows = self._rows(back_keys, grow=False)
+            rank = pd.Series(rows).groupby(rows, sort=False).cumcount().to_numpy()
+            keep = rank + self.kept[rows] < BACK_FIRST_LINES
+            np.add.at(self.kept, rows[keep], 1)
+            self.lines.append((rows[keep], np.asarray(back_lines, dtype="int64")[keep]))
+
+    def judged(self) -> tuple[dict[str, int], dict]:
+        """``(restarting_tracks, time_steps_back)`` over every piece added, as
+        :func:`_restarting_tracks` and :func:`_steps_back` judge a whole file: a track
+        counts where at most a tenth of its steps (over the file) go back beyond the
+        jitter."""
+        steps, loose, restarts, backs, max_s = self.counts.T
+        forward = loose <= 0.1 * steps
+        restart = np.flatnonzero(forward & (restarts > 0))
+        restarting = {str(self.names[k]): int(restarts[k]) + 1 for k in restart}
+        hit = forward & (backs > 0)
+        if not hit.any():
+            return restarting, {}
+        rows = np.concatenate([r for r, _ in self.lines]) if self.lines else np.zeros(0, int)
+        lines = np.concatenate([x for _, x in self.lines]) if self.lines else np.zeros(0, int)
+        lines = np.sort(lines[hit[rows]])[:BACK_FIRST_LINES]
+        back = {
+            "tracks": {str(self.names[k]): int(backs[k]) for k in np.flatnonzero(hit)},
+            "first_lines": [int(x) for x in lines],
+            "max_s": float(max_s[hit].max()),
+        }
+        return restarting, back
+
+
+def _carried_keys(
+    key: np.ndarray,
+    sensor_codes: np.ndarray | None,
+    sensor_names: np.ndarray,
+    batch_codes: np.ndarray,
+    batch_names: np.ndarray,
+) -> np.ndarray:
+    """:class:`LastTimes`' keys (``sensor\x1fbatch``) of the tracks ``key`` (``sensor_code
+    * n_batch + batch_code``): the same track in every piece, whatever its codes there."""
+    names = _track_names(key, None, sensor_names, batch_codes, batch_names)
+    n_batch = int(batch_codes.max()) + 1
+    sensors = np.asarray(sensor_names, dtype=object)[
+        key // n_batch if sensor_codes is not None else np.zeros(len(key), "int64")
+    ].astype(str)
+    return np.char.add(np.char.add(sensors, "\x1f"), names.astype(str))
 
 
 def _steps_back(
@@ -4892,17 +4997,28 @@ def _steps_back(
     if carry is not None:
         first = np.flatnonzero(~same)
         last = np.r_[first[1:] - 1, len(key) - 1]
-        names = _track_names(key[first], None, sensor_names, batch_codes, batch_names)
-        n_batch = int(batch_codes.max()) + 1
-        sensors = np.asarray(sensor_names, dtype=object)[
-            key[first] // n_batch if sensor_codes is not None else np.zeros(len(first), "int64")
-        ].astype(str)
-        carried_keys = np.char.add(np.char.add(sensors, "\x1f"), names.astype(str))
+        carried_keys = _carried_keys(
+            key[first], sensor_codes, sensor_names, batch_codes, batch_names
+        )
         before, seen = carry.lookup(carried_keys)
         prev[first[seen]] = before[seen]
         same[first[seen]] = True
         carry.update(carried_keys, t[last])
     step = prev - t
+    if carry is not None:  # the file's counts, judged over all the pieces (LastTimes.judged)
+        _carry_counts(
+            carry,
+            carried_keys,
+            first,
+            key,
+            same,
+            step,
+            line,
+            sensor_codes,
+            sensor_names,
+            batch_codes,
+            batch_names,
+        )
     loose = same & (step > int(ORDER_JITTER_S * 1e9))
     if not loose.any():
         return {}
@@ -4922,6 +5038,44 @@ def _steps_back(
         "first_lines": sorted(int(x) for x in line[back])[:BACK_FIRST_LINES],
         "max_s": float(step[back].max()) / 1e9,
     }
+
+
+def _carry_counts(
+    carry: LastTimes,
+    carried_keys: np.ndarray,
+    first: np.ndarray,
+    key: np.ndarray,
+    same: np.ndarray,
+    step: np.ndarray,
+    line: np.ndarray,
+    sensor_codes: np.ndarray | None,
+    sensor_names: np.ndarray,
+    batch_codes: np.ndarray,
+    batch_names: np.ndarray,
+) -> None:
+    """A piece's steps per track (rows sorted by track, ``first``: each track's first row)
+    added to ``carry``'s counts, with the file lines of its steps back (the piece's
+    lines + ``carry.line_offset``)."""
+    starts = np.zeros(len(key), dtype=bool)
+    starts[first] = True
+    track = np.cumsum(starts) - 1  # each row's track in this piece
+    n = len(first)
+    jitter, restart = int(ORDER_JITTER_S * 1e9), int(RESTART_BACK_S * 1e9)
+    loose = same & (step > jitter)
+    back = loose & (step < restart)
+    max_s = np.zeros(n)
+    if back.any():
+        np.maximum.at(max_s, track[back], step[back] / 1e9)
+    counts = {
+        "steps": np.bincount(track[same], minlength=n),
+        "loose": np.bincount(track[loose], minlength=n),
+        "restarts": np.bincount(track[same & (step > restart)], minlength=n),
+        "backs": np.bincount(track[back], minlength=n),
+        "max_s": max_s,
+    }
+    names = _track_names(key[first], sensor_codes, sensor_names, batch_codes, batch_names)
+    offset = int(carry.line_offset)
+    carry.add(carried_keys, names, counts, carried_keys[track[back]], line[back] + offset)
 
 
 def merge_steps_back(infos: list[tuple[dict, int]]) -> dict:
@@ -5292,8 +5446,6 @@ def stream_points(
         "lat_beyond_90_lon_within": 0,
     }
     blanked: dict[str, int] = {}
-    restarting: dict[str, int] = {}
-    backs: list[tuple[dict, int]] = []
     pairs: set[tuple[str, str]] = set()
     checked: list[pd.DataFrame] = []  # the rows the speed-unit check looks at
     per_sensor: dict[str, int] = {}
@@ -5439,9 +5591,6 @@ def stream_points(
             totals[key] += counts[key]
         for k, v in counts["values_blanked"].items():
             blanked[k] = blanked.get(k, 0) + v
-        for k, v in counts["restarting_tracks"].items():
-            restarting[k] = restarting.get(k, 0) + v
-        backs.append((counts["time_steps_back"], 1))  # the piece's lines are the file's
         if len(quarantine):
             quarantines.append(quarantine)
         if len(points):
@@ -5525,8 +5674,10 @@ def stream_points(
     warnings += _time_warnings(res.columns["time"], time_info, zone)
     warnings += zone_note(sn, res.columns["time"], time_info, zone)
     warnings += _coarse_time_warnings(res.columns["time"], time_info)
+    # restarts and steps back judged over the whole file, each track's steps summed over
+    # the pieces (a track's few rows in one piece do not make it a file in no time order)
+    restarting, steps_back = edges["back"].judged()
     warnings += _restart_warnings(restarting, res.columns["batch"])
-    steps_back = merge_steps_back(backs)
     warnings += _back_warnings(steps_back, res.columns["time"], res.columns["batch"])
     warnings += position_warnings(
         sn, res, totals["lat_beyond_90_lon_within"], totals["rows_read"] + len(bad.lines)
