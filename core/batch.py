@@ -515,6 +515,7 @@ def _import_file(
     from wakeline.core.io.pieces import local_name, piece_safe, read_in_pieces
     from wakeline.core.io.reader import (
         StreamFallback,
+        ValueOptions,
         WholeFileNeeded,
         parse_zone,
         resolve_header,
@@ -575,11 +576,7 @@ def _import_file(
                         read["sensor"],
                         zone,
                         read["tz"],
-                        date_order=read["date_order"],
-                        time_unit=read["time_unit"],
-                        clock_date=read["clock_date"],
-                        speed_unit=read["speed_unit"],
-                        distance_unit=read["distance_unit"],
+                        **ValueOptions.of(read).keywords(),
                     )
                     q, warnings = res.quarantine, res.report.get("warnings", [])
                 except WholeFileNeeded:  # the repeated hour of a clock change

@@ -140,7 +140,7 @@ def stream_or_pieces(
     whole-file reader gives): the caller resets its sink and reads whole. ``read``: fmt,
     mapping, sensor, tz; ``pieces_progress`` (default ``progress``) for the reading in
     pieces."""
-    from wakeline.core.io.reader import StreamFallback, stream_points
+    from wakeline.core.io.reader import StreamFallback, ValueOptions, stream_points
 
     tz = read.get("tz")
     try:
@@ -154,11 +154,7 @@ def stream_or_pieces(
                     parse_zone(tz),
                     tz,
                     progress,
-                    date_order=read.get("date_order", "auto"),
-                    time_unit=read.get("time_unit", "auto"),
-                    clock_date=read.get("clock_date"),
-                    speed_unit=read.get("speed_unit", "auto"),
-                    distance_unit=read.get("distance_unit", "auto"),
+                    **ValueOptions.of(read).keywords(),
                 )
             except WholeFileNeeded:
                 raise

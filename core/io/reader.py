@@ -1168,6 +1168,34 @@ def check_time_unit(value: str) -> str:
     return value
 
 
+@dataclasses.dataclass(frozen=True)
+class ValueOptions:
+    """How a file's values read: the keywords :func:`read_points`, :func:`import_to_csv`,
+    :func:`stream_points` and the readings in pieces pass on alike (slashed dates' order,
+    what numeric times count, the day of clock times, speed and distance units)."""
+
+    date_order: str = "auto"
+    time_unit: str = "auto"
+    clock_date: str | None = None
+    speed_unit: str = "auto"
+    distance_unit: str = "auto"
+
+    @classmethod
+    def of(cls, read: dict) -> "ValueOptions":
+        """The options a ``read`` dict (a reading's keywords) holds; the defaults else."""
+        return cls(**{f.name: read[f.name] for f in dataclasses.fields(cls) if f.name in read})
+
+    def checked(self) -> "ValueOptions":
+        """Checked (InputError on a value not known), ``clock_date`` as ``YYYY-MM-DD``."""
+        check_date_order(self.date_order)
+        check_time_unit(self.time_unit)
+        check_units(self.speed_unit, self.distance_unit)
+        return dataclasses.replace(self, clock_date=check_clock_date(self.clock_date))
+
+    def keywords(self) -> dict:
+        return dataclasses.asdict(self)
+
+
 def excel_days_rule(values: np.ndarray, header: str, info: dict) -> bool:
     """Whether ``auto`` reads numeric times as Excel serial days. Only when the values
     (99 % of them: a damaged one does not hide the rest) lie in :data:`EXCEL_RANGE` and
@@ -3014,10 +3042,8 @@ def read_points(
     """
     progress = progress or null_progress
     path = Path(path)
-    check_date_order(date_order)
-    check_time_unit(time_unit)
-    check_units(speed_unit, distance_unit)
-    clock_date = check_clock_date(clock_date)
+    values = ValueOptions(date_order, time_unit, clock_date, speed_unit, distance_unit).checked()
+    clock_date = values.clock_date
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
     zone = parse_zone(tz)
@@ -5290,29 +5316,25 @@ def import_to_csv(
     if isinstance(mapping, list):
         mapping = parse_mapping(mapping)
     parse_zone(tz)  # a zone it does not know is refused before anything is read
-    check_date_order(date_order)
-    check_time_unit(time_unit)
-    check_units(speed_unit, distance_unit)
-    clock_date = check_clock_date(clock_date)
+    values = ValueOptions(date_order, time_unit, clock_date, speed_unit, distance_unit)
+    read = {
+        "fmt": fmt,
+        "mapping": mapping,
+        "sensor": sensor,
+        "tz": tz,
+        "origin": origin,
+        **values.checked().keywords(),
+    }
     sn = sniff(path, encoding, delimiter, skip_rows)
 
     def whole(target: Path) -> ImportResult:
         result = read_points(
             path,
-            fmt,
-            mapping,
-            encoding,
-            delimiter,
-            sensor,
-            progress,
-            tz,
+            encoding=encoding,
+            delimiter=delimiter,
+            progress=progress,
             skip_rows=skip_rows,
-            origin=origin,
-            date_order=date_order,
-            time_unit=time_unit,
-            clock_date=clock_date,
-            speed_unit=speed_unit,
-            distance_unit=distance_unit,
+            **read,
         )
         write_points(result.points, target)
         return ImportResult(result.points.iloc[:0], result.quarantine, result.report, result.layout)
@@ -5327,18 +5349,6 @@ def import_to_csv(
     try:
         with atomic_path(output) as tmp:
             parts = PointParts(scratch / "parts", tmp)
-            read = {
-                "fmt": fmt,
-                "mapping": mapping,
-                "sensor": sensor,
-                "tz": tz,
-                "origin": origin,
-                "date_order": date_order,
-                "time_unit": time_unit,
-                "clock_date": clock_date,
-                "speed_unit": speed_unit,
-                "distance_unit": distance_unit,
-            }
             try:
                 result = stream_or_pieces(
                     sn, res, read, parts, parts.reset, scratch / "pieces", progress
@@ -5429,10 +5439,8 @@ def stream_points(
     from wakeline.core.io.tables import header_line
 
     progress = progress or null_progress
-    check_date_order(date_order)
-    check_time_unit(time_unit)
-    check_units(speed_unit, distance_unit)
-    clock_date = check_clock_date(clock_date)
+    values = ValueOptions(date_order, time_unit, clock_date, speed_unit, distance_unit).checked()
+    clock_date = values.clock_date
     res = dataclasses.replace(res, speed_unit=speed_unit, distance_unit=distance_unit)
     bad = _BadRows()  # every refused or blank line of the file, numbered in the file
     types = _column_types(sn, res, careful=False)
