@@ -578,9 +578,16 @@ class ReviewState:
         """``points`` with a ``target`` column as the decisions make it."""
         tt = self.targets()
         codes, labels = _point_label_codes(points)
-        target = tt.set_index("track")["target"].reindex(labels).to_numpy()
+        per_track = tt.set_index("track")["target"].reindex(labels)
+        target = per_track.to_numpy()
         out = points.copy(deep=False)  # copy on write: the new column only
-        out["target"] = target[codes] if len(codes) else target[:0]
+        if len(codes) and pd.Series(target).dtype == per_track.dtype:
+            # The tracks' column taken per point: what the per-point values would become
+            # (their type inferred from the tracks' values: the same values), without a
+            # million Python strings converted with the GIL held (~60 ms at 1 M points).
+            out["target"] = per_track.array.take(codes)
+        else:
+            out["target"] = target[codes] if len(codes) else target[:0]
         return out
 
     def rejected_pairs(self) -> set[tuple[str, str]]:

@@ -186,6 +186,27 @@ def test_targets_follow_decisions(state):
         st.apply(stale)
 
 
+def test_label_points_takes_the_tracks_targets_per_point(scene, state):
+    """label_points takes each track's target per point (an Arrow take, the GIL free)
+    instead of turning a Python string per point; the column is what the per-point
+    values gave: same values, same type, NaN for a track the queue does not know."""
+    seg, _ = scene
+    st = state
+    st.apply(R.reject(st, st.proposals["proposal"][0]))
+    extra = seg[seg["batch"] == seg["batch"].iloc[0]].assign(batch="not-in-the-queue")
+    rng = np.random.default_rng(5)
+    for points in (seg, pd.concat([seg, extra], ignore_index=True)):
+        points = points.iloc[rng.permutation(len(points))].reset_index(drop=True)
+        got = st.label_points(points)
+        tt = st.targets().set_index("track")["target"]
+        per_point = tt.reindex(R.point_labels(points)).to_numpy()  # a string per point
+        want = points.copy()
+        want["target"] = per_point
+        pd.testing.assert_frame_equal(got, want)
+        assert got["target"].isna().sum() == (len(points) - len(seg))
+    assert st.label_points(seg.iloc[:0])["target"].size == 0
+
+
 def test_an_accepts_log_row_says_the_status_it_moved(state):
     """Operator test 8, D9: a pending proposal counts as joined already, so an accept's
     targets before and after are the same; the row says the status change (pending →
