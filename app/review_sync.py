@@ -10,8 +10,10 @@ and Run ▸ Fuse selected layers.
   (:func:`wakeline.core.review_session.decided_points`) and swaps them in.
 """
 
+import weakref
 from pathlib import Path
 
+import numpy as np
 from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.worker import Cancelled, Failed, Finished, JobRunner
@@ -21,6 +23,8 @@ from wakeline.core.review_store import decision_row
 from wakeline.core.words import joined_names
 
 TR_CONTEXT = "ReviewSync"
+#: A job's result when the decisions leave the layer's points as they are.
+UNCHANGED = "unchanged"
 
 
 def tr(text: str) -> str:
@@ -66,6 +70,12 @@ class ReviewSync(QtCore.QObject):
         self.timer.timeout.connect(self._run)
         self._todo = None
         self._job: int | None = None  # until its result is applied (or it failed)
+        #: queue key -> (the layer's points (weak), the targets per track they show): a decision
+        #: that leaves the targets as they are (an accept of a pending proposal: pending
+        #: counts as joined; its undo) recomputes nothing
+        self._shown: dict[str, tuple] = {}
+        #: jobs run and jobs skipped (the targets unchanged), for tests and benches
+        self.counts = {"prepared": 0, "unchanged": 0}
 
     @property
     def busy(self) -> bool:
@@ -84,19 +94,33 @@ class ReviewSync(QtCore.QObject):
         from wakeline.app.layer_view import prepare_view
 
         snap = snapshot(bound.controller.state)
-        canvas_view, size_px = self.w.canvas.current_view(), self.w.canvas.plot_size_px()
+        targets = snap.target_of_track()
         key, points, cache = bound.key, bound.points, bound.cache
+        shown = self._shown.get(key)
+        relabels = layer.step != "fuse" and layer.role != "stitched"  # targets alone decide
+        if relabels and shown is not None and shown[0]() is layer.points:
+            if np.array_equal(shown[1], targets):
+                # The points would be the layer's own again: no job, no swap.
+                self.counts["unchanged"] += 1
+                layer.meta["review_decisions"] = len(snap.log)
+                return
+        canvas_view, size_px = self.w.canvas.current_view(), self.w.canvas.plot_size_px()
         previous = self.w.views.get(bound.lid)  # its tracks' summaries are kept
+        now = layer.points
+        n_decisions = len(snap.log)
 
         def job(progress):
             progress(0.0, "applying the decisions to the layer")
             pts = decided_points(layer, snap, points, cache)
             if pts is None:
-                return key, None, 0
+                return key, None, 0, None
+            same = relabels and list(pts.columns) == list(now.columns)
+            if same and pts["target"].equals(now["target"]):
+                return key, UNCHANGED, n_decisions, (now, targets)  # same points, same view
             view = prepare_view(
                 pts, layer.kind, layer.color, layer.name, canvas_view, size_px, previous=previous
             )
-            return key, view, len(snap.log)
+            return key, view, n_decisions, (view.points, targets) if relabels else None
 
         self._job = self.runner.run("review", job)
 
@@ -127,11 +151,20 @@ class ReviewSync(QtCore.QObject):
             self.w.log_message(f"{tr('Error')} (review): {msg.message}")
         if not isinstance(msg, Finished):
             return
-        key, view, n_decisions = msg.result
+        key, view, n_decisions, shown = msg.result
         lid = key.split("@", 1)[0]
         layer = self.w.session.layers.get(lid)
         if view is None or layer is None or queue_key(layer) != key:
             return
+        if view is UNCHANGED:
+            if shown is not None and layer.points is shown[0]:
+                self.counts["unchanged"] += 1
+                layer.meta["review_decisions"] = n_decisions
+                self._shown[key] = (weakref.ref(shown[0]), shown[1])
+                return
+            self.schedule(self.dock.queues.get(key))  # the layer changed meanwhile
+            return
+        self.counts["prepared"] += 1
         layer.meta["review_decisions"] = n_decisions  # the points show this many
         # The swap goes over several turns (the layer, its level of detail, the time
         # index, the proposal drawn again): the map paints once at its end, not at each.
@@ -143,6 +176,8 @@ class ReviewSync(QtCore.QObject):
             self.w.session.replace_points(lid, view.points)
         finally:
             self.w._pending_views = {}
+        if shown is not None and layer.points is shown[0]:
+            self._shown[key] = (weakref.ref(shown[0]), shown[1])
 
     # -- export ---------------------------------------------------------------------
 
