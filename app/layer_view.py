@@ -230,8 +230,18 @@ def prepare_view(
         kind=kind,
         lon_west=west,
     )
-    text = display_text(summary)
-    extra = {"table_index": table_index(summary.reset_index(drop=True), text)}
+    if previous is not None and previous.text:  # a decision: the unchanged columns kept
+        text = display_text(summary, previous=(previous.summary, previous.text))
+    else:
+        text = display_text(summary)
+    old_index = previous.extra.get("table_index") if previous is not None else None
+    if old_index is not None:  # its rows of the tracks kept when the tracks are
+        index = table_index(
+            summary.reset_index(drop=True), text, previous=(previous.text, old_index)
+        )
+    else:
+        index = table_index(summary.reset_index(drop=True), text)
+    extra = {"table_index": index}
     return LayerView(pts, summary, ranges, marks, with_paths(draw), text, extra)
 
 

@@ -119,9 +119,9 @@ def test_a_decision_swapped_in_costs_the_gui_thread_no_pass_over_the_tracks(
     made_on = []
     real = models.table_index
 
-    def spy(df, text):
+    def spy(df, text, **kwargs):
         made_on.append(threading.current_thread() is threading.main_thread())
-        return real(df, text)
+        return real(df, text, **kwargs)
 
     monkeypatch.setattr(models, "table_index", spy)
     monkeypatch.setattr("wakeline.app.layer_view.table_index", spy)
@@ -150,3 +150,41 @@ def test_detection_limit_describes_the_active_fused_layer(qtbot, tmp_path):
     # the window's log says whose times the fused track took, as the command line does
     # (h168 D-fuse-1)
     assert "; fused on " in w.log.toPlainText() and "time_base weight" in w.log.toPlainText()
+
+
+def test_a_decisions_table_text_keeps_the_columns_it_did_not_change():
+    """A review decision relabels targets: the display text of the summary columns that
+    stayed equal is the earlier view's (the same arrays, not formatted again), the row of
+    each track too; every column is what formatting it afresh gives."""
+    import numpy as np
+    import pandas as pd
+
+    from wakeline.app import models
+    from wakeline.core.simulate import segments_scene
+
+    pts = segments_scene(seed=2, n_ships=8, area_km=15)
+    old = models.batch_summary(pts.assign(target=pts["batch"].astype(str)))
+    old_text = models.display_text(old)
+    old_index = models.table_index(old, old_text)
+    first = str(old["batch"].iloc[0])
+    new = models.batch_summary(pts.assign(target=first))  # every track joined to one
+    text = models.display_text(new, previous=(old, old_text))
+    fresh = models.display_text(new)
+    assert set(text) == set(fresh)
+    for key in fresh:
+        np.testing.assert_array_equal(text[key], fresh[key])
+    kept = {k for k in text if text[k] is old_text[k]}
+    assert kept == set(models.KEPT_TEXT)  # target, status and the dates made again
+    index = models.table_index(new, text, previous=(old_text, old_index))
+    assert index.keys is old_index.keys and index.keys == models.table_index(new, fresh).keys
+    # a column that changed is formatted again; other tracks: the index made again
+    longer = new.assign(points=new["points"] + 1)
+    text = models.display_text(longer, previous=(old, old_text))
+    assert text["points"] is not old_text["points"]
+    np.testing.assert_array_equal(text["points"], models.display_text(longer)["points"])
+    fewer = new.iloc[1:].reset_index(drop=True)
+    text = models.display_text(fewer, previous=(old, old_text))
+    assert not any(text[k] is old_text[k] for k in text)
+    index = models.table_index(fewer, text, previous=(old_text, old_index))
+    assert index.keys == models.table_index(fewer, models.display_text(fewer)).keys
+    assert pd.Series(text["target"]).eq(first).all()
