@@ -8,12 +8,27 @@ batch table's index made on the GUI thread ("before": ``models.TABLE_INDEX_IN_WO
 False``) and made in the worker with the layer's view ("after"), alternating in one run.
 
     WAKELINE_SHARED=/work/shared QT_QPA_PLATFORM=offscreen python bench/bench_review_keys.py [keys]
+
+``--million``: the ATD example over 10 days with a track per ship and day
+(``bench/gui_block_probe.py``'s ``atd_example_x10_by_day.csv``, 1,102,900 points,
+Associate with ``mmsi_apart`` off: 1,699 proposals) instead of dataset1. Each key's wall
+time (trigger to idle) is printed beside its GUI CPU, and the load average.
+
+``--gil``: after the keys, the decision's worker job (:func:`decided_points` and
+:func:`prepare_view`, as ``ReviewSync`` runs it) run ``--gil`` times in a thread while
+the main thread ticks every millisecond: each tick later than 15 ms is a stretch in which
+the job kept the GIL (on an idle machine: no core to wait for), attributed to the job's
+innermost frames of ours at that moment; the longest stretches and the total by line.
 """
 
+import argparse
+import collections
 import os
 import statistics
 import sys
+import threading
 import time
+import traceback
 from pathlib import Path
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
@@ -22,11 +37,67 @@ from PySide6 import QtCore, QtWidgets  # noqa: E402
 
 from wakeline.app import models  # noqa: E402
 
+ROOT = str(Path(models.__file__).resolve().parents[1])  # the package's files
+QUIET_S = 0.4  # settle()'s idle wait before it returns
+
+
+def gil_holds(job, runs: int, late_ms: float = 15.0) -> None:
+    """Run ``job()`` ``runs`` times in a thread; the main thread sleeps 1 ms at a time
+    and records each wake-up later than ``late_ms`` with the job thread's stack then."""
+    holds: list[tuple[float, str]] = []
+    for _ in range(runs):
+        done = threading.Event()
+        t = threading.Thread(target=lambda d=done: (job(), d.set()), name="decision-job")
+        t.start()
+        wall = time.perf_counter()
+        while not done.is_set():
+            t0 = time.perf_counter()
+            time.sleep(0.001)
+            gap = (time.perf_counter() - t0) * 1000
+            if gap > late_ms:
+                frame = sys._current_frames().get(t.ident)
+                stack = traceback.extract_stack(frame) if frame is not None else []
+                ours = [
+                    f for f in stack if f.filename.startswith(ROOT) and ".venv" not in f.filename
+                ]
+                ours = ours or stack
+                where = " <- ".join(
+                    f"{Path(f.filename).stem}:{f.lineno}:{f.name}" for f in reversed(ours[-3:])
+                )
+                inner = stack[-1] if stack else None
+                if inner is not None and inner not in ours:
+                    where = f"[{Path(inner.filename).stem}:{inner.lineno}:{inner.name}] " + where
+                holds.append((gap, where))
+        t.join()
+        print(f"decision job {1000 * (time.perf_counter() - wall):.0f} ms wall")
+    by_line: collections.Counter = collections.Counter()
+    for gap, where in holds:
+        by_line[where] += gap
+    print(f"GIL held over {late_ms:.0f} ms: {len(holds)} stretches in {runs} runs, "
+          f"longest {max((g for g, _ in holds), default=0):.0f} ms; total ms by place:")  # fmt: skip
+    for where, ms in by_line.most_common(15):
+        longest = max(g for g, w in holds if w == where)
+        print(f"  {ms / runs:6.0f} ms/run (longest {longest:4.0f})  {where[:300]}")
+
 
 def main() -> None:
-    keys = int(sys.argv[1]) if len(sys.argv) > 1 else 20
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("keys", nargs="?", type=int, default=20)
+    ap.add_argument("--million", action="store_true", help="the 1.1 M-point by-day file")
+    ap.add_argument("--gil", type=int, default=0, help="runs of the decision job, GIL holds")
+    ap.add_argument("--profile", action="store_true", help="the decision job under cProfile")
+    ap.add_argument(
+        "--reject", action="store_true", help="--gil/--profile: a reject, not an accept"
+    )
+    args = ap.parse_args()
+    keys = args.keys
     shared = Path(os.environ.get("WAKELINE_SHARED", "/work/shared"))
     path = shared / "data/real/atd2025-noaa/dataset1_truth.csv.gz"
+    if args.million:
+        sys.path.insert(0, str(Path(__file__).parent))
+        from gui_block_probe import atd_million
+
+        path = atd_million(by_day=True)
     _app = QtWidgets.QApplication.instance() or QtWidgets.QApplication([])
     from wakeline.app.main import freeze_startup_objects
     from wakeline.app.main_window import MainWindow
@@ -39,7 +110,7 @@ def main() -> None:
     w.show()
     freeze_startup_objects()
 
-    def settle(quiet_s: float = 0.4) -> None:
+    def settle(quiet_s: float = QUIET_S) -> None:
         """Run the event loop (idle: no CPU) until the window has been idle quiet_s."""
         loop, timer, since = QtCore.QEventLoop(), QtCore.QTimer(), [None]
         timer.setInterval(100)
@@ -57,15 +128,20 @@ def main() -> None:
         loop.exec()
         timer.stop()
 
+    walls: list[float] = []
+
     def cpu_ms(fn) -> float:
-        t = time.thread_time()
+        t, t_wall = time.thread_time(), time.perf_counter()
         fn()
         settle()
+        walls.append(1000 * (time.perf_counter() - t_wall) - 1000 * QUIET_S)
         return 1000 * (time.thread_time() - t)
 
     w.load_files([path])
     settle()
     src = w.active
+    if args.million:
+        w.params.root.child("associate", "mmsi_apart").setValue(False)
     w.run_step("associate")
     settle()
     layer = next(lay for lay in w.session.layers.values() if lay.step == "associate")
@@ -76,11 +152,13 @@ def main() -> None:
           f"{len(bound.controller.state.proposals)} proposals")  # fmt: skip
     for act in (bound.panel.act_accept, bound.panel.act_reject):  # warm-up, not counted
         cpu_ms(act.trigger)
+    walls.clear()
     times = {False: [], True: []}
     for i in range(2 * keys):
         models.TABLE_INDEX_IN_WORKER = worker = i % 2 == 1
         act = bound.panel.act_accept if i % 4 < 2 else bound.panel.act_reject
         times[worker].append(cpu_ms(act.trigger))
+    key_walls = list(walls)
     select = {False: [], True: []}
     for i in range(6):
         models.TABLE_INDEX_IN_WORKER = worker = i % 2 == 1
@@ -90,7 +168,33 @@ def main() -> None:
         t, s = times[worker], select[worker]
         print(f"{name}: key CPU ms median {statistics.median(t):.1f} max {max(t):.1f} "
               f"over {len(t)}; select source median {statistics.median(s):.1f} over {len(s)}")  # fmt: skip
+    print(f"key wall ms (trigger to idle, the {QUIET_S * 1000:.0f} ms quiet wait taken off) median "
+          f"{statistics.median(key_walls):.0f} max {max(key_walls):.0f} over {len(key_walls)}")  # fmt: skip
     print("load average", " ".join(open("/proc/loadavg").read().split()[:3]))
+    if args.gil or args.profile:
+        from wakeline.app.layer_view import prepare_view
+        from wakeline.core.review_session import decided_points, snapshot
+
+        act = bound.panel.act_reject if args.reject else bound.panel.act_accept
+        act.trigger()  # a decision the layer does not show yet
+        snap = snapshot(bound.controller.state)
+        lay = w.session.layers[bound.lid]
+        view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()
+        previous = w.views.get(bound.lid)
+
+        def job():
+            pts = decided_points(lay, snap, bound.points, bound.cache)
+            prepare_view(pts, lay.kind, lay.color, lay.name, view, size_px, previous=previous)
+
+        settle()
+        gil_holds(job, args.gil)
+        if args.profile:
+            import cProfile
+            import pstats
+
+            prof = cProfile.Profile()
+            prof.runcall(job)
+            pstats.Stats(prof).sort_stats("cumulative").print_stats(45)
     w.close()
 
 

@@ -348,7 +348,12 @@ def wait_written(window: MainWindow) -> None:
 
 
 def one_run(
-    path: Path, why: bool, spy: bool = False, review: Path | None = None, events: bool = False
+    path: Path,
+    why: bool,
+    spy: bool = False,
+    review: Path | None = None,
+    events: bool = False,
+    review_only: bool = False,
 ) -> dict:
     kind = TimedApp if events else QtWidgets.QApplication
     _app = QtWidgets.QApplication.instance() or kind(sys.argv[:1])
@@ -389,6 +394,11 @@ def one_run(
             lambda: spin.append(busy_thread(3.0)),
             lambda: (settle(3000), spin[0].join()),
         )
+        if review_only:
+            review_actions(window, review, Path(tmp), measure)
+            probe.stop.set()
+            window.close()
+            return out
         measure("load", lambda: window.load_files([path]), lambda: wait_window(window))
         src = window.layer_id(path.name)
         window.select_layer(src)
@@ -475,6 +485,17 @@ def more_actions(window: MainWindow, src: str, review: Path, tmp: Path, measure)
         lambda: window.save_project(tmp / "p.wakeline"),
         lambda: wait_written(window),
     )
+    review_actions(window, review, tmp, measure)
+
+
+def review_actions(window: MainWindow, review: Path, tmp: Path, measure) -> None:
+    """``review`` loaded, Associate run, its queue decided by keys (A, R, Ctrl+Z) and the
+    project saved with the decisions (alone with ``--review-only``)."""
+    from PySide6.QtTest import QTest
+
+    def wait() -> None:
+        wait_window(window)
+
     measure("load review file", lambda: window.load_files([review]), wait)
     rsrc = window.layer_id(review.name)
     window.select_layer(rsrc)
@@ -531,6 +552,11 @@ def main() -> int:
     ap.add_argument(
         "--events", action="store_true", help="the events over 4 ms within each longest gap"
     )
+    ap.add_argument(
+        "--review-only",
+        action="store_true",
+        help="only the by-day file, Associate and the review keys (no other file loaded)",
+    )
     ap.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--monitor", nargs=3, help=argparse.SUPPRESS)
     args = ap.parse_args()
@@ -546,7 +572,7 @@ def main() -> int:
     if args.one or args.runs == 1:
         print(f"{args.file} ({os.path.getsize(args.file) / 1e6:.0f} MB); probe {PERIOD_MS} ms")
         review = None if args.short else atd_million(by_day=True)
-        one_run(args.file, args.why, args.spy, review, args.events)
+        one_run(args.file, args.why, args.spy, review, args.events, args.review_only)
         return 0
     flags = [
         f
@@ -555,6 +581,7 @@ def main() -> int:
             ("--spy", args.spy),
             ("--short", args.short),
             ("--events", args.events),
+            ("--review-only", args.review_only),
         )
         if on
     ]
