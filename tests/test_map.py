@@ -252,6 +252,36 @@ def test_gaps_always_break_past_3_h_and_at_impossible_jumps_but_not_in_compresse
     assert np.isnan(halo.lon).sum() == 2
 
 
+def test_jump_breaks_measure_only_the_legs_their_bound_lets_pass():
+    """gap_breaks measures (haversine) only the legs whose bound R·(|Δlat| + |Δlon|)
+    passes both limits; the breaks are those of every leg measured: legs around the
+    limits, across 180° (unwrapped and not), NaN positions and times, repeated times."""
+    from wakeline.app import map_lod
+
+    rng = np.random.default_rng(11)
+    n = 20_000
+    t = np.cumsum(rng.choice([0.0, 1.0, 10.0, 60.0, 600.0, 4000.0], n))
+    t[rng.integers(0, n, 30)] = np.nan
+    km = rng.choice([0.0, 0.3, 0.99, 1.0, 1.01, 3.0, 50.0, 500.0], n) / 111.2
+    lat = np.clip(np.cumsum(km * rng.normal(size=n)), -80, 80)
+    lon = 179.5 + np.cumsum(km * rng.normal(size=n) * 3)
+    lon[rng.integers(0, n, 500)] -= 360.0  # across 180° as read, not unwrapped
+    lat[rng.integers(0, n, 20)] = np.nan
+    starts = np.r_[0, np.sort(rng.choice(np.arange(1, n), 300, replace=False))]
+    ends = np.r_[starts[1:], n]
+    got = map_lod.gap_breaks(t, starts, ends, lon, lat)
+    # every leg measured, as before
+    want = map_lod.gap_breaks(t, starts, ends)
+    step = np.r_[np.nan, np.diff(t)]
+    step[starts] = np.nan
+    dist = np.r_[0.0, geo.haversine_m(lon[:-1], lat[:-1], lon[1:], lat[1:])]
+    with np.errstate(invalid="ignore"):
+        fast = (dist > map_lod.JUMP_MIN_M) & (dist > map_lod.JUMP_KN * geo.KN_MS * step)
+    want |= fast & np.isfinite(step)
+    np.testing.assert_array_equal(got, want)
+    assert fast.sum() > 100 and (got & ~map_lod.gap_breaks(t, starts, ends)).any()
+
+
 def test_relod_when_zooming_in(qtbot):
     df = star_scene(n_tracks=6, n_points=300)
     coarse = prepare_layer(
