@@ -80,12 +80,42 @@ def gil_holds(job, runs: int, late_ms: float = 15.0) -> None:
         print(f"  {ms / runs:6.0f} ms/run (longest {longest:4.0f})  {where[:300]}")
 
 
+def watch_jobs(jobs: list) -> None:
+    """Record every worker job (the window's job runners' threads and the map's
+    level-of-detail pool): its function's name, CPU and wall ms."""
+    from wakeline.app import lod_worker, worker
+
+    def timed(name: str, fn):
+        t, c = time.perf_counter(), time.thread_time()
+        try:
+            return fn()
+        finally:
+            jobs.append((name, 1000 * (time.thread_time() - c), 1000 * (time.perf_counter() - t)))
+
+    task_run = lod_worker._Task.run
+
+    def run_task(self) -> None:
+        name = getattr(self.job, "__qualname__", "lod")
+        timed(f"pool:{name}", lambda: task_run(self))
+
+    thread_run = worker._Thread.run
+
+    def run_thread(self) -> None:
+        timed(f"{self.name}:{getattr(self.fn, '__qualname__', '?')}", lambda: thread_run(self))
+
+    lod_worker._Task.run = run_task
+    worker._Thread.run = run_thread
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("keys", nargs="?", type=int, default=20)
     ap.add_argument("--million", action="store_true", help="the 1.1 M-point by-day file")
     ap.add_argument("--gil", type=int, default=0, help="runs of the decision job, GIL holds")
     ap.add_argument("--profile", action="store_true", help="the decision job under cProfile")
+    ap.add_argument(
+        "--jobs", action="store_true", help="the worker jobs each key sets off, CPU ms each"
+    )
     ap.add_argument(
         "--reject", action="store_true", help="--gil/--profile: a reject, not an accept"
     )
@@ -137,6 +167,9 @@ def main() -> None:
         walls.append(1000 * (time.perf_counter() - t_wall) - 1000 * QUIET_S)
         return 1000 * (time.thread_time() - t)
 
+    jobs: list[tuple[str, float, float]] = []  # (job, CPU ms, wall ms) in worker threads
+    if args.jobs:
+        watch_jobs(jobs)
     w.load_files([path])
     settle()
     src = w.active
@@ -157,7 +190,14 @@ def main() -> None:
     for i in range(2 * keys):
         models.TABLE_INDEX_IN_WORKER = worker = i % 2 == 1
         act = bound.panel.act_accept if i % 4 < 2 else bound.panel.act_reject
+        jobs.clear()
         times[worker].append(cpu_ms(act.trigger))
+        if args.jobs:
+            kind = "A" if i % 4 < 2 else "R"
+            total = sum(c for _, c, _ in jobs)
+            print(f"key {kind}: GUI CPU {times[worker][-1]:.0f} ms, wall {walls[-1]:.0f} ms; "
+                  f"workers' CPU {total:.0f} ms: " + ", ".join(
+                      f"{name} {c:.0f}" for name, c, _ in sorted(jobs, key=lambda j: -j[1])[:8]))  # fmt: skip
     key_walls = list(walls)
     select = {False: [], True: []}
     for i in range(6):
