@@ -98,7 +98,8 @@ class ReviewSync(QtCore.QObject):
         key, points, cache = bound.key, bound.points, bound.cache
         shown = self._shown.get(key)
         relabels = layer.step != "fuse" and layer.role != "stitched"  # targets alone decide
-        if relabels and shown is not None and shown[0]() is layer.points:
+        idle = self._job is None  # no earlier decision's points on their way
+        if relabels and idle and shown is not None and shown[0]() is layer.points:
             if np.array_equal(shown[1], targets):
                 # The points would be the layer's own again: no job, no swap.
                 self.counts["unchanged"] += 1
