@@ -650,6 +650,7 @@ class ReviewDock(QtCore.QObject):
 
     def _drop(self, key: str) -> None:
         bound = self.queues.pop(key)
+        self.sync.forget(key)
         self.group.removeStack(bound.controller.stack)
         self.stack.removeWidget(bound.widget)
         bound.widget.deleteLater()

@@ -81,6 +81,10 @@ class ReviewSync(QtCore.QObject):
     def busy(self) -> bool:
         return self.timer.isActive() or self._job is not None or self._todo is not None
 
+    def forget(self, key: str) -> None:
+        """A queue dropped: the targets its layer showed are no longer kept."""
+        self._shown.pop(key, None)
+
     def schedule(self, bound) -> None:
         """Recompute ``bound``'s layer once no decision came for 300 ms."""
         self._todo = bound
