@@ -145,6 +145,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         lay.addWidget(self.bearing_batch)
         lay.addWidget(self.bearing_plots)
         self.addTab(self.bearing_box, "Bearing")
+        self.setTabVisible(2, False)  # shown with a bearing layer (show_bearings)
         self._bearings = pd.DataFrame()
         self._detections = pd.DataFrame()
         self._bparams = BearingParams()
@@ -163,7 +164,9 @@ class DetailPanel(QtWidgets.QTabWidget):
         # 7, D16)
         self.setTabText(1, self.tr("Compression"))
         self.setTabToolTip(1, self.tr("Compressed over original"))
-        self.setTabText(2, self.tr("Bearing-only"))
+        # not "Bearing-only": the dock beside this one has that name (h225 item 16)
+        self.setTabText(2, self.tr("Bearing over time"))
+        self.setTabToolTip(2, self.tr("The bearing sequence and the detector's z statistic"))
         minutes = self.tr("min")
         self.factor_plot.setLabel("bottom", self.tr("time since track start"), units=minutes)
         self.factor_plot.setLabel("left", self.tr("maneuver factor δ"), units="°")
@@ -209,6 +212,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.bearing_batch.addItems(sorted(bearings["batch"].astype(str).unique()))
         self.bearing_batch.blockSignals(False)
         self._draw_bearing(self.bearing_batch.currentText())
+        self.setTabVisible(2, True)
         self.setCurrentWidget(self.bearing_box)
 
     def clear_bearings(self) -> None:
@@ -221,6 +225,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         for curve in (self.b_curve, self.z_curve):
             curve.setData([], [])
         self._set_title("bearing", self.b_plot, str)
+        self.setTabVisible(2, False)
 
     def _draw_bearing(self, batch: str) -> None:
         for line in self.detect_lines:
@@ -265,16 +270,26 @@ class DetailPanel(QtWidgets.QTabWidget):
         self.factor_plot.enableAutoRange(axis="x")
         self.comp_orig.setData([], [])
         self.comp_kept.setData([], [])
-        # No track: say so, not empty axes with no text (operator test h150).
+        # No track: say so, not empty axes (operator test h150; h225 item 7: the empty
+        # -0.4…0.4 axes are gone too, and the hint is on two short lines, not cut).
         self._set_title(
             "factor",
             self.factor_plot,
-            lambda: self.tr("No track selected: click one on the map or in the table"),
+            lambda: self.tr("No track selected.<br>Click one on the map or in the table."),
             REASON_PT,
         )
         self._set_title(
             "compression", self.comp_plot, lambda: self.tr("No track selected"), REASON_PT
         )
+        self._show_axes(False)
+
+    def _show_axes(self, on: bool) -> None:
+        """The δ and compression plots' axes and threshold line, shown only with a track."""
+        for plot in (self.factor_plot, self.comp_plot):
+            item = plot.getPlotItem()
+            for side in ("left", "bottom"):
+                item.showAxis(side, on)
+        self.threshold.setVisible(on)
 
     def show_track(
         self,
@@ -291,6 +306,7 @@ class DetailPanel(QtWidgets.QTabWidget):
         in (-180 or 0; None: the track's own, :func:`wakeline.core.geo.lon_band_west`);
         ``fused``: the track is a fused target's (its reason for no δ says so)."""
         self.clear()
+        self._show_axes(True)
         if "maneuver_factor" in track.columns and len(track):
             t = time_seconds(track["time"])
             minutes = (t - t[0]) / 60.0

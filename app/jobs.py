@@ -490,6 +490,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             self.progress.setValue(0)
             self.progress.show()
             self.cancel_button.show()
+            self.actions_["cancel"].setEnabled(True)  # off while nothing runs (h225 item 14)
             self.statusBar().showMessage(self.tr("Running {0}…").format(self.job_title(msg.name)))
             return
         if isinstance(msg, Progress):
@@ -503,6 +504,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         if not (self._job_context or self._export_context):
             self.progress.hide()
             self.cancel_button.hide()
+            self.actions_["cancel"].setEnabled(False)
         if export:  # the next export in the queue starts once this one ended
             QtCore.QTimer.singleShot(0, self, self._next_export)  # not once it is deleted
         # A replaced job may end otherwise than cancelled (done before it looked): its

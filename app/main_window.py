@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app import about, cjk_font, i18n
 from wakeline.app.actions import build_actions, retranslate
@@ -38,7 +38,7 @@ from wakeline.app.params_panel import ParamsPanel
 from wakeline.app.project_controller import ProjectController
 from wakeline.app.review_dock import ReviewDock
 from wakeline.app.stats_panel import StatsPanel, points_text, tracks_text
-from wakeline.app.time_panel import install_time
+from wakeline.app.time_panel import dark_palette, install_time, palette_icon
 from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
@@ -47,8 +47,19 @@ from wakeline.core import geo
 from wakeline.core.session import BEARING_KIND, Session
 from wakeline.resources import coastline_path
 
-#: Rows of the batch table always in sight (its least height).
-BATCH_MIN_ROWS = 5
+#: Rows of the batch table always in sight (its least height): 5 made the right column
+#: 705 px tall at least, more than a 150 % or 200 % laptop screen has (operator look h225).
+BATCH_MIN_ROWS = 3
+#: A screen whose free height (``availableGeometry``, logical px) is below this gets the
+#: compact layout at start: Layers tabbed with Parameters, the batch table with Detail
+#: (1366x768, 1280x720 at 150 %, 1920x1080 at 200 %); 1440x900 and up keep every dock apart.
+COMPACT_SCREEN_HEIGHT = 800
+#: The compact layout's left and right columns, shares of the window's width at start.
+COMPACT_LEFT_SHARE, COMPACT_RIGHT_SHARE = 0.19, 0.245
+#: ... and the bottom docks' share of its height.
+COMPACT_BOTTOM_SHARE = 0.15
+#: The batch table's columns sized to their texts (Sensor … End), from this many rows.
+BATCH_FIT_COLUMNS, BATCH_FIT_ROWS = 5, 50
 #: Between two recomputations of the Statistics figures while the time window moves (ms).
 STATS_WINDOW_MS = 300
 
@@ -64,9 +75,40 @@ def format_dms(value: float, positive: str, negative: str) -> str:
 
 
 #: The least width (px) of the map (with its legend column) in the main window: with
-#: the Parameters dock (291 px) and the Bearing-only dock (380 px, tabbed with Detail)
-#: beside it, the window stays under 1,280 px wide (h179).
-MAP_MIN_WIDTH_PX = 480
+#: the Parameters dock and the right column beside it, the window stays under 960 px
+#: wide (1920x1080 at 200 %); 480 held it at 1,097 px at least (operator look h225). The
+#: docks are given their widths at start (resizeDocks), so the map is wider than this on
+#: any screen that has the room.
+MAP_MIN_WIDTH_PX = 320
+#: Hover text in the status bar stays this long (ms), in its own label: the counts stay.
+HOVER_MS = 4000
+
+
+def scrolled(widget: QtWidgets.QWidget) -> QtWidgets.QScrollArea:
+    """``widget`` in a frameless scroll area that resizes it: a dock holding it asks the
+    window for no more than a scroll area's least size, and a screen too small for the
+    widget's own least size scrolls it instead of growing the window off the screen."""
+    area = QtWidgets.QScrollArea()
+    area.setWidgetResizable(True)
+    area.setFrameShape(QtWidgets.QFrame.Shape.NoFrame)
+    area.setWidget(widget)
+    return area
+
+
+def hide_stray_tab_bars(window: QtWidgets.QMainWindow) -> int:
+    """Hide the dock tab bars Qt left behind: tabifying a second group of docks makes a
+    second bar for the first group that the layout never uses again; it stayed drawn
+    where the layout first put it (an empty two-tab box between the time panel and the
+    log, operator look h225 item 16). Such a bar is never given its docks' titles: it is
+    the one whose tabs are all untitled. Returns how many were hidden."""
+    hidden = 0
+    for bar in window.findChildren(QtWidgets.QTabBar):
+        if bar.parentWidget() is not window or not bar.isVisibleTo(window) or not bar.count():
+            continue
+        if not any(bar.tabText(i) for i in range(bar.count())):
+            bar.hide()
+            hidden += 1
+    return hidden
 
 
 def points_inside(points: pd.DataFrame, window: tuple[float, float]) -> int:
@@ -154,7 +196,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             pass
         self.canvas.cursorMoved.connect(self._show_cursor)
         self.canvas.trackClicked.connect(self._track_clicked)
-        self.canvas.pointHovered.connect(self._show_hover)
+        self.canvas.pointHovered.connect(self.show_hover)
         self.time_controller = install_time(self)  # slider under the map: self.time_panel
         # The map's view, written to the session (and the project) once it settles.
         self.view_keeper = MapViewKeeper(self.canvas, self.session, self)
@@ -186,6 +228,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         header.setResizeContentsPrecision(50)  # size columns from 50 rows, not all
         self.batch_view.selectionModel().selectionChanged.connect(self._table_selection_changed)
         self.batch_model.modelReset.connect(self._reselect)  # after the view dropped it
+        self.batch_model.modelReset.connect(self.fit_batch_columns)
         # At least BATCH_MIN_ROWS rows under the header: beside the Review dock at
         # 1400x900 the table was one row of 15 (operator test h150); the Detail dock
         # beside it gives way instead.
@@ -233,15 +276,34 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.cancel_button.clicked.connect(self.cancel_jobs)
         self.cancel_button.hide()
         self.cursor_label = QtWidgets.QLabel()
+        # What the pointer is over (a track's point): its own label, cleared after
+        # HOVER_MS; in the message area it took the counts' place, and they were gone
+        # when it expired (operator look h225 item 6).
+        self.hover_label = QtWidgets.QLabel()
+        self.hover_label.setMinimumWidth(1)  # a long text is cut, never widens the window
+        self._hover_timer = QtCore.QTimer(self, singleShot=True, interval=HOVER_MS)
+        self._hover_timer.timeout.connect(self.hover_label.clear)
+        #: The status bar's counts, shown again whenever a timed message expires.
+        self.counts_text = ""
+        self.statusBar().messageChanged.connect(self._message_changed)
         # A step the window ran again by itself failed: said until that step runs again
         # (jobs._automatic_failed); the status bar's messages come and go.
         self.stale_label = QtWidgets.QLabel()
         self.stale_label.setStyleSheet("color: #b00000")
         self.stale_label.hide()
-        for widget in (self.stale_label, self.progress, self.cancel_button, self.cursor_label):
+        for widget in (
+            self.stale_label,
+            self.progress,
+            self.cancel_button,
+            self.hover_label,
+            self.cursor_label,
+        ):
             self.statusBar().addPermanentWidget(widget)
 
         build_actions(self)
+        self.actions_["cancel"].setEnabled(False)  # on while a job runs (jobs.py)
+        self.set_icons()
+        self._add_legend_toggle()
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
         self._fit_timer = QtCore.QTimer(self, singleShot=True, interval=0)
         self._fit_timer.timeout.connect(self.review.fit_to_window)
@@ -253,6 +315,49 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             value = self.settings.value(key)
             if value is not None:
                 restore(value)
+        hide_stray_tab_bars(self)
+        #: The columns' widths still to fit the window's width on its first show (the
+        #: compact layout, no state restored from the settings).
+        self._fit_columns = self.compact and self.settings.value("state") is None
+
+    def _add_legend_toggle(self) -> None:
+        """View ▸ Show legend: the map's legend column, on or off (kept in the settings):
+        off, the map takes its width (about 200 px of a 659-px map at 1366x768)."""
+        action = QtGui.QAction(self, checkable=True)
+        shown = self.settings.value("legend", True)
+        action.setChecked(shown not in (False, "false", "0", 0))
+        action.toggled.connect(self.show_legend)
+        self.actions_["legend"] = action
+        view = self.menus["view"]
+        first_dock = next(iter(self.docks.values())).toggleViewAction()
+        view.insertAction(first_dock, action)
+        self.canvas.legend.set_shown(action.isChecked())
+
+    def show_legend(self, on: bool = True) -> None:
+        """The map's legend shown (or hidden), and kept so for the next start."""
+        self.canvas.legend.set_shown(on)
+        self.settings.setValue("legend", bool(on))
+        if self.actions_["legend"].isChecked() != on:
+            self.actions_["legend"].setChecked(on)
+
+    @staticmethod
+    def compact_screen(available: QtCore.QRect) -> bool:
+        """Whether a screen of ``available`` (its free geometry, logical px) gets the
+        compact layout: less than COMPACT_SCREEN_HEIGHT high."""
+        return available.height() < COMPACT_SCREEN_HEIGHT
+
+    def arrange_compact(self) -> None:
+        """The compact layout: Layers tabbed with Parameters, the batch table with Detail
+        (and Bearing-only), the table in front; the left and right columns then ask for
+        one dock's height, not two (operator look h225 item 1)."""
+        d = self.docks
+        if d["params"] not in self.tabifiedDockWidgets(d["layers"]):
+            self.tabifyDockWidget(d["layers"], d["params"])
+        for key in ("detail", "bearing"):  # one group of three, the table first
+            if d[key] not in self.tabifiedDockWidgets(d["batches"]):
+                self.tabifyDockWidget(d["batches"], d[key])
+        d["layers"].raise_()
+        d["batches"].raise_()
 
     def _build_docks(self, batch_box: QtWidgets.QWidget) -> None:
         area = QtCore.Qt.DockWidgetArea
@@ -262,7 +367,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             ("params", self.params, area.LeftDockWidgetArea),
             ("batches", batch_box, area.RightDockWidgetArea),
             ("detail", self.detail, area.RightDockWidgetArea),
-            ("bearing", self.bearing_view, area.RightDockWidgetArea),
+            # in a scroll area: its map and table ask 380x336 at least (h225 item 1)
+            ("bearing", scrolled(self.bearing_view), area.RightDockWidgetArea),
             ("stats", self.stats, area.BottomDockWidgetArea),
             ("log", self.log, area.BottomDockWidgetArea),
         ):
@@ -285,10 +391,17 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.docks["log"].raise_()
         d = self.docks
         horizontal, vertical = QtCore.Qt.Orientation.Horizontal, QtCore.Qt.Orientation.Vertical
+        screen = self.screen() or QtWidgets.QApplication.primaryScreen()
+        self.compact = screen is not None and self.compact_screen(screen.availableGeometry())
+        if self.compact:  # before the sizes: tabbing makes the columns again
+            self.arrange_compact()
         # 395: the right column as it was at 1400x900 (412 px) while the time panel's
         # controls held the map at 685 px at least; asked 560 with the controls wrapping,
         # the map would be 528 px at 1400x900 on two lines of controls (h179).
-        self.resizeDocks([d["layers"], d["batches"]], [300, 395], horizontal)
+        # Compact: narrower columns, the map keeps about half the window at 1366 px
+        # (h225 item 7: 659 of 1,366 px); the table's End column still in sight.
+        widths = [260, 330] if self.compact else [300, 395]
+        self.resizeDocks([d["layers"], d["batches"]], widths, horizontal)
         # The detail/bearing tabs get the larger share of the right column: the bearing
         # dock's map and its detections table under it (a 142-px map, one clipped row).
         self.resizeDocks(
@@ -314,6 +427,11 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         """Set every visible text (called again when the language changes)."""
         self.update_title()
         retranslate(self)
+        if "legend" in self.actions_:
+            self.actions_["legend"].setText(self.tr("Show &legend"))
+            self.actions_["legend"].setToolTip(
+                self.tr("The map's legend column; hidden, the map takes its width")
+            )
         self.update_batch_count()
         self.detail.retranslate()
         self.params.retranslate()
@@ -423,7 +541,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         window = (tw.start_s, tw.end_s) if tw is not None else None
         key = (layer.id, id(layer.points), len(layer.points), window)
         self.stats.compute(key, layer.points, dict(layer.tables), window, head)
-        self.statusBar().showMessage(self.counts_message(layer, window))
+        self._show_counts_text(self.counts_message(layer, window))
 
     def counts_message(self, layer, window: tuple[float, float] | None) -> str:
         """The status bar's counts: the layer's points and tracks; with a time window,
@@ -450,7 +568,62 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             return
         tw = self.session.time_window
         window = (tw.start_s, tw.end_s) if tw is not None else None
-        self.statusBar().showMessage(self.counts_message(layer, window))
+        self._show_counts_text(self.counts_message(layer, window))
+
+    def _show_counts_text(self, text: str) -> None:
+        self.counts_text = text
+        self.statusBar().showMessage(text)
+
+    def _message_changed(self, text: str) -> None:
+        """A timed message expired (or was cleared): the counts come back; they were
+        gone for good 4 s after a hover or a job's "done" (operator look h225 item 6)."""
+        if not text and self.counts_text:
+            layer = self.active_layer()
+            if layer is None or layer.kind == BEARING_KIND:
+                self.counts_text = ""
+                return
+            # on the next turn: QStatusBar is still clearing its message here
+            QtCore.QTimer.singleShot(0, self, self._restore_counts)
+
+    def _restore_counts(self) -> None:
+        if self.counts_text and not self.statusBar().currentMessage():
+            self.statusBar().showMessage(self.counts_text)
+
+    def show_hover(self, info) -> None:
+        """What the pointer is over, in the status bar's hover label for HOVER_MS."""
+        if not info:
+            return
+        speed = info.get("speed_kn")
+        speed_text = "" if speed is None or speed != speed else f", {speed:.1f} kn"
+        self.hover_label.setText(
+            f"{info.get('sensor')} / {info.get('batch')}: {info.get('time')}{speed_text}"
+        )
+        self._hover_timer.start()
+
+    def fit_batch_columns(self) -> None:
+        """The batch table's first columns as wide as their widest text (the first rows
+        and the title), so that End is in sight without scrolling where the dock has the
+        width; the Sensor column hidden while the layer has one sensor (h225 item 16: End
+        sat behind the scroll bar at every window size)."""
+        model, view = self.batch_model, self.batch_view
+        frame = model.frame
+        one = "sensor" in frame.columns and frame["sensor"].nunique() <= 1
+        view.setColumnHidden(0, bool(one and len(frame)))
+        metrics = view.fontMetrics()
+        header = view.horizontalHeader()
+        pad = 2 * view.style().pixelMetric(QtWidgets.QStyle.PixelMetric.PM_HeaderMargin) + 8
+        rows = range(min(model.rowCount(), BATCH_FIT_ROWS))
+        horizontal = QtCore.Qt.Orientation.Horizontal
+        for col in range(BATCH_FIT_COLUMNS):
+            title = str(model.headerData(col, horizontal) or "")
+            cells = [str(model.data(model.index(r, col)) or "") for r in rows]
+            # the title in the header's (bold) font, with room for its sort arrow
+            width = max(
+                [header.fontMetrics().horizontalAdvance(title) + 12]
+                + [metrics.horizontalAdvance(t) for t in cells]
+            )
+            width += pad
+            header.resizeSection(col, max(width, header.minimumSectionSize()))
 
     def update_batch_count(self) -> None:
         """The line under the batch table: how many tracks it shows and why not all."""
@@ -538,6 +711,49 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.update_title()
         if self.project.failures == 1:
             QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)
+
+    def set_icons(self) -> None:
+        """The toolbar's one-colour icons for the palette now (palette_icon); on a dark
+        one, the filter's placeholder in the text colour too (h225 item 15)."""
+        sp = QtWidgets.QStyle.StandardPixmap
+        for key, pixmap in (("pipeline", sp.SP_MediaPlay), ("fit", sp.SP_TitleBarMaxButton)):
+            self.actions_[key].setIcon(palette_icon(self, pixmap))
+        palette = self.filter_edit.palette()
+        if dark_palette(self.palette()):
+            hint = palette.color(QtGui.QPalette.ColorRole.Text)
+            hint.setAlpha(170)
+            palette.setColor(QtGui.QPalette.ColorRole.PlaceholderText, hint)
+            self.filter_edit.setPalette(palette)
+        else:
+            self.filter_edit.setPalette(QtGui.QPalette())
+
+    def changeEvent(self, event) -> None:  # noqa: N802 - Qt API
+        super().changeEvent(event)
+        if event.type() == QtCore.QEvent.Type.PaletteChange and hasattr(self, "actions_"):
+            self.set_icons()
+
+    def showEvent(self, event) -> None:  # noqa: N802 - Qt API
+        super().showEvent(event)
+        if self._fit_columns:
+            self._fit_columns = False
+            QtCore.QTimer.singleShot(0, self, self.fit_columns)
+
+    def fit_columns(self) -> None:
+        """The compact layout's side columns as shares of the window's width (the map
+        keeps about half of it): at 960 px, 260 and 330 px left the map 360 px, half of
+        it the legend (h225 item 7)."""
+        width = self.width()
+        self.resizeDocks(
+            [self.docks["layers"], self.docks["batches"]],
+            [round(COMPACT_LEFT_SHARE * width), round(COMPACT_RIGHT_SHARE * width)],
+            QtCore.Qt.Orientation.Horizontal,
+        )
+        # the bottom docks (Statistics, Log) a smaller share of a short window's height
+        self.resizeDocks(
+            [self.docks["log"]],
+            [round(COMPACT_BOTTOM_SHARE * self.height())],
+            QtCore.Qt.Orientation.Vertical,
+        )
 
     def resizeEvent(self, event) -> None:  # noqa: N802 - Qt API
         super().resizeEvent(event)

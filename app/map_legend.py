@@ -72,6 +72,7 @@ class SideLegend(pg.LegendItem):
         kwargs.setdefault("sampleType", FixedSample)
         super().__init__(*args, **kwargs)
         self.bare = False
+        self.off = False  # hidden by View ▸ Show legend: no column at all
         self.setFlag(self.GraphicsItemFlag.ItemClipsChildrenToShape, True)
         font = QtGui.QFont()
         font.setPointSizeF(9.0)  # pyqtgraph's legend label size
@@ -84,6 +85,12 @@ class SideLegend(pg.LegendItem):
         self._rank: dict[int, int] = {}  # id(sample) -> its place among the entries
         self._ranks = itertools.count()
         self._hidden: dict[int, tuple] = {}  # id(item) -> (sample, label) left out
+        self.updateSize()
+
+    def set_shown(self, on: bool) -> None:
+        """The legend shown, or hidden with no column (View ▸ Show legend): the map
+        takes the column's width."""
+        self.off = not on
         self.updateSize()
 
     def fit_label(self, name: str) -> str:
@@ -249,7 +256,7 @@ class SideLegend(pg.LegendItem):
         height += top + bottom + max(self.layout.verticalSpacing(), 0.0) * max(rows - 1, 0)
         if self.items:
             self.widest = max(self.widest, width + 6)
-        w = 0.0 if self.bare else self.widest
+        w = 0.0 if self.bare or self.off else self.widest
         self.setMinimumWidth(w)
         self.setMaximumWidth(w)
         # At most MIN_HEIGHT_PX asked for: a legend of more lines than the map is tall
@@ -258,5 +265,6 @@ class SideLegend(pg.LegendItem):
         # clipped (every name is in the Layers panel).
         self.setMinimumHeight(min(height, MIN_HEIGHT_PX))
         self.setMaximumHeight(height)
-        self.setVisible(not self.bare)  # an empty legend draws nothing but keeps its column
+        # an empty legend draws nothing but keeps its column
+        self.setVisible(not (self.bare or self.off))
         self.updateGeometry()

@@ -59,18 +59,34 @@ log = logging.getLogger(__name__)
 #: A preset file's version key (its table is the panel's form, :data:`PARAMS_VERSION`).
 PRESET_VERSION_KEY = "wakeline_params"
 
+#: Lines of the texts under the tree (guidance, notes) shown at most; more scroll.
+GUIDANCE_LINES = 7
+#: ... and at least (the first lines of a guidance always in sight).
+GUIDANCE_MIN_LINES = 3
+
 #: Pipeline steps in order: key, title, parameter class.
 GROUPS = (
-    ("maneuver", "Maneuvers (seed 000)", ManeuverParams),
-    ("compress", "Compression (seed 000)", CompressParams),
-    ("associate", "Association, one sensor (seeds 001, 003)", LinkParams),
-    ("fuse", "Association and fusion, several sensors (seed 003)", FuseParams),
-    ("bearing", "Bearing-only (seed 002)", BearingParams),
+    ("maneuver", "Maneuvers", ManeuverParams),
+    ("compress", "Compression", CompressParams),
+    ("associate", "Association, one sensor", LinkParams),
+    ("fuse", "Association and fusion, several sensors", FuseParams),
+    ("bearing", "Bearing-only", BearingParams),
     ("maneuver_options", "Maneuver detector", ManeuverOptions),
     ("compress_options", "Compression method", CompressOptions),
     ("associate_options", "Association mode", AssociateOptions),
     ("fuse_options", "Fusion distance and assignment", FuseOptions),
 )
+
+
+class TextLabel(QtWidgets.QLabel):
+    """A word-wrapped label that says when its text changed (the box under the tree
+    shows while one of its labels has text)."""
+
+    changed = QtCore.Signal()
+
+    def setText(self, text: str) -> None:  # noqa: N802 - Qt's name
+        super().setText(text)
+        self.changed.emit()
 
 
 def panel_classes() -> list[type]:
@@ -261,7 +277,7 @@ class ParamsPanel(QtWidgets.QWidget):
         children = [
             {
                 "name": "clean",
-                "title": "Cleaning (seeds 001, 003)",
+                "title": "Cleaning",
                 "type": "group",
                 "children": [
                     _group(step, step.replace("_", " "), getattr(self._clean, step))
@@ -282,11 +298,11 @@ class ParamsPanel(QtWidgets.QWidget):
         self.tree.setParameters(self.root, showTop=False)
         self.root.sigTreeStateChanged.connect(self._tree_changed)
 
-        self.guidance = QtWidgets.QLabel(wordWrap=True)
+        self.guidance = TextLabel(wordWrap=True)
         self.guidance.setTextFormat(QtCore.Qt.TextFormat.PlainText)
-        self.problem = QtWidgets.QLabel(wordWrap=True)
+        self.problem = TextLabel(wordWrap=True)
         self.problem.setStyleSheet("color: #b00020")
-        self.note = QtWidgets.QLabel(wordWrap=True)
+        self.note = TextLabel(wordWrap=True)
         self.note.setTextFormat(QtCore.Qt.TextFormat.PlainText)
         self.buttons = [QtWidgets.QPushButton() for _ in range(3)]
         save, load, reset = self.buttons
@@ -311,10 +327,37 @@ class ParamsPanel(QtWidgets.QWidget):
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(2, 2, 2, 2)
         lay.addWidget(self.tree, 1)
-        lay.addWidget(self.problem)
-        lay.addWidget(self.note)
-        lay.addWidget(self.guidance)
+        # The texts under the tree scroll in a box of GUIDANCE_LINES lines at most: a
+        # label of their own height was cut mid-line at 1366x768 and at HiDPI, and the
+        # tree shrank to 2-3 rows (operator look h225 item 13).
+        texts = QtWidgets.QWidget()
+        tl = QtWidgets.QVBoxLayout(texts)
+        tl.setContentsMargins(0, 0, 0, 0)
+        for label in (self.problem, self.note, self.guidance):
+            label.setAlignment(QtCore.Qt.AlignmentFlag.AlignTop | QtCore.Qt.AlignmentFlag.AlignLeft)
+            tl.addWidget(label)
+        tl.addStretch(1)
+        self.texts = QtWidgets.QScrollArea()
+        self.texts.setWidgetResizable(True)
+        self.texts.setFrameShape(QtWidgets.QFrame.Shape.NoFrame)
+        self.texts.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.texts.setWidget(texts)
+        line = self.fontMetrics().lineSpacing()
+        self.texts.setMaximumHeight(GUIDANCE_LINES * line + 4)
+        self.texts.setMinimumHeight(GUIDANCE_MIN_LINES * line + 4)
+        lay.addWidget(self.texts)
         lay.addLayout(buttons)
+        for label in (self.problem, self.note, self.guidance):
+            label.changed.connect(self._texts_shown)
+        self._texts_shown()
+
+    def _texts_shown(self) -> None:
+        """The box of texts under the tree only while one of them says something: the
+        tree keeps the room otherwise."""
+        labels = (self.problem, self.note, self.guidance)
+        for label in labels:  # an empty label takes no line of the box
+            label.setVisible(bool(label.text()))
+        self.texts.setVisible(any(x.text() for x in labels))
 
     @staticmethod
     def field_titles() -> dict[str, str]:
@@ -352,7 +395,7 @@ class ParamsPanel(QtWidgets.QWidget):
         """The tree's group titles in the current language, by group name (the pipeline
         steps of :data:`GROUPS`, ``clean`` and its rules)."""
         return {
-            "clean": self.tr("Cleaning (seeds 001, 003)"),
+            "clean": self.tr("Cleaning"),
             "duplicates": self.tr("duplicates"),
             "stationary": self.tr("stationary"),
             "speed": self.tr("speed"),
@@ -363,24 +406,41 @@ class ParamsPanel(QtWidgets.QWidget):
             "bspline": self.tr("bspline"),
             "resample": self.tr("resample"),
             "smooth": self.tr("smooth"),
-            "maneuver": self.tr("Maneuvers (seed 000)"),
-            "compress": self.tr("Compression (seed 000)"),
-            "associate": self.tr("Association, one sensor (seeds 001, 003)"),
-            "fuse": self.tr("Association and fusion, several sensors (seed 003)"),
-            "bearing": self.tr("Bearing-only (seed 002)"),
+            "maneuver": self.tr("Maneuvers"),
+            "compress": self.tr("Compression"),
+            "associate": self.tr("Association, one sensor"),
+            "fuse": self.tr("Association and fusion, several sensors"),
+            "bearing": self.tr("Bearing-only"),
             "maneuver_options": self.tr("Maneuver detector"),
             "compress_options": self.tr("Compression method"),
             "associate_options": self.tr("Association mode"),
             "fuse_options": self.tr("Fusion distance and assignment"),
         }
 
+    def group_tips(self) -> dict[str, str]:
+        """The step groups' tooltips: the seed papers their methods come from (the
+        titles said "(seed 000)", words for the developers, not the operator: h225 item
+        13)."""
+        return {
+            "clean": self.tr("Cleaning (seeds 001, 003)"),
+            "maneuver": self.tr("Maneuvers (seed 000)"),
+            "compress": self.tr("Compression (seed 000)"),
+            "associate": self.tr("Association, one sensor (seeds 001, 003)"),
+            "fuse": self.tr("Association and fusion, several sensors (seed 003)"),
+            "bearing": self.tr("Bearing-only (seed 002)"),
+        }
+
     def retranslate(self) -> None:
         # the tree's (hidden) column titles: pyqtgraph's English ones were left
         self.tree.setHeaderLabels([self.tr("Parameter"), self.tr("Value")])
         titles = self.group_titles()
+        tips = self.group_tips()
         fields = self.field_titles()
         for grp in self.root.children():
             grp.setOpts(title=titles.get(grp.name(), grp.opts.get("title")))
+            if grp.name() in tips:
+                for item in list(grp.items):  # the tree's row of the group
+                    item.setToolTip(0, tips[grp.name()])
             for sub in grp.children():
                 if sub.hasChildren() and sub.name() in titles:
                     sub.setOpts(title=titles[sub.name()])
@@ -778,6 +838,7 @@ class ParamsPanel(QtWidgets.QWidget):
         )
         if limit is None:
             self.guidance.setText("")
+            self.guidance.setToolTip("")
             return
         repeats = ""
         if limit.repeats:
@@ -804,12 +865,16 @@ class ParamsPanel(QtWidgets.QWidget):
                 f"{limit.gap_span_s / 3600:,.1f}",
                 limit.gap_share,
             )
+        # The operator's words in the text; the seed paper's (its window of p points,
+        # "detection limit") in the tooltip (operator look h225 item 13).
         if limit.reason is not None:
+            reason = core_text.shown(limit.reason)
             self.guidance.setText(
-                self.tr("Detection limit (seed 000): none for this data: {0}.").format(
-                    core_text.shown(limit.reason)
-                )
+                self.tr("Smallest turn found for this data: none can be given: {0}.").format(reason)
                 + repeats
+            )
+            self.guidance.setToolTip(
+                self.tr("Detection limit (seed 000): none for this data: {0}.").format(reason)
             )
             return
         if not limit.eps_m >= 1.0:
@@ -824,6 +889,13 @@ class ParamsPanel(QtWidgets.QWidget):
             ).format(mp.threshold_deg, limit.eps_m)
         self.guidance.setText(
             self.tr(
+                "Smallest turn found for this data: {0:.1f}° with 100 m position errors "
+                "(median speed {1:.1f} kn, interval {2} s). {3}."
+            ).format(limit.turn_deg, limit.speed_kn, _seconds(limit.interval_s), errors)
+            + repeats
+        )
+        self.guidance.setToolTip(
+            self.tr(
                 "Detection limit (seed 000) for this data: median speed {0:.1f} kn, "
                 "interval {1} s, legs of p = {2} points ({3} s). {4}; with 100 m errors the "
                 "smallest turn found is {5:.1f}°."
@@ -835,5 +907,4 @@ class ParamsPanel(QtWidgets.QWidget):
                 errors,
                 limit.turn_deg,
             )
-            + repeats
         )

@@ -20,6 +20,7 @@ import pyqtgraph as pg
 import shiboken6
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app.layer_names import shown_name
 from wakeline.app.map_canvas import MapCanvas
 from wakeline.app.map_colors import delta_e
 from wakeline.app.review_map import (
@@ -216,6 +217,7 @@ class ReviewDock(QtCore.QObject):
         self._views.setSingleShot(True)
         self._views.setInterval(0)
         self._views.timeout.connect(self._draw_views)
+        self._said_empty: set[str] = set()  # queues with no proposal, said in the log
         self._views_todo: list[str] = []  # "gantt" and/or "network" still to draw
         self._views_proposal = ""
         self._bind_steps = None  # the stages of a bind still to run (_bind_stages)
@@ -235,7 +237,13 @@ class ReviewDock(QtCore.QObject):
         self.blank = QtWidgets.QWidget()  # the dock's first turn, before a queue's widgets
         self.stack.addWidget(self.blank)
         area = QtCore.Qt.DockWidgetArea
-        self.dock = self._dock("review", tr("Review"), self.stack, area.BottomDockWidgetArea)
+        from wakeline.app.main_window import scrolled
+
+        # In a scroll area: its table's filters and counts ask 801 px at least, which
+        # widened a 960-px window to 1,187 px when the dock came up (h225 item 1).
+        self.dock = self._dock(
+            "review", tr("Review"), scrolled(self.stack), area.BottomDockWidgetArea
+        )
         self.echo = QtWidgets.QLabel()  # the last review decision (_echo)
         self.echo.setMinimumWidth(1)  # a long text is cut, never widens the window
         w.statusBar().addPermanentWidget(self.echo)
@@ -711,6 +719,20 @@ class ReviewDock(QtCore.QObject):
             self.dock.hide()
             return
         self.group.setActiveStack(bound.controller.stack)
+        if self.dock.isHidden() and not len(bound.controller.state.proposals):
+            # Nothing to review: the dock stays closed (it took a third of the map at
+            # 1366x768 for "0 proposals", h225 item 7); bound, so Review ▸ Join and
+            # the dock's own toggle (Review ▸ Review) work; the log says so, once.
+            self.stack.setCurrentWidget(bound.widget)
+            if bound.key not in self._said_empty:
+                self._said_empty.add(bound.key)
+                name = self.w.session.layers[bound.lid].name
+                self.w.log_message(
+                    tr(
+                        "Review: 0 proposals on {0}; nothing to review (Review ▸ Review opens the queue)"
+                    ).format(shown_name(name))
+                )
+            return
         if self.dock.isHidden():
             # The dock first, blank, in the log's place and at its height (the map
             # resized once: each size costs the map a paint and a new level of detail);

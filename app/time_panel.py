@@ -13,7 +13,7 @@ import dataclasses
 import math
 import time
 
-from PySide6 import QtCore, QtWidgets
+from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.time_text import format_time
 from wakeline.app.wrap_row import WrapRow
@@ -21,6 +21,42 @@ from wakeline.core.timeline import PlaybackParams
 
 SLIDER_STEPS = 10_000
 _FIELDS = {f.name: f for f in dataclasses.fields(PlaybackParams)}
+#: Sizes (px) a tinted icon is made at.
+ICON_SIZES = (16, 20, 24, 32)
+
+
+def dark_palette(palette: QtGui.QPalette) -> bool:
+    """Whether ``palette`` is a dark one (its window colour darker than mid-grey)."""
+    return palette.color(QtGui.QPalette.ColorRole.Window).lightness() < 128
+
+
+def palette_icon(widget: QtWidgets.QWidget, pixmap) -> QtGui.QIcon:
+    """The style's standard icon ``pixmap`` for ``widget``: as drawn on a light palette;
+    on a dark one, its shape filled with the palette's button text colour (the style's
+    dark-grey ▶, ◀◀ and frame icons nearly vanished on a dark desktop: h225 item 15).
+    Only for one-colour icons (not the coloured folder or the red stop)."""
+    icon = widget.style().standardIcon(pixmap)
+    palette = widget.palette()
+    if not dark_palette(palette):
+        return icon
+    out = QtGui.QIcon()
+    ink = palette.color(QtGui.QPalette.ColorRole.ButtonText)
+    for mode, colour in (
+        (QtGui.QIcon.Mode.Normal, ink),
+        (QtGui.QIcon.Mode.Disabled, ink.darker(200)),
+    ):
+        for side in ICON_SIZES:
+            shape = icon.pixmap(QtCore.QSize(side, side))
+            tinted = QtGui.QPixmap(shape.size())
+            tinted.setDevicePixelRatio(shape.devicePixelRatio())
+            tinted.fill(QtCore.Qt.GlobalColor.transparent)
+            painter = QtGui.QPainter(tinted)
+            painter.drawPixmap(0, 0, shape)
+            painter.setCompositionMode(QtGui.QPainter.CompositionMode.CompositionMode_SourceIn)
+            painter.fillRect(QtCore.QRectF(0, 0, side, side), colour)
+            painter.end()
+            out.addPixmap(tinted, mode)
+    return out
 
 
 class TimePanel(QtWidgets.QWidget):
@@ -43,17 +79,13 @@ class TimePanel(QtWidgets.QWidget):
         self._timer = QtCore.QTimer(self)
         self._timer.timeout.connect(self._tick)
         self._last_tick = 0.0
-        st = self.style()
-        sp = QtWidgets.QStyle.StandardPixmap
         self.back_button = QtWidgets.QToolButton()
-        self.back_button.setIcon(st.standardIcon(sp.SP_MediaSeekBackward))
         self.back_button.clicked.connect(lambda: self.step(-1))
         self.play_button = QtWidgets.QToolButton()
         self.play_button.setCheckable(True)
-        self.play_button.setIcon(st.standardIcon(sp.SP_MediaPlay))
         self.play_button.toggled.connect(self._play_toggled)
         self.forward_button = QtWidgets.QToolButton()
-        self.forward_button.setIcon(st.standardIcon(sp.SP_MediaSeekForward))
+        self.set_icons()
         self.forward_button.clicked.connect(lambda: self.step(1))
         self.slider = QtWidgets.QSlider(QtCore.Qt.Orientation.Horizontal)
         self.slider.setRange(0, SLIDER_STEPS)
@@ -166,6 +198,8 @@ class TimePanel(QtWidgets.QWidget):
     def changeEvent(self, event) -> None:  # noqa: N802 - Qt API
         if event.type() == QtCore.QEvent.Type.LanguageChange:
             self.retranslate()
+        if event.type() == QtCore.QEvent.Type.PaletteChange:  # a dark desktop: the icons
+            self.set_icons()
         super().changeEvent(event)
 
     def _update_labels(self) -> None:
@@ -298,10 +332,16 @@ class TimePanel(QtWidgets.QWidget):
     def pause(self) -> None:
         self.play_button.setChecked(False)
 
-    def _play_toggled(self, on: bool) -> None:
+    def set_icons(self) -> None:
+        """The buttons' icons for the palette now (palette_icon)."""
         sp = QtWidgets.QStyle.StandardPixmap
-        icon = sp.SP_MediaPause if on else sp.SP_MediaPlay
-        self.play_button.setIcon(self.style().standardIcon(icon))
+        self.back_button.setIcon(palette_icon(self, sp.SP_MediaSeekBackward))
+        self.forward_button.setIcon(palette_icon(self, sp.SP_MediaSeekForward))
+        play = sp.SP_MediaPause if self.play_button.isChecked() else sp.SP_MediaPlay
+        self.play_button.setIcon(palette_icon(self, play))
+
+    def _play_toggled(self, on: bool) -> None:
+        self.set_icons()
         if on and math.isfinite(self._t):
             if self._t >= self._hi:
                 self.set_time(self._lo)  # play again from the start

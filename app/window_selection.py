@@ -107,14 +107,6 @@ class SelectionMixin:
         self.log_message(text.format(path))
         return ok
 
-    def _show_hover(self, info) -> None:
-        if info:
-            speed = info.get("speed_kn")
-            speed_text = "" if speed is None or speed != speed else f", {speed:.1f} kn"
-            self.statusBar().showMessage(
-                f"{info.get('sensor')} / {info.get('batch')}: {info.get('time')}{speed_text}", 4000
-            )
-
     def _show_pending_detail(self) -> None:
         pending, self._detail_key = self._detail_key, None
         if pending is not None and pending[0] in self.views:

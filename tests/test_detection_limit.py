@@ -141,9 +141,12 @@ def test_the_panel_follows_the_window_it_is_given(qtbot):
     qtbot.addWidget(panel)
     df = _ships(dt=1.0, n_scans=300)
     panel.show_guidance(track_summary(_points(df, df["ship"])))
-    assert "legs of p = 10 points (10 s)" in panel.guidance.text()
+    # the paper's window in the tooltip, the operator's words in the text (h225 item 13)
+    assert "legs of p = 10 points (10 s)" in panel.guidance.toolTip()
+    assert panel.guidance.text().startswith("Smallest turn found for this data: ")
+    assert "p = " not in panel.guidance.text() and "seed" not in panel.guidance.text()
     assert panel.from_dict({"maneuver": {"window_s": 20.0}}) == []
-    assert "legs of p = 20 points (20 s)" in panel.guidance.text()
+    assert "legs of p = 20 points (20 s)" in panel.guidance.toolTip()
 
 
 def test_repeated_rows_are_no_evidence_of_plots():

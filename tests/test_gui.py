@@ -1129,10 +1129,14 @@ def test_detail_says_why_its_factor_plot_is_empty(qtbot):
         return label.text, label.opts["size"]
 
     panel.clear()
-    assert title() == ("No track selected: click one on the map or in the table", "9pt")
+    assert title() == ("No track selected.<br>Click one on the map or in the table.", "9pt")
+    # h225 item 7: no empty -0.4…0.4 axes under the hint
+    axes = [panel.factor_plot.getPlotItem().getAxis(side) for side in ("left", "bottom")]
+    assert not any(axis.isVisible() for axis in axes)
     t0 = pd.Timestamp("2024-08-01", tz="UTC")
     fused = pd.DataFrame({"time": t0 + pd.to_timedelta(np.arange(5), unit="min")})
     panel.show_track(fused, fused=True)
+    assert all(axis.isVisible() for axis in axes)
     assert title()[0] == "No δ for a fused track: run Maneuvers on its layer"
     panel.show_track(fused)
     assert title()[0] == "No δ for this track: run Maneuvers on its layer"

@@ -75,7 +75,7 @@ def test_texts_follow_the_language_started_in_and_switched_to(qtbot, tmp_path):
     assert w.review.dock.windowTitle() == "Review"
     assert b.gantt.getAxis("bottom").labelText.split(" (0 = ")[0] == "time"
     english = w.params.guidance.text()
-    assert english.startswith("Detection limit")
+    assert english.startswith("Smallest turn found")  # the operator's words (h225 item 13)
     w.set_language("zh_CN")
     try:
         assert w.review.dock.windowTitle() == "审核"
@@ -85,7 +85,7 @@ def test_texts_follow_the_language_started_in_and_switched_to(qtbot, tmp_path):
         fused = [t for t in texts if "已融合" in t]
         assert fused and all(t.count("已融合") == 1 for t in fused), texts
         assert w.params.guidance.text() not in ("", english)
-        assert "Detection" not in w.params.guidance.text()
+        assert "Smallest" not in w.params.guidance.text()
         assert b.gantt.getAxis("bottom").labelText.split(" (0 = ")[0] == "时间"
         stack, suffixes = list(w.params.root.children()), []
         while stack:
@@ -144,7 +144,7 @@ def test_detection_limit_describes_the_active_fused_layer(qtbot, tmp_path):
     w = _fused_review(qtbot, tmp_path)
     fused = next(lay for lay in w.layers.values() if lay.step == "fuse")
     shown = w.params.guidance.text()
-    assert shown.startswith("Detection limit")
+    assert shown.startswith("Smallest turn found")
     w.params.show_guidance(w.views[fused.id].summary)
     assert w.params.guidance.text() == shown
     # the window's log says whose times the fused track took, as the command line does

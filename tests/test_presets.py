@@ -364,7 +364,7 @@ def test_the_guidance_suggests_the_preset_that_suits_the_layer(qtbot, tmp_path):
     )
     panel.show_guidance(track_summary(noisy), noisy)
     text = panel.guidance.text()
-    assert text.startswith("Detection limit (seed 000)")
+    assert text.startswith("Smallest turn found for this data")
     assert "the built-in preset “Noisy tracks” finds far fewer false turns" in text
     assert "Slow radar" not in text
     _, slow = _track_file(tmp_path, dt=5.0, sensor="radar", batch="3")

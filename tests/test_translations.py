@@ -226,8 +226,10 @@ def test_detail_params_and_statistics_switch_to_chinese(qtbot):
         label = detail.factor_plot.getAxis("bottom").labelText
         assert label == zh[("DetailPanel", "time since track start")]
         titles = {g.name(): g.opts["title"] for g in params.root.children()}
-        assert titles["clean"] == zh[("ParamsPanel", "Cleaning (seeds 001, 003)")]
-        assert titles["bearing"] == zh[("ParamsPanel", "Bearing-only (seed 002)")]
+        assert titles["clean"] == zh[("ParamsPanel", "Cleaning")]
+        assert titles["bearing"] == zh[("ParamsPanel", "Bearing-only")]
+        # the seed papers in the groups' tooltips (h225 item 13), in the language too
+        assert params.group_tips()["clean"] == zh[("ParamsPanel", "Cleaning (seeds 001, 003)")]
         assert params.note.text() == zh[("ParamsPanel", english)]  # written again
         rows = dict(stats.rows())
         assert rows[zh[("StatsPanel", "Targets")]] == zh[("StatsPanel", "no target ids")]

@@ -871,6 +871,38 @@
         <translation>清洗（种子文献 001、003）</translation>
     </message>
     <message>
+        <source>Cleaning</source>
+        <translation>清洗</translation>
+    </message>
+    <message>
+        <source>Maneuvers</source>
+        <translation>机动检测</translation>
+    </message>
+    <message>
+        <source>Compression</source>
+        <translation>压缩</translation>
+    </message>
+    <message>
+        <source>Association, one sensor</source>
+        <translation>关联，单传感器</translation>
+    </message>
+    <message>
+        <source>Association and fusion, several sensors</source>
+        <translation>关联与融合，多传感器</translation>
+    </message>
+    <message>
+        <source>Bearing-only</source>
+        <translation>纯方位</translation>
+    </message>
+    <message>
+        <source>Smallest turn found for this data: none can be given: {0}.</source>
+        <translation>本数据无法给出可检出的最小转向：{0}。</translation>
+    </message>
+    <message>
+        <source>Smallest turn found for this data: {0:.1f}° with 100 m position errors (median speed {1:.1f} kn, interval {2} s). {3}.</source>
+        <translation>本数据可检出的最小转向：位置误差为 100 米时为 {0:.1f}°（航速中位数 {1:.1f} 节，采样间隔 {2} 秒）。{3}。</translation>
+    </message>
+    <message>
         <source>duplicates</source>
         <translation>重复点</translation>
     </message>
@@ -1002,6 +1034,14 @@
 <context>
     <name>DetailPanel</name>
     <message>
+        <source>Bearing over time</source>
+        <translation>方位随时间</translation>
+    </message>
+    <message>
+        <source>The bearing sequence and the detector's z statistic</source>
+        <translation>方位序列及检测器的 z 统计量</translation>
+    </message>
+    <message>
         <source>Compression</source>
         <translation>压缩</translation>
     </message>
@@ -1022,8 +1062,8 @@
         <translation>1 个机动点；阈值 {1:g}°</translation>
     </message>
     <message>
-        <source>No track selected: click one on the map or in the table</source>
-        <translation>未选择航迹：请在地图或表中点选一条</translation>
+        <source>No track selected.&lt;br&gt;Click one on the map or in the table.</source>
+        <translation>未选择航迹。&lt;br&gt;请在地图或表中点选一条。</translation>
     </message>
     <message>
         <source>No track selected</source>
@@ -1816,6 +1856,10 @@
 </context>
 <context>
     <name>ReviewDock</name>
+    <message>
+        <source>Review: 0 proposals on {0}; nothing to review (Review ▸ Review opens the queue)</source>
+        <translation>审核：{0} 上有 0 个提议，无需审核（审核 ▸ 审核 可打开队列）</translation>
+    </message>
     <message>
         <source>undo {0}</source>
         <translation>撤销{0}</translation>
@@ -2908,6 +2952,14 @@
     <message>
         <source>In the time window: {0} of {1}, {2} of {3}</source>
         <translation>时间窗内：{1}中的 {0} 条，{3}中的 {2} 个</translation>
+    </message>
+    <message>
+        <source>Show &amp;legend</source>
+        <translation>显示图例(&amp;L)</translation>
+    </message>
+    <message>
+        <source>The map's legend column; hidden, the map takes its width</source>
+        <translation>地图的图例栏；隐藏后地图占用其宽度</translation>
     </message>
 </context>
 <context>
