@@ -58,8 +58,6 @@ COMPACT_SCREEN_HEIGHT = 800
 COMPACT_LEFT_SHARE, COMPACT_RIGHT_SHARE = 0.19, 0.245
 #: ... and the bottom docks' share of its height.
 COMPACT_BOTTOM_SHARE = 0.15
-#: The batch table's columns sized to their texts (Sensor … End), from this many rows.
-BATCH_FIT_COLUMNS, BATCH_FIT_ROWS = 5, 50
 #: Between two recomputations of the Statistics figures while the time window moves (ms).
 STATS_WINDOW_MS = 300
 
@@ -601,29 +599,13 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self._hover_timer.start()
 
     def fit_batch_columns(self) -> None:
-        """The batch table's first columns as wide as their widest text (the first rows
-        and the title), so that End is in sight without scrolling where the dock has the
-        width; the Sensor column hidden while the layer has one sensor (h225 item 16: End
-        sat behind the scroll bar at every window size)."""
-        model, view = self.batch_model, self.batch_view
-        frame = model.frame
-        one = "sensor" in frame.columns and frame["sensor"].nunique() <= 1
-        view.setColumnHidden(0, bool(one and len(frame)))
-        metrics = view.fontMetrics()
-        header = view.horizontalHeader()
-        pad = 2 * view.style().pixelMetric(QtWidgets.QStyle.PixelMetric.PM_HeaderMargin) + 8
-        rows = range(min(model.rowCount(), BATCH_FIT_ROWS))
-        horizontal = QtCore.Qt.Orientation.Horizontal
-        for col in range(BATCH_FIT_COLUMNS):
-            title = str(model.headerData(col, horizontal) or "")
-            cells = [str(model.data(model.index(r, col)) or "") for r in rows]
-            # the title in the header's (bold) font, with room for its sort arrow
-            width = max(
-                [header.fontMetrics().horizontalAdvance(title) + 12]
-                + [metrics.horizontalAdvance(t) for t in cells]
-            )
-            width += pad
-            header.resizeSection(col, max(width, header.minimumSectionSize()))
+        """The batch table's Sensor column hidden while the layer has one sensor: its
+        width went to a column that says the same on every row, and End sat behind the
+        scroll bar at every window size (h225 item 16; the columns' widths:
+        window_layers._fit_time_columns)."""
+        frame = self.batch_model.frame
+        one = len(frame) > 0 and "sensor" in frame.columns and frame["sensor"].nunique() <= 1
+        self.batch_view.setColumnHidden(0, bool(one))
 
     def update_batch_count(self) -> None:
         """The line under the batch table: how many tracks it shows and why not all."""

@@ -343,6 +343,9 @@ def _time_column_fits(window) -> None:
     assert model.rowCount() > 0
     for key in ("sensor", "batch", "points", "start", "end"):
         col = [k for k, _ in model.COLUMNS].index(key)
+        if view.isColumnHidden(col):  # Sensor, for one sensor (h225 item 16)
+            assert key == "sensor" and model.frame["sensor"].nunique() == 1
+            continue
         widest = max(
             fm.horizontalAdvance(model.index(r, col).data()) for r in range(model.rowCount())
         )

@@ -194,6 +194,7 @@ def test_counts_stay_in_the_status_bar_after_a_hover_and_a_timed_message(qtbot, 
     w = _window(qtbot, tmp_path)
     w.load_file(demo_path())
     _settle(w)
+    assert not w.batch_view.isColumnHidden(0)  # two sensors: the Sensor column shown
     counts = w.statusBar().currentMessage()
     assert counts.endswith("tracks") and "points" in counts, counts
     w._hover_timer.setInterval(100)
@@ -253,3 +254,26 @@ def test_no_stray_tab_bar_and_the_legend_can_be_hidden(qtbot, tmp_path):
     qtbot.addWidget(again)
     assert not again.actions_["legend"].isChecked() and again.canvas.legend.off
     again.close()
+
+
+def test_the_sensor_column_is_hidden_for_one_sensor(qtbot, tmp_path):
+    """h225 item 16: the batch table's Sensor column said "S1" on every row and pushed End
+    behind the scroll bar: hidden while the active layer has one sensor."""
+    import pandas as pd
+    from test_review_window import _settle, _window
+
+    from wakeline.resources import demo_path
+
+    demo = pd.read_csv(demo_path())
+    one = tmp_path / "one.csv"
+    demo[demo["sensor"] == demo["sensor"].iloc[0]].to_csv(one, index=False)
+    w = _window(qtbot, tmp_path)
+    w.load_file(one)
+    _settle(w)
+    assert w.batch_model.rowCount() > 0 and w.batch_view.isColumnHidden(0)
+    w.load_file(demo_path())
+    _settle(w)
+    w.select_layer(w.layer_id(demo_path().name))
+    _settle(w)
+    assert not w.batch_view.isColumnHidden(0)
+    w.close()
