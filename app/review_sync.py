@@ -68,8 +68,12 @@ class ReviewSync(QtCore.QObject):
         self.timer.setSingleShot(True)
         self.timer.setInterval(300)
         self.timer.timeout.connect(self._run)
-        self._todo = None
+        #: queue key -> bound: the queues whose layer is to follow their decisions (one
+        #: slot each: a decision in another queue within 300 ms or within a job no longer
+        #: drops the first queue's, review h231)
+        self._todo: dict[str, object] = {}
         self._job: int | None = None  # until its result is applied (or it failed)
+        self._job_key: str | None = None  # the queue whose job that is
         #: queue key -> (the layer's points (weak), the targets per track they show): a decision
         #: that leaves the targets as they are (an accept of a pending proposal: pending
         #: counts as joined; its undo) recomputes nothing
@@ -79,22 +83,40 @@ class ReviewSync(QtCore.QObject):
 
     @property
     def busy(self) -> bool:
-        return self.timer.isActive() or self._job is not None or self._todo is not None
+        return self.timer.isActive() or self._job is not None or bool(self._todo)
 
     def forget(self, key: str) -> None:
         """A queue dropped: the targets its layer showed are no longer kept."""
         self._shown.pop(key, None)
+        self._todo.pop(key, None)
 
     def schedule(self, bound) -> None:
         """Recompute ``bound``'s layer once no decision came for 300 ms."""
-        self._todo = bound
+        if bound is None:
+            return
+        self._todo.pop(bound.key, None)
+        self._todo[bound.key] = bound
         self.timer.start()
 
     def _run(self) -> None:
-        bound, self._todo = self._todo, None
-        layer = self.w.session.layers.get(bound.lid) if bound is not None else None
-        if layer is None or queue_key(layer) != bound.key:
-            return
+        # One job at a time (the runner cancels the one running): a newer decision of the
+        # job's own queue replaces it; another queue's waits for it to end (_on_message
+        # starts the timer again), so that no queue's decision is dropped (review h231:
+        # queue B's key within queue A's job left A's layer without A's decision).
+        while self._todo:
+            if self._job is not None:
+                if self._job_key not in self._todo:
+                    return  # another queue's job: this one's turn comes when it ends
+                bound = self._todo.pop(self._job_key)
+            else:
+                bound = self._todo.pop(next(iter(self._todo)))
+            layer = self.w.session.layers.get(bound.lid)
+            if layer is not None and queue_key(layer) == bound.key:
+                self._start(bound, layer)
+                if self._job is not None:
+                    return  # the others wait for it (a skipped one needs none)
+
+    def _start(self, bound, layer) -> None:
         from wakeline.app.layer_view import prepare_view
 
         snap = snapshot(bound.controller.state)
@@ -128,6 +150,7 @@ class ReviewSync(QtCore.QObject):
             return key, view, n_decisions, (view.points, targets) if relabels else None
 
         self._job = self.runner.run("review", job)
+        self._job_key = key
 
     def decided_now(self, layer):
         """For File ▸ Export of ``layer``: None when its points show every decision of its
@@ -139,7 +162,7 @@ class ReviewSync(QtCore.QObject):
             return None
         state = bound.controller.state
         current = layer.meta.get("review_decisions", 0) == len(state.log)
-        if current and not (self._todo is bound or self._job is not None):
+        if current and not (self._todo.get(bound.key) is bound or self._job is not None):
             return None
         snap, points, cache = snapshot(state), bound.points, bound.cache
 
@@ -151,7 +174,9 @@ class ReviewSync(QtCore.QObject):
 
     def _on_message(self, msg) -> None:
         if isinstance(msg, Finished | Failed | Cancelled) and msg.job == self._job:
-            self._job = None
+            self._job = self._job_key = None
+            if self._todo and not self.timer.isActive():
+                self.timer.start()  # a queue that waited for this job
         if isinstance(msg, Failed):
             self.w.log_message(f"{tr('Error')} (review): {msg.message}")
         if not isinstance(msg, Finished):

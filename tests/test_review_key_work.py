@@ -198,3 +198,94 @@ def test_the_same_layers_new_figures_keep_the_old_until_they_come(qtbot):
     done(job())
     panel.compute(("b", 1, None), _scene(5, 20))  # another layer
     assert panel.note.isVisibleTo(panel) and panel.note.text() == "Computing…"
+
+
+def _shown_targets(w, layer_id, state):
+    """Per track of the queue (``state.tracks``' order): the target its layer's points show."""
+    import pandas as pd
+
+    from wakeline.core.review import point_labels
+
+    pts = w.session.layers[layer_id].points
+    lab = pd.Series(pts["target"].to_numpy(), index=point_labels(pts))
+    lab = lab[~lab.index.duplicated()]
+    return lab.reindex(state.tracks["track"]).to_numpy()
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_the_layer_shows_the_decisions_after_any_keys(qtbot, tmp_path, seed):
+    """Review h231: A, R, undo and redo in a random order, some within the 300 ms or the
+    job of the one before (a skipped job among them, session 30): the layer's points end
+    showing every track's target as the decisions make it, and say so."""
+    import random
+
+    import numpy as np
+
+    w, layer = _associated_window(qtbot, tmp_path)
+    bound = w.review.bound
+    state = bound.controller.state
+    rnd = random.Random(seed)
+    bound.panel.view.setFocus()
+    for _ in range(12):
+        what = rnd.choice(["A", "R", "A", "R", "undo", "redo"])
+        if what in ("A", "R"):
+            qtbot.keyClick(bound.panel.view, getattr(QtCore.Qt.Key, f"Key_{what}"))
+        else:
+            getattr(w.review, f"act_{what}").trigger()
+        if rnd.random() < 0.5:
+            _settle(w)
+        else:
+            qtbot.wait(rnd.choice([0, 50, 320]))
+    _settle(w)
+    assert layer.meta["review_decisions"] == len(state.log)
+    np.testing.assert_array_equal(_shown_targets(w, layer.id, state), state.target_of_track())
+    assert w.review.sync.counts["prepared"] > 0
+
+
+def test_a_decision_in_another_queue_within_a_job_drops_neither(qtbot, tmp_path, monkeypatch):
+    """Review h231: queue A's decision job was running when queue B's decision ran its own
+    (one runner: it cancelled A's, whose result was dropped): A's layer never showed A's
+    decision (its meta, batch table and map stale). B's job now waits for A's."""
+    import time
+
+    import numpy as np
+
+    from wakeline.app import review_sync
+    from wakeline.core import simulate
+    from wakeline.core.io import write_points
+
+    w, la = _associated_window(qtbot, tmp_path)
+    src = tmp_path / "seg2.csv"
+    write_points(simulate.segments_scene(seed=5, n_ships=8, area_km=15), src)
+    w.load_files([src])
+    _settle(w)
+    w.select_layer(w.layer_id(src.name))
+    w.run_step("associate")
+    _settle(w)
+    lb = w.session.find(w.layer_id(src.name), "associate")
+    w.select_layer(lb.id)
+    _settle(w)
+    bound_b = w.review.bound
+    w.select_layer(la.id)
+    _settle(w)
+    bound_a = w.review.bound
+    assert bound_a is not bound_b
+    decided = review_sync.decided_points
+
+    def slow(*args, **kwargs):  # a big layer's decision: its job takes a while
+        time.sleep(0.5)
+        return decided(*args, **kwargs)
+
+    monkeypatch.setattr(review_sync, "decided_points", slow)
+    bound_a.panel.view.setFocus()
+    qtbot.keyClick(bound_a.panel.view, QtCore.Qt.Key.Key_R)
+    qtbot.waitUntil(lambda: w.review.sync._job is not None, timeout=5000)
+    w.select_layer(lb.id)
+    qtbot.waitUntil(lambda: w.review.bound is bound_b, timeout=5000)
+    bound_b.panel.view.setFocus()
+    qtbot.keyClick(bound_b.panel.view, QtCore.Qt.Key.Key_R)
+    _settle(w)
+    for lay, b in ((la, bound_a), (lb, bound_b)):
+        st = b.controller.state
+        assert len(st.log) == 1 and lay.meta.get("review_decisions") == 1, lay.name
+        np.testing.assert_array_equal(_shown_targets(w, lay.id, st), st.target_of_track())
