@@ -307,3 +307,54 @@ def test_speed_and_course_read_from_a_points_extensions(tmp_path):
     assert np.isnan(got["speed"].iloc[3])
     assert got["course"].iloc[0] == 45.5 and got["course"].iloc[2] == 90.0
     assert got["course"].iloc[[1, 3]].isna().all()
+
+
+def test_a_gpx_speed_or_course_out_of_range_is_blanked_as_a_csvs(tmp_path):
+    """Review h231: a GPX's speed and course (GPX 1.0's own or an extension's) came in as
+    read: a negative or infinite speed, a course of -10 or 370 stayed in the points (a
+    delimited file's import blanks them). Now checked alike: a full circle is north, the
+    others blanked and counted, the point kept; the same values in a CSV give the same."""
+    speeds = ["5", "-1", "INF", "2", "", "3"]
+    courses = ["10", "20", "360", "-10", "370", "359.5"]
+    point = '<trkpt lat="59.5" lon="10.25"><time>2024-05-01T10:0{}:00Z</time>{}</trkpt>'
+    tpx = (
+        "<extensions><gpxtpx:TrackPointExtension>{}<gpxtpx:course>{}</gpxtpx:course>"
+        "</gpxtpx:TrackPointExtension></extensions>"
+    )
+    body = [
+        point.format(i, tpx.format(f"<gpxtpx:speed>{v}</gpxtpx:speed>" if v else "", c))
+        for i, (v, c) in enumerate(zip(speeds, courses, strict=True))
+    ]
+    ns = 'xmlns:gpxtpx="http://www.garmin.com/xmlschemas/TrackPointExtension/v2"'
+    text = f'<gpx version="1.1" creator="x" {ns}><trk><trkseg>{"".join(body)}</trkseg></trk></gpx>'
+    path = tmp_path / "range.gpx"
+    path.write_text(text, encoding="utf-8")
+    got = read_points(path)
+    pts = got.points.sort_values("time").reset_index(drop=True)
+    assert len(pts) == 6  # every point kept
+    kn = 3600 / 1852
+    np.testing.assert_allclose(
+        pts["speed"].to_numpy(), [5 * kn, np.nan, np.nan, 2 * kn, np.nan, 3 * kn]
+    )
+    np.testing.assert_allclose(pts["course"].to_numpy(), [10, 20, 0, np.nan, np.nan, 359.5])
+    blanked = got.report["values_blanked"]
+    # a CSV of the same values (knots) blanks the same ones, under the same names
+    csv = tmp_path / "range.csv"
+    rows = [
+        f"A,2024-05-01T10:0{i}:00Z,10.25,59.5,{float(v) * kn if v else ''},{c}"
+        for i, (v, c) in enumerate(zip(speeds, courses, strict=True))
+    ]
+    csv.write_text("id,time,lon,lat,speed,course\n" + "\n".join(rows) + "\n")
+    want = read_points(csv, mapping={"batch": "id"})
+    assert (
+        blanked
+        == want.report["values_blanked"]
+        == {
+            "speed negative or infinite": 2,
+            "course outside [0, 360)": 2,
+        }
+    )
+    np.testing.assert_array_equal(
+        np.isnan(pts["speed"].to_numpy()), want.points["speed"].isna().to_numpy()
+    )
+    np.testing.assert_array_equal(pts["course"].to_numpy(), want.points["course"].to_numpy())

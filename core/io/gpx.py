@@ -246,6 +246,27 @@ _REASONS = (
 )
 
 
+def _speed_course(rows: dict, good: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict]:
+    """The points' speed (knots, from m/s) and course (degrees) checked as a delimited
+    file's are (review h231: a GPX's negative speed or course of -10 or 370 came in as
+    read): a full circle is north (360 -> 0); a speed negative or infinite and a course
+    outside [0, 360) are blanked, the point kept; the blanked counted on the points kept
+    (``values_blanked``, the delimited reader's labels)."""
+    with np.errstate(invalid="ignore"):
+        speed = _numbers(rows["speed"]) / geo.KN_MS
+        course = _numbers(rows["course"])
+        course = np.where(course == 360.0, 0.0, course)
+        bad_speed = np.isinf(speed) | (speed < 0)
+        bad_course = np.isinf(course) | (course < 0) | (course >= 360.0)
+    blanked = {
+        "speed negative or infinite": int((bad_speed & good).sum()),
+        "course outside [0, 360)": int((bad_course & good).sum()),
+    }
+    speed = np.where(bad_speed, np.nan, speed)
+    course = np.where(bad_course, np.nan, course)
+    return speed, course, {k: v for k, v in blanked.items() if v}
+
+
 def read_gpx(
     sn: Sniff, sensor: str = "S1", progress: Progress | None = None, timing: dict | None = None
 ):
@@ -303,8 +324,7 @@ def read_gpx(
         target, track_sensor, track_batch, index = _targets_of(
             rows, names, (sources, kinds, descs), track_sensor, track_batch, index
         )
-    speed = _numbers(rows["speed"]) / geo.KN_MS
-    course = _numbers(rows["course"])
+    speed, course, blanked = _speed_course(rows, good)
     points = pd.DataFrame(
         {
             "sensor": pd.Series(np.asarray(track_sensor, dtype=object)[index[good]], dtype="str")
@@ -375,6 +395,7 @@ def read_gpx(
         "rows_quarantined": len(quarantine),
         "quarantine_reasons": {str(k): int(v) for k, v in by_reason.items()},
         "blank_lines": 0,
+        "values_blanked": blanked,
         "gpx_tracks": len(tracks),
         "gpx_segments": counts["segments"],
         "waypoints": counts["waypoints"],
