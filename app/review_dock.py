@@ -983,6 +983,7 @@ class ReviewDock(QtCore.QObject):
         self._views_todo = []
         self._bind_timer.stop()
         self._bind_steps = None
+        self.sync.stop()  # no queue's layer update started after its runner is stopped
         for runner in (self.binder, self.sync.runner):
             runner.cancel()
             runner.wait(5000)

@@ -90,6 +90,11 @@ class ReviewSync(QtCore.QObject):
         self._shown.pop(key, None)
         self._todo.pop(key, None)
 
+    def stop(self) -> None:
+        """The window is closing: nothing more is started (the runner is stopped apart)."""
+        self.timer.stop()
+        self._todo.clear()
+
     def schedule(self, bound) -> None:
         """Recompute ``bound``'s layer once no decision came for 300 ms."""
         if bound is None:
