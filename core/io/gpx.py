@@ -10,7 +10,8 @@ the member tracks with the ``<trk>``'s name as their ``target``. Each ``<trkpt>`
 otherwise; GPX 1.0's ``<speed>`` in m/s becomes knots, its ``<course>`` degrees; in GPX 1.1
 the same from the point's ``<extensions>``: Garmin's TrackPointExtension v2
 ``<gpxtpx:speed>``/``<gpxtpx:course>``, as our export writes them, or a bare
-``<speed>``/``<course>`` there). Track
+``<speed>``/``<course>`` there; checked as a delimited file's: a negative or infinite
+speed and a course outside [0, 360) blanked, 360 read as 0). Track
 segments are one track: a segment break is a gap the cleaning and association steps see
 by time.
 
