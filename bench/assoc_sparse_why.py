@@ -130,7 +130,7 @@ def scene_rows(
         long = counted_all[k] > params.max_gap_s
         lim = min(params.gate, params.no_join)
         lm = params.long_margin_moving if moving[k] else params.long_margin
-        m = params.long_margin if long else params.margin
+        m = lm if long else params.margin  # as core/associate.py's long_margin_moving
         if (i, j) not in first:
             why = "2nd look only"
         elif c > lim:

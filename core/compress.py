@@ -571,6 +571,7 @@ def douglas_peucker_count_mask(
             else:
                 u = np.where(norm2 > 0, np.clip((px * dx + py * dy) / norm2, 0.0, 1.0), 0.0)
                 dist = np.hypot(px - u * dx, py - u * dy)
+        dist = np.where(np.isnan(dist), -np.inf, dist)  # a NaN position weighs least
         seg_max = np.maximum.reduceat(dist, first)
         is_max = dist == seg_max[np.repeat(np.arange(len(seg_a)), counts)]
         arg = np.minimum.reduceat(np.where(is_max, rows, np.iinfo(np.int64).max), first)

@@ -80,6 +80,8 @@ def _speed_course(pts: pd.DataFrame) -> tuple[np.ndarray | None, np.ndarray | No
             continue
         x = pd.to_numeric(pts[col], errors="coerce").to_numpy(dtype="float64", na_value=np.nan)
         x = np.where(np.isfinite(x), x, np.nan)
+        if col == "speed":
+            x = np.where(x >= 0, x, np.nan)  # the extension's speed is never negative
         if not np.isfinite(x).any():
             out.append(None)
             continue

@@ -136,6 +136,19 @@ def test_douglas_peucker_count_keeps_the_count_and_matches_tolerances(distance):
         assert np.array_equal(grown, np.clip(k + 1, 2, index.sizes))
 
 
+def test_douglas_peucker_count_with_a_nan_position_keeps_the_count():
+    """A track with a NaN position (review h231: IndexError before): the count is kept,
+    the NaN point weighs least, both distances."""
+    x = np.array([0.0, 1.0, np.nan, 3.0, 4.0])
+    y = np.array([0.0, 1.0, 0.0, 1.0, 0.0])
+    idx = TrackIndex(np.array([0]), np.array([5]), np.zeros(5, dtype="int64"), None)
+    for distance in ("line", "segment"):
+        for k in (2, 3, 4):
+            got = douglas_peucker_count_mask(x, y, idx, np.array([k]), distance)
+            assert got.sum() == k and got[0] and got[-1]
+            assert not got[2]
+
+
 def test_douglas_peucker_distances_differ_beyond_the_chord():
     """A point behind the chord's start: 0 m from its line, 100 m from the segment."""
     x = np.array([0.0, -100.0, 1000.0])

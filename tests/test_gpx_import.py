@@ -268,14 +268,16 @@ def test_our_gpx_keeps_speed_and_course(tmp_path):
     pts.loc[6, "course"] = np.nan
     pts.loc[7, ["speed", "course"]] = np.nan
     pts.loc[8, "course"] = 370.0
+    pts.loc[9, "speed"] = -2.0  # negative: no gpxtpx:speed (the schema's speed is >= 0)
     path = tmp_path / "sc.gpx"
     export_gpx(pts, path)
     text = path.read_text(encoding="utf-8")
     assert "http://www.garmin.com/xmlschemas/TrackPointExtension/v2" in text
-    assert text.count("<gpxtpx:speed>") == n - 2 and text.count("<gpxtpx:course>") == n - 2
+    assert text.count("<gpxtpx:speed>") == n - 3 and text.count("<gpxtpx:course>") == n - 2
     back = read_points(path).points.sort_values(["batch", "time"]).reset_index(drop=True)
     want = pts.sort_values(["batch", "time"]).reset_index(drop=True)
     want.loc[want["course"] >= 360, "course"] -= 360
+    want.loc[want["speed"] < 0, "speed"] = np.nan
     for col in ("speed", "course"):
         got, exp = back[col].to_numpy(), want[col].to_numpy()
         assert np.array_equal(np.isnan(got), np.isnan(exp)), col
