@@ -52,6 +52,18 @@ def build_actions(w) -> None:
     act("zoom_selection", w.zoom_to_selection)
     act("box", w.canvas.set_box_zoom, checkable=True)
     act("remove_layer", w.remove_active_layer)
+    # How the map tells ships and layers apart (h227): kept in the settings.
+    act("color_by_track", w.set_color_by_track, checkable=True)
+    act("show_removed", w.set_show_removed, checkable=True)
+    act("draw_points", w.set_draw_as_points, checkable=True)
+    for key, setting, default in (
+        ("color_by_track", "map/color_by_track", True),
+        ("show_removed", "map/show_removed", False),
+    ):
+        a[key].blockSignals(True)
+        a[key].setChecked(w.map_option(setting, default))
+        a[key].blockSignals(False)
+    a["draw_points"].setEnabled(False)  # a layer's own choice: set with the active layer
     act("import_report", w.show_import_report)
     act("about", w.show_about)
     act("docs", w.open_documentation)
@@ -85,6 +97,9 @@ def build_actions(w) -> None:
     m["run"].addSeparator()
     m["run"].addAction(a["cancel"])
     for key in ("fit", "zoom_selection", "box", "remove_layer", "import_report"):
+        m["view"].addAction(a[key])
+    m["view"].addSeparator()
+    for key in ("color_by_track", "draw_points", "show_removed"):
         m["view"].addAction(a[key])
     m["view"].addSeparator()
     for dock in w.docks.values():
@@ -157,6 +172,9 @@ def retranslate(w) -> None:
         "zoom_selection": tr("&Zoom to selection"),
         "box": tr("&Box zoom"),
         "remove_layer": tr("&Remove active layer"),
+        "color_by_track": tr("Colour &tracks of the active layer apart (up to 30 tracks)"),
+        "draw_points": tr("Draw active layer as &points (radar plots)"),
+        "show_removed": tr("Show points removed by c&leaning"),
         "import_report": tr("&Import report and quarantined rows…"),
         "about": tr("&About Wakeline"),
         "docs": tr("&Documentation"),

@@ -24,6 +24,26 @@ DRAW_STYLE = {  # kind -> (symbol size px, line width px); maneuver layers draw 
     "fused": (0, 2.5),
     "maneuvers": (8, 0.0),
 }
+#: The map's drawing choices the worker reads when it prepares a layer (the window sets
+#: them from its settings: View menu).
+MAP_OPTIONS = {"plots_as_points": True}
+
+
+def looks_like_plots(points: pd.DataFrame) -> bool:
+    """Whether most tracks of ``points`` (sorted) are radar plots, not ships' tracks:
+    the parameter guidance's test (:func:`wakeline.core.tracks.plot_like`), by points."""
+    from wakeline.core.tracks import plot_like, track_summary
+
+    if len(points) == 0:
+        return False
+    summary = track_summary(points)
+    like = plot_like(summary)
+    if not like.any():
+        return False
+    n = summary["points"].to_numpy(dtype="float64")
+    return bool(n[like].sum() * 2 > n.sum())
+
+
 #: Stacking of a kind over the others (higher on top; equal: the later layer): the
 #: maneuver marks stay above the compressed and fused lines drawn through them.
 DRAW_Z = {"maneuvers": 2.0}
@@ -54,7 +74,11 @@ class LayerView:
     @property
     def colors(self) -> tuple[str, ...]:
         """The colours the map draws the layer in (one per sensor of a source layer)."""
-        return tuple(self.draw.geometry.colors) if self.draw is not None else ()
+        if self.draw is None:
+            return ()
+        geom = self.draw.geometry
+        # drawn one colour per track (the active layer): the layer's own colours still
+        return tuple(geom.plain[1] if geom.plain is not None else geom.colors)
 
     def track_rows(self, keys: list[tuple[str, str]]) -> np.ndarray:
         """Row numbers of the tracks ``keys`` (empty when none is known)."""
@@ -242,6 +266,14 @@ def prepare_view(
     else:
         index = table_index(summary.reset_index(drop=True), text)
     extra = {"table_index": index}
+    if kind != "maneuvers" and looks_like_plots(pts):
+        # radar plots (the guidance's test): dots by default, no line joins a scan's
+        # detections (View ▸ Draw active layer as points turns it off or on)
+        extra["plots"] = True
+        if MAP_OPTIONS.get("plots_as_points", True):
+            from wakeline.app.map_draw import as_points
+
+            draw = as_points(draw, True)
     return LayerView(pts, summary, ranges, marks, with_paths(draw), text, extra)
 
 

@@ -57,6 +57,26 @@ __all__ = ["PALETTE", "MapCanvas", "color_icon", "nan_separated"]
 WIDEST_LATITUDE = "-88.888"
 #: The scale bar and its label: dark grey (contrast 10 on white).
 SCALE_BAR_COLOR = "#404040"
+#: Opacity of the layers other than the active one (:meth:`MapCanvas.set_emphasis`).
+DIM_OPACITY = 0.35
+#: Added to the stacking of the active layer's items: over the other layers, under the
+#: selection (z 50) and the marks.
+ACTIVE_Z = 10.0
+#: The selected tracks' maneuver points (px), over the maneuver layer's dots.
+SELECTED_MARK_PX = 12
+
+
+def marker_px(style_px: float, n: int) -> float:
+    """A markers-only layer's dot size (px) for ``n`` dots in view: the style's while
+    they are few, smaller as they crowd (at overview scale 400 dots of 8 px buried a
+    100 km route: h225 item 10)."""
+    if n <= 150:
+        return style_px
+    if n <= 600:
+        return max(min(style_px, 6.0), 2.0)
+    return max(min(style_px, 4.0), 2.0)
+
+
 #: Selection curve items made with the canvas (more are made when needed).
 SELECTION_POOL = 12
 #: Cache mode of a layer's curves.
@@ -192,7 +212,14 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self._selection_west = -180.0  # the band of the selection's layer
         self._selection_colors: dict[tuple[str, str], str] = {}  # (sensor, batch) -> colour
         self._context_opacity = 1.0  # of the layers' curves (< 1: muted behind a review)
-        self.marks = pg.ScatterPlotItem(size=8, pen=pg.mkPen("k"), brush=pg.mkBrush("w"))
+        # The active layer's map layers (set_emphasis): on top, the others dimmed; None:
+        # every layer as it is (a render, no window).
+        self._emphasis: set[str] | None = None
+        # The selected tracks' maneuver points: larger than the maneuver layer's dots,
+        # yellow with a black rim, over everything but the hover.
+        self.marks = pg.ScatterPlotItem(
+            size=SELECTED_MARK_PX, pen=pg.mkPen("k", width=1.5), brush=pg.mkBrush("#ffd400")
+        )
         self.marks.setZValue(60)
         self.addItem(self.marks)
         self.hover_label = pg.TextItem(
@@ -327,11 +354,12 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             for curve in data.curves:
                 kw = {}
                 if data.style.symbol_size:
+                    symbol = data.style.symbol if not data.style.width else "o"
                     # One pen and brush object each for good: the symbol atlas keys a
                     # style by their ids (a colour given as text made a new brush, and
                     # a new atlas entry, at every swap).
                     kw = {
-                        "symbol": "o",
+                        "symbol": symbol,
                         "symbolSize": data.style.symbol_size,
                         "symbolPen": pg.mkPen(None),
                         "symbolBrush": pg.mkBrush(curve.color),
@@ -356,9 +384,8 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 # 200 single-track layers ~80 ms a repaint); cached, a repaint for
                 # another layer, the hover or the selection blits them.
                 item.scatter.setCacheMode(CACHE)
-                item.setOpacity(self._context_opacity)
-                if data.style.z:
-                    item.setZValue(data.style.z)
+                item.setOpacity(self._opacity_of(name))
+                item.setZValue(self._z_of(name, data.style.z))
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)
@@ -411,7 +438,15 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             # Markers only (maneuver points): symbols while few, else small 1-px
             # crosses drawn as one path (pyqtgraph builds symbols point by point).
             if few:
-                item.setData(curve.lon, curve.lat, connect="finite", symbol="o", pen=None)
+                size = marker_px(data.style.symbol_size, curve.n_vertices)
+                item.setData(
+                    curve.lon,
+                    curve.lat,
+                    connect="finite",
+                    symbol=data.style.symbol,
+                    symbolSize=size,
+                    pen=None,
+                )
             else:
                 xs, ys = self._crosses(curve, data.style.symbol_size)
                 pen = pg.mkPen(curve.color, width=1)
@@ -509,9 +544,29 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         """Draw every layer's curves at ``opacity`` (1: as they are; less: muted, the
         context behind the curves of a proposal under review), layers added later too."""
         self._context_opacity = float(opacity)
-        for items in self._items.values():
+        self._apply_emphasis()
+
+    def set_emphasis(self, names: list[str] | None) -> None:
+        """Map layers ``names`` (the active layer's) drawn on top at full opacity and the
+        others dimmed to :data:`DIM_OPACITY` (None: every layer as it is), layers added
+        later too: switching the active layer changes the picture (h225 item 3)."""
+        self._emphasis = None if names is None else set(names)
+        self._apply_emphasis()
+
+    def _opacity_of(self, name: str) -> float:
+        dim = self._emphasis is not None and name not in self._emphasis
+        return self._context_opacity * (DIM_OPACITY if dim else 1.0)
+
+    def _z_of(self, name: str, z: float) -> float:
+        return z + (ACTIVE_Z if self._emphasis and name in self._emphasis else 0.0)
+
+    def _apply_emphasis(self) -> None:
+        for name, items in self._items.items():
+            data = self._data.get(name)
+            z = self._z_of(name, data.style.z if data is not None else 0.0)
             for item in items:
-                item.setOpacity(self._context_opacity)
+                item.setOpacity(self._opacity_of(name))
+                item.setZValue(z)
 
     def set_visible(self, name: str, visible: bool) -> None:
         """Show or hide layer ``name``'s curves and their legend entries."""
@@ -652,6 +707,16 @@ def sprite_is_stale(
 
 
 def color_icon(color: str) -> QtGui.QIcon:
+    """A layer's colour swatch with a dark rim, the same pixmap in every mode: a
+    selected row's highlight tinted the swatch away (h225 item 3)."""
     pix = QtGui.QPixmap(14, 14)
-    pix.fill(QtGui.QColor(color))
-    return QtGui.QIcon(pix)
+    pix.fill(QtGui.QColor("#202020"))
+    painter = QtGui.QPainter(pix)
+    try:
+        painter.fillRect(1, 1, 12, 12, QtGui.QColor(color))
+    finally:
+        painter.end()
+    icon = QtGui.QIcon()
+    for mode in (QtGui.QIcon.Mode.Normal, QtGui.QIcon.Mode.Selected, QtGui.QIcon.Mode.Active):
+        icon.addPixmap(pix, mode)
+    return icon

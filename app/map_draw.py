@@ -49,6 +49,12 @@ class LayerStyle:
     #: Break the line at gaps of hours and impossible jumps (off for a compressed layer:
     #: its long legs are the compression's, and the ship was seen along them).
     gaps: bool = True
+    #: The marker of a markers-only layer (``width`` 0) while few: pyqtgraph's symbol
+    #: name ("o" dots, "x" crosses); many are drawn as small 1-px crosses anyway.
+    symbol: str = "o"
+    #: Radar plots drawn as dots (:func:`as_points`): the time slider still runs over
+    #: them (a markers-only layer else is a step's marks, not tracks).
+    plots: bool = False
 
 
 @dataclass
@@ -85,6 +91,12 @@ class LayerGeometry:
     point_batch: np.ndarray | None = None
     #: West edge of the band the layer's tracks start in: -180 ([-180, 180)) or 0.
     lon_west: float = -180.0
+    #: A note the hover shows per point (a removed point's rule and reason): the code of
+    #: every point and the texts, or None.
+    point_note: tuple[np.ndarray, tuple[str, ...]] | None = None
+    #: The layer's own ``(group, colors, labels)`` while its tracks are drawn each in its
+    #: own colour (:func:`recolor`); None: drawn as prepared.
+    plain: tuple | None = None
     _tree: cKDTree | None = field(default=None, repr=False)
     _sketch: PositionSketch | None = field(default=None, repr=False)
 
@@ -144,6 +156,7 @@ class LayerGeometry:
             "speed_kn": float(self.speed_kn[i]),
             "lon": float(self.lon[i]),
             "lat": float(self.lat[i]),
+            **({"note": self.point_note[1][self.point_note[0][i]]} if self.point_note else {}),
         }
 
 
@@ -450,3 +463,162 @@ def nan_separated(
     if geom.gap_break is not None:
         brk |= geom.gap_break
     return nan_join(geom.lon, geom.lat, keep, brk)
+
+
+# -- colour by track ---------------------------------------------------------------------
+
+#: A layer of at most this many tracks is drawn one colour per track while it is the
+#: active layer and View ▸ Colour by track is on (beyond it the palette's 20 colours
+#: would each stand for several tracks, and a colour names no ship).
+TRACK_COLORS_MAX = 30
+#: Legend lines of a layer coloured by track; the last says how many more there are.
+LEGEND_TRACKS = 12
+
+
+def track_legend_labels(names: list[str], counts: np.ndarray, n_tracks: int) -> tuple[str, ...]:
+    """Legend labels of the curves of a layer coloured by track (one per colour): the
+    colour's first track's name, "· +k same colour" when k more tracks share it; beyond
+    :data:`LEGEND_TRACKS` lines none, the last line saying "… and N more tracks"."""
+    n_groups = len(names)
+    out = []
+    for g, name in enumerate(names):
+        more = int(counts[g]) - 1
+        # "· +k same colour" on a second line of its own (the legend's "FILE · what")
+        text = name + (f" · +{more} same colour" if more > 0 else "")
+        if n_groups > LEGEND_TRACKS and g >= LEGEND_TRACKS - 1:
+            named = sum(int(c) for c in counts[: LEGEND_TRACKS - 1])
+            text = f"… and {n_tracks - named:,} more tracks" if g == LEGEND_TRACKS - 1 else ""
+        out.append(text)
+    return tuple(out)
+
+
+def track_names(geom: LayerGeometry) -> list[str]:
+    """Each track's short name: its batch, ``sensor:batch`` when the layer has several
+    sensors."""
+    sensors = {str(s) for s in geom.sensor}
+    if len(sensors) > 1:
+        return [f"{s}:{b}" for s, b in zip(geom.sensor, geom.batch, strict=True)]
+    return [str(b) for b in geom.batch]
+
+
+def recolor(data: DrawData, by_track: bool, palette: tuple[str, ...] = BATCH_PALETTE) -> DrawData:
+    """``data`` with every track in its own colour of ``palette`` (``by_track``; in turn,
+    repeating beyond the palette) or in its layer's colours again; the curves decimated
+    for the view they were made for (pure, for a worker)."""
+    geom = data.geometry
+    if by_track == (geom.plain is not None):
+        return data
+    if by_track:
+        k = max(len(palette), 1)
+        group = np.arange(geom.n_tracks, dtype="int64") % k
+        used = max(min(k, geom.n_tracks), 1)
+        names = track_names(geom)[:used] or [""]
+        counts = np.bincount(group, minlength=used)
+        labels = track_legend_labels(names, counts, geom.n_tracks)
+        if geom.labels and geom.labels[0]:  # the first line names the layer too
+            labels = (f"{geom.labels[0]} · {labels[0]}", *labels[1:])
+        new = replace(
+            geom,
+            group=group,
+            colors=tuple(palette[:used]),
+            labels=labels,
+            plain=(geom.group, geom.colors, geom.labels),
+        )
+    else:
+        group, colors, labels = geom.plain
+        new = replace(geom, group=group, colors=colors, labels=labels, plain=None)
+    size = None
+    if data.view is not None and data.px is not None:
+        x0, x1, y0, y1 = data.view
+        size = ((x1 - x0) / data.px[0], (y1 - y0) / data.px[1])
+    curves, box, px = curves_for(new, data.view if size else None, size)
+    return replace(data, geometry=new, curves=curves, lod_box=box, px=px)
+
+
+def as_points(data: DrawData, points: bool, symbol_size: float = 3.0) -> DrawData:
+    """``data`` drawn as dots alone (``points``: radar plots, no line joins a scan's
+    detections) or as lines again (the line width it was prepared with, kept in
+    ``style``'s history); pure, cheap (no new level of detail)."""
+    style = data.style
+    if points == (style.width == 0 and style.symbol_size > 0):
+        return data
+    if points:
+        style = replace(style, width=0.0, symbol_size=symbol_size, symbol="o", plots=True)
+    else:
+        style = replace(style, width=1.3, symbol_size=3.0, plots=False)
+    return replace(data, style=style)
+
+
+#: Colours of the rules that removed points (the clean step's ``rejected`` table).
+RULE_COLORS = ("#d62728", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#7f7f7f")
+
+
+def rejected_layer(rejected: pd.DataFrame, name: str, lon_west: float = -180.0) -> DrawData | None:
+    """The points a clean step removed or replaced (its ``rejected`` table: original rows
+    with ``rule``, ``action`` and ``params``) as small × markers, one colour per rule; the
+    hover says the rule, the action and the rule's parameters (pure, for a worker). None
+    when the table has no positions."""
+    if rejected is None or len(rejected) == 0 or not {"lon", "lat"} <= set(rejected):
+        return None
+    rule = (
+        rejected["rule"].astype(str).to_numpy(dtype=object)
+        if "rule" in rejected
+        else np.full(len(rejected), "removed", dtype=object)
+    )
+
+    def text(col: str) -> np.ndarray:
+        if col not in rejected:
+            return np.full(len(rejected), "", dtype=object)
+        return rejected[col].astype(str).to_numpy(dtype=object)
+
+    lon = rejected["lon"].to_numpy(dtype="float64")
+    lat = rejected["lat"].to_numpy(dtype="float64")
+    ok = np.isfinite(lon) & np.isfinite(lat)
+    if not ok.any():
+        return None
+    lon, lat, rule = lon[ok], lat[ok], rule[ok]
+    action, params, sensor, batch = (text(c)[ok] for c in ("action", "params", "sensor", "batch"))
+    if lon_west != -180.0:
+        lon = geo.into_band(lon, lon_west)
+    else:
+        lon = ((lon + 180.0) % 360.0) - 180.0
+    n = len(lon)
+    # one text per (rule, action, parameters) met, not per point (469 k texts held the GIL)
+    codes = [pd.factorize(pd.Series(col), use_na_sentinel=False) for col in (rule, action, params)]
+    combo = codes[0][0].astype("int64")
+    for c, u in codes[1:]:
+        combo = combo * max(len(u), 1) + c
+    kinds, note_code = np.unique(combo, return_inverse=True)
+    texts = []
+    for k in kinds:
+        parts = []
+        for _c, u in reversed(codes):
+            k, r = divmod(int(k), max(len(u), 1))
+            parts.append(str(u[r]))
+        p, a, r = parts
+        texts.append(f"removed by clean: {r} ({a}) {p}".rstrip())
+    note = (note_code.astype("int64"), tuple(texts))
+    names, code = np.unique(rule.astype(str), return_inverse=True)
+    counts = np.bincount(code, minlength=len(names))
+    starts = np.arange(n, dtype="int64")  # one "track" per point: no line joins them
+    t = time_seconds(rejected["time"])[ok] if "time" in rejected else np.zeros(n)
+    geom = LayerGeometry(
+        lon=lon,
+        lat=lat,
+        starts=starts,
+        ends=starts + 1,
+        track=starts.copy(),
+        sensor=sensor,
+        batch=batch,
+        time_s=np.asarray(t, dtype="float64"),
+        speed_kn=np.full(n, np.nan),
+        group=code.astype("int64"),
+        labels=tuple(f"removed: {r} ({c:,})" for r, c in zip(names, counts, strict=True)),
+        colors=tuple(RULE_COLORS[k % len(RULE_COLORS)] for k in range(len(names))),
+        relative=is_relative_time(t),
+        gap_break=None,
+        lon_west=lon_west,
+        point_note=note,
+    )
+    style = LayerStyle(width=0.0, symbol_size=6.0, z=3.0, gaps=False, symbol="x")
+    return prepare_layer(geom, name, style=style)

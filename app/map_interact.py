@@ -176,10 +176,15 @@ class MapInteractMixin:
             self.hover_dot.setData([], [])
         else:
             speed = info["speed_kn"]
-            self.hover_label.setText(
-                f"{info['sensor']} · batch {info['batch']}\n{info['time']}\n"
-                + (f"{speed:.1f} kn" if math.isfinite(speed) else "speed —")
-            )
+            if "note" in info:  # a point the clean step removed: its rule and reason
+                self.hover_label.setText(
+                    f"{info['note']}\n{info['sensor']} · batch {info['batch']}\n{info['time']}"
+                )
+            else:
+                self.hover_label.setText(
+                    f"{info['sensor']} · batch {info['batch']}\n{info['time']}\n"
+                    + (f"{speed:.1f} kn" if math.isfinite(speed) else "speed —")
+                )
             self.hover_label.setPos(info["lon"], info["lat"])
             self.hover_label.show()
             self.hover_dot.setData([info["lon"]], [info["lat"]])

@@ -60,8 +60,9 @@ def selection_curves(
     """The halo (every selected track, full resolution), one curve per colour, and the
     colour of every selected track by ``(sensor, batch)``.
 
-    A curve's label is ``sensor · batch`` of its first batch (``(+k)`` when k more share
-    the colour); empty (no legend line) beyond :data:`LEGEND_BATCHES` colours.
+    A curve's label is its first batch (``sensor:batch`` when several sensors; ``· +k same colour`` when k
+    more share the colour); beyond :data:`LEGEND_BATCHES` colours the last line says
+    "… and N more selected" and the rest have none.
     ``lon_west``: the band of the layer the tracks are drawn in (its geometry's
     ``lon_west``), so they lie on it across 180°.
     """
@@ -82,8 +83,17 @@ def selection_curves(
         x, y = nan_join(geom.lon, geom.lat, color_of_point == g, brk)
         more = int(np.count_nonzero(color_of_track == g)) - 1
         label = ""
-        if g < LEGEND_BATCHES:
-            label = f"{geom.sensor[g]} · {geom.batch[g]}" + (f" (+{more})" if more else "")
+        groups = min(k, geom.n_tracks)
+        if groups > LEGEND_BATCHES and g == LEGEND_BATCHES - 1:
+            # the legend stops here and says so (it stopped silently: h225 item 2)
+            named = int(np.count_nonzero(color_of_track < LEGEND_BATCHES - 1))
+            label = f"… and {geom.n_tracks - named:,} more selected"
+        elif g < LEGEND_BATCHES:
+            # "(+k same colour)": k more selected tracks share this colour (the palette
+            # has fewer colours than tracks); it said "(+k)", which nobody could read
+            one = len({str(x) for x in geom.sensor}) == 1
+            name = str(geom.batch[g]) if one else f"{geom.sensor[g]}:{geom.batch[g]}"
+            label = name + (f" · +{more} same colour" if more else "")
         curves.append(Curve(label, palette[g], x, y))
     colors = {
         (str(s), str(b)): palette[g]

@@ -277,6 +277,15 @@ class TimeOverlay(QtCore.QObject):
         self.markers.setZValue(71)
         for item in (self.trail, self.markers):
             canvas.addItem(item, ignoreBounds=True)
+        # The slider's time, at the view's top left while the Positions markers show:
+        # the markers are the ships at this time, the lines every time (h225 item 18).
+        self.clock = pg.TextItem(
+            color="#202020", fill=pg.mkBrush(255, 236, 140, 225), border=pg.mkPen("#8a7a20")
+        )
+        self.clock.setParentItem(canvas.vb)
+        self.clock.setPos(6, 6)
+        self.clock.setZValue(80)
+        self.clock.hide()
         self.scene: TimeScene | None = None
         self.shown_tracks = np.zeros(0, dtype="int64")
         self._wanted: tuple | None = None
@@ -395,6 +404,13 @@ class TimeOverlay(QtCore.QObject):
     def set_visible(self, on: bool) -> None:
         self.markers.setVisible(on)
         self.trail.setVisible(on)
+        self.clock.setVisible(on and bool(self.clock.textItem.toPlainText()))
+
+    def set_clock(self, text: str) -> None:
+        """The slider's time as the markers show it ("Positions at …"); hidden while the
+        markers are."""
+        self.clock.setText(text)
+        self.clock.setVisible(bool(text) and self.markers.isVisible())
 
 
 class TimeController(QtCore.QObject):
@@ -503,7 +519,7 @@ class TimeController(QtCore.QObject):
         drawn = {
             name: d.geometry
             for name, (d, _, indexed, _) in originals.items()
-            if indexed and d.style.width > 0
+            if indexed and (d.style.width > 0 or d.style.plots)
         }
         lines = one_clock(drawn, self.window.active)
         self.panel.set_left_out(*left_out(drawn, lines))
@@ -639,6 +655,12 @@ class TimeController(QtCore.QObject):
     def _draw(self, t: float) -> None:
         if self.panel.overlay_on():
             self.overlay.show_at(t, self.panel.params().trail_min * 60.0)
+            text = self.panel.time_label.text()
+            self.overlay.set_clock(
+                QtCore.QCoreApplication.translate("MainWindow", "Positions at {0}").format(text)
+                if text and text != "—"
+                else ""
+            )
 
     def _overlay_toggled(self, on: bool) -> None:
         self.overlay.set_visible(on)

@@ -14,7 +14,13 @@ import pandas as pd
 from PySide6 import QtCore, QtWidgets
 
 from wakeline.app.layer_names import shown_name
-from wakeline.app.layer_view import is_part_of, map_layers, prepare_view_apart
+from wakeline.app.layer_view import (
+    DRAW_STYLE,
+    PART_SEP,
+    is_part_of,
+    map_layers,
+    prepare_view_apart,
+)
 from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
 from wakeline.core.errors import InputError
@@ -73,6 +79,15 @@ EMPTY = pd.DataFrame(columns=["sensor", "batch", "time", "lon", "lat"])
 #: layer kinds whose points are a sampling of their own (not the source layer's times):
 #: the Detection-limit text describes them, not their source
 OWN_SAMPLING_KINDS = ("fused",)
+#: Settings (QSettings) of the map's View menu choices, and their defaults.
+COLOR_BY_TRACK_KEY = "map/color_by_track"
+SHOW_REMOVED_KEY = "map/show_removed"
+#: The map layer of a cleaned layer's removed points (``<layer id>/removed``).
+REMOVED_PART = "removed"
+#: How long the map's view must rest before the track labels follow it (ms).
+LABELS_MS = 80
+#: Positions labels are placed for layers of at most this many tracks (one search each).
+LABEL_TRACKS_MAX = 2_000
 #: Batch table columns sized to their text when a layer is shown.
 FITTED_COLUMNS = ("sensor", "batch", "points", "start", "end")
 
@@ -284,11 +299,13 @@ class LayersMixin:
                     self._drawn_labels: dict[str, str] = {}
                 self._drawn_labels[lid] = label
                 keep = {d.name for d in drawn}
+                removed = f"{lid}{PART_SEP}{REMOVED_PART}"
                 for name in self.map_names(lid):  # a part the layer has no more
-                    if name not in keep:
+                    if name not in keep and name != removed:
                         self.canvas.remove_layer(name)
                 for data in drawn:
                     self.canvas.set_draw_data(data, layer.visible)
+                self._after_swap(lid)
                 if layer.visible and self.canvas.isVisible():
                     # Paint now, in this turn: Qt would merge the paints of layers swapped in
                     # on successive turns into one long paint of them all.
@@ -439,6 +456,20 @@ class LayersMixin:
         if view is not None and layer.kind == BEARING_KIND and self.bearings is not view.points:
             self.show_bearing_layer(view)  # its map and detections in the dock
         self._update_stats()
+        # The map tells the active layer apart: on top, the others dimmed, its tracks
+        # each in its own colour (View ▸ Colour by track), labelled; the last one's back
+        # in its layer colour.
+        self._emphasize()
+        for other in list(self.session.layers):
+            self._restyle(other)
+        self._labels_later()
+        points_action = getattr(self, "actions_", {}).get("draw_points")
+        if points_action is not None:
+            want = self._wanted_style(self.active) if self.active else None
+            points_action.blockSignals(True)
+            points_action.setEnabled(want is not None and want[1] is not None)
+            points_action.setChecked(bool(want and want[1]))
+            points_action.blockSignals(False)
 
     def _refresh_active(self, lid: str) -> bool:
         """The active layer's points replaced with the same tracks (a review decision
@@ -489,6 +520,238 @@ class LayersMixin:
 
     def active_layer(self) -> Layer | None:
         return self.session.get(self.active)
+
+    # -- how the map tells ships and layers apart (h227) ------------------------------
+
+    def map_option(self, key: str, default: bool) -> bool:
+        """A View menu choice kept in the settings (``default`` when never set)."""
+        value = self.settings.value(key, default)
+        return value if isinstance(value, bool) else str(value).lower() in ("true", "1")
+
+    def set_color_by_track(self, on: bool) -> None:
+        """View ▸ Colour by track: the active layer's tracks each in its own colour (when
+        it has at most :data:`~wakeline.app.map_draw.TRACK_COLORS_MAX`); kept in the
+        settings."""
+        self.settings.setValue(COLOR_BY_TRACK_KEY, bool(on))
+        for lid in list(self.session.layers):
+            self._restyle(lid)
+
+    def set_show_removed(self, on: bool) -> None:
+        """View ▸ Show points removed by cleaning: each cleaned layer's ``rejected`` rows
+        as × markers coloured by rule; kept in the settings."""
+        self.settings.setValue(SHOW_REMOVED_KEY, bool(on))
+        for lid in list(self.session.layers):
+            self._update_removed(lid)
+
+    def set_draw_as_points(self, on: bool) -> None:
+        """View ▸ Draw active layer as points: this layer's detections as dots (radar
+        plots: the default for a layer that looks like plots) or joined as lines."""
+        if self.active is None:
+            return
+        if not hasattr(self, "_draw_points"):
+            self._draw_points: dict[str, bool] = {}
+        self._draw_points[self.active] = bool(on)
+        self._restyle(self.active)
+
+    def _wanted_style(self, lid: str) -> tuple[bool, bool | None] | None:
+        """(by track, as points) the map should draw layer ``lid`` with; as points None:
+        not a choice for it (maneuver marks). None: a layer not drawn as tracks."""
+        from wakeline.app.map_draw import TRACK_COLORS_MAX
+
+        layer, view = self.session.get(lid), self.views.get(lid)
+        if layer is None or view is None or view.draw is None or layer.kind == BEARING_KIND:
+            return None
+        if layer.kind == "maneuvers":
+            return False, None
+        by_track = (
+            lid == self.active
+            and self.map_option(COLOR_BY_TRACK_KEY, True)
+            and 1 < view.draw.geometry.n_tracks <= TRACK_COLORS_MAX
+        )
+        chosen = getattr(self, "_draw_points", {}).get(lid)
+        points = bool(view.extra.get("plots")) if chosen is None else chosen
+        return by_track, points
+
+    def _restyle(self, lid: str) -> None:
+        """Draw layer ``lid`` in the colours and style :meth:`_wanted_style` says: the
+        curves are made again in the worker (colour by track, dots or lines) and the
+        result swapped in like a new drawing."""
+        want = self._wanted_style(lid)
+        view = self.views.get(lid)
+        if want is None or view is None:
+            return
+        by_track, points = want
+        data = view.draw
+        geom = data.geometry
+        is_points = data.style.width == 0 and data.style.symbol_size > 0
+        if by_track == (geom.plain is not None) and (points is None or points == is_points):
+            return
+        from wakeline.app.map_colors import batch_colors
+        from wakeline.app.map_draw import as_points, recolor
+        from wakeline.app.map_paths import with_paths
+
+        others = {
+            c
+            for other, v in self.views.items()
+            if other != lid and self.session.get(other) is not None and v.colors
+            for c in v.colors
+            if self.session.get(other).visible
+        }
+        palette = batch_colors(others)
+        width = DRAW_STYLE.get(self.session.get(lid).kind, (0, 1.3))[1] or 1.3
+
+        def job(data=data):
+            out = recolor(data, by_track, palette)
+            if points is not None:
+                out = as_points(out, points)
+                if not points and out.style.width != width:
+                    import dataclasses
+
+                    out = dataclasses.replace(
+                        out, style=dataclasses.replace(out.style, width=width)
+                    )
+            return with_paths(out)
+
+        def done(result, view=view, data=data) -> None:
+            if result is None or self.views.get(lid) is not view or view.draw is not data:
+                return  # the layer was drawn anew meanwhile (it is restyled then)
+            view.draw = result
+            self._queue_draw(lid)
+
+        self.lod_worker(job, done)
+
+    def _after_swap(self, lid: str) -> None:
+        """A layer's drawing swapped into the map: its style, the removed points, the
+        active layer's emphasis and labels follow."""
+        self._restyle(lid)
+        self._update_removed(lid)
+        self._emphasize()
+        self._labels_later()
+
+    def _emphasize(self) -> None:
+        """The active layer's map layers on top, the others dimmed (View: with one layer
+        shown there is nothing to dim)."""
+        names = self.map_names(self.active) if self.active else None
+        self.canvas.set_emphasis(names)
+
+    def _update_removed(self, lid: str) -> None:
+        """The removed-points overlay of layer ``lid`` drawn, made (in the worker) or
+        taken away, as View ▸ Show points removed by cleaning says."""
+        layer, view = self.session.get(lid), self.views.get(lid)
+        name = f"{lid}{PART_SEP}{REMOVED_PART}"
+        table = layer.tables.get("rejected") if layer is not None else None
+        want = (
+            layer is not None
+            and view is not None
+            and view.draw is not None
+            and table is not None
+            and len(table) > 0
+            and self.map_option(SHOW_REMOVED_KEY, False)
+        )
+        if not hasattr(self, "_removed_drawn"):
+            self._removed_drawn: dict[str, tuple] = {}
+        if not want:
+            if name in self.canvas.layer_names():
+                self.canvas.remove_layer(name)
+            return
+        cached = self._removed_drawn.get(lid)
+        if cached is not None and cached[0] is table:
+            if name not in self.canvas.layer_names() and cached[1] is not None:
+                self.canvas.set_draw_data(cached[1], layer.visible)
+                self._emphasize()
+            return
+        from wakeline.app.map_draw import rejected_layer
+        from wakeline.app.map_paths import with_paths
+
+        west = view.draw.geometry.lon_west
+        label = shown_name(layer.name)
+
+        def job():
+            data = rejected_layer(table, name, west)
+            if data is None:
+                return None
+            import dataclasses
+
+            curves = tuple(
+                dataclasses.replace(c, label=f"{label} · {c.label}") for c in data.curves
+            )
+            return with_paths(dataclasses.replace(data, curves=curves))
+
+        def done(result) -> None:
+            self._removed_drawn[lid] = (table, result)
+            if self.session.get(lid) is layer and result is not None:
+                self._update_removed(lid)
+
+        self._removed_drawn[lid] = (table, None)  # asked for
+        self.lod_worker(job, done)
+
+    # -- track labels ------------------------------------------------------------------
+
+    def _labels_later(self) -> None:
+        """Place the active layer's track labels once the map's view rests."""
+        if not hasattr(self, "_labels_timer"):
+            from wakeline.app.map_labels import TrackLabels
+
+            self.track_labels = TrackLabels(self.canvas)
+            self._labels_timer = QtCore.QTimer(self)
+            self._labels_timer.setSingleShot(True)
+            self._labels_timer.setInterval(LABELS_MS)
+            self._labels_timer.timeout.connect(self.update_track_labels)
+            self.canvas.vb.sigRangeChanged.connect(lambda *_: self._labels_timer.start())
+            self.canvas.vb.sigResized.connect(lambda *_: self._labels_timer.start())
+            overlay = getattr(getattr(self, "time_controller", None), "overlay", None)
+            if overlay is not None:
+                overlay.drawn.connect(lambda _t: self._labels_timer.start())
+        self._labels_timer.start()
+
+    def update_track_labels(self) -> list[str]:
+        """The active layer's track labels (batch, and the ship's name where the file
+        has one) beside its Positions markers while Positions is on, else at each track's
+        last point; decluttered (:mod:`~wakeline.app.map_labels`). Returns the texts."""
+        labels = getattr(self, "track_labels", None)
+        if labels is None:
+            return []
+        lid = self.active
+        layer, view = self.session.get(lid), self.views.get(lid) if lid else None
+        if (
+            layer is None
+            or view is None
+            or layer.kind in (BEARING_KIND, "maneuvers")
+            or not layer.visible
+            or lid not in self.canvas.layer_names()
+        ):
+            labels.clear()
+            return []
+        from wakeline.app.map_labels import NAME_COLUMNS, position_at
+
+        geom = self.canvas.draw_data(lid).geometry
+        overlay = getattr(getattr(self, "time_controller", None), "overlay", None)
+        t = overlay._last[0] if overlay is not None and overlay._last is not None else None
+        positions = (
+            t is not None
+            and overlay.markers.isVisible()
+            and self.time_panel.overlay_on()
+            and geom.n_tracks <= LABEL_TRACKS_MAX
+        )
+        if positions:
+            rows, alive = position_at(geom.time_s, geom.starts, geom.ends, t)
+        else:
+            rows, alive = geom.ends - 1, np.ones(geom.n_tracks, dtype=bool)
+        lon = np.where(alive, geom.lon[rows] if len(rows) else rows, np.nan)
+        lat = np.where(alive, geom.lat[rows] if len(rows) else rows, np.nan)
+        name_col = next((c for c in NAME_COLUMNS if c in view.points.columns), None)
+        texts, colors = [], []
+        for k in range(geom.n_tracks):
+            text = str(geom.batch[k])
+            if name_col is not None:
+                rng = view.ranges.get((str(geom.sensor[k]), str(geom.batch[k])))
+                if rng is not None:
+                    ship = view.points[name_col].iloc[rng[0]]
+                    if isinstance(ship, str) and ship.strip():
+                        text = f"{text} {ship.strip()}"
+            texts.append(text)
+            colors.append(geom.colors[int(geom.group[k])] if len(geom.colors) else "#000")
+        return labels.show(lon, lat, texts, colors)
 
 
 def _same_but_targets(a: pd.DataFrame | None, b: pd.DataFrame | None) -> bool:

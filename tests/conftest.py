@@ -155,15 +155,18 @@ def unmark_decisions(path: Path) -> None:
     con.close()
 
 
-def make_window(qtbot, tmp_path, size: tuple[int, int] = (1400, 900)):
+def make_window(qtbot, tmp_path, size: tuple[int, int] = (1400, 900), track_colors: bool = False):
     """A main window in English with settings of its own under ``tmp_path``, ``size`` px;
-    :func:`window` yields one and ends its jobs after the test."""
+    :func:`window` yields one and ends its jobs after the test. ``track_colors``: View ▸
+    Colour by track (on by default in the application; off here, where tests check
+    the layers' and sensors' own colours and curves)."""
     from PySide6 import QtCore
 
     from wakeline.app.main_window import MainWindow
 
     settings = QtCore.QSettings(str(tmp_path / "settings.ini"), QtCore.QSettings.Format.IniFormat)
     settings.setValue("language", "en")
+    settings.setValue("map/color_by_track", track_colors)
     w = MainWindow(settings)
     qtbot.addWidget(w)
     w.resize(*size)

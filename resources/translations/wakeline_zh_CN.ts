@@ -284,6 +284,22 @@
         <translation>移除当前图层(&amp;R)</translation>
     </message>
     <message>
+        <source>Colour &amp;tracks of the active layer apart (up to 30 tracks)</source>
+        <translation>当前图层按航迹分色(&amp;T)(至多 30 条航迹)</translation>
+    </message>
+    <message>
+        <source>Draw active layer as &amp;points (radar plots)</source>
+        <translation>当前图层画成点(&amp;P)(雷达点迹)</translation>
+    </message>
+    <message>
+        <source>Positions at {0}</source>
+        <translation>位置时刻 {0}</translation>
+    </message>
+    <message>
+        <source>Show points removed by c&amp;leaning</source>
+        <translation>显示清洗去除的点(&amp;L)</translation>
+    </message>
+    <message>
         <source>&amp;Import report and quarantined rows…</source>
         <translation>导入报告与隔离行(&amp;I)…</translation>
     </message>
