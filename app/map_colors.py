@@ -127,3 +127,30 @@ def batch_colors(avoid: Iterable[str] = ()) -> tuple[str, ...]:
     layers'), or all of it when that would leave fewer than half."""
     free = apart_from(BATCH_PALETTE, avoid)
     return free if 2 * len(free) >= len(BATCH_PALETTE) else BATCH_PALETTE
+
+
+#: Colours of a layer drawn one colour per track (View ▸ Colour by track): the batch
+#: palette's colours, in its order, each at least this far (CIE76 ΔE) from those kept
+#: before it; tab20c's lighter blue and purple and the second grey (ΔE 4.6 to 13 from a
+#: colour before them) are left out: 17 colours.
+TRACK_DELTA_E = 15.0
+
+
+def well_separated(palette: Iterable[str], least: float = TRACK_DELTA_E) -> tuple[str, ...]:
+    """The colours of ``palette``, in order, each at least ``least`` (ΔE) from every one
+    kept before it."""
+    kept: list[str] = []
+    for c in palette:
+        if all(delta_e(c, k) >= least for k in kept):
+            kept.append(c)
+    return tuple(kept)
+
+
+TRACK_PALETTE = well_separated(BATCH_PALETTE)
+
+
+def track_colors(avoid: Iterable[str] = ()) -> tuple[str, ...]:
+    """:data:`TRACK_PALETTE` without colours that look like those in ``avoid`` (the
+    other visible layers'), or all of it when that would leave fewer than half."""
+    free = apart_from(TRACK_PALETTE, avoid)
+    return free if 2 * len(free) >= len(TRACK_PALETTE) else TRACK_PALETTE

@@ -501,13 +501,18 @@ def track_names(geom: LayerGeometry) -> list[str]:
     return [str(b) for b in geom.batch]
 
 
-def recolor(data: DrawData, by_track: bool, palette: tuple[str, ...] = BATCH_PALETTE) -> DrawData:
-    """``data`` with every track in its own colour of ``palette`` (``by_track``; in turn,
+def recolor(data: DrawData, by_track: bool, palette: tuple[str, ...] | None = None) -> DrawData:
+    """``data`` with every track in its own colour of ``palette`` (default
+    :data:`~wakeline.app.map_colors.TRACK_PALETTE`; ``by_track``; in turn,
     repeating beyond the palette) or in its layer's colours again; the curves decimated
     for the view they were made for (pure, for a worker)."""
     geom = data.geometry
     if by_track == (geom.plain is not None):
         return data
+    if palette is None:
+        from wakeline.app.map_colors import TRACK_PALETTE
+
+        palette = TRACK_PALETTE
     if by_track:
         k = max(len(palette), 1)
         group = np.arange(geom.n_tracks, dtype="int64") % k
@@ -581,7 +586,7 @@ def rejected_layer(rejected: pd.DataFrame, name: str, lon_west: float = -180.0) 
     if lon_west != -180.0:
         lon = geo.into_band(lon, lon_west)
     else:
-        lon = ((lon + 180.0) % 360.0) - 180.0
+        lon = np.where((lon < -180.0) | (lon >= 180.0), ((lon + 180.0) % 360.0) - 180.0, lon)
     n = len(lon)
     # one text per (rule, action, parameters) met, not per point (469 k texts held the GIL)
     codes = [pd.factorize(pd.Series(col), use_na_sentinel=False) for col in (rule, action, params)]

@@ -154,7 +154,9 @@ class MapInteractMixin:
             return None
         px_x, px_y = self.vb.viewPixelSize()
         best = None
-        for name, data in self._data.items():
+        # a removed point (an overlay with notes) before the source point it lies on
+        layers = sorted(self._data.items(), key=lambda kv: kv[1].geometry.point_note is None)
+        for name, data in layers:
             geom = data.geometry
             if not self._visible.get(name) or geom.n_points == 0:
                 continue

@@ -350,6 +350,7 @@ class LayersMixin:
             or self._fit_after_draw
             or self._make_current is not None
             or self._after_current
+            or getattr(self, "_styling", 0) > 0
         )
 
     def _bearings_removed(self) -> None:
@@ -586,7 +587,7 @@ class LayersMixin:
         is_points = data.style.width == 0 and data.style.symbol_size > 0
         if by_track == (geom.plain is not None) and (points is None or points == is_points):
             return
-        from wakeline.app.map_colors import batch_colors
+        from wakeline.app.map_colors import track_colors
         from wakeline.app.map_draw import as_points, recolor
         from wakeline.app.map_paths import with_paths
 
@@ -597,7 +598,7 @@ class LayersMixin:
             for c in v.colors
             if self.session.get(other).visible
         }
-        palette = batch_colors(others)
+        palette = track_colors(others)
         width = DRAW_STYLE.get(self.session.get(lid).kind, (0, 1.3))[1] or 1.3
 
         def job(data=data):
@@ -613,11 +614,13 @@ class LayersMixin:
             return with_paths(out)
 
         def done(result, view=view, data=data) -> None:
+            self._styling -= 1
             if result is None or self.views.get(lid) is not view or view.draw is not data:
                 return  # the layer was drawn anew meanwhile (it is restyled then)
             view.draw = result
             self._queue_draw(lid)
 
+        self._styling = getattr(self, "_styling", 0) + 1  # drawing until it is swapped in
         self.lod_worker(job, done)
 
     def _after_swap(self, lid: str) -> None:
@@ -672,17 +675,23 @@ class LayersMixin:
                 return None
             import dataclasses
 
+            # the geometry's labels too: a new level of detail makes the curves from them
+            geometry = dataclasses.replace(
+                data.geometry, labels=tuple(f"{label} · {t}" for t in data.geometry.labels)
+            )
             curves = tuple(
                 dataclasses.replace(c, label=f"{label} · {c.label}") for c in data.curves
             )
-            return with_paths(dataclasses.replace(data, curves=curves))
+            return with_paths(dataclasses.replace(data, geometry=geometry, curves=curves))
 
         def done(result) -> None:
+            self._styling -= 1
             self._removed_drawn[lid] = (table, result)
             if self.session.get(lid) is layer and result is not None:
                 self._update_removed(lid)
 
         self._removed_drawn[lid] = (table, None)  # asked for
+        self._styling = getattr(self, "_styling", 0) + 1
         self.lod_worker(job, done)
 
     # -- track labels ------------------------------------------------------------------

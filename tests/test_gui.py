@@ -1471,3 +1471,117 @@ def test_help_menu_about_and_documentation(window, monkeypatch, language):
         assert str(path) in window.log.toPlainText().splitlines()[-1]
     finally:
         window.set_language("en")
+
+
+# -- the map tells ships and layers apart (h227; operator review h225 items 2-4, 9) ----
+
+
+def _layer_of(window, kind: str) -> str:
+    return next(i for i, lay in window.layers.items() if lay.kind == kind)
+
+
+def test_the_active_layer_is_drawn_on_top_and_the_others_dimmed(window):
+    from wakeline.app.map_canvas import DIM_OPACITY
+
+    load(window, demo_path())
+    window.run_step("clean")
+    wait_for_jobs(window)
+    src, cleaned = _layer_of(window, "source"), _layer_of(window, "cleaned")
+    for active, other in ((cleaned, src), (src, cleaned), (cleaned, src)):
+        window.select_layer(active)
+        wait_for_jobs(window)
+        on_top = window.canvas.layer_items(active)
+        below = window.canvas.layer_items(other)
+        assert min(i.zValue() for i in on_top) > max(i.zValue() for i in below)
+        assert all(i.opacity() == 1.0 for i in on_top)
+        assert all(i.opacity() == pytest.approx(DIM_OPACITY) for i in below)
+
+
+def test_the_active_layer_is_coloured_by_track_and_back(qtbot, tmp_path):
+    from conftest import make_window
+
+    from wakeline.app.map_colors import TRACK_PALETTE
+
+    w = make_window(qtbot, tmp_path, track_colors=True)
+    try:
+        lid = load(w, demo_path())
+        w.select_layer(lid)
+        wait_for_jobs(w)
+        n_tracks = w.batch_model.rowCount()
+        data = w.canvas.draw_data(lid)
+        colours = [data.geometry.colors[g] for g in data.geometry.group]
+        assert len(colours) == n_tracks
+        assert len(set(colours)) == min(n_tracks, len(TRACK_PALETTE))
+        assert len(w.canvas.layer_items(lid)) == min(n_tracks, len(TRACK_PALETTE))
+        # the Layers list and the other layers keep the layer's own colours
+        assert w.views[lid].colors == data.geometry.plain[1]
+        w.actions_["color_by_track"].setChecked(False)  # View ▸ Colour by track off
+        wait_for_jobs(w)
+        assert len(w.canvas.layer_items(lid)) == 2  # AIS and R1 again
+        assert w.settings.value("map/color_by_track") in (False, "false")
+        # the track labels: at most one per track, none overlapping (decluttered)
+        texts = w.update_track_labels()
+        assert 0 < len(texts) <= n_tracks
+    finally:
+        w.runner.cancel()
+        w.runner.wait()
+
+
+def test_points_removed_by_cleaning_drawn_as_an_overlay(window):
+    load(window, demo_path())
+    window.run_step("clean")
+    wait_for_jobs(window)
+    cleaned = _layer_of(window, "cleaned")
+    rejected = window.layers[cleaned].tables["rejected"]
+    assert len(rejected) > 0
+    name = f"{cleaned}/removed"
+    assert name not in window.canvas.layer_names()  # off by default
+    window.actions_["show_removed"].setChecked(True)
+    wait_for_jobs(window)
+    data = window.canvas.draw_data(name)
+    with_pos = int((rejected["lon"].notna() & rejected["lat"].notna()).sum())
+    assert data.n_vertices == with_pos
+    rules = sorted(rejected["rule"].astype(str).unique())
+    assert [c.label.rsplit(" · ", 1)[1].split(" (")[0] for c in data.curves] == [
+        f"removed: {r}" for r in rules
+    ]
+    # the hover over a removed point says its rule
+    window.canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    g = data.geometry
+    info = window.canvas.hover(float(g.lon[0]), float(g.lat[0]))
+    assert info is not None and info.get("note", "").startswith("removed by clean: ")
+    window.session.set_visible(cleaned, False)  # hidden with its layer
+    assert not any(i.isVisible() for i in window.canvas.layer_items(name))
+    window.actions_["show_removed"].setChecked(False)
+    assert name not in window.canvas.layer_names()
+
+
+def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_path):
+    rng = np.random.default_rng(7)
+    scans, per = 150, 6
+    t = np.repeat(np.arange(scans) * 3.0, per)
+    df = pd.DataFrame(
+        {
+            "sensor": "radar",
+            "batch": "plots",
+            "time": pd.Timestamp("2024-05-01", tz="UTC") + pd.to_timedelta(t, "s"),
+            "lon": 10.39 + rng.normal(0, 0.004, len(t)),
+            "lat": 63.44 + rng.normal(0, 0.002, len(t)),
+        }
+    )
+    path = tmp_path / "plots.csv"
+    write_points(df, path)
+    lid = load(window, path)
+    window.select_layer(lid)
+    wait_for_jobs(window)
+    style = window.canvas.draw_data(lid).style
+    assert style.width == 0 and style.symbol_size > 0  # dots, no line
+    action = window.actions_["draw_points"]
+    assert action.isEnabled() and action.isChecked()
+    action.setChecked(False)  # this layer joined as lines
+    wait_for_jobs(window)
+    assert window.canvas.draw_data(lid).style.width > 0
+    action.setChecked(True)
+    wait_for_jobs(window)
+    assert window.canvas.draw_data(lid).style.width == 0

@@ -874,3 +874,167 @@ def test_lon_band_keeps_one_sided_and_greenwich_scenes_where_they_are():
     assert geo.lon_band_west(np.array([120.0, -120.0])) == 0.0  # across the Pacific
     assert geo.lon_band_west(np.array([np.nan])) == -180.0
     assert np.allclose(geo.into_band(np.array([-179.9, 179.9, 0.5]), 0.0), [180.1, 179.9, 0.5])
+
+
+# -- telling ships and layers apart (h227; operator review h225 items 2, 4, 9) -----------
+
+
+def plots_scene(seed: int, scans: int = 120, per_scan: int = 6) -> pd.DataFrame:
+    """One sensor's radar plots written as one batch: ``per_scan`` detections of targets
+    and clutter scattered over a harbour at each scan time (3 s apart)."""
+    rng = np.random.default_rng(seed)
+    t0 = pd.Timestamp("2024-05-01", tz="UTC")
+    t = np.repeat(np.arange(scans) * 3.0, per_scan)
+    n = len(t)
+    return pd.DataFrame(
+        {
+            "sensor": "radar",
+            "batch": "plots",
+            "time": t0 + pd.to_timedelta(t, "s"),
+            "lon": 10.39 + rng.normal(0, 0.004, n),
+            "lat": 63.44 + rng.normal(0, 0.002, n),
+        }
+    )
+
+
+@pytest.mark.parametrize("n_tracks", [2, 7, 12, 17])
+def test_colour_by_track_gives_each_track_its_own_colour(n_tracks):
+    """Up to the palette's size every track of the layer is drawn in a colour no other
+    track of it has, every point still drawn; and back to the layer's colour."""
+    from wakeline.app.map_colors import TRACK_PALETTE, delta_e
+    from wakeline.app.map_draw import recolor
+
+    for seed in (1, 2):
+        data = prepare_layer(star_scene(seed, n_tracks, 40), "stars", "#2ca02c")
+        out = recolor(data, True)
+        geom = out.geometry
+        colour_of_track = [geom.colors[g] for g in geom.group]
+        assert len(set(colour_of_track)) == n_tracks
+        assert set(colour_of_track) <= set(TRACK_PALETTE)
+        # well separated: no two closer than ΔE 15 (2.3 is a just-noticeable difference)
+        cols = sorted(set(colour_of_track))
+        if len(cols) > 1:
+            assert min(delta_e(a, b) for i, a in enumerate(cols) for b in cols[i + 1 :]) >= 15
+        assert out.n_vertices == data.n_vertices  # every point of every track
+        back = recolor(out, False)
+        assert back.geometry.colors == ("#2ca02c",) and back.n_vertices == data.n_vertices
+        assert [c.color for c in back.curves] == ["#2ca02c"]
+
+
+def test_colour_by_track_legend_says_and_n_more_and_explains_a_reused_colour():
+    from wakeline.app.map_draw import LEGEND_TRACKS, recolor
+
+    palette = ("#1f77b4", "#ff7f0e", "#8c564b", "#e377c2", "#d62728", "#7b4173") * 3
+    palette = tuple(dict.fromkeys(palette)) + ("#393b79", "#31a354", "#e6550d", "#8c6d31")
+    palette += ("#9467bd", "#17becf", "#2ca02c", "#bcbd22", "#637939")  # 15 colours
+    for n_tracks in (16, 25, 40):
+        data = prepare_layer(star_scene(5, n_tracks, 20), "stars", "#2ca02c")
+        out = recolor(data, True, palette)
+        labels = [c.label for c in out.curves]
+        shown = [t for t in labels if t]
+        assert len(shown) == LEGEND_TRACKS
+        more = int(shown[-1].split("and ")[1].split(" more")[0])
+        tracks_per_colour = np.bincount(out.geometry.group)
+        assert more == n_tracks - tracks_per_colour[: LEGEND_TRACKS - 1].sum()
+        assert shown[0].startswith("stars · ")  # the first line names the layer
+        for g, text in enumerate(shown[:-1]):
+            k = tracks_per_colour[g] - 1
+            assert (f"+{k} same colour" in text) == (k > 0), text
+
+
+def test_a_selection_legend_says_how_many_more_it_does_not_name():
+    from wakeline.app.map_selection import LEGEND_BATCHES, selection_curves
+
+    for n in (13, 25, 60):
+        pts = star_scene(9, n, 10)
+        _halo, curves, colors = selection_curves(pts)
+        labels = [c.label for c in curves if c.label]
+        groups = len(curves)
+        if groups > LEGEND_BATCHES:
+            assert len(labels) == LEGEND_BATCHES
+            assert labels[-1].startswith("… and ")
+            named = sum(1 for _ in range(n) if _ % groups < LEGEND_BATCHES - 1)
+            assert f"and {n - named:,} more selected" in labels[-1]
+        reused = n > groups
+        assert any("same colour" in t for t in labels) == reused
+
+
+def test_removed_points_overlay_marks_every_removed_row_by_rule():
+    from wakeline.app.map_draw import RULE_COLORS, rejected_layer
+
+    rng = np.random.default_rng(4)
+    for n in (7, 300):
+        rules = rng.choice(["stationary", "turn", "isolated"], n)
+        rejected = pd.DataFrame(
+            {
+                "sensor": "S1",
+                "batch": rng.choice(["1", "2"], n),
+                "time": pd.Timestamp("2024-01-01", tz="UTC") + pd.to_timedelta(np.arange(n), "s"),
+                "lon": 23.5 + rng.normal(0, 0.01, n),
+                "lat": 37.9 + rng.normal(0, 0.01, n),
+                "rule": rules,
+                "action": "removed",
+                "params": [f"p={r}" for r in rules],
+            }
+        )
+        data = rejected_layer(rejected, "L2/removed")
+        assert data.style.width == 0 and data.style.symbol == "x"
+        assert data.n_vertices == n  # one marker per removed row, no line joins them
+        names = sorted(set(rules))
+        assert [c.label for c in data.curves] == [
+            f"removed: {r} ({int((rules == r).sum()):,})" for r in names
+        ]
+        assert len({c.color for c in data.curves}) == len(names)
+        assert {c.color for c in data.curves} <= set(RULE_COLORS)
+        geom = data.geometry
+        for i in rng.integers(0, n, 5):  # the hover names the rule of that very point
+            j = int(np.flatnonzero((rejected["lon"] == geom.lon[i]).to_numpy())[0])
+            note = geom.describe(int(i))["note"]
+            assert note == f"removed by clean: {rules[j]} (removed) p={rules[j]}"
+
+
+def test_radar_plots_are_drawn_as_points_tracks_as_lines():
+    """The guidance's plots test (core.tracks.plot_like) decides: a layer of plots is
+    drawn as dots (no line), ships' tracks as lines, over two seeds each."""
+    from wakeline.app.layer_view import looks_like_plots, prepare_view
+
+    for seed in (1, 2):
+        plots = prepare_view(plots_scene(seed), "source", "#1f77b4")
+        assert plots.extra.get("plots") and looks_like_plots(plots.points)
+        assert plots.draw.style.width == 0 and plots.draw.style.symbol_size > 0
+        assert plots.draw.style.plots  # still on the time slider
+        tracks = prepare_view(star_scene(seed, 6, 60), "source", "#1f77b4")
+        assert not tracks.extra.get("plots") and tracks.draw.style.width > 0
+
+
+def test_track_labels_are_decluttered_and_left_out_when_too_many():
+    from wakeline.app.map_labels import LABEL_H_PX, LABEL_LIMIT, declutter
+
+    rng = np.random.default_rng(3)
+    for n in (5, 40, LABEL_LIMIT):
+        x, y = rng.uniform(0, 600, n), rng.uniform(0, 400, n)
+        widths = rng.uniform(30, 90, n)
+        keep = declutter(x, y, widths, (600, 400))
+        assert 0 < len(keep) <= n
+        boxes = [(x[i] + 6, y[i] - LABEL_H_PX / 2, widths[i], LABEL_H_PX) for i in keep]
+        for a in range(len(boxes)):  # no two drawn labels overlap
+            for b in range(a + 1, len(boxes)):
+                (x0, y0, w0, h0), (x1, y1, w1, h1) = boxes[a], boxes[b]
+                assert x0 + w0 <= x1 or x1 + w1 <= x0 or y0 + h0 <= y1 or y1 + h1 <= y0
+    many = LABEL_LIMIT + 1  # zoomed far out: none
+    assert (
+        len(
+            declutter(
+                rng.uniform(0, 600, many), rng.uniform(0, 400, many), np.full(many, 9.0), (600, 400)
+            )
+        )
+        == 0
+    )
+
+
+def test_maneuver_dots_shrink_as_they_crowd():
+    from wakeline.app.map_canvas import marker_px
+
+    sizes = [marker_px(8.0, n) for n in (10, 150, 151, 600, 601, 3000)]
+    assert sizes[0] == sizes[1] == 8.0
+    assert sizes == sorted(sizes, reverse=True) and sizes[-1] < sizes[0]
