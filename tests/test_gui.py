@@ -1499,7 +1499,6 @@ def test_the_active_layer_is_drawn_on_top_and_the_others_dimmed(window):
 
 def test_the_active_layer_is_coloured_by_track_and_back(qtbot, tmp_path):
     from conftest import make_window
-
     from wakeline.app.map_colors import TRACK_PALETTE
 
     w = make_window(qtbot, tmp_path, track_colors=True)
