@@ -558,7 +558,10 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         return self._context_opacity * (DIM_OPACITY if dim else 1.0)
 
     def _z_of(self, name: str, z: float) -> float:
-        return z + (ACTIVE_Z if self._emphasis and name in self._emphasis else 0.0)
+        """A layer drawn under the tracks on purpose (z < 0: a bearing file's lines)
+        stays under them when active."""
+        lift = self._emphasis is not None and name in self._emphasis and z >= 0
+        return z + (ACTIVE_Z if lift else 0.0)
 
     def _apply_emphasis(self) -> None:
         for name, items in self._items.items():

@@ -748,9 +748,18 @@ class LayersMixin:
             rows, alive = geom.ends - 1, np.ones(geom.n_tracks, dtype=bool)
         lon = np.where(alive, geom.lon[rows] if len(rows) else rows, np.nan)
         lat = np.where(alive, geom.lat[rows] if len(rows) else rows, np.nan)
+        # only the tracks whose label point is in view get a text (thousands of tracks:
+        # none at all past the limit, decided with numpy before any text is made)
+        from wakeline.app.map_labels import LABEL_LIMIT
+
+        (x0, x1), (y0, y1) = self.canvas.vb.viewRange()
+        inside = np.flatnonzero((lon >= x0) & (lon <= x1) & (lat >= y0) & (lat <= y1))
+        if len(inside) == 0 or len(inside) > LABEL_LIMIT:
+            labels.clear()
+            return []
         name_col = next((c for c in NAME_COLUMNS if c in view.points.columns), None)
         texts, colors = [], []
-        for k in range(geom.n_tracks):
+        for k in inside:
             text = str(geom.batch[k])
             if name_col is not None:
                 rng = view.ranges.get((str(geom.sensor[k]), str(geom.batch[k])))
@@ -760,7 +769,7 @@ class LayersMixin:
                         text = f"{text} {ship.strip()}"
             texts.append(text)
             colors.append(geom.colors[int(geom.group[k])] if len(geom.colors) else "#000")
-        return labels.show(lon, lat, texts, colors)
+        return labels.show(lon[inside], lat[inside], texts, colors)
 
 
 def _same_but_targets(a: pd.DataFrame | None, b: pd.DataFrame | None) -> bool:

@@ -1038,3 +1038,22 @@ def test_maneuver_dots_shrink_as_they_crowd():
     sizes = [marker_px(8.0, n) for n in (10, 150, 151, 600, 601, 3000)]
     assert sizes[0] == sizes[1] == 8.0
     assert sizes == sorted(sizes, reverse=True) and sizes[-1] < sizes[0]
+
+
+def test_the_quick_plots_check_agrees_with_the_guidance_test():
+    """``looks_like_plots``' quick no (numpy over the rows) never hides plots the core's
+    test (``plot_like`` over ``track_summary``) finds: scans, tracks, 2-row shared times."""
+    from wakeline.app.layer_view import looks_like_plots
+    from wakeline.core.tracks import plot_like, sort_points, track_summary
+
+    def full(pts):
+        summary = track_summary(pts)
+        like = plot_like(summary)
+        n = summary["points"].to_numpy(dtype="float64")
+        return bool(n[like].sum() * 2 > n.sum())
+
+    for seed in (1, 2, 3):
+        pairs = plots_scene(seed, scans=200, per_scan=2)  # runs of two rows at one time
+        for pts in (plots_scene(seed), star_scene(seed, 8, 50), pairs):
+            pts = sort_points(pts)
+            assert looks_like_plots(pts) == full(pts)
