@@ -477,19 +477,31 @@ LEGEND_TRACKS = 12
 
 def track_legend_labels(names: list[str], counts: np.ndarray, n_tracks: int) -> tuple[str, ...]:
     """Legend labels of the curves of a layer coloured by track (one per colour): the
-    colour's first track's name, "· +k same colour" when k more tracks share it; beyond
+    colour's first track's name, with "+k same colour" when k more tracks share it
+    (:func:`reused_label`); beyond
     :data:`LEGEND_TRACKS` lines none, the last line saying "… and N more tracks"."""
     n_groups = len(names)
     out = []
+    said = False
     for g, name in enumerate(names):
         more = int(counts[g]) - 1
-        # "· +k same colour" on a second line of its own (the legend's "FILE · what")
-        text = name + (f" · +{more} same colour" if more > 0 else "")
+        text = reused_label(name, more, said)
+        said = said or more > 0
         if n_groups > LEGEND_TRACKS and g >= LEGEND_TRACKS - 1:
             named = sum(int(c) for c in counts[: LEGEND_TRACKS - 1])
             text = f"… and {n_tracks - named:,} more tracks" if g == LEGEND_TRACKS - 1 else ""
         out.append(text)
     return tuple(out)
+
+
+def reused_label(name: str, more: int, said: bool) -> str:
+    """A legend line of a colour ``more`` more tracks share: the first such line says it
+    on a second line of its own ("name · +2 same colour": the legend's "FILE · what"),
+    the next ones only "name (+2)" (one line each: a legend of two-line entries ran off
+    the bottom of a 1366 × 768 window)."""
+    if more <= 0:
+        return name
+    return f"{name} (+{more})" if said else f"{name} · +{more} same colour"
 
 
 def track_names(geom: LayerGeometry) -> list[str]:
@@ -554,8 +566,18 @@ def as_points(data: DrawData, points: bool, symbol_size: float = 3.0) -> DrawDat
     return replace(data, style=style)
 
 
-#: Colours of the rules that removed points (the clean step's ``rejected`` table).
-RULE_COLORS = ("#d62728", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#7f7f7f")
+#: Colours of the rules that removed points (the clean step's ``rejected`` table): none
+#: within ΔE 20 of a layer colour or a track colour (an orange "stationary" × sat on the
+#: orange track of a layer coloured by track), the common rules each its own.
+RULE_COLOR = {
+    "stationary": "#ff00ff",
+    "turn": "#4b0082",
+    "isolated": "#b8860b",
+    "speed": "#800000",
+    "duplicates": "#006400",
+    "same_time": "#9acd32",
+}
+RULE_COLORS = tuple(RULE_COLOR.values())
 
 
 def rejected_layer(rejected: pd.DataFrame, name: str, lon_west: float = -180.0) -> DrawData | None:
@@ -619,7 +641,9 @@ def rejected_layer(rejected: pd.DataFrame, name: str, lon_west: float = -180.0) 
         speed_kn=np.full(n, np.nan),
         group=code.astype("int64"),
         labels=tuple(f"removed: {r} ({c:,})" for r, c in zip(names, counts, strict=True)),
-        colors=tuple(RULE_COLORS[k % len(RULE_COLORS)] for k in range(len(names))),
+        colors=tuple(
+            RULE_COLOR.get(str(r), RULE_COLORS[k % len(RULE_COLORS)]) for k, r in enumerate(names)
+        ),
         relative=is_relative_time(t),
         gap_break=None,
         lon_west=lon_west,

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.app.map_colors import apart_from
-from wakeline.app.map_draw import BATCH_PALETTE, Curve, unwrap_tracks
+from wakeline.app.map_draw import BATCH_PALETTE, Curve, reused_label, unwrap_tracks
 from wakeline.app.map_lod import gap_breaks, nan_join
 
 #: Colours of selected batches: the batch palette without the oranges of the halo.
@@ -79,6 +79,7 @@ def selection_curves(
     color_of_track = np.arange(geom.n_tracks) % k
     color_of_point = color_of_track[geom.track] if geom.n_points else np.zeros(0, "int64")
     curves = []
+    said = False  # a reused colour explained in words once
     for g in range(min(k, geom.n_tracks)):
         x, y = nan_join(geom.lon, geom.lat, color_of_point == g, brk)
         more = int(np.count_nonzero(color_of_track == g)) - 1
@@ -93,7 +94,8 @@ def selection_curves(
             # has fewer colours than tracks); it said "(+k)", which nobody could read
             one = len({str(x) for x in geom.sensor}) == 1
             name = str(geom.batch[g]) if one else f"{geom.sensor[g]}:{geom.batch[g]}"
-            label = name + (f" · +{more} same colour" if more else "")
+            label = reused_label(name, more, said)
+            said = said or more > 0
         curves.append(Curve(label, palette[g], x, y))
     colors = {
         (str(s), str(b)): palette[g]

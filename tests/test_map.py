@@ -937,9 +937,14 @@ def test_colour_by_track_legend_says_and_n_more_and_explains_a_reused_colour():
         tracks_per_colour = np.bincount(out.geometry.group)
         assert more == n_tracks - tracks_per_colour[: LEGEND_TRACKS - 1].sum()
         assert shown[0].startswith("stars · ")  # the first line names the layer
+        first = True  # the first reused colour is said in words, the next ones "(+k)"
         for g, text in enumerate(shown[:-1]):
             k = tracks_per_colour[g] - 1
-            assert (f"+{k} same colour" in text) == (k > 0), text
+            if k > 0:
+                assert text.endswith(f" · +{k} same colour" if first else f" (+{k})"), text
+                first = False
+            else:
+                assert "+" not in text, text
 
 
 def test_a_selection_legend_says_how_many_more_it_does_not_name():
@@ -985,6 +990,10 @@ def test_removed_points_overlay_marks_every_removed_row_by_rule():
             f"removed: {r} ({int((rules == r).sum()):,})" for r in names
         ]
         assert len({c.color for c in data.curves}) == len(names)
+        from wakeline.app.map_colors import PALETTE, TRACK_PALETTE, apart_from
+
+        # told apart from every layer and track colour
+        assert apart_from(RULE_COLORS, {*PALETTE, *TRACK_PALETTE}) == RULE_COLORS
         assert {c.color for c in data.curves} <= set(RULE_COLORS)
         geom = data.geometry
         for i in rng.integers(0, n, 5):  # the hover names the rule of that very point
