@@ -347,7 +347,13 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         """
         name = data.name
         items = self._items.get(name, [])
-        if len(items) != len(data.curves):
+        old = self._data.get(name)
+        # Colours or legend words changed (a layer coloured by track and back, as many
+        # curves as before): items made anew, their pen, brush and legend entry with them.
+        restyled = old is not None and [(c.color, c.label) for c in old.curves] != [
+            (c.color, c.label) for c in data.curves
+        ]
+        if len(items) != len(data.curves) or restyled:
             was_visible = self._visible.get(name, True)
             self.remove_layer(name)
             items = []

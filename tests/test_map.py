@@ -1066,3 +1066,24 @@ def test_the_quick_plots_check_agrees_with_the_guidance_test():
         for pts in (plots_scene(seed), star_scene(seed, 8, 50), pairs):
             pts = sort_points(pts)
             assert looks_like_plots(pts) == full(pts)
+
+
+def test_a_layer_recoloured_with_as_many_curves_takes_the_new_colours(qtbot):
+    """Two sensors' plots coloured by track: still two curves, but the items and their
+    legend entries take the track colours (they kept the sensors' brush and words)."""
+    from wakeline.app.map_draw import as_points, recolor
+
+    canvas = _shown_canvas(qtbot)
+    for seed in (1, 2):
+        pts = pd.concat([plots_scene(seed), plots_scene(seed + 10).assign(sensor="lidar")])
+        data = as_points(prepare_layer(pts, "ferry", by_sensor=True), True)
+        canvas.set_draw_data(data)
+        out = recolor(data, True)
+        assert len(out.curves) == len(data.curves) == 2
+        canvas.set_draw_data(out)
+        items = canvas.layer_items("ferry")
+        brushes = [i.opts["symbolBrush"].color().name() for i in items]
+        assert brushes == [c.color for c in out.curves] != [c.color for c in data.curves]
+        shown = {lab.text for _s, lab in canvas.legend.items}
+        assert all(c.label.split(" · ")[-1] in " ".join(shown) for c in out.curves)
+        canvas.remove_layer("ferry")
