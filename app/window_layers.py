@@ -748,6 +748,13 @@ class LayersMixin:
             rows, alive = geom.ends - 1, np.ones(geom.n_tracks, dtype=bool)
         lon = np.where(alive, geom.lon[rows] if len(rows) else rows, np.nan)
         lat = np.where(alive, geom.lat[rows] if len(rows) else rows, np.nan)
+        if positions and len(rows):  # between its fixes, as the marker is drawn
+            nxt = np.minimum(rows + 1, geom.ends - 1)
+            dt = geom.time_s[nxt] - geom.time_s[rows]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                f = np.where(dt > 0, np.clip((t - geom.time_s[rows]) / dt, 0.0, 1.0), 0.0)
+            lon = lon + f * (geom.lon[nxt] - geom.lon[rows])
+            lat = lat + f * (geom.lat[nxt] - geom.lat[rows])
         # only the tracks whose label point is in view get a text (thousands of tracks:
         # none at all past the limit, decided with numpy before any text is made)
         from wakeline.app.map_labels import LABEL_LIMIT
