@@ -99,7 +99,30 @@ def _with_default_command(parser: argparse.ArgumentParser, argv: list[str]) -> l
         return argv
     if rest and rest[0] in commands:
         return globals_ + rest
+    if rest and (problem := unknown_command(rest[0], list(commands))):
+        raise InputError(problem)
     return [*globals_, "gui", *rest]
+
+
+def unknown_command(word: str, commands: list[str]) -> str | None:
+    """What is wrong with a first word that names no subcommand and no file to open, or
+    None: ``wakeline clen FILE`` said "unknown command 'clen' — did you mean 'clean'?"
+    instead of opening a window on a file named "clen" (operator test 9, D5).
+
+    A word that is an existing path, or looks like one (a folder separator or a suffix),
+    or an option, is a file for the desktop application as before."""
+    if word.startswith("-") or "/" in word or "\\" in word or Path(word).suffix:
+        return None
+    if Path(word).exists():
+        return None
+    import difflib
+
+    close = difflib.get_close_matches(word, commands, n=1, cutoff=0.6)
+    if close:
+        return f"unknown command '{word}' — did you mean '{close[0]}'?"
+    return (
+        f"unknown command '{word}' (the commands: {', '.join(commands)}; a file to open must exist)"
+    )
 
 
 _OUTPUT_ARGS = (
@@ -144,7 +167,12 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``wakeline`` command; returns the exit status."""
     parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
-    args = parser.parse_args(_with_default_command(parser, argv))
+    try:
+        argv = _with_default_command(parser, argv)
+    except InputError as exc:
+        print(f"wakeline: error: {exc}", file=sys.stderr)
+        return 2
+    args = parser.parse_args(argv)
     try:
         _check_paths(args)
         return args.func(args)

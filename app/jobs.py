@@ -142,19 +142,31 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 out[key] = p.params(key)  # option sets (method …) keep their defaults
         return out
 
+    def tell(self, title: str, text: str, kind: str = "warning") -> None:
+        """A message box the operator closes, or — in a window nobody answers (a
+        ``--screenshot`` run, a script: ``interactive`` False) — the same words on stderr,
+        and the run goes on (operator test 9, D4: a failed file of several hung the
+        screenshot in a modal "Cannot open file" box). ``kind``: warning, information."""
+        if getattr(self, "interactive", True):
+            box = QtWidgets.QMessageBox
+            (box.information if kind == "information" else box.warning)(self, title, text)
+            return
+        for line in text.splitlines() or [""]:
+            print(f"wakeline: {title}: {line}", file=sys.stderr)
+
     def run_step(self, step: str) -> int | None:
         """Run a step (or the pipeline) on the active layer in the worker thread."""
         layer = self.active_layer()
         if layer is None:
-            QtWidgets.QMessageBox.information(
-                self, self.tr("Nothing to run on"), self.tr("Open a track file first.")
+            self.tell(
+                self.tr("Nothing to run on"), self.tr("Open a track file first."), "information"
             )
             return None
         if layer.kind == BEARING_KIND:
-            QtWidgets.QMessageBox.information(
-                self,
+            self.tell(
                 self.tr("Nothing to run on"),
                 self.tr("A bearing layer has no tracks: choose a track layer."),
+                "information",
             )
             return None
         lid = self.session.step_input(layer.id)
@@ -282,7 +294,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         try:
             pipe = Pipeline.from_json(Path(path).read_text(encoding="utf-8"))
         except (InputError, OSError) as exc:
-            QtWidgets.QMessageBox.warning(self, self.tr("Cannot load pipeline"), str(exc))
+            self.tell(self.tr("Cannot load pipeline"), str(exc))
             return [str(exc)]
         keys = {"clean", *self.params.keys()}
         problems = []
@@ -534,11 +546,9 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             )
             if msg.detail:
                 self.log_message(msg.detail)
-            if getattr(self, "interactive", True):
-                QtWidgets.QMessageBox.warning(self, title, shown(msg.message))
-            else:  # a screenshot run: nobody to close a dialog; say it and go on
-                # in the window's language, as its title (operator test 7, D11)
-                print(f"wakeline: {title}: {shown(msg.message)}", file=sys.stderr)
+            # a screenshot run: nobody to close a dialog; said on stderr, in the window's
+            # language, as its title (operator test 7, D11)
+            self.tell(title, shown(msg.message))
         elif isinstance(msg, Cancelled):
             # the jobs by their titles, as the failed dialog names them (not "pipeline")
             name = self.job_title(msg.name)
@@ -616,7 +626,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self.log_message(f"{self.tr('Error')}: {shown(text)}")
             if done[2]:
                 text = "\n".join(shown(t) for t in done[2])
-                QtWidgets.QMessageBox.warning(self, self.tr("Cannot open file"), text)
+                self.tell(self.tr("Cannot open file"), text)
         elif kind == "step":
             _, lid, result, views, params = done
             self._apply_step(lid, result, views, params)

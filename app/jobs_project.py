@@ -42,7 +42,7 @@ class ProjectJobsMixin:
                 "A bearing layer has no tracks to export: Export detections… in the "
                 "Bearing-only dock writes its detections."
             )
-            QtWidgets.QMessageBox.information(self, self.tr("Export"), text)
+            self.tell(self.tr("Export"), text, "information")
             return
         if kind == "as_came_in":
             self.export_as_came_in()
@@ -63,7 +63,7 @@ class ProjectJobsMixin:
         try:
             check_text_path(path)
         except InputError as exc:
-            QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), str(exc))
+            self.tell(self.tr("Export failed"), str(exc))
             self.log_message(f"{self.tr('Error')}: {exc}")
             return False
         return True
@@ -95,7 +95,7 @@ class ProjectJobsMixin:
         table = man.tables.get("maneuvers") if man is not None else None
         if kind == "maneuvers" and table is None:
             text = self.tr("this layer has no maneuver points: run Maneuvers or Compress")
-            QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), text)
+            self.tell(self.tr("Export failed"), text)
             return None
         points, decided = layer.points, self.review.sync.decided_now(layer)
         note = self._whole_layer_note(layer)
@@ -123,7 +123,7 @@ class ProjectJobsMixin:
         try:
             layout = layer_layout(self.session.layers, layer.id)
         except InputError as exc:
-            QtWidgets.QMessageBox.warning(self, self.tr("Export failed"), str(exc))
+            self.tell(self.tr("Export failed"), str(exc))
             self.log_message(f"{self.tr('Error')}: {exc}")
             return None
         if path is None:
@@ -170,7 +170,7 @@ class ProjectJobsMixin:
         if note:
             self.log_message(f"{self.tr('Warning') if ok else self.tr('Error')}: {note}")
         if not ok:
-            QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), note)
+            self.tell(self.tr("Project not saved"), note)
             return
         self.update_title()  # not every text: the axes' labels relaid the map (~100 ms)
 
@@ -321,9 +321,7 @@ class ProjectJobsMixin:
         for w in warnings + problems:
             self.log_message(f"{self.tr('Warning')}: {w}")
         if warnings or problems:
-            QtWidgets.QMessageBox.warning(
-                self, self.tr("Project opened with warnings"), "\n".join(warnings + problems)
-            )
+            self.tell(self.tr("Project opened with warnings"), "\n".join(warnings + problems))
 
     def _opened_text(
         self, path: Path, layers: int, decisions: int, earlier: int = 0, steps: int | None = None

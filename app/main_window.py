@@ -692,7 +692,7 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
             self.log_message(f"{self.tr('Error')}: {text}")
         self.update_title()
         if self.project.failures == 1:
-            QtWidgets.QMessageBox.warning(self, self.tr("Project not saved"), text)
+            self.tell(self.tr("Project not saved"), text)
 
     def set_icons(self) -> None:
         """The toolbar's one-colour icons for the palette now (palette_icon); on a dark
@@ -779,6 +779,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         """Changes are not all in a file — the project was opened read-only (open
         elsewhere, or not writable), or a write failed (the file moved, a full disk, a
         failed Save as): offer Save as before closing. False keeps the window open."""
+        if not getattr(self, "interactive", True):  # nobody to answer (a screenshot)
+            return True
         buttons = QtWidgets.QMessageBox.StandardButton
         if self.project.dirty:
             text = self.tr(

@@ -1214,6 +1214,47 @@ def test_screenshot_of_a_file_that_does_not_load_ends_with_an_error(qtbot, tmp_p
     assert "the file is empty" in capsys.readouterr().err
 
 
+def test_screenshot_of_a_missing_file_beside_a_good_one_ends(qtbot, tmp_path, capsys, monkeypatch):
+    """Operator test 9, D4: `wakeline gui MISSING GOOD --screenshot P` hung for ever in a
+    modal "Cannot open file" box (the failure of one file of several). Now no modal box
+    opens in a screenshot run: the failure goes to stderr, the good file is drawn, the
+    PNG is written and the exit status is 2."""
+
+    def no_box(*args, **kwargs):
+        raise AssertionError(f"a modal box in a screenshot run: {args[1:]}")
+
+    for name in ("warning", "information", "critical", "question"):
+        monkeypatch.setattr(QtWidgets.QMessageBox, name, no_box)
+    png = tmp_path / "shot.png"
+    started = time.perf_counter()
+    assert run([tmp_path / "nofile.csv", demo_path()], screenshot=png, language="en") == 2
+    assert time.perf_counter() - started < 60
+    assert png.is_file() and png.stat().st_size > 10_000
+    err = capsys.readouterr().err
+    assert "Cannot open file: " in err and "nofile.csv: no such file" in err
+
+
+def test_a_scripted_window_tells_on_stderr_not_in_a_box(window, tmp_path, capsys, monkeypatch):
+    """D4: the same "Cannot open file" box blocked load_files in a scripted window
+    (interactive False); an interactive one still shows it."""
+    boxes = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: boxes.append(a[1:]))
+    good = tmp_path / "good.csv"
+    good.write_text(
+        "sensor,batch,time,lon,lat\n"
+        + "".join(f"S,1,2024-01-01T00:00:{k:02d}Z,10.{k:02d},55\n" for k in range(10))
+    )
+    window.interactive = False
+    window.load_files([tmp_path / "gone.csv", good])
+    wait_for_jobs(window)
+    assert boxes == [] and window.layer_id("good.csv") is not None
+    assert "gone.csv" in capsys.readouterr().err
+    window.interactive = True
+    window.load_files([tmp_path / "gone2.csv", good])
+    wait_for_jobs(window)
+    assert len(boxes) == 1 and "gone2.csv" in boxes[0][1]
+
+
 def test_window_messages_name_the_import_dialog_not_cli_flags(window, write):
     """Operator test: a log warning told a window user to 'give the zone with --tz'."""
     from wakeline.app.window_words import window_words
