@@ -480,6 +480,8 @@ class ReviewDock(QtCore.QObject):
         action = entry.action
         if action.startswith("undo "):
             name = tr("undo {0}").format(action_name(action[5:]))
+        elif action.startswith("redo "):
+            name = tr("redo {0}").format(action_name(action[5:]))
         else:
             name = action_name(action)
         text = tr("Review: {0} {1}").format(name, entry.proposal or entry.tracks)

@@ -48,8 +48,9 @@ class ProjectDecisions:
 
     def apply(self, state: R.ReviewState, change: R.Change, how: str = "do") -> R.Change:
         """``how``: "do", "undo" or "redo" (the row's ``stack`` mark: a reopen rebuilds
-        the undo stack from it, :func:`~wakeline.core.review_store.undo_history`)."""
-        state.apply(change)
+        the undo stack from it, :func:`~wakeline.core.review_store.undo_history`); a
+        redo is logged ``redo <action>``."""
+        state.apply(change, how=how)
         row = decision_row(self.key, change, state.log[-1], stack=how)
         self.w.session.decisions.append(row)
         self.w.project.add_decision(row)
@@ -234,9 +235,7 @@ class ReviewSync(QtCore.QObject):
         """Write the active review's tracks (or its decision log) in the window's worker."""
         bound = self.dock.bound
         if bound is None:
-            QtWidgets.QMessageBox.information(
-                self.w, tr("Nothing to export"), tr("No layer under review.")
-            )
+            self.w.tell(tr("Nothing to export"), tr("No layer under review."), "information")
             return None
         layer = self.w.session.layers[bound.lid]
         snap, points, cache = snapshot(bound.controller.state), bound.points, bound.cache

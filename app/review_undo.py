@@ -75,7 +75,7 @@ class ReviewController(QtCore.QObject):
         if self.store is not None:  # how: the row says how it came (a reopen reads it)
             self.store.apply(self.state, change, how)
         else:
-            self.state.apply(change)
+            self.state.apply(change, how=how)
         self.changed.emit(sorted(change.status_after))
 
     def restore(self, changes: list[R.Change], index: int) -> None:

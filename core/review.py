@@ -39,6 +39,10 @@ if TYPE_CHECKING:  # the engine's modules load only when proposals are made
     from wakeline.core import associate as _assoc
 
 STATUSES = ("pending", "accepted", "rejected", "split")
+#: The prefix of a redo's action in the decision log (``redo accept``): the decision
+#: made again by Redo, not a new one (:meth:`ReviewState.apply`, :func:`replay_log`).
+REDO = "redo "
+
 #: The action of the marker a re-run of a reviewed step puts first in its new queue: an
 #: empty change (nothing moves); its log line names the run it replaces (``before``) and
 #: says what was carried over (``after``). Decisions above it in a log belong to the
@@ -611,8 +615,13 @@ class ReviewState:
 
     # -- decisions ----------------------------------------------------------------------
 
-    def apply(self, change: Change, when: str | None = None) -> Change:
-        """Apply a change (checked against the current state), log it, return it."""
+    def apply(self, change: Change, when: str | None = None, how: str = "do") -> Change:
+        """Apply a change (checked against the current state), log it, return it.
+
+        ``how`` (do, undo, redo: how the window's undo stack made it): a redo is logged
+        ``redo <action>`` — the decision it applies again, marked (operator test 9, D13:
+        an exported log showed a redo as a second decision); :func:`replay_log` reads it
+        so. An undo's change is its inverse already (``undo <action>``)."""
         for pid, before in change.status_before.items():
             now = self.status[self._proposal_row(pid)]
             if now != before:
@@ -630,7 +639,7 @@ class ReviewState:
         self.log.append(
             LogEntry(
                 when or _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-                change.action,
+                f"{REDO}{change.action}" if how == "redo" else change.action,
                 change.proposal,
                 " ".join(change.tracks),
                 _logged(change.status_before, before),
@@ -936,7 +945,9 @@ def replay_log(state: ReviewState, log: pd.DataFrame) -> ReviewState:
     window's Review ▸ Export decision log and ``wakeline review --log`` write) in order,
     as the window made it: accept, reject, reset, merge, split track, split target and
     repair are made again on the state as it is then; ``undo X`` undoes the last decision
-    not yet undone (it must be an ``X``); a redo is logged as the decision again. Each
+    not yet undone (it must be an ``X``); ``redo X`` makes again the last one undone (it
+    must be an ``X``; logs before h229 wrote a redo as the decision again, which replays
+    the same). Each
     change keeps its logged time. A row that does not apply raises :class:`InputError`
     naming its line. A log that went through re-runs of its step (rows ``re-run``) is
     replayed from its last ``re-run`` row on: the rows above it are the earlier runs'
@@ -946,6 +957,7 @@ def replay_log(state: ReviewState, log: pd.DataFrame) -> ReviewState:
     marks = [k for k, row in enumerate(rows) if str(row.get("action", "")).strip() == RERUN]
     start = marks[-1] + 1 if marks else 0
     done: list[Change] = []
+    undone: list[Change] = []  # the redo history: the last undone last
     for line, row in enumerate(rows[start:], start=2 + start):
         action = str(row.get("action", "")).strip()
         pid = str(row.get("proposal", "")).strip()
@@ -955,7 +967,15 @@ def replay_log(state: ReviewState, log: pd.DataFrame) -> ReviewState:
                 if not done or done[-1].action != action[5:]:
                     last = done[-1].action if done else "nothing"
                     raise InputError(f"{action!r} but the last decision is {last}")
-                state.apply(done.pop().inverse(), when=when)
+                undone.append(done.pop())
+                state.apply(undone[-1].inverse(), when=when)
+                continue
+            if action.startswith(REDO):
+                if not undone or undone[-1].action != action[len(REDO) :]:
+                    last = undone[-1].action if undone else "nothing"
+                    raise InputError(f"{action!r} but the last decision undone is {last}")
+                done.append(undone.pop())
+                state.apply(done[-1], when=when, how="redo")
                 continue
             tracks = _log_tracks(state, row.get("tracks", ""))
             if action in ("accept", "reject", "reset", "repair"):
@@ -981,6 +1001,7 @@ def replay_log(state: ReviewState, log: pd.DataFrame) -> ReviewState:
             state.apply(change, when=when)
             if action != "repair":  # a migration, not on the window's undo stack
                 done.append(change)
+                undone.clear()  # a new decision drops the redo history
         except InputError as exc:
             raise InputError(f"decision log line {line}: {exc}") from None
     return state

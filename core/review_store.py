@@ -18,6 +18,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.file_identity import check_identity, file_identity
 from wakeline.core.review import (
     PROPOSAL_COLUMNS,
+    REDO,
     RERUN,
     Change,
     LogEntry,
@@ -140,8 +141,9 @@ class ReviewStore:
 
     def apply(self, state: ReviewState, change: Change, how: str = "do") -> Change:
         """Apply ``change`` to ``state`` and record it: the usual way to decide. ``how``
-        (do, undo, redo: the window's ``stack`` mark) is not kept in this store."""
-        state.apply(change)
+        (do, undo, redo: the window's ``stack`` mark) is not kept in this store; a redo
+        is logged ``redo <action>`` (its log line, which the store keeps)."""
+        state.apply(change, how=how)
         self.record(change, state.log[-1])
         return change
 
@@ -164,20 +166,21 @@ class ReviewStore:
         props = pd.DataFrame(rows, columns=list(PROPOSAL_COLUMNS))
         state = ReviewState(tracks, props)
         changes = [
-            (Change.from_dict(json.loads(text)), when)
-            for when, text in self._db.execute(
-                "SELECT time, change_json FROM review_decisions ORDER BY seq"
+            (Change.from_dict(json.loads(text)), when, action)
+            for when, text, action in self._db.execute(
+                "SELECT time, change_json, action FROM review_decisions ORDER BY seq"
             )
         ]
         row = self._db.execute("SELECT value FROM review_meta WHERE key = ?", (CHECKED,))
         mark = row.fetchone()
         if (mark[0] if mark else None) == str(len(changes)) or not cuts_anything(
-            c for c, _ in changes
+            c for c, _, _ in changes
         ):
-            for change, when in changes:
-                state.apply(change, when=when)
+            for change, when, action in changes:
+                redo = str(action or "").startswith(REDO)
+                state.apply(change, when=when, how="redo" if redo else "do")
         else:
-            repairs = replay_repaired(state, changes)
+            repairs = replay_repaired(state, [(c, when) for c, when, _ in changes])
             entries = state.log[len(state.log) - len(repairs) :]
             for change, entry in zip(repairs, entries, strict=True):
                 self.record(change, entry)
@@ -321,7 +324,8 @@ def replay_decisions(state: ReviewState, rows: list[dict], queue: str) -> int:
     for row in rows:
         if isinstance(row, dict) and row.get("queue") == queue and "change" in row:
             change = Change.from_dict(row["change"])
-            state.apply(change, when=row.get("time"))
+            how = "redo" if row.get("stack") == "redo" else "do"  # logged as it was made
+            state.apply(change, when=row.get("time"), how=how)
             if change.action == RERUN:
                 e = state.log[-1]
                 state.log[-1] = dataclasses.replace(

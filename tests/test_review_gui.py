@@ -669,3 +669,54 @@ def test_the_evidence_marks_a_pair_of_plots_and_the_mark_survives_a_project(scen
     assert panel.set_current(other) and "plots" not in panel.evidence.text()
     # a queue saved before the mark existed reads as unmarked
     assert (R.read_proposals(ap.drop(columns=["plot_tracks"]))["plot_tracks"] == "").all()
+
+
+def test_the_decision_log_writes_a_redo_as_a_redo_and_replays_it(controller, tmp_path):
+    """Operator test 9, D13: the exported decision log wrote a redo as a fresh decision
+    ("accept"), so nothing told a redo from a second decision. Now it is "redo accept";
+    replaying the exported log (`wakeline review --decisions`) gives the window's
+    targets, and a reopened store logs it the same way."""
+    from wakeline.core.export_review import export_decision_log
+
+    st = controller.state
+    a, b, c = st.proposals["proposal"][:3]
+    controller.accept(a)
+    controller.reject(b)
+    controller.stack.undo()
+    controller.stack.undo()
+    controller.stack.redo()  # the accept again
+    controller.reject(c)
+    controller.stack.undo()
+    controller.stack.redo()
+    actions = st.log_table()["action"].tolist()
+    assert actions == [
+        "accept",
+        "reject",
+        "undo reject",
+        "undo accept",
+        "redo accept",
+        "reject",
+        "undo reject",
+        "redo reject",
+    ]
+    path = tmp_path / "log.csv"
+    export_decision_log(st, path)
+    log = pd.read_csv(path, dtype=str, keep_default_na=False)
+    again = R.replay_log(
+        R.ReviewState(st.tracks, st.proposals.drop(columns="status", errors="ignore")), log
+    )
+    assert list(again.status) == list(st.status) and again.links == st.links
+    assert list(again.target_of_track()) == list(st.target_of_track())
+    assert again.log_table()["action"].tolist() == actions
+    # a redo that does not follow its undo is refused, naming the line
+    bad = log.iloc[[0, 4]]
+    with pytest.raises(R.InputError, match="line 3: 'redo accept' but the last decision undone"):
+        R.replay_log(R.ReviewState(st.tracks, st.proposals), bad)
+    # a store (the demo's project) keeps "redo" on reopen
+    store = ReviewStore(tmp_path / "s.sqlite")
+    store.save_queue(R.ReviewState(st.tracks, st.proposals))
+    fresh = store.load()
+    change = store.apply(fresh, R.accept(fresh, a))
+    store.apply(fresh, change.inverse(), "undo")
+    store.apply(fresh, change, "redo")
+    assert [e.action for e in store.load().log] == ["accept", "undo accept", "redo accept"]
