@@ -96,7 +96,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         return 0
     if args.kind == "maneuver" and args.hard:
         hp = simulate.HardManeuverParams(n_ships=args.tracks)
-        df = simulate.hard_maneuver_scene(args.seed, hp).points
+        df = simulate.hard_maneuver_scene(args.seed, hp).points_with_spans()
     elif args.kind == "maneuver":
         df = simulate.maneuver_tracks(
             args.tracks,

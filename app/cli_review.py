@@ -90,6 +90,25 @@ def _proposals(path: Path) -> pd.DataFrame:
     return df
 
 
+#: What ``review -o`` writes, by the output's suffix.
+OUTPUT_SUFFIXES = {".csv": "csv", ".geojson": "geojson", ".json": "geojson", ".gpx": "gpx"}
+
+
+def _check_suffixes(args: argparse.Namespace) -> None:
+    """Refuse, before any work, an output whose suffix names no format ``review`` writes
+    (``-o x.txt`` held CSV with no word: operator test 9, D14), as ``render`` refuses a
+    non-PNG; the decision log (``--log``) is CSV."""
+    suffix = Path(args.output).suffix.lower()
+    if suffix not in OUTPUT_SUFFIXES:
+        raise InputError(
+            f"{args.output}: review writes by the suffix of -o: .csv (the rows with a "
+            f"target column), .geojson or .gpx (one track per target), not "
+            f"{suffix or 'a name without a suffix'}"
+        )
+    if args.log is not None and Path(args.log).suffix.lower() != ".csv":
+        raise InputError(f"{args.log}: the decision log (--log) is written as CSV: name it .csv")
+
+
 def _cmd_review(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import read_options
     from wakeline.core.export_review import (
@@ -100,6 +119,7 @@ def _cmd_review(args: argparse.Namespace) -> int:
     )
     from wakeline.core.review import ReviewState, apply_decisions, track_table, unreviewed_note
 
+    _check_suffixes(args)
     points = read_inputs(args.input, **read_options(args))
     if args.proposals:
         props = pd.concat([_proposals(p) for p in args.proposals], ignore_index=True)

@@ -281,9 +281,10 @@ class RealEvaluation:
     folder: Path
     rows: pd.DataFrame  # one row per method: the scores this set supports
     skipped: tuple = ()  # (file, reason) of a folder's files that gave no track
+    notes: tuple = ()  # lines said under the title (the truth a file's columns gave)
 
     def format(self) -> str:
-        lines = [f"Real set {self.name} ({self.folder})"]
+        lines = [f"Real set {self.name} ({self.folder})", *self.notes]
         # counts as integers (Int64 columns), scores with 3 decimals, a blank where a
         # row has no such figure (the split rows: no compression counts)
         shown = self.rows.copy()
@@ -454,6 +455,77 @@ def _under_tracks(by_truth: pd.DataFrame, match: pd.DataFrame) -> pd.DataFrame:
     return out.drop(columns="batch").rename(columns={"key": "batch"})[list(by_truth.columns)]
 
 
+#: The columns a simulated (``wakeline simulate maneuver``) or annotated file carries its
+#: turn truth in: ``true_turn`` 1 at the sample of each true turn (its middle),
+#: ``turn_deg`` its signed course change; ``true_lon``/``true_lat`` the noise-free path.
+TURN_TRUTH_COLUMNS = ("true_turn", "turn_deg")
+PATH_TRUTH_COLUMNS = ("true_lon", "true_lat")
+#: A detection is right within this many sampling periods of a file's true turn span,
+#: never closer than ``FILE_MATCH_MIN_S`` (the hard scenes' rule,
+#: :data:`wakeline.core.evaluate.HARD_MATCH_PERIODS`).
+FILE_MATCH_PERIODS = 2.0
+FILE_MATCH_MIN_S = 10.0
+#: The columns of each turn's span on its marked row (``simulate maneuver --hard``
+#: writes them): seconds from the turn's start to the row, from the row to its end.
+SPAN_COLUMNS = ("turn_before_s", "turn_after_s")
+
+
+def file_turns(points: pd.DataFrame) -> tuple[pd.DataFrame, pd.Series, bool]:
+    """The true turns a file's own columns give (operator test 9, D10: ``simulate --hard``
+    writes them and ``evaluate --real`` scored the file as one without truth), the match
+    tolerance by batch (s: :data:`FILE_MATCH_PERIODS` sampling periods, at least
+    :data:`FILE_MATCH_MIN_S`, as ``evaluate maneuver --hard``), and whether the spans came
+    from the file (:data:`SPAN_COLUMNS`).
+
+    Turns: batch, start_s, end_s, change_deg, speed_kn (as :func:`score_turns` and
+    :func:`wakeline.core.evaluate.observable_turns` take them), and kind where the file
+    names it (``turn_kind``). A row with ``true_turn`` 1 marks one turn, ``turn_deg`` its
+    change; its span is :data:`SPAN_COLUMNS` about the row's time, or without them the
+    times of the samples either side of it. The speed is the true path's
+    (``true_lon``/``true_lat``; else the observed) between the samples either side."""
+    pts, index = sorted_with_index(points)
+    t = time_seconds(pts["time"])
+    mark = pd.to_numeric(pts["true_turn"], errors="coerce").fillna(0).to_numpy() > 0
+    deg = pd.to_numeric(pts["turn_deg"], errors="coerce").fillna(0.0).to_numpy()
+    track = index.track_of_row
+    if all(c in pts.columns for c in PATH_TRUTH_COLUMNS):
+        x, y = local_xy(pts.assign(lon=pts["true_lon"], lat=pts["true_lat"]), index)
+    else:
+        x, y = local_xy(pts, index)
+    first, last = index.starts[track], index.ends[track] - 1
+    m = np.flatnonzero(mark)
+    lo, hi = np.maximum(m - 1, first[m]), np.minimum(m + 1, last[m])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        speed = np.hypot(x[hi] - x[lo], y[hi] - y[lo]) / (t[hi] - t[lo]) / geo.KN_MS
+    spans = all(c in pts.columns for c in SPAN_COLUMNS)
+    if spans:
+        before = pd.to_numeric(pts[SPAN_COLUMNS[0]], errors="coerce").to_numpy()[m]
+        after = pd.to_numeric(pts[SPAN_COLUMNS[1]], errors="coerce").to_numpy()[m]
+        start = np.where(np.isfinite(before), t[m] - before, t[lo])
+        end = np.where(np.isfinite(after), t[m] + after, t[hi])
+    else:
+        start, end = t[lo], t[hi]
+    turns = pd.DataFrame(
+        {
+            "batch": pts["batch"].astype(str).to_numpy()[m],
+            "start_s": start,
+            "end_s": end,
+            "change_deg": deg[m],
+            "speed_kn": speed,
+        }
+    )
+    if "turn_kind" in pts.columns:
+        turns["kind"] = pts["turn_kind"].astype(str).to_numpy()[m]
+    inner = track[1:] == track[:-1]
+    step = pd.Series(np.diff(t)[inner]).groupby(track[1:][inner]).median()
+    names = index.keys["batch"].astype(str).to_numpy()
+    tol = pd.Series(
+        np.maximum(FILE_MATCH_PERIODS * step.to_numpy(), FILE_MATCH_MIN_S),
+        index=names[step.index.to_numpy()],
+    )
+    return turns, tol[~tol.index.duplicated()], spans
+
+
 def evaluate_real(
     folder: str | Path,
     params: ManeuverParams | None = None,
@@ -530,6 +602,28 @@ def evaluate_real(
                 f"(median distance over the fixes both cover; {len(match)} tracks, "
                 f"{truth['batch'].nunique()} truth tracks)"
             )
+    notes: list[str] = []
+    own_turns = None  # the file's own turn truth (simulate maneuver --hard, annotated)
+    has_path = all(c in points.columns for c in PATH_TRUTH_COLUMNS)
+    if truth is None and all(c in points.columns for c in TURN_TRUTH_COLUMNS):
+        own_turns, own_tol, spans = file_turns(points)
+        notes.append(
+            f"turn truth: the file's true_turn/turn_deg columns, {len(own_turns):,} true "
+            f"turn(s); precision over every detection, recall over the turns >= t at >= 1 kn "
+            f"that the track shows; right within {FILE_MATCH_PERIODS:g} sampling periods "
+            f"(at least {FILE_MATCH_MIN_S:g} s) of a turn's span"
+            + (
+                f" ({'/'.join(SPAN_COLUMNS)})"
+                if spans
+                else " (no turn_before_s/turn_after_s columns: the samples either side of the mark)"
+            )
+        )
+    elif truth is None and any(c in points.columns for c in TURN_TRUTH_COLUMNS):
+        notes.append(
+            "truth columns found but not used: turn truth needs both true_turn and turn_deg"
+        )
+    if has_path:
+        notes.append("Dis_e true: against the file's true_lon/true_lat path (m)")
     methods = {
         "ours": (params, CompressParams()),
         "paper": (ManeuverParams.paper(), CompressParams.paper()),
@@ -559,6 +653,17 @@ def evaluate_real(
                 split_rows += _split_rows(row, det, turns, scored, match_s)
             else:
                 row["tracks_matched"] = f"{int(match['truth_batch'].notna().sum())}/{len(match)}"
+        if own_turns is not None:
+            from wakeline.core.evaluate import observable_turns
+
+            tab = res.table()
+            det = pd.DataFrame({"batch": tab["batch"], "t_s": time_seconds(tab["time"])})
+            scored = observable_turns(own_turns, points, own_tol, mp.threshold_deg)
+            row.update(score_turns(det, own_turns, own_tol, scored))
+            for kind in ("sharp", "gradual") if "kind" in scored.columns else ():
+                sub = scored[scored["kind"] == kind]
+                found = score_turns(det, own_turns, own_tol, sub)["recall"]
+                row[f"recall_{kind}"] = found if len(sub) else np.nan
         if "role" in res.points.columns:
             role = res.points.drop_duplicates("batch").set_index("batch")["role"]
             with_turn = set(res.table()["batch"])
@@ -569,6 +674,9 @@ def evaluate_real(
         row.update(
             {key: comp[key] for key in ("ours_kept", "ours_dis_e_m", "dp_kept", "dp_dis_e_m")}
         )
+        if has_path:
+            row["ours_dis_e_true_m"] = comp["ours_dis_e_true_m"]
+            row["dp_dis_e_true_m"] = comp["dp_dis_e_true_m"]
         rows.append(row)
     if name not in ("autoferry", "oresund"):  # AIS (or unknown) with moored spells
         rep = clean(points).report
@@ -580,7 +688,9 @@ def evaluate_real(
     label = name or folder.name
     if sensor != "radar":
         label = f"{label} ({sensor})"
-    return RealEvaluation(label, folder, counts_as_integers(rows + split_rows), tuple(skipped))
+    return RealEvaluation(
+        label, folder, counts_as_integers(rows + split_rows), tuple(skipped), tuple(notes)
+    )
 
 
 def counts_as_integers(rows: list[dict]) -> pd.DataFrame:

@@ -884,6 +884,36 @@ class HardManeuverScene:
     turns: pd.DataFrame  # batch, start_s, end_s, change_deg, kind, speed_kn (s from T0)
     tracks: pd.DataFrame  # batch, kind, rate, period_s, ...
 
+    def points_with_spans(self) -> pd.DataFrame:
+        """The points with each true turn's span beside its ``true_turn`` mark: on the
+        marked row, ``turn_before_s`` and ``turn_after_s`` (s) from the turn's start to
+        the row's time and from the row's time to its end (NaN elsewhere), and
+        ``turn_kind`` (sharp / gradual) — what ``wakeline simulate maneuver --hard``
+        writes, so that ``evaluate maneuver --real`` on the file scores the turns as
+        ``--hard`` does (operator test 9, D10)."""
+        pts = self.points
+        t = (
+            (pd.to_datetime(pts["time"], utc=True) - pd.Timestamp(T0).tz_convert("UTC"))
+            .dt.total_seconds()
+            .to_numpy()
+        )
+        before = np.full(len(pts), np.nan)
+        after = np.full(len(pts), np.nan)
+        kind = np.full(len(pts), "", dtype=object)
+        marks = np.flatnonzero(pts["true_turn"].to_numpy() == 1)
+        batch = pts["batch"].astype(str).to_numpy()
+        by_batch = {b: g for b, g in self.turns.groupby("batch")}
+        for m in marks:
+            g = by_batch.get(batch[m])
+            if g is None:
+                continue
+            mid = (g["start_s"].to_numpy() + g["end_s"].to_numpy()) / 2
+            k = int(np.abs(mid - t[m]).argmin())  # the turn this sample is nearest the middle of
+            before[m] = t[m] - float(g["start_s"].iat[k])
+            after[m] = float(g["end_s"].iat[k]) - t[m]
+            kind[m] = str(g["kind"].iat[k])
+        return pts.assign(turn_before_s=before, turn_after_s=after, turn_kind=kind)
+
 
 def _hard_turns(rng: np.random.Generator, hp: HardManeuverParams, t0: float, t1: float) -> tuple:
     """Turns (t_s, delta_deg, rate_deg_s) of a moving ship alive from t0 to t1, separated

@@ -392,3 +392,139 @@ def test_evaluate_maneuver_flags_are_the_maneuvers_commands():
         parser.parse_args(["evaluate", "maneuver", "--paper", "--window", "9"])
     )
     assert paper == ManeuverParams.paper().replace(window_p=9)
+
+
+@pytest.mark.parametrize(
+    ("argv", "word", "meant"),
+    [
+        (["clen", "x.csv"], "clen", "clean"),
+        (["improt", "x.csv", "-o", "y.csv"], "improt", "import"),
+        (["--debug", "reveiw", "x.csv"], "reveiw", "review"),
+    ],
+)
+def test_a_mistyped_command_is_named_not_opened(argv, word, meant, capsys, monkeypatch, tmp_path):
+    """Operator test 9, D5: `wakeline clen FILE` opened the desktop application on a file
+    named "clen"; `improt … -o x` blamed "-o x". Now: the word and the command it is close
+    to, exit 2, and no window."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr("wakeline.app.cli._cmd_gui", lambda args: pytest.fail("a window"))
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert f"unknown command '{word}' — did you mean '{meant}'?" in err
+
+
+def test_an_unknown_word_lists_the_commands_and_a_file_still_opens(capsys, monkeypatch, tmp_path):
+    """D5: a word close to no command lists them (exit 2); an existing file of that name,
+    or a name with a suffix or a folder, is still a file for the window."""
+    monkeypatch.chdir(tmp_path)
+    opened = []
+    monkeypatch.setattr("wakeline.app.cli._cmd_gui", lambda args: opened.append(args.files) or 0)
+    assert main(["nosuchcommand"]) == 2
+    err = capsys.readouterr().err
+    assert "unknown command 'nosuchcommand'" in err and "clean" in err and "review" in err
+    assert opened == []
+    (tmp_path / "clen").write_text("sensor,batch,time,lon,lat\n")
+    assert main(["clen"]) == 0  # an existing file: opened as before
+    assert main(["tracks.csv"]) == 0  # a suffix: a file (missing: the window says so)
+    assert main(["data/clen"]) == 0
+    assert [str(f[0]) for f in opened] == ["clen", "tracks.csv", "data/clen"]
+
+
+def test_review_refuses_an_output_suffix_it_does_not_write(tmp_path, capsys):
+    """Operator test 9, D14: `review -o x.txt` wrote CSV into a .txt with no word. Now it
+    refuses, before any work, naming the suffixes it writes (as render refuses a
+    non-PNG); --log must be .csv."""
+    pts = tmp_path / "p.csv"
+    pts.write_text(
+        "sensor,batch,time,lon,lat\n"
+        + "".join(f"S,1,2024-01-01T00:00:{k:02d}Z,10.{k:02d},55\n" for k in range(10))
+    )
+    for name in ("x.txt", "x", "x.xlsx"):
+        assert main(["review", str(pts), "-o", str(tmp_path / name)]) == 2
+        err = capsys.readouterr().err
+        assert "review writes by the suffix of -o: .csv" in err and ".geojson or .gpx" in err
+        assert not (tmp_path / name).exists()
+    log = tmp_path / "log.txt"
+    assert main(["review", str(pts), "-o", str(tmp_path / "ok.csv"), "--log", str(log)]) == 2
+    assert "--log" in capsys.readouterr().err and not log.exists()
+    assert main(["review", str(pts), "-o", str(tmp_path / "ok.csv")]) == 0
+    assert "wrote csv" in capsys.readouterr().err
+
+
+def test_an_mtad_file_with_a_sensor_column_keeps_course_and_truth(tmp_path):
+    """Operator test 9, D9: an MTAD scene with a `sensor` column added (two sensors in
+    one file) was read as canonical: cou and mmsi became extra columns, the points had
+    no course and no truth. Now the MTAD columns are mapped whatever columns are added."""
+    from wakeline.core.io import read_points
+
+    rows = [
+        f"{s},{m}-0,{k:.1f},{20 + k * 1e-3:.6f},{131 + k * 1e-3:.6f},11.9,{260 + k},{b}"
+        for k in range(12)
+        for s, m, b in (("AIS", 413804828, 0), ("radar", 209351000, 1))
+    ]
+    plain = tmp_path / "plain.csv"
+    plain.write_text(
+        "mmsi,time,lat,lon,vel,cou,batch\n" + "\n".join(r.split(",", 1)[1] for r in rows)
+    )
+    both = tmp_path / "both.csv"
+    both.write_text("sensor,mmsi,time,lat,lon,vel,cou,batch\n" + "\n".join(rows) + "\n")
+    one, two = read_points(plain), read_points(both)
+    assert one.report["columns"]["course"] == "cou" and one.report["columns"]["truth"] == "mmsi"
+    cols = two.report["columns"]
+    assert cols["course"] == "cou" and cols["truth"] == "mmsi" and cols["sensor"] == "sensor"
+    assert two.report["format"].startswith("mtad")
+    pts = two.points
+    assert set(pts["sensor"]) == {"AIS", "radar"}
+    assert pts["course"].notna().all() and set(pts["truth"]) == {"413804828-0", "209351000-0"}
+    assert "cou" not in pts.columns and "mmsi" not in pts.columns
+    # a canonical file with no MTAD column is read as before
+    canon = tmp_path / "canon.csv"
+    canon.write_text("sensor,batch,time,lon,lat,mmsi\nS,1,2024-01-01T00:00:00Z,10,55,7\n")
+    got = read_points(canon)
+    assert got.report["format"] == "canonical" and "truth" not in got.report["columns"]
+
+
+def test_evaluate_real_on_a_simulated_hard_file_scores_its_turn_truth(tmp_path, capsys):
+    """Operator test 9, D10: `evaluate maneuver --real` on a `simulate maneuver --hard`
+    file printed the no-truth table only. Now the file's true_turn/turn_deg (and the turn
+    spans simulate writes) give precision and recall as `--hard` scores the same scene,
+    and true_lon/true_lat the Dis_e against the true path."""
+    from wakeline.core.evaluate import evaluate_maneuver_hard
+
+    sim = tmp_path / "sim.csv"
+    assert (
+        main(["simulate", "maneuver", "--hard", "--seed", "5", "--tracks", "30", "-o", str(sim)])
+        == 0
+    )
+    head = pd.read_csv(sim, nrows=5)
+    assert {"turn_before_s", "turn_after_s", "turn_kind"} <= set(head.columns)
+    csv = tmp_path / "scores.csv"
+    capsys.readouterr()
+    assert main(["evaluate", "maneuver", "--real", str(sim), "--csv", str(csv)]) == 0
+    out = capsys.readouterr().out
+    assert "turn truth: the file's true_turn/turn_deg columns" in out
+    got = pd.read_csv(csv).set_index("method")
+    hard = evaluate_maneuver_hard(30, seed=5, scenes=1).table
+    want = hard[hard["rows"] == "all"].set_index("method")
+    for method in ("ours", "paper"):
+        assert got.loc[method, "detections"] == want.loc[method, "detections"]
+        assert got.loc[method, "precision"] == pytest.approx(
+            want.loc[method, "precision"], abs=0.02
+        )
+        assert got.loc[method, "recall"] == pytest.approx(want.loc[method, "recall"], abs=0.03)
+        assert abs(got.loc[method, "turns"] - want.loc[method, "turns"]) <= 2
+        assert got.loc[method, "ours_dis_e_true_m"] == pytest.approx(
+            want.loc[method, "dis_e_true_m"], rel=1e-6
+        )
+    # without the span columns: still scored, and said so
+    bare = tmp_path / "bare.csv"
+    pd.read_csv(sim).drop(columns=["turn_before_s", "turn_after_s"]).to_csv(bare, index=False)
+    assert main(["evaluate", "maneuver", "--real", str(bare)]) == 0
+    out = capsys.readouterr().out
+    assert "no turn_before_s/turn_after_s columns" in out and "precision" in out
+    # half the truth: said, not used
+    half = tmp_path / "half.csv"
+    pd.read_csv(sim).drop(columns=["turn_deg"]).to_csv(half, index=False)
+    assert main(["evaluate", "maneuver", "--real", str(half)]) == 0
+    out = capsys.readouterr().out
+    assert "truth columns found but not used" in out and "precision" not in out

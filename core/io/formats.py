@@ -758,6 +758,35 @@ def _resolve(
     return _positions(columns, mapping)
 
 
+def _layout_beneath(
+    fmt: Format, headers: tuple[str, ...], columns: dict[str, str]
+) -> tuple[Format, dict[str, str]]:
+    """A canonical header (sensor, batch, time, lon, lat) over a known layout's own
+    columns: an MTAD scene with a ``sensor`` column added (two sensors in one file) is
+    still MTAD, its ``cou`` the course and its ``mmsi`` the truth (operator test 9, D9:
+    they became extra columns, the points had no course and no truth). The fields the
+    canonical names left unmapped are taken by the first MTAD layout whose signature the
+    header holds; its format is returned with them."""
+    if fmt.name != "canonical":
+        return fmt, columns
+    lookup = _lookup(headers)
+    for other in FORMATS:
+        if other.family != "mtad":
+            continue
+        if not all(s.lower() in lookup or _key(s) in lookup for s in other.signature):
+            continue
+        out, used = dict(columns), set(columns.values())
+        for name in other.candidates:
+            if name not in out:
+                src = _column_for(other, name, lookup, used)
+                if src is not None:
+                    out[name] = src
+                    used.add(src)
+        if len(out) > len(columns):
+            return other, out
+    return fmt, columns
+
+
 def _column_for(fmt: Format, name: str, lookup: dict[str, str], used: set) -> str | None:
     """The first header (by ``lookup``, :func:`_lookup`) of ``fmt``'s candidates for
     field ``name`` that no field has taken (``used``), or None."""
@@ -968,7 +997,7 @@ def _resolve_mapped(
             if all(s.lower() in lookup or _key(s) in lookup for s in fmt.signature):
                 columns, missing = _resolve(fmt, headers, mapping)
                 if not missing:
-                    return Resolved(fmt, columns)
+                    return Resolved(*_layout_beneath(fmt, headers, columns))
     else:
         best = None
         for fmt in candidates:
