@@ -257,6 +257,12 @@ class ImportDialog(QtWidgets.QDialog):
         self.warning_label = QtWidgets.QLabel()
         self.warning_label.setWordWrap(True)
         self.warning_label.setStyleSheet("color: #b35900")
+        # What a read of the first rows says (its warnings, the rows it would quarantine)
+        # while the dialog is open: the log said it after OK (operator test 9, D11).
+        self.read_label = QtWidgets.QLabel()
+        self.read_label.setWordWrap(True)
+        self.read_label.setStyleSheet("color: #b35900")
+        self.read_label.setTextInteractionFlags(QtCore.Qt.TextInteractionFlag.TextSelectableByMouse)
 
         self.preview = QtWidgets.QPlainTextEdit(readOnly=True)
         self.preview.setLineWrapMode(QtWidgets.QPlainTextEdit.LineWrapMode.NoWrap)
@@ -291,7 +297,7 @@ class ImportDialog(QtWidgets.QDialog):
             self,
             form,
             self.preview,
-            [mapping_group, self.extra_label, self.warning_label],
+            [mapping_group, self.extra_label, self.warning_label, self.read_label],
             self.buttons,
             560,
         )
@@ -302,6 +308,8 @@ class ImportDialog(QtWidgets.QDialog):
         self.skip_box.valueChanged.connect(self.refresh)
         self.origin_edit.editingFinished.connect(self._origin_changed)
         self.tz_box.currentTextChanged.connect(self._update_warning)
+        for box in (self.date_order_box, self.time_unit_box, self.speed_unit_box):
+            box.currentIndexChanged.connect(self._update_warning)
         self.refresh()
 
     # -- detection ---------------------------------------------------------------------
@@ -501,20 +509,68 @@ class ImportDialog(QtWidgets.QDialog):
                     "clock times, or they are read on 1970-01-01 as relative times."
                 ).format(time_col)
             )
+        said, refused = [], None
+        if not self._missing and not getattr(self, "_problem", None):
+            said, refused = self._preview_lines()
+        if refused:
+            problems.append(refused)
         self.warning_label.setText("\n".join(problems))
+        self.read_label.setText("\n".join(said))
         # OK only once every required field has a column (D-import-12): an OK pressed
         # before failed in an error box that sent the operator back to a fresh dialog.
+        # Nor while the first rows are all quarantined (a CST time needs a zone: D11).
         box = getattr(self, "buttons", None)  # (not made yet while the dialog builds)
         ok = box.button(QtWidgets.QDialogButtonBox.StandardButton.Ok) if box else None
         if ok is not None:
-            ok.setEnabled(not self._missing)
-            ok.setToolTip(
-                self.tr("Map a column to each required field first: {0}").format(
-                    ", ".join(field_labels().get(m, m) for m in self._missing)
+            ok.setEnabled(not self._missing and refused is None)
+            if self._missing:
+                ok.setToolTip(
+                    self.tr("Map a column to each required field first: {0}").format(
+                        ", ".join(field_labels().get(m, m) for m in self._missing)
+                    )
                 )
-                if self._missing
-                else ""
+            else:
+                ok.setToolTip(refused or "")
+
+    def preview_read(self) -> dict | None:
+        """What reading the file's first rows with the dialog's options says
+        (:func:`~wakeline.core.io.preview.preview_read`), remembered per file and options."""
+        from wakeline.core.io.preview import preview_read
+
+        path = Path(self.path_edit.text())
+        if not self._info or self._info.get("kind") != "csv" or not path.is_file():
+            return None
+        options = {k: v for k, v in self.options().items() if k != "path"}
+        key = (str(path), path.stat().st_mtime_ns, repr(sorted(options.items())))
+        if getattr(self, "_preview_key", None) != key:
+            self._preview_key = key
+            self._preview_said = preview_read(path, **options)
+        return self._preview_said
+
+    def _preview_lines(self) -> tuple[list[str], str | None]:
+        """The warnings and quarantine reasons of a read of the first rows, in the
+        window's words (the import dialog's fields, not flags), and why OK is refused
+        (every row read would be quarantined) or None (operator test 9, D11)."""
+        said = self.preview_read()
+        if not said or not said["rows_read"]:
+            return [], None
+        lines = [shown(w) for w in said["warnings"]]
+        reasons = sorted(said["quarantine_reasons"].items(), key=lambda kv: -kv[1])
+        lines += [
+            self.tr("{0} of the first {1} rows would be quarantined: {2}").format(
+                f"{n:,}", f"{said['rows_read']:,}", shown(why)
             )
+            for why, n in reasons
+        ]
+        if not lines:
+            return [], None
+        head = self.tr("Reading the first {0} rows:").format(f"{said['rows_read']:,}")
+        refused = None
+        if said["rows_imported"] == 0:
+            refused = self.tr("Nothing would be imported: {0}").format(
+                shown(reasons[0][0]) if reasons else ""
+            )
+        return [head, *(f"• {line}" for line in lines)], refused
 
     # -- result ------------------------------------------------------------------------
 

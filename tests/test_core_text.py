@@ -18,6 +18,7 @@ from wakeline.core.errors import InputError
 from wakeline.core.io import read_points
 from wakeline.core.io.formats import FORMATS
 from wakeline.core.io.reader import nothing_imported
+from wakeline.core.io.timetext import AMBIGUOUS_ZONES
 from wakeline.resources import translations_dir
 
 GOOD = "S1,1,2024-01-01T00:00:{s:02d}Z,122.5,30.{s:02d}"
@@ -425,3 +426,19 @@ def test_a_steps_refusal_and_the_bearing_summary_are_in_chinese():
         "1,200 lines: 1,100 bearings in 3 series; 100 quarantined: missing time", "zh_CN"
     )
     assert zh == "1,200 行：3 个序列中共 1,100 个方位；隔离 100 行：缺少时间"
+
+
+def test_a_refused_files_reason_is_translated_inside_matched_quotes():
+    """Operator test 9, D12: the zh window showed "…原因为“time zone CST is ambiguous (…):
+    give the zone with the import dialog"s Time zone field'": the reason English, cut at
+    the apostrophe of "dialog's", opened with “ and closed with '."""
+    for word, zones in AMBIGUOUS_ZONES.items():
+        reason = f"time zone {word} is ambiguous ({zones}): give the zone with --tz"
+        for n in (1, 13341):
+            text = nothing_imported({"rows_read": n, "quarantine_reasons": {reason: n}}, "f.csv")
+            zh = translate(window_words(text), "zh_CN")
+            assert not english_left(zh), zh
+            assert zh.count("“") == zh.count("”") == 1 and "'" not in zh, zh
+            assert zh.endswith("”") and f"时区 {word} 有歧义" in zh, zh
+            assert all(off in zh for off in re.findall(r"[+-]\d\d:\d\d", zones)), zh
+            assert not re.search(r"[A-Za-z]{3,}", zh.replace(word, "").replace("f.csv", "")), zh

@@ -422,3 +422,44 @@ def test_gps_week_and_seconds_are_mapping_fields_that_reach_read_points(qtbot, t
     assert dlg.warning_label.text() == ""
     got = read_points(**dlg.options())
     assert got.points["time"].tolist() == [pd.Timestamp("2024-01-01", tz="UTC")]
+
+
+def test_the_dialog_says_what_a_read_of_the_first_rows_would_warn(qtbot, write):
+    """Operator test 9, D11: the dialog warned about nothing for a Chinese export without
+    a zone, decimal commas or CST times; the log said it after OK, the dialog closed (and
+    a CST file failed outright). Now a read of the first rows with the dialog's options
+    says its warnings and the rows it would quarantine, in the dialog's words, and OK
+    waits while nothing would be imported."""
+    from PySide6 import QtWidgets
+
+    rows = ["批号;时间;经度;纬度"] + [
+        f"{1 + k % 2};2024/8/1 8:{k:02d}:12;23,{52378 + k};37,{90000 + k}" for k in range(40)
+    ]
+    gbk = write("excel.csv", "\r\n".join(rows) + "\r\n", encoding="gbk")
+    dlg = ImportDialog(path=gbk)
+    qtbot.addWidget(dlg)
+    said = dlg.read_label.text()
+    assert "Reading the first 40 rows:" in said
+    assert "decimal comma" in said and "Asia/Shanghai" in said and "Time zone field" in said
+    assert "--tz" not in said
+    ok = dlg.buttons.button(QtWidgets.QDialogButtonBox.StandardButton.Ok)
+    assert ok.isEnabled()
+    dlg.tz_box.setCurrentText("Asia/Shanghai")
+    assert "carry no zone" not in dlg.read_label.text()  # the zone chosen: no such warning
+
+    cst = write(
+        "cst.csv",
+        "mmsi,BaseDateTime,lat,lon\n"
+        + "".join(f"1,2024-08-01 08:{k:02d}:00 CST,37.9,23.{k:02d}\n" for k in range(30)),
+    )
+    dlg = ImportDialog(path=cst)
+    qtbot.addWidget(dlg)
+    ok = dlg.buttons.button(QtWidgets.QDialogButtonBox.StandardButton.Ok)
+    assert "30 of the first 30 rows would be quarantined" in dlg.read_label.text()
+    assert "CST is ambiguous" in dlg.warning_label.text() and not ok.isEnabled()
+    assert "Nothing would be imported" in ok.toolTip()
+    dlg.tz_box.setCurrentText("Asia/Shanghai")
+    assert ok.isEnabled() and "quarantined" not in dlg.read_label.text()
+    result = read_points(**dlg.options())
+    assert len(result.points) == 30
+    assert result.points["time"].iloc[0] == pd.Timestamp("2024-08-01T00:00:00Z")

@@ -1176,6 +1176,18 @@
 <context>
     <name>ImportDialog</name>
     <message>
+        <source>Reading the first {0} rows:</source>
+        <translation>读取前 {0} 行：</translation>
+    </message>
+    <message>
+        <source>{0} of the first {1} rows would be quarantined: {2}</source>
+        <translation>前 {1} 行中有 {0} 行将被隔离：{2}</translation>
+    </message>
+    <message>
+        <source>Nothing would be imported: {0}</source>
+        <translation>将不会导入任何内容：{0}</translation>
+    </message>
+    <message>
         <source>Map a column to each required field first: {0}</source>
         <translation>请先为每个必填字段指定列：{0}</translation>
     </message>
@@ -1879,6 +1891,10 @@
     <message>
         <source>undo {0}</source>
         <translation>撤销{0}</translation>
+    </message>
+    <message>
+        <source>redo {0}</source>
+        <translation>重做{0}</translation>
     </message>
     <message>
         <source>Review: {0} {1}</source>
