@@ -26,6 +26,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
+from PySide6 import QtCore
 from scipy.spatial import cKDTree
 
 from wakeline.app.map_colors import BATCH_PALETTE, PALETTE, layer_colors
@@ -489,7 +490,11 @@ def track_legend_labels(names: list[str], counts: np.ndarray, n_tracks: int) -> 
         said = said or more > 0
         if n_groups > LEGEND_TRACKS and g >= LEGEND_TRACKS - 1:
             named = sum(int(c) for c in counts[: LEGEND_TRACKS - 1])
-            text = f"… and {n_tracks - named:,} more tracks" if g == LEGEND_TRACKS - 1 else ""
+            text = (
+                _tr("… and {0} more tracks").format(f"{n_tracks - named:,}")
+                if g == LEGEND_TRACKS - 1
+                else ""
+            )
         out.append(text)
     return tuple(out)
 
@@ -501,7 +506,12 @@ def reused_label(name: str, more: int, said: bool) -> str:
     the bottom of a 1366 × 768 window)."""
     if more <= 0:
         return name
-    return f"{name} (+{more})" if said else f"{name} · +{more} same colour"
+    return f"{name} (+{more})" if said else _tr("{0} · +{1} same colour").format(name, more)
+
+
+def _tr(text: str) -> str:
+    """``text`` in the window's language (callable from the map's worker threads)."""
+    return QtCore.QCoreApplication.translate("MainWindow", text)
 
 
 def track_names(geom: LayerGeometry) -> list[str]:

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 
 from wakeline.app.map_colors import apart_from
-from wakeline.app.map_draw import BATCH_PALETTE, Curve, reused_label, unwrap_tracks
+from wakeline.app.map_draw import BATCH_PALETTE, Curve, _tr, reused_label, unwrap_tracks
 from wakeline.app.map_lod import gap_breaks, nan_join
 
 #: Colours of selected batches: the batch palette without the oranges of the halo.
@@ -88,7 +88,7 @@ def selection_curves(
         if groups > LEGEND_BATCHES and g == LEGEND_BATCHES - 1:
             # the legend stops here and says so (it stopped silently: h225 item 2)
             named = int(np.count_nonzero(color_of_track < LEGEND_BATCHES - 1))
-            label = f"… and {geom.n_tracks - named:,} more selected"
+            label = _tr("… and {0} more selected").format(f"{geom.n_tracks - named:,}")
         elif g < LEGEND_BATCHES:
             # "(+k same colour)": k more selected tracks share this colour (the palette
             # has fewer colours than tracks); it said "(+k)", which nobody could read

@@ -91,7 +91,8 @@ def test_zh_window_after_pipeline_associate_fuse_has_no_english_words(qtbot, tmp
                     value = model.index(r, c).data()
                     if value is not None and r < 3:  # the layer's name, lineage, summary
                         texts.append(str(value))
-        texts += [lab.text for _, lab in w.canvas.legend.items]  # the legend
+        # the legend (its HTML line breaks and spaces are markup, not words)
+        texts += [re.sub(r"<[^>]+>|&\w+;", " ", lab.text) for _, lab in w.canvas.legend.items]
         # the log's step lines (the summaries and the layers they ran on)
         texts += [
             line

@@ -292,6 +292,18 @@
         <translation>当前图层画成点(&amp;P)(雷达点迹)</translation>
     </message>
     <message>
+        <source>… and {0} more tracks</source>
+        <translation>… 另有 {0} 条航迹</translation>
+    </message>
+    <message>
+        <source>… and {0} more selected</source>
+        <translation>… 另有 {0} 条已选航迹</translation>
+    </message>
+    <message>
+        <source>{0} · +{1} same colour</source>
+        <translation>{0} · 另 {1} 条同色</translation>
+    </message>
+    <message>
         <source>Positions at {0}</source>
         <translation>位置时刻 {0}</translation>
     </message>
