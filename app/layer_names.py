@@ -67,6 +67,8 @@ def shown_name(name: str) -> str:
     window's language ("scene.csv · 已清洗 · 已压缩"); the same text in English."""
     if not name:
         return name
+    if "\n" in str(name):  # a legend entry's lines (a layer coloured by track): each alone
+        return "\n".join(shown_name(line) for line in str(name).split("\n"))
     pieces = str(name).split(SEP)
     words = _words()
     out = [_first(pieces[0])] + [_piece(p, words) for p in pieces[1:]]

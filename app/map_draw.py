@@ -542,8 +542,10 @@ def recolor(data: DrawData, by_track: bool, palette: tuple[str, ...] | None = No
         names = track_names(geom)[:used] or [""]
         counts = np.bincount(group, minlength=used)
         labels = track_legend_labels(names, counts, geom.n_tracks)
-        if geom.labels and geom.labels[0]:  # the first line names the layer too
-            labels = (f"{geom.labels[0]} · {labels[0]}", *labels[1:])
+        if geom.labels and geom.labels[0]:  # the first entry names the layer on a line of its own
+            # (joined by " · " the legend shortened the layer's steps away: "demo.csv ·…
+            # AIS:340 · +1 same colour" named no layer)
+            labels = (f"{geom.labels[0]}\n{labels[0]}", *labels[1:])
         new = replace(
             geom,
             group=group,

@@ -137,6 +137,12 @@ class SideLegend(pg.LegendItem):
         The column is narrow but the legend has height to spare: one line left
         "a_ra…e_zh … compressed" of "a_radar_console_zh · cleaned · compressed"
         (operator test 7, D16). Other names: :meth:`fit_label`'s one line."""
+        if "\n" in name:  # lines of their own (a layer's name, then its first track's)
+            shown = [self.shown_label(line) for line in name.split("\n")]
+            return "<br>".join(
+                html.escape(t) if t == line else t
+                for t, line in zip(shown, name.split("\n"), strict=True)
+            )
         one = self.fit_label(name)
         if one == name:
             return name

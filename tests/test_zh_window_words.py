@@ -171,10 +171,11 @@ def test_the_legend_follows_a_language_switch(qtbot, tmp_path):
         w.run_step("clean")
         wait_for_jobs(w)
         QtWidgets.QApplication.processEvents()
-        labels = [lab.text for _, lab in w.canvas.legend.items]
+        # each entry's lines (a layer coloured by track names itself on the first line)
+        labels = [x for _, lab in w.canvas.legend.items for x in lab.text.split("<br>")]
         assert "demo.csv · 已清洗" in labels, labels
         w.set_language("en")
-        labels = [lab.text for _, lab in w.canvas.legend.items]
+        labels = [x for _, lab in w.canvas.legend.items for x in lab.text.split("<br>")]
         assert "demo.csv · cleaned" in labels and "demo.csv · 已清洗" not in labels, labels
     finally:
         w.set_language("en")
