@@ -12,7 +12,13 @@ from wakeline.app.cli_common import positive_float, positive_int
 from wakeline.core.errors import InputError
 from wakeline.core.words import count
 
-EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
+EPILOG = (
+    "Exit status: 0 success; 2 bad input (one message on stderr, nothing written), or the "
+    "batch ran but an input was left out: refused, or every row of it quarantined (each "
+    "listed on stderr as FILE: refused: WHY and in report.json refused_inputs; the other "
+    "inputs were processed and written); 130 interrupted (Ctrl+C: OUTDIR is incomplete, "
+    "marked by BATCH_INCOMPLETE.txt; the same command starts over in it); 1 internal error."
+)
 
 
 def _cmd_batch(args: argparse.Namespace) -> int:
@@ -35,7 +41,7 @@ def _cmd_batch(args: argparse.Namespace) -> int:
         raise InputError(
             "batch needs Dask: pip install 'wakeline[batch]' (dask[dataframe], distributed)"
         ) from None
-    from wakeline.core.batch import BatchOptions, run_batch
+    from wakeline.core.batch import BatchInterrupted, BatchOptions, breaks_said, run_batch
     from wakeline.core.io.sniff import opening
 
     try:
@@ -60,10 +66,18 @@ def _cmd_batch(args: argparse.Namespace) -> int:
         sensor_per_file=args.sensor_per_file,
         **read | {"mapping": tuple(read["mapping"] or ())},
     )
-    result = run_batch(pipe, args.input, args.outdir, opts, log=lambda m: print(m, file=sys.stderr))
+    try:
+        result = run_batch(
+            pipe, args.input, args.outdir, opts, log=lambda m: print(m, file=sys.stderr)
+        )
+    except BatchInterrupted as stop:  # one line, no traceback (operator test 9, D7)
+        print(f"wakeline: {stop.message()}", file=sys.stderr)
+        return 130
     rep = result.report
     steps = "; ".join(
-        f"{name} {s['rows_in']:,} -> {s['rows_out']:,}" for name, s in rep["steps"].items()
+        f"{name} {s['rows_in']:,} -> {s['rows_out']:,}"
+        + (breaks_said(rep) if name == "clean" else "")
+        for name, s in rep["steps"].items()
     )
     skipped = len(rep["empty_inputs"]) + len(rep["skipped_inputs"])
     skipped_text = ""
@@ -140,9 +154,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--sensor-per-file",
         action="store_true",
-        help="each CSV input without a sensor column is its own sensor, named by its file "
-        "name (radar.csv -> radar): two consoles that number their tracks alike stay apart "
-        "instead of joining into one track each (default: every input is --sensor, S1)",
+        help="each CSV input is its own sensor, named by its file name: without a sensor "
+        "column radar.csv -> radar, with one its values prefixed (AIS -> radar/AIS): two "
+        "consoles that number their tracks alike stay apart instead of joining into one "
+        "track each (default: every input is --sensor, S1, or its sensor column's values)",
     )
     p.add_argument(
         "--partition-mb",

@@ -29,6 +29,7 @@ when a batch runs (``pip install wakeline[batch]``).
 import contextlib
 import errno
 import json
+import logging
 import math
 import os
 import shutil
@@ -49,6 +50,11 @@ from wakeline.core.words import count as count_of
 #: Steps that run bucket by bucket (each track on its own).
 PER_TRACK = ("clean", "maneuvers", "compress")
 STAGE = "_stage"
+#: The outputs as they are written (``OUTDIR/_stage/out``), moved into OUTDIR at the end.
+WORK = "out"
+#: Written into OUTDIR when a batch starts, removed when it has finished (operator test 9,
+#: D3): a folder holding it is an interrupted batch, which a rerun starts over in.
+RUNNING = "BATCH_INCOMPLETE.txt"
 ID = "wl_id"  # clean's row id (core/clean.py)
 BLOCK = "_block"
 
@@ -109,6 +115,134 @@ class BatchResult:
     outdir: Path
     report: dict
     outputs: dict[str, Path] = field(default_factory=dict)
+
+
+class BatchInterrupted(KeyboardInterrupt):
+    """A batch stopped by Ctrl+C (SIGINT): ``done`` of ``partitions`` partitions of pass 2
+    written (``partitions`` None: stopped in pass 1); ``outdir`` holds :data:`RUNNING`
+    and the stage, no output that looks complete (operator test 9, D3/D7)."""
+
+    def __init__(self, outdir: Path, done: int, partitions: int | None, csv: bool = False):
+        super().__init__(str(outdir))
+        self.outdir, self.done, self.partitions, self.csv = outdir, done, partitions, csv
+
+    def message(self) -> str:
+        if self.partitions is None:
+            where = "while reading the inputs"
+        elif self.csv:
+            where = "while writing the CSV files"
+        else:
+            where = f"{self.done:,} of {count_of(self.partitions, 'partition')} written"
+        return (
+            f"interrupted ({where}; {self.outdir} is incomplete: run the same command again "
+            "to start over in it)"
+        )
+
+
+def _take_outdir(outdir: Path, log) -> None:
+    """Make ``outdir`` this batch's: new, empty, an earlier batch's (a ``report.json``:
+    replaced whole) or an interrupted batch's (:data:`RUNNING`: started over, with a
+    note); any other non-empty folder is refused. Writes :data:`RUNNING`."""
+    if outdir.exists() and not outdir.is_dir():
+        raise InputError(f"{outdir}: exists and is not a folder")
+    if outdir.exists() and any(outdir.iterdir()):
+        marker = outdir / RUNNING
+        if marker.exists():
+            pid = _marker_pid(marker)
+            if pid and pid != os.getpid() and _alive(pid):
+                raise InputError(
+                    f"{outdir}: a batch is running into it (process {pid}); wait for it, or "
+                    "choose a new folder"
+                )
+            log(
+                f"{outdir}: an interrupted batch (it did not finish; its outputs were "
+                "incomplete): starting over in it"
+            )
+        elif not (outdir / "report.json").exists():
+            raise InputError(
+                f"{outdir}: is not empty and holds no earlier batch; choose a new folder"
+            )
+        shutil.rmtree(outdir)  # an earlier batch's output: replaced whole
+    outdir.mkdir(parents=True, exist_ok=True)
+    (outdir / RUNNING).write_text(
+        "A wakeline batch is writing into this folder, or was stopped before it finished\n"
+        f"(process {os.getpid()}, started {time.strftime('%Y-%m-%dT%H:%M:%S%z')}).\n"
+        "Nothing here is complete until this file is gone and report.json is written.\n"
+        "Run the same command again to start over in this folder.\n",
+        encoding="utf-8",
+    )
+
+
+def _marker_pid(marker: Path) -> int | None:
+    import re
+
+    try:
+        found = re.search(r"\(process (\d+),", marker.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError):
+        return None
+    return int(found.group(1)) if found else None
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # another user's process: alive
+        return True
+    return True
+
+
+def _quiet_interrupt() -> None:
+    """After Ctrl+C: no Python traceback from Dask's clients and workers ("Task exception
+    was never retrieved … AllExit", their WARNING lines; operator test 9, D7)."""
+    for name in ("distributed", "asyncio", "tornado", "tornado.application"):
+        logger = logging.getLogger(name)
+        logger.setLevel(logging.CRITICAL + 1)
+        logger.disabled = True
+
+
+def _close_client(client, opts: "BatchOptions") -> None:
+    """Close a client (and the local cluster it started), quietly: an interrupted run's
+    pending tasks are cancelled, not reported."""
+    cluster = getattr(client, "cluster", None)
+    try:
+        client.close()
+        if cluster is not None and not opts.scheduler:
+            cluster.close()
+    except (Exception, KeyboardInterrupt):  # noqa: BLE001 - shutting down after Ctrl+C
+        _quiet_interrupt()
+
+
+def _merge_break_legs(rep: dict, infos: list[dict]) -> None:
+    """Clean's kept speed breaks over the partitions (their count is summed already): the
+    fastest legs of all, as ``wakeline clean`` lists them, for the summary line."""
+    from wakeline.core.clean import BREAK_LEGS_LISTED
+
+    legs, params = [], None
+    for info in infos:
+        for s in info["stages"]:
+            if s["step"] == "clean":
+                speed = s["report"].get("rules", {}).get("speed", {})
+                legs += speed.get("break_legs") or []
+                params = params or speed.get("params")
+    speed = rep["counts"].get("rules", {}).get("speed")
+    if speed is None:
+        return
+    legs.sort(key=lambda leg: -(leg["kn"] if leg["kn"] is not None else math.inf))
+    speed["break_legs"] = legs[:BREAK_LEGS_LISTED]
+    if params is not None:
+        speed["params"] = params
+
+
+def breaks_said(report: dict) -> str:
+    """What the summary says of clean's speed breaks, as ``wakeline clean`` says it (``;
+    2 breaks kept, the fastest …``); "" when none."""
+    from wakeline.core.pipeline import _break_phrases
+    from wakeline.core.words import Text
+
+    speed = report.get("steps", {}).get("clean", {}).get("counts", {}).get("rules", {})
+    return str(Text(_break_phrases(speed.get("speed", {}))))
 
 
 # -- checks -------------------------------------------------------------------------------
@@ -525,8 +659,9 @@ def _import_file(
 
     root, src = Path(stage), Path(path)
     read = dict(read)
+    own = None  # --sensor-per-file: the file's name's stem
     if read.pop("sensor_per_file", False):  # this file's own sensor: its name's stem
-        read["sensor"] = file_sensor(src if member is None else Path(member))
+        own = read["sensor"] = file_sensor(src if member is None else Path(member))
     scratch = root / f"file-{file_no:06d}"
     label = str(src) if member is None else f"{src}/{member}"
     pieces: list[int] = []
@@ -535,6 +670,10 @@ def _import_file(
     def sink(points: pd.DataFrame) -> None:
         if not len(points):
             return
+        if own is not None and prefix_sensor[0]:
+            # a sensor column's values, prefixed by the file (operator test 9, D1: two
+            # consoles' files, each with a sensor column AIS and a track 1, made one track)
+            points["sensor"] = own + "/" + points["sensor"].astype("str")
         part = file_no * PIECES + len(pieces)
         spans.append(track_spans(points))
         _to_buckets(points, root, n, part, f"block-{part:012d}")
@@ -549,6 +688,7 @@ def _import_file(
         spans.clear()
 
     readable = src
+    prefix_sensor = [False]  # the file has a sensor column (--sensor-per-file prefixes it)
     try:
         if member is not None:
             readable = scratch / local_name(Path(member))
@@ -557,6 +697,9 @@ def _import_file(
                 while chunk := stream.read(16 << 20):
                     out.write(chunk)
         sn = sniff(readable, read["encoding"], read["delimiter"], read["skip_rows"])
+        if own is not None and sn.kind == "csv":
+            cols = resolve_header(sn, read["fmt"], read["mapping"], str(src), read["origin"])
+            prefix_sensor[0] = "sensor" in cols.columns
         if not piece_safe(sn):  # NMEA logs, UTF-16 text: read whole
             res = read_points(readable, **read)
             sink(res.points)
@@ -618,8 +761,19 @@ def _import_file(
         pq.write_table(
             pa.Table.from_pandas(q, preserve_index=False), qdir / f"file-{file_no:06d}.parquet"
         )
+    nothing = None
     if not pieces and n_q:  # every row quarantined: its counts still need a block
         pieces.append(0)
+        from wakeline.core.io.reader import nothing_imported
+
+        # as `wakeline import` refuses it (operator test 9, D2: only the totals said it)
+        rep = {**res.report, "rows_read": n_q}
+        rep.setdefault("quarantine_reasons", q["reason"].value_counts().to_dict())
+        why = nothing_imported(rep)
+        for lead in ("nothing imported: the one row was quarantined, ", "nothing imported: "):
+            why = why.removeprefix(lead)
+        why = why.removeprefix(f"all {n_q:,} rows were quarantined, ")
+        nothing = f"0 of {count_of(n_q, 'row')} kept, all quarantined: {why} (see the quarantine)"
     blocks = file_no * PIECES + np.arange(len(pieces), dtype="int64")
     rows = np.asarray(pieces, dtype="int64")
     rows[:1] += n_q  # the file's quarantined rows counted with its first piece
@@ -635,6 +789,7 @@ def _import_file(
         "warnings": list(warnings),
         "rows": int(rows.sum()),
         "spans": track_spans(pd.concat(spans, ignore_index=True)) if spans else None,
+        "nothing": nothing,
         **lines,
     }
 
@@ -647,11 +802,11 @@ def track_spans(points: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame({"start": g["start"].min(), "end": g["end"].max()}).reset_index()
 
 
-def shared_tracks(spans: dict[str, pd.DataFrame]) -> list[str]:
-    """D-batch-1/D-batch-3 (operator test 5): inputs read as one stream join every equal
-    (sensor, batch), so two exports of the same data (or a file and our own GeoJSON of it)
-    make duplicates. One warning per pair of inputs whose tracks share (sensor, batch)
-    with overlapping times, in input order."""
+def shared_track_pairs(spans: dict[str, pd.DataFrame]) -> list[dict]:
+    """Every pair of inputs whose tracks share (sensor, batch), in input order: ``{"inputs":
+    [a, b], "ids": n, "overlapping": n of them with overlapping times, "gap_s": the
+    largest gap between one file's end of a shared track and the other's start (0 when
+    they overlap)}``. Read as one stream, each such id's rows of both files make one track."""
     if len(spans) < 2:
         return []
     order = {name: k for k, name in enumerate(spans)}
@@ -668,16 +823,87 @@ def shared_tracks(spans: dict[str, pd.DataFrame]) -> list[str]:
     pairs = both.merge(both, on=["sensor", "batch"], suffixes=("_a", "_b"))
     pairs = pairs[pairs["file_a"] < pairs["file_b"]]
     overlap = (pairs["start_a"] <= pairs["end_b"]) & (pairs["start_b"] <= pairs["end_a"])
-    shared = pairs[overlap].groupby(["file_a", "file_b"]).size()
+    gap = np.maximum(
+        (pairs["start_b"] - pairs["end_a"]).dt.total_seconds().to_numpy(),
+        (pairs["start_a"] - pairs["end_b"]).dt.total_seconds().to_numpy(),
+    )
+    pairs = pairs.assign(overlapping=overlap.to_numpy(), gap_s=np.where(overlap, 0.0, gap))
+    g = pairs.groupby(["file_a", "file_b"])
+    table = pd.DataFrame(
+        {"ids": g.size(), "overlapping": g["overlapping"].sum(), "gap_s": g["gap_s"].max()}
+    )
     names = list(spans)
+    return [
+        {
+            "inputs": [names[a], names[b]],
+            "ids": int(row.ids),
+            "overlapping": int(row.overlapping),
+            "gap_s": float(row.gap_s),
+        }
+        for (a, b), row in table.iterrows()
+    ]
+
+
+#: Pairs a warning of :func:`shared_tracks` names (the rest: report.json)
+PAIRS_SHOWN = 3
+
+
+def _gap_said(seconds: float) -> str:
+    if seconds >= 86400:
+        return f"{seconds / 86400:,.1f} d"
+    if seconds >= 3600:
+        return f"{seconds / 3600:,.1f} h"
+    return f"{seconds / 60:,.0f} min"
+
+
+def shared_tracks(spans: dict[str, pd.DataFrame], pairs: list[dict] | None = None) -> list[str]:
+    """Inputs read as one stream join every equal (sensor, batch). One summary line for
+    the pairs of inputs whose shared ids overlap in time (the same export twice: D-batch-1/3,
+    operator test 5, duplicates), one for those that do not (a track continued into the next
+    file, or a number reused by another day or console: operator test 9, D1), each with
+    the counts and the first pairs; every pair in report.json (``shared_track_ids``; D6:
+    one line per pair, 102 lines in a 37-file run)."""
+    pairs = shared_track_pairs(spans) if pairs is None else pairs
     out = []
-    for (a, b), k in shared.items():
-        ids = f"{k:,} track id" + ("s" if k != 1 else "")
+    over = [p for p in pairs if p["overlapping"]]
+    if over:
+        files = {f for p in over for f in p["inputs"]}
+        ids = sum(p["overlapping"] for p in over)
+        shown = "; ".join(
+            f"{a} and {b} ({p['overlapping']:,})"
+            for p in over[:PAIRS_SHOWN]
+            for a, b in [p["inputs"]]
+        )
+        more = f"; and {len(over) - PAIRS_SHOWN:,} more pairs" if len(over) > PAIRS_SHOWN else ""
+        head = (
+            f"{over[0]['inputs'][0]} and {over[0]['inputs'][1]} share {count_of(ids, 'track id')}"
+            if len(over) == 1
+            else f"{len(files):,} inputs ({len(over):,} pairs) share track ids ({ids:,} in all)"
+        )
+        tail = "" if len(over) == 1 else f": {shown}{more}"
         out.append(
-            f"warning: {names[a]} and {names[b]} share {ids} with overlapping times: the "
-            "same export twice? Read as one stream their rows join into one track each "
-            "(duplicates); give each its own sensor (--sensor-per-file, or a sensor column), "
-            "or run them apart"
+            f"warning: {head} with overlapping times{tail}: the same export twice? Read as "
+            "one stream their rows join into one track each (duplicates); give each its own "
+            "sensor (--sensor-per-file, or a sensor column), or run them apart; every pair in "
+            "report.json (shared_track_ids)"
+        )
+    apart = [p for p in pairs if p["ids"] > p["overlapping"]]
+    if apart:
+        ids = sum(p["ids"] - p["overlapping"] for p in apart)
+        gap = max(p["gap_s"] for p in apart)
+        shown = "; ".join(
+            f"{a} and {b} ({p['ids'] - p['overlapping']:,})"
+            for p in apart[:PAIRS_SHOWN]
+            for a, b in [p["inputs"]]
+        )
+        more = f"; and {len(apart) - PAIRS_SHOWN:,} more pairs" if len(apart) > PAIRS_SHOWN else ""
+        out.append(
+            f"warning: {count_of(ids, 'track id')} of one input continue in another at "
+            f"later times (the longest gap {_gap_said(gap)}): {shown}{more}; read as one "
+            "stream each is one track across the files (a capture cut into files). If the "
+            "files are separate exports (other days, other consoles numbering alike), give "
+            "each its own sensor (--sensor-per-file) or run them apart; every pair in "
+            "report.json (shared_track_ids)"
         )
     return out
 
@@ -764,6 +990,8 @@ def _import_inputs(
     counts = [d["counts"] for d in done.values()]
     none = pd.DataFrame({c: pd.Series([], dtype="int64") for c in ("block", "rows", "quarantined")})
     lines = {k: sum(d[k] for d in done.values()) for k in ("skipped_above_header", "blank_lines")}
+    # every row quarantined: refused as `wakeline import` refuses it (its rows counted)
+    refused |= {k: d["nothing"] for k, d in done.items() if d.get("nothing")}
     gone = [(inputs[k].name, refusal(why, inputs[k].name)) for k, why in sorted(refused.items())]
     spans = {inputs[k].name: d["spans"] for k, d in done.items() if d.get("spans") is not None}
     lines |= {"refused": gone, "spans": spans}
@@ -1008,6 +1236,8 @@ def _client(opts: BatchOptions):
             threads_per_worker=1,
             processes=opts.processes,
             dashboard_address=":0",  # any free port: 8787 may be taken (a notebook, another run)
+            # the workers' own log lines (a task cancelled by Ctrl+C …): errors only (D7)
+            silence_logs=logging.ERROR,
         )
         return Client(cluster)
     return None
@@ -1082,29 +1312,31 @@ def run_batch(
             )
         text_bytes = in_bytes
     outdir = Path(outdir)
-    if outdir.exists() and not outdir.is_dir():
-        raise InputError(f"{outdir}: exists and is not a folder")
-    if outdir.exists() and any(outdir.iterdir()):
-        if not (outdir / "report.json").exists():
-            raise InputError(
-                f"{outdir}: is not empty and holds no earlier batch; choose a new folder"
-            )
-        shutil.rmtree(outdir)  # an earlier batch's output: replaced whole
-    outdir.mkdir(parents=True, exist_ok=True)
+    _take_outdir(outdir, log)
     stage = outdir / STAGE
+    # Every output is written under the stage (``work``) and moved into OUTDIR at the end,
+    # after which the marker goes: an interrupted run leaves no file that looks complete.
+    work = stage / WORK
     # Buckets from the inputs' size as text (a compressed file's estimated from its start).
     n = opts.buckets or max(1, math.ceil(text_bytes / (opts.partition_mb * 2**20)))
     timings: dict[str, float] = {}
-    client = _client(opts)
+    progress: dict = {}  # what an interruption reports (partitions of pass 2)
+    try:
+        client = _client(opts)
+    except KeyboardInterrupt:
+        _quiet_interrupt()
+        raise BatchInterrupted(outdir, 0, None) from None
     import dask
 
     threads = opts.threads or min(os.cpu_count() or 1, 4)
     local = contextlib.ExitStack()
     if client is None:
         local.enter_context(dask.config.set(scheduler="threads", num_workers=threads))
+    buckets: list[int] = []
     try:
         t = time.perf_counter()
         warnings: list[str] = []
+        shared: list[dict] = []  # pairs of inputs sharing track ids (shared_track_pairs)
         empty: list[str] = []
         lines: dict[str, int] = {}  # CSV inputs: lines skipped above headers, blank lines
         try:
@@ -1112,13 +1344,15 @@ def run_batch(
                 alone = len(csv_inputs) + len(refused) + len(not_read) == 1
                 counts, warnings, empty, lines = _import_inputs(csv_inputs, stage, n, read, alone)
                 refused += lines.pop("refused")
-                warnings += shared_tracks(lines.pop("spans"))
+                shared = shared_track_pairs(lines.pop("spans"))
+                warnings += shared_tracks({}, shared)
             else:
                 counts = _read_parquet_inputs(inputs, stage, n, opts)
         except (InputError, OSError):
             # Nothing half-written is left: the same OUTDIR can be given again.
             shutil.rmtree(outdir, ignore_errors=True)
             raise
+        work.mkdir(parents=True, exist_ok=True)
         timings["read_shuffle_s"] = time.perf_counter() - t
         counts = counts.sort_values("block")
         kept = (counts["rows"] - counts["quarantined"]).to_numpy()
@@ -1132,18 +1366,18 @@ def run_batch(
                 shown = "; ".join(f"{p}: {why}" for p, why in refused)
                 raise InputError(f"batch: no input could be read: {shown}")
             raise InputError("batch: the inputs hold no data rows (headers only?)")
-        for name, why in refused:
-            log(f"{name}: refused: {why}")
-        for name, why in not_read:
-            log(f"{name}: warning: {why}; skipped")
         for warning in warnings:
             log(warning)
+        for name, why in not_read:
+            log(f"{name}: warning: {why}; skipped")
+        for name, why in refused:  # last before the totals: what matters most stays in view
+            log(f"{name}: refused: {why}")
         log(
             f"read {count_of(rows_read, 'row')} into {count_of(n, 'bucket')} "
             f"({quarantined:,} quarantined)"
         )
         if (stage / "quarantine").exists():
-            shutil.move(str(stage / "quarantine"), str(outdir / "quarantine"))
+            shutil.move(str(stage / "quarantine"), str(work / "quarantine"))
 
         t = time.perf_counter()
         # Every fix an end fit may take: end_points, or up to end_points_max where the
@@ -1153,10 +1387,11 @@ def run_batch(
         buckets = sorted(int(d.name.split("-")[1]) for d in stage.glob("bucket-*"))
         tasks = [
             dask.delayed(_run_bucket, pure=False)(
-                b, str(stage), str(outdir), per_track, assoc_k, offsets
+                b, str(stage), str(work), per_track, assoc_k, offsets
             )
             for b in buckets
         ]
+        progress["partitions"] = len(buckets)
         infos = list(dask.compute(*tasks))
         timings["steps_s"] = time.perf_counter() - t
         stages_rep: dict[str, dict] = {}
@@ -1173,27 +1408,37 @@ def run_batch(
                         rep["counts"] = _add_counts(rep["counts"], s["report"])
                         if "rejected" in s:
                             rep["rejected"] = rep.get("rejected", 0) + s["rejected"]
+            if name == "clean":
+                _merge_break_legs(rep, infos)
             prev = rep["rows_out"] if name != "maneuvers" else prev
         if assoc:
             t = time.perf_counter()
-            stages_rep["associate"] = _associate_pass(assoc, infos, stage, outdir, buckets)
+            stages_rep["associate"] = _associate_pass(assoc, infos, stage, work, buckets)
             timings["associate_s"] = time.perf_counter() - t
+    except KeyboardInterrupt:
+        _quiet_interrupt()
+        done = len(list((work / per_track[0][0]).glob("*.parquet"))) if per_track else 0
+        raise BatchInterrupted(outdir, done, progress.get("partitions")) from None
     finally:
         local.close()
         if client is not None:
-            cluster = getattr(client, "cluster", None)
-            client.close()
-            if cluster is not None and not opts.scheduler:
-                cluster.close()
-    outputs = {p.name: p for p in sorted(outdir.iterdir()) if p.is_dir() and p.name != STAGE}
-    if opts.csv:
-        t = time.perf_counter()
-        for name, folder in list(outputs.items()):
-            is_points = name in ("clean", "compress", "associate")
-            tracks = is_points or name == "maneuvers"
-            parts_to_csv(folder, outdir / f"{name}.csv", points=is_points, tracks=tracks)
-            outputs[f"{name}.csv"] = outdir / f"{name}.csv"
-        timings["csv_s"] = time.perf_counter() - t
+            _close_client(client, opts)
+    try:
+        folders = sorted(p for p in work.iterdir() if p.is_dir())
+        if opts.csv:
+            t = time.perf_counter()
+            for folder in folders:
+                name = folder.name
+                is_points = name in ("clean", "compress", "associate")
+                tracks = is_points or name == "maneuvers"
+                parts_to_csv(folder, work / f"{name}.csv", points=is_points, tracks=tracks)
+            timings["csv_s"] = time.perf_counter() - t
+    except KeyboardInterrupt:
+        raise BatchInterrupted(outdir, len(buckets), len(buckets), csv=True) from None
+    outputs = {}
+    for p in sorted(work.iterdir()):  # every output complete: moved into OUTDIR
+        p.rename(outdir / p.name)
+        outputs[p.name] = outdir / p.name
     shutil.rmtree(stage, ignore_errors=True)
     report = {
         "inputs": [str(p) for p in inputs],
@@ -1209,6 +1454,7 @@ def run_batch(
         # inputs the importer refused (each with its reason): the rest were processed
         "refused_inputs": [{"input": name, "reason": why} for name, why in refused],
         "warnings": warnings,
+        "shared_track_ids": shared,
         "steps": stages_rep,
         "timings_s": {k: round(v, 3) for k, v in timings.items()},
         "scheduler": opts.scheduler
@@ -1218,6 +1464,7 @@ def run_batch(
     from wakeline.core.io import write_json
 
     write_json(report, outdir / "report.json")
+    (outdir / RUNNING).unlink(missing_ok=True)  # the batch is complete
     return BatchResult(outdir, report, outputs)
 
 

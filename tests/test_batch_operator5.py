@@ -92,20 +92,26 @@ def test_inputs_sharing_track_ids_with_overlapping_times_are_named_once_per_pair
     b = tmp_path / "b.csv"  # the same export again
     b.write_text(head + "\n".join(_rows("1", 0) + _rows("2", 0) + _rows("3", 0)) + "\n")
     c = tmp_path / "c.csv"  # track 1 again, an hour later: not overlapping
-    c.write_text(head + "\n".join(_rows("1", 3600)) + "\n")
+    # (before operator test 9 this file's times read 00:60:00: every row was quarantined,
+    # silently: D2)
+    c.write_text(head + "\n".join(r.replace("T00:", "T01:") for r in _rows("1", 0)) + "\n")
     pipe = tmp_path / "p.json"
     pipe.write_text(Pipeline.default().to_json())
     out = tmp_path / "out"
     assert main(["batch", str(pipe), str(a), str(b), str(c), "-o", str(out)]) == 0
     err = capsys.readouterr().err
-    said = [x for x in err.splitlines() if "share" in x]
+    said = [x for x in err.splitlines() if "with overlapping times" in x]
     assert said == [
         f"warning: {a} and {b} share 3 track ids with overlapping times: the same export "
         "twice? Read as one stream their rows join into one track each (duplicates); give "
-        "each its own sensor (--sensor-per-file, or a sensor column), or run them apart"
+        "each its own sensor (--sensor-per-file, or a sensor column), or run them apart; "
+        "every pair in report.json (shared_track_ids)"
     ]
     rep = json.loads((out / "report.json").read_text())
     assert said[0] in rep["warnings"]
+    # track 1 of c, an hour later: said apart (operator test 9, D1), not as a duplicate
+    later = [x for x in err.splitlines() if "continue in another" in x]
+    assert len(later) == 1 and f"{a} and {c} (1); {b} and {c} (1)" in later[0]
 
 
 def test_shared_tracks_counts_overlaps_only():
@@ -121,11 +127,16 @@ def test_shared_tracks_counts_overlaps_only():
         "y": track_spans(pts(["1", "2", "3"], [t[1], t[2], t[0]])),  # 1 touches x's end
         "z": track_spans(pts(["9"], [t[0]])),
     }
-    assert shared_tracks(spans) == [
+    said = shared_tracks(spans)
+    assert said[0] == (
         "warning: x and y share 1 track id with overlapping times: the same export twice? "
         "Read as one stream their rows join into one track each (duplicates); give each its "
-        "own sensor (--sensor-per-file, or a sensor column), or run them apart"
-    ]
+        "own sensor (--sensor-per-file, or a sensor column), or run them apart; every pair "
+        "in report.json (shared_track_ids)"
+    )
+    # track 2: x's at 00:00, y's at 02:00, not overlapping: said apart (operator test 9)
+    assert len(said) == 2 and "1 track id of one input continue in another" in said[1]
+    assert "(the longest gap 2.0 h): x and y (1)" in said[1]
     assert shared_tracks({"x": spans["x"]}) == []
 
 
