@@ -1128,3 +1128,28 @@ def test_lone_rows_in_pieces_are_the_whole_reads_when_times_jump_by_months(
 
     assert lone(got.quarantine) == lone(whole.quarantine)
     assert set(got.quarantine["line"]) <= set(whole.quarantine["line"])
+
+
+def test_repeated_rows_are_counted_not_read_as_passes(write):
+    """Operator test 9, D8: rows written twice (every 7th, and a block of the first ones
+    appended at the end) were reported as "several passes or ships share one id", which
+    sent the operator to look for a column that does not exist; they are counted as
+    repeats and left out of the restart test. A real second pass is still flagged."""
+    rows = []
+    for b in (1, 2, 3):
+        rows += [f"{b},{60 * m},{11 + b + m * 1e-3:.4f},57.5,{9 + b}.5" for m in range(60)]
+    doubled = [r for k, r in enumerate(rows) for _ in range(2 if k % 7 == 0 else 1)]
+    again = doubled + rows[:20]  # the start of the export appended at the end
+    expected = len(again) - len(rows)
+    res = read_points(write("twice.csv", "id,time,lon,lat,speed\n" + "\n".join(again) + "\n"))
+    assert res.report["repeated_rows"] == expected
+    assert res.report["restarting_tracks"] == {}
+    said = [w for w in res.report["warnings"] if "repeat an earlier row exactly" in w]
+    assert said and said[0].startswith(f"{expected:,} rows repeat")
+    assert not any("start their time again" in w for w in res.report["warnings"])
+    # the same time and track at another place is not a repeat; a true second pass (new
+    # positions, from t = 0 again) is still a restart
+    moved = [r.replace(",57.5,", ",57.6,") for r in rows[:20]]
+    res = read_points(write("pass.csv", "id,time,lon,lat,speed\n" + "\n".join(rows + moved) + "\n"))
+    assert res.report["repeated_rows"] == 0
+    assert res.report["restarting_tracks"] == {"1": 2}

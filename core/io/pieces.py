@@ -53,6 +53,7 @@ from wakeline.core.io.reader import (
     DDMM_NOTE_START,
     LETTER_NOTE_START,
     POSITION_COUNTS,
+    REPEAT_MARK,
     TIME_COUNTS,
     UNBALANCED_NOTE,
     ZONE_NOTE_MARK,
@@ -61,6 +62,7 @@ from wakeline.core.io.reader import (
     _back_warnings,
     _coarse_time_warnings,
     _judged,
+    _repeat_warnings,
     _restart_warnings,
     _time_warnings,
     bearing_warnings,
@@ -476,7 +478,7 @@ def merge_import_reports(
                 if speed_said:
                     continue
                 speed_said = True
-            if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w or BACK_MARK in w:
+            if CUT_SHORT_MARK in w or BEARING_ROWS_MARK in w or BACK_MARK in w or REPEAT_MARK in w:
                 continue  # said again below from the whole file's quarantine and reasons
             if w.startswith(TARGETS_MARK):
                 continue  # a piece's counts: import_to_csv says the whole file's (h192)
@@ -500,6 +502,8 @@ def merge_import_reports(
     warnings += list(dict.fromkeys(timing))
     if relative:
         warnings += relative_note
+    repeated = sum(int(r.get("repeated_rows", 0)) for r in reports)  # within each piece
+    warnings += _repeat_warnings(repeated)
     warnings += _restart_warnings(restarting, batch_src)
     steps_back = (
         order[1]
@@ -544,6 +548,7 @@ def merge_import_reports(
         "values_blanked": _sum([r.get("values_blanked", {}) for r in reports]),
         "lat_beyond_90_lon_within": sum(int(r.get("lat_beyond_90_lon_within", 0)) for r in reports),
         "decimal_comma_values": decimal,
+        "repeated_rows": repeated,
         "restarting_tracks": restarting,
         "time_steps_back": steps_back,
         "tracks": int(tracks),
