@@ -1130,7 +1130,7 @@ def test_lone_rows_in_pieces_are_the_whole_reads_when_times_jump_by_months(
     assert set(got.quarantine["line"]) <= set(whole.quarantine["line"])
 
 
-def test_repeated_rows_are_counted_not_read_as_passes(write):
+def test_repeated_rows_are_counted_not_read_as_passes(write, monkeypatch):
     """Operator test 9, D8: rows written twice (every 7th, and a block of the first ones
     appended at the end) were reported as "several passes or ships share one id", which
     sent the operator to look for a column that does not exist; they are counted as
@@ -1141,12 +1141,24 @@ def test_repeated_rows_are_counted_not_read_as_passes(write):
     doubled = [r for k, r in enumerate(rows) for _ in range(2 if k % 7 == 0 else 1)]
     again = doubled + rows[:20]  # the start of the export appended at the end
     expected = len(again) - len(rows)
-    res = read_points(write("twice.csv", "id,time,lon,lat,speed\n" + "\n".join(again) + "\n"))
+    res_path = write("twice.csv", "id,time,lon,lat,speed\n" + "\n".join(again) + "\n")
+    res = read_points(res_path)
     assert res.report["repeated_rows"] == expected
     assert res.report["restarting_tracks"] == {}
     said = [w for w in res.report["warnings"] if "repeat an earlier row exactly" in w]
     assert said and said[0].startswith(f"{expected:,} rows repeat")
     assert not any("start their time again" in w for w in res.report["warnings"])
+    # read streamed in pieces of 2 KB (as `wakeline clean` and `batch` read): the rows
+    # repeated at the end repeat rows of the first piece, counted the same
+    from wakeline.core.clean_stream import clean_file
+    from wakeline.core.io import reader
+
+    monkeypatch.setattr(reader, "STREAM_BYTES", 2 << 10)
+    got = clean_file(res_path, write("c.csv", ""), write("c_rej.csv", ""))
+    assert got.streamed
+    assert got.read_report["repeated_rows"] == expected
+    assert got.read_report["restarting_tracks"] == {}
+    monkeypatch.undo()
     # the same time and track at another place is not a repeat; a true second pass (new
     # positions, from t = 0 again) is still a restart
     moved = [r.replace(",57.5,", ",57.6,") for r in rows[:20]]

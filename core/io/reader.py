@@ -2630,44 +2630,101 @@ def _repeat_warnings(repeated: int) -> list[str]:
     ]
 
 
+def _mix64(x: np.ndarray) -> np.ndarray:
+    """splitmix64's finalizer on uint64 values (a well-spread 64-bit hash of each)."""
+    with np.errstate(over="ignore"):
+        x = (x ^ (x >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        return x ^ (x >> np.uint64(31))
+
+
 def _repeated_rows(
     sensor_codes: np.ndarray | None,
+    sensor_names: np.ndarray,
     batch_codes: np.ndarray,
+    batch_names: np.ndarray,
     ns: np.ndarray,
     floats: dict,
     keep: np.ndarray,
+    carry: "LastTimes | None" = None,
 ) -> np.ndarray:
     """Rows (of ``keep``) equal to an earlier kept row in track, time, position, speed
-    and course: a mask over all rows. Candidates first, by a cheap mix of track and time
-    (a collision only adds a candidate), then compared exactly."""
+    and course: a mask over all rows. Only a row no later than its track's latest time
+    before it can repeat one; those are compared by a 64-bit hash of the values (the
+    track by its name, the same in every piece; a collision would count one row too many
+    in a warning, nothing more). A piece of a file read streamed or in pieces gives
+    ``carry``: each track's latest time and the hashes of the rows of the pieces before
+    (8 bytes a row, in sorted chunks), so a row repeating one of another piece counts as
+    a whole read counts it."""
     out = np.zeros(len(keep), dtype=bool)
     use = np.flatnonzero(keep & (batch_codes >= 0))
-    if len(use) < 2:
+    if not len(use):
         return out
-    key = batch_codes[use].astype("uint64")
-    if sensor_codes is not None:
-        key = key * np.uint64(1_000_003) + sensor_codes[use].astype("uint64")
     t = ns[use].astype("int64", copy=False)
-    # no time repeats where the rows run strictly forward in time, overall or within each
-    # track of a file grouped by track: no hashing then (most files)
-    step = np.diff(t)
-    if (step > 0).all():
+    key = batch_codes[use].astype("int64")
+    if sensor_codes is not None:
+        key = sensor_codes[use].astype("int64") * (int(batch_codes.max()) + 1) + key
+    row_track, tracks = pd.factorize(key, sort=False)
+    names = None
+    if carry is not None:
+        names = _carried_keys(tracks, sensor_codes, sensor_names, batch_codes, batch_names)
+        at = carry._rows(names, grow=True)
+        before = carry.max_t[at]  # each track's latest time in the pieces before
+    else:
+        before = np.full(len(tracks), np.iinfo("int64").min, dtype="int64")
+    # each row's track's latest time before it (file order; the pieces before included)
+    from wakeline.core.tracks import _stable_code_order
+
+    order = _stable_code_order(row_track)  # radix passes: linear
+    if order is None:
+        order = np.argsort(row_track, kind="stable")
+    g = row_track[order]
+    st = t[order]
+    first = np.r_[True, g[1:] != g[:-1]]
+    low, span = int(st.min()), int(st.max()) - int(st.min()) + 1
+    if span * len(tracks) < 2**62:  # each track's running maximum in one pass
+        lift = g.astype("int64") * span
+        run_max = np.maximum.accumulate(st - low + lift) - lift + low
+    else:
+        run_max = pd.Series(st).groupby(g).cummax().to_numpy()
+    prev_max = np.empty_like(st)
+    prev_max[1:] = run_max[:-1]
+    prev_max[first] = np.iinfo("int64").min
+    prev_max = np.maximum(prev_max, before[g])
+    cand_sorted = st <= prev_max
+    if carry is not None:
+        last = np.r_[np.flatnonzero(first)[1:] - 1, len(g) - 1]
+        carry.max_t[at] = np.maximum(before, run_max[last])
+    if not cand_sorted.any() and carry is None:
         return out
-    if (np.diff(key.view("int64")) >= 0).all() and ((step > 0) | (key[1:] != key[:-1])).all():
-        return out
-    with np.errstate(over="ignore"):
-        mix = (key * np.uint64(0x9E3779B97F4A7C15)) ^ t.view("uint64")
-    maybe = pd.Index(mix).duplicated(keep=False)
-    if not maybe.any():  # the common case: no track repeats a time
-        return out
-    use = use[maybe]
-    rows = {"key": key[maybe], "t": t[maybe]}
+    cand = np.zeros(len(use), dtype=bool)
+    cand[order[cand_sorted]] = True
+    if names is None:
+        names = _carried_keys(tracks, sensor_codes, sensor_names, batch_codes, batch_names)
+    h = pd.util.hash_array(np.asarray(names, dtype=object))[row_track]
+    values = [t.view("uint64")]
     for name in ("lon", "lat", "speed", "course"):
         if name in floats:
             x = floats[name]
             x = x.to_numpy() if isinstance(x, pa.ChunkedArray) else x.to_numpy(zero_copy_only=False)
-            rows[name] = np.asarray(x, dtype="float64")[use]
-    out[use[pd.DataFrame(rows).duplicated(keep="first").to_numpy()]] = True
+            v = np.asarray(x, dtype="float64")[use]
+            values.append(np.where(np.isnan(v), np.nan, v + 0.0).view("uint64"))  # one NaN
+    with np.errstate(over="ignore"):
+        for v in values:
+            h = _mix64(h * np.uint64(0x100000001B3) ^ _mix64(v))
+    dup = np.zeros(len(use), dtype=bool)
+    if cand.any():
+        dup = pd.Index(h).duplicated(keep="first") & cand
+        if carry is not None:
+            c = np.flatnonzero(cand & ~dup)
+            for chunk in carry.row_hashes:  # a few candidates against each sorted chunk
+                at_c = np.minimum(np.searchsorted(chunk, h[c]), len(chunk) - 1)
+                dup[c[chunk[at_c] == h[c]]] = True
+    if carry is not None:
+        carry.row_hashes.append(np.sort(h))
+        if len(carry.row_hashes) > 8:  # merged now and then: few chunks to look in
+            carry.row_hashes = [np.sort(np.concatenate(carry.row_hashes), kind="stable")]
+    out[use[dup]] = True
     return out
 
 
@@ -4674,10 +4731,13 @@ def _to_canonical(
     # step-back tests (operator test 9, D8: 50 rows repeated at the end read as passes)
     repeat = _repeated_rows(
         text["sensor"].codes if "sensor" in text else None,
+        np.asarray([sensor], dtype=object) if "sensor" not in text else text["sensor"].names,
         text["batch"].codes,
+        text["batch"].names,
         ns,
         floats,
         keep,
+        None if edges_in is None else edges_in.get("back"),
     )
 
     columns: dict[str, object] = {
@@ -4955,6 +5015,10 @@ class LastTimes:
         self.lines: list[tuple[np.ndarray, np.ndarray]] = []  # (track rows, lines) of backs
         #: Added to a piece's line numbers (a read in pieces: the line its piece starts on - 1).
         self.line_offset = 0
+        #: Each track's latest time so far, and the hashes of the rows of the pieces before,
+        #: in sorted chunks (:func:`_repeated_rows`).
+        self.max_t = np.zeros(0, dtype="int64")
+        self.row_hashes: list[np.ndarray] = []
 
     def __len__(self) -> int:
         return int(self.seen.sum())
@@ -4973,6 +5037,7 @@ class LastTimes:
             self.counts = np.vstack([self.counts, np.zeros((n, len(self.COUNTS)))])
             self.names = np.r_[self.names, np.asarray(fresh, dtype=object)]
             self.kept = np.r_[self.kept, np.zeros(n, dtype="int64")]
+            self.max_t = np.r_[self.max_t, np.full(n, np.iinfo("int64").min, dtype="int64")]
         return at
 
     def lookup(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
