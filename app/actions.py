@@ -48,9 +48,15 @@ def build_actions(w) -> None:
     act("save_pipeline", lambda: w._pipeline_dialog(True))
     act("load_pipeline", lambda: w._pipeline_dialog(False))
     act("cancel", w.cancel_jobs, sp.SP_BrowserStop)
-    act("fit", lambda: w.canvas.fit(), sp.SP_TitleBarMaxButton)
-    act("zoom_selection", w.zoom_to_selection)
-    act("box", w.canvas.set_box_zoom, checkable=True)
+    act("fit", lambda: w.canvas.fit(), sp.SP_TitleBarMaxButton, "Home")
+    act("zoom_selection", w.zoom_to_selection, None, "Z")
+    act("box", lambda on: set_map_mode(w, "box", on), checkable=True, shortcut="B")
+    act("measure", lambda on: set_map_mode(w, "measure", on), checkable=True)
+    act("find", lambda: focus_filter(w), None, keys.Find)
+    act("play", lambda: toggle_play(w), None, "Space")
+    act("step_back", lambda: w.time_panel.step(-1), None, "Left")
+    act("step_forward", lambda: w.time_panel.step(1), None, "Right")
+    a["pipeline"].setShortcut(QtGui.QKeySequence("F5"))
     act("remove_layer", w.remove_active_layer)
     # How the map tells ships and layers apart (h227): kept in the settings.
     act("color_by_track", w.set_color_by_track, checkable=True)
@@ -68,6 +74,19 @@ def build_actions(w) -> None:
     act("about", w.show_about)
     act("docs", w.open_documentation)
     w.actions_ = a
+    # The keys of the map and the time panel (h225 item 11): Space, Left/Right and Home
+    # act while the map or the time panel has the focus, never in a text field or a
+    # table (where they edit, or move the current row).
+    scoped = QtCore.Qt.ShortcutContext.WidgetWithChildrenShortcut
+    for key in ("play", "step_back", "step_forward", "fit"):
+        a[key].setShortcutContext(scoped)
+        w.canvas.addAction(a[key])
+        w.time_panel.addAction(a[key])
+    # Esc leaves the map's measuring mode (and Box zoom).
+    esc = QtGui.QShortcut(QtGui.QKeySequence("Esc"), w.canvas, context=scoped)
+    esc.activated.connect(lambda: (a["measure"].setChecked(False), a["box"].setChecked(False)))
+    w.canvas.measured = lambda text: w.statusBar().showMessage(text, 30000)
+    w.filter_edit.returnPressed.connect(w.select_filter_match)
 
     m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "stages", "view", "lang", "help")}
     w.menus = m
@@ -96,7 +115,13 @@ def build_actions(w) -> None:
     m["run"].addAction(a["load_pipeline"])
     m["run"].addSeparator()
     m["run"].addAction(a["cancel"])
-    for key in ("fit", "zoom_selection", "box", "remove_layer", "import_report"):
+    for key in ("fit", "zoom_selection", "box", "measure", "find"):
+        m["view"].addAction(a[key])
+    m["view"].addSeparator()
+    for key in ("play", "step_back", "step_forward"):
+        m["view"].addAction(a[key])
+    m["view"].addSeparator()
+    for key in ("remove_layer", "import_report"):
         m["view"].addAction(a[key])
     m["view"].addSeparator()
     for key in ("color_by_track", "draw_points", "show_removed"):
@@ -114,17 +139,100 @@ def build_actions(w) -> None:
         group.addAction(lang)
         m["lang"].addAction(lang)
         w.lang_actions[code] = lang
+    act("keys", lambda: show_keys(w))
     m["help"].addAction(a["docs"])
+    m["help"].addAction(a["keys"])
     m["help"].addAction(a["about"])
     for key in ("file", "run", "view", "lang", "help"):
         w.menuBar().addMenu(m[key])
     w.toolbar = w.addToolBar("main")
     w.toolbar.setObjectName("toolbar")
-    for key in ("open", "save_project", None, "pipeline", *STEPS, "cancel", None, "fit", "box"):
+    toolbar_keys = ("open", "save_project", None, "pipeline", *STEPS, "cancel", None)
+    for key in (*toolbar_keys, "fit", "zoom_selection", "box", "measure"):
         if key is None:
             w.toolbar.addSeparator()
         else:
             w.toolbar.addAction(a[key])
+
+
+def set_map_mode(w, mode: str, on: bool) -> None:
+    """Box zoom and Measure are map modes: one at a time (the other unchecks)."""
+    other = "measure" if mode == "box" else "box"
+    if on and w.actions_[other].isChecked():
+        w.actions_[other].setChecked(False)
+    if mode == "box":
+        w.canvas.set_box_zoom(on)
+    else:
+        w.canvas.set_measure(on)
+
+
+def focus_filter(w) -> None:
+    """Ctrl+F: the batch table's filter, its text selected (shown first if hidden)."""
+    w.docks["batches"].show()
+    w.docks["batches"].raise_()
+    w.filter_edit.setFocus(QtCore.Qt.FocusReason.ShortcutFocusReason)
+    w.filter_edit.selectAll()
+
+
+def toggle_play(w) -> None:
+    """Space: play or pause the time panel."""
+    panel = w.time_panel
+    if panel.is_playing:
+        panel.pause()
+    else:
+        panel.play()
+
+
+#: The keys Help ▸ Keyboard shortcuts lists besides the menus' (action key, text key).
+KEY_ACTIONS = (
+    "pipeline",
+    "fit",
+    "zoom_selection",
+    "box",
+    "measure",
+    "find",
+    "play",
+    "step_back",
+    "step_forward",
+    "open",
+    "save",
+    "save_project",
+)
+
+
+def keys_text(w) -> str:
+    """Help ▸ Keyboard shortcuts: every action with a key, in the window's language."""
+    rows = []
+    native = QtGui.QKeySequence.SequenceFormat.NativeText
+    for key in KEY_ACTIONS:
+        action = w.actions_[key]
+        seq = action.shortcut().toString(native)
+        if seq:
+            rows.append((seq, action.text().replace("&", "")))
+    rows.append(("Esc", w.tr("Leave Measure or Box zoom")))
+    rows.append(("Enter", w.tr("In the filter: select the first match and show it on the map")))
+    rows.append(("J / K, A / R / S", w.tr("Review: next / previous, accept / reject / split")))
+    lines = [f"<tr><td><b>{html_escape(k)}</b></td><td>{html_escape(t)}</td></tr>" for k, t in rows]
+    note = w.tr(
+        "Space, ←/→ and Home act when the map or the time panel has the focus. The filter "
+        "can aim at one column: batch:4139, sensor:AIS, name:argo."
+    )
+    return f"<table cellspacing='6'>{''.join(lines)}</table><p>{html_escape(note)}</p>"
+
+
+def html_escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def show_keys(w):
+    """Help ▸ Keyboard shortcuts (non-modal; returned for tests)."""
+    box = QtWidgets.QMessageBox(w)
+    box.setWindowTitle(w.tr("Keyboard shortcuts"))
+    box.setTextFormat(QtCore.Qt.TextFormat.RichText)
+    box.setText(keys_text(w))
+    box.setModal(False)
+    box.show()
+    return box
 
 
 def pipeline_text(w) -> str:
@@ -171,6 +279,12 @@ def retranslate(w) -> None:
         "fit": tr("&Fit to data"),
         "zoom_selection": tr("&Zoom to selection"),
         "box": tr("&Box zoom"),
+        "measure": tr("M&easure range and bearing"),
+        "find": tr("Fi&nd a track (batch table filter)"),
+        "play": tr("&Play / pause"),
+        "step_back": tr("Step bac&k"),
+        "step_forward": tr("Step forwar&d"),
+        "keys": tr("&Keyboard shortcuts"),
         "remove_layer": tr("&Remove active layer"),
         "color_by_track": tr("Colour &tracks of the active layer apart (up to 30 tracks)"),
         "draw_points": tr("Draw active layer as &points (radar plots)"),
@@ -209,7 +323,13 @@ def retranslate(w) -> None:
     for view in w.findChildren(QtWidgets.QGraphicsView):  # the plots' right-click Export...
         for action in getattr(view.scene(), "contextMenu", None) or ():
             action.setText(export)
-    w.filter_edit.setPlaceholderText(tr("Filter batches (any column)…"))
+    w.filter_edit.setPlaceholderText(tr("Filter batches (any column, or batch:4139)…"))
+    w.filter_edit.setToolTip(
+        tr(
+            "Plain text looks in every column; column:text in one column (batch:4139, "
+            "sensor:AIS, name:argo). Enter selects the first match and shows it on the map."
+        )
+    )
     w.cancel_button.setText(tr("Cancel"))
     w.batch_model.set_titles(
         [
@@ -224,6 +344,7 @@ def retranslate(w) -> None:
             tr("Maneuvers"),
             tr("Target"),
             tr("Status"),
+            tr("Name"),
         ],
         relative={"start": tr("Start (T+)"), "end": tr("End (T+)")},
     )

@@ -6,6 +6,7 @@ Mixed into :class:`~wakeline.app.map_canvas.MapCanvas` (which owns the items and
 
 import math
 
+import numpy as np
 import pandas as pd
 import pyqtgraph as pg
 from PySide6 import QtCore
@@ -16,6 +17,23 @@ from wakeline.app.map_selection import SELECTION_PALETTE, selection_curves
 from wakeline.core import geo
 
 KM_PER_DEG = 111.195
+#: A selected track whose box is under this many pixels both ways is zoomed to.
+TINY_PX = 10.0
+M_PER_NM = 1852.0
+
+
+def measure(lon0: float, lat0: float, lon1: float, lat1: float) -> dict:
+    """Range (great circle, m and nm) and initial bearing (° true) from point 0 to point
+    1, and their text as the map shows it."""
+    lon1_band = lon0 + float(geo.wrap180(lon1 - lon0))  # the short way across 180°
+    range_m = float(geo.haversine_m(lon0, lat0, lon1_band, lat1))
+    bearing = float(geo.initial_bearing_deg(lon0, lat0, lon1_band, lat1))
+    nm = range_m / M_PER_NM
+    dist = f"{range_m:,.0f} m" if range_m < 10_000 else f"{range_m / 1000:,.2f} km"
+    text = f"{dist} · {nm:,.2f} nm · {bearing:05.1f}° T"
+    return {"range_m": range_m, "range_nm": nm, "bearing_deg": bearing, "text": text}
+
+
 NICE_KM = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
 
 
@@ -122,6 +140,98 @@ class MapInteractMixin:
         self.fit(self._selected, self._selection_west)
         return True
 
+    def bring_selection_into_view(self, speck_px: float = TINY_PX) -> str:
+        """Make the selection visible without a jump: nothing when its box is on screen
+        and at least ``speck_px`` wide or high; zoom to it (:meth:`zoom_to_selection`)
+        when it would be a speck under ``speck_px``; else pan the view (same scale) to
+        centre it. Returns what was done: "", "pan" or "zoom" (h225 item 5)."""
+        if len(self._selected) == 0:
+            return ""
+        from wakeline.app.map_draw import nan_separated
+
+        lon, lat = nan_separated(self._selected, self._selection_west)
+        if not len(lon) or not np.isfinite(lon).any():
+            return ""
+        bx0, bx1, by0, by1 = np.nanmin(lon), np.nanmax(lon), np.nanmin(lat), np.nanmax(lat)
+        (x0, x1), (y0, y1) = self.vb.viewRange()
+        px_x, px_y = self.vb.viewPixelSize()
+        speck = (bx1 - bx0) / px_x < speck_px and (by1 - by0) / px_y < speck_px
+        if speck:
+            self.zoom_to_selection()
+            return "zoom"
+        inside = bx0 >= x0 and bx1 <= x1 and by0 >= y0 and by1 <= y1
+        if inside:
+            return ""
+        if bx0 < x1 and bx1 > x0 and by0 < y1 and by1 > y0 and (bx1 - bx0) > (x1 - x0):
+            return ""  # wider than the view and partly on it: panning would not show more
+        dx = (bx0 + bx1) / 2 - (x0 + x1) / 2
+        dy = (by0 + by1) / 2 - (y0 + y1) / 2
+        self.vb.translateBy(x=dx, y=dy)
+        self.refresh_lod()
+        return "pan"
+
+    # -- measure (h225 item 17) ---------------------------------------------------------
+
+    def set_measure(self, on: bool) -> None:
+        """The measuring mode: two clicks on the map give the range (m, nm) and bearing
+        (° true) from the first to the second, with a line between them."""
+        self._measuring = bool(on)
+        self._measure_from = None
+        if on:
+            self.vb.setMouseMode(pg.ViewBox.PanMode)
+        self._measure_items()
+        if not on:
+            self._measure_line.setData([], [])
+            self._measure_label.hide()
+
+    def is_measuring(self) -> bool:
+        return bool(getattr(self, "_measuring", False))
+
+    def _measure_items(self):
+        if getattr(self, "_measure_line", None) is None:
+            self._measure_line = pg.PlotDataItem(
+                pen=pg.mkPen("#d62728", width=2, style=QtCore.Qt.PenStyle.DashLine),
+                symbol="+",
+                symbolSize=12,
+                symbolPen=pg.mkPen("#d62728", width=2),
+            )
+            self._measure_line.setZValue(110)
+            self.addItem(self._measure_line, ignoreBounds=True)
+            self._measure_label = pg.TextItem(
+                color="k",
+                fill=pg.mkBrush(255, 255, 255, 230),
+                border=pg.mkPen("#d62728"),
+                anchor=(0, 1),
+            )
+            self._measure_label.setZValue(111)
+            self._measure_label.hide()
+            self.addItem(self._measure_label, ignoreBounds=True)
+        return self._measure_line, self._measure_label
+
+    def measure_click(self, lon: float, lat: float) -> dict | None:
+        """One click of the measuring mode at ``lon, lat`` (degrees): the first sets the
+        start, the second gives the result (a dict: range_m, range_nm, bearing_deg and
+        the shown text; the line and label stay until the next click or Esc)."""
+        line, label = self._measure_items()
+        if getattr(self, "_measure_from", None) is None:
+            self._measure_from = (lon, lat)
+            line.setData([lon], [lat])
+            label.hide()
+            self.measure_result = None
+            return None
+        lon0, lat0 = self._measure_from
+        self._measure_from = None
+        result = measure(lon0, lat0, lon, lat)
+        line.setData([lon0, lon], [lat0, lat])
+        label.setText(result["text"])
+        label.setPos(lon, lat)
+        label.show()
+        self.measure_result = result
+        callback = getattr(self, "measured", None)
+        if callback is not None:
+            callback(result["text"])
+        return result
+
     def _update_scale_bar(self) -> None:
         (x0, x1), _ = self.vb.viewRange()
         km_per_deg = KM_PER_DEG * max(math.cos(math.radians(self._lat0)), 0.05)
@@ -144,6 +254,9 @@ class MapInteractMixin:
         if event.button() != QtCore.Qt.MouseButton.LeftButton or event.double():
             return
         p = self.vb.mapSceneToView(event.scenePos())
+        if self.is_measuring():
+            self.measure_click(p.x(), p.y())
+            return
         add = bool(event.modifiers() & QtCore.Qt.KeyboardModifier.ControlModifier)
         self.pick(p.x(), p.y(), add)
 

@@ -24,11 +24,13 @@ def batch_summary(
     if previous is not None:
         summary = summary_update(points, previous[0], previous[1])
         if summary is not None:
-            summary = summary.drop(columns=["maneuvers", "target", "status"], errors="ignore")
+            summary = summary.drop(
+                columns=["maneuvers", "target", "status", "name"], errors="ignore"
+            )
     if summary is None:
         summary = track_summary(points)
     if summary.empty:
-        for col in ("maneuvers", "target", "status"):
+        for col in ("maneuvers", "target", "status", "name"):
             summary[col] = []
         return summary
     keys = ["sensor", "batch"]
@@ -51,7 +53,27 @@ def batch_summary(
     else:
         summary["target"] = ""
         summary["status"] = ""
+    name_col = ship_name_column(points)
+    summary["name"] = _first_per_track(points, name_col) if name_col else ""
     return summary
+
+
+#: Columns of a point table that carry the ship's name (an NMEA file's static messages
+#: give ``name``; an AIS CSV export often ``shipname`` or ``vessel_name``), lower case.
+NAME_COLUMNS = ("name", "shipname", "ship_name", "vessel_name", "vesselname", "ship")
+
+
+def ship_name_column(points: pd.DataFrame) -> str | None:
+    """The column of ``points`` holding ship names (:data:`NAME_COLUMNS`), None if none
+    or if it is empty."""
+    by_lower = {str(c).lower(): c for c in points.columns}
+    for key in NAME_COLUMNS:
+        col = by_lower.get(key)
+        if col is not None:
+            values = points[col]
+            if values.notna().any() and (values.astype(str).str.strip() != "").any():
+                return col
+    return None
 
 
 def _first_per_track(points: pd.DataFrame, col: str) -> np.ndarray:
@@ -73,7 +95,16 @@ def _first_per_track(points: pd.DataFrame, col: str) -> np.ndarray:
 #: they were (it relabels targets): :func:`display_text` keeps their text from the
 #: layer's earlier view when the column is equal (the dates are made again: the display
 #: zone may have changed since).
-KEPT_TEXT = ("sensor", "batch", "points", "duration_s", "length_m", "mean_speed_kn", "maneuvers")
+KEPT_TEXT = (
+    "sensor",
+    "batch",
+    "name",
+    "points",
+    "duration_s",
+    "length_m",
+    "mean_speed_kn",
+    "maneuvers",
+)
 
 
 def _same_column(df: pd.DataFrame, old: pd.DataFrame, key: str) -> bool:
@@ -96,7 +127,7 @@ def display_text(
         old, old_text = previous
         kept = {k: old_text[k] for k in KEPT_TEXT if k in old_text and _same_column(df, old, k)}
     out = {}
-    for key in ("sensor", "batch", "target", "status"):
+    for key in ("sensor", "batch", "target", "status", "name"):
         if key in kept:
             out[key] = kept[key]
             continue
@@ -270,8 +301,19 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         ("maneuvers", "Maneuvers"),
         ("target", "Target"),
         ("status", "Status"),
+        ("name", "Name"),  # last: shown only when the file has ship names (has_names)
     )
-    TEXT = ("sensor", "batch", "target", "status")
+    TEXT = ("sensor", "batch", "target", "status", "name")
+    #: Other words a column filter (``name:argo``) may name a column by.
+    FILTER_ALIASES = {
+        "ship": "name",
+        "mmsi": "batch",
+        "track": "batch",
+        "id": "batch",
+        "speed": "mean_speed_kn",
+        "length": "length_m",
+        "duration": "duration_s",
+    }
     #: Titles of the time columns over times elapsed from a scene start (MTAD, Øresund),
     #: shown ``T+h:mm:ss`` as on the time slider: they are no UTC dates.
     RELATIVE_TITLES = {"start": "Start (T+)", "end": "End (T+)"}
@@ -283,6 +325,10 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         #: The layer shown has scene-relative times (its Start and End are ``T+…``).
         self.relative = False
         self._filter = ""
+        #: The column key the filter looks in (None: any column), from the filter's
+        #: ``column:`` prefix or :meth:`set_filter_column`.
+        self._filter_column: str | None = None
+        self._chosen_column: str | None = None
         self._window: tuple[float, float] | None = None
         self._sort: tuple[int, QtCore.Qt.SortOrder] | None = None
         self.set_summary(
@@ -363,7 +409,11 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         if self._filter and n:
             needle = self._filter.lower()
             hit = np.zeros(n, dtype=bool)
-            for col in self._text.values():
+            if self._filter_column is not None:
+                columns = [self._text.get(self._filter_column, np.full(n, "", dtype=str))]
+            else:
+                columns = self._text.values()
+            for col in columns:
                 hit |= np.char.find(np.char.lower(col.astype(str)), needle) >= 0
             rows = rows[hit[rows]]
         if self._window is not None and n:
@@ -377,12 +427,80 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         self._order = self._visible_rows()
         self.layoutChanged.emit()
 
+    def filter_column_of(self, word: str) -> str | None:
+        """The column key ``word`` names (its key, its title as shown, its English title,
+        an alias such as ``mmsi``; case-insensitive), None if it names none."""
+        w = word.strip().lower()
+        if not w:
+            return None
+        for i, (key, title) in enumerate(self.COLUMNS):
+            shown = self._titles[i] if i < len(self._titles) else title
+            titles = {key, title.lower(), str(shown).lower()}
+            titles |= {t.split(" (")[0] for t in titles}  # "speed (kn)" -> "speed"
+            if key in self.RELATIVE_TITLES:
+                rel = (self.RELATIVE_TITLES[key], self._relative_titles.get(key, ""))
+                titles |= {t.lower().split(" (")[0] for t in rel if t}
+            if w in titles:
+                return key
+        return self.FILTER_ALIASES.get(w)
+
+    def parse_filter(self, text: str) -> tuple[str | None, str]:
+        """(column key or None, text to look for) of a filter text: ``batch:4139`` looks
+        in the Batch column only; a prefix that names no column (a time ``12:30``) is
+        part of the text, matched in any column."""
+        text = text.strip()
+        head, sep, rest = text.partition(":")
+        if sep:
+            key = self.filter_column_of(head)
+            if key is not None:
+                return key, rest.strip()
+        if not sep:
+            head, sep, rest = text.partition("：")  # a Chinese input method's colon
+            key = self.filter_column_of(head) if sep else None
+            if key is not None:
+                return key, rest.strip()
+        return self._chosen_column, text
+
     def set_filter(self, text: str) -> None:
-        """Show only rows with ``text`` in any column (case-insensitive)."""
+        """Show only rows with ``text`` in any column (case-insensitive), or in one
+        column: ``batch:4139``, ``sensor:AIS`` (:meth:`parse_filter`), or the column
+        chosen by :meth:`set_filter_column`."""
         self.beginResetModel()
-        self._filter = text.strip()
+        self._raw_filter = text
+        self._filter_column, self._filter = self.parse_filter(text)
         self._order = self._visible_rows()
         self.endResetModel()
+
+    def set_filter_column(self, key: str | None) -> None:
+        """The column a plain filter text looks in (None: any column)."""
+        self._chosen_column = key
+        self.set_filter(getattr(self, "_raw_filter", self._filter))
+
+    def filter_column(self) -> str | None:
+        """The column the current filter looks in (None: any column)."""
+        return self._filter_column if self._filter else None
+
+    def best_match_row(self) -> int | None:
+        """The visible row Enter in the filter selects: one whose filtered column (or,
+        filtering any column, batch) equals the filter text, else the first row shown;
+        None when no row is shown."""
+        if not len(self._order):
+            return None
+        if self._filter:
+            key = self._filter_column or "batch"
+            col = self._text.get(key)
+            if col is not None:
+                exact = np.char.lower(col[self._order].astype(str)) == self._filter.lower()
+                hit = np.flatnonzero(exact)
+                if len(hit):
+                    return int(hit[0])
+        return 0
+
+    @property
+    def has_names(self) -> bool:
+        """The tracks shown have ship names (the Name column is worth showing)."""
+        names = self._text.get("name")
+        return names is not None and bool(len(names)) and bool((names != "").any())
 
     def set_time_window(self, window: tuple[float, float] | None) -> None:
         """Show only tracks whose time span overlaps ``window`` = (from, to) in seconds
@@ -483,13 +601,15 @@ class BatchTableModel(QtCore.QAbstractTableModel):
                 return self._relative_titles[key]
             from wakeline.app.time_text import zone_title
 
-            return zone_title(self._titles[section])  # "Start (UTC+8)": View ▸ Time zone
+            title = self._titles[section] if section < len(self._titles) else key
+            return zone_title(title)  # "Start (UTC+8)": View ▸ Time zone
         return None
 
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):
         if role == QtCore.Qt.ItemDataRole.DisplayRole:
             key = self.COLUMNS[index.column()][0]
-            text = self._text[key][self._order[index.row()]]
+            col = self._text.get(key)
+            text = col[self._order[index.row()]] if col is not None else ""
             if key == "status" and text:  # "joined", "fused": in the window's language
                 return status_words().get(text, text)
             return text

@@ -486,7 +486,10 @@ class ReviewDock(QtCore.QObject):
             name = action_name(action)
         text = tr("Review: {0} {1}").format(name, entry.proposal or entry.tracks)
         self.echo.setText(text)
-        self.w.log_message(text)
+        from wakeline.app.review_text import decision_text
+
+        changed = decision_text(b.controller.state, entry)  # h225 item 8: what it did
+        self.w.log_message(f"{text}: {changed}" if changed else text)
 
     # -- binding --------------------------------------------------------------------
 

@@ -53,7 +53,8 @@ class ReviewPanel(QtWidgets.QWidget):
         self._settle.setSingleShot(True)
         self._settle.timeout.connect(lambda: self.current_settled.emit(self.current()))
         self.model = ProposalModel(controller, self)
-        self.proxy = ProposalFilter(self)
+        self.proxy = TitledFilter(self)
+        self.proxy.kind = queue_kind(controller.state)
         self.proxy.setSourceModel(self.model)
         self.view = QtWidgets.QTableView()
         self.view.setModel(self.proxy)
@@ -88,9 +89,14 @@ class ReviewPanel(QtWidgets.QWidget):
             top.addWidget(w)
         top.addStretch(1)
         top.addWidget(self.counts)
+        # h225 item 8: what pending / accept / reject mean, over the queue.
+        self.hint = QtWidgets.QLabel(T.queue_hint())
+        self.hint.setWordWrap(True)
+        self.hint.setObjectName("review_hint")
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(2, 2, 2, 2)
         lay.addLayout(top)
+        lay.addWidget(self.hint)
         lay.addWidget(self.view, 1)
         lay.addWidget(self.evidence)
 
@@ -113,7 +119,7 @@ class ReviewPanel(QtWidgets.QWidget):
         head_pad = 3 * style.pixelMetric(
             QtWidgets.QStyle.PixelMetric.PM_HeaderMargin
         ) + style.pixelMetric(QtWidgets.QStyle.PixelMetric.PM_HeaderMarkSize)
-        titles = T.column_titles()
+        titles = T.column_titles(self.proxy.kind)
         statuses = list(T.status_names().values())
         for col, (name, _) in enumerate(COLUMNS):
             texts = statuses if name == "status" else self.digest.widest.get(name, [])
@@ -381,6 +387,29 @@ class ReviewPanel(QtWidgets.QWidget):
         if shiboken6.isValid(self.controller.stack):
             self.controller.retranslate()  # the commands' own texts (accept A0001 …)
         self._undo_texts()
+        self.hint.setText(T.queue_hint())
         self.model.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(COLUMNS) - 1)
         self.fit_columns()
         self._after_change([])
+
+
+def queue_kind(state) -> str:
+    """The kind of every proposal of ``state`` ("fuse", "associate"), "" when mixed."""
+    kinds = set(state.proposals["kind"].astype(str).tolist()) if len(state.proposals) else set()
+    return kinds.pop() if len(kinds) == 1 else ""
+
+
+class TitledFilter(ProposalFilter):
+    """The queue's filter, its column titles with their unit (metres for a fusion's
+    costs, scaled for an association's) and a tooltip saying what each means."""
+
+    kind = ""
+
+    def headerData(self, section, orientation, role=QtCore.Qt.ItemDataRole.DisplayRole):  # noqa: N802
+        if orientation == QtCore.Qt.Orientation.Horizontal and 0 <= section < len(COLUMNS):
+            name = COLUMNS[section][0]
+            if role == QtCore.Qt.ItemDataRole.DisplayRole:
+                return T.column_titles(self.kind)[name]
+            if role == QtCore.Qt.ItemDataRole.ToolTipRole:
+                return T.column_tips().get(name)
+        return super().headerData(section, orientation, role)

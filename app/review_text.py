@@ -19,14 +19,21 @@ def tr(text: str) -> str:
     return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
 
 
-def column_titles() -> dict[str, str]:
+def column_titles(kind: str = "") -> dict[str, str]:
+    """The queue's column titles; ``kind``: the queue's proposals' kind ("fuse": costs in
+    metres; "associate": scaled costs; "": mixed or unknown, no unit)."""
+    units = {
+        "fuse": (tr("margin m"), tr("cost m")),
+        "associate": (tr("margin (scaled)"), tr("cost (scaled)")),
+    }
+    margin, cost = units.get(kind, (tr("margin"), tr("cost")))
     return {
         "proposal": tr("proposal"),
         "status": tr("status"),
         "track_a": tr("track A"),
         "track_b": tr("track B"),
-        "margin": tr("margin"),
-        "cost": tr("cost"),
+        "margin": margin,
+        "cost": cost,
         "gap_s": tr("gap s"),
         "distance_m": tr("distance m"),
         "runner_up": tr("runner-up"),
@@ -83,6 +90,54 @@ def all_sensors() -> str:
 
 def sort_items() -> list[str]:
     return [tr("least margin first"), tr("highest cost first"), tr("id")]
+
+
+def queue_hint() -> str:
+    """The line over the queue: what its statuses and keys mean (h225 item 8)."""
+    return tr(
+        "Pending = joined for now (as on the map). A accepts: the join stays. R rejects: "
+        "the two become two targets and are never proposed again. S splits track B off "
+        "its target. J / K: next / previous."
+    )
+
+
+def column_tips() -> dict[str, str]:
+    """Tooltips of the queue's column titles (their units and meaning)."""
+    return {
+        "status": tr("pending: joined until you decide; accepted: joined; rejected: apart"),
+        "margin": margin_tip(),
+        "cost": tr(
+            "the cost of this join: metres for a fusion (mean distance between the tracks), "
+            "scaled for an association"
+        ),
+        "gap_s": tr("seconds between the end of track A and the start of track B"),
+        "distance_m": tr("metres between the two tracks where they meet"),
+    }
+
+
+def decision_text(state, entry) -> str:
+    """What a decision changed, for the log: "AIS:0 and radar:0 are two targets now
+    (7 targets in all)"; "" when the log entry names no track."""
+    tracks = [t for t in str(entry.tracks).split(" ") if t]
+    if not tracks:
+        return ""
+    try:
+        targets = dict.fromkeys(state.target(t) for t in tracks)
+        total = len(set(state.target_of_track().tolist()))
+    except Exception:  # noqa: BLE001 - a track the state no longer knows: say nothing
+        return ""
+    if len(tracks) == 1:
+        target = next(iter(targets))
+        members = state.members(target)
+        if len(members) == 1:
+            return tr("{0} is a target of its own now ({1} targets in all)").format(
+                tracks[0], total
+            )
+        return tr("{0} is in target {1} now ({2} targets in all)").format(tracks[0], target, total)
+    names = tr("{0} and {1}").format(", ".join(tracks[:-1]), tracks[-1])
+    if len(targets) == 1:
+        return tr("{0} are one target now ({1} targets in all)").format(names, total)
+    return tr("{0} are {1} targets now ({2} targets in all)").format(names, len(targets), total)
 
 
 def margin_tip() -> str:

@@ -402,6 +402,8 @@ class LayersMixin:
         from wakeline.core.review_session import review_dependents
 
         name = self.session.layers[lid].name
+        if not self._confirm_remove(lid):
+            return
         try:
             kept = [lay.name for lay in review_dependents(self.session, lid)]
             self.session.remove_layer(lid)
@@ -415,6 +417,45 @@ class LayersMixin:
                     "were made on (in the project): its decisions stay"
                 ).format(name, "; ".join(kept))
             )
+
+    def removal_cost(self, lid: str) -> tuple[int, int]:
+        """What removing layer ``lid`` would take with it: (layers made from it, review
+        decisions made on its queues). Removal has no undo (h225 item 12)."""
+        children = sum(
+            1
+            for lay in self.session.layers.values()
+            if lay.id != lid and (lay.parent == lid or lid in (lay.inputs or ()))
+        )
+        decisions = sum(
+            1
+            for d in self.session.decisions
+            if isinstance(d, dict) and str(d.get("queue", "")).split("@")[0] == lid
+        )
+        return children, decisions
+
+    def _confirm_remove(self, lid: str) -> bool:
+        """Ask before removing a layer with layers made from it or review decisions
+        (removal cannot be undone); True at once for a layer with neither."""
+        children, decisions = self.removal_cost(lid)
+        if not children and not decisions:
+            return True
+        name = shown_name(self.session.layers[lid].name)
+        parts = []
+        if children:
+            parts.append(self.tr("{0} layer(s) were made from it").format(children))
+        if decisions:
+            parts.append(self.tr("it carries {0} review decision(s)").format(decisions))
+        box = QtWidgets.QMessageBox
+        answer = box.question(
+            self,
+            self.tr("Remove layer"),
+            self.tr("Remove layer {0}? {1}. Removing it cannot be undone.").format(
+                name, "; ".join(parts)
+            ),
+            box.StandardButton.Yes | box.StandardButton.Cancel,
+            box.StandardButton.Cancel,
+        )
+        return answer == box.StandardButton.Yes
 
     def _layer_item_changed(self, item: QtWidgets.QListWidgetItem) -> None:
         lid = item.data(QtCore.Qt.ItemDataRole.UserRole)

@@ -55,6 +55,8 @@ class SelectionMixin:
         Qt drops the rows' selection without a signal. The session's selection of the
         active layer is selected again where its rows are shown, and the map follows; the
         session keeps the tracks a window hides, selected again when it shows them."""
+        name_col = [k for k, _ in self.batch_model.COLUMNS].index("name")
+        self.batch_view.setColumnHidden(name_col, not self.batch_model.has_names)
         keys = [(s, b) for lid, s, b in self.session.selection if lid == self.active]
         if keys:
             self._selecting = True
@@ -78,6 +80,10 @@ class SelectionMixin:
             self.canvas.show_selection(chosen.iloc[:0])
         else:
             self.canvas.show_selection(chosen, maneuver_table(chosen), gaps, west)
+            if not self._selecting and not getattr(self, "_from_map", False) and len(chosen):
+                # h225 item 5: a track chosen in the table that is off the map is panned
+                # into view (zoomed to when it would be a speck).
+                self.canvas.bring_selection_into_view()
         # The Detail panel's plots follow on the next event-loop turn (its own paint).
         self._detail_key = (self.active, keys[0]) if keys else None
         if keys:
@@ -90,6 +96,19 @@ class SelectionMixin:
 
     def zoom_to_selection(self) -> None:
         self.canvas.zoom_to_selection()
+
+    def select_filter_match(self) -> bool:
+        """Enter in the batch table's filter: select the best match
+        (:meth:`~wakeline.app.models.BatchTableModel.best_match_row`) and zoom the map to
+        it; False when no row is shown."""
+        row = self.batch_model.best_match_row()
+        if row is None:
+            self.statusBar().showMessage(self.tr("No track matches the filter"), 4000)
+            return False
+        self.select_tracks([self.batch_model.key_of_row(row)])
+        self.zoom_to_selection()
+        self.batch_view.setFocus(QtCore.Qt.FocusReason.OtherFocusReason)
+        return True
 
     def export_map_image(self, path: Path | None = None) -> bool:
         """File ▸ Export map image: the map as drawn, offscreen, to PNG."""
@@ -136,4 +155,8 @@ class SelectionMixin:
             return  # a map layer of no session layer (the bearings): no batch to select
         if lid != self.active:
             self.select_layer(lid)
-        self.select_tracks([(sensor, batch)], add=add)
+        self._from_map = True  # picked where it is drawn: the map stays where it is
+        try:
+            self.select_tracks([(sensor, batch)], add=add)
+        finally:
+            self._from_map = False

@@ -1483,7 +1483,8 @@ def test_help_menu_about_and_documentation(window, monkeypatch, language):
         bar = [a.menu() for a in window.menuBar().actions()]
         assert bar[-1] is window.menus["help"]
         help_actions = window.menus["help"].actions()
-        assert help_actions == [window.actions_["docs"], window.actions_["about"]]
+        keys = window.actions_["keys"]  # Help ▸ Keyboard shortcuts (h230, h225 item 11)
+        assert help_actions == [window.actions_["docs"], keys, window.actions_["about"]]
         dialog = window.show_about()
         text = dialog.text.toPlainText()
         version = importlib.metadata.version("wakeline")

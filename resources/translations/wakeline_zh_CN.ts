@@ -3087,4 +3087,142 @@
         <translation>{0} 个场景相对时间（T+…）图层不在此滑块及时间窗上；选中其一可改用其时间</translation>
     </message>
 </context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>&amp;Keyboard shortcuts</source>
+        <translation>快捷键(&amp;K)</translation>
+    </message>
+    <message>
+        <source>&amp;Play / pause</source>
+        <translation>播放 / 暂停(&amp;P)</translation>
+    </message>
+    <message>
+        <source>Fi&amp;nd a track (batch table filter)</source>
+        <translation>查找航迹（批次表筛选）(&amp;N)</translation>
+    </message>
+    <message>
+        <source>Filter batches (any column, or batch:4139)…</source>
+        <translation>筛选批次（任意列，或 批号:4139）…</translation>
+    </message>
+    <message>
+        <source>In the filter: select the first match and show it on the map</source>
+        <translation>在筛选框中：选中第一个匹配项并在地图上显示</translation>
+    </message>
+    <message>
+        <source>Keyboard shortcuts</source>
+        <translation>快捷键</translation>
+    </message>
+    <message>
+        <source>Leave Measure or Box zoom</source>
+        <translation>退出测量或框选缩放</translation>
+    </message>
+    <message>
+        <source>M&amp;easure range and bearing</source>
+        <translation>测量距离和方位(&amp;E)</translation>
+    </message>
+    <message>
+        <source>Name</source>
+        <translation>船名</translation>
+    </message>
+    <message>
+        <source>Plain text looks in every column; column:text in one column (batch:4139, sensor:AIS, name:argo). Enter selects the first match and shows it on the map.</source>
+        <translation>普通文字在所有列中查找；“列名:文字”只在一列中查找（批号:4139、传感器:AIS、船名:argo）。回车选中第一个匹配项并在地图上显示。</translation>
+    </message>
+    <message>
+        <source>Review: next / previous, accept / reject / split</source>
+        <translation>审核：下一个 / 上一个，接受 / 拒绝 / 拆分</translation>
+    </message>
+    <message>
+        <source>Space, ←/→ and Home act when the map or the time panel has the focus. The filter can aim at one column: batch:4139, sensor:AIS, name:argo.</source>
+        <translation>空格、←/→ 和 Home 在地图或时间面板获得焦点时生效。筛选可以只查一列：批号:4139、传感器:AIS、船名:argo。</translation>
+    </message>
+    <message>
+        <source>Step bac&amp;k</source>
+        <translation>后退一步(&amp;K)</translation>
+    </message>
+    <message>
+        <source>Step forwar&amp;d</source>
+        <translation>前进一步(&amp;D)</translation>
+    </message>
+    <message>
+        <source>Remove layer</source>
+        <translation>移除图层</translation>
+    </message>
+    <message>
+        <source>Remove layer {0}? {1}. Removing it cannot be undone.</source>
+        <translation>移除图层 {0}？{1}。移除后无法撤销。</translation>
+    </message>
+    <message>
+        <source>it carries {0} review decision(s)</source>
+        <translation>它带有 {0} 条审核决策</translation>
+    </message>
+    <message>
+        <source>{0} layer(s) were made from it</source>
+        <translation>有 {0} 个图层由它生成</translation>
+    </message>
+    <message>
+        <source>No track matches the filter</source>
+        <translation>没有航迹符合筛选条件</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewPanel</name>
+    <message>
+        <source>Pending = joined for now (as on the map). A accepts: the join stays. R rejects: the two become two targets and are never proposed again. S splits track B off its target. J / K: next / previous.</source>
+        <translation>待审 = 暂时已合并（地图上即如此显示）。A 接受：保持合并。R 拒绝：两者成为两个目标，且不再提出。S 将航迹 B 拆出其目标。J / K：下一个 / 上一个。</translation>
+    </message>
+    <message>
+        <source>cost (scaled)</source>
+        <translation>代价（无量纲）</translation>
+    </message>
+    <message>
+        <source>cost m</source>
+        <translation>代价 米</translation>
+    </message>
+    <message>
+        <source>margin (scaled)</source>
+        <translation>裕度（无量纲）</translation>
+    </message>
+    <message>
+        <source>margin m</source>
+        <translation>裕度 米</translation>
+    </message>
+    <message>
+        <source>metres between the two tracks where they meet</source>
+        <translation>两条航迹相接处的距离（米）</translation>
+    </message>
+    <message>
+        <source>pending: joined until you decide; accepted: joined; rejected: apart</source>
+        <translation>待审：在您决定前保持合并；已接受：合并；已拒绝：分开</translation>
+    </message>
+    <message>
+        <source>seconds between the end of track A and the start of track B</source>
+        <translation>航迹 A 结束与航迹 B 开始之间的秒数</translation>
+    </message>
+    <message>
+        <source>the cost of this join: metres for a fusion (mean distance between the tracks), scaled for an association</source>
+        <translation>此合并的代价：融合时以米计（两航迹间的平均距离），关联时为无量纲值</translation>
+    </message>
+    <message>
+        <source>{0} and {1}</source>
+        <translation>{0} 和 {1}</translation>
+    </message>
+    <message>
+        <source>{0} are one target now ({1} targets in all)</source>
+        <translation>{0} 现在是同一个目标（共 {1} 个目标）</translation>
+    </message>
+    <message>
+        <source>{0} are {1} targets now ({2} targets in all)</source>
+        <translation>{0} 现在是 {1} 个目标（共 {2} 个目标）</translation>
+    </message>
+    <message>
+        <source>{0} is a target of its own now ({1} targets in all)</source>
+        <translation>{0} 现在单独成为一个目标（共 {1} 个目标）</translation>
+    </message>
+    <message>
+        <source>{0} is in target {1} now ({2} targets in all)</source>
+        <translation>{0} 现在属于目标 {1}（共 {2} 个目标）</translation>
+    </message>
+</context>
 </TS>
