@@ -153,6 +153,46 @@ def build_actions(w) -> None:
             w.toolbar.addSeparator()
         else:
             w.toolbar.addAction(a[key])
+    # Zoom to selection and Measure: icons of their own, no text beside them (the toolbar
+    # stays as wide as before at 1366 px; the tooltip gives the action's name).
+    for key, draw in (("zoom_selection", _draw_zoom_selection), ("measure", _draw_measure)):
+        a[key].setIcon(_drawn_icon(draw))
+        button = w.toolbar.widgetForAction(a[key])
+        if button is not None:
+            button.setToolButtonStyle(QtCore.Qt.ToolButtonStyle.ToolButtonIconOnly)
+
+
+def _drawn_icon(draw) -> QtGui.QIcon:
+    """A 32 px icon drawn by ``draw(painter)`` in the palette's text colour."""
+    pix = QtGui.QPixmap(32, 32)
+    pix.fill(QtCore.Qt.GlobalColor.transparent)
+    painter = QtGui.QPainter(pix)
+    painter.setRenderHint(QtGui.QPainter.RenderHint.Antialiasing)
+    color = QtWidgets.QApplication.palette().color(QtGui.QPalette.ColorRole.WindowText)
+    painter.setPen(QtGui.QPen(color, 2.5))
+    draw(painter, color)
+    painter.end()
+    return QtGui.QIcon(pix)
+
+
+def _draw_zoom_selection(painter, color) -> None:
+    """A magnifier over a short track (orange, the selection's halo)."""
+    painter.save()
+    painter.setPen(QtGui.QPen(QtGui.QColor(255, 150, 0), 3))
+    painter.drawPolyline([QtCore.QPointF(5, 17), QtCore.QPointF(10, 11), QtCore.QPointF(16, 15)])
+    painter.restore()
+    painter.drawEllipse(QtCore.QRectF(3, 3, 18, 18))
+    painter.drawLine(QtCore.QPointF(19, 19), QtCore.QPointF(29, 29))
+
+
+def _draw_measure(painter, color) -> None:
+    """A dashed line between two crosses, as the map draws a measure."""
+    for x, y in ((6, 26), (26, 6)):
+        painter.drawLine(QtCore.QPointF(x - 4, y), QtCore.QPointF(x + 4, y))
+        painter.drawLine(QtCore.QPointF(x, y - 4), QtCore.QPointF(x, y + 4))
+    pen = QtGui.QPen(QtGui.QColor("#d62728"), 2.5, QtCore.Qt.PenStyle.DashLine)
+    painter.setPen(pen)
+    painter.drawLine(QtCore.QPointF(6, 26), QtCore.QPointF(26, 6))
 
 
 def set_map_mode(w, mode: str, on: bool) -> None:

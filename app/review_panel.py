@@ -90,9 +90,14 @@ class ReviewPanel(QtWidgets.QWidget):
         top.addStretch(1)
         top.addWidget(self.counts)
         # h225 item 8: what pending / accept / reject mean, over the queue.
-        self.hint = QtWidgets.QLabel(T.queue_hint())
-        self.hint.setWordWrap(True)
+        # One line (cut at the right on a narrow dock: the whole text is its tooltip), so
+        # the queue keeps its rows at 1280x720.
+        self.hint = QtWidgets.QLabel()
         self.hint.setObjectName("review_hint")
+        self.hint.setSizePolicy(
+            QtWidgets.QSizePolicy.Policy.Ignored, QtWidgets.QSizePolicy.Policy.Fixed
+        )
+        self._set_hint()
         lay = QtWidgets.QVBoxLayout(self)
         lay.setContentsMargins(2, 2, 2, 2)
         lay.addLayout(top)
@@ -367,6 +372,41 @@ class ReviewPanel(QtWidgets.QWidget):
         row = int(self.model.prop[self.model.row_of[pid]])
         self.evidence.setText(T.evidence_text(st, pid, st.proposals.iloc[row]))
 
+    #: The hint line shows while the queue keeps at least this many rows beside it.
+    HINT_MIN_ROWS = 4
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 - Qt API
+        super().resizeEvent(event)
+        self._fit_hint()  # the layout has placed the view at the new size already
+
+    def showEvent(self, event) -> None:  # noqa: N802 - Qt API
+        super().showEvent(event)
+        self._fit_hint()
+
+    def _fit_hint(self) -> None:
+        """Show the hint line only when the queue keeps :attr:`HINT_MIN_ROWS` rows with
+        it (a low dock at 1280x720 gives its rows to the queue; the hint stays the
+        header's and the panel's tooltip)."""
+        if not (shiboken6.isValid(self) and shiboken6.isValid(self.hint)):
+            return
+        spacing = max(self.layout().spacing(), 0)
+        line = self.hint.sizeHint().height() + spacing
+        shown = not self.hint.isHidden()  # not isVisible(): False before the dock shows
+        # From the view's own height (set by the layout at once, shown or not), not its
+        # viewport's (resized only when a hidden dock shows).
+        view = self.view
+        chrome = view.horizontalHeader().sizeHint().height() + 2 * view.frameWidth()
+        viewport = view.height() - chrome + (line if shown else 0)
+        rows = (viewport - line) / max(self.view.verticalHeader().defaultSectionSize(), 1)
+        show = rows >= self.HINT_MIN_ROWS
+        if show != shown:
+            self.hint.setVisible(show)
+            self.layout().activate()  # the rows given back now, not a turn later
+
+    def _set_hint(self) -> None:
+        self.hint.setText(T.queue_hint())
+        self.hint.setToolTip(T.queue_hint())
+
     def changeEvent(self, event) -> None:  # noqa: N802 - Qt API
         if event.type() == QtCore.QEvent.Type.LanguageChange:
             self.retranslate()
@@ -387,7 +427,7 @@ class ReviewPanel(QtWidgets.QWidget):
         if shiboken6.isValid(self.controller.stack):
             self.controller.retranslate()  # the commands' own texts (accept A0001 …)
         self._undo_texts()
-        self.hint.setText(T.queue_hint())
+        self._set_hint()
         self.model.headerDataChanged.emit(QtCore.Qt.Orientation.Horizontal, 0, len(COLUMNS) - 1)
         self.fit_columns()
         self._after_change([])

@@ -871,7 +871,9 @@ def test_an_old_project_opens_with_its_split_rows_beside_joined_tracks_repaired(
     w2.close()
 
 
-def test_removing_the_source_of_a_reviewed_layer_keeps_its_review_after_a_reopen(qtbot, tmp_path):
+def test_removing_the_source_of_a_reviewed_layer_keeps_its_review_after_a_reopen(
+    qtbot, tmp_path, monkeypatch
+):
     """Tester's defect (h122): AIS + radar fused, F0001 rejected, the AIS layer removed
     (Layer ▸ Remove): no word of it, the review went on in that window, and the reopened
     project showed no review ("its input layer L1 was removed"). Now the fused layer
@@ -903,6 +905,8 @@ def test_removing_the_source_of_a_reviewed_layer_keeps_its_review_after_a_reopen
     assert "rejected" in want
     w.select_layer(ais)
     _settle(w)
+    yes = QtWidgets.QMessageBox.StandardButton.Yes  # it has a child: the window asks (h230)
+    monkeypatch.setattr(QtWidgets.QMessageBox, "question", lambda *a, **k: yes)
     w.actions_["remove_layer"].trigger()
     _settle(w)
     assert ais not in w.layers

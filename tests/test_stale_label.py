@@ -26,6 +26,10 @@ def test_the_stale_label_goes_with_its_layers_and_follows_the_language(
     _settle(w)
     assert zh != w.stale_label.text() and "out of date" in w.stale_label.text()
     assert w.stale_label.toolTip() == en_tip
+    from PySide6 import QtWidgets
+
+    yes = QtWidgets.QMessageBox.StandardButton.Yes  # a layer with children asks (h230)
+    monkeypatch.setattr(QtWidgets.QMessageBox, "question", lambda *a, **k: yes)
     for layer_id in (a1.id, lid):  # Layer > Remove, both
         w.select_layer(layer_id)
         w.remove_active_layer()
