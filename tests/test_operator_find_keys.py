@@ -176,8 +176,17 @@ def test_a_selected_track_off_the_map_is_panned_to_at_the_same_scale(qtbot, tmp_
 
 
 def _press(w, widget, key, modifier=QtCore.Qt.KeyboardModifier.NoModifier):
-    widget.setFocus()
+    """A key with the focus on ``widget`` (the window active first: a shortcut of the
+    map or the time panel acts only with the focus in them)."""
+    w.activateWindow()
     QtWidgets.QApplication.processEvents()
+    widget.setFocus()
+    deadline = QtCore.QDeadlineTimer(3000)
+    while not widget.hasFocus() and not deadline.hasExpired():
+        w.activateWindow()
+        widget.setFocus()
+        QtWidgets.QApplication.processEvents()
+    assert widget.hasFocus()
     QTest.keyClick(QtWidgets.QApplication.focusWidget() or widget, key, modifier)
     QtWidgets.QApplication.processEvents()
 
@@ -190,6 +199,7 @@ def test_shortcuts_trigger_their_actions_and_are_listed(qtbot, tmp_path, monkeyp
     assert runs == ["pipeline"]
     # Space plays and pauses with the map focused; in the filter it is a space.
     assert not w.time_panel.is_playing
+    qtbot.waitUntil(lambda: math.isfinite(w.time_panel.time()), timeout=5000)  # its range set
     _press(w, w.canvas, QtCore.Qt.Key.Key_Space)
     assert w.time_panel.is_playing
     _press(w, w.canvas, QtCore.Qt.Key.Key_Space)
