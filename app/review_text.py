@@ -95,9 +95,8 @@ def sort_items() -> list[str]:
 def queue_hint() -> str:
     """The line over the queue: what its statuses and keys mean (h225 item 8)."""
     return tr(
-        "Pending = joined for now (as on the map). A accepts: the join stays. R rejects: "
-        "the two become two targets and are never proposed again. S splits track B off "
-        "its target. J / K: next / previous."
+        "Pending = joined for now. A keeps the join. R: two targets, never proposed again. "
+        "S: track B leaves."
     )
 
 

@@ -291,7 +291,7 @@ def test_the_review_queue_says_what_pending_accept_and_reject_mean(qtbot, tmp_pa
     w = _fused_review(qtbot, tmp_path)
     b = w.review.bound
     panel, st = b.panel, b.controller.state
-    assert "Pending = joined" in panel.hint.text() and "R rejects" in panel.hint.text()
+    assert "Pending = joined" in panel.hint.text() and "never proposed" in panel.hint.text()
     titles = [
         panel.view.model().headerData(c, QtCore.Qt.Orientation.Horizontal)
         for c in range(panel.view.model().columnCount())

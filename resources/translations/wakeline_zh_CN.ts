@@ -3169,8 +3169,8 @@
 <context>
     <name>ReviewPanel</name>
     <message>
-        <source>Pending = joined for now (as on the map). A accepts: the join stays. R rejects: the two become two targets and are never proposed again. S splits track B off its target. J / K: next / previous.</source>
-        <translation>待审 = 暂时已合并（地图上即如此显示）。A 接受：保持合并。R 拒绝：两者成为两个目标，且不再提出。S 将航迹 B 拆出其目标。J / K：下一个 / 上一个。</translation>
+        <source>Pending = joined for now. A keeps the join. R: two targets, never proposed again. S: track B leaves.</source>
+        <translation>待审 = 暂时已合并。A 保持合并。R：分为两个目标，不再提出。S：航迹 B 拆出。</translation>
     </message>
     <message>
         <source>cost (scaled)</source>
