@@ -92,8 +92,8 @@ def selection_curves(
         elif g < LEGEND_BATCHES:
             # "(+k same colour)": k more selected tracks share this colour (the palette
             # has fewer colours than tracks); it said "(+k)", which nobody could read
-            one = len({str(x) for x in geom.sensor}) == 1
-            name = str(geom.batch[g]) if one else f"{geom.sensor[g]}:{geom.batch[g]}"
+            # "sensor · batch", as the review names a proposal's pieces in the legend
+            name = f"{geom.sensor[g]} · {geom.batch[g]}"
             label = reused_label(name, more, said)
             said = said or more > 0
         curves.append(Curve(label, palette[g], x, y))

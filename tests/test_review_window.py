@@ -65,6 +65,9 @@ def _show_associated(w, src, points, proposals) -> None:
 def _window(qtbot, tmp_path) -> MainWindow:
     settings = QtCore.QSettings(str(tmp_path / "s.ini"), QtCore.QSettings.Format.IniFormat)
     settings.setValue("language", "en")
+    # the layers' own colours, as conftest.make_window's (colour by track, session 30, is
+    # tested in test_map.py; these tests name the selection's and the layers' legend lines)
+    settings.setValue("map/color_by_track", False)
     w = MainWindow(settings)
     qtbot.addWidget(w)
     w.resize(1800, 1000)
@@ -382,7 +385,14 @@ def test_proposal_is_drawn_in_the_colours_the_legend_names(qtbot, tmp_path):
     w.select_layer(src.id)  # no proposals: the review leaves the map
     _settle(w)
     assert not w.review._items["proposal"]
-    assert all(item.opacity() == 1 for item in layer_items)
+    # the review's muting gone: each layer as the active-layer emphasis (session 30) has it
+    assert canvas._context_opacity == 1
+    assert all(
+        item.opacity() == canvas._opacity_of(name)
+        for name, items in canvas._items.items()
+        for item in items
+        if item in layer_items
+    )
     assert not {"R1 · 0", "R1 · 1"} & set(_legend_colors(canvas))
     w.close()
 
