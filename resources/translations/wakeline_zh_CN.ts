@@ -284,12 +284,12 @@
         <translation>移除当前图层(&amp;R)</translation>
     </message>
     <message>
-        <source>Colour &amp;tracks of the active layer apart (up to 30 tracks)</source>
-        <translation>当前图层按航迹分色(&amp;T)(至多 30 条航迹)</translation>
+        <source>&amp;Colour tracks of the active layer apart (up to 30 tracks)</source>
+        <translation>当前图层按航迹分色(&amp;C)(至多 30 条航迹)</translation>
     </message>
     <message>
-        <source>Draw active layer as &amp;points (radar plots)</source>
-        <translation>当前图层画成点(&amp;P)(雷达点迹)</translation>
+        <source>Dra&amp;w active layer as points (radar plots)</source>
+        <translation>当前图层画成点(&amp;W)(雷达点迹)</translation>
     </message>
     <message>
         <source>… and {0} more tracks</source>
@@ -308,8 +308,8 @@
         <translation>位置时刻 {0}</translation>
     </message>
     <message>
-        <source>Show points removed by c&amp;leaning</source>
-        <translation>显示清洗去除的点(&amp;L)</translation>
+        <source>Sh&amp;ow points removed by cleaning</source>
+        <translation>显示清洗去除的点(&amp;O)</translation>
     </message>
     <message>
         <source>&amp;Import report and quarantined rows…</source>
