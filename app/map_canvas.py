@@ -60,7 +60,8 @@ SCALE_BAR_COLOR = "#404040"
 #: Opacity of the layers other than the active one (:meth:`MapCanvas.set_emphasis`).
 DIM_OPACITY = 0.35
 #: Added to the stacking of the active layer's items: over the other layers, under the
-#: selection (z 50) and the marks.
+#: selection (z 50) and the marks; a step's marks layers get it always (over an active
+#: layer's lines: :meth:`MapCanvas._z_of`).
 ACTIVE_Z = 10.0
 #: The selected tracks' maneuver points (px), over the maneuver layer's dots.
 SELECTED_MARK_PX = 12
@@ -391,7 +392,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 # another layer, the hover or the selection blits them.
                 item.scatter.setCacheMode(CACHE)
                 item.setOpacity(self._opacity_of(name))
-                item.setZValue(self._z_of(name, data.style.z))
+                item.setZValue(self._z_of(name, data.style))
                 self.addItem(item)
                 if curve.label:
                     self.legend.addItem(item, curve.label)
@@ -563,16 +564,21 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         dim = self._emphasis is not None and name not in self._emphasis
         return self._context_opacity * (DIM_OPACITY if dim else 1.0)
 
-    def _z_of(self, name: str, z: float) -> float:
+    def _z_of(self, name: str, style: LayerStyle | None) -> float:
         """A layer drawn under the tracks on purpose (z < 0: a bearing file's lines)
-        stays under them when active."""
+        stays under them when active. A step's marks (markers only, drawn over the
+        tracks on purpose: z > 0, the maneuvers' dots, the removed points' crosses)
+        stay over the active layer's lines: lifted by :data:`ACTIVE_Z` always, and once
+        more when active (a compressed layer made active hid the maneuver marks)."""
+        z = style.z if style is not None else 0.0
         lift = self._emphasis is not None and name in self._emphasis and z >= 0
-        return z + (ACTIVE_Z if lift else 0.0)
+        marks = style is not None and z > 0 and style.width == 0 and not style.plots
+        return z + (ACTIVE_Z if lift else 0.0) + (ACTIVE_Z if marks else 0.0)
 
     def _apply_emphasis(self) -> None:
         for name, items in self._items.items():
             data = self._data.get(name)
-            z = self._z_of(name, data.style.z if data is not None else 0.0)
+            z = self._z_of(name, data.style if data is not None else None)
             for item in items:
                 item.setOpacity(self._opacity_of(name))
                 item.setZValue(z)
