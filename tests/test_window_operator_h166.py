@@ -208,7 +208,11 @@ def test_a_decision_swapped_into_the_map_paints_it_once(qtbot, tmp_path):
     own change, then the decision's layer swapped in over several turns (the layer, its
     level of detail, the time index, the proposal drawn again), each turn a paint. The
     swap holds the map's paints and paints once at its end (ReviewDock.hold_map).
-    Counted here: the paints from the swap (Session.replace_points) on."""
+    Counted here: the paints from the swap (Session.replace_points) on.
+
+    Decisions that change the targets (cd875cc: an accept of a pending proposal leaves
+    them as they are, and nothing is swapped in): a reject, the accept of that rejected
+    proposal (joined again), a reject of the next one."""
     from test_review_rerun_late_gui import _pending
 
     from wakeline.core import simulate
@@ -243,9 +247,21 @@ def test_a_decision_swapped_into_the_map_paints_it_once(qtbot, tmp_path):
 
     w.session.replace_points = replace_points
     panel = w.review.bound.panel
+    first = panel.current()
     counts = []
-    for act in (panel.act_accept, panel.act_reject, panel.act_accept):
-        assert _pending(w.review.bound.controller.state)
+    for act, pid, was in (
+        (panel.act_reject, first, "pending"),
+        (panel.act_accept, first, "rejected"),
+        (panel.act_reject, None, "pending"),
+    ):
+        st = w.review.bound.controller.state
+        assert _pending(st)
+        if pid is not None and panel.current() != pid:
+            assert panel.set_current(pid)
+            _settle(w)
+        now = panel.current()
+        row = list(st.proposals["proposal"]).index(now)
+        assert st.status[row] == was, (now, st.status[row])  # the decision changes targets
         swaps.clear()
         act.trigger()
         qtbot.waitUntil(lambda: bool(swaps), timeout=30_000)
