@@ -1331,7 +1331,15 @@ def run_batch(
     threads = opts.threads or min(os.cpu_count() or 1, 4)
     local = contextlib.ExitStack()
     if client is None:
-        local.enter_context(dask.config.set(scheduler="threads", num_workers=threads))
+        # This batch's own threads: after Ctrl+C (or a task's error) Dask raises at once
+        # while the other threads' partitions still run and write under the stage; the
+        # batch waits for them (shutdown) before it returns, so a rerun in OUTDIR, in the
+        # same process, does not race with them (rmtree failed: exit 2).
+        from concurrent.futures import ThreadPoolExecutor
+
+        pool = ThreadPoolExecutor(threads, thread_name_prefix="wakeline-batch")
+        local.callback(pool.shutdown, wait=True, cancel_futures=True)
+        local.enter_context(dask.config.set(scheduler="threads", num_workers=threads, pool=pool))
     buckets: list[int] = []
     try:
         t = time.perf_counter()
@@ -1417,6 +1425,7 @@ def run_batch(
             timings["associate_s"] = time.perf_counter() - t
     except KeyboardInterrupt:
         _quiet_interrupt()
+        local.close()  # the partitions still running are finished before they are counted
         done = len(list((work / per_track[0][0]).glob("*.parquet"))) if per_track else 0
         raise BatchInterrupted(outdir, done, progress.get("partitions")) from None
     finally:

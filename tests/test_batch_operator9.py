@@ -8,6 +8,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pandas as pd
@@ -115,18 +116,24 @@ def test_an_interrupted_batch_is_marked_and_started_over(tmp_path, pipe, capsys,
     a = tmp_path / "a.csv"
     a.write_text("mmsi,time,lon,lat\n" + "\n".join(r for b in "123456" for r in _rows(b, 0)) + "\n")
     real = batch._run_bucket
-    calls = []
+    calls, finished = [], []
 
     def stopped(bucket, *args):
         calls.append(bucket)
         if len(calls) > 1:
             raise KeyboardInterrupt
-        return real(bucket, *args)
+        time.sleep(0.5)  # still running in its thread when the next one is interrupted
+        info = real(bucket, *args)
+        finished.append(bucket)
+        return info
 
     monkeypatch.setattr(batch, "_run_bucket", stopped)
     out = tmp_path / "out"
     args = ["batch", str(pipe), str(a), "-o", str(out), "--csv", "--partition-mb", "0.001"]
     assert main(args) == 130
+    # the partition running in another thread was waited for: a rerun in the same
+    # process does not race with it (it wrote under the stage while the rerun removed it)
+    assert finished == calls[:1]
     err = capsys.readouterr().err.strip().splitlines()
     assert err[-1].startswith("wakeline: interrupted (")
     assert f"{out} is incomplete: run the same command again to start over in it" in err[-1]
