@@ -202,6 +202,34 @@ def _quiet_interrupt() -> None:
         logger.disabled = True
 
 
+@contextlib.contextmanager
+def _quiet_on_sigint():
+    """While a batch runs (in the main thread): Ctrl+C quiets Dask's loggers before the
+    KeyboardInterrupt is raised. Quieted in the ``except``, the client's event-loop thread
+    could already have logged its cancelled gathers ("Task exception was never retrieved
+    … AllExit", with tracebacks) while the interrupt unwound through ``client.gather``."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.getsignal(signal.SIGINT)
+    if previous is not signal.default_int_handler:  # SIG_IGN, or the caller's own handler
+        yield
+        return
+
+    def interrupted(signum, frame):
+        _quiet_interrupt()
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, interrupted)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 def _close_client(client, opts: "BatchOptions") -> None:
     """Close a client (and the local cluster it started), quietly: an interrupted run's
     pending tasks are cancelled, not reported."""
@@ -1236,8 +1264,10 @@ def _client(opts: BatchOptions):
             threads_per_worker=1,
             processes=opts.processes,
             dashboard_address=":0",  # any free port: 8787 may be taken (a notebook, another run)
-            # the workers' own log lines (a task cancelled by Ctrl+C …): errors only (D7)
-            silence_logs=logging.ERROR,
+            # the workers' own log lines (a task cancelled by Ctrl+C …): none (D7). Not even
+            # ERROR: a worker whose heartbeat meets the scheduler closing after Ctrl+C logs
+            # one with a traceback. A task's error still reaches the client, raised here.
+            silence_logs=logging.CRITICAL,
         )
         return Client(cluster)
     return None
@@ -1257,6 +1287,17 @@ def run_batch(
     subcommand; ``clean_rejected``, ``quarantine`` and, for a compress without a
     maneuvers stage, its ``maneuvers``), ``<step>.csv`` with ``csv``, and ``report.json``.
     """
+    with _quiet_on_sigint():  # Ctrl+C: one line, no Dask traceback (D7)
+        return _run_batch(pipeline, inputs, outdir, options, log)
+
+
+def _run_batch(
+    pipeline: Pipeline,
+    inputs: Sequence[Path],
+    outdir: Path,
+    options: BatchOptions | None = None,
+    log=None,
+) -> BatchResult:
     opts = options or BatchOptions()
     log = log or (lambda _msg: None)
     if not inputs:
