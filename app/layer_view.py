@@ -29,19 +29,17 @@ DRAW_STYLE = {  # kind -> (symbol size px, line width px); maneuver layers draw 
 MAP_OPTIONS = {"plots_as_points": True}
 
 
-def looks_like_plots(points: pd.DataFrame) -> bool:
+def looks_like_plots(points: pd.DataFrame, summary: pd.DataFrame | None = None) -> bool:
     """Whether most tracks of ``points`` (sorted) are radar plots, not ships' tracks:
-    the parameter guidance's test (:func:`wakeline.core.tracks.plot_like`), by points."""
+    the parameter guidance's test (:func:`wakeline.core.tracks.plot_like`), by points.
+    ``summary``: the points' track summary when the caller has it (no second one made)."""
     from wakeline.core.schema import time_seconds
-    from wakeline.core.tracks import (
-        PLOT_MIN_INTERVAL_S,
-        PLOT_MIN_SHARED_ROWS,
-        plot_like,
-        track_summary,
-    )
+    from wakeline.core.tracks import PLOT_MIN_INTERVAL_S, PLOT_MIN_SHARED_ROWS, track_summary
 
     if len(points) == 0:
         return False
+    if summary is not None:
+        return _mostly_plots(summary)
     # A quick no first (numpy over the sorted rows): plots need rows sharing their time
     # or steps under a second on average; counted with repeated rows in, both only
     # over-count, so no plots are missed. A million AIS points: ~40 ms, not ~400.
@@ -58,7 +56,14 @@ def looks_like_plots(points: pd.DataFrame) -> bool:
     maybe = (sizes > 1) & ((2 * shared >= PLOT_MIN_SHARED_ROWS) | (span < PLOT_MIN_INTERVAL_S))
     if not maybe.any():
         return False
-    summary = track_summary(points)
+    return _mostly_plots(track_summary(points))
+
+
+def _mostly_plots(summary: pd.DataFrame) -> bool:
+    """Whether the tracks :func:`~wakeline.core.tracks.plot_like` calls plots hold more
+    than half of ``summary``'s points."""
+    from wakeline.core.tracks import plot_like
+
     like = plot_like(summary)
     if not like.any():
         return False
@@ -288,7 +293,7 @@ def prepare_view(
     else:
         index = table_index(summary.reset_index(drop=True), text)
     extra = {"table_index": index}
-    if kind != "maneuvers" and looks_like_plots(pts):
+    if kind != "maneuvers" and looks_like_plots(pts, summary):
         # radar plots (the guidance's test): dots by default, no line joins a scan's
         # detections (View ▸ Draw active layer as points turns it off or on)
         extra["plots"] = True

@@ -897,12 +897,7 @@ def shared_tracks(spans: dict[str, pd.DataFrame], pairs: list[dict] | None = Non
     if over:
         files = {f for p in over for f in p["inputs"]}
         ids = sum(p["overlapping"] for p in over)
-        shown = "; ".join(
-            f"{a} and {b} ({p['overlapping']:,})"
-            for p in over[:PAIRS_SHOWN]
-            for a, b in [p["inputs"]]
-        )
-        more = f"; and {len(over) - PAIRS_SHOWN:,} more pairs" if len(over) > PAIRS_SHOWN else ""
+        shown, more = _pairs_said(over, [p["overlapping"] for p in over])
         head = (
             f"{over[0]['inputs'][0]} and {over[0]['inputs'][1]} share {count_of(ids, 'track id')}"
             if len(over) == 1
@@ -919,12 +914,7 @@ def shared_tracks(spans: dict[str, pd.DataFrame], pairs: list[dict] | None = Non
     if apart:
         ids = sum(p["ids"] - p["overlapping"] for p in apart)
         gap = max(p["gap_s"] for p in apart)
-        shown = "; ".join(
-            f"{a} and {b} ({p['ids'] - p['overlapping']:,})"
-            for p in apart[:PAIRS_SHOWN]
-            for a, b in [p["inputs"]]
-        )
-        more = f"; and {len(apart) - PAIRS_SHOWN:,} more pairs" if len(apart) > PAIRS_SHOWN else ""
+        shown, more = _pairs_said(apart, [p["ids"] - p["overlapping"] for p in apart])
         out.append(
             f"warning: {count_of(ids, 'track id')} of one input continue in another at "
             f"later times (the longest gap {_gap_said(gap)}): {shown}{more}; read as one "
@@ -934,6 +924,17 @@ def shared_tracks(spans: dict[str, pd.DataFrame], pairs: list[dict] | None = Non
             "report.json (shared_track_ids)"
         )
     return out
+
+
+def _pairs_said(pairs: list[dict], counts: list[int]) -> tuple[str, str]:
+    """The first :data:`PAIRS_SHOWN` pairs of inputs with their counts of shared ids
+    ("a.csv and b.csv (12); …"), and "; and N more pairs" when there are more."""
+    shown = "; ".join(
+        f"{p['inputs'][0]} and {p['inputs'][1]} ({k:,})"
+        for p, k in zip(pairs[:PAIRS_SHOWN], counts, strict=False)
+    )
+    more = f"; and {len(pairs) - PAIRS_SHOWN:,} more pairs" if len(pairs) > PAIRS_SHOWN else ""
+    return shown, more
 
 
 def file_sensor(path: Path) -> str:
