@@ -11,12 +11,19 @@ from wakeline.core.maneuver import (
     detect,
     largest_tolerable_error_m,
     local_maxima,
+    median_window_speed_ms,
     smallest_detectable_turn_deg,
     window_headings,
     window_points,
     window_step_s,
 )
-from wakeline.core.tracks import TrackIndex, local_xy, track_index
+from wakeline.core.tracks import (
+    TrackIndex,
+    local_xy,
+    sorted_with_index,
+    track_index,
+    track_seconds,
+)
 
 
 def track_from_xy(x, y, period_s=300.0, batch="t1", lat0=10.0, lon0=120.0):
@@ -684,6 +691,63 @@ def test_radius_s_edge_s_in_parts_equal_one_pass():
         frames.append(df)
     scene = pd.concat(frames, ignore_index=True)
     params = ManeuverParams(radius_s=15.0, edge_s=12.0)
+    one, split = detect(scene, params, parts=1), detect(scene, params, parts=3)
+    assert np.array_equal(split.is_maneuver, one.is_maneuver)
+    assert np.array_equal(split.factor.view("int64"), one.factor.view("int64"))
+
+
+# --- h240: radius_s and edge_s gated on the track's noise per step's run (step_noise_max) ---
+
+
+def test_median_window_speed_is_the_chord_speed_over_window_p_points():
+    # a straight track at 5 kn every 5 s with 2 m noise: the median chord speed over 4 steps
+    # is within a few percent of 5 kn; a moored track's is the noise's (far under it)
+    for seed in range(4):
+        df, _ = _path(lambda t: 0.0 * t, 5.0, 600.0, 5.0, 2.0, seed)
+        pts, idx = sorted_with_index(df)
+        x, y = local_xy(pts, idx)
+        v = median_window_speed_ms(x, y, track_seconds(pts), idx, 5)
+        assert abs(v[0] / (5.0 * geo.KN_MS) - 1) < 0.05
+        still = _moored(600.0, 5.0, 2.0, seed)
+        pts, idx = sorted_with_index(still)
+        x, y = local_xy(pts, idx)
+        assert median_window_speed_ms(x, y, track_seconds(pts), idx, 5)[0] < 0.3
+
+
+def test_step_noise_max_keeps_radius_s_and_edge_s_where_the_noise_is_small():
+    # two 25-degree turns 25 s apart and one 10 s before the end, 5 kn, a plot every 5 s
+    # (12.9 m a step): with 0.5 m of noise (a ratio ~0.04) the gated pair finds what the pair
+    # does; with 4 m (~0.3, over 0.2) it is the defaults exactly, the pair's rules off there
+    def course(t):
+        return np.where(t < 40, 0.0, np.where(t < 65, 25.0, np.where(t < 110, 0.0, 25.0)))
+
+    pair = ManeuverParams(radius_s=15.0, edge_s=12.0)
+    gated = ManeuverParams(radius_s=15.0, edge_s=12.0, step_noise_max=0.2)
+    for seed in range(6):
+        quiet, t = _path(course, 5.0, 125.0, 5.0, 0.5, seed)
+        assert np.array_equal(detect(quiet, gated).is_maneuver, detect(quiet, pair).is_maneuver)
+        assert t[detect(quiet, gated).table()["index"].to_numpy()].tolist() == [40.0, 65.0, 110.0]
+        noisy, _ = _path(course, 5.0, 125.0, 5.0, 4.0, seed)
+        assert np.array_equal(detect(noisy, gated).is_maneuver, detect(noisy).is_maneuver)
+    # off (0) = the pair on every track; the gate alone changes nothing
+    assert ManeuverParams().step_noise_max == 0.0
+    noisy, _ = _path(course, 5.0, 125.0, 5.0, 4.0, 0)
+    off = ManeuverParams(radius_s=15.0, edge_s=12.0, step_noise_max=0.0)
+    assert np.array_equal(detect(noisy, off).is_maneuver, detect(noisy, pair).is_maneuver)
+    alone = ManeuverParams(step_noise_max=0.2)
+    assert np.array_equal(detect(noisy, alone).is_maneuver, detect(noisy).is_maneuver)
+
+
+def test_step_noise_max_in_parts_equals_one_pass():
+    def course(t):
+        return np.where(t < 10, 0.0, np.where(t < 65, 25.0, 0.0))
+
+    frames = []
+    for k, (period, noise) in enumerate([(1.68, 0.5), (5.0, 0.5), (5.0, 4.0), (4.0, 3.0)]):
+        df, _ = _path(course, 5.0, 200.0, period, noise, k, batch=f"s{k}")
+        frames.append(df)
+    scene = pd.concat(frames, ignore_index=True)
+    params = ManeuverParams(radius_s=15.0, edge_s=12.0, step_noise_max=0.2)
     one, split = detect(scene, params, parts=1), detect(scene, params, parts=3)
     assert np.array_equal(split.is_maneuver, one.is_maneuver)
     assert np.array_equal(split.factor.view("int64"), one.factor.view("int64"))

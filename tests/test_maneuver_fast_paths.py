@@ -122,6 +122,7 @@ def _reference_params(params: ManeuverParams):
     assert fields.pop("window_max_s") == 0
     assert fields.pop("radius_s") == 0
     assert fields.pop("edge_s") == 0
+    fields.pop("step_noise_max")  # h240: no effect with radius_s and edge_s 0
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("rest_north_box")
     assert not fields.pop("noise_k_law")  # h185, off by default

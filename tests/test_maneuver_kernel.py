@@ -91,6 +91,7 @@ def _same(df, params):
     fields.pop("max_step_windows")
     fields.pop("window_max_s")
     assert fields.pop("radius_s") == 0 and fields.pop("edge_s") == 0  # h162, off by default
+    fields.pop("step_noise_max")  # h240: no effect with radius_s and edge_s 0
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("noise_k_law")  # h185, off by default
     assert not fields.pop("rest_noise_sigmas")  # h193; default 5 since h195, set 0 above
