@@ -41,7 +41,9 @@ points as fit, and the first scale's maximum filter reaches one window at most
 (docs/evaluation.md "Radar at slower scans (h131)"). Options (off by default): ``radius_s``
 bounds the maximum filter's radius to that many seconds of median steps (where 2 or more
 fit), and ``edge_s`` gives a track's first and last p − 1 plots 3-point windows where the
-first window spans more than it (docs/evaluation.md "Radar at slower scans (h162)").
+first window spans more than it (docs/evaluation.md "Radar at slower scans (h162)");
+``step_noise_max`` (off by default) applies those two only on tracks whose noise per step's
+run σ / (v · step) is under it (docs/evaluation.md "Session 31: slow scans, gated").
 """
 
 import math
