@@ -259,6 +259,29 @@ def test_nul_bytes_and_joined_files_with_a_bom(write, tmp_path, monkeypatch, str
     assert reasons[2].startswith("short row")
 
 
+@pytest.mark.parametrize("unit", ["auto", "seconds"])
+def test_a_cut_last_line_after_a_stray_quote_says_nothing_of_a_time_unit(write, tmp_path, unit):
+    """Operator test 10: seconds from a scene start (Øresund), one stray quote and the last
+    line cut short. Read in pieces, the cut line came alone; its time column held no
+    time, was labelled text, and the import warned "--time-unit seconds applies to
+    numbers; the times ... are text" — a flag the operator never gave (the first piece's
+    decision passed on), or gave for times that are numbers."""
+    from wakeline.core.io import import_to_csv
+
+    rows = [
+        f"0,GW,219230000,{64.6 + 20 * k:.3f},{12.62 + k * 1e-4:.6f},56.03,9.0,81" for k in range(40)
+    ]
+    rows[10] = rows[10].replace(",GW,", ',"GW,', 1)
+    rows[-1] = rows[-1][:30]
+    header = "encounter_id,ship_role,mmsi,timestamp,lon,lat,sog,cog"
+    path = write("cut.csv", "\n".join([header, *rows]))
+    r = import_to_csv(path, tmp_path / "out.csv", time_unit=unit)
+    assert r.report["rows_imported"] + r.report["rows_quarantined"] == 40
+    assert r.report["rows_imported"] == 39
+    assert not [w for w in r.report["warnings"] if "--time-unit" in w]
+    assert any("the file's last line" in w for w in r.report["warnings"])
+
+
 def test_a_5_mb_cell(write):
     body = canonical_lines(5, lambda i: "x" * 5_000_000 if i == 2 else "ok")
     r = read_points(write("big.csv", "\n".join([HEADER, *body]) + "\n"))

@@ -2061,6 +2061,7 @@ def parse_times(
         arr = pc.cast(arr, pa.string())
     if pa.types.is_timestamp(arr.type):
         info["time_format"] = "ISO 8601 text"
+        info["_texts"] = info.get("_texts", 0) + len(arr) - arr.null_count
         if info.get("_by_table") and tz is None:  # a piece typed by pyarrow: one kind
             valid_n = len(arr) - arr.null_count
             info["_zoned_n" if arr.type.tz is not None else "_naive_n"] = valid_n
@@ -2103,6 +2104,7 @@ def parse_times(
         if k:
             info["decimal_comma"] = info.get("decimal_comma", 0) + k
     n_present = int(present.sum())
+    info["_texts"] = info.get("_texts", 0) + n_present  # times written, of any form
     if kind == "unix" or (n_present and np.isfinite(numeric).sum() >= 0.5 * n_present):
         if _as_days(numeric, kind, time_unit, header, info):
             return _excel_ns(numeric, tz, info)
@@ -2743,6 +2745,9 @@ def _restart_warnings(restarting: dict[str, int], batch_src: str) -> list[str]:
     ]
 
 
+TIME_UNIT_ON_TEXT_START = "--time-unit "  # the note that a given unit met text times
+
+
 def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     """Warnings about how the time column was read (local read as UTC; relative times),
     and numbers read with a decimal comma."""
@@ -2782,10 +2787,11 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"{time_info['excel_why']}; if they are seconds, read again with --time-unit "
             "seconds"
         )
-    if time_info.get("time_unit_given") and str(time_info.get("time_format")).endswith("text"):
+    text = str(time_info.get("time_format")).endswith("text") and time_info.get("_texts", 1)
+    if time_info.get("time_unit_given") and text:  # not for a column of no times at all
         out.append(
-            f"--time-unit {time_info['time_unit_given']} applies to numbers; the times in "
-            f"{time_src!r} are text ({time_info['time_format']}) and were read as such"
+            f"{TIME_UNIT_ON_TEXT_START}{time_info['time_unit_given']} applies to numbers; the "
+            f"times in {time_src!r} are text ({time_info['time_format']}) and were read as such"
         )
     if time_info.get("excel_like") and time_info.get("relative"):
         out.append(
