@@ -511,6 +511,47 @@ def test_any_year_and_hour_is_a_point_or_a_quarantine_row(write, years, tz, text
     assert_all_accounted(r, len(years))
 
 
+@settings(
+    max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    forms=st.lists(st.sampled_from(["z", "offset", "naive", "s", "ms"]), min_size=2, max_size=40),
+    start=st.integers(1_000_000_000, 1_900_000_000),
+    steps=st.lists(st.integers(0, 3_600), min_size=40, max_size=40),
+    stray=st.sampled_from([None, "7", "0", "2031-01-01T00:00:00Z", "123456789012"]),
+)
+def test_times_in_two_forms_are_each_read_in_their_own(write, forms, start, steps, stray):
+    """Operator test 10: a column of ISO 8601 times with unix seconds among them (two
+    exports joined), or the other way: the minority form was quarantined as "unparsable
+    time" (half the file at 50/50). Every time, whatever its form, now reads as the time
+    it writes; a stray value far from the column's span (a small number, another year)
+    stays a quarantine row, and every line is a point or a quarantine row."""
+    t = start + np.cumsum(steps[: len(forms)])
+    when = pd.to_datetime(t, unit="s", utc=True)
+    cells = {
+        "z": when.strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "offset": when.tz_convert("+08:00").strftime("%Y-%m-%dT%H:%M:%S+08:00"),
+        "naive": when.strftime("%Y-%m-%d %H:%M:%S"),
+        "s": pd.Index(t.astype(str)),
+        "ms": pd.Index((t * 1000).astype(str)),
+    }
+    rows = [f"1,{cells[f][i]},10,55" for i, f in enumerate(forms)]
+    if stray is not None:
+        rows.insert(len(rows) // 2, f"1,{stray},10,55")
+    r = read_points(write("two.csv", "batch,time,lon,lat\n" + "\n".join(rows) + "\n"))
+    assert_all_accounted(r, len(rows))
+    points = r.points.sort_values("time", kind="stable")
+    got = (points["time"] - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds()
+    read = got.round().astype("int64").to_numpy()
+    assert sorted(read.tolist())[: len(t)] == sorted(t.tolist()) or stray == "2031-01-01T00:00:00Z"
+    assert set(t.tolist()) <= set(read.tolist())  # every written time, in any form
+    if stray in ("7", "0"):
+        assert r.report["rows_quarantined"] == 1  # never 1970
+    if set(forms) & {"s", "ms"} and set(forms) & {"z", "offset", "naive"}:
+        kinds = [f in ("s", "ms") for f in forms]
+        assert r.report["other_form_times"] >= min(sum(kinds), len(kinds) - sum(kinds))
+
+
 def test_relative_times_are_flagged(write):
     r = read_points(write("rel.csv", "batch,time,lon,lat\n1,0,1,2\n1,12.5,1,2\n"))
     assert r.report["time_relative"] is True

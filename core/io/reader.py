@@ -2029,6 +2029,79 @@ def parse_times(
     header: str = "",
     clock_date: str | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
+    """int64 ns since epoch (UTC) and a validity mask, read in the column's form
+    (:func:`_parse_times_in_one_form`); then, in a column of ISO 8601 text with some unix
+    seconds among them, or the other way (two exports joined: operator test 10), the
+    times written in the other form, each read in its own form when it falls within a
+    day of the others' span (``info["other_form_times"]`` counts them)."""
+    info = {} if info is None else info
+    ns, ok = _parse_times_in_one_form(
+        arr, kind, tz, info, decimal_comma, date_order, time_unit, header, clock_date
+    )
+    if kind == "auto" and ok.any() and not ok.all():
+        ns, ok = _times_in_the_other_form(arr, ns, ok, tz, info, date_order)
+    return ns, ok
+
+
+_ISO_DATE_START = r"\s*[0-9]{4}-[0-9]{2}-[0-9]{2}[T ][0-9]{2}:[0-9]{2}"
+
+
+def _times_in_the_other_form(
+    arr: pa.ChunkedArray,
+    ns: np.ndarray,
+    ok: np.ndarray,
+    tz: datetime.tzinfo | None,
+    info: dict,
+    date_order: str,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Rows left unread of a column read as absolute unix times whose text is an ISO 8601
+    date and time, or of a column read as ISO 8601 text whose text is a plain number:
+    read in that form, those within a day of the column's span of times
+    (a stray number, a date of another year, stays unparsable)."""
+    fmt = str(info.get("time_format"))
+    numbers = fmt.startswith("unix") and not info.get("relative")
+    if not (numbers or fmt == "ISO 8601 text") or not pa.types.is_string(arr.type):
+        return ns, ok
+    text = pd.Series(arr.to_pandas(), dtype="str")
+    if numbers:
+        other = text.str.match(_ISO_DATE_START, na=False).to_numpy(dtype=bool)
+    else:
+        other = text.str.fullmatch(r"\s*[0-9]{9,13}(?:\.[0-9]*)?\s*", na=False).to_numpy(dtype=bool)
+    rows = np.flatnonzero(other & ~ok)
+    if not len(rows):
+        return ns, ok
+    part = pa.chunked_array([pa.array(text.iloc[rows].tolist(), pa.string())])
+    seen: dict = {}  # the other form's own reading: its masks and counts are not the column's
+    if numbers:
+        ns2, ok2 = _parse_times_in_one_form(part, "auto", tz, seen, date_order=date_order)
+        ok2 = ok2 & (seen.get("time_format") == "ISO 8601 text")
+    else:
+        ns2, ok2 = _parse_times_in_one_form(part, "unix", tz, seen)
+        ok2 = ok2 & (not seen.get("relative"))
+    day = 86_400 * 1_000_000_000
+    ok2 = ok2 & (ns2 >= ns[ok].min() - day) & (ns2 <= ns[ok].max() + day)
+    if not ok2.any():
+        return ns, ok
+    ns, ok = ns.copy(), ok.copy()  # a pyarrow buffer's view may be read-only
+    ns[rows[ok2]] = ns2[ok2]
+    ok[rows[ok2]] = True
+    info["other_form_times"] = info.get("other_form_times", 0) + int(ok2.sum())
+    if numbers and seen.get("naive"):
+        info["naive"] = True  # ISO text without a zone among the numbers: read as UTC (or --tz)
+    return ns, ok
+
+
+def _parse_times_in_one_form(
+    arr: pa.ChunkedArray,
+    kind: str,
+    tz: datetime.tzinfo | None = None,
+    info: dict | None = None,
+    decimal_comma: bool = False,
+    date_order: str = "auto",
+    time_unit: str = "auto",
+    header: str = "",
+    clock_date: str | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
     """int64 ns since epoch (UTC) and a validity mask.
 
     Dates with English month names and Chinese dates are read as ISO text is
@@ -2780,6 +2853,12 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"above 12, so they are not {given} as --date-order {given} says: quarantined as "
             f"unparsable time (are they {other}? try --date-order {other} or auto)"
         )
+    if time_info.get("other_form_times"):
+        out.append(
+            f"{time_info['other_form_times']:,} times in {time_src!r} are written in the "
+            "column's other form (unix seconds among ISO 8601 text, or ISO 8601 text among "
+            "unix seconds: two exports joined?): each was read in its own form"
+        )
     if time_info.get("excel_days") and time_info.get("excel_why"):  # auto decided
         out.append(
             f"{time_info['excel_days']:,} times in {time_src!r} were read as Excel serial "
@@ -3020,6 +3099,7 @@ def date_order_note(time_info: dict) -> str | None:
 #: The counts behind the date-order and Excel-days notes, in a report when not zero (a
 #: read in pieces sums them: :func:`~wakeline.core.io.pieces.merge_import_reports`).
 TIME_COUNTS = (
+    "other_form_times",
     "dates_either_way",
     "day_shown",
     "excel_days",
@@ -3336,6 +3416,7 @@ def _text_column(arr: pa.ChunkedArray) -> _Text:
 
 #: Counts of the time parse summed over a file's tables (the rest: the first table's).
 _SUMMED_TIME_KEYS = (
+    "other_form_times",
     "dates_either_way",
     "day_shown",
     "excel_days",
@@ -5727,6 +5808,7 @@ def stream_points(
             "decimal_comma",
             "clock_placed",
             *POSITION_COUNTS,
+            "other_form_times",
             "dates_either_way",
             "day_shown",
             "date_order_refused",
