@@ -175,6 +175,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
                 msg += f"; per vertex in coordinateProperties: {', '.join(kept)}"
             if left:
                 msg += f"; not written: {', '.join(left)} (Wakeline's internal columns)"
+        elif kind == "gpx":
+            from wakeline.core.export_review import gpx_left_out
+
+            carried, internal = gpx_left_out(result.points)
+            if carried:
+                msg += (
+                    f"; not written: {', '.join(carried)} (a GPX point holds time, position, "
+                    "speed and course only: .geojson or .csv keeps these columns)"
+                )
+            if internal:
+                msg += f"; not written: {', '.join(internal)} (Wakeline's internal columns)"
         print(msg, file=sys.stderr)
         return 0
     from wakeline.core.export import check_text_path
