@@ -256,7 +256,9 @@ def _break_phrases(speed: dict) -> list:
             time=_said_time(worst["from_time"]),
         )
         n_kept = int(speed.get("breaks_kept", len(legs)) or len(legs))
-        same_time = worst["kn"] is None or not worst["s"]  # a jump at one time: no speed
+        # a jump at one time (no speed), or within what "{s:,.0f} s" shows as 0 s (two
+        # ships under one id, rows 0.03 s apart: "0.3 km in 0 s, 18,143 kn", operator test 10)
+        same_time = worst["kn"] is None or not worst["s"] or worst["s"] < 0.5
         if same_time and n_kept == 1:
             out.append(
                 phrase(
