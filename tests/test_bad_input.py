@@ -104,6 +104,38 @@ def test_missing_column_names_it_and_lists_headers(write, tmp_path, capsys):
     assert "Traceback" not in err
 
 
+@pytest.mark.parametrize(
+    "sep, given, shown",
+    [(",", ";", "','"), (";", ",", "';'"), ("\t", ",", "tab"), (",", "|", "','")],
+)
+def test_a_wrong_delimiter_says_the_header_is_one_column(
+    write, tmp_path, capsys, sep, given, shown
+):
+    """Operator test 10: `--delimiter ';'` on a comma-separated GBK export listed "headers
+    found: 批号,时间,经度,…", which reads as the seven columns found. The one name is said
+    to be one column, with the separator it holds; the window says it in Chinese."""
+    from wakeline.app import core_text
+
+    header = sep.join(["批号", "时间", "经度", "纬度"])
+    path = write(
+        "gbk.csv",
+        header + "\n" + sep.join(["7", "2024-01-01 00:00:00", "12", "56"]) + "\n",
+        "gb18030",
+    )
+    code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--delimiter", given)
+    assert code == 2
+    assert f"headers found: one column, {header!r} (separated by {shown}? check --delimiter)" in err
+    with pytest.raises(InputError) as exc:
+        read_points(path, delimiter=given)
+    core_text.set_language("zh_CN")
+    try:
+        zh = core_text.shown(str(exc.value))
+    finally:
+        core_text.set_language("en")
+    assert f"只有一列 {header!r}（分隔符其实是 {shown}？" in zh
+    assert main(["import", str(path), "-o", str(tmp_path / "ok.csv")]) == 0  # left to sniff
+
+
 def test_explicit_format_missing_column(write, tmp_path, capsys):
     path = write("r.csv", "SendShipNO,SendTime,lon,lat\n1,1664590563,1,2\n")
     code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--format", "radar")
