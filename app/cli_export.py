@@ -295,6 +295,9 @@ def _cmd_export(args: argparse.Namespace) -> int:
         msg += f"; {count(rep['rows_made'], 'row')} made by Wakeline (operator columns left empty)"
     if rep["members"]:
         msg += f"; {count(rep['targets'], 'target')}, members in {rep['members']}"
+    left = _internal_left_out(result.points, rep["columns"])
+    if left:  # as GeoJSON and GPX say it (a fused layer's source, n_sources, weight_base)
+        msg += f"; not written: {', '.join(left)} (Wakeline's internal columns)"
     if keep:
         n = result.points["target"].nunique()
         msg += (
@@ -309,6 +312,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
         msg += f"; plain text: {args.like} is {packed}-compressed, its text's layout is written"
     print(msg, file=sys.stderr)
     return 0
+
+
+def _internal_left_out(points, written) -> list[str]:
+    """Wakeline's internal columns of ``points`` a CSV export did not write (targets and
+    members are said apart: the 'target' column, the members file; ``course_read`` is
+    the course as the file wrote it, written in the course column)."""
+    from wakeline.core.io.layout import INTERNAL_COLUMNS
+    from wakeline.core.schema import UNWRITTEN
+
+    said = {"target", "members", "course_read", *UNWRITTEN, *written}
+    return [str(c) for c in points.columns if c in INTERNAL_COLUMNS and c not in said]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
