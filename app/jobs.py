@@ -26,6 +26,9 @@ from wakeline.core.session import BEARING_KIND
 
 #: Run ▸ pipeline's stages in a new window: clean, then maneuvers and compress.
 DEFAULT_STAGES = ("clean", "compress")
+#: The steps that take each batch for one ship's track (a warning before they run on
+#: radar plots: :meth:`JobsMixin.warn_if_plots`).
+TRACK_STEPS = ("pipeline", "clean", "maneuvers", "compress")
 #: The project's state row holding Run ▸ pipeline's stages (a list of step names).
 PIPELINE_STATE = "pipeline"
 #: The settings key (QSettings) holding them for the next window, project or not.
@@ -200,7 +203,28 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             )
             return ("step", lid, prepared, views, params)
 
+        self.warn_if_plots(lid, step)
         return self._start(step, job, (step, shown_name(layer.name)))
+
+    def warn_if_plots(self, lid: str, step: str) -> bool:
+        """Say in the log (non-modal; the run goes on) when a track step — the pipeline,
+        Clean, Maneuvers, Compress — runs on a layer that is mostly radar plots (the
+        parameter guidance's test, ``core.tracks.plot_like``: the layer drawn as dots):
+        each batch is taken for one ship's track, and the result joins a scan's
+        detections (the Autoferry detections came out a scribble). Returns whether it
+        said so."""
+        view = self.views.get(lid)
+        if step not in TRACK_STEPS or view is None or not view.extra.get("plots"):
+            return False
+        layer = self.session.layers.get(lid)
+        text = self.tr(
+            "{0} runs on {1}, which looks like radar plots (detections of each scan, see the "
+            "guidance under Parameters), not ships' tracks: it takes each batch for one "
+            "ship's track, and its result joins unrelated detections. Join the plots into "
+            "tracks first (a tracker) for a meaningful result."
+        ).format(self.job_title(step), shown_name(layer.name) if layer else lid)
+        self.log_message(f"{self.tr('Warning')}: {text}")
+        return True
 
     def _apply_step(self, lid: str, result: StepResult, views: dict, params) -> None:
         if lid not in self.session.layers:

@@ -3225,4 +3225,15 @@
         <translation>{0} 现在属于目标 {1}（共 {2} 个目标）</translation>
     </message>
 </context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>{0} runs on {1}, which looks like radar plots (detections of each scan, see the guidance under Parameters), not ships' tracks: it takes each batch for one ship's track, and its result joins unrelated detections. Join the plots into tracks first (a tracker) for a meaningful result.</source>
+        <translation>{0} 在 {1} 上运行，但它看起来是雷达点迹（每次扫描的检测，见参数下方的提示），不是船舶航迹：它把每个批次当作一条船的航迹，结果会把无关的检测连在一起。要得到有意义的结果，请先把点迹关联成航迹（跟踪器）。</translation>
+    </message>
+    <message>
+        <source>most of it looks like radar plots, not tracks: the track steps (clean, maneuvers, compress) were not run; the screenshot shows the plots as dots</source>
+        <translation>大部分看起来是雷达点迹，不是航迹：未运行航迹步骤（清洗、机动、压缩）；截图把点迹画成点</translation>
+    </message>
+</context>
 </TS>
