@@ -482,7 +482,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     # -- dialogs -------------------------------------------------------------------
 
     def open_dialog(self) -> None:
-        dialog = ImportDialog(self)
+        # the read of the first rows (its warnings, quarantine) in the map's worker pool
+        dialog = ImportDialog(self, executor=self.lod_worker)
         if dialog.exec() == QtWidgets.QDialog.DialogCode.Accepted:
             self.load_file(**dialog.options())
 

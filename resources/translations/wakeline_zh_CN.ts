@@ -3236,4 +3236,11 @@
         <translation>大部分看起来是雷达点迹，不是航迹：未运行航迹步骤（清洗、机动、压缩）；截图把点迹画成点</translation>
     </message>
 </context>
+<context>
+    <name>ImportDialog</name>
+    <message>
+        <source>Reading the first rows…</source>
+        <translation>正在读取前几行…</translation>
+    </message>
+</context>
 </TS>
