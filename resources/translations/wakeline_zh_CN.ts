@@ -3243,4 +3243,15 @@
         <translation>正在读取前几行…</translation>
     </message>
 </context>
+<context>
+    <name>ReviewDock</name>
+    <message>
+        <source>pending join (dashed)</source>
+        <translation>待定连接（虚线）</translation>
+    </message>
+    <message>
+        <source>accepted join</source>
+        <translation>已接受的连接</translation>
+    </message>
+</context>
 </TS>
