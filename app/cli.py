@@ -66,7 +66,9 @@ def build_parser() -> argparse.ArgumentParser:
         "--screenshot",
         type=Path,
         metavar="PNG",
-        help="load, render the main window at 1400x900 to PNG and exit",
+        help="load, run the default pipeline (clean, maneuvers, compress) on the first file "
+        "- not on a file that is mostly radar plots: those are shown as dots and stderr says "
+        "why - render the main window at 1400x900 to PNG and exit",
     )
     p.add_argument(
         "--language",
