@@ -224,6 +224,7 @@ class ReviewDock(QtCore.QObject):
         # accepted solid): one curve each, and its legend line's text
         self._joins: dict[str, pg.PlotDataItem] = {}
         self._join_lines: dict = {}  # join curve -> its legend line's text
+        self._joins_key = None  # (queue, its log's length, language) the joins show
         self._geom: ProposalGeometry | None = None  # the current proposal's, as computed
         self._redraw = QtCore.QTimer(self)  # the proposal again in the legend's colours
         self._redraw.setSingleShot(True)
@@ -905,12 +906,18 @@ class ReviewDock(QtCore.QObject):
         while it has any ("pending join (dashed)"); none while no review is bound or its
         layer is hidden. Again after every decision (:meth:`_echo`)."""
         b = self.bound
+        layer = self.w.session.layers.get(b.lid) if b is not None else None
+        shown = b is not None and b.arrays is not None and layer is not None and layer.visible
+        # the same queue, decisions and language: nothing to do (J/K move between
+        # proposals; a decision, undo or redo adds to the state's log)
+        key = (id(b), len(b.controller.state.log), tr("pending join (dashed)")) if shown else None
+        if key is not None and key == getattr(self, "_joins_key", None):
+            return
+        self._joins_key = key
         segments: dict = {}
-        if b is not None and b.arrays is not None:
-            layer = self.w.session.layers.get(b.lid)
-            if layer is not None and layer.visible:
-                t, lon, lat, _west = b.arrays
-                segments = join_segments(b.controller.state, t, lon, lat, b.ranges)
+        if shown:
+            t, lon, lat, _west = b.arrays
+            segments = join_segments(b.controller.state, t, lon, lat, b.ranges)
         canvas = self.w.canvas
         for status in JOIN_STYLE:
             lon, lat = segments.get(status, (np.zeros(0), np.zeros(0)))
