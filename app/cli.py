@@ -27,8 +27,14 @@ def _cmd_gui(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import read_options
 
     language = {"language": args.language} if args.language else {}
+    if args.vessels is not None and not args.vessels.is_file():
+        raise InputError(f"{args.vessels}: no such file (--vessels)")
     return run(
-        args.files, screenshot=args.screenshot, read=read_options(args, given=True), **language
+        args.files,
+        screenshot=args.screenshot,
+        read=read_options(args, given=True),
+        vessels=args.vessels,
+        **language,
     )
 
 
@@ -75,6 +81,14 @@ def build_parser() -> argparse.ArgumentParser:
         choices=("en", "zh_CN"),
         help="the window's language (default: the one last chosen in the Language menu, "
         "else the system's, $LANG; a --screenshot: the system's)",
+    )
+    p.add_argument(
+        "--vessels",
+        type=Path,
+        metavar="FILE",
+        help="a vessel table (ship id, name and/or type columns, e.g. MMSI;TYPE) joined to "
+        "FILES by the ship id: the batch table's Name and Type columns, the map's labels "
+        "(File ▸ Load ship names)",
     )
     from wakeline.app.cli_steps import add_read_flags
 

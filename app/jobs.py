@@ -125,6 +125,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             "open project": tr("Open project"),
             "bearing": tr("Open bearings"),
             "review": tr("Review"),
+            "vessels": tr("Load ship names"),
         }
         if name in titles:
             return titles[name]
@@ -641,11 +642,14 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         kind = done[0]
         if kind == "import":
             self._plan_view(done[3])  # the view the layers' level of detail was made for
+            before = set(self.session.layers)
             try:
                 for item in done[1]:
                     self._apply_import(*item)
             finally:
                 self._view_planned = False
+            if self.vessels_after_load is not None:  # wakeline gui --vessels FILE
+                self._vessels_after_import([i for i in self.session.layers if i not in before])
             for text in done[2]:
                 self.log_message(f"{self.tr('Error')}: {shown(text)}")
             if done[2]:
@@ -689,6 +693,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             from wakeline.app.review_sync import apply_fused
 
             apply_fused(self, *done[1:])
+        elif kind == "vessels":
+            self._apply_vessels(*done[1:])
         elif kind == "export":
             self.log_message(self.tr("exported {0} to {1}").format(shown_name(done[1]), done[2]))
             for warning in done[3] if len(done) > 3 else []:

@@ -84,6 +84,7 @@ def run(
     screenshot: Path | None = None,
     read: dict | None = None,
     language: str | None = None,
+    vessels: Path | None = None,
 ) -> int:
     """Open the main window on ``files`` (default: the demo scene), read with ``read``
     (``read_points`` keywords: the command line's reading flags, e.g. ``origin``).
@@ -120,6 +121,7 @@ def run(
     if screenshot is None:
         install_excepthook(window)
     paths = [Path(p) for p in files or [demo_path()]]
+    window.vessels_after_load = Path(vessels) if vessels is not None else None
     window.load_files(paths, dict(read or {}) if files else None)
     loaded = [True]
     if screenshot is not None:

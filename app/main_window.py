@@ -42,6 +42,7 @@ from wakeline.app.time_panel import dark_palette, install_time, palette_icon
 from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
+from wakeline.app.window_vessels import VesselsMixin
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
 from wakeline.core.session import BEARING_KIND, Session
@@ -121,7 +122,7 @@ def points_inside(points: pd.DataFrame, window: tuple[float, float]) -> int:
     return int(np.count_nonzero((t >= lo) & (t <= hi)))
 
 
-class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
+class MainWindow(LayersMixin, SelectionMixin, VesselsMixin, JobsMixin, QtWidgets.QMainWindow):
     """Wakeline's main window."""
 
     layersChanged = QtCore.Signal()

@@ -529,6 +529,7 @@ class LayersMixin:
             view.summary, view.text, view.extra.get("table_index")
         ):
             return False
+        self.show_name_columns()  # a vessel table's names joined (the same tracks)
         root = self.session.root(lid)
         if layer.kind in OWN_SAMPLING_KINDS or root is None or root.id == lid:
             # its own sampling changed (set_active)

@@ -3252,6 +3252,28 @@
     <message>
         <source>accepted join</source>
         <translation>已接受的连接</translation>
+        <source>Load s&amp;hip names (vessel table)…</source>
+        <translation>加载船名(&amp;H)(船舶表)…</translation>
+    </message>
+    <message>
+        <source>Type</source>
+        <translation>船型</translation>
+    </message>
+    <message>
+        <source>Load ship names</source>
+        <translation>加载船名</translation>
+    </message>
+    <message>
+        <source>Vessel tables (*.csv *.txt *.tsv *.gz);;All files (*)</source>
+        <translation>船舶表 (*.csv *.txt *.tsv *.gz);;所有文件 (*)</translation>
+    </message>
+    <message>
+        <source>{0}: the layer changed meanwhile; ship names not joined</source>
+        <translation>{0}：图层在此期间已改变，未关联船名</translation>
+    </message>
+    <message>
+        <source>{0}: some rows of the vessel table were not used (see the log)</source>
+        <translation>{0}：船舶表有些行未使用（见日志）</translation>
     </message>
 </context>
 </TS>
