@@ -30,6 +30,7 @@ from wakeline.app.dialogs import ImportReportDialog
 from wakeline.app.import_dialog import ImportDialog
 from wakeline.app.jobs import JobsMixin, preload
 from wakeline.app.layer_names import shown_name
+from wakeline.app.layer_undo import LayerUndo
 from wakeline.app.layer_view import LayerView, maneuver_table
 from wakeline.app.lod_worker import LodWorker
 from wakeline.app.map_canvas import MapCanvas
@@ -304,6 +305,8 @@ class MainWindow(LayersMixin, SelectionMixin, VesselsMixin, JobsMixin, QtWidgets
         self.set_icons()
         self._add_legend_toggle()
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
+        # Edit ▸ Restore removed layer / Remove layer again (the layer removals' stack)
+        self.layer_undo = LayerUndo(self, self.review.edit_menu)
         self._fit_timer = QtCore.QTimer(self, singleShot=True, interval=0)
         self._fit_timer.timeout.connect(self.review.fit_to_window)
         self.set_language(self.settings.value("language", i18n.system_language()))
@@ -438,6 +441,8 @@ class MainWindow(LayersMixin, SelectionMixin, VesselsMixin, JobsMixin, QtWidgets
         self.bearing_view.retranslate()
         if hasattr(self, "review"):  # built after the first retranslate
             self.review.retranslate()
+        if hasattr(self, "layer_undo"):
+            self.layer_undo.retranslate()
         for row in range(self.layer_list.count()):  # the kinds' tags: [source], [fused] …
             item = self.layer_list.item(row)
             layer = self.session.layers.get(item.data(QtCore.Qt.ItemDataRole.UserRole))

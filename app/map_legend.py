@@ -85,7 +85,38 @@ class SideLegend(pg.LegendItem):
         self._rank: dict[int, int] = {}  # id(sample) -> its place among the entries
         self._ranks = itertools.count()
         self._hidden: dict[int, tuple] = {}  # id(item) -> (sample, label) left out
+        bold = QtGui.QFont(font)
+        bold.setBold(True)
+        self._bold_metrics = QtGui.QFontMetricsF(bold)
+        self._bold: set[int] = set()  # id(item) of the entries drawn bold (the active layer)
         self.updateSize()
+
+    def set_bold(self, items) -> None:
+        """The entries of ``items`` (the active layer's curves) in bold, the others not:
+        the legend says which layer is active (the map draws it on top, the others dimmed).
+        A bold label is fitted to the column with the bold font's widths, so it never
+        widens the column (the map would be decimated again)."""
+        want = {id(item) for item in items}
+        if want == self._bold:
+            return
+        for sample, label in [*self.items, *self._hidden.values()]:
+            on = id(sample.item) in want
+            if on == (id(sample.item) in self._bold):
+                continue
+            name = label.toolTip()
+            plain = self._metrics
+            if on:
+                self._metrics = self._bold_metrics
+            try:
+                text = self.shown_label(name) if name else label.text
+            finally:
+                self._metrics = plain
+            label.setText(text, bold=on)
+        self._bold = want
+
+    def is_bold(self, item) -> bool:
+        """Whether ``item``'s entry is drawn bold (the active layer's)."""
+        return id(item) in self._bold
 
     def set_shown(self, on: bool) -> None:
         """The legend shown, or hidden with no column (View ▸ Show legend): the map
@@ -187,12 +218,20 @@ class SideLegend(pg.LegendItem):
             if sample.item is item:
                 name = rename(label.toolTip())
                 if name != label.toolTip():
-                    label.setText(self.shown_label(name))
+                    bold = id(item) in self._bold
+                    plain = self._metrics
+                    if bold:
+                        self._metrics = self._bold_metrics
+                    try:
+                        label.setText(self.shown_label(name), bold=bold)
+                    finally:
+                        self._metrics = plain
                     label.setToolTip(name)
                 return
 
     def removeItem(self, item) -> None:  # noqa: N802 - pyqtgraph's name
         """Remove ``item``'s entry, shown or left out (:meth:`show_entries`)."""
+        self._bold.discard(id(item))
         pair = self._hidden.pop(id(item), None)
         if pair is not None:
             self._rank.pop(id(pair[0]), None)
@@ -239,6 +278,7 @@ class SideLegend(pg.LegendItem):
             self._removeItemFromLayout(*pair)
         self._hidden.clear()
         self._rank.clear()
+        self._bold.clear()
         super().clear()
 
     def hidden_items(self) -> list:

@@ -3276,4 +3276,31 @@
         <translation>{0}：船舶表有些行未使用（见日志）</translation>
     </message>
 </context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>Layer {0} restored</source>
+        <translation>图层 {0} 已恢复</translation>
+    </message>
+    <message>
+        <source>Restore removed &amp;layer {0}</source>
+        <translation>恢复已移除的图层 {0}(&amp;L)</translation>
+    </message>
+    <message>
+        <source>Restore removed &amp;layer</source>
+        <translation>恢复已移除的图层(&amp;L)</translation>
+    </message>
+    <message>
+        <source>Remove layer {0} ag&amp;ain</source>
+        <translation>再次移除图层 {0}(&amp;A)</translation>
+    </message>
+    <message>
+        <source>Remove layer ag&amp;ain</source>
+        <translation>再次移除图层(&amp;A)</translation>
+    </message>
+    <message>
+        <source>Removed layer {0}{1}; Edit ▸ Restore removed layer brings it back</source>
+        <translation>已移除图层 {0}{1}；编辑 ▸ 恢复已移除的图层 可将其恢复</translation>
+    </message>
+</context>
 </TS>
