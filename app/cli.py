@@ -27,14 +27,12 @@ def _cmd_gui(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import read_options
 
     language = {"language": args.language} if args.language else {}
-    if args.vessels is not None and not args.vessels.is_file():
-        raise InputError(f"{args.vessels}: no such file (--vessels)")
+    if args.vessels is not None:
+        if not args.vessels.is_file():
+            raise InputError(f"{args.vessels}: no such file (--vessels)")
+        language["vessels"] = args.vessels  # run's keywords given: only those set
     return run(
-        args.files,
-        screenshot=args.screenshot,
-        read=read_options(args, given=True),
-        vessels=args.vessels,
-        **language,
+        args.files, screenshot=args.screenshot, read=read_options(args, given=True), **language
     )
 
 

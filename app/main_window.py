@@ -43,6 +43,7 @@ from wakeline.app.time_panel import dark_palette, install_time, palette_icon
 from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
+from wakeline.app.window_sensors import SensorsMixin
 from wakeline.app.window_vessels import VesselsMixin
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
@@ -123,7 +124,9 @@ def points_inside(points: pd.DataFrame, window: tuple[float, float]) -> int:
     return int(np.count_nonzero((t >= lo) & (t <= hi)))
 
 
-class MainWindow(LayersMixin, SelectionMixin, VesselsMixin, JobsMixin, QtWidgets.QMainWindow):
+class MainWindow(
+    LayersMixin, SelectionMixin, SensorsMixin, VesselsMixin, JobsMixin, QtWidgets.QMainWindow
+):
     """Wakeline's main window."""
 
     layersChanged = QtCore.Signal()
@@ -307,6 +310,7 @@ class MainWindow(LayersMixin, SelectionMixin, VesselsMixin, JobsMixin, QtWidgets
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
         # Edit ▸ Restore removed layer / Remove layer again (the layer removals' stack)
         self.layer_undo = LayerUndo(self, self.review.edit_menu)
+        self.install_sensor_menu()  # View ▸ Sensors of the active layer
         self._fit_timer = QtCore.QTimer(self, singleShot=True, interval=0)
         self._fit_timer.timeout.connect(self.review.fit_to_window)
         self.set_language(self.settings.value("language", i18n.system_language()))
@@ -443,6 +447,8 @@ class MainWindow(LayersMixin, SelectionMixin, VesselsMixin, JobsMixin, QtWidgets
             self.review.retranslate()
         if hasattr(self, "layer_undo"):
             self.layer_undo.retranslate()
+        if hasattr(self, "sensor_menu"):
+            self.retranslate_sensor_menu()
         for row in range(self.layer_list.count()):  # the kinds' tags: [source], [fused] …
             item = self.layer_list.item(row)
             layer = self.session.layers.get(item.data(QtCore.Qt.ItemDataRole.UserRole))
@@ -556,14 +562,18 @@ class MainWindow(LayersMixin, SelectionMixin, VesselsMixin, JobsMixin, QtWidgets
         status bar still said "1,131 points, 1 track")."""
         view = self.views.get(layer.id)
         tracks = len(view.summary) if view is not None else 0
-        text = self.tr("{0}, {1}").format(points_text(len(layer.points)), tracks_text(tracks))
+        # View ▸ Sensors: what the window shows of the layer (its sensors shown)
+        note = self.sensors_note(layer)
+        points = view.points if note and view is not None else layer.points
+        text = self.tr("{0}, {1}").format(points_text(len(points)), tracks_text(tracks))
         overlap = self.batch_model.tracks_overlapping(window) if view is not None else None
         if overlap is None or window is None:
-            return text
-        inside = points_inside(layer.points, window)
-        return self.tr("In the time window: {0} of {1}, {2} of {3}").format(
-            f"{overlap:,}", tracks_text(tracks), f"{inside:,}", points_text(len(layer.points))
+            return f"{text} ({note})" if note else text
+        inside = points_inside(points, window)
+        text = self.tr("In the time window: {0} of {1}, {2} of {3}").format(
+            f"{overlap:,}", tracks_text(tracks), f"{inside:,}", points_text(len(points))
         )
+        return f"{text} ({note})" if note else text
 
     def show_counts(self) -> None:
         """The status bar's counts of the active layer now (the time window moved: the

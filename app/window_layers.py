@@ -285,6 +285,8 @@ class LayersMixin:
     def _queue_draw(self, lid: str) -> None:
         """Swap a layer's prepared arrays into the map on a later event-loop turn, one
         layer per turn, so a result of several layers never blocks in one piece."""
+        if getattr(self, "hidden_sensors", None) is not None and self.sensor_filter_pending(lid):
+            return  # its view for the sensors shown comes first (View ▸ Sensors)
         if lid not in self._draw_queue:
             self._draw_queue.append(lid)
         if not self._draw_scheduled:
@@ -357,6 +359,7 @@ class LayersMixin:
             or self._make_current is not None
             or self._after_current
             or getattr(self, "_styling", 0) > 0
+            or bool(getattr(self, "_filtering", ()))  # a view for the sensors shown
         )
 
     def _bearings_removed(self) -> None:

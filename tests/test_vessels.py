@@ -169,3 +169,18 @@ def test_the_window_shows_the_names_and_types_in_table_filter_and_labels(qtbot, 
     log = w.log.toPlainText()
     assert "2 vessel(s)" in log and "2 of 3 ship id(s) named" in log
     w.close()
+
+
+def test_gui_takes_a_vessel_table_on_the_command_line(monkeypatch, tmp_path):
+    from wakeline.app import cli
+
+    seen = {}
+    monkeypatch.setattr(
+        "wakeline.app.main.run",
+        lambda files, screenshot=None, read=None, **kw: seen.update(files=files, **kw) or 0,
+    )
+    table = tmp_path / "v.csv"
+    table.write_text("mmsi,name\n1,ARGO\n")
+    assert cli.main(["gui", "a.csv", "--vessels", str(table)]) == 0
+    assert seen["vessels"] == table
+    assert cli.main(["gui", "a.csv", "--vessels", str(tmp_path / "none.csv")]) == 2

@@ -71,3 +71,48 @@ def test_the_active_layers_legend_entries_are_bold_and_only_them(qtbot, tmp_path
     # a bold label fits the reserved column: it never widens it
     assert w.canvas.legend.widest == widest
     w.close()
+
+
+def _sensor_actions(w):
+    w._fill_sensor_menu()
+    return {a.text().split(" ")[-1]: a for a in w.sensor_menu.actions() if a.isCheckable()}
+
+
+def test_a_sensor_hidden_leaves_the_map_table_and_counts_not_the_layer(qtbot, tmp_path):
+    w, lid = _loaded(qtbot, tmp_path)
+    layer = w.layers[lid]
+    points = layer.points
+    acts = _sensor_actions(w)
+    assert sorted(acts) == ["AIS", "radar"] and all(a.isChecked() for a in acts.values())
+    colors = dict(zip(("AIS", "radar"), w.views[lid].colors, strict=False))
+    acts["radar"].setChecked(False)  # View ▸ Sensors ▸ radar off
+    _settle(w)
+    view = w.views[lid]
+    assert set(view.points["sensor"]) == {"AIS"} and len(view.points) == 80
+    assert w.layers[lid].points is points and len(points) == 120  # a view filter only
+    assert set(view.draw.geometry.sensor) == {"AIS"}
+    assert view.colors[0] == colors["AIS"]  # each sensor keeps its colour
+    model = w.batch_model  # the table's rows filtered (not greyed)
+    assert sorted(model.key_of_row(r) for r in range(model.rowCount())) == [
+        ("AIS", "101"),
+        ("AIS", "102"),
+    ]
+    assert "80 points" in w.counts_text and "sensors hidden: radar" in w.counts_text
+    acts = _sensor_actions(w)
+    assert not acts["radar"].isChecked() and not acts["AIS"].isEnabled()  # the last one stays
+    # kept per layer: another layer made active and back keeps the choice
+    w.run_step("clean")
+    _settle(w)
+    cleaned = next(i for i, lay in w.layers.items() if lay.parent == lid)
+    w.select_layer(cleaned)
+    _settle(w)
+    assert all(a.isChecked() for a in _sensor_actions(w).values())
+    assert model.rowCount() == 3
+    w.select_layer(lid)
+    _settle(w)
+    assert model.rowCount() == 2 and set(w.views[lid].points["sensor"]) == {"AIS"}
+    _sensor_actions(w)["radar"].setChecked(True)
+    _settle(w)
+    assert w.views[lid].points is w.layers[lid].points and model.rowCount() == 3
+    assert "sensors hidden" not in w.counts_text and "120 points" in w.counts_text
+    w.close()

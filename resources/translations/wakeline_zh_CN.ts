@@ -3303,4 +3303,34 @@
         <translation>已移除图层 {0}{1}；编辑 ▸ 恢复已移除的图层 可将其恢复</translation>
     </message>
 </context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>&amp;Sensors of the active layer</source>
+        <translation>当前图层的传感器(&amp;S)</translation>
+    </message>
+    <message>
+        <source>(the active layer has one sensor)</source>
+        <translation>（当前图层只有一个传感器）</translation>
+    </message>
+    <message>
+        <source>Show &amp;all sensors</source>
+        <translation>显示全部传感器(&amp;A)</translation>
+    </message>
+    <message>
+        <source>sensors hidden: {0}</source>
+        <translation>已隐藏传感器：{0}</translation>
+    </message>
+</context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>Show {0}</source>
+        <translation>显示 {0}</translation>
+    </message>
+    <message>
+        <source>Show or hide the tracks of sensor {0} (a view filter: the layer's points are not changed)</source>
+        <translation>显示或隐藏传感器 {0} 的航迹（仅为显示筛选：图层的点不变）</translation>
+    </message>
+</context>
 </TS>
