@@ -167,7 +167,7 @@ def test_the_window_shows_the_names_and_types_in_table_filter_and_labels(qtbot, 
     texts = w.update_track_labels()
     assert any("ARGO" in t for t in texts) and any("BLUE STAR" in t for t in texts)
     log = w.log.toPlainText()
-    assert "2 vessel(s)" in log and "2 of 3 ship id(s) named" in log
+    assert "2 vessel(s)" in log and "2 of 3 ship id(s) found in the vessel table" in log
     w.close()
 
 

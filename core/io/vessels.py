@@ -209,7 +209,7 @@ class VesselJoin:
     unused: int = 0  # table ids the layer lacks
 
     def report(self) -> str:
-        text = f"{self.matched:,} of {self.ids:,} ship id(s) named"
+        text = f"{self.matched:,} of {self.ids:,} ship id(s) found in the vessel table"
         if self.unmatched:
             head = ", ".join(self.unmatched[:5]) + (" …" if len(self.unmatched) > 5 else "")
             text += f"; not in the table: {head}"
