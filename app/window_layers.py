@@ -238,6 +238,10 @@ class LayersMixin:
             for name in self.map_names(lid):
                 self.canvas.remove_layer(name)
             gone = self.views.pop(lid, None)
+            # its sensor choice and whole view (View ▸ Sensors) go too: an undo shows it
+            # whole, its view prepared again from its points
+            getattr(self, "_full_views", {}).pop(lid, None)
+            getattr(self, "hidden_sensors", {}).pop(lid, None)
             if gone is not None and gone.points is self.bearings:
                 # Next turn: a project opened clears the session and shows its own.
                 QtCore.QTimer.singleShot(0, self._bearings_removed)

@@ -118,4 +118,15 @@ def test_a_sensor_hidden_leaves_the_map_table_and_counts_not_the_layer(qtbot, tm
     _settle(w)
     assert w.views[lid].points is w.layers[lid].points and model.rowCount() == 3
     assert "sensors hidden" not in w.counts_text and "120 points" in w.counts_text
+    # removed with a sensor hidden, then restored: shown whole (its choice went with it)
+    _sensor_actions(w)["AIS"].setChecked(False)
+    _settle(w)
+    assert set(w.views[lid].points["sensor"]) == {"radar"}
+    w.remove_active_layer()
+    _settle(w)
+    assert lid not in w._full_views and lid not in w.hidden_sensors
+    w.layer_undo.undo()
+    _settle(w)
+    assert set(w.views[lid].points["sensor"]) == {"AIS", "radar"}
+    assert sorted(w.map_names(lid)) and w.layers[lid].points is points
     w.close()
