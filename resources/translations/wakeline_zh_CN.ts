@@ -3252,6 +3252,11 @@
     <message>
         <source>accepted join</source>
         <translation>已接受的连接</translation>
+    </message>
+</context>
+<context>
+    <name>MainWindow</name>
+    <message>
         <source>Load s&amp;hip names (vessel table)…</source>
         <translation>加载船名(&amp;H)(船舶表)…</translation>
     </message>
