@@ -80,6 +80,7 @@ from wakeline.core.io.reader import (
     swapped_file,
     time_counts,
     with_final,
+    written_zone,
 )
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.io.speed_check import SPEED_UNIT_MARK
@@ -536,9 +537,14 @@ def merge_import_reports(
         raise WholeFileNeeded
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
     fmt = (with_rows or reports)[0].get("time_format")
-    first = {k: v for k, v in first.items() if k != "_zones"}
+    first = {
+        k: v for k, v in first.items() if k not in ("_zones", "time_offsets", "time_zone_written")
+    }
+    offsets = _sum([r.get("time_offsets", {}) for r in reports])  # the times' written offsets
+    written = written_zone(offsets, naive)
     return {
         **first,
+        **({"time_offsets": offsets, "time_zone_written": written} if written else {}),
         "date_order": date_order_note({**times, "time_format": fmt}),
         **time_counts(times),
         "input": str(sn.path),

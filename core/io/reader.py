@@ -901,6 +901,79 @@ def _column_types(sn: Sniff, res: Resolved, careful: bool) -> dict[str, pa.DataT
     return types
 
 
+#: A time's written UTC offset, after its clock: Z, ±HH:MM, ±HHMM, ±HH (a space before it
+#: allowed: "08:00:00 +01:00"); "UTC"/"GMT" words are Z.
+_WRITTEN_OFFSET = r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s?(?P<z>[zZ]|UTC|GMT|[+-]\d\d(?::?\d\d)?)\s*$"
+
+
+def _plain_offset(text: str) -> str:
+    """``+08:00`` of a written offset (``Z``/``UTC`` → ``+00:00``, ``+0800``, ``+08``)."""
+    if text.upper() in ("Z", "UTC", "GMT"):
+        return "+00:00"
+    digits = text[1:].replace(":", "")
+    return f"{text[0]}{digits[:2]}:{digits[2:4] or '00'}"
+
+
+def written_offsets(texts: pa.Array | pa.ChunkedArray) -> dict[str, int]:
+    """How many of the times ``texts`` carry each UTC offset at their end (``+00:00`` for
+    Z), e.g. ``{"-05:00": 20000}``; times without one are not counted."""
+    if isinstance(texts, pa.ChunkedArray):
+        texts = texts.combine_chunks() if texts.num_chunks else pa.array([], pa.string())
+    if not pa.types.is_string(texts.type) or not len(texts):
+        return {}
+    found = pc.struct_field(pc.extract_regex(texts, _WRITTEN_OFFSET), [0])
+    out: dict[str, int] = {}
+    for item in pc.value_counts(found.drop_null()).to_pylist():
+        key = _plain_offset(item["values"])
+        out[key] = out.get(key, 0) + int(item["counts"])
+    return out
+
+
+def written_zone(offsets: dict[str, int], zoneless: int = 0) -> str | None:
+    """The zone a file's times were written in, by the offsets they carry
+    (:func:`written_offsets`): the one offset (``-05:00``), ``mixed`` for several (or
+    some times with one and some without), None when no time carries one."""
+    offsets = {k: v for k, v in offsets.items() if v}
+    if not offsets:
+        return None
+    return next(iter(offsets)) if len(offsets) == 1 and not zoneless else "mixed"
+
+
+def _file_offsets(sn: Sniff, src: str, encoding: str, time_info: dict) -> dict:
+    """The report's ``time_offsets`` and ``time_zone_written`` (:func:`written_zone`) of
+    the ISO 8601 times of column ``src`` of ``sn``, read again as text (pyarrow reads
+    ``…-05:00`` as a UTC instant and forgets the offset: View ▸ Time zone's "the zone the
+    data came in" showed UTC for a file of -05:00 times, operator test 10). Empty when the
+    times are not ISO 8601 text or none carries a zone (nothing read again)."""
+    if time_info.get("time_format") != "ISO 8601 text":
+        return {}
+    zoneless = int(time_info.get("zoneless_times", 0))
+    if time_info.get("naive") and not time_info.get("zoned_times"):
+        return {}
+    read = pacsv.ReadOptions(column_names=list(sn.columns), skip_rows=sn.skip_rows)
+    parse = pacsv.ParseOptions(
+        delimiter=sn.parse_delimiter,
+        quote_char='"' if sn.has_quotes else False,
+        invalid_row_handler=lambda _row: "skip",
+        ignore_empty_lines=True,
+    )
+    convert = pacsv.ConvertOptions(
+        include_columns=[src], column_types={src: pa.string()}, strings_can_be_null=False
+    )
+    errors = "strict" if encoding in ("utf-8", "utf8") else "replace"
+    try:
+        with _open_parsed(sn, encoding, errors) as handle, _quiet_undecodable_rows():
+            table = pacsv.read_csv(
+                handle, read_options=read, parse_options=parse, convert_options=convert
+            )
+    except (pa.ArrowInvalid, UnicodeDecodeError, OSError, KeyError):
+        return {}  # unsure: the report says nothing of offsets
+    offsets = written_offsets(table.column(src))
+    if not offsets:
+        return {}
+    return {"time_offsets": offsets, "time_zone_written": written_zone(offsets, zoneless)}
+
+
 def _line_numbers(rows: np.ndarray, skip_rows: int, invalid_lines: list[int]) -> np.ndarray:
     """Physical 1-based line of parsed rows (0-based row numbers), given the lines of the
     invalid rows the parser skipped."""
@@ -3340,6 +3413,13 @@ def read_points(
         **time_counts(time_info),
         **clock_report(time_info),
         "time_zone": tz if zone is not None else "UTC",
+        # the offsets the times were written with (-05:00): View ▸ Time zone's data zone
+        **_file_offsets(
+            sn,
+            res.columns["time"],
+            rows.encoding,
+            {**time_info, "zoned_times": time_info.get("zoned_times") or zones[0]},
+        ),
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
         **counts,
@@ -5948,6 +6028,7 @@ def stream_points(
         **time_counts(time_info),
         **clock_report(time_info),
         "time_zone": tz if zone is not None else "UTC",
+        **_file_offsets(sn, res.columns["time"], enc, {**time_info, "zoneless_times": naive}),
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
         "rows_read": totals["rows_read"] + len(bad.lines),
