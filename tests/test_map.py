@@ -1088,3 +1088,44 @@ def test_a_layer_recoloured_with_as_many_curves_takes_the_new_colours(qtbot):
         last_lines = [c.label.split("\n")[-1].split(" · ")[-1] for c in out.curves]
         assert all(t in " ".join(shown) for t in last_lines), (last_lines, shown)
         canvas.remove_layer("ferry")
+
+
+def test_a_selected_track_of_a_layer_coloured_by_track_has_one_legend_line(qtbot):
+    """Operator test 10: an MTAD scene's compressed layer coloured by track, its track
+    9001/412434718-0 selected: the legend said "9001:412434718-0" (the track's colour) and
+    "9001 · 412434718-0" (the selection's). One line per track now, named "sensor · batch"
+    as the selection names it, the selected track drawn in the colour its line shows; a
+    track the layer's legend does not name keeps its selection line."""
+    from wakeline.app.map_draw import named_tracks, recolor
+    from wakeline.app.map_legend import short_label
+
+    canvas = _shown_canvas(qtbot)
+    for seed in (3, 4):
+        pts = pd.concat(
+            [star_scene(seed, 3, 30), star_scene(seed + 1, 3, 30).assign(sensor="R2")],
+            ignore_index=True,
+        )
+        data = recolor(prepare_layer(pts, "scene", "#2ca02c"), True)
+        canvas.set_draw_data(data)
+        named = named_tracks(data.geometry)
+        assert len(named) == 6  # every track has its line (6 ≤ LEGEND_TRACKS)
+        sensor, batch = "R2", str(pts.loc[pts["sensor"] == "R2", "batch"].iloc[1])
+        canvas.show_selection(pts[(pts["sensor"] == sensor) & (pts["batch"] == batch)])
+        canvas._sync_selection_legend()
+        texts = [label.text for _s, label in canvas.legend.items]
+        name = f"{sensor} · {batch}"
+        assert sum(short_label(name) in t or name in t for t in texts) == 1, texts
+        assert not any(f"{sensor}:{batch}" in t for t in texts), texts
+        # drawn in the colour its legend line shows, and the window's swatch agrees
+        colour = named[(sensor, batch)]
+        assert [i.opts["pen"].color().name() for i in canvas.selection_items()] == [colour]
+        assert canvas.selection_color(sensor, batch) == colour
+        canvas.remove_layer("scene")
+    # a layer in its own colour: the selection names its track, in a colour of its own
+    plain = prepare_layer(pts, "scene", "#2ca02c")
+    canvas.set_draw_data(plain)
+    canvas.show_selection(pts[(pts["sensor"] == sensor) & (pts["batch"] == batch)])
+    canvas._sync_selection_legend()
+    texts = [label.text for _s, label in canvas.legend.items]
+    assert sum(name in t for t in texts) == 1
+    assert canvas.selection_color(sensor, batch) != "#2ca02c"
