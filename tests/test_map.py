@@ -612,14 +612,19 @@ def test_render_names_the_input_files_in_the_legend(tmp_path, monkeypatch):
         str(tmp_path / "x.png"),
     ]
     assert main(argv + ["--step", "clean"]) == 0
-    assert seen and all(n.startswith("{a,b}.csv") for n in seen), seen
+    assert seen and all(n.startswith("a.csv + b.csv") for n in seen), seen
     assert not any(n.startswith("input") for n in seen)
     paths = [tmp_path / f"f{k}.csv" for k in range(11)]
     assert input_name(paths[:1]) == "f0.csv"
-    assert input_name([Path("s_AIS.csv"), Path("s_radar.csv")]) == "s_{AIS,radar}.csv"
     assert input_name([Path("ais.csv"), Path("radar.txt")]) == "ais.csv + radar.txt"
     assert input_name([Path("x.csv"), Path("x.csv")]) == "x.csv + x.csv"
-    assert input_name(paths) == "f0.csv + f1.csv + 9 more files"
+    # operator test 10: "{ore_gbk,dma_semicolon_comma}.csv", "{ore_gbk,d…mma}.csv" in the
+    # legend, named neither file; now each file whole, or the first and how many more
+    two = input_name([Path("ore_gbk.csv"), Path("dma_semicolon_comma.csv")])
+    assert two == "ore_gbk.csv + dma_semicolon_comma.csv"
+    assert input_name([Path("s_AIS.csv"), Path("s_radar.csv")]) == "s_AIS.csv + s_radar.csv"
+    assert input_name(paths) == "f0.csv + f1.csv and 9 more"
+    assert not any("{" in input_name(paths[:k]) for k in range(1, 12))
 
 
 def test_render_steps_draw_each_layer_once_and_the_input_in_its_own_colour(tmp_path):
