@@ -2354,6 +2354,10 @@
         <translation>；最大误差界 {tol:,.0f} 米（航迹 {track}，噪声 {noise:,.0f} 米；中位数 {median:,.0f} 米），最远的点偏离 {far:,.0f} 米</translation>
     </message>
     <message>
+        <source>; {n:#track} with jumps no ship can make ({legs:#leg} beyond {v:,.0f} kn; {k:,} in track {track}): clean first (wakeline clean; Clean in the window): it splits such tracks, and the error bounds then measure noise, not the jumps</source>
+        <translation>；{n:,} 条航迹含有船舶不可能做到的跳变（{legs:,} 段航程超过 {v:,.0f} 节；航迹 {track} 中有 {k:,} 段）：请先清洗（wakeline clean；窗口中的“清洗”）：它会拆分这样的航迹，之后误差界衡量的是噪声，而不是跳变</translation>
+    </message>
+    <message>
         <source> (capped at {cap:,.0f} m on {n:#track})</source>
         <translation>（{n:,} 条航迹上限定为 {cap:,.0f} 米）</translation>
     </message>
