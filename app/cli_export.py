@@ -259,7 +259,12 @@ def _cmd_export(args: argparse.Namespace) -> int:
         result = _read_in(args)
     say_quarantined(args.input, result.report)
     if len(result.points) == 0:
-        raise InputError(f"{args.input}: no usable points: nothing to export")
+        # as every other subcommand says it (it said "no usable points: nothing to export"
+        # where they say "no data rows (a header only?)": operator test 10), IN's flags named
+        from wakeline.core.io import nothing_imported
+
+        why = nothing_imported(result.report, str(args.input))
+        raise InputError(re.sub(r"(?<![\w-])--map\b", "--in-map", why))
     from wakeline.core.export import carries_targets
 
     # The canonical CSV keeps tracks and targets as GeoJSON and GPX do (docs/export.md);

@@ -605,3 +605,25 @@ def test_every_missing_input_says_no_such_file(write, tmp_path, capsys):
         code, _, err = _run(capsys, *args)
         assert code == 2 and err.strip().endswith(": no such file"), (args, err)
         assert "No such file or directory" not in err, (args, err)
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "gb18030"])
+def test_a_header_only_file_is_said_in_one_wording_by_every_subcommand(tmp_path, capsys, encoding):
+    """Operator test 10: on a header-only file `export` said "no usable points: nothing to
+    export", every other subcommand "no data rows (a header only?)". One wording now,
+    exit 2, no output written."""
+    from wakeline.app.cli import main
+
+    src = tmp_path / "h.csv"
+    src.write_bytes("批号,时间,经度,纬度\r\n".encode(encoding))
+    said = {}
+    for sub in ("import", "clean", "maneuvers", "compress", "export"):
+        out = tmp_path / f"{sub}.csv"
+        assert main([sub, str(src), "-o", str(out)]) == 2, sub
+        err = capsys.readouterr().err
+        said[sub] = err.strip().splitlines()[-1]
+        assert not out.exists(), sub
+    assert all(
+        f"{src}: no data rows (a header only?); nothing imported" in t for t in said.values()
+    ), said
+    assert len(set(said.values())) == 1, said
