@@ -948,8 +948,8 @@ def _file_offsets(sn: Sniff, src: str, encoding: str, time_info: dict) -> dict:
     if time_info.get("time_format") != "ISO 8601 text":
         return {}
     zoneless = int(time_info.get("zoneless_times", 0))
-    if time_info.get("naive") and not time_info.get("zoned_times"):
-        return {}
+    if not time_info.get("zoned_written"):
+        return {}  # no time read carries a zone
     read = pacsv.ReadOptions(column_names=list(sn.columns), skip_rows=sn.skip_rows)
     parse = pacsv.ParseOptions(
         delimiter=sn.parse_delimiter,
@@ -2211,6 +2211,8 @@ def _parse_times_in_one_form(
         if info.get("_by_table") and tz is None:  # a piece typed by pyarrow: one kind
             valid_n = len(arr) - arr.null_count
             info["_zoned_n" if arr.type.tz is not None else "_naive_n"] = valid_n
+        if arr.type.tz is not None and len(arr) > arr.null_count:
+            info["zoned_written"] = True  # times with a zone: _file_offsets reads which
         if arr.type.tz is None:
             info["naive"] = True
             if tz is not None:
@@ -2373,6 +2375,8 @@ def _parse_times_in_one_form(
         parsed = pd.to_datetime(text, format="ISO8601", errors="coerce", utc=True)
     parsed = _as_ns(pd.Series(parsed), info)
     ok = parsed.notna().to_numpy()
+    if (ok & zoned).any():
+        info["zoned_written"] = True  # times with a zone: _file_offsets reads which
     if tz is None:  # zoned and zone-less times in one column: the latter read as UTC
         with_zone = int((ok & zoned).sum())
         without = int((ok & ~zoned).sum())
@@ -3418,7 +3422,7 @@ def read_points(
             sn,
             res.columns["time"],
             rows.encoding,
-            {**time_info, "zoned_times": time_info.get("zoned_times") or zones[0]},
+            time_info,
         ),
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
@@ -5868,6 +5872,8 @@ def stream_points(
             merged = time_info.setdefault("zone_words", {})
             merged[word] = merged.get(word, 0) + k
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
+        if info.get("zoned_written"):
+            time_info["zoned_written"] = True
         for key in ("_zoned_n", "_naive_n"):
             time_info[key] = time_info.get(key, 0) + info.get(key, 0)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
