@@ -38,12 +38,14 @@ not the neighbours, so it sees an offset wandering over a window (radar; docs/ev
 "Hard radar against real radar"). Option (off by default): ``window_max_s`` bounds the
 window at slow radar scans — where ``window_p`` points span more than it and 3 fit, as many
 points as fit, and the first scale's maximum filter reaches one window at most
-(docs/evaluation.md "Radar at slower scans (h131)"). Options (off by default): ``radius_s``
-bounds the maximum filter's radius to that many seconds of median steps (where 2 or more
-fit), and ``edge_s`` gives a track's first and last p − 1 plots 3-point windows where the
-first window spans more than it (docs/evaluation.md "Radar at slower scans (h162)");
-``step_noise_max`` (off by default) applies those two only on tracks whose noise per step's
-run σ / (v · step) is under it (docs/evaluation.md "Session 31: slow scans, gated").
+(docs/evaluation.md "Radar at slower scans (h131)"). Slow scans (defaults since session 31,
+h241, docs/prereg/session31_slow_scans_b.md): ``radius_s`` (15 s) bounds the maximum
+filter's radius to that many seconds of median steps (where 2 or more fit), and ``edge_s``
+(12 s) gives a track's first and last p − 1 plots 3-point windows where the first window
+spans more than it (docs/evaluation.md "Radar at slower scans (h162)"), both only on tracks
+whose noise per step's run σ / (v · step) is under ``step_noise_max`` (0.15;
+docs/evaluation.md "Session 31: slow scans, gated"); by their own rules they change nothing
+on a track whose median step is 3 s or less or over 7.5 s.
 """
 
 import math
@@ -151,7 +153,7 @@ class ManeuverParams(Params):
         source="ours",
     )
     radius_s: float = param(
-        0.0,
+        15.0,
         "s",
         "the maximum filter's radius in seconds: at every scale the radius_n points it reaches "
         "at least are at most as many of the track's median steps as fit in this many seconds, "
@@ -159,10 +161,11 @@ class ManeuverParams(Params):
         "whatever they span)",
         lo=0.0,
         hi=1e7,
-        source="ours (h162, docs/prereg/session27_radar_edges.md)",
+        source="ours (h162, docs/prereg/session27_radar_edges.md); default since session 31 "
+        "(docs/prereg/session31_slow_scans_b.md)",
     )
     edge_s: float = param(
-        0.0,
+        12.0,
         "s",
         "turns at a track's ends: where the first scale's window (p points) spans more than "
         "this many seconds (p - 1 median steps) and 3 points at most, the ends it leaves "
@@ -171,10 +174,11 @@ class ManeuverParams(Params):
         "window; 0 = off",
         lo=0.0,
         hi=1e7,
-        source="ours (h162, docs/prereg/session27_radar_edges.md)",
+        source="ours (h162, docs/prereg/session27_radar_edges.md); default since session 31 "
+        "(docs/prereg/session31_slow_scans_b.md)",
     )
     step_noise_max: float = param(
-        0.0,
+        0.15,
         "",
         "radius_s and edge_s apply only on tracks whose noise per step's run is under this: "
         "sigma / (v * step), sigma the track's position noise (noise_k's), step its median "
@@ -183,7 +187,8 @@ class ManeuverParams(Params):
         "0 = on every track",
         lo=0.0,
         hi=100.0,
-        source="ours (h240, docs/prereg/session31_slow_scans.md)",
+        source="ours (h240, docs/prereg/session31_slow_scans.md); 0.15 by "
+        "docs/prereg/session31_slow_scans_b.md (h241)",
     )
     min_speed_kn: float = param(
         1.0,
@@ -431,6 +436,9 @@ class ManeuverParams(Params):
             min_window_s=0.0,
             gap_s=0.0,
             max_step_windows=0.0,
+            radius_s=0.0,
+            edge_s=0.0,
+            step_noise_max=0.0,
         )
 
 
