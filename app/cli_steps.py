@@ -267,13 +267,32 @@ class _PresetAction(argparse.Action):
 
             print("\n".join(preset_lines()))
             parser.exit()
+        from wakeline.core.presets import retired_note
+
+        note = retired_note(values)
+        if note:  # a retired preset: accepted, changes nothing (core.presets.RETIRED)
+            print(f"wakeline: note: {note}", file=sys.stderr)
         setattr(namespace, self.dest, values)
+
+
+class _Choices(list):
+    """``--preset``'s choices: the names listed (an invalid choice's error names these)
+    and the ``hidden`` ones also taken (retired presets)."""
+
+    def __init__(self, names, hidden):
+        super().__init__(names)
+        self.hidden = tuple(hidden)
+
+    def __contains__(self, value) -> bool:
+        return value in self.hidden or super().__contains__(value)
 
 
 def add_preset_flag(p: argparse.ArgumentParser, keys: list[str] | None = None) -> None:
     """``--preset NAME`` on a command whose parameter sets (``keys``; None: any) some
-    built-in preset changes (:mod:`wakeline.core.presets`); nothing otherwise."""
-    from wakeline.core.presets import presets
+    built-in preset changes (:mod:`wakeline.core.presets`); nothing otherwise. A retired
+    preset's name (``RETIRED``) that applied there is still taken, not listed: a note, no
+    change."""
+    from wakeline.core.presets import RETIRED, presets
 
     names = [
         name
@@ -282,10 +301,11 @@ def add_preset_flag(p: argparse.ArgumentParser, keys: list[str] | None = None) -
     ]
     if not names:
         return
+    retired = [r.name for r in RETIRED.values() if keys is None or set(r.keys) & set(keys)]
     p.add_argument(
         "--preset",
         action=_PresetAction,
-        choices=[*names, "list"],
+        choices=_Choices([*names, "list"], retired),
         metavar="NAME",
         help=f"start from a built-in preset: {', '.join(names)} (`wakeline presets` or "
         "--preset list gives their purpose and evidence); flags given still apply",

@@ -48,6 +48,7 @@ from wakeline.core.presets import (
     menu_table,
     preset,
     presets,
+    retired_note,
     suggest_from,
     suggest_inputs,
 )
@@ -704,7 +705,12 @@ class ParamsPanel(QtWidgets.QWidget):
         """Apply the built-in preset ``name`` (:func:`wakeline.core.presets.menu_table`: its
         values; another built-in preset's values back at their defaults where they are still
         that preset's; the rest, and the operator's own values, kept);
-        the log is told what changed. Returns the problems (values not applied)."""
+        the log is told what changed. Returns the problems (values not applied). A retired
+        preset's name (core.presets.RETIRED): its note, nothing changed."""
+        note = retired_note(name)
+        if note:
+            self.message.emit(core_text.shown(note))
+            return []
         p = preset(name)
         before = self.to_dict()
         problems = self.from_dict(menu_table(p, before))
@@ -794,13 +800,6 @@ class ParamsPanel(QtWidgets.QWidget):
                         "the first windows is {1:.1f} × the threshold on a typical track): "
                         "the built-in preset “{0}” finds far fewer false turns."
                     ).format(title, s.value)
-                )
-            elif s.name == "slow-radar":
-                texts.append(
-                    self.tr(
-                        "Plots every {1} s, not AIS: the built-in preset “{0}” finds more "
-                        "of the turns at slow radar scans."
-                    ).format(title, _seconds(s.value))
                 )
         return " ".join(texts)
 

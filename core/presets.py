@@ -83,16 +83,6 @@ def presets() -> dict[str, Preset]:
             {"maneuver": {"confirm_z": 4.0, "confirm_grow": 4}},
         ),
         Preset(
-            "slow-radar",
-            "Slow radar scans (3-7 s)",
-            "radar plots every 3-7 s (a harbour or ship radar): turns near a track's ends "
-            "and close together are found",
-            "radius_s 15 + edge_s 12: Autoferry radar at 4 s P / R 0.92 / 0.46 -> "
-            "0.90 / 0.92, at 5 s 1.00 / 0.43 -> 0.88 / 0.79. Costs: extra detections on the lidar at 4-5 s "
-            '(docs/evaluation.md "Radar at slower scans (h162)")',
-            {"maneuver": {"radius_s": 15.0, "edge_s": 12.0}},
-        ),
-        Preset(
             "paper",
             "Paper (as written)",
             "the seed papers' methods as written (seed 000: windows in points, one scale, "
@@ -105,14 +95,53 @@ def presets() -> dict[str, Preset]:
     return {p.name: p for p in items}
 
 
+@dataclass(frozen=True)
+class Retired:
+    """A built-in preset no longer offered whose name is still accepted (a command line or
+    script naming it): it changes nothing and :attr:`note` says why."""
+
+    name: str
+    title: str
+    #: the parameter sets it changed (the commands whose ``--preset`` took it)
+    keys: tuple[str, ...]
+    note: str
+
+
+#: Retired presets by name. ``slow-radar`` (session 29, ``radius_s`` 15 + ``edge_s`` 12):
+#: session 31 (h241, docs/prereg/session31_slow_scans_b.md) made these values the
+#: defaults, gated by ``step_noise_max`` 0.15; the ungated pair measured worse than the
+#: new default on every set (docs/evaluation.md "Session 31: slow scans, gated").
+RETIRED: dict[str, Retired] = {
+    "slow-radar": Retired(
+        "slow-radar",
+        "Slow radar scans (3-7 s)",
+        ("maneuver",),
+        "slow-radar: its values are the defaults since session 31; nothing changed",
+    ),
+}
+
+
+def retired_note(name: str) -> str | None:
+    """The note for a retired preset's name or title (any case); None for any other."""
+    key = name.strip().lower()
+    for r in RETIRED.values():
+        if key in (r.name, r.title.lower()):
+            return r.note
+    return None
+
+
 def preset(name: str) -> Preset:
-    """The preset called ``name`` (its name or its title, any case); InputError naming
-    the known ones otherwise."""
+    """The preset called ``name`` (its name or its title, any case); a retired one
+    (:data:`RETIRED`) as a preset that changes nothing; InputError naming the known ones
+    otherwise."""
     table = presets()
     key = name.strip().lower()
     for p in table.values():
         if key in (p.name, p.title.lower()):
             return p
+    for r in RETIRED.values():
+        if key in (r.name, r.title.lower()):
+            return Preset(r.name, r.title, r.note, r.note, {})
     raise InputError(f"unknown preset {name!r}; presets: {', '.join(table)}")
 
 
@@ -147,6 +176,8 @@ def menu_table(
     from wakeline.core.pipeline import STEPS
 
     p = preset(which) if isinstance(which, str) else which
+    if p.name in RETIRED:
+        return {}  # changes nothing, not even another preset's values
     classes = {key: cls for step in STEPS.values() for key, cls in step.params}
     out = p.table()
     for other in presets().values():
@@ -197,8 +228,6 @@ def preset_lines() -> list[str]:
 
 #: Rows read for the noise estimate (whole tracks, in order, until this many).
 SUGGEST_MAX_ROWS = 200_000
-#: Median scan interval (s) for which the slow-radar preset is suggested.
-SLOW_RADAR_S = (3.0, 7.0)
 #: Above this median interval (s) the noise-tracks preset is not suggested: between fixes
 #: this far apart the track's measured "noise" (its neighbours' interpolation) is the
 #: ship's own motion (ATD's 30-min posits gave ratios 2.4–2.7 and the preset changed
@@ -215,7 +244,7 @@ class Suggestion:
 
     name: str
     #: noisy-tracks: the median over tracks of k · σ_δ / threshold (above 1: the noise
-    #: floor, not the threshold, decides which turns count); slow-radar: the interval (s)
+    #: floor, not the threshold, decides which turns count)
     value: float
 
 
@@ -344,9 +373,6 @@ def suggest_from(inputs: SuggestInputs, threshold_deg: float) -> list[Suggestion
     sparse = np.isfinite(inputs.interval_s) and inputs.interval_s > NOISY_MAX_INTERVAL_S
     if np.isfinite(ratio) and ratio >= 1.0 and not sparse:
         out.append(Suggestion("noisy-tracks", float(ratio)))
-    lo, hi = SLOW_RADAR_S
-    if lo <= inputs.interval_s <= hi and not inputs.ais:
-        out.append(Suggestion("slow-radar", inputs.interval_s))
     return out
 
 
@@ -356,9 +382,10 @@ def suggested_presets(points: pd.DataFrame, params=None) -> list[Suggestion]:
 
     - ``noisy-tracks`` where :func:`noise_floor_ratio` is at least 1: on a typical track
       the detector's noise floor at its first scale is above its threshold (not where the
-      median interval is over :data:`NOISY_MAX_INTERVAL_S`);
-    - ``slow-radar`` where the median over tracks of each one's median interval is within
-      :data:`SLOW_RADAR_S` and the data are not AIS (:func:`looks_like_ais`).
+      median interval is over :data:`NOISY_MAX_INTERVAL_S`).
+
+    (``slow-radar``, suggested at 3-7 s for data not AIS until session 31, is retired:
+    :data:`RETIRED`.)
 
     :func:`suggest_inputs` then :func:`suggest_from` (the panel runs the first off the GUI
     thread, once per layer). docs/evaluation.md "Built-in presets (session 29)" gives the

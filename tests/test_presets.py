@@ -17,12 +17,14 @@ from wakeline.core.errors import InputError
 from wakeline.core.maneuver import ManeuverParams
 from wakeline.core.pipeline import STEPS, Pipeline
 from wakeline.core.presets import (
+    SuggestInputs,
     apply_preset,
     menu_table,
     noise_floor_ratio,
     preset,
     preset_pipeline,
     presets,
+    retired_note,
     suggest_from,
     suggest_inputs,
     suggested_presets,
@@ -32,16 +34,40 @@ from wakeline.core.presets import (
 CLASSES = {key: cls for step in STEPS.values() for key, cls in step.params}
 
 
-def test_the_registry_holds_the_three_measured_presets():
-    assert list(presets()) == ["noisy-tracks", "slow-radar", "paper"]
+def test_the_registry_holds_the_two_measured_presets():
+    assert list(presets()) == ["noisy-tracks", "paper"]
     for p in presets().values():
         assert p.title and p.purpose and p.evidence
         assert "docs/evaluation.md" in p.evidence or p.name == "paper"
     assert preset("noisy-tracks").changes == {"maneuver": {"confirm_z": 4.0, "confirm_grow": 4}}
-    assert preset("slow-radar").changes == {"maneuver": {"radius_s": 15.0, "edge_s": 12.0}}
 
 
-@pytest.mark.parametrize("name", ["noisy-tracks", "slow-radar", "paper"])
+#: slow-radar's note (session 31, h247: its values are the defaults, the preset removed).
+SLOW_NOTE = "slow-radar: its values are the defaults since session 31; nothing changed"
+
+
+def test_slow_radar_is_retired_its_name_taken_with_a_note_and_no_change():
+    """Session 31 (h241) made slow-radar's radius_s 15 + edge_s 12 the defaults (gated by
+    step_noise_max 0.15); the preset is removed (h247) and its name still taken: a note,
+    nothing changed (not even another preset's values the menu would set back)."""
+    assert "slow-radar" not in presets()
+    assert retired_note("slow-radar") == retired_note("Slow radar scans (3-7 s)") == SLOW_NOTE
+    assert retired_note("noisy-tracks") is None and retired_note("quiet") is None
+    p = preset("slow-radar")
+    assert p.changes == {} and p.name == "slow-radar"
+    noisy = ManeuverParams().replace(confirm_z=4.0, confirm_grow=4, radius_s=9.0)
+    for step in STEPS.values():
+        before = {
+            **step.defaults(),
+            **({"maneuver": noisy} if "maneuver" in step.defaults() else {}),
+        }
+        assert apply_preset("slow-radar", before) == before
+    assert preset_pipeline(Pipeline.default(), "slow-radar") == Pipeline.default()
+    table = {"maneuver": {"confirm_z": 4.0, "confirm_grow": 4}}
+    assert menu_table("slow-radar", table) == {} == menu_table("slow-radar")
+
+
+@pytest.mark.parametrize("name", ["noisy-tracks", "paper"])
 def test_every_change_names_a_field_and_applies_over_the_defaults(name):
     p = preset(name)
     assert p.changes, "a preset changes something"
@@ -50,12 +76,6 @@ def test_every_change_names_a_field_and_applies_over_the_defaults(name):
         fields = {f.name for f in dataclasses.fields(CLASSES[key])}
         assert set(values) <= fields
         default = CLASSES[key]()
-        if name == "slow-radar":
-            # session 31 (h241, docs/prereg/session31_slow_scans_b.md): its values became the
-            # defaults (gated by step_noise_max 0.15, which it leaves alone); kept as it was,
-            # it sets them back where they were changed
-            assert all(getattr(default, n) == v for n, v in values.items())
-            continue
         # each change is a change (no value equal to the default's)
         assert all(getattr(default, n) != v for n, v in values.items())
     for step in STEPS.values():
@@ -87,7 +107,7 @@ def test_the_paper_preset_is_each_steps_paper_parameters():
 
 
 def test_an_unknown_preset_is_refused_with_the_names():
-    with pytest.raises(InputError, match="noisy-tracks, slow-radar, paper"):
+    with pytest.raises(InputError, match="noisy-tracks, paper"):
         preset("quiet")
     assert preset("Noisy tracks").name == "noisy-tracks"  # its title, any case
 
@@ -104,10 +124,11 @@ def test_the_menus_table_sets_the_other_presets_fields_back_to_their_defaults():
 
 
 def test_a_preset_pipeline_changes_every_stage_it_names():
-    pipe = preset_pipeline(Pipeline.default(), "slow-radar")
+    pipe = preset_pipeline(Pipeline.default(), "noisy-tracks")
     (clean_name, clean), (name, params) = pipe.stages
     assert clean == Pipeline.default().stages[0][1]
-    assert params["maneuver"].radius_s == 15.0 and params["maneuver"].edge_s == 12.0
+    assert params["maneuver"].confirm_z == 4.0 and params["maneuver"].confirm_grow == 4
+    assert params["maneuver"].replace(confirm_z=0.0, confirm_grow=0) == ManeuverParams()
     assert params["compress"] == CompressParams()
 
 
@@ -161,8 +182,22 @@ def test_preset_on_a_step_command_and_a_flag_over_it(tmp_path, step):
     }
     over = _report_params(tmp_path, [*base, "--preset", "noisy-tracks", "--confirm-z", "3"])
     assert over["maneuver"]["confirm_z"] == 3.0 and over["maneuver"]["confirm_grow"] == 4
+    over = _report_params(tmp_path, [*base, "--preset", "noisy-tracks", "--set", "confirm_grow=0"])
+    assert over["maneuver"]["confirm_z"] == 4.0 and over["maneuver"]["confirm_grow"] == 0
+
+
+@pytest.mark.parametrize("step", ["maneuvers", "compress"])
+def test_the_retired_slow_radar_on_a_step_command_is_a_note_and_no_change(tmp_path, capsys, step):
+    src, _ = _track_file(tmp_path)
+    base = [step, str(src), "-o", str(tmp_path / "out.csv")]
+    plain = _report_params(tmp_path, base)
+    capsys.readouterr()
+    assert _report_params(tmp_path, [*base, "--preset", "slow-radar"]) == plain
+    err = capsys.readouterr().err
+    assert err.count(SLOW_NOTE) == 1 and "unknown" not in err and "invalid" not in err
+    # flags still apply over it
     over = _report_params(tmp_path, [*base, "--preset", "slow-radar", "--set", "edge_s=0"])
-    assert over["maneuver"]["radius_s"] == 15.0 and over["maneuver"]["edge_s"] == 0.0
+    assert over["maneuver"]["edge_s"] == 0.0 and over["maneuver"]["radius_s"] == 15.0
 
 
 def test_paper_preset_on_compress_is_the_paper_flag(tmp_path):
@@ -199,7 +234,27 @@ def test_unknown_preset_on_the_command_line(capsys):
     with pytest.raises(SystemExit) as exc:
         main(["maneuvers", "x.csv", "-o", "y.csv", "--preset", "quiet"])
     assert exc.value.code == 2
-    assert "noisy-tracks" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "noisy-tracks" in err and "slow-radar" not in err  # the retired one not offered
+
+
+def test_presets_help_and_list_do_not_offer_slow_radar(capsys):
+    assert main(["presets"]) == 0
+    assert "slow-radar" not in capsys.readouterr().out
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command").choices
+    for name in ("maneuvers", "batch", "evaluate"):
+        flag = next(a for a in sub[name]._actions if a.dest == "preset")
+        assert "slow-radar" not in flag.help and "slow-radar" not in list(flag.choices)
+        assert "slow-radar" in flag.choices  # still taken
+
+
+def test_batch_print_pipeline_with_the_retired_slow_radar_is_the_default(capsys):
+    assert main(["batch", "--print-pipeline"]) == 0
+    plain = capsys.readouterr().out
+    assert main(["batch", "--print-pipeline", "--preset", "slow-radar"]) == 0
+    got = capsys.readouterr()
+    assert got.out == plain and got.err.count(SLOW_NOTE) == 1
 
 
 def test_batch_print_pipeline_with_a_preset(capsys):
@@ -217,11 +272,16 @@ def test_evaluate_maneuver_takes_the_preset_under_its_flags(capsys):
     from wakeline.app.cli_evaluate import _maneuver_params
 
     parser = build_parser()
-    args = parser.parse_args(["evaluate", "maneuver", "--preset", "slow-radar"])
+    args = parser.parse_args(["evaluate", "maneuver", "--preset", "noisy-tracks"])
     mp = _maneuver_params(args)
-    assert mp.radius_s == 15.0 and mp.edge_s == 12.0
-    args = parser.parse_args(["evaluate", "maneuver", "--preset", "slow-radar", "--edge-s", "6"])
-    assert _maneuver_params(args).edge_s == 6.0
+    assert mp.confirm_z == 4.0 and mp.confirm_grow == 4
+    args = parser.parse_args(
+        ["evaluate", "maneuver", "--preset", "noisy-tracks", "--confirm-z", "3"]
+    )
+    assert _maneuver_params(args).confirm_z == 3.0
+    args = parser.parse_args(["evaluate", "maneuver", "--preset", "slow-radar"])  # retired
+    assert _maneuver_params(args) == ManeuverParams()
+    assert capsys.readouterr().err.count(SLOW_NOTE) == 1
     assert _maneuver_params(parser.parse_args(["evaluate", "maneuver"])) == ManeuverParams()
     assert main(["evaluate", "fuse", "--preset", "noisy-tracks"]) == 2
     assert "--preset applies to evaluate maneuver" in capsys.readouterr().err
@@ -249,14 +309,27 @@ def test_noisy_tracks_suggested_where_the_noise_floor_exceeds_the_threshold(tmp_
     assert "noisy-tracks" not in _names(clean)
 
 
-def test_slow_radar_suggested_at_3_to_7_s_unless_ais(tmp_path):
-    for dt, want in ((2.0, False), (4.0, True), (6.5, True), (10.0, False)):
+def test_nothing_suggested_for_clean_radar_at_3_to_7_s_since_slow_radar_retired(tmp_path):
+    """Until session 31 slow-radar was suggested for 3-7 s data not AIS; its values are the
+    defaults now and it is removed: clean plots at any rate suggest nothing, noisy ones at
+    3-7 s still suggest noisy-tracks."""
+    for dt in (2.0, 4.0, 5.0, 6.5, 10.0):
         _, pts = _track_file(tmp_path, dt=dt, sensor="radar", batch="7")
-        assert ("slow-radar" in _names(pts)) == want, dt
-    _, pts = _track_file(tmp_path, dt=4.0, sensor="S1", batch="209351000")  # an MMSI
-    assert "slow-radar" not in _names(pts)
-    _, pts = _track_file(tmp_path, dt=4.0, sensor="AIS", batch="7")
-    assert "slow-radar" not in _names(pts)
+        assert _names(pts) == [], dt
+    for dt in (4.0, 5.0):
+        noisy = pd.concat(
+            [
+                _track_file(
+                    tmp_path, dt=dt, n=400, sigma=40.0, sensor="radar", batch=str(s), seed=s
+                )[1]
+                for s in (1, 2)
+            ]
+        )
+        assert noise_floor_ratio(noisy) > 1, dt
+        assert _names(noisy) == ["noisy-tracks"], dt
+    for interval in (3.0, 4.0, 5.0, 7.0):
+        inputs = SuggestInputs(noise_deg=1.0, interval_s=interval, ais=False)
+        assert suggest_from(inputs, 15.0) == []
 
 
 @pytest.mark.skipif(not SHARED_REAL.exists(), reason="shared real sets not present")
@@ -273,14 +346,14 @@ def test_on_the_real_sets_noisy_fires_on_mtad_not_on_the_ais_sets():
     mtad = read_track_files(SHARED_REAL / "mtad-dtwcm" / "original", None)[0]
     assert _names(mtad) == ["noisy-tracks"]
     radar, _ = real_sets.read_autoferry(SHARED_REAL / "autoferry-fusion", exclusive=True)
-    assert "slow-radar" not in _names(radar)  # 1.68 s
     import sys
     from pathlib import Path
 
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
     from sampling_sweep import decimate
 
-    assert "slow-radar" in _names(decimate(radar, 5))
+    # the radar at 1.68 s and at 5 s (where slow-radar was suggested until session 31)
+    assert "slow-radar" not in _names(radar) + _names(decimate(radar, 5))
 
 
 # -- the parameter panel ---------------------------------------------------------------------
@@ -314,13 +387,13 @@ def test_the_panels_built_in_presets_menu_applies_and_logs(qtbot):
     assert "confirm_z 0 → 4" in said[-1] and "confirm_grow 0 → 4" in said[-1]
     assert "maneuver" in changed  # the project is told, as for an edit
     panel.from_dict({"maneuver": {"threshold_deg": 20.0}})  # the operator's own value
-    panel.apply_builtin("slow-radar")
-    mp = panel.params("maneuver")
-    assert (mp.radius_s, mp.edge_s, mp.confirm_z, mp.confirm_grow) == (15.0, 12.0, 0.0, 0)
-    assert mp.threshold_deg == 20.0  # kept
-    assert "confirm_z 4 → 0" in said[-1] and "radius_s" not in said[-1]  # 15 by default
-    panel.apply_builtin("slow-radar")
-    assert said[-1] == "Built-in preset “Slow radar scans (3-7 s)”: every value was already set"
+    panel.apply_builtin("noisy-tracks")
+    assert said[-1] == "Built-in preset “Noisy tracks”: every value was already set"
+    # the retired slow-radar (a caller naming it): its note, nothing changed
+    before = panel.to_dict()
+    n_changed = len(changed)
+    assert panel.apply_builtin("slow-radar") == []
+    assert said[-1] == SLOW_NOTE and panel.to_dict() == before and len(changed) == n_changed
     panel.apply_builtin("paper")
     assert panel.params("maneuver") == ManeuverParams.paper().replace(threshold_deg=20.0)
     assert panel.params("compress") == CompressParams.paper()
@@ -358,6 +431,9 @@ def test_the_built_in_presets_in_chinese(qtbot):
         assert (
             said[-1].startswith("已应用内置预设“噪声大的航迹”：") and "confirm_z 0 → 4" in said[-1]
         )
+        panel.apply_builtin("slow-radar")  # retired: its note in Chinese
+        assert said[-1].startswith("slow-radar：") and han.search(said[-1])
+        assert not {w for w in english.findall(said[-1]) if w not in ("slow", "radar")}
     finally:
         core_text.set_language("en")
         i18n.install(app, "en", translator)
@@ -375,14 +451,16 @@ def test_the_guidance_suggests_the_preset_that_suits_the_layer(qtbot, tmp_path):
     assert text.startswith("Smallest turn found for this data")
     assert "the built-in preset “Noisy tracks” finds far fewer false turns" in text
     assert "Slow radar" not in text
+    # a parameter change shows the guidance again, the suggestion with it
+    panel.from_dict({"maneuver": {"threshold_deg": 20.0}})
+    assert "“Noisy tracks”" in panel.guidance.text()
+    panel.reset()
+    # clean plots every 5 s (slow-radar was suggested there until session 31): no preset
     _, slow = _track_file(tmp_path, dt=5.0, sensor="radar", batch="3")
     panel.show_guidance(track_summary(slow), slow)
     text = panel.guidance.text()
-    assert "Plots every 5 s, not AIS: the built-in preset “Slow radar scans (3-7 s)”" in text
-    assert "Noisy tracks" not in text
-    # a parameter change shows the guidance again, the suggestion with it
-    panel.from_dict({"maneuver": {"threshold_deg": 20.0}})
-    assert "Slow radar scans (3-7 s)" in panel.guidance.text()
+    assert text.startswith("Smallest turn found for this data")
+    assert "built-in preset" not in text and "Slow radar" not in text
     _, ais = _track_file(tmp_path, dt=5.0, sensor="AIS", batch="3")
     panel.show_guidance(track_summary(ais), ais)
     assert "built-in preset" not in panel.guidance.text()
@@ -397,7 +475,6 @@ def test_the_guidance_suggests_the_preset_that_suits_the_layer(qtbot, tmp_path):
     [
         (["--preset", "noisy-tracks", "--confirm-z", "0"], "confirm_z"),
         (["--preset", "noisy-tracks", "--confirm-grow", "0"], "confirm_grow"),
-        (["--preset", "slow-radar", "--radius-s", str(ManeuverParams().radius_s)], "radius_s"),
     ],
 )
 def test_evaluate_maneuver_flag_given_at_its_default_beats_the_preset(flags, field):
@@ -434,8 +511,12 @@ def test_choosing_a_preset_keeps_the_operators_values_and_undoes_the_preset_in_e
     panel.apply_builtin("noisy-tracks")
     mp = panel.params("maneuver")
     assert mp.min_speed_kn == 0.5 and mp.window_s == ManeuverParams().window_s
-    table = menu_table("slow-radar", panel.to_dict())
-    assert table["maneuver"]["confirm_z"] == 0.0 and "window_s" not in table["maneuver"]
+    table = menu_table("paper", panel.to_dict())
+    assert table["maneuver"]["confirm_z"] == 0.0  # noisy-tracks' value in effect, undone
+    assert menu_table("noisy-tracks", panel.to_dict())["maneuver"] == {
+        "confirm_z": 4.0,
+        "confirm_grow": 4,
+    }
 
 
 def test_the_suggestion_is_computed_once_per_layer_off_the_gui_thread(qtbot, tmp_path, monkeypatch):

@@ -843,10 +843,6 @@
         <translation>相对于此采样，位置噪声较大（典型航迹上，第一级窗口的噪声下限是阈值的 {1:.1f} 倍）：内置预设“{0}”误报的转向少得多。</translation>
     </message>
     <message>
-        <source>Plots every {1} s, not AIS: the built-in preset “{0}” finds more of the turns at slow radar scans.</source>
-        <translation>每 {1} 秒一个点迹，且不是 AIS：内置预设“{0}”在慢速雷达扫描下能找到更多转向。</translation>
-    </message>
-    <message>
         <source>Save preset</source>
         <translation>保存预设</translation>
     </message>
