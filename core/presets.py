@@ -345,7 +345,8 @@ class SuggestInputs:
     noise_deg: float
     #: the median over tracks of each one's median interval (s); NaN: none
     interval_s: float
-    #: :func:`looks_like_ais`
+    #: :func:`looks_like_ais` (no rule reads it since slow-radar was removed, h247; kept as
+    #: a measured property of the layer)
     ais: bool
 
 
