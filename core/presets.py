@@ -116,7 +116,7 @@ RETIRED: dict[str, Retired] = {
         "slow-radar",
         "Slow radar scans (3-7 s)",
         ("maneuver",),
-        "slow-radar: its values are the defaults since session 31; nothing changed",
+        "slow-radar: this preset was retired, its values (radius_s 15, edge_s 12) are now the defaults; nothing changed",
     ),
 }
 
