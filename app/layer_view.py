@@ -6,6 +6,7 @@ a track is a slice, not a scan of a million rows), the maneuver points, and the 
 the map draws. The GUI thread only swaps the finished :class:`LayerView` in.
 """
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -281,6 +282,13 @@ def prepare_view(
         kind=kind,
         lon_west=west,
     )
+    view = _finish(pts, kind, summary, draw, ranges, marks, previous)
+    view.draw = with_paths(view.draw)
+    return view
+
+
+def _finish(pts, kind, summary, draw, ranges, marks, previous) -> LayerView:
+    """The view's table text and index, and its plots mark (the draw's paths not made)."""
     if previous is not None and previous.text:  # a decision: the unchanged columns kept
         text = display_text(summary, previous=(previous.summary, previous.text))
     else:
@@ -301,7 +309,227 @@ def prepare_view(
             from wakeline.app.map_draw import as_points
 
             draw = as_points(draw, True)
-    return LayerView(pts, summary, ranges, marks, with_paths(draw), text, extra)
+    return LayerView(pts, summary, ranges, marks, draw, text, extra)
+
+
+#: A decision's lines are made again alone (:func:`relabel_view`) while they hold at most
+#: this share of the layer's points; beyond it the whole view is made (a first decision
+#: after a bind relabels every track: the engine's targets become the review's).
+RELABEL_MAX_SHARE = 0.5
+
+
+def relabel_view(
+    previous: LayerView,
+    points: pd.DataFrame,
+    targets: np.ndarray,
+    kind: str,
+    view: tuple[float, float, float, float] | None = None,
+    size_px: tuple[int, int] | None = None,
+) -> LayerView | None:
+    """:func:`prepare_view` of ``points`` — ``previous.points`` with new targets (a review
+    decision: ``targets`` per track, text, in the tracks' order) — made from ``previous``:
+    only the lines of the targets the decision changes are sorted, unwrapped and broken at
+    gaps again (:mod:`wakeline.core.line_splice`), the untouched ones copied as blocks; the
+    hover tree kept (the positions are the same, in another order); the summary's target
+    and status set for the tracks moved. The same view as :func:`prepare_view` makes
+    (tests/test_review_relabel_view.py). None where it does not apply (then make the whole
+    view): a layer not drawn one line per target (not ``associated``), other columns or
+    rows than ``previous``'s, no target changed, lines holding more than
+    :data:`RELABEL_MAX_SHARE` of the points to make again, targets not in the text order
+    the sort leaves, a layer drawn by track colours or as plots since."""
+    from wakeline.app.map_draw import (
+        DrawData,
+        LayerGeometry,
+        curves_for,
+        drawn_lines,
+        layer_geometry,
+    )
+    from wakeline.app.map_frame import position_sketch
+    from wakeline.app.map_paths import with_paths
+    from wakeline.core.line_splice import line_rows, splice_lines, touched_targets
+    from wakeline.core.tracks import known_order
+
+    draw = previous.draw if previous is not None else None
+    if draw is None or kind != "associated" or "target" not in points.columns:
+        return None
+    old_pts = previous.points
+    if len(points) != len(old_pts) or "target" not in old_pts.columns:
+        return None
+    if list(points.columns) != list(old_pts.columns):
+        return None
+    geom = draw.geometry
+    if geom.plain is not None or geom.point_note is not None or len(geom.colors) != 1:
+        return None
+    known = known_order(points)
+    if known is None or known_order(old_pts) is None or known[0] is not known_order(old_pts)[0]:
+        return None  # not the same rows in the same order
+    for col in points.columns:  # every other column the previous points' own
+        if col != "target" and not _same_values(points[col], old_pts[col]):
+            return None
+    index = known[0]
+    summary_old = previous.summary
+    if len(summary_old) != index.n_tracks or len(targets) != index.n_tracks:
+        return None
+    old_t = summary_old["target"].to_numpy(dtype=object)
+    if pd.isna(old_t).any():
+        return None
+    old_t = old_t.astype(str).astype(object)
+    new_t = np.asarray(targets, dtype=object)
+    moved = touched_targets(old_t, new_t)
+    if not moved.any():
+        return None
+    tracks = np.flatnonzero(moved)
+    rows = line_rows(index.starts, index.ends, tracks)
+    if len(rows) > RELABEL_MAX_SHARE * len(points):
+        return None
+    # the old lines of the touched targets (all sensors), in line order
+    hit = set(old_t[tracks].tolist())
+    line_target = geom.batch
+    drop = np.flatnonzero(pd.Series(line_target).isin(hit).to_numpy())
+    old_sizes = geom.ends - geom.starts
+    if int(old_sizes[drop].sum()) != len(rows):
+        return None
+    cols = [c for c in ("sensor", "batch", "time", "lon", "lat", "speed") if c in points.columns]
+    part = points[cols].iloc[rows].reset_index(drop=True)
+    part["target"] = points["target"].iloc[rows].to_numpy()
+    part["_row"] = np.arange(len(rows))
+    fresh = layer_geometry(
+        drawn_lines(part, kind),
+        geom.colors[0],
+        relative=geom.relative,
+        label=geom.labels[0] if geom.labels else "",
+        lon_west=geom.lon_west,
+    )
+    if geom.gap_break is None:
+        fresh = dataclasses.replace(fresh, gap_break=None)
+    plan = splice_lines(
+        (geom.sensor, geom.batch), old_sizes, drop, (fresh.sensor, fresh.batch),
+        fresh.ends - fresh.starts,
+    )  # fmt: skip
+    if plan is None:
+        return None
+    # where each moved row was and is: the old lines' rows in order are the part's rows
+    # sorted by the old keys (the sort is stable, the part in table order)
+    was = _line_order(part.assign(target=old_t[np.repeat(tracks, index.sizes[tracks])]), kind)
+    now = _line_order(part, kind)
+    old_rows = line_rows(geom.starts, geom.ends, drop)
+    new_at = np.flatnonzero(np.array([s for s, _a, _b in plan.line_pieces]) == 1)
+    new_rows = np.concatenate(
+        [np.arange(*_piece_rows(plan, k)) for k in new_at]
+    ) if len(new_at) else np.zeros(0, dtype="int64")  # fmt: skip
+    if len(was) != len(rows) or len(now) != len(rows) or len(new_rows) != len(rows):
+        return None
+    src = np.empty(len(rows), dtype="int64")  # per part row: its old row
+    src[was] = old_rows
+    dst = np.empty(len(rows), dtype="int64")  # and its new row
+    dst[now] = new_rows
+    lon = plan.take(geom.lon, fresh.lon)
+    lat = plan.take(geom.lat, fresh.lat)
+    same_place = np.array_equal(lon[dst], geom.lon[src]) and np.array_equal(lat[dst], geom.lat[src])
+    sizes = plan.sizes
+    starts = np.zeros(len(sizes), dtype="int64")
+    if len(sizes):
+        np.cumsum(sizes[:-1], out=starts[1:])
+    from wakeline.core.sorted_sets import repeat_runs
+
+    new_geom = LayerGeometry(
+        lon=lon,
+        lat=lat,
+        starts=starts,
+        ends=starts + sizes,
+        track=repeat_runs(None, sizes).astype(geom.track.dtype, copy=False),
+        sensor=plan.take_lines(geom.sensor, fresh.sensor),
+        batch=plan.take_lines(geom.batch, fresh.batch),
+        time_s=plan.take(geom.time_s, fresh.time_s),
+        speed_kn=plan.take(geom.speed_kn, fresh.speed_kn),
+        group=plan.take_lines(geom.group, fresh.group),
+        labels=geom.labels,
+        colors=geom.colors,
+        relative=geom.relative,
+        gap_break=None if geom.gap_break is None else plan.take(geom.gap_break, fresh.gap_break),
+        point_batch=None
+        if geom.point_batch is None
+        else plan.take(geom.point_batch, fresh.point_batch),
+        lon_west=geom.lon_west,
+    )
+    if same_place and geom._tree is not None:
+        moved_rows = plan.moved(src, dst, len(lon))
+        new_geom._tree = geom._tree
+        new_geom._tree_scale = geom._tree_scale
+        old_map = geom._tree_rows
+        new_geom._tree_rows = moved_rows if old_map is None else moved_rows[old_map]
+    else:
+        new_geom.tree()
+    like = geom._sketch if same_place else None
+    new_geom._sketch = position_sketch(lon, lat, like) if len(lon) else None
+    curves, box, px = curves_for(new_geom, view if size_px is not None else None, size_px)
+    shown = view if px is not None else None
+    data = DrawData(draw.name, new_geom, curves, draw.style, box, px, shown)
+    summary = _relabeled_summary(summary_old, moved, new_t)
+    out = _finish(points, kind, summary, data, previous.ranges, previous.maneuvers, previous)
+    if out.extra.get("plots", False) != previous.extra.get("plots", False):
+        return None  # drawn otherwise now: the whole view
+    out.draw = with_paths(out.draw)
+    return out
+
+
+def _piece_rows(plan, line_piece: int) -> tuple[int, int]:
+    """Rows ``first, stop`` of the new layout that piece ``line_piece`` fills."""
+    at = 0
+    for k, (_s, a, b) in enumerate(plan.pieces):
+        if k == line_piece:
+            return at, at + b - a
+        at += b - a
+    raise IndexError(line_piece)
+
+
+def _line_order(part: pd.DataFrame, kind: str) -> np.ndarray:
+    """The part's rows (``_row``) in the order its lines are drawn (sorted by line)."""
+    from wakeline.app.map_draw import drawn_lines
+    from wakeline.core.tracks import sorted_with_index
+
+    lines = drawn_lines(part, kind)[["sensor", "batch", "time", "_row"]]
+    return sorted_with_index(lines)[0]["_row"].to_numpy(dtype="int64")
+
+
+def _same_values(a: pd.Series, b: pd.Series) -> bool:
+    """Whether two columns hold the same data: the same buffers (not compared by value)."""
+    if a.dtype != b.dtype or len(a) != len(b):
+        return False
+    ka, kb = _buffers(a.array), _buffers(b.array)
+    return ka is not None and ka == kb
+
+
+def _buffers(arr) -> tuple | None:
+    """Addresses, lengths and types of the buffers holding an array's values; None when
+    they are not known without a copy."""
+    if hasattr(arr, "_pa_array"):
+        return tuple(
+            (c.offset, len(c), tuple(None if x is None else x.address for x in c.buffers()))
+            for c in arr._pa_array.chunks
+        )
+    parts = [getattr(arr, "_ndarray", None)]
+    if parts[0] is None:
+        parts = [getattr(arr, "_data", None), getattr(arr, "_mask", None)]
+    if parts[0] is None or not all(isinstance(p, np.ndarray) for p in parts):
+        return None
+    return tuple((p.__array_interface__["data"][0], p.shape, p.strides, p.dtype.str) for p in parts)
+
+
+def _relabeled_summary(
+    summary: pd.DataFrame, moved: np.ndarray, targets: np.ndarray
+) -> pd.DataFrame:
+    """:func:`~wakeline.app.models.batch_summary`'s ``target`` and ``status`` of the
+    tracks ``moved`` (whole targets) set from ``targets``; the other rows as they were."""
+    out = summary.reset_index(drop=True).copy()
+    target = out["target"].to_numpy(dtype=object).copy()
+    target[moved] = targets[moved]
+    joined = out["status"].to_numpy(dtype=object) == "joined"
+    mine = pd.Series(targets[moved])
+    joined[moved] = mine.map(mine.value_counts()).to_numpy() > 1
+    out["target"] = target
+    out["status"] = np.where(joined, "joined", "")
+    return out
 
 
 def prepare_view_apart(

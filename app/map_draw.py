@@ -100,6 +100,12 @@ class LayerGeometry:
     plain: tuple | None = None
     _tree: cKDTree | None = field(default=None, repr=False)
     _sketch: PositionSketch | None = field(default=None, repr=False)
+    #: The tree kept from an earlier order of the same positions (lines made again by a
+    #: review decision, :func:`wakeline.app.layer_view.relabel_view`): per point of the
+    #: tree, its row now; None: the tree's points are the rows.
+    _tree_rows: np.ndarray | None = field(default=None, repr=False)
+    #: ``x_scale`` the tree was built with (None: not built yet)
+    _tree_scale: float | None = field(default=None, repr=False)
 
     @property
     def n_points(self) -> int:
@@ -136,14 +142,21 @@ class LayerGeometry:
     def tree(self) -> cKDTree:
         """k-d tree over (lon·cos lat0, lat), built on first use (call it in a worker)."""
         if self._tree is None:
-            xy = np.column_stack([self.lon * self.x_scale, self.lat])
+            scale = self.x_scale
+            xy = np.column_stack([self.lon * scale, self.lat])
             self._tree = cKDTree(xy, balanced_tree=False, compact_nodes=False)
+            self._tree_rows, self._tree_scale = None, scale
         return self._tree
 
     def nearest(self, lon: float, lat: float) -> tuple[float, int]:
         """Distance (degrees of latitude) and index of the point nearest ``lon, lat``."""
-        d, i = self.tree().query([lon * self.x_scale, lat])
-        return float(d), int(i)
+        tree = self.tree()
+        scale = self.x_scale if self._tree_scale is None else self._tree_scale
+        d, i = tree.query([lon * scale, lat])
+        i = int(i)
+        if self._tree_rows is not None and i < len(self._tree_rows):
+            i = int(self._tree_rows[i])
+        return float(d), i
 
     def describe(self, i: int) -> dict:
         """Sensor, batch, time (text), speed (kn) of point ``i``."""

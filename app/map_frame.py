@@ -53,9 +53,19 @@ class PositionSketch:
         return (float(self.lon[0]), float(self.lat[0]), float(self.lon[-1]), float(self.lat[-1]))
 
 
-def position_sketch(lon: np.ndarray, lat: np.ndarray) -> PositionSketch | None:
-    """The sketch of the finite positions ``lon``, ``lat`` (degrees), None if none."""
+def position_sketch(
+    lon: np.ndarray, lat: np.ndarray, like: "PositionSketch | None" = None
+) -> PositionSketch | None:
+    """The sketch of the finite positions ``lon``, ``lat`` (degrees), None if none.
+    ``like``: the sketch of the same positions in another order, all finite (a layer's
+    lines made again): its extremes are kept, only the sampled quantiles are made."""
     lon, lat = np.asarray(lon, dtype="float64"), np.asarray(lat, dtype="float64")
+    if like is not None and like.n == len(lon) == len(lat):
+        q_lon = np.quantile(_sample(lon), SKETCH_PROBS)
+        q_lat = np.quantile(_sample(lat), SKETCH_PROBS)
+        q_lon[0], q_lon[-1] = like.lon[0], like.lon[-1]
+        q_lat[0], q_lat[-1] = like.lat[0], like.lat[-1]
+        return PositionSketch(like.n, q_lon, q_lat)
     ok = np.isfinite(lon) & np.isfinite(lat)
     n = int(ok.sum())
     if n == 0:

@@ -1,5 +1,6 @@
 """Qt models over core data: the batch table of a layer's tracks."""
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -146,15 +147,20 @@ def display_text(
         )
     from wakeline.app.time_text import format_times
 
-    if len(df):
+    if len(df) and not all(
+        previous is not None and _dates_kept(df, previous, k, _zone_now()) for k in ("start", "end")
+    ):
         epoch = pd.Timestamp("1970-01-01", tz="UTC")
         secs = {
             key: (pd.to_datetime(df[key], utc=True) - epoch).dt.total_seconds().to_numpy()
             for key in ("start", "end")
         }
         relative = is_relative_time(np.concatenate(list(secs.values())))
+    zone = _zone_now()
     for key in ("start", "end"):
-        if not len(df):
+        if previous is not None and _dates_kept(df, previous, key, zone):
+            out[key] = previous[1][key]  # the same times in the same zone
+        elif not len(df):
             out[key] = np.zeros(0, str)
         elif relative:  # seconds from a scene start (MTAD, Øresund): elapsed, not 1970 dates
             out[key] = np.asarray(format_times(secs[key], True), dtype=str)
@@ -177,7 +183,37 @@ def display_text(
         out["maneuvers"] = fixed_text(
             df["maneuvers"] if "maneuvers" in df.columns else [np.nan] * len(df), 0
         )
+    for key in ("start", "end"):  # the zone their text was made in
+        _remember_zone(out[key], zone)
     return out
+
+
+def _remember_zone(text: np.ndarray, zone) -> None:
+    key = id(text)
+    ref = weakref.ref(text, lambda _r: _DATE_ZONE.pop(key, None))
+    _DATE_ZONE[key] = (ref, zone)
+
+
+#: Date columns' texts made by :func:`display_text`: id → (weak reference, the display
+#: zone they were made in), so a decision's view keeps them while the zone is the same.
+_DATE_ZONE: dict[int, tuple] = {}
+
+
+def _zone_now():
+    from wakeline.app.time_text import display_zone
+
+    return display_zone()
+
+
+def _dates_kept(df: pd.DataFrame, previous: tuple, key: str, zone) -> bool:
+    """Whether the earlier view's text of date column ``key`` holds for ``df``: the
+    same times, made in the display zone shown now."""
+    old, old_text = previous
+    text = old_text.get(key)
+    entry = _DATE_ZONE.get(id(text)) if text is not None else None
+    if entry is None or entry[0]() is not text or entry[1] != zone:
+        return False
+    return len(old) == len(df) and bool(len(df)) and _same_column(df, old, key)
 
 
 def date_text(values) -> np.ndarray:

@@ -156,6 +156,8 @@ def test_a_decisions_table_text_keeps_the_columns_it_did_not_change():
     """A review decision relabels targets: the display text of the summary columns that
     stayed equal is the earlier view's (the same arrays, not formatted again), the row of
     each track too; every column is what formatting it afresh gives."""
+    import datetime as dt
+
     import numpy as np
     import pandas as pd
 
@@ -174,7 +176,19 @@ def test_a_decisions_table_text_keeps_the_columns_it_did_not_change():
     for key in fresh:
         np.testing.assert_array_equal(text[key], fresh[key])
     kept = {k for k in text if text[k] is old_text[k]}
-    assert kept == set(models.KEPT_TEXT)  # target, status and the dates made again
+    # target and status made again; the dates kept in the same display zone (session 31)
+    assert kept == set(models.KEPT_TEXT) | {"start", "end"}
+    from wakeline.app import time_text
+
+    saved = dict(time_text._display)
+    try:  # another zone: the dates made again, in it
+        time_text.set_display_zone(dt.timezone(dt.timedelta(hours=8)), "UTC+8")
+        other = models.display_text(new, previous=(old, old_text))
+        assert other["start"] is not old_text["start"]
+        np.testing.assert_array_equal(other["start"], models.display_text(new)["start"])
+        assert not (other["start"] == old_text["start"]).all()
+    finally:
+        time_text._display.update(saved)
     index = models.table_index(new, text, previous=(old_text, old_index))
     assert index.keys is old_index.keys and index.keys == models.table_index(new, fresh).keys
     # a column that changed is formatted again; other tracks: the index made again
