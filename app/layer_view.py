@@ -425,7 +425,14 @@ def relabel_view(
     dst[now] = new_rows
     lon = plan.take(geom.lon, fresh.lon)
     lat = plan.take(geom.lat, fresh.lat)
-    same_place = np.array_equal(lon[dst], geom.lon[src]) and np.array_equal(lat[dst], geom.lat[src])
+    time_s = plan.take(geom.time_s, fresh.time_s)
+    # the same points where they were (a line across 180° may be moved a turn; times
+    # checked too: the rows found again are those points, not others at one place)
+    same_place = (
+        np.array_equal(lon[dst], geom.lon[src])
+        and np.array_equal(lat[dst], geom.lat[src])
+        and np.array_equal(time_s[dst], geom.time_s[src], equal_nan=True)
+    )
     sizes = plan.sizes
     starts = np.zeros(len(sizes), dtype="int64")
     if len(sizes):
@@ -440,7 +447,7 @@ def relabel_view(
         track=repeat_runs(None, sizes).astype(geom.track.dtype, copy=False),
         sensor=plan.take_lines(geom.sensor, fresh.sensor),
         batch=plan.take_lines(geom.batch, fresh.batch),
-        time_s=plan.take(geom.time_s, fresh.time_s),
+        time_s=time_s,
         speed_kn=plan.take(geom.speed_kn, fresh.speed_kn),
         group=plan.take_lines(geom.group, fresh.group),
         labels=geom.labels,
@@ -460,6 +467,12 @@ def relabel_view(
         new_geom._tree_rows = moved_rows if old_map is None else moved_rows[old_map]
     else:
         new_geom.tree()
+    if geom._boxes is not None:  # the lines' boxes: the untouched ones kept
+        boxes = fresh.line_boxes()
+        if boxes is not None:
+            new_geom._boxes = tuple(
+                plan.take_lines(o, f) for o, f in zip(geom._boxes, boxes, strict=True)
+            )
     like = geom._sketch if same_place else None
     new_geom._sketch = position_sketch(lon, lat, like) if len(lon) else None
     curves, box, px = curves_for(new_geom, view if size_px is not None else None, size_px)
@@ -484,12 +497,17 @@ def _piece_rows(plan, line_piece: int) -> tuple[int, int]:
 
 
 def _line_order(part: pd.DataFrame, kind: str) -> np.ndarray:
-    """The part's rows (``_row``) in the order its lines are drawn (sorted by line)."""
+    """The part's rows (``_row``) in the order its lines are drawn: by sensor and line
+    (text), time, then the part's order — the stable sort of
+    :func:`~wakeline.core.tracks.sorted_with_index` (a few lines: one lexsort)."""
     from wakeline.app.map_draw import drawn_lines
-    from wakeline.core.tracks import sorted_with_index
+    from wakeline.core.schema import time_seconds
 
-    lines = drawn_lines(part, kind)[["sensor", "batch", "time", "_row"]]
-    return sorted_with_index(lines)[0]["_row"].to_numpy(dtype="int64")
+    lines = drawn_lines(part, kind)
+    sensor = pd.factorize(lines["sensor"], sort=True, use_na_sentinel=False)[0]
+    line = pd.factorize(lines["batch"], sort=True, use_na_sentinel=False)[0]
+    order = np.lexsort((time_seconds(lines["time"]), line, sensor))
+    return lines["_row"].to_numpy(dtype="int64")[order]
 
 
 def _same_values(a: pd.Series, b: pd.Series) -> bool:

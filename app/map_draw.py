@@ -36,7 +36,7 @@ from wakeline.app.time_text import format_time, is_relative_time
 from wakeline.core import geo
 from wakeline.core.schema import time_seconds
 from wakeline.core.sorted_sets import repeat_runs
-from wakeline.core.tracks import sorted_with_index
+from wakeline.core.tracks import concat_ranges, sorted_with_index
 
 
 @dataclass(frozen=True)
@@ -106,6 +106,8 @@ class LayerGeometry:
     _tree_rows: np.ndarray | None = field(default=None, repr=False)
     #: ``x_scale`` the tree was built with (None: not built yet)
     _tree_scale: float | None = field(default=None, repr=False)
+    #: Each line's (west, east, south, north), made on first use (:meth:`line_boxes`)
+    _boxes: tuple | None = field(default=None, repr=False)
 
     @property
     def n_points(self) -> int:
@@ -147,6 +149,21 @@ class LayerGeometry:
             self._tree = cKDTree(xy, balanced_tree=False, compact_nodes=False)
             self._tree_rows, self._tree_scale = None, scale
         return self._tree
+
+    def line_boxes(self) -> tuple | None:
+        """Each line's (west, east, south, north) arrays (degrees, as drawn), made on first
+        use; None when a position is not finite (then no line is left out by its box)."""
+        if self._boxes is None and self.n_tracks and self.n_points:
+            lon, lat, at = self.lon, self.lat, self.starts
+            if not (np.isfinite(lon).all() and np.isfinite(lat).all()):
+                return None
+            self._boxes = (
+                np.minimum.reduceat(lon, at),
+                np.maximum.reduceat(lon, at),
+                np.minimum.reduceat(lat, at),
+                np.maximum.reduceat(lat, at),
+            )
+        return self._boxes
 
     def nearest(self, lon: float, lat: float) -> tuple[float, int]:
         """Distance (degrees of latitude) and index of the point nearest ``lon, lat``."""
@@ -368,18 +385,55 @@ def curves_for(
             box = lod_box(view, margin)
     origin = (view[0], view[2]) if view is not None else (0.0, 0.0)
     starts, ends = geom.starts, geom.ends
-    if geom.gap_break is not None:
-        starts, ends = split_at(starts, ends, geom.gap_break)
-    keep, brk = decimate(geom.lon, geom.lat, starts, ends, px, box, origin)
-    group_of_point = geom.group[geom.track] if geom.n_points else np.zeros(0, dtype="int64")
+    lon, lat, gap, line = geom.lon, geom.lat, geom.gap_break, geom.track
+    near = _lines_near(geom, box)
+    if near is not None:
+        # Only the lines whose box meets the region: a line wholly beyond it keeps no
+        # point and breaks the curve at its start anyway (the same curves; a zoomed view
+        # of a million points decimated a million).
+        sizes = (ends - starts)[near]
+        rows = concat_ranges(starts[near], sizes)
+        lon, lat, line = lon[rows], lat[rows], line[rows]
+        gap = gap[rows] if gap is not None else None
+        starts = np.zeros(len(sizes), dtype="int64")
+        np.cumsum(sizes[:-1], out=starts[1:])
+        ends = starts + sizes
+    if gap is not None:
+        starts, ends = split_at(starts, ends, gap)
+    keep, brk = decimate(lon, lat, starts, ends, px, box, origin)
+    group_of_point = geom.group[line] if len(lon) else np.zeros(0, dtype="int64")
+    all_lon, all_lat = lon, lat
     curves = []
     for g, (label, color) in enumerate(zip(geom.labels, geom.colors, strict=True)):
         sel = keep & (group_of_point == g) if len(geom.labels) > 1 else keep
         # Tracks of one group are not contiguous when coloured by batch: a break at every
         # track start keeps them apart.
-        lon, lat = nan_join(geom.lon, geom.lat, sel, brk)
+        lon, lat = nan_join(all_lon, all_lat, sel, brk)
         curves.append(Curve(label, color, lon, lat))
     return tuple(curves), box, px
+
+
+#: Lines are left out of a level of detail by their boxes (:func:`curves_for`) when those
+#: that meet its region hold at most this share of the points.
+NEAR_LINES_SHARE = 0.5
+
+
+def _lines_near(geom: LayerGeometry, box) -> np.ndarray | None:
+    """The lines (numbers) whose box meets ``box`` (x0, x1, y0, y1), when they hold at
+    most :data:`NEAR_LINES_SHARE` of the points; None: decimate them all."""
+    if box is None or geom.n_tracks < 2:
+        return None
+    boxes = geom.line_boxes()
+    if boxes is None:
+        return None
+    west, east, south, north = boxes
+    x0, x1, y0, y1 = box
+    meets = (east >= x0) & (west <= x1) & (north >= y0) & (south <= y1)
+    near = np.flatnonzero(meets)
+    sizes = geom.ends - geom.starts
+    if int(sizes[near].sum()) > NEAR_LINES_SHARE * geom.n_points:
+        return None
+    return near
 
 
 def drawn_lines(points: pd.DataFrame, kind: str) -> pd.DataFrame:

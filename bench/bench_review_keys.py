@@ -242,13 +242,14 @@ def main() -> None:
         lay = w.session.layers[bound.lid]
         view, size_px = w.canvas.current_view(), w.canvas.plot_size_px()
         previous = w.views.get(bound.lid)
+        now = lay.points  # the points the decision is made on (the sync swaps others in)
 
         def job():
             # as ReviewSync runs it: the lines of the targets changed alone when that
             # applies (relabel_view), else (or --whole) the whole view
             whole = args.whole or relabel_view is None
-            if not whole and previous is not None and previous.points is lay.points:
-                quick = relabeled(lay.points, snap, bound.cache)
+            if not whole and previous is not None and previous.points is now:
+                quick = relabeled(now, snap, bound.cache)
                 if quick is not None:
                     pts, per_track = quick
                     if relabel_view(previous, pts, per_track, lay.kind, view, size_px):

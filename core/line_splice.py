@@ -27,7 +27,12 @@ def touched_targets(old: np.ndarray, new: np.ndarray) -> np.ndarray:
     if not changed.any():
         return changed
     hit = pd.unique(np.concatenate([old[changed], new[changed]]))
-    return pd.Series(old).isin(hit).to_numpy() | pd.Series(new).isin(hit).to_numpy()
+    if len(hit) > 16:  # many: one hash table
+        return pd.Series(old).isin(hit).to_numpy() | pd.Series(new).isin(hit).to_numpy()
+    out = changed.copy()  # a few (a decision's): compared one by one, no table of them all
+    for name in hit:
+        out |= old == name
+    return out
 
 
 @dataclass(frozen=True)
@@ -94,25 +99,18 @@ def splice_lines(
         at.append(k)
     if any(b < a for a, b in zip(at, at[1:], strict=False)):
         return None  # the new keys are not in order
-    dropped = set(int(d) for d in drop)
+    dropped = {int(d) for d in drop}
     line_pieces: list[tuple[int, int, int]] = []
     sizes: list[np.ndarray] = []
     j = 0  # next new line
-    i = 0  # next old line
-    while i <= n_lines:
-        while j < len(at) and at[j] == i:
+    i = 0  # first old line not placed yet
+    for cut in [*sorted(dropped | set(at)), n_lines]:
+        if cut > i:  # old lines i … cut-1: none dropped, nothing put between them
+            line_pieces.append((0, i, cut))
+        while j < len(at) and at[j] == cut:
             line_pieces.append((1, j, j + 1))
             j += 1
-        if i == n_lines:
-            break
-        if i in dropped:
-            i += 1
-            continue
-        stop = i + 1  # a run of kept old lines up to the next drop or insertion
-        while stop < n_lines and stop not in dropped and (j >= len(at) or at[j] > stop):
-            stop += 1
-        line_pieces.append((0, i, stop))
-        i = stop
+        i = cut + 1 if cut in dropped else cut
     merged: list[tuple[int, int, int]] = []
     for piece in line_pieces:  # adjacent new lines as one piece
         if merged and merged[-1][0] == piece[0] == 1 and merged[-1][2] == piece[1]:

@@ -1134,3 +1134,42 @@ def test_a_selected_track_of_a_layer_coloured_by_track_has_one_legend_line(qtbot
     texts = [label.text for _s, label in canvas.legend.items]
     assert sum(name in t for t in texts) == 1
     assert canvas.selection_color(sensor, batch) != "#2ca02c"
+
+
+def test_lines_beyond_the_region_left_out_by_their_boxes_change_no_curve(monkeypatch):
+    """A level of detail decimates only the lines whose box meets its region (session 31):
+    the curves are those of all lines decimated, over random views of a scene of many
+    tracks (colour by layer and by batch: several curves), with gaps and without."""
+    import dataclasses
+
+    import numpy as np
+
+    from wakeline.app import map_draw
+    from wakeline.core.simulate import segments_scene
+
+    rng = np.random.default_rng(31)
+    pts = segments_scene(seed=3, n_ships=30, area_km=40)
+    for color_by in ("layer", "batch"):
+        geom = map_draw.layer_geometry(pts, color_by=color_by)
+        for gaps in (True, False):
+            g = geom if gaps else dataclasses.replace(geom, gap_break=None)
+            x0, x1 = float(g.lon.min()), float(g.lon.max())
+            y0, y1 = float(g.lat.min()), float(g.lat.max())
+            left_out = 0
+            for _ in range(12):
+                w = (x1 - x0) * rng.uniform(0.02, 0.4)
+                h = (y1 - y0) * rng.uniform(0.02, 0.4)
+                cx, cy = rng.uniform(x0, x1), rng.uniform(y0, y1)
+                view = (cx - w, cx + w, cy - h, cy + h)
+                size = (int(rng.integers(200, 1200)), int(rng.integers(200, 900)))
+                monkeypatch.setattr(map_draw, "NEAR_LINES_SHARE", 0.0)  # all decimated
+                whole = map_draw.curves_for(g, view, size)
+                monkeypatch.setattr(map_draw, "NEAR_LINES_SHARE", 1.0)  # always by boxes
+                near = map_draw._lines_near(g, whole[1])
+                left_out += near is not None and len(near) < g.n_tracks
+                some = map_draw.curves_for(g, view, size)
+                assert some[1:] == whole[1:]
+                for a, b in zip(some[0], whole[0], strict=True):
+                    np.testing.assert_array_equal(a.lon, b.lon)
+                    np.testing.assert_array_equal(a.lat, b.lat)
+            assert left_out >= 6  # the views did leave lines out
