@@ -370,11 +370,10 @@ def relabel_view(
     summary_old = previous.summary
     if len(summary_old) != index.n_tracks or len(targets) != index.n_tracks:
         return None
-    old_t = summary_old["target"].to_numpy(dtype=object)
-    if pd.isna(old_t).any():
+    old_t = summary_old["target"].array
+    new_t = pd.array(targets, dtype=old_t.dtype) if not hasattr(targets, "dtype") else targets
+    if old_t.dtype != new_t.dtype or pd.isna(old_t).any() or pd.isna(new_t).any():
         return None
-    old_t = old_t.astype(str).astype(object)
-    new_t = np.asarray(targets, dtype=object)
     moved = touched_targets(old_t, new_t)
     if not moved.any():
         return None
@@ -383,7 +382,7 @@ def relabel_view(
     if len(rows) > RELABEL_MAX_SHARE * len(points):
         return None
     # the old lines of the touched targets (all sensors), in line order
-    hit = set(old_t[tracks].tolist())
+    hit = set(old_t[tracks].unique().tolist())
     line_target = geom.batch
     drop = np.flatnonzero(pd.Series(line_target).isin(hit).to_numpy())
     old_sizes = geom.ends - geom.starts
@@ -410,7 +409,7 @@ def relabel_view(
         return None
     # where each moved row was and is: the old lines' rows in order are the part's rows
     # sorted by the old keys (the sort is stable, the part in table order)
-    was = _line_order(part.assign(target=old_t[np.repeat(tracks, index.sizes[tracks])]), kind)
+    was = _line_order(part.assign(target=old_t.take(np.repeat(tracks, index.sizes[tracks]))), kind)
     now = _line_order(part, kind)
     old_rows = line_rows(geom.starts, geom.ends, drop)
     new_at = np.flatnonzero(np.array([s for s, _a, _b in plan.line_pieces]) == 1)
@@ -534,19 +533,20 @@ def _buffers(arr) -> tuple | None:
     return tuple((p.__array_interface__["data"][0], p.shape, p.strides, p.dtype.str) for p in parts)
 
 
-def _relabeled_summary(
-    summary: pd.DataFrame, moved: np.ndarray, targets: np.ndarray
-) -> pd.DataFrame:
+def _relabeled_summary(summary: pd.DataFrame, moved: np.ndarray, targets) -> pd.DataFrame:
     """:func:`~wakeline.app.models.batch_summary`'s ``target`` and ``status`` of the
-    tracks ``moved`` (whole targets) set from ``targets``; the other rows as they were."""
+    tracks ``moved`` (whole targets) set from ``targets`` (per track); the other rows as
+    they were (no text per track made again)."""
     out = summary.reset_index(drop=True).copy()
-    target = out["target"].to_numpy(dtype=object).copy()
-    target[moved] = targets[moved]
-    joined = out["status"].to_numpy(dtype=object) == "joined"
-    mine = pd.Series(targets[moved])
-    joined[moved] = mine.map(mine.value_counts()).to_numpy() > 1
-    out["target"] = target
-    out["status"] = np.where(joined, "joined", "")
+    keep = ~moved
+    new = pd.Series(targets)
+    out["target"] = out["target"].where(keep, new)
+    mine = pd.Series(np.asarray(targets[moved], dtype=object))
+    joined = mine.map(mine.value_counts()).to_numpy() > 1
+    status = pd.Series(
+        np.where(joined, "joined", ""), index=np.flatnonzero(moved), dtype=out["status"].dtype
+    )
+    out["status"] = out["status"].where(keep, status)
     return out
 
 

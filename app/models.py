@@ -138,6 +138,10 @@ def display_text(
             out[key] = kept[key]
             continue
         col = df[key] if key in df.columns else pd.Series([""] * len(df))
+        patched = _patched_text(col, previous, key) if previous is not None else None
+        if patched is not None:
+            out[key] = patched
+            continue
         out[key] = col.astype(object).where(col.notna(), "").astype(str).to_numpy()
     if "points" in kept:
         out["points"] = kept["points"]
@@ -197,6 +201,29 @@ def _remember_zone(text: np.ndarray, zone) -> None:
 #: Date columns' texts made by :func:`display_text`: id → (weak reference, the display
 #: zone they were made in), so a decision's view keeps them while the zone is the same.
 _DATE_ZONE: dict[int, tuple] = {}
+
+
+def _patched_text(col: pd.Series, previous: tuple, key: str) -> np.ndarray | None:
+    """The earlier view's text of column ``key`` with the rows whose value changed made
+    again (a decision's target and status: a few tracks of 55 k), the same text as made
+    afresh; None when there is no such text, the rows differ or a quarter changed."""
+    old, old_text = previous
+    text = old_text.get(key)
+    if text is None or key not in old.columns or len(old) != len(col) or text.dtype != object:
+        return None
+    before = old[key].reset_index(drop=True)
+    now = col.reset_index(drop=True)
+    if before.dtype != now.dtype:
+        return None
+    diff = (
+        np.asarray(before.array != now.array, dtype=bool) | (before.isna() != now.isna()).to_numpy()
+    )
+    if diff.sum() * 4 > len(diff):
+        return None
+    out = text.copy()
+    part = now[diff]
+    out[diff] = part.astype(object).where(part.notna(), "").astype(str).to_numpy()
+    return out
 
 
 def _zone_now():

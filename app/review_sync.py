@@ -157,8 +157,8 @@ class ReviewSync(QtCore.QObject):
                 quick = relabeled(now, snap, cache)
                 if quick is not None:
                     pts, per_track = quick
-                    old = previous.summary["target"].to_numpy(dtype=object)
-                    if len(old) == len(per_track) and (old == per_track).all():
+                    old = previous.summary["target"].array
+                    if len(old) == len(per_track) and not np.asarray(old != per_track).any():
                         return key, UNCHANGED, n_decisions, (now, targets)
                     view = relabel_view(previous, pts, per_track, layer.kind, canvas_view, size_px)
                     if view is not None:

@@ -17,21 +17,20 @@ import pandas as pd
 from wakeline.core.tracks import concat_ranges
 
 
-def touched_targets(old: np.ndarray, new: np.ndarray) -> np.ndarray:
-    """Per track (``old`` and ``new`` target per track, text): whether its line is made
+def touched_targets(old, new) -> np.ndarray:
+    """Per track (``old`` and ``new`` target per track: text arrays, numpy or pandas'
+    Arrow text, compared without a Python string per track): whether its line is made
     again — its old or its new target is one a changed track left or joined. Whole
     targets are in or out (so a target's members are counted together)."""
-    old = np.asarray(old, dtype=object)
-    new = np.asarray(new, dtype=object)
-    changed = old != new
+    changed = np.asarray(old != new, dtype=bool)
     if not changed.any():
         return changed
-    hit = pd.unique(np.concatenate([old[changed], new[changed]]))
+    hit = set(old[changed].tolist()) | set(new[changed].tolist())
     if len(hit) > 16:  # many: one hash table
-        return pd.Series(old).isin(hit).to_numpy() | pd.Series(new).isin(hit).to_numpy()
-    out = changed.copy()  # a few (a decision's): compared one by one, no table of them all
-    for name in hit:
-        out |= old == name
+        return changed | pd.Series(old).isin(list(hit)).to_numpy(dtype=bool)
+    out = changed.copy()  # a few (a decision's): compared one by one
+    for name in hit:  # a track whose new target is hit and old is not has changed
+        out |= np.asarray(old == name, dtype=bool)
     return out
 
 

@@ -442,7 +442,7 @@ def relabeled(
     knows them), and each track's target (per track of that order, text) — the decided
     targets taken per track, not per point (no labels of a million points made again);
     None when the order is not known or a track is not in the state's table (then
-    :func:`decided_points`). ``cache`` keeps each track's row of the state's table."""
+    :func:`decided_points`). The targets per track: pandas' text array. ``cache`` keeps each track's row of the state's table."""
     known = known_order(layer_points)
     if known is None:
         return None
@@ -471,7 +471,7 @@ def relabeled(
     if not fresh:
         return None
     remember_order(out, *known)
-    return out, per_track.to_numpy(dtype=object)
+    return out, per_track.array
 
 
 def _spliced_targets(old, per_track, index) -> object | None:
@@ -485,10 +485,11 @@ def _spliced_targets(old, per_track, index) -> object | None:
     arr, new = getattr(old, "_pa_array", None), getattr(per_track, "_pa_array", None)
     if arr is None or new is None or arr.type != new.type or len(arr) != len(index.track_of_row):
         return None
+    import pyarrow.compute as pc
+
     starts, ends = index.starts, index.ends
-    was = arr.take(pa.array(starts)).to_numpy(zero_copy_only=False)
-    now = np.asarray(per_track, dtype=object)
-    changed = was != now
+    was = arr.take(pa.array(starts))
+    changed = np.asarray(pc.fill_null(pc.not_equal(was, new), True), dtype=bool)
     if changed.sum() * 4 > len(changed):
         return None
     pieces, at = [], 0
@@ -496,7 +497,7 @@ def _spliced_targets(old, per_track, index) -> object | None:
         a, b = int(starts[k]), int(ends[k])
         if a > at:
             pieces.append(arr.slice(at, a - at))
-        pieces.append(pa.chunked_array([pa.array([now[k]] * (b - a), type=arr.type)]))
+        pieces.append(new.take(pa.array(np.full(b - a, k, dtype="int64"))))
         at = b
     if at < len(arr):
         pieces.append(arr.slice(at, len(arr) - at))

@@ -191,6 +191,13 @@ def test_a_decisions_table_text_keeps_the_columns_it_did_not_change():
         time_text._display.update(saved)
     index = models.table_index(new, text, previous=(old_text, old_index))
     assert index.keys is old_index.keys and index.keys == models.table_index(new, fresh).keys
+    # a decision moving one track: the target text patched in that row, as made afresh
+    one = old.copy()
+    one.loc[0, "target"] = "X:1"
+    text = models.display_text(one, previous=(old, old_text))
+    assert text["target"] is not old_text["target"]
+    np.testing.assert_array_equal(text["target"], models.display_text(one)["target"])
+    assert text["target"][0] == "X:1" and (text["target"][1:] == old_text["target"][1:]).all()
     # a column that changed is formatted again; other tracks: the index made again
     longer = new.assign(points=new["points"] + 1)
     text = models.display_text(longer, previous=(old, old_text))
