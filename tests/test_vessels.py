@@ -123,6 +123,18 @@ def test_the_tables_names_fill_the_points_own_and_replace_them_where_it_has_one(
     assert joined.groupby("batch")["name"].first().to_dict() == {"1": "TABLE ONE", "2": "OWN TWO"}
 
 
+def test_a_table_of_no_usable_row_joins_no_name_and_does_not_fail(tmp_path):
+    """A header and rows of no id only (every row counted, none kept): the join matches
+    no track rather than failing on the empty table (h245)."""
+    path = tmp_path / "v.csv"
+    path.write_text("mmsi,name,type\n,ARGO,Cargo\n")
+    table = read_vessels(path)
+    assert len(table.table) == 0 and table.bad == {NO_ID: 1}
+    joined, join = join_vessels(_points(["1", "2"]), table)
+    assert set(joined["name"]) == {""} and set(joined[TYPE_COLUMN]) == {""}
+    assert join.ids == 2 and join.matched == 0 and join.unmatched == ["1", "2"]
+
+
 # -- the window ------------------------------------------------------------------------
 
 

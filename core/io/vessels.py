@@ -237,7 +237,8 @@ def join_vessels(points: pd.DataFrame, vessels: VesselTable) -> tuple[pd.DataFra
     ):
         if not has:
             continue
-        per_id = np.where(found, table[src].to_numpy(dtype=object)[np.maximum(hit, 0)], "")
+        # an id not found takes the "" appended last (-1): a table of no row joins none
+        per_id = np.append(table[src].to_numpy(dtype=object), "")[np.where(found, hit, -1)]
         new = per_id[codes]
         if dst in out.columns:
             old = out[dst].astype(object).where(out[dst].notna(), "").to_numpy(dtype=object)
