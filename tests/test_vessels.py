@@ -135,6 +135,17 @@ def test_a_table_of_no_usable_row_joins_no_name_and_does_not_fail(tmp_path):
     assert join.ids == 2 and join.matched == 0 and join.unmatched == ["1", "2"]
 
 
+def test_every_repeat_that_differs_from_the_id_kept_is_counted(tmp_path):
+    """An id given three times, the second and third alike but unlike the first (kept):
+    both differ from what is used, so both are counted (h245: the third, a repeat of
+    the second, was dropped unsaid)."""
+    path = tmp_path / "v.csv"
+    path.write_text("mmsi,name\n1,ARGO\n1,BETA\n1,BETA\n1,ARGO\n2,GAMMA\n")
+    table = read_vessels(path)
+    assert table.table.set_index("id")["name"].to_dict() == {"1": "ARGO", "2": "GAMMA"}
+    assert table.bad == {REPEATED: 2}  # the last ARGO agrees with the kept one: no fault
+
+
 # -- the window ------------------------------------------------------------------------
 
 

@@ -184,8 +184,10 @@ def read_vessels(path: str | Path) -> VesselTable:
     # are counted (the first is kept)
     dup = out.duplicated("id", keep="first")
     if dup.any():
-        same = out.duplicated(["id", "name", "type"], keep="first")
-        differ = dup & ~same
+        kept = out[~dup].set_index("id")  # each id's first row, the one used
+        name = kept["name"].reindex(out["id"]).to_numpy(dtype=object)
+        kind = kept["type"].reindex(out["id"]).to_numpy(dtype=object)
+        differ = dup & ((out["name"].to_numpy() != name) | (out["type"].to_numpy() != kind))
         if differ.any():
             bad[REPEATED] = int(differ.sum())
         out = out[~dup]
