@@ -121,6 +121,11 @@ class SensorsMixin:
         if view is None or layer is None or layer.kind == BEARING_KIND:
             return False
         want = self.hidden_sensors.get(lid, frozenset())
+        if want and want.issuperset(layer_sensors(layer.points)):
+            # its points changed (a step re-run in place) to the hidden sensors' only:
+            # shown whole, the choice dropped (the menu of one sensor has no way back)
+            self.hidden_sensors.pop(lid, None)
+            want = frozenset()
         have = view.extra.get(HIDDEN_KEY, frozenset())
         if want == have:
             return False

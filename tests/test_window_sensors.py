@@ -130,3 +130,21 @@ def test_a_sensor_hidden_leaves_the_map_table_and_counts_not_the_layer(qtbot, tm
     assert set(w.views[lid].points["sensor"]) == {"AIS", "radar"}
     assert sorted(w.map_names(lid)) and w.layers[lid].points is points
     w.close()
+
+
+def test_a_layer_changed_to_its_hidden_sensors_only_is_shown_whole(qtbot, tmp_path):
+    """AIS hidden, then the layer's points changed (a step re-run in place, a vessel
+    table joined) to AIS rows only: the filter would show nothing and View ▸ Sensors,
+    of one sensor, offers no way back; the layer is shown whole, its choice dropped
+    (h245)."""
+    w, lid = _loaded(qtbot, tmp_path)
+    _sensor_actions(w)["AIS"].setChecked(False)
+    _settle(w)
+    assert set(w.views[lid].points["sensor"]) == {"radar"}
+    points = w.layers[lid].points
+    ais = points[points["sensor"] == "AIS"].reset_index(drop=True)
+    w.session.replace_points(lid, ais)
+    _settle(w)
+    assert len(w.views[lid].points) == len(ais) and w.batch_model.rowCount() == 2
+    assert lid not in w.hidden_sensors and "sensors hidden" not in w.counts_text
+    w.close()
