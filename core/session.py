@@ -350,6 +350,15 @@ class Session:
             raise InputError(f"layer {layer.name} belongs to work closed since")
         if layer.id in self.layers:
             raise InputError(f"layer id {layer.id} is taken")
+        if layer.step is not None:
+            # the same step run again on the same input since: beside it, two layers of
+            # one name, and a re-run would replace the older one only (:meth:`_replaced`)
+            since = self._replaced(layer.parent, layer.step, layer.role, layer.inputs)
+            if since is not None:
+                raise InputError(
+                    f"layer {layer.name}: {layer.step} was made again on its input since "
+                    f"({since.name}); remove that layer to restore this one"
+                )
         self._retired.discard(layer.id)
         self.layers[layer.id] = layer
         self._emit("added", layer.id)

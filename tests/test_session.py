@@ -813,3 +813,24 @@ def test_a_bad_data_row_still_refuses_the_project(scene, tmp_path):
     con.close()
     with pytest.raises(InputError, match="damaged"):
         load_project(path)
+
+
+def test_a_removed_step_layer_made_again_since_is_not_restored_beside_it(scene):
+    """Clean's layer removed, Clean run again on the same layer (a new layer of the same
+    step, role and input), then the removal undone: two layers of one name, a re-run
+    replacing the restored (older) one and leaving the newer stale. The restore is
+    refused, nothing changed; once the newer one is removed it is restored (h245)."""
+    _, points = scene
+    s = Session()
+    a = s.add_layer("scene.csv", "source", points.head(2000))
+    (old,) = s.apply_result(a.id, s.run_step(a.id, "clean"))
+    removal = s.remove_layer(old.id)
+    (new,) = s.apply_result(a.id, s.run_step(a.id, "clean"))
+    assert new.id != old.id
+    with pytest.raises(InputError, match="made again"):
+        s.restore_layer(removal)
+    assert list(s.layers) == [a.id, new.id]
+    s.remove_layer(new.id)
+    assert s.restore_layer(removal) is old and list(s.layers) == [a.id, old.id]
+    (again,) = s.apply_result(a.id, s.run_step(a.id, "clean"))
+    assert again is old  # a re-run replaces it in place, as before the removal
