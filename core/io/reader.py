@@ -2117,6 +2117,7 @@ def parse_times(
 
 
 _ISO_DATE_START = r"\s*[0-9]{4}-[0-9]{2}-[0-9]{2}[T ][0-9]{2}:[0-9]{2}"
+_UNIX_TEXT = r"\s*[0-9]{9,13}(?:\.[0-9]*)?\s*"  # unix seconds or milliseconds, as text
 
 
 def _times_in_the_other_form(
@@ -2135,15 +2136,16 @@ def _times_in_the_other_form(
     numbers = fmt.startswith("unix") and not info.get("relative")
     if not (numbers or fmt == "ISO 8601 text") or not pa.types.is_string(arr.type):
         return ns, ok
-    text = pd.Series(arr.to_pandas(), dtype="str")
+    rows = np.flatnonzero(~ok)  # matched alone: a column of a few bad times, not all its rows
+    text = pd.Series(arr.take(pa.array(rows)).to_pandas(), dtype="str")
     if numbers:
         other = text.str.match(_ISO_DATE_START, na=False).to_numpy(dtype=bool)
     else:
-        other = text.str.fullmatch(r"\s*[0-9]{9,13}(?:\.[0-9]*)?\s*", na=False).to_numpy(dtype=bool)
-    rows = np.flatnonzero(other & ~ok)
+        other = text.str.fullmatch(_UNIX_TEXT, na=False).to_numpy(dtype=bool)
+    rows = rows[other]
     if not len(rows):
         return ns, ok
-    part = pa.chunked_array([pa.array(text.iloc[rows].tolist(), pa.string())])
+    part = pa.chunked_array([pa.array(text[other].tolist(), pa.string())])
     seen: dict = {}  # the other form's own reading: its masks and counts are not the column's
     if numbers:
         ns2, ok2 = _parse_times_in_one_form(part, "auto", tz, seen, date_order=date_order)
