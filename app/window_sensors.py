@@ -121,11 +121,6 @@ class SensorsMixin:
         if view is None or layer is None or layer.kind == BEARING_KIND:
             return False
         want = self.hidden_sensors.get(lid, frozenset())
-        if want and want.issuperset(layer_sensors(layer.points)):
-            # its points changed (a step re-run in place) to the hidden sensors' only:
-            # shown whole, the choice dropped (the menu of one sensor has no way back)
-            self.hidden_sensors.pop(lid, None)
-            want = frozenset()
         have = view.extra.get(HIDDEN_KEY, frozenset())
         if want == have:
             return False
@@ -155,6 +150,10 @@ class SensorsMixin:
         def job(points=points):
             sensors = points["sensor"].astype(str)
             pts = points[~sensors.isin(hidden).to_numpy()] if hidden else points
+            if hidden and not len(pts):
+                # its points changed (a step re-run in place) to the hidden sensors' only:
+                # shown whole, the choice dropped (the menu of one sensor has no way back)
+                pts = points
             shown = layer_sensors(pts)
             own = tuple(colors[s] for s in shown if s in colors) if colors else None
             lv = prepare_view(
@@ -166,8 +165,9 @@ class SensorsMixin:
                 size_px,
                 colors=own if own and len(own) == len(shown) and kind == "source" else None,
             )
-            lv.extra[HIDDEN_KEY] = hidden
+            lv.extra[HIDDEN_KEY] = hidden if pts is not points else frozenset()
             lv.extra["points_all"] = len(points)
+            lv.extra["choice_dropped"] = bool(hidden) and pts is points
             return lv
 
         def done(result, points=points) -> None:
@@ -177,10 +177,15 @@ class SensorsMixin:
                 if layer_now is not None:
                     self._queue_draw(lid)  # changed meanwhile: filtered again from it
                 return
+            whole = result.extra.pop("choice_dropped", False)
+            if whole and self.hidden_sensors.get(lid) == hidden:
+                self.hidden_sensors.pop(lid, None)  # every sensor of its points was hidden
             if result.extra.get(HIDDEN_KEY) != self.hidden_sensors.get(lid, frozenset()):
                 self._queue_draw(lid)  # another choice made meanwhile
                 return
-            if lid not in self._full_views and lid in self.views:
+            if whole:
+                self._full_views.pop(lid, None)  # this one is whole
+            elif lid not in self._full_views and lid in self.views:
                 self._full_views[lid] = self.views[lid]
             self.views[lid] = result
             self._after_filter(lid)

@@ -147,4 +147,5 @@ def test_a_layer_changed_to_its_hidden_sensors_only_is_shown_whole(qtbot, tmp_pa
     _settle(w)
     assert len(w.views[lid].points) == len(ais) and w.batch_model.rowCount() == 2
     assert lid not in w.hidden_sensors and "sensors hidden" not in w.counts_text
+    assert lid not in w._full_views  # no second whole view kept
     w.close()
