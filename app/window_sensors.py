@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 from PySide6 import QtWidgets
 
+from wakeline.app.layer_names import shown_name
 from wakeline.core.session import BEARING_KIND
 
 #: The key of a filtered view's hidden sensors in ``LayerView.extra``.
@@ -173,9 +174,20 @@ class SensorsMixin:
         def done(result, points=points) -> None:
             self._filtering.discard(lid)
             layer_now = self.session.get(lid)
-            if result is None or layer_now is None or layer_now.points is not points:
-                if layer_now is not None:
-                    self._queue_draw(lid)  # changed meanwhile: filtered again from it
+            if layer_now is None:
+                return
+            if result is None and layer_now.points is points:
+                # the preparation failed (logged): shown whole, not tried again and again
+                if self.hidden_sensors.pop(lid, None):
+                    self.log_message(
+                        self.tr(
+                            "{0}: the view without sensors {1} could not be made; shown whole"
+                        ).format(shown_name(name), ", ".join(sorted(hidden)))
+                    )
+                self._queue_draw(lid)
+                return
+            if result is None or layer_now.points is not points:
+                self._queue_draw(lid)  # changed meanwhile: filtered again from it
                 return
             whole = result.extra.pop("choice_dropped", False)
             if whole and self.hidden_sensors.get(lid) == hidden:

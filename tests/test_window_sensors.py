@@ -149,3 +149,31 @@ def test_a_layer_changed_to_its_hidden_sensors_only_is_shown_whole(qtbot, tmp_pa
     assert lid not in w.hidden_sensors and "sensors hidden" not in w.counts_text
     assert lid not in w._full_views  # no second whole view kept
     w.close()
+
+
+def test_a_failed_sensor_filter_shows_the_layer_whole_once_not_again_and_again(
+    qtbot, tmp_path, monkeypatch
+):
+    """The worker's filtered view failing (None handed back, the layer unchanged) was
+    queued again at once, failing again every turn for ever (the window never settled);
+    the layer is shown whole, its choice dropped, and the log says so (h245)."""
+    import wakeline.app.layer_view as layer_view
+
+    w, lid = _loaded(qtbot, tmp_path)
+    whole = w.views[lid]
+    calls = []
+    prepare = layer_view.prepare_view
+
+    def failing(*args, **kwargs):
+        calls.append(1)
+        raise RuntimeError("a failed preparation")
+
+    monkeypatch.setattr(layer_view, "prepare_view", failing)
+    _sensor_actions(w)["radar"].setChecked(False)
+    _settle(w, timeout_s=15)
+    monkeypatch.setattr(layer_view, "prepare_view", prepare)
+    assert len(calls) == 1
+    assert lid not in w.hidden_sensors and w.views[lid] is whole
+    assert "sensors hidden" not in w.counts_text
+    assert "radar" in w.log.toPlainText().splitlines()[-1]
+    w.close()

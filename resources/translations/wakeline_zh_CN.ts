@@ -3326,6 +3326,10 @@
         <source>sensors hidden: {0}</source>
         <translation>已隐藏传感器：{0}</translation>
     </message>
+    <message>
+        <source>{0}: the view without sensors {1} could not be made; shown whole</source>
+        <translation>{0}：无法生成隐藏传感器 {1} 后的视图，已完整显示</translation>
+    </message>
 </context>
 <context>
     <name>MainWindow</name>
