@@ -933,6 +933,12 @@ class ReviewDock(QtCore.QObject):
             item.setVisible(bool(len(lon)))
             self._join_legend(item, join_text(status) if len(lon) else None)
 
+    def layer_visibility_changed(self, lid: str) -> None:
+        """Layer ``lid`` hidden or shown (the Layers list): the joins of the review bound
+        to it leave the map with it, or come back."""
+        if self.bound is not None and self.bound.lid == lid:
+            self._draw_joins()
+
     def _join_legend(self, item, text: str | None) -> None:
         """The main map's legend line of a join curve: ``text``, or none."""
         legend = self.w.canvas.legend

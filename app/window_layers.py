@@ -264,6 +264,9 @@ class LayersMixin:
                 self.canvas.set_visible(name, layer.visible)
             if lid == self.active:  # its selected tracks hide and show with it
                 self._table_selection_changed()
+            review = getattr(self, "review", None)
+            if review is not None:
+                review.layer_visibility_changed(lid)  # its joins hide and show with it
         self.layersChanged.emit()
 
     def _view_state(self, replace_all: bool = False) -> dict:

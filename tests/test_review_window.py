@@ -491,6 +491,49 @@ def test_joins_pending_dashed_accepted_solid_rejected_not_drawn(qtbot, tmp_path)
     w.close()
 
 
+def test_the_joins_leave_the_map_with_their_layer_hidden_and_come_back_with_it(qtbot, tmp_path):
+    """The review's joins are drawn "none while ... its layer is hidden" (h236), but the
+    layer hidden in the Layers list left them on the map over nothing until the next
+    decision or proposal (h245)."""
+    pts = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": np.repeat(["0", "1"], 6),
+            "time": pd.to_datetime(np.r_[0:6, 20:26] * 60.0, unit="s", utc=True),
+            "lon": 120.0 + 1e-3 * np.r_[0:6, 20:26],
+            "lat": 30.0,
+        }
+    )
+    props = pd.DataFrame(
+        {
+            "proposal": ["A0001"],
+            "kind": "associate",
+            "sensor_a": "R1",
+            "batch_a": ["0"],
+            "sensor_b": "R1",
+            "batch_b": ["1"],
+            "method": "optimal",
+            "cost": [0.2],
+            "gap_s": 900.0,
+            "gate": 1.5,
+            "margin": [1.3],
+        }
+    )
+    w = _window(qtbot, tmp_path)
+    src = w.session.add_layer("radar.csv", "source", pts)
+    _show_associated(w, src, pts.assign(target="R1:0"), props)
+    lid = w.review.bound.lid
+    assert set(_join_curves(w)) == {"pending"}
+    w.session.set_visible(lid, False)  # its box unchecked in the Layers list
+    _settle(w)
+    assert not _join_curves(w)
+    assert not any("join" in label.text for _s, label in w.canvas.legend.items)
+    w.session.set_visible(lid, True)
+    _settle(w)
+    assert set(_join_curves(w)) == {"pending"}
+    w.close()
+
+
 def _saronic_cut_window(qtbot, tmp_path) -> tuple[MainWindow, str]:
     """A window with the Saronic Gulf AIS (S1) cut at its 600 s gaps loaded and selected;
     the layer's id."""
