@@ -34,6 +34,7 @@ class RemoveLayerCommand(QtGui.QUndoCommand):
         self.layer_id = layer_id
         self.name = shown_name(window.session.layers[layer_id].name)
         self.removal = None  # the core's record of the last removal
+        self.error: Exception | None = None  # why the session refused the removal
         self.view = None  # the window's prepared view of the layer (no new preparing)
         super().__init__(self.name)
 
@@ -48,7 +49,13 @@ class RemoveLayerCommand(QtGui.QUndoCommand):
         if self.layer_id not in w.session.layers:
             return
         self.view = w.views.get(self.layer_id)
-        self.removal = w.session.remove_layer(self.layer_id)
+        try:
+            self.removal = w.session.remove_layer(self.layer_id)
+        except (InputError, KeyError, TypeError, ValueError) as exc:
+            # raised out of a C++ call (the stack's push), it would be lost; kept for
+            # LayerUndo.remove to raise, and the command leaves the stack (nothing done)
+            self.error = exc
+            self.setObsolete(True)
 
     def undo(self) -> None:
         w, removal = self.window, self.removal
@@ -97,7 +104,10 @@ class LayerUndo:
     def remove(self, layer_id: str) -> None:
         """Remove layer ``layer_id`` through the stack (undoable)."""
         self._drop_stale()
-        self.stack.push(RemoveLayerCommand(self.window, layer_id))
+        command = RemoveLayerCommand(self.window, layer_id)
+        self.stack.push(command)  # an obsolete command (refused) is not kept
+        if command.error is not None:
+            raise command.error
 
     def undo(self) -> None:
         self._drop_stale()
@@ -105,7 +115,12 @@ class LayerUndo:
 
     def redo(self) -> None:
         self._drop_stale()
+        cmd = self.stack.command(self.stack.index()) if self.stack.canRedo() else None
         self.stack.redo()
+        if isinstance(cmd, RemoveLayerCommand) and cmd.error is not None:  # refused: said
+            self.window.log_message(f"{tr('Error')}: {cmd.name}: {cmd.error}")
+            cmd.error = None
+            self.retranslate()  # the stack dropped it: no index change said so
 
     def retranslate(self, *_args) -> None:
         """The entries' texts (the layer they name) in the current language."""

@@ -279,6 +279,38 @@ def test_removing_a_layer_with_children_is_undone_without_a_question(qtbot, tmp_
     w.close()
 
 
+def test_a_removal_that_fails_leaves_no_restore_entry(qtbot, tmp_path, monkeypatch):
+    """The session refusing a removal (an error said in the log, the layer kept) left
+    its command on the undo stack: Edit ▸ Restore removed layer NAME offered, restoring
+    nothing (h245)."""
+    from wakeline.core.errors import InputError
+    from wakeline.core.session import Session
+
+    w = _window_with(qtbot, tmp_path, _spread_points())
+    src = w.active
+
+    def refuse(self, layer_id):
+        raise InputError("its kept input could not be written")
+
+    monkeypatch.setattr(Session, "remove_layer", refuse)
+    w.remove_active_layer()
+    _settle(w)
+    assert src in w.layers and "could not be written" in w.log.toPlainText()
+    assert w.layer_undo.stack.count() == 0 and not w.layer_undo.act_undo.isEnabled()
+    monkeypatch.undo()
+    w.remove_active_layer()  # the same removal, now done: undoable as ever
+    _settle(w)
+    assert src not in w.layers and w.layer_undo.act_undo.isEnabled()
+    w.layer_undo.undo()
+    _settle(w)
+    monkeypatch.setattr(Session, "remove_layer", refuse)
+    w.layer_undo.redo()  # Remove layer again, refused: said, and no entry left
+    _settle(w)
+    assert src in w.layers and w.log.toPlainText().count("could not be written") == 2
+    assert not w.layer_undo.act_redo.isEnabled() and not w.layer_undo.act_undo.isEnabled()
+    w.close()
+
+
 def test_removing_a_fused_layer_with_review_decisions_is_undone_with_them(
     qtbot, tmp_path, monkeypatch
 ):
