@@ -303,6 +303,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.set_icons()
         self._add_legend_toggle()
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
+        from wakeline.app.restore_points import install as install_restore
+
+        self.restore_tool = install_restore(self)  # Edit ▸ Restore, the map's right click
         self._fit_timer = QtCore.QTimer(self, singleShot=True, interval=0)
         self._fit_timer.timeout.connect(self.review.fit_to_window)
         self.set_language(self.settings.value("language", i18n.system_language()))
@@ -437,6 +440,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.bearing_view.retranslate()
         if hasattr(self, "review"):  # built after the first retranslate
             self.review.retranslate()
+        if hasattr(self, "restore_tool"):
+            self.restore_tool.retranslate()
         for row in range(self.layer_list.count()):  # the kinds' tags: [source], [fused] …
             item = self.layer_list.item(row)
             layer = self.session.layers.get(item.data(QtCore.Qt.ItemDataRole.UserRole))

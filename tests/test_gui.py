@@ -1598,6 +1598,85 @@ def test_points_removed_by_cleaning_drawn_as_an_overlay(window):
     assert name not in window.canvas.layer_names()
 
 
+def test_removed_points_restored_from_the_map_with_undo(window):
+    """SPEC §2: the operator puts points removed by cleaning back — the × nearest a right
+    click (one, or all its rule removed on its track), the selected tracks' or those in
+    the map's view — into the cleaned layer; Edit ▸ Undo / Redo; the layer's lineage
+    records them; the × marks and the batch table follow."""
+    load(window, demo_path())
+    window.run_step("clean")
+    wait_for_jobs(window)
+    lid = _layer_of(window, "cleaned")
+    layer = window.layers[lid]
+    rej0, n0 = layer.tables["rejected"], len(layer.points)
+    window.actions_["show_removed"].setChecked(True)
+    wait_for_jobs(window)
+    window.canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    tool = window.restore_tool
+    # the × of a row whose point was removed (not changed), its rule and track
+    removed = rej0[rej0.action == "removed"]
+    row = removed.iloc[len(removed) // 2]
+    rule, track = str(row.rule), (str(row.sensor), str(row.batch))
+    same = removed[(removed.rule == rule) & (removed.sensor.astype(str) == track[0])]
+    same = same[same.batch.astype(str) == track[1]]
+    window.canvas.vb.setRange(
+        xRange=(row.lon - 1e-4, row.lon + 1e-4), yRange=(row.lat - 1e-4, row.lat + 1e-4)
+    )
+    QtWidgets.QApplication.processEvents()
+    hit = tool.removed_near(float(row.lon), float(row.lat))
+    assert hit is not None and hit[0] == lid
+    acts = tool.menu_actions(float(row.lon), float(row.lat))
+    texts = [a.text() for a in acts]
+    hit_row = rej0.iloc[hit[1]]
+    assert texts[0] == f"Restore this point (removed by {hit_row.rule})"
+    assert texts[-1] == "Restore removed points in the map's view"
+    hit_id = int(hit_row.wl_id)
+    acts[0].trigger()
+    wait_for_jobs(window)
+    assert hit_id in set(layer.points.wl_id) and hit_id not in set(layer.tables["rejected"].wl_id)
+    assert len(layer.points) == n0 + 1 and layer.restored == [hit_id]
+    assert layer.lineage()["restored"] == [hit_id]
+    assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0) - 1
+    undo = window.review.act_undo
+    assert undo.isEnabled() and "restore 1 points" in undo.text()
+    undo.trigger()
+    wait_for_jobs(window)
+    assert len(layer.points) == n0 and layer.restored == []
+    assert len(layer.tables["rejected"]) == len(rej0)
+    assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0)
+    window.review.act_redo.trigger()
+    assert layer.restored == [hit_id]
+    undo.trigger()
+    # all its rule removed on its track: "Restore all N points removed by RULE on S · B"
+    many = tool.menu_actions(float(row.lon), float(row.lat))[1]
+    on_track = (rej0.sensor.astype(str) == str(hit_row.sensor)) & (
+        rej0.batch.astype(str) == str(hit_row.batch)
+    )
+    want = set(rej0[on_track & (rej0.rule == hit_row.rule) & (rej0.action != "replaced")].wl_id)
+    assert many.text() == (
+        f"Restore all {len(want)} points removed by {hit_row.rule} on "
+        f"{hit_row.sensor} · {hit_row.batch}"
+    )
+    many.trigger()
+    wait_for_jobs(window)
+    assert set(layer.restored) == want and hit_id in want
+    # the map's view: everything left in it
+    window.canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    assert tool.restore_in_view()
+    wait_for_jobs(window)
+    left = layer.tables["rejected"]
+    assert (left.action == "replaced").all()
+    assert len(left) == 0 and f"{lid}/removed" not in window.canvas.layer_names()
+    # two undos give back the layer as clean made it
+    undo.trigger()
+    undo.trigger()
+    wait_for_jobs(window)
+    assert len(layer.points) == n0 and layer.restored == [] and not undo.isEnabled()
+    assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0)
+
+
 def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_path):
     rng = np.random.default_rng(7)
     scans, per = 150, 6
