@@ -27,8 +27,12 @@ from wakeline.core.errors import InputError
 PICK_PX = 8.0
 
 
+TR_CONTEXT = "RestorePoints"
+
+
 def tr(text: str) -> str:
-    return QtCore.QCoreApplication.translate("RestorePoints", text)
+    """``text`` in the current language (context :data:`TR_CONTEXT`)."""
+    return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
 
 
 def rules_text(rules: dict[str, int]) -> str:

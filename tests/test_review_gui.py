@@ -405,7 +405,7 @@ def test_queue_shows_target_dcourse_dspeed_sortable_with_a_column_menu(qtbot, co
     controller.accept(pid)
     assert m.data(m.index(m.row_of[pid], tcol)) == st.target(b)
     # hidden by default, shown from the header's menu, the choice kept for the next queue
-    assert set(HIDDEN_BY_DEFAULT) == {"distance_m", "runner_up", "method"}
+    assert set(HIDDEN_BY_DEFAULT) == {"distance_m", "runner_up"}
     hidden = {n for c, n in enumerate(names) if panel.view.isColumnHidden(c)}
     assert hidden == set(HIDDEN_BY_DEFAULT)
     narrow = panel.table_width()
@@ -417,17 +417,17 @@ def test_queue_shows_target_dcourse_dspeed_sortable_with_a_column_menu(qtbot, co
         "target",
     ]
     assert not acts[titles["proposal"]].isEnabled()
-    assert not acts[titles["method"]].isChecked()
+    assert not acts[titles["runner_up"]].isChecked() and acts[titles["method"]].isChecked()
     try:
-        acts[titles["method"]].setChecked(True)
-        assert not panel.view.isColumnHidden(names.index("method"))
-        assert panel.table_width() == narrow + panel.view.columnWidth(names.index("method"))
+        acts[titles["runner_up"]].setChecked(True)
+        assert not panel.view.isColumnHidden(names.index("runner_up"))
+        assert panel.table_width() == narrow + panel.view.columnWidth(names.index("runner_up"))
         other = ReviewPanel(controller)
         qtbot.addWidget(other)
-        assert not other.view.isColumnHidden(names.index("method"))
-        assert other.view.isColumnHidden(names.index("runner_up"))
+        assert not other.view.isColumnHidden(names.index("runner_up"))
+        assert other.view.isColumnHidden(names.index("distance_m"))
     finally:
-        panel.show_column("method", False)
+        panel.show_column("runner_up", False)
     assert ReviewPanel.hidden_columns == set(HIDDEN_BY_DEFAULT)
 
 
