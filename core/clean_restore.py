@@ -185,10 +185,10 @@ def restored_counts(meta: dict, n_rejected: int, back: pd.DataFrame, sign: int) 
     return meta
 
 
-def apply(session, change: Restore) -> None:
-    """Apply ``change`` to its layer in ``session``: points, rejected table, counts,
-    lineage; then a ``changed`` event. Raises :class:`InputError` when the layer is gone
-    or was made again since (Clean run again: the command is stale)."""
+def check(session, change: Restore):
+    """The layer ``change`` applies to, and its rejected table. Raises
+    :class:`InputError` when the layer is gone or was made again since (Clean run
+    again: the command is stale)."""
     layer = session.get(change.layer)
     if layer is None:
         raise InputError("the cleaned layer was removed; nothing restored")
@@ -197,10 +197,24 @@ def apply(session, change: Restore) -> None:
     rejected = rejected_of(layer)
     if rejected is None:
         raise InputError("the layer has no points removed by cleaning to restore")
-    points, rejected = restored_tables(layer.points, rejected, change)
+    return layer, rejected
+
+
+def put(session, change: Restore, points: pd.DataFrame, rejected: pd.DataFrame) -> None:
+    """Give ``change``'s layer the tables :func:`restored_tables` made for it (the window
+    makes them in its worker): rejected table, counts, lineage, then its points with a
+    ``changed`` event (the map draws it, the project writes it)."""
+    layer, _ = check(session, change)
     layer.tables = {**layer.tables, REJECTED: rejected}
     layer.meta = restored_counts(layer.meta, len(rejected), change.back, 1 if change.undo else -1)
     done = set(layer.restored)
     done = done - set(change.ids) if change.undo else done | set(change.ids)
     layer.restored = sorted(done)
     session.replace_points(layer.id, points)  # the "changed" event: drawn and saved
+
+
+def apply(session, change: Restore) -> None:
+    """Apply ``change`` to its layer in ``session`` (:func:`restored_tables`, then
+    :func:`put`). Raises :class:`InputError` as :func:`check`."""
+    layer, rejected = check(session, change)
+    put(session, change, *restored_tables(layer.points, rejected, change))

@@ -1598,7 +1598,7 @@ def test_points_removed_by_cleaning_drawn_as_an_overlay(window):
     assert name not in window.canvas.layer_names()
 
 
-def test_removed_points_restored_from_the_map_with_undo(window):
+def test_removed_points_restored_from_the_map_with_undo(window, qtbot):
     """SPEC §2: the operator puts points removed by cleaning back — the × nearest a right
     click (one, or all its rule removed on its track), the selected tracks' or those in
     the map's view — into the cleaned layer; Edit ▸ Undo / Redo; the layer's lineage
@@ -1614,6 +1614,11 @@ def test_removed_points_restored_from_the_map_with_undo(window):
     window.canvas.fit()
     QtWidgets.QApplication.processEvents()
     tool = window.restore_tool
+
+    def settle():  # the restore is made in the worker, then swapped in
+        qtbot.waitUntil(lambda: not tool.busy, timeout=60_000)
+        wait_for_jobs(window)
+
     # the × of a row whose point was removed (not changed), its rule and track
     removed = rej0[rej0.action == "removed"]
     row = removed.iloc[len(removed) // 2]
@@ -1633,7 +1638,7 @@ def test_removed_points_restored_from_the_map_with_undo(window):
     assert texts[-1] == "Restore removed points in the map's view"
     hit_id = int(hit_row.wl_id)
     acts[0].trigger()
-    wait_for_jobs(window)
+    settle()
     assert hit_id in set(layer.points.wl_id) and hit_id not in set(layer.tables["rejected"].wl_id)
     assert len(layer.points) == n0 + 1 and layer.restored == [hit_id]
     assert layer.lineage()["restored"] == [hit_id]
@@ -1641,13 +1646,15 @@ def test_removed_points_restored_from_the_map_with_undo(window):
     undo = window.review.act_undo
     assert undo.isEnabled() and "restore 1 points" in undo.text()
     undo.trigger()
-    wait_for_jobs(window)
+    settle()
     assert len(layer.points) == n0 and layer.restored == []
     assert len(layer.tables["rejected"]) == len(rej0)
     assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0)
     window.review.act_redo.trigger()
+    settle()
     assert layer.restored == [hit_id]
     undo.trigger()
+    settle()
     # all its rule removed on its track: "Restore all N points removed by RULE on S · B"
     many = tool.menu_actions(float(row.lon), float(row.lat))[1]
     on_track = (rej0.sensor.astype(str) == str(hit_row.sensor)) & (
@@ -1659,20 +1666,20 @@ def test_removed_points_restored_from_the_map_with_undo(window):
         f"{hit_row.sensor} · {hit_row.batch}"
     )
     many.trigger()
-    wait_for_jobs(window)
+    settle()
     assert set(layer.restored) == want and hit_id in want
     # the map's view: everything left in it
     window.canvas.fit()
     QtWidgets.QApplication.processEvents()
     assert tool.restore_in_view()
-    wait_for_jobs(window)
+    settle()
     left = layer.tables["rejected"]
     assert (left.action == "replaced").all()
     assert len(left) == 0 and f"{lid}/removed" not in window.canvas.layer_names()
     # two undos give back the layer as clean made it
     undo.trigger()
     undo.trigger()
-    wait_for_jobs(window)
+    settle()
     assert len(layer.points) == n0 and layer.restored == [] and not undo.isEnabled()
     assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0)
 

@@ -3264,6 +3264,10 @@
         <translation>恢复：当前图层没有被清洗删除的点</translation>
     </message>
     <message>
+        <source>Restore: the layer changed meanwhile; nothing restored</source>
+        <translation>恢复：图层在此期间已改变；未恢复任何点</translation>
+    </message>
+    <message>
         <source>Restore: no removed point there</source>
         <translation>恢复：该处没有被删除的点</translation>
     </message>
