@@ -231,6 +231,13 @@ class RestoreTool(QtCore.QObject):
             else tr("Restored {0} points removed by cleaning ({1}) into {2}")
         )
         self.w.log_message(text.format(f"{len(change):,}", rules_text(change.rules), layer.name))
+        made = self.w.session.children(layer.id)
+        if made:  # their steps read the points before: said, not re-run by themselves
+            self.w.log_message(
+                tr(
+                    "{0} layers made from it keep the points they read: run their steps again"
+                ).format(len(made))
+            )
 
     def restore_selected_tracks(self) -> bool:
         """Edit ▸ Restore … on the selected tracks: every removed point of theirs."""

@@ -3268,6 +3268,10 @@
         <translation>恢复：图层在此期间已改变；未恢复任何点</translation>
     </message>
     <message>
+        <source>{0} layers made from it keep the points they read: run their steps again</source>
+        <translation>由它生成的 {0} 个图层仍是按原来的点计算的：请重新运行它们的步骤</translation>
+    </message>
+    <message>
         <source>Restore: no removed point there</source>
         <translation>恢复：该处没有被删除的点</translation>
     </message>
