@@ -4,8 +4,8 @@
 The removed points are the map's × marks (View ▸ Show points removed by cleaning; the
 hover says the rule). A right click on the map offers, for the × nearest the cursor:
 restore this point; restore every point its rule removed on its track; and, for the
-layer, restore the removed points in the map's view (Box zoom first draws the box). Edit
-▸ Restore … does the last two for the active layer (the selected tracks, the view).
+layer, restore the removed points in the map's view. Edit ▸ Restore … does it for the
+active layer's selected tracks, a box dragged on the map, or the view.
 
 Each restore is applied to the session at once (:func:`~wakeline.core.clean_restore.apply`:
 points, reject trail, counts, lineage; the ``changed`` event has the project write the
@@ -82,12 +82,15 @@ class RestoreTool(QtCore.QObject):
         self.act_tracks.triggered.connect(self.restore_selected_tracks)
         self.act_view = QtGui.QAction(w)
         self.act_view.triggered.connect(lambda: self.restore_in_view())
+        self.act_box = QtGui.QAction(w, checkable=True)  # the next drag on the map: a box
         menu = w.review.edit_menu
         menu.addSeparator()
-        menu.addActions([self.act_tracks, self.act_view])
+        menu.addActions([self.act_tracks, self.act_box, self.act_view])
         vb = w.canvas.vb
         self._raise_menu = vb.raiseContextMenu
         vb.raiseContextMenu = self._context_menu
+        self._drag = vb.mouseDragEvent
+        vb.mouseDragEvent = self._drag_event
         w.session.subscribe(self._on_event)
         self.group.activeStackChanged.connect(self._keep_active)
         self.retranslate()
@@ -95,11 +98,12 @@ class RestoreTool(QtCore.QObject):
     def retranslate(self) -> None:
         self.act_tracks.setText(tr("Re&store points removed by cleaning on the selected tracks"))
         self.act_view.setText(tr("Restore removed points &in the map's view"))
+        self.act_box.setText(tr("Restore removed points in a &box (drag it on the map)"))
         tip = tr(
             "Put the points clean removed back into the active cleaned layer (undo: Ctrl+Z); "
             "View ▸ Show points removed by cleaning shows them as ×, Box zoom frames a box"
         )
-        for act in (self.act_tracks, self.act_view):
+        for act in (self.act_tracks, self.act_view, self.act_box):
             act.setToolTip(tip)
             act.setStatusTip(tip)
         for stack in self.stacks.values():
@@ -267,6 +271,41 @@ class RestoreTool(QtCore.QObject):
         box = (x0, y0, x1, y1) if x1 - x0 < 360 else (-180.0, y0, 180.0, y1)
         ids = CR.chosen_ids(rejected, box=box)
         return self.restore(layer.id, ids) if len(ids) else self._none_chosen()
+
+    def restore_in_box(
+        self, box: tuple[float, float, float, float], lid: str | None = None
+    ) -> bool:
+        """Every removed point of layer ``lid`` (default: the active one) inside ``box``
+        (west, south, east, north, degrees on the map's axes)."""
+        layer = self.w.session.get(lid) if lid else self.w.active_layer()
+        rejected = CR.rejected_of(layer)
+        if rejected is None:
+            self.w.log_message(tr("Restore: the active layer has no points removed by cleaning"))
+            return False
+        west, south, east, north = box
+        if east - west >= 360:
+            west, east = -180.0, 180.0
+        ids = CR.chosen_ids(rejected, box=(west, south, east, north))
+        return self.restore(layer.id, ids) if len(ids) else self._none_chosen()
+
+    def _drag_event(self, ev, axis=None) -> None:
+        """A left drag on the map while Edit ▸ Restore … in a box is on draws the box (as
+        Box zoom does) and, let go, restores the removed points in it; else the map's own
+        drag (pan, Box zoom)."""
+        left = QtCore.Qt.MouseButton.LeftButton
+        if not self.act_box.isChecked() or ev.button() != left or axis is not None:
+            self._drag(ev, axis)
+            return
+        ev.accept()
+        vb = self.w.canvas.vb
+        if not ev.isFinish():
+            vb.updateScaleBox(ev.buttonDownPos(), ev.pos())
+            return
+        vb.rbScaleBox.hide()
+        rect = QtCore.QRectF(ev.buttonDownPos(left), ev.pos())
+        rect = vb.childGroup.mapRectFromParent(rect).normalized()
+        self.act_box.setChecked(False)  # one box
+        self.restore_in_box((rect.left(), rect.top(), rect.right(), rect.bottom()))
 
     def _none_chosen(self) -> bool:
         self.w.log_message(tr("Restore: no removed point there"))

@@ -1668,6 +1668,45 @@ def test_removed_points_restored_from_the_map_with_undo(window, qtbot):
     many.trigger()
     settle()
     assert set(layer.restored) == want and hit_id in want
+    # a box dragged on the map (Edit ▸ Restore … in a box): the points left inside it
+    left = layer.tables["rejected"]
+    left = left[left.action != "replaced"]
+    mid = left.iloc[len(left) // 2]
+    west, east, south, north = mid.lon - 0.01, mid.lon + 0.01, mid.lat - 0.01, mid.lat + 0.01
+    inside = set(
+        left[left.lon.between(west, east) & left.lat.between(south, north)].wl_id.astype(int)
+    )
+    vb = window.canvas.vb
+    down = vb.childGroup.mapToParent(QtCore.QPointF(west, north))
+    up = vb.childGroup.mapToParent(QtCore.QPointF(east, south))
+
+    class Drag:  # pyqtgraph's MouseDragEvent, as the map's view box gets it
+        def __init__(self, finish):
+            self.finish = finish
+
+        def button(self):
+            return QtCore.Qt.MouseButton.LeftButton
+
+        def isFinish(self):  # noqa: N802 - pyqtgraph's API
+            return self.finish
+
+        def buttonDownPos(self, _button=None):  # noqa: N802
+            return down
+
+        def pos(self):
+            return up
+
+        def accept(self):
+            pass
+
+    box = tool.act_box
+    assert "box" in box.text() and box.isCheckable()
+    box.setChecked(True)
+    vb.mouseDragEvent(Drag(False))
+    vb.mouseDragEvent(Drag(True))
+    settle()
+    assert not box.isChecked() and len(inside) > 0
+    assert set(layer.restored) == want | inside
     # the map's view: everything left in it
     window.canvas.fit()
     QtWidgets.QApplication.processEvents()
@@ -1676,7 +1715,8 @@ def test_removed_points_restored_from_the_map_with_undo(window, qtbot):
     left = layer.tables["rejected"]
     assert (left.action == "replaced").all()
     assert len(left) == 0 and f"{lid}/removed" not in window.canvas.layer_names()
-    # two undos give back the layer as clean made it
+    # three undos give back the layer as clean made it
+    undo.trigger()
     undo.trigger()
     undo.trigger()
     settle()

@@ -3272,6 +3272,10 @@
         <translation>由它生成的 {0} 个图层仍是按原来的点计算的：请重新运行它们的步骤</translation>
     </message>
     <message>
+        <source>Restore removed points in a &amp;box (drag it on the map)</source>
+        <translation>恢复框内被删除的点（在地图上拖出方框）(&amp;B)</translation>
+    </message>
+    <message>
         <source>Restore: no removed point there</source>
         <translation>恢复：该处没有被删除的点</translation>
     </message>
