@@ -1598,7 +1598,7 @@ def test_points_removed_by_cleaning_drawn_as_an_overlay(window):
     assert name not in window.canvas.layer_names()
 
 
-def test_removed_points_restored_from_the_map_with_undo(window, qtbot):
+def test_removed_points_restored_from_the_map_with_undo(window, qtbot, tmp_path):
     """SPEC §2: the operator puts points removed by cleaning back — the × nearest a right
     click (one, or all its rule removed on its track), the selected tracks' or those in
     the map's view — into the cleaned layer; Edit ▸ Undo / Redo; the layer's lineage
@@ -1608,7 +1608,7 @@ def test_removed_points_restored_from_the_map_with_undo(window, qtbot):
     wait_for_jobs(window)
     lid = _layer_of(window, "cleaned")
     layer = window.layers[lid]
-    rej0, n0 = layer.tables["rejected"], len(layer.points)
+    rej0, n0, ids0 = layer.tables["rejected"], len(layer.points), set(layer.points.wl_id)
     window.actions_["show_removed"].setChecked(True)
     wait_for_jobs(window)
     window.canvas.fit()
@@ -1668,6 +1668,15 @@ def test_removed_points_restored_from_the_map_with_undo(window, qtbot):
     many.trigger()
     settle()
     assert set(layer.restored) == want and hit_id in want
+    # File ▸ Export of the layer writes them
+    window.select_layer(lid)
+    window.export("csv", tmp_path / "restored.csv")
+    wait_for_jobs(window)
+    out = pd.read_csv(tmp_path / "restored.csv")
+    back = rej0[rej0.wl_id.isin(want)].drop_duplicates("wl_id")
+    assert len(out) == len(layer.points) == n0 + len(set(back.wl_id) - ids0)
+    got = set(zip(out.batch.astype(str), out.lon.round(6), strict=True))
+    assert set(zip(back.batch.astype(str), back.lon.round(6), strict=True)) <= got
     # a box dragged on the map (Edit ▸ Restore … in a box): the points left inside it
     left = layer.tables["rejected"]
     left = left[left.action != "replaced"]
