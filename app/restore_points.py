@@ -156,7 +156,8 @@ class RestoreTool(QtCore.QObject):
         except InputError as exc:
             self.w.log_message(tr("Restore: {0}").format(str(exc)))
             return False
-        self.w.session.set_active(lid)
+        if self.w.session.active != lid:  # the layer restored into becomes the active one
+            self.w.select_layer(lid)
         self.stack(lid).push(RestoreCommand(self, change))
         self._keep_active()
         return True
