@@ -29,6 +29,7 @@ def build_actions(w) -> None:
     act("open", w.open_dialog, sp.SP_DialogOpenButton, keys.Open)
     act("open_bearings", w.open_bearings_dialog)
     act("open_project", w.open_project_dialog)
+    act("load_vessels", w.load_vessels_dialog)
     # Ctrl+S: a project followed is saved as it changes (the status bar says so and
     # where); Save as is its own action (h181 D-ui-1).
     act("save", w.save_or_say_saved, None, keys.Save)
@@ -90,7 +91,15 @@ def build_actions(w) -> None:
 
     m = {k: QtWidgets.QMenu(w) for k in ("file", "export", "run", "stages", "view", "lang", "help")}
     w.menus = m
-    for key in ("open", "open_bearings", "open_project", "save", "save_project", "close_project"):
+    for key in (
+        "open",
+        "open_bearings",
+        "load_vessels",
+        "open_project",
+        "save",
+        "save_project",
+        "close_project",
+    ):
         m["file"].addAction(a[key])
     m["file"].addMenu(m["export"])
     for key in (
@@ -296,6 +305,7 @@ def retranslate(w) -> None:
         "open": tr("&Open tracks…"),
         "open_project": tr("Open &project…"),
         "open_bearings": tr("Open &bearings (bearing-only detection)…"),
+        "load_vessels": tr("Load s&hip names (vessel table)…"),
         "save": tr("&Save project"),
         "save_project": tr("Save project &as…"),
         "close_project": tr("&Close project"),
@@ -385,6 +395,7 @@ def retranslate(w) -> None:
             tr("Target"),
             tr("Status"),
             tr("Name"),
+            tr("Type"),
         ],
         relative={"start": tr("Start (T+)"), "end": tr("End (T+)")},
     )

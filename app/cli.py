@@ -27,6 +27,10 @@ def _cmd_gui(args: argparse.Namespace) -> int:
     from wakeline.app.cli_steps import read_options
 
     language = {"language": args.language} if args.language else {}
+    if args.vessels is not None:
+        if not args.vessels.is_file():
+            raise InputError(f"{args.vessels}: no such file (--vessels)")
+        language["vessels"] = args.vessels  # run's keywords given: only those set
     return run(
         args.files, screenshot=args.screenshot, read=read_options(args, given=True), **language
     )
@@ -66,13 +70,23 @@ def build_parser() -> argparse.ArgumentParser:
         "--screenshot",
         type=Path,
         metavar="PNG",
-        help="load, render the main window at 1400x900 to PNG and exit",
+        help="load, run the default pipeline (clean, maneuvers, compress) on the first file "
+        "- not on a file that is mostly radar plots: those are shown as dots and stderr says "
+        "why - render the main window at 1400x900 to PNG and exit",
     )
     p.add_argument(
         "--language",
         choices=("en", "zh_CN"),
         help="the window's language (default: the one last chosen in the Language menu, "
         "else the system's, $LANG; a --screenshot: the system's)",
+    )
+    p.add_argument(
+        "--vessels",
+        type=Path,
+        metavar="FILE",
+        help="a vessel table (ship id, name and/or type columns, e.g. MMSI;TYPE) joined to "
+        "FILES by the ship id: the batch table's Name and Type columns, the map's labels "
+        "(File ▸ Load ship names)",
     )
     from wakeline.app.cli_steps import add_read_flags
 

@@ -13,12 +13,21 @@ from wakeline.core.errors import InputError
 from wakeline.core.words import count
 
 EPILOG = (
-    "Exit status: 0 success; 2 bad input (one message on stderr, nothing written), or the "
-    "batch ran but an input was left out: refused, or every row of it quarantined (each "
-    "listed on stderr as FILE: refused: WHY and in report.json refused_inputs; the other "
-    "inputs were processed and written); 130 interrupted (Ctrl+C: OUTDIR is incomplete, "
-    "marked by BATCH_INCOMPLETE.txt; the same command starts over in it); 1 internal error."
+    "Exit status: 0 every input read (rows quarantined, as in the other commands, are "
+    "counted on stderr and kept in OUTDIR/quarantine); 2 nothing written: bad usage or "
+    "input (one message on stderr), or no input could be read (every one refused, or every "
+    "row quarantined); 3 the batch ran and wrote OUTDIR but left an input file out: "
+    "refused (listed on stderr as FILE: refused: WHY and in report.json refused_inputs; a "
+    "file whose every row is quarantined too); the last stderr line counts them; 130 "
+    "interrupted (Ctrl+C: OUTDIR is incomplete, marked "
+    "by BATCH_INCOMPLETE.txt; the same command starts over in it); 1 internal error."
 )
+
+#: ``wakeline batch``'s exit status when it wrote its outputs but left an input file out
+#: (refused); 2 is "nothing written" (operator h228: one code said both). Quarantined rows
+#: alone give 0, as in the single-file commands: real exports nearly always hold a few, and
+#: a script that stops on a non-zero status would stop on nearly every batch.
+LEFT_OUT = 3
 
 
 def _cmd_batch(args: argparse.Namespace) -> int:
@@ -89,13 +98,22 @@ def _cmd_batch(args: argparse.Namespace) -> int:
         file=sys.stderr,
     )
     refused = rep.get("refused_inputs") or []
-    if refused:  # listed above, each with its reason; the rest were processed
+    quarantined = int(rep.get("quarantined") or 0)
+    if refused or quarantined:  # listed above, each with its reason; the rest were processed
+        parts = []
+        if refused:
+            parts.append(f"{count(len(refused), 'input')} refused (above, each with its reason)")
+        if quarantined:
+            parts.append(
+                f"{count(quarantined, 'row')} of {rep['rows_read']:,} quarantined "
+                f"({args.outdir / 'quarantine'})"
+            )
         print(
-            f"batch: {count(len(refused), 'input')} refused (above, each with its reason); "
-            "the other inputs were processed; exit status 2",
+            f"batch: wrote {args.outdir}, but left out {' and '.join(parts)}"
+            + (f"; exit status {LEFT_OUT}" if refused else ""),
             file=sys.stderr,
         )
-        return 2
+        return LEFT_OUT if refused else 0
     return 0
 
 
@@ -120,8 +138,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "among several inputs, one that is not track data (a README.txt: binary, or a header "
         "of no known column and no --map column). Every other refusal (a --map column missing "
         "from a data file, known columns but a required one missing) is listed with its "
-        "reason, the other inputs are processed, and the batch ends with exit status 2: "
-        "nothing is left out silently. The reading flags apply to every input: a file that "
+        "reason, the other inputs are processed, and the batch ends with exit status 3 "
+        "(2 when none is left): nothing is left out silently. The reading flags apply to every input: a file that "
         "needs its own is run apart, or imported to canonical CSV first (`wakeline import`).",
         epilog=EPILOG,
     )

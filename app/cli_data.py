@@ -9,7 +9,7 @@ from wakeline.core.words import count, import_counts
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
-    from wakeline.app.cli_steps import read_options
+    from wakeline.app.cli_steps import quarantine_reasons, read_options
     from wakeline.core.io import import_to_csv, nothing_imported, write_csv, write_json
 
     # Streamed: batch in, batch out (bounded memory); same output as read_points.
@@ -26,6 +26,8 @@ def _cmd_import(args: argparse.Namespace) -> int:
     msg = f"imported {import_counts(rep)}"  # blank lines too: the counts add up to the lines
     if rep["rows_quarantined"] and not args.quarantine:
         msg += " (write them with --quarantine FILE)"
+    if rep["rows_quarantined"]:
+        msg += f"\nquarantined: {quarantine_reasons(rep, shown=8)}"
     if rep.get("columns"):
         msg += "\ncolumns: " + ", ".join(f"{k}={v}" for k, v in rep["columns"].items())
     if rep.get("plane_origin"):

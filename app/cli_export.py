@@ -175,6 +175,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
                 msg += f"; per vertex in coordinateProperties: {', '.join(kept)}"
             if left:
                 msg += f"; not written: {', '.join(left)} (Wakeline's internal columns)"
+        elif kind == "gpx":
+            from wakeline.core.export_review import gpx_left_out
+
+            carried, internal = gpx_left_out(result.points)
+            if carried:
+                msg += (
+                    f"; not written: {', '.join(carried)} (a GPX point holds time, position, "
+                    "speed and course only: .geojson or .csv keeps these columns)"
+                )
+            if internal:
+                msg += f"; not written: {', '.join(internal)} (Wakeline's internal columns)"
         print(msg, file=sys.stderr)
         return 0
     from wakeline.core.export import check_text_path
@@ -248,7 +259,12 @@ def _cmd_export(args: argparse.Namespace) -> int:
         result = _read_in(args)
     say_quarantined(args.input, result.report)
     if len(result.points) == 0:
-        raise InputError(f"{args.input}: no usable points: nothing to export")
+        # as every other subcommand says it (it said "no usable points: nothing to export"
+        # where they say "no data rows (a header only?)": operator test 10), IN's flags named
+        from wakeline.core.io import nothing_imported
+
+        why = nothing_imported(result.report, str(args.input))
+        raise InputError(re.sub(r"(?<![\w-])--map\b", "--in-map", why))
     from wakeline.core.export import carries_targets
 
     # The canonical CSV keeps tracks and targets as GeoJSON and GPX do (docs/export.md);
@@ -284,6 +300,9 @@ def _cmd_export(args: argparse.Namespace) -> int:
         msg += f"; {count(rep['rows_made'], 'row')} made by Wakeline (operator columns left empty)"
     if rep["members"]:
         msg += f"; {count(rep['targets'], 'target')}, members in {rep['members']}"
+    left = _internal_left_out(result.points, rep["columns"])
+    if left:  # as GeoJSON and GPX say it (a fused layer's source, n_sources, weight_base)
+        msg += f"; not written: {', '.join(left)} (Wakeline's internal columns)"
     if keep:
         n = result.points["target"].nunique()
         msg += (
@@ -298,6 +317,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
         msg += f"; plain text: {args.like} is {packed}-compressed, its text's layout is written"
     print(msg, file=sys.stderr)
     return 0
+
+
+def _internal_left_out(points, written) -> list[str]:
+    """Wakeline's internal columns of ``points`` a CSV export did not write (targets and
+    members are said apart: the 'target' column, the members file; ``course_read`` is
+    the course as the file wrote it, written in the course column)."""
+    from wakeline.core.io.layout import INTERNAL_COLUMNS
+    from wakeline.core.schema import UNWRITTEN
+
+    said = {"target", "members", "course_read", *UNWRITTEN, *written}
+    return [str(c) for c in points.columns if c in INTERNAL_COLUMNS and c not in said]
 
 
 def register(sub: argparse._SubParsersAction) -> None:

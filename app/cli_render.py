@@ -11,7 +11,7 @@ from pathlib import Path
 
 from wakeline.app.cli_common import EPILOG
 from wakeline.core.errors import InputError
-from wakeline.core.words import count
+from wakeline.core.words import count, joined_names
 
 #: Steps ``--step`` runs, in the order given, each on the last layer of the one before.
 STEPS = ("clean", "maneuvers", "compress", "associate", "fuse")
@@ -68,26 +68,14 @@ def run_steps(points, steps: list[str]) -> list[tuple[str, str, object]]:
     return list(out.values())
 
 
-#: Files named one by one in the input's legend name; more are counted.
-NAMED_FILES = 3
-
-
 def input_name(paths: list[Path]) -> str:
-    """The input's name in the legend: its file; files that differ in the middle of their
-    names as ``scene-0_{AIS,radar}.csv``, others joined by " + " (beyond
-    :data:`NAMED_FILES`, the first ones and how many more); never a bare "input"."""
-    names = [Path(p).name for p in paths]
-    if len(names) == 1:
-        return names[0]
-    if len(names) <= NAMED_FILES:
-        head = os.path.commonprefix(names)
-        tail = os.path.commonprefix([n[len(head) :][::-1] for n in names])[::-1]
-        middles = [n[len(head) : len(n) - len(tail)] for n in names]
-        if (head or tail) and all(middles):
-            return f"{head}{{{','.join(middles)}}}{tail}"
-        return " + ".join(names)
-    shown = " + ".join(names[: NAMED_FILES - 1])
-    return f"{shown} + {len(names) - NAMED_FILES + 1} more files"
+    """The input's name in the legend: its file; up to three joined by " + ", more as the
+    first two and how many more ("a.csv + b.csv and 9 more"), as the window names a fuse
+    across layers (:func:`~wakeline.core.words.joined_names`; shown in the window's
+    language by :func:`~wakeline.app.layer_names.shown_name`). Never a bare "input"; no
+    "{ore_gbk,dma_semicolon_comma}.csv" (shortened in the legend to "{ore_gbk,d…mma}.csv",
+    which named neither file: operator test 10)."""
+    return joined_names([Path(p).name for p in paths])
 
 
 def _read(paths: list[Path], **options):

@@ -581,14 +581,23 @@ def say_quarantined(path, report: dict, command: str = "import") -> None:
     n = report.get("rows_quarantined", 0)
     if not n:
         return
-    reasons = sorted(report.get("quarantine_reasons", {}).items(), key=lambda kv: -kv[1])
-    why = "; ".join(f"{count:,} {reason}" for reason, count in reasons[:3])
-    more = f"; {len(reasons) - 3} more reasons" if len(reasons) > 3 else ""
     print(
-        f"{path}: {count(n, 'row')} quarantined on reading ({why}{more}); run `wakeline {command}` "
-        "with --quarantine to see them",
+        f"{path}: {count(n, 'row')} quarantined on reading ({quarantine_reasons(report)}); run "
+        f"`wakeline {command}` with --quarantine to see them",
         file=sys.stderr,
     )
+
+
+def quarantine_reasons(report: dict, shown: int = 3) -> str:
+    """The reasons rows were quarantined, most frequent first, each with its count: the
+    first ``shown`` and how many more ('1 short row: 2 of 7 fields; 1 unparsable lat; 2
+    more reasons'); one more is given rather than counted."""
+    reasons = sorted(report.get("quarantine_reasons", {}).items(), key=lambda kv: -kv[1])
+    if len(reasons) == shown + 1:
+        shown += 1
+    why = "; ".join(f"{k:,} {reason}" for reason, k in reasons[:shown])
+    more = len(reasons) - shown
+    return why + (f"; {count(more, 'more reason')}" if more > 0 else "")
 
 
 def read_input(path: Path, counts: dict | None = None, **options):

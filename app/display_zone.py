@@ -54,7 +54,9 @@ def stored_choice(w) -> str:
 
 def data_zone(w) -> str | None:
     """The time zone the active layer's data came in: its import's (or, for a step's
-    layer, its source layer's), None when the import named none (UTC)."""
+    layer, its source layer's); else the one UTC offset its times were written with
+    (``time_zone_written``: a file of ``…-05:00`` times showed UTC, operator test 10);
+    None when there is none or its times carry several ("mixed": UTC)."""
     if getattr(w, "active", None) is None:
         return None
     try:
@@ -62,8 +64,12 @@ def data_zone(w) -> str | None:
     except (KeyError, AttributeError):
         return None
     report = (layer.meta or {}).get("report") or {} if layer is not None else {}
-    zone = report.get("time_zone") if isinstance(report, dict) else None
-    return None if not zone or str(zone).upper() == "UTC" else str(zone)
+    if not isinstance(report, dict):
+        return None
+    zone = report.get("time_zone")
+    if not zone or str(zone).upper() == "UTC":
+        zone = report.get("time_zone_written")
+    return None if not zone or str(zone).upper() in ("UTC", "MIXED") else str(zone)
 
 
 def set_zone_choice(w, choice: str, store: bool = True, force: bool = True) -> None:

@@ -8,6 +8,7 @@ Self-contained (core objects only). ``options()`` returns the keyword arguments 
 
 from pathlib import Path
 
+import shiboken6
 from PySide6 import QtCore, QtGui, QtWidgets
 
 from wakeline.app.core_text import shown
@@ -137,9 +138,16 @@ def lay_out_dialog(
 class ImportDialog(QtWidgets.QDialog):
     """Pick a file; see its first rows; choose layout, encoding, column mapping, zone."""
 
-    def __init__(self, parent=None, path: Path | None = None) -> None:
+    def __init__(self, parent=None, path: Path | None = None, executor=None) -> None:
         super().__init__(parent)
         self.setWindowTitle(self.tr("Import tracks"))
+        #: ``executor(job, done)``: runs the preview read of the first rows (40–130 ms on a
+        #: loaded machine) off the GUI thread and calls ``done(result)`` on it (the
+        #: window's LodWorker); None: read here (a dialog of its own, tests).
+        self.executor = executor
+        self._preview_key = None  # the file and options the preview shown was read with
+        self._preview_said: dict | None = None
+        self._preview_wanted = None  # those of the read asked for last (None: none asked)
         self._info: dict = {}
         self._missing: list[str] = []  # required fields no column is mapped to
         self._updating = False
@@ -512,6 +520,8 @@ class ImportDialog(QtWidgets.QDialog):
         said, refused = [], None
         if not self._missing and not getattr(self, "_problem", None):
             said, refused = self._preview_lines()
+            if not said and self.preview_pending:  # the worker reads them (executor)
+                said = [self.tr("Reading the first rows…")]
         if refused:
             problems.append(refused)
         self.warning_label.setText("\n".join(problems))
@@ -534,18 +544,44 @@ class ImportDialog(QtWidgets.QDialog):
 
     def preview_read(self) -> dict | None:
         """What reading the file's first rows with the dialog's options says
-        (:func:`~wakeline.core.io.preview.preview_read`), remembered per file and options."""
+        (:func:`~wakeline.core.io.preview.preview_read`), remembered per file and options.
+
+        With an :attr:`executor` the read runs off the GUI thread: None until it comes
+        back (:attr:`preview_pending`), then the warnings are shown again; a read for an
+        earlier choice of file or options that comes back late is dropped."""
         from wakeline.core.io.preview import preview_read
 
         path = Path(self.path_edit.text())
         if not self._info or self._info.get("kind") != "csv" or not path.is_file():
+            self._preview_wanted = None
             return None
         options = {k: v for k, v in self.options().items() if k != "path"}
         key = (str(path), path.stat().st_mtime_ns, repr(sorted(options.items())))
-        if getattr(self, "_preview_key", None) != key:
-            self._preview_key = key
-            self._preview_said = preview_read(path, **options)
-        return self._preview_said
+        if self._preview_key == key:
+            return self._preview_said
+        if self.executor is None:
+            self._preview_key, self._preview_said = key, preview_read(path, **options)
+            return self._preview_said
+        if self._preview_wanted != key:
+            self._preview_wanted = key
+            self.executor(
+                lambda: preview_read(path, **options),
+                lambda said, key=key: self._preview_arrived(key, said),
+            )
+        return None
+
+    @property
+    def preview_pending(self) -> bool:
+        """A read of the first rows for the file and options as they are now is running."""
+        return self._preview_wanted is not None and self._preview_wanted != self._preview_key
+
+    def _preview_arrived(self, key, said: dict | None) -> None:
+        """The worker's read of the first rows (GUI thread): shown when it is for the file
+        and options chosen now; dropped when they changed meanwhile (a newer read runs)."""
+        if not shiboken6.isValid(self) or key != self._preview_wanted:
+            return
+        self._preview_key, self._preview_said = key, said
+        self._update_warning()
 
     def _preview_lines(self) -> tuple[list[str], str | None]:
         """The warnings and quarantine reasons of a read of the first rows, in the

@@ -26,6 +26,9 @@ from wakeline.core.session import BEARING_KIND
 
 #: Run ▸ pipeline's stages in a new window: clean, then maneuvers and compress.
 DEFAULT_STAGES = ("clean", "compress")
+#: The steps that take each batch for one ship's track (a warning before they run on
+#: radar plots: :meth:`JobsMixin.warn_if_plots`).
+TRACK_STEPS = ("pipeline", "clean", "maneuvers", "compress")
 #: The project's state row holding Run ▸ pipeline's stages (a list of step names).
 PIPELINE_STATE = "pipeline"
 #: The settings key (QSettings) holding them for the next window, project or not.
@@ -122,6 +125,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             "open project": tr("Open project"),
             "bearing": tr("Open bearings"),
             "review": tr("Review"),
+            "vessels": tr("Load ship names"),
         }
         if name in titles:
             return titles[name]
@@ -200,7 +204,28 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             )
             return ("step", lid, prepared, views, params)
 
+        self.warn_if_plots(lid, step)
         return self._start(step, job, (step, shown_name(layer.name)))
+
+    def warn_if_plots(self, lid: str, step: str) -> bool:
+        """Say in the log (non-modal; the run goes on) when a track step — the pipeline,
+        Clean, Maneuvers, Compress — runs on a layer that is mostly radar plots (the
+        parameter guidance's test, ``core.tracks.plot_like``: the layer drawn as dots):
+        each batch is taken for one ship's track, and the result joins a scan's
+        detections (the Autoferry detections came out a scribble). Returns whether it
+        said so."""
+        view = self.views.get(lid)
+        if step not in TRACK_STEPS or view is None or not view.extra.get("plots"):
+            return False
+        layer = self.session.layers.get(lid)
+        text = self.tr(
+            "{0} runs on {1}, which looks like radar plots (detections of each scan, see the "
+            "guidance under Parameters), not ships' tracks: it takes each batch for one "
+            "ship's track, and its result joins unrelated detections. Join the plots into "
+            "tracks first (a tracker) for a meaningful result."
+        ).format(self.job_title(step), shown_name(layer.name) if layer else lid)
+        self.log_message(f"{self.tr('Warning')}: {text}")
+        return True
 
     def _apply_step(self, lid: str, result: StepResult, views: dict, params) -> None:
         if lid not in self.session.layers:
@@ -617,11 +642,14 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
         kind = done[0]
         if kind == "import":
             self._plan_view(done[3])  # the view the layers' level of detail was made for
+            before = set(self.session.layers)
             try:
                 for item in done[1]:
                     self._apply_import(*item)
             finally:
                 self._view_planned = False
+            if self.vessels_after_load is not None:  # wakeline gui --vessels FILE
+                self._vessels_after_import([i for i in self.session.layers if i not in before])
             for text in done[2]:
                 self.log_message(f"{self.tr('Error')}: {shown(text)}")
             if done[2]:
@@ -665,6 +693,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
             from wakeline.app.review_sync import apply_fused
 
             apply_fused(self, *done[1:])
+        elif kind == "vessels":
+            self._apply_vessels(*done[1:])
         elif kind == "export":
             self.log_message(self.tr("exported {0} to {1}").format(shown_name(done[1]), done[2]))
             for warning in done[3] if len(done) > 3 else []:

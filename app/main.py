@@ -72,17 +72,27 @@ def freeze_startup_objects() -> None:
     gc.freeze()
 
 
+def plots_only(window: MainWindow, lid: str) -> bool:
+    """Whether layer ``lid`` is mostly radar plots (its prepared view says so: the
+    parameter guidance's test, :func:`wakeline.app.layer_view.looks_like_plots`)."""
+    view = window.views.get(lid)
+    return bool(view is not None and view.extra.get("plots"))
+
+
 def run(
     files: list[Path] | None = None,
     screenshot: Path | None = None,
     read: dict | None = None,
     language: str | None = None,
+    vessels: Path | None = None,
 ) -> int:
     """Open the main window on ``files`` (default: the demo scene), read with ``read``
     (``read_points`` keywords: the command line's reading flags, e.g. ``origin``).
 
     With ``screenshot``: load, run the default pipeline (clean, maneuvers, compress) on
-    the first file, render the window at 1400×900 to that PNG and return.
+    the first file, render the window at 1400×900 to that PNG and return. A first file
+    that is mostly radar plots is shown as it is (dots, the guidance), the steps not run,
+    and stderr says why.
 
     ``language`` (``en``, ``zh_CN``): the window's; None: the saved choice, or the
     system's ($LANG) — a screenshot the system's, so that it shows what the operator sees
@@ -111,6 +121,7 @@ def run(
     if screenshot is None:
         install_excepthook(window)
     paths = [Path(p) for p in files or [demo_path()]]
+    window.vessels_after_load = Path(vessels) if vessels is not None else None
     window.load_files(paths, dict(read or {}) if files else None)
     loaded = [True]
     if screenshot is not None:
@@ -119,7 +130,26 @@ def run(
     if screenshot is not None:
         window.show()
         sources = [i for i, lay in window.layers.items() if lay.kind == "source"]
-        if sources:
+        plots = bool(sources) and plots_only(window, sources[0])
+        if plots:
+            # Radar plots (detections of each scan, the guidance's test): the track steps
+            # would take each batch for a ship's track and draw a scribble. Shown as they
+            # are, as dots, with the guidance; said on stderr (no one reads the Log).
+            window.select_layer(sources[0])
+            wait_for_jobs(window)
+            name = window.layers[sources[0]].name
+            guidance = " ".join(window.params.guidance.text().split())
+            said = window.tr(
+                "most of it looks like radar plots, not tracks: the track steps "
+                "(clean, maneuvers, compress) were not run; the screenshot shows the "
+                "plots as dots"
+            )
+            window.log_message(f"{window.tr('Warning')}: {name}: {said}")
+            print(f"wakeline: {name}: {said}", file=sys.stderr)
+            if guidance:
+                print(f"wakeline: {guidance}", file=sys.stderr)
+            window.canvas.frame()
+        elif sources:
             window.select_layer(sources[0])
             window.run_step("pipeline")
             wait_for_jobs(window)

@@ -30,6 +30,7 @@ from wakeline.app.dialogs import ImportReportDialog
 from wakeline.app.import_dialog import ImportDialog
 from wakeline.app.jobs import JobsMixin, preload
 from wakeline.app.layer_names import shown_name
+from wakeline.app.layer_undo import LayerUndo
 from wakeline.app.layer_view import LayerView, maneuver_table
 from wakeline.app.lod_worker import LodWorker
 from wakeline.app.map_canvas import MapCanvas
@@ -42,6 +43,8 @@ from wakeline.app.time_panel import dark_palette, install_time, palette_icon
 from wakeline.app.view_keeper import MapViewKeeper
 from wakeline.app.window_layers import EMPTY, LayersMixin, layer_text
 from wakeline.app.window_selection import SelectionMixin
+from wakeline.app.window_sensors import SensorsMixin
+from wakeline.app.window_vessels import VesselsMixin
 from wakeline.app.worker import JobRunner, give_back_free_memory
 from wakeline.core import geo
 from wakeline.core.session import BEARING_KIND, Session
@@ -121,7 +124,9 @@ def points_inside(points: pd.DataFrame, window: tuple[float, float]) -> int:
     return int(np.count_nonzero((t >= lo) & (t <= hi)))
 
 
-class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
+class MainWindow(
+    LayersMixin, SelectionMixin, SensorsMixin, VesselsMixin, JobsMixin, QtWidgets.QMainWindow
+):
     """Wakeline's main window."""
 
     layersChanged = QtCore.Signal()
@@ -303,6 +308,9 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.set_icons()
         self._add_legend_toggle()
         self.review = ReviewDock(self)  # the review dock, its menus and the before map
+        # Edit ▸ Restore removed layer / Remove layer again (the layer removals' stack)
+        self.layer_undo = LayerUndo(self, self.review.edit_menu)
+        self.install_sensor_menu()  # View ▸ Sensors of the active layer
         from wakeline.app.restore_points import install as install_restore
 
         self.restore_tool = install_restore(self)  # Edit ▸ Restore, the map's right click
@@ -440,6 +448,10 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         self.bearing_view.retranslate()
         if hasattr(self, "review"):  # built after the first retranslate
             self.review.retranslate()
+        if hasattr(self, "layer_undo"):
+            self.layer_undo.retranslate()
+        if hasattr(self, "sensor_menu"):
+            self.retranslate_sensor_menu()
         if hasattr(self, "restore_tool"):
             self.restore_tool.retranslate()
         for row in range(self.layer_list.count()):  # the kinds' tags: [source], [fused] …
@@ -487,7 +499,8 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
     # -- dialogs -------------------------------------------------------------------
 
     def open_dialog(self) -> None:
-        dialog = ImportDialog(self)
+        # the read of the first rows (its warnings, quarantine) in the map's worker pool
+        dialog = ImportDialog(self, executor=self.lod_worker)
         if dialog.exec() == QtWidgets.QDialog.DialogCode.Accepted:
             self.load_file(**dialog.options())
 
@@ -554,14 +567,18 @@ class MainWindow(LayersMixin, SelectionMixin, JobsMixin, QtWidgets.QMainWindow):
         status bar still said "1,131 points, 1 track")."""
         view = self.views.get(layer.id)
         tracks = len(view.summary) if view is not None else 0
-        text = self.tr("{0}, {1}").format(points_text(len(layer.points)), tracks_text(tracks))
+        # View ▸ Sensors: what the window shows of the layer (its sensors shown)
+        note = self.sensors_note(layer)
+        points = view.points if note and view is not None else layer.points
+        text = self.tr("{0}, {1}").format(points_text(len(points)), tracks_text(tracks))
         overlap = self.batch_model.tracks_overlapping(window) if view is not None else None
         if overlap is None or window is None:
-            return text
-        inside = points_inside(layer.points, window)
-        return self.tr("In the time window: {0} of {1}, {2} of {3}").format(
-            f"{overlap:,}", tracks_text(tracks), f"{inside:,}", points_text(len(layer.points))
+            return f"{text} ({note})" if note else text
+        inside = points_inside(points, window)
+        text = self.tr("In the time window: {0} of {1}, {2} of {3}").format(
+            f"{overlap:,}", tracks_text(tracks), f"{inside:,}", points_text(len(points))
         )
+        return f"{text} ({note})" if note else text
 
     def show_counts(self) -> None:
         """The status bar's counts of the active layer now (the time window moved: the

@@ -399,6 +399,7 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
                 items.append(item)
             self._items[name] = items
             self._visible[name] = was_visible
+            self._bold_legend()  # entries made anew: bold again if the layer is active
         self._data[name] = data
         self._lod_pending.discard(name)  # a result for the old data is ignored on arrival
         if visible is not None:
@@ -582,6 +583,12 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
             for item in items:
                 item.setOpacity(self._opacity_of(name))
                 item.setZValue(z)
+        self._bold_legend()
+
+    def _bold_legend(self) -> None:
+        """The emphasized (active) layer's legend entries in bold, the others plain."""
+        names = self._emphasis or set()
+        self.legend.set_bold([i for n in names for i in self._items.get(n, [])])
 
     def set_visible(self, name: str, visible: bool) -> None:
         """Show or hide layer ``name``'s curves and their legend entries."""

@@ -515,12 +515,28 @@ def _tr(text: str) -> str:
 
 
 def track_names(geom: LayerGeometry) -> list[str]:
-    """Each track's short name: its batch, ``sensor:batch`` when the layer has several
-    sensors."""
+    """Each track's short name: its batch, ``sensor · batch`` when the layer has several
+    sensors (as the selection's legend names a track: "9001:412434718-0" beside
+    "9001 · 412434718-0" named one track twice, operator test 10)."""
     sensors = {str(s) for s in geom.sensor}
     if len(sensors) > 1:
-        return [f"{s}:{b}" for s, b in zip(geom.sensor, geom.batch, strict=True)]
+        return [f"{s} · {b}" for s, b in zip(geom.sensor, geom.batch, strict=True)]
     return [str(b) for b in geom.batch]
+
+
+def named_tracks(geom: LayerGeometry) -> dict[tuple[str, str], str]:
+    """The tracks a layer coloured by track (:func:`recolor`) names on a legend line of
+    their own, with their colour, by ``(sensor, batch)``; empty for a layer in its own
+    colours. (The first track of each colour has the line; beyond :data:`LEGEND_TRACKS`
+    lines the last says "… and N more tracks".)"""
+    if geom.plain is None:
+        return {}
+    n_groups = len(geom.colors)
+    named = n_groups if n_groups <= LEGEND_TRACKS else LEGEND_TRACKS - 1
+    return {
+        (str(geom.sensor[g]), str(geom.batch[g])): geom.colors[g]
+        for g in range(min(named, geom.n_tracks))
+    }
 
 
 def recolor(data: DrawData, by_track: bool, palette: tuple[str, ...] | None = None) -> DrawData:

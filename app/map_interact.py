@@ -12,6 +12,7 @@ import pyqtgraph as pg
 from PySide6 import QtCore
 
 from wakeline.app.map_colors import apart_from
+from wakeline.app.map_draw import named_tracks
 from wakeline.app.map_legend import short_label
 from wakeline.app.map_selection import SELECTION_PALETTE, selection_curves
 from wakeline.core import geo
@@ -61,8 +62,14 @@ class MapInteractMixin:
         if len(points) == 0:
             self.selection.setData([], [])
         else:
-            used = {c.color for d in self.visible_draw_data() for c in d.curves}
-            halo, curves, self._selection_colors = selection_curves(points, used, gaps, lon_west)
+            shown = self.visible_draw_data()
+            used = {c.color for d in shown for c in d.curves}
+            own = {}  # tracks a layer coloured by track names already: one legend line each
+            for d in shown:
+                own.update(named_tracks(d.geometry))
+            halo, curves, self._selection_colors = selection_curves(
+                points, used, gaps, lon_west, own
+            )
             self.selection.setData(halo.lon, halo.lat, connect="finite")
         pool = self._selection_pool
         while len(pool) < len(curves):

@@ -85,7 +85,61 @@ class SideLegend(pg.LegendItem):
         self._rank: dict[int, int] = {}  # id(sample) -> its place among the entries
         self._ranks = itertools.count()
         self._hidden: dict[int, tuple] = {}  # id(item) -> (sample, label) left out
+        bold = QtGui.QFont(font)
+        bold.setBold(True)
+        self._bold_metrics = QtGui.QFontMetricsF(bold)
+        # A bold size no wider than the plain text (for a name that bold at 9 pt would
+        # shorten more than plain: drawn whole, a little smaller)
+        sample = "a_radar_console_zh.csv · cleaned · compressed 雷达"
+        plain_px = self._metrics.horizontalAdvance(sample)
+        self._bold_small = "9pt"
+        for tenth in range(89, 59, -1):
+            bold.setPointSizeF(tenth / 10)
+            if QtGui.QFontMetricsF(bold).horizontalAdvance(sample) <= plain_px:
+                self._bold_small = f"{tenth / 10:g}pt"
+                break
+        self._bold: set[int] = set()  # id(item) of the entries drawn bold (the active layer)
         self.updateSize()
+
+    def _set_label(self, label, name: str, bold: bool) -> None:
+        """``label`` showing ``name`` (its fitted text), bold or plain. Bold, it is fitted
+        with the bold font's widths; when that would shorten it more than plain, it is
+        drawn whole in a smaller bold size (:attr:`_bold_small`) that fits as plain does:
+        a bold label never widens the column nor loses what the plain one shows."""
+        size = self.opts.get("labelTextSize", "9pt")
+        text = self.shown_label(name) if name else label.text
+        if bold and name:
+            plain = self._metrics
+            self._metrics = self._bold_metrics
+            try:
+                wide = self.shown_label(name)
+            finally:
+                self._metrics = plain
+            if wide == text:
+                label.setText(text, bold=True, size=size)
+            else:
+                label.setText(text, bold=True, size=self._bold_small)
+            return
+        label.setText(text, bold=bold, size=size)
+
+    def set_bold(self, items) -> None:
+        """The entries of ``items`` (the active layer's curves) in bold, the others not:
+        the legend says which layer is active (the map draws it on top, the others dimmed).
+        A bold label fits the column as the plain one does (:meth:`_set_label`), so it
+        never widens the column (the map would be decimated again)."""
+        want = {id(item) for item in items}
+        if want == self._bold:
+            return
+        for sample, label in [*self.items, *self._hidden.values()]:
+            on = id(sample.item) in want
+            if on == (id(sample.item) in self._bold):
+                continue
+            self._set_label(label, label.toolTip(), on)
+        self._bold = want
+
+    def is_bold(self, item) -> bool:
+        """Whether ``item``'s entry is drawn bold (the active layer's)."""
+        return id(item) in self._bold
 
     def set_shown(self, on: bool) -> None:
         """The legend shown, or hidden with no column (View ▸ Show legend): the map
@@ -187,12 +241,13 @@ class SideLegend(pg.LegendItem):
             if sample.item is item:
                 name = rename(label.toolTip())
                 if name != label.toolTip():
-                    label.setText(self.shown_label(name))
+                    self._set_label(label, name, id(item) in self._bold)
                     label.setToolTip(name)
                 return
 
     def removeItem(self, item) -> None:  # noqa: N802 - pyqtgraph's name
         """Remove ``item``'s entry, shown or left out (:meth:`show_entries`)."""
+        self._bold.discard(id(item))
         pair = self._hidden.pop(id(item), None)
         if pair is not None:
             self._rank.pop(id(pair[0]), None)
@@ -239,6 +294,7 @@ class SideLegend(pg.LegendItem):
             self._removeItemFromLayout(*pair)
         self._hidden.clear()
         self._rank.clear()
+        self._bold.clear()
         super().clear()
 
     def hidden_items(self) -> list:

@@ -56,6 +56,7 @@ def selection_curves(
     avoid: set[str] | frozenset[str] = frozenset(),
     gaps: bool = True,
     lon_west: float = -180.0,
+    own: dict[tuple[str, str], str] | None = None,
 ) -> tuple[Curve, tuple[Curve, ...], dict[tuple[str, str], str]]:
     """The halo (every selected track, full resolution), one curve per colour, and the
     colour of every selected track by ``(sensor, batch)``.
@@ -65,6 +66,10 @@ def selection_curves(
     "… and N more selected" and the rest have none.
     ``lon_west``: the band of the layer the tracks are drawn in (its geometry's
     ``lon_west``), so they lie on it across 180°.
+    ``own``: tracks the legend already names in a colour of their own (a layer coloured
+    by track, :func:`~wakeline.app.map_draw.named_tracks`): drawn in that colour under the
+    halo, with no second legend line ("9001:412434718-0" and "9001 · 412434718-0" named
+    one track twice in two colours, operator test 10).
     """
     geom = _SelectedTracks(points, lon_west)
     keep = np.ones(geom.n_points, dtype=bool)
@@ -76,29 +81,39 @@ def selection_curves(
     halo = Curve("", "#ffaa00", lon, lat)
     palette = list(apart_from(SELECTION_PALETTE, avoid)) or list(SELECTION_PALETTE)
     k = len(palette)
-    color_of_track = np.arange(geom.n_tracks) % k
+    own = own or {}
+    mine = [own.get((str(s), str(b))) for s, b in zip(geom.sensor, geom.batch, strict=True)]
+    rest = np.flatnonzero([c is None for c in mine])  # the tracks the selection names
+    n_rest = len(rest)
+    color_of_track = np.full(geom.n_tracks, -1, dtype="int64")
+    color_of_track[rest] = np.arange(n_rest) % k
     color_of_point = color_of_track[geom.track] if geom.n_points else np.zeros(0, "int64")
     curves = []
     said = False  # a reused colour explained in words once
-    for g in range(min(k, geom.n_tracks)):
+    groups = min(k, n_rest)
+    for g in range(groups):
         x, y = nan_join(geom.lon, geom.lat, color_of_point == g, brk)
         more = int(np.count_nonzero(color_of_track == g)) - 1
         label = ""
-        groups = min(k, geom.n_tracks)
         if groups > LEGEND_BATCHES and g == LEGEND_BATCHES - 1:
             # the legend stops here and says so (it stopped silently: h225 item 2)
-            named = int(np.count_nonzero(color_of_track < LEGEND_BATCHES - 1))
-            label = _tr("… and {0} more selected").format(f"{geom.n_tracks - named:,}")
+            named = int(np.count_nonzero((color_of_track >= 0) & (color_of_track < g)))
+            label = _tr("… and {0} more selected").format(f"{n_rest - named:,}")
         elif g < LEGEND_BATCHES:
             # "(+k same colour)": k more selected tracks share this colour (the palette
             # has fewer colours than tracks); it said "(+k)", which nobody could read
             # "sensor · batch", as the review names a proposal's pieces in the legend
-            name = f"{geom.sensor[g]} · {geom.batch[g]}"
+            first = rest[g]
+            name = f"{geom.sensor[first]} · {geom.batch[first]}"
             label = reused_label(name, more, said)
             said = said or more > 0
         curves.append(Curve(label, palette[g], x, y))
+    track_colour = [c if c is not None else palette[color_of_track[i]] for i, c in enumerate(mine)]
+    for colour in dict.fromkeys(c for c in mine if c is not None):
+        on = np.asarray([c == colour for c in mine], dtype=bool)
+        x, y = nan_join(geom.lon, geom.lat, on[geom.track], brk)
+        curves.append(Curve("", colour, x, y))
     colors = {
-        (str(s), str(b)): palette[g]
-        for s, b, g in zip(geom.sensor, geom.batch, color_of_track, strict=True)
+        (str(s), str(b)): c for s, b, c in zip(geom.sensor, geom.batch, track_colour, strict=True)
     }
     return halo, tuple(curves), colors

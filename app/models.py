@@ -8,6 +8,7 @@ from PySide6 import QtCore
 
 from wakeline.app.time_text import is_relative_time
 from wakeline.core import sorted_sets
+from wakeline.core.io.vessels import TYPE_COLUMN
 from wakeline.core.timeline import overlapping
 from wakeline.core.tracks import sort_points, summary_update, track_index, track_summary
 
@@ -25,12 +26,12 @@ def batch_summary(
         summary = summary_update(points, previous[0], previous[1])
         if summary is not None:
             summary = summary.drop(
-                columns=["maneuvers", "target", "status", "name"], errors="ignore"
+                columns=["maneuvers", "target", "status", "name", "ship_type"], errors="ignore"
             )
     if summary is None:
         summary = track_summary(points)
     if summary.empty:
-        for col in ("maneuvers", "target", "status", "name"):
+        for col in ("maneuvers", "target", "status", "name", "ship_type"):
             summary[col] = []
         return summary
     keys = ["sensor", "batch"]
@@ -55,6 +56,9 @@ def batch_summary(
         summary["status"] = ""
     name_col = ship_name_column(points)
     summary["name"] = _first_per_track(points, name_col) if name_col else ""
+    # a vessel table's ship types (File ▸ Load ship names: core.io.vessels)
+    has_type = TYPE_COLUMN in points.columns and bool((points[TYPE_COLUMN] != "").any())
+    summary[TYPE_COLUMN] = _first_per_track(points, TYPE_COLUMN) if has_type else ""
     return summary
 
 
@@ -99,6 +103,7 @@ KEPT_TEXT = (
     "sensor",
     "batch",
     "name",
+    "ship_type",
     "points",
     "duration_s",
     "length_m",
@@ -127,7 +132,7 @@ def display_text(
         old, old_text = previous
         kept = {k: old_text[k] for k in KEPT_TEXT if k in old_text and _same_column(df, old, k)}
     out = {}
-    for key in ("sensor", "batch", "target", "status", "name"):
+    for key in ("sensor", "batch", "target", "status", "name", "ship_type"):
         if key in kept:
             out[key] = kept[key]
             continue
@@ -301,12 +306,15 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         ("maneuvers", "Maneuvers"),
         ("target", "Target"),
         ("status", "Status"),
-        ("name", "Name"),  # last: shown only when the file has ship names (has_names)
+        ("name", "Name"),  # shown only when the file has ship names (has_names)
+        ("ship_type", "Type"),  # ... and ship types (a vessel table's: has_types)
     )
-    TEXT = ("sensor", "batch", "target", "status", "name")
+    TEXT = ("sensor", "batch", "target", "status", "name", "ship_type")
     #: Other words a column filter (``name:argo``) may name a column by.
     FILTER_ALIASES = {
         "ship": "name",
+        "shiptype": "ship_type",
+        "类型": "ship_type",
         "mmsi": "batch",
         "track": "batch",
         "id": "batch",
@@ -501,6 +509,12 @@ class BatchTableModel(QtCore.QAbstractTableModel):
         """The tracks shown have ship names (the Name column is worth showing)."""
         names = self._text.get("name")
         return names is not None and bool(len(names)) and bool((names != "").any())
+
+    @property
+    def has_types(self) -> bool:
+        """The tracks shown have ship types (a vessel table's: the Type column shown)."""
+        types = self._text.get("ship_type")
+        return types is not None and bool(len(types)) and bool((types != "").any())
 
     def set_time_window(self, window: tuple[float, float] | None) -> None:
         """Show only tracks whose time span overlaps ``window`` = (from, to) in seconds

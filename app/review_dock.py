@@ -24,10 +24,15 @@ from wakeline.app.layer_names import shown_name
 from wakeline.app.map_canvas import MapCanvas
 from wakeline.app.map_colors import delta_e
 from wakeline.app.review_map import (
+    JOIN_STYLE,
     PALETTE,
+    Z_GAP,
     Piece,
     ProposalGeometry,
     ProposalItems,
+    as_decided,
+    join_pen,
+    join_segments,
     proposal_geometry,
     proposal_members,
     tracks_geometry,
@@ -85,6 +90,13 @@ REVIEW_KEYS = (  # (action, key, panel method); the texts: review_texts()
     ("split_target", "Shift+S", "split_target"),
     ("merge", "M", "merge"),
 )
+
+
+def join_text(status: str) -> str:
+    """The legend's line of the review's joins of ``status`` (pending, accepted)."""
+    if status == "accepted":
+        return tr("accepted join")
+    return tr("pending join (dashed)")
 
 
 def review_texts() -> dict[str, str]:
@@ -208,6 +220,11 @@ class ReviewDock(QtCore.QObject):
         # The items of each group on each map, made once and reused (ProposalItems).
         self._pools: dict[str, dict] = {"proposal": {}, "members": {}}
         self._lines: dict = {}  # proposal item -> its own legend line's text (main map)
+        # every join of the bound review on the main map, by status (pending dashed,
+        # accepted solid): one curve each, and its legend line's text
+        self._joins: dict[str, pg.PlotDataItem] = {}
+        self._join_lines: dict = {}  # join curve -> its legend line's text
+        self._joins_key = None  # (queue, its log's length, language) the joins show
         self._geom: ProposalGeometry | None = None  # the current proposal's, as computed
         self._redraw = QtCore.QTimer(self)  # the proposal again in the legend's colours
         self._redraw.setSingleShot(True)
@@ -405,6 +422,7 @@ class ReviewDock(QtCore.QObject):
         self.before.setTitle(tr("before: the input pieces"), size="9pt")
         for bound in self.queues.values():
             bound.gantt.retranslate()
+        self._draw_joins()  # the legend's join lines in the new language
 
     def _fuse(self) -> None:
         if len(self.w.layer_list.selectedItems()) >= 2:
@@ -476,6 +494,7 @@ class ReviewDock(QtCore.QObject):
         if len(log) == b.echoed:  # a decision that changed nothing: not logged, not said
             return
         b.echoed = len(log)
+        self._draw_joins()  # the decided join solid, or gone
         entry = log[-1]
         action = entry.action
         if action.startswith("undo "):
@@ -718,6 +737,7 @@ class ReviewDock(QtCore.QObject):
         self._enable(bound is not None)
         self._geom = None
         self._clear_items()
+        self._draw_joins()  # the joins of this queue, or none
         if bound is None:
             self.group.setActiveStack(None)
             self.stack.setCurrentWidget(self.empty)
@@ -868,7 +888,8 @@ class ReviewDock(QtCore.QObject):
                 given[piece.track] = color
                 piece = replace(piece, color=color)
             pieces.append(piece)
-        self._add_items(replace(geom, pieces=pieces), "proposal")
+        status = self.bound.controller.state.status_of(geom.proposal) if self.bound else "pending"
+        self._add_items(as_decided(replace(geom, pieces=pieces), status), "proposal")
         wanted = {}
         for c, item in self._items["proposal"]:
             name = item.opts.get("name") if isinstance(item, pg.PlotDataItem) else None
@@ -878,6 +899,51 @@ class ReviewDock(QtCore.QObject):
         for c in (canvas, self.before):
             c.mute_layers(CONTEXT_OPACITY)
 
+    def _draw_joins(self) -> None:
+        """Every join of the bound review across a gap on the main map: the undecided
+        (pending) ones dashed, the accepted ones solid, rejected and split ones not at all
+        (:func:`~wakeline.app.review_map.join_segments`), each kind with a legend line
+        while it has any ("pending join (dashed)"); none while no review is bound or its
+        layer is hidden. Again after every decision (:meth:`_echo`)."""
+        b = self.bound
+        layer = self.w.session.layers.get(b.lid) if b is not None else None
+        shown = b is not None and b.arrays is not None and layer is not None and layer.visible
+        # the same queue, decisions and language: nothing to do (J/K move between
+        # proposals; a decision, undo or redo adds to the state's log)
+        key = (id(b), len(b.controller.state.log), tr("pending join (dashed)")) if shown else None
+        if key is not None and key == getattr(self, "_joins_key", None):
+            return
+        self._joins_key = key
+        segments: dict = {}
+        if shown:
+            t, lon, lat, _west = b.arrays
+            segments = join_segments(b.controller.state, t, lon, lat, b.ranges)
+        canvas = self.w.canvas
+        for status in JOIN_STYLE:
+            lon, lat = segments.get(status, (np.zeros(0), np.zeros(0)))
+            item = self._joins.get(status)
+            if item is None:
+                if not len(lon):
+                    continue
+                item = pg.PlotDataItem([], [], pen=join_pen(status, 1.2))
+                item.setZValue(Z_GAP - 1)  # under the current proposal's connector
+                canvas.addItem(item)
+                self._joins[status] = item
+            item.setData(lon, lat, connect="finite")
+            item.setVisible(bool(len(lon)))
+            self._join_legend(item, join_text(status) if len(lon) else None)
+
+    def _join_legend(self, item, text: str | None) -> None:
+        """The main map's legend line of a join curve: ``text``, or none."""
+        legend = self.w.canvas.legend
+        present = any(sample.item is item for sample, _label in legend.items)
+        if present and (text is None or self._join_lines.get(item) != text):
+            legend.removeItem(item)
+            present = False
+        if text is not None and not present:
+            legend.addItem(item, text)
+        self._join_lines[item] = text
+
     def show_proposal(self, proposal: str) -> None:
         """Zoom to the proposal, its tracks selected, its pieces in the legend's colours
         over the muted layers, the gap's dashed connector and predicted path (both maps);
@@ -885,6 +951,7 @@ class ReviewDock(QtCore.QObject):
         b = self.bound
         self._geom = None
         self._views_todo = []
+        self._draw_joins()
         if b is None or not proposal:
             self._clear_items("proposal")
             return

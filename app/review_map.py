@@ -11,7 +11,7 @@ one canvas's items and reuses them from one proposal to the next (``setData``, `
 making and deleting pyqtgraph items was most of a redraw on the GUI thread).
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
@@ -65,6 +65,77 @@ class ProposalGeometry:
     connector: tuple[np.ndarray, np.ndarray] | None = None  # straight, dashed
     predicted: tuple[np.ndarray, np.ndarray] | None = None  # across the gap
     bounds: tuple[float, float, float, float] | None = None
+    #: the proposal's status, as its join is drawn (:func:`as_decided`): pending dashed,
+    #: accepted solid, rejected or split not drawn as a join
+    status: str = "pending"
+
+
+#: A join's pen by its proposal's status (the connector across a gap, and every join of
+#: the review on the map, :func:`join_segments`): undecided dashed, accepted solid;
+#: rejected and split proposals join nothing and are not drawn as joins.
+JOIN_INK = "#333333"
+JOIN_STYLE = {
+    "pending": QtCore.Qt.PenStyle.DashLine,
+    "accepted": QtCore.Qt.PenStyle.SolidLine,
+}
+
+
+def join_pen(status: str, width: float = 1.5) -> QtGui.QPen:
+    """The pen of a join whose proposal is ``status`` (pending: dashed; accepted: solid)."""
+    return pg.mkPen(JOIN_INK, width=width, style=JOIN_STYLE.get(status, JOIN_STYLE["pending"]))
+
+
+def as_decided(geom: ProposalGeometry, status: str) -> ProposalGeometry:
+    """``geom`` drawn as its proposal now stands: a rejected or split proposal's gap
+    keeps no connector nor predicted path (they are not joined); others keep theirs,
+    the connector's pen by ``status``."""
+    if status in JOIN_STYLE:
+        return geom if geom.status == status else replace(geom, status=status)
+    return replace(geom, connector=None, predicted=None, status=status)
+
+
+def join_segments(
+    state: ReviewState,
+    t: np.ndarray,
+    lon: np.ndarray,
+    lat: np.ndarray,
+    ranges: dict[str, tuple[int, int]],
+) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Every join of a review across a gap, by status (``pending``, ``accepted``): the
+    straight line from the earlier track's last point to the later track's first, as
+    the proposal's connector draws it; NaN-separated (lon, lat) pairs for one curve per
+    status. ``t``, ``lon``, ``lat``: the review's points, time-sorted within each track,
+    in the map's band; ``ranges``: each track's rows. Proposals whose tracks overlap in
+    time (two sensors' fusion) have no gap and no line; rejected and split ones none."""
+    status = np.asarray(state.status, dtype=object)
+    out = {}
+    for kind in JOIN_STYLE:
+        rows = np.flatnonzero(status == kind)
+        pairs = [
+            (ranges[a], ranges[b])
+            for a, b in zip(state.track_a[rows], state.track_b[rows], strict=True)
+            if a in ranges
+            and b in ranges
+            and ranges[a][1] > ranges[a][0]
+            and ranges[b][1] > ranges[b][0]
+        ]
+        if not pairs:
+            out[kind] = (np.zeros(0), np.zeros(0))
+            continue
+        r = np.asarray(pairs, dtype="int64")  # (n, 2, 2): (a start, a end), (b start, b end)
+        a_end, b_end = r[:, 0, 1] - 1, r[:, 1, 1] - 1
+        a_first, b_first = r[:, 0, 0], r[:, 1, 0]
+        swap = t[a_end] > t[b_first]  # the earlier-ending track first
+        end = np.where(swap, b_end, a_end)
+        start = np.where(swap, a_first, b_first)
+        gap = t[start] > t[end]
+        end, start = end[gap], start[gap]
+        nan = np.full(len(end), np.nan)
+        out[kind] = (
+            np.column_stack([lon[end], lon[start], nan]).ravel(),
+            np.column_stack([lat[end], lat[start], nan]).ravel(),
+        )
+    return out
 
 
 def _end_velocity(t: np.ndarray, lon: np.ndarray, lat: np.ndarray, at_end: bool, k: int = 5):
@@ -222,12 +293,7 @@ def proposal_items(geom: ProposalGeometry) -> list[pg.GraphicsObject]:
             start.setZValue(z)
             items.append(start)
     if geom.connector is not None:
-        items.append(
-            pg.PlotDataItem(
-                *geom.connector,
-                pen=pg.mkPen("#333333", width=1.5, style=QtCore.Qt.PenStyle.DashLine),
-            )
-        )
+        items.append(pg.PlotDataItem(*geom.connector, pen=join_pen(geom.status)))
         items[-1].setZValue(Z_GAP)
     if geom.predicted is not None:
         items.append(
@@ -264,6 +330,7 @@ class ProposalItems:
         for context, (item, _) in self.marks.items():
             item.setZValue(self._z(Z_MEMBER if context else Z_PAIR))
         self.connector: pg.PlotDataItem | None = None
+        self._joined = "pending"  # the status the connector's pen shows (join_pen)
         self.predicted: pg.PlotDataItem | None = None
         self.shown: list[pg.GraphicsObject] = []  # in use
         self._data: list[tuple] = []  # per curve: the (lon, lat) arrays it shows
@@ -328,8 +395,11 @@ class ProposalItems:
             if now:
                 shown.append(item)
         if geom.connector is not None and self.connector is None:
-            dash = QtCore.Qt.PenStyle.DashLine
-            self.connector = self._line(pg.mkPen("#333333", width=1.5, style=dash))
+            self.connector = self._line(join_pen(geom.status))
+            self._joined = geom.status
+        if geom.connector is not None and geom.status != self._joined:
+            self.connector.setPen(join_pen(geom.status))  # decided: solid
+            self._joined = geom.status
         if geom.predicted is not None and self.predicted is None:
             # Neutral ink, as the connector's: a colour of the palette would read as the
             # track the legend names in it.

@@ -213,7 +213,11 @@ class LayersMixin:
                 QtCore.Qt.CheckState.Checked if layer.visible else QtCore.Qt.CheckState.Unchecked
             )
             item.setCheckState(checked)
-            self.layer_list.addItem(item)
+            # in the session's order: a removed layer restored (Edit ▸ Restore removed
+            # layer) takes its place back; a new one is the last
+            order = list(self.session.layers)
+            row = order.index(lid) if lid in order else self.layer_list.count()
+            self.layer_list.insertItem(min(row, self.layer_list.count()), item)
             self._make_current = lid  # once the drawing queue is through (one per turn)
             lat = layer.points.get("lat")
             if (
@@ -234,6 +238,10 @@ class LayersMixin:
             for name in self.map_names(lid):
                 self.canvas.remove_layer(name)
             gone = self.views.pop(lid, None)
+            # its sensor choice and whole view (View ▸ Sensors) go too: an undo shows it
+            # whole, its view prepared again from its points
+            getattr(self, "_full_views", {}).pop(lid, None)
+            getattr(self, "hidden_sensors", {}).pop(lid, None)
             if gone is not None and gone.points is self.bearings:
                 # Next turn: a project opened clears the session and shows its own.
                 QtCore.QTimer.singleShot(0, self._bearings_removed)
@@ -249,6 +257,8 @@ class LayersMixin:
             ):  # no layer left that its re-run failure speaks of (h175 review F7)
                 self.stale_label.hide()
                 self.stale_label.setProperty("step", None)
+        elif event == "reordered":
+            self._order_layer_list()
         elif event == "visibility":
             for name in self.map_names(lid):
                 self.canvas.set_visible(name, layer.visible)
@@ -279,6 +289,8 @@ class LayersMixin:
     def _queue_draw(self, lid: str) -> None:
         """Swap a layer's prepared arrays into the map on a later event-loop turn, one
         layer per turn, so a result of several layers never blocks in one piece."""
+        if getattr(self, "hidden_sensors", None) is not None and self.sensor_filter_pending(lid):
+            return  # its view for the sensors shown comes first (View ▸ Sensors)
         if lid not in self._draw_queue:
             self._draw_queue.append(lid)
         if not self._draw_scheduled:
@@ -351,6 +363,7 @@ class LayersMixin:
             or self._make_current is not None
             or self._after_current
             or getattr(self, "_styling", 0) > 0
+            or bool(getattr(self, "_filtering", ()))  # a view for the sensors shown
         )
 
     def _bearings_removed(self) -> None:
@@ -370,6 +383,23 @@ class LayersMixin:
     def map_names(self, lid: str) -> list[str]:
         """The map layers that draw session layer ``lid`` (a bearing layer: its parts)."""
         return [n for n in self.canvas.layer_names() if is_part_of(n, lid)]
+
+    def _order_layer_list(self) -> None:
+        """The Layers list in the session's order (a removed layer restored in its
+        place), its current layer kept, no signal of the moves."""
+        lst = self.layer_list
+        role = QtCore.Qt.ItemDataRole.UserRole
+        current = lst.currentItem().data(role) if lst.currentItem() is not None else None
+        was = lst.blockSignals(True)
+        try:
+            for target, lid in enumerate(self.session.layers):
+                row = self.layer_row(lid)
+                if row >= 0 and row != target:
+                    lst.insertItem(target, lst.takeItem(row))
+            if current is not None and self.layer_row(current) >= 0:
+                lst.setCurrentRow(self.layer_row(current))
+        finally:
+            lst.blockSignals(was)
 
     def layer_row(self, lid: str) -> int:
         """Row of layer ``lid`` in the Layers list (-1 when absent)."""
@@ -392,24 +422,37 @@ class LayersMixin:
             self.layer_list.setCurrentRow(row, flag)
 
     def remove_active_layer(self) -> None:
-        """Layer ▸ Remove: the active layer leaves the session (and the project). A layer
-        under review made from it keeps the points its proposals were made on (the core
-        does, :func:`~wakeline.core.review_session.keep_inputs`): the log says which, and
-        the review binds in this window and after a reopen alike."""
+        """Layer ▸ Remove: the active layer leaves the session (and the project), undoably
+        (Edit ▸ Restore removed layer: :mod:`~wakeline.app.layer_undo`), so no question is
+        asked first, children or review decisions or not: an undo brings back the layer,
+        its lineage and side tables, and its decisions were never deleted. A layer under
+        review made from it keeps the points its proposals were made on (the core does,
+        :func:`~wakeline.core.review_session.keep_inputs`): the log says which, and the
+        review binds in this window and after a reopen alike."""
         lid = self.active
         if lid is None or lid not in self.session.layers:
             return
         from wakeline.core.review_session import review_dependents
 
         name = self.session.layers[lid].name
-        if not self._confirm_remove(lid):
-            return
+        children, decisions = self.removal_cost(lid)
         try:
             kept = [lay.name for lay in review_dependents(self.session, lid)]
-            self.session.remove_layer(lid)
+            self.layer_undo.remove(lid)
         except (InputError, KeyError, TypeError, ValueError) as exc:  # never into Qt's loop
             self.log_message(f"{self.tr('Error')}: {name}: {exc}")
             return
+        parts = []
+        if children:
+            parts.append(self.tr("{0} layer(s) were made from it").format(children))
+        if decisions:
+            parts.append(self.tr("it carries {0} review decision(s)").format(decisions))
+        said = f" ({'; '.join(parts)})" if parts else ""
+        self.log_message(
+            self.tr("Removed layer {0}{1}; Edit ▸ Restore removed layer brings it back").format(
+                shown_name(name), said
+            )
+        )
         if kept:
             self.log_message(
                 self.tr(
@@ -419,8 +462,8 @@ class LayersMixin:
             )
 
     def removal_cost(self, lid: str) -> tuple[int, int]:
-        """What removing layer ``lid`` would take with it: (layers made from it, review
-        decisions made on its queues). Removal has no undo (h225 item 12)."""
+        """What removing layer ``lid`` touches: (layers made from it, review decisions
+        made on its queues); the log says them (an undo restores the layer)."""
         children = sum(
             1
             for lay in self.session.layers.values()
@@ -432,30 +475,6 @@ class LayersMixin:
             if isinstance(d, dict) and str(d.get("queue", "")).split("@")[0] == lid
         )
         return children, decisions
-
-    def _confirm_remove(self, lid: str) -> bool:
-        """Ask before removing a layer with layers made from it or review decisions
-        (removal cannot be undone); True at once for a layer with neither."""
-        children, decisions = self.removal_cost(lid)
-        if not children and not decisions:
-            return True
-        name = shown_name(self.session.layers[lid].name)
-        parts = []
-        if children:
-            parts.append(self.tr("{0} layer(s) were made from it").format(children))
-        if decisions:
-            parts.append(self.tr("it carries {0} review decision(s)").format(decisions))
-        box = QtWidgets.QMessageBox
-        answer = box.question(
-            self,
-            self.tr("Remove layer"),
-            self.tr("Remove layer {0}? {1}. Removing it cannot be undone.").format(
-                name, "; ".join(parts)
-            ),
-            box.StandardButton.Yes | box.StandardButton.Cancel,
-            box.StandardButton.Cancel,
-        )
-        return answer == box.StandardButton.Yes
 
     def _layer_item_changed(self, item: QtWidgets.QListWidgetItem) -> None:
         lid = item.data(QtCore.Qt.ItemDataRole.UserRole)
@@ -529,6 +548,7 @@ class LayersMixin:
             view.summary, view.text, view.extra.get("table_index")
         ):
             return False
+        self.show_name_columns()  # a vessel table's names joined (the same tracks)
         root = self.session.root(lid)
         if layer.kind in OWN_SAMPLING_KINDS or root is None or root.id == lid:
             # its own sampling changed (set_active)

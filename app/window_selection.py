@@ -50,13 +50,19 @@ class SelectionMixin:
             row = int(last[0]) if len(last) else int(rows[-1])
             self.batch_view.scrollTo(self.batch_model.index(row, 0))
 
+    def show_name_columns(self) -> None:
+        """The Name and Type columns shown when the tracks have ship names (types): a
+        file's own, or a vessel table's (File ▸ Load ship names)."""
+        keys = [k for k, _ in self.batch_model.COLUMNS]
+        self.batch_view.setColumnHidden(keys.index("name"), not self.batch_model.has_names)
+        self.batch_view.setColumnHidden(keys.index("ship_type"), not self.batch_model.has_types)
+
     def _reselect(self) -> None:
         """The batch table was reset (another layer's summary, a time window, a filter):
         Qt drops the rows' selection without a signal. The session's selection of the
         active layer is selected again where its rows are shown, and the map follows; the
         session keeps the tracks a window hides, selected again when it shows them."""
-        name_col = [k for k, _ in self.batch_model.COLUMNS].index("name")
-        self.batch_view.setColumnHidden(name_col, not self.batch_model.has_names)
+        self.show_name_columns()
         keys = [(s, b) for lid, s, b in self.session.selection if lid == self.active]
         if keys:
             self._selecting = True

@@ -1410,11 +1410,18 @@ def _run_batch(
         rows_read = int(counts["rows"].sum())
         quarantined = int(counts["quarantined"].sum())
         blocks = len(counts)  # pass 1's read tasks' pieces (CSV) or blocks (Parquet)
-        if rows_read == 0:
+        if rows_read == quarantined:
+            # nothing to run on (no data row, or every input refused): nothing written, as
+            # one input alone is refused (exit status 2, not 3: docs/batch.md)
             shutil.rmtree(outdir, ignore_errors=True)
             if refused:
+                refused = [(p, why.replace(" (see the quarantine)", "")) for p, why in refused]
                 shown = "; ".join(f"{p}: {why}" for p, why in refused)
                 raise InputError(f"batch: no input could be read: {shown}")
+            if rows_read:
+                raise InputError(
+                    f"batch: no row kept: all {count_of(rows_read, 'row')} were quarantined"
+                )
             raise InputError("batch: the inputs hold no data rows (headers only?)")
         for warning in warnings:
             log(warning)

@@ -477,6 +477,56 @@ def _tukey_upper(values: np.ndarray, group: np.ndarray, factor: float) -> np.nda
     return (q3 + factor * (q3 - q1)).to_numpy()
 
 
+def impossible_legs(
+    dist: np.ndarray, dt: np.ndarray, v_max_ms: float, tolerance_m: float
+) -> np.ndarray:
+    """The impossible-speed rule's test of legs (``dist`` m in ``dt`` s; NaN: no leg):
+    longer than ``v_max_ms · dt + tolerance_m``, a jump no ship makes."""
+    with np.errstate(invalid="ignore"):
+        return dist > v_max_ms * dt + tolerance_m
+
+
+def track_jumps(points: pd.DataFrame, speed: "SpeedParams | None" = None) -> dict | None:
+    """Legs between consecutive points of a track that no ship can make and at which
+    clean splits a track, by clean's own tests (:func:`impossible_legs` and
+    :func:`split_legs` with ``speed``: clean's defaults): ``{"legs", "tracks", "sensor",
+    "batch", "track_legs", "kn", "v_max_kn"}`` (the track of the most such legs and its
+    fastest leg's speed), None when there are none (or clean never splits:
+    ``split_factor`` 0 and no ``split_at_breaks``). What compress says
+    of a raw table that clean would split (operator test 10: one MMSI alternating
+    Florida and California gave a "largest error bound 27,062,943 m")."""
+    speed = speed or SpeedParams()
+    if len(points) < 2 or not {"lon", "lat", "time"} <= set(points.columns):
+        return None
+    if speed.split_factor <= 0 and not speed.split_at_breaks:
+        return None
+    pts, index = sorted_with_index(points)
+    lon = pts["lon"].to_numpy(dtype="float64")
+    lat = pts["lat"].to_numpy(dtype="float64")
+    t = time_seconds(pts["time"])
+    track = index.track_of_row
+    dist, dt, _ = _Legs(lon, lat, t, track)(np.arange(len(pts)))
+    bad = impossible_legs(dist, dt, speed.v_max_kn * geo.KN_MS, speed.tolerance_m)
+    bad &= split_legs(dist, dt, speed)
+    if not bad.any():
+        return None
+    per_track = np.bincount(track[bad], minlength=index.n_tracks)
+    worst = int(np.argmax(per_track))
+    on_worst = bad & (track == worst)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        kn = np.where(dt[on_worst] > 0, dist[on_worst] / dt[on_worst] / geo.KN_MS, np.inf)
+    keys = index.keys
+    return {
+        "legs": int(bad.sum()),
+        "tracks": int((per_track > 0).sum()),
+        "sensor": str(keys["sensor"].iloc[worst]),
+        "batch": str(keys["batch"].iloc[worst]),
+        "track_legs": int(per_track[worst]),
+        "kn": float(np.max(kn)) if np.isfinite(kn).any() else None,
+        "v_max_kn": float(speed.v_max_kn),
+    }
+
+
 def _speed_rule(
     legs: "_Legs", alive, track, v_max_ms: float, tolerance_m: float, run: int, max_rounds: int = 64
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -495,8 +545,7 @@ def _speed_rule(
             break
         group = np.cumsum(track_start | breaks)
         dist, dt, _ = legs(rows, group)
-        with np.errstate(invalid="ignore"):
-            bad = dist > v_max_ms * dt + tolerance_m  # the leg arriving at this row is impossible
+        bad = impossible_legs(dist, dt, v_max_ms, tolerance_m)  # the leg arriving at a row
         first, _ = _runs(group[rows])
         prev_bad = np.zeros_like(bad)
         prev_bad[1:] = bad[:-1] & ~first[1:]
@@ -1328,13 +1377,22 @@ def _split_rows(
     ``split_at_breaks`` also every break whose leg is still impossible (longer than
     v_max × dt + ``tolerance_m``)."""
     rows, prev, has, d, dt = _break_legs(breaks, alive, track, lon, lat, t)
-    v_max = sp.v_max_kn * geo.KN_MS
-    far = (d > sp.split_km * 1000.0) & (d > sp.split_factor * v_max * dt)
-    if sp.split_at_breaks:
-        far |= d > v_max * dt + sp.tolerance_m
+    far = split_legs(d, dt, sp)
     out = np.zeros(len(alive), dtype=bool)
     out[rows[has & far]] = True
     return out
+
+
+def split_legs(d: np.ndarray, dt: np.ndarray, sp: "SpeedParams") -> np.ndarray:
+    """The legs (``d`` m in ``dt`` s) at which a break splits its track: longer than
+    ``split_km`` and than ``split_factor`` × v_max × dt; with ``split_at_breaks`` every
+    impossible one (:func:`impossible_legs`)."""
+    v_max = sp.v_max_kn * geo.KN_MS
+    with np.errstate(invalid="ignore"):
+        far = (d > sp.split_km * 1000.0) & (d > sp.split_factor * v_max * dt)
+    if sp.split_at_breaks:
+        far |= impossible_legs(d, dt, v_max, sp.tolerance_m)
+    return far
 
 
 def _break_legs(

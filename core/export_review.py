@@ -110,6 +110,16 @@ def _add_speed_course(points: list, speed, course, s: int, e: int) -> None:
         point.extensions.append(el)
 
 
+def gpx_left_out(points: pd.DataFrame) -> tuple[list[str], list[str]]:
+    """The columns :func:`export_gpx` does not write though GeoJSON does (the import's
+    carried columns: a GPX point holds time, position, speed and course only), and
+    Wakeline's internal ones no map format writes (:func:`~wakeline.core.export.vertex_columns`)."""
+    from wakeline.core.export import vertex_columns
+
+    kept, internal = vertex_columns(points)
+    return [c for c in kept if c not in ("speed", "course")], internal
+
+
 def export_gpx(points: pd.DataFrame, path: str | Path, creator: str = "Wakeline") -> None:
     """GPX 1.1, written atomically (UTF-8). Tracks with targets (an associated or reviewed
     layer: a ``target`` column): one ``<trk>`` per target (name the target, ``<type>``

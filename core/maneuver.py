@@ -38,10 +38,14 @@ not the neighbours, so it sees an offset wandering over a window (radar; docs/ev
 "Hard radar against real radar"). Option (off by default): ``window_max_s`` bounds the
 window at slow radar scans — where ``window_p`` points span more than it and 3 fit, as many
 points as fit, and the first scale's maximum filter reaches one window at most
-(docs/evaluation.md "Radar at slower scans (h131)"). Options (off by default): ``radius_s``
-bounds the maximum filter's radius to that many seconds of median steps (where 2 or more
-fit), and ``edge_s`` gives a track's first and last p − 1 plots 3-point windows where the
-first window spans more than it (docs/evaluation.md "Radar at slower scans (h162)").
+(docs/evaluation.md "Radar at slower scans (h131)"). Slow scans (defaults since session 31,
+h241, docs/prereg/session31_slow_scans_b.md): ``radius_s`` (15 s) bounds the maximum
+filter's radius to that many seconds of median steps (where 2 or more fit), and ``edge_s``
+(12 s) gives a track's first and last p − 1 plots 3-point windows where the first window
+spans more than it (docs/evaluation.md "Radar at slower scans (h162)"), both only on tracks
+whose noise per step's run σ / (v · step) is under ``step_noise_max`` (0.15;
+docs/evaluation.md "Session 31: slow scans, gated"); by their own rules they change nothing
+on a track whose median step is 3 s or less or over 7.5 s.
 """
 
 import math
@@ -149,7 +153,7 @@ class ManeuverParams(Params):
         source="ours",
     )
     radius_s: float = param(
-        0.0,
+        15.0,
         "s",
         "the maximum filter's radius in seconds: at every scale the radius_n points it reaches "
         "at least are at most as many of the track's median steps as fit in this many seconds, "
@@ -157,10 +161,11 @@ class ManeuverParams(Params):
         "whatever they span)",
         lo=0.0,
         hi=1e7,
-        source="ours (h162, docs/prereg/session27_radar_edges.md)",
+        source="ours (h162, docs/prereg/session27_radar_edges.md); default since session 31 "
+        "(docs/prereg/session31_slow_scans_b.md)",
     )
     edge_s: float = param(
-        0.0,
+        12.0,
         "s",
         "turns at a track's ends: where the first scale's window (p points) spans more than "
         "this many seconds (p - 1 median steps) and 3 points at most, the ends it leaves "
@@ -169,7 +174,21 @@ class ManeuverParams(Params):
         "window; 0 = off",
         lo=0.0,
         hi=1e7,
-        source="ours (h162, docs/prereg/session27_radar_edges.md)",
+        source="ours (h162, docs/prereg/session27_radar_edges.md); default since session 31 "
+        "(docs/prereg/session31_slow_scans_b.md)",
+    )
+    step_noise_max: float = param(
+        0.15,
+        "",
+        "radius_s and edge_s apply only on tracks whose noise per step's run is under this: "
+        "sigma / (v * step), sigma the track's position noise (noise_k's), step its median "
+        "interval, v its median speed over window_p points (the chord over their time); on a "
+        "noisier track a smaller radius and 3-point ends let noise maxima through; "
+        "0 = on every track",
+        lo=0.0,
+        hi=100.0,
+        source="ours (h240, docs/prereg/session31_slow_scans.md); 0.15 by "
+        "docs/prereg/session31_slow_scans_b.md (h241)",
     )
     min_speed_kn: float = param(
         1.0,
@@ -417,6 +436,9 @@ class ManeuverParams(Params):
             min_window_s=0.0,
             gap_s=0.0,
             max_step_windows=0.0,
+            radius_s=0.0,
+            edge_s=0.0,
+            step_noise_max=0.0,
         )
 
 
@@ -2604,6 +2626,15 @@ def _detect_sorted(
     scales = _scales(params)
     fine_scales = _fine_scales(params)
     r_first = _radius_per_track(med, index.n_tracks, params)
+    slow_ok = None  # step_noise_max: the tracks radius_s and edge_s apply on
+    if params.step_noise_max > 0 and (params.radius_s > 0 or params.edge_s > 0) and n:
+        v = median_window_speed_ms(x, y, t, track_index, int(params.window_p))
+        if parent is not None:
+            v = v[parent]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = track_noise() / (v * med)
+        slow_ok = ratio < params.step_noise_max  # NaN (no speed, no step): not
+        r_first = np.where(slow_ok, r_first, int(params.radius_n))
     edge_med = med
     med = med if params.window_s > 0 else None
     found = np.zeros(n, dtype=bool)
@@ -2696,7 +2727,7 @@ def _detect_sorted(
         add(f_k[cand], cand, accept(f_k[cand], cand, p_c, p_c, fine=True), p_c)
         shortest = np.where(active, p_track, shortest)
     if params.edge_s > 0 and edge_med is not None and n:
-        f_e, cand = _edge_candidates(x, y, index, p_first, edge_med, params)
+        f_e, cand = _edge_candidates(x, y, index, p_first, edge_med, params, slow_ok)
         p_c = np.full(len(cand), EDGE_P, dtype="int64")
         add(f_e, cand, accept(f_e, cand, p_c, p_c, fine=False), p_first[tr[cand]])
     if progress:
@@ -2709,6 +2740,31 @@ def _detect_sorted(
 #: Points per window at a track's ends (``edge_s``): the fewest that have a heading and a
 #: noise floor.
 EDGE_P = 3
+
+
+def median_window_speed_ms(
+    x: np.ndarray, y: np.ndarray, t: np.ndarray, index: TrackIndex, points: int
+) -> np.ndarray:
+    """Per track: the median over its rows of the speed (m/s) of the chord from each row to
+    the row ``points`` − 1 steps later (both in the track, a later time); NaN where it has
+    none. ``step_noise_max``'s v: over a few steps, noise adds little to it."""
+    q = max(int(points) - 1, 1)
+    n = len(x)
+    out = np.full(index.n_tracks, np.nan)
+    if n <= q:
+        return out
+    tr = index.track_of_row
+    i = np.flatnonzero(tr[: n - q] == tr[q:])
+    dt = t[i + q] - t[i]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sp = np.hypot(x[i + q] - x[i], y[i + q] - y[i]) / dt
+    keep = (dt > 0) & np.isfinite(sp)
+    i, sp = i[keep], sp[keep]
+    count = np.bincount(tr[i], minlength=index.n_tracks)
+    first = np.cumsum(count) - count
+    has = count > 0
+    out[has] = run_medians(sp, first, count)[has]
+    return out
 
 
 def _radius_per_track(med: np.ndarray | None, n_tracks: int, params: ManeuverParams) -> np.ndarray:
@@ -2731,15 +2787,19 @@ def _edge_candidates(
     p_first: np.ndarray,
     med: np.ndarray,
     params: ManeuverParams,
+    tracks_ok: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """``edge_s``: δ of 3-point windows at the rows where the first scale's window (``p_first``
     points) leaves the track, on the tracks where that window spans more than ``edge_s``
-    ((p − 1) median steps ``med``) and 3 points at most (2 steps); the rows among those where δ > t is the
+    ((p − 1) median steps ``med``) and 3 points at most (2 steps), and among those only the
+    ``tracks_ok`` (``step_noise_max``'s) if given; the rows among those where δ > t is the
     largest within one 3-point window (one per plateau). Returns their δ and rows."""
     tr = index.track_of_row
     with np.errstate(invalid="ignore"):
         fits = np.isfinite(med) & ((EDGE_P - 1) * med <= params.edge_s * (1 + 1e-9))
         fits &= (p_first - 1) * med > params.edge_s * (1 + 1e-9)
+    if tracks_ok is not None:
+        fits &= tracks_ok
     active = fits & (index.sizes >= 2 * EDGE_P - 1)
     none = np.zeros(0), np.zeros(0, dtype="int64")
     if not active.any():

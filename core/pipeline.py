@@ -256,7 +256,9 @@ def _break_phrases(speed: dict) -> list:
             time=_said_time(worst["from_time"]),
         )
         n_kept = int(speed.get("breaks_kept", len(legs)) or len(legs))
-        same_time = worst["kn"] is None or not worst["s"]  # a jump at one time: no speed
+        # a jump at one time (no speed), or within what "{s:,.0f} s" shows as 0 s (two
+        # ships under one id, rows 0.03 s apart: "0.3 km in 0 s, 18,143 kn", operator test 10)
+        same_time = worst["kn"] is None or not worst["s"] or worst["s"] < 0.5
         if same_time and n_kept == 1:
             out.append(
                 phrase(
@@ -455,6 +457,13 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     if opts.method != "dp":  # the turning points it kept around, as the maneuvers layer has
         report["maneuvers"] = int(len(table))
         _add_error_bounds(report, res, cp)
+    # legs no ship makes (clean's speed test): a raw table's two ships under one id gave
+    # bounds of thousands of km with no word of why (operator test 10); said, not changed
+    from wakeline.core.clean import CleanParams, track_jumps
+
+    jumps = track_jumps(points, _p(params, "clean", CleanParams).speed)
+    if jumps is not None:
+        report["jumps"] = jumps
     kept = comp.kept_points()
     per_track = {f"{t['sensor']}\x1f{t['batch']}": t["dis_e_m"] for t in report["tracks"]}
     layers.append(
@@ -553,7 +562,25 @@ def _summary_compress(res: StepResult) -> Text:
             if "dis_e_true_m" in o
             else None,
             *_bound_phrases(res.report.get("error_bound"), o),
+            _jump_phrase(res.report.get("jumps")),
         ]
+    )
+
+
+def _jump_phrase(jumps: dict | None):
+    """Tracks with legs no ship makes (:func:`~wakeline.core.clean.track_jumps`): clean
+    first, which splits them (the compressed result is left as it is)."""
+    if not jumps:
+        return None
+    return phrase(
+        "; {n:#track} with jumps no ship can make ({legs:#leg} beyond {v:,.0f} kn; {k:,} in "
+        "track {track}): clean first (wakeline clean; Clean in the window): it splits such "
+        "tracks, and the error bounds then measure noise, not the jumps",
+        n=jumps["tracks"],
+        legs=jumps["legs"],
+        v=jumps["v_max_kn"],
+        k=jumps["track_legs"],
+        track=f"{jumps['sensor']}:{jumps['batch']}",
     )
 
 

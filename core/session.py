@@ -101,6 +101,21 @@ class Layer:
         return out
 
 
+@dataclass
+class LayerRemoval:
+    """A layer removed (:meth:`Session.remove_layer`), with what undoing it restores:
+    its place, whether it was active and its selected tracks, and the tables and meta
+    the layers under review had before they kept its points (id, meta, tables before,
+    meta, tables after)."""
+
+    layer: Layer
+    pos: int
+    active: bool = False
+    selection: list = field(default_factory=list)
+    generation: int = 0
+    kept: list[tuple] = field(default_factory=list)
+
+
 @dataclass(frozen=True)
 class MapView:
     """The map's view box: longitude ``x0`` … ``x1`` and latitude ``y0`` … ``y1``, in
@@ -192,6 +207,12 @@ class Session:
         self.active: str | None = None
         self._ids = itertools.count(1)
         self._listeners: list[Listener] = []
+        #: Ids of layers removed that an undo may bring back (:meth:`restore_layer`):
+        #: never given to a new layer meanwhile.
+        self._retired: set[str] = set()
+        #: Counts :meth:`clear` calls: a removal recorded before one is not restored into
+        #: the session's next piece of work.
+        self.generation = 0
 
     # -- events --------------------------------------------------------------------
 
@@ -257,7 +278,7 @@ class Session:
         """A layer id that no layer, layer lineage or review queue names (a layer removed,
         then the project reopened: a new layer given its id was taken for the input of the
         layers made from it, and a step run on it replaced them in place)."""
-        taken = set(self.layers)
+        taken = set(self.layers) | self._retired
         for lay in self.layers.values():
             taken.update(lay.inputs)
             if lay.parent is not None:
@@ -294,18 +315,63 @@ class Session:
         self._emit("added", lid)
         return layer
 
-    def remove_layer(self, layer_id: str) -> None:
+    def remove_layer(self, layer_id: str) -> "LayerRemoval | None":
         """Remove a layer. A layer under review made from it keeps what its review reads
         (:func:`~wakeline.core.review_session.keep_inputs`: the input's points as a side
         table, with a ``tables`` event for the project to write them) before the
-        ``removed`` event: its decisions bind in this window and after a reopen alike."""
+        ``removed`` event: its decisions bind in this window and after a reopen alike.
+        Returns what :meth:`restore_layer` needs to undo it (None: no such layer). The
+        review decisions on its queues stay in :attr:`decisions` (and the project)."""
         if layer_id not in self.layers:
-            return
+            return None
         from wakeline.core.review_session import keep_inputs
 
+        layer = self.layers[layer_id]
+        before = {
+            lay.id: (lay.meta, lay.tables) for lay in self.layers.values() if lay.id != layer_id
+        }
+        removal = LayerRemoval(
+            layer=layer,
+            pos=list(self.layers).index(layer_id),
+            active=self.active == layer_id,
+            selection=[s for s in self.selection if s[0] == layer_id],
+            generation=self.generation,
+        )
         for kept in keep_inputs(self, layer_id):
+            removal.kept.append((kept.id, *before[kept.id], kept.meta, kept.tables))
             self._emit("tables", kept.id)
         self._drop(layer_id)
+        self._retired.add(layer_id)
+        return removal
+
+    def restore_layer(self, removal: "LayerRemoval") -> Layer:
+        """Undo a :meth:`remove_layer`: the same layer (its id, points, lineage, side
+        tables) back in its place among the others, ``added`` then ``reordered`` events
+        (the project writes it at once); the layers under review that kept its points
+        for it get their tables and meta of before (a ``tables`` event each) where
+        nothing changed them since; its decisions were never removed. Raises InputError
+        when the session was cleared since (another project) or the id is taken."""
+        layer = removal.layer
+        if removal.generation != self.generation:
+            raise InputError(f"layer {layer.name} belongs to work closed since")
+        if layer.id in self.layers:
+            raise InputError(f"layer id {layer.id} is taken")
+        self._retired.discard(layer.id)
+        self.layers[layer.id] = layer
+        self._emit("added", layer.id)
+        order = [i for i in self.layers if i != layer.id]
+        order.insert(min(removal.pos, len(order)), layer.id)
+        if order != list(self.layers):
+            self.reorder(order)
+        for lid, meta, tables, meta_after, tables_after in removal.kept:
+            lay = self.layers.get(lid)
+            if lay is not None and lay.meta is meta_after and lay.tables is tables_after:
+                lay.meta, lay.tables = meta, tables
+                self._emit("tables", lid)
+        self.selection += [s for s in removal.selection if s not in self.selection]
+        if removal.active:
+            self.set_active(layer.id)
+        return layer
 
     def _drop(self, layer_id: str) -> None:
         if self.layers.pop(layer_id, None) is not None:
@@ -833,6 +899,8 @@ class Session:
         self._emit("reordered", "")
 
     def clear(self) -> None:
+        self.generation += 1
+        self._retired.clear()
         for lid in list(self.layers):
             self._drop(lid)  # all of them: nothing to keep for another
         self.sources.clear()

@@ -104,6 +104,38 @@ def test_missing_column_names_it_and_lists_headers(write, tmp_path, capsys):
     assert "Traceback" not in err
 
 
+@pytest.mark.parametrize(
+    "sep, given, shown",
+    [(",", ";", "','"), (";", ",", "';'"), ("\t", ",", "tab"), (",", "|", "','")],
+)
+def test_a_wrong_delimiter_says_the_header_is_one_column(
+    write, tmp_path, capsys, sep, given, shown
+):
+    """Operator test 10: `--delimiter ';'` on a comma-separated GBK export listed "headers
+    found: 批号,时间,经度,…", which reads as the seven columns found. The one name is said
+    to be one column, with the separator it holds; the window says it in Chinese."""
+    from wakeline.app import core_text
+
+    header = sep.join(["批号", "时间", "经度", "纬度"])
+    path = write(
+        "gbk.csv",
+        header + "\n" + sep.join(["7", "2024-01-01 00:00:00", "12", "56"]) + "\n",
+        "gb18030",
+    )
+    code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--delimiter", given)
+    assert code == 2
+    assert f"headers found: one column, {header!r} (separated by {shown}? check --delimiter)" in err
+    with pytest.raises(InputError) as exc:
+        read_points(path, delimiter=given)
+    core_text.set_language("zh_CN")
+    try:
+        zh = core_text.shown(str(exc.value))
+    finally:
+        core_text.set_language("en")
+    assert f"只有一列 {header!r}（分隔符其实是 {shown}？" in zh
+    assert main(["import", str(path), "-o", str(tmp_path / "ok.csv")]) == 0  # left to sniff
+
+
 def test_explicit_format_missing_column(write, tmp_path, capsys):
     path = write("r.csv", "SendShipNO,SendTime,lon,lat\n1,1664590563,1,2\n")
     code, _, err = _run(capsys, "import", path, "-o", tmp_path / "o.csv", "--format", "radar")
@@ -573,3 +605,25 @@ def test_every_missing_input_says_no_such_file(write, tmp_path, capsys):
         code, _, err = _run(capsys, *args)
         assert code == 2 and err.strip().endswith(": no such file"), (args, err)
         assert "No such file or directory" not in err, (args, err)
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "gb18030"])
+def test_a_header_only_file_is_said_in_one_wording_by_every_subcommand(tmp_path, capsys, encoding):
+    """Operator test 10: on a header-only file `export` said "no usable points: nothing to
+    export", every other subcommand "no data rows (a header only?)". One wording now,
+    exit 2, no output written."""
+    from wakeline.app.cli import main
+
+    src = tmp_path / "h.csv"
+    src.write_bytes("批号,时间,经度,纬度\r\n".encode(encoding))
+    said = {}
+    for sub in ("import", "clean", "maneuvers", "compress", "export"):
+        out = tmp_path / f"{sub}.csv"
+        assert main([sub, str(src), "-o", str(out)]) == 2, sub
+        err = capsys.readouterr().err
+        said[sub] = err.strip().splitlines()[-1]
+        assert not out.exists(), sub
+    assert all(
+        f"{src}: no data rows (a header only?); nothing imported" in t for t in said.values()
+    ), said
+    assert len(set(said.values())) == 1, said

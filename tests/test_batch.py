@@ -602,7 +602,7 @@ def test_a_refused_data_file_is_listed_the_rest_run_a_stray_file_is_skipped(tmp_
     operator met one refused file per run (operator test 5, D-batch-2). Now only files
     that are not track data (NotTrackData: binary, a header of no known column and no
     --map column) are skipped with a warning; every other refusal is listed with the
-    importer's message, the rest is processed, and the batch exits 2 saying so."""
+    importer's message, the rest is processed, and the batch exits 3 saying so."""
     rows = [f"S1,T1,2024-01-01T00:00:{i:02d}Z,{10 + i * 1e-3:.4f},50" for i in range(50)]
     good = tmp_path / "good.csv"
     good.write_text("sensor,batch,time,lon,lat\n" + "\n".join(rows) + "\n")
@@ -619,16 +619,16 @@ def test_a_refused_data_file_is_listed_the_rest_run_a_stray_file_is_skipped(tmp_
     # A wrong --map: names a column good.csv lacks; good.csv is track data: refused.
     out = tmp_path / "o1"
     code = main(["batch", str(pipe), str(other), str(good), "--map", "time=ts", "-o", str(out)])
-    assert code == 2
+    assert code == 3
     err = capsys.readouterr().err
     assert f"{good}: refused: " in err and "ts" in err and "run this file apart" in err
-    assert "1 input refused (above, each with its reason)" in err and "exit status 2" in err
+    assert "1 input refused (above, each with its reason)" in err and "exit status 3" in err
     rep = json.loads((out / "report.json").read_text())
     assert rep["rows_read"] == 50  # other.csv's rows
     assert [d["input"] for d in rep["refused_inputs"]] == [str(good)]
     # Known columns, a required one missing: refused, listed; good.csv read.
     code = main(["batch", str(pipe), str(good), str(partial), "-o", str(tmp_path / "o2")])
-    assert code == 2
+    assert code == 3
     assert f"{partial}: refused: missing required column lat" in capsys.readouterr().err
     # Not track data: skipped with a note, the batch completes (exit 0), listed.
     out = tmp_path / "o3"

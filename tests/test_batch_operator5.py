@@ -38,14 +38,14 @@ def test_every_refused_input_is_listed_in_one_run_and_the_rest_processed(tmp_pat
     pipe = tmp_path / "p.json"
     pipe.write_text(Pipeline.default().to_json())
     out = tmp_path / "out"
-    assert main(["batch", str(pipe), str(folder), "-o", str(out), "--csv"]) == 2
+    assert main(["batch", str(pipe), str(folder), "-o", str(out), "--csv"]) == 3
     err = capsys.readouterr().err
     for name in ("b_headerless.csv", "c_plane.csv"):
         line = next(x for x in err.splitlines() if f"{name}: refused: " in x)
         assert "run this file apart with its own" in line
         assert "`wakeline import` it to canonical CSV first" in line
     assert "2 inputs refused (above, each with its reason)" in err
-    assert "exit status 2" in err
+    assert "exit status 3" in err
     rep = json.loads((out / "report.json").read_text())
     assert rep["rows_read"] == 100  # both good files
     assert [d["input"].split("/")[-1] for d in rep["refused_inputs"]] == [
@@ -77,7 +77,7 @@ def test_a_refusal_met_while_reading_is_listed_and_its_rows_left_out(tmp_path, c
     pipe = tmp_path / "p.json"
     pipe.write_text(Pipeline.default().to_json())
     out = tmp_path / "out"
-    assert main(["batch", str(pipe), str(good), str(bad), "-o", str(out), "--csv"]) == 2
+    assert main(["batch", str(pipe), str(good), str(bad), "-o", str(out), "--csv"]) == 3
     err = capsys.readouterr().err
     assert f"{bad}: refused: cannot read the file (damaged further on)" in err
     rep = json.loads((out / "report.json").read_text())

@@ -89,7 +89,7 @@ def test_sensor_per_file_keeps_files_with_a_sensor_column_apart(tmp_path, pipe, 
 
 
 def test_a_file_whose_every_row_is_quarantined_is_refused(tmp_path, pipe, capsys):
-    """D2: named on stderr with its count and reason, listed, and the exit status 2."""
+    """D2: named on stderr with its count and reason, listed, and the exit status 3 (2 until h236)."""
     good = tmp_path / "good.csv"
     good.write_text("mmsi,time,lon,lat\n" + "\n".join(_rows("1", 0)) + "\n")
     cst = tmp_path / "cst.csv"
@@ -98,16 +98,64 @@ def test_a_file_whose_every_row_is_quarantined_is_refused(tmp_path, pipe, capsys
         + "".join(f"2,2024-08-01 08:00:{s:02d} CST,23.5,37.9\n" for s in range(30))
     )
     out = tmp_path / "out"
-    assert main(["batch", str(pipe), str(good), str(cst), "-o", str(out), "--csv"]) == 2
+    assert main(["batch", str(pipe), str(good), str(cst), "-o", str(out), "--csv"]) == 3
     err = capsys.readouterr().err
     line = next(x for x in err.splitlines() if x.startswith(f"{cst}: refused: "))
     assert "0 of 30 rows kept, all quarantined: 30 as 'time zone CST is ambiguous" in line
     assert "--tz" in line
-    assert "1 input refused" in err and "exit status 2" in err
+    assert "1 input refused" in err and "exit status 3" in err
     rep = json.loads((out / "report.json").read_text())
     assert [d["input"] for d in rep["refused_inputs"]] == [str(cst)]
     assert rep["rows_read"] == 80 and rep["quarantined"] == 30
     assert len(pd.read_csv(out / "quarantine.csv")) == 30  # the rows are kept there
+
+
+def test_exit_status_tells_nothing_written_from_some_input_left_out(tmp_path, pipe, capsys):
+    """h228/h236: 2 was both "refused, nothing written" and "ran, some input refused".
+    Now 0 all read and kept; 3 outputs written, input left out (a file refused, or rows
+    quarantined), counted on the last line; 2 nothing written (every input refused)."""
+    good = tmp_path / "good.csv"
+    good.write_text("mmsi,time,lon,lat\n" + "\n".join(_rows("1", 0)) + "\n")
+    cst = tmp_path / "cst.csv"  # every row quarantined: the file refused
+    cst.write_text(
+        "mmsi,time,lon,lat\n"
+        + "".join(f"2,2024-08-01 08:00:{s:02d} CST,23.5,37.9\n" for s in range(30))
+    )
+    cst2 = tmp_path / "cst2.csv"
+    cst2.write_text(cst.read_text().replace("2,", "3,"))
+    bad_rows = tmp_path / "bad_rows.csv"  # two rows of 50 out of range: quarantined
+    rows = _rows("4", 0)
+    rows[5] = rows[5].replace(",50.0", ",95.0")
+    rows[9] = rows[9].replace(",50.0", ",-91.0")
+    bad_rows.write_text("mmsi,time,lon,lat\n" + "\n".join(rows) + "\n")
+
+    def run(*files: Path, name: str) -> tuple[int, list[str], Path]:
+        out = tmp_path / name
+        code = main(["batch", str(pipe), *map(str, files), "-o", str(out)])
+        return code, capsys.readouterr().err.strip().splitlines(), out
+
+    code, err, out = run(good, name="fine")
+    assert code == 0 and not any("left out" in x for x in err)
+    assert (out / "report.json").exists()
+    code, err, out = run(good, cst, name="one_refused")
+    assert code == 3 and (out / "report.json").exists()
+    assert err[-1] == (
+        f"batch: wrote {out}, but left out 1 input refused (above, each with its reason) "
+        f"and 30 rows of 80 quarantined ({out / 'quarantine'}); exit status 3"
+    )
+    code, err, out = run(good, bad_rows, name="rows_quarantined")
+    rep = json.loads((out / "report.json").read_text())
+    # rows quarantined alone: counted on the last line, status 0 as in the single-file
+    # commands (real exports nearly always hold a few; a script must not stop on them)
+    assert code == 0 and rep["quarantined"] == 2 and rep["refused_inputs"] == []
+    assert "left out 2 rows of 100 quarantined" in err[-1] and "refused" not in err[-1]
+    assert "exit status" not in err[-1]
+    # every input refused: nothing written, one message, the reasons without "see the
+    # quarantine" (there is none)
+    code, err, out = run(cst, cst2, name="all_refused")
+    assert code == 2 and not out.exists()
+    assert len(err) == 1 and "no input could be read" in err[0]
+    assert str(cst) in err[0] and str(cst2) in err[0] and "see the quarantine" not in err[0]
 
 
 def test_an_interrupted_batch_is_marked_and_started_over(tmp_path, pipe, capsys, monkeypatch):

@@ -186,7 +186,39 @@ def test_step_reports_say_where_every_input_row_went(step, tmp_path, capsys):
     allbad = tmp_path / "bad.csv"
     allbad.write_text("sensor,batch,time,lon,lat\n" + "\n".join(bad) + "\n")
     assert main(["export", str(allbad), "-o", str(tmp_path / "e.csv")]) == 2
-    assert "no usable points" in capsys.readouterr().err
+    err = capsys.readouterr().err  # as the steps say it (operator test 10)
+    assert "nothing imported: all 3 rows were quarantined" in err, err
+
+
+@pytest.mark.parametrize("kinds", [1, 3, 4, 5, 7])
+def test_import_names_every_quarantine_reason_with_its_count(kinds, tmp_path, capsys):
+    """Operator test 10: `wakeline import` said only "23 quarantined" (23 local times a
+    clock change skipped: why, only in --quarantine's file), and the steps said "1 more
+    reasons". Now import names the reasons, and a step one more reason rather than "1
+    more reasons"; the counts add up to the rows quarantined."""
+    bad = [
+        "S,1,not a time,10,55",
+        "S,1,2024-05-01T01:00:00Z,999,55",
+        "S,1,2024-05-01T01:00:00Z,10,95",
+        "S,1,2024-05-01T01:00:00Z",
+        "S,1,2024-05-01T01:00:00Z,10,55,9,9,9,9",
+        "S,,2024-05-01T01:00:00Z,10,55",
+        "S,1,2024-05-01T01:00:00Z,east,55",
+    ][:kinds]
+    good = [f"S,1,2024-05-01T00:{m:02d}:00Z,{10 + m * 1e-3:.4f},55" for m in range(30)]
+    src = tmp_path / "in.csv"
+    src.write_text("sensor,batch,time,lon,lat\n" + "\n".join(good + bad + bad) + "\n")
+    assert main(["import", str(src), "-o", str(tmp_path / "o.csv")]) == 0
+    err = capsys.readouterr().err
+    line = next(x for x in err.splitlines() if x.startswith("quarantined: "))
+    parts = line.removeprefix("quarantined: ").split("; ")
+    assert len(parts) == kinds  # every reason named (up to 8)
+    assert sum(int(p.split(" ")[0]) for p in parts) == 2 * kinds
+    assert main(["clean", str(src), "-o", str(tmp_path / "c.csv")]) == 0
+    err = capsys.readouterr().err
+    assert "1 more reason" not in err  # one more is named, not counted
+    if kinds > 4:
+        assert f"{kinds - 3} more reasons" in err
 
 
 @pytest.mark.parametrize(

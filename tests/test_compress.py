@@ -492,3 +492,61 @@ def test_rows_without_a_position_are_left_out_of_compress_and_counted():
         assert "(2 rows without a position left out)" in STEPS["compress"].summary(res)
     full = STEPS["compress"](df.drop(index=[10, 20]).reset_index(drop=True)).report
     assert "rows_without_position" not in full
+
+
+def _two_ships_under_one_id(seed: int) -> pd.DataFrame:
+    """A ship off Florida and one off California reporting under one MMSI, in turn every
+    30 min (operator test 10's ATD 211002010), and a ship of its own alongside."""
+    rng = np.random.default_rng(seed)
+    t0 = pd.Timestamp("2024-01-01T00:00:00Z")
+    n = 48
+    t = t0 + pd.to_timedelta(np.arange(n) * 1800, "s")
+    west = np.arange(n) % 2 == 1
+    lon = np.where(west, -120.5, -80.1) + np.arange(n) * 0.01 + rng.normal(0, 1e-4, n)
+    lat = np.where(west, 34.2, 25.8) + rng.normal(0, 1e-4, n)
+    mixed = pd.DataFrame({"sensor": "S1", "batch": "211002010", "time": t, "lon": lon, "lat": lat})
+    k = np.arange(200)
+    own = pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": "366970770",
+            "time": t0 + pd.to_timedelta(k * 60, "s"),
+            "lon": -90 + k * 0.003 + rng.normal(0, 2e-5, 200),
+            "lat": 29 + 0.5 * np.sin(k / 40) + rng.normal(0, 2e-5, 200),
+        }
+    )
+    return pd.concat([mixed, own], ignore_index=True)
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_compress_says_when_tracks_hold_jumps_clean_would_split(seed, monkeypatch):
+    """Operator test 10: compress on a raw ATD table gave "largest error bound 27,062,943
+    m … farthest point 2,601,752 m off" for an MMSI two ships share, with no word of why
+    nor of cleaning first. The summary now names the tracks with legs no ship makes, by
+    clean's own speed test, and says to clean first; compress's result is unchanged."""
+    from wakeline.core import clean as clean_mod
+    from wakeline.core.pipeline import STEPS
+
+    df = _two_ships_under_one_id(seed)
+    res = STEPS["compress"](df)
+    jumps = res.report["jumps"]
+    assert (jumps["sensor"], jumps["batch"]) == ("S1", "211002010") and jumps["tracks"] == 1
+    assert jumps["legs"] == jumps["track_legs"] == 47  # every leg crosses the continent
+    text = STEPS["compress"].summary(res)
+    assert "1 track with jumps no ship can make (47 legs beyond 40 kn" in text
+    assert (
+        "track S1:211002010" in text
+        and "clean first (wakeline clean; Clean in the window): it splits" in text
+    )
+    # clean's rule sees the same legs: it breaks that track and no other
+    cleaned = STEPS["clean"](df)
+    speed = cleaned.report["rules"]["speed"]
+    assert speed["breaks"] + speed["removed"] > 0
+    assert clean_mod.track_jumps(df[df["batch"] == "366970770"]) is None
+    # said, not changed: the compressed points are those compress keeps without the check
+    monkeypatch.setattr(clean_mod, "track_jumps", lambda *_a, **_k: None)
+    plain = STEPS["compress"](df)
+    assert "jumps" not in plain.report and "jumps" not in STEPS["compress"].summary(plain)
+    kept = [lay for lay in res.layers if lay.suffix == "compressed"][0].points
+    again = [lay for lay in plain.layers if lay.suffix == "compressed"][0].points
+    pd.testing.assert_frame_equal(kept, again)

@@ -231,3 +231,41 @@ def test_opening_a_project_writes_its_dates_once(qtbot, tmp_path, monkeypatch):
     assert on_gui and not any(on_gui), on_gui  # made in the worker only
     w2.runner.cancel()
     w2.runner.wait()
+
+
+def _offset_csv(path, offsets):
+    """Two tracks from 2026-12-05 00:00 UTC, each time written with the next of
+    ``offsets`` in turn (its wall clock there)."""
+    rows = ["mmsi,time,lat,lon"]
+    for b in range(2):
+        for i in range(20):
+            t = pd.Timestamp("2026-12-05T00:00:00Z") + pd.Timedelta(minutes=i)
+            off = offsets[i % len(offsets)]
+            sign = -1 if off[0] == "-" else 1
+            wall = t + sign * pd.Timedelta(hours=int(off[1:3]), minutes=int(off[4:6]))
+            stamp = wall.strftime("%Y-%m-%dT%H:%M:%S") + off
+            rows.append(f"36697077{b},{stamp},{30 + b * 0.01:.4f},{-90 + i * 1e-3:.4f}")
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+@pytest.mark.gui
+def test_the_data_choice_shows_the_offset_the_times_were_written_with(qtbot, tmp_path):
+    """Operator test 10: every time of the file ends in -05:00 and no --tz: "the zone the
+    data came in" showed UTC. It is UTC-5 now; a file of times in two offsets stays UTC."""
+    w = make_window(qtbot, tmp_path, (1200, 800))
+    assert w.zone_choice == "data"
+    load(w, _offset_csv(tmp_path / "gulf.csv", ["-05:00"]))
+    assert _header(w, "start") == "Start (UTC-5)"
+    assert min(_cell(w, "start", r) for r in range(2)) == "2026-12-04 19:00:00"
+    w.time_panel.set_time(1796428800.0)  # 2026-12-05 00:00 UTC
+    assert w.time_panel.time_label.text() == "2026-12-04 19:00:00 UTC-5"
+    w.zone_actions["utc"].trigger()
+    assert w.time_panel.time_label.text() == "2026-12-05 00:00:00 UTC"
+    w.zone_actions["data"].trigger()
+    # times in two offsets: the report says "mixed", the window keeps UTC
+    load(w, _offset_csv(tmp_path / "two.csv", ["-05:00", "+08:00"]))
+    assert _header(w, "start") == "Start (UTC)"
+    assert min(_cell(w, "start", r) for r in range(2)) == "2026-12-05 00:00:00"
+    w.runner.cancel()
+    w.runner.wait()

@@ -189,3 +189,26 @@ def test_merged_rows_without_source_sensor_keep_their_own_track():
         sensor, batch = member_sensor_batch(frame)
         assert (sensor + ":" + batch).tolist() == frame["source_track"].tolist()
         assert set(sensor.iloc[4:]) == {"R"} and set(batch.iloc[4:]) == {"12", "13"}
+
+
+def test_a_csv_export_names_the_internal_columns_it_leaves_out(tmp_path, capsys):
+    """Operator test 10: a fused layer exported to CSV said "7 columns" and its source,
+    n_sources and weight_base were gone without a word (GeoJSON names them). Every
+    internal column not in the file is named; every one named is absent from the file."""
+    cli = main
+    scene = tmp_path / "two.csv"
+    assert cli(["simulate", "multisensor", "--seed", "3", "-o", str(scene)]) == 0
+    fused = tmp_path / "fused.csv"
+    assert cli(["fuse", str(scene), "-o", str(fused)]) == 0
+    capsys.readouterr()
+    out = tmp_path / "x.csv"
+    assert cli(["export", str(fused), "-o", str(out)]) == 0
+    msg = capsys.readouterr().err
+    said = msg.split("not written: ")[1].split(" (Wakeline's internal columns)")[0].split(", ")
+    header = pd.read_csv(out, nrows=0).columns
+    assert {"source", "n_sources"} <= set(said)
+    assert not set(said) & set(header)
+    gone = set(pd.read_csv(fused, nrows=0).columns) - set(header) - {"members", "course_read"}
+    assert gone == set(said)
+    assert cli(["export", str(out), "-o", str(tmp_path / "again.csv")]) == 0
+    assert "not written" not in capsys.readouterr().err

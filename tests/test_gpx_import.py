@@ -285,6 +285,31 @@ def test_our_gpx_keeps_speed_and_course(tmp_path):
     assert back.loc[8, "course"] == pytest.approx(10.0)
 
 
+def test_the_gpx_export_says_which_columns_it_leaves_out(tmp_path, capsys):
+    """Operator test 10: `wakeline export … -o x.gpx` of a file with its own columns (the
+    GB18030 export's 备注, MTAD's vel) said "exported 664 rows as gpx" and the columns were
+    gone on the way back, where GeoJSON carries them. The message now names every column
+    the GPX file lacks; each one named is a column that did not come back, and each one
+    not named did."""
+    from wakeline.app.cli import main
+
+    src = tmp_path / "in.csv"
+    rows = [
+        f"7,2024-05-01 08:00:{k:02d},{12 + k * 1e-4:.4f},56.0,9.5,45,船{k},{k}" for k in range(30)
+    ]
+    src.write_text("批号,时间,经度,纬度,航速,航向,备注,序号\n" + "\n".join(rows) + "\n")
+    assert main(["export", str(src), "-o", str(tmp_path / "x.gpx")]) == 0
+    msg = capsys.readouterr().err
+    assert "not written: 备注, 序号 (a GPX point holds" in msg
+    back = read_points(tmp_path / "x.gpx").points
+    assert len(back) == 30 and {"speed", "course"} <= set(back.columns)
+    assert not {"备注", "序号"} & set(back.columns)
+    plain = tmp_path / "plain.csv"
+    plain.write_text("batch,time,lon,lat\n" + "\n".join(r.rsplit(",", 4)[0] for r in rows) + "\n")
+    assert main(["export", str(plain), "-o", str(tmp_path / "p.gpx")]) == 0
+    assert "not written" not in capsys.readouterr().err
+
+
 def test_speed_and_course_read_from_a_points_extensions(tmp_path):
     """Another program's GPX 1.1: gpxtpx:speed/course under TrackPointExtension, or a bare
     <speed> in <extensions>, are m/s and degrees; GPX 1.0's own <speed> comes first."""

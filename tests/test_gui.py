@@ -1733,9 +1733,9 @@ def test_removed_points_restored_from_the_map_with_undo(window, qtbot, tmp_path)
     assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0)
 
 
-def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_path):
-    rng = np.random.default_rng(7)
-    scans, per = 150, 6
+def _plots_file(folder, seed: int = 7, scans: int = 150, per: int = 6):
+    """A radar's plots: every scan (3 s) several detections of one batch, scattered."""
+    rng = np.random.default_rng(seed)
     t = np.repeat(np.arange(scans) * 3.0, per)
     df = pd.DataFrame(
         {
@@ -1746,8 +1746,97 @@ def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_p
             "lat": 63.44 + rng.normal(0, 0.002, len(t)),
         }
     )
-    path = tmp_path / "plots.csv"
+    path = folder / "plots.csv"
     write_points(df, path)
+    return path
+
+
+def _ship_file(folder, seed: int = 3):
+    """Two ships' AIS tracks (a fix every 10 s, about 10 kn): tracks, not plots."""
+    rng = np.random.default_rng(seed)
+    frames = []
+    for k in range(2):
+        n = 120
+        t = np.arange(n) * 10.0
+        frames.append(
+            pd.DataFrame(
+                {
+                    "sensor": "AIS",
+                    "batch": str(100 + k),
+                    "time": pd.Timestamp("2024-05-01", tz="UTC") + pd.to_timedelta(t, "s"),
+                    "lon": 10.30 + 0.01 * k + t * 9e-5 + rng.normal(0, 1e-5, n),
+                    "lat": 63.40 + t * 2e-5 * (1 + k) + rng.normal(0, 1e-5, n),
+                }
+            )
+        )
+    path = folder / "ships.csv"
+    write_points(pd.concat(frames, ignore_index=True), path)
+    return path
+
+
+def test_track_steps_on_radar_plots_warn_without_refusing(window, tmp_path):
+    """Session 30 "noticed, left": Run ▸ pipeline on radar plots (the Autoferry
+    detections) drew a scribble without a word. It warns in the Log before the run (non-
+    modal, the run goes on); a layer of ships' tracks runs without it; Associate (which
+    joins tracks) is not warned about."""
+    plots = load(window, _plots_file(tmp_path))
+    ships = load(window, _ship_file(tmp_path))
+    assert window.views[plots].extra.get("plots") and not window.views[ships].extra.get("plots")
+    warning = "which looks like radar plots"
+    for lid, step, warned in (
+        (ships, "pipeline", False),
+        (plots, "pipeline", True),
+        (plots, "maneuvers", True),
+        (plots, "associate", False),
+    ):
+        window.select_layer(lid)
+        before = window.log.toPlainText().count(warning)
+        assert window.run_step(step) is not None  # not refused
+        wait_for_jobs(window)
+        assert window.log.toPlainText().count(warning) == before + warned, (lid, step)
+    kinds = {lay.kind for lay in window.layers.values() if lay.name.startswith("plots.csv")}
+    assert "compressed" in kinds  # the pipeline ran on the plots all the same
+
+
+@pytest.mark.parametrize("plots", [True, False])
+def test_screenshot_shows_radar_plots_without_the_track_steps(
+    qapp, tmp_path, monkeypatch, capsys, plots
+):
+    """`wakeline gui FILE --screenshot PNG` ran clean, maneuvers, compress on radar plots
+    and showed the compressed "tracks" (a scribble). Now a file that is mostly plots is
+    shown as dots, the steps not run, and stderr says why with the guidance; ships'
+    tracks still get the pipeline."""
+    seen = {}
+    grab = MainWindow.grab
+
+    def recording_grab(self, *a):
+        seen["kinds"] = sorted(lay.kind for lay in self.layers.values())
+        lid = next(i for i, lay in self.layers.items() if lay.kind == "source")
+        style = self.canvas.draw_data(lid).style
+        seen["dots"] = style.width == 0 and style.symbol_size > 0
+        seen["guidance"] = self.params.guidance.text()
+        return grab(self, *a)
+
+    monkeypatch.setattr(MainWindow, "grab", recording_grab)
+    path = _plots_file(tmp_path) if plots else _ship_file(tmp_path)
+    assert run([path], screenshot=tmp_path / "shot.png", language="en") == 0
+    err = capsys.readouterr().err
+    said = [x for x in err.splitlines() if "looks like radar plots, not tracks" in x]
+    if plots:
+        assert seen["kinds"] == ["source"] and seen["dots"]
+        assert said == [
+            f"wakeline: {path.name}: most of it looks like radar plots, not tracks: the "
+            "track steps (clean, maneuvers, compress) were not run; the screenshot shows the "
+            "plots as dots"
+        ]
+        assert "radar plots" in seen["guidance"]
+        assert f"wakeline: {' '.join(seen['guidance'].split())}" in err.splitlines()
+    else:
+        assert "compressed" in seen["kinds"] and not said
+
+
+def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_path):
+    path = _plots_file(tmp_path)
     lid = load(window, path)
     window.select_layer(lid)
     wait_for_jobs(window)

@@ -259,6 +259,29 @@ def test_nul_bytes_and_joined_files_with_a_bom(write, tmp_path, monkeypatch, str
     assert reasons[2].startswith("short row")
 
 
+@pytest.mark.parametrize("unit", ["auto", "seconds"])
+def test_a_cut_last_line_after_a_stray_quote_says_nothing_of_a_time_unit(write, tmp_path, unit):
+    """Operator test 10: seconds from a scene start (Øresund), one stray quote and the last
+    line cut short. Read in pieces, the cut line came alone; its time column held no
+    time, was labelled text, and the import warned "--time-unit seconds applies to
+    numbers; the times ... are text" — a flag the operator never gave (the first piece's
+    decision passed on), or gave for times that are numbers."""
+    from wakeline.core.io import import_to_csv
+
+    rows = [
+        f"0,GW,219230000,{64.6 + 20 * k:.3f},{12.62 + k * 1e-4:.6f},56.03,9.0,81" for k in range(40)
+    ]
+    rows[10] = rows[10].replace(",GW,", ',"GW,', 1)
+    rows[-1] = rows[-1][:30]
+    header = "encounter_id,ship_role,mmsi,timestamp,lon,lat,sog,cog"
+    path = write("cut.csv", "\n".join([header, *rows]))
+    r = import_to_csv(path, tmp_path / "out.csv", time_unit=unit)
+    assert r.report["rows_imported"] + r.report["rows_quarantined"] == 40
+    assert r.report["rows_imported"] == 39
+    assert not [w for w in r.report["warnings"] if "--time-unit" in w]
+    assert any("the file's last line" in w for w in r.report["warnings"])
+
+
 def test_a_5_mb_cell(write):
     body = canonical_lines(5, lambda i: "x" * 5_000_000 if i == 2 else "ok")
     r = read_points(write("big.csv", "\n".join([HEADER, *body]) + "\n"))
@@ -486,6 +509,47 @@ def test_any_year_and_hour_is_a_point_or_a_quarantine_row(write, years, tz, text
     )
     r = read_points(write("any.csv", "sensor,batch,time,lon,lat\n" + body), tz=tz)
     assert_all_accounted(r, len(years))
+
+
+@settings(
+    max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    forms=st.lists(st.sampled_from(["z", "offset", "naive", "s", "ms"]), min_size=2, max_size=40),
+    start=st.integers(1_000_000_000, 1_900_000_000),
+    steps=st.lists(st.integers(0, 3_600), min_size=40, max_size=40),
+    stray=st.sampled_from([None, "7", "0", "2031-01-01T00:00:00Z", "123456789012"]),
+)
+def test_times_in_two_forms_are_each_read_in_their_own(write, forms, start, steps, stray):
+    """Operator test 10: a column of ISO 8601 times with unix seconds among them (two
+    exports joined), or the other way: the minority form was quarantined as "unparsable
+    time" (half the file at 50/50). Every time, whatever its form, now reads as the time
+    it writes; a stray value far from the column's span (a small number, another year)
+    stays a quarantine row, and every line is a point or a quarantine row."""
+    t = start + np.cumsum(steps[: len(forms)])
+    when = pd.to_datetime(t, unit="s", utc=True)
+    cells = {
+        "z": when.strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "offset": when.tz_convert("+08:00").strftime("%Y-%m-%dT%H:%M:%S+08:00"),
+        "naive": when.strftime("%Y-%m-%d %H:%M:%S"),
+        "s": pd.Index(t.astype(str)),
+        "ms": pd.Index((t * 1000).astype(str)),
+    }
+    rows = [f"1,{cells[f][i]},10,55" for i, f in enumerate(forms)]
+    if stray is not None:
+        rows.insert(len(rows) // 2, f"1,{stray},10,55")
+    r = read_points(write("two.csv", "batch,time,lon,lat\n" + "\n".join(rows) + "\n"))
+    assert_all_accounted(r, len(rows))
+    points = r.points.sort_values("time", kind="stable")
+    got = (points["time"] - pd.Timestamp("1970-01-01", tz="UTC")).dt.total_seconds()
+    read = got.round().astype("int64").to_numpy()
+    assert sorted(read.tolist())[: len(t)] == sorted(t.tolist()) or stray == "2031-01-01T00:00:00Z"
+    assert set(t.tolist()) <= set(read.tolist())  # every written time, in any form
+    if stray in ("7", "0"):
+        assert r.report["rows_quarantined"] == 1  # never 1970
+    if set(forms) & {"s", "ms"} and set(forms) & {"z", "offset", "naive"}:
+        kinds = [f in ("s", "ms") for f in forms]
+        assert r.report["other_form_times"] >= min(sum(kinds), len(kinds) - sum(kinds))
 
 
 def test_relative_times_are_flagged(write):

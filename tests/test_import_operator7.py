@@ -77,7 +77,7 @@ def test_a_utf8_file_with_a_bom_says_nothing_of_it(tmp_path):
 
 def test_batch_refuses_a_data_file_whose_header_reads_garbled(tmp_path, capsys):
     """batch skipped a GBK file whose header read as Latin-1 mojibake as "not track data"
-    and exited 0 with its rows lost; now it is refused (exit 2) and named as an encoding
+    and exited 0 with its rows lost; now it is refused (exit 3) and named as an encoding
     problem, while a README is still skipped."""
     from wakeline.core.pipeline import Pipeline
 
@@ -93,7 +93,7 @@ def test_batch_refuses_a_data_file_whose_header_reads_garbled(tmp_path, capsys):
     pipe.write_text(Pipeline.default().to_json())
     out = tmp_path / "o"
     args = ["batch", str(pipe), str(good), str(gbk), "-o", str(out), "--encoding", "cp1252"]
-    assert main(args) == 2
+    assert main(args) == 3  # written, an input left out (2 before h236: nothing written too)
     err = capsys.readouterr().err
     assert f"{gbk}: refused: " in err and "wrong encoding" in err
     rep = json.loads((out / "report.json").read_text())

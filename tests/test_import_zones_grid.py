@@ -145,3 +145,86 @@ def test_pieces_say_the_mixed_zones_once_not_the_chinese_note_too(tmp_path, monk
     assert got.report.get("pieces", 0) > 2
     assert [w for w in got.report["warnings"] if "zone" in w] == whole
     assert len(whole) == 1 and "600 of 1,200 times" in whole[0]
+
+
+def _offset_file(path, offsets, quoted=False, encoding="utf-8"):
+    """One ship's times written each with the next of ``offsets`` in turn (a "" zone-less):
+    the instants 10 s apart whatever the offset."""
+    rows = ["mmsi,time,lat,lon"]
+    for i in range(400):
+        t = pd.Timestamp("2024-01-01T00:00:00Z") + pd.Timedelta(seconds=10 * i)
+        off = offsets[i % len(offsets)]
+        if off and off != "Z":
+            sign = -1 if off[0] == "-" else 1
+            hours, minutes = int(off[1:3]), int(off[-2:])
+            wall = t + sign * pd.Timedelta(hours=hours, minutes=minutes)
+        else:
+            wall = t
+        stamp = wall.strftime("%Y-%m-%dT%H:%M:%S") + off
+        mmsi = '"366970770"' if quoted else "366970770"
+        rows.append(f"{mmsi},{stamp},{30 + i * 1e-4:.5f},{-90 + i * 1e-4:.5f}")
+    path.write_bytes(("\n".join(rows) + "\n").encode(encoding))
+    return path
+
+
+@pytest.mark.parametrize("how", ["whole", "streamed", "pieces"])
+@pytest.mark.parametrize(
+    "offsets, zone",
+    [
+        (["-05:00"], "-05:00"),
+        (["+0800"], "+08:00"),
+        (["Z"], "+00:00"),
+        (["Z", "+08:00"], "mixed"),
+        (["-05:00", "-04:00"], "mixed"),
+        (["-05:00", ""], "mixed"),
+        ([""], None),
+    ],
+)
+def test_the_report_names_the_offset_the_times_were_written_with(
+    tmp_path, monkeypatch, how, offsets, zone
+):
+    """Operator test 10: a file whose every time ends in -05:00 reported time_zone "UTC"
+    (only --tz), so View ▸ Time zone ▸ "the zone the data came in" showed UTC. The report
+    now counts the offsets written (``time_offsets``) and names the one of them, or
+    "mixed"; ``time_zone`` (the import's --tz) and the instants are unchanged."""
+    path = _offset_file(tmp_path / "ship.csv", offsets, quoted=how == "pieces")
+    if how == "whole":
+        got = read_points(path)
+    else:
+        monkeypatch.setattr(reader, "STREAM_BYTES", 4 << 10)
+        got = import_to_csv(path, tmp_path / "out.csv")
+        assert bool(got.report.get("pieces")) == (how == "pieces")
+    report = got.report
+    assert report["time_zone"] == "UTC"
+    assert report.get("time_zone_written") == zone
+    written = report.get("time_offsets", {})
+    zoned = sum(1 for i in range(400) if offsets[i % len(offsets)])
+    assert sum(written.values()) == zoned
+    if zone not in (None, "mixed"):
+        assert written == {zone: 400}
+    if how == "whole":  # the instants: 10 s apart from 2024-01-01 00:00 UTC, any offset
+        t = got.points["time"].sort_values().reset_index(drop=True)
+        assert t.iloc[0] == pd.Timestamp("2024-01-01T00:00:00Z")
+        assert (t.diff().dropna() == pd.Timedelta(seconds=10)).all()
+
+
+def test_written_offsets_reads_each_form():
+    import pyarrow as pa
+
+    texts = pa.array(
+        [
+            "2024-01-01T00:00:00-05:00",
+            "2024-01-01 00:00:00.250+0530",
+            "2024-01-01T00:00:00 +01:00",
+            "2024-01-01T00:00:00Z",
+            "2024-01-01 00:00:00 UTC",
+            "2024-01-01T00:00:00",
+            "2024-01-01",  # a date's "-01" is no offset
+            "",
+        ]
+    )
+    got = reader.written_offsets(texts)
+    assert got == {"-05:00": 1, "+05:30": 1, "+01:00": 1, "+00:00": 2}
+    assert reader.written_zone({"-05:00": 3}) == "-05:00"
+    assert reader.written_zone({"-05:00": 3}, zoneless=1) == "mixed"
+    assert reader.written_zone({}) is None

@@ -99,3 +99,31 @@ def test_a_fuse_of_many_layers_is_named_by_the_first_two(qapp):
     (two,) = s.apply_result(ids[0], res, STEPS["fuse"].defaults(), inputs=ids[:2])
     assert two.name == "f000.csv + f001.csv · fused"
     assert layer_tip(s, s.layers[ids[0]]) == ""
+
+
+def test_a_layer_of_several_files_is_named_readably_in_either_language(qapp):
+    """Operator test 10: `render ore_gbk.csv dma_semicolon_comma.csv` named the layer
+    "{ore_gbk,dma_semicolon_comma}.csv" ("{ore_gbk,d…mma}.csv" in the legend). Render names
+    it as the window names a fuse across layers: the files, or the first two and how many
+    more, said in the window's language."""
+    from pathlib import Path
+
+    from wakeline.app import i18n
+    from wakeline.app.cli_render import input_name
+    from wakeline.app.layer_names import shown_name
+    from wakeline.app.map_legend import SideLegend
+
+    many = input_name([Path(f"scene_{k}.csv") for k in range(6)])
+    assert many == "scene_0.csv + scene_1.csv and 4 more"
+    assert shown_name(f"{many} · cleaned") == f"{many} · cleaned"
+    legend = SideLegend()
+    two = input_name([Path("ore_gbk.csv"), Path("dma_semicolon_comma.csv")])
+    shown = legend.shown_label(f"{two} · cleaned")
+    assert "ore_gbk" in shown and "dma" in shown and "{" not in shown, shown
+    translator = i18n.install(qapp, "zh_CN", None)
+    try:
+        zh = shown_name(f"{many} · cleaned")
+        assert zh.startswith("scene_0.csv + scene_1.csv") and "4" in zh and "more" not in zh, zh
+        assert "cleaned" not in zh
+    finally:
+        i18n.install(qapp, "en", translator)

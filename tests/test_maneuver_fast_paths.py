@@ -113,8 +113,8 @@ PARAMS = [
 def _reference_params(params: ManeuverParams):
     """The reference's parameters: it predates ``max_step_windows`` (headings not taken
     across a long step), so it is compared with that rule off, and ``window_max_s`` (h131,
-    off by default), ``radius_s`` and ``edge_s`` (h162, off by default),
-    ``slow_side_step_s`` (session 27: slow_side everywhere, its bound tested in
+    off by default), ``radius_s`` and ``edge_s`` (h162; the defaults since session 31, set 0
+    here), ``slow_side_step_s`` (session 27: slow_side everywhere, its bound tested in
     test_maneuver.py), and ``rest_north_box`` (it calls cleaning's at_rest with its
     default, the box in the track's axes)."""
     fields = dict(params.__dict__)
@@ -122,6 +122,7 @@ def _reference_params(params: ManeuverParams):
     assert fields.pop("window_max_s") == 0
     assert fields.pop("radius_s") == 0
     assert fields.pop("edge_s") == 0
+    fields.pop("step_noise_max")  # h240: no effect with radius_s and edge_s 0
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("rest_north_box")
     assert not fields.pop("noise_k_law")  # h185, off by default
@@ -139,7 +140,12 @@ def _reference_params(params: ManeuverParams):
 def test_detect_equals_the_straightforward_detector(scene, which):
     df = SCENES[scene]()
     params = PARAMS[which].replace(
-        max_step_windows=0.0, slow_side_step_s=0.0, rest_noise_sigmas=0.0, confirm_z=0.0
+        max_step_windows=0.0,
+        slow_side_step_s=0.0,
+        rest_noise_sigmas=0.0,
+        confirm_z=0.0,
+        radius_s=0.0,  # h162's, default since session 31 (h241): the reference predates it
+        edge_s=0.0,
     )
     ours = detect(df, params)
     ref = reference.detect(df, _reference_params(params))

@@ -85,12 +85,15 @@ def _same(df, params):
         slow_side_step_s=0.0,
         rest_noise_sigmas=0.0,
         confirm_z=0.0,
+        radius_s=0.0,  # h162's, default since session 31 (h241): the reference predates it
+        edge_s=0.0,
     )
     ours = detect(df, params)
     fields = dict(params.__dict__)
     fields.pop("max_step_windows")
     fields.pop("window_max_s")
-    assert fields.pop("radius_s") == 0 and fields.pop("edge_s") == 0  # h162, off by default
+    assert fields.pop("radius_s") == 0 and fields.pop("edge_s") == 0  # h162 (set 0 above)
+    fields.pop("step_noise_max")  # h240: no effect with radius_s and edge_s 0
     assert fields.pop("slow_side_step_s") == 0 and fields.pop("slow_side_span_s") == 0
     assert not fields.pop("noise_k_law")  # h185, off by default
     assert not fields.pop("rest_noise_sigmas")  # h193; default 5 since h195, set 0 above

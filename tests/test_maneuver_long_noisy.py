@@ -155,6 +155,7 @@ def test_options_equal_the_straightforward_detector(options):
         "confirm_legs",
         "confirm_grow",
         "confirm_grow_deg",
+        "step_noise_max",
     ):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))

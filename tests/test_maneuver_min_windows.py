@@ -104,6 +104,7 @@ def test_gate_equals_the_straightforward_detector():
         "confirm_legs",
         "confirm_grow",
         "confirm_grow_deg",
+        "step_noise_max",
     ):
         fields.pop(gone)
     ref = reference.detect(pts, reference.ManeuverParams(**fields))

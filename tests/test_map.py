@@ -612,14 +612,19 @@ def test_render_names_the_input_files_in_the_legend(tmp_path, monkeypatch):
         str(tmp_path / "x.png"),
     ]
     assert main(argv + ["--step", "clean"]) == 0
-    assert seen and all(n.startswith("{a,b}.csv") for n in seen), seen
+    assert seen and all(n.startswith("a.csv + b.csv") for n in seen), seen
     assert not any(n.startswith("input") for n in seen)
     paths = [tmp_path / f"f{k}.csv" for k in range(11)]
     assert input_name(paths[:1]) == "f0.csv"
-    assert input_name([Path("s_AIS.csv"), Path("s_radar.csv")]) == "s_{AIS,radar}.csv"
     assert input_name([Path("ais.csv"), Path("radar.txt")]) == "ais.csv + radar.txt"
     assert input_name([Path("x.csv"), Path("x.csv")]) == "x.csv + x.csv"
-    assert input_name(paths) == "f0.csv + f1.csv + 9 more files"
+    # operator test 10: "{ore_gbk,dma_semicolon_comma}.csv", "{ore_gbk,d…mma}.csv" in the
+    # legend, named neither file; now each file whole, or the first and how many more
+    two = input_name([Path("ore_gbk.csv"), Path("dma_semicolon_comma.csv")])
+    assert two == "ore_gbk.csv + dma_semicolon_comma.csv"
+    assert input_name([Path("s_AIS.csv"), Path("s_radar.csv")]) == "s_AIS.csv + s_radar.csv"
+    assert input_name(paths) == "f0.csv + f1.csv and 9 more"
+    assert not any("{" in input_name(paths[:k]) for k in range(1, 12))
 
 
 def test_render_steps_draw_each_layer_once_and_the_input_in_its_own_colour(tmp_path):
@@ -1088,3 +1093,44 @@ def test_a_layer_recoloured_with_as_many_curves_takes_the_new_colours(qtbot):
         last_lines = [c.label.split("\n")[-1].split(" · ")[-1] for c in out.curves]
         assert all(t in " ".join(shown) for t in last_lines), (last_lines, shown)
         canvas.remove_layer("ferry")
+
+
+def test_a_selected_track_of_a_layer_coloured_by_track_has_one_legend_line(qtbot):
+    """Operator test 10: an MTAD scene's compressed layer coloured by track, its track
+    9001/412434718-0 selected: the legend said "9001:412434718-0" (the track's colour) and
+    "9001 · 412434718-0" (the selection's). One line per track now, named "sensor · batch"
+    as the selection names it, the selected track drawn in the colour its line shows; a
+    track the layer's legend does not name keeps its selection line."""
+    from wakeline.app.map_draw import named_tracks, recolor
+    from wakeline.app.map_legend import short_label
+
+    canvas = _shown_canvas(qtbot)
+    for seed in (3, 4):
+        pts = pd.concat(
+            [star_scene(seed, 3, 30), star_scene(seed + 1, 3, 30).assign(sensor="R2")],
+            ignore_index=True,
+        )
+        data = recolor(prepare_layer(pts, "scene", "#2ca02c"), True)
+        canvas.set_draw_data(data)
+        named = named_tracks(data.geometry)
+        assert len(named) == 6  # every track has its line (6 ≤ LEGEND_TRACKS)
+        sensor, batch = "R2", str(pts.loc[pts["sensor"] == "R2", "batch"].iloc[1])
+        canvas.show_selection(pts[(pts["sensor"] == sensor) & (pts["batch"] == batch)])
+        canvas._sync_selection_legend()
+        texts = [label.text for _s, label in canvas.legend.items]
+        name = f"{sensor} · {batch}"
+        assert sum(short_label(name) in t or name in t for t in texts) == 1, texts
+        assert not any(f"{sensor}:{batch}" in t for t in texts), texts
+        # drawn in the colour its legend line shows, and the window's swatch agrees
+        colour = named[(sensor, batch)]
+        assert [i.opts["pen"].color().name() for i in canvas.selection_items()] == [colour]
+        assert canvas.selection_color(sensor, batch) == colour
+        canvas.remove_layer("scene")
+    # a layer in its own colour: the selection names its track, in a colour of its own
+    plain = prepare_layer(pts, "scene", "#2ca02c")
+    canvas.set_draw_data(plain)
+    canvas.show_selection(pts[(pts["sensor"] == sensor) & (pts["batch"] == batch)])
+    canvas._sync_selection_legend()
+    texts = [label.text for _s, label in canvas.legend.items]
+    assert sum(name in t for t in texts) == 1
+    assert canvas.selection_color(sensor, batch) != "#2ca02c"

@@ -237,38 +237,51 @@ def test_shortcuts_trigger_their_actions_and_are_listed(qtbot, tmp_path, monkeyp
     w.close()
 
 
-def test_removing_a_layer_with_children_asks_first(qtbot, tmp_path, monkeypatch):
+def _no_question(monkeypatch):
+    asked = []
+    box = QtWidgets.QMessageBox
+    monkeypatch.setattr(
+        box, "question", lambda *a, **k: asked.append(a[2]) or box.StandardButton.Yes
+    )
+    return asked
+
+
+def test_removing_a_layer_with_children_is_undone_without_a_question(qtbot, tmp_path, monkeypatch):
+    """h237 (was: asked first, h225 item 12): removal is an undoable command; Edit ▸
+    Restore removed layer brings the layer back in its place, drawn and in the project."""
     w = _window_with(qtbot, tmp_path, _spread_points())
     src = w.active
     w.run_step("clean")
     _settle(w)
     cleaned = next(lid for lid, lay in w.layers.items() if lay.parent == src)
-    asked = []
-    box = QtWidgets.QMessageBox
-
-    def answer(reply):
-        def question(*args, **_kw):
-            asked.append(args[2])
-            return reply
-
-        return question
-
-    monkeypatch.setattr(box, "question", answer(box.StandardButton.Cancel))
+    asked = _no_question(monkeypatch)
     w.select_layer(src)
     w.remove_active_layer()
-    assert src in w.layers and len(asked) == 1 and "1 layer(s)" in asked[0]
-    monkeypatch.setattr(box, "question", answer(box.StandardButton.Yes))
+    _settle(w)
+    assert src not in w.layers and not asked
+    assert src not in w.canvas.layer_names() and w.layer_row(src) < 0
+    undo = w.layer_undo
+    assert undo.act_undo.isEnabled() and "Restore removed" in undo.act_undo.text()
+    undo.act_undo.trigger()
+    _settle(w)
+    assert list(w.layers) == [src, cleaned] and w.layer_row(src) == 0
+    assert src in w.canvas.layer_names() and w.active == src
+    assert w.layers[cleaned].parent == src
+    undo.act_redo.trigger()  # Remove layer again
+    _settle(w)
+    assert src not in w.layers and w.layer_row(src) < 0
+    undo.act_undo.trigger()
+    _settle(w)
+    w.select_layer(cleaned)  # no children, no decisions: removed the same way
     w.remove_active_layer()
     _settle(w)
-    assert src not in w.layers and len(asked) == 2
-    w.select_layer(cleaned)  # no children, no decisions: removed without a question
-    w.remove_active_layer()
-    _settle(w)
-    assert cleaned not in w.layers and len(asked) == 2
+    assert cleaned not in w.layers and not asked
     w.close()
 
 
-def test_removing_a_fused_layer_with_review_decisions_asks_first(qtbot, tmp_path, monkeypatch):
+def test_removing_a_fused_layer_with_review_decisions_is_undone_with_them(
+    qtbot, tmp_path, monkeypatch
+):
     w = _fused_review(qtbot, tmp_path)
     fused = w.active
     panel = w.review.bound.panel
@@ -277,13 +290,17 @@ def test_removing_a_fused_layer_with_review_decisions_asks_first(qtbot, tmp_path
     _settle(w)
     children, decisions = w.removal_cost(fused)
     assert children == 0 and decisions >= 1
-    asked = []
-    box = QtWidgets.QMessageBox
-    monkeypatch.setattr(
-        box, "question", lambda *a, **k: asked.append(a[2]) or box.StandardButton.Cancel
-    )
+    statuses = list(w.review.bound.controller.state.status)
+    asked = _no_question(monkeypatch)
     w.remove_active_layer()
-    assert fused in w.layers and asked and "review decision" in asked[0]
+    _settle(w)
+    assert fused not in w.layers and not asked
+    w.layer_undo.undo()
+    _settle(w)
+    assert fused in w.layers and w.active == fused
+    w.select_layer(fused)
+    _settle(w)
+    assert list(w.review.bound.controller.state.status) == statuses  # its decisions bind again
     w.close()
 
 

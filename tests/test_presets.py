@@ -50,6 +50,12 @@ def test_every_change_names_a_field_and_applies_over_the_defaults(name):
         fields = {f.name for f in dataclasses.fields(CLASSES[key])}
         assert set(values) <= fields
         default = CLASSES[key]()
+        if name == "slow-radar":
+            # session 31 (h241, docs/prereg/session31_slow_scans_b.md): its values became the
+            # defaults (gated by step_noise_max 0.15, which it leaves alone); kept as it was,
+            # it sets them back where they were changed
+            assert all(getattr(default, n) == v for n, v in values.items())
+            continue
         # each change is a change (no value equal to the default's)
         assert all(getattr(default, n) != v for n, v in values.items())
     for step in STEPS.values():
@@ -68,7 +74,8 @@ def test_every_change_names_a_field_and_applies_over_the_defaults(name):
 def test_the_defaults_are_unchanged_by_the_registry():
     presets()
     assert ManeuverParams().confirm_z == 0.0 and ManeuverParams().confirm_grow == 0
-    assert ManeuverParams().radius_s == 0.0 and ManeuverParams().edge_s == 0.0
+    assert ManeuverParams().radius_s == 15.0 and ManeuverParams().edge_s == 12.0  # session 31
+    assert ManeuverParams().step_noise_max == 0.15
     assert CompressParams().refine is True
 
 
@@ -88,7 +95,8 @@ def test_an_unknown_preset_is_refused_with_the_names():
 def test_the_menus_table_sets_the_other_presets_fields_back_to_their_defaults():
     table = menu_table("noisy-tracks")
     assert table["maneuver"]["confirm_z"] == 4.0
-    assert table["maneuver"]["radius_s"] == 0.0 and table["maneuver"]["edge_s"] == 0.0
+    assert table["maneuver"]["radius_s"] == ManeuverParams().radius_s == 15.0
+    assert table["maneuver"]["edge_s"] == ManeuverParams().edge_s == 12.0
     assert table["maneuver"]["window_s"] == ManeuverParams().window_s  # the paper's, undone
     assert table["compress"]["refine"] is True
     paper = menu_table("paper")
@@ -310,7 +318,7 @@ def test_the_panels_built_in_presets_menu_applies_and_logs(qtbot):
     mp = panel.params("maneuver")
     assert (mp.radius_s, mp.edge_s, mp.confirm_z, mp.confirm_grow) == (15.0, 12.0, 0.0, 0)
     assert mp.threshold_deg == 20.0  # kept
-    assert "confirm_z 4 → 0" in said[-1] and "radius_s 0 → 15" in said[-1]
+    assert "confirm_z 4 → 0" in said[-1] and "radius_s" not in said[-1]  # 15 by default
     panel.apply_builtin("slow-radar")
     assert said[-1] == "Built-in preset “Slow radar scans (3-7 s)”: every value was already set"
     panel.apply_builtin("paper")

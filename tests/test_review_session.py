@@ -450,3 +450,61 @@ def test_a_queue_no_decision_of_which_cuts_a_row_is_not_replayed(pair, tmp_path,
     assert proj.repairs == [] and not proj.decisions_checked and replayed == []
     assert not R.cuts_anything([R.accept(st, st.proposals["proposal"][5])])
     assert R.cuts_anything([R.split_track(st, st.track_a[0])])
+
+
+def test_a_removed_layer_is_restored_with_its_place_lineage_tables_and_review(pair, tmp_path):
+    """Layer ▸ Remove is undoable (h237): ``restore_layer`` undoes ``remove_layer`` —
+    the same layer object back in its place, the layer under review's kept tables and
+    meta of before, its statuses as before; the id is never given to a layer added
+    meanwhile; a removal of work cleared since is refused. The project writer, following
+    the events, holds the same layers as the session after each step."""
+    s, lid = _fused_session(pair)
+    lay = s.layers[lid]
+    want = _decide(s, lay)
+    s.set_active("L1")
+    s.selection = [("L1", "S1", "1")]
+    save_project(s, tmp_path / "u.wakeline")
+    store = ProjectStore(tmp_path / "u.wakeline", create=False)
+
+    open_ = [True]
+
+    def write(e, i):
+        if not open_[0]:
+            return
+        if e in ("added",):
+            store.put_layer(s.layers[i], list(s.layers).index(i))
+        elif e == "tables":
+            store.put_tables(s.layers[i], list(s.layers).index(i))
+        elif e == "removed":
+            store.delete_layer(i)
+        elif e == "reordered":
+            store.put_order(list(s.layers))
+
+    s.subscribe(write)
+    tables, meta, layer = lay.tables, lay.meta, s.layers["L1"]
+    removal = s.remove_layer("L1")
+    assert removal.pos == 0 and removal.active and s.active is None
+    assert KEPT_INPUT + "L1" in lay.tables and list(bind(s, lay)[0].status) == want
+    newcomer = s.add_layer("new.csv", "source", pair[0]["AIS"])
+    assert newcomer.id != "L1"  # the removed layer's id stays free for an undo
+    s.remove_layer(newcomer.id)
+    back = s.restore_layer(removal)
+    assert back is layer and list(s.layers) == ["L1", "L2", lid]
+    assert lay.tables is tables and lay.meta is meta  # the kept input given back
+    assert s.active == "L1" and s.selection == [("L1", "S1", "1")]
+    assert list(bind(s, lay)[0].status) == want  # its decisions were never removed
+    open_[0] = False
+    store.close()
+    reopened = load_project(tmp_path / "u.wakeline").to_session()
+    assert list(reopened.layers) == ["L1", "L2", lid]
+    assert reopened.layers["L1"].lineage() == layer.lineage()
+    pd.testing.assert_frame_equal(reopened.layers["L1"].points, layer.points)
+    assert list(bind(reopened, reopened.layers[lid])[0].status) == want
+    # restored twice, or into work cleared since: refused, nothing changed
+    with pytest.raises(Exception, match="is taken"):
+        s.restore_layer(removal)
+    again = s.remove_layer("L2")
+    s.clear()
+    with pytest.raises(Exception, match="closed since"):
+        s.restore_layer(again)
+    assert not s.layers

@@ -397,6 +397,100 @@ def test_proposal_is_drawn_in_the_colours_the_legend_names(qtbot, tmp_path):
     w.close()
 
 
+def _join_curves(w) -> dict[str, tuple[np.ndarray, np.ndarray, object]]:
+    """The review's joins on the main map by status: (lon, lat, pen style), shown only."""
+    out = {}
+    for status, item in w.review._joins.items():
+        if item.isVisible():
+            x, y = item.getData()
+            out[status] = (np.asarray(x), np.asarray(y), item.opts["pen"].style())
+    return out
+
+
+def test_joins_pending_dashed_accepted_solid_rejected_not_drawn(qtbot, tmp_path):
+    """Session 30's UX list: every join of the review on the map, the undecided ones
+    dashed, accepted ones solid, rejected ones not drawn as joins (the current
+    proposal's connector was dashed whatever its status), with legend lines "pending
+    join (dashed)" and "accepted join" while there are such joins."""
+    dash, solid = QtCore.Qt.PenStyle.DashLine, QtCore.Qt.PenStyle.SolidLine
+    per = 6
+    rows = []
+    for batch, t0 in {"0": 0.0, "1": 900.0, "2": 1800.0}.items():  # 0 -> 1 -> 2, 300 s gaps
+        t = t0 + 120.0 * np.arange(per)
+        rows.append(pd.DataFrame({"batch": batch, "t": t, "lon": 120.0 + 1e-4 * t}))
+    pts = pd.concat(rows, ignore_index=True)
+    pts = pd.DataFrame(
+        {
+            "sensor": "R1",
+            "batch": pts["batch"],
+            "time": pd.to_datetime(pts["t"], unit="s", utc=True),
+            "lon": pts["lon"],
+            "lat": 30.0 + 1e-5 * pts["t"],
+        }
+    )
+    # A0002 names the later track first: its join still runs from 1's end to 2's start
+    props = pd.DataFrame(
+        {
+            "proposal": ["A0001", "A0002"],
+            "kind": "associate",
+            "sensor_a": "R1",
+            "batch_a": ["0", "2"],
+            "sensor_b": "R1",
+            "batch_b": ["1", "1"],
+            "method": "optimal",
+            "cost": [0.2, 0.3],
+            "gap_s": 300.0,
+            "gate": 1.5,
+            "margin": [1.3, 1.2],
+        }
+    )
+    w = _window(qtbot, tmp_path)
+    src = w.session.add_layer("radar.csv", "source", pts)
+    _show_associated(w, src, pts.assign(target="R1:0"), props)
+    b = w.review.bound
+    assert b is not None and b.panel.set_current("A0001")
+    _settle(w)
+    end = {k: 120.0 + 1e-4 * (t0 + 600.0) for k, t0 in (("0", 0.0), ("1", 900.0))}
+    start = {k: 120.0 + 1e-4 * t0 for k, t0 in (("1", 900.0), ("2", 1800.0))}
+    joins = _join_curves(w)
+    assert set(joins) == {"pending"} and joins["pending"][2] == dash
+    x = joins["pending"][0]
+    assert np.allclose(x[np.isfinite(x)], [end["0"], start["1"], end["1"], start["2"]])
+    legend = [label.text for _s, label in w.canvas.legend.items]
+    assert "pending join (dashed)" in legend and "accepted join" not in legend
+    connector = w.review._pools["proposal"][w.canvas].connector
+    assert connector.isVisible() and connector.opts["pen"].style() == dash
+
+    b.panel.accept()  # A0001: its join solid, the connector too
+    _settle(w)
+    joins = _join_curves(w)
+    assert joins["accepted"][2] == solid and joins["pending"][2] == dash
+    assert np.allclose(joins["accepted"][0][:2], [end["0"], start["1"]])
+    assert np.allclose(joins["pending"][0][:2], [end["1"], start["2"]])
+    assert b.panel.set_current("A0001")
+    _settle(w)
+    assert connector.isVisible() and connector.opts["pen"].style() == solid
+    legend = [label.text for _s, label in w.canvas.legend.items]
+    assert {"pending join (dashed)", "accepted join"} <= set(legend)
+
+    assert b.panel.set_current("A0002")
+    _settle(w)
+    assert connector.isVisible() and connector.opts["pen"].style() == dash
+    b.panel.reject()  # A0002: no join drawn, nor its connector; no pending line left
+    _settle(w)
+    assert b.panel.set_current("A0002")
+    _settle(w)
+    assert set(_join_curves(w)) == {"accepted"}
+    assert not connector.isVisible()
+    legend = [label.text for _s, label in w.canvas.legend.items]
+    assert "pending join (dashed)" not in legend and "accepted join" in legend
+    w.select_layer(src.id)  # the review leaves the map: its joins too
+    _settle(w)
+    assert not _join_curves(w)
+    assert not any("join" in label.text for _s, label in w.canvas.legend.items)
+    w.close()
+
+
 def _saronic_cut_window(qtbot, tmp_path) -> tuple[MainWindow, str]:
     """A window with the Saronic Gulf AIS (S1) cut at its 600 s gaps loaded and selected;
     the layer's id."""

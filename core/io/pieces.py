@@ -55,6 +55,7 @@ from wakeline.core.io.reader import (
     POSITION_COUNTS,
     REPEAT_MARK,
     TIME_COUNTS,
+    TIME_UNIT_ON_TEXT_START,
     UNBALANCED_NOTE,
     ZONE_NOTE_MARK,
     ImportResult,
@@ -79,6 +80,7 @@ from wakeline.core.io.reader import (
     swapped_file,
     time_counts,
     with_final,
+    written_zone,
 )
 from wakeline.core.io.sniff import Sniff
 from wakeline.core.io.speed_check import SPEED_UNIT_MARK
@@ -312,6 +314,7 @@ def _read_all(
     units: set[bool] = set()  # numeric times read as Excel days, or not, per piece
     ddmm: set[tuple] = set()  # positions read as NMEA's ddmm.mmmm, or not, per piece
     forms: dict[str, str] = {}  # lettered lat/lon columns: ddmm.mmmm or degrees (h149)
+    unit_given = options.get("time_unit", "auto") != "auto"  # the operator's --time-unit
     for k, ((piece, first_line), final) in enumerate(with_final(pieces(sn, opened), has_rows)):
         edges["back"].line_offset = first_line - 1  # its steps back named by file line
         piece_file.write_bytes(piece)
@@ -330,6 +333,11 @@ def _read_all(
         if edges["swapped"]:
             raise WholeFileNeeded  # a sensor (track) looks swapped: judged over the file
         warnings = res.report.get("warnings", [])
+        if not unit_given and options.get("time_unit", "auto") != "auto":
+            # the unit the first piece decided, passed on by this loop: no note that
+            # "--time-unit" (never given) met text times (a piece of damaged lines alone)
+            warnings = [w for w in warnings if not w.startswith(TIME_UNIT_ON_TEXT_START)]
+            res.report["warnings"] = warnings
         clock = res.quarantine["reason"].str.contains("by a clock change", regex=False)
         if clock.any() or any("hour the clock change" in w for w in warnings):
             raise WholeFileNeeded  # a repeated hour is placed over the whole file
@@ -529,9 +537,14 @@ def merge_import_reports(
         raise WholeFileNeeded
     by_reason = quarantine["reason"].value_counts().to_dict() if len(quarantine) else {}
     fmt = (with_rows or reports)[0].get("time_format")
-    first = {k: v for k, v in first.items() if k != "_zones"}
+    first = {
+        k: v for k, v in first.items() if k not in ("_zones", "time_offsets", "time_zone_written")
+    }
+    offsets = _sum([r.get("time_offsets", {}) for r in reports])  # the times' written offsets
+    written = written_zone(offsets, naive)
     return {
         **first,
+        **({"time_offsets": offsets, "time_zone_written": written} if written else {}),
         "date_order": date_order_note({**times, "time_format": fmt}),
         **time_counts(times),
         "input": str(sn.path),

@@ -901,6 +901,79 @@ def _column_types(sn: Sniff, res: Resolved, careful: bool) -> dict[str, pa.DataT
     return types
 
 
+#: A time's written UTC offset, after its clock: Z, ±HH:MM, ±HHMM, ±HH (a space before it
+#: allowed: "08:00:00 +01:00"); "UTC"/"GMT" words are Z.
+_WRITTEN_OFFSET = r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s?(?P<z>[zZ]|UTC|GMT|[+-]\d\d(?::?\d\d)?)\s*$"
+
+
+def _plain_offset(text: str) -> str:
+    """``+08:00`` of a written offset (``Z``/``UTC`` → ``+00:00``, ``+0800``, ``+08``)."""
+    if text.upper() in ("Z", "UTC", "GMT"):
+        return "+00:00"
+    digits = text[1:].replace(":", "")
+    return f"{text[0]}{digits[:2]}:{digits[2:4] or '00'}"
+
+
+def written_offsets(texts: pa.Array | pa.ChunkedArray) -> dict[str, int]:
+    """How many of the times ``texts`` carry each UTC offset at their end (``+00:00`` for
+    Z), e.g. ``{"-05:00": 20000}``; times without one are not counted."""
+    if isinstance(texts, pa.ChunkedArray):
+        texts = texts.combine_chunks() if texts.num_chunks else pa.array([], pa.string())
+    if not pa.types.is_string(texts.type) or not len(texts):
+        return {}
+    found = pc.struct_field(pc.extract_regex(texts, _WRITTEN_OFFSET), [0])
+    out: dict[str, int] = {}
+    for item in pc.value_counts(found.drop_null()).to_pylist():
+        key = _plain_offset(item["values"])
+        out[key] = out.get(key, 0) + int(item["counts"])
+    return out
+
+
+def written_zone(offsets: dict[str, int], zoneless: int = 0) -> str | None:
+    """The zone a file's times were written in, by the offsets they carry
+    (:func:`written_offsets`): the one offset (``-05:00``), ``mixed`` for several (or
+    some times with one and some without), None when no time carries one."""
+    offsets = {k: v for k, v in offsets.items() if v}
+    if not offsets:
+        return None
+    return next(iter(offsets)) if len(offsets) == 1 and not zoneless else "mixed"
+
+
+def _file_offsets(sn: Sniff, src: str, encoding: str, time_info: dict) -> dict:
+    """The report's ``time_offsets`` and ``time_zone_written`` (:func:`written_zone`) of
+    the ISO 8601 times of column ``src`` of ``sn``, read again as text (pyarrow reads
+    ``…-05:00`` as a UTC instant and forgets the offset: View ▸ Time zone's "the zone the
+    data came in" showed UTC for a file of -05:00 times, operator test 10). Empty when the
+    times are not ISO 8601 text or none carries a zone (nothing read again)."""
+    if time_info.get("time_format") != "ISO 8601 text":
+        return {}
+    zoneless = int(time_info.get("zoneless_times", 0))
+    if not time_info.get("zoned_written"):
+        return {}  # no time read carries a zone
+    read = pacsv.ReadOptions(column_names=list(sn.columns), skip_rows=sn.skip_rows)
+    parse = pacsv.ParseOptions(
+        delimiter=sn.parse_delimiter,
+        quote_char='"' if sn.has_quotes else False,
+        invalid_row_handler=lambda _row: "skip",
+        ignore_empty_lines=True,
+    )
+    convert = pacsv.ConvertOptions(
+        include_columns=[src], column_types={src: pa.string()}, strings_can_be_null=False
+    )
+    errors = "strict" if encoding in ("utf-8", "utf8") else "replace"
+    try:
+        with _open_parsed(sn, encoding, errors) as handle, _quiet_undecodable_rows():
+            table = pacsv.read_csv(
+                handle, read_options=read, parse_options=parse, convert_options=convert
+            )
+    except (pa.ArrowInvalid, UnicodeDecodeError, OSError, KeyError):
+        return {}  # unsure: the report says nothing of offsets
+    offsets = written_offsets(table.column(src))
+    if not offsets:
+        return {}
+    return {"time_offsets": offsets, "time_zone_written": written_zone(offsets, zoneless)}
+
+
 def _line_numbers(rows: np.ndarray, skip_rows: int, invalid_lines: list[int]) -> np.ndarray:
     """Physical 1-based line of parsed rows (0-based row numbers), given the lines of the
     invalid rows the parser skipped."""
@@ -2029,6 +2102,79 @@ def parse_times(
     header: str = "",
     clock_date: str | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
+    """int64 ns since epoch (UTC) and a validity mask, read in the column's form
+    (:func:`_parse_times_in_one_form`); then, in a column of ISO 8601 text with some unix
+    seconds among them, or the other way (two exports joined: operator test 10), the
+    times written in the other form, each read in its own form when it falls within a
+    day of the others' span (``info["other_form_times"]`` counts them)."""
+    info = {} if info is None else info
+    ns, ok = _parse_times_in_one_form(
+        arr, kind, tz, info, decimal_comma, date_order, time_unit, header, clock_date
+    )
+    if kind == "auto" and ok.any() and not ok.all():
+        ns, ok = _times_in_the_other_form(arr, ns, ok, tz, info, date_order)
+    return ns, ok
+
+
+_ISO_DATE_START = r"\s*[0-9]{4}-[0-9]{2}-[0-9]{2}[T ][0-9]{2}:[0-9]{2}"
+
+
+def _times_in_the_other_form(
+    arr: pa.ChunkedArray,
+    ns: np.ndarray,
+    ok: np.ndarray,
+    tz: datetime.tzinfo | None,
+    info: dict,
+    date_order: str,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Rows left unread of a column read as absolute unix times whose text is an ISO 8601
+    date and time, or of a column read as ISO 8601 text whose text is a plain number:
+    read in that form, those within a day of the column's span of times
+    (a stray number, a date of another year, stays unparsable)."""
+    fmt = str(info.get("time_format"))
+    numbers = fmt.startswith("unix") and not info.get("relative")
+    if not (numbers or fmt == "ISO 8601 text") or not pa.types.is_string(arr.type):
+        return ns, ok
+    text = pd.Series(arr.to_pandas(), dtype="str")
+    if numbers:
+        other = text.str.match(_ISO_DATE_START, na=False).to_numpy(dtype=bool)
+    else:
+        other = text.str.fullmatch(r"\s*[0-9]{9,13}(?:\.[0-9]*)?\s*", na=False).to_numpy(dtype=bool)
+    rows = np.flatnonzero(other & ~ok)
+    if not len(rows):
+        return ns, ok
+    part = pa.chunked_array([pa.array(text.iloc[rows].tolist(), pa.string())])
+    seen: dict = {}  # the other form's own reading: its masks and counts are not the column's
+    if numbers:
+        ns2, ok2 = _parse_times_in_one_form(part, "auto", tz, seen, date_order=date_order)
+        ok2 = ok2 & (seen.get("time_format") == "ISO 8601 text")
+    else:
+        ns2, ok2 = _parse_times_in_one_form(part, "unix", tz, seen)
+        ok2 = ok2 & (not seen.get("relative"))
+    day = 86_400 * 1_000_000_000
+    ok2 = ok2 & (ns2 >= ns[ok].min() - day) & (ns2 <= ns[ok].max() + day)
+    if not ok2.any():
+        return ns, ok
+    ns, ok = ns.copy(), ok.copy()  # a pyarrow buffer's view may be read-only
+    ns[rows[ok2]] = ns2[ok2]
+    ok[rows[ok2]] = True
+    info["other_form_times"] = info.get("other_form_times", 0) + int(ok2.sum())
+    if numbers and seen.get("naive"):
+        info["naive"] = True  # ISO text without a zone among the numbers: read as UTC (or --tz)
+    return ns, ok
+
+
+def _parse_times_in_one_form(
+    arr: pa.ChunkedArray,
+    kind: str,
+    tz: datetime.tzinfo | None = None,
+    info: dict | None = None,
+    decimal_comma: bool = False,
+    date_order: str = "auto",
+    time_unit: str = "auto",
+    header: str = "",
+    clock_date: str | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
     """int64 ns since epoch (UTC) and a validity mask.
 
     Dates with English month names and Chinese dates are read as ISO text is
@@ -2061,9 +2207,12 @@ def parse_times(
         arr = pc.cast(arr, pa.string())
     if pa.types.is_timestamp(arr.type):
         info["time_format"] = "ISO 8601 text"
+        info["_texts"] = info.get("_texts", 0) + len(arr) - arr.null_count
         if info.get("_by_table") and tz is None:  # a piece typed by pyarrow: one kind
             valid_n = len(arr) - arr.null_count
             info["_zoned_n" if arr.type.tz is not None else "_naive_n"] = valid_n
+        if arr.type.tz is not None and len(arr) > arr.null_count:
+            info["zoned_written"] = True  # times with a zone: _file_offsets reads which
         if arr.type.tz is None:
             info["naive"] = True
             if tz is not None:
@@ -2103,6 +2252,7 @@ def parse_times(
         if k:
             info["decimal_comma"] = info.get("decimal_comma", 0) + k
     n_present = int(present.sum())
+    info["_texts"] = info.get("_texts", 0) + n_present  # times written, of any form
     if kind == "unix" or (n_present and np.isfinite(numeric).sum() >= 0.5 * n_present):
         if _as_days(numeric, kind, time_unit, header, info):
             return _excel_ns(numeric, tz, info)
@@ -2225,6 +2375,8 @@ def parse_times(
         parsed = pd.to_datetime(text, format="ISO8601", errors="coerce", utc=True)
     parsed = _as_ns(pd.Series(parsed), info)
     ok = parsed.notna().to_numpy()
+    if (ok & zoned).any():
+        info["zoned_written"] = True  # times with a zone: _file_offsets reads which
     if tz is None:  # zoned and zone-less times in one column: the latter read as UTC
         with_zone = int((ok & zoned).sum())
         without = int((ok & ~zoned).sum())
@@ -2743,6 +2895,9 @@ def _restart_warnings(restarting: dict[str, int], batch_src: str) -> list[str]:
     ]
 
 
+TIME_UNIT_ON_TEXT_START = "--time-unit "  # the note that a given unit met text times
+
+
 def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
     """Warnings about how the time column was read (local read as UTC; relative times),
     and numbers read with a decimal comma."""
@@ -2775,6 +2930,12 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"above 12, so they are not {given} as --date-order {given} says: quarantined as "
             f"unparsable time (are they {other}? try --date-order {other} or auto)"
         )
+    if time_info.get("other_form_times"):
+        out.append(
+            f"{time_info['other_form_times']:,} times in {time_src!r} are written in the "
+            "column's other form (unix seconds among ISO 8601 text, or ISO 8601 text among "
+            "unix seconds: two exports joined?): each was read in its own form"
+        )
     if time_info.get("excel_days") and time_info.get("excel_why"):  # auto decided
         out.append(
             f"{time_info['excel_days']:,} times in {time_src!r} were read as Excel serial "
@@ -2782,10 +2943,11 @@ def _time_warnings(time_src: str, time_info: dict, zone) -> list[str]:
             f"{time_info['excel_why']}; if they are seconds, read again with --time-unit "
             "seconds"
         )
-    if time_info.get("time_unit_given") and str(time_info.get("time_format")).endswith("text"):
+    text = str(time_info.get("time_format")).endswith("text") and time_info.get("_texts", 1)
+    if time_info.get("time_unit_given") and text:  # not for a column of no times at all
         out.append(
-            f"--time-unit {time_info['time_unit_given']} applies to numbers; the times in "
-            f"{time_src!r} are text ({time_info['time_format']}) and were read as such"
+            f"{TIME_UNIT_ON_TEXT_START}{time_info['time_unit_given']} applies to numbers; the "
+            f"times in {time_src!r} are text ({time_info['time_format']}) and were read as such"
         )
     if time_info.get("excel_like") and time_info.get("relative"):
         out.append(
@@ -3014,6 +3176,7 @@ def date_order_note(time_info: dict) -> str | None:
 #: The counts behind the date-order and Excel-days notes, in a report when not zero (a
 #: read in pieces sums them: :func:`~wakeline.core.io.pieces.merge_import_reports`).
 TIME_COUNTS = (
+    "other_form_times",
     "dates_either_way",
     "day_shown",
     "excel_days",
@@ -3254,6 +3417,13 @@ def read_points(
         **time_counts(time_info),
         **clock_report(time_info),
         "time_zone": tz if zone is not None else "UTC",
+        # the offsets the times were written with (-05:00): View ▸ Time zone's data zone
+        **_file_offsets(
+            sn,
+            res.columns["time"],
+            rows.encoding,
+            time_info,
+        ),
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
         **counts,
@@ -3330,6 +3500,7 @@ def _text_column(arr: pa.ChunkedArray) -> _Text:
 
 #: Counts of the time parse summed over a file's tables (the rest: the first table's).
 _SUMMED_TIME_KEYS = (
+    "other_form_times",
     "dates_either_way",
     "day_shown",
     "excel_days",
@@ -5701,6 +5872,8 @@ def stream_points(
             merged = time_info.setdefault("zone_words", {})
             merged[word] = merged.get(word, 0) + k
         time_info["naive"] = time_info.get("naive", False) or info.get("naive", False)
+        if info.get("zoned_written"):
+            time_info["zoned_written"] = True
         for key in ("_zoned_n", "_naive_n"):
             time_info[key] = time_info.get(key, 0) + info.get(key, 0)
         time_info["relative"] = time_info.get("relative", True) and info.get("relative", False)
@@ -5721,6 +5894,7 @@ def stream_points(
             "decimal_comma",
             "clock_placed",
             *POSITION_COUNTS,
+            "other_form_times",
             "dates_either_way",
             "day_shown",
             "date_order_refused",
@@ -5860,6 +6034,7 @@ def stream_points(
         **time_counts(time_info),
         **clock_report(time_info),
         "time_zone": tz if zone is not None else "UTC",
+        **_file_offsets(sn, res.columns["time"], enc, {**time_info, "zoneless_times": naive}),
         "time_relative": bool(time_info.get("relative")),
         "plane_origin": list(res.origin) if res.on_plane else None,
         "rows_read": totals["rows_read"] + len(bad.lines),

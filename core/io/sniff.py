@@ -26,6 +26,13 @@ def listed_headers(names, most: int = 40, each: int = 40) -> str:
     names = [str(n) for n in names]
     shown = [n if len(n) <= each else n[: each - 1] + "…" for n in names[:most]]
     more = f" … and {len(names) - most:,} more" if len(names) > most else ""
+    inside = [d for d in DELIMITERS if len(names) == 1 and d in names[0]]
+    if inside:
+        # a header read whole as one name (--delimiter ';' on a comma-separated file): its
+        # names listed with commas looked like the columns found (operator test 10)
+        most_often = max(inside, key=names[0].count)
+        d = "tab" if most_often == "\t" else f"'{most_often}'"
+        return f"one column, {shown[0]!r} (separated by {d}? check --delimiter)"
     return ", ".join(shown) + more
 
 

@@ -2044,7 +2044,7 @@
         <translation>{0}：{1} → {2}</translation>
     </message>
     <message>
-        <source>Sensors of one name in several files fuse as the files' names: {0}</source>
+        <source>Sensors of one name in several files fuse as the files&apos; names: {0}</source>
         <translation>多个文件中同名的传感器按文件名区分后融合：{0}</translation>
     </message>
     <message>
@@ -2352,6 +2352,10 @@
     <message>
         <source>; largest error bound {tol:,.0f} m (track {track}, noise {noise:,.0f} m; median {median:,.0f} m), farthest point {far:,.0f} m off</source>
         <translation>；最大误差界 {tol:,.0f} 米（航迹 {track}，噪声 {noise:,.0f} 米；中位数 {median:,.0f} 米），最远的点偏离 {far:,.0f} 米</translation>
+    </message>
+    <message>
+        <source>; {n:#track} with jumps no ship can make ({legs:#leg} beyond {v:,.0f} kn; {k:,} in track {track}): clean first (wakeline clean; Clean in the window): it splits such tracks, and the error bounds then measure noise, not the jumps</source>
+        <translation>；{n:,} 条航迹含有船舶不可能做到的跳变（{legs:,} 段航程超过 {v:,.0f} 节；航迹 {track} 中有 {k:,} 段）：请先清洗（wakeline clean；窗口中的“清洗”）：它会拆分这样的航迹，之后误差界衡量的是噪声，而不是跳变</translation>
     </message>
     <message>
         <source> (capped at {cap:,.0f} m on {n:#track})</source>
@@ -3317,6 +3321,119 @@
     <message>
         <source>the target track A belongs to now, as the decisions make it</source>
         <translation>航迹 A 当前所属的目标（按已做的审核决策）</translation>
+    </message>
+</context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>{0} runs on {1}, which looks like radar plots (detections of each scan, see the guidance under Parameters), not ships' tracks: it takes each batch for one ship's track, and its result joins unrelated detections. Join the plots into tracks first (a tracker) for a meaningful result.</source>
+        <translation>{0} 在 {1} 上运行，但它看起来是雷达点迹（每次扫描的检测，见参数下方的提示），不是船舶航迹：它把每个批次当作一条船的航迹，结果会把无关的检测连在一起。要得到有意义的结果，请先把点迹关联成航迹（跟踪器）。</translation>
+    </message>
+    <message>
+        <source>most of it looks like radar plots, not tracks: the track steps (clean, maneuvers, compress) were not run; the screenshot shows the plots as dots</source>
+        <translation>大部分看起来是雷达点迹，不是航迹：未运行航迹步骤（清洗、机动、压缩）；截图把点迹画成点</translation>
+    </message>
+</context>
+<context>
+    <name>ImportDialog</name>
+    <message>
+        <source>Reading the first rows…</source>
+        <translation>正在读取前几行…</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewDock</name>
+    <message>
+        <source>pending join (dashed)</source>
+        <translation>待定连接（虚线）</translation>
+    </message>
+    <message>
+        <source>accepted join</source>
+        <translation>已接受的连接</translation>
+    </message>
+</context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>Load s&amp;hip names (vessel table)…</source>
+        <translation>加载船名(&amp;H)(船舶表)…</translation>
+    </message>
+    <message>
+        <source>Type</source>
+        <translation>船型</translation>
+    </message>
+    <message>
+        <source>Load ship names</source>
+        <translation>加载船名</translation>
+    </message>
+    <message>
+        <source>Vessel tables (*.csv *.txt *.tsv *.gz);;All files (*)</source>
+        <translation>船舶表 (*.csv *.txt *.tsv *.gz);;所有文件 (*)</translation>
+    </message>
+    <message>
+        <source>{0}: the layer changed meanwhile; ship names not joined</source>
+        <translation>{0}：图层在此期间已改变，未关联船名</translation>
+    </message>
+    <message>
+        <source>{0}: some rows of the vessel table were not used (see the log)</source>
+        <translation>{0}：船舶表有些行未使用（见日志）</translation>
+    </message>
+</context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>Layer {0} restored</source>
+        <translation>图层 {0} 已恢复</translation>
+    </message>
+    <message>
+        <source>Restore removed &amp;layer {0}</source>
+        <translation>恢复已移除的图层 {0}(&amp;L)</translation>
+    </message>
+    <message>
+        <source>Restore removed &amp;layer</source>
+        <translation>恢复已移除的图层(&amp;L)</translation>
+    </message>
+    <message>
+        <source>Remove layer {0} ag&amp;ain</source>
+        <translation>再次移除图层 {0}(&amp;A)</translation>
+    </message>
+    <message>
+        <source>Remove layer ag&amp;ain</source>
+        <translation>再次移除图层(&amp;A)</translation>
+    </message>
+    <message>
+        <source>Removed layer {0}{1}; Edit ▸ Restore removed layer brings it back</source>
+        <translation>已移除图层 {0}{1}；编辑 ▸ 恢复已移除的图层 可将其恢复</translation>
+    </message>
+</context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>&amp;Sensors of the active layer</source>
+        <translation>当前图层的传感器(&amp;S)</translation>
+    </message>
+    <message>
+        <source>(the active layer has one sensor)</source>
+        <translation>（当前图层只有一个传感器）</translation>
+    </message>
+    <message>
+        <source>Show &amp;all sensors</source>
+        <translation>显示全部传感器(&amp;A)</translation>
+    </message>
+    <message>
+        <source>sensors hidden: {0}</source>
+        <translation>已隐藏传感器：{0}</translation>
+    </message>
+</context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>Show {0}</source>
+        <translation>显示 {0}</translation>
+    </message>
+    <message>
+        <source>Show or hide the tracks of sensor {0} (a view filter: the layer's points are not changed)</source>
+        <translation>显示或隐藏传感器 {0} 的航迹（仅为显示筛选：图层的点不变）</translation>
     </message>
 </context>
 </TS>
