@@ -350,6 +350,21 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="seed 001 sampling-segmentation-B-spline-interpolation (splits batches holding two ships)",
     )
+    p.add_argument(
+        "--restore",
+        type=Path,
+        metavar="LIST.csv",
+        help="put back, after cleaning, the points whose wl_id LIST.csv lists (rows of a "
+        "--rejected table of the same input and parameters, kept in a spreadsheet or by a "
+        "filter: the window's Restore, for batch work)",
+    )
+    p.add_argument(
+        "--restore-rule",
+        action="append",
+        metavar="RULE",
+        help="put back, after cleaning, every point RULE removed or changed (unlike --off "
+        "RULE, the later rules ran without them); repeatable",
+    )
 
 
 def add_read_flags(
@@ -667,7 +682,16 @@ def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
     from wakeline.core.pipeline import StepResult, params_to_json
 
     rejected = getattr(args, "out__rejected", None)
-    out = clean_file(args.input, args.output, rejected, params["clean"], **read_options(args))
+    ids = _restore_list(args.restore) if getattr(args, "restore", None) else None
+    out = clean_file(
+        args.input,
+        args.output,
+        rejected,
+        params["clean"],
+        **read_options(args),
+        restore_ids=ids,
+        restore_rules=getattr(args, "restore_rule", None),
+    )
     for warning in out.read_report.get("warnings", []):
         print(f"{args.input}: warning: {warning}", file=sys.stderr)
     say_quarantined(args.input, out.read_report)
@@ -675,4 +699,30 @@ def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
         read = read_counts(out.read_report)
         write_json({**out.report, "read": read, "params": params_to_json(params)}, args.report)
     print(step.summary(StepResult("clean", [], out.report)), file=sys.stderr)
+    back = out.report.get("restored")
+    if back is not None:
+        rules = ", ".join(f"{r} {n:,}" for r, n in back["rules"].items()) or "none"
+        print(f"restored {back['points']:,} points ({rules})", file=sys.stderr)
     return 0
+
+
+def _restore_list(path: Path):
+    """The ``wl_id`` values of ``clean --restore LIST.csv`` (a column of that name; any
+    other columns are ignored: a --rejected table's rows, filtered)."""
+    import pandas as pd
+
+    from wakeline.core.errors import InputError
+
+    try:
+        header = pd.read_csv(path, nrows=0).columns
+    except (OSError, ValueError, UnicodeDecodeError) as exc:
+        raise InputError(f"--restore {path}: {exc}") from None
+    if "wl_id" not in header:
+        raise InputError(
+            f"--restore {path}: no wl_id column (headers found: {', '.join(header) or 'none'}); "
+            "list rows of the --rejected table"
+        )
+    ids = pd.to_numeric(pd.read_csv(path, usecols=["wl_id"])["wl_id"], errors="coerce")
+    if ids.isna().any():
+        raise InputError(f"--restore {path}: wl_id must be whole numbers on every row")
+    return ids.to_numpy().astype("int64")

@@ -311,6 +311,9 @@ class MainWindow(
         # Edit ▸ Restore removed layer / Remove layer again (the layer removals' stack)
         self.layer_undo = LayerUndo(self, self.review.edit_menu)
         self.install_sensor_menu()  # View ▸ Sensors of the active layer
+        from wakeline.app.restore_points import install as install_restore
+
+        self.restore_tool = install_restore(self)  # Edit ▸ Restore, the map's right click
         self._fit_timer = QtCore.QTimer(self, singleShot=True, interval=0)
         self._fit_timer.timeout.connect(self.review.fit_to_window)
         self.set_language(self.settings.value("language", i18n.system_language()))
@@ -449,6 +452,8 @@ class MainWindow(
             self.layer_undo.retranslate()
         if hasattr(self, "sensor_menu"):
             self.retranslate_sensor_menu()
+        if hasattr(self, "restore_tool"):
+            self.restore_tool.retranslate()
         for row in range(self.layer_list.count()):  # the kinds' tags: [source], [fused] …
             item = self.layer_list.item(row)
             layer = self.session.layers.get(item.data(QtCore.Qt.ItemDataRole.UserRole))

@@ -20,9 +20,15 @@ COLUMNS = (
     ("cost", "cost"),
     ("gap_s", "gap s"),
     ("distance_m", "distance m"),
+    ("dcourse_deg", "Δcourse °"),
+    ("dspeed_kn", "Δspeed kn"),
     ("runner_up", "runner-up"),
     ("method", "method"),
+    ("target", "target"),
 )
+#: Columns read from the review state, not the proposals' record (they change with the
+#: decisions): the status and the target track A belongs to now.
+STATE_COLUMNS = ("status", "target")
 _STATUS_COLORS = {
     "pending": None,
     "accepted": "#dff3df",
@@ -89,7 +95,13 @@ def queue_digest(state) -> QueueDigest:
     """:class:`QueueDigest` of a :class:`~wakeline.core.review.ReviewState` (no widgets:
     safe in the worker)."""
     p = state.proposals
-    widest = {name: _widest_texts(p[name].to_numpy()) for name, _ in COLUMNS if name != "status"}
+    widest = {
+        name: _widest_texts(p[name].to_numpy()) for name, _ in COLUMNS if name not in STATE_COLUMNS
+    }
+    # a target is named after a track of its own: the widest track labels
+    widest["target"] = _widest_texts(
+        np.concatenate([p["track_a"].to_numpy(dtype=object), p["track_b"].to_numpy(dtype=object)])
+    )
     sensors = np.unique(state.tracks["sensor"].astype(str).to_numpy(dtype=str))
     return QueueDigest(widest, sensors.tolist())
 
@@ -111,7 +123,7 @@ class ProposalModel(QtCore.QAbstractTableModel):
         self.prop = np.arange(len(p))
         self.ids = p["proposal"].tolist()
         self.row_of = {pid: k for k, pid in enumerate(self.ids)}
-        self.cols = {name: p[name].to_numpy() for name, _ in COLUMNS if name != "status"}
+        self.cols = {name: p[name].to_numpy() for name, _ in COLUMNS if name not in STATE_COLUMNS}
 
     def sort(self, column: int, order=QtCore.Qt.SortOrder.AscendingOrder) -> None:
         """Order the rows by ``column`` with one numpy sort (the proxy asked ``data`` for
@@ -126,6 +138,8 @@ class ProposalModel(QtCore.QAbstractTableModel):
         inv[self.prop] = np.arange(n)
         if name == "status":
             key = np.asarray(self.controller.state.status).astype(str)[self.prop]
+        elif name == "target":
+            key = np.asarray(self.controller.state.proposal_targets()).astype(str)[self.prop]
         else:
             key = self.cols[name]
         if np.issubdtype(np.asarray(key).dtype, np.number):
@@ -150,9 +164,10 @@ class ProposalModel(QtCore.QAbstractTableModel):
         self.layoutChanged.emit()
 
     def _on_changed(self, proposals: list) -> None:
-        col = [n for n, _ in COLUMNS].index("status")
+        names = [n for n, _ in COLUMNS]
+        col = names.index("status")
         sorted_by = self._sorted
-        if sorted_by is not None and sorted_by[0] == col and proposals:
+        if sorted_by is not None and names[sorted_by[0]] in STATE_COLUMNS and proposals:
             # sorted by status: the rows move with their new status (as the proxy's
             # dynamic sort did before the queue sorted itself)
             self.sort(*sorted_by)
@@ -161,6 +176,9 @@ class ProposalModel(QtCore.QAbstractTableModel):
             self.dataChanged.emit(self.index(min(rows), 0), self.index(max(rows), len(COLUMNS) - 1))
         else:  # manual links change no status, but the targets around them
             self.dataChanged.emit(self.index(0, col), self.index(self.rowCount() - 1, col))
+        # a decision moves other proposals' tracks into or out of targets too
+        tcol = names.index("target")
+        self.dataChanged.emit(self.index(0, tcol), self.index(self.rowCount() - 1, tcol))
 
     def rowCount(self, parent=None) -> int:  # noqa: N802 - Qt API
         return 0 if parent is not None and parent.isValid() else len(self.ids)
@@ -179,6 +197,8 @@ class ProposalModel(QtCore.QAbstractTableModel):
     def value(self, row: int, name: str):
         if name == "status":
             return str(self.controller.state.status[self.prop[row]])
+        if name == "target":
+            return str(self.controller.state.proposal_targets()[self.prop[row]])
         return self.cols[name][row]
 
     def data(self, index, role=QtCore.Qt.ItemDataRole.DisplayRole):

@@ -21,6 +21,13 @@ from wakeline.app.review_model import (
 )
 from wakeline.app.review_undo import ReviewController
 
+#: Columns the queue hides until the operator shows them (the header's right-click
+#: menu): the evidence line under the queue says both for the current proposal. Without
+#: them the three new columns (target, Δcourse, Δspeed) cost the queue 108 px more than
+#: before on MTAD Scene-3 (1,195 px, 1,087 before; 1,364 with them); the method column
+#: stays (operator test 8 D8 wanted it whole at 1600 x 950).
+HIDDEN_BY_DEFAULT: tuple[str, ...] = ("distance_m", "runner_up")
+
 __all__ = ["COLUMNS", "SORT_ROLE", "ProposalFilter", "ProposalModel", "ReviewPanel"]
 
 
@@ -68,6 +75,7 @@ class ReviewPanel(QtWidgets.QWidget):
         # Sized from the digest's few widest texts by font metrics: resizeColumnsToContents
         # asked the model for every role of 200 rows x 10 columns on the GUI thread.
         self.fit_columns()
+        self._arrange_columns()
         self.view.selectionModel().currentRowChanged.connect(self._row_changed)
 
         self.status_box = QtWidgets.QComboBox()
@@ -134,11 +142,66 @@ class ReviewPanel(QtWidgets.QWidget):
             title = head_fm.horizontalAdvance(titles[name]) + head_pad
             head.resizeSection(col, min(max(cell, title), self.MAX_COLUMN_PX))
 
+    #: Columns hidden until the operator shows them (the header's right-click menu): the
+    #: queue keeps its other columns readable in a 1280-px window. Shared by the queues
+    #: of one window's life (a new queue keeps the operator's choice).
+    hidden_columns: set[str] = set(HIDDEN_BY_DEFAULT)
+    #: The target column sits after the status (SPEC §7 lists it first), its logical
+    #: place the last (the columns' numbers before it stay).
+    TARGET_AFTER = "status"
+
+    def _arrange_columns(self) -> None:
+        """The target column moved beside the status, the hidden columns hidden, and the
+        header's right-click menu to show or hide each."""
+        names = [n for n, _ in COLUMNS]
+        head = self.view.horizontalHeader()
+        target = names.index("target")
+        head.moveSection(
+            head.visualIndex(target), head.visualIndex(names.index(self.TARGET_AFTER)) + 1
+        )
+        for col, name in enumerate(names):
+            self.view.setColumnHidden(col, name in ReviewPanel.hidden_columns)
+        head.setContextMenuPolicy(QtCore.Qt.ContextMenuPolicy.CustomContextMenu)
+        head.customContextMenuRequested.connect(self._header_menu)
+
+    def column_menu(self) -> QtWidgets.QMenu:
+        """The header's right-click menu: one checkable entry per column (in the order
+        shown), on when the column shows; the proposal column always shows."""
+        menu = QtWidgets.QMenu(self.view)
+        head = self.view.horizontalHeader()
+        titles = T.column_titles(self.proxy.kind)
+        for visual in range(head.count()):
+            col = head.logicalIndex(visual)
+            name = COLUMNS[col][0]
+            act = menu.addAction(titles[name])
+            act.setCheckable(True)
+            act.setChecked(not self.view.isColumnHidden(col))
+            act.setEnabled(name != "proposal")
+            act.toggled.connect(lambda on, n=name: self.show_column(n, on))
+        return menu
+
+    def show_column(self, name: str, on: bool = True) -> None:
+        """Show (or hide) column ``name``; the choice holds for the next queues too."""
+        col = [n for n, _ in COLUMNS].index(name)
+        self.view.setColumnHidden(col, not on)
+        if on:
+            ReviewPanel.hidden_columns.discard(name)
+        else:
+            ReviewPanel.hidden_columns.add(name)
+
+    def _header_menu(self, pos) -> None:
+        menu = self.column_menu()
+        menu.popup(self.view.horizontalHeader().viewport().mapToGlobal(pos))
+
     def table_width(self) -> int:
         """Width (px) the queue needs to show every column: their sum, the frame, the
         vertical scroll bar and the panel's margins."""
         view = self.view
-        columns = sum(view.columnWidth(c) for c in range(self.proxy.columnCount()))
+        columns = sum(
+            view.columnWidth(c)
+            for c in range(self.proxy.columnCount())
+            if not view.isColumnHidden(c)
+        )
         bar = view.style().pixelMetric(QtWidgets.QStyle.PixelMetric.PM_ScrollBarExtent)
         return columns + bar + 2 * view.frameWidth() + 8
 

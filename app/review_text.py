@@ -36,8 +36,11 @@ def column_titles(kind: str = "") -> dict[str, str]:
         "cost": cost,
         "gap_s": tr("gap s"),
         "distance_m": tr("distance m"),
+        "dcourse_deg": tr("Δcourse °"),
+        "dspeed_kn": tr("Δspeed kn"),
         "runner_up": tr("runner-up"),
         "method": tr("method"),
+        "target": tr("target"),
     }
 
 
@@ -111,6 +114,14 @@ def column_tips() -> dict[str, str]:
         ),
         "gap_s": tr("seconds between the end of track A and the start of track B"),
         "distance_m": tr("metres between the two tracks where they meet"),
+        "dcourse_deg": tr(
+            "degrees between the course at the end of track A and at the start of track B "
+            "(counted in full when both move at 2 kn or more: a course means little at rest)"
+        ),
+        "dspeed_kn": tr(
+            "knots between the speed at the end of track A and at the start of track B"
+        ),
+        "target": tr("the target track A belongs to now, as the decisions make it"),
     }
 
 

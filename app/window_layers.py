@@ -723,8 +723,12 @@ class LayersMixin:
             return
         cached = self._removed_drawn.get(lid)
         if cached is not None and cached[0] is table:
-            if name not in self.canvas.layer_names() and cached[1] is not None:
+            # drawn anew when absent, or drawn from another table (points restored)
+            shown = getattr(self, "_removed_shown", {})
+            stale = name not in self.canvas.layer_names() or shown.get(lid) is not table
+            if stale and cached[1] is not None:
                 self.canvas.set_draw_data(cached[1], layer.visible)
+                self._removed_shown = {**shown, lid: table}
                 self._emphasize()
             return
         from wakeline.app.map_draw import rejected_layer

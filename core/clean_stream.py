@@ -107,6 +107,8 @@ def clean_file(
     clock_date: str | None = None,
     speed_unit: str = "auto",
     distance_unit: str = "auto",
+    restore_ids=None,
+    restore_rules: list[str] | None = None,
 ) -> FileCleanResult:
     """Clean the track file ``path`` into the canonical CSV ``output`` (and the reject
     trail into ``rejected`` when given) by blocks of whole tracks; see the module
@@ -116,7 +118,10 @@ def clean_file(
     ``origin``: a local plane's for east/north metres; ``date_order``, ``time_unit``: how
     slashed dates and numeric times read; ``clock_date``: the day of times without a
     date (``--date``; ``read_points``); ``speed_unit``, ``distance_unit``: of columns
-    whose header names none (``--speed-unit``, ``--distance-unit``). Raises
+    whose header names none (``--speed-unit``, ``--distance-unit``). ``restore_ids``
+    (``wl_id`` values) and ``restore_rules`` (rule names): points put back after
+    cleaning, as the window's Restore does (``clean --restore``, ``--restore-rule``; the
+    file is read and cleaned whole then). Raises
     :class:`~wakeline.core.errors.InputError` for a file without usable points."""
     from wakeline.core.io.formats import parse_mapping
     from wakeline.core.io.pieces import piece_safe, stream_or_pieces
@@ -158,8 +163,9 @@ def clean_file(
     check_units(speed_unit, distance_unit)
     sn = sniff(path, encoding, delimiter, skip_rows)
     transforms = any(getattr(params, name).enabled for name in TRANSFORMS)
-    if not piece_safe(sn) or transforms:
-        return _clean_whole(path, output, rejected, params, progress, options)
+    restoring = (restore_ids, restore_rules)
+    if not piece_safe(sn) or transforms or restore_ids is not None or restore_rules:
+        return _clean_whole(path, output, rejected, params, progress, options, restoring)
     res = resolve_header(sn, fmt, mapping, str(path), origin)  # names --skip-rows if it helps
     remove_stale_scratch()
     folder = Path(tempfile.mkdtemp(prefix=f"{SCRATCH_PREFIX}{os.getpid()}-"))
@@ -217,8 +223,10 @@ def remove_stale_scratch(folder: str | Path | None = None) -> list[Path]:
     return removed
 
 
-def _clean_whole(path, output, rejected, params, progress, options) -> FileCleanResult:
-    """The whole-table way: read_points, clean, write."""
+def _clean_whole(
+    path, output, rejected, params, progress, options, restoring=(None, None)
+) -> FileCleanResult:
+    """The whole-table way: read_points, clean, (put points back,) write."""
     from wakeline.core.clean import clean
     from wakeline.core.io import nothing_imported, read_points, write_csv, write_points
 
@@ -227,11 +235,43 @@ def _clean_whole(path, output, rejected, params, progress, options) -> FileClean
         raise InputError(nothing_imported(read.report, str(path)))
     result = clean(read.points, params, lambda f, text: progress(0.3 + 0.65 * f, text))
     del read.points
-    write_points(natural_track_order(result.points), output)  # as every step writes (D19)
+    points, trail, report = result.points, result.rejected, result.report
+    if restoring[0] is not None or restoring[1]:
+        points, trail, report = _restored(points, trail, report, *restoring)
+    write_points(natural_track_order(points), output)  # as every step writes (D19)
     if rejected is not None:
-        write_csv(result.rejected, rejected)
+        write_csv(trail, rejected)
     progress(1.0, "cleaned")
-    return FileCleanResult(result.report, read.report, read.quarantine, False)
+    return FileCleanResult(report, read.report, read.quarantine, False)
+
+
+def _restored(points, trail, report, ids, rules):
+    """Put back the points ``ids`` (``wl_id``) and those ``rules`` removed or changed
+    (``clean --restore``, ``--restore-rule``): (points, rejected, report), the report with
+    ``restored`` (points and their rules) and ``points_out`` as written."""
+    from wakeline.core.clean import ID, restore
+    from wakeline.core.clean_restore import chosen_ids
+
+    chosen = chosen_ids(trail, rules=rules) if rules else np.zeros(0, dtype="int64")
+    if ids is not None:
+        ids = np.unique(np.asarray(ids, dtype="int64"))
+        unknown = np.setdiff1d(ids, trail[ID].to_numpy())
+        if len(unknown):
+            raise InputError(
+                f"--restore: {len(unknown):,} {ID} not removed or changed by this cleaning "
+                f"(first: {', '.join(map(str, unknown[:5]))}); restore lists rows of the "
+                "--rejected table of the same input and parameters"
+            )
+        chosen = np.union1d(chosen, ids)
+    back = trail[trail[ID].isin(chosen).to_numpy()].drop_duplicates(ID)
+    points, trail = restore(points, trail, chosen)
+    per_rule = {str(k): int(v) for k, v in back["rule"].value_counts(sort=False).items()}
+    report = {
+        **report,
+        "points_out": int(len(points)),
+        "restored": {"points": int(len(chosen)), "rules": per_rule},
+    }
+    return points, trail, report
 
 
 class _Spill:

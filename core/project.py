@@ -527,6 +527,7 @@ def _load_layers(con: sqlite3.Connection) -> list[Layer]:
                 tables.get(lid, {}),
                 list(lin.get("inputs") or []),
                 str(lin.get("run") or ""),
+                [int(i) for i in lin.get("restored") or []],
             )
         )
     return out

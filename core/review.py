@@ -565,6 +565,11 @@ class ReviewState:
     def target(self, label: str) -> str:
         return str(self.target_of_track()[self._track(label)])
 
+    def proposal_targets(self) -> np.ndarray:
+        """Per row of :attr:`proposals`: the target its track A belongs to now (both
+        tracks' when the proposal is accepted), as the decisions make it."""
+        return self.target_of_track()[self._pa] if len(self._pa) else np.zeros(0, dtype=object)
+
     def members(self, target: str) -> list[str]:
         """Track labels of one target, earliest first."""
         tg = self.target_of_track()

@@ -79,6 +79,10 @@ class Layer:
     #: This making of the layer, unique (h135: ``created`` is to the second, and two runs
     #: of a step in one second shared a review queue). "" in projects made before.
     run: str = ""
+    #: ``wl_id`` of the points the operator put back from the reject trail of a cleaned
+    #: layer (:mod:`~wakeline.core.clean_restore`), sorted; a re-run of Clean puts back
+    #: those its new trail holds.
+    restored: list[int] = field(default_factory=list)
 
     def lineage(self) -> dict[str, Any]:
         out = {
@@ -92,6 +96,8 @@ class Layer:
             out["inputs"] = list(self.inputs)
         if self.run:
             out["run"] = self.run
+        if self.restored:
+            out["restored"] = [int(i) for i in self.restored]
         return out
 
 
@@ -530,7 +536,10 @@ class Session:
         if points is None:
             points = self.input_points(ids)
         if step not in REVIEWED_STEPS:
-            return STEPS[step](points, params, progress)
+            result = STEPS[step](points, params, progress)
+            if step == "clean" and len(ids) == 1:
+                result = self._restore_again(ids[0], result)
+            return result
         return self._run_reviewed(
             ids[0], ids if len(ids) > 1 else [], step, points, params, progress
         )
@@ -606,6 +615,35 @@ class Session:
             return res
 
         return pipe.run(self.input_points([layer_id]), progress, stage)
+
+    def _restore_again(self, parent: str, result: StepResult) -> StepResult:
+        """A re-run of Clean on ``parent`` whose cleaned layer had points put back
+        (:attr:`Layer.restored`): those its new reject trail holds are put back again
+        (here, in the worker); the ids go in the new layer's meta as ``restored``, which
+        :meth:`apply_result` moves to the lineage."""
+        old = self._replaced(parent, "clean", "cleaned", [])
+        if old is None or not old.restored:
+            return result
+        from wakeline.core.clean import restore
+        from wakeline.core.clean_restore import REJECTED, chosen_ids, restored_counts
+
+        layers = []
+        for new in result.layers:
+            rejected = new.tables.get(REJECTED)
+            if new.suffix != "cleaned" or rejected is None:
+                layers.append(new)
+                continue
+            ids = chosen_ids(rejected, ids=old.restored)
+            if len(ids):
+                back = rejected[rejected["wl_id"].isin(ids).to_numpy()]
+                points, rejected = restore(new.points, rejected, ids)
+                meta = restored_counts(new.meta, len(rejected), back, -1)
+                meta["restored"] = [int(i) for i in ids]
+                new = dataclasses.replace(
+                    new, points=points, meta=meta, tables={**new.tables, REJECTED: rejected}
+                )
+            layers.append(new)
+        return dataclasses.replace(result, layers=layers)
 
     def rerun_inputs(self, ids: list[str], step: str = "fuse") -> list[str]:
         """``ids`` (several layers a step runs across) in the order of the layer of
@@ -745,10 +783,13 @@ class Session:
                 "run": _run_id(),
                 "tables": dict(new.tables),
                 "inputs": inputs,
+                # points put back from the reject trail (a re-run of Clean: _restore_again)
+                "restored": list(new.meta.get("restored", [])),
             }
+            meta = {k: v for k, v in new.meta.items() if k != "restored"}
             if old is not None:
                 carry = self._carry(old, result, new, inputs)
-                old.points, old.meta, old.kind = new.points, dict(new.meta), new.kind
+                old.points, old.meta, old.kind = new.points, meta, new.kind
                 for key, value in lineage.items():
                     setattr(old, key, value)
                 if carry is not None:  # before "changed": a review bound on it reads them
@@ -761,7 +802,7 @@ class Session:
                 made.append(old)
             else:
                 name = self._step_layer_name(f"{parent_name} · {new.suffix}", result.step, input_id)
-                made.append(self.add_layer(name, new.kind, new.points, new.meta, **lineage))
+                made.append(self.add_layer(name, new.kind, new.points, meta, **lineage))
         return made
 
     def _reruns(self, result: StepResult) -> list[tuple[StepResult, Any, Layer, int]]:

@@ -241,6 +241,151 @@ def test_restore_everything_gives_back_the_input():
         restore(result.points, result.rejected, [10**9])
 
 
+def test_restore_command_and_its_inverse_through_a_session_and_project(tmp_path):
+    """SPEC §2: points removed by cleaning put back as a command with an inverse
+    (core/clean_restore.py): the cleaned layer's points, reject trail, counts and lineage
+    follow; undo gives back the layer as it was; the project keeps it; a re-run of Clean
+    puts back what its new trail holds."""
+    from wakeline.core import clean_restore as CR
+    from wakeline.core.project import load_project, save_project
+    from wakeline.core.session import Session
+
+    s = Session()
+    src = s.add_layer("scene", "source", faulty_scene(seed=5))
+    layer = s.apply_result(src.id, s.run_step(src.id, "clean"))[0]
+    rej0, pts0, meta0 = layer.tables["rejected"], layer.points, dict(layer.meta)
+    counts = rej0.drop_duplicates("wl_id").rule.value_counts()
+    rule = counts.index[0]  # the rule that removed most
+    track = tuple(rej0.loc[rej0.rule == rule, ["sensor", "batch"]].astype(str).iloc[0])
+    ids = CR.chosen_ids(rej0, rules=[rule], track=track)
+    expect = rej0[(rej0.rule == rule) & (rej0.sensor.astype(str) == track[0])]
+    expect = expect[expect.batch.astype(str) == track[1]]
+    assert sorted(ids) == sorted(set(expect.wl_id)) and len(ids) > 0
+    events = []
+    s.subscribe(lambda e, lid: events.append((e, lid)))
+    change = CR.restore_change(layer, ids)
+    assert change.rules == {rule: len(ids)}
+    CR.apply(s, change)
+    assert events == [("changed", layer.id)]
+    assert set(ids) <= set(layer.points.wl_id) and not set(ids) & set(
+        layer.tables["rejected"].wl_id
+    )
+    assert len(layer.points) == len(pts0) + len(set(ids) - set(pts0.wl_id))
+    assert layer.meta["rejected"] == len(layer.tables["rejected"]) == len(rej0) - len(expect)
+    assert layer.restored == sorted(ids) and layer.lineage()["restored"] == sorted(ids)
+    by_rule = layer.meta["clean_counts"]
+    for action, per in meta0["clean_counts"].items():
+        gone = len(expect[expect.action == action]) if action in set(expect.action) else 0
+        assert by_rule.get(action, {}).get(rule, 0) == per.get(rule, 0) - gone
+    # the restored rows are the input's own
+    orig = faulty_scene(seed=5).assign(wl_id=lambda d: np.arange(len(d))).set_index("wl_id")
+    back = layer.points.set_index("wl_id").loc[ids]
+    np.testing.assert_allclose(back.lon.to_numpy(), orig.loc[ids].lon.to_numpy())
+    # saved: the project reopens with them
+    save_project(s, tmp_path / "p.wlproj")
+    again = load_project(tmp_path / "p.wlproj").to_session()
+    kept = again.get(layer.id)
+    assert kept.restored == sorted(ids) and set(ids) <= set(kept.points.wl_id)
+    # the inverse: the layer as it was
+    CR.apply(s, change.inverse())
+    assert layer.restored == [] and layer.meta == meta0
+    pd.testing.assert_frame_equal(layer.tables["rejected"], rej0)
+    a = layer.points.sort_values("wl_id").reset_index(drop=True)
+    pd.testing.assert_frame_equal(a, pts0.sort_values("wl_id").reset_index(drop=True))
+    # a re-run of Clean keeps what was put back
+    CR.apply(s, change)
+    s.apply_result(src.id, s.run_step(src.id, "clean"))
+    assert layer.restored == sorted(ids) and set(ids) <= set(layer.points.wl_id)
+    assert not set(ids) & set(layer.tables["rejected"].wl_id)
+    with pytest.raises(InputError, match="cleaned again"):
+        CR.apply(s, change.inverse())  # the command belongs to the layer's last making
+    replaced = rej0.assign(action="replaced")
+    with pytest.raises(InputError, match="transforming step"):
+        CR.restore_change(dataclasses_replace(layer, tables={"rejected": replaced}), ids)
+    with pytest.raises(InputError, match="no point was removed"):
+        CR.chosen_ids(rej0, rules=["nope"])
+
+
+def dataclasses_replace(obj, **kw):
+    import dataclasses
+
+    return dataclasses.replace(obj, **kw)
+
+
+def test_cli_restore_list_and_rule(tmp_path):
+    """``clean --restore LIST.csv`` (rows of a --rejected table the operator kept) and
+    ``--restore-rule RULE`` put those points back after cleaning, as the window does."""
+    from wakeline.core.io import write_points
+
+    src = tmp_path / "f.csv"
+    write_points(faulty_scene(seed=5), src)
+    out, rej = tmp_path / "c.csv", tmp_path / "r.csv"
+    assert main(["clean", str(src), "-o", str(out), "--rejected", str(rej)]) == 0
+    r = pd.read_csv(rej)
+    rule = r.rule.value_counts().index[0]
+    keep = r[r.rule == rule].iloc[::2]
+    keep.to_csv(tmp_path / "keep.csv", index=False)
+    key = ["sensor", "batch", "time"]
+
+    def rows(path):
+        return set(map(tuple, pd.read_csv(path)[key].astype(str).to_numpy()))
+
+    base = rows(out)
+    out2, rej2, rep = tmp_path / "c2.csv", tmp_path / "r2.csv", tmp_path / "rep.json"
+    args = ["--rejected", str(rej2), "--report", str(rep)]
+    assert (
+        main(["clean", str(src), "-o", str(out2), "--restore", str(tmp_path / "keep.csv"), *args])
+        == 0
+    )
+    back = set(map(tuple, keep[key].astype(str).to_numpy()))
+    assert rows(out2) == base | back
+    assert sorted(pd.read_csv(rej2).wl_id) == sorted(r[~r.wl_id.isin(keep.wl_id)].wl_id)
+    report = json.loads(rep.read_text())
+    assert report["restored"] == {
+        "points": keep.wl_id.nunique(),
+        "rules": {rule: keep.wl_id.nunique()},
+    }
+    out3 = tmp_path / "c3.csv"
+    assert main(["clean", str(src), "-o", str(out3), "--restore-rule", rule]) == 0
+    assert rows(out3) == base | set(map(tuple, r[r.rule == rule][key].astype(str).to_numpy()))
+    assert main(["clean", str(src), "-o", str(tmp_path / "x.csv"), "--restore-rule", "nope"]) == 2
+    assert main(["clean", str(src), "-o", str(tmp_path / "x.csv"), "--restore", str(src)]) == 2
+    pd.DataFrame({"wl_id": [10**9]}).to_csv(tmp_path / "bad.csv", index=False)
+    assert (
+        main(
+            [
+                "clean",
+                str(src),
+                "-o",
+                str(tmp_path / "x.csv"),
+                "--restore",
+                str(tmp_path / "bad.csv"),
+            ]
+        )
+        == 2
+    )
+    assert not (tmp_path / "x.csv").exists()
+
+
+def test_chosen_ids_in_a_box_across_180():
+    rej = pd.DataFrame(
+        {
+            "sensor": "S",
+            "batch": "1",
+            "wl_id": [1, 2, 3, 4],
+            "lon": [179.5, -179.5, 10.0, 179.9],
+            "lat": [0.0, 0.0, 0.0, 5.0],
+            "rule": "speed",
+            "action": ["removed", "removed", "removed", "replaced"],
+        }
+    )
+    from wakeline.core.clean_restore import chosen_ids
+
+    assert chosen_ids(rej, box=(179.0, -1.0, -179.0, 1.0)).tolist() == [1, 2]
+    assert chosen_ids(rej, box=(179.0, -1.0, -179.0, 10.0)).tolist() == [1, 2]  # 4: replaced
+    assert chosen_ids(rej, box=(0.0, -1.0, 20.0, 1.0)).tolist() == [3]
+
+
 def test_report_counts_per_rule_and_track():
     df = straight(30)
     move(df, 10, 5000)

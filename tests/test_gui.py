@@ -1598,6 +1598,141 @@ def test_points_removed_by_cleaning_drawn_as_an_overlay(window):
     assert name not in window.canvas.layer_names()
 
 
+def test_removed_points_restored_from_the_map_with_undo(window, qtbot, tmp_path):
+    """SPEC §2: the operator puts points removed by cleaning back — the × nearest a right
+    click (one, or all its rule removed on its track), the selected tracks' or those in
+    the map's view — into the cleaned layer; Edit ▸ Undo / Redo; the layer's lineage
+    records them; the × marks and the batch table follow."""
+    load(window, demo_path())
+    window.run_step("clean")
+    wait_for_jobs(window)
+    lid = _layer_of(window, "cleaned")
+    layer = window.layers[lid]
+    rej0, n0, ids0 = layer.tables["rejected"], len(layer.points), set(layer.points.wl_id)
+    window.actions_["show_removed"].setChecked(True)
+    wait_for_jobs(window)
+    window.canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    tool = window.restore_tool
+
+    def settle():  # the restore is made in the worker, then swapped in
+        qtbot.waitUntil(lambda: not tool.busy, timeout=60_000)
+        wait_for_jobs(window)
+
+    # the × of a row whose point was removed (not changed), its rule and track
+    removed = rej0[rej0.action == "removed"]
+    row = removed.iloc[len(removed) // 2]
+    rule, track = str(row.rule), (str(row.sensor), str(row.batch))
+    same = removed[(removed.rule == rule) & (removed.sensor.astype(str) == track[0])]
+    same = same[same.batch.astype(str) == track[1]]
+    window.canvas.vb.setRange(
+        xRange=(row.lon - 1e-4, row.lon + 1e-4), yRange=(row.lat - 1e-4, row.lat + 1e-4)
+    )
+    QtWidgets.QApplication.processEvents()
+    hit = tool.removed_near(float(row.lon), float(row.lat))
+    assert hit is not None and hit[0] == lid
+    acts = tool.menu_actions(float(row.lon), float(row.lat))
+    texts = [a.text() for a in acts]
+    hit_row = rej0.iloc[hit[1]]
+    assert texts[0] == f"Restore this point (removed by {hit_row.rule})"
+    assert texts[-1] == "Restore removed points in the map's view"
+    hit_id = int(hit_row.wl_id)
+    acts[0].trigger()
+    settle()
+    assert hit_id in set(layer.points.wl_id) and hit_id not in set(layer.tables["rejected"].wl_id)
+    assert len(layer.points) == n0 + 1 and layer.restored == [hit_id]
+    assert layer.lineage()["restored"] == [hit_id]
+    assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0) - 1
+    undo = window.review.act_undo
+    assert undo.isEnabled() and "restore 1 points" in undo.text()
+    undo.trigger()
+    settle()
+    assert len(layer.points) == n0 and layer.restored == []
+    assert len(layer.tables["rejected"]) == len(rej0)
+    assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0)
+    window.review.act_redo.trigger()
+    settle()
+    assert layer.restored == [hit_id]
+    undo.trigger()
+    settle()
+    # all its rule removed on its track: "Restore all N points removed by RULE on S · B"
+    many = tool.menu_actions(float(row.lon), float(row.lat))[1]
+    on_track = (rej0.sensor.astype(str) == str(hit_row.sensor)) & (
+        rej0.batch.astype(str) == str(hit_row.batch)
+    )
+    want = set(rej0[on_track & (rej0.rule == hit_row.rule) & (rej0.action != "replaced")].wl_id)
+    assert many.text() == (
+        f"Restore all {len(want)} points removed by {hit_row.rule} on "
+        f"{hit_row.sensor} · {hit_row.batch}"
+    )
+    many.trigger()
+    settle()
+    assert set(layer.restored) == want and hit_id in want
+    # File ▸ Export of the layer writes them
+    window.select_layer(lid)
+    window.export("csv", tmp_path / "restored.csv")
+    wait_for_jobs(window)
+    out = pd.read_csv(tmp_path / "restored.csv")
+    back = rej0[rej0.wl_id.isin(want)].drop_duplicates("wl_id")
+    assert len(out) == len(layer.points) == n0 + len(set(back.wl_id) - ids0)
+    got = set(zip(out.batch.astype(str), out.lon.round(6), strict=True))
+    assert set(zip(back.batch.astype(str), back.lon.round(6), strict=True)) <= got
+    # a box dragged on the map (Edit ▸ Restore … in a box): the points left inside it
+    left = layer.tables["rejected"]
+    left = left[left.action != "replaced"]
+    mid = left.iloc[len(left) // 2]
+    west, east, south, north = mid.lon - 0.01, mid.lon + 0.01, mid.lat - 0.01, mid.lat + 0.01
+    inside = set(
+        left[left.lon.between(west, east) & left.lat.between(south, north)].wl_id.astype(int)
+    )
+    vb = window.canvas.vb
+    down = vb.childGroup.mapToParent(QtCore.QPointF(west, north))
+    up = vb.childGroup.mapToParent(QtCore.QPointF(east, south))
+
+    class Drag:  # pyqtgraph's MouseDragEvent, as the map's view box gets it
+        def __init__(self, finish):
+            self.finish = finish
+
+        def button(self):
+            return QtCore.Qt.MouseButton.LeftButton
+
+        def isFinish(self):  # noqa: N802 - pyqtgraph's API
+            return self.finish
+
+        def buttonDownPos(self, _button=None):  # noqa: N802
+            return down
+
+        def pos(self):
+            return up
+
+        def accept(self):
+            pass
+
+    box = tool.act_box
+    assert "box" in box.text() and box.isCheckable()
+    box.setChecked(True)
+    vb.mouseDragEvent(Drag(False))
+    vb.mouseDragEvent(Drag(True))
+    settle()
+    assert not box.isChecked() and len(inside) > 0
+    assert set(layer.restored) == want | inside
+    # the map's view: everything left in it
+    window.canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    assert tool.restore_in_view()
+    settle()
+    left = layer.tables["rejected"]
+    assert (left.action == "replaced").all()
+    assert len(left) == 0 and f"{lid}/removed" not in window.canvas.layer_names()
+    # three undos give back the layer as clean made it
+    undo.trigger()
+    undo.trigger()
+    undo.trigger()
+    settle()
+    assert len(layer.points) == n0 and layer.restored == [] and not undo.isEnabled()
+    assert window.canvas.draw_data(f"{lid}/removed").geometry.n_points == len(rej0)
+
+
 def _plots_file(folder, seed: int = 7, scans: int = 150, per: int = 6):
     """A radar's plots: every scan (3 s) several detections of one batch, scattered."""
     rng = np.random.default_rng(seed)

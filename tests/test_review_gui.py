@@ -20,7 +20,7 @@ from wakeline.app.review_map import (  # noqa: E402
     proposal_geometry,
     proposal_items,
 )
-from wakeline.app.review_model import COLUMNS  # noqa: E402
+from wakeline.app.review_model import COLUMNS, cell_text  # noqa: E402
 from wakeline.app.review_panel import ReviewPanel  # noqa: E402
 from wakeline.app.review_undo import ReviewController  # noqa: E402
 from wakeline.app.review_views import GanttView, NetworkView  # noqa: E402
@@ -357,6 +357,78 @@ def test_queue_sorts_with_numpy_not_by_asking_the_model(qtbot, controller, monke
     controller.reject(p["proposal"].iat[3])
     panel.status_box.setCurrentText("rejected")
     assert shown() == [p["proposal"].iat[3]]
+
+
+def test_queue_shows_target_dcourse_dspeed_sortable_with_a_column_menu(qtbot, controller):
+    """SPEC §7: the merge-review table has the target, Δcourse and Δspeed (units in the
+    titles; values from the core's proposal record, sorted as numbers; the target as the
+    decisions make it). Less needed columns are hidden by default and the header's
+    right-click menu shows them."""
+    from wakeline.app.review_panel import HIDDEN_BY_DEFAULT
+
+    names = [n for n, _ in COLUMNS]
+    panel = ReviewPanel(controller)
+    qtbot.addWidget(panel)
+    st = controller.state
+    p = st.proposals.reset_index(drop=True)
+    head = panel.view.horizontalHeader()
+    titles = {
+        name: panel.proxy.headerData(col, QtCore.Qt.Orientation.Horizontal)
+        for col, name in enumerate(names)
+    }
+    assert titles["dcourse_deg"] == "Δcourse °" and titles["dspeed_kn"] == "Δspeed kn"
+    assert titles["target"] == "target"
+    # the target right after the status on screen
+    assert head.visualIndex(names.index("target")) == head.visualIndex(names.index("status")) + 1
+    m = panel.model
+    for name in ("dcourse_deg", "dspeed_kn"):
+        assert p[name].notna().any()
+        col = names.index(name)
+        for r in range(m.rowCount()):
+            want = p.set_index("proposal")[name][m.ids[r]]
+            assert m.data(m.index(r, col)) == (cell_text(float(want)))
+        # sorted as numbers, NaN last, ties in the proposals' order
+        panel.view.sortByColumn(col, QtCore.Qt.SortOrder.AscendingOrder)
+        shown = [panel.current_at(r) for r in range(panel.proxy.rowCount())]
+        key = p[name].astype(float).fillna(np.inf).to_numpy()
+        assert shown == p["proposal"].to_numpy()[np.argsort(key, kind="stable")].tolist()
+    tcol = names.index("target")
+    for r in range(m.rowCount()):
+        a = p.set_index("proposal")["track_a"][m.ids[r]]
+        assert m.data(m.index(r, tcol)) == st.target(a)
+    # a decision changes targets: the column follows
+    pid = p["proposal"].iat[0]
+    a, b = p["track_a"].iat[0], p["track_b"].iat[0]
+    controller.reject(pid)
+    row = m.row_of[pid]
+    assert m.data(m.index(row, tcol)) == st.target(a) and st.target(a) != st.target(b)
+    controller.accept(pid)
+    assert m.data(m.index(m.row_of[pid], tcol)) == st.target(b)
+    # hidden by default, shown from the header's menu, the choice kept for the next queue
+    assert set(HIDDEN_BY_DEFAULT) == {"distance_m", "runner_up"}
+    hidden = {n for c, n in enumerate(names) if panel.view.isColumnHidden(c)}
+    assert hidden == set(HIDDEN_BY_DEFAULT)
+    narrow = panel.table_width()
+    menu = panel.column_menu()
+    acts = {a.text(): a for a in menu.actions()}
+    assert [a.text() for a in menu.actions()][:3] == [
+        titles["proposal"],
+        titles["status"],
+        "target",
+    ]
+    assert not acts[titles["proposal"]].isEnabled()
+    assert not acts[titles["runner_up"]].isChecked() and acts[titles["method"]].isChecked()
+    try:
+        acts[titles["runner_up"]].setChecked(True)
+        assert not panel.view.isColumnHidden(names.index("runner_up"))
+        assert panel.table_width() == narrow + panel.view.columnWidth(names.index("runner_up"))
+        other = ReviewPanel(controller)
+        qtbot.addWidget(other)
+        assert not other.view.isColumnHidden(names.index("runner_up"))
+        assert other.view.isColumnHidden(names.index("distance_m"))
+    finally:
+        panel.show_column("runner_up", False)
+    assert ReviewPanel.hidden_columns == set(HIDDEN_BY_DEFAULT)
 
 
 def _rows_agree_with_the_core(panel) -> None:

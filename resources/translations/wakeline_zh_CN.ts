@@ -3226,6 +3226,100 @@
     </message>
 </context>
 <context>
+    <name>RestorePoints</name>
+    <message>
+        <source>restore {0} points ({1})</source>
+        <translation>恢复 {0} 个点（{1}）</translation>
+    </message>
+    <message>
+        <source>Re&amp;store points removed by cleaning on the selected tracks</source>
+        <translation>恢复所选航迹上被清洗删除的点(&amp;S)</translation>
+    </message>
+    <message>
+        <source>Restore removed points &amp;in the map's view</source>
+        <translation>恢复地图视图内被删除的点(&amp;I)</translation>
+    </message>
+    <message>
+        <source>Put the points clean removed back into the active cleaned layer (undo: Ctrl+Z); View ▸ Show points removed by cleaning shows them as ×, Box zoom frames a box</source>
+        <translation>把清洗删除的点放回当前的清洗图层（撤销：Ctrl+Z）；视图 ▸ 显示被清洗删除的点 以 × 标出它们，框选缩放可框出一个区域</translation>
+    </message>
+    <message>
+        <source>Restore: {0}</source>
+        <translation>恢复：{0}</translation>
+    </message>
+    <message>
+        <source>Took out again {0} restored points ({1}) of {2}</source>
+        <translation>已从 {2} 再次移除 {0} 个恢复的点（{1}）</translation>
+    </message>
+    <message>
+        <source>Restored {0} points removed by cleaning ({1}) into {2}</source>
+        <translation>已将 {0} 个被清洗删除的点（{1}）恢复到 {2}</translation>
+    </message>
+    <message>
+        <source>Restore: select tracks of a cleaned layer first (its points removed by cleaning are put back)</source>
+        <translation>恢复：请先选择清洗图层中的航迹（其被清洗删除的点将被放回）</translation>
+    </message>
+    <message>
+        <source>Restore: the active layer has no points removed by cleaning</source>
+        <translation>恢复：当前图层没有被清洗删除的点</translation>
+    </message>
+    <message>
+        <source>Restore: the layer changed meanwhile; nothing restored</source>
+        <translation>恢复：图层在此期间已改变；未恢复任何点</translation>
+    </message>
+    <message>
+        <source>{0} layers made from it keep the points they read: run their steps again</source>
+        <translation>由它生成的 {0} 个图层仍是按原来的点计算的：请重新运行它们的步骤</translation>
+    </message>
+    <message>
+        <source>Restore removed points in a &amp;box (drag it on the map)</source>
+        <translation>恢复框内被删除的点（在地图上拖出方框）(&amp;B)</translation>
+    </message>
+    <message>
+        <source>Restore: no removed point there</source>
+        <translation>恢复：该处没有被删除的点</translation>
+    </message>
+    <message>
+        <source>Restore this point (removed by {0})</source>
+        <translation>恢复此点（由 {0} 删除）</translation>
+    </message>
+    <message>
+        <source>Restore all {0} points removed by {1} on {2} · {3}</source>
+        <translation>恢复 {2} · {3} 上由 {1} 删除的全部 {0} 个点</translation>
+    </message>
+    <message>
+        <source>Restore removed points in the map's view</source>
+        <translation>恢复地图视图内被删除的点</translation>
+    </message>
+</context>
+<context>
+    <name>ReviewPanel</name>
+    <message>
+        <source>Δcourse °</source>
+        <translation>航向差 °</translation>
+    </message>
+    <message>
+        <source>Δspeed kn</source>
+        <translation>航速差 节</translation>
+    </message>
+    <message>
+        <source>target</source>
+        <translation>目标</translation>
+    </message>
+    <message>
+        <source>degrees between the course at the end of track A and at the start of track B (counted in full when both move at 2 kn or more: a course means little at rest)</source>
+        <translation>航迹 A 结束时与航迹 B 开始时的航向之差（度；两端航速都在 2 节以上时全额计入：静止时航向意义不大）</translation>
+    </message>
+    <message>
+        <source>knots between the speed at the end of track A and at the start of track B</source>
+        <translation>航迹 A 结束时与航迹 B 开始时的航速之差（节）</translation>
+    </message>
+    <message>
+        <source>the target track A belongs to now, as the decisions make it</source>
+        <translation>航迹 A 当前所属的目标（按已做的审核决策）</translation>
+    </message>
+</context>
+<context>
     <name>MainWindow</name>
     <message>
         <source>{0} runs on {1}, which looks like radar plots (detections of each scan, see the guidance under Parameters), not ships' tracks: it takes each batch for one ship's track, and its result joins unrelated detections. Join the plots into tracks first (a tracker) for a meaningful result.</source>
