@@ -1,31 +1,65 @@
 """Shared pieces of the console subcommands: the epilog, number parsers, --set NAME=VALUE."""
 
 import argparse
+import math
 
 from wakeline.core.errors import InputError
 
 EPILOG = "Exit status: 0 success, 2 bad input (one message on stderr), 1 internal error."
 
 
-def positive_int(text: str) -> int:
-    """argparse type: a whole number of at least 1."""
+#: the largest seed numpy's generators take from the command line (2**32 - 1, as the
+#: legacy ``RandomState`` and most tools): a seed is a whole number in [0, SEED_MAX]
+SEED_MAX = 2**32 - 1
+
+
+def _whole(text: str) -> int:
     try:
-        value = int(text)
+        return int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+
+
+def _finite(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
+    return value
+
+
+def positive_int(text: str) -> int:
+    """argparse type: a whole number of at least 1."""
+    value = _whole(text)
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
     return value
 
 
+def nonnegative_int(text: str) -> int:
+    """argparse type: a whole number of at least 0 (a count of lines, ...)."""
+    value = _whole(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be 0 or more, got {value}")
+    return value
+
+
+def seed_int(text: str) -> int:
+    """argparse type: a random seed, a whole number in [0, 2**32 - 1] (numpy refuses a
+    negative one: it was an internal error, exit 1)."""
+    value = _whole(text)
+    if not 0 <= value <= SEED_MAX:
+        raise argparse.ArgumentTypeError(f"a seed is a whole number 0-{SEED_MAX}, got {value}")
+    return value
+
+
 def positive_float(text: str) -> float:
-    """argparse type: a number above 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    """argparse type: a finite number above 0."""
+    value = _finite(text)
     if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be positive, got {value}")
+        raise argparse.ArgumentTypeError(f"must be positive, got {value:g}")
     return value
 
 

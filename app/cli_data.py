@@ -4,7 +4,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from wakeline.app.cli_common import EPILOG, positive_float, positive_int
+from wakeline.app.cli_common import EPILOG, positive_float, positive_int, seed_int
 from wakeline.core.words import count, import_counts
 
 
@@ -165,12 +165,13 @@ def register(sub) -> None:
         "segments: one radar breaking ships into several batches; multisensor: radar R1 and AIS "
         "seeing the same ships; bearing: seed 002's named observer/target scenarios, each with a "
         "50 deg target turn at 450 s and once without, bearings with 0.6 deg noise (columns "
-        "batch, time, bearing, obs_lon, obs_lat, true_maneuver_time, true_turn_deg; read by "
+        "batch, time, bearing, obs_lon, obs_lat, truth (the target: each sequence is one), "
+        "true_maneuver_time, true_turn_deg; read by "
         "`wakeline bearing`); demo: the bundled demo scene.",
         epilog=EPILOG,
     )
     p.add_argument("kind", choices=KINDS)
-    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--seed", type=seed_int, default=0, help="random seed, 0-4294967295 (default 0)")
     p.add_argument("-o", "--output", type=Path, required=True, help="canonical CSV to write")
     p.add_argument(
         "--tracks",

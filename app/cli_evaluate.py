@@ -4,7 +4,14 @@ import argparse
 import sys
 from pathlib import Path
 
-from wakeline.app.cli_common import EPILOG, fuse_params, link_params, positive_float, positive_int
+from wakeline.app.cli_common import (
+    EPILOG,
+    fuse_params,
+    link_params,
+    positive_float,
+    positive_int,
+    seed_int,
+)
 
 
 def _progress(fraction: float, text: str) -> None:
@@ -429,14 +436,14 @@ def register(sub) -> None:
     )
     p.add_argument(
         "--gnss-gate-m",
-        type=float,
+        type=positive_float,
         default=50.0,
         help="m: a track follows the truth track whose median distance at its fixes is at "
         "most this (default 50)",
     )
     p.add_argument(
         "--gnss-fault-m",
-        type=float,
+        type=positive_float,
         help="m: a truth fix that departs this far from its local velocity is a GNSS fault, "
         "and a turn within 2 s of one is not scored for recall (the Autoferry set's rule, "
         "0.5 there; for logs of many fixes a second; default: no such rule)",
@@ -477,7 +484,7 @@ def register(sub) -> None:
         default=100,
         help="maneuver: tracks per class; --hard: ships per scene (default 100)",
     )
-    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--seed", type=seed_int, default=0, help="random seed, 0-4294967295 (default 0)")
     p.add_argument("--csv", type=Path, help="also write the full table as CSV")
     p.add_argument(
         "--hard",

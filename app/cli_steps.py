@@ -13,7 +13,7 @@ import dataclasses
 import sys
 from pathlib import Path
 
-from wakeline.app.cli_common import EPILOG
+from wakeline.app.cli_common import EPILOG, nonnegative_int, positive_int
 from wakeline.core.errors import InputError
 from wakeline.core.params import shown_source
 from wakeline.core.words import count
@@ -339,7 +339,7 @@ def _add_clean_flags(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--smooth",
-        type=int,
+        type=positive_int,
         nargs="?",
         const=5,
         metavar="WINDOW",
@@ -444,7 +444,7 @@ def add_read_flags(
         "skip_rows": (
             "skip-rows",
             {
-                "type": int,
+                "type": nonnegative_int,
                 "metavar": "N",
                 "help": "lines before the header (a title), skipped and counted (default: "
                 "detect a title above a header naming known columns)",

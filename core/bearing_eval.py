@@ -447,7 +447,11 @@ def simulate_table(
     seed: int = 0, turn_deg: float = 50.0, sigma_deg: float = 0.6, t_m: float = 450.0
 ) -> pd.DataFrame:
     """Every named scenario twice — with a maneuver at ``t_m`` and without — as one table:
-    ``batch,time,bearing,obs_lon,obs_lat,true_maneuver_time,true_turn_deg``."""
+    ``batch,time,bearing,obs_lon,obs_lat,truth,true_maneuver_time,true_turn_deg``.
+
+    ``truth`` is the target's id as in the other simulators (SPEC §8): each sequence is
+    its own target, so it equals ``batch`` (``s1-m``, ``s1-straight`` …); the maneuver's
+    truth is in ``true_maneuver_time`` (blank without one) and ``true_turn_deg``."""
     rng = np.random.default_rng(seed)
     t0 = pd.Timestamp("2024-05-01T00:00:00Z")
     frames = []
@@ -457,11 +461,12 @@ def simulate_table(
             frames.append(
                 pd.DataFrame(
                     {
-                        "batch": f"s{k}-{'m' if turn else 'straight'}",
+                        "batch": f"s{k}-{'m' if turn else 'straight'}",  # one target each
                         "time": t0 + pd.to_timedelta(t, unit="s"),
                         "bearing": np.round(b, 4),
                         "obs_lon": np.round(olon, 7),
                         "obs_lat": np.round(olat, 7),
+                        "truth": f"s{k}-{'m' if turn else 'straight'}",
                         "true_maneuver_time": (t0 + pd.to_timedelta(t_m, unit="s"))
                         if turn
                         else pd.NaT,

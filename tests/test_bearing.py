@@ -210,6 +210,28 @@ def test_simulated_table_has_truth():
     df = simulate_table(seed=0)
     assert df.batch.nunique() == 10
     assert df[df.batch.str.endswith("-m")].true_maneuver_time.notna().all()
+    # SPEC §8: simulate writes the truth column, as the other kinds: the target's id
+    # (one target per sequence), beside the maneuver's own truth
+    assert df.truth.notna().all() and (df.truth == df.batch).all()
+    assert df.groupby("truth").batch.nunique().eq(1).all()
+
+
+def test_simulate_bearing_writes_truth_and_bearing_reads_it_unchanged(tmp_path):
+    sim = tmp_path / "b.csv"
+    assert main(["simulate", "bearing", "--seed", "4", "-o", str(sim)]) == 0
+    df = pd.read_csv(sim)
+    assert {"truth", "true_maneuver_time", "true_turn_deg"} <= set(df.columns)
+    assert (df.truth == df.batch).all()
+    out = tmp_path / "o.csv"
+    assert main(["bearing", str(sim), "-o", str(out)]) == 0
+    found = pd.read_csv(out)
+    assert list(found.columns) == ["batch", "detect_time", "maneuver_time", "z"]
+    # the same detections as without the truth column (the reader ignores it)
+    plain = tmp_path / "plain.csv"
+    df.drop(columns=["truth"]).to_csv(plain, index=False)
+    out2 = tmp_path / "o2.csv"
+    assert main(["bearing", str(plain), "-o", str(out2)]) == 0
+    assert found.equals(pd.read_csv(out2))
 
 
 def test_glr_null_is_calibrated_and_the_auc_stays_an_option():

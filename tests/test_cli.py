@@ -1,6 +1,7 @@
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -81,6 +82,109 @@ def test_simulate_rejects_bad_numbers(capsys, tmp_path):
         main(["simulate", "maneuver", "--tracks", "0", "-o", str(tmp_path / "x.csv")])
     assert exc.value.code == 2
     assert "must be at least 1" in capsys.readouterr().err
+
+
+def _numeric_flags():
+    """(subcommand, flag, type) of every flag of every subcommand whose argparse type
+    is a number parser: the hand-written ones (the generated parameter flags take
+    text and are range-checked by their dataclass, below)."""
+    import argparse
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    out = []
+    for name, p in sub.choices.items():
+        for a in p._actions:
+            if a.type is None or not a.option_strings or a.type in (str, Path):
+                continue
+            if (
+                a.type in (int, float)
+                or a.type.__name__ in NUMBER_TYPES
+                or "int_in" in (a.type.__name__)
+            ):
+                out.append((name, a.option_strings[-1], a.type))
+    return out
+
+
+NUMBER_TYPES = ("positive_int", "positive_float", "nonnegative_int", "seed_int")
+
+
+def test_no_numeric_flag_takes_a_bare_int_or_float():
+    flags = _numeric_flags()
+    assert len(flags) > 30  # simulate, evaluate, batch, clean, the bearing flags ...
+    bare = [(s, f) for s, f, kind in flags if kind in (int, float)]
+    assert not bare, f"unchecked numbers (a negative or NaN one is an internal error): {bare}"
+    assert {("simulate", "--seed"), ("evaluate", "--seed")} <= {(s, f) for s, f, _ in flags}
+
+
+@pytest.mark.parametrize("bad", ["-1", "-0.5", "nan", "inf", "-inf", "1e400", "x", "", "1.5.2"])
+def test_every_numeric_flag_refuses_a_bad_number(bad):
+    import argparse
+
+    for sub, flag, kind in _numeric_flags():
+        with pytest.raises(argparse.ArgumentTypeError):
+            kind(bad)
+            raise AssertionError(f"{sub} {flag} took {bad!r}")
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["simulate", "maneuver", "--seed", "-1"],
+        ["simulate", "bearing", "--seed", "-1"],
+        ["simulate", "segments", "--seed", "-7"],
+        ["simulate", "multisensor", "--seed", str(2**32)],
+        ["simulate", "maneuver", "--sigma", "nan"],
+        ["simulate", "segments", "--area-km", "inf"],
+        ["evaluate", "bearing", "--seed", "-1"],
+        ["evaluate", "maneuver", "--seed", "1.5"],
+        ["evaluate", "maneuver", "--real", "x", "--gnss-gate-m", "-3"],
+        ["import", "x.csv", "--skip-rows", "-1"],
+        ["clean", "x.csv", "--smooth", "0"],
+        ["export", "x.csv", "--like", "y.csv", "--like-skip-rows", "-2"],
+    ],
+)
+def test_a_bad_number_is_exit_2_with_one_message_and_no_output(argv, tmp_path, capsys):
+    out = tmp_path / "out.csv"
+    if argv[0] != "evaluate":
+        argv = [*argv, "-o", str(out)]
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    flag = [a for a in argv if a.startswith("--")][-1]
+    assert f"error: argument {flag}" in err
+    assert "internal error" not in err and "Traceback" not in err
+    assert len([line for line in err.splitlines() if "error:" in line]) == 1
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("seed", ["0", "4294967295"])
+def test_seeds_at_both_ends_of_the_range_run(seed, tmp_path):
+    out = tmp_path / "b.csv"
+    assert main(["simulate", "bearing", "--seed", seed, "-o", str(out)]) == 0
+    assert out.stat().st_size > 0
+
+
+def test_generated_parameter_flags_are_range_checked_by_their_dataclass(tmp_path, capsys):
+    """Flags made from a Params dataclass (one per field) take text; the field's range
+    refuses a bad value with exit 2 (one message), never an internal error."""
+    from wakeline.core.bearing import BearingParams
+
+    bearings = tmp_path / "b.csv"
+    main(["simulate", "bearing", "-o", str(bearings)])
+    capsys.readouterr()
+    fields = [d for d in BearingParams.describe() if d.get("hi") is not None]
+    assert fields
+    for d in fields:
+        flag = "--" + d["name"].removesuffix("_s").replace("_", "-")
+        code = 0
+        try:
+            code = main(["bearing", str(bearings), "-o", str(tmp_path / "o.csv"), flag, "1e30"])
+        except SystemExit as exc:
+            code = exc.code
+        assert code == 2, flag
+        assert "internal error" not in capsys.readouterr().err
 
 
 def test_console_script_runs_as_a_process(tmp_path):
