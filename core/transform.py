@@ -3,7 +3,8 @@
 - :func:`resample` — every track on a fixed time grid (seed 003: 20 s) by linear
   interpolation, never across a gap longer than ``max_gap_s``.
 - :func:`smooth` — moving weighted average (triangular weights) of positions within
-  each track (seed 003 §2.2).
+  each track (seed 003 §2.2), or a cubic B-spline of time per track (SPEC §2.9; rule
+  10's least-squares fit, :func:`spline_fit`).
 - :func:`bspline_segments` — seed 001 §4.2: sampling at Δt, segmentation by the quality
   ratio (multi-target rule: split at long or sharply turning legs; single-target rule:
   split at long legs), a least-squares cubic B-spline per segment on a knot vector from
@@ -89,10 +90,33 @@ def stated_max_gap(stated: Mapping[str, Any]) -> dict[str, Any]:
     return out
 
 
+SMOOTH_METHODS = ("average", "bspline")
+
+
 @dataclass(frozen=True)
 class SmoothParams(Params):
-    enabled: bool = param(False, "", "moving weighted average of positions (seed 003 §2.2)")
-    window: int = param(5, "points", "window length (odd; triangular weights)", lo=3, hi=1001)
+    enabled: bool = param(
+        False,
+        "",
+        "smooth positions: moving weighted average (seed 003 §2.2) or cubic B-spline (method)",
+    )
+    window: int = param(
+        5,
+        "points",
+        "window length (odd; triangular weights); bspline: one interior knot per this many "
+        "points (at least 4)",
+        lo=3,
+        hi=1001,
+    )
+    method: str = param(
+        "average",
+        "",
+        "average: the moving weighted average (seed 003); bspline: a least-squares cubic "
+        "B-spline of time per track, on a clamped knot vector (rule 10's fit, seed 001 §4.2 "
+        "step 3), same rows and times",
+        choices=SMOOTH_METHODS,
+        source="SPEC §2.9: moving weighted average, or cubic B-spline",
+    )
 
 
 @dataclass(frozen=True)
@@ -222,9 +246,23 @@ def resample(points: pd.DataFrame, params: ResampleParams, next_id: int = 0) -> 
 
 def smooth(points: pd.DataFrame, params: SmoothParams) -> pd.DataFrame:
     """Positions replaced by a triangular-weighted moving average within each track
-    (windows shrink at the track ends). Same rows, same ids."""
+    (windows shrink at the track ends), or (``method="bspline"``) by a least-squares cubic
+    B-spline of time fitted to each whole track (:func:`spline_fit`, one interior knot per
+    ``window`` points; a track of fewer than 5 points or with repeated times is left as
+    it is). Same rows, same ids."""
     pts, index = sorted_with_index(points)
     x, y = local_xy(pts, index)
+    if params.method == "bspline":
+        x, y = np.array(x, dtype="float64"), np.array(y, dtype="float64")
+        t = time_seconds(pts["time"])
+        spline_fit(t, x, y, index.starts, index.ends, True, int(params.window))
+        lon0, lat0 = track_origins(pts, index)
+        track = index.track_of_row
+        lon, lat = geo.from_local(x, y, lon0[track], lat0[track])
+        out = pts.copy()
+        out["lon"] = np.round(lon, 7)
+        out["lat"] = np.round(lat, 7)
+        return out
     h = int(params.window) // 2
     track = index.track_of_row
     n = len(pts)
@@ -274,13 +312,45 @@ def greedy_sample(t: np.ndarray, index: TrackIndex, dt: float) -> np.ndarray:
     return kept
 
 
-def knot_vector(t: np.ndarray, order: int = 3) -> np.ndarray:
+def knot_vector(t: np.ndarray, order: int = 3, points_per_knot: int | None = None) -> np.ndarray:
     """Seed 001's knot vector from a segment's length and the B-spline order: clamped
-    (``order + 1`` knots at each end) with one interior knot per ``order + 1`` points,
-    evenly spaced in time (``t`` increasing, at least ``order + 2`` points)."""
-    n_inner = max(len(t) // (order + 1) - 1, 0)
+    (``order + 1`` knots at each end) with one interior knot per ``order + 1`` points
+    (or per ``points_per_knot``), evenly spaced in time (``t`` increasing, at least
+    ``order + 2`` points)."""
+    per = max(int(points_per_knot or order + 1), order + 1)
+    n_inner = max(len(t) // per - 1, 0)
     inner = np.linspace(t[0], t[-1], n_inner + 2)[1:-1]
     return np.concatenate([np.full(order + 1, t[0]), inner, np.full(order + 1, t[-1])])
+
+
+def spline_fit(
+    t: np.ndarray,
+    x: np.ndarray,
+    y: np.ndarray,
+    starts: np.ndarray,
+    ends: np.ndarray,
+    knots: bool = True,
+    points_per_knot: int = 4,
+) -> None:
+    """Replace ``x``/``y`` (in place) by a cubic spline of time fitted to each span
+    ``starts[i]:ends[i]``: seed 001's least-squares B-spline on a clamped knot vector with
+    one interior knot per ``points_per_knot`` points (``knots``), or a smoothing spline
+    whose smoothing is chosen by generalized cross-validation. A span of fewer than 5
+    points or with repeated times is left as it is. Rule 10 (:func:`bspline_segments`)
+    fits its segments with it, rule 9's ``method="bspline"`` (:func:`smooth`) whole
+    tracks."""
+    from scipy.interpolate import make_lsq_spline, make_smoothing_spline  # lazy: slow
+
+    for a, b in zip(starts, ends, strict=True):  # one fit per span, not per point
+        if b - a >= 5 and np.all(np.diff(t[a:b]) > 0):
+            tt = t[a:b] - t[a]
+            if knots:
+                kv = knot_vector(tt, points_per_knot=points_per_knot)
+                x[a:b] = make_lsq_spline(tt, x[a:b], kv, k=3)(tt)
+                y[a:b] = make_lsq_spline(tt, y[a:b], kv, k=3)(tt)
+            else:
+                x[a:b] = make_smoothing_spline(tt, x[a:b])(tt)
+                y[a:b] = make_smoothing_spline(tt, y[a:b])(tt)
 
 
 def bspline_segments(points: pd.DataFrame, params: BsplineParams, next_id: int = 0) -> pd.DataFrame:
@@ -336,23 +406,12 @@ def bspline_segments(points: pd.DataFrame, params: BsplineParams, next_id: int =
     seg_no_in_track = segment - segment[np.flatnonzero(first)][s_track]  # 0, 1, 2 … within track
     n_segments = np.bincount(s_track, first | split, minlength=index.n_tracks)
 
-    from scipy.interpolate import make_lsq_spline, make_smoothing_spline  # lazy: slow
-
     # Cubic spline per segment, in the track's plane: GCV smoothing spline (ours) or
     # seed 001's least-squares B-spline on a knot vector from the segment's length.
     lon0, lat0 = track_origins(pts, index)
     x, y = geo.to_local(lon, lat, lon0[s_track], lat0[s_track])
     seg_end = np.append(seg_first[1:], m)
-    for a, b in zip(seg_first, seg_end, strict=True):  # one fit per segment, not per point
-        if b - a >= 5 and np.all(np.diff(ts[a:b]) > 0):
-            tt = ts[a:b] - ts[a]
-            if params.knot_vector:
-                knots = knot_vector(tt)
-                x[a:b] = make_lsq_spline(tt, x[a:b], knots, k=3)(tt)
-                y[a:b] = make_lsq_spline(tt, y[a:b], knots, k=3)(tt)
-            else:
-                x[a:b] = make_smoothing_spline(tt, x[a:b])(tt)
-                y[a:b] = make_smoothing_spline(tt, y[a:b])(tt)
+    spline_fit(ts, x, y, seg_first, seg_end, params.knot_vector)
     slon, slat = geo.from_local(x, y, lon0[s_track], lat0[s_track])
 
     # Linear interpolation at 0.5·Δt inside segments, over short gaps at plausible speed.

@@ -128,6 +128,83 @@ def test_smooth_reduces_noise_and_keeps_tracks_apart():
     assert np.allclose(line.lat[3:27], straight(30).lat[3:27], atol=1e-7)
 
 
+def _turning_track(n: int, batch: str, rng) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """A ship on a slow arc (a point every 10 s at 10 kn), true and with 30 m noise."""
+    t = np.arange(n) * 10.0
+    heading = np.radians(20.0 + 0.15 * t)  # 0.15 deg/s
+    v = 10 * geo.KN_MS
+    x = np.cumsum(v * 10.0 * np.sin(heading))
+    y = np.cumsum(v * 10.0 * np.cos(heading))
+    lon, lat = geo.from_local(x, y, 122.0, 30.0)
+    true = pd.DataFrame(
+        {
+            "sensor": "S1",
+            "batch": batch,
+            "time": pd.Timestamp("2024-01-01", tz="UTC") + pd.to_timedelta(t, unit="s"),
+            "lon": lon,
+            "lat": lat,
+        }
+    )
+    nlon, nlat = geo.from_local(x + rng.normal(0, 30, n), y + rng.normal(0, 30, n), 122.0, 30.0)
+    return true, true.assign(lon=nlon, lat=nlat)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_smooth_cubic_bspline_option_reduces_noise_same_rows(seed):
+    rng = np.random.default_rng(seed)
+    true, noisy = _turning_track(120, "a", rng)
+    short_true, short = _turning_track(4, "b", rng)  # too short for a spline: as it was
+    pts = pd.concat([noisy, short], ignore_index=True)
+    assert SmoothParams().method == "average"  # the default is unchanged
+    out = smooth(pts, SmoothParams(enabled=True, method="bspline"))
+    assert len(out) == len(pts) and (out.time.to_numpy() == sorted_with_index(pts)[0].time).all()
+    a = out[out.batch == "a"].reset_index(drop=True)
+    before = geo.haversine_m(noisy.lon, noisy.lat, true.lon, true.lat).mean()
+    after = geo.haversine_m(a.lon, a.lat, true.lon, true.lat).mean()
+    assert after < 0.6 * before
+    b = out[out.batch == "b"].reset_index(drop=True)
+    assert np.allclose(b.lon, short.lon, atol=1e-7) and np.allclose(b.lat, short.lat, atol=1e-7)
+    # fewer knots (a knot per 20 points) smooth more on this gentle arc, and differ
+    coarse = smooth(pts, SmoothParams(enabled=True, method="bspline", window=21))
+    assert np.abs(coarse.lon - out.lon).max() > 1e-6  # about 0.1 m
+
+
+def test_smooth_bspline_is_rule_10s_fit_not_a_copy(monkeypatch):
+    """Rule 9's B-spline and rule 10 call the one fit (transform.spline_fit)."""
+    from wakeline.core import transform
+
+    calls = []
+    real = transform.spline_fit
+
+    def spy(*args, **kw):
+        calls.append(len(args[3]))
+        return real(*args, **kw)
+
+    monkeypatch.setattr(transform, "spline_fit", spy)
+    _true, noisy = _turning_track(60, "a", np.random.default_rng(3))
+    transform.smooth(noisy, SmoothParams(enabled=True, method="bspline"))
+    transform.bspline_segments(noisy, BsplineParams(enabled=True))
+    assert len(calls) == 2
+
+
+def test_cli_smooth_method_bspline(tmp_path, capsys):
+    _true, noisy = _turning_track(60, "a", np.random.default_rng(4))
+    src = tmp_path / "in.csv"
+    noisy.to_csv(src, index=False)
+    out = tmp_path / "out.csv"
+    argv = ["clean", str(src), "-o", str(out), "--smooth", "--set", "smooth.method=bspline"]
+    assert main(argv) == 0
+    spline = pd.read_csv(out)
+    assert len(spline) > 50  # the other rules may remove a noisy point or two
+    average = tmp_path / "average.csv"
+    assert main(["clean", str(src), "-o", str(average), "--smooth"]) == 0
+    average = pd.read_csv(average)
+    assert len(average) == len(spline) and np.abs(average.lon - spline.lon).max() > 1e-6
+    argv[-1] = "smooth.method=cubic"
+    assert main(argv) == 2
+    assert "smooth.method" in capsys.readouterr().err
+
+
 def test_greedy_sampling_matches_the_sequential_rule():
     rng = np.random.default_rng(3)
     frames = []
