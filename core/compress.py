@@ -9,7 +9,10 @@ path where the table carries ``true_lon``/``true_lat`` (simulations).
 Vertex placement: the paper keeps the raw (noisy) points. ``refine=True`` instead places
 the knots where the piecewise-linear function of time through them best fits all the
 track's points in the least-squares sense — exactly the quantity Dis_e measures, solved
-for all tracks at once as one tridiagonal system.
+for all tracks at once as one tridiagonal system. All knots move, each track's first and
+last point too (the kept rows are the first and last, at fitted positions); with
+``keep_ends`` (CompressParams) those two stay where they were observed, as SPEC §3 words
+it, and the knots between are fitted around them.
 """
 
 from dataclasses import dataclass
@@ -39,6 +42,14 @@ class CompressParams(Params):
 
     refine: bool = param(
         True, "", "place vertices by least squares on the neighbouring legs (else raw points)"
+    )
+    keep_ends: bool = param(
+        False,
+        "",
+        "with refine: each track's first and last point stay at their observed positions "
+        "(SPEC §3: compression keeps them) and only the knots between are placed by least "
+        "squares; off: the ends are placed too (lower Dis_e, docs/evaluation.md)",
+        source="SPEC §3; ours: off",
     )
     dp_tolerance_m: float = param(
         600.0, "m", "Douglas–Peucker tolerance (method dp)", lo=0.0, hi=1e7
@@ -130,9 +141,18 @@ def _segments(kept: np.ndarray, index: TrackIndex, t: np.ndarray) -> tuple[np.nd
 
 
 def _least_squares_knots(
-    left: np.ndarray, w: np.ndarray, xy: np.ndarray, n_knots: int, single_knot: np.ndarray
+    left: np.ndarray,
+    w: np.ndarray,
+    xy: np.ndarray,
+    n_knots: int,
+    single_knot: np.ndarray,
+    fixed: np.ndarray | None = None,
+    fixed_xy: np.ndarray | None = None,
 ) -> np.ndarray:
-    """Knot positions minimizing Σ |(1-w) c_left + w c_left+1 - xy|² (all tracks at once)."""
+    """Knot positions minimizing Σ |(1-w) c_left + w c_left+1 - xy|² (all tracks at once);
+    the knots marked in ``fixed`` (bool per knot) stay at ``fixed_xy`` (K, 2) and the
+    others are fitted around them (a constrained least squares: their rows become the
+    identity, their couplings move to the right-hand side)."""
     from scipy.linalg import solve_banded  # lazy: keeps `wakeline --help` fast
 
     a = 1.0 - w
@@ -148,12 +168,26 @@ def _least_squares_knots(
     # A knot of a one-point track couples to nothing: off-diagonals there are zero anyway
     # because its points have w = 0; make the diagonal safe.
     diag = np.where(diag > 0, diag, 1.0)
+    upper = off.copy()  # A[i, i+1]
+    lower = off.copy()  # A[i+1, i]
+    if fixed is not None and fixed.any():
+        c = np.where(fixed[:, None], fixed_xy, 0.0)
+        rhs[1:] -= lower[:, None] * c[:-1]  # row i+1's coupling to a fixed knot i
+        rhs[:-1] -= upper[:, None] * c[1:]  # row i's coupling to a fixed knot i+1
+        cut = fixed[:-1] | fixed[1:]
+        upper[cut] = 0.0
+        lower[cut] = 0.0
+        diag = np.where(fixed, 1.0, diag)
+        rhs[fixed] = fixed_xy[fixed]
     ab = np.zeros((3, n_knots))
-    ab[0, 1:] = off
+    ab[0, 1:] = upper
     ab[1] = diag
-    ab[2, :-1] = off
+    ab[2, :-1] = lower
     out = solve_banded((1, 1), ab, rhs)
-    out[single_knot] = rhs[single_knot] / diag[single_knot, None]
+    free_single = single_knot if fixed is None else single_knot & ~fixed
+    out[free_single] = rhs[free_single] / diag[free_single, None]
+    if fixed is not None:
+        out[fixed] = fixed_xy[fixed]
     return out
 
 
@@ -234,11 +268,14 @@ def compress_with(
     keep: np.ndarray | None = None,
     refine: bool = True,
     sorted_points: pd.DataFrame | None = None,
+    keep_ends: bool = False,
 ) -> Compressed:
     """Compress to the rows marked in ``keep`` (aligned with ``sort_points(points)``)
     plus each track's first and last point. Rows that repeat their predecessor (same
     time and place) are set aside (counted in ``repeats``; a repeat marked in ``keep``
-    keeps its original): they would weigh twice in the fit and in Dis_e."""
+    keeps its original): they would weigh twice in the fit and in Dis_e. With ``refine``
+    every knot is placed by least squares, the track's ends too, unless ``keep_ends``:
+    then the first and last point stay where they were observed (SPEC §3's wording)."""
 
     pts, index = sorted_with_index(sorted_points if sorted_points is not None else points)
     n = len(pts)
@@ -262,7 +299,14 @@ def compress_with(
     if refine and n:
         single_knot = np.zeros(len(knot_rows), dtype=bool)
         single_knot[np.searchsorted(knot_rows, index.starts[index.sizes == 1])] = True
-        knot_xy = _least_squares_knots(left, w, xy, len(knot_rows), single_knot)
+        fixed = fixed_xy = None
+        if keep_ends:
+            ends = np.zeros(n, dtype=bool)
+            ends[index.starts] = True
+            ends[index.ends - 1] = True
+            fixed = ends[knot_rows]
+            fixed_xy = xy[knot_rows]
+        knot_xy = _least_squares_knots(left, w, xy, len(knot_rows), single_knot, fixed, fixed_xy)
     else:
         knot_xy = xy[knot_rows]
     right = np.minimum(left + 1, len(knot_rows) - 1)

@@ -247,6 +247,7 @@ def compression_against_dp(
         turning_keep(result, cparams),
         refine=(cparams or CompressParams()).refine,
         sorted_points=pts,
+        keep_ends=(cparams or CompressParams()).keep_ends,
     ).report()["overall"]
     x, y = local_xy(pts, index)
     lo, hi = 0.01, 1e6

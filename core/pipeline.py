@@ -448,7 +448,7 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
             )
         )
     progress(0.7, "compressing")
-    comp = compress_with(None, keep, refine=refine, sorted_points=pts)
+    comp = compress_with(None, keep, refine=refine, sorted_points=pts, keep_ends=cp.keep_ends)
     report = comp.report()
     report["method"] = opts.method
     report["refined_vertices"] = refine

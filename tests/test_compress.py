@@ -49,6 +49,52 @@ def test_least_squares_vertices_beat_raw_vertices_on_simulation():
     assert ls["overall"]["ratio"] == raw["overall"]["ratio"] < 0.15
 
 
+@pytest.mark.parametrize("seed", [2, 5])
+def test_keep_ends_fixes_the_ends_and_fits_the_rest_by_constrained_least_squares(seed):
+    df = simulate.maneuver_tracks(12, "short", 300.0, seed=seed)
+    res = detect(df)
+    pts, index = res.points, res.index
+    free = compress_with(None, res.is_maneuver, True, pts)
+    fixed = compress_with(None, res.is_maneuver, True, pts, keep_ends=True)
+    assert (fixed.kept == free.kept).all()
+    knot_rows = np.flatnonzero(fixed.kept)
+    ends = np.isin(knot_rows, np.concatenate([index.starts, index.ends - 1]))
+    # the ends where observed; the default moves them (its docstring says so)
+    assert np.allclose(fixed.knot_xy[ends], fixed.xy[knot_rows[ends]], atol=1e-9)
+    assert np.abs(free.knot_xy[ends] - free.xy[knot_rows[ends]]).max() > 1.0
+    # the knots between: the least-squares solution with the ends given, track by track
+    # (a dense solve of the same objective, per track)
+    x = fixed.xy
+    from wakeline.core.compress import _segments
+    from wakeline.core.tracks import track_seconds
+
+    left, w = _segments(fixed.kept, index, track_seconds(pts))
+    k = len(knot_rows)
+    a = np.zeros((len(x), k))
+    a[np.arange(len(x)), left] += 1 - w
+    a[np.arange(len(x)), np.minimum(left + 1, k - 1)] += w
+    rhs = x - a[:, ends] @ fixed.xy[knot_rows[ends]]
+    sol = np.linalg.lstsq(a[:, ~ends], rhs, rcond=None)[0]
+    assert np.allclose(fixed.knot_xy[~ends], sol, atol=1e-6)
+    # least squares over fewer free knots: never a smaller sum of squares than the default
+    sq = [np.sum((c.reconstructed_xy - c.xy) ** 2) for c in (free, fixed)]
+    assert sq[0] <= sq[1]
+
+
+def test_keep_ends_on_the_command_line(tmp_path):
+    src = tmp_path / "m.csv"
+    simulate.maneuver_tracks(4, "short", 300.0, seed=1).to_csv(src, index=False)
+    out = tmp_path / "c.csv"
+    assert main(["compress", str(src), "-o", str(out), "--keep-ends"]) == 0
+    got = pd.read_csv(out, dtype={"batch": str})
+    inp = sort_points(pd.read_csv(src, dtype={"batch": str}))
+    for col in ("lon", "lat"):
+        first = got.groupby("batch")[col].first().sort_index()
+        last = got.groupby("batch")[col].last().sort_index()
+        assert np.allclose(first, inp.groupby("batch")[col].first().sort_index(), atol=2e-7)
+        assert np.allclose(last, inp.groupby("batch")[col].last().sort_index(), atol=2e-7)
+
+
 def test_single_point_and_two_point_tracks():
     df = pd.concat(
         [
