@@ -168,8 +168,10 @@ def run_metrics(
     sigma_deg: float = 0.6,
     t_m: float = 450.0,
     max_delay_s: float = 300.0,
+    false_alarms: bool = True,
 ) -> dict:
-    """Seed 002's metrics for one scenario: detection, reaction, time error, false alarms."""
+    """Seed 002's metrics for one scenario: detection, reaction, time error, false alarms
+    (with ``false_alarms``: as many runs without the turn; else NaN)."""
     detected, reaction, error, false_alarm = 0, [], [], 0
     for _ in range(runs):  # Monte Carlo runs; each run is vectorized over boundaries
         sign = rng.choice([-1.0, 1.0])
@@ -184,6 +186,8 @@ def run_metrics(
             detected += 1
             reaction.append(hits[0].detect_time_s - t_m)
             error.append(abs(hits[0].maneuver_time_s - t_m))
+        if not false_alarms:
+            continue
         t, b, olon, olat = simulate_bearings(rng, sc, 0.0, t_m, sigma_deg)
         excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
         false_alarm += bool(detect_sequence(t, b, params, excl, observer_xy(olon, olat)))
@@ -191,7 +195,7 @@ def run_metrics(
         "detection": detected / runs,
         "reaction_min": float(np.mean(reaction)) / 60 if reaction else float("nan"),
         "time_error_min": float(np.mean(error)) / 60 if error else float("nan"),
-        "false_alarm": false_alarm / runs,
+        "false_alarm": false_alarm / runs if false_alarms else float("nan"),
     }
 
 
@@ -439,6 +443,115 @@ def format_evaluation(ev: dict) -> str:
             f"{r.method:<16} {r.scenario:<52} {r.rate_change_deg_min:5.2f} {r.peak_z:6.1f} "
             f"{r.min_turn_deg:8.0f} {r.detection:7.1%} {r.reaction_min:6.2f} "
             f"{r.time_error_min:6.2f} {r.false_alarm:6.1%} {r.bound:6.1%}"
+        )
+    return "\n".join(lines)
+
+
+#: Seed 002's two sweeps (§3.4, §3.5) on its five scenarios: bearing noise σ_b (deg) at a
+#: 60° turn (Figs. 4–6), and the turn (deg) at σ_b 0.6° (Figs. 7–9; the paper's axis runs
+#: 10°–110°, its text 10°–100°).
+SWEEPS = {
+    "sigma": {"values": (0.1, 0.3, 0.6, 1.0, 1.4, 1.7, 2.0), "turn_deg": 60.0},
+    "turn": {"values": (10.0, 20.0, 30.0, 50.0, 70.0, 100.0, 110.0), "sigma_deg": 0.6},
+}
+
+
+def wilson_interval(k: float, n: int, z: float = 1.96) -> tuple[float, float]:
+    """Wilson score interval (95 % by default) of a binomial rate k/n."""
+    if n <= 0:
+        return float("nan"), float("nan")
+    p = k / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def sweep_bearing(
+    kind: str,
+    runs: int = 20,
+    seed: int = 0,
+    params: BearingParams | None = None,
+    values: tuple[float, ...] | None = None,
+    progress=None,
+) -> dict:
+    """Seed 002's sweep ``kind`` (:data:`SWEEPS`: ``sigma`` or ``turn``) over the five
+    named scenarios: per scenario and value, ``runs`` runs with the turn (either side, at
+    450 s of 15 min, as :func:`evaluate_bearing`) and ``runs`` without it for false alarms
+    (the turn sweep's false alarms do not depend on the turn: drawn once per scenario)."""
+    if kind not in SWEEPS:
+        raise ValueError(f"sweep is one of {sorted(SWEEPS)}, got {kind!r}")
+    params = (params or BearingParams()).checked()
+    spec = SWEEPS[kind]
+    values = tuple(values or spec["values"])
+    rng = np.random.default_rng(seed)
+    rows = []
+    cells = [(sc, v) for sc in SCENARIOS for v in values]
+    fa_turn: dict[str, float] = {}
+    for k, (sc, v) in enumerate(cells):
+        if progress:
+            progress(k / len(cells), f"{kind} {v:g}: {sc.name}")
+        sigma = v if kind == "sigma" else spec["sigma_deg"]
+        turn = v if kind == "turn" else spec["turn_deg"]
+        m = run_metrics(rng, sc, params, runs, turn, sigma, false_alarms=kind == "sigma")
+        if kind == "turn":
+            if sc.name not in fa_turn:  # runs without a turn: any detection is false
+                fa_turn[sc.name] = _false_alarm_rate(rng, sc, params, runs, sigma)
+            m["false_alarm"] = fa_turn[sc.name]
+        rows.append({"scenario": sc.name, kind: v, "sigma_deg": sigma, "turn_deg": turn, **m})
+    return {"table": pd.DataFrame(rows), "kind": kind, "runs": runs, "seed": seed, "params": params}
+
+
+def _false_alarm_rate(rng, sc: Scenario, params: BearingParams, runs: int, sigma: float) -> float:
+    """Share of ``runs`` runs without a turn that raise any detection."""
+    alarms = 0
+    for _ in range(runs):
+        t, b, olon, olat = simulate_bearings(rng, sc, 0.0, 450.0, sigma)
+        excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
+        alarms += bool(detect_sequence(t, b, params, excl, observer_xy(olon, olat)))
+    return alarms / runs
+
+
+def _rate(p: float, n: int) -> str:
+    if not np.isfinite(p):
+        return f"{'-':>22}"
+    lo, hi = wilson_interval(round(p * n), n)
+    return f"{p:6.1%} [{lo:5.1%}-{hi:6.1%}]"
+
+
+def format_sweep(ev: dict) -> str:
+    """The sweep as seed 002's figures: per value, each scenario's detection rate (95 %
+    Wilson interval), reaction and time error (min) and false alarms (interval), then
+    the five scenarios pooled."""
+    kind, runs, t = ev["kind"], ev["runs"], ev["table"]
+    p: BearingParams = ev["params"]
+    fixed = (
+        f"turn {SWEEPS['sigma']['turn_deg']:g} deg either side"
+        if kind == "sigma"
+        else f"bearing noise {SWEEPS['turn']['sigma_deg']:g} deg"
+    )
+    unit = "sigma_b deg" if kind == "sigma" else "turn deg"
+    lines = [
+        f"Seed 002's {kind} sweep on its five named scenarios, {fixed}, turn at 450 s of 15 min "
+        f"runs, detected = within 5 min after it; ours ({'GLR' if p.glr else 'AUC'}, |z| > "
+        f"{p.z_crit:.2f}); {runs} runs per cell with the turn and {runs} without "
+        f"(false alarms{', once per scenario' if kind == 'turn' else ''}); rates with their "
+        "binomial 95 % (Wilson) interval; seed "
+        f"{ev['seed']}.",
+        "",
+        f"{unit:>11} {'scenario':<44} {'detection [95 %]':>22} {'react':>6} {'t err':>6} "
+        f"{'false alarm [95 %]':>22}",
+    ]
+    for v, g in t.groupby(kind, sort=True):
+        for _, r in g.iterrows():
+            lines.append(
+                f"{v:11g} {r.scenario:<44} {_rate(r.detection, runs)} {r.reaction_min:6.2f} "
+                f"{r.time_error_min:6.2f} {_rate(r.false_alarm, runs)}"
+            )
+        n = runs * len(g)
+        lines.append(
+            f"{v:11g} {'all five (pooled)':<44} {_rate(g.detection.mean(), n)} "
+            f"{g.reaction_min.mean():6.2f} {g.time_error_min.mean():6.2f} "
+            f"{_rate(g.false_alarm.mean(), n)}"
         )
     return "\n".join(lines)
 

@@ -551,3 +551,48 @@ def test_observer_plane_across_the_antimeridian():
     assert np.all(np.diff(x) > 0) and np.abs(x).max() < 6_000.0 and np.abs(y).max() < 1.0
     t = np.arange(11) * 60.0
     assert not observer_maneuvering(t, lon, lat, dv_ms=1.0).any()
+
+
+def test_wilson_interval_contains_the_rate_and_narrows_with_runs():
+    from wakeline.core.bearing_eval import wilson_interval
+
+    lo, hi = wilson_interval(0, 10)
+    assert lo == 0.0 and hi == pytest.approx(0.2775, abs=1e-3)  # the textbook value
+    for k, n in ((3, 10), (30, 100), (300, 1000), (1000, 1000)):
+        lo, hi = wilson_interval(k, n)
+        assert lo <= k / n <= hi
+    widths = [np.diff(wilson_interval(n // 2, n))[0] for n in (20, 100, 1000)]
+    assert widths[0] > widths[1] > widths[2] and widths[2] < 0.07
+
+
+def test_seed_002_sweeps_cover_the_papers_ranges_and_run_small():
+    from wakeline.core.bearing_eval import SWEEPS, format_sweep, sweep_bearing
+
+    assert min(SWEEPS["sigma"]["values"]) <= 0.6 and max(SWEEPS["sigma"]["values"]) == 2.0
+    assert min(SWEEPS["turn"]["values"]) == 10 and max(SWEEPS["turn"]["values"]) >= 100
+    ev = sweep_bearing("turn", runs=3, values=(10.0, 110.0))
+    t = ev["table"]
+    assert len(t) == 2 * 5 and set(t.turn) == {10.0, 110.0} and (t.sigma_deg == 0.6).all()
+    # the turn sweep's false alarms are drawn once per scenario, whatever the turn
+    assert t.groupby("scenario").false_alarm.nunique().eq(1).all()
+    # a 110 deg turn at 0.6 deg noise is found far more often than a 10 deg one
+    by_turn = t.groupby("turn").detection.mean()
+    assert by_turn[110.0] >= 0.8 and by_turn[110.0] > by_turn[10.0]
+    text = format_sweep(ev)
+    assert "95 %" in text and text.count("all five (pooled)") == 2
+    ev = sweep_bearing("sigma", runs=2, values=(2.0,))
+    assert (ev["table"].turn_deg == 60.0).all() and ev["table"].false_alarm.notna().all()
+    with pytest.raises(ValueError):
+        sweep_bearing("range", runs=1)
+
+
+def test_evaluate_bearing_sweep_on_the_command_line(capsys):
+    assert (
+        main(["evaluate", "bearing", "--sweep", "turn", "--runs", "2", "--sweep-values", "100"])
+        == 0
+    )
+    out = capsys.readouterr().out
+    assert "turn sweep" in out and "all five (pooled)" in out
+    assert main(["evaluate", "maneuver", "--sweep", "turn"]) == 2
+    assert "--sweep applies to evaluate bearing" in capsys.readouterr().err
+    assert main(["evaluate", "bearing", "--sweep-values", "1"]) == 2
