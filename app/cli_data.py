@@ -18,6 +18,10 @@ def _cmd_import(args: argparse.Namespace) -> int:
         args.output,
         **read_options(args),
     )
+    if args.derive_motion and result.report["rows_imported"]:
+        from wakeline.app.cli_steps import derive_motion_in_file
+
+        derive_motion_in_file(args.output)
     if args.quarantine:
         write_csv(result.quarantine, args.quarantine)
     if args.report:
@@ -155,6 +159,9 @@ def register(sub) -> None:
         help="write quarantined rows (line, reason, text)",
     )
     p.add_argument("--report", type=Path, metavar="R.json", help="write the import report as JSON")
+    from wakeline.app.cli_steps import add_derive_motion_flag
+
+    add_derive_motion_flag(p)
     p.set_defaults(func=_cmd_import)
 
     p = sub.add_parser(

@@ -209,6 +209,8 @@ def add_step_parsers(sub) -> None:
         p.add_argument(
             "--report", type=Path, metavar="R.json", help="write the report and parameters as JSON"
         )
+        if step.output == "points":
+            add_derive_motion_flag(p)
         p.add_argument(
             "--set",
             action="append",
@@ -646,6 +648,28 @@ def write_table(name: str, table, path: Path) -> None:
     (write_points if name == "points" else write_csv)(table, path)
 
 
+DERIVE_MOTION_HELP = (
+    "fill blank speed (kn) and course (deg) of the points written from their positions "
+    "(SPEC §1: derived where missing; the leg arriving at each point) and add a column "
+    "motion_derived naming what was derived on each row; given values are never changed "
+    "(default: blanks stay blank)"
+)
+
+
+def add_derive_motion_flag(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--derive-motion", action="store_true", help=DERIVE_MOTION_HELP)
+
+
+def derive_motion_in_file(path: Path) -> None:
+    """Rewrite the canonical points file ``path`` (written by import or clean, which
+    stream) with its blank speed/course derived (:func:`with_derived_motion`)."""
+    from wakeline.core.io import read_points, write_points
+    from wakeline.core.tracks import with_derived_motion
+
+    pts = read_points(path).points  # in the file's row order, which is kept
+    write_points(with_derived_motion(pts), path)
+
+
 def run_step_command(args: argparse.Namespace) -> int:
     from wakeline.core.io import write_json
     from wakeline.core.pipeline import STEPS, params_to_json
@@ -662,7 +686,12 @@ def run_step_command(args: argparse.Namespace) -> int:
     else:
         points = read_input(args.input, read, **read_options(args))
     result = step(points, params)
-    write_table(step.output, result.tables[step.output], args.output)
+    table = result.tables[step.output]
+    if getattr(args, "derive_motion", False):
+        from wakeline.core.tracks import with_derived_motion
+
+        table = with_derived_motion(table)
+    write_table(step.output, table, args.output)
     for table, _flag in step.outputs:
         path = getattr(args, f"out__{table}", None)
         if path:
@@ -692,6 +721,8 @@ def _run_clean(step, params: dict, args: argparse.Namespace) -> int:
         restore_ids=ids,
         restore_rules=getattr(args, "restore_rule", None),
     )
+    if args.derive_motion:
+        derive_motion_in_file(args.output)
     for warning in out.read_report.get("warnings", []):
         print(f"{args.input}: warning: {warning}", file=sys.stderr)
     say_quarantined(args.input, out.read_report)

@@ -536,6 +536,36 @@ def fill_motion(df: pd.DataFrame) -> pd.DataFrame:
     return out[ordered_columns(out)]
 
 
+#: The column :func:`with_derived_motion` adds: what was derived on each row.
+MOTION_DERIVED = "motion_derived"
+
+
+def with_derived_motion(df: pd.DataFrame) -> pd.DataFrame:
+    """``df`` in its own row order with blank ``speed``/``course`` derived from positions
+    (the values :func:`fill_motion` gives: the leg arriving at a point, the first point
+    the leg leaving it; kn and deg, 3 decimals), and a ``motion_derived`` column naming
+    what was derived on each row (``speed``, ``course``, ``speed course`` or blank).
+    Values given in the input are never changed (SPEC §1: derived where missing);
+    a one-point track or a zero-time step stays blank."""
+    from wakeline.core.schema import to_float
+
+    n = len(df)
+    pts, index = sorted_with_index(df.assign(_wl_row=np.arange(n)))
+    derived = derive_motion(pts, index) if n else (np.zeros(0), np.zeros(0))
+    rows = pts["_wl_row"].to_numpy()
+    out = df.copy()
+    said = np.full(n, "", dtype=object)
+    for name, values in zip(("speed", "course"), derived, strict=True):
+        own = np.full(n, np.nan)
+        own[rows] = np.round(values, 3)
+        given = to_float(out[name]) if name in out.columns else np.full(n, np.nan)
+        fill = np.isnan(given) & np.isfinite(own)
+        out[name] = np.where(fill, own, given)
+        said = np.where(fill, np.where(said == "", name, said + " " + name), said)
+    out[MOTION_DERIVED] = said
+    return out[ordered_columns(out)]
+
+
 def track_summary(df: pd.DataFrame) -> pd.DataFrame:
     """One row per track: sensor, batch, points, start, end, duration_s, length_m,
     mean_speed_kn, interval_s (its median sampling interval, :func:`median_interval_s`;

@@ -197,3 +197,55 @@ def test_natural_ranks_order_ids_by_their_leading_number():
         rank, n = natural_ranks(values)
         assert n == len(want)
         assert [v for _, v in sorted(zip(rank, values, strict=True))] == want
+
+
+def _scene_with_some_motion(seed: int) -> pd.DataFrame:
+    from wakeline.core import simulate
+
+    df = simulate.maneuver_tracks(3, "short", 50.0, seed=seed)
+    df = df.sample(frac=1.0, random_state=seed).reset_index(drop=True)  # any row order
+    rng = np.random.default_rng(seed)
+    given = rng.random(len(df)) < 0.3
+    df["speed"] = np.where(given, np.round(rng.uniform(0, 30, len(df)), 1), np.nan)
+    df["course"] = np.where(given & (rng.random(len(df)) < 0.5), 123.0, np.nan)
+    return df
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_with_derived_motion_fills_blanks_only_in_row_order_and_says_so(seed):
+    from wakeline.core.tracks import MOTION_DERIVED, fill_motion, with_derived_motion
+
+    df = _scene_with_some_motion(seed)
+    out = with_derived_motion(df)
+    assert len(out) == len(df) and (out.time.to_numpy() == df.time.to_numpy()).all()
+    for name in ("speed", "course"):
+        given = df[name].notna().to_numpy()
+        assert (out[name].to_numpy()[given] == df[name].to_numpy()[given]).all()  # untouched
+        assert out[name].notna().all()  # every point of a track of several points
+        said = out[MOTION_DERIVED].str.contains(name).to_numpy()
+        assert (said == ~given).all()
+    # the values are fill_motion's (the sorted reference), rounded to 3 decimals
+    ref = fill_motion(df)
+    back = sort_points(out)
+    assert np.allclose(back.speed, ref.speed, atol=6e-4)
+    assert np.allclose(back.course, ref.course, atol=6e-4)
+
+
+def test_derive_motion_flag_on_import_clean_and_compress(tmp_path):
+    from wakeline.app.cli import main
+
+    src = tmp_path / "in.csv"
+    df = _scene_with_some_motion(3)
+    df.to_csv(src, index=False)
+    for cmd in (["import"], ["clean"], ["compress"]):
+        plain, derived = tmp_path / "plain.csv", tmp_path / "derived.csv"
+        assert main([*cmd, str(src), "-o", str(plain)]) == 0
+        assert main([*cmd, str(src), "-o", str(derived), "--derive-motion"]) == 0
+        a = pd.read_csv(plain, dtype={"batch": str})
+        b = pd.read_csv(derived, dtype={"batch": str}, keep_default_na=False, na_values=[""])
+        assert "motion_derived" not in a.columns, cmd  # the default is unchanged
+        assert a.speed.isna().any(), cmd
+        assert b.speed.notna().all() and b.course.notna().all(), cmd
+        kept = b.motion_derived.isna().to_numpy()  # rows whose both values were given
+        assert (a.speed.to_numpy()[kept] == b.speed.to_numpy()[kept]).all(), cmd
+        assert list(b.columns[: len(a.columns)]) == list(a.columns), cmd
