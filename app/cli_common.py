@@ -38,12 +38,11 @@ def positive_int(text: str) -> int:
     return value
 
 
-def nonnegative_int(text: str) -> int:
-    """argparse type: a whole number of at least 0 (a count of lines, ...)."""
-    value = _whole(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be 0 or more, got {value}")
-    return value
+def whole_int(text: str) -> int:
+    """argparse type: a whole number, its range checked where it is used (the line counts
+    ``--skip-rows`` / ``--like-skip-rows``: the reader's refusal names the flag and the
+    file's length)."""
+    return _whole(text)
 
 
 def seed_int(text: str) -> int:

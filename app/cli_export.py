@@ -8,7 +8,7 @@ import re
 import sys
 from pathlib import Path
 
-from wakeline.app.cli_common import EPILOG, nonnegative_int
+from wakeline.app.cli_common import EPILOG, whole_int
 from wakeline.core.errors import InputError
 from wakeline.core.words import count
 
@@ -377,7 +377,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--like-skip-rows",
-        type=nonnegative_int,
+        type=whole_int,
         metavar="N",
         help="lines before ORIGINAL's header (a title), as given to import (default: detect)",
     )

@@ -13,7 +13,7 @@ import dataclasses
 import sys
 from pathlib import Path
 
-from wakeline.app.cli_common import EPILOG, nonnegative_int, positive_int
+from wakeline.app.cli_common import EPILOG, positive_int, whole_int
 from wakeline.core.errors import InputError
 from wakeline.core.params import shown_source
 from wakeline.core.words import count
@@ -446,7 +446,7 @@ def add_read_flags(
         "skip_rows": (
             "skip-rows",
             {
-                "type": nonnegative_int,
+                "type": whole_int,
                 "metavar": "N",
                 "help": "lines before the header (a title), skipped and counted (default: "
                 "detect a title above a header naming known columns)",
