@@ -59,6 +59,10 @@ def build_actions(w) -> None:
     act("step_forward", lambda: w.time_panel.step(1), None, "Right")
     a["pipeline"].setShortcut(QtGui.QKeySequence("F5"))
     act("remove_layer", w.remove_active_layer)
+    act("layer_color", lambda: w.choose_layer_color())
+    act("layer_up", lambda: w.move_layer(None, -1))
+    act("layer_down", lambda: w.move_layer(None, 1))
+    act("active_on_top", w.set_active_on_top, checkable=True)
     # How the map tells ships and layers apart (h227): kept in the settings.
     act("color_by_track", w.set_color_by_track, checkable=True)
     act("show_removed", w.set_show_removed, checkable=True)
@@ -66,6 +70,7 @@ def build_actions(w) -> None:
     for key, setting, default in (
         ("color_by_track", "map/color_by_track", True),
         ("show_removed", "map/show_removed", False),
+        ("active_on_top", "map/active_on_top", True),
     ):
         a[key].blockSignals(True)
         a[key].setChecked(w.map_option(setting, default))
@@ -130,10 +135,10 @@ def build_actions(w) -> None:
     for key in ("play", "step_back", "step_forward"):
         m["view"].addAction(a[key])
     m["view"].addSeparator()
-    for key in ("remove_layer", "import_report"):
+    for key in ("remove_layer", "layer_color", "layer_up", "layer_down", "import_report"):
         m["view"].addAction(a[key])
     m["view"].addSeparator()
-    for key in ("color_by_track", "draw_points", "show_removed"):
+    for key in ("color_by_track", "draw_points", "show_removed", "active_on_top"):
         m["view"].addAction(a[key])
     m["view"].addSeparator()
     for dock in w.docks.values():
@@ -336,6 +341,10 @@ def retranslate(w) -> None:
         "step_forward": tr("Step forwar&d"),
         "keys": tr("&Keyboard shortcuts"),
         "remove_layer": tr("&Remove active layer"),
+        "layer_color": tr("C&hoose the active layer's colour…"),
+        "layer_up": tr("Move active layer &up (drawn over the layers below)"),
+        "layer_down": tr("Mo&ve active layer down"),
+        "active_on_top": tr("Keep the active la&yer on top"),
         "color_by_track": tr("&Colour tracks of the active layer apart (up to 30 tracks)"),
         "draw_points": tr("Dra&w active layer as points (radar plots)"),
         "show_removed": tr("Sh&ow points removed by cleaning"),

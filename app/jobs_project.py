@@ -13,7 +13,7 @@ from wakeline.app.core_text import shown
 from wakeline.app.layer_view import plan_view, points_sketch, prepare_view_apart
 from wakeline.core.errors import InputError
 from wakeline.core.project import Project, load_project
-from wakeline.core.session import BEARING_KIND, Layer
+from wakeline.core.session import BEARING_KIND, COLOR_CHOSEN, Layer
 
 
 def _aspect_latitude(layer: Layer) -> float | None:
@@ -218,6 +218,14 @@ class ProjectJobsMixin:
             views = {}
             # Saved colours are kept unless an earlier layer has one (a project saved
             # with a radar source and the compressed layer both red).
+            # An operator's colour (Layers ▸ Colour…) is kept whatever the others, and
+            # so is a layer's that the operator gave another layer too (as they were
+            # drawn when saved).
+            chosen = {
+                lay.color
+                for lay in proj.layers
+                if lay.meta.get(COLOR_CHOSEN) and lay.kind != BEARING_KIND
+            }
             in_use: tuple[set[str], set[str]] = (set(), set())
             for k, lay in enumerate(proj.layers):
                 progress(k / max(len(proj.layers), 1), f"preparing {lay.name}")
@@ -232,7 +240,14 @@ class ProjectJobsMixin:
                     )
                     continue
                 views[lay.id] = prepare_view_apart(
-                    lay.points, lay.kind, in_use, lay.name, shown, size_px, first=lay.color
+                    lay.points,
+                    lay.kind,
+                    in_use,
+                    lay.name,
+                    shown,
+                    size_px,
+                    first=lay.color,
+                    chosen=bool(lay.meta.get(COLOR_CHOSEN)) or lay.color in chosen,
                 )
                 lay.points = views[lay.id].points
                 lay.color = views[lay.id].colors[0] if views[lay.id].colors else lay.color

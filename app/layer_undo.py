@@ -1,8 +1,11 @@
-"""Undo of Layer ▸ Remove: a thin ``QUndoCommand`` over the core's
+"""Undo of the layer edits: thin ``QUndoCommand`` over the core's
 :meth:`~wakeline.core.session.Session.remove_layer` and its inverse
-:meth:`~wakeline.core.session.Session.restore_layer`, on a stack of the window's own
-(Edit ▸ Restore removed layer / Remove layer again; the review's decisions keep their
-stacks, one per queue).
+:meth:`~wakeline.core.session.Session.restore_layer`, a layer's colour
+(:meth:`~wakeline.core.session.Session.set_color`, Layers ▸ Colour…) and its place in
+the order (:meth:`~wakeline.core.session.Session.move_layer`, Move up / Move down), on a
+stack of the window's own (Edit ▸ Restore removed layer / Remove layer again, Undo layer
+colour …: the entries name the edit; the review's decisions keep their stacks, one per
+queue).
 
 Both directions go through the session, whose events the project writer follows: a
 removal deletes the layer's rows at once, an undo writes the layer (points, lineage, side
@@ -26,17 +29,37 @@ def tr(text: str) -> str:
     return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
 
 
-class RemoveLayerCommand(QtGui.QUndoCommand):
-    """One layer's removal on the window's layer stack."""
+class LayerCommand(QtGui.QUndoCommand):
+    """A layer edit on the window's layer stack, made in one piece of work (a session's
+    generation): stale once a project is opened or closed."""
 
     def __init__(self, window, layer_id: str) -> None:
         self.window = window
         self.layer_id = layer_id
         self.name = shown_name(window.session.layers[layer_id].name)
+        self.generation = window.session.generation
+        super().__init__(self.name)
+
+    @property
+    def stale(self) -> bool:
+        """The session was cleared since (a project opened or closed): nothing to undo."""
+        return self.generation != self.window.session.generation
+
+    def undo_text(self) -> str:
+        return tr("Restore removed &layer {0}").format(self.name)
+
+    def redo_text(self) -> str:
+        return tr("Remove layer {0} ag&ain").format(self.name)
+
+
+class RemoveLayerCommand(LayerCommand):
+    """One layer's removal on the window's layer stack."""
+
+    def __init__(self, window, layer_id: str) -> None:
+        super().__init__(window, layer_id)
         self.removal = None  # the core's record of the last removal
         self.error: Exception | None = None  # why the session refused the removal
         self.view = None  # the window's prepared view of the layer (no new preparing)
-        super().__init__(self.name)
 
     @property
     def stale(self) -> bool:
@@ -72,6 +95,92 @@ class RemoveLayerCommand(QtGui.QUndoCommand):
         w.log_message(tr("Layer {0} restored").format(self.name))
 
 
+class ColorLayerCommand(LayerCommand):
+    """A layer drawn in the operator's colour (Layers ▸ Colour…); undo: the colour, and
+    whether it was chosen, it had."""
+
+    def __init__(self, window, layer_id: str, color: str) -> None:
+        super().__init__(window, layer_id)
+        self.color = color
+        self.old: tuple[str, bool] | None = None
+
+    def undo_text(self) -> str:
+        return tr("Undo &layer colour ({0})").format(self.name)
+
+    def redo_text(self) -> str:
+        return tr("Redo layer colour ({0}) ag&ain").format(self.name)
+
+    def redo(self) -> None:
+        if self.stale or self.layer_id not in self.window.session.layers:
+            return
+        old = self.window.session.set_color(self.layer_id, self.color)
+        if self.old is None:
+            self.old = old
+
+    def undo(self) -> None:
+        if self.old is None or self.stale or self.layer_id not in self.window.session.layers:
+            return
+        self.window.session.set_color(self.layer_id, *self.old)
+
+
+class MoveLayerCommand(LayerCommand):
+    """A layer moved to another place of the order (Layers ▸ Move up / Move down, or
+    dragged); undo: back to its place."""
+
+    def __init__(self, window, layer_id: str, pos: int) -> None:
+        super().__init__(window, layer_id)
+        self.pos = pos
+        self.old: int | None = None
+
+    def undo_text(self) -> str:
+        return tr("Undo &layer move ({0})").format(self.name)
+
+    def redo_text(self) -> str:
+        return tr("Redo layer move ({0}) ag&ain").format(self.name)
+
+    def redo(self) -> None:
+        if self.stale or self.layer_id not in self.window.session.layers:
+            return
+        old = self.window.session.move_layer(self.layer_id, self.pos)
+        if self.old is None:
+            self.old = old
+
+    def undo(self) -> None:
+        if self.old is None or self.stale or self.layer_id not in self.window.session.layers:
+            return
+        self.window.session.move_layer(self.layer_id, self.old)
+
+
+class ReorderLayersCommand(LayerCommand):
+    """The layers put in another order at once (several rows dragged in the Layers
+    list); undo: the order before, for the layers still there."""
+
+    def __init__(self, window, layer_id: str, order: list[str]) -> None:
+        super().__init__(window, layer_id)
+        self.order = list(order)
+        self.old = list(window.session.layers)
+
+    def undo_text(self) -> str:
+        return tr("Undo &layer move ({0})").format(self.name)
+
+    def redo_text(self) -> str:
+        return tr("Redo layer move ({0}) ag&ain").format(self.name)
+
+    def _put(self, order: list[str]) -> None:
+        if self.stale:
+            return
+        now = list(self.window.session.layers)
+        want = [i for i in order if i in now] + [i for i in now if i not in order]
+        if want != now:
+            self.window.session.reorder(want)
+
+    def redo(self) -> None:
+        self._put(self.order)
+
+    def undo(self) -> None:
+        self._put(self.old)
+
+
 class LayerUndo:
     """The window's stack of layer removals and its two Edit menu entries."""
 
@@ -98,7 +207,7 @@ class LayerUndo:
         if not self._alive():
             return
         cmd = self.stack.command(0) if self.stack.count() else None
-        if isinstance(cmd, RemoveLayerCommand) and cmd.stale:
+        if isinstance(cmd, LayerCommand) and cmd.stale:
             self.stack.clear()
 
     def remove(self, layer_id: str) -> None:
@@ -108,6 +217,11 @@ class LayerUndo:
         self.stack.push(command)  # an obsolete command (refused) is not kept
         if command.error is not None:
             raise command.error
+
+    def push(self, command: LayerCommand) -> None:
+        """Do ``command`` (a colour, a move) through the stack (undoable)."""
+        self._drop_stale()
+        self.stack.push(command)
 
     def undo(self) -> None:
         self._drop_stale()
@@ -130,10 +244,12 @@ class LayerUndo:
         stack = self.stack
         self.act_undo.setEnabled(stack.canUndo())
         self.act_redo.setEnabled(stack.canRedo())
-        undo, redo = stack.undoText(), stack.redoText()
+        index = stack.index()
+        undo = stack.command(index - 1) if index > 0 else None
+        redo = stack.command(index) if index < stack.count() else None
         self.act_undo.setText(
-            tr("Restore removed &layer {0}").format(undo) if undo else tr("Restore removed &layer")
+            undo.undo_text() if isinstance(undo, LayerCommand) else tr("Restore removed &layer")
         )
         self.act_redo.setText(
-            tr("Remove layer {0} ag&ain").format(redo) if redo else tr("Remove layer ag&ain")
+            redo.redo_text() if isinstance(redo, LayerCommand) else tr("Remove layer ag&ain")
         )

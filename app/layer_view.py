@@ -558,14 +558,18 @@ def prepare_view_apart(
     view: tuple[float, float, float, float] | None = None,
     size_px: tuple[int, int] | None = None,
     first: str | None = None,
+    chosen: bool = False,
 ) -> LayerView:
     """:func:`prepare_view` in colours no other layer shows: ``in_use`` is (colours of
     the visible layers, of the hidden ones), and takes the colours chosen, so the next
     layer prepared with it is drawn apart from this one too. ``first``: the colour to
-    keep when it is free (a layer's saved colour). Pure, for a worker thread."""
+    keep when it is free (a layer's saved colour); ``chosen``: kept even when another
+    layer has it (the operator's, Layers ▸ Colour…). Pure, for a worker thread."""
     from wakeline.app.map_colors import PALETTE, layer_colors
 
     shown, hidden = in_use
+    if chosen and first:
+        shown, hidden = shown - {first}, hidden - {first}
     palette = layer_colors(kind, len(PALETTE), shown, hidden, first)
     lv = prepare_view(
         points,
@@ -576,7 +580,7 @@ def prepare_view_apart(
         size_px,
         colors=palette if kind == "source" else None,
     )
-    shown.update(lv.colors)
+    in_use[0].update(lv.colors)
     return lv
 
 

@@ -212,6 +212,12 @@ class MainWindow(
         self.layer_list.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self.layer_list.itemChanged.connect(self._layer_item_changed)
         self.layer_list.currentItemChanged.connect(self._layer_current_changed)
+        # Colour…, Move up / Move down on a right click, and rows dragged to reorder the
+        # layers (the map's stacking follows the list: SPEC §7)
+        self.layer_list.setContextMenuPolicy(QtCore.Qt.ContextMenuPolicy.CustomContextMenu)
+        self.layer_list.customContextMenuRequested.connect(self._layer_menu)
+        self.layer_list.setDragDropMode(QtWidgets.QAbstractItemView.DragDropMode.InternalMove)
+        self.layer_list.model().rowsMoved.connect(self._layers_dropped)
         self.params = ParamsPanel()
         self.params.executor = self.lod_worker  # the preset suggestion: off this thread
         self.params.changed.connect(lambda _k: self.project.put_params(self.params.to_dict()))

@@ -63,6 +63,10 @@ DIM_OPACITY = 0.35
 #: selection (z 50) and the marks; a step's marks layers get it always (over an active
 #: layer's lines: :meth:`MapCanvas._z_of`).
 ACTIVE_Z = 10.0
+#: The layers' order (:meth:`MapCanvas.set_layer_order`) spreads their stacking over
+#: this much of one unit: a later layer over an earlier one of the same kind of drawing,
+#: never across kinds (a bearing file's lines stay under the tracks, marks over them).
+ORDER_Z_SPAN = 0.9
 #: The selected tracks' maneuver points (px), over the maneuver layer's dots.
 SELECTED_MARK_PX = 12
 
@@ -216,6 +220,9 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         # The active layer's map layers (set_emphasis): on top, the others dimmed; None:
         # every layer as it is (a render, no window).
         self._emphasis: set[str] | None = None
+        self._lift = True  # the emphasized layers drawn over the others too
+        self._order: dict[str, int] = {}  # a session layer's place (set_layer_order)
+        self._order_sep = "/"
         # The selected tracks' maneuver points: larger than the maneuver layer's dots,
         # yellow with a black rim, over everything but the hover.
         self.marks = pg.ScatterPlotItem(
@@ -554,12 +561,28 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         self._context_opacity = float(opacity)
         self._apply_emphasis()
 
-    def set_emphasis(self, names: list[str] | None) -> None:
-        """Map layers ``names`` (the active layer's) drawn on top at full opacity and the
-        others dimmed to :data:`DIM_OPACITY` (None: every layer as it is), layers added
-        later too: switching the active layer changes the picture (h225 item 3)."""
+    def set_emphasis(self, names: list[str] | None, lift: bool = True) -> None:
+        """Map layers ``names`` (the active layer's) drawn on top (``lift``; else in
+        their place of the layer order) at full opacity and the others dimmed to
+        :data:`DIM_OPACITY` (None: every layer as it is), layers added later too:
+        switching the active layer changes the picture (h225 item 3)."""
         self._emphasis = None if names is None else set(names)
+        self._lift = bool(lift)
         self._apply_emphasis()
+
+    def set_layer_order(self, ids: list[str], sep: str = "/") -> None:
+        """The layers' stacking: layer ``ids[k]`` (and its parts, ``<id><sep><part>``)
+        over ``ids[:k]`` among items of one kind of drawing (:data:`ORDER_Z_SPAN`); a
+        map layer not named in them stays under the ordered ones."""
+        self._order = {lid: k + 1 for k, lid in enumerate(ids)}
+        self._order_sep = sep
+        self._apply_emphasis()
+
+    def _order_z(self, name: str) -> float:
+        rank = self._order.get(name)
+        if rank is None:
+            rank = self._order.get(name.partition(self._order_sep)[0], 0)
+        return ORDER_Z_SPAN * rank / (len(self._order) + 1)
 
     def _opacity_of(self, name: str) -> float:
         dim = self._emphasis is not None and name not in self._emphasis
@@ -570,11 +593,15 @@ class MapCanvas(MapInteractMixin, pg.PlotWidget):
         stays under them when active. A step's marks (markers only, drawn over the
         tracks on purpose: z > 0, the maneuvers' dots, the removed points' crosses)
         stay over the active layer's lines: lifted by :data:`ACTIVE_Z` always, and once
-        more when active (a compressed layer made active hid the maneuver marks)."""
+        more when active (a compressed layer made active hid the maneuver marks). The
+        layer order adds less than a unit (:data:`ORDER_Z_SPAN`); the active layer is
+        lifted only while :meth:`set_emphasis` was asked to (View ▸ Keep the active layer
+        on top)."""
         z = style.z if style is not None else 0.0
-        lift = self._emphasis is not None and name in self._emphasis and z >= 0
+        lift = self._lift and self._emphasis is not None and name in self._emphasis and z >= 0
         marks = style is not None and z > 0 and style.width == 0 and not style.plots
-        return z + (ACTIVE_Z if lift else 0.0) + (ACTIVE_Z if marks else 0.0)
+        order = self._order_z(name) if self._order else 0.0
+        return z + order + (ACTIVE_Z if lift else 0.0) + (ACTIVE_Z if marks else 0.0)
 
     def _apply_emphasis(self) -> None:
         for name, items in self._items.items():

@@ -90,6 +90,17 @@ def layer_colors(
     return tuple(out)
 
 
+def chosen_colors(colors: tuple[str, ...], color: str) -> tuple[str, ...]:
+    """A layer's colours (one per sensor of a source layer) with ``color`` first, the
+    operator's choice (Layers ▸ Colour…): the others kept, but the one that was
+    ``color`` takes the old first colour (two sensors never share one)."""
+    if not colors:
+        return (color,)
+    first = colors[0]
+    rest = tuple(first if c == color else c for c in colors[1:])
+    return (color, *rest)
+
+
 #: Colours closer than this (CIE76 ΔE in CIELAB) are taken for one on the map.
 NEAR_DELTA_E = 20.0
 

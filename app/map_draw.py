@@ -647,6 +647,30 @@ def recolor(data: DrawData, by_track: bool, palette: tuple[str, ...] | None = No
     return replace(data, geometry=new, curves=curves, lod_box=box, px=px)
 
 
+def with_colors(data: DrawData, colors: tuple[str, ...]) -> DrawData:
+    """``data`` drawn in the layer colours ``colors`` (one per curve of the layer's own
+    colouring, :attr:`LayerGeometry.colors`; fewer: the rest kept): an operator's colour
+    (Layers ▸ Colour…). Its tracks drawn each in its own colour (the active layer) keep
+    them: only the layer's own colours, drawn again after, change. No new level of
+    detail (pure, cheap); the curves' sprites, stroked in the old colours, are dropped."""
+    geom = data.geometry
+    own = geom.plain[1] if geom.plain is not None else geom.colors
+    new = tuple(colors[: len(own)]) + tuple(own[len(colors) :])
+    if new == tuple(own):
+        return data
+    if geom.plain is not None:
+        group, _old, labels = geom.plain
+        return replace(data, geometry=replace(geom, plain=(group, new, labels)))
+    swap = dict(zip(own, new, strict=True))
+    curves = tuple(
+        replace(c, color=swap.get(c.color, c.color), sprite=None)
+        if swap.get(c.color, c.color) != c.color
+        else c
+        for c in data.curves
+    )
+    return replace(data, geometry=replace(geom, colors=new), curves=curves)
+
+
 def as_points(data: DrawData, points: bool, symbol_size: float = 3.0) -> DrawData:
     """``data`` drawn as dots alone (``points``: radar plots, no line joins a scan's
     detections) or as lines again (the line width it was prepared with, kept in

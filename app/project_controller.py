@@ -2,7 +2,7 @@
 
 Once the work has a project file, every session event becomes one small write queued on
 the core's :class:`~wakeline.core.project.ProjectWriter` thread: a new or replaced layer
-writes its Parquet once; visibility, order, selection, the active layer, the map's view
+writes its Parquet once; visibility, colour, order, selection, the active layer, the map's view
 (debounced by :mod:`wakeline.app.view_keeper`), the time window, the slider's time
 (debounced by :class:`~wakeline.app.map_time.TimeController`) and parameters are small
 rows.
@@ -160,7 +160,7 @@ class ProjectController(QtCore.QObject):
         elif event == "tables" and layer is not None:  # kept inputs: not its points
             pos = self._pos(layer_id)
             self._submit(lambda st: st.put_tables(layer, pos))
-        elif event == "visibility" and layer is not None:
+        elif event in ("visibility", "color") and layer is not None:
             pos = self._pos(layer_id)
             self._submit(lambda st: st.put_layer(layer, pos, with_data=False))
         elif event == "decisions" and layer is not None:  # a re-run's carried review

@@ -82,6 +82,8 @@ OWN_SAMPLING_KINDS = ("fused",)
 #: Settings (QSettings) of the map's View menu choices, and their defaults.
 COLOR_BY_TRACK_KEY = "map/color_by_track"
 SHOW_REMOVED_KEY = "map/show_removed"
+#: View ▸ Keep the active layer on top: over the layer order (default) or in its place.
+ACTIVE_ON_TOP_KEY = "map/active_on_top"
 #: The map layer of a cleaned layer's removed points (``<layer id>/removed``).
 REMOVED_PART = "removed"
 #: How long the map's view must rest before the track labels follow it (ms).
@@ -179,8 +181,14 @@ class LayersMixin:
                 self.views[lid] = bearing_layer_view(layer.points, detections, report, scene)
             return
         pending = self._pending_views.pop((layer.step, layer.role), None)
+        chosen = bool(layer.meta.get("color_chosen"))  # the operator's (Colour…): kept
         if pending is not None:
             self.views[lid] = pending
+            if chosen and pending.draw is not None and pending.colors[:1] != (layer.color,):
+                from wakeline.app.map_colors import chosen_colors
+                from wakeline.app.map_draw import with_colors
+
+                pending.draw = with_colors(pending.draw, chosen_colors(pending.colors, layer.color))
             if pending.colors:
                 layer.color = pending.colors[0]
         elif lid not in self.views or event == "changed":
@@ -188,7 +196,12 @@ class LayersMixin:
             in_use = self.colors_in_use(exclude={lid})
             first = keep.colors[0] if keep is not None and keep.colors else layer.color
             self.views[lid] = prepare_view_apart(
-                layer.points, layer.kind, in_use, layer.name, first=first
+                layer.points,
+                layer.kind,
+                in_use,
+                layer.name,
+                first=layer.color if chosen else first,
+                chosen=chosen,
             )
             layer.points = self.views[lid].points
             layer.color = self.views[lid].colors[0] if self.views[lid].colors else layer.color
@@ -259,6 +272,9 @@ class LayersMixin:
                 self.stale_label.setProperty("step", None)
         elif event == "reordered":
             self._order_layer_list()
+            self._emphasize()  # the map's stacking follows the list
+        elif event == "color" and layer is not None:
+            self._recolor(lid)
         elif event == "visibility":
             for name in self.map_names(lid):
                 self.canvas.set_visible(name, layer.visible)
@@ -696,10 +712,143 @@ class LayersMixin:
         self._labels_later()
 
     def _emphasize(self) -> None:
-        """The active layer's map layers on top, the others dimmed (View: with one layer
-        shown there is nothing to dim)."""
+        """The map's stacking in the Layers list's order (a layer higher in the list
+        drawn over those below it), the active layer's map layers on top of them all
+        (View ▸ Keep the active layer on top, the default; else in its place), the
+        others dimmed (View: with one layer shown there is nothing to dim)."""
+        order = list(reversed(self.session.layers))  # drawn first to drawn last
+        if order != getattr(self, "_stacked", None):
+            self._stacked = order
+            self.canvas.set_layer_order(order, PART_SEP)
         names = self.map_names(self.active) if self.active else None
-        self.canvas.set_emphasis(names)
+        self.canvas.set_emphasis(names, lift=self.map_option(ACTIVE_ON_TOP_KEY, True))
+
+    def set_active_on_top(self, on: bool) -> None:
+        """View ▸ Keep the active layer on top (of the layer order); kept in the settings."""
+        self.settings.setValue(ACTIVE_ON_TOP_KEY, bool(on))
+        self._emphasize()
+
+    # -- the operator's colour and order of the layers (SPEC §7) ------------------------
+
+    def _recolor(self, lid: str) -> None:
+        """Layer ``lid``'s colour changed (Layers ▸ Colour…, its undo, a script): its
+        swatch in the Layers list, and its drawing and legend entries in the colour (the
+        prepared arrays recoloured, no new preparing)."""
+        from wakeline.app.map_colors import chosen_colors
+        from wakeline.app.map_draw import with_colors
+
+        layer, view = self.session.get(lid), self.views.get(lid)
+        row = self.layer_row(lid)
+        if row >= 0:
+            self.layer_list.item(row).setIcon(color_icon(layer.color))
+        if view is None or view.draw is None or layer.kind == BEARING_KIND:
+            return
+        colors = chosen_colors(view.colors, layer.color)
+        if colors == view.colors:
+            return
+        view.draw = with_colors(view.draw, colors)
+        full = getattr(self, "_full_views", {}).get(lid)  # View ▸ Sensors' whole view
+        if full is not None and full is not view and full.draw is not None:
+            full.draw = with_colors(full.draw, chosen_colors(full.colors, layer.color))
+        self._queue_draw(lid)
+
+    def choose_layer_color(self, lid: str | None = None) -> None:
+        """Layers ▸ Colour…: the operator picks layer ``lid``'s colour (default: the
+        active layer's) in a colour dialog; set undoably and saved at once."""
+        lid = lid or self.active
+        layer = self.session.get(lid)
+        if layer is None or layer.kind == BEARING_KIND:
+            return
+        from PySide6 import QtGui
+
+        title = self.tr("Colour of layer {0}").format(shown_name(layer.name))
+        color = QtWidgets.QColorDialog.getColor(QtGui.QColor(layer.color), self, title)
+        if color.isValid():
+            self.set_layer_color(lid, color.name())
+
+    def set_layer_color(self, lid: str, color: str) -> None:
+        """Draw layer ``lid`` in ``color`` (``#rrggbb``), through the layer stack (Edit ▸
+        Undo layer colour)."""
+        from wakeline.app.layer_undo import ColorLayerCommand
+
+        layer = self.session.get(lid)
+        if layer is None or layer.kind == BEARING_KIND:
+            return
+        try:
+            from wakeline.core.session import check_color
+
+            color = check_color(color)
+        except InputError as exc:
+            self.log_message(f"{self.tr('Error')}: {exc}")
+            return
+        if color != layer.color or not layer.meta.get("color_chosen"):
+            self.layer_undo.push(ColorLayerCommand(self, lid, color))
+
+    def move_layer(self, lid: str | None, delta: int) -> None:
+        """Layers ▸ Move up (``delta`` -1) / Move down (+1): layer ``lid`` (default: the
+        active one) one place up or down the list, the map's stacking with it; undoable."""
+        from wakeline.app.layer_undo import MoveLayerCommand
+
+        lid = lid or self.active
+        order = list(self.session.layers)
+        if lid not in order:
+            return
+        pos = order.index(lid) + int(delta)
+        if 0 <= pos < len(order):
+            self.layer_undo.push(MoveLayerCommand(self, lid, pos))
+
+    def _layers_dropped(self, *_args) -> None:
+        """Rows dragged to another place of the Layers list: the session's order follows
+        on the next turn (Qt may move several rows, one signal each), undoably."""
+        if not getattr(self, "_drop_due", False):
+            self._drop_due = True
+            QtCore.QTimer.singleShot(0, self._take_dropped_order)
+
+    def _take_dropped_order(self) -> None:
+        from wakeline.app.layer_undo import MoveLayerCommand, ReorderLayersCommand
+
+        self._drop_due = False
+        role = QtCore.Qt.ItemDataRole.UserRole
+        shown = [self.layer_list.item(r).data(role) for r in range(self.layer_list.count())]
+        order = list(self.session.layers)
+        if shown == order:
+            return
+        if sorted(shown) != sorted(order):
+            self._order_layer_list()
+            return
+        # one layer moved (the common drag): that layer's move; else the whole order
+        for lid in order:
+            if [i for i in shown if i != lid] == [i for i in order if i != lid]:
+                self.layer_undo.push(MoveLayerCommand(self, lid, shown.index(lid)))
+                return
+        moved = next(i for i, j in zip(shown, order, strict=True) if i != j)
+        self.layer_undo.push(ReorderLayersCommand(self, moved, shown))
+
+    def _layer_menu(self, pos) -> None:
+        """The Layers list's context menu: Colour…, Move up, Move down, Remove."""
+        item = self.layer_list.itemAt(pos)
+        if item is None:
+            return
+        lid = item.data(QtCore.Qt.ItemDataRole.UserRole)
+        layer = self.session.get(lid)
+        if layer is None:
+            return
+        order = list(self.session.layers)
+        menu = QtWidgets.QMenu(self.layer_list)
+        color = menu.addAction(self.tr("&Colour…"))
+        color.setEnabled(layer.kind != BEARING_KIND)
+        color.triggered.connect(lambda: self.choose_layer_color(lid))
+        up = menu.addAction(self.tr("Move &up"))
+        up.setEnabled(order.index(lid) > 0)
+        up.triggered.connect(lambda: self.move_layer(lid, -1))
+        down = menu.addAction(self.tr("Move &down"))
+        down.setEnabled(order.index(lid) < len(order) - 1)
+        down.triggered.connect(lambda: self.move_layer(lid, 1))
+        menu.addSeparator()
+        remove = menu.addAction(self.tr("&Remove"))
+        remove.triggered.connect(lambda: (self.select_layer(lid), self.remove_active_layer()))
+        self._layer_context_menu = menu  # tests look at it
+        menu.popup(self.layer_list.viewport().mapToGlobal(pos))
 
     def _update_removed(self, lid: str) -> None:
         """The removed-points overlay of layer ``lid`` drawn, made (in the worker) or

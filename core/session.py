@@ -47,6 +47,19 @@ KIND_COLORS = {
 BEARING_KIND = "bearing"
 #: Its colour in the Layers list (the observer's grey on the map).
 BEARING_COLOR = "#555555"
+#: A layer's meta key: its colour was chosen by the operator (Layers ▸ Colour…), not
+#: given by the window's colour rule, so it is kept on reopening.
+COLOR_CHOSEN = "color_chosen"
+
+
+def check_color(color: object) -> str:
+    """``color`` as ``#rrggbb`` in lower case; InputError for anything else."""
+    text = str(color).strip().lower()
+    if len(text) != 7 or text[0] != "#" or any(c not in "0123456789abcdef" for c in text[1:]):
+        raise InputError(f"a colour is #rrggbb, not {color!r}")
+    return text
+
+
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 
 Listener = Callable[[str, str], None]  # (event, layer id)
@@ -388,6 +401,44 @@ class Session:
             self._emit("removed", layer_id)
             if self.active == layer_id:
                 self.set_active(None)
+
+    def set_color(self, layer_id: str, color: str, chosen: bool = True) -> tuple[str, bool]:
+        """Draw layer ``layer_id`` in ``color`` (``#rrggbb``), chosen by the operator
+        (``chosen``: kept as it is when the project is opened again, even where another
+        layer has it; ``meta["color_chosen"]``). Returns the colour and choice it had,
+        which undo it (``set_color(layer_id, *old)``). A ``color`` event follows (the
+        project writes the layer's row at once)."""
+        layer = self.layers.get(layer_id)
+        if layer is None:
+            raise InputError(f"no layer {layer_id}")
+        color = check_color(color)
+        old = (layer.color, bool(layer.meta.get(COLOR_CHOSEN, False)))
+        if old == (color, bool(chosen)):
+            return old
+        layer.color = color
+        meta = dict(layer.meta)
+        if chosen:
+            meta[COLOR_CHOSEN] = True
+        else:
+            meta.pop(COLOR_CHOSEN, None)
+        layer.meta = meta
+        self._emit("color", layer_id)
+        return old
+
+    def move_layer(self, layer_id: str, pos: int) -> int:
+        """Put layer ``layer_id`` at place ``pos`` of the layer order (clipped to it), the
+        others kept in their order; returns its place before (``move_layer(layer_id,
+        old)`` undoes it). A ``reordered`` event follows when it moved (the project writes
+        the order at once; the map draws a layer over those before it)."""
+        if layer_id not in self.layers:
+            raise InputError(f"no layer {layer_id}")
+        order = list(self.layers)
+        old = order.index(layer_id)
+        order.remove(layer_id)
+        order.insert(max(0, min(int(pos), len(order))), layer_id)
+        if order != list(self.layers):
+            self.reorder(order)
+        return old
 
     def set_visible(self, layer_id: str, visible: bool) -> None:
         layer = self.layers[layer_id]
@@ -789,7 +840,10 @@ class Session:
             meta = {k: v for k, v in new.meta.items() if k != "restored"}
             if old is not None:
                 carry = self._carry(old, result, new, inputs)
-                old.points, old.meta, old.kind = new.points, meta, new.kind
+                chosen = old.meta.get(COLOR_CHOSEN)  # the operator's colour: kept
+                old.points, old.meta, old.kind = new.points, dict(meta), new.kind
+                if chosen:
+                    old.meta[COLOR_CHOSEN] = True
                 for key, value in lineage.items():
                     setattr(old, key, value)
                 if carry is not None:  # before "changed": a review bound on it reads them

@@ -3436,4 +3436,59 @@
         <translation>显示或隐藏传感器 {0} 的航迹（仅为显示筛选：图层的点不变）</translation>
     </message>
 </context>
+<context>
+    <name>MainWindow</name>
+    <message>
+        <source>C&amp;hoose the active layer's colour…</source>
+        <translation>选择当前图层的颜色(&amp;H)…</translation>
+    </message>
+    <message>
+        <source>Move active layer &amp;up (drawn over the layers below)</source>
+        <translation>当前图层上移(&amp;U)(画在下方图层之上)</translation>
+    </message>
+    <message>
+        <source>Mo&amp;ve active layer down</source>
+        <translation>当前图层下移(&amp;V)</translation>
+    </message>
+    <message>
+        <source>Keep the active la&amp;yer on top</source>
+        <translation>当前图层始终在最上层(&amp;Y)</translation>
+    </message>
+    <message>
+        <source>Colour of layer {0}</source>
+        <translation>图层 {0} 的颜色</translation>
+    </message>
+    <message>
+        <source>&amp;Colour…</source>
+        <translation>颜色(&amp;C)…</translation>
+    </message>
+    <message>
+        <source>Move &amp;up</source>
+        <translation>上移(&amp;U)</translation>
+    </message>
+    <message>
+        <source>Move &amp;down</source>
+        <translation>下移(&amp;D)</translation>
+    </message>
+    <message>
+        <source>&amp;Remove</source>
+        <translation>移除(&amp;R)</translation>
+    </message>
+    <message>
+        <source>Undo &amp;layer colour ({0})</source>
+        <translation>撤销图层颜色（{0}）(&amp;L)</translation>
+    </message>
+    <message>
+        <source>Redo layer colour ({0}) ag&amp;ain</source>
+        <translation>重做图层颜色（{0}）(&amp;A)</translation>
+    </message>
+    <message>
+        <source>Undo &amp;layer move ({0})</source>
+        <translation>撤销图层移动（{0}）(&amp;L)</translation>
+    </message>
+    <message>
+        <source>Redo layer move ({0}) ag&amp;ain</source>
+        <translation>重做图层移动（{0}）(&amp;A)</translation>
+    </message>
+</context>
 </TS>
