@@ -242,6 +242,7 @@ def _windows_end_with_their_test(request):
     # top-level widget, and one that a garbage collection was deleting meanwhile made that
     # line segfault (about one full run in three, in this teardown).
     windows = [w for w in list(MainWindow.alive) if isValid(w)]
+    params: list = []
     for w in windows:
         if getattr(w, "language", "en") != "en":
             # a test that switched the window to Chinese and did not switch back would
@@ -252,8 +253,18 @@ def _windows_end_with_their_test(request):
         w.close()  # as the application does: closeEvent stops the jobs and the docks
         w.lod_worker.wait(60_000)
         w.project.detach()
+        params += _parameters(w)
         w.deleteLater()
     if windows:
+        QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.Type.DeferredDelete)
+        # The parameters panel's pyqtgraph Parameters are QObjects with no Qt parent: the
+        # window's deletion leaves them (~420 a window), and frozen below they lived to the
+        # end of the run, each window's deletion slower than the last (0.037 s of CPU for
+        # the first, 0.12 s for the eighth; flat with them deleted; docs/benchmarks.md,
+        # Session 31). Deleted once their tree is gone.
+        for p in params:
+            p.deleteLater()
+        del params
         QtCore.QCoreApplication.sendPostedEvents(None, QtCore.QEvent.Type.DeferredDelete)
         # Not gc.collect(): the cycles left hold Python wrappers of Qt objects the
         # DeferredDelete just destroyed, and collecting those is the PySide/pyqtgraph
@@ -261,6 +272,17 @@ def _windows_end_with_their_test(request):
         # this collect. Frozen, they are never collected: a bounded leak until the
         # process ends, as the application freezes its start-up objects.
         gc.freeze()
+
+
+def _parameters(window) -> list:
+    """Every pyqtgraph Parameter of the window's parameters panel, the root included."""
+    root = getattr(getattr(window, "params", None), "root", None)
+    found, todo = [], [root] if root is not None else []
+    while todo:
+        p = todo.pop()
+        found.append(p)
+        todo.extend(p.children())
+    return found
 
 
 # -- leaving ------------------------------------------------------------------------------
