@@ -463,6 +463,12 @@ class TimeController(QtCore.QObject):
         self._timer.setInterval(50)
         self._timer.timeout.connect(self._rebuild)
         window.layersChanged.connect(self._timer.start)
+        # A layer's drawing swapped in without a layer change (restyled: View ▸ Colour
+        # tracks … apart, as points; its sensors filtered): cut to the window again.
+        self._recut = QtCore.QTimer(self)
+        self._recut.setSingleShot(True)
+        self._recut.setInterval(50)
+        self._recut.timeout.connect(self._recut_now)
         window.activeChanged.connect(self._active_changed)
         panel.time_changed.connect(self._draw)
         panel.time_changed.connect(lambda _t: self._time_timer.start())
@@ -483,7 +489,26 @@ class TimeController(QtCore.QObject):
     @property
     def busy(self) -> bool:
         """A rebuild or a window cut is waiting or running."""
-        return self._timer.isActive() or self._pending > 0 or self.overlay.busy
+        return (
+            self._timer.isActive()
+            or self._recut.isActive()
+            or self._pending > 0
+            or self.overlay.busy
+        )
+
+    def layer_swapped(self) -> None:
+        """A layer's full drawing was put on the map (the window's drawing queue): once
+        the queue is through, the layers whose shown drawing is no more their cut are
+        cut again (a restyle swaps in the whole layer and is no layer change)."""
+        self._recut.start()
+
+    def _recut_now(self) -> None:
+        if self._timer.isActive():
+            return  # the rebuild cuts
+        if self.window.drawing:
+            self._recut.start()
+            return
+        self._apply_window(self._originals())
 
     def _originals(self) -> dict[str, tuple[DrawData, object, bool, object]]:
         """The map layers of the visible session layers, by map name: (their full draw

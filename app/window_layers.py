@@ -337,6 +337,9 @@ class LayersMixin:
                 for data in drawn:
                     self.canvas.set_draw_data(data, layer.visible)
                 self._after_swap(lid)
+                timing = getattr(self, "time_controller", None)
+                if timing is not None:
+                    timing.layer_swapped()  # cut to the time window again
                 if layer.visible and self.canvas.isVisible():
                     # Paint now, in this turn: Qt would merge the paints of layers swapped in
                     # on successive turns into one long paint of them all.

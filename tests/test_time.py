@@ -841,3 +841,33 @@ def test_elapsed_times_round_before_they_are_cut():
     assert format_elapsed(61.5) == "T+0:01:01.5"
     assert format_elapsed(-30.0) == "T-0:00:30"
     assert _said_time("NaT") == "NaT" and _said_time("") == ""
+
+
+@pytest.mark.gui
+def test_a_layer_restyled_or_recoloured_under_a_time_window_stays_cut(window, qtbot, tmp_path):
+    """View ▸ Colour tracks … apart switched off with a time window set drew every point
+    of the layer (its restyled drawing swapped in whole, nothing cut it again); the same
+    for switching it on again and for Layers ▸ Colour…."""
+    t0 = _scene_csv(tmp_path / "four.csv")
+    lid = _load(window, qtbot, tmp_path / "four.csv")
+    window.set_color_by_track(True)
+    _idle(window, qtbot)
+    assert window.canvas.draw_data(lid).geometry.plain is not None  # coloured by track
+    with qtbot.waitSignal(window.time_controller.window_applied, timeout=10_000):
+        window.time_panel.set_time_window((t0 + 695.0, t0 + 1000.0))  # track 2: 30 points
+    assert window.canvas.draw_data(lid).geometry.n_points == 30
+    for on in (False, True):
+        window.set_color_by_track(on)
+        _idle(window, qtbot)
+        assert (window.views[lid].draw.geometry.plain is not None) == on  # restyled
+        geom = window.canvas.draw_data(lid).geometry
+        assert geom.n_points == 30 and geom.batch.tolist() == ["2"]
+    window.set_color_by_track(False)
+    _idle(window, qtbot)
+    window.session.set_color(lid, "#123456")
+    _idle(window, qtbot)
+    geom = window.canvas.draw_data(lid).geometry
+    assert geom.colors[0] == "#123456" and geom.n_points == 30
+    with qtbot.waitSignal(window.time_controller.window_applied, timeout=10_000):
+        window.time_panel.set_time_window(None)
+    assert window.canvas.draw_data(lid).geometry.n_points == 170
