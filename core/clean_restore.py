@@ -84,7 +84,8 @@ def chosen_ids(
 ) -> np.ndarray:
     """The ``wl_id`` of the restorable rejected rows that match every condition given:
     removed or changed by one of ``rules``; of ``track`` (sensor, batch as text); inside
-    ``box`` (west, south, east, north, degrees; east < west crosses 180°); among
+    ``box`` (west, south, east, north, degrees; east < west crosses 180°; east - west
+    of 360 or more: every longitude); among
     ``ids``. Sorted, each once. Raises :class:`InputError` for a rule no row names."""
     keep = restorable(rejected)
     if rules:
@@ -104,8 +105,10 @@ def chosen_ids(
         west, south, east, north = map(float, box)
         lon = pd.to_numeric(rejected["lon"], errors="coerce").to_numpy(dtype="float64")
         lat = pd.to_numeric(rejected["lat"], errors="coerce").to_numpy(dtype="float64")
-        lon = (lon - west) % 360.0  # degrees east of the box's west edge
-        inside = (lon <= (east - west) % 360.0) & (lat >= south) & (lat <= north)
+        inside = (lat >= south) & (lat <= north)
+        if east - west < 360.0:  # else every longitude (a view zoomed out past the world)
+            lon = (lon - west) % 360.0  # degrees east of the box's west edge
+            inside &= lon <= (east - west) % 360.0
         keep &= inside
     if ids is not None:
         keep &= rejected[ID].isin(np.asarray(list(ids), dtype="int64")).to_numpy()

@@ -384,6 +384,10 @@ def test_chosen_ids_in_a_box_across_180():
     assert chosen_ids(rej, box=(179.0, -1.0, -179.0, 1.0)).tolist() == [1, 2]
     assert chosen_ids(rej, box=(179.0, -1.0, -179.0, 10.0)).tolist() == [1, 2]  # 4: replaced
     assert chosen_ids(rej, box=(0.0, -1.0, 20.0, 1.0)).tolist() == [3]
+    # The whole world (Edit ▸ Restore … in the view zoomed out past 360°: the window asks
+    # for -180 … 180) holds every point; it held none but those at exactly -180°.
+    assert chosen_ids(rej, box=(-180.0, -1.0, 180.0, 1.0)).tolist() == [1, 2, 3]
+    assert chosen_ids(rej, box=(-200.0, -1.0, 170.0, 1.0)).tolist() == [1, 2, 3]
 
 
 def test_report_counts_per_rule_and_track():
