@@ -323,6 +323,24 @@ def knot_vector(t: np.ndarray, order: int = 3, points_per_knot: int | None = Non
     return np.concatenate([np.full(order + 1, t[0]), inner, np.full(order + 1, t[-1])])
 
 
+def _knots_with_points(tt: np.ndarray, kv: np.ndarray, order: int = 3) -> np.ndarray:
+    """``kv`` (a clamped knot vector on times ``tt``) when every span between its
+    distinct knots holds a point; else its interior knots moved to the times of evenly
+    spaced points (as many): knots evenly spaced in time left spans in a track's long
+    gap with no point, and the least-squares fit had no solution (every position NaN)."""
+    inner = kv[order + 1 : -(order + 1)]
+    if not len(inner):
+        return kv
+    edges = np.concatenate([[tt[0]], inner, [tt[-1]]])
+    span = np.searchsorted(edges, tt, side="right").clip(1, len(edges) - 1)
+    if len(np.unique(span)) == len(edges) - 1:
+        return kv
+    at = np.round(np.linspace(0, len(tt) - 1, len(inner) + 2)[1:-1]).astype("int64")
+    inner = np.unique(tt[at])
+    inner = inner[(inner > tt[0]) & (inner < tt[-1])]
+    return np.concatenate([np.full(order + 1, tt[0]), inner, np.full(order + 1, tt[-1])])
+
+
 def spline_fit(
     t: np.ndarray,
     x: np.ndarray,
@@ -338,16 +356,20 @@ def spline_fit(
     whose smoothing is chosen by generalized cross-validation. A span of fewer than 5
     points or with repeated times is left as it is. Rule 10 (:func:`bspline_segments`)
     fits its segments with it, rule 9's ``method="bspline"`` (:func:`smooth`) whole
-    tracks."""
+    tracks. Knots evenly spaced in time that leave a span without a point (a gap in a
+    track) are put at evenly spaced points instead; a fit with no solution leaves the
+    span as it is."""
     from scipy.interpolate import make_lsq_spline, make_smoothing_spline  # lazy: slow
 
     for a, b in zip(starts, ends, strict=True):  # one fit per span, not per point
         if b - a >= 5 and np.all(np.diff(t[a:b]) > 0):
             tt = t[a:b] - t[a]
             if knots:
-                kv = knot_vector(tt, points_per_knot=points_per_knot)
-                x[a:b] = make_lsq_spline(tt, x[a:b], kv, k=3)(tt)
-                y[a:b] = make_lsq_spline(tt, y[a:b], kv, k=3)(tt)
+                kv = _knots_with_points(tt, knot_vector(tt, points_per_knot=points_per_knot))
+                fx = make_lsq_spline(tt, x[a:b], kv, k=3)(tt)
+                fy = make_lsq_spline(tt, y[a:b], kv, k=3)(tt)
+                if np.isfinite(fx).all() and np.isfinite(fy).all():
+                    x[a:b], y[a:b] = fx, fy
             else:
                 x[a:b] = make_smoothing_spline(tt, x[a:b])(tt)
                 y[a:b] = make_smoothing_spline(tt, y[a:b])(tt)

@@ -169,6 +169,24 @@ def test_smooth_cubic_bspline_option_reduces_noise_same_rows(seed):
     assert np.abs(coarse.lon - out.lon).max() > 1e-6  # about 0.1 m
 
 
+@pytest.mark.parametrize("seed", [0, 1])
+def test_smooth_bspline_over_a_long_gap_in_a_track_gives_positions(seed):
+    """Knots evenly spaced in time put knot spans with no point in a track's gap (an
+    AIS ship silent for hours): the least-squares fit had no solution and every point
+    of the track came out NaN. Each part's noise is still reduced."""
+    rng = np.random.default_rng(seed)
+    true1, noisy1 = _turning_track(60, "a", rng)
+    true2, noisy2 = _turning_track(60, "a", rng)
+    later = pd.to_timedelta(10, unit="h")
+    true = pd.concat([true1, true2.assign(time=true2.time + later)], ignore_index=True)
+    noisy = pd.concat([noisy1, noisy2.assign(time=noisy2.time + later)], ignore_index=True)
+    out = smooth(noisy, SmoothParams(enabled=True, method="bspline"))
+    assert len(out) == len(noisy) and np.isfinite(out[["lon", "lat"]].to_numpy()).all()
+    before = geo.haversine_m(noisy.lon, noisy.lat, true.lon, true.lat).mean()
+    after = geo.haversine_m(out.lon, out.lat, true.lon, true.lat).mean()
+    assert after < 0.6 * before
+
+
 def test_smooth_bspline_is_rule_10s_fit_not_a_copy(monkeypatch):
     """Rule 9's B-spline and rule 10 call the one fit (transform.spline_fit)."""
     from wakeline.core import transform
