@@ -73,6 +73,7 @@ class RestoreTool(QtCore.QObject):
         self._applying = False  # our own "changed" event (not a re-run)
         self._todo: list[CR.Restore] = []  # do / undo / redo waiting for the worker
         self._job: int | None = None
+        self._making: CR.Restore | None = None  # the change the worker makes now
         from wakeline.app.worker import JobRunner
 
         self.runner = JobRunner(self)
@@ -151,6 +152,12 @@ class RestoreTool(QtCore.QObject):
         """Put the rejected points ``ids`` (``wl_id``) of layer ``lid`` back, through
         its undo stack. False (the log says why) when nothing could be restored."""
         layer = self.w.session.get(lid)
+        pending = self._pending_ids(lid)
+        if len(pending):  # restores not swapped in yet: their points are not asked twice
+            ids = np.setdiff1d(np.asarray(list(ids), dtype="int64"), pending)
+            if not len(ids):
+                self.w.log_message(tr("Restore: those points are being restored"))
+                return False
         try:
             change = CR.restore_change(layer, ids)
         except InputError as exc:
@@ -161,6 +168,15 @@ class RestoreTool(QtCore.QObject):
         self.stack(lid).push(RestoreCommand(self, change))
         self._keep_active()
         return True
+
+    def _pending_ids(self, lid: str) -> np.ndarray:
+        """The points of layer ``lid`` the changes queued or being made will have put
+        back (a restore chosen meanwhile still sees them in the rejected table)."""
+        out: set[int] = set()
+        for change in [self._making, *self._todo]:
+            if change is not None and change.layer == lid:
+                out = out - set(change.ids) if change.undo else out | set(change.ids)
+        return np.array(sorted(out), dtype="int64")
 
     def _apply(self, change: CR.Restore) -> None:
         """Apply ``change`` (a command's do, undo or redo): queued, then made in the
@@ -196,13 +212,14 @@ class RestoreTool(QtCore.QObject):
                 return change, points, prepare_view(pts, *look, previous=previous), rej
 
             self._job = self.runner.run("restore", job)
+            self._making = change
 
     def _on_message(self, msg) -> None:
         from wakeline.app.worker import Cancelled, Failed, Finished
 
         if not isinstance(msg, Finished | Failed | Cancelled) or msg.job != self._job:
             return
-        self._job = None
+        self._job = self._making = None
         try:
             if isinstance(msg, Failed):
                 self.w.log_message(tr("Restore: {0}").format(msg.message))

@@ -1598,6 +1598,34 @@ def test_points_removed_by_cleaning_drawn_as_an_overlay(window):
     assert name not in window.canvas.layer_names()
 
 
+def test_a_point_restored_twice_before_the_first_is_back_is_restored_once(window, qtbot):
+    """Restore this point chosen again while the first restore is still made in the
+    worker: the second passed its check (the point still in the rejected table), failed
+    in the worker, and stayed on the undo stack as done; its undo then took the first's
+    point out and a second undo put its row into the rejected table twice."""
+    load(window, demo_path())
+    window.run_step("clean")
+    wait_for_jobs(window)
+    lid = _layer_of(window, "cleaned")
+    layer = window.layers[lid]
+    rej0, n0 = layer.tables["rejected"], len(layer.points)
+    wid = int(rej0[rej0.action == "removed"].wl_id.iloc[0])
+    tool = window.restore_tool
+    tool.restore(lid, [wid])
+    tool.restore(lid, [wid])  # before the first is swapped in
+    qtbot.waitUntil(lambda: not tool.busy, timeout=60_000)
+    wait_for_jobs(window)
+    assert layer.restored == [wid] and len(layer.points) == n0 + 1
+    stack = tool.stack(lid)
+    while stack.canUndo():
+        stack.undo()
+        qtbot.waitUntil(lambda: not tool.busy, timeout=60_000)
+        wait_for_jobs(window)
+    assert layer.restored == [] and len(layer.points) == n0
+    rej = layer.tables["rejected"]
+    assert len(rej) == len(rej0) and rej.wl_id.tolist() == rej0.wl_id.tolist()
+
+
 def test_removed_points_restored_from_the_map_with_undo(window, qtbot, tmp_path):
     """SPEC §2: the operator puts points removed by cleaning back — the × nearest a right
     click (one, or all its rule removed on its track), the selected tracks' or those in

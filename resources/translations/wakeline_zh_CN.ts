@@ -3276,6 +3276,10 @@
         <translation>恢复框内被删除的点（在地图上拖出方框）(&amp;B)</translation>
     </message>
     <message>
+        <source>Restore: those points are being restored</source>
+        <translation>恢复：这些点正在恢复中</translation>
+    </message>
+    <message>
         <source>Restore: no removed point there</source>
         <translation>恢复：该处没有被删除的点</translation>
     </message>
