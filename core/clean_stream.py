@@ -263,11 +263,22 @@ def _restored(points, trail, report, ids, rules):
                 "--rejected table of the same input and parameters"
             )
         chosen = np.union1d(chosen, ids)
-    back = trail[trail[ID].isin(chosen).to_numpy()].drop_duplicates(ID)
+    trail_back = trail[trail[ID].isin(chosen).to_numpy()]
+    back = trail_back.drop_duplicates(ID)
     points, trail = restore(points, trail, chosen)
     per_rule = {str(k): int(v) for k, v in back["rule"].value_counts(sort=False).items()}
+    # the rules' counts are of the rows left removed or changed (as the rejected table
+    # written, and a layer's counts after the window's Restore): the summary said
+    # "kept 30 of 30 points; removed 1" beside "restored 1"
+    rules_report = {name: dict(v) for name, v in report.get("rules", {}).items()}
+    moved = trail_back.drop_duplicates([ID, "action", "rule"])
+    for (action, rule), n in moved.groupby(["action", "rule"], sort=False).size().items():
+        entry = rules_report.get(str(rule))
+        if entry is not None and str(action) in entry:
+            entry[str(action)] = max(int(entry[str(action)]) - int(n), 0)
     report = {
         **report,
+        "rules": rules_report,
         "points_out": int(len(points)),
         "restored": {"points": int(len(chosen)), "rules": per_rule},
     }

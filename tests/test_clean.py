@@ -345,6 +345,17 @@ def test_cli_restore_list_and_rule(tmp_path):
         "points": keep.wl_id.nunique(),
         "rules": {rule: keep.wl_id.nunique()},
     }
+    # the report's counts are of the rows left removed or changed, as the rejected table
+    # written and the window's counts after a Restore (they said "kept N of N; removed M")
+    from wakeline.core.pipeline import clean_counts
+
+    left = pd.read_csv(rej2).drop_duplicates(["wl_id", "action", "rule"])
+    want = {
+        a: {k: int(v) for k, v in g.rule.value_counts().items()} for a, g in left.groupby("action")
+    }
+    assert clean_counts(report) == want
+    removed = sum(clean_counts(report).get("removed", {}).values())
+    assert report["points_out"] + removed == report["points_in"]
     out3 = tmp_path / "c3.csv"
     assert main(["clean", str(src), "-o", str(out3), "--restore-rule", rule]) == 0
     assert rows(out3) == base | set(map(tuple, r[r.rule == rule][key].astype(str).to_numpy()))
