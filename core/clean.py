@@ -80,7 +80,7 @@ from wakeline.core.errors import Cancelled, InputError
 from wakeline.core.params import Params, param
 from wakeline.core.progress import Progress, null_progress
 from wakeline.core.schema import ordered_columns, time_seconds
-from wakeline.core.tracks import TrackIndex, median_interval_s, sorted_with_index
+from wakeline.core.tracks import TrackIndex, median_interval_s, sorted_with_index, track_seconds
 from wakeline.core.transform import (
     BsplineParams,
     ResampleParams,
@@ -503,7 +503,7 @@ def track_jumps(points: pd.DataFrame, speed: "SpeedParams | None" = None) -> dic
     pts, index = sorted_with_index(points)
     lon = pts["lon"].to_numpy(dtype="float64")
     lat = pts["lat"].to_numpy(dtype="float64")
-    t = time_seconds(pts["time"])
+    t = track_seconds(pts)
     track = index.track_of_row
     dist, dt, _ = _Legs(lon, lat, t, track)(np.arange(len(pts)))
     bad = impossible_legs(dist, dt, speed.v_max_kn * geo.KN_MS, speed.tolerance_m)

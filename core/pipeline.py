@@ -461,7 +461,7 @@ def run_compress(points: pd.DataFrame, params: dict, progress: Progress = null_p
     # bounds of thousands of km with no word of why (operator test 10); said, not changed
     from wakeline.core.clean import CleanParams, track_jumps
 
-    jumps = track_jumps(points, _p(params, "clean", CleanParams).speed)
+    jumps = track_jumps(pts, _p(params, "clean", CleanParams).speed)  # sorted once, above
     if jumps is not None:
         report["jumps"] = jumps
     kept = comp.kept_points()
