@@ -274,7 +274,7 @@ class RestoreTool(QtCore.QObject):
                 )
             )
             return False
-        ids = np.unique(np.concatenate([CR.chosen_ids(rejected, track=(s, b)) for s, b in keys]))
+        ids = CR.chosen_ids(rejected, tracks=keys)
         return self.restore(layer.id, ids) if len(ids) else self._none_chosen()
 
     def restore_in_view(self, lid: str | None = None) -> bool:

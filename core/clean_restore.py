@@ -79,11 +79,13 @@ def chosen_ids(
     *,
     rules: list[str] | tuple[str, ...] | None = None,
     track: tuple[str, str] | None = None,
+    tracks=None,
     box: tuple[float, float, float, float] | None = None,
     ids=None,
 ) -> np.ndarray:
     """The ``wl_id`` of the restorable rejected rows that match every condition given:
-    removed or changed by one of ``rules``; of ``track`` (sensor, batch as text); inside
+    removed or changed by one of ``rules``; of ``track`` (sensor, batch as text); of one of
+    ``tracks`` (such pairs: the selected tracks, one pass over the table); inside
     ``box`` (west, south, east, north, degrees; east < west crosses 180°; east - west
     of 360 or more: every longitude); among
     ``ids``. Sorted, each once. Raises :class:`InputError` for a rule no row names."""
@@ -101,6 +103,11 @@ def chosen_ids(
     if track is not None:
         keep &= (rejected["sensor"].astype(str) == str(track[0])).to_numpy()
         keep &= (rejected["batch"].astype(str) == str(track[1])).to_numpy()
+    if tracks is not None:
+        pairs = pd.MultiIndex.from_arrays(
+            [rejected["sensor"].astype(str), rejected["batch"].astype(str)]
+        )
+        keep &= pairs.isin([(str(s), str(b)) for s, b in tracks])
     if box is not None:
         west, south, east, north = map(float, box)
         lon = pd.to_numeric(rejected["lon"], errors="coerce").to_numpy(dtype="float64")

@@ -968,3 +968,30 @@ def test_a_kept_breaks_time_is_said_as_the_window_says_it():
 
     assert _said_time("1970-01-01 00:09:09+00:00") == "T+0:09:09"
     assert _said_time("2024-08-02 04:39:14+00:00") == "2024-08-02 04:39:14"
+
+
+def test_chosen_ids_of_several_tracks_is_the_union_of_each_track():
+    # Edit ▸ Restore … on the selected tracks asks once for all of them (it asked per track)
+    rng = np.random.default_rng(5)
+    n = 400
+    rej = pd.DataFrame(
+        {
+            "sensor": rng.choice(["A", "B"], n),
+            "batch": rng.integers(0, 20, n).astype(str),
+            "wl_id": np.arange(n),
+            "lon": 0.0,
+            "lat": 0.0,
+            "rule": rng.choice(["speed", "duplicate"], n),
+            "action": rng.choice(["removed", "changed", "replaced"], n),
+        }
+    )
+    from wakeline.core.clean_restore import chosen_ids
+
+    keys = [("A", "3"), ("B", "3"), ("B", "17"), ("C", "1")]
+    each = np.unique(np.concatenate([chosen_ids(rej, track=k) for k in keys]))
+    both = chosen_ids(rej, tracks=keys)
+    assert len(both) > 0 and both.tolist() == each.tolist()
+    assert chosen_ids(rej, tracks=[("C", "1")]).tolist() == []
+    assert chosen_ids(rej, rules=["speed"], tracks=keys).tolist() == [
+        i for i in each if rej["rule"].iloc[i] == "speed"
+    ]
