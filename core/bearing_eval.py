@@ -186,11 +186,8 @@ def run_metrics(
             detected += 1
             reaction.append(hits[0].detect_time_s - t_m)
             error.append(abs(hits[0].maneuver_time_s - t_m))
-        if not false_alarms:
-            continue
-        t, b, olon, olat = simulate_bearings(rng, sc, 0.0, t_m, sigma_deg)
-        excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        false_alarm += bool(detect_sequence(t, b, params, excl, observer_xy(olon, olat)))
+        if false_alarms:
+            false_alarm += _alarm_without_turn(rng, sc, params, sigma_deg, t_m)
     return {
         "detection": detected / runs,
         "reaction_min": float(np.mean(reaction)) / 60 if reaction else float("nan"),
@@ -503,12 +500,16 @@ def sweep_bearing(
 
 def _false_alarm_rate(rng, sc: Scenario, params: BearingParams, runs: int, sigma: float) -> float:
     """Share of ``runs`` runs without a turn that raise any detection."""
-    alarms = 0
-    for _ in range(runs):
-        t, b, olon, olat = simulate_bearings(rng, sc, 0.0, 450.0, sigma)
-        excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
-        alarms += bool(detect_sequence(t, b, params, excl, observer_xy(olon, olat)))
-    return alarms / runs
+    return sum(_alarm_without_turn(rng, sc, params, sigma) for _ in range(runs)) / runs
+
+
+def _alarm_without_turn(
+    rng, sc: Scenario, params: BearingParams, sigma: float, t_m: float = 450.0
+) -> bool:
+    """One run of ``sc`` without its turn: whether it raises any detection (a false alarm)."""
+    t, b, olon, olat = simulate_bearings(rng, sc, 0.0, t_m, sigma)
+    excl = observer_maneuvering(t, olon, olat, params.observer_dv_ms)
+    return bool(detect_sequence(t, b, params, excl, observer_xy(olon, olat)))
 
 
 def _rate(p: float, n: int) -> str:
