@@ -95,14 +95,44 @@ class RemoveLayerCommand(LayerCommand):
         w.log_message(tr("Layer {0} restored").format(self.name))
 
 
-class ColorLayerCommand(LayerCommand):
+class InverseLayerCommand(LayerCommand):
+    """An edit whose session call (:meth:`apply`) returns the value that undoes it: the
+    first redo keeps that value, undo applies it; nothing while the command is stale or
+    the layer is gone."""
+
+    def __init__(self, window, layer_id: str, value) -> None:
+        super().__init__(window, layer_id)
+        self.value = value
+        self.old = None
+
+    def apply(self, value):
+        raise NotImplementedError
+
+    def _live(self) -> bool:
+        return not self.stale and self.layer_id in self.window.session.layers
+
+    def redo(self) -> None:
+        if not self._live():
+            return
+        old = self.apply(self.value)
+        if self.old is None:
+            self.old = old
+
+    def undo(self) -> None:
+        if self.old is None or not self._live():
+            return
+        self.apply(self.old)
+
+
+class ColorLayerCommand(InverseLayerCommand):
     """A layer drawn in the operator's colour (Layers ▸ Colour…); undo: the colour, and
     whether it was chosen, it had."""
 
     def __init__(self, window, layer_id: str, color: str) -> None:
-        super().__init__(window, layer_id)
-        self.color = color
-        self.old: tuple[str, bool] | None = None
+        super().__init__(window, layer_id, (color, True))
+
+    def apply(self, value: tuple[str, bool]) -> tuple[str, bool]:
+        return self.window.session.set_color(self.layer_id, *value)
 
     def undo_text(self) -> str:
         return tr("Undo &layer colour ({0})").format(self.name)
@@ -110,45 +140,19 @@ class ColorLayerCommand(LayerCommand):
     def redo_text(self) -> str:
         return tr("Redo layer colour ({0}) ag&ain").format(self.name)
 
-    def redo(self) -> None:
-        if self.stale or self.layer_id not in self.window.session.layers:
-            return
-        old = self.window.session.set_color(self.layer_id, self.color)
-        if self.old is None:
-            self.old = old
 
-    def undo(self) -> None:
-        if self.old is None or self.stale or self.layer_id not in self.window.session.layers:
-            return
-        self.window.session.set_color(self.layer_id, *self.old)
-
-
-class MoveLayerCommand(LayerCommand):
+class MoveLayerCommand(InverseLayerCommand):
     """A layer moved to another place of the order (Layers ▸ Move up / Move down, or
     dragged); undo: back to its place."""
 
-    def __init__(self, window, layer_id: str, pos: int) -> None:
-        super().__init__(window, layer_id)
-        self.pos = pos
-        self.old: int | None = None
+    def apply(self, pos: int) -> int:
+        return self.window.session.move_layer(self.layer_id, pos)
 
     def undo_text(self) -> str:
         return tr("Undo &layer move ({0})").format(self.name)
 
     def redo_text(self) -> str:
         return tr("Redo layer move ({0}) ag&ain").format(self.name)
-
-    def redo(self) -> None:
-        if self.stale or self.layer_id not in self.window.session.layers:
-            return
-        old = self.window.session.move_layer(self.layer_id, self.pos)
-        if self.old is None:
-            self.old = old
-
-    def undo(self) -> None:
-        if self.old is None or self.stale or self.layer_id not in self.window.session.layers:
-            return
-        self.window.session.move_layer(self.layer_id, self.old)
 
 
 class ReorderLayersCommand(LayerCommand):
