@@ -170,15 +170,22 @@ def restored_tables(
     return merged, both.iloc[order].reset_index(drop=True)
 
 
+def moved_counts(back: pd.DataFrame) -> dict[tuple[str, str], int]:
+    """Points per (action, rule) among rejected rows ``back`` (each point once per pair):
+    what a rule's counts lose when they are put back."""
+    first = back.drop_duplicates([ID, "action", "rule"])
+    sizes = first.groupby(["action", "rule"], sort=False).size()
+    return {(str(action), str(rule)): int(n) for (action, rule), n in sizes.items()}
+
+
 def _counts(counts: dict, back: pd.DataFrame, sign: int) -> dict:
     """``meta["clean_counts"]`` (per action, per rule) with ``back``'s rows taken out
     (``sign`` -1) or put in again (+1); actions and rules without points left out."""
     out = {action: dict(per) for action, per in (counts or {}).items()}
     if {"action", "rule"} <= set(back.columns):
-        first = back.drop_duplicates([ID, "action", "rule"])
-        for (action, rule), n in first.groupby(["action", "rule"], sort=False).size().items():
-            per = out.setdefault(str(action), {})
-            per[str(rule)] = per.get(str(rule), 0) + sign * int(n)
+        for (action, rule), n in moved_counts(back).items():
+            per = out.setdefault(action, {})
+            per[rule] = per.get(rule, 0) + sign * n
     return {
         a: {r: n for r, n in per.items() if n > 0} for a, per in out.items() if any(per.values())
     }

@@ -250,7 +250,7 @@ def _restored(points, trail, report, ids, rules):
     (``clean --restore``, ``--restore-rule``): (points, rejected, report), the report with
     ``restored`` (points and their rules) and ``points_out`` as written."""
     from wakeline.core.clean import ID, restore
-    from wakeline.core.clean_restore import chosen_ids
+    from wakeline.core.clean_restore import chosen_ids, moved_counts
 
     chosen = chosen_ids(trail, rules=rules) if rules else np.zeros(0, dtype="int64")
     if ids is not None:
@@ -271,11 +271,10 @@ def _restored(points, trail, report, ids, rules):
     # written, and a layer's counts after the window's Restore): the summary said
     # "kept 30 of 30 points; removed 1" beside "restored 1"
     rules_report = {name: dict(v) for name, v in report.get("rules", {}).items()}
-    moved = trail_back.drop_duplicates([ID, "action", "rule"])
-    for (action, rule), n in moved.groupby(["action", "rule"], sort=False).size().items():
-        entry = rules_report.get(str(rule))
-        if entry is not None and str(action) in entry:
-            entry[str(action)] = max(int(entry[str(action)]) - int(n), 0)
+    for (action, rule), n in moved_counts(trail_back).items():
+        entry = rules_report.get(rule)
+        if entry is not None and action in entry:
+            entry[action] = max(int(entry[action]) - n, 0)
     report = {
         **report,
         "rules": rules_report,
