@@ -24,7 +24,7 @@ from wakeline.app.layer_view import (
 from wakeline.app.map_canvas import color_icon
 from wakeline.app.models import batch_summary
 from wakeline.core.errors import InputError
-from wakeline.core.session import BEARING_KIND, Layer
+from wakeline.core.session import BEARING_KIND, COLOR_CHOSEN, Layer, check_color
 
 
 def layer_text(layer: Layer, gap: str = "  ") -> str:
@@ -181,7 +181,7 @@ class LayersMixin:
                 self.views[lid] = bearing_layer_view(layer.points, detections, report, scene)
             return
         pending = self._pending_views.pop((layer.step, layer.role), None)
-        chosen = bool(layer.meta.get("color_chosen"))  # the operator's (Colour…): kept
+        chosen = bool(layer.meta.get(COLOR_CHOSEN))  # the operator's (Colour…): kept
         if pending is not None:
             self.views[lid] = pending
             if chosen and pending.draw is not None and pending.colors[:1] != (layer.color,):
@@ -778,13 +778,11 @@ class LayersMixin:
         if layer is None or layer.kind == BEARING_KIND:
             return
         try:
-            from wakeline.core.session import check_color
-
             color = check_color(color)
         except InputError as exc:
             self.log_message(f"{self.tr('Error')}: {exc}")
             return
-        if color != layer.color or not layer.meta.get("color_chosen"):
+        if color != layer.color or not layer.meta.get(COLOR_CHOSEN):
             self.layer_undo.push(ColorLayerCommand(self, lid, color))
 
     def move_layer(self, lid: str | None, delta: int) -> None:
