@@ -121,13 +121,16 @@ RETIRED: dict[str, Retired] = {
 }
 
 
+def _retired(name: str) -> Retired | None:
+    """The retired preset of this name or title (any case); None for any other."""
+    key = name.strip().lower()
+    return next((r for r in RETIRED.values() if key in (r.name, r.title.lower())), None)
+
+
 def retired_note(name: str) -> str | None:
     """The note for a retired preset's name or title (any case); None for any other."""
-    key = name.strip().lower()
-    for r in RETIRED.values():
-        if key in (r.name, r.title.lower()):
-            return r.note
-    return None
+    r = _retired(name)
+    return r.note if r is not None else None
 
 
 def preset(name: str) -> Preset:
@@ -139,9 +142,9 @@ def preset(name: str) -> Preset:
     for p in table.values():
         if key in (p.name, p.title.lower()):
             return p
-    for r in RETIRED.values():
-        if key in (r.name, r.title.lower()):
-            return Preset(r.name, r.title, r.note, r.note, {})
+    r = _retired(name)
+    if r is not None:
+        return Preset(r.name, r.title, r.note, r.note, {})
     raise InputError(f"unknown preset {name!r}; presets: {', '.join(table)}")
 
 
