@@ -111,8 +111,8 @@ def test_batch_reads_with_skip_rows(titled, tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["batch", str(pipe), str(titled), "-o", str(out)]) == 2
     assert "--skip-rows" in capsys.readouterr().err
-    # 3: written, its one bad row quarantined (exit 0 before h236)
-    assert main(["batch", str(pipe), str(titled), "-o", str(out), "--skip-rows", "12"]) == 3
+    # 0: written, its one bad row quarantined and counted (3 is for a refused input)
+    assert main(["batch", str(pipe), str(titled), "-o", str(out), "--skip-rows", "12"]) == 0
     rep = json.loads((out / "report.json").read_text())
     assert rep["quarantined"] == 1
     assert rep["skipped_above_header"] == NOTES and rep["blank_lines"] == 1
