@@ -207,8 +207,11 @@ class SensorsMixin:
 
     def _after_filter(self, lid: str) -> None:
         """A layer's view swapped for its sensors shown: drawn, and the batch table,
-        labels and counts follow when it is the active layer."""
+        labels and counts follow when it is the active layer; the time slider's markers
+        and trails too (its index was made over the view before: a hidden sensor's
+        position stayed on the map, operator test 11)."""
         self._queue_draw(lid)
+        self.layersChanged.emit()
         if lid == self.active:
             self._make_current = lid
         self.show_counts()

@@ -177,3 +177,31 @@ def test_a_failed_sensor_filter_shows_the_layer_whole_once_not_again_and_again(
     assert "sensors hidden" not in w.counts_text
     assert "radar" in w.log.toPlainText().splitlines()[-1]
     w.close()
+
+
+def _time_tracks(w) -> int:
+    """How many tracks the time slider's markers run over (its index, once rebuilt)."""
+    from PySide6 import QtCore, QtWidgets
+
+    tc = w.time_controller
+    timer = QtCore.QElapsedTimer()
+    timer.start()
+    while (tc.busy or w.drawing) and timer.elapsed() < 20_000:
+        QtWidgets.QApplication.processEvents(QtCore.QEventLoop.ProcessEventsFlag.AllEvents, 20)
+    _settle(w)
+    return len(tc.overlay.scene.color_of_track)
+
+
+def test_a_hidden_sensors_tracks_leave_the_time_sliders_markers(qtbot, tmp_path):
+    """Operator test 11 (h249): on Autoferry radar + lidar, radar hidden, the position
+    marker of a radar plot stayed on the map at the slider's time (the slider's index was
+    made before the filter and not again)."""
+    w, lid = _loaded(qtbot, tmp_path)
+    assert _time_tracks(w) == 3  # AIS 101, 102 and radar 7
+    _sensor_actions(w)["radar"].setChecked(False)
+    _settle(w)
+    assert _time_tracks(w) == 2  # the radar's track gone from the markers and trails
+    _sensor_actions(w)["radar"].setChecked(True)
+    _settle(w)
+    assert _time_tracks(w) == 3
+    w.close()
