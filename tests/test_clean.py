@@ -312,7 +312,7 @@ def dataclasses_replace(obj, **kw):
     return dataclasses.replace(obj, **kw)
 
 
-def test_cli_restore_list_and_rule(tmp_path):
+def test_cli_restore_list_and_rule(tmp_path, capsys):
     """``clean --restore LIST.csv`` (rows of a --rejected table the operator kept) and
     ``--restore-rule RULE`` put those points back after cleaning, as the window does."""
     from wakeline.core.io import write_points
@@ -357,7 +357,15 @@ def test_cli_restore_list_and_rule(tmp_path):
     removed = sum(clean_counts(report).get("removed", {}).values())
     assert report["points_out"] + removed == report["points_in"]
     out3 = tmp_path / "c3.csv"
+    capsys.readouterr()
     assert main(["clean", str(src), "-o", str(out3), "--restore-rule", rule]) == 0
+    # the summary's kept count includes the restored points and its removed count does
+    # not subtract them: the restored line says so (operator test 11: 6,662 kept +
+    # 12,174 removed of 18,834 read, unexplained)
+    said = capsys.readouterr().err
+    n_rule = int((r.rule == rule).sum())
+    assert f"restored {n_rule:,} points" in said
+    assert "the kept count above includes them" in said
     assert rows(out3) == base | set(map(tuple, r[r.rule == rule][key].astype(str).to_numpy()))
     assert main(["clean", str(src), "-o", str(tmp_path / "x.csv"), "--restore-rule", "nope"]) == 2
     assert main(["clean", str(src), "-o", str(tmp_path / "x.csv"), "--restore", str(src)]) == 2
