@@ -910,28 +910,40 @@ class ReviewDock(QtCore.QObject):
         shown = b is not None and b.arrays is not None and layer is not None and layer.visible
         # the same queue, decisions and language: nothing to do (J/K move between
         # proposals; a decision, undo or redo adds to the state's log)
-        key = (id(b), len(b.controller.state.log), tr("pending join (dashed)")) if shown else None
+        # the current proposal's join is its connector's (drawn once: two dashed lines
+        # over each other looked solid, a pending join as an accepted one; h249)
+        current = getattr(self, "_joins_current", None)
+        key = (
+            (id(b), len(b.controller.state.log), tr("pending join (dashed)"), current)
+            if shown
+            else None
+        )
         if key is not None and key == getattr(self, "_joins_key", None):
             return
         self._joins_key = key
         segments: dict = {}
+        named: set | None = None  # the kinds the legend names (None: those drawn)
         if shown:
             t, lon, lat, _west = b.arrays
-            segments = join_segments(b.controller.state, t, lon, lat, b.ranges)
+            segments = join_segments(b.controller.state, t, lon, lat, b.ranges, skip=current)
+            if current is not None:  # the legend names the current one's kind too
+                every = join_segments(b.controller.state, t, lon, lat, b.ranges)
+                named = {k for k, (x, _y) in every.items() if len(x)}
         canvas = self.w.canvas
         for status in JOIN_STYLE:
             lon, lat = segments.get(status, (np.zeros(0), np.zeros(0)))
+            has = bool(len(lon)) if named is None else status in named
             item = self._joins.get(status)
             if item is None:
-                if not len(lon):
+                if not has:
                     continue
                 item = pg.PlotDataItem([], [], pen=join_pen(status, 1.2))
                 item.setZValue(Z_GAP - 1)  # under the current proposal's connector
                 canvas.addItem(item)
                 self._joins[status] = item
             item.setData(lon, lat, connect="finite")
-            item.setVisible(bool(len(lon)))
-            self._join_legend(item, join_text(status) if len(lon) else None)
+            item.setVisible(has)
+            self._join_legend(item, join_text(status) if has else None)
 
     def layer_visibility_changed(self, lid: str) -> None:
         """Layer ``lid`` hidden or shown (the Layers list): the joins of the review bound
@@ -957,6 +969,7 @@ class ReviewDock(QtCore.QObject):
         b = self.bound
         self._geom = None
         self._views_todo = []
+        self._joins_current = proposal or None
         self._draw_joins()
         if b is None or not proposal:
             self._clear_items("proposal")

@@ -100,17 +100,23 @@ def join_segments(
     lon: np.ndarray,
     lat: np.ndarray,
     ranges: dict[str, tuple[int, int]],
+    skip: str | None = None,
 ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Every join of a review across a gap, by status (``pending``, ``accepted``): the
     straight line from the earlier track's last point to the later track's first, as
     the proposal's connector draws it; NaN-separated (lon, lat) pairs for one curve per
     status. ``t``, ``lon``, ``lat``: the review's points, time-sorted within each track,
     in the map's band; ``ranges``: each track's rows. Proposals whose tracks overlap in
-    time (two sensors' fusion) have no gap and no line; rejected and split ones none."""
+    time (two sensors' fusion) have no gap and no line; rejected and split ones none.
+    ``skip``: a proposal left out (the current one, whose connector the review draws:
+    two dashed lines of different widths over each other looked solid)."""
     status = np.asarray(state.status, dtype=object)
+    keep = np.ones(len(status), dtype=bool)
+    if skip is not None and skip in state._row:
+        keep[state._row[skip]] = False
     out = {}
     for kind in JOIN_STYLE:
-        rows = np.flatnonzero(status == kind)
+        rows = np.flatnonzero((status == kind) & keep)
         pairs = [
             (ranges[a], ranges[b])
             for a, b in zip(state.track_a[rows], state.track_b[rows], strict=True)
@@ -249,8 +255,39 @@ def tracks_geometry(
             plon, plat = predicted_path(
                 end, _end_velocity(*ta, at_end=True), start, _end_velocity(*tb, at_end=False)
             )
-            geom.predicted = (_continuous(np.r_[end[1], plon])[1:], plat)
+            if bends_off(plon, plat, end, start):
+                geom.predicted = (_continuous(np.r_[end[1], plon])[1:], plat)
+            # else the predicted path is the connector's straight line: drawn (dotted, 2 px)
+            # over it, it hid the dashes of a pending join, which looked accepted (solid);
+            # operator test 11, Saronic AIS, whose points have no speed nor course
     return geom
+
+
+#: A predicted path that strays less than this share of the gap's straight distance from
+#: the connector's line (and not past its ends) is that line (:func:`bends_off`).
+STRAIGHT_SHARE = 0.02
+
+
+def bends_off(
+    plon: np.ndarray,
+    plat: np.ndarray,
+    end: tuple[float, float, float],
+    start: tuple[float, float, float],
+    share: float = STRAIGHT_SHARE,
+) -> bool:
+    """Whether the predicted path (``plon, plat``) from ``end`` to ``start`` (t, lon, lat)
+    departs from their straight connector by more than ``share`` of its length (at least
+    0.5 m): sideways, or along it before ``end`` or past ``start``."""
+    x, y = geo.to_local(np.asarray(plon), np.asarray(plat), end[1], end[2])
+    ex, ey = geo.to_local(np.array([start[1]]), np.array([start[2]]), end[1], end[2])
+    length = float(np.hypot(ex[0], ey[0]))
+    tol = max(share * length, 0.5)
+    if length == 0.0:
+        return bool(np.hypot(x, y).max(initial=0.0) > tol)
+    ux, uy = ex[0] / length, ey[0] / length
+    along = x * ux + y * uy
+    side = np.abs(x * uy - y * ux)
+    return bool(side.max(initial=0.0) > tol or along.min() < -tol or along.max() > length + tol)
 
 
 def _in_band(tracks: list[tuple], west: float) -> list[tuple]:

@@ -206,7 +206,10 @@ def test_network_names_stay_inside_the_view(qtbot, controller, size):
 def test_map_geometry_of_a_proposal(scene, controller):
     pts, ap = scene
     st = controller.state
-    row = ap.iloc[int(np.argmax(ap["gap_s"].to_numpy()))]
+    # the longest gap whose predicted path bends off the straight connector (one on its
+    # line is left out: the connector's dashes alone, test below)
+    rows = (ap.iloc[int(k)] for k in np.argsort(-ap["gap_s"].to_numpy()))
+    row = next(r for r in rows if proposal_geometry(st, pts, r["proposal"]).predicted is not None)
     geom = proposal_geometry(st, pts, row["proposal"])
     names = [p.track for p in geom.pieces]
     assert set(names) == set(st.members(st.target(f"{row['sensor_a']}:{row['batch_a']}")))
@@ -792,3 +795,27 @@ def test_the_decision_log_writes_a_redo_as_a_redo_and_replays_it(controller, tmp
     store.apply(fresh, change.inverse(), "undo")
     store.apply(fresh, change, "redo")
     assert [e.action for e in store.load().log] == ["accept", "undo accept", "redo accept"]
+
+
+def test_a_predicted_path_on_the_connectors_line_is_not_drawn_over_its_dashes():
+    """Operator test 11 (h249): on the Saronic AIS (positions only) a pending join's
+    predicted path was the straight connector itself, drawn dotted 2 px over its dashes:
+    the pending join looked solid, as an accepted one. Such a path is left out; one that
+    bends off the line (or runs back before the old track's end) is kept."""
+    from wakeline.app.review_map import bends_off, predicted_path
+    from wakeline.core import geo
+
+    end, start = (0.0, 23.5, 37.3), (600.0, 23.51, 37.31)  # about 1.4 km in 600 s
+    still = predicted_path(end, (0.0, 0.0), start, (0.0, 0.0))
+    assert not bends_off(*still, end, start)
+    ex, ey = geo.to_local(np.array([start[1]]), np.array([start[2]]), end[1], end[2])
+    v = (ex[0] / 600.0, ey[0] / 600.0)  # steady along the line: the line itself
+    assert not bends_off(*predicted_path(end, v, start, v), end, start)
+    side = (-v[1], v[0])  # leaving at right angles: a curve
+    assert bends_off(*predicted_path(end, side, start, side), end, start)
+    back = (-3 * v[0], -3 * v[1])  # heading away first: runs back past the old end
+    assert bends_off(*predicted_path(end, back, start, v), end, start)
+    # a gap of no distance: only a path going somewhere bends
+    same = (600.0, end[1], end[2])
+    assert not bends_off(*predicted_path(end, (0.0, 0.0), same, (0.0, 0.0)), end, same)
+    assert bends_off(*predicted_path(end, (1.0, 0.0), same, (1.0, 0.0)), end, same)
