@@ -35,9 +35,19 @@ def tr(text: str) -> str:
     return QtCore.QCoreApplication.translate(TR_CONTEXT, text)
 
 
+def rule_name(rule: str) -> str:
+    """A clean rule's name in the window's language, as the clean summary and the
+    Parameters say it (转向异常 for turn; operator test 11: the Restore entries, undo
+    texts and log said the English identifiers in the Chinese window)."""
+    from wakeline.app.core_text import shown
+
+    return shown(rule)
+
+
 def rules_text(rules: dict[str, int]) -> str:
-    """ "speed 3, turn 1": points per rule (the rules' names as the report says them)."""
-    return ", ".join(f"{rule} {n:,}" for rule, n in rules.items())
+    """ "speed 3, turn 1": points per rule (the rules' names as the clean summary says
+    them, in the window's language)."""
+    return ", ".join(f"{rule_name(rule)} {n:,}" for rule, n in rules.items())
 
 
 class RestoreCommand(QtGui.QUndoCommand):
@@ -367,14 +377,16 @@ class RestoreTool(QtCore.QObject):
             row = w.session.get(lid).tables[CR.REJECTED].iloc[i]
             rule, wid = str(row["rule"]), int(row["wl_id"])
             sensor, batch = str(row["sensor"]), str(row["batch"])
-            one = QtGui.QAction(tr("Restore this point (removed by {0})").format(rule), w)
+            one = QtGui.QAction(
+                tr("Restore this point (removed by {0})").format(rule_name(rule)), w
+            )
             one.triggered.connect(lambda _=False: self.restore(lid, [wid]))
             out.append(one)
             rejected = w.session.get(lid).tables[CR.REJECTED]
             ids = CR.chosen_ids(rejected, rules=[rule], track=(sensor, batch))
             many = QtGui.QAction(
                 tr("Restore all {0} points removed by {1} on {2} · {3}").format(
-                    f"{len(ids):,}", rule, sensor, batch
+                    f"{len(ids):,}", rule_name(rule), sensor, batch
                 ),
                 w,
             )

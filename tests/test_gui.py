@@ -1878,3 +1878,22 @@ def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_p
     action.setChecked(True)
     wait_for_jobs(window)
     assert window.canvas.draw_data(lid).style.width == 0
+
+
+def test_restore_texts_name_the_clean_rules_in_the_windows_language(window):
+    """Operator test 11 (h249): in the Chinese window the map's Restore entries, Edit ▸
+    Undo's text and the log said the rules' English identifiers ("由 turn 删除") while the
+    clean summary and the Parameters say 转向异常: the names now come from the same
+    catalog."""
+    from wakeline.app.restore_points import rule_name, rules_text
+    from wakeline.core.clean import STEPS
+
+    window.set_language("zh_CN")
+    try:
+        names = {rule: rule_name(rule) for rule in (*STEPS, "same_time")}
+        assert all(name != rule and not name.isascii() for rule, name in names.items())
+        assert names["turn"] == "转向异常"
+        assert rules_text({"turn": 1, "stationary": 12_169}) == "转向异常 1, 静止点 12,169"
+    finally:
+        window.set_language("en")
+    assert rules_text({"turn": 1, "stationary": 12_169}) == "turn 1, stationary 12,169"

@@ -3285,11 +3285,11 @@
     </message>
     <message>
         <source>Restore this point (removed by {0})</source>
-        <translation>恢复此点（由 {0} 删除）</translation>
+        <translation>恢复此点（由{0}删除）</translation>
     </message>
     <message>
         <source>Restore all {0} points removed by {1} on {2} · {3}</source>
-        <translation>恢复 {2} · {3} 上由 {1} 删除的全部 {0} 个点</translation>
+        <translation>恢复 {2} · {3} 上由{1}删除的全部 {0} 个点</translation>
     </message>
     <message>
         <source>Restore removed points in the map's view</source>
