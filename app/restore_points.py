@@ -20,6 +20,7 @@ import math
 import numpy as np
 from PySide6 import QtCore, QtGui
 
+from wakeline.app.layer_names import shown_name
 from wakeline.core import clean_restore as CR
 from wakeline.core.errors import InputError
 
@@ -262,7 +263,9 @@ class RestoreTool(QtCore.QObject):
             if change.undo
             else tr("Restored {0} points removed by cleaning ({1}) into {2}")
         )
-        self.w.log_message(text.format(f"{len(change):,}", rules_text(change.rules), layer.name))
+        self.w.log_message(
+            text.format(f"{len(change):,}", rules_text(change.rules), shown_name(layer.name))
+        )
         made = self.w.session.children(layer.id)
         if made:  # their steps read the points before: said, not re-run by themselves
             self.w.log_message(

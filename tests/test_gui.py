@@ -1880,7 +1880,7 @@ def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_p
     assert window.canvas.draw_data(lid).style.width == 0
 
 
-def test_restore_texts_name_the_clean_rules_in_the_windows_language(window):
+def test_restore_texts_name_the_clean_rules_in_the_windows_language(window, qtbot):
     """Operator test 11 (h249): in the Chinese window the map's Restore entries, Edit ▸
     Undo's text and the log said the rules' English identifiers ("由 turn 删除") while the
     clean summary and the Parameters say 转向异常: the names now come from the same
@@ -1894,6 +1894,18 @@ def test_restore_texts_name_the_clean_rules_in_the_windows_language(window):
         assert all(name != rule and not name.isascii() for rule, name in names.items())
         assert names["turn"] == "转向异常"
         assert rules_text({"turn": 1, "stationary": 12_169}) == "转向异常 1, 静止点 12,169"
+        # the log names the layer as the Layers list does ("· 已清洗", not "· cleaned")
+        load(window, demo_path())
+        window.run_step("clean")
+        wait_for_jobs(window)
+        lid = _layer_of(window, "cleaned")
+        window.canvas.fit()
+        QtWidgets.QApplication.processEvents()
+        assert window.restore_tool.restore_in_view(lid)
+        qtbot.waitUntil(lambda: not window.restore_tool.busy, timeout=60_000)
+        wait_for_jobs(window)
+        said = window.log.toPlainText().splitlines()[-1]
+        assert "已清洗" in said and "cleaned" not in said and "恢复" in said
     finally:
         window.set_language("en")
     assert rules_text({"turn": 1, "stationary": 12_169}) == "turn 1, stationary 12,169"
