@@ -16,6 +16,7 @@ decision log keeps them), so the restored layer's review binds to them as before
 import shiboken6
 from PySide6 import QtCore, QtGui
 
+from wakeline.app import undo_order
 from wakeline.app.layer_names import shown_name
 from wakeline.core.errors import InputError
 
@@ -39,11 +40,16 @@ class LayerCommand(QtGui.QUndoCommand):
         self.name = shown_name(window.session.layers[layer_id].name)
         self.generation = window.session.generation
         super().__init__(self.name)
+        undo_order.stamp(self)  # Edit ▸ Undo's one order with the review's stacks
 
     @property
     def stale(self) -> bool:
         """The session was cleared since (a project opened or closed): nothing to undo."""
         return self.generation != self.window.session.generation
+
+    def label(self) -> str:
+        """The edit named after Edit ▸ Undo / Redo (the window's one pair)."""
+        return tr("remove layer {0}").format(self.name)
 
     def undo_text(self) -> str:
         return tr("Restore removed &layer {0}").format(self.name)
@@ -81,6 +87,7 @@ class RemoveLayerCommand(LayerCommand):
             self.setObsolete(True)
 
     def undo(self) -> None:
+        undo_order.undone(self)
         w, removal = self.window, self.removal
         if removal is None or self.stale:
             return
@@ -119,6 +126,7 @@ class InverseLayerCommand(LayerCommand):
             self.old = old
 
     def undo(self) -> None:
+        undo_order.undone(self)
         if self.old is None or not self._live():
             return
         self.apply(self.old)
@@ -134,6 +142,9 @@ class ColorLayerCommand(InverseLayerCommand):
     def apply(self, value: tuple[str, bool]) -> tuple[str, bool]:
         return self.window.session.set_color(self.layer_id, *value)
 
+    def label(self) -> str:
+        return tr("layer colour ({0})").format(self.name)
+
     def undo_text(self) -> str:
         return tr("Undo &layer colour ({0})").format(self.name)
 
@@ -147,6 +158,9 @@ class MoveLayerCommand(InverseLayerCommand):
 
     def apply(self, pos: int) -> int:
         return self.window.session.move_layer(self.layer_id, pos)
+
+    def label(self) -> str:
+        return tr("layer move ({0})").format(self.name)
 
     def undo_text(self) -> str:
         return tr("Undo &layer move ({0})").format(self.name)
@@ -163,6 +177,9 @@ class ReorderLayersCommand(LayerCommand):
         super().__init__(window, layer_id)
         self.order = list(order)
         self.old = list(window.session.layers)
+
+    def label(self) -> str:
+        return tr("layer move ({0})").format(self.name)
 
     def undo_text(self) -> str:
         return tr("Undo &layer move ({0})").format(self.name)
@@ -182,11 +199,14 @@ class ReorderLayersCommand(LayerCommand):
         self._put(self.order)
 
     def undo(self) -> None:
+        undo_order.undone(self)
         self._put(self.old)
 
 
 class LayerUndo:
-    """The window's stack of layer removals and its two Edit menu entries."""
+    """The window's stack of layer edits (removal, colour, order) and its two actions
+    (kept off the Edit menu: its one Undo / Redo pair takes this stack's edits in
+    turn with the review's, :mod:`~wakeline.app.undo_order`)."""
 
     def __init__(self, window, menu) -> None:
         self.window = window
@@ -196,8 +216,9 @@ class LayerUndo:
         self.act_undo.triggered.connect(self.undo)
         self.act_redo = QtGui.QAction(window)
         self.act_redo.triggered.connect(self.redo)
-        menu.addSeparator()
-        menu.addActions([self.act_undo, self.act_redo])
+        # Not in the Edit menu (operator test 11): Edit ▸ Undo / Redo (the review dock's,
+        # Ctrl+Z) undo the newest edit of this stack and the active layer's
+        # (undo_order); these stay for scripts and tests.
         menu.aboutToShow.connect(self.retranslate)
         for signal in (self.stack.indexChanged, self.stack.cleanChanged):
             signal.connect(self.retranslate)
@@ -231,6 +252,18 @@ class LayerUndo:
         self._drop_stale()
         self.stack.undo()
 
+    def took(self, layer) -> bool:
+        """``layer`` (the object) is one a removal on the stack took out (and is back
+        when its undo emits ``added``)."""
+        if layer is None or not self._alive():
+            return False
+        for k in range(self.stack.count()):
+            cmd = self.stack.command(k)
+            if isinstance(cmd, RemoveLayerCommand) and cmd.removal is not None:
+                if cmd.removal.layer is layer and not cmd.stale:
+                    return True
+        return False
+
     def redo(self) -> None:
         self._drop_stale()
         cmd = self.stack.command(self.stack.index()) if self.stack.canRedo() else None
@@ -257,3 +290,6 @@ class LayerUndo:
         self.act_redo.setText(
             redo.redo_text() if isinstance(redo, LayerCommand) else tr("Remove layer ag&ain")
         )
+        review = getattr(self.window, "review", None)
+        if review is not None:
+            review._undo_note()  # Edit ▸ Undo / Redo name the newest edit of both

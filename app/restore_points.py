@@ -20,6 +20,7 @@ import math
 import numpy as np
 from PySide6 import QtCore, QtGui
 
+from wakeline.app import undo_order
 from wakeline.app.layer_names import shown_name
 from wakeline.core import clean_restore as CR
 from wakeline.core.errors import InputError
@@ -58,6 +59,7 @@ class RestoreCommand(QtGui.QUndoCommand):
         self.tool = tool
         self.change = change
         super().__init__(self.title())
+        undo_order.stamp(self)  # Edit ▸ Undo's one order with the layer edits
 
     def title(self) -> str:
         """Edit ▸ Undo / Redo's text, in the current language."""
@@ -69,6 +71,7 @@ class RestoreCommand(QtGui.QUndoCommand):
         self.tool._apply(self.change)
 
     def undo(self) -> None:
+        undo_order.undone(self)
         self.tool._apply(self.change.inverse())
 
 
@@ -81,6 +84,9 @@ class RestoreTool(QtCore.QObject):
         self.w = w
         self.group: QtGui.QUndoGroup = w.review.group
         self.stacks: dict[str, QtGui.QUndoStack] = {}
+        #: the stacks of removed layers (Layer ▸ Remove), with the session's generation:
+        #: Edit ▸ Undo's Restore removed layer brings the layer and its restores back
+        self.parked: dict[str, tuple[QtGui.QUndoStack, int]] = {}
         self._applying = False  # our own "changed" event (not a re-run)
         self._todo: list[CR.Restore] = []  # do / undo / redo waiting for the worker
         self._job: int | None = None
@@ -139,10 +145,38 @@ class RestoreTool(QtCore.QObject):
             self.group.removeStack(stack)
             stack.deleteLater()
 
+    def _park(self, lid: str) -> None:
+        """Layer ``lid`` was removed: its stack leaves the group, kept for an undo of
+        the removal (operator test 11, F2: its restores could no longer be undone)."""
+        stack = self.stacks.pop(lid, None)
+        if stack is not None:
+            self.group.removeStack(stack)
+            self.parked[lid] = (stack, self.w.session.generation)
+
+    def _unpark(self, lid: str) -> None:
+        """Layer ``lid`` is back (its removal undone: the very layer the removal took, in
+        the same work): its stack too; parked stacks of closed work go (a project opened
+        may use the same ids again)."""
+        generation = self.w.session.generation
+        undo = getattr(self.w, "layer_undo", None)
+        back = undo is not None and undo.took(self.w.session.get(lid))
+        for key, (stack, gen) in list(self.parked.items()):
+            if gen != generation or key == lid:
+                del self.parked[key]
+                if key == lid and back and gen == generation and lid not in self.stacks:
+                    self.stacks[lid] = stack
+                    self.group.addStack(stack)
+                else:
+                    stack.deleteLater()
+
     def _on_event(self, event: str, lid: str) -> None:
-        if event == "removed" or (event == "changed" and not self._applying):
-            self._drop(lid)  # gone, or made again (a re-run): the commands are stale
-        if event in ("active", "removed", "changed"):
+        if event == "removed":
+            self._park(lid)  # gone: kept for an undo of the removal
+        elif event == "added":
+            self._unpark(lid)
+        elif event == "changed" and not self._applying:
+            self._drop(lid)  # made again (a re-run): the commands are stale
+        if event in ("active", "removed", "changed", "added"):
             self._keep_active()
 
     def _keep_active(self, *_args) -> None:

@@ -20,6 +20,7 @@ import pyqtgraph as pg
 import shiboken6
 from PySide6 import QtCore, QtGui, QtWidgets
 
+from wakeline.app import undo_order
 from wakeline.app.layer_names import shown_name
 from wakeline.app.map_canvas import MapCanvas
 from wakeline.app.map_colors import delta_e
@@ -345,10 +346,10 @@ class ReviewDock(QtCore.QObject):
         # back over the translated text (operator test h150). These set the text in the
         # current language each time (_undo_note).
         self.act_undo = QtGui.QAction(w)
-        self.act_undo.triggered.connect(self.group.undo)
+        self.act_undo.triggered.connect(self.undo)
         self.act_undo.setShortcut(QtGui.QKeySequence("Ctrl+Z"))
         self.act_redo = QtGui.QAction(w)
-        self.act_redo.triggered.connect(self.group.redo)
+        self.act_redo.triggered.connect(self.redo)
         self.act_redo.setShortcuts(
             [QtGui.QKeySequence("Ctrl+Shift+Z"), QtGui.QKeySequence("Ctrl+Y")]
         )
@@ -361,6 +362,7 @@ class ReviewDock(QtCore.QObject):
         ):
             signal.connect(self._undo_note)
         self.edit_menu.addActions([self.act_undo, self.act_redo])
+        self.edit_menu.aboutToShow.connect(self._undo_note)
         bar.insertMenu(w.menus["run"].menuAction(), self.edit_menu)
         self.review_menu = QtWidgets.QMenu(tr("Revie&w"), w)
         self.review_actions: dict[str, QtGui.QAction] = {}
@@ -430,19 +432,70 @@ class ReviewDock(QtCore.QObject):
         else:
             fuse_active(self.w)
 
+    def _stacks(self) -> list:
+        """The stacks Edit ▸ Undo / Redo choose from: the active layer's (its review
+        decisions or point restores, the group's active stack) and the window's layer
+        edits (colour, order, removal)."""
+        stacks = [self.group.activeStack()]
+        layers = getattr(self.w, "layer_undo", None)
+        if layers is not None and layers._alive():
+            layers._drop_stale()
+            stacks.append(layers.stack)
+        return stacks
+
+    def _layer_stack(self, stack) -> bool:
+        layers = getattr(self.w, "layer_undo", None)
+        return layers is not None and stack is layers.stack
+
+    def undo(self) -> None:
+        """Edit ▸ Undo (Ctrl+Z): the newest edit, whichever stack holds it
+        (:mod:`~wakeline.app.undo_order`; operator test 11: a colour change, then Ctrl+Z
+        took out an older point restore)."""
+        stack, _cmd = undo_order.pick_undo(self._stacks())
+        if stack is None:
+            return
+        if self._layer_stack(stack):
+            self.w.layer_undo.undo()
+        else:
+            stack.undo()
+        self._undo_note()
+
+    def redo(self) -> None:
+        """Edit ▸ Redo (Ctrl+Shift+Z): the edit undone last, whichever stack holds it."""
+        stack, _cmd = undo_order.pick_redo(self._stacks())
+        if stack is None:
+            return
+        if self._layer_stack(stack):
+            self.w.layer_undo.redo()
+        else:
+            stack.redo()
+        self._undo_note()
+
     def _undo_note(self, *_args) -> None:
-        """Edit ▸ Undo says why it has nothing to undo in the queue of a re-run: a step
-        run is not undone (no layer edit is), and the earlier run's undo history went
-        with its queue; what still applied was carried over (the log says what)."""
+        """Edit ▸ Undo / Redo name the edit they will undo / redo (the newest of the
+        active layer's stack and the layer edits'), and Undo says why it has nothing to
+        undo in the queue of a re-run: a step run is not undone (no layer edit is), and
+        the earlier run's undo history went with its queue; what still applied was
+        carried over (the log says what)."""
         group = self.group
         if not (shiboken6.isValid(group) and shiboken6.isValid(self.act_undo)):
             return  # the window is going
-        self.act_undo.setEnabled(group.canUndo())
-        self.act_undo.setText(undo_text(tr("&Undo"), group.undoText()))
-        self.act_redo.setEnabled(group.canRedo())
-        self.act_redo.setText(undo_text(tr("&Redo"), group.redoText()))
+        stacks = self._stacks()
+        u_stack, u_cmd = undo_order.pick_undo(stacks)
+        r_stack, r_cmd = undo_order.pick_redo(stacks)
+        can_undo = u_cmd is not None
+
+        def named(cmd, stack) -> str:
+            if cmd is None:
+                return ""
+            return cmd.label() if self._layer_stack(stack) else cmd.text()
+
+        self.act_undo.setEnabled(can_undo)
+        self.act_undo.setText(undo_text(tr("&Undo"), named(u_cmd, u_stack)))
+        self.act_redo.setEnabled(r_cmd is not None)
+        self.act_redo.setText(undo_text(tr("&Redo"), named(r_cmd, r_stack)))
         b = self.bound
-        if b is not None and b.rerun and not group.canUndo():
+        if b is not None and b.rerun and not can_undo:
             self.act_undo.setText(tr("&Undo (nothing since the step ran again)"))
             self.act_undo.setToolTip(
                 tr(
@@ -451,7 +504,7 @@ class ReviewDock(QtCore.QObject):
                     "ran included, were carried over, and the decision log keeps every one."
                 )
             )
-        elif b is not None and not group.canUndo() and self._repaired_only(b):
+        elif b is not None and not can_undo and self._repaired_only(b):
             # h196: a reopen rebuilds the undo stack from the stored rows (undo_history);
             # a repair made on opening is a barrier it does not cross.
             self.act_undo.setText(tr("&Undo (nothing since the repair made on opening)"))

@@ -8,6 +8,7 @@ is stored as the inverse change it is), so a reopened project replays to the sam
 
 from PySide6 import QtCore, QtGui
 
+from wakeline.app import undo_order
 from wakeline.core import review as R
 from wakeline.core.review_store import ReviewStore
 
@@ -34,6 +35,7 @@ class ReviewCommand(QtGui.QUndoCommand):
         self.change = change
         self.done = False  # redo() ran once: the next is a Redo, not the decision
         super().__init__(self.title())
+        undo_order.stamp(self)  # Edit ▸ Undo's one order with the layer edits
 
     def title(self) -> str:
         """The command's text in the current language (Edit ▸ Undo/Redo show it)."""
@@ -51,6 +53,7 @@ class ReviewCommand(QtGui.QUndoCommand):
         self.controller._apply(self.change, how)
 
     def undo(self) -> None:
+        undo_order.undone(self)
         self.controller._apply(self.change.inverse(), "undo")
 
 

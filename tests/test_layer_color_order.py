@@ -237,3 +237,151 @@ def test_order_sets_the_stacking_is_undone_and_kept_on_reopening(qtbot, tmp_path
     w2.actions_["active_on_top"].setChecked(False)
     assert _z(w2, cleaned) > _z(w2, src)
     w2.close()
+
+
+# -- one order for Edit ▸ Undo / Redo (operator test 11, h249 F1) -------------------------
+
+
+def _edit_texts(w):
+    return [a.text() for a in w.review.edit_menu.actions() if not a.isSeparator()]
+
+
+@pytest.mark.gui
+def test_ctrl_z_undoes_the_colour_before_an_older_point_restore(qtbot, tmp_path):
+    """Clean, restore the removed points in the view, colour the layer, Ctrl+Z: the
+    colour was kept and the older restore taken out (the layer edits sat on a second
+    stack with no shortcut). Now Edit ▸ Undo / Redo follow the order the edits were made
+    in, whichever stack holds them, and the Edit menu has one Undo and one Redo."""
+    from PySide6 import QtWidgets
+    from test_review_window import _settle
+
+    w, _src, cleaned = _two_layers(qtbot, tmp_path)
+    layer, tool = w.layers[cleaned], w.restore_tool
+
+    def settle():
+        qtbot.waitUntil(lambda: not tool.busy, timeout=60_000)
+        _settle(w)
+
+    n0, old = len(layer.points), layer.color
+    w.canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    assert tool.restore_in_view(cleaned)
+    settle()
+    n1 = len(layer.points)
+    assert n1 > n0
+    w.set_layer_color(cleaned, "#ff00ff")
+    _settle(w)
+    assert layer.color == "#ff00ff"
+    undo, redo = w.review.act_undo, w.review.act_redo
+    texts = _edit_texts(w)
+    assert sum(t.startswith("&Undo") for t in texts) == 1
+    assert sum(t.startswith("&Redo") for t in texts) == 1
+    assert not any("Restore removed &layer" in t or "ag&ain" in t for t in texts)
+    assert undo.isEnabled() and "layer colour" in undo.text()
+    assert undo.shortcut().toString() == "Ctrl+Z"
+    undo.trigger()  # the colour, not the restore
+    settle()
+    assert layer.color == old and len(layer.points) == n1
+    assert "restore" in undo.text() and "layer colour" in redo.text()
+    undo.trigger()  # then the restore
+    settle()
+    assert len(layer.points) == n0 and not undo.isEnabled()
+    assert "restore" in redo.text()
+    redo.trigger()  # redo in reverse: the restore first
+    settle()
+    assert len(layer.points) == n1 and layer.color == old
+    assert "layer colour" in redo.text()
+    redo.trigger()
+    settle()
+    assert layer.color == "#ff00ff" and not redo.isEnabled()
+    assert "layer colour" in undo.text()
+    w.close()
+
+
+@pytest.mark.gui
+def test_ctrl_z_undoes_a_layer_move_made_after_a_review_decision(qtbot, tmp_path):
+    """Accept a proposal, move a layer: Undo undoes the move, then the accept; Redo
+    redoes them in the reverse order; a decision made after an undone move drops the
+    move's Redo (as one stack would)."""
+    from test_gui_review_low import _fused_review
+    from test_review_window import _settle
+
+    w = _fused_review(qtbot, tmp_path)
+    ctl = w.review.bound.controller
+    pid = ctl.state.proposals["proposal"].tolist()[0]
+    ctl.accept(pid)
+    _settle(w)
+    assert ctl.state.status_of(pid) == "accepted"
+    order = list(w.layers)
+    lid = order[0]
+    w.move_layer(lid, 1)
+    _settle(w)
+    moved = list(w.layers)
+    assert moved != order
+    undo, redo = w.review.act_undo, w.review.act_redo
+    assert "layer move" in undo.text()
+    undo.trigger()
+    _settle(w)
+    assert list(w.layers) == order and ctl.state.status_of(pid) == "accepted"
+    assert "accept" in undo.text() and "layer move" in redo.text()
+    undo.trigger()
+    _settle(w)
+    assert ctl.state.status_of(pid) == "pending" and list(w.layers) == order
+    assert "accept" in redo.text()
+    redo.trigger()
+    _settle(w)
+    assert ctl.state.status_of(pid) == "accepted" and list(w.layers) == order
+    redo.trigger()
+    _settle(w)
+    assert list(w.layers) == moved and not redo.isEnabled()
+    undo.trigger()  # the move again
+    _settle(w)
+    assert list(w.layers) == order and redo.isEnabled()
+    other = ctl.state.proposals["proposal"].tolist()[1]
+    ctl.accept(other)  # a newer edit: the move's Redo is gone
+    _settle(w)
+    assert not redo.isEnabled()
+    redo.trigger()
+    _settle(w)
+    assert list(w.layers) == order
+    undo.trigger()
+    _settle(w)
+    assert ctl.state.status_of(other) == "pending" and list(w.layers) == order
+    w.close()
+
+
+@pytest.mark.gui
+def test_a_removed_layer_restored_keeps_its_point_restores_undoable(qtbot, tmp_path):
+    """h249 F2: after Layer ▸ Remove and its undo, the layer's point restores could no
+    longer be undone (their stack went with the layer); it is kept for the undo."""
+    from PySide6 import QtWidgets
+    from test_review_window import _settle
+
+    w, _src, cleaned = _two_layers(qtbot, tmp_path)
+    tool = w.restore_tool
+
+    def settle():
+        qtbot.waitUntil(lambda: not tool.busy, timeout=60_000)
+        _settle(w)
+
+    n0 = len(w.layers[cleaned].points)
+    w.canvas.fit()
+    QtWidgets.QApplication.processEvents()
+    assert tool.restore_in_view(cleaned)
+    settle()
+    n1 = len(w.layers[cleaned].points)
+    assert n1 > n0
+    w.select_layer(cleaned)
+    w.remove_active_layer()
+    settle()
+    undo = w.review.act_undo
+    assert cleaned not in w.layers and "remove layer" in undo.text()
+    undo.trigger()  # the removal
+    settle()
+    assert cleaned in w.layers and w.active == cleaned
+    assert len(w.layers[cleaned].points) == n1
+    assert undo.isEnabled() and "restore" in undo.text()
+    undo.trigger()  # then the restore made before it
+    settle()
+    assert len(w.layers[cleaned].points) == n0 and not undo.isEnabled()
+    w.close()

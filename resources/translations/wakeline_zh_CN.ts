@@ -3494,5 +3494,17 @@
         <source>Redo layer move ({0}) ag&amp;ain</source>
         <translation>重做图层移动（{0}）(&amp;A)</translation>
     </message>
+    <message>
+        <source>layer colour ({0})</source>
+        <translation>图层颜色（{0}）</translation>
+    </message>
+    <message>
+        <source>layer move ({0})</source>
+        <translation>图层移动（{0}）</translation>
+    </message>
+    <message>
+        <source>remove layer {0}</source>
+        <translation>移除图层 {0}</translation>
+    </message>
 </context>
 </TS>
