@@ -81,7 +81,15 @@ def translate(text: str, code: str, depth: int = 0) -> str:
 def shown(text) -> str:
     """A core message as the window shows it: the command line's flags as the import
     dialog's fields, in the window's language (:func:`translate`)."""
-    text = window_words(str(text))
+    return shown_cli(window_words(str(text)))
+
+
+def shown_cli(text) -> str:
+    """A core message as a window run says it on stderr (``wakeline gui … --screenshot``:
+    read at the command line), in the window's language but with the command line's flags
+    kept (``--map time=col4 --map lon=col2 …``, not the import dialog's Column mapping:
+    operator test 11, F7)."""
+    text = str(text)
     if _language == "en":
         return text
     return translate(text, _language)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from PySide6 import QtCore, QtWidgets
 
-from wakeline.app.core_text import shown
+from wakeline.app.core_text import shown, shown_cli
 from wakeline.app.dialogs import step_lines, summarize
 from wakeline.app.jobs_import import ImportJobsMixin
 from wakeline.app.jobs_project import ProjectJobsMixin
@@ -146,16 +146,18 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 out[key] = p.params(key)  # option sets (method …) keep their defaults
         return out
 
-    def tell(self, title: str, text: str, kind: str = "warning") -> None:
+    def tell(self, title: str, text: str, kind: str = "warning", cli: str | None = None) -> None:
         """A message box the operator closes, or — in a window nobody answers (a
         ``--screenshot`` run, a script: ``interactive`` False) — the same words on stderr,
         and the run goes on (operator test 9, D4: a failed file of several hung the
-        screenshot in a modal "Cannot open file" box). ``kind``: warning, information."""
+        screenshot in a modal "Cannot open file" box). ``kind``: warning, information.
+        ``cli``: the words for stderr when they differ from the window's (a core message
+        with its command-line flags, :func:`~wakeline.app.core_text.shown_cli`)."""
         if getattr(self, "interactive", True):
             box = QtWidgets.QMessageBox
             (box.information if kind == "information" else box.warning)(self, title, text)
             return
-        for line in text.splitlines() or [""]:
+        for line in (text if cli is None else cli).splitlines() or [""]:
             print(f"wakeline: {title}: {line}", file=sys.stderr)
 
     def run_step(self, step: str) -> int | None:
@@ -573,7 +575,7 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self.log_message(msg.detail)
             # a screenshot run: nobody to close a dialog; said on stderr, in the window's
             # language, as its title (operator test 7, D11)
-            self.tell(title, shown(msg.message))
+            self.tell(title, shown(msg.message), cli=shown_cli(msg.message))
         elif isinstance(msg, Cancelled):
             # the jobs by their titles, as the failed dialog names them (not "pipeline")
             name = self.job_title(msg.name)
@@ -654,7 +656,8 @@ class JobsMixin(ImportJobsMixin, ProjectJobsMixin):
                 self.log_message(f"{self.tr('Error')}: {shown(text)}")
             if done[2]:
                 text = "\n".join(shown(t) for t in done[2])
-                self.tell(self.tr("Cannot open file"), text)
+                cli = "\n".join(shown_cli(t) for t in done[2])
+                self.tell(self.tr("Cannot open file"), text, cli=cli)
         elif kind == "step":
             _, lid, result, views, params = done
             self._apply_step(lid, result, views, params)

@@ -1255,6 +1255,35 @@ def test_a_scripted_window_tells_on_stderr_not_in_a_box(window, tmp_path, capsys
     assert len(boxes) == 1 and "gone2.csv" in boxes[0][1]
 
 
+def test_a_headerless_files_refusal_names_map_flags_on_stderr_and_the_field_in_the_window(
+    window, tmp_path, capsys, monkeypatch
+):
+    """Operator test 11, F7: `wakeline gui vessels.csv` (no header) said on stderr "the
+    import dialog's Column mapping (time=col4, …)"; at the command line the suggested
+    mapping is said as the flags to give (--map time=col4 …), in the window's box as the
+    dialog's field."""
+    boxes = []
+    monkeypatch.setattr(QtWidgets.QMessageBox, "warning", lambda *a: boxes.append(a[1:]))
+    bare = tmp_path / "bare.csv"
+    bare.write_text(
+        "".join(
+            f"{7 + k % 2} {23.4 + k * 1e-3:.5f} {37.3 + k * 1e-3:.5f} {1722468684 + k}\n"
+            for k in range(40)
+        )
+    )
+    window.interactive = False
+    window.load_files([bare])
+    wait_for_jobs(window)
+    err = capsys.readouterr().err
+    assert "no header" in err and "--map time=col4" in err and "--map lon=col2" in err
+    assert "import dialog" not in err
+    window.interactive = True
+    window.load_files([bare])
+    wait_for_jobs(window)
+    said = " ".join(b[1] for b in boxes)
+    assert "Column mapping (" in said and "time=col4" in said and "--map" not in said
+
+
 def test_window_messages_name_the_import_dialog_not_cli_flags(window, write):
     """Operator test: a log warning told a window user to 'give the zone with --tz'."""
     from wakeline.app.window_words import window_words
