@@ -699,6 +699,16 @@ RULE_COLOR = {
 RULE_COLORS = tuple(RULE_COLOR.values())
 
 
+def removed_label(rule: str, count: int) -> str:
+    """The legend line of the × marks of one clean rule, in the window's language and with
+    the rule's name as the clean summary and the Parameters say it ("已删除：静止 (12,169)";
+    made in a worker: :func:`_tr`). Operator test 11, F20: the Chinese window said
+    "removed: turn (3)"."""
+    from wakeline.app.core_text import shown
+
+    return _tr("removed: {0} ({1})").format(shown(rule), f"{count:,}")
+
+
 def rejected_layer(rejected: pd.DataFrame, name: str, lon_west: float = -180.0) -> DrawData | None:
     """The points a clean step removed or replaced (its ``rejected`` table: original rows
     with ``rule``, ``action`` and ``params``) as small × markers, one colour per rule; the
@@ -759,7 +769,7 @@ def rejected_layer(rejected: pd.DataFrame, name: str, lon_west: float = -180.0) 
         time_s=np.asarray(t, dtype="float64"),
         speed_kn=np.full(n, np.nan),
         group=code.astype("int64"),
-        labels=tuple(f"removed: {r} ({c:,})" for r, c in zip(names, counts, strict=True)),
+        labels=tuple(removed_label(str(r), int(c)) for r, c in zip(names, counts, strict=True)),
         colors=tuple(
             RULE_COLOR.get(str(r), RULE_COLORS[k % len(RULE_COLORS)]) for k, r in enumerate(names)
         ),

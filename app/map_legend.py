@@ -162,7 +162,7 @@ class SideLegend(pg.LegendItem):
             return name
         head, sep, what = name.partition(LABEL_SEPARATOR)
         if not (head and what):
-            return whole
+            return self.fit_words(name, self._label_px) if " " in name else whole
         # Shortened, a label leaves out the files' extensions (which never tell two
         # files apart) so that the file's own name keeps its start and end:
         # "Sce…csv · … · maneuvers" beside "Sce…csv · … · compressed" named no file
@@ -181,7 +181,21 @@ class SideLegend(pg.LegendItem):
         last = "…" + sep + parts[-1]
         if self._metrics.horizontalAdvance(last) <= self._label_px:
             return last
-        return self._metrics.elidedText(parts[-1], middle, self._label_px)
+        return self.fit_words(parts[-1], self._label_px)
+
+    def fit_words(self, text: str, room: float) -> str:
+        """``text`` in ``room`` px, shortened by whole words: its first words left out
+        for "…" (its end — a rule's name and count, "… stationary (12,169)" — kept), never
+        cut inside a word ("removed: st…ry (12,169)", operator test 11, F20); a text of
+        one word too wide, or whose last word alone is, shortened in its middle."""
+        if self._metrics.horizontalAdvance(text) <= room:
+            return text
+        words = text.split(" ")
+        for k in range(1, len(words)):
+            tail = "… " + " ".join(words[k:])
+            if self._metrics.horizontalAdvance(tail) <= room:
+                return tail
+        return self._metrics.elidedText(text, QtCore.Qt.TextElideMode.ElideMiddle, room)
 
     def shown_label(self, name: str) -> str:
         """The label drawn for ``name``: itself when it fits the column; else, for a
@@ -223,7 +237,7 @@ class SideLegend(pg.LegendItem):
                 second = tail
                 break
         if not second:
-            second = self._metrics.elidedText(parts[-1], middle, room)
+            second = self.fit_words(parts[-1], room)
         first = "<br>".join(html.escape(line) for line in first.split("\n"))
         return f"{first}<br>{INDENT_HTML}{html.escape(second)}"
 

@@ -116,6 +116,12 @@ class LayersMixin:
             if layer is not None and layer.kind == BEARING_KIND:
                 rename = functools.partial(reworded, part=part, words=words)
                 self.canvas.relabel_layer(name, rename)
+        # The × marks of removed points: their legend lines (rule names) made anew in the
+        # worker, in the window's language (operator test 11, F20)
+        if getattr(self, "_removed_drawn", None):
+            self._removed_drawn, self._removed_shown = {}, {}
+            for lid in list(self.session.layers):
+                self._update_removed(lid)
         # A layer's name's step words (D-i18n-2): the label it was drawn with, said anew.
         drawn = getattr(self, "_drawn_labels", {})
         for lid, old in list(drawn.items()):

@@ -1909,6 +1909,46 @@ def test_radar_plots_layer_drawn_as_points_with_a_per_layer_choice(window, tmp_p
     assert window.canvas.draw_data(lid).style.width == 0
 
 
+def test_the_removed_marks_legend_names_the_rules_in_the_windows_language_in_whole_words(
+    window,
+):
+    """Operator test 11, F20: the Chinese window's legend of the × marks said "removed:
+    turn (3)" (made in the worker, in English) and cut a rule's name mid-word ("removed:
+    st…ry (12,169)"). Now the lines are in the window's language with the rules' names
+    the clean summary uses, made anew on a language switch, and shortened by whole words."""
+    from wakeline.app.core_text import shown
+    from wakeline.app.map_legend import SideLegend
+
+    load(window, demo_path())
+    window.run_step("clean")
+    wait_for_jobs(window)
+    lid = _layer_of(window, "cleaned")
+    name = f"{lid}/removed"
+    rules = sorted(window.layers[lid].tables["rejected"]["rule"].astype(str).unique())
+    window.actions_["show_removed"].setChecked(True)
+    wait_for_jobs(window)
+    english = [c.label for c in window.canvas.draw_data(name).curves]
+    assert all(f"removed: {r} (" in t for t, r in zip(english, rules, strict=True))
+    try:
+        window.set_language("zh_CN")
+        wait_for_jobs(window)
+        labels = [c.label for c in window.canvas.draw_data(name).curves]
+        for label, rule in zip(labels, rules, strict=True):
+            assert f"已删除：{shown(rule)}（" in label and shown(rule) != rule, label
+            assert "removed" not in label
+    finally:
+        window.set_language("en")
+    wait_for_jobs(window)
+    assert [c.label for c in window.canvas.draw_data(name).curves] == english
+    legend = SideLegend()
+    for text in ("saronic.csv · S1 · removed: stationary (12,169)", "removed: stationary (12,169)"):
+        shown_text = legend.shown_label(text).split("&nbsp;")[-1]
+        words = set(text.replace("·", " ").split())
+        assert "stationary (12,169)" in shown_text  # the rule and its count whole
+        kept = shown_text.replace("…", " ").split()
+        assert all(w in words for w in kept), shown_text  # no word cut
+
+
 def test_restore_texts_name_the_clean_rules_in_the_windows_language(window, qtbot):
     """Operator test 11 (h249): in the Chinese window the map's Restore entries, Edit ▸
     Undo's text and the log said the rules' English identifiers ("由 turn 删除") while the

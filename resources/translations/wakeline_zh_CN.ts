@@ -304,6 +304,10 @@
         <translation>{0} · 另 {1} 条同色</translation>
     </message>
     <message>
+        <source>removed: {0} ({1})</source>
+        <translation>已删除：{0}（{1}）</translation>
+    </message>
+    <message>
         <source>Positions at {0}</source>
         <translation>位置时刻 {0}</translation>
     </message>
