@@ -124,11 +124,51 @@ def _set_clean(m: re.Match) -> str:
     return f"Parameters ▸ Cleaning ▸ {m.group(1)} ▸ {m.group(2)} = {m.group(3)}"
 
 
+#: ``--set NAME=VALUE`` of a step's own parameter (``mmsi_apart``: no rule before it).
+_SET_FIELD = re.compile(r"--set (\w+)=([\w.+-]+)")
+
+
+def _set_field(m: re.Match) -> str:
+    """A step parameter's ``--set`` as its place in the Parameters panel, said as the panel
+    says it (its group's title, its row's label, in the window's language; a tick box
+    ticked or not): the Chinese log told the window's operator "用 --set mmsi_apart=false
+    关闭" (operator test 11, F23). A name the panel does not show is left as it is."""
+    import dataclasses
+
+    from PySide6.QtCore import QCoreApplication
+
+    from wakeline.app.params_panel import GROUPS, field_title
+
+    name, value = m.group(1), m.group(2)
+    for _key, title, cls in GROUPS:
+        fields = {f.name: f for f in dataclasses.fields(cls)}
+        if name not in fields:
+            continue
+        f = fields[name]
+        label = field_title(cls, f) or name
+        if isinstance(f.default, bool) and value.lower() in ("true", "false"):
+            said = (
+                QCoreApplication.translate("WindowWords", "ticked")
+                if value.lower() == "true"
+                else QCoreApplication.translate("WindowWords", "unticked")
+            )
+        else:
+            said = f"= {value}"
+        return QCoreApplication.translate("WindowWords", "{0} ▸ {1} ▸ {2} ({3})").format(
+            QCoreApplication.translate("MainWindow", "Parameters"),
+            QCoreApplication.translate("ParamsPanel", title),
+            label,
+            said,
+        )
+    return m.group(0)
+
+
 def window_words(text: str) -> str:
     """``text`` with command-line flags replaced by the import dialog's fields (and a
-    cleaning rule's ``--set`` by its place in the Parameters panel)."""
+    ``--set`` by its place in the Parameters panel)."""
     if "--" not in text:
         return text
+    text = _SET_FIELD.sub(_set_field, text)
     for cli, window in _PHRASES:
         text = text.replace(cli, window)
     text = _SET_CLEAN.sub(_set_clean, text)

@@ -553,3 +553,42 @@ def test_zh_statistics_review_and_import_dialog_words(qtbot, tmp_path):
         w.set_language("en")
         w.close()
     i18n.install(QtWidgets.QApplication.instance(), "en", None)
+
+
+def test_the_mmsi_apart_advice_names_the_parameters_row_in_the_window(qapp):
+    """Operator test 11, F23: Run ▸ Associate's log (0 proposals on MTAD) told the Chinese
+    window's operator "用 --set mmsi_apart=false 关闭", a command-line flag; in the window
+    the advice names the Parameters panel's row as the panel shows it (its group and its
+    label, a tick box unticked). The command line keeps the flag."""
+    import inspect
+
+    from wakeline.app import i18n
+    from wakeline.app.core_text import shown, shown_cli
+    from wakeline.app.dialogs import translated
+    from wakeline.app.params_panel import field_title
+    from wakeline.core import pipeline
+    from wakeline.core.associate import LinkParams
+    from wakeline.core.words import phrase, render
+
+    template = (
+        "; {n:#pair} of different MMSIs kept apart (mmsi_apart; off with --set "
+        "mmsi_apart=false if the ids are a sensor's own numbers)"
+    )
+    src = inspect.getsource(pipeline)
+    assert "off with --set " in src and "mmsi_apart=false if the ids" in src
+    text = phrase(template, n=73)
+    assert "--set mmsi_apart=false" in render(text)  # the command line's words
+    english = shown(translated(text))
+    assert "--set" not in english
+    assert "Parameters ▸ Association, one sensor ▸ mmsi_apart (unticked)" in english
+    field = next(f for f in LinkParams.__dataclass_fields__.values() if f.name == "mmsi_apart")
+    zh = None
+    try:
+        zh = i18n.install(qapp, "zh_CN", None)
+        said = shown(translated(text))
+        label = field_title(LinkParams, field)
+        assert label and HAN.search(label)
+        assert "--set" not in said and f"参数 ▸ 关联，单传感器 ▸ {label}（不勾选）" in said, said
+        assert "--set mmsi_apart=false" in shown_cli(translated(text))
+    finally:
+        i18n.install(qapp, "en", zh)

@@ -3511,4 +3511,19 @@
         <translation>移除图层 {0}</translation>
     </message>
 </context>
+<context>
+    <name>WindowWords</name>
+    <message>
+        <source>{0} ▸ {1} ▸ {2} ({3})</source>
+        <translation>{0} ▸ {1} ▸ {2}（{3}）</translation>
+    </message>
+    <message>
+        <source>ticked</source>
+        <translation>勾选</translation>
+    </message>
+    <message>
+        <source>unticked</source>
+        <translation>不勾选</translation>
+    </message>
+</context>
 </TS>
