@@ -53,6 +53,8 @@ from wakeline.resources import coastline_path
 #: Rows of the batch table always in sight (its least height): 5 made the right column
 #: 705 px tall at least, more than a 150 % or 200 % laptop screen has (operator look h225).
 BATCH_MIN_ROWS = 3
+#: The batch table's columns shown right after Batch (a file's ship names and types).
+BATCH_AFTER_BATCH = ("name", "ship_type")
 #: A screen whose free height (``availableGeometry``, logical px) is below this gets the
 #: compact layout at start: Layers tabbed with Parameters, the batch table with Detail
 #: (1366x768, 1280x720 at 150 %, 1920x1080 at 200 %); 1440x900 and up keep every dock apart.
@@ -235,6 +237,14 @@ class MainWindow(
         header = self.batch_view.horizontalHeader()
         header.setStretchLastSection(True)
         header.setResizeContentsPrecision(50)  # size columns from 50 rows, not all
+        # Name and Type (a file's ship names, File ▸ Load ship names' types) shown right
+        # after Batch: last, the Type column sat off-screen at x=1008 px of a 389-px table
+        # (1400 x 900; operator test 11, F5) and loading the types seemed to do nothing.
+        # Moved on the header (what the view shows), the model's columns keep their
+        # places (sorting, filters, the selection address them by those).
+        keys = [key for key, _title in self.batch_model.COLUMNS]
+        for k, key in enumerate(BATCH_AFTER_BATCH):
+            header.moveSection(header.visualIndex(keys.index(key)), keys.index("batch") + 1 + k)
         self.batch_view.selectionModel().selectionChanged.connect(self._table_selection_changed)
         self.batch_model.modelReset.connect(self._reselect)  # after the view dropped it
         self.batch_model.modelReset.connect(self.fit_batch_columns)

@@ -194,6 +194,45 @@ def test_the_window_shows_the_names_and_types_in_table_filter_and_labels(qtbot, 
     w.close()
 
 
+def test_the_name_and_type_columns_are_in_sight_after_batch_at_1400x900(qtbot, tmp_path):
+    """Operator test 11, F5: after File ▸ Load ship names the Type column sat at x=1008 px
+    of a 389-px batch table (1400 x 900): nothing seemed to change. Name and Type are
+    shown right after Batch, in sight; the model keeps its columns (sorting by Type and
+    the logical indices unchanged)."""
+    pytest.importorskip("pytestqt")
+    from PySide6 import QtCore
+    from test_review_window import _settle, _window
+
+    from wakeline.core.io import write_points
+
+    path = tmp_path / "ais.csv"
+    write_points(_points(["244000001", "244000002", "244000003"], n=30), path)
+    vessels = tmp_path / "vessels.csv"
+    vessels.write_text("MMSI;TYPE\n244000001;70\n244000002;60\n244000003;30\n")
+    w = _window(qtbot, tmp_path)
+    w.resize(1400, 900)
+    w.load_files([path])
+    _settle(w)
+    w.select_layer(w.layer_id(path.name))
+    _settle(w)
+    w.load_vessels(vessels)
+    _settle(w)
+    model, view = w.batch_model, w.batch_view
+    header = view.horizontalHeader()
+    cols = [k for k, _ in model.COLUMNS]
+    assert model.has_types and not view.isColumnHidden(cols.index("ship_type"))
+    batch = header.visualIndex(cols.index("batch"))
+    assert header.visualIndex(cols.index("name")) == batch + 1
+    assert header.visualIndex(cols.index("ship_type")) == batch + 2
+    type_col = cols.index("ship_type")
+    right = header.sectionViewportPosition(type_col) + header.sectionSize(type_col)
+    assert 0 <= header.sectionViewportPosition(type_col) and right <= view.viewport().width()
+    view.sortByColumn(type_col, QtCore.Qt.SortOrder.AscendingOrder)
+    got = [model.index(r, type_col).data() for r in range(model.rowCount())]
+    assert got == sorted(got) and len(set(got)) == 3
+    w.close()
+
+
 def test_gui_takes_a_vessel_table_on_the_command_line(monkeypatch, tmp_path):
     from wakeline.app import cli
 
