@@ -576,3 +576,52 @@ def test_noisy_tracks_is_not_suggested_for_fixes_minutes_apart():
     assert names(65.0) == ["noisy-tracks"]
     assert names(NOISY_MAX_INTERVAL_S) == ["noisy-tracks"]
     assert names(1762.0) == []
+
+
+def test_a_collapsed_groups_rows_made_on_expanding_show_values_set_before(qtbot):
+    """The tree makes a collapsed group's rows when it is first expanded (h253): a preset,
+    a value and the language set before then are in the rows it makes."""
+    from wakeline.app import core_text
+
+    panel = _panel(qtbot)
+    compress = panel.root.child("compress")
+    resample = panel.root.child("clean", "resample")
+    rows = {p.name(): next(iter(p.items)) for p in (compress, resample)}
+    assert all(item.childCount() == 0 for item in rows.values())  # not made yet
+    panel.apply_builtin("paper")
+    panel.from_dict({"clean": {"resample": {"max_gap_s": 77.0}}})
+    assert panel.params("compress") == CompressParams.paper()
+    try:
+        core_text.set_language("zh_CN")
+        panel.retranslate()
+        for group in (compress, resample):
+            group.setOpts(expanded=True)
+            item = rows[group.name()]
+            assert item.isExpanded()
+            assert item.childCount() == len(group.children()) > 0
+            for k, param in enumerate(group.children()):
+                row = item.child(k)
+                assert row.param is param
+                assert row.widget.toolTip() == param.opts["tip"]
+                assert row.text(0) == param.title()
+                assert fn_eq(row.widget.value(), param.value())
+            assert item.childCount() == len(group.children())  # made once
+            group.setOpts(expanded=False)
+            group.setOpts(expanded=True)
+            assert item.childCount() == len(group.children())
+        assert resample.child("max_gap_s").value() == 77.0
+        values = panel.params("compress")
+        for param in compress.children():
+            assert param.value() == getattr(values, param.name())
+        # an edit in a row made late reaches the panel's values
+        param = next(p for p in compress.children() if p.type() == "float")
+        row = rows["compress"].child(compress.children().index(param))
+        row.widget.setValue(getattr(values, param.name()) + 1.0)
+        assert getattr(panel.params("compress"), param.name()) == getattr(values, param.name()) + 1
+    finally:
+        core_text.set_language("en")
+        panel.retranslate()
+
+
+def fn_eq(a, b) -> bool:
+    return a == b or (isinstance(a, float) and isinstance(b, float) and abs(a - b) < 1e-9)
